@@ -1,0 +1,79 @@
+"""The click application: the ``contactres`` group and its one-line error handling."""
+
+from __future__ import annotations
+
+import os
+import sys
+
+import click
+
+from .. import __version__
+
+# Errors that mean "the user's input is wrong": one line, exit code 2, no traceback.
+USER_ERRORS = (ValueError, KeyError, FileNotFoundError, IsADirectoryError, PermissionError)
+
+
+def _one_line(text: str) -> str:
+    return " ".join(str(text).split())
+
+
+class App(click.Group):
+    """A click group that turns every error into one readable line on stderr."""
+
+    def main(self, args=None, prog_name=None, complete_var=None, **extra):
+        extra.pop("standalone_mode", None)
+        prog = prog_name or "contactres"
+        try:
+            rv = super().main(
+                args=args, prog_name=prog, complete_var=complete_var, standalone_mode=False,
+                **extra,
+            )
+        except click.exceptions.Abort:
+            click.echo(f"{prog}: aborted", err=True)
+            sys.exit(1)
+        except click.UsageError as exc:
+            where = exc.ctx.command_path if exc.ctx is not None else prog
+            click.echo(
+                f"{where}: error: {_one_line(exc.format_message())} (see '{where} --help')",
+                err=True,
+            )
+            sys.exit(2)
+        except click.ClickException as exc:
+            click.echo(f"{prog}: error: {_one_line(exc.format_message())}", err=True)
+            sys.exit(exc.exit_code)
+        except USER_ERRORS as exc:
+            if os.environ.get("CONTACTRES_DEBUG"):
+                raise
+            msg = exc.args[0] if isinstance(exc, KeyError) and exc.args else exc
+            click.echo(f"{prog}: error: {_one_line(msg)}", err=True)
+            sys.exit(2)
+        except Exception as exc:
+            if os.environ.get("CONTACTRES_DEBUG"):
+                raise
+            click.echo(
+                f"{prog}: internal error: {type(exc).__name__}: {_one_line(exc)} "
+                "(set CONTACTRES_DEBUG=1 for a traceback)",
+                err=True,
+            )
+            sys.exit(1)
+        sys.exit(rv if isinstance(rv, int) else 0)
+
+
+@click.group(cls=App, context_settings={"help_option_names": ["-h", "--help"]})
+@click.version_option(__version__, "--version", "-V", prog_name="contactres")
+def main() -> None:
+    """contactres: contact mechanics at resonance.
+
+    Forward models of normal, tangential and dynamic contacts, and the analysis of QCM amplitude
+    sweeps. SI units everywhere (m, N, Pa, Hz, kg). Run 'contactres COMMAND --help' for details.
+    """
+
+
+@main.group()
+def qcm() -> None:
+    """Quartz crystal microbalance: contact loops and amplitude-sweep analysis (paper 2)."""
+
+
+@main.group()
+def figures() -> None:
+    """Reproduce the figures of the two core papers (PNG + CSV)."""

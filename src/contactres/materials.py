@@ -1,0 +1,305 @@
+"""Elastic materials: 6x6 Voigt stiffness, constructors, rotation, anisotropy measures, loss.
+
+Conventions
+-----------
+Voigt order 11, 22, 33, 23, 13, 12 with engineering shear strains, so that the elastic energy
+density is ``0.5 * e @ C @ e`` with ``e = (e11, e22, e33, 2 e23, 2 e13, 2 e12)``. Stiffness in Pa,
+density in kg/m^3. Damping follows paper 1: the constants are made complex, C(1 + i Q^-1).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+__all__ = ["Material", "rotation_to_surface", "tensor_to_voigt", "voigt_to_tensor"]
+
+# Voigt index of each tensor index pair (i, j).
+_VOIGT = np.array([[0, 5, 4], [5, 1, 3], [4, 3, 2]])
+_PAIRS = [(0, 0), (1, 1), (2, 2), (1, 2), (0, 2), (0, 1)]
+
+# Relative tolerance for symmetry checks of stiffness matrices (round-off of a rotation is ~1e-15).
+_SYM_RTOL = 1e-9
+
+
+def voigt_to_tensor(C: np.ndarray) -> np.ndarray:
+    """Return the 3x3x3x3 stiffness tensor c_ijkl of a 6x6 Voigt matrix (Pa)."""
+    C = np.asarray(C)
+    return C[np.ix_(_VOIGT.ravel(), _VOIGT.ravel())].reshape(3, 3, 3, 3)
+
+
+def tensor_to_voigt(c: np.ndarray) -> np.ndarray:
+    """Return the 6x6 Voigt matrix of a 3x3x3x3 stiffness tensor (Pa)."""
+    c = np.asarray(c)
+    idx = np.array(_PAIRS)
+    return c[idx[:, 0][:, None], idx[:, 1][:, None], idx[:, 0][None, :], idx[:, 1][None, :]]
+
+
+def _unit(v, name: str) -> np.ndarray:
+    v = np.asarray(v, dtype=float)
+    if v.shape != (3,) or not np.all(np.isfinite(v)):
+        raise ValueError(f"{name} must be three finite numbers, got {v.tolist()!r}")
+    n = np.linalg.norm(v)
+    if n == 0:
+        raise ValueError(f"{name} must not be the zero vector")
+    return v / n
+
+
+def rotation_to_surface(normal, inplane=None) -> np.ndarray:
+    """Rotation matrix whose rows are the new axes (x', y', z') in crystal coordinates.
+
+    Parameters
+    ----------
+    normal : sequence of 3 numbers
+        Direction of the new z axis (the inward surface normal), e.g. Miller indices (h, k, l)
+        of a cubic crystal. Need not be normalised.
+    inplane : sequence of 3 numbers, optional
+        Direction of the new x axis; its component along ``normal`` is removed. Default: the
+        component of [100] perpendicular to ``normal``; [010] when ``normal`` is parallel to
+        [100]. So (001) keeps x = [100], (011) has x = [100], (111) has x along [2 -1 -1].
+
+    Returns
+    -------
+    ndarray, shape (3, 3)
+        Proper orthogonal matrix ``R`` with ``v_new = R @ v_crystal``.
+    """
+    z = _unit(normal, "normal")
+    if inplane is None:
+        x = np.array([1.0, 0.0, 0.0])
+        if abs(z @ x) > 1 - 1e-12:
+            x = np.array([0.0, 1.0, 0.0])
+    else:
+        x = _unit(inplane, "inplane")
+    x = x - (x @ z) * z
+    nx = np.linalg.norm(x)
+    if nx < 1e-9:
+        raise ValueError(f"inplane {list(inplane)!r} is parallel to normal {list(normal)!r}")
+    x = x / nx
+    y = np.cross(z, x)
+    return np.vstack([x, y, z])
+
+
+def _check_stiffness(C) -> np.ndarray:
+    C = np.array(C, dtype=complex if np.iscomplexobj(C) else float)
+    if C.shape != (6, 6):
+        raise ValueError(f"stiffness C must be a 6x6 Voigt matrix, got shape {C.shape}")
+    if not np.all(np.isfinite(C)):
+        raise ValueError("stiffness C must be finite (found NaN or inf)")
+    scale = np.max(np.abs(C))
+    if scale == 0:
+        raise ValueError("stiffness C must not be all zero")
+    asym = np.max(np.abs(C - C.T))
+    if asym > _SYM_RTOL * scale:
+        raise ValueError(
+            f"stiffness C must be symmetric: max |C - C^T| = {asym:.3g} Pa "
+            f"(relative {asym / scale:.2g} > {_SYM_RTOL:g})"
+        )
+    C = 0.5 * (C + C.T)
+    eig = np.linalg.eigvalsh(C.real)
+    if eig[0] <= 1e-12 * eig[-1]:
+        raise ValueError(
+            "stiffness C must have a positive-definite real part: smallest eigenvalue "
+            f"{eig[0]:.4g} Pa (largest {eig[-1]:.4g} Pa)"
+        )
+    if np.iscomplexobj(C) and np.linalg.eigvalsh(C.imag)[0] < -1e-12 * eig[-1]:
+        raise ValueError("stiffness C has a negative-definite loss part (Im C must be >= 0)")
+    C.setflags(write=False)
+    return C
+
+
+def _positive(value, name: str, unit: str) -> float:
+    v = float(value)
+    if not np.isfinite(v) or v <= 0:
+        raise ValueError(f"{name} must be a positive finite number ({unit}), got {value!r}")
+    return v
+
+
+def _poisson(nu, name: str = "nu") -> float:
+    v = float(nu)
+    if not (-1.0 < v < 0.5):
+        raise ValueError(f"{name} (Poisson's ratio) must lie in (-1, 0.5), got {nu!r}")
+    return v
+
+
+@dataclass(frozen=True, eq=False)
+class Material:
+    """A linear elastic solid: 6x6 Voigt stiffness ``C`` (Pa) and optional density (kg/m^3).
+
+    Use the constructors (:meth:`isotropic`, :meth:`cubic`, :meth:`cubic_from_ratios`,
+    :meth:`hexagonal`, :meth:`from_voigt`, :meth:`crystal`) rather than the bare class. ``C`` is
+    stored read-only; it may be complex (loss, see :meth:`with_loss`). ``C`` refers to the
+    material's current frame: the crystal frame after construction, the surface frame after
+    :meth:`rotated`.
+    """
+
+    C: np.ndarray
+    density: float | None = None
+    name: str | None = None
+    frame: np.ndarray = field(default_factory=lambda: np.eye(3), repr=False)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "C", _check_stiffness(self.C))
+        if self.density is not None:
+            object.__setattr__(self, "density", _positive(self.density, "density", "kg/m^3"))
+        frame = np.array(self.frame, dtype=float)
+        frame.setflags(write=False)
+        object.__setattr__(self, "frame", frame)
+
+    # ----------------------------------------------------------------------------- constructors
+    @classmethod
+    def from_voigt(cls, C, density: float | None = None, name: str | None = None) -> Material:
+        """Material from a 6x6 Voigt stiffness matrix ``C`` (Pa, real or complex)."""
+        return cls(C=np.asarray(C), density=density, name=name)
+
+    @classmethod
+    def isotropic(cls, E: float, nu: float, density: float | None = None) -> Material:
+        """Isotropic solid of Young's modulus ``E`` (Pa) and Poisson's ratio ``nu`` in (-1, 0.5)."""
+        E = _positive(E, "E", "Pa")
+        nu = _poisson(nu)
+        lam = E * nu / ((1 + nu) * (1 - 2 * nu))
+        mu = E / (2 * (1 + nu))
+        return cls.cubic(lam + 2 * mu, lam, mu, density=density)
+
+    @classmethod
+    def cubic(
+        cls, c11: float, c12: float, c44: float, density: float | None = None,
+        name: str | None = None,
+    ) -> Material:
+        """Cubic crystal in its cube-axis frame; ``c11, c12, c44`` in Pa.
+
+        Stability (positive definiteness) requires c11 > |c12|, c11 + 2 c12 > 0, c44 > 0.
+        """
+        for v, n in ((c11, "c11"), (c44, "c44")):
+            _positive(v, n, "Pa")
+        if not np.isfinite(c12):
+            raise ValueError(f"c12 must be finite, got {c12!r}")
+        if not (c11 > abs(c12) and c11 + 2 * c12 > 0):
+            raise ValueError(
+                f"cubic constants c11={c11:.4g}, c12={c12:.4g} Pa are unstable: need "
+                "c11 > |c12| and c11 + 2 c12 > 0"
+            )
+        C = np.zeros((6, 6))
+        C[:3, :3] = c12
+        C[[0, 1, 2], [0, 1, 2]] = c11
+        C[[3, 4, 5], [3, 4, 5]] = c44
+        return cls(C=C, density=density, name=name)
+
+    @classmethod
+    def cubic_from_ratios(
+        cls, zener: float, poisson: float, c44: float = 1.0, density: float | None = None
+    ) -> Material:
+        """Cubic crystal from Zener ratio A = 2 C44/(C11 - C12) and ν = C12/(C11 + C12).
+
+        Inverse (paper 1): C11 = 2 C44 (1 - ν)/(A (1 - 2ν)), C12 = 2 C44 ν/(A (1 - 2ν)).
+        ``c44`` in Pa (default 1: dimensionless constants, as the paper's figures use).
+        """
+        A = _positive(zener, "zener", "dimensionless")
+        nu = _poisson(poisson, "poisson")
+        c44 = _positive(c44, "c44", "Pa")
+        c11 = 2 * c44 * (1 - nu) / (A * (1 - 2 * nu))
+        c12 = 2 * c44 * nu / (A * (1 - 2 * nu))
+        return cls.cubic(c11, c12, c44, density=density)
+
+    @classmethod
+    def hexagonal(
+        cls, c11: float, c12: float, c13: float, c33: float, c44: float,
+        density: float | None = None,
+    ) -> Material:
+        """Hexagonal (transversely isotropic) crystal, c axis along z; constants in Pa.
+
+        C66 = (C11 - C12)/2.
+        """
+        C = np.zeros((6, 6))
+        C[0, 0] = C[1, 1] = c11
+        C[0, 1] = C[1, 0] = c12
+        C[0, 2] = C[2, 0] = C[1, 2] = C[2, 1] = c13
+        C[2, 2] = c33
+        C[3, 3] = C[4, 4] = c44
+        C[5, 5] = 0.5 * (c11 - c12)
+        return cls(C=C, density=density)
+
+    @classmethod
+    def crystal(cls, name: str) -> Material:
+        """A crystal from the built-in table (``contactres crystals`` lists them)."""
+        from .crystals import get_crystal
+
+        return get_crystal(name)
+
+    # ----------------------------------------------------------------------------- operations
+    def rotated(self, normal=(0, 0, 1), inplane=None) -> Material:
+        """The same solid in the frame whose z axis is along ``normal``, x along ``inplane``.
+
+        ``normal`` and ``inplane`` are given in the material's current frame (for a freshly
+        constructed crystal: crystal axes, so ``normal=(1, 1, 1)`` is the (111) surface of a
+        cubic crystal). See :func:`rotation_to_surface` for the default in-plane axis.
+        """
+        R = rotation_to_surface(normal, inplane)
+        c = voigt_to_tensor(self.C)
+        c_new = np.einsum("ia,jb,kc,ld,abcd->ijkl", R, R, R, R, c, optimize=True)
+        return Material(
+            C=tensor_to_voigt(c_new), density=self.density, name=self.name,
+            frame=R @ self.frame,
+        )
+
+    def with_loss(self, q_inv: float) -> Material:
+        """The solid with complex constants C (1 + i Q^-1) (paper 1; Q^-1 = 0.02 there)."""
+        q = float(q_inv)
+        if not np.isfinite(q) or q < 0:
+            raise ValueError(f"q_inv (loss factor Q^-1) must be finite and >= 0, got {q_inv!r}")
+        return Material(
+            C=np.asarray(self.C) * (1 + 1j * q), density=self.density, name=self.name,
+            frame=self.frame,
+        )
+
+    # ----------------------------------------------------------------------------- properties
+    @property
+    def is_lossy(self) -> bool:
+        """True when C has a non-zero imaginary part."""
+        return bool(np.iscomplexobj(self.C) and np.any(self.C.imag != 0))
+
+    def _cubic_constants(self) -> tuple[float, float, float]:
+        C = np.asarray(self.C).real
+        scale = np.max(np.abs(C))
+        tol = 1e-9 * scale
+        ok = (
+            np.ptp(np.diag(C)[:3]) <= tol
+            and np.ptp([C[0, 1], C[0, 2], C[1, 2]]) <= tol
+            and np.ptp(np.diag(C)[3:]) <= tol
+            and np.max(np.abs(C[:3, 3:])) <= tol
+            and np.max(np.abs(C[3:, 3:] - np.diag(np.diag(C)[3:]))) <= tol
+        )
+        if not ok:
+            raise ValueError(
+                "material does not have cubic symmetry in its current frame (zener_ratio and "
+                "cubic_poisson are defined for a cubic crystal in its cube-axis frame)"
+            )
+        return float(C[0, 0]), float(C[0, 1]), float(C[3, 3])
+
+    @property
+    def zener_ratio(self) -> float:
+        """Zener anisotropy ratio A = 2 C44/(C11 - C12) (1 for isotropic); cubic frame only."""
+        c11, c12, c44 = self._cubic_constants()
+        return 2 * c44 / (c11 - c12)
+
+    @property
+    def cubic_poisson(self) -> float:
+        """ν = C12/(C11 + C12) of a cubic crystal (paper 1's second parameter)."""
+        c11, c12, _ = self._cubic_constants()
+        return c12 / (c11 + c12)
+
+    @property
+    def isotropic_constants(self) -> tuple[float, float]:
+        """(E, ν) of an isotropic material (Pa, dimensionless); error if not isotropic."""
+        c11, c12, c44 = self._cubic_constants()
+        if abs(c11 - c12 - 2 * c44) > 1e-9 * c11:
+            raise ValueError(
+                f"material is not isotropic (Zener ratio {2 * c44 / (c11 - c12):.6g} != 1)"
+            )
+        mu, lam = c44, c12
+        return mu * (3 * lam + 2 * mu) / (lam + mu), lam / (2 * (lam + mu))
+
+    def energy_density(self, strain) -> np.ndarray:
+        """Elastic energy density 0.5 e·C·e (J/m^3) of Voigt strains ``e`` (..., 6)."""
+        e = np.asarray(strain)
+        return 0.5 * np.einsum("...i,ij,...j->...", e, np.asarray(self.C).real, e)

@@ -1,0 +1,78 @@
+"""Tests of the command line: help, version, exit codes and one-line errors."""
+
+import json
+import subprocess
+import sys
+
+import pytest
+from click.testing import CliRunner
+
+from contactres import __version__
+from contactres.cli import main
+from contactres.cli._common import parse_range
+
+
+def run(*args):
+    return CliRunner().invoke(main, list(args))
+
+
+def test_help_lists_subcommands():
+    r = run("--help")
+    assert r.exit_code == 0
+    for cmd in ("crystals", "demo", "qcm", "figures"):
+        assert cmd in r.output
+
+
+def test_version():
+    r = run("--version")
+    assert r.exit_code == 0 and __version__ in r.output
+
+
+def test_python_dash_m_runs():
+    p = subprocess.run([sys.executable, "-m", "contactres", "--version"],
+                       capture_output=True, text=True, check=False)
+    assert p.returncode == 0 and __version__ in p.stdout
+
+
+@pytest.mark.parametrize("args", [["no-such-command"], ["crystals", "--format", "xml"],
+                                  ["crystals", "--bogus"]])
+def test_bad_arguments_give_one_line_and_exit_2(args):
+    r = run(*args)
+    assert r.exit_code == 2
+    lines = r.output.strip().splitlines()
+    assert len(lines) == 1 and "error" in lines[0]
+    assert "Traceback" not in r.output
+
+
+def test_crystals_formats():
+    r = run("crystals", "--format", "json")
+    assert r.exit_code == 0
+    rows = json.loads(r.output)
+    cu = next(row for row in rows if row["name"] == "Cu")
+    assert cu["zener"] == pytest.approx(3.21, abs=0.005)
+    r = run("crystals", "--format", "csv")
+    assert r.output.splitlines()[0].startswith("name,c11_GPa")
+    assert "RbI" in run("crystals").output
+
+
+def test_demo_writes_folder(tmp_path):
+    out = tmp_path / "demo"
+    r = run("demo", "--out", str(out))
+    assert r.exit_code == 0, r.output
+    assert (out / "crystals.csv").is_file()
+
+
+def test_demo_onto_a_file_is_an_error(tmp_path):
+    f = tmp_path / "file"
+    f.write_text("keep me")
+    r = run("demo", "--out", str(f))
+    assert r.exit_code == 2
+    assert f.read_text() == "keep me"
+
+
+def test_parse_range():
+    assert list(parse_range("0:2:5")) == [0, 0.5, 1, 1.5, 2]
+    assert list(parse_range("1,2.5")) == [1, 2.5]
+    for bad in ("0:2", "a:b:3", "0:1:0", "", "nan"):
+        with pytest.raises(ValueError, match="range"):
+            parse_range(bad)
