@@ -29,13 +29,18 @@ def test_version():
 
 
 def test_python_dash_m_runs():
-    p = subprocess.run([sys.executable, "-m", "contactres", "--version"],
-                       capture_output=True, text=True, check=False)
+    p = subprocess.run(
+        [sys.executable, "-m", "contactres", "--version"],
+        capture_output=True,
+        text=True,
+        check=False,
+    )
     assert p.returncode == 0 and __version__ in p.stdout
 
 
-@pytest.mark.parametrize("args", [["no-such-command"], ["crystals", "--format", "xml"],
-                                  ["crystals", "--bogus"]])
+@pytest.mark.parametrize(
+    "args", [["no-such-command"], ["crystals", "--format", "xml"], ["crystals", "--bogus"]]
+)
 def test_bad_arguments_give_one_line_and_exit_2(args):
     r = run(*args)
     assert r.exit_code == 2

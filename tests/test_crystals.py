@@ -4,8 +4,26 @@ import pytest
 
 from contactres import Material, crystal_names, crystal_table
 
-REQUIRED = ["Cu", "Al", "Ni", "Au", "Ag", "Fe", "W", "Si", "Ge", "Pb", "Li", "Na",
-            "NaCl", "KCl", "RbBr", "RbI", "GaAs", "diamond"]
+REQUIRED = [
+    "Cu",
+    "Al",
+    "Ni",
+    "Au",
+    "Ag",
+    "Fe",
+    "W",
+    "Si",
+    "Ge",
+    "Pb",
+    "Li",
+    "Na",
+    "NaCl",
+    "KCl",
+    "RbBr",
+    "RbI",
+    "GaAs",
+    "diamond",
+]
 
 
 def test_table_has_required_crystals_with_sources():

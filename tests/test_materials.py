@@ -18,8 +18,11 @@ def _rotate(m: Material, R: np.ndarray) -> np.ndarray:
     out = np.zeros_like(c)
     for i, j, k, m_ in np.ndindex(3, 3, 3, 3):
         out[i, j, k, m_] = np.sum(
-            R[i, :, None, None, None] * R[j, None, :, None, None]
-            * R[k, None, None, :, None] * R[l, None, None, None, :] * c
+            R[i, :, None, None, None]
+            * R[j, None, :, None, None]
+            * R[k, None, None, :, None]
+            * R[m_, None, None, None, :]
+            * c
         )
     return tensor_to_voigt(out)
 
@@ -61,8 +64,9 @@ def test_c11_along_111_is_known_combination():
 
 @st.composite
 def rotations(draw):
-    q = draw(st.lists(st.floats(-1, 1), min_size=4, max_size=4).filter(
-        lambda v: np.linalg.norm(v) > 0.1))
+    q = draw(
+        st.lists(st.floats(-1, 1), min_size=4, max_size=4).filter(lambda v: np.linalg.norm(v) > 0.1)
+    )
     return Rotation.from_quat(q).as_matrix()
 
 

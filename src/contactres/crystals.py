@@ -39,8 +39,11 @@ def get_crystal(name: str) -> Material:
         raise ValueError(f"unknown crystal {name!r}; known crystals: {', '.join(crystal_names())}")
     row = match.iloc[0]
     return Material.cubic(
-        row.c11_GPa * _GPa, row.c12_GPa * _GPa, row.c44_GPa * _GPa,
-        density=row.density_kg_m3, name=row["name"],
+        row.c11_GPa * _GPa,
+        row.c12_GPa * _GPa,
+        row.c44_GPa * _GPa,
+        density=row.density_kg_m3,
+        name=row["name"],
     )
 
 

@@ -163,7 +163,11 @@ class Material:
 
     @classmethod
     def cubic(
-        cls, c11: float, c12: float, c44: float, density: float | None = None,
+        cls,
+        c11: float,
+        c12: float,
+        c44: float,
+        density: float | None = None,
         name: str | None = None,
     ) -> Material:
         """Cubic crystal in its cube-axis frame; ``c11, c12, c44`` in Pa.
@@ -203,7 +207,12 @@ class Material:
 
     @classmethod
     def hexagonal(
-        cls, c11: float, c12: float, c13: float, c33: float, c44: float,
+        cls,
+        c11: float,
+        c12: float,
+        c13: float,
+        c33: float,
+        c44: float,
         density: float | None = None,
     ) -> Material:
         """Hexagonal (transversely isotropic) crystal, c axis along z; constants in Pa.
@@ -238,7 +247,9 @@ class Material:
         c = voigt_to_tensor(self.C)
         c_new = np.einsum("ia,jb,kc,ld,abcd->ijkl", R, R, R, R, c, optimize=True)
         return Material(
-            C=tensor_to_voigt(c_new), density=self.density, name=self.name,
+            C=tensor_to_voigt(c_new),
+            density=self.density,
+            name=self.name,
             frame=R @ self.frame,
         )
 
@@ -248,7 +259,9 @@ class Material:
         if not np.isfinite(q) or q < 0:
             raise ValueError(f"q_inv (loss factor Q^-1) must be finite and >= 0, got {q_inv!r}")
         return Material(
-            C=np.asarray(self.C) * (1 + 1j * q), density=self.density, name=self.name,
+            C=np.asarray(self.C) * (1 + 1j * q),
+            density=self.density,
+            name=self.name,
             frame=self.frame,
         )
 

@@ -25,7 +25,10 @@ class App(click.Group):
         prog = prog_name or "contactres"
         try:
             rv = super().main(
-                args=args, prog_name=prog, complete_var=complete_var, standalone_mode=False,
+                args=args,
+                prog_name=prog,
+                complete_var=complete_var,
+                standalone_mode=False,
                 **extra,
             )
         except click.exceptions.Abort:

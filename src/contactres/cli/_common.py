@@ -57,7 +57,11 @@ FORMATS = ("plain", "csv", "json")
 def format_option(default: str = "plain"):
     """The ``--format plain|csv|json`` option every printing subcommand takes."""
     return click.option(
-        "--format", "fmt", type=click.Choice(FORMATS), default=default, show_default=True,
+        "--format",
+        "fmt",
+        type=click.Choice(FORMATS),
+        default=default,
+        show_default=True,
         help="Output format: aligned text, CSV or JSON (records).",
     )
 

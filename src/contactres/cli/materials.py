@@ -23,7 +23,10 @@ def crystals(fmt: str) -> None:
 
 @main.command()
 @click.option(
-    "--out", type=click.Path(file_okay=False), default="contactres-demo", show_default=True,
+    "--out",
+    type=click.Path(file_okay=False),
+    default="contactres-demo",
+    show_default=True,
     help="Folder to write the results into (created if missing).",
 )
 def demo(out: str) -> None:
