@@ -81,3 +81,8 @@ def test_parse_range():
     for bad in ("0:2", "a:b:3", "0:1:0", "", "nan"):
         with pytest.raises(ValueError, match="range"):
             parse_range(bad)
+
+
+def test_bare_command_shows_help():
+    r = run()
+    assert r.exit_code == 0 and "Commands:" in r.output

@@ -34,6 +34,10 @@ class App(click.Group):
         except click.exceptions.Abort:
             click.echo(f"{prog}: aborted", err=True)
             sys.exit(1)
+        except click.exceptions.NoArgsIsHelpError as exc:
+            # A bare group (e.g. plain "contactres") shows its help, as a new user expects.
+            click.echo(exc.ctx.get_help())
+            sys.exit(0)
         except click.UsageError as exc:
             where = exc.ctx.command_path if exc.ctx is not None else prog
             click.echo(
