@@ -13,6 +13,10 @@ from .. import __version__
 USER_ERRORS = (ValueError, KeyError, FileNotFoundError, IsADirectoryError, PermissionError)
 
 
+# click >= 8.2 raises this for a bare group; older click prints the help itself.
+_NO_ARGS_IS_HELP = getattr(click.exceptions, "NoArgsIsHelpError", ())
+
+
 def _one_line(text: str) -> str:
     return " ".join(str(text).split())
 
@@ -34,7 +38,7 @@ class App(click.Group):
         except click.exceptions.Abort:
             click.echo(f"{prog}: aborted", err=True)
             sys.exit(1)
-        except click.exceptions.NoArgsIsHelpError as exc:
+        except _NO_ARGS_IS_HELP as exc:
             # A bare group (e.g. plain "contactres") shows its help, as a new user expects.
             click.echo(exc.ctx.get_help())
             sys.exit(0)
