@@ -21,9 +21,33 @@ def _crystals_step(out: Path) -> list[Path]:
     return [write_csv(out / "crystals.csv", crystal_table())]
 
 
+def _qcm_analysis_step(out: Path) -> list[Path]:
+    """Paper 2's analysis of the bundled sweeps (scripts/make_example_data.py): qcm-analysis/."""
+    from importlib.resources import as_file, files
+
+    from .analysis import analyze
+    from .sweeps import read_sweeps
+
+    with as_file(files("contactres") / "data" / "example_sweeps.csv") as path:
+        table = read_sweeps(path)
+    return analyze(table).write(ensure_dir(out / "qcm-analysis"))
+
+
+def _paper2_forward_step(out: Path) -> list[Path]:
+    """Paper 2 forward model: loops (Fig. 2C-D) and Δf(u0), ΔΓ(u0) (Fig. 1D): paper2-forward/."""
+    from .figures_paper2 import write_paper2_figures
+
+    return write_paper2_figures(out / "paper2-forward")
+
+
 #: (title, step) pairs run by :func:`run_demo`.
 DEMO_STEPS: list[tuple[str, Callable[[Path], list[Path]]]] = [
+    (
+        "QCM sweep analysis of the bundled example (paper 2: Table 1, Figs. 4, 5, 7, 8)",
+        _qcm_analysis_step,
+    ),
     ("built-in crystals and their anisotropy", _crystals_step),
+    ("paper 2 forward: partial-slip loops and QCM shifts (Figs. 1D, 2C-D)", _paper2_forward_step),
 ]
 
 

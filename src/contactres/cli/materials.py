@@ -16,9 +16,25 @@ def crystals(fmt: str) -> None:
     """List the built-in cubic crystals.
 
     Columns: elastic constants c11, c12, c44 (GPa), density (kg/m^3), Zener ratio
-    A = 2 c44/(c11 - c12), ν = c12/(c11 + c12), and the source of each row.
+    A = 2 c44/(c11 - c12), ν = c12/(c11 + c12), the indentation modulus M (GPa) of the
+    (001), (011) and (111) faces (paper 1, Eq. 4: a rigid sphere sees an isotropic E* = M),
+    and the source of each row.
     """
-    emit(crystal_table(), fmt)
+    from ..crystals import get_crystal
+    from ..normal.anisotropic import indentation_modulus
+
+    table = crystal_table()
+    for label, normal in (
+        ("M001_GPa", (0, 0, 1)),
+        ("M011_GPa", (0, 1, 1)),
+        ("M111_GPa", (1, 1, 1)),
+    ):
+        table.insert(
+            table.columns.get_loc("source"),
+            label,
+            [indentation_modulus(get_crystal(n).rotated(normal)) / 1e9 for n in table["name"]],
+        )
+    emit(table, fmt)
 
 
 @main.command()

@@ -1,0 +1,27 @@
+"""CLI: ``contactres figures paper2``: the forward figures of paper 2 (PNG + CSV)."""
+
+from __future__ import annotations
+
+import click
+
+from ._app import figures
+
+
+@figures.command("paper2")
+@click.option(
+    "--out",
+    type=click.Path(file_okay=False),
+    default="paper2-figures",
+    show_default=True,
+    help="Folder to write the figures into (created if missing).",
+)
+def paper2(out: str) -> None:
+    """Paper 2: the loops of Fig. 2C-D and Δf(u0), ΔΓ(u0) of Fig. 1D for both models.
+
+    Cattaneo-Mindlin and Savkoor contacts of a glass sphere (R = 1.1 mm) on a 5 MHz QCM
+    (3rd overtone); forces in N, displacements in m, shifts in Hz in the CSV files.
+    """
+    from ..figures_paper2 import write_paper2_figures
+
+    for path in write_paper2_figures(out):
+        click.echo(str(path))

@@ -1,0 +1,102 @@
+"""CLI: ``contactres qcm analyze SWEEPS.csv --out DIR`` (the main job of paper 2's analysis)."""
+
+from __future__ import annotations
+
+import sys
+import warnings
+
+import click
+
+from ._app import qcm
+from ._common import emit, format_option
+
+
+@qcm.command("analyze")
+@click.argument("sweeps", type=click.Path(dir_okay=False))
+@click.option(
+    "--out",
+    type=click.Path(file_okay=False),
+    required=True,
+    help="Results folder (created if missing): sweeps.csv, loads.csv, summary.json, figures.",
+)
+@click.option("--area", type=float, help="Acoustically effective area A_eff (m^2).")
+@click.option("--overtone", type=int, help="Overtone order n (odd).")
+@click.option("--fundamental", type=float, help="Fundamental frequency f_F (Hz) [default 5e6].")
+@click.option("--n-contacts", type=int, help="Number of equal contacts (3 for a tripod).")
+@click.option("--poisson", type=float, help="Poisson ratio ν fixed in the JKR fit [default 0.17].")
+@click.option("--sphere-radius", type=float, help="Sphere radius R (m).")
+@click.option(
+    "--keep-first-ramp",
+    is_flag=True,
+    help="Use ramp 1 of every load too (default: set aside as running-in).",
+)
+@click.option(
+    "--bootstrap",
+    type=click.IntRange(min=0),
+    default=200,
+    show_default=True,
+    help="Bootstrap resamples over experiments for the errors of E and γ (0: none).",
+)
+@click.option("--no-figures", is_flag=True, help="Skip the PNG figures.")
+@format_option()
+def analyze_command(
+    sweeps,
+    out,
+    area,
+    overtone,
+    fundamental,
+    n_contacts,
+    poisson,
+    sphere_radius,
+    keep_first_ramp,
+    bootstrap,
+    no_figures,
+    fmt,
+):
+    """Analyse QCM amplitude sweeps (paper 2): stiffness, loss tangent, friction, E and γ.
+
+    SWEEPS is a CSV table with one row per point (columns sweep, amplitude_m, df_Hz,
+    dgamma_Hz, normal_force_N; optional experiment, configuration, medium, ramp and the
+    constants). Constants missing from it come from these options or from a TOML file beside
+    it (SWEEPS with suffix .toml, or contactres.toml). Prints Table 1 (E, γ per configuration
+    and medium) and writes everything into OUT.
+    """
+    from ..analysis import AnalysisSettings, analyze
+    from ..sweeps import SweepWarning, read_sweeps
+
+    constants = dict(
+        area_m2=area,
+        overtone=overtone,
+        fundamental_Hz=fundamental,
+        n_contacts=n_contacts,
+        poisson=poisson,
+        sphere_radius_m=sphere_radius,
+    )
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", SweepWarning)
+        table = read_sweeps(sweeps, **constants)
+    for w in caught:
+        if issubclass(w.category, SweepWarning):
+            click.echo(f"contactres: warning: {' '.join(str(w.message).split())}", err=True)
+    settings = AnalysisSettings(keep_first_ramp=keep_first_ramp, bootstrap=bootstrap)
+    n_groups = table.groupby(["configuration", "medium"]).ngroups
+    steps = 5 + n_groups + (0 if no_figures else 1)
+    with click.progressbar(length=steps, label="analysing", file=sys.stderr) as bar:
+
+        def progress(_step: str) -> None:
+            bar.update(1)
+
+        results = analyze(table, settings=settings, progress=progress)
+        written = results.write(out, figures=not no_figures)
+        bar.update(steps)
+    emit(results.table1(), fmt)
+    if fmt == "plain":
+        n_used = int(results.sweeps["used"].sum())
+        models = results.sweeps.loc[results.sweeps["used"], "model"].value_counts().to_dict()
+        flagged = int((results.sweeps["flags"].str.contains("drift")).sum())
+        click.echo(
+            f"{len(results.sweeps)} sweeps, {n_used} used; models: "
+            + ", ".join(f"{k} {v}" for k, v in sorted(models.items()))
+            + f"; drift flagged: {flagged}"
+        )
+        click.echo(f"wrote {len(written)} files into {out}/")

@@ -1,0 +1,180 @@
+"""Fitted models with metadata, and the least-squares fit behind them (design.md §7).
+
+A :class:`Model` carries everything needed to fit it and to report it: its parameters
+(:class:`Parameter`: key, display name, unit, default bounds, fixed or free), the observable it
+predicts and its unit, and the source of its formula. :data:`MODELS` registers every model the
+analysis fits; a test walks the registry and checks the metadata.
+
+:func:`fit` wraps :func:`scipy.optimize.least_squares`: a pure function of (model, data,
+settings). Standard errors come from the Jacobian, ``cov = inv(JᵀJ) · RSS/(N - p)`` (residual
+variance from the fit itself), so they hold when the points scatter more than their nominal
+errors. The result holds the fitted values and their errors, never the starting values.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from dataclasses import dataclass, field
+
+import numpy as np
+from scipy.optimize import least_squares
+
+__all__ = ["MODELS", "FitResult", "Model", "Parameter", "fit", "register_model"]
+
+
+@dataclass(frozen=True)
+class Parameter:
+    """One parameter of a fitted model.
+
+    Attributes
+    ----------
+    key : name used in code and output columns
+    display : name for figures and tables
+    unit : SI unit ("-" for dimensionless)
+    bounds : default (lower, upper) bounds in that unit
+    fixed : True if the parameter is held at its given value (not fitted)
+    scale : typical magnitude (the optimiser works in units of ``scale``)
+    """
+
+    key: str
+    display: str
+    unit: str
+    bounds: tuple[float, float] = (-np.inf, np.inf)
+    fixed: bool = False
+    scale: float = 1.0
+
+
+@dataclass(frozen=True)
+class Model:
+    """A fitted model: ``function(x, **params) -> prediction`` plus its metadata."""
+
+    key: str
+    display: str
+    parameters: tuple[Parameter, ...]
+    x: str
+    x_unit: str
+    observable: str
+    unit: str
+    source: str
+    function: Callable | None = None
+
+    def parameter(self, key: str) -> Parameter:
+        for p in self.parameters:
+            if p.key == key:
+                return p
+        raise KeyError(f"model {self.key!r} has no parameter {key!r}")
+
+    @property
+    def free(self) -> tuple[Parameter, ...]:
+        return tuple(p for p in self.parameters if not p.fixed)
+
+
+#: Every model the analysis fits, by key.
+MODELS: dict[str, Model] = {}
+
+
+def register_model(model: Model) -> Model:
+    """Add ``model`` to :data:`MODELS` (keys are unique)."""
+    if model.key in MODELS:
+        raise ValueError(f"model {model.key!r} is already registered")
+    MODELS[model.key] = model
+    return model
+
+
+@dataclass(frozen=True)
+class FitResult:
+    """Fitted values, standard errors and covariance (free parameters only), and fit quality."""
+
+    model: str
+    values: Mapping[str, float]
+    errors: Mapping[str, float]
+    covariance: np.ndarray
+    free: tuple[str, ...]
+    rss: float
+    n_points: int
+    success: bool
+    message: str = ""
+    residuals: np.ndarray = field(default_factory=lambda: np.zeros(0))
+
+    @property
+    def dof(self) -> int:
+        return self.n_points - len(self.free)
+
+
+def fit(
+    model: Model,
+    x,
+    y,
+    start: Mapping[str, float],
+    fixed: Mapping[str, float] | None = None,
+    sigma=None,
+    bounds: Mapping[str, tuple[float, float]] | None = None,
+) -> FitResult:
+    """Least-squares fit of ``model`` to points (x, y).
+
+    Parameters
+    ----------
+    model : the :class:`Model`; its fixed parameters must be given in ``fixed``
+    x, y : data, in the model's ``x_unit`` and ``unit``
+    start : starting values of the free parameters (not reported)
+    fixed : values of the fixed parameters (and of any free ones to hold here)
+    sigma : optional per-point errors (weights 1/σ); default equal weights
+    bounds : optional overrides of the default bounds
+
+    Returns
+    -------
+    FitResult
+        ``errors`` are standard errors from ``inv(JᵀJ)·RSS/(N - p)``; NaN when N <= p or the
+        Jacobian is singular.
+    """
+    fixed = dict(fixed or {})
+    bounds = dict(bounds or {})
+    free = [p for p in model.parameters if p.key not in fixed]
+    missing = [p.key for p in model.parameters if p.fixed and p.key not in fixed]
+    if missing:
+        raise ValueError(f"model {model.key!r}: fixed parameter(s) {missing} need a value")
+    x = np.asarray(x, dtype=float)
+    y = np.asarray(y, dtype=float)
+    w = np.ones_like(y) if sigma is None else 1.0 / np.asarray(sigma, dtype=float)
+    scale = np.array([p.scale for p in free])
+    lo = np.array([bounds.get(p.key, p.bounds)[0] for p in free]) / scale
+    hi = np.array([bounds.get(p.key, p.bounds)[1] for p in free]) / scale
+    x0 = np.clip(np.array([start[p.key] for p in free]) / scale, lo, hi)
+    # trf needs a start strictly inside finite bounds.
+    at_lo = np.isfinite(lo) & (x0 <= lo)
+    x0[at_lo] = lo[at_lo] + 1e-6 * np.maximum(1.0, np.abs(lo[at_lo]))
+
+    def params(z):
+        d = dict(fixed)
+        d.update({p.key: v * s for p, v, s in zip(free, z, scale, strict=True)})
+        return d
+
+    def residuals(z):
+        return (model.function(x, **params(z)) - y) * w
+
+    sol = least_squares(
+        residuals, x0, bounds=(lo, hi), method="trf", x_scale="jac", ftol=1e-12, xtol=1e-12
+    )
+    r = sol.fun
+    rss = float(r @ r)
+    n, p = y.size, len(free)
+    cov = np.full((p, p), np.nan)
+    if n > p:
+        jtj = sol.jac.T @ sol.jac
+        if np.linalg.matrix_rank(jtj) == p:
+            cov = np.linalg.inv(jtj) * (rss / (n - p)) * np.outer(scale, scale)
+    values = params(sol.x)
+    errors = {k: np.nan for k in fixed}
+    errors.update({q.key: float(np.sqrt(cov[i, i])) for i, q in enumerate(free)})
+    return FitResult(
+        model=model.key,
+        values={k: float(v) for k, v in values.items()},
+        errors=errors,
+        covariance=cov,
+        free=tuple(q.key for q in free),
+        rss=rss,
+        n_points=n,
+        success=bool(sol.success),
+        message=str(sol.message),
+        residuals=r,
+    )

@@ -1,0 +1,230 @@
+"""Hertz contact of a rigid sphere on an anisotropic half-space (paper 1, Eqs. 1-4).
+
+The half-space enters only through the angular integrals of its static surface Green's function
+Ĝ(θ) (:func:`contactres.halfspace.static_kernel`):
+
+    I₀ = ∫₀^{2π} Ĝ(θ) dθ,     I₁ = ∫₀^{2π} Ĝ(θ) cos²θ dθ,
+
+    a³ = 3FR I₁/(8π),   p(r) = (4a/(R I₁)) √(1 − r²/a²),   w = a² I₀/(2R I₁),   K_sa = 8πa/I₀.
+
+The indentation modulus M = 4π/I₀ is the E* of the isotropic solid on which a rigid sphere makes
+the same contact (Vlassak & Nix, J. Mech. Phys. Solids 42, 1223 (1994)); isotropic: I₀ = 4π/E*.
+
+Circular contact: the contact is exactly circular when the second angular harmonic of Ĝ vanishes,
+∫ Ĝ(θ) e^{2iθ} dθ = 0, which 3- or 4-fold symmetry about the normal guarantees ((001) and (111)
+of a cubic crystal). On other faces ((011) of a cubic crystal, low-symmetry cuts) the true contact
+is slightly elliptic and the circular formulas above (with I₁ taken along the surface-frame x
+axis, as in the paper) are an approximation; :class:`AnisotropicContact` reports
+``circular`` and the relative size of that harmonic, ``noncircularity``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..halfspace import static_kernel
+from ..materials import Material
+
+__all__ = [
+    "AnisotropicContact",
+    "ContactIntegrals",
+    "contact_integrals",
+    "indentation_modulus",
+    "sphere_contact",
+]
+
+# Default relative accuracy of I0, I1 (trapezoidal rule in θ, doubled until it moves less).
+THETA_RTOL = 1e-12
+# Doubling starts from this many points on [0, π) and stops with an error beyond the maximum.
+_N_START = 16
+_N_MAX = 2**15
+# Below this relative second harmonic the contact is reported as circular (round-off level).
+_CIRCULAR_TOL = 1e-9
+
+
+@dataclass(frozen=True)
+class ContactIntegrals:
+    """The angular integrals of Ĝ(θ) (paper 1, Eqs. 1-4), 1/Pa (complex for a lossy solid).
+
+    Attributes
+    ----------
+    I0 : ∫₀^{2π} Ĝ(θ) dθ
+    I1 : ∫₀^{2π} Ĝ(θ) cos²θ dθ (θ from the surface-frame x axis)
+    I2 : ∫₀^{2π} Ĝ(θ) e^{2iθ} dθ, the second harmonic (0 on a 3- or 4-fold face)
+    n_theta : number of θ points on [0, π) of the trapezoidal rule that met the tolerance
+    error : size of the last change when the points were doubled (an upper bound of the error
+        of I0 in practice: the rule converges exponentially for the smooth periodic Ĝ)
+    """
+
+    I0: complex | float
+    I1: complex | float
+    I2: complex
+    n_theta: int
+    error: float
+
+
+def _check_material(m) -> Material:
+    if not isinstance(m, Material):
+        raise ValueError(f"m must be a contactres.Material, got {type(m).__name__}")
+    return m
+
+
+def _trapezoid(m: Material, n: int, prev=None):
+    """Sums of Ĝ, Ĝ cos²θ, Ĝ e^{2iθ} over n equispaced θ in [0, π), reusing ``prev`` (n/2)."""
+    if prev is None:
+        theta = np.pi * np.arange(n) / n
+    else:
+        theta = np.pi * (np.arange(n // 2) + 0.5) / (n // 2)
+    g = static_kernel(m, theta)
+    sums = np.array([np.sum(g), np.sum(g * np.cos(theta) ** 2), np.sum(g * np.exp(2j * theta))])
+    return sums if prev is None else prev + sums
+
+
+def contact_integrals(m: Material, rtol: float = THETA_RTOL) -> ContactIntegrals:
+    """I₀, I₁ (and the second harmonic I₂) of the static surface Green's function, 1/Pa.
+
+    Ĝ(θ) is smooth and π-periodic (reciprocity), so the trapezoidal rule on [0, π) converges
+    exponentially; the points are doubled (from 16) until I₀ and I₁ move by less than
+    ``rtol`` relative to I₀. ``m.C`` must be given in the surface frame (use
+    :meth:`Material.rotated`).
+
+    Raises
+    ------
+    ValueError
+        For ``rtol`` outside [1e-15, 1e-2] or when 2^15 points do not reach it.
+    """
+    m = _check_material(m)
+    rtol = float(rtol)
+    if not (1e-15 <= rtol <= 1e-2):
+        raise ValueError(f"rtol must lie in [1e-15, 1e-2], got {rtol!r}")
+    n = _N_START
+    sums = _trapezoid(m, n)
+    while True:
+        n2 = 2 * n
+        new = _trapezoid(m, n2, prev=sums)
+        I_old = 2 * np.pi / n * sums
+        I_new = 2 * np.pi / n2 * new
+        err = float(np.max(np.abs(I_new[:2] - I_old[:2])) / abs(I_new[0]))
+        n, sums = n2, new
+        if err <= rtol:
+            break
+        if n >= _N_MAX:
+            raise ValueError(
+                f"contact_integrals: the theta quadrature did not reach rtol={rtol:g} with "
+                f"{n} points (last change {err:.3g}); the solid is too anisotropic for it"
+            )
+    I0, I1, I2 = (2 * np.pi / n * sums).tolist()
+    if not m.is_lossy:
+        I0, I1 = float(np.real(I0)), float(np.real(I1))
+    return ContactIntegrals(I0=I0, I1=I1, I2=complex(I2), n_theta=n, error=err * abs(I0))
+
+
+def indentation_modulus(m: Material, rtol: float = THETA_RTOL) -> float:
+    """Indentation modulus M = 4π/I₀, Pa (paper 1, Eq. 4; Vlassak & Nix 1994).
+
+    A rigid sphere on ``m`` (stiffness in the surface frame) behaves as on an isotropic solid
+    with E* = M: K_sa = 2aM. Isotropic: M = E/(1 − ν²). Complex for a lossy material.
+    """
+    I0 = contact_integrals(m, rtol).I0
+    return 4 * np.pi / I0
+
+
+@dataclass(frozen=True)
+class AnisotropicContact:
+    """Static Hertz contact of a rigid sphere on an anisotropic half-space (paper 1, Eqs. 1-4).
+
+    Attributes
+    ----------
+    contact_radius : a, m (Eq. 1)
+    depth : indentation depth w (approach of the sphere to distant points), m (Eq. 3)
+    mean_pressure : F/(π a²), Pa
+    peak_pressure : pressure at the centre p0 = 4a/(R I₁), Pa (Eq. 2)
+    stiffness : static contact stiffness K_sa = dF/dw = 8πa/I₀, N/m (Eq. 4)
+    force : normal force F, N
+    indentation_modulus : M = 4π/I₀, Pa
+    I0, I1 : the angular integrals of Ĝ, 1/Pa
+    circular : True when the contact is exactly circular (second harmonic of Ĝ vanishes, e.g. a
+        3- or 4-fold face); False: the circular formulas are an approximation
+    noncircularity : |I₂|/I₀, the relative second harmonic of Ĝ (0 for a circular contact)
+    model : "anisotropic-hertz"
+    """
+
+    contact_radius: np.ndarray | float
+    depth: np.ndarray | float
+    mean_pressure: np.ndarray | float
+    peak_pressure: np.ndarray | float
+    stiffness: np.ndarray | float
+    force: np.ndarray | float
+    indentation_modulus: float
+    I0: float
+    I1: float
+    circular: bool
+    noncircularity: float
+    model: str = "anisotropic-hertz"
+
+
+def _out(x):
+    x = np.asarray(x, dtype=float)
+    return float(x) if x.ndim == 0 else x
+
+
+def sphere_contact(m: Material, radius, force, rtol: float = THETA_RTOL) -> AnisotropicContact:
+    """Hertz contact of a rigid sphere on the anisotropic half-space ``m`` (paper 1, Eqs. 1-4).
+
+    Parameters
+    ----------
+    m : Material
+        Lossless stiffness in the surface frame (z = inward normal); for a crystal face (hkl)
+        pass ``Material.crystal("Cu").rotated((h, k, l))``.
+    radius : float or array
+        Sphere radius R > 0, m.
+    force : float or array
+        Normal force F >= 0, N (broadcasts against ``radius``).
+    rtol : float
+        Relative accuracy of the θ integrals I₀, I₁ (see :func:`contact_integrals`).
+
+    Returns
+    -------
+    AnisotropicContact
+        a³ = 3FR I₁/(8π), p0 = 4a/(R I₁), w = a² I₀/(2R I₁), K_sa = 8πa/I₀. Isotropic: the
+        Hertz values with E* (a³ = 3FR/(4E*), w = a²/R, K_sa = 2aE*).
+
+    Notes
+    -----
+    Exact for a face whose Ĝ has no second angular harmonic (3- or 4-fold symmetry about the
+    normal). Elsewhere the true contact is elliptic; these circular formulas then use I₁ along
+    the surface x axis (the paper's choice) and ``circular`` is False.
+    """
+    m = _check_material(m)
+    if m.is_lossy:
+        raise ValueError(
+            "sphere_contact needs real (undamped) constants: the static contact of a lossy "
+            "material is that of its elastic part (drop with_loss)"
+        )
+    R = np.asarray(radius, dtype=float)
+    F = np.asarray(force, dtype=float)
+    if not np.all(np.isfinite(R)) or np.any(R <= 0):
+        raise ValueError(f"radius must be finite and > 0 (m), got {radius!r}")
+    if not np.all(np.isfinite(F)) or np.any(F < 0):
+        raise ValueError(f"force must be finite and >= 0 (N), got {force!r}")
+    ci = contact_integrals(m, rtol)
+    I0, I1 = ci.I0, ci.I1
+    a = np.cbrt(3 * F * R * I1 / (8 * np.pi))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        mean_p = np.where(a > 0, F / (np.pi * a**2), 0.0)
+    ratio = abs(ci.I2) / abs(I0)
+    return AnisotropicContact(
+        contact_radius=_out(a),
+        depth=_out(a**2 * I0 / (2 * R * I1)),
+        mean_pressure=_out(mean_p),
+        peak_pressure=_out(4 * a / (R * I1)),
+        stiffness=_out(8 * np.pi * a / I0),
+        force=_out(F),
+        indentation_modulus=4 * np.pi / I0,
+        I0=I0,
+        I1=I1,
+        circular=bool(ratio <= _CIRCULAR_TOL),
+        noncircularity=float(ratio),
+    )

@@ -1,0 +1,308 @@
+"""Isotropic normal contact of a sphere on a flat: Hertz, JKR, DMT and effective moduli.
+
+All functions take SI quantities (Pa, m, N, J/m^2) and broadcast over numpy arrays.
+
+Adhesion follows paper 2 (Eq. 9): ``gamma`` is the paper's "energy of adhesion" γ, and the work of
+adhesion (Johnson's w, Dupré) is w = 2γ. With that convention the JKR pull-off force is
+F = -3πγR and the DMT pull-off force is F = -4πγR.
+
+Two effective moduli are used and they are easy to mix up:
+
+* :func:`effective_modulus` is the usual E* of Hertz theory, 1/E* = Σ (1 - ν_i²)/E_i
+  (paper 2, Eq. 10);
+* :func:`effective_shear_modulus` is the G* of paper 2, Eq. 7, G* = [Σ (2 - ν_i)/(4 G_i)]⁻¹,
+  which is **four times** the G* of Johnson's *Contact Mechanics* (G*_J = [Σ (2 - ν_i)/G_i]⁻¹).
+  The tangential (Mindlin) stiffness is κ = 2 G* a with the paper's G* (= 8 G*_J a).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+__all__ = [
+    "Contact",
+    "dmt",
+    "effective_modulus",
+    "effective_shear_modulus",
+    "hertz",
+    "jkr",
+    "jkr_contact_radius",
+    "jkr_from_depth",
+    "jkr_pull_off_force",
+    "shear_modulus",
+    "tabor_parameter",
+    "which_adhesion_model",
+]
+
+
+@dataclass(frozen=True)
+class Contact:
+    """State of a normal sphere-on-flat contact (SI units; fields may be numpy arrays).
+
+    Attributes
+    ----------
+    contact_radius : contact radius a, m
+    depth : penetration (approach of distant points) δ, m
+    mean_pressure : F/(π a²), Pa (the applied force over the contact area)
+    peak_pressure : pressure at the centre of the contact, Pa (the maximum for Hertz and DMT;
+        JKR has an integrable tensile singularity at the edge, so the centre value is given)
+    stiffness : normal contact stiffness dF/dδ, N/m
+    force : applied normal force F, N (negative = tensile)
+    model : "hertz", "jkr" or "dmt"
+    """
+
+    contact_radius: np.ndarray | float
+    depth: np.ndarray | float
+    mean_pressure: np.ndarray | float
+    peak_pressure: np.ndarray | float
+    stiffness: np.ndarray | float
+    force: np.ndarray | float
+    model: str = "hertz"
+
+
+def _positive(name: str, value) -> np.ndarray:
+    v = np.asarray(value, dtype=float)
+    if not np.all(np.isfinite(v)) or np.any(v <= 0):
+        raise ValueError(f"{name} must be finite and > 0, got {value!r}")
+    return v
+
+
+def _nonnegative(name: str, value) -> np.ndarray:
+    v = np.asarray(value, dtype=float)
+    if not np.all(np.isfinite(v)) or np.any(v < 0):
+        raise ValueError(f"{name} must be finite and >= 0, got {value!r}")
+    return v
+
+
+def _poisson(name: str, value) -> np.ndarray:
+    v = np.asarray(value, dtype=float)
+    if not np.all(np.isfinite(v)) or np.any(v <= -1) or np.any(v >= 0.5):
+        raise ValueError(f"{name} must lie in (-1, 0.5), got {value!r}")
+    return v
+
+
+def _out(x):
+    x = np.asarray(x, dtype=float)
+    return float(x) if x.ndim == 0 else x
+
+
+def shear_modulus(E, nu):
+    """Shear modulus G = E / (2(1 + ν)) of an isotropic solid (paper 2, Eq. 8), Pa."""
+    return _out(_positive("E", E) / (2.0 * (1.0 + _poisson("nu", nu))))
+
+
+def effective_modulus(E1, nu1, E2=None, nu2=None):
+    """Hertz effective modulus E* (paper 2, Eq. 10), Pa.
+
+    1/E* = (1 - ν₁²)/E₁ + (1 - ν₂²)/E₂. Without ``E2``/``nu2`` the second body is the same
+    material as the first (the paper's assumption); ``E2=np.inf`` makes it rigid.
+    """
+    E1, nu1 = _positive("E1", E1), _poisson("nu1", nu1)
+    E2 = E1 if E2 is None else np.asarray(E2, dtype=float)
+    if np.any(~(E2 > 0)):
+        raise ValueError(f"E2 must be > 0 (np.inf for a rigid body), got {E2!r}")
+    nu2 = nu1 if nu2 is None else _poisson("nu2", nu2)
+    return _out(1.0 / ((1.0 - nu1**2) / E1 + (1.0 - nu2**2) / E2))
+
+
+def effective_shear_modulus(G1, nu1, G2=None, nu2=None):
+    """Tangential effective modulus G* of paper 2, Eq. 7, Pa (= 4 x Johnson's G*).
+
+    G* = [(2 - ν₁)/(4G₁) + (2 - ν₂)/(4G₂)]⁻¹, so that the Mindlin stiffness is κ = 2 G* a
+    (:func:`contactres.mindlin_stiffness`). Johnson's book defines G*_J = [Σ(2 - ν_i)/G_i]⁻¹ with
+    κ = 8 G*_J a: the same stiffness. Without ``G2``/``nu2`` both bodies are the same material;
+    ``G2=np.inf`` makes the second rigid.
+    """
+    G1, nu1 = _positive("G1", G1), _poisson("nu1", nu1)
+    G2 = G1 if G2 is None else np.asarray(G2, dtype=float)
+    if np.any(~(G2 > 0)):
+        raise ValueError(f"G2 must be > 0, got {G2!r}")
+    nu2 = nu1 if nu2 is None else _poisson("nu2", nu2)
+    return _out(1.0 / ((2.0 - nu1) / (4.0 * G1) + (2.0 - nu2) / (4.0 * G2)))
+
+
+def hertz(E_star, radius, force) -> Contact:
+    """Hertz contact of a sphere (radius R) on a flat under normal force F >= 0.
+
+    a³ = 3FR/(4E*), δ = a²/R, p_centre = 3F/(2πa²), k = dF/dδ = 2E*a (Johnson, Ch. 4; paper 2,
+    Eq. 9 with γ = 0). ``E_star`` in Pa (:func:`effective_modulus`), ``radius`` m, ``force`` N.
+    """
+    return jkr(E_star, radius, force, 0.0, _model="hertz")
+
+
+def jkr_pull_off_force(radius, gamma):
+    """JKR pull-off force (force control) F = -3πγR, N (paper 2's γ; w = 2γ)."""
+    return _out(-3.0 * np.pi * _nonnegative("gamma", gamma) * _positive("radius", radius))
+
+
+def jkr_contact_radius(E_star, radius, force, gamma):
+    """JKR contact radius a, m (paper 2, Eq. 9).
+
+    a³ = (3R / 4E*) [F + 6πγR + √(12πγR F + (6πγR)²)]. ``gamma`` is the paper's energy of
+    adhesion (J/m², work of adhesion w = 2γ); γ = 0 gives Hertz. Raises ValueError for a force
+    below the pull-off force -3πγR.
+    """
+    E_star = _positive("E_star", E_star)
+    R = _positive("radius", radius)
+    gamma = _nonnegative("gamma", gamma)
+    F = np.asarray(force, dtype=float)
+    if not np.all(np.isfinite(F)):
+        raise ValueError(f"force must be finite, got {force!r}")
+    b = 6.0 * np.pi * gamma * R
+    disc = 12.0 * np.pi * gamma * R * F + b**2
+    # disc >= 0 exactly when F >= -3πγR (the pull-off force); allow rounding at the limit.
+    if np.any(disc < -1e-12 * np.maximum(b**2, 1e-300)) or np.any((gamma == 0) & (F < 0)):
+        raise ValueError(
+            f"force {force!r} N is below the pull-off force -3πγR = "
+            f"{np.min(-3 * np.pi * gamma * R)!r} N (γ={gamma!r}, R={radius!r})"
+        )
+    return _out(np.cbrt(3.0 * R / (4.0 * E_star) * (F + b + np.sqrt(np.maximum(disc, 0.0)))))
+
+
+def _jkr_state(E_star, R, gamma, a, model):
+    F = 4.0 * E_star * a**3 / (3.0 * R) - 4.0 * np.sqrt(np.pi * gamma * E_star * a**3)
+    depth = a**2 / R - np.sqrt(4.0 * np.pi * gamma * a / E_star)
+    dF_da = 4.0 * E_star * a**2 / R - 6.0 * np.sqrt(np.pi * gamma * E_star * a)
+    dd_da = 2.0 * a / R - np.sqrt(np.pi * gamma / (E_star * a))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        stiffness = np.where(a > 0, dF_da / dd_da, 0.0)
+        mean_p = np.where(a > 0, F / (np.pi * a**2), 0.0)
+        # Hertzian part minus the flat-punch (adhesive) part, at r = 0 (Johnson Eq. 5.130).
+        centre = np.where(
+            a > 0,
+            2.0 * E_star * a / (np.pi * R) - np.sqrt(4.0 * gamma * E_star / (np.pi * a)),
+            0.0,
+        )
+    return Contact(
+        contact_radius=_out(a),
+        depth=_out(depth),
+        mean_pressure=_out(mean_p),
+        peak_pressure=_out(centre),
+        stiffness=_out(stiffness),
+        force=_out(F),
+        model=model,
+    )
+
+
+def jkr(E_star, radius, force, gamma, *, _model: str = "jkr") -> Contact:
+    """JKR contact of a sphere on a flat (paper 2, Eq. 9; Johnson, Kendall & Roberts 1971).
+
+    Parameters
+    ----------
+    E_star : effective modulus E*, Pa
+    radius : sphere radius R, m
+    force : normal force F, N (>= pull-off force -3πγR)
+    gamma : paper 2's energy of adhesion γ, J/m² (work of adhesion w = 2γ)
+
+    Returns
+    -------
+    Contact with a from Eq. 9, δ = a²/R - √(4πγa/E*) = a²/R - √(2πwa/E*), the normal stiffness
+    dF/dδ (zero slope at the pull-off point, where dδ/da = 0 is not reached: dF/da = 0 there), and
+    the pressure at the centre 2E*a/(πR) - √(2wE*/(πa)).
+    """
+    E_star = _positive("E_star", E_star)
+    R = _positive("radius", radius)
+    gamma = _nonnegative("gamma", gamma)
+    a = np.asarray(jkr_contact_radius(E_star, R, force, gamma), dtype=float)
+    E_star, R, gamma, a = np.broadcast_arrays(E_star, R, gamma, a)
+    c = _jkr_state(E_star, R, gamma, a, _model)
+    # Report the requested force itself, not its round trip through a.
+    F = np.broadcast_to(np.asarray(force, dtype=float), a.shape)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        mean_p = np.where(a > 0, F / (np.pi * a**2), 0.0)
+    return Contact(
+        c.contact_radius, c.depth, _out(mean_p), c.peak_pressure, c.stiffness, _out(F), _model
+    )
+
+
+def jkr_from_depth(E_star, radius, depth, gamma) -> Contact:
+    """JKR contact at a given penetration δ (displacement control), m.
+
+    Solves δ = a²/R - √(4πγa/E*) for the contact radius (the stable branch, a above the
+    displacement-controlled pull-off radius) and returns the :class:`Contact`, including the force
+    F = 4E*a³/(3R) - 4√(πγE*a³). Raises ValueError for δ below the smallest δ of a connected
+    contact (the displacement-controlled pull-off point).
+    """
+    E_star = _positive("E_star", E_star)
+    R = _positive("radius", radius)
+    gamma = _nonnegative("gamma", gamma)
+    d = np.asarray(depth, dtype=float)
+    E_star, R, gamma, d = np.broadcast_arrays(E_star, R, gamma, d)
+    if not np.all(np.isfinite(d)):
+        raise ValueError(f"depth must be finite, got {depth!r}")
+    # f(a) = a²/R - c√a - δ, c = √(4πγ/E*), is convex with its minimum d_min at
+    # a_min = (cR/4)^(2/3); the stable branch is the root above a_min. Convexity with f'' >= 2/R
+    # bounds that root by a_min + √(R(δ - d_min)), so Newton from there converges monotonically.
+    c = np.sqrt(4.0 * np.pi * gamma / E_star)
+    a_min = np.cbrt(c * R / 4.0) ** 2
+    d_min = a_min**2 / R - c * np.sqrt(a_min)
+    if np.any(d < d_min * (1 + 1e-12)) or np.any((gamma == 0) & (d < 0)):
+        raise ValueError(
+            f"depth {depth!r} m is below the smallest penetration of a JKR contact "
+            f"({np.min(d_min)!r} m, reached at displacement-controlled pull-off)"
+        )
+    a = a_min + np.sqrt(R * np.maximum(d - d_min, 0.0))
+    for _ in range(100):
+        f = a**2 / R - c * np.sqrt(a) - d
+        with np.errstate(divide="ignore", invalid="ignore"):
+            step = np.where(a > 0, f / (2.0 * a / R - 0.5 * c / np.sqrt(a)), 0.0)
+        step = np.where(np.isfinite(step), step, 0.0)
+        a = np.maximum(a - step, a_min)
+        if np.all(np.abs(step) <= 1e-15 * np.maximum(a, 1e-300)):
+            break
+    return _jkr_state(E_star, R, gamma, a, "jkr")
+
+
+def dmt(E_star, radius, force, gamma) -> Contact:
+    """DMT contact (Derjaguin, Muller & Toporov 1975): Hertz under the load F + 4πγR.
+
+    a³ = 3R(F + 4πγR)/(4E*), δ = a²/R, stiffness 2E*a, pull-off force -4πγR (= -2πwR with the
+    paper's γ, w = 2γ). Valid for stiff, small, weakly adhesive contacts (Tabor parameter < 0.1).
+    """
+    E_star = _positive("E_star", E_star)
+    R = _positive("radius", radius)
+    gamma = _nonnegative("gamma", gamma)
+    F = np.asarray(force, dtype=float)
+    load = F + 4.0 * np.pi * gamma * R
+    if not np.all(np.isfinite(F)) or np.any(load < 0):
+        raise ValueError(f"force {force!r} N is below the DMT pull-off force -4πγR")
+    a = np.cbrt(3.0 * R * load / (4.0 * E_star))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        mean_p = np.where(a > 0, F / (np.pi * a**2), 0.0)
+        centre = np.where(a > 0, 3.0 * load / (2.0 * np.pi * a**2), 0.0)
+    return Contact(
+        contact_radius=_out(a),
+        depth=_out(a**2 / R),
+        mean_pressure=_out(mean_p),
+        peak_pressure=_out(centre),
+        stiffness=_out(2.0 * E_star * a),
+        force=_out(np.broadcast_to(F, a.shape)),
+        model="dmt",
+    )
+
+
+def tabor_parameter(E_star, radius, gamma, z0=0.3e-9):
+    """Tabor parameter μ_T = (R w² / (E*² z0³))^(1/3), dimensionless (w = 2γ, z0 in m).
+
+    ``z0`` is the equilibrium separation of the surface potential (default 0.3 nm). See
+    :func:`which_adhesion_model`.
+    """
+    E_star = _positive("E_star", E_star)
+    R = _positive("radius", radius)
+    w = 2.0 * _nonnegative("gamma", gamma)
+    z0 = _positive("z0", z0)
+    return _out(np.cbrt(R * w**2 / (E_star**2 * z0**3)))
+
+
+def which_adhesion_model(E_star, radius, gamma, z0=0.3e-9) -> str:
+    """Which adhesive contact model applies: "jkr" (μ_T > 5), "dmt" (μ_T < 0.1), else
+    "maugis" (the transition, Maugis-Dugdale; JKR and DMT both approximate), Johnson & Greenwood
+    1997 adhesion map. Scalars only."""
+    mu = float(np.asarray(tabor_parameter(E_star, radius, gamma, z0)))
+    if mu > 5.0:
+        return "jkr"
+    if mu < 0.1:
+        return "dmt"
+    return "maugis"

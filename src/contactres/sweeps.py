@@ -1,0 +1,531 @@
+"""Amplitude-sweep tables (paper 2): reading, validating and grouping.
+
+A sweep table has one row per measured point of an amplitude ramp (design.md §5):
+
+==================  =====  ========  ==================================================
+column              unit   required  meaning
+==================  =====  ========  ==================================================
+sweep               —      yes       id of one amplitude ramp
+amplitude_m         m      yes       oscillation amplitude u0 (>= 0)
+df_Hz               Hz     yes       frequency shift against the reference (no contact)
+dgamma_Hz           Hz     yes       shift of the half-bandwidth at half height
+normal_force_N      N      yes       normal force per contact (> 0)
+experiment          —      no        one mounting of the sample (repeats = experiments)
+configuration       —      no        e.g. "SiO2_2.2mm": same material and geometry
+medium              —      no        "air", "water", ...
+ramp                —      no        1, 2, ...: order of the ramps of one load
+overtone            —      no        n (odd)
+sphere_radius_m     m      no        sphere radius R
+n_contacts          —      no        number of equal contacts (3 for a tripod)
+fundamental_Hz      Hz     no        fundamental frequency f_F of the resonator
+area_m2             m^2    no        acoustically effective area A_eff
+poisson             —      no        Poisson ratio ν used for the JKR + Mindlin fit
+==================  =====  ========  ==================================================
+
+Conventions: Δf is the frequency shift (not Δf/n) and ΔΓ the shift of the half-bandwidth at half
+height (Γ, not the dissipation factor D = 2Γ/f), both in Hz.
+
+Constants missing from the table come, in this order, from keyword arguments of
+:func:`read_sweeps` (the CLI options), from a TOML file beside the data (``<stem>.toml``, else
+``contactres.toml`` in the same folder; keys as the column names above) and, for
+``fundamental_Hz`` (5 MHz) and ``poisson`` (0.17, as in paper 2) only, from documented defaults.
+A value in a row overrides the others (a warning says so when an argument disagrees).
+
+Readers are small plug-ins (:class:`SweepReader`): each knows its suffixes, how to recognise its
+format and how to load it into raw string columns; :func:`read_sweeps` validates the result.
+Every error names the file, the line, the column and the value.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+import sys
+import warnings
+from collections.abc import Callable, Iterator
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover - Python 3.10
+    import tomli as tomllib
+
+__all__ = [
+    "CONSTANTS",
+    "OPTIONAL_COLUMNS",
+    "READERS",
+    "REQUIRED_COLUMNS",
+    "SweepReader",
+    "SweepWarning",
+    "iter_sweeps",
+    "read_sweeps",
+    "register_reader",
+    "validate_sweeps",
+]
+
+#: Columns every sweep table must have.
+REQUIRED_COLUMNS = ("sweep", "amplitude_m", "df_Hz", "dgamma_Hz", "normal_force_N")
+#: Optional label columns (strings) and their defaults when absent.
+LABEL_DEFAULTS = {"experiment": "1", "configuration": "default", "medium": "unspecified"}
+#: Constants: name -> (unit, documented default or None when it must be supplied).
+CONSTANTS: dict[str, tuple[str, float | None]] = {
+    "fundamental_Hz": ("Hz", 5e6),
+    "overtone": ("-", None),
+    "area_m2": ("m^2", None),
+    "n_contacts": ("-", None),
+    "sphere_radius_m": ("m", None),
+    "poisson": ("-", 0.17),
+}
+OPTIONAL_COLUMNS = ("experiment", "configuration", "medium", "ramp", *CONSTANTS)
+#: Columns that must take one value within a sweep.
+PER_SWEEP_COLUMNS = ("experiment", "configuration", "medium", "ramp", "normal_force_N", *CONSTANTS)
+
+# Largest plausible QCM amplitude: contact-resonance ramps go to tens of nm; 1 µm would wreck the
+# resonator. A larger value means the column holds nanometres (or other units), not metres.
+MAX_AMPLITUDE_M = 1e-6
+# A shift above this fraction of the fundamental is an absolute frequency, not a shift.
+ABSOLUTE_FREQUENCY_FRACTION = 0.1
+# The small-load approximation (paper 2, Eq. 1) needs |Δf| << f; warn above this fraction.
+SMALL_LOAD_FRACTION = 1e-3
+
+
+class SweepWarning(UserWarning):
+    """The data are usable but something is odd (the message says what and where)."""
+
+
+# --------------------------------------------------------------------------------------------
+# Reader plug-ins
+
+
+@dataclass(frozen=True)
+class SweepReader:
+    """A reader plug-in: turns one file format into a table of raw string columns.
+
+    Attributes
+    ----------
+    name : str
+        Short name of the format.
+    suffixes : tuple of str
+        File suffixes (lower case, with dot) this reader is tried for first.
+    detect : callable(path, head: str) -> bool
+        True if the file (whose first few kB are ``head``) is in this format.
+    load : callable(path) -> DataFrame
+        Raw table: string cells, header names stripped, plus an integer ``line`` column giving
+        the line number of each row in the file (header = line 1).
+    """
+
+    name: str
+    suffixes: tuple[str, ...]
+    detect: Callable[[Path, str], bool]
+    load: Callable[[Path], pd.DataFrame]
+
+
+READERS: list[SweepReader] = []
+
+
+def register_reader(reader: SweepReader) -> SweepReader:
+    """Add a reader plug-in (tried before the built-in ones)."""
+    READERS.insert(0, reader)
+    return reader
+
+
+_DECIMAL_COMMA = re.compile(r"^[+-]?\d+,\d+([eE][+-]?\d+)?$")
+
+
+def _csv_dialect(path: Path, text: str) -> tuple[str, str]:
+    """Separator and decimal mark of a CSV file from its header and first data lines."""
+    lines = [ln for ln in text.splitlines() if ln.strip()]
+    header = lines[0]
+    if "\t" in header:
+        sep = "\t"
+    elif header.count(";") > 0:
+        sep = ";"
+    else:
+        sep = ","
+    decimal = "."
+    if sep != ",":
+        cells = [c.strip() for ln in lines[1:50] for c in ln.split(sep)]
+        if any(_DECIMAL_COMMA.match(c) for c in cells):
+            decimal = ","
+    return sep, decimal
+
+
+def _load_csv(path: Path) -> pd.DataFrame:
+    text = path.read_text(encoding="utf-8-sig")
+    if not text.strip():
+        raise ValueError(f"{path}: the file is empty (expected a header line and data rows)")
+    sep, decimal = _csv_dialect(path, text)
+    try:
+        raw = pd.read_csv(
+            path,
+            sep=sep,
+            dtype=str,
+            keep_default_na=False,
+            skip_blank_lines=True,
+            encoding="utf-8-sig",
+            comment="#",
+        )
+    except pd.errors.ParserError as exc:
+        raise ValueError(f"{path}: not a readable {sep!r}-separated table ({exc})") from None
+    raw.columns = [str(c).strip() for c in raw.columns]
+    # Line numbers for messages: count non-blank, non-comment lines as pandas does.
+    numbers = [
+        i + 1
+        for i, ln in enumerate(text.splitlines())
+        if ln.strip() and not ln.lstrip().startswith("#")
+    ]
+    raw["line"] = numbers[1 : len(raw) + 1] if len(numbers) > len(raw) else range(2, len(raw) + 2)
+    raw.attrs["decimal"] = decimal
+    return raw
+
+
+def _detect_csv(path: Path, head: str) -> bool:
+    first = next((ln for ln in head.splitlines() if ln.strip()), "")
+    return any(s in first for s in (",", ";", "\t"))
+
+
+READERS.append(SweepReader("csv", (".csv", ".txt", ".tsv"), _detect_csv, _load_csv))
+
+
+def _pick_reader(path: Path) -> SweepReader:
+    head = path.read_text(encoding="utf-8-sig", errors="replace")[:4096]
+    if not head.strip():
+        raise ValueError(f"{path}: the file is empty (expected a header line and data rows)")
+    by_suffix = [r for r in READERS if path.suffix.lower() in r.suffixes]
+    others = [r for r in READERS if r not in by_suffix]
+    for reader in by_suffix + others:
+        if reader.detect(path, head):
+            return reader
+    names = ", ".join(f"{r.name} ({'/'.join(r.suffixes)})" for r in READERS)
+    raise ValueError(f"{path}: no reader recognises this file; formats known: {names}")
+
+
+# --------------------------------------------------------------------------------------------
+# Constants
+
+
+def _toml_constants(path: Path) -> tuple[dict, Path | None]:
+    for candidate in (path.with_suffix(".toml"), path.parent / "contactres.toml"):
+        if candidate.is_file():
+            try:
+                data = tomllib.loads(candidate.read_text(encoding="utf-8"))
+            except tomllib.TOMLDecodeError as exc:
+                raise ValueError(f"{candidate}: not valid TOML ({exc})") from None
+            unknown = sorted(set(data) - set(CONSTANTS))
+            if unknown:
+                raise ValueError(
+                    f"{candidate}: unknown key(s) {unknown}; allowed: {list(CONSTANTS)}"
+                )
+            return data, candidate
+    return {}, None
+
+
+def _check_constant(name: str, value, where: str) -> float:
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{where}: {name} = {value!r} is not a number") from None
+    if not math.isfinite(v):
+        raise ValueError(f"{where}: {name} = {value!r} is not finite")
+    if name == "overtone":
+        if v != int(v) or v < 1 or int(v) % 2 == 0:
+            raise ValueError(
+                f"{where}: overtone = {value!r} is not allowed; a thickness-shear resonator "
+                "has odd overtones only (1, 3, 5, ...)"
+            )
+    elif name == "n_contacts":
+        if v != int(v) or v < 1:
+            raise ValueError(f"{where}: n_contacts = {value!r} must be a positive integer")
+    elif name == "poisson":
+        if not -1 < v < 0.5:
+            raise ValueError(f"{where}: poisson = {value!r} is outside (-1, 0.5)")
+    elif v <= 0:
+        unit = CONSTANTS[name][0]
+        raise ValueError(f"{where}: {name} = {value!r} must be > 0 ({unit})")
+    return v
+
+
+# --------------------------------------------------------------------------------------------
+# Reading and validation
+
+
+def read_sweeps(path, **constants) -> pd.DataFrame:
+    """Read an amplitude-sweep table into one validated DataFrame.
+
+    Parameters
+    ----------
+    path : str or path-like
+        The table (CSV: comma, semicolon or tab separated; decimal point, or decimal comma with
+        semicolon or tab separators). Never modified.
+    **constants
+        Values for constants missing from the file: ``fundamental_Hz`` (Hz), ``overtone``,
+        ``area_m2`` (m^2, acoustically effective area), ``n_contacts``, ``sphere_radius_m`` (m),
+        ``poisson``. ``None`` means "not given".
+
+    Returns
+    -------
+    DataFrame
+        One row per point with the columns of the module docstring (every constant filled in),
+        ``line`` (line number in the file) and ``attrs["source"]`` = the path.
+
+    Raises
+    ------
+    ValueError
+        On every bad input, naming file, line, column and value (see :func:`validate_sweeps`).
+    """
+    p = Path(path)
+    if not p.exists():
+        raise FileNotFoundError(f"{p}: no such file")
+    if p.is_dir():
+        raise ValueError(f"{p}: is a directory, expected a sweep table file")
+    unknown = sorted(set(constants) - set(CONSTANTS))
+    if unknown:
+        raise ValueError(f"unknown constant(s) {unknown}; allowed: {list(CONSTANTS)}")
+    given = {k: v for k, v in constants.items() if v is not None}
+    toml, toml_path = _toml_constants(p)
+    reader = _pick_reader(p)
+    raw = reader.load(p)
+    return validate_sweeps(
+        raw,
+        source=str(p),
+        constants=given,
+        file_constants=toml,
+        file_constants_source=str(toml_path) if toml_path else None,
+    )
+
+
+def _numeric(raw: pd.DataFrame, col: str, source: str, decimal: str) -> np.ndarray:
+    s = raw[col].astype(str).str.strip()
+    if decimal == ",":
+        s = s.str.replace(",", ".", regex=False)
+    values = pd.to_numeric(s, errors="coerce").to_numpy(dtype=float)
+    bad = np.isnan(values) & ~s.str.lower().isin(["nan"]).to_numpy()
+    if bad.any():
+        i = int(np.flatnonzero(bad)[0])
+        shown = raw[col].iloc[i]
+        what = "is empty" if not str(shown).strip() else f"value {shown!r} is not a number"
+        raise ValueError(
+            f"{source}, line {raw['line'].iloc[i]}, column {col!r}: {what} "
+            f"({int(bad.sum())} such cell(s) in this column)"
+        )
+    nonfinite = ~np.isfinite(values)
+    if nonfinite.any():
+        i = int(np.flatnonzero(nonfinite)[0])
+        raise ValueError(
+            f"{source}, line {raw['line'].iloc[i]}, column {col!r}: value "
+            f"{raw[col].iloc[i]!r} is not finite (NaN or infinite; "
+            f"{int(nonfinite.sum())} such cell(s) in this column)"
+        )
+    return values
+
+
+def _at(table: pd.DataFrame, source: str, mask: np.ndarray, col: str) -> str:
+    i = int(np.flatnonzero(mask)[0])
+    return f"{source}, line {table['line'].iloc[i]}, column {col!r}: value {table[col].iloc[i]!r}"
+
+
+def validate_sweeps(
+    raw: pd.DataFrame,
+    source: str = "<table>",
+    constants: dict | None = None,
+    file_constants: dict | None = None,
+    file_constants_source: str | None = None,
+) -> pd.DataFrame:
+    """Validate a raw sweep table (strings or numbers) and return the clean table.
+
+    ``raw`` may come from a reader (string cells, ``line`` column) or be built in memory (then
+    rows are numbered as if a header were line 1). See :func:`read_sweeps` for the arguments
+    and the returned columns. Errors (ValueError) for: no rows, a missing required column,
+    empty/non-numeric/NaN/infinite cells, negative amplitudes, amplitudes above 1 µm (nm in a
+    metre column), an even overtone, shifts that look like absolute frequencies, non-positive
+    normal force, a constant that is missing or differs within one sweep. Warnings
+    (:class:`SweepWarning`) for duplicated rows (dropped), sweeps with fewer than 4 points, a
+    missing ``ramp`` column, arguments overridden by the file, and shifts that break the
+    small-load approximation.
+    """
+    constants = dict(constants or {})
+    file_constants = dict(file_constants or {})
+    raw = raw.copy()
+    raw.columns = [str(c).strip() for c in raw.columns]
+    if "line" not in raw.columns:
+        raw["line"] = np.arange(2, len(raw) + 2)
+    decimal = raw.attrs.get("decimal", ".")
+    data_cols = [c for c in raw.columns if c != "line"]
+    if len(raw) == 0:
+        raise ValueError(f"{source}: header only, no data rows (columns found: {data_cols})")
+    missing = [c for c in REQUIRED_COLUMNS if c not in raw.columns]
+    if missing:
+        raise ValueError(
+            f"{source}: missing required column(s) {missing}; columns found: {data_cols}; "
+            f"required: {list(REQUIRED_COLUMNS)}, optional: {list(OPTIONAL_COLUMNS)}"
+        )
+
+    out = pd.DataFrame({"line": raw["line"].to_numpy()})
+    out["sweep"] = raw["sweep"].astype(str).str.strip().to_numpy()
+    empty = (out["sweep"] == "").to_numpy() | raw["sweep"].isna().to_numpy()
+    if empty.any():
+        raise ValueError(f"{_at(out, source, empty, 'sweep')} is empty; every row needs a sweep id")
+    for col, default in LABEL_DEFAULTS.items():
+        if col in raw.columns:
+            out[col] = raw[col].astype(str).str.strip().to_numpy()
+            blank = (out[col] == "").to_numpy()
+            if blank.any():
+                raise ValueError(f"{_at(out, source, blank, col)} is empty")
+        else:
+            out[col] = default
+    for col in ("amplitude_m", "df_Hz", "dgamma_Hz", "normal_force_N"):
+        out[col] = _numeric(raw, col, source, decimal)
+    if "ramp" in raw.columns:
+        ramp = _numeric(raw, "ramp", source, decimal)
+        bad = (ramp != np.round(ramp)) | (ramp < 1)
+        if bad.any():
+            out["ramp"] = ramp
+            raise ValueError(f"{_at(out, source, bad, 'ramp')} is not a positive integer")
+        out["ramp"] = ramp.astype(int)
+    else:
+        out["ramp"] = 0
+        warnings.warn(
+            f"{source}: no 'ramp' column, so the running-in ramp cannot be identified; all "
+            "sweeps are used (ramp reported as 0)",
+            SweepWarning,
+            stacklevel=2,
+        )
+
+    # Constants: row value > argument > TOML beside the file > documented default.
+    absent = []
+    for name in CONSTANTS:
+        if name in raw.columns:
+            vals = _numeric(raw, name, source, decimal)
+            out[name] = vals
+            for v in np.unique(vals):  # validate distinct values only (cheap)
+                i = int(np.flatnonzero(vals == v)[0])
+                _check_constant(name, v, f"{source}, line {out['line'].iloc[i]}, column {name!r}")
+            if name in constants and np.any(vals != float(constants[name])):
+                warnings.warn(
+                    f"{source}: column {name!r} overrides the given {name} = {constants[name]!r}",
+                    SweepWarning,
+                    stacklevel=2,
+                )
+        elif name in constants:
+            out[name] = _check_constant(name, constants[name], f"argument {name}")
+        elif name in file_constants:
+            out[name] = _check_constant(
+                name, file_constants[name], f"{file_constants_source}, key {name!r}"
+            )
+        elif CONSTANTS[name][1] is not None:
+            out[name] = float(CONSTANTS[name][1])
+        else:
+            absent.append(f"{name} ({CONSTANTS[name][0]})")
+    if absent:
+        raise ValueError(
+            f"{source}: constant(s) missing: {', '.join(absent)}; give each as a column, as an "
+            f"argument/CLI option, or in a TOML file beside the data "
+            f"('{Path(source).with_suffix('.toml').name}', e.g. area_m2 = 2.5e-5)"
+        )
+    out["overtone"] = out["overtone"].astype(int)
+    out["n_contacts"] = out["n_contacts"].astype(int)
+
+    amp = out["amplitude_m"].to_numpy()
+    neg = amp < 0
+    if neg.any():
+        raise ValueError(
+            f"{_at(out, source, neg, 'amplitude_m')} is negative; amplitudes must be >= 0 m"
+        )
+    big = amp > MAX_AMPLITUDE_M
+    if big.any():
+        raise ValueError(
+            f"{_at(out, source, big, 'amplitude_m')} is above {MAX_AMPLITUDE_M:g} m: it looks "
+            "like nanometres in a metre column (multiply nm by 1e-9)"
+        )
+    force = out["normal_force_N"].to_numpy()
+    nonpos = force <= 0
+    if nonpos.any():
+        raise ValueError(
+            f"{_at(out, source, nonpos, 'normal_force_N')} is not positive; the normal force "
+            "per contact must be > 0 N"
+        )
+    f_res = out["fundamental_Hz"].to_numpy() * out["overtone"].to_numpy()
+    for col in ("df_Hz", "dgamma_Hz"):
+        v = np.abs(out[col].to_numpy())
+        absolute = v > ABSOLUTE_FREQUENCY_FRACTION * out["fundamental_Hz"].to_numpy()
+        if absolute.any():
+            raise ValueError(
+                f"{_at(out, source, absolute, col)} looks like an absolute frequency, not a shift "
+                f"(above {ABSOLUTE_FREQUENCY_FRACTION:g} of the fundamental); subtract the "
+                "reference frequency"
+            )
+        large = v > SMALL_LOAD_FRACTION * f_res
+        if large.any():
+            warnings.warn(
+                f"{_at(out, source, large, col)} Hz is above {SMALL_LOAD_FRACTION:g} of the "
+                "resonance frequency: the small-load approximation (paper 2, Eq. 1) may fail",
+                SweepWarning,
+                stacklevel=2,
+            )
+
+    data_only = [c for c in out.columns if c != "line"]
+    dup = out.duplicated(subset=data_only, keep="first").to_numpy()
+    if dup.any():
+        lines = out["line"].to_numpy()[dup]
+        shown = ", ".join(str(n) for n in lines[:5]) + (" ..." if len(lines) > 5 else "")
+        warnings.warn(
+            f"{source}: {int(dup.sum())} duplicated row(s) dropped (at line(s) {shown})",
+            SweepWarning,
+            stacklevel=2,
+        )
+        out = out.loc[~dup].reset_index(drop=True)
+
+    _check_per_sweep(out, source)
+    npts = out.groupby("sweep", sort=False)["amplitude_m"].transform("size").to_numpy()
+    few = npts < 4
+    if few.any():
+        names = sorted(set(out.loc[few, "sweep"]))
+        warnings.warn(
+            f"{source}: sweep(s) {names[:5]} have fewer than 4 points and will not be used",
+            SweepWarning,
+            stacklevel=2,
+        )
+    out.attrs["source"] = source
+    cols = [
+        "sweep",
+        "experiment",
+        "configuration",
+        "medium",
+        "ramp",
+        "normal_force_N",
+        "amplitude_m",
+        "df_Hz",
+        "dgamma_Hz",
+        *CONSTANTS,
+        "line",
+    ]
+    result = out[cols].reset_index(drop=True)
+    result.attrs["source"] = source
+    return result
+
+
+def _check_per_sweep(table: pd.DataFrame, source: str) -> None:
+    """Columns that describe a whole sweep must take one value within it."""
+    grouped = table.groupby("sweep", sort=False)
+    for col in PER_SWEEP_COLUMNS:
+        counts = grouped[col].nunique()
+        bad = counts[counts > 1]
+        if len(bad):
+            name = bad.index[0]
+            rows = table[table["sweep"] == name]
+            first = rows[col].iloc[0]
+            other = rows.loc[rows[col] != first].iloc[0]
+            raise ValueError(
+                f"{source}, sweep {name!r}: conflicting values in column {col!r}: "
+                f"{first!r} (line {rows['line'].iloc[0]}) and {other[col]!r} "
+                f"(line {other['line']}); one sweep has one {col}"
+            )
+
+
+def iter_sweeps(table: pd.DataFrame) -> Iterator[tuple[str, pd.DataFrame]]:
+    """Yield ``(sweep id, rows)`` in the order of first appearance."""
+    yield from table.groupby("sweep", sort=False)

@@ -1,0 +1,399 @@
+"""Round trips of the sweep analysis: forward model + noise -> analyze -> the parameters back."""
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from contactres.analysis import (
+    AnalysisSettings,
+    _bootstrap_jkr,
+    analyze,
+    fit_jkr_mindlin,
+    kappa_jkr_mindlin,
+)
+from contactres.analysis_sweep import (
+    MODEL_ORDER,
+    cm_loop_table,
+    fit_cm_loops,
+    fit_sweeps,
+    pad_sweeps,
+)
+from contactres.fitting import MODELS, Model, Parameter, fit
+from contactres.normal.isotropic import effective_modulus, jkr_contact_radius
+from contactres.qcm import QCM, shifts_from_loop
+from contactres.sweeps import validate_sweeps
+from contactres.tangential import (
+    CattaneoMindlinLoop,
+    PlateauLoop,
+    SavkoorLoop,
+    VoigtLoop,
+    with_dashpot,
+)
+
+Q = QCM(fundamental=5e6, overtone=3, area=2.5e-5)
+NP = 3
+P = Q.sensitivity(NP)
+R, NU = 1.1e-3, 0.17
+CONST = dict(overtone=3, area_m2=2.5e-5, n_contacts=NP, sphere_radius_m=R, poisson=NU)
+
+
+def cm_shifts(kappa, mu, F, u, dgamma0=5.0, kind="cm", dc=0.0):
+    omega_xi = dgamma0 / P
+    if kind == "cm":
+        loop = CattaneoMindlinLoop(kappa, mu, F)
+    elif kind == "plateau":
+        loop = PlateauLoop(CattaneoMindlinLoop(kappa, mu, F), dc)
+    elif kind == "savkoor":
+        a = jkr_contact_radius(effective_modulus(70e9, NU), R, F, 0.0)
+        loop = SavkoorLoop(kappa, kappa * 2.0 * u.max() / (4 * a**2), a)
+    else:
+        return np.full(u.size, P * kappa), np.full(u.size, dgamma0)
+    return shifts_from_loop(Q, with_dashpot(loop, omega_xi / Q.omega, Q.omega), u, NP)
+
+
+def make_table(
+    E=70e9,
+    gamma=0.1,
+    mu=1.0,
+    loads=(2e-3, 4e-3, 6e-3, 8e-3),
+    n_exp=4,
+    ramps=(2, 3, 4),
+    u_max=6e-9,
+    n_points=12,
+    noise=0.2,
+    e_scatter=0.0,
+    kind="cm",
+    seed=1,
+    dc_fraction=0.4,
+):
+    rng = np.random.default_rng(seed)
+    u_up = np.linspace(0.05, 1.0, n_points) * u_max
+    rows = []
+    for e in range(n_exp):
+        Ee = E * (1 + e_scatter * rng.standard_normal())
+        for F in loads:
+            kappa = kappa_jkr_mindlin(F, Ee, gamma, R, NU)
+            for r in ramps:
+                u = u_up if r % 2 else u_up[::-1]
+                df, dg = cm_shifts(kappa, mu, F, u, kind=kind, dc=dc_fraction * u_max)
+                rows.append(
+                    pd.DataFrame(
+                        dict(
+                            sweep=f"{kind}/e{e}/F{F}/r{r}",
+                            experiment=f"e{e}",
+                            configuration="glass",
+                            medium="air",
+                            ramp=r,
+                            normal_force_N=F,
+                            amplitude_m=u,
+                            df_Hz=df + rng.normal(0, noise, u.size),
+                            dgamma_Hz=dg + rng.normal(0, noise, u.size),
+                        )
+                    )
+                )
+    return validate_sweeps(pd.concat(rows, ignore_index=True), constants=CONST)
+
+
+FAST = AnalysisSettings(bootstrap=0)
+
+
+def x_max(F, mu, u_max, E=70e9, gamma=0.1):
+    return kappa_jkr_mindlin(F, E, gamma, R, NU) * u_max / (mu * F)
+
+
+# ---- Table 1: E and γ -----------------------------------------------------------------------
+
+
+def test_round_trip_modulus_and_adhesion():
+    E, gamma = 70e9, 0.1
+    res = analyze(make_table(E=E, gamma=gamma, e_scatter=0.02, noise=0.2), settings=FAST)
+    (g,) = res.groups
+    assert abs(g["E_Pa"] / E - 1) < 0.05
+    assert abs(g["gamma_J_m2"] - gamma) < 3 * g["gamma_err_J_m2"]
+    assert abs(g["E_Pa"] - E) < 3 * g["E_err_Pa"]
+    assert g["n_experiments"] == 4 and g["models"]["cattaneo-mindlin"] >= 44
+
+
+def test_jkr_fit_recovers_hertz_closed_form():
+    # γ = 0: κ = 2G*a with a = (3FR/4E*)^(1/3), G* = E/((1+ν)(2-ν)), E* = E/(2(1-ν²)) by hand.
+    E = 65e9
+    F = np.array([1e-3, 2e-3, 4e-3, 8e-3])
+    E_star = E / (2 * (1 - NU**2))
+    G_star = E / ((1 + NU) * (2 - NU))
+    kappa = 2 * G_star * (3 * F * R / (4 * E_star)) ** (1 / 3)
+    res = fit_jkr_mindlin(F, kappa, R, NU)
+    assert res.values["E"] == pytest.approx(E, rel=1e-5)
+    assert res.values["gamma"] < 1e-6
+
+
+def test_vectorised_bootstrap_equals_refitting_each_resample():
+    table = make_table(e_scatter=0.03, noise=0.2, n_exp=5)
+    res = analyze(table, settings=FAST)
+    pts = res.experiments
+    main = fit_jkr_mindlin(pts["normal_force_N"], pts["kappa_N_per_m"], R, NU)
+    B, seed = 40, 3
+    E_sd, g_sd = _bootstrap_jkr(pts, R, NU, main, B, seed)
+    # Second algorithm: the same resamples, each refitted with least_squares.
+    codes, names = pd.factorize(pts["experiment"])
+    pick = np.random.default_rng(seed).integers(0, len(names), size=(B, len(names)))
+    fits = []
+    for row in pick:
+        sample = pd.concat([pts[codes == i] for i in row])
+        f = fit_jkr_mindlin(sample["normal_force_N"], sample["kappa_N_per_m"], R, NU)
+        fits.append((f.values["E"], f.values["gamma"]))
+    fits = np.array(fits)
+    assert E_sd == pytest.approx(fits[:, 0].std(ddof=1), rel=0.02)
+    assert g_sd == pytest.approx(fits[:, 1].std(ddof=1), rel=0.02, abs=1e-5)
+
+
+def test_fit_errors_match_closed_form_linear_regression():
+    rng = np.random.default_rng(0)
+    x = np.linspace(0, 1, 30)
+    y = 2.0 + 3.0 * x + rng.normal(0, 0.1, x.size)
+    line = Model(
+        "line",
+        "line",
+        (Parameter("a", "a", "-"), Parameter("b", "b", "-")),
+        "x",
+        "-",
+        "y",
+        "-",
+        "test",
+        lambda x, a, b: a + b * x,
+    )
+    res = fit(line, x, y, start={"a": 0.0, "b": 0.0})
+    b, a = np.polyfit(x, y, 1)
+    s2 = np.sum((y - a - b * x) ** 2) / (x.size - 2)
+    sxx = np.sum((x - x.mean()) ** 2)
+    assert res.values["b"] == pytest.approx(b, rel=1e-8)
+    assert res.errors["b"] == pytest.approx(np.sqrt(s2 / sxx), rel=1e-6)
+    assert res.errors["a"] == pytest.approx(np.sqrt(s2 * np.sum(x**2) / (x.size * sxx)), rel=1e-6)
+
+
+def test_model_registry_metadata_is_complete():
+    expected = {"jkr-mindlin", "cattaneo-mindlin-loop", *MODEL_ORDER}
+    assert expected <= set(MODELS)
+    for key, model in MODELS.items():
+        assert model.key == key and model.display and model.source and model.unit
+        assert callable(model.function) and model.x and model.x_unit
+        keys = [p.key for p in model.parameters]
+        assert len(keys) == len(set(keys))
+        for p in model.parameters:
+            assert p.unit and p.display and p.scale > 0
+            assert p.bounds[0] < p.bounds[1]
+        # Evaluate at the typical magnitudes (scales) of the parameters: finite, right shape.
+        x = np.linspace(1e-9, 1e-8, 3) if model.x_unit == "m" else np.linspace(1e-3, 5e-3, 3)
+        values = {p.key: p.scale for p in model.parameters}
+        if key == "jkr-mindlin":
+            values.update(E=70e9, gamma=0.1, radius=R, poisson=NU)
+        out = np.asarray(model.function(x, **values))
+        assert out.shape[-1] == 3 and np.all(np.isfinite(out))
+
+
+# ---- friction ---------------------------------------------------------------------------------
+
+
+def _z(res, mu, col):
+    sw = res.sweeps[res.sweeps["used"]]
+    return ((sw[col] - mu) / sw[f"{col}_err"]).to_numpy()
+
+
+def test_friction_from_slopes_and_loop_at_small_amplitude():
+    mu = 1.0
+    loads = (4e-3, 8e-3)
+    u_max = 2e-9
+    assert x_max(4e-3, mu, u_max) < 0.3  # linear regime: slope bias < 3 %
+    res = analyze(make_table(mu=mu, loads=loads, u_max=u_max, noise=0.05, n_exp=5), settings=FAST)
+    used = res.sweeps[res.sweeps["used"]]
+    assert (used["model"] == "cattaneo-mindlin").mean() > 0.9
+    for col in ("mu_df", "mu_dgamma", "mu_fit"):
+        values = used[col].to_numpy()
+        assert abs(np.nanmean(values) - mu) < 0.05, col
+    z = _z(res, mu, "mu_fit")
+    assert abs(np.nanmean(z)) < 0.6 and 0.5 < np.nanstd(z) < 1.6
+
+
+def test_loop_fit_stays_unbiased_near_full_sliding():
+    mu, F = 0.8, 2e-3
+    u_max = 10e-9
+    assert x_max(F, mu, u_max) > 1.5  # beyond the full-sliding displacement d* (x = 3/2)
+    res = analyze(
+        make_table(mu=mu, loads=(F, 4e-3), u_max=u_max, noise=0.2, n_exp=3), settings=FAST
+    )
+    used = res.sweeps[res.sweeps["used"] & (res.sweeps["normal_force_N"] == F)]
+    assert (used["model"] == "cattaneo-mindlin").all()
+    assert used["mu_fit"].mean() == pytest.approx(mu, rel=0.02)
+    z = (used["mu_fit"] - mu) / used["mu_fit_err"]
+    assert np.all(np.abs(z) < 4)
+    # The linearised slopes are biased here (the reason for the exact fit).
+    assert abs(used["mu_df"].mean() / mu - 1) > 0.1
+
+
+def test_exact_loop_fit_noise_free_recovers_parameters():
+    kappa, mu, F, omega_xi = 3e5, 0.7, 3e-3, 2e4
+    u = np.linspace(0.2e-9, 12e-9, 15)
+    loop = with_dashpot(CattaneoMindlinLoop(kappa, mu, F), omega_xi / Q.omega, Q.omega)
+    df, dg = shifts_from_loop(Q, loop, u, NP)
+    res = fit_cm_loops(
+        u[None], df[None], dg[None], np.ones((1, u.size)), np.array([0.1]), np.array([0.1])
+    )
+    assert res["x_max"].iloc[0] > 1.5
+    assert res["A_Hz"].iloc[0] == pytest.approx(P * kappa, rel=1e-4)
+    assert res["B_Hz"].iloc[0] == pytest.approx(P * omega_xi, rel=1e-3)
+    assert res["theta_per_m"].iloc[0] == pytest.approx(kappa / (mu * F), rel=1e-3)
+
+
+def test_loop_table_matches_the_small_amplitude_expansion():
+    # physics.md Eq. 11-12: K'/κ = 1 - x/6 - (5/288)x², (K''-ωξ)/κ = 2x/(9π) + x²/(27π).
+    # The remainder must be O(x³): that pins both coefficients of every order shown.
+    x, g1, g2, _, _ = cm_loop_table()
+    s = (x > 0) & (x <= 0.05)
+    xs = x[s]
+    assert np.all(np.abs(g1[s] - (1 - xs / 6 - 5 / 288 * xs**2)) < 0.01 * xs**3)
+    assert np.all(np.abs(g2[s] - (2 * xs / (9 * np.pi) + xs**2 / (27 * np.pi))) < 0.01 * xs**3)
+    # The OCR'd paper's 1/3 (twice 1/6) is ruled out.
+    assert abs((g1[s][0] - 1) / xs[0] + 1 / 6) < 1e-3
+
+
+def test_loop_table_interpolation_error_is_below_1e_6():
+    # The table is interpolated linearly; at the midpoints (worst case) it must match a direct
+    # evaluation of the forward model to 1e-6 of κ, including around full sliding (x = 1.5).
+    x, g1, g2, _, _ = cm_loop_table()
+    mid = 0.5 * (x[1:] + x[:-1])[::7]
+    df, dg = shifts_from_loop(QCM(), CattaneoMindlinLoop(1.0, 1.0, 1.0), mid, 1)
+    p1 = QCM().sensitivity(1)
+    assert np.max(np.abs(np.interp(mid, x, g1) - df / p1)) < 1e-6
+    assert np.max(np.abs(np.interp(mid, x, g2) - dg / p1)) < 1e-6
+
+
+# ---- model classification, plateau, ramps, flags ---------------------------------------------
+
+
+@pytest.mark.parametrize(
+    ("kind", "expected"),
+    [
+        ("cm", "cattaneo-mindlin"),
+        ("savkoor", "savkoor"),
+        ("elastic", "elastic"),
+        ("plateau", "plateau"),
+    ],
+)
+def test_models_told_apart_on_clear_cases(kind, expected):
+    t = make_table(kind=kind, loads=(3e-3,), n_exp=4, u_max=8e-9, n_points=14, noise=0.1, mu=1.5)
+    sw = fit_sweeps(pad_sweeps(t))
+    assert (sw["model"] == expected).mean() >= 0.9, sw["model"].value_counts()
+
+
+def test_plateau_amplitude_found():
+    # A PlateauLoop sticks for u0 <= d_c; beyond, the shifts leave the plateau smoothly (the slip
+    # annulus starts at zero width), so the hinge of the fit sits at or a little above d_c.
+    u_max, frac = 8e-9, 0.4
+    t = make_table(kind="plateau", loads=(3e-3,), n_exp=4, u_max=u_max, n_points=14, noise=0.1)
+    res = analyze(t, settings=FAST)
+    pl = res.sweeps[res.sweeps["model"] == "plateau"]
+    step = u_max * 0.95 / 13
+    d_c = frac * u_max
+    assert len(pl) >= 10
+    assert np.all(pl["plateau_amplitude_m"] > d_c - 0.5 * step)
+    assert np.all(pl["plateau_amplitude_m"] < d_c + 2.0 * step)
+    assert res.sweeps.loc[res.sweeps["model"] != "plateau", "plateau_amplitude_m"].isna().all()
+
+
+def test_first_ramp_set_aside_by_default_and_kept_on_request():
+    t = make_table(ramps=(1, 2, 3, 4), loads=(3e-3, 6e-3), n_exp=2)
+    res = analyze(t, settings=FAST)
+    first = res.sweeps["ramp"] == 1
+    assert not res.sweeps.loc[first, "used"].any() and res.sweeps.loc[~first, "used"].all()
+    assert res.sweeps.loc[first, "flags"].str.contains("first-ramp").all()
+    kept = analyze(t, settings=AnalysisSettings(bootstrap=0, keep_first_ramp=True))
+    assert kept.sweeps["used"].all()
+    assert kept.groups[0]["n_sweeps_used"] == len(kept.sweeps)
+
+
+def test_drift_flagged_only_where_ramps_are_offset():
+    t = make_table(loads=(3e-3, 6e-3), n_exp=3, noise=0.2)
+    bad = (t["experiment"] == "e1") & (t["normal_force_N"] == 6e-3)
+    t.loc[bad, "df_Hz"] += 1.0 * (t.loc[bad, "ramp"] - 2)  # baseline moves 1 Hz per ramp
+    res = analyze(t, settings=FAST)
+    flagged = res.sweeps["flags"].str.contains("drift")
+    is_bad = (res.sweeps["experiment"] == "e1") & (res.sweeps["normal_force_N"] == 6e-3)
+    assert flagged[is_bad].all() and not flagged[~is_bad].any()
+
+
+def test_junction_growth_flagged_and_no_friction():
+    t = make_table(loads=(3e-3,), n_exp=2, u_max=4e-9)
+    t["df_Hz"] = t["df_Hz"].mean() + 2e9 * t["amplitude_m"]  # Δf rises with u0
+    res = analyze(t, settings=FAST)
+    assert res.sweeps["flags"].str.contains("junction-growth").all()
+    assert res.sweeps["mu_df"].isna().all()
+
+
+def test_loss_tangent_and_stiffness_from_eq2():
+    t = make_table(loads=(3e-3, 6e-3), n_exp=2, noise=0.0)
+    res = analyze(t, settings=FAST)
+    sw = res.sweeps
+    kappa_true = kappa_jkr_mindlin(sw["normal_force_N"].to_numpy(), 70e9, 0.1, R, NU)
+    assert np.allclose(sw["kappa_N_per_m"], kappa_true, rtol=1e-3)
+    assert np.allclose(sw["omega_xi_N_per_m"], 5.0 / P, rtol=1e-3)
+    assert np.allclose(sw["loss_tangent"], sw["dgamma0_Hz"] / sw["df0_Hz"])
+
+
+def test_voigt_contact_is_elastic_with_exact_limits():
+    # A Voigt element (no slip): Δf = Pκ, ΔΓ = Pωξ at every amplitude (paper 2, Eq. 1).
+    kappa, omega_xi = 2e5, 1.5e4
+    u = np.linspace(0.5e-9, 10e-9, 12)
+    df, dg = shifts_from_loop(Q, VoigtLoop(kappa, omega_xi / Q.omega, Q.omega), u, NP)
+    rng = np.random.default_rng(5)
+    raw = pd.DataFrame(
+        dict(
+            sweep="v",
+            ramp=2,
+            normal_force_N=3e-3,
+            amplitude_m=u,
+            df_Hz=df + rng.normal(0, 0.1, u.size),
+            dgamma_Hz=dg + rng.normal(0, 0.1, u.size),
+        )
+    )
+    t = validate_sweeps(raw, constants=CONST)
+    res = analyze(t, settings=FAST)
+    row = res.sweeps.iloc[0]
+    assert row["model"] == "elastic"
+    assert abs(row["df0_Hz"] - P * kappa) < 3 * row["df0_err_Hz"]
+    assert np.isnan(row["mu_df"]) and np.isnan(row["mu_fit"])
+
+
+def test_analyze_is_pure():
+    t = make_table(loads=(3e-3, 6e-3), n_exp=3)
+    before = t.copy()
+    a = analyze(t, settings=AnalysisSettings(bootstrap=20, seed=4))
+    b = analyze(t, settings=AnalysisSettings(bootstrap=20, seed=4))
+    pd.testing.assert_frame_equal(t, before)
+    pd.testing.assert_frame_equal(a.sweeps_table, b.sweeps_table)
+    assert a.summary == b.summary
+
+
+def test_a_qcm_argument_replaces_the_table_constants():
+    t = make_table(loads=(3e-3, 6e-3), n_exp=3)
+    a = analyze(t, settings=FAST)
+    other = t.assign(area_m2=1e-5, overtone=5)
+    b = analyze(other, Q, settings=FAST)  # cr.analyze(table, q) of design.md §3
+    pd.testing.assert_frame_equal(a.sweeps_table, b.sweeps_table)
+
+
+def test_raw_tables_are_validated_first():
+    t = make_table(loads=(3e-3, 6e-3), n_exp=2)
+    raw = t[["sweep", "experiment", "ramp", "normal_force_N", "amplitude_m", "df_Hz", "dgamma_Hz"]]
+    with pytest.raises(ValueError, match=r"missing: .*n_contacts.*sphere_radius_m"):
+        analyze(raw, Q, settings=FAST)
+    ok = analyze(raw.assign(n_contacts=NP, sphere_radius_m=R), Q, settings=FAST)
+    assert len(ok.sweeps) == len(t["sweep"].unique())
+    bad = raw.assign(n_contacts=NP, sphere_radius_m=R, amplitude_m=-raw["amplitude_m"])
+    with pytest.raises(ValueError, match="negative"):
+        analyze(bad, Q, settings=FAST)
+
+
+def test_settings_are_checked():
+    with pytest.raises(ValueError, match="drift_p"):
+        AnalysisSettings(drift_p=2)
+    with pytest.raises(ValueError, match="bootstrap"):
+        AnalysisSettings(bootstrap=-1)

@@ -1,0 +1,129 @@
+"""``contactres qcm analyze``: exit codes, the terminal table, the results folder."""
+
+import json
+
+import numpy as np
+import pandas as pd
+import pytest
+from click.testing import CliRunner
+
+from contactres.analysis import kappa_jkr_mindlin
+from contactres.cli import main
+from contactres.qcm import QCM, shifts_from_loop
+from contactres.tangential import CattaneoMindlinLoop, with_dashpot
+
+
+def run(*args):
+    return CliRunner().invoke(main, [str(a) for a in args])
+
+
+@pytest.fixture(scope="module")
+def sweeps_csv(tmp_path_factory):
+    q = QCM(5e6, 3, 2.5e-5)
+    rng = np.random.default_rng(7)
+    u = np.linspace(0.5e-9, 5e-9, 8)
+    rows = []
+    for e in range(3):
+        for F in (2e-3, 4e-3, 6e-3):
+            kappa = kappa_jkr_mindlin(F, 70e9, 0.1, 1.1e-3, 0.17)
+            loop = with_dashpot(CattaneoMindlinLoop(kappa, 1.0, F), 2e4 / q.omega, q.omega)
+            df, dg = shifts_from_loop(q, loop, u, 3)
+            for r in (1, 2, 3, 4):
+                rows.append(
+                    pd.DataFrame(
+                        dict(
+                            sweep=f"e{e}F{F}r{r}",
+                            experiment=e,
+                            ramp=r,
+                            normal_force_N=F,
+                            amplitude_m=u,
+                            df_Hz=df + rng.normal(0, 0.1, u.size),
+                            dgamma_Hz=dg + rng.normal(0, 0.1, u.size),
+                        )
+                    )
+                )
+    path = tmp_path_factory.mktemp("data") / "sweeps.csv"
+    pd.concat(rows).to_csv(path, index=False)
+    return path
+
+
+OPTS = ["--area", "2.5e-5", "--overtone", "3", "--n-contacts", "3", "--sphere-radius", "1.1e-3"]
+
+
+def test_analyze_writes_results_and_prints_table(sweeps_csv, tmp_path):
+    out = tmp_path / "res"
+    r = run("qcm", "analyze", sweeps_csv, "--out", out, *OPTS, "--no-figures", "--bootstrap", "20")
+    assert r.exit_code == 0, r.output
+    assert "E_GPa" in r.output and "gamma_mJ_m2" in r.output
+    assert "36 sweeps, 27 used" in r.output
+    for name in ("sweeps.csv", "loads.csv", "summary.json"):
+        assert (out / name).is_file()
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["groups"][0]["E_Pa"] == pytest.approx(70e9, rel=0.05)
+
+
+def test_keep_first_ramp_and_json_output(sweeps_csv, tmp_path):
+    r = run(
+        "qcm", "analyze", sweeps_csv, "--out", tmp_path, *OPTS,
+        "--no-figures", "--keep-first-ramp", "--format", "json", "--bootstrap", "0",
+    )  # fmt: skip
+    assert r.exit_code == 0, r.output
+    start = r.output.index("[")
+    rows = json.loads(r.output[start : r.output.rindex("]") + 1])
+    assert rows[0]["n_sweeps"] == 36
+
+
+def test_constants_from_toml_beside_the_data(sweeps_csv, tmp_path):
+    data = tmp_path / "mine.csv"
+    data.write_bytes(sweeps_csv.read_bytes())
+    (tmp_path / "mine.toml").write_text(
+        "area_m2 = 2.5e-5\novertone = 3\nn_contacts = 3\nsphere_radius_m = 1.1e-3\n"
+    )
+    r = run("qcm", "analyze", data, "--out", tmp_path / "o", "--no-figures", "--bootstrap", "0")
+    assert r.exit_code == 0, r.output
+
+
+def _one_line_error(r, *words):
+    assert r.exit_code == 2, r.output
+    lines = r.output.strip().splitlines()
+    assert len(lines) == 1 and "error" in lines[0] and "Traceback" not in r.output
+    for w in words:
+        assert w in lines[0]
+
+
+def test_even_overtone_is_one_line_error(sweeps_csv, tmp_path):
+    opts = [o if o != "3" else "4" for o in OPTS[:4]] + OPTS[4:]
+    r = run("qcm", "analyze", sweeps_csv, "--out", tmp_path, *opts)
+    _one_line_error(r, "overtone", "odd")
+
+
+def test_missing_column_is_one_line_error(sweeps_csv, tmp_path):
+    bad = tmp_path / "bad.csv"
+    pd.read_csv(sweeps_csv).drop(columns="df_Hz").to_csv(bad, index=False)
+    r = run("qcm", "analyze", bad, "--out", tmp_path / "o", *OPTS)
+    _one_line_error(r, "bad.csv", "df_Hz")
+    assert not (tmp_path / "o").exists()
+
+
+def test_missing_constant_and_missing_file(sweeps_csv, tmp_path):
+    r = run("qcm", "analyze", sweeps_csv, "--out", tmp_path)
+    _one_line_error(r, "missing", "area_m2", "overtone", "n_contacts", "sphere_radius_m")
+    _one_line_error(run("qcm", "analyze", tmp_path / "nope.csv", "--out", tmp_path, *OPTS))
+
+
+def test_warnings_go_to_stderr_as_lines(sweeps_csv, tmp_path):
+    dup = tmp_path / "dup.csv"
+    t = pd.read_csv(sweeps_csv)
+    pd.concat([t, t.iloc[[0]]]).to_csv(dup, index=False)
+    r = run(
+        "qcm", "analyze", dup, "--out", tmp_path / "o", *OPTS, "--no-figures", "--bootstrap", "0"
+    )
+    assert r.exit_code == 0
+    assert "warning: " in r.output and "duplicated row" in r.output
+
+
+def test_help_states_units():
+    r = run("qcm", "analyze", "--help")
+    assert r.exit_code == 0
+    for unit in ("(m^2)", "(Hz)", "(m)"):
+        assert unit in r.output

@@ -1,0 +1,296 @@
+"""Tests of contactres.halfspace: static and dynamic surface response of an anisotropic solid.
+
+Independent references: Boussinesq (isotropic statics), the exact axial indentation modulus of a
+transversely isotropic solid (Delafargue & Ulm 2004), Lamb's closed-form isotropic kernel, a
+brute-force 6x6 Stroh eigen-decomposition (physics.md's matrix), symmetry and reciprocity.
+"""
+
+import numpy as np
+import pytest
+from hypothesis import given
+from hypothesis import strategies as st
+from scipy.optimize import brentq
+from scipy.spatial.transform import Rotation
+
+from contactres import Material
+from contactres.halfspace import (
+    dynamic_kernel,
+    isotropic_dynamic_kernel,
+    shear_reference,
+    static_kernel,
+)
+from contactres.materials import tensor_to_voigt, voigt_to_tensor
+
+CU = Material.cubic(168.4e9, 121.4e9, 75.4e9, density=8960.0)
+THETA = np.linspace(0.0, 2 * np.pi, 13)
+
+
+def _rel(a, b):
+    return np.max(np.abs(np.asarray(a) - np.asarray(b)) / np.abs(np.asarray(b)))
+
+
+def _rotate_C(C, R):
+    c = voigt_to_tensor(C)
+    return tensor_to_voigt(np.einsum("ia,jb,kc,ld,abcd->ijkl", R, R, R, R, c))
+
+
+def _triclinic(seed=3, loss=0.0):
+    """A generic anisotropic solid: a rotated hexagonal crystal plus a small random perturbation."""
+    rng = np.random.default_rng(seed)
+    base = Material.hexagonal(160e9, 90e9, 66e9, 181e9, 46e9).C
+    R = Rotation.from_rotvec(rng.normal(size=3)).as_matrix()
+    C = _rotate_C(base, R)
+    P = rng.normal(size=(6, 6)) * 4e9
+    C = C + 0.5 * (P + P.T)
+    return Material.from_voigt(C * (1 + 1j * loss) if loss else C)
+
+
+# --------------------------------------------------------------------------------- statics
+@pytest.mark.parametrize("nu", [-0.5, 0.0, 0.17, 0.25, 0.45, 0.49])
+def test_isotropic_static_kernel_is_boussinesq(nu):
+    E = 70e9
+    m = Material.isotropic(E, nu)
+    G = static_kernel(m, THETA)
+    assert G.dtype == float
+    assert _rel(G, 2 * (1 - nu**2) / E) < 1e-12
+
+
+def test_isotropic_static_kernel_any_orientation():
+    m = Material.isotropic(200e9, 0.3)
+    r = m.rotated(normal=(0.3, -1.2, 0.7), inplane=(1, 1, 0))
+    assert _rel(static_kernel(r, THETA), 2 * (1 - 0.09) / 200e9) < 1e-12
+
+
+def test_transversely_isotropic_axis_normal_matches_delafargue_ulm():
+    # Exact indentation modulus along the symmetry axis of a transversely isotropic solid:
+    # M = 2 sqrt((C11 C33 - C13^2)/C11 / (1/C44 + 2/(sqrt(C11 C33) + C13)))
+    # (Delafargue & Ulm, Int. J. Solids Struct. 41 (2004) 7351, Eq. 23). Ĝ = 2/M for every θ.
+    c11, c12, c13, c33, c44 = 163.0e9, 92.0e9, 69.0e9, 181.0e9, 46.7e9  # Ti-like, Pa
+    m = Material.hexagonal(c11, c12, c13, c33, c44)
+    M = 2 * np.sqrt((c11 * c33 - c13**2) / c11 / (1 / c44 + 2 / (np.sqrt(c11 * c33) + c13)))
+    assert _rel(static_kernel(m, THETA), 2 / M) < 1e-12
+
+
+def test_static_kernel_lossy_is_complex_and_scales():
+    m = CU.with_loss(0.02)
+    G = static_kernel(m, THETA)
+    assert np.iscomplexobj(G)
+    # Uniform loss C(1 + iq) scales the compliance by 1/(1 + iq) exactly.
+    assert _rel(G, static_kernel(CU, THETA) / (1 + 0.02j)) < 1e-12
+
+
+def test_shear_reference_is_surface_frame_c44():
+    assert shear_reference(CU) == 75.4e9
+    assert shear_reference(CU.with_loss(0.1)) == 75.4e9
+    c111 = CU.rotated((1, 1, 1))
+    assert shear_reference(c111) == pytest.approx(np.real(c111.C[3, 3]))
+
+
+# --------------------------------------------------------------------------------- dynamics
+def _rayleigh_kappa(ratio):
+    """Root of the lossless Rayleigh function (κ_R = c_s/c_R > 1), by bracketing."""
+
+    def F(k):
+        om2 = 1 / k**2
+        return (2 - om2) ** 2 - 4 * np.sqrt(1 - om2 / ratio) * np.sqrt(1 - om2)
+
+    return brentq(F, 1.0 + 1e-12, 2.0, xtol=1e-15)
+
+
+@pytest.mark.parametrize("nu", [0.0, 0.25, 0.4])
+def test_isotropic_dynamic_kernel_matches_lamb_closed_form_with_loss(nu):
+    m = Material.isotropic(1.0, nu)
+    ratio = m.C[0, 0] / m.C[3, 3]
+    kr = _rayleigh_kappa(ratio)
+    kappa = np.concatenate(
+        [np.geomspace(0.02, 50, 60), kr * (1 + np.linspace(-0.03, 0.03, 41)), [0.999, 1.0, 1.001]]
+    )
+    for q in (0.02, 1e-3):
+        g = dynamic_kernel(m.with_loss(q), kappa, 0.7)
+        ref = isotropic_dynamic_kernel(kappa, ratio, loss=q)
+        assert _rel(g, ref) < 1e-10
+    # Near the Rayleigh pole the kernel is large: the check bites where it matters.
+    assert np.max(np.abs(ref)) > 100
+
+
+def test_isotropic_dynamic_kernel_lossless_above_cutoff_and_complex_kappa():
+    m = Material.isotropic(1.0, 0.3)
+    ratio = m.C[0, 0] / m.C[3, 3]
+    kr = _rayleigh_kappa(ratio)
+    k_real = np.array([1.0 + 1e-6, 1.01, 1.2, kr * 1.01, 3.0, 1e3])
+    assert _rel(dynamic_kernel(m, k_real, 0.0), isotropic_dynamic_kernel(k_real, ratio)) < 1e-10
+    # Contour in the upper half plane, through the propagating range and past the pole.
+    s = np.linspace(0.01, 3.0, 50)
+    kc = s + 0.05j * np.sin(np.pi * s / 3.0) + 1e-3j
+    assert _rel(dynamic_kernel(m, kc, 1.1), isotropic_dynamic_kernel(kc, ratio)) < 1e-10
+
+
+def test_closed_form_lossless_static_limit():
+    m = Material.isotropic(1.0, 0.3)
+    ratio = m.C[0, 0] / m.C[3, 3]
+    assert isotropic_dynamic_kernel(1e8, ratio).real == pytest.approx(0.7, rel=1e-12)
+
+
+def _stroh_eig_kernel(C, kappa, theta):
+    """Brute force: physics.md's 6x6 Stroh matrix, np.linalg.eig, keep Re λ < 0, H = A B⁻¹."""
+    c = voigt_to_tensor(np.asarray(C, dtype=complex)) / np.real(C[3, 3])
+    n = np.array([np.cos(theta), np.sin(theta)])
+    Q = np.einsum("iakb,a,b->ik", c[:, :2, :, :2], n, n)
+    R = np.einsum("iak,a->ik", c[:, :2, :, 2], n)
+    W = c[:, 2, :, 2]
+    Wi = np.linalg.inv(W)
+    s = 1 / kappa**2
+    M = np.block([[-1j * Wi @ R.T, Wi], [Q - s * np.eye(3) - R @ Wi @ R.T, -1j * R @ Wi]])
+    lam, V = np.linalg.eig(M)
+    keep = np.argsort(lam.real)[:3]
+    assert np.all(lam.real[keep] < 0) and np.sort(lam.real)[3] > 0
+    A, B = V[:3, keep], V[3:, keep]
+    return -(A @ np.linalg.inv(B))[2, 2]
+
+
+@pytest.mark.parametrize("kappa", [0.3, 0.9, 1.05, 2.0, 7.0])
+def test_anisotropic_dynamic_kernel_matches_brute_force_eigen_solution(kappa):
+    m = _triclinic(loss=0.02)
+    for th in (0.0, 0.4, 2.5):
+        ref = _stroh_eig_kernel(m.C, kappa, th)
+        assert abs(dynamic_kernel(m, kappa, th) - ref) < 1e-10 * abs(ref)
+
+
+def test_dynamic_tends_to_static_at_large_kappa():
+    for m in (CU.rotated((0, 1, 1)), _triclinic(), _triclinic(loss=0.02)):
+        g_inf = shear_reference(m) * static_kernel(m, THETA)
+        d1 = np.abs(dynamic_kernel(m, 1e3, THETA) - g_inf)
+        d2 = np.abs(dynamic_kernel(m, 2e3, THETA) - g_inf)
+        assert np.max(d1 / np.abs(g_inf)) < 1e-5
+        # The approach is ~1/κ²: doubling κ cuts the gap by ~4.
+        np.testing.assert_allclose(d1 / d2, 4.0, rtol=1e-3)
+
+
+def test_kernel_depends_only_on_c_over_c44_not_density():
+    m1 = Material.from_voigt(CU.C.copy(), density=8960.0).with_loss(0.02)
+    m2 = Material.from_voigt(7.0 * CU.C, density=1.0).with_loss(0.02)
+    k = np.array([0.5, 1.3, 4.0])
+    np.testing.assert_allclose(dynamic_kernel(m1, k, 0.3), dynamic_kernel(m2, k, 0.3), rtol=1e-13)
+
+
+def test_broadcasting_shapes():
+    m = CU.with_loss(0.02)
+    g = dynamic_kernel(m, np.linspace(0.5, 2, 4)[:, None], np.linspace(0, 1, 3)[None, :])
+    assert g.shape == (4, 3)
+    assert static_kernel(CU, 0.3).shape == ()
+    assert static_kernel(CU, np.zeros((2, 5))).shape == (2, 5)
+
+
+def test_doubling_tolerance_is_converged(monkeypatch):
+    # The cyclic reduction stops at an update of 1e-10; stopping at 1e-15 moves g by < 1e-13.
+    import contactres.halfspace as hs
+
+    m = Material.crystal("Cu").rotated((0, 1, 1)).with_loss(0.02)
+    k = np.geomspace(0.05, 50, 40)[:, None]
+    th = np.linspace(0, np.pi, 9)[None, :]
+    g = dynamic_kernel(m, k, th)
+    monkeypatch.setattr(hs, "_CR_TOL", 1e-15)
+    g_tight = dynamic_kernel(m, k, th)
+    assert np.max(np.abs(g - g_tight) / np.abs(g_tight)) < 1e-13
+
+
+# --------------------------------------------------------------------------------- symmetry
+def test_cubic_001_four_fold_and_mirror():
+    m = CU.with_loss(0.02)
+    k = np.array([0.4, 1.1, 1.3, 5.0])[:, None]
+    th = np.linspace(0, 2 * np.pi, 17)[None, :] + 0.123
+    g = dynamic_kernel(m, k, th)
+    np.testing.assert_allclose(dynamic_kernel(m, k, th + np.pi / 2), g, rtol=1e-11)
+    np.testing.assert_allclose(dynamic_kernel(m, k, -th), g, rtol=1e-11)
+    # ...and the anisotropy is really there (the checks would pass trivially if g were constant).
+    assert np.ptp(static_kernel(CU, th)) > 0.05 * np.mean(static_kernel(CU, th))
+
+
+def test_cubic_111_six_fold():
+    m = CU.rotated((1, 1, 1)).with_loss(0.02)
+    k = np.array([0.4, 1.1, 1.3, 5.0])[:, None]
+    th = np.linspace(0, 2 * np.pi, 17)[None, :] + 0.2
+    g = dynamic_kernel(m, k, th)
+    np.testing.assert_allclose(dynamic_kernel(m, k, th + np.pi / 3), g, rtol=1e-11)
+    assert np.max(np.abs(dynamic_kernel(m, k, th + np.pi / 6) - g)) > 1e-4 * np.max(np.abs(g))
+
+
+def test_reciprocity_even_in_wave_vector():
+    m = _triclinic(loss=0.02)
+    k = np.array([0.4, 1.1, 3.0])[:, None]
+    th = np.linspace(0, np.pi, 7)[None, :]
+    np.testing.assert_allclose(dynamic_kernel(m, k, th + np.pi), dynamic_kernel(m, k, th), 1e-11)
+
+
+def test_rotating_the_solid_in_plane_shifts_theta():
+    # The (111) face rotated by 40° about the normal: g(θ) of the new frame = g(θ + 40°) of the old.
+    m0 = CU.rotated((1, 1, 1))
+    alpha = np.deg2rad(40.0)
+    R = m0.frame  # rows: surface axes in crystal coordinates
+    x_new = np.cos(alpha) * R[0] + np.sin(alpha) * R[1]
+    m1 = CU.rotated((1, 1, 1), inplane=x_new)
+    k = np.array([0.7, 2.0])[:, None]
+    th = np.linspace(0, 2 * np.pi, 9)[None, :]
+    np.testing.assert_allclose(
+        dynamic_kernel(m1.with_loss(0.02), k, th),
+        dynamic_kernel(m0.with_loss(0.02), k, th + alpha),
+        rtol=1e-10,
+    )
+
+
+@pytest.mark.parametrize("nu", [0.1, 0.25, 0.45])
+def test_continuity_through_isotropy(nu):
+    # A = 1 has a triple static root and a double shear root: no special case may be needed.
+    k = np.concatenate([np.geomspace(0.05, 1e6, 25), [0.999, 1.0001]])[:, None]
+    th = np.linspace(0, np.pi / 2, 5)[None, :]
+    iso = Material.cubic_from_ratios(1.0, nu)
+    ratio = iso.C[0, 0] / iso.C[3, 3]
+    ref_static = (1 - nu) * np.ones(th.shape)
+    for A in (1 - 1e-9, 1.0, 1 + 1e-9):
+        m = Material.cubic_from_ratios(A, nu)
+        assert np.max(np.abs(shear_reference(m) * static_kernel(m, th) - ref_static)) < 1e-9
+        g = dynamic_kernel(m.with_loss(0.02), k, th)
+        ref = isotropic_dynamic_kernel(k, ratio, loss=0.02)
+        assert np.max(np.abs(g - ref) / np.abs(ref)) < 1e-8
+
+
+@given(seed=st.integers(0, 2**31), loss=st.floats(1e-3, 0.2))
+def test_random_solids_are_passive_and_reciprocal(seed, loss):
+    # Any positive-definite stiffness: Ĝ > 0 (the surface yields to a push), Ĝ(θ + π) = Ĝ(θ),
+    # and with loss Im g <= 0 (e^{iωt}: the half-space absorbs energy, it never supplies it).
+    rng = np.random.default_rng(seed)
+    L = rng.normal(size=(6, 6))
+    m = Material.from_voigt((L @ L.T + 0.5 * np.eye(6)) * 1e10)
+    th = np.linspace(0, np.pi, 5)
+    G = static_kernel(m, th)
+    assert np.all(G > 0)
+    np.testing.assert_allclose(static_kernel(m, th + np.pi), G, rtol=1e-10)
+    g = dynamic_kernel(m.with_loss(loss), np.array([0.3, 0.9, 1.7, 6.0])[:, None], th)
+    assert np.all(g.imag <= 1e-12 * np.abs(g))
+
+
+# --------------------------------------------------------------------------------- errors
+def test_lossless_real_kappa_in_propagating_range_is_refused():
+    m = Material.isotropic(1.0, 0.25)
+    with pytest.raises(ValueError, match="propagating"):
+        dynamic_kernel(m, 0.5, 0.0)
+
+
+@pytest.mark.parametrize("kappa", [0.0, -1.0, np.nan, np.inf])
+def test_bad_kappa(kappa):
+    with pytest.raises(ValueError, match="kappa"):
+        dynamic_kernel(CU.with_loss(0.02), kappa, 0.0)
+
+
+def test_complex_kappa_rules():
+    with pytest.raises(ValueError, match="lossless"):
+        dynamic_kernel(CU.with_loss(0.02), 1 + 0.1j, 0.0)
+    with pytest.raises(ValueError, match="upper half"):
+        dynamic_kernel(CU, 1 - 0.1j, 0.0)
+
+
+def test_closed_form_rejects_bad_input():
+    with pytest.raises(ValueError, match="c11_over_c44"):
+        isotropic_dynamic_kernel(1.0, 1.0)
+    with pytest.raises(ValueError, match="loss"):
+        isotropic_dynamic_kernel(1.0, 3.0, loss=-0.1)

@@ -1,0 +1,164 @@
+"""The results folder: schema of sweeps.csv, loads.csv and summary.json; atomic writing."""
+
+import json
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from contactres.analysis import AnalysisSettings, analyze, kappa_jkr_mindlin
+from contactres.qcm import QCM, shifts_from_loop
+from contactres.report import SUMMARY_GROUP_KEYS, SWEEP_COLUMNS
+from contactres.sweeps import validate_sweeps
+from contactres.tangential import CattaneoMindlinLoop, with_dashpot
+
+Q = QCM(5e6, 3, 2.5e-5)
+CONST = dict(overtone=3, area_m2=2.5e-5, n_contacts=3, sphere_radius_m=1e-3)
+
+# The schema of the issue (exact names and order of the first columns).
+ISSUE_SWEEP_COLUMNS = [
+    "sweep",
+    "experiment",
+    "configuration",
+    "medium",
+    "normal_force_N",
+    "ramp",
+    "used",
+    "model",
+    "plateau_amplitude_m",
+    "df0_Hz",
+    "df0_err_Hz",
+    "df_slope_Hz_per_m",
+    "dgamma0_Hz",
+    "dgamma_slope_Hz_per_m",
+    "mu_df",
+    "mu_dgamma",
+    "mu_fit",
+    "flags",
+]
+LOAD_QUANTITIES = [
+    "df0_Hz",
+    "dgamma0_Hz",
+    "kappa_N_per_m",
+    "omega_xi_N_per_m",
+    "loss_tangent",
+    "mu_df",
+    "mu_dgamma",
+    "mu_fit",
+]
+
+
+@pytest.fixture(scope="module")
+def results():
+    rng = np.random.default_rng(2)
+    u = np.linspace(0.5e-9, 6e-9, 10)
+    frames = []
+    for medium, E in (("air", 70e9), ("water", 77e9)):
+        for e in range(3):
+            for F in (2e-3, 4e-3, 8e-3):
+                kappa = kappa_jkr_mindlin(
+                    F, E * (1 + 0.02 * rng.standard_normal()), 0.05, 1e-3, 0.17
+                )
+                loop = with_dashpot(CattaneoMindlinLoop(kappa, 1.0, F), 1e4 / Q.omega, Q.omega)
+                df, dg = shifts_from_loop(Q, loop, u, 3)
+                for r in (1, 2, 3):
+                    frames.append(
+                        pd.DataFrame(
+                            dict(
+                                sweep=f"{medium}{e}{F}{r}",
+                                experiment=e,
+                                configuration="glass",
+                                medium=medium,
+                                ramp=r,
+                                normal_force_N=F,
+                                amplitude_m=u,
+                                df_Hz=df + rng.normal(0, 0.2, u.size),
+                                dgamma_Hz=dg + rng.normal(0, 0.2, u.size),
+                            )
+                        )
+                    )
+    table = validate_sweeps(pd.concat(frames, ignore_index=True), constants=CONST)
+    return analyze(table, settings=AnalysisSettings(bootstrap=30))
+
+
+def test_schema_of_the_three_outputs(results, tmp_path):
+    written = results.write(tmp_path, figures=False)
+    assert {p.name for p in written} == {"sweeps.csv", "loads.csv", "summary.json"}
+    sweeps = pd.read_csv(tmp_path / "sweeps.csv")
+    assert list(sweeps.columns[: len(ISSUE_SWEEP_COLUMNS)]) == ISSUE_SWEEP_COLUMNS
+    assert list(SWEEP_COLUMNS) == ISSUE_SWEEP_COLUMNS
+    assert len(sweeps) == 54 and sweeps["sweep"].is_unique
+    assert set(sweeps["model"]) <= {"cattaneo-mindlin", "savkoor", "elastic", "plateau"}
+    assert sweeps["used"].dtype == bool and (sweeps["used"] == (sweeps["ramp"] != 1)).all()
+
+    loads = pd.read_csv(tmp_path / "loads.csv")
+    expected = ["configuration", "medium", "normal_force_N", "n_experiments", "n_sweeps"]
+    for q in LOAD_QUANTITIES:
+        expected += [f"{q}_mean", f"{q}_sd"]
+    assert list(loads.columns) == expected
+    assert len(loads) == 6 and (loads["n_experiments"] == 3).all()
+    assert (loads["n_sweeps"] == 6).all()
+
+    summary = json.loads((tmp_path / "summary.json").read_text())
+    assert set(summary) >= {"groups", "settings", "version"}
+    assert summary["settings"]["keep_first_ramp"] is False
+    assert len(summary["groups"]) == 2
+    for g in summary["groups"]:
+        assert list(g)[: len(SUMMARY_GROUP_KEYS)] == list(SUMMARY_GROUP_KEYS)
+        assert set(g["models"]) == {"cattaneo-mindlin", "savkoor", "elastic", "plateau"}
+        assert g["n_experiments"] == 3 and g["n_sweeps_used"] == 18
+        assert 60e9 < g["E_Pa"] < 90e9 and g["E_err_Pa"] > 0
+
+
+def test_load_statistics_are_over_experiments(results):
+    # Recompute one load's mean and sd by hand from sweeps: mean per experiment, then over them.
+    sw = results.sweeps[results.sweeps["used"]]
+    part = sw[(sw["medium"] == "air") & (sw["normal_force_N"] == 4e-3)]
+    per_exp = part.groupby("experiment")["kappa_N_per_m"].mean()
+    row = results.loads[
+        (results.loads["medium"] == "air") & (results.loads["normal_force_N"] == 4e-3)
+    ]
+    assert row["kappa_N_per_m_mean"].iloc[0] == pytest.approx(per_exp.mean())
+    assert row["kappa_N_per_m_sd"].iloc[0] == pytest.approx(per_exp.std(ddof=1))
+
+
+def test_nan_becomes_null_and_json_is_strict(results, tmp_path):
+    results.write(tmp_path, figures=False)
+    text = (tmp_path / "summary.json").read_text()
+    assert "NaN" not in text and "Infinity" not in text
+    json.loads(text, parse_constant=lambda c: pytest.fail(f"non-standard JSON constant {c}"))
+
+
+def test_write_is_atomic_and_repeatable(results, tmp_path):
+    results.write(tmp_path, figures=False)
+    first = (tmp_path / "sweeps.csv").read_bytes()
+    results.write(tmp_path, figures=False)
+    assert (tmp_path / "sweeps.csv").read_bytes() == first
+    assert not [p for p in tmp_path.iterdir() if p.name.startswith(".")]  # no temporaries left
+
+
+def test_write_onto_a_file_is_an_error(results, tmp_path):
+    f = tmp_path / "file"
+    f.write_text("keep")
+    with pytest.raises(ValueError, match="not a directory"):
+        results.write(f)
+    assert f.read_text() == "keep"
+
+
+def test_figures_are_written(results, tmp_path):
+    written = results.write(tmp_path)
+    pngs = sorted(p.name for p in written if p.suffix == ".png")
+    assert pngs == [
+        "fig4_sweeps.png",
+        "fig5_df0_vs_load.png",
+        "fig7_dissipation_vs_load.png",
+        "fig8_friction_vs_load.png",
+    ]
+    for name in pngs:
+        assert (tmp_path / name).read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_table1(results):
+    t1 = results.table1()
+    assert list(t1["medium"]) == ["air", "water"]
+    assert np.all(t1["E_GPa"].between(60, 90))

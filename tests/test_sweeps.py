@@ -1,0 +1,251 @@
+"""Tests of the sweep-table reader: formats, constants, and one test per bad-input class."""
+
+import warnings
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from contactres.sweeps import SweepWarning, read_sweeps, validate_sweeps
+
+CONST = dict(overtone=3, area_m2=2.5e-5, n_contacts=3, sphere_radius_m=1.1e-3)
+
+
+def good_frame(n_sweeps=3, n_points=6):
+    rows = []
+    for s in range(n_sweeps):
+        for k in range(n_points):
+            u = 2e-9 * (k + 1)
+            rows.append(
+                dict(
+                    sweep=f"s{s}",
+                    experiment="e1",
+                    configuration="SiO2",
+                    medium="air",
+                    ramp=s + 1,
+                    normal_force_N=2e-3,
+                    amplitude_m=u,
+                    df_Hz=60.0 - 1e8 * u,
+                    dgamma_Hz=6.0 + 0.5e8 * u,
+                )
+            )
+    return pd.DataFrame(rows)
+
+
+def write(tmp_path, frame, name="sweeps.csv", **kw):
+    path = tmp_path / name
+    frame.to_csv(path, index=False, **kw)
+    return path
+
+
+def test_reads_comma_csv_and_fills_constants(tmp_path):
+    path = write(tmp_path, good_frame())
+    before = path.read_bytes()
+    t = read_sweeps(path, **CONST)
+    assert len(t) == 18 and t["sweep"].nunique() == 3
+    assert (t["overtone"] == 3).all() and (t["fundamental_Hz"] == 5e6).all()
+    assert (t["poisson"] == 0.17).all()
+    assert t["line"].iloc[0] == 2
+    assert path.read_bytes() == before  # input never modified
+
+
+def test_semicolon_and_decimal_comma_give_the_same_table(tmp_path):
+    f = good_frame()
+    a = read_sweeps(write(tmp_path, f, "a.csv"), **CONST)
+    b = read_sweeps(write(tmp_path, f, "b.csv", sep=";", decimal=","), **CONST)
+    pd.testing.assert_frame_equal(a.drop(columns="line"), b.drop(columns="line"))
+    c = read_sweeps(write(tmp_path, f, "c.csv", sep=";"), **CONST)
+    np.testing.assert_allclose(c["df_Hz"], a["df_Hz"])
+
+
+def test_constants_from_toml_beside_the_file_and_row_overrides(tmp_path):
+    f = good_frame()
+    f["overtone"] = 5
+    path = write(tmp_path, f)
+    (tmp_path / "sweeps.toml").write_text(
+        "area_m2 = 3e-5\nn_contacts = 3\nsphere_radius_m = 6e-4\novertone = 3\n"
+    )
+    t = read_sweeps(path)
+    assert (t["area_m2"] == 3e-5).all() and (t["sphere_radius_m"] == 6e-4).all()
+    assert (t["overtone"] == 5).all()  # the row value wins over the TOML file
+    t2 = read_sweeps(path, area_m2=1e-5)  # an argument wins over the TOML file
+    assert (t2["area_m2"] == 1e-5).all()
+
+
+def test_unknown_toml_key(tmp_path):
+    path = write(tmp_path, good_frame())
+    (tmp_path / "sweeps.toml").write_text("radius = 1e-3\n")
+    with pytest.raises(ValueError, match=r"sweeps\.toml.*unknown key.*radius"):
+        read_sweeps(path, **CONST)
+
+
+def test_missing_constant_says_how_to_give_it(tmp_path):
+    path = write(tmp_path, good_frame())
+    with pytest.raises(ValueError, match=r"missing: area_m2.*TOML"):
+        read_sweeps(path, overtone=3, n_contacts=3, sphere_radius_m=1e-3)
+
+
+def test_missing_ramp_column_warns(tmp_path):
+    path = write(tmp_path, good_frame().drop(columns="ramp"))
+    with pytest.warns(SweepWarning, match="ramp"):
+        t = read_sweeps(path, **CONST)
+    assert (t["ramp"] == 0).all()
+
+
+# ---- one test per bad-input class ----------------------------------------------------------
+
+
+def test_empty_file(tmp_path):
+    path = tmp_path / "sweeps.csv"
+    path.write_text("")
+    with pytest.raises(ValueError, match=r"sweeps\.csv.*empty"):
+        read_sweeps(path, **CONST)
+
+
+def test_header_only(tmp_path):
+    path = tmp_path / "sweeps.csv"
+    path.write_text("sweep,amplitude_m,df_Hz,dgamma_Hz,normal_force_N\n")
+    with pytest.raises(ValueError, match=r"sweeps\.csv.*header only"):
+        read_sweeps(path, **CONST)
+
+
+def test_missing_required_column_lists_found_and_expected(tmp_path):
+    path = write(tmp_path, good_frame().drop(columns="dgamma_Hz"))
+    with pytest.raises(ValueError, match=r"missing required column.*dgamma_Hz") as err:
+        read_sweeps(path, **CONST)
+    msg = str(err.value)
+    assert "columns found" in msg and "'df_Hz'" in msg and "required" in msg
+
+
+@pytest.mark.parametrize("bad", ["nan", "inf", "-inf"])
+def test_nan_or_infinite_value(tmp_path, bad):
+    f = good_frame().astype({"df_Hz": object})
+    f.loc[4, "df_Hz"] = bad
+    with pytest.raises(ValueError, match=r"line 6, column 'df_Hz'.*not finite"):
+        read_sweeps(write(tmp_path, f), **CONST)
+
+
+def test_empty_or_text_cell(tmp_path):
+    f = good_frame().astype({"dgamma_Hz": object})
+    f.loc[2, "dgamma_Hz"] = "abc"
+    with pytest.raises(ValueError, match=r"line 4, column 'dgamma_Hz'.*'abc' is not a number"):
+        read_sweeps(write(tmp_path, f), **CONST)
+
+
+def test_negative_amplitude(tmp_path):
+    f = good_frame()
+    f.loc[7, "amplitude_m"] = -1e-9
+    with pytest.raises(ValueError, match=r"line 9, column 'amplitude_m'.*-1e-09.*negative"):
+        read_sweeps(write(tmp_path, f), **CONST)
+
+
+def test_amplitudes_in_nanometres(tmp_path):
+    f = good_frame()
+    f["amplitude_m"] *= 1e9
+    with pytest.raises(ValueError, match=r"column 'amplitude_m'.*nanometres"):
+        read_sweeps(write(tmp_path, f), **CONST)
+
+
+def test_even_overtone_argument_and_column(tmp_path):
+    path = write(tmp_path, good_frame())
+    with pytest.raises(ValueError, match=r"overtone = 4.*odd"):
+        read_sweeps(path, **{**CONST, "overtone": 4})
+    f = good_frame()
+    f["overtone"] = 3
+    f.loc[5, "overtone"] = 2
+    with pytest.raises(ValueError, match=r"line 7, column 'overtone'.*odd"):
+        read_sweeps(write(tmp_path, f, "b.csv"), **CONST)
+
+
+def test_absolute_frequencies(tmp_path):
+    f = good_frame()
+    f["df_Hz"] += 4.99e6
+    with pytest.raises(ValueError, match=r"line 2, column 'df_Hz'.*absolute frequency"):
+        read_sweeps(write(tmp_path, f), **CONST)
+
+
+def test_non_positive_normal_force(tmp_path):
+    f = good_frame()
+    f.loc[f["sweep"] == "s1", "normal_force_N"] = 0.0
+    with pytest.raises(ValueError, match=r"line 8, column 'normal_force_N'.*not positive"):
+        read_sweeps(write(tmp_path, f), **CONST)
+
+
+def test_duplicated_rows_warn_and_are_dropped(tmp_path):
+    f = good_frame()
+    f = pd.concat([f, f.iloc[[3]]], ignore_index=True)
+    with pytest.warns(SweepWarning, match=r"1 duplicated row.*line\(s\) 20"):
+        t = read_sweeps(write(tmp_path, f), **CONST)
+    assert len(t) == 18
+
+
+def test_conflicting_constants_within_a_sweep(tmp_path):
+    f = good_frame()
+    f["sphere_radius_m"] = 1.1e-3
+    f.loc[3, "sphere_radius_m"] = 6e-4
+    with pytest.raises(
+        ValueError, match=r"sweep 's0'.*conflicting.*'sphere_radius_m'.*0.0011.*0.0006.*line 5"
+    ):
+        read_sweeps(write(tmp_path, f), overtone=3, area_m2=2.5e-5, n_contacts=3)
+
+
+def test_conflicting_normal_force_within_a_sweep(tmp_path):
+    f = good_frame()
+    f.loc[2, "normal_force_N"] = 3e-3
+    with pytest.raises(ValueError, match=r"sweep 's0'.*conflicting.*'normal_force_N'"):
+        read_sweeps(write(tmp_path, f), **CONST)
+
+
+def test_small_load_approximation_warning():
+    f = good_frame()
+    f["df_Hz"] = 2e4  # > 1e-3 of 15 MHz, < 0.1 of 5 MHz
+    with pytest.warns(SweepWarning, match="small-load"):
+        validate_sweeps(f, constants=CONST)
+
+
+def test_few_points_warn(tmp_path):
+    f = good_frame(n_points=3)
+    with pytest.warns(SweepWarning, match="fewer than 4 points"):
+        read_sweeps(write(tmp_path, f), **CONST)
+
+
+def test_good_file_gives_no_warning(tmp_path):
+    path = write(tmp_path, good_frame())
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        read_sweeps(path, **CONST)
+
+
+def test_missing_file_and_directory(tmp_path):
+    with pytest.raises(FileNotFoundError, match="no such file"):
+        read_sweeps(tmp_path / "nope.csv", **CONST)
+    with pytest.raises(ValueError, match="directory"):
+        read_sweeps(tmp_path, **CONST)
+
+
+def test_bom_and_windows_line_endings(tmp_path):
+    path = tmp_path / "win.csv"
+    text = good_frame().to_csv(index=False, lineterminator="\r\n")
+    path.write_bytes(b"\xef\xbb\xbf" + text.encode())
+    t = read_sweeps(path, **CONST)
+    assert len(t) == 18 and t.columns[0] == "sweep"
+
+
+def test_reader_plugin(tmp_path, monkeypatch):
+    import contactres.sweeps as sw
+
+    monkeypatch.setattr(sw, "READERS", list(sw.READERS))
+
+    def load(path):
+        frame = pd.read_json(path).astype(str)
+        frame["line"] = range(1, len(frame) + 1)
+        return frame
+
+    sw.register_reader(
+        sw.SweepReader("json", (".json",), lambda p, head: head.lstrip().startswith("["), load)
+    )
+    path = tmp_path / "sweeps.json"
+    good_frame().to_json(path, orient="records")
+    t = read_sweeps(path, **CONST)
+    assert len(t) == 18
+    np.testing.assert_allclose(t["df_Hz"], good_frame()["df_Hz"])
