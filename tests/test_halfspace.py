@@ -242,6 +242,7 @@ def test_rotating_the_solid_in_plane_shifts_theta():
 def test_continuity_through_isotropy(nu):
     # A = 1 has a triple static root and a double shear root: no special case may be needed.
     k = np.concatenate([np.geomspace(0.05, 1e6, 25), [0.999, 1.0001]])[:, None]
+    k_prop = np.linspace(0.0213, 0.99, 9)[:, None]
     th = np.linspace(0, np.pi / 2, 5)[None, :]
     iso = Material.cubic_from_ratios(1.0, nu)
     ratio = iso.C[0, 0] / iso.C[3, 3]
@@ -252,6 +253,10 @@ def test_continuity_through_isotropy(nu):
         g = dynamic_kernel(m.with_loss(0.02), k, th)
         ref = isotropic_dynamic_kernel(k, ratio, loss=0.02)
         assert np.max(np.abs(g - ref) / np.abs(ref)) < 1e-8
+        # lossless, propagating range (eigen-decomposition with the repeated shear root)
+        g = dynamic_kernel(m, k_prop, th)
+        ref = isotropic_dynamic_kernel(k_prop, ratio)
+        assert np.max(np.abs(g - ref) / np.abs(ref)) < 1e-7
 
 
 @given(seed=st.integers(0, 2**31), loss=st.floats(1e-3, 0.2))
@@ -270,10 +275,30 @@ def test_random_solids_are_passive_and_reciprocal(seed, loss):
 
 
 # --------------------------------------------------------------------------------- errors
-def test_lossless_real_kappa_in_propagating_range_is_refused():
-    m = Material.isotropic(1.0, 0.25)
-    with pytest.raises(ValueError, match="propagating"):
-        dynamic_kernel(m, 0.5, 0.0)
+def test_lossless_propagating_range_is_the_outgoing_limit_isotropic():
+    # Real κ < 1: real vertical wave numbers, including the repeated shear root (SH = SV).
+    for nu in (0.1, 0.25, 0.4):
+        m = Material.isotropic(1.0, nu)
+        ratio = m.C[0, 0] / m.C[3, 3]
+        # (the grid avoids the P-wave branch point κ = (C44/C11)^½, where g = 0)
+        k = np.concatenate([np.linspace(0.0213, 0.99, 40), [1.0 + 1e-9]])
+        g = dynamic_kernel(m, k[:, None], np.array([0.0, 1.1])[None, :])
+        ref = isotropic_dynamic_kernel(k, ratio)[:, None]  # principal root = the 0+ limit
+        assert np.max(np.abs(g / ref - 1)) < 1e-10
+
+
+@pytest.mark.parametrize("normal", [(0, 0, 1), (0, 1, 1), (1, 2, 3)])
+def test_lossless_propagating_range_is_the_outgoing_limit_anisotropic(normal):
+    # g(κ) must be the limit of g(κ(1 + iε)) as ε -> 0+: Richardson from ε and 2ε leaves O(ε²).
+    m = CU.rotated(normal)
+    k = np.array([0.2, 0.45, 0.7])[:, None]
+    th = np.array([0.0, 0.5, 1.3])[None, :]
+    g0 = dynamic_kernel(m, k, th)
+    eps = 1e-6
+    g1 = dynamic_kernel(m, k * (1 + 1j * eps), th)
+    g2 = dynamic_kernel(m, k * (1 + 2j * eps), th)
+    assert np.max(np.abs(g0 - g1) / np.abs(g0)) > 1e-8  # the check is not trivially met
+    assert np.max(np.abs(g0 - (2 * g1 - g2)) / np.abs(g0)) < 1e-7
 
 
 @pytest.mark.parametrize("kappa", [0.0, -1.0, np.nan, np.inf])

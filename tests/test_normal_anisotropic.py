@@ -147,6 +147,7 @@ def test_lossy_modulus_is_complex_and_sphere_contact_refuses_loss():
         ({"radius": 0.0, "force": 1.0}, "radius"),
         ({"radius": 1e-3, "force": -1.0}, "force"),
         ({"radius": 1e-3, "force": np.nan}, "force"),
+        ({"radius": [1e-3, 2e-3], "force": [1.0, 2.0, 3.0]}, "broadcast"),
     ],
 )
 def test_bad_input(kwargs, match):

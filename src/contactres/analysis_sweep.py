@@ -61,7 +61,7 @@ N_PARAMS = {"elastic": 2, "cattaneo-mindlin": 4, "savkoor": 4, "plateau": 5}
 # Table of the exact CM loop in x = κu0/(μF_N): full sliding starts at x = 3/2; beyond X_MAX the
 # contact slides grossly over almost all the cycle and the fit says so instead of extrapolating.
 X_MAX = 30.0
-N_TABLE = 6001
+N_TABLE = 12001
 # Plateau search: points on the plateau / on the slope, and the sub-steps between amplitudes.
 PLATEAU_MIN_FLAT = 2
 PLATEAU_MIN_SLOPE = 3
@@ -328,7 +328,8 @@ def cm_loop_table() -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.
     P = float(np.asarray(shifts_from_stiffness(q, 1.0, 0.0, 1)[0]))
     # Uniform grid, refined around full sliding (x = 3/2), where K′ and K″ have a square-root
     # singularity in their derivatives: linear interpolation then stays within 1e-6 of κ.
-    near = 1.5 + np.concatenate([-np.geomspace(1e-7, 0.1, 400), np.geomspace(1e-7, 0.1, 400)])
+    side = np.geomspace(1e-7, 0.6, 800)
+    near = 1.5 + np.concatenate([-side, side])
     x = np.unique(np.concatenate([np.linspace(0.0, X_MAX, N_TABLE), [1.5], near]))
     loop = CattaneoMindlinLoop(kappa=1.0, mu=1.0, normal_force=1.0)
     df, dg = shifts_from_loop(q, loop, x[1:], 1)

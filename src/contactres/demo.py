@@ -40,6 +40,13 @@ def _paper2_forward_step(out: Path) -> list[Path]:
     return write_paper2_figures(out / "paper2-forward")
 
 
+def _paper1_dcsf_step(out: Path) -> list[Path]:
+    """Paper 1: DCSF (WA model) of built-in crystals on (001) faces (as Fig. 4): paper1-dcsf/."""
+    from .figures_paper1 import write_crystal_dcsf
+
+    return write_crystal_dcsf(out / "paper1-dcsf")
+
+
 #: (title, step) pairs run by :func:`run_demo`.
 DEMO_STEPS: list[tuple[str, Callable[[Path], list[Path]]]] = [
     (
@@ -48,6 +55,7 @@ DEMO_STEPS: list[tuple[str, Callable[[Path], list[Path]]]] = [
     ),
     ("built-in crystals and their anisotropy", _crystals_step),
     ("paper 2 forward: partial-slip loops and QCM shifts (Figs. 1D, 2C-D)", _paper2_forward_step),
+    ("paper 1: dynamic contact stiffness of a sphere on crystals (WA, Fig. 4)", _paper1_dcsf_step),
 ]
 
 

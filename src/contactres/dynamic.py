@@ -1,610 +1,104 @@
 """Dynamic contact stiffness of a rigid sphere on an anisotropic half-space (paper 1, Eqs. 5-29).
 
-For a small oscillating force on a statically pressed sphere, the oscillating pressure over the
-fixed contact of radius a has the flat-punch shape δf ∝ 1/√(1 − r̄²) (Eqs. 5-9). Its normal surface
-displacement (Eqs. 21-22) is
+A sphere pressed statically onto the half-space (anisotropic Hertz, contact radius a) gets a small
+oscillating force on top. For small amplitudes the oscillating pressure over the fixed contact has
+the flat-punch shape δf ∝ 1/√(1 − r̄²) (Eqs. 5-9), and its normal displacement (Eqs. 21-22) is
 
     u_z(r̄, φ) = (2a δa/(π C44 R I₁)) N(r̄, φ),
     N(r̄, φ) = ∫₀^{2π} dθ ∫₀^∞ ds g(s/(k_s a), θ) (sin s / s) cos(s r̄ cos(θ − φ)),
 
-with g(κ, θ) the dimensionless dynamic kernel of :mod:`contactres.halfspace` (κ = η/k_s,
-k_s = ω√(ρ/C44)). A displacement condition (R0, R1, SA, WA, TP; Eqs. 23-28) turns N into the
-dynamic stiffness K_da = 4π² a C44 / N_model, and DCSF = K_da/K_sa = N_st/N_model (Eq. 29), N_st the
-static N of the undamped constants.
+g(κ, θ) the dimensionless dynamic kernel of :mod:`contactres.halfspace` and k_s = ω√(ρ/C44). The
+displacement is not uniform, so a displacement condition fixes which N the sphere feels:
 
-Numerical method (all exact rearrangements; the accuracy is set by :class:`Resolution`)
-------------------------------------------------------------------------------------------
-* s = κ·(k_s a) turns ∫ds g(s/ka) F(s) into ka ∫dκ g(κ) F(κ ka): one table of g per material
-  serves every frequency and every model (:class:`KernelTable`, cached).
-* The static part g∞(θ) is integrated in closed form: the flat-punch pressure displaces the contact
-  uniformly, N_st = (π/2) ∫ g∞ dθ; the Hertz shape gives (π/4)(1 − r̄²/2) per unit ĝ₀ plus a
-  second-harmonic term ∝ r̄² (Weber-Schafheitlin integrals). Only g − g∞ (~1/κ²) is integrated.
-* Near field 0 < κ < T₁ (T₁ beyond every bulk and Rayleigh slowness): the path is moved into the
-  upper half κ plane, where g is analytic (the branch points and the Rayleigh near-pole lie on or
-  below the real axis), so no narrow feature is left on the path and ``loss=0`` (Q⁻¹ -> 0⁺) works
-  as well as Q⁻¹ = 0.02. A uniform loss C(1 + iQ⁻¹) is exactly a rescaling of the wave number:
-  g_lossy(κ) = g_elastic(κ √(1 + iQ⁻¹)) / (1 + iQ⁻¹), so only the elastic kernel is tabulated.
-* A smooth partition of unity χ(κ) hands the real axis over from the near field (Gauss-Legendre
-  in κ on [T₁, T₂]) to the far field κ > T₁, where g − g∞ is a Chebyshev series in w = (T₁/κ)²,
-  split into the angular harmonics e^{2imθ} (only cos 4mθ on a cubic (001) face), and integrated
-  against the analytic Bessel weights of each harmonic on a fixed s grid.
-* The θ integral of the near field is the trapezoidal rule (spectrally accurate for the smooth
-  periodic integrand), with g upsampled by FFT so the rule also resolves cos(s r̄ cos θ).
+    R0 (Sung)      N(0)                     R1   N(1, φ = 0) (edge, along x = [100])
+    SA (Barkan)    [N(0) + N(1, 0)]/2       WA (Bycroft)  ∫₀¹ N(r̄, 0) r̄/√(1 − r̄²) dr̄ (Eq. 27)
+    TP (Tian)      two-parameter pressure α√(1 − r̄²) + β/√(1 − r̄²) with u(0) = u(1, 0)
+    WA2D           the WA average over the whole contact (all φ; an extension)
+
+and K_da = 4π² a C44/N_model (Eq. 28); DCSF = K_da/K_sa = N_st/N_model (Eq. 29), N_st the static
+N of the undamped constants, so DCSF -> 1 + iQ⁻¹ as k a -> 0.
+
+The wave number of the paper's figures is the longitudinal one, k_l a = ω a √(ρ/C33) (C33 of the
+surface frame; C11 for a cubic (001) face): ``wavenumber="longitudinal"`` (default) or
+``"shear"`` (k_s a). Damping: constants C (1 + i Q⁻¹) with Q⁻¹ = ``loss`` (0.02 in the paper);
+``loss=0`` is the lossless limit Q⁻¹ -> 0⁺ (exact, by a contour above the real axis).
+
+Which model? ``model="exact"`` (the rigid flat punch: uniform displacement under the sphere,
+Galerkin, :mod:`contactres.dynamic_exact`) is what the approximations aim at and costs about as
+much as one of them: use it. Against it (``contactres figures paper1``, paper1_model_ranking.csv;
+ν = 0.25, A = 0.25 ... 4, k_l a <= 1) the paper's approximations rank TP (0.2-5 %), WA ≈ WA2D
+(2-40 %), SA, R1, R0 (10-100 %); up to k_l a = 2 only TP stays within 10 % for A >= 1. The
+paper recommends WA because R0, SA and TP turn negative at high k a; the wiggles of WA (the
+maxima of Fig. 4) are not in the exact curve. See :mod:`contactres.dynamic_quadrature` for the
+numerics and their accuracy.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
 
 import numpy as np
-from scipy import special
 
-from .halfspace import dynamic_kernel, shear_reference, static_kernel
+from .dynamic_exact import exact_n, galerkin_size, pressure_basis
+from .dynamic_quadrature import (
+    functionals,
+    kernel_table,
+    point_values,
+    resolution_for,
+)
+from .halfspace import shear_reference
 from .materials import Material
 
 __all__ = [
+    "ALL_MODELS",
     "MODELS",
-    "KernelTable",
-    "Resolution",
+    "WAVENUMBERS",
     "contact_displacement",
+    "contact_pressure",
     "dcsf",
+    "dcsf_models",
     "dynamic_contact_stiffness",
-    "kernel_table",
-    "resolution_for",
     "shear_wavenumber_ratio",
 ]
 
 #: The displacement conditions (paper 1, Eqs. 24-28) plus the whole-contact weighted average.
 MODELS = ("R0", "R1", "SA", "WA", "TP", "WA2D")
+#: ... and the exact rigid-flat-punch solution (Galerkin, :mod:`contactres.dynamic_exact`).
+ALL_MODELS = (*MODELS, "exact")
+#: Normalisations of the wave number: k_l = ω√(ρ/C33) (the paper's figures), k_s = ω√(ρ/C44).
 WAVENUMBERS = ("longitudinal", "shear")
 
-# T1 = _T1_FACTOR x the largest in-plane bulk slowness (units of 1/c_s); the Rayleigh slowness
-# is below 1/0.69 of it for any isotropic Poisson ratio, so T1 clears every singularity.
-_T1_FACTOR = 1.75
-# Height of the near-field contour over the real κ axis, relative to the largest slowness.
-_CONTOUR_HEIGHT = 0.3
-# Width parameter of the erfc hand-over on [T1, 2 T1]: χ(T1) = 1 - 1e-17, χ(2 T1) = 1e-17.
-_CHI_STEPS = 12.0
-# The non-axisymmetric harmonics of the WA weight are integrated up to this s (see _far_weights).
-_WA_HARMONIC_CUT = 120.0
-# Upper bound of the adaptive number of θ nodes on [0, π).
-_N_THETA_MAX = 1024
-
-
-# ----------------------------------------------------------------------------------- resolution
-@dataclass(frozen=True)
-class Resolution:
-    """Discretisation of the N(r̄, φ) integrals; :meth:`doubled` refines every one of them.
-
-    Attributes
-    ----------
-    n_theta : θ nodes of the kernel table on [0, π) (period of g)
-    n_contour : Gauss-Legendre nodes on the complex near-field contour 0 -> T₁
-    n_segment : Gauss-Legendre nodes on the real hand-over segment [T₁, 2T₁]
-    n_fit : Chebyshev nodes of the far field in w = (T₁/κ)²
-    s_ratio : ratio of the geometric far-field s panels (below s = 8)
-    s_panel : width of the uniform far-field s panels above s = 8
-    s_far : end of the far-field s integral (the remainder is ~ s_far^-2.5 and neglected)
-    n_gauss : Gauss-Legendre nodes per far-field s panel
-    theta_tol : n_theta is doubled until the angular harmonics of g in the upper half of the
-        resolved band are below theta_tol times the axisymmetric part (strong anisotropy needs
-        more: A = 0.2 takes 128 nodes)
-    """
-
-    n_theta: int = 32
-    n_contour: int = 48
-    n_segment: int = 40
-    n_fit: int = 20
-    s_ratio: float = 1.25
-    s_panel: float = 2.0
-    s_far: float = 600.0
-    n_gauss: int = 12
-    theta_tol: float = 1e-11
-
-    def doubled(self) -> Resolution:
-        """Every resolution doubled (the convergence check of the tests)."""
-        return replace(
-            self,
-            n_theta=2 * self.n_theta,
-            n_contour=2 * self.n_contour,
-            n_segment=2 * self.n_segment,
-            n_fit=2 * self.n_fit,
-            s_ratio=math.sqrt(self.s_ratio),
-            s_panel=self.s_panel / 2,
-            s_far=2 * self.s_far,
-            n_gauss=2 * self.n_gauss,
-            theta_tol=self.theta_tol * 1e-2,
-        )
-
-
-def resolution_for(rtol: float) -> Resolution:
-    """The default :class:`Resolution` that reaches relative accuracy ``rtol`` of the DCSF."""
-    r = float(rtol)
-    if not (np.isfinite(r) and 1e-10 <= r < 1):
-        raise ValueError(f"rtol must lie in [1e-10, 1), got {rtol!r}")
-    if r >= 1e-4:
-        return Resolution(
-            n_contour=32, n_segment=28, n_fit=14, s_far=150.0, n_gauss=10, theta_tol=1e-8
-        )
-    return Resolution()
-
-
-# ----------------------------------------------------------------------------------- materials
-def _check_material(m) -> Material:
-    if not isinstance(m, Material):
-        raise ValueError(f"m must be a contactres.Material, got {type(m).__name__}")
-    if m.is_lossy:
-        raise ValueError(
-            "pass the undamped material (real constants) and set the damping with loss= "
-            "(constants C (1 + i loss), paper 1); the material given is already lossy"
-        )
-    return m
-
-
-def _check_loss(loss) -> float:
-    q = float(loss)
-    if not (np.isfinite(q) and 0 <= q < 1):
-        raise ValueError(f"loss (Q^-1) must lie in [0, 1), got {loss!r}")
-    return q
-
-
-def _max_slowness(m: Material) -> float:
-    """Largest slowness of bulk waves travelling along the surface, in units of 1/c_s."""
-    from .materials import voigt_to_tensor
-
-    c = voigt_to_tensor(np.asarray(m.C).real) / shear_reference(m)
-    th = np.linspace(0.0, np.pi, 181)
-    n = np.stack([np.cos(th), np.sin(th), np.zeros_like(th)], axis=-1)
-    gamma = np.einsum("ijkl,tj,tl->tik", c, n, n)
-    lam = np.linalg.eigvalsh(gamma)[:, 0]
-    return float(np.max(1.0 / np.sqrt(lam)))
+# Largest k_s a × (largest slowness) accepted: the contour's weights grow like e^{0.3 x this}.
+_KA_MAX = 60.0
 
 
 def shear_wavenumber_ratio(m: Material) -> float:
-    """k_s/k_l = √(C33/C44) of the surface frame: converts k_l a (the paper's axes) to k_s a."""
+    """k_s/k_l = √(C33/C44) of the surface frame (Re parts): k_s a = k_l a × this ratio."""
     C = np.asarray(m.C).real
     return math.sqrt(C[2, 2] / C[3, 3])
 
 
-# ----------------------------------------------------------------------------------- weights
-def _sinc(s):
-    """sin s / s (Hankel transform of the flat-punch shape 1/√(1 − ρ²)); complex s allowed."""
-    return np.sinc(np.asarray(s) / np.pi)
+def _check_model(model: str) -> str:
+    key = str(model).upper()
+    key = "exact" if key == "EXACT" else key
+    if key not in ALL_MODELS:
+        raise ValueError(f"model must be one of {', '.join(MODELS)}, exact; got {model!r}")
+    return key
 
 
-def _j1s(s):
-    """j₁(s)/s = (sin s − s cos s)/s³ (Hankel transform of the Hertz shape √(1 − ρ²))."""
-    s = np.asarray(s)
-    small = np.abs(s) < 0.3
-    z = np.where(small, 1.0, s)
-    full = (np.sin(z) - z * np.cos(z)) / z**3
-    s2 = s * s
-    series = 1 / 3 - s2 / 30 + s2**2 / 840 - s2**3 / 45360 + s2**4 / 3991680
-    return np.where(small, series, full)
-
-
-# Gauss-Laguerre rule for ∫₀^∞ e^{-u} √(1 + u²/z²) du = (π/2)(H₁ − Y₁)(z) (|z| >= 8).
-_LAG_X, _LAG_W = np.polynomial.laguerre.laggauss(24)
-# Power-series coefficients of W(z) = 1 − (π/2) H₁(z) in z² (|z| < 8).
-_W_SERIES = np.array(
-    [
-        (-1) ** k * (0.5) ** (2 * k + 2) / (special.gamma(k + 1.5) * special.gamma(k + 2.5))
-        for k in range(60)
-    ]
-)
-
-
-def _wa_line_weight(z):
-    """W(z) = ∫₀¹ r cos(z r)/√(1 − r²) dr = 1 − (π/2) H₁(z), even in z, complex z allowed.
-
-    The WA average (Eq. 27) of cos(s r̄ cos θ). Power series for |z| < 8; for larger |z|,
-    W = 1 − (π/2) Y₁(z) − ∫₀^∞ e^{-u} √(1 + u²/z²) du (Re z > 0; Gauss-Laguerre, error < 1e-14).
-    Real input gives a real result (and runs in real arithmetic).
-    """
-    z = np.asarray(z)
-    real = not np.iscomplexobj(z)
-    z = np.abs(z) if real else np.where(z.real < 0, -z, z)
-    out = np.empty(z.shape, dtype=float if real else complex)
-    small = np.abs(z) < 8
-    zs = z[small]
-    if zs.size:
-        z2 = zs * zs
-        acc = np.zeros_like(z2)
-        for c in _W_SERIES[::-1]:
-            acc = acc * z2 + c
-        out[small] = 1 - 0.5 * np.pi * acc * z2
-    zl = z[~small]
-    if zl.size:
-        lag = np.sqrt(1 + (_LAG_X[:, None] / zl[None, :]) ** 2).T @ _LAG_W
-        y1 = special.y1(zl) if real else special.yv(1, zl)
-        out[~small] = 1 - 0.5 * np.pi * y1 - lag
-    return out
-
-
-def _bessel_even(orders, s: np.ndarray) -> dict:
-    """{n: J_n(s)} for the even ``orders``, real s > 0, by the downward recurrence (stable for
-    J) from scipy's two highest orders; much faster than one jv call per order."""
-    orders = sorted({int(n) for n in orders})
-    top = orders[-1]
-    out = {}
-    j_next = special.jv(top + 1, s)
-    j_cur = special.jv(top, s)
-    want = set(orders)
-    for n in range(top, -1, -1):
-        if n in want:
-            out[n] = j_cur
-        if n == 0:
-            break
-        j_next, j_cur = j_cur, (2 * n / s) * j_cur - j_next
-    # Where the starting values underflow (s << top) the recurrence has nothing to carry.
-    low = np.abs(special.jv(top, s)) < 1e-280
-    if np.any(low):
-        for n in orders:
-            out[n] = np.where(low, 0.0, out[n])
-            out[n][low] = special.jv(n, s[low])
-    return out
-
-
-def _wa_harmonic_weights(s: np.ndarray, n_max: int) -> np.ndarray:
-    """W_n(s) = ∫₀¹ J_n(s r) r/√(1 − r²) dr for even n = 0, 2, ..., n_max; shape (n_max/2 + 1, ns).
-
-    By Jacobi-Anger, W(s cos θ) = Σ_n iⁿ W_n(s) e^{inθ}: the W_n are the Fourier coefficients of
-    the line weight :func:`_wa_line_weight` over θ (FFT, exact once the grid resolves them).
-    """
-    s = np.asarray(s, dtype=float)
-    smax = float(np.max(s, initial=0.0))
-    n_t = 8 * math.ceil(max(n_max + 2, n_max / 2 + 0.3 * smax + 24) / 8)
-    theta = np.pi * np.arange(n_t) / n_t
-    vals = _wa_line_weight(np.multiply.outer(s, np.cos(theta)))
-    coef = np.fft.rfft(vals, axis=-1).real / n_t  # harmonic j of e^{2ijθ}
-    j = np.arange(n_max // 2 + 1)
-    return (coef[:, j] * np.where(j % 2 == 0, 1.0, -1.0)).T
-
-
-# ----------------------------------------------------------------------------------- the table
-def _gauss(a: float, b: float, n: int):
-    x, w = np.polynomial.legendre.leggauss(n)
-    return 0.5 * (b - a) * x + 0.5 * (b + a), 0.5 * (b - a) * w
-
-
-@dataclass(frozen=True, eq=False)
-class KernelTable:
-    """g(κ, θ) − g∞(θ) of one material and loss on the nodes every frequency and model reuse.
-
-    Built by :func:`kernel_table` (cached). Dimensionless; θ on [0, π) (g has period π).
-    """
-
-    resolution: Resolution
-    loss: float
-    t1: float
-    theta: np.ndarray  # (nθ,)
-    ginf: np.ndarray  # (nθ,) lossy g∞(θ) = C44 Ĝ(θ)/(1 + iQ⁻¹)
-    n_static: float  # N_st of the undamped constants = (π/2) ∫ g∞ dθ
-    near_kappa: np.ndarray  # (nk,) complex nodes of the near field (contour + segment)
-    near_weight: np.ndarray  # (nk,) quadrature weights dκ × χ(κ)
-    near_values: np.ndarray  # (nk, nθ) g − g∞ at the near nodes
-    far_harmonics: np.ndarray  # (n_m,) harmonic indices m of e^{2imθ} kept in the far field
-    far_coeffs: np.ndarray  # (n_m, n_fit) Chebyshev coefficients of (g − g∞)/w per harmonic
-
-
-_TABLES: dict = {}
-_TABLES_MAX = 32
-
-
-def _elastic_kernel(m: Material, kappa, theta, loss: float):
-    """g of the lossy solid C(1 + iQ⁻¹) from the elastic one: g(κ√(1 + iQ⁻¹))/(1 + iQ⁻¹)."""
-    f = 1 + 1j * loss
-    k = np.asarray(kappa, dtype=complex) * np.sqrt(f)
-    return dynamic_kernel(m, k, theta) / f
-
-
-def kernel_table(m: Material, loss: float = 0.02, resolution: Resolution | None = None):
-    """The :class:`KernelTable` of the undamped material ``m`` (surface frame) with loss Q⁻¹."""
-    m = _check_material(m)
-    q = _check_loss(loss)
-    res = resolution or Resolution()
-    key = (np.asarray(m.C).tobytes(), q, res)
-    table = _TABLES.get(key)
-    if table is None:
-        if len(_TABLES) >= _TABLES_MAX:
-            _TABLES.pop(next(iter(_TABLES)))
-        table = _build_table(m, q, res)
-        _TABLES[key] = table
-    return table
-
-
-def _symmetry(m: Material) -> tuple[bool, bool]:
-    """(mirror, fourfold): g(−θ) = g(θ) (mirror plane y -> −y) and g(θ + π/2) = g(θ) (4-fold
-    axis along z) of the surface-frame stiffness; a cubic (001) face has both."""
-    from .materials import voigt_to_tensor
-
-    c = voigt_to_tensor(np.asarray(m.C).real)
-    scale = np.max(np.abs(c))
-
-    def same(rot):
-        r = np.asarray(rot, dtype=float)
-        cr = np.einsum("ia,jb,kc,ld,abcd->ijkl", r, r, r, r, c, optimize=True)
-        return bool(np.max(np.abs(cr - c)) <= 1e-12 * scale)
-
-    return same([[1, 0, 0], [0, -1, 0], [0, 0, 1]]), same([[0, -1, 0], [1, 0, 0], [0, 0, 1]])
-
-
-def _theta_values(m, kappa, q, ginf_fn, nth, symmetry, old=None):
-    """g − g∞ on κ × (θ_j = πj/nth); reuses ``old`` (the values at nth/2) and the symmetry."""
-    mirror, fourfold = symmetry
-    j = np.arange(nth)
-    base = j % (nth // 2) if fourfold else j
-    if mirror:
-        period = nth // 2 if fourfold else nth
-        base = np.minimum(base, period - base)
-    need = np.unique(base)
-    values = np.empty((kappa.size, nth), dtype=complex)
-    if old is not None:
-        have = need[need % 2 == 0]
-        values[:, have] = old[:, have // 2]
-        need = need[need % 2 == 1]
-    theta = np.pi * need / nth
-    values[:, need] = _elastic_kernel(m, kappa[:, None], theta[None, :], q) - ginf_fn(theta)
-    return values[:, base]
-
-
-def _build_table(m: Material, q: float, res: Resolution) -> KernelTable:
-    c44 = shear_reference(m)
-    kb = _max_slowness(m)
-    t1 = _T1_FACTOR * kb
-    height = _CONTOUR_HEIGHT * kb
-
-    # Near field: κ(t) = t + i h sin(π t/T1) on [0, T1], then the real segment [T1, 2 T1].
-    t, wt = _gauss(0.0, t1, res.n_contour)
-    kc = t + 1j * height * np.sin(np.pi * t / t1)
-    wc = wt * (1 + 1j * height * np.pi / t1 * np.cos(np.pi * t / t1))
-    ks, ws = _gauss(t1, 2 * t1, res.n_segment)
-    ws = ws * _chi(ks, t1)
-    near_kappa = np.concatenate([kc, ks.astype(complex)])
-    near_weight = np.concatenate([wc, ws])
-    # Far field: (g − g∞)/w as a Chebyshev series in x = 2w − 1, w = (T1/κ)² in (0, 1).
-    nf = res.n_fit
-    x = np.cos(np.pi * (np.arange(nf) + 0.5) / nf)
-    w = 0.5 * (x + 1)
-    kappa = np.concatenate([near_kappa, t1 / np.sqrt(w)])
-
-    def ginf_fn(theta):
-        return c44 * static_kernel(m, theta) / (1 + 1j * q)
-
-    symmetry = _symmetry(m)
-    nth = res.n_theta
-    values = None
-    while True:
-        values = _theta_values(m, kappa, q, ginf_fn, nth, symmetry, values)
-        harm = np.abs(np.fft.fft(values, axis=1))
-        tail = np.max(harm[:, nth // 4 : nth - nth // 4 + 1])
-        if tail <= res.theta_tol * np.max(harm[:, 0]) or nth >= _N_THETA_MAX:
-            break
-        nth *= 2
-    theta = np.pi * np.arange(nth) / nth
-    ginf0 = c44 * static_kernel(m, theta)  # undamped
-    ginf = ginf0 / (1 + 1j * q)
-    n_static = 0.5 * np.pi * (2 * np.pi) * float(np.mean(ginf0))
-    near_values = values[: near_kappa.size]
-    vals = values[near_kappa.size :] / w[:, None]
-    tk = np.polynomial.chebyshev.chebvander(x, nf - 1)  # (nf, nf)
-    coeffs = (2.0 / nf) * (tk.T @ vals)  # (nf, nθ)
-    coeffs[0] *= 0.5
-    harm = np.fft.fft(coeffs, axis=1) / nth  # (nf, nθ) harmonic m at index m mod nθ
-    mm = np.fft.fftfreq(nth, 1.0 / nth).astype(int)
-    keep = np.max(np.abs(harm), axis=0) > 1e-13 * np.max(np.abs(harm))
-    keep &= np.abs(mm) < nth // 2
-    return KernelTable(
-        resolution=res,
-        loss=q,
-        t1=t1,
-        theta=theta,
-        ginf=ginf,
-        n_static=n_static,
-        near_kappa=near_kappa,
-        near_weight=near_weight,
-        near_values=near_values,
-        far_harmonics=mm[keep],
-        far_coeffs=harm[:, keep].T,
-    )
-
-
-def _chi(kappa, t1: float):
-    """Smooth hand-over: 1 below T1, 0 above 2 T1 (to 1e-17), erfc-shaped between."""
-    width = t1 / _CHI_STEPS
-    return 0.5 * special.erfc((np.real(kappa) - 1.5 * t1) / width)
-
-
-# ----------------------------------------------------------------------------------- far grid
-_GRIDS: dict = {}
-
-
-def _far_grid(res: Resolution, s_low: float):
-    """Nodes and weights of the far-field s integral on [s_low, s_far] (geometric, then uniform)."""
-    top = 8.0
-    edges = [top]
-    while edges[-1] > s_low:
-        edges.append(edges[-1] / res.s_ratio)
-    edges = edges[::-1]
-    n_uni = max(1, int(math.ceil((res.s_far - top) / res.s_panel)))
-    edges.extend(top + res.s_panel * np.arange(1, n_uni + 1))
-    edges = np.asarray(edges)
-    x, w = np.polynomial.legendre.leggauss(res.n_gauss)
-    a, b = edges[:-1, None], edges[1:, None]
-    s = (0.5 * (b - a) * x + 0.5 * (b + a)).ravel()
-    ws = (0.5 * (b - a) * w).ravel()
-    return s, ws, float(edges[-1])
-
-
-_FAR_CACHE: dict = {}
-
-
-def _far_weights(res: Resolution, s_low: float, harmonics: np.ndarray):
-    """Analytic weights of the far field on a fixed s grid (cached per grid and harmonic).
-
-    Returns s, ds, the end of the grid and a (6, n_m, n_s) array: for the functionals F0, F1, FW, F2D, H0, H1 (see
-    :func:`_functionals`) and harmonic e^{inθ}, n = 2m, the factor 2π iⁿ × (shape transform) ×
-    (J_n(s r̄) at the point, or its WA average W_n).
-    """
-    # Quantise s_low so that curves with nearby smallest ka share a grid.
-    level = math.floor(math.log(max(s_low, 1e-8)) / math.log(res.s_ratio))
-    gkey = (res, level)
-    grid = _GRIDS.get(gkey)
-    if grid is None:
-        if len(_GRIDS) > 16:
-            _GRIDS.pop(next(iter(_GRIDS)))
-        grid = _GRIDS[gkey] = _far_grid(res, res.s_ratio**level)
-    s, ds, end = grid
-    sinc = _sinc(s)
-    j1s = _j1s(s)
-    nabs = [int(n) for n in 2 * np.abs(harmonics)]
-    missing = sorted({n for n in nabs if (gkey, n) not in _FAR_CACHE})
-    if missing:
-        # WA weights of the non-axisymmetric harmonics: their share of N is ~1e-3, so stopping
-        # them at s = _WA_HARMONIC_CUT costs < 1e-8 relative (their tail ~ s^-2.5).
-        cut = s <= min(_WA_HARMONIC_CUT, res.s_far)
-        wtab = _wa_harmonic_weights(s[cut], max(missing))
-        jtab = _bessel_even(missing, s)
-        for n in missing:
-            wn = np.zeros_like(s)
-            wn[cut] = wtab[n // 2]
-            if n == 0:
-                wn = sinc
-            _FAR_CACHE[(gkey, n)] = (jtab[n], wn)
-    two_pi = 2 * np.pi
-    out = np.zeros((6, len(nabs), s.size))
-    for i, n in enumerate(nabs):
-        jn, wn = _FAR_CACHE[(gkey, n)]
-        sign = two_pi * (1 if n % 4 == 0 else -1)  # 2π iⁿ
-        out[1, i] = sign * sinc * jn
-        out[2, i] = sign * sinc * wn
-        out[5, i] = sign * j1s * jn
-        if n == 0:
-            out[0, i] = two_pi * sinc
-            out[3, i] = two_pi * sinc**2
-            out[4, i] = two_pi * j1s
-    return s, ds, end, out
-
-
-# ----------------------------------------------------------------------------------- functionals
-def _resampled(values: np.ndarray, n_out: int) -> np.ndarray:
-    """Rows sampled on n equispaced θ in [0, π), trigonometrically resampled to n_out points
-    (harmonics |m| < min(n, n_out)/2 kept: the weights they multiply vanish beyond)."""
-    n = values.shape[-1]
-    if n_out == n:
-        return values
-    h = np.fft.fft(values, axis=-1)
-    out = np.zeros(values.shape[:-1] + (n_out,), dtype=complex)
-    half = min(n, n_out) // 2
-    out[..., :half] = h[..., :half]
-    out[..., n_out - half + 1 :] = h[..., n - half + 1 :]
-    return np.fft.ifft(out, axis=-1) * (n_out / n)
-
-
-def _n_theta_near(smax: float) -> int:
-    """θ nodes on [0, π) that resolve cos(s cos θ), |s| <= smax: its harmonics e^{2imθ} are
-    J_2m(s), negligible beyond 2|m| ~ |s| + 12."""
-    return int(8 * math.ceil((1.1 * smax + 24) / 8))
-
-
-def _static_values(table: KernelTable) -> dict:
-    """Closed-form static parts (lossy g∞) of the six functionals (see module docstring)."""
-    g0 = np.mean(table.ginf)
-    g2 = 2 * np.mean(table.ginf * np.cos(2 * table.theta))  # ĝ₂ + ĝ₋₂
-    flat = np.pi**2 * g0
-    return {
-        "F0": flat,
-        "F1": flat,
-        "FW": flat,
-        "F2D": flat,
-        "H0": 2 * np.pi * (np.pi / 4) * g0,
-        "H1": 2 * np.pi * ((np.pi / 8) * g0 - (np.pi / 16) * g2),
-    }
-
-
-_FUNCTIONALS = ("F0", "F1", "FW", "F2D", "H0", "H1")
-
-
-def _functionals(table: KernelTable, ksa: np.ndarray) -> dict:
-    """N of the six functionals at k_s a values ``ksa`` (1-D, >= 0).
-
-    F0 = N_F(0), F1 = N_F(1, 0), FW = WA average of N_F along φ = 0 (Eq. 27), F2D = WA average
-    over the whole contact, H0 = N_H(0), H1 = N_H(1, 0) (Hertz-shaped pressure, for TP).
-    """
-    static = _static_values(table)
-    out = {k: np.full(ksa.shape, v, dtype=complex) for k, v in static.items()}
-    pos = ksa > 0
-    if not np.any(pos):
-        return out
-    ka = ksa[pos]
-
-    # Near field: θ-direct trapezoidal rule on a resampled grid, folded onto [0, π/2].
-    s = ka[:, None] * table.near_kappa[None, :]  # (na, nk)
-    nt = _n_theta_near(float(np.max(np.abs(s))))
-    vals = _resampled(table.near_values, nt)  # (nk, nt)
-    half = nt // 2
-    fold = vals[:, : half + 1].copy()
-    fold[:, 1:half] += vals[:, nt - 1 : half : -1]
-    cth = np.cos(np.pi * np.arange(half + 1) / nt)
-    dth = 2 * np.pi / nt
-    mean0 = np.mean(vals, axis=1) * 2 * np.pi  # ∫ (g − g∞) dθ
-    wk = table.near_weight[None, :] * ka[:, None]  # ka dκ χ
-    sinc = _sinc(s)
-    j1s = _j1s(s)
-    z = s[:, :, None] * cth[None, None, :]
-    c1 = np.sum(np.cos(z) * fold, axis=2) * dth
-    cw = np.sum(_wa_line_weight(z) * fold, axis=2) * dth
-    near = [
-        np.sum(wk * sinc * mean0, axis=1),
-        np.sum(wk * sinc * c1, axis=1),
-        np.sum(wk * sinc * cw, axis=1),
-        np.sum(wk * sinc**2 * mean0, axis=1),
-        np.sum(wk * j1s * mean0, axis=1),
-        np.sum(wk * j1s * c1, axis=1),
-    ]
-
-    # Far field: Chebyshev series in w = (T1 ka/s)² against the harmonic weights on a fixed grid.
-    res = table.resolution
-    sg, ds, s_end, weights = _far_weights(res, table.t1 * float(np.min(ka)), table.far_harmonics)
-    w = (table.t1 * ka[:, None] / sg[None, :]) ** 2  # (na, ns)
-    inside = w <= 1
-    x = np.where(inside, 2 * w - 1, 1.0)
-    nf = table.far_coeffs.shape[1]
-    hand = (1 - _chi(sg[None, :] / ka[:, None], table.t1)) * inside * w * ds[None, :]
-    basis = np.polynomial.chebyshev.chebvander(x, nf - 1) * hand[:, :, None]  # (na, ns, nf)
-    # v[f, s, j] = Σ_m c_{m f} weight_j[m, s]  for the six functionals j.
-    v = np.einsum("mf,jms->sfj", table.far_coeffs, weights, optimize=True)
-    basis = basis.reshape(ka.size, -1)
-    v = v.reshape(-1, 6)
-    far = basis @ v.real + 1j * (basis @ v.imag)  # (na, 6)
-    far += _far_remainder(table, ka, s_end)
-    for j, name in enumerate(_FUNCTIONALS):
-        out[name][pos] += near[j] + far[:, j]
-    return out
-
-
-def _far_remainder(table: KernelTable, ka: np.ndarray, s_end: float) -> np.ndarray:
-    """Leading asymptotics of the far field beyond the end S of the s grid, (na, 6).
-
-    There g − g∞ -> w C₁(θ), w = (T1 ka/s)², C₁ = Σ_k c_k T_k(−1). Averaged over their
-    oscillation, the weights of the edge point tend to 2π iⁿ sinc(s) J_n(s) -> √π s^-3/2 and
-    2π iⁿ (j₁(s)/s) J_n(s) -> −√π s^-5/2 for every even n, and sinc² -> 1/(2s²); the oscillating
-    parts and the WA weight (r = 1 endpoint softened by the average) leave < S^-3 (T1 ka)².
-    """
-    c1 = table.far_coeffs @ np.where(np.arange(table.far_coeffs.shape[1]) % 2 == 0, 1.0, -1.0)
-    scale = (table.t1 * ka) ** 2
-    out = np.zeros((ka.size, 6), dtype=complex)
-    edge = np.sum(c1)  # Σ_m C₁_m: the direction φ = 0
-    axis = np.sum(c1[table.far_harmonics == 0])
-    out[:, 1] = scale * edge * math.sqrt(math.pi) * 0.4 * s_end**-2.5
-    out[:, 5] = -scale * edge * math.sqrt(math.pi) * (2 / 7) * s_end**-3.5
-    out[:, 3] = scale * axis * 2 * math.pi / 6 * s_end**-3
-    return out
+def _ks_a(m: Material, ka, wavenumber: str) -> np.ndarray:
+    ka = np.asarray(ka, dtype=float)
+    if not np.all(np.isfinite(ka)) or np.any(ka < 0):
+        raise ValueError(f"ka (normalised wave number k a) must be finite and >= 0, got {ka!r}")
+    if wavenumber == "longitudinal":
+        return ka * shear_wavenumber_ratio(m)
+    if wavenumber == "shear":
+        return ka
+    raise ValueError(f"wavenumber must be one of {', '.join(WAVENUMBERS)}, got {wavenumber!r}")
 
 
 def _model_n(f: dict, model: str) -> np.ndarray:
-    """N_model of a displacement condition (paper 1, Eqs. 24-28; TP from physics.md)."""
+    """N_model of a displacement condition (paper 1, Eqs. 24-28; TP as in physics.md)."""
     if model == "R0":
         return f["F0"]
     if model == "R1":
@@ -615,8 +109,220 @@ def _model_n(f: dict, model: str) -> np.ndarray:
         return f["FW"]
     if model == "WA2D":
         return f["F2D"]
-    if model == "TP":
-        # δp = α√(1 − ρ²) + β/√(1 − ρ²), u(0) = u(1, 0); force ∝ α/3 + β (β = 1).
-        alpha = -(f["F0"] - f["F1"]) / (f["H0"] - f["H1"])
-        return (alpha * f["H0"] + f["F0"]) / (alpha / 3 + 1)
-    raise ValueError(f"model must be one of {', '.join(MODELS)}, got {model!r}")
+    # TP: δp = α√(1 − ρ²) + β/√(1 − ρ²) with u(0) = u(1, 0); force ∝ α/3 + β (β = 1 here).
+    alpha = -(f["F0"] - f["F1"]) / (f["H0"] - f["H1"])
+    return (alpha * f["H0"] + f["F0"]) / (alpha / 3 + 1)
+
+
+def dcsf_models(
+    m: Material,
+    ka,
+    models=MODELS,
+    loss: float = 0.02,
+    wavenumber: str = "longitudinal",
+    rtol: float = 1e-6,
+) -> dict[str, np.ndarray]:
+    """DCSF = K_da/K_sa of several displacement models at once (they share all the work).
+
+    Parameters and returns as :func:`dcsf`, with ``models`` a sequence of model names; returns
+    ``{model: complex array shaped like ka}``.
+    """
+    names = [_check_model(x) for x in ([models] if isinstance(models, str) else models)]
+    ksa = _ks_a(m, ka, wavenumber)
+    table = kernel_table(m, loss, resolution_for(rtol))
+    if ksa.size and float(np.max(ksa)) * table.t1 > _KA_MAX:
+        raise ValueError(
+            f"ka too large: k_s a = {float(np.max(ksa)):.4g} (k_s a x slowness {table.t1:.3g} "
+            f"must stay below {_KA_MAX:g}; the paper's range is k_l a <= 2)"
+        )
+    flat = ksa.ravel()
+    out = {}
+    approx = [n for n in names if n != "exact"]
+    if approx:
+        f = functionals(table, flat)
+        out = {name: (table.n_static / _model_n(f, name)).reshape(ksa.shape) for name in approx}
+    if "exact" in names:
+        size = galerkin_size(float(np.max(flat, initial=0.0)), rtol)
+        out["exact"] = (table.n_static / exact_n(table, flat, size)).reshape(ksa.shape)
+    return {name: out[name] for name in names}
+
+
+def dcsf(
+    m: Material,
+    ka,
+    model: str = "WA",
+    loss: float = 0.02,
+    wavenumber: str = "longitudinal",
+    rtol: float = 1e-6,
+):
+    """Dynamic-contact-stiffness factor DCSF = K_da/K_sa (paper 1, Eq. 29), complex.
+
+    Parameters
+    ----------
+    m : Material
+        Undamped elastic constants in the surface frame (z = inward normal; for a crystal face
+        use ``Material.crystal("Cu").rotated((0, 0, 1))``). Density is not needed.
+    ka : float or array
+        Normalised wave number k a >= 0 (a: contact radius), in the convention ``wavenumber``.
+    model : str
+        Displacement condition: "R0", "R1", "SA", "WA", "TP" (paper 1, Eqs. 24-28), "WA2D", or
+        "exact": the rigid flat punch (uniform displacement; Galerkin, see
+        :mod:`contactres.dynamic_exact`), the reference the others approximate.
+    loss : float
+        Q⁻¹ in C (1 + i Q⁻¹), in [0, 1); 0.02 in the paper; 0 is the lossless limit.
+    wavenumber : str
+        "longitudinal": k = ω√(ρ/C33) (the paper's k_l a, default) or "shear": k = ω√(ρ/C44).
+    rtol : float
+        Target relative accuracy (default 1e-6; met for k_l a <= 2 and A in [0.2, 10], see the
+        convergence tests). rtol >= 1e-4 selects a coarser, faster resolution.
+
+    Returns
+    -------
+    complex or ndarray of complex
+        K_da/K_sa, K_sa the static stiffness of the undamped constants (DCSF(0) = 1 + i Q⁻¹).
+        Real part: stiffness; imaginary part: radiation (and material) damping.
+    """
+    key = _check_model(model)
+    out = dcsf_models(m, ka, (key,), loss=loss, wavenumber=wavenumber, rtol=rtol)[key]
+    return complex(out) if out.ndim == 0 else out
+
+
+def dynamic_contact_stiffness(
+    m: Material,
+    radius,
+    force,
+    frequency,
+    model: str = "WA",
+    loss: float = 0.02,
+    rtol: float = 1e-6,
+):
+    """Dynamic contact stiffness K_da = K_sa × DCSF of a rigid sphere on ``m``, N/m (complex).
+
+    Parameters
+    ----------
+    m : Material
+        Undamped constants in the surface frame, with ``density`` (kg/m^3).
+    radius : float or array
+        Sphere radius R, m.
+    force : float or array
+        Static normal force F, N (the contact radius a comes from the anisotropic Hertz
+        solution, paper 1 Eqs. 1-4, :func:`contactres.sphere_contact`).
+    frequency : float or array
+        Oscillation frequency f, Hz (ω = 2πf). ``radius``, ``force`` and ``frequency`` broadcast.
+    model, loss, rtol
+        As in :func:`dcsf`.
+
+    Returns
+    -------
+    complex or ndarray of complex
+        K_da in N/m; its real part is the contact stiffness, ω⁻¹ Im K_da the damping (N s/m).
+    """
+    from .normal.anisotropic import sphere_contact
+
+    if m.density is None:
+        raise ValueError("dynamic_contact_stiffness needs the material density (kg/m^3)")
+    f = np.asarray(frequency, dtype=float)
+    if not np.all(np.isfinite(f)) or np.any(f < 0):
+        raise ValueError(f"frequency must be finite and >= 0 (Hz), got {frequency!r}")
+    contact = sphere_contact(m, radius, force)
+    a = np.asarray(contact.contact_radius, dtype=float)
+    k_s = 2 * np.pi * f * math.sqrt(m.density / shear_reference(m))
+    ksa = k_s * a
+    ksa, k_sa = np.broadcast_arrays(ksa, np.asarray(contact.stiffness, dtype=float))
+    out = k_sa * dcsf(m, ksa, model=model, loss=loss, wavenumber="shear", rtol=rtol)
+    out = np.asarray(out)
+    return complex(out) if out.ndim == 0 else out
+
+
+def contact_displacement(
+    m: Material,
+    ka,
+    rbar,
+    phi=0.0,
+    shape: str = "flat",
+    loss: float = 0.02,
+    wavenumber: str = "longitudinal",
+    rtol: float = 1e-6,
+):
+    """The displacement function N(r̄, φ; k a) under the oscillating pressure (paper 1, Eq. 22).
+
+    u_z = (2a δa/(π C44 R I₁)) N. Statically N is uniform over the contact (N_st); dynamically it
+    is not (paper 1, Fig. 2: |N(r̄)|/|N(0)|).
+
+    Parameters
+    ----------
+    m, loss, wavenumber, rtol
+        As in :func:`dcsf`.
+    ka : float or array
+        Normalised wave number(s).
+    rbar : float or array
+        r/a, in [0, 1] (inside the contact).
+    phi : float or array
+        Polar angle from the surface-frame x axis, rad. ``ka``, ``rbar`` and ``phi`` broadcast.
+    shape : str
+        "flat": the flat-punch pressure 1/√(1 − r̄²) (the paper's δf); "hertz": √(1 − r̄²)
+        (the second pressure of the TP model).
+
+    Returns
+    -------
+    complex ndarray (broadcast shape), dimensionless.
+    """
+    if shape not in ("flat", "hertz"):
+        raise ValueError(f"shape must be 'flat' or 'hertz', got {shape!r}")
+    ksa = _ks_a(m, ka, wavenumber)
+    r = np.asarray(rbar, dtype=float)
+    if not np.all(np.isfinite(r)) or np.any(r < 0) or np.any(r > 1):
+        raise ValueError(f"rbar (r/a) must lie in [0, 1], got {rbar!r}")
+    p = np.asarray(phi, dtype=float)
+    if not np.all(np.isfinite(p)):
+        raise ValueError(f"phi must be finite (rad), got {phi!r}")
+    ksa, r, p = np.broadcast_arrays(ksa, r, p)
+    table = kernel_table(m, loss, resolution_for(rtol))
+    out = np.empty(ksa.shape, dtype=complex)
+    flat_k, flat_r, flat_p = ksa.ravel(), r.ravel(), p.ravel()
+    res = out.reshape(-1)
+    for k in np.unique(flat_k):
+        sel = flat_k == k
+        res[sel] = point_values(table, float(k), flat_r[sel], flat_p[sel], shape)
+    return out
+
+
+def contact_pressure(
+    m: Material,
+    ka,
+    rbar,
+    phi=0.0,
+    loss: float = 0.02,
+    wavenumber: str = "longitudinal",
+    rtol: float = 1e-6,
+):
+    """Oscillating pressure of the exact solution (rigid flat punch), over its mean δP/(π a²).
+
+    The converged Galerkin pressure of model "exact" (:mod:`contactres.dynamic_exact`). Static
+    limit: the flat-punch shape 1/(2√(1 − r̄²)). Complex (phase relative to the displacement).
+
+    Parameters
+    ----------
+    m, loss, wavenumber, rtol
+        As in :func:`dcsf`.
+    ka : float
+        Normalised wave number (one value).
+    rbar, phi : float or array
+        Points r/a in [0, 1) and polar angle (rad, from the surface x axis); they broadcast.
+    """
+    ksa = _ks_a(m, ka, wavenumber)
+    if ksa.ndim != 0:
+        raise ValueError("contact_pressure takes one ka at a time")
+    r = np.asarray(rbar, dtype=float)
+    if not np.all(np.isfinite(r)) or np.any(r < 0) or np.any(r >= 1):
+        raise ValueError(f"rbar (r/a) must lie in [0, 1) (the edge is singular), got {rbar!r}")
+    p = np.asarray(phi, dtype=float)
+    r, p = np.broadcast_arrays(r, p)
+    table = kernel_table(m, loss, resolution_for(rtol))
+    size = galerkin_size(float(ksa), rtol)
+    _, c, basis = exact_n(table, np.atleast_1d(ksa), size, return_coeffs=True)
+    c = c[0]
+    out = np.zeros(r.shape, dtype=complex)
+    for coef, (n, k) in zip(c, basis, strict=True):
+        out += coef * pressure_basis(n, k, r) * np.exp(1j * n * p)
+    return out / (2 * c[0])

@@ -209,6 +209,12 @@ def sphere_contact(m: Material, radius, force, rtol: float = THETA_RTOL) -> Anis
         raise ValueError(f"radius must be finite and > 0 (m), got {radius!r}")
     if not np.all(np.isfinite(F)) or np.any(F < 0):
         raise ValueError(f"force must be finite and >= 0 (N), got {force!r}")
+    try:
+        np.broadcast_shapes(R.shape, F.shape)
+    except ValueError:
+        raise ValueError(
+            f"radius (shape {R.shape}) and force (shape {F.shape}) do not broadcast together"
+        ) from None
     ci = contact_integrals(m, rtol)
     I0, I1 = ci.I0, ci.I1
     a = np.cbrt(3 * F * R * I1 / (8 * np.pi))

@@ -1,0 +1,240 @@
+"""The figures of paper 1 (dynamic contact stiffness of a sphere on a cubic crystal, Figs. 2-5).
+
+Abscissa: the longitudinal wave number k_l a = ω a √(ρ/C11) of the (001) face, as in the paper;
+damping Q⁻¹ = 0.02. Every figure is written as PNG together with the CSV of the plotted numbers:
+
+* Fig. 2: |u_z(r̄)|/|u_z(0)| across the contact (along [100]) for several k_l a, A = 0.5, ν = 0.25;
+* Fig. 3: DCSF of the five displacement models at A = 0.5, ν = 0.25;
+* Fig. 4: DCSF (WA) for A = 0.25, 0.5, 1, 2, 4 at ν = 0.25;
+* Fig. 5: DCSF (WA) at A = 2 for ν = 0.1, 0.2, 0.25, 0.3, 0.4;
+* the exact rigid-punch DCSF (:mod:`contactres.dynamic_exact`) on Figs. 3-5, and a ranking of
+  the models by their largest relative error against it (k_l a <= 1 and <= 2).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+from matplotlib.figure import Figure
+from matplotlib.ticker import NullLocator
+
+from .dynamic import contact_displacement, dcsf_models
+from .fileio import ensure_dir, save_figure, write_csv
+from .materials import Material
+
+__all__ = [
+    "PAPER_MODELS",
+    "crystals_figure",
+    "dcsf_curves_figure",
+    "displacement_figure",
+    "fig3_models",
+    "fig4_anisotropy",
+    "fig5_poisson",
+    "model_ranking",
+    "write_crystal_dcsf",
+    "write_paper1_figures",
+]
+
+#: The five displacement conditions of the paper (Fig. 3).
+PAPER_MODELS = ("WA", "R0", "R1", "SA", "TP")
+LOSS = 0.02
+KLA = np.linspace(0.0, 2.0, 81)
+
+
+def _cubic(A: float, nu: float) -> Material:
+    return Material.cubic_from_ratios(zener=A, poisson=nu)
+
+
+def dcsf_curves_figure(
+    curves: dict[str, np.ndarray],
+    kla: np.ndarray,
+    title: str,
+    ylim=None,
+    exact: dict[str, np.ndarray] | None = None,
+):
+    """Two panels, Re and Im of DCSF against k_l a, one line per labelled curve.
+
+    ``exact`` (optional, same keys as ``curves`` or any subset) adds the exact rigid-punch curve
+    of each case as a thin line of the same colour (label "... exact"). ``ylim`` clips both
+    panels (the CSV keeps every value). Returns (figure, table): columns kla, curve, re, im.
+    """
+    fig = Figure(figsize=(8, 3.6))
+    ax1, ax2 = fig.subplots(1, 2, sharex=True)
+    rows = []
+    exact = exact or {}
+    for i, (label, v) in enumerate(curves.items()):
+        style = "-" if i == 0 else ("--", ":", "-.", (0, (5, 1, 1, 1)), (0, (1, 2)))[(i - 1) % 5]
+        (line,) = ax1.plot(kla, v.real, linestyle=style, label=label)
+        ax2.plot(kla, v.imag, linestyle=style, label=label)
+        rows.append(pd.DataFrame({"kla": kla, "curve": label, "re": v.real, "im": v.imag}))
+        if label in exact:
+            e = exact[label]
+            name = f"{label} exact" if len(curves) > 1 else "exact"
+            for ax, part in ((ax1, e.real), (ax2, e.imag)):
+                ax.plot(kla, part, color=line.get_color(), lw=0.8, alpha=0.7, label=name)
+            rows.append(pd.DataFrame({"kla": kla, "curve": name, "re": e.real, "im": e.imag}))
+    ax1.set_ylabel("Re DCSF (stiffness)")
+    ax2.set_ylabel("Im DCSF (damping)")
+    for ax, tag in ((ax1, "(a)"), (ax2, "(b)")):
+        ax.set_xlabel("k_l a")
+        ax.axhline(0, color="0.7", lw=0.5)
+        ax.set_title(tag, fontsize=9, loc="left")
+        ax.legend(fontsize=7)
+        if ylim is not None:
+            ax.set_ylim(*ylim)
+    fig.suptitle(title, fontsize=9)
+    fig.tight_layout()
+    return fig, pd.concat(rows, ignore_index=True)
+
+
+def fig3_models(kla=KLA, A: float = 0.5, nu: float = 0.25):
+    """Fig. 3: the five displacement models at A = 0.5, ν = 0.25. Returns (figure, table)."""
+    out = dcsf_models(_cubic(A, nu), kla, (*PAPER_MODELS, "exact"), loss=LOSS)
+    curves = {f"{name} model": out[name] for name in PAPER_MODELS}
+    curves["exact (rigid punch)"] = out["exact"]
+    # SA has a pole where N(0) + N(1, 0) vanishes (k_l a ~ 1.88): clip as the paper does.
+    title = f"Fig. 3: A = {A:g}, ν = {nu:g}, Q⁻¹ = {LOSS:g}"
+    return dcsf_curves_figure(curves, kla, title, ylim=(-5, 6))
+
+
+def fig4_anisotropy(kla=KLA, zeners=(0.25, 0.5, 1.0, 2.0, 4.0), nu: float = 0.25):
+    """Fig. 4: WA for several Zener ratios A at ν = 0.25. Returns (figure, table)."""
+    res = {A: dcsf_models(_cubic(A, nu), kla, ("WA", "exact"), loss=LOSS) for A in zeners}
+    curves = {f"A = {A:g}": r["WA"] for A, r in res.items()}
+    exact = {f"A = {A:g}": r["exact"] for A, r in res.items()}
+    title = f"Fig. 4: WA model (thin: exact), ν = {nu:g}, Q⁻¹ = {LOSS:g}"
+    return dcsf_curves_figure(curves, kla, title, exact=exact)
+
+
+def fig5_poisson(kla=KLA, A: float = 2.0, nus=(0.1, 0.2, 0.25, 0.3, 0.4)):
+    """Fig. 5: WA at A = 2 for several ν. Returns (figure, table)."""
+    res = {nu: dcsf_models(_cubic(A, nu), kla, ("WA", "exact"), loss=LOSS) for nu in nus}
+    curves = {f"ν = {nu:g}": r["WA"] for nu, r in res.items()}
+    exact = {f"ν = {nu:g}": r["exact"] for nu, r in res.items()}
+    title = f"Fig. 5: WA model (thin: exact), A = {A:g}, Q⁻¹ = {LOSS:g}"
+    return dcsf_curves_figure(curves, kla, title, exact=exact)
+
+
+def displacement_figure(kla=(0.3, 0.6, 0.9, 1.2, 1.7), A: float = 0.5, nu: float = 0.25):
+    """Fig. 2: |u_z(r̄)|/|u_z(0)| along [100] under the oscillating flat-punch pressure.
+
+    Returns (figure, table) with columns kla, rbar, re_N, im_N, abs_ratio.
+    """
+    m = _cubic(A, nu)
+    rbar = np.linspace(0.0, 1.0, 41)
+    kla = np.asarray(kla, dtype=float)
+    N = contact_displacement(m, kla[:, None], rbar[None, :], 0.0, loss=LOSS)
+    ratio = np.abs(N) / np.abs(N[:, :1])
+    fig = Figure(figsize=(4.8, 3.6))
+    ax = fig.subplots()
+    rows = []
+    for i, k in enumerate(kla):
+        ax.plot(rbar, ratio[i], label=f"k_l a = {k:g}")
+        rows.append(
+            pd.DataFrame(
+                {
+                    "kla": k,
+                    "rbar": rbar,
+                    "re_N": N[i].real,
+                    "im_N": N[i].imag,
+                    "abs_ratio": ratio[i],
+                }
+            )
+        )
+    ax.set_xlabel("r/a")
+    ax.set_ylabel("|u_z(r)| / |u_z(0)|")
+    ax.set_ylim(bottom=0)
+    ax.legend(fontsize=7)
+    ax.set_title(f"Fig. 2: A = {A:g}, ν = {nu:g}, Q⁻¹ = {LOSS:g}", fontsize=9)
+    fig.tight_layout()
+    return fig, pd.concat(rows, ignore_index=True)
+
+
+def crystals_figure(names=("RbI", "KCl", "W", "Cu", "Li"), kla=KLA, model: str = "WA"):
+    """Fig. 4 for real crystals: DCSF of built-in crystals on their (001) faces (A from 0.25 to 9).
+
+    Returns (figure, table) with columns kla, curve (crystal name with its A), re, im.
+    """
+    curves = {}
+    for name in names:
+        m = Material.crystal(name)
+        curves[f"{name} (A = {m.zener_ratio:.2f})"] = dcsf_models(m, kla, (model,), loss=LOSS)[
+            model
+        ]
+    return dcsf_curves_figure(curves, kla, f"{model} model on (001) faces, Q⁻¹ = {LOSS:g}")
+
+
+def model_ranking(kla=KLA, zeners=(0.25, 0.5, 1.0, 2.0, 4.0), nu: float = 0.25):
+    """How far each approximate model is from the exact rigid punch (issue 7's question).
+
+    For each A (ν = 0.25, Q⁻¹ = 0.02): the largest relative error |DCSF_model/DCSF_exact − 1|
+    over k_l a <= 1 and over k_l a <= 2. Returns (figure, table) with columns zener, model,
+    max_rel_error_kla_le_1, max_rel_error_kla_le_2, rank_kla_le_1 (1 = closest to exact).
+    """
+    kla = np.asarray(kla, dtype=float)
+    names = (*PAPER_MODELS, "WA2D")
+    rows = []
+    for A in zeners:
+        out = dcsf_models(_cubic(A, nu), kla, (*names, "exact"), loss=LOSS)
+        ex = out["exact"]
+        errs = {n: np.abs(out[n] / ex - 1) for n in names}
+        e1 = {n: float(np.max(e[kla <= 1 + 1e-12])) for n, e in errs.items()}
+        order = sorted(names, key=lambda n: e1[n])
+        for n in names:
+            rows.append(
+                {
+                    "zener": A,
+                    "model": n,
+                    "max_rel_error_kla_le_1": e1[n],
+                    "max_rel_error_kla_le_2": float(np.max(errs[n])),
+                    "rank_kla_le_1": order.index(n) + 1,
+                }
+            )
+    table = pd.DataFrame(rows)
+    fig = Figure(figsize=(8, 3.6))
+    axes = fig.subplots(1, 2, sharey=True)
+    for ax, col, lim in zip(
+        axes, ("max_rel_error_kla_le_1", "max_rel_error_kla_le_2"), ("1", "2"), strict=True
+    ):
+        for n in names:
+            t = table[table.model == n]
+            ax.semilogy(t.zener, t[col], marker="o", label=n)
+        ax.set_xscale("log")
+        ax.xaxis.set_minor_locator(NullLocator())
+        ax.set_xticks(list(zeners), [f"{A:g}" for A in zeners])
+        ax.set_xlabel("Zener ratio A")
+        ax.set_title(f"max |DCSF/exact − 1|, k_l a <= {lim}", fontsize=9)
+    axes[0].set_ylabel("relative error")
+    axes[0].legend(fontsize=7)
+    fig.suptitle(f"Displacement models against the exact rigid punch, ν = {nu:g}", fontsize=9)
+    fig.tight_layout()
+    return fig, table
+
+
+def write_crystal_dcsf(out) -> list[Path]:
+    """The demo step of paper 1: :func:`crystals_figure` as PNG + CSV in folder ``out``."""
+    folder = ensure_dir(out)
+    fig, table = crystals_figure()
+    return [
+        write_csv(folder / "crystals_dcsf_WA.csv", table),
+        save_figure(folder / "crystals_dcsf_WA.png", fig),
+    ]
+
+
+def write_paper1_figures(out) -> list[Path]:
+    """Write Figs. 2-5 of paper 1 (PNG + CSV) into folder ``out``; return the paths."""
+    folder = ensure_dir(out)
+    written = []
+    for stem, make in (
+        ("paper1_fig2_displacement", displacement_figure),
+        ("paper1_fig3_models", fig3_models),
+        ("paper1_fig4_anisotropy", fig4_anisotropy),
+        ("paper1_fig5_poisson", fig5_poisson),
+        ("paper1_model_ranking", model_ranking),
+    ):
+        fig, table = make()
+        written.append(write_csv(folder / f"{stem}.csv", table))
+        written.append(save_figure(folder / f"{stem}.png", fig))
+    return written

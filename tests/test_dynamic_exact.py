@@ -1,0 +1,135 @@
+"""Tests of contactres.dynamic_exact: the rigid flat punch (Galerkin) on an anisotropic solid.
+
+Independent checks: the basis transforms against scipy quadrature, the one-term Galerkin against
+the whole-contact weighted average (a different code path), the isotropic lossless rigid-disk
+impedance of Luco & Westmann (1971), the static limit, convergence in the number of terms and of
+every resolution, continuity through A = 1, the loss -> 0 limit, and the force balance of the
+converged pressure.
+"""
+
+import math
+
+import numpy as np
+import pytest
+from scipy import integrate, special
+
+from contactres import Material, contact_pressure, dcsf, dcsf_models
+from contactres.dynamic import ALL_MODELS
+from contactres.dynamic_exact import GalerkinSize, exact_n, galerkin_size, pressure_basis
+from contactres.dynamic_quadrature import functionals, kernel_table, resolution_for
+
+Q = 0.02
+
+
+def _cubic(A, nu=0.25):
+    return Material.cubic_from_ratios(zener=A, poisson=nu)
+
+
+@pytest.mark.parametrize(("n", "k"), [(0, 0), (0, 3), (4, 0), (-4, 2), (8, 1)])
+def test_pressure_basis_hankel_transform_is_spherical_bessel(n, k):
+    def integrand(t, s):
+        # r = sin t removes the 1/√(1 − r²) edge singularity: r dr = sin t cos t dt
+        r = math.sin(t)
+        return r * math.cos(t) * pressure_basis(n, k, r) * special.jv(abs(n), s * r)
+
+    for s in (0.6, 4.0):
+        val = integrate.quad(integrand, 0, math.pi / 2, args=(s,), limit=200, epsabs=1e-13)[0]
+        assert val == pytest.approx(special.spherical_jn(abs(n) + 2 * k, s), abs=1e-11)
+
+
+def test_one_term_galerkin_is_the_whole_contact_weighted_average():
+    for A in (0.4, 1.0, 3.0):
+        m = _cubic(A)
+        table = kernel_table(m, Q)
+        ksa = np.array([0.5, 2.0, 4.5])
+        one = exact_n(table, ksa, GalerkinSize(n_radial=1, n_harmonics=0))
+        np.testing.assert_allclose(one, functionals(table, ksa)["F2D"], rtol=1e-12)
+
+
+def test_luco_westmann_rigid_disk_isotropic_lossless():
+    """Rigid disk on a lossless half-space, ν = 1/3: K/K0 = k(a0) + i a0 c(a0), a0 = k_s a,
+    K0 = 2aE*. Published values (Luco & Westmann 1971, as quoted in physics.md):
+    (k, c) = (0.9689, 0.7931) at a0 = 0.5 and (0.8826, 0.8239) at a0 = 1. They carry four
+    digits; we agree to 2e-4 (our own convergence is ~1e-9, see below)."""
+    m = Material.isotropic(E=1.0, nu=1 / 3)
+    a0 = np.array([0.5, 1.0])
+    d = dcsf(m, a0, model="exact", loss=0.0, wavenumber="shear")
+    k, c = d.real, d.imag / a0
+    np.testing.assert_allclose(k, [0.9689, 0.8826], rtol=2e-4)
+    np.testing.assert_allclose(c, [0.7931, 0.8239], rtol=2.5e-4)
+
+
+def test_exact_static_limit():
+    for A in (0.5, 2.0):
+        v = dcsf(_cubic(A), [0.0, 1e-4, 1e-3], model="exact")
+        assert v[0] == pytest.approx(1 + 1j * Q, abs=1e-14)
+        d1, d2 = abs(v[1] - (1 + 1j * Q)), abs(v[2] - (1 + 1j * Q))
+        assert d2 < 1e-2 and 7 < d2 / d1 < 13
+
+
+@pytest.mark.parametrize(("A", "nu"), [(0.25, 0.25), (1.0, 0.25), (4.0, 0.3)])
+def test_convergence_in_terms_and_resolution(A, nu):
+    m = _cubic(A, nu)
+    kl = np.linspace(0.0, 2.0, 9)
+    ksa = kl * math.sqrt(m.C[2, 2] / m.C[3, 3])
+    size = galerkin_size(float(ksa.max()))
+    res = resolution_for(1e-6)
+    base = kernel_table(m, Q, res)
+    fine = kernel_table(m, Q, res.doubled())
+    a = base.n_static / exact_n(base, ksa, size)
+    b = fine.n_static / exact_n(fine, ksa, size.doubled())
+    assert np.max(np.abs(a / b - 1)) < 1e-6
+
+
+def test_exact_continuity_through_isotropy_and_isotropic_harmonics_vanish():
+    kl = np.array([0.6, 1.5])
+    iso = dcsf(_cubic(1.0), kl, model="exact")
+    for eps in (1e-7, -1e-7):
+        np.testing.assert_allclose(dcsf(_cubic(1.0 + eps), kl, model="exact"), iso, rtol=1e-5)
+    # isotropic: the angular harmonics decouple, one harmonic is as good as many
+    table = kernel_table(_cubic(1.0), Q)
+    ksa = kl * math.sqrt(_cubic(1.0).C[0, 0] / _cubic(1.0).C[3, 3])
+    np.testing.assert_allclose(
+        exact_n(table, ksa, GalerkinSize(10, 0)),
+        exact_n(table, ksa, GalerkinSize(10, 3)),
+        rtol=1e-9,
+    )
+
+
+def test_lossless_limit_of_every_model_including_exact():
+    m = _cubic(0.5)
+    kl = np.array([0.8, 1.7])
+    d0 = dcsf_models(m, kl, ALL_MODELS, loss=0.0)
+    dq = dcsf_models(m, kl, ALL_MODELS, loss=1e-5)
+    for name in ALL_MODELS:
+        assert np.all(np.isfinite(d0[name])), name
+        np.testing.assert_allclose(dq[name], d0[name], rtol=3e-4, err_msg=name)
+    # lossless: no material damping, DCSF(0) = 1 exactly
+    assert dcsf(m, 0.0, model="exact", loss=0.0) == 1.0
+
+
+def test_contact_pressure_static_shape_force_balance_and_symmetry():
+    m = _cubic(0.5)
+    r = np.array([0.0, 0.5, 0.9])
+    np.testing.assert_allclose(contact_pressure(m, 0.0, r), 0.5 / np.sqrt(1 - r * r), rtol=1e-12)
+    # mean pressure = 1: ∫ p dA/(π a²) with r = sin t and the trapezoidal rule in φ
+    t, w = np.polynomial.legendre.leggauss(40)
+    t = 0.25 * np.pi * (t + 1)
+    w = 0.25 * np.pi * w
+    phi = np.linspace(0, 2 * np.pi, 16, endpoint=False)
+    p = contact_pressure(m, 1.4, np.sin(t)[:, None], phi[None, :])
+    # p ~ 1/√(1 − r²) = 1/cos t: r dr = sin t cos t dt cancels it
+    mean = np.sum(w[:, None] * np.sin(t)[:, None] * np.cos(t)[:, None] * p) * (2 * np.pi / 16)
+    assert mean / np.pi == pytest.approx(1.0, abs=1e-10)
+    # cubic symmetry of the pressure
+    q = contact_pressure(m, 1.4, 0.6, np.array([0.2, 0.2 + np.pi / 2, -0.2]))
+    np.testing.assert_allclose(q, q[0], rtol=1e-10)
+    # and it is not axisymmetric
+    assert abs(contact_pressure(m, 1.4, 0.8, 0.0) / contact_pressure(m, 1.4, 0.8, 0.4) - 1) > 1e-5
+
+
+def test_exact_model_errors():
+    with pytest.raises(ValueError, match="rbar"):
+        contact_pressure(_cubic(0.5), 1.0, 1.0)
+    with pytest.raises(ValueError, match="one ka"):
+        contact_pressure(_cubic(0.5), [1.0, 2.0], 0.5)
