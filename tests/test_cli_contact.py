@@ -10,7 +10,7 @@ from click.testing import CliRunner
 
 from contactres import Material, indentation_modulus, sphere_contact
 from contactres.cli import main
-from contactres.cli.contact import parse_direction
+from contactres.cli._crystal_face import parse_direction
 
 
 def run(*args):

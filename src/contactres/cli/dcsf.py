@@ -8,26 +8,13 @@ import pandas as pd
 from ..dynamic import ALL_MODELS, MODELS, WAVENUMBERS, dcsf_models
 from ._app import main
 from ._common import RANGE, emit, format_option
-from .contact import material_from_options, parse_direction
+from ._crystal_face import crystal_face, crystal_face_options
 
 
 @main.command("dcsf")
-@click.option("--crystal", help="Built-in cubic crystal (see 'contactres crystals'), e.g. Cu.")
-@click.option("--c11", type=float, help="Cubic elastic constant C11, Pa.")
-@click.option("--c12", type=float, help="Cubic elastic constant C12, Pa.")
-@click.option("--c44", type=float, help="Cubic elastic constant C44, Pa (not needed with --zener).")
-@click.option("--zener", type=float, help="Zener ratio A = 2 C44/(C11 - C12) (with --poisson).")
-@click.option("--poisson", type=float, help="ν = C12/(C11 + C12) of the cubic crystal.")
-@click.option(
-    "--surface",
-    default="001",
-    show_default=True,
-    help="Surface normal in cube axes (Miller indices): 001, 011, 111, ...",
-)
-@click.option(
-    "--inplane",
-    default=None,
-    help="Direction of the surface x axis (the R1/WA direction) in cube axes.",
+@crystal_face_options(
+    c44_help="Cubic elastic constant C44, Pa (not needed with --zener: DCSF depends on ratios).",
+    inplane_help="Direction of the surface x axis (the R1/WA direction) in cube axes.",
 )
 @click.option(
     "--model",
@@ -65,22 +52,7 @@ from .contact import material_from_options, parse_direction
     help="Target relative accuracy of the DCSF.",
 )
 @format_option()
-def dcsf(
-    crystal,
-    c11,
-    c12,
-    c44,
-    zener,
-    poisson,
-    surface,
-    inplane,
-    model,
-    ka,
-    loss,
-    wavenumber,
-    rtol,
-    fmt,
-):
+def dcsf(model, ka, loss, wavenumber, rtol, fmt, **face):
     """Dynamic contact stiffness factor DCSF = K_da/K_sa of a rigid sphere (paper 1, Eq. 29).
 
     The complex ratio of the dynamic to the static contact stiffness of a sphere vibrating
@@ -90,17 +62,16 @@ def dcsf(
     Columns: ka, model, re, im (re: stiffness, im: damping, both relative to K_sa).
 
     exact: the rigid flat punch (uniform displacement under the sphere, Galerkin), the answer
-    the approximations try to give. Which model to use: exact whenever you can (it costs a few
-    times WA); of the paper's approximations WA (and WA2D) stay close to exact up to k_l a ~ 1
-    (see 'contactres figures paper1': paper1_model_ranking.csv); R0, SA and TP turn negative
-    at high k a (unphysical). Below k_l a ~ 0.3 every model agrees to ~1 %.
+    the approximations try to give. Which model to use: exact (as fast as the others). Of the
+    paper's approximations TP is closest to it (max. error 0.2-5 % for k_l a <= 1 at
+    A = 0.25-4, nu = 0.25; 3-10 % up to k_l a = 2 for A >= 1, but it turns negative at high
+    k a for A <= 0.5); WA and WA2D are 2-40 % off by k_l a = 1 (under 1 % below
+    k_l a = 0.3); SA, R1 and R0 are worse (R0 is 2-10 % off already at k_l a = 0.3, SA has a
+    pole). Ranking: 'contactres figures paper1' writes paper1_model_ranking.csv.
     """
-    if c44 is None and crystal is None and c11 is None and c12 is None:
-        c44 = 1.0  # the DCSF depends on the ratios only
-    m = material_from_options(crystal, c11, c12, c44, zener, poisson)
-    normal = parse_direction(surface, "surface")
-    x = None if inplane is None else parse_direction(inplane, "inplane")
-    m = m.rotated(normal, x)
+    if face["c44"] is None and face["zener"] is not None:
+        face["c44"] = 1.0  # the DCSF depends on the ratios only
+    m = crystal_face(**face)
     names = list(ALL_MODELS) if model.lower() == "all" else [model]
     out = dcsf_models(m, ka, names, loss=loss, wavenumber=wavenumber, rtol=rtol)
     frames = [
