@@ -49,14 +49,18 @@ def test_one_term_galerkin_is_the_whole_contact_weighted_average():
 def test_luco_westmann_rigid_disk_isotropic_lossless():
     """Rigid disk on a lossless half-space, ν = 1/3: K/K0 = k(a0) + i a0 c(a0), a0 = k_s a,
     K0 = 2aE*. Published values (Luco & Westmann 1971, as quoted in physics.md):
-    (k, c) = (0.9689, 0.7931) at a0 = 0.5 and (0.8826, 0.8239) at a0 = 1. They carry four
-    digits; we agree to 2e-4 (our own convergence is ~1e-9, see below)."""
+    (k, c) = (0.9689, 0.7931) at a0 = 0.5 and (0.8826, 0.8239) at a0 = 1, four digits.
+    At a0 = 0.5 we agree to their rounding (c = 0.793045: −5.5e-5, a five-digit 0.79305 rounded
+    again). At a0 = 1 we are 1.2e-4 (k) and 1.6e-4 (c) below them, beyond rounding; that error is
+    in the quoted digits, not here: tests/test_rigid_disk_isotropic.py solves the disk by an
+    independent Fredholm integral equation and agrees with this Galerkin to 1e-11 (converged),
+    giving (0.882477, 0.823743). The 1e-6 isotropic check lives there."""
     m = Material.isotropic(E=1.0, nu=1 / 3)
     a0 = np.array([0.5, 1.0])
     d = dcsf(m, a0, model="exact", loss=0.0, wavenumber="shear")
     k, c = d.real, d.imag / a0
-    np.testing.assert_allclose(k, [0.9689, 0.8826], rtol=2e-4)
-    np.testing.assert_allclose(c, [0.7931, 0.8239], rtol=2.5e-4)
+    assert k[0] == pytest.approx(0.9689, abs=5e-5) and c[0] == pytest.approx(0.7931, abs=6e-5)
+    assert k[1] == pytest.approx(0.8826, abs=2e-4) and c[1] == pytest.approx(0.8239, abs=2e-4)
 
 
 def test_exact_static_limit():
