@@ -1,8 +1,10 @@
 """Tests of contactres.halfspace: static and dynamic surface response of an anisotropic solid.
 
 Independent references: Boussinesq (isotropic statics), the exact axial indentation modulus of a
-transversely isotropic solid (Delafargue & Ulm 2004), Lamb's closed-form isotropic kernel, a
-brute-force 6x6 Stroh eigen-decomposition (physics.md's matrix), symmetry and reciprocity.
+transversely isotropic solid (Delafargue & Ulm 2004), Lamb's closed-form isotropic kernel, the
+published secular equation of Rayleigh waves on an orthotropic face (cubic (001) Rayleigh pole),
+a brute-force 6x6 Stroh eigen-decomposition (physics.md's matrix), the general doubling step
+against the mirror-plane one, symmetry and reciprocity.
 """
 
 import numpy as np
@@ -131,6 +133,62 @@ def test_closed_form_lossless_static_limit():
     assert isotropic_dynamic_kernel(1e8, ratio).real == pytest.approx(0.7, rel=1e-12)
 
 
+def _orthotropic_rayleigh_x(c11, c12, c66):
+    """ρ c_R²/c66 on a principal face of an orthotropic solid, wave along a principal axis.
+
+    The classical secular equation (Chadwick, J. Sound Vib. 47 (1976) 39; in the form of Vinh &
+    Ogden, "Formulas for the Rayleigh wave speed in orthotropic elastic solids", Arch. Mech. 56
+    (2004), no. 3), with c11 along the wave, c22 = c11 normal to the face (cubic), X = ρ c²:
+        c22 c66 (c11 − X) X² = (c66 − X) (c11 c22 − c12² − c22 X)².
+    It is squared, so it can have spurious roots: the largest root below c66 is the surface wave.
+    """
+
+    def sec(x):
+        X = x * c66
+        return c11 * c66 * (c11 - X) * X**2 - (c66 - X) * (c11 * c11 - c12**2 - c11 * X) ** 2
+
+    xs = np.linspace(1e-4, 1.0, 4001)[:-1]
+    v = sec(xs)
+    i = np.flatnonzero(np.sign(v[:-1]) != np.sign(v[1:]))[-1]
+    return brentq(sec, xs[i], xs[i + 1], xtol=1e-16)
+
+
+@pytest.mark.parametrize(
+    "c11, c12, c44",
+    [
+        (168.4e9, 121.4e9, 75.4e9),  # Cu, A = 3.2
+        (246.5e9, 147.3e9, 124.7e9),  # Ni, A = 2.5
+        (3.0, 1.5, 0.375),  # A = 0.5
+    ],
+)
+def test_cubic_001_rayleigh_pole_matches_orthotropic_secular_equation(c11, c12, c44):
+    # Lossless cubic (001), wave along [100]: g has its Rayleigh pole at κ_R = c_s/c_R with
+    # c_R from the published orthotropic secular equation (an algebraic equation, independent of
+    # the Stroh/doubling machinery). The pole is located as the sign change of 1/g on the real
+    # axis above the limiting speed (where g is real).
+    m = Material.cubic(c11, c12, c44, density=5000.0)
+    k = np.linspace(1.0005, 4.0, 600)
+    g = dynamic_kernel(m, k, 0.0)
+    inv = (1 / g).real
+    real = g.imag == 0
+    j = np.flatnonzero(real[:-1] & real[1:] & (np.sign(inv[:-1]) != np.sign(inv[1:])))
+    assert j.size == 1
+    k_pole = brentq(
+        lambda q: (1 / dynamic_kernel(m, q, 0.0)).real, k[j[0]], k[j[0] + 1], xtol=1e-14
+    )
+    k_R = 1 / np.sqrt(_orthotropic_rayleigh_x(c11, c12, c44))
+    assert abs(k_pole / k_R - 1) < 1e-10
+
+
+def test_orthotropic_secular_equation_reduces_to_rayleigh():
+    # The formula above, checked on the isotropic solid against the Rayleigh function.
+    for nu in (0.1, 0.25, 0.4):
+        iso = Material.isotropic(1.0, nu)
+        c11, c12, c44 = iso.C[0, 0], iso.C[0, 1], iso.C[3, 3]
+        x = _orthotropic_rayleigh_x(c11, c12, c44)
+        assert 1 / np.sqrt(x) == pytest.approx(_rayleigh_kappa(c11 / c44), rel=1e-12)
+
+
 def _stroh_eig_kernel(C, kappa, theta):
     """Brute force: physics.md's 6x6 Stroh matrix, np.linalg.eig, keep Re λ < 0, H = A B⁻¹."""
     c = voigt_to_tensor(np.asarray(C, dtype=complex)) / np.real(C[3, 3])
@@ -192,6 +250,29 @@ def test_doubling_tolerance_is_converged(monkeypatch):
     monkeypatch.setattr(hs, "_CR_TOL", 1e-15)
     g_tight = dynamic_kernel(m, k, th)
     assert np.max(np.abs(g - g_tight) / np.abs(g_tight)) < 1e-13
+
+
+def test_mirror_plane_fast_path_equals_general_cyclic_reduction(monkeypatch):
+    # Faces that are mirror planes of the solid take the block-structured doubling step; the
+    # general 3x3 step (forced here) is a second algorithm for the same solvent.
+    import contactres.halfspace as hs
+
+    m001, m011 = CU, CU.rotated((0, 1, 1))
+    hexa = Material.hexagonal(160e9, 90e9, 66e9, 181e9, 46e9).rotated((1, 0, 0))
+    k = np.concatenate([np.geomspace(0.05, 50, 12), [0.999, 1.0001, 1.3]])[:, None]
+    th = np.linspace(0, np.pi, 7)[None, :] + 0.1
+    cases = [(m.with_loss(0.02), k) for m in (m001, m011, hexa)]
+    cases += [(m001, np.array([[1.2], [2.0], [9.0]])), (m011, k + 0.05j)]  # lossless
+    for m, _ in cases:
+        assert hs._has_mirror(hs._scaled_tensor(m))
+    fast = [dynamic_kernel(m, kk, th) for m, kk in cases]
+    monkeypatch.setattr(hs, "_has_mirror", lambda c: False)
+    for (m, kk), g in zip(cases, fast, strict=True):
+        ref = dynamic_kernel(m, kk, th)
+        assert np.max(np.abs(g - ref) / np.abs(ref)) < 1e-12
+    # No mirror plane: (111) of a cubic crystal, a generic solid.
+    assert not hs._has_mirror(hs._scaled_tensor(CU.rotated((1, 1, 1))))
+    assert not hs._has_mirror(hs._scaled_tensor(_triclinic()))
 
 
 # --------------------------------------------------------------------------------- symmetry

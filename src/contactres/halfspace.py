@@ -37,7 +37,7 @@ mapped roots come to the unit circle (~5 in the evanescent range, ~10 for barely
 propagating waves), not by β. When the surface is a mirror plane of the solid (cubic (001),
 (011), hexagonal basal and prism faces, orthotropic principal cuts) the pencil has the block
 structure of :func:`_cyclic_reduction_mirror` and a step costs a third of a general one:
-~1.5-2 µs per (κ, θ) point, against ~4-5 µs on other faces (e.g. cubic (111)); ~40 µs on the
+~1.5-2 µs per (κ, θ) point, against ~4 µs on other faces (e.g. cubic (111)); ~40 µs on the
 eigen-decomposition path.
 
 Sign conventions: time factor e^{iωt}; the solid fills z >= 0 with z the inward normal; loss
@@ -110,23 +110,30 @@ def _blocks(c: np.ndarray, theta: np.ndarray):
 
 # Stacks of 3x3 matrices are stored as (3, 3, N): every entry is a contiguous vector, so the
 # elementwise formulas below run at memory speed (a batched LAPACK call per 3x3 is much slower).
-def _mm(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """Product of stacked 3x3 matrices, (3, 3, N) @ (3, 3, N)."""
-    return a[:, 0, None] * b[0] + a[:, 1, None] * b[1] + a[:, 2, None] * b[2]
+def _mm(a: np.ndarray, b: np.ndarray, out=None, tmp=None) -> np.ndarray:
+    """Product of stacked 3x3 matrices, (3, 3, N) @ (3, 3, N), optionally into ``out`` (with a
+    work array ``tmp`` of the same shape; neither may overlap ``a`` or ``b``)."""
+    if out is None:
+        return a[:, 0, None] * b[0] + a[:, 1, None] * b[1] + a[:, 2, None] * b[2]
+    np.multiply(a[:, 0, None], b[0], out=out)
+    out += np.multiply(a[:, 1, None], b[1], out=tmp)
+    out += np.multiply(a[:, 2, None], b[2], out=tmp)
+    return out
 
 
 def _tr(a: np.ndarray) -> np.ndarray:
     return a.transpose(1, 0, 2)
 
 
-def _inv3(a: np.ndarray) -> np.ndarray:
-    """Inverse of stacked 3x3 matrices (3, 3, N) by the adjugate formula."""
+def _inv3(a: np.ndarray, out=None) -> np.ndarray:
+    """Inverse of stacked 3x3 matrices (3, 3, N) by the adjugate formula (into ``out``)."""
     (a00, a01, a02), (a10, a11, a12), (a20, a21, a22) = a
     c00 = a11 * a22 - a12 * a21
     c01 = a12 * a20 - a10 * a22
     c02 = a10 * a21 - a11 * a20
     r = 1.0 / (a00 * c00 + a01 * c01 + a02 * c02)
-    out = np.empty_like(a)
+    if out is None:
+        out = np.empty_like(a)
     out[0, 0] = c00 * r
     out[1, 0] = c01 * r
     out[2, 0] = c02 * r
@@ -173,27 +180,32 @@ def _decaying_solvent(Q, R, W, s, beta, may_stall=None, mirror=False):
 def _cyclic_reduction(A0, a1, a2, may_stall):
     """Cyclic reduction for the general pencil: the limit Â1 (3, 3, N) and a converged flag."""
     A1h = a1.copy()
-    a0, a1h = A0, A1h
     n = A0.shape[-1]
+    # Work arrays, reused in place: fresh (3, 3, N) temporaries in every step cost more than
+    # the arithmetic (allocation and cache misses).
+    a0, a1, a2, a1h = A0.copy(), a1.copy(), a2.copy(), A1h.copy()
+    k, ka0, ka2, a0ka2, nxt, tmp = (np.empty_like(A0) for _ in range(6))
+    re = np.empty(A0.shape, dtype=float)
     done = np.zeros(n, dtype=bool)
     active = np.arange(n)
     for it in range(_CR_MAXITER):
-        k = _inv3(a1)
-        ka0 = _mm(k, a0)
-        ka2 = _mm(k, a2)
+        _inv3(a1, out=k)
+        _mm(k, a0, out=ka0, tmp=tmp)
+        _mm(k, a2, out=ka2, tmp=tmp)
         # A0, A1, A2 are complex symmetric (major symmetry of C) and cyclic reduction keeps
         # them so: A2 K A0 = (A0 K A2)ᵀ saves one product.
-        a0ka2 = _mm(a0, ka2)
+        _mm(a0, ka2, out=a0ka2, tmp=tmp)
         a2ka0 = _tr(a0ka2)
-        a1h = a1h - a2ka0
-        a1 = a1 - a0ka2 - a2ka0
+        a1h -= a2ka0
+        a1 -= a0ka2
+        a1 -= a2ka0
         # (−A0 K A0 and −A2 K A2 by the recursion; both signs are dropped, as they cancel in
         # every later update: A0 and A2 enter them in pairs.)
-        a0 = _mm(a0, ka0)
-        a2 = _mm(a2, ka2)
+        a0, nxt = _mm(a0, ka0, out=nxt, tmp=tmp), a0
+        a2, nxt = _mm(a2, ka2, out=nxt, tmp=tmp), a2
         # Quadratic convergence: after an update of relative size τ the rest is ~τ².
-        upd = np.max(np.abs(a2ka0), axis=(0, 1))
-        scale = np.max(np.abs(a1h), axis=(0, 1))
+        upd = np.abs(a0ka2, out=re).max(axis=(0, 1))
+        scale = np.abs(a1h, out=re).max(axis=(0, 1))
         conv = (upd <= _CR_TOL * scale) & np.isfinite(scale)  # NaN: not converged
         drop = conv.copy()
         if may_stall is not None and it + 1 == _STALL_ITER:
@@ -204,6 +216,8 @@ def _cyclic_reduction(A0, a1, a2, may_stall):
             keep = ~drop
             active = active[keep]
             a0, a1, a2, a1h = a0[:, :, keep], a1[:, :, keep], a2[:, :, keep], a1h[:, :, keep]
+            k, ka0, ka2, a0ka2, nxt, tmp = (np.empty_like(a0) for _ in range(6))
+            re = np.empty(a0.shape, dtype=float)
         if active.size == 0:
             break
     return A1h, done

@@ -13,6 +13,8 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .validation import positive
+
 __all__ = ["Material", "rotation_to_surface", "tensor_to_voigt", "voigt_to_tensor"]
 
 # Voigt index of each tensor index pair (i, j).
@@ -108,13 +110,6 @@ def _check_stiffness(C) -> np.ndarray:
     return C
 
 
-def _positive(value, name: str, unit: str) -> float:
-    v = float(value)
-    if not np.isfinite(v) or v <= 0:
-        raise ValueError(f"{name} must be a positive finite number ({unit}), got {value!r}")
-    return v
-
-
 def _poisson(nu, name: str = "nu") -> float:
     v = float(nu)
     if not (-1.0 < v < 0.5):
@@ -141,7 +136,7 @@ class Material:
     def __post_init__(self) -> None:
         object.__setattr__(self, "C", _check_stiffness(self.C))
         if self.density is not None:
-            object.__setattr__(self, "density", _positive(self.density, "density", "kg/m^3"))
+            object.__setattr__(self, "density", positive("density", self.density, "kg/m^3"))
         frame = np.array(self.frame, dtype=float)
         frame.setflags(write=False)
         object.__setattr__(self, "frame", frame)
@@ -155,7 +150,7 @@ class Material:
     @classmethod
     def isotropic(cls, E: float, nu: float, density: float | None = None) -> Material:
         """Isotropic solid of Young's modulus ``E`` (Pa) and Poisson's ratio ``nu`` in (-1, 0.5)."""
-        E = _positive(E, "E", "Pa")
+        E = positive("E", E, "Pa")
         nu = _poisson(nu)
         lam = E * nu / ((1 + nu) * (1 - 2 * nu))
         mu = E / (2 * (1 + nu))
@@ -175,7 +170,7 @@ class Material:
         Stability (positive definiteness) requires c11 > |c12|, c11 + 2 c12 > 0, c44 > 0.
         """
         for v, n in ((c11, "c11"), (c44, "c44")):
-            _positive(v, n, "Pa")
+            positive(n, v, "Pa")
         if not np.isfinite(c12):
             raise ValueError(f"c12 must be finite, got {c12!r}")
         if not (c11 > abs(c12) and c11 + 2 * c12 > 0):
@@ -198,9 +193,9 @@ class Material:
         Inverse (paper 1): C11 = 2 C44 (1 - ν)/(A (1 - 2ν)), C12 = 2 C44 ν/(A (1 - 2ν)).
         ``c44`` in Pa (default 1: dimensionless constants, as the paper's figures use).
         """
-        A = _positive(zener, "zener", "dimensionless")
+        A = positive("zener", zener, "dimensionless")
         nu = _poisson(poisson, "poisson")
-        c44 = _positive(c44, "c44", "Pa")
+        c44 = positive("c44", c44, "Pa")
         c11 = 2 * c44 * (1 - nu) / (A * (1 - 2 * nu))
         c12 = 2 * c44 * nu / (A * (1 - 2 * nu))
         return cls.cubic(c11, c12, c44, density=density)

@@ -28,6 +28,7 @@ from functools import lru_cache
 import numpy as np
 
 from .tangential import CattaneoMindlinLoop, DashpotLoop, MasingLoop, SavkoorLoop
+from .validation import positive
 
 __all__ = [
     "QCM",
@@ -71,10 +72,8 @@ class QCM:
     zq: float = 8.8e6
 
     def __post_init__(self):
-        for name in ("fundamental", "area", "zq"):
-            v = getattr(self, name)
-            if not np.isfinite(v) or v <= 0:
-                raise ValueError(f"QCM {name} must be finite and > 0, got {v!r}")
+        for name, unit in (("fundamental", "Hz"), ("area", "m^2"), ("zq", "kg m^-2 s^-1")):
+            positive(f"QCM {name}", getattr(self, name), unit)
         n = self.overtone
         if int(n) != n or n < 1 or int(n) % 2 == 0:
             raise ValueError(f"QCM overtone must be an odd integer >= 1, got {n!r}")

@@ -24,6 +24,9 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.special import binom
 
+from .validation import nonnegative as _nonneg
+from .validation import positive as _pos
+
 __all__ = [
     "CattaneoMindlinLoop",
     "DashpotLoop",
@@ -42,20 +45,6 @@ _C = np.array([-binom(0.5, k) * (-1.0) ** k for k in range(1, _NSERIES + 1)])
 _K = np.arange(1, _NSERIES + 1, dtype=float)
 # Below this amplitude ratio the loop area comes from its series (the closed form cancels).
 _SERIES_BELOW = 0.1
-
-
-def _pos(name, value) -> float:
-    v = float(value)
-    if not np.isfinite(v) or v <= 0:
-        raise ValueError(f"{name} must be finite and > 0, got {value!r}")
-    return v
-
-
-def _nonneg(name, value) -> float:
-    v = float(value)
-    if not np.isfinite(v) or v < 0:
-        raise ValueError(f"{name} must be finite and >= 0, got {value!r}")
-    return v
 
 
 def _amplitude(u0) -> np.ndarray:
@@ -87,7 +76,7 @@ def mindlin_stiffness(a, G_star):
     """
     a = np.asarray(a, dtype=float)
     G_star = np.asarray(G_star, dtype=float)
-    if np.any(~(a >= 0)) or np.any(~(G_star > 0)):
+    if not np.all(a >= 0) or not np.all(G_star > 0):
         raise ValueError(f"need contact radius a >= 0 and G* > 0, got a={a!r}, G*={G_star!r}")
     return _out(2.0 * G_star * a)
 
@@ -105,7 +94,7 @@ def mindlin_deresiewicz_energy(force_amplitude, kappa, mu, normal_force):
     kappa, mu, P = _pos("kappa", kappa), _pos("mu", mu), _pos("normal_force", normal_force)
     Q = np.asarray(force_amplitude, dtype=float)
     q = Q / (mu * P)
-    if np.any(~(q >= 0)) or np.any(q > 1 + 1e-12):
+    if not np.all(q >= 0) or np.any(q > 1 + 1e-12):
         raise ValueError(f"force_amplitude must lie in [0, μP] = [0, {mu * P!r}] N")
     q = np.minimum(q, 1.0)
     r = 1.0 - q

@@ -26,6 +26,7 @@ import numpy as np
 
 from ..halfspace import static_kernel
 from ..materials import Material
+from ..validation import nonnegative, positive
 
 __all__ = [
     "AnisotropicContact",
@@ -203,12 +204,8 @@ def sphere_contact(m: Material, radius, force, rtol: float = THETA_RTOL) -> Anis
             "sphere_contact needs real (undamped) constants: the static contact of a lossy "
             "material is that of its elastic part (drop with_loss)"
         )
-    R = np.asarray(radius, dtype=float)
-    F = np.asarray(force, dtype=float)
-    if not np.all(np.isfinite(R)) or np.any(R <= 0):
-        raise ValueError(f"radius must be finite and > 0 (m), got {radius!r}")
-    if not np.all(np.isfinite(F)) or np.any(F < 0):
-        raise ValueError(f"force must be finite and >= 0 (N), got {force!r}")
+    R = np.asarray(positive("radius", radius, "m"))
+    F = np.asarray(nonnegative("force", force, "N"))
     try:
         np.broadcast_shapes(R.shape, F.shape)
     except ValueError:

@@ -21,6 +21,9 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..validation import nonnegative as _nonnegative
+from ..validation import positive as _positive
+
 __all__ = [
     "Contact",
     "dmt",
@@ -62,20 +65,6 @@ class Contact:
     model: str = "hertz"
 
 
-def _positive(name: str, value) -> np.ndarray:
-    v = np.asarray(value, dtype=float)
-    if not np.all(np.isfinite(v)) or np.any(v <= 0):
-        raise ValueError(f"{name} must be finite and > 0, got {value!r}")
-    return v
-
-
-def _nonnegative(name: str, value) -> np.ndarray:
-    v = np.asarray(value, dtype=float)
-    if not np.all(np.isfinite(v)) or np.any(v < 0):
-        raise ValueError(f"{name} must be finite and >= 0, got {value!r}")
-    return v
-
-
 def _poisson(name: str, value) -> np.ndarray:
     v = np.asarray(value, dtype=float)
     if not np.all(np.isfinite(v)) or np.any(v <= -1) or np.any(v >= 0.5):
@@ -101,7 +90,7 @@ def effective_modulus(E1, nu1, E2=None, nu2=None):
     """
     E1, nu1 = _positive("E1", E1), _poisson("nu1", nu1)
     E2 = E1 if E2 is None else np.asarray(E2, dtype=float)
-    if np.any(~(E2 > 0)):
+    if not np.all(E2 > 0):
         raise ValueError(f"E2 must be > 0 (np.inf for a rigid body), got {E2!r}")
     nu2 = nu1 if nu2 is None else _poisson("nu2", nu2)
     return _out(1.0 / ((1.0 - nu1**2) / E1 + (1.0 - nu2**2) / E2))
@@ -117,7 +106,7 @@ def effective_shear_modulus(G1, nu1, G2=None, nu2=None):
     """
     G1, nu1 = _positive("G1", G1), _poisson("nu1", nu1)
     G2 = G1 if G2 is None else np.asarray(G2, dtype=float)
-    if np.any(~(G2 > 0)):
+    if not np.all(G2 > 0):
         raise ValueError(f"G2 must be > 0, got {G2!r}")
     nu2 = nu1 if nu2 is None else _poisson("nu2", nu2)
     return _out(1.0 / ((2.0 - nu1) / (4.0 * G1) + (2.0 - nu2) / (4.0 * G2)))

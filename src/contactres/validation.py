@@ -1,0 +1,32 @@
+"""Checks of physical parameters: a ValueError that names the parameter, its unit and the value."""
+
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["nonnegative", "positive"]
+
+
+def _check(name: str, value, unit: str | None, ok, rule: str):
+    v = np.asarray(value, dtype=float)
+    good = np.isfinite(v) & ok(v)
+    if not np.all(good):
+        unit_text = f" ({unit})" if unit else ""
+        if v.ndim == 0:
+            got = repr(value)
+        else:
+            idx = np.unravel_index(np.flatnonzero(~good.ravel())[0], v.shape)
+            where = idx[0] if len(idx) == 1 else tuple(int(i) for i in idx)
+            got = f"{float(v[idx])!r} at index {where}"
+        raise ValueError(f"{name} must be finite and {rule}{unit_text}, got {got}")
+    return float(v) if v.ndim == 0 else v
+
+
+def positive(name: str, value, unit: str | None = None):
+    """``value`` as a float (scalar) or float array, after checking it is finite and > 0."""
+    return _check(name, value, unit, lambda v: v > 0, "> 0")
+
+
+def nonnegative(name: str, value, unit: str | None = None):
+    """``value`` as a float (scalar) or float array, after checking it is finite and >= 0."""
+    return _check(name, value, unit, lambda v: v >= 0, ">= 0")
