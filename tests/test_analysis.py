@@ -16,6 +16,7 @@ from contactres.analysis_sweep import (
     cm_loop_table,
     fit_cm_loops,
     fit_sweeps,
+    model_curves,
     pad_sweeps,
 )
 from contactres.fitting import MODELS, Model, Parameter, fit
@@ -397,3 +398,49 @@ def test_settings_are_checked():
         AnalysisSettings(drift_p=2)
     with pytest.raises(ValueError, match="bootstrap"):
         AnalysisSettings(bootstrap=-1)
+
+
+@pytest.mark.parametrize(
+    ("kind", "u_max", "exact_loop", "limits_from", "tol"),
+    [
+        ("cm", 8e-9, True, "cm-loop", 0.002),
+        ("cm", 2e-9, False, "line", 0.02),
+        ("savkoor", 8e-9, True, "parabola", 0.02),
+        ("plateau", 8e-9, True, "plateau", 0.1),
+        ("elastic", 8e-9, True, "mean", 0.0),
+    ],
+)
+def test_model_curves_follow_the_forward_model(kind, u_max, exact_loop, limits_from, tol):
+    # The curve drawn for a sweep (its chosen model with the fitted values) against the
+    # noise-free shifts of the loop that made the data; tol is a fraction of their range.
+    kw = dict(loads=(3e-3,), n_exp=1, ramps=(2,), n_points=14, u_max=u_max, mu=1.5)
+    t = make_table(kind=kind, noise=0.01, **kw)
+    row = fit_sweeps(pad_sweeps(t), exact_loop=exact_loop).iloc[0]
+    assert row["limits_from"] == limits_from
+    u = np.linspace(0.05, 1.0, 14) * u_max
+    kappa = kappa_jkr_mindlin(3e-3, 70e9, 0.1, R, NU)
+    truth = cm_shifts(kappa, 1.5, 3e-3, u, kind=kind, dc=0.4 * u_max)
+    for curve, exact in zip(model_curves(row, u), truth, strict=True):
+        assert curve.shape == u.shape
+        assert np.max(np.abs(curve - exact)) < tol * np.ptp(exact) + 0.01
+
+
+def test_fit_starts_on_a_bound():
+    # least_squares (trf) must be started inside the bounds; a start on either bound is allowed.
+    line = Model(
+        "line",
+        "line",
+        (Parameter("a", "a", "-", (0.0, 10.0)), Parameter("b", "b", "-", (-1.0, 5.0))),
+        "x",
+        "-",
+        "y",
+        "-",
+        "test",
+        lambda x, a, b: a + b * x,
+    )
+    x = np.linspace(0, 1, 20)
+    for start in ({"a": 0.0, "b": -1.0}, {"a": 10.0, "b": 5.0}):
+        res = fit(line, x, 2.0 + 3.0 * x, start=start)
+        assert res.success
+        assert res.values["a"] == pytest.approx(2.0, rel=1e-9)
+        assert res.values["b"] == pytest.approx(3.0, rel=1e-9)

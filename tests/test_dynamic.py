@@ -18,6 +18,7 @@ from contactres import Material
 from contactres.dynamic import (
     MODELS,
     contact_displacement,
+    contact_pressure,
     dcsf,
     dcsf_models,
     dynamic_contact_stiffness,
@@ -358,3 +359,24 @@ def test_bad_input_is_rejected_with_clear_messages():
         dynamic_contact_stiffness(_cubic(0.5), 1e-3, 1.0, 1e6)
     with pytest.raises(ValueError, match="too large"):
         dcsf(m, 500.0)
+
+
+def test_every_entry_point_refuses_ka_beyond_the_contour_range():
+    # Beyond k_s a x slowness = 60 the contour weights swamp the result (N ~ 1e15 at k_l a = 40
+    # instead of O(1)): dcsf, contact_displacement and contact_pressure must all refuse, not only
+    # the first.
+    m = _cubic(0.5)
+    for call in (
+        lambda: dcsf(m, 40.0),
+        lambda: contact_displacement(m, 40.0, 0.5),
+        lambda: contact_displacement(m, [0.5, 40.0], 0.5),
+        lambda: contact_pressure(m, 40.0, 0.5),
+    ):
+        with pytest.raises(ValueError, match="ka too large"):
+            call()
+    with pytest.raises(ValueError, match="phi"):
+        contact_pressure(m, 1.0, 0.5, np.nan)
+    with pytest.raises(ValueError, match=r"frequency .*Hz.*-5"):
+        dynamic_contact_stiffness(Material.crystal("Cu"), 1e-3, 1.0, -5.0)
+    with pytest.raises(ValueError, match=r"ka .* got -2.0 at index 1"):
+        dcsf(m, [1.0, -2.0])

@@ -86,6 +86,8 @@ def test_shear_reference_is_surface_frame_c44():
     assert shear_reference(CU.with_loss(0.1)) == 75.4e9
     c111 = CU.rotated((1, 1, 1))
     assert shear_reference(c111) == pytest.approx(np.real(c111.C[3, 3]))
+    # independent: the shear modulus on planes normal to [111] is (C11 − C12 + C44)/3
+    assert shear_reference(c111) == pytest.approx((168.4e9 - 121.4e9 + 75.4e9) / 3, rel=1e-12)
 
 
 # --------------------------------------------------------------------------------- dynamics

@@ -92,6 +92,8 @@ def test_stiffness_shift_round_trip(kappa, xi, n, overtone):
         dict(overtone=2),
         dict(overtone=0),
         dict(overtone=3.5),
+        dict(overtone=np.inf),
+        dict(overtone=np.nan),
         dict(fundamental=-5e6),
         dict(area=0.0),
         dict(zq=np.nan),
@@ -308,3 +310,12 @@ def test_bad_input():
         cr.shifts_from_loop(Q, object(), [1e-9])
     with pytest.raises(ValueError, match="n_contacts"):
         cr.shifts_from_loop(Q, CM, [1e-9], 0)
+    # a negative amplitude is named with its value and position, also by the expansions
+    with pytest.raises(ValueError, match=r"u0 .*>= 0 \(m\), got -2e-09 at index 1"):
+        cr.shifts_from_loop(Q, CM, [1e-9, -2e-9])
+    with pytest.raises(ValueError, match="u0"):
+        cr.cattaneo_mindlin_expansion(CM, -1e-9)
+    with pytest.raises(ValueError, match="u0"):
+        cr.savkoor_expansion(SV, -1e-9)
+    with pytest.raises(ValueError, match=r"kappa > 0 .*got kappa=-1"):
+        cr.friction_from_slopes(Q, -1.0, 1e-3, -1.0, 1.0)

@@ -43,7 +43,7 @@ from functools import lru_cache
 import numpy as np
 import pandas as pd
 
-from .fitting import Model, Parameter, register_model
+from .fitting import MODELS, Model, Parameter, register_model
 
 __all__ = [
     "MODEL_ORDER",
@@ -56,7 +56,6 @@ __all__ = [
 ]
 
 MODEL_ORDER = ("elastic", "cattaneo-mindlin", "savkoor", "plateau")
-N_PARAMS = {"elastic": 2, "cattaneo-mindlin": 4, "savkoor": 4, "plateau": 5}
 
 # Table of the exact CM loop in x = κu0/(μF_N): full sliding starts at x = 3/2; beyond X_MAX the
 # contact slides grossly over almost all the cycle and the fit says so instead of extrapolating.
@@ -122,6 +121,34 @@ _amplitude_model(
         dgamma0 + dgamma_slope * np.maximum(u - u_c, 0.0),
     ),
 )
+
+
+def _cm_loop_shifts(u, A, B, theta):
+    x, g1, g2, _, _ = cm_loop_table()
+    xu = np.asarray(theta) * np.asarray(u)
+    return A * np.interp(xu, x, g1), B + A * np.interp(xu, x, g2)
+
+
+register_model(
+    Model(
+        key="cattaneo-mindlin-loop",
+        display="exact Cattaneo-Mindlin loop with a dashpot",
+        parameters=(
+            Parameter("A", "Pκ (low-amplitude Δf)", "Hz", (0.0, np.inf), scale=100.0),
+            Parameter("B", "Pωξ (low-amplitude ΔΓ)", "Hz", (-np.inf, np.inf), scale=10.0),
+            Parameter("theta", "κ/(μF_N)", "1/m", (0.0, np.inf), scale=1e8),
+        ),
+        x="amplitude",
+        x_unit="m",
+        observable="df, dgamma",
+        unit="Hz",
+        source="paper 2, Eqs. 4-6 (Masing loops) and Eq. 12 (dashpot)",
+        function=_cm_loop_shifts,
+    )
+)
+
+#: Number of fitted parameters of each amplitude model (the k of its BIC), from the registry.
+N_PARAMS = {m: len(MODELS[m].parameters) for m in (*MODEL_ORDER, "cattaneo-mindlin-loop")}
 
 
 @dataclass(frozen=True)
@@ -209,7 +236,9 @@ def fit_sweeps(p: Padded, delta_bic: float = 2.0, exact_loop: bool = True) -> pd
 
     Returns one row per sweep (order of first appearance) with the low-amplitude limits, slopes
     and curvatures with standard errors, the critical amplitude of a plateau, the BIC of each
-    model, the noise levels (from the straight line) and the chosen ``model``.
+    model, the noise levels (from the straight line), the chosen ``model`` and, with
+    ``exact_loop``, the loop fit of every sweep from u0 = 0 (the columns of :func:`fit_cm_loops`
+    prefixed ``cm_``).
     """
     Y = np.stack([p.df, p.dg])
     n = p.n.astype(float)
@@ -221,8 +250,9 @@ def fit_sweeps(p: Padded, delta_bic: float = 2.0, exact_loop: bool = True) -> pd
     mean = (p.w * Y).sum(-1) / n
     rss_el = (p.w * (Y - mean[..., None]) ** 2).sum(-1)
     var_mean = rss_el / np.maximum(n - 1, 1) / n
-    # cattaneo-mindlin (straight line)
+    # cattaneo-mindlin (straight line); its residuals give the noise level of each channel
     lin = _line(p.u, Y, p.w)
+    sigma = np.sqrt(lin[5] / np.maximum(n - 2, 1))
     # savkoor (parabola in u0: straight line in u0²)
     par = _line(p.u**2, Y, p.w)
     # plateau (hinge), grid over u_c
@@ -252,23 +282,24 @@ def fit_sweeps(p: Padded, delta_bic: float = 2.0, exact_loop: bool = True) -> pd
     hinge = tuple(pick(a) for a in hin)
     uc_best = uc.reshape(S, -1)[np.arange(S), best]
 
-    bic_line = _bic(lin[5], n, 4)
+    bic_line = _bic(lin[5], n, N_PARAMS["cattaneo-mindlin"])
     use_loop = np.zeros(S, bool)
     if exact_loop:
-        sig = np.sqrt(lin[5] / np.maximum(n - 2, 1))
-        loop = fit_cm_loops(p.u, p.df, p.dg, p.w, sig[0], sig[1])
+        loop = fit_cm_loops(p.u, p.df, p.dg, p.w, sigma[0], sigma[1])
         rss_loop = np.stack([loop["rss_df"].to_numpy(), loop["rss_dgamma"].to_numpy()])
         ok = (loop["edge"].to_numpy() == "") & (loop["A_Hz"].to_numpy() > 0)
-        bic_loop = np.where(ok, _bic(rss_loop, n, 3), np.inf)
+        bic_loop = np.where(ok, _bic(rss_loop, n, N_PARAMS["cattaneo-mindlin-loop"]), np.inf)
         use_loop = bic_loop < bic_line
         rows["bic_cattaneo-mindlin-line"] = bic_line
         rows["bic_cattaneo-mindlin-loop"] = bic_loop
-        rows["cm_theta_per_m"] = loop["theta_per_m"].to_numpy()
+        # The whole loop fit (cm_A_Hz, cm_theta_per_m, ...): μ_fit of the analysis reuses it.
+        for col in loop.columns:
+            rows[f"cm_{col}"] = loop[col].to_numpy()
     bic = {
-        "elastic": _bic(rss_el, n, 2),
+        "elastic": _bic(rss_el, n, N_PARAMS["elastic"]),
         "cattaneo-mindlin": np.minimum(bic_line, rows.get("bic_cattaneo-mindlin-loop", np.inf)),
-        "savkoor": _bic(par[5], n, 4),
-        "plateau": np.where(has_plateau, _bic(hinge[5], n, 5), np.inf),
+        "savkoor": _bic(par[5], n, N_PARAMS["savkoor"]),
+        "plateau": np.where(has_plateau, _bic(hinge[5], n, N_PARAMS["plateau"]), np.inf),
     }
     B = np.stack([bic[m] for m in MODEL_ORDER])  # (4, S)
     lowest = B.min(axis=0)
@@ -298,7 +329,7 @@ def fit_sweeps(p: Padded, delta_bic: float = 2.0, exact_loop: bool = True) -> pd
         rows[f"{name}0_slope_cov"] = np.where(is_cm & use_loop, 0.0, cov)
         rows[f"{name}_curvature_Hz_per_m2"] = par[1][c]
         rows[f"{name}_curvature_err_Hz_per_m2"] = np.sqrt(par[3][c])
-        rows[f"sigma_{name}_Hz"] = np.sqrt(lin[5][c] / np.maximum(n - 2, 1))
+        rows[f"sigma_{name}_Hz"] = sigma[c]
     rows["plateau_amplitude_m"] = np.where(is_pl, uc_best, np.nan)
     rows["model"] = models
     rows["limits_from"] = np.select(
@@ -432,22 +463,33 @@ def fit_cm_loops(u, df, dg, w, sigma_df, sigma_dg, rounds: int = 4) -> pd.DataFr
     )
 
 
+# Output column of each parameter of the registered amplitude models.
+_COLUMN_OF = {
+    "df0": "df0_Hz",
+    "dgamma0": "dgamma0_Hz",
+    "df_slope": "df_slope_Hz_per_m",
+    "dgamma_slope": "dgamma_slope_Hz_per_m",
+    "df_curvature": "df_curvature_Hz_per_m2",
+    "dgamma_curvature": "dgamma_curvature_Hz_per_m2",
+    "u_c": "plateau_amplitude_m",
+    "A": "df0_Hz",
+    "B": "dgamma0_Hz",
+    "theta": "cm_theta_per_m",
+}
+
+
 def model_curves(row, u) -> tuple[np.ndarray, np.ndarray]:
-    """Δf(u0), ΔΓ(u0) in Hz of the model chosen for one sweep (a row of :func:`fit_sweeps`)."""
+    """Δf(u0), ΔΓ(u0) in Hz of the model chosen for one sweep (a row of :func:`fit_sweeps`).
+
+    Evaluates the registered model function (:data:`contactres.fitting.MODELS`) with the
+    sweep's fitted values; a Cattaneo-Mindlin sweep whose limits come from the exact loop is
+    drawn as that loop.
+    """
     u = np.asarray(u, dtype=float)
-    f0, g0 = row["df0_Hz"], row["dgamma0_Hz"]
-    model = row["model"]
-    if model == "elastic":
-        return np.full_like(u, f0), np.full_like(u, g0)
-    if model == "savkoor":
-        return (
-            f0 + row["df_curvature_Hz_per_m2"] * u**2,
-            g0 + row["dgamma_curvature_Hz_per_m2"] * u**2,
-        )
-    if model == "cattaneo-mindlin" and row.get("limits_from") == "cm-loop":
-        x, g1, g2, _, _ = cm_loop_table()
-        xu = row["cm_theta_per_m"] * u
-        return f0 * np.interp(xu, x, g1), g0 + f0 * np.interp(xu, x, g2)
-    uc = row["plateau_amplitude_m"] if model == "plateau" else 0.0
-    e = np.maximum(u - uc, 0.0)
-    return f0 + row["df_slope_Hz_per_m"] * e, g0 + row["dgamma_slope_Hz_per_m"] * e
+    key = row["model"]
+    if key == "cattaneo-mindlin" and row.get("limits_from") == "cm-loop":
+        key = "cattaneo-mindlin-loop"
+    model = MODELS[key]
+    values = {p.key: row[_COLUMN_OF[p.key]] for p in model.parameters}
+    df, dg = model.function(u, **values)
+    return np.broadcast_to(df, u.shape).astype(float), np.broadcast_to(dg, u.shape).astype(float)

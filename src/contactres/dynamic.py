@@ -47,7 +47,8 @@ from .dynamic_quadrature import (
     resolution_for,
 )
 from .halfspace import shear_reference
-from .materials import Material
+from .materials import Material, require_material
+from .validation import nonnegative
 
 __all__ = [
     "ALL_MODELS",
@@ -74,8 +75,7 @@ _KA_MAX = 60.0
 
 def shear_wavenumber_ratio(m: Material) -> float:
     """k_s/k_l = √(C33/C44) of the surface frame (Re parts): k_s a = k_l a × this ratio."""
-    C = np.asarray(m.C).real
-    return math.sqrt(C[2, 2] / C[3, 3])
+    return math.sqrt(float(np.real(m.C[2, 2])) / shear_reference(m))
 
 
 def _check_model(model: str) -> str:
@@ -87,14 +87,37 @@ def _check_model(model: str) -> str:
 
 
 def _ks_a(m: Material, ka, wavenumber: str) -> np.ndarray:
-    ka = np.asarray(ka, dtype=float)
-    if not np.all(np.isfinite(ka)) or np.any(ka < 0):
-        raise ValueError(f"ka (normalised wave number k a) must be finite and >= 0, got {ka!r}")
+    require_material(m, lossless=True)
+    ka = np.asarray(nonnegative("ka (normalised wave number k a)", ka))
     if wavenumber == "longitudinal":
         return ka * shear_wavenumber_ratio(m)
     if wavenumber == "shear":
         return ka
     raise ValueError(f"wavenumber must be one of {', '.join(WAVENUMBERS)}, got {wavenumber!r}")
+
+
+def _table(m: Material, ksa: np.ndarray, loss: float, rtol: float):
+    """The kernel table of ``m``, after checking that k_s a stays where its contour is accurate."""
+    table = kernel_table(m, loss, resolution_for(rtol))
+    if ksa.size and float(np.max(ksa)) * table.t1 > _KA_MAX:
+        raise ValueError(
+            f"ka too large: k_s a = {float(np.max(ksa)):.4g} (k_s a x slowness {table.t1:.3g} "
+            f"must stay below {_KA_MAX:g}; the paper's range is k_l a <= 2)"
+        )
+    return table
+
+
+def _contact_points(rbar, phi, edge: bool):
+    """r̄ in [0, 1] (``edge``) or [0, 1) and finite φ, as float arrays."""
+    r = np.asarray(rbar, dtype=float)
+    below_top = r <= 1 if edge else r < 1
+    if not np.all(np.isfinite(r) & (r >= 0) & below_top):
+        where = "[0, 1]" if edge else "[0, 1) (the edge is singular)"
+        raise ValueError(f"rbar (r/a) must lie in {where}, got {rbar!r}")
+    p = np.asarray(phi, dtype=float)
+    if not np.all(np.isfinite(p)):
+        raise ValueError(f"phi must be finite (rad), got {phi!r}")
+    return r, p
 
 
 def _model_n(f: dict, model: str) -> np.ndarray:
@@ -129,12 +152,7 @@ def dcsf_models(
     """
     names = [_check_model(x) for x in ([models] if isinstance(models, str) else models)]
     ksa = _ks_a(m, ka, wavenumber)
-    table = kernel_table(m, loss, resolution_for(rtol))
-    if ksa.size and float(np.max(ksa)) * table.t1 > _KA_MAX:
-        raise ValueError(
-            f"ka too large: k_s a = {float(np.max(ksa)):.4g} (k_s a x slowness {table.t1:.3g} "
-            f"must stay below {_KA_MAX:g}; the paper's range is k_l a <= 2)"
-        )
+    table = _table(m, ksa, loss, rtol)
     flat = ksa.ravel()
     out = {}
     approx = [n for n in names if n != "exact"]
@@ -219,11 +237,9 @@ def dynamic_contact_stiffness(
     """
     from .normal.anisotropic import sphere_contact
 
-    if m.density is None:
+    if require_material(m).density is None:
         raise ValueError("dynamic_contact_stiffness needs the material density (kg/m^3)")
-    f = np.asarray(frequency, dtype=float)
-    if not np.all(np.isfinite(f)) or np.any(f < 0):
-        raise ValueError(f"frequency must be finite and >= 0 (Hz), got {frequency!r}")
+    f = np.asarray(nonnegative("frequency", frequency, "Hz"))
     contact = sphere_contact(m, radius, force)
     a = np.asarray(contact.contact_radius, dtype=float)
     k_s = 2 * np.pi * f * math.sqrt(m.density / shear_reference(m))
@@ -270,14 +286,9 @@ def contact_displacement(
     if shape not in ("flat", "hertz"):
         raise ValueError(f"shape must be 'flat' or 'hertz', got {shape!r}")
     ksa = _ks_a(m, ka, wavenumber)
-    r = np.asarray(rbar, dtype=float)
-    if not np.all(np.isfinite(r)) or np.any(r < 0) or np.any(r > 1):
-        raise ValueError(f"rbar (r/a) must lie in [0, 1], got {rbar!r}")
-    p = np.asarray(phi, dtype=float)
-    if not np.all(np.isfinite(p)):
-        raise ValueError(f"phi must be finite (rad), got {phi!r}")
+    r, p = _contact_points(rbar, phi, edge=True)
     ksa, r, p = np.broadcast_arrays(ksa, r, p)
-    table = kernel_table(m, loss, resolution_for(rtol))
+    table = _table(m, ksa, loss, rtol)
     out = np.empty(ksa.shape, dtype=complex)
     flat_k, flat_r, flat_p = ksa.ravel(), r.ravel(), p.ravel()
     res = out.reshape(-1)
@@ -313,12 +324,8 @@ def contact_pressure(
     ksa = _ks_a(m, ka, wavenumber)
     if ksa.ndim != 0:
         raise ValueError("contact_pressure takes one ka at a time")
-    r = np.asarray(rbar, dtype=float)
-    if not np.all(np.isfinite(r)) or np.any(r < 0) or np.any(r >= 1):
-        raise ValueError(f"rbar (r/a) must lie in [0, 1) (the edge is singular), got {rbar!r}")
-    p = np.asarray(phi, dtype=float)
-    r, p = np.broadcast_arrays(r, p)
-    table = kernel_table(m, loss, resolution_for(rtol))
+    r, p = np.broadcast_arrays(*_contact_points(rbar, phi, edge=False))
+    table = _table(m, ksa, loss, rtol)
     size = galerkin_size(float(ksa), rtol)
     _, c, basis = exact_n(table, np.atleast_1d(ksa), size, return_coeffs=True)
     c = c[0]

@@ -33,13 +33,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import special
 
-from .dynamic_quadrature import (
-    KernelTable,
-    _chi,
-    _far_weights,
-    kernel_table,
-    resolution_for,
-)
+from .dynamic_quadrature import KernelTable, _far_basis
 
 __all__ = ["GalerkinSize", "exact_n", "galerkin_size", "pressure_basis"]
 
@@ -118,14 +112,8 @@ def exact_n(table: KernelTable, ksa: np.ndarray, size: GalerkinSize, return_coef
         for m in ms:
             I[m] += np.einsum("ak,pak,qak->apq", wk * near_h[m][None, :], jp, jp, optimize=True)
         # Far field: Chebyshev series in w = (T1 ka/s)² of each harmonic.
-        res = table.resolution
-        sg, ds, s_end, _ = _far_weights(res, table.t1 * float(np.min(ka)), table.far_harmonics)
-        w = (table.t1 * ka[:, None] / sg[None, :]) ** 2
-        inside = w <= 1
-        x = np.where(inside, 2 * w - 1, 1.0)
-        nf = table.far_coeffs.shape[1]
-        hand = (1 - _chi(sg[None, :] / ka[:, None], table.t1)) * inside * w * ds[None, :]
-        cheb = np.polynomial.chebyshev.chebvander(x, nf - 1) * hand[:, :, None]  # (na, ns, nf)
+        _, sg, s_end, cheb = _far_basis(table, ka)  # cheb: (na, ns, nf)
+        nf = cheb.shape[2]
         js = np.stack([special.spherical_jn(int(p), sg) for p in orders])  # (np, ns)
         iu = np.triu_indices(orders.size)
         prod = js[iu[0]] * js[iu[1]]  # (npairs, ns)
@@ -169,10 +157,3 @@ def exact_n(table: KernelTable, ksa: np.ndarray, size: GalerkinSize, return_coef
     if return_coeffs:
         return out_n, coeffs, basis
     return out_n
-
-
-def exact_dcsf(m, ksa: np.ndarray, loss: float, rtol: float, size: GalerkinSize | None = None):
-    """DCSF of the rigid flat punch (see the module docstring) at k_s a ``ksa`` (1-D)."""
-    table = kernel_table(m, loss, resolution_for(rtol))
-    size = size or galerkin_size(float(np.max(ksa, initial=0.0)), rtol)
-    return table.n_static / exact_n(table, np.asarray(ksa, dtype=float), size)

@@ -33,7 +33,7 @@ from scipy import special
 
 from .dynamic_weights import _bessel_even, _j1s, _sinc, _wa_harmonic_weights, _wa_line_weight
 from .halfspace import dynamic_kernel, shear_reference, static_kernel
-from .materials import Material
+from .materials import Material, require_material, rotate_tensor, voigt_to_tensor
 
 __all__ = [
     "KernelTable",
@@ -70,7 +70,8 @@ class Resolution:
     n_fit : Chebyshev nodes of the far field in w = (T₁/κ)²
     s_ratio : ratio of the geometric far-field s panels (below s = 8)
     s_panel : width of the uniform far-field s panels above s = 8
-    s_far : end of the far-field s integral (the remainder is ~ s_far^-2.5 and neglected)
+    s_far : end of the far-field s grid; beyond it the leading asymptotic term (~ s_far^-2.5) is
+        added in closed form (:func:`_far_remainder`) and the rest (~ s_far^-3.5) neglected
     n_gauss : Gauss-Legendre nodes per far-field s panel
     theta_tol : n_theta is doubled until the angular harmonics of g in the upper half of the
         resolved band are below theta_tol times the axisymmetric part (strong anisotropy needs
@@ -123,17 +124,6 @@ def resolution_for(rtol: float) -> Resolution:
 
 
 # ----------------------------------------------------------------------------------- materials
-def _check_material(m) -> Material:
-    if not isinstance(m, Material):
-        raise ValueError(f"m must be a contactres.Material, got {type(m).__name__}")
-    if m.is_lossy:
-        raise ValueError(
-            "pass the undamped material (real constants) and set the damping with loss= "
-            "(constants C (1 + i loss), paper 1); the material given is already lossy"
-        )
-    return m
-
-
 def _check_loss(loss) -> float:
     q = float(loss)
     if not (np.isfinite(q) and 0 <= q < 1):
@@ -143,8 +133,6 @@ def _check_loss(loss) -> float:
 
 def _max_slowness(m: Material) -> float:
     """Largest slowness of bulk waves travelling along the surface, in units of 1/c_s."""
-    from .materials import voigt_to_tensor
-
     c = voigt_to_tensor(np.asarray(m.C).real) / shear_reference(m)
     th = np.linspace(0.0, np.pi, 181)
     n = np.stack([np.cos(th), np.sin(th), np.zeros_like(th)], axis=-1)
@@ -193,7 +181,7 @@ def _elastic_kernel(m: Material, kappa, theta, loss: float):
 
 def kernel_table(m: Material, loss: float = 0.02, resolution: Resolution | None = None):
     """The :class:`KernelTable` of the undamped material ``m`` (surface frame) with loss Q⁻¹."""
-    m = _check_material(m)
+    m = require_material(m, lossless=True)
     q = _check_loss(loss)
     res = resolution or Resolution()
     key = (np.asarray(m.C).tobytes(), q, res)
@@ -209,14 +197,11 @@ def kernel_table(m: Material, loss: float = 0.02, resolution: Resolution | None 
 def _symmetry(m: Material) -> tuple[bool, bool]:
     """(mirror, fourfold): g(−θ) = g(θ) (mirror plane y -> −y) and g(θ + π/2) = g(θ) (4-fold
     axis along z) of the surface-frame stiffness; a cubic (001) face has both."""
-    from .materials import voigt_to_tensor
-
     c = voigt_to_tensor(np.asarray(m.C).real)
     scale = np.max(np.abs(c))
 
     def same(rot):
-        r = np.asarray(rot, dtype=float)
-        cr = np.einsum("ia,jb,kc,ld,abcd->ijkl", r, r, r, r, c, optimize=True)
+        cr = rotate_tensor(c, np.asarray(rot, dtype=float))
         return bool(np.max(np.abs(cr - c)) <= 1e-12 * scale)
 
     return same([[1, 0, 0], [0, -1, 0], [0, 0, 1]]), same([[0, -1, 0], [1, 0, 0], [0, 0, 1]])
@@ -333,22 +318,47 @@ def _far_grid(res: Resolution, s_low: float):
 _FAR_CACHE: dict = {}
 
 
-def _far_weights(res: Resolution, s_low: float, harmonics: np.ndarray):
-    """Analytic weights of the far field on a fixed s grid (cached per grid and harmonic).
+def _far_basis(table: KernelTable, ka: np.ndarray):
+    """The far-field s grid for k_s a values ``ka`` (1-D, > 0) and the Chebyshev basis on it.
 
-    Returns s, ds, the end of the grid and a (6, n_m, n_s) array: for the functionals F0, F1,
-    FW, F2D, H0, H1 (see :func:`functionals`) and harmonic e^{inθ}, n = 2m, the factor 2π iⁿ ×
-    (shape transform) × (J_n(s r̄) at the point, or its WA average W_n).
+    Returns the grid's cache key, s, the end S of the grid and ``basis`` (na, ns, nf): T_f(2w − 1)
+    × w × (1 − χ(s/ka)) × ds with w = (T1 ka/s)² (zero where w > 1), so that ``basis @
+    far_coeffs[m]`` is harmonic m of g − g∞ at κ = s/ka times the hand-over and ds. The grid is
+    shared (cached) by all ka whose smallest value falls in the same geometric bin.
     """
+    res = table.resolution
     # Quantise s_low so that curves with nearby smallest ka share a grid.
+    s_low = table.t1 * float(np.min(ka))
     level = math.floor(math.log(max(s_low, 1e-8)) / math.log(res.s_ratio))
     gkey = (res, level)
     grid = _GRIDS.get(gkey)
     if grid is None:
         if len(_GRIDS) > 16:
-            _GRIDS.pop(next(iter(_GRIDS)))
+            old = next(iter(_GRIDS))
+            del _GRIDS[old]
+            # ...and the weights on it, which would otherwise pile up in a long session.
+            for key in [k for k in _FAR_CACHE if k[0] == old]:
+                del _FAR_CACHE[key]
         grid = _GRIDS[gkey] = _far_grid(res, res.s_ratio**level)
-    s, ds, end = grid
+    sg, ds, s_end = grid
+    w = (table.t1 * ka[:, None] / sg[None, :]) ** 2  # (na, ns)
+    inside = w <= 1
+    x = np.where(inside, 2 * w - 1, 1.0)
+    nf = table.far_coeffs.shape[1]
+    hand = (1 - _chi(sg[None, :] / ka[:, None], table.t1)) * inside * w * ds[None, :]
+    basis = np.polynomial.chebyshev.chebvander(x, nf - 1) * hand[:, :, None]  # (na, ns, nf)
+    return gkey, sg, s_end, basis
+
+
+def _far_weights(gkey, s: np.ndarray, harmonics: np.ndarray) -> np.ndarray:
+    """Analytic weights of the far field on the grid ``gkey`` (nodes ``s``; from
+    :func:`_far_basis`), cached per grid and harmonic.
+
+    Returns a (6, n_m, n_s) array: for the functionals F0, F1, FW, F2D, H0, H1 (see
+    :func:`functionals`) and harmonic e^{inθ}, n = 2m, the factor 2π iⁿ × (shape transform) ×
+    (J_n(s r̄) at the point, or its WA average W_n).
+    """
+    res = gkey[0]
     sinc = _sinc(s)
     j1s = _j1s(s)
     nabs = [int(n) for n in 2 * np.abs(harmonics)]
@@ -377,7 +387,7 @@ def _far_weights(res: Resolution, s_low: float, harmonics: np.ndarray):
             out[0, i] = two_pi * sinc
             out[3, i] = two_pi * sinc**2
             out[4, i] = two_pi * j1s
-    return s, ds, end, out
+    return out
 
 
 # ----------------------------------------------------------------------------------- functionals
@@ -458,14 +468,8 @@ def functionals(table: KernelTable, ksa: np.ndarray) -> dict:
     ]
 
     # Far field: Chebyshev series in w = (T1 ka/s)² against the harmonic weights on a fixed grid.
-    res = table.resolution
-    sg, ds, s_end, weights = _far_weights(res, table.t1 * float(np.min(ka)), table.far_harmonics)
-    w = (table.t1 * ka[:, None] / sg[None, :]) ** 2  # (na, ns)
-    inside = w <= 1
-    x = np.where(inside, 2 * w - 1, 1.0)
-    nf = table.far_coeffs.shape[1]
-    hand = (1 - _chi(sg[None, :] / ka[:, None], table.t1)) * inside * w * ds[None, :]
-    basis = np.polynomial.chebyshev.chebvander(x, nf - 1) * hand[:, :, None]  # (na, ns, nf)
+    gkey, sg, s_end, basis = _far_basis(table, ka)
+    weights = _far_weights(gkey, sg, table.far_harmonics)
     # v[f, s, j] = Σ_m c_{m f} weight_j[m, s]  for the six functionals j.
     v = np.einsum("mf,jms->sfj", table.far_coeffs, weights, optimize=True)
     basis = basis.reshape(ka.size, -1)
@@ -477,6 +481,12 @@ def functionals(table: KernelTable, ksa: np.ndarray) -> dict:
     return out
 
 
+def _far_limit(table: KernelTable) -> np.ndarray:
+    """C₁ per far-field harmonic: the limit of (g − g∞)/w as w = (T1/κ)² -> 0, Σ_k c_k T_k(−1)."""
+    nf = table.far_coeffs.shape[1]
+    return table.far_coeffs @ np.where(np.arange(nf) % 2 == 0, 1.0, -1.0)
+
+
 def _far_remainder(table: KernelTable, ka: np.ndarray, s_end: float) -> np.ndarray:
     """Leading asymptotics of the far field beyond the end S of the s grid, (na, 6).
 
@@ -486,7 +496,7 @@ def _far_remainder(table: KernelTable, ka: np.ndarray, s_end: float) -> np.ndarr
     weight 2π sinc(s) leaves 2π cos(S)/S³ (by parts). What is left (the oscillating parts, the WA
     weight, whose r = 1 endpoint is softened by the average) is below (T1 ka)² S^-3.5.
     """
-    c1 = table.far_coeffs @ np.where(np.arange(table.far_coeffs.shape[1]) % 2 == 0, 1.0, -1.0)
+    c1 = _far_limit(table)
     scale = (table.t1 * ka) ** 2
     out = np.zeros((ka.size, 6), dtype=complex)
     edge = np.sum(c1)  # Σ_m C₁_m: the direction φ = 0
@@ -524,14 +534,8 @@ def point_values(table: KernelTable, ksa: float, rbar: np.ndarray, phi: np.ndarr
     inner = np.einsum("pkt,kt->pk", cosw, vals) * (2 * np.pi / nt)
     out += np.sum(inner * (table.near_weight * ksa * shape_fn(s))[None, :], axis=1)
     # Far field: harmonics with J_n(s r̄) weights; the grid and Chebyshev basis as in dcsf.
-    res = table.resolution
-    sg, ds, s_end, _ = _far_weights(res, table.t1 * ksa, table.far_harmonics)
-    w = (table.t1 * ksa / sg) ** 2
-    inside = w <= 1
-    x = np.where(inside, 2 * w - 1, 1.0)
-    nf = table.far_coeffs.shape[1]
-    hand = (1 - _chi(sg / ksa, table.t1)) * inside * w * ds
-    basis = np.polynomial.chebyshev.chebvander(x, nf - 1) * hand[:, None]  # (ns, nf)
+    _, sg, s_end, basis = _far_basis(table, np.array([ksa]))
+    basis = basis[0]  # (ns, nf)
     dhat = table.far_coeffs @ basis.T  # (n_m, ns): harmonic m of g − g∞ at s/ksa
     nabs = 2 * np.abs(table.far_harmonics)
     sign = np.where(nabs % 4 == 0, 1.0, -1.0)
@@ -547,21 +551,13 @@ def point_values(table: KernelTable, ksa: float, rbar: np.ndarray, phi: np.ndarr
             out[lo : lo + 16] += ph[lo : lo + 16, i] * (j @ coef[i])
     if shape == "flat":
         # Slowly oscillating tail of sinc(s) J_n(s r̄) beyond the grid (see _far_remainder).
-        c1 = table.far_coeffs @ np.where(np.arange(nf) % 2 == 0, 1.0, -1.0)  # C₁ per harmonic
+        c1 = _far_limit(table)
         edge = ph @ c1
         inside = rbar > 0
         r = np.where(inside, rbar, 1.0)
         tail = (table.t1 * ksa) ** 2 * np.pi * np.sqrt(2 / (np.pi * r)) * _tail_sine(1 - r, s_end)
-        out += np.where(
-            inside,
-            edge * tail,
-            2
-            * np.pi
-            * (table.t1 * ksa) ** 2
-            * math.cos(s_end)
-            * c1[table.far_harmonics == 0].sum()
-            * s_end**-3,
-        )
+        centre = _far_remainder(table, np.array([ksa]), s_end)[0, 0]  # F0's tail, r̄ = 0
+        out += np.where(inside, edge * tail, centre)
     return out
 
 

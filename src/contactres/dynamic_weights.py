@@ -90,7 +90,7 @@ def _bessel_even(orders, s: np.ndarray) -> dict:
     if np.any(down):
         x = s[down]
         j_next = special.jv(top + 1, x)
-        j_cur = special.jv(top, x)
+        j_top = j_cur = special.jv(top, x)
         for n in range(top, -1, -1):
             if n in want:
                 out[n][down] = j_cur
@@ -98,7 +98,7 @@ def _bessel_even(orders, s: np.ndarray) -> dict:
                 break
             j_next, j_cur = j_cur, (2 * n / x) * j_cur - j_next
         # Where the starting values underflow (s << top) the recurrence has nothing to carry.
-        low = np.abs(special.jv(top, x)) < 1e-280
+        low = np.abs(j_top) < 1e-280
         if np.any(low):
             idx = np.flatnonzero(down)[low]
             for n in orders:

@@ -20,7 +20,7 @@ import pandas as pd
 from matplotlib.figure import Figure
 from matplotlib.ticker import NullLocator
 
-from .dynamic import contact_displacement, dcsf_models
+from .dynamic import contact_displacement, dcsf, dcsf_models
 from .fileio import ensure_dir, save_figure, write_csv
 from .materials import Material
 
@@ -99,22 +99,26 @@ def fig3_models(kla=KLA, A: float = 0.5, nu: float = 0.25):
     return dcsf_curves_figure(curves, kla, title, ylim=(-5, 6))
 
 
+def _wa_with_exact(cases: dict[str, Material], kla, title: str):
+    """WA curves of labelled materials, each with its exact rigid-punch curve (Figs. 4, 5)."""
+    res = {label: dcsf_models(m, kla, ("WA", "exact"), loss=LOSS) for label, m in cases.items()}
+    curves = {label: r["WA"] for label, r in res.items()}
+    exact = {label: r["exact"] for label, r in res.items()}
+    return dcsf_curves_figure(curves, kla, title, exact=exact)
+
+
 def fig4_anisotropy(kla=KLA, zeners=(0.25, 0.5, 1.0, 2.0, 4.0), nu: float = 0.25):
     """Fig. 4: WA for several Zener ratios A at ν = 0.25. Returns (figure, table)."""
-    res = {A: dcsf_models(_cubic(A, nu), kla, ("WA", "exact"), loss=LOSS) for A in zeners}
-    curves = {f"A = {A:g}": r["WA"] for A, r in res.items()}
-    exact = {f"A = {A:g}": r["exact"] for A, r in res.items()}
+    cases = {f"A = {A:g}": _cubic(A, nu) for A in zeners}
     title = f"Fig. 4: WA model (thin: exact), ν = {nu:g}, Q⁻¹ = {LOSS:g}"
-    return dcsf_curves_figure(curves, kla, title, exact=exact)
+    return _wa_with_exact(cases, kla, title)
 
 
 def fig5_poisson(kla=KLA, A: float = 2.0, nus=(0.1, 0.2, 0.25, 0.3, 0.4)):
     """Fig. 5: WA at A = 2 for several ν. Returns (figure, table)."""
-    res = {nu: dcsf_models(_cubic(A, nu), kla, ("WA", "exact"), loss=LOSS) for nu in nus}
-    curves = {f"ν = {nu:g}": r["WA"] for nu, r in res.items()}
-    exact = {f"ν = {nu:g}": r["exact"] for nu, r in res.items()}
+    cases = {f"ν = {nu:g}": _cubic(A, nu) for nu in nus}
     title = f"Fig. 5: WA model (thin: exact), A = {A:g}, Q⁻¹ = {LOSS:g}"
-    return dcsf_curves_figure(curves, kla, title, exact=exact)
+    return _wa_with_exact(cases, kla, title)
 
 
 def displacement_figure(kla=(0.3, 0.6, 0.9, 1.2, 1.7), A: float = 0.5, nu: float = 0.25):
@@ -160,9 +164,7 @@ def crystals_figure(names=("RbI", "KCl", "W", "Cu", "Li"), kla=KLA, model: str =
     curves = {}
     for name in names:
         m = Material.crystal(name)
-        curves[f"{name} (A = {m.zener_ratio:.2f})"] = dcsf_models(m, kla, (model,), loss=LOSS)[
-            model
-        ]
+        curves[f"{name} (A = {m.zener_ratio:.2f})"] = dcsf(m, kla, model, loss=LOSS)
     return dcsf_curves_figure(curves, kla, f"{model} model on (001) faces, Q⁻¹ = {LOSS:g}")
 
 

@@ -15,16 +15,11 @@ import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
 
+from .analysis import kappa_jkr_mindlin
 from .fileio import ensure_dir, save_figure, write_csv
-from .normal.isotropic import effective_modulus, effective_shear_modulus, jkr, shear_modulus
+from .normal.isotropic import effective_modulus, jkr_contact_radius
 from .qcm import QCM, shifts_from_loop
-from .tangential import (
-    CattaneoMindlinLoop,
-    SavkoorLoop,
-    VoigtLoop,
-    mindlin_stiffness,
-    with_dashpot,
-)
+from .tangential import CattaneoMindlinLoop, SavkoorLoop, VoigtLoop, with_dashpot
 
 __all__ = ["Paper2Example", "loops_figure", "shifts_figure", "write_paper2_figures"]
 
@@ -45,15 +40,16 @@ class Paper2Example:
 
     @property
     def contact_radius(self) -> float:
+        """JKR contact radius a (paper 2, Eq. 9; E1 = E2), m."""
         E_star = effective_modulus(self.youngs_modulus, self.poisson)
-        return jkr(E_star, self.sphere_radius, self.normal_force, self.gamma).contact_radius
+        return jkr_contact_radius(E_star, self.sphere_radius, self.normal_force, self.gamma)
 
     @property
     def kappa(self) -> float:
-        G_star = effective_shear_modulus(
-            shear_modulus(self.youngs_modulus, self.poisson), self.poisson
+        """Mindlin stiffness κ = 2G*a of the JKR contact (paper 2, Eqs. 7-10), N/m."""
+        return kappa_jkr_mindlin(
+            self.normal_force, self.youngs_modulus, self.gamma, self.sphere_radius, self.poisson
         )
-        return mindlin_stiffness(self.contact_radius, G_star)
 
     @property
     def xi(self) -> float:

@@ -58,16 +58,6 @@ class Model:
     source: str
     function: Callable | None = None
 
-    def parameter(self, key: str) -> Parameter:
-        for p in self.parameters:
-            if p.key == key:
-                return p
-        raise KeyError(f"model {self.key!r} has no parameter {key!r}")
-
-    @property
-    def free(self) -> tuple[Parameter, ...]:
-        return tuple(p for p in self.parameters if not p.fixed)
-
 
 #: Every model the analysis fits, by key.
 MODELS: dict[str, Model] = {}
@@ -95,10 +85,6 @@ class FitResult:
     success: bool
     message: str = ""
     residuals: np.ndarray = field(default_factory=lambda: np.zeros(0))
-
-    @property
-    def dof(self) -> int:
-        return self.n_points - len(self.free)
 
 
 def fit(
@@ -139,10 +125,8 @@ def fit(
     scale = np.array([p.scale for p in free])
     lo = np.array([bounds.get(p.key, p.bounds)[0] for p in free]) / scale
     hi = np.array([bounds.get(p.key, p.bounds)[1] for p in free]) / scale
+    # least_squares (trf) moves a start on a bound strictly inside by itself.
     x0 = np.clip(np.array([start[p.key] for p in free]) / scale, lo, hi)
-    # trf needs a start strictly inside finite bounds.
-    at_lo = np.isfinite(lo) & (x0 <= lo)
-    x0[at_lo] = lo[at_lo] + 1e-6 * np.maximum(1.0, np.abs(lo[at_lo]))
 
     def params(z):
         d = dict(fixed)

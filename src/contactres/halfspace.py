@@ -50,6 +50,7 @@ from __future__ import annotations
 import numpy as np
 
 from .materials import Material, voigt_to_tensor
+from .validation import nonnegative
 
 __all__ = [
     "dynamic_kernel",
@@ -530,8 +531,12 @@ def dynamic_kernel(m: Material, kappa, theta) -> np.ndarray:
     else:
         kappa = kappa.real if np.iscomplexobj(kappa) else kappa.astype(float)
         bad = ~(kappa > 0)
-    if np.any(bad) or not np.all(np.isfinite(kappa)):
-        raise ValueError("kappa (wave number / shear wave number) must be finite and > 0")
+    bad = bad | ~np.isfinite(kappa)
+    if np.any(bad):
+        first = kappa.ravel()[np.flatnonzero(bad.ravel())[0]]
+        raise ValueError(
+            f"kappa (wave number / shear wave number) must be finite and > 0, got {first}"
+        )
     c = _scaled_tensor(m)
     s = 1.0 / np.asarray(kappa, dtype=complex) ** 2
     return -_compliance(c, theta, s, normal_only=True)
@@ -551,9 +556,7 @@ def isotropic_dynamic_kernel(kappa, c11_over_c44, loss: float = 0.0) -> np.ndarr
     ratio = float(c11_over_c44)
     if not ratio > 4.0 / 3.0:
         raise ValueError(f"c11_over_c44 must exceed 4/3 (positive bulk modulus), got {ratio!r}")
-    q = float(loss)
-    if not (np.isfinite(q) and q >= 0):
-        raise ValueError(f"loss (Q^-1) must be finite and >= 0, got {loss!r}")
+    q = nonnegative("loss (Q^-1)", loss)
     c44 = 1 + 1j * q
     c11 = ratio * c44
     om2 = 1.0 / kappa**2

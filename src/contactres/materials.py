@@ -13,9 +13,16 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from .validation import positive
+from .validation import nonnegative, positive
 
-__all__ = ["Material", "rotation_to_surface", "tensor_to_voigt", "voigt_to_tensor"]
+__all__ = [
+    "Material",
+    "require_material",
+    "rotate_tensor",
+    "rotation_to_surface",
+    "tensor_to_voigt",
+    "voigt_to_tensor",
+]
 
 # Voigt index of each tensor index pair (i, j).
 _VOIGT = np.array([[0, 5, 4], [5, 1, 3], [4, 3, 2]])
@@ -36,6 +43,12 @@ def tensor_to_voigt(c: np.ndarray) -> np.ndarray:
     c = np.asarray(c)
     idx = np.array(_PAIRS)
     return c[idx[:, 0][:, None], idx[:, 1][:, None], idx[:, 0][None, :], idx[:, 1][None, :]]
+
+
+def rotate_tensor(c: np.ndarray, R: np.ndarray) -> np.ndarray:
+    """c'_ijkl = R_ia R_jb R_kc R_ld c_abcd: the 3x3x3x3 tensor ``c`` in the frame ``v' = R v``
+    (any orthogonal ``R``, reflections included)."""
+    return np.einsum("ia,jb,kc,ld,abcd->ijkl", R, R, R, R, c, optimize=True)
 
 
 def _unit(v, name: str) -> np.ndarray:
@@ -104,8 +117,13 @@ def _check_stiffness(C) -> np.ndarray:
             "stiffness C must have a positive-definite real part: smallest eigenvalue "
             f"{eig[0]:.4g} Pa (largest {eig[-1]:.4g} Pa)"
         )
-    if np.iscomplexobj(C) and np.linalg.eigvalsh(C.imag)[0] < -1e-12 * eig[-1]:
-        raise ValueError("stiffness C has a negative-definite loss part (Im C must be >= 0)")
+    if np.iscomplexobj(C):
+        loss_min = np.linalg.eigvalsh(C.imag)[0]
+        if loss_min < -1e-12 * eig[-1]:
+            raise ValueError(
+                "stiffness C has an active loss part: Im C must be positive semi-definite (no "
+                f"energy gain), smallest eigenvalue {loss_min:.4g} Pa"
+            )
     C.setflags(write=False)
     return C
 
@@ -125,7 +143,8 @@ class Material:
     :meth:`hexagonal`, :meth:`from_voigt`, :meth:`crystal`) rather than the bare class. ``C`` is
     stored read-only; it may be complex (loss, see :meth:`with_loss`). ``C`` refers to the
     material's current frame: the crystal frame after construction, the surface frame after
-    :meth:`rotated`.
+    :meth:`rotated`. ``frame`` (3x3) holds the axes of the current frame as rows, in crystal
+    coordinates (the identity after construction).
     """
 
     C: np.ndarray
@@ -239,10 +258,8 @@ class Material:
         cubic crystal). See :func:`rotation_to_surface` for the default in-plane axis.
         """
         R = rotation_to_surface(normal, inplane)
-        c = voigt_to_tensor(self.C)
-        c_new = np.einsum("ia,jb,kc,ld,abcd->ijkl", R, R, R, R, c, optimize=True)
         return Material(
-            C=tensor_to_voigt(c_new),
+            C=tensor_to_voigt(rotate_tensor(voigt_to_tensor(self.C), R)),
             density=self.density,
             name=self.name,
             frame=R @ self.frame,
@@ -250,9 +267,7 @@ class Material:
 
     def with_loss(self, q_inv: float) -> Material:
         """The solid with complex constants C (1 + i Q^-1) (paper 1; Q^-1 = 0.02 there)."""
-        q = float(q_inv)
-        if not np.isfinite(q) or q < 0:
-            raise ValueError(f"q_inv (loss factor Q^-1) must be finite and >= 0, got {q_inv!r}")
+        q = nonnegative("q_inv (loss factor Q^-1)", q_inv)
         return Material(
             C=np.asarray(self.C) * (1 + 1j * q),
             density=self.density,
@@ -311,3 +326,16 @@ class Material:
         """Elastic energy density 0.5 e·C·e (J/m^3) of Voigt strains ``e`` (..., 6)."""
         e = np.asarray(strain)
         return 0.5 * np.einsum("...i,ij,...j->...", e, np.asarray(self.C).real, e)
+
+
+def require_material(m, *, lossless: bool = False) -> Material:
+    """``m`` itself after checking that it is a :class:`Material` (and, with ``lossless``, that
+    its constants are real); a ValueError naming what was passed otherwise."""
+    if not isinstance(m, Material):
+        raise ValueError(f"m must be a contactres.Material, got {type(m).__name__}")
+    if lossless and m.is_lossy:
+        raise ValueError(
+            "pass the undamped material (real constants) and set the damping with loss= "
+            "(constants C (1 + i loss), paper 1); the material given is already lossy"
+        )
+    return m

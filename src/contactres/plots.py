@@ -13,6 +13,7 @@ import pandas as pd
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
+from .analysis import kappa_jkr_mindlin
 from .analysis_sweep import model_curves
 from .fileio import save_figure
 
@@ -125,8 +126,6 @@ def figure_stiffness(results) -> Figure:
         for g in sorted(results.groups, key=lambda g: g["medium"]):
             if g["configuration"] != config or not np.isfinite(g["E_Pa"]):
                 continue
-            from .analysis import kappa_jkr_mindlin
-
             part = loads[loads["configuration"] == config]
             F = np.linspace(0.0, part["normal_force_N"].max() * 1.05, 100)
             k = kappa_jkr_mindlin(F, g["E_Pa"], g["gamma_J_m2"], g["sphere_radius_m"], g["poisson"])

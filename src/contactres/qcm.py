@@ -27,7 +27,7 @@ from functools import lru_cache
 
 import numpy as np
 
-from .tangential import CattaneoMindlinLoop, DashpotLoop, MasingLoop, SavkoorLoop
+from .tangential import CattaneoMindlinLoop, DashpotLoop, MasingLoop, SavkoorLoop, _amplitude
 from .validation import positive
 
 __all__ = [
@@ -75,7 +75,7 @@ class QCM:
         for name, unit in (("fundamental", "Hz"), ("area", "m^2"), ("zq", "kg m^-2 s^-1")):
             positive(f"QCM {name}", getattr(self, name), unit)
         n = self.overtone
-        if int(n) != n or n < 1 or int(n) % 2 == 0:
+        if not np.isfinite(n) or int(n) != n or n < 1 or int(n) % 2 == 0:
             raise ValueError(f"QCM overtone must be an odd integer >= 1, got {n!r}")
 
     @property
@@ -250,9 +250,7 @@ def loop_stiffness(loop, u0, nodes: int = DEFAULT_NODES):
     integrated from its branches. ``nodes`` Gauss points per half sub-interval; the default meets
     1e-9 relative (see the module docstring and the convergence tests). u0 = 0 gives the limit.
     """
-    u0 = np.asarray(u0, dtype=float)
-    if not np.all(np.isfinite(u0)) or np.any(u0 < 0):
-        raise ValueError("amplitude u0 must be finite and >= 0 (m)")
+    u0 = _amplitude(u0)
     n = int(nodes)
     if n < 2:
         raise ValueError(f"nodes must be >= 2, got {nodes!r}")
@@ -292,10 +290,13 @@ def cattaneo_mindlin_expansion(loop: CattaneoMindlinLoop, u0, omega_xi: float = 
     K′ = κ[1 - κu0/(6μF_N) - (5/288)(κu0/μF_N)²],
     K″ = ωξ + (2/(9π)) κ²u0/(μF_N) + κ³u0²/(27π μ²F_N²)
     (``order`` 1 drops the squares). Valid for u0 ≪ d* = 3μF_N/(2κ). ``omega_xi`` = ωξ in N/m.
+    The coefficients follow from Eqs. 4-6 with Masing's rule (physics.md, checked against the
+    quadrature in tests/test_qcm.py); the OCR of the paper's Eq. 11 shows 1/3 and 4/(9π), twice
+    these.
     """
     if order not in (1, 2):
         raise ValueError(f"order must be 1 or 2, got {order!r}")
-    u0 = np.asarray(u0, dtype=float)
+    u0 = _amplitude(u0)
     k = loop.kappa
     e = k * u0 / loop.sliding_force
     k1 = k * (1.0 - e / 6.0 - (order == 2) * (5.0 / 288.0) * e**2)
@@ -308,7 +309,7 @@ def savkoor_expansion(loop: SavkoorLoop, u0, omega_xi: float = 0.0):
 
     K′ = κ[1 - (5/512)(κu0/(a²τ0))²],  K″ = ωξ + κ³u0²/(48π a⁴τ0²). Valid for u0 ≪ 4a²τ0/κ.
     """
-    u0 = np.asarray(u0, dtype=float)
+    u0 = _amplitude(u0)
     k = loop.kappa
     e = k * u0 / (loop.a**2 * loop.tau)
     return k * (1.0 - 5.0 / 512.0 * e**2) + 1j * (omega_xi + k * e**2 / (48.0 * np.pi))
@@ -320,7 +321,8 @@ def friction_from_slopes(
     """Friction coefficient μ from the amplitude slopes of a Cattaneo-Mindlin sweep (Eq. 12).
 
     μ = -κ²/(6F_N dK′/du0) from the Δf slope and μ = 2κ²/(9πF_N dK″/du0) from the ΔΓ slope,
-    with dK/du0 = (slope in Hz/m)/P. ``kappa`` N/m (from the low-amplitude Δf0 via Eq. 2),
+    with dK/du0 = (slope in Hz/m)/P, the slopes of :func:`cattaneo_mindlin_expansion` (whose
+    coefficients are half those of the OCR'd paper). ``kappa`` N/m (from Δf0 via Eq. 2),
     ``normal_force`` N per contact. Returns (μ_from_df, μ_from_dgamma); nan where a slope is
     missing, nan or has the wrong sign for partial slip (nan inputs give nan).
     """
@@ -328,16 +330,30 @@ def friction_from_slopes(
     kappa = np.asarray(kappa, dtype=float)
     F = np.asarray(normal_force, dtype=float)
     if np.any(kappa <= 0) or np.any(F <= 0):
-        raise ValueError("friction_from_slopes needs kappa > 0 (N/m) and normal_force > 0 (N)")
+        raise ValueError(
+            "friction_from_slopes needs kappa > 0 (N/m) and normal_force > 0 (N), got "
+            f"kappa={_out(kappa)!r}, normal_force={_out(F)!r}"
+        )
+    mu1, mu2 = _mu_from_slopes(P, kappa, F, df_slope, dgamma_slope)
+    return _out(mu1), _out(mu2)
+
+
+def _mu_from_slopes(P, kappa, normal_force, df_slope, dgamma_slope):
+    """μ from the Δf and ΔΓ slopes (Hz/m) with the sensitivity P (Hz per N/m) given, arrays.
+
+    The formulas of :func:`friction_from_slopes` without its checks; ``P`` may be an array
+    (one value per sweep), a slope may be None (then μ is nan).
+    """
+    shape = np.broadcast(P, kappa, normal_force).shape
     with np.errstate(divide="ignore", invalid="ignore"):
         if df_slope is None:
-            mu1 = np.full(np.broadcast(kappa, F).shape, np.nan)
+            mu1 = np.full(shape, np.nan)
         else:
             s = np.asarray(df_slope, dtype=float) / P
-            mu1 = np.where(s < 0, -(kappa**2) / (6.0 * F * s), np.nan)
+            mu1 = np.where(s < 0, -(kappa**2) / (6.0 * normal_force * s), np.nan)
         if dgamma_slope is None:
-            mu2 = np.full(np.broadcast(kappa, F).shape, np.nan)
+            mu2 = np.full(shape, np.nan)
         else:
             s = np.asarray(dgamma_slope, dtype=float) / P
-            mu2 = np.where(s > 0, 2.0 * kappa**2 / (9.0 * np.pi * F * s), np.nan)
-    return _out(mu1), _out(mu2)
+            mu2 = np.where(s > 0, 2.0 * kappa**2 / (9.0 * np.pi * normal_force * s), np.nan)
+    return mu1, mu2

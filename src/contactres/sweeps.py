@@ -1,4 +1,4 @@
-"""Amplitude-sweep tables (paper 2): reading, validating and grouping.
+"""Amplitude-sweep tables (paper 2): reading and validating.
 
 A sweep table has one row per measured point of an amplitude ramp (design.md §5):
 
@@ -38,16 +38,19 @@ Every error names the file, the line, the column and the value.
 
 from __future__ import annotations
 
+import io
 import math
 import re
 import sys
 import warnings
-from collections.abc import Callable, Iterator
+from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
+
+from .qcm import SMALL_LOAD_LIMIT
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -61,7 +64,6 @@ __all__ = [
     "REQUIRED_COLUMNS",
     "SweepReader",
     "SweepWarning",
-    "iter_sweeps",
     "read_sweeps",
     "register_reader",
     "validate_sweeps",
@@ -90,7 +92,7 @@ MAX_AMPLITUDE_M = 1e-6
 # A shift above this fraction of the fundamental is an absolute frequency, not a shift.
 ABSOLUTE_FREQUENCY_FRACTION = 0.1
 # The small-load approximation (paper 2, Eq. 1) needs |Δf| << f; warn above this fraction.
-SMALL_LOAD_FRACTION = 1e-3
+SMALL_LOAD_FRACTION = SMALL_LOAD_LIMIT
 
 
 class SweepWarning(UserWarning):
@@ -136,7 +138,7 @@ def register_reader(reader: SweepReader) -> SweepReader:
 _DECIMAL_COMMA = re.compile(r"^[+-]?\d+,\d+([eE][+-]?\d+)?$")
 
 
-def _csv_dialect(path: Path, text: str) -> tuple[str, str]:
+def _csv_dialect(text: str) -> tuple[str, str]:
     """Separator and decimal mark of a CSV file from its header and first data lines."""
     lines = [ln for ln in text.splitlines() if ln.strip()]
     header = lines[0]
@@ -158,15 +160,14 @@ def _load_csv(path: Path) -> pd.DataFrame:
     text = path.read_text(encoding="utf-8-sig")
     if not text.strip():
         raise ValueError(f"{path}: the file is empty (expected a header line and data rows)")
-    sep, decimal = _csv_dialect(path, text)
+    sep, decimal = _csv_dialect(text)
     try:
         raw = pd.read_csv(
-            path,
+            io.StringIO(text),  # parse the text already read (and decoded) once
             sep=sep,
             dtype=str,
             keep_default_na=False,
             skip_blank_lines=True,
-            encoding="utf-8-sig",
             comment="#",
         )
     except pd.errors.ParserError as exc:
@@ -192,7 +193,8 @@ READERS.append(SweepReader("csv", (".csv", ".txt", ".tsv"), _detect_csv, _load_c
 
 
 def _pick_reader(path: Path) -> SweepReader:
-    head = path.read_text(encoding="utf-8-sig", errors="replace")[:4096]
+    with path.open(encoding="utf-8-sig", errors="replace") as fh:
+        head = fh.read(4096)
     if not head.strip():
         raise ValueError(f"{path}: the file is empty (expected a header line and data rows)")
     by_suffix = [r for r in READERS if path.suffix.lower() in r.suffixes]
@@ -489,7 +491,6 @@ def validate_sweeps(
             SweepWarning,
             stacklevel=2,
         )
-    out.attrs["source"] = source
     cols = [
         "sweep",
         "experiment",
@@ -524,8 +525,3 @@ def _check_per_sweep(table: pd.DataFrame, source: str) -> None:
                 f"{first!r} (line {rows['line'].iloc[0]}) and {other[col]!r} "
                 f"(line {other['line']}); one sweep has one {col}"
             )
-
-
-def iter_sweeps(table: pd.DataFrame) -> Iterator[tuple[str, pd.DataFrame]]:
-    """Yield ``(sweep id, rows)`` in the order of first appearance."""
-    yield from table.groupby("sweep", sort=False)

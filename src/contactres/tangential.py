@@ -48,18 +48,18 @@ _SERIES_BELOW = 0.1
 
 
 def _amplitude(u0) -> np.ndarray:
-    u0 = np.asarray(u0, dtype=float)
-    if not np.all(np.isfinite(u0)) or np.any(u0 < 0):
-        raise ValueError("amplitude u0 must be finite and >= 0 (m)")
-    return u0
+    return np.asarray(_nonneg("amplitude u0", u0, "m"), dtype=float)
 
 
 def _branch_args(u, u0):
     u = np.asarray(u, dtype=float)
     u0 = _amplitude(u0)
     u, u0 = np.broadcast_arrays(u, u0)
-    if np.any(np.abs(u) > u0 * (1 + 1e-12) + 1e-300):
-        raise ValueError("branches(u, u0) needs |u| <= u0")
+    outside = np.abs(u) > u0 * (1 + 1e-12) + 1e-300
+    if np.any(outside):
+        i = np.flatnonzero(outside)[0]
+        bad_u, bad_u0 = float(u.flat[i]), float(u0.flat[i])
+        raise ValueError(f"branches(u, u0) needs |u| <= u0, got u = {bad_u!r} m, u0 = {bad_u0!r} m")
     return u, u0
 
 
@@ -74,10 +74,8 @@ def mindlin_stiffness(a, G_star):
     ``a``: contact radius, m; ``G_star``: effective shear modulus of paper 2, Eq. 7 (four times
     Johnson's G*), Pa (see :func:`contactres.effective_shear_modulus`).
     """
-    a = np.asarray(a, dtype=float)
-    G_star = np.asarray(G_star, dtype=float)
-    if not np.all(a >= 0) or not np.all(G_star > 0):
-        raise ValueError(f"need contact radius a >= 0 and G* > 0, got a={a!r}, G*={G_star!r}")
+    a = _nonneg("contact radius a", a, "m")
+    G_star = _pos("G_star", G_star, "Pa")
     return _out(2.0 * G_star * a)
 
 

@@ -8,10 +8,18 @@ __all__ = ["nonnegative", "positive"]
 
 
 def _check(name: str, value, unit: str | None, ok, rule: str):
-    v = np.asarray(value, dtype=float)
+    unit_text = f" ({unit})" if unit else ""
+    try:
+        v = np.asarray(value)
+        if np.iscomplexobj(v) and np.any(v.imag != 0):
+            raise TypeError  # casting would drop the imaginary part silently
+        v = np.asarray(v.real if np.iscomplexobj(v) else v, dtype=float)
+    except (TypeError, ValueError):  # text, complex, ragged lists
+        raise ValueError(
+            f"{name} must be a real number or array, finite and {rule}{unit_text}, got {value!r}"
+        ) from None
     good = np.isfinite(v) & ok(v)
     if not np.all(good):
-        unit_text = f" ({unit})" if unit else ""
         if v.ndim == 0:
             got = repr(value)
         else:

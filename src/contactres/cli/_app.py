@@ -10,7 +10,7 @@ import click
 from .. import __version__
 
 # Errors that mean "the user's input is wrong": one line, exit code 2, no traceback.
-USER_ERRORS = (ValueError, KeyError, FileNotFoundError, IsADirectoryError, PermissionError)
+USER_ERRORS = (ValueError, FileNotFoundError, IsADirectoryError, PermissionError)
 
 
 # click >= 8.2 raises this for a bare group; older click prints the help itself.
@@ -55,8 +55,7 @@ class App(click.Group):
         except USER_ERRORS as exc:
             if os.environ.get("CONTACTRES_DEBUG"):
                 raise
-            msg = exc.args[0] if isinstance(exc, KeyError) and exc.args else exc
-            click.echo(f"{prog}: error: {_one_line(msg)}", err=True)
+            click.echo(f"{prog}: error: {_one_line(exc)}", err=True)
             sys.exit(2)
         except Exception as exc:
             if os.environ.get("CONTACTRES_DEBUG"):

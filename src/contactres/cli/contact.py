@@ -39,10 +39,10 @@ def contact(radius, force, fmt, **face):
         {
             "radius_m": R,
             "force_N": F,
-            "contact_radius_m": np.broadcast_to(c.contact_radius, R.shape),
-            "peak_pressure_Pa": np.broadcast_to(c.peak_pressure, R.shape),
-            "depth_m": np.broadcast_to(c.depth, R.shape),
-            "stiffness_N_per_m": np.broadcast_to(c.stiffness, R.shape),
+            "contact_radius_m": c.contact_radius,
+            "peak_pressure_Pa": c.peak_pressure,
+            "depth_m": c.depth,
+            "stiffness_N_per_m": c.stiffness,
             "indentation_modulus_Pa": c.indentation_modulus,
         }
     )

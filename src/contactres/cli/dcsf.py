@@ -69,7 +69,7 @@ def dcsf(model, ka, loss, wavenumber, rtol, fmt, **face):
     k_l a = 0.3); SA, R1 and R0 are worse (R0 is 2-10 % off already at k_l a = 0.3, SA has a
     pole). Ranking: 'contactres figures paper1' writes paper1_model_ranking.csv.
     """
-    if face["c44"] is None and face["zener"] is not None:
+    if face["c44"] is None and (face["zener"] is not None or face["poisson"] is not None):
         face["c44"] = 1.0  # the DCSF depends on the ratios only
     m = crystal_face(**face)
     names = list(ALL_MODELS) if model.lower() == "all" else [model]

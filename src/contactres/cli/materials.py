@@ -24,6 +24,7 @@ def crystals(fmt: str) -> None:
     from ..normal.anisotropic import indentation_modulus
 
     table = crystal_table()
+    solids = [get_crystal(name) for name in table["name"]]
     for label, normal in (
         ("M001_GPa", (0, 0, 1)),
         ("M011_GPa", (0, 1, 1)),
@@ -32,7 +33,7 @@ def crystals(fmt: str) -> None:
         table.insert(
             table.columns.get_loc("source"),
             label,
-            [indentation_modulus(get_crystal(n).rotated(normal)) / 1e9 for n in table["name"]],
+            [indentation_modulus(m.rotated(normal)) / 1e9 for m in solids],
         )
     emit(table, fmt)
 

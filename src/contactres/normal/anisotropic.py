@@ -25,7 +25,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..halfspace import static_kernel
-from ..materials import Material
+from ..materials import Material, require_material
 from ..validation import nonnegative, positive
 
 __all__ = [
@@ -66,12 +66,6 @@ class ContactIntegrals:
     error: float
 
 
-def _check_material(m) -> Material:
-    if not isinstance(m, Material):
-        raise ValueError(f"m must be a contactres.Material, got {type(m).__name__}")
-    return m
-
-
 def _trapezoid(m: Material, n: int, prev=None):
     """Sums of Ĝ, Ĝ cos²θ, Ĝ e^{2iθ} over n equispaced θ in [0, π), reusing ``prev`` (n/2)."""
     if prev is None:
@@ -96,7 +90,7 @@ def contact_integrals(m: Material, rtol: float = THETA_RTOL) -> ContactIntegrals
     ValueError
         For ``rtol`` outside [1e-15, 1e-2] or when 2^15 points do not reach it.
     """
-    m = _check_material(m)
+    m = require_material(m)
     rtol = float(rtol)
     if not (1e-15 <= rtol <= 1e-2):
         raise ValueError(f"rtol must lie in [1e-15, 1e-2], got {rtol!r}")
@@ -198,7 +192,7 @@ def sphere_contact(m: Material, radius, force, rtol: float = THETA_RTOL) -> Anis
     normal). Elsewhere the true contact is elliptic; these circular formulas then use I₁ along
     the surface x axis (the paper's choice) and ``circular`` is False.
     """
-    m = _check_material(m)
+    m = require_material(m)
     if m.is_lossy:
         raise ValueError(
             "sphere_contact needs real (undamped) constants: the static contact of a lossy "

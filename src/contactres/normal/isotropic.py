@@ -145,7 +145,8 @@ def jkr_contact_radius(E_star, radius, force, gamma):
     if np.any(disc < -1e-12 * np.maximum(b**2, 1e-300)) or np.any((gamma == 0) & (F < 0)):
         raise ValueError(
             f"force {force!r} N is below the pull-off force -3πγR = "
-            f"{np.min(-3 * np.pi * gamma * R)!r} N (γ={gamma!r}, R={radius!r})"
+            f"{float(np.min(-3 * np.pi * gamma * R))!r} N (γ={gamma!r}, R={radius!r}); "
+            "without adhesion (γ = 0) the force must be >= 0"
         )
     return _out(np.cbrt(3.0 * R / (4.0 * E_star) * (F + b + np.sqrt(np.maximum(disc, 0.0)))))
 
@@ -256,7 +257,10 @@ def dmt(E_star, radius, force, gamma) -> Contact:
     F = np.asarray(force, dtype=float)
     load = F + 4.0 * np.pi * gamma * R
     if not np.all(np.isfinite(F)) or np.any(load < 0):
-        raise ValueError(f"force {force!r} N is below the DMT pull-off force -4πγR")
+        raise ValueError(
+            f"force {force!r} N must be finite and >= the DMT pull-off force -4πγR = "
+            f"{float(np.min(-4 * np.pi * gamma * R))!r} N (γ={gamma!r}, R={radius!r})"
+        )
     a = np.cbrt(3.0 * R * load / (4.0 * E_star))
     with np.errstate(divide="ignore", invalid="ignore"):
         mean_p = np.where(a > 0, F / (np.pi * a**2), 0.0)
