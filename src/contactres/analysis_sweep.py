@@ -33,6 +33,35 @@ projection: for fixed θ, Pκ and Pωξ follow in closed form; θ is found by a 
 (relative resolution < 1e-3), independently for every sweep. Errors come from the Jacobian in
 (Pκ, Pωξ, ln θ), scaled by the residual variance. Points are weighted by the noise level of
 each channel taken from the straight-line fit.
+
+**Exact plateau loop.** A sweep classified ``plateau`` is refitted (with ``exact_loop``) with the
+loop of :class:`contactres.PlateauLoop` around the Cattaneo-Mindlin loop: the contact sticks up
+to the critical displacement d_c, then slips as Cattaneo-Mindlin in the excess d - d_c. In units
+of μF_N/κ (x = κu0/(μF_N), c = κd_c/(μF_N), y = x - c) its shapes depend on two arguments, not
+one, so the table above cannot be reused for both. From the virgin-curve form of Eq. 4-5
+(slope deficit L(d) = L_CM(d - d_c) above d_c, zero below):
+
+    K″ - ωξ = κ [ (y/x)² g″(y) + 4c s(y)/(πx²) ],   s(y) = y - F_CM(y)  (κ = μF_N = 1)
+    K′/κ    = 1 - (8/(πx²)) ∫₀^y L_CM(e) √((e + c)(y - e)) de
+
+The loss part is the table at the shifted argument y plus a closed-form term (verified against
+:func:`contactres.shifts_from_loop` in tests/test_analysis.py); the storage part is not, since
+√((e + c)(y - e)) is not the weight of any single Cattaneo-Mindlin amplitude. Both are therefore
+integrated with the package's Masing-loop quadrature (:func:`plateau_loop_shape`, relative
+accuracy 1e-9, vectorised over amplitudes). The fit Δf = Pκ G′(θu0, θd_c), ΔΓ = P[ωξ +
+κ G″(θu0, θd_c)] (θ = κ/(μF_N)) uses the same variable projection for Pκ and Pωξ and
+:func:`scipy.optimize.least_squares` for (ln θ, d_c), started from the hinge position and from
+the Cattaneo-Mindlin loop fitted to the amplitudes in excess of it; one sweep at a time (plateau
+sweeps are a few per cent). Errors come from the Jacobian in (Pκ, Pωξ, ln θ, d_c) scaled by the
+residual variance; the points are weighted by the noise level of each channel taken from the
+hinge fit. The low-amplitude limits of such a sweep, and its ``plateau_amplitude_m``, then come
+from this fit (``limits_from`` = ``plateau-loop``).
+
+Near d_c the shifts leave the plateau as K″ - ωξ ≈ (2/(3π)) κ²v²/(μF_N d_c) and
+K′ - κ ≈ -(32/(45π)) κ²v^{5/2}/(μF_N d_c^{3/2}) in the excess v = u0 - d_c ≪ d_c, μF_N/κ
+(checked numerically in tests/test_analysis.py): there is no linear onset, and the slope of the
+hinge depends on how far the sweep reaches beyond d_c. No slope formula gives μ for a plateau
+sweep; :func:`contactres.analyze` reports none (flag ``plateau-slope``).
 """
 
 from __future__ import annotations
@@ -42,6 +71,7 @@ from functools import lru_cache
 
 import numpy as np
 import pandas as pd
+from scipy.optimize import least_squares
 
 from .fitting import MODELS, Model, Parameter, register_model
 
@@ -50,9 +80,11 @@ __all__ = [
     "Padded",
     "cm_loop_table",
     "fit_cm_loops",
+    "fit_plateau_loops",
     "fit_sweeps",
     "model_curves",
     "pad_sweeps",
+    "plateau_loop_shape",
 ]
 
 MODEL_ORDER = ("elastic", "cattaneo-mindlin", "savkoor", "plateau")
@@ -147,8 +179,35 @@ register_model(
     )
 )
 
+
+def _plateau_loop_shifts(u, A, B, theta, d_c):
+    g1, g2 = plateau_loop_shape(np.asarray(theta) * np.asarray(u), np.asarray(theta) * d_c)
+    return A * g1, B + A * g2
+
+
+register_model(
+    Model(
+        key="plateau-loop",
+        display="exact Cattaneo-Mindlin loop behind a stick plateau, with a dashpot",
+        parameters=(
+            Parameter("A", "Pκ (low-amplitude Δf)", "Hz", (0.0, np.inf), scale=100.0),
+            Parameter("B", "Pωξ (low-amplitude ΔΓ)", "Hz", (-np.inf, np.inf), scale=10.0),
+            Parameter("theta", "κ/(μF_N)", "1/m", (0.0, np.inf), scale=1e8),
+            Parameter("d_c", "critical displacement d_c", "m", (0.0, 1e-6), scale=1e-9),
+        ),
+        x="amplitude",
+        x_unit="m",
+        observable="df, dgamma",
+        unit="Hz",
+        source="paper 2, Eqs. 4-6 (Masing loops), Fig. 4C, D (stick plateau), Eq. 12 (dashpot)",
+        function=_plateau_loop_shifts,
+    )
+)
+
 #: Number of fitted parameters of each amplitude model (the k of its BIC), from the registry.
-N_PARAMS = {m: len(MODELS[m].parameters) for m in (*MODEL_ORDER, "cattaneo-mindlin-loop")}
+N_PARAMS = {
+    m: len(MODELS[m].parameters) for m in (*MODEL_ORDER, "cattaneo-mindlin-loop", "plateau-loop")
+}
 
 
 @dataclass(frozen=True)
@@ -238,7 +297,9 @@ def fit_sweeps(p: Padded, delta_bic: float = 2.0, exact_loop: bool = True) -> pd
     and curvatures with standard errors, the critical amplitude of a plateau, the BIC of each
     model, the noise levels (from the straight line), the chosen ``model`` and, with
     ``exact_loop``, the loop fit of every sweep from u0 = 0 (the columns of :func:`fit_cm_loops`
-    prefixed ``cm_``).
+    prefixed ``cm_``) and, for plateau sweeps, the fit of the exact plateau loop (the columns of
+    :func:`fit_plateau_loops` prefixed ``pl_``; NaN for other sweeps), which then gives their
+    low-amplitude limits and critical amplitude (``limits_from`` = ``plateau-loop``).
     """
     Y = np.stack([p.df, p.dg])
     n = p.n.astype(float)
@@ -331,10 +392,33 @@ def fit_sweeps(p: Padded, delta_bic: float = 2.0, exact_loop: bool = True) -> pd
         rows[f"{name}_curvature_err_Hz_per_m2"] = np.sqrt(par[3][c])
         rows[f"sigma_{name}_Hz"] = sigma[c]
     rows["plateau_amplitude_m"] = np.where(is_pl, uc_best, np.nan)
+    rows["plateau_amplitude_err_m"] = np.full(S, np.nan)
+    from_pl = np.zeros(S, bool)
+    if exact_loop:
+        # Plateau sweeps: the exact plateau loop, weighted by the noise of the hinge fit.
+        for col in PLATEAU_LOOP_COLUMNS:
+            rows[f"pl_{col}"] = np.full(S, np.nan)
+        rows["pl_edge"] = np.full(S, "", dtype=object)
+        idx = np.flatnonzero(is_pl)
+        if idx.size:
+            sig_h = np.sqrt(hinge[5][:, idx] / np.maximum(n[idx] - 3, 1))
+            pl = fit_plateau_loops(
+                p.u[idx], p.df[idx], p.dg[idx], p.w[idx], sig_h[0], sig_h[1], uc_best[idx]
+            )
+            for col in pl.columns:
+                rows[f"pl_{col}"][idx] = pl[col].to_numpy()
+            ok = (pl["edge"].to_numpy() == "") & (pl["A_Hz"].to_numpy() > 0)
+            from_pl[idx[ok]] = True
+            for name, col in (("df", "A"), ("dgamma", "B")):
+                rows[f"{name}0_Hz"][idx[ok]] = pl[f"{col}_Hz"].to_numpy()[ok]
+                rows[f"{name}0_err_Hz"][idx[ok]] = pl[f"{col}_err_Hz"].to_numpy()[ok]
+                rows[f"{name}0_slope_cov"][idx[ok]] = 0.0
+            rows["plateau_amplitude_m"][idx[ok]] = pl["d_c_m"].to_numpy()[ok]
+            rows["plateau_amplitude_err_m"][idx[ok]] = pl["d_c_err_m"].to_numpy()[ok]
     rows["model"] = models
     rows["limits_from"] = np.select(
-        [is_el, is_cm & use_loop, is_cm, is_sv, is_pl],
-        ["mean", "cm-loop", "line", "parabola", "plateau"],
+        [is_el, is_cm & use_loop, is_cm, is_sv, is_pl & from_pl, is_pl],
+        ["mean", "cm-loop", "line", "parabola", "plateau-loop", "plateau"],
         default="",
     )
     return pd.DataFrame(rows)
@@ -463,6 +547,203 @@ def fit_cm_loops(u, df, dg, w, sigma_df, sigma_dg, rounds: int = 4) -> pd.DataFr
     )
 
 
+# --------------------------------------------------------------------------------------------
+# Exact plateau loop
+
+#: Numeric columns of :func:`fit_plateau_loops` (besides ``edge``).
+PLATEAU_LOOP_COLUMNS = (
+    "A_Hz",
+    "A_err_Hz",
+    "B_Hz",
+    "B_err_Hz",
+    "theta_per_m",
+    "lntheta_err",
+    "cov_A_lntheta",
+    "x_max",
+    "d_c_m",
+    "d_c_err_m",
+    "rss_df",
+    "rss_dgamma",
+)
+
+
+class _UnitPlateauLoops:
+    """:class:`contactres.PlateauLoop` around ``CattaneoMindlinLoop(1, 1, 1)`` for an array of
+    critical displacements ``c`` (one per amplitude), in the form that the Masing quadrature of
+    :mod:`contactres.qcm` integrates (breaks and singular points per amplitude, last axis)."""
+
+    def __init__(self, c):
+        from .tangential import CattaneoMindlinLoop
+
+        self.inner = CattaneoMindlinLoop(kappa=1.0, mu=1.0, normal_force=1.0)
+        self.kappa = 1.0
+        self.c = np.asarray(c, dtype=float)[..., None]
+
+    @property
+    def breaks(self):
+        return np.concatenate([self.c, self.c + self.inner.slip_displacement], axis=-1)
+
+    @property
+    def singular_points(self):
+        return self.c + self.inner.slip_displacement
+
+    def slopes(self, d):
+        return self.inner.slopes(np.maximum(d - self.c, 0.0))
+
+
+def plateau_loop_shape(x, c) -> tuple[np.ndarray, np.ndarray]:
+    """K′/κ and (K″ - ωξ)/κ of a Cattaneo-Mindlin loop behind a stick plateau.
+
+    The loop is :class:`contactres.PlateauLoop` (critical displacement d_c) around
+    :class:`contactres.CattaneoMindlinLoop`; ``x`` = κu0/(μF_N) and ``c`` = κd_c/(μF_N)
+    (broadcast together). Paper 2, Eqs. 4-6 with Masing's rule, integrated with the quadrature
+    of :func:`contactres.loop_stiffness` (relative accuracy 1e-9), vectorised.
+    """
+    from .qcm import DEFAULT_NODES, _masing_stiffness
+
+    x, c = np.broadcast_arrays(np.asarray(x, dtype=float), np.asarray(c, dtype=float))
+    if np.any(~(x >= 0)) or np.any(~(c >= 0)):
+        raise ValueError("plateau_loop_shape needs x >= 0 and c >= 0")
+    k1, k2 = _masing_stiffness(_UnitPlateauLoops(c.ravel()), x.ravel(), DEFAULT_NODES)
+    return k1.reshape(x.shape), k2.reshape(x.shape)
+
+
+def _fit_one_plateau(u, df, dg, sigma_df, sigma_dg, floors, uc0, y0):
+    """Fit of the exact plateau loop to one sweep (its points only); see
+    :func:`fit_plateau_loops`. Returns a dict of its columns."""
+    n = u.size
+    umax = u.max()
+    w = np.ones(n)
+    lo_y, hi_y = np.log(10.0**-2.5), np.log(X_MAX)
+    # d_c/umax: from 0 (no plateau) to the amplitude that leaves PLATEAU_MIN_SLOPE - 1 above it.
+    hi_d = np.sort(u)[n - PLATEAU_MIN_SLOPE] / umax
+
+    def shapes(p):
+        p = np.asarray(p, dtype=float)
+        ly, dl = p[..., 0, None], p[..., 1, None]
+        theta = np.exp(ly) / (umax * (1.0 - dl))  # θ(u_max - d_c) = e^ly
+        return theta[..., 0], plateau_loop_shape(theta * u, theta * dl * umax)
+
+    def solve(starts, wf, wg):
+        sf, sg = np.sqrt(wf), np.sqrt(wg)
+
+        def residuals(p):  # p: (..., 2) -> (..., 2n), Pκ and Pωξ solved for (projected)
+            _, (g1, g2) = shapes(p)
+            A, B, _, _, _ = _vp_solve(g1, g2, df, dg, w, wf, wg)
+            rf = sf * (df - A[..., None] * g1)
+            return np.concatenate([rf, sg * (dg - B[..., None] - A[..., None] * g2)], axis=-1)
+
+        def jacobian(p):  # forward differences, the three points in one quadrature call
+            step = 1e-6 * np.array([1.0, 0.1])
+            r = residuals(np.vstack([p, p + np.diag(step)]))
+            return ((r[1:] - r[0]) / step[:, None]).T
+
+        best = None
+        for start in starts:
+            r = least_squares(
+                residuals,
+                start,
+                jac=jacobian,
+                bounds=([lo_y, 0.0], [hi_y, hi_d]),
+                x_scale=[1.0, 0.1],
+                xtol=1e-10,
+                ftol=1e-10,
+                gtol=1e-10,
+                max_nfev=200,
+            )
+            if best is None or r.cost < best.cost:
+                best = r
+        return best.x
+
+    def weights(sig_f, sig_g):
+        return 1.0 / max(sig_f, floors[0]) ** 2, 1.0 / max(sig_g, floors[1]) ** 2
+
+    # Pass 1, weighted by the noise of the hinge fit; started at the hinge and at the amplitude
+    # below it (the hinge sits at or above d_c), θ from the loop fitted to the excess.
+    first = min(uc0 / umax, hi_d)
+    below = u[u < uc0 * (1.0 - 1e-9)]
+    starts = []
+    for dl0 in [first] + ([below.max() / umax] if below.size else []):
+        ly0 = np.log(max(y0, 1e-300) * (1.0 - dl0) / max(1.0 - uc0 / umax, 1e-12))
+        starts.append((np.clip(ly0, lo_y, hi_y), dl0))
+    wf, wg = weights(sigma_df, sigma_dg)
+    x1 = solve(starts, wf, wg)
+    # Pass 2, weighted by the noise of this fit's own residuals (the hinge misfits the onset).
+    theta, (g1, g2) = shapes(x1)
+    _, _, _, rss_f, rss_g = _vp_solve(g1, g2, df, dg, w, wf, wg)
+    dof = max(n - 2, 1)
+    wf, wg = weights(np.sqrt(rss_f / dof), np.sqrt(rss_g / dof))
+    ly, dl = solve([x1], wf, wg)
+    theta, (g1, g2) = shapes((ly, dl))
+    A, B, chi2, rss_f, rss_g = _vp_solve(g1, g2, df, dg, w, wf, wg)
+    d_c = dl * umax
+    # Jacobian of the weighted residuals in (A, B, ln θ, d_c), central differences of the shapes.
+    h, hd = 1e-5, 1e-5 * umax
+    gp = plateau_loop_shape(theta * np.exp(h) * u, theta * np.exp(h) * d_c)
+    gm = plateau_loop_shape(theta * np.exp(-h) * u, theta * np.exp(-h) * d_c)
+    cp = plateau_loop_shape(theta * u, theta * (d_c + hd))
+    cm = plateau_loop_shape(theta * u, theta * max(d_c - hd, 0.0))
+    dc_step = hd + min(d_c, hd)
+    zeros = np.zeros(n)
+    Jf = np.sqrt(wf) * np.column_stack(
+        [-g1, zeros, -A * (gp[0] - gm[0]) / (2 * h), -A * (cp[0] - cm[0]) / dc_step]
+    )
+    Jg = np.sqrt(wg) * np.column_stack(
+        [-g2, -1.0 + zeros, -A * (gp[1] - gm[1]) / (2 * h), -A * (cp[1] - cm[1]) / dc_step]
+    )
+    J = np.vstack([Jf, Jg])
+    # Columns scaled to unit norm first: d_c in m makes JᵀJ too ill-scaled for pinv's cutoff.
+    norm = np.linalg.norm(J, axis=0)
+    norm = np.where(norm > 0, norm, 1.0)
+    Js = J / norm
+    cov = np.linalg.pinv(Js.T @ Js) / np.outer(norm, norm) * chi2 / max(2 * n - 4, 1)
+    edge = "high" if ly > hi_y - 1e-6 else ("low" if ly < lo_y + 1e-6 else "")
+    return {
+        "A_Hz": A,
+        "A_err_Hz": np.sqrt(cov[0, 0]),
+        "B_Hz": B,
+        "B_err_Hz": np.sqrt(cov[1, 1]),
+        "theta_per_m": theta,
+        "lntheta_err": np.sqrt(cov[2, 2]),
+        "cov_A_lntheta": cov[0, 2],
+        "x_max": theta * umax,
+        "d_c_m": d_c,
+        "d_c_err_m": np.sqrt(cov[3, 3]),
+        "edge": edge,
+        "rss_df": rss_f,
+        "rss_dgamma": rss_g,
+    }
+
+
+def fit_plateau_loops(u, df, dg, w, sigma_df, sigma_dg, u_c) -> pd.DataFrame:
+    """Fit the exact plateau loop (+ dashpot) to every row of padded sweeps (module docstring).
+
+    Parameters
+    ----------
+    u, df, dg, w : (S, M) amplitudes (m), shifts (Hz), weights (0 for padding)
+    sigma_df, sigma_dg : (S,) noise levels of the two channels, Hz
+    u_c : (S,) start of the critical displacement (the hinge of the plateau model), m
+
+    Returns
+    -------
+    DataFrame with the columns of :func:`fit_cm_loops` (``theta_per_m`` = κ/(μF_N), ``x_max``
+    = θ·max(u0); ``edge`` "high" if the excess beyond d_c reaches gross sliding beyond
+    x = X_MAX, "low" if no slip is resolved) plus ``d_c_m`` and ``d_c_err_m``.
+    """
+    u_c = np.asarray(u_c, dtype=float)
+    floor_f = 1e-6 * np.maximum(np.abs(df).max(axis=1), 1e-12)
+    floor_g = 1e-6 * np.maximum(np.abs(dg).max(axis=1), 1e-12)
+    # Start of θ: the Cattaneo-Mindlin loop fitted to the amplitudes in excess of the hinge.
+    start = fit_cm_loops(np.maximum(u - u_c[:, None], 0.0), df, dg, w, sigma_df, sigma_dg)
+    y0 = start["x_max"].to_numpy()
+    rows = []
+    for i in range(u.shape[0]):
+        m = w[i] > 0
+        point = (u[i][m], df[i][m], dg[i][m], sigma_df[i], sigma_dg[i])
+        rows.append(_fit_one_plateau(*point, (floor_f[i], floor_g[i]), u_c[i], y0[i]))
+    return pd.DataFrame(rows, index=range(u.shape[0]))
+
+
 # Output column of each parameter of the registered amplitude models.
 _COLUMN_OF = {
     "df0": "df0_Hz",
@@ -475,21 +756,25 @@ _COLUMN_OF = {
     "A": "df0_Hz",
     "B": "dgamma0_Hz",
     "theta": "cm_theta_per_m",
+    "d_c": "plateau_amplitude_m",
 }
+# Where a model's parameter lives in another column than _COLUMN_OF says.
+_COLUMN_OVERRIDES = {"plateau-loop": {"theta": "pl_theta_per_m"}}
 
 
 def model_curves(row, u) -> tuple[np.ndarray, np.ndarray]:
     """Δf(u0), ΔΓ(u0) in Hz of the model chosen for one sweep (a row of :func:`fit_sweeps`).
 
     Evaluates the registered model function (:data:`contactres.fitting.MODELS`) with the
-    sweep's fitted values; a Cattaneo-Mindlin sweep whose limits come from the exact loop is
-    drawn as that loop.
+    sweep's fitted values; a sweep whose limits come from an exact loop (Cattaneo-Mindlin or
+    plateau) is drawn as that loop.
     """
     u = np.asarray(u, dtype=float)
     key = row["model"]
-    if key == "cattaneo-mindlin" and row.get("limits_from") == "cm-loop":
-        key = "cattaneo-mindlin-loop"
+    exact = {"cm-loop": "cattaneo-mindlin-loop", "plateau-loop": "plateau-loop"}
+    key = exact.get(row.get("limits_from"), key)
     model = MODELS[key]
-    values = {p.key: row[_COLUMN_OF[p.key]] for p in model.parameters}
+    columns = {**_COLUMN_OF, **_COLUMN_OVERRIDES.get(key, {})}
+    values = {p.key: row[columns[p.key]] for p in model.parameters}
     df, dg = model.function(u, **values)
     return np.broadcast_to(df, u.shape).astype(float), np.broadcast_to(dg, u.shape).astype(float)

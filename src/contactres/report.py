@@ -4,7 +4,17 @@
 
 ``sweeps.csv``
     one row per sweep: :data:`SWEEP_COLUMNS` in this order, then the uncertainties and derived
-    quantities of :data:`SWEEP_EXTRA_COLUMNS`.
+    quantities of :data:`SWEEP_EXTRA_COLUMNS`. ``model``: the amplitude class (elastic,
+    cattaneo-mindlin, savkoor, plateau). ``plateau_amplitude_m`` (± ``plateau_amplitude_err_m``):
+    the critical displacement d_c of a plateau sweep, from the fit of the exact plateau loop
+    (the hinge of the plateau model if that fit is off or unresolved; then no error). ``df0_Hz``,
+    ``dgamma0_Hz``: low-amplitude limits. ``df_slope_Hz_per_m``, ``dgamma_slope_Hz_per_m``: the
+    straight line, or for a plateau the hinge slope above the plateau (descriptive only).
+    ``mu_df``, ``mu_dgamma``: μ from those slopes (physics.md Eq. 11-12), Cattaneo-Mindlin
+    sweeps only; empty for a plateau sweep (flag ``plateau-slope``: the shifts leave a plateau
+    with no linear term, so no slope formula holds). ``mu_fit``: μ from the fit of the exact
+    loop (Cattaneo-Mindlin, or Cattaneo-Mindlin behind the plateau). ``flags``: ';'-separated
+    (see :mod:`contactres.analysis`).
 ``loads.csv``
     one row per (configuration, medium, normal force): ``n_experiments``, ``n_sweeps`` and
     ``<quantity>_mean``, ``<quantity>_sd`` (standard deviation over experiments, ddof = 1) of
@@ -68,6 +78,7 @@ SWEEP_EXTRA_COLUMNS = (
     "mu_df_err",
     "mu_dgamma_err",
     "mu_fit_err",
+    "plateau_amplitude_err_m",
 )
 SUMMARY_GROUP_KEYS = (
     "configuration",
