@@ -155,6 +155,14 @@ _amplitude_model(
 )
 
 
+# Parameters shared by the loop models: Pκ, Pωξ and the loop's amplitude scale κ/(μF_N).
+_LOOP_PARAMETERS = (
+    Parameter("A", "Pκ (low-amplitude Δf)", "Hz", (0.0, np.inf), scale=100.0),
+    Parameter("B", "Pωξ (low-amplitude ΔΓ)", "Hz", (-np.inf, np.inf), scale=10.0),
+    Parameter("theta", "κ/(μF_N)", "1/m", (0.0, np.inf), scale=1e8),
+)
+
+
 def _cm_loop_shifts(u, A, B, theta):
     x, g1, g2, _, _ = cm_loop_table()
     xu = np.asarray(theta) * np.asarray(u)
@@ -165,11 +173,7 @@ register_model(
     Model(
         key="cattaneo-mindlin-loop",
         display="exact Cattaneo-Mindlin loop with a dashpot",
-        parameters=(
-            Parameter("A", "Pκ (low-amplitude Δf)", "Hz", (0.0, np.inf), scale=100.0),
-            Parameter("B", "Pωξ (low-amplitude ΔΓ)", "Hz", (-np.inf, np.inf), scale=10.0),
-            Parameter("theta", "κ/(μF_N)", "1/m", (0.0, np.inf), scale=1e8),
-        ),
+        parameters=_LOOP_PARAMETERS,
         x="amplitude",
         x_unit="m",
         observable="df, dgamma",
@@ -190,9 +194,7 @@ register_model(
         key="plateau-loop",
         display="exact Cattaneo-Mindlin loop behind a stick plateau, with a dashpot",
         parameters=(
-            Parameter("A", "Pκ (low-amplitude Δf)", "Hz", (0.0, np.inf), scale=100.0),
-            Parameter("B", "Pωξ (low-amplitude ΔΓ)", "Hz", (-np.inf, np.inf), scale=10.0),
-            Parameter("theta", "κ/(μF_N)", "1/m", (0.0, np.inf), scale=1e8),
+            *_LOOP_PARAMETERS,
             Parameter("d_c", "critical displacement d_c", "m", (0.0, 1e-6), scale=1e-9),
         ),
         x="amplitude",
