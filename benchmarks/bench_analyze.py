@@ -38,8 +38,8 @@ def main() -> int:
         table.to_csv(csv, index=False, float_format="%.7g")
 
         from contactres.analysis import analyze
-        from contactres.analysis_sweep import cm_loop_table
-        from contactres.sweeps import read_sweeps
+        from contactres.analysis.classify import cm_loop_table
+        from contactres.measurements.sweeps import read_sweeps
 
         cm_loop_table.cache_clear()
         t0 = time.perf_counter()

@@ -17,9 +17,9 @@ import time
 import numpy as np
 
 from contactres import Material
-from contactres.dynamic import MODELS, _model_n, shear_wavenumber_ratio
-from contactres.dynamic_exact import exact_n, galerkin_size
-from contactres.dynamic_quadrature import functionals, kernel_table, resolution_for
+from contactres.dynamic.exact import exact_n, galerkin_size
+from contactres.dynamic.normal_stiffness import MODELS, _model_n, shear_wavenumber_ratio
+from contactres.dynamic.quadrature import functionals, kernel_table, resolution_for
 
 TARGET_S = 0.5
 TARGET_EXACT_S = 1.0

@@ -15,7 +15,7 @@ import numpy as np
 from scipy.integrate import IntegrationWarning, quad
 
 import contactres as cr
-from contactres.qcm import DEFAULT_NODES, loop_stiffness
+from contactres.resonators.qcm import DEFAULT_NODES, loop_stiffness
 
 N = 100_000
 TARGET_S = 0.5

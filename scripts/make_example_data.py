@@ -37,7 +37,7 @@ import pandas as pd
 
 from contactres.analysis import kappa_jkr_mindlin
 from contactres.normal.isotropic import effective_modulus, jkr_contact_radius
-from contactres.qcm import QCM, shifts_from_loop
+from contactres.resonators.qcm import QCM, shifts_from_loop
 from contactres.tangential import CattaneoMindlinLoop, PlateauLoop, SavkoorLoop, with_dashpot
 
 PARAMETERS = dict(

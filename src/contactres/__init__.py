@@ -18,6 +18,7 @@ from .dynamic import (
 )
 from .halfspace import dynamic_kernel, isotropic_dynamic_kernel, shear_reference, static_kernel
 from .materials import Material
+from .measurements.sweeps import SweepWarning, read_sweeps
 from .normal.anisotropic import (
     AnisotropicContact,
     contact_integrals,
@@ -38,7 +39,8 @@ from .normal.isotropic import (
     tabor_parameter,
     which_adhesion_model,
 )
-from .qcm import (
+from .report import Results
+from .resonators.qcm import (
     QCM,
     cattaneo_mindlin_expansion,
     friction_from_slopes,
@@ -48,8 +50,6 @@ from .qcm import (
     shifts_from_stiffness,
     stiffness_from_shifts,
 )
-from .report import Results
-from .sweeps import SweepWarning, read_sweeps
 from .tangential import (
     CattaneoMindlinLoop,
     DashpotLoop,

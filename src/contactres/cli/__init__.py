@@ -4,10 +4,11 @@ Each module here registers its subcommands on :data:`main` when imported.
 """
 
 from . import contact as _contact  # noqa: F401  (registers contact)
+from . import crystals as _crystals  # noqa: F401  (registers crystals)
 from . import dcsf as _dcsf  # noqa: F401  (registers dcsf)
+from . import demo as _demo  # noqa: F401  (registers demo)
 from . import figures_paper1 as _figures_paper1  # noqa: F401  (figures paper1)
 from . import figures_paper2 as _figures_paper2  # noqa: F401  (figures paper2)
-from . import materials as _materials  # noqa: F401  (registers subcommands)
 from . import qcm_analyze as _qcm_analyze  # noqa: F401  (registers qcm analyze)
 from . import qcm_loop as _qcm_loop  # noqa: F401  (registers qcm loop)
 from ._app import main

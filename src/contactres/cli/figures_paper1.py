@@ -26,7 +26,7 @@ def paper1(out: str) -> None:
     rbar (r/a), re_N, im_N, abs_ratio; ranking: zener, model, max_rel_error_kla_le_1,
     max_rel_error_kla_le_2, rank_kla_le_1.
     """
-    from ..figures_paper1 import write_paper1_figures
+    from ..apps.paper1 import write_paper1_figures
 
     for path in write_paper1_figures(out):
         click.echo(str(path))

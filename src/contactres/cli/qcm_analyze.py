@@ -62,7 +62,7 @@ def analyze_command(
     and medium) and writes everything into OUT.
     """
     from ..analysis import AnalysisSettings, analyze
-    from ..sweeps import SweepWarning, read_sweeps
+    from ..measurements.sweeps import SweepWarning, read_sweeps
 
     constants = dict(
         area_m2=area,

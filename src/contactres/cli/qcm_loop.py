@@ -8,7 +8,7 @@ import click
 import numpy as np
 import pandas as pd
 
-from ..qcm import QCM, shifts_from_loop
+from ..resonators.qcm import QCM, shifts_from_loop
 from ..tangential import CattaneoMindlinLoop, PlateauLoop, SavkoorLoop, VoigtLoop, with_dashpot
 from ._app import qcm
 from ._common import RANGE, emit, format_option

@@ -33,7 +33,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import special
 
-from .dynamic_quadrature import KernelTable, _far_basis
+from .quadrature import KernelTable, _far_basis
 
 __all__ = ["GalerkinSize", "exact_n", "galerkin_size", "pressure_basis"]
 

@@ -27,8 +27,8 @@ from functools import lru_cache
 
 import numpy as np
 
-from .tangential import CattaneoMindlinLoop, DashpotLoop, MasingLoop, SavkoorLoop, _amplitude
-from .validation import positive
+from ..tangential import CattaneoMindlinLoop, DashpotLoop, MasingLoop, SavkoorLoop, _amplitude
+from ..validation import positive
 
 __all__ = [
     "QCM",

@@ -20,9 +20,9 @@ import pandas as pd
 from matplotlib.figure import Figure
 from matplotlib.ticker import NullLocator
 
-from .dynamic import contact_displacement, dcsf, dcsf_models
-from .fileio import ensure_dir, save_figure, write_csv
-from .materials import Material
+from ..dynamic import contact_displacement, dcsf, dcsf_models
+from ..fileio import ensure_dir, save_figure, write_csv
+from ..materials import Material
 
 __all__ = [
     "PAPER_MODELS",

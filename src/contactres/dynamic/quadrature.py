@@ -31,9 +31,9 @@ from dataclasses import dataclass, replace
 import numpy as np
 from scipy import special
 
-from .dynamic_weights import _bessel_even, _j1s, _sinc, _wa_harmonic_weights, _wa_line_weight
-from .halfspace import dynamic_kernel, shear_reference, static_kernel
-from .materials import Material, require_material, rotate_tensor, voigt_to_tensor
+from ..halfspace import dynamic_kernel, shear_reference, static_kernel
+from ..materials import Material, require_material, rotate_tensor, voigt_to_tensor
+from .weights import _bessel_even, _j1s, _sinc, _wa_harmonic_weights, _wa_line_weight
 
 __all__ = [
     "KernelTable",

@@ -7,9 +7,9 @@ import pandas as pd
 import pytest
 
 from contactres.analysis import AnalysisSettings, analyze, kappa_jkr_mindlin
-from contactres.qcm import QCM, shifts_from_loop
+from contactres.measurements.sweeps import validate_sweeps
 from contactres.report import SUMMARY_GROUP_KEYS, SWEEP_COLUMNS
-from contactres.sweeps import validate_sweeps
+from contactres.resonators.qcm import QCM, shifts_from_loop
 from contactres.tangential import CattaneoMindlinLoop, with_dashpot
 
 Q = QCM(5e6, 3, 2.5e-5)

@@ -40,7 +40,7 @@ from typing import Any
 
 import pandas as pd
 
-from .fileio import ensure_dir, write_csv, write_text
+from ..fileio import ensure_dir, write_csv, write_text
 
 __all__ = ["SUMMARY_GROUP_KEYS", "SWEEP_COLUMNS", "SWEEP_EXTRA_COLUMNS", "Results"]
 
@@ -195,7 +195,7 @@ class Results:
             ),
         ]
         if figures:
-            from .plots import write_figures
+            from .figures import write_figures
 
             written.extend(write_figures(self, out))
         return written

@@ -50,7 +50,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from .qcm import SMALL_LOAD_LIMIT
+from ..resonators.qcm import SMALL_LOAD_LIMIT
 
 if sys.version_info >= (3, 11):
     import tomllib

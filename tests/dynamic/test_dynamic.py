@@ -24,8 +24,8 @@ from contactres.dynamic import (
     dynamic_contact_stiffness,
     shear_wavenumber_ratio,
 )
-from contactres.dynamic_quadrature import functionals, kernel_table, resolution_for
-from contactres.dynamic_weights import _bessel_even, _wa_harmonic_weights, _wa_line_weight
+from contactres.dynamic.quadrature import functionals, kernel_table, resolution_for
+from contactres.dynamic.weights import _bessel_even, _wa_harmonic_weights, _wa_line_weight
 from contactres.halfspace import isotropic_dynamic_kernel
 
 Q = 0.02
@@ -268,7 +268,7 @@ def test_doubling_every_resolution_moves_dcsf_less_than_rtol(A, nu):
     a = functionals(kernel_table(m, Q, res), ks)
     b = functionals(kernel_table(m, Q, fine), ks)
     ta, tb = kernel_table(m, Q, res), kernel_table(m, Q, fine)
-    from contactres.dynamic import _model_n
+    from contactres.dynamic.normal_stiffness import _model_n
 
     for name in MODELS:
         da = ta.n_static / _model_n(a, name)

@@ -56,17 +56,17 @@ import numpy as np
 import pandas as pd
 from scipy.stats import f as f_dist
 
-from .analysis_sweep import MODEL_ORDER, X_MAX, fit_sweeps, pad_sweeps
-from .fitting import Model, Parameter, fit, register_model
-from .normal.isotropic import (
+from ..fitting import Model, Parameter, fit, register_model
+from ..measurements.sweeps import validate_sweeps
+from ..normal.isotropic import (
     effective_modulus,
     effective_shear_modulus,
     jkr_contact_radius,
     shear_modulus,
 )
-from .qcm import QCM, SMALL_LOAD_LIMIT, _mu_from_slopes
-from .sweeps import validate_sweeps
-from .tangential import mindlin_stiffness
+from ..resonators.qcm import QCM, SMALL_LOAD_LIMIT, _mu_from_slopes
+from ..tangential import mindlin_stiffness
+from .classify import MODEL_ORDER, X_MAX, fit_sweeps, pad_sweeps
 
 __all__ = ["AnalysisSettings", "analyze", "fit_jkr_mindlin", "kappa_jkr_mindlin"]
 
@@ -467,8 +467,8 @@ def analyze(
     -------
     contactres.report.Results
     """
-    from . import __version__
-    from .report import Results
+    from .. import __version__
+    from ..report import Results
 
     settings = settings or AnalysisSettings()
     say = progress or (lambda step: None)

@@ -9,7 +9,7 @@ from click.testing import CliRunner
 
 from contactres.analysis import kappa_jkr_mindlin
 from contactres.cli import main
-from contactres.qcm import QCM, shifts_from_loop
+from contactres.resonators.qcm import QCM, shifts_from_loop
 from contactres.tangential import CattaneoMindlinLoop, with_dashpot
 
 

@@ -15,11 +15,11 @@ import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
 
-from .analysis import kappa_jkr_mindlin
-from .fileio import ensure_dir, save_figure, write_csv
-from .normal.isotropic import effective_modulus, jkr_contact_radius
-from .qcm import QCM, shifts_from_loop
-from .tangential import CattaneoMindlinLoop, SavkoorLoop, VoigtLoop, with_dashpot
+from ..analysis import kappa_jkr_mindlin
+from ..fileio import ensure_dir, save_figure, write_csv
+from ..normal.isotropic import effective_modulus, jkr_contact_radius
+from ..resonators.qcm import QCM, shifts_from_loop
+from ..tangential import CattaneoMindlinLoop, SavkoorLoop, VoigtLoop, with_dashpot
 
 __all__ = ["Paper2Example", "loops_figure", "shifts_figure", "write_paper2_figures"]
 

@@ -73,7 +73,7 @@ import numpy as np
 import pandas as pd
 from scipy.optimize import least_squares
 
-from .fitting import MODELS, Model, Parameter, register_model
+from ..fitting import MODELS, Model, Parameter, register_model
 
 __all__ = [
     "MODEL_ORDER",
@@ -438,8 +438,8 @@ def cm_loop_table() -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray, np.
     x = u0. Returns (x, g1, g2, dg1/dx, dg2/dx) on a grid 0 <= x <= X_MAX (uniform, refined near
     full sliding at x = 3/2); linear interpolation in it is accurate to 1e-6 (a test checks).
     """
-    from .qcm import QCM, shifts_from_loop, shifts_from_stiffness
-    from .tangential import CattaneoMindlinLoop
+    from ..resonators.qcm import QCM, shifts_from_loop, shifts_from_stiffness
+    from ..tangential import CattaneoMindlinLoop
 
     q = QCM(fundamental=5e6, overtone=3, area=1e-5)
     P = float(np.asarray(shifts_from_stiffness(q, 1.0, 0.0, 1)[0]))
@@ -575,7 +575,7 @@ class _UnitPlateauLoops:
     :mod:`contactres.qcm` integrates (breaks and singular points per amplitude, last axis)."""
 
     def __init__(self, c):
-        from .tangential import CattaneoMindlinLoop
+        from ..tangential import CattaneoMindlinLoop
 
         self.inner = CattaneoMindlinLoop(kappa=1.0, mu=1.0, normal_force=1.0)
         self.kappa = 1.0
@@ -601,7 +601,7 @@ def plateau_loop_shape(x, c) -> tuple[np.ndarray, np.ndarray]:
     (broadcast together). Paper 2, Eqs. 4-6 with Masing's rule, integrated with the quadrature
     of :func:`contactres.loop_stiffness` (relative accuracy 1e-9), vectorised.
     """
-    from .qcm import DEFAULT_NODES, _masing_stiffness
+    from ..resonators.qcm import DEFAULT_NODES, _masing_stiffness
 
     x, c = np.broadcast_arrays(np.asarray(x, dtype=float), np.asarray(c, dtype=float))
     if np.any(~(x >= 0)) or np.any(~(c >= 0)):

@@ -10,13 +10,13 @@ from __future__ import annotations
 from collections.abc import Callable
 from pathlib import Path
 
-from .fileio import ensure_dir, write_csv
+from ..fileio import ensure_dir, write_csv
 
 __all__ = ["DEMO_STEPS", "run_demo"]
 
 
 def _crystals_step(out: Path) -> list[Path]:
-    from .crystals import crystal_table
+    from ..crystals import crystal_table
 
     return [write_csv(out / "crystals.csv", crystal_table())]
 
@@ -25,8 +25,8 @@ def _qcm_analysis_step(out: Path) -> list[Path]:
     """Paper 2's analysis of the bundled sweeps (scripts/make_example_data.py): qcm-analysis/."""
     from importlib.resources import as_file, files
 
-    from .analysis import analyze
-    from .sweeps import read_sweeps
+    from ..analysis import analyze
+    from ..measurements.sweeps import read_sweeps
 
     with as_file(files("contactres") / "data" / "example_sweeps.csv") as path:
         table = read_sweeps(path)
@@ -35,14 +35,14 @@ def _qcm_analysis_step(out: Path) -> list[Path]:
 
 def _paper2_forward_step(out: Path) -> list[Path]:
     """Paper 2 forward model: loops (Fig. 2C-D) and Δf(u0), ΔΓ(u0) (Fig. 1D): paper2-forward/."""
-    from .figures_paper2 import write_paper2_figures
+    from .paper2 import write_paper2_figures
 
     return write_paper2_figures(out / "paper2-forward")
 
 
 def _paper1_dcsf_step(out: Path) -> list[Path]:
     """Paper 1: DCSF (WA model) of built-in crystals on (001) faces (as Fig. 4): paper1-dcsf/."""
-    from .figures_paper1 import write_crystal_dcsf
+    from .paper1 import write_crystal_dcsf
 
     return write_crystal_dcsf(out / "paper1-dcsf")
 

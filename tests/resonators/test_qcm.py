@@ -1,4 +1,4 @@
-"""Tests of contactres.qcm: Eqs. 1-2, the loop quadrature of Eqs. 4-5, expansions, friction."""
+"""Tests of contactres.resonators.qcm: Eqs. 1-2, loop quadrature (Eqs. 4-5), expansions, friction."""
 
 import warnings
 
@@ -10,7 +10,7 @@ from hypothesis.extra.numpy import array_shapes
 from scipy.integrate import quad
 
 import contactres as cr
-from contactres.qcm import _generic_stiffness, loop_stiffness
+from contactres.resonators.qcm import _generic_stiffness, loop_stiffness
 from contactres.tangential import PlateauLoop
 
 # scipy.quad at epsrel ~1e-13 warns about round-off it cannot beat; the tests compare values.

@@ -4,14 +4,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from contactres.analysis import (
-    AnalysisSettings,
-    _bootstrap_jkr,
-    analyze,
-    fit_jkr_mindlin,
-    kappa_jkr_mindlin,
-)
-from contactres.analysis_sweep import (
+from contactres.analysis.classify import (
     MODEL_ORDER,
     cm_loop_table,
     fit_cm_loops,
@@ -20,10 +13,17 @@ from contactres.analysis_sweep import (
     pad_sweeps,
     plateau_loop_shape,
 )
+from contactres.analysis.pipeline import (
+    AnalysisSettings,
+    _bootstrap_jkr,
+    analyze,
+    fit_jkr_mindlin,
+    kappa_jkr_mindlin,
+)
 from contactres.fitting import MODELS, Model, Parameter, fit
+from contactres.measurements.sweeps import validate_sweeps
 from contactres.normal.isotropic import effective_modulus, jkr_contact_radius
-from contactres.qcm import QCM, shifts_from_loop
-from contactres.sweeps import validate_sweeps
+from contactres.resonators.qcm import QCM, shifts_from_loop
 from contactres.tangential import (
     CattaneoMindlinLoop,
     PlateauLoop,

@@ -65,7 +65,7 @@ def test_dcsf_help_states_units_and_models():
 
 
 def test_figures_paper1_writes_png_and_csv(tmp_path, monkeypatch):
-    import contactres.figures_paper1 as fp
+    import contactres.apps.paper1 as fp
 
     # a coarse grid keeps the test fast; the figure code is the same
     monkeypatch.setattr(fp, "KLA", np.linspace(0, 2, 9))

@@ -39,16 +39,16 @@ import math
 
 import numpy as np
 
-from .dynamic_exact import exact_n, galerkin_size, pressure_basis
-from .dynamic_quadrature import (
+from ..halfspace import shear_reference
+from ..materials import Material, require_material
+from ..validation import nonnegative
+from .exact import exact_n, galerkin_size, pressure_basis
+from .quadrature import (
     functionals,
     kernel_table,
     point_values,
     resolution_for,
 )
-from .halfspace import shear_reference
-from .materials import Material, require_material
-from .validation import nonnegative
 
 __all__ = [
     "ALL_MODELS",
@@ -235,7 +235,7 @@ def dynamic_contact_stiffness(
     complex or ndarray of complex
         K_da in N/m; its real part is the contact stiffness, ω⁻¹ Im K_da the damping (N s/m).
     """
-    from .normal.anisotropic import sphere_contact
+    from ..normal.anisotropic import sphere_contact
 
     if require_material(m).density is None:
         raise ValueError("dynamic_contact_stiffness needs the material density (kg/m^3)")

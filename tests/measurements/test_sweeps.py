@@ -6,7 +6,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from contactres.sweeps import SweepWarning, read_sweeps, validate_sweeps
+from contactres.measurements.sweeps import SweepWarning, read_sweeps, validate_sweeps
 
 CONST = dict(overtone=3, area_m2=2.5e-5, n_contacts=3, sphere_radius_m=1.1e-3)
 
@@ -232,7 +232,7 @@ def test_bom_and_windows_line_endings(tmp_path):
 
 
 def test_reader_plugin(tmp_path, monkeypatch):
-    import contactres.sweeps as sw
+    import contactres.measurements.sweeps as sw
 
     monkeypatch.setattr(sw, "READERS", list(sw.READERS))
 

@@ -1,11 +1,8 @@
-"""CLI: ``contactres crystals`` and ``contactres demo``."""
+"""CLI: ``contactres crystals``: the built-in crystal table."""
 
 from __future__ import annotations
 
-import click
-
 from ..crystals import crystal_table
-from ..demo import run_demo
 from ._app import main
 from ._common import emit, format_option
 
@@ -36,19 +33,3 @@ def crystals(fmt: str) -> None:
             [indentation_modulus(m.rotated(normal)) / 1e9 for m in solids],
         )
     emit(table, fmt)
-
-
-@main.command()
-@click.option(
-    "--out",
-    type=click.Path(file_okay=False),
-    default="contactres-demo",
-    show_default=True,
-    help="Folder to write the results into (created if missing).",
-)
-def demo(out: str) -> None:
-    """Run the main job on the bundled example data and write its results into OUT."""
-    written = run_demo(out, progress=lambda title: click.echo(f"  - {title}", err=True))
-    click.echo(f"wrote {len(written)} files into {out}/")
-    for p in written:
-        click.echo(f"  {p}")

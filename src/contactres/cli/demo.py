@@ -1,0 +1,25 @@
+"""CLI: ``contactres demo``: the main job on the bundled example data."""
+
+from __future__ import annotations
+
+import click
+
+from ._app import main
+
+
+@main.command()
+@click.option(
+    "--out",
+    type=click.Path(file_okay=False),
+    default="contactres-demo",
+    show_default=True,
+    help="Folder to write the results into (created if missing).",
+)
+def demo(out: str) -> None:
+    """Run the main job on the bundled example data and write its results into OUT."""
+    from ..apps.demo import run_demo
+
+    written = run_demo(out, progress=lambda title: click.echo(f"  - {title}", err=True))
+    click.echo(f"wrote {len(written)} files into {out}/")
+    for p in written:
+        click.echo(f"  {p}")

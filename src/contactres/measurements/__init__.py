@@ -1,0 +1,1 @@
+"""Measured data: the schema of every table, the readers, validated tables, synthetic data."""
