@@ -35,7 +35,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from contactres.analysis import kappa_jkr_mindlin
+from contactres.tangential import kappa_jkr_mindlin
 from contactres.normal.isotropic import effective_modulus, jkr_contact_radius
 from contactres.resonators.qcm import QCM, shifts_from_loop
 from contactres.tangential import CattaneoMindlinLoop, PlateauLoop, SavkoorLoop, with_dashpot

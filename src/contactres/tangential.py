@@ -24,10 +24,17 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.special import binom
 
+from .normal.isotropic import (
+    effective_modulus,
+    effective_shear_modulus,
+    jkr_contact_radius,
+    shear_modulus,
+)
 from .validation import nonnegative as _nonneg
 from .validation import positive as _pos
 
 __all__ = [
+    "kappa_jkr_mindlin",
     "CattaneoMindlinLoop",
     "DashpotLoop",
     "MasingLoop",
@@ -475,3 +482,16 @@ class DashpotLoop:
 def with_dashpot(loop, xi: float, omega: float) -> DashpotLoop:
     """``loop`` plus a linear dashpot ξ (kg/s) at angular frequency ω (rad/s)."""
     return DashpotLoop(loop, xi, omega)
+
+
+def kappa_jkr_mindlin(force, E, gamma, radius, poisson):
+    """Tangential stiffness κ(F_N) of a sphere on a flat of the same material, N/m.
+
+    κ = 2G*a (paper 2, below Eq. 6), G* from Eq. 7 with G = E/(2(1 + ν)) (Eq. 8) on both sides,
+    a from JKR (Eq. 9) with E* from Eq. 10 (E1 = E2 = E, ν1 = ν2 = ν). ``force`` N per contact,
+    ``E`` Pa, ``gamma`` J/m² (paper 2's γ; work of adhesion w = 2γ), ``radius`` m.
+    """
+    E_star = effective_modulus(E, poisson)
+    G_star = effective_shear_modulus(shear_modulus(E, poisson), poisson)
+    a = jkr_contact_radius(E_star, radius, force, gamma)
+    return mindlin_stiffness(a, G_star)

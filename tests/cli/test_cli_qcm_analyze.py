@@ -7,7 +7,7 @@ import pandas as pd
 import pytest
 from click.testing import CliRunner
 
-from contactres.analysis import kappa_jkr_mindlin
+from contactres.tangential import kappa_jkr_mindlin
 from contactres.cli import main
 from contactres.resonators.qcm import QCM, shifts_from_loop
 from contactres.tangential import CattaneoMindlinLoop, with_dashpot

@@ -6,7 +6,8 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from contactres.analysis import AnalysisSettings, analyze, kappa_jkr_mindlin
+from contactres.analysis import AnalysisSettings, analyze
+from contactres.tangential import kappa_jkr_mindlin
 from contactres.measurements.sweeps import validate_sweeps
 from contactres.report import SUMMARY_GROUP_KEYS, SWEEP_COLUMNS
 from contactres.resonators.qcm import QCM, shifts_from_loop

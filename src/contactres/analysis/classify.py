@@ -601,12 +601,12 @@ def plateau_loop_shape(x, c) -> tuple[np.ndarray, np.ndarray]:
     (broadcast together). Paper 2, Eqs. 4-6 with Masing's rule, integrated with the quadrature
     of :func:`contactres.loop_stiffness` (relative accuracy 1e-9), vectorised.
     """
-    from ..resonators.qcm import DEFAULT_NODES, _masing_stiffness
+    from ..resonators.qcm import DEFAULT_NODES, masing_stiffness
 
     x, c = np.broadcast_arrays(np.asarray(x, dtype=float), np.asarray(c, dtype=float))
     if np.any(~(x >= 0)) or np.any(~(c >= 0)):
         raise ValueError("plateau_loop_shape needs x >= 0 and c >= 0")
-    k1, k2 = _masing_stiffness(_UnitPlateauLoops(c.ravel()), x.ravel(), DEFAULT_NODES)
+    k1, k2 = masing_stiffness(_UnitPlateauLoops(c.ravel()), x.ravel(), DEFAULT_NODES)
     return k1.reshape(x.shape), k2.reshape(x.shape)
 
 

@@ -58,14 +58,8 @@ from scipy.stats import f as f_dist
 
 from ..fitting import Model, Parameter, fit, register_model
 from ..measurements.sweeps import validate_sweeps
-from ..normal.isotropic import (
-    effective_modulus,
-    effective_shear_modulus,
-    jkr_contact_radius,
-    shear_modulus,
-)
-from ..resonators.qcm import QCM, SMALL_LOAD_LIMIT, _mu_from_slopes
-from ..tangential import mindlin_stiffness
+from ..resonators.qcm import QCM, SMALL_LOAD_LIMIT, mu_from_slopes
+from ..tangential import kappa_jkr_mindlin
 from .classify import MODEL_ORDER, X_MAX, fit_sweeps, pad_sweeps
 
 __all__ = ["AnalysisSettings", "analyze", "fit_jkr_mindlin", "kappa_jkr_mindlin"]
@@ -111,19 +105,6 @@ class AnalysisSettings:
 
 # --------------------------------------------------------------------------------------------
 # The JKR + Mindlin model of κ(F_N)
-
-
-def kappa_jkr_mindlin(force, E, gamma, radius, poisson):
-    """Tangential stiffness κ(F_N) of a sphere on a flat of the same material, N/m.
-
-    κ = 2G*a (paper 2, below Eq. 6), G* from Eq. 7 with G = E/(2(1 + ν)) (Eq. 8) on both sides,
-    a from JKR (Eq. 9) with E* from Eq. 10 (E1 = E2 = E, ν1 = ν2 = ν). ``force`` N per contact,
-    ``E`` Pa, ``gamma`` J/m² (paper 2's γ; work of adhesion w = 2γ), ``radius`` m.
-    """
-    E_star = effective_modulus(E, poisson)
-    G_star = effective_shear_modulus(shear_modulus(E, poisson), poisson)
-    a = jkr_contact_radius(E_star, radius, force, gamma)
-    return mindlin_stiffness(a, G_star)
 
 
 JKR_MINDLIN = register_model(
@@ -214,7 +195,7 @@ def _friction(sw: pd.DataFrame, P: np.ndarray) -> None:
     df0 = sw["df0_Hz"].to_numpy()
     slip = _slip_sweeps(sw) & (sw["model"].to_numpy() == "cattaneo-mindlin")
     mu = {"df": np.full(len(sw), np.nan), "dgamma": np.full(len(sw), np.nan)}
-    mu["df"][slip], mu["dgamma"][slip] = _mu_from_slopes(
+    mu["df"][slip], mu["dgamma"][slip] = mu_from_slopes(
         P[slip],
         df0[slip] / P[slip],
         sw["normal_force_N"].to_numpy()[slip],

@@ -15,7 +15,7 @@ import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
 
-from ..analysis import kappa_jkr_mindlin
+from ..tangential import kappa_jkr_mindlin
 from ..fileio import ensure_dir, save_figure, write_csv
 from ..normal.isotropic import effective_modulus, jkr_contact_radius
 from ..resonators.qcm import QCM, shifts_from_loop

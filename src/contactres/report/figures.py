@@ -13,7 +13,7 @@ import pandas as pd
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
-from ..analysis import kappa_jkr_mindlin
+from ..tangential import kappa_jkr_mindlin
 from ..analysis.classify import model_curves
 from ..fileio import save_figure
 

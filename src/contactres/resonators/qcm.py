@@ -166,7 +166,7 @@ def _distance_beyond(points, end, side):
     return d.min(axis=-1)
 
 
-def _masing_stiffness(loop: MasingLoop, u0: np.ndarray, n: int):
+def masing_stiffness(loop: MasingLoop, u0: np.ndarray, n: int):
     """K′, K″ of a Masing loop from its slope deficit (paper 2, Eqs. 4-5 after Masing's rule).
 
     With s = d/u0 on the virgin curve (Eq. 4 integrated by parts; Eq. 5 with the loop area
@@ -257,7 +257,7 @@ def loop_stiffness(loop, u0, nodes: int = DEFAULT_NODES):
     if isinstance(loop, DashpotLoop):
         return loop_stiffness(loop.loop, u0, n) + 1j * loop.omega * loop.xi
     if isinstance(loop, MasingLoop):
-        k1, k2 = _masing_stiffness(loop, u0, n)
+        k1, k2 = masing_stiffness(loop, u0, n)
     elif all(hasattr(loop, m) for m in ("branches", "kinks")):
         k1, k2 = _generic_stiffness(loop, u0, n)
     else:
@@ -334,11 +334,11 @@ def friction_from_slopes(
             "friction_from_slopes needs kappa > 0 (N/m) and normal_force > 0 (N), got "
             f"kappa={_out(kappa)!r}, normal_force={_out(F)!r}"
         )
-    mu1, mu2 = _mu_from_slopes(P, kappa, F, df_slope, dgamma_slope)
+    mu1, mu2 = mu_from_slopes(P, kappa, F, df_slope, dgamma_slope)
     return _out(mu1), _out(mu2)
 
 
-def _mu_from_slopes(P, kappa, normal_force, df_slope, dgamma_slope):
+def mu_from_slopes(P, kappa, normal_force, df_slope, dgamma_slope):
     """μ from the Δf and ΔΓ slopes (Hz/m) with the sensitivity P (Hz per N/m) given, arrays.
 
     The formulas of :func:`friction_from_slopes` without its checks; ``P`` may be an array

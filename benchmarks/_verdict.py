@@ -1,0 +1,23 @@
+"""Shared by the benchmarks: every timed target is printed with its ratio and a verdict.
+
+A benchmark calls :func:`target` once per timed quantity and ends with
+``sys.exit(exit_code(results))``, so that ``make bench`` can fail when a target is missed.
+"""
+
+from __future__ import annotations
+
+
+def target(name: str, seconds: float, target_s: float) -> bool:
+    """Print ``name``: measured time, target, ratio and MET/MISSED; return True if met."""
+    ratio = seconds / target_s
+    met = seconds <= target_s
+    print(
+        f"  TARGET {name}: {seconds:.4g} s, target {target_s:.4g} s, ratio {ratio:.2f} "
+        f"-> {'met' if met else 'MISSED'}"
+    )
+    return met
+
+
+def exit_code(results: list[bool]) -> int:
+    """0 when every target was met, 1 otherwise."""
+    return 0 if all(results) else 1
