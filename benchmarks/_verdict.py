@@ -1,10 +1,13 @@
 """Shared by the benchmarks: every timed target is printed with its ratio and a verdict.
 
 A benchmark calls :func:`target` once per timed quantity and ends with
-``sys.exit(exit_code(results))``, so that ``make bench`` can fail when a target is missed.
+``sys.exit(exit_code(results))``, so that ``make bench`` can fail when a target is missed;
+``benchmarks/run_all.py`` reads the printed lines back with :func:`parse` for its verdict.
 """
 
 from __future__ import annotations
+
+import re
 
 
 def target(name: str, seconds: float, target_s: float) -> bool:
@@ -21,3 +24,18 @@ def target(name: str, seconds: float, target_s: float) -> bool:
 def exit_code(results: list[bool]) -> int:
     """0 when every target was met, 1 otherwise."""
     return 0 if all(results) else 1
+
+
+# The line printed by :func:`target`, read back by run_all.py (keep the two in step).
+TARGET_LINE = re.compile(
+    r"^\s*TARGET (?P<name>.+): (?P<seconds>\S+) s, target (?P<target>\S+) s, "
+    r"ratio \S+ -> (?P<verdict>met|MISSED)\s*$"
+)
+
+
+def parse(line: str) -> tuple[str, float, float, bool] | None:
+    """``(name, seconds, target_s, met)`` from a line printed by :func:`target`, else None."""
+    m = TARGET_LINE.match(line)
+    if m is None:
+        return None
+    return m["name"], float(m["seconds"]), float(m["target"]), m["verdict"] == "met"

@@ -3,7 +3,7 @@
 Independent references: Boussinesq (isotropic statics), the exact axial indentation modulus of a
 transversely isotropic solid (Delafargue & Ulm 2004), Lamb's closed-form isotropic kernel, the
 published secular equation of Rayleigh waves on an orthotropic face (cubic (001) Rayleigh pole),
-a brute-force 6x6 Stroh eigen-decomposition (physics.md's matrix), the general doubling step
+a brute-force 6x6 Stroh eigen-decomposition (np.linalg.eig), the general doubling step
 against the mirror-plane one, symmetry and reciprocity.
 """
 
@@ -17,6 +17,7 @@ from scipy.spatial.transform import Rotation
 from contactres import Material
 from contactres.halfspace import (
     dynamic_kernel,
+    has_mirror_plane,
     isotropic_dynamic_kernel,
     shear_reference,
     static_kernel,
@@ -192,7 +193,8 @@ def test_orthotropic_secular_equation_reduces_to_rayleigh():
 
 
 def _stroh_eig_kernel(C, kappa, theta):
-    """Brute force: physics.md's 6x6 Stroh matrix, np.linalg.eig, keep Re λ < 0, H = A B⁻¹."""
+    """Brute force: the 6x6 Stroh matrix (state vector: displacement and scaled traction σ_i3),
+    np.linalg.eig, keep the three eigenvalues with Re λ < 0 (decaying), H = A B⁻¹."""
     c = voigt_to_tensor(np.asarray(C, dtype=complex)) / np.real(C[3, 3])
     n = np.array([np.cos(theta), np.sin(theta)])
     Q = np.einsum("iakb,a,b->ik", c[:, :2, :, :2], n, n)
@@ -243,13 +245,16 @@ def test_broadcasting_shapes():
 
 def test_doubling_tolerance_is_converged(monkeypatch):
     # The cyclic reduction stops at an update of 1e-10; stopping at 1e-15 moves g by < 1e-13.
-    import contactres.halfspace as hs
+    from contactres.halfspace import doubling
 
     m = Material.crystal("Cu").rotated((0, 1, 1)).with_loss(0.02)
     k = np.geomspace(0.05, 50, 40)[:, None]
     th = np.linspace(0, np.pi, 9)[None, :]
     g = dynamic_kernel(m, k, th)
-    monkeypatch.setattr(hs, "_CR_TOL", 1e-15)
+    # The patch reaches the doubling loop: a loose tolerance visibly changes g.
+    monkeypatch.setattr(doubling, "_CR_TOL", 1e-2)
+    assert np.max(np.abs(dynamic_kernel(m, k, th) - g) / np.abs(g)) > 1e-4
+    monkeypatch.setattr(doubling, "_CR_TOL", 1e-15)
     g_tight = dynamic_kernel(m, k, th)
     assert np.max(np.abs(g - g_tight) / np.abs(g_tight)) < 1e-13
 
@@ -257,8 +262,25 @@ def test_doubling_tolerance_is_converged(monkeypatch):
 def test_mirror_plane_fast_path_equals_general_cyclic_reduction(monkeypatch):
     # Faces that are mirror planes of the solid take the block-structured doubling step; the
     # general 3x3 step (forced here) is a second algorithm for the same solvent.
-    import contactres.halfspace as hs
+    from contactres.halfspace import compliance, doubling
 
+    calls = {"general": 0, "mirror": 0}
+
+    def counted(name, fn):
+        def wrapper(*args, **kwargs):
+            calls[name] += 1
+            return fn(*args, **kwargs)
+
+        return wrapper
+
+    monkeypatch.setattr(
+        doubling, "_cyclic_reduction", counted("general", doubling._cyclic_reduction)
+    )
+    monkeypatch.setattr(
+        doubling,
+        "_cyclic_reduction_mirror",
+        counted("mirror", doubling._cyclic_reduction_mirror),
+    )
     m001, m011 = CU, CU.rotated((0, 1, 1))
     hexa = Material.hexagonal(160e9, 90e9, 66e9, 181e9, 46e9).rotated((1, 0, 0))
     k = np.concatenate([np.geomspace(0.05, 50, 12), [0.999, 1.0001, 1.3]])[:, None]
@@ -266,15 +288,20 @@ def test_mirror_plane_fast_path_equals_general_cyclic_reduction(monkeypatch):
     cases = [(m.with_loss(0.02), k) for m in (m001, m011, hexa)]
     cases += [(m001, np.array([[1.2], [2.0], [9.0]])), (m011, k + 0.05j)]  # lossless
     for m, _ in cases:
-        assert hs._has_mirror(hs._scaled_tensor(m))
+        assert has_mirror_plane(m)
     fast = [dynamic_kernel(m, kk, th) for m, kk in cases]
-    monkeypatch.setattr(hs, "_has_mirror", lambda c: False)
+    assert calls["mirror"] >= len(cases) and calls["general"] == 0
+    monkeypatch.setattr(compliance, "_has_mirror", lambda c: False)
+    calls.update(general=0, mirror=0)
     for (m, kk), g in zip(cases, fast, strict=True):
         ref = dynamic_kernel(m, kk, th)
         assert np.max(np.abs(g - ref) / np.abs(ref)) < 1e-12
+    # The forced path really ran: only the general step, and it rounds differently.
+    assert calls["general"] >= len(cases) and calls["mirror"] == 0
+    assert not np.array_equal(fast[0], dynamic_kernel(cases[0][0], cases[0][1], th))
     # No mirror plane: (111) of a cubic crystal, a generic solid.
-    assert not hs._has_mirror(hs._scaled_tensor(CU.rotated((1, 1, 1))))
-    assert not hs._has_mirror(hs._scaled_tensor(_triclinic()))
+    assert not has_mirror_plane(CU.rotated((1, 1, 1)))
+    assert not has_mirror_plane(_triclinic())
 
 
 # --------------------------------------------------------------------------------- symmetry

@@ -7,7 +7,11 @@ from hypothesis import strategies as st
 from scipy.spatial.transform import Rotation
 
 from contactres import Material
-from contactres.materials import rotation_to_surface, tensor_to_voigt, voigt_to_tensor
+from contactres.materials import (
+    rotation_to_surface,
+    tensor_to_voigt,
+    voigt_to_tensor,
+)
 
 CU = Material.cubic(168.4e9, 121.4e9, 75.4e9, density=8960.0)
 
@@ -172,3 +176,12 @@ def test_zener_ratio_of_rotated_crystal_is_an_error():
 def test_bad_input_is_rejected_with_a_message_naming_it(make, match):
     with pytest.raises(ValueError, match=match):
         make()
+
+
+def test_crystal_builds_the_cubic_solid_of_the_table():
+    # Kittel's Al row: C11, C12, C44 = 108.2, 61.3, 28.5 GPa, ρ = 2700 kg/m³.
+    m = Material.crystal("al")
+    np.testing.assert_array_equal(m.C, Material.cubic(108.2e9, 61.3e9, 28.5e9).C)
+    assert (m.density, m.name) == (2700.0, "Al")
+    with pytest.raises(ValueError, match="unknown crystal 'steel'"):
+        Material.crystal("steel")

@@ -7,7 +7,7 @@ from hypothesis import strategies as st
 from scipy.integrate import quad
 
 import contactres as cr
-from contactres.tangential import PlateauLoop
+from contactres.tangential import PlateauLoop, kappa_jkr_mindlin
 
 # scipy.quad at epsrel ~1e-13 warns about round-off it cannot beat; the tests compare values.
 pytestmark = pytest.mark.filterwarnings("ignore::scipy.integrate.IntegrationWarning")
@@ -55,7 +55,8 @@ def test_savkoor_virgin_curve_from_eqs_13_14():
     np.testing.assert_allclose(SV.virgin(u), F, rtol=1e-13)
     assert SV.slip_displacement == pytest.approx(4 * a**2 * tau / kappa)
     assert SV.virgin(SV.slip_displacement) == pytest.approx(np.pi * a**2 * tau, rel=1e-15)
-    # Small-u expansion of physics.md: F ≈ κu - κ³u³/(96 a⁴ τ0²).
+    # Small-u expansion of Eqs. 13-14 (arcsin z + z√(1 - z²) = 2z - z³/3 + ..., z = u/d_s):
+    # F ≈ κu - κ³u³/(96 a⁴ τ0²).
     u = 1e-3 * SV.slip_displacement
     series = kappa * u - kappa**3 * u**3 / (96 * a**4 * tau**2)
     assert SV.virgin(u) == pytest.approx(series, rel=1e-11)
@@ -102,14 +103,15 @@ def test_area_series_and_closed_form_agree_at_the_switch(loop):
 @pytest.mark.parametrize("loop", [CM, SV])
 def test_slack_series_matches_closed_form_and_quadrature(loop):
     d = loop.slip_displacement
-    assert loop._slack(0.1 * d * (1 - 1e-12)) == pytest.approx(loop._slack(0.1 * d), rel=1e-9)
+    assert loop.slack(0.1 * d * (1 - 1e-12)) == pytest.approx(loop.slack(0.1 * d), rel=1e-9)
     for v in (1e-3 * d, 0.05 * d, 0.5 * d):
         ref, _ = quad(loop.slope_loss, 0, v, epsabs=0, epsrel=1e-13)
-        assert loop._slack(v) == pytest.approx(ref, rel=1e-12)
+        assert loop.slack(v) == pytest.approx(ref, rel=1e-12)
 
 
 def test_area_at_tiny_amplitude_has_cubic_law():
-    # Mindlin: W ≈ 2Q*³/(9κμF_N) with Q* ≈ κu0 at small amplitude (physics.md K″ coefficient).
+    # Mindlin & Deresiewicz to leading order in q = Q*/(μF_N): W ≈ 2Q*³/(9κμF_N), Q* ≈ κu0
+    # (the bracket of their energy is 5q³/162 + O(q⁴)).
     u0 = 1e-6 * CM.slip_displacement
     W = 2 * (CM.kappa * u0) ** 3 / (9 * CM.kappa * CM.sliding_force)
     assert CM.area(u0) == pytest.approx(W, rel=1e-5)
@@ -152,6 +154,60 @@ def test_voigt_and_dashpot():
     assert v.area(2e-9) == pytest.approx(np.pi * OMEGA * 1e-3 * 4e-18)
     dp = cr.with_dashpot(CM, 1e-3, OMEGA)
     assert dp.area(7e-9) - CM.area(7e-9) == pytest.approx(v.area(7e-9), rel=1e-12)
+
+
+# ------------------------------------------------- κ(F_N) of a sphere on a flat: JKR + Mindlin
+# Glass on glass, roughly paper 2's setting: E (Pa), ν, sphere radius R (m).
+E_GL, NU_GL, R_GL = 70e9, 0.17, 1.2e-3
+
+
+def _kappa_by_hand(F, E, gamma, R, nu):
+    """κ = 2G*a written out from paper 2 for two bodies of the same material (E, ν)."""
+    E_star = 1.0 / (2.0 * (1.0 - nu**2) / E)  # Eq. 10 with E1 = E2 = E, ν1 = ν2 = ν
+    G = E / (2.0 * (1.0 + nu))  # Eq. 8
+    G_star = 1.0 / (2.0 * (2.0 - nu) / (4.0 * G))  # Eq. 7 with G1 = G2 = G
+    b = 6.0 * np.pi * gamma * R
+    root = np.sqrt(12.0 * np.pi * gamma * R * F + b**2)
+    a = np.cbrt(3.0 * R / (4.0 * E_star) * (F + b + root))  # Eq. 9 (JKR)
+    return 2.0 * G_star * a, E_star, G_star
+
+
+@pytest.mark.parametrize("gamma", [0.05, 0.3])
+def test_kappa_jkr_mindlin_by_hand(gamma):
+    F = np.array([-0.9, -0.5, 0.0, 0.3, 1.0, 5.0, 40.0]) * 3 * np.pi * gamma * R_GL
+    kappa = kappa_jkr_mindlin(F, E_GL, gamma, R_GL, NU_GL)
+    ref, E_star, G_star = _kappa_by_hand(F, E_GL, gamma, R_GL, NU_GL)
+    np.testing.assert_allclose(kappa, ref, rtol=1e-13)
+    # An identity independent of the closed form of Eq. 9: the JKR energy balance
+    # F = 4E*a³/(3R) - √(8πwE*a³) with the work of adhesion w = 2γ, for a = κ/(2G*).
+    a = kappa / (2.0 * G_star)
+    F_back = 4 * E_star * a**3 / (3 * R_GL) - np.sqrt(8 * np.pi * (2 * gamma) * E_star * a**3)
+    np.testing.assert_allclose(F_back, F, rtol=1e-9, atol=1e-12 * np.pi * gamma * R_GL)
+
+
+@pytest.mark.parametrize("gamma", [0.05, 0.3])
+def test_kappa_jkr_mindlin_at_pull_off_and_at_zero_load(gamma):
+    # From the energy balance F(a) = 4E*a³/(3R) - 4√(πγE*a³) alone (not from Eq. 9):
+    # dF/da = 0 gives a_c³ = 9πγR²/(4E*) and F(a_c) = -3πγR (the pull-off force), and F = 0
+    # gives a_0³ = 9πγR²/E* = 4a_c³. With γ doubled inside the function κ(-3πγR) would be 1.80
+    # times larger; with γ halved, -3πγR would lie below its pull-off force (ValueError).
+    _, E_star, G_star = _kappa_by_hand(0.0, E_GL, gamma, R_GL, NU_GL)
+    a_c = np.cbrt(9 * np.pi * gamma * R_GL**2 / (4 * E_star))
+    pull_off = -3 * np.pi * gamma * R_GL
+    assert kappa_jkr_mindlin(pull_off, E_GL, gamma, R_GL, NU_GL) == pytest.approx(
+        2 * G_star * a_c, rel=1e-12
+    )
+    assert kappa_jkr_mindlin(0.0, E_GL, gamma, R_GL, NU_GL) == pytest.approx(
+        2 * G_star * np.cbrt(4.0) * a_c, rel=1e-13
+    )
+    # G* of two equal bodies is 2G/(2 - ν) and E* = E/(2(1 - ν²)): κ(F = 0) in closed form.
+    G = E_GL / (2 * (1 + NU_GL))
+    a0 = np.cbrt(9 * np.pi * gamma * R_GL**2 * 2 * (1 - NU_GL**2) / E_GL)
+    assert kappa_jkr_mindlin(0.0, E_GL, gamma, R_GL, NU_GL) == pytest.approx(
+        2 * (2 * G / (2 - NU_GL)) * a0, rel=1e-13
+    )
+    with pytest.raises(ValueError, match="pull-off"):
+        kappa_jkr_mindlin(1.01 * pull_off, E_GL, gamma, R_GL, NU_GL)
 
 
 @pytest.mark.parametrize(

@@ -3,7 +3,7 @@
 import numpy as np
 import pytest
 
-from contactres.validation import nonnegative, positive
+from contactres.validation import amplitude, nonnegative, positive
 
 
 def test_values_pass_through_as_floats():
@@ -30,3 +30,11 @@ def test_values_pass_through_as_floats():
 def test_bad_values_are_named(check, value, match):
     with pytest.raises(ValueError, match=match):
         check("radius", value, "m")
+
+
+def test_amplitude_is_always_a_float_array():
+    a = amplitude(2)
+    assert isinstance(a, np.ndarray) and a.shape == () and a.dtype == float and a == 2.0
+    np.testing.assert_array_equal(amplitude([0, 1e-9]), [0.0, 1e-9])
+    with pytest.raises(ValueError, match=r"amplitude u0 must be finite and >= 0 \(m\), got -1e-09"):
+        amplitude(-1e-9)

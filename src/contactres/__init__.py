@@ -3,120 +3,129 @@
 Forward models (Hertz/JKR/DMT, anisotropic half-spaces, dynamic contact stiffness, partial-slip
 tangential loops, QCM frequency shifts) and the analysis of QCM amplitude sweeps. SI units
 throughout (m, N, Pa, Hz, kg).
+
+The public names are loaded on first use (PEP 562 module ``__getattr__``), so that
+``import contactres`` and the command line's ``--help`` do not pay for scipy, pandas and
+matplotlib. ``from contactres import X``, ``contactres.X`` and ``dir(contactres)`` work as with
+eager imports; subpackages (``contactres.dynamic``, ``contactres.analysis``, ...) are imported
+when first accessed as attributes.
 """
 
-from importlib.metadata import PackageNotFoundError, version
+from __future__ import annotations
 
-from .analysis import AnalysisSettings, analyze
-from .crystals import crystal_names, crystal_table
-from .dynamic import (
-    contact_displacement,
-    contact_pressure,
-    dcsf,
-    dcsf_models,
-    dynamic_contact_stiffness,
-)
-from .halfspace import dynamic_kernel, isotropic_dynamic_kernel, shear_reference, static_kernel
-from .materials import Material
-from .measurements.sweeps import SweepWarning, read_sweeps
-from .normal.anisotropic import (
-    AnisotropicContact,
-    contact_integrals,
-    indentation_modulus,
-    sphere_contact,
-)
-from .normal.isotropic import (
-    Contact,
-    dmt,
-    effective_modulus,
-    effective_shear_modulus,
-    hertz,
-    jkr,
-    jkr_contact_radius,
-    jkr_from_depth,
-    jkr_pull_off_force,
-    shear_modulus,
-    tabor_parameter,
-    which_adhesion_model,
-)
-from .report import Results
-from .resonators.qcm import (
-    QCM,
-    cattaneo_mindlin_expansion,
-    friction_from_slopes,
-    loop_stiffness,
-    savkoor_expansion,
-    shifts_from_loop,
-    shifts_from_stiffness,
-    stiffness_from_shifts,
-)
-from .tangential import (
-    CattaneoMindlinLoop,
-    DashpotLoop,
-    MasingLoop,
-    PlateauLoop,
-    SavkoorLoop,
-    VoigtLoop,
-    mindlin_deresiewicz_energy,
-    mindlin_stiffness,
-    with_dashpot,
+import importlib
+
+# `typing` costs ~20 ms to import and only type checkers need `Any`: a module-level
+# TYPE_CHECKING = False is read as True by mypy and pyright, without importing typing here.
+TYPE_CHECKING = False
+if TYPE_CHECKING:
+    from typing import Any
+
+# Public name -> the module (relative to this package) it is re-exported from. To add a public
+# name, add one line here: ``__all__`` and ``dir()`` follow from this dict.
+_EXPORTS: dict[str, str] = {
+    # materials and the half-space
+    "Material": ".materials",
+    "crystal_names": ".crystals",
+    "crystal_table": ".crystals",
+    "dynamic_kernel": ".halfspace",
+    "isotropic_dynamic_kernel": ".halfspace",
+    "shear_reference": ".halfspace",
+    "static_kernel": ".halfspace",
+    # static normal contact
+    "Contact": ".normal.isotropic",
+    "dmt": ".normal.isotropic",
+    "effective_modulus": ".normal.isotropic",
+    "effective_shear_modulus": ".normal.isotropic",
+    "hertz": ".normal.isotropic",
+    "jkr": ".normal.isotropic",
+    "jkr_contact_radius": ".normal.isotropic",
+    "jkr_from_depth": ".normal.isotropic",
+    "jkr_pull_off_force": ".normal.isotropic",
+    "shear_modulus": ".normal.isotropic",
+    "tabor_parameter": ".normal.isotropic",
+    "which_adhesion_model": ".normal.isotropic",
+    "AnisotropicContact": ".normal.anisotropic",
+    "contact_integrals": ".normal.anisotropic",
+    "indentation_modulus": ".normal.anisotropic",
+    "sphere_contact": ".normal.anisotropic",
+    # dynamic contact stiffness
+    "contact_displacement": ".dynamic",
+    "contact_pressure": ".dynamic",
+    "dcsf": ".dynamic",
+    "dcsf_models": ".dynamic",
+    "dynamic_contact_stiffness": ".dynamic",
+    # tangential loops
+    "CattaneoMindlinLoop": ".tangential",
+    "DashpotLoop": ".tangential",
+    "MasingLoop": ".tangential",
+    "PlateauLoop": ".tangential",
+    "SavkoorLoop": ".tangential",
+    "VoigtLoop": ".tangential",
+    "mindlin_deresiewicz_energy": ".tangential",
+    "mindlin_stiffness": ".tangential",
+    "with_dashpot": ".tangential",
+    # resonators
+    "QCM": ".resonators.qcm",
+    "cattaneo_mindlin_expansion": ".resonators.qcm",
+    "friction_from_slopes": ".resonators.qcm",
+    "loop_stiffness": ".resonators.qcm",
+    "savkoor_expansion": ".resonators.qcm",
+    "shifts_from_loop": ".resonators.qcm",
+    "shifts_from_stiffness": ".resonators.qcm",
+    "stiffness_from_shifts": ".resonators.qcm",
+    # measurements and analysis
+    "SweepTable": ".measurements.sweeps",
+    "SweepWarning": ".measurements.sweeps",
+    "read_sweeps": ".measurements.sweeps",
+    "validate_sweeps": ".measurements.sweeps",
+    "AnalysisSettings": ".analysis",
+    "Flag": ".analysis",
+    "analyze": ".analysis",
+    "Results": ".analysis",
+    "write_report": ".report",
+}
+
+# Submodules imported on attribute access (``contactres.dynamic.prepare``). The command line
+# (``cli``) is left out on purpose: the library never imports it.
+_SUBMODULES: frozenset[str] = frozenset(
+    {
+        "analysis",
+        "apps",
+        "crystals",
+        "dynamic",
+        "fileio",
+        "fitting",
+        "halfspace",
+        "materials",
+        "measurements",
+        "normal",
+        "numerics",
+        "report",
+        "resonators",
+        "tangential",
+        "units",
+        "validation",
+    }
 )
 
-try:
-    __version__ = version("contactres")
-except PackageNotFoundError:  # pragma: no cover - running from a source tree
-    __version__ = "0+unknown"
+__all__ = sorted([*_EXPORTS, "__version__"])
 
-__all__ = [
-    "QCM",
-    "AnalysisSettings",
-    "AnisotropicContact",
-    "CattaneoMindlinLoop",
-    "Contact",
-    "DashpotLoop",
-    "MasingLoop",
-    "Material",
-    "PlateauLoop",
-    "Results",
-    "SavkoorLoop",
-    "SweepWarning",
-    "VoigtLoop",
-    "__version__",
-    "analyze",
-    "cattaneo_mindlin_expansion",
-    "contact_displacement",
-    "contact_integrals",
-    "contact_pressure",
-    "crystal_names",
-    "crystal_table",
-    "dcsf",
-    "dcsf_models",
-    "dmt",
-    "dynamic_contact_stiffness",
-    "dynamic_kernel",
-    "effective_modulus",
-    "effective_shear_modulus",
-    "friction_from_slopes",
-    "hertz",
-    "indentation_modulus",
-    "isotropic_dynamic_kernel",
-    "jkr",
-    "jkr_contact_radius",
-    "jkr_from_depth",
-    "jkr_pull_off_force",
-    "loop_stiffness",
-    "mindlin_deresiewicz_energy",
-    "mindlin_stiffness",
-    "read_sweeps",
-    "savkoor_expansion",
-    "shear_modulus",
-    "shear_reference",
-    "shifts_from_loop",
-    "shifts_from_stiffness",
-    "sphere_contact",
-    "static_kernel",
-    "stiffness_from_shifts",
-    "tabor_parameter",
-    "which_adhesion_model",
-    "with_dashpot",
-]
+
+def __getattr__(name: str) -> Any:
+    """Import the module behind a public name (or a subpackage) on first access."""
+    # Nothing is stored in globals(): the import system already keeps each module once in
+    # sys.modules, so a repeated access is a dict look-up plus getattr, and no state is cached here.
+    if name in _EXPORTS:
+        return getattr(importlib.import_module(_EXPORTS[name], __name__), name)
+    if name in _SUBMODULES:
+        return importlib.import_module(f".{name}", __name__)
+    if name == "__version__":
+        # importlib.metadata costs ~50 ms to import: only pay for it when the version is asked.
+        return importlib.import_module("._version", __name__).__version__
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    """The public names and subpackages, as tab completion and ``dir()`` expect them."""
+    return sorted({*globals(), *__all__, *_SUBMODULES})

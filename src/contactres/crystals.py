@@ -1,21 +1,49 @@
-"""Built-in table of cubic crystals (``data/crystals.csv``, with the source of each row)."""
+"""Built-in table of cubic crystals (``data/crystals.csv``, with the source of each row).
+
+A ground-layer table: it returns the raw constants as :class:`CrystalRecord` and knows nothing of
+:class:`contactres.Material`; ``Material.crystal(name)`` builds the solid from the record. The CSV
+is read on every call (a few hundred bytes, well under a millisecond), so there is no cache.
+"""
 
 from __future__ import annotations
 
-from functools import lru_cache
+from dataclasses import dataclass
 from importlib import resources
+from typing import TYPE_CHECKING
 
-import pandas as pd
+if TYPE_CHECKING:
+    import pandas as pd
 
-from .materials import Material
-
-__all__ = ["crystal_names", "crystal_table", "get_crystal"]
+__all__ = ["CrystalRecord", "crystal_names", "crystal_record", "crystal_table"]
 
 _GPa = 1e9
 
 
-@lru_cache(maxsize=1)
+@dataclass(frozen=True)
+class CrystalRecord:
+    """One row of the built-in table, in SI units.
+
+    Attributes
+    ----------
+    name : the crystal's name as written in the table (e.g. ``"Cu"``)
+    c11, c12, c44 : cubic elastic constants in the cube-axis frame, Pa
+    density : mass density, kg/m^3
+    source : where the constants come from
+    """
+
+    name: str
+    c11: float
+    c12: float
+    c44: float
+    density: float
+    source: str
+
+
 def _raw_table() -> pd.DataFrame:
+    # pandas is imported here, not at the top: materials imports this module, and loading pandas
+    # (~0.4 s) would otherwise slow every command line call that builds a Material.
+    import pandas as pd
+
     with resources.files("contactres").joinpath("data/crystals.csv").open("r") as fh:
         return pd.read_csv(fh, comment="#")
 
@@ -25,8 +53,8 @@ def crystal_names() -> list[str]:
     return list(_raw_table()["name"])
 
 
-def get_crystal(name: str) -> Material:
-    """The built-in crystal ``name`` (case-insensitive) as a :class:`Material` in its cube frame.
+def crystal_record(name: str) -> CrystalRecord:
+    """The built-in crystal ``name`` (case-insensitive) as a :class:`CrystalRecord` (SI units).
 
     Raises
     ------
@@ -36,14 +64,16 @@ def get_crystal(name: str) -> Material:
     table = _raw_table()
     match = table[table["name"].str.lower() == str(name).strip().lower()]
     if match.empty:
-        raise ValueError(f"unknown crystal {name!r}; known crystals: {', '.join(crystal_names())}")
+        known = ", ".join(table["name"])
+        raise ValueError(f"unknown crystal {name!r}; known crystals: {known}")
     row = match.iloc[0]
-    return Material.cubic(
-        row.c11_GPa * _GPa,
-        row.c12_GPa * _GPa,
-        row.c44_GPa * _GPa,
-        density=row.density_kg_m3,
-        name=row["name"],
+    return CrystalRecord(
+        name=str(row["name"]),
+        c11=float(row.c11_GPa * _GPa),
+        c12=float(row.c12_GPa * _GPa),
+        c44=float(row.c44_GPa * _GPa),
+        density=float(row.density_kg_m3),
+        source=str(row.source),
     )
 
 
@@ -52,7 +82,7 @@ def crystal_table() -> pd.DataFrame:
 
     Columns: name, c11_GPa, c12_GPa, c44_GPa, density_kg_m3, zener, poisson, source.
     """
-    t = _raw_table().copy()
+    t = _raw_table()
     t["zener"] = 2 * t.c44_GPa / (t.c11_GPa - t.c12_GPa)
     t["poisson"] = t.c12_GPa / (t.c11_GPa + t.c12_GPa)
     cols = ["name", "c11_GPa", "c12_GPa", "c44_GPa", "density_kg_m3", "zener", "poisson", "source"]

@@ -3,10 +3,9 @@
 from __future__ import annotations
 
 import os
-import tempfile
+import secrets
 from collections.abc import Iterator
 from contextlib import contextmanager
-from functools import cache
 from pathlib import Path
 
 __all__ = ["atomic_path", "ensure_dir", "save_figure", "write_csv", "write_text"]
@@ -21,13 +20,21 @@ def ensure_dir(folder: str | os.PathLike) -> Path:
     return p
 
 
-@cache
-def _new_file_mode() -> int:
-    """The permissions open() gives a new file: 0o666 less the umask (read once per process,
-    as os.umask can only be read by setting it)."""
-    mask = os.umask(0o022)
-    os.umask(mask)
-    return 0o666 & ~mask
+def _create_beside(target: Path) -> Path:
+    """Create an empty, uniquely named hidden file beside ``target`` and return its path.
+
+    Created with mode 0o666 so that the kernel applies the umask, as for a plain write (the
+    owner-only mode of ``tempfile.mkstemp`` would leak into the result).
+    """
+    for _ in range(100):
+        tmp = target.parent / f".{target.name}.{secrets.token_hex(6)}.tmp"
+        try:
+            fd = os.open(tmp, os.O_CREAT | os.O_EXCL | os.O_WRONLY, 0o666)
+        except FileExistsError:
+            continue
+        os.close(fd)
+        return tmp
+    raise FileExistsError(f"no free temporary name beside {str(target)!r}")
 
 
 @contextmanager
@@ -39,16 +46,13 @@ def atomic_path(path: str | os.PathLike) -> Iterator[Path]:
     umask default), not the owner-only mode of the temporary file.
     """
     target = Path(path)
-    fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", suffix=".tmp", dir=target.parent)
-    os.close(fd)
-    tmp_path = Path(tmp)
+    tmp_path = _create_beside(target)
     try:
         yield tmp_path
         try:
-            mode = target.stat().st_mode & 0o7777
+            os.chmod(tmp_path, target.stat().st_mode & 0o7777)  # keep the replaced file's mode
         except FileNotFoundError:
-            mode = _new_file_mode()
-        os.chmod(tmp_path, mode)
+            pass  # a new file keeps the umask default it was created with
         os.replace(tmp_path, target)
     except BaseException:
         tmp_path.unlink(missing_ok=True)

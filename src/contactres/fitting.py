@@ -1,9 +1,11 @@
-"""Fitted models with metadata, and the least-squares fit behind them (design.md §7).
+"""Fitted models with metadata, and the least-squares fit behind them.
 
 A :class:`Model` carries everything needed to fit it and to report it: its parameters
-(:class:`Parameter`: key, display name, unit, default bounds, fixed or free), the observable it
-predicts and its unit, and the source of its formula. :data:`MODELS` registers every model the
-analysis fits; a test walks the registry and checks the metadata.
+(:class:`Parameter`: key, display name, unit, output column, default bounds, fixed or free), the
+observable it predicts and its unit, and the source of its formula. A :class:`ModelRegistry` is an
+immutable mapping of models by key, built explicitly by the package that defines the models (the
+sweep analysis: :data:`contactres.analysis.models.REGISTRY`); a test walks it and holds every
+parameter to a closed table of names, units and columns.
 
 :func:`fit` wraps :func:`scipy.optimize.least_squares`: a pure function of (model, data,
 settings). Standard errors come from the Jacobian, ``cov = inv(JᵀJ) · RSS/(N - p)`` (residual
@@ -19,7 +21,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.optimize import least_squares
 
-__all__ = ["MODELS", "FitResult", "Model", "Parameter", "fit", "register_model"]
+__all__ = ["FitResult", "Model", "ModelRegistry", "Parameter", "fit"]
 
 
 @dataclass(frozen=True)
@@ -28,9 +30,10 @@ class Parameter:
 
     Attributes
     ----------
-    key : name used in code and output columns
+    key : name used in code (a keyword argument of the model's function), read as physics
     display : name for figures and tables
     unit : SI unit ("-" for dimensionless)
+    column : the column of the results that holds the fitted value
     bounds : default (lower, upper) bounds in that unit
     fixed : True if the parameter is held at its given value (not fitted)
     scale : typical magnitude (the optimiser works in units of ``scale``)
@@ -39,6 +42,7 @@ class Parameter:
     key: str
     display: str
     unit: str
+    column: str
     bounds: tuple[float, float] = (-np.inf, np.inf)
     fixed: bool = False
     scale: float = 1.0
@@ -59,16 +63,31 @@ class Model:
     function: Callable | None = None
 
 
-#: Every model the analysis fits, by key.
-MODELS: dict[str, Model] = {}
+class ModelRegistry(Mapping[str, Model]):
+    """An immutable mapping key -> :class:`Model`, built once from a sequence of models.
 
+    Keys are unique (a duplicate is a ValueError); nothing can be added later, so what a package
+    registers is exactly what its module defines.
+    """
 
-def register_model(model: Model) -> Model:
-    """Add ``model`` to :data:`MODELS` (keys are unique)."""
-    if model.key in MODELS:
-        raise ValueError(f"model {model.key!r} is already registered")
-    MODELS[model.key] = model
-    return model
+    def __init__(self, models):
+        self._models: dict[str, Model] = {}
+        for m in models:
+            if m.key in self._models:
+                raise ValueError(f"model {m.key!r} is registered twice")
+            self._models[m.key] = m
+
+    def __getitem__(self, key: str) -> Model:
+        try:
+            return self._models[key]
+        except KeyError:
+            raise KeyError(f"no model {key!r}; registered: {', '.join(self._models)}") from None
+
+    def __iter__(self):
+        return iter(self._models)
+
+    def __len__(self) -> int:
+        return len(self._models)
 
 
 @dataclass(frozen=True)
@@ -101,10 +120,11 @@ def fit(
     Parameters
     ----------
     model : the :class:`Model`; its fixed parameters must be given in ``fixed``
-    x, y : data, in the model's ``x_unit`` and ``unit``
+    x, y : data, in the model's ``x_unit`` and ``unit``; for a model of k observables (its
+        function returns k arrays) ``y`` has shape (k, len(x))
     start : starting values of the free parameters (not reported)
     fixed : values of the fixed parameters (and of any free ones to hold here)
-    sigma : optional per-point errors (weights 1/σ); default equal weights
+    sigma : optional per-point errors (weights 1/σ, broadcast against ``y``); default equal
     bounds : optional overrides of the default bounds
 
     Returns
@@ -134,7 +154,8 @@ def fit(
         return d
 
     def residuals(z):
-        return (model.function(x, **params(z)) - y) * w
+        # ravel: a model of several observables (e.g. Δf and ΔΓ) returns one row per observable
+        return np.ravel((np.asarray(model.function(x, **params(z))) - y) * w)
 
     sol = least_squares(
         residuals, x0, bounds=(lo, hi), method="trf", x_scale="jac", ftol=1e-12, xtol=1e-12

@@ -5,6 +5,11 @@ Conventions
 Voigt order 11, 22, 33, 23, 13, 12 with engineering shear strains, so that the elastic energy
 density is ``0.5 * e @ C @ e`` with ``e = (e11, e22, e33, 2 e23, 2 e13, 2 e12)``. Stiffness in Pa,
 density in kg/m^3. Damping follows paper 1: the constants are made complex, C(1 + i Q^-1).
+
+Paper 1: J. Tian, "Anisotropy Influence of Cubic Solid on Dynamic Hertzian Contact Stiffness for
+a Vibrating Rigid Indenter", American Journal of Engineering and Applied Sciences 3(1), 56-63
+(2010), doi:10.3844/ajeassp.2010.56.63. Its cubic parameters (Zener ratio A, ν = C12/(C11 + C12))
+and its loss convention are used here.
 """
 
 from __future__ import annotations
@@ -13,6 +18,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from .crystals import crystal_record
 from .validation import nonnegative, positive
 
 __all__ = [
@@ -244,10 +250,13 @@ class Material:
 
     @classmethod
     def crystal(cls, name: str) -> Material:
-        """A crystal from the built-in table (``contactres crystals`` lists them)."""
-        from .crystals import get_crystal
+        """A crystal from the built-in table, in its cube-axis frame (case-insensitive ``name``).
 
-        return get_crystal(name)
+        ``contactres crystals`` and :func:`contactres.crystal_names` list them; unknown names
+        raise ValueError.
+        """
+        r = crystal_record(name)
+        return cls.cubic(r.c11, r.c12, r.c44, density=r.density, name=r.name)
 
     # ----------------------------------------------------------------------------- operations
     def rotated(self, normal=(0, 0, 1), inplane=None) -> Material:

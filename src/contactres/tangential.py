@@ -15,6 +15,10 @@ derive from :class:`MasingLoop`, which also exposes the slope deficit κ - F'(d)
 the virgin curve is not analytic; :func:`contactres.shifts_from_loop` integrates those exactly.
 
 All quantities SI: displacements m, forces N, stiffness N/m, drag coefficient ξ in kg/s (N s/m).
+
+Paper 2: J. Vlachová, R. König, D. Johannsmann, "Stiffness of sphere-plate contacts at MHz
+frequencies: dependence on normal load, oscillation amplitude, and ambient medium", Beilstein
+J. Nanotechnol. 6, 845-856 (2015), doi:10.3762/bjnano.6.87.
 """
 
 from __future__ import annotations
@@ -30,17 +34,18 @@ from .normal.isotropic import (
     jkr_contact_radius,
     shear_modulus,
 )
+from .validation import amplitude as _amplitude
 from .validation import nonnegative as _nonneg
 from .validation import positive as _pos
 
 __all__ = [
-    "kappa_jkr_mindlin",
     "CattaneoMindlinLoop",
     "DashpotLoop",
     "MasingLoop",
     "PlateauLoop",
     "SavkoorLoop",
     "VoigtLoop",
+    "kappa_jkr_mindlin",
     "mindlin_deresiewicz_energy",
     "mindlin_stiffness",
     "with_dashpot",
@@ -52,10 +57,6 @@ _C = np.array([-binom(0.5, k) * (-1.0) ** k for k in range(1, _NSERIES + 1)])
 _K = np.arange(1, _NSERIES + 1, dtype=float)
 # Below this amplitude ratio the loop area comes from its series (the closed form cancels).
 _SERIES_BELOW = 0.1
-
-
-def _amplitude(u0) -> np.ndarray:
-    return np.asarray(_nonneg("amplitude u0", u0, "m"), dtype=float)
 
 
 def _branch_args(u, u0):
@@ -151,8 +152,9 @@ class MasingLoop:
         """Loop area for small u0 without cancellation (None: use the closed form)."""
         return None
 
-    def _slack(self, d):
-        """κd - F(d) = ∫₀^d (κ - F'), N (overridden where a series avoids the cancellation)."""
+    def slack(self, d):
+        """κd - F(d) = ∫₀^d (κ - F') for d >= 0, N (overridden where a series avoids the
+        cancellation): the force the contact lacks against full stick."""
         d = np.asarray(d, dtype=float)
         return self.kappa * d - self._virgin(d)
 
@@ -257,7 +259,7 @@ class CattaneoMindlinLoop(MasingLoop):
         s = np.sum(_C * lk * _K / ((_K + 1) * (_K + 2)), axis=-1)
         return lam < _SERIES_BELOW, 4.0 * self.kappa * u0**2 * s
 
-    def _slack(self, d):
+    def slack(self, d):
         # κd - F(d) = κd* Σ c_k z^{k+1}/(k+1) at small z = d/d*
         d = np.asarray(d, dtype=float)
         z = d / self.slip_displacement
@@ -329,7 +331,7 @@ class SavkoorLoop(MasingLoop):
         s = np.sum(_C * lk * 2 * _K / ((2 * _K + 1) * (2 * _K + 2)), axis=-1)
         return lam < _SERIES_BELOW, 4.0 * self.kappa * u0**2 * s
 
-    def _slack(self, d):
+    def slack(self, d):
         # κd - F(d) = κd_s Σ c_k z^{2k+1}/(2k+1) at small z = d/d_s
         d = np.asarray(d, dtype=float)
         z = d / self.slip_displacement
@@ -405,7 +407,7 @@ class PlateauLoop(MasingLoop):
         u0 = _amplitude(u0)
         v = np.maximum(u0 - self.critical_displacement, 0.0)
         inner = np.asarray(self.loop.area(v), dtype=float)
-        return _out(inner + 4.0 * self.critical_displacement * self.loop._slack(v))
+        return _out(inner + 4.0 * self.critical_displacement * self.loop.slack(v))
 
 
 @dataclass(frozen=True)

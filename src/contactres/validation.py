@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["nonnegative", "positive"]
+__all__ = ["amplitude", "nonnegative", "positive"]
 
 
 def _check(name: str, value, unit: str | None, ok, rule: str):
@@ -38,3 +38,13 @@ def positive(name: str, value, unit: str | None = None):
 def nonnegative(name: str, value, unit: str | None = None):
     """``value`` as a float (scalar) or float array, after checking it is finite and >= 0."""
     return _check(name, value, unit, lambda v: v >= 0, ">= 0")
+
+
+def amplitude(u0) -> np.ndarray:
+    """An oscillation amplitude u0 (m) as a float ndarray (0-d for a scalar), after checking that
+    it is finite and >= 0.
+
+    The loops (:mod:`contactres.tangential`) and the QCM quadrature
+    (:mod:`contactres.resonators.qcm`) share this check, so their error messages agree.
+    """
+    return np.asarray(nonnegative("amplitude u0", u0, "m"), dtype=float)

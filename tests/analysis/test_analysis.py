@@ -4,31 +4,30 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from contactres.analysis.classify import (
-    MODEL_ORDER,
-    cm_loop_table,
-    fit_cm_loops,
-    fit_sweeps,
-    model_curves,
-    pad_sweeps,
-    plateau_loop_shape,
-)
-from contactres.analysis.pipeline import (
-    AnalysisSettings,
-    _bootstrap_jkr,
-    analyze,
-    fit_jkr_mindlin,
-    kappa_jkr_mindlin,
-)
-from contactres.fitting import MODELS, Model, Parameter, fit
+from contactres.analysis.amplitude import pad_sweeps
+from contactres.analysis.classify import fit_sweeps
+from contactres.analysis.flags import Flag, has
+from contactres.analysis.jkr import bootstrap_jkr, fit_jkr_mindlin
+from contactres.analysis.loops import cm_loop_table, fit_cm_loops, plateau_loop_shape
+from contactres.analysis.models import model_curves
+from contactres.analysis.pipeline import AnalysisSettings, analyze
+from contactres.fitting import Model, Parameter, fit
 from contactres.measurements.sweeps import validate_sweeps
+from contactres.measurements.synthetic import (
+    SweepGroup,
+    SweepStudy,
+    contact_loop,
+    sweep_shifts,
+    synthetic_sweeps,
+)
 from contactres.normal.isotropic import effective_modulus, jkr_contact_radius
+from contactres.report import summary, sweeps_table
 from contactres.resonators.qcm import QCM, shifts_from_loop
 from contactres.tangential import (
     CattaneoMindlinLoop,
     PlateauLoop,
-    SavkoorLoop,
     VoigtLoop,
+    kappa_jkr_mindlin,
     with_dashpot,
 )
 
@@ -40,17 +39,15 @@ CONST = dict(overtone=3, area_m2=2.5e-5, n_contacts=NP, sphere_radius_m=R, poiss
 
 
 def cm_shifts(kappa, mu, F, u, dgamma0=5.0, kind="cm", dc=0.0):
-    omega_xi = dgamma0 / P
-    if kind == "cm":
-        loop = CattaneoMindlinLoop(kappa, mu, F)
-    elif kind == "plateau":
-        loop = PlateauLoop(CattaneoMindlinLoop(kappa, mu, F), dc)
-    elif kind == "savkoor":
-        a = jkr_contact_radius(effective_modulus(70e9, NU), R, F, 0.0)
-        loop = SavkoorLoop(kappa, kappa * 2.0 * u.max() / (4 * a**2), a)
-    else:
-        return np.full(u.size, P * kappa), np.full(u.size, dgamma0)
-    return shifts_from_loop(Q, with_dashpot(loop, omega_xi / Q.omega, Q.omega), u, NP)
+    """Noise-free shifts of one contact model (the sweeps of make_table, point by point)."""
+    # Savkoor: full sliding at 2 max(u) fixes the loop; its shape does not depend on a.
+    a = jkr_contact_radius(effective_modulus(70e9, NU), R, F, 0.0)
+    model = "cattaneo-mindlin" if kind == "cm" else kind
+    loop = contact_loop(
+        model, kappa, mu, F, dgamma0 / P, Q.omega,
+        critical_displacement=dc, contact_radius=a, sliding_amplitude=2.0 * u.max(),
+    )  # fmt: skip
+    return sweep_shifts(Q, loop, u, NP)
 
 
 def make_table(
@@ -68,32 +65,23 @@ def make_table(
     seed=1,
     dc_fraction=0.4,
 ):
-    rng = np.random.default_rng(seed)
+    # ΔΓ0 = 5 Hz; ramps 2, 4 run down; E drawn per experiment (also when e_scatter = 0).
     u_up = np.linspace(0.05, 1.0, n_points) * u_max
-    rows = []
-    for e in range(n_exp):
-        Ee = E * (1 + e_scatter * rng.standard_normal())
-        for F in loads:
-            kappa = kappa_jkr_mindlin(F, Ee, gamma, R, NU)
-            for r in ramps:
-                u = u_up if r % 2 else u_up[::-1]
-                df, dg = cm_shifts(kappa, mu, F, u, kind=kind, dc=dc_fraction * u_max)
-                rows.append(
-                    pd.DataFrame(
-                        dict(
-                            sweep=f"{kind}/e{e}/F{F}/r{r}",
-                            experiment=f"e{e}",
-                            configuration="glass",
-                            medium="air",
-                            ramp=r,
-                            normal_force_N=F,
-                            amplitude_m=u,
-                            df_Hz=df + rng.normal(0, noise, u.size),
-                            dgamma_Hz=dg + rng.normal(0, noise, u.size),
-                        )
-                    )
-                )
-    return validate_sweeps(pd.concat(rows, ignore_index=True), constants=CONST)
+    study = SweepStudy(
+        groups=(SweepGroup("glass", "air", R, E, gamma, tuple(u_up), 5.0 / P, noise),),
+        normal_forces=loads,
+        n_experiments=n_exp,
+        ramps=ramps,
+        qcm=Q,
+        n_contacts=NP,
+        poisson=NU,
+        mu=mu,
+        model="cattaneo-mindlin" if kind == "cm" else kind,
+        plateau_fraction=dc_fraction,
+        scatter=(("E", e_scatter),),
+        scatter_law="normal",
+    )
+    return validate_sweeps(synthetic_sweeps(study, seed), constants=CONST)
 
 
 FAST = AnalysisSettings(bootstrap=0)
@@ -134,7 +122,7 @@ def test_vectorised_bootstrap_equals_refitting_each_resample():
     pts = res.experiments
     main = fit_jkr_mindlin(pts["normal_force_N"], pts["kappa_N_per_m"], R, NU)
     B, seed = 40, 3
-    E_sd, g_sd = _bootstrap_jkr(pts, R, NU, main, B, seed)
+    E_sd, g_sd = bootstrap_jkr(pts, R, NU, main, B, seed)
     # Second algorithm: the same resamples, each refitted with least_squares.
     codes, names = pd.factorize(pts["experiment"])
     pick = np.random.default_rng(seed).integers(0, len(names), size=(B, len(names)))
@@ -155,7 +143,7 @@ def test_fit_errors_match_closed_form_linear_regression():
     line = Model(
         "line",
         "line",
-        (Parameter("a", "a", "-"), Parameter("b", "b", "-")),
+        (Parameter("a", "a", "-", "a"), Parameter("b", "b", "-", "b")),
         "x",
         "-",
         "y",
@@ -170,26 +158,6 @@ def test_fit_errors_match_closed_form_linear_regression():
     assert res.values["b"] == pytest.approx(b, rel=1e-8)
     assert res.errors["b"] == pytest.approx(np.sqrt(s2 / sxx), rel=1e-6)
     assert res.errors["a"] == pytest.approx(np.sqrt(s2 * np.sum(x**2) / (x.size * sxx)), rel=1e-6)
-
-
-def test_model_registry_metadata_is_complete():
-    expected = {"jkr-mindlin", "cattaneo-mindlin-loop", *MODEL_ORDER}
-    assert expected <= set(MODELS)
-    for key, model in MODELS.items():
-        assert model.key == key and model.display and model.source and model.unit
-        assert callable(model.function) and model.x and model.x_unit
-        keys = [p.key for p in model.parameters]
-        assert len(keys) == len(set(keys))
-        for p in model.parameters:
-            assert p.unit and p.display and p.scale > 0
-            assert p.bounds[0] < p.bounds[1]
-        # Evaluate at the typical magnitudes (scales) of the parameters: finite, right shape.
-        x = np.linspace(1e-9, 1e-8, 3) if model.x_unit == "m" else np.linspace(1e-3, 5e-3, 3)
-        values = {p.key: p.scale for p in model.parameters}
-        if key == "jkr-mindlin":
-            values.update(E=70e9, gamma=0.1, radius=R, poisson=NU)
-        out = np.asarray(model.function(x, **values))
-        assert out.shape[-1] == 3 and np.all(np.isfinite(out))
 
 
 # ---- friction ---------------------------------------------------------------------------------
@@ -240,15 +208,17 @@ def test_exact_loop_fit_noise_free_recovers_parameters():
         u[None], df[None], dg[None], np.ones((1, u.size)), np.array([0.1]), np.array([0.1])
     )
     assert res["x_max"].iloc[0] > 1.5
-    assert res["A_Hz"].iloc[0] == pytest.approx(P * kappa, rel=1e-4)
-    assert res["B_Hz"].iloc[0] == pytest.approx(P * omega_xi, rel=1e-3)
+    assert res["df0_Hz"].iloc[0] == pytest.approx(P * kappa, rel=1e-4)
+    assert res["dgamma0_Hz"].iloc[0] == pytest.approx(P * omega_xi, rel=1e-3)
     assert res["theta_per_m"].iloc[0] == pytest.approx(kappa / (mu * F), rel=1e-3)
 
 
 def test_loop_table_matches_the_small_amplitude_expansion():
-    # physics.md Eq. 11-12: K'/κ = 1 - x/6 - (5/288)x², (K''-ωξ)/κ = 2x/(9π) + x²/(27π).
+    # paper 2, Eqs. 11-12 (coefficients as in docs/validation.md):
+    # K'/κ = 1 - x/6 - (5/288)x², (K''-ωξ)/κ = 2x/(9π) + x²/(27π).
     # The remainder must be O(x³): that pins both coefficients of every order shown.
-    x, g1, g2, _, _ = cm_loop_table()
+    tab = cm_loop_table()
+    x, g1, g2 = tab.x, tab.g1, tab.g2
     s = (x > 0) & (x <= 0.05)
     xs = x[s]
     assert np.all(np.abs(g1[s] - (1 - xs / 6 - 5 / 288 * xs**2)) < 0.01 * xs**3)
@@ -260,7 +230,8 @@ def test_loop_table_matches_the_small_amplitude_expansion():
 def test_loop_table_interpolation_error_is_below_1e_6():
     # The table is interpolated linearly; at the midpoints (worst case) it must match a direct
     # evaluation of the forward model to 1e-6 of κ, including around full sliding (x = 1.5).
-    x, g1, g2, _, _ = cm_loop_table()
+    tab = cm_loop_table()
+    x, g1, g2 = tab.x, tab.g1, tab.g2
     mid = 0.5 * (x[1:] + x[:-1])[::7]
     df, dg = shifts_from_loop(QCM(), CattaneoMindlinLoop(1.0, 1.0, 1.0), mid, 1)
     p1 = QCM().sensitivity(1)
@@ -295,7 +266,8 @@ def test_plateau_loop_shape_matches_the_forward_model():
     g1, g2 = plateau_loop_shape(x, c)
     assert np.max(np.abs(g1 - g1_ref)) < 1e-12 and np.max(np.abs(g2 - g2_ref)) < 1e-12
     # no plateau: the Cattaneo-Mindlin table; below d_c: the low-amplitude values exactly
-    xt, t1, t2, _, _ = cm_loop_table()
+    tab = cm_loop_table()
+    xt, t1, t2 = tab.x, tab.g1, tab.g2
     g1, g2 = plateau_loop_shape(xt[::50], 0.0)
     assert np.max(np.abs(g1 - t1[::50])) < 1e-9 and np.max(np.abs(g2 - t2[::50])) < 1e-9
     g1, g2 = plateau_loop_shape(np.linspace(0, 2, 5), 2.0)
@@ -307,7 +279,8 @@ def test_plateau_loss_part_is_the_shifted_table_plus_a_closed_form():
     # From the virgin-curve form of Eq. 5 (analysis_sweep docstring): with y = x - c,
     # (K″ - ωξ)/κ = (y/x)² g″(y) + 4c (y - F(y))/(πx²), F the unit Cattaneo-Mindlin virgin
     # curve (closed form, paper 2, Eq. 6): the table reused at a shifted argument.
-    xt, _, t2, _, _ = cm_loop_table()
+    tab = cm_loop_table()
+    xt, t2 = tab.x, tab.g2
     inner = CattaneoMindlinLoop(1.0, 1.0, 1.0)
     for c in (0.05, 0.3, 1.0, 4.0):
         x = c + np.geomspace(1e-4, 25.0, 60)
@@ -392,7 +365,7 @@ def test_plateau_loop_fit_recovers_mu_within_its_errors(dc_fraction):
     assert np.all(np.abs(pl["kappa_N_per_m"] / kappa - 1) < 4.5 * pl["df0_err_Hz"] / df0)
     # The slopes above a plateau do not give μ (no linear onset): NaN and flagged, not biased.
     assert pl["mu_df"].isna().all() and pl["mu_dgamma"].isna().all()
-    assert pl["flags"].str.contains("plateau-slope").all()
+    assert has(pl["flags"], Flag.PLATEAU_SLOPE).all()
     # ... and the statistics per load skip them (NaN), while μ_fit is averaged.
     assert res.loads["mu_df_mean"].isna().all() and res.loads["mu_dgamma_mean"].isna().all()
     assert np.all(np.abs(res.loads["mu_fit_mean"] - 1.0) < 0.02)
@@ -412,7 +385,7 @@ def test_plateau_loop_fit_recovers_mu_within_its_errors(dc_fraction):
 )
 def test_models_told_apart_on_clear_cases(kind, expected):
     t = make_table(kind=kind, loads=(3e-3,), n_exp=4, u_max=8e-9, n_points=14, noise=0.1, mu=1.5)
-    sw = fit_sweeps(pad_sweeps(t))
+    sw = fit_sweeps(pad_sweeps(t.data))
     assert (sw["model"] == expected).mean() >= 0.9, sw["model"].value_counts()
 
 
@@ -424,7 +397,7 @@ def test_plateau_amplitude_found():
     t = make_table(kind="plateau", loads=(3e-3,), n_exp=4, u_max=u_max, n_points=14, noise=0.1)
     step = u_max * 0.95 / 13
     d_c = frac * u_max
-    hinge = fit_sweeps(pad_sweeps(t), exact_loop=False)
+    hinge = fit_sweeps(pad_sweeps(t.data), exact_loop=False)
     hinge = hinge.loc[hinge["model"] == "plateau", "plateau_amplitude_m"]
     assert len(hinge) >= 10
     assert np.all((hinge > d_c - 0.5 * step) & (hinge < d_c + 2.0 * step))
@@ -440,7 +413,7 @@ def test_first_ramp_set_aside_by_default_and_kept_on_request():
     res = analyze(t, settings=FAST)
     first = res.sweeps["ramp"] == 1
     assert not res.sweeps.loc[first, "used"].any() and res.sweeps.loc[~first, "used"].all()
-    assert res.sweeps.loc[first, "flags"].str.contains("first-ramp").all()
+    assert has(res.sweeps.loc[first, "flags"], Flag.FIRST_RAMP).all()
     kept = analyze(t, settings=AnalysisSettings(bootstrap=0, keep_first_ramp=True))
     assert kept.sweeps["used"].all()
     assert kept.groups[0]["n_sweeps_used"] == len(kept.sweeps)
@@ -448,19 +421,21 @@ def test_first_ramp_set_aside_by_default_and_kept_on_request():
 
 def test_drift_flagged_only_where_ramps_are_offset():
     t = make_table(loads=(3e-3, 6e-3), n_exp=3, noise=0.2)
-    bad = (t["experiment"] == "e1") & (t["normal_force_N"] == 6e-3)
-    t.loc[bad, "df_Hz"] += 1.0 * (t.loc[bad, "ramp"] - 2)  # baseline moves 1 Hz per ramp
+    d = t.data  # edited in place after validation: the analysis sees the drift
+    bad = (d["experiment"] == "e1") & (d["normal_force_N"] == 6e-3)
+    d.loc[bad, "df_Hz"] += 1.0 * (d.loc[bad, "ramp"] - 2)  # baseline moves 1 Hz per ramp
     res = analyze(t, settings=FAST)
-    flagged = res.sweeps["flags"].str.contains("drift")
+    flagged = has(res.sweeps["flags"], Flag.DRIFT)
     is_bad = (res.sweeps["experiment"] == "e1") & (res.sweeps["normal_force_N"] == 6e-3)
     assert flagged[is_bad].all() and not flagged[~is_bad].any()
 
 
 def test_junction_growth_flagged_and_no_friction():
     t = make_table(loads=(3e-3,), n_exp=2, u_max=4e-9)
-    t["df_Hz"] = t["df_Hz"].mean() + 2e9 * t["amplitude_m"]  # Δf rises with u0
+    d = t.data
+    d["df_Hz"] = d["df_Hz"].mean() + 2e9 * d["amplitude_m"]  # Δf rises with u0
     res = analyze(t, settings=FAST)
-    assert res.sweeps["flags"].str.contains("junction-growth").all()
+    assert has(res.sweeps["flags"], Flag.JUNCTION_GROWTH).all()
     assert res.sweeps["mu_df"].isna().all()
 
 
@@ -500,32 +475,41 @@ def test_voigt_contact_is_elastic_with_exact_limits():
 
 def test_analyze_is_pure():
     t = make_table(loads=(3e-3, 6e-3), n_exp=3)
-    before = t.copy()
+    before = t.data.copy()
     a = analyze(t, settings=AnalysisSettings(bootstrap=20, seed=4))
     b = analyze(t, settings=AnalysisSettings(bootstrap=20, seed=4))
-    pd.testing.assert_frame_equal(t, before)
-    pd.testing.assert_frame_equal(a.sweeps_table, b.sweeps_table)
-    assert a.summary == b.summary
+    pd.testing.assert_frame_equal(t.data, before)
+    pd.testing.assert_frame_equal(sweeps_table(a), sweeps_table(b))
+    assert summary(a) == summary(b)
 
 
-def test_a_qcm_argument_replaces_the_table_constants():
+def test_constants_live_in_the_table():
     t = make_table(loads=(3e-3, 6e-3), n_exp=3)
     a = analyze(t, settings=FAST)
-    other = t.assign(area_m2=1e-5, overtone=5)
-    b = analyze(other, Q, settings=FAST)  # cr.analyze(table, q) of design.md §3
-    pd.testing.assert_frame_equal(a.sweeps_table, b.sweeps_table)
+    # Overtone 5 on 3/5 of the area: the same sensitivity P = n_P/(2nπ²A Z_q), same results.
+    other = t.with_constants(area_m2=Q.area * 3 / 5, overtone=5)
+    assert (other.data["overtone"] == 5).all() and (t.data["overtone"] == Q.overtone).all()
+    b = analyze(other, settings=FAST)
+    pd.testing.assert_frame_equal(sweeps_table(a), sweeps_table(b))
+    with pytest.raises(ValueError, match="odd overtones"):
+        t.with_constants(overtone=4)
 
 
-def test_raw_tables_are_validated_first():
+def test_raw_tables_must_be_validated_first():
     t = make_table(loads=(3e-3, 6e-3), n_exp=2)
-    raw = t[["sweep", "experiment", "ramp", "normal_force_N", "amplitude_m", "df_Hz", "dgamma_Hz"]]
+    raw = t.data[
+        ["sweep", "experiment", "ramp", "normal_force_N", "amplitude_m", "df_Hz", "dgamma_Hz"]
+    ]
+    with pytest.raises(TypeError, match="validate_sweeps"):
+        analyze(raw, settings=FAST)
+    consts = {"fundamental_Hz": Q.fundamental, "overtone": Q.overtone, "area_m2": Q.area}
     with pytest.raises(ValueError, match=r"missing: .*n_contacts.*sphere_radius_m"):
-        analyze(raw, Q, settings=FAST)
-    ok = analyze(raw.assign(n_contacts=NP, sphere_radius_m=R), Q, settings=FAST)
-    assert len(ok.sweeps) == len(t["sweep"].unique())
+        validate_sweeps(raw, constants=consts)
+    ok = analyze(validate_sweeps(raw, constants={**consts, "n_contacts": NP, "sphere_radius_m": R}))
+    assert len(ok.sweeps) == len(t.data["sweep"].unique())
     bad = raw.assign(n_contacts=NP, sphere_radius_m=R, amplitude_m=-raw["amplitude_m"])
     with pytest.raises(ValueError, match="negative"):
-        analyze(bad, Q, settings=FAST)
+        validate_sweeps(bad, constants=consts)
 
 
 def test_settings_are_checked():
@@ -551,7 +535,7 @@ def test_model_curves_follow_the_forward_model(kind, u_max, exact_loop, limits_f
     # noise-free shifts of the loop that made the data; tol is a fraction of their range.
     kw = dict(loads=(3e-3,), n_exp=1, ramps=(2,), n_points=14, u_max=u_max, mu=1.5)
     t = make_table(kind=kind, noise=0.01, **kw)
-    row = fit_sweeps(pad_sweeps(t), exact_loop=exact_loop).iloc[0]
+    row = fit_sweeps(pad_sweeps(t.data), exact_loop=exact_loop).iloc[0]
     assert row["limits_from"] == limits_from
     u = np.linspace(0.05, 1.0, 14) * u_max
     kappa = kappa_jkr_mindlin(3e-3, 70e9, 0.1, R, NU)
@@ -566,7 +550,7 @@ def test_fit_starts_on_a_bound():
     line = Model(
         "line",
         "line",
-        (Parameter("a", "a", "-", (0.0, 10.0)), Parameter("b", "b", "-", (-1.0, 5.0))),
+        (Parameter("a", "a", "-", "a", (0.0, 10.0)), Parameter("b", "b", "-", "b", (-1.0, 5.0))),
         "x",
         "-",
         "y",

@@ -7,10 +7,9 @@ import pandas as pd
 import pytest
 from click.testing import CliRunner
 
-from contactres.tangential import kappa_jkr_mindlin
 from contactres.cli import main
-from contactres.resonators.qcm import QCM, shifts_from_loop
-from contactres.tangential import CattaneoMindlinLoop, with_dashpot
+from contactres.measurements.synthetic import SweepGroup, SweepStudy, synthetic_sweeps
+from contactres.resonators.qcm import QCM
 
 
 def run(*args):
@@ -19,31 +18,18 @@ def run(*args):
 
 @pytest.fixture(scope="module")
 def sweeps_csv(tmp_path_factory):
-    q = QCM(5e6, 3, 2.5e-5)
-    rng = np.random.default_rng(7)
-    u = np.linspace(0.5e-9, 5e-9, 8)
-    rows = []
-    for e in range(3):
-        for F in (2e-3, 4e-3, 6e-3):
-            kappa = kappa_jkr_mindlin(F, 70e9, 0.1, 1.1e-3, 0.17)
-            loop = with_dashpot(CattaneoMindlinLoop(kappa, 1.0, F), 2e4 / q.omega, q.omega)
-            df, dg = shifts_from_loop(q, loop, u, 3)
-            for r in (1, 2, 3, 4):
-                rows.append(
-                    pd.DataFrame(
-                        dict(
-                            sweep=f"e{e}F{F}r{r}",
-                            experiment=e,
-                            ramp=r,
-                            normal_force_N=F,
-                            amplitude_m=u,
-                            df_Hz=df + rng.normal(0, 0.1, u.size),
-                            dgamma_Hz=dg + rng.normal(0, 0.1, u.size),
-                        )
-                    )
-                )
+    u = tuple(np.linspace(0.5e-9, 5e-9, 8))
+    study = SweepStudy(
+        groups=(SweepGroup("glass", "air", 1.1e-3, 70e9, 0.1, u, 2e4, 0.1),),
+        normal_forces=(2e-3, 4e-3, 6e-3),
+        n_experiments=3,
+        alternate=False,
+        qcm=QCM(5e6, 3, 2.5e-5),
+    )
+    # No constant columns in the file: the tests give them as options or in a TOML file.
+    table = synthetic_sweeps(study, 7).drop(columns=["configuration", "medium", "sphere_radius_m"])
     path = tmp_path_factory.mktemp("data") / "sweeps.csv"
-    pd.concat(rows).to_csv(path, index=False)
+    table.to_csv(path, index=False)
     return path
 
 

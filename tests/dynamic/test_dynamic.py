@@ -24,8 +24,10 @@ from contactres.dynamic import (
     dynamic_contact_stiffness,
     shear_wavenumber_ratio,
 )
-from contactres.dynamic.quadrature import functionals, kernel_table, resolution_for
-from contactres.dynamic.weights import _bessel_even, _wa_harmonic_weights, _wa_line_weight
+from contactres.dynamic.normal_stiffness import model_n
+from contactres.dynamic.quadrature import functionals
+from contactres.dynamic.table import kernel_table, resolution_for
+from contactres.dynamic.weights import bessel_even, wa_harmonic_weights, wa_line_weight
 from contactres.halfspace import isotropic_dynamic_kernel
 
 Q = 0.02
@@ -40,7 +42,7 @@ def _cubic(A, nu=0.25):
 def test_wa_line_weight_is_struve_form_and_its_quadrature():
     x = np.array([0.05, 1.0, 5.0, 7.99, 8.01, 15.0, 60.0])
     np.testing.assert_allclose(
-        _wa_line_weight(x), 1 - 0.5 * np.pi * special.struve(1, x), rtol=0, atol=1e-13
+        wa_line_weight(x), 1 - 0.5 * np.pi * special.struve(1, x), rtol=0, atol=1e-13
     )
     # complex argument: Gauss-Legendre of ∫₀^{π/2} sin t cos(z sin t) dt (definition, r = sin t)
     t, w = np.polynomial.legendre.leggauss(200)
@@ -48,12 +50,12 @@ def test_wa_line_weight_is_struve_form_and_its_quadrature():
     w = 0.25 * np.pi * w
     z = np.array([3 + 0.4j, 9 + 1.5j, 25 - 2j, -12 + 0.5j])
     ref = (np.sin(t)[None, :] * np.cos(z[:, None] * np.sin(t)[None, :])) @ w
-    np.testing.assert_allclose(_wa_line_weight(z), ref, rtol=1e-12)
+    np.testing.assert_allclose(wa_line_weight(z), ref, rtol=1e-12)
 
 
 def test_wa_harmonic_weights_against_quad():
     s = np.array([0.3, 2.0, 9.0, 40.0])
-    W = _wa_harmonic_weights(s, 8)
+    W = wa_harmonic_weights(s, 8)
     for n in (0, 2, 4, 8):
         ref = [
             integrate.quad(
@@ -69,7 +71,7 @@ def test_wa_harmonic_weights_against_quad():
 
 def test_bessel_recurrence_matches_scipy_including_underflow():
     s = np.concatenate([np.geomspace(1e-5, 1, 40), np.linspace(0.01, 700, 3000)])
-    J = _bessel_even([0, 4, 30, 96], s)
+    J = bessel_even([0, 4, 30, 96], s)
     for n, v in J.items():
         np.testing.assert_allclose(v, special.jv(n, s), rtol=0, atol=1e-12)
 
@@ -268,11 +270,9 @@ def test_doubling_every_resolution_moves_dcsf_less_than_rtol(A, nu):
     a = functionals(kernel_table(m, Q, res), ks)
     b = functionals(kernel_table(m, Q, fine), ks)
     ta, tb = kernel_table(m, Q, res), kernel_table(m, Q, fine)
-    from contactres.dynamic.normal_stiffness import _model_n
-
     for name in MODELS:
-        da = ta.n_static / _model_n(a, name)
-        db = tb.n_static / _model_n(b, name)
+        da = ta.n_static / model_n(a, name)
+        db = tb.n_static / model_n(b, name)
         err = np.max(np.abs(da - db) / np.abs(db))
         assert err < 1e-6, (name, err)
 

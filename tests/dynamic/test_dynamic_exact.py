@@ -16,7 +16,8 @@ from scipy import integrate, special
 from contactres import Material, contact_pressure, dcsf, dcsf_models
 from contactres.dynamic import ALL_MODELS
 from contactres.dynamic.exact import GalerkinSize, exact_n, galerkin_size, pressure_basis
-from contactres.dynamic.quadrature import functionals, kernel_table, resolution_for
+from contactres.dynamic.quadrature import functionals
+from contactres.dynamic.table import kernel_table, resolution_for
 
 Q = 0.02
 
@@ -52,7 +53,7 @@ def test_luco_westmann_rigid_disk_isotropic_lossless():
     (k, c) = (0.9689, 0.7931) at a0 = 0.5 and (0.8826, 0.8239) at a0 = 1, four digits.
     At a0 = 0.5 we agree to their rounding (c = 0.793045: −5.5e-5, a five-digit 0.79305 rounded
     again). At a0 = 1 we are 1.2e-4 (k) and 1.6e-4 (c) below them, beyond rounding; that error is
-    in the quoted digits, not here: tests/test_rigid_disk_isotropic.py solves the disk by an
+    in the quoted digits, not here: tests/dynamic/test_rigid_disk_isotropic.py solves the disk by an
     independent Fredholm integral equation and agrees with this Galerkin to 1e-11 (converged),
     giving (0.882477, 0.823743). The 1e-6 isotropic check lives there."""
     m = Material.isotropic(E=1.0, nu=1 / 3)

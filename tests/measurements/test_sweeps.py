@@ -41,7 +41,7 @@ def write(tmp_path, frame, name="sweeps.csv", **kw):
 def test_reads_comma_csv_and_fills_constants(tmp_path):
     path = write(tmp_path, good_frame())
     before = path.read_bytes()
-    t = read_sweeps(path, **CONST)
+    t = read_sweeps(path, **CONST).data
     assert len(t) == 18 and t["sweep"].nunique() == 3
     assert (t["overtone"] == 3).all() and (t["fundamental_Hz"] == 5e6).all()
     assert (t["poisson"] == 0.17).all()
@@ -51,10 +51,10 @@ def test_reads_comma_csv_and_fills_constants(tmp_path):
 
 def test_semicolon_and_decimal_comma_give_the_same_table(tmp_path):
     f = good_frame()
-    a = read_sweeps(write(tmp_path, f, "a.csv"), **CONST)
-    b = read_sweeps(write(tmp_path, f, "b.csv", sep=";", decimal=","), **CONST)
+    a = read_sweeps(write(tmp_path, f, "a.csv"), **CONST).data
+    b = read_sweeps(write(tmp_path, f, "b.csv", sep=";", decimal=","), **CONST).data
     pd.testing.assert_frame_equal(a.drop(columns="line"), b.drop(columns="line"))
-    c = read_sweeps(write(tmp_path, f, "c.csv", sep=";"), **CONST)
+    c = read_sweeps(write(tmp_path, f, "c.csv", sep=";"), **CONST).data
     np.testing.assert_allclose(c["df_Hz"], a["df_Hz"])
 
 
@@ -65,10 +65,10 @@ def test_constants_from_toml_beside_the_file_and_row_overrides(tmp_path):
     (tmp_path / "sweeps.toml").write_text(
         "area_m2 = 3e-5\nn_contacts = 3\nsphere_radius_m = 6e-4\novertone = 3\n"
     )
-    t = read_sweeps(path)
+    t = read_sweeps(path).data
     assert (t["area_m2"] == 3e-5).all() and (t["sphere_radius_m"] == 6e-4).all()
     assert (t["overtone"] == 5).all()  # the row value wins over the TOML file
-    t2 = read_sweeps(path, area_m2=1e-5)  # an argument wins over the TOML file
+    t2 = read_sweeps(path, area_m2=1e-5).data  # an argument wins over the TOML file
     assert (t2["area_m2"] == 1e-5).all()
 
 
@@ -88,7 +88,7 @@ def test_missing_constant_says_how_to_give_it(tmp_path):
 def test_missing_ramp_column_warns(tmp_path):
     path = write(tmp_path, good_frame().drop(columns="ramp"))
     with pytest.warns(SweepWarning, match="ramp"):
-        t = read_sweeps(path, **CONST)
+        t = read_sweeps(path, **CONST).data
     assert (t["ramp"] == 0).all()
 
 
@@ -175,7 +175,7 @@ def test_duplicated_rows_warn_and_are_dropped(tmp_path):
     f = good_frame()
     f = pd.concat([f, f.iloc[[3]]], ignore_index=True)
     with pytest.warns(SweepWarning, match=r"1 duplicated row.*line\(s\) 20"):
-        t = read_sweeps(write(tmp_path, f), **CONST)
+        t = read_sweeps(write(tmp_path, f), **CONST).data
     assert len(t) == 18
 
 
@@ -227,25 +227,25 @@ def test_bom_and_windows_line_endings(tmp_path):
     path = tmp_path / "win.csv"
     text = good_frame().to_csv(index=False, lineterminator="\r\n")
     path.write_bytes(b"\xef\xbb\xbf" + text.encode())
-    t = read_sweeps(path, **CONST)
+    t = read_sweeps(path, **CONST).data
     assert len(t) == 18 and t.columns[0] == "sweep"
 
 
 def test_reader_plugin(tmp_path, monkeypatch):
-    import contactres.measurements.sweeps as sw
+    import contactres.measurements.readers as readers
 
-    monkeypatch.setattr(sw, "READERS", list(sw.READERS))
+    monkeypatch.setattr(readers, "READERS", list(readers.READERS))
 
     def load(path):
         frame = pd.read_json(path).astype(str)
         frame["line"] = range(1, len(frame) + 1)
         return frame
 
-    sw.register_reader(
-        sw.SweepReader("json", (".json",), lambda p, head: head.lstrip().startswith("["), load)
+    readers.register_reader(
+        readers.SweepReader("json", (".json",), lambda p, head: head.lstrip().startswith("["), load)
     )
     path = tmp_path / "sweeps.json"
     good_frame().to_json(path, orient="records")
-    t = read_sweeps(path, **CONST)
+    t = read_sweeps(path, **CONST).data
     assert len(t) == 18
     np.testing.assert_allclose(t["df_Hz"], good_frame()["df_Hz"])

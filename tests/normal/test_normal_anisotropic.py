@@ -40,8 +40,9 @@ def test_matches_isotropic_hertz_module_when_available():
     assert c.stiffness == pytest.approx(h.stiffness, rel=1e-12)
 
 
-def test_copper_001_sanity_numbers_of_physics_md():
-    # physics.md: Cu (001) M ≈ 134.0 GPa; F = 1 N, R = 1 mm: a ≈ 17.75 µm, K_sa ≈ 4.76e6 N/m.
+def test_copper_001_sanity_numbers():
+    # Reference values (docs/validation.md, computed outside the package when paper 1 was
+    # reconstructed): Cu (001) M ≈ 134.0 GPa; F = 1 N, R = 1 mm: a ≈ 17.75 µm, K_sa ≈ 4.76e6 N/m.
     c = sphere_contact(CU, 1e-3, 1.0)
     assert c.indentation_modulus == pytest.approx(134.0e9, rel=5e-4)
     assert c.contact_radius == pytest.approx(17.75e-6, rel=5e-4)

@@ -7,11 +7,11 @@ import pandas as pd
 import pytest
 
 from contactres.analysis import AnalysisSettings, analyze
-from contactres.tangential import kappa_jkr_mindlin
+from contactres.measurements.schema import GROUP_RESULTS, SWEEP_RESULTS
 from contactres.measurements.sweeps import validate_sweeps
-from contactres.report import SUMMARY_GROUP_KEYS, SWEEP_COLUMNS
-from contactres.resonators.qcm import QCM, shifts_from_loop
-from contactres.tangential import CattaneoMindlinLoop, with_dashpot
+from contactres.measurements.synthetic import SweepGroup, SweepStudy, synthetic_sweeps
+from contactres.report import write_report
+from contactres.resonators.qcm import QCM
 
 Q = QCM(5e6, 3, 2.5e-5)
 CONST = dict(overtone=3, area_m2=2.5e-5, n_contacts=3, sphere_radius_m=1e-3)
@@ -51,43 +51,32 @@ LOAD_QUANTITIES = [
 
 @pytest.fixture(scope="module")
 def results():
-    rng = np.random.default_rng(2)
-    u = np.linspace(0.5e-9, 6e-9, 10)
-    frames = []
-    for medium, E in (("air", 70e9), ("water", 77e9)):
-        for e in range(3):
-            for F in (2e-3, 4e-3, 8e-3):
-                kappa = kappa_jkr_mindlin(
-                    F, E * (1 + 0.02 * rng.standard_normal()), 0.05, 1e-3, 0.17
-                )
-                loop = with_dashpot(CattaneoMindlinLoop(kappa, 1.0, F), 1e4 / Q.omega, Q.omega)
-                df, dg = shifts_from_loop(Q, loop, u, 3)
-                for r in (1, 2, 3):
-                    frames.append(
-                        pd.DataFrame(
-                            dict(
-                                sweep=f"{medium}{e}{F}{r}",
-                                experiment=e,
-                                configuration="glass",
-                                medium=medium,
-                                ramp=r,
-                                normal_force_N=F,
-                                amplitude_m=u,
-                                df_Hz=df + rng.normal(0, 0.2, u.size),
-                                dgamma_Hz=dg + rng.normal(0, 0.2, u.size),
-                            )
-                        )
-                    )
-    table = validate_sweeps(pd.concat(frames, ignore_index=True), constants=CONST)
+    u = tuple(np.linspace(0.5e-9, 6e-9, 10))
+    study = SweepStudy(
+        groups=tuple(
+            SweepGroup("glass", medium, 1e-3, E, 0.05, u, 1e4, 0.2)
+            for medium, E in (("air", 70e9), ("water", 77e9))
+        ),
+        normal_forces=(2e-3, 4e-3, 8e-3),
+        n_experiments=3,
+        ramps=(1, 2, 3),
+        alternate=False,
+        qcm=Q,
+        scatter=(("E", 0.02),),  # E x (1 + 0.02 z), drawn for every load
+        scatter_law="normal",
+        scatter_per="load",
+    )
+    table = validate_sweeps(synthetic_sweeps(study, 2), constants=CONST)
     return analyze(table, settings=AnalysisSettings(bootstrap=30))
 
 
 def test_schema_of_the_three_outputs(results, tmp_path):
-    written = results.write(tmp_path, figures=False)
+    written = write_report(results, tmp_path, formats=("csv", "json"))
     assert {p.name for p in written} == {"sweeps.csv", "loads.csv", "summary.json"}
     sweeps = pd.read_csv(tmp_path / "sweeps.csv")
     assert list(sweeps.columns[: len(ISSUE_SWEEP_COLUMNS)]) == ISSUE_SWEEP_COLUMNS
-    assert list(SWEEP_COLUMNS) == ISSUE_SWEEP_COLUMNS
+    assert list(SWEEP_RESULTS.names[: len(ISSUE_SWEEP_COLUMNS)]) == ISSUE_SWEEP_COLUMNS
+    assert list(sweeps.columns) == list(SWEEP_RESULTS.names)
     assert len(sweeps) == 54 and sweeps["sweep"].is_unique
     assert set(sweeps["model"]) <= {"cattaneo-mindlin", "savkoor", "elastic", "plateau"}
     assert sweeps["used"].dtype == bool and (sweeps["used"] == (sweeps["ramp"] != 1)).all()
@@ -105,7 +94,8 @@ def test_schema_of_the_three_outputs(results, tmp_path):
     assert summary["settings"]["keep_first_ramp"] is False
     assert len(summary["groups"]) == 2
     for g in summary["groups"]:
-        assert list(g)[: len(SUMMARY_GROUP_KEYS)] == list(SUMMARY_GROUP_KEYS)
+        assert list(g) == [k for k in GROUP_RESULTS.names if k in g]  # the schema's order
+        assert list(g)[:9] == list(GROUP_RESULTS.names[:9])
         assert set(g["models"]) == {"cattaneo-mindlin", "savkoor", "elastic", "plateau"}
         assert g["n_experiments"] == 3 and g["n_sweeps_used"] == 18
         assert 60e9 < g["E_Pa"] < 90e9 and g["E_err_Pa"] > 0
@@ -124,16 +114,16 @@ def test_load_statistics_are_over_experiments(results):
 
 
 def test_nan_becomes_null_and_json_is_strict(results, tmp_path):
-    results.write(tmp_path, figures=False)
+    write_report(results, tmp_path, formats=("json",))
     text = (tmp_path / "summary.json").read_text()
     assert "NaN" not in text and "Infinity" not in text
     json.loads(text, parse_constant=lambda c: pytest.fail(f"non-standard JSON constant {c}"))
 
 
 def test_write_is_atomic_and_repeatable(results, tmp_path):
-    results.write(tmp_path, figures=False)
+    write_report(results, tmp_path, formats=("csv",))
     first = (tmp_path / "sweeps.csv").read_bytes()
-    results.write(tmp_path, figures=False)
+    results.write(tmp_path, figures=False)  # the alias of write_report kept from 0.1
     assert (tmp_path / "sweeps.csv").read_bytes() == first
     assert not [p for p in tmp_path.iterdir() if p.name.startswith(".")]  # no temporaries left
 
@@ -142,12 +132,14 @@ def test_write_onto_a_file_is_an_error(results, tmp_path):
     f = tmp_path / "file"
     f.write_text("keep")
     with pytest.raises(ValueError, match="not a directory"):
-        results.write(f)
+        write_report(results, f)
+    with pytest.raises(ValueError, match="unknown report format"):
+        write_report(results, tmp_path / "out", formats=("pdf",))
     assert f.read_text() == "keep"
 
 
 def test_figures_are_written(results, tmp_path):
-    written = results.write(tmp_path)
+    written = write_report(results, tmp_path)
     pngs = sorted(p.name for p in written if p.suffix == ".png")
     assert pngs == [
         "fig4_sweeps.png",

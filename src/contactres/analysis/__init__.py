@@ -1,6 +1,25 @@
-"""Analysis of QCM amplitude sweeps (paper 2): sweeps -> loads -> JKR modulus and adhesion."""
+"""Analysis of QCM amplitude sweeps (paper 2): sweeps -> loads -> JKR modulus and adhesion.
 
-from ..tangential import kappa_jkr_mindlin
-from .pipeline import AnalysisSettings, analyze, fit_jkr_mindlin
+``analyze`` (:mod:`.pipeline`) runs the steps; the modules hold one step each: padded arrays and
+closed-form fits (:mod:`.amplitude`), the exact loops (:mod:`.loops`), the fitted models and their
+registry (:mod:`.models`), the model choice (:mod:`.classify`), friction (:mod:`.friction`),
+drift (:mod:`.drift`), statistics per load (:mod:`.loads`), the JKR + Mindlin fit (:mod:`.jkr`),
+the flags (:mod:`.flags`) and the results (:mod:`.results`).
+"""
 
-__all__ = ["AnalysisSettings", "analyze", "fit_jkr_mindlin", "kappa_jkr_mindlin"]
+from ..tangential import kappa_jkr_mindlin  # re-exported for scripts written against 0.1
+from .flags import Flag
+from .jkr import fit_jkr_mindlin
+from .models import REGISTRY
+from .pipeline import AnalysisSettings, analyze
+from .results import Results
+
+__all__ = [
+    "REGISTRY",
+    "AnalysisSettings",
+    "Flag",
+    "Results",
+    "analyze",
+    "fit_jkr_mindlin",
+    "kappa_jkr_mindlin",
+]

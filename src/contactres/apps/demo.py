@@ -27,10 +27,11 @@ def _qcm_analysis_step(out: Path) -> list[Path]:
 
     from ..analysis import analyze
     from ..measurements.sweeps import read_sweeps
+    from ..report import write_report
 
     with as_file(files("contactres") / "data" / "example_sweeps.csv") as path:
         table = read_sweeps(path)
-    return analyze(table).write(ensure_dir(out / "qcm-analysis"))
+    return write_report(analyze(table), ensure_dir(out / "qcm-analysis"))
 
 
 def _paper2_forward_step(out: Path) -> list[Path]:

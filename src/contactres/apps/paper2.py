@@ -15,11 +15,16 @@ import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
 
-from ..tangential import kappa_jkr_mindlin
 from ..fileio import ensure_dir, save_figure, write_csv
 from ..normal.isotropic import effective_modulus, jkr_contact_radius
 from ..resonators.qcm import QCM, shifts_from_loop
-from ..tangential import CattaneoMindlinLoop, SavkoorLoop, VoigtLoop, with_dashpot
+from ..tangential import (
+    CattaneoMindlinLoop,
+    SavkoorLoop,
+    VoigtLoop,
+    kappa_jkr_mindlin,
+    with_dashpot,
+)
 
 __all__ = ["Paper2Example", "loops_figure", "shifts_figure", "write_paper2_figures"]
 

@@ -7,8 +7,6 @@ import sys
 
 import click
 
-from .. import __version__
-
 # Errors that mean "the user's input is wrong": one line, exit code 2, no traceback.
 USER_ERRORS = (ValueError, FileNotFoundError, IsADirectoryError, PermissionError)
 
@@ -70,7 +68,9 @@ class App(click.Group):
 
 
 @click.group(cls=App, context_settings={"help_option_names": ["-h", "--help"]})
-@click.version_option(__version__, "--version", "-V", prog_name="contactres")
+# package_name: click reads the installed version only when --version is given, so that
+# neither the library nor importlib.metadata is imported to build the command tree.
+@click.version_option(None, "--version", "-V", package_name="contactres", prog_name="contactres")
 def main() -> None:
     """contactres: contact mechanics at resonance.
 

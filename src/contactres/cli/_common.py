@@ -4,14 +4,19 @@ from __future__ import annotations
 
 import json
 import sys
+from typing import TYPE_CHECKING
 
 import click
-import numpy as np
-import pandas as pd
+
+if TYPE_CHECKING:  # annotations only: numpy and pandas are imported when a command runs
+    import numpy as np
+    import pandas as pd
 
 
 def parse_range(text: str) -> np.ndarray:
     """Parse ``start:stop:num`` (numpy linspace, ``num`` points), ``a,b,c`` or one number."""
+    import numpy as np
+
     s = str(text).strip()
     try:
         if ":" in s:
@@ -41,6 +46,8 @@ class RangeType(click.ParamType):
     name = "START:STOP:NUM"
 
     def convert(self, value, param, ctx):
+        import numpy as np
+
         if isinstance(value, np.ndarray):
             return value
         try:
@@ -80,4 +87,6 @@ def emit(table: pd.DataFrame, fmt: str, stream=None) -> None:
 
 def emit_record(record: dict, fmt: str, stream=None) -> None:
     """Print one record (a dict of scalars) in the chosen format."""
+    import pandas as pd
+
     emit(pd.DataFrame([record]), fmt, stream)

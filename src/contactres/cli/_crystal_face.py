@@ -3,15 +3,18 @@
 from __future__ import annotations
 
 import re
+from typing import TYPE_CHECKING
 
 import click
-import numpy as np
 
-from ..materials import Material
+if TYPE_CHECKING:  # annotations only: the library is imported when a command runs
+    from ..materials import Material
 
 
 def parse_direction(text: str, name: str = "surface") -> tuple[float, float, float]:
     """Parse Miller-like indices: ``001``, ``1-10``, ``-1 1 0`` or ``1,1,1``."""
+    import numpy as np
+
     s = str(text).strip()
     try:
         if "," in s or " " in s:
@@ -35,6 +38,8 @@ def parse_direction(text: str, name: str = "surface") -> tuple[float, float, flo
 
 def material_from_options(crystal, c11, c12, c44, zener, poisson) -> Material:
     """The crystal (cube-axis frame) chosen by ``--crystal`` or the elastic-constant options."""
+    from ..materials import Material
+
     by_constants = c11 is not None or c12 is not None
     by_ratios = zener is not None or poisson is not None
     chosen = sum([crystal is not None, by_constants, by_ratios])

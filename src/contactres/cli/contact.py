@@ -3,10 +3,7 @@
 from __future__ import annotations
 
 import click
-import numpy as np
-import pandas as pd
 
-from ..normal.anisotropic import sphere_contact
 from ._app import main
 from ._common import RANGE, emit, format_option
 from ._crystal_face import crystal_face, crystal_face_options
@@ -26,6 +23,11 @@ def contact(radius, force, fmt, **face):
     of them as a range for a table. On faces without 3- or 4-fold symmetry (e.g. 011) the true
     contact is slightly elliptic and the circular result is an approximation (a note says so).
     """
+    import numpy as np
+    import pandas as pd
+
+    from ..normal.anisotropic import sphere_contact
+
     m = crystal_face(**face)
     try:
         R, F = np.broadcast_arrays(radius, force)

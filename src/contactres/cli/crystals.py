@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-from ..crystals import crystal_table
 from ._app import main
 from ._common import emit, format_option
 
@@ -17,11 +16,12 @@ def crystals(fmt: str) -> None:
     (001), (011) and (111) faces (paper 1, Eq. 4: a rigid sphere sees an isotropic E* = M),
     and the source of each row.
     """
-    from ..crystals import get_crystal
+    from ..crystals import crystal_table
+    from ..materials import Material
     from ..normal.anisotropic import indentation_modulus
 
     table = crystal_table()
-    solids = [get_crystal(name) for name in table["name"]]
+    solids = [Material.crystal(name) for name in table["name"]]
     for label, normal in (
         ("M001_GPa", (0, 0, 1)),
         ("M011_GPa", (0, 1, 1)),

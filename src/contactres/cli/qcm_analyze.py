@@ -62,7 +62,9 @@ def analyze_command(
     and medium) and writes everything into OUT.
     """
     from ..analysis import AnalysisSettings, analyze
+    from ..analysis.flags import Flag, has
     from ..measurements.sweeps import SweepWarning, read_sweeps
+    from ..report import write_report
 
     constants = dict(
         area_m2=area,
@@ -79,7 +81,7 @@ def analyze_command(
         if issubclass(w.category, SweepWarning):
             click.echo(f"contactres: warning: {' '.join(str(w.message).split())}", err=True)
     settings = AnalysisSettings(keep_first_ramp=keep_first_ramp, bootstrap=bootstrap)
-    n_groups = table.groupby(["configuration", "medium"]).ngroups
+    n_groups = table.data.groupby(["configuration", "medium"]).ngroups
     steps = 5 + n_groups + (0 if no_figures else 1)
     with click.progressbar(length=steps, label="analysing", file=sys.stderr) as bar:
 
@@ -87,13 +89,13 @@ def analyze_command(
             bar.update(1)
 
         results = analyze(table, settings=settings, progress=progress)
-        written = results.write(out, figures=not no_figures)
+        written = write_report(results, out, figures=not no_figures)
         bar.update(steps)
     emit(results.table1(), fmt)
     if fmt == "plain":
         n_used = int(results.sweeps["used"].sum())
         models = results.sweeps.loc[results.sweeps["used"], "model"].value_counts().to_dict()
-        flagged = int((results.sweeps["flags"].str.contains("drift")).sum())
+        flagged = int(has(results.sweeps["flags"], Flag.DRIFT).sum())
         click.echo(
             f"{len(results.sweeps)} sweeps, {n_used} used; models: "
             + ", ".join(f"{k} {v}" for k, v in sorted(models.items()))

@@ -5,17 +5,14 @@ from __future__ import annotations
 import warnings
 
 import click
-import numpy as np
-import pandas as pd
 
-from ..resonators.qcm import QCM, shifts_from_loop
-from ..tangential import CattaneoMindlinLoop, PlateauLoop, SavkoorLoop, VoigtLoop, with_dashpot
 from ._app import qcm
 from ._common import RANGE, emit, format_option
 
 
 def build_loop(model, kappa, mu, normal_force, tau, contact_radius, xi, plateau, omega):
     """The loop named by the CLI options (ValueError naming the missing option)."""
+    from ..tangential import CattaneoMindlinLoop, PlateauLoop, SavkoorLoop, VoigtLoop, with_dashpot
 
     def need(name, value):
         if value is None:
@@ -98,6 +95,11 @@ def loop_command(
     K′, K″ (N/m) of one contact, from the force-displacement loop of the chosen model
     (paper 2, Eqs. 4-5; relative accuracy 1e-9).
     """
+    import numpy as np
+    import pandas as pd
+
+    from ..resonators.qcm import QCM, shifts_from_loop
+
     q = QCM(fundamental=fundamental, overtone=overtone, area=area, zq=zq)
     loop = build_loop(model, kappa, mu, normal_force, tau, contact_radius, xi, plateau, q.omega)
     u0 = np.asarray(u0, dtype=float)

@@ -1,25 +1,45 @@
-"""Dynamic (frequency-dependent) contact stiffness of a sphere on an anisotropic half-space."""
+"""Dynamic (frequency-dependent) contact stiffness of a sphere on an anisotropic half-space.
 
-from .normal_stiffness import (
-    ALL_MODELS,
-    MODELS,
-    WAVENUMBERS,
-    contact_displacement,
-    contact_pressure,
-    dcsf,
-    dcsf_models,
-    dynamic_contact_stiffness,
-    shear_wavenumber_ratio,
+Paper 1: the displacement models R0, R1, SA, WA, TP (Eqs. 24-28), the whole-contact average WA2D
+and the exact rigid flat punch, as DCSF = K_da/K_sa (Eq. 29). :func:`prepare` builds the kernel
+table of a material once; pass it as ``prepared=`` to evaluate many curves of that material.
+
+The public names are loaded on first use (PEP 562 module ``__getattr__``): the model names
+(``MODELS``, ``ALL_MODELS``, ``WAVENUMBERS``) come without scipy, for the command line's options.
+"""
+
+from __future__ import annotations
+
+import importlib
+from types import MappingProxyType
+
+# Public name -> the module that defines it.
+_EXPORTS = MappingProxyType(
+    {
+        "ALL_MODELS": ".models",
+        "MODELS": ".models",
+        "WAVENUMBERS": ".models",
+        "KernelTable": ".table",
+        "prepare": ".table",
+        "contact_displacement": ".normal_stiffness",
+        "contact_pressure": ".normal_stiffness",
+        "dcsf": ".normal_stiffness",
+        "dcsf_models": ".normal_stiffness",
+        "dynamic_contact_stiffness": ".normal_stiffness",
+        "shear_wavenumber_ratio": ".normal_stiffness",
+    }
 )
 
-__all__ = [
-    "ALL_MODELS",
-    "MODELS",
-    "WAVENUMBERS",
-    "contact_displacement",
-    "contact_pressure",
-    "dcsf",
-    "dcsf_models",
-    "dynamic_contact_stiffness",
-    "shear_wavenumber_ratio",
-]
+__all__ = sorted(_EXPORTS)
+
+
+def __getattr__(name: str):
+    """Import the module behind a public name on first access (nothing is kept in globals)."""
+    if name in _EXPORTS:
+        return getattr(importlib.import_module(_EXPORTS[name], __name__), name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    """The public names and the loaded submodules, as ``dir()`` and tab completion expect."""
+    return sorted({*globals(), *__all__})

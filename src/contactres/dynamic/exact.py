@@ -33,7 +33,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import special
 
-from .quadrature import KernelTable, _far_basis
+from .farfield import FarBasis, far_basis
+from .table import KernelTable
 
 __all__ = ["GalerkinSize", "exact_n", "galerkin_size", "pressure_basis"]
 
@@ -46,6 +47,7 @@ class GalerkinSize:
     n_harmonics: int
 
     def doubled(self) -> GalerkinSize:
+        """Twice the radial terms and twice the harmonics (the convergence check of the tests)."""
         return GalerkinSize(2 * self.n_radial, 2 * self.n_harmonics)
 
 
@@ -84,8 +86,35 @@ def _harmonics(values: np.ndarray, ms) -> dict:
     return out
 
 
-def exact_n(table: KernelTable, ksa: np.ndarray, size: GalerkinSize, return_coeffs=False):
-    """N_exact (and optionally the Galerkin coefficients c, with the basis) at k_s a ``ksa``."""
+def exact_n(
+    table: KernelTable,
+    ksa: np.ndarray,
+    size: GalerkinSize,
+    return_coeffs: bool = False,
+    far: FarBasis | None = None,
+):
+    """N_exact of the rigid flat punch at k_s a values ``ksa`` (module docstring).
+
+    Parameters
+    ----------
+    table : KernelTable
+        The prepared kernel table of the material and loss.
+    ksa : ndarray
+        k_s a values (1-D, >= 0; dimensionless).
+    size : GalerkinSize
+        Number of radial terms and angular harmonics of the pressure basis.
+    return_coeffs : bool
+        Also return the Galerkin coefficients c (per ksa) and the basis [(n, k), ...].
+    far : FarBasis, optional
+        The far-field basis of the positive ``ksa``, when the caller shares it with the other
+        models of the same call; built here otherwise.
+
+    Returns
+    -------
+    ndarray or tuple
+        Complex N_exact shaped like ``ksa`` (DCSF = N_st/N_exact, paper 1, Eq. 29); with
+        ``return_coeffs`` also c (ksa.shape + (n_basis,)) and the basis list.
+    """
     basis = _basis(table, size)
     nb = len(basis)
     n_of = np.array([b[0] for b in basis])
@@ -112,7 +141,11 @@ def exact_n(table: KernelTable, ksa: np.ndarray, size: GalerkinSize, return_coef
         for m in ms:
             I[m] += np.einsum("ak,pak,qak->apq", wk * near_h[m][None, :], jp, jp, optimize=True)
         # Far field: Chebyshev series in w = (T1 ka/s)² of each harmonic.
-        _, sg, s_end, cheb = _far_basis(table, ka)  # cheb: (na, ns, nf)
+        if far is None:
+            far = far_basis(table, ka)
+        elif not np.array_equal(far.ka, ka):
+            raise ValueError("the far-field basis was built for other k a values")
+        sg, s_end, cheb = far.s, far.s_end, far.basis  # cheb: (na, ns, nf)
         nf = cheb.shape[2]
         js = np.stack([special.spherical_jn(int(p), sg) for p in orders])  # (np, ns)
         iu = np.triu_indices(orders.size)

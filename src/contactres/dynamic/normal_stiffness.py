@@ -24,13 +24,18 @@ surface frame; C11 for a cubic (001) face): ``wavenumber="longitudinal"`` (defau
 ``loss=0`` is the lossless limit Q⁻¹ -> 0⁺ (exact, by a contour above the real axis).
 
 Which model? ``model="exact"`` (the rigid flat punch: uniform displacement under the sphere,
-Galerkin, :mod:`contactres.dynamic_exact`) is what the approximations aim at and costs about as
+Galerkin, :mod:`contactres.dynamic.exact`) is what the approximations aim at and costs about as
 much as one of them: use it. Against it (``contactres figures paper1``, paper1_model_ranking.csv;
 ν = 0.25, A = 0.25 ... 4, k_l a <= 1) the paper's approximations rank TP (0.2-5 %), WA ≈ WA2D
 (2-40 %), SA, R1, R0 (10-100 %); up to k_l a = 2 only TP stays within 10 % for A >= 1. The
 paper recommends WA because R0, SA and TP turn negative at high k a; the wiggles of WA (the
-maxima of Fig. 4) are not in the exact curve. See :mod:`contactres.dynamic_quadrature` for the
+maxima of Fig. 4) are not in the exact curve. See :mod:`contactres.dynamic.quadrature` for the
 numerics and their accuracy.
+
+Most of the cost of a curve is the kernel table of the material: :func:`prepare` builds it once,
+and every function here takes it as ``prepared=`` (for the same material, loss and rtol) to
+evaluate many curves of one material without rebuilding it. Without it each call prepares its
+own; nothing is cached between calls.
 """
 
 from __future__ import annotations
@@ -43,12 +48,10 @@ from ..halfspace import shear_reference
 from ..materials import Material, require_material
 from ..validation import nonnegative
 from .exact import exact_n, galerkin_size, pressure_basis
-from .quadrature import (
-    functionals,
-    kernel_table,
-    point_values,
-    resolution_for,
-)
+from .farfield import far_basis
+from .models import ALL_MODELS, MODELS, WAVENUMBERS
+from .quadrature import functionals, point_values
+from .table import KernelTable, prepare
 
 __all__ = [
     "ALL_MODELS",
@@ -59,15 +62,9 @@ __all__ = [
     "dcsf",
     "dcsf_models",
     "dynamic_contact_stiffness",
+    "model_n",
     "shear_wavenumber_ratio",
 ]
-
-#: The displacement conditions (paper 1, Eqs. 24-28) plus the whole-contact weighted average.
-MODELS = ("R0", "R1", "SA", "WA", "TP", "WA2D")
-#: ... and the exact rigid-flat-punch solution (Galerkin, :mod:`contactres.dynamic_exact`).
-ALL_MODELS = (*MODELS, "exact")
-#: Normalisations of the wave number: k_l = ω√(ρ/C33) (the paper's figures), k_s = ω√(ρ/C44).
-WAVENUMBERS = ("longitudinal", "shear")
 
 # Largest k_s a × (largest slowness) accepted: the contour's weights grow like e^{0.3 x this}.
 _KA_MAX = 60.0
@@ -96,9 +93,18 @@ def _ks_a(m: Material, ka, wavenumber: str) -> np.ndarray:
     raise ValueError(f"wavenumber must be one of {', '.join(WAVENUMBERS)}, got {wavenumber!r}")
 
 
-def _table(m: Material, ksa: np.ndarray, loss: float, rtol: float):
-    """The kernel table of ``m``, after checking that k_s a stays where its contour is accurate."""
-    table = kernel_table(m, loss, resolution_for(rtol))
+def _table(m: Material, ksa: np.ndarray, loss: float, rtol: float, prepared):
+    """The kernel table of ``m`` (``prepared``, checked to be made for ``m``, ``loss`` and
+    ``rtol``, or a new one), after checking that k_s a stays where its contour is accurate."""
+    if prepared is None:
+        table = prepare(m, loss, rtol)
+    elif isinstance(prepared, KernelTable):
+        table = prepared.check_for(m, loss, rtol)
+    else:
+        raise ValueError(
+            f"prepared must be a kernel table from contactres.dynamic.prepare, "
+            f"got {type(prepared).__name__}"
+        )
     if ksa.size and float(np.max(ksa)) * table.t1 > _KA_MAX:
         raise ValueError(
             f"ka too large: k_s a = {float(np.max(ksa)):.4g} (k_s a x slowness {table.t1:.3g} "
@@ -120,8 +126,27 @@ def _contact_points(rbar, phi, edge: bool):
     return r, p
 
 
-def _model_n(f: dict, model: str) -> np.ndarray:
-    """N_model of a displacement condition (paper 1, Eqs. 24-28; TP as in physics.md)."""
+def model_n(f: dict, model: str) -> np.ndarray:
+    """N_model of a displacement condition, from the six functionals of N (paper 1, Eqs. 24-28).
+
+    R0: N(0) (Eq. 24); R1: N(1, 0) (Eq. 25); SA: their mean (Eq. 26); WA: the weighted average
+    along φ = 0 (Eq. 27); WA2D: the weighted average over the whole contact; TP: the pressure
+    α√(1 − r̄²) + β/√(1 − r̄²) of Tian et al. (2004; paper 1, Fig. 3) with u(0) = u(1, 0), i.e.
+    α/β = −(N_F(0) − N_F(1, 0))/(N_H(0) − N_H(1, 0)) and N_TP = (α N_H(0) + β N_F(0))/(α/3 + β).
+    K_da = 4π² a C44/N_model (Eq. 28).
+
+    Parameters
+    ----------
+    f : dict
+        The functionals of :func:`contactres.dynamic.quadrature.functionals` (complex arrays).
+    model : str
+        One of :data:`MODELS`.
+
+    Returns
+    -------
+    ndarray
+        Complex N_model, shaped like the functionals.
+    """
     if model == "R0":
         return f["F0"]
     if model == "R1":
@@ -144,6 +169,7 @@ def dcsf_models(
     loss: float = 0.02,
     wavenumber: str = "longitudinal",
     rtol: float = 1e-6,
+    prepared: KernelTable | None = None,
 ) -> dict[str, np.ndarray]:
     """DCSF = K_da/K_sa of several displacement models at once (they share all the work).
 
@@ -152,16 +178,20 @@ def dcsf_models(
     """
     names = [_check_model(x) for x in ([models] if isinstance(models, str) else models)]
     ksa = _ks_a(m, ka, wavenumber)
-    table = _table(m, ksa, loss, rtol)
+    table = _table(m, ksa, loss, rtol, prepared)
     flat = ksa.ravel()
+    # The far-field grid and basis of this call serve the approximations and the exact model.
+    pos = flat[flat > 0]
+    far = far_basis(table, pos) if pos.size else None
     out = {}
     approx = [n for n in names if n != "exact"]
     if approx:
-        f = functionals(table, flat)
-        out = {name: (table.n_static / _model_n(f, name)).reshape(ksa.shape) for name in approx}
+        f = functionals(table, flat, far=far)
+        out = {name: (table.n_static / model_n(f, name)).reshape(ksa.shape) for name in approx}
     if "exact" in names:
         size = galerkin_size(float(np.max(flat, initial=0.0)), rtol)
-        out["exact"] = (table.n_static / exact_n(table, flat, size)).reshape(ksa.shape)
+        n_exact = exact_n(table, flat, size, far=far)
+        out["exact"] = (table.n_static / n_exact).reshape(ksa.shape)
     return {name: out[name] for name in names}
 
 
@@ -172,6 +202,7 @@ def dcsf(
     loss: float = 0.02,
     wavenumber: str = "longitudinal",
     rtol: float = 1e-6,
+    prepared: KernelTable | None = None,
 ):
     """Dynamic-contact-stiffness factor DCSF = K_da/K_sa (paper 1, Eq. 29), complex.
 
@@ -185,7 +216,7 @@ def dcsf(
     model : str
         Displacement condition: "R0", "R1", "SA", "WA", "TP" (paper 1, Eqs. 24-28), "WA2D", or
         "exact": the rigid flat punch (uniform displacement; Galerkin, see
-        :mod:`contactres.dynamic_exact`), the reference the others approximate.
+        :mod:`contactres.dynamic.exact`), the reference the others approximate.
     loss : float
         Q⁻¹ in C (1 + i Q⁻¹), in [0, 1); 0.02 in the paper; 0 is the lossless limit.
     wavenumber : str
@@ -193,6 +224,9 @@ def dcsf(
     rtol : float
         Target relative accuracy (default 1e-6; met for k_l a <= 2 and A in [0.2, 10], see the
         convergence tests). rtol >= 1e-4 selects a coarser, faster resolution.
+    prepared : KernelTable, optional
+        The kernel table from :func:`prepare` for this material, ``loss`` and ``rtol`` (a
+        ValueError if it was prepared for others); built for this call when not given.
 
     Returns
     -------
@@ -201,7 +235,9 @@ def dcsf(
         Real part: stiffness; imaginary part: radiation (and material) damping.
     """
     key = _check_model(model)
-    out = dcsf_models(m, ka, (key,), loss=loss, wavenumber=wavenumber, rtol=rtol)[key]
+    out = dcsf_models(
+        m, ka, (key,), loss=loss, wavenumber=wavenumber, rtol=rtol, prepared=prepared
+    )[key]
     return complex(out) if out.ndim == 0 else out
 
 
@@ -213,6 +249,7 @@ def dynamic_contact_stiffness(
     model: str = "WA",
     loss: float = 0.02,
     rtol: float = 1e-6,
+    prepared: KernelTable | None = None,
 ):
     """Dynamic contact stiffness K_da = K_sa × DCSF of a rigid sphere on ``m``, N/m (complex).
 
@@ -227,7 +264,7 @@ def dynamic_contact_stiffness(
         solution, paper 1 Eqs. 1-4, :func:`contactres.sphere_contact`).
     frequency : float or array
         Oscillation frequency f, Hz (ω = 2πf). ``radius``, ``force`` and ``frequency`` broadcast.
-    model, loss, rtol
+    model, loss, rtol, prepared
         As in :func:`dcsf`.
 
     Returns
@@ -245,7 +282,9 @@ def dynamic_contact_stiffness(
     k_s = 2 * np.pi * f * math.sqrt(m.density / shear_reference(m))
     ksa = k_s * a
     ksa, k_sa = np.broadcast_arrays(ksa, np.asarray(contact.stiffness, dtype=float))
-    out = k_sa * dcsf(m, ksa, model=model, loss=loss, wavenumber="shear", rtol=rtol)
+    out = k_sa * dcsf(
+        m, ksa, model=model, loss=loss, wavenumber="shear", rtol=rtol, prepared=prepared
+    )
     out = np.asarray(out)
     return complex(out) if out.ndim == 0 else out
 
@@ -259,6 +298,7 @@ def contact_displacement(
     loss: float = 0.02,
     wavenumber: str = "longitudinal",
     rtol: float = 1e-6,
+    prepared: KernelTable | None = None,
 ):
     """The displacement function N(r̄, φ; k a) under the oscillating pressure (paper 1, Eq. 22).
 
@@ -267,7 +307,7 @@ def contact_displacement(
 
     Parameters
     ----------
-    m, loss, wavenumber, rtol
+    m, loss, wavenumber, rtol, prepared
         As in :func:`dcsf`.
     ka : float or array
         Normalised wave number(s).
@@ -288,7 +328,7 @@ def contact_displacement(
     ksa = _ks_a(m, ka, wavenumber)
     r, p = _contact_points(rbar, phi, edge=True)
     ksa, r, p = np.broadcast_arrays(ksa, r, p)
-    table = _table(m, ksa, loss, rtol)
+    table = _table(m, ksa, loss, rtol, prepared)
     out = np.empty(ksa.shape, dtype=complex)
     flat_k, flat_r, flat_p = ksa.ravel(), r.ravel(), p.ravel()
     res = out.reshape(-1)
@@ -306,15 +346,16 @@ def contact_pressure(
     loss: float = 0.02,
     wavenumber: str = "longitudinal",
     rtol: float = 1e-6,
+    prepared: KernelTable | None = None,
 ):
     """Oscillating pressure of the exact solution (rigid flat punch), over its mean δP/(π a²).
 
-    The converged Galerkin pressure of model "exact" (:mod:`contactres.dynamic_exact`). Static
+    The converged Galerkin pressure of model "exact" (:mod:`contactres.dynamic.exact`). Static
     limit: the flat-punch shape 1/(2√(1 − r̄²)). Complex (phase relative to the displacement).
 
     Parameters
     ----------
-    m, loss, wavenumber, rtol
+    m, loss, wavenumber, rtol, prepared
         As in :func:`dcsf`.
     ka : float
         Normalised wave number (one value).
@@ -325,7 +366,7 @@ def contact_pressure(
     if ksa.ndim != 0:
         raise ValueError("contact_pressure takes one ka at a time")
     r, p = np.broadcast_arrays(*_contact_points(rbar, phi, edge=False))
-    table = _table(m, ksa, loss, rtol)
+    table = _table(m, ksa, loss, rtol, prepared)
     size = galerkin_size(float(ksa), rtol)
     _, c, basis = exact_n(table, np.atleast_1d(ksa), size, return_coeffs=True)
     c = c[0]

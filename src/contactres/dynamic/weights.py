@@ -1,5 +1,8 @@
 """Special functions of the N(r̄, φ) quadrature (paper 1, Eqs. 22 and 27): the Hankel transforms
 of the pressure shapes, the WA line average, and Bessel functions of many orders by recurrence.
+
+All arguments and results are dimensionless (s = η a, the surface wave number times the contact
+radius).
 """
 
 from __future__ import annotations
@@ -9,14 +12,41 @@ import math
 import numpy as np
 from scipy import special
 
+__all__ = ["bessel_even", "j1_over_s", "sinc", "wa_harmonic_weights", "wa_line_weight"]
 
-def _sinc(s):
-    """sin s / s (Hankel transform of the flat-punch shape 1/√(1 − ρ²)); complex s allowed."""
+
+def sinc(s):
+    """sin s / s: the Hankel transform of the flat-punch pressure 1/√(1 − ρ²) (paper 1, Eq. 22).
+
+    Parameters
+    ----------
+    s : array_like, real or complex
+        Dimensionless wave number s = η a.
+
+    Returns
+    -------
+    ndarray
+        sin s / s (1 at s = 0).
+    """
     return np.sinc(np.asarray(s) / np.pi)
 
 
-def _j1s(s):
-    """j₁(s)/s = (sin s − s cos s)/s³ (Hankel transform of the Hertz shape √(1 − ρ²))."""
+def j1_over_s(s):
+    """j₁(s)/s = (sin s − s cos s)/s³: the Hankel transform of the Hertz shape √(1 − ρ²).
+
+    The second pressure of the two-parameter (TP) model (Tian et al. 2004; paper 1, Fig. 3).
+    Below |s| = 0.3 the Taylor series is used: the closed form loses digits to cancellation.
+
+    Parameters
+    ----------
+    s : array_like, real or complex
+        Dimensionless wave number s = η a.
+
+    Returns
+    -------
+    ndarray
+        j₁(s)/s (1/3 at s = 0).
+    """
     s = np.asarray(s)
     small = np.abs(s) < 0.3
     z = np.where(small, 1.0, s)
@@ -35,14 +65,27 @@ _W_SERIES = np.array(
         for k in range(60)
     ]
 )
+for _constant in (_LAG_X, _LAG_W, _W_SERIES):
+    _constant.setflags(write=False)
+del _constant
 
 
-def _wa_line_weight(z):
-    """W(z) = ∫₀¹ r cos(z r)/√(1 − r²) dr = 1 − (π/2) H₁(z), even in z, complex z allowed.
+def wa_line_weight(z):
+    """W(z) = ∫₀¹ r cos(z r)/√(1 − r²) dr = 1 − (π/2) H₁(z), even in z (H₁: Struve function).
 
-    The WA average (Eq. 27) of cos(s r̄ cos θ). Power series for |z| < 8; for larger |z|,
-    W = 1 − (π/2) Y₁(z) − ∫₀^∞ e^{-u} √(1 + u²/z²) du (Re z > 0; Gauss-Laguerre, error < 1e-14).
-    Real input gives a real result (and runs in real arithmetic).
+    The weighted average of paper 1, Eq. 27, applied to the plane wave cos(s r̄ cos θ) of Eq. 22.
+    Power series for |z| < 8; for larger |z|, W = 1 − (π/2) Y₁(z) − ∫₀^∞ e^{-u} √(1 + u²/z²) du
+    (Re z > 0; 24-node Gauss-Laguerre, error < 1e-14).
+
+    Parameters
+    ----------
+    z : array_like, real or complex
+        Dimensionless argument s cos θ.
+
+    Returns
+    -------
+    ndarray
+        W(z); real for real input (computed in real arithmetic), complex otherwise.
     """
     z = np.asarray(z)
     real = not np.iscomplexobj(z)
@@ -64,12 +107,25 @@ def _wa_line_weight(z):
     return out
 
 
-def _bessel_even(orders, s: np.ndarray) -> dict:
-    """{n: J_n(s)} for the even ``orders``, real s > 0: recurrences instead of one jv per order.
+def bessel_even(orders, s: np.ndarray) -> dict:
+    """Bessel functions J_n(s) of many even orders, by recurrence instead of one jv per order.
 
     Where s > the highest order the upward recurrence from J₀, J₁ is stable; below it the
     downward one from scipy's two highest orders (J is its minimal solution). scipy's jv of a
-    high order is slow at large s, which is exactly where it is not needed.
+    high order is slow at large s, which is exactly where it is not needed. The result at each
+    s depends only on that s and on the highest order asked for.
+
+    Parameters
+    ----------
+    orders : iterable of int
+        Non-negative even orders n.
+    s : ndarray
+        Real arguments s > 0 (dimensionless).
+
+    Returns
+    -------
+    dict
+        {n: J_n(s)} for every requested order, arrays shaped like ``s``.
     """
     orders = sorted({int(n) for n in orders})
     top = orders[-1]
@@ -106,17 +162,31 @@ def _bessel_even(orders, s: np.ndarray) -> dict:
     return out
 
 
-def _wa_harmonic_weights(s: np.ndarray, n_max: int) -> np.ndarray:
-    """W_n(s) = ∫₀¹ J_n(s r) r/√(1 − r²) dr for even n = 0, 2, ..., n_max; shape (n_max/2 + 1, ns).
+def wa_harmonic_weights(s: np.ndarray, n_max: int) -> np.ndarray:
+    """W_n(s) = ∫₀¹ J_n(s r) r/√(1 − r²) dr for even n = 0, 2, ..., n_max (paper 1, Eq. 27).
 
-    By Jacobi-Anger, W(s cos θ) = Σ_n iⁿ W_n(s) e^{inθ}: the W_n are the Fourier coefficients of
-    the line weight :func:`_wa_line_weight` over θ (FFT, exact once the grid resolves them).
+    The weighted average of Eq. 27 of the angular harmonic e^{inθ} of the displacement. By
+    Jacobi-Anger, W(s cos θ) = Σ_n iⁿ W_n(s) e^{inθ}: the W_n are the Fourier coefficients of the
+    line weight :func:`wa_line_weight` over θ (FFT, exact once the θ grid resolves them; the grid
+    is set by ``n_max`` and the largest s).
+
+    Parameters
+    ----------
+    s : ndarray
+        Real arguments s >= 0 (dimensionless), 1-D.
+    n_max : int
+        Highest even order.
+
+    Returns
+    -------
+    ndarray
+        Shape (n_max/2 + 1, s.size): row j holds W_{2j}(s).
     """
     s = np.asarray(s, dtype=float)
     smax = float(np.max(s, initial=0.0))
     n_t = 8 * math.ceil(max(n_max + 2, n_max / 2 + 0.3 * smax + 24) / 8)
     theta = np.pi * np.arange(n_t) / n_t
-    vals = _wa_line_weight(np.multiply.outer(s, np.cos(theta)))
+    vals = wa_line_weight(np.multiply.outer(s, np.cos(theta)))
     coef = np.fft.rfft(vals, axis=-1).real / n_t  # harmonic j of e^{2ijθ}
     j = np.arange(n_max // 2 + 1)
     return (coef[:, j] * np.where(j % 2 == 0, 1.0, -1.0)).T

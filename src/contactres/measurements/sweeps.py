@@ -1,56 +1,40 @@
-"""Amplitude-sweep tables (paper 2): reading and validating.
+"""Amplitude-sweep tables (paper 2): reading and validating into a :class:`SweepTable`.
 
-A sweep table has one row per measured point of an amplitude ramp (design.md §5):
-
-==================  =====  ========  ==================================================
-column              unit   required  meaning
-==================  =====  ========  ==================================================
-sweep               —      yes       id of one amplitude ramp
-amplitude_m         m      yes       oscillation amplitude u0 (>= 0)
-df_Hz               Hz     yes       frequency shift against the reference (no contact)
-dgamma_Hz           Hz     yes       shift of the half-bandwidth at half height
-normal_force_N      N      yes       normal force per contact (> 0)
-experiment          —      no        one mounting of the sample (repeats = experiments)
-configuration       —      no        e.g. "SiO2_2.2mm": same material and geometry
-medium              —      no        "air", "water", ...
-ramp                —      no        1, 2, ...: order of the ramps of one load
-overtone            —      no        n (odd)
-sphere_radius_m     m      no        sphere radius R
-n_contacts          —      no        number of equal contacts (3 for a tripod)
-fundamental_Hz      Hz     no        fundamental frequency f_F of the resonator
-area_m2             m^2    no        acoustically effective area A_eff
-poisson             —      no        Poisson ratio ν used for the JKR + Mindlin fit
-==================  =====  ========  ==================================================
-
+A sweep table has one row per measured point of an amplitude ramp; its columns, units and rules
+are those of :data:`contactres.measurements.schema.SWEEP_TABLE` (the README lists them).
 Conventions: Δf is the frequency shift (not Δf/n) and ΔΓ the shift of the half-bandwidth at half
 height (Γ, not the dissipation factor D = 2Γ/f), both in Hz.
 
 Constants missing from the table come, in this order, from keyword arguments of
 :func:`read_sweeps` (the CLI options), from a TOML file beside the data (``<stem>.toml``, else
-``contactres.toml`` in the same folder; keys as the column names above) and, for
-``fundamental_Hz`` (5 MHz) and ``poisson`` (0.17, as in paper 2) only, from documented defaults.
-A value in a row overrides the others (a warning says so when an argument disagrees).
+``contactres.toml`` in the same folder; keys as the column names) and, for ``fundamental_Hz``
+(5 MHz) and ``poisson`` (0.17, as in paper 2) only, from documented defaults. A value in a row
+overrides the others (a warning says so when an argument disagrees).
 
-Readers are small plug-ins (:class:`SweepReader`): each knows its suffixes, how to recognise its
-format and how to load it into raw string columns; :func:`read_sweeps` validates the result.
-Every error names the file, the line, the column and the value.
+Files are read by reader plug-ins (:mod:`contactres.measurements.readers`); every error names the
+file, the line, the column and the value.
 """
 
 from __future__ import annotations
 
-import io
 import math
-import re
 import sys
 import warnings
-from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
-from ..resonators.qcm import SMALL_LOAD_LIMIT
+from ..units import (
+    ABSOLUTE_FREQUENCY_FRACTION,
+    MAX_AMPLITUDE_M,
+    MIN_SWEEP_POINTS,
+    SMALL_LOAD_LIMIT,
+    poisson_in_range,
+)
+from .readers import READERS, SweepReader, pick_reader, register_reader
+from .schema import SWEEP_TABLE
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -63,6 +47,7 @@ __all__ = [
     "READERS",
     "REQUIRED_COLUMNS",
     "SweepReader",
+    "SweepTable",
     "SweepWarning",
     "read_sweeps",
     "register_reader",
@@ -70,140 +55,70 @@ __all__ = [
 ]
 
 #: Columns every sweep table must have.
-REQUIRED_COLUMNS = ("sweep", "amplitude_m", "df_Hz", "dgamma_Hz", "normal_force_N")
-#: Optional label columns (strings) and their defaults when absent.
-LABEL_DEFAULTS = {"experiment": "1", "configuration": "default", "medium": "unspecified"}
+REQUIRED_COLUMNS = SWEEP_TABLE.required
+#: Optional columns.
+OPTIONAL_COLUMNS = SWEEP_TABLE.optional
+#: Label columns and their defaults when absent.
+LABEL_DEFAULTS = {
+    c.name: c.default for c in SWEEP_TABLE.columns if c.unit == "text" and c.default is not None
+}
 #: Constants: name -> (unit, documented default or None when it must be supplied).
 CONSTANTS: dict[str, tuple[str, float | None]] = {
-    "fundamental_Hz": ("Hz", 5e6),
-    "overtone": ("-", None),
-    "area_m2": ("m^2", None),
-    "n_contacts": ("-", None),
-    "sphere_radius_m": ("m", None),
-    "poisson": ("-", 0.17),
+    c.name: (c.unit, c.default) for c in SWEEP_TABLE.columns if c.level == "constant"
 }
-OPTIONAL_COLUMNS = ("experiment", "configuration", "medium", "ramp", *CONSTANTS)
 #: Columns that must take one value within a sweep.
-PER_SWEEP_COLUMNS = ("experiment", "configuration", "medium", "ramp", "normal_force_N", *CONSTANTS)
-
-# Largest plausible QCM amplitude: contact-resonance ramps go to tens of nm; 1 µm would wreck the
-# resonator. A larger value means the column holds nanometres (or other units), not metres.
-MAX_AMPLITUDE_M = 1e-6
-# A shift above this fraction of the fundamental is an absolute frequency, not a shift.
-ABSOLUTE_FREQUENCY_FRACTION = 0.1
-# The small-load approximation (paper 2, Eq. 1) needs |Δf| << f; warn above this fraction.
-SMALL_LOAD_FRACTION = SMALL_LOAD_LIMIT
+PER_SWEEP_COLUMNS = tuple(
+    c.name for c in SWEEP_TABLE.columns if c.level in ("sweep", "constant") and c.name != "sweep"
+)
+#: Columns of a validated table, in order.
+VALIDATED_COLUMNS = (
+    "sweep",
+    "experiment",
+    "configuration",
+    "medium",
+    "ramp",
+    "normal_force_N",
+    "amplitude_m",
+    "df_Hz",
+    "dgamma_Hz",
+    *CONSTANTS,
+    "line",
+)
 
 
 class SweepWarning(UserWarning):
     """The data are usable but something is odd (the message says what and where)."""
 
 
-# --------------------------------------------------------------------------------------------
-# Reader plug-ins
-
-
 @dataclass(frozen=True)
-class SweepReader:
-    """A reader plug-in: turns one file format into a table of raw string columns.
+class SweepTable:
+    """A validated sweep table: what :func:`contactres.analyze` takes.
 
     Attributes
     ----------
-    name : str
-        Short name of the format.
-    suffixes : tuple of str
-        File suffixes (lower case, with dot) this reader is tried for first.
-    detect : callable(path, head: str) -> bool
-        True if the file (whose first few kB are ``head``) is in this format.
-    load : callable(path) -> DataFrame
-        Raw table: string cells, header names stripped, plus an integer ``line`` column giving
-        the line number of each row in the file (header = line 1).
+    data : one row per point, the columns of :data:`VALIDATED_COLUMNS` (every constant filled
+        in; ``line`` is the line number of the row in the file)
+    source : the file (or ``<table>`` for a table built in memory)
     """
 
-    name: str
-    suffixes: tuple[str, ...]
-    detect: Callable[[Path, str], bool]
-    load: Callable[[Path], pd.DataFrame]
+    data: pd.DataFrame
+    source: str = "<table>"
 
+    def __len__(self) -> int:
+        return len(self.data)
 
-READERS: list[SweepReader] = []
-
-
-def register_reader(reader: SweepReader) -> SweepReader:
-    """Add a reader plug-in (tried before the built-in ones)."""
-    READERS.insert(0, reader)
-    return reader
-
-
-_DECIMAL_COMMA = re.compile(r"^[+-]?\d+,\d+([eE][+-]?\d+)?$")
-
-
-def _csv_dialect(text: str) -> tuple[str, str]:
-    """Separator and decimal mark of a CSV file from its header and first data lines."""
-    lines = [ln for ln in text.splitlines() if ln.strip()]
-    header = lines[0]
-    if "\t" in header:
-        sep = "\t"
-    elif header.count(";") > 0:
-        sep = ";"
-    else:
-        sep = ","
-    decimal = "."
-    if sep != ",":
-        cells = [c.strip() for ln in lines[1:50] for c in ln.split(sep)]
-        if any(_DECIMAL_COMMA.match(c) for c in cells):
-            decimal = ","
-    return sep, decimal
-
-
-def _load_csv(path: Path) -> pd.DataFrame:
-    text = path.read_text(encoding="utf-8-sig")
-    if not text.strip():
-        raise ValueError(f"{path}: the file is empty (expected a header line and data rows)")
-    sep, decimal = _csv_dialect(text)
-    try:
-        raw = pd.read_csv(
-            io.StringIO(text),  # parse the text already read (and decoded) once
-            sep=sep,
-            dtype=str,
-            keep_default_na=False,
-            skip_blank_lines=True,
-            comment="#",
-        )
-    except pd.errors.ParserError as exc:
-        raise ValueError(f"{path}: not a readable {sep!r}-separated table ({exc})") from None
-    raw.columns = [str(c).strip() for c in raw.columns]
-    # Line numbers for messages: count non-blank, non-comment lines as pandas does.
-    numbers = [
-        i + 1
-        for i, ln in enumerate(text.splitlines())
-        if ln.strip() and not ln.lstrip().startswith("#")
-    ]
-    raw["line"] = numbers[1 : len(raw) + 1] if len(numbers) > len(raw) else range(2, len(raw) + 2)
-    raw.attrs["decimal"] = decimal
-    return raw
-
-
-def _detect_csv(path: Path, head: str) -> bool:
-    first = next((ln for ln in head.splitlines() if ln.strip()), "")
-    return any(s in first for s in (",", ";", "\t"))
-
-
-READERS.append(SweepReader("csv", (".csv", ".txt", ".tsv"), _detect_csv, _load_csv))
-
-
-def _pick_reader(path: Path) -> SweepReader:
-    with path.open(encoding="utf-8-sig", errors="replace") as fh:
-        head = fh.read(4096)
-    if not head.strip():
-        raise ValueError(f"{path}: the file is empty (expected a header line and data rows)")
-    by_suffix = [r for r in READERS if path.suffix.lower() in r.suffixes]
-    others = [r for r in READERS if r not in by_suffix]
-    for reader in by_suffix + others:
-        if reader.detect(path, head):
-            return reader
-    names = ", ".join(f"{r.name} ({'/'.join(r.suffixes)})" for r in READERS)
-    raise ValueError(f"{path}: no reader recognises this file; formats known: {names}")
+    def with_constants(self, **values) -> SweepTable:
+        """The same table with the constants ``values`` (keys of :data:`CONSTANTS`) set in
+        every row, each checked by the rules of the schema."""
+        unknown = sorted(set(values) - set(CONSTANTS))
+        if unknown:
+            raise ValueError(f"unknown constant(s) {unknown}; allowed: {list(CONSTANTS)}")
+        data = self.data.copy()
+        for name, value in values.items():
+            data[name] = _check_constant(name, value, f"argument {name}")
+        data["overtone"] = data["overtone"].astype(int)
+        data["n_contacts"] = data["n_contacts"].astype(int)
+        return SweepTable(data, self.source)
 
 
 # --------------------------------------------------------------------------------------------
@@ -243,7 +158,7 @@ def _check_constant(name: str, value, where: str) -> float:
         if v != int(v) or v < 1:
             raise ValueError(f"{where}: n_contacts = {value!r} must be a positive integer")
     elif name == "poisson":
-        if not -1 < v < 0.5:
+        if not poisson_in_range(v):
             raise ValueError(f"{where}: poisson = {value!r} is outside (-1, 0.5)")
     elif v <= 0:
         unit = CONSTANTS[name][0]
@@ -252,11 +167,11 @@ def _check_constant(name: str, value, where: str) -> float:
 
 
 # --------------------------------------------------------------------------------------------
-# Reading and validation
+# Reading
 
 
-def read_sweeps(path, **constants) -> pd.DataFrame:
-    """Read an amplitude-sweep table into one validated DataFrame.
+def read_sweeps(path, **constants) -> SweepTable:
+    """Read an amplitude-sweep table into a validated :class:`SweepTable`.
 
     Parameters
     ----------
@@ -270,9 +185,7 @@ def read_sweeps(path, **constants) -> pd.DataFrame:
 
     Returns
     -------
-    DataFrame
-        One row per point with the columns of the module docstring (every constant filled in),
-        ``line`` (line number in the file) and ``attrs["source"]`` = the path.
+    SweepTable
 
     Raises
     ------
@@ -289,8 +202,7 @@ def read_sweeps(path, **constants) -> pd.DataFrame:
         raise ValueError(f"unknown constant(s) {unknown}; allowed: {list(CONSTANTS)}")
     given = {k: v for k, v in constants.items() if v is not None}
     toml, toml_path = _toml_constants(p)
-    reader = _pick_reader(p)
-    raw = reader.load(p)
+    raw = pick_reader(p).load(p)
     return validate_sweeps(
         raw,
         source=str(p),
@@ -298,6 +210,10 @@ def read_sweeps(path, **constants) -> pd.DataFrame:
         file_constants=toml,
         file_constants_source=str(toml_path) if toml_path else None,
     )
+
+
+# --------------------------------------------------------------------------------------------
+# Validation
 
 
 def _numeric(raw: pd.DataFrame, col: str, source: str, decimal: str) -> np.ndarray:
@@ -330,42 +246,8 @@ def _at(table: pd.DataFrame, source: str, mask: np.ndarray, col: str) -> str:
     return f"{source}, line {table['line'].iloc[i]}, column {col!r}: value {table[col].iloc[i]!r}"
 
 
-def validate_sweeps(
-    raw: pd.DataFrame,
-    source: str = "<table>",
-    constants: dict | None = None,
-    file_constants: dict | None = None,
-    file_constants_source: str | None = None,
-) -> pd.DataFrame:
-    """Validate a raw sweep table (strings or numbers) and return the clean table.
-
-    ``raw`` may come from a reader (string cells, ``line`` column) or be built in memory (then
-    rows are numbered as if a header were line 1). See :func:`read_sweeps` for the arguments
-    and the returned columns. Errors (ValueError) for: no rows, a missing required column,
-    empty/non-numeric/NaN/infinite cells, negative amplitudes, amplitudes above 1 µm (nm in a
-    metre column), an even overtone, shifts that look like absolute frequencies, non-positive
-    normal force, a constant that is missing or differs within one sweep. Warnings
-    (:class:`SweepWarning`) for duplicated rows (dropped), sweeps with fewer than 4 points, a
-    missing ``ramp`` column, arguments overridden by the file, and shifts that break the
-    small-load approximation.
-    """
-    constants = dict(constants or {})
-    file_constants = dict(file_constants or {})
-    raw = raw.copy()
-    raw.columns = [str(c).strip() for c in raw.columns]
-    if "line" not in raw.columns:
-        raw["line"] = np.arange(2, len(raw) + 2)
-    decimal = raw.attrs.get("decimal", ".")
-    data_cols = [c for c in raw.columns if c != "line"]
-    if len(raw) == 0:
-        raise ValueError(f"{source}: header only, no data rows (columns found: {data_cols})")
-    missing = [c for c in REQUIRED_COLUMNS if c not in raw.columns]
-    if missing:
-        raise ValueError(
-            f"{source}: missing required column(s) {missing}; columns found: {data_cols}; "
-            f"required: {list(REQUIRED_COLUMNS)}, optional: {list(OPTIONAL_COLUMNS)}"
-        )
-
+def _labels_and_numbers(raw: pd.DataFrame, source: str, decimal: str) -> pd.DataFrame:
+    """Sweep ids, label columns (or their defaults), the measured numbers and the ramp."""
     out = pd.DataFrame({"line": raw["line"].to_numpy()})
     out["sweep"] = raw["sweep"].astype(str).str.strip().to_numpy()
     empty = (out["sweep"] == "").to_numpy() | raw["sweep"].isna().to_numpy()
@@ -394,10 +276,21 @@ def validate_sweeps(
             f"{source}: no 'ramp' column, so the running-in ramp cannot be identified; all "
             "sweeps are used (ramp reported as 0)",
             SweepWarning,
-            stacklevel=2,
+            stacklevel=3,
         )
+    return out
 
-    # Constants: row value > argument > TOML beside the file > documented default.
+
+def _fill_constants(
+    out: pd.DataFrame,
+    raw: pd.DataFrame,
+    source: str,
+    decimal: str,
+    constants: dict,
+    file_constants: dict,
+    file_constants_source: str | None,
+) -> None:
+    """Constants, in place: row value > argument > TOML beside the file > documented default."""
     absent = []
     for name in CONSTANTS:
         if name in raw.columns:
@@ -410,7 +303,7 @@ def validate_sweeps(
                 warnings.warn(
                     f"{source}: column {name!r} overrides the given {name} = {constants[name]!r}",
                     SweepWarning,
-                    stacklevel=2,
+                    stacklevel=4,
                 )
         elif name in constants:
             out[name] = _check_constant(name, constants[name], f"argument {name}")
@@ -431,6 +324,9 @@ def validate_sweeps(
     out["overtone"] = out["overtone"].astype(int)
     out["n_contacts"] = out["n_contacts"].astype(int)
 
+
+def _check_physics(out: pd.DataFrame, source: str) -> None:
+    """Amplitudes, forces and shifts in their physical (and unit-plausible) ranges."""
     amp = out["amplitude_m"].to_numpy()
     neg = amp < 0
     if neg.any():
@@ -443,8 +339,7 @@ def validate_sweeps(
             f"{_at(out, source, big, 'amplitude_m')} is above {MAX_AMPLITUDE_M:g} m: it looks "
             "like nanometres in a metre column (multiply nm by 1e-9)"
         )
-    force = out["normal_force_N"].to_numpy()
-    nonpos = force <= 0
+    nonpos = out["normal_force_N"].to_numpy() <= 0
     if nonpos.any():
         raise ValueError(
             f"{_at(out, source, nonpos, 'normal_force_N')} is not positive; the normal force "
@@ -460,53 +355,29 @@ def validate_sweeps(
                 f"(above {ABSOLUTE_FREQUENCY_FRACTION:g} of the fundamental); subtract the "
                 "reference frequency"
             )
-        large = v > SMALL_LOAD_FRACTION * f_res
+        large = v > SMALL_LOAD_LIMIT * f_res
         if large.any():
             warnings.warn(
-                f"{_at(out, source, large, col)} Hz is above {SMALL_LOAD_FRACTION:g} of the "
+                f"{_at(out, source, large, col)} Hz is above {SMALL_LOAD_LIMIT:g} of the "
                 "resonance frequency: the small-load approximation (paper 2, Eq. 1) may fail",
                 SweepWarning,
-                stacklevel=2,
+                stacklevel=4,
             )
 
+
+def _drop_duplicates(out: pd.DataFrame, source: str) -> pd.DataFrame:
     data_only = [c for c in out.columns if c != "line"]
     dup = out.duplicated(subset=data_only, keep="first").to_numpy()
-    if dup.any():
-        lines = out["line"].to_numpy()[dup]
-        shown = ", ".join(str(n) for n in lines[:5]) + (" ..." if len(lines) > 5 else "")
-        warnings.warn(
-            f"{source}: {int(dup.sum())} duplicated row(s) dropped (at line(s) {shown})",
-            SweepWarning,
-            stacklevel=2,
-        )
-        out = out.loc[~dup].reset_index(drop=True)
-
-    _check_per_sweep(out, source)
-    npts = out.groupby("sweep", sort=False)["amplitude_m"].transform("size").to_numpy()
-    few = npts < 4
-    if few.any():
-        names = sorted(set(out.loc[few, "sweep"]))
-        warnings.warn(
-            f"{source}: sweep(s) {names[:5]} have fewer than 4 points and will not be used",
-            SweepWarning,
-            stacklevel=2,
-        )
-    cols = [
-        "sweep",
-        "experiment",
-        "configuration",
-        "medium",
-        "ramp",
-        "normal_force_N",
-        "amplitude_m",
-        "df_Hz",
-        "dgamma_Hz",
-        *CONSTANTS,
-        "line",
-    ]
-    result = out[cols].reset_index(drop=True)
-    result.attrs["source"] = source
-    return result
+    if not dup.any():
+        return out
+    lines = out["line"].to_numpy()[dup]
+    shown = ", ".join(str(n) for n in lines[:5]) + (" ..." if len(lines) > 5 else "")
+    warnings.warn(
+        f"{source}: {int(dup.sum())} duplicated row(s) dropped (at line(s) {shown})",
+        SweepWarning,
+        stacklevel=4,
+    )
+    return out.loc[~dup].reset_index(drop=True)
 
 
 def _check_per_sweep(table: pd.DataFrame, source: str) -> None:
@@ -525,3 +396,61 @@ def _check_per_sweep(table: pd.DataFrame, source: str) -> None:
                 f"{first!r} (line {rows['line'].iloc[0]}) and {other[col]!r} "
                 f"(line {other['line']}); one sweep has one {col}"
             )
+
+
+def validate_sweeps(
+    raw: pd.DataFrame,
+    source: str = "<table>",
+    constants: dict | None = None,
+    file_constants: dict | None = None,
+    file_constants_source: str | None = None,
+) -> SweepTable:
+    """Validate a raw sweep table (strings or numbers) into a :class:`SweepTable`.
+
+    ``raw`` may come from a reader (string cells, ``line`` column) or be built in memory (then
+    rows are numbered as if a header were line 1). See :func:`read_sweeps` for the arguments.
+    Errors (ValueError) for: no rows, a missing required column, empty/non-numeric/NaN/infinite
+    cells, negative amplitudes, amplitudes above 1 µm (nm in a metre column), an even overtone,
+    shifts that look like absolute frequencies, non-positive normal force, a constant that is
+    missing or differs within one sweep. Warnings (:class:`SweepWarning`) for duplicated rows
+    (dropped), sweeps with fewer than 4 points, a missing ``ramp`` column, arguments overridden
+    by the file, and shifts that break the small-load approximation.
+    """
+    raw = raw.copy()
+    raw.columns = [str(c).strip() for c in raw.columns]
+    if "line" not in raw.columns:
+        raw["line"] = np.arange(2, len(raw) + 2)
+    decimal = raw.attrs.get("decimal", ".")
+    data_cols = [c for c in raw.columns if c != "line"]
+    if len(raw) == 0:
+        raise ValueError(f"{source}: header only, no data rows (columns found: {data_cols})")
+    missing = [c for c in REQUIRED_COLUMNS if c not in raw.columns]
+    if missing:
+        raise ValueError(
+            f"{source}: missing required column(s) {missing}; columns found: {data_cols}; "
+            f"required: {list(REQUIRED_COLUMNS)}, optional: {list(OPTIONAL_COLUMNS)}"
+        )
+    out = _labels_and_numbers(raw, source, decimal)
+    _fill_constants(
+        out,
+        raw,
+        source,
+        decimal,
+        dict(constants or {}),
+        dict(file_constants or {}),
+        file_constants_source,
+    )
+    _check_physics(out, source)
+    out = _drop_duplicates(out, source)
+    _check_per_sweep(out, source)
+    npts = out.groupby("sweep", sort=False)["amplitude_m"].transform("size").to_numpy()
+    few = npts < MIN_SWEEP_POINTS
+    if few.any():
+        names = sorted(set(out.loc[few, "sweep"]))
+        warnings.warn(
+            f"{source}: sweep(s) {names[:5]} have fewer than {MIN_SWEEP_POINTS} points and will "
+            "not be used",
+            SweepWarning,
+            stacklevel=2,
+        )
+    return SweepTable(out[list(VALIDATED_COLUMNS)].reset_index(drop=True), source)

@@ -16,6 +16,10 @@ of a cubic crystal). On other faces ((011) of a cubic crystal, low-symmetry cuts
 is slightly elliptic and the circular formulas above (with I₁ taken along the surface-frame x
 axis, as in the paper) are an approximation; :class:`AnisotropicContact` reports
 ``circular`` and the relative size of that harmonic, ``noncircularity``.
+
+Paper 1: J. Tian, "Anisotropy Influence of Cubic Solid on Dynamic Hertzian Contact Stiffness for
+a Vibrating Rigid Indenter", American Journal of Engineering and Applied Sciences 3(1), 56-63
+(2010), doi:10.3844/ajeassp.2010.56.63.
 """
 
 from __future__ import annotations

@@ -13,6 +13,10 @@ Two effective moduli are used and they are easy to mix up:
 * :func:`effective_shear_modulus` is the G* of paper 2, Eq. 7, G* = [Σ (2 - ν_i)/(4 G_i)]⁻¹,
   which is **four times** the G* of Johnson's *Contact Mechanics* (G*_J = [Σ (2 - ν_i)/G_i]⁻¹).
   The tangential (Mindlin) stiffness is κ = 2 G* a with the paper's G* (= 8 G*_J a).
+
+Paper 2: J. Vlachová, R. König, D. Johannsmann, "Stiffness of sphere-plate contacts at MHz
+frequencies: dependence on normal load, oscillation amplitude, and ambient medium", Beilstein
+J. Nanotechnol. 6, 845-856 (2015), doi:10.3762/bjnano.6.87.
 """
 
 from __future__ import annotations

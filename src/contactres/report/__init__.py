@@ -1,5 +1,5 @@
-"""Writing the results of an analysis: tables, figures."""
+"""Writing the results of an analysis: tables, JSON and figures (:func:`write_report`)."""
 
-from .tables import SUMMARY_GROUP_KEYS, SWEEP_COLUMNS, SWEEP_EXTRA_COLUMNS, Results
+from .tables import FORMATS, loads_table, summary, sweeps_table, write_report
 
-__all__ = ["SUMMARY_GROUP_KEYS", "SWEEP_COLUMNS", "SWEEP_EXTRA_COLUMNS", "Results"]
+__all__ = ["FORMATS", "loads_table", "summary", "sweeps_table", "write_report"]

@@ -13,9 +13,9 @@ import pandas as pd
 from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.figure import Figure
 
-from ..tangential import kappa_jkr_mindlin
-from ..analysis.classify import model_curves
+from ..analysis.models import model_curves
 from ..fileio import save_figure
+from ..tangential import kappa_jkr_mindlin
 
 __all__ = [
     "figure_dissipation",

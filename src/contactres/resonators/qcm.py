@@ -10,29 +10,33 @@ where K′ + iK″ is the complex stiffness of one contact: κ + iωξ for a Voi
 Fourier component of the force (Eqs. 4-5) for a nonlinear loop. ΔΓ is the half width at half
 maximum (dissipation D = 2Γ/f). All quantities SI; shifts in Hz.
 
+Paper 2: J. Vlachová, R. König, D. Johannsmann, "Stiffness of sphere-plate contacts at MHz
+frequencies: dependence on normal load, oscillation amplitude, and ambient medium", Beilstein
+J. Nanotechnol. 6, 845-856 (2015), doi:10.3762/bjnano.6.87.
+
 Accuracy of :func:`shifts_from_loop`: relative error below 1e-9 (of K′, and of K″ where K″ is not
 zero) for every loop of :mod:`contactres.tangential` at any amplitude, including the amplitudes at
 which full sliding begins: the quadrature splits at the kinks and maps every sub-interval so that
 the square-root singularities at its ends (and those just beyond them) become analytic.
-Measured (tests/test_qcm.py, benchmarks/bench_loops.py): worst relative error ~3e-11 against
-the same rule with doubled nodes and against scipy's adaptive quadrature of Eq. 4, including
-amplitudes within 1e-12 of the onset of full sliding.
+Measured (tests/resonators/test_qcm.py, benchmarks/bench_loops.py): worst relative error ~3e-11
+against the same rule with doubled nodes and against scipy's adaptive quadrature of Eq. 4,
+including amplitudes within 1e-12 of the onset of full sliding.
 """
 
 from __future__ import annotations
 
 import warnings
 from dataclasses import dataclass
-from functools import lru_cache
 
 import numpy as np
 
-from ..tangential import CattaneoMindlinLoop, DashpotLoop, MasingLoop, SavkoorLoop, _amplitude
-from ..validation import positive
+from ..numerics import gauss_legendre_unit
+from ..tangential import CattaneoMindlinLoop, DashpotLoop, MasingLoop, SavkoorLoop
+from ..units import SMALL_LOAD_LIMIT
+from ..validation import amplitude, positive
 
 __all__ = [
     "QCM",
-    "SMALL_LOAD_LIMIT",
     "cattaneo_mindlin_expansion",
     "friction_from_slopes",
     "loop_stiffness",
@@ -42,11 +46,14 @@ __all__ = [
     "stiffness_from_shifts",
 ]
 
-#: |Δf|/f above which the small-load approximation (Eq. 1) is questioned with a warning.
-SMALL_LOAD_LIMIT = 1e-3
 
 #: Gauss-Legendre nodes per half sub-interval (default of :func:`loop_stiffness`).
 DEFAULT_NODES = 24
+
+# The default rule as a constant table, built once at import like the series coefficients of the
+# loops: numpy's construction costs ~0.8 ms for 24 nodes, more than a call of loop_stiffness on a
+# few amplitudes. Other node counts are built per call (once, then passed down).
+_DEFAULT_RULE = gauss_legendre_unit(DEFAULT_NODES)
 
 # Smallest distance (relative to the half-interval) of a near-singular point that the node map
 # resolves. Smaller values resolve closer points but stretch the map (worse for the far end of
@@ -134,20 +141,20 @@ def stiffness_from_shifts(q: QCM, df, dgamma, n_contacts=1):
 # --------------------------------------------------------------------------------------------
 
 
-@lru_cache(maxsize=16)
-def _gauss(n: int):
-    x, w = np.polynomial.legendre.leggauss(n)
-    return 0.5 * (x + 1.0), 0.5 * w  # nodes and weights on [0, 1]
+def _rule(n: int) -> tuple[np.ndarray, np.ndarray]:
+    """Gauss-Legendre nodes and weights on [0, 1] (the prepared default for n = DEFAULT_NODES)."""
+    return _DEFAULT_RULE if n == DEFAULT_NODES else gauss_legendre_unit(n)
 
 
-def _half_nodes(length, eta, n):
+def _half_nodes(length, eta, rule):
     """Nodes t in [0, length] (distance from the end of a half-interval) and weights, for an
     integrand with square-root singularities at t = 0 and t = -eta (a point beyond the end).
 
     The map t = η sinh²φ makes √t and √(t + η) analytic in φ (both singular points move to
-    ±iπ/2 away from the interval); Gauss-Legendre in φ then converges exponentially whatever η.
+    ±iπ/2 away from the interval); Gauss-Legendre in φ (``rule``: nodes and weights on [0, 1])
+    then converges exponentially whatever η.
     """
-    x, w = _gauss(n)
+    x, w = rule
     eta = np.minimum(np.maximum(eta, _ETA_MIN * length), 4.0 * length)
     eta = np.where(length > 0, eta, 1.0)
     phi_max = np.arcsinh(np.sqrt(length / eta))
@@ -192,12 +199,13 @@ def masing_stiffness(loop: MasingLoop, u0: np.ndarray, n: int):
     special = np.concatenate([np.zeros((*u0.shape, 1)), np.ones((*u0.shape, 1)), ss], axis=-1)
     k1 = np.zeros(u0.shape)
     k2 = loop.kappa * (m * m - m)
+    rule = _rule(n)
     for i in range(edges.shape[-1] - 1):
         lo, hi = edges[..., i], edges[..., i + 1]
         half = 0.5 * (hi - lo)
         for end, side in ((lo, -1.0), (hi, 1.0)):
             eta = _distance_beyond(special, end, side)
-            t, wt = _half_nodes(half, eta, n)
+            t, wt = _half_nodes(half, eta, rule)
             # s and 1 - s from the end point, to keep √(1 - s) accurate near s = 1
             s = end[..., None] - side * t
             one_minus_s = (1.0 - end)[..., None] + side * t
@@ -221,7 +229,7 @@ def _generic_stiffness(loop, u0: np.ndarray, n: int):
     kinks = np.asarray(loop.kinks(u0e), dtype=float).reshape((*u0.shape, -1))
     kinks = np.sort(np.where(np.isnan(kinks), 1.0, np.clip(kinks, -1.0, 1.0)), axis=-1)
     edges = np.concatenate([-np.ones((*u0.shape, 1)), kinks, np.ones((*u0.shape, 1))], axis=-1)
-    x, w = _gauss(n)
+    x, w = _rule(n)
     theta = np.pi * x
     sin2, cos2 = np.sin(theta / 2.0), np.cos(theta / 2.0)
     k1 = np.zeros(u0.shape)
@@ -250,7 +258,7 @@ def loop_stiffness(loop, u0, nodes: int = DEFAULT_NODES):
     integrated from its branches. ``nodes`` Gauss points per half sub-interval; the default meets
     1e-9 relative (see the module docstring and the convergence tests). u0 = 0 gives the limit.
     """
-    u0 = _amplitude(u0)
+    u0 = amplitude(u0)
     n = int(nodes)
     if n < 2:
         raise ValueError(f"nodes must be >= 2, got {nodes!r}")
@@ -290,13 +298,13 @@ def cattaneo_mindlin_expansion(loop: CattaneoMindlinLoop, u0, omega_xi: float = 
     K′ = κ[1 - κu0/(6μF_N) - (5/288)(κu0/μF_N)²],
     K″ = ωξ + (2/(9π)) κ²u0/(μF_N) + κ³u0²/(27π μ²F_N²)
     (``order`` 1 drops the squares). Valid for u0 ≪ d* = 3μF_N/(2κ). ``omega_xi`` = ωξ in N/m.
-    The coefficients follow from Eqs. 4-6 with Masing's rule (physics.md, checked against the
-    quadrature in tests/test_qcm.py); the OCR of the paper's Eq. 11 shows 1/3 and 4/(9π), twice
-    these.
+    The coefficients follow from Eqs. 4-6 with Masing's rule and are checked against the
+    quadrature in tests/resonators/test_qcm.py (docs/validation.md); the OCR of the paper's
+    Eq. 11 shows 1/3 and 4/(9π), twice these.
     """
     if order not in (1, 2):
         raise ValueError(f"order must be 1 or 2, got {order!r}")
-    u0 = _amplitude(u0)
+    u0 = amplitude(u0)
     k = loop.kappa
     e = k * u0 / loop.sliding_force
     k1 = k * (1.0 - e / 6.0 - (order == 2) * (5.0 / 288.0) * e**2)
@@ -309,7 +317,7 @@ def savkoor_expansion(loop: SavkoorLoop, u0, omega_xi: float = 0.0):
 
     K′ = κ[1 - (5/512)(κu0/(a²τ0))²],  K″ = ωξ + κ³u0²/(48π a⁴τ0²). Valid for u0 ≪ 4a²τ0/κ.
     """
-    u0 = _amplitude(u0)
+    u0 = amplitude(u0)
     k = loop.kappa
     e = k * u0 / (loop.a**2 * loop.tau)
     return k * (1.0 - 5.0 / 512.0 * e**2) + 1j * (omega_xi + k * e**2 / (48.0 * np.pi))

@@ -1,0 +1,55 @@
+"""Benchmark: start-up time of ``import contactres`` and of ``contactres --help``.
+
+Target (issue 10): each under 0.5 s on the 2-core reference machine, because every CLI call and
+every script pays it. Each figure is the best of 5 runs of a fresh interpreter (a subprocess),
+so it includes the interpreter's own start, which is printed too for reference.
+
+Run: ``.venv/bin/python benchmarks/bench_startup.py``.
+"""
+
+from __future__ import annotations
+
+import subprocess
+import sys
+import time
+from collections.abc import Sequence
+from pathlib import Path
+
+from _verdict import exit_code, target
+
+TARGET_S = 0.5
+RUNS = 5
+
+
+def best_of(argv: Sequence[str], runs: int = RUNS) -> float:
+    """The shortest wall-clock time of ``runs`` runs of ``argv`` (each must exit with 0)."""
+    times = []
+    for _ in range(runs):
+        t0 = time.perf_counter()
+        subprocess.run(argv, check=True, stdout=subprocess.DEVNULL)
+        times.append(time.perf_counter() - t0)
+    return min(times)
+
+
+def main() -> int:
+    python = sys.executable
+    # The console script sits beside the interpreter of the environment (.venv/bin/contactres).
+    script = Path(python).with_name("contactres")
+    cli = [str(script)] if script.exists() else [python, "-m", "contactres"]
+    bare = best_of([python, "-c", "pass"])
+    print(f"startup, best of {RUNS} fresh processes (bare interpreter: {bare:.3f} s)")
+    results = [
+        target(
+            "python -c 'import contactres'", best_of([python, "-c", "import contactres"]), TARGET_S
+        ),
+        target("contactres --help", best_of([*cli, "--help"]), TARGET_S),
+        target("contactres dcsf --help", best_of([*cli, "dcsf", "--help"]), TARGET_S),
+        target(
+            "contactres qcm analyze --help", best_of([*cli, "qcm", "analyze", "--help"]), TARGET_S
+        ),
+    ]
+    return exit_code(results)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,66 @@
+"""Drift between the ramps of one load: a model-free F test on the points themselves.
+
+Up and down ramps of a history-free (Masing) contact must give the same shifts (paper 2, Eqs.
+4-5), so ramps of one load of one experiment that are offset from each other beyond the noise
+mean that the baseline moved between them.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+from scipy.special import fdtrc
+
+from .amplitude import Padded
+
+__all__ = ["LOAD_OF_EXPERIMENT", "drifting_sweeps"]
+
+#: Columns that identify one load of one experiment.
+LOAD_OF_EXPERIMENT = ["experiment", "configuration", "medium", "normal_force_N"]
+
+
+def _offset_p_value(base: np.ndarray, full: np.ndarray, y: np.ndarray, k: int) -> float:
+    """False-alarm probability of per-ramp offsets (``full``) over a common curve (``base``)."""
+    r0 = y - base @ np.linalg.lstsq(base, y, rcond=None)[0]
+    r1 = y - full @ np.linalg.lstsq(full, y, rcond=None)[0]
+    rss0, rss1 = r0 @ r0, r1 @ r1
+    d1, d2 = k - 1, y.size - full.shape[1]
+    if rss1 <= 0:
+        return 0.0 if rss0 > 0 else 1.0
+    fstat = ((rss0 - rss1) / d1) / (rss1 / d2)
+    return float(fdtrc(d1, d2, fstat))  # survival function of the F distribution
+
+
+def drifting_sweeps(sw: pd.DataFrame, padded: Padded, used: np.ndarray, p: float) -> np.ndarray:
+    """True for the used sweeps of a load (experiment, configuration, medium, F_N) that drifts.
+
+    All used ramps of the load are fitted with one common quadratic in u0, with and without an
+    offset per ramp; the offsets are significant if the F statistic exceeds its ``1 - p/2``
+    quantile in Δf or in ΔΓ (two channels, Bonferroni).
+    """
+    flag = np.zeros(len(sw), bool)
+    used_idx = np.flatnonzero(used)
+    row_of = {s: i for i, s in enumerate(padded.sweeps)}
+    padded_row = np.array([row_of[s] for s in sw["sweep"]], dtype=int)
+    for pos in sw.iloc[used_idx].groupby(LOAD_OF_EXPERIMENT, sort=False).indices.values():
+        idx = used_idx[pos]  # positions in sw
+        k = len(idx)
+        if k < 2:
+            continue
+        rows = padded_row[idx]
+        m = padded.w[rows] > 0
+        u = padded.u[rows][m]
+        ramp = np.repeat(np.arange(k), m.sum(axis=1))
+        n = u.size
+        if n - 3 - (k - 1) < 2:
+            continue
+        scale = u.max() if u.max() > 0 else 1.0
+        base = np.column_stack([np.ones(n), u / scale, (u / scale) ** 2])
+        dummies = (ramp[:, None] == np.arange(1, k)[None, :]).astype(float)
+        full = np.column_stack([base, dummies])
+        pvals = [
+            _offset_p_value(base, full, y, k) for y in (padded.df[rows][m], padded.dg[rows][m])
+        ]
+        if min(pvals) < p / 2:
+            flag[idx] = True
+    return flag

@@ -1,0 +1,69 @@
+"""The flags the sweep analysis sets: a closed, documented set, held as a bit mask per sweep.
+
+Inside the analysis a sweep's flags are one integer (a :class:`Flag` bit mask), combined with
+vectorised ``|``; they become the ';'-separated text of ``sweeps.csv`` only when written
+(:func:`render`), always in the order of :class:`Flag`.
+"""
+
+from __future__ import annotations
+
+import enum
+
+import numpy as np
+
+__all__ = ["DESCRIPTIONS", "Flag", "has", "render"]
+
+
+class Flag(enum.IntFlag):
+    """Why a sweep is set aside, or what to keep in mind when reading its numbers."""
+
+    FIRST_RAMP = enum.auto()
+    FEW_POINTS = enum.auto()
+    JUNCTION_GROWTH = enum.auto()
+    SMALL_LOAD = enum.auto()
+    PLATEAU_SLOPE = enum.auto()
+    GROSS_SLIDING = enum.auto()
+    DRIFT = enum.auto()
+
+    @property
+    def text(self) -> str:
+        """The flag as written in ``sweeps.csv`` (``first-ramp``, ...)."""
+        return str(self.name).lower().replace("_", "-")
+
+
+#: What each flag means, in the words of the README.
+DESCRIPTIONS: dict[Flag, str] = {
+    Flag.FIRST_RAMP: "ramp 1 of a load, set aside as running-in (unless --keep-first-ramp)",
+    Flag.FEW_POINTS: "fewer than 4 points: not used",
+    Flag.JUNCTION_GROWTH: (
+        "Δf rises with u0 by more than 2 standard errors (the junction grows): no μ from the "
+        "Δf slope"
+    ),
+    Flag.SMALL_LOAD: "|Δf0| above 1e-3 of the resonance frequency: paper 2's Eq. 1 may fail",
+    Flag.PLATEAU_SLOPE: (
+        "a plateau sweep: the shifts leave the plateau with no linear term, so no μ from the "
+        "slopes (μ from the exact plateau loop instead)"
+    ),
+    Flag.GROSS_SLIDING: (
+        "the exact loop fits best beyond κu0/(μF_N) = 30 (gross sliding): μ not resolved"
+    ),
+    Flag.DRIFT: (
+        "the used ramps of this load of this experiment are offset from each other beyond the "
+        "noise (F test): the baseline moved"
+    ),
+}
+
+
+def has(mask, flag: Flag) -> np.ndarray:
+    """Boolean array: which entries of the bit-mask array ``mask`` carry ``flag``."""
+    return (np.asarray(mask, dtype=np.int64) & int(flag)) != 0
+
+
+def render(mask) -> np.ndarray:
+    """The ';'-separated text of each bit mask in ``mask`` (object array of str)."""
+    mask = np.asarray(mask, dtype=np.int64)
+    out = np.full(mask.shape, "", dtype=object)
+    for flag in Flag:
+        on = has(mask, flag)
+        out[on] = np.where(out[on] == "", flag.text, out[on] + ";" + flag.text)
+    return out

@@ -1,0 +1,70 @@
+"""What :func:`contactres.analyze` found: plain data, written by :func:`contactres.write_report`."""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from pathlib import Path
+
+import pandas as pd
+
+from ..measurements.sweeps import SweepTable
+from .amplitude import Padded
+
+__all__ = ["Results"]
+
+
+@dataclass(frozen=True)
+class Results:
+    """Everything :func:`contactres.analyze` found.
+
+    Attributes
+    ----------
+    sweeps : one row per sweep (all columns, including internal ones); ``flags`` is a bit mask
+        of :class:`contactres.analysis.flags.Flag` (text only when written)
+    loads : one row per (configuration, medium, normal force)
+    experiments : one row per (configuration, medium, normal force, experiment): the means of
+        its used sweeps (the points of the JKR fit)
+    groups : one dict per (configuration, medium): JKR + Mindlin fit and counts
+    settings : the settings used
+    version : contactres version
+    table : the input sweep table
+    padded : the sweeps as padded arrays (for the figures)
+    """
+
+    sweeps: pd.DataFrame
+    loads: pd.DataFrame
+    experiments: pd.DataFrame
+    groups: list[dict]
+    settings: dict
+    version: str
+    table: SweepTable | None = None
+    padded: Padded | None = field(default=None, repr=False)
+
+    def table1(self) -> pd.DataFrame:
+        """Table 1 of paper 2 for these data: E (GPa) and γ (mJ/m²) per configuration/medium."""
+        rows = []
+        for g in self.groups:
+            rows.append(
+                {
+                    "configuration": g["configuration"],
+                    "medium": g["medium"],
+                    "E_GPa": g["E_Pa"] / 1e9,
+                    "E_err_GPa": g["E_err_Pa"] / 1e9,
+                    "gamma_mJ_m2": g["gamma_J_m2"] * 1e3,
+                    "gamma_err_mJ_m2": g["gamma_err_J_m2"] * 1e3,
+                    "n_exp": g["n_experiments"],
+                    "n_sweeps": g["n_sweeps_used"],
+                }
+            )
+        return pd.DataFrame(rows)
+
+    def write(self, folder, figures: bool = True) -> list[Path]:
+        """Alias of ``contactres.write_report(results, folder, figures=figures)``.
+
+        Kept for scripts written against contactres 0.1; :func:`contactres.write_report` is the
+        writer (this thin alias reaches up to the report layer at call time, the one exception
+        that tests/test_layout.py allows).
+        """
+        from ..report import write_report
+
+        return write_report(self, folder, figures=figures)

@@ -1,0 +1,82 @@
+"""Arithmetic on stacks of 3x3 matrices stored as (3, 3, N).
+
+Every entry of such a stack is a contiguous vector of N values, so the elementwise formulas
+below run at memory speed; a batched LAPACK call per 3x3 matrix is much slower. The doubling
+algorithm (:mod:`.doubling`) and the surface compliance (:mod:`.compliance`) work on these
+stacks; the matrices are the dimensionless blocks of the Christoffel pencil of paper 1,
+Eqs. 10-20, so the entries carry no unit.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["inv3", "maxabs", "mm", "transpose"]
+
+
+def mm(a: np.ndarray, b: np.ndarray, out=None, tmp=None) -> np.ndarray:
+    """Product of stacked 3x3 matrices, (3, 3, N) @ (3, 3, N).
+
+    Parameters
+    ----------
+    a, b : ndarray, shape (3, 3, N)
+        The factors (dimensionless, complex allowed).
+    out, tmp : ndarray, shape (3, 3, N), optional
+        Result and work array; given together, the product is written into ``out`` without
+        temporaries. Neither may overlap ``a`` or ``b``.
+
+    Returns
+    -------
+    ndarray, shape (3, 3, N)
+        ``a @ b`` for every stacked pair (``out`` when given).
+    """
+    if out is None:
+        return a[:, 0, None] * b[0] + a[:, 1, None] * b[1] + a[:, 2, None] * b[2]
+    np.multiply(a[:, 0, None], b[0], out=out)
+    out += np.multiply(a[:, 1, None], b[1], out=tmp)
+    out += np.multiply(a[:, 2, None], b[2], out=tmp)
+    return out
+
+
+def transpose(a: np.ndarray) -> np.ndarray:
+    """Transpose of every stacked 3x3 matrix (a view), shape (3, 3, N)."""
+    return a.transpose(1, 0, 2)
+
+
+def inv3(a: np.ndarray, out=None) -> np.ndarray:
+    """Inverse of stacked 3x3 matrices by the adjugate formula.
+
+    Parameters
+    ----------
+    a : ndarray, shape (3, 3, N)
+        The matrices (dimensionless, complex allowed).
+    out : ndarray, shape (3, 3, N), optional
+        Where to write the result; must not overlap ``a``.
+
+    Returns
+    -------
+    ndarray, shape (3, 3, N)
+        ``inv(a)`` for every stacked matrix; a singular one gives inf/NaN entries, no error.
+    """
+    (a00, a01, a02), (a10, a11, a12), (a20, a21, a22) = a
+    c00 = a11 * a22 - a12 * a21
+    c01 = a12 * a20 - a10 * a22
+    c02 = a10 * a21 - a11 * a20
+    r = 1.0 / (a00 * c00 + a01 * c01 + a02 * c02)
+    if out is None:
+        out = np.empty_like(a)
+    out[0, 0] = c00 * r
+    out[1, 0] = c01 * r
+    out[2, 0] = c02 * r
+    out[0, 1] = (a02 * a21 - a01 * a22) * r
+    out[1, 1] = (a00 * a22 - a02 * a20) * r
+    out[2, 1] = (a01 * a20 - a00 * a21) * r
+    out[0, 2] = (a01 * a12 - a02 * a11) * r
+    out[1, 2] = (a02 * a10 - a00 * a12) * r
+    out[2, 2] = (a00 * a11 - a01 * a10) * r
+    return out
+
+
+def maxabs(a: np.ndarray) -> np.ndarray:
+    """Largest entry modulus of every stacked matrix: shape (N,) for a (3, 3, N) stack."""
+    return np.max(np.abs(a), axis=(0, 1))

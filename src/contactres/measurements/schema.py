@@ -1,0 +1,355 @@
+"""Every column of every table contactres reads or writes: the one source of names and units.
+
+The reader and validator of sweep tables (:mod:`contactres.measurements.sweeps`), the analysis,
+the writers of the results folder (:mod:`contactres.report`) and the README's column tables are
+generated from, or checked against, the schemas here:
+
+* :data:`SWEEP_TABLE`: the input, one row per measured point of an amplitude ramp;
+* :data:`SWEEP_RESULTS`: ``sweeps.csv``, one row per sweep;
+* :data:`LOAD_RESULTS`: ``loads.csv``, one row per (configuration, medium, normal force);
+* :data:`GROUP_RESULTS`: the groups of ``summary.json``, one per (configuration, medium): the
+  JKR + Mindlin fit (Table 1 of paper 2).
+
+Conventions (recorded in every output): Δf is the frequency shift, not Δf/n; ΔΓ the shift of the
+half-bandwidth at half height, not the dissipation D = 2Γ/f; amplitudes in m; forces per contact
+in N. Paper 2: J. Vlachová, R. König, D. Johannsmann, Beilstein J. Nanotechnol. 6, 845-856
+(2015).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+__all__ = [
+    "CONVENTIONS",
+    "GROUP_RESULTS",
+    "LOAD_QUANTITIES",
+    "LOAD_RESULTS",
+    "SWEEP_RESULTS",
+    "SWEEP_TABLE",
+    "Column",
+    "TableSchema",
+]
+
+#: Levels of a column: one value per point, one per sweep, or a constant of the instrument or
+#: the sample (also one per sweep, and filled from options or a TOML file when absent).
+LEVELS = ("point", "sweep", "constant")
+
+
+@dataclass(frozen=True)
+class Column:
+    """One column of a table.
+
+    Attributes
+    ----------
+    name : column name (its unit is part of the name where it has one: ``df_Hz``)
+    unit : SI unit, ``-`` for a number without unit, ``text`` for a label
+    meaning : one line for people
+    required : the column must be present (input tables only)
+    level : ``point``, ``sweep`` or ``constant`` (see :data:`LEVELS`)
+    rule : the check a value must pass, in words (empty: any finite number or any label)
+    default : value used when an optional input column is absent (None: no default)
+    """
+
+    name: str
+    unit: str
+    meaning: str
+    required: bool = False
+    level: str = "point"
+    rule: str = ""
+    default: object = None
+
+    def __post_init__(self):
+        if self.level not in LEVELS:
+            raise ValueError(f"column {self.name!r}: level must be one of {LEVELS}")
+
+
+@dataclass(frozen=True)
+class TableSchema:
+    """An ordered set of :class:`Column` with a name and a one-line description."""
+
+    name: str
+    description: str
+    columns: tuple[Column, ...]
+
+    @property
+    def names(self) -> tuple[str, ...]:
+        """Column names, in order."""
+        return tuple(c.name for c in self.columns)
+
+    @property
+    def required(self) -> tuple[str, ...]:
+        """Names of the required columns."""
+        return tuple(c.name for c in self.columns if c.required)
+
+    @property
+    def optional(self) -> tuple[str, ...]:
+        """Names of the optional columns."""
+        return tuple(c.name for c in self.columns if not c.required)
+
+    def column(self, name: str) -> Column:
+        """The column called ``name`` (KeyError if the table has none)."""
+        for c in self.columns:
+            if c.name == name:
+                return c
+        raise KeyError(f"{self.name} has no column {name!r}")
+
+    def where(self, *, level: str | None = None, unit: str | None = None) -> tuple[str, ...]:
+        """Names of the columns at ``level`` and/or with ``unit``."""
+        return tuple(
+            c.name
+            for c in self.columns
+            if (level is None or c.level == level) and (unit is None or c.unit == unit)
+        )
+
+    def markdown(self, with_required: bool = False) -> str:
+        """The table as a Markdown table (the README's column tables are checked against this)."""
+        head = ["column", "unit", *(["required"] if with_required else []), "meaning"]
+        lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
+        for c in self.columns:
+            cells = [f"`{c.name}`", c.unit]
+            if with_required:
+                cells.append("yes" if c.required else "no")
+            rule = f" ({c.rule})" if c.rule else ""
+            default = "" if c.default is None else f"; default {_shown(c.default)}"
+            cells.append(f"{c.meaning}{rule}{default}")
+            lines.append("| " + " | ".join(cells) + " |")
+        return "\n".join(lines)
+
+
+def _shown(value) -> str:
+    return f"{value:g}" if isinstance(value, float) else f'"{value}"'
+
+
+CONVENTIONS = {
+    "df": "frequency shift Δf in Hz (not Δf/n)",
+    "dgamma": "shift of the half-bandwidth at half height ΔΓ in Hz (dissipation D = 2Γ/f)",
+    "amplitude": "oscillation amplitude u0 in m",
+    "normal_force": "normal force per contact in N",
+    "gamma": "paper 2's energy of adhesion γ in J/m² (work of adhesion w = 2γ)",
+    "E": "Young's modulus of both bodies (E1 = E2), Pa, with ν fixed (settings/poisson)",
+    "errors": "_err: standard error of a fit; _sd: standard deviation over experiments",
+}
+
+# --------------------------------------------------------------------------------------------
+# Input: the sweep table
+
+SWEEP_TABLE = TableSchema(
+    "sweep table",
+    "one row per measured point of an amplitude ramp (CSV: comma, semicolon or tab separated)",
+    (
+        Column("sweep", "text", "id of one amplitude ramp", required=True, level="sweep"),
+        Column("amplitude_m", "m", "oscillation amplitude u0", required=True, rule=">= 0, <= 1e-6"),
+        Column(
+            "df_Hz", "Hz", "frequency shift Δf against the reference (no contact)", required=True
+        ),
+        Column("dgamma_Hz", "Hz", "shift of the half-bandwidth ΔΓ at half height", required=True),
+        Column(
+            "normal_force_N",
+            "N",
+            "normal force per contact",
+            required=True,
+            level="sweep",
+            rule="> 0",
+        ),
+        Column(
+            "experiment",
+            "text",
+            "one mounting of the sample (repeats are experiments)",
+            level="sweep",
+            default="1",
+        ),
+        Column(
+            "configuration",
+            "text",
+            'groups with one material and geometry, e.g. "SiO2_2.2mm"',
+            level="sweep",
+            default="default",
+        ),
+        Column("medium", "text", '"air", "water", ...', level="sweep", default="unspecified"),
+        Column(
+            "ramp",
+            "-",
+            "1, 2, ...: order of the ramps of one load (ramp 1 is running-in)",
+            level="sweep",
+            rule="integer >= 1",
+        ),
+        Column(
+            "fundamental_Hz",
+            "Hz",
+            "fundamental frequency f_F of the resonator",
+            level="constant",
+            rule="> 0",
+            default=5e6,
+        ),
+        Column("overtone", "-", "overtone order n", level="constant", rule="odd integer >= 1"),
+        Column("area_m2", "m^2", "acoustically effective area A_eff", level="constant", rule="> 0"),
+        Column(
+            "n_contacts",
+            "-",
+            "number of equal contacts (3 for a tripod)",
+            level="constant",
+            rule="integer >= 1",
+        ),
+        Column("sphere_radius_m", "m", "sphere radius R", level="constant", rule="> 0"),
+        Column(
+            "poisson",
+            "-",
+            "Poisson ratio ν, fixed in the JKR + Mindlin fit",
+            level="constant",
+            rule="in (-1, 0.5)",
+            default=0.17,
+        ),
+    ),
+)
+
+# --------------------------------------------------------------------------------------------
+# Outputs
+
+_SWEEP_RESULT_COLUMNS = (
+    Column("sweep", "text", "id of the sweep", level="sweep"),
+    Column("experiment", "text", "experiment of the sweep", level="sweep"),
+    Column("configuration", "text", "configuration of the sweep", level="sweep"),
+    Column("medium", "text", "medium of the sweep", level="sweep"),
+    Column("normal_force_N", "N", "normal force per contact", level="sweep"),
+    Column("ramp", "-", "ramp number (0: the table had no ramp column)", level="sweep"),
+    Column("used", "-", "true if the sweep enters the per-load statistics", level="sweep"),
+    Column(
+        "model",
+        "text",
+        "amplitude class: elastic, cattaneo-mindlin, savkoor or plateau",
+        level="sweep",
+    ),
+    Column(
+        "plateau_amplitude_m",
+        "m",
+        "critical displacement d_c of a plateau sweep (exact plateau loop, else the hinge)",
+        level="sweep",
+    ),
+    Column("df0_Hz", "Hz", "low-amplitude limit Δf0", level="sweep"),
+    Column("df0_err_Hz", "Hz", "standard error of Δf0", level="sweep"),
+    Column(
+        "df_slope_Hz_per_m",
+        "Hz/m",
+        "slope of Δf(u0) (straight line; for a plateau the hinge slope, descriptive only)",
+        level="sweep",
+    ),
+    Column("dgamma0_Hz", "Hz", "low-amplitude limit ΔΓ0", level="sweep"),
+    Column(
+        "dgamma_slope_Hz_per_m",
+        "Hz/m",
+        "slope of ΔΓ(u0) (straight line; for a plateau the hinge slope, descriptive only)",
+        level="sweep",
+    ),
+    Column("mu_df", "-", "μ from the Δf slope (paper 2, Eq. 12; CM sweeps only)", level="sweep"),
+    Column(
+        "mu_dgamma", "-", "μ from the ΔΓ slope (paper 2, Eq. 12; CM sweeps only)", level="sweep"
+    ),
+    Column(
+        "mu_fit",
+        "-",
+        "μ from the fit of the exact loop (Cattaneo-Mindlin, or behind a plateau)",
+        level="sweep",
+    ),
+    Column("flags", "text", "';'-separated flags (README: flags)", level="sweep"),
+    Column("n_points", "-", "points in the sweep", level="sweep"),
+    Column(
+        "direction", "text", "up, down or mixed: order of the amplitudes in the file", level="sweep"
+    ),
+    Column("dgamma0_err_Hz", "Hz", "standard error of ΔΓ0", level="sweep"),
+    Column("df_slope_err_Hz_per_m", "Hz/m", "standard error of the Δf slope", level="sweep"),
+    Column("dgamma_slope_err_Hz_per_m", "Hz/m", "standard error of the ΔΓ slope", level="sweep"),
+    Column(
+        "df_curvature_Hz_per_m2",
+        "Hz/m^2",
+        "half the second derivative of Δf(u0) (parabola, paper 2, Eq. 15)",
+        level="sweep",
+    ),
+    Column(
+        "dgamma_curvature_Hz_per_m2",
+        "Hz/m^2",
+        "half the second derivative of ΔΓ(u0) (parabola, paper 2, Eq. 15)",
+        level="sweep",
+    ),
+    Column("kappa_N_per_m", "N/m", "contact stiffness κ = Δf0/P (paper 2, Eq. 2)", level="sweep"),
+    Column(
+        "omega_xi_N_per_m", "N/m", "dissipative part ωξ = ΔΓ0/P (paper 2, Eq. 2)", level="sweep"
+    ),
+    Column("loss_tangent", "-", "ΔΓ0/Δf0", level="sweep"),
+    Column("mu_df_err", "-", "standard error of mu_df", level="sweep"),
+    Column("mu_dgamma_err", "-", "standard error of mu_dgamma", level="sweep"),
+    Column("mu_fit_err", "-", "standard error of mu_fit", level="sweep"),
+    Column("plateau_amplitude_err_m", "m", "standard error of plateau_amplitude_m", level="sweep"),
+)
+
+SWEEP_RESULTS = TableSchema(
+    "sweeps.csv", "one row per sweep: limits, slopes, class, friction, flags", _SWEEP_RESULT_COLUMNS
+)
+
+#: Quantities averaged per load: name, unit, meaning.
+LOAD_QUANTITIES: tuple[tuple[str, str, str], ...] = (
+    ("df0_Hz", "Hz", "low-amplitude Δf0"),
+    ("dgamma0_Hz", "Hz", "low-amplitude ΔΓ0"),
+    ("kappa_N_per_m", "N/m", "contact stiffness κ"),
+    ("omega_xi_N_per_m", "N/m", "dissipative part ωξ"),
+    ("loss_tangent", "-", "loss tangent ΔΓ0/Δf0"),
+    ("mu_df", "-", "μ from the Δf slope"),
+    ("mu_dgamma", "-", "μ from the ΔΓ slope"),
+    ("mu_fit", "-", "μ from the exact-loop fit"),
+)
+
+LOAD_RESULTS = TableSchema(
+    "loads.csv",
+    "one row per (configuration, medium, normal force): statistics over experiments",
+    (
+        Column("configuration", "text", "configuration", level="sweep"),
+        Column("medium", "text", "medium", level="sweep"),
+        Column("normal_force_N", "N", "normal force per contact", level="sweep"),
+        Column("n_experiments", "-", "experiments with used sweeps at this load", level="sweep"),
+        Column("n_sweeps", "-", "used sweeps at this load", level="sweep"),
+        *(
+            Column(f"{name}_{stat}", unit, f"{text}: {what}", level="sweep")
+            for name, unit, text in LOAD_QUANTITIES
+            for stat, what in (
+                ("mean", "mean over experiments (each the mean of its used sweeps)"),
+                ("sd", "standard deviation over experiments (ddof = 1)"),
+            )
+        ),
+    ),
+)
+
+GROUP_RESULTS = TableSchema(
+    "summary.json groups",
+    "one group per (configuration, medium): JKR + Mindlin fit of κ(F_N) (Table 1 of paper 2)",
+    (
+        Column("configuration", "text", "configuration", level="sweep"),
+        Column("medium", "text", "medium", level="sweep"),
+        Column("E_Pa", "Pa", "Young's modulus E (E1 = E2, ν fixed)", level="sweep"),
+        Column(
+            "E_err_Pa", "Pa", "standard error of E (Jacobian, residual variance)", level="sweep"
+        ),
+        Column("gamma_J_m2", "J/m^2", "energy of adhesion γ (work of adhesion 2γ)", level="sweep"),
+        Column("gamma_err_J_m2", "J/m^2", "standard error of γ", level="sweep"),
+        Column("n_experiments", "-", "experiments in the group", level="sweep"),
+        Column("n_sweeps_used", "-", "used sweeps in the group", level="sweep"),
+        Column("models", "-", "number of used sweeps of each amplitude class", level="sweep"),
+        Column(
+            "E_bootstrap_sd_Pa",
+            "Pa",
+            "sd of E over bootstrap resamples of the experiments",
+            level="sweep",
+        ),
+        Column(
+            "gamma_bootstrap_sd_J_m2",
+            "J/m^2",
+            "sd of γ over bootstrap resamples of the experiments",
+            level="sweep",
+        ),
+        Column("sphere_radius_m", "m", "sphere radius R", level="sweep"),
+        Column("poisson", "-", "Poisson ratio ν (fixed)", level="sweep"),
+        Column("n_points_fitted", "-", "(experiment, load) points in the fit", level="sweep"),
+        Column("fit_rms_N_per_m", "N/m", "rms residual of the fit", level="sweep"),
+        Column("note", "text", "why E and γ are missing, when they are", level="sweep"),
+        Column("P_Hz_per_N_per_m", "Hz/(N/m)", "sensitivity P of paper 2, Eq. 1", level="sweep"),
+    ),
+)

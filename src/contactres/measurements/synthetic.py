@@ -1,0 +1,488 @@
+"""Synthetic QCM amplitude sweeps from the package's forward model (paper 2).
+
+The one generator of synthetic sweep tables for the example data, the tests and the benchmarks.
+Every point follows the forward chain of paper 2:
+
+    sphere + load -> JKR contact radius a (Eq. 9, with E* of Eq. 10)
+    -> Mindlin stiffness κ = 2G*a (Eq. 7, G = E/(2(1 + ν)) of Eq. 8)
+    -> tangential loop (Cattaneo-Mindlin, Eq. 6; Savkoor, Eqs. 13-14; a stick plateau; or a
+       Voigt element) with a dashpot ωξ in parallel (Eq. 12)
+    -> QCM shifts Δf(u0), ΔΓ(u0) (Eqs. 4-5; Eq. 1 for the Voigt element)
+    -> Gaussian noise on both shifts.
+
+A study is a frozen :class:`SweepStudy` (groups of configuration x medium, loads, experiments,
+ramps, scatter, special cases); :func:`synthetic_sweeps` turns it and a seeded random generator
+into a sweep table, one row per point. The random numbers are drawn in a fixed, documented order
+(see :func:`synthetic_sweeps`), so a study and a seed give the same table on every run.
+:func:`example_study` is the recipe of the bundled ``example_sweeps.csv``.
+
+All quantities SI: forces N, lengths m, moduli Pa, γ J/m², stiffness N/m, shifts Hz.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+import pandas as pd
+
+from ..normal.isotropic import effective_modulus, jkr_contact_radius
+from ..resonators.qcm import QCM, shifts_from_loop, shifts_from_stiffness
+from ..tangential import (
+    CattaneoMindlinLoop,
+    DashpotLoop,
+    PlateauLoop,
+    SavkoorLoop,
+    VoigtLoop,
+    kappa_jkr_mindlin,
+    with_dashpot,
+)
+from ..validation import nonnegative, positive
+
+__all__ = [
+    "EXAMPLE_SEED",
+    "LOOP_MODELS",
+    "SCATTERED",
+    "Drift",
+    "SweepGroup",
+    "SweepStudy",
+    "contact_loop",
+    "example_study",
+    "sweep_shifts",
+    "synthetic_sweeps",
+]
+
+#: Tangential contact models of a synthetic sweep (the names the sweep classifier reports).
+LOOP_MODELS = ("cattaneo-mindlin", "plateau", "savkoor", "elastic")
+
+#: Quantities that may scatter between experiments (or loads): E, γ and μ.
+SCATTERED = ("E", "gamma", "mu")
+
+#: Seed of the bundled example data (``scripts/make_example_data.py``).
+EXAMPLE_SEED = 20150601
+
+# Columns of the table, in order; the constants follow when asked for.
+_COLUMNS = (
+    "sweep",
+    "experiment",
+    "configuration",
+    "medium",
+    "ramp",
+    "normal_force_N",
+    "amplitude_m",
+    "df_Hz",
+    "dgamma_Hz",
+    "sphere_radius_m",
+)
+
+
+@dataclass(frozen=True)
+class SweepGroup:
+    """One sample configuration in one medium: the sphere, its material, ramp and noise.
+
+    Parameters
+    ----------
+    configuration : name of the configuration (e.g. ``"SiO2_2.2mm"``)
+    medium : name of the medium (e.g. ``"air"``)
+    radius : sphere radius R, m
+    E : Young's modulus of sphere and flat (E1 = E2 = E, paper 2, Eq. 10), Pa
+    gamma : surface energy γ of paper 2, Eq. 9 (work of adhesion w = 2γ), J/m²
+    amplitudes : the amplitude ramp upwards, u0, m (increasing, >= 0)
+    omega_xi : ωξ of the dashpot in parallel with every contact (paper 2, Eq. 12), N/m; the
+        low-amplitude half-bandwidth shift is ΔΓ0 = P ωξ (Eq. 1)
+    noise : standard deviation of the Gaussian noise on Δf and on ΔΓ, Hz
+    """
+
+    configuration: str
+    medium: str
+    radius: float
+    E: float
+    gamma: float
+    amplitudes: tuple[float, ...]
+    omega_xi: float
+    noise: float
+
+    def __post_init__(self):
+        u = nonnegative(f"{self.configuration}/{self.medium} amplitudes", self.amplitudes, "m")
+        u = np.atleast_1d(u)
+        if u.size < 1 or np.any(np.diff(u) <= 0):
+            raise ValueError(f"amplitudes must increase strictly, got {self.amplitudes!r}")
+        # A tuple keeps the dataclass hashable and its values exactly as given.
+        object.__setattr__(self, "amplitudes", tuple(float(x) for x in u))
+        positive("sphere radius", self.radius, "m")
+        positive("E", self.E, "Pa")
+        nonnegative("gamma", self.gamma, "J/m^2")
+        nonnegative("omega_xi", self.omega_xi, "N/m")
+        nonnegative("noise", self.noise, "Hz")
+
+
+@dataclass(frozen=True)
+class Drift:
+    """A baseline drift of Δf in one load of one experiment: +``rate`` Hz per ramp after ramp 1.
+
+    ``experiment`` counts from 1 and ``load`` is the index into the study's normal forces, as in
+    the sweep ids ``{configuration}/{medium}/e{experiment}/F{load}/r{ramp}``.
+    """
+
+    configuration: str
+    medium: str
+    experiment: int
+    load: int
+    rate: float
+
+
+@dataclass(frozen=True)
+class SweepStudy:
+    """Parameters of a synthetic study of QCM amplitude sweeps (paper 2's experiment).
+
+    For every group, every experiment 1 ... ``n_experiments``, every normal force and every
+    ramp, one amplitude sweep. Odd ramps run up the amplitudes, even ramps down (paper 2: up,
+    down, up, down) unless ``alternate`` is False.
+
+    Parameters
+    ----------
+    groups : configurations x media (:class:`SweepGroup`)
+    normal_forces : normal force per contact F_N, N (tripod: F_N = m g / 3)
+    n_experiments : repeated mountings of the sample per group
+    ramps : ramp numbers within one load of one experiment (ramp 1 is the running-in ramp)
+    alternate : even ramps run downwards
+    qcm : the resonator (fundamental, overtone, effective area A_eff, Z_q)
+    n_contacts : equal contacts on the resonator n_P (3 for a tripod; paper 2, Eq. 1)
+    poisson : Poisson ratio ν of sphere and flat (paper 2 takes 0.17)
+    mu : friction coefficient μ at the first normal force
+    mu_exponent : μ(F_N) = ``mu`` (F_N / F_first)^``mu_exponent`` (0: load-independent)
+    model : tangential model of every sweep, one of :data:`LOOP_MODELS`
+    plateau_fraction : for ``model="plateau"``, the critical displacement d_c as a fraction of
+        the largest amplitude
+    savkoor_sliding : for Savkoor sweeps, the amplitude of full sliding 4a²τ0/κ (paper 2,
+        Eq. 14) as a multiple of the largest amplitude; it sets τ0
+    scatter : ``(quantity, sd)`` pairs, quantities from :data:`SCATTERED`: each is multiplied by
+        a random factor, drawn in the listed order (also when sd = 0)
+    scatter_law : ``"lognormal"`` (factor exp(sd·z)) or ``"normal"`` (factor 1 + sd·z)
+    scatter_per : draw the factors once per ``"experiment"`` or once per ``"load"``
+    running_in_kappa, running_in_mu : factors on κ and μ in ramp 1
+    random_plateau : probability that a load of an experiment shows a stick plateau in its
+        ramps other than ramp 1 (Cattaneo-Mindlin sweeps only); 0: never, and nothing drawn
+    random_plateau_range : range of its critical displacement, fractions of the largest amplitude
+    savkoor_experiments : ``(configuration, medium, experiment)`` whose sweeps follow Savkoor
+    drifts : baseline drifts (:class:`Drift`)
+    """
+
+    groups: tuple[SweepGroup, ...]
+    normal_forces: tuple[float, ...]
+    n_experiments: int = 4
+    ramps: tuple[int, ...] = (1, 2, 3, 4)
+    alternate: bool = True
+    qcm: QCM = field(default_factory=lambda: QCM(5e6, 3, 2.5e-5))
+    n_contacts: int = 3
+    poisson: float = 0.17
+    mu: float = 1.0
+    mu_exponent: float = 0.0
+    model: str = "cattaneo-mindlin"
+    plateau_fraction: float = 0.4
+    savkoor_sliding: float = 2.0
+    scatter: tuple[tuple[str, float], ...] = ()
+    scatter_law: str = "lognormal"
+    scatter_per: str = "experiment"
+    running_in_kappa: float = 1.0
+    running_in_mu: float = 1.0
+    random_plateau: float = 0.0
+    random_plateau_range: tuple[float, float] = (0.25, 0.4)
+    savkoor_experiments: tuple[tuple[str, str, int], ...] = ()
+    drifts: tuple[Drift, ...] = ()
+
+    def __post_init__(self):
+        object.__setattr__(self, "groups", tuple(self.groups))
+        object.__setattr__(self, "normal_forces", tuple(float(f) for f in self.normal_forces))
+        object.__setattr__(self, "ramps", tuple(int(r) for r in self.ramps))
+        object.__setattr__(self, "scatter", tuple((str(q), float(s)) for q, s in self.scatter))
+        if not self.groups:
+            raise ValueError("a study needs at least one group")
+        if not self.normal_forces:
+            raise ValueError("a study needs at least one normal force")
+        positive("normal_forces", self.normal_forces, "N")
+        if self.n_experiments < 1 or not self.ramps or min(self.ramps) < 1:
+            raise ValueError("n_experiments and ramp numbers must be >= 1, with at least one ramp")
+        positive("mu", self.mu)
+        for name in ("plateau_fraction", "running_in_kappa", "running_in_mu", "savkoor_sliding"):
+            positive(name, getattr(self, name))
+        if self.model not in LOOP_MODELS:
+            raise ValueError(f"model must be one of {LOOP_MODELS}, got {self.model!r}")
+        for q, sd in self.scatter:
+            if q not in SCATTERED:
+                raise ValueError(f"scatter quantity must be one of {SCATTERED}, got {q!r}")
+            nonnegative(f"scatter of {q}", sd)
+        if self.scatter_law not in ("lognormal", "normal"):
+            raise ValueError(f"scatter_law: 'lognormal' or 'normal', not {self.scatter_law!r}")
+        if self.scatter_per not in ("experiment", "load"):
+            raise ValueError(f"scatter_per: 'experiment' or 'load', not {self.scatter_per!r}")
+        lo, hi = self.random_plateau_range
+        if not (0.0 <= self.random_plateau <= 1.0 and 0.0 <= lo <= hi):
+            raise ValueError("random_plateau must lie in [0, 1] and its range in order, >= 0")
+
+
+def contact_loop(
+    model: str,
+    kappa: float,
+    mu: float,
+    normal_force: float,
+    omega_xi: float,
+    omega: float,
+    *,
+    critical_displacement: float = 0.0,
+    contact_radius: float = np.nan,
+    sliding_amplitude: float = np.nan,
+) -> DashpotLoop | VoigtLoop:
+    """The tangential force-displacement loop of one contact, with its dashpot (paper 2).
+
+    Parameters
+    ----------
+    model : one of :data:`LOOP_MODELS`:
+        ``"cattaneo-mindlin"``: Coulomb partial slip (paper 2, Eq. 6), Masing loops;
+        ``"plateau"``: the same behind a stick plateau up to ``critical_displacement``;
+        ``"savkoor"``: constant sliding traction τ0 (paper 2, Eqs. 13-14), with τ0 set so that
+        full sliding 4a²τ0/κ happens at ``sliding_amplitude``;
+        ``"elastic"``: a Voigt element κ, ξ (no slip; paper 2, Eq. 1)
+    kappa : tangential stiffness κ, N/m
+    mu : friction coefficient μ (Cattaneo-Mindlin and plateau)
+    normal_force : normal force per contact F_N, N
+    omega_xi : ωξ of the dashpot in parallel (paper 2, Eq. 12), N/m
+    omega : angular frequency of the resonator ω, rad/s
+    critical_displacement : d_c of the plateau, m
+    contact_radius : contact radius a (Savkoor), m
+    sliding_amplitude : amplitude of full sliding (Savkoor), m
+
+    Returns
+    -------
+    loop : DashpotLoop | VoigtLoop
+        The slip loop with the dashpot in parallel, or the Voigt element for ``"elastic"``.
+    """
+    xi = omega_xi / omega
+    if model == "elastic":
+        return VoigtLoop(kappa, xi, omega)
+    if model == "savkoor":
+        tau = kappa * sliding_amplitude / (4.0 * contact_radius**2)
+        loop = SavkoorLoop(kappa, tau, contact_radius)
+    elif model in ("cattaneo-mindlin", "plateau"):
+        loop = CattaneoMindlinLoop(kappa, mu, normal_force)
+        if model == "plateau":
+            loop = PlateauLoop(loop, critical_displacement)
+    else:
+        raise ValueError(f"model must be one of {LOOP_MODELS}, got {model!r}")
+    return with_dashpot(loop, xi, omega)
+
+
+def sweep_shifts(q: QCM, loop, amplitudes, n_contacts: int) -> tuple[np.ndarray, np.ndarray]:
+    """Noise-free Δf(u0), ΔΓ(u0) of n_P equal contacts following ``loop``, Hz.
+
+    Paper 2, Eqs. 4-5 (the first Fourier component of the loop force) for a slip loop; Eq. 1
+    for a Voigt element, whose shifts P κ and P ωξ do not depend on the amplitude.
+
+    Parameters
+    ----------
+    q : the resonator
+    loop : a loop from :func:`contact_loop`
+    amplitudes : oscillation amplitudes u0, m (1-d array)
+    n_contacts : number of equal contacts n_P
+
+    Returns
+    -------
+    df, dgamma : numpy.ndarray
+        Δf and ΔΓ at every amplitude (the shape of ``amplitudes``), Hz
+    """
+    u = np.asarray(amplitudes, dtype=float)
+    if isinstance(loop, VoigtLoop):
+        df, dg = shifts_from_stiffness(q, loop.kappa, loop.xi, n_contacts)
+        return np.full(u.shape, df), np.full(u.shape, dg)
+    df, dg = shifts_from_loop(q, loop, u, n_contacts)
+    return np.asarray(df), np.asarray(dg)
+
+
+def _factors(study: SweepStudy, rng: np.random.Generator) -> dict[str, float]:
+    """Scatter factors of E, γ, μ (1.0 where not scattered), drawn in the listed order."""
+    out = dict.fromkeys(SCATTERED, 1.0)
+    for q, sd in study.scatter:
+        if study.scatter_law == "lognormal":
+            out[q] = rng.lognormal(0.0, sd)
+        else:
+            out[q] = 1 + sd * rng.standard_normal()
+    return out
+
+
+def synthetic_sweeps(
+    study: SweepStudy, rng: np.random.Generator | int, *, constants: bool = False
+) -> pd.DataFrame:
+    """The sweep table of ``study``: one row per point, noise from ``rng``.
+
+    For each sweep the contact follows paper 2's forward model: κ(F_N) from JKR (Eq. 9) and
+    Mindlin (κ = 2G*a, Eq. 7) with the experiment's E and γ; μ(F_N) = μ (F_N/F_first)^exponent;
+    ramp 1 scaled by the running-in factors; the loop of :func:`contact_loop` (with the group's
+    dashpot ωξ, Eq. 12); the shifts of :func:`sweep_shifts` (Eqs. 4-5 or 1); Gaussian noise of
+    the group's standard deviation added to Δf and to ΔΓ; a drift added to Δf where asked.
+
+    Order of the random draws (fixed, so that a seed fixes the table): groups in order, then
+    experiments, loads and ramps; per experiment the scatter factors (if drawn per experiment);
+    per load the scatter factors (if drawn per load), then, if ``random_plateau`` > 0, a uniform
+    number deciding the plateau and one for its critical displacement; per ramp the noise of Δf
+    (one number per point, in the ramp's order), then that of ΔΓ. Noise is drawn also when its
+    standard deviation is 0, so a noise-free study with the same seed has the same contacts.
+
+    Parameters
+    ----------
+    study : the study
+    rng : a numpy random generator (used and advanced) or a seed
+    constants : append the constant columns ``fundamental_Hz``, ``overtone``, ``area_m2``,
+        ``n_contacts``, ``poisson`` (the study's resonator), so the table stands on its own
+
+    Returns
+    -------
+    table : pandas.DataFrame
+        Columns ``sweep`` (``{configuration}/{medium}/e{experiment}/F{load index}/r{ramp}``),
+        ``experiment`` (``e1``, ``e2``, ...), ``configuration``, ``medium``, ``ramp``,
+        ``normal_force_N`` (N), ``amplitude_m`` (m), ``df_Hz``, ``dgamma_Hz`` (Hz),
+        ``sphere_radius_m`` (m), then the constants if asked for.
+    """
+    rng = np.random.default_rng(rng)
+    q, nu, n_p = study.qcm, study.poisson, study.n_contacts
+    f_first = study.normal_forces[0]
+    drifts = {(d.configuration, d.medium, d.experiment, d.load): d.rate for d in study.drifts}
+    labels: list[tuple] = []  # (sweep, experiment, configuration, medium, ramp, F, R) per sweep
+    parts: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []  # (u, df, dgamma) per sweep
+    for g in study.groups:
+        u_up = np.asarray(g.amplitudes, dtype=float)
+        # Within a group, ramps that share a loop share its shifts (the loops are history-free):
+        # computed once on the upward ramp, reversed for a downward one.
+        shifts: dict = {}
+        u_max = u_up[-1]
+        factor = dict.fromkeys(SCATTERED, 1.0)
+        for e in range(1, study.n_experiments + 1):
+            if study.scatter_per == "experiment":
+                factor = _factors(study, rng)
+            savkoor = (g.configuration, g.medium, e) in study.savkoor_experiments
+            for j, force in enumerate(study.normal_forces):
+                if study.scatter_per == "load":
+                    factor = _factors(study, rng)
+                E = g.E * factor["E"]
+                gamma = g.gamma * factor["gamma"]
+                kappa0 = kappa_jkr_mindlin(force, E, gamma, g.radius, nu)
+                mu0 = study.mu * (force / f_first) ** study.mu_exponent * factor["mu"]
+                a = jkr_contact_radius(effective_modulus(E, nu), g.radius, force, gamma)
+                # A random plateau belongs to a load of an experiment, not to one ramp.
+                plateau, dc_random = False, 0.0
+                if study.random_plateau > 0:
+                    plateau = rng.random() < study.random_plateau
+                    dc_random = rng.uniform(*study.random_plateau_range) * u_max
+                for ramp in study.ramps:
+                    first = ramp == 1
+                    kappa = kappa0 * (study.running_in_kappa if first else 1.0)
+                    mu = mu0 * (study.running_in_mu if first else 1.0)
+                    model, dc = study.model, study.plateau_fraction * u_max
+                    if savkoor:
+                        model = "savkoor"
+                    elif plateau and not first and model == "cattaneo-mindlin":
+                        model, dc = "plateau", dc_random
+                    loop = contact_loop(
+                        model,
+                        kappa,
+                        mu,
+                        force,
+                        g.omega_xi,
+                        q.omega,
+                        critical_displacement=dc,
+                        contact_radius=a,
+                        sliding_amplitude=study.savkoor_sliding * u_max,
+                    )
+                    if loop not in shifts:
+                        shifts[loop] = sweep_shifts(q, loop, u_up, n_p)
+                    df, dg = shifts[loop]
+                    u = u_up
+                    if study.alternate and ramp % 2 == 0:
+                        u, df, dg = u_up[::-1], df[::-1], dg[::-1]
+                    df = df + rng.normal(0.0, g.noise, u.size)
+                    dg = dg + rng.normal(0.0, g.noise, u.size)
+                    rate = drifts.get((g.configuration, g.medium, e, j))
+                    if rate is not None:
+                        df = df + rate * (ramp - 1)
+                    sweep = f"{g.configuration}/{g.medium}/e{e}/F{j}/r{ramp}"
+                    labels.append(
+                        (sweep, f"e{e}", g.configuration, g.medium, ramp, force, g.radius)
+                    )
+                    parts.append((u, df, dg))
+    # One table from whole columns: per-sweep labels repeated over the sweep's points.
+    sizes = [u.size for u, _, _ in parts]
+    names = ("sweep", "experiment", "configuration", "medium", "ramp", "normal_force_N")
+    names = (*names, "sphere_radius_m")
+    table = {
+        name: np.repeat(np.asarray(values), sizes)
+        for name, values in zip(names, zip(*labels, strict=True), strict=True)
+    }
+    for i, name in enumerate(("amplitude_m", "df_Hz", "dgamma_Hz")):
+        table[name] = np.concatenate([part[i] for part in parts])
+    out = pd.DataFrame(table, columns=list(_COLUMNS))
+    if constants:
+        out = out.assign(
+            fundamental_Hz=q.fundamental,
+            overtone=q.overtone,
+            area_m2=q.area,
+            n_contacts=n_p,
+            poisson=nu,
+        )
+    return out
+
+
+def example_study(n_experiments: int = 4) -> SweepStudy:
+    """The study of the bundled ``example_sweeps.csv`` (seed :data:`EXAMPLE_SEED`).
+
+    Modelled on paper 2's experiment: glass spheres on a silica-coated 5 MHz QCM (overtone 3,
+    A_eff = 2.5e-5 m², Z_q = 8.8e6 kg m⁻² s⁻¹), tripod n_P = 3, ν = 0.17 (E1 = E2 = E):
+
+    - ``SiO2_2.2mm`` (R = 1.1 mm): air E = 70 GPa, γ = 0.19 J/m²; water E = 77 GPa,
+      γ = 0.05 J/m²; ``SiO2_1.2mm`` (R = 0.6 mm): air E = 61 GPa, γ = 0.03 J/m²; water
+      E = 67 GPa, γ = 0.02 J/m²;
+    - loads: tripod 0.5 g plus 0, 0.5, ..., 2.5 g, F_N = m g/3 per contact (1.6 ... 9.8 mN);
+    - μ = 1.2 (F_N/1.635 mN)^-0.1 (falls slightly with load); ωξ such that ΔΓ0 = 5 Hz in air
+      and 8 Hz in water at every load (load-independent, as in paper 2, Fig. 7);
+    - amplitudes: 13 steps 0.5-10 nm in air, 11 steps 0.3-5 nm in water; four ramps per load
+      (up, down, up, down);
+    - experiment-to-experiment scatter: E x lognormal(3 %), γ x lognormal(20 %),
+      μ x lognormal(5 %);
+    - running-in: ramp 1 has κ 6 % lower and μ 30 % lower;
+    - noise: σ = 0.3 Hz (air) and 0.6 Hz (water) on Δf and ΔΓ;
+    - about 8 % of loads have a stick plateau in ramps 2-4 (critical displacement 25-40 % of
+      the largest amplitude); experiment 4 of SiO2_1.2mm in air follows Savkoor (τ0 such that
+      full sliding is at twice the largest amplitude); experiment 3 of SiO2_2.2mm in air drifts
+      by +1.5 Hz per ramp at the 1.0 g load.
+
+    Parameters
+    ----------
+    n_experiments : repeated experiments per configuration and medium (14 gives the
+        ~1,300-sweep table of the analysis benchmark)
+    """
+    q = QCM(5e6, 3, 2.5e-5)
+    P = q.sensitivity(3)
+    g = 9.81
+    loads = tuple((0.5e-3 + m) * g / 3.0 for m in (0.0, 0.5e-3, 1.0e-3, 1.5e-3, 2.0e-3, 2.5e-3))
+    air = dict(amplitudes=tuple(np.linspace(0.5e-9, 10e-9, 13)), omega_xi=5.0 / P, noise=0.3)
+    water = dict(amplitudes=tuple(np.linspace(0.3e-9, 5e-9, 11)), omega_xi=8.0 / P, noise=0.6)
+    groups = (
+        SweepGroup("SiO2_2.2mm", "air", 1.1e-3, 70e9, 0.19, **air),
+        SweepGroup("SiO2_2.2mm", "water", 1.1e-3, 77e9, 0.05, **water),
+        SweepGroup("SiO2_1.2mm", "air", 0.6e-3, 61e9, 0.03, **air),
+        SweepGroup("SiO2_1.2mm", "water", 0.6e-3, 67e9, 0.02, **water),
+    )
+    return SweepStudy(
+        groups=groups,
+        normal_forces=loads,
+        n_experiments=n_experiments,
+        qcm=q,
+        n_contacts=3,
+        poisson=0.17,
+        mu=1.2,
+        mu_exponent=-0.1,
+        scatter=(("E", 0.03), ("gamma", 0.2), ("mu", 0.05)),
+        running_in_kappa=0.94,
+        running_in_mu=0.7,
+        random_plateau=0.08,
+        savkoor_experiments=(("SiO2_1.2mm", "air", 4),),
+        drifts=(Drift("SiO2_2.2mm", "air", 3, 2, 1.5),),
+    )

@@ -1,0 +1,183 @@
+"""Tests of the prepared kernel table (contactres.dynamic.prepare) and of the far-field pieces.
+
+The prepared table must change nothing but the cost: every entry point gives bit-identical
+numbers with and without it, after pickling, and from two threads at once; a table made for
+other arguments is refused. The far-field tail and the Hertz transform are checked against
+scipy quadrature and scipy's spherical Bessel function (independent algorithms).
+"""
+
+import importlib
+import math
+import pickle
+import pkgutil
+import threading
+from dataclasses import FrozenInstanceError
+
+import numpy as np
+import pytest
+from scipy import integrate, special
+
+import contactres.dynamic as dyn
+from contactres import Material
+from contactres.dynamic import (
+    ALL_MODELS,
+    KernelTable,
+    contact_displacement,
+    contact_pressure,
+    dcsf,
+    dcsf_models,
+    dynamic_contact_stiffness,
+    prepare,
+)
+from contactres.dynamic.farfield import far_basis, tail_sine
+from contactres.dynamic.table import kernel_table
+from contactres.dynamic.weights import j1_over_s
+
+KLA = np.linspace(0.0, 2.0, 9)
+
+
+@pytest.fixture(scope="module")
+def cu111():
+    return Material.crystal("Cu").rotated((1, 1, 1))
+
+
+@pytest.fixture(scope="module")
+def table(cu111):
+    return prepare(cu111, 0.02, 1e-6)
+
+
+def _every_entry_point(m, **kw):
+    """Numbers of every public function that takes ``prepared`` (kw: prepared=... or nothing)."""
+    out = dict(dcsf_models(m, KLA, ALL_MODELS, **kw))
+    out["dcsf"] = dcsf(m, KLA, model="TP", **kw)
+    out["disp"] = contact_displacement(m, np.array([0.5, 1.4])[:, None], [0.0, 0.6, 1.0], 0.3, **kw)
+    out["press"] = contact_pressure(m, 1.1, [0.0, 0.7], [0.0, 0.4], **kw)
+    out["k_da"] = dynamic_contact_stiffness(m, 1e-3, 1.0, [1e6, 2e7], model="exact", **kw)
+    return out
+
+
+def _assert_identical(a, b):
+    assert a.keys() == b.keys()
+    for key in a:
+        np.testing.assert_array_equal(a[key], b[key], err_msg=key)
+
+
+def test_prepared_table_gives_the_same_numbers_as_a_call_that_prepares_its_own(cu111, table):
+    _assert_identical(_every_entry_point(cu111, prepared=table), _every_entry_point(cu111))
+
+
+def test_prepared_table_survives_pickling_bit_for_bit(cu111, table):
+    again = pickle.loads(pickle.dumps(table))
+    assert isinstance(again, KernelTable) and again is not table
+    _assert_identical(
+        _every_entry_point(cu111, prepared=again), _every_entry_point(cu111, prepared=table)
+    )
+    # still immutable after the round trip
+    assert not again.near_values.flags.writeable
+    with pytest.raises(ValueError, match="read-only"):
+        again.far_coeffs[0, 0] = 0.0
+
+
+def test_table_is_immutable(table):
+    with pytest.raises(FrozenInstanceError):
+        table.loss = 0.0
+    for name in ("constants", "theta", "ginf", "near_kappa", "near_weight", "near_values"):
+        assert not getattr(table, name).flags.writeable, name
+
+
+def test_two_threads_sharing_one_table_agree_with_serial_use(cu111, table):
+    serial = [dcsf_models(cu111, KLA + d, ALL_MODELS, prepared=table) for d in (0.0, 0.01)]
+    results = [None, None]
+
+    def work(i, d):
+        # each thread evaluates both curves, in a different order, several times
+        for _ in range(2):
+            results[i] = dcsf_models(cu111, KLA + d, ALL_MODELS, prepared=table)
+
+    threads = [threading.Thread(target=work, args=(i, d)) for i, d in enumerate((0.0, 0.01))]
+    for t in threads:
+        t.start()
+    for t in threads:
+        t.join()
+    for got, want in zip(results, serial, strict=True):
+        _assert_identical(got, want)
+
+
+def test_table_prepared_for_other_arguments_is_refused(cu111, table):
+    with pytest.raises(ValueError, match="another material"):
+        dcsf(Material.crystal("Cu"), 1.0, prepared=table)
+    with pytest.raises(ValueError, match=r"loss=0\.02, not 0\.0"):
+        dcsf(cu111, 1.0, loss=0.0, prepared=table)
+    with pytest.raises(ValueError, match=r"rtol=1e-06, not 0\.001"):
+        dcsf_models(cu111, 1.0, rtol=1e-3, prepared=table)
+    with pytest.raises(ValueError, match="explicit Resolution"):
+        contact_pressure(cu111, 1.0, 0.5, prepared=kernel_table(cu111, 0.02))
+    with pytest.raises(ValueError, match="another material"):
+        contact_displacement(Material.crystal("Cu").rotated((1, 1, 0)), 1.0, 0.5, prepared=table)
+    with pytest.raises(ValueError, match="prepared must be a kernel table"):
+        dcsf(cu111, 1.0, prepared={"loss": 0.02})
+    # the same constants in a new Material object are the same material
+    same = Material.from_voigt(np.array(cu111.C))
+    assert dcsf(same, 1.0, prepared=table) == dcsf(cu111, 1.0, prepared=table)
+
+
+def test_prepare_checks_its_arguments(cu111):
+    with pytest.raises(ValueError, match="loss"):
+        prepare(cu111, loss=1.5)
+    with pytest.raises(ValueError, match="rtol"):
+        prepare(cu111, rtol=0.0)
+    with pytest.raises(ValueError, match="lossy"):
+        prepare(cu111.with_loss(0.02))
+
+
+def test_no_module_level_state_in_the_dynamic_package():
+    """No caches: no mutable container, lru_cache or writable array at module level."""
+    for info in pkgutil.iter_modules(dyn.__path__):
+        mod = importlib.import_module(f"{dyn.__name__}.{info.name}")
+        for name, value in vars(mod).items():
+            if name.startswith("__"):
+                continue
+            where = f"{info.name}.{name}"
+            assert not isinstance(value, dict | list | set | bytearray), where
+            assert not hasattr(value, "cache_info"), where
+            if isinstance(value, np.ndarray):
+                assert not value.flags.writeable, where
+
+
+def test_far_grid_depends_only_on_the_smallest_ka(table):
+    """Curves with the same smallest k a share one grid; a smaller one extends it downwards."""
+    a = far_basis(table, np.array([0.3, 1.0, 2.0]))
+    b = far_basis(table, np.array([0.3, 0.5]))
+    c = far_basis(table, np.array([0.03, 0.5]))
+    np.testing.assert_array_equal(a.s, b.s)
+    assert c.s.size > a.s.size and c.s[0] < a.s[0]
+    np.testing.assert_array_equal(c.s[-a.s.size :], a.s)  # the same panels above
+    assert a.s_end == c.s_end
+
+
+@pytest.mark.parametrize("beta", [0.0, 1e-3, 0.07, 0.6])
+def test_tail_sine_against_scipy_oscillatory_quadrature(beta):
+    s_end = 150.0
+    # s = S t: S^-2.5 ∫₁^∞ t^-3.5 sin(βS t + π/4) dt, an O(1) integral for quad's tolerances
+    tol = {"epsabs": 1e-12, "epsrel": 1e-11}
+    if beta == 0.0:
+        unit = math.sin(math.pi / 4) * integrate.quad(lambda t: t**-3.5, 1.0, np.inf, **tol)[0]
+    else:
+        # sin(βSt + π/4) = (sin βSt + cos βSt)/√2: QAWF for the Fourier integrals to infinity
+        unit = sum(
+            integrate.quad(lambda t: t**-3.5, 1.0, np.inf, weight=w, wvar=beta * s_end, **tol)[0]
+            for w in ("sin", "cos")
+        ) / math.sqrt(2)
+    ref = unit * s_end**-2.5
+    assert tail_sine(np.array([beta]), s_end)[0] == pytest.approx(ref, rel=1e-9)
+
+
+def test_hertz_transform_is_spherical_bessel_over_s_across_the_series_switch():
+    s = np.array([1e-6, 0.1, 0.2999, 0.3001, 1.0, 7.0, 40.0])
+    np.testing.assert_allclose(j1_over_s(s), special.spherical_jn(1, s) / s, rtol=1e-13)
+    z = np.array([0.2 + 0.05j, 0.35 - 0.1j, 3.0 + 0.4j])
+    # complex s: j₁(s)/s from its power series Σ (−1)^k s^{2k}/((2k+3)!! (2k)!!) to 30 terms
+    k = np.arange(30)
+    coef = (-1.0) ** k / (special.factorial2(2 * k + 3) * special.factorial2(2 * k))
+    ref = np.array([np.sum(coef * zz ** (2 * k)) for zz in z])
+    np.testing.assert_allclose(j1_over_s(z), ref, rtol=1e-12)

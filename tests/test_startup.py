@@ -1,0 +1,275 @@
+"""Start-up stays light: ``import contactres`` and the CLI's help do not import heavy libraries.
+
+No wall-clock time is measured here (benchmarks/bench_startup.py does that). Instead every check
+runs a fresh interpreter and asserts that pandas, scipy and matplotlib (0.5-2 s of the old
+start-up) were never imported. A watcher on ``sys.meta_path`` records, for the first import of
+each heavy package, the contactres frames that led to it, so a failure names the culprit line.
+
+Also here: the lazy public API of ``contactres/__init__.py`` (PEP 562) still behaves like eager
+imports (every name resolves, ``dir``, ``from contactres import *``, subpackages, errors).
+"""
+
+from __future__ import annotations
+
+import ast
+import importlib
+import importlib.metadata
+import json
+import subprocess
+import sys
+import textwrap
+from pathlib import Path
+
+import click
+import pytest
+
+import contactres as cr
+
+HEAVY = ("pandas", "scipy", "matplotlib")
+
+# Module-level library imports the CLI may make (file -> imported module), with why. Each must
+# stay light: the test below fails if building the help pulls in pandas, scipy or matplotlib.
+ALLOWED_CLI_IMPORTS: dict[tuple[str, str], str] = {
+    ("dcsf.py", "..dynamic"): (
+        "the --model and --wavenumber choices come from its names (contactres.dynamic.models, "
+        "scipy-free; the package loads the rest on first use)"
+    ),
+}
+
+CLI_DIR = Path(cr.__file__).parent / "cli"
+
+# Runs in a fresh interpreter: argv[1] = JSON list of watched packages, argv[2] = code to run.
+# Prints one JSON object: the first import route of each watched package, the exit code and
+# the captured standard output of the code.
+PROBE = textwrap.dedent(
+    """
+    import contextlib, io, json, sys, traceback
+
+    watched = set(json.loads(sys.argv[1]))
+    routes = {name: ["(imported at interpreter start)"] for name in watched & set(sys.modules)}
+
+    class Watcher:
+        def find_spec(self, fullname, path=None, target=None):
+            top = fullname.partition(".")[0]
+            if top in watched and top not in routes:
+                routes[top] = [
+                    f"{f.filename.replace(chr(92), '/').split('/src/')[-1]}:{f.lineno}"
+                    for f in traceback.extract_stack()[:-1]
+                    if "contactres" in f.filename
+                ] or ["(outside contactres)"]
+            return None  # only watch: the normal finders do the import
+
+    sys.meta_path.insert(0, Watcher())
+    out = io.StringIO()
+    code = 0
+    with contextlib.redirect_stdout(out):
+        try:
+            exec(sys.argv[2], {"__name__": "__probe__"})
+        except SystemExit as exc:
+            code = exc.code if isinstance(exc.code, int) else (0 if exc.code is None else 1)
+    print(json.dumps({"routes": routes, "exit": code, "stdout": out.getvalue()}))
+    """
+)
+
+
+def probe(code: str, watched: tuple[str, ...] = HEAVY) -> dict:
+    """Run ``code`` in a fresh interpreter; return the import routes of ``watched`` and more."""
+    p = subprocess.run(
+        [sys.executable, "-c", PROBE, json.dumps(list(watched)), code],
+        capture_output=True,
+        text=True,
+        check=False,
+    )
+    assert p.returncode == 0, f"probe crashed:\n{p.stderr}"
+    return json.loads(p.stdout.splitlines()[-1])
+
+
+def run_cli(args: list[str]) -> str:
+    """Code that runs ``python -m contactres ARGS`` inside the probe."""
+    return (
+        "import runpy, sys\n"
+        f"sys.argv = ['contactres', *{args!r}]\n"
+        "runpy.run_module('contactres', run_name='__main__', alter_sys=True)\n"
+    )
+
+
+def check_light(result: dict) -> None:
+    """Fail on a heavy import, naming the route by which it came in."""
+    routes = result["routes"]
+    assert not routes, "heavy imports at start-up:\n" + "\n".join(
+        f"  {name}: via {' -> '.join(r)}" for name, r in routes.items()
+    )
+
+
+# Every command and group of the CLI, as argument lists (``[]`` is the root group). Written out
+# rather than read from the click tree so that collecting this file never imports the library;
+# test_cli_command_list_is_complete keeps the list in step with the tree.
+CLI_COMMANDS: list[list[str]] = [
+    [],
+    ["contact"],
+    ["crystals"],
+    ["dcsf"],
+    ["demo"],
+    ["figures"],
+    ["figures", "paper1"],
+    ["figures", "paper2"],
+    ["qcm"],
+    ["qcm", "analyze"],
+    ["qcm", "loop"],
+]
+
+
+# --- the probe itself -------------------------------------------------------------------------
+
+
+def test_probe_sees_an_import_and_its_route():
+    """The watcher is not blind: it reports a watched import and the exit code."""
+    result = probe("import json\nraise SystemExit(3)", watched=("json",))
+    # json may already be loaded by the probe itself; either way it must be reported.
+    assert "json" in result["routes"]
+    assert result["exit"] == 3
+    result = probe("import contactres.validation", watched=("numpy",))
+    assert any("contactres/validation.py" in r for r in result["routes"]["numpy"])
+
+
+def test_probe_route_names_the_contactres_lines():
+    result = probe(run_cli(["crystals", "--format", "csv"]))
+    assert result["exit"] == 0 and result["stdout"].startswith("name,")
+    # Running a command may import pandas; the route must point into contactres.
+    assert any(r.startswith("contactres/") for r in result["routes"]["pandas"])
+
+
+# --- start-up ---------------------------------------------------------------------------------
+
+
+def test_cli_modules_import_no_library_module_at_top_level():
+    """Building the click tree runs only click, the standard library and the CLI's own modules.
+
+    A static guard beside the probes: while a pending route exists, a probe sees only the first
+    import of each heavy package, and this check still pins every module-level import of cli/.
+    """
+    allowed_top = {"click", *sys.stdlib_module_names}
+    offenders = []
+    for path in sorted(CLI_DIR.glob("*.py")):
+        tree = ast.parse(path.read_text(encoding="utf-8"))
+        for node in tree.body:  # module level; `if TYPE_CHECKING:` blocks never run
+            if isinstance(node, ast.Import):
+                names = [a.name for a in node.names]
+            elif isinstance(node, ast.ImportFrom):
+                names = ["." * node.level + (node.module or "")]
+            else:
+                continue
+            for name in names:
+                if name.startswith(".") and not name.startswith(".."):
+                    continue  # the CLI's own modules
+                if name.partition(".")[0] in allowed_top or name == "__future__":
+                    continue
+                if (path.name, name) in ALLOWED_CLI_IMPORTS:
+                    continue
+                offenders.append(f"cli/{path.name}:{node.lineno}: {ast.unparse(node)}")
+    assert not offenders, "module-level library imports in the CLI:\n" + "\n".join(offenders)
+
+
+def test_import_contactres_imports_no_heavy_library():
+    check_light(probe("import contactres"))
+
+
+def test_import_contactres_imports_nothing_of_the_library():
+    """The root package defers everything, even numpy, until a name is used."""
+    result = probe("import contactres", watched=("numpy", "click"))
+    assert result["routes"] == {}
+
+
+@pytest.mark.parametrize("args", CLI_COMMANDS, ids=lambda a: " ".join(a) or "(root)")
+def test_cli_help_imports_no_heavy_library(args):
+    result = probe(run_cli([*args, "--help"]))
+    assert result["exit"] == 0 and "Usage:" in result["stdout"]
+    check_light(result)
+
+
+def test_cli_command_list_is_complete():
+    from contactres.cli import main
+
+    found: list[list[str]] = []
+
+    def walk(command: click.Command, path: list[str]) -> None:
+        found.append(path)
+        if isinstance(command, click.Group):
+            for name, sub in sorted(command.commands.items()):
+                walk(sub, [*path, name])
+
+    walk(main, [])
+    assert sorted(found) == sorted(CLI_COMMANDS), "update CLI_COMMANDS to the click tree"
+
+
+def test_bare_cli_and_version_import_no_heavy_library():
+    result = probe(run_cli([]))
+    assert result["exit"] == 0 and "Usage:" in result["stdout"]
+    check_light(result)
+    result = probe(run_cli(["--version"]))
+    assert result["exit"] == 0
+    assert result["stdout"].strip() == f"contactres, version {cr.__version__}"
+    check_light(result)
+
+
+# --- the lazy public API ----------------------------------------------------------------------
+
+
+def test_every_public_name_resolves_and_is_listed():
+    missing = [name for name in cr.__all__ if not hasattr(cr, name)]
+    assert not missing, f"names in contactres.__all__ that do not resolve: {missing}"
+    assert set(cr.__all__) <= set(dir(cr))
+    assert len(set(cr.__all__)) == len(cr.__all__)
+
+
+def test_public_names_are_the_objects_of_their_modules():
+    """``cr.X`` is the very object of the module the mapping names (no copies, no wrappers)."""
+    for name, module in cr._EXPORTS.items():
+        assert getattr(cr, name) is getattr(importlib.import_module(module, "contactres"), name)
+    assert set(cr.__all__) == {*cr._EXPORTS, "__version__"}
+
+
+def test_star_import_gives_every_public_name():
+    namespace: dict = {}
+    exec("from contactres import *", namespace)
+    assert set(cr.__all__) <= set(namespace)
+    assert namespace["hertz"] is cr.hertz
+
+
+def test_unknown_name_raises_the_usual_errors():
+    with pytest.raises(AttributeError, match=r"^module 'contactres' has no attribute 'nope'$"):
+        cr.nope  # noqa: B018
+    with pytest.raises(ImportError, match="cannot import name 'nope'"):
+        exec("from contactres import nope", {})
+    assert not hasattr(cr, "_EXPORTS_typo")
+
+
+def test_version_is_the_installed_one():
+    assert cr.__version__ == importlib.metadata.version("contactres")
+
+
+def test_subpackages_load_on_attribute_access_in_a_fresh_interpreter():
+    """``cr.dynamic.dcsf`` works without importing ``contactres.dynamic`` first."""
+    code = textwrap.dedent(
+        """
+        import sys
+        import contactres as cr
+
+        subpackages = ["resonators", "measurements", "tangential", "normal", "dynamic",
+                       "analysis", "report"]
+        assert not any(f"contactres.{s}" in sys.modules for s in subpackages)
+        for s in subpackages:  # the first accesses go through contactres.__getattr__
+            assert getattr(cr, s).__name__ == f"contactres.{s}", s
+        assert cr.dynamic.dcsf is cr.dcsf
+        assert cr.normal.hertz is cr.hertz
+        assert cr.tangential.VoigtLoop is cr.VoigtLoop
+        assert callable(cr.analysis.analyze)
+        assert {"dynamic", "analysis", "report"} <= set(dir(cr))
+        for name in cr.__all__:
+            getattr(cr, name)
+        assert "contactres.cli" not in sys.modules, "the library imported the CLI"
+        print("ok")
+        """
+    )
+    result = probe(code)
+    assert result["exit"] == 0 and result["stdout"] == "ok\n"
