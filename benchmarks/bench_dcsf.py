@@ -2,7 +2,7 @@
 material; a 21-point curve of the exact rigid-punch model (Galerkin); and the reuse of a prepared
 kernel table.
 
-Targets: the six-model curve under 0.5 s (design.md §6; issue 6) and the exact curve under 1 s
+Targets: the six-model curve under 0.5 s (the project's targets) and the exact curve under 1 s
 (issue 7), at the default accuracy (rtol = 1e-6), each for a material never seen before: the
 timed call prepares its own kernel table and far-field weights (nothing is cached between calls).
 Also printed: the accuracy, the largest relative deviation of every model from a converged run

@@ -10,13 +10,25 @@ a dependency of the design even if it never runs). The tests fail on
     layer (:data:`KEPT_APART`), a module without a layer, or an import that resolves to no module;
 (c) an import of ``contactres.cli`` from outside the CLI (``python -m contactres``, i.e.
     ``__main__``, is the one entry point that runs it);
-(d) a private name (``_x``, not a dunder) imported from another module, as
-    ``from .x import _y`` or ``from .x import _y as z``, or a private module (``pkg._m``)
-    imported from outside its package ``pkg``;
+(d) a private name (``_x``, not a dunder) taken from another module of the package: imported,
+    as ``from .x import _y`` or ``from .x import _y as z``, or reached through a module, as
+    ``from . import x`` then ``x._y`` (or ``import contactres.x as m`` then ``m._y``, or
+    ``contactres.x._y``); or a private module (``pkg._m``) imported or reached from outside its
+    package ``pkg``. Private names of other distributions are not our concern;
 
-and, separately, on a module over :data:`MAX_LINES` lines and on any use of
-``functools.lru_cache`` / ``functools.cache`` (no module-level caches: a fit or a forward model
-is a pure function of its arguments).
+and, separately, on a module over :data:`MAX_LINES` lines, and on module-level caches (a fit or
+a forward model is a pure function of its arguments):
+
+(e) any use of ``functools.lru_cache`` / ``functools.cache``;
+(f) a hand-written cache: a module-level name bound to a mutable container (a dict, list or set
+    display or comprehension, or a call of ``dict``/``list``/``set`` or of
+    ``collections.defaultdict``/``OrderedDict``/``deque``/``Counter``; annotated or not) that the
+    module mutates (``X[k] = v``, ``X[k] += v``, ``del X[k]``, ``X.append(...)``/``update``/
+    ``setdefault``/``pop``/... or ``X += ...``), and any module-level name a function rebinds
+    through ``global X``. A container that is only read (a constant lookup table) is fine; a
+    deliberate registry is listed, with its reason, in :data:`REGISTRIES`. Mutations are found
+    in every scope of the module (functions, classes, import time); a function's own local or
+    parameter of the same name shadows the module name and is not counted.
 
 How imports resolve (the subtle part):
 
@@ -35,15 +47,18 @@ How imports resolve (the subtle part):
 
 Not seen here: imports by string (``importlib.import_module``), which is how the root
 ``__init__`` loads its public names lazily; tests/test_startup.py resolves every one of them and
-checks that the library never imports the CLI.
+checks that the library never imports the CLI. Nor ``getattr(module, "_x")``, nor a container
+mutated from *another* module (``from .m import X`` then ``X.append(...)``).
 
-The one known exception lives in :data:`ALLOWED`, with its reason; it is honoured only for an
-import inside a function (at call time), never for one at module level.
+The one known import exception lives in :data:`ALLOWED`, with its reason; it is honoured only
+for an import inside a function (at call time), never for one at module level. An entry of
+:data:`REGISTRIES` that no longer names a mutated module-level container is reported (stale).
 """
 
 from __future__ import annotations
 
 import ast
+import dataclasses
 import itertools
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
@@ -95,10 +110,55 @@ ALLOWED: dict[tuple[str, str], str] = {
     ),
 }
 
+# (module, module-level name) -> why: containers mutated on purpose (registries, not caches).
+REGISTRIES: dict[tuple[str, str], str] = {
+    ("contactres.measurements.readers", "READERS"): (
+        "the reader plug-in registry: register_reader inserts a user's reader; it holds what "
+        "callers registered, never a result computed from arguments (a registry, not a cache)"
+    ),
+}
+
 CLI = "cli"
 ENTRY_POINTS = frozenset({"__main__"})  # may import the CLI: `python -m contactres`
 MAX_LINES = 500
 CACHE_DECORATORS = frozenset({"functools.lru_cache", "functools.cache"})
+# Calls that build a mutable container (builtins by name, the rest by dotted origin).
+MUTABLE_FACTORIES = frozenset(
+    {
+        "dict",
+        "list",
+        "set",
+        "collections.defaultdict",
+        "collections.OrderedDict",
+        "collections.deque",
+        "collections.Counter",
+    }
+)
+MUTABLE_DISPLAYS = (ast.Dict, ast.List, ast.Set, ast.DictComp, ast.ListComp, ast.SetComp)
+MUTATING_METHODS = frozenset(
+    {
+        "append",
+        "extend",
+        "insert",
+        "update",
+        "setdefault",
+        "pop",
+        "popitem",
+        "clear",
+        "add",
+        "discard",
+        "remove",
+        "sort",
+        "reverse",
+        "appendleft",
+        "extendleft",
+        "popleft",
+        "rotate",
+        "difference_update",
+        "intersection_update",
+        "symmetric_difference_update",
+    }
+)
 
 
 # --- machinery -------------------------------------------------------------------------------
@@ -113,6 +173,7 @@ class Rules:
     layer_names: tuple[str, ...] | None = None
     kept_apart: tuple[frozenset[str], ...] = ()
     allowed: Mapping[tuple[str, str], str] = field(default_factory=dict)
+    registries: Mapping[tuple[str, str], str] = field(default_factory=dict)
     cli: str = CLI
     entry_points: frozenset[str] = ENTRY_POINTS
 
@@ -222,12 +283,28 @@ def _implicit(importer: str, target: str, package: str, edge: Edge) -> list[Edge
     return out
 
 
+def _here(module: Module) -> str:
+    """The package that relative imports of ``module`` start from."""
+    return module.name if module.is_package else module.name.rpartition(".")[0]
+
+
+def _from_base(node: ast.ImportFrom, here: str) -> str | None:
+    """The dotted module a from-import reads from (None: a relative import above the top)."""
+    if not node.level:
+        return node.module or ""
+    parts = here.split(".")
+    if node.level - 1 >= len(parts):
+        return None
+    base = ".".join(parts[: len(parts) - (node.level - 1)])
+    return f"{base}.{node.module}" if node.module else base
+
+
 def collect(modules: Mapping[str, Module], package: str) -> tuple[list[Edge], list[Unresolved]]:
     """Every dependency between modules of ``package`` (explicit and implicit edges)."""
     edges: list[Edge] = []
     unresolved: list[Unresolved] = []
     for module in modules.values():
-        here = module.name if module.is_package else module.name.rpartition(".")[0]
+        here = _here(module)
         for node, where in _imports(module.tree):
             statement = ast.unparse(node)
             found: dict[str, list[str]] = {}  # target module -> attribute names taken from it
@@ -240,16 +317,10 @@ def collect(modules: Mapping[str, Module], package: str) -> tuple[list[Edge], li
                         continue
                     found.setdefault(alias.name, [])
             else:
-                if node.level:
-                    parts = here.split(".")
-                    if node.level - 1 >= len(parts):
-                        unresolved.append(Unresolved(module.name, node.lineno, statement))
-                        continue
-                    base = ".".join(parts[: len(parts) - (node.level - 1)])
-                    if node.module:
-                        base = f"{base}.{node.module}"
-                else:
-                    base = node.module or ""
+                base = _from_base(node, here)
+                if base is None:
+                    unresolved.append(Unresolved(module.name, node.lineno, statement))
+                    continue
                 if not _contains(package, base):
                     continue  # another distribution
                 if base not in modules:
@@ -488,6 +559,67 @@ def private_imports(
     return lines
 
 
+def _module_names(module: Module, modules: Mapping[str, Module], package: str):
+    """Local name -> the modules of the package an import statement binds it to (any scope)."""
+    bound: dict[str, set[str]] = {}
+    for node, _ in _imports(module.tree):
+        if isinstance(node, ast.Import):
+            for alias in node.names:
+                if not _contains(package, alias.name) or alias.name not in modules:
+                    continue
+                if alias.asname:  # `import pkg.x as m` binds m to pkg.x
+                    bound.setdefault(alias.asname, set()).add(alias.name)
+                else:  # `import pkg.x` binds pkg
+                    top = alias.name.partition(".")[0]
+                    bound.setdefault(top, set()).add(top)
+            continue
+        base = _from_base(node, _here(module))
+        if base is None or not _contains(package, base):
+            continue
+        for alias in node.names:
+            submodule = f"{base}.{alias.name}"
+            if submodule in modules:  # `from . import x`: the module x
+                bound.setdefault(alias.asname or alias.name, set()).add(submodule)
+    return bound
+
+
+def _resolve(
+    expr: ast.expr, bound: Mapping[str, set[str]], modules: Mapping[str, Module]
+) -> set[str]:
+    """The modules of the package ``expr`` names (``m``, ``m.sub``, ``pkg.x.y``)."""
+    if isinstance(expr, ast.Name):
+        return bound.get(expr.id, set())
+    if isinstance(expr, ast.Attribute):
+        subs = {f"{m}.{expr.attr}" for m in _resolve(expr.value, bound, modules)}
+        return {m for m in subs if m in modules}
+    return set()
+
+
+def private_attributes(modules: Mapping[str, Module], package: str, root: Path) -> list[str]:
+    """Private names reached as attributes of another module of the package (``m._x``)."""
+    lines = []
+    for module in sorted(modules.values(), key=lambda m: m.name):
+        bound = _module_names(module, modules, package)
+        if not bound:
+            continue
+        attributes = [n for n in ast.walk(module.tree) if isinstance(n, ast.Attribute)]
+        for node in sorted(attributes, key=lambda n: (n.lineno, n.col_offset)):
+            if not _private(node.attr):
+                continue
+            at = f"{module.path.relative_to(root)}:{node.lineno}: {ast.unparse(node)}"
+            for owner in sorted(_resolve(node.value, bound, modules)):
+                if owner == module.name:
+                    continue
+                if f"{owner}.{node.attr}" in modules:  # a private module: fine inside `owner`
+                    if not _contains(owner, module.name):
+                        lines.append(
+                            f"{module.name} uses {owner}.{node.attr}, private to {owner}, at {at}"
+                        )
+                else:
+                    lines.append(f"{module.name} uses private {node.attr} of {owner} at {at}")
+    return lines
+
+
 def long_modules(modules: Mapping[str, Module], limit: int, root: Path) -> list[str]:
     return [
         f"{m.path.relative_to(root)}: {m.n_lines} lines (limit {limit})"
@@ -496,29 +628,225 @@ def long_modules(modules: Mapping[str, Module], limit: int, root: Path) -> list[
     ]
 
 
+def _stdlib_aliases(tree: ast.Module, roots: frozenset[str]) -> dict[str, str]:
+    """Local name -> dotted origin, for imports of the modules ``roots`` (any scope)."""
+    aliases: dict[str, str] = {}
+    for node, _ in _imports(tree):
+        if isinstance(node, ast.Import):
+            for a in node.names:
+                if a.name in roots:
+                    aliases[a.asname or a.name] = a.name
+        elif node.module in roots and not node.level:
+            for a in node.names:
+                aliases[a.asname or a.name] = f"{node.module}.{a.name}"
+    return aliases
+
+
+def _origin(expr: ast.expr, aliases: Mapping[str, str]) -> str | None:
+    """``name`` or ``module.name`` as its dotted origin, through the aliases."""
+    if isinstance(expr, ast.Name):
+        return aliases.get(expr.id)
+    if isinstance(expr, ast.Attribute) and isinstance(expr.value, ast.Name):
+        module = aliases.get(expr.value.id)
+        if module is not None and "." not in module:
+            return f"{module}.{expr.attr}"
+    return None
+
+
 def cache_uses(modules: Mapping[str, Module], root: Path) -> list[str]:
     """Every use of functools.lru_cache / functools.cache, through any alias."""
     lines = []
     for m in modules.values():
-        aliases: dict[str, str] = {}  # local name -> dotted origin
-        for node, _ in _imports(m.tree):
-            if isinstance(node, ast.Import):
-                for a in node.names:
-                    if a.name == "functools":
-                        aliases[a.asname or a.name] = "functools"
-            elif node.module == "functools" and not node.level:
-                for a in node.names:
-                    aliases[a.asname or a.name] = f"functools.{a.name}"
+        aliases = _stdlib_aliases(m.tree, frozenset({"functools"}))
         for node in ast.walk(m.tree):
-            origin = None
-            if isinstance(node, ast.Name):
-                origin = aliases.get(node.id)
-            elif isinstance(node, ast.Attribute) and isinstance(node.value, ast.Name):
-                if aliases.get(node.value.id) == "functools":
-                    origin = f"functools.{node.attr}"
+            if not isinstance(node, ast.Name | ast.Attribute):
+                continue
+            origin = _origin(node, aliases)
             if origin in CACHE_DECORATORS:
                 lines.append(f"{m.path.relative_to(root)}:{node.lineno}: {origin}")
     return sorted(set(lines))
+
+
+_SCOPES = (ast.FunctionDef, ast.AsyncFunctionDef, ast.Lambda, ast.ClassDef)
+
+
+def _own_nodes(scope: ast.AST) -> list[tuple[ast.AST, ast.stmt | None]]:
+    """The nodes that run in ``scope`` (a module, function, lambda or class body), each with its
+    statement. Nested scopes are not entered, but their decorators, defaults and bases (which
+    run in ``scope``) are."""
+    out: list[tuple[ast.AST, ast.stmt | None]] = []
+
+    def visit(node: ast.AST, stmt: ast.stmt | None) -> None:
+        here = node if isinstance(node, ast.stmt) else stmt
+        out.append((node, here))
+        if isinstance(node, ast.FunctionDef | ast.AsyncFunctionDef | ast.Lambda):
+            outer: list[ast.expr | None] = [*node.args.defaults, *node.args.kw_defaults]
+            if not isinstance(node, ast.Lambda):
+                outer += node.decorator_list
+        elif isinstance(node, ast.ClassDef):
+            outer = [*node.bases, *(k.value for k in node.keywords), *node.decorator_list]
+        else:
+            for child in ast.iter_child_nodes(node):
+                visit(child, here)
+            return
+        for expr in outer:
+            if expr is not None:
+                visit(expr, here)
+
+    for node in [scope.body] if isinstance(scope, ast.Lambda) else scope.body:
+        visit(node, None)
+    return out
+
+
+def _locals(scope: ast.AST, nodes: list[tuple[ast.AST, ast.stmt | None]]) -> set[str]:
+    """Names local to a function or class body (those it declares ``global`` excluded)."""
+    names: set[str] = set()
+    if isinstance(scope, ast.FunctionDef | ast.AsyncFunctionDef | ast.Lambda):
+        a = scope.args
+        names |= {x.arg for x in [*a.posonlyargs, *a.args, *a.kwonlyargs]}
+        names |= {x.arg for x in (a.vararg, a.kwarg) if x is not None}
+    for node, _ in nodes:
+        if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Store | ast.Del):
+            names.add(node.id)
+        elif isinstance(node, ast.FunctionDef | ast.AsyncFunctionDef | ast.ClassDef):
+            names.add(node.name)
+        elif isinstance(node, ast.Import | ast.ImportFrom):
+            names |= {(a.asname or a.name).partition(".")[0] for a in node.names}
+        elif isinstance(node, ast.ExceptHandler) and node.name:
+            names.add(node.name)
+    return names - _declared_global(nodes)
+
+
+def _declared_global(nodes: list[tuple[ast.AST, ast.stmt | None]]) -> set[str]:
+    return {n for node, _ in nodes if isinstance(node, ast.Global) for n in node.names}
+
+
+def _subscript_root(expr: ast.expr) -> str | None:
+    """``X`` for ``X``, ``X[a]`` and ``X[a][b]``; None otherwise."""
+    while isinstance(expr, ast.Subscript):
+        expr = expr.value
+    return expr.id if isinstance(expr, ast.Name) else None
+
+
+def _module_containers(module: Module) -> dict[str, tuple[int, str]]:
+    """Module-level names bound to a mutable container -> (line, what it is)."""
+    aliases = _stdlib_aliases(module.tree, frozenset({"collections"}))
+    found: dict[str, tuple[int, str]] = {}
+    for node, _ in _own_nodes(module.tree):
+        if isinstance(node, ast.Assign):
+            pairs = [(t, node.value) for t in node.targets]
+        elif isinstance(node, ast.AnnAssign) and node.value is not None:
+            pairs = [(node.target, node.value)]
+        else:
+            continue
+        while pairs:
+            target, value = pairs.pop()
+            if isinstance(target, ast.Tuple | ast.List) and isinstance(value, ast.Tuple | ast.List):
+                pairs.extend(zip(target.elts, value.elts, strict=False))  # A, B = {}, []
+                continue
+            if not isinstance(target, ast.Name):
+                continue
+            what = None
+            if isinstance(value, MUTABLE_DISPLAYS):
+                what = type(value).__name__.lower()  # dict, list, set, dictcomp, ...
+            elif isinstance(value, ast.Call):
+                origin = _origin(value.func, aliases)
+                if origin is None and isinstance(value.func, ast.Name):
+                    origin = value.func.id  # a builtin, unless an import rebinds the name
+                if origin in MUTABLE_FACTORIES:
+                    what = f"{origin}()"
+            if what is not None:
+                found.setdefault(target.id, (node.lineno, what))
+    return found
+
+
+@dataclass(frozen=True)
+class Change:
+    """One statement that changes module-level state."""
+
+    name: str
+    line: int
+    where: str  # "at import", "in f()", "in class C"
+    statement: str
+    rebound: bool  # through `global name` (otherwise: the container is mutated in place)
+
+
+def _changes(module: Module, containers: set[str]) -> list[Change]:
+    """Mutations of the module-level ``containers``, and every rebinding through ``global``."""
+    out: list[Change] = []
+
+    def scan_scope(scope: ast.AST, where: str, shadowed: frozenset[str]) -> None:
+        nodes = _own_nodes(scope)
+        at_module = isinstance(scope, ast.Module)
+        local = set() if at_module else _locals(scope, nodes)
+        declared = set() if at_module else _declared_global(nodes)
+        visible = (containers - local - shadowed) | (containers & declared)
+
+        def hit(name: str, node: ast.AST, stmt: ast.stmt | None, rebound: bool = False) -> None:
+            text = ast.unparse(stmt if stmt is not None else node).splitlines()[0]
+            out.append(Change(name, node.lineno, where, text, rebound))
+
+        for node, stmt in nodes:
+            if isinstance(node, ast.Subscript) and isinstance(node.ctx, ast.Store | ast.Del):
+                root = _subscript_root(node)  # X[k] = v, X[k] += v, del X[k], for X[k] in ...
+                if root in visible:
+                    hit(root, node, stmt)
+            elif isinstance(node, ast.Call) and isinstance(node.func, ast.Attribute):
+                root = _subscript_root(node.func.value)  # X.append(v), X[k].add(v)
+                if root in visible and node.func.attr in MUTATING_METHODS:
+                    hit(root, node, stmt)
+            elif isinstance(node, ast.AugAssign) and isinstance(node.target, ast.Name):
+                if at_module and node.target.id in containers:  # X += [...] in place
+                    hit(node.target.id, node, stmt)
+            elif isinstance(node, ast.Name) and isinstance(node.ctx, ast.Store | ast.Del):
+                if node.id in declared:
+                    hit(node.id, node, stmt, rebound=True)
+        # a function's locals shadow the module names in the functions it encloses; a class's
+        # do not (its methods do not see the class body)
+        inner = shadowed if isinstance(scope, ast.Module | ast.ClassDef) else shadowed | local
+        for node, _ in nodes:
+            if isinstance(node, _SCOPES):
+                if isinstance(node, ast.ClassDef):
+                    label = f"in class {node.name}"
+                elif isinstance(node, ast.Lambda):
+                    label = f"in a lambda {where}"
+                else:
+                    label = f"in {node.name}()"
+                scan_scope(node, label, frozenset(inner))
+
+    scan_scope(module.tree, "at import", frozenset())
+    return out
+
+
+def mutable_state(modules: Mapping[str, Module], rules: Rules, root: Path) -> list[str]:
+    """Module-level containers the module mutates, names rebound through ``global``, and stale
+    entries of the registry allow-list."""
+    lines = []
+    used: set[tuple[str, str]] = set()
+    for m in sorted(modules.values(), key=lambda m: m.name):
+        containers = _module_containers(m)
+        path = m.path.relative_to(root)
+        seen: set[tuple[str, int]] = set()
+        for c in sorted(_changes(m, set(containers)), key=lambda c: (c.line, c.name)):
+            if (c.name, c.line) in seen:
+                continue
+            seen.add((c.name, c.line))
+            if (m.name, c.name) in rules.registries:
+                used.add((m.name, c.name))
+                continue
+            if c.name in containers:
+                line, what = containers[c.name]
+                what = f"module-level {what} of line {line}"
+            else:
+                what = "module-level name"
+            how = f"rebound through `global {c.name}`" if c.rebound else "mutated"
+            lines.append(f"{path}:{c.line}: {c.name} ({what}) {how} {c.where}: {c.statement}")
+    for module, name in sorted(set(rules.registries) - used):
+        lines.append(
+            f"registry allow-list names {module} {name}, which is not a module-level container "
+            "the module changes (stale entry: remove it)"
+        )
+    return lines
 
 
 @dataclass(frozen=True)
@@ -533,6 +861,7 @@ class Layout:
     private: list[str]
     long: list[str]
     caches: list[str]
+    state: list[str]
 
 
 def check(src: Path, rules: Rules, max_lines: int = MAX_LINES) -> Layout:
@@ -545,9 +874,13 @@ def check(src: Path, rules: Rules, max_lines: int = MAX_LINES) -> Layout:
         cycles=find_cycles(edges, modules, rules, root),
         upward=upward_imports(edges, unresolved, modules, rules, root),
         cli=cli_imports(edges, modules, rules, root),
-        private=private_imports(edges, modules, rules, root),
+        private=[
+            *private_imports(edges, modules, rules, root),
+            *private_attributes(modules, rules.package, root),
+        ],
         long=long_modules(modules, max_lines, root),
         caches=cache_uses(modules, root),
+        state=mutable_state(modules, rules, root),
     )
 
 
@@ -564,6 +897,7 @@ RULES = Rules(
     layer_names=LAYER_NAMES,
     kept_apart=KEPT_APART,
     allowed=ALLOWED,
+    registries=REGISTRIES,
 )
 
 
@@ -591,7 +925,7 @@ def test_nothing_imports_the_cli(layout):
 
 
 def test_no_private_names_cross_module_borders(layout):
-    fail_with("private names imported from another module", layout.private)
+    fail_with("private names taken from another module", layout.private)
 
 
 def test_no_module_over_the_line_limit(layout):
@@ -600,6 +934,10 @@ def test_no_module_over_the_line_limit(layout):
 
 def test_no_module_level_caches(layout):
     fail_with("functools caches (no module-level caches)", layout.caches)
+
+
+def test_no_hand_written_module_level_caches(layout):
+    fail_with("module-level state changed by the module (no module-level caches)", layout.state)
 
 
 # --- the machinery, on a synthetic package ---------------------------------------------------
@@ -615,6 +953,7 @@ FAKE_RULES = Rules(
     ),
     kept_apart=(frozenset({"mid", "side"}),),
     allowed={(f"{FAKE}.high", f"{FAKE}.cli"): "test", (f"{FAKE}.low", f"{FAKE}.high"): "test"},
+    registries={(f"{FAKE}.mid.plugins", "PLUGINS"): "test"},
 )
 
 CLEAN = {
@@ -628,6 +967,10 @@ CLEAN = {
         "def f():\n    return h() + X\n"
     ),
     "mid/helper.py": "from .. import low\n\n\ndef h():\n    return low.X\n",
+    "mid/plugins.py": (
+        "PLUGINS = []\nTABLE = {'a': 1}\n\n\ndef register(f):\n    PLUGINS.append(f)\n"
+        "    return f\n\n\ndef lookup(key):\n    return TABLE[key]\n"
+    ),
     "side.py": "from .low import X\n",
     "high.py": "from .mid import f\nfrom .mid.core import f as f2\nimport fake.side\n\n\ndef g():\n"
     "    return f() + f2()\n",
@@ -645,12 +988,12 @@ def write_package(tmp_path: Path, files: Mapping[str, str]) -> Path:
     return src
 
 
-def fake_layout(tmp_path: Path, **changes: str) -> Layout:
+def fake_layout(tmp_path: Path, rules: Rules = FAKE_RULES, **changes: str) -> Layout:
     """The clean package with files replaced or added (``mid__core_py`` -> mid/core.py)."""
     files = dict(CLEAN)
     for key, text in changes.items():
         files[key.replace("__", "/").replace("_py", ".py")] = text
-    return check(write_package(tmp_path, files), FAKE_RULES, max_lines=20)
+    return check(write_package(tmp_path, files), rules, max_lines=20)
 
 
 def everything(layout: Layout) -> list[str]:
@@ -661,6 +1004,7 @@ def everything(layout: Layout) -> list[str]:
         *layout.private,
         *layout.long,
         *layout.caches,
+        *layout.state,
     ]
 
 
@@ -793,4 +1137,96 @@ def test_machinery_reports_long_modules_and_caches(tmp_path):
         "src/fake/side.py:10: functools.cache",
         "src/fake/side.py:15: functools.cache",
         "src/fake/side.py:5: functools.lru_cache",
+    ]
+
+
+def test_machinery_reports_private_names_reached_through_a_module(tmp_path):
+    layout = fake_layout(
+        tmp_path,
+        mid___impl_py="f = 1\n",
+        mid__core_py="from . import _impl\n\n\ndef f():\n    return _impl.f\n",  # its package
+        high_py=(
+            "import fake.low\nimport fake.mid.core as core\nimport numpy as np\n"
+            "from . import low, mid\nfrom . import low as lw\nfrom .mid import helper\n\n\n"
+            "def g():\n    return (\n        low._hidden(), lw._hidden, helper._h, core._c,\n"
+            "        fake.low._hidden, mid._impl.f, mid.core._c,\n"
+            "        np._NoValue, low.__name__, low.X, mid.core.f, _impl._x,\n    )\n"
+        ),
+    )
+    assert layout.private == [
+        "fake.high uses private _hidden of fake.low at src/fake/high.py:11: low._hidden",
+        "fake.high uses private _hidden of fake.low at src/fake/high.py:11: lw._hidden",
+        "fake.high uses private _h of fake.mid.helper at src/fake/high.py:11: helper._h",
+        "fake.high uses private _c of fake.mid.core at src/fake/high.py:11: core._c",
+        "fake.high uses private _hidden of fake.low at src/fake/high.py:12: fake.low._hidden",
+        "fake.high uses fake.mid._impl, private to fake.mid, at src/fake/high.py:12: mid._impl",
+        "fake.high uses private _c of fake.mid.core at src/fake/high.py:12: mid.core._c",
+    ]
+
+
+def test_machinery_accepts_read_only_module_containers(tmp_path):
+    """Lookup tables that are only read, and locals or parameters that shadow them, are fine."""
+    layout = fake_layout(
+        tmp_path,
+        side_py=(
+            "from collections import defaultdict as dd\n\nCONVENTIONS = {'a': 1}\n"
+            "ORDER: list[str] = ['a']\nCOUNTS = dd(int)\n\n\n"
+            "def f(CONVENTIONS, key):\n    CONVENTIONS[key] = 2\n    ORDER = []\n"
+            "    ORDER.append(key)\n    local = dict(COUNTS)\n    local[key] = 1\n"
+            "    return [CONVENTIONS['a'], *ORDER, COUNTS.get(key), *sorted(local)]\n"
+        ),
+    )
+    assert everything(layout) == []
+
+
+def test_machinery_reports_mutated_module_containers(tmp_path):
+    """A hand-written cache, in all its shapes."""
+    layout = fake_layout(
+        tmp_path,
+        side_py=(
+            "import collections\n\n_TABLES: dict = {}\n_SEEN, _Q = set(), collections.deque()\n"
+            "_LAST = None\nfor k in 'ab':\n    _TABLES[k] = 0\n\n\n"
+            "def load(key):\n    global _LAST\n    _TABLES[key] += 1\n    del _TABLES[key]\n"
+            "    _SEEN.add(key)\n    _Q[0].appendleft(key)\n    _LAST = key\n"
+        ),
+    )
+    path = "src/fake/side.py"
+    assert layout.state == [
+        f"{path}:7: _TABLES (module-level dict of line 3) mutated at import: _TABLES[k] = 0",
+        f"{path}:12: _TABLES (module-level dict of line 3) mutated in load(): _TABLES[key] += 1",
+        f"{path}:13: _TABLES (module-level dict of line 3) mutated in load(): del _TABLES[key]",
+        f"{path}:14: _SEEN (module-level set() of line 4) mutated in load(): _SEEN.add(key)",
+        f"{path}:15: _Q (module-level collections.deque() of line 4) mutated in load(): "
+        "_Q[0].appendleft(key)",
+        f"{path}:16: _LAST (module-level name) rebound through `global _LAST` in load(): "
+        "_LAST = key",
+    ]
+
+
+def test_machinery_reports_mutations_in_nested_scopes(tmp_path):
+    """A nested function sees the module name unless an enclosing function shadows it."""
+    layout = fake_layout(
+        tmp_path,
+        side_py=(
+            "CACHE = {}\n\n\ndef outer(CACHE):\n    def inner():\n        CACHE[1] = 1\n\n"
+            "    return inner\n\n\nclass C:\n    def m(self):\n        CACHE.update(a=1)\n"
+        ),
+    )
+    assert layout.state == [
+        "src/fake/side.py:13: CACHE (module-level dict of line 1) mutated in m(): CACHE.update(a=1)"
+    ]
+
+
+def test_machinery_honours_the_registry_allow_list(tmp_path):
+    """mid/plugins.py mutates PLUGINS (allow-listed) and only reads TABLE: clean."""
+    assert fake_layout(tmp_path / "a").state == []
+    unlisted = dataclasses.replace(FAKE_RULES, registries={})
+    assert fake_layout(tmp_path / "b", rules=unlisted).state == [
+        "src/fake/mid/plugins.py:6: PLUGINS (module-level list of line 1) mutated in "
+        "register(): PLUGINS.append(f)"
+    ]
+    stale = fake_layout(tmp_path / "c", mid__plugins_py="PLUGINS = []\n")
+    assert stale.state == [
+        "registry allow-list names fake.mid.plugins PLUGINS, which is not a module-level "
+        "container the module changes (stale entry: remove it)"
     ]

@@ -2,11 +2,13 @@
 
 A ground-layer table: it returns the raw constants as :class:`CrystalRecord` and knows nothing of
 :class:`contactres.Material`; ``Material.crystal(name)`` builds the solid from the record. The CSV
-is read on every call (a few hundred bytes, well under a millisecond), so there is no cache.
+is read on every call (a few hundred bytes, ~0.1 ms with the standard library's csv module), so
+there is no cache.
 """
 
 from __future__ import annotations
 
+import csv
 from dataclasses import dataclass
 from importlib import resources
 from typing import TYPE_CHECKING
@@ -39,18 +41,16 @@ class CrystalRecord:
     source: str
 
 
-def _raw_table() -> pd.DataFrame:
-    # pandas is imported here, not at the top: materials imports this module, and loading pandas
-    # (~0.4 s) would otherwise slow every command line call that builds a Material.
-    import pandas as pd
-
+def _rows() -> list[dict[str, str]]:
+    """The table's rows as strings (the standard library's csv: no pandas on this path)."""
     with resources.files("contactres").joinpath("data/crystals.csv").open("r") as fh:
-        return pd.read_csv(fh, comment="#")
+        lines = [ln for ln in fh if not ln.startswith("#")]
+    return list(csv.DictReader(lines))
 
 
 def crystal_names() -> list[str]:
     """Names of the built-in crystals, in table order."""
-    return list(_raw_table()["name"])
+    return [row["name"] for row in _rows()]
 
 
 def crystal_record(name: str) -> CrystalRecord:
@@ -61,19 +61,20 @@ def crystal_record(name: str) -> CrystalRecord:
     ValueError
         For an unknown name; the message lists the known ones.
     """
-    table = _raw_table()
-    match = table[table["name"].str.lower() == str(name).strip().lower()]
-    if match.empty:
-        known = ", ".join(table["name"])
+    rows = _rows()
+    key = str(name).strip().lower()
+    match = [row for row in rows if row["name"].lower() == key]
+    if not match:
+        known = ", ".join(row["name"] for row in rows)
         raise ValueError(f"unknown crystal {name!r}; known crystals: {known}")
-    row = match.iloc[0]
+    row = match[0]
     return CrystalRecord(
-        name=str(row["name"]),
-        c11=float(row.c11_GPa * _GPa),
-        c12=float(row.c12_GPa * _GPa),
-        c44=float(row.c44_GPa * _GPa),
-        density=float(row.density_kg_m3),
-        source=str(row.source),
+        name=row["name"],
+        c11=float(row["c11_GPa"]) * _GPa,
+        c12=float(row["c12_GPa"]) * _GPa,
+        c44=float(row["c44_GPa"]) * _GPa,
+        density=float(row["density_kg_m3"]),
+        source=row["source"],
     )
 
 
@@ -82,7 +83,10 @@ def crystal_table() -> pd.DataFrame:
 
     Columns: name, c11_GPa, c12_GPa, c44_GPa, density_kg_m3, zener, poisson, source.
     """
-    t = _raw_table()
+    import pandas as pd  # only the table needs pandas; records and names do not
+
+    with resources.files("contactres").joinpath("data/crystals.csv").open("r") as fh:
+        t = pd.read_csv(fh, comment="#")
     t["zener"] = 2 * t.c44_GPa / (t.c11_GPa - t.c12_GPa)
     t["poisson"] = t.c12_GPa / (t.c11_GPa + t.c12_GPa)
     cols = ["name", "c11_GPa", "c12_GPa", "c44_GPa", "density_kg_m3", "zener", "poisson", "source"]

@@ -1,14 +1,14 @@
 """Numerical building blocks shared by the forward models (ground layer: numpy only).
 
-Pure functions without state: a caller that needs a rule many times computes it once and passes
-it on (there is no module-level cache).
+Pure functions without state: a caller that needs a rule many times computes it once and keeps
+it (as a constant of its module or an argument it passes on); nothing here remembers a result.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["gauss_legendre_unit"]
+__all__ = ["gauss_legendre", "gauss_legendre_unit"]
 
 
 def gauss_legendre_unit(n: int) -> tuple[np.ndarray, np.ndarray]:
@@ -41,3 +41,28 @@ def gauss_legendre_unit(n: int) -> tuple[np.ndarray, np.ndarray]:
     x01.setflags(write=False)
     w01.setflags(write=False)
     return x01, w01
+
+
+def gauss_legendre(a, b, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """Nodes and weights of the n-point Gauss-Legendre rule on [a, b] (or on many panels).
+
+    ``a`` and ``b`` broadcast against each other and against the node axis, which comes last:
+    panels given as arrays of shape (P, 1) give nodes and weights of shape (P, n). The map is
+    x -> (b - a)/2 x + (b + a)/2 of the rule of :func:`numpy.polynomial.legendre.leggauss`.
+
+    Parameters
+    ----------
+    a, b : float or array_like, the ends of the interval(s)
+    n : number of nodes, >= 1
+
+    Returns
+    -------
+    (x, w) : nodes and weights
+    """
+    n_int = int(n)
+    if n_int != n or n_int < 1:
+        raise ValueError(f"n (number of Gauss-Legendre nodes) must be an integer >= 1, got {n!r}")
+    x, w = np.polynomial.legendre.leggauss(n_int)
+    a = np.asarray(a)
+    b = np.asarray(b)
+    return 0.5 * (b - a) * x + 0.5 * (b + a), 0.5 * (b - a) * w

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 __all__ = [
     "ABSOLUTE_FREQUENCY_FRACTION",
+    "JUNCTION_SIGMAS",
     "MAX_AMPLITUDE_M",
     "MIN_SWEEP_POINTS",
     "POISSON_OPEN_RANGE",
@@ -31,6 +32,10 @@ POISSON_OPEN_RANGE = (-1.0, 0.5)
 #: Fewest points a sweep needs to take part in the analysis (a straight line with two
 #: parameters per channel and an estimate of the noise needs at least four).
 MIN_SWEEP_POINTS = 4
+
+#: A Δf slope more than this many standard errors above zero means that Δf rises with the
+#: amplitude (the junction grows), which no partial-slip loop does.
+JUNCTION_SIGMAS = 2.0
 
 
 def poisson_in_range(nu: float) -> bool:

@@ -276,7 +276,7 @@ def test_plateau_loop_shape_matches_the_forward_model():
 
 
 def test_plateau_loss_part_is_the_shifted_table_plus_a_closed_form():
-    # From the virgin-curve form of Eq. 5 (analysis_sweep docstring): with y = x - c,
+    # From the virgin-curve form of Eq. 5 (contactres.analysis.loops docstring): with y = x - c,
     # (K″ - ωξ)/κ = (y/x)² g″(y) + 4c (y - F(y))/(πx²), F the unit Cattaneo-Mindlin virgin
     # curve (closed form, paper 2, Eq. 6): the table reused at a shifted argument.
     tab = cm_loop_table()
@@ -292,10 +292,10 @@ def test_plateau_loss_part_is_the_shifted_table_plus_a_closed_form():
 
 
 def test_plateau_onset_has_no_linear_slope():
-    # Small excess v = u0 - d_c (units μF_N/κ, so v = y): K″ - ωξ ≈ (2/(3π)) κ v²/d_c and
-    # K′ - κ ≈ -(32/(45π)) κ v^(5/2)/d_c^(3/2) (analysis_sweep docstring). The relative error of
-    # these leading terms must be O(v): halving v halves it. No term linear in v exists for a
-    # slope to pick up. (v >= 4e-3 keeps K′ - κ far above the 1e-9 accuracy of the quadrature.)
+    # Small excess v = u0 - d_c (units μF_N/κ, so v = y): K″ - ωξ ≈ (2/(3π)) κ v²/d_c and K′ - κ ≈
+    # -(32/(45π)) κ v^(5/2)/d_c^(3/2) (contactres.analysis.loops docstring). The relative error of
+    # these leading terms must be O(v): halving v halves it. No term linear in v exists for a slope
+    # to pick up. (v >= 4e-3 keeps K′ - κ far above the 1e-9 accuracy of the quadrature.)
     for c in (0.5, 2.0):
         y = np.array([4e-3, 8e-3, 1.6e-2])
         g1, g2 = plateau_loop_shape(c + y, c)

@@ -19,14 +19,14 @@ from contactres.resonators.qcm import QCM
 # Every parameter any fitted model may have: unit and the result columns that may hold it.
 # A new parameter must be added here with its unit, or this test fails.
 KNOWN = {
-    "df0": ("Hz", {"df0_Hz"}),
-    "dgamma0": ("Hz", {"dgamma0_Hz"}),
+    "df0": ("Hz", {"df0_Hz", "cm_df0_Hz", "pl_df0_Hz"}),
+    "dgamma0": ("Hz", {"dgamma0_Hz", "cm_dgamma0_Hz", "pl_dgamma0_Hz"}),
     "df_slope": ("Hz/m", {"df_slope_Hz_per_m"}),
     "dgamma_slope": ("Hz/m", {"dgamma_slope_Hz_per_m"}),
     "df_curvature": ("Hz/m^2", {"df_curvature_Hz_per_m2"}),
     "dgamma_curvature": ("Hz/m^2", {"dgamma_curvature_Hz_per_m2"}),
     "critical_amplitude": ("m", {"plateau_amplitude_m"}),
-    "critical_displacement": ("m", {"plateau_amplitude_m"}),
+    "critical_displacement": ("m", {"pl_d_c_m"}),
     "inverse_slip_scale": ("1/m", {"cm_theta_per_m", "pl_theta_per_m"}),
     "E": ("Pa", {"E_Pa"}),
     "gamma": ("J/m^2", {"gamma_J_m2"}),

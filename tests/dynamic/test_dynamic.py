@@ -328,7 +328,7 @@ def test_paper_fig5_poisson_crossing_near_1_3_at_A_2():
 def test_dynamic_contact_stiffness_cu_001():
     cu = Material.crystal("Cu")
     k0 = dynamic_contact_stiffness(cu, 1e-3, 1.0, 0.0)
-    assert k0.real == pytest.approx(4.76e6, rel=3e-3)  # physics.md sanity number
+    assert k0.real == pytest.approx(4.76e6, rel=3e-3)  # sanity number of docs/validation.md
     assert k0.imag == pytest.approx(Q * k0.real, rel=1e-9)
     # k_l a by hand: ω a √(ρ/C11)
     f = np.array([1e6, 30e6])

@@ -49,7 +49,7 @@ def test_one_term_galerkin_is_the_whole_contact_weighted_average():
 
 def test_luco_westmann_rigid_disk_isotropic_lossless():
     """Rigid disk on a lossless half-space, ν = 1/3: K/K0 = k(a0) + i a0 c(a0), a0 = k_s a,
-    K0 = 2aE*. Published values (Luco & Westmann 1971, as quoted in physics.md):
+    K0 = 2aE*. Four-digit values attributed to Luco & Westmann 1971 (see docs/validation.md):
     (k, c) = (0.9689, 0.7931) at a0 = 0.5 and (0.8826, 0.8239) at a0 = 1, four digits.
     At a0 = 0.5 we agree to their rounding (c = 0.793045: −5.5e-5, a five-digit 0.79305 rounded
     again). At a0 = 1 we are 1.2e-4 (k) and 1.6e-4 (c) below them, beyond rounding; that error is

@@ -209,15 +209,15 @@ def test_galerkin_exact_model_equals_fredholm_solution(nu):
     np.testing.assert_allclose(_galerkin(nu, a0), ref, rtol=0, atol=1e-6)
 
 
-def test_physics_md_published_values():
-    """physics.md quotes (k, c) = (0.9689, 0.7931) at a₀ = 0.5 and (0.8826, 0.8239) at a₀ = 1
-    for ν = 1/3, four decimals (attributed to Luco & Westmann 1971 in test_dynamic_exact.py; a
-    secondary source lists Luco & Westmann's tables for ν = 0, 1/4, 1/2 only). The converged
-    Fredholm solution gives (0.968897, 0.793045) and (0.882477, 0.823743). At a₀ = 0.5, k agrees
-    to its rounding and c = 0.793045 rounds to 0.7931 only via 0.79305 (−5.5e-5): consistent
-    with a five-digit source rounded twice. At a₀ = 1 the quoted pair is off by +1.2e-4 and
-    +1.6e-4, 2.5-3 units of the last digit, while two independent algorithms agree to 1e-11:
-    the quoted a₀ = 1 digits are wrong in the fourth decimal; the Galerkin is right."""
+def test_quoted_four_digit_values():
+    """Our reconstructed notes quoted (k, c) = (0.9689, 0.7931) at a₀ = 0.5 and (0.8826, 0.8239) at
+    a₀ = 1 for ν = 1/3, four decimals (attributed to Luco & Westmann 1971 in test_dynamic_exact.py;
+    a secondary source lists Luco & Westmann's tables for ν = 0, 1/4, 1/2 only). The converged
+    Fredholm solution gives (0.968897, 0.793045) and (0.882477, 0.823743). At a₀ = 0.5, k agrees to
+    its rounding and c = 0.793045 rounds to 0.7931 only via 0.79305 (−5.5e-5): consistent with a
+    five-digit source rounded twice. At a₀ = 1 the quoted pair is off by +1.2e-4 and +1.6e-4, 2.5-3
+    units of the last digit, while two independent algorithms agree to 1e-11: the quoted a₀ = 1
+    digits are wrong in the fourth decimal; the Galerkin is right."""
     nu = 1 / 3
     d05, d1 = fredholm_disk(0.5, nu), fredholm_disk(1.0, nu)
     assert d05.real == pytest.approx(0.9689, abs=5e-5)

@@ -244,6 +244,8 @@ def test_reader_plugin(tmp_path, monkeypatch):
     readers.register_reader(
         readers.SweepReader("json", (".json",), lambda p, head: head.lstrip().startswith("["), load)
     )
+    with pytest.raises(ValueError, match="already registered"):
+        readers.register_reader(readers.READERS[0])
     path = tmp_path / "sweeps.json"
     good_frame().to_json(path, orient="records")
     t = read_sweeps(path, **CONST).data

@@ -41,3 +41,9 @@ def test_every_flag_is_documented_and_rendered_in_order():
 def test_every_flag_is_explained_in_the_readme(flag):
     text = README.read_text(encoding="utf-8")
     assert f"| `{flag.text}` | {DESCRIPTIONS[flag]} |" in text
+
+
+def test_flags_table_has_two_cells_per_row():
+    from contactres.report.dictionary import flags_markdown
+
+    assert all(line.count("|") == 3 for line in flags_markdown().splitlines())

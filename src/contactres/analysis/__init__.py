@@ -5,9 +5,12 @@ closed-form fits (:mod:`.amplitude`), the exact loops (:mod:`.loops`), the fitte
 registry (:mod:`.models`), the model choice (:mod:`.classify`), friction (:mod:`.friction`),
 drift (:mod:`.drift`), statistics per load (:mod:`.loads`), the JKR + Mindlin fit (:mod:`.jkr`),
 the flags (:mod:`.flags`) and the results (:mod:`.results`).
+
+Paper 2: J. Vlachová, R. König, D. Johannsmann, "Stiffness of sphere-plate contacts at MHz
+frequencies: dependence on normal load, oscillation amplitude, and ambient medium", Beilstein J.
+Nanotechnol. 6, 845-856 (2015), doi:10.3762/bjnano.6.87.
 """
 
-from ..tangential import kappa_jkr_mindlin  # re-exported for scripts written against 0.1
 from .flags import Flag
 from .jkr import fit_jkr_mindlin
 from .models import REGISTRY
@@ -21,5 +24,4 @@ __all__ = [
     "Results",
     "analyze",
     "fit_jkr_mindlin",
-    "kappa_jkr_mindlin",
 ]

@@ -11,6 +11,9 @@ import enum
 
 import numpy as np
 
+from ..units import JUNCTION_SIGMAS, MIN_SWEEP_POINTS, SMALL_LOAD_LIMIT
+from .loops import X_MAX
+
 __all__ = ["DESCRIPTIONS", "Flag", "has", "render"]
 
 
@@ -34,18 +37,21 @@ class Flag(enum.IntFlag):
 #: What each flag means, in the words of the README.
 DESCRIPTIONS: dict[Flag, str] = {
     Flag.FIRST_RAMP: "ramp 1 of a load, set aside as running-in (unless --keep-first-ramp)",
-    Flag.FEW_POINTS: "fewer than 4 points: not used",
+    Flag.FEW_POINTS: f"fewer than {MIN_SWEEP_POINTS} points: not used",
     Flag.JUNCTION_GROWTH: (
-        "Δf rises with u0 by more than 2 standard errors (the junction grows): no μ from the "
-        "Δf slope"
+        f"Δf rises with u0 by more than {JUNCTION_SIGMAS:g} standard errors (the junction "
+        "grows): no μ from the Δf slope"
     ),
-    Flag.SMALL_LOAD: "|Δf0| above 1e-3 of the resonance frequency: paper 2's Eq. 1 may fail",
+    Flag.SMALL_LOAD: (
+        f"Δf0 above {SMALL_LOAD_LIMIT:g} of the resonance frequency in magnitude: paper 2's Eq. 1 "
+        "may fail"
+    ),
     Flag.PLATEAU_SLOPE: (
         "a plateau sweep: the shifts leave the plateau with no linear term, so no μ from the "
         "slopes (μ from the exact plateau loop instead)"
     ),
     Flag.GROSS_SLIDING: (
-        "the exact loop fits best beyond κu0/(μF_N) = 30 (gross sliding): μ not resolved"
+        f"the exact loop fits best beyond κu0/(μF_N) = {X_MAX:g} (gross sliding): μ not resolved"
     ),
     Flag.DRIFT: (
         "the used ramps of this load of this experiment are offset from each other beyond the "

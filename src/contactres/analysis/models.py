@@ -91,12 +91,25 @@ def _plateau_loop(u, df0, dgamma0, inverse_slip_scale, critical_displacement):
     return df0 * g1, dgamma0 + df0 * g2
 
 
-def _loop_parameters(theta_column: str) -> tuple[Parameter, ...]:
-    """Pκ and Pωξ (the low-amplitude limits) and the loop's amplitude scale κ/(μF_N)."""
+def _loop_parameters(prefix: str) -> tuple[Parameter, ...]:
+    """Pκ and Pωξ (the low-amplitude limits) and the loop's amplitude scale κ/(μF_N), held in
+    the columns ``<prefix>df0_Hz``, ``<prefix>dgamma0_Hz``, ``<prefix>theta_per_m`` of the
+    per-sweep results (``cm_`` for the Cattaneo-Mindlin loop fit, ``pl_`` for the plateau loop)."""
     return (
-        Parameter("df0", "Pκ (low-amplitude Δf0)", "Hz", "df0_Hz", (0.0, np.inf), scale=100.0),
-        Parameter("dgamma0", "Pωξ (low-amplitude ΔΓ0)", "Hz", "dgamma0_Hz", _ANY, scale=10.0),
-        Parameter("inverse_slip_scale", "κ/(μF_N)", "1/m", theta_column, (0.0, np.inf), scale=1e8),
+        Parameter(
+            "df0", "Pκ (low-amplitude Δf0)", "Hz", f"{prefix}df0_Hz", (0.0, np.inf), scale=100.0
+        ),
+        Parameter(
+            "dgamma0", "Pωξ (low-amplitude ΔΓ0)", "Hz", f"{prefix}dgamma0_Hz", _ANY, scale=10.0
+        ),
+        Parameter(
+            "inverse_slip_scale",
+            "κ/(μF_N)",
+            "1/m",
+            f"{prefix}theta_per_m",
+            (0.0, np.inf),
+            scale=1e8,
+        ),
     )
 
 
@@ -132,7 +145,7 @@ REGISTRY = ModelRegistry(
         Model(
             "cattaneo-mindlin-loop",
             "exact Cattaneo-Mindlin loop with a dashpot",
-            _loop_parameters("cm_theta_per_m"),
+            _loop_parameters("cm_"),
             "amplitude",
             "m",
             "df, dgamma",
@@ -144,12 +157,12 @@ REGISTRY = ModelRegistry(
             "plateau-loop",
             "exact Cattaneo-Mindlin loop behind a stick plateau, with a dashpot",
             (
-                *_loop_parameters("pl_theta_per_m"),
+                *_loop_parameters("pl_"),
                 Parameter(
                     "critical_displacement",
                     "critical displacement d_c",
                     "m",
-                    "plateau_amplitude_m",
+                    "pl_d_c_m",
                     (0.0, 1e-6),
                     scale=1e-9,
                 ),

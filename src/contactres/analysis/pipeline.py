@@ -59,7 +59,7 @@ from .._version import __version__
 from ..measurements.schema import SWEEP_TABLE
 from ..measurements.sweeps import SweepTable
 from ..resonators.qcm import QCM
-from ..units import MIN_SWEEP_POINTS, SMALL_LOAD_LIMIT
+from ..units import JUNCTION_SIGMAS, MIN_SWEEP_POINTS, SMALL_LOAD_LIMIT
 from .amplitude import pad_sweeps
 from .classify import fit_sweeps
 from .drift import drifting_sweeps
@@ -72,9 +72,6 @@ from .models import AMPLITUDE_MODELS
 from .results import Results
 
 __all__ = ["AnalysisSettings", "analyze"]
-
-#: Slopes more than this many standard errors above zero mean Δf rises: junction growth.
-JUNCTION_SIGMAS = 2.0
 
 #: Columns that describe a whole sweep, carried from the sweep table into the results.
 INFO_COLUMNS = SWEEP_TABLE.where(level="sweep") + SWEEP_TABLE.where(level="constant")
@@ -131,6 +128,7 @@ def _flag(mask: np.ndarray, flag: Flag) -> np.ndarray:
 
 def analyze(
     table: SweepTable,
+    *,
     settings: AnalysisSettings | None = None,
     progress: Callable[[str], None] | None = None,
 ) -> Results:

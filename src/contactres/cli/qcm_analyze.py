@@ -89,7 +89,8 @@ def analyze_command(
             bar.update(1)
 
         results = analyze(table, settings=settings, progress=progress)
-        written = write_report(results, out, figures=not no_figures)
+        formats = ("csv", "json") if no_figures else ("csv", "json", "png")
+        written = write_report(results, out, formats)
         bar.update(steps)
     emit(results.table1(), fmt)
     if fmt == "plain":

@@ -17,6 +17,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import special
 
+from ..numerics import gauss_legendre
 from .table import KernelTable, Resolution, handover
 from .weights import bessel_even, j1_over_s, sinc, wa_harmonic_weights
 
@@ -56,11 +57,8 @@ def _far_grid(res: Resolution, s_low: float):
     n_uni = max(1, math.ceil((res.s_far - top) / res.s_panel))
     edges.extend(top + res.s_panel * np.arange(1, n_uni + 1))
     edges = np.asarray(edges)
-    x, w = np.polynomial.legendre.leggauss(res.n_gauss)
-    a, b = edges[:-1, None], edges[1:, None]
-    s = (0.5 * (b - a) * x + 0.5 * (b + a)).ravel()
-    ws = (0.5 * (b - a) * w).ravel()
-    return s, ws, float(edges[-1])
+    s, ws = gauss_legendre(edges[:-1, None], edges[1:, None], res.n_gauss)
+    return s.ravel(), ws.ravel(), float(edges[-1])
 
 
 def far_basis(table: KernelTable, ka: np.ndarray) -> FarBasis:

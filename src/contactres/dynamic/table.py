@@ -31,6 +31,7 @@ from scipy import special
 
 from ..halfspace import dynamic_kernel, shear_reference, static_kernel
 from ..materials import Material, require_material, rotate_tensor, voigt_to_tensor
+from ..numerics import gauss_legendre
 
 __all__ = [
     "KernelTable",
@@ -263,11 +264,6 @@ def _max_slowness(m: Material) -> float:
     return float(np.max(1.0 / np.sqrt(lam)))
 
 
-def _gauss(a: float, b: float, n: int):
-    x, w = np.polynomial.legendre.leggauss(n)
-    return 0.5 * (b - a) * x + 0.5 * (b + a), 0.5 * (b - a) * w
-
-
 def _symmetry(m: Material) -> tuple[bool, bool]:
     """(mirror, fourfold): g(−θ) = g(θ) (mirror plane y -> −y) and g(θ + π/2) = g(θ) (4-fold
     axis along z) of the surface-frame stiffness; a cubic (001) face has both."""
@@ -307,10 +303,10 @@ def _build_table(m: Material, q: float, res: Resolution) -> KernelTable:
     height = _CONTOUR_HEIGHT * kb
 
     # Near field: κ(t) = t + i h sin(π t/T1) on [0, T1], then the real segment [T1, 2 T1].
-    t, wt = _gauss(0.0, t1, res.n_contour)
+    t, wt = gauss_legendre(0.0, t1, res.n_contour)
     kc = t + 1j * height * np.sin(np.pi * t / t1)
     wc = wt * (1 + 1j * height * np.pi / t1 * np.cos(np.pi * t / t1))
-    ks, ws = _gauss(t1, 2 * t1, res.n_segment)
+    ks, ws = gauss_legendre(t1, 2 * t1, res.n_segment)
     ws = ws * handover(ks, t1)
     near_kappa = np.concatenate([kc, ks.astype(complex)])
     near_weight = np.concatenate([wc, ws])

@@ -12,13 +12,16 @@ generated from, or checked against, the schemas here:
 
 Conventions (recorded in every output): Δf is the frequency shift, not Δf/n; ΔΓ the shift of the
 half-bandwidth at half height, not the dissipation D = 2Γ/f; amplitudes in m; forces per contact
-in N. Paper 2: J. Vlachová, R. König, D. Johannsmann, Beilstein J. Nanotechnol. 6, 845-856
-(2015).
+in N. Paper 2: J. Vlachová, R. König, D. Johannsmann, "Stiffness of sphere-plate contacts at MHz
+frequencies: dependence on normal load, oscillation amplitude, and ambient medium", Beilstein J.
+Nanotechnol. 6, 845-856 (2015), doi:10.3762/bjnano.6.87.
 """
 
 from __future__ import annotations
 
 from dataclasses import dataclass
+
+from ..units import MAX_AMPLITUDE_M, POISSON_OPEN_RANGE
 
 __all__ = [
     "CONVENTIONS",
@@ -139,7 +142,13 @@ SWEEP_TABLE = TableSchema(
     "one row per measured point of an amplitude ramp (CSV: comma, semicolon or tab separated)",
     (
         Column("sweep", "text", "id of one amplitude ramp", required=True, level="sweep"),
-        Column("amplitude_m", "m", "oscillation amplitude u0", required=True, rule=">= 0, <= 1e-6"),
+        Column(
+            "amplitude_m",
+            "m",
+            "oscillation amplitude u0",
+            required=True,
+            rule=f">= 0, <= {MAX_AMPLITUDE_M:g}",
+        ),
         Column(
             "df_Hz", "Hz", "frequency shift Δf against the reference (no contact)", required=True
         ),
@@ -197,7 +206,7 @@ SWEEP_TABLE = TableSchema(
             "-",
             "Poisson ratio ν, fixed in the JKR + Mindlin fit",
             level="constant",
-            rule="in (-1, 0.5)",
+            rule="in ({:g}, {:g})".format(*POISSON_OPEN_RANGE),
             default=0.17,
         ),
     ),

@@ -30,6 +30,7 @@ from ..units import (
     ABSOLUTE_FREQUENCY_FRACTION,
     MAX_AMPLITUDE_M,
     MIN_SWEEP_POINTS,
+    POISSON_OPEN_RANGE,
     SMALL_LOAD_LIMIT,
     poisson_in_range,
 )
@@ -104,21 +105,26 @@ class SweepTable:
     data: pd.DataFrame
     source: str = "<table>"
 
+    def __post_init__(self):
+        if not isinstance(self.data, pd.DataFrame) or list(self.data.columns) != list(
+            VALIDATED_COLUMNS
+        ):
+            raise ValueError(
+                "a SweepTable holds a validated table: build it with read_sweeps() or "
+                "validate_sweeps(frame, constants={...})"
+            )
+
     def __len__(self) -> int:
         return len(self.data)
 
     def with_constants(self, **values) -> SweepTable:
-        """The same table with the constants ``values`` (keys of :data:`CONSTANTS`) set in
-        every row, each checked by the rules of the schema."""
+        """The same points with the constants ``values`` (keys of :data:`CONSTANTS`) in every
+        row, validated again as a whole (as :func:`validate_sweeps` does)."""
         unknown = sorted(set(values) - set(CONSTANTS))
         if unknown:
             raise ValueError(f"unknown constant(s) {unknown}; allowed: {list(CONSTANTS)}")
-        data = self.data.copy()
-        for name, value in values.items():
-            data[name] = _check_constant(name, value, f"argument {name}")
-        data["overtone"] = data["overtone"].astype(int)
-        data["n_contacts"] = data["n_contacts"].astype(int)
-        return SweepTable(data, self.source)
+        given = {name: _check_constant(name, v, f"argument {name}") for name, v in values.items()}
+        return validate_sweeps(self.data.drop(columns=list(given)), self.source, constants=given)
 
 
 # --------------------------------------------------------------------------------------------
@@ -145,24 +151,25 @@ def _check_constant(name: str, value, where: str) -> float:
     try:
         v = float(value)
     except (TypeError, ValueError):
-        raise ValueError(f"{where}: {name} = {value!r} is not a number") from None
+        raise ValueError(f"{where}: {name} = {_shown(value)} is not a number") from None
     if not math.isfinite(v):
-        raise ValueError(f"{where}: {name} = {value!r} is not finite")
+        raise ValueError(f"{where}: {name} = {_shown(value)} is not finite")
     if name == "overtone":
         if v != int(v) or v < 1 or int(v) % 2 == 0:
             raise ValueError(
-                f"{where}: overtone = {value!r} is not allowed; a thickness-shear resonator "
+                f"{where}: overtone = {_shown(value)} is not allowed; a thickness-shear resonator "
                 "has odd overtones only (1, 3, 5, ...)"
             )
     elif name == "n_contacts":
         if v != int(v) or v < 1:
-            raise ValueError(f"{where}: n_contacts = {value!r} must be a positive integer")
+            raise ValueError(f"{where}: n_contacts = {_shown(value)} must be a positive integer")
     elif name == "poisson":
         if not poisson_in_range(v):
-            raise ValueError(f"{where}: poisson = {value!r} is outside (-1, 0.5)")
+            lo, hi = POISSON_OPEN_RANGE
+            raise ValueError(f"{where}: poisson = {_shown(value)} is outside ({lo:g}, {hi:g})")
     elif v <= 0:
         unit = CONSTANTS[name][0]
-        raise ValueError(f"{where}: {name} = {value!r} must be > 0 ({unit})")
+        raise ValueError(f"{where}: {name} = {_shown(value)} must be > 0 ({unit})")
     return v
 
 
@@ -225,7 +232,7 @@ def _numeric(raw: pd.DataFrame, col: str, source: str, decimal: str) -> np.ndarr
     if bad.any():
         i = int(np.flatnonzero(bad)[0])
         shown = raw[col].iloc[i]
-        what = "is empty" if not str(shown).strip() else f"value {shown!r} is not a number"
+        what = "is empty" if not str(shown).strip() else f"value {_shown(shown)} is not a number"
         raise ValueError(
             f"{source}, line {raw['line'].iloc[i]}, column {col!r}: {what} "
             f"({int(bad.sum())} such cell(s) in this column)"
@@ -235,15 +242,23 @@ def _numeric(raw: pd.DataFrame, col: str, source: str, decimal: str) -> np.ndarr
         i = int(np.flatnonzero(nonfinite)[0])
         raise ValueError(
             f"{source}, line {raw['line'].iloc[i]}, column {col!r}: value "
-            f"{raw[col].iloc[i]!r} is not finite (NaN or infinite; "
+            f"{_shown(raw[col].iloc[i])} is not finite (NaN or infinite; "
             f"{int(nonfinite.sum())} such cell(s) in this column)"
         )
     return values
 
 
+def _shown(value) -> str:
+    """A cell as the user wrote it: plain Python repr, never a numpy scalar's repr."""
+    return repr(value.item() if isinstance(value, np.generic) else value)
+
+
 def _at(table: pd.DataFrame, source: str, mask: np.ndarray, col: str) -> str:
     i = int(np.flatnonzero(mask)[0])
-    return f"{source}, line {table['line'].iloc[i]}, column {col!r}: value {table[col].iloc[i]!r}"
+    return (
+        f"{source}, line {table['line'].iloc[i]}, column {col!r}: value "
+        f"{_shown(table[col].iloc[i])}"
+    )
 
 
 def _labels_and_numbers(raw: pd.DataFrame, source: str, decimal: str) -> pd.DataFrame:
@@ -301,7 +316,8 @@ def _fill_constants(
                 _check_constant(name, v, f"{source}, line {out['line'].iloc[i]}, column {name!r}")
             if name in constants and np.any(vals != float(constants[name])):
                 warnings.warn(
-                    f"{source}: column {name!r} overrides the given {name} = {constants[name]!r}",
+                    f"{source}: column {name!r} overrides the given {name} = "
+                    f"{_shown(constants[name])}",
                     SweepWarning,
                     stacklevel=4,
                 )
@@ -393,7 +409,7 @@ def _check_per_sweep(table: pd.DataFrame, source: str) -> None:
             other = rows.loc[rows[col] != first].iloc[0]
             raise ValueError(
                 f"{source}, sweep {name!r}: conflicting values in column {col!r}: "
-                f"{first!r} (line {rows['line'].iloc[0]}) and {other[col]!r} "
+                f"{_shown(first)} (line {rows['line'].iloc[0]}) and {_shown(other[col])} "
                 f"(line {other['line']}); one sweep has one {col}"
             )
 

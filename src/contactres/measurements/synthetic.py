@@ -38,6 +38,7 @@ from ..tangential import (
     with_dashpot,
 )
 from ..validation import nonnegative, positive
+from .sweeps import VALIDATED_COLUMNS
 
 __all__ = [
     "EXAMPLE_SEED",
@@ -61,19 +62,8 @@ SCATTERED = ("E", "gamma", "mu")
 #: Seed of the bundled example data (``scripts/make_example_data.py``).
 EXAMPLE_SEED = 20150601
 
-# Columns of the table, in order; the constants follow when asked for.
-_COLUMNS = (
-    "sweep",
-    "experiment",
-    "configuration",
-    "medium",
-    "ramp",
-    "normal_force_N",
-    "amplitude_m",
-    "df_Hz",
-    "dgamma_Hz",
-    "sphere_radius_m",
-)
+# Columns of the table, in the order of a validated table; the constants follow when asked for.
+_COLUMNS = (*VALIDATED_COLUMNS[: VALIDATED_COLUMNS.index("dgamma_Hz") + 1], "sphere_radius_m")
 
 
 @dataclass(frozen=True)

@@ -80,9 +80,10 @@ def summary(results: Results) -> dict:
     """The ``summary.json`` record (JSON-safe): groups in the key order of ``GROUP_RESULTS``."""
     groups = []
     for g in results.groups:
-        ordered = {k: g[k] for k in GROUP_RESULTS.names if k in g}
-        ordered.update({k: v for k, v in g.items() if k not in ordered})
-        groups.append(ordered)
+        unknown = sorted(set(g) - set(GROUP_RESULTS.names))
+        if unknown:
+            raise KeyError(f"group keys {unknown} are missing from the schema GROUP_RESULTS")
+        groups.append({k: g[k] for k in GROUP_RESULTS.names if k in g})
     source = None if results.table is None else results.table.source
     return _clean(
         {
@@ -95,24 +96,20 @@ def summary(results: Results) -> dict:
     )
 
 
-def write_report(
-    results: Results, folder, formats=FORMATS, figures: bool | None = None
-) -> list[Path]:
+def write_report(results: Results, folder, formats=FORMATS) -> list[Path]:
     """Write the results folder (see the module docstring); return the paths written.
 
     Parameters
     ----------
     results : what :func:`contactres.analyze` returned
-    folder : the results folder (created if missing; an existing file there is an error)
-    formats : any of :data:`FORMATS`
-    figures : shorthand kept from ``Results.write``: False drops ``png`` from ``formats``
+    folder : the results folder, created if missing (a path that exists and is not a folder is
+        an error); files of the same names in it are replaced, each atomically
+    formats : one of :data:`FORMATS` or a sequence of them
     """
-    formats = tuple(formats)
+    formats = (formats,) if isinstance(formats, str) else tuple(formats)
     unknown = sorted(set(formats) - set(FORMATS))
     if unknown:
         raise ValueError(f"unknown report format(s) {unknown}; allowed: {list(FORMATS)}")
-    if figures is False:
-        formats = tuple(f for f in formats if f != "png")
     out = ensure_dir(folder)
     written = []
     if "csv" in formats:

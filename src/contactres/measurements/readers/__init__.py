@@ -49,7 +49,9 @@ READERS: list[SweepReader] = [
 
 
 def register_reader(reader: SweepReader) -> SweepReader:
-    """Add a reader plug-in (tried before the built-in ones)."""
+    """Add a reader plug-in (tried before the built-in ones); its name must be new."""
+    if any(r.name == reader.name for r in READERS):
+        raise ValueError(f"a reader named {reader.name!r} is already registered")
     READERS.insert(0, reader)
     return reader
 
