@@ -62,7 +62,7 @@ from ..resonators.qcm import QCM
 from ..units import JUNCTION_SIGMAS, MIN_SWEEP_POINTS, SMALL_LOAD_LIMIT
 from .amplitude import pad_sweeps
 from .classify import fit_sweeps
-from .drift import drifting_sweeps
+from .drift import LOAD_OF_EXPERIMENT, drifting_sweeps
 from .flags import Flag
 from .friction import loop_friction, slope_friction
 from .jkr import fit_group
@@ -70,6 +70,7 @@ from .loads import GROUP_KEYS, per_experiment, per_load
 from .loops import X_MAX, cm_loop_table
 from .models import AMPLITUDE_MODELS
 from .results import Results
+from .running_in import running_in
 
 __all__ = ["AnalysisSettings", "analyze"]
 
@@ -84,6 +85,8 @@ class AnalysisSettings:
     Attributes
     ----------
     keep_first_ramp : use ramp 1 of every load (default: set aside as running-in)
+    keep_drift : use the sweeps of loads whose ramps drift (default: left out of the means and
+        fits, and listed)
     delta_bic : BIC margin within which the simpler amplitude model is kept
     drift_p : false-alarm probability of the drift test
     bootstrap : number of bootstrap resamples over experiments for E and γ (0: none)
@@ -94,6 +97,7 @@ class AnalysisSettings:
     """
 
     keep_first_ramp: bool = False
+    keep_drift: bool = False
     delta_bic: float = 2.0
     drift_p: float = 1e-3
     bootstrap: int = 200
@@ -120,6 +124,17 @@ def _sensitivity(info: pd.DataFrame, zq: float) -> np.ndarray:
         q = QCM(fundamental=key[0], overtone=int(key[1]), area=key[2], zq=zq)
         P[idx] = q.sensitivity(int(key[3]))
     return P
+
+
+def _whole_loads(sw: pd.DataFrame, mask: np.ndarray) -> np.ndarray:
+    """``mask`` spread to every sweep of a load of an experiment where any sweep has it."""
+    keys = sw[LOAD_OF_EXPERIMENT]
+    hit = keys[mask].drop_duplicates()
+    return (
+        keys.merge(hit.assign(_hit=True), how="left", on=LOAD_OF_EXPERIMENT)["_hit"]
+        .eq(True)
+        .to_numpy()
+    )
 
 
 def _flag(mask: np.ndarray, flag: Flag) -> np.ndarray:
@@ -205,8 +220,16 @@ def analyze(
         sw["mu_fit"] = np.nan
         sw["mu_fit_err"] = np.nan
         sw["x_max"] = np.nan
-    flags |= _flag(drifting_sweeps(sw, padded, used, settings.drift_p), Flag.DRIFT)
+    # Drift is tested on the ramps after the first: ramp 1's running-in offset is not drift.
+    tested = ~few & (sw["ramp"].to_numpy() != 1)
+    drift = drifting_sweeps(sw, padded, tested, settings.drift_p)
+    # A drifting load loses all its sweeps (its ramp 1 too, when ramp 1 is used).
+    drift = _whole_loads(sw, drift) & ~few
+    flags |= _flag(drift, Flag.DRIFT)
     sw["flags"] = flags
+    if not settings.keep_drift:
+        used &= ~drift
+        sw["used"] = used
 
     say("statistics per load")
     exp = per_experiment(sw)
@@ -215,14 +238,21 @@ def analyze(
     groups = []
     for key, part in exp.groupby(GROUP_KEYS, sort=True):
         say(f"JKR fit: {key[0]}, {key[1]}")
-        g = fit_group(part, key, settings.bootstrap, settings.seed)
-        in_group = used & (sw["configuration"] == key[0]).to_numpy()
-        in_group &= (sw["medium"] == key[1]).to_numpy()
+        member = (sw["configuration"] == key[0]).to_numpy() & (sw["medium"] == key[1]).to_numpy()
+        in_group = used & member
+        g = fit_group(part, key, settings.bootstrap, settings.seed, sw[in_group])
         g["n_experiments"] = int(part["experiment"].nunique())
         g["n_sweeps_used"] = int(in_group.sum())
         models = sw.loc[in_group, "model"]
         g["models"] = {m: int((models == m).sum()) for m in AMPLITUDE_MODELS}
         g["P_Hz_per_N_per_m"] = float(part["P_Hz_per_N_per_m"].mean())
+        later = member & ~few & (sw["ramp"].to_numpy() >= 2) & ~drift
+        g["running_in"] = running_in(sw[member], later[member])
+        drifting = sw[member & drift].drop_duplicates(["experiment", "normal_force_N"])
+        g["drifting_loads"] = [
+            {"experiment": e, "normal_force_N": f}
+            for e, f in zip(drifting["experiment"], drifting["normal_force_N"], strict=True)
+        ]
         groups.append(g)
 
     record = asdict(settings)

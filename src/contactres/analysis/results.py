@@ -41,7 +41,11 @@ class Results:
     padded: Padded | None = field(default=None, repr=False)
 
     def table1(self) -> pd.DataFrame:
-        """Table 1 of paper 2 for these data: E (GPa) and γ (mJ/m²) per configuration/medium."""
+        """Table 1 of paper 2 for these data: E (GPa) and γ (mJ/m²) per configuration/medium.
+
+        ``errors`` says how the errors were found; where a check withholds E and γ they are NaN
+        and ``note`` says why and which input to check.
+        """
         rows = []
         for g in self.groups:
             rows.append(
@@ -54,6 +58,8 @@ class Results:
                     "gamma_err_mJ_m2": g["gamma_err_J_m2"] * 1e3,
                     "n_exp": g["n_experiments"],
                     "n_sweeps": g["n_sweeps_used"],
+                    "errors": g.get("error_method", ""),
+                    "note": g.get("note", ""),
                 }
             )
         return pd.DataFrame(rows)

@@ -1,0 +1,114 @@
+"""Numbers a user can trust: errors that match the scatter of repeated studies, implausible fits
+withheld with the input to check, drifting loads left out, running-in measured (issue 11)."""
+
+import numpy as np
+import pytest
+
+from contactres.analysis import AnalysisSettings, analyze
+from contactres.analysis.flags import Flag, has
+from contactres.measurements.sweeps import validate_sweeps
+from contactres.measurements.synthetic import Drift, SweepGroup, SweepStudy, synthetic_sweeps
+from contactres.resonators.qcm import QCM
+
+Q = QCM(5e6, 3, 2.5e-5)
+CONST = dict(overtone=3, area_m2=2.5e-5, n_contacts=3)
+E_TRUE, GAMMA_TRUE = 70e9, 0.05
+FAST = AnalysisSettings(bootstrap=200)
+U = tuple(np.linspace(0.5e-9, 6e-9, 10))
+
+
+def study(n_experiments=4, scatter=0.03, **kw):
+    return SweepStudy(
+        groups=(SweepGroup("glass", "air", 1e-3, E_TRUE, GAMMA_TRUE, U, 1e4, 0.1),),
+        normal_forces=(1e-3, 2e-3, 4e-3, 6e-3, 8e-3, 12e-3),
+        n_experiments=n_experiments,
+        ramps=(1, 2, 3, 4),
+        qcm=Q,
+        scatter=(("E", scatter), ("gamma", scatter)),
+        **kw,
+    )
+
+
+def run(s, seed, settings=FAST, **const):
+    table = validate_sweeps(
+        synthetic_sweeps(s, seed, constants=False), constants={**CONST, **const}
+    )
+    return analyze(table, settings=settings)
+
+
+def test_printed_errors_match_the_scatter_of_repeated_studies():
+    # Each experiment has its own E and γ (3 % scatter): the error of E must come from the
+    # spread between experiments, not from the points as if independent.
+    s = study()
+    groups = [run(s, seed).groups[0] for seed in range(16)]
+    E = np.array([g["E_Pa"] for g in groups])
+    gamma = np.array([g["gamma_J_m2"] for g in groups])
+    E_err = np.array([g["E_err_Pa"] for g in groups])
+    g_err = np.array([g["gamma_err_J_m2"] for g in groups])
+    assert all("bootstrap over the 4 experiments" in g["error_method"] for g in groups)
+    ratio_E = np.mean(E_err) / np.std(E, ddof=1)
+    ratio_g = np.mean(g_err) / np.std(gamma, ddof=1)
+    assert 0.5 < ratio_E < 2.0, ratio_E
+    assert 0.5 < ratio_g < 2.0, ratio_g
+    assert abs(np.mean(E) / E_TRUE - 1) < 0.05
+    assert abs(np.mean(gamma) - GAMMA_TRUE) < 3 * np.std(gamma, ddof=1)
+
+
+def test_one_experiment_gets_within_experiment_errors_labelled_as_such():
+    g = run(study(n_experiments=1), 3).groups[0]
+    assert g["error_method"].startswith("within one experiment")
+    assert np.isfinite(g["E_err_Pa"]) and g["E_err_Pa"] > 0
+    assert np.isfinite(g["gamma_err_J_m2"])
+
+
+def test_two_experiments_use_their_two_fits():
+    g = run(study(n_experiments=2), 5).groups[0]
+    assert g["error_method"] == "half the difference of the fits of the 2 experiments"
+    assert g["E_err_Pa"] > 0
+
+
+def test_area_in_square_millimetres_is_not_printed_as_a_result():
+    # 25 (mm²) typed for 2.5e-5 m²: P is 1e6 times too small, κ and E absurdly large.
+    res = run(study(n_experiments=3), 1, area_m2=25.0)
+    for g in res.groups:
+        assert np.isnan(g["E_Pa"]) and np.isnan(g["gamma_J_m2"])
+        assert "E-out-of-range" in g["checks"] or "fit-at-bound" in g["checks"]
+        assert "area_m2" in g["note"]
+        assert g["rejected_fit"]["E_Pa"] > 1500e9
+    t1 = res.table1()
+    assert t1["E_GPa"].isna().all()
+
+
+def test_too_few_loads_says_how_many():
+    s = SweepStudy(
+        groups=(SweepGroup("glass", "air", 1e-3, E_TRUE, GAMMA_TRUE, U, 1e4, 0.1),),
+        normal_forces=(2e-3, 4e-3),
+        n_experiments=1,
+        qcm=Q,
+    )
+    g = run(s, 0).groups[0]
+    assert g["checks"] == ["too-few-loads"] and "2 point(s) at 2 load(s)" in g["note"]
+
+
+def test_drifting_load_is_left_out_and_listed():
+    s = study(n_experiments=3, drifts=(Drift("glass", "air", 2, 3, 1.5),))
+    res = run(s, 2)
+    sw = res.sweeps
+    drift = has(sw["flags"], Flag.DRIFT)
+    block = (sw["experiment"] == "e2") & (sw["normal_force_N"] == 6e-3)
+    assert drift[block.to_numpy()].all() and not drift[~block.to_numpy()].any()
+    assert not sw.loc[block, "used"].any()
+    assert res.groups[0]["drifting_loads"] == [{"experiment": "e2", "normal_force_N": 6e-3}]
+    kept = run(s, 2, settings=AnalysisSettings(bootstrap=0, keep_drift=True))
+    assert kept.sweeps.loc[block & (kept.sweeps["ramp"] > 1), "used"].all()
+
+
+def test_running_in_is_measured_and_not_called_drift():
+    s = study(n_experiments=3, running_in_kappa=0.8)
+    res = run(s, 4)
+    ri = res.groups[0]["running_in"]
+    assert ri["n_loads"] == 18
+    assert ri["kappa_ratio"] == pytest.approx(0.8, abs=3 * ri["kappa_ratio_err"] + 0.01)
+    # Keeping ramp 1 does not turn its offset into drift.
+    kept = run(s, 4, settings=AnalysisSettings(bootstrap=0, keep_first_ramp=True))
+    assert not has(kept.sweeps["flags"], Flag.DRIFT).any()
