@@ -112,3 +112,46 @@ def test_running_in_is_measured_and_not_called_drift():
     # Keeping ramp 1 does not turn its offset into drift.
     kept = run(s, 4, settings=AnalysisSettings(bootstrap=0, keep_first_ramp=True))
     assert not has(kept.sweeps["flags"], Flag.DRIFT).any()
+
+
+def _table(s, seed, edit):
+    raw = synthetic_sweeps(s, seed, constants=False)
+    return validate_sweeps(edit(raw), constants=CONST)
+
+
+def test_ramp_labels_out_of_file_order_are_named_and_not_trusted():
+    s = study(n_experiments=2)
+    e1 = s.normal_forces[2]
+
+    def swap(raw):  # in load F2 of e1, the sweeps in file order carry the labels 3, 1, 2, 4
+        block = (raw["experiment"] == "e1") & (raw["normal_force_N"] == e1)
+        relabel = {1: 3, 2: 1, 3: 2, 4: 4}
+        raw.loc[block, "ramp"] = raw.loc[block, "ramp"].map(relabel)
+        return raw
+
+    res = analyze(_table(s, 1, swap), settings=FAST)
+    sw = res.sweeps
+    block = ((sw["experiment"] == "e1") & (sw["normal_force_N"] == e1)).to_numpy()
+    assert has(sw["flags"], Flag.RAMP_ORDER)[block].all()
+    assert not has(sw["flags"], Flag.RAMP_ORDER)[~block].any()
+    # The first sweep measured (labelled 3) is the running-in one, not the one labelled 1.
+    first = has(sw["flags"], Flag.FIRST_RAMP)
+    assert list(sw.loc[block & first, "ramp"]) == [3]
+    assert len(res.messages) == 1
+    assert "ramps in file order are 3, 1, 2, 4" in res.messages[0] and "'e1'" in res.messages[0]
+
+
+def test_missing_ramp_and_contradicted_direction_are_named():
+    s = study(n_experiments=1)
+    f = s.normal_forces[0]
+
+    def edit(raw):
+        raw = raw[~((raw["normal_force_N"] == f) & (raw["ramp"] == 3))].copy()
+        down = (raw["normal_force_N"] == s.normal_forces[1]) & (raw["ramp"] == 2)
+        raw.loc[down, "sweep"] = "ramp-up-labelled"  # ramp 2 runs down (alternate=True)
+        return raw
+
+    res = analyze(_table(s, 2, edit), settings=FAST)
+    text = "\n".join(res.messages)
+    assert "ramp(s) 3 missing" in text
+    assert "'ramp-up-labelled' is labelled 'up' but its amplitudes run down" in text

@@ -27,6 +27,7 @@ class Flag(enum.IntFlag):
     PLATEAU_SLOPE = enum.auto()
     GROSS_SLIDING = enum.auto()
     DRIFT = enum.auto()
+    RAMP_ORDER = enum.auto()
 
     @property
     def text(self) -> str:
@@ -56,6 +57,10 @@ DESCRIPTIONS: dict[Flag, str] = {
     Flag.DRIFT: (
         "the used ramps of this load of this experiment are offset from each other beyond the "
         "noise (F test): the baseline moved"
+    ),
+    Flag.RAMP_ORDER: (
+        "the ramp labels of this load disagree with the file order or the amplitudes (see the "
+        "messages); the first sweep in the file is taken as the running-in ramp"
     ),
 }
 

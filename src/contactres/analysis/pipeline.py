@@ -31,7 +31,9 @@
    noise, and their μ_fit reads low with an error (linearised, from the Jacobian) that is too
    small: in simulations of that recipe it reads 40-65 % low, in some sweeps by 3-7 times its
    error (the air recipe, 0.3 Hz noise and u0 <= 10 nm: unbiased, z standard deviation 1.2).
-4. **Flags**: ``first-ramp`` (ramp 1 set aside as running-in unless ``keep_first_ramp``),
+4. **Flags**: ``first-ramp`` (the first ramp of a load in the file set aside as running-in unless
+   ``keep_first_ramp``), ``ramp-order`` (ramp labels that disagree with the file order or the
+   amplitudes, :mod:`contactres.analysis.ramps`),
    ``few-points`` (< 4 points: not used), ``drift`` (the used ramps of one load of one experiment
    are offset from each other beyond noise: F test of per-ramp offsets on a common quadratic,
    false-alarm probability ``drift_p``),
@@ -69,6 +71,7 @@ from .jkr import fit_group
 from .loads import GROUP_KEYS, per_experiment, per_load
 from .loops import X_MAX, cm_loop_table
 from .models import AMPLITUDE_MODELS
+from .ramps import check_ramps
 from .results import Results
 from .running_in import running_in
 
@@ -181,7 +184,10 @@ def analyze(
     sw["P_Hz_per_N_per_m"] = P
 
     few = sw["n_points"].to_numpy() < MIN_SWEEP_POINTS
-    first = (sw["ramp"].to_numpy() == 1) & (not settings.keep_first_ramp)
+    first_line = data.groupby("sweep", sort=False)["line"].min().reindex(sw["sweep"]).to_numpy()
+    ramps = check_ramps(sw, first_line, sw["direction"].to_numpy())
+    running = ramps.first  # the running-in sweep of each load, as measured
+    first = running & (not settings.keep_first_ramp)
     used = ~few & ~first
     sw["used"] = used
     rises = (
@@ -197,6 +203,7 @@ def analyze(
         | _flag(rises, Flag.JUNCTION_GROWTH)
         | _flag(big, Flag.SMALL_LOAD)
         | _flag((sw["model"] == "plateau").to_numpy(), Flag.PLATEAU_SLOPE)
+        | _flag(ramps.suspect, Flag.RAMP_ORDER)
     )
 
     say("contact stiffness and friction")
@@ -221,7 +228,7 @@ def analyze(
         sw["mu_fit_err"] = np.nan
         sw["x_max"] = np.nan
     # Drift is tested on the ramps after the first: ramp 1's running-in offset is not drift.
-    tested = ~few & (sw["ramp"].to_numpy() != 1)
+    tested = ~few & ~running
     drift = drifting_sweeps(sw, padded, tested, settings.drift_p)
     # A drifting load loses all its sweeps (its ramp 1 too, when ramp 1 is used).
     drift = _whole_loads(sw, drift) & ~few
@@ -246,8 +253,8 @@ def analyze(
         models = sw.loc[in_group, "model"]
         g["models"] = {m: int((models == m).sum()) for m in AMPLITUDE_MODELS}
         g["P_Hz_per_N_per_m"] = float(part["P_Hz_per_N_per_m"].mean())
-        later = member & ~few & (sw["ramp"].to_numpy() >= 2) & ~drift
-        g["running_in"] = running_in(sw[member], later[member])
+        later = member & ~few & ~running & ~drift
+        g["running_in"] = running_in(sw[member], running[member], later[member])
         drifting = sw[member & drift].drop_duplicates(["experiment", "normal_force_N"])
         g["drifting_loads"] = [
             {"experiment": e, "normal_force_N": f}
@@ -266,4 +273,5 @@ def analyze(
         version=__version__,
         table=table,
         padded=padded,
+        messages=ramps.messages,
     )

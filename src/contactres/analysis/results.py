@@ -29,6 +29,8 @@ class Results:
     version : contactres version
     table : the input sweep table
     padded : the sweeps as padded arrays (for the figures)
+    messages : what the analysis found odd in the input, one line each (e.g. ramp labels that
+        disagree with the file order)
     """
 
     sweeps: pd.DataFrame
@@ -39,6 +41,7 @@ class Results:
     version: str
     table: SweepTable | None = None
     padded: Padded | None = field(default=None, repr=False)
+    messages: tuple[str, ...] = ()
 
     def table1(self) -> pd.DataFrame:
         """Table 1 of paper 2 for these data: E (GPa) and γ (mJ/m²) per configuration/medium.

@@ -20,15 +20,15 @@ __all__ = ["QUANTITIES", "running_in"]
 QUANTITIES = {"kappa_N_per_m": "kappa", "omega_xi_N_per_m": "omega_xi", "mu_fit": "mu_fit"}
 
 
-def running_in(sw: pd.DataFrame, later: np.ndarray) -> dict:
+def running_in(sw: pd.DataFrame, first: np.ndarray, later: np.ndarray) -> dict:
     """Ratios ramp 1 / later ramps for the sweeps ``sw`` of one configuration and medium.
 
-    ``later``: which sweeps count as the later ramps (used, ramp >= 2, not drifting). Returns
+    ``first``: the running-in sweep of each load; ``later``: which sweeps count as the later
+    ramps (enough points, not the first, not drifting). Returns
     ``{"n_loads": n, "<q>_ratio": mean, "<q>_ratio_err": standard error, ...}`` for the
     quantities of :data:`QUANTITIES` (NaN where fewer than one or two loads give a ratio), or
     ``{"n_loads": 0}`` when the table has no ramp 1.
     """
-    first = (sw["ramp"] == 1).to_numpy()
     if not first.any():
         return {"n_loads": 0}
     keys = LOAD_OF_EXPERIMENT
