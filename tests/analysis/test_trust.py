@@ -155,3 +155,19 @@ def test_missing_ramp_and_contradicted_direction_are_named():
     text = "\n".join(res.messages)
     assert "ramp(s) 3 missing" in text
     assert "'ramp-up-labelled' is labelled 'up' but its amplitudes run down" in text
+
+
+def test_per_load_errors_by_hand():
+    res = run(study(n_experiments=3), 6)
+    sw = res.sweeps[res.sweeps["used"]]
+    row = res.loads[res.loads["normal_force_N"] == 4e-3].iloc[0]
+    per_exp = sw[sw["normal_force_N"] == 4e-3].groupby("experiment")["kappa_N_per_m"].mean()
+    assert row["n_experiments"] == 3 and row["n_sweeps"] == 9
+    assert row["kappa_N_per_m_sem"] == pytest.approx(per_exp.std(ddof=1) / np.sqrt(3))
+    assert row["kappa_N_per_m_median"] == pytest.approx(per_exp.median())
+    one = run(study(n_experiments=1), 6)
+    sw1 = one.sweeps[one.sweeps["used"] & (one.sweeps["normal_force_N"] == 4e-3)]
+    row1 = one.loads[one.loads["normal_force_N"] == 4e-3].iloc[0]
+    assert row1["errors_from"] == "sweeps of one experiment"
+    k = sw1["kappa_N_per_m"]
+    assert row1["kappa_N_per_m_sem"] == pytest.approx(k.std(ddof=1) / np.sqrt(len(k)))

@@ -82,10 +82,12 @@ def test_schema_of_the_three_outputs(results, tmp_path):
     assert sweeps["used"].dtype == bool and (sweeps["used"] == (sweeps["ramp"] != 1)).all()
 
     loads = pd.read_csv(tmp_path / "loads.csv")
-    expected = ["configuration", "medium", "normal_force_N", "n_experiments", "n_sweeps"]
+    keys = ["configuration", "medium", "normal_force_N", "n_experiments", "n_sweeps"]
+    expected = [*keys, "errors_from"]
     for q in LOAD_QUANTITIES:
-        expected += [f"{q}_mean", f"{q}_sd"]
+        expected += [f"{q}_{stat}" for stat in ("mean", "sd", "sem", "median", "median_err")]
     assert list(loads.columns) == expected
+    assert (loads["errors_from"] == "experiments").all()
     assert len(loads) == 6 and (loads["n_experiments"] == 3).all()
     assert (loads["n_sweeps"] == 6).all()
 

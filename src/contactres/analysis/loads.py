@@ -7,6 +7,7 @@ plateau sweep) is skipped, and a load without any value gets NaN.
 
 from __future__ import annotations
 
+import numpy as np
 import pandas as pd
 
 from ..measurements.schema import LOAD_QUANTITIES
@@ -31,12 +32,31 @@ def per_experiment(sw: pd.DataFrame) -> pd.DataFrame:
     return exp.reset_index()
 
 
-def per_load(exp: pd.DataFrame) -> pd.DataFrame:
-    """One row per load: mean and standard deviation (ddof = 1) over experiments."""
+def per_load(exp: pd.DataFrame, sw: pd.DataFrame) -> pd.DataFrame:
+    """One row per load: mean, sd (ddof = 1), standard error and median over experiments.
+
+    ``exp``: :func:`per_experiment`; ``sw``: the sweep results (``used`` marks the sweeps behind
+    the means). The standard error ``_sem`` is sd/√n over the experiments; a load measured in
+    one experiment only gets it from its repeated sweeps instead (sd over the used sweeps/√n,
+    which does not include what remounting the sample changes); ``errors_from`` says which.
+    ``_median`` is the median over the experiments (over the sweeps for one experiment), a
+    location robust to one odd experiment, with ``_median_err`` = 1.2533 × ``_sem`` (the median's
+    large-sample error for normal scatter).
+    """
     g = exp.groupby(LOAD_KEYS, sort=True)
     out = g.size().rename("n_experiments").to_frame()
     out["n_sweeps"] = g["n_sweeps"].sum()
+    used = sw[sw["used"]].groupby(LOAD_KEYS, sort=True)
+    single = (out["n_experiments"] == 1).to_numpy()
+    out["errors_from"] = np.where(single, "sweeps of one experiment", "experiments")
+    out.loc[single & (out["n_sweeps"] < 2).to_numpy(), "errors_from"] = ""
     for q in QUANTITIES:
+        sweep_sd = used[q].std(ddof=1).reindex(out.index)
+        sweep_n = used[q].count().reindex(out.index)
         out[f"{q}_mean"] = g[q].mean()
         out[f"{q}_sd"] = g[q].std(ddof=1)
+        sem = out[f"{q}_sd"] / np.sqrt(g[q].count())
+        out[f"{q}_sem"] = np.where(single, sweep_sd / np.sqrt(sweep_n), sem)
+        out[f"{q}_median"] = np.where(single, used[q].median().reindex(out.index), g[q].median())
+        out[f"{q}_median_err"] = 1.2533 * out[f"{q}_sem"]
     return out.reset_index()

@@ -240,7 +240,7 @@ def analyze(
 
     say("statistics per load")
     exp = per_experiment(sw)
-    loads = per_load(exp)
+    loads = per_load(exp, sw)
 
     groups = []
     for key, part in exp.groupby(GROUP_KEYS, sort=True):

@@ -316,12 +316,21 @@ LOAD_RESULTS = TableSchema(
         Column("normal_force_N", "N", "normal force per contact", level="sweep"),
         Column("n_experiments", "-", "experiments with used sweeps at this load", level="sweep"),
         Column("n_sweeps", "-", "used sweeps at this load", level="sweep"),
+        Column(
+            "errors_from",
+            "text",
+            "what _sem and _median_err come from: experiments, or sweeps of one experiment",
+            level="sweep",
+        ),
         *(
             Column(f"{name}_{stat}", unit, f"{text}: {what}", level="sweep")
             for name, unit, text in LOAD_QUANTITIES
             for stat, what in (
                 ("mean", "mean over experiments (each the mean of its used sweeps)"),
                 ("sd", "standard deviation over experiments (ddof = 1)"),
+                ("sem", "standard error of the mean (see errors_from)"),
+                ("median", "median over experiments (over sweeps for one experiment)"),
+                ("median_err", "1.2533 x the standard error: error of the median"),
             )
         ),
     ),
