@@ -1,13 +1,29 @@
-"""Tests of contactres.fileio: atomic writes leave whole files, never partial ones."""
+"""Tests of contactres.fileio: atomic writes leave whole files, never partial ones; a result set
+appears whole or not at all and never replaces an input."""
 
+import hashlib
+import json
 import os
+import socket
 import stat
+import subprocess
+import sys
+from pathlib import Path
 
 import pandas as pd
 import pytest
 from matplotlib.figure import Figure
 
-from contactres.fileio import ensure_dir, save_figure, write_csv, write_text
+from contactres.fileio import (
+    MANIFEST,
+    OutputError,
+    ResultSet,
+    check_output,
+    ensure_dir,
+    save_figure,
+    write_csv,
+    write_text,
+)
 
 
 def _mode(path):
@@ -60,3 +76,156 @@ def test_save_figure_and_ensure_dir(tmp_path):
     with pytest.raises(ValueError, match="not a directory"):
         ensure_dir(f)
     assert f.read_text() == "keep me"
+
+
+# ---- result sets: a folder written as a whole ------------------------------------------------
+
+OWNED = ("a.csv", "b.csv", "c.png")
+
+
+def _write_set(folder, contents, inputs=()):
+    with ResultSet(folder, names=list(contents), inputs=inputs, owned=OWNED) as rs:
+        for name, text in contents.items():
+            rs.path(name).write_text(text)
+    return folder
+
+
+def _names(folder):
+    return sorted(p.name for p in folder.iterdir())
+
+
+def test_result_set_appears_whole_with_a_manifest_and_leaves_nothing_behind(tmp_path):
+    out = _write_set(tmp_path / "out", {"a.csv": "1\n", "c.png": "png"})
+    assert _names(out) == ["a.csv", "c.png", MANIFEST]
+    record = json.loads((out / MANIFEST).read_text())
+    for name in ("a.csv", "c.png"):
+        data = (out / name).read_bytes()
+        assert record["files"][name] == {
+            "bytes": len(data),
+            "sha256": hashlib.sha256(data).hexdigest(),
+        }
+    assert _names(tmp_path) == ["out"]  # no lock, no staging folder
+
+
+def test_a_later_set_removes_the_files_of_an_earlier_one(tmp_path):
+    out = _write_set(tmp_path / "out", {"a.csv": "old", "c.png": "old figure"})
+    _write_set(out, {"a.csv": "new"})  # e.g. a run without figures
+    assert _names(out) == ["a.csv", MANIFEST] and (out / "a.csv").read_text() == "new"
+    assert set(json.loads((out / MANIFEST).read_text())["files"]) == {"a.csv"}
+
+
+def test_a_folder_with_other_files_keeps_them(tmp_path):
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "data.csv").write_text("the input")
+    _write_set(out, {"a.csv": "old", "c.png": "old figure"}, inputs=[out / "data.csv"])
+    _write_set(out, {"a.csv": "new", "b.csv": "new"}, inputs=[out / "data.csv"])
+    assert _names(out) == ["a.csv", "b.csv", "data.csv", MANIFEST]
+    assert (out / "data.csv").read_text() == "the input"
+    assert _names(tmp_path) == ["out"]
+
+
+def test_without_an_atomic_exchange_the_two_renames_give_the_same_result(tmp_path, monkeypatch):
+    import ctypes
+
+    def no_libc(*args, **kwargs):
+        raise OSError("no C library here")
+
+    out = _write_set(tmp_path / "out", {"a.csv": "old", "c.png": "old"})
+    monkeypatch.setattr(ctypes, "CDLL", no_libc)
+    _write_set(out, {"a.csv": "new"})
+    assert _names(out) == ["a.csv", MANIFEST] and (out / "a.csv").read_text() == "new"
+    assert _names(tmp_path) == ["out"]
+
+
+def test_a_kill_between_the_two_renames_is_undone_by_the_next_run(tmp_path):
+    # What a kill after 'folder -> .old' and before 'staging -> folder' leaves behind.
+    old = tmp_path / ".out.contactres-0123456789ab.old"
+    _write_set(old, {"a.csv": "old"})
+    with pytest.raises(RuntimeError, match="stop"):
+        with ResultSet(tmp_path / "out", names=["a.csv"], owned=OWNED) as rs:
+            rs.path("a.csv").write_text("new")
+            raise RuntimeError("stop")
+    assert (tmp_path / "out" / "a.csv").read_text() == "old"
+    assert _names(tmp_path) == ["out"]
+
+
+def test_an_error_inside_leaves_the_earlier_set_and_no_new_folders(tmp_path):
+    out = _write_set(tmp_path / "out", {"a.csv": "old"})
+    with pytest.raises(KeyError):
+        with ResultSet(out, names=["a.csv", "b.csv"], owned=OWNED) as rs:
+            rs.path("a.csv").write_text("new")
+            raise KeyError("analysis failed")
+    assert _names(out) == ["a.csv", MANIFEST] and (out / "a.csv").read_text() == "old"
+    with pytest.raises(KeyError):
+        with ResultSet(tmp_path / "x" / "y" / "out", names=["a.csv"]):
+            raise KeyError("analysis failed")
+    assert _names(tmp_path) == ["out"]
+
+
+def test_only_declared_names_can_be_written(tmp_path):
+    with ResultSet(tmp_path / "out", names=["a.csv"]) as rs:
+        for bad in ("b.csv", MANIFEST, "../a.csv"):
+            with pytest.raises(ValueError, match="not one of the files declared"):
+                rs.path(bad)
+        rs.path("a.csv").write_text("x")
+
+
+@pytest.mark.parametrize("how", ["same path", "symlinked folder", "hard link"])
+def test_an_output_never_replaces_an_input(tmp_path, how):
+    data = tmp_path / "data"
+    data.mkdir()
+    src = data / "a.csv"
+    src.write_text("the input")
+    out = data
+    if how == "symlinked folder":
+        out = tmp_path / "link"
+        out.symlink_to(data, target_is_directory=True)
+    elif how == "hard link":
+        out = tmp_path / "out"
+        out.mkdir()
+        os.link(src, out / "a.csv")
+    with pytest.raises(OutputError, match=r"'.*a\.csv' would overwrite the input '.*a\.csv'"):
+        _write_set(out, {"a.csv": "result"}, inputs=[src])
+    assert src.read_text() == "the input"
+    # a file an earlier set wrote (and this one would remove) is protected too
+    with pytest.raises(OutputError, match="would overwrite the input"):
+        _write_set(out, {"b.csv": "result"}, inputs=[src])
+    assert src.read_text() == "the input"
+
+
+def test_folders_that_cannot_be_written_are_named_before_anything_happens(tmp_path, monkeypatch):
+    f = tmp_path / "file"
+    f.write_text("keep")
+    with pytest.raises(OutputError, match="exists and is not a directory"):
+        check_output(f)
+    with pytest.raises(OutputError, match=r"cannot be created: '.*file' is not a directory"):
+        check_output(f / "sub")
+    real_access = os.access
+    locked = tmp_path / "locked"
+    locked.mkdir()
+    monkeypatch.setattr(os, "access", lambda p, mode: Path(p) != locked and real_access(p, mode))
+    with pytest.raises(OutputError, match=r"'.*locked' is not writable"):
+        check_output(locked)
+    with pytest.raises(OutputError, match=r"cannot be created: '.*locked' is not writable"):
+        check_output(locked / "new" / "out")
+    assert f.read_text() == "keep" and not (locked / "new").exists()
+    (tmp_path / "out" / "a.csv").mkdir(parents=True)
+    with pytest.raises(OutputError, match=r"output '.*a\.csv' is a directory, not a file"):
+        check_output(tmp_path / "out", ["a.csv"])
+
+
+def _dead_pid():
+    p = subprocess.run([sys.executable, "-c", "import os; print(os.getpid())"], capture_output=True)
+    return int(p.stdout)
+
+
+def test_a_second_run_into_the_same_folder_is_refused_and_a_stale_lock_taken_over(tmp_path):
+    lock = tmp_path / ".out.contactres.lock"
+    lock.write_text(f"{os.getpid()}\n{socket.gethostname()}\n")  # a live run: this process
+    with pytest.raises(OutputError, match=rf"another contactres run \(process {os.getpid()} on"):
+        _write_set(tmp_path / "out", {"a.csv": "x"})
+    assert not (tmp_path / "out").exists() and lock.exists()
+    lock.write_text(f"{_dead_pid()}\n{socket.gethostname()}\n")  # a killed run
+    _write_set(tmp_path / "out", {"a.csv": "x"})
+    assert _names(tmp_path) == ["out"]

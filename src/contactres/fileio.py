@@ -1,14 +1,59 @@
-"""Atomic file output: results appear whole or not at all, and inputs are never touched."""
+"""File output: results appear whole or not at all, and inputs are never touched.
+
+Single files are written atomically (:func:`atomic_path`, :func:`write_text`, :func:`write_csv`,
+:func:`save_figure`): a temporary file beside the target is renamed onto it. A folder of results
+that belong together is written as one :class:`ResultSet`:
+
+* :func:`check_output` first makes sure, writing nothing, that the folder can be created and
+  written and that no file the set may write or remove is an input (links resolved);
+* a lock file beside the folder (``.<name>.contactres.lock``, ``O_EXCL``, holding process id and
+  host) refuses a second run into it; the lock of a process that is gone is taken over;
+* the files are written into a hidden staging folder beside the target, then moved into place as
+  a whole: a folder holding nothing but an earlier set (or no folder) is swapped with the staging
+  folder (``renameat2(RENAME_EXCHANGE)`` on Linux; else two renames, undone by the next run if a
+  kill falls between them); a folder holding other files too (the data, say) gets the files one
+  by one, its manifest removed first;
+* ``manifest.json`` (:data:`MANIFEST`), written last, lists the files with sizes and SHA-256
+  sums; files of an earlier set that the new one lacks (its figures, say) are removed.
+
+So a kill leaves the earlier set or the new one (plus hidden leftovers the next run removes), or,
+only while files are moved in one by one, a folder without a manifest: never a mixture that
+looks complete.
+"""
 
 from __future__ import annotations
 
+import ctypes
+import errno
+import hashlib
+import json
 import os
 import secrets
-from collections.abc import Iterator
+import shutil
+import socket
+import sys
+from collections.abc import Iterable, Iterator
 from contextlib import contextmanager
 from pathlib import Path
 
-__all__ = ["atomic_path", "ensure_dir", "save_figure", "write_csv", "write_text"]
+__all__ = [
+    "MANIFEST",
+    "OutputError",
+    "ResultSet",
+    "atomic_path",
+    "check_output",
+    "ensure_dir",
+    "save_figure",
+    "write_csv",
+    "write_text",
+]
+
+#: The file of a result set written last: its files, sizes and SHA-256 sums.
+MANIFEST = "manifest.json"
+
+
+class OutputError(ValueError):
+    """An output folder that cannot (or must not) be written; the message says why."""
 
 
 def ensure_dir(folder: str | os.PathLike) -> Path:
@@ -85,3 +130,365 @@ def save_figure(path: str | os.PathLike, fig, dpi: int = 150) -> Path:
     finally:
         plt.close(fig)
     return target
+
+
+# --------------------------------------------------------------------------------------------
+# Result sets
+
+
+def _writable(folder: Path) -> bool:
+    return os.access(folder, os.W_OK | os.X_OK)
+
+
+def _same_file(a: Path, b: Path) -> bool:
+    """True if ``a`` and ``b`` name one file (symbolic links resolved; hard links by inode)."""
+    if a.resolve() == b.resolve():
+        return True
+    try:
+        return os.path.samefile(a, b)
+    except OSError:  # either does not exist: different files
+        return False
+
+
+def _manifest_names(folder: Path) -> set[str]:
+    """Plain file names listed in the manifest of ``folder`` (empty if none or unreadable)."""
+    try:
+        listed = json.loads((folder / MANIFEST).read_text(encoding="utf-8"))["files"]
+        names = {str(n) for n in listed}
+    except (OSError, ValueError, KeyError, TypeError):
+        return set()
+    # Never trust a path from a file: only names of files directly inside the folder.
+    return {n for n in names if Path(n).name == n and not n.startswith(".") and n != MANIFEST}
+
+
+def _leftover_temporary(name: str, owned: Iterable[str]) -> bool:
+    """True for the hidden temporary of :func:`atomic_path` for one of ``owned``, left by a kill."""
+    return (
+        name.startswith(".")
+        and name.endswith(".tmp")
+        and any(name.startswith(f".{n}.") and len(name) == len(n) + 18 for n in owned)
+    )
+
+
+def check_output(
+    folder: str | os.PathLike,
+    names: Iterable[str] = (),
+    inputs: Iterable[str | os.PathLike] = (),
+) -> Path:
+    """Check, without writing anything, that a result set may be written into ``folder``.
+
+    Parameters
+    ----------
+    folder : the output folder (created later if missing)
+    names : every file name the set may write or remove in ``folder``
+    inputs : the input files of the run (those that do not exist are ignored)
+
+    Returns
+    -------
+    Path : ``folder`` with symbolic links resolved
+
+    Raises
+    ------
+    OutputError
+        One line naming the folder and the reason: a path through a file, an existing file, a
+        folder that cannot be created or written, a file of the set that is an input or a
+        directory.
+    """
+    given, target = Path(folder), Path(folder).resolve()
+    nearest = target  # the folder, or the nearest of its parents that exists
+    while not nearest.exists():
+        nearest = nearest.parent
+    if nearest == target:
+        if not target.is_dir():
+            raise OutputError(f"output folder {str(given)!r} exists and is not a directory")
+        if not _writable(target):
+            raise OutputError(f"output folder {str(given)!r} is not writable")
+    elif not nearest.is_dir() or not _writable(nearest):
+        why = "is not writable" if nearest.is_dir() else "is not a directory"
+        raise OutputError(f"output folder {str(given)!r} cannot be created: {str(nearest)!r} {why}")
+    present = [Path(p) for p in inputs if Path(p).exists()]
+    for name in sorted({*names, MANIFEST} | _manifest_names(target)):
+        out = target / name
+        if out.is_dir():
+            raise OutputError(f"output {str(given / name)!r} is a directory, not a file")
+        for src in present:
+            if _same_file(out, src):
+                raise OutputError(
+                    f"output {str(given / name)!r} would overwrite the input {str(src)!r}; "
+                    "choose another output folder"
+                )
+    return target
+
+
+def _pid_alive(pid: int) -> bool:
+    if os.name == "nt":  # no portable liveness check there: treat the lock as held
+        return True
+    try:
+        os.kill(pid, 0)
+    except ProcessLookupError:
+        return False
+    except PermissionError:  # a process of another user
+        pass
+    return True
+
+
+def _lock_holder(lock: Path) -> tuple[int, str] | None:
+    """(pid, host) written in ``lock``; None if it cannot be read."""
+    try:
+        pid, host = lock.read_text(encoding="utf-8").split("\n")[:2]
+        return int(pid), host
+    except (OSError, ValueError):
+        return None
+
+
+def _exchange(a: Path, b: Path) -> bool:
+    """Swap the paths ``a`` and ``b`` in one step (Linux ``renameat2(RENAME_EXCHANGE)``).
+
+    Returns False where the system or the file system cannot (the caller then renames twice).
+    """
+    if not sys.platform.startswith("linux"):
+        return False
+    try:
+        renameat2 = ctypes.CDLL(None, use_errno=True).renameat2
+    except (OSError, AttributeError):  # a C library without renameat2 (glibc < 2.28, musl)
+        return False
+    renameat2.argtypes = [
+        ctypes.c_int,
+        ctypes.c_char_p,
+        ctypes.c_int,
+        ctypes.c_char_p,
+        ctypes.c_uint,
+    ]
+    at_fdcwd, rename_exchange = -100, 2  # <fcntl.h>, <linux/fs.h>
+    if renameat2(at_fdcwd, os.fsencode(a), at_fdcwd, os.fsencode(b), rename_exchange) == 0:
+        return True
+    code = ctypes.get_errno()
+    if code in (errno.EINVAL, errno.ENOSYS, errno.EOPNOTSUPP):
+        return False
+    raise OSError(code, os.strerror(code), str(b))
+
+
+def _digest(path: Path) -> dict:
+    h = hashlib.sha256()
+    with path.open("rb") as fh:
+        for block in iter(lambda: fh.read(1 << 20), b""):
+            h.update(block)
+    return {"bytes": path.stat().st_size, "sha256": h.hexdigest()}
+
+
+def _move_in(src: Path, dst: Path) -> None:
+    """Move ``src`` onto ``dst`` atomically, copying if they lie on different file systems."""
+    try:
+        os.replace(src, dst)
+    except OSError as exc:
+        if exc.errno != errno.EXDEV:
+            raise
+        with atomic_path(dst) as tmp:
+            shutil.copyfile(src, tmp)
+
+
+class ResultSet:
+    """A folder of result files written as a whole (see the module docstring).
+
+    Use as a context manager; write each file at :meth:`path`; on a normal exit the set is moved
+    into place, on an exception (or a kill) the folder is left as it was::
+
+        with ResultSet("out", names=["a.csv", "b.png"], inputs=["data.csv"]) as rs:
+            frame.to_csv(rs.path("a.csv"))
+
+    Parameters
+    ----------
+    folder : the output folder (created if missing; symbolic links are followed)
+    names : the files this run may write (:meth:`path` refuses others)
+    inputs : input files of the run: no file of the set may be one of them
+    owned : every name a set of this kind can hold; those the new set lacks are removed from
+        the folder (files an earlier set wrote), and a folder holding only such files (and its
+        manifest) is replaced as a whole
+
+    Raises
+    ------
+    OutputError
+        On entering: see :func:`check_output`, or another run holds the lock.
+
+    Where the folder's parent cannot be written but the folder itself can, the lock file and
+    the staging folder live inside the folder (hidden) and the files are moved in one by one.
+    """
+
+    def __init__(self, folder, *, names=(), inputs=(), owned=()):
+        self.given = Path(folder)
+        self.names = tuple(names)
+        self.inputs = tuple(inputs)
+        self.owned = frozenset(owned) | frozenset(self.names)
+        self.folder = self.given.resolve()
+        self._workspace: Path | None = None
+        self._staging: Path | None = None
+        self._lock: Path | None = None
+        self._created: list[Path] = []
+
+    # -- set-up ---------------------------------------------------------------------------
+
+    def __enter__(self) -> ResultSet:
+        self.folder = check_output(self.given, self.owned, self.inputs)
+        parent = self.folder.parent
+        missing = [p for p in (parent, *parent.parents) if not p.exists()]
+        try:
+            for p in reversed(missing):
+                p.mkdir()
+                self._created.append(p)
+            inside = not _writable(parent) and self.folder.is_dir()
+            self._workspace = self.folder if inside else parent
+            self._take_lock()
+            self._clean_leftovers()
+            self._staging = self._new_dir("tmp")
+        except BaseException:
+            self._release(aborted=True)
+            raise
+        return self
+
+    def _prefix(self) -> str:
+        """Name prefix of the lock and the staging folders (hidden)."""
+        if self._workspace == self.folder:
+            return ".contactres"
+        return f".{self.folder.name}.contactres"
+
+    def _take_lock(self) -> None:
+        lock = self._workspace / f"{self._prefix()}.lock"
+        for _ in range(2):
+            try:
+                fd = os.open(lock, os.O_CREAT | os.O_EXCL | os.O_WRONLY, 0o644)
+            except FileExistsError:
+                holder = _lock_holder(lock)
+                if holder and holder[1] == socket.gethostname() and not _pid_alive(holder[0]):
+                    lock.unlink(missing_ok=True)  # a killed run's lock: take it over
+                    continue
+                who = f"process {holder[0]} on {holder[1]}" if holder else "another process"
+                raise OutputError(
+                    f"output folder {str(self.given)!r} is being written by another contactres "
+                    f"run ({who}; lock file {str(lock)!r}); wait for it to finish, or remove the "
+                    "lock file if no such run exists"
+                ) from None
+            with os.fdopen(fd, "w", encoding="utf-8") as fh:
+                fh.write(f"{os.getpid()}\n{socket.gethostname()}\n")
+            self._lock = lock
+            return
+        raise OutputError(f"could not take the lock file {str(lock)!r}")
+
+    def _new_dir(self, kind: str) -> Path:
+        for _ in range(100):
+            p = self._workspace / f"{self._prefix()}-{secrets.token_hex(6)}.{kind}"
+            try:
+                p.mkdir()  # umask default, as a plain mkdir of the target would give
+            except FileExistsError:
+                continue
+            return p
+        raise OutputError(f"no free temporary folder name in {str(self._workspace)!r}")
+
+    def _ours(self, p: Path) -> bool:
+        """True for the lock and the staging folders of runs into this folder."""
+        prefix = self._prefix()
+        return p.name == f"{prefix}.lock" or (
+            p.name.startswith(f"{prefix}-") and p.suffix in (".tmp", ".old")
+        )
+
+    def _clean_leftovers(self) -> None:
+        """Remove what killed runs into this folder left (we hold the lock: none is live)."""
+        left = [p for p in self._workspace.iterdir() if self._ours(p) and p.is_dir()]
+        old = [p for p in left if p.suffix == ".old"]
+        if not self.folder.exists() and len(old) == 1:
+            os.rename(old[0], self.folder)  # a kill fell between the two renames of a swap
+            left.remove(old[0])
+        for p in left:
+            shutil.rmtree(p, ignore_errors=True)
+
+    # -- writing --------------------------------------------------------------------------
+
+    def path(self, name: str) -> Path:
+        """Where to write the file ``name`` of the set (inside the staging folder)."""
+        if self._staging is None:
+            raise RuntimeError("ResultSet.path is only valid inside its with-block")
+        if name not in self.names or Path(name).name != name or name == MANIFEST:
+            raise ValueError(f"{name!r} is not one of the files declared for this result set")
+        return self._staging / name
+
+    def final(self, name: str) -> Path:
+        """Where the file ``name`` is once the set is in place."""
+        return self.given / name
+
+    # -- commit or abort ------------------------------------------------------------------
+
+    def __exit__(self, kind, value, tb) -> None:
+        try:
+            if kind is None:
+                self._commit()
+        finally:
+            self._release(aborted=kind is not None)
+
+    def _replaceable(self) -> bool:
+        """True if the folder can be swapped as a whole: it holds nothing but an earlier result
+        set and is not (nor holds) this process's working directory."""
+        if self._workspace == self.folder:
+            return False
+        if not self.folder.exists():
+            return True
+        cwd = Path.cwd().resolve()
+        if cwd == self.folder or self.folder in cwd.parents:
+            return False
+        ours = self.owned | _manifest_names(self.folder) | {MANIFEST}
+        return all(
+            (p.name in ours and p.is_file() and not p.is_symlink())
+            or _leftover_temporary(p.name, ours)
+            for p in self.folder.iterdir()
+        )
+
+    def _commit(self) -> None:
+        staging = self._staging
+        staged = sorted(p.name for p in staging.iterdir() if not p.name.startswith("."))
+        record = {"files": {name: _digest(staging / name) for name in staged}}
+        write_text(staging / MANIFEST, json.dumps(record, indent=1) + "\n")
+        if self._replaceable():
+            if not self.folder.exists():
+                try:
+                    os.rename(staging, self.folder)
+                except OSError:
+                    pass  # made meanwhile and not empty: move the files in one by one
+                else:
+                    self._staging = None
+                    return
+            else:
+                os.chmod(staging, self.folder.stat().st_mode & 0o7777)
+                if not _exchange(staging, self.folder):
+                    old = self._workspace / f"{self._prefix()}-{secrets.token_hex(6)}.old"
+                    os.rename(self.folder, old)
+                    os.rename(staging, self.folder)
+                    self._staging = old
+                # either way the staging path now holds the earlier set: removed on release
+                return
+        self._commit_in_place(staging, staged)
+
+    def _commit_in_place(self, staging: Path, staged: list[str]) -> None:
+        """Move the files in one by one (the folder holds other files that must stay)."""
+        earlier = _manifest_names(self.folder)
+        (self.folder / MANIFEST).unlink(missing_ok=True)  # no manifest while the set is mixed
+        for name in staged:
+            _move_in(staging / name, self.folder / name)
+        stale = (self.owned | earlier) - set(staged)
+        for p in self.folder.iterdir():
+            if p.name in stale or _leftover_temporary(p.name, self.owned | earlier):
+                if p.is_file() or p.is_symlink():
+                    p.unlink()
+        _move_in(staging / MANIFEST, self.folder / MANIFEST)
+
+    def _release(self, aborted: bool) -> None:
+        if self._staging is not None:
+            shutil.rmtree(self._staging, ignore_errors=True)
+            self._staging = None
+        if self._lock is not None:
+            self._lock.unlink(missing_ok=True)
+            self._lock = None
+        if aborted:  # remove the parent folders made for a set that was never written
+            for p in reversed(self._created):
+                try:
+                    p.rmdir()
+                except OSError:
+                    break
+        self._created = []

@@ -2,18 +2,37 @@
 
 The reader, the validator and the analysis all take their limits from this module, so that a rule
 (for example the small-load limit of paper 2, Eq. 1) cannot disagree between two places.
+
+The second half holds the plausible magnitude of every physical quantity a user types
+(:data:`QUANTITIES`) and :func:`check_magnitude`, the one check behind every command-line option
+that takes a length, force, modulus, area, ...: a value outside its range is refused in one line
+that names the option, the value as typed and the range, and says which unit slip it looks like
+("20" typed for an amplitude in metres looks like nanometres).
+
+This module needs only the standard library (no numpy): the command line imports it while it
+parses its options.
 """
 
 from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from types import MappingProxyType
 
 __all__ = [
     "ABSOLUTE_FREQUENCY_FRACTION",
     "JUNCTION_SIGMAS",
     "MAX_AMPLITUDE_M",
+    "MAX_KA",
     "MIN_SWEEP_POINTS",
     "POISSON_OPEN_RANGE",
+    "QUANTITIES",
     "SMALL_LOAD_LIMIT",
+    "Plausible",
+    "check_magnitude",
+    "format_number",
     "poisson_in_range",
+    "unit_slip",
 ]
 
 #: |Δf|/f above which the small-load approximation (paper 2, Eq. 1) is questioned.
@@ -42,3 +61,305 @@ def poisson_in_range(nu: float) -> bool:
     """True if ``nu`` lies strictly inside :data:`POISSON_OPEN_RANGE`."""
     lo, hi = POISSON_OPEN_RANGE
     return lo < nu < hi
+
+
+#: Largest normalised wave number k a taken from a user: 30 times paper 1's range (k_l a <= 2).
+#: The DCSF kernels end near it too (k_s a x T1 < 60, dynamic/normal_stiffness.py), at a
+#: material-dependent point that the library checks itself.
+MAX_KA = 60.0
+
+# Unit slips: (factor to SI, unit symbol, unit in words). A value outside its range whose product
+# with a factor falls inside looks typed in that unit. Lengths and forces are typed too large
+# (in nm, µm, mm, µN, ...), moduli, frequencies and stiffnesses too small (in GPa, MHz, N/nm).
+# Each quantity lists only the slips that can be the suggestion (tests/test_units.py checks it):
+# e.g. a force typed in mN is either inside the range or nearer the typical force read as µN.
+_MM = (1e-3, "mm", "millimetres")
+_UM = (1e-6, "µm", "micrometres")
+_NM = (1e-9, "nm", "nanometres")
+_MPA = (1e6, "MPa", "megapascals")
+_GPA = (1e9, "GPa", "gigapascals")
+
+
+def format_number(x: float) -> str:
+    """``x`` to 6 significant digits, powers of ten as a bare exponent.
+
+    ``2e-8``, ``1.657e11``, ``1e5``, ``20``, ``0.005``: plain between 1e-3 and 1e4, where a
+    number reads best without an exponent.
+    """
+    v = float(x)
+    if v == 0 or not math.isfinite(v) or 1e-3 <= abs(v) < 1e4:
+        return f"{v:.6g}"
+    mantissa, _, exponent = f"{v:.5e}".partition("e")
+    mantissa = mantissa.rstrip("0").rstrip(".")
+    return f"{mantissa}e{int(exponent)}"
+
+
+@dataclass(frozen=True)
+class Plausible:
+    """The plausible magnitudes of one physical quantity, in SI units.
+
+    Attributes
+    ----------
+    name : str
+        What the quantity is, for messages ("sphere radius").
+    unit : str
+        SI unit ("" for a dimensionless number).
+    lo, hi : float
+        The plausible range; ``lo_open``/``hi_open`` exclude the bound itself.
+    typical : float
+        A common value (> 0, in ``unit``): when several unit slips land inside the range, the
+        suggestion is the one nearest to it (on a log scale).
+    slips : tuple of (float, str, str)
+        The unit slips to look for: (factor to SI, unit symbol, unit in words).
+    """
+
+    name: str
+    unit: str
+    lo: float
+    hi: float
+    typical: float
+    slips: tuple[tuple[float, str, str], ...] = ()
+    lo_open: bool = False
+    hi_open: bool = False
+
+    def accepts(self, value, *, allow_zero: bool = False, signed: bool = False):
+        """True where ``value`` lies in the range (NaN never does).
+
+        Works element-wise on numpy arrays too (only comparisons, ``abs``, ``&`` and ``|``).
+        ``allow_zero`` also accepts exactly 0 (an unloaded contact, a zero amplitude);
+        ``signed`` checks the magnitude and accepts either sign (the cubic constant C12).
+        """
+        v = abs(value) if signed else value
+        above = (v > self.lo) if self.lo_open else (v >= self.lo)
+        below = (v < self.hi) if self.hi_open else (v <= self.hi)
+        inside = above & below
+        return (inside | (value == 0)) if allow_zero else inside
+
+    def describe(self, *, allow_zero: bool = False, signed: bool = False) -> str:
+        """The rule in words: ``the sphere radius lies in [1e-9, 1] m``."""
+        bounds = (
+            f"{'(' if self.lo_open else '['}{format_number(self.lo)}, "
+            f"{format_number(self.hi)}{')' if self.hi_open else ']'}"
+        )
+        text = f"the {self.name} lies in {'±' if signed else ''}{bounds}"
+        text = f"{text} {self.unit}" if self.unit else text
+        return f"{text} or is 0" if allow_zero and not self.accepts(0.0) else text
+
+
+# Each range spans the quantity in every experiment the package models, with a margin of about
+# ten on either side: wide enough never to refuse a real value, narrow enough that a value typed
+# in the wrong unit (a factor 1e3 or more) falls outside. The comment gives each range's reason.
+QUANTITIES = MappingProxyType(
+    {
+        # u0 = 0 is the low-amplitude limit; MAX_AMPLITUDE_M above says why 1 µm is the top.
+        "amplitude": Plausible(
+            "oscillation amplitude", "m", 0.0, MAX_AMPLITUDE_M, 1e-8, (_MM, _UM, _NM)
+        ),
+        # A tangential displacement of a loop (e.g. the critical displacement d_c of paper 2's
+        # plateau) is compared with u0, so it shares the amplitude's range.
+        "displacement": Plausible(
+            "tangential displacement", "m", 0.0, MAX_AMPLITUDE_M, 1e-9, (_MM, _UM, _NM)
+        ),
+        # From the sharpest AFM tips (a few nm; below 1 nm there is no continuum sphere) to a
+        # 1 m sphere, beyond any indenter or particle on a resonator.
+        "sphere_radius": Plausible("sphere radius", "m", 1e-9, 1.0, 1e-4, (_MM, _UM, _NM)),
+        # From one interatomic spacing (0.1 nm) to the largest sphere radius: a contact cannot
+        # be wider than its sphere.
+        "contact_radius": Plausible("contact radius", "m", 1e-10, 1.0, 1e-6, (_UM, _NM)),
+        # 1 pN (an AFM single-asperity contact) to 1 kN (a 100 kg load on one sphere).
+        "force": Plausible(
+            "normal force per contact",
+            "N",
+            1e-12,
+            1e3,
+            1e-3,
+            ((1e-6, "µN", "micronewtons"), (1e-9, "nN", "nanonewtons")),
+        ),
+        # Elastic constants and moduli of solids: soft rubbers and gels (~1 MPa, /10) to diamond
+        # (C11 = 1.08 TPa, x10). Crystal constants are quoted in GPa: the typical slip.
+        "modulus": Plausible("elastic modulus", "Pa", 1e5, 1e13, 1e11, (_MPA, _GPA)),
+        # Interfacial shear strength τ0 (paper 2, Eq. 13): from soft gels (~kPa, /10) to the
+        # ideal shear strength of diamond (~1e11 Pa, about G/5).
+        "stress": Plausible("interfacial shear stress", "Pa", 1e2, 1e11, 1e7, (_MPA, _GPA)),
+        # Contact stiffness κ: a soft AFM cantilever's 0.01 N/m (/10) to ~8 G a of a cm-wide
+        # diamond contact (~1e11 N/m, x10). Only N/nm is a detectable slip: a value in N/µm
+        # or N/mm read as N/m mostly stays inside this wide range.
+        "stiffness": Plausible(
+            "contact stiffness",
+            "N/m",
+            1e-3,
+            1e12,
+            1e5,
+            ((1e9, "N/nm", "N/nm"),),
+        ),
+        # μ = 0 has no loop (no sliding force); clean metals in vacuum reach μ ~ 5-10, so 50 is
+        # beyond any measured friction.
+        "friction": Plausible("friction coefficient", "", 0.0, 50.0, 0.5, lo_open=True),
+        # ξ = 0 is no dashpot. The top keeps the loss stiffness ωξ at 1 MHz below the stiffest
+        # contact (2π 1e6 s^-1 x 1e5 kg/s ~ 6e11 N/m).
+        "drag": Plausible("dashpot drag coefficient", "kg/s", 0.0, 1e5, 1e-3),
+        # Aerogels and foams (~100 kg/m³) to osmium (22 590 kg/m³) with a margin; a density
+        # typed in g/cm³ is a thousand times too small.
+        "density": Plausible(
+            "density", "kg/m^3", 1e2, 3e4, 5e3, ((1e3, "g/cm^3", "grams per cm^3"),)
+        ),
+        # Resonance frequencies: AFM cantilevers (kHz) to thin-film bulk acoustic resonators
+        # (~10 GHz). QCM fundamentals (5-10 MHz) are typed in MHz: the typical slip.
+        "frequency": Plausible(
+            "resonance frequency",
+            "Hz",
+            1e3,
+            1e10,
+            5e6,
+            ((1e3, "kHz", "kilohertz"), (1e6, "MHz", "megahertz"), (1e9, "GHz", "gigahertz")),
+        ),
+        # QCM electrode areas: 0.1 mm x 0.1 mm (resonator arrays) to 10 cm x 10 cm; areas are
+        # quoted in cm² or mm², typed as m² they are 1e4 or 1e6 times too large.
+        "area": Plausible(
+            "electrode area",
+            "m^2",
+            1e-8,
+            1e-2,
+            1e-5,
+            (
+                (1e-4, "cm^2", "square centimetres"),
+                (1e-6, "mm^2", "square millimetres"),
+                (1e-12, "µm^2", "square micrometres"),
+            ),
+        ),
+        # Acoustic impedance of a resonator's material: soft polymers (~1e6, /10) to tungsten
+        # (~1e8, x10); AT-cut quartz has 8.8e6 kg m^-2 s^-1 = 8.8 MRayl.
+        "impedance": Plausible(
+            "acoustic impedance",
+            "kg m^-2 s^-1",
+            1e5,
+            1e9,
+            8.8e6,
+            ((1e3, "kRayl", "kilorayl"), (1e6, "MRayl", "megarayl")),
+        ),
+        # Zener ratio A = 2 C44/(C11 - C12): known cubic crystals lie within ~0.2..10 (1 is
+        # isotropic); two decades either side of 1 covers them with room.
+        "zener": Plausible("Zener ratio", "", 1e-2, 1e2, 1.0),
+        # ν = C12/(C11 + C12): positive definite stiffness (see POISSON_OPEN_RANGE).
+        "poisson": Plausible(
+            "Poisson ratio", "", *POISSON_OPEN_RANGE, 0.3, lo_open=True, hi_open=True
+        ),
+        # Loss factor Q^-1 of C (1 + i Q^-1): 0 is the lossless limit; the DCSF kernels assume
+        # a loss below 1 (the lossiest rubbers have tan δ ~ 1).
+        "loss": Plausible("loss factor Q^-1", "", 0.0, 1.0, 0.02, hi_open=True),
+        # k a >= 0; MAX_KA above says why it ends there.
+        "ka": Plausible("normalised wave number k a", "", 0.0, MAX_KA, 1.0),
+        # Target relative accuracy of a quadrature: below 1e-10 round-off wins, at 1 it means
+        # nothing.
+        "rtol": Plausible("relative tolerance", "", 1e-10, 1.0, 1e-6, hi_open=True),
+        # QCM overtone order n: measured up to ~13; 999 keeps n f_F inside the frequency range.
+        "overtone": Plausible("overtone order", "", 1.0, 999.0, 3.0),
+        # Number of equal contacts under the electrode: 1 to a dense layer of 10 nm particles on
+        # 1 cm² (~1e12).
+        "contacts": Plausible("number of contacts", "", 1.0, 1e12, 1.0),
+    }
+)
+"""Plausible magnitude of every physical quantity a user types, by name (read-only)."""
+
+
+def _quantity(quantity: str) -> Plausible:
+    try:
+        return QUANTITIES[quantity]
+    except KeyError:
+        raise ValueError(
+            f"unknown quantity {quantity!r}: use one of {', '.join(QUANTITIES)}"
+        ) from None
+
+
+def unit_slip(quantity: str, value: float, *, signed: bool = False) -> str | None:
+    """The unit slip ``value`` looks like, in words, or None.
+
+    A slip is a unit of :attr:`Plausible.slips` in which ``value``, itself outside the range,
+    lands inside; of several, the one nearest to the typical value (on a log scale). Example:
+    ``unit_slip("amplitude", 20)`` gives ``"nanometres (20 nm = 2e-8 m)"``.
+
+    Parameters
+    ----------
+    quantity : str
+        A key of :data:`QUANTITIES`.
+    value : float
+        The value as given, read as SI.
+    signed : bool
+        Judge the magnitude (either sign is plausible).
+    """
+    q = _quantity(quantity)
+    v = float(value)
+    if not math.isfinite(v) or v == 0 or q.accepts(v, signed=signed):
+        return None  # a plausible value is taken as typed
+    best = None
+    for factor, symbol, words in q.slips:
+        si = v * factor
+        if q.accepts(si, signed=signed):
+            distance = abs(math.log10(abs(si) / q.typical))
+            if best is None or distance < best[0]:
+                best = (
+                    distance,
+                    f"{words} ({format_number(v)} {symbol} = {format_number(si)} {q.unit})",
+                )
+    return None if best is None else best[1]
+
+
+def check_magnitude(
+    quantity: str,
+    value: float | str,
+    option: str,
+    *,
+    text: str | None = None,
+    allow_zero: bool = False,
+    signed: bool = False,
+) -> float:
+    """``value`` as a float, after checking that it is a plausible ``quantity`` in SI units.
+
+    Parameters
+    ----------
+    quantity : str
+        A key of :data:`QUANTITIES` ("sphere_radius", "force", "modulus", ...).
+    value : float or str
+        The value in SI units; a string is parsed (and is the value as typed).
+    option : str
+        Who gave the value, for the message (``"--radius"``).
+    text : str, optional
+        The value as the user typed it (default: ``value`` itself, or its number).
+    allow_zero : bool
+        Also accept exactly 0 where the range starts above it (an unloaded contact).
+    signed : bool
+        Check the magnitude and accept either sign (the cubic constant C12 may be negative).
+
+    Returns
+    -------
+    float
+
+    Raises
+    ------
+    ValueError
+        One line naming ``option``, the value as typed and the range with its unit: for a
+        value that is not a number, not finite, negative where only >= 0 is physical, or outside
+        the range; then also the unit slip it looks like (:func:`unit_slip`), if any.
+    """
+    q = _quantity(quantity)
+    rule = q.describe(allow_zero=allow_zero, signed=signed)
+    if isinstance(value, str):
+        typed = value.strip() if text is None else text
+        try:
+            v = float(value)
+        except ValueError:
+            raise ValueError(f"{option} {value.strip()!r} is not a number: {rule}") from None
+    else:
+        v = float(value)
+        typed = format_number(v) if text is None else text
+    if q.accepts(v, allow_zero=allow_zero, signed=signed):
+        return v
+    if not math.isfinite(v):
+        raise ValueError(f"{option} {typed} is not a finite number: {rule}")
+    if v < 0 and not signed and q.lo >= 0:
+        raise ValueError(f"{option} {typed} is negative: {rule}")
+    message = f"{option} {typed} is outside the plausible range: {rule}"
+    slip = unit_slip(quantity, v, signed=signed)
+    if slip is not None:
+        message += f"; it looks like {slip}: check the unit of {option}"
+    raise ValueError(message)

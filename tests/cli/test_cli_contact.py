@@ -2,6 +2,7 @@
 
 import io
 import json
+import re
 
 import numpy as np
 import pandas as pd
@@ -93,7 +94,7 @@ def test_plain_output_and_note_on_low_symmetry_face():
         (["--crystal", "Cu", "--surface", "1x1", "--radius", 1, "--force", 1], "--surface"),
         (["--crystal", "Cu", "--radius", -1, "--force", 1], "radius"),
         (["--crystal", "Cu", "--radius", 1, "--force", -1], "force"),
-        (["--crystal", "Cu", "--radius", "1:2:3", "--force", "1:2:4"], "same number"),
+        (["--crystal", "Cu", "--radius", "1e-4:2e-4:3", "--force", "1:2:4"], "same number"),
         (["--zener", 1, "--poisson", 0.7, "--c44", 1e9, "--radius", 1, "--force", 1], "poisson"),
     ],
 )
@@ -102,6 +103,118 @@ def test_bad_input_one_line_exit_2(args, match):
     assert r.exit_code == 2
     lines = r.output.strip().splitlines()
     assert len(lines) == 1 and match in lines[0]
+
+
+CRYSTAL = {"--crystal": "Cu", "--radius": "1e-3", "--force": "1"}
+CONSTANTS = {"--c11": "168.4e9", "--c12": "121.4e9", "--c44": "75.4e9", "--radius": "1e-3",
+             "--force": "1"}  # fmt: skip
+RATIOS = {"--zener": "3.2", "--poisson": "0.42", "--c44": "75.4e9", "--radius": "1e-3",
+          "--force": "1"}  # fmt: skip
+
+# One bad input per option: a unit slip, a NaN, a sign, a value outside the plausible range or
+# (for the options that only mean something together) an impossible combination.
+BAD = [
+    (CRYSTAL, "--crystal", "Unobtainium"),
+    (CONSTANTS, "--c11", "165.7"),
+    (CONSTANTS, "--c12", "nan"),
+    (CONSTANTS, "--c44", "-75.4e9"),
+    (RATIOS, "--zener", "0"),
+    (RATIOS, "--poisson", "0.5"),
+    (CRYSTAL, "--surface", "1x1"),
+    (CRYSTAL, "--inplane", "001"),
+    (CRYSTAL, "--radius", "100"),
+    (CRYSTAL, "--force", "1e300"),
+    (CRYSTAL, "--format", "xml"),
+]
+
+
+def invoke(base, option, value):
+    options = {**base, option: value}
+    return run("contact", *[x for kv in options.items() for x in kv])
+
+
+def assert_one_line_naming(r, option):
+    assert r.exit_code == 2, r.output
+    assert r.stdout == ""
+    lines = r.stderr.splitlines()
+    assert len(lines) == 1, r.stderr
+    assert "error:" in lines[0] and option in lines[0]
+    assert "Traceback" not in r.stderr and "np.float64" not in r.stderr
+
+
+def test_every_option_has_a_bad_input_case():
+    from contactres.cli.contact import contact
+
+    options = {p.opts[0] for p in contact.params if p.opts[0] != "--help"}
+    assert options == {option for _, option, _ in BAD}
+
+
+@pytest.mark.parametrize("base, option, value", BAD, ids=[f"{o}={v}" for _, o, v in BAD])
+def test_each_option_refuses_bad_input_in_one_line(base, option, value):
+    assert_one_line_naming(invoke(base, option, value), option)
+
+
+def test_issue_11_constants_in_gigapascals():
+    r = run("contact", "--c11", 165.7, "--c12", 63.9, "--c44", 79.6, "--radius", 1e-3,
+            "--force", 1)  # fmt: skip
+    assert_one_line_naming(r, "--c11")
+    assert (
+        "--c11 165.7 is outside the plausible range: the elastic modulus lies in [1e5, 1e13] Pa; "
+        "it looks like gigapascals (165.7 GPa = 1.657e11 Pa): check the unit of --c11"
+    ) in r.stderr
+
+
+@pytest.mark.parametrize(
+    "args, option",
+    [
+        (["--radius", "1e300", "--force", "1e300"], "--radius"),
+        (["--radius", "1e-3", "--force", "1e300"], "--force"),
+        (["--radius", "1e300", "--force", "1"], "--radius"),
+    ],
+)
+def test_issue_11_overflowing_input_is_refused_not_printed_as_inf(args, option):
+    r = run("contact", "--crystal", "Cu", *args)
+    assert_one_line_naming(r, option)
+    assert "1e300 is outside the plausible range" in r.stderr and "inf" not in r.output
+
+
+def test_c12_may_be_negative_or_zero_but_not_a_unit_slip():
+    for c12 in ("-20e9", "0"):
+        r = run("contact", "--c11", 100e9, "--c12", c12, "--c44", 50e9, "--radius", 1e-3,
+                "--force", 1)  # fmt: skip
+        assert r.exit_code == 0, r.output
+    r = invoke(CONSTANTS, "--c12", "121.4")
+    assert "gigapascals (121.4 GPa = 1.214e11 Pa): check the unit of --c12" in r.stderr
+
+
+def test_force_range_from_zero_is_checked_point_by_point():
+    r = invoke(CRYSTAL, "--force", "0:1e-11:101")  # its second point is 1e-13 N
+    assert_one_line_naming(r, "--force")
+    assert "--force 1e-13 (in 0:1e-11:101) is outside" in r.stderr
+
+
+def test_plausible_extremes_print_finite_numbers():
+    # the stiffest crystal under the largest load and sphere, and the softest extreme
+    for args in (
+        ["--crystal", "diamond", "--radius", "1", "--force", "1e3"],
+        ["--c11", "2e5", "--c12", "1e5", "--c44", "1e5", "--radius", "1e-9", "--force", "1e-12"],
+    ):
+        r = run("contact", *args, "--format", "csv")
+        assert r.exit_code == 0, r.output
+        t = pd.read_csv(io.StringIO(r.stdout))
+        assert np.isfinite(t.to_numpy()).all()
+
+
+def test_help_states_units_and_shows_defaults_one_way():
+    from contactres.cli.contact import contact
+
+    unit = re.compile(r"(, N |, Pa|, m |dimensionless)")
+    for p in contact.params:
+        if p.type.name in ("FLOAT", "START:STOP:NUM"):
+            assert unit.search(p.help), p.opts
+        if isinstance(p.default, (str, int, float)) and p.opts[0] != "--help":
+            assert p.show_default is True, p.opts
+    assert "[default: ([100] projected, or [010])]" in run("contact", "--help").output
 
 
 @pytest.mark.parametrize(

@@ -5,6 +5,7 @@ import json
 
 import numpy as np
 import pandas as pd
+import pytest
 from click.testing import CliRunner
 
 from contactres import Material, dcsf
@@ -57,11 +58,68 @@ def test_dcsf_bad_input_is_one_line_exit_2():
         assert r.output.count("\n") == 1 and "error" in r.output
 
 
+RATIOS = {"--zener": "0.5", "--poisson": "0.25"}
+CONSTANTS = {"--c11": "168.4e9", "--c12": "121.4e9", "--c44": "75.4e9"}
+
+# One bad input per option: a unit slip, a NaN, a sign, a value outside the plausible range or
+# (for the options that only mean something together) an impossible combination.
+BAD = [
+    ({}, "--crystal", "Unobtainium"),
+    (CONSTANTS, "--c11", "168.4"),
+    (CONSTANTS, "--c12", "inf"),
+    (RATIOS, "--c44", "0"),
+    (RATIOS, "--zener", "-2"),
+    (RATIOS, "--poisson", "nan"),
+    (RATIOS, "--surface", "0,0"),
+    ({**RATIOS, "--surface": "111"}, "--inplane", "-1 -1 -1"),
+    (RATIOS, "--model", "XX"),
+    (RATIOS, "--ka", "0:100:3"),
+    (RATIOS, "--loss", "1"),
+    (RATIOS, "--wavenumber", "transverse"),
+    (RATIOS, "--rtol", "0"),
+    (RATIOS, "--format", "xml"),
+]
+
+
+def test_every_option_has_a_bad_input_case():
+    from contactres.cli.dcsf import dcsf as command
+
+    options = {p.opts[0] for p in command.params if p.opts[0] != "--help"}
+    assert options == {option for _, option, _ in BAD}
+
+
+@pytest.mark.parametrize("base, option, value", BAD, ids=[f"{o}={v}" for _, o, v in BAD])
+def test_each_option_refuses_bad_input_in_one_line(base, option, value):
+    options = {**base, option: value}
+    r = run("dcsf", *[x for kv in options.items() for x in kv])
+    assert r.exit_code == 2, r.output
+    assert r.stdout == ""
+    lines = r.stderr.splitlines()
+    assert len(lines) == 1, r.stderr
+    assert "error:" in lines[0] and option in lines[0]
+    assert "Traceback" not in r.stderr and "np.float64" not in r.stderr
+
+
+def test_constants_in_gigapascals_and_ka_beyond_the_kernels_are_named():
+    r = run("dcsf", "--c11", "168.4", "--c12", "121.4e9", "--c44", "75.4e9")
+    assert "gigapascals (168.4 GPa = 1.684e11 Pa): check the unit of --c11" in r.stderr
+    r = run("dcsf", "--zener", "0.5", "--poisson", "0.25", "--ka", "0,1,1e300")
+    assert "--ka 1e300 (in 0,1,1e300) is outside the plausible range" in r.stderr
+
+
 def test_dcsf_help_states_units_and_models():
     r = run("dcsf", "--help")
     assert r.exit_code == 0
     for word in ("WA", "TP", "k_l", "Q^-1", "Pa"):
         assert word in r.output
+    from contactres.cli.dcsf import dcsf as command
+
+    for p in command.params:
+        if p.type.name in ("FLOAT", "START:STOP:NUM"):
+            assert ", Pa" in p.help or "dimensionless" in p.help, p.opts
+        if isinstance(p.default, (str, int, float)) and p.opts[0] != "--help":
+            assert p.show_default is True and isinstance(p.default, str), p.opts
+    assert "[default: 1e-6]" in r.output and "[default: 0.02]" in r.output
 
 
 def test_figures_paper1_writes_png_and_csv(tmp_path, monkeypatch):

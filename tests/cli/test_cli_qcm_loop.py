@@ -2,6 +2,7 @@
 
 import io
 import json
+import re
 
 import numpy as np
 import pandas as pd
@@ -98,9 +99,115 @@ def test_bad_input_one_line(args, message):
 
 
 def test_large_shift_warns_on_stderr():
-    r = CliRunner().invoke(main, [*CM_ARGS[:3], "1e13", *CM_ARGS[4:], "--u0", "0"])
+    # κ = 1e9 N/m (plausible) gives Δf ≈ 1.7e6 Hz at 15 MHz, far beyond |Δf|/f = 1e-3
+    r = CliRunner().invoke(main, [*CM_ARGS[:3], "1e9", *CM_ARGS[4:], "--u0", "0"])
     assert r.exit_code == 0
     assert "small-load" in r.output
+
+
+CM = {"--kappa": "4e5", "--mu": "0.8", "--normal-force": "5e-3"}
+SAVKOOR = {"--model": "savkoor", "--kappa": "4e5", "--tau": "20e6", "--contact-radius": "5e-6"}
+
+
+def invoke(base, option, value):
+    options = {**base, option: value}
+    return run("qcm", "loop", *[x for kv in options.items() for x in kv])
+
+
+def assert_one_line_naming(r, option):
+    assert r.exit_code == 2, r.output
+    assert r.stdout == ""
+    lines = r.stderr.splitlines()
+    assert len(lines) == 1, r.stderr
+    assert "qcm loop: error:" in lines[0] and option in lines[0]
+    assert "Traceback" not in r.stderr and "np.float64" not in r.stderr
+
+
+# One bad input per option: a unit slip, a NaN, a sign or a value outside the plausible range.
+BAD = [
+    (CM, "--model", "elastic"),
+    (CM, "--kappa", "4e15"),
+    (CM, "--mu", "nan"),
+    (CM, "--normal-force", "-5e-3"),
+    (SAVKOOR, "--tau", "20"),
+    (SAVKOOR, "--contact-radius", "5"),
+    (CM, "--xi", "inf"),
+    (CM, "--plateau", "2"),
+    (CM, "--u0", "0:1e-5:3"),
+    (CM, "--fundamental", "5"),
+    (CM, "--overtone", "2"),
+    (CM, "--area", "0.5"),
+    (CM, "--zq", "8.8"),
+    (CM, "--n-contacts", "0"),
+    (CM, "--format", "xml"),
+]
+
+
+def test_every_option_has_a_bad_input_case():
+    from contactres.cli.qcm_loop import loop_command
+
+    options = {p.opts[0] for p in loop_command.params if p.opts[0] != "--help"}
+    assert options == {option for _, option, _ in BAD}
+
+
+@pytest.mark.parametrize("base, option, value", BAD, ids=[f"{o}={v}" for _, o, v in BAD])
+def test_each_option_refuses_bad_input_in_one_line(base, option, value):
+    assert_one_line_naming(invoke(base, option, value), option)
+
+
+def test_issue_11_amplitudes_in_nanometres():
+    r = invoke(CM, "--u0", "0:20:5")
+    assert_one_line_naming(r, "--u0")
+    assert (
+        "--u0 20 (in 0:20:5) is outside the plausible range: the oscillation amplitude lies in "
+        "[0, 1e-6] m; it looks like nanometres (20 nm = 2e-8 m): check the unit of --u0"
+    ) in r.stderr
+
+
+@pytest.mark.parametrize("value, why", [("-1", "is negative"), ("nan", "is not a finite number")])
+def test_issue_11_xi_negative_or_nan_is_refused_not_zero(value, why):
+    r = invoke(CM, "--xi", value)
+    assert_one_line_naming(r, "--xi")
+    assert f"--xi {value} {why}: the dashpot drag coefficient lies in [0, 1e5] kg/s" in r.stderr
+
+
+@pytest.mark.parametrize(
+    "option, value, slip",
+    [
+        ("--fundamental", "5", "megahertz (5 MHz = 5e6 Hz)"),
+        ("--area", "0.5", "square centimetres (0.5 cm^2 = 5e-5 m^2)"),
+        ("--zq", "8.8", "megarayl (8.8 MRayl = 8.8e6 kg m^-2 s^-1)"),
+        ("--plateau", "2", "nanometres (2 nm = 2e-9 m)"),
+    ],
+)
+def test_unit_slips_name_the_option_to_check(option, value, slip):
+    r = invoke(CM, option, value)
+    assert f"it looks like {slip}: check the unit of {option}" in r.stderr
+
+
+def test_plausible_extremes_print_finite_numbers():
+    # the top of every range at once: still finite (the inf of issue 11 cannot come back)
+    r = run(
+        "qcm", "loop", "--model", "voigt", "--kappa", "1e12", "--xi", "1e5", "--u0", "1e-6",
+        "--fundamental", "1e10", "--overtone", "999", "--area", "1e-8", "--zq", "1e5",
+        "--format", "csv",
+    )  # fmt: skip
+    assert r.exit_code == 0, r.output
+    t = pd.read_csv(io.StringIO(r.stdout))
+    assert np.isfinite(t[["df_Hz", "dgamma_Hz", "K1_N_per_m", "K2_N_per_m"]].to_numpy()).all()
+
+
+def test_help_states_units_and_shows_defaults_one_way():
+    from contactres.cli.qcm_loop import loop_command
+
+    unit = re.compile(r"(N/m|, N |, Pa |, m |, m,|, kg/s|, Hz|, m\^2|kg m\^-2 s\^-1|dimensionless)")
+    for p in loop_command.params:
+        if p.type.name in ("FLOAT", "INTEGER", "START:STOP:NUM"):
+            assert unit.search(p.help), p.opts
+        if isinstance(p.default, (str, int, float)) and p.opts[0] != "--help":
+            assert p.show_default is True and isinstance(p.default, str), p.opts
+    r = run("qcm", "loop", "--help")
+    assert "[default: 5e6]" in r.output and "[default: 8.8e6]" in r.output
 
 
 def test_figures_paper2(tmp_path):

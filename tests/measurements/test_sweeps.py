@@ -251,3 +251,143 @@ def test_reader_plugin(tmp_path, monkeypatch):
     t = read_sweeps(path, **CONST).data
     assert len(t) == 18
     np.testing.assert_allclose(t["df_Hz"], good_frame()["df_Hz"])
+
+
+# ---- issue 11: nothing mixed, nothing lost, every bad input in one short line ---------------
+
+
+def test_hash_inside_a_cell_is_data_and_only_whole_lines_are_comments(tmp_path):
+    f = good_frame()
+    f["configuration"] = ["SiO2 #A" if s != "s2" else "SiO2 #B" for s in f["sweep"]]
+    text = f.to_csv(index=False)
+    lines = text.splitlines()
+    # a comment before the header, one between rows and one indented; line numbers stay true
+    text = "\n".join(["# exported 2024", lines[0], lines[1], "  # pause", *lines[2:]]) + "\n"
+    path = tmp_path / "sweeps.csv"
+    path.write_text(text)
+    t = read_sweeps(path, **CONST).data
+    assert len(t) == 18
+    assert sorted(t["configuration"].unique()) == ["SiO2 #A", "SiO2 #B"]
+    assert list(t["line"][:3]) == [3, 5, 6]
+
+
+def test_a_file_that_is_not_utf8_is_named_with_the_byte(tmp_path):
+    path = tmp_path / "sweeps.csv"
+    text = good_frame().to_csv(index=False).encode()
+    at = text.index(b"SiO2", 200)
+    path.write_bytes(b"\xef\xbb\xbf" + text[:at] + b"\xe9" + text[at:])  # latin-1 'é' after a BOM
+    line = text[:at].count(b"\n") + 1
+    with pytest.raises(ValueError) as err:
+        read_sweeps(path, **CONST)
+    assert str(err.value) == (
+        f"{path}: not UTF-8 text (byte 0xe9 at offset {at + 3}, line {line}); save the table "
+        "as UTF-8"
+    )
+
+
+def test_duplicate_column_names_are_an_error_naming_them(tmp_path):
+    f = good_frame()
+    path = tmp_path / "sweeps.csv"
+    path.write_text(f.to_csv(index=False).replace("dgamma_Hz\n", "dgamma_Hz,amplitude_m\n", 1))
+    with pytest.raises(
+        ValueError, match=r"line 1: duplicate column name.*'amplitude_m' \(columns 7, 10\)"
+    ):
+        read_sweeps(path, **CONST)
+    # thousands of duplicates: refused from the header, in a short message
+    path.write_text("sweep" + ",a" * 20_000 + "\n" + "x" + ",1" * 20_000 + "\n")
+    with pytest.raises(
+        ValueError, match=r"'a' \(columns 2, 3, 4, 5, 6, \.\.\. 20000 in all\)"
+    ) as err:
+        read_sweeps(path, **CONST)
+    assert len(str(err.value)) < 300
+    # in memory, names that differ only by spaces
+    g = f.rename(columns={"medium": "experiment "})
+    with pytest.raises(ValueError, match=r"duplicate column name\(s\) \['experiment'\]"):
+        validate_sweeps(g, constants=CONST)
+
+
+def test_a_short_row_is_an_empty_cell_and_a_long_row_names_its_line(tmp_path):
+    lines = good_frame().to_csv(index=False).splitlines()
+    path = tmp_path / "sweeps.csv"
+    path.write_text("\n".join([*lines[:4], lines[4].rsplit(",", 1)[0], *lines[5:]]) + "\n")
+    with pytest.raises(ValueError, match=r"line 5, column 'dgamma_Hz': is empty"):
+        read_sweeps(path, **CONST)
+    path.write_text("\n".join([*lines[:4], "# note", lines[4] + ",7", *lines[5:]]) + "\n")
+    with pytest.raises(ValueError, match=r"line 6 has 10 fields, the header 9"):
+        read_sweeps(path, **CONST)
+
+
+@pytest.mark.parametrize(
+    "toml, message",
+    [
+        ("overtone = true", r"sweeps\.toml, key 'overtone': overtone = true is a boolean"),
+        (
+            "n_contacts = 1e300",
+            r"key 'n_contacts': n_contacts = 1e\+300 is too large to be a count",
+        ),
+        ("overtone = 1e300", r"overtone = 1e\+300 is too large to be a count"),
+    ],
+)
+def test_booleans_and_huge_counts_in_toml_are_refused(tmp_path, toml, message):
+    path = write(tmp_path, good_frame())
+    rest = {k: v for k, v in CONST.items() if k not in toml}
+    (tmp_path / "sweeps.toml").write_text(toml + "\n")
+    with pytest.raises(ValueError, match=message):
+        read_sweeps(path, **rest)
+
+
+def test_a_huge_count_in_a_column_is_shown_as_written(tmp_path):
+    f = good_frame().assign(n_contacts="3")
+    f.loc[4, "n_contacts"] = "1e300"
+    rest = {k: v for k, v in CONST.items() if k != "n_contacts"}
+    with pytest.raises(
+        ValueError, match=r"line 6, column 'n_contacts': n_contacts = '1e300' is too"
+    ):
+        read_sweeps(write(tmp_path, f), **rest)
+
+
+def test_values_in_messages_are_cut_short(tmp_path):
+    f = good_frame()
+    f.loc[3, "configuration"] = "X" * 1_000_000
+    with pytest.raises(ValueError, match=r"conflicting values in column 'configuration'") as err:
+        read_sweeps(write(tmp_path, f), **CONST)
+    assert "'" + "X" * 59 + "'…" in str(err.value) and len(str(err.value)) < 300
+
+
+def test_several_bad_cells_are_counted_with_their_lines(tmp_path):
+    f = good_frame().astype({"amplitude_m": object})
+    for i in (4, 8, 29 - 18):
+        f.loc[i, "amplitude_m"] = "nan"
+    with pytest.raises(ValueError) as err:
+        read_sweeps(write(tmp_path, f), **CONST)
+    assert "line 6, column 'amplitude_m' (3 such rows: lines 6, 10, 13): value 'nan'" in str(
+        err.value
+    )
+    f = good_frame()
+    f["amplitude_m"] = -f["amplitude_m"]
+    with pytest.raises(ValueError, match=r"\(18 such rows: lines 2, 3, 4, 5, 6, \.\.\.\)"):
+        read_sweeps(write(tmp_path, f), **CONST)
+
+
+@pytest.mark.parametrize("column, value", [("sphere_radius_m", 6e-4), ("poisson", 0.3)])
+def test_sphere_and_material_conflicts_between_sweeps_of_a_configuration(tmp_path, column, value):
+    f = good_frame()
+    f[column] = CONST.get(column, 0.17)
+    f.loc[f["sweep"] == "s2", column] = value  # one whole sweep differs from the others
+    rest = {k: v for k, v in CONST.items() if k != column}
+    with pytest.raises(
+        ValueError,
+        match=rf"configuration 'SiO2': conflicting values in column '{column}': .* \(line 2\) "
+        rf"and {value} \(line 14\); one configuration has one sphere",
+    ):
+        read_sweeps(write(tmp_path, f), **rest)
+    f.loc[f["sweep"] == "s2", "configuration"] = "other"  # two configurations: fine
+    assert read_sweeps(write(tmp_path, f), **rest).data[column].nunique() == 2
+
+
+def test_a_sweep_with_all_amplitudes_equal_is_named_in_a_warning(tmp_path):
+    f = good_frame()
+    f.loc[f["sweep"] == "s1", "amplitude_m"] = 0.0
+    with pytest.warns(SweepWarning, match=r"sweep\(s\) 's1' have all amplitudes equal") as rec:
+        t = read_sweeps(write(tmp_path, f), **CONST).data
+    assert len(t) == 18 and len([w for w in rec if "amplitudes equal" in str(w.message)]) == 1

@@ -7,16 +7,25 @@ import sys
 
 import click
 
-# Errors that mean "the user's input is wrong": one line, exit code 2, no traceback.
-USER_ERRORS = (ValueError, FileNotFoundError, IsADirectoryError, PermissionError)
+# Errors that mean "the user's input is wrong" or "the system refused" (a path through a file,
+# a full disk, no permission): one line, exit code 2, no traceback.
+USER_ERRORS = (ValueError, OSError)
+# Longest error line printed (the messages cut long values themselves; this is the backstop).
+MAX_MESSAGE_CHARS = 2000
 
 
 # click >= 8.2 raises this for a bare group; older click prints the help itself.
 _NO_ARGS_IS_HELP = getattr(click.exceptions, "NoArgsIsHelpError", ())
 
 
-def _one_line(text: str) -> str:
-    return " ".join(str(text).split())
+def _one_line(text) -> str:
+    if isinstance(text, OSError) and text.strerror:  # "[Errno 20] ..." -> "path: Not a directory"
+        names = [str(n) for n in (text.filename, text.filename2) if n is not None]
+        text = f"{' -> '.join(names)}: {text.strerror}" if names else text.strerror
+    line = " ".join(str(text).split())
+    if len(line) > MAX_MESSAGE_CHARS:
+        line = line[: MAX_MESSAGE_CHARS - 1] + "…"
+    return line
 
 
 class App(click.Group):

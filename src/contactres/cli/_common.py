@@ -40,10 +40,67 @@ def parse_range(text: str) -> np.ndarray:
     return values
 
 
+def _checked(quantity: str, option: str, value, ctx, **rule) -> float:
+    """``value`` checked by :func:`contactres.units.check_magnitude`; its ValueError becomes a
+    click usage error (one line naming the command, exit code 2)."""
+    from ..units import check_magnitude
+
+    try:
+        return check_magnitude(quantity, value, option, **rule)
+    except ValueError as exc:
+        raise click.UsageError(str(exc), ctx) from None
+
+
+def _option_name(param) -> str:
+    return max(param.opts, key=len) if param is not None and param.opts else "value"
+
+
+class MagnitudeType(click.ParamType):
+    """A click parameter for one number of a physical quantity, checked against its plausible
+    range (:data:`contactres.units.QUANTITIES`): a unit slip, NaN, inf or a negative value where
+    none is physical is refused in one line naming the option.
+
+    Parameters
+    ----------
+    quantity : str
+        A key of :data:`contactres.units.QUANTITIES`.
+    integer : bool
+        Parse an integer (a count, an overtone order).
+    **rule
+        ``allow_zero``/``signed`` of :func:`contactres.units.check_magnitude`.
+    """
+
+    def __init__(self, quantity: str, *, integer: bool = False, **rule):
+        self.quantity = quantity
+        self.integer = integer
+        self.rule = rule
+        self.name = "INTEGER" if integer else "FLOAT"
+
+    def convert(self, value, param, ctx):
+        # A string is what the user typed (quoted as such); a number is a value already parsed
+        # (a programmatic call), checked the same way.
+        if self.integer:
+            try:
+                value = int(value.strip() if isinstance(value, str) else value)
+            except (TypeError, ValueError):
+                self.fail(f"{value!r} is not an integer", param, ctx)
+        number = _checked(self.quantity, _option_name(param), value, ctx, **self.rule)
+        return value if self.integer else number
+
+
 class RangeType(click.ParamType):
-    """A click parameter for ``START:STOP:NUM`` ranges (numpy linspace) or comma lists."""
+    """A click parameter for ``START:STOP:NUM`` ranges (numpy linspace) or comma lists.
+
+    With a ``quantity`` (a key of :data:`contactres.units.QUANTITIES`) every value is checked
+    against its plausible range; the message names the first value refused and the range typed.
+    ``**rule``: ``allow_zero``/``signed`` of :func:`contactres.units.check_magnitude`.
+    """
 
     name = "START:STOP:NUM"
+
+    def __init__(self, quantity: str | None = None, **rule):
+        self.quantity = quantity
+        self.rule = rule
 
     def convert(self, value, param, ctx):
         import numpy as np
@@ -51,9 +108,35 @@ class RangeType(click.ParamType):
         if isinstance(value, np.ndarray):
             return value
         try:
-            return parse_range(value)
+            values = parse_range(value)
         except ValueError as exc:
             self.fail(str(exc), param, ctx)
+        if self.quantity is not None:
+            self._check(values, str(value).strip(), param, ctx)
+        return values
+
+    def _check(self, values, typed: str, param, ctx) -> None:
+        """Refuse an implausible value, quoted as typed: a refused end of START:STOP:NUM (the
+        numbers the user wrote) before a point between them, else the first refused element."""
+        import numpy as np
+
+        from ..units import QUANTITIES, format_number
+
+        bad = ~np.asarray(QUANTITIES[self.quantity].accepts(values, **self.rule))
+        if not bad.any():
+            return
+        if values.size == 1:
+            i, text = 0, typed
+        elif ":" in typed:
+            ends = typed.split(":")[:2]
+            first = [k for k in (0, values.size - 1) if bad[k]]
+            i = first[0] if first else int(np.flatnonzero(bad)[0])
+            number = ends[0 if i == 0 else 1].strip() if first else format_number(values[i])
+            text = f"{number} (in {typed})"
+        else:
+            i = int(np.flatnonzero(bad)[0])
+            text = f"{[t for t in typed.split(',') if t.strip()][i].strip()} (in {typed})"
+        _checked(self.quantity, _option_name(param), float(values[i]), ctx, text=text, **self.rule)
 
 
 RANGE = RangeType()

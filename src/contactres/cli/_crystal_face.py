@@ -7,6 +7,8 @@ from typing import TYPE_CHECKING
 
 import click
 
+from ._common import MagnitudeType
+
 if TYPE_CHECKING:  # annotations only: the library is imported when a command runs
     from ..materials import Material
 
@@ -51,7 +53,10 @@ def material_from_options(crystal, c11, c12, c44, zener, poisson) -> Material:
     if crystal is not None:
         if c44 is not None:
             raise ValueError("--c44 cannot be combined with --crystal")
-        return Material.crystal(crystal)
+        try:
+            return Material.crystal(crystal)
+        except ValueError as exc:  # unknown name: the library's message lists the known ones
+            raise ValueError(f"--crystal: {exc}") from None
     missing = [
         n
         for n, v in (
@@ -63,36 +68,57 @@ def material_from_options(crystal, c11, c12, c44, zener, poisson) -> Material:
     ]
     if missing:
         raise ValueError(f"missing {', '.join(missing)}")
-    if by_constants:
-        return Material.cubic(c11, c12, c44)
-    return Material.cubic_from_ratios(zener, poisson, c44=c44)
+    # Each option passed its own range check; what is left is their combination (stability).
+    try:
+        if by_constants:
+            return Material.cubic(c11, c12, c44)
+        return Material.cubic_from_ratios(zener, poisson, c44=c44)
+    except ValueError as exc:
+        options = "--c11/--c12/--c44" if by_constants else "--zener/--poisson/--c44"
+        raise ValueError(f"{options}: {exc}") from None
 
 
 def crystal_face_options(
     c44_help: str = "Cubic elastic constant C44, Pa.",
-    inplane_help: str = (
-        "Direction of the surface x axis in cube axes (default: [100] projected, or [010])."
-    ),
+    inplane_help: str = "Direction of the surface x axis in cube axes.",
 ):
     """Decorator adding --crystal, --c11/--c12/--c44, --zener/--poisson, --surface, --inplane."""
     options = [
         click.option(
             "--crystal", help="Built-in cubic crystal (see 'contactres crystals'), e.g. Cu."
         ),
-        click.option("--c11", type=float, help="Cubic elastic constant C11, Pa."),
-        click.option("--c12", type=float, help="Cubic elastic constant C12, Pa."),
-        click.option("--c44", type=float, help=c44_help),
         click.option(
-            "--zener", type=float, help="Zener ratio A = 2 C44/(C11 - C12) (with --poisson)."
+            "--c11", type=MagnitudeType("modulus"), help="Cubic elastic constant C11, Pa."
         ),
-        click.option("--poisson", type=float, help="ν = C12/(C11 + C12) of the cubic crystal."),
+        click.option(
+            "--c12",
+            # C12 may be zero or negative (auxetic crystals); Material.cubic checks stability.
+            type=MagnitudeType("modulus", allow_zero=True, signed=True),
+            help="Cubic elastic constant C12, Pa (may be negative).",
+        ),
+        click.option("--c44", type=MagnitudeType("modulus"), help=c44_help),
+        click.option(
+            "--zener",
+            type=MagnitudeType("zener"),
+            help="Zener ratio A = 2 C44/(C11 - C12), dimensionless (with --poisson).",
+        ),
+        click.option(
+            "--poisson",
+            type=MagnitudeType("poisson"),
+            help="ν = C12/(C11 + C12) of the cubic crystal, dimensionless.",
+        ),
         click.option(
             "--surface",
             default="001",
             show_default=True,
             help="Surface normal in cube axes (Miller indices): 001, 011, 111, 1-10, '1 2 3', ...",
         ),
-        click.option("--inplane", default=None, help=inplane_help),
+        click.option(
+            "--inplane",
+            default=None,
+            show_default="[100] projected, or [010]",
+            help=inplane_help,
+        ),
     ]
 
     def decorate(f):
@@ -108,4 +134,7 @@ def crystal_face(crystal, c11, c12, c44, zener, poisson, surface, inplane) -> Ma
     m = material_from_options(crystal, c11, c12, c44, zener, poisson)
     normal = parse_direction(surface, "surface")
     x = None if inplane is None else parse_direction(inplane, "inplane")
-    return m.rotated(normal, x)
+    try:
+        return m.rotated(normal, x)
+    except ValueError as exc:  # both are valid directions: only their combination can fail
+        raise ValueError(f"--surface {surface} / --inplane {inplane}: {exc}") from None

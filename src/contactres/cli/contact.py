@@ -5,14 +5,25 @@ from __future__ import annotations
 import click
 
 from ._app import main
-from ._common import RANGE, emit, format_option
+from ._common import RangeType, emit, format_option
 from ._crystal_face import crystal_face, crystal_face_options
 
 
 @main.command()
 @crystal_face_options()
-@click.option("--radius", type=RANGE, required=True, help="Sphere radius R, m (or START:STOP:NUM).")
-@click.option("--force", type=RANGE, required=True, help="Normal force F, N (or START:STOP:NUM).")
+@click.option(
+    "--radius",
+    type=RangeType("sphere_radius"),
+    required=True,
+    help="Sphere radius R, m (a number, START:STOP:NUM or a comma list).",
+)
+@click.option(
+    "--force",
+    # F = 0 is the unloaded contact (a = 0), the natural start of a load table.
+    type=RangeType("force", allow_zero=True),
+    required=True,
+    help="Normal force F, N (a number, START:STOP:NUM or a comma list).",
+)
 @format_option()
 def contact(radius, force, fmt, **face):
     """Static Hertz contact of a rigid sphere on a crystal face (paper 1, Eqs. 1-4).

@@ -8,7 +8,7 @@ import click
 # this import is the one library import of the CLI at module level.
 from ..dynamic import MODELS, WAVENUMBERS
 from ._app import main
-from ._common import RANGE, emit, format_option
+from ._common import MagnitudeType, RangeType, emit, format_option
 from ._crystal_face import crystal_face, crystal_face_options
 
 
@@ -26,17 +26,18 @@ from ._crystal_face import crystal_face, crystal_face_options
 )
 @click.option(
     "--ka",
-    type=RANGE,
+    type=RangeType("ka"),
     default="0:2:41",
     show_default=True,
-    help="Normalised wave number k a (dimensionless; a = contact radius), START:STOP:NUM.",
+    help="Normalised wave number k a, dimensionless (a = contact radius; START:STOP:NUM or a "
+    "comma list).",
 )
 @click.option(
     "--loss",
-    type=float,
-    default=0.02,
+    type=MagnitudeType("loss"),
+    default="0.02",
     show_default=True,
-    help="Loss factor Q^-1 of the constants C (1 + i Q^-1); 0 = lossless limit.",
+    help="Loss factor Q^-1 of the constants C (1 + i Q^-1), dimensionless; 0 = lossless limit.",
 )
 @click.option(
     "--wavenumber",
@@ -47,10 +48,10 @@ from ._crystal_face import crystal_face, crystal_face_options
 )
 @click.option(
     "--rtol",
-    type=float,
-    default=1e-6,
+    type=MagnitudeType("rtol"),
+    default="1e-6",
     show_default=True,
-    help="Target relative accuracy of the DCSF.",
+    help="Target relative accuracy of the DCSF, dimensionless.",
 )
 @format_option()
 def dcsf(model, ka, loss, wavenumber, rtol, fmt, **face):

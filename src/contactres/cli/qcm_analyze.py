@@ -1,9 +1,16 @@
-"""CLI: ``contactres qcm analyze SWEEPS.csv --out DIR`` (the main job of paper 2's analysis)."""
+"""CLI: ``contactres qcm analyze SWEEPS.csv --out DIR`` (the main job of paper 2's analysis).
+
+The results folder is one :class:`contactres.fileio.ResultSet`, opened before the table is read:
+an output folder that cannot be written, a result file that would replace an input, or another
+run writing into the same folder is refused before any work, and a run that fails or is killed
+leaves the folder as it was. Warnings (the data's and numerical ones) become one line each.
+"""
 
 from __future__ import annotations
 
 import sys
 import warnings
+from pathlib import Path
 
 import click
 
@@ -63,8 +70,9 @@ def analyze_command(
     """
     from ..analysis import AnalysisSettings, analyze
     from ..analysis.flags import Flag, has
-    from ..measurements.sweeps import SweepWarning, read_sweeps
-    from ..report import write_report
+    from ..fileio import ResultSet
+    from ..measurements.sweeps import read_sweeps
+    from ..report.tables import report_files, write_report
 
     constants = dict(
         area_m2=area,
@@ -74,32 +82,69 @@ def analyze_command(
         poisson=poisson,
         sphere_radius_m=sphere_radius,
     )
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always", SweepWarning)
-        table = read_sweeps(sweeps, **constants)
-    for w in caught:
-        if issubclass(w.category, SweepWarning):
-            click.echo(f"contactres: warning: {' '.join(str(w.message).split())}", err=True)
-    settings = AnalysisSettings(keep_first_ramp=keep_first_ramp, bootstrap=bootstrap)
-    n_groups = table.data.groupby(["configuration", "medium"]).ngroups
-    steps = 5 + n_groups + (0 if no_figures else 1)
-    with click.progressbar(length=steps, label="analysing", file=sys.stderr) as bar:
+    formats = ("csv", "json") if no_figures else ("csv", "json", "png")
+    source = Path(sweeps)
+    # Every file the run reads: the table and the TOML files its constants may come from.
+    inputs = (source, source.with_suffix(".toml"), source.parent / "contactres.toml")
+    names, owned = report_files(formats), report_files()
+    with ResultSet(out, names=names, inputs=inputs, owned=owned) as rs:
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always")
+            table = read_sweeps(sweeps, **constants)
+        _echo_warnings(caught)
+        settings = AnalysisSettings(keep_first_ramp=keep_first_ramp, bootstrap=bootstrap)
+        n_groups = table.data.groupby(["configuration", "medium"]).ngroups
+        steps = 5 + n_groups + (0 if no_figures else 1)
+        with (
+            warnings.catch_warnings(record=True) as caught,
+            click.progressbar(length=steps, label="analysing", file=sys.stderr) as bar,
+        ):
+            warnings.simplefilter("always")
 
-        def progress(_step: str) -> None:
-            bar.update(1)
+            def progress(_step: str) -> None:
+                bar.update(1)
 
-        results = analyze(table, settings=settings, progress=progress)
-        formats = ("csv", "json") if no_figures else ("csv", "json", "png")
-        written = write_report(results, out, formats)
-        bar.update(steps)
-    emit(results.table1(), fmt)
+            results = analyze(table, settings=settings, progress=progress)
+            written = write_report(results, rs, formats)
+            bar.update(steps)
+        _echo_warnings(caught)
+    for message in results.messages:  # what the analysis found odd in the input
+        click.echo(f"contactres: warning: {' '.join(str(message).split())}", err=True)
+    table1 = results.table1()
+    if fmt == "plain":  # a terminal table: long labels shortened (csv and json keep them whole)
+        for col in {"configuration", "medium"} & set(table1.columns):
+            table1[col] = [c if len(c) <= 40 else c[:39] + "…" for c in table1[col].astype(str)]
+    if fmt == "plain" and table1.empty:
+        click.echo("Table 1: no configuration to fit (no sweep is used)")
+    else:
+        emit(table1, fmt)
     if fmt == "plain":
         n_used = int(results.sweeps["used"].sum())
         models = results.sweeps.loc[results.sweeps["used"], "model"].value_counts().to_dict()
         flagged = int(has(results.sweeps["flags"], Flag.DRIFT).sum())
         click.echo(
             f"{len(results.sweeps)} sweeps, {n_used} used; models: "
-            + ", ".join(f"{k} {v}" for k, v in sorted(models.items()))
+            + (", ".join(f"{k} {v}" for k, v in sorted(models.items())) or "none")
             + f"; drift flagged: {flagged}"
         )
         click.echo(f"wrote {len(written)} files into {out}/")
+
+
+def _echo_warnings(caught: list[warnings.WarningMessage]) -> None:
+    """Each distinct warning as one line on stderr: the data's (SweepWarning) as they are, any
+    other (a numpy RuntimeWarning, say) with where it arose, never with a source line."""
+    from ..measurements.sweeps import SweepWarning
+
+    seen = set()
+    for w in caught:
+        text = " ".join(str(w.message).split())
+        where = f"{Path(w.filename).name}, line {w.lineno}"
+        if issubclass(w.category, SweepWarning):
+            line = text
+        elif issubclass(w.category, RuntimeWarning):  # numpy: NaN or inf met on the way
+            line = f"numerical: {text} ({where}); NaN and inf results are written as empty cells"
+        else:
+            line = f"{w.category.__name__}: {text} ({where})"
+        if line not in seen:
+            seen.add(line)
+            click.echo(f"contactres: warning: {line}", err=True)

@@ -7,7 +7,7 @@ import warnings
 import click
 
 from ._app import qcm
-from ._common import RANGE, emit, format_option
+from ._common import MagnitudeType, RangeType, emit, format_option
 
 
 def build_loop(model, kappa, mu, normal_force, tau, contact_radius, xi, plateau, omega):
@@ -32,6 +32,15 @@ def build_loop(model, kappa, mu, normal_force, tau, contact_radius, xi, plateau,
     return with_dashpot(loop, xi, omega) if xi > 0 else loop
 
 
+def _odd(ctx, param, value):
+    """The QCM is driven at its odd harmonics only (paper 2, Eq. 1: n = 1, 3, 5, ...)."""
+    if value is not None and value % 2 == 0:
+        raise click.UsageError(
+            f"--overtone {value} must be odd: a QCM resonates at n = 1, 3, 5, ...", ctx
+        )
+    return value
+
+
 @qcm.command("loop")
 @click.option(
     "--model",
@@ -40,36 +49,82 @@ def build_loop(model, kappa, mu, normal_force, tau, contact_radius, xi, plateau,
     show_default=True,
     help="Cattaneo-Mindlin (Eq. 6), Savkoor (Eqs. 13-14) or a linear Voigt element.",
 )
-@click.option("--kappa", type=float, required=True, help="Low-amplitude stiffness κ, N/m.")
-@click.option("--mu", type=float, help="Friction coefficient μ (cm).")
-@click.option("--normal-force", type=float, help="Normal force per contact F_N, N (cm).")
-@click.option("--tau", type=float, help="Sliding traction τ0, Pa (savkoor).")
-@click.option("--contact-radius", type=float, help="Contact radius a, m (savkoor).")
 @click.option(
-    "--xi", type=float, default=0.0, show_default=True, help="Linear drag ξ, kg/s (dashpot)."
+    "--kappa",
+    type=MagnitudeType("stiffness"),
+    required=True,
+    help="Low-amplitude stiffness κ of one contact, N/m.",
+)
+@click.option(
+    "--mu", type=MagnitudeType("friction"), help="Friction coefficient μ, dimensionless (cm)."
+)
+@click.option(
+    "--normal-force",
+    type=MagnitudeType("force"),
+    help="Normal force per contact F_N, N (cm).",
+)
+@click.option("--tau", type=MagnitudeType("stress"), help="Sliding traction τ0, Pa (savkoor).")
+@click.option(
+    "--contact-radius",
+    type=MagnitudeType("contact_radius"),
+    help="Contact radius a, m (savkoor).",
+)
+@click.option(
+    "--xi",
+    type=MagnitudeType("drag"),
+    default="0",
+    show_default=True,
+    help="Linear drag ξ of a dashpot in parallel, kg/s; 0 = none.",
 )
 @click.option(
     "--plateau",
-    type=float,
-    default=0.0,
+    type=MagnitudeType("displacement"),
+    default="0",
     show_default=True,
     help="Critical displacement d_c, m, below which the contact edge sticks (cm, savkoor).",
 )
 @click.option(
     "--u0",
-    type=RANGE,
+    type=RangeType("amplitude"),
     default="0:20e-9:21",
     show_default=True,
     help="Amplitudes u0, m (START:STOP:NUM or a comma list).",
 )
-@click.option("--fundamental", type=float, default=5e6, show_default=True, help="f_F, Hz.")
-@click.option("--overtone", type=int, default=3, show_default=True, help="Overtone n (odd).")
 @click.option(
-    "--area", type=float, default=1e-5, show_default=True, help="Effective area A_eff, m^2."
+    "--fundamental",
+    type=MagnitudeType("frequency"),
+    default="5e6",
+    show_default=True,
+    help="Fundamental frequency f_F of the quartz, Hz.",
 )
-@click.option("--zq", type=float, default=8.8e6, show_default=True, help="Z_q, kg m^-2 s^-1.")
 @click.option(
-    "--n-contacts", type=int, default=1, show_default=True, help="Number of equal contacts n_P."
+    "--overtone",
+    type=MagnitudeType("overtone", integer=True),
+    callback=_odd,
+    default="3",
+    show_default=True,
+    help="Overtone order n, dimensionless (odd).",
+)
+@click.option(
+    "--area",
+    type=MagnitudeType("area"),
+    default="1e-5",
+    show_default=True,
+    help="Effective area A_eff of the electrode, m^2.",
+)
+@click.option(
+    "--zq",
+    type=MagnitudeType("impedance"),
+    default="8.8e6",
+    show_default=True,
+    help="Acoustic impedance Z_q of AT-cut quartz, kg m^-2 s^-1.",
+)
+@click.option(
+    "--n-contacts",
+    type=MagnitudeType("contacts", integer=True),
+    default="1",
+    show_default=True,
+    help="Number of equal contacts n_P, dimensionless.",
 )
 @format_option()
 def loop_command(

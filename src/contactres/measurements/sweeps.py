@@ -73,18 +73,14 @@ PER_SWEEP_COLUMNS = tuple(
 )
 #: Columns of a validated table, in order.
 VALIDATED_COLUMNS = (
-    "sweep",
-    "experiment",
-    "configuration",
-    "medium",
-    "ramp",
-    "normal_force_N",
-    "amplitude_m",
-    "df_Hz",
-    "dgamma_Hz",
-    *CONSTANTS,
-    "line",
-)
+    "sweep", "experiment", "configuration", "medium", "ramp", "normal_force_N", "amplitude_m",
+    "df_Hz", "dgamma_Hz", *CONSTANTS, "line",
+)  # fmt: skip
+#: Largest count (overtone, n_contacts) taken: above 2**53 a float no longer holds every whole
+#: number, and the integer columns of the table would overflow soon after.
+_LARGEST_WHOLE = 2**53
+#: Longest value shown in a message (a 50 MB label is shown by its first characters).
+SHOWN_CHARS = 60
 
 
 class SweepWarning(UserWarning):
@@ -135,41 +131,49 @@ def _toml_constants(path: Path) -> tuple[dict, Path | None]:
     for candidate in (path.with_suffix(".toml"), path.parent / "contactres.toml"):
         if candidate.is_file():
             try:
-                data = tomllib.loads(candidate.read_text(encoding="utf-8"))
+                data = tomllib.loads(candidate.read_bytes().decode("utf-8"))
+            except UnicodeDecodeError as exc:
+                raise ValueError(f"{candidate}: not UTF-8 text (offset {exc.start})") from None
             except tomllib.TOMLDecodeError as exc:
                 raise ValueError(f"{candidate}: not valid TOML ({exc})") from None
             unknown = sorted(set(data) - set(CONSTANTS))
             if unknown:
                 raise ValueError(
-                    f"{candidate}: unknown key(s) {unknown}; allowed: {list(CONSTANTS)}"
+                    f"{candidate}: unknown key(s) {_names(unknown)}; allowed: {list(CONSTANTS)}"
                 )
             return data, candidate
     return {}, None
 
 
-def _check_constant(name: str, value, where: str) -> float:
+def _check_constant(name: str, value, where: str, shown=None) -> float:
+    """``value`` as a float if it passes the rule of ``name`` (``shown``: as written, if not it)."""
+    shown = _shown(value if shown is None else shown)
+    if isinstance(value, (bool, np.bool_)):  # TOML true/false: float() would make it 1/0
+        raise ValueError(f"{where}: {name} = {str(value).lower()} is a boolean, not a number")
     try:
         v = float(value)
     except (TypeError, ValueError):
-        raise ValueError(f"{where}: {name} = {_shown(value)} is not a number") from None
+        raise ValueError(f"{where}: {name} = {shown} is not a number") from None
     if not math.isfinite(v):
-        raise ValueError(f"{where}: {name} = {_shown(value)} is not finite")
+        raise ValueError(f"{where}: {name} = {shown} is not finite")
+    if name in ("overtone", "n_contacts") and abs(v) > _LARGEST_WHOLE:
+        raise ValueError(f"{where}: {name} = {shown} is too large to be a count")
     if name == "overtone":
         if v != int(v) or v < 1 or int(v) % 2 == 0:
             raise ValueError(
-                f"{where}: overtone = {_shown(value)} is not allowed; a thickness-shear resonator "
+                f"{where}: overtone = {shown} is not allowed; a thickness-shear resonator "
                 "has odd overtones only (1, 3, 5, ...)"
             )
     elif name == "n_contacts":
         if v != int(v) or v < 1:
-            raise ValueError(f"{where}: n_contacts = {_shown(value)} must be a positive integer")
+            raise ValueError(f"{where}: n_contacts = {shown} must be a positive integer")
     elif name == "poisson":
         if not poisson_in_range(v):
             lo, hi = POISSON_OPEN_RANGE
-            raise ValueError(f"{where}: poisson = {_shown(value)} is outside ({lo:g}, {hi:g})")
+            raise ValueError(f"{where}: poisson = {shown} is outside ({lo:g}, {hi:g})")
     elif v <= 0:
         unit = CONSTANTS[name][0]
-        raise ValueError(f"{where}: {name} = {_shown(value)} must be > 0 ({unit})")
+        raise ValueError(f"{where}: {name} = {shown} must be > 0 ({unit})")
     return v
 
 
@@ -233,32 +237,43 @@ def _numeric(raw: pd.DataFrame, col: str, source: str, decimal: str) -> np.ndarr
         i = int(np.flatnonzero(bad)[0])
         shown = raw[col].iloc[i]
         what = "is empty" if not str(shown).strip() else f"value {_shown(shown)} is not a number"
-        raise ValueError(
-            f"{source}, line {raw['line'].iloc[i]}, column {col!r}: {what} "
-            f"({int(bad.sum())} such cell(s) in this column)"
-        )
+        raise ValueError(f"{_where(raw, source, bad, col)}: {what}")
     nonfinite = ~np.isfinite(values)
     if nonfinite.any():
-        i = int(np.flatnonzero(nonfinite)[0])
-        raise ValueError(
-            f"{source}, line {raw['line'].iloc[i]}, column {col!r}: value "
-            f"{_shown(raw[col].iloc[i])} is not finite (NaN or infinite; "
-            f"{int(nonfinite.sum())} such cell(s) in this column)"
-        )
+        raise ValueError(f"{_at(raw, source, nonfinite, col)} is not finite (NaN or infinite)")
     return values
 
 
 def _shown(value) -> str:
-    """A cell as the user wrote it: plain Python repr, never a numpy scalar's repr."""
-    return repr(value.item() if isinstance(value, np.generic) else value)
+    """A cell as the user wrote it: plain Python repr, never a numpy scalar's repr, and at most
+    :data:`SHOWN_CHARS` characters of it."""
+    value = value.item() if isinstance(value, np.generic) else value
+    if isinstance(value, str) and len(value) > SHOWN_CHARS:
+        return repr(value[: SHOWN_CHARS - 1]) + "…"
+    text = repr(value)
+    return text if len(text) <= SHOWN_CHARS else text[: SHOWN_CHARS - 1] + "…"
+
+
+def _names(names) -> str:
+    """A list of column names for a message: the first ten, each shortened."""
+    names = list(names)
+    shown = ", ".join(_shown(n) for n in names[:10])
+    return f"[{shown}{f', ... ({len(names)} in all)' if len(names) > 10 else ''}]"
+
+
+def _where(table: pd.DataFrame, source: str, mask: np.ndarray, col: str) -> str:
+    """'file, line 6, column 'x'' and, for several bad rows, how many and the first five lines."""
+    lines = table["line"].to_numpy()[mask]
+    where = f"{source}, line {lines[0]}, column {col!r}"
+    if len(lines) < 2:
+        return where
+    shown = ", ".join(str(v) for v in lines[:5]) + (", ..." if len(lines) > 5 else "")
+    return f"{where} ({len(lines)} such rows: lines {shown})"
 
 
 def _at(table: pd.DataFrame, source: str, mask: np.ndarray, col: str) -> str:
     i = int(np.flatnonzero(mask)[0])
-    return (
-        f"{source}, line {table['line'].iloc[i]}, column {col!r}: value "
-        f"{_shown(table[col].iloc[i])}"
-    )
+    return f"{_where(table, source, mask, col)}: value {_shown(table[col].iloc[i])}"
 
 
 def _labels_and_numbers(raw: pd.DataFrame, source: str, decimal: str) -> pd.DataFrame:
@@ -313,7 +328,8 @@ def _fill_constants(
             out[name] = vals
             for v in np.unique(vals):  # validate distinct values only (cheap)
                 i = int(np.flatnonzero(vals == v)[0])
-                _check_constant(name, v, f"{source}, line {out['line'].iloc[i]}, column {name!r}")
+                where = f"{source}, line {out['line'].iloc[i]}, column {name!r}"
+                _check_constant(name, v, where, shown=raw[name].iloc[i])
             if name in constants and np.any(vals != float(constants[name])):
                 warnings.warn(
                     f"{source}: column {name!r} overrides the given {name} = "
@@ -396,22 +412,41 @@ def _drop_duplicates(out: pd.DataFrame, source: str) -> pd.DataFrame:
     return out.loc[~dup].reset_index(drop=True)
 
 
+def _conflict(table: pd.DataFrame, source: str, by: str, col: str, rule: str) -> None:
+    """Error naming two rows if ``col`` takes more than one value within a group of ``by``."""
+    counts = table.groupby(by, sort=False)[col].nunique()
+    if (counts > 1).any():
+        name = counts.index[counts.to_numpy() > 1][0]
+        rows = table[table[by] == name]
+        a, b = rows.iloc[0], rows.loc[rows[col] != rows[col].iloc[0]].iloc[0]
+        raise ValueError(
+            f"{source}, {by} {_shown(name)}: conflicting values in column {col!r}: "
+            f"{_shown(a[col])} (line {a['line']}) and {_shown(b[col])} (line {b['line']}); {rule}"
+        )
+
+
 def _check_per_sweep(table: pd.DataFrame, source: str) -> None:
-    """Columns that describe a whole sweep must take one value within it."""
-    grouped = table.groupby("sweep", sort=False)
+    """Columns that describe a whole sweep take one value within it; the sphere and the
+    material (``sphere_radius_m``, ``poisson``) one value within a configuration, whose sweeps
+    the JKR fit (paper 2, Eqs. 7-10) takes together."""
     for col in PER_SWEEP_COLUMNS:
-        counts = grouped[col].nunique()
-        bad = counts[counts > 1]
-        if len(bad):
-            name = bad.index[0]
-            rows = table[table["sweep"] == name]
-            first = rows[col].iloc[0]
-            other = rows.loc[rows[col] != first].iloc[0]
-            raise ValueError(
-                f"{source}, sweep {name!r}: conflicting values in column {col!r}: "
-                f"{_shown(first)} (line {rows['line'].iloc[0]}) and {_shown(other[col])} "
-                f"(line {other['line']}); one sweep has one {col}"
-            )
+        _conflict(table, source, "sweep", col, f"one sweep has one {col}")
+    for col in ("sphere_radius_m", "poisson"):
+        _conflict(table, source, "configuration", col, "one configuration has one sphere")
+
+
+def _warn_sweeps(table: pd.DataFrame, source: str) -> None:
+    """Warn by name of sweeps with too few points, and of sweeps whose amplitudes are all equal
+    (all zero, say): a line through a single amplitude has no slope."""
+    amp = table.groupby("sweep", sort=False)["amplitude_m"]
+    few = f"have fewer than {MIN_SWEEP_POINTS} points and will not be used"
+    flat = "have all amplitudes equal: no slope and no friction coefficient can come from them"
+    for bad, what in ((amp.size() < MIN_SWEEP_POINTS, few), (amp.max() == amp.min(), flat)):
+        names = [_shown(n) for n in bad.index[bad.to_numpy()]]
+        if names:
+            more = f" ... ({len(names)} in all)" if len(names) > 5 else ""
+            message = f"{source}: sweep(s) {', '.join(names[:5])}{more} {what}"
+            warnings.warn(message, SweepWarning, stacklevel=3)
 
 
 def validate_sweeps(
@@ -425,48 +460,38 @@ def validate_sweeps(
 
     ``raw`` may come from a reader (string cells, ``line`` column) or be built in memory (then
     rows are numbered as if a header were line 1). See :func:`read_sweeps` for the arguments.
-    Errors (ValueError) for: no rows, a missing required column, empty/non-numeric/NaN/infinite
-    cells, negative amplitudes, amplitudes above 1 µm (nm in a metre column), an even overtone,
-    shifts that look like absolute frequencies, non-positive normal force, a constant that is
-    missing or differs within one sweep. Warnings (:class:`SweepWarning`) for duplicated rows
-    (dropped), sweeps with fewer than 4 points, a missing ``ramp`` column, arguments overridden
-    by the file, and shifts that break the small-load approximation.
+    Errors (ValueError) for: no rows, a missing required or a duplicated column name,
+    empty/non-numeric/NaN/infinite cells, negative amplitudes, amplitudes above 1 µm (nm in a
+    metre column), an even overtone, a boolean or too large count, shifts that look like absolute
+    frequencies, non-positive normal force, a constant that is missing or differs within one
+    sweep, a sphere radius or Poisson ratio that differs within one configuration. Warnings
+    (:class:`SweepWarning`) for duplicated rows (dropped), sweeps with fewer than 4 points or all
+    amplitudes equal, a missing ``ramp`` column, arguments overridden by the file, and shifts
+    that break the small-load approximation. Values in messages are cut to 60 characters.
     """
     raw = raw.copy()
     raw.columns = [str(c).strip() for c in raw.columns]
+    names = pd.Series(raw.columns)
+    if names.duplicated().any():
+        dups = names[names.duplicated()].unique()
+        raise ValueError(f"{source}: duplicate column name(s) {_names(dups)}; one name each")
     if "line" not in raw.columns:
         raw["line"] = np.arange(2, len(raw) + 2)
     decimal = raw.attrs.get("decimal", ".")
     data_cols = [c for c in raw.columns if c != "line"]
     if len(raw) == 0:
-        raise ValueError(f"{source}: header only, no data rows (columns found: {data_cols})")
+        raise ValueError(f"{source}: header only, no data rows; columns: {_names(data_cols)}")
     missing = [c for c in REQUIRED_COLUMNS if c not in raw.columns]
     if missing:
         raise ValueError(
-            f"{source}: missing required column(s) {missing}; columns found: {data_cols}; "
+            f"{source}: missing required column(s) {missing}; columns found: {_names(data_cols)}; "
             f"required: {list(REQUIRED_COLUMNS)}, optional: {list(OPTIONAL_COLUMNS)}"
         )
     out = _labels_and_numbers(raw, source, decimal)
-    _fill_constants(
-        out,
-        raw,
-        source,
-        decimal,
-        dict(constants or {}),
-        dict(file_constants or {}),
-        file_constants_source,
-    )
+    given, in_file = dict(constants or {}), dict(file_constants or {})
+    _fill_constants(out, raw, source, decimal, given, in_file, file_constants_source)
     _check_physics(out, source)
     out = _drop_duplicates(out, source)
     _check_per_sweep(out, source)
-    npts = out.groupby("sweep", sort=False)["amplitude_m"].transform("size").to_numpy()
-    few = npts < MIN_SWEEP_POINTS
-    if few.any():
-        names = sorted(set(out.loc[few, "sweep"]))
-        warnings.warn(
-            f"{source}: sweep(s) {names[:5]} have fewer than {MIN_SWEEP_POINTS} points and will "
-            "not be used",
-            SweepWarning,
-            stacklevel=2,
-        )
+    _warn_sweeps(out, source)
     return SweepTable(out[list(VALIDATED_COLUMNS)].reset_index(drop=True), source)

@@ -2,22 +2,35 @@
 
 Object API only (:class:`matplotlib.figure.Figure`, Agg canvas): nothing touches pyplot's state,
 and every figure is saved atomically and closed by :func:`contactres.fileio.save_figure`.
+matplotlib is imported when a figure is drawn, not with this module (the report writes its
+tables without it).
+
+Labels from the data (configuration, medium, experiment) are shown as plain text, shortened to
+:data:`LABEL_CHARS` characters: a ``$`` in a label is a dollar sign, not the start of mathtext,
+and a label of 100 kB does not make the layout engine work for minutes.
 """
 
 from __future__ import annotations
 
+import warnings
+from collections.abc import Callable
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
 import pandas as pd
-from matplotlib.backends.backend_agg import FigureCanvasAgg
-from matplotlib.figure import Figure
 
 from ..analysis.models import model_curves
 from ..fileio import save_figure
+from ..measurements.sweeps import SweepWarning
 from ..tangential import kappa_jkr_mindlin
 
+if TYPE_CHECKING:
+    from matplotlib.figure import Figure
+
 __all__ = [
+    "FIGURE_FILES",
+    "LABEL_CHARS",
     "figure_dissipation",
     "figure_friction",
     "figure_stiffness",
@@ -25,11 +38,32 @@ __all__ = [
     "write_figures",
 ]
 
+#: The files :func:`write_figures` writes (paper 2, Figs. 4, 5, 7, 8).
+FIGURE_FILES = (
+    "fig4_sweeps.png",
+    "fig5_df0_vs_load.png",
+    "fig7_dissipation_vs_load.png",
+    "fig8_friction_vs_load.png",
+)
+#: Longest label from the data shown in a figure (longer ones end in an ellipsis).
+LABEL_CHARS = 40
+
 MARKERS = ("o", "s", "^", "D", "v", "P")
 NM = 1e9
 
 
+def _label(value) -> str:
+    """A label from the data as plain text: shortened, and ``$`` escaped (no mathtext)."""
+    text = " ".join(str(value).split())
+    if len(text) > LABEL_CHARS:
+        text = text[: LABEL_CHARS - 1] + "…"
+    return text.replace("$", r"\$")
+
+
 def _figure(nrows: int, ncols: int, width=3.2, height=2.6):
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
     fig = Figure(figsize=(width * ncols, height * nrows), layout="constrained")
     FigureCanvasAgg(fig)
     axes = fig.subplots(nrows, ncols, squeeze=False)
@@ -80,9 +114,12 @@ def figure_sweeps(results) -> Figure:
                 ax_f.plot(uu * NM, f, "-", lw=1, color=color)
                 ax_g.plot(uu * NM, g, "-", lw=1, color=color)
             row = sel.iloc[0]
-            title = f"{medium}, {row['configuration']}, F_N = {row['normal_force_N'] * 1e3:.3g} mN"
+            title = (
+                f"{_label(medium)}, {_label(row['configuration'])}, "
+                f"F_N = {row['normal_force_N'] * 1e3:.3g} mN"
+            )
             ax_f.set_title(f"{title}\n{row['model']}", fontsize=8)
-            ax_g.set_title(f"exp. {row['experiment']}", fontsize=8)
+            ax_g.set_title(f"exp. {_label(row['experiment'])}", fontsize=8)
             ax_f.legend(fontsize=6)
             for ax, lab in ((ax_f, "Δf (Hz)"), (ax_g, "ΔΓ (Hz)")):
                 ax.set_xlabel("amplitude u0 (nm)")
@@ -112,7 +149,7 @@ def _errorbars(ax, loads, config, quantity, scale=1.0):
             color=f"C{j}",
             mfc=f"C{j}" if filled else "white",
             capsize=2,
-            label=medium,
+            label=_label(medium),
         )
 
 
@@ -135,11 +172,11 @@ def figure_stiffness(results) -> Figure:
                 ":",
                 color=f"C{sorted(loads['medium'].unique()).index(g['medium'])}",
                 label=(
-                    f"JKR {g['medium']}: E = {g['E_Pa'] / 1e9:.3g} GPa, "
+                    f"JKR {_label(g['medium'])}: E = {g['E_Pa'] / 1e9:.3g} GPa, "
                     f"γ = {g['gamma_J_m2'] * 1e3:.3g} mJ/m²"
                 ),
             )
-        ax.set_title(config, fontsize=9)
+        ax.set_title(_label(config), fontsize=9)
         ax.set_xlabel("normal force per contact F_N (mN)")
         ax.set_ylabel("Δf0 (Hz)")
         ax.legend(fontsize=6)
@@ -153,7 +190,7 @@ def figure_dissipation(results) -> Figure:
     for c, config in enumerate(configs):
         _errorbars(axes[0, c], loads, config, "dgamma0_Hz")
         _errorbars(axes[1, c], loads, config, "loss_tangent")
-        axes[0, c].set_title(config, fontsize=9)
+        axes[0, c].set_title(_label(config), fontsize=9)
         axes[0, c].set_ylabel("ΔΓ0 (Hz)")
         axes[1, c].set_ylabel("loss tangent ΔΓ0/Δf0")
         axes[1, c].set_xlabel("normal force per contact F_N (mN)")
@@ -174,7 +211,7 @@ def figure_friction(results) -> Figure:
         for c, (q, label) in enumerate(kinds):
             ax = axes[r, c]
             _errorbars(ax, loads, config, q)
-            ax.set_title(f"{config}: {label}", fontsize=8)
+            ax.set_title(f"{_label(config)}: {label}", fontsize=8)
             ax.set_xlabel("F_N (mN)")
             ax.set_ylabel("μ")
             if c == 0:
@@ -182,13 +219,24 @@ def figure_friction(results) -> Figure:
     return fig
 
 
-def write_figures(results, folder) -> list[Path]:
-    """Write Figs. 4, 5, 7, 8 into ``folder``; return the paths."""
-    out = Path(folder)
-    makers = (
-        ("fig4_sweeps.png", figure_sweeps),
-        ("fig5_df0_vs_load.png", figure_stiffness),
-        ("fig7_dissipation_vs_load.png", figure_dissipation),
-        ("fig8_friction_vs_load.png", figure_friction),
-    )
-    return [save_figure(out / name, make(results)) for name, make in makers]
+def write_figures(results, folder: str | Path | Callable[[str], Path]) -> list[Path]:
+    """Write Figs. 4, 5, 7, 8 (:data:`FIGURE_FILES`); return the paths written.
+
+    ``folder`` is a folder, or a function giving the path of each file name (such as
+    :meth:`contactres.fileio.ResultSet.path`). With no used sweep (all are ramp 1, say) there is
+    nothing to draw: no figure is written and a :class:`SweepWarning` says so.
+    """
+    where = folder if callable(folder) else (lambda name: Path(folder) / name)
+    if not results.sweeps["used"].any():
+        warnings.warn(
+            "no sweep is used (all are ramp 1 or have too few points), so no figure is drawn; "
+            "--keep-first-ramp (keep_first_ramp=True) uses ramp 1 too",
+            SweepWarning,
+            stacklevel=2,
+        )
+        return []
+    makers = (figure_sweeps, figure_stiffness, figure_dissipation, figure_friction)
+    return [
+        save_figure(where(name), make(results))
+        for name, make in zip(FIGURE_FILES, makers, strict=True)
+    ]

@@ -1,7 +1,11 @@
 """The results folder of a sweep analysis: tables and JSON (the figures: :mod:`.figures`).
 
-:func:`write_report` writes, each file atomically (:mod:`contactres.fileio`); the columns are those
-of :mod:`contactres.measurements.schema` (``SWEEP_RESULTS``, ``LOAD_RESULTS``, ``GROUP_RESULTS``):
+:func:`write_report` writes the folder as one :class:`contactres.fileio.ResultSet`: nothing is
+written if a file of the set would replace an input (the sweep table, by default) or another run
+is writing into the folder, the files appear together or not at all (a killed run leaves the
+earlier set), ``manifest.json`` lists them, and files of an earlier set that this one does not
+write (e.g. its figures) are removed. The columns are those of
+:mod:`contactres.measurements.schema` (``SWEEP_RESULTS``, ``LOAD_RESULTS``, ``GROUP_RESULTS``):
 
 ``sweeps.csv``
     one row per sweep, in the order of the schema: the 18 columns of the paper's analysis, then
@@ -25,10 +29,14 @@ of :mod:`contactres.measurements.schema` (``SWEEP_RESULTS``, ``LOAD_RESULTS``, `
     (configuration, medium) with the JKR + Mindlin fit (Table 1 of paper 2).
 ``fig4_sweeps.png``, ``fig5_df0_vs_load.png``, ``fig7_dissipation_vs_load.png``,
 ``fig8_friction_vs_load.png``
-    the figures of paper 2 for these data (:mod:`contactres.report.figures`).
+    the figures of paper 2 for these data (:mod:`contactres.report.figures`; none when no
+    sweep is used, with a :class:`~contactres.measurements.sweeps.SweepWarning`).
+``manifest.json``
+    written last: the files of the set with their sizes and SHA-256 sums.
 
 Conventions: Δf is the frequency shift (not Δf/n); ΔΓ the half-bandwidth at half height (not D);
-amplitudes in m; forces per contact in N; NaN (CSV: empty; JSON: null) where not applicable.
+amplitudes in m; forces per contact in N; a number that is not finite (NaN where not
+applicable, an infinite slope error or loss tangent) is an empty cell in CSV and null in JSON.
 """
 
 from __future__ import annotations
@@ -37,18 +45,22 @@ import json
 import math
 from pathlib import Path
 
+import numpy as np
 import pandas as pd
 
 from ..analysis.flags import render
 from ..analysis.results import Results
-from ..fileio import ensure_dir, write_csv, write_text
+from ..fileio import ResultSet, write_csv, write_text
 from ..measurements.schema import CONVENTIONS, GROUP_RESULTS, LOAD_RESULTS, SWEEP_RESULTS
+from .figures import FIGURE_FILES
 
-__all__ = ["FORMATS", "loads_table", "summary", "sweeps_table", "write_report"]
+__all__ = ["FORMATS", "loads_table", "report_files", "summary", "sweeps_table", "write_report"]
 
 #: What :func:`write_report` can write: csv (sweeps.csv, loads.csv), json (summary.json),
 #: png (the figures).
 FORMATS = ("csv", "json", "png")
+#: The files of each format.
+FILES = {"csv": ("sweeps.csv", "loads.csv"), "json": ("summary.json",), "png": FIGURE_FILES}
 
 
 def _clean(value):
@@ -64,16 +76,26 @@ def _clean(value):
     return value
 
 
+def _finite_or_nan(table: pd.DataFrame) -> pd.DataFrame:
+    """``table`` with ±inf as NaN (an empty cell in CSV): an infinite error or ratio is 'not
+    applicable', as NaN is, and the README promises empty cells for both."""
+    out = table.copy()
+    for col in out.select_dtypes(include="floating").columns:
+        values = out[col].to_numpy()
+        out[col] = np.where(np.isinf(values), np.nan, values)
+    return out
+
+
 def sweeps_table(results: Results) -> pd.DataFrame:
     """The ``sweeps.csv`` table: the columns of ``SWEEP_RESULTS``, flags as text."""
-    table = results.sweeps[list(SWEEP_RESULTS.names)].copy()
+    table = _finite_or_nan(results.sweeps[list(SWEEP_RESULTS.names)])
     table["flags"] = render(table["flags"].to_numpy())
     return table
 
 
 def loads_table(results: Results) -> pd.DataFrame:
     """The ``loads.csv`` table: the columns of ``LOAD_RESULTS``."""
-    return results.loads[list(LOAD_RESULTS.names)]
+    return _finite_or_nan(results.loads[list(LOAD_RESULTS.names)])
 
 
 def summary(results: Results) -> dict:
@@ -96,30 +118,67 @@ def summary(results: Results) -> dict:
     )
 
 
-def write_report(results: Results, folder, formats=FORMATS) -> list[Path]:
+def _formats(formats) -> tuple[str, ...]:
+    formats = (formats,) if isinstance(formats, str) else tuple(formats)
+    unknown = sorted(set(formats) - set(FORMATS))
+    if unknown:
+        raise ValueError(f"unknown report format(s) {unknown}; allowed: {list(FORMATS)}")
+    return formats
+
+
+def report_files(formats=FORMATS) -> tuple[str, ...]:
+    """The names of the files :func:`write_report` may write for ``formats`` (figures are left
+    out when there is nothing to draw)."""
+    return tuple(name for f in FORMATS if f in _formats(formats) for name in FILES[f])
+
+
+def write_report(results: Results, folder, formats=FORMATS, *, inputs=None) -> list[Path]:
     """Write the results folder (see the module docstring); return the paths written.
 
     Parameters
     ----------
     results : what :func:`contactres.analyze` returned
     folder : the results folder, created if missing (a path that exists and is not a folder is
-        an error); files of the same names in it are replaced, each atomically
+        an error); or a :class:`~contactres.fileio.ResultSet` opened by the caller (declared
+        with :func:`report_files`), which moves the files into place when its block ends
     formats : one of :data:`FORMATS` or a sequence of them
+    inputs : files that must not be overwritten (default: the sweep table the results came
+        from); ignored when ``folder`` is a ResultSet (it was given its inputs)
+
+    Returns
+    -------
+    list of Path : the files of the set (not ``manifest.json``), where they are once in place
+
+    Raises
+    ------
+    contactres.fileio.OutputError
+        Before anything is written: the folder cannot be written, a file of the set is one of
+        ``inputs``, or another run is writing into the folder.
     """
-    formats = (formats,) if isinstance(formats, str) else tuple(formats)
-    unknown = sorted(set(formats) - set(FORMATS))
-    if unknown:
-        raise ValueError(f"unknown report format(s) {unknown}; allowed: {list(FORMATS)}")
-    out = ensure_dir(folder)
-    written = []
+    formats = _formats(formats)
+    if isinstance(folder, ResultSet):
+        return _write_into(results, folder, formats)
+    if inputs is None:
+        source = None if results.table is None else results.table.source
+        inputs = () if source is None or source == "<table>" else (source,)
+    with ResultSet(
+        folder, names=report_files(formats), inputs=inputs, owned=report_files(FORMATS)
+    ) as rs:
+        return _write_into(results, rs, formats)
+
+
+def _write_into(results: Results, rs: ResultSet, formats: tuple[str, ...]) -> list[Path]:
+    names = []
     if "csv" in formats:
-        written.append(write_csv(out / "sweeps.csv", sweeps_table(results)))
-        written.append(write_csv(out / "loads.csv", loads_table(results)))
+        write_csv(rs.path("sweeps.csv"), sweeps_table(results))
+        write_csv(rs.path("loads.csv"), loads_table(results))
+        names += ["sweeps.csv", "loads.csv"]
     if "json" in formats:
         text = json.dumps(summary(results), indent=1, ensure_ascii=False) + "\n"
-        written.append(write_text(out / "summary.json", text))
+        write_text(rs.path("summary.json"), text)
+        names.append("summary.json")
     if "png" in formats:
         from .figures import write_figures  # matplotlib only when figures are asked for
 
-        written.extend(write_figures(results, out))
-    return written
+        names += [p.name for p in write_figures(results, rs.path)]
+    return [rs.final(name) for name in names]

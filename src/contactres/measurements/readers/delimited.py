@@ -1,12 +1,15 @@
 """Reader plug-in for delimited text tables (CSV, semicolon- or tab-separated).
 
 The separator and the decimal mark are recognised from the header and the first data lines:
-comma, semicolon or tab; a decimal comma with semicolon or tab separators. A UTF-8 byte order
-mark is skipped; lines starting with ``#`` are comments.
+comma, semicolon or tab; a decimal comma with semicolon or tab separators. The file must be
+UTF-8 text (a byte order mark is skipped). Comments: a line whose first non-blank character is
+``#`` is a comment, as a whole; a ``#`` anywhere else is data (``SiO2 #A`` is a label, not
+``SiO2`` plus a comment). Blank lines are skipped. Column names must be unique.
 """
 
 from __future__ import annotations
 
+import csv
 import io
 import re
 from pathlib import Path
@@ -18,6 +21,9 @@ __all__ = ["detect", "load", "suffixes"]
 suffixes = (".csv", ".txt", ".tsv")
 
 _DECIMAL_COMMA = re.compile(r"^[+-]?\d+,\d+([eE][+-]?\d+)?$")
+# The line breaks of a CSV file (str.splitlines would also split at form feeds, U+2028, ...).
+_LINE_BREAK = re.compile(r"\r\n|\r|\n")
+_FIELD_COUNT = re.compile(r"Expected (\d+) fields in line (\d+), saw (\d+)")
 
 
 def _dialect(text: str) -> tuple[str, str]:
@@ -38,39 +44,94 @@ def _dialect(text: str) -> tuple[str, str]:
     return sep, decimal
 
 
+def _shown(name: str, limit: int = 60) -> str:
+    text = name if len(name) <= limit else name[: limit - 1] + "…"
+    return repr(text)
+
+
+def _decode(path: Path) -> str:
+    """The file as text: UTF-8, a byte order mark skipped (one-line error naming the byte)."""
+    data = path.read_bytes()
+    bom = len(b"\xef\xbb\xbf") if data.startswith(b"\xef\xbb\xbf") else 0
+    try:
+        return data[bom:].decode("utf-8")
+    except UnicodeDecodeError as exc:
+        at = bom + exc.start
+        line = data.count(b"\n", 0, at) + 1
+        raise ValueError(
+            f"{path}: not UTF-8 text (byte 0x{data[at]:02x} at offset {at}, line {line}); save "
+            "the table as UTF-8"
+        ) from None
+
+
+def _check_header(path: Path, number: int, header: str, sep: str) -> None:
+    """Duplicate column names are an error (pandas would rename them, in quadratic time)."""
+    names = [n.strip() for n in next(csv.reader([header], delimiter=sep))]
+    seen: dict[str, int] = {}
+    dups: dict[str, list[int]] = {}
+    for i, name in enumerate(names, start=1):
+        if name in seen:
+            dups.setdefault(name, [seen[name]]).append(i)
+        else:
+            seen[name] = i
+    if dups:
+        shown = "; ".join(
+            f"{_shown(n)} (columns {', '.join(map(str, cols[:5]))}"
+            + (f", ... {len(cols)} in all)" if len(cols) > 5 else ")")
+            for n, cols in list(dups.items())[:3]
+        )
+        more = f"; and {len(dups) - 3} more name(s)" if len(dups) > 3 else ""
+        raise ValueError(
+            f"{path}, line {number}: duplicate column name(s) {shown}{more}; every column "
+            "needs its own name"
+        )
+
+
 def load(path: Path) -> pd.DataFrame:
     """Raw string table with a ``line`` column (line number in the file, header = line 1).
 
-    ``attrs["decimal"]`` records the decimal mark for the validator.
+    ``attrs["decimal"]`` records the decimal mark for the validator. Comment lines and blank
+    lines are dropped here, before parsing, so that ``#`` inside a cell stays data and every
+    row keeps the number of its line in the file.
     """
-    text = path.read_text(encoding="utf-8-sig")
-    if not text.strip():
+    text = _decode(path)
+    kept = [
+        (i + 1, ln)
+        for i, ln in enumerate(_LINE_BREAK.split(text))
+        if ln.strip() and not ln.lstrip().startswith("#")
+    ]
+    if not kept:
         raise ValueError(f"{path}: the file is empty (expected a header line and data rows)")
-    sep, decimal = _dialect(text)
+    sep, decimal = _dialect("\n".join(ln for _, ln in kept[:51]))
+    _check_header(path, *kept[0], sep)
     try:
         raw = pd.read_csv(
-            io.StringIO(text),  # parse the text already read (and decoded) once
+            io.StringIO("\n".join(ln for _, ln in kept)),
             sep=sep,
             dtype=str,
             keep_default_na=False,
-            skip_blank_lines=True,
-            comment="#",
+            skip_blank_lines=False,
         )
     except pd.errors.ParserError as exc:
-        raise ValueError(f"{path}: not a readable {sep!r}-separated table ({exc})") from None
+        # pandas counts lines of the text it was given; name the line of the file instead.
+        found = _FIELD_COUNT.search(str(exc))
+        if found and int(found.group(2)) <= len(kept):
+            number = kept[int(found.group(2)) - 1][0]
+            what = f"line {number} has {found.group(3)} fields, the header {found.group(1)}"
+        else:
+            what = " ".join(str(exc).split())[:200]
+        raise ValueError(f"{path}: not a readable {sep!r}-separated table ({what})") from None
     raw.columns = [str(c).strip() for c in raw.columns]
-    # Line numbers for messages: count non-blank, non-comment lines as pandas does.
-    numbers = [
-        i + 1
-        for i, ln in enumerate(text.splitlines())
-        if ln.strip() and not ln.lstrip().startswith("#")
-    ]
-    raw["line"] = numbers[1 : len(raw) + 1] if len(numbers) > len(raw) else range(2, len(raw) + 2)
+    # A short row leaves NaN in its missing cells: make them empty cells, as written.
+    raw = raw.fillna("")
+    numbers = [n for n, _ in kept[1:]]
+    raw["line"] = numbers if len(numbers) == len(raw) else range(2, len(raw) + 2)
     raw.attrs["decimal"] = decimal
     return raw
 
 
 def detect(path: Path, head: str) -> bool:
-    """True if the first non-blank line of ``head`` has a comma, semicolon or tab."""
-    first = next((ln for ln in head.splitlines() if ln.strip()), "")
+    """True if the first line of ``head`` that is neither blank nor a comment has a comma, a
+    semicolon or a tab."""
+    first = next((ln for ln in head.splitlines() if ln.strip() and ln.lstrip()[0] != "#"), "")
     return any(s in first for s in (",", ";", "\t"))
