@@ -6,7 +6,7 @@ import pytest
 
 from contactres.analysis import AnalysisSettings, analyze
 from contactres.analysis.flags import Flag, has
-from contactres.measurements.sweeps import validate_sweeps
+from contactres.measurements.sweeps import SweepWarning, validate_sweeps
 from contactres.measurements.synthetic import Drift, SweepGroup, SweepStudy, synthetic_sweeps
 from contactres.resonators.qcm import QCM
 
@@ -171,3 +171,21 @@ def test_per_load_errors_by_hand():
     assert row1["errors_from"] == "sweeps of one experiment"
     k = sw1["kappa_N_per_m"]
     assert row1["kappa_N_per_m_sem"] == pytest.approx(k.std(ddof=1) / np.sqrt(len(k)))
+
+
+def test_a_sweep_at_one_amplitude_is_flagged_and_gets_no_slope():
+    s = study(n_experiments=1)
+
+    def flatten(raw):
+        one = raw["sweep"] == raw["sweep"].iloc[-1]
+        raw.loc[one, "amplitude_m"] = 3e-9
+        return raw.drop_duplicates(["sweep", "amplitude_m", "df_Hz", "dgamma_Hz"])
+
+    with pytest.warns(SweepWarning, match="all amplitudes equal"):
+        table = _table(s, 8, flatten)
+    sw = analyze(table, settings=FAST).sweeps
+    flat = has(sw["flags"], Flag.FLAT_AMPLITUDE)
+    assert flat.sum() == 1
+    row = sw[flat].iloc[0]
+    assert np.isnan(row["df_slope_Hz_per_m"]) and np.isnan(row["mu_df"])
+    assert np.isnan(row["mu_dgamma"])

@@ -28,6 +28,7 @@ class Flag(enum.IntFlag):
     GROSS_SLIDING = enum.auto()
     DRIFT = enum.auto()
     RAMP_ORDER = enum.auto()
+    FLAT_AMPLITUDE = enum.auto()
 
     @property
     def text(self) -> str:
@@ -61,6 +62,10 @@ DESCRIPTIONS: dict[Flag, str] = {
     Flag.RAMP_ORDER: (
         "the ramp labels of this load disagree with the file order or the amplitudes (see the "
         "messages); the first sweep in the file is taken as the running-in ramp"
+    ),
+    Flag.FLAT_AMPLITUDE: (
+        "all amplitudes of the sweep are equal: no slope, so no μ from it (its Δf0 and ΔΓ0 are "
+        "the mean shifts at that amplitude)"
     ),
 }
 

@@ -184,6 +184,11 @@ def analyze(
     sw["P_Hz_per_N_per_m"] = P
 
     few = sw["n_points"].to_numpy() < MIN_SWEEP_POINTS
+    # A sweep at one amplitude has no slope (the straight line is degenerate): say so.
+    u_min = np.min(np.where(padded.w > 0, padded.u, np.inf), axis=1)
+    flat = sw["u_max_m"].to_numpy() == u_min
+    for col in ("df_slope_Hz_per_m", "dgamma_slope_Hz_per_m"):
+        sw.loc[flat, [col, col.replace("_Hz_per_m", "_err_Hz_per_m")]] = np.nan
     first_line = data.groupby("sweep", sort=False)["line"].min().reindex(sw["sweep"]).to_numpy()
     ramps = check_ramps(sw, first_line, sw["direction"].to_numpy())
     running = ramps.first  # the running-in sweep of each load, as measured
@@ -204,6 +209,7 @@ def analyze(
         | _flag(big, Flag.SMALL_LOAD)
         | _flag((sw["model"] == "plateau").to_numpy(), Flag.PLATEAU_SLOPE)
         | _flag(ramps.suspect, Flag.RAMP_ORDER)
+        | _flag(flat, Flag.FLAT_AMPLITUDE)
     )
 
     say("contact stiffness and friction")

@@ -72,6 +72,7 @@ def analyze_command(
     from ..analysis.flags import Flag, has
     from ..fileio import ResultSet
     from ..measurements.sweeps import read_sweeps
+    from ..report.console import friction_table, table1_text, withheld_lines
     from ..report.tables import report_files, write_report
 
     constants = dict(
@@ -110,14 +111,19 @@ def analyze_command(
         _echo_warnings(caught)
     for message in results.messages:  # what the analysis found odd in the input
         click.echo(f"contactres: warning: {' '.join(str(message).split())}", err=True)
-    table1 = results.table1()
-    if fmt == "plain":  # a terminal table: long labels shortened (csv and json keep them whole)
-        for col in {"configuration", "medium"} & set(table1.columns):
-            table1[col] = [c if len(c) <= 40 else c[:39] + "…" for c in table1[col].astype(str)]
-    if fmt == "plain" and table1.empty:
+    if fmt != "plain":
+        emit(results.table1(), fmt)
+        return
+    table1 = table1_text(results)
+    if table1.empty:
         click.echo("Table 1: no configuration to fit (no sweep is used)")
     else:
-        emit(table1, fmt)
+        click.echo("Table 1 (paper 2): E and γ of every configuration and medium")
+        click.echo(_text(table1))
+        for line in withheld_lines(results):
+            click.echo(f"contactres: warning: {line}", err=True)
+        click.echo("\nfriction coefficient per load (exact-loop fit, median over experiments)")
+        click.echo(_text(friction_table(results)))
     if fmt == "plain":
         n_used = int(results.sweeps["used"].sum())
         models = results.sweeps.loc[results.sweeps["used"], "model"].value_counts().to_dict()
@@ -128,6 +134,14 @@ def analyze_command(
             + f"; drift flagged: {flagged}"
         )
         click.echo(f"wrote {len(written)} files into {out}/")
+
+
+def _text(table) -> str:
+    """A terminal table: long labels shortened (the files keep them whole), no index."""
+    table = table.copy()
+    for col in {"configuration", "medium"} & set(table.columns):
+        table[col] = [c if len(c) <= 40 else c[:39] + "…" for c in table[col].astype(str)]
+    return table.to_string(index=False)
 
 
 def _echo_warnings(caught: list[warnings.WarningMessage]) -> None:

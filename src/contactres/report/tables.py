@@ -113,6 +113,7 @@ def summary(results: Results) -> dict:
             "settings": results.settings,
             "version": results.version,
             "source": source,
+            "messages": list(results.messages),
             "conventions": CONVENTIONS,
         }
     )

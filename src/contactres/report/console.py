@@ -1,0 +1,74 @@
+"""What ``contactres qcm analyze`` prints: Table 1 with errors, withheld fits, friction per load.
+
+Plain text for a terminal: values with their errors (``59.7 ± 0.5``), ``—`` where a value is
+withheld or missing (never ``nan``), and one line per withheld group saying why and which input
+to check. The files of the results folder hold every number at full precision.
+"""
+
+from __future__ import annotations
+
+import math
+
+import pandas as pd
+
+from ..analysis.results import Results
+
+__all__ = ["friction_table", "table1_text", "withheld_lines"]
+
+DASH = "—"
+
+
+def _pm(value: float, err: float, digits: int = 3) -> str:
+    """``value ± err`` with the error to 2 significant digits and the value to match."""
+    if not math.isfinite(value):
+        return DASH
+    if not math.isfinite(err) or err <= 0:
+        return f"{value:.{digits}g}"
+    decimals = max(0, 1 - math.floor(math.log10(err)))
+    return f"{value:.{decimals}f} ± {err:.{decimals}f}"
+
+
+def table1_text(results: Results) -> pd.DataFrame:
+    """Table 1 for the terminal: E (GPa) and γ (mJ/m²) with errors, counts, error method."""
+    rows = []
+    for g in results.groups:
+        rows.append(
+            {
+                "configuration": g["configuration"],
+                "medium": g["medium"],
+                "E (GPa)": _pm(g["E_Pa"] / 1e9, g["E_err_Pa"] / 1e9),
+                "γ (mJ/m²)": _pm(g["gamma_J_m2"] * 1e3, g["gamma_err_J_m2"] * 1e3),
+                "experiments": g["n_experiments"],
+                "sweeps": g["n_sweeps_used"],
+                "errors": g.get("error_method", "") or DASH,
+            }
+        )
+    return pd.DataFrame(rows)
+
+
+def withheld_lines(results: Results) -> list[str]:
+    """One line per group whose E and γ are withheld, with the reason and the input to check."""
+    return [
+        f"{g['configuration']}, {g['medium']}: E and γ withheld ({', '.join(g['checks'])}): "
+        f"{g['note']}"
+        for g in results.groups
+        if g.get("checks")
+    ]
+
+
+def friction_table(results: Results) -> pd.DataFrame:
+    """μ per load (exact-loop fit): median over experiments ± its error, and the counts."""
+    loads = results.loads
+    return pd.DataFrame(
+        {
+            "configuration": loads["configuration"],
+            "medium": loads["medium"],
+            "F_N (mN)": [f"{f * 1e3:.4g}" for f in loads["normal_force_N"]],
+            "μ (loop fit)": [
+                _pm(m, e, 2)
+                for m, e in zip(loads["mu_fit_median"], loads["mu_fit_median_err"], strict=True)
+            ],
+            "experiments": loads["n_experiments"],
+            "sweeps": loads["n_sweeps"],
+        }
+    )
