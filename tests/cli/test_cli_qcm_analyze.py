@@ -40,7 +40,9 @@ def test_analyze_writes_results_and_prints_table(sweeps_csv, tmp_path):
     out = tmp_path / "res"
     r = run("qcm", "analyze", sweeps_csv, "--out", out, *OPTS, "--no-figures", "--bootstrap", "20")
     assert r.exit_code == 0, r.output
-    assert "E_GPa" in r.output and "gamma_mJ_m2" in r.output
+    # Table 1 for a terminal: E and γ with their errors, then μ per load.
+    assert "E (GPa)" in r.output and "γ (mJ/m²)" in r.output and " ± " in r.output
+    assert "friction coefficient per load" in r.output and "nan" not in r.output.lower()
     assert "36 sweeps, 27 used" in r.output
     for name in ("sweeps.csv", "loads.csv", "summary.json"):
         assert (out / name).is_file()
