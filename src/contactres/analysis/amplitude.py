@@ -1,11 +1,15 @@
-"""Sweeps as padded arrays, and the closed-form amplitude fits solved for every sweep at once.
+"""Sweeps as flat point arrays with padded blocks, and the closed-form amplitude fits.
 
 Three of the four amplitude descriptions of Δf(u0), ΔΓ(u0) (paper 2, Figs. 1D and 4) are linear
 least squares: a constant (``elastic``), a straight line in u0 (``cattaneo-mindlin``, paper 2,
 Eq. 12) and a straight line in u0² (``savkoor``, paper 2, Eq. 15). The fourth, a hinge (flat
 below u_c, linear above: the ``plateau`` of Fig. 4C, D), is linear once u_c is fixed, and u_c is
-searched on a grid. All of them are solved in closed form for every sweep at once: the sweeps are
-padded to a common length and the padding is weighted 0.
+searched on a grid. All of them are solved in closed form for many sweeps at once.
+
+**Layout.** :class:`Padded` keeps the points flat, sweep after sweep, so that memory grows with
+the number of points. The fits run on blocks (:meth:`Padded.blocks`): sweeps of similar length,
+padded to the longest of the block with weight 0, a bounded number of points per block. One long
+sweep among short ones therefore pads only its own block.
 """
 
 from __future__ import annotations
@@ -14,14 +18,18 @@ from dataclasses import dataclass
 
 import numpy as np
 import pandas as pd
+from numpy.lib.mixins import NDArrayOperatorsMixin
 
 __all__ = [
+    "BLOCK_POINTS",
     "PLATEAU_MIN_FLAT",
     "PLATEAU_MIN_SLOPE",
     "PLATEAU_SUBSTEPS",
+    "Block",
     "HingeFit",
     "LineFit",
     "Padded",
+    "PaddedRows",
     "bic",
     "fit_hinge",
     "fit_line",
@@ -33,46 +41,166 @@ PLATEAU_MIN_FLAT = 2
 PLATEAU_MIN_SLOPE = 3
 PLATEAU_SUBSTEPS = (0.0, 0.25, 0.5, 0.75)
 
+#: Padded points (rows x longest sweep) of one block: its arrays stay at a few MB.
+BLOCK_POINTS = 1 << 16
+
+# Sweeps of up to EXACT_LENGTH points are blocked by their exact length (no padding, same sums
+# as one common padding for the usual 10-20-point sweeps); longer ones in classes of
+# LENGTH_RATIO, so that padding adds at most 25 % and the number of blocks stays small.
+EXACT_LENGTH = 16
+LENGTH_RATIO = 1.25
+
+# Hinge candidates re-ranked with the direct residual sums (the suffix sums only rank them).
+HINGE_RECHECK = 4
+
+
+@dataclass(frozen=True)
+class Block:
+    """Some sweeps as padded 2-D arrays (one row per sweep, amplitudes ascending, padding weight
+    0 and amplitude equal to the sweep's largest): what the fits take."""
+
+    rows: np.ndarray  # (S,) rows of these sweeps in the Padded
+    u: np.ndarray  # (S, M) amplitude, m
+    df: np.ndarray  # (S, M) Hz
+    dg: np.ndarray  # (S, M) Hz
+    w: np.ndarray  # (S, M) 1 for data, 0 for padding
+    n: np.ndarray  # (S,) points per sweep
+
 
 @dataclass(frozen=True)
 class Padded:
-    """Sweeps as padded 2-D arrays (one row per sweep, amplitudes ascending, padding weight 0)."""
+    """The points of every sweep, flat: sweep after sweep, amplitudes ascending within a sweep.
 
-    sweeps: np.ndarray  # sweep ids, order of first appearance
-    u: np.ndarray  # amplitude, m
-    df: np.ndarray  # Hz
-    dg: np.ndarray  # Hz
-    w: np.ndarray  # 1 for data, 0 for padding
-    n: np.ndarray  # points per sweep
-    direction: np.ndarray  # "up", "down" or "mixed" (order of amplitudes in the file)
+    Memory is linear in the number of points. :meth:`block` pads some sweeps to a common
+    length, :meth:`blocks` groups the sweeps into such blocks of similar length, and
+    :meth:`points` returns the points of some sweeps, concatenated. ``u``, ``df``, ``dg`` and
+    ``w`` (:class:`PaddedRows`) pad the sweeps that they are indexed with, on request.
+    """
+
+    sweeps: np.ndarray  # (S,) sweep ids, order of first appearance
+    n: np.ndarray  # (S,) points per sweep
+    direction: np.ndarray  # (S,) "up", "down" or "mixed" (order of amplitudes in the file)
+    start: np.ndarray  # (S,) index of each sweep's first point in the flat arrays
+    points_u: np.ndarray  # (N,) amplitude, m
+    points_df: np.ndarray  # (N,) Hz
+    points_dg: np.ndarray  # (N,) Hz
+
+    def points(self, rows) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+        """Amplitudes (m), Δf and ΔΓ (Hz) of the sweeps ``rows``, concatenated in that order."""
+        rows = np.atleast_1d(np.asarray(rows, dtype=np.intp))
+        counts = self.n[rows]
+        first = np.repeat(self.start[rows] - (np.cumsum(counts) - counts), counts)
+        idx = first + np.arange(counts.sum())
+        return self.points_u[idx], self.points_df[idx], self.points_dg[idx]
+
+    def block(self, rows) -> Block:
+        """The sweeps ``rows`` padded to the longest of them."""
+        rows = np.atleast_1d(np.asarray(rows, dtype=np.intp))
+        n = self.n[rows]
+        pos = np.arange(int(n.max()))
+        data = pos < n[:, None]
+        # Padding repeats the largest amplitude, so that max() and grids stay meaningful.
+        idx = self.start[rows][:, None] + np.minimum(pos, n[:, None] - 1)
+        df = np.where(data, self.points_df[idx], 0.0)
+        dg = np.where(data, self.points_dg[idx], 0.0)
+        return Block(rows, self.points_u[idx], df, dg, data.astype(float), n)
+
+    def blocks(self, rows=None, max_points: int = BLOCK_POINTS) -> list[np.ndarray]:
+        """The sweeps ``rows`` (default all) in groups of similar length, ascending row order
+        within a group, each of at most ``max_points`` padded points (or one sweep)."""
+        rows = np.arange(len(self.n)) if rows is None else np.asarray(rows, dtype=np.intp)
+        n = self.n[rows]
+        longer = np.log(np.maximum(n, 1) / EXACT_LENGTH) / np.log(LENGTH_RATIO)
+        key = np.where(n <= EXACT_LENGTH, n, EXACT_LENGTH + np.ceil(longer).astype(np.int64))
+        order = np.lexsort((rows, key))
+        cuts = np.flatnonzero(np.diff(key[order])) + 1
+        out = []
+        for group in np.split(rows[order], cuts):  # a few length classes, not the sweeps
+            per_block = max(1, max_points // int(self.n[group].max()))
+            out.extend(np.split(group, np.arange(per_block, group.size, per_block)))
+        return out
+
+    @property
+    def u_min(self) -> np.ndarray:
+        """Smallest amplitude of every sweep (S,), m."""
+        return self.points_u[self.start]
+
+    @property
+    def u_max(self) -> np.ndarray:
+        """Largest amplitude of every sweep (S,), m."""
+        return self.points_u[self.start + self.n - 1]
+
+    @property
+    def u(self) -> PaddedRows:
+        """Amplitudes, m, padded per request: ``p.u[rows]`` (padding: the largest amplitude)."""
+        return PaddedRows(self, "u")
+
+    @property
+    def df(self) -> PaddedRows:
+        """Δf, Hz, padded per request: ``p.df[rows]`` (padding 0)."""
+        return PaddedRows(self, "df")
+
+    @property
+    def dg(self) -> PaddedRows:
+        """ΔΓ, Hz, padded per request: ``p.dg[rows]`` (padding 0)."""
+        return PaddedRows(self, "dg")
+
+    @property
+    def w(self) -> PaddedRows:
+        """1 for data, 0 for padding, per request: ``p.w[rows]``."""
+        return PaddedRows(self, "w")
+
+
+class PaddedRows(NDArrayOperatorsMixin):
+    """One array of :class:`Block` for any rows of a :class:`Padded`, built when indexed.
+
+    ``view[i]`` is sweep i padded to its own length, ``view[rows]`` those sweeps padded to the
+    longest of them (so ``p.u[rows][p.w[rows] > 0]`` are their amplitudes). Used whole (``np.
+    asarray(view)``, arithmetic, comparisons), it is every sweep padded to the longest one:
+    sweeps x longest sweep, for small tables only. Nothing is kept: the memory of a
+    :class:`Padded` stays linear in the number of points.
+    """
+
+    def __init__(self, padded: Padded, name: str):
+        self.padded, self.name = padded, name
+
+    def __len__(self) -> int:
+        return len(self.padded.n)
+
+    @property
+    def shape(self) -> tuple[int, int]:
+        return (len(self), int(self.padded.n.max()))
+
+    def __getitem__(self, key) -> np.ndarray:
+        rows = np.arange(len(self))[key]
+        out = getattr(self.padded.block(np.atleast_1d(rows)), self.name)
+        return out[0] if np.ndim(rows) == 0 else out
+
+    def __array__(self, dtype=None, copy=None) -> np.ndarray:
+        out = self[:]
+        return out if dtype is None else out.astype(dtype)
+
+    def __array_ufunc__(self, ufunc, method, *inputs, **kwargs):
+        args = [np.asarray(a) if isinstance(a, PaddedRows) else a for a in inputs]
+        return getattr(ufunc, method)(*args, **kwargs)
 
 
 def pad_sweeps(table: pd.DataFrame) -> Padded:
-    """Arrange the points of a sweep table (a DataFrame of its columns) into padded arrays."""
+    """Arrange the points of a sweep table (a DataFrame of its columns) sweep by sweep."""
     codes, names = pd.factorize(table["sweep"], sort=False)
     u = table["amplitude_m"].to_numpy(float)
     order = np.lexsort((u, codes))
-    codes_s = codes[order]
     counts = np.bincount(codes, minlength=len(names))
-    starts = np.concatenate([[0], np.cumsum(counts)[:-1]])
-    pos = np.arange(len(order)) - starts[codes_s]
-    m = int(counts.max())
-    shape = (len(names), m)
-    U, DF, DG, W = (np.zeros(shape) for _ in range(4))
-    U[codes_s, pos] = u[order]
-    DF[codes_s, pos] = table["df_Hz"].to_numpy(float)[order]
-    DG[codes_s, pos] = table["dgamma_Hz"].to_numpy(float)[order]
-    W[codes_s, pos] = 1.0
-    # Padding repeats the largest amplitude so that max() and grids stay meaningful.
-    last = U[np.arange(len(names)), counts - 1]
-    U = np.where(W > 0, U, last[:, None])
+    start = np.concatenate([[0], np.cumsum(counts)[:-1]])
     # Direction from the file order of the amplitudes: up, down, or mixed.
     same = codes[1:] == codes[:-1]
     step = np.diff(u)
     rises = np.bincount(codes[1:][same & (step > 0)], minlength=len(names)) > 0
     falls = np.bincount(codes[1:][same & (step < 0)], minlength=len(names)) > 0
     direction = np.where(rises & falls, "mixed", np.where(falls, "down", "up"))
-    return Padded(np.asarray(names), U, DF, DG, W, counts, direction)
+    df = table["df_Hz"].to_numpy(float)[order]
+    dg = table["dgamma_Hz"].to_numpy(float)[order]
+    return Padded(np.asarray(names), counts, direction, start, u[order], df, dg)
 
 
 @dataclass(frozen=True)
@@ -141,7 +269,17 @@ class HingeFit:
     found: np.ndarray  # (S,) bool: False if no u_c leaves enough points on both sides
 
 
-def fit_hinge(p: Padded) -> HingeFit:
+def _suffix(a: np.ndarray) -> np.ndarray:
+    """Σ_{i >= k} a_i along the last axis for k = 0 ... M (the last one 0)."""
+    s = np.cumsum(a[..., ::-1], axis=-1)[..., ::-1]
+    return np.concatenate([s, np.zeros((*a.shape[:-1], 1))], axis=-1)
+
+
+def _hinge_crit(rss) -> np.ndarray:
+    return np.log(np.maximum(rss[0], 1e-30)) + np.log(np.maximum(rss[1], 1e-30))
+
+
+def fit_hinge(b: Block) -> HingeFit:
     """Hinge Δf = Δf0 + s_f max(u0 - u_c, 0) (likewise ΔΓ) of every sweep, u_c on a grid.
 
     u_c is searched at the data amplitudes and at :data:`PLATEAU_SUBSTEPS` between them, with at
@@ -149,26 +287,61 @@ def fit_hinge(p: Padded) -> HingeFit:
     slope; the best u_c minimises ln RSS_f + ln RSS_Γ. (For a contact that sticks below a
     critical displacement d_c, the shifts leave the plateau smoothly, so the hinge lies at or up
     to ~2 amplitude steps above d_c.)
+
+    Cost O(points x substeps): the sums over the points above every candidate (Σw, Σwv, Σwv²,
+    Σw(y - ȳ), Σwv(y - ȳ), v = u0 - max u0 to keep them well conditioned) are suffix sums over
+    the sorted amplitudes, and give every candidate's RSS in closed form. These only rank the
+    candidates: the best :data:`HINGE_RECHECK` of each sweep are refitted with the direct sums
+    of :func:`fit_line` (the same arithmetic as a fit of every candidate), which pick the hinge.
     """
-    Y = np.stack([p.df, p.dg])
-    S = p.u.shape[0]
+    u, w, n = b.u, b.w, b.n
+    Y = np.stack([b.df, b.dg])
+    S, M = u.shape
     t = np.asarray(PLATEAU_SUBSTEPS)
-    u_next = np.concatenate([p.u[:, 1:], p.u[:, -1:]], axis=1)
-    uc = p.u[:, :, None] + t[None, None, :] * (u_next - p.u)[:, :, None]  # (S, M, T)
-    Xh = np.maximum(p.u[:, None, None, :] - uc[..., None], 0.0)  # (S, M, T, M)
-    Wh = np.broadcast_to(p.w[:, None, None, :], Xh.shape)
-    n_flat = (Wh * (Xh == 0.0)).sum(-1)  # points with u0 <= u_c
-    gap = (u_next - p.u)[:, :, None] > 0
-    valid = (n_flat >= PLATEAU_MIN_FLAT) & (p.n[:, None, None] - n_flat >= PLATEAU_MIN_SLOPE)
+    u_next = np.concatenate([u[:, 1:], u[:, -1:]], axis=1)
+    uc = u[:, :, None] + t[None, None, :] * (u_next - u)[:, :, None]  # (S, M, T)
+    # Points <= u_c: u_c lies in [u_j, u_j+1], so they end where the run of equal amplitudes
+    # after u_j (or, if u_c reaches u_j+1, after u_j+1) ends.
+    rise = np.where(u[:, 1:] > u[:, :-1], np.arange(1, M), M)
+    run_end = np.minimum.accumulate(rise[:, ::-1], axis=1)[:, ::-1]  # first i > j, u_i > u_j
+    nxt = np.concatenate([run_end, np.full((S, 1), M)], axis=1)
+    nxt_next = np.concatenate([nxt[:, 1:], np.full((S, 1), M)], axis=1)
+    k = np.where(uc >= u_next[:, :, None], nxt_next[:, :, None], nxt[:, :, None])
+    n_flat = np.minimum(k, n[:, None, None])  # padding (= the largest amplitude) is never data
+    gap = (u_next - u)[:, :, None] > 0
+    valid = (n_flat >= PLATEAU_MIN_FLAT) & (n[:, None, None] - n_flat >= PLATEAU_MIN_SLOPE)
     valid &= gap | (t[None, None, :] == 0)
-    lines = fit_line(Xh, Y[:, :, None, None, :], Wh)
-    crit = np.where(
-        valid,
-        np.log(np.maximum(lines.rss[0], 1e-30)) + np.log(np.maximum(lines.rss[1], 1e-30)),
-        np.inf,
-    )
-    flat = crit.reshape(S, -1)
-    best = np.argmin(flat, axis=1)
+
+    # Suffix sums at k (above u_c), with v = u - max(u) and ȳ the mean of each channel.
+    top = u[np.arange(S), n - 1][:, None]
+    v = (u - top) * w
+    yc = (Y - ((w * Y).sum(-1) / n)[..., None]) * w
+    kk = k.reshape(S, -1)
+    A0, A1, A2 = (np.take_along_axis(_suffix(q), kk, axis=-1) for q in (w, v, v * (u - top)))
+    kk2 = np.broadcast_to(kk, (2, *kk.shape))
+    B0, B1 = (np.take_along_axis(_suffix(q), kk2, axis=-1) for q in (yc, yc * (u - top)))
+    ucv = uc.reshape(S, -1) - top
+    Sx = A1 - ucv * A0
+    Sxx = A2 - 2.0 * ucv * A1 + ucv * ucv * A0
+    S0 = n[:, None].astype(float)
+    D = S0 * Sxx - Sx**2
+    ok = D > 1e-300 * np.maximum(Sxx * S0, 1e-300)
+    Sxy = B1 - ucv * B0
+    Syy = (yc * yc).sum(-1)[..., None]
+    rss = np.where(ok, Syy - Sxy**2 * S0 / np.where(ok, D, 1.0), Syy)
+    crit = np.where(valid.reshape(S, -1), _hinge_crit(rss), np.inf)
+
+    # Re-rank the best few candidates with the direct sums; ties go to the first candidate.
+    K = min(HINGE_RECHECK, crit.shape[1])
+    pick = np.sort(np.argpartition(crit, K - 1, axis=1)[:, :K], axis=1)
+    none = ~np.isfinite(crit.min(axis=1))
+    pick[none, 0] = 0  # no valid candidate: report the first, as a full search would
+    uc_k = np.take_along_axis(uc.reshape(S, -1), pick, axis=1)  # (S, K)
+    Xh = np.maximum(u[:, None, :] - uc_k[..., None], 0.0)  # (S, K, M)
+    lines = fit_line(Xh, Y[:, :, None, :], np.broadcast_to(w[:, None, :], Xh.shape))
+    valid_k = np.take_along_axis(valid.reshape(S, -1), pick, axis=1)
+    crit_k = np.where(valid_k, _hinge_crit(lines.rss), np.inf)
+    best = np.argmin(crit_k, axis=1)
     rows = np.arange(S)
-    picked = LineFit(*(f.reshape(2, S, -1)[:, rows, best] for f in lines.fields()))
-    return HingeFit(picked, uc.reshape(S, -1)[rows, best], np.isfinite(flat[rows, best]))
+    picked = LineFit(*(f[:, rows, best] for f in lines.fields()))
+    return HingeFit(picked, uc_k[rows, best], np.isfinite(crit_k[rows, best]))

@@ -48,9 +48,8 @@ def drifting_sweeps(sw: pd.DataFrame, padded: Padded, used: np.ndarray, p: float
         if k < 2:
             continue
         rows = padded_row[idx]
-        m = padded.w[rows] > 0
-        u = padded.u[rows][m]
-        ramp = np.repeat(np.arange(k), m.sum(axis=1))
+        u, df, dg = padded.points(rows)
+        ramp = np.repeat(np.arange(k), padded.n[rows])
         n = u.size
         if n - 3 - (k - 1) < 2:
             continue
@@ -58,9 +57,7 @@ def drifting_sweeps(sw: pd.DataFrame, padded: Padded, used: np.ndarray, p: float
         base = np.column_stack([np.ones(n), u / scale, (u / scale) ** 2])
         dummies = (ramp[:, None] == np.arange(1, k)[None, :]).astype(float)
         full = np.column_stack([base, dummies])
-        pvals = [
-            _offset_p_value(base, full, y, k) for y in (padded.df[rows][m], padded.dg[rows][m])
-        ]
+        pvals = [_offset_p_value(base, full, y, k) for y in (df, dg)]
         if min(pvals) < p / 2:
             flag[idx] = True
     return flag

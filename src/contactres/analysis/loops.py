@@ -1,4 +1,4 @@
-"""Fits of the exact Cattaneo-Mindlin loop, plain and behind a stick plateau (paper 2, Eqs. 4-6).
+"""Fits of the exact Cattaneo-Mindlin loop, and the loop behind a stick plateau (paper 2, Eqs. 4-6).
 
 **Exact Cattaneo-Mindlin loop.** The loop is self-similar: K′/κ and (K″ - ωξ)/κ depend on u0 only
 through x = κu0/(μF_N) (paper 2, Eq. 4-6). Both functions are tabulated once from the package's
@@ -9,28 +9,22 @@ projection: for fixed θ, Pκ and Pωξ follow in closed form; θ is found by a 
 (Pκ, Pωξ, ln θ), scaled by the residual variance. Points are weighted by the noise level of
 each channel taken from the straight-line fit.
 
-**Exact plateau loop.** A sweep classified ``plateau`` is refitted (with ``exact_loop``) with the
-loop of :class:`contactres.PlateauLoop` around the Cattaneo-Mindlin loop: the contact sticks up
-to the critical displacement d_c, then slips as Cattaneo-Mindlin in the excess d - d_c. In units
-of μF_N/κ (x = κu0/(μF_N), c = κd_c/(μF_N), y = x - c) its shapes depend on two arguments, not
-one, so the table above cannot be reused for both. From the virgin-curve form of Eq. 4-5
-(slope deficit L(d) = L_CM(d - d_c) above d_c, zero below):
+**Plateau loop.** A sweep classified ``plateau`` is refitted (:mod:`contactres.analysis.plateau`)
+with the loop of :class:`contactres.PlateauLoop` around the Cattaneo-Mindlin loop: the contact
+sticks up to the critical displacement d_c, then slips as Cattaneo-Mindlin in the excess
+d - d_c. In units of μF_N/κ (x = κu0/(μF_N), c = κd_c/(μF_N), y = x - c) its shapes depend on
+two arguments, not one, so the table above cannot be reused for both. From the virgin-curve
+form of Eq. 4-5 (slope deficit L(d) = L_CM(d - d_c) above d_c, zero below):
 
     K″ - ωξ = κ [ (y/x)² g″(y) + 4c s(y)/(πx²) ],   s(y) = y - F_CM(y)  (κ = μF_N = 1)
     K′/κ    = 1 - (8/(πx²)) ∫₀^y L_CM(e) √((e + c)(y - e)) de
 
 The loss part is the table at the shifted argument y plus a closed-form term (verified against
 :func:`contactres.shifts_from_loop` in tests/test_analysis.py); the storage part is not, since
-√((e + c)(y - e)) is not the weight of any single Cattaneo-Mindlin amplitude. Both are therefore
-integrated with the package's Masing-loop quadrature (:func:`plateau_loop_shape`, relative
-accuracy 1e-9, vectorised over amplitudes). The fit Δf = Pκ G′(θu0, θd_c), ΔΓ = P[ωξ +
-κ G″(θu0, θd_c)] (θ = κ/(μF_N)) uses the same variable projection for Pκ and Pωξ and
-:func:`scipy.optimize.least_squares` for (ln θ, d_c), started from the hinge position and from
-the Cattaneo-Mindlin loop fitted to the amplitudes in excess of it; one sweep at a time (plateau
-sweeps are a few per cent). Errors come from the Jacobian in (Pκ, Pωξ, ln θ, d_c) scaled by the
-residual variance; the points are weighted by the noise level of each channel taken from the
-hinge fit. The low-amplitude limits of such a sweep, and its ``plateau_amplitude_m``, then come
-from this fit (``limits_from`` = ``plateau-loop``).
+√((e + c)(y - e)) is not the weight of any single Cattaneo-Mindlin amplitude.
+:func:`plateau_loop_shape` integrates both with the package's Masing-loop quadrature (relative
+accuracy 1e-9, vectorised over amplitudes): the reference that the closed form of
+:func:`contactres.analysis.plateau.plateau_loop_slopes`, which the fit uses, is checked against.
 
 Near d_c the shifts leave the plateau as K″ - ωξ ≈ (2/(3π)) κ²v²/(μF_N d_c) and
 K′ - κ ≈ -(32/(45π)) κ²v^{5/2}/(μF_N d_c^{3/2}) in the excess v = u0 - d_c ≪ d_c, μF_N/κ
@@ -45,7 +39,6 @@ from dataclasses import dataclass
 
 import numpy as np
 import pandas as pd
-from scipy.optimize import least_squares
 
 from ..resonators.qcm import (
     DEFAULT_NODES,
@@ -56,17 +49,14 @@ from ..resonators.qcm import (
     shifts_from_stiffness,
 )
 from ..tangential import CattaneoMindlinLoop
-from .amplitude import PLATEAU_MIN_SLOPE
 
 __all__ = [
     "N_TABLE",
-    "PLATEAU_LOOP_COLUMNS",
     "X_MAX",
     "CMLoopTable",
     "cm_loop_shape",
     "cm_loop_table",
     "fit_cm_loops",
-    "fit_plateau_loops",
     "plateau_loop_shape",
     "solve_projected",
 ]
@@ -75,6 +65,9 @@ __all__ = [
 # contact slides grossly over almost all the cycle and the fit says so instead of extrapolating.
 X_MAX = 30.0
 N_TABLE = 12001
+
+#: Trial points (sweeps x trial values x points) of one chunk of the loop fits (~2 MB arrays).
+CHUNK_CELLS = 1 << 18
 
 
 @dataclass(frozen=True)
@@ -159,6 +152,17 @@ def fit_cm_loops(
     is resolved, "high" if the best fit is gross sliding beyond the table, "" otherwise).
     """
     table = table if table is not None else cm_loop_table()
+    # 49 (then 17) trial θ per sweep: chunks of sweeps keep those arrays at a few MB.
+    step = max(1, CHUNK_CELLS // (49 * max(u.shape[1], 1)))
+    parts = [
+        _fit_cm_chunk(*(a[i : i + step] for a in (u, df, dg, w, sigma_df, sigma_dg)), table, rounds)
+        for i in range(0, max(u.shape[0], 1), step)
+    ]
+    return pd.DataFrame({c: np.concatenate([q[c] for q in parts]) for c in parts[0]})
+
+
+def _fit_cm_chunk(u, df, dg, w, sigma_df, sigma_dg, table, rounds) -> dict[str, np.ndarray]:
+    """:func:`fit_cm_loops` on one chunk of sweeps (a dict of its columns)."""
     x_tab, g1_tab, g2_tab, d1_tab, d2_tab = table.x, table.g1, table.g2, table.d1, table.d2
     S = u.shape[0]
     umax = np.maximum(np.max(np.where(w > 0, u, 0.0), axis=1), 1e-300)
@@ -204,41 +208,23 @@ def fit_cm_loops(
     jtj = np.einsum("smi,smj->sij", Jf, Jf) + np.einsum("smi,smj->sij", Jg, Jg)
     n_res = 2 * w.sum(axis=1)
     cov = np.linalg.pinv(jtj) * (chi2 / np.maximum(n_res - 3, 1))[:, None, None]
-    return pd.DataFrame(
-        {
-            "df0_Hz": A,
-            "df0_err_Hz": np.sqrt(cov[:, 0, 0]),
-            "dgamma0_Hz": B,
-            "dgamma0_err_Hz": np.sqrt(cov[:, 1, 1]),
-            "theta_per_m": theta,
-            "lntheta_err": np.sqrt(cov[:, 2, 2]),
-            "cov_df0_lntheta": cov[:, 0, 2],
-            "x_max": theta * umax,
-            "edge": edge,
-            "rss_df": rss_f,
-            "rss_dgamma": rss_g,
-        }
-    )
+    return {
+        "df0_Hz": A,
+        "df0_err_Hz": np.sqrt(cov[:, 0, 0]),
+        "dgamma0_Hz": B,
+        "dgamma0_err_Hz": np.sqrt(cov[:, 1, 1]),
+        "theta_per_m": theta,
+        "lntheta_err": np.sqrt(cov[:, 2, 2]),
+        "cov_df0_lntheta": cov[:, 0, 2],
+        "x_max": theta * umax,
+        "edge": edge,
+        "rss_df": rss_f,
+        "rss_dgamma": rss_g,
+    }
 
 
 # --------------------------------------------------------------------------------------------
-# Exact plateau loop
-
-#: Numeric columns of :func:`fit_plateau_loops` (besides ``edge``).
-PLATEAU_LOOP_COLUMNS = (
-    "df0_Hz",
-    "df0_err_Hz",
-    "dgamma0_Hz",
-    "dgamma0_err_Hz",
-    "theta_per_m",
-    "lntheta_err",
-    "cov_df0_lntheta",
-    "x_max",
-    "d_c_m",
-    "d_c_err_m",
-    "rss_df",
-    "rss_dgamma",
-)
+# Plateau loop (the quadrature reference; the fit is in contactres.analysis.plateau)
 
 
 class _UnitPlateauLoops:
@@ -277,142 +263,3 @@ def plateau_loop_shape(x, c) -> tuple[np.ndarray, np.ndarray]:
         raise ValueError("plateau_loop_shape needs x >= 0 and c >= 0")
     k1, k2 = masing_stiffness(_UnitPlateauLoops(c.ravel()), x.ravel(), DEFAULT_NODES)
     return k1.reshape(x.shape), k2.reshape(x.shape)
-
-
-def _fit_one_plateau(u, df, dg, sigma_df, sigma_dg, floors, uc0, y0):
-    """Fit of the exact plateau loop to one sweep (its points only); see
-    :func:`fit_plateau_loops`. Returns a dict of its columns."""
-    n = u.size
-    umax = u.max()
-    w = np.ones(n)
-    lo_y, hi_y = np.log(10.0**-2.5), np.log(X_MAX)
-    # d_c/umax: from 0 (no plateau) to the amplitude that leaves PLATEAU_MIN_SLOPE - 1 above it.
-    hi_d = np.sort(u)[n - PLATEAU_MIN_SLOPE] / umax
-
-    def shapes(p):
-        p = np.asarray(p, dtype=float)
-        ly, dl = p[..., 0, None], p[..., 1, None]
-        theta = np.exp(ly) / (umax * (1.0 - dl))  # θ(u_max - d_c) = e^ly
-        return theta[..., 0], plateau_loop_shape(theta * u, theta * dl * umax)
-
-    def solve(starts, wf, wg):
-        sf, sg = np.sqrt(wf), np.sqrt(wg)
-
-        def residuals(p):  # p: (..., 2) -> (..., 2n), Pκ and Pωξ solved for (projected)
-            _, (g1, g2) = shapes(p)
-            A, B, _, _, _ = solve_projected(g1, g2, df, dg, w, wf, wg)
-            rf = sf * (df - A[..., None] * g1)
-            return np.concatenate([rf, sg * (dg - B[..., None] - A[..., None] * g2)], axis=-1)
-
-        def jacobian(p):  # forward differences, the three points in one quadrature call
-            step = 1e-6 * np.array([1.0, 0.1])
-            r = residuals(np.vstack([p, p + np.diag(step)]))
-            return ((r[1:] - r[0]) / step[:, None]).T
-
-        best = None
-        for start in starts:
-            r = least_squares(
-                residuals,
-                start,
-                jac=jacobian,
-                bounds=([lo_y, 0.0], [hi_y, hi_d]),
-                x_scale=[1.0, 0.1],
-                xtol=1e-10,
-                ftol=1e-10,
-                gtol=1e-10,
-                max_nfev=200,
-            )
-            if best is None or r.cost < best.cost:
-                best = r
-        return best.x
-
-    def weights(sig_f, sig_g):
-        return 1.0 / max(sig_f, floors[0]) ** 2, 1.0 / max(sig_g, floors[1]) ** 2
-
-    # Pass 1, weighted by the noise of the hinge fit; started at the hinge and at the amplitude
-    # below it (the hinge sits at or above d_c), θ from the loop fitted to the excess.
-    first = min(uc0 / umax, hi_d)
-    below = u[u < uc0 * (1.0 - 1e-9)]
-    starts = []
-    for dl0 in [first] + ([below.max() / umax] if below.size else []):
-        ly0 = np.log(max(y0, 1e-300) * (1.0 - dl0) / max(1.0 - uc0 / umax, 1e-12))
-        starts.append((np.clip(ly0, lo_y, hi_y), dl0))
-    wf, wg = weights(sigma_df, sigma_dg)
-    x1 = solve(starts, wf, wg)
-    # Pass 2, weighted by the noise of this fit's own residuals (the hinge misfits the onset).
-    theta, (g1, g2) = shapes(x1)
-    _, _, _, rss_f, rss_g = solve_projected(g1, g2, df, dg, w, wf, wg)
-    dof = max(n - 2, 1)
-    wf, wg = weights(np.sqrt(rss_f / dof), np.sqrt(rss_g / dof))
-    ly, dl = solve([x1], wf, wg)
-    theta, (g1, g2) = shapes((ly, dl))
-    A, B, chi2, rss_f, rss_g = solve_projected(g1, g2, df, dg, w, wf, wg)
-    d_c = dl * umax
-    # Jacobian of the weighted residuals in (A, B, ln θ, d_c), central differences of the shapes.
-    h, hd = 1e-5, 1e-5 * umax
-    gp = plateau_loop_shape(theta * np.exp(h) * u, theta * np.exp(h) * d_c)
-    gm = plateau_loop_shape(theta * np.exp(-h) * u, theta * np.exp(-h) * d_c)
-    cp = plateau_loop_shape(theta * u, theta * (d_c + hd))
-    cm = plateau_loop_shape(theta * u, theta * max(d_c - hd, 0.0))
-    dc_step = hd + min(d_c, hd)
-    zeros = np.zeros(n)
-    Jf = np.sqrt(wf) * np.column_stack(
-        [-g1, zeros, -A * (gp[0] - gm[0]) / (2 * h), -A * (cp[0] - cm[0]) / dc_step]
-    )
-    Jg = np.sqrt(wg) * np.column_stack(
-        [-g2, -1.0 + zeros, -A * (gp[1] - gm[1]) / (2 * h), -A * (cp[1] - cm[1]) / dc_step]
-    )
-    J = np.vstack([Jf, Jg])
-    # Columns scaled to unit norm first: d_c in m makes JᵀJ too ill-scaled for pinv's cutoff.
-    norm = np.linalg.norm(J, axis=0)
-    norm = np.where(norm > 0, norm, 1.0)
-    Js = J / norm
-    cov = np.linalg.pinv(Js.T @ Js) / np.outer(norm, norm) * chi2 / max(2 * n - 4, 1)
-    edge = "high" if ly > hi_y - 1e-6 else ("low" if ly < lo_y + 1e-6 else "")
-    return {
-        "df0_Hz": A,
-        "df0_err_Hz": np.sqrt(cov[0, 0]),
-        "dgamma0_Hz": B,
-        "dgamma0_err_Hz": np.sqrt(cov[1, 1]),
-        "theta_per_m": theta,
-        "lntheta_err": np.sqrt(cov[2, 2]),
-        "cov_df0_lntheta": cov[0, 2],
-        "x_max": theta * umax,
-        "d_c_m": d_c,
-        "d_c_err_m": np.sqrt(cov[3, 3]),
-        "edge": edge,
-        "rss_df": rss_f,
-        "rss_dgamma": rss_g,
-    }
-
-
-def fit_plateau_loops(
-    u, df, dg, w, sigma_df, sigma_dg, u_c, table: CMLoopTable | None = None
-) -> pd.DataFrame:
-    """Fit the exact plateau loop (+ dashpot) to every row of padded sweeps (module docstring).
-
-    Parameters
-    ----------
-    u, df, dg, w : (S, M) amplitudes (m), shifts (Hz), weights (0 for padding)
-    sigma_df, sigma_dg : (S,) noise levels of the two channels, Hz
-    u_c : (S,) start of the critical displacement (the hinge of the plateau model), m
-    table : the Cattaneo-Mindlin loop table for the start of θ (built here if None)
-
-    Returns
-    -------
-    DataFrame with the columns of :func:`fit_cm_loops` (``theta_per_m`` = κ/(μF_N), ``x_max``
-    = θ·max(u0); ``edge`` "high" if the excess beyond d_c reaches gross sliding beyond
-    x = X_MAX, "low" if no slip is resolved) plus ``d_c_m`` and ``d_c_err_m``.
-    """
-    u_c = np.asarray(u_c, dtype=float)
-    floor_f = 1e-6 * np.maximum(np.abs(df).max(axis=1), 1e-12)
-    floor_g = 1e-6 * np.maximum(np.abs(dg).max(axis=1), 1e-12)
-    # Start of θ: the Cattaneo-Mindlin loop fitted to the amplitudes in excess of the hinge.
-    start = fit_cm_loops(np.maximum(u - u_c[:, None], 0.0), df, dg, w, sigma_df, sigma_dg, table)
-    y0 = start["x_max"].to_numpy()
-    rows = []
-    for i in range(u.shape[0]):
-        m = w[i] > 0
-        point = (u[i][m], df[i][m], dg[i][m], sigma_df[i], sigma_dg[i])
-        rows.append(_fit_one_plateau(*point, (floor_f[i], floor_g[i]), u_c[i], y0[i]))
-    return pd.DataFrame(rows, index=range(u.shape[0]))

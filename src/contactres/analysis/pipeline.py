@@ -185,7 +185,7 @@ def analyze(
 
     few = sw["n_points"].to_numpy() < MIN_SWEEP_POINTS
     # A sweep at one amplitude has no slope (the straight line is degenerate): say so.
-    u_min = np.min(np.where(padded.w > 0, padded.u, np.inf), axis=1)
+    u_min = padded.u_min
     flat = sw["u_max_m"].to_numpy() == u_min
     for col in ("df_slope_Hz_per_m", "dgamma_slope_Hz_per_m"):
         sw.loc[flat, [col, col.replace("_Hz_per_m", "_err_Hz_per_m")]] = np.nan

@@ -103,12 +103,11 @@ def figure_sweeps(results) -> Figure:
             ax_f, ax_g = axes[r, 2 * c], axes[r, 2 * c + 1]
             for k, (_, row) in enumerate(sel.iterrows()):
                 i = index[row["sweep"]]
-                m = p.w[i] > 0
-                u = p.u[i][m]
+                u, df, dg = p.points(i)
                 color = f"C{k % 10}"
                 label = f"ramp {row['ramp']} ({row['direction']})"
-                ax_f.plot(u * NM, p.df[i][m], MARKERS[k % 6], ms=3, color=color, label=label)
-                ax_g.plot(u * NM, p.dg[i][m], MARKERS[k % 6], ms=3, color=color)
+                ax_f.plot(u * NM, df, MARKERS[k % 6], ms=3, color=color, label=label)
+                ax_g.plot(u * NM, dg, MARKERS[k % 6], ms=3, color=color)
                 uu = np.linspace(0.0, u.max(), 100)
                 f, g = model_curves(row, uu)
                 ax_f.plot(uu * NM, f, "-", lw=1, color=color)

@@ -1,0 +1,189 @@
+"""Benchmark: the sweep analysis at scale (issue 11): 10^5 sweeps, a long sweep, plateau sweeps.
+
+Three tables, each analysed in a fresh process so that the peak resident memory it reports is
+its own (``resource.getrusage``, peak RSS of the process minus that after building the table):
+
+* **large**: the recipe of the bundled example (:func:`contactres.measurements.synthetic.
+  example_study`, 14 experiments, 1,344 sweeps of 11 or 13 points) repeated 75 times with
+  fresh noise (0.1 Hz on top, so that no two copies are alike): 100,800 sweeps, ~1.2 million
+  points; plus one sweep of 700 points (the same forward model, one load). Built by repeating
+  the forward model's output, not by calling it 10^5 times.
+* **plateau**: 500 sweeps (25 experiments x 5 loads x 4 ramps) whose contact sticks up to
+  d_c = 0.4 u_max (:class:`contactres.PlateauLoop`, noise 0.3 Hz, 13 points up to 10 nm);
+* **cattaneo-mindlin**: the same 500 sweeps with the plain Cattaneo-Mindlin loop, for the
+  per-sweep cost of the others.
+
+Timed: :func:`contactres.analysis.classify.fit_sweeps` with its padding (the per-sweep fits,
+without the exact-loop table, built once before), in this process and in 2 worker processes,
+and the whole :func:`contactres.analysis.analyze` (no bootstrap, which is per group, not per
+sweep); with the peak resident memory of the process during each (table included). Targets
+(2-core reference machine): large table < 60 s and < 2 GB; plateau sweeps no more than 2x the
+per-sweep cost of the Cattaneo-Mindlin sweeps (fit_sweeps, one process).
+
+Run: ``.venv/bin/python benchmarks/bench_scale.py`` (exit status 1 if a target is missed).
+"""
+
+from __future__ import annotations
+
+import json
+import resource
+import subprocess
+import sys
+import time
+
+import numpy as np
+import pandas as pd
+from _verdict import exit_code, target
+
+from contactres.analysis import analyze
+from contactres.analysis.amplitude import pad_sweeps
+from contactres.analysis.classify import fit_sweeps
+from contactres.analysis.loops import cm_loop_table
+from contactres.analysis.pipeline import AnalysisSettings
+from contactres.measurements.sweeps import validate_sweeps
+from contactres.measurements.synthetic import (
+    EXAMPLE_SEED,
+    SweepGroup,
+    SweepStudy,
+    example_study,
+    synthetic_sweeps,
+)
+from contactres.resonators.qcm import QCM
+
+COPIES = 75  # x 1,344 sweeps = 100,800
+LONG_POINTS = 700
+TARGET_LARGE_S = 60.0
+TARGET_LARGE_GB = 2.0
+PLATEAU_RATIO = 2.0
+
+
+def large_table() -> pd.DataFrame:
+    """The example recipe repeated COPIES times (fresh noise) plus one LONG_POINTS sweep."""
+    base = synthetic_sweeps(example_study(14), EXAMPLE_SEED, constants=True)
+    rng = np.random.default_rng(11)
+    k = np.repeat(np.arange(COPIES), len(base))
+    big = pd.concat([base] * COPIES, ignore_index=True)
+    tag = pd.Series(k).map("/c{}".format)
+    big["sweep"] = big["sweep"] + tag
+    big["experiment"] = big["experiment"] + tag
+    for col in ("df_Hz", "dgamma_Hz"):
+        big[col] = big[col] + rng.normal(0.0, 0.1, len(big))
+    q = QCM(5e6, 3, 2.5e-5)
+    u = tuple(np.linspace(0.1e-9, 10e-9, LONG_POINTS))
+    group = SweepGroup("long", "air", 1.1e-3, 70e9, 0.1, u, 5.0 / q.sensitivity(3), 0.3)
+    long = SweepStudy(groups=(group,), normal_forces=(4e-3,), n_experiments=1, ramps=(2,), qcm=q)
+    return pd.concat([big, synthetic_sweeps(long, 5, constants=True)], ignore_index=True)
+
+
+def study_table(model: str) -> pd.DataFrame:
+    """500 sweeps of one loop model (plateau at 0.4 u_max, or Cattaneo-Mindlin)."""
+    q = QCM(5e6, 3, 2.5e-5)
+    amplitudes = tuple(np.linspace(0.5e-9, 10e-9, 13))
+    group = SweepGroup("g", "air", 1.1e-3, 70e9, 0.1, amplitudes, 5.0 / q.sensitivity(3), 0.3)
+    study = SweepStudy(
+        groups=(group,),
+        normal_forces=tuple(np.linspace(2e-3, 8e-3, 5)),
+        n_experiments=25,
+        qcm=q,
+        model=model,
+        plateau_fraction=0.4,
+        scatter=(("mu", 0.05),),
+    )
+    return synthetic_sweeps(study, 3, constants=True)
+
+
+def reset_peak() -> None:
+    """Restart the peak-RSS count of this process (Linux; elsewhere the peak since start)."""
+    try:
+        with open("/proc/self/clear_refs", "w") as f:
+            f.write("5")
+    except OSError:
+        pass
+
+
+def peak_gb() -> float:
+    """Peak resident memory of this process since :func:`reset_peak`, GB."""
+    try:
+        with open("/proc/self/status") as f:
+            kb = next(int(line.split()[1]) for line in f if line.startswith("VmHWM"))
+    except (OSError, StopIteration):
+        kb = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+    return kb / 2**20
+
+
+def measure(name: str) -> dict:
+    """Build table ``name``, then time fit_sweeps and analyze on it (run in a fresh process)."""
+    table = large_table() if name == "large" else study_table(name)
+    sweeps = validate_sweeps(table)
+    loop_table = cm_loop_table()
+    out = {}
+    for workers in (1, 2):
+        reset_peak()
+        t0 = time.perf_counter()
+        sw = fit_sweeps(pad_sweeps(sweeps.data), table=loop_table, workers=workers)
+        out[f"fit_sweeps_{workers}_s"] = time.perf_counter() - t0
+        out[f"fit_sweeps_{workers}_gb"] = peak_gb()
+    reset_peak()
+    t0 = time.perf_counter()
+    analyze(sweeps, settings=AnalysisSettings(bootstrap=0))
+    out["analyze_s"] = time.perf_counter() - t0
+    out["analyze_gb"] = peak_gb()
+    return out | {
+        "sweeps": len(sw),
+        "points": len(table),
+        "longest": int(sw["n_points"].max()),
+        "models": sw["model"].value_counts().to_dict(),
+    }
+
+
+def main() -> int:
+    runs = {}
+    for name in ("large", "plateau", "cattaneo-mindlin"):
+        out = subprocess.run(
+            [sys.executable, __file__, name], capture_output=True, text=True, check=True
+        )
+        runs[name] = json.loads(out.stdout.splitlines()[-1])
+        r = runs[name]
+        print(f"{name}: {r['sweeps']} sweeps, {r['points']} points (longest {r['longest']})")
+        print(f"  models: {r['models']}")
+        for stage in ("fit_sweeps_1", "fit_sweeps_2", "analyze"):
+            per = 1e3 * r[f"{stage}_s"] / r["sweeps"]
+            print(
+                f"  {stage + ':':13s} {r[f'{stage}_s']:8.2f} s  ({per:.3f} ms per sweep), "
+                f"peak RSS {r[f'{stage}_gb']:.2f} GB"
+            )
+    large, pl, cm = runs["large"], runs["plateau"], runs["cattaneo-mindlin"]
+    n = large["sweeps"]
+    results = [
+        target(f"analyze, {n} sweeps", large["analyze_s"], TARGET_LARGE_S),
+        target(f"peak RSS of analyze, {n} sweeps (GB as s)", large["analyze_gb"], TARGET_LARGE_GB),
+        target(f"fit_sweeps, {n} sweeps", large["fit_sweeps_1_s"], TARGET_LARGE_S),
+        target(
+            f"peak RSS of fit_sweeps, {n} sweeps (GB as s)",
+            large["fit_sweeps_1_gb"],
+            TARGET_LARGE_GB,
+        ),
+    ]
+    speedup = large["fit_sweeps_1_s"] / large["fit_sweeps_2_s"]
+    print(f"  fit_sweeps, 2 processes instead of 1: {speedup:.2f}x faster")
+    for stage in ("fit_sweeps_1", "analyze"):
+        ratio = (pl[f"{stage}_s"] / pl["sweeps"]) / (cm[f"{stage}_s"] / cm["sweeps"])
+        print(f"  plateau / cattaneo-mindlin per-sweep cost, {stage}: {ratio:.2f}")
+    # At scale: the per-sweep rate of the large table plus the extra cost of a plateau refit.
+    extra = (pl["fit_sweeps_1_s"] - cm["fit_sweeps_1_s"]) / pl["models"].get("plateau", 1)
+    rate = large["fit_sweeps_1_s"] / n
+    print(
+        f"  a plateau sweep at the rate of the large table: {1e3 * (rate + extra):.3f} ms, "
+        f"{(rate + extra) / rate:.2f}x the others ({1e3 * extra:.3f} ms for its refit)"
+    )
+    # The target is on the per-sweep fits of equal tables, where the plateau refit happens.
+    ratio = (pl["fit_sweeps_1_s"] / pl["sweeps"]) / (cm["fit_sweeps_1_s"] / cm["sweeps"])
+    results.append(target("plateau per-sweep cost (ratio as s)", ratio, PLATEAU_RATIO))
+    return exit_code(results)
+
+
+if __name__ == "__main__":
+    if len(sys.argv) > 1:
+        print(json.dumps(measure(sys.argv[1])))
+        sys.exit(0)
+    sys.exit(main())
