@@ -5,15 +5,10 @@ import subprocess
 import sys
 
 import pytest
-from click.testing import CliRunner
+from cli_checks import run
 
 from contactres import __version__
-from contactres.cli import main
 from contactres.cli._common import parse_range
-
-
-def run(*args):
-    return CliRunner().invoke(main, list(args))
 
 
 def test_help_lists_subcommands():

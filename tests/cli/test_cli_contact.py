@@ -7,15 +7,10 @@ import re
 import numpy as np
 import pandas as pd
 import pytest
-from click.testing import CliRunner
+from cli_checks import one_line_error, run
 
 from contactres import Material, indentation_modulus, sphere_contact
-from contactres.cli import main
 from contactres.cli._crystal_face import parse_direction
-
-
-def run(*args):
-    return CliRunner().invoke(main, [str(a) for a in args])
 
 
 def _json(r):
@@ -133,15 +128,6 @@ def invoke(base, option, value):
     return run("contact", *[x for kv in options.items() for x in kv])
 
 
-def assert_one_line_naming(r, option):
-    assert r.exit_code == 2, r.output
-    assert r.stdout == ""
-    lines = r.stderr.splitlines()
-    assert len(lines) == 1, r.stderr
-    assert "error:" in lines[0] and option in lines[0]
-    assert "Traceback" not in r.stderr and "np.float64" not in r.stderr
-
-
 def test_every_option_has_a_bad_input_case():
     from contactres.cli.contact import contact
 
@@ -151,13 +137,13 @@ def test_every_option_has_a_bad_input_case():
 
 @pytest.mark.parametrize("base, option, value", BAD, ids=[f"{o}={v}" for _, o, v in BAD])
 def test_each_option_refuses_bad_input_in_one_line(base, option, value):
-    assert_one_line_naming(invoke(base, option, value), option)
+    one_line_error(invoke(base, option, value), option)
 
 
 def test_issue_11_constants_in_gigapascals():
     r = run("contact", "--c11", 165.7, "--c12", 63.9, "--c44", 79.6, "--radius", 1e-3,
             "--force", 1)  # fmt: skip
-    assert_one_line_naming(r, "--c11")
+    one_line_error(r, "--c11")
     assert (
         "--c11 165.7 is outside the plausible range: the elastic modulus lies in [1e5, 1e13] Pa; "
         "it looks like gigapascals (165.7 GPa = 1.657e11 Pa): check the unit of --c11"
@@ -174,7 +160,7 @@ def test_issue_11_constants_in_gigapascals():
 )
 def test_issue_11_overflowing_input_is_refused_not_printed_as_inf(args, option):
     r = run("contact", "--crystal", "Cu", *args)
-    assert_one_line_naming(r, option)
+    one_line_error(r, option)
     assert "1e300 is outside the plausible range" in r.stderr and "inf" not in r.output
 
 
@@ -189,7 +175,7 @@ def test_c12_may_be_negative_or_zero_but_not_a_unit_slip():
 
 def test_force_range_from_zero_is_checked_point_by_point():
     r = invoke(CRYSTAL, "--force", "0:1e-11:101")  # its second point is 1e-13 N
-    assert_one_line_naming(r, "--force")
+    one_line_error(r, "--force")
     assert "--force 1e-13 (in 0:1e-11:101) is outside" in r.stderr
 
 

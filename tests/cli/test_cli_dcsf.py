@@ -6,14 +6,9 @@ import json
 import numpy as np
 import pandas as pd
 import pytest
-from click.testing import CliRunner
+from cli_checks import run
 
 from contactres import Material, dcsf
-from contactres.cli import main
-
-
-def run(*args):
-    return CliRunner().invoke(main, list(args))
 
 
 def test_dcsf_csv_columns_and_values_match_the_library():

@@ -5,15 +5,10 @@ import json
 import numpy as np
 import pandas as pd
 import pytest
-from click.testing import CliRunner
+from cli_checks import one_line_error, run
 
-from contactres.cli import main
 from contactres.measurements.synthetic import SweepGroup, SweepStudy, synthetic_sweeps
 from contactres.resonators.qcm import QCM
-
-
-def run(*args):
-    return CliRunner().invoke(main, [str(a) for a in args])
 
 
 @pytest.fixture(scope="module")
@@ -71,32 +66,24 @@ def test_constants_from_toml_beside_the_data(sweeps_csv, tmp_path):
     assert r.exit_code == 0, r.output
 
 
-def _one_line_error(r, *words):
-    assert r.exit_code == 2, r.output
-    lines = r.output.strip().splitlines()
-    assert len(lines) == 1 and "error" in lines[0] and "Traceback" not in r.output
-    for w in words:
-        assert w in lines[0]
-
-
-def test_even_overtone_is_one_line_error(sweeps_csv, tmp_path):
+def test_even_overtone_isone_line_error(sweeps_csv, tmp_path):
     opts = [o if o != "3" else "4" for o in OPTS[:4]] + OPTS[4:]
     r = run("qcm", "analyze", sweeps_csv, "--out", tmp_path, *opts)
-    _one_line_error(r, "overtone", "odd")
+    one_line_error(r, "overtone", "odd")
 
 
-def test_missing_column_is_one_line_error(sweeps_csv, tmp_path):
+def test_missing_column_isone_line_error(sweeps_csv, tmp_path):
     bad = tmp_path / "bad.csv"
     pd.read_csv(sweeps_csv).drop(columns="df_Hz").to_csv(bad, index=False)
     r = run("qcm", "analyze", bad, "--out", tmp_path / "o", *OPTS)
-    _one_line_error(r, "bad.csv", "df_Hz")
+    one_line_error(r, "bad.csv", "df_Hz")
     assert not (tmp_path / "o").exists()
 
 
 def test_missing_constant_and_missing_file(sweeps_csv, tmp_path):
     r = run("qcm", "analyze", sweeps_csv, "--out", tmp_path)
-    _one_line_error(r, "missing", "area_m2", "overtone", "n_contacts", "sphere_radius_m")
-    _one_line_error(run("qcm", "analyze", tmp_path / "nope.csv", "--out", tmp_path, *OPTS))
+    one_line_error(r, "missing", "area_m2", "overtone", "n_contacts", "sphere_radius_m")
+    one_line_error(run("qcm", "analyze", tmp_path / "nope.csv", "--out", tmp_path, *OPTS))
 
 
 def test_warnings_go_to_stderr_as_lines(sweeps_csv, tmp_path):

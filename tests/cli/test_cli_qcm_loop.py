@@ -7,15 +7,12 @@ import re
 import numpy as np
 import pandas as pd
 import pytest
+from cli_checks import one_line_error, run
 from click.testing import CliRunner
 
 from contactres.cli import main
 
 CM_ARGS = ["qcm", "loop", "--kappa", "4e5", "--mu", "0.8", "--normal-force", "5e-3"]
-
-
-def run(*args):
-    return CliRunner().invoke(main, list(args))
 
 
 def test_cm_csv_matches_paper_eq_1_at_zero_amplitude_and_falls():
@@ -114,15 +111,6 @@ def invoke(base, option, value):
     return run("qcm", "loop", *[x for kv in options.items() for x in kv])
 
 
-def assert_one_line_naming(r, option):
-    assert r.exit_code == 2, r.output
-    assert r.stdout == ""
-    lines = r.stderr.splitlines()
-    assert len(lines) == 1, r.stderr
-    assert "qcm loop: error:" in lines[0] and option in lines[0]
-    assert "Traceback" not in r.stderr and "np.float64" not in r.stderr
-
-
 # One bad input per option: a unit slip, a NaN, a sign or a value outside the plausible range.
 BAD = [
     (CM, "--model", "elastic"),
@@ -152,12 +140,12 @@ def test_every_option_has_a_bad_input_case():
 
 @pytest.mark.parametrize("base, option, value", BAD, ids=[f"{o}={v}" for _, o, v in BAD])
 def test_each_option_refuses_bad_input_in_one_line(base, option, value):
-    assert_one_line_naming(invoke(base, option, value), option)
+    one_line_error(invoke(base, option, value), option)
 
 
 def test_issue_11_amplitudes_in_nanometres():
     r = invoke(CM, "--u0", "0:20:5")
-    assert_one_line_naming(r, "--u0")
+    one_line_error(r, "--u0")
     assert (
         "--u0 20 (in 0:20:5) is outside the plausible range: the oscillation amplitude lies in "
         "[0, 1e-6] m; it looks like nanometres (20 nm = 2e-8 m): check the unit of --u0"
@@ -167,7 +155,7 @@ def test_issue_11_amplitudes_in_nanometres():
 @pytest.mark.parametrize("value, why", [("-1", "is negative"), ("nan", "is not a finite number")])
 def test_issue_11_xi_negative_or_nan_is_refused_not_zero(value, why):
     r = invoke(CM, "--xi", value)
-    assert_one_line_naming(r, "--xi")
+    one_line_error(r, "--xi")
     assert f"--xi {value} {why}: the dashpot drag coefficient lies in [0, 1e5] kg/s" in r.stderr
 
 

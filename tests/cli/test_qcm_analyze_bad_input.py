@@ -15,6 +15,7 @@ import warnings
 import numpy as np
 import pandas as pd
 import pytest
+from cli_checks import one_line_error
 from click.testing import CliRunner
 
 from contactres.cli import main
@@ -48,17 +49,6 @@ def write(folder, frame, name="data.csv"):
     folder.mkdir(parents=True, exist_ok=True)
     frame.to_csv(folder / name, index=False)
     return folder / name
-
-
-def one_line_error(r, *words):
-    assert r.exit_code == 2, r.output
-    lines = r.output.strip().splitlines()
-    assert len(lines) == 1, r.output
-    assert ": error: " in lines[0] and "internal error" not in lines[0]
-    assert "Traceback" not in r.output and "np.float64" not in r.output
-    for w in words:
-        assert w in lines[0], lines[0]
-    return lines[0]
 
 
 def warning_lines(r):

@@ -1,0 +1,23 @@
+"""Helpers shared by the command-line tests: run a command, check a one-line error."""
+
+from click.testing import CliRunner
+
+from contactres.cli import main
+
+
+def run(*args):
+    """Invoke ``contactres ARGS`` in-process (arguments converted to text)."""
+    return CliRunner().invoke(main, [str(a) for a in args])
+
+
+def one_line_error(r, *words):
+    """Assert a user error: exit 2, one line of output in all, naming every one of ``words``,
+    with no traceback and no numpy repr; return that line."""
+    assert r.exit_code == 2, r.output
+    lines = r.output.strip().splitlines()
+    assert len(lines) == 1, r.output
+    assert ": error: " in lines[0] and "internal error" not in lines[0]
+    assert "Traceback" not in r.output and "np.float64" not in r.output
+    for w in words:
+        assert w in lines[0], lines[0]
+    return lines[0]
