@@ -260,3 +260,24 @@ def test_numpy_warnings_become_one_clear_line(base, tmp_path, monkeypatch):
     lines = [ln for ln in warning_lines(r) if "numerical" in ln]
     assert len(lines) == 1 and "invalid value encountered in sqrt" in lines[0]
     assert "RuntimeWarning" not in r.output and "np.sqrt" not in r.output
+
+
+@pytest.mark.parametrize(
+    ("option", "value", "words"),
+    [
+        ("--area", "25", ("--area 25", "square millimetres")),
+        ("--area", "-1", ("--area -1", "negative")),
+        ("--overtone", "4", ("--overtone 4", "odd")),
+        ("--fundamental", "5", ("--fundamental 5", "megahertz")),
+        ("--n-contacts", "0", ("--n-contacts 0",)),
+        ("--poisson", "0.6", ("--poisson 0.6", "Poisson ratio")),
+        ("--sphere-radius", "1.1", ("--sphere-radius 1.1", "millimetres")),
+        ("--bootstrap", "-1", ("--bootstrap",)),
+    ],
+)
+def test_every_constant_option_is_checked_before_reading(tmp_path, base, option, value, words):
+    # Refused even where the file's own column would override the option (a typo is a typo).
+    data = write(tmp_path, base)
+    r = run(data, "--out", tmp_path / "out", option, value)
+    one_line_error(r, *words)
+    assert not (tmp_path / "out").exists()

@@ -55,6 +55,15 @@ def _option_name(param) -> str:
     return max(param.opts, key=len) if param is not None and param.opts else "value"
 
 
+def odd_overtone(ctx, param, value):
+    """Click callback: the QCM is driven at its odd harmonics only (paper 2, Eq. 1)."""
+    if value is not None and value % 2 == 0:
+        raise click.UsageError(
+            f"--overtone {value} must be odd: a QCM resonates at n = 1, 3, 5, ...", ctx
+        )
+    return value
+
+
 class MagnitudeType(click.ParamType):
     """A click parameter for one number of a physical quantity, checked against its plausible
     range (:data:`contactres.units.QUANTITIES`): a unit slip, NaN, inf or a negative value where

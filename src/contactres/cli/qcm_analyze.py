@@ -15,7 +15,7 @@ from pathlib import Path
 import click
 
 from ._app import qcm
-from ._common import emit, format_option
+from ._common import MagnitudeType, emit, format_option, odd_overtone
 
 
 @qcm.command("analyze")
@@ -26,12 +26,29 @@ from ._common import emit, format_option
     required=True,
     help="Results folder (created if missing): sweeps.csv, loads.csv, summary.json, figures.",
 )
-@click.option("--area", type=float, help="Acoustically effective area A_eff (m^2).")
-@click.option("--overtone", type=int, help="Overtone order n (odd).")
-@click.option("--fundamental", type=float, help="Fundamental frequency f_F (Hz) [default 5e6].")
-@click.option("--n-contacts", type=int, help="Number of equal contacts (3 for a tripod).")
-@click.option("--poisson", type=float, help="Poisson ratio ν fixed in the JKR fit [default 0.17].")
-@click.option("--sphere-radius", type=float, help="Sphere radius R (m).")
+@click.option("--area", type=MagnitudeType("area"), help="Acoustically effective area A_eff (m^2).")
+@click.option(
+    "--overtone",
+    type=MagnitudeType("overtone", integer=True),
+    callback=odd_overtone,
+    help="Overtone order n (odd).",
+)
+@click.option(
+    "--fundamental",
+    type=MagnitudeType("frequency"),
+    help="Fundamental frequency f_F (Hz) [default: 5e6].",
+)
+@click.option(
+    "--n-contacts",
+    type=MagnitudeType("contacts", integer=True),
+    help="Number of equal contacts (3 for a tripod).",
+)
+@click.option(
+    "--poisson",
+    type=MagnitudeType("poisson"),
+    help="Poisson ratio ν (dimensionless) fixed in the JKR fit [default: 0.17].",
+)
+@click.option("--sphere-radius", type=MagnitudeType("sphere_radius"), help="Sphere radius R (m).")
 @click.option(
     "--keep-first-ramp",
     is_flag=True,

@@ -7,7 +7,7 @@ import warnings
 import click
 
 from ._app import qcm
-from ._common import MagnitudeType, RangeType, emit, format_option
+from ._common import MagnitudeType, RangeType, emit, format_option, odd_overtone
 
 
 def build_loop(model, kappa, mu, normal_force, tau, contact_radius, xi, plateau, omega):
@@ -30,15 +30,6 @@ def build_loop(model, kappa, mu, normal_force, tau, contact_radius, xi, plateau,
     if plateau:
         loop = PlateauLoop(loop, plateau)
     return with_dashpot(loop, xi, omega) if xi > 0 else loop
-
-
-def _odd(ctx, param, value):
-    """The QCM is driven at its odd harmonics only (paper 2, Eq. 1: n = 1, 3, 5, ...)."""
-    if value is not None and value % 2 == 0:
-        raise click.UsageError(
-            f"--overtone {value} must be odd: a QCM resonates at n = 1, 3, 5, ...", ctx
-        )
-    return value
 
 
 @qcm.command("loop")
@@ -100,7 +91,7 @@ def _odd(ctx, param, value):
 @click.option(
     "--overtone",
     type=MagnitudeType("overtone", integer=True),
-    callback=_odd,
+    callback=odd_overtone,
     default="3",
     show_default=True,
     help="Overtone order n, dimensionless (odd).",
