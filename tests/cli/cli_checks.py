@@ -21,3 +21,14 @@ def one_line_error(r, *words):
     for w in words:
         assert w in lines[0], lines[0]
     return lines[0]
+
+
+def invoke(command, base, option, value):
+    """Run ``command`` (a list of words) with the options ``base`` and ``option`` = ``value``."""
+    options = {**base, option: value}
+    return run(*command, *[x for kv in options.items() for x in kv])
+
+
+def option_names(command) -> set[str]:
+    """The options of a click command, but --help."""
+    return {p.opts[0] for p in command.params if p.opts[0] != "--help"}

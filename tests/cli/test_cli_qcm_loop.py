@@ -7,7 +7,7 @@ import re
 import numpy as np
 import pandas as pd
 import pytest
-from cli_checks import one_line_error, run
+from cli_checks import invoke, one_line_error, option_names, run
 from click.testing import CliRunner
 
 from contactres.cli import main
@@ -106,11 +106,6 @@ CM = {"--kappa": "4e5", "--mu": "0.8", "--normal-force": "5e-3"}
 SAVKOOR = {"--model": "savkoor", "--kappa": "4e5", "--tau": "20e6", "--contact-radius": "5e-6"}
 
 
-def invoke(base, option, value):
-    options = {**base, option: value}
-    return run("qcm", "loop", *[x for kv in options.items() for x in kv])
-
-
 # One bad input per option: a unit slip, a NaN, a sign or a value outside the plausible range.
 BAD = [
     (CM, "--model", "elastic"),
@@ -134,17 +129,16 @@ BAD = [
 def test_every_option_has_a_bad_input_case():
     from contactres.cli.qcm_loop import loop_command
 
-    options = {p.opts[0] for p in loop_command.params if p.opts[0] != "--help"}
-    assert options == {option for _, option, _ in BAD}
+    assert option_names(loop_command) == {option for _, option, _ in BAD}
 
 
 @pytest.mark.parametrize("base, option, value", BAD, ids=[f"{o}={v}" for _, o, v in BAD])
 def test_each_option_refuses_bad_input_in_one_line(base, option, value):
-    one_line_error(invoke(base, option, value), option)
+    one_line_error(invoke(["qcm", "loop"], base, option, value), option)
 
 
 def test_issue_11_amplitudes_in_nanometres():
-    r = invoke(CM, "--u0", "0:20:5")
+    r = invoke(["qcm", "loop"], CM, "--u0", "0:20:5")
     one_line_error(r, "--u0")
     assert (
         "--u0 20 (in 0:20:5) is outside the plausible range: the oscillation amplitude lies in "
@@ -154,7 +148,7 @@ def test_issue_11_amplitudes_in_nanometres():
 
 @pytest.mark.parametrize("value, why", [("-1", "is negative"), ("nan", "is not a finite number")])
 def test_issue_11_xi_negative_or_nan_is_refused_not_zero(value, why):
-    r = invoke(CM, "--xi", value)
+    r = invoke(["qcm", "loop"], CM, "--xi", value)
     one_line_error(r, "--xi")
     assert f"--xi {value} {why}: the dashpot drag coefficient lies in [0, 1e5] kg/s" in r.stderr
 
@@ -169,7 +163,7 @@ def test_issue_11_xi_negative_or_nan_is_refused_not_zero(value, why):
     ],
 )
 def test_unit_slips_name_the_option_to_check(option, value, slip):
-    r = invoke(CM, option, value)
+    r = invoke(["qcm", "loop"], CM, option, value)
     assert f"it looks like {slip}: check the unit of {option}" in r.stderr
 
 
