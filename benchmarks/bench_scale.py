@@ -38,14 +38,13 @@ from _verdict import exit_code, target
 from contactres.analysis import analyze
 from contactres.analysis.amplitude import pad_sweeps
 from contactres.analysis.classify import fit_sweeps
-from contactres.analysis.loops import cm_loop_table
+from contactres.analysis.loops import loop_tables
 from contactres.analysis.pipeline import AnalysisSettings
+from contactres.measurements.studies import EXAMPLE_SEED, example_study
 from contactres.measurements.sweeps import validate_sweeps
 from contactres.measurements.synthetic import (
-    EXAMPLE_SEED,
     SweepGroup,
     SweepStudy,
-    example_study,
     synthetic_sweeps,
 )
 from contactres.resonators.qcm import QCM
@@ -115,12 +114,12 @@ def measure(name: str) -> dict:
     """Build table ``name``, then time fit_sweeps and analyze on it (run in a fresh process)."""
     table = large_table() if name == "large" else study_table(name)
     sweeps = validate_sweeps(table)
-    loop_table = cm_loop_table()
+    loop_table = loop_tables()
     out = {}
     for workers in (1, 2):
         reset_peak()
         t0 = time.perf_counter()
-        sw = fit_sweeps(pad_sweeps(sweeps.data), table=loop_table, workers=workers)
+        sw = fit_sweeps(pad_sweeps(sweeps.data), tables=loop_table, workers=workers)
         out[f"fit_sweeps_{workers}_s"] = time.perf_counter() - t0
         out[f"fit_sweeps_{workers}_gb"] = peak_gb()
     reset_peak()

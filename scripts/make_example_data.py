@@ -1,7 +1,7 @@
 """Make ``src/contactres/data/example_sweeps.csv``: synthetic QCM amplitude sweeps (paper 2).
 
 Run ``python scripts/make_example_data.py`` (seeded: the same file every time). The recipe is
-:func:`contactres.measurements.synthetic.example_study` (its docstring lists every parameter)
+:func:`contactres.measurements.studies.example_study` (its docstring lists every parameter)
 with the seed ``EXAMPLE_SEED``; the points come from the package's own forward model (paper 2,
 Eqs. 1-14) plus Gaussian noise. With ``--experiments 14`` the same recipe gives the ~1,300-sweep
 table of ``benchmarks/bench_analyze.py``.
@@ -12,7 +12,8 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from contactres.measurements.synthetic import EXAMPLE_SEED, example_study, synthetic_sweeps
+from contactres.measurements.studies import EXAMPLE_SEED, example_study
+from contactres.measurements.synthetic import synthetic_sweeps
 
 
 def main(argv: list[str] | None = None) -> None:

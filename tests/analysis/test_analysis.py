@@ -524,7 +524,8 @@ def test_settings_are_checked():
     [
         ("cm", 8e-9, True, "cm-loop", 0.002),
         ("cm", 2e-9, False, "line", 0.02),
-        ("savkoor", 8e-9, True, "parabola", 0.02),
+        ("savkoor", 8e-9, True, "savkoor-loop", 0.002),
+        ("savkoor", 8e-9, False, "parabola", 0.02),
         ("plateau", 8e-9, True, "plateau-loop", 0.002),
         ("plateau", 8e-9, False, "plateau", 0.1),
         ("elastic", 8e-9, True, "mean", 0.0),

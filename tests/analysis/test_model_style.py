@@ -8,7 +8,7 @@ import pytest
 
 from contactres.analysis.amplitude import pad_sweeps
 from contactres.analysis.classify import fit_sweeps
-from contactres.analysis.loops import cm_loop_table
+from contactres.analysis.loops import loop_tables
 from contactres.analysis.models import AMPLITUDE_MODELS, REGISTRY
 from contactres.fitting import fit
 from contactres.measurements.schema import GROUP_RESULTS, SWEEP_RESULTS
@@ -19,15 +19,15 @@ from contactres.resonators.qcm import QCM
 # Every parameter any fitted model may have: unit and the result columns that may hold it.
 # A new parameter must be added here with its unit, or this test fails.
 KNOWN = {
-    "df0": ("Hz", {"df0_Hz", "cm_df0_Hz", "pl_df0_Hz"}),
-    "dgamma0": ("Hz", {"dgamma0_Hz", "cm_dgamma0_Hz", "pl_dgamma0_Hz"}),
+    "df0": ("Hz", {"df0_Hz", "cm_df0_Hz", "sv_df0_Hz", "pl_df0_Hz"}),
+    "dgamma0": ("Hz", {"dgamma0_Hz", "cm_dgamma0_Hz", "sv_dgamma0_Hz", "pl_dgamma0_Hz"}),
     "df_slope": ("Hz/m", {"df_slope_Hz_per_m"}),
     "dgamma_slope": ("Hz/m", {"dgamma_slope_Hz_per_m"}),
     "df_curvature": ("Hz/m^2", {"df_curvature_Hz_per_m2"}),
     "dgamma_curvature": ("Hz/m^2", {"dgamma_curvature_Hz_per_m2"}),
     "critical_amplitude": ("m", {"plateau_amplitude_m"}),
     "critical_displacement": ("m", {"pl_d_c_m"}),
-    "inverse_slip_scale": ("1/m", {"cm_theta_per_m", "pl_theta_per_m"}),
+    "inverse_slip_scale": ("1/m", {"cm_theta_per_m", "sv_theta_per_m", "pl_theta_per_m"}),
     "E": ("Pa", {"E_Pa"}),
     "gamma": ("J/m^2", {"gamma_J_m2"}),
     "radius": ("m", {"sphere_radius_m"}),
@@ -36,6 +36,7 @@ KNOWN = {
 KNOWN_MODELS = {
     *AMPLITUDE_MODELS,
     "cattaneo-mindlin-loop",
+    "savkoor-loop",
     "plateau-loop",
     "jkr-mindlin",
 }
@@ -87,7 +88,7 @@ def fitted():
     )
     table = validate_sweeps(synthetic_sweeps(study, 5), constants=CONST)
     padded = pad_sweeps(table.data)
-    return padded, fit_sweeps(padded, table=cm_loop_table())
+    return padded, fit_sweeps(padded, tables=loop_tables())
 
 
 def test_every_parameter_column_is_produced_by_the_analysis(fitted):

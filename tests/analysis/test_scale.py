@@ -25,6 +25,7 @@ from contactres.analysis.loops import (
     X_MAX,
     cm_loop_table,
     fit_cm_loops,
+    loop_tables,
     plateau_loop_shape,
     solve_projected,
 )
@@ -146,9 +147,9 @@ def test_sweeps_fit_the_same_alone_and_among_others():
         _study(n_points=300, n_exp=1, ramps=(2,), name="long"),
         _study(n_points=7, name="short"),
     )
-    table = cm_loop_table()
-    alone = fit_sweeps(pad_sweeps(short), table=table)
-    among = fit_sweeps(pad_sweeps(mixed), table=table)
+    table = loop_tables()
+    alone = fit_sweeps(pad_sweeps(short), tables=table)
+    among = fit_sweeps(pad_sweeps(mixed), tables=table)
     among = among[among["sweep"].isin(alone["sweep"])].reset_index(drop=True)
     pd.testing.assert_frame_equal(alone, among)
 
@@ -156,8 +157,10 @@ def test_sweeps_fit_the_same_alone_and_among_others():
 def test_workers_give_the_same_table():
     data = _table(_study(model="plateau", n_exp=3), _study(n_points=9, name="h"))
     p = pad_sweeps(data)
-    table = cm_loop_table()
-    pd.testing.assert_frame_equal(fit_sweeps(p, table=table), fit_sweeps(p, table=table, workers=2))
+    table = loop_tables()
+    pd.testing.assert_frame_equal(
+        fit_sweeps(p, tables=table), fit_sweeps(p, tables=table, workers=2)
+    )
 
 
 # ---- plateau loop: closed form and batched fit ------------------------------------------------

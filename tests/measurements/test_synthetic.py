@@ -7,13 +7,12 @@ import numpy as np
 import pandas as pd
 import pytest
 
+from contactres.measurements.studies import EXAMPLE_SEED, example_study
 from contactres.measurements.sweeps import validate_sweeps
 from contactres.measurements.synthetic import (
-    EXAMPLE_SEED,
     Drift,
     SweepGroup,
     SweepStudy,
-    example_study,
     synthetic_sweeps,
 )
 from contactres.resonators.qcm import QCM

@@ -1,26 +1,32 @@
 """The model choice of every sweep: low-amplitude limits, slopes and the amplitude class.
 
-Every sweep is fitted with the four amplitude models of :mod:`contactres.analysis.models`
-(closed form, :mod:`contactres.analysis.amplitude`):
+Every sweep is fitted with every amplitude model of :mod:`contactres.analysis.models`. With
+``exact_loop`` (the default) the four classes are represented by the exact descriptions of
+paper 2, each fitted to both channels at once:
 
-``elastic``           Δf = Δf0,                      ΔΓ = ΔΓ0                     (k = 2)
-``cattaneo-mindlin``  Δf = Δf0 + s_f u0,             ΔΓ = ΔΓ0 + s_Γ u0             (k = 4, Eq. 12)
-``savkoor``           Δf = Δf0 + c_f u0²,            ΔΓ = ΔΓ0 + c_Γ u0²            (k = 4, Eq. 15)
-``plateau``           Δf = Δf0 + s_f max(u0-u_c, 0), ΔΓ = ΔΓ0 + s_Γ max(u0-u_c, 0)  (k = 5)
+``elastic``           Δf = Δf0, ΔΓ = ΔΓ0 (Eq. 1)                                   (k = 2)
+``cattaneo-mindlin``  the exact Cattaneo-Mindlin loop with a dashpot (Eqs. 4-6, 12) (k = 3)
+``savkoor``           Savkoor's loop, constant sliding traction τ0 (Eqs. 13-15)    (k = 3)
+``plateau``           the Cattaneo-Mindlin loop behind a stick plateau d_c          (k = 4)
 
-(equations of paper 2). The Cattaneo-Mindlin candidate is the better (by BIC) of the straight
-line and the exact loop (k = 3, :func:`contactres.analysis.loops.fit_cm_loops`), so that sweeps
-reaching full sliding, which curve, are still recognised as such; the low-amplitude limits of
-such a sweep come from the exact loop. A sweep classified ``plateau`` is refitted with the exact
-plateau loop (:func:`contactres.analysis.plateau.fit_plateau_loops`), which then gives its limits
-and its critical displacement.
+(:func:`~contactres.analysis.loops.fit_cm_loops` with the Cattaneo-Mindlin and the Savkoor
+tables, :func:`~contactres.analysis.plateau.fit_plateau_loops`). Without it, by their
+closed-form small-amplitude forms: a straight line in u0 (Eq. 12, k = 4), in u0² (Eq. 15,
+k = 4) and a hinge (flat, then straight; k = 5). The straight line and the parabola are fitted
+in both cases: their slopes and curvatures are reported, and the slopes give μ by Eq. 12.
 
 **Model choice (the stated criterion).** With separate unknown noise levels in Δf and ΔΓ, the
 Bayesian information criterion of a model with k parameters is
 ``BIC = n ln(RSS_f/n) + n ln(RSS_Γ/n) + k ln(2n)``. The model with the lowest BIC wins, except
-that a model listed earlier in :data:`~contactres.analysis.models.AMPLITUDE_MODELS` (elastic,
-cattaneo-mindlin, savkoor, plateau: simplest and most common first) is kept if its BIC is within
-``delta_bic`` (default 2, "positive evidence" on the Kass-Raftery scale) of the lowest.
+that a simpler model nested in it (:data:`NESTED`: elastic in every slip model, Cattaneo-Mindlin
+in the plateau loop) is kept if its BIC is within ``delta_bic`` (default 2, "positive evidence"
+on the Kass-Raftery scale) of the lowest: a parameter is added only on positive evidence.
+Between models that are not nested (Cattaneo-Mindlin, Savkoor; Savkoor, plateau) the lower BIC
+alone decides. The
+runner-up is the class with the lowest BIC among the others, and ``delta_bic`` (column) is its
+BIC minus the winner's: the evidence for the choice (negative, down to -``delta_bic``, where a
+simpler nested class was kept against a slightly better one). :mod:`contactres.analysis.blocks` then
+makes the same choice for the ramps of one load block together.
 """
 
 from __future__ import annotations
@@ -31,35 +37,126 @@ from itertools import repeat
 import numpy as np
 import pandas as pd
 
-from .amplitude import BLOCK_POINTS, Block, HingeFit, LineFit, Padded, bic, fit_hinge, fit_line
-from .loops import CMLoopTable, cm_loop_table, fit_cm_loops
+from .amplitude import (
+    PLATEAU_MIN_FLAT,
+    PLATEAU_MIN_SLOPE,
+    Block,
+    HingeFit,
+    LineFit,
+    Padded,
+    bic,
+    fit_hinge,
+    fit_line,
+)
+from .loops import LoopTable, LoopTables, fit_cm_loops, loop_tables
 from .models import AMPLITUDE_MODELS, N_PARAMETERS
 from .plateau import PLATEAU_LOOP_COLUMNS, fit_plateau_loops
 
-__all__ = ["LINE_FIELDS", "fit_sweeps"]
+__all__ = [
+    "CLASS_SOURCES",
+    "LIMITS_FROM",
+    "NESTED",
+    "SOURCE_MODEL",
+    "apply_models",
+    "choose",
+    "class_criteria",
+    "fit_sweeps",
+    "n_parameters",
+    "prefer",
+    "source_valid",
+]
 
-#: The arrays of a :class:`~contactres.analysis.amplitude.LineFit`, in order.
-LINE_FIELDS = ("a", "b", "var_a", "var_b", "cov_ab", "rss")
+
+#: Sources of each class: exact loops (``exact_loop``) or closed-form small-amplitude forms.
+CLASS_SOURCES = {
+    True: {"elastic": "el", "cattaneo-mindlin": "cm", "savkoor": "sv", "plateau": "pl"},
+    False: {"elastic": "el", "cattaneo-mindlin": "line", "savkoor": "parabola", "plateau": "hinge"},
+}
+#: The registered model (:data:`~contactres.analysis.models.REGISTRY`) behind each source.
+SOURCE_MODEL = {
+    "el": "elastic",
+    "line": "cattaneo-mindlin",
+    "parabola": "savkoor",
+    "hinge": "plateau",
+    "cm": "cattaneo-mindlin-loop",
+    "sv": "savkoor-loop",
+    "pl": "plateau-loop",
+}
+#: ``limits_from`` of a sweep whose limits come from each source.
+LIMITS_FROM = {
+    "el": "mean",
+    "line": "line",
+    "parabola": "parabola",
+    "hinge": "plateau",
+    "cm": "cm-loop",
+    "sv": "savkoor-loop",
+    "pl": "plateau-loop",
+}
 
 
-def _fit_block(b: Block, exact_loop: bool, table: CMLoopTable | None) -> dict[str, np.ndarray]:
-    """The per-sweep fits of one block of sweeps (arrays with the sweep as last axis)."""
+def _closed_form(prefix: str, fit: LineFit, out: dict) -> None:
+    """The fields of a straight-line fit (both channels) as ``<prefix>_*`` columns."""
+    for c, name in enumerate(("df", "dgamma")):
+        out[f"{prefix}_{name}0_Hz"] = fit.a[c]
+        out[f"{prefix}_{name}0_err_Hz"] = np.sqrt(fit.var_a[c])
+        out[f"{prefix}_{name}_b"] = fit.b[c]
+        out[f"{prefix}_{name}_b_err"] = np.sqrt(fit.var_b[c])
+        out[f"{prefix}_{name}_cov_ab"] = fit.cov_ab[c]
+        out[f"{prefix}_rss_{name}"] = fit.rss[c]
+
+
+def _fit_block(b: Block, exact_loop: bool, tables: LoopTables | None) -> dict[str, np.ndarray]:
+    """Every model fitted to one block of sweeps (arrays with the sweep as last axis)."""
     Y = np.stack([b.df, b.dg])
     n = b.n.astype(float)
-    out = {"u_max": np.max(np.where(b.w > 0, b.u, 0.0), axis=1)}
-    out["mean"] = (b.w * Y).sum(-1) / n  # elastic
-    out["rss_el"] = (b.w * (Y - out["mean"][..., None]) ** 2).sum(-1)
-    out["var_mean"] = out["rss_el"] / np.maximum(n - 1, 1) / n
+    u_max = np.max(np.where(b.w > 0, b.u, 0.0), axis=1)
+    out = {"u_max": u_max}
+    mean = (b.w * Y).sum(-1) / n  # elastic
+    rss_el = (b.w * (Y - mean[..., None]) ** 2).sum(-1)
+    var_mean = rss_el / np.maximum(n - 1, 1) / n
+    for c, name in enumerate(("df", "dgamma")):
+        out[f"el_{name}0_Hz"] = mean[c]
+        out[f"el_{name}0_err_Hz"] = np.sqrt(var_mean[c])
+        out[f"el_rss_{name}"] = rss_el[c]
     line = fit_line(b.u, Y, b.w)  # cattaneo-mindlin; its residuals give the noise levels
     parabola = fit_line(b.u**2, Y, b.w)  # savkoor: a straight line in u0²
     hinge = fit_hinge(b)  # plateau
-    for name, fit in (("line", line), ("parabola", parabola), ("hinge", hinge.line)):
-        out.update({f"{name}.{k}": v for k, v in zip(LINE_FIELDS, fit.fields(), strict=True)})
-    out["u_c"], out["found"] = hinge.u_c, hinge.found
+    _closed_form("line", line, out)
+    _closed_form("parabola", parabola, out)
+    _closed_form("hinge", hinge.line, out)
+    out["hinge_u_c_m"], out["hinge_found"] = hinge.u_c, hinge.found
     if exact_loop:
         sigma = np.sqrt(line.rss / np.maximum(n - 2, 1))
-        loop = fit_cm_loops(b.u, b.df, b.dg, b.w, sigma[0], sigma[1], table)
-        out.update({f"cm_{col}": loop[col].to_numpy() for col in loop.columns})
+        for prefix, table in (("cm", tables.cm), ("sv", tables.savkoor)):
+            loop = fit_cm_loops(b.u, b.df, b.dg, b.w, sigma[0], sigma[1], table)
+            out.update({f"{prefix}_{col}": loop[col].to_numpy() for col in loop.columns})
+        out.update(_fit_plateaus(b, hinge, line, tables.cm))
+    return out
+
+
+def _fit_plateaus(b: Block, hinge: HingeFit, line: LineFit, table: LoopTable) -> dict:
+    """The exact plateau loop fitted to the sweeps of ``b`` that are long enough for one.
+
+    Started at the hinge where one was found, else at 0.3 of the largest amplitude; weighted by
+    the noise of the hinge fit (of the straight line where no hinge was found).
+    """
+    S = len(b.n)
+    out = {f"pl_{col}": np.full(S, np.nan) for col in PLATEAU_LOOP_COLUMNS}
+    out["pl_edge"] = np.full(S, "", dtype=object)
+    # Enough distinct amplitudes for a plateau and a slope (a block may repeat amplitudes).
+    distinct = (b.w > 0) & np.concatenate([np.ones((S, 1), bool), np.diff(b.u, axis=1) > 0], axis=1)
+    fit = distinct.sum(axis=1) >= PLATEAU_MIN_FLAT + PLATEAU_MIN_SLOPE
+    if not fit.any():
+        return out
+    n = b.n.astype(float)
+    u_max = np.max(np.where(b.w > 0, b.u, 0.0), axis=1)
+    rss = np.where(hinge.found, hinge.line.rss, line.rss)
+    sig = np.sqrt(rss / np.maximum(n - np.where(hinge.found, 3, 2), 1))
+    u_c = np.where(hinge.found, hinge.u_c, 0.3 * u_max)
+    i = np.flatnonzero(fit)
+    res = fit_plateau_loops(b.u[i], b.df[i], b.dg[i], b.w[i], sig[0, i], sig[1, i], u_c[i], table)
+    for col in res.columns:
+        out[f"pl_{col}"][i] = res[col].to_numpy()
     return out
 
 
@@ -73,14 +170,14 @@ def _run(fn, workers: int, first: list, *rest) -> list:
 
 
 def _fit_blocks(
-    p: Padded, exact_loop: bool, table: CMLoopTable | None, workers: int
+    p: Padded, exact_loop: bool, tables: LoopTables | None, workers: int
 ) -> dict[str, np.ndarray]:
     """:func:`_fit_block` on every block of ``p``, put together in the order of the sweeps."""
     S = len(p.n)
     out: dict[str, np.ndarray] = {}
     groups = p.blocks()  # <= BLOCK_POINTS points each: the fits' temporaries stay at a few MB
     blocks = [p.block(rows) for rows in groups]
-    parts = _run(_fit_block, workers, blocks, repeat(exact_loop), repeat(table))
+    parts = _run(_fit_block, workers, blocks, repeat(exact_loop), repeat(tables))
     for rows, part in zip(groups, parts, strict=True):
         for key, v in part.items():
             if key not in out:
@@ -90,23 +187,140 @@ def _fit_blocks(
     return out
 
 
+#: Extra parameters counted for a change point (the plateau's critical displacement, the hinge):
+#: its likelihood-ratio statistic is not χ²₁ (the position is searched over the sweep; Davies,
+#: Biometrika 74 (1987) 33-43), and counted as one parameter it let pure Cattaneo-Mindlin
+#: blocks pass as plateaus ~5 % of the time (benchmarks/study_qcm_trust.py); as two, < 1 %
+#: (tests/analysis/test_classify.py).
+CHANGE_POINT_EXTRA = 1
+
+
+def n_parameters(source: str) -> int:
+    """The k of the BIC of a fit from ``source`` (a change point counts as two parameters)."""
+    k = N_PARAMETERS[SOURCE_MODEL[source]]
+    return k + CHANGE_POINT_EXTRA if source in ("hinge", "pl") else k
+
+
+def source_valid(sw: pd.DataFrame, source: str) -> np.ndarray:
+    """Whether the fit of ``source`` exists and is physical for each sweep (a loop needs
+    Pκ > 0; a hinge must have been found)."""
+    rss = sw[f"{source}_rss_df"].to_numpy(float) + sw[f"{source}_rss_dgamma"].to_numpy(float)
+    ok = np.isfinite(rss)
+    if source == "hinge":
+        ok &= sw["hinge_found"].to_numpy(bool)
+    if source in ("cm", "sv", "pl"):
+        ok &= sw[f"{source}_df0_Hz"].to_numpy(float) > 0
+    return ok
+
+
+def class_criteria(sw: pd.DataFrame, exact_loop: bool) -> np.ndarray:
+    """BIC of each class of :data:`AMPLITUDE_MODELS` for every sweep, (4, S); inf where the
+    class's fit is not valid (:func:`source_valid`)."""
+    n = sw["n_points"].to_numpy(float)
+    out = []
+    for model in AMPLITUDE_MODELS:
+        src = CLASS_SOURCES[exact_loop][model]
+        rss = np.stack([sw[f"{src}_rss_df"].to_numpy(float), sw[f"{src}_rss_dgamma"]])
+        crit = bic(rss, n, n_parameters(src))
+        out.append(np.where(source_valid(sw, src), crit, np.inf))
+    return np.stack(out)
+
+
+#: NESTED[i, j]: class i of AMPLITUDE_MODELS is class j with some parameters fixed (or i = j):
+#: elastic is every slip model without slip, Cattaneo-Mindlin the plateau loop with d_c = 0.
+NESTED = np.array(
+    [
+        [True, True, True, True],  # elastic
+        [False, True, False, True],  # cattaneo-mindlin
+        [False, False, True, False],  # savkoor
+        [False, False, False, True],  # plateau
+    ]
+)
+
+
+def prefer(criteria: np.ndarray, nested: np.ndarray, delta_bic: float) -> np.ndarray:
+    """Index of the candidate chosen from criteria (K, S): the first candidate within
+    ``delta_bic`` of the lowest that is nested in the lowest (``nested[i, j]``: candidate i is
+    candidate j with parameters fixed). Between candidates that are not nested the criterion
+    alone decides."""
+    S = criteria.shape[1]
+    best = np.argmin(criteria, axis=0)
+    close = criteria <= criteria[best, np.arange(S)] + delta_bic
+    return np.argmax(close & nested[:, best], axis=0)
+
+
+def choose(criteria: np.ndarray, delta_bic: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The class chosen from BICs (4, S) by :func:`prefer` with :data:`NESTED`.
+
+    Returns the index of the winner, of the runner-up (lowest BIC among the others) and the
+    evidence: the runner-up's BIC minus the winner's.
+    """
+    choice = prefer(criteria, NESTED, delta_bic)
+    S = criteria.shape[1]
+    others = criteria.copy()
+    others[choice, np.arange(S)] = np.inf
+    runner = np.argmin(others, axis=0)
+    with np.errstate(invalid="ignore"):
+        evidence = others[runner, np.arange(S)] - criteria[choice, np.arange(S)]
+    return choice, runner, evidence
+
+
+def apply_models(sw: pd.DataFrame, model: np.ndarray, exact_loop: bool) -> pd.DataFrame:
+    """Set the class of every sweep and take its limits, their errors and its plateau from the
+    fit of that class (``model``: names from :data:`AMPLITUDE_MODELS`). Returns a new frame."""
+    sw = sw.copy()
+    model = np.asarray(model, dtype=object)
+    sources = CLASS_SOURCES[exact_loop]
+    src = np.array([sources[m] for m in model], dtype=object)
+    is_pl = model == "plateau"
+    for name in ("df", "dgamma"):
+        a = np.full(len(sw), np.nan)
+        err = np.full(len(sw), np.nan)
+        for s in set(src):
+            rows = src == s
+            a[rows] = sw[f"{s}_{name}0_Hz"].to_numpy(float)[rows]
+            err[rows] = sw[f"{s}_{name}0_err_Hz"].to_numpy(float)[rows]
+        sw[f"{name}0_Hz"] = a
+        sw[f"{name}0_err_Hz"] = err
+        # Slope of the linear part: the hinge slope for a plateau, the straight line otherwise.
+        hinge = is_pl & sw["hinge_found"].to_numpy(bool)
+        slope_src = np.where(hinge, "hinge", "line")
+        for col, key in (("_slope_Hz_per_m", "_b"), ("_slope_err_Hz_per_m", "_b_err")):
+            sw[f"{name}{col}"] = np.where(
+                hinge, sw[f"hinge_{name}{key}"].to_numpy(float), sw[f"line_{name}{key}"]
+            )
+        # The covariance of Δf0 and the slope is known where both come from the same fit.
+        same = src == slope_src
+        cov = np.where(hinge, sw[f"hinge_{name}_cov_ab"], sw[f"line_{name}_cov_ab"])
+        sw[f"{name}0_slope_cov"] = np.where(same, cov, 0.0)
+    if exact_loop:
+        d_c, d_c_err = sw["pl_d_c_m"].to_numpy(float), sw["pl_d_c_err_m"].to_numpy(float)
+    else:
+        d_c, d_c_err = sw["hinge_u_c_m"].to_numpy(float), np.full(len(sw), np.nan)
+    sw["plateau_amplitude_m"] = np.where(is_pl, d_c, np.nan)
+    sw["plateau_amplitude_err_m"] = np.where(is_pl, d_c_err, np.nan)
+    sw["model"] = model.astype(str)
+    sw["limits_from"] = np.array([LIMITS_FROM[s] for s in src], dtype=object).astype(str)
+    return sw
+
+
 def fit_sweeps(
     p: Padded,
     delta_bic: float = 2.0,
     exact_loop: bool = True,
-    table: CMLoopTable | None = None,
+    tables: LoopTables | None = None,
     workers: int = 1,
 ) -> pd.DataFrame:
-    """Fit the four amplitude models to every sweep and choose one (see the module docstring).
+    """Fit every amplitude model to every sweep and choose one (see the module docstring).
 
     Parameters
     ----------
     p : the sweeps as padded arrays (:func:`contactres.analysis.amplitude.pad_sweeps`)
     delta_bic : BIC margin within which the simpler model is kept
-    exact_loop : let the exact Cattaneo-Mindlin loop compete (and refit plateau sweeps with the
-        exact plateau loop)
-    table : the Cattaneo-Mindlin loop table (:func:`contactres.analysis.loops.cm_loop_table`;
-        built here if None and ``exact_loop``)
+    exact_loop : the exact loops represent the classes (else their closed-form small-amplitude
+        forms)
+    tables : the Cattaneo-Mindlin and Savkoor loop tables
+        (:func:`contactres.analysis.loops.loop_tables`; built here if None and ``exact_loop``)
     workers : processes for the fits of the blocks of sweeps (1: none, in this process). More
         than one pays from ~10^4 sweeps on (both cores of a 2-core machine: ~1.8x faster at
         10^5 sweeps); it starts a process pool, so a script calling it must be importable
@@ -115,127 +329,36 @@ def fit_sweeps(
     Returns
     -------
     DataFrame
-        One row per sweep (order of first appearance) with the low-amplitude limits, slopes and
-        curvatures with standard errors, the critical amplitude of a plateau, the BIC of each
-        model, the noise levels (from the straight line), the chosen ``model``, ``limits_from``
-        (``mean``, ``cm-loop``, ``line``, ``parabola``, ``plateau-loop`` or ``plateau``) and,
-        with ``exact_loop``, the loop fit of every sweep (columns of ``fit_cm_loops`` prefixed
-        ``cm_``) and of plateau sweeps (columns of ``fit_plateau_loops`` prefixed ``pl_``).
+        One row per sweep (order of first appearance): the low-amplitude limits with standard
+        errors from the chosen class (``limits_from``: ``mean``, ``cm-loop``, ``savkoor-loop``,
+        ``plateau-loop``, or ``line``, ``parabola``, ``plateau`` without ``exact_loop``), the
+        slopes (straight line; a found hinge for a plateau) and curvatures (parabola), the
+        plateau's critical displacement, the noise levels (straight line), ``bic_<class>``,
+        ``model``, ``runner_up`` and ``delta_bic`` (:func:`choose`), ``model_sweep`` (the same
+        as ``model`` here; :mod:`contactres.analysis.blocks` may change ``model``) and every
+        fit: ``el_``, ``line_``, ``parabola_``, ``hinge_`` and, with ``exact_loop``, the loop
+        fits ``cm_``, ``sv_`` (columns of :func:`~contactres.analysis.loops.fit_cm_loops`) and
+        ``pl_`` (of :func:`~contactres.analysis.plateau.fit_plateau_loops`).
     """
     n = p.n.astype(float)
-    S = len(n)
-    if exact_loop and table is None:
-        table = cm_loop_table()
-    f = _fit_blocks(p, exact_loop, table, workers)
-    mean, rss_el, var_mean = f["mean"], f["rss_el"], f["var_mean"]
-    line, parabola = (LineFit(*(f[f"{m}.{k}"] for k in LINE_FIELDS)) for m in ("line", "parabola"))
-    hinge = HingeFit(LineFit(*(f[f"hinge.{k}"] for k in LINE_FIELDS)), f["u_c"], f["found"])
-    sigma = np.sqrt(line.rss / np.maximum(n - 2, 1))
-    rows = {"sweep": p.sweeps, "n_points": p.n, "direction": p.direction, "u_max_m": f["u_max"]}
-
-    bic_line = bic(line.rss, n, N_PARAMETERS["cattaneo-mindlin"])
-    bic_cm = bic_line
-    use_loop = np.zeros(S, bool)
-    if exact_loop:
-        loop = {col[3:]: f[col] for col in f if col.startswith("cm_")}
-        rss_loop = np.stack([loop["rss_df"], loop["rss_dgamma"]])
-        ok = (loop["edge"] == "") & (loop["df0_Hz"] > 0)
-        bic_loop = np.where(ok, bic(rss_loop, n, N_PARAMETERS["cattaneo-mindlin-loop"]), np.inf)
-        use_loop = bic_loop < bic_line
-        bic_cm = np.minimum(bic_line, bic_loop)
-        rows["bic_cattaneo-mindlin-line"] = bic_line
-        rows["bic_cattaneo-mindlin-loop"] = bic_loop
-        # The whole loop fit (cm_df0_Hz, cm_theta_per_m, ...): μ_fit of the analysis reuses it.
-        for col, values in loop.items():
-            rows[f"cm_{col}"] = values
-    criteria = {
-        "elastic": bic(rss_el, n, N_PARAMETERS["elastic"]),
-        "cattaneo-mindlin": bic_cm,
-        "savkoor": bic(parabola.rss, n, N_PARAMETERS["savkoor"]),
-        "plateau": np.where(hinge.found, bic(hinge.line.rss, n, N_PARAMETERS["plateau"]), np.inf),
-    }
-    by_model = np.stack([criteria[m] for m in AMPLITUDE_MODELS])  # (4, S)
-    choice = np.argmax(
-        by_model <= by_model.min(axis=0) + delta_bic, axis=0
-    )  # first model within delta_bic
-    for m in AMPLITUDE_MODELS:
-        rows[f"bic_{m}"] = criteria[m]
-
-    # Low-amplitude limits and their errors from the chosen model.
-    is_el, is_cm, is_sv, is_pl = (choice == i for i in range(len(AMPLITUDE_MODELS)))
-    cases = [is_el, is_cm, is_sv, is_pl]
-    from_cm_loop = is_cm & use_loop
-    for c, name in enumerate(("df", "dgamma")):
-        a = np.select(cases, [mean[c], line.a[c], parabola.a[c], hinge.line.a[c]])
-        va = np.select(cases, [var_mean[c], line.var_a[c], parabola.var_a[c], hinge.line.var_a[c]])
-        if exact_loop:
-            a = np.where(from_cm_loop, loop[f"{name}0_Hz"], a)
-            va = np.where(from_cm_loop, loop[f"{name}0_err_Hz"] ** 2, va)
-        rows[f"{name}0_Hz"] = a
-        rows[f"{name}0_err_Hz"] = np.sqrt(va)
-        # Slope of the linear part: the hinge slope for a plateau, the straight line otherwise.
-        rows[f"{name}_slope_Hz_per_m"] = np.where(is_pl, hinge.line.b[c], line.b[c])
-        rows[f"{name}_slope_err_Hz_per_m"] = np.sqrt(
-            np.where(is_pl, hinge.line.var_b[c], line.var_b[c])
-        )
-        cov = np.where(is_pl, hinge.line.cov_ab[c], line.cov_ab[c])
-        rows[f"{name}0_slope_cov"] = np.where(from_cm_loop, 0.0, cov)
-        rows[f"{name}_curvature_Hz_per_m2"] = parabola.b[c]
-        rows[f"{name}_curvature_err_Hz_per_m2"] = np.sqrt(parabola.var_b[c])
-        rows[f"sigma_{name}_Hz"] = sigma[c]
-    rows["plateau_amplitude_m"] = np.where(is_pl, hinge.u_c, np.nan)
-    rows["plateau_amplitude_err_m"] = np.full(S, np.nan)
-    from_pl = np.zeros(S, bool)
-    if exact_loop:
-        from_pl = _refit_plateaus(p, rows, is_pl, hinge, n, table, workers)
-    rows["model"] = np.asarray(AMPLITUDE_MODELS)[choice]
-    rows["limits_from"] = np.select(
-        [is_el, from_cm_loop, is_cm, is_sv, is_pl & from_pl, is_pl],
-        ["mean", "cm-loop", "line", "parabola", "plateau-loop", "plateau"],
-        default="",
-    )
-    return pd.DataFrame(rows)
-
-
-def _refit_plateaus(p: Padded, rows: dict, is_pl, hinge, n, table, workers: int) -> np.ndarray:
-    """Fit the exact plateau loop to the plateau sweeps, weighted by the noise of the hinge fit.
-
-    Adds the ``pl_*`` columns to ``rows`` and, where the fit is resolved, replaces the limits
-    and the critical amplitude of those sweeps by its values. Returns which sweeps it replaced.
-    """
-    S = len(n)
-    for col in PLATEAU_LOOP_COLUMNS:
-        rows[f"pl_{col}"] = np.full(S, np.nan)
-    rows["pl_edge"] = np.full(S, "", dtype=object)
-    replaced = np.zeros(S, bool)
-    idx = np.flatnonzero(is_pl)
-    if idx.size == 0:
-        return replaced
-    sig_h = np.sqrt(hinge.line.rss / np.maximum(n - 3, 1))
-    # One block per worker at least (the plateau sweeps are few: often a single block).
-    share = int(p.n[idx].sum()) // max(workers, 1) + int(p.n[idx].max())
-    parts = p.blocks(idx, max_points=min(BLOCK_POINTS, share))
-    blocks = [p.block(part) for part in parts]
-    args = [(b.u, b.df, b.dg, b.w) for b in blocks]
-    fits = _run(
-        fit_plateau_loops,
-        workers,
-        *zip(*args, strict=True),
-        [sig_h[0, part] for part in parts],
-        [sig_h[1, part] for part in parts],
-        [hinge.u_c[part] for part in parts],
-        repeat(table),
-    )
-    for part, fit in zip(parts, fits, strict=True):
-        for col in fit.columns:
-            rows[f"pl_{col}"][part] = fit[col].to_numpy()
-    pl = {col: rows[f"pl_{col}"][idx] for col in (*PLATEAU_LOOP_COLUMNS, "edge")}
-    ok = (pl["edge"] == "") & (pl["df0_Hz"] > 0)
-    replaced[idx[ok]] = True
+    if exact_loop and tables is None:
+        tables = loop_tables()
+    f = _fit_blocks(p, exact_loop, tables, workers)
+    rows = {"sweep": p.sweeps, "n_points": p.n, "direction": p.direction, "u_max_m": f.pop("u_max")}
+    rows.update(f)
+    sw = pd.DataFrame(rows)
     for name in ("df", "dgamma"):
-        rows[f"{name}0_Hz"][idx[ok]] = pl[f"{name}0_Hz"][ok]
-        rows[f"{name}0_err_Hz"][idx[ok]] = pl[f"{name}0_err_Hz"][ok]
-        rows[f"{name}0_slope_cov"][idx[ok]] = 0.0
-    rows["plateau_amplitude_m"][idx[ok]] = pl["d_c_m"][ok]
-    rows["plateau_amplitude_err_m"][idx[ok]] = pl["d_c_err_m"][ok]
-    return replaced
+        sw[f"sigma_{name}_Hz"] = np.sqrt(sw[f"line_rss_{name}"] / np.maximum(n - 2, 1))
+        sw[f"{name}_curvature_Hz_per_m2"] = sw[f"parabola_{name}_b"]
+        sw[f"{name}_curvature_err_Hz_per_m2"] = sw[f"parabola_{name}_b_err"]
+    criteria = class_criteria(sw, exact_loop)
+    for m, crit in zip(AMPLITUDE_MODELS, criteria, strict=True):
+        sw[f"bic_{m}"] = crit
+    choice, runner, evidence = choose(criteria, delta_bic)
+    names = np.asarray(AMPLITUDE_MODELS)
+    sw = apply_models(sw, names[choice], exact_loop)
+    sw["model_sweep"] = sw["model"]
+    sw["runner_up"] = names[runner]
+    sw["delta_bic"] = evidence
+    sw["decided_by"] = "sweep"
+    return sw

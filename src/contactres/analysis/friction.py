@@ -21,7 +21,15 @@ import pandas as pd
 
 from ..resonators.qcm import mu_from_slopes
 
-__all__ = ["LoopFriction", "SlopeFriction", "loop_friction", "slip_sweeps", "slope_friction"]
+__all__ = [
+    "LoopFriction",
+    "SlopeFriction",
+    "block_friction",
+    "loop_force",
+    "loop_friction",
+    "slip_sweeps",
+    "slope_friction",
+]
 
 
 def slip_sweeps(sw: pd.DataFrame) -> np.ndarray:
@@ -73,57 +81,118 @@ def slope_friction(sw: pd.DataFrame, P: np.ndarray) -> SlopeFriction:
 
 @dataclass(frozen=True)
 class LoopFriction:
-    """μ from the exact loop, its standard error, κu0/(μF_N) at the largest amplitude, and
-    whether the fit ends in gross sliding; one value per sweep."""
+    """μ from the exact loop, its standard error, the loop's x at the largest amplitude
+    (κu0/(μF_N), or u0/d_s for Savkoor), whether the fit ends in gross sliding, and Savkoor's
+    sliding force πa²τ0 with its error; one value per sweep."""
 
     mu_fit: np.ndarray
     mu_fit_err: np.ndarray
     x_max: np.ndarray
     gross_sliding: np.ndarray
+    sliding_force: np.ndarray
+    sliding_force_err: np.ndarray
+
+
+def loop_force(A, A_err, theta, lntheta_err, cov, P):
+    """The force scale A/(Pθ) = κ/θ of an exact-loop fit and its standard error, N.
+
+    For the Cattaneo-Mindlin loop (θ = κ/(μF_N)) it is μF_N; for Savkoor's loop (θ = 1/d_s,
+    d_s = 4a²τ0/κ) it is 4/π times the sliding force πa²τ0 (paper 2, Eqs. 13-14). The error
+    propagates those of Pκ and ln θ with their covariance (all arrays).
+    """
+    A, A_err, theta = (np.asarray(v, dtype=float) for v in (A, A_err, theta))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        force = A / (P * theta)
+        var_ln = (A_err / A) ** 2 + np.asarray(lntheta_err) ** 2 - 2 * np.asarray(cov) / A
+    return force, np.abs(force) * np.sqrt(np.maximum(var_ln, 0.0))
 
 
 def loop_friction(sw: pd.DataFrame, P: np.ndarray) -> LoopFriction:
-    """μ from the exact-loop fits that :func:`~contactres.analysis.classify.fit_sweeps` made.
+    """μ and Savkoor's sliding force from the exact-loop fits of each sweep's class.
 
     The Cattaneo-Mindlin loop from u0 = 0 (``cm_*`` columns) for a Cattaneo-Mindlin sweep, the
-    plateau loop (``pl_*``) for a plateau sweep; NaN where not a slip sweep or not resolved.
-    ``gross_sliding`` marks fits that end beyond the loop table (κu0/(μF_N) > 30).
+    plateau loop (``pl_*``) for a plateau sweep, Savkoor's loop (``sv_*``) for a Savkoor sweep
+    (its sliding force, no μ); NaN elsewhere and where not resolved. ``gross_sliding`` marks
+    fits that end beyond the loop table (x > 30).
     """
     S = len(sw)
     out = LoopFriction(
-        mu_fit=np.full(S, np.nan),
-        mu_fit_err=np.full(S, np.nan),
-        x_max=np.full(S, np.nan),
-        gross_sliding=np.zeros(S, bool),
+        *(np.full(S, np.nan) for _ in range(3)),
+        np.zeros(S, bool),
+        np.full(S, np.nan),
+        np.full(S, np.nan),
     )
-    idx = np.flatnonzero(slip_sweeps(sw))
-    if idx.size == 0:
-        return out
-    names = [
-        "df0_Hz",
-        "df0_err_Hz",
-        "theta_per_m",
-        "lntheta_err",
-        "cov_df0_lntheta",
-        "x_max",
-        "edge",
-    ]
-    plateau = (sw["model"].to_numpy() == "plateau")[idx]
-    res = pd.DataFrame(
-        {
-            c: np.where(plateau, sw[f"pl_{c}"].to_numpy()[idx], sw[f"cm_{c}"].to_numpy()[idx])
-            for c in names
+    model = sw["model"].to_numpy()
+    positive = sw["df0_Hz"].to_numpy() > 0
+    for name, src in (("cattaneo-mindlin", "cm"), ("plateau", "pl"), ("savkoor", "sv")):
+        idx = np.flatnonzero((model == name) & positive)
+        if idx.size == 0:
+            continue
+        col = {
+            c: sw[f"{src}_{c}"].to_numpy()[idx]
+            for c in (
+                "df0_Hz",
+                "df0_err_Hz",
+                "theta_per_m",
+                "lntheta_err",
+                "cov_df0_lntheta",
+                "x_max",
+                "edge",
+            )
         }
-    )
-    F = sw["normal_force_N"].to_numpy()[idx]
-    A = res["df0_Hz"].to_numpy(float)
-    theta = res["theta_per_m"].to_numpy(float)
-    mu = A / (P[idx] * theta * F)
-    var_ln = (res["df0_err_Hz"] / A) ** 2 + res["lntheta_err"] ** 2 - 2 * res["cov_df0_lntheta"] / A
-    err = mu * np.sqrt(np.maximum(var_ln.to_numpy(float), 0.0))
-    resolved = (res["edge"] == "").to_numpy() & (A > 0)
-    out.mu_fit[idx] = np.where(resolved, mu, np.nan)
-    out.mu_fit_err[idx] = np.where(resolved, err, np.nan)
-    out.x_max[idx] = res["x_max"].to_numpy(float)
-    out.gross_sliding[idx] = (res["edge"] == "high").to_numpy()
+        force, err = loop_force(
+            col["df0_Hz"],
+            col["df0_err_Hz"],
+            col["theta_per_m"],
+            col["lntheta_err"],
+            col["cov_df0_lntheta"],
+            P[idx],
+        )
+        resolved = (col["edge"] == "") & (col["df0_Hz"].astype(float) > 0)
+        if name == "savkoor":
+            out.sliding_force[idx] = np.where(resolved, np.pi / 4 * force, np.nan)
+            out.sliding_force_err[idx] = np.where(resolved, np.pi / 4 * err, np.nan)
+        else:
+            F = sw["normal_force_N"].to_numpy()[idx]
+            out.mu_fit[idx] = np.where(resolved, force / F, np.nan)
+            out.mu_fit_err[idx] = np.where(resolved, err / F, np.nan)
+        out.x_max[idx] = col["x_max"].astype(float)
+        out.gross_sliding[idx] = col["edge"] == "high"
     return out
+
+
+def block_friction(blocks: pd.DataFrame, sw: pd.DataFrame) -> pd.DataFrame:
+    """μ (``mu``, ``mu_err``) and Savkoor's sliding force (``sliding_force_N``,
+    ``sliding_force_err_N``) from the joint fit of every shared block
+    (:func:`contactres.analysis.blocks.choose_blocks`); NaN where none. Returns a new frame."""
+    blocks = blocks.copy()
+    for col in ("mu", "mu_err", "sliding_force_N", "sliding_force_err_N"):
+        blocks[col] = np.nan
+    if blocks.empty:
+        return blocks
+    member = sw["block"].to_numpy() >= 0
+    P = (
+        pd.Series(sw["P_Hz_per_N_per_m"].to_numpy()[member], index=sw["block"].to_numpy()[member])
+        .groupby(level=0)
+        .first()
+        .reindex(blocks["block"])
+        .to_numpy()
+    )
+    force, err = loop_force(
+        blocks["df0_Hz"],
+        blocks["df0_err_Hz"],
+        blocks["theta_per_m"],
+        blocks["lntheta_err"],
+        blocks["cov_df0_lntheta"],
+        P,
+    )
+    resolved = (blocks["edge"] == "").to_numpy() & (blocks["df0_Hz"].to_numpy(float) > 0)
+    resolved &= blocks["shared"].to_numpy(bool)
+    friction = resolved & blocks["model"].isin(["cattaneo-mindlin", "plateau"]).to_numpy()
+    F = blocks["normal_force_N"].to_numpy(float)
+    blocks["mu"] = np.where(friction, force / F, np.nan)
+    blocks["mu_err"] = np.where(friction, err / F, np.nan)
+    sv = resolved & (blocks["model"] == "savkoor").to_numpy()
+    blocks["sliding_force_N"] = np.where(sv, np.pi / 4 * force, np.nan)
+    blocks["sliding_force_err_N"] = np.where(sv, np.pi / 4 * err, np.nan)
+    return blocks

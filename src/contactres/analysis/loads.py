@@ -22,8 +22,14 @@ LOAD_KEYS = ["configuration", "medium", "normal_force_N"]
 
 
 def per_experiment(sw: pd.DataFrame) -> pd.DataFrame:
-    """One row per (load, experiment): the means of its used sweeps and their number."""
+    """One row per (load, experiment): the means of its used sweeps and their number (``mu_fit``:
+    the joint fit of the load block, ``mu_block``, where there is one)."""
     used = sw[sw["used"]]
+    if "mu_block" in used:
+        # A load block fitted jointly gives one μ for its ramps: better conditioned than the
+        # mean of their separate nonlinear fits.
+        block = used["mu_block"].to_numpy(float)
+        used = used.assign(mu_fit=np.where(np.isfinite(block), block, used["mu_fit"]))
     g = used.groupby([*LOAD_KEYS, "experiment"], sort=True)
     exp = g[list(QUANTITIES)].mean()
     exp["n_sweeps"] = g.size()

@@ -48,16 +48,20 @@ from ..resonators.qcm import (
     shifts_from_loop,
     shifts_from_stiffness,
 )
-from ..tangential import CattaneoMindlinLoop
+from ..tangential import CattaneoMindlinLoop, SavkoorLoop
 
 __all__ = [
     "N_TABLE",
     "X_MAX",
-    "CMLoopTable",
+    "LoopTable",
+    "LoopTables",
     "cm_loop_shape",
     "cm_loop_table",
     "fit_cm_loops",
+    "loop_tables",
     "plateau_loop_shape",
+    "savkoor_loop_shape",
+    "savkoor_loop_table",
     "solve_projected",
 ]
 
@@ -71,7 +75,7 @@ CHUNK_CELLS = 1 << 18
 
 
 @dataclass(frozen=True)
-class CMLoopTable:
+class LoopTable:
     """K′/κ (``g1``) and (K″ - ωξ)/κ (``g2``) of the Cattaneo-Mindlin loop, and their slopes
     ``d1``, ``d2``, against x = κu0/(μF_N) on 0 <= x <= :data:`X_MAX` (:func:`cm_loop_table`)."""
 
@@ -82,7 +86,26 @@ class CMLoopTable:
     d2: np.ndarray
 
 
-def cm_loop_table() -> CMLoopTable:
+def _loop_table(loop, slip_x: float) -> LoopTable:
+    """K′/κ and (K″ - ωξ)/κ of a self-similar ``loop`` with κ = 1, tabulated against x = u0.
+
+    Uniform grid on 0 <= x <= X_MAX, refined around full sliding at ``slip_x``, where K′ and K″
+    have a square-root singularity in their derivatives: linear interpolation then stays within
+    1e-6 of κ (tests/analysis/test_analysis.py checks both tables against the quadrature).
+    """
+    q = QCM(fundamental=5e6, overtone=3, area=1e-5)
+    P = float(np.asarray(shifts_from_stiffness(q, 1.0, 0.0, 1)[0]))
+    side = np.geomspace(1e-7, 0.4 * slip_x, 800)
+    near = slip_x + np.concatenate([-side, side])
+    fine = np.linspace(0.0, 4.0 * slip_x, 4001)  # where the curvature of K′, K″ is largest
+    x = np.unique(np.concatenate([np.linspace(0.0, X_MAX, N_TABLE), fine, [slip_x], near]))
+    df, dg = shifts_from_loop(q, loop, x[1:], 1)
+    g1 = np.concatenate([[1.0], np.asarray(df, float) / P])
+    g2 = np.concatenate([[0.0], np.asarray(dg, float) / P])
+    return LoopTable(x, g1, g2, np.gradient(g1, x), np.gradient(g2, x))
+
+
+def cm_loop_table() -> LoopTable:
     """Tabulate the Cattaneo-Mindlin loop's K′/κ and (K″ - ωξ)/κ against x = κu0/(μF_N).
 
     Made from the forward model (paper 2, Eqs. 4-6 with Masing's rule) with κ = μF_N = 1, so
@@ -90,18 +113,32 @@ def cm_loop_table() -> CMLoopTable:
     interpolation in it is accurate to 1e-6 (a test checks). Costs ~0.1 s: build it once and
     pass it to :func:`fit_cm_loops` (and :func:`contactres.analysis.classify.fit_sweeps`).
     """
-    q = QCM(fundamental=5e6, overtone=3, area=1e-5)
-    P = float(np.asarray(shifts_from_stiffness(q, 1.0, 0.0, 1)[0]))
-    # Uniform grid, refined around full sliding (x = 3/2), where K′ and K″ have a square-root
-    # singularity in their derivatives: linear interpolation then stays within 1e-6 of κ.
-    side = np.geomspace(1e-7, 0.6, 800)
-    near = 1.5 + np.concatenate([-side, side])
-    x = np.unique(np.concatenate([np.linspace(0.0, X_MAX, N_TABLE), [1.5], near]))
-    loop = CattaneoMindlinLoop(kappa=1.0, mu=1.0, normal_force=1.0)
-    df, dg = shifts_from_loop(q, loop, x[1:], 1)
-    g1 = np.concatenate([[1.0], np.asarray(df, float) / P])
-    g2 = np.concatenate([[0.0], np.asarray(dg, float) / P])
-    return CMLoopTable(x, g1, g2, np.gradient(g1, x), np.gradient(g2, x))
+    return _loop_table(CattaneoMindlinLoop(kappa=1.0, mu=1.0, normal_force=1.0), 1.5)
+
+
+def savkoor_loop_table() -> LoopTable:
+    """Tabulate Savkoor's loop (constant sliding traction τ0) against x = u0/d_s.
+
+    d_s = 4a²τ0/κ is the amplitude of full sliding (paper 2, Eqs. 13-14), reached at x = 1; the
+    loop is self-similar in x as the Cattaneo-Mindlin loop is in κu0/(μF_N), so
+    :func:`fit_cm_loops` fits it with this table: its ``theta_per_m`` is then 1/d_s and the
+    sliding force πa²τ0 = πκd_s/4 (no contact radius needed). Small x: K′/κ = 1 - (5/32)x²,
+    (K″ - ωξ)/κ = x²/(3π) (paper 2, Eq. 15). Same grid and accuracy as :func:`cm_loop_table`.
+    """
+    return _loop_table(SavkoorLoop(kappa=1.0, tau=1.0, a=0.5), 1.0)
+
+
+@dataclass(frozen=True)
+class LoopTables:
+    """The tables of the self-similar loops the sweep analysis fits (:func:`loop_tables`)."""
+
+    cm: LoopTable
+    savkoor: LoopTable
+
+
+def loop_tables() -> LoopTables:
+    """The Cattaneo-Mindlin and Savkoor loop tables (~0.2 s: build once, pass them on)."""
+    return LoopTables(cm_loop_table(), savkoor_loop_table())
 
 
 def cm_loop_shape(x) -> tuple[np.ndarray, np.ndarray]:
@@ -112,6 +149,17 @@ def cm_loop_shape(x) -> tuple[np.ndarray, np.ndarray]:
     """
     x = np.asarray(x, dtype=float)
     k = loop_stiffness(CattaneoMindlinLoop(kappa=1.0, mu=1.0, normal_force=1.0), x)
+    return np.real(k), np.imag(k)
+
+
+def savkoor_loop_shape(x) -> tuple[np.ndarray, np.ndarray]:
+    """K′/κ and (K″ - ωξ)/κ of Savkoor's loop at x = u0/d_s (d_s = 4a²τ0/κ), by quadrature.
+
+    The exact values behind :func:`savkoor_loop_table` (paper 2, Eqs. 13-14 with Masing's rule,
+    relative accuracy 1e-9), for any x >= 0, vectorised.
+    """
+    x = np.asarray(x, dtype=float)
+    k = loop_stiffness(SavkoorLoop(kappa=1.0, tau=1.0, a=0.5), x)
     return np.real(k), np.imag(k)
 
 
@@ -134,7 +182,7 @@ def solve_projected(g1, g2, df, dg, w, wf, wg):
 
 
 def fit_cm_loops(
-    u, df, dg, w, sigma_df, sigma_dg, table: CMLoopTable | None = None, rounds: int = 4
+    u, df, dg, w, sigma_df, sigma_dg, table: LoopTable | None = None, rounds: int = 4
 ) -> pd.DataFrame:
     """Fit the exact Cattaneo-Mindlin loop (+ dashpot) to every row of padded sweeps.
 

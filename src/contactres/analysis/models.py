@@ -8,7 +8,8 @@ channels at once:
 ``savkoor``                 straight line in u0² (paper 2, Eq. 15)
 ``plateau``                 flat below u_c, straight line above (paper 2, Fig. 4C, D)
 ``cattaneo-mindlin-loop``   the exact Cattaneo-Mindlin loop with a dashpot (paper 2, Eqs. 4-6)
-``plateau-loop``            the same loop behind a stick plateau of width d_c
+``savkoor-loop``            the exact Savkoor loop with a dashpot (paper 2, Eqs. 13-14)
+``plateau-loop``            the Cattaneo-Mindlin loop behind a stick plateau of width d_c
 
 and the model of the load dependence, ``jkr-mindlin``: κ(F_N) = 2G*a with the JKR contact
 radius (paper 2, Eqs. 7-10). Each parameter names the column of the results that holds its
@@ -25,7 +26,7 @@ import numpy as np
 from ..fitting import Model, ModelRegistry, Parameter
 from ..tangential import kappa_jkr_mindlin
 from ..units import POISSON_OPEN_RANGE
-from .loops import cm_loop_shape, plateau_loop_shape
+from .loops import cm_loop_shape, plateau_loop_shape, savkoor_loop_shape
 
 __all__ = ["AMPLITUDE_MODELS", "N_PARAMETERS", "REGISTRY", "model_curves"]
 
@@ -85,16 +86,23 @@ def _cm_loop(u, df0, dgamma0, inverse_slip_scale):
     return df0 * g1, dgamma0 + df0 * g2
 
 
+def _savkoor_loop(u, df0, dgamma0, inverse_slip_scale):
+    # Savkoor's loop is self-similar in u0/d_s (d_s = 4a²τ0/κ: full sliding).
+    g1, g2 = savkoor_loop_shape(np.asarray(inverse_slip_scale) * np.asarray(u))
+    return df0 * g1, dgamma0 + df0 * g2
+
+
 def _plateau_loop(u, df0, dgamma0, inverse_slip_scale, critical_displacement):
     theta = np.asarray(inverse_slip_scale)
     g1, g2 = plateau_loop_shape(theta * np.asarray(u), theta * critical_displacement)
     return df0 * g1, dgamma0 + df0 * g2
 
 
-def _loop_parameters(prefix: str) -> tuple[Parameter, ...]:
-    """Pκ and Pωξ (the low-amplitude limits) and the loop's amplitude scale κ/(μF_N), held in
-    the columns ``<prefix>df0_Hz``, ``<prefix>dgamma0_Hz``, ``<prefix>theta_per_m`` of the
-    per-sweep results (``cm_`` for the Cattaneo-Mindlin loop fit, ``pl_`` for the plateau loop)."""
+def _loop_parameters(prefix: str, scale: str = "κ/(μF_N)") -> tuple[Parameter, ...]:
+    """Pκ and Pωξ (the low-amplitude limits) and the loop's amplitude scale (κ/(μF_N), or 1/d_s
+    for Savkoor's loop), held in the columns ``<prefix>df0_Hz``, ``<prefix>dgamma0_Hz``,
+    ``<prefix>theta_per_m`` of the per-sweep results (``cm_`` for the Cattaneo-Mindlin loop fit,
+    ``sv_`` for Savkoor's loop, ``pl_`` for the plateau loop)."""
     return (
         Parameter(
             "df0", "Pκ (low-amplitude Δf0)", "Hz", f"{prefix}df0_Hz", (0.0, np.inf), scale=100.0
@@ -104,7 +112,7 @@ def _loop_parameters(prefix: str) -> tuple[Parameter, ...]:
         ),
         Parameter(
             "inverse_slip_scale",
-            "κ/(μF_N)",
+            scale,
             "1/m",
             f"{prefix}theta_per_m",
             (0.0, np.inf),
@@ -154,6 +162,17 @@ REGISTRY = ModelRegistry(
             _cm_loop,
         ),
         Model(
+            "savkoor-loop",
+            "exact Savkoor loop (constant sliding traction) with a dashpot",
+            _loop_parameters("sv_", "1/d_s = κ/(4a²τ0)"),
+            "amplitude",
+            "m",
+            "df, dgamma",
+            "Hz",
+            "paper 2, Eqs. 13-14 (Masing loops) and Eq. 12 (dashpot)",
+            _savkoor_loop,
+        ),
+        Model(
             "plateau-loop",
             "exact Cattaneo-Mindlin loop behind a stick plateau, with a dashpot",
             (
@@ -201,15 +220,19 @@ REGISTRY = ModelRegistry(
 N_PARAMETERS = {key: len(model.parameters) for key, model in REGISTRY.items()}
 
 # The exact loop that stands behind a sweep whose limits come from it.
-_EXACT = {"cm-loop": "cattaneo-mindlin-loop", "plateau-loop": "plateau-loop"}
+_EXACT = {
+    "cm-loop": "cattaneo-mindlin-loop",
+    "savkoor-loop": "savkoor-loop",
+    "plateau-loop": "plateau-loop",
+}
 
 
 def model_curves(row, u) -> tuple[np.ndarray, np.ndarray]:
     """Δf(u0), ΔΓ(u0) in Hz of the model chosen for one sweep (a row of the sweep results).
 
     Evaluates the registered model function with the sweep's fitted values, read from the
-    columns its parameters name; a sweep whose limits come from an exact loop (Cattaneo-Mindlin
-    or plateau, column ``limits_from``) is drawn as that loop.
+    columns its parameters name; a sweep whose limits come from an exact loop (Cattaneo-Mindlin,
+    Savkoor or plateau, column ``limits_from``) is drawn as that loop.
     """
     u = np.asarray(u, dtype=float)
     model = REGISTRY[_EXACT.get(row.get("limits_from"), row["model"])]

@@ -63,13 +63,14 @@ from ..measurements.sweeps import SweepTable
 from ..resonators.qcm import QCM
 from ..units import JUNCTION_SIGMAS, MIN_SWEEP_POINTS, SMALL_LOAD_LIMIT
 from .amplitude import pad_sweeps
-from .classify import fit_sweeps
+from .blocks import choose_blocks
+from .classify import apply_models, fit_sweeps
 from .drift import LOAD_OF_EXPERIMENT, drifting_sweeps
 from .flags import Flag
-from .friction import loop_friction, slope_friction
+from .friction import block_friction, loop_friction, slope_friction
 from .jkr import fit_group
 from .loads import GROUP_KEYS, per_experiment, per_load
-from .loops import X_MAX, cm_loop_table
+from .loops import X_MAX, loop_tables
 from .models import AMPLITUDE_MODELS
 from .ramps import check_ramps
 from .results import Results
@@ -176,8 +177,8 @@ def analyze(
 
     say("fitting the amplitude models of every sweep")
     padded = pad_sweeps(data)
-    loop_table = cm_loop_table() if settings.exact_loop else None
-    sw = fit_sweeps(padded, settings.delta_bic, settings.exact_loop, loop_table)
+    tables = loop_tables() if settings.exact_loop else None
+    sw = fit_sweeps(padded, settings.delta_bic, settings.exact_loop, tables)
     info = data.drop_duplicates("sweep", keep="first")[list(INFO_COLUMNS)].reset_index(drop=True)
     sw = info.merge(sw, on="sweep", how="right", validate="one_to_one")
     P = _sensitivity(sw, settings.zq)
@@ -187,14 +188,27 @@ def analyze(
     # A sweep at one amplitude has no slope (the straight line is degenerate): say so.
     u_min = padded.u_min
     flat = sw["u_max_m"].to_numpy() == u_min
-    for col in ("df_slope_Hz_per_m", "dgamma_slope_Hz_per_m"):
-        sw.loc[flat, [col, col.replace("_Hz_per_m", "_err_Hz_per_m")]] = np.nan
     first_line = data.groupby("sweep", sort=False)["line"].min().reindex(sw["sweep"]).to_numpy()
     ramps = check_ramps(sw, first_line, sw["direction"].to_numpy())
     running = ramps.first  # the running-in sweep of each load, as measured
     first = running & (not settings.keep_first_ramp)
     used = ~few & ~first
+    # Drift is tested on the ramps after the first: ramp 1's running-in offset is not drift.
+    tested = ~few & ~running
+    drift = drifting_sweeps(sw, padded, tested, settings.drift_p)
+    # A drifting load loses all its sweeps (its ramp 1 too, when ramp 1 is used).
+    drift = _whole_loads(sw, drift) & ~few
+    if not settings.keep_drift:
+        used &= ~drift
     sw["used"] = used
+
+    say("choosing the model of every load block")
+    blocks, decided = choose_blocks(data, sw, used, settings.delta_bic, settings.exact_loop, tables)
+    sw = apply_models(sw, decided["model"].to_numpy(), settings.exact_loop)
+    for col in ("block", "runner_up", "delta_bic", "decided_by"):
+        sw[col] = decided[col].to_numpy()
+    for col in ("df_slope_Hz_per_m", "dgamma_slope_Hz_per_m"):
+        sw.loc[flat, [col, col.replace("_Hz_per_m", "_err_Hz_per_m")]] = np.nan
     rises = (
         sw["df_slope_Hz_per_m"].to_numpy()
         > JUNCTION_SIGMAS * sw["df_slope_err_Hz_per_m"].to_numpy()
@@ -210,6 +224,7 @@ def analyze(
         | _flag((sw["model"] == "plateau").to_numpy(), Flag.PLATEAU_SLOPE)
         | _flag(ramps.suspect, Flag.RAMP_ORDER)
         | _flag(flat, Flag.FLAT_AMPLITUDE)
+        | _flag(drift, Flag.DRIFT)
     )
 
     say("contact stiffness and friction")
@@ -222,27 +237,26 @@ def analyze(
     sw["mu_df_err"] = np.where(rises, np.nan, slopes.mu_df_err)
     sw["mu_dgamma"] = slopes.mu_dgamma
     sw["mu_dgamma_err"] = slopes.mu_dgamma_err
+    sw["mu_block"] = np.nan
+    sw["mu_block_err"] = np.nan
     if settings.exact_loop:
         say("friction from the exact loops")
         loops = loop_friction(sw, P)
         sw["mu_fit"] = loops.mu_fit
         sw["mu_fit_err"] = loops.mu_fit_err
         sw["x_max"] = loops.x_max
+        sw["sliding_force_N"] = loops.sliding_force
+        sw["sliding_force_err_N"] = loops.sliding_force_err
         flags |= _flag(loops.gross_sliding, Flag.GROSS_SLIDING)
+        blocks = block_friction(blocks, sw)
+        member = sw["block"].to_numpy() >= 0
+        for col in ("mu_block", "mu_block_err"):
+            values = blocks[col.replace("_block", "")].to_numpy(float)
+            sw.loc[member, col] = np.asarray(values)[sw["block"].to_numpy()[member]]
     else:
-        sw["mu_fit"] = np.nan
-        sw["mu_fit_err"] = np.nan
-        sw["x_max"] = np.nan
-    # Drift is tested on the ramps after the first: ramp 1's running-in offset is not drift.
-    tested = ~few & ~running
-    drift = drifting_sweeps(sw, padded, tested, settings.drift_p)
-    # A drifting load loses all its sweeps (its ramp 1 too, when ramp 1 is used).
-    drift = _whole_loads(sw, drift) & ~few
-    flags |= _flag(drift, Flag.DRIFT)
+        for col in ("mu_fit", "mu_fit_err", "x_max", "sliding_force_N", "sliding_force_err_N"):
+            sw[col] = np.nan
     sw["flags"] = flags
-    if not settings.keep_drift:
-        used &= ~drift
-        sw["used"] = used
 
     say("statistics per load")
     exp = per_experiment(sw)
@@ -279,5 +293,6 @@ def analyze(
         version=__version__,
         table=table,
         padded=padded,
+        blocks=blocks,
         messages=ramps.messages,
     )

@@ -30,7 +30,7 @@ from scipy import special
 
 from ..numerics import gauss_legendre_unit
 from .amplitude import PLATEAU_MIN_SLOPE
-from .loops import X_MAX, CMLoopTable, fit_cm_loops, solve_projected
+from .loops import X_MAX, LoopTable, fit_cm_loops, solve_projected
 
 __all__ = ["PLATEAU_LOOP_COLUMNS", "fit_plateau_loops", "plateau_loop_slopes"]
 
@@ -253,7 +253,7 @@ def _levenberg_marquardt(model, p, lo, hi, max_iter: int = 200) -> np.ndarray:
 
 
 def fit_plateau_loops(
-    u, df, dg, w, sigma_df, sigma_dg, u_c, table: CMLoopTable | None = None
+    u, df, dg, w, sigma_df, sigma_dg, u_c, table: LoopTable | None = None
 ) -> pd.DataFrame:
     """Fit the exact plateau loop (+ dashpot) to every row of padded sweeps (module docstring).
 
@@ -278,10 +278,14 @@ def fit_plateau_loops(
     floor_f = 1e-6 * np.maximum(np.abs(df).max(axis=1), 1e-12)
     floor_g = 1e-6 * np.maximum(np.abs(dg).max(axis=1), 1e-12)
     lo = np.tile([np.log(10.0**-2.5), 0.0], (S, 1))
-    # d_c/umax: from 0 (no plateau) to the amplitude that leaves PLATEAU_MIN_SLOPE - 1 above it.
-    hi = np.column_stack(
-        [np.full(S, np.log(X_MAX)), u[rows, n.astype(int) - PLATEAU_MIN_SLOPE] / umax]
-    )
+    # d_c/umax: from 0 (no plateau) to the amplitude that leaves PLATEAU_MIN_SLOPE - 1 distinct
+    # amplitudes above it (a row may repeat amplitudes: the ramps of a block fitted jointly).
+    data = w > 0
+    distinct = data & np.concatenate([np.ones((S, 1), bool), np.diff(u, axis=1) > 0], axis=1)
+    count = np.cumsum(distinct, axis=1)  # u ascending: distinct amplitudes <= u
+    above = count[:, -1:] - count
+    room = data & (above >= PLATEAU_MIN_SLOPE - 1)
+    hi = np.column_stack([np.full(S, np.log(X_MAX)), np.max(np.where(room, u, 0.0), axis=1) / umax])
     # Start of θ: the Cattaneo-Mindlin loop fitted to the amplitudes in excess of the hinge.
     start = fit_cm_loops(np.maximum(u - u_c[:, None], 0.0), df, dg, w, sigma_df, sigma_dg, table)
     y0 = start["x_max"].to_numpy()

@@ -31,6 +31,7 @@ class Results:
     padded : the sweeps as padded arrays (for the figures)
     messages : what the analysis found odd in the input, one line each (e.g. ramp labels that
         disagree with the file order)
+    blocks : one row per load block judged jointly (:mod:`contactres.analysis.blocks`)
     """
 
     sweeps: pd.DataFrame
@@ -42,6 +43,7 @@ class Results:
     table: SweepTable | None = None
     padded: Padded | None = field(default=None, repr=False)
     messages: tuple[str, ...] = ()
+    blocks: pd.DataFrame | None = None
 
     def table1(self) -> pd.DataFrame:
         """Table 1 of paper 2 for these data: E (GPa) and γ (mJ/m²) per configuration/medium.

@@ -226,7 +226,7 @@ _SWEEP_RESULT_COLUMNS = (
     Column(
         "model",
         "text",
-        "amplitude class: elastic, cattaneo-mindlin, savkoor or plateau",
+        "amplitude class: elastic, cattaneo-mindlin, savkoor or plateau (see decided_by)",
         level="sweep",
     ),
     Column(
@@ -257,7 +257,7 @@ _SWEEP_RESULT_COLUMNS = (
     Column(
         "mu_fit",
         "-",
-        "μ from the fit of the exact loop (Cattaneo-Mindlin, or behind a plateau)",
+        "μ from this sweep's fit of the exact loop (Cattaneo-Mindlin, or behind a plateau)",
         level="sweep",
     ),
     Column("flags", "text", "';'-separated flags (README: flags)", level="sweep"),
@@ -289,6 +289,39 @@ _SWEEP_RESULT_COLUMNS = (
     Column("mu_dgamma_err", "-", "standard error of mu_dgamma", level="sweep"),
     Column("mu_fit_err", "-", "standard error of mu_fit", level="sweep"),
     Column("plateau_amplitude_err_m", "m", "standard error of plateau_amplitude_m", level="sweep"),
+    Column(
+        "runner_up",
+        "text",
+        "the class with the next-best BIC (of the block where decided_by is block)",
+        level="sweep",
+    ),
+    Column(
+        "delta_bic",
+        "-",
+        "BIC of the runner-up minus that of the chosen class: the evidence for the choice",
+        level="sweep",
+    ),
+    Column(
+        "decided_by",
+        "text",
+        "block: the class was chosen for the used ramps of the load jointly; sweep: alone",
+        level="sweep",
+    ),
+    Column("model_sweep", "text", "the class this sweep alone would get", level="sweep"),
+    Column(
+        "mu_block",
+        "-",
+        "μ of the joint fit of the load block (ramps sharing one contact); used in loads.csv",
+        level="sweep",
+    ),
+    Column("mu_block_err", "-", "standard error of mu_block", level="sweep"),
+    Column(
+        "sliding_force_N",
+        "N",
+        "Savkoor sweeps: sliding force πa²τ0 from the exact Savkoor loop (paper 2, Eqs. 13-14)",
+        level="sweep",
+    ),
+    Column("sliding_force_err_N", "N", "standard error of sliding_force_N", level="sweep"),
 )
 
 SWEEP_RESULTS = TableSchema(
@@ -304,7 +337,7 @@ LOAD_QUANTITIES: tuple[tuple[str, str, str], ...] = (
     ("loss_tangent", "-", "loss tangent ΔΓ0/Δf0"),
     ("mu_df", "-", "μ from the Δf slope"),
     ("mu_dgamma", "-", "μ from the ΔΓ slope"),
-    ("mu_fit", "-", "μ from the exact-loop fit"),
+    ("mu_fit", "-", "μ from the exact-loop fit (of the load block where its ramps share one)"),
 )
 
 LOAD_RESULTS = TableSchema(

@@ -14,7 +14,8 @@ A study is a frozen :class:`SweepStudy` (groups of configuration x medium, loads
 ramps, scatter, special cases); :func:`synthetic_sweeps` turns it and a seeded random generator
 into a sweep table, one row per point. The random numbers are drawn in a fixed, documented order
 (see :func:`synthetic_sweeps`), so a study and a seed give the same table on every run.
-:func:`example_study` is the recipe of the bundled ``example_sweeps.csv``.
+:mod:`contactres.measurements.studies` holds the recipes (the bundled example, the validation
+study).
 
 All quantities SI: forces N, lengths m, moduli Pa, γ J/m², stiffness N/m, shifts Hz.
 """
@@ -41,14 +42,12 @@ from ..validation import nonnegative, positive
 from .sweeps import VALIDATED_COLUMNS
 
 __all__ = [
-    "EXAMPLE_SEED",
     "LOOP_MODELS",
     "SCATTERED",
     "Drift",
     "SweepGroup",
     "SweepStudy",
     "contact_loop",
-    "example_study",
     "sweep_shifts",
     "synthetic_sweeps",
 ]
@@ -58,9 +57,6 @@ LOOP_MODELS = ("cattaneo-mindlin", "plateau", "savkoor", "elastic")
 
 #: Quantities that may scatter between experiments (or loads): E, γ and μ.
 SCATTERED = ("E", "gamma", "mu")
-
-#: Seed of the bundled example data (``scripts/make_example_data.py``).
-EXAMPLE_SEED = 20150601
 
 # Columns of the table, in the order of a validated table; the constants follow when asked for.
 _COLUMNS = (*VALIDATED_COLUMNS[: VALIDATED_COLUMNS.index("dgamma_Hz") + 1], "sphere_radius_m")
@@ -300,7 +296,11 @@ def _factors(study: SweepStudy, rng: np.random.Generator) -> dict[str, float]:
 
 
 def synthetic_sweeps(
-    study: SweepStudy, rng: np.random.Generator | int, *, constants: bool = False
+    study: SweepStudy,
+    rng: np.random.Generator | int,
+    *,
+    constants: bool = False,
+    truth: bool = False,
 ) -> pd.DataFrame:
     """The sweep table of ``study``: one row per point, noise from ``rng``.
 
@@ -323,6 +323,11 @@ def synthetic_sweeps(
     rng : a numpy random generator (used and advanced) or a seed
     constants : append the constant columns ``fundamental_Hz``, ``overtone``, ``area_m2``,
         ``n_contacts``, ``poisson`` (the study's resonator), so the table stands on its own
+    truth : append the true contact of every sweep, for validation studies:
+        ``true_model`` (one of :data:`LOOP_MODELS`), ``true_kappa_N_per_m``, ``true_mu``,
+        ``true_omega_xi_N_per_m``, ``true_critical_displacement_m`` (plateau, else NaN),
+        ``true_sliding_force_N`` (Savkoor: πa²τ0, else NaN), ``true_drift`` (a drift is added);
+        not columns of the sweep table, so drop them before analysing
 
     Returns
     -------
@@ -337,6 +342,7 @@ def synthetic_sweeps(
     f_first = study.normal_forces[0]
     drifts = {(d.configuration, d.medium, d.experiment, d.load): d.rate for d in study.drifts}
     labels: list[tuple] = []  # (sweep, experiment, configuration, medium, ramp, F, R) per sweep
+    truths: list[tuple] = []  # (model, κ, μ, ωξ, d_c, F_s, drift) per sweep
     parts: list[tuple[np.ndarray, np.ndarray, np.ndarray]] = []  # (u, df, dgamma) per sweep
     for g in study.groups:
         u_up = np.asarray(g.amplitudes, dtype=float)
@@ -394,6 +400,20 @@ def synthetic_sweeps(
                     if rate is not None:
                         df = df + rate * (ramp - 1)
                     sweep = f"{g.configuration}/{g.medium}/e{e}/F{j}/r{ramp}"
+                    truths.append(
+                        (
+                            model,
+                            kappa,
+                            mu if model in ("cattaneo-mindlin", "plateau") else np.nan,
+                            g.omega_xi,
+                            dc if model == "plateau" else np.nan,
+                            # Savkoor: F_s = πa²τ0 with 4a²τ0/κ the sliding amplitude.
+                            np.pi * kappa * study.savkoor_sliding * u_max / 4.0
+                            if model == "savkoor"
+                            else np.nan,
+                            rate is not None and ramp > 1,
+                        )
+                    )
                     labels.append(
                         (sweep, f"e{e}", g.configuration, g.medium, ramp, force, g.radius)
                     )
@@ -409,6 +429,11 @@ def synthetic_sweeps(
     for i, name in enumerate(("amplitude_m", "df_Hz", "dgamma_Hz")):
         table[name] = np.concatenate([part[i] for part in parts])
     out = pd.DataFrame(table, columns=list(_COLUMNS))
+    if truth:
+        names = ("true_model", "true_kappa_N_per_m", "true_mu", "true_omega_xi_N_per_m")
+        names = (*names, "true_critical_displacement_m", "true_sliding_force_N", "true_drift")
+        for name, values in zip(names, zip(*truths, strict=True), strict=True):
+            out[name] = np.repeat(np.asarray(values), sizes)
     if constants:
         out = out.assign(
             fundamental_Hz=q.fundamental,
@@ -418,61 +443,3 @@ def synthetic_sweeps(
             poisson=nu,
         )
     return out
-
-
-def example_study(n_experiments: int = 4) -> SweepStudy:
-    """The study of the bundled ``example_sweeps.csv`` (seed :data:`EXAMPLE_SEED`).
-
-    Modelled on paper 2's experiment: glass spheres on a silica-coated 5 MHz QCM (overtone 3,
-    A_eff = 2.5e-5 m², Z_q = 8.8e6 kg m⁻² s⁻¹), tripod n_P = 3, ν = 0.17 (E1 = E2 = E):
-
-    - ``SiO2_2.2mm`` (R = 1.1 mm): air E = 70 GPa, γ = 0.19 J/m²; water E = 77 GPa,
-      γ = 0.05 J/m²; ``SiO2_1.2mm`` (R = 0.6 mm): air E = 61 GPa, γ = 0.03 J/m²; water
-      E = 67 GPa, γ = 0.02 J/m²;
-    - loads: tripod 0.5 g plus 0, 0.5, ..., 2.5 g, F_N = m g/3 per contact (1.6 ... 9.8 mN);
-    - μ = 1.2 (F_N/1.635 mN)^-0.1 (falls slightly with load); ωξ such that ΔΓ0 = 5 Hz in air
-      and 8 Hz in water at every load (load-independent, as in paper 2, Fig. 7);
-    - amplitudes: 13 steps 0.5-10 nm in air, 11 steps 0.3-5 nm in water; four ramps per load
-      (up, down, up, down);
-    - experiment-to-experiment scatter: E x lognormal(3 %), γ x lognormal(20 %),
-      μ x lognormal(5 %);
-    - running-in: ramp 1 has κ 6 % lower and μ 30 % lower;
-    - noise: σ = 0.3 Hz (air) and 0.6 Hz (water) on Δf and ΔΓ;
-    - about 8 % of loads have a stick plateau in ramps 2-4 (critical displacement 25-40 % of
-      the largest amplitude); experiment 4 of SiO2_1.2mm in air follows Savkoor (τ0 such that
-      full sliding is at twice the largest amplitude); experiment 3 of SiO2_2.2mm in air drifts
-      by +1.5 Hz per ramp at the 1.0 g load.
-
-    Parameters
-    ----------
-    n_experiments : repeated experiments per configuration and medium (14 gives the
-        ~1,300-sweep table of the analysis benchmark)
-    """
-    q = QCM(5e6, 3, 2.5e-5)
-    P = q.sensitivity(3)
-    g = 9.81
-    loads = tuple((0.5e-3 + m) * g / 3.0 for m in (0.0, 0.5e-3, 1.0e-3, 1.5e-3, 2.0e-3, 2.5e-3))
-    air = dict(amplitudes=tuple(np.linspace(0.5e-9, 10e-9, 13)), omega_xi=5.0 / P, noise=0.3)
-    water = dict(amplitudes=tuple(np.linspace(0.3e-9, 5e-9, 11)), omega_xi=8.0 / P, noise=0.6)
-    groups = (
-        SweepGroup("SiO2_2.2mm", "air", 1.1e-3, 70e9, 0.19, **air),
-        SweepGroup("SiO2_2.2mm", "water", 1.1e-3, 77e9, 0.05, **water),
-        SweepGroup("SiO2_1.2mm", "air", 0.6e-3, 61e9, 0.03, **air),
-        SweepGroup("SiO2_1.2mm", "water", 0.6e-3, 67e9, 0.02, **water),
-    )
-    return SweepStudy(
-        groups=groups,
-        normal_forces=loads,
-        n_experiments=n_experiments,
-        qcm=q,
-        n_contacts=3,
-        poisson=0.17,
-        mu=1.2,
-        mu_exponent=-0.1,
-        scatter=(("E", 0.03), ("gamma", 0.2), ("mu", 0.05)),
-        running_in_kappa=0.94,
-        running_in_mu=0.7,
-        random_plateau=0.08,
-        savkoor_experiments=(("SiO2_1.2mm", "air", 4),),
-        drifts=(Drift("SiO2_2.2mm", "air", 3, 2, 1.5),),
-    )

@@ -1,0 +1,184 @@
+"""The model choice of a load block: the ramps of one load of one experiment judged together.
+
+The used ramps of one load of one experiment (ramps 2-4 in paper 2's protocol) measure the same
+contact, so their class is chosen from all their points at once, which is far more decisive than
+each sweep alone. For every class of :data:`~contactres.analysis.models.AMPLITUDE_MODELS` two
+descriptions of the block compete (k parameters of the class's fit, plus the two noise levels
+of Δf and ΔΓ, n the points of the block, N = 2n the residuals):
+
+``shared``    one fit of all the block's points: the ramps share κ, ωξ and the class's own
+              parameters (μ, τ0, d_c) and the noise levels,
+              ``BIC = n ln(RSS_f/n) + n ln(RSS_Γ/n) + (k + 2) ln N``;
+``per ramp``  each ramp its own parameters and noise levels (the per-sweep fits),
+              ``BIC = Σ_r [n_r ln(RSS_f,r/n_r) + n_r ln(RSS_Γ,r/n_r)] + R (k + 2) ln N``,
+
+so that ramp-to-ramp differences are allowed where the data demand them. The class of the
+lowest of these 2 x 4 criteria wins, except that a candidate nested in it (a nested class,
+:data:`~contactres.analysis.classify.NESTED`, and ``shared`` within ``per ramp``) is kept within
+``delta_bic`` of the lowest, the simplest first, as for one sweep
+(:mod:`contactres.analysis.classify`). The runner-up is the best candidate of another class and
+``delta_bic`` its criterion minus the winner's. Every sweep of the block takes the block's
+class; its own parameters come from its own fit of that class. Where the block is ``shared``,
+the joint fit's parameters (μ, the Savkoor sliding force, d_c) are the block's values that the
+per-load statistics use.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from .amplitude import pad_sweeps
+from .classify import CLASS_SOURCES, NESTED, fit_sweeps, n_parameters, prefer, source_valid
+from .drift import LOAD_OF_EXPERIMENT
+from .loops import LoopTables
+from .models import AMPLITUDE_MODELS
+
+__all__ = ["BLOCK_COLUMNS", "choose_blocks"]
+
+#: Columns of the block table besides the keys of :data:`LOAD_OF_EXPERIMENT`.
+BLOCK_COLUMNS = (
+    "block",
+    "n_sweeps",
+    "n_points",
+    "model",
+    "shared",
+    "runner_up",
+    "delta_bic",
+)
+
+
+def _loglik(rss_f, rss_g, n):
+    floor = 1e-30  # as contactres.analysis.amplitude.bic: a perfect fit is not -inf
+    return n * np.log(np.maximum(rss_f, floor) / n) + n * np.log(np.maximum(rss_g, floor) / n)
+
+
+def choose_blocks(
+    data: pd.DataFrame,
+    sw: pd.DataFrame,
+    joint: np.ndarray,
+    delta_bic: float,
+    exact_loop: bool,
+    tables: LoopTables | None,
+    workers: int = 1,
+) -> tuple[pd.DataFrame, pd.DataFrame]:
+    """Choose the class of every load block of the sweeps ``joint`` (see the module docstring).
+
+    Parameters
+    ----------
+    data : the sweep table's points (columns ``sweep``, ``amplitude_m``, ``df_Hz``, ``dgamma_Hz``)
+    sw : the per-sweep fits (:func:`~contactres.analysis.classify.fit_sweeps`) with the labels
+        of :data:`~contactres.analysis.drift.LOAD_OF_EXPERIMENT`
+    joint : which sweeps enter their block (the used ones); blocks of one sweep are left alone
+    delta_bic, exact_loop, tables, workers : as for :func:`fit_sweeps`
+
+    Returns
+    -------
+    blocks : one row per block of two or more sweeps: the keys, :data:`BLOCK_COLUMNS`, and the
+        joint fit of the winning class (``df0_Hz``, ``dgamma0_Hz``, their errors, and for a
+        loop ``theta_per_m``, ``lntheta_err``, ``cov_df0_lntheta``, ``x_max``, ``edge``,
+        ``d_c_m``, ``d_c_err_m``), NaN where the block is not ``shared``
+    per_sweep : one row per sweep of ``sw``: ``block`` (-1: none), ``model`` (the block's class,
+        else the sweep's own), ``runner_up``, ``delta_bic``, ``decided_by`` (``block`` or
+        ``sweep``)
+    """
+    S = len(sw)
+    per_sweep = pd.DataFrame(
+        {
+            "block": np.full(S, -1),
+            # Copies: the frame is changed below, the sweep fits must not be.
+            "model": np.array(sw["model_sweep"], dtype=object),
+            "runner_up": np.array(sw["runner_up"], dtype=object),
+            "delta_bic": np.array(sw["delta_bic"], dtype=float),
+            "decided_by": np.full(S, "sweep", dtype=object),
+        }
+    )
+    code = np.full(S, -1)
+    idx = np.flatnonzero(joint)
+    if idx.size:
+        code[idx] = sw.iloc[idx].groupby(LOAD_OF_EXPERIMENT, sort=True).ngroup().to_numpy()
+    sizes = np.bincount(code[code >= 0], minlength=max(code.max() + 1, 1))
+    code = np.where((code >= 0) & (sizes[np.maximum(code, 0)] >= 2), code, -1)
+    keep = np.unique(code[code >= 0])
+    if keep.size == 0:
+        return pd.DataFrame(columns=[*LOAD_OF_EXPERIMENT, *BLOCK_COLUMNS]), per_sweep
+    # Renumber the blocks 0 ... B-1 in the order of their keys.
+    code = np.where(code >= 0, np.searchsorted(keep, code), -1)
+    B = keep.size
+    of_sweep = pd.Series(code, index=sw["sweep"].to_numpy())
+    points = data[["sweep", "amplitude_m", "df_Hz", "dgamma_Hz"]]
+    points = points.assign(sweep=of_sweep.reindex(points["sweep"]).to_numpy())
+    points = points[points["sweep"] >= 0]
+    bp = pad_sweeps(points)
+    bf = fit_sweeps(bp, delta_bic, exact_loop, tables, workers)
+    bf.index = bf["sweep"].to_numpy(int)
+    bf = bf.sort_index()
+
+    # The 2 x 4 criteria of every block: (shared, per ramp) for each class.
+    member = code >= 0
+    n_r = sw["n_points"].to_numpy(float)
+    n = np.bincount(code[member], weights=n_r[member], minlength=B)
+    R = np.bincount(code[member], minlength=B).astype(float)
+    lnN = np.log(2 * n)
+    candidates, classes = [], []
+    for m in AMPLITUDE_MODELS:
+        src = CLASS_SOURCES[exact_loop][m]
+        k = n_parameters(src) + 2
+        shared = _loglik(bf[f"{src}_rss_df"], bf[f"{src}_rss_dgamma"], n).to_numpy(float)
+        shared = np.where(source_valid(bf, src), shared + k * lnN, np.inf)
+        ll = _loglik(sw[f"{src}_rss_df"], sw[f"{src}_rss_dgamma"], n_r).to_numpy(float)
+        ok = source_valid(sw, src)
+        sums = np.bincount(code[member], weights=np.where(ok, ll, 0.0)[member], minlength=B)
+        bad = np.bincount(code[member], weights=(~ok)[member].astype(float), minlength=B) > 0
+        separate = np.where(bad, np.inf, sums + R * k * lnN)
+        candidates += [shared, separate]
+        classes += [m, m]
+    crit = np.stack(candidates)
+    classes = np.asarray(classes)
+    # Candidate a is nested in b if its class is (NESTED) and it is shared or b is per ramp.
+    per_ramp = np.arange(len(classes)) % 2 == 1
+    cls = np.repeat(np.arange(len(AMPLITUDE_MODELS)), 2)
+    nested = NESTED[cls][:, cls] & (~per_ramp[:, None] | per_ramp[None, :])
+    pick = prefer(crit, nested, delta_bic)
+    cols = np.arange(B)
+    winner = classes[pick]
+    others = np.where(classes[:, None] == winner[None, :], np.inf, crit)
+    runner = np.argmin(others, axis=0)
+    with np.errstate(invalid="ignore"):
+        evidence = others[runner, cols] - crit[pick, cols]
+
+    keys = sw.loc[member, LOAD_OF_EXPERIMENT].assign(block=code[member])
+    blocks = keys.drop_duplicates("block").sort_values("block").reset_index(drop=True)
+    blocks["n_sweeps"] = R.astype(int)
+    blocks["n_points"] = n.astype(int)
+    blocks["model"] = winner
+    blocks["shared"] = pick % 2 == 0
+    blocks["runner_up"] = classes[runner]
+    blocks["delta_bic"] = evidence
+    # The joint fit of the winning class (NaN where the ramps keep their own parameters).
+    fields = ("df0_Hz", "df0_err_Hz", "dgamma0_Hz", "dgamma0_err_Hz")
+    loop_fields = ("theta_per_m", "lntheta_err", "cov_df0_lntheta", "x_max")
+    for field in (*fields, *loop_fields, "d_c_m", "d_c_err_m"):
+        blocks[field] = np.nan
+    blocks["edge"] = ""
+    for m in AMPLITUDE_MODELS:
+        src = CLASS_SOURCES[exact_loop][m]
+        rows = (winner == m) & blocks["shared"].to_numpy()
+        if not rows.any():
+            continue
+        for field in fields:
+            blocks.loc[rows, field] = bf[f"{src}_{field}"].to_numpy(float)[rows]
+        if src in ("cm", "sv", "pl"):
+            for field in loop_fields:
+                blocks.loc[rows, field] = bf[f"{src}_{field}"].to_numpy(float)[rows]
+            blocks.loc[rows, "edge"] = bf[f"{src}_edge"].to_numpy(object)[rows]
+        if src == "pl":
+            for field in ("d_c_m", "d_c_err_m"):
+                blocks.loc[rows, field] = bf[f"pl_{field}"].to_numpy(float)[rows]
+
+    per_sweep.loc[member, "block"] = code[member]
+    per_sweep.loc[member, "model"] = winner[code[member]]
+    per_sweep.loc[member, "runner_up"] = classes[runner][code[member]]
+    per_sweep.loc[member, "delta_bic"] = evidence[code[member]]
+    per_sweep.loc[member, "decided_by"] = "block"
+    return blocks, per_sweep
