@@ -3,10 +3,14 @@
 :func:`analyze` is a pure function of (sweep table, settings) and returns a
 :class:`contactres.analysis.results.Results`. Its steps:
 
-1. **Per sweep** (:mod:`contactres.analysis.classify`, all sweeps at once): low-amplitude limits
-   Δf0, ΔΓ0, slopes and curvatures with standard errors, the model class (``elastic``,
-   ``cattaneo-mindlin``, ``savkoor``, ``plateau``; lowest BIC with a preference for the simpler
-   model within ``delta_bic``) and the critical amplitude of a plateau.
+1. **Per sweep** (:mod:`contactres.analysis.classify`, all sweeps at once): every amplitude
+   model fitted (the exact Cattaneo-Mindlin, Savkoor and plateau loops, the elastic mean, and
+   the straight line and parabola for slopes and curvatures), and the class of the sweep alone
+   (lowest BIC, a nested simpler class kept within ``delta_bic``). Then **per load block**
+   (:mod:`contactres.analysis.blocks`): the used ramps of one load of one experiment get one
+   class, chosen from all their points (shared parameters, or each ramp its own where the data
+   demand it); the limits Δf0, ΔΓ0 with standard errors and the critical displacement of a
+   plateau come from each sweep's fit of that class.
 2. **Contact stiffness** (paper 2, Eq. 2): κ = Δf0/P, ωξ = ΔΓ0/P, P = n_P/(2nπ²A_eff Z_q), and the
    loss tangent ΔΓ0/Δf0.
 3. **Friction** for ``cattaneo-mindlin`` and ``plateau`` sweeps. From the slopes (Cattaneo-Mindlin
