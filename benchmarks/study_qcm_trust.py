@@ -7,8 +7,9 @@ settings and prints
 
 - the confusion matrix of the amplitude model per medium (true model of the generator vs the
   model the analysis chose), over the sweeps after ramp 1 of loads without drift;
-- the per-load friction coefficient (mean over experiments of the used sweeps' ``mu_fit``)
-  against the truth (the mean true μ of the same sweeps): median and largest |relative error|;
+- the per-load friction coefficient of ``loads.csv`` (``mu_fit_mean`` and the robust
+  ``mu_fit_median`` over experiments) against the truth (the mean true μ of the same sweeps):
+  median and largest |relative error| (the target is checked on the median);
 - E and γ of every group against the generator's values, with the printed errors, and the
   calibration of those errors: the scatter of E and γ over the repeated studies divided by the
   mean printed error (1 is perfect; the target is within a factor 2).
@@ -62,13 +63,16 @@ def confusion(sw: pd.DataFrame) -> dict[str, pd.DataFrame]:
     return out
 
 
-def mu_errors(sw: pd.DataFrame) -> pd.DataFrame:
-    used = sw[sw["used"] & sw["true_mu"].notna()]
+def mu_errors(sw: pd.DataFrame, loads: pd.DataFrame) -> pd.DataFrame:
+    """loads.csv's μ (mean and median over experiments) against the mean true μ of the same
+    used sweeps."""
     keys = ["configuration", "medium", "normal_force_N"]
-    per_exp = used.groupby([*keys, "experiment"])[["mu_fit", "true_mu"]].mean()
-    per_load = per_exp.groupby(keys).mean()
-    per_load["rel_err"] = per_load["mu_fit"] / per_load["true_mu"] - 1
-    return per_load.reset_index()
+    used = sw[sw["used"] & sw["true_mu"].notna()]
+    truth = used.groupby([*keys, "experiment"])["true_mu"].mean().groupby(keys).mean()
+    out = loads.set_index(keys)[["mu_fit_mean", "mu_fit_median"]].join(truth, how="inner")
+    out["rel_err"] = out["mu_fit_mean"] / out["true_mu"] - 1
+    out["rel_err_median"] = out["mu_fit_median"] / out["true_mu"] - 1
+    return out.reset_index()
 
 
 def main(argv=None) -> int:
@@ -83,7 +87,7 @@ def main(argv=None) -> int:
         print(f"study {k + 1}: {len(sw)} sweeps analysed in {seconds:.1f} s")
         for medium, m in confusion(sw).items():
             totals[medium] = m if medium not in totals else totals[medium].add(m, fill_value=0)
-        mus.append(mu_errors(sw).assign(study=k))
+        mus.append(mu_errors(sw, res.loads).assign(study=k))
         truth = {(g.configuration, g.medium): g for g in study.groups}
         for g in res.groups:
             t = truth[(g["configuration"], g["medium"])]
@@ -118,16 +122,18 @@ def main(argv=None) -> int:
                 ok &= not hit.endswith(")")
                 print(f"  {model}: {rate:.1%} right{hit}")
     mu = pd.concat(mus)
-    print("\nper-load μ (mean of mu_fit over experiments) vs truth, |relative error|:")
+    print("\nper-load μ of loads.csv vs truth, |relative error| over the loads:")
     for medium, part in mu.groupby("medium"):
-        e = part["rel_err"].abs()
         target = 0.10 if medium == "air" else 0.15
-        verdict = "ok" if e.max() <= target else f"MISSED (target {target:.0%})"
-        ok &= e.max() <= target
-        print(
-            f"  {medium}: median {e.median():.1%}, 90th pct {e.quantile(0.9):.1%}, "
-            f"max {e.max():.1%} over {len(e)} loads  {verdict}"
-        )
+        for col, name in (("rel_err", "mu_fit_mean"), ("rel_err_median", "mu_fit_median")):
+            e = part[col].abs()
+            verdict = "ok" if e.max() <= target else f"MISSED (target {target:.0%})"
+            if col == "rel_err_median":  # the robust location is the one to meet the target
+                ok &= e.max() <= target
+            print(
+                f"  {medium} {name}: median {e.median():.1%}, 90th pct {e.quantile(0.9):.1%}, "
+                f"max {e.max():.1%} over {len(e)} loads  {verdict}"
+            )
     g = pd.DataFrame(groups)
     print("\nE and γ per group (relative E error; γ in J/m²):")
     rows = []

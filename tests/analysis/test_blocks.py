@@ -82,8 +82,7 @@ def _block_table(kind, n_blocks, noise, seed, **kw):
 
 
 def test_pure_cattaneo_mindlin_blocks_are_rarely_called_plateau():
-    # The change-point penalty (classify.CHANGE_POINT_EXTRA): without it ~5 % of such blocks
-    # in the validation study passed as plateaus.
+    # The plateau loop has one parameter more (d_c) and nests the Cattaneo-Mindlin loop.
     raw = _block_table("cattaneo-mindlin", 60, 0.3, 7)
     res = analyze(
         validate_sweeps(raw.filter(regex="^(?!true_)"), constants=CONST),
@@ -152,3 +151,42 @@ def test_model_sweep_keeps_the_sweeps_own_choice():
     )
     own = sw.set_index("sweep")["model"]
     assert (res.sweeps.set_index("sweep")["model_sweep"] == own.reindex(res.sweeps["sweep"])).all()
+
+
+def _mixed_study(seed):
+    """Two experiments of one contact: e1 Cattaneo-Mindlin with stick plateaus in half its
+    loads, e2 Savkoor throughout (water-like noise)."""
+    u = tuple(np.linspace(0.5e-9, 10e-9, 13))
+    study = SweepStudy(
+        groups=(SweepGroup("glass", "air", 1.1e-3, 70e9, 0.19, u, 5.0 / P, 0.5),),
+        normal_forces=(1.6e-3, 3.3e-3, 4.9e-3, 6.5e-3),
+        n_experiments=2,
+        ramps=(2, 3, 4),
+        qcm=Q,
+        mu=1.1,
+        random_plateau=0.5,
+        random_plateau_range=(0.3, 0.4),
+        savkoor_experiments=(("glass", "air", 2),),
+    )
+    return synthetic_sweeps(study, seed, truth=True)
+
+
+@pytest.mark.parametrize("pool", [True, False])
+def test_the_friction_law_is_decided_per_experiment(pool):
+    raw = _mixed_study(21)
+    res = analyze(
+        validate_sweeps(raw.filter(regex="^(?!true_)"), constants=CONST),
+        settings=AnalysisSettings(bootstrap=0, pool_experiments=pool),
+    )
+    b = res.blocks
+    law = b.groupby("experiment")["friction_law"].unique()
+    if pool:
+        assert law["e1"].tolist() == ["coulomb"] and law["e2"].tolist() == ["savkoor"]
+        assert set(b.loc[b["experiment"] == "e1", "model"]) <= {"cattaneo-mindlin", "plateau"}
+        assert (b.loc[b["experiment"] == "e2", "model"] == "savkoor").all()
+    else:
+        assert (b["friction_law"] == "").all()
+    # Classes against the truth: with pooling every block right.
+    truth = raw.drop_duplicates("sweep").set_index("sweep")["true_model"]
+    right = (res.sweeps.set_index("sweep")["model"] == truth.reindex(res.sweeps["sweep"])).mean()
+    assert right == 1.0 if pool else right >= 0.5

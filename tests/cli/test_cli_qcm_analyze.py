@@ -102,3 +102,19 @@ def test_help_states_units():
     assert r.exit_code == 0
     for unit in ("(m^2)", "(Hz)", "(m)"):
         assert unit in r.output
+
+
+def test_keep_drift_and_law_per_load_reach_the_settings(sweeps_csv, tmp_path):
+    out = tmp_path / "res"
+    r = run(
+        "qcm", "analyze", sweeps_csv, "--out", out, *OPTS, "--no-figures", "--bootstrap", "0",
+        "--keep-drift", "--law-per-load",
+    )  # fmt: skip
+    assert r.exit_code == 0, r.output
+    settings = json.loads((out / "summary.json").read_text())["settings"]
+    assert settings["keep_drift"] is True and settings["pool_experiments"] is False
+    sweeps = pd.read_csv(out / "sweeps.csv")
+    # Every used sweep says how its class was chosen, against which runner-up, with what evidence.
+    used = sweeps[sweeps["used"]]
+    assert set(used["decided_by"]) == {"block"}
+    assert used["runner_up"].notna().all() and np.isfinite(used["delta_bic"]).all()

@@ -18,7 +18,9 @@ lowest of these 2 x 4 criteria wins, except that a candidate nested in it (a nes
 ``delta_bic`` of the lowest, the simplest first, as for one sweep
 (:mod:`contactres.analysis.classify`). The runner-up is the best candidate of another class and
 ``delta_bic`` its criterion minus the winner's. Every sweep of the block takes the block's
-class; its own parameters come from its own fit of that class. Where the block is ``shared``,
+class; its own parameters come from its own fit of that class. The friction law (Coulomb:
+Cattaneo-Mindlin or plateau; or Savkoor's constant traction) is first decided per experiment
+over all its loads (:func:`_friction_law`; ``pool_experiment``). Where the block is ``shared``,
 the joint fit's parameters (μ, the Savkoor sliding force, d_c) are the block's values that the
 per-load statistics use.
 """
@@ -39,6 +41,7 @@ __all__ = ["BLOCK_COLUMNS", "choose_blocks"]
 #: Columns of the block table besides the keys of :data:`LOAD_OF_EXPERIMENT`.
 BLOCK_COLUMNS = (
     "block",
+    "friction_law",
     "n_sweeps",
     "n_points",
     "model",
@@ -53,6 +56,23 @@ def _loglik(rss_f, rss_g, n):
     return n * np.log(np.maximum(rss_f, floor) / n) + n * np.log(np.maximum(rss_g, floor) / n)
 
 
+def _friction_law(crit, classes, blocks: pd.DataFrame, delta_bic: float) -> np.ndarray:
+    """The friction law of every block's experiment: ``coulomb``, ``savkoor`` or ``""`` (open).
+
+    Paper 2 found whole experiments (mountings) following Savkoor, others Cattaneo-Mindlin
+    with occasional stick plateaus: the law of the interface belongs to the experiment, not to
+    one load. So the two families are compared over all loads of an experiment at once: the
+    sum over its blocks of [best Coulomb criterion (Cattaneo-Mindlin or plateau) - best Savkoor
+    criterion]; beyond ``delta_bic`` either way, the other family is excluded from its blocks.
+    """
+    sv = crit[classes == "savkoor"].min(axis=0)
+    cm = crit[np.isin(classes, ["cattaneo-mindlin", "plateau"])].min(axis=0)
+    diff = np.where(np.isfinite(sv) & np.isfinite(cm), cm - sv, 0.0)
+    exp = blocks.groupby(["configuration", "medium", "experiment"], sort=False).ngroup()
+    total = np.bincount(exp.to_numpy(), weights=diff)[exp.to_numpy()]
+    return np.where(total > delta_bic, "savkoor", np.where(total < -delta_bic, "coulomb", ""))
+
+
 def choose_blocks(
     data: pd.DataFrame,
     sw: pd.DataFrame,
@@ -61,6 +81,7 @@ def choose_blocks(
     exact_loop: bool,
     tables: LoopTables | None,
     workers: int = 1,
+    pool_experiment: bool = True,
 ) -> tuple[pd.DataFrame, pd.DataFrame]:
     """Choose the class of every load block of the sweeps ``joint`` (see the module docstring).
 
@@ -71,6 +92,8 @@ def choose_blocks(
         of :data:`~contactres.analysis.drift.LOAD_OF_EXPERIMENT`
     joint : which sweeps enter their block (the used ones); blocks of one sweep are left alone
     delta_bic, exact_loop, tables, workers : as for :func:`fit_sweeps`
+    pool_experiment : decide the friction law (Coulomb or Savkoor) once per experiment
+        (:func:`_friction_law`)
 
     Returns
     -------
@@ -139,6 +162,14 @@ def choose_blocks(
     per_ramp = np.arange(len(classes)) % 2 == 1
     cls = np.repeat(np.arange(len(AMPLITUDE_MODELS)), 2)
     nested = NESTED[cls][:, cls] & (~per_ramp[:, None] | per_ramp[None, :])
+    keys = sw.loc[member, LOAD_OF_EXPERIMENT].assign(block=code[member])
+    blocks = keys.drop_duplicates("block").sort_values("block").reset_index(drop=True)
+    family = _friction_law(crit, classes, blocks, delta_bic) if pool_experiment else None
+    if family is not None:
+        savkoor = classes == "savkoor"
+        coulomb = np.isin(classes, ["cattaneo-mindlin", "plateau"])
+        crit = np.where(savkoor[:, None] & (family == "coulomb")[None, :], np.inf, crit)
+        crit = np.where(coulomb[:, None] & (family == "savkoor")[None, :], np.inf, crit)
     pick = prefer(crit, nested, delta_bic)
     cols = np.arange(B)
     winner = classes[pick]
@@ -147,8 +178,7 @@ def choose_blocks(
     with np.errstate(invalid="ignore"):
         evidence = others[runner, cols] - crit[pick, cols]
 
-    keys = sw.loc[member, LOAD_OF_EXPERIMENT].assign(block=code[member])
-    blocks = keys.drop_duplicates("block").sort_values("block").reset_index(drop=True)
+    blocks["friction_law"] = family if family is not None else ""
     blocks["n_sweeps"] = R.astype(int)
     blocks["n_points"] = n.astype(int)
     blocks["model"] = winner

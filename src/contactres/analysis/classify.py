@@ -187,18 +187,9 @@ def _fit_blocks(
     return out
 
 
-#: Extra parameters counted for a change point (the plateau's critical displacement, the hinge):
-#: its likelihood-ratio statistic is not χ²₁ (the position is searched over the sweep; Davies,
-#: Biometrika 74 (1987) 33-43), and counted as one parameter it let pure Cattaneo-Mindlin
-#: blocks pass as plateaus ~5 % of the time (benchmarks/study_qcm_trust.py); as two, < 1 %
-#: (tests/analysis/test_classify.py).
-CHANGE_POINT_EXTRA = 1
-
-
 def n_parameters(source: str) -> int:
-    """The k of the BIC of a fit from ``source`` (a change point counts as two parameters)."""
-    k = N_PARAMETERS[SOURCE_MODEL[source]]
-    return k + CHANGE_POINT_EXTRA if source in ("hinge", "pl") else k
+    """The k of the BIC of a fit from ``source``."""
+    return N_PARAMETERS[SOURCE_MODEL[source]]
 
 
 def source_valid(sw: pd.DataFrame, source: str) -> np.ndarray:

@@ -95,6 +95,8 @@ class AnalysisSettings:
     keep_first_ramp : use ramp 1 of every load (default: set aside as running-in)
     keep_drift : use the sweeps of loads whose ramps drift (default: left out of the means and
         fits, and listed)
+    pool_experiments : decide the friction law (Coulomb or Savkoor) once per experiment from
+        all its loads (:mod:`contactres.analysis.blocks`); False: per load block
     delta_bic : BIC margin within which the simpler amplitude model is kept
     drift_p : false-alarm probability of the drift test
     bootstrap : number of bootstrap resamples over experiments for E and γ (0: none)
@@ -106,6 +108,7 @@ class AnalysisSettings:
 
     keep_first_ramp: bool = False
     keep_drift: bool = False
+    pool_experiments: bool = True
     delta_bic: float = 2.0
     drift_p: float = 1e-3
     bootstrap: int = 200
@@ -207,7 +210,15 @@ def analyze(
     sw["used"] = used
 
     say("choosing the model of every load block")
-    blocks, decided = choose_blocks(data, sw, used, settings.delta_bic, settings.exact_loop, tables)
+    blocks, decided = choose_blocks(
+        data,
+        sw,
+        used,
+        settings.delta_bic,
+        settings.exact_loop,
+        tables,
+        pool_experiment=settings.pool_experiments,
+    )
     sw = apply_models(sw, decided["model"].to_numpy(), settings.exact_loop)
     for col in ("block", "runner_up", "delta_bic", "decided_by"):
         sw[col] = decided[col].to_numpy()

@@ -34,6 +34,9 @@ from .loops import X_MAX, LoopTable, fit_cm_loops, solve_projected
 
 __all__ = ["PLATEAU_LOOP_COLUMNS", "fit_plateau_loops", "plateau_loop_slopes"]
 
+#: Nodes of the Gauss-Legendre rule of the small-x integrals of :func:`plateau_loop_slopes`.
+SMALL_X_NODES = 16
+
 #: Numeric columns of :func:`fit_plateau_loops` (besides ``edge``).
 PLATEAU_LOOP_COLUMNS = (
     "df0_Hz",
@@ -51,7 +54,7 @@ PLATEAU_LOOP_COLUMNS = (
 )
 
 
-def plateau_loop_slopes(x, c) -> tuple[np.ndarray, ...]:
+def plateau_loop_slopes(x, c, rule=None) -> tuple[np.ndarray, ...]:
     """:func:`contactres.analysis.loops.plateau_loop_shape` in closed form, with derivatives.
 
     Returns G′ = K′/κ, G″ = (K″ - ωξ)/κ and ∂G′/∂x, ∂G′/∂c, ∂G″/∂x, ∂G″/∂c at x = κu0/(μF_N),
@@ -68,24 +71,27 @@ def plateau_loop_slopes(x, c) -> tuple[np.ndarray, ...]:
       integrals are instead summed by a 16-point Gauss-Legendre rule in φ, d = x(1 - cos φ)/2,
       whose integrand is then smooth.
 
-    Agrees with that quadrature to ~2e-11 (its own accuracy; tests/analysis/test_scale.py), at
-    ~1 µs per point for all six arrays, several times less than the quadrature of G′, G″ alone.
+    ``rule``: the 16-point rule ``gauss_legendre_unit(16)`` (made here if None; pass it when
+    calling many times, as the fit does). Agrees with that quadrature to ~2e-11 (its own
+    accuracy; tests/analysis/test_scale.py), at ~1 µs per point for all six arrays, several
+    times less than the quadrature of G′, G″ alone.
     """
     x, c = np.broadcast_arrays(np.asarray(x, dtype=float), np.asarray(c, dtype=float))
+    rule = gauss_legendre_unit(SMALL_X_NODES) if rule is None else rule
     out = [np.ones(x.shape)] + [np.zeros(x.shape) for _ in range(5)]
     slip = x > c  # below d_c the contact sticks: G′ = 1, G″ = 0, and so do their derivatives
     if slip.any():
-        for o, v in zip(out, _slipping(x[slip], c[slip]), strict=True):
+        for o, v in zip(out, _slipping(x[slip], c[slip], rule), strict=True):
             o[slip] = v
     return tuple(out)
 
 
-def _slipping(x, c) -> tuple[np.ndarray, ...]:
+def _slipping(x, c, rule) -> tuple[np.ndarray, ...]:
     """:func:`plateau_loop_slopes` where x > c (1-d arrays)."""
     y, e = x - c, c + 1.5
     J, Jx, Jc = np.empty_like(x), np.empty_like(x), np.empty_like(x)
     small = x < 0.1 * e  # m = x/e < 0.1
-    J[small], Jx[small], Jc[small] = _small_x_integrals(x[small], c[small])
+    J[small], Jx[small], Jc[small] = _small_x_integrals(x[small], c[small], rule)
     J[~small], Jx[~small], Jc[~small] = _elliptic_integrals(x[~small], c[~small])
     half = 2.0 * np.arcsin(np.sqrt(c / x))  # d = c at φ = half
     rcy = np.sqrt(c * y)
@@ -128,10 +134,10 @@ def _elliptic_integrals(x, c):
     return J - 2.0 * a1 * sq3 * ef, e * I1 - I2, x * I1 - I2
 
 
-def _small_x_integrals(x, c):
+def _small_x_integrals(x, c, rule):
     """J, ∫d(e - d)/√Q, ∫d(x - d)/√Q of :func:`plateau_loop_slopes` for x < e/10, by
     Gauss-Legendre in φ (d = x(1 - cos φ)/2 from d = c to x: √(d(x - d)) = x sin φ/2)."""
-    t, wt = gauss_legendre_unit(16)
+    t, wt = rule
     lo = 2.0 * np.arcsin(np.sqrt(c / x))
     ph = lo[:, None] + (np.pi - lo)[:, None] * t
     dphi = (np.pi - lo)[:, None] * wt
@@ -145,7 +151,7 @@ def _small_x_integrals(x, c):
     return J, Jx, Jc
 
 
-def _plateau_model(p, u, umax, df, dg, w, wf, wg) -> dict[str, np.ndarray]:
+def _plateau_model(p, u, umax, df, dg, w, wf, wg, rule) -> dict[str, np.ndarray]:
     """Projected fit of the plateau loop at p = (ln θ(u_max - d_c), d_c/u_max), rows (R, 2):
     Pκ, Pωξ, χ², the RSS of the channels, the gradient of χ²/2 in p and its Gauss-Newton
     Hessian (Kaufman's variable projection: exact gradient, Jacobian projected off Pκ, Pωξ)."""
@@ -154,7 +160,7 @@ def _plateau_model(p, u, umax, df, dg, w, wf, wg) -> dict[str, np.ndarray]:
     theta = ey / (umax * (1.0 - dl))  # θ(u_max - d_c) = e^ly
     c = (theta * dl * umax)[:, None]
     x = theta[:, None] * u
-    g1, g2, g1x, g1c, g2x, g2c = plateau_loop_slopes(x, c)
+    g1, g2, g1x, g1c, g2x, g2c = plateau_loop_slopes(x, c, rule)
     A, B, chi2, rss_f, rss_g = solve_projected(g1, g2, df, dg, w, wf, wg)
     sf, sg = np.sqrt(wf)[:, None] * w, np.sqrt(wg)[:, None] * w
     dx = x / (1.0 - dl)[:, None]  # ∂x/∂(d_c/u_max); ∂x/∂ln(...) = x
@@ -206,15 +212,17 @@ def _solve2(a, b):
     )
 
 
-def _levenberg_marquardt(model, p, lo, hi, max_iter: int = 200) -> np.ndarray:
+def _levenberg_marquardt(model, p, lo, hi, max_iter: int = 200, tol: float = 1e-7) -> np.ndarray:
     """Minimise χ²(p) of every row at once within lo <= p <= hi (rows (R, 2)).
 
     Levenberg-Marquardt with Marquardt's scaling and Nielsen's update of the damping from the
     ratio of the actual to the predicted decrease of χ² (the residuals are not small: a
     Gauss-Newton step may overshoot along a narrow valley); bounds by projection (a parameter
     on a bound that the gradient pushes outwards is held there for the step). A row stops when
-    a step moves p by < 1e-10 (relative) or lowers χ² by < 1e-10 of it (the tolerances of the
-    per-sweep least-squares fits this replaces), or when no step lowers χ² any more.
+    a step moves p by < ``tol`` (relative) or lowers χ² by < ``tol`` of it, or when no step
+    lowers χ² any more. ``tol`` = 1e-7 moves the parameters by ~1e-4 of their standard errors
+    or less (tests/analysis/test_scale.py compares with scipy's least_squares at 1e-10); 1e-10
+    took ~2x the iterations for nothing a model choice or an error bar can see.
     ``model(p, rows)`` returns the dict of :func:`_plateau_model` for those rows.
     """
     p = p.copy()
@@ -246,8 +254,8 @@ def _levenberg_marquardt(model, p, lo, hi, max_iter: int = 200) -> np.ndarray:
         shrink = np.maximum(1.0 / 3.0, 1.0 - (2.0 * rho - 1.0) ** 3)
         lam[idx] = np.where(better, np.maximum(lam[idx] * shrink, 1e-15), lam[idx] * nu[idx])
         nu[idx] = np.where(better, 2.0, 2.0 * nu[idx])
-        tiny = np.all(np.abs(step) <= 1e-10 * (1e-10 + np.abs(q)), axis=1)
-        tiny |= better & (gain <= 1e-10 * cur["chi2"][idx])
+        tiny = np.all(np.abs(step) <= tol * (1e-10 + np.abs(q)), axis=1)
+        tiny |= better & (gain <= tol * cur["chi2"][idx])
         active[idx[tiny | (lam[idx] > 1e14)]] = False
     return p
 
@@ -271,6 +279,7 @@ def fit_plateau_loops(
     x = X_MAX, "low" if no slip is resolved) plus ``d_c_m`` and ``d_c_err_m``.
     """
     u_c = np.asarray(u_c, dtype=float)
+    rule = gauss_legendre_unit(SMALL_X_NODES)  # made once for the hundreds of model calls
     S = u.shape[0]
     rows = np.arange(S)
     n = w.sum(axis=1)
@@ -297,7 +306,9 @@ def fit_plateau_loops(
         um = np.tile(umax, k)
 
         def model(p, i):
-            return _plateau_model(p, data[0][i], um[i], *(a[i] for a in data[1:]), wf[i], wg[i])
+            return _plateau_model(
+                p, data[0][i], um[i], *(a[i] for a in data[1:]), wf[i], wg[i], rule
+            )
 
         p = _levenberg_marquardt(model, starts, np.tile(lo, (k, 1)), np.tile(hi, (k, 1)))
         return p, model(p, np.arange(len(p)))

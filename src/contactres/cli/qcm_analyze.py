@@ -55,6 +55,17 @@ from ._common import MagnitudeType, emit, format_option, odd_overtone
     help="Use ramp 1 of every load too (default: set aside as running-in).",
 )
 @click.option(
+    "--keep-drift",
+    is_flag=True,
+    help="Use the sweeps of loads whose ramps drift (default: left out and listed).",
+)
+@click.option(
+    "--law-per-load",
+    is_flag=True,
+    help="Choose Coulomb (Cattaneo-Mindlin/plateau) or Savkoor per load, not once per "
+    "experiment (the default pools the loads of an experiment).",
+)
+@click.option(
     "--bootstrap",
     type=click.IntRange(min=0),
     default=200,
@@ -73,6 +84,8 @@ def analyze_command(
     poisson,
     sphere_radius,
     keep_first_ramp,
+    keep_drift,
+    law_per_load,
     bootstrap,
     no_figures,
     fmt,
@@ -110,9 +123,14 @@ def analyze_command(
             warnings.simplefilter("always")
             table = read_sweeps(sweeps, **constants)
         _echo_warnings(caught)
-        settings = AnalysisSettings(keep_first_ramp=keep_first_ramp, bootstrap=bootstrap)
+        settings = AnalysisSettings(
+            keep_first_ramp=keep_first_ramp,
+            keep_drift=keep_drift,
+            pool_experiments=not law_per_load,
+            bootstrap=bootstrap,
+        )
         n_groups = table.data.groupby(["configuration", "medium"]).ngroups
-        steps = 5 + n_groups + (0 if no_figures else 1)
+        steps = 6 + n_groups + (0 if no_figures else 1)
         with (
             warnings.catch_warnings(record=True) as caught,
             click.progressbar(length=steps, label="analysing", file=sys.stderr) as bar,
