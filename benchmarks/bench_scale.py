@@ -13,12 +13,13 @@ its own (``resource.getrusage``, peak RSS of the process minus that after buildi
 * **cattaneo-mindlin**: the same 500 sweeps with the plain Cattaneo-Mindlin loop, for the
   per-sweep cost of the others.
 
-Timed: :func:`contactres.analysis.classify.fit_sweeps` with its padding (the per-sweep fits,
-without the exact-loop table, built once before), in this process and in 2 worker processes,
-and the whole :func:`contactres.analysis.analyze` (no bootstrap, which is per group, not per
-sweep); with the peak resident memory of the process during each (table included). Targets
-(2-core reference machine): large table < 60 s and < 2 GB; plateau sweeps no more than 2x the
-per-sweep cost of the Cattaneo-Mindlin sweeps (fit_sweeps, one process).
+Timed: :func:`contactres.analysis.classify.fit_sweeps` with its padding (every model, the
+exact plateau loop included, fitted to every sweep; the loop tables built once before), in
+this process and in 2 worker processes, and the whole :func:`contactres.analysis.analyze` (no
+bootstrap, which is per group, not per sweep; 2 worker processes, as ``qcm analyze`` uses all
+cores from 10^4 sweeps on), with the peak resident memory of the process during each (table
+included). Targets (2-core reference machine): large table < 60 s and < 2 GB; plateau sweeps
+no more than 2x the per-sweep cost of the Cattaneo-Mindlin sweeps (fit_sweeps, one process).
 
 Run: ``.venv/bin/python benchmarks/bench_scale.py`` (exit status 1 if a target is missed).
 """
@@ -124,7 +125,7 @@ def measure(name: str) -> dict:
         out[f"fit_sweeps_{workers}_gb"] = peak_gb()
     reset_peak()
     t0 = time.perf_counter()
-    analyze(sweeps, settings=AnalysisSettings(bootstrap=0))
+    analyze(sweeps, settings=AnalysisSettings(bootstrap=0, workers=2))
     out["analyze_s"] = time.perf_counter() - t0
     out["analyze_gb"] = peak_gb()
     return out | {

@@ -30,13 +30,21 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from .amplitude import pad_sweeps
-from .classify import CLASS_SOURCES, NESTED, fit_sweeps, n_parameters, prefer, source_valid
+from .amplitude import Padded, pad_sweeps
+from .classify import (
+    CLASS_SOURCES,
+    NESTED,
+    add_plateau_fits,
+    fit_sweeps,
+    n_parameters,
+    prefer,
+    source_valid,
+)
 from .drift import LOAD_OF_EXPERIMENT
 from .loops import LoopTables
 from .models import AMPLITUDE_MODELS
 
-__all__ = ["BLOCK_COLUMNS", "choose_blocks"]
+__all__ = ["BLOCK_COLUMNS", "PLATEAU_CONTENDER", "block_codes", "choose_blocks"]
 
 #: Columns of the block table besides the keys of :data:`LOAD_OF_EXPERIMENT`.
 BLOCK_COLUMNS = (
@@ -51,9 +59,49 @@ BLOCK_COLUMNS = (
 )
 
 
+#: A block whose shared plateau is within this of the best of its other candidates gets the
+#: plateau loop fitted to each of its ramps too (for the per-ramp candidate and the ramps' own
+#: parameters); one unit of BIC more than the default ``delta_bic``.
+PLATEAU_CONTENDER = 3.0
+
+
+def _criteria(bf, sw, code, n, R, exact_loop: bool) -> np.ndarray:
+    """(8, B): for each class of AMPLITUDE_MODELS its shared and its per-ramp criterion."""
+    member = code >= 0
+    B = len(n)
+    lnN = np.log(2 * n)
+    n_r = sw["n_points"].to_numpy(float)
+    out = []
+    for m in AMPLITUDE_MODELS:
+        src = CLASS_SOURCES[exact_loop][m]
+        k = n_parameters(src) + 2
+        shared = _loglik(bf[f"{src}_rss_df"], bf[f"{src}_rss_dgamma"], n).to_numpy(float)
+        shared = np.where(source_valid(bf, src), shared + k * lnN, np.inf)
+        ll = _loglik(sw[f"{src}_rss_df"], sw[f"{src}_rss_dgamma"], n_r).to_numpy(float)
+        ok = source_valid(sw, src)
+        sums = np.bincount(code[member], weights=np.where(ok, ll, 0.0)[member], minlength=B)
+        bad = np.bincount(code[member], weights=(~ok)[member].astype(float), minlength=B) > 0
+        out += [shared, np.where(bad, np.inf, sums + R * k * lnN)]
+    return np.stack(out)
+
+
 def _loglik(rss_f, rss_g, n):
     floor = 1e-30  # as contactres.analysis.amplitude.bic: a perfect fit is not -inf
     return n * np.log(np.maximum(rss_f, floor) / n) + n * np.log(np.maximum(rss_g, floor) / n)
+
+
+def block_codes(info: pd.DataFrame, joint: np.ndarray) -> np.ndarray:
+    """The load block (0 ... B-1, in the order of the keys of :data:`LOAD_OF_EXPERIMENT`) of
+    every sweep ``joint`` whose load of its experiment has two or more of them; -1 elsewhere."""
+    S = len(info)
+    code = np.full(S, -1)
+    idx = np.flatnonzero(joint)
+    if idx.size:
+        code[idx] = info.iloc[idx].groupby(LOAD_OF_EXPERIMENT, sort=True).ngroup().to_numpy()
+    sizes = np.bincount(code[code >= 0], minlength=max(code.max() + 1, 1))
+    code = np.where((code >= 0) & (sizes[np.maximum(code, 0)] >= 2), code, -1)
+    keep = np.unique(code[code >= 0])
+    return np.where(code >= 0, np.searchsorted(keep, code), -1)
 
 
 def _friction_law(crit, classes, blocks: pd.DataFrame, delta_bic: float) -> np.ndarray:
@@ -74,7 +122,7 @@ def _friction_law(crit, classes, blocks: pd.DataFrame, delta_bic: float) -> np.n
 
 
 def choose_blocks(
-    data: pd.DataFrame,
+    p: Padded,
     sw: pd.DataFrame,
     joint: np.ndarray,
     delta_bic: float,
@@ -82,14 +130,15 @@ def choose_blocks(
     tables: LoopTables | None,
     workers: int = 1,
     pool_experiment: bool = True,
-) -> tuple[pd.DataFrame, pd.DataFrame]:
+) -> tuple[pd.DataFrame, pd.DataFrame, pd.DataFrame]:
     """Choose the class of every load block of the sweeps ``joint`` (see the module docstring).
 
     Parameters
     ----------
-    data : the sweep table's points (columns ``sweep``, ``amplitude_m``, ``df_Hz``, ``dgamma_Hz``)
+    p : the sweeps as padded arrays (the order of ``sw``)
     sw : the per-sweep fits (:func:`~contactres.analysis.classify.fit_sweeps`) with the labels
-        of :data:`~contactres.analysis.drift.LOAD_OF_EXPERIMENT`
+        of :data:`~contactres.analysis.drift.LOAD_OF_EXPERIMENT`; the sweeps of a block need not
+        have the plateau loop fitted (it is added where the block's plateau is a contender)
     joint : which sweeps enter their block (the used ones); blocks of one sweep are left alone
     delta_bic, exact_loop, tables, workers : as for :func:`fit_sweeps`
     pool_experiment : decide the friction law (Coulomb or Savkoor) once per experiment
@@ -104,6 +153,7 @@ def choose_blocks(
     per_sweep : one row per sweep of ``sw``: ``block`` (-1: none), ``model`` (the block's class,
         else the sweep's own), ``runner_up``, ``delta_bic``, ``decided_by`` (``block`` or
         ``sweep``)
+    sw : ``sw`` with the plateau loop fitted to the sweeps of the contending blocks
     """
     S = len(sw)
     per_sweep = pd.DataFrame(
@@ -116,48 +166,39 @@ def choose_blocks(
             "decided_by": np.full(S, "sweep", dtype=object),
         }
     )
-    code = np.full(S, -1)
-    idx = np.flatnonzero(joint)
-    if idx.size:
-        code[idx] = sw.iloc[idx].groupby(LOAD_OF_EXPERIMENT, sort=True).ngroup().to_numpy()
-    sizes = np.bincount(code[code >= 0], minlength=max(code.max() + 1, 1))
-    code = np.where((code >= 0) & (sizes[np.maximum(code, 0)] >= 2), code, -1)
-    keep = np.unique(code[code >= 0])
-    if keep.size == 0:
-        return pd.DataFrame(columns=[*LOAD_OF_EXPERIMENT, *BLOCK_COLUMNS]), per_sweep
-    # Renumber the blocks 0 ... B-1 in the order of their keys.
-    code = np.where(code >= 0, np.searchsorted(keep, code), -1)
-    B = keep.size
-    of_sweep = pd.Series(code, index=sw["sweep"].to_numpy())
-    points = data[["sweep", "amplitude_m", "df_Hz", "dgamma_Hz"]]
-    points = points.assign(sweep=of_sweep.reindex(points["sweep"]).to_numpy())
-    points = points[points["sweep"] >= 0]
+    code = block_codes(sw, joint)
+    if code.max() < 0:
+        return pd.DataFrame(columns=[*LOAD_OF_EXPERIMENT, *BLOCK_COLUMNS]), per_sweep, sw
+    B = code.max() + 1
+    member = code >= 0
+    rows = np.flatnonzero(member)
+    u, df, dg = p.points(rows)
+    points = pd.DataFrame(
+        {"sweep": np.repeat(code[rows], p.n[rows]), "amplitude_m": u, "df_Hz": df, "dgamma_Hz": dg}
+    )
     bp = pad_sweeps(points)
     bf = fit_sweeps(bp, delta_bic, exact_loop, tables, workers)
     bf.index = bf["sweep"].to_numpy(int)
     bf = bf.sort_index()
 
     # The 2 x 4 criteria of every block: (shared, per ramp) for each class.
-    member = code >= 0
     n_r = sw["n_points"].to_numpy(float)
     n = np.bincount(code[member], weights=n_r[member], minlength=B)
     R = np.bincount(code[member], minlength=B).astype(float)
-    lnN = np.log(2 * n)
-    candidates, classes = [], []
-    for m in AMPLITUDE_MODELS:
-        src = CLASS_SOURCES[exact_loop][m]
-        k = n_parameters(src) + 2
-        shared = _loglik(bf[f"{src}_rss_df"], bf[f"{src}_rss_dgamma"], n).to_numpy(float)
-        shared = np.where(source_valid(bf, src), shared + k * lnN, np.inf)
-        ll = _loglik(sw[f"{src}_rss_df"], sw[f"{src}_rss_dgamma"], n_r).to_numpy(float)
-        ok = source_valid(sw, src)
-        sums = np.bincount(code[member], weights=np.where(ok, ll, 0.0)[member], minlength=B)
-        bad = np.bincount(code[member], weights=(~ok)[member].astype(float), minlength=B) > 0
-        separate = np.where(bad, np.inf, sums + R * k * lnN)
-        candidates += [shared, separate]
-        classes += [m, m]
-    crit = np.stack(candidates)
-    classes = np.asarray(classes)
+    crit = _criteria(bf, sw, code, n, R, exact_loop)
+    if exact_loop:
+        # The per-ramp plateau needs the plateau loop of each ramp: fitted where the block's
+        # shared plateau contends (within PLATEAU_CONTENDER of the best other candidate; a
+        # plateau nests Cattaneo-Mindlin, so it is always close to it), not everywhere.
+        i = 2 * AMPLITUDE_MODELS.index("plateau")
+        shared_plateau = crit[i]
+        others = np.delete(crit, [i, i + 1], axis=0).min(axis=0)
+        contend = shared_plateau <= others + PLATEAU_CONTENDER
+        sweeps = np.flatnonzero(member & contend[np.maximum(code, 0)])
+        if sweeps.size:
+            sw = add_plateau_fits(p, sw, sweeps, delta_bic, tables, workers)
+            crit = _criteria(bf, sw, code, n, R, exact_loop)
+    classes = np.repeat(np.asarray(AMPLITUDE_MODELS), 2)
     # Candidate a is nested in b if its class is (NESTED) and it is shared or b is per ramp.
     per_ramp = np.arange(len(classes)) % 2 == 1
     cls = np.repeat(np.arange(len(AMPLITUDE_MODELS)), 2)
@@ -211,4 +252,4 @@ def choose_blocks(
     per_sweep.loc[member, "runner_up"] = classes[runner][code[member]]
     per_sweep.loc[member, "delta_bic"] = evidence[code[member]]
     per_sweep.loc[member, "decided_by"] = "block"
-    return blocks, per_sweep
+    return blocks, per_sweep, sw

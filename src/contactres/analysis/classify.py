@@ -41,7 +41,6 @@ from .amplitude import (
     PLATEAU_MIN_FLAT,
     PLATEAU_MIN_SLOPE,
     Block,
-    HingeFit,
     LineFit,
     Padded,
     bic,
@@ -57,6 +56,7 @@ __all__ = [
     "LIMITS_FROM",
     "NESTED",
     "SOURCE_MODEL",
+    "add_plateau_fits",
     "apply_models",
     "choose",
     "class_criteria",
@@ -105,8 +105,11 @@ def _closed_form(prefix: str, fit: LineFit, out: dict) -> None:
         out[f"{prefix}_rss_{name}"] = fit.rss[c]
 
 
-def _fit_block(b: Block, exact_loop: bool, tables: LoopTables | None) -> dict[str, np.ndarray]:
-    """Every model fitted to one block of sweeps (arrays with the sweep as last axis)."""
+def _fit_block(
+    b: Block, exact_loop: bool, tables: LoopTables | None, plateau: np.ndarray
+) -> dict[str, np.ndarray]:
+    """Every model fitted to one block of sweeps (arrays with the sweep as last axis); the
+    plateau loop only to the sweeps ``plateau`` (the others get NaN)."""
     Y = np.stack([b.df, b.dg])
     n = b.n.astype(float)
     u_max = np.max(np.where(b.w > 0, b.u, 0.0), axis=1)
@@ -130,34 +133,46 @@ def _fit_block(b: Block, exact_loop: bool, tables: LoopTables | None) -> dict[st
         for prefix, table in (("cm", tables.cm), ("sv", tables.savkoor)):
             loop = fit_cm_loops(b.u, b.df, b.dg, b.w, sigma[0], sigma[1], table)
             out.update({f"{prefix}_{col}": loop[col].to_numpy() for col in loop.columns})
-        out.update(_fit_plateaus(b, hinge, line, tables.cm))
+        rss = np.where(hinge.found, hinge.line.rss, line.rss)
+        start = (hinge.found, hinge.u_c, rss, out["cm_theta_per_m"])
+        out.update(_fit_plateaus(b, *start, tables.cm, plateau))
     return out
 
 
-def _fit_plateaus(b: Block, hinge: HingeFit, line: LineFit, table: LoopTable) -> dict:
-    """The exact plateau loop fitted to the sweeps of ``b`` that are long enough for one.
+def _fit_plateaus(
+    b: Block, found, u_c, rss, theta, table: LoopTable, plateau: np.ndarray
+) -> dict[str, np.ndarray]:
+    """The exact plateau loop fitted to the sweeps ``plateau`` of ``b`` that are long enough.
 
-    Started at the hinge where one was found, else at 0.3 of the largest amplitude; weighted by
-    the noise of the hinge fit (of the straight line where no hinge was found).
+    Started at the hinge where one was ``found`` (at ``u_c``), else at 0.3 of the largest
+    amplitude; weighted by the noise of the hinge fit (``rss``, (2, S): of the straight line
+    where no hinge was found); θ started from the Cattaneo-Mindlin loop fitted to the whole
+    sweep (``theta``).
     """
     S = len(b.n)
     out = {f"pl_{col}": np.full(S, np.nan) for col in PLATEAU_LOOP_COLUMNS}
     out["pl_edge"] = np.full(S, "", dtype=object)
     # Enough distinct amplitudes for a plateau and a slope (a block may repeat amplitudes).
     distinct = (b.w > 0) & np.concatenate([np.ones((S, 1), bool), np.diff(b.u, axis=1) > 0], axis=1)
-    fit = distinct.sum(axis=1) >= PLATEAU_MIN_FLAT + PLATEAU_MIN_SLOPE
+    fit = (distinct.sum(axis=1) >= PLATEAU_MIN_FLAT + PLATEAU_MIN_SLOPE) & plateau
     if not fit.any():
         return out
     n = b.n.astype(float)
     u_max = np.max(np.where(b.w > 0, b.u, 0.0), axis=1)
-    rss = np.where(hinge.found, hinge.line.rss, line.rss)
-    sig = np.sqrt(rss / np.maximum(n - np.where(hinge.found, 3, 2), 1))
-    u_c = np.where(hinge.found, hinge.u_c, 0.3 * u_max)
+    sig = np.sqrt(rss / np.maximum(n - np.where(found, 3, 2), 1))
+    u_c = np.where(found, u_c, 0.3 * u_max)
     i = np.flatnonzero(fit)
-    res = fit_plateau_loops(b.u[i], b.df[i], b.dg[i], b.w[i], sig[0, i], sig[1, i], u_c[i], table)
+    res = fit_plateau_loops(
+        b.u[i], b.df[i], b.dg[i], b.w[i], sig[0, i], sig[1, i], u_c[i], table, theta[i]
+    )
     for col in res.columns:
         out[f"pl_{col}"][i] = res[col].to_numpy()
     return out
+
+
+def _plateaus_of_rows(b: Block, found, u_c, rss, theta, table: LoopTable) -> dict[str, np.ndarray]:
+    """:func:`_fit_plateaus` of every sweep of ``b`` (a picklable call for :func:`_run`)."""
+    return _fit_plateaus(b, found, u_c, rss, theta, table, np.ones(len(b.n), bool))
 
 
 def _run(fn, workers: int, first: list, *rest) -> list:
@@ -170,14 +185,15 @@ def _run(fn, workers: int, first: list, *rest) -> list:
 
 
 def _fit_blocks(
-    p: Padded, exact_loop: bool, tables: LoopTables | None, workers: int
+    p: Padded, exact_loop: bool, tables: LoopTables | None, workers: int, plateau: np.ndarray
 ) -> dict[str, np.ndarray]:
     """:func:`_fit_block` on every block of ``p``, put together in the order of the sweeps."""
     S = len(p.n)
     out: dict[str, np.ndarray] = {}
     groups = p.blocks()  # <= BLOCK_POINTS points each: the fits' temporaries stay at a few MB
     blocks = [p.block(rows) for rows in groups]
-    parts = _run(_fit_block, workers, blocks, repeat(exact_loop), repeat(tables))
+    masks = [plateau[rows] for rows in groups]
+    parts = _run(_fit_block, workers, blocks, repeat(exact_loop), repeat(tables), masks)
     for rows, part in zip(groups, parts, strict=True):
         for key, v in part.items():
             if key not in out:
@@ -301,6 +317,7 @@ def fit_sweeps(
     exact_loop: bool = True,
     tables: LoopTables | None = None,
     workers: int = 1,
+    plateau: np.ndarray | None = None,
 ) -> pd.DataFrame:
     """Fit every amplitude model to every sweep and choose one (see the module docstring).
 
@@ -316,6 +333,8 @@ def fit_sweeps(
         than one pays from ~10^4 sweeps on (both cores of a 2-core machine: ~1.8x faster at
         10^5 sweeps); it starts a process pool, so a script calling it must be importable
         (``if __name__ == "__main__":``) where processes are spawned (Windows, macOS).
+    plateau : (S,) which sweeps get the exact plateau loop (default all); the others have no
+        ``plateau`` class until :func:`add_plateau_fits` adds it
 
     Returns
     -------
@@ -334,7 +353,8 @@ def fit_sweeps(
     n = p.n.astype(float)
     if exact_loop and tables is None:
         tables = loop_tables()
-    f = _fit_blocks(p, exact_loop, tables, workers)
+    plateau = np.ones(len(p.n), bool) if plateau is None else np.asarray(plateau, bool)
+    f = _fit_blocks(p, exact_loop, tables, workers, plateau)
     rows = {"sweep": p.sweeps, "n_points": p.n, "direction": p.direction, "u_max_m": f.pop("u_max")}
     rows.update(f)
     sw = pd.DataFrame(rows)
@@ -342,6 +362,11 @@ def fit_sweeps(
         sw[f"sigma_{name}_Hz"] = np.sqrt(sw[f"line_rss_{name}"] / np.maximum(n - 2, 1))
         sw[f"{name}_curvature_Hz_per_m2"] = sw[f"parabola_{name}_b"]
         sw[f"{name}_curvature_err_Hz_per_m2"] = sw[f"parabola_{name}_b_err"]
+    return _choose_each(sw, delta_bic, exact_loop)
+
+
+def _choose_each(sw: pd.DataFrame, delta_bic: float, exact_loop: bool) -> pd.DataFrame:
+    """The class of every sweep alone from its fits (:func:`choose`, :func:`apply_models`)."""
     criteria = class_criteria(sw, exact_loop)
     for m, crit in zip(AMPLITUDE_MODELS, criteria, strict=True):
         sw[f"bic_{m}"] = crit
@@ -353,3 +378,48 @@ def fit_sweeps(
     sw["delta_bic"] = evidence
     sw["decided_by"] = "sweep"
     return sw
+
+
+def add_plateau_fits(
+    p: Padded,
+    sw: pd.DataFrame,
+    rows: np.ndarray,
+    delta_bic: float,
+    tables: LoopTables,
+    workers: int = 1,
+) -> pd.DataFrame:
+    """Fit the exact plateau loop to the sweeps ``rows`` of ``sw`` (from
+    :func:`fit_sweeps` with ``exact_loop``, in the order of ``p``) that do not have it yet, and
+    choose their class again with it. Returns a new frame."""
+    sw = sw.copy()
+    rows = np.asarray(rows, dtype=np.intp)
+    rows = rows[~np.isfinite(sw["pl_rss_df"].to_numpy(float)[rows])]
+    if rows.size == 0:
+        return sw
+    groups = p.blocks(rows)
+    cols = {
+        "found": sw["hinge_found"].to_numpy(bool),
+        "u_c": sw["hinge_u_c_m"].to_numpy(float),
+        "theta": sw["cm_theta_per_m"].to_numpy(float),
+    }
+    rss = {
+        src: np.stack([sw[f"{src}_rss_df"].to_numpy(float), sw[f"{src}_rss_dgamma"]])
+        for src in ("hinge", "line")
+    }
+    rss = np.where(cols["found"], rss["hinge"], rss["line"])
+    parts = _run(
+        _plateaus_of_rows,
+        workers,
+        [p.block(g) for g in groups],
+        [cols["found"][g] for g in groups],
+        [cols["u_c"][g] for g in groups],
+        [rss[:, g] for g in groups],
+        [cols["theta"][g] for g in groups],
+        repeat(tables.cm),
+    )
+    for g, part in zip(groups, parts, strict=True):
+        for key, v in part.items():
+            values = sw[key].to_numpy(copy=True)
+            values[g] = v
+            sw[key] = values
+    return _choose_each(sw, delta_bic, True)

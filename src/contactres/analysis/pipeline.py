@@ -67,7 +67,7 @@ from ..measurements.sweeps import SweepTable
 from ..resonators.qcm import QCM
 from ..units import JUNCTION_SIGMAS, MIN_SWEEP_POINTS, SMALL_LOAD_LIMIT
 from .amplitude import pad_sweeps
-from .blocks import choose_blocks
+from .blocks import block_codes, choose_blocks
 from .classify import apply_models, fit_sweeps
 from .drift import LOAD_OF_EXPERIMENT, drifting_sweeps
 from .flags import Flag
@@ -104,6 +104,9 @@ class AnalysisSettings:
     exact_loop : fit the exact Cattaneo-Mindlin loop (μ_fit), behind a stick plateau for
         ``plateau`` sweeps
     zq : shear-wave impedance of the quartz, kg m⁻² s⁻¹
+    workers : processes for the per-sweep and per-block fits (1: none; more pay from ~10^4
+        sweeps on; a script that passes more must be importable where processes are spawned,
+        see :func:`contactres.analysis.classify.fit_sweeps`)
     """
 
     keep_first_ramp: bool = False
@@ -115,6 +118,7 @@ class AnalysisSettings:
     seed: int = 0
     exact_loop: bool = True
     zq: float = 8.8e6
+    workers: int = 1
 
     def __post_init__(self):
         if not self.delta_bic >= 0:
@@ -125,6 +129,8 @@ class AnalysisSettings:
             raise ValueError(f"bootstrap must be a whole number >= 0, got {self.bootstrap!r}")
         if not self.zq > 0:
             raise ValueError(f"zq must be > 0, got {self.zq!r}")
+        if int(self.workers) != self.workers or self.workers < 1:
+            raise ValueError(f"workers must be a whole number >= 1, got {self.workers!r}")
 
 
 def _sensitivity(info: pd.DataFrame, zq: float) -> np.ndarray:
@@ -182,41 +188,46 @@ def analyze(
     say = progress or (lambda step: None)
     data = table.data
 
-    say("fitting the amplitude models of every sweep")
     padded = pad_sweeps(data)
-    tables = loop_tables() if settings.exact_loop else None
-    sw = fit_sweeps(padded, settings.delta_bic, settings.exact_loop, tables)
     info = data.drop_duplicates("sweep", keep="first")[list(INFO_COLUMNS)].reset_index(drop=True)
-    sw = info.merge(sw, on="sweep", how="right", validate="one_to_one")
-    P = _sensitivity(sw, settings.zq)
-    sw["P_Hz_per_N_per_m"] = P
-
-    few = sw["n_points"].to_numpy() < MIN_SWEEP_POINTS
+    # The labels first: which sweeps are used, and which load blocks they form, decide where
+    # the (costly) exact plateau loop is fitted to single sweeps.
+    few = padded.n < MIN_SWEEP_POINTS
     # A sweep at one amplitude has no slope (the straight line is degenerate): say so.
-    u_min = padded.u_min
-    flat = sw["u_max_m"].to_numpy() == u_min
-    first_line = data.groupby("sweep", sort=False)["line"].min().reindex(sw["sweep"]).to_numpy()
-    ramps = check_ramps(sw, first_line, sw["direction"].to_numpy())
+    flat = padded.u_max == padded.u_min
+    first_line = data.groupby("sweep", sort=False)["line"].min().reindex(info["sweep"]).to_numpy()
+    ramps = check_ramps(info, first_line, padded.direction)
     running = ramps.first  # the running-in sweep of each load, as measured
     first = running & (not settings.keep_first_ramp)
     used = ~few & ~first
     # Drift is tested on the ramps after the first: ramp 1's running-in offset is not drift.
     tested = ~few & ~running
-    drift = drifting_sweeps(sw, padded, tested, settings.drift_p)
+    drift = drifting_sweeps(info, padded, tested, settings.drift_p)
     # A drifting load loses all its sweeps (its ramp 1 too, when ramp 1 is used).
-    drift = _whole_loads(sw, drift) & ~few
+    drift = _whole_loads(info, drift) & ~few
     if not settings.keep_drift:
         used &= ~drift
+
+    say("fitting the amplitude models of every sweep")
+    tables = loop_tables() if settings.exact_loop else None
+    alone = block_codes(info, used) < 0  # the sweeps judged alone get every model now
+    sw = fit_sweeps(
+        padded, settings.delta_bic, settings.exact_loop, tables, settings.workers, plateau=alone
+    )
+    sw = info.merge(sw, on="sweep", how="right", validate="one_to_one")
+    P = _sensitivity(sw, settings.zq)
+    sw["P_Hz_per_N_per_m"] = P
     sw["used"] = used
 
     say("choosing the model of every load block")
-    blocks, decided = choose_blocks(
-        data,
+    blocks, decided, sw = choose_blocks(
+        padded,
         sw,
         used,
         settings.delta_bic,
         settings.exact_loop,
         tables,
+        settings.workers,
         pool_experiment=settings.pool_experiments,
     )
     sw = apply_models(sw, decided["model"].to_numpy(), settings.exact_loop)

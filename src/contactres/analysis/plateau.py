@@ -212,17 +212,19 @@ def _solve2(a, b):
     )
 
 
-def _levenberg_marquardt(model, p, lo, hi, max_iter: int = 200, tol: float = 1e-7) -> np.ndarray:
+def _levenberg_marquardt(model, p, lo, hi, max_iter: int = 60, tol: float = 1e-7) -> np.ndarray:
     """Minimise χ²(p) of every row at once within lo <= p <= hi (rows (R, 2)).
 
     Levenberg-Marquardt with Marquardt's scaling and Nielsen's update of the damping from the
     ratio of the actual to the predicted decrease of χ² (the residuals are not small: a
     Gauss-Newton step may overshoot along a narrow valley); bounds by projection (a parameter
     on a bound that the gradient pushes outwards is held there for the step). A row stops when
-    a step moves p by < ``tol`` (relative) or lowers χ² by < ``tol`` of it, or when no step
-    lowers χ² any more. ``tol`` = 1e-7 moves the parameters by ~1e-4 of their standard errors
-    or less (tests/analysis/test_scale.py compares with scipy's least_squares at 1e-10); 1e-10
-    took ~2x the iterations for nothing a model choice or an error bar can see.
+    a step moves p by < ``tol`` (relative) or lowers χ² by < ``tol`` of it, when both the actual
+    and the predicted decrease of a step are below ``tol`` of χ² (MINPACK's ftol test), or when
+    no step lowers χ² any more, or after ``max_iter`` steps. With ``tol`` = 1e-7 and 60 steps
+    the parameters agree with scipy's least_squares at 1e-10 within 1e-3 of their standard
+    errors (tests/analysis/test_scale.py); 1e-10 and 200 steps cost 2.3x the time for nothing
+    a model choice or an error bar can see.
     ``model(p, rows)`` returns the dict of :func:`_plateau_model` for those rows.
     """
     p = p.copy()
@@ -256,12 +258,16 @@ def _levenberg_marquardt(model, p, lo, hi, max_iter: int = 200, tol: float = 1e-
         nu[idx] = np.where(better, 2.0, 2.0 * nu[idx])
         tiny = np.all(np.abs(step) <= tol * (1e-10 + np.abs(q)), axis=1)
         tiny |= better & (gain <= tol * cur["chi2"][idx])
+        # MINPACK's ftol test: the step's actual and predicted relative decrease both tiny
+        # (at the optimum no step gains more than the rounding: stop, do not raise λ on).
+        scale = tol * cur["chi2"][idx]
+        tiny |= (np.abs(np.nan_to_num(gain)) <= scale) & (pred <= scale)
         active[idx[tiny | (lam[idx] > 1e14)]] = False
     return p
 
 
 def fit_plateau_loops(
-    u, df, dg, w, sigma_df, sigma_dg, u_c, table: LoopTable | None = None
+    u, df, dg, w, sigma_df, sigma_dg, u_c, table: LoopTable | None = None, theta_start=None
 ) -> pd.DataFrame:
     """Fit the exact plateau loop (+ dashpot) to every row of padded sweeps (module docstring).
 
@@ -271,6 +277,8 @@ def fit_plateau_loops(
     sigma_df, sigma_dg : (S,) noise levels of the two channels, Hz
     u_c : (S,) start of the critical displacement (the hinge of the plateau model), m
     table : the Cattaneo-Mindlin loop table for the start of θ (built here if None)
+    theta_start : (S,) start of θ = κ/(μF_N), 1/m (e.g. from the Cattaneo-Mindlin loop fitted
+        to the whole sweep); if None, from that loop fitted to the amplitudes in excess of u_c
 
     Returns
     -------
@@ -296,10 +304,13 @@ def fit_plateau_loops(
     room = data & (above >= PLATEAU_MIN_SLOPE - 1)
     hi = np.column_stack([np.full(S, np.log(X_MAX)), np.max(np.where(room, u, 0.0), axis=1) / umax])
     # Start of θ: the Cattaneo-Mindlin loop fitted to the amplitudes in excess of the hinge.
-    start = fit_cm_loops(np.maximum(u - u_c[:, None], 0.0), df, dg, w, sigma_df, sigma_dg, table)
-    y0 = start["x_max"].to_numpy()
+    if theta_start is None:
+        excess = np.maximum(u - u_c[:, None], 0.0)
+        y0 = fit_cm_loops(excess, df, dg, w, sigma_df, sigma_dg, table)["x_max"].to_numpy()
+    else:
+        y0 = np.asarray(theta_start, dtype=float) * np.maximum(umax - u_c, 0.0)
 
-    def run(starts, sig_f, sig_g, k):  # k starts per sweep, stacked start after start
+    def run(starts, sig_f, sig_g, k, tol):  # k starts per sweep, stacked start after start
         wf = np.tile(1.0 / np.maximum(sig_f, floor_f) ** 2, k)
         wg = np.tile(1.0 / np.maximum(sig_g, floor_g) ** 2, k)
         data = [np.tile(a, (k, 1)) for a in (u, df, dg, w)]
@@ -310,7 +321,7 @@ def fit_plateau_loops(
                 p, data[0][i], um[i], *(a[i] for a in data[1:]), wf[i], wg[i], rule
             )
 
-        p = _levenberg_marquardt(model, starts, np.tile(lo, (k, 1)), np.tile(hi, (k, 1)))
+        p = _levenberg_marquardt(model, starts, np.tile(lo, (k, 1)), np.tile(hi, (k, 1)), tol=tol)
         return p, model(p, np.arange(len(p)))
 
     # Pass 1, weighted by the noise of the hinge fit; started at the hinge and at the amplitude
@@ -323,13 +334,14 @@ def fit_plateau_loops(
     uc2 = np.tile(u_c / umax, 2)
     ly0 = np.log(np.tile(np.maximum(y0, 1e-300), 2) * (1.0 - dl0) / np.maximum(1.0 - uc2, 1e-12))
     p0 = np.column_stack([np.clip(ly0, lo[0, 0], hi[0, 0]), dl0])
-    p1, fit1 = run(p0, sigma_df, sigma_dg, 2)
+    # Pass 1 only chooses between the starts and brings pass 2 near the optimum: 1e-4 will do.
+    p1, fit1 = run(p0, sigma_df, sigma_dg, 2, 1e-4)
     take = np.where(fit1["chi2"][S:] < fit1["chi2"][:S], S + rows, rows)
     x1 = p1[take]
     # Pass 2, weighted by the noise of this fit's own residuals (the hinge misfits the onset).
     dof = np.maximum(n - 2, 1)
     sig = [np.sqrt(fit1[k][take] / dof) for k in ("rss_f", "rss_g")]
-    p2, fit = run(x1, sig[0], sig[1], 1)
+    p2, fit = run(x1, sig[0], sig[1], 1, 1e-7)
     ly, dl = p2[:, 0], p2[:, 1]
     A, theta, d_c = fit["A"], fit["theta"], dl * umax
     # Jacobian of the weighted residuals in (A, B, ln θ, d_c) at fixed d_c and θ respectively.

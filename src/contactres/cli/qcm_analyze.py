@@ -8,6 +8,7 @@ leaves the folder as it was. Warnings (the data's and numerical ones) become one
 
 from __future__ import annotations
 
+import os
 import sys
 import warnings
 from pathlib import Path
@@ -72,6 +73,11 @@ from ._common import MagnitudeType, emit, format_option, odd_overtone
     show_default=True,
     help="Bootstrap resamples over experiments for the errors of E and γ (0: none).",
 )
+@click.option(
+    "--workers",
+    type=click.IntRange(min=1),
+    help="Processes for the fits [default: all cores from 10,000 sweeps on, else 1].",
+)
 @click.option("--no-figures", is_flag=True, help="Skip the PNG figures.")
 @format_option()
 def analyze_command(
@@ -87,6 +93,7 @@ def analyze_command(
     keep_drift,
     law_per_load,
     bootstrap,
+    workers,
     no_figures,
     fmt,
 ):
@@ -123,7 +130,11 @@ def analyze_command(
             warnings.simplefilter("always")
             table = read_sweeps(sweeps, **constants)
         _echo_warnings(caught)
+        if workers is None:
+            many = table.data["sweep"].nunique() >= 10_000
+            workers = max(1, os.cpu_count() or 1) if many else 1
         settings = AnalysisSettings(
+            workers=workers,
             keep_first_ramp=keep_first_ramp,
             keep_drift=keep_drift,
             pool_experiments=not law_per_load,
