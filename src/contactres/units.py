@@ -22,6 +22,7 @@ from types import MappingProxyType
 __all__ = [
     "ABSOLUTE_FREQUENCY_FRACTION",
     "JUNCTION_SIGMAS",
+    "LINEAR_ONSET_X",
     "MAX_AMPLITUDE_M",
     "MAX_KA",
     "MIN_SWEEP_POINTS",
@@ -55,6 +56,12 @@ MIN_SWEEP_POINTS = 4
 #: A Δf slope more than this many standard errors above zero means that Δf rises with the
 #: amplitude (the junction grows), which no partial-slip loop does.
 JUNCTION_SIGMAS = 2.0
+
+#: The largest κu0/(μF_N) of a Cattaneo-Mindlin sweep up to which the slopes of paper 2's
+#: Eq. 12 give μ within ~10 %: a straight line fitted to the exact loop on 13 amplitudes from
+#: 5 % to 100 % of the largest reads μ 6 % low from the Δf slope and 9 % low from the ΔΓ slope
+#: at 0.5 (tests/analysis/test_blocks.py recomputes it from the forward model).
+LINEAR_ONSET_X = 0.5
 
 
 def poisson_in_range(nu: float) -> bool:

@@ -183,6 +183,7 @@ def test_friction_from_slopes_and_loop_at_small_amplitude():
         assert abs(np.nanmean(values) - mu) < 0.05, col
     z = _z(res, mu, "mu_fit")
     assert abs(np.nanmean(z)) < 0.6 and 0.5 < np.nanstd(z) < 1.6
+    assert not has(used["flags"], Flag.BEYOND_ONSET).any()  # x < 0.3: the slopes hold
 
 
 def test_loop_fit_stays_unbiased_near_full_sliding():
@@ -199,8 +200,9 @@ def test_loop_fit_stays_unbiased_near_full_sliding():
     assert used["mu_fit"].mean() == pytest.approx(mu, rel=0.02)
     z = (used["mu_fit"] - mu) / used["mu_fit_err"]
     assert np.all(np.abs(z) < 4)
-    # The linearised slopes are biased here (the reason for the exact fit).
+    # The linearised slopes are biased here (the reason for the exact fit), and flagged.
     assert abs(used["mu_df"].mean() / mu - 1) > 0.1
+    assert has(used["flags"], Flag.BEYOND_ONSET).all()
 
 
 def test_exact_loop_fit_noise_free_recovers_parameters():

@@ -8,6 +8,7 @@ from contactres.analysis import AnalysisSettings, analyze
 from contactres.analysis.amplitude import pad_sweeps
 from contactres.analysis.classify import NESTED, fit_sweeps, prefer
 from contactres.analysis.loops import (
+    cm_loop_shape,
     loop_tables,
     savkoor_loop_shape,
     savkoor_loop_table,
@@ -23,6 +24,7 @@ from contactres.measurements.synthetic import (
 from contactres.normal.isotropic import effective_modulus, jkr_contact_radius
 from contactres.resonators.qcm import QCM
 from contactres.tangential import kappa_jkr_mindlin
+from contactres.units import LINEAR_ONSET_X
 
 Q = QCM(5e6, 3, 2.5e-5)
 P = Q.sensitivity(3)
@@ -190,3 +192,43 @@ def test_the_friction_law_is_decided_per_experiment(pool):
     truth = raw.drop_duplicates("sweep").set_index("sweep")["true_model"]
     right = (res.sweeps.set_index("sweep")["model"] == truth.reindex(res.sweeps["sweep"])).mean()
     assert right == 1.0 if pool else right >= 0.5
+
+
+def test_linear_onset_limit_is_where_the_slope_mu_reads_10_percent_low():
+    # Paper 2, Eq. 11: dK′/du0 = -κ²/(6μF_N) and dK″/du0 = 2κ²/(9πμF_N) at u0 -> 0; a straight
+    # line fitted to the exact loop on 13 amplitudes up to x = LINEAR_ONSET_X (κ = μF_N = 1).
+    x = np.linspace(0.05, 1.0, 13) * LINEAR_ONSET_X
+    g1, g2 = cm_loop_shape(x)
+    ratio_df = (-1 / 6) / np.polyfit(x, g1, 1)[0]  # μ from the slope / true μ
+    ratio_dg = (2 / (9 * np.pi)) / np.polyfit(x, g2, 1)[0]
+    assert 0.9 < ratio_dg < 0.92 and 0.93 < ratio_df < 0.95
+
+
+def test_savkoor_traction_from_the_group_modulus():
+    # Whole experiments following Savkoor: τ0 = F_s/(πa²) with a = κ/(2G*) and the fitted E
+    # against the generator's τ0 = κ d_s/(4a²) (d_s: full sliding at twice the largest u0).
+    u = tuple(np.linspace(0.5e-9, 10e-9, 13))
+    E, gamma, R, nu = 70e9, 0.1, 1.1e-3, 0.17
+    loads = (1.6e-3, 3.3e-3, 4.9e-3, 6.5e-3, 8.2e-3)
+    study = SweepStudy(
+        groups=(SweepGroup("glass", "air", R, E, gamma, u, 5.0 / P, 0.1),),
+        normal_forces=loads,
+        n_experiments=3,
+        ramps=(2, 3, 4),
+        qcm=Q,
+        savkoor_experiments=tuple(("glass", "air", e) for e in (1, 2, 3)),
+    )
+    raw = synthetic_sweeps(study, 4, truth=True)
+    res = analyze(
+        validate_sweeps(raw.filter(regex="^(?!true_)"), constants=CONST),
+        settings=AnalysisSettings(bootstrap=0),
+    )
+    sw = res.sweeps
+    assert (sw["model"] == "savkoor").all()
+    F = sw["normal_force_N"].to_numpy()
+    a = jkr_contact_radius(effective_modulus(E, nu), R, F, gamma)
+    kappa = kappa_jkr_mindlin(F, E, gamma, R, nu)
+    truth = kappa * 2 * u[-1] / (4 * a**2)
+    np.testing.assert_allclose(sw["tau0_Pa"], truth, rtol=0.05)
+    z = (sw["tau0_Pa"] - truth) / sw["tau0_err_Pa"]
+    assert np.abs(z).max() < 4

@@ -81,3 +81,19 @@ def test_parse_range():
 def test_bare_command_shows_help():
     r = run()
     assert r.exit_code == 0 and "Commands:" in r.output
+
+
+def test_json_output_keeps_small_values_exactly():
+    # pandas' to_json rounds to 15 decimals: 1.234567890123e-12 m became 1e-12 or 0.
+    import io
+
+    import pandas as pd
+
+    from contactres.cli._common import emit
+
+    table = pd.DataFrame({"u0_m": [1.234567890123e-12, float("nan")], "x": [float("inf"), 2.0]})
+    out = io.StringIO()
+    emit(table, "json", out)
+    rows = json.loads(out.getvalue())
+    assert rows[0]["u0_m"] == 1.234567890123e-12
+    assert rows[1]["u0_m"] is None and rows[0]["x"] is None  # no JSON form: null

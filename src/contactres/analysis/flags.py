@@ -11,7 +11,7 @@ import enum
 
 import numpy as np
 
-from ..units import JUNCTION_SIGMAS, MIN_SWEEP_POINTS, SMALL_LOAD_LIMIT
+from ..units import JUNCTION_SIGMAS, LINEAR_ONSET_X, MIN_SWEEP_POINTS, SMALL_LOAD_LIMIT
 from .loops import X_MAX
 
 __all__ = ["DESCRIPTIONS", "Flag", "has", "render"]
@@ -29,6 +29,7 @@ class Flag(enum.IntFlag):
     DRIFT = enum.auto()
     RAMP_ORDER = enum.auto()
     FLAT_AMPLITUDE = enum.auto()
+    BEYOND_ONSET = enum.auto()
 
     @property
     def text(self) -> str:
@@ -66,6 +67,11 @@ DESCRIPTIONS: dict[Flag, str] = {
     Flag.FLAT_AMPLITUDE: (
         "all amplitudes of the sweep are equal: no slope, so no μ from it (its Δf0 and ΔΓ0 are "
         "the mean shifts at that amplitude)"
+    ),
+    Flag.BEYOND_ONSET: (
+        f"a Cattaneo-Mindlin sweep reaching κu0/(μF_N) > {LINEAR_ONSET_X:g} (exact-loop fit): "
+        "beyond the linear onset, so μ from the slopes (paper 2, Eq. 12) reads low (by > 10 % "
+        "from the ΔΓ slope); use mu_fit"
     ),
 }
 

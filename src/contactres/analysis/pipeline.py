@@ -65,7 +65,8 @@ from .._version import __version__
 from ..measurements.schema import SWEEP_TABLE
 from ..measurements.sweeps import SweepTable
 from ..resonators.qcm import QCM
-from ..units import JUNCTION_SIGMAS, MIN_SWEEP_POINTS, SMALL_LOAD_LIMIT
+from ..tangential import effective_shear_modulus, shear_modulus
+from ..units import JUNCTION_SIGMAS, LINEAR_ONSET_X, MIN_SWEEP_POINTS, SMALL_LOAD_LIMIT
 from .amplitude import pad_sweeps
 from .blocks import block_codes, choose_blocks
 from .classify import apply_models, fit_sweeps
@@ -152,6 +153,29 @@ def _whole_loads(sw: pd.DataFrame, mask: np.ndarray) -> np.ndarray:
         .eq(True)
         .to_numpy()
     )
+
+
+def _savkoor_traction(sw: pd.DataFrame, member: np.ndarray, group: dict) -> None:
+    """τ0 = F_s/(πa²) of the Savkoor sweeps of one group, in place (``tau0_Pa``, with error).
+
+    The contact radius a = κ/(2G*) (paper 2, below Eq. 6) needs G*, i.e. the group's E from
+    the JKR fit (Eqs. 7-8 with ν): where E is withheld, τ0 is not given. The error combines
+    those of F_s, κ and E (independent; relative: F_s + 2 κ + 2 E).
+    """
+    rows = member & (sw["model"] == "savkoor").to_numpy()
+    E, E_err = group["E_Pa"], group["E_err_Pa"]
+    if not rows.any() or not np.isfinite(E):
+        return
+    G_star = effective_shear_modulus(shear_modulus(E, group["poisson"]), group["poisson"])
+    kappa = sw.loc[rows, "kappa_N_per_m"].to_numpy(float)
+    kappa_err = sw.loc[rows, "df0_err_Hz"].to_numpy(float) / sw.loc[rows, "P_Hz_per_N_per_m"]
+    F, F_err = (sw.loc[rows, c].to_numpy(float) for c in ("sliding_force_N", "sliding_force_err_N"))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        a = kappa / (2.0 * G_star)
+        tau = F / (np.pi * a**2)
+        rel = np.sqrt((F_err / F) ** 2 + 4 * (kappa_err / kappa) ** 2 + 4 * (E_err / E) ** 2)
+    sw.loc[rows, "tau0_Pa"] = np.where(a > 0, tau, np.nan)
+    sw.loc[rows, "tau0_err_Pa"] = np.where(a > 0, np.abs(tau) * rel, np.nan)
 
 
 def _flag(mask: np.ndarray, flag: Flag) -> np.ndarray:
@@ -274,6 +298,8 @@ def analyze(
         sw["sliding_force_N"] = loops.sliding_force
         sw["sliding_force_err_N"] = loops.sliding_force_err
         flags |= _flag(loops.gross_sliding, Flag.GROSS_SLIDING)
+        cm = (sw["model"] == "cattaneo-mindlin").to_numpy()
+        flags |= _flag(cm & (loops.x_max > LINEAR_ONSET_X), Flag.BEYOND_ONSET)
         blocks = block_friction(blocks, sw)
         member = sw["block"].to_numpy() >= 0
         for col in ("mu_block", "mu_block_err"):
@@ -283,6 +309,9 @@ def analyze(
         for col in ("mu_fit", "mu_fit_err", "x_max", "sliding_force_N", "sliding_force_err_N"):
             sw[col] = np.nan
     sw["flags"] = flags
+
+    sw["tau0_Pa"] = np.nan
+    sw["tau0_err_Pa"] = np.nan
 
     say("statistics per load")
     exp = per_experiment(sw)
@@ -307,6 +336,7 @@ def analyze(
             for e, f in zip(drifting["experiment"], drifting["normal_force_N"], strict=True)
         ]
         groups.append(g)
+        _savkoor_traction(sw, member, g)
 
     record = asdict(settings)
     record["x_max_table"] = X_MAX

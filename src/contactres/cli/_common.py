@@ -165,13 +165,28 @@ def format_option(default: str = "plain"):
     )
 
 
+def _json_scalar(value):
+    """numpy scalars (and anything else with ``.item()``) as Python values for json."""
+    if hasattr(value, "item"):
+        value = value.item()
+        return None if isinstance(value, float) and value != value else value
+    return str(value)
+
+
 def emit(table: pd.DataFrame, fmt: str, stream=None) -> None:
     """Print a table in the chosen format to ``stream`` (stdout)."""
     out = stream or sys.stdout
     if fmt == "csv":
         table.to_csv(out, index=False)
     elif fmt == "json":
-        json.dump(json.loads(table.to_json(orient="records", double_precision=15)), out, indent=1)
+        # Python's own float repr (shortest exact), not pandas' to_json, which rounds to a
+        # number of decimals and so writes 1.23e-12 m as 0.0.
+        import numpy as np  # here: the command line starts without numpy
+
+        # Non-finite values have no JSON form: null, as the CSV outputs leave them empty.
+        finite = table.replace([np.inf, -np.inf], np.nan)
+        records = finite.astype(object).where(finite.notna(), None).to_dict(orient="records")
+        json.dump(records, out, indent=1, allow_nan=False, default=_json_scalar)
         out.write("\n")
     else:
         out.write(table.to_string(index=False, float_format=lambda v: f"{v:.6g}") + "\n")

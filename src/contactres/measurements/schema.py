@@ -322,6 +322,13 @@ _SWEEP_RESULT_COLUMNS = (
         level="sweep",
     ),
     Column("sliding_force_err_N", "N", "standard error of sliding_force_N", level="sweep"),
+    Column(
+        "tau0_Pa",
+        "Pa",
+        "Savkoor sweeps: sliding traction τ0 = F_s/(πa²), a = κ/(2G*) with the group's E",
+        level="sweep",
+    ),
+    Column("tau0_err_Pa", "Pa", "standard error of tau0_Pa (from F_s, κ and E)", level="sweep"),
 )
 
 SWEEP_RESULTS = TableSchema(
