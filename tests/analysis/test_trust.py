@@ -189,3 +189,42 @@ def test_a_sweep_at_one_amplitude_is_flagged_and_gets_no_slope():
     row = sw[flat].iloc[0]
     assert np.isnan(row["df_slope_Hz_per_m"]) and np.isnan(row["mu_df"])
     assert np.isnan(row["mu_dgamma"])
+
+
+def test_linear_drift_in_time_is_removed_where_times_are_given():
+    # Points 2 s apart in file order; one load of e2 drifts by 0.02 Hz/s in Δf (~2 Hz over its
+    # four ramps): with --remove-drift it is corrected, tested again and used.
+    beta = 0.02
+
+    def edit(raw):
+        raw = raw.assign(time_s=2.0 * np.arange(len(raw)))
+        load = (raw["experiment"] == "e2") & (raw["normal_force_N"] == 6e-3)
+        t = raw.loc[load, "time_s"]
+        raw.loc[load, "df_Hz"] += beta * (t - t.min())
+        return raw
+
+    table = _table(study(n_experiments=3), 5, edit)
+    plain = analyze(table, settings=AnalysisSettings(bootstrap=0))
+    load = (
+        (plain.sweeps["experiment"] == "e2") & (plain.sweeps["normal_force_N"] == 6e-3)
+    ).to_numpy()
+    assert has(plain.sweeps["flags"], Flag.DRIFT)[load].all()
+    fixed = analyze(table, settings=AnalysisSettings(bootstrap=0, remove_drift=True))
+    sw = fixed.sweeps
+    assert has(sw["flags"], Flag.DRIFT_REMOVED)[load].all()
+    assert not has(sw["flags"], Flag.DRIFT).any()
+    assert sw.loc[load & (sw["ramp"] > 1).to_numpy(), "used"].all()
+    (rate,) = fixed.groups[0]["drift_removed"]
+    assert rate["drift_df_Hz_per_s"] == pytest.approx(beta, rel=0.1)
+    assert abs(rate["drift_dgamma_Hz_per_s"]) < 0.1 * beta
+    # The corrected load's stiffness agrees with the same load in the other experiments.
+    others = (sw["normal_force_N"] == 6e-3).to_numpy() & ~load & sw["used"].to_numpy()
+    k = sw.loc[load & sw["used"].to_numpy(), "kappa_N_per_m"].mean()
+    assert k == pytest.approx(sw.loc[others, "kappa_N_per_m"].mean(), rel=0.02)
+
+
+def test_remove_drift_without_times_says_so():
+    s = study(n_experiments=3, drifts=(Drift("glass", "air", 2, 3, 1.5),))
+    res = run(s, 2, settings=AnalysisSettings(bootstrap=0, remove_drift=True))
+    assert any("no time_s column" in m for m in res.messages)
+    assert has(res.sweeps["flags"], Flag.DRIFT).any()

@@ -23,6 +23,7 @@ BREAKS = {
     "n_contacts": [0, 2.5],
     "sphere_radius_m": [-1e-3],
     "poisson": [0.5, -1.0],
+    "time_s": [float("inf"), float("nan")],
 }
 
 
@@ -44,6 +45,7 @@ def good_frame() -> pd.DataFrame:
                 n_contacts=3,
                 sphere_radius_m=1e-3,
                 poisson=0.17,
+                time_s=10.0 * k,
             )
         )
     return pd.DataFrame(rows)

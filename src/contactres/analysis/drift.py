@@ -2,7 +2,9 @@
 
 Up and down ramps of a history-free (Masing) contact must give the same shifts (paper 2, Eqs.
 4-5), so ramps of one load of one experiment that are offset from each other beyond the noise
-mean that the baseline moved between them.
+mean that the baseline moved between them. Where the table gives the time of each point, a
+drift linear in time can be removed instead of the load being left out
+(:func:`remove_linear_drift`).
 """
 
 from __future__ import annotations
@@ -13,7 +15,7 @@ from scipy.special import fdtrc
 
 from .amplitude import Padded
 
-__all__ = ["LOAD_OF_EXPERIMENT", "drifting_sweeps"]
+__all__ = ["LOAD_OF_EXPERIMENT", "drifting_sweeps", "remove_linear_drift"]
 
 #: Columns that identify one load of one experiment.
 LOAD_OF_EXPERIMENT = ["experiment", "configuration", "medium", "normal_force_N"]
@@ -61,3 +63,38 @@ def drifting_sweeps(sw: pd.DataFrame, padded: Padded, used: np.ndarray, p: float
         if min(pvals) < p / 2:
             flag[idx] = True
     return flag
+
+
+def remove_linear_drift(
+    data: pd.DataFrame, loads: pd.DataFrame
+) -> tuple[pd.DataFrame, pd.DataFrame]:
+    """Remove a drift linear in time from the points of some loads of some experiments.
+
+    For each load of ``loads`` (rows with the columns of :data:`LOAD_OF_EXPERIMENT` and
+    ``sweeps``, the list of the sweeps that estimate the drift: its ramps after the first), Δf
+    and ΔΓ of those sweeps' points are fitted with a common quadratic in u0 plus β t (t: the
+    ``time_s`` column; linear least squares, per channel), and β (t - t_0) is subtracted from
+    every point of the load (its first ramp too; t_0 its first time), so that the shifts read
+    as at the start of the load. Returns the corrected copy of ``data`` and one row per load
+    with ``drift_df_Hz_per_s`` and ``drift_dgamma_Hz_per_s`` (β of each channel).
+    """
+    data = data.copy()
+    out = []
+    where = data.groupby(LOAD_OF_EXPERIMENT, sort=False).indices if len(loads) else {}
+    time = data["time_s"].to_numpy(float)
+    for _, load in loads.iterrows():  # the drifting loads: a few
+        this = where[tuple(load[c] for c in LOAD_OF_EXPERIMENT)]
+        fit = this[np.isin(data["sweep"].to_numpy()[this], list(load["sweeps"]))]
+        u = data["amplitude_m"].to_numpy(float)[fit]
+        scale = u.max() if u.size and u.max() > 0 else 1.0
+        t0 = float(time[this].min())
+        X = np.column_stack([np.ones(u.size), u / scale, (u / scale) ** 2, time[fit] - t0])
+        betas = {}
+        for col in ("df_Hz", "dgamma_Hz"):
+            values = data[col].to_numpy(float, copy=True)
+            beta = float(np.linalg.lstsq(X, values[fit], rcond=None)[0][3])
+            values[this] -= beta * (time[this] - t0)
+            data[col] = values
+            betas[f"drift_{col.removesuffix('_Hz')}_Hz_per_s"] = beta
+        out.append({**{c: load[c] for c in LOAD_OF_EXPERIMENT}, **betas})
+    return data, pd.DataFrame(out)

@@ -30,6 +30,7 @@ class Flag(enum.IntFlag):
     RAMP_ORDER = enum.auto()
     FLAT_AMPLITUDE = enum.auto()
     BEYOND_ONSET = enum.auto()
+    DRIFT_REMOVED = enum.auto()
 
     @property
     def text(self) -> str:
@@ -72,6 +73,10 @@ DESCRIPTIONS: dict[Flag, str] = {
         f"a Cattaneo-Mindlin sweep reaching κu0/(μF_N) > {LINEAR_ONSET_X:g} (exact-loop fit): "
         "beyond the linear onset, so μ from the slopes (paper 2, Eq. 12) reads low (by > 10 % "
         "from the ΔΓ slope); use mu_fit"
+    ),
+    Flag.DRIFT_REMOVED: (
+        "this load drifted; a drift linear in time (column time_s) was removed from its points "
+        "and it passed the drift test again (--remove-drift; the rates are in summary.json)"
     ),
 }
 

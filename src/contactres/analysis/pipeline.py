@@ -70,7 +70,7 @@ from ..units import JUNCTION_SIGMAS, LINEAR_ONSET_X, MIN_SWEEP_POINTS, SMALL_LOA
 from .amplitude import pad_sweeps
 from .blocks import block_codes, choose_blocks
 from .classify import apply_models, fit_sweeps
-from .drift import LOAD_OF_EXPERIMENT, drifting_sweeps
+from .drift import LOAD_OF_EXPERIMENT, drifting_sweeps, remove_linear_drift
 from .flags import Flag
 from .friction import block_friction, loop_friction, slope_friction
 from .jkr import fit_group
@@ -96,6 +96,8 @@ class AnalysisSettings:
     keep_first_ramp : use ramp 1 of every load (default: set aside as running-in)
     keep_drift : use the sweeps of loads whose ramps drift (default: left out of the means and
         fits, and listed)
+    remove_drift : where the table has ``time_s``, remove a drift linear in time from the loads
+        found drifting, test them again and use those that pass (flag ``drift-removed``)
     pool_experiments : decide the friction law (Coulomb or Savkoor) once per experiment from
         all its loads (:mod:`contactres.analysis.blocks`); False: per load block
     delta_bic : BIC margin within which the simpler amplitude model is kept
@@ -112,6 +114,7 @@ class AnalysisSettings:
 
     keep_first_ramp: bool = False
     keep_drift: bool = False
+    remove_drift: bool = False
     pool_experiments: bool = True
     delta_bic: float = 2.0
     drift_p: float = 1e-3
@@ -229,6 +232,25 @@ def analyze(
     drift = drifting_sweeps(info, padded, tested, settings.drift_p)
     # A drifting load loses all its sweeps (its ramp 1 too, when ramp 1 is used).
     drift = _whole_loads(info, drift) & ~few
+    removed = np.zeros(len(info), bool)
+    drift_removed = pd.DataFrame(columns=[*LOAD_OF_EXPERIMENT, "drift_df_Hz_per_s"])
+    messages = list(ramps.messages)
+    if settings.remove_drift and drift.any():
+        if data["time_s"].isna().any():
+            messages.append(
+                "drift: the table has no time_s column (or not in every row), so the drifting "
+                "loads are left out instead of corrected"
+            )
+        else:
+            # The drift is estimated on the ramps it was found in, removed from the whole load,
+            # and the load tested again: corrected loads are used (flag drift-removed).
+            est = info[drift & tested].groupby(LOAD_OF_EXPERIMENT, sort=True)["sweep"]
+            loads = est.agg(list).rename("sweeps").reset_index()
+            data, drift_removed = remove_linear_drift(data, loads)
+            padded = pad_sweeps(data)
+            again = _whole_loads(info, drifting_sweeps(info, padded, tested, settings.drift_p))
+            again = again & ~few
+            removed, drift = drift & ~again, again
     if not settings.keep_drift:
         used &= ~drift
 
@@ -275,6 +297,7 @@ def analyze(
         | _flag(ramps.suspect, Flag.RAMP_ORDER)
         | _flag(flat, Flag.FLAT_AMPLITUDE)
         | _flag(drift, Flag.DRIFT)
+        | _flag(removed, Flag.DRIFT_REMOVED)
     )
 
     say("contact stiffness and friction")
@@ -335,6 +358,10 @@ def analyze(
             {"experiment": e, "normal_force_N": f}
             for e, f in zip(drifting["experiment"], drifting["normal_force_N"], strict=True)
         ]
+        mine = (drift_removed["configuration"] == key[0]) & (drift_removed["medium"] == key[1])
+        g["drift_removed"] = (
+            drift_removed[mine].drop(columns=["configuration", "medium"]).to_dict(orient="records")
+        )
         groups.append(g)
         _savkoor_traction(sw, member, g)
 
@@ -350,5 +377,5 @@ def analyze(
         table=table,
         padded=padded,
         blocks=blocks,
-        messages=ramps.messages,
+        messages=tuple(messages),
     )

@@ -61,6 +61,12 @@ from ._common import MagnitudeType, emit, format_option, odd_overtone
     help="Use the sweeps of loads whose ramps drift (default: left out and listed).",
 )
 @click.option(
+    "--remove-drift",
+    is_flag=True,
+    help="Where the table has a time_s column, remove a drift linear in time from the loads "
+    "found drifting and use them if they pass the drift test again.",
+)
+@click.option(
     "--law-per-load",
     is_flag=True,
     help="Choose Coulomb (Cattaneo-Mindlin/plateau) or Savkoor per load, not once per "
@@ -91,6 +97,7 @@ def analyze_command(
     sphere_radius,
     keep_first_ramp,
     keep_drift,
+    remove_drift,
     law_per_load,
     bootstrap,
     workers,
@@ -137,6 +144,7 @@ def analyze_command(
             workers=workers,
             keep_first_ramp=keep_first_ramp,
             keep_drift=keep_drift,
+            remove_drift=remove_drift,
             pool_experiments=not law_per_load,
             bootstrap=bootstrap,
         )

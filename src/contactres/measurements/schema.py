@@ -154,6 +154,12 @@ SWEEP_TABLE = TableSchema(
         ),
         Column("dgamma_Hz", "Hz", "shift of the half-bandwidth ΔΓ at half height", required=True),
         Column(
+            "time_s",
+            "s",
+            "time of the point (any origin): lets a linear drift be removed (--remove-drift)",
+            rule="finite",
+        ),
+        Column(
             "normal_force_N",
             "N",
             "normal force per contact",
@@ -422,6 +428,12 @@ GROUP_RESULTS = TableSchema(
             "running_in",
             "-",
             "ratios ramp 1 / later ramps of κ, ωξ and μ_fit (mean and standard error over loads)",
+        ),
+        Column(
+            "drift_removed",
+            "-",
+            "(experiment, normal force, drift of Δf and ΔΓ in Hz/s) of the loads corrected for "
+            "a drift linear in time (--remove-drift)",
         ),
         Column(
             "drifting_loads",

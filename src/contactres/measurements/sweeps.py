@@ -34,6 +34,7 @@ from ..units import (
     SMALL_LOAD_LIMIT,
     poisson_in_range,
 )
+from .messages import at_cell, column_names, shown_value, where_rows
 from .readers import READERS, SweepReader, pick_reader, register_reader
 from .schema import SWEEP_TABLE
 
@@ -74,13 +75,11 @@ PER_SWEEP_COLUMNS = tuple(
 #: Columns of a validated table, in order.
 VALIDATED_COLUMNS = (
     "sweep", "experiment", "configuration", "medium", "ramp", "normal_force_N", "amplitude_m",
-    "df_Hz", "dgamma_Hz", *CONSTANTS, "line",
+    "df_Hz", "dgamma_Hz", *CONSTANTS, "time_s", "line",
 )  # fmt: skip
 #: Largest count (overtone, n_contacts) taken: above 2**53 a float no longer holds every whole
 #: number, and the integer columns of the table would overflow soon after.
 _LARGEST_WHOLE = 2**53
-#: Longest value shown in a message (a 50 MB label is shown by its first characters).
-SHOWN_CHARS = 60
 
 
 class SweepWarning(UserWarning):
@@ -139,7 +138,8 @@ def _toml_constants(path: Path) -> tuple[dict, Path | None]:
             unknown = sorted(set(data) - set(CONSTANTS))
             if unknown:
                 raise ValueError(
-                    f"{candidate}: unknown key(s) {_names(unknown)}; allowed: {list(CONSTANTS)}"
+                    f"{candidate}: unknown key(s) {column_names(unknown)}; "
+                    f"allowed: {list(CONSTANTS)}"
                 )
             return data, candidate
     return {}, None
@@ -147,7 +147,7 @@ def _toml_constants(path: Path) -> tuple[dict, Path | None]:
 
 def _check_constant(name: str, value, where: str, shown=None) -> float:
     """``value`` as a float if it passes the rule of ``name`` (``shown``: as written, if not it)."""
-    shown = _shown(value if shown is None else shown)
+    shown = shown_value(value if shown is None else shown)
     if isinstance(value, (bool, np.bool_)):  # TOML true/false: float() would make it 1/0
         raise ValueError(f"{where}: {name} = {str(value).lower()} is a boolean, not a number")
     try:
@@ -236,44 +236,14 @@ def _numeric(raw: pd.DataFrame, col: str, source: str, decimal: str) -> np.ndarr
     if bad.any():
         i = int(np.flatnonzero(bad)[0])
         shown = raw[col].iloc[i]
-        what = "is empty" if not str(shown).strip() else f"value {_shown(shown)} is not a number"
-        raise ValueError(f"{_where(raw, source, bad, col)}: {what}")
+        what = (
+            "is empty" if not str(shown).strip() else f"value {shown_value(shown)} is not a number"
+        )
+        raise ValueError(f"{where_rows(raw, source, bad, col)}: {what}")
     nonfinite = ~np.isfinite(values)
     if nonfinite.any():
-        raise ValueError(f"{_at(raw, source, nonfinite, col)} is not finite (NaN or infinite)")
+        raise ValueError(f"{at_cell(raw, source, nonfinite, col)} is not finite (NaN or infinite)")
     return values
-
-
-def _shown(value) -> str:
-    """A cell as the user wrote it: plain Python repr, never a numpy scalar's repr, and at most
-    :data:`SHOWN_CHARS` characters of it."""
-    value = value.item() if isinstance(value, np.generic) else value
-    if isinstance(value, str) and len(value) > SHOWN_CHARS:
-        return repr(value[: SHOWN_CHARS - 1]) + "…"
-    text = repr(value)
-    return text if len(text) <= SHOWN_CHARS else text[: SHOWN_CHARS - 1] + "…"
-
-
-def _names(names) -> str:
-    """A list of column names for a message: the first ten, each shortened."""
-    names = list(names)
-    shown = ", ".join(_shown(n) for n in names[:10])
-    return f"[{shown}{f', ... ({len(names)} in all)' if len(names) > 10 else ''}]"
-
-
-def _where(table: pd.DataFrame, source: str, mask: np.ndarray, col: str) -> str:
-    """'file, line 6, column 'x'' and, for several bad rows, how many and the first five lines."""
-    lines = table["line"].to_numpy()[mask]
-    where = f"{source}, line {lines[0]}, column {col!r}"
-    if len(lines) < 2:
-        return where
-    shown = ", ".join(str(v) for v in lines[:5]) + (", ..." if len(lines) > 5 else "")
-    return f"{where} ({len(lines)} such rows: lines {shown})"
-
-
-def _at(table: pd.DataFrame, source: str, mask: np.ndarray, col: str) -> str:
-    i = int(np.flatnonzero(mask)[0])
-    return f"{_where(table, source, mask, col)}: value {_shown(table[col].iloc[i])}"
 
 
 def _labels_and_numbers(raw: pd.DataFrame, source: str, decimal: str) -> pd.DataFrame:
@@ -282,23 +252,32 @@ def _labels_and_numbers(raw: pd.DataFrame, source: str, decimal: str) -> pd.Data
     out["sweep"] = raw["sweep"].astype(str).str.strip().to_numpy()
     empty = (out["sweep"] == "").to_numpy() | raw["sweep"].isna().to_numpy()
     if empty.any():
-        raise ValueError(f"{_at(out, source, empty, 'sweep')} is empty; every row needs a sweep id")
+        raise ValueError(
+            f"{at_cell(out, source, empty, 'sweep')} is empty; every row needs a sweep id"
+        )
     for col, default in LABEL_DEFAULTS.items():
         if col in raw.columns:
             out[col] = raw[col].astype(str).str.strip().to_numpy()
             blank = (out[col] == "").to_numpy()
             if blank.any():
-                raise ValueError(f"{_at(out, source, blank, col)} is empty")
+                raise ValueError(f"{at_cell(out, source, blank, col)} is empty")
         else:
             out[col] = default
     for col in ("amplitude_m", "df_Hz", "dgamma_Hz", "normal_force_N"):
         out[col] = _numeric(raw, col, source, decimal)
+    # Optional time of each point (NaN where the table has none).
+    # (A column of NaN only, as a validated table carries when it had none, is no column.)
+    if "time_s" in raw:
+        cells = raw["time_s"]
+        blank = cells.isna() | cells.astype(str).str.strip().str.lower().isin(["", "nan"])
+    given = "time_s" in raw and not blank.all()
+    out["time_s"] = _numeric(raw, "time_s", source, decimal) if given else np.nan
     if "ramp" in raw.columns:
         ramp = _numeric(raw, "ramp", source, decimal)
         bad = (ramp != np.round(ramp)) | (ramp < 1)
         if bad.any():
             out["ramp"] = ramp
-            raise ValueError(f"{_at(out, source, bad, 'ramp')} is not a positive integer")
+            raise ValueError(f"{at_cell(out, source, bad, 'ramp')} is not a positive integer")
         out["ramp"] = ramp.astype(int)
     else:
         out["ramp"] = 0
@@ -333,7 +312,7 @@ def _fill_constants(
             if name in constants and np.any(vals != float(constants[name])):
                 warnings.warn(
                     f"{source}: column {name!r} overrides the given {name} = "
-                    f"{_shown(constants[name])}",
+                    f"{shown_value(constants[name])}",
                     SweepWarning,
                     stacklevel=4,
                 )
@@ -363,18 +342,18 @@ def _check_physics(out: pd.DataFrame, source: str) -> None:
     neg = amp < 0
     if neg.any():
         raise ValueError(
-            f"{_at(out, source, neg, 'amplitude_m')} is negative; amplitudes must be >= 0 m"
+            f"{at_cell(out, source, neg, 'amplitude_m')} is negative; amplitudes must be >= 0 m"
         )
     big = amp > MAX_AMPLITUDE_M
     if big.any():
         raise ValueError(
-            f"{_at(out, source, big, 'amplitude_m')} is above {MAX_AMPLITUDE_M:g} m: it looks "
+            f"{at_cell(out, source, big, 'amplitude_m')} is above {MAX_AMPLITUDE_M:g} m: it looks "
             "like nanometres in a metre column (multiply nm by 1e-9)"
         )
     nonpos = out["normal_force_N"].to_numpy() <= 0
     if nonpos.any():
         raise ValueError(
-            f"{_at(out, source, nonpos, 'normal_force_N')} is not positive; the normal force "
+            f"{at_cell(out, source, nonpos, 'normal_force_N')} is not positive; the normal force "
             "per contact must be > 0 N"
         )
     f_res = out["fundamental_Hz"].to_numpy() * out["overtone"].to_numpy()
@@ -383,14 +362,15 @@ def _check_physics(out: pd.DataFrame, source: str) -> None:
         absolute = v > ABSOLUTE_FREQUENCY_FRACTION * out["fundamental_Hz"].to_numpy()
         if absolute.any():
             raise ValueError(
-                f"{_at(out, source, absolute, col)} looks like an absolute frequency, not a shift "
+                f"{at_cell(out, source, absolute, col)} looks like an absolute frequency, not a "
+                "shift "
                 f"(above {ABSOLUTE_FREQUENCY_FRACTION:g} of the fundamental); subtract the "
                 "reference frequency"
             )
         large = v > SMALL_LOAD_LIMIT * f_res
         if large.any():
             warnings.warn(
-                f"{_at(out, source, large, col)} Hz is above {SMALL_LOAD_LIMIT:g} of the "
+                f"{at_cell(out, source, large, col)} Hz is above {SMALL_LOAD_LIMIT:g} of the "
                 "resonance frequency: the small-load approximation (paper 2, Eq. 1) may fail",
                 SweepWarning,
                 stacklevel=4,
@@ -420,8 +400,9 @@ def _conflict(table: pd.DataFrame, source: str, by: str, col: str, rule: str) ->
         rows = table[table[by] == name]
         a, b = rows.iloc[0], rows.loc[rows[col] != rows[col].iloc[0]].iloc[0]
         raise ValueError(
-            f"{source}, {by} {_shown(name)}: conflicting values in column {col!r}: "
-            f"{_shown(a[col])} (line {a['line']}) and {_shown(b[col])} (line {b['line']}); {rule}"
+            f"{source}, {by} {shown_value(name)}: conflicting values in column {col!r}: "
+            f"{shown_value(a[col])} (line {a['line']}) and {shown_value(b[col])} "
+            f"(line {b['line']}); {rule}"
         )
 
 
@@ -442,7 +423,7 @@ def _warn_sweeps(table: pd.DataFrame, source: str) -> None:
     few = f"have fewer than {MIN_SWEEP_POINTS} points and will not be used"
     flat = "have all amplitudes equal: no slope and no friction coefficient can come from them"
     for bad, what in ((amp.size() < MIN_SWEEP_POINTS, few), (amp.max() == amp.min(), flat)):
-        names = [_shown(n) for n in bad.index[bad.to_numpy()]]
+        names = [shown_value(n) for n in bad.index[bad.to_numpy()]]
         if names:
             more = f" ... ({len(names)} in all)" if len(names) > 5 else ""
             message = f"{source}: sweep(s) {', '.join(names[:5])}{more} {what}"
@@ -474,17 +455,18 @@ def validate_sweeps(
     names = pd.Series(raw.columns)
     if names.duplicated().any():
         dups = names[names.duplicated()].unique()
-        raise ValueError(f"{source}: duplicate column name(s) {_names(dups)}; one name each")
+        raise ValueError(f"{source}: duplicate column name(s) {column_names(dups)}; one name each")
     if "line" not in raw.columns:
         raw["line"] = np.arange(2, len(raw) + 2)
     decimal = raw.attrs.get("decimal", ".")
     data_cols = [c for c in raw.columns if c != "line"]
     if len(raw) == 0:
-        raise ValueError(f"{source}: header only, no data rows; columns: {_names(data_cols)}")
+        raise ValueError(f"{source}: header only, no data rows; columns: {column_names(data_cols)}")
     missing = [c for c in REQUIRED_COLUMNS if c not in raw.columns]
     if missing:
         raise ValueError(
-            f"{source}: missing required column(s) {missing}; columns found: {_names(data_cols)}; "
+            f"{source}: missing required column(s) {missing}; "
+            f"columns found: {column_names(data_cols)}; "
             f"required: {list(REQUIRED_COLUMNS)}, optional: {list(OPTIONAL_COLUMNS)}"
         )
     out = _labels_and_numbers(raw, source, decimal)

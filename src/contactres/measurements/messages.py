@@ -1,0 +1,45 @@
+"""How the cells of a user's table are named in one-line error messages: file, line, column,
+value (shortened, never a numpy repr)."""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+__all__ = ["SHOWN_CHARS", "at_cell", "column_names", "shown_value", "where_rows"]
+
+#: Longest value shown in a message (a 50 MB label is shown by its first characters).
+SHOWN_CHARS = 60
+
+
+def shown_value(value) -> str:
+    """A cell as the user wrote it: plain Python repr, never a numpy scalar's repr, and at most
+    :data:`SHOWN_CHARS` characters of it."""
+    value = value.item() if isinstance(value, np.generic) else value
+    if isinstance(value, str) and len(value) > SHOWN_CHARS:
+        return repr(value[: SHOWN_CHARS - 1]) + "…"
+    text = repr(value)
+    return text if len(text) <= SHOWN_CHARS else text[: SHOWN_CHARS - 1] + "…"
+
+
+def column_names(names) -> str:
+    """A list of column names for a message: the first ten, each shortened."""
+    names = list(names)
+    shown = ", ".join(shown_value(n) for n in names[:10])
+    return f"[{shown}{f', ... ({len(names)} in all)' if len(names) > 10 else ''}]"
+
+
+def where_rows(table: pd.DataFrame, source: str, mask: np.ndarray, col: str) -> str:
+    """'file, line 6, column 'x'' and, for several bad rows, how many and the first five lines."""
+    lines = table["line"].to_numpy()[mask]
+    where = f"{source}, line {lines[0]}, column {col!r}"
+    if len(lines) < 2:
+        return where
+    shown = ", ".join(str(v) for v in lines[:5]) + (", ..." if len(lines) > 5 else "")
+    return f"{where} ({len(lines)} such rows: lines {shown})"
+
+
+def at_cell(table: pd.DataFrame, source: str, mask: np.ndarray, col: str) -> str:
+    """:func:`where_rows` and the first bad value as the user wrote it."""
+    i = int(np.flatnonzero(mask)[0])
+    return f"{where_rows(table, source, mask, col)}: value {shown_value(table[col].iloc[i])}"
