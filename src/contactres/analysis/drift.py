@@ -21,16 +21,18 @@ __all__ = ["LOAD_OF_EXPERIMENT", "drifting_sweeps", "remove_linear_drift"]
 LOAD_OF_EXPERIMENT = ["experiment", "configuration", "medium", "normal_force_N"]
 
 
-def _offset_p_value(base: np.ndarray, full: np.ndarray, y: np.ndarray, k: int) -> float:
-    """False-alarm probability of per-ramp offsets (``full``) over a common curve (``base``)."""
-    r0 = y - base @ np.linalg.lstsq(base, y, rcond=None)[0]
-    r1 = y - full @ np.linalg.lstsq(full, y, rcond=None)[0]
-    rss0, rss1 = r0 @ r0, r1 @ r1
-    d1, d2 = k - 1, y.size - full.shape[1]
-    if rss1 <= 0:
-        return 0.0 if rss0 > 0 else 1.0
-    fstat = ((rss0 - rss1) / d1) / (rss1 / d2)
-    return float(fdtrc(d1, d2, fstat))  # survival function of the F distribution
+def _grouped(values: np.ndarray, group: np.ndarray, size: int) -> np.ndarray:
+    return np.bincount(group, weights=values, minlength=size)
+
+
+def _within(values: np.ndarray, group: np.ndarray, size: int, count: np.ndarray) -> np.ndarray:
+    """``values`` minus their mean within each group."""
+    return values - (_grouped(values, group, size) / np.maximum(count, 1))[group]
+
+
+def _solve(M: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """vᵀ M⁻¹ v for stacks of small symmetric matrices (pseudo-inverse: degenerate loads)."""
+    return np.einsum("li,lij,lj->l", v, np.linalg.pinv(M), v)
 
 
 def drifting_sweeps(sw: pd.DataFrame, padded: Padded, used: np.ndarray, p: float) -> np.ndarray:
@@ -38,30 +40,52 @@ def drifting_sweeps(sw: pd.DataFrame, padded: Padded, used: np.ndarray, p: float
 
     All used ramps of the load are fitted with one common quadratic in u0, with and without an
     offset per ramp; the offsets are significant if the F statistic exceeds its ``1 - p/2``
-    quantile in Δf or in ΔΓ (two channels, Bonferroni).
+    quantile in Δf or in ΔΓ (two channels, Bonferroni). All loads at once, from grouped sums:
+    the common quadratic by its 3 x 3 normal equations on values centred per load, the model
+    with offsets by the same on values centred per ramp (the offsets drop out).
     """
     flag = np.zeros(len(sw), bool)
-    used_idx = np.flatnonzero(used)
-    row_of = {s: i for i, s in enumerate(padded.sweeps)}
-    padded_row = np.array([row_of[s] for s in sw["sweep"]], dtype=int)
-    for pos in sw.iloc[used_idx].groupby(LOAD_OF_EXPERIMENT, sort=False).indices.values():
-        idx = used_idx[pos]  # positions in sw
-        k = len(idx)
-        if k < 2:
-            continue
-        rows = padded_row[idx]
-        u, df, dg = padded.points(rows)
-        ramp = np.repeat(np.arange(k), padded.n[rows])
-        n = u.size
-        if n - 3 - (k - 1) < 2:
-            continue
-        scale = u.max() if u.max() > 0 else 1.0
-        base = np.column_stack([np.ones(n), u / scale, (u / scale) ** 2])
-        dummies = (ramp[:, None] == np.arange(1, k)[None, :]).astype(float)
-        full = np.column_stack([base, dummies])
-        pvals = [_offset_p_value(base, full, y, k) for y in (df, dg)]
-        if min(pvals) < p / 2:
-            flag[idx] = True
+    idx = np.flatnonzero(used)
+    if idx.size == 0:
+        return flag
+    row_of = pd.Series(np.arange(len(padded.sweeps)), index=padded.sweeps)
+    rows = row_of.reindex(sw["sweep"].to_numpy()[idx]).to_numpy()
+    load = sw.iloc[idx].groupby(LOAD_OF_EXPERIMENT, sort=False).ngroup().to_numpy()
+    L = load.max() + 1
+    k = np.bincount(load, minlength=L)  # ramps per load
+    u, df, dg = padded.points(rows)
+    pt_load = np.repeat(load, padded.n[rows])
+    pt_ramp = np.repeat(np.arange(idx.size), padded.n[rows])  # one group per sweep
+    n = np.bincount(pt_load, minlength=L)
+    n_ramp = np.bincount(pt_ramp, minlength=idx.size)
+    scale = np.zeros(L)
+    np.maximum.at(scale, pt_load, u)
+    v = u / np.where(scale > 0, scale, 1.0)[pt_load]
+    X = np.stack([v, v * v])  # the quadratic's columns besides the constant
+    # Common quadratic (intercept per load): centre per load, then 2 x 2 normal equations.
+    Xc = np.stack([_within(x, pt_load, L, n) for x in X])
+    Xr = np.stack([_within(x, pt_ramp, idx.size, n_ramp) for x in X])
+    M0 = np.stack([[_grouped(Xc[i] * Xc[j], pt_load, L) for j in range(2)] for i in range(2)])
+    M1 = np.stack([[_grouped(Xr[i] * Xr[j], pt_load, L) for j in range(2)] for i in range(2)])
+    M0, M1 = M0.transpose(2, 0, 1), M1.transpose(2, 0, 1)
+    d1 = k - 1
+    d2 = n - 3 - d1
+    testable = (k >= 2) & (d2 >= 2)
+    drifting = np.zeros(L, bool)
+    for y in (df, dg):
+        yc, yr = _within(y, pt_load, L, n), _within(y, pt_ramp, idx.size, n_ramp)
+        b0 = np.stack([_grouped(Xc[i] * yc, pt_load, L) for i in range(2)], axis=1)
+        b1 = np.stack([_grouped(Xr[i] * yr, pt_load, L) for i in range(2)], axis=1)
+        total = _grouped(yc * yc, pt_load, L)
+        rss0 = np.maximum(total - _solve(M0, b0), 0.0)
+        rss1 = np.maximum(_grouped(yr * yr, pt_load, L) - _solve(M1, b1), 0.0)
+        tiny = 1e-12 * total + 1e-300  # rounding of the sums: a perfect fit
+        with np.errstate(divide="ignore", invalid="ignore"):
+            fstat = ((rss0 - rss1) / np.maximum(d1, 1)) / (rss1 / np.maximum(d2, 1))
+            pval = fdtrc(np.maximum(d1, 1), np.maximum(d2, 1), fstat)
+        pval = np.where(rss1 <= tiny, np.where(rss0 > tiny, 0.0, 1.0), pval)
+        drifting |= testable & (pval < p / 2)
+    flag[idx] = drifting[load]
     return flag
 
 

@@ -11,7 +11,6 @@ left out of the table) has no running-in sweep.
 
 from __future__ import annotations
 
-import re
 from dataclasses import dataclass
 
 import numpy as np
@@ -21,7 +20,8 @@ from .drift import LOAD_OF_EXPERIMENT
 
 __all__ = ["RampCheck", "check_ramps"]
 
-_WORD = re.compile(r"(?<![a-z])(up|down)(?![a-z])")
+_WORD_UP = r"(?<![a-z])up(?![a-z])"
+_WORD_DOWN = r"(?<![a-z])down(?![a-z])"
 
 
 @dataclass(frozen=True)
@@ -56,39 +56,60 @@ def check_ramps(info: pd.DataFrame, first_line: np.ndarray, direction: np.ndarra
     messages: list[str] = []
     if not (ramp > 0).any():
         return RampCheck(first, suspect, ())
-    frame = info[[*LOAD_OF_EXPERIMENT, "sweep", "ramp"]].assign(_line=first_line, _pos=np.arange(n))
-    for key, part in frame.groupby(LOAD_OF_EXPERIMENT, sort=False):
-        part = part.sort_values("_line")
-        where = f"experiment {key[0]!r}, {key[1]}/{key[2]}, F_N = {key[3]:g} N"
-        labels = part["ramp"].to_numpy()
-        pos = part["_pos"].to_numpy()
-        problems = []
-        if np.any(np.diff(labels) <= 0):
-            shown = ", ".join(str(r) for r in labels)
-            problems.append(f"ramps in file order are {shown}")
-            # The first sweep measured is the running-in one, whatever its label says.
-            first[pos] = False
-            first[pos[0]] = True
-            problems.append(
-                f"ramp 1 taken as sweep {part['sweep'].iloc[0]!r}, the first in the file"
-            )
-        # A load may start after ramp 1 (running-in left out of the table); a gap after its first
-        # ramp means a ramp was lost.
-        missing = sorted(
-            set(range(int(labels.min()), int(labels.max()) + 1)) - set(labels.tolist())
+    # Every load at once: sweeps sorted by load, then by their first line in the file.
+    load = info.groupby(LOAD_OF_EXPERIMENT, sort=False).ngroup().to_numpy()
+    order = np.lexsort((first_line, load))
+    lo, lab = load[order], ramp[order]
+    start = np.r_[True, lo[1:] != lo[:-1]]  # first sweep of each load in the file
+    same = ~start
+    # Labels that do not rise in file order.
+    disorder = np.zeros(load.max() + 1, bool)
+    disorder[lo[1:][same[1:] & (np.diff(lab) <= 0)]] = True
+    # A gap after a load's first ramp means a ramp was lost (a load may start after ramp 1).
+    by_label = np.lexsort((lab, lo))
+    l2, r2 = lo[by_label], lab[by_label]
+    new_label = np.r_[True, (l2[1:] != l2[:-1]) | (r2[1:] != r2[:-1])]
+    n_labels = np.bincount(l2[new_label], minlength=disorder.size)
+    span = np.zeros(disorder.size)
+    np.maximum.at(span, lo, lab)
+    low = np.full(disorder.size, np.inf)
+    np.minimum.at(low, lo, lab)
+    gaps = (span - low + 1) > n_labels
+    # The first sweep measured is the running-in one, whatever its label says.
+    bad_order = disorder[lo]
+    first[order[bad_order]] = False
+    first[order[bad_order & start]] = True
+    suspect[order] = (disorder | gaps)[lo]
+    for g in np.flatnonzero(disorder | gaps):  # the loads with a problem: a few, for messages
+        rows = order[lo == g]
+        key = info.iloc[rows[0]]
+        where = (
+            f"experiment {key['experiment']!r}, {key['configuration']}/{key['medium']}, "
+            f"F_N = {key['normal_force_N']:g} N"
         )
-        if missing:
-            problems.append(f"ramp(s) {', '.join(map(str, missing))} missing")
-        if problems:
-            suspect[pos] = True
-            messages.append(f"{where}: {'; '.join(problems)}")
-    sweep_names = info["sweep"].astype(str).str.lower().to_numpy()
-    for i, name in enumerate(sweep_names):
-        words = set(_WORD.findall(name))
-        if len(words) == 1 and direction[i] in ("up", "down") and direction[i] not in words:
-            suspect[i] = True
-            messages.append(
-                f"sweep {info['sweep'].iloc[i]!r} is labelled {words.pop()!r} but its amplitudes "
-                f"run {direction[i]} in the file"
+        labels = ramp[rows]
+        problems = []
+        if disorder[g]:
+            problems.append(f"ramps in file order are {', '.join(str(r) for r in labels)}")
+            sweep = info["sweep"].iloc[rows[0]]
+            problems.append(f"ramp 1 taken as sweep {sweep!r}, the first in the file")
+        if gaps[g]:
+            missing = sorted(
+                set(range(int(labels.min()), int(labels.max()) + 1)) - set(labels.tolist())
             )
+            problems.append(f"ramp(s) {', '.join(map(str, missing))} missing")
+        messages.append(f"{where}: {'; '.join(problems)}")
+    # Up/down in a sweep's name against the order of its amplitudes in the file.
+    names = info["sweep"].astype(str).str.lower()
+    says_up = names.str.contains(_WORD_UP).to_numpy()
+    says_down = names.str.contains(_WORD_DOWN).to_numpy()
+    label = np.where(says_up & ~says_down, "up", np.where(says_down & ~says_up, "down", ""))
+    direction = np.asarray(direction)
+    wrong = (label != "") & np.isin(direction, ["up", "down"]) & (label != direction)
+    suspect |= wrong
+    for i in np.flatnonzero(wrong):
+        messages.append(
+            f"sweep {info['sweep'].iloc[i]!r} is labelled {str(label[i])!r} but its amplitudes "
+            f"run {direction[i]} in the file"
+        )
     return RampCheck(first, suspect, tuple(messages))
