@@ -232,3 +232,29 @@ def test_savkoor_traction_from_the_group_modulus():
     np.testing.assert_allclose(sw["tau0_Pa"], truth, rtol=0.05)
     z = (sw["tau0_Pa"] - truth) / sw["tau0_err_Pa"]
     assert np.abs(z).max() < 4
+
+
+@pytest.mark.parametrize("seed", [1, 4])
+def test_every_used_sweep_has_its_limits(seed):
+    # A block whose friction law (Savkoor ruled out) leaves the plateau winning must have the
+    # plateau loop fitted to its ramps (it once had not: Δf0 NaN for used sweeps).
+    from contactres.measurements.studies import validation_study
+
+    raw = synthetic_sweeps(validation_study(4), seed)
+    res = analyze(validate_sweeps(raw, constants=CONST), settings=AnalysisSettings(bootstrap=0))
+    used = res.sweeps[res.sweeps["used"]]
+    assert np.isfinite(used[["df0_Hz", "dgamma0_Hz", "kappa_N_per_m"]].to_numpy()).all()
+
+
+def test_loads_of_one_experiment_take_the_block_mu_in_every_statistic():
+    raw = _block_table("cattaneo-mindlin", 1, 0.3, 9)
+    res = analyze(
+        validate_sweeps(raw.filter(regex="^(?!true_)"), constants=CONST),
+        settings=AnalysisSettings(bootstrap=0),
+    )
+    (load,) = res.loads.itertuples()
+    mu_block = res.sweeps["mu_block"].iloc[0]
+    assert np.isfinite(mu_block)
+    assert load.mu_fit_mean == pytest.approx(mu_block) and load.mu_fit_median == pytest.approx(
+        mu_block
+    )

@@ -185,32 +185,38 @@ def choose_blocks(
     n_r = sw["n_points"].to_numpy(float)
     n = np.bincount(code[member], weights=n_r[member], minlength=B)
     R = np.bincount(code[member], minlength=B).astype(float)
+    classes = np.repeat(np.asarray(AMPLITUDE_MODELS), 2)
+    keys = sw.loc[member, LOAD_OF_EXPERIMENT].assign(block=code[member])
+    blocks = keys.drop_duplicates("block").sort_values("block").reset_index(drop=True)
     crit = _criteria(bf, sw, code, n, R, exact_loop)
+    family = _friction_law(crit, classes, blocks, delta_bic) if pool_experiment else None
+
+    def excluded(crit):  # the family the experiment's friction law rules out
+        if family is None:
+            return crit
+        savkoor = classes == "savkoor"
+        coulomb = np.isin(classes, ["cattaneo-mindlin", "plateau"])
+        crit = np.where(savkoor[:, None] & (family == "coulomb")[None, :], np.inf, crit)
+        return np.where(coulomb[:, None] & (family == "savkoor")[None, :], np.inf, crit)
+
+    crit = excluded(crit)
     if exact_loop:
         # The per-ramp plateau needs the plateau loop of each ramp: fitted where the block's
-        # shared plateau contends (within PLATEAU_CONTENDER of the best other candidate; a
-        # plateau nests Cattaneo-Mindlin, so it is always close to it), not everywhere.
+        # shared plateau contends (within PLATEAU_CONTENDER of the best other candidate left by
+        # the friction law; a plateau nests Cattaneo-Mindlin, so it is always close to it), not
+        # everywhere. A block whose shared plateau wins is always such a contender, so its
+        # ramps have their own plateau fits.
         i = 2 * AMPLITUDE_MODELS.index("plateau")
-        shared_plateau = crit[i]
         others = np.delete(crit, [i, i + 1], axis=0).min(axis=0)
-        contend = shared_plateau <= others + PLATEAU_CONTENDER
+        contend = crit[i] <= others + PLATEAU_CONTENDER
         sweeps = np.flatnonzero(member & contend[np.maximum(code, 0)])
         if sweeps.size:
             sw = add_plateau_fits(p, sw, sweeps, delta_bic, tables, workers)
-            crit = _criteria(bf, sw, code, n, R, exact_loop)
-    classes = np.repeat(np.asarray(AMPLITUDE_MODELS), 2)
+            crit = excluded(_criteria(bf, sw, code, n, R, exact_loop))
     # Candidate a is nested in b if its class is (NESTED) and it is shared or b is per ramp.
     per_ramp = np.arange(len(classes)) % 2 == 1
     cls = np.repeat(np.arange(len(AMPLITUDE_MODELS)), 2)
     nested = NESTED[cls][:, cls] & (~per_ramp[:, None] | per_ramp[None, :])
-    keys = sw.loc[member, LOAD_OF_EXPERIMENT].assign(block=code[member])
-    blocks = keys.drop_duplicates("block").sort_values("block").reset_index(drop=True)
-    family = _friction_law(crit, classes, blocks, delta_bic) if pool_experiment else None
-    if family is not None:
-        savkoor = classes == "savkoor"
-        coulomb = np.isin(classes, ["cattaneo-mindlin", "plateau"])
-        crit = np.where(savkoor[:, None] & (family == "coulomb")[None, :], np.inf, crit)
-        crit = np.where(coulomb[:, None] & (family == "savkoor")[None, :], np.inf, crit)
     pick = prefer(crit, nested, delta_bic)
     cols = np.arange(B)
     winner = classes[pick]

@@ -21,15 +21,21 @@ GROUP_KEYS = ["configuration", "medium"]
 LOAD_KEYS = ["configuration", "medium", "normal_force_N"]
 
 
+def _used(sw: pd.DataFrame) -> pd.DataFrame:
+    """The used sweeps, with ``mu_fit`` the joint fit of their load block where there is one
+    (``mu_block``): one μ for ramps that share a contact, better conditioned than the mean of
+    their separate nonlinear fits. Both statistics below take μ from here."""
+    used = sw[sw["used"]]
+    if "mu_block" in used:
+        block = used["mu_block"].to_numpy(float)
+        used = used.assign(mu_fit=np.where(np.isfinite(block), block, used["mu_fit"]))
+    return used
+
+
 def per_experiment(sw: pd.DataFrame) -> pd.DataFrame:
     """One row per (load, experiment): the means of its used sweeps and their number (``mu_fit``:
     the joint fit of the load block, ``mu_block``, where there is one)."""
-    used = sw[sw["used"]]
-    if "mu_block" in used:
-        # A load block fitted jointly gives one μ for its ramps: better conditioned than the
-        # mean of their separate nonlinear fits.
-        block = used["mu_block"].to_numpy(float)
-        used = used.assign(mu_fit=np.where(np.isfinite(block), block, used["mu_fit"]))
+    used = _used(sw)
     g = used.groupby([*LOAD_KEYS, "experiment"], sort=True)
     exp = g[list(QUANTITIES)].mean()
     exp["n_sweeps"] = g.size()
@@ -52,7 +58,7 @@ def per_load(exp: pd.DataFrame, sw: pd.DataFrame) -> pd.DataFrame:
     g = exp.groupby(LOAD_KEYS, sort=True)
     out = g.size().rename("n_experiments").to_frame()
     out["n_sweeps"] = g["n_sweeps"].sum()
-    used = sw[sw["used"]].groupby(LOAD_KEYS, sort=True)
+    used = _used(sw).groupby(LOAD_KEYS, sort=True)
     single = (out["n_experiments"] == 1).to_numpy()
     out["errors_from"] = np.where(single, "sweeps of one experiment", "experiments")
     out.loc[single & (out["n_sweeps"] < 2).to_numpy(), "errors_from"] = ""
