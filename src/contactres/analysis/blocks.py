@@ -30,7 +30,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from .amplitude import Padded, pad_sweeps
+from .amplitude import Padded, bic, pad_sweeps
 from .classify import (
     CLASS_SOURCES,
     NESTED,
@@ -38,6 +38,7 @@ from .classify import (
     fit_sweeps,
     n_parameters,
     prefer,
+    source_rss,
     source_valid,
 )
 from .drift import LOAD_OF_EXPERIMENT
@@ -75,19 +76,14 @@ def _criteria(bf, sw, code, n, R, exact_loop: bool) -> np.ndarray:
     for m in AMPLITUDE_MODELS:
         src = CLASS_SOURCES[exact_loop][m]
         k = n_parameters(src) + 2
-        shared = _loglik(bf[f"{src}_rss_df"], bf[f"{src}_rss_dgamma"], n).to_numpy(float)
-        shared = np.where(source_valid(bf, src), shared + k * lnN, np.inf)
-        ll = _loglik(sw[f"{src}_rss_df"], sw[f"{src}_rss_dgamma"], n_r).to_numpy(float)
+        shared = bic(source_rss(bf, src), n, k)
+        shared = np.where(source_valid(bf, src), shared, np.inf)
+        ll = bic(source_rss(sw, src), n_r, 0)  # the per-ramp likelihood terms; penalty below
         ok = source_valid(sw, src)
         sums = np.bincount(code[member], weights=np.where(ok, ll, 0.0)[member], minlength=B)
         bad = np.bincount(code[member], weights=(~ok)[member].astype(float), minlength=B) > 0
         out += [shared, np.where(bad, np.inf, sums + R * k * lnN)]
     return np.stack(out)
-
-
-def _loglik(rss_f, rss_g, n):
-    floor = 1e-30  # as contactres.analysis.amplitude.bic: a perfect fit is not -inf
-    return n * np.log(np.maximum(rss_f, floor) / n) + n * np.log(np.maximum(rss_g, floor) / n)
 
 
 def block_codes(info: pd.DataFrame, joint: np.ndarray) -> np.ndarray:

@@ -63,6 +63,7 @@ __all__ = [
     "fit_sweeps",
     "n_parameters",
     "prefer",
+    "source_rss",
     "source_valid",
 ]
 
@@ -208,6 +209,11 @@ def n_parameters(source: str) -> int:
     return N_PARAMETERS[SOURCE_MODEL[source]]
 
 
+def source_rss(fits: pd.DataFrame, source: str) -> np.ndarray:
+    """(2, rows): the residual sums of Δf and ΔΓ of the fits of ``source``."""
+    return np.stack([fits[f"{source}_rss_df"].to_numpy(float), fits[f"{source}_rss_dgamma"]])
+
+
 def source_valid(sw: pd.DataFrame, source: str) -> np.ndarray:
     """Whether the fit of ``source`` exists and is physical for each sweep (a loop needs
     Pκ > 0; a hinge must have been found)."""
@@ -227,8 +233,7 @@ def class_criteria(sw: pd.DataFrame, exact_loop: bool) -> np.ndarray:
     out = []
     for model in AMPLITUDE_MODELS:
         src = CLASS_SOURCES[exact_loop][model]
-        rss = np.stack([sw[f"{src}_rss_df"].to_numpy(float), sw[f"{src}_rss_dgamma"]])
-        crit = bic(rss, n, n_parameters(src))
+        crit = bic(source_rss(sw, src), n, n_parameters(src))
         out.append(np.where(source_valid(sw, src), crit, np.inf))
     return np.stack(out)
 
@@ -402,11 +407,7 @@ def add_plateau_fits(
         "u_c": sw["hinge_u_c_m"].to_numpy(float),
         "theta": sw["cm_theta_per_m"].to_numpy(float),
     }
-    rss = {
-        src: np.stack([sw[f"{src}_rss_df"].to_numpy(float), sw[f"{src}_rss_dgamma"]])
-        for src in ("hinge", "line")
-    }
-    rss = np.where(cols["found"], rss["hinge"], rss["line"])
+    rss = np.where(cols["found"], source_rss(sw, "hinge"), source_rss(sw, "line"))
     parts = _run(
         _plateaus_of_rows,
         workers,
