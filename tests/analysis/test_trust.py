@@ -228,3 +228,12 @@ def test_remove_drift_without_times_says_so():
     res = run(s, 2, settings=AnalysisSettings(bootstrap=0, remove_drift=True))
     assert any("no time_s column" in m for m in res.messages)
     assert has(res.sweeps["flags"], Flag.DRIFT).any()
+
+
+def test_student_t_factor_of_an_error_from_few_repeats():
+    from contactres.analysis.jkr import error_dof
+
+    # Student's table: t(0.975) = 12.706 (1 dof), 3.182 (3), 2.228 (10)
+    for dof, t in ((1, 12.706), (3, 3.182), (10, 2.228)):
+        assert error_dof(dof) == {"err_dof": dof, "t95": pytest.approx(t, abs=5e-4)}
+    assert np.isnan(error_dof(0)["t95"]) and np.isnan(error_dof(np.nan)["err_dof"])

@@ -83,12 +83,14 @@ def test_schema_of_the_three_outputs(results, tmp_path):
 
     loads = pd.read_csv(tmp_path / "loads.csv")
     keys = ["configuration", "medium", "normal_force_N", "n_experiments", "n_sweeps"]
-    expected = [*keys, "errors_from"]
+    expected = [*keys, "errors_from", "dof", "t95"]
     for q in LOAD_QUANTITIES:
         expected += [f"{q}_{stat}" for stat in ("mean", "sd", "sem", "median", "median_err")]
     assert list(loads.columns) == expected
     assert (loads["errors_from"] == "experiments").all()
     assert len(loads) == 6 and (loads["n_experiments"] == 3).all()
+    # 3 experiments: 2 degrees of freedom, t(0.975, 2) = 4.303 (Student's table)
+    assert (loads["dof"] == 2).all() and np.allclose(loads["t95"], 4.3027, atol=1e-4)
     assert (loads["n_sweeps"] == 6).all()
 
     summary = json.loads((tmp_path / "summary.json").read_text())

@@ -249,6 +249,15 @@ def choose_blocks(
             for field in ("d_c_m", "d_c_err_m"):
                 blocks.loc[rows, field] = bf[f"pl_{field}"].to_numpy(float)[rows]
 
+    # The joint Coulomb fits, winner or not: μ of the block is averaged over the two loops
+    # with their BIC weights where they compete (friction.block_friction).
+    for m in ("cattaneo-mindlin", "plateau"):
+        src = CLASS_SOURCES[exact_loop][m]
+        blocks[f"bic_shared_{src}"] = crit[2 * AMPLITUDE_MODELS.index(m)]
+        if src in ("cm", "pl"):
+            for field in (*fields, *loop_fields, "edge"):
+                blocks[f"{src}_{field}"] = bf[f"{src}_{field}"].to_numpy()
+
     per_sweep.loc[member, "block"] = code[member]
     per_sweep.loc[member, "model"] = winner[code[member]]
     per_sweep.loc[member, "runner_up"] = classes[runner][code[member]]

@@ -161,12 +161,68 @@ def loop_friction(sw: pd.DataFrame, P: np.ndarray) -> LoopFriction:
     return out
 
 
+def _joint_mu(blocks: pd.DataFrame, src: str, P: np.ndarray):
+    """μ and its error from the joint ``src`` loop fit of every block (NaN where unresolved)."""
+    if f"{src}_df0_Hz" not in blocks:
+        return np.full(len(blocks), np.nan), np.full(len(blocks), np.nan)
+    force, err = loop_force(
+        blocks[f"{src}_df0_Hz"],
+        blocks[f"{src}_df0_err_Hz"],
+        blocks[f"{src}_theta_per_m"],
+        blocks[f"{src}_lntheta_err"],
+        blocks[f"{src}_cov_df0_lntheta"],
+        P,
+    )
+    ok = (blocks[f"{src}_edge"] == "").to_numpy() & (blocks[f"{src}_df0_Hz"].to_numpy(float) > 0)
+    ok &= np.isfinite(force) & np.isfinite(err) & np.isfinite(blocks[f"bic_shared_{src}"])
+    F = blocks["normal_force_N"].to_numpy(float)
+    return np.where(ok, force / F, np.nan), np.where(ok, err / F, np.nan)
+
+
+def model_averaged_mu(blocks: pd.DataFrame, P: np.ndarray) -> tuple[np.ndarray, ...]:
+    """μ of every block averaged over the two Coulomb loops, and its unconditional error.
+
+    Where the Cattaneo-Mindlin loop and the plateau loop both describe a block (the plateau
+    nests CM; in noisy water data they often differ by a few units of BIC only), their μ can
+    differ by tens of per cent: a plateau read as CM gives μ high, since the late onset of slip
+    is taken for a larger friction force. So the block's μ is the average of the two joint fits
+    with the BIC weights w_m ∝ exp(-BIC_m/2), and its variance the unconditional one,
+    Σ w_m [σ_m² + (μ_m - μ̄)²] (Buckland, Burnham & Augustin, Biometrics 53, 603 (1997), Eq. 3;
+    Burnham & Anderson, *Model Selection and Multimodel Inference*, 2nd ed., Springer 2002,
+    Sec. 4.3): the spread between the models enters the error rather than being hidden by the
+    choice. A decisive choice (ΔBIC ≳ 10) leaves the winner's μ and error unchanged.
+
+    Returns μ̄, its error and the weight of the plateau loop (NaN where neither loop resolves μ).
+    """
+    mus, errs, bics = [], [], []
+    for src in ("cm", "pl"):
+        mu, err = _joint_mu(blocks, src, P)
+        mus.append(mu)
+        errs.append(err)
+        b = blocks.get(f"bic_shared_{src}", pd.Series(np.inf, index=blocks.index))
+        bics.append(np.where(np.isfinite(mu), b.to_numpy(float), np.inf))
+    mu, err, crit = np.stack(mus), np.stack(errs), np.stack(bics)
+    best = crit.min(axis=0)
+    with np.errstate(invalid="ignore"):
+        w = np.exp(-0.5 * (crit - best))
+        w = w / w.sum(axis=0)
+        mean = np.nansum(w * np.nan_to_num(mu), axis=0)
+        var = np.nansum(w * (np.nan_to_num(err) ** 2 + (np.nan_to_num(mu) - mean) ** 2), axis=0)
+    none = ~np.isfinite(best)
+    return (
+        np.where(none, np.nan, mean),
+        np.where(none, np.nan, np.sqrt(var)),
+        np.where(none, np.nan, w[1]),
+    )
+
+
 def block_friction(blocks: pd.DataFrame, sw: pd.DataFrame) -> pd.DataFrame:
-    """μ (``mu``, ``mu_err``) and Savkoor's sliding force (``sliding_force_N``,
-    ``sliding_force_err_N``) from the joint fit of every shared block
+    """μ (``mu``, ``mu_err``: averaged over the Cattaneo-Mindlin and plateau loops,
+    :func:`model_averaged_mu`; ``mu_plateau_weight``) and Savkoor's sliding force
+    (``sliding_force_N``, ``sliding_force_err_N``) from the joint fit of every shared block
     (:func:`contactres.analysis.blocks.choose_blocks`); NaN where none. Returns a new frame."""
     blocks = blocks.copy()
-    for col in ("mu", "mu_err", "sliding_force_N", "sliding_force_err_N"):
+    for col in ("mu", "mu_err", "mu_plateau_weight", "sliding_force_N", "sliding_force_err_N"):
         blocks[col] = np.nan
     if blocks.empty:
         return blocks
@@ -189,9 +245,10 @@ def block_friction(blocks: pd.DataFrame, sw: pd.DataFrame) -> pd.DataFrame:
     resolved = (blocks["edge"] == "").to_numpy() & (blocks["df0_Hz"].to_numpy(float) > 0)
     resolved &= blocks["shared"].to_numpy(bool)
     friction = resolved & blocks["model"].isin(["cattaneo-mindlin", "plateau"]).to_numpy()
-    F = blocks["normal_force_N"].to_numpy(float)
-    blocks["mu"] = np.where(friction, force / F, np.nan)
-    blocks["mu_err"] = np.where(friction, err / F, np.nan)
+    mu, mu_err, w_pl = model_averaged_mu(blocks, P)
+    blocks["mu"] = np.where(friction, mu, np.nan)
+    blocks["mu_err"] = np.where(friction, mu_err, np.nan)
+    blocks["mu_plateau_weight"] = np.where(friction, w_pl, np.nan)
     sv = resolved & (blocks["model"] == "savkoor").to_numpy()
     blocks["sliding_force_N"] = np.where(sv, np.pi / 4 * force, np.nan)
     blocks["sliding_force_err_N"] = np.where(sv, np.pi / 4 * err, np.nan)

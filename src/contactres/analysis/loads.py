@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 import pandas as pd
+from scipy import stats
 
 from ..measurements.schema import LOAD_QUANTITIES
 
@@ -53,7 +54,9 @@ def per_load(exp: pd.DataFrame, sw: pd.DataFrame) -> pd.DataFrame:
     which does not include what remounting the sample changes); ``errors_from`` says which.
     ``_median`` is the median over the experiments (over the sweeps for one experiment), a
     location robust to one odd experiment, with ``_median_err`` = 1.2533 × ``_sem`` (the median's
-    large-sample error for normal scatter).
+    large-sample error for normal scatter). ``dof`` (experiments - 1, or sweeps - 1 for one
+    experiment) and ``t95`` (the Student-t factor of a two-sided 95 % interval) say how far to
+    trust an error estimated from a few repeats.
     """
     g = exp.groupby(LOAD_KEYS, sort=True)
     out = g.size().rename("n_experiments").to_frame()
@@ -62,6 +65,11 @@ def per_load(exp: pd.DataFrame, sw: pd.DataFrame) -> pd.DataFrame:
     single = (out["n_experiments"] == 1).to_numpy()
     out["errors_from"] = np.where(single, "sweeps of one experiment", "experiments")
     out.loc[single & (out["n_sweeps"] < 2).to_numpy(), "errors_from"] = ""
+    # A standard error from a few repeats has their number minus one degrees of freedom.
+    dof = np.where(single, out["n_sweeps"] - 1, out["n_experiments"] - 1).astype(float)
+    out["dof"] = np.where(dof >= 1, dof, np.nan)
+    with np.errstate(invalid="ignore"):
+        out["t95"] = stats.t.ppf(0.975, out["dof"])
     for q in QUANTITIES:
         sweep_sd = used[q].std(ddof=1).reindex(out.index)
         sweep_n = used[q].count().reindex(out.index)

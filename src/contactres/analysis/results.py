@@ -5,6 +5,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 from pathlib import Path
 
+import numpy as np
 import pandas as pd
 
 from ..measurements.sweeps import SweepTable
@@ -48,7 +49,8 @@ class Results:
     def table1(self) -> pd.DataFrame:
         """Table 1 of paper 2 for these data: E (GPa) and γ (mJ/m²) per configuration/medium.
 
-        ``errors`` says how the errors were found; where a check withholds E and γ they are NaN
+        ``errors`` says how the errors were found, ``t95`` the Student-t factor of their 95 %
+        interval; where a check withholds E and γ they are NaN
         and ``note`` says why and which input to check.
         """
         rows = []
@@ -64,6 +66,7 @@ class Results:
                     "n_exp": g["n_experiments"],
                     "n_sweeps": g["n_sweeps_used"],
                     "errors": g.get("error_method", ""),
+                    "t95": g.get("t95", np.nan),
                     "note": g.get("note", ""),
                 }
             )

@@ -174,6 +174,7 @@ def analyze_command(
     else:
         click.echo("Table 1 (paper 2): E and γ of every configuration and medium")
         click.echo(_text(table1))
+        click.echo("± standard errors; 95 % interval: value ± t95 x error (Student t, few repeats)")
         for line in withheld_lines(results):
             click.echo(f"contactres: warning: {line}", err=True)
         click.echo("\nfriction coefficient per load (exact-loop fit, median over experiments)")

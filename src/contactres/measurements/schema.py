@@ -317,10 +317,16 @@ _SWEEP_RESULT_COLUMNS = (
     Column(
         "mu_block",
         "-",
-        "μ of the joint fit of the load block (ramps sharing one contact); used in loads.csv",
+        "μ of the joint fits of the load block (ramps sharing one contact), averaged over the "
+        "Cattaneo-Mindlin and plateau loops with their BIC weights; used in loads.csv",
         level="sweep",
     ),
-    Column("mu_block_err", "-", "standard error of mu_block", level="sweep"),
+    Column(
+        "mu_block_err",
+        "-",
+        "standard error of mu_block, including the spread between the two loops",
+        level="sweep",
+    ),
     Column(
         "sliding_force_N",
         "N",
@@ -353,6 +359,14 @@ LOAD_QUANTITIES: tuple[tuple[str, str, str], ...] = (
     ("mu_fit", "-", "μ from the exact-loop fit (of the load block where its ramps share one)"),
 )
 
+#: The Student-t factor of an error from a few repeats (loads.csv and the groups).
+_T95 = Column(
+    "t95",
+    "-",
+    "Student-t factor of the two-sided 95 % interval: value ± t95 x error",
+    level="sweep",
+)
+
 LOAD_RESULTS = TableSchema(
     "loads.csv",
     "one row per (configuration, medium, normal force): statistics over experiments",
@@ -368,6 +382,14 @@ LOAD_RESULTS = TableSchema(
             "what _sem and _median_err come from: experiments, or sweeps of one experiment",
             level="sweep",
         ),
+        Column(
+            "dof",
+            "-",
+            "degrees of freedom of the _sem errors: experiments - 1 (sweeps - 1 for one "
+            "experiment)",
+            level="sweep",
+        ),
+        _T95,
         *(
             Column(f"{name}_{stat}", unit, f"{text}: {what}", level="sweep")
             for name, unit, text in LOAD_QUANTITIES
@@ -402,6 +424,14 @@ GROUP_RESULTS = TableSchema(
             "the fits of 2 experiments, repeated sweeps of 1 experiment, or the fit's Jacobian",
             level="sweep",
         ),
+        Column(
+            "err_dof",
+            "-",
+            "degrees of freedom of the errors (experiments - 1; sweeps - loads for one "
+            "experiment; points - 2 for the Jacobian)",
+            level="sweep",
+        ),
+        _T95,
         Column(
             "checks",
             "text",

@@ -1,6 +1,7 @@
 """What ``contactres qcm analyze`` prints: Table 1 with errors, withheld fits, friction per load.
 
-Plain text for a terminal: values with their errors (``59.7 ± 0.5``), ``—`` where a value is
+Plain text for a terminal: values with their standard errors (``59.7 ± 0.5``; ``t95`` is the
+factor that turns an error from a few repeats into a 95 % interval), ``—`` where a value is
 withheld or missing (never ``nan``), and one line per withheld group saying why and which input
 to check. The files of the results folder hold every number at full precision.
 """
@@ -28,6 +29,11 @@ def _pm(value: float, err: float, digits: int = 3) -> str:
     return f"{value:.{decimals}f} ± {err:.{decimals}f}"
 
 
+def _t95(t: float) -> str:
+    """The Student-t factor of the 95 % interval, as printed (``—`` where there is none)."""
+    return f"{t:.2f}" if math.isfinite(t) else DASH
+
+
 def table1_text(results: Results) -> pd.DataFrame:
     """Table 1 for the terminal: E (GPa) and γ (mJ/m²) with errors, counts, error method."""
     rows = []
@@ -40,6 +46,7 @@ def table1_text(results: Results) -> pd.DataFrame:
                 "γ (mJ/m²)": _pm(g["gamma_J_m2"] * 1e3, g["gamma_err_J_m2"] * 1e3),
                 "experiments": g["n_experiments"],
                 "sweeps": g["n_sweeps_used"],
+                "t95": _t95(g.get("t95", math.nan)),
                 "errors": g.get("error_method", "") or DASH,
             }
         )
@@ -70,5 +77,6 @@ def friction_table(results: Results) -> pd.DataFrame:
             ],
             "experiments": loads["n_experiments"],
             "sweeps": loads["n_sweeps"],
+            "t95": [_t95(t) for t in loads.get("t95", [math.nan] * len(loads))],
         }
     )
