@@ -61,7 +61,9 @@ def main() -> int:
         err = max(float(np.max(np.abs(out[n] / ref[n] - 1))) for n in MODELS)
         worst = max(worst, wall)
         table = prepare(m, LOSS)
-        again, reuse, _ = timed(lambda m=m, t=table: dcsf_models(m, KLA, MODELS, prepared=t))
+        again, reuse, _ = timed(
+            lambda m=m, t=table: dcsf_models(m, KLA, MODELS, loss=LOSS, prepared=t)
+        )
         assert all(np.array_equal(again[n], out[n]) for n in MODELS)
         worst_reuse = max(worst_reuse, reuse)
         print(

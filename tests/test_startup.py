@@ -106,6 +106,8 @@ def check_light(result: dict) -> None:
 # test_cli_command_list_is_complete keeps the list in step with the tree.
 CLI_COMMANDS: list[list[str]] = [
     [],
+    ["afm"],
+    ["afm", "invert"],
     ["contact"],
     ["crystals"],
     ["dcsf"],
@@ -116,6 +118,8 @@ CLI_COMMANDS: list[list[str]] = [
     ["qcm"],
     ["qcm", "analyze"],
     ["qcm", "loop"],
+    ["rum"],
+    ["rum", "invert"],
 ]
 
 

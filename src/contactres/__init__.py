@@ -74,6 +74,11 @@ _EXPORTS: dict[str, str] = {
     "shifts_from_loop": ".resonators.qcm",
     "shifts_from_stiffness": ".resonators.qcm",
     "stiffness_from_shifts": ".resonators.qcm",
+    "Cantilever": ".resonators.cantilever",
+    "contact_frequencies": ".resonators.cantilever",
+    "ContactResonanceResult": ".resonators.cantilever_inversion",
+    "invert_contact_resonance": ".resonators.cantilever_inversion",
+    "RUMOscillator": ".resonators.rum",
     # measurements and analysis
     "SweepTable": ".measurements.sweeps",
     "SweepWarning": ".measurements.sweeps",
@@ -83,6 +88,11 @@ _EXPORTS: dict[str, str] = {
     "Flag": ".analysis",
     "analyze": ".analysis",
     "Results": ".analysis",
+    "ModulusResult": ".analysis.inversion",
+    "modulus_from_contact_stiffness": ".analysis.inversion",
+    "invert_afm_table": ".analysis.resonance_tables",
+    "invert_rum_table": ".analysis.resonance_tables",
+    "read_resonance_table": ".measurements.resonances",
     "write_report": ".report",
 }
 

@@ -4,8 +4,8 @@ Single files are written atomically (:func:`atomic_path`, :func:`write_text`, :f
 :func:`save_figure`): a temporary file beside the target is renamed onto it. A folder of results
 that belong together is written as one :class:`ResultSet`:
 
-* :func:`check_output` first makes sure, writing nothing, that the folder can be created and
-  written and that no file the set may write or remove is an input (links resolved);
+* :func:`check_output` (:func:`check_output_file` for one file) first makes sure, writing
+  nothing, that the folder can be written and that no output is an input (links resolved);
 * a lock file beside the folder (``.<name>.contactres.lock``, ``O_EXCL``, holding process id and
   host) refuses a second run into it; the lock of a process that is gone is taken over;
 * the files are written into a hidden staging folder beside the target, then moved into place as
@@ -16,9 +16,8 @@ that belong together is written as one :class:`ResultSet`:
 * ``manifest.json`` (:data:`MANIFEST`), written last, lists the files with sizes and SHA-256
   sums; files of an earlier set that the new one lacks (its figures, say) are removed.
 
-So a kill leaves the earlier set or the new one (plus hidden leftovers the next run removes), or,
-only while files are moved in one by one, a folder without a manifest: never a mixture that
-looks complete.
+So a kill leaves the earlier set or the new one (plus hidden leftovers the next run removes), or
+a folder without a manifest (files moved one by one): never a mixture that looks complete.
 """
 
 from __future__ import annotations
@@ -42,6 +41,7 @@ __all__ = [
     "ResultSet",
     "atomic_path",
     "check_output",
+    "check_output_file",
     "ensure_dir",
     "save_figure",
     "write_csv",
@@ -148,6 +148,15 @@ def _same_file(a: Path, b: Path) -> bool:
         return os.path.samefile(a, b)
     except OSError:  # either does not exist: different files
         return False
+
+
+def check_output_file(path: str | os.PathLike, inputs: Iterable[str | os.PathLike] = ()) -> Path:
+    """:func:`check_output` for one output file: OutputError (one line) when ``path`` is a
+    directory or one of ``inputs``, or its folder is missing or not writable."""
+    given, folder = Path(path), Path(path).resolve().parent
+    if not folder.is_dir():
+        raise OutputError(f"output {str(given)!r}: folder {str(given.parent)!r} does not exist")
+    return check_output(folder, [given.name], inputs) / given.name
 
 
 def _manifest_names(folder: Path) -> set[str]:
@@ -305,12 +314,8 @@ class ResultSet:
         the folder (files an earlier set wrote), and a folder holding only such files (and its
         manifest) is replaced as a whole
 
-    Raises
-    ------
-    OutputError
-        On entering: see :func:`check_output`, or another run holds the lock.
-
-    Where the folder's parent cannot be written but the folder itself can, the lock file and
+    Raises :class:`OutputError` on entering: see :func:`check_output`, or another run holds the
+    lock. Where the folder's parent cannot be written but the folder itself can, the lock file and
     the staging folder live inside the folder (hidden) and the files are moved in one by one.
     """
 

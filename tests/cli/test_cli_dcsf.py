@@ -12,17 +12,20 @@ from contactres import Material, dcsf
 
 
 def test_dcsf_csv_columns_and_values_match_the_library():
-    r = run("dcsf", "--zener", "0.5", "--poisson", "0.25", "--model", "WA", "--ka", "0:2:5")
+    r = run(
+        "dcsf", "--zener", "0.5", "--poisson", "0.25", "--model", "WA", "--ka", "0:2:5",
+        "--loss", "0.02",
+    )  # fmt: skip
     assert r.exit_code == 0, r.output
     r = run(
         "dcsf", "--zener", "0.5", "--poisson", "0.25", "--model", "WA", "--ka", "0:2:5",
-        "--format", "csv",
+        "--loss", "0.02", "--format", "csv",
     )  # fmt: skip
     assert r.exit_code == 0, r.output
     t = pd.read_csv(io.StringIO(r.output))
-    assert list(t.columns) == ["ka", "model", "re", "im"]
+    assert list(t.columns[:4]) == ["ka", "model", "re", "im"]
     assert len(t) == 5 and set(t.model) == {"WA"}
-    ref = dcsf(Material.cubic_from_ratios(0.5, 0.25), np.linspace(0, 2, 5))
+    ref = dcsf(Material.cubic_from_ratios(0.5, 0.25), np.linspace(0, 2, 5), "WA", loss=0.02)
     np.testing.assert_allclose(t.re + 1j * t.im, ref, rtol=1e-12)
     assert abs(t.re[0] - 1.0) < 1e-14 and abs(t.im[0] - 0.02) < 1e-15
 
@@ -55,6 +58,7 @@ def test_dcsf_bad_input_is_one_line_exit_2():
 
 RATIOS = {"--zener": "0.5", "--poisson": "0.25"}
 CONSTANTS = {"--c11": "168.4e9", "--c12": "121.4e9", "--c44": "75.4e9"}
+CONTACT = {"--crystal": "Cu", "--radius": "1e-3", "--force": "1", "--frequency": "1e6"}
 
 # One bad input per option: a unit slip, a NaN, a sign, a value outside the plausible range or
 # (for the options that only mean something together) an impossible combination.
@@ -73,6 +77,9 @@ BAD = [
     (RATIOS, "--wavenumber", "transverse"),
     (RATIOS, "--rtol", "0"),
     (RATIOS, "--format", "xml"),
+    (CONTACT, "--radius", "1000"),
+    (CONTACT, "--force", "-1"),
+    (CONTACT, "--frequency", "nan"),
 ]
 
 
@@ -111,10 +118,12 @@ def test_dcsf_help_states_units_and_models():
 
     for p in command.params:
         if p.type.name in ("FLOAT", "START:STOP:NUM"):
-            assert ", Pa" in p.help or "dimensionless" in p.help, p.opts
+            units = (", Pa", "dimensionless", ", m (", ", N (", ", Hz (")
+            assert any(u in p.help for u in units), p.opts
         if isinstance(p.default, (str, int, float)) and p.opts[0] != "--help":
             assert p.show_default is True and isinstance(p.default, str), p.opts
-    assert "[default: 1e-6]" in r.output and "[default: 0.02]" in r.output
+    assert "[default: 1e-6]" in r.output and "[default: 0]" in r.output
+    assert "[default: exact]" in r.output
 
 
 def test_figures_paper1_writes_png_and_csv(tmp_path, monkeypatch):
@@ -149,13 +158,106 @@ def test_figures_paper1_writes_png_and_csv(tmp_path, monkeypatch):
 
 
 def test_dcsf_exact_model():
-    r = run("dcsf", "--zener", "2", "--poisson", "0.25", "--model", "exact", "--ka", "0,1")
+    args = ("--zener", "2", "--poisson", "0.25", "--model", "exact", "--ka", "0,1")
+    r = run("dcsf", *args, "--loss", "0.02")
     assert r.exit_code == 0, r.output
-    r = run(
-        "dcsf", "--zener", "2", "--poisson", "0.25", "--model", "exact", "--ka", "0,1",
-        "--format", "csv",
-    )  # fmt: skip
+    r = run("dcsf", *args, "--loss", "0.02", "--format", "csv")
     t = pd.read_csv(io.StringIO(r.output))
     assert list(t.model) == ["exact", "exact"]
-    ref = dcsf(Material.cubic_from_ratios(2, 0.25), 1.0, model="exact")
+    ref = dcsf(Material.cubic_from_ratios(2, 0.25), 1.0, model="exact", loss=0.02)
     assert abs(t.re[1] + 1j * t.im[1] - ref) < 1e-12
+
+
+def test_dcsf_defaults_are_the_exact_model_of_a_lossless_solid():
+    r = run("dcsf", "--zener", "2", "--poisson", "0.25", "--ka", "0,1", "--format", "csv")
+    assert r.exit_code == 0, r.output
+    t = pd.read_csv(io.StringIO(r.output))
+    assert list(t.model) == ["exact", "exact"]
+    assert t.re[0] == 1.0 and t.im[0] == 0.0  # no material damping at k a = 0
+    ref = dcsf(Material.cubic_from_ratios(2, 0.25), 1.0, model="exact", loss=0.0)
+    assert abs(t.re[1] + 1j * t.im[1] - ref) < 1e-12
+    assert dcsf(Material.cubic_from_ratios(2, 0.25), 1.0) == ref  # the library's defaults too
+
+
+def test_dcsf_prints_the_face_constants_and_wave_speeds():
+    cu = Material.crystal("Cu")
+    v_l, v_s = np.sqrt(cu.C[2, 2] / cu.density), np.sqrt(cu.C[3, 3] / cu.density)
+    r = run("dcsf", "--crystal", "Cu", "--ka", "0.5")
+    assert r.exit_code == 0, r.output
+    header, *table = r.stdout.splitlines()
+    assert header.startswith("# face: C33 = 1.684e+11 Pa, C44 = 7.54e+10 Pa")
+    assert f"v_l = sqrt(C33/rho) = {v_l:.6g} m/s" in header
+    assert f"v_s = sqrt(C44/rho) = {v_s:.6g} m/s" in header
+    assert not any(line.startswith("#") for line in table)
+    # csv and json stay machine-readable: the same numbers as columns / fields
+    r = run("dcsf", "--crystal", "Cu", "--surface", "111", "--ka", "0.5", "--format", "csv")
+    t = pd.read_csv(io.StringIO(r.output))
+    face = cu.rotated((1, 1, 1))
+    assert t.C33_Pa[0] == pytest.approx(face.C[2, 2], rel=1e-14)
+    assert t.C44_Pa[0] == pytest.approx(face.C[3, 3], rel=1e-14)
+    assert t.v_l_m_per_s[0] == pytest.approx(np.sqrt(face.C[2, 2] / cu.density), rel=1e-14)
+    assert t.v_s_m_per_s[0] == pytest.approx(np.sqrt(face.C[3, 3] / cu.density), rel=1e-14)
+    rows = json.loads(run("dcsf", "--crystal", "Cu", "--ka", "0.5", "--format", "json").output)
+    assert rows[0]["v_l_m_per_s"] == pytest.approx(v_l, rel=1e-14)
+    # constants given as ratios: no Pa values and no wave speeds, but the ratio
+    r = run("dcsf", "--zener", "2", "--poisson", "0.25", "--ka", "0.5")
+    assert r.stdout.startswith("# face: C33/C44 = ") and "no wave speeds" in r.stdout
+
+
+def test_dcsf_radius_force_frequency_give_the_dynamic_stiffness():
+    from contactres import dynamic_contact_stiffness, sphere_contact
+
+    cu = Material.crystal("Cu")
+    r = run(
+        "dcsf", "--crystal", "Cu", "--radius", "1e-3", "--force", "1",
+        "--frequency", "1e6,20e6", "--format", "csv",
+    )  # fmt: skip
+    assert r.exit_code == 0, r.output
+    t = pd.read_csv(io.StringIO(r.output))
+    c = sphere_contact(cu, 1e-3, 1.0)
+    np.testing.assert_allclose(t.contact_radius_m, c.contact_radius, rtol=1e-14)
+    np.testing.assert_allclose(t.stiffness_N_per_m, c.stiffness, rtol=1e-14)
+    # k_l a = ω a √(ρ/C33) by hand
+    kla = 2 * np.pi * np.array([1e6, 20e6]) * c.contact_radius * np.sqrt(cu.density / cu.C[2, 2])
+    np.testing.assert_allclose(t.ka, kla, rtol=1e-14)
+    ref = dynamic_contact_stiffness(cu, 1e-3, 1.0, [1e6, 20e6])
+    np.testing.assert_allclose(t.K_re_N_per_m + 1j * t.K_im_N_per_m, ref, rtol=1e-9)
+    np.testing.assert_allclose(t.re + 1j * t.im, ref / c.stiffness, rtol=1e-9)
+    # the shear convention gives k_s a, and the same stiffness
+    r = run(
+        "dcsf", "--crystal", "Cu", "--radius", "1e-3", "--force", "1", "--frequency", "20e6",
+        "--wavenumber", "shear", "--format", "json",
+    )  # fmt: skip
+    row = json.loads(r.output)[0]
+    assert row["ka"] == pytest.approx(kla[1] * np.sqrt(cu.C[2, 2] / cu.C[3, 3]), rel=1e-14)
+    assert row["K_re_N_per_m"] + 1j * row["K_im_N_per_m"] == pytest.approx(ref[1], rel=1e-9)
+
+
+@pytest.mark.parametrize(
+    "args, words",
+    [
+        (("--radius", "1e-3", "--force", "1"), ("--frequency",)),
+        (("--radius", "1e-3", "--force", "1", "--frequency", "1e6", "--ka", "1"), ("--ka",)),
+        (("--radius", "1e-3,2e-3", "--force", "1,2,3", "--frequency", "1e6"), ("--force",)),
+    ],
+)
+def test_dcsf_contact_options_refuse_incomplete_or_conflicting_input(args, words):
+    r = run("dcsf", "--crystal", "Cu", *args)
+    assert r.exit_code != 0 and r.stdout == ""
+    lines = r.stderr.splitlines()
+    assert len(lines) == 1 and "error:" in lines[0] and "Traceback" not in r.stderr
+    for w in words:
+        assert w in lines[0]
+
+
+def test_dcsf_contact_options_need_constants_in_pa_and_a_density():
+    for face in (("--zener", "2", "--poisson", "0.25"), ("--c11", "168e9", "--c12", "121e9",
+                                                          "--c44", "75e9")):  # fmt: skip
+        r = run("dcsf", *face, "--radius", "1e-3", "--force", "1", "--frequency", "1e6")
+        assert r.exit_code == 2 and "density" in r.stderr and len(r.stderr.splitlines()) == 1
+
+
+def test_dcsf_refuses_a_nearly_incompressible_solid_in_one_line():
+    r = run("dcsf", "--zener", "1", "--poisson", "0.49999", "--ka", "1")
+    assert r.exit_code != 0 and r.stdout == ""
+    assert len(r.stderr.splitlines()) == 1 and "incompressible" in r.stderr

@@ -47,7 +47,9 @@ def table(cu111):
 
 
 def _every_entry_point(m, **kw):
-    """Numbers of every public function that takes ``prepared`` (kw: prepared=... or nothing)."""
+    """Numbers of every public function that takes ``prepared`` (kw: prepared=... or nothing),
+    all at the table's loss Q⁻¹ = 0.02 (not the lossless default)."""
+    kw = {"loss": 0.02, **kw}
     out = dict(dcsf_models(m, KLA, ALL_MODELS, **kw))
     out["dcsf"] = dcsf(m, KLA, model="TP", **kw)
     out["disp"] = contact_displacement(m, np.array([0.5, 1.4])[:, None], [0.0, 0.6, 1.0], 0.3, **kw)
@@ -86,13 +88,15 @@ def test_table_is_immutable(table):
 
 
 def test_two_threads_sharing_one_table_agree_with_serial_use(cu111, table):
-    serial = [dcsf_models(cu111, KLA + d, ALL_MODELS, prepared=table) for d in (0.0, 0.01)]
+    serial = [
+        dcsf_models(cu111, KLA + d, ALL_MODELS, loss=0.02, prepared=table) for d in (0.0, 0.01)
+    ]
     results = [None, None]
 
     def work(i, d):
         # each thread evaluates both curves, in a different order, several times
         for _ in range(2):
-            results[i] = dcsf_models(cu111, KLA + d, ALL_MODELS, prepared=table)
+            results[i] = dcsf_models(cu111, KLA + d, ALL_MODELS, loss=0.02, prepared=table)
 
     threads = [threading.Thread(target=work, args=(i, d)) for i, d in enumerate((0.0, 0.01))]
     for t in threads:
@@ -105,20 +109,22 @@ def test_two_threads_sharing_one_table_agree_with_serial_use(cu111, table):
 
 def test_table_prepared_for_other_arguments_is_refused(cu111, table):
     with pytest.raises(ValueError, match="another material"):
-        dcsf(Material.crystal("Cu"), 1.0, prepared=table)
+        dcsf(Material.crystal("Cu"), 1.0, loss=0.02, prepared=table)
     with pytest.raises(ValueError, match=r"loss=0\.02, not 0\.0"):
         dcsf(cu111, 1.0, loss=0.0, prepared=table)
     with pytest.raises(ValueError, match=r"rtol=1e-06, not 0\.001"):
-        dcsf_models(cu111, 1.0, rtol=1e-3, prepared=table)
+        dcsf_models(cu111, 1.0, loss=0.02, rtol=1e-3, prepared=table)
     with pytest.raises(ValueError, match="explicit Resolution"):
-        contact_pressure(cu111, 1.0, 0.5, prepared=kernel_table(cu111, 0.02))
+        contact_pressure(cu111, 1.0, 0.5, loss=0.02, prepared=kernel_table(cu111, 0.02))
     with pytest.raises(ValueError, match="another material"):
-        contact_displacement(Material.crystal("Cu").rotated((1, 1, 0)), 1.0, 0.5, prepared=table)
+        contact_displacement(
+            Material.crystal("Cu").rotated((1, 1, 0)), 1.0, 0.5, loss=0.02, prepared=table
+        )
     with pytest.raises(ValueError, match="prepared must be a kernel table"):
         dcsf(cu111, 1.0, prepared={"loss": 0.02})
     # the same constants in a new Material object are the same material
     same = Material.from_voigt(np.array(cu111.C))
-    assert dcsf(same, 1.0, prepared=table) == dcsf(cu111, 1.0, prepared=table)
+    assert dcsf(same, 1.0, loss=0.02, prepared=table) == dcsf(cu111, 1.0, loss=0.02, prepared=table)
 
 
 def test_prepare_checks_its_arguments(cu111):

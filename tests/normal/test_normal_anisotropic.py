@@ -166,3 +166,59 @@ def test_bad_material_and_rtol():
 def test_zero_force_gives_zero_contact():
     c = sphere_contact(CU, 1e-3, 0.0)
     assert c.contact_radius == 0 and c.stiffness == 0 and c.mean_pressure == 0
+
+
+# ------------------------------------------------------------------ near incompressibility
+@pytest.mark.parametrize("nu", [0.3, 0.4999, 0.49999, 0.4999999])
+def test_isotropic_indentation_modulus_up_to_incompressibility(nu):
+    """E/(1 − ν²) for every ν < 1/2, in any frame (before: "too anisotropic" from ν = 0.4999,
+    the round-off of the general kernel taken for anisotropy)."""
+    from contactres.normal.anisotropic import contact_integrals, indentation_modulus
+
+    m = Material.isotropic(E=2e9, nu=nu)
+    want = 2e9 / (1 - nu**2)
+    assert indentation_modulus(m) == pytest.approx(want, rel=1e-14)
+    assert indentation_modulus(m.rotated((1, 1, 1))) == pytest.approx(want, rel=1e-9)
+    ci = contact_integrals(m)
+    assert ci.I1 == pytest.approx(ci.I0 / 2, rel=1e-15) and ci.I2 == 0
+    lossy = indentation_modulus(m.with_loss(0.02))
+    assert lossy == pytest.approx(want * (1 + 0.02j), rel=1e-12)
+
+
+def test_isotropic_closed_form_agrees_with_the_general_rule():
+    from contactres.normal.anisotropic import indentation_modulus
+
+    # A = 1 ± 1e-9 is not detected as isotropic: the general rule, continuous through A = 1
+    iso = indentation_modulus(Material.cubic_from_ratios(1.0, 0.3))
+    near = indentation_modulus(Material.cubic_from_ratios(1.0 + 1e-9, 0.3))
+    assert near == pytest.approx(iso, rel=1e-8)
+
+
+def test_nearly_incompressible_anisotropic_solid_is_refused_for_the_right_reason():
+    from contactres.normal.anisotropic import indentation_modulus, stiffness_contrast
+
+    m = Material.cubic_from_ratios(2.0, 0.4999)
+    assert stiffness_contrast(m) > 1e3
+    with pytest.raises(ValueError, match="nearly incompressible") as info:
+        indentation_modulus(m)
+    assert "too anisotropic" not in str(info.value)
+    # a looser tolerance is met (the round-off, not the rule, is what limits it)
+    assert indentation_modulus(m, rtol=1e-9) == pytest.approx(
+        indentation_modulus(m, rtol=1e-8), rel=1e-8
+    )
+
+
+def test_stiffness_contrast_isotropic_and_cubic():
+    from contactres.normal.anisotropic import stiffness_contrast
+
+    for nu in (0.0, 0.25, 0.49):
+        m = Material.isotropic(E=1.0, nu=nu)
+        assert stiffness_contrast(m) == pytest.approx((1 + nu) / (1 - 2 * nu), rel=1e-12)
+        assert stiffness_contrast(m.rotated((1, 2, 3))) == pytest.approx(
+            (1 + nu) / (1 - 2 * nu), rel=1e-9
+        )
+    c11, c12, c44 = 168.4e9, 121.4e9, 75.4e9  # Cu: C11 + 2C12, C11 − C12, 2C44
+    ev = (c11 + 2 * c12, c11 - c12, 2 * c44)
+    assert stiffness_contrast(Material.cubic(c11, c12, c44)) == pytest.approx(
+        max(ev) / min(ev), rel=1e-12
+    )

@@ -3,6 +3,7 @@
 Each module here registers its subcommands on :data:`main` when imported.
 """
 
+from . import afm_invert as _afm_invert  # noqa: F401  (registers afm invert)
 from . import contact as _contact  # noqa: F401  (registers contact)
 from . import crystals as _crystals  # noqa: F401  (registers crystals)
 from . import dcsf as _dcsf  # noqa: F401  (registers dcsf)
@@ -11,6 +12,7 @@ from . import figures_paper1 as _figures_paper1  # noqa: F401  (figures paper1)
 from . import figures_paper2 as _figures_paper2  # noqa: F401  (figures paper2)
 from . import qcm_analyze as _qcm_analyze  # noqa: F401  (registers qcm analyze)
 from . import qcm_loop as _qcm_loop  # noqa: F401  (registers qcm loop)
+from . import rum_invert as _rum_invert  # noqa: F401  (registers rum invert)
 from ._app import main
 
 __all__ = ["main"]

@@ -94,5 +94,15 @@ def qcm() -> None:
 
 
 @main.group()
+def afm() -> None:
+    """Contact-resonance AFM: resonances of the coupled lever -> contact stiffness -> modulus."""
+
+
+@main.group()
+def rum() -> None:
+    """Resonance ultrasound microscope: contact resonance -> contact stiffness."""
+
+
+@main.group()
 def figures() -> None:
     """Reproduce the figures of the two core papers (PNG + CSV)."""

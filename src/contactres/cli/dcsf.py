@@ -11,6 +11,9 @@ from ._app import main
 from ._common import MagnitudeType, RangeType, emit, format_option
 from ._crystal_face import crystal_face, crystal_face_options
 
+# The options that together give k a from a physical contact (instead of --ka).
+_CONTACT_OPTIONS = ("radius", "force", "frequency")
+
 
 @main.command("dcsf")
 @crystal_face_options(
@@ -19,10 +22,10 @@ from ._crystal_face import crystal_face, crystal_face_options
 )
 @click.option(
     "--model",
-    default="WA",
+    default="exact",
     show_default=True,
     type=click.Choice([*MODELS, "exact", "all"], case_sensitive=False),
-    help="Displacement condition, 'exact' (rigid flat punch) or 'all' (every one).",
+    help="Displacement condition, 'exact' (rigid flat punch, recommended) or 'all' (every one).",
 )
 @click.option(
     "--ka",
@@ -30,14 +33,35 @@ from ._crystal_face import crystal_face, crystal_face_options
     default="0:2:41",
     show_default=True,
     help="Normalised wave number k a, dimensionless (a = contact radius; START:STOP:NUM or a "
-    "comma list).",
+    "comma list). Not with --radius/--force/--frequency, which give k a.",
+)
+@click.option(
+    "--radius",
+    type=RangeType("sphere_radius"),
+    default=None,
+    help="Sphere radius R, m (with --force and --frequency: the physical contact; a number, "
+    "START:STOP:NUM or a comma list).",
+)
+@click.option(
+    "--force",
+    # F = 0 is the unloaded contact (a = 0, K = 0), as in 'contactres contact'.
+    type=RangeType("force", allow_zero=True),
+    default=None,
+    help="Static normal force F, N (with --radius and --frequency).",
+)
+@click.option(
+    "--frequency",
+    type=RangeType("frequency"),
+    default=None,
+    help="Oscillation frequency f, Hz (with --radius and --force; needs the density: --crystal).",
 )
 @click.option(
     "--loss",
     type=MagnitudeType("loss"),
-    default="0.02",
+    default="0",
     show_default=True,
-    help="Loss factor Q^-1 of the constants C (1 + i Q^-1), dimensionless; 0 = lossless limit.",
+    help="Loss factor Q^-1 of the constants C (1 + i Q^-1), dimensionless; 0 = lossless solid "
+    "(only radiation damping); paper 1's figures use 0.02.",
 )
 @click.option(
     "--wavenumber",
@@ -54,14 +78,21 @@ from ._crystal_face import crystal_face, crystal_face_options
     help="Target relative accuracy of the DCSF, dimensionless.",
 )
 @format_option()
-def dcsf(model, ka, loss, wavenumber, rtol, fmt, **face):
+@click.pass_context
+def dcsf(ctx, model, ka, radius, force, frequency, loss, wavenumber, rtol, fmt, **face):
     """Dynamic contact stiffness factor DCSF = K_da/K_sa of a rigid sphere (paper 1, Eq. 29).
 
     The complex ratio of the dynamic to the static contact stiffness of a sphere vibrating
     normally on the crystal face, for a displacement condition: R0 (centre), R1 (edge, along
     the surface x axis), SA (their mean), WA (pressure-weighted average along x, Bycroft),
     TP (two-parameter pressure, Tian et al.), WA2D (weighted average over the whole contact).
-    Columns: ka, model, re, im (re: stiffness, im: damping, both relative to K_sa).
+    Columns: ka, model, re, im (re: stiffness, im: damping, both relative to K_sa), then the
+    face's C33, C44 (Pa) and wave speeds v_l = √(C33/ρ), v_s = √(C44/ρ) (m/s); the plain
+    format prints these as a '# ' line instead. Defaults: model exact, lossless solid.
+
+    With --radius, --force and --frequency (all three) k a comes from the static Hertz contact
+    (contact radius a) at that frequency, and the columns add R, F, f, a, K_sa and the dynamic
+    stiffness K = K_sa DCSF (re and im, N/m).
 
     exact: the rigid flat punch (uniform displacement under the sphere, Galerkin), the answer
     the approximations try to give. Which model to use: exact (as fast as the others). Of the
@@ -69,21 +100,121 @@ def dcsf(model, ka, loss, wavenumber, rtol, fmt, **face):
     A = 0.25-4, nu = 0.25; 3-10 % up to k_l a = 2 for A >= 1, but it turns negative at high
     k a for A <= 0.5); WA and WA2D are 2-40 % off by k_l a = 1 (under 1 % below
     k_l a = 0.3); SA, R1 and R0 are worse (R0 is 2-10 % off already at k_l a = 0.3, SA has a
-    pole). Ranking: 'contactres figures paper1' writes paper1_model_ranking.csv.
+    pole, R0 has negative damping near k_l a = 1.8-2). R1, SA, WA and TP depend on the
+    in-plane axis --inplane (up to 12 % on Cu(001)); exact and WA2D do not. Ranking:
+    'contactres figures paper1' writes paper1_model_ranking.csv.
     """
+    import numpy as np
     import pandas as pd
 
     from ..dynamic import ALL_MODELS, dcsf_models, prepare
 
-    if face["c44"] is None and (face["zener"] is not None or face["poisson"] is not None):
+    contact_options = {"radius": radius, "force": force, "frequency": frequency}
+    given = [name for name in _CONTACT_OPTIONS if contact_options[name] is not None]
+    physical = bool(given)
+    if physical and len(given) < len(_CONTACT_OPTIONS):
+        missing = [f"--{n}" for n in _CONTACT_OPTIONS if n not in given]
+        raise click.UsageError(
+            f"--radius, --force and --frequency go together: missing {', '.join(missing)}", ctx
+        )
+    ka_typed = ctx.get_parameter_source("ka") is not click.core.ParameterSource.DEFAULT
+    if physical and ka_typed:
+        raise click.UsageError(
+            "give --ka or --radius/--force/--frequency (which give k a), not both", ctx
+        )
+    ratios_only = face["c44"] is None and (face["zener"] is not None or face["poisson"] is not None)
+    if ratios_only:
         face["c44"] = 1.0  # the DCSF depends on the ratios only
     m = crystal_face(**face)
+    c33, c44 = float(np.real(m.C[2, 2])), float(np.real(m.C[3, 3]))
+    if physical:
+        if ratios_only or m.density is None:
+            raise click.UsageError(
+                "--radius/--force/--frequency need the elastic constants in Pa and the "
+                "density: use --crystal NAME",
+                ctx,
+            )
+        points, extra = _physical_points(m, radius, force, frequency, wavenumber)
+        ka = points["ka"]
     names = list(ALL_MODELS) if model.lower() == "all" else [model]
     # One kernel table serves every model (--model all shares it, and the far-field basis).
     table = prepare(m, loss, rtol)
     out = dcsf_models(m, ka, names, loss=loss, wavenumber=wavenumber, rtol=rtol, prepared=table)
-    frames = [
-        pd.DataFrame({"ka": ka, "model": name, "re": v.real, "im": v.imag})
-        for name, v in out.items()
-    ]
-    emit(pd.concat(frames, ignore_index=True), fmt)
+    frames = []
+    for name, v in out.items():
+        cols = {"ka": ka, "model": name, "re": v.real, "im": v.imag}
+        if physical:
+            k = extra["stiffness_N_per_m"] * v
+            cols.update(extra, K_re_N_per_m=k.real, K_im_N_per_m=k.imag)
+        frames.append(pd.DataFrame(cols))
+    result = pd.concat(frames, ignore_index=True)
+    speeds = _face_constants(c33, c44, None if ratios_only else m.density, ratios_only)
+    if fmt == "plain":
+        click.echo("# " + _face_line(speeds))
+    else:
+        for key, value in speeds.items():
+            result[key] = value
+    emit(result, fmt)
+
+
+def _physical_points(m, radius, force, frequency, wavenumber):
+    """k a (in the ``wavenumber`` convention) and the contact columns of R, F, f broadcast."""
+    import math
+
+    import numpy as np
+
+    from ..normal.anisotropic import sphere_contact
+
+    try:
+        R, F, f = np.broadcast_arrays(radius, force, frequency)
+    except ValueError:
+        raise ValueError(
+            f"--radius ({radius.size}), --force ({force.size}) and --frequency ({frequency.size}"
+            ") must have the same number of values, or a single value"
+        ) from None
+    c = sphere_contact(m, R, F)
+    a = np.asarray(c.contact_radius, dtype=float)
+    # k = ω√(ρ/C) with C = C33 (longitudinal) or C44 (shear) of the surface frame, undamped.
+    modulus = float(np.real(m.C[2, 2] if wavenumber == "longitudinal" else m.C[3, 3]))
+    ka = 2 * np.pi * f * a * math.sqrt(m.density / modulus)
+    extra = {
+        "radius_m": R,
+        "force_N": F,
+        "frequency_Hz": f,
+        "contact_radius_m": a,
+        "stiffness_N_per_m": np.asarray(c.stiffness, dtype=float),
+    }
+    return {"ka": ka}, extra
+
+
+def _face_constants(c33: float, c44: float, density, ratios_only: bool) -> dict:
+    """C33, C44 (Pa; NaN when the constants were given as ratios) and the wave speeds (m/s;
+    NaN without a density) of the rotated material."""
+    import math
+
+    nan = float("nan")
+    if ratios_only:
+        return {"C33_over_C44": c33 / c44, "C33_Pa": nan, "C44_Pa": nan, "v_l_m_per_s": nan,
+                "v_s_m_per_s": nan}  # fmt: skip
+    v_l = math.sqrt(c33 / density) if density else nan
+    v_s = math.sqrt(c44 / density) if density else nan
+    return {"C33_over_C44": c33 / c44, "C33_Pa": c33, "C44_Pa": c44, "v_l_m_per_s": v_l,
+            "v_s_m_per_s": v_s}  # fmt: skip
+
+
+def _face_line(speeds: dict) -> str:
+    """The '# ' header of the plain format: the constants and wave speeds of the face."""
+    import math
+
+    if math.isnan(speeds["C33_Pa"]):
+        return (
+            f"face: C33/C44 = {speeds['C33_over_C44']:.6g} (constants given as ratios: "
+            "no C33, C44 in Pa, no wave speeds)"
+        )
+    text = f"face: C33 = {speeds['C33_Pa']:.6g} Pa, C44 = {speeds['C44_Pa']:.6g} Pa"
+    if math.isnan(speeds["v_l_m_per_s"]):
+        return text + " (no density: no wave speeds)"
+    return (
+        text + f", v_l = sqrt(C33/rho) = {speeds['v_l_m_per_s']:.6g} m/s, "
+        f"v_s = sqrt(C44/rho) = {speeds['v_s_m_per_s']:.6g} m/s"
+    )

@@ -20,6 +20,8 @@ _EXPORTS = MappingProxyType(
         "MODELS": ".models",
         "WAVENUMBERS": ".models",
         "KernelTable": ".table",
+        "MAX_ISOTROPIC_POISSON": ".table",
+        "MAX_STIFFNESS_CONTRAST": ".table",
         "prepare": ".table",
         "contact_displacement": ".normal_stiffness",
         "contact_pressure": ".normal_stiffness",

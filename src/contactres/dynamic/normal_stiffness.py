@@ -20,8 +20,11 @@ N of the undamped constants, so DCSF -> 1 + iQ⁻¹ as k a -> 0.
 
 The wave number of the paper's figures is the longitudinal one, k_l a = ω a √(ρ/C33) (C33 of the
 surface frame; C11 for a cubic (001) face): ``wavenumber="longitudinal"`` (default) or
-``"shear"`` (k_s a). Damping: constants C (1 + i Q⁻¹) with Q⁻¹ = ``loss`` (0.02 in the paper);
-``loss=0`` is the lossless limit Q⁻¹ -> 0⁺ (exact, by a contour above the real axis).
+``"shear"`` (k_s a). Damping: constants C (1 + i Q⁻¹) with Q⁻¹ = ``loss``. The default is the
+lossless solid, ``loss=0`` (the limit Q⁻¹ -> 0⁺, exact, by a contour above the real axis): Im DCSF
+is then the radiation damping alone. The paper's figures use Q⁻¹ = 0.02, which swamps it at
+small k a (Si(001), 1 MHz: Im K 28 000 times the lossless one for R = 10 nm, F = 10 nN; 2.3 times
+for R = 1 mm, F = 1 N): pass it only to reproduce them, or for a solid that has that loss.
 
 Which model? ``model="exact"`` (the rigid flat punch: uniform displacement under the sphere,
 Galerkin, :mod:`contactres.dynamic.exact`) is what the approximations aim at and costs about as
@@ -30,7 +33,18 @@ much as one of them: use it. Against it (``contactres figures paper1``, paper1_m
 (2-40 %), SA, R1, R0 (10-100 %); up to k_l a = 2 only TP stays within 10 % for A >= 1. The
 paper recommends WA because R0, SA and TP turn negative at high k a; the wiggles of WA (the
 maxima of Fig. 4) are not in the exact curve. See :mod:`contactres.dynamic.quadrature` for the
-numerics and their accuracy.
+numerics and their accuracy. Defaults: ``model="exact"``, ``loss=0``.
+
+Two traps of the approximations (measured, lossless and Q⁻¹ = 0.02 alike): R0 has negative
+damping, Im DCSF < 0, at high k a (k_l a >= 1.93 on Cu(001), >= 1.58 at A = 0.5, ν = 0.25; not
+for A >= 1 up to k_l a = 2), which no passive contact has. And R1, SA, WA and TP depend on the
+in-plane axis (the x axis of the surface frame, along which they take the edge point or the line
+average): turning it by 0-45° on Cu(001) changes WA by up to 1.2 % for k_l a <= 1 and 19 % at
+k_l a = 2 (R1 2.7 %/21 %, SA 0.9 %/32 %, TP 0.6 %/7 %); R0, WA2D and exact do not depend on it.
+
+Near incompressibility (stiffness contrast above
+:data:`~contactres.dynamic.table.MAX_STIFFNESS_CONTRAST`, isotropic ν > 0.4999) the kernels lose
+the stated accuracy to round-off; every function here then raises a ValueError.
 
 Most of the cost of a curve is the kernel table of the material: :func:`prepare` builds it once,
 and every function here takes it as ``prepared=`` (for the same material, loss and rtol) to
@@ -135,6 +149,11 @@ def model_n(f: dict, model: str) -> np.ndarray:
     α/β = −(N_F(0) − N_F(1, 0))/(N_H(0) − N_H(1, 0)) and N_TP = (α N_H(0) + β N_F(0))/(α/3 + β).
     K_da = 4π² a C44/N_model (Eq. 28).
 
+    R0 gives negative damping (Im DCSF < 0) at high k a (k_l a >= 1.93 on Cu(001), >= 1.58 at
+    A = 0.5). R1, SA, WA and TP use the direction φ = 0, so they depend on the in-plane x axis of
+    the surface frame: on Cu(001), turning it by up to 45° changes WA by 1.2 % (k_l a <= 1) and
+    19 % (k_l a = 2), R1 by 21 %, SA by 32 %, TP by 7 % at k_l a = 2. R0 and WA2D do not.
+
     Parameters
     ----------
     f : dict
@@ -165,8 +184,8 @@ def model_n(f: dict, model: str) -> np.ndarray:
 def dcsf_models(
     m: Material,
     ka,
-    models=MODELS,
-    loss: float = 0.02,
+    models=ALL_MODELS,
+    loss: float = 0.0,
     wavenumber: str = "longitudinal",
     rtol: float = 1e-6,
     prepared: KernelTable | None = None,
@@ -198,8 +217,8 @@ def dcsf_models(
 def dcsf(
     m: Material,
     ka,
-    model: str = "WA",
-    loss: float = 0.02,
+    model: str = "exact",
+    loss: float = 0.0,
     wavenumber: str = "longitudinal",
     rtol: float = 1e-6,
     prepared: KernelTable | None = None,
@@ -214,11 +233,15 @@ def dcsf(
     ka : float or array
         Normalised wave number k a >= 0 (a: contact radius), in the convention ``wavenumber``.
     model : str
-        Displacement condition: "R0", "R1", "SA", "WA", "TP" (paper 1, Eqs. 24-28), "WA2D", or
-        "exact": the rigid flat punch (uniform displacement; Galerkin, see
-        :mod:`contactres.dynamic.exact`), the reference the others approximate.
+        Displacement condition: "exact" (default): the rigid flat punch (uniform displacement;
+        Galerkin, see :mod:`contactres.dynamic.exact`), the reference the others approximate;
+        or "R0", "R1", "SA", "WA", "TP" (paper 1, Eqs. 24-28), "WA2D". Of these, R0 has negative
+        damping near k_l a = 1.6-2 and R1, SA, WA, TP depend on the in-plane x axis (up to
+        1.2 % on Cu(001) for k_l a <= 1, 7-32 % at k_l a = 2; see :func:`model_n`).
     loss : float
-        Q⁻¹ in C (1 + i Q⁻¹), in [0, 1); 0.02 in the paper; 0 is the lossless limit.
+        Q⁻¹ in C (1 + i Q⁻¹), in [0, 1). Default 0: the lossless solid (only radiation
+        damping). The paper's figures use 0.02; a material loss belongs here only when the
+        solid has it.
     wavenumber : str
         "longitudinal": k = ω√(ρ/C33) (the paper's k_l a, default) or "shear": k = ω√(ρ/C44).
     rtol : float
@@ -233,6 +256,13 @@ def dcsf(
     complex or ndarray of complex
         K_da/K_sa, K_sa the static stiffness of the undamped constants (DCSF(0) = 1 + i Q⁻¹).
         Real part: stiffness; imaginary part: radiation (and material) damping.
+
+    Raises
+    ------
+    ValueError
+        For bad arguments, and for a nearly incompressible solid (stiffness contrast beyond
+        :data:`~contactres.dynamic.table.MAX_STIFFNESS_CONTRAST`, isotropic ν > 0.4999), where
+        the stated accuracy cannot be met.
     """
     key = _check_model(model)
     out = dcsf_models(
@@ -246,8 +276,8 @@ def dynamic_contact_stiffness(
     radius,
     force,
     frequency,
-    model: str = "WA",
-    loss: float = 0.02,
+    model: str = "exact",
+    loss: float = 0.0,
     rtol: float = 1e-6,
     prepared: KernelTable | None = None,
 ):
@@ -265,7 +295,7 @@ def dynamic_contact_stiffness(
     frequency : float or array
         Oscillation frequency f, Hz (ω = 2πf). ``radius``, ``force`` and ``frequency`` broadcast.
     model, loss, rtol, prepared
-        As in :func:`dcsf`.
+        As in :func:`dcsf` (defaults: the exact model, a lossless solid).
 
     Returns
     -------
@@ -295,7 +325,7 @@ def contact_displacement(
     rbar,
     phi=0.0,
     shape: str = "flat",
-    loss: float = 0.02,
+    loss: float = 0.0,
     wavenumber: str = "longitudinal",
     rtol: float = 1e-6,
     prepared: KernelTable | None = None,
@@ -343,7 +373,7 @@ def contact_pressure(
     ka,
     rbar,
     phi=0.0,
-    loss: float = 0.02,
+    loss: float = 0.0,
     wavenumber: str = "longitudinal",
     rtol: float = 1e-6,
     prepared: KernelTable | None = None,

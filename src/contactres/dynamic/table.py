@@ -34,8 +34,11 @@ from ..materials import Material, require_material, rotate_tensor, voigt_to_tens
 from ..numerics import gauss_legendre
 
 __all__ = [
+    "MAX_ISOTROPIC_POISSON",
+    "MAX_STIFFNESS_CONTRAST",
     "KernelTable",
     "Resolution",
+    "check_contrast",
     "check_loss",
     "handover",
     "kernel_table",
@@ -52,6 +55,20 @@ _CONTOUR_HEIGHT = 0.3
 _CHI_STEPS = 12.0
 # Upper bound of the adaptive number of θ nodes on [0, π).
 _N_THETA_MAX = 1024
+
+#: Largest stiffness contrast (λ_max/λ_min of the Kelvin stiffness,
+#: :func:`contactres.normal.anisotropic.stiffness_contrast`; isotropic (1 + ν)/(1 − 2ν) = 3K/2G)
+#: accepted by the DCSF. Near incompressibility the general kernels of
+#: :mod:`contactres.halfspace` lose digits to round-off (~ε × contrast²). Measured for the
+#: isotropic exact model, lossless, k_s a = 0.01-2, against the independent Fredholm solution of
+#: tests/dynamic/test_rigid_disk_isotropic.py: max. error 5e-8 up to ν = 0.49998 (as at
+#: ν = 0.45), 8.4e-7 at ν = 0.499984 (contrast 4.7e4), 1.4e-6 at 0.499986, 3e-6 at 0.49999,
+#: 7e-4 at 0.499999 and garbage (negative damping) at 0.4999999. The limit keeps a factor 6 in
+#: contrast from the first failure (the error there jumps with round-off). A candidate for
+#: :mod:`contactres.units`.
+MAX_STIFFNESS_CONTRAST = 7500.0
+#: The isotropic Poisson ratio at that contrast: (1 + ν)/(1 − 2ν) = 7499.5 at ν = 0.4999.
+MAX_ISOTROPIC_POISSON = 0.4999
 
 
 # ----------------------------------------------------------------------------------- resolution
@@ -122,6 +139,23 @@ def resolution_for(rtol: float) -> Resolution:
     if r < 1e-8:
         return Resolution().doubled()
     return Resolution()
+
+
+def check_contrast(m: Material) -> float:
+    """The stiffness contrast of ``m``, after refusing one beyond :data:`MAX_STIFFNESS_CONTRAST`
+    (a nearly incompressible solid, where the DCSF would miss its stated accuracy 1e-6)."""
+    from ..normal.anisotropic import stiffness_contrast
+
+    contrast = stiffness_contrast(m)
+    if not contrast <= MAX_STIFFNESS_CONTRAST:
+        nu = (contrast - 1) / (2 * contrast + 1) if math.isfinite(contrast) else 0.5
+        raise ValueError(
+            f"the solid is too nearly incompressible for the dynamic kernels: stiffness "
+            f"contrast (bulk/shear) {contrast:.4g}, as an isotropic solid with nu = {nu:.7g}; "
+            f"the DCSF keeps its accuracy 1e-6 up to {MAX_STIFFNESS_CONTRAST:g} "
+            f"(isotropic nu <= {MAX_ISOTROPIC_POISSON}) and is not computed beyond"
+        )
+    return contrast
 
 
 def check_loss(loss) -> float:
@@ -212,7 +246,7 @@ class KernelTable:
         return self
 
 
-def prepare(m: Material, loss: float = 0.02, rtol: float = 1e-6) -> KernelTable:
+def prepare(m: Material, loss: float = 0.0, rtol: float = 1e-6) -> KernelTable:
     """The kernel table of ``m`` with loss Q⁻¹ at accuracy ``rtol``, to pass on as ``prepared=``.
 
     Building it is most of the cost of a DCSF curve. Every function of
@@ -226,7 +260,8 @@ def prepare(m: Material, loss: float = 0.02, rtol: float = 1e-6) -> KernelTable:
     m : Material
         Undamped elastic constants in the surface frame (z = inward normal), Pa.
     loss : float
-        Q⁻¹ of the constants C (1 + i Q⁻¹), in [0, 1) (0.02 in paper 1; 0: lossless limit).
+        Q⁻¹ of the constants C (1 + i Q⁻¹), in [0, 1) (default 0: the lossless solid; 0.02
+        in paper 1's figures).
     rtol : float
         Target relative accuracy of the DCSF (as in :func:`~contactres.dynamic.dcsf`).
 
@@ -234,16 +269,24 @@ def prepare(m: Material, loss: float = 0.02, rtol: float = 1e-6) -> KernelTable:
     -------
     KernelTable
         Immutable, picklable, safe to share between threads.
+
+    Raises
+    ------
+    ValueError
+        For a nearly incompressible solid (stiffness contrast beyond
+        :data:`MAX_STIFFNESS_CONTRAST`, isotropic ν > 0.4999), where the kernels lose the
+        stated accuracy to round-off.
     """
     table = kernel_table(m, loss, resolution_for(rtol))
     return replace(table, rtol=float(rtol))
 
 
-def kernel_table(m: Material, loss: float = 0.02, resolution: Resolution | None = None):
+def kernel_table(m: Material, loss: float = 0.0, resolution: Resolution | None = None):
     """The :class:`KernelTable` of the undamped material ``m`` (surface frame) with loss Q⁻¹
     for an explicit :class:`Resolution` (default: ``Resolution()``). Not cached."""
     m = require_material(m, lossless=True)
     q = check_loss(loss)
+    check_contrast(m)
     return _build_table(m, q, resolution or Resolution())
 
 

@@ -37,7 +37,9 @@ __all__ = [
     "ContactIntegrals",
     "contact_integrals",
     "indentation_modulus",
+    "isotropic_constants",
     "sphere_contact",
+    "stiffness_contrast",
 ]
 
 # Default relative accuracy of I0, I1 (trapezoidal rule in θ, doubled until it moves less).
@@ -47,6 +49,57 @@ _N_START = 16
 _N_MAX = 2**15
 # Below this relative second harmonic the contact is reported as circular (round-off level).
 _CIRCULAR_TOL = 1e-9
+# A stiffness is taken as isotropic when it equals the isotropic tensor of its own C12, C44 to
+# this relative accuracy (round-off of a rotation is ~1e-16; a cubic crystal with A = 1 ± 1e-9
+# is anisotropic for this purpose and takes the general rule, which is continuous through A = 1).
+_ISOTROPIC_TOL = 1e-12
+# Above this stiffness contrast a failed θ quadrature is blamed on round-off (near
+# incompressibility) rather than on anisotropy: the general static kernel loses ~ε × contrast²
+# (measured: 1.5e-7 pointwise at contrast 7500, isotropic ν = 0.4999).
+_ROUNDOFF_CONTRAST = 1e3
+
+
+def stiffness_contrast(m: Material) -> float:
+    """Largest over smallest eigenvalue of the Kelvin (Mandel) 6x6 form of the stiffness.
+
+    Dimensionless and independent of the frame. Isotropic: 3K/(2G) = (1 + ν)/(1 − 2ν), which
+    diverges at incompressibility; cubic: the ratio of the largest to the smallest of C11 + 2C12
+    (bulk), C11 − C12 and 2C44 (shear). The conditioning of the half-space kernels
+    (:mod:`contactres.halfspace`) degrades like its square.
+
+    Parameters
+    ----------
+    m : Material
+        Stiffness (real part used), Pa.
+
+    Returns
+    -------
+    float
+        λ_max/λ_min >= 1 (inf for a singular stiffness).
+    """
+    c = np.real(np.asarray(require_material(m).C, dtype=complex))
+    # Mandel weights: √2 on the normal-shear blocks, 2 on the shear block, so that the
+    # eigenvalues are those of the fourth-order tensor (Voigt's are not frame invariant).
+    w = np.array([1.0, 1.0, 1.0, np.sqrt(2), np.sqrt(2), np.sqrt(2)])
+    ev = np.linalg.eigvalsh(c * np.outer(w, w))
+    return float(ev[-1] / ev[0]) if ev[0] > 0 else float("inf")
+
+
+def isotropic_constants(m: Material):
+    """(C11, C44) = (λ + 2μ, μ) if the stiffness of ``m`` is isotropic (in any frame), else None.
+
+    Complex for a lossy material. The test: C equals the isotropic tensor built from its own
+    C12 and C44 to a relative 1e-12 (the round-off of a rotated isotropic stiffness).
+    """
+    c = np.asarray(require_material(m).C)
+    c11, c12, c44 = c[0, 0], c[0, 1], c[3, 3]
+    iso = np.zeros((6, 6), dtype=c.dtype)
+    iso[:3, :3] = c12
+    iso[[0, 1, 2], [0, 1, 2]] = c12 + 2 * c44
+    iso[[3, 4, 5], [3, 4, 5]] = c44
+    if np.max(np.abs(c - iso)) > _ISOTROPIC_TOL * np.max(np.abs(c)):
+        return None
+    return c11, c44
 
 
 @dataclass(frozen=True)
@@ -87,17 +140,32 @@ def contact_integrals(m: Material, rtol: float = THETA_RTOL) -> ContactIntegrals
     Ĝ(θ) is smooth and π-periodic (reciprocity), so the trapezoidal rule on [0, π) converges
     exponentially; the points are doubled (from 16) until I₀ and I₁ move by less than
     ``rtol`` relative to I₀. ``m.C`` must be given in the surface frame (use
-    :meth:`Material.rotated`).
+    :meth:`Material.rotated`). An isotropic stiffness (in any frame) takes the closed form
+    Ĝ = 2(1 − ν²)/E (``n_theta`` 1, ``error`` 0), exact up to incompressibility, where the
+    general kernel loses digits to round-off.
 
     Raises
     ------
     ValueError
-        For ``rtol`` outside [1e-15, 1e-2] or when 2^15 points do not reach it.
+        For ``rtol`` outside [1e-15, 1e-2] or when 2^15 points do not reach it: for a nearly
+        incompressible anisotropic solid (stiffness contrast > 1e3; the kernel's round-off,
+        not the rule, limits the accuracy) or a very strongly anisotropic one; the message
+        says which.
     """
     m = require_material(m)
     rtol = float(rtol)
     if not (1e-15 <= rtol <= 1e-2):
         raise ValueError(f"rtol must lie in [1e-15, 1e-2], got {rtol!r}")
+    iso = isotropic_constants(m)
+    if iso is not None:
+        # Closed form, Ĝ = 2(1 − ν²)/E = C11/(2 C44 (C11 − C44)): exact for every ν < 1/2,
+        # where the general kernel loses digits near incompressibility (ν >= 0.4999).
+        c11, c44 = iso
+        g = c11 / (2 * c44 * (c11 - c44))
+        I0, I1 = 2 * np.pi * g, np.pi * g
+        if not m.is_lossy:
+            I0, I1 = float(np.real(I0)), float(np.real(I1))
+        return ContactIntegrals(I0=I0, I1=I1, I2=0j, n_theta=1, error=0.0)
     n = _N_START
     sums = _trapezoid(m, n)
     while True:
@@ -110,9 +178,19 @@ def contact_integrals(m: Material, rtol: float = THETA_RTOL) -> ContactIntegrals
         if err <= rtol:
             break
         if n >= _N_MAX:
+            contrast = stiffness_contrast(m)
+            if contrast > _ROUNDOFF_CONTRAST:
+                nu = (contrast - 1) / (2 * contrast + 1)
+                reason = (
+                    f"the solid is nearly incompressible (stiffness contrast {contrast:.4g}, "
+                    f"as an isotropic solid with nu = {nu:.6g}): the static kernel loses "
+                    "digits to round-off; pass a larger rtol"
+                )
+            else:
+                reason = "the solid is too anisotropic for it"
             raise ValueError(
                 f"contact_integrals: the theta quadrature did not reach rtol={rtol:g} with "
-                f"{n} points (last change {err:.3g}); the solid is too anisotropic for it"
+                f"{n} points (last change {err:.3g}); {reason}"
             )
     I0, I1, I2 = (2 * np.pi / n * sums).tolist()
     if not m.is_lossy:
@@ -124,7 +202,15 @@ def indentation_modulus(m: Material, rtol: float = THETA_RTOL) -> float:
     """Indentation modulus M = 4π/I₀, Pa (paper 1, Eq. 4; Vlassak & Nix 1994).
 
     A rigid sphere on ``m`` (stiffness in the surface frame) behaves as on an isotropic solid
-    with E* = M: K_sa = 2aM. Isotropic: M = E/(1 − ν²). Complex for a lossy material.
+    with E* = M: K_sa = 2aM. Isotropic: M = E/(1 − ν²), in closed form for every ν < 1/2.
+    Complex for a lossy material.
+
+    Raises
+    ------
+    ValueError
+        When the θ quadrature of an anisotropic solid does not reach ``rtol``; the message
+        says whether round-off (a nearly incompressible solid, :func:`stiffness_contrast`)
+        or strong anisotropy is the reason.
     """
     I0 = contact_integrals(m, rtol).I0
     return 4 * np.pi / I0

@@ -1,0 +1,99 @@
+"""``contactres afm invert`` and ``rum invert``: tables of resonances -> k* (and modulus)."""
+
+import numpy as np
+import pandas as pd
+import pytest
+from click.testing import CliRunner
+
+from contactres.cli import main
+from contactres.normal.isotropic import hertz
+from contactres.resonators.cantilever import Cantilever, contact_frequencies
+
+
+def _run(*args):
+    return CliRunner().invoke(main, list(args))
+
+
+@pytest.fixture
+def afm_table(tmp_path):
+    """Three pixels of a lever (k_c = 40 N/m, r = 0.95) on a sample whose contact stiffness is
+    that of Hertz for M_sample = 50 GPa, a 165 GPa tip, R = 50 nm and P = 1, 2, 4 µN."""
+    lever = Cantilever((160e3, 1003e3), 40.0)
+    P = np.array([1e-6, 2e-6, 4e-6])
+    E_star = 1 / (1 / 50e9 + 1 / 165e9)
+    c = hertz(E_star, 50e-9, P)
+    k_star = 2 * c.contact_radius * E_star  # Johnson, Eq. 4.22 differentiated: dF/dδ = 2aE*
+    f = contact_frequencies(lever, k_star / 40.0, 0.95, modes=(1, 2))
+    frame = pd.DataFrame(
+        {
+            "pixel": [1, 2, 3],
+            "f1_free_Hz": 160e3,
+            "f2_free_Hz": 1003e3,
+            "k_c_N_per_m": 40.0,
+            "tip_position": 0.95,
+            "fc1_Hz": f[:, 0],
+            "tip_radius_m": 50e-9,
+            "load_N": P,
+            "M_tip_Pa": 165e9,
+        }
+    )
+    path = tmp_path / "afm.csv"
+    frame.to_csv(path, index=False)
+    return path, k_star
+
+
+def test_afm_invert_recovers_stiffness_and_modulus(afm_table, tmp_path):
+    path, k_star = afm_table
+    r = _run("afm", "invert", str(path), "--out", str(tmp_path / "out.csv"))
+    assert r.exit_code == 0, r.output
+    out = pd.read_csv(tmp_path / "out.csv")
+    assert list(out["pixel"]) == [1, 2, 3]
+    np.testing.assert_allclose(out["k_star_N_per_m"], k_star, rtol=1e-8)
+    np.testing.assert_allclose(out["M_sample_Pa"], 50e9, rtol=1e-7)
+    assert (out["normalisation"] == "global").all()
+
+
+def test_afm_invert_refuses_bad_input_in_one_line(afm_table, tmp_path):
+    path, _ = afm_table
+    frame = pd.read_csv(path)
+    frame.loc[1, "f1_free_Hz"] = 160.0  # kHz typed as Hz
+    bad = tmp_path / "bad.csv"
+    frame.to_csv(bad, index=False)
+    r = _run("afm", "invert", str(bad), "--out", str(tmp_path / "o.csv"))
+    assert r.exit_code != 0
+    assert "line 3, column 'f1_free_Hz'" in r.output and "kilohertz" in r.output
+    assert "Traceback" not in r.output and len(r.output.strip().splitlines()) == 1
+    r = _run("afm", "invert", str(path), "--out", str(path))
+    assert r.exit_code != 0 and "would overwrite the input" in r.output
+    r = _run("afm", "invert", str(path), "--out", str(tmp_path / "o.csv"), "--normalisation", "x")
+    assert r.exit_code == 2
+
+
+def test_afm_modulus_beyond_diamond_is_withheld(afm_table, tmp_path):
+    path, _ = afm_table
+    frame = pd.read_csv(path)
+    frame["load_N"] = 1e-12  # a plausible force, but E* = √(k*³/6RP) comes out ~1e3 too large
+    frame["M_tip_Pa"] = np.nan
+    bad = tmp_path / "r.csv"
+    frame.to_csv(bad, index=False)
+    r = _run("afm", "invert", str(bad), "--out", str(tmp_path / "o.csv"))
+    assert r.exit_code == 0, r.output
+    out = pd.read_csv(tmp_path / "o.csv")
+    assert (out["flags"] == "modulus-out-of-range").all() and out["M_sample_Pa"].isna().all()
+    assert out["E_star_Pa"].isna().all()
+
+
+def test_rum_invert_lumped_closed_form(tmp_path):
+    path = tmp_path / "rum.csv"
+    path.write_text("pixel,f0_Hz,fc_Hz,K_eff_N_per_m\n1,1e6,1.01e6,1e5\n2,1e6,1.02e6,1e5\n")
+    r = _run("rum", "invert", str(path), "--out", str(tmp_path / "o.csv"))
+    assert r.exit_code == 0, r.output
+    out = pd.read_csv(tmp_path / "o.csv")
+    # (f/f0)² = 1 + k*/K_eff: k* = 1e5 (1.01² - 1) = 2010 N/m, 1e5 (1.02² - 1) = 4040 N/m
+    np.testing.assert_allclose(out["k_star_N_per_m"], [2010.0, 4040.0], rtol=1e-12)
+    path.write_text("pixel,f0_Hz,fc_Hz,K_eff_N_per_m\n1,1e6,0.99e6,1e5\n")
+    r = _run("rum", "invert", str(path), "--out", str(tmp_path / "o.csv"))
+    assert r.exit_code != 0 and "line 2, column 'fc_Hz'" in r.output
+    path.write_text("pixel,f0_Hz,fc_Hz\n1,1e6,1.01e6\n")
+    r = _run("rum", "invert", str(path), "--out", str(tmp_path / "o.csv"))
+    assert r.exit_code != 0 and "K_eff_N_per_m" in r.output

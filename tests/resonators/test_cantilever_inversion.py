@@ -1,0 +1,122 @@
+"""Tests of contactres.resonators.cantilever_inversion: round trips forward -> inverse for every
+model (normal, tilt, lateral + tilt, damped, two modes, both normalisations) and the flags."""
+
+import numpy as np
+import pytest
+
+from contactres.resonators.cantilever import FREE_ROOTS, Cantilever, contact_frequencies
+from contactres.resonators.cantilever_inversion import (
+    FLAG_ABOVE_PINNED,
+    FLAG_BELOW_FREE,
+    FLAG_INSENSITIVE,
+    FLAG_NOT_MEASURED,
+    FLAG_NOT_POSITIVE,
+    FLAG_SEVERAL_CROSSINGS,
+    flag_names,
+    invert_contact_resonance,
+)
+
+KAPPA = np.array([0.3, 3.0, 30.0, 300.0, 3000.0])
+GLOBAL = Cantilever((1.0e5, 6.3e5, 17.4e5), 10.0)
+MODEWISE = Cantilever((1.0e5, 6.3e5, 17.4e5), 10.0, normalisation="modewise")
+SPRINGS = [
+    {},
+    {"tilt": 11.0},
+    {"lateral_ratio": 0.8, "tip_height": 0.05, "tilt": 12.0},
+    {"lateral_ratio": 0.5, "tip_height": 0.03},
+]
+
+
+@pytest.mark.parametrize("lever", [GLOBAL, MODEWISE])
+@pytest.mark.parametrize("springs", SPRINGS)
+def test_round_trip_tip_position_known(lever, springs):
+    f = contact_frequencies(lever, KAPPA, 0.9, **springs)
+    res = invert_contact_resonance(lever, f, 0.9, **springs)
+    assert np.max(np.abs(res.kappa_modes / KAPPA[:, None] - 1)) < 1e-8  # measured <= 1e-9
+    assert np.array_equal(res.k_star, res.kappa * 10.0, equal_nan=True)
+    assert np.all(np.isnan(res.kappa) | (np.abs(res.kappa / KAPPA - 1) < 1e-8))
+    assert res.normalisation == lever.normalisation
+    assert np.all(np.isnan(res.sigma))
+
+
+@pytest.mark.parametrize("lever", [GLOBAL, MODEWISE])
+@pytest.mark.parametrize("springs", SPRINGS[:3])
+def test_round_trip_two_modes(lever, springs):
+    r = np.array([0.7, 0.85, 0.95, 1.0])[:, None]
+    f = contact_frequencies(lever, KAPPA[None, :4], r, modes=(1, 2), **springs)
+    res = invert_contact_resonance(lever, f, **springs)
+    # The true r is always one of the crossings, with its κ ...
+    hit = np.abs(res.candidates - r[..., None]) < 1e-9
+    assert np.all(hit.sum(-1) == 1)
+    k_hit = np.where(hit, res.candidate_kappa, 0.0).sum(-1)
+    assert np.max(np.abs(k_hit / KAPPA[:4] - 1)) < 1e-8
+    # ... and the chosen one is the largest in [0.5, 1]: right for r >= 0.85 here; at r = 0.7
+    # a second crossing near 0.88 exists (measured), so the pixel is flagged as ambiguous.
+    win = np.where((res.candidates >= 0.5) & (res.candidates <= 1), res.candidates, -1)
+    assert np.array_equal(res.tip_position, win.max(-1))
+    assert np.max(np.abs(res.tip_position[1:] - r[1:])) < 1e-9
+    assert np.max(np.abs(res.kappa[1:] / KAPPA[:4] - 1)) < 1e-8
+    assert np.all(res.flags[0] & FLAG_SEVERAL_CROSSINGS)
+    several = np.sum((res.candidates >= 0.5) & (res.candidates <= 1), -1) > 1
+    assert np.array_equal(several, (res.flags & FLAG_SEVERAL_CROSSINGS) != 0)
+
+
+def test_damped_round_trip_and_lossless_contact_gives_zero_sigma():
+    lever = Cantilever((1.0e5, 6.3e5, 17.4e5), 10.0, "modewise", free_q_factors=(200, 300, 400))
+    kappa = KAPPA * (1 + 0.05j)
+    for springs in SPRINGS[:3]:
+        f = contact_frequencies(lever, kappa, 0.9, **springs)
+        q = f.real / (2 * f.imag)
+        res = invert_contact_resonance(lever, f.real, 0.9, q_factors=q, **springs)
+        assert np.max(np.abs(res.kappa_modes / KAPPA[:, None] - 1)) < 1e-8
+        sigma = 10.0 * 0.05 * KAPPA[:, None] / (2 * np.pi * f.real)
+        assert np.max(np.abs(res.sigma_modes / sigma - 1)) < 1e-7
+        f0 = contact_frequencies(lever, KAPPA, 0.9, **springs)  # lossless contact
+        res0 = invert_contact_resonance(lever, f0.real, 0.9, q_factors=f0.real / (2 * f0.imag))
+        if not springs:
+            assert np.max(np.abs(res0.sigma_modes) / (10.0 / (2 * np.pi * f0.real))) < 1e-9
+
+
+def test_global_and_modewise_differ_for_a_real_lever():
+    f = contact_frequencies(MODEWISE, 30.0, 0.9)
+    assert abs(invert_contact_resonance(MODEWISE, f, 0.9).kappa / 30.0 - 1) < 1e-9
+    assert abs(invert_contact_resonance(GLOBAL, f, 0.9).kappa_modes[1] / 30.0 - 1) > 1e-3
+
+
+def test_flags():
+    f1 = 1e5
+    pinned_1 = f1 * (3.9266 / FREE_ROOTS[0]) ** 2
+    f = np.array([[0.99 * f1], [1.01 * pinned_1], [np.nan], [1.0000001 * f1], [1.3 * f1]])
+    res = invert_contact_resonance(GLOBAL, f, 1.0)
+    assert res.flags[0] & FLAG_BELOW_FREE and res.flags[0] & FLAG_NOT_POSITIVE
+    assert res.kappa[0] < 0 or np.isnan(res.kappa[0])
+    assert res.flags[1] & FLAG_ABOVE_PINNED and np.isnan(res.kappa[1])
+    assert res.flags[2] & FLAG_NOT_MEASURED
+    assert res.flags[3] & FLAG_INSENSITIVE  # κ ~ 1e-7: the contact barely shifts the mode
+    assert res.flags[4] == 0 and flag_names(res.flags[4]) == []
+    assert flag_names(FLAG_ABOVE_PINNED | FLAG_NOT_POSITIVE) == ["not_positive", "above_pinned"]
+
+
+def test_node_of_mode_is_insensitive():
+    # Mode 2 of the free lever has a node at ξ ≈ 0.774: a tip there hardly moves f2 (measured
+    # d ln f / d ln κ = 6e-5 at κ = 3), while at the free end the same contact gives 0.04.
+    r = np.array([0.774, 1.0])
+    f = contact_frequencies(GLOBAL, 3.0, r, modes=(2,))
+    res = invert_contact_resonance(GLOBAL, f, r, modes=(2,))
+    assert res.flags[0] & FLAG_INSENSITIVE and res.flags[1] == 0
+
+
+def test_shapes_broadcast_over_pixels():
+    f = contact_frequencies(GLOBAL, np.full((3, 4), 20.0), 0.9, modes=(1,))
+    res = invert_contact_resonance(GLOBAL, f, np.full((3, 4), 0.9))
+    assert res.kappa.shape == (3, 4) and res.flags.shape == (3, 4)
+    assert np.allclose(res.kappa, 20.0, rtol=1e-9)
+
+
+def test_validation():
+    with pytest.raises(ValueError, match="frequencies"):
+        invert_contact_resonance(GLOBAL, [[-1.0]], 0.9)
+    with pytest.raises(ValueError, match="tip_position"):
+        invert_contact_resonance(GLOBAL, [[1.2e5]], 1.5)
+    with pytest.raises(ValueError, match="two measured modes"):
+        invert_contact_resonance(GLOBAL, [[1.2e5]])
