@@ -10,6 +10,7 @@ from __future__ import annotations
 import re
 
 from ..analysis.flags import DESCRIPTIONS, Flag
+from ..measurements.resonances import AFM_TABLE, RUM_TABLE
 from ..measurements.schema import GROUP_RESULTS, LOAD_RESULTS, SWEEP_RESULTS, SWEEP_TABLE
 
 __all__ = ["BLOCK", "dictionary_tables", "flags_markdown", "update_blocks"]
@@ -35,6 +36,8 @@ def dictionary_tables() -> dict[str, str]:
         "loads-csv": LOAD_RESULTS.markdown(),
         "summary-json": GROUP_RESULTS.markdown(),
         "flags": flags_markdown(),
+        "afm-table": AFM_TABLE.markdown(with_required=True),
+        "rum-table": RUM_TABLE.markdown(with_required=True),
     }
 
 
