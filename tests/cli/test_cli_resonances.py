@@ -97,3 +97,19 @@ def test_rum_invert_lumped_closed_form(tmp_path):
     path.write_text("pixel,f0_Hz,fc_Hz\n1,1e6,1.01e6\n")
     r = _run("rum", "invert", str(path), "--out", str(tmp_path / "o.csv"))
     assert r.exit_code != 0 and "K_eff_N_per_m" in r.output
+
+
+def test_afm_contact_below_the_free_lever_and_load_in_the_wrong_unit(afm_table, tmp_path):
+    path, _ = afm_table
+    frame = pd.read_csv(path)
+    low = frame.assign(fc1_Hz=[150e3, *frame["fc1_Hz"][1:]])  # below f1_free: impossible
+    low.to_csv(tmp_path / "low.csv", index=False)
+    r = _run("afm", "invert", str(tmp_path / "low.csv"), "--out", str(tmp_path / "o.csv"))
+    assert r.exit_code != 0 and "line 2, column 'fc1_Hz'" in r.output
+    assert "below the free resonance" in r.output
+    # µN typed as N: a = k*/(2E*) comes out ~6 µm on a 50 nm tip, no Hertz contact
+    frame.assign(load_N=frame["load_N"] * 1e6).to_csv(tmp_path / "uN.csv", index=False)
+    r = _run("afm", "invert", str(tmp_path / "uN.csv"), "--out", str(tmp_path / "o.csv"))
+    assert r.exit_code == 0, r.output
+    out = pd.read_csv(tmp_path / "o.csv")
+    assert (out["flags"] == "not-hertzian").all() and out["M_sample_Pa"].isna().all()

@@ -78,6 +78,7 @@ class ModulusFlag(enum.IntFlag):
 
     TIP_LIMIT = enum.auto()
     NOT_ELASTIC = enum.auto()
+    NOT_HERTZIAN = enum.auto()
 
 
 #: What each flag means.
@@ -89,6 +90,11 @@ FLAG_DESCRIPTIONS = MappingProxyType(
         ),
         ModulusFlag.NOT_ELASTIC: (
             "the Hertz peak pressure exceeds the hardness: the contact yields, k* is not elastic"
+        ),
+        ModulusFlag.NOT_HERTZIAN: (
+            "the contact radius a = k*/(2E*) exceeds the tip radius: no sphere contact (Hertz "
+            "needs a << R), most likely an input in the wrong unit (load_N in µN, tip_radius_m "
+            "in nm, k_c); E* and M_sample are NaN"
         ),
     }
 )
@@ -283,6 +289,7 @@ def modulus_from_contact_stiffness(
         M_tip = math.inf
     P = None if load is None else np.asarray(positive("load", load, "N"))
     arrays = [k] if P is None else [k, P]
+    hertz_radius = None  # the tip radius where Hertz gives E*
 
     if reference_k_star is not None:
         if reference_modulus is None:
@@ -303,7 +310,7 @@ def modulus_from_contact_stiffness(
         def e_star(K):
             return E_ref * (K / k_ref) ** m_exp
     elif tip_radius is not None and load is not None:
-        R = np.asarray(positive("tip_radius", tip_radius, "m"))
+        R = hertz_radius = np.asarray(positive("tip_radius", tip_radius, "m"))
         arrays.append(R)
         m_exp = 1.5
         method = "hertz"
@@ -356,6 +363,13 @@ def modulus_from_contact_stiffness(
     flags[tip_limit] |= int(ModulusFlag.TIP_LIMIT)
     with np.errstate(divide="ignore"):
         M_s = np.where(tip_limit, np.nan, 1.0 / np.where(tip_limit, 1.0, excess))
+    if hertz_radius is not None:
+        # A contact wider than the tip is no sphere contact at all (Hertz needs a << R; a/R of
+        # order 1 still happens on soft samples and is left to the user): a unit slip.
+        wide = a > hertz_radius
+        flags[wide] |= int(ModulusFlag.NOT_HERTZIAN)
+        E = np.where(wide, np.nan, E)
+        M_s = np.where(wide, np.nan, M_s)
     if hardness is not None:
         H = positive("hardness", hardness, "Pa")
         if P is None:

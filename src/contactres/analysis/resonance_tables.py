@@ -14,7 +14,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from ..measurements.messages import at_cell
+from ..measurements.messages import at_cell, where_rows
 from ..resonators.cantilever import Cantilever
 from ..resonators.cantilever_inversion import flag_names, invert_contact_resonance
 from ..resonators.rum import RUMOscillator
@@ -189,9 +189,16 @@ def invert_afm_table(
     none = np.isnan(fc).all(axis=1)
     if none.any():
         raise ValueError(
-            f"{at_cell(table, source, none, 'fc1_Hz')}: no contact resonance in this row "
-            "(give fc1_Hz, fc2_Hz or fc3_Hz)"
+            f"{where_rows(table, source, none, 'fc1_Hz')}: no contact resonance in this row "
+            "(fc1_Hz, fc2_Hz and fc3_Hz are all empty)"
         )
+    for n in _MODES:  # a contact spring only raises a mode: below the free lever is impossible
+        below = fc[:, n - 1] < table[f"f{n}_free_Hz"].to_numpy(float)
+        if below.any():
+            raise ValueError(
+                f"{at_cell(table, source, below, f'fc{n}_Hz')}: below the free resonance "
+                f"f{n}_free_Hz of its row; a contact can only raise it (check the columns)"
+            )
     q = table[[f"Q{n}" for n in _MODES]].to_numpy(float)
     r_given = table["tip_position"].notna().to_numpy()
     key = table[list(AFM_GROUP_COLUMNS)].fillna(-1.0).assign(r_given=r_given)

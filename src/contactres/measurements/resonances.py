@@ -47,7 +47,7 @@ class Rule:
         if self.quantity:
             return QUANTITIES[self.quantity].describe()
         lo = f"{'(' if self.lo_open else '['}{self.lo:g}"
-        hi = f"{self.hi:g}{')' if self.hi_open else ']'}"
+        hi = f"{self.hi:g}{')' if self.hi_open or np.isinf(self.hi) else ']'}"
         return f"must lie in {lo}, {hi}{' ' + unit if unit not in ('-', '') else ''}"
 
 
