@@ -25,8 +25,10 @@ __all__ = [
     "LoopFriction",
     "SlopeFriction",
     "block_friction",
+    "loop_fit_force",
     "loop_force",
     "loop_friction",
+    "model_averaged_mu",
     "slip_sweeps",
     "slope_friction",
 ]
@@ -107,6 +109,24 @@ def loop_force(A, A_err, theta, lntheta_err, cov, P):
     return force, np.abs(force) * np.sqrt(np.maximum(var_ln, 0.0))
 
 
+def loop_fit_force(frame: pd.DataFrame, prefix: str, P: np.ndarray):
+    """:func:`loop_force` of the loop fit in the columns ``{prefix}df0_Hz`` ... of ``frame``, and
+    where it is resolved (Δf0 > 0 and the fit not at an edge of the loop table)."""
+    col = {
+        c: frame[f"{prefix}{c}"].to_numpy()
+        for c in ("df0_Hz", "df0_err_Hz", "theta_per_m", "lntheta_err", "cov_df0_lntheta", "edge")
+    }
+    force, err = loop_force(
+        col["df0_Hz"],
+        col["df0_err_Hz"],
+        col["theta_per_m"],
+        col["lntheta_err"],
+        col["cov_df0_lntheta"],
+        P,
+    )
+    return force, err, (col["edge"] == "") & (col["df0_Hz"].astype(float) > 0)
+
+
 def loop_friction(sw: pd.DataFrame, P: np.ndarray) -> LoopFriction:
     """μ and Savkoor's sliding force from the exact-loop fits of each sweep's class.
 
@@ -128,27 +148,9 @@ def loop_friction(sw: pd.DataFrame, P: np.ndarray) -> LoopFriction:
         idx = np.flatnonzero((model == name) & positive)
         if idx.size == 0:
             continue
-        col = {
-            c: sw[f"{src}_{c}"].to_numpy()[idx]
-            for c in (
-                "df0_Hz",
-                "df0_err_Hz",
-                "theta_per_m",
-                "lntheta_err",
-                "cov_df0_lntheta",
-                "x_max",
-                "edge",
-            )
-        }
-        force, err = loop_force(
-            col["df0_Hz"],
-            col["df0_err_Hz"],
-            col["theta_per_m"],
-            col["lntheta_err"],
-            col["cov_df0_lntheta"],
-            P[idx],
-        )
-        resolved = (col["edge"] == "") & (col["df0_Hz"].astype(float) > 0)
+        part = sw.iloc[idx]
+        force, err, resolved = loop_fit_force(part, f"{src}_", P[idx])
+        edge = part[f"{src}_edge"].to_numpy()
         if name == "savkoor":
             out.sliding_force[idx] = np.where(resolved, np.pi / 4 * force, np.nan)
             out.sliding_force_err[idx] = np.where(resolved, np.pi / 4 * err, np.nan)
@@ -156,8 +158,8 @@ def loop_friction(sw: pd.DataFrame, P: np.ndarray) -> LoopFriction:
             F = sw["normal_force_N"].to_numpy()[idx]
             out.mu_fit[idx] = np.where(resolved, force / F, np.nan)
             out.mu_fit_err[idx] = np.where(resolved, err / F, np.nan)
-        out.x_max[idx] = col["x_max"].astype(float)
-        out.gross_sliding[idx] = col["edge"] == "high"
+        out.x_max[idx] = part[f"{src}_x_max"].to_numpy(float)
+        out.gross_sliding[idx] = edge == "high"
     return out
 
 
@@ -165,15 +167,7 @@ def _joint_mu(blocks: pd.DataFrame, src: str, P: np.ndarray):
     """μ and its error from the joint ``src`` loop fit of every block (NaN where unresolved)."""
     if f"{src}_df0_Hz" not in blocks:
         return np.full(len(blocks), np.nan), np.full(len(blocks), np.nan)
-    force, err = loop_force(
-        blocks[f"{src}_df0_Hz"],
-        blocks[f"{src}_df0_err_Hz"],
-        blocks[f"{src}_theta_per_m"],
-        blocks[f"{src}_lntheta_err"],
-        blocks[f"{src}_cov_df0_lntheta"],
-        P,
-    )
-    ok = (blocks[f"{src}_edge"] == "").to_numpy() & (blocks[f"{src}_df0_Hz"].to_numpy(float) > 0)
+    force, err, ok = loop_fit_force(blocks, f"{src}_", P)
     ok &= np.isfinite(force) & np.isfinite(err) & np.isfinite(blocks[f"bic_shared_{src}"])
     F = blocks["normal_force_N"].to_numpy(float)
     return np.where(ok, force / F, np.nan), np.where(ok, err / F, np.nan)
@@ -234,15 +228,7 @@ def block_friction(blocks: pd.DataFrame, sw: pd.DataFrame) -> pd.DataFrame:
         .reindex(blocks["block"])
         .to_numpy()
     )
-    force, err = loop_force(
-        blocks["df0_Hz"],
-        blocks["df0_err_Hz"],
-        blocks["theta_per_m"],
-        blocks["lntheta_err"],
-        blocks["cov_df0_lntheta"],
-        P,
-    )
-    resolved = (blocks["edge"] == "").to_numpy() & (blocks["df0_Hz"].to_numpy(float) > 0)
+    force, err, resolved = loop_fit_force(blocks, "", P)
     resolved &= blocks["shared"].to_numpy(bool)
     friction = resolved & blocks["model"].isin(["cattaneo-mindlin", "plateau"]).to_numpy()
     mu, mu_err, w_pl = model_averaged_mu(blocks, P)

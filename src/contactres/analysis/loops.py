@@ -58,6 +58,7 @@ __all__ = [
     "cm_loop_shape",
     "cm_loop_table",
     "fit_cm_loops",
+    "loop_fit_fields",
     "loop_tables",
     "plateau_loop_shape",
     "savkoor_loop_shape",
@@ -267,6 +268,18 @@ def _fit_cm_chunk(u, df, dg, w, sigma_df, sigma_dg, table, rounds) -> dict[str, 
     n_res = 2 * w.sum(axis=1)
     cov = np.linalg.pinv(jtj) * (chi2 / np.maximum(n_res - 3, 1))[:, None, None]
     return {
+        **loop_fit_fields(A, B, theta, cov, umax),
+        "edge": edge,
+        "rss_df": rss_f,
+        "rss_dgamma": rss_g,
+    }
+
+
+def loop_fit_fields(A, B, theta, cov, umax) -> dict:
+    """The fields every exact-loop fit reports, from its parameters (A = Δf0, B = ΔΓ0, θ) and
+    their covariance ``cov`` (S, k, k), k >= 3 with (A, B, ln θ) first; ``umax`` the largest
+    amplitude of each sweep (x_max = θ u_max)."""
+    return {
         "df0_Hz": A,
         "df0_err_Hz": np.sqrt(cov[:, 0, 0]),
         "dgamma0_Hz": B,
@@ -275,9 +288,6 @@ def _fit_cm_chunk(u, df, dg, w, sigma_df, sigma_dg, table, rounds) -> dict[str, 
         "lntheta_err": np.sqrt(cov[:, 2, 2]),
         "cov_df0_lntheta": cov[:, 0, 2],
         "x_max": theta * umax,
-        "edge": edge,
-        "rss_df": rss_f,
-        "rss_dgamma": rss_g,
     }
 
 

@@ -30,7 +30,7 @@ from scipy import special
 
 from ..numerics import gauss_legendre_unit
 from .amplitude import PLATEAU_MIN_SLOPE
-from .loops import X_MAX, LoopTable, fit_cm_loops, solve_projected
+from .loops import X_MAX, LoopTable, fit_cm_loops, loop_fit_fields, solve_projected
 
 __all__ = ["PLATEAU_LOOP_COLUMNS", "fit_plateau_loops", "plateau_loop_slopes"]
 
@@ -368,14 +368,7 @@ def fit_plateau_loops(
     edge = np.where(ly > hi[:, 0] - 1e-6, "high", np.where(ly < lo[:, 0] + 1e-6, "low", ""))
     return pd.DataFrame(
         {
-            "df0_Hz": A,
-            "df0_err_Hz": np.sqrt(cov[:, 0, 0]),
-            "dgamma0_Hz": fit["B"],
-            "dgamma0_err_Hz": np.sqrt(cov[:, 1, 1]),
-            "theta_per_m": theta,
-            "lntheta_err": np.sqrt(cov[:, 2, 2]),
-            "cov_df0_lntheta": cov[:, 0, 2],
-            "x_max": theta * umax,
+            **loop_fit_fields(A, fit["B"], theta, cov, umax),
             "d_c_m": d_c,
             "d_c_err_m": np.sqrt(cov[:, 3, 3]),
             "edge": edge,
