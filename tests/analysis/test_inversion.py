@@ -216,3 +216,11 @@ def test_invalid_inputs():
         modulus_from_contact_stiffness(
             1e3, tip_radius=R, load=P, sample=Material.isotropic(1e11, 0.2), frequency=1e6
         )
+
+
+def test_hardness_of_some_pixels_only():
+    E = np.array([1e9, 100e9, 100e9])
+    c = hertz(E, R, P)
+    H = np.array([np.nan, 1.0, np.nan])  # only pixel 1 has a hardness, far below its p0
+    res = modulus_from_contact_stiffness(c.stiffness, tip_radius=R, load=P, hardness=H)
+    assert list(res.flags) == [0, int(ModulusFlag.NOT_ELASTIC), 0]

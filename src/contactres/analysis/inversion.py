@@ -260,8 +260,9 @@ def modulus_from_contact_stiffness(
         a (Material, (h, k, l)) pair. Neither: a rigid tip (M_tip = inf).
     sample : Material or (Material, (h, k, l)), optional
         The sample (with density), for the wave number k_l of the dynamic correction.
-    hardness : float, optional
-        Hardness (Pa): p0 above it sets ModulusFlag.NOT_ELASTIC (needs ``load``).
+    hardness : float or array, optional
+        Hardness (Pa): p0 above it sets ModulusFlag.NOT_ELASTIC (needs ``load``); NaN: no
+        hardness known for that pixel.
     frequency : float or array, optional
         Contact-resonance frequency f, Hz (for k_l = 2πf/c_l).
     dynamic : bool
@@ -371,7 +372,8 @@ def modulus_from_contact_stiffness(
         E = np.where(wide, np.nan, E)
         M_s = np.where(wide, np.nan, M_s)
     if hardness is not None:
-        H = positive("hardness", hardness, "Pa")
+        H = np.asarray(hardness, dtype=float)  # NaN: no hardness for that pixel, no check
+        positive("hardness", H[~np.isnan(H)], "Pa")
         if P is None:
             raise ValueError("hardness needs load (N) for the peak pressure")
         flags[p0 > H] |= int(ModulusFlag.NOT_ELASTIC)

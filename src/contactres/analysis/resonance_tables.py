@@ -153,7 +153,7 @@ def _modulus_rows(out, ok, k_star, tip, hardness, kwargs, rigid: bool) -> None:
     res = modulus_from_contact_stiffness(
         k_star[ok],
         tip_modulus=None if rigid else tip[ok],
-        hardness=_nan_none(hardness[ok]),
+        hardness=None if np.isnan(hardness[ok]).all() else hardness[ok],
         **args,
     )
     out["E_star_Pa"][ok] = res.E_star
@@ -164,10 +164,6 @@ def _modulus_rows(out, ok, k_star, tip, hardness, kwargs, rigid: bool) -> None:
         ";".join(f.name.lower().replace("_", "-") for f in ModulusFlag if int(v) & f)
         for v in np.atleast_1d(res.flags)
     ]
-
-
-def _nan_none(v: np.ndarray):
-    return None if np.isnan(v).all() else np.where(np.isnan(v), np.inf, v)
 
 
 def invert_afm_table(
