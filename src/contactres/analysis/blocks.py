@@ -249,12 +249,11 @@ def choose_blocks(
             for field in ("d_c_m", "d_c_err_m"):
                 blocks.loc[rows, field] = bf[f"pl_{field}"].to_numpy(float)[rows]
 
-    # The joint Coulomb fits, winner or not: μ of the block is averaged over the two loops
+    # The joint exact Coulomb loops, winner or not: μ of the block is averaged over the two
     # with their BIC weights where they compete (friction.block_friction).
-    for m in ("cattaneo-mindlin", "plateau"):
-        src = CLASS_SOURCES[exact_loop][m]
-        blocks[f"bic_shared_{src}"] = crit[2 * AMPLITUDE_MODELS.index(m)]
-        if src in ("cm", "pl"):
+    if exact_loop:
+        for m, src in (("cattaneo-mindlin", "cm"), ("plateau", "pl")):
+            blocks[f"bic_shared_{src}"] = crit[2 * AMPLITUDE_MODELS.index(m)]
             for field in (*fields, *loop_fields, "edge"):
                 blocks[f"{src}_{field}"] = bf[f"{src}_{field}"].to_numpy()
 

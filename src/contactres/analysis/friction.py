@@ -164,13 +164,16 @@ def loop_friction(sw: pd.DataFrame, P: np.ndarray) -> LoopFriction:
 
 
 def _joint_mu(blocks: pd.DataFrame, src: str, P: np.ndarray):
-    """μ and its error from the joint ``src`` loop fit of every block (NaN where unresolved)."""
+    """μ, its error and the shared BIC of the joint ``src`` loop fit of every block (NaN, NaN,
+    inf where unresolved or not fitted)."""
+    nan = np.full(len(blocks), np.nan)
     if f"{src}_df0_Hz" not in blocks:
-        return np.full(len(blocks), np.nan), np.full(len(blocks), np.nan)
+        return nan, nan, np.full(len(blocks), np.inf)
     force, err, ok = loop_fit_force(blocks, f"{src}_", P)
-    ok &= np.isfinite(force) & np.isfinite(err) & np.isfinite(blocks[f"bic_shared_{src}"])
+    bic = blocks[f"bic_shared_{src}"].to_numpy(float)
+    ok &= np.isfinite(force) & np.isfinite(err) & np.isfinite(bic)
     F = blocks["normal_force_N"].to_numpy(float)
-    return np.where(ok, force / F, np.nan), np.where(ok, err / F, np.nan)
+    return np.where(ok, force / F, nan), np.where(ok, err / F, nan), np.where(ok, bic, np.inf)
 
 
 def model_averaged_mu(blocks: pd.DataFrame, P: np.ndarray) -> tuple[np.ndarray, ...]:
@@ -188,14 +191,8 @@ def model_averaged_mu(blocks: pd.DataFrame, P: np.ndarray) -> tuple[np.ndarray, 
 
     Returns μ̄, its error and the weight of the plateau loop (NaN where neither loop resolves μ).
     """
-    mus, errs, bics = [], [], []
-    for src in ("cm", "pl"):
-        mu, err = _joint_mu(blocks, src, P)
-        mus.append(mu)
-        errs.append(err)
-        b = blocks.get(f"bic_shared_{src}", pd.Series(np.inf, index=blocks.index))
-        bics.append(np.where(np.isfinite(mu), b.to_numpy(float), np.inf))
-    mu, err, crit = np.stack(mus), np.stack(errs), np.stack(bics)
+    fits = [_joint_mu(blocks, src, P) for src in ("cm", "pl")]
+    mu, err, crit = (np.stack(v) for v in zip(*fits, strict=True))
     best = crit.min(axis=0)
     with np.errstate(invalid="ignore"):
         w = np.exp(-0.5 * (crit - best))

@@ -27,6 +27,7 @@ __all__ = [
     "error_dof",
     "fit_group",
     "fit_jkr_mindlin",
+    "t95_factor",
 ]
 
 
@@ -298,4 +299,12 @@ def error_dof(dof: float) -> dict:
     dof = float(dof)
     if not dof >= 1:
         return {"err_dof": np.nan, "t95": np.nan}
-    return {"err_dof": int(dof), "t95": float(stats.t.ppf(0.975, dof))}
+    return {"err_dof": int(dof), "t95": float(t95_factor(dof))}
+
+
+def t95_factor(dof):
+    """The Student-t factor of a two-sided 95 % interval for ``dof`` degrees of freedom (array
+    or scalar; NaN below 1): t(0.975; 1) = 12.706, t(0.975; 3) = 3.182, → 1.960."""
+    dof = np.asarray(dof, dtype=float)
+    with np.errstate(invalid="ignore"):
+        return stats.t.ppf(0.975, np.where(dof >= 1, dof, np.nan))

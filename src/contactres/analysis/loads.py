@@ -9,9 +9,9 @@ from __future__ import annotations
 
 import numpy as np
 import pandas as pd
-from scipy import stats
 
 from ..measurements.schema import LOAD_QUANTITIES
+from .jkr import t95_factor
 
 __all__ = ["GROUP_KEYS", "LOAD_KEYS", "QUANTITIES", "per_experiment", "per_load"]
 
@@ -68,8 +68,7 @@ def per_load(exp: pd.DataFrame, sw: pd.DataFrame) -> pd.DataFrame:
     # A standard error from a few repeats has their number minus one degrees of freedom.
     dof = np.where(single, out["n_sweeps"] - 1, out["n_experiments"] - 1).astype(float)
     out["dof"] = np.where(dof >= 1, dof, np.nan)
-    with np.errstate(invalid="ignore"):
-        out["t95"] = stats.t.ppf(0.975, out["dof"])
+    out["t95"] = t95_factor(out["dof"])
     for q in QUANTITIES:
         sweep_sd = used[q].std(ddof=1).reindex(out.index)
         sweep_n = used[q].count().reindex(out.index)
