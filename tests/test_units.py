@@ -28,6 +28,8 @@ TABLE = {
     # soft rubber 1e5 Pa ... Cu C11 168.4 GPa ... diamond C11 1.08 TPa
     "modulus": ([1e5, 168.4e9, 1.08e12, 1e13], [9e4, 165.7, 2e13], "Pa"),
     "stress": ([1e2, 20e6, 1e11], [50.0, 2e11], "Pa"),
+    # a gel ~1e5 Pa ... diamond's M ~1.2 TPa
+    "sample_modulus": ([1e5, 3e9, 1.2e12], [5e4, 2e12], "Pa"),
     "stiffness": ([1e-3, 0.1, 4e5, 1e12], [5e-4, 2e12], "N/m"),
     "friction": ([0.01, 0.8, 50.0], [0.0, 51.0], ""),
     "drag": ([0.0, 1e-3, 1e5], [2e5], "kg/s"),

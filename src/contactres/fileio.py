@@ -156,7 +156,10 @@ def check_output_file(path: str | os.PathLike, inputs: Iterable[str | os.PathLik
     given, folder = Path(path), Path(path).resolve().parent
     if not folder.is_dir():
         raise OutputError(f"output {str(given)!r}: folder {str(given.parent)!r} does not exist")
-    return check_output(folder, [given.name], inputs) / given.name
+    if not _writable(folder):
+        raise OutputError(f"output {str(given)!r}: folder {str(given.parent)!r} is not writable")
+    _check_names(folder, given.parent, [given.name], inputs)
+    return folder / given.name
 
 
 def _manifest_names(folder: Path) -> set[str]:
@@ -186,22 +189,12 @@ def check_output(
 ) -> Path:
     """Check, without writing anything, that a result set may be written into ``folder``.
 
-    Parameters
-    ----------
-    folder : the output folder (created later if missing)
-    names : every file name the set may write or remove in ``folder``
-    inputs : the input files of the run (those that do not exist are ignored)
-
-    Returns
-    -------
-    Path : ``folder`` with symbolic links resolved
-
-    Raises
-    ------
-    OutputError
-        One line naming the folder and the reason: a path through a file, an existing file, a
-        folder that cannot be created or written, a file of the set that is an input or a
-        directory.
+    ``folder``: the output folder (created later if missing); ``names``: every file name the
+    set may write or remove in it; ``inputs``: the input files of the run (those that do not
+    exist are ignored). Returns ``folder`` with symbolic links resolved. Raises
+    :class:`OutputError`, one line naming the folder and the reason: a path through a file, an
+    existing file, a folder that cannot be created or written, a file of the set that is an
+    input or a directory.
     """
     given, target = Path(folder), Path(folder).resolve()
     nearest = target  # the folder, or the nearest of its parents that exists
@@ -215,8 +208,14 @@ def check_output(
     elif not nearest.is_dir() or not _writable(nearest):
         why = "is not writable" if nearest.is_dir() else "is not a directory"
         raise OutputError(f"output folder {str(given)!r} cannot be created: {str(nearest)!r} {why}")
+    _check_names(target, given, {*names, MANIFEST} | _manifest_names(target), inputs)
+    return target
+
+
+def _check_names(target: Path, given: Path, names, inputs) -> None:
+    """OutputError if a file ``name`` in ``target`` is a directory or one of ``inputs``."""
     present = [Path(p) for p in inputs if Path(p).exists()]
-    for name in sorted({*names, MANIFEST} | _manifest_names(target)):
+    for name in sorted(names):
         out = target / name
         if out.is_dir():
             raise OutputError(f"output {str(given / name)!r} is a directory, not a file")
@@ -224,9 +223,8 @@ def check_output(
             if _same_file(out, src):
                 raise OutputError(
                     f"output {str(given / name)!r} would overwrite the input {str(src)!r}; "
-                    "choose another output folder"
+                    "choose another output"
                 )
-    return target
 
 
 def _pid_alive(pid: int) -> bool:

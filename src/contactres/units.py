@@ -185,6 +185,10 @@ QUANTITIES = MappingProxyType(
         # Elastic constants and moduli of solids: soft rubbers and gels (~1 MPa, /10) to diamond
         # (C11 = 1.08 TPa, x10). Crystal constants are quoted in GPa: the typical slip.
         "modulus": Plausible("elastic modulus", "Pa", 1e5, 1e13, 1e11, (_MPA, _GPA)),
+        # The indentation modulus of a sample found from a contact stiffness: soft gels (~1e5
+        # Pa) to a little beyond diamond (M ~ 1.2e12 Pa); beyond that the stiffness or the
+        # Hertz inputs (load, tip radius) were given in the wrong unit.
+        "sample_modulus": Plausible("indentation modulus of the sample", "Pa", 1e5, 1.5e12, 1e10),
         # Interfacial shear strength τ0 (paper 2, Eq. 13): from soft gels (~kPa, /10) to the
         # ideal shear strength of diamond (~1e11 Pa, about G/5).
         "stress": Plausible("interfacial shear stress", "Pa", 1e2, 1e11, 1e7, (_MPA, _GPA)),

@@ -113,3 +113,56 @@ def test_afm_contact_below_the_free_lever_and_load_in_the_wrong_unit(afm_table, 
     assert r.exit_code == 0, r.output
     out = pd.read_csv(tmp_path / "o.csv")
     assert (out["flags"] == "not-hertzian").all() and out["M_sample_Pa"].isna().all()
+
+
+def _invert(frame, tmp_path, *extra):
+    path = tmp_path / "t.csv"
+    frame.to_csv(path, index=False)
+    r = _run("afm", "invert", str(path), "--out", str(tmp_path / "o.csv"), *extra)
+    return r, (pd.read_csv(tmp_path / "o.csv") if r.exit_code == 0 else None)
+
+
+def test_afm_reference_sample_gives_the_hertz_modulus(afm_table, tmp_path):
+    """The reference method with m = 3/2 and a reference itself Hertzian (same tip, same load)
+    gives the modulus Hertz gives: an independent path through the table."""
+    path, _ = afm_table
+    frame = pd.read_csv(path)
+    lever = Cantilever((160e3, 1003e3), 40.0)
+    E_ref = 1 / (1 / 100e9 + 1 / 165e9)
+    P = frame["load_N"].to_numpy()
+    k_ref = 2 * hertz(E_ref, 50e-9, P).contact_radius * E_ref
+    frame["fc1_ref_Hz"] = contact_frequencies(lever, k_ref / 40.0, 0.95, modes=(1,))[:, 0]
+    frame["M_ref_Pa"] = 100e9
+    frame["hardness_Pa"] = [np.nan, 1e13, np.nan]  # checked where given, with the load
+    r, out = _invert(frame.drop(columns=["tip_radius_m"]), tmp_path)
+    assert r.exit_code == 0, r.output
+    np.testing.assert_allclose(out["M_sample_Pa"], 50e9, rtol=1e-7)
+    assert out["modulus_method"].str.startswith("reference").all()
+    # without k_c only ratios of k* are known: the reference method still works
+    r, out = _invert(frame.drop(columns=["tip_radius_m", "k_c_N_per_m"]), tmp_path)
+    assert r.exit_code == 0, r.output
+    np.testing.assert_allclose(out["M_sample_Pa"], 50e9, rtol=1e-7)
+    assert out["k_star_N_per_m"].isna().all()
+
+
+def test_afm_hertz_needs_k_c_and_extra_columns_pass_through(afm_table, tmp_path):
+    path, _ = afm_table
+    frame = pd.read_csv(path).drop(columns=["k_c_N_per_m"])
+    frame["x_m"] = ["", "1e-6", "note"]  # a label column whose name ends in _m
+    r, out = _invert(frame, tmp_path)
+    assert r.exit_code == 0, r.output
+    assert out["M_sample_Pa"].isna().all() and out["kappa"].notna().all()
+    assert list(out["x_m"].fillna("")) == ["", "1e-6", "note"]
+
+
+def test_afm_q_given_in_some_cells_only_and_negative_tilt(afm_table, tmp_path):
+    path, _ = afm_table
+    frame = pd.read_csv(path)
+    frame["Q1"] = [300.0, np.nan, 200.0]
+    r, out = _invert(frame, tmp_path)
+    assert r.exit_code == 0, r.output
+    assert out["sigma_N_s_per_m"].isna().tolist() == [False, True, False]
+    r, _ = _invert(frame.assign(tilt_deg=-5.0), tmp_path)
+    assert r.exit_code != 0 and "column 'tilt_deg'" in r.output
+    r, _ = _invert(frame.assign(Q1_free=100.0), tmp_path)  # a free Q for mode 1, not mode 2
+    assert r.exit_code != 0 and "column 'Q2_free'" in r.output

@@ -60,6 +60,7 @@ import numpy as np
 from ..dynamic import dcsf, prepare
 from ..materials import Material, require_material
 from ..normal.anisotropic import indentation_modulus
+from ..units import QUANTITIES
 from ..validation import nonnegative, positive
 
 __all__ = [
@@ -79,6 +80,7 @@ class ModulusFlag(enum.IntFlag):
     TIP_LIMIT = enum.auto()
     NOT_ELASTIC = enum.auto()
     NOT_HERTZIAN = enum.auto()
+    MODULUS_OUT_OF_RANGE = enum.auto()
 
 
 #: What each flag means.
@@ -95,6 +97,10 @@ FLAG_DESCRIPTIONS = MappingProxyType(
             "the contact radius a = k*/(2E*) exceeds the tip radius: no sphere contact (Hertz "
             "needs a << R), most likely an input in the wrong unit (load_N in µN, tip_radius_m "
             "in nm, k_c); E* and M_sample are NaN"
+        ),
+        ModulusFlag.MODULUS_OUT_OF_RANGE: (
+            "M_sample outside the plausible range of contactres.units (0.1 MPa to 1.5 TPa): "
+            "an input in the wrong unit, not a result; E* and M_sample are NaN"
         ),
     }
 )
@@ -157,11 +163,12 @@ def _surface_material(spec, name: str) -> Material:
     )
 
 
-def modulus_of(spec, name: str = "modulus") -> float:
-    """Indentation modulus M (Pa) of a number (taken as M, Pa), a Material in its surface frame,
-    or a (Material, (h, k, l)) pair: :func:`~contactres.normal.anisotropic.indentation_modulus`
-    (paper 1, Eq. 4; E/(1 − ν²) for an isotropic material)."""
-    if isinstance(spec, (int, float, np.floating, np.integer)):
+def modulus_of(spec, name: str = "modulus"):
+    """Indentation modulus M (Pa) of a number or array (taken as M, Pa; one per pixel), a
+    Material in its surface frame, or a (Material, (h, k, l)) pair:
+    :func:`~contactres.normal.anisotropic.indentation_modulus` (paper 1, Eq. 4; E/(1 − ν²) for
+    an isotropic material)."""
+    if isinstance(spec, (int, float, np.floating, np.integer, np.ndarray)):
         return positive(name, spec, "Pa")
     m = require_material(_surface_material(spec, name), lossless=True)
     return float(np.real(indentation_modulus(m)))
@@ -371,6 +378,9 @@ def modulus_from_contact_stiffness(
         flags[wide] |= int(ModulusFlag.NOT_HERTZIAN)
         E = np.where(wide, np.nan, E)
         M_s = np.where(wide, np.nan, M_s)
+    absurd = np.isfinite(M_s) & ~QUANTITIES["sample_modulus"].accepts(M_s)
+    flags[absurd] |= int(ModulusFlag.MODULUS_OUT_OF_RANGE)
+    E, M_s = np.where(absurd, np.nan, E), np.where(absurd, np.nan, M_s)
     if hardness is not None:
         H = np.asarray(hardness, dtype=float)  # NaN: no hardness for that pixel, no check
         positive("hardness", H[~np.isnan(H)], "Pa")

@@ -20,7 +20,7 @@ from ..resonators.cantilever_inversion import flag_names, invert_contact_resonan
 from ..resonators.rum import RUMOscillator
 from .inversion import ModulusFlag, modulus_from_contact_stiffness
 
-__all__ = ["AFM_GROUP_COLUMNS", "M_RANGE_PA", "invert_afm_table", "invert_rum_table"]
+__all__ = ["AFM_GROUP_COLUMNS", "invert_afm_table", "invert_rum_table"]
 
 #: Columns that define one lever and one tip geometry: rows sharing them are inverted at once.
 AFM_GROUP_COLUMNS = (
@@ -30,18 +30,34 @@ AFM_GROUP_COLUMNS = (
     "Q1_free",
     "Q2_free",
     "Q3_free",
-    "k_c_N_per_m",
     "lateral_ratio",
     "tip_height_over_L",
     "tilt_deg",
 )
 _MODES = (1, 2, 3)
-#: Plausible indentation moduli of a sample, Pa: soft gels (~1e5) to beyond diamond (1.2e12).
-M_RANGE_PA = (1e5, 1.5e12)
+#: The Hertz and reference inputs of the modulus step (floats; NaN where blank).
+_MODULUS_INPUTS = ("tip_radius_m", "load_N", "M_tip_Pa", "hardness_Pa", "M_ref_Pa", "M_ref2_Pa")
 
 
-def _calibrations(table: pd.DataFrame, source: str) -> tuple[str, np.ndarray]:
-    """The RUM model of every row (lumped from K_eff_N_per_m, rod from mass_kg), one per file."""
+def _given_columns(table: pd.DataFrame) -> pd.DataFrame:
+    """The columns of the table as the file gave them (not the schema's absent ones)."""
+    return table[table.attrs.get("given", [c for c in table.columns if c != "line"])].copy()
+
+
+def _flag_text(codes: np.ndarray, names) -> np.ndarray:
+    """Bit masks as ';'-joined hyphenated names (``names(code)`` -> list), one per distinct
+    mask rather than per row."""
+    uniq, inverse = np.unique(np.asarray(codes, dtype=int), return_inverse=True)
+    text = np.array([";".join(n.replace("_", "-") for n in names(c)) for c in uniq], dtype=object)
+    return text[inverse.reshape(-1)]
+
+
+def _modulus_names(code: int) -> list[str]:
+    return [f.name.lower() for f in ModulusFlag if int(code) & f]
+
+
+def _lumped_rows(table: pd.DataFrame, source: str) -> np.ndarray:
+    """Which rows are lumped (K_eff_N_per_m given) rather than rods (mass_kg given)."""
     lumped = table["K_eff_N_per_m"].notna().to_numpy()
     rod = table["mass_kg"].notna().to_numpy()
     both = lumped & rod
@@ -56,7 +72,7 @@ def _calibrations(table: pd.DataFrame, source: str) -> tuple[str, np.ndarray]:
             f"{at_cell(table, source, neither, 'K_eff_N_per_m')}: each row needs "
             "K_eff_N_per_m (lumped model) or mass_kg (rod model)"
         )
-    return "lumped" if lumped.all() else ("rod" if rod.all() else "mixed"), lumped
+    return lumped
 
 
 def invert_rum_table(table: pd.DataFrame, source: str = "table") -> pd.DataFrame:
@@ -70,7 +86,7 @@ def invert_rum_table(table: pd.DataFrame, source: str = "table") -> pd.DataFrame
     The rows are grouped by their calibration (one oscillator per group; a file rarely holds
     more than a few), each group converted at once.
     """
-    _, lumped = _calibrations(table, source)
+    lumped = _lumped_rows(table, source)
     f0 = table["f0_Hz"].to_numpy(float)
     fc = table["fc_Hz"].to_numpy(float)
     below = fc < f0
@@ -80,10 +96,11 @@ def invert_rum_table(table: pd.DataFrame, source: str = "table") -> pd.DataFrame
             "resonance f0_Hz of its row; a contact spring can only raise it (check the columns)"
         )
     calib = np.where(lumped, table["K_eff_N_per_m"], table["mass_kg"]).astype(float)
-    codes = pd.factorize(pd.MultiIndex.from_arrays([lumped, f0, calib]))[0]
     k_star = np.full(len(table), np.nan)
-    for code in range(codes.max() + 1):  # one oscillator per calibration, not per row
-        rows = np.flatnonzero(codes == code)
+    groups = pd.DataFrame({"lumped": lumped, "f0": f0, "calib": calib}).groupby(
+        ["lumped", "f0", "calib"], sort=False
+    )
+    for rows in groups.indices.values():  # one oscillator per calibration, not per row
         i = rows[0]
         if lumped[i]:
             osc = RUMOscillator.lumped(f0[i], calib[i])
@@ -99,71 +116,72 @@ def invert_rum_table(table: pd.DataFrame, source: str = "table") -> pd.DataFrame
                     "contact stiffness reaches (check f0_Hz and fc_Hz)"
                 )
         k_star[rows] = osc.contact_stiffness(fc[rows])
-    out = table[table.attrs.get("given", [c for c in table.columns if c != "line"])].copy()
+    out = _given_columns(table)
     out["rum_model"] = np.where(lumped, "lumped", "rod")
     out["k_star_N_per_m"] = k_star
     return out
 
 
-def _given(values: np.ndarray) -> tuple[float, ...] | None:
-    """The leading given (non-NaN) values of one row of a lever's constants, or None."""
-    out = []
-    for v in values:
-        if np.isnan(v):
-            break
-        out.append(float(v))
-    return tuple(out) or None
+def _leading(values: np.ndarray) -> tuple[float, ...] | None:
+    """The leading given (non-NaN) values of a lever's constants (f1, f2, ...), or None."""
+    n = int(np.argmin(np.append(~np.isnan(values), False)))
+    return tuple(float(v) for v in values[:n]) or None
 
 
-def _modulus(part: pd.DataFrame, k_star: np.ndarray, ref: np.ndarray, ref2: np.ndarray) -> dict:
-    """E* and M_sample of the rows ``part``: by Hertz where tip_radius_m and load_N are given,
-    by the reference sample(s) where fc1_ref_Hz and M_ref_Pa are; NaN elsewhere."""
-    n = len(part)
+def _modulus(col: dict, k_star: np.ndarray, have_kc: np.ndarray, ref, ref2) -> dict:
+    """E*, M_sample, a and the modulus flags of every row: Hertz where tip_radius_m, load_N and
+    k_c are given, else the reference sample(s) where fc1_ref_Hz and M_ref_Pa are; NaN
+    elsewhere. A blank M_tip_Pa is a rigid tip; a blank hardness_Pa is no plasticity check."""
+    n = len(k_star)
     out = {k: np.full(n, np.nan) for k in ("E_star_Pa", "M_sample_Pa", "contact_radius_m")}
     out["modulus_method"] = np.full(n, "", dtype=object)
-    out["modulus_flags"] = np.full(n, "", dtype=object)
-    col = {c: part[c].to_numpy(float) for c in part.columns if c.endswith(("_m", "_N", "_Pa"))}
-    tip = col["M_tip_Pa"]  # blank: a rigid tip
-    hertz = ~np.isnan(col["tip_radius_m"]) & ~np.isnan(col["load_N"])
+    out["modulus_flags"] = np.zeros(n, dtype=int)
+    load = col["load_N"]
+    hertz = ~np.isnan(col["tip_radius_m"]) & ~np.isnan(load) & have_kc
     refd = ~hertz & ~np.isnan(ref) & ~np.isnan(col["M_ref_Pa"])
     two = refd & ~np.isnan(ref2) & ~np.isnan(col["M_ref2_Pa"])
-    for rows, kwargs in (
-        (hertz, dict(tip_radius=col["tip_radius_m"], load=col["load_N"])),
-        (refd & ~two, dict(reference_k_star=ref, reference_modulus=col["M_ref_Pa"])),
-        (
-            two,
-            dict(
-                reference_k_star=ref,
-                reference_modulus=col["M_ref_Pa"],
-                reference2_k_star=ref2,
-                reference2_modulus=col["M_ref2_Pa"],
-            ),
-        ),
-    ):
+    one_ref = dict(reference_k_star=ref, reference_modulus=col["M_ref_Pa"])
+    methods = (
+        (hertz, dict(tip_radius=col["tip_radius_m"])),
+        (refd & ~two, one_ref),
+        (two, dict(one_ref, reference2_k_star=ref2, reference2_modulus=col["M_ref2_Pa"])),
+    )
+    tip, hardness = col["M_tip_Pa"], col["hardness_Pa"]
+    for rows, kwargs in methods:
         for rigid in (True, False):
-            ok = rows & np.isfinite(k_star) & (k_star > 0) & (np.isnan(tip) == rigid)
-            if ok.any():
-                _modulus_rows(out, ok, k_star, tip, col["hardness_Pa"], kwargs, rigid)
+            for loaded in (True, False):  # a reference method uses the load where given
+                ok = rows & np.isfinite(k_star) & (k_star > 0) & (np.isnan(tip) == rigid)
+                ok &= np.isnan(load) != loaded
+                if not ok.any():
+                    continue
+                H = hardness[ok] if loaded and not np.isnan(hardness[ok]).all() else None
+                res = modulus_from_contact_stiffness(
+                    k_star[ok],
+                    load=load[ok] if loaded else None,
+                    tip_modulus=None if rigid else tip[ok],
+                    hardness=H,
+                    **{k: v[ok] for k, v in kwargs.items()},
+                )
+                out["E_star_Pa"][ok] = res.E_star
+                out["M_sample_Pa"][ok] = res.M_sample
+                out["contact_radius_m"][ok] = res.contact_radius
+                out["modulus_method"][ok] = res.method
+                out["modulus_flags"][ok] = res.flags
     return out
 
 
-def _modulus_rows(out, ok, k_star, tip, hardness, kwargs, rigid: bool) -> None:
-    """The modulus step for the rows ``ok`` (one method; a rigid tip or M_tip given)."""
-    args = {k: v[ok] for k, v in kwargs.items()}
-    res = modulus_from_contact_stiffness(
-        k_star[ok],
-        tip_modulus=None if rigid else tip[ok],
-        hardness=None if np.isnan(hardness[ok]).all() else hardness[ok],
-        **args,
-    )
-    out["E_star_Pa"][ok] = res.E_star
-    out["M_sample_Pa"][ok] = res.M_sample
-    out["contact_radius_m"][ok] = res.contact_radius
-    out["modulus_method"][ok] = res.method
-    out["modulus_flags"][ok] = [
-        ";".join(f.name.lower().replace("_", "-") for f in ModulusFlag if int(v) & f)
-        for v in np.atleast_1d(res.flags)
-    ]
+def _check_free_q(table: pd.DataFrame, source: str) -> None:
+    """A free Q for every free frequency given, or none (the lever's damping is per mode)."""
+    for n in _MODES:
+        f = table[f"f{n}_free_Hz"].notna().to_numpy()
+        q = table[f"Q{n}_free"].notna().to_numpy()
+        other = table[[f"Q{m}_free" for m in _MODES]].notna().any(axis=1).to_numpy()
+        bad = f & ~q & other
+        if bad.any():
+            raise ValueError(
+                f"{where_rows(table, source, bad, f'Q{n}_free')}: is empty while another free "
+                "Q is given; give the Q of every free mode or of none"
+            )
 
 
 def invert_afm_table(
@@ -175,11 +193,12 @@ def invert_afm_table(
     Rows are grouped by their lever and tip geometry (:data:`AFM_GROUP_COLUMNS`) and by whether
     the tip position is given; each group is inverted at once by
     :func:`~contactres.resonators.cantilever_inversion.invert_contact_resonance` (the modes
-    used are the contact-resonance columns given in the row; r blank: solved from two modes).
-    The modulus step (:func:`~contactres.analysis.inversion.modulus_from_contact_stiffness`)
-    runs where tip_radius_m and load_N (Hertz) or fc1_ref_Hz and M_ref_Pa (reference samples,
-    inverted with the same lever and tip position) are given. ``flags`` names why a value is
-    missing; ``normalisation`` is recorded in every row.
+    used are the contact-resonance columns given in the row; r blank: solved from two modes; a
+    blank Q: no damping for that cell). The modulus step
+    (:func:`~contactres.analysis.inversion.modulus_from_contact_stiffness`) runs where
+    tip_radius_m, load_N and k_c_N_per_m (Hertz) or fc1_ref_Hz and M_ref_Pa (reference samples,
+    inverted with the same lever and tip position; k_c not needed) are given. ``flags`` names
+    why a value is missing; ``normalisation`` is recorded in every row.
     """
     fc = table[[f"fc{n}_Hz" for n in _MODES]].to_numpy(float)
     none = np.isnan(fc).all(axis=1)
@@ -195,67 +214,63 @@ def invert_afm_table(
                 f"{at_cell(table, source, below, f'fc{n}_Hz')}: below the free resonance "
                 f"f{n}_free_Hz of its row; a contact can only raise it (check the columns)"
             )
+    _check_free_q(table, source)
     q = table[[f"Q{n}" for n in _MODES]].to_numpy(float)
-    r_given = table["tip_position"].notna().to_numpy()
-    key = table[list(AFM_GROUP_COLUMNS)].fillna(-1.0).assign(r_given=r_given)
-    codes = pd.factorize(pd.MultiIndex.from_frame(key))[0]
+    f_ref = table[["fc1_ref_Hz", "fc1_ref2_Hz"]].to_numpy(float)
+    r_in = table["tip_position"].to_numpy(float)
+    k_c = table["k_c_N_per_m"].to_numpy(float)
+    have_kc = ~np.isnan(k_c)
     n = len(table)
-    res = {
-        c: np.full(n, np.nan)
-        for c in ("kappa", "k_star_N_per_m", "tip_position_used", "sigma_N_s_per_m")
-    }
-    res["flags"] = np.full(n, "", dtype=object)
-    ref, ref2 = np.full(n, np.nan), np.full(n, np.nan)
-    for code in range(codes.max() + 1):  # one lever and tip geometry per group, not per row
-        rows = np.flatnonzero(codes == code)
-        first = table.iloc[rows[0]]
+    res = {c: np.full(n, np.nan) for c in ("kappa", "tip_position_used", "sigma_N_s_per_m")}
+    flags = np.zeros(n, dtype=int)
+    refs = np.full((n, 2), np.nan)  # κ on the reference samples (k* = κ k_c; ratios need κ)
+    keys = [*AFM_GROUP_COLUMNS, "r_given"]
+    groups = table[list(AFM_GROUP_COLUMNS)].assign(r_given=~np.isnan(r_in))
+    for rows in groups.groupby(keys, sort=False, dropna=False).indices.values():
+        first = groups.iloc[rows[0]]
         lever = Cantilever(
-            _given(first[["f1_free_Hz", "f2_free_Hz", "f3_free_Hz"]].to_numpy(float)),
-            first["k_c_N_per_m"] if np.isfinite(first["k_c_N_per_m"]) else 1.0,
+            _leading(first[["f1_free_Hz", "f2_free_Hz", "f3_free_Hz"]].to_numpy(float)),
+            1.0,  # κ = k*/k_c is what the frequencies give; k* = κ k_c below, where k_c is known
             normalisation=normalisation,
-            free_q_factors=_given(first[["Q1_free", "Q2_free", "Q3_free"]].to_numpy(float)),
+            free_q_factors=_leading(first[["Q1_free", "Q2_free", "Q3_free"]].to_numpy(float)),
         )
         geometry = dict(
             lateral_ratio=np.nan_to_num(first["lateral_ratio"]),
             tip_height=np.nan_to_num(first["tip_height_over_L"]),
             tilt=np.nan_to_num(first["tilt_deg"]),
         )
-        r = table["tip_position"].to_numpy(float)[rows] if r_given[rows[0]] else None
+        r = r_in[rows] if first["r_given"] else None
         qs = q[rows] if np.isfinite(q[rows]).any() else None
         out = invert_contact_resonance(lever, fc[rows], tip_position=r, q_factors=qs, **geometry)
         res["kappa"][rows] = out.kappa
-        res["k_star_N_per_m"][rows] = out.k_star if np.isfinite(first["k_c_N_per_m"]) else np.nan
         res["tip_position_used"][rows] = out.tip_position
-        res["sigma_N_s_per_m"][rows] = out.sigma
-        res["flags"][rows] = [";".join(flag_names(f)) for f in np.atleast_1d(out.flags)]
-        for col, target in (("fc1_ref_Hz", ref), ("fc1_ref2_Hz", ref2)):
-            f_ref = table[col].to_numpy(float)[rows]
-            if np.isfinite(f_ref).any():
-                freqs = np.full((len(rows), 3), np.nan)
-                freqs[:, 0] = f_ref
+        res["sigma_N_s_per_m"][rows] = out.sigma * np.where(have_kc[rows], k_c[rows], np.nan)
+        flags[rows] = out.flags
+        solved = np.isfinite(out.tip_position)  # two modes without a crossing: no reference
+        for j in (0, 1):
+            take = solved & ~np.isnan(f_ref[rows, j])
+            if take.any():
+                freqs = np.full((int(take.sum()), 3), np.nan)
+                freqs[:, 0] = f_ref[rows[take], j]
                 back = invert_contact_resonance(
-                    lever, freqs, tip_position=out.tip_position, **geometry
+                    lever, freqs, tip_position=out.tip_position[take], **geometry
                 )
-                target[rows] = back.k_star
-    no_kc = table["k_c_N_per_m"].isna().to_numpy()
-    # Without k_c, k* is unknown but the reference method needs only ratios of k*.
-    k_star = np.where(no_kc, res["kappa"], res["k_star_N_per_m"])
-    mod = _modulus(table, k_star, ref, ref2)
-    out = table[table.attrs.get("given", [c for c in table.columns if c != "line"])].copy()
-    for name, values in res.items():
-        out[name] = values
+                refs[rows[take], j] = back.kappa
+    k_star = res["kappa"] * k_c
+    # Without k_c, k* is unknown, but the reference method needs only ratios of k*: it runs on κ.
+    col = {c: table[c].to_numpy(float) for c in _MODULUS_INPUTS}
+    scale = np.where(have_kc, k_c, 1.0)
+    mod = _modulus(
+        col, np.where(have_kc, k_star, res["kappa"]), have_kc, *(refs * scale[:, None]).T
+    )
+    out = _given_columns(table)
+    out["kappa"] = res["kappa"]
+    out["k_star_N_per_m"] = k_star
+    out["tip_position_used"] = res["tip_position_used"]
+    out["sigma_N_s_per_m"] = res["sigma_N_s_per_m"]
     for name in ("E_star_Pa", "M_sample_Pa", "contact_radius_m", "modulus_method"):
         out[name] = mod[name]
-    # A modulus beyond diamond's (M ~ 1.2 TPa) or below a soft gel's is a wrong input (k_c, R,
-    # P in the wrong unit), not a result: withheld and flagged.
-    absurd = ~((mod["M_sample_Pa"] >= M_RANGE_PA[0]) & (mod["M_sample_Pa"] <= M_RANGE_PA[1]))
-    absurd &= np.isfinite(mod["M_sample_Pa"])
-    out.loc[absurd, ["E_star_Pa", "M_sample_Pa"]] = np.nan
-    mod["modulus_flags"][absurd] = "modulus-out-of-range"
-    both = [
-        ";".join(x for x in pair if x)
-        for pair in zip(res["flags"], mod["modulus_flags"], strict=True)
-    ]
-    out["flags"] = both
+    text = [_flag_text(flags, flag_names), _flag_text(mod["modulus_flags"], _modulus_names)]
+    out["flags"] = [";".join(t for t in pair if t) for pair in zip(*text, strict=True)]
     out["normalisation"] = normalisation
     return out

@@ -76,7 +76,9 @@ _AFM = (
     *(_col(f"Q{n}", "-", f"quality factor of contact mode {n}", _Q) for n in _MODES),
     _col("lateral_ratio", "-", "lateral spring k_lat/k*", Rule(lo=0.0, hi=100.0)),
     _col("tip_height_over_L", "-", "tip height h/L", Rule(lo=0.0, hi=1.0)),
-    _col("tilt_deg", "deg", "tilt of the lever to the sample", Rule(lo=-60.0, hi=60.0)),
+    _col(
+        "tilt_deg", "deg", "tilt of the lever to the sample, free end down", Rule(lo=0.0, hi=60.0)
+    ),
     _col("tip_radius_m", "m", "tip radius R (Hertz)", Rule("sphere_radius")),
     _col("load_N", "N", "normal load P (Hertz)", Rule("force")),
     _col("M_tip_Pa", "Pa", "indentation modulus of the tip", Rule("modulus")),

@@ -184,7 +184,9 @@ def kappa_on_branch(beta, mode, tip_position, g):
     n1, n2 = np.real(k1) <= 0, np.real(k2) <= 0
     below = np.where(n1 & (~n2 | (np.real(k1) >= np.real(k2))), k1, np.where(n2, k2, np.nan))
     kappa = np.where(j < 0, below, np.where(j == 0, small, np.where(j == 1, large, np.nan)))
-    flags = np.where(j < 0, FLAG_BELOW_FREE, 0) | np.where((j >= 0) & (j >= n_pos), 4, 0)
+    flags = np.where(j < 0, FLAG_BELOW_FREE, 0) | np.where(
+        (j >= 0) & (j >= n_pos), FLAG_ABOVE_PINNED, 0
+    )
     ok = np.isfinite(kappa) & (np.real(kappa) > 0)
     return kappa, flags | np.where(ok, 0, FLAG_NOT_POSITIVE)
 
@@ -234,17 +236,16 @@ def _crossings(beta_a, mode_a, beta_b, mode_b, g):
     pix = np.concatenate(pix).astype(int)
     lo = np.concatenate(lo)
     hi = lo + np.diff(R_GRID)[np.searchsorted(R_GRID, lo)]
-    sel = pix
-    f_lo = delta(sel, lo[:, None])[0]
+    f_lo = delta(pix, lo[:, None])[0]
     lo, hi = lo[:, None], hi[:, None]
     for _ in range(55):  # 55 halvings of a 0.005 bracket: r to the last bit
         mid = 0.5 * (lo + hi)
-        f_mid = delta(sel, mid)[0]
+        f_mid = delta(pix, mid)[0]
         same = np.sign(f_mid) == np.sign(f_lo)
         lo, f_lo = np.where(same, mid, lo), np.where(same, f_mid, f_lo)
         hi = np.where(same, hi, mid)
     r = 0.5 * (lo + hi)
-    d, ka, kb = delta(sel, r)
+    d, ka, kb = delta(pix, r)
     ok = (
         np.isfinite(d)
         & (np.real(ka) > 0)
@@ -293,10 +294,13 @@ def invert_contact_resonance(
     if np.any(~np.isfinite(f[measured]) | (f[measured] <= 0)):
         raise ValueError("frequencies must be > 0 and finite (Hz) or NaN (not measured)")
     q = None
+    no_q = np.ones(f.shape, bool)
     if q_factors is not None:
         q = np.broadcast_to(np.asarray(q_factors, dtype=float), f.shape)
-        if np.any(~(q[measured] > 0) | ~np.isfinite(q[measured])):
-            raise ValueError("q_factors must be finite and > 0 (dimensionless)")
+        no_q = np.isnan(q)  # a cell without a Q: real ω there, σ unknown
+        if np.any(~(q[measured & ~no_q] > 0) | ~np.isfinite(q[measured & ~no_q])):
+            raise ValueError("q_factors must be finite and > 0 (dimensionless) or NaN")
+        q = np.where(no_q, np.inf, q)
     g = tuple(np.asarray(x)[..., None] for x in tip_coefficients(lateral_ratio, tip_height, tilt))
     mode_arr = np.array(modes)
     k_c = cantilever.spring_constant
@@ -304,8 +308,10 @@ def invert_contact_resonance(
         beta = beta_from_frequency(cantilever, f, mode_arr, q)
         if tip_position is not None:
             r = np.asarray(tip_position, dtype=float)
-            if np.any(~(r > 0) | ~(r <= 1)):
-                raise ValueError(f"tip_position must be in (0, 1] (L1/L), got {tip_position!r}")
+            bad = ~(r > 0) | ~(r <= 1)
+            if np.any(bad):
+                shown = float(r[bad].ravel()[0]) if r.ndim else float(r)
+                raise ValueError(f"tip_position must be in (0, 1] (L1/L), got {shown!r}")
             r = r[..., None]
             cand = np.full((*np.broadcast_shapes(f.shape[:-1], r.shape[:-1]), 0), np.nan)
             cand_k = cand
@@ -322,6 +328,8 @@ def invert_contact_resonance(
         flags_m = flags_m | _sensitivity_flags(beta, mode_arr, r, g, kappa_m)
         flags_m = np.where(measured, flags_m, FLAG_NOT_MEASURED | FLAG_NOT_POSITIVE)
         sigma_m = k_c * np.imag(kappa_m) / (2.0 * np.pi * f) if q is not None else None
+        if sigma_m is not None:
+            sigma_m = np.where(no_q, np.nan, sigma_m)
         usable = flags_m == 0
         if tip_position is not None:
             kappa = _mean_where(np.real(kappa_m), usable)
