@@ -9,10 +9,18 @@ Also printed: the accuracy, the largest relative deviation of every model from a
 (every resolution doubled; doubling twice moves the defaults by < 1e-7 too), the time of a
 second curve of the same material with the table prepared once (what apps/paper1.py and the CLI
 do), and that of all seven models in one call (``contactres dcsf --model all``).
+
+Targets of the speed/memory issue: all seven models, 41 points, new material under 0.1 s; an
+extra k a point under 0.1 ms (41 vs 10041 points, table prepared: the default interpolates
+between Chebyshev points above 128 distinct values; the direct cost per point is printed too);
+10^4 points under 500 MB peak resident memory (VmHWM of a fresh process, which includes the
+~120 MB of the interpreter, numpy, scipy and the package), interpolated (the default) and, for
+2000 points, evaluated directly in chunks.
 """
 
 from __future__ import annotations
 
+import subprocess
 import sys
 import time
 
@@ -28,6 +36,14 @@ from contactres.dynamic.table import kernel_table, resolution_for
 
 TARGET_S = 0.5
 TARGET_EXACT_S = 1.0
+# Issue: the seven-model curve (contactres dcsf --model all) under 0.1 s for a new material,
+# an extra k a point under 0.1 ms, and 10^4 points in under 500 MB.
+TARGET_7_S = 0.1
+TARGET_PER_POINT_S = 1e-4
+TARGET_MEMORY_MB = 500.0
+N_EXTRA = 10_000
+N_DIRECT = 1000
+N_MEMORY = 10_000
 KLA_EXACT = np.linspace(0.0, 2.0, 21)
 KLA = np.linspace(0.0, 2.0, 41)
 LOSS = 0.02
@@ -90,14 +106,91 @@ def main() -> int:
         )
     results.append(target("dcsf exact 21 points, new material (worst)", worst, TARGET_EXACT_S))
 
-    print("all seven models in one call (contactres dcsf --model all), 41 points")
+    print("all seven models in one call (contactres dcsf --model all), 41 points, new material")
     worst = 0.0
     for k, (A, nu) in enumerate(CASES):
         m = Material.cubic_from_ratios(A * (1 + 1e-9 * (k + 21)), nu)
         _, wall, _ = timed(lambda m=m: dcsf_models(m, KLA, ALL_MODELS, loss=LOSS))
         worst = max(worst, wall)
-    print(f"  worst {worst:.3f} s")
+        print(f"  A={A:<5g} nu={nu:<5g} wall {wall:.3f} s")
+    results.append(target("dcsf 41 points, seven models, new material (worst)", worst, TARGET_7_S))
+
+    print(f"cost of an extra k a point: seven models, table prepared, 41 vs {41 + N_EXTRA} points")
+    m = Material.cubic_from_ratios(0.5 * (1 + 1e-9 * 31), 0.25)
+    table = prepare(m, LOSS)
+    small = min(
+        timed(lambda: dcsf_models(m, KLA, ALL_MODELS, loss=LOSS, prepared=table))[1]
+        for _ in range(3)
+    )
+    many = np.linspace(0.0, 2.0, KLA.size + N_EXTRA)
+    _, big, _ = timed(lambda: dcsf_models(m, many, ALL_MODELS, loss=LOSS, prepared=table))
+    per = (big - small) / N_EXTRA
+    direct = np.linspace(0.0, 2.0, KLA.size + N_DIRECT)
+    _, slow, _ = timed(
+        lambda: dcsf_models(m, direct, ALL_MODELS, loss=LOSS, prepared=table, interpolate=False)
+    )
+    print(
+        f"  41 points {small:.3f} s, {many.size} points {big:.3f} s (interpolated); "
+        f"{direct.size} points directly {slow:.3f} s ({(slow - small) / N_DIRECT * 1e3:.2f} ms "
+        "per extra point)"
+    )
+    results.append(target("dcsf seven models, per extra k a point", per, TARGET_PER_POINT_S))
+
+    print(f"{N_MEMORY} points, seven models, in a fresh process (peak resident memory)")
+    wall, peak, base = memory_run(N_MEMORY, "None")
+    print(f"  wall {wall:.2f} s ({wall / N_MEMORY * 1e3:.3f} ms per point), peak {peak:.0f} MB")
+    print(f"  (the same process after 41 points: {base:.0f} MB)")
+    wall_d, peak_d, _ = memory_run(2000, "False")
+    print(f"  2000 points directly, in chunks of 64: wall {wall_d:.2f} s, peak {peak_d:.0f} MB")
+    peak = max(peak, peak_d)
+    ratio = peak / TARGET_MEMORY_MB
+    met = peak <= TARGET_MEMORY_MB
+    # Same layout as _verdict.target, in MB (run_all.py reads only the lines in seconds).
+    print(
+        f"  TARGET dcsf {N_MEMORY} points peak memory: {peak:.4g} MB, target "
+        f"{TARGET_MEMORY_MB:g} MB, ratio {ratio:.2f} -> {'met' if met else 'MISSED'}"
+    )
+    results.append(met)
     return exit_code(results)
+
+
+# Peak resident memory from VmHWM (reset by exec; ru_maxrss of a child keeps the parent's
+# peak at the fork on Linux), else ru_maxrss. Both in KiB.
+_MEMORY_SCRIPT = """
+import resource, sys, time
+import numpy as np
+from contactres import Material
+from contactres.dynamic import ALL_MODELS, dcsf_models, prepare
+
+def peak():
+    try:
+        with open("/proc/self/status") as f:
+            return next(int(x.split()[1]) for x in f if x.startswith("VmHWM:"))
+    except OSError:
+        return resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+
+m = Material.cubic_from_ratios(0.5, 0.25)
+table = prepare(m, 0.02)
+dcsf_models(m, np.linspace(0.0, 2.0, 41), ALL_MODELS, loss=0.02, prepared=table)
+base = peak()
+t0 = time.perf_counter()
+ka = np.linspace(0.0, 2.0, int(sys.argv[1]))
+dcsf_models(m, ka, ALL_MODELS, loss=0.02, prepared=table, interpolate=eval(sys.argv[2]))
+wall = time.perf_counter() - t0
+print(wall, peak(), base)
+"""
+
+
+def memory_run(n: int, interpolate: str) -> tuple[float, float, float]:
+    """Wall time (s), peak resident memory (MB) of a fresh process evaluating ``n`` points of
+    the seven models (``interpolate``: "None" or "False") and its peak after 41 points (MB)."""
+    out = subprocess.run(
+        [sys.executable, "-c", _MEMORY_SCRIPT, str(n), interpolate],
+        check=True,
+        capture_output=True,
+        text=True,
+    ).stdout.split()
+    return float(out[0]), float(out[1]) / 1024, float(out[2]) / 1024
 
 
 if __name__ == "__main__":

@@ -28,6 +28,7 @@ _EXPORTS: dict[str, str] = {
     "Material": ".materials",
     "crystal_names": ".crystals",
     "crystal_table": ".crystals",
+    "at_cut_quartz": ".materials",
     "dynamic_kernel": ".halfspace",
     "isotropic_dynamic_kernel": ".halfspace",
     "shear_reference": ".halfspace",
@@ -93,6 +94,7 @@ _EXPORTS: dict[str, str] = {
     "invert_afm_table": ".analysis.resonance_tables",
     "invert_rum_table": ".analysis.resonance_tables",
     "read_resonance_table": ".measurements.resonances",
+    "example_afm_map": ".measurements.afm_example",
     "write_report": ".report",
 }
 

@@ -1,36 +1,61 @@
-"""Built-in table of cubic crystals (``data/crystals.csv``, with the source of each row).
+"""Built-in tables of solids, with the source of each row.
+
+Two CSV files of ``contactres/data``: ``crystals.csv`` holds the cubic crystals (c11, c12, c44),
+``materials.csv`` the other solids, one ``symmetry`` per row: ``trigonal`` (alpha-quartz,
+sapphire: c11, c12, c13, c14, c33, c44) or ``isotropic`` (glasses, amorphous Si3N4: E, ν). The
+two files keep their own columns, so the cubic table did not change when the others were added.
 
 A ground-layer table: it returns the raw constants as :class:`CrystalRecord` and knows nothing of
-:class:`contactres.Material`; ``Material.crystal(name)`` builds the solid from the record. The CSV
-is read on every call (a few hundred bytes, ~0.1 ms with the standard library's csv module), so
-there is no cache.
+:class:`contactres.Material`; ``Material.crystal(name)`` builds the solid from the record. The
+CSVs are read on every call (a few hundred bytes each, ~0.1 ms with the standard library's csv
+module), so there is no cache.
 """
 
 from __future__ import annotations
 
 import csv
-from dataclasses import dataclass
+from dataclasses import asdict, dataclass
 from importlib import resources
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
     import pandas as pd
 
-__all__ = ["CrystalRecord", "crystal_names", "crystal_record", "crystal_table"]
+__all__ = ["SYMMETRIES", "CrystalRecord", "crystal_names", "crystal_record", "crystal_table"]
 
 _GPa = 1e9
+
+# The CSV columns each symmetry of materials.csv fills; every other constant cell must be empty.
+SYMMETRIES: dict[str, tuple[str, ...]] = {
+    "trigonal": ("c11_GPa", "c12_GPa", "c13_GPa", "c14_GPa", "c33_GPa", "c44_GPa"),
+    "isotropic": ("E_GPa", "nu"),
+}
+_CONSTANT_COLUMNS = (
+    "c11_GPa",
+    "c12_GPa",
+    "c13_GPa",
+    "c14_GPa",
+    "c33_GPa",
+    "c44_GPa",
+    "E_GPa",
+    "nu",
+)
 
 
 @dataclass(frozen=True)
 class CrystalRecord:
-    """One row of the built-in table, in SI units.
+    """One row of the built-in tables, in SI units.
 
     Attributes
     ----------
-    name : the crystal's name as written in the table (e.g. ``"Cu"``)
-    c11, c12, c44 : cubic elastic constants in the cube-axis frame, Pa
+    name : the solid's name as written in the table (e.g. ``"Cu"``, ``"quartz"``)
+    c11, c12, c44 : elastic constants in the crystal frame, Pa. For an isotropic row they follow
+        from E and ν: c11 = λ + 2μ, c12 = λ, c44 = μ (Lamé constants)
     density : mass density, kg/m^3
     source : where the constants come from
+    symmetry : ``"cubic"``, ``"trigonal"`` or ``"isotropic"``
+    c13, c14, c33 : the further trigonal constants, Pa (None for the other symmetries)
+    E, nu : Young's modulus (Pa) and Poisson's ratio of an isotropic row (None otherwise)
     """
 
     name: str
@@ -39,35 +64,22 @@ class CrystalRecord:
     c44: float
     density: float
     source: str
+    symmetry: str = "cubic"
+    c13: float | None = None
+    c14: float | None = None
+    c33: float | None = None
+    E: float | None = None
+    nu: float | None = None
 
 
-def _rows() -> list[dict[str, str]]:
-    """The table's rows as strings (the standard library's csv: no pandas on this path)."""
-    with resources.files("contactres").joinpath("data/crystals.csv").open("r") as fh:
+def _rows(filename: str) -> list[dict[str, str]]:
+    """The rows of ``data/<filename>`` as strings (the standard library's csv: no pandas)."""
+    with resources.files("contactres").joinpath(f"data/{filename}").open("r") as fh:
         lines = [ln for ln in fh if not ln.startswith("#")]
     return list(csv.DictReader(lines))
 
 
-def crystal_names() -> list[str]:
-    """Names of the built-in crystals, in table order."""
-    return [row["name"] for row in _rows()]
-
-
-def crystal_record(name: str) -> CrystalRecord:
-    """The built-in crystal ``name`` (case-insensitive) as a :class:`CrystalRecord` (SI units).
-
-    Raises
-    ------
-    ValueError
-        For an unknown name; the message lists the known ones.
-    """
-    rows = _rows()
-    key = str(name).strip().lower()
-    match = [row for row in rows if row["name"].lower() == key]
-    if not match:
-        known = ", ".join(row["name"] for row in rows)
-        raise ValueError(f"unknown crystal {name!r}; known crystals: {known}")
-    row = match[0]
+def _cubic_record(row: dict[str, str]) -> CrystalRecord:
     return CrystalRecord(
         name=row["name"],
         c11=float(row["c11_GPa"]) * _GPa,
@@ -78,16 +90,90 @@ def crystal_record(name: str) -> CrystalRecord:
     )
 
 
-def crystal_table() -> pd.DataFrame:
-    """The built-in crystals with their Zener ratio A and ν = C12/(C11 + C12) added.
+def _other_record(row: dict[str, str]) -> CrystalRecord:
+    """A row of materials.csv; a malformed row (wrong or missing cells) is a ValueError."""
+    name, symmetry = row["name"], row["symmetry"]
+    if symmetry not in SYMMETRIES:
+        raise ValueError(f"materials.csv row {name!r}: unknown symmetry {symmetry!r}")
+    needed = SYMMETRIES[symmetry]
+    filled = {c for c in _CONSTANT_COLUMNS if row[c].strip()}
+    if filled != set(needed):
+        raise ValueError(
+            f"materials.csv row {name!r} ({symmetry}) must fill exactly {', '.join(needed)}; "
+            f"it fills {', '.join(sorted(filled)) or 'none'}"
+        )
+    common = {"name": name, "density": float(row["density_kg_m3"]), "source": row["source"]}
+    if symmetry == "isotropic":
+        E, nu = float(row["E_GPa"]) * _GPa, float(row["nu"])
+        lam = E * nu / ((1 + nu) * (1 - 2 * nu))
+        mu = E / (2 * (1 + nu))
+        return CrystalRecord(
+            c11=lam + 2 * mu, c12=lam, c44=mu, symmetry=symmetry, E=E, nu=nu, **common
+        )
+    c = {k: float(row[f"{k}_GPa"]) * _GPa for k in ("c11", "c12", "c13", "c14", "c33", "c44")}
+    return CrystalRecord(symmetry=symmetry, **c, **common)
 
-    Columns: name, c11_GPa, c12_GPa, c44_GPa, density_kg_m3, zener, poisson, source.
+
+def _records() -> list[CrystalRecord]:
+    """Every built-in solid: the cubic table first, then the others, each in file order."""
+    cubic = [_cubic_record(row) for row in _rows("crystals.csv")]
+    return cubic + [_other_record(row) for row in _rows("materials.csv")]
+
+
+def crystal_names() -> list[str]:
+    """Names of the built-in solids: the cubic crystals, then the others, in table order."""
+    return [row["name"] for row in _rows("crystals.csv") + _rows("materials.csv")]
+
+
+def crystal_record(name: str) -> CrystalRecord:
+    """The built-in solid ``name`` (case-insensitive) as a :class:`CrystalRecord` (SI units).
+
+    Raises
+    ------
+    ValueError
+        For an unknown name; the message lists the known ones.
+    """
+    key = str(name).strip().lower()
+    for filename, build in (("crystals.csv", _cubic_record), ("materials.csv", _other_record)):
+        for row in _rows(filename):
+            if row["name"].lower() == key:
+                return build(row)
+    raise ValueError(f"unknown crystal {name!r}; known crystals: {', '.join(crystal_names())}")
+
+
+def crystal_table() -> pd.DataFrame:
+    """The built-in solids, one row each, in GPa and kg/m^3.
+
+    Columns: name, c11_GPa, c12_GPa, c44_GPa, c13_GPa, c14_GPa, c33_GPa, density_kg_m3, symmetry,
+    E_GPa, nu, zener, poisson, source. The Zener ratio A = 2 C44/(C11 - C12) and
+    ν = C12/(C11 + C12) (paper 1's cubic parameters) are given where they apply: for the cubic
+    rows and the isotropic ones (A = 1 and ν = Poisson's ratio); NaN for the trigonal rows, as
+    are the constants a row's symmetry does not have.
     """
     import pandas as pd  # only the table needs pandas; records and names do not
 
-    with resources.files("contactres").joinpath("data/crystals.csv").open("r") as fh:
-        t = pd.read_csv(fh, comment="#")
-    t["zener"] = 2 * t.c44_GPa / (t.c11_GPa - t.c12_GPa)
-    t["poisson"] = t.c12_GPa / (t.c11_GPa + t.c12_GPa)
-    cols = ["name", "c11_GPa", "c12_GPa", "c44_GPa", "density_kg_m3", "zener", "poisson", "source"]
+    t = pd.DataFrame([asdict(r) for r in _records()])
+    for col in ("c11", "c12", "c44", "c13", "c14", "c33", "E"):
+        t[f"{col}_GPa"] = t[col].astype(float) / _GPa
+    t["nu"] = t["nu"].astype(float)
+    t["density_kg_m3"] = t["density"]
+    cubic_like = t["symmetry"].isin(["cubic", "isotropic"])
+    t["zener"] = (2 * t.c44_GPa / (t.c11_GPa - t.c12_GPa)).where(cubic_like)
+    t["poisson"] = (t.c12_GPa / (t.c11_GPa + t.c12_GPa)).where(cubic_like)
+    cols = [
+        "name",
+        "c11_GPa",
+        "c12_GPa",
+        "c44_GPa",
+        "c13_GPa",
+        "c14_GPa",
+        "c33_GPa",
+        "density_kg_m3",
+        "symmetry",
+        "E_GPa",
+        "nu",
+        "zener",
+        "poisson",
+        "source",
+    ]
     return t[cols]

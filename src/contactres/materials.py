@@ -22,7 +22,9 @@ from .crystals import crystal_record
 from .validation import nonnegative, positive
 
 __all__ = [
+    "AT_CUT_ANGLE",
     "Material",
+    "at_cut_quartz",
     "require_material",
     "rotate_tensor",
     "rotation_to_surface",
@@ -146,11 +148,11 @@ class Material:
     """A linear elastic solid: 6x6 Voigt stiffness ``C`` (Pa) and optional density (kg/m^3).
 
     Use the constructors (:meth:`isotropic`, :meth:`cubic`, :meth:`cubic_from_ratios`,
-    :meth:`hexagonal`, :meth:`from_voigt`, :meth:`crystal`) rather than the bare class. ``C`` is
-    stored read-only; it may be complex (loss, see :meth:`with_loss`). ``C`` refers to the
-    material's current frame: the crystal frame after construction, the surface frame after
-    :meth:`rotated`. ``frame`` (3x3) holds the axes of the current frame as rows, in crystal
-    coordinates (the identity after construction).
+    :meth:`hexagonal`, :meth:`trigonal`, :meth:`from_voigt`, :meth:`crystal`) rather than the
+    bare class. ``C`` is stored read-only; it may be complex (loss, see :meth:`with_loss`). ``C``
+    refers to the material's current frame: the crystal frame after construction, the surface
+    frame after :meth:`rotated`. ``frame`` (3x3) holds the axes of the current frame as rows,
+    in crystal coordinates (the identity after construction).
     """
 
     C: np.ndarray
@@ -173,13 +175,15 @@ class Material:
         return cls(C=np.asarray(C), density=density, name=name)
 
     @classmethod
-    def isotropic(cls, E: float, nu: float, density: float | None = None) -> Material:
+    def isotropic(
+        cls, E: float, nu: float, density: float | None = None, name: str | None = None
+    ) -> Material:
         """Isotropic solid of Young's modulus ``E`` (Pa) and Poisson's ratio ``nu`` in (-1, 0.5)."""
         E = positive("E", E, "Pa")
         nu = _poisson(nu)
         lam = E * nu / ((1 + nu) * (1 - 2 * nu))
         mu = E / (2 * (1 + nu))
-        return cls.cubic(lam + 2 * mu, lam, mu, density=density)
+        return cls.cubic(lam + 2 * mu, lam, mu, density=density, name=name)
 
     @classmethod
     def cubic(
@@ -234,6 +238,7 @@ class Material:
         c33: float,
         c44: float,
         density: float | None = None,
+        name: str | None = None,
     ) -> Material:
         """Hexagonal (transversely isotropic) crystal, c axis along z; constants in Pa.
 
@@ -246,16 +251,88 @@ class Material:
         C[2, 2] = c33
         C[3, 3] = C[4, 4] = c44
         C[5, 5] = 0.5 * (c11 - c12)
-        return cls(C=C, density=density)
+        return cls(C=C, density=density, name=name)
+
+    @classmethod
+    def trigonal(
+        cls,
+        c11: float,
+        c12: float,
+        c13: float,
+        c14: float,
+        c33: float,
+        c44: float,
+        density: float | None = None,
+        name: str | None = None,
+    ) -> Material:
+        """Trigonal crystal of the classes 32, 3m and -3m (alpha-quartz, sapphire); constants in Pa.
+
+        Frame and convention: z along the three-fold (optic, c) axis and x along a two-fold axis
+        (classes 32, -3m) or normal to a mirror plane (3m), y = z × x; Voigt order 11, 22, 33, 23,
+        13, 12. Six independent constants, and
+
+            C22 = C11,  C23 = C13,  C55 = C44,  C66 = (C11 - C12)/2,
+            C24 = -C14,  C56 = C14,
+
+        all other C_ij = 0 (J. F. Nye, *Physical Properties of Crystals*, Oxford 1957, Appendix B;
+        IEEE Std 176-1987, *IEEE Standard on Piezoelectricity*; table not re-checked here). The
+        sign of C14 depends on which way +x points along the two-fold axis (and, for quartz, on
+        the handedness and the edition of the standard): pass the constants with the sign their
+        source gives in its own frame, and give directions (:meth:`rotated`) in that frame.
+
+        Stability (positive definiteness) requires C11 > |C12|, C44 > 0,
+        C13² < C33 (C11 + C12)/2 and C14² < C44 (C11 - C12)/2: C splits into the block
+        [[C11 + C12, √2 C13], [√2 C13, C33]] (in-plane dilatation, e33) and two blocks each
+        congruent to [[C66, C14], [C14, C44]] (an in-plane shear with a transverse one).
+
+        Raises
+        ------
+        ValueError
+            For non-finite or unstable constants; the message names the condition that fails.
+        """
+        values = {"c11": c11, "c12": c12, "c13": c13, "c14": c14, "c33": c33, "c44": c44}
+        for n, v in values.items():
+            if not np.isfinite(v):
+                raise ValueError(f"trigonal constant {n} must be finite, got {v!r}")
+        failed = [
+            rule
+            for ok, rule in (
+                (c11 > abs(c12), "C11 > |C12|"),
+                (c44 > 0, "C44 > 0"),
+                (c33 > 0 and 2 * c13**2 < c33 * (c11 + c12), "C13² < C33 (C11 + C12)/2"),
+                (2 * c14**2 < c44 * (c11 - c12), "C14² < C44 (C11 - C12)/2"),
+            )
+            if not ok
+        ]
+        if failed:
+            got = ", ".join(f"{n}={v:.4g}" for n, v in values.items())
+            raise ValueError(
+                f"trigonal constants {got} Pa are unstable (C not positive definite): need "
+                + " and ".join(failed)
+            )
+        C = np.array(cls.hexagonal(c11, c12, c13, c33, c44).C)  # the hexagonal part, + C14
+        C[0, 3] = C[3, 0] = c14
+        C[1, 3] = C[3, 1] = -c14
+        C[4, 5] = C[5, 4] = c14
+        return cls(C=C, density=density, name=name)
 
     @classmethod
     def crystal(cls, name: str) -> Material:
-        """A crystal from the built-in table, in its cube-axis frame (case-insensitive ``name``).
+        """A solid from the built-in tables, in its crystal frame (case-insensitive ``name``).
 
-        ``contactres crystals`` and :func:`contactres.crystal_names` list them; unknown names
-        raise ValueError.
+        Cubic crystals in their cube-axis frame; trigonal ones (``"quartz"``, ``"sapphire"``) in
+        the frame of :meth:`trigonal`; isotropic ones (``"fused-silica"``,
+        ``"soda-lime-glass"``, ``"Si3N4"``) need none. ``contactres crystals`` and
+        :func:`contactres.crystal_names` list them with their sources; unknown names raise
+        ValueError. For the AT-cut quartz plate of a QCM see :func:`at_cut_quartz`.
         """
         r = crystal_record(name)
+        if r.symmetry == "isotropic":
+            return cls.isotropic(r.E, r.nu, density=r.density, name=r.name)
+        if r.symmetry == "trigonal":
+            return cls.trigonal(
+                r.c11, r.c12, r.c13, r.c14, r.c33, r.c44, density=r.density, name=r.name
+            )
         return cls.cubic(r.c11, r.c12, r.c44, density=r.density, name=r.name)
 
     # ----------------------------------------------------------------------------- operations
@@ -335,6 +412,48 @@ class Material:
         """Elastic energy density 0.5 e·C·e (J/m^3) of Voigt strains ``e`` (..., 6)."""
         e = np.asarray(strain)
         return 0.5 * np.einsum("...i,ij,...j->...", e, np.asarray(self.C).real, e)
+
+
+# The AT cut: a rotated Y cut, (YXl) θ in the notation of IEEE Std 176, with θ = 35°15'.
+AT_CUT_ANGLE = 35.25
+
+
+def at_cut_quartz(theta: float = AT_CUT_ANGLE) -> Material:
+    """The AT-cut quartz plate of a QCM in its surface frame (built-in ``"quartz"`` constants).
+
+    A rotated Y cut: the plate normal is the crystal Y axis turned by ``theta`` (degrees) about
+    the crystal X axis (a two-fold axis), Y' = (0, cos θ, sin θ) in crystal axes. The surface
+    frame is the one of :meth:`Material.rotated` (``normal=Y'``, ``inplane=X``):
+
+    - x' = X, the direction of the thickness-shear motion;
+    - z' = Y', the plate normal (into the plate from the face the sphere touches);
+    - y' = z' × x' = (0, sin θ, -cos θ), i.e. -Z' of the rotated crystal frame.
+
+    So ``at_cut_quartz().C[4, 4]`` (Voigt 55: shear along x' with the gradient along z') is the
+    thickness-shear stiffness c66' of the quartz literature, which in the rotated crystal frame
+    (X, Y', Z') reads c66' = C66 cos²θ + C44 sin²θ + 2 C14 sin θ cos θ: 28.98 GPa with the
+    table's constants (C14 < 0 as McSkimin et al. 1965 give it: the AT cut is then at
+    θ = +35.25°, as in IEEE Std 176-1949; the later editions flip the sign of C14 and quote the
+    same cut at θ = -35.25°; not re-checked). The QCM literature's μ_q = 2.947e10 Pa and
+    Z_q = 8.8e6 kg m^-2 s^-1 (D. Johannsmann et al., *Sensors* 21, 3490 (2021)) are
+    piezoelectrically stiffened: tests/test_builtin_materials.py compares them.
+
+    Purely elastic constants at 25 °C: neither the piezoelectric stiffening (c66' grows by
+    e26²/(ε_q ε0), 0.23 GPa or 0.8 % with e26 = 9.65e-2 C/m² and ε_q = 4.54 of the same
+    review) nor the temperature dependence is modelled; the zero first-order temperature
+    coefficient of the frequency, which is why the AT cut is used, is not a property of this
+    model.
+
+    Parameters
+    ----------
+    theta : float
+        Cut angle in degrees (default :data:`AT_CUT_ANGLE`, 35.25°).
+    """
+    t = np.radians(float(theta))
+    if not np.isfinite(t):
+        raise ValueError(f"theta (cut angle, degrees) must be finite, got {theta!r}")
+    quartz = Material.crystal("quartz")
+    return quartz.rotated(normal=(0.0, np.cos(t), np.sin(t)), inplane=(1.0, 0.0, 0.0))
 
 
 def require_material(m, *, lossless: bool = False) -> Material:

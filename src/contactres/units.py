@@ -263,6 +263,9 @@ QUANTITIES = MappingProxyType(
         # Target relative accuracy of a quadrature: below 1e-10 round-off wins, at 1 it means
         # nothing.
         "rtol": Plausible("relative tolerance", "", 1e-10, 1.0, 1e-6, hi_open=True),
+        # Relative disagreement of κ between cantilever modes tolerated before a flag: below
+        # 1e-4 no lever model holds, above 1 (100 %) the check means nothing.
+        "mode_tolerance": Plausible("mode tolerance", "", 1e-4, 1.0, 0.05),
         # QCM overtone order n: measured up to ~13; 999 keeps n f_F inside the frequency range.
         "overtone": Plausible("overtone order", "", 1.0, 999.0, 3.0),
         # Number of equal contacts under the electrode: 1 to a dense layer of 10 nm particles on

@@ -166,3 +166,83 @@ def test_afm_q_given_in_some_cells_only_and_negative_tilt(afm_table, tmp_path):
     assert r.exit_code != 0 and "column 'tilt_deg'" in r.output
     r, _ = _invert(frame.assign(Q1_free=100.0), tmp_path)  # a free Q for mode 1, not mode 2
     assert r.exit_code != 0 and "column 'Q2_free'" in r.output
+
+
+def _si001():
+    from contactres import Material
+
+    return Material.crystal("Si").rotated((0, 0, 1))
+
+
+def test_afm_dynamic_correction_is_negligible_for_an_afm_tip(afm_table, tmp_path):
+    path, _ = afm_table
+    frame = pd.read_csv(path)
+    r0, plain = _invert(frame, tmp_path)
+    r, out = _invert(frame, tmp_path, "--crystal", "Si", "--surface", "001")
+    assert r0.exit_code == 0 and r.exit_code == 0, r.output
+    assert "k_a" not in plain.columns and "dcsf_real" in out.columns
+    si = _si001()
+    c_l = np.sqrt(si.C[2, 2].real / si.density)  # longitudinal speed along [001]
+    expected = 2 * np.pi * frame["fc1_Hz"] * out["contact_radius_m"] / c_l
+    np.testing.assert_allclose(out["k_a"], expected, rtol=1e-12)
+    assert out["k_a"].between(1e-7, 1e-5).all()  # the README's "k a ~ 1e-5: negligible"
+    assert (np.abs(out["dcsf_real"] - 1) < 1e-9).all() and (out["dcsf_imag"] > 0).all()
+    np.testing.assert_allclose(out["M_sample_Pa"], plain["M_sample_Pa"], rtol=1e-9)
+    assert (out["modulus_method"] == "hertz + dynamic").all()
+    assert "dynamic correction: k_l a <=" in r.output
+
+
+def test_afm_dynamic_correction_recovers_the_modulus_of_a_large_fast_contact(tmp_path):
+    # RUM-like contact, k_l a ~ 0.1 on Si(001): the measured stiffness is the dynamic one,
+    # K_static Re DCSF(k_l a) at the contact frequency (paper 1, Eq. 29), built here by its
+    # own fixed point on f; the static inversion is then ~0.5 % off, the corrected one exact.
+    from contactres import dcsf, indentation_modulus
+
+    si = _si001()
+    M = indentation_modulus(si)  # rigid tip: E* = M
+    c_l = np.sqrt(si.C[2, 2].real / si.density)
+    lever = Cantilever((160e3, 1003e3), 1.0e6)
+    a = np.array([1.5e-4, 2.2e-4])
+    R, K_s = 1e-2, 2 * a * M
+    P = 4 * M * a**3 / (3 * R)  # Hertz: a³ = 3PR/(4E*)
+    f = np.full(2, 600e3)
+    for _ in range(30):
+        D = np.asarray(dcsf(si, 2 * np.pi * f * a / c_l, model="exact")).real
+        f = contact_frequencies(lever, K_s * D / 1.0e6, 0.95, modes=(1,))[:, 0]
+    frame = pd.DataFrame(
+        {
+            "f1_free_Hz": 160e3,
+            "k_c_N_per_m": 1.0e6,
+            "tip_position": 0.95,
+            "fc1_Hz": f,
+            "tip_radius_m": R,
+            "load_N": P,
+        }
+    )
+    r0, plain = _invert(frame, tmp_path)
+    r, out = _invert(frame, tmp_path, "--crystal", "Si")
+    assert r0.exit_code == 0 and r.exit_code == 0, r.output
+    assert out["k_a"].between(0.05, 0.2).all()
+    np.testing.assert_allclose(out["M_sample_Pa"], M, rtol=1e-8)
+    np.testing.assert_allclose(out["contact_radius_m"], a, rtol=1e-8)
+    assert (np.abs(plain["M_sample_Pa"] / M - 1) > 1e-3).all()  # uncorrected: visibly off
+
+
+def test_afm_three_modes_choose_the_crossing_and_report_their_spread(tmp_path):
+    lever = Cantilever((160e3, 1003e3, 2810e3), 40.0)
+    f = contact_frequencies(lever, np.array([20.0, 50.0, 80.0]), 0.7, modes=(1, 2, 3))
+    frame = pd.DataFrame(f, columns=["fc1_Hz", "fc2_Hz", "fc3_Hz"]).assign(
+        f1_free_Hz=160e3, f2_free_Hz=1003e3, f3_free_Hz=2810e3, k_c_N_per_m=40.0
+    )
+    frame.loc[2, "fc3_Hz"] *= 1.01  # mode 3 off by 1 %: no crossing of modes 1-2 agrees with it
+    r, out = _invert(frame, tmp_path)
+    assert r.exit_code == 0, r.output
+    np.testing.assert_allclose(out["tip_position_used"][:2], 0.7, atol=1e-9)
+    assert (out["mode_spread"][:2] < 1e-9).all() and (out["flags"][:2].isna()).all()
+    assert "inconsistent-modes" in out["flags"][2] and out["mode_spread"][2] > 0.05
+    r, _ = _invert(frame, tmp_path, "--mode-tolerance", "7")
+    assert r.exit_code != 0 and "--mode-tolerance" in r.output and "Traceback" not in r.output
+    r, _ = _invert(frame, tmp_path, "--surface", "111")
+    assert r.exit_code != 0 and "--crystal" in r.output
+    r, _ = _invert(frame, tmp_path, "--zener", "1", "--poisson", "0.3", "--c44", "50e9")
+    assert r.exit_code != 0 and "density" in r.output

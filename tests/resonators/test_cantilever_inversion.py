@@ -8,6 +8,7 @@ from contactres.resonators.cantilever import FREE_ROOTS, Cantilever, contact_fre
 from contactres.resonators.cantilever_inversion import (
     FLAG_ABOVE_PINNED,
     FLAG_BELOW_FREE,
+    FLAG_INCONSISTENT_MODES,
     FLAG_INSENSITIVE,
     FLAG_NOT_MEASURED,
     FLAG_NOT_POSITIVE,
@@ -120,3 +121,40 @@ def test_validation():
         invert_contact_resonance(GLOBAL, [[1.2e5]], 1.5)
     with pytest.raises(ValueError, match="two measured modes"):
         invert_contact_resonance(GLOBAL, [[1.2e5]])
+
+
+def test_a_third_mode_rejects_the_spurious_crossing_of_the_first_two():
+    # At r = 0.7 modes 1 and 2 also cross near r = 0.88 (above): the two-mode rule takes the
+    # larger r and flags the pixel; mode 3 measured too picks the true crossing, unflagged.
+    kappa = KAPPA[1:4]
+    f = contact_frequencies(GLOBAL, kappa, 0.7, modes=(1, 2, 3))
+    two = invert_contact_resonance(GLOBAL, f[:, :2])
+    assert np.all(np.abs(two.tip_position - 0.7) > 0.1)
+    assert np.all(two.flags & FLAG_SEVERAL_CROSSINGS)
+    three = invert_contact_resonance(GLOBAL, f)
+    assert np.max(np.abs(three.tip_position - 0.7)) < 1e-9
+    assert np.max(np.abs(three.kappa / kappa - 1)) < 1e-8
+    assert np.all(three.flags == 0)
+    assert np.all(three.mode_spread < 1e-9)  # exact data: the modes agree
+    assert np.all(np.isnan(two.mode_spread))  # two modes, r solved: nothing left to check
+
+
+def test_mode_spread_is_the_third_modes_own_kappa_and_flags_beyond_the_tolerance():
+    kappa = np.array([3.0, 30.0, 300.0])
+    f = contact_frequencies(GLOBAL, kappa, 0.9, modes=(1, 2, 3))
+    f[:, 2] *= 1.002  # a 0.2 % error in mode 3 only
+    # Independent of the check: mode 3 alone inverted at r = 0.9 (and modes 1-2 alone).
+    k3 = invert_contact_resonance(GLOBAL, f[:, 2:], 0.9, modes=(3,)).kappa
+    k12 = invert_contact_resonance(GLOBAL, f[:, :2], 0.9).kappa
+    res = invert_contact_resonance(GLOBAL, f, 0.9)
+    mean = (2 * k12 + k3) / 3
+    expected = np.maximum(np.abs(k3 / mean - 1), np.abs(k12 / mean - 1))
+    assert np.max(np.abs(res.mode_spread / expected - 1)) < 1e-9
+    flagged = (res.flags & FLAG_INCONSISTENT_MODES) != 0
+    assert np.array_equal(flagged, expected > 0.05) and flagged.any() and not flagged.all()
+    loose = invert_contact_resonance(GLOBAL, f, 0.9, mode_tolerance=10.0)
+    assert not np.any(loose.flags & FLAG_INCONSISTENT_MODES)
+    single = invert_contact_resonance(GLOBAL, f[:, :1], 0.9)
+    assert np.all(np.isnan(single.mode_spread))  # one mode: no check
+    with pytest.raises(ValueError, match="mode_tolerance"):
+        invert_contact_resonance(GLOBAL, f, 0.9, mode_tolerance=0)

@@ -14,11 +14,16 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
+from ..dynamic import prepare
 from ..measurements.messages import at_cell, where_rows
 from ..resonators.cantilever import Cantilever
-from ..resonators.cantilever_inversion import flag_names, invert_contact_resonance
+from ..resonators.cantilever_inversion import (
+    MODE_TOLERANCE,
+    flag_names,
+    invert_contact_resonance,
+)
 from ..resonators.rum import RUMOscillator
-from .inversion import ModulusFlag, modulus_from_contact_stiffness
+from .inversion import ModulusFlag, modulus_from_contact_stiffness, surface_material
 
 __all__ = ["AFM_GROUP_COLUMNS", "invert_afm_table", "invert_rum_table"]
 
@@ -128,12 +133,15 @@ def _leading(values: np.ndarray) -> tuple[float, ...] | None:
     return tuple(float(v) for v in values[:n]) or None
 
 
-def _modulus(col: dict, k_star: np.ndarray, have_kc: np.ndarray, ref, ref2) -> dict:
+def _modulus(col: dict, k_star: np.ndarray, have_kc: np.ndarray, ref, ref2, dynamic) -> dict:
     """E*, M_sample, a and the modulus flags of every row: Hertz where tip_radius_m, load_N and
     k_c are given, else the reference sample(s) where fc1_ref_Hz and M_ref_Pa are; NaN
-    elsewhere. A blank M_tip_Pa is a rigid tip; a blank hardness_Pa is no plasticity check."""
+    elsewhere. A blank M_tip_Pa is a rigid tip; a blank hardness_Pa is no plasticity check.
+    ``dynamic``: None, or the keywords of paper 1's correction (sample, loss, prepared table,
+    and the frequency of every row), applied to the Hertz rows."""
     n = len(k_star)
-    out = {k: np.full(n, np.nan) for k in ("E_star_Pa", "M_sample_Pa", "contact_radius_m")}
+    names = ("E_star_Pa", "M_sample_Pa", "contact_radius_m", "k_a", "dcsf_real", "dcsf_imag")
+    out = {k: np.full(n, np.nan) for k in names}
     out["modulus_method"] = np.full(n, "", dtype=object)
     out["modulus_flags"] = np.zeros(n, dtype=int)
     load = col["load_N"]
@@ -141,8 +149,11 @@ def _modulus(col: dict, k_star: np.ndarray, have_kc: np.ndarray, ref, ref2) -> d
     refd = ~hertz & ~np.isnan(ref) & ~np.isnan(col["M_ref_Pa"])
     two = refd & ~np.isnan(ref2) & ~np.isnan(col["M_ref2_Pa"])
     one_ref = dict(reference_k_star=ref, reference_modulus=col["M_ref_Pa"])
+    hertz_kw = dict(tip_radius=col["tip_radius_m"])
+    if dynamic is not None:
+        hertz_kw["frequency"] = dynamic.pop("frequency")
     methods = (
-        (hertz, dict(tip_radius=col["tip_radius_m"])),
+        (hertz, hertz_kw),
         (refd & ~two, one_ref),
         (two, dict(one_ref, reference2_k_star=ref2, reference2_modulus=col["M_ref2_Pa"])),
     )
@@ -155,16 +166,22 @@ def _modulus(col: dict, k_star: np.ndarray, have_kc: np.ndarray, ref, ref2) -> d
                 if not ok.any():
                     continue
                 H = hardness[ok] if loaded and not np.isnan(hardness[ok]).all() else None
+                corrected = dynamic is not None and "frequency" in kwargs
                 res = modulus_from_contact_stiffness(
                     k_star[ok],
                     load=load[ok] if loaded else None,
                     tip_modulus=None if rigid else tip[ok],
                     hardness=H,
                     **{k: v[ok] for k, v in kwargs.items()},
+                    **(dict(dynamic, dynamic=True) if corrected else {}),
                 )
                 out["E_star_Pa"][ok] = res.E_star
                 out["M_sample_Pa"][ok] = res.M_sample
                 out["contact_radius_m"][ok] = res.contact_radius
+                if corrected:
+                    out["k_a"][ok] = res.k_a
+                    out["dcsf_real"][ok] = res.dcsf.real
+                    out["dcsf_imag"][ok] = res.dcsf.imag
                 out["modulus_method"][ok] = res.method
                 out["modulus_flags"][ok] = res.flags
     return out
@@ -185,7 +202,13 @@ def _check_free_q(table: pd.DataFrame, source: str) -> None:
 
 
 def invert_afm_table(
-    table: pd.DataFrame, source: str = "table", normalisation: str = "global"
+    table: pd.DataFrame,
+    source: str = "table",
+    normalisation: str = "global",
+    *,
+    sample=None,
+    loss: float = 0.0,
+    mode_tolerance: float = MODE_TOLERANCE,
 ) -> pd.DataFrame:
     """κ, k*, r, σ and (where the inputs allow) E* and M_sample of every row of a checked CR-AFM
     table (:data:`~contactres.measurements.resonances.AFM_TABLE`).
@@ -198,7 +221,16 @@ def invert_afm_table(
     (:func:`~contactres.analysis.inversion.modulus_from_contact_stiffness`) runs where
     tip_radius_m, load_N and k_c_N_per_m (Hertz) or fc1_ref_Hz and M_ref_Pa (reference samples,
     inverted with the same lever and tip position; k_c not needed) are given. ``flags`` names
-    why a value is missing; ``normalisation`` is recorded in every row.
+    why a value is missing; ``normalisation`` is recorded in every row. ``mode_spread`` is the
+    largest relative disagreement of κ between the modes that check it (three modes with r
+    solved, two or more with r given; flag ``inconsistent-modes`` beyond ``mode_tolerance``).
+
+    ``sample`` (a :class:`~contactres.materials.Material` in its surface frame, with density,
+    or a ``(material, (h, k, l))`` pair) applies paper 1's dynamic correction to the Hertz
+    rows: K_static = k*/Re DCSF(k_l a) at the frequency of the row's first contact resonance,
+    with Q⁻¹ = ``loss``; ``k_a``, ``dcsf_real``, ``dcsf_imag`` say how large it was. The
+    reference rows are not corrected: sample and reference are measured at nearly the same
+    frequency and contact size, so their corrections cancel to second order in k_l a.
     """
     fc = table[[f"fc{n}_Hz" for n in _MODES]].to_numpy(float)
     none = np.isnan(fc).all(axis=1)
@@ -221,7 +253,10 @@ def invert_afm_table(
     k_c = table["k_c_N_per_m"].to_numpy(float)
     have_kc = ~np.isnan(k_c)
     n = len(table)
-    res = {c: np.full(n, np.nan) for c in ("kappa", "tip_position_used", "sigma_N_s_per_m")}
+    res = {
+        c: np.full(n, np.nan)
+        for c in ("kappa", "tip_position_used", "sigma_N_s_per_m", "mode_spread")
+    }
     flags = np.zeros(n, dtype=int)
     refs = np.full((n, 2), np.nan)  # κ on the reference samples (k* = κ k_c; ratios need κ)
     keys = [*AFM_GROUP_COLUMNS, "r_given"]
@@ -241,10 +276,18 @@ def invert_afm_table(
         )
         r = r_in[rows] if first["r_given"] else None
         qs = q[rows] if np.isfinite(q[rows]).any() else None
-        out = invert_contact_resonance(lever, fc[rows], tip_position=r, q_factors=qs, **geometry)
+        out = invert_contact_resonance(
+            lever,
+            fc[rows],
+            tip_position=r,
+            q_factors=qs,
+            mode_tolerance=mode_tolerance,
+            **geometry,
+        )
         res["kappa"][rows] = out.kappa
         res["tip_position_used"][rows] = out.tip_position
         res["sigma_N_s_per_m"][rows] = out.sigma * np.where(have_kc[rows], k_c[rows], np.nan)
+        res["mode_spread"][rows] = out.mode_spread
         flags[rows] = out.flags
         solved = np.isfinite(out.tip_position)  # two modes without a crossing: no reference
         for j in (0, 1):
@@ -260,15 +303,27 @@ def invert_afm_table(
     # Without k_c, k* is unknown, but the reference method needs only ratios of k*: it runs on κ.
     col = {c: table[c].to_numpy(float) for c in _MODULUS_INPUTS}
     scale = np.where(have_kc, k_c, 1.0)
+    dynamic = None
+    if sample is not None:
+        surface = surface_material(sample, "sample")
+        first = np.argmax(~np.isnan(fc), axis=1)  # every row has one (checked above)
+        dynamic = dict(
+            sample=surface,
+            loss=loss,
+            prepared=prepare(surface, loss),  # one kernel table for every group of rows
+            frequency=fc[np.arange(n), first],
+        )
     mod = _modulus(
-        col, np.where(have_kc, k_star, res["kappa"]), have_kc, *(refs * scale[:, None]).T
+        col, np.where(have_kc, k_star, res["kappa"]), have_kc, *(refs * scale[:, None]).T, dynamic
     )
     out = _given_columns(table)
     out["kappa"] = res["kappa"]
     out["k_star_N_per_m"] = k_star
     out["tip_position_used"] = res["tip_position_used"]
     out["sigma_N_s_per_m"] = res["sigma_N_s_per_m"]
-    for name in ("E_star_Pa", "M_sample_Pa", "contact_radius_m", "modulus_method"):
+    out["mode_spread"] = res["mode_spread"]
+    names = ["E_star_Pa", "M_sample_Pa", "contact_radius_m", "modulus_method"]
+    for name in names + (["k_a", "dcsf_real", "dcsf_imag"] if sample is not None else []):
         out[name] = mod[name]
     text = [_flag_text(flags, flag_names), _flag_text(mod["modulus_flags"], _modulus_names)]
     out["flags"] = [";".join(t for t in pair if t) for pair in zip(*text, strict=True)]

@@ -7,7 +7,8 @@ from pathlib import Path
 import click
 
 from ._app import afm
-from ._common import emit, format_option
+from ._common import MagnitudeType, emit, format_option
+from ._crystal_face import crystal_face, crystal_face_options
 
 
 @afm.command("invert")
@@ -17,7 +18,8 @@ from ._common import emit, format_option
     type=click.Path(dir_okay=False),
     required=True,
     help="Output CSV: the input columns plus kappa, k_star_N_per_m, tip_position_used, "
-    "sigma_N_s_per_m, E_star_Pa, M_sample_Pa, contact_radius_m, flags.",
+    "sigma_N_s_per_m, mode_spread, E_star_Pa, M_sample_Pa, contact_radius_m, modulus_method, "
+    "flags, normalisation (and k_a, dcsf_real, dcsf_imag with --crystal).",
 )
 @click.option(
     "--normalisation",
@@ -27,8 +29,28 @@ from ._common import emit, format_option
     help="Frequency -> β: global uses f1_free_Hz only (ideal beam, β_n = β1 √(f/f1)); modewise "
     "uses each mode's own free frequency (real levers whose free ratios differ from 6.27, 17.5).",
 )
+@click.option(
+    "--mode-tolerance",
+    type=MagnitudeType("mode_tolerance"),
+    default="0.05",
+    show_default=True,
+    help="Relative disagreement of κ between modes beyond which a row is flagged "
+    "inconsistent-modes (three modes with r solved: also picks the crossing the third confirms).",
+)
+@crystal_face_options(
+    crystal_help="The sample, for paper 1's dynamic correction of the Hertz rows (K_static = "
+    "k*/Re DCSF at the first contact resonance; adds k_a, dcsf_real, dcsf_imag): a built-in "
+    "solid with its density (see 'contactres crystals'), e.g. Si, fused-silica.",
+)
+@click.option(
+    "--loss",
+    type=MagnitudeType("loss"),
+    default="0",
+    show_default=True,
+    help="Material loss Q^-1 of the sample for the dynamic correction (0: lossless).",
+)
 @format_option()
-def afm_invert(table, out, normalisation, fmt):
+def afm_invert(table, out, normalisation, mode_tolerance, loss, fmt, **face):
     """Contact stiffness and modulus of every row (point or map pixel) of a CR-AFM table.
 
     TABLE gives per row the free-lever resonances (f1_free_Hz ...), the spring constant at the
@@ -38,7 +60,11 @@ def afm_invert(table, out, normalisation, fmt):
     tip_radius_m and load_N (Hertz, E* = √(k*³/6RP)) or a reference sample (fc1_ref_Hz,
     M_ref_Pa; a second one fits the exponent), and M_tip_Pa. Other columns are copied to OUT.
     Euler-Bernoulli lever, k_c the end stiffness (U. Rabe et al., Rev. Sci. Instrum. 67, 3281
-    (1996), renormalised by r³). Writes OUT atomically; prints a summary.
+    (1996), renormalised by r³). With three modes and r blank, the third picks the crossing
+    it confirms; mode_spread says how far the modes disagree on κ. With --crystal (the
+    sample, and --surface) paper 1's dynamic correction is applied to the Hertz rows and
+    reported (k_a, dcsf_real, dcsf_imag): Kiselev et al. / paper 1, K_static = k*/Re DCSF.
+    Writes OUT atomically; prints a summary.
     """
     import numpy as np
 
@@ -47,8 +73,25 @@ def afm_invert(table, out, normalisation, fmt):
     from ..measurements.resonances import AFM_TABLE, read_resonance_table
 
     check_output_file(out, inputs=[table])
+    sample = None
+    if any(face[k] is not None for k in ("crystal", "c11", "c12", "c44", "zener", "poisson")):
+        sample = crystal_face(**face)
+        if sample.density is None:
+            raise ValueError(
+                "the dynamic correction needs the sample's density (for k_l = 2πf/c_l), which "
+                "the constants options do not give: use a built-in --crystal"
+            )
+    elif face["inplane"] is not None or face["surface"] != "001":
+        raise ValueError("--surface/--inplane describe the sample: give --crystal (or constants)")
     checked = read_resonance_table(table, AFM_TABLE)
-    result = invert_afm_table(checked, str(Path(table)), normalisation=normalisation)
+    result = invert_afm_table(
+        checked,
+        str(Path(table)),
+        normalisation=normalisation,
+        sample=sample,
+        loss=loss,
+        mode_tolerance=mode_tolerance,
+    )
     write_csv(out, result)
     if fmt != "plain":
         emit(result, fmt)
@@ -62,4 +105,10 @@ def afm_invert(table, out, normalisation, fmt):
     M = result["M_sample_Pa"].to_numpy(float)
     if np.isfinite(M).any():
         line += f", M_sample median {np.nanmedian(M) / 1e9:.4g} GPa"
+    if sample is not None and np.isfinite(result["k_a"]).any():
+        change = np.nanmax(np.abs(1.0 / result["dcsf_real"] - 1.0))
+        line += (
+            f"; dynamic correction: k_l a <= {np.nanmax(result['k_a']):.2g}, "
+            f"stiffness changed by <= {change:.2g}"
+        )
     click.echo(f"{line}; {flagged} flagged ({normalisation} normalisation); wrote {out}")

@@ -35,8 +35,16 @@ from scipy import special
 
 from .farfield import FarBasis, far_basis
 from .table import KernelTable
+from .weights import spherical_bessel
 
-__all__ = ["GalerkinSize", "exact_n", "galerkin_size", "pressure_basis"]
+__all__ = [
+    "GalerkinPlan",
+    "GalerkinSize",
+    "exact_n",
+    "galerkin_plan",
+    "galerkin_size",
+    "pressure_basis",
+]
 
 
 @dataclass(frozen=True)
@@ -75,15 +83,69 @@ def pressure_basis(n: int, k: int, rbar) -> np.ndarray:
         return norm * r**n * special.hyp2f1(n + k + 1, 0.5 - k, n + 1, r * r)
 
 
-def _harmonics(values: np.ndarray, ms) -> dict:
-    """Ĝ_m = ∫₀^{2π} g e^{imθ} dθ of rows sampled on [0, π) (period π; m even)."""
+def _harmonics(values: np.ndarray, ms) -> np.ndarray:
+    """Ĝ_m = ∫₀^{2π} g e^{imθ} dθ of rows sampled on [0, π) (period π; m even), stacked as
+    (len(ms), *values.shape[:-1])."""
     n = values.shape[-1]
     h = np.fft.fft(values, axis=-1) / n  # a_j of e^{2ijθ}
-    out = {}
-    for m in ms:
-        j = (-m // 2) % n
-        out[m] = 2 * np.pi * h[..., j]
-    return out
+    j = (-np.asarray(ms, dtype=int) // 2) % n
+    return 2 * np.pi * np.moveaxis(h[..., j], -1, 0)
+
+
+@dataclass(frozen=True, eq=False)
+class GalerkinPlan:
+    """The index bookkeeping of one Galerkin basis, built once per call and shared by its chunks.
+
+    Attributes
+    ----------
+    basis : [(n, k), ...] the pressure basis (angular order n, radial index k)
+    orders : (n_p,) the distinct Hankel orders p = |n| + 2k
+    pairs : (2, n_t) order indices (i <= j) of the products j_p j_q the matrix needs
+    ms : (n_m,) the angular orders n_a + n_b of the kernel harmonics Ĝ_m
+    m_index, t_index : (nb, nb) where M_ab reads its harmonic (into ``ms``) and its pair
+    sign : (nb, nb) (−1)^{(n_a + n_b)/2}
+    far_products : (n_t, n_s) j_p(s) j_q(s) on the far-field grid (None without a grid)
+    """
+
+    basis: list
+    orders: np.ndarray
+    pairs: np.ndarray
+    ms: np.ndarray
+    m_index: np.ndarray
+    t_index: np.ndarray
+    sign: np.ndarray
+    far_products: np.ndarray | None
+
+
+def galerkin_plan(table: KernelTable, size: GalerkinSize, far_s=None) -> GalerkinPlan:
+    """The :class:`GalerkinPlan` of ``size`` on ``table``; with the far-field nodes ``far_s``
+    (those of :func:`contactres.dynamic.farfield.far_grid`) also the Bessel products there."""
+    basis = _basis(table, size)
+    n_of = np.array([b[0] for b in basis])
+    p_of = np.array([abs(b[0]) + 2 * b[1] for b in basis])
+    orders = np.unique(p_of)
+    pidx = np.searchsorted(orders, p_of)
+    ms = np.unique(n_of[:, None] + n_of[None, :])
+    # Only the (p, q) pairs some matrix entry reads, upper triangle (the products are symmetric).
+    lo = np.minimum(pidx[:, None], pidx[None, :])
+    hi = np.maximum(pidx[:, None], pidx[None, :])
+    key = lo * orders.size + hi
+    used, t_index = np.unique(key, return_inverse=True)
+    pairs = np.stack([used // orders.size, used % orders.size])
+    products = None
+    if far_s is not None:
+        js = spherical_bessel(int(orders[-1]), np.asarray(far_s, dtype=float))[orders]
+        products = js[pairs[0]] * js[pairs[1]]
+    return GalerkinPlan(
+        basis=basis,
+        orders=orders,
+        pairs=pairs,
+        ms=ms,
+        m_index=np.searchsorted(ms, n_of[:, None] + n_of[None, :]),
+        t_index=t_index.reshape(len(basis), len(basis)),
+        sign=np.where(((n_of[:, None] + n_of[None, :]) // 2) % 2 == 0, 1.0, -1.0),
+        far_products=products,
+    )
 
 
 def exact_n(
@@ -92,6 +154,8 @@ def exact_n(
     size: GalerkinSize,
     return_coeffs: bool = False,
     far: FarBasis | None = None,
+    *,
+    plan: GalerkinPlan | None = None,
 ):
     """N_exact of the rigid flat punch at k_s a values ``ksa`` (module docstring).
 
@@ -108,6 +172,9 @@ def exact_n(
     far : FarBasis, optional
         The far-field basis of the positive ``ksa``, when the caller shares it with the other
         models of the same call; built here otherwise.
+    plan : GalerkinPlan, optional
+        :func:`galerkin_plan` of ``size`` on the grid of ``far`` (shared by the chunks of one
+        call); built here otherwise.
 
     Returns
     -------
@@ -115,72 +182,58 @@ def exact_n(
         Complex N_exact shaped like ``ksa`` (DCSF = N_st/N_exact, paper 1, Eq. 29); with
         ``return_coeffs`` also c (ksa.shape + (n_basis,)) and the basis list.
     """
-    basis = _basis(table, size)
-    nb = len(basis)
-    n_of = np.array([b[0] for b in basis])
-    p_of = np.array([abs(b[0]) + 2 * b[1] for b in basis])
-    orders = np.unique(p_of)
-    pidx = {int(p): i for i, p in enumerate(orders)}
-    ms = sorted({int(a + b) for a in set(n_of) for b in set(n_of)})
-    sign = np.where(((n_of[:, None] + n_of[None, :]) // 2) % 2 == 0, 1.0, -1.0)
-
-    # Static part: Ĝ_m^∞ δ_pq π/(2(2p + 1)).
-    ginf_h = _harmonics(table.ginf, ms)
-    out_n = np.empty(ksa.shape, dtype=complex)
-    coeffs = np.empty((*ksa.shape, nb), dtype=complex)
     pos = ksa > 0
     ka = ksa[pos]
     na = ka.size
-    I = {m: np.zeros((na, orders.size, orders.size), dtype=complex) for m in ms}  # noqa: E741
-    if na:
-        # Near field: contour + hand-over segment, harmonics of the tabulated g − g∞.
-        near_h = _harmonics(table.near_values, ms)  # m -> (nk,)
-        s = ka[:, None] * table.near_kappa[None, :]  # (na, nk)
-        jp = np.stack([special.spherical_jn(int(p), s) for p in orders])  # (np, na, nk)
-        wk = table.near_weight[None, :] * ka[:, None]
-        for m in ms:
-            I[m] += np.einsum("ak,pak,qak->apq", wk * near_h[m][None, :], jp, jp, optimize=True)
-        # Far field: Chebyshev series in w = (T1 ka/s)² of each harmonic.
-        if far is None:
-            far = far_basis(table, ka)
-        elif not np.array_equal(far.ka, ka):
-            raise ValueError("the far-field basis was built for other k a values")
-        sg, s_end, cheb = far.s, far.s_end, far.basis  # cheb: (na, ns, nf)
-        nf = cheb.shape[2]
-        js = np.stack([special.spherical_jn(int(p), sg) for p in orders])  # (np, ns)
-        iu = np.triu_indices(orders.size)
-        prod = js[iu[0]] * js[iu[1]]  # (npairs, ns)
-        phi = np.einsum("asf,ts->aft", cheb, prod, optimize=True)  # (na, nf, npairs)
-        harm = {int(j): i for i, j in enumerate(table.far_harmonics)}
-        alt = np.where(np.arange(nf) % 2 == 0, 1.0, -1.0)
-        diff = orders[iu[0]] - orders[iu[1]]
-        tail_sign = np.where((diff // 2) % 2 == 0, 1.0, -1.0)
-        for m in ms:
-            j = -m // 2
-            if j not in harm:
-                continue
-            c = 2 * np.pi * table.far_coeffs[harm[j]]  # (nf,)
-            far = np.einsum("aft,f->at", phi, c)
-            # Beyond the grid: j_p j_q -> (−1)^{(p−q)/2}/(2 s²) on average, g − g∞ -> w C₁.
-            far += np.outer((table.t1 * ka) ** 2 * (c @ alt) / (6 * s_end**3), tail_sign)
-            full = np.zeros((na, orders.size, orders.size), dtype=complex)
-            full[:, iu[0], iu[1]] = far
-            full[:, iu[1], iu[0]] = far
-            I[m] += full
-    diag = np.pi / (2 * (2 * orders + 1))
-    for m in ms:
-        I_st = ginf_h[m] * np.diag(diag)
-        if na:
-            I[m] = I[m] + I_st[None]
-    # Assemble and solve M c = e0 for every ka.
-    idx_p = np.array([pidx[int(p)] for p in p_of])
-    M = np.empty((na, nb, nb), dtype=complex)
-    for a in range(nb):
-        for b in range(nb):
-            M[:, a, b] = sign[a, b] * I[int(n_of[a] + n_of[b])][:, idx_p[a], idx_p[b]]
+    if na and far is None:
+        far = far_basis(table, ka)
+    elif na and not np.array_equal(far.ka, ka):
+        raise ValueError("the far-field basis was built for other k a values")
+    if plan is None:
+        plan = galerkin_plan(table, size, far.s if na else None)
+    nb = len(plan.basis)
+    orders, (ti, tj) = plan.orders, plan.pairs
+    out_n = np.empty(ksa.shape, dtype=complex)
+    coeffs = np.empty((*ksa.shape, nb), dtype=complex)
     e0 = np.zeros(nb)
     e0[0] = 1.0
     if na:
+        # I[a, m, t]: ∫ ds Ĝ_m(s/ka) j_p j_q for the harmonics m and pairs t = (p, q).
+        # Static part: Ĝ_m^∞ δ_pq π/(2(2p + 1)).
+        diag = np.where(ti == tj, np.pi / (2 * (2 * orders[ti] + 1)), 0.0)
+        integral = np.broadcast_to(
+            _harmonics(table.ginf, plan.ms)[:, None] * diag[None, :],
+            (na, plan.ms.size, ti.size),
+        ).copy()
+        # Near field: contour + hand-over segment, harmonics of the tabulated g − g∞.
+        near_h = _harmonics(table.near_values, plan.ms)  # (n_m, nk)
+        s = ka[:, None] * table.near_kappa[None, :]  # (na, nk)
+        jp = spherical_bessel(int(orders[-1]), s)[orders]  # (n_p, na, nk)
+        wk = table.near_weight[None, :] * ka[:, None]
+        prod = jp[ti] * jp[tj] * wk  # (n_t, na, nk)
+        # One complex product over the near nodes k (tensordot makes it a single zgemm).
+        integral += np.tensordot(near_h, prod, axes=(1, 2)).transpose(2, 0, 1)
+        # Far field: Chebyshev series in w = (T1 ka/s)² of each harmonic, against j_p j_q.
+        # One large product: the basis is stored (nf, na, ns) underneath (see far_basis).
+        cheb = np.moveaxis(far.basis, -1, 0)
+        nf = cheb.shape[0]
+        phi = (cheb.reshape(nf * na, -1) @ plan.far_products.T).reshape(nf, na, -1)
+        harm = {int(j): i for i, j in enumerate(table.far_harmonics)}
+        coef = np.zeros((plan.ms.size, nf), dtype=complex)
+        for i, m in enumerate(plan.ms):
+            if -int(m) // 2 in harm:
+                coef[i] = 2 * np.pi * table.far_coeffs[harm[-int(m) // 2]]
+        far_part = np.tensordot(coef.real, phi, axes=(1, 0)) + 1j * np.tensordot(
+            coef.imag, phi, axes=(1, 0)
+        )  # (n_m, na, n_t)
+        integral += far_part.transpose(1, 0, 2)
+        # Beyond the grid: j_p j_q -> (−1)^{(p−q)/2}/(2 s²) on average, g − g∞ -> w C₁.
+        alt = np.where(np.arange(nf) % 2 == 0, 1.0, -1.0)
+        tail_sign = np.where(((orders[ti] - orders[tj]) // 2) % 2 == 0, 1.0, -1.0)
+        scale = (table.t1 * ka) ** 2 / (6 * far.s_end**3)
+        integral += scale[:, None, None] * (coef @ alt)[None, :, None] * tail_sign[None, None, :]
+        # Assemble M_ab = sign_ab I[n_a + n_b][p_a, p_b] and solve M c = e0 for every ka.
+        M = plan.sign * integral[:, plan.m_index, plan.t_index]
         c = np.linalg.solve(M, np.broadcast_to(e0, (na, nb))[..., None])[..., 0]
         out_n[pos] = 1 / c[:, 0]
         coeffs[pos] = c
@@ -188,5 +241,5 @@ def exact_n(
     out_n[~pos] = static
     coeffs[~pos] = e0 / static
     if return_coeffs:
-        return out_n, coeffs, basis
+        return out_n, coeffs, plan.basis
     return out_n

@@ -46,6 +46,11 @@ Near incompressibility (stiffness contrast above
 :data:`~contactres.dynamic.table.MAX_STIFFNESS_CONTRAST`, isotropic ν > 0.4999) the kernels lose
 the stated accuracy to round-off; every function here then raises a ValueError.
 
+Curves of many k a values (more than :data:`INTERPOLATE_ABOVE` distinct ones) are interpolated
+by default between 33-257 direct values at Chebyshev points (1/DCSF, which is smooth), with the
+interpolation error measured and kept below rtol/10 (:mod:`contactres.dynamic.interpolation`;
+``interpolate=False`` evaluates every value).
+
 Most of the cost of a curve is the kernel table of the material: :func:`prepare` builds it once,
 and every function here takes it as ``prepared=`` (for the same material, loss and rtol) to
 evaluate many curves of one material without rebuilding it. Without it each call prepares its
@@ -61,14 +66,17 @@ import numpy as np
 from ..halfspace import shear_reference
 from ..materials import Material, require_material
 from ..validation import nonnegative
-from .exact import exact_n, galerkin_size, pressure_basis
-from .farfield import far_basis
+from .exact import exact_n, galerkin_plan, galerkin_size, pressure_basis
+from .farfield import far_basis, far_grid
+from .interpolation import MAX_INTERVALS as LARGEST
+from .interpolation import chebyshev_values
 from .models import ALL_MODELS, MODELS, WAVENUMBERS
-from .quadrature import functionals, point_values
+from .quadrature import far_operator, functionals, point_values
 from .table import KernelTable, prepare
 
 __all__ = [
     "ALL_MODELS",
+    "INTERPOLATE_ABOVE",
     "MODELS",
     "WAVENUMBERS",
     "contact_displacement",
@@ -82,6 +90,12 @@ __all__ = [
 
 # Largest k_s a × (largest slowness) accepted: the contour's weights grow like e^{0.3 x this}.
 _KA_MAX = 60.0
+# k a values evaluated together: the far-field basis takes ~0.6 MB per value (every other array
+# of a chunk is smaller), so 64 values stay near 40 MB of temporaries whatever the call's size.
+_CHUNK = 64
+#: Above this many distinct k a values a call interpolates (``interpolate=None``): the direct
+#: cost is ~2-7 ms per value, a Chebyshev curve 33-129 direct values whatever the call's size.
+INTERPOLATE_ABOVE = 128
 
 
 def shear_wavenumber_ratio(m: Material) -> float:
@@ -181,6 +195,45 @@ def model_n(f: dict, model: str) -> np.ndarray:
     return (alpha * f["H0"] + f["F0"]) / (alpha / 3 + 1)
 
 
+def _direct(table, flat, names, rtol, chunk, span=None) -> dict[str, np.ndarray]:
+    """N of every model (the denominator of its DCSF, smooth in k a where the DCSF of SA or R1
+    can pass through a pole) at the k_s a values ``flat`` (1-D), point by point in chunks.
+
+    ``span`` = (smallest positive, largest) k_s a that sizes the discretisation (default: those
+    of ``flat``); calls with one span discretise alike, so their values fit one smooth curve.
+    """
+    approx = [n for n in names if n != "exact"]
+    n_out = {name: np.empty(flat.shape, dtype=complex) for name in names}
+    pos = flat[flat > 0]
+    if span is not None:
+        pos = np.append(pos, span)
+    # What every chunk shares, built once per call: the far-field grid (from the smallest k a
+    # of the call), its weights, the Galerkin bookkeeping (sized for the largest k a) and the
+    # near-field θ grid (also from the largest), so a chunked call computes what one unchunked
+    # call would, point by point.
+    smax = float(np.max(pos, initial=0.0))
+    grid = far_grid(table, float(np.min(pos))) if pos.size else None
+    size = galerkin_size(smax, rtol)
+    # No threadpool_limits here: it is process-wide, so two threads sharing a table (see
+    # tests/dynamic/test_prepared.py) would flip each other's BLAS thread count mid-call and
+    # change the last digits; after vectorising, the products are large enough that one BLAS
+    # thread was no faster (measured: 7 models, 41 points, 0.10-0.17 s either way).
+    far_op = far_operator(table, grid) if approx and grid is not None else None
+    plan = galerkin_plan(table, size, grid.s if grid else None) if "exact" in names else None
+    for lo in range(0, flat.size, chunk):
+        part = flat[lo : lo + chunk]
+        p = part[part > 0]
+        far = far_basis(table, p, grid) if p.size else None
+        if approx:
+            f = functionals(table, part, far=far, smax=smax, far_op=far_op)
+            for name in approx:
+                n_out[name][lo : lo + chunk] = model_n(f, name)
+        if plan is not None:
+            n_out["exact"][lo : lo + chunk] = exact_n(table, part, size, far=far, plan=plan)
+        del far  # the largest array of a chunk (~0.6 MB per k a value)
+    return n_out
+
+
 def dcsf_models(
     m: Material,
     ka,
@@ -189,29 +242,42 @@ def dcsf_models(
     wavenumber: str = "longitudinal",
     rtol: float = 1e-6,
     prepared: KernelTable | None = None,
+    *,
+    chunk: int = _CHUNK,
+    interpolate: bool | None = None,
 ) -> dict[str, np.ndarray]:
     """DCSF = K_da/K_sa of several displacement models at once (they share all the work).
 
     Parameters and returns as :func:`dcsf`, with ``models`` a sequence of model names; returns
-    ``{model: complex array shaped like ka}``.
+    ``{model: complex array shaped like ka}``. ``chunk`` and ``interpolate`` (keyword only) as
+    in :func:`dcsf`.
     """
     names = [_check_model(x) for x in ([models] if isinstance(models, str) else models)]
+    if not (isinstance(chunk, int | np.integer) and chunk >= 1):
+        raise ValueError(f"chunk must be a positive integer, got {chunk!r}")
+    if interpolate not in (None, True, False):
+        raise ValueError(f"interpolate must be None, True or False, got {interpolate!r}")
     ksa = _ks_a(m, ka, wavenumber)
     table = _table(m, ksa, loss, rtol, prepared)
     flat = ksa.ravel()
-    # The far-field grid and basis of this call serve the approximations and the exact model.
-    pos = flat[flat > 0]
-    far = far_basis(table, pos) if pos.size else None
-    out = {}
-    approx = [n for n in names if n != "exact"]
-    if approx:
-        f = functionals(table, flat, far=far)
-        out = {name: (table.n_static / model_n(f, name)).reshape(ksa.shape) for name in approx}
-    if "exact" in names:
-        size = galerkin_size(float(np.max(flat, initial=0.0)), rtol)
-        n_exact = exact_n(table, flat, size, far=far)
-        out["exact"] = (table.n_static / n_exact).reshape(ksa.shape)
-    return {name: out[name] for name in names}
+    uniq, inverse = np.unique(flat, return_inverse=True)
+    if interpolate is None:
+        interpolate = uniq.size > INTERPOLATE_ABOVE
+    if interpolate and uniq.size > 2 and uniq[-1] > 0:
+        # N, not the DCSF, is interpolated: N is smooth, N_st/N of SA (R1) has a pole where N
+        # passes zero. The interpolation adds at most a tenth of the stated error.
+        # One discretisation for every node set (sized by the finest grid's smallest node).
+        low = uniq[uniq > 0][0] if uniq[0] > 0 else uniq[-1] * (1 - math.cos(math.pi / LARGEST))
+        span = (low / 2, uniq[-1])
+
+        def direct(x):
+            return _direct(table, x, names, rtol, chunk, span)
+
+        found = chebyshev_values(direct, uniq, rtol / 10, largest=LARGEST)
+        out = found[0] if found is not None else _direct(table, uniq, names, rtol, chunk)
+    else:
+        out = _direct(table, uniq, names, rtol, chunk)
+    return {k: (table.n_static / v)[inverse].reshape(ksa.shape) for k, v in out.items()}
 
 
 def dcsf(
@@ -222,6 +288,9 @@ def dcsf(
     wavenumber: str = "longitudinal",
     rtol: float = 1e-6,
     prepared: KernelTable | None = None,
+    *,
+    chunk: int = _CHUNK,
+    interpolate: bool | None = None,
 ):
     """Dynamic-contact-stiffness factor DCSF = K_da/K_sa (paper 1, Eq. 29), complex.
 
@@ -250,6 +319,18 @@ def dcsf(
     prepared : KernelTable, optional
         The kernel table from :func:`prepare` for this material, ``loss`` and ``rtol`` (a
         ValueError if it was prepared for others); built for this call when not given.
+    chunk : int
+        Keyword only: k a values evaluated together (default 64). Memory grows with it, not
+        with the size of ``ka`` (~0.6 MB per value, ~40 MB at the default); the cost is linear
+        in the number of values, and the result does not depend on it (to ~1e-15).
+    interpolate : bool or None
+        Keyword only. True: evaluate directly at 33-257 Chebyshev points of [min, max] of
+        ``ka`` and interpolate 1/DCSF (smooth; the DCSF of SA and R1 can have poles), refining
+        until the interpolation error, measured at the next refinement's points, is below
+        rtol/10 of the largest |1/DCSF| on the curve (if 257 points do not reach it, every
+        value is evaluated directly). False: every distinct
+        value directly. None (default): interpolate above :data:`INTERPOLATE_ABOVE` distinct
+        values, so a curve or map of any size costs about as much as ~100 points.
 
     Returns
     -------
@@ -266,7 +347,15 @@ def dcsf(
     """
     key = _check_model(model)
     out = dcsf_models(
-        m, ka, (key,), loss=loss, wavenumber=wavenumber, rtol=rtol, prepared=prepared
+        m,
+        ka,
+        (key,),
+        loss=loss,
+        wavenumber=wavenumber,
+        rtol=rtol,
+        prepared=prepared,
+        chunk=chunk,
+        interpolate=interpolate,
     )[key]
     return complex(out) if out.ndim == 0 else out
 

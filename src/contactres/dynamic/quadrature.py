@@ -23,11 +23,11 @@ import math
 
 import numpy as np
 
-from .farfield import FarBasis, far_basis, far_limit, far_remainder, far_weights, tail_sine
+from .farfield import FarBasis, FarGrid, far_basis, far_limit, far_remainder, far_weights, tail_sine
 from .table import KernelTable
 from .weights import bessel_even, j1_over_s, sinc, wa_line_weight
 
-__all__ = ["FUNCTIONALS", "functionals", "point_values"]
+__all__ = ["FUNCTIONALS", "far_operator", "functionals", "point_values"]
 
 
 # ----------------------------------------------------------------------------------- functionals
@@ -70,7 +70,26 @@ def _static_values(table: KernelTable) -> dict:
 FUNCTIONALS = ("F0", "F1", "FW", "F2D", "H0", "H1")
 
 
-def functionals(table: KernelTable, ksa: np.ndarray, far: FarBasis | None = None) -> dict:
+def far_operator(table: KernelTable, grid: FarGrid) -> np.ndarray:
+    """The far-field weights of the six functionals on ``grid``, contracted with the table's
+    Chebyshev coefficients: (n_fit, ns, 12) real, [..., :6] the real and [..., 6:] the imaginary
+    part of Σ_m c_{mf} weight_j[m, s] (built once per call, shared by its chunks)."""
+    weights = far_weights(table, grid.s)  # (6, n_m, ns) real
+    c = table.far_coeffs.T  # (nf, n_m) complex
+    # Real products (the weights are real): [Re c @ w_j, Im c @ w_j] for the six functionals j.
+    v = np.matmul(np.concatenate([c.real, c.imag])[None], weights)  # (6, 2 nf, ns)
+    nf = c.shape[0]
+    return np.concatenate([v[:, :nf], v[:, nf:]]).transpose(1, 2, 0)  # (nf, ns, 12)
+
+
+def functionals(
+    table: KernelTable,
+    ksa: np.ndarray,
+    far: FarBasis | None = None,
+    *,
+    smax: float | None = None,
+    far_op: np.ndarray | None = None,
+) -> dict:
     """N of the six functionals of the displacement at k_s a values ``ksa`` (paper 1, Eq. 22).
 
     F0 = N_F(0), F1 = N_F(1, 0), FW = weighted average of N_F along φ = 0 (Eq. 27), F2D = the
@@ -87,6 +106,11 @@ def functionals(table: KernelTable, ksa: np.ndarray, far: FarBasis | None = None
         The far-field basis of the positive ``ksa`` (from
         :func:`contactres.dynamic.farfield.far_basis`), when the caller shares it with other
         models of the same call; built here otherwise.
+    smax : float, optional
+        The largest k_s a of the whole call when ``ksa`` is one chunk of it (it sets the θ
+        grid of the near field, so that every chunk uses the same); default max(ksa).
+    far_op : ndarray, optional
+        :func:`far_operator` on the grid of ``far`` (shared by the chunks of one call).
 
     Returns
     -------
@@ -102,7 +126,8 @@ def functionals(table: KernelTable, ksa: np.ndarray, far: FarBasis | None = None
 
     # Near field: θ-direct trapezoidal rule on a resampled grid, folded onto [0, π/2].
     s = ka[:, None] * table.near_kappa[None, :]  # (na, nk)
-    nt = _n_theta_near(float(np.max(np.abs(s))))
+    top = float(np.max(ka)) if smax is None else float(smax)
+    nt = _n_theta_near(top * float(np.max(np.abs(table.near_kappa))))
     vals = _resampled(table.near_values, nt)  # (nk, nt)
     half = nt // 2
     fold = vals[:, : half + 1].copy()
@@ -114,14 +139,14 @@ def functionals(table: KernelTable, ksa: np.ndarray, far: FarBasis | None = None
     flat = sinc(s)
     hertz = j1_over_s(s)
     z = s[:, :, None] * cth[None, None, :]
-    c1 = np.sum(np.cos(z) * fold, axis=2) * dth
-    cw = np.sum(wa_line_weight(z) * fold, axis=2) * dth
+    c1 = np.einsum("akt,kt->ak", np.cos(z), fold) * dth
+    cw = np.einsum("akt,kt->ak", wa_line_weight(z), fold) * dth
     near = [
-        np.sum(wk * flat * mean0, axis=1),
+        (wk * flat) @ mean0,
         np.sum(wk * flat * c1, axis=1),
         np.sum(wk * flat * cw, axis=1),
-        np.sum(wk * flat**2 * mean0, axis=1),
-        np.sum(wk * hertz * mean0, axis=1),
+        (wk * flat**2) @ mean0,
+        (wk * hertz) @ mean0,
         np.sum(wk * hertz * c1, axis=1),
     ]
 
@@ -130,12 +155,12 @@ def functionals(table: KernelTable, ksa: np.ndarray, far: FarBasis | None = None
         far = far_basis(table, ka)
     elif not np.array_equal(far.ka, ka):
         raise ValueError("the far-field basis was built for other k a values")
-    weights = far_weights(table, far.s)
-    # v[f, s, j] = Σ_m c_{m f} weight_j[m, s]  for the six functionals j.
-    v = np.einsum("mf,jms->sfj", table.far_coeffs, weights, optimize=True)
-    basis = far.basis.reshape(ka.size, -1)
-    v = v.reshape(-1, 6)
-    total = basis @ v.real + 1j * (basis @ v.imag)  # (na, 6)
+    if far_op is None:
+        far_op = far_operator(table, FarGrid(far.s, np.empty(0), far.s_end))
+    # Σ_f Σ_s T_f(...)[a, s] v[f, s, j] as one batched product over f (the basis is stored
+    # (nf, na, ns) underneath, so no copy of it is made).
+    parts = np.matmul(np.moveaxis(far.basis, -1, 0), far_op).sum(axis=0)  # (na, 12)
+    total = parts[:, :6] + 1j * parts[:, 6:]
     total += far_remainder(table, ka, far.s_end)
     for j, name in enumerate(FUNCTIONALS):
         out[name][pos] += near[j] + total[:, j]

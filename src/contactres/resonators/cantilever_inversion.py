@@ -28,6 +28,18 @@ pairs, and a limit is kept only if |Δ| <= 1e-6 (|κ_a| + |κ_b|) there (a pole,
 through infinity, gives a huge |Δ| instead). The physical crossing is the largest r in
 [0.5, 1] (the tip sits near the free end); all crossings are returned as candidates.
 
+Three or more modes (the consistency check). The crossing still comes from the first two
+measured modes; every further measured mode gives its own κ at each candidate r. A candidate
+is *consistent* where those agree with the crossing's κ within ``mode_tolerance`` (relative);
+the largest consistent r in [0.5, 1] is chosen (a spurious crossing of the first two modes is
+rejected by the third), and the pixel is flagged ``inconsistent_modes`` when no candidate is
+consistent (then the largest r, as with two modes). With r given, the check compares the κ of
+the usable modes with their mean. ``mode_spread`` is the largest relative deviation
+max |κ_n − κ|/κ over the modes that check (NaN where none does: one mode with r given, two with
+r solved). The Euler-Bernoulli lever is the model being checked: a real lever (tip mass,
+trapezoidal section, a tip not at a point) can disagree by a few per cent between modes,
+which is why the default tolerance is 5 % and not the accuracy of the frequencies.
+
 Damping: σ = k_c κ″/ω (N s/m), ω = 2πf, from complex κ = κ′ + iκ″; with the free lever's Q
 known the reference frequency is complex too, so a lossless contact gives σ = 0.
 """
@@ -50,12 +62,14 @@ from .cantilever import (
 __all__ = [
     "FLAG_ABOVE_PINNED",
     "FLAG_BELOW_FREE",
+    "FLAG_INCONSISTENT_MODES",
     "FLAG_INSENSITIVE",
     "FLAG_NOT_MEASURED",
     "FLAG_NOT_POSITIVE",
     "FLAG_NO_CROSSING",
     "FLAG_SEVERAL_CROSSINGS",
     "MIN_SENSITIVITY",
+    "MODE_TOLERANCE",
     "R_GRID",
     "ContactResonanceResult",
     "flag_names",
@@ -77,6 +91,8 @@ FLAG_NO_CROSSING = 16
 FLAG_SEVERAL_CROSSINGS = 32
 #: a frequency is NaN (not measured).
 FLAG_NOT_MEASURED = 64
+#: the modes disagree on κ by more than ``mode_tolerance`` (module notes: three modes).
+FLAG_INCONSISTENT_MODES = 128
 
 _NAMES = (
     (FLAG_NOT_POSITIVE, "not_positive"),
@@ -86,6 +102,7 @@ _NAMES = (
     (FLAG_NO_CROSSING, "no_crossing"),
     (FLAG_SEVERAL_CROSSINGS, "several_crossings"),
     (FLAG_NOT_MEASURED, "not_measured"),
+    (FLAG_INCONSISTENT_MODES, "inconsistent_modes"),
 )
 
 #: Line below which a mode is "insensitive": s = d ln f / d ln κ < 1e-3 means a relative
@@ -93,6 +110,10 @@ _NAMES = (
 #: tracking) becomes > 1 % in κ. Reached near a node of the mode, deep in saturation
 #: (κ ≳ 1e3 for mode 1 at r = 1) and, trivially, as κ → 0 (the contact hardly shifts f).
 MIN_SENSITIVITY = 1e-3
+
+#: Default relative disagreement of κ between modes beyond which a pixel is flagged
+#: ``inconsistent_modes`` (module notes: the model error of a real lever, not the noise).
+MODE_TOLERANCE = 0.05
 
 #: Grid of tip positions scanned by the two-mode inversion (step 0.005, one point past 1).
 R_GRID = np.append(np.linspace(0.01, 1.0, 199), 1.005)
@@ -118,6 +139,7 @@ class ContactResonanceResult:
     candidates, candidate_kappa : (..., K) every crossing r and its κ, NaN-padded (K = 0 when r
         was given)
     kappa_modes, sigma_modes, flags_modes : (..., n_modes) per measured column
+    mode_spread : max |κ_n − κ|/κ over the modes that check κ (module notes); NaN where none
     modes : the mode number of each column
     normalisation : "global" or "modewise" (from the cantilever)
     method : what was done, in words
@@ -133,6 +155,7 @@ class ContactResonanceResult:
     kappa_modes: np.ndarray
     sigma_modes: np.ndarray
     flags_modes: np.ndarray
+    mode_spread: np.ndarray
     modes: tuple[int, ...]
     normalisation: str
     method: str
@@ -266,6 +289,7 @@ def invert_contact_resonance(
     tip_height=0.0,
     tilt=0.0,
     modes=None,
+    mode_tolerance: float = MODE_TOLERANCE,
 ) -> ContactResonanceResult:
     """κ = k*/k_c (and r, σ) from contact-resonance frequencies, pixel by pixel, vectorised.
 
@@ -279,6 +303,9 @@ def invert_contact_resonance(
     lateral_ratio, tip_height, tilt : α = k_lat/k*, η = h/L, φ (degrees), broadcasting with the
         pixels (:func:`~contactres.resonators.cantilever.tip_coefficients`)
     modes : mode number (1-based) of each column; default 1..n_modes
+    mode_tolerance : relative disagreement of κ between modes beyond which a pixel is flagged
+        ``inconsistent_modes``; with r unknown it also picks the crossing that a third mode
+        confirms (module notes: three modes). Default :data:`MODE_TOLERANCE` (5 %).
 
     Returns
     -------
@@ -290,6 +317,8 @@ def invert_contact_resonance(
     modes = tuple(range(1, n_cols + 1)) if modes is None else tuple(int(m) for m in modes)
     if len(modes) != n_cols or min(modes) < 1 or max(modes) > len(FREE_ROOTS) - 2:
         raise ValueError(f"modes must give a mode (1..8) per column ({n_cols}), got {modes!r}")
+    if not 0 < mode_tolerance < np.inf:
+        raise ValueError(f"mode_tolerance must be > 0 (relative), got {mode_tolerance!r}")
     measured = ~np.isnan(f)
     if np.any(~np.isfinite(f[measured]) | (f[measured] <= 0)):
         raise ValueError("frequencies must be > 0 and finite (Hz) or NaN (not measured)")
@@ -319,10 +348,11 @@ def invert_contact_resonance(
         else:
             if n_cols < 2:
                 raise ValueError("tip_position=None needs two measured modes (columns)")
-            r, cand, cand_k = _two_modes(beta, mode_arr, measured, g)
+            r, cand, cand_k, n_win = _two_modes(beta, mode_arr, measured, g, mode_tolerance)
             method = (
                 "two modes (first two measured columns), tip position from κ_a(r) = κ_b(r) "
-                "(Hurley & Turner 2007): the largest crossing r in [0.5, 1]"
+                "(Hurley & Turner 2007): the largest crossing r in [0.5, 1] (that further "
+                "modes confirm, where measured)"
             )
         kappa_m, flags_m = kappa_on_branch(beta, mode_arr, r, g)
         flags_m = flags_m | _sensitivity_flags(beta, mode_arr, r, g, kappa_m)
@@ -343,8 +373,14 @@ def invert_contact_resonance(
         flags = np.bitwise_or.reduce(np.where(used, flags_m, 0), axis=-1)
         none = ~np.any(used, axis=-1)
         flags = np.where(none, FLAG_NOT_MEASURED | FLAG_NOT_POSITIVE, flags)
+        # The modes that check κ: the usable ones beyond the crossing's two (r solved), or all
+        # usable ones when there are at least two (r given).
+        check = usable & ~used if tip_position is None else usable & (usable.sum(-1) > 1)[..., None]
+        dev = np.where(check, np.abs(np.real(kappa_m) / kappa[..., None] - 1.0), -np.inf)
+        spread = np.max(dev, axis=-1, initial=-np.inf)
+        spread = np.where(np.isfinite(spread) & np.isfinite(kappa), spread, np.nan)
+        flags = flags | np.where(spread > mode_tolerance, FLAG_INCONSISTENT_MODES, 0)
         if tip_position is None:
-            n_win = np.sum((cand >= 0.5) & (cand <= 1.0), axis=-1)
             flags = flags | np.where(n_win == 0, FLAG_NO_CROSSING, 0)
             flags = flags | np.where(n_win > 1, FLAG_SEVERAL_CROSSINGS, 0)
             flags = flags | np.where(measured.sum(-1) < 2, FLAG_NOT_MEASURED, 0)
@@ -365,18 +401,21 @@ def invert_contact_resonance(
         kappa_modes=np.real(kappa_m),
         sigma_modes=sigma_m,
         flags_modes=flags_m.astype(int),
+        mode_spread=spread,
         modes=modes,
         normalisation=cantilever.normalisation,
         method=f"{method}; κ per mode by the {normal}; normalisation {cantilever.normalisation}",
     )
 
 
-def _two_modes(beta, mode_arr, measured, g):
-    """(r[..., None], candidates, candidate κ) of the two-mode inversion (module notes)."""
+def _two_modes(beta, mode_arr, measured, g, tolerance):
+    """(r[..., None], candidates, candidate κ, number of eligible crossings) of the two-mode
+    inversion; further measured modes choose among the crossings (module notes)."""
     shape = np.broadcast_shapes(beta.shape, *(np.shape(x) for x in g))
     pix_shape = shape[:-1]
     beta = np.broadcast_to(beta, shape)
-    first_two = np.argsort(~np.broadcast_to(measured, shape), axis=-1, kind="stable")[..., :2]
+    meas = np.broadcast_to(measured, shape)
+    first_two = np.argsort(~meas, axis=-1, kind="stable")[..., :2]
     b2 = np.take_along_axis(beta, first_two, axis=-1).reshape(-1, 2)
     m2 = mode_arr[first_two].reshape(-1, 2)
     gf = tuple(np.broadcast_to(x[..., 0], pix_shape).reshape(-1) for x in g)
@@ -392,10 +431,24 @@ def _two_modes(beta, mode_arr, measured, g):
     cand[pix, rank] = r
     cand_k[pix, rank] = np.real(kap)
     in_win = (cand >= 0.5) & (cand <= 1.0)
-    chosen = np.max(np.where(in_win, cand, -np.inf), axis=-1, initial=-np.inf)
+    # Further modes: κ of each at every candidate r, its largest deviation from the crossing's.
+    extra = meas.reshape(n, -1).copy()
+    np.put_along_axis(extra, first_two.reshape(n, 2), False, axis=-1)
+    dev = np.full((n, k_max), -np.inf)
+    gk = tuple(x[:, None] for x in gf)
+    for c in np.flatnonzero(extra.any(axis=0)):  # a loop over modes (<= 8), not over pixels
+        k_c, f_c = kappa_on_branch(beta.reshape(n, -1)[:, c, None], mode_arr[c], cand, gk)
+        ok = extra[:, c, None] & (f_c == 0)
+        dev = np.where(ok, np.fmax(dev, np.abs(np.real(k_c) / cand_k - 1.0)), dev)
+    checked = in_win & np.isfinite(dev)
+    consistent = checked & (dev <= tolerance)
+    decide = consistent.any(axis=-1, keepdims=True)  # else: the two-mode rule, flagged later
+    eligible = np.where(decide, consistent, in_win)
+    chosen = np.max(np.where(eligible, cand, -np.inf), axis=-1, initial=-np.inf)
     chosen = np.where(np.isfinite(chosen), chosen, np.nan)
     return (
         chosen.reshape((*pix_shape, 1)),
         cand.reshape((*pix_shape, k_max)),
         cand_k.reshape((*pix_shape, k_max)),
+        eligible.sum(axis=-1).reshape(pix_shape),
     )
