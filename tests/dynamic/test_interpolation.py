@@ -72,6 +72,10 @@ def test_a_pole_of_the_sa_model_does_not_stop_the_interpolation(monkeypatch):
 
 def test_small_calls_are_direct_and_bad_options_refused(cu001):
     m, table = cu001
+    # 200 distinct values within a few ulps (found by review: coinciding nodes crashed scipy)
+    narrow = 0.3 * (1 + np.finfo(float).eps * np.arange(200))
+    values = dcsf(m, narrow, prepared=table)
+    assert np.allclose(values, dcsf(m, 0.3, prepared=table), rtol=1e-12, atol=0)
     ka = np.linspace(0.1, 1.5, 60)
     auto = dcsf(m, ka, prepared=table)
     direct = dcsf(m, ka, prepared=table, interpolate=False)

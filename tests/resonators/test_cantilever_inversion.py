@@ -148,7 +148,7 @@ def test_mode_spread_is_the_third_modes_own_kappa_and_flags_beyond_the_tolerance
     k12 = invert_contact_resonance(GLOBAL, f[:, :2], 0.9).kappa
     res = invert_contact_resonance(GLOBAL, f, 0.9)
     mean = (2 * k12 + k3) / 3
-    expected = np.maximum(np.abs(k3 / mean - 1), np.abs(k12 / mean - 1))
+    expected = np.abs(k3 - k12) / mean  # the relative range of the per-mode κ
     assert np.max(np.abs(res.mode_spread / expected - 1)) < 1e-9
     flagged = (res.flags & FLAG_INCONSISTENT_MODES) != 0
     assert np.array_equal(flagged, expected > 0.05) and flagged.any() and not flagged.all()
@@ -158,3 +158,18 @@ def test_mode_spread_is_the_third_modes_own_kappa_and_flags_beyond_the_tolerance
     assert np.all(np.isnan(single.mode_spread))  # one mode: no check
     with pytest.raises(ValueError, match="mode_tolerance"):
         invert_contact_resonance(GLOBAL, f, 0.9, mode_tolerance=0)
+
+
+def test_a_third_mode_above_its_pinned_limit_contradicts_the_crossing():
+    # r = 0.65, κ = 1423 (noise-free, mode 1 deep in saturation: just below r = 0.65 its
+    # frequency is above the pinned limit, so the scan sees no sign change there): modes 1 and 2
+    # cross only near r = 0.96 on the scan, where mode 3 lies above its pinned frequency, which
+    # no κ > 0 gives. That r is contradicted, not unchecked: flagged, with an infinite spread
+    # (found by review: it was returned unflagged, κ = 141 instead of 1423).
+    lever = Cantilever((160e3, 160e3 * (FREE_ROOTS[1] / FREE_ROOTS[0]) ** 2), 40.0)
+    f = contact_frequencies(lever, np.array([1422.91447398]), 0.65, modes=(1, 2, 3))
+    res = invert_contact_resonance(lever, f)
+    assert abs(res.tip_position[0] - 0.65) > 0.2  # the two-mode scan misses the true crossing
+    assert res.flags[0] & FLAG_INCONSISTENT_MODES and np.isinf(res.mode_spread[0])
+    alone = invert_contact_resonance(lever, f[:, 2:], res.tip_position, modes=(3,))
+    assert alone.flags[0] & FLAG_ABOVE_PINNED  # mode 3 alone at that r: above its pinned limit

@@ -188,9 +188,9 @@ def dcsf_values(m: Material, ka, *, loss: float = 0.0, grid: int = DCSF_GRID, pr
     """DCSF (model "exact", ``wavenumber="longitudinal"``) of ``m`` at the k_l a values ``ka``.
 
     At most ``grid`` distinct values are evaluated directly; more are interpolated between
-    Chebyshev points with a measured error below 1e-7 of |DCSF| (``interpolate=True`` of
-    :func:`contactres.dynamic.dcsf`). ``prepared``: the kernel table of ``m`` and ``loss``
-    (rtol 1e-6), built here when not given.
+    Chebyshev points with a measured error below 1e-7 of the largest |1/DCSF| on the range
+    (``interpolate=True`` of :func:`contactres.dynamic.dcsf`). ``prepared``: the kernel table
+    of ``m`` and ``loss`` (rtol 1e-6), built here when not given.
     """
     ka = np.asarray(nonnegative("ka (normalised wave number k_l a)", ka), dtype=float)
     table = prepare(m, loss) if prepared is None else prepared

@@ -133,15 +133,43 @@ def _leading(values: np.ndarray) -> tuple[float, ...] | None:
     return tuple(float(v) for v in values[:n]) or None
 
 
-def _modulus(col: dict, k_star: np.ndarray, have_kc: np.ndarray, ref, ref2, dynamic) -> dict:
+def _dynamic(col, k_modes, fc, rows, sample, loss) -> dict:
+    """Paper 1's correction of the Hertz rows ``rows``: every averaged mode n corrected at its
+    own frequency, K_n = k*_n/Re DCSF(k_l(f_n) a_n) (each with its own fixed point for a), and
+    K_static the mean of the K_n; k_a and the DCSF reported are those of the row's first
+    averaged mode. ``k_modes``: (rows, modes) k* per mode, NaN where not averaged."""
+    n = len(rows)
+    out = {k: np.full(n, np.nan) for k in ("k_static", "k_a", "dcsf_real", "dcsf_imag")}
+    i, j = np.nonzero(rows[:, None] & np.isfinite(k_modes) & (k_modes > 0))
+    if i.size == 0:
+        return out
+    surface = surface_material(sample, "sample")
+    res = modulus_from_contact_stiffness(
+        k_modes[i, j],
+        tip_radius=col["tip_radius_m"][i],
+        load=col["load_N"][i],
+        frequency=fc[i, j],
+        sample=surface,
+        dynamic=True,
+        loss=loss,
+        prepared=prepare(surface, loss),  # one kernel table for every row and mode
+    )
+    count = np.bincount(i, minlength=n)
+    with np.errstate(invalid="ignore"):
+        out["k_static"] = np.bincount(i, weights=res.k_static, minlength=n) / count
+    first = np.unique(i, return_index=True)[1]  # (i, j) come row by row, modes ascending
+    out["k_a"][i[first]] = res.k_a[first]
+    out["dcsf_real"][i[first]] = res.dcsf.real[first]
+    out["dcsf_imag"][i[first]] = res.dcsf.imag[first]
+    return out
+
+
+def _modulus(col: dict, k_star: np.ndarray, have_kc: np.ndarray, ref, ref2) -> dict:
     """E*, M_sample, a and the modulus flags of every row: Hertz where tip_radius_m, load_N and
     k_c are given, else the reference sample(s) where fc1_ref_Hz and M_ref_Pa are; NaN
-    elsewhere. A blank M_tip_Pa is a rigid tip; a blank hardness_Pa is no plasticity check.
-    ``dynamic``: None, or the keywords of paper 1's correction (sample, loss, prepared table,
-    and the frequency of every row), applied to the Hertz rows."""
+    elsewhere. A blank M_tip_Pa is a rigid tip; a blank hardness_Pa is no plasticity check."""
     n = len(k_star)
-    names = ("E_star_Pa", "M_sample_Pa", "contact_radius_m", "k_a", "dcsf_real", "dcsf_imag")
-    out = {k: np.full(n, np.nan) for k in names}
+    out = {k: np.full(n, np.nan) for k in ("E_star_Pa", "M_sample_Pa", "contact_radius_m")}
     out["modulus_method"] = np.full(n, "", dtype=object)
     out["modulus_flags"] = np.zeros(n, dtype=int)
     load = col["load_N"]
@@ -149,11 +177,8 @@ def _modulus(col: dict, k_star: np.ndarray, have_kc: np.ndarray, ref, ref2, dyna
     refd = ~hertz & ~np.isnan(ref) & ~np.isnan(col["M_ref_Pa"])
     two = refd & ~np.isnan(ref2) & ~np.isnan(col["M_ref2_Pa"])
     one_ref = dict(reference_k_star=ref, reference_modulus=col["M_ref_Pa"])
-    hertz_kw = dict(tip_radius=col["tip_radius_m"])
-    if dynamic is not None:
-        hertz_kw["frequency"] = dynamic.pop("frequency")
     methods = (
-        (hertz, hertz_kw),
+        (hertz, dict(tip_radius=col["tip_radius_m"])),
         (refd & ~two, one_ref),
         (two, dict(one_ref, reference2_k_star=ref2, reference2_modulus=col["M_ref2_Pa"])),
     )
@@ -166,22 +191,16 @@ def _modulus(col: dict, k_star: np.ndarray, have_kc: np.ndarray, ref, ref2, dyna
                 if not ok.any():
                     continue
                 H = hardness[ok] if loaded and not np.isnan(hardness[ok]).all() else None
-                corrected = dynamic is not None and "frequency" in kwargs
                 res = modulus_from_contact_stiffness(
                     k_star[ok],
                     load=load[ok] if loaded else None,
                     tip_modulus=None if rigid else tip[ok],
                     hardness=H,
                     **{k: v[ok] for k, v in kwargs.items()},
-                    **(dict(dynamic, dynamic=True) if corrected else {}),
                 )
                 out["E_star_Pa"][ok] = res.E_star
                 out["M_sample_Pa"][ok] = res.M_sample
                 out["contact_radius_m"][ok] = res.contact_radius
-                if corrected:
-                    out["k_a"][ok] = res.k_a
-                    out["dcsf_real"][ok] = res.dcsf.real
-                    out["dcsf_imag"][ok] = res.dcsf.imag
                 out["modulus_method"][ok] = res.method
                 out["modulus_flags"][ok] = res.flags
     return out
@@ -227,10 +246,13 @@ def invert_afm_table(
 
     ``sample`` (a :class:`~contactres.materials.Material` in its surface frame, with density,
     or a ``(material, (h, k, l))`` pair) applies paper 1's dynamic correction to the Hertz
-    rows: K_static = k*/Re DCSF(k_l a) at the frequency of the row's first contact resonance,
-    with Q⁻¹ = ``loss``; ``k_a``, ``dcsf_real``, ``dcsf_imag`` say how large it was. The
-    reference rows are not corrected: sample and reference are measured at nearly the same
-    frequency and contact size, so their corrections cancel to second order in k_l a.
+    rows: each mode averaged into κ is corrected at its own frequency, K_n = k*_n/Re
+    DCSF(k_l(f_n) a) (Q⁻¹ = ``loss``), and the modulus follows from the mean K_static
+    (``k_static_N_per_m``); ``k_a``, ``dcsf_real``, ``dcsf_imag`` are those of the row's first
+    averaged mode. With r solved from two modes the crossing itself is found on the measured
+    (dynamic) κ; the correction then changes each mode's κ by its own factor. The reference
+    rows are not corrected: sample and reference are measured at nearly the same frequency and
+    contact size, so their corrections cancel to second order in k_l a.
     """
     fc = table[[f"fc{n}_Hz" for n in _MODES]].to_numpy(float)
     none = np.isnan(fc).all(axis=1)
@@ -258,6 +280,7 @@ def invert_afm_table(
         for c in ("kappa", "tip_position_used", "sigma_N_s_per_m", "mode_spread")
     }
     flags = np.zeros(n, dtype=int)
+    k_modes = np.full((n, len(_MODES)), np.nan)  # κ of each mode averaged into κ (else NaN)
     refs = np.full((n, 2), np.nan)  # κ on the reference samples (k* = κ k_c; ratios need κ)
     keys = [*AFM_GROUP_COLUMNS, "r_given"]
     groups = table[list(AFM_GROUP_COLUMNS)].assign(r_given=~np.isnan(r_in))
@@ -288,6 +311,7 @@ def invert_afm_table(
         res["tip_position_used"][rows] = out.tip_position
         res["sigma_N_s_per_m"][rows] = out.sigma * np.where(have_kc[rows], k_c[rows], np.nan)
         res["mode_spread"][rows] = out.mode_spread
+        k_modes[rows] = np.where(out.averaged_modes, out.kappa_modes, np.nan)
         flags[rows] = out.flags
         solved = np.isfinite(out.tip_position)  # two modes without a crossing: no reference
         for j in (0, 1):
@@ -303,19 +327,12 @@ def invert_afm_table(
     # Without k_c, k* is unknown, but the reference method needs only ratios of k*: it runs on κ.
     col = {c: table[c].to_numpy(float) for c in _MODULUS_INPUTS}
     scale = np.where(have_kc, k_c, 1.0)
-    dynamic = None
+    k_used = np.where(have_kc, k_star, res["kappa"])
     if sample is not None:
-        surface = surface_material(sample, "sample")
-        first = np.argmax(~np.isnan(fc), axis=1)  # every row has one (checked above)
-        dynamic = dict(
-            sample=surface,
-            loss=loss,
-            prepared=prepare(surface, loss),  # one kernel table for every group of rows
-            frequency=fc[np.arange(n), first],
-        )
-    mod = _modulus(
-        col, np.where(have_kc, k_star, res["kappa"]), have_kc, *(refs * scale[:, None]).T, dynamic
-    )
+        hertz = have_kc & ~np.isnan(col["tip_radius_m"]) & ~np.isnan(col["load_N"])
+        dyn = _dynamic(col, k_modes * k_c[:, None], fc, hertz & np.isfinite(k_star), sample, loss)
+        k_used = np.where(np.isfinite(dyn["k_static"]), dyn["k_static"], k_used)
+    mod = _modulus(col, k_used, have_kc, *(refs * scale[:, None]).T)
     out = _given_columns(table)
     out["kappa"] = res["kappa"]
     out["k_star_N_per_m"] = k_star
@@ -323,8 +340,14 @@ def invert_afm_table(
     out["sigma_N_s_per_m"] = res["sigma_N_s_per_m"]
     out["mode_spread"] = res["mode_spread"]
     names = ["E_star_Pa", "M_sample_Pa", "contact_radius_m", "modulus_method"]
-    for name in names + (["k_a", "dcsf_real", "dcsf_imag"] if sample is not None else []):
+    for name in names:
         out[name] = mod[name]
+    if sample is not None:
+        out["k_static_N_per_m"] = dyn["k_static"]
+        for name in ("k_a", "dcsf_real", "dcsf_imag"):
+            out[name] = dyn[name]
+        corrected = np.isfinite(dyn["k_static"]) & (out["modulus_method"] != "")
+        out.loc[corrected, "modulus_method"] = out.loc[corrected, "modulus_method"] + " + dynamic"
     text = [_flag_text(flags, flag_names), _flag_text(mod["modulus_flags"], _modulus_names)]
     out["flags"] = [";".join(t for t in pair if t) for pair in zip(*text, strict=True)]
     out["normalisation"] = normalisation

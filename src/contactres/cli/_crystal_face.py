@@ -81,11 +81,13 @@ def material_from_options(crystal, c11, c12, c44, zener, poisson) -> Material:
 def crystal_face_options(
     c44_help: str = "Cubic elastic constant C44, Pa.",
     inplane_help: str = "Direction of the surface x axis in cube axes.",
-    crystal_help: str = "Built-in crystal or solid (see 'contactres crystals'), e.g. Cu, quartz.",
 ):
     """Decorator adding --crystal, --c11/--c12/--c44, --zener/--poisson, --surface, --inplane."""
     options = [
-        click.option("--crystal", help=crystal_help),
+        click.option(
+            "--crystal",
+            help="Built-in crystal or solid (see 'contactres crystals'), e.g. Cu, quartz.",
+        ),
         click.option(
             "--c11", type=MagnitudeType("modulus"), help="Cubic elastic constant C11, Pa."
         ),

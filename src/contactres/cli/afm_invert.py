@@ -8,7 +8,7 @@ import click
 
 from ._app import afm
 from ._common import MagnitudeType, emit, format_option
-from ._crystal_face import crystal_face, crystal_face_options
+from ._crystal_face import crystal_face
 
 
 @afm.command("invert")
@@ -19,7 +19,7 @@ from ._crystal_face import crystal_face, crystal_face_options
     required=True,
     help="Output CSV: the input columns plus kappa, k_star_N_per_m, tip_position_used, "
     "sigma_N_s_per_m, mode_spread, E_star_Pa, M_sample_Pa, contact_radius_m, modulus_method, "
-    "flags, normalisation (and k_a, dcsf_real, dcsf_imag with --crystal).",
+    "flags, normalisation (and k_static_N_per_m, k_a, dcsf_real, dcsf_imag with --crystal).",
 )
 @click.option(
     "--normalisation",
@@ -37,10 +37,23 @@ from ._crystal_face import crystal_face, crystal_face_options
     help="Relative disagreement of κ between modes beyond which a row is flagged "
     "inconsistent-modes (three modes with r solved: also picks the crossing the third confirms).",
 )
-@crystal_face_options(
-    crystal_help="The sample, for paper 1's dynamic correction of the Hertz rows (K_static = "
-    "k*/Re DCSF at the first contact resonance; adds k_a, dcsf_real, dcsf_imag): a built-in "
-    "solid with its density (see 'contactres crystals'), e.g. Si, fused-silica.",
+@click.option(
+    "--crystal",
+    help="The sample, for paper 1's dynamic correction of the Hertz rows (K_static = k*/Re "
+    "DCSF, each mode at its own frequency; adds k_static_N_per_m, k_a, dcsf_real, dcsf_imag): "
+    "a built-in solid (see 'contactres crystals'), e.g. Si, fused-silica.",
+)
+@click.option(
+    "--surface",
+    default="001",
+    show_default=True,
+    help="Surface normal of the sample in crystal axes (Miller indices): 001, 011, 111, ...",
+)
+@click.option(
+    "--inplane",
+    default=None,
+    show_default="[100] projected, or [010]",
+    help="Direction of the surface x axis in crystal axes.",
 )
 @click.option(
     "--loss",
@@ -50,7 +63,7 @@ from ._crystal_face import crystal_face, crystal_face_options
     help="Material loss Q^-1 of the sample for the dynamic correction (0: lossless).",
 )
 @format_option()
-def afm_invert(table, out, normalisation, mode_tolerance, loss, fmt, **face):
+def afm_invert(table, out, normalisation, mode_tolerance, crystal, surface, inplane, loss, fmt):
     """Contact stiffness and modulus of every row (point or map pixel) of a CR-AFM table.
 
     TABLE gives per row the free-lever resonances (f1_free_Hz ...), the spring constant at the
@@ -63,8 +76,9 @@ def afm_invert(table, out, normalisation, mode_tolerance, loss, fmt, **face):
     (1996), renormalised by r³). With three modes and r blank, the third picks the crossing
     it confirms; mode_spread says how far the modes disagree on κ. With --crystal (the
     sample, and --surface) paper 1's dynamic correction is applied to the Hertz rows and
-    reported (k_a, dcsf_real, dcsf_imag): Kiselev et al. / paper 1, K_static = k*/Re DCSF.
-    Writes OUT atomically; prints a summary.
+    reported (k_static_N_per_m, k_a, dcsf_real, dcsf_imag): every mode is corrected at its
+    own frequency, K_static = k*/Re DCSF (J. Tian, Am. J. Eng. Appl. Sci. 3, 56 (2010),
+    Eq. 29, exact model). Writes OUT atomically; prints a summary.
     """
     import numpy as np
 
@@ -74,15 +88,10 @@ def afm_invert(table, out, normalisation, mode_tolerance, loss, fmt, **face):
 
     check_output_file(out, inputs=[table])
     sample = None
-    if any(face[k] is not None for k in ("crystal", "c11", "c12", "c44", "zener", "poisson")):
-        sample = crystal_face(**face)
-        if sample.density is None:
-            raise ValueError(
-                "the dynamic correction needs the sample's density (for k_l = 2πf/c_l), which "
-                "the constants options do not give: use a built-in --crystal"
-            )
-    elif face["inplane"] is not None or face["surface"] != "001":
-        raise ValueError("--surface/--inplane describe the sample: give --crystal (or constants)")
+    if crystal is not None:  # the built-in solids all carry their density (for k_l = 2πf/c_l)
+        sample = crystal_face(crystal, None, None, None, None, None, surface, inplane)
+    elif inplane is not None or surface != "001":
+        raise ValueError("--surface/--inplane describe the sample: give --crystal too")
     checked = read_resonance_table(table, AFM_TABLE)
     result = invert_afm_table(
         checked,
@@ -106,9 +115,11 @@ def afm_invert(table, out, normalisation, mode_tolerance, loss, fmt, **face):
     if np.isfinite(M).any():
         line += f", M_sample median {np.nanmedian(M) / 1e9:.4g} GPa"
     if sample is not None and np.isfinite(result["k_a"]).any():
-        change = np.nanmax(np.abs(1.0 / result["dcsf_real"] - 1.0))
+        change = np.nanmax(np.abs(result["k_static_N_per_m"] / result["k_star_N_per_m"] - 1.0))
         line += (
             f"; dynamic correction: k_l a <= {np.nanmax(result['k_a']):.2g}, "
             f"stiffness changed by <= {change:.2g}"
         )
+    elif sample is not None:
+        line += "; no dynamic correction (it needs rows with k_c, tip_radius_m and load_N)"
     click.echo(f"{line}; {flagged} flagged ({normalisation} normalisation); wrote {out}")

@@ -65,9 +65,12 @@ def chebyshev_values(
     Returns
     -------
     ({name: values at x}, measured error) or None when ``largest`` intervals do not reach
-    ``tol`` (the caller then evaluates directly).
+    ``tol``, or when [min, max] is too narrow for distinct nodes (relative width <= 1e-9): the
+    caller then evaluates directly.
     """
     lo, hi = float(np.min(x)), float(np.max(x))
+    if not hi - lo > 1e-9 * max(abs(lo), abs(hi)):  # nodes would coincide to round-off
+        return None
     n = first
     nodes = _nodes(lo, hi, n)
     values = evaluate(nodes)

@@ -31,12 +31,14 @@ through infinity, gives a huge |Δ| instead). The physical crossing is the large
 Three or more modes (the consistency check). The crossing still comes from the first two
 measured modes; every further measured mode gives its own κ at each candidate r. A candidate
 is *consistent* where those agree with the crossing's κ within ``mode_tolerance`` (relative);
-the largest consistent r in [0.5, 1] is chosen (a spurious crossing of the first two modes is
-rejected by the third), and the pixel is flagged ``inconsistent_modes`` when no candidate is
-consistent (then the largest r, as with two modes). With r given, the check compares the κ of
-the usable modes with their mean. ``mode_spread`` is the largest relative deviation
-max |κ_n − κ|/κ over the modes that check (NaN where none does: one mode with r given, two with
-r solved). The Euler-Bernoulli lever is the model being checked: a real lever (tip mass,
+a further mode that no positive κ reproduces there (below its free or above its pinned
+frequency) contradicts the candidate. The largest consistent r in [0.5, 1] is chosen (a
+spurious crossing of the first two modes is rejected by the third), and the pixel is flagged
+``inconsistent_modes`` when no candidate is consistent (then the largest r, as with two modes).
+``mode_spread`` is the relative range (max κ_n − min κ_n)/κ over κ and the modes that check it:
+the further modes with r solved, every usable mode with r given (κ their mean); inf where a
+further mode contradicts r, NaN where no mode checks (one mode with r given, two with r
+solved). The Euler-Bernoulli lever is the model being checked: a real lever (tip mass,
 trapezoidal section, a tip not at a point) can disagree by a few per cent between modes,
 which is why the default tolerance is 5 % and not the accuracy of the frequencies.
 
@@ -111,6 +113,9 @@ _NAMES = (
 #: (κ ≳ 1e3 for mode 1 at r = 1) and, trivially, as κ → 0 (the contact hardly shifts f).
 MIN_SENSITIVITY = 1e-3
 
+#: Flags of a mode that no positive κ reproduces at the tip position (it contradicts r).
+_CONTRADICTS = FLAG_NOT_POSITIVE | FLAG_BELOW_FREE | FLAG_ABOVE_PINNED
+
 #: Default relative disagreement of κ between modes beyond which a pixel is flagged
 #: ``inconsistent_modes`` (module notes: the model error of a real lever, not the noise).
 MODE_TOLERANCE = 0.05
@@ -139,7 +144,9 @@ class ContactResonanceResult:
     candidates, candidate_kappa : (..., K) every crossing r and its κ, NaN-padded (K = 0 when r
         was given)
     kappa_modes, sigma_modes, flags_modes : (..., n_modes) per measured column
-    mode_spread : max |κ_n − κ|/κ over the modes that check κ (module notes); NaN where none
+    mode_spread : (max − min)/κ of the per-mode κ (and κ) over the modes that check it (module
+        notes); inf where a further mode contradicts r; NaN where no mode checks
+    averaged_modes : (..., n_modes) bool, the modes whose κ was averaged into ``kappa``
     modes : the mode number of each column
     normalisation : "global" or "modewise" (from the cantilever)
     method : what was done, in words
@@ -156,6 +163,7 @@ class ContactResonanceResult:
     sigma_modes: np.ndarray
     flags_modes: np.ndarray
     mode_spread: np.ndarray
+    averaged_modes: np.ndarray
     modes: tuple[int, ...]
     normalisation: str
     method: str
@@ -363,6 +371,7 @@ def invert_contact_resonance(
         usable = flags_m == 0
         if tip_position is not None:
             kappa = _mean_where(np.real(kappa_m), usable)
+            averaged = usable
             used = measured
         else:
             first_two = np.argsort(~measured, axis=-1, kind="stable")[..., :2]
@@ -370,15 +379,23 @@ def invert_contact_resonance(
             np.put_along_axis(used, first_two, True, axis=-1)
             used &= measured
             kappa = _mean_where(np.real(kappa_m), used)
+            averaged = used
         flags = np.bitwise_or.reduce(np.where(used, flags_m, 0), axis=-1)
         none = ~np.any(used, axis=-1)
         flags = np.where(none, FLAG_NOT_MEASURED | FLAG_NOT_POSITIVE, flags)
         # The modes that check κ: the usable ones beyond the crossing's two (r solved), or all
         # usable ones when there are at least two (r given).
-        check = usable & ~used if tip_position is None else usable & (usable.sum(-1) > 1)[..., None]
-        dev = np.where(check, np.abs(np.real(kappa_m) / kappa[..., None] - 1.0), -np.inf)
-        spread = np.max(dev, axis=-1, initial=-np.inf)
-        spread = np.where(np.isfinite(spread) & np.isfinite(kappa), spread, np.nan)
+        # A further measured mode that no κ > 0 reproduces at r (below free, above pinned)
+        # contradicts r: an infinite spread, not a missing check.
+        wrong = measured & ~used & ((flags_m & _CONTRADICTS) != 0)
+        if tip_position is None:
+            check = (usable & ~used) | wrong
+        else:
+            check = usable & (usable.sum(-1) > 1)[..., None]
+        k_chk = np.where(wrong, np.inf, np.real(kappa_m))
+        hi = np.maximum(np.max(np.where(check, k_chk, -np.inf), axis=-1), kappa)
+        lo = np.minimum(np.min(np.where(check, k_chk, np.inf), axis=-1), kappa)
+        spread = np.where(check.any(axis=-1) & np.isfinite(kappa), (hi - lo) / kappa, np.nan)
         flags = flags | np.where(spread > mode_tolerance, FLAG_INCONSISTENT_MODES, 0)
         if tip_position is None:
             flags = flags | np.where(n_win == 0, FLAG_NO_CROSSING, 0)
@@ -402,6 +419,7 @@ def invert_contact_resonance(
         sigma_modes=sigma_m,
         flags_modes=flags_m.astype(int),
         mode_spread=spread,
+        averaged_modes=np.broadcast_to(averaged, kappa_m.shape).copy(),
         modes=modes,
         normalisation=cantilever.normalisation,
         method=f"{method}; κ per mode by the {normal}; normalisation {cantilever.normalisation}",
@@ -438,8 +456,8 @@ def _two_modes(beta, mode_arr, measured, g, tolerance):
     gk = tuple(x[:, None] for x in gf)
     for c in np.flatnonzero(extra.any(axis=0)):  # a loop over modes (<= 8), not over pixels
         k_c, f_c = kappa_on_branch(beta.reshape(n, -1)[:, c, None], mode_arr[c], cand, gk)
-        ok = extra[:, c, None] & (f_c == 0)
-        dev = np.where(ok, np.fmax(dev, np.abs(np.real(k_c) / cand_k - 1.0)), dev)
+        k_c = np.where((f_c & _CONTRADICTS) != 0, np.inf, np.real(k_c))  # module notes
+        dev = np.where(extra[:, c, None], np.fmax(dev, np.abs(k_c / cand_k - 1.0)), dev)
     checked = in_win & np.isfinite(dev)
     consistent = checked & (dev <= tolerance)
     decide = consistent.any(axis=-1, keepdims=True)  # else: the two-mode rule, flagged later
