@@ -33,7 +33,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import special
 
-from .farfield import FarBasis, far_basis
+from .farfield import FarBasis, far_basis, low_rank
 from .table import KernelTable
 from .weights import spherical_bessel
 
@@ -208,24 +208,33 @@ def exact_n(
         # Near field: contour + hand-over segment, harmonics of the tabulated g − g∞.
         near_h = _harmonics(table.near_values, plan.ms)  # (n_m, nk)
         s = ka[:, None] * table.near_kappa[None, :]  # (na, nk)
-        jp = spherical_bessel(int(orders[-1]), s)[orders]  # (n_p, na, nk)
+        # Pair products laid out (na, n_t, nk), so that the sum over the near nodes k is one
+        # complex product with no transposed copy: one BLAS call, not one per k a (on 2 cores
+        # shared with other work, every threaded call can wait a scheduler tick).
+        jp = np.moveaxis(spherical_bessel(int(orders[-1]), s)[orders], 0, 1)  # (na, n_p, nk)
         wk = table.near_weight[None, :] * ka[:, None]
-        prod = jp[ti] * jp[tj] * wk  # (n_t, na, nk)
-        # One complex product over the near nodes k (tensordot makes it a single zgemm).
-        integral += np.tensordot(near_h, prod, axes=(1, 2)).transpose(2, 0, 1)
+        prod = (jp * wk[:, None, :])[:, ti] * jp[:, tj]  # (na, n_t, nk)
+        near = (prod.reshape(-1, prod.shape[-1]) @ near_h.T).reshape(na, ti.size, -1)
+        integral += near.transpose(0, 2, 1)  # (na, n_m, n_t)
         # Far field: Chebyshev series in w = (T1 ka/s)² of each harmonic, against j_p j_q.
-        # One large product: the basis is stored (nf, na, ns) underneath (see far_basis).
-        cheb = np.moveaxis(far.basis, -1, 0)
-        nf = cheb.shape[0]
-        phi = (cheb.reshape(nf * na, -1) @ plan.far_products.T).reshape(nf, na, -1)
+        nf = far.basis.shape[-1]
         harm = {int(j): i for i, j in enumerate(table.far_harmonics)}
         coef = np.zeros((plan.ms.size, nf), dtype=complex)
         for i, m in enumerate(plan.ms):
             if -int(m) // 2 in harm:
                 coef[i] = 2 * np.pi * table.far_coeffs[harm[-int(m) // 2]]
-        far_part = np.tensordot(coef.real, phi, axes=(1, 0)) + 1j * np.tensordot(
-            coef.imag, phi, axes=(1, 0)
-        )  # (n_m, na, n_t)
+        # The large product runs over the s grid for every row (direction, ka). The real
+        # coefficient matrix [Re; Im] (2 n_m x nf) has rapidly falling singular values (the
+        # series of all harmonics decay alike): only its directions above 1e-15 of the largest
+        # can move the sum beyond round-off, so the basis is projected on those first (about
+        # half of the nf rows).
+        left, right = low_rank(np.concatenate([coef.real, coef.imag]))  # (2 n_m, k), (k, nf)
+        k = right.shape[0]
+        cheb = np.moveaxis(far.basis, -1, 0)  # (nf, na, ns), contiguous (see far_basis)
+        proj = (right @ cheb.reshape(nf, -1)).reshape(k * na, -1)
+        phi = (proj @ plan.far_products.T).reshape(k, na, -1)
+        mixed = np.tensordot(left, phi, axes=(1, 0))  # (2 n_m, na, n_t)
+        far_part = mixed[: plan.ms.size] + 1j * mixed[plan.ms.size :]  # (n_m, na, n_t)
         integral += far_part.transpose(1, 0, 2)
         # Beyond the grid: j_p j_q -> (−1)^{(p−q)/2}/(2 s²) on average, g − g∞ -> w C₁.
         alt = np.where(np.arange(nf) % 2 == 0, 1.0, -1.0)

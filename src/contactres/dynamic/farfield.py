@@ -29,11 +29,14 @@ __all__ = [
     "far_limit",
     "far_remainder",
     "far_weights",
+    "low_rank",
     "tail_sine",
 ]
 
 # The non-axisymmetric harmonics of the WA weight are integrated up to this s (see far_weights).
 _WA_HARMONIC_CUT = 120.0
+# Singular values kept by low_rank, relative to the largest.
+_RANK_TOL = 1e-15
 
 
 @dataclass(frozen=True, eq=False)
@@ -106,40 +109,56 @@ def far_basis(table: KernelTable, ka: np.ndarray, grid: FarGrid | None = None) -
     inside = w <= 1
     x = np.where(inside, 2 * w - 1, 1.0)
     nf = table.far_coeffs.shape[1]
-    hand = (1 - handover(sg[None, :] / ka[:, None], table.t1)) * inside * w * ds[None, :]
-    # T_f(x) by the three-term recurrence, stored (nf, na, ns) and scaled in place: the same
-    # arithmetic as chebvander(x) * hand[..., None], without its two full-size temporaries.
+    kappa = sg[None, :] / ka[:, None]
+    # χ(κ) <= 1e-17 from κ = 2T₁ on, where 1 − χ rounds to 1: erfc only below.
+    blend = kappa < 2 * table.t1
+    far_share = np.ones(kappa.shape)
+    far_share[blend] = 1 - handover(kappa[blend], table.t1)
+    hand = far_share * inside * w * ds[None, :]
+    # hand × T_f(x) by the three-term recurrence (linear, so it carries the factor), stored
+    # (nf, na, ns): chebvander(x) * hand[..., None] without its two full-size temporaries and
+    # without a pass over the whole basis to scale it.
     v = np.empty((nf, *x.shape))
-    v[0] = 1.0
+    v[0] = hand
     if nf > 1:
-        v[1] = x
+        np.multiply(x, hand, out=v[1])
         x2 = 2 * x
         for f in range(2, nf):
             np.multiply(v[f - 1], x2, out=v[f])
             v[f] -= v[f - 2]
-    v *= hand
     return FarBasis(ka=ka, s=sg, s_end=s_end, basis=np.moveaxis(v, 0, -1))
 
 
-def far_weights(table: KernelTable, s: np.ndarray) -> np.ndarray:
+def low_rank(matrix: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """``left`` (m, k) and ``right`` (k, n, orthonormal rows) with left @ right = ``matrix``
+    (real, (m, n)) to 1e-15 of its largest singular value: the truncated SVD."""
+    u, sv, vt = np.linalg.svd(matrix, full_matrices=False)
+    rank = max(1, int(np.count_nonzero(sv > _RANK_TOL * sv[0])))
+    return u[:, :rank] * sv[:rank], vt[:rank]
+
+
+def far_weights(table: KernelTable, s: np.ndarray, orders=None) -> np.ndarray:
     """Analytic weights of the far field on the nodes ``s`` (of :func:`far_basis`).
 
-    Returns a (6, n_m, n_s) array: for the functionals F0, F1, FW, F2D, H0, H1 (see
-    :func:`contactres.dynamic.quadrature.functionals`) and the harmonic e^{inθ}, n = 2m of
-    ``table.far_harmonics``, the factor 2π iⁿ × (Hankel transform of the pressure shape: sin s/s
-    or j₁(s)/s) × (J_n(s r̄) at the point, or its weighted average W_n, paper 1, Eq. 27).
+    Returns a (6, n_o, n_s) array: for the functionals F0, F1, FW, F2D, H0, H1 (see
+    :func:`contactres.dynamic.quadrature.functionals`) and the harmonic e^{inθ} of order n in
+    ``orders`` (default: n = 2|m| for the m of ``table.far_harmonics``, one row per distinct
+    n: the weights of e^{±inθ} are the same), the factor 2π iⁿ × (Hankel transform of the
+    pressure shape: sin s/s or j₁(s)/s) × (J_n(s r̄) at the point, or its weighted average W_n,
+    paper 1, Eq. 27).
     """
     res = table.resolution
     flat = sinc(s)
     hertz = j1_over_s(s)
-    nabs = [int(n) for n in 2 * np.abs(table.far_harmonics)]
-    orders = sorted(set(nabs))
-    jtab = bessel_even(orders, s)
+    if orders is None:
+        orders = np.unique(2 * np.abs(table.far_harmonics))
+    nabs = [int(n) for n in orders]
+    jtab = bessel_even(nabs, s)
     # WA weights of the non-axisymmetric harmonics: their share of N is ~1e-3, so stopping
     # them at s = _WA_HARMONIC_CUT costs < 1e-8 relative (their tail ~ s^-2.5). W_0 is sinc(s).
     cut = s <= min(_WA_HARMONIC_CUT, res.s_far)
-    if orders[-1] > 0:
-        wtab = wa_harmonic_weights(s[cut], orders[-1])
+    if max(nabs) > 0:
+        wtab = wa_harmonic_weights(s[cut], max(nabs))
     two_pi = 2 * np.pi
     out = np.zeros((6, len(nabs), s.size))
     for i, n in enumerate(nabs):

@@ -320,23 +320,36 @@ def _symmetry(m: Material) -> tuple[bool, bool]:
     return same([[1, 0, 0], [0, -1, 0], [0, 0, 1]]), same([[0, -1, 0], [1, 0, 0], [0, 0, 1]])
 
 
-def _theta_values(m, kappa, q, ginf_fn, nth, symmetry, old=None):
-    """g − g∞ on κ × (θ_j = πj/nth); reuses ``old`` (the values at nth/2) and the symmetry."""
+def _theta_base(nth: int, symmetry) -> np.ndarray:
+    """For each θ_j = πj/nth the index of the node with the same g by ``symmetry``."""
     mirror, fourfold = symmetry
     j = np.arange(nth)
     base = j % (nth // 2) if fourfold else j
     if mirror:
         period = nth // 2 if fourfold else nth
         base = np.minimum(base, period - base)
+    return base
+
+
+def _theta_values(m, kappa, q, static_fn, nth, symmetry, old=None):
+    """(g − g∞ on κ × (θ_j = πj/nth), the undamped static kernel g∞₀ on the θ_j): reuses ``old``
+    (the pair at nth/2) and the symmetry. g∞ = g∞₀/(1 + iQ⁻¹); ``static_fn(j, nth)`` gives g∞₀
+    at the θ_j."""
+    base = _theta_base(nth, symmetry)
     need = np.unique(base)
     values = np.empty((kappa.size, nth), dtype=complex)
+    static = np.empty(nth)
     if old is not None:
         have = need[need % 2 == 0]
-        values[:, have] = old[:, have // 2]
+        values[:, have] = old[0][:, have // 2]
+        static[have] = old[1][have // 2]
         need = need[need % 2 == 1]
     theta = np.pi * need / nth
-    values[:, need] = _elastic_kernel(m, kappa[:, None], theta[None, :], q) - ginf_fn(theta)
-    return values[:, base]
+    static[need] = static_fn(need, nth)
+    values[:, need] = _elastic_kernel(m, kappa[:, None], theta[None, :], q) - static[need] / (
+        1 + 1j * q
+    )
+    return values[:, base], static[base]
 
 
 def _build_table(m: Material, q: float, res: Resolution) -> KernelTable:
@@ -359,21 +372,34 @@ def _build_table(m: Material, q: float, res: Resolution) -> KernelTable:
     w = 0.5 * (x + 1)
     kappa = np.concatenate([near_kappa, t1 / np.sqrt(w)])
 
-    def ginf_fn(theta):
-        return c44 * static_kernel(m, theta) / (1 + 1j * q)
-
     symmetry = _symmetry(m)
+    # The static kernel of the first three doublings in one call: its cost is mostly per call.
+    fine = min(_N_THETA_MAX, 8 * res.n_theta)
+    fine_base = _theta_base(fine, symmetry)
+    fine_need = np.unique(fine_base)
+    static_fine = np.empty(fine)
+    static_fine[fine_need] = c44 * static_kernel(m, np.pi * fine_need / fine)
+    static_fine = static_fine[fine_base]
+
+    def static_fn(j, nth):
+        if fine % nth == 0:
+            return static_fine[j * (fine // nth)]
+        return c44 * static_kernel(m, np.pi * j / nth)
+
     nth = res.n_theta
-    values = None
+    both = None
     while True:
-        values = _theta_values(m, kappa, q, ginf_fn, nth, symmetry, values)
+        # The static kernel comes along on the same θ nodes (and symmetry), so that it is not
+        # evaluated again on every node at the end.
+        both = _theta_values(m, kappa, q, static_fn, nth, symmetry, both)
+        values = both[0]
         harm = np.abs(np.fft.fft(values, axis=1))
         tail = np.max(harm[:, nth // 4 : nth - nth // 4 + 1])
         if tail <= res.theta_tol * np.max(harm[:, 0]) or nth >= _N_THETA_MAX:
             break
         nth *= 2
     theta = np.pi * np.arange(nth) / nth
-    ginf0 = c44 * static_kernel(m, theta)  # undamped
+    ginf0 = both[1]  # undamped
     ginf = ginf0 / (1 + 1j * q)
     n_static = 0.5 * np.pi * (2 * np.pi) * float(np.mean(ginf0))
     near_values = values[: near_kappa.size]

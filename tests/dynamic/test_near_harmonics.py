@@ -1,0 +1,150 @@
+"""Tests of the harmonic (Jacobi-Anger) paths of the N(r̄, φ) quadrature and their special
+functions.
+
+The near-field θ integrals are summed over the harmonics of g with J_2m(s) and W_2m(s) weights;
+here they are checked against the θ-direct trapezoidal rule they replaced (written out below:
+g resampled by FFT onto nt nodes, cos(s cos θ) and the line weight W(s cos θ) at every node).
+The Bessel functions of complex argument (Miller's method) are checked against scipy's AMOS,
+the WA harmonics W_n (a sum of squared spherical Bessel functions) against scipy quadrature and
+the FFT of the line weight on a fine θ grid, and the reduced far-field basis against the full
+one.
+"""
+
+import math
+
+import numpy as np
+import pytest
+from scipy import integrate, special
+
+from contactres import Material
+from contactres.dynamic import prepare
+from contactres.dynamic.exact import exact_n, galerkin_plan, galerkin_size
+from contactres.dynamic.farfield import far_basis, low_rank
+from contactres.dynamic.quadrature import _n_theta_near, near_theta_integrals
+from contactres.dynamic.weights import (
+    bessel_orders,
+    spherical_bessel,
+    wa_harmonic_weights,
+    wa_harmonic_weights_complex,
+    wa_line_weight,
+)
+
+
+@pytest.fixture(scope="module", params=["A0.25", "Cu111"])
+def table(request):
+    if request.param == "A0.25":  # strongly anisotropic (001) face: 256 θ nodes, 4-fold
+        m = Material.cubic_from_ratios(0.25, 0.25)
+    else:  # (111) face: no 4-fold axis, harmonics 3j
+        m = Material.crystal("Cu").rotated((1, 1, 1))
+    return prepare(m, 0.02)
+
+
+def _theta_direct(table, s, smax):
+    """The former near field: θ-direct trapezoidal rule on nt nodes of [0, π), g resampled."""
+    nt = _n_theta_near(smax)
+    values = table.near_values
+    n = values.shape[-1]
+    h = np.fft.fft(values, axis=-1)
+    out = np.zeros((values.shape[0], nt), dtype=complex)
+    half = min(n, nt) // 2
+    out[:, :half] = h[:, :half]
+    out[:, nt - half + 1 :] = h[:, n - half + 1 :]
+    vals = np.fft.ifft(out, axis=-1) * (nt / n)
+    z = s[:, :, None] * np.cos(np.pi * np.arange(nt) / nt)[None, None, :]
+    dth = 2 * np.pi / nt
+    c1 = np.einsum("akt,kt->ak", np.cos(z), vals) * dth
+    cw = np.einsum("akt,kt->ak", wa_line_weight(z), vals) * dth
+    return c1, cw, np.mean(vals, axis=1) * 2 * np.pi
+
+
+def test_near_harmonic_sums_equal_the_theta_direct_rule(table):
+    ka = np.array([0.05, 0.7, 2.0, 4.0, 6.9])
+    s = ka[:, None] * table.near_kappa[None, :]
+    smax = float(ka.max() * np.max(np.abs(table.near_kappa)))
+    c1, cw, mean0 = near_theta_integrals(table, s, smax)
+    r1, rw, r0 = _theta_direct(table, s, smax)
+    scale = np.max(np.abs(r0))  # ∫ |g − g∞| dθ sets the size of every integral at a node
+    np.testing.assert_allclose(mean0, r0, rtol=0, atol=1e-14 * scale)
+    np.testing.assert_allclose(c1, r1, rtol=0, atol=1e-12 * scale)
+    np.testing.assert_allclose(cw, rw, rtol=0, atol=1e-12 * scale)
+
+
+@pytest.mark.parametrize(
+    "z",
+    [
+        np.linspace(0.01, 30.0, 300) * (1 + 0.1j),  # the near-field contour
+        np.linspace(0.01, 25.0, 200) + 2j,
+        np.linspace(1e-3, 25.0, 400),  # the real hand-over segment
+        # zeros of J0, J1, J2 and tiny arguments: no division by a vanishing J
+        np.array([2.404825557695773, 3.8317059702075125, 5.135622301840683, 1e-6, 1e-6 + 1e-7j]),
+    ],
+)
+def test_bessel_orders_match_scipy(z):
+    got = bessel_orders(60, z)
+    ref = special.jv(np.arange(61)[:, None], z[None, :])
+    bound = 1e-12 * np.abs(ref) + 1e-15 * np.max(np.abs(ref), axis=0)
+    assert np.all(np.abs(got - ref) <= bound)
+
+
+def test_wa_harmonics_against_quad_up_to_high_order():
+    """Up to s = 120 and n = 92 (the far field's largest), where an FFT of the line weight on a
+    θ grid too coarse for W(s cos θ) had aliased by ~2e-4."""
+    s = np.array([0.0, 1e-3, 7.0, 60.0, 120.0])
+    W = wa_harmonic_weights(s, 92)
+    for n in (0, 10, 40, 80, 92):
+        ref = [
+            integrate.quad(
+                lambda r, n=n, ss=ss: special.jv(n, ss * r) * r / math.sqrt(1 - r * r),
+                0,
+                1,
+                limit=2000,
+                epsabs=1e-14,
+            )[0]
+            for ss in s
+        ]
+        np.testing.assert_allclose(W[n // 2], ref, rtol=0, atol=1e-11)
+
+
+def test_complex_wa_harmonics_are_the_fourier_coefficients_of_the_line_weight():
+    z = np.array([3 + 0.4j, 9 + 1.5j, 24 - 2j, 12 + 0.5j, 0.01 + 1e-3j, 17.0 + 0j])
+    n_t = 512
+    theta = np.pi * np.arange(n_t) / n_t
+    coef = np.fft.fft(wa_line_weight(np.multiply.outer(z, np.cos(theta))), axis=-1) / n_t
+    k = np.arange(31)
+    ref = (coef[:, k] * np.where(k % 2 == 0, 1.0, -1.0)).T
+    np.testing.assert_allclose(wa_harmonic_weights_complex(z, 30), ref, rtol=0, atol=1e-13)
+
+
+def test_spherical_bessel_upward_recurrence_at_large_real_arguments():
+    """Real z beyond every order take the upward recurrence: against AMOS up to z = 700 (which
+    itself scatters by ~2e-14 of the largest |j_p| there, hence the absolute bound)."""
+    z = np.concatenate([np.linspace(30.0, 700.0, 3000), [33.0, 33.0001]])
+    got = spherical_bessel(32, z)
+    for p in range(33):
+        ref = np.sqrt(np.pi / (2 * z)) * special.jv(p + 0.5, z)
+        assert np.all(np.abs(got[p] - ref) <= 1e-12 * np.abs(ref) + 1e-13 * np.max(np.abs(ref)))
+
+
+def test_low_rank_reproduces_the_far_coefficients(table):
+    c = table.far_coeffs
+    matrix = np.concatenate([c.real, c.imag])
+    left, right = low_rank(matrix)
+    assert right.shape[0] <= matrix.shape[1]
+    np.testing.assert_allclose(right @ right.T, np.eye(right.shape[0]), atol=1e-14)
+    assert np.max(np.abs(left @ right - matrix)) <= 1e-14 * np.max(np.abs(matrix))
+
+
+def test_exact_far_field_on_the_reduced_basis_equals_the_full_one(table, monkeypatch):
+    """exact_n with the far-field basis projected on the leading directions of the
+    coefficients against exact_n on the full Chebyshev basis (no truncation, identity as
+    directions): the same N to round-off."""
+    import contactres.dynamic.exact as exact
+
+    ka = np.array([0.4, 1.5, 3.0])
+    size = galerkin_size(float(ka.max()))
+    fb = far_basis(table, ka)
+    plan = galerkin_plan(table, size, fb.s)
+    reduced = exact_n(table, ka, size, far=fb, plan=plan)
+    monkeypatch.setattr(exact, "low_rank", lambda m: (m, np.eye(m.shape[1])))
+    full = exact_n(table, ka, size, far=fb, plan=plan)
+    np.testing.assert_allclose(reduced, full, rtol=1e-13)
