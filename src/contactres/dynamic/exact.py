@@ -59,12 +59,25 @@ class GalerkinSize:
         return GalerkinSize(2 * self.n_radial, 2 * self.n_harmonics)
 
 
-def galerkin_size(ksa_max: float, rtol: float = 1e-6) -> GalerkinSize:
+def galerkin_size(ksa_max: float, rtol: float = 1e-6, *, pressure: bool = False) -> GalerkinSize:
     """Default basis size reaching ``rtol`` up to k_s a = ksa_max (from the convergence tests:
     the radial series converges like a Neumann series in (k a/2p)², the angular one like the
-    harmonics of g)."""
-    extra = 0 if rtol < 1e-4 else -2
-    return GalerkinSize(n_radial=max(2, math.ceil(0.6 * ksa_max) + 6 + extra), n_harmonics=3)
+    harmonics of g).
+
+    N_exact is variational (its error is quadratic in that of the pressure): measured against
+    twice the terms (k_l a <= 2, A = 0.2-10, ν = 0.25-0.45), ceil(0.6 k_s a) + 4 radial terms and
+    harmonics |n| <= 2 × step (the default) leave < 1e-9; two radial terms fewer or one harmonic
+    fewer < 1e-8 (rtol >= 1e-4). rtol < 1e-8 takes two terms and one harmonic more.
+    ``pressure=True`` sizes the basis for the pressure field itself (:func:`contact_pressure
+    <contactres.dynamic.normal_stiffness.contact_pressure>`), which converges only linearly:
+    two radial terms and one harmonic more.
+    """
+    extra = 2 if rtol < 1e-8 else (0 if rtol < 1e-4 else -2)
+    more = 2 if pressure else 0
+    harmonics = 3 if (pressure or rtol < 1e-8) else 2
+    return GalerkinSize(
+        n_radial=max(2, math.ceil(0.6 * ksa_max) + 4 + extra + more), n_harmonics=harmonics
+    )
 
 
 def _basis(table: KernelTable, size: GalerkinSize) -> list[tuple[int, int]]:

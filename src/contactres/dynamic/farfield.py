@@ -3,10 +3,12 @@
 There the kernel table holds g − g∞ as a Chebyshev series in w = (T₁/κ)² per angular harmonic
 e^{2imθ}. With s = κ k_s a, every harmonic is integrated against the analytic Bessel weights of
 the pressure shapes on a fixed grid in s: geometric panels from s_low = T₁ × (smallest k_s a of
-the call) up to s = 8, then uniform panels up to ``Resolution.s_far``; beyond it the leading
-asymptotic term is added in closed form. The grid, the Chebyshev basis on it and the weights are
-built once per call (:func:`far_basis`, :func:`far_weights`) and passed to every model and
-point of that call; nothing is kept between calls.
+the call) up to s = 8, uniform panels of width 2 up to ``Resolution.s_coarse`` (there the
+hand-over of the larger k a, of width ~ s/18, is resolved), then wider panels of 2.5 nodes per
+unit of s (the weights oscillate with frequency <= 2) up to ``Resolution.s_far``; beyond it the
+leading asymptotic term is added in closed form. The grid, the Chebyshev basis on it and the
+weights are built once per call (:func:`far_basis`, :func:`far_weights`) and passed to every
+model and point of that call; nothing is kept between calls.
 """
 
 from __future__ import annotations
@@ -17,8 +19,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import special
 
-from ..numerics import gauss_legendre
-from .table import KernelTable, Resolution, handover
+from .table import KernelTable, Resolution, gauss_legendre, handover
 from .weights import bessel_even, j1_over_s, sinc, wa_harmonic_weights
 
 __all__ = [
@@ -60,17 +61,25 @@ class FarBasis:
 
 
 def _far_grid(res: Resolution, s_low: float):
-    """Nodes and weights of the far-field s integral on [s_low, s_far] (geometric, then uniform)."""
+    """Nodes and weights of the far-field s integral on [s_low, s_far]: geometric panels up to
+    s = 8, uniform ones of width ``s_panel`` up to ``s_coarse``, then wide ones."""
     top = 8.0
     edges = [top]
     while edges[-1] > s_low:
         edges.append(edges[-1] / res.s_ratio)
     edges = edges[::-1]
-    n_uni = max(1, math.ceil((res.s_far - top) / res.s_panel))
+    mid = max(top, min(res.s_coarse, res.s_far))
+    n_uni = max(1, math.ceil((mid - top) / res.s_panel))
     edges.extend(top + res.s_panel * np.arange(1, n_uni + 1))
     edges = np.asarray(edges)
     s, ws = gauss_legendre(edges[:-1, None], edges[1:, None], res.n_gauss)
-    return s.ravel(), ws.ravel(), float(edges[-1])
+    s, ws = s.ravel(), ws.ravel()
+    n_wide = math.ceil((res.s_far - edges[-1]) / res.s_panel_coarse)
+    if n_wide <= 0:
+        return s, ws, float(edges[-1])
+    wide = edges[-1] + res.s_panel_coarse * np.arange(n_wide + 1)
+    s2, ws2 = gauss_legendre(wide[:-1, None], wide[1:, None], res.n_gauss_coarse)
+    return np.concatenate([s, s2.ravel()]), np.concatenate([ws, ws2.ravel()]), float(wide[-1])
 
 
 @dataclass(frozen=True, eq=False)

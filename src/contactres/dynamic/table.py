@@ -30,8 +30,7 @@ import numpy as np
 from scipy import special
 
 from ..halfspace import dynamic_kernel, shear_reference, static_kernel
-from ..materials import Material, require_material, rotate_tensor, voigt_to_tensor
-from ..numerics import gauss_legendre
+from ..materials import Material, require_material, voigt_to_tensor
 
 __all__ = [
     "MAX_ISOTROPIC_POISSON",
@@ -40,6 +39,7 @@ __all__ = [
     "Resolution",
     "check_contrast",
     "check_loss",
+    "gauss_legendre",
     "handover",
     "kernel_table",
     "prepare",
@@ -53,6 +53,9 @@ _T1_FACTOR = 1.75
 _CONTOUR_HEIGHT = 0.3
 # Width parameter of the erfc hand-over on [T1, 2 T1]: χ(T1) = 1 - 1e-17, χ(2 T1) = 1e-17.
 _CHI_STEPS = 12.0
+# Far-field harmonics kept: those whose Chebyshev coefficients reach this fraction of the
+# largest (|J_n| <= 1, so a dropped one moves N by less than ~1e-11 relative).
+_FAR_HARMONIC_TOL = 1e-11
 # Upper bound of the adaptive number of θ nodes on [0, π).
 _N_THETA_MAX = 1024
 
@@ -83,23 +86,44 @@ class Resolution:
     n_segment : Gauss-Legendre nodes on the real hand-over segment [T₁, 2T₁]
     n_fit : Chebyshev nodes of the far field in w = (T₁/κ)²
     s_ratio : ratio of the geometric far-field s panels (below s = 8)
-    s_panel : width of the uniform far-field s panels above s = 8
+    s_panel : width of the uniform far-field s panels on [8, s_coarse]
     s_far : end of the far-field s grid; beyond it the leading asymptotic term (~ s_far^-2.5) is
         added in closed form and the rest (~ s_far^-3.5) neglected
-    n_gauss : Gauss-Legendre nodes per far-field s panel
+    n_gauss : Gauss-Legendre nodes per far-field s panel below s_coarse
+    s_coarse : start of the wide far-field s panels (there only the oscillation, of frequency
+        <= 2 in s, and the hand-over of the larger k a, of width >= s_coarse/18, are resolved)
+    s_panel_coarse : width of the far-field s panels above s_coarse
+    n_gauss_coarse : Gauss-Legendre nodes per far-field s panel above s_coarse
     theta_tol : n_theta is doubled until the angular harmonics of g in the upper half of the
-        resolved band are below theta_tol times the axisymmetric part
+        resolved band are below theta_tol times the axisymmetric part (the functionals use only
+        the low harmonics; measured for k_l a <= 2: 64 nodes with a tail of 5e-5 (A = 0.2) move
+        the DCSF by 2e-12, 32 nodes with 5e-4 (A = 0.25) by 3e-7, with 1.2e-3 (A = 0.2) by 5e-6)
+
+    The wide panels start at s_coarse and have edges at s_coarse + j s_panel_coarse; s = 120,
+    where the WA weights of the non-axisymmetric harmonics stop
+    (:func:`~contactres.dynamic.farfield.far_weights`), is one of them (also when doubled).
+
+    The defaults are the accuracy rtol = 1e-6 with a margin of 10 or more: against every
+    resolution doubled (tests and benchmarks/bench_dcsf.py, k_l a <= 2, A = 0.2-10, ν =
+    0.25-0.45, Q⁻¹ = 0 and 0.02) the largest relative deviation of the seven models is 4e-8
+    (SA near its zero at A = 0.25; the far-field end s_far), most are 1e-9-1e-11. Measured one
+    at a time, n_contour = 36, n_segment = 24, s_panel = 4 or s_ratio = 1.5 move it to 1e-7-4e-7;
+    n_fit = 8, 64 θ nodes, wide panels from s = 16 or with 2 nodes per unit of s do not move it
+    beyond 1e-8.
     """
 
     n_theta: int = 32
     n_contour: int = 48
-    n_segment: int = 40
-    n_fit: int = 20
+    n_segment: int = 32
+    n_fit: int = 10
     s_ratio: float = 1.25
     s_panel: float = 2.0
     s_far: float = 600.0
     n_gauss: int = 12
-    theta_tol: float = 1e-11
+    theta_tol: float = 3e-5
+    s_coarse: float = 32.0
+    s_panel_coarse: float = 8.0
+    n_gauss_coarse: int = 20
 
     def doubled(self) -> Resolution:
         """Every resolution doubled (the convergence check of the tests)."""
@@ -114,15 +138,19 @@ class Resolution:
             s_far=2 * self.s_far,
             n_gauss=2 * self.n_gauss,
             theta_tol=self.theta_tol * 1e-2,
+            s_coarse=2 * self.s_coarse,
+            s_panel_coarse=self.s_panel_coarse / 2,
+            n_gauss_coarse=2 * self.n_gauss_coarse,
         )
 
 
 def resolution_for(rtol: float) -> Resolution:
     """The :class:`Resolution` that reaches relative accuracy ``rtol`` of the DCSF.
 
-    Measured (tests and benchmarks/bench_dcsf.py, k_l a <= 2, A in [0.2, 10]): the default
-    (rtol in [1e-8, 1e-4)) moves by < 1e-6 when every resolution is doubled, and by ~1e-8
-    typically; rtol >= 1e-4 takes a coarser grid (still ~1e-6); rtol < 1e-8 doubles everything.
+    Measured (tests and benchmarks/bench_dcsf.py, k_l a <= 2, A in [0.2, 10], ν up to 0.45,
+    Q⁻¹ = 0 and 0.02): the default (rtol in [1e-8, 1e-4)) moves by < 1e-7 when every resolution
+    is doubled (at most 4e-8, ~1e-9 typically); rtol >= 1e-4 takes a coarser grid (< 1e-5, at
+    most 7e-6); rtol < 1e-8 doubles everything.
 
     Parameters
     ----------
@@ -134,7 +162,13 @@ def resolution_for(rtol: float) -> Resolution:
         raise ValueError(f"rtol must lie in [1e-10, 1), got {rtol!r}")
     if r >= 1e-4:
         return Resolution(
-            n_contour=32, n_segment=28, n_fit=14, s_far=150.0, n_gauss=10, theta_tol=1e-8
+            n_contour=32,
+            n_segment=24,
+            n_fit=8,
+            s_far=150.0,
+            n_gauss=10,
+            theta_tol=1e-4,
+            n_gauss_coarse=16,
         )
     if r < 1e-8:
         return Resolution().doubled()
@@ -164,6 +198,17 @@ def check_loss(loss) -> float:
     if not (np.isfinite(q) and 0 <= q < 1):
         raise ValueError(f"loss (Q^-1) must lie in [0, 1), got {loss!r}")
     return q
+
+
+def gauss_legendre(a, b, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """Nodes and weights of the n-point Gauss-Legendre rule on [a, b] (or on many panels, as
+    :func:`contactres.numerics.gauss_legendre`: ``a``, ``b`` broadcast against the node axis,
+    which comes last). From scipy's ``roots_legendre`` (same rule to ~1e-15), ~5x cheaper than
+    numpy's ``leggauss`` (~1.5 ms at n = 40), which a table and a far grid need several of."""
+    x, w = special.roots_legendre(int(n))
+    a = np.asarray(a)
+    b = np.asarray(b)
+    return 0.5 * (b - a) * x + 0.5 * (b + a), 0.5 * (b - a) * w
 
 
 def handover(kappa, t1: float):
@@ -313,11 +358,17 @@ def _symmetry(m: Material) -> tuple[bool, bool]:
     c = voigt_to_tensor(np.asarray(m.C).real)
     scale = np.max(np.abs(c))
 
-    def same(rot):
-        cr = rotate_tensor(c, np.asarray(rot, dtype=float))
+    def same(perm, sign):
+        # The rotation R with rows sign_i e_perm(i) (a signed permutation): c'_ijkl =
+        # sign_i sign_j sign_k sign_l c_{perm(i) perm(j) perm(k) perm(l)}, exactly what
+        # rotate_tensor gives, without its einsum (whose path search costs ~0.7 ms).
+        p = np.asarray(perm)
+        sg = np.asarray(sign, dtype=float)
+        cr = c[np.ix_(p, p, p, p)] * np.einsum("i,j,k,l->ijkl", sg, sg, sg, sg)
         return bool(np.max(np.abs(cr - c)) <= 1e-12 * scale)
 
-    return same([[1, 0, 0], [0, -1, 0], [0, 0, 1]]), same([[0, -1, 0], [1, 0, 0], [0, 0, 1]])
+    # Mirror y -> −y: R = diag(1, −1, 1); 4-fold about z: R = [[0, −1, 0], [1, 0, 0], [0, 0, 1]].
+    return same((0, 1, 2), (1, -1, 1)), same((1, 0, 2), (-1, 1, 1))
 
 
 def _theta_base(nth: int, symmetry) -> np.ndarray:
@@ -409,7 +460,7 @@ def _build_table(m: Material, q: float, res: Resolution) -> KernelTable:
     coeffs[0] *= 0.5
     harm = np.fft.fft(coeffs, axis=1) / nth  # (nf, nθ) harmonic m at index m mod nθ
     mm = np.fft.fftfreq(nth, 1.0 / nth).astype(int)
-    keep = np.max(np.abs(harm), axis=0) > 1e-13 * np.max(np.abs(harm))
+    keep = np.max(np.abs(harm), axis=0) > _FAR_HARMONIC_TOL * np.max(np.abs(harm))
     keep &= np.abs(mm) < nth // 2
     return KernelTable(
         constants=np.array(m.C),
