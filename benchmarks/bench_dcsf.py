@@ -117,9 +117,8 @@ def main() -> int:
             m = Material.cubic_from_ratios(A * (1 + 1e-9 * (10 * k + rep + 21)), nu)
             walls.append(timed(lambda m=m: dcsf_models(m, KLA, ALL_MODELS, loss=LOSS))[1])
         worst = max(worst, min(walls))
-        print(
-            f"  A={A:<5g} nu={nu:<5g} wall {min(walls):.3f} s (runs {', '.join(f'{w:.3f}' for w in walls)})"
-        )
+        runs = ", ".join(f"{w:.3f}" for w in walls)
+        print(f"  A={A:<5g} nu={nu:<5g} wall {min(walls):.3f} s (runs {runs})")
     results.append(target("dcsf 41 points, seven models, new material (worst)", worst, TARGET_7_S))
 
     print(f"cost of an extra k a point: seven models, table prepared, 41 vs {41 + N_EXTRA} points")
