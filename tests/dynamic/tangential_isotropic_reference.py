@@ -73,6 +73,7 @@ import math
 
 import numpy as np
 from scipy import integrate, optimize, special
+from wavenumber_contour import wavenumber_rule
 
 __all__ = [
     "low_frequency_damping",
@@ -118,31 +119,10 @@ def _tail_coefficients(nu):
     return (1 - nu) * (c1 - 0.5), 0.5
 
 
-def _gauss(a, b, n):
-    x, w = np.polynomial.legendre.leggauss(n)
-    return 0.5 * (b - a) * x + 0.5 * (b + a), 0.5 * (b - a) * w
-
-
 def _wavenumber_rule(a0, n_wave, xi_max):
-    """Nodes/weights of ∫₀^{ξ_max}: half-ellipse 0 -> 2.5a₀ above the singularities (all at
-    ξ <= ζ_R a₀ < 1.15 a₀), then real panels: geometric (ratio 1.5) to 8, width 64/n_wave after."""
-    t, wt = _gauss(0.0, 1.0, n_wave)
-    t0, h = 2.5 * a0, 0.5 * a0
-    eta = 0.5 * t0 * (1 - np.cos(np.pi * t)) + 1j * h * np.sin(np.pi * t)
-    deta = (0.5 * t0 * np.pi * np.sin(np.pi * t) + 1j * h * np.pi * np.cos(np.pi * t)) * wt
-    edges = [t0]
-    while edges[-1] * 1.5 < 8.0:
-        edges.append(edges[-1] * 1.5)
-    n_tail = max(1, math.ceil((xi_max - max(8.0, t0)) / (64.0 / n_wave)))
-    edges = np.concatenate([edges, np.linspace(max(8.0, t0), xi_max, n_tail + 1)])
-    edges = np.unique(edges)
-    # all panels at once: (n_panels, per_panel) nodes from one reference rule
-    per_panel = max(8, n_wave // 2)
-    x, w = np.polynomial.legendre.leggauss(per_panel)
-    lo, hi = edges[:-1, None], edges[1:, None]
-    xs = (0.5 * (hi - lo) * x + 0.5 * (hi + lo)).ravel()
-    ws = (0.5 * (hi - lo) * w).ravel()
-    return np.concatenate([eta, xs]), np.concatenate([deta, ws])
+    """Nodes/weights of ∫₀^{ξ_max} (:mod:`wavenumber_contour`; panels of width 64/n_wave beyond
+    ξ = 8)."""
+    return wavenumber_rule(a0, n_wave, xi_max, 64.0 / n_wave, max(8, n_wave // 2))
 
 
 def tangential_disk(a0, nu, n_basis=8, n_wave=32, xi_max=200.0):

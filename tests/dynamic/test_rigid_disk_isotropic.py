@@ -44,12 +44,12 @@ Numerics (each step has its own resolution knob, all doubled in the convergence 
   converges spectrally; a plain Nyström rule that ignores the kink only converges like N⁻².
 """
 
-import itertools
 import math
 
 import numpy as np
 import pytest
 from scipy import integrate, interpolate, optimize
+from wavenumber_contour import gauss, wavenumber_rule
 
 from contactres import Material, dcsf
 
@@ -77,28 +77,9 @@ def _tail_coefficients(nu):
     return d1 - g2 / 2, d1 * d1 + d2 - g2 * d1 / 2 - g2 * g2 / 8
 
 
-def _gauss(a, b, n):
-    x, w = np.polynomial.legendre.leggauss(n)
-    return 0.5 * (b - a) * x + 0.5 * (b + a), 0.5 * (b - a) * w
-
-
 def _wavenumber_rule(a0, n):
-    """Nodes and weights of the η integral: half-ellipse 0 -> T₀ above the singularities (which
-    sit at η = γ a₀, a₀, ζ_R a₀ <= 1.1 a₀), then real panels T₀ -> η_max."""
-    t, wt = _gauss(0.0, 1.0, n)
-    t0, h = 2.5 * a0, 0.5 * a0
-    eta = 0.5 * t0 * (1 - np.cos(np.pi * t)) + 1j * h * np.sin(np.pi * t)
-    deta = (0.5 * t0 * np.pi * np.sin(np.pi * t) + 1j * h * np.pi * np.cos(np.pi * t)) * wt
-    # real panels: geometric (ratio 1.5) up to η = 8, then of width 32/n up to η = 80
-    edges = [t0]
-    while edges[-1] * 1.5 < 8.0:
-        edges.append(edges[-1] * 1.5)
-    edges = np.concatenate([edges, np.arange(max(8.0, t0), 80.0 + 1e-9, 32.0 / n)])
-    per_panel = max(8, n // 4)
-    panels = [_gauss(a, b, per_panel) for a, b in itertools.pairwise(edges)]
-    xs = np.concatenate([p[0] for p in panels])
-    ws = np.concatenate([p[1] for p in panels])
-    return np.concatenate([eta, xs]), np.concatenate([deta, ws])
+    """Nodes and weights of the η integral up to η = 80 (:mod:`wavenumber_contour`)."""
+    return wavenumber_rule(a0, n, 80.0, 32.0 / n, max(8, n // 4))
 
 
 def _kernel_l(u, a0, nu, n):
@@ -121,12 +102,12 @@ def _kernel_l(u, a0, nu, n):
 
 def fredholm_disk(a0, nu, n_nodes=16, n_wave=32):
     """K_z/K₀ = k + i a₀ c of the rigid disk from the Fredholm equation (module docstring)."""
-    x, w = _gauss(0.0, 1.0, n_nodes)
+    x, w = gauss(0.0, 1.0, n_nodes)
     m = n_nodes + 8
     pieces = [
         (np.r_[ya, yb], np.r_[wa, wb])
         for xi in x
-        for (ya, wa), (yb, wb) in [(_gauss(0.0, xi, m), _gauss(xi, 1.0, m))]
+        for (ya, wa), (yb, wb) in [(gauss(0.0, xi, m), gauss(xi, 1.0, m))]
     ]
     y = np.array([p[0] for p in pieces])  # (N, 2m) σ nodes for each collocation τ_i = x_i
     wy = np.array([p[1] for p in pieces])
