@@ -254,3 +254,12 @@ def test_afm_three_modes_choose_the_crossing_and_report_their_spread(tmp_path):
     assert r.exit_code != 0 and "--crystal" in r.output
     r, _ = _invert(frame, tmp_path, "--crystal", "unobtainium")
     assert r.exit_code != 0 and "--crystal" in r.output and "Traceback" not in r.output
+
+
+def test_afm_modewise_needs_the_free_frequency_of_every_mode_used(afm_table, tmp_path):
+    path, _ = afm_table
+    frame = pd.read_csv(path).drop(columns=["f2_free_Hz"])
+    frame["fc2_Hz"] = 1.2e6
+    r, _ = _invert(frame, tmp_path, "--normalisation", "modewise")
+    assert r.exit_code != 0 and "f2_free_Hz" in r.output and "line 2" in r.output
+    assert "Traceback" not in r.output and "[" not in r.output.split("error:")[1]

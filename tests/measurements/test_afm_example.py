@@ -126,6 +126,7 @@ def test_seeded_and_noise_leaves_the_grains(example):
         (dict(noise=-1.0), "noise"),
         (dict(pixel_size=0.0), "pixel_size"),
         (dict(shape=(0, 4)), "shape"),
+        (dict(shape=(3,)), "shape"),
     ],
 )
 def test_bad_arguments_name_the_argument(kwargs, word):

@@ -269,6 +269,15 @@ def invert_afm_table(
                 f"f{n}_free_Hz of its row; a contact can only raise it (check the columns)"
             )
     _check_free_q(table, source)
+    if normalisation == "modewise":  # each mode measured needs its own free frequency
+        for n in _MODES:
+            lacking = ~np.isnan(fc[:, n - 1]) & table[f"f{n}_free_Hz"].isna().to_numpy()
+            if lacking.any():
+                raise ValueError(
+                    f"{where_rows(table, source, lacking, f'f{n}_free_Hz')}: is empty while "
+                    f"fc{n}_Hz is given; modewise normalisation needs the free frequency of "
+                    "every mode used (or use --normalisation global)"
+                )
     q = table[[f"Q{n}" for n in _MODES]].to_numpy(float)
     f_ref = table[["fc1_ref_Hz", "fc1_ref2_Hz"]].to_numpy(float)
     r_in = table["tip_position"].to_numpy(float)

@@ -130,6 +130,8 @@ def example_afm_map(
         surface ("(001)", "(011)", "(111)" or "random"), M_sample_Pa, E_star_Pa,
         k_star_N_per_m, kappa and the noise-free fc1_Hz, fc2_Hz.
     """
+    if np.ndim(shape) != 1 or len(shape) != 2:
+        raise ValueError(f"shape must be (ny, nx) pixels, got {shape!r}")
     ny, nx = (int(v) for v in shape)
     positive("shape", np.array([ny, nx]), "pixels")
     positive("pixel_size", pixel_size, "m")

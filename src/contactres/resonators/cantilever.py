@@ -143,7 +143,8 @@ class Cantilever:
             if np.any(mode > len(self.free_frequencies)) or np.any(mode < 1):
                 raise ValueError(
                     f"modewise normalisation needs the free frequency of every mode used; "
-                    f"the cantilever has {len(self.free_frequencies)}, modes {np.unique(mode)}"
+                    f"the cantilever has {len(self.free_frequencies)}, modes used "
+                    f"{[int(x) for x in np.unique(mode)]}"
                 )
             idx = mode - 1
         omega = 2.0 * np.pi * np.asarray(self.free_frequencies)[idx]
