@@ -142,3 +142,20 @@ def test_exact_model_errors():
         contact_pressure(_cubic(0.5), 1.0, 1.0)
     with pytest.raises(ValueError, match="one ka"):
         contact_pressure(_cubic(0.5), [1.0, 2.0], 0.5)
+
+
+@pytest.mark.parametrize("face", [(1, 1, 1), (1, 2, 3)])
+def test_default_basis_reaches_the_coupled_harmonics_of_low_symmetry_faces(face):
+    # A (111) face is six-fold: with step 2 it couples the harmonics n = ±6, which a basis with
+    # |n| <= 4 missed (3e-4 off on Cu(111), found by review). The default basis against twice
+    # the terms and harmonics, k_l a up to 2.
+    from contactres.dynamic import prepare, shear_wavenumber_ratio
+
+    m = Material.crystal("Cu").rotated(face)
+    table = prepare(m, 0.0)
+    ksa = np.linspace(0.1, 2.0, 8) * shear_wavenumber_ratio(m)
+    size = galerkin_size(float(ksa.max()))
+    default = exact_n(table, ksa, size)
+    fine = exact_n(table, ksa, size.doubled())
+    assert np.max(np.abs(default / fine - 1)) < 1e-7
+    np.testing.assert_allclose(dcsf(m, ksa / shear_wavenumber_ratio(m)), table.n_static / default)
