@@ -267,7 +267,7 @@ def dcsf_models(
         # N, not the DCSF, is interpolated: N is smooth, N_st/N of SA (R1) has a pole where N
         # passes zero. The interpolation adds at most a tenth of the stated error.
         # One discretisation for every node set (sized by the finest grid's smallest node).
-        low = uniq[uniq > 0][0] if uniq[0] > 0 else uniq[-1] * (1 - math.cos(math.pi / LARGEST))
+        low = uniq[0] if uniq[0] > 0 else uniq[-1] * (1 - math.cos(math.pi / LARGEST))
         span = (low / 2, uniq[-1])
 
         def direct(x):

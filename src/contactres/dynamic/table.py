@@ -181,11 +181,11 @@ def resolution_for(rtol: float) -> Resolution:
 def check_contrast(m: Material) -> float:
     """The stiffness contrast of ``m``, after refusing one beyond :data:`MAX_STIFFNESS_CONTRAST`
     (a nearly incompressible solid, where the DCSF would miss its stated accuracy 1e-6)."""
-    from ..normal.anisotropic import stiffness_contrast
+    from ..normal.anisotropic import contrast_poisson, stiffness_contrast
 
     contrast = stiffness_contrast(m)
     if not contrast <= MAX_STIFFNESS_CONTRAST:
-        nu = (contrast - 1) / (2 * contrast + 1) if math.isfinite(contrast) else 0.5
+        nu = contrast_poisson(contrast)
         raise ValueError(
             f"the solid is too nearly incompressible for the dynamic kernels: stiffness "
             f"contrast (bulk/shear) {contrast:.4g}, as an isotropic solid with nu = {nu:.7g}; "

@@ -36,6 +36,7 @@ __all__ = [
     "AnisotropicContact",
     "ContactIntegrals",
     "contact_integrals",
+    "contrast_poisson",
     "indentation_modulus",
     "isotropic_constants",
     "sphere_contact",
@@ -57,6 +58,12 @@ _ISOTROPIC_TOL = 1e-12
 # incompressibility) rather than on anisotropy: the general static kernel loses ~ε × contrast²
 # (measured: 1.5e-7 pointwise at contrast 7500, isotropic ν = 0.4999).
 _ROUNDOFF_CONTRAST = 1e3
+
+
+def contrast_poisson(contrast: float) -> float:
+    """ν of the isotropic solid with stiffness contrast 3K/(2G) = (1 + ν)/(1 − 2ν) =
+    ``contrast`` (:func:`stiffness_contrast`), for messages; 0.5 for an infinite contrast."""
+    return (contrast - 1) / (2 * contrast + 1) if np.isfinite(contrast) else 0.5
 
 
 def stiffness_contrast(m: Material) -> float:
@@ -180,7 +187,7 @@ def contact_integrals(m: Material, rtol: float = THETA_RTOL) -> ContactIntegrals
         if n >= _N_MAX:
             contrast = stiffness_contrast(m)
             if contrast > _ROUNDOFF_CONTRAST:
-                nu = (contrast - 1) / (2 * contrast + 1)
+                nu = contrast_poisson(contrast)
                 reason = (
                     f"the solid is nearly incompressible (stiffness contrast {contrast:.4g}, "
                     f"as an isotropic solid with nu = {nu:.6g}): the static kernel loses "

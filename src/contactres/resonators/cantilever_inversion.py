@@ -374,10 +374,7 @@ def invert_contact_resonance(
             averaged = usable
             used = measured
         else:
-            first_two = np.argsort(~measured, axis=-1, kind="stable")[..., :2]
-            used = np.zeros(np.broadcast_shapes(measured.shape, kappa_m.shape), bool)
-            np.put_along_axis(used, first_two, True, axis=-1)
-            used &= measured
+            used = _first_two(np.broadcast_to(measured, kappa_m.shape))[1]
             kappa = _mean_where(np.real(kappa_m), used)
             averaged = used
         flags = np.bitwise_or.reduce(np.where(used, flags_m, 0), axis=-1)
@@ -426,6 +423,15 @@ def invert_contact_resonance(
     )
 
 
+def _first_two(measured):
+    """Indices (..., 2) of the first two measured columns of each pixel, and the mask of those
+    that are measured (the two modes whose crossing gives r)."""
+    first_two = np.argsort(~measured, axis=-1, kind="stable")[..., :2]
+    mask = np.zeros(measured.shape, bool)
+    np.put_along_axis(mask, first_two, True, axis=-1)
+    return first_two, mask & measured
+
+
 def _two_modes(beta, mode_arr, measured, g, tolerance):
     """(r[..., None], candidates, candidate κ, number of eligible crossings) of the two-mode
     inversion; further measured modes choose among the crossings (module notes)."""
@@ -433,7 +439,7 @@ def _two_modes(beta, mode_arr, measured, g, tolerance):
     pix_shape = shape[:-1]
     beta = np.broadcast_to(beta, shape)
     meas = np.broadcast_to(measured, shape)
-    first_two = np.argsort(~meas, axis=-1, kind="stable")[..., :2]
+    first_two, crossing = _first_two(meas)
     b2 = np.take_along_axis(beta, first_two, axis=-1).reshape(-1, 2)
     m2 = mode_arr[first_two].reshape(-1, 2)
     gf = tuple(np.broadcast_to(x[..., 0], pix_shape).reshape(-1) for x in g)
@@ -450,8 +456,7 @@ def _two_modes(beta, mode_arr, measured, g, tolerance):
     cand_k[pix, rank] = np.real(kap)
     in_win = (cand >= 0.5) & (cand <= 1.0)
     # Further modes: κ of each at every candidate r, its largest deviation from the crossing's.
-    extra = meas.reshape(n, -1).copy()
-    np.put_along_axis(extra, first_two.reshape(n, 2), False, axis=-1)
+    extra = (meas & ~crossing).reshape(n, -1)
     dev = np.full((n, k_max), -np.inf)
     gk = tuple(x[:, None] for x in gf)
     for c in np.flatnonzero(extra.any(axis=0)):  # a loop over modes (<= 8), not over pixels
