@@ -1,0 +1,246 @@
+"""Tangential contact stiffness of a rigid circular contact, static and dynamic (public API).
+
+The tangential counterpart of paper 1: a rigid disk of radius a bonded to the surface of an
+anisotropic half-space (relaxed contact: no normal traction under it, the normal displacement
+free) translates tangentially, u = U (cos ψ, sin ψ) e^{iωt}, without rotating. The force is
+F_α = K_αβ(ω) U_β with K the complex 2x2 tangential stiffness tensor, N/m (Im K > 0: energy
+carried away by shear, longitudinal and Rayleigh waves, and material loss).
+
+* Static: :mod:`contactres.dynamic.tangential_static` (isotropic K = 8Ga/(2 − ν), Mindlin 1949).
+* Dynamic: :mod:`contactres.dynamic.tangential_galerkin`, the Galerkin solution on the disk with
+  the in-plane block of the dynamic surface Green's function of
+  :mod:`contactres.halfspace`; K(ω)/K₀ = k_t(a₀) + i a₀ c_t(a₀), a₀ = k_s a (isotropic
+  c_t(0) = 0.617, 0.598, 0.580 at ν = 0.17, 0.25, 1/3).
+* Two bodies (a sphere on a plate, the QCM contact of paper 2): the compliances add,
+  K⁻¹ = K_sphere⁻¹ + K_plate⁻¹ (:func:`two_body_contact_stiffness`).
+
+Conventions: time factor e^{iωt}; k_s = ω √(ρ/C44) with C44 = Re C[3, 3] of the surface frame
+(the shear wave number of an isotropic solid); loss as constants C (1 + i Q⁻¹); directions in
+degrees from the surface x axis towards y (right-handed about the inward normal z).
+
+References: R. D. Mindlin, J. Appl. Mech. 16, 259-268 (1949); J. Tian, Am. J. Eng. Appl. Sci.
+3(1), 56-63 (2010) (paper 1, the normal problem this one mirrors); Y. Gao, I. Reviakine, … ,
+D. Johannsmann (paper 2) for the QCM at 15 MHz whose contacts motivate it.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..halfspace import shear_reference
+from ..materials import Material, require_material
+from ..validation import nonnegative, positive
+from .models import WAVENUMBERS
+from .table import check_loss
+from .tangential_galerkin import TangentialTable, prepare_tangential, tangential_per_a
+
+__all__ = [
+    "tangential_contact_stiffness",
+    "tangential_dcsf",
+    "two_body_contact_stiffness",
+]
+
+
+def _unit(direction) -> np.ndarray:
+    psi = math.radians(float(direction))
+    if not math.isfinite(psi):
+        raise ValueError(f"direction must be a finite angle in degrees, got {direction!r}")
+    return np.array([math.cos(psi), math.sin(psi)])
+
+
+def _per_a(m: Material, ksa: np.ndarray, loss: float, rtol: float, prepared) -> np.ndarray:
+    """K/a (Pa, complex, ksa.shape + (2, 2)) of the lossy material at k_s a values ``ksa``."""
+    if prepared is None:
+        table = prepare_tangential(m, loss, rtol)
+    elif isinstance(prepared, TangentialTable):
+        table = prepared.check_for(m, loss, rtol)
+    else:
+        raise TypeError(
+            f"prepared must be a TangentialTable from prepare_tangential, got "
+            f"{type(prepared).__name__}"
+        )
+    flat = ksa.ravel()
+    uniq, inverse = np.unique(flat, return_inverse=True)
+    out = tangential_per_a(table, uniq)
+    return out[inverse].reshape(*ksa.shape, 2, 2)
+
+
+def _ks_a(m: Material, ka, wavenumber: str) -> np.ndarray:
+    from .normal_stiffness import shear_wavenumber_ratio
+
+    ka = np.asarray(nonnegative("ka (normalised wave number k a)", ka))
+    if wavenumber == "shear":
+        return ka
+    if wavenumber == "longitudinal":
+        return ka * shear_wavenumber_ratio(m)
+    raise ValueError(f"wavenumber must be one of {', '.join(WAVENUMBERS)}, got {wavenumber!r}")
+
+
+def tangential_dcsf(
+    material: Material,
+    ka,
+    direction: float = 0.0,
+    wavenumber: str = "shear",
+    *,
+    loss: float = 0.0,
+    tensor: bool = False,
+    rtol: float = 1e-6,
+    prepared: TangentialTable | None = None,
+):
+    """Tangential dynamic-contact-stiffness factor K_t(ω)/K_t0 of a rigid disk, complex.
+
+    Parameters
+    ----------
+    material : Material
+        Undamped constants in the surface frame (z = inward normal), Pa; density not needed.
+    ka : float or array
+        Normalised wave number k a >= 0 (a: contact radius) in the convention ``wavenumber``.
+    direction : float
+        ψ, degrees from the surface x axis: the direction of the motion and of the force
+        component reported (K_ψ = e_ψ·K·e_ψ).
+    wavenumber : str
+        "shear" (default): k_s = ω√(ρ/C44), the a₀ = k_s a of the tangential literature; or
+        "longitudinal": k_l = ω√(ρ/C33) (C44, C33 of the surface frame), as for :func:`dcsf`.
+    loss : float
+        Q⁻¹ of the constants C (1 + i Q⁻¹), in [0, 1) (default 0: radiation damping only).
+    tensor : bool
+        Return the 2x2 matrix K(ka) K₀⁻¹ (K₀ the static tensor of the undamped constants)
+        instead of K_ψ(ka)/K_ψ0.
+    rtol : float
+        Target relative accuracy (default 1e-6, met for k_s a <= 2; see
+        :mod:`contactres.dynamic.tangential_galerkin`).
+    prepared : TangentialTable, optional
+        :func:`~contactres.dynamic.tangential_galerkin.prepare_tangential` of this material,
+        ``loss`` and ``rtol`` (most of the cost of a curve); built for this call otherwise.
+
+    Returns
+    -------
+    complex or ndarray of complex
+        1 + i Q⁻¹ at ka = 0; real part: stiffness, imaginary part: radiation + material loss.
+    """
+    m = require_material(material, lossless=True)
+    ksa = _ks_a(m, ka, wavenumber)
+    e = _unit(direction)
+    K = _per_a(m, np.concatenate([[0.0], ksa.ravel()]), loss, rtol, prepared)
+    # The static tensor of the undamped constants (ka = 0 gives it times 1 + iQ⁻¹).
+    k0 = (K[0] / (1 + 1j * check_loss(loss))).real
+    k = K[1:].reshape(*ksa.shape, 2, 2)
+    if tensor:
+        return k @ np.linalg.inv(k0)
+    out = np.einsum("i,...ij,j->...", e, k, e) / float(e @ k0 @ e)
+    return complex(out) if out.ndim == 0 else out
+
+
+def tangential_contact_stiffness(
+    material: Material,
+    radius,
+    frequency=0.0,
+    direction: float = 0.0,
+    loss: float = 0.0,
+    *,
+    tensor: bool = False,
+    rtol: float = 1e-6,
+    prepared: TangentialTable | None = None,
+):
+    """Tangential stiffness K_t(ω) = F/U of a rigid disk of radius a on ``material``, N/m.
+
+    Parameters
+    ----------
+    material : Material
+        Undamped constants in the surface frame (z = inward normal), Pa, with ``density``
+        (kg/m^3) when ``frequency`` > 0.
+    radius : float or array
+        Contact radius a > 0, m.
+    frequency : float or array
+        f >= 0, Hz (ω = 2πf); broadcasts against ``radius``. 0: the static stiffness.
+    direction : float
+        ψ, degrees from the surface x axis (motion e_ψ, force component along it).
+    loss : float
+        Q⁻¹ of the constants, in [0, 1) (default 0).
+    tensor : bool
+        Return the 2x2 tensor K_αβ (surface frame) instead of K_ψ.
+    rtol, prepared
+        As in :func:`tangential_dcsf`.
+
+    Returns
+    -------
+    complex or ndarray of complex
+        K_ψ in N/m (shaped like the broadcast of ``radius`` and ``frequency``), or with
+        ``tensor`` the tensors (shape + (2, 2)).
+    """
+    m = require_material(material, lossless=True)
+    a = np.asarray(positive("radius", radius, "m"), dtype=float)
+    f = np.asarray(nonnegative("frequency", frequency, "Hz"), dtype=float)
+    a, f = np.broadcast_arrays(a, f)
+    if np.any(f > 0) and m.density is None:
+        raise ValueError("a dynamic tangential stiffness needs the material density (kg/m^3)")
+    ks = 2 * np.pi * f * math.sqrt(m.density / shear_reference(m)) if np.any(f > 0) else 0 * f
+    K = a[..., None, None] * _per_a(m, ks * a, loss, rtol, prepared)
+    if tensor:
+        return K
+    e = _unit(direction)
+    out = np.einsum("i,...ij,j->...", e, K, e)
+    return complex(out) if out.ndim == 0 else out
+
+
+def two_body_contact_stiffness(
+    sphere: Material,
+    plate: Material,
+    radius,
+    frequency=0.0,
+    direction: float = 0.0,
+    *,
+    sphere_loss: float = 0.0,
+    plate_loss: float = 0.0,
+    tensor: bool = False,
+    rtol: float = 1e-6,
+):
+    """Tangential stiffness of a contact of radius a between two bodies, N/m (complex).
+
+    The relative tangential motion is shared by the two half-spaces in series: the
+    compliances add, K⁻¹ = K_sphere⁻¹(ω) + K_plate⁻¹(ω), each with its own material,
+    orientation, loss and dynamic factor (Mindlin 1949 for the static sum; the bodies are
+    treated as half-spaces, a ≪ R).
+
+    Parameters
+    ----------
+    sphere, plate : Material
+        Undamped constants of each body in its own surface frame (z = inward normal of that
+        body), with density. The frames share the x axis: the sphere's (x, y, z) is the plate's
+        (x, −y, −z) (a rotation by π about x), so for an isotropic sphere only the plate's frame
+        matters. For the QCM of paper 2: :func:`~contactres.materials.at_cut_quartz` (x = the
+        crystal's X axis, the shear direction of the plate).
+    radius : float or array
+        Contact radius a > 0, m.
+    frequency : float or array
+        f >= 0, Hz.
+    direction : float
+        ψ, degrees from the plate's x axis: the direction of the relative motion.
+    sphere_loss, plate_loss : float
+        Q⁻¹ of each body's constants, in [0, 1) (default 0: radiation only).
+    tensor : bool
+        Return the 2x2 tensor in the plate frame instead of K_ψ.
+    rtol : float
+        Relative accuracy of each body's stiffness (default 1e-6).
+
+    Returns
+    -------
+    complex or ndarray of complex
+        K_ψ (or the tensors) in N/m; tan δ_rad = Im K/Re K is the loss tangent of the contact.
+    """
+    kp = tangential_contact_stiffness(
+        plate, radius, frequency, loss=plate_loss, tensor=True, rtol=rtol
+    )
+    ks = tangential_contact_stiffness(
+        sphere, radius, frequency, loss=sphere_loss, tensor=True, rtol=rtol
+    )
+    flip = np.diag([1.0, -1.0])
+    ks = flip @ ks @ flip
+    K = np.linalg.inv(np.linalg.inv(kp) + np.linalg.inv(ks))
+    if tensor:
+        return K
+    e = _unit(direction)
+    out = np.einsum("i,...ij,j->...", e, K, e)
+    return complex(out) if out.ndim == 0 else out
