@@ -56,6 +56,10 @@ _EXPORTS: dict[str, str] = {
     "dcsf": ".dynamic",
     "dcsf_models": ".dynamic",
     "dynamic_contact_stiffness": ".dynamic",
+    "tangential_contact_stiffness": ".dynamic",
+    "tangential_dcsf": ".dynamic",
+    "tangential_stiffness_static": ".dynamic",
+    "two_body_contact_stiffness": ".dynamic",
     # tangential loops
     "CattaneoMindlinLoop": ".tangential",
     "DashpotLoop": ".tangential",

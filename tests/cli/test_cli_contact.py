@@ -120,13 +120,17 @@ BAD = [
     (CRYSTAL, "--radius", "100"),
     (CRYSTAL, "--force", "1e300"),
     (CRYSTAL, "--format", "xml"),
+    (CRYSTAL, "--frequency", "15"),
+    (CRYSTAL, "--direction", "east"),
 ]
+# Flags take no value: their misuse is a combination (test_contact_tangential_bad_input).
+FLAGS = {"--tangential"}
 
 
 def test_every_option_has_a_bad_input_case():
     from contactres.cli.contact import contact
 
-    assert option_names(contact) == {option for _, option, _ in BAD}
+    assert option_names(contact) == {option for _, option, _ in BAD} | FLAGS
 
 
 @pytest.mark.parametrize("base, option, value", BAD, ids=[f"{o}={v}" for _, o, v in BAD])
@@ -188,7 +192,7 @@ def test_plausible_extremes_print_finite_numbers():
 def test_help_states_units_and_shows_defaults_one_way():
     from contactres.cli.contact import contact
 
-    unit = re.compile(r"(, N |, Pa|, m |dimensionless)")
+    unit = re.compile(r"(, N |, Pa|, m |, Hz |dimensionless|degrees)")
     for p in contact.params:
         if p.type.name in ("FLOAT", "START:STOP:NUM"):
             assert unit.search(p.help), p.opts
@@ -219,3 +223,70 @@ def test_crystals_lists_indentation_moduli():
     # W is almost isotropic (A = 0.999): all faces give E/(1 - ν²) of the isotropic solid.
     w = next(row for row in rows if row["name"] == "W")
     assert max(w["M001_GPa"], w["M111_GPa"]) / min(w["M001_GPa"], w["M111_GPa"]) < 1.001
+
+
+# ------------------------------------------------------------------ tangential and dynamic
+def test_contact_tangential_and_frequency_match_library():
+    """--tangential --frequency: the columns are the library's values at the Hertz contact
+    radius; the static tangential column on an isotropic glass is Mindlin's 8Ga/(2 − ν)."""
+    from contactres import at_cut_quartz, dcsf, tangential_contact_stiffness
+
+    rows = _json(
+        run(
+            "contact",
+            "--crystal",
+            "quartz-AT",
+            "--radius",
+            5e-3,
+            "--force",
+            "1e-3,1e-2",
+            "--tangential",
+            "--frequency",
+            15e6,
+            "--format",
+            "json",
+        )
+    )
+    q = at_cut_quartz()
+    for row, force in zip(rows, (1e-3, 1e-2), strict=True):
+        c = sphere_contact(q, 5e-3, force)
+        kt = tangential_contact_stiffness(q, c.contact_radius, 15e6)
+        assert row["tangential_stiffness_real_N_per_m"] == pytest.approx(kt.real, rel=1e-9)
+        assert row["tangential_stiffness_imag_N_per_m"] == pytest.approx(kt.imag, rel=1e-9)
+        assert row["tangential_loss_tangent"] == pytest.approx(kt.imag / kt.real, rel=1e-9)
+        kn = c.stiffness * dcsf(q, row["ks_a"], wavenumber="shear")
+        assert row["dynamic_stiffness_imag_N_per_m"] == pytest.approx(kn.imag, rel=1e-9)
+    glass = Material.crystal("soda-lime-glass")
+    E, nu = glass.isotropic_constants
+    row = _json(
+        run(
+            "contact",
+            "--crystal",
+            "soda-lime-glass",
+            "--radius",
+            5e-3,
+            "--force",
+            1e-3,
+            "--tangential",
+            "--format",
+            "json",
+        )
+    )[0]
+    G = E / (2 * (1 + nu))
+    a = row["contact_radius_m"]
+    assert row["tangential_stiffness_N_per_m"] == pytest.approx(8 * G * a / (2 - nu), rel=1e-9)
+
+
+@pytest.mark.parametrize(
+    "args, words",
+    [
+        (["--crystal", "quartz-AT", "--surface", "111"], ["already a cut"]),
+        (["--crystal", "Cu", "--frequency", "15"], ["--frequency", "MHz"]),
+        (["--c11", 168e9, "--c12", 121e9, "--c44", 75e9, "--frequency", 1e6], ["density"]),
+        (["--crystal", "Cu", "--tangential", "--direction", "nan"], ["--direction"]),
+        (["--crystal", "Cu", "--tangential", "--frequency", 1e9], ["k_s a", "beyond"]),
+    ],
+)
+def test_contact_tangential_bad_input(args, words):
+    r = run("contact", "--radius", 5e-3, "--force", 1e-3, *args)
+    one_line_error(r, *words)

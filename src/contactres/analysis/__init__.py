@@ -4,7 +4,8 @@
 closed-form fits (:mod:`.amplitude`), the exact loops (:mod:`.loops`), the fitted models and their
 registry (:mod:`.models`), the model choice (:mod:`.classify`), friction (:mod:`.friction`),
 drift (:mod:`.drift`), statistics per load (:mod:`.loads`), the JKR + Mindlin fit (:mod:`.jkr`),
-the flags (:mod:`.flags`) and the results (:mod:`.results`).
+the radiation loss of the contacts (:mod:`.radiation`), the flags (:mod:`.flags`) and the results
+(:mod:`.results`).
 
 Paper 2: J. Vlachová, R. König, D. Johannsmann, "Stiffness of sphere-plate contacts at MHz
 frequencies: dependence on normal load, oscillation amplitude, and ambient medium", Beilstein J.

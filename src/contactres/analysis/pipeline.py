@@ -51,6 +51,10 @@
    JKR (Eq. 9) + Mindlin (κ = 2G*a, Eq. 7, 8, 10) with E1 = E2 = E and ν fixed (column
    ``poisson``), E and γ free; standard errors from the Jacobian scaled by the residual
    variance, and a bootstrap over experiments (``bootstrap`` resamples, seeded).
+7. **Radiation** (only with ``sphere_material`` and ``plate_material``): the loss tangent of
+   the sound the contact radiates into sphere and plate at each load's JKR contact radius and
+   overtone frequency, its share of the measured ΔΓ0/Δf0, and E refitted for the dynamic
+   softening of κ (:mod:`contactres.analysis.radiation`; ``Results.radiation``).
 """
 
 from __future__ import annotations
@@ -77,6 +81,7 @@ from .jkr import fit_group
 from .loads import GROUP_KEYS, per_experiment, per_load
 from .loops import X_MAX, loop_tables
 from .models import AMPLITUDE_MODELS
+from .radiation import load_frequencies, material_by_name, radiation_loss
 from .ramps import check_ramps
 from .results import Results
 from .running_in import running_in
@@ -110,6 +115,10 @@ class AnalysisSettings:
     workers : processes for the per-sweep and per-block fits (1: none; more pay from ~10^4
         sweeps on; a script that passes more must be importable where processes are spawned,
         see :func:`contactres.analysis.classify.fit_sweeps`)
+    sphere_material, plate_material : names of the two bodies for the radiation loss of the
+        contact (:func:`contactres.analysis.radiation.material_by_name`: a built-in solid, e.g.
+        ``"soda-lime-glass"`` or ``"glass"``; the plate also ``"quartz-AT"``, the AT-cut
+        quartz of the QCM); both or neither (None: no radiation table)
     """
 
     keep_first_ramp: bool = False
@@ -123,6 +132,8 @@ class AnalysisSettings:
     exact_loop: bool = True
     zq: float = 8.8e6
     workers: int = 1
+    sphere_material: str | None = None
+    plate_material: str | None = None
 
     def __post_init__(self):
         if not self.delta_bic >= 0:
@@ -135,6 +146,14 @@ class AnalysisSettings:
             raise ValueError(f"zq must be > 0, got {self.zq!r}")
         if int(self.workers) != self.workers or self.workers < 1:
             raise ValueError(f"workers must be a whole number >= 1, got {self.workers!r}")
+        if (self.sphere_material is None) != (self.plate_material is None):
+            raise ValueError(
+                "sphere_material and plate_material go together: give both (e.g. "
+                "'soda-lime-glass' and 'quartz-AT') or neither"
+            )
+        if self.sphere_material is not None:
+            material_by_name(self.sphere_material, "sphere")  # ValueError naming the known
+            material_by_name(self.plate_material, "plate")
 
 
 def _sensitivity(info: pd.DataFrame, zq: float) -> np.ndarray:
@@ -365,6 +384,18 @@ def analyze(
         groups.append(g)
         _savkoor_traction(sw, member, g)
 
+    radiation = None
+    if settings.sphere_material is not None:
+        say("radiation loss of the contacts")
+        radiation = radiation_loss(
+            loads,
+            groups,
+            settings.sphere_material,
+            settings.plate_material,
+            frequency_Hz=load_frequencies(sw, loads),
+            experiments=exp,
+        )
+
     record = asdict(settings)
     record["x_max_table"] = X_MAX
     return Results(
@@ -378,4 +409,5 @@ def analyze(
         padded=padded,
         blocks=blocks,
         messages=tuple(messages),
+        radiation=radiation,
     )

@@ -33,6 +33,8 @@ class Results:
     messages : what the analysis found odd in the input, one line each (e.g. ramp labels that
         disagree with the file order)
     blocks : one row per load block judged jointly (:mod:`contactres.analysis.blocks`)
+    radiation : one row per load: the radiation loss of the contact against the measured one
+        (:func:`contactres.analysis.radiation.radiation_loss`; None: no materials were given)
     """
 
     sweeps: pd.DataFrame
@@ -45,6 +47,7 @@ class Results:
     padded: Padded | None = field(default=None, repr=False)
     messages: tuple[str, ...] = ()
     blocks: pd.DataFrame | None = None
+    radiation: pd.DataFrame | None = None
 
     def table1(self) -> pd.DataFrame:
         """Table 1 of paper 2 for these data: E (GPa) and γ (mJ/m²) per configuration/medium.

@@ -150,6 +150,28 @@ class RangeType(click.ParamType):
 
 RANGE = RangeType()
 
+
+class MaterialType(click.ParamType):
+    """A click parameter for the name of a solid in a contact (``role`` "sphere" or "plate"):
+    a built-in solid (``contactres crystals``), ``glass`` (soda-lime glass) and, for the plate,
+    ``quartz-AT`` (:func:`contactres.materials.at_cut_quartz`). An unknown name is refused in one
+    line listing the known ones (:func:`contactres.analysis.radiation.material_by_name`)."""
+
+    name = "NAME"
+
+    def __init__(self, role: str):
+        self.role = role
+
+    def convert(self, value, param, ctx):
+        from ..analysis.radiation import material_by_name
+
+        try:
+            material_by_name(value, self.role)
+        except ValueError as exc:
+            self.fail(str(exc), param, ctx)
+        return str(value).strip()
+
+
 FORMATS = ("plain", "csv", "json")
 
 

@@ -130,8 +130,26 @@ def crystal_face_options(
     return decorate
 
 
+#: The names of the AT-cut quartz plate (already a cut: its own surface frame).
+AT_CUT_NAMES = ("quartz-at", "at-quartz", "quartz_at")
+
+
 def crystal_face(crystal, c11, c12, c44, zener, poisson, surface, inplane) -> Material:
-    """The chosen crystal in the frame of the chosen face (z = inward normal)."""
+    """The chosen crystal in the frame of the chosen face (z = inward normal); ``--crystal
+    quartz-AT`` is the AT-cut plate (:func:`contactres.materials.at_cut_quartz`)."""
+    if crystal is not None and crystal.strip().lower() in AT_CUT_NAMES:
+        from ..materials import at_cut_quartz
+
+        if (
+            surface != "001"
+            or inplane is not None
+            or any(v is not None for v in (c11, c12, c44, zener, poisson))
+        ):
+            raise ValueError(
+                "--crystal quartz-AT is already a cut (x = the X axis, z = the plate normal): "
+                "leave out --surface, --inplane and the elastic constants"
+            )
+        return at_cut_quartz()
     m = material_from_options(crystal, c11, c12, c44, zener, poisson)
     normal = parse_direction(surface, "surface")
     x = None if inplane is None else parse_direction(inplane, "inplane")

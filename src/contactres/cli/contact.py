@@ -1,4 +1,5 @@
-"""CLI: ``contactres contact`` (static Hertz contact of a rigid sphere on a crystal face)."""
+"""CLI: ``contactres contact`` (Hertz contact of a rigid sphere on a crystal face: normal and
+tangential stiffness, static or at a frequency)."""
 
 from __future__ import annotations
 
@@ -24,15 +25,46 @@ from ._crystal_face import crystal_face, crystal_face_options
     required=True,
     help="Normal force F, N (a number, START:STOP:NUM or a comma list).",
 )
+@click.option(
+    "--frequency",
+    type=RangeType("frequency", allow_zero=True),
+    default=None,
+    help="Oscillation frequency f, Hz (a number, START:STOP:NUM or a comma list; needs the "
+    "density: --crystal). Adds the exact dynamic normal stiffness (lossless solid), and with "
+    "--tangential the dynamic tangential one. Default: none (static only).",
+)
+@click.option(
+    "--tangential",
+    is_flag=True,
+    help="Add the tangential stiffness K_t of the contact (rigid disk of radius a translating "
+    "along --direction, relaxed contact: no normal traction; issue 13).",
+)
+@click.option(
+    "--direction",
+    type=float,
+    default=0.0,
+    show_default=True,
+    help="Direction of the tangential motion, degrees from the surface x axis (--inplane).",
+)
 @format_option()
-def contact(radius, force, fmt, **face):
-    """Static Hertz contact of a rigid sphere on a crystal face (paper 1, Eqs. 1-4).
+def contact(radius, force, frequency, tangential, direction, fmt, **face):
+    """Hertz contact of a rigid sphere on a crystal face (paper 1, Eqs. 1-4).
 
     Prints the contact radius a (m), the peak (centre) pressure p0 (Pa), the indentation depth
     (m), the static contact stiffness K_sa = dF/dw (N/m) and the indentation modulus M (Pa; the
-    E* of the isotropic solid that gives the same contact). Radius and force broadcast: give one
-    of them as a range for a table. On faces without 3- or 4-fold symmetry (e.g. 011) the true
-    contact is slightly elliptic and the circular result is an approximation (a note says so).
+    E* of the isotropic solid that gives the same contact). Radius, force and frequency
+    broadcast: give one of them as a range for a table. On faces without 3- or 4-fold symmetry
+    (e.g. 011) the true contact is slightly elliptic and the circular result is an
+    approximation (a note says so).
+
+    --frequency adds the exact dynamic normal stiffness K_da = K_sa DCSF (real and imaginary
+    parts, N/m, and k_s a = ω a √(ρ/C44)); --tangential adds the tangential stiffness of the
+    contact, static (Mindlin 8Ga/(2 − ν) on an isotropic solid) or at --frequency (real and
+    imaginary parts and the radiation loss tangent Im K/Re K). --crystal quartz-AT is the
+    AT-cut quartz plate of a QCM (x = the crystal's X axis, its shear direction).
+
+    Example: contactres contact --crystal quartz-AT --radius 5e-3 --force 1e-3 --tangential
+    --frequency 15e6
     """
     import numpy as np
     import pandas as pd
@@ -40,13 +72,18 @@ def contact(radius, force, fmt, **face):
     from ..normal.anisotropic import sphere_contact
 
     m = crystal_face(**face)
+    freq = np.zeros(1) if frequency is None else frequency
     try:
-        R, F = np.broadcast_arrays(radius, force)
+        R, F, f = np.broadcast_arrays(radius, force, freq)
     except ValueError:
         raise ValueError(
-            f"--radius ({len(radius)} values) and --force ({len(force)} values) must have the "
-            "same number of values, or one of them a single value"
+            f"--radius ({len(radius)} values), --force ({len(force)} values) and --frequency "
+            f"({len(freq)} values) must have the same number of values, or single values"
         ) from None
+    if frequency is not None and m.density is None:
+        raise ValueError("--frequency needs the density of the solid: choose it by --crystal")
+    if not np.isfinite(direction):
+        raise ValueError(f"--direction must be a finite angle in degrees, got {direction!r}")
     c = sphere_contact(m, R, F)
     table = pd.DataFrame(
         {
@@ -59,11 +96,52 @@ def contact(radius, force, fmt, **face):
             "indentation_modulus_Pa": c.indentation_modulus,
         }
     )
+    if frequency is not None:
+        _add_dynamic(table, m, c, f, tangential, direction)
+    elif tangential:
+        from ..dynamic import tangential_contact_stiffness
+
+        table["tangential_stiffness_N_per_m"] = tangential_contact_stiffness(
+            m, c.contact_radius, 0.0, direction
+        ).real
     emit(table, fmt)
     if not c.circular:
         click.echo(
-            f"note: surface {face['surface']} has no 3- or 4-fold symmetry: the contact is "
+            f"note: surface {_face_name(face)} has no 3- or 4-fold symmetry: the contact is "
             f"slightly elliptic (relative 2nd harmonic of the compliance "
             f"{c.noncircularity:.3g}); the circular Hertz result is an approximation",
             err=True,
         )
+
+
+def _add_dynamic(table, m, c, f, tangential: bool, direction: float) -> None:
+    """The dynamic normal (and tangential) stiffness columns at the frequencies ``f``."""
+    import math
+
+    import numpy as np
+
+    from ..dynamic import dcsf, tangential_contact_stiffness
+    from ..halfspace import shear_reference
+
+    a = np.asarray(c.contact_radius, dtype=float)
+    ksa = 2 * np.pi * f * a * math.sqrt(m.density / shear_reference(m))
+    table["frequency_Hz"] = f
+    table["ks_a"] = ksa
+    kn = c.stiffness * dcsf(m, ksa, wavenumber="shear")
+    table["dynamic_stiffness_real_N_per_m"] = np.real(kn)
+    table["dynamic_stiffness_imag_N_per_m"] = np.imag(kn)
+    if tangential:
+        kt = np.asarray(tangential_contact_stiffness(m, a, f, direction))
+        table["tangential_stiffness_real_N_per_m"] = kt.real
+        table["tangential_stiffness_imag_N_per_m"] = kt.imag
+        table["tangential_loss_tangent"] = kt.imag / kt.real
+
+
+def _face_name(face: dict) -> str:
+    """The face as the user chose it (the AT cut has its own name)."""
+    from ._crystal_face import AT_CUT_NAMES
+
+    crystal = face.get("crystal")
+    if crystal is not None and crystal.strip().lower() in AT_CUT_NAMES:
+        return "of the AT cut"
+    return str(face["surface"])

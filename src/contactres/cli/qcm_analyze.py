@@ -16,7 +16,7 @@ from pathlib import Path
 import click
 
 from ._app import qcm
-from ._common import MagnitudeType, emit, format_option, odd_overtone
+from ._common import MagnitudeType, MaterialType, emit, format_option, odd_overtone
 
 
 @qcm.command("analyze")
@@ -84,6 +84,21 @@ from ._common import MagnitudeType, emit, format_option, odd_overtone
     type=click.IntRange(min=1),
     help="Processes for the fits [default: all cores from 10,000 sweeps on, else 1].",
 )
+@click.option(
+    "--sphere-material",
+    type=MaterialType("sphere"),
+    help="Material of the spheres, a built-in solid ('contactres crystals'), e.g. "
+    "soda-lime-glass (alias glass) or fused-silica. With --plate-material: the loss tangent of "
+    "the sound the contact radiates into both bodies at the overtone frequency, at the JKR "
+    "contact radius (m) of each load, against the measured ΔΓ0/Δf0 (radiation.csv, "
+    "radiation_loss.png). Example: --sphere-material glass --plate-material quartz-AT.",
+)
+@click.option(
+    "--plate-material",
+    type=MaterialType("plate"),
+    help="Material of the plate: quartz-AT (the AT-cut quartz of the QCM, shear along its X "
+    "axis) or a built-in solid in its crystal frame. Only with --sphere-material.",
+)
 @click.option("--no-figures", is_flag=True, help="Skip the PNG figures.")
 @format_option()
 def analyze_command(
@@ -101,6 +116,8 @@ def analyze_command(
     law_per_load,
     bootstrap,
     workers,
+    sphere_material,
+    plate_material,
     no_figures,
     fmt,
 ):
@@ -110,14 +127,25 @@ def analyze_command(
     dgamma_Hz, normal_force_N; optional experiment, configuration, medium, ramp and the
     constants). Constants missing from it come from these options or from a TOML file beside
     it (SWEEPS with suffix .toml, or contactres.toml). Prints Table 1 (E, γ per configuration
-    and medium) and writes everything into OUT.
+    and medium) and writes everything into OUT. With --sphere-material and --plate-material
+    also the loss of the sound each contact radiates into the two bodies, against the measured
+    loss tangent (radiation.csv, radiation_loss.png, and a line per group).
     """
     from ..analysis import AnalysisSettings, analyze
     from ..analysis.flags import Flag, has
     from ..fileio import ResultSet
     from ..measurements.sweeps import read_sweeps
-    from ..report.console import friction_table, table1_text, withheld_lines
+    from ..report.console import friction_table, radiation_lines, table1_text, withheld_lines
     from ..report.tables import report_files, write_report
+
+    if (sphere_material is None) != (plate_material is None):
+        given = "--sphere-material" if plate_material is None else "--plate-material"
+        raise click.UsageError(
+            f"{given} needs the other body too: give --sphere-material and --plate-material "
+            "together (e.g. --sphere-material glass --plate-material quartz-AT) or neither",
+            click.get_current_context(),
+        )
+    radiation = sphere_material is not None
 
     constants = dict(
         area_m2=area,
@@ -131,7 +159,8 @@ def analyze_command(
     source = Path(sweeps)
     # Every file the run reads: the table and the TOML files its constants may come from.
     inputs = (source, source.with_suffix(".toml"), source.parent / "contactres.toml")
-    names, owned = report_files(formats), report_files()
+    names = report_files(formats, radiation=radiation)
+    owned = report_files(radiation=True)
     with ResultSet(out, names=names, inputs=inputs, owned=owned) as rs:
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
@@ -147,9 +176,11 @@ def analyze_command(
             remove_drift=remove_drift,
             pool_experiments=not law_per_load,
             bootstrap=bootstrap,
+            sphere_material=sphere_material,
+            plate_material=plate_material,
         )
         n_groups = table.data.groupby(["configuration", "medium"]).ngroups
-        steps = 6 + n_groups + (0 if no_figures else 1)
+        steps = 6 + n_groups + radiation + (0 if no_figures else 1)
         with (
             warnings.catch_warnings(record=True) as caught,
             click.progressbar(length=steps, label="analysing", file=sys.stderr) as bar,
@@ -179,6 +210,14 @@ def analyze_command(
             click.echo(f"contactres: warning: {line}", err=True)
         click.echo("\nfriction coefficient per load (exact-loop fit, median over experiments)")
         click.echo(_text(friction_table(results)))
+    if results.radiation is not None and len(results.radiation):
+        first = results.radiation.iloc[0]
+        click.echo(
+            f"\nradiation loss of the contacts (sphere {first['sphere_material']}, plate "
+            f"{first['plate_material']}; per load in radiation.csv)"
+        )
+        for line in radiation_lines(results):
+            click.echo(line)
     if fmt == "plain":
         n_used = int(results.sweeps["used"].sum())
         models = results.sweeps.loc[results.sweeps["used"], "model"].value_counts().to_dict()

@@ -4,6 +4,11 @@ Paper 1: the displacement models R0, R1, SA, WA, TP (Eqs. 24-28), the whole-cont
 and the exact rigid flat punch, as DCSF = K_da/K_sa (Eq. 29). :func:`prepare` builds the kernel
 table of a material once; pass it as ``prepared=`` to evaluate many curves of that material.
 
+The tangential counterpart (a rigid disk translating tangentially; relaxed contact): the static
+stiffness tensor (:func:`tangential_stiffness_static`), the exact dynamic one
+(:func:`tangential_contact_stiffness`, :func:`tangential_dcsf`, table :func:`prepare_tangential`)
+and two bodies in series (:func:`two_body_contact_stiffness`, the QCM contact of paper 2).
+
 The public names are loaded on first use (PEP 562 module ``__getattr__``): the model names
 (``MODELS``, ``ALL_MODELS``, ``WAVENUMBERS``) come without scipy, for the command line's options.
 """
@@ -29,6 +34,12 @@ _EXPORTS = MappingProxyType(
         "dcsf_models": ".normal_stiffness",
         "dynamic_contact_stiffness": ".normal_stiffness",
         "shear_wavenumber_ratio": ".normal_stiffness",
+        "TangentialTable": ".tangential_table",
+        "prepare_tangential": ".tangential_table",
+        "tangential_contact_stiffness": ".tangential_stiffness",
+        "tangential_dcsf": ".tangential_stiffness",
+        "tangential_stiffness_static": ".tangential_static",
+        "two_body_contact_stiffness": ".tangential_stiffness",
     }
 )
 

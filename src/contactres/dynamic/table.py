@@ -42,6 +42,7 @@ __all__ = [
     "gauss_legendre",
     "handover",
     "kernel_table",
+    "max_slowness",
     "prepare",
     "resolution_for",
 ]
@@ -345,7 +346,7 @@ def _elastic_kernel(m: Material, kappa, theta, loss: float):
     return dynamic_kernel(m, k, theta) / f
 
 
-def _max_slowness(m: Material) -> float:
+def max_slowness(m: Material) -> float:
     """Largest slowness of bulk waves travelling along the surface, in units of 1/c_s."""
     c = voigt_to_tensor(np.asarray(m.C).real) / shear_reference(m)
     th = np.linspace(0.0, np.pi, 181)
@@ -408,7 +409,7 @@ def _theta_values(m, kappa, q, static_fn, nth, symmetry, old=None):
 
 def _build_table(m: Material, q: float, res: Resolution) -> KernelTable:
     c44 = shear_reference(m)
-    kb = _max_slowness(m)
+    kb = max_slowness(m)
     t1 = _T1_FACTOR * kb
     height = _CONTOUR_HEIGHT * kb
 

@@ -56,11 +56,12 @@ import numpy as np
 from scipy import special
 
 from .farfield import far_basis, far_grid
-from .tangential_static import _CAUCHY_POINTS, _CAUCHY_RADIUS, _load, _radial_integrals
-from .tangential_table import T1_FACTOR, TangentialTable, max_harmonics, prepare_tangential
+from .tangential_static import CAUCHY_POINTS, CAUCHY_RADIUS, load_derivatives, radial_integrals
+from .tangential_table import TangentialTable, max_harmonics, prepare_tangential
 from .weights import spherical_bessel
 
 __all__ = [
+    "KSA_MAX",
     "TangentialSize",
     "TangentialTable",
     "prepare_tangential",
@@ -72,8 +73,9 @@ __all__ = [
 _EIG_CUTOFF = 1e-14
 # k a values evaluated together (memory ~1 MB per value at the default basis).
 _CHUNK = 32
-# Largest k_s a x slowness accepted (the contour weights grow like e^{0.3 x this}).
-_KA_MAX = 40.0
+#: Largest k_s a accepted: the range of the convergence tests (at 5: 1.5e-8 from the radial
+#: terms); beyond it the default basis is not checked.
+KSA_MAX = 5.0
 
 
 @dataclass(frozen=True)
@@ -138,10 +140,10 @@ class _Basis:
 
 def _series_integrals(pa: np.ndarray, pb: np.ndarray, n_log: int) -> np.ndarray:
     """∂^d_λ R(p_a, λ; p_b, 0) at λ = 0, d = 0..n_log (R of
-    :func:`contactres.dynamic.tangential_static._radial_integrals`, its second function at
+    :func:`contactres.dynamic.tangential_static.radial_integrals`, its second function at
     λ = 0), shape (n_log + 1, *broadcast(pa, pb).shape); Cauchy's formula in λ on the same
     circle as there."""
-    nc, rho = _CAUCHY_POINTS, _CAUCHY_RADIUS
+    nc, rho = CAUCHY_POINTS, CAUCHY_RADIUS
     z = rho * np.exp(2j * np.pi * np.arange(nc) / nc)
     pa = np.asarray(pa, dtype=float)[None]
     pb = np.asarray(pb, dtype=float)[None]
@@ -179,7 +181,7 @@ def _basis(table: TangentialTable, size: TangentialSize, ginf: np.ndarray) -> _B
     rad_d = np.array([r[2] for r in rad])
     rad_p = rad_n + 2 * rad_k
     p_max = nh + 2 * (nq - 1)
-    R = _radial_integrals(int(rad_p.max()), nlog)  # [d_a, d_b, p_a, p_b]
+    R = radial_integrals(int(rad_p.max()), nlog)  # [d_a, d_b, p_a, p_b]
     series = np.zeros((len(rad), p_max + 1))
     poly = rad_d == 0
     series[np.flatnonzero(poly), rad_p[poly]] = 1.0
@@ -209,7 +211,7 @@ def _basis(table: TangentialTable, size: TangentialSize, ginf: np.ndarray) -> _B
             rad_p[radial][None, :],
         ]
     )
-    loads = _load(nlog)
+    loads = load_derivatives(nlog)
     load = np.zeros((n.size, 2))
     carry = (n == 0) & (rad_k[radial] == 0)
     load[carry, alpha[carry]] = loads[rad_d[radial][carry]]
@@ -294,10 +296,11 @@ def tangential_per_a(
     """
     ksa = np.asarray(ksa, dtype=float).ravel()
     top = float(np.max(ksa, initial=0.0))
-    if top * table.t1 / T1_FACTOR > _KA_MAX:
+    if not top <= KSA_MAX:
         raise ValueError(
-            f"k_s a = {top:.4g} is beyond the range of the dynamic tangential stiffness "
-            f"(k_s a x slowness <= {_KA_MAX:g})"
+            f"k_s a = {top:.4g} is beyond the range where the dynamic tangential stiffness is "
+            f"checked (k_s a <= {KSA_MAX:g}, k_s = ω√(ρ/C44)): check the frequency and the "
+            "contact radius (units?)"
         )
     size = size or tangential_size(top, table.rtol)
     if 2 * size.n_harmonics > table.max_order:

@@ -69,8 +69,12 @@ from ..materials import Material, require_material
 from ..validation import positive
 
 __all__ = [
+    "CAUCHY_POINTS",
+    "CAUCHY_RADIUS",
     "inplane_kernel",
     "inplane_kernel_harmonics",
+    "load_derivatives",
+    "radial_integrals",
     "tangential_stiffness_static",
 ]
 
@@ -78,8 +82,8 @@ __all__ = [
 N_LOG = 2
 # Cauchy's formula for the λ-derivatives: circle radius and points. The nearest singularity is
 # the pole of Γ(1 + λ_a + λ_b) at λ_a + λ_b = −1, so the rule converges like (0.2/0.8)^32.
-_CAUCHY_RADIUS = 0.2
-_CAUCHY_POINTS = 32
+CAUCHY_RADIUS = 0.2
+CAUCHY_POINTS = 32
 # θ grid of the kernel harmonics: first size, largest size.
 _N_THETA_START = 64
 _N_THETA_MAX = 2**14
@@ -147,7 +151,7 @@ def inplane_kernel_harmonics(m: Material, max_order: int, rtol: float = 1e-13) -
         prev, n = h, 2 * n
 
 
-def _radial_integrals(p_max: int, n_log: int) -> np.ndarray:
+def radial_integrals(p_max: int, n_log: int) -> np.ndarray:
     """∂^{d_a}_{λ_a} ∂^{d_b}_{λ_b} R(p_a, λ_a; p_b, λ_b) at λ = 0 (module docstring).
 
     Returns an array (n_log + 1, n_log + 1, p_max + 1, p_max + 1), real. Weber-Schafheitlin with
@@ -155,7 +159,7 @@ def _radial_integrals(p_max: int, n_log: int) -> np.ndarray:
     R = (π/2) Γ(L) Γ((p_a+p_b+1)/2) / (2^L Γ((p_b−p_a)/2 + 1 + λ_b) Γ((p_a+p_b+3)/2 + λ_a + λ_b)
     Γ((p_a−p_b)/2 + 1 + λ_a)); derivatives by Cauchy's formula on |λ| = ρ in each variable.
     """
-    nc, rho = _CAUCHY_POINTS, _CAUCHY_RADIUS
+    nc, rho = CAUCHY_POINTS, CAUCHY_RADIUS
     z = rho * np.exp(2j * np.pi * np.arange(nc) / nc)
     la = z[:, None, None, None]
     lb = z[None, :, None, None]
@@ -181,12 +185,12 @@ def _radial_integrals(p_max: int, n_log: int) -> np.ndarray:
     return (coef * scale[:, None, None, None] * scale[None, :, None, None]).real
 
 
-def _load(n_log: int) -> np.ndarray:
+def load_derivatives(n_log: int) -> np.ndarray:
     """∂^d_λ H(0; λ) at λ = 0, d = 0..n_log: the force carried by the n = 0, k = 0 functions.
 
     H(0; λ) = √(π/2) 2^{−½−λ}/Γ(3/2 + λ) is the transform at s = 0 (1 at λ = 0).
     """
-    nc, rho = _CAUCHY_POINTS, _CAUCHY_RADIUS
+    nc, rho = CAUCHY_POINTS, CAUCHY_RADIUS
     z = rho * np.exp(2j * np.pi * np.arange(nc) / nc)
     h = math.sqrt(np.pi / 2) * 2.0 ** (-0.5 - z) * special.rgamma(1.5 + z)
     d = np.arange(n_log + 1)
@@ -210,7 +214,7 @@ def _compliance_form(harm: np.ndarray, n_harmonics: int, n_radial: int, n_log: i
     """bᴴ M⁻¹ b (2x2, Pa) for the kernel harmonics ``harm`` (orders −2N..2N, N >= n_harmonics)."""
     alpha, n, k, d = _basis(n_harmonics, n_radial, n_log)
     p = np.abs(n) + 2 * k
-    radial = _radial_integrals(int(p.max()), n_log)
+    radial = radial_integrals(int(p.max()), n_log)
     mid = harm.shape[0] // 2
     dn = n[None, :] - n[:, None]
     G = harm[mid + dn, alpha[:, None], alpha[None, :]]
@@ -219,7 +223,7 @@ def _compliance_form(harm: np.ndarray, n_harmonics: int, n_radial: int, n_log: i
     M = 0.5 * (M + M.conj().T)  # Hermitian up to round-off
     b = np.zeros((alpha.size, 2))
     first = (n == 0) & (k == 0)
-    load = _load(n_log)
+    load = load_derivatives(n_log)
     for a in range(2):
         sel = first & (alpha == a)
         b[sel, a] = load[d[sel]]

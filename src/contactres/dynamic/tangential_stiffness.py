@@ -10,7 +10,8 @@ carried away by shear, longitudinal and Rayleigh waves, and material loss).
 * Dynamic: :mod:`contactres.dynamic.tangential_galerkin`, the Galerkin solution on the disk with
   the in-plane block of the dynamic surface Green's function of
   :mod:`contactres.halfspace`; K(ω)/K₀ = k_t(a₀) + i a₀ c_t(a₀), a₀ = k_s a (isotropic
-  c_t(0) = 0.617, 0.598, 0.580 at ν = 0.17, 0.25, 1/3).
+  c_t(0) = 0.617, 0.598, 0.580 at ν = 0.17, 0.25, 1/3); accuracy 1e-6 up to k_s a = 2
+  (k_s a <= 5 accepted).
 * Two bodies (a sphere on a plate, the QCM contact of paper 2): the compliances add,
   K⁻¹ = K_sphere⁻¹ + K_plate⁻¹ (:func:`two_body_contact_stiffness`).
 
@@ -19,8 +20,10 @@ Conventions: time factor e^{iωt}; k_s = ω √(ρ/C44) with C44 = Re C[3, 3] of
 degrees from the surface x axis towards y (right-handed about the inward normal z).
 
 References: R. D. Mindlin, J. Appl. Mech. 16, 259-268 (1949); J. Tian, Am. J. Eng. Appl. Sci.
-3(1), 56-63 (2010) (paper 1, the normal problem this one mirrors); Y. Gao, I. Reviakine, … ,
-D. Johannsmann (paper 2) for the QCM at 15 MHz whose contacts motivate it.
+3(1), 56-63 (2010) (paper 1, the normal problem this one mirrors); J. Vlachová, R. König,
+D. Johannsmann, "Stiffness of sphere-plate contacts at MHz frequencies: dependence on normal
+load, oscillation amplitude, and ambient medium", Beilstein J. Nanotechnol. 6, 845-856 (2015),
+doi:10.3762/bjnano.6.87 (paper 2: the QCM at 15 MHz whose contacts motivate it).
 """
 
 from __future__ import annotations

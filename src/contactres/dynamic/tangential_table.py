@@ -26,11 +26,11 @@ from ..halfspace.compliance import scaled_tensor
 from ..materials import Material, require_material
 from .table import (
     Resolution,
-    _max_slowness,
     check_contrast,
     check_loss,
     gauss_legendre,
     handover,
+    max_slowness,
     resolution_for,
 )
 
@@ -151,7 +151,7 @@ def prepare_tangential(
     max_order = int(max_order or 4 * max_harmonics(rtol))
     c44 = shear_reference(m)
     c = scaled_tensor(m).real.astype(complex)
-    kb = _max_slowness(m)
+    kb = max_slowness(m)
     t1 = T1_FACTOR * kb
     height = _CONTOUR_HEIGHT * kb
     t, wt = gauss_legendre(0.0, t1, res.n_contour)

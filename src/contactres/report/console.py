@@ -1,4 +1,5 @@
-"""What ``contactres qcm analyze`` prints: Table 1 with errors, withheld fits, friction per load.
+"""What ``contactres qcm analyze`` prints: Table 1 with errors, withheld fits, friction per load,
+and (with the materials) the radiation loss per group.
 
 Plain text for a terminal: values with their standard errors (``59.7 ± 0.5``; ``t95`` is the
 factor that turns an error from a few repeats into a 95 % interval), ``—`` where a value is
@@ -12,9 +13,10 @@ import math
 
 import pandas as pd
 
+from ..analysis.radiation import radiation_summary
 from ..analysis.results import Results
 
-__all__ = ["friction_table", "table1_text", "withheld_lines"]
+__all__ = ["friction_table", "radiation_lines", "table1_text", "withheld_lines"]
 
 DASH = "—"
 
@@ -80,3 +82,45 @@ def friction_table(results: Results) -> pd.DataFrame:
             "t95": [_t95(t) for t in loads.get("t95", [math.nan] * len(loads))],
         }
     )
+
+
+def _two(value: float) -> str:
+    """Two significant digits, never in exponent form for everyday sizes (130, not 1.3e+02)."""
+    return f"{float(f'{value:.2g}'):g}"
+
+
+def _span(values, scale: float = 1.0) -> str:
+    """``lo–hi`` scaled, to two significant digits (one number where they agree)."""
+    lo, hi = (_two(v * scale) for v in values)
+    return lo if lo == hi else f"{lo}–{hi}"
+
+
+def radiation_lines(results: Results) -> list[str]:
+    """One line per group: the radiation loss tangent, the contact radius and the share of the
+    measured loss tangent (ranges over the loads, median share), or why it is not given."""
+    if results.radiation is None:
+        return []
+    lines = []
+    for g in radiation_summary(results.radiation):
+        head = f"{g['configuration']}, {g['medium']}: "
+        if g["tan_delta_rad_range"] is None:
+            lines.append(head + f"radiation loss not computed: {g['note'] or 'no loads'}")
+            continue
+        text = (
+            f"radiation loss tangent {_span(g['tan_delta_rad_range'])} at a = "
+            f"{_span(g['contact_radius_range_m'], 1e6)} µm"
+        )
+        if g["radiation_share_range"] is not None:
+            text += (
+                f", {_span(g['radiation_share_range'], 100)} % of the measured (median "
+                f"{_two(g['radiation_share_median'] * 100)} %)"
+            )
+        change = g["E_relative_change"]
+        if math.isfinite(change):
+            sign = "+" if change >= 0 else "−"
+            text += f"; E for a static κ {sign}{_two(abs(change) * 100)} %"
+        share = g["radiation_share_range"]
+        if share is not None and share[1] > 1:
+            text += " — CHECK: above 100 % at some loads, the model does not hold there"
+        lines.append(head + text)
+    return lines

@@ -1,6 +1,7 @@
 """The data dictionary: every column of every table and every flag, as Markdown.
 
-Generated from :mod:`contactres.measurements.schema` and :mod:`contactres.analysis.flags`; the
+Generated from :mod:`contactres.measurements.schema`, :mod:`contactres.analysis.flags` and (for
+``radiation.csv``) :data:`contactres.analysis.radiation.RADIATION_RESULTS`; the
 README's blocks between ``<!-- dictionary:NAME -->`` and ``<!-- /dictionary -->`` are these
 tables (``python scripts/update_readme.py`` rewrites them; a test fails when they differ).
 """
@@ -10,6 +11,7 @@ from __future__ import annotations
 import re
 
 from ..analysis.flags import DESCRIPTIONS, Flag
+from ..analysis.radiation import RADIATION_RESULTS
 from ..measurements.resonances import AFM_TABLE, RUM_TABLE
 from ..measurements.schema import GROUP_RESULTS, LOAD_RESULTS, SWEEP_RESULTS, SWEEP_TABLE
 
@@ -35,6 +37,7 @@ def dictionary_tables() -> dict[str, str]:
         "sweeps-csv": SWEEP_RESULTS.markdown(),
         "loads-csv": LOAD_RESULTS.markdown(),
         "summary-json": GROUP_RESULTS.markdown(),
+        "radiation-csv": RADIATION_RESULTS.markdown(),
         "flags": flags_markdown(),
         "afm-table": AFM_TABLE.markdown(with_required=True),
         "rum-table": RUM_TABLE.markdown(with_required=True),

@@ -1,4 +1,4 @@
-"""Figures of the sweep analysis (paper 2, Figs. 4, 5, 7, 8) as PNG.
+"""Figures of the sweep analysis (paper 2, Figs. 4, 5, 7, 8) as PNG, and the radiation loss.
 
 Object API only (:class:`matplotlib.figure.Figure`, Agg canvas): nothing touches pyplot's state,
 and every figure is saved atomically and closed by :func:`contactres.fileio.save_figure`.
@@ -31,8 +31,10 @@ if TYPE_CHECKING:
 __all__ = [
     "FIGURE_FILES",
     "LABEL_CHARS",
+    "RADIATION_FIGURE",
     "figure_dissipation",
     "figure_friction",
+    "figure_radiation",
     "figure_stiffness",
     "figure_sweeps",
     "write_figures",
@@ -45,6 +47,8 @@ FIGURE_FILES = (
     "fig7_dissipation_vs_load.png",
     "fig8_friction_vs_load.png",
 )
+#: The figure of the radiation table (written only when the results have one).
+RADIATION_FIGURE = "radiation_loss.png"
 #: Longest label from the data shown in a figure (longer ones end in an ellipsis).
 LABEL_CHARS = 40
 
@@ -218,8 +222,53 @@ def figure_friction(results) -> Figure:
     return fig
 
 
+def figure_radiation(results) -> Figure:
+    """Measured loss tangent ΔΓ0/Δf0 (mean ± standard error, filled markers) and that of the
+    sound radiated by the contact, Im K/Re K (open markers, dashed), against F_N; one panel per
+    configuration, one colour per medium, the key below the panels (not over the data)."""
+    table = results.radiation
+    configs = sorted(table["configuration"].unique())
+    media = sorted(table["medium"].unique())
+    fig, axes = _figure(1, len(configs), width=3.4, height=2.8)
+    key: dict[str, object] = {}  # label -> handle, measured then radiation per medium
+    for c, config in enumerate(configs):
+        ax = axes[0, c]
+        for j, medium in enumerate(media):
+            part = table[(table["configuration"] == config) & (table["medium"] == medium)]
+            if part.empty:
+                continue
+            F = part["normal_force_N"].to_numpy(float) * 1e3
+            color, marker = f"C{j % 10}", MARKERS[j % 6]
+            measured = ax.errorbar(
+                F,
+                part["tan_delta_measured"],
+                yerr=np.nan_to_num(part["tan_delta_measured_sem"].to_numpy(float)),
+                fmt=marker,
+                color=color,
+                capsize=2,
+            )
+            (radiated,) = ax.plot(
+                F, part["tan_delta_rad"], marker + "--", color=color, mfc="white", lw=1
+            )
+            key.setdefault(f"{_label(medium)}: measured ΔΓ0/Δf0", measured)
+            key.setdefault(f"{_label(medium)}: radiation Im K/Re K", radiated)
+        ax.set_title(_label(config), fontsize=9)
+        ax.set_xlabel("F_N per contact (mN)")
+        ax.set_ylabel("loss tangent (-)")
+        ax.set_ylim(bottom=0.0)
+    first = table.iloc[0]
+    fig.suptitle(
+        f"sound radiated into sphere ({_label(first['sphere_material'])}) and plate "
+        f"({_label(first['plate_material'])})",
+        fontsize=9,
+    )
+    fig.legend(list(key.values()), list(key), loc="outside lower center", ncols=2, fontsize=7)
+    return fig
+
+
 def write_figures(results, folder: str | Path | Callable[[str], Path]) -> list[Path]:
-    """Write Figs. 4, 5, 7, 8 (:data:`FIGURE_FILES`); return the paths written.
+    """Write Figs. 4, 5, 7, 8 (:data:`FIGURE_FILES`), and :data:`RADIATION_FIGURE` where the
+    results have the radiation table; return the paths written.
 
     ``folder`` is a folder, or a function giving the path of each file name (such as
     :meth:`contactres.fileio.ResultSet.path`). With no used sweep (all are ramp 1, say) there is
@@ -235,7 +284,10 @@ def write_figures(results, folder: str | Path | Callable[[str], Path]) -> list[P
         )
         return []
     makers = (figure_sweeps, figure_stiffness, figure_dissipation, figure_friction)
-    return [
+    written = [
         save_figure(where(name), make(results))
         for name, make in zip(FIGURE_FILES, makers, strict=True)
     ]
+    if results.radiation is not None and len(results.radiation):
+        written.append(save_figure(where(RADIATION_FIGURE), figure_radiation(results)))
+    return written

@@ -26,11 +26,20 @@ write (e.g. its figures) are removed. The columns are those of
     Δf0, ΔΓ0 (Hz), κ, ωξ (N/m), the loss tangent ΔΓ0/Δf0 and μ (from Δf, from ΔΓ, from the fit).
 ``summary.json``
     ``{"groups": [...], "settings": {...}, "version": ..., "conventions": {...}}``; one group per
-    (configuration, medium) with the JKR + Mindlin fit (Table 1 of paper 2).
+    (configuration, medium) with the JKR + Mindlin fit (Table 1 of paper 2); with the radiation
+    table also ``"radiation": {"sphere_material", "plate_material", "file", "groups": [...]}``
+    (:func:`contactres.analysis.radiation.radiation_summary`: per group the ranges of a and
+    tan δ_rad, the medians of tan δ_rad and of its share of the measured loss tangent).
+``radiation.csv``
+    only when the analysis was given the two materials (``--sphere-material`` and
+    ``--plate-material``): one row per load, the columns of
+    :data:`contactres.analysis.radiation.RADIATION_RESULTS` (the radiation loss of the contact
+    against the measured one).
 ``fig4_sweeps.png``, ``fig5_df0_vs_load.png``, ``fig7_dissipation_vs_load.png``,
 ``fig8_friction_vs_load.png``
     the figures of paper 2 for these data (:mod:`contactres.report.figures`; none when no
-    sweep is used, with a :class:`~contactres.measurements.sweeps.SweepWarning`).
+    sweep is used, with a :class:`~contactres.measurements.sweeps.SweepWarning`), and with the
+    radiation table ``radiation_loss.png`` (measured and radiation loss tangent per load).
 ``manifest.json``
     written last: the files of the set with their sizes and SHA-256 sums.
 
@@ -49,18 +58,29 @@ import numpy as np
 import pandas as pd
 
 from ..analysis.flags import render
+from ..analysis.radiation import RADIATION_RESULTS, radiation_summary
 from ..analysis.results import Results
 from ..fileio import ResultSet, write_csv, write_text
 from ..measurements.schema import CONVENTIONS, GROUP_RESULTS, LOAD_RESULTS, SWEEP_RESULTS
-from .figures import FIGURE_FILES
+from .figures import FIGURE_FILES, RADIATION_FIGURE
 
-__all__ = ["FORMATS", "loads_table", "report_files", "summary", "sweeps_table", "write_report"]
+__all__ = [
+    "FORMATS",
+    "loads_table",
+    "radiation_table",
+    "report_files",
+    "summary",
+    "sweeps_table",
+    "write_report",
+]
 
 #: What :func:`write_report` can write: csv (sweeps.csv, loads.csv), json (summary.json),
 #: png (the figures).
 FORMATS = ("csv", "json", "png")
 #: The files of each format.
 FILES = {"csv": ("sweeps.csv", "loads.csv"), "json": ("summary.json",), "png": FIGURE_FILES}
+#: The further files of each format when the results hold the radiation table.
+RADIATION_FILES = {"csv": ("radiation.csv",), "json": (), "png": (RADIATION_FIGURE,)}
 
 
 def _clean(value):
@@ -98,8 +118,26 @@ def loads_table(results: Results) -> pd.DataFrame:
     return _finite_or_nan(results.loads[list(LOAD_RESULTS.names)])
 
 
+def radiation_table(results: Results) -> pd.DataFrame:
+    """The ``radiation.csv`` table: the columns of ``RADIATION_RESULTS`` (results with one)."""
+    if results.radiation is None:
+        raise ValueError("these results have no radiation table (no materials were given)")
+    return _finite_or_nan(results.radiation[list(RADIATION_RESULTS.names)])
+
+
+def _radiation_record(table: pd.DataFrame) -> dict:
+    first = table.iloc[0] if len(table) else {}
+    return {
+        "sphere_material": first.get("sphere_material"),
+        "plate_material": first.get("plate_material"),
+        "file": "radiation.csv",
+        "groups": radiation_summary(table),
+    }
+
+
 def summary(results: Results) -> dict:
-    """The ``summary.json`` record (JSON-safe): groups in the key order of ``GROUP_RESULTS``."""
+    """The ``summary.json`` record (JSON-safe): groups in the key order of ``GROUP_RESULTS``,
+    and the radiation section where the results have the radiation table."""
     groups = []
     for g in results.groups:
         unknown = sorted(set(g) - set(GROUP_RESULTS.names))
@@ -107,16 +145,17 @@ def summary(results: Results) -> dict:
             raise KeyError(f"group keys {unknown} are missing from the schema GROUP_RESULTS")
         groups.append({k: g[k] for k in GROUP_RESULTS.names if k in g})
     source = None if results.table is None else results.table.source
-    return _clean(
-        {
-            "groups": groups,
-            "settings": results.settings,
-            "version": results.version,
-            "source": source,
-            "messages": list(results.messages),
-            "conventions": CONVENTIONS,
-        }
-    )
+    record = {
+        "groups": groups,
+        "settings": results.settings,
+        "version": results.version,
+        "source": source,
+        "messages": list(results.messages),
+        "conventions": CONVENTIONS,
+    }
+    if results.radiation is not None:
+        record["radiation"] = _radiation_record(results.radiation)
+    return _clean(record)
 
 
 def _formats(formats) -> tuple[str, ...]:
@@ -127,10 +166,15 @@ def _formats(formats) -> tuple[str, ...]:
     return formats
 
 
-def report_files(formats=FORMATS) -> tuple[str, ...]:
+def report_files(formats=FORMATS, *, radiation: bool = False) -> tuple[str, ...]:
     """The names of the files :func:`write_report` may write for ``formats`` (figures are left
-    out when there is nothing to draw)."""
-    return tuple(name for f in FORMATS if f in _formats(formats) for name in FILES[f])
+    out when there is nothing to draw); with ``radiation`` also those of the radiation table
+    (``radiation.csv``, ``radiation_loss.png``)."""
+    chosen = [f for f in FORMATS if f in _formats(formats)]
+    names = [name for f in chosen for name in FILES[f]]
+    if radiation:
+        names += [name for f in chosen for name in RADIATION_FILES[f]]
+    return tuple(names)
 
 
 def write_report(results: Results, folder, formats=FORMATS, *, inputs=None) -> list[Path]:
@@ -141,7 +185,8 @@ def write_report(results: Results, folder, formats=FORMATS, *, inputs=None) -> l
     results : what :func:`contactres.analyze` returned
     folder : the results folder, created if missing (a path that exists and is not a folder is
         an error); or a :class:`~contactres.fileio.ResultSet` opened by the caller (declared
-        with :func:`report_files`), which moves the files into place when its block ends
+        with :func:`report_files`, ``radiation=True`` for results with the radiation table),
+        which moves the files into place when its block ends
     formats : one of :data:`FORMATS` or a sequence of them
     inputs : files that must not be overwritten (default: the sweep table the results came
         from); ignored when ``folder`` is a ResultSet (it was given its inputs)
@@ -162,9 +207,9 @@ def write_report(results: Results, folder, formats=FORMATS, *, inputs=None) -> l
     if inputs is None:
         source = None if results.table is None else results.table.source
         inputs = () if source is None or source == "<table>" else (source,)
-    with ResultSet(
-        folder, names=report_files(formats), inputs=inputs, owned=report_files(FORMATS)
-    ) as rs:
+    names = report_files(formats, radiation=results.radiation is not None)
+    owned = report_files(FORMATS, radiation=True)
+    with ResultSet(folder, names=names, inputs=inputs, owned=owned) as rs:
         return _write_into(results, rs, formats)
 
 
@@ -174,6 +219,9 @@ def _write_into(results: Results, rs: ResultSet, formats: tuple[str, ...]) -> li
         write_csv(rs.path("sweeps.csv"), sweeps_table(results))
         write_csv(rs.path("loads.csv"), loads_table(results))
         names += ["sweeps.csv", "loads.csv"]
+        if results.radiation is not None:
+            write_csv(rs.path("radiation.csv"), radiation_table(results))
+            names.append("radiation.csv")
     if "json" in formats:
         text = json.dumps(summary(results), indent=1, ensure_ascii=False) + "\n"
         write_text(rs.path("summary.json"), text)
