@@ -118,6 +118,8 @@ CLI_COMMANDS: list[list[str]] = [
     ["qcm"],
     ["qcm", "analyze"],
     ["qcm", "loop"],
+    ["qcm", "spectra"],
+    ["qcm", "stiffness"],
     ["rum"],
     ["rum", "invert"],
 ]

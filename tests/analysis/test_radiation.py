@@ -267,3 +267,18 @@ def test_cli_bad_material_options_are_one_line_errors(example, tmp_path, options
     r = run("qcm", "analyze", example, "--out", tmp_path / "o", *options)
     one_line_error(r, *words)
     assert not (tmp_path / "o").exists()
+
+
+def test_rows_without_an_honest_share_say_why(glass_on_quartz):
+    """A measured loss tangent <= 0 gives no share; a load below the JKR pull-off force and
+    one at zero contact radius give no radiation; each row says why, the others are computed,
+    and the analysis is not aborted."""
+    loads, groups = study()
+    loads.loc[0, "loss_tangent_mean"] = -0.01
+    pull_off = -3 * math.pi * GAMMA * R  # paper 2's γ: F_c = -(3/2)π w R, w = 2γ
+    loads.loc[1, "normal_force_N"] = 1.5 * pull_off
+    out = radiation_loss(loads, groups, *glass_on_quartz, frequency_Hz=F_QCM)
+    assert np.isnan(out["radiation_share"][0]) and "<= 0" in out["note"][0]
+    assert np.isfinite(out["tan_delta_rad"][0])
+    assert np.isnan(out["tan_delta_rad"][1]) and "pull-off" in out["note"][1]
+    assert np.isfinite(out["tan_delta_rad"][2])

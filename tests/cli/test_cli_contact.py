@@ -285,8 +285,32 @@ def test_contact_tangential_and_frequency_match_library():
         (["--c11", 168e9, "--c12", 121e9, "--c44", 75e9, "--frequency", 1e6], ["density"]),
         (["--crystal", "Cu", "--tangential", "--direction", "nan"], ["--direction"]),
         (["--crystal", "Cu", "--tangential", "--frequency", 1e9], ["k_s a", "beyond"]),
+        (["--crystal", "Cu", "--direction", 30], ["--direction", "--tangential"]),
     ],
 )
 def test_contact_tangential_bad_input(args, words):
     r = run("contact", "--radius", 5e-3, "--force", 1e-3, *args)
     one_line_error(r, *words)
+
+
+def test_contact_tangential_at_zero_force_is_zero_not_an_error():
+    """F = 0 starts a load table: no contact, K_t = 0 and no loss tangent (empty)."""
+    rows = _json(
+        run(
+            "contact",
+            "--crystal",
+            "quartz-AT",
+            "--radius",
+            5e-3,
+            "--force",
+            "0,1e-3",
+            "--tangential",
+            "--frequency",
+            15e6,
+            "--format",
+            "json",
+        )
+    )
+    assert rows[0]["tangential_stiffness_real_N_per_m"] == 0
+    assert rows[0]["tangential_loss_tangent"] is None
+    assert rows[1]["tangential_stiffness_real_N_per_m"] > 0

@@ -153,16 +153,6 @@ def test_nearly_isotropic_is_continuous(zener):
     assert 1e-12 < rel < 1e-8
 
 
-def test_loss_limits():
-    """A lossy solid: K(0) = (1 + iQ⁻¹) K₀; at small k a the damping adds the radiation."""
-    m = _iso(0.25)
-    q = 0.02
-    got = tangential_dcsf(m, np.array([0.0, 1e-3]), loss=q)
-    assert got[0] == pytest.approx(1 + 1j * q, abs=1e-12)
-    lossless = tangential_dcsf(m, 1e-3)
-    assert got[1].imag == pytest.approx(q + lossless.imag, rel=1e-3)
-
-
 # ------------------------------------------------------------------ API, two bodies
 def test_two_identical_isotropic_bodies_halve(quartz):
     """Two identical isotropic bodies in series: K/2 at every frequency; a stiff sapphire
@@ -218,3 +208,39 @@ def test_bad_input(quartz):
         tangential_dcsf(quartz, 1e3)
     with pytest.raises(ValueError, match="direction"):
         tangential_dcsf(quartz, 0.5, direction=float("nan"))
+
+
+def test_two_body_frame_flip_with_an_anisotropic_sphere(quartz, cu123):
+    """The sphere's frame is the plate's turned by π about x: its stiffness in the plate frame
+    is that of the sphere material rotated so (x, −y, −z), computed directly here (another
+    table), and the two bodies add in series in the plate frame."""
+    a, f = 20e-6, 15e6
+    turned = cu123.rotated((0, 0, -1), inplane=(1, 0, 0))
+    k_turned = tangential_contact_stiffness(turned, a, f, tensor=True)
+    k_plate = tangential_contact_stiffness(quartz, a, f, tensor=True)
+    expected = np.linalg.inv(np.linalg.inv(k_plate) + np.linalg.inv(k_turned))
+    got = two_body_contact_stiffness(cu123, quartz, a, f, tensor=True)
+    assert abs(k_turned[0, 1]) > 1e-3 * abs(k_turned[0, 0])  # the flip matters here
+    assert np.max(np.abs(got - expected)) / np.max(np.abs(expected)) < 1e-7
+
+
+def test_lossy_solid_is_the_analytic_continuation():
+    """A uniform loss C(1 + iq) is K_q(a₀) = (1 + iq) K(a₀/√(1 + iq)); to first order in q,
+    (1 + iq)[K(a₀) − (iq/2) a₀ K'(a₀)], K' from the lossless curve by central differences:
+    checks the lossy table (its κ rescaling and static part) against the lossless one."""
+    m, q, a0, h = _iso(0.25), 1e-3, 1.0, 1e-3
+    lossless = tangential_dcsf(m, [a0 - h, a0, a0 + h])
+    slope = (lossless[2] - lossless[0]) / (2 * h)
+    expected = (1 + 1j * q) * (lossless[1] - 0.5j * q * a0 * slope)
+    got = tangential_dcsf(m, a0, loss=q)
+    assert abs(got - expected) < 2e-6  # the O(q²) remainder is ~q² = 1e-6
+
+
+def test_tiny_wavenumbers_tend_to_the_static_limit(quartz):
+    """Down to k_s a = 1e-100: Re -> 1, Im/k_s a -> the low-frequency damping (as at 1e-4),
+    never negative damping (the far grid stops at s = 1e-8; below 1e-6 the dynamic part is
+    scaled linearly)."""
+    ka = np.array([1e-4, 1e-7, 1e-12, 1e-20, 1e-100])
+    d = tangential_dcsf(quartz, ka)
+    assert np.max(np.abs(d.real - 1)) < 1e-8
+    assert np.max(np.abs(d.imag / ka / (d[0].imag / ka[0]) - 1)) < 1e-6

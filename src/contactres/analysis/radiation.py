@@ -53,7 +53,9 @@ import numpy as np
 import pandas as pd
 
 from ..crystals import crystal_names
+from ..dynamic.tangential_galerkin import KSA_MAX
 from ..dynamic.tangential_stiffness import two_body_contact_stiffness
+from ..halfspace import shear_reference
 from ..materials import Material, at_cut_quartz
 from ..measurements.schema import Column, TableSchema
 from ..normal.isotropic import effective_modulus, jkr_contact_radius
@@ -182,8 +184,19 @@ def _radii(loads: pd.DataFrame, groups: Sequence[Mapping]) -> tuple[np.ndarray, 
             note[member] = f"no JKR fit ({why})"
             continue
         E_star = effective_modulus(E, float(g["poisson"]))
-        a[member] = jkr_contact_radius(E_star, float(g["sphere_radius_m"]), force[member], gamma)
+        R = float(g["sphere_radius_m"])
         note[member] = ""
+        try:
+            a[member] = jkr_contact_radius(E_star, R, force[member], gamma)
+        except ValueError:
+            # Some load below the JKR pull-off force: those rows only (a handful of loads).
+            for i in np.flatnonzero(member):
+                try:
+                    a[i] = jkr_contact_radius(E_star, R, force[i], gamma)
+                except ValueError:
+                    note[i] = "normal force below the JKR pull-off of the fit: no contact radius"
+    none = np.isfinite(a) & ~(a > 0)
+    note[none] = "contact radius 0 (no contact at this load): no radiation"
     return a, note
 
 
@@ -195,8 +208,10 @@ def _corrected_modulus(
     ok = np.isfinite(points["kappa_N_per_m"].to_numpy(float))
     ok &= points["kappa_N_per_m"].to_numpy(float) > 0
     pts = points[ok].merge(factor, on="normal_force_N", how="left", validate="many_to_one")
+    # Loads without a radiation value (notes say why) are left out of the refit.
+    pts = pts[np.isfinite(pts["s"].to_numpy(float))]
     s = pts["s"].to_numpy(float)
-    if len(pts) < 3 or pts["normal_force_N"].nunique() < 2 or not np.all(np.isfinite(s)):
+    if len(pts) < 3 or pts["normal_force_N"].nunique() < 2:
         return np.nan, np.nan
     F, kappa = pts["normal_force_N"], pts["kappa_N_per_m"].to_numpy(float)
     R, nu = float(g["sphere_radius_m"]), float(g["poisson"])
@@ -248,6 +263,14 @@ def radiation_loss(
     no_f = ~(np.isfinite(f) & (f > 0))
     note[no_f & (note == "")] = "no single overtone frequency (several, or no used sweep)"
     valid = np.isfinite(a) & (a > 0) & ~no_f
+    # Rows beyond the solver's range of k_s a (in either body) are left out one by one.
+    ks = 2 * np.pi * np.where(valid, f, 0.0) * np.where(valid, a, 0.0)
+    for body in (sphere, plate):
+        if body.density is None:
+            continue
+        far = valid & (ks * np.sqrt(body.density / shear_reference(body)) > KSA_MAX)
+        note[far] = f"k_s a beyond {KSA_MAX:g} (contact radius or frequency too large)"
+        valid &= ~far
     K = np.full(n, np.nan + 0j)
     K0 = np.full(n, np.nan)
     if valid.any():
@@ -270,8 +293,10 @@ def radiation_loss(
     measured = loads["loss_tangent_mean"].to_numpy(float)
     with np.errstate(divide="ignore", invalid="ignore"):
         tan_rad = K.imag / K.real
-        share = tan_rad / measured
+        share = np.where(measured > 0, tan_rad / measured, np.nan)
         soft = K.real / K0 - 1.0
+    no_measure = valid & ~(measured > 0)
+    note[no_measure] = "measured loss tangent missing or <= 0: no share"
     # A share above 1 is no answer: the radiation cannot exceed the whole measured damping.
     over = valid & np.isfinite(share) & (share > 1)
     note[over] = (

@@ -12,6 +12,8 @@ from . import figures_paper1 as _figures_paper1  # noqa: F401  (figures paper1)
 from . import figures_paper2 as _figures_paper2  # noqa: F401  (figures paper2)
 from . import qcm_analyze as _qcm_analyze  # noqa: F401  (registers qcm analyze)
 from . import qcm_loop as _qcm_loop  # noqa: F401  (registers qcm loop)
+from . import qcm_spectra as _qcm_spectra  # noqa: F401  (registers qcm spectra)
+from . import qcm_stiffness as _qcm_stiffness  # noqa: F401  (registers qcm stiffness)
 from . import rum_invert as _rum_invert  # noqa: F401  (registers rum invert)
 from ._app import main
 

@@ -57,11 +57,12 @@ def contact(radius, force, frequency, tangential, direction, fmt, **face):
     (e.g. 011) the true contact is slightly elliptic and the circular result is an
     approximation (a note says so).
 
-    --frequency adds the exact dynamic normal stiffness K_da = K_sa DCSF (real and imaginary
-    parts, N/m, and k_s a = ω a √(ρ/C44)); --tangential adds the tangential stiffness of the
-    contact, static (Mindlin 8Ga/(2 − ν) on an isotropic solid) or at --frequency (real and
-    imaginary parts and the radiation loss tangent Im K/Re K). --crystal quartz-AT is the
-    AT-cut quartz plate of a QCM (x = the crystal's X axis, its shear direction).
+    --direction needs --tangential. --frequency adds the exact dynamic normal stiffness
+    K_da = K_sa DCSF (real and imaginary parts, N/m, and k_s a = ω a √(ρ/C44)); --tangential
+    adds the tangential stiffness of the contact, static (Mindlin 8Ga/(2 − ν) on an isotropic
+    solid) or at --frequency (real and imaginary parts and the radiation loss tangent
+    Im K/Re K). --crystal quartz-AT is the AT-cut quartz plate of a QCM (x = the crystal's X
+    axis, its shear direction).
 
     Example: contactres contact --crystal quartz-AT --radius 5e-3 --force 1e-3 --tangential
     --frequency 15e6
@@ -84,6 +85,8 @@ def contact(radius, force, frequency, tangential, direction, fmt, **face):
         raise ValueError("--frequency needs the density of the solid: choose it by --crystal")
     if not np.isfinite(direction):
         raise ValueError(f"--direction must be a finite angle in degrees, got {direction!r}")
+    if direction != 0.0 and not tangential:
+        raise ValueError("--direction is the direction of the tangential motion: add --tangential")
     c = sphere_contact(m, R, F)
     table = pd.DataFrame(
         {
@@ -99,9 +102,7 @@ def contact(radius, force, frequency, tangential, direction, fmt, **face):
     if frequency is not None:
         _add_dynamic(table, m, c, f, tangential, direction)
     elif tangential:
-        from ..dynamic import tangential_contact_stiffness
-
-        table["tangential_stiffness_N_per_m"] = tangential_contact_stiffness(
+        table["tangential_stiffness_N_per_m"] = _tangential(
             m, c.contact_radius, 0.0, direction
         ).real
     emit(table, fmt)
@@ -120,7 +121,7 @@ def _add_dynamic(table, m, c, f, tangential: bool, direction: float) -> None:
 
     import numpy as np
 
-    from ..dynamic import dcsf, tangential_contact_stiffness
+    from ..dynamic import dcsf
     from ..halfspace import shear_reference
 
     a = np.asarray(c.contact_radius, dtype=float)
@@ -131,10 +132,13 @@ def _add_dynamic(table, m, c, f, tangential: bool, direction: float) -> None:
     table["dynamic_stiffness_real_N_per_m"] = np.real(kn)
     table["dynamic_stiffness_imag_N_per_m"] = np.imag(kn)
     if tangential:
-        kt = np.asarray(tangential_contact_stiffness(m, a, f, direction))
+        kt = _tangential(m, a, f, direction)
         table["tangential_stiffness_real_N_per_m"] = kt.real
         table["tangential_stiffness_imag_N_per_m"] = kt.imag
-        table["tangential_loss_tangent"] = kt.imag / kt.real
+        # No contact (F = 0): no loss tangent (NaN, printed empty), not a division warning.
+        loss = np.full(kt.shape, np.nan)
+        np.divide(kt.imag, kt.real, out=loss, where=kt.real > 0)
+        table["tangential_loss_tangent"] = loss
 
 
 def _face_name(face: dict) -> str:
@@ -145,3 +149,17 @@ def _face_name(face: dict) -> str:
     if crystal is not None and crystal.strip().lower() in AT_CUT_NAMES:
         return "of the AT cut"
     return str(face["surface"])
+
+
+def _tangential(m, a, f, direction: float):
+    """K_t at contact radii ``a`` and frequencies ``f`` (broadcast); 0 where a = 0 (F = 0)."""
+    import numpy as np
+
+    from ..dynamic import tangential_contact_stiffness
+
+    a, f = np.broadcast_arrays(np.asarray(a, dtype=float), np.asarray(f, dtype=float))
+    out = np.zeros(a.shape, dtype=complex)
+    touching = a > 0
+    if touching.any():
+        out[touching] = tangential_contact_stiffness(m, a[touching], f[touching], direction)
+    return out

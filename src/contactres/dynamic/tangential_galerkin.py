@@ -57,11 +57,12 @@ from scipy import special
 
 from .farfield import far_basis, far_grid
 from .tangential_static import CAUCHY_POINTS, CAUCHY_RADIUS, load_derivatives, radial_integrals
-from .tangential_table import TangentialTable, max_harmonics, prepare_tangential
+from .tangential_table import TangentialTable, prepare_tangential
 from .weights import spherical_bessel
 
 __all__ = [
     "KSA_MAX",
+    "KSA_SMALL",
     "TangentialSize",
     "TangentialTable",
     "prepare_tangential",
@@ -76,6 +77,8 @@ _CHUNK = 32
 #: Largest k_s a accepted: the range of the convergence tests (at 5: 1.5e-8 from the radial
 #: terms); beyond it the default basis is not checked.
 KSA_MAX = 5.0
+#: Below this k_s a the dynamic part is taken as linear in k_s a (see tangential_per_a).
+KSA_SMALL = 1e-6
 
 
 @dataclass(frozen=True)
@@ -101,20 +104,19 @@ class TangentialSize:
         )
 
 
-def tangential_size(ksa_max: float, rtol: float = 1e-6) -> TangentialSize:
-    """Default basis reaching ``rtol`` up to k_s a = ksa_max.
+def tangential_size(ksa_max: float, rtol: float = 1e-6, n_harmonics: int = 6) -> TangentialSize:
+    """Default basis reaching ``rtol`` up to k_s a = ksa_max with traction harmonics
+    |n| <= ``n_harmonics`` (the table's, :func:`~.tangential_table.max_harmonics`).
 
-    Measured against a basis of |n| <= 10, 10 radial terms, ln and ln² enrichment and 32 series
-    terms (AT-cut quartz, Cu(111), Cu(123), isotropic ν = 0.3; k_s a <= 5): the error is set by
-    the angular harmonics (|n| <= 4: up to 1.3e-6 on Cu(111); |n| <= 6: <= 1.3e-7 on Cu(123),
-    1.6e-8 on Cu(111), 3e-10 on AT-cut quartz); ceil(0.6 k_s a) + 2 radial terms leave < 3e-9
-    for k_s a <= 3 and 1.5e-8 at 5; the ln² terms move K by <= 3e-10, 12 series terms instead
-    of 24 by < 1e-12. rtol <= 1e-8 takes |n| <= 10, two radial terms more, ln² and 16 series
-    terms; rtol >= 1e-4 |n| <= 4.
+    Measured against |n| <= 16, 10 radial terms, ln and ln² enrichment and 32 series terms
+    (AT-cut quartz, Cu(111), Cu(123), isotropic ν = 0.3; k_s a <= 5): ceil(0.6 k_s a) + 2
+    radial terms leave < 3e-9 for k_s a <= 3 and 1.5e-8 at 5; the ln² terms move K by <= 1.2e-8
+    (Cu(111), k_s a = 5), 12 series terms instead of 24 by <= 5.5e-10. rtol <= 1e-8 takes two
+    radial terms more, the ln² terms and 16 series terms.
     """
     fine = rtol <= 1e-8
     return TangentialSize(
-        n_harmonics=max_harmonics(rtol),
+        n_harmonics=int(n_harmonics),
         n_radial=max(2, math.ceil(0.6 * ksa_max) + (4 if fine else 2)),
         n_log=2 if fine else 1,
         n_series=16 if fine else 12,
@@ -298,11 +300,11 @@ def tangential_per_a(
     top = float(np.max(ksa, initial=0.0))
     if not top <= KSA_MAX:
         raise ValueError(
-            f"k_s a = {top:.4g} is beyond the range where the dynamic tangential stiffness is "
+            f"k_s a = {top:.6g} is beyond the range where the dynamic tangential stiffness is "
             f"checked (k_s a <= {KSA_MAX:g}, k_s = ω√(ρ/C44)): check the frequency and the "
             "contact radius (units?)"
         )
-    size = size or tangential_size(top, table.rtol)
+    size = size or tangential_size(top, table.rtol, table.n_harmonics)
     if 2 * size.n_harmonics > table.max_order:
         raise ValueError("the basis needs more kernel harmonics than the table holds")
     out = np.empty((ksa.size, 2, 2), dtype=complex)
@@ -323,9 +325,13 @@ def tangential_per_a(
     zero = ksa == 0
     out[zero] = k_static * f
     pos = ~zero
+    # Below KSA_SMALL the far-field grid (which starts at s = T₁ k_s a, floored at 1e-8) would
+    # miss the band that radiates: there K - K(0) is linear in k_s a to ~KSA_SMALL relative,
+    # so it is scaled from its value at KSA_SMALL.
+    small = pos & (ksa < KSA_SMALL)
     if np.any(pos):
         # Lossy static part: M0/(1 + iQ⁻¹); dynamic remainder in the same coordinates.
-        ka = ksa[pos]
+        ka = np.where(small, KSA_SMALL, ksa)[pos]
         grid = far_grid(table, float(np.min(ka)))
         res = np.empty((ka.size, 2, 2), dtype=complex)
         # Chunks of k a values: memory stays bounded (~30 MB) whatever the call's size.
@@ -336,4 +342,7 @@ def tangential_per_a(
             sol = np.linalg.solve(A, np.broadcast_to(TB, (A.shape[0], *TB.shape)))
             res[lo : lo + _CHUNK] = 4 * np.pi**2 * table.c44 * (BT @ sol)
         out[pos] = res
+        if np.any(small):
+            scale = (ksa[small] / KSA_SMALL)[:, None, None]
+            out[small] = k_static * f + (out[small] - k_static * f) * scale
     return out

@@ -47,7 +47,10 @@ __all__ = [
 
 
 def _unit(direction) -> np.ndarray:
-    psi = math.radians(float(direction))
+    try:
+        psi = math.radians(float(direction))
+    except (TypeError, ValueError):
+        raise ValueError(f"direction must be an angle in degrees, got {direction!r}") from None
     if not math.isfinite(psi):
         raise ValueError(f"direction must be a finite angle in degrees, got {direction!r}")
     return np.array([math.cos(psi), math.sin(psi)])
@@ -205,7 +208,12 @@ def two_body_contact_stiffness(
     The relative tangential motion is shared by the two half-spaces in series: the
     compliances add, K⁻¹ = K_sphere⁻¹(ω) + K_plate⁻¹(ω), each with its own material,
     orientation, loss and dynamic factor (Mindlin 1949 for the static sum; the bodies are
-    treated as half-spaces, a ≪ R).
+    treated as half-spaces, a ≪ R). The sum is exact when both bodies carry the same traction
+    shape (two isotropic bodies in statics: Mindlin's); dynamically, and between different
+    anisotropic bodies, the common traction of the bonded disk is that of the summed kernels,
+    and the sum of the two stiffnesses is an approximation: measured for glass against an
+    isotropic body of G = 58 GPa, ν = 0.08 at 15 MHz, 9e-9 at a = 3 µm, 4.5e-7 at 8 µm,
+    8e-5 at 30 µm (``rtol`` covers each body, not this).
 
     Parameters
     ----------

@@ -1,0 +1,150 @@
+"""CLI: ``contactres qcm spectra``: admittance spectra -> the sweep table (Δf, ΔΓ, u0)."""
+
+from __future__ import annotations
+
+import math
+
+import click
+
+from ._app import qcm
+from ._common import emit_record, format_option
+
+_LAYOUTS = ("G/B", "Y-RI", "S11-RI", "Y-MA")
+
+
+def _positive(name: str, low: float, high: float, unit: str):
+    """A float option checked against its plausible range [low, high] (one-line error)."""
+
+    def check(ctx, param, value):
+        if value is None:
+            return None
+        if not (math.isfinite(value) and low <= value <= high):
+            raise click.BadParameter(
+                f"{value!r} is outside the plausible range [{low:g}, {high:g}] {unit} of the "
+                f"{name}",
+                ctx,
+                param,
+            )
+        return value
+
+    return check
+
+
+@qcm.command("spectra")
+@click.argument("spectra", type=click.Path(exists=True))
+@click.option(
+    "--out",
+    required=True,
+    type=click.Path(dir_okay=False),
+    help="Sweep table to write (CSV: sweep, amplitude_m, df_Hz, dgamma_Hz, their errors and "
+    "the labels), the input of 'contactres qcm analyze'.",
+)
+@click.option(
+    "--fits",
+    type=click.Path(dir_okay=False),
+    help="Also write the resonance fit of every spectrum (f_r, Γ, errors, flags) to this CSV.",
+)
+@click.option(
+    "--reference",
+    help="Ids of the no-contact reference spectra, comma separated (default: the column "
+    "'reference' of the table or index.csv).",
+)
+@click.option(
+    "--layout",
+    type=click.Choice(_LAYOUTS),
+    help="What the two columns of the folder's delimited spectrum files hold, when their "
+    "header does not say it: G/B (S), Y-RI (S), S11-RI, Y-MA (S, degrees).",
+)
+@click.option(
+    "--reference-impedance",
+    type=float,
+    default=50.0,
+    show_default=True,
+    callback=_positive("reference impedance", 1e-3, 1e6, "Ω"),
+    help="Reference impedance Z0 of S11 in delimited files, Ω (Touchstone files give theirs).",
+)
+@click.option(
+    "--voltage",
+    type=click.Choice(["amplitude", "rms"]),
+    default="amplitude",
+    show_default=True,
+    help="Whether drive_voltage_V is the amplitude (peak) or the rms voltage.",
+)
+@click.option(
+    "--d26",
+    type=float,
+    default=None,
+    callback=_positive("piezoelectric constant d26", 1e-13, 1e-10, "m/V"),
+    help="Piezoelectric strain constant of the quartz, m/V (default 3.33e-12: AT-cut, "
+    "e26/c66). The amplitude is u0 = 4 d26 Q U/(nπ)², Q = f_r/(2Γ).",
+)
+@click.option(
+    "--calibration",
+    type=float,
+    default=None,
+    callback=_positive("amplitude calibration u0/U", 1e-13, 1e-5, "m/V"),
+    help="Amplitude per drive volt measured on your instrument, m/V: u0 = this × U "
+    "(replaces the d26 formula).",
+)
+@format_option()
+def spectra_command(
+    spectra, out, fits, reference, layout, reference_impedance, voltage, d26, calibration, fmt
+):
+    """Fit admittance spectra and write the sweep table (issue 14).
+
+    SPECTRA is a tidy CSV (one row per frequency point: spectrum, frequency_Hz, G_S, B_S, and
+    per spectrum drive_voltage_V, overtone, reference, sweep, ramp, experiment,
+    normal_force_N, configuration, medium) or a folder of network-analyser files (Touchstone
+    .s1p/.y1p/.z1p or CSV) with an index.csv (column file + the same labels). Every spectrum
+    is fitted for its resonance frequency f_r and half-bandwidth Γ (half width at half height
+    of G); Δf and ΔΓ are taken against the reference spectra of the same overtone (Δf not
+    divided by n; Γ, not D); the amplitude follows from the drive voltage.
+
+    Example: contactres qcm spectra spectra.csv --out sweeps.csv --fits fits.csv
+    """
+    from ..fileio import check_output_file, write_csv
+    from ..measurements.shifts import D26_AT, read_spectra_sweeps
+
+    targets = [check_output_file(out, [spectra])]
+    if fits:
+        targets.append(check_output_file(fits, [spectra]))
+    ids = None if reference is None else [x for x in reference.split(",") if x.strip()]
+    if reference is not None and not ids:
+        raise click.BadParameter("give at least one spectrum id", param_hint="'--reference'")
+    _validated, rows, fitted, left_out = read_spectra_sweeps(
+        spectra,
+        reference=ids,
+        layout=layout,
+        reference_impedance=reference_impedance,
+        voltage=voltage,
+        d26=D26_AT if d26 is None else d26,
+        calibration_m_per_V=calibration,
+    )
+    table = rows.drop(columns=["quality"])
+    write_csv(targets[0], table, index=False)
+    if fits:
+        write_csv(targets[1], fitted, index=False)
+    for line in left_out:
+        click.echo(f"contactres: warning: {line}", err=True)
+    conventions = rows.attrs.get("conventions", {})
+    record = {
+        "spectra": len(fitted),
+        "references": int(len(fitted) - len(rows) - len(left_out)),
+        "left_out": len(left_out),
+        "sweeps": int(rows["sweep"].nunique()),
+        "points": len(rows),
+        "amplitude_range_m": [float(rows["amplitude_m"].min()), float(rows["amplitude_m"].max())],
+        **{f"convention_{k}": v for k, v in conventions.items()},
+        "wrote": [str(t) for t in targets],
+    }
+    if fmt != "plain":
+        emit_record(record, fmt)
+        return
+    click.echo(
+        f"{record['spectra']} spectra: {record['points']} points of {record['sweeps']} sweeps, "
+        f"{record['references']} references, {record['left_out']} left out; amplitudes "
+        f"{record['amplitude_range_m'][0]:.3g}-{record['amplitude_range_m'][1]:.3g} m"
+    )
+    for key, text in conventions.items():
+        click.echo(f"  {key}: {text}")
+    click.echo(f"wrote {', '.join(record['wrote'])}")

@@ -1,0 +1,296 @@
+"""CLI: ``contactres qcm stiffness EXPORT --area A --n-contacts N --out DIR``.
+
+The contact stiffness against time from a QCM-D instrument export: Δf + iΔΓ of every overtone
+becomes κ + iωξ of one contact with paper 2's Eq. 2, κ + iωξ = (Δf + iΔΓ)/P with
+P = n_P/(2nπ² A_eff Z_q) (:func:`contactres.stiffness_from_shifts`). The export is read by the
+plug-ins of :mod:`contactres.measurements.readers.exports`; what the file does not say is asked
+for by an option (one line naming the file and the missing choice, exit code 2).
+
+The results folder is one :class:`contactres.fileio.ResultSet` (whole or not at all):
+``stiffness.csv`` (time_s, overtone, df_Hz, dgamma_Hz, kappa_N_per_m, omega_xi_N_per_m),
+``stiffness.json`` (the conventions the file was read with, the constants and the equation) and
+``stiffness.png`` (κ and ωξ against time, one colour per overtone).
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import warnings
+from pathlib import Path
+
+import click
+
+from ._app import qcm
+from ._common import MagnitudeType, odd_overtone
+
+#: The files the command writes into its folder.
+FILES = ("stiffness.csv", "stiffness.json", "stiffness.png")
+#: The readers the help names (``contactres.measurements.readers.exports.EXPORT_READERS``).
+READER_NAMES = ("qsense", "awsensors", "qcmi", "openqcm")
+#: Units of the CSV columns (recorded in the JSON sidecar).
+COLUMN_UNITS = {
+    "time_s": "s",
+    "overtone": "1",
+    "df_Hz": "Hz (Δf, not divided by n)",
+    "dgamma_Hz": "Hz (ΔΓ, half-bandwidth)",
+    "kappa_N_per_m": "N/m (per contact)",
+    "omega_xi_N_per_m": "N/m (per contact)",
+}
+EQUATION = "κ + iωξ = (Δf + iΔΓ)/P, P = n_P/(2nπ² A_eff Z_q) (paper 2, Eqs. 1-2)"
+
+
+class ReaderName(click.ParamType):
+    """The name of an export reader, checked against the registry when given."""
+
+    name = "NAME"
+
+    def convert(self, value, param, ctx):
+        from ..measurements.readers.exports import export_reader
+
+        try:
+            return export_reader(value).name
+        except ValueError as exc:
+            self.fail(str(exc), param, ctx)
+
+
+class DissipationScale(click.ParamType):
+    """What one unit of a D column is: a number in (0, 1] (1e-6 for ppm) or ``ppm``."""
+
+    name = "SCALE"
+
+    def convert(self, value, param, ctx):
+        text = str(value).strip().lower()
+        try:
+            scale = 1e-6 if text == "ppm" else float(text)
+        except ValueError:
+            self.fail(f"{value!r} is not a number: use 1e-6 (D in ppm) or 1 (D plain)", param, ctx)
+        if not (math.isfinite(scale) and 0 < scale <= 1):
+            self.fail(
+                f"{value!r} is outside (0, 1]: the scale of D is 1e-6 for ppm or 1 for a plain "
+                "number",
+                param,
+                ctx,
+            )
+        return scale
+
+
+class Baseline(click.ParamType):
+    """``first``, ``as-exported`` or ``window:T0:T1`` (seconds)."""
+
+    name = "BASELINE"
+
+    def convert(self, value, param, ctx):
+        from ..measurements.readers.exports import parse_baseline
+
+        try:
+            parse_baseline(value)
+        except ValueError as exc:
+            self.fail(str(exc), param, ctx)
+        return str(value).strip().lower()
+
+
+@qcm.command("stiffness")
+@click.argument("export", type=click.Path(exists=True, dir_okay=False))
+@click.option(
+    "--out",
+    type=click.Path(file_okay=False),
+    required=True,
+    help="Results folder (created if missing): stiffness.csv, stiffness.json, stiffness.png.",
+)
+@click.option(
+    "--area",
+    type=MagnitudeType("area"),
+    required=True,
+    help="Acoustically effective area A_eff of the electrode, m^2.",
+)
+@click.option(
+    "--n-contacts",
+    type=MagnitudeType("contacts", integer=True),
+    required=True,
+    help="Number of equal contacts n_P on that area, dimensionless.",
+)
+@click.option(
+    "--reader",
+    type=ReaderName(),
+    help=f"Export format: {', '.join(READER_NAMES)} [default: recognised from the header].",
+)
+@click.option(
+    "--df-per-overtone/--df-divided-by-n",
+    "df_per_overtone",
+    default=None,
+    help="The file's frequency shifts are Δf_n, Hz, or Δf_n/n, Hz (where its header does not "
+    "say; not for absolute frequencies).",
+)
+@click.option(
+    "--dissipation-scale",
+    type=DissipationScale(),
+    help="What one unit of the file's D column is, dimensionless: 1e-6 (or ppm) for D in "
+    "10^-6, 1 for D as a plain number (where the header does not say).",
+)
+@click.option(
+    "--baseline",
+    type=Baseline(),
+    help="Reference of the shifts: first (first point of each overtone), window:T0:T1 (mean "
+    "over T0 <= t <= T1, s) or as-exported (files of shifts) [default: as-exported for shifts; "
+    "absolute frequencies need one].",
+)
+@click.option(
+    "--time-unit",
+    type=click.Choice(["s", "min", "h"]),
+    help="Unit of the file's time column: seconds, minutes or hours (where the header does "
+    "not say).",
+)
+@click.option(
+    "--channel",
+    help="Sensor or channel to read from a multi-sensor export (QSense 1-4, QCM-I A-D).",
+)
+@click.option(
+    "--overtone",
+    type=MagnitudeType("overtone", integer=True),
+    callback=odd_overtone,
+    help="Overtone order n, dimensionless (odd): that of a single-overtone openQCM log, or "
+    "the one to keep [default: all in the file].",
+)
+@click.option(
+    "--fundamental",
+    type=MagnitudeType("frequency"),
+    help="Fundamental frequency f_F of the quartz, Hz: needed for ΔΓ = ΔD n f_F/2 when the "
+    "file holds shifts only [default: f_n/n from a file of absolute frequencies].",
+)
+@click.option(
+    "--zq",
+    type=MagnitudeType("impedance"),
+    default="8.8e6",
+    show_default=True,
+    help="Acoustic impedance Z_q of AT-cut quartz, kg m^-2 s^-1.",
+)
+def stiffness_command(
+    export,
+    out,
+    area,
+    n_contacts,
+    reader,
+    df_per_overtone,
+    dissipation_scale,
+    baseline,
+    time_unit,
+    channel,
+    overtone,
+    fundamental,
+    zq,
+):
+    """Contact stiffness κ + iωξ against time from a QCM-D export (paper 2, Eq. 2).
+
+    EXPORT is the text export of a QCM-D instrument (QSense, AWSensors, QCM-I, openQCM). For
+    every point and overtone n: κ = Δf/P and ωξ = ΔΓ/P, N/m per contact, with
+    P = n_P/(2nπ² A_eff Z_q), Δf the frequency shift (Hz, not divided by n) and ΔΓ the shift of
+    the half-bandwidth (Hz; Γ = D f_n/2). Writes stiffness.csv, stiffness.json (the conventions
+    the file was read with) and stiffness.png into OUT.
+
+    Example (a QSense export with Δf/n, D in ppm, time in s, three contacts on 0.2 cm²):
+
+    \b
+        contactres qcm stiffness run.txt --df-divided-by-n --dissipation-scale 1e-6
+        --time-unit s --fundamental 4.95e6 --area 2e-5 --n-contacts 3 --out run-stiffness
+    """
+    from ..fileio import ResultSet, save_figure
+    from ..measurements.readers.exports import read_export
+
+    source = Path(export)
+    conventions = {
+        "df_divided_by_n": None if df_per_overtone is None else not df_per_overtone,
+        "dissipation_scale": dissipation_scale,
+        "baseline": baseline,
+        "time_unit": time_unit,
+        "channel": channel,
+        "overtone": overtone,
+        "fundamental": fundamental,
+    }
+    with ResultSet(out, names=FILES, inputs=(source,)) as rs:
+        table = read_export(source, reader, **conventions)
+        result, caught = stiffness_table(table, area, n_contacts, zq)
+        result.to_csv(rs.path("stiffness.csv"), index=False)
+        sidecar = {
+            "conventions": dict(table.conventions),
+            "constants": {
+                "area_m2": area,
+                "n_contacts": n_contacts,
+                "zq_kg_per_m2_s": zq,
+                "fundamental_Hz": table.conventions["fundamental_Hz"],
+            },
+            "equation": EQUATION,
+            "columns": COLUMN_UNITS,
+        }
+        text = json.dumps(sidecar, indent=1, ensure_ascii=False, allow_nan=False) + "\n"
+        rs.path("stiffness.json").write_text(text, encoding="utf-8")
+        save_figure(rs.path("stiffness.png"), stiffness_figure(result, source.name))
+    for line in caught:
+        click.echo(f"contactres: warning: {line}", err=True)
+    click.echo(f"{source.name} ({table.conventions['reader']}): κ and ωξ per contact, N/m")
+    for n, part in result.groupby("overtone"):
+        click.echo(
+            f"  n = {n}: {len(part)} points, median κ = {part['kappa_N_per_m'].median():.6g}, "
+            f"median ωξ = {part['omega_xi_N_per_m'].median():.6g}"
+        )
+    click.echo(f"wrote {len(FILES)} files into {out}/")
+
+
+def stiffness_table(table, area: float, n_contacts: int, zq: float):
+    """The export's rows with κ and ωξ per contact (paper 2, Eq. 2), and the distinct warnings
+    of the small-load check (|Δf|/f above 1e-3) as text lines."""
+    import numpy as np
+
+    from ..resonators.qcm import QCM, stiffness_from_shifts
+
+    data = table.data.copy()
+    kappa = np.full(len(data), np.nan)
+    omega_xi = np.full(len(data), np.nan)
+    fundamental = table.conventions["fundamental_Hz"]
+    lines: list[str] = []
+    for n, index in data.groupby("overtone").groups.items():
+        q = QCM(fundamental=fundamental, overtone=int(n), area=area, zq=zq)
+        part = data.loc[index]
+        with warnings.catch_warnings(record=True) as caught:
+            warnings.simplefilter("always", RuntimeWarning)
+            df, dg = part["df_Hz"].to_numpy(float), part["dgamma_Hz"].to_numpy(float)
+            k, xi = stiffness_from_shifts(q, df, dg, n_contacts)
+        for w in caught:
+            line = f"overtone {n}: {' '.join(str(w.message).split())}"
+            if line not in lines:
+                lines.append(line)
+        kappa[data.index.get_indexer(index)] = k
+        omega_xi[data.index.get_indexer(index)] = np.asarray(xi) * q.omega
+    data["kappa_N_per_m"] = kappa
+    data["omega_xi_N_per_m"] = omega_xi
+    return data, lines
+
+
+def stiffness_figure(result, title: str):
+    """κ and ωξ against time, one colour per overtone, the key right of the panels."""
+    from matplotlib.backends.backend_agg import FigureCanvasAgg
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(7.5, 5.0), layout="constrained")
+    FigureCanvasAgg(fig)
+    ax_k, ax_x = fig.subplots(2, 1, sharex=True)
+    handles = []
+    for j, (n, part) in enumerate(result.groupby("overtone")):
+        style = {"color": f"C{j % 10}", "marker": ".", "ms": 2, "lw": 0.8}
+        (line,) = ax_k.plot(part["time_s"], part["kappa_N_per_m"], **style)
+        ax_x.plot(part["time_s"], part["omega_xi_N_per_m"], **style)
+        handles.append((line, f"n = {n}"))
+    ax_k.set_ylabel("κ per contact (N/m)")
+    ax_x.set_ylabel("ωξ per contact (N/m)")
+    ax_x.set_xlabel("time (s)")
+    label = " ".join(str(title).split())
+    label = (label if len(label) <= 60 else label[:59] + "…").replace("$", r"\$")
+    fig.suptitle(f"{label}: contact stiffness (paper 2, Eq. 2)", fontsize=9)
+    fig.legend(
+        [h for h, _ in handles],
+        [t for _, t in handles],
+        loc="outside right upper",
+        title="overtone",
+        fontsize=8,
+    )
+    return fig

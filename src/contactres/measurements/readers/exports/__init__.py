@@ -1,0 +1,114 @@
+"""Reader plug-ins for the exports of commercial and open QCM-D instruments.
+
+Each plug-in (:class:`~.base.ExportReader`: name, suffixes, ``detect``, ``load``, conventions,
+source of the layout) turns one instrument's text export into an :class:`~.base.ExportTable`:
+a tidy table ``time_s, overtone, df_Hz, dgamma_Hz`` (Δf not divided by n, ΔΓ the half-bandwidth
+shift) and the conventions it was read with. The built-in readers, in the order they are tried:
+
+* ``qsense``: Biolin Scientific QSense (QSoft, Dfind, QTools) text exports (:mod:`.qsense`);
+* ``awsensors``: AWSensors exports (:mod:`.awsensors`);
+* ``qcmi``: MicroVacuum QCM-I exports (:mod:`.qcmi`);
+* ``openqcm``: openQCM Q-1 and Next data logs (:mod:`.openqcm`).
+
+What a file does not say (Δf or Δf/n, the unit of D, the time unit, the baseline, the
+fundamental, the channel, the overtone of a single-overtone log) is asked for: a keyword of
+:func:`read_export` (:data:`~.base.CONVENTION_KEYS`), never a silent default.
+
+:data:`EXPORT_READERS` is a tuple: pass your own tuple of readers to :func:`pick_export_reader`
+and :func:`read_export` to add one.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from . import awsensors, openqcm, qcmi, qsense
+from .base import CONVENTION_KEYS, ExportReader, ExportTable, parse_baseline
+
+__all__ = [
+    "CONVENTION_KEYS",
+    "EXPORT_READERS",
+    "ExportReader",
+    "ExportTable",
+    "export_reader",
+    "parse_baseline",
+    "pick_export_reader",
+    "read_export",
+]
+
+#: The built-in export readers, in the order they are tried (after those whose suffix matches).
+EXPORT_READERS: tuple[ExportReader, ...] = (
+    qsense.READER,
+    awsensors.READER,
+    qcmi.READER,
+    openqcm.READER,
+)
+
+#: Binary files an instrument also writes, which no reader here reads.
+BINARY_SUFFIXES = (".xlsx", ".xls", ".xlsm", ".qsd", ".h5")
+
+
+def export_reader(name: str, readers: tuple[ExportReader, ...] = EXPORT_READERS) -> ExportReader:
+    """The reader called ``name`` (ValueError listing the known names)."""
+    for reader in readers:
+        if reader.name == str(name).strip().lower():
+            return reader
+    known = ", ".join(r.name for r in readers)
+    raise ValueError(f"no export reader is called {str(name)!r}; known: {known}")
+
+
+def pick_export_reader(path, readers: tuple[ExportReader, ...] = EXPORT_READERS) -> ExportReader:
+    """The reader that recognises ``path`` from its first 4 kB (those whose suffix matches are
+    tried first). ValueError naming the file and the known formats if none does."""
+    path = Path(path)
+    if path.suffix.lower() in BINARY_SUFFIXES:
+        raise ValueError(
+            f"{path}: a {path.suffix} file is binary; export the data from the instrument "
+            "software as text (tab, semicolon or comma separated)"
+        )
+    with path.open(encoding="utf-8-sig", errors="replace") as fh:
+        head = fh.read(4096)
+    if not head.strip():
+        raise ValueError(f"{path}: the file is empty (expected a header line and data rows)")
+    by_suffix = [r for r in readers if path.suffix.lower() in r.suffixes]
+    for reader in by_suffix + [r for r in readers if r not in by_suffix]:
+        if reader.detect(path, head):
+            return reader
+    names = ", ".join(r.name for r in readers)
+    raise ValueError(
+        f"{path}: no export reader recognises its header (formats known: {names}); name one "
+        "with reader=... (--reader), or see the layouts in contactres.measurements.readers.exports"
+    )
+
+
+def read_export(
+    path,
+    reader: str | None = None,
+    *,
+    readers: tuple[ExportReader, ...] = EXPORT_READERS,
+    **conventions,
+) -> ExportTable:
+    """Read an instrument export into an :class:`ExportTable`.
+
+    Parameters
+    ----------
+    path : str or Path
+        The exported text file.
+    reader : str, optional
+        Name of the reader (default: recognised from the file's header).
+    readers : tuple of ExportReader
+        The readers to choose from (default :data:`EXPORT_READERS`).
+    **conventions
+        What the file does not say (:data:`CONVENTION_KEYS`): ``df_divided_by_n`` (bool),
+        ``dissipation_scale`` (1e-6 for ppm), ``time_unit`` ("s", "min", "h"), ``baseline``
+        ("first", "window:T0:T1" in s, "as-exported"), ``fundamental`` (Hz), ``channel``,
+        ``overtone``. None means not given.
+
+    Raises
+    ------
+    ValueError
+        One line naming the file and, for a choice the file does not tell, the missing choice.
+    """
+    path = Path(path)
+    chosen = pick_export_reader(path, readers) if reader is None else export_reader(reader, readers)
+    return chosen.load(path, **conventions)

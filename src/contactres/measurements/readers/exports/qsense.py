@@ -1,0 +1,129 @@
+"""Reader plug-in for Biolin Scientific QSense exports (QSoft, Dfind or QTools, saved as text).
+
+Two layouts are recognised from the header (sensor k = 1-4, overtone n):
+
+A. ``Time_k``, ``F_k:n``, ``D_k:n`` (with ``Meas. Temp. Time``, ``Tact``): semicolon- or
+   tab-separated text, often with a decimal comma. **Confirmed** by a file exported this way,
+   github.com/safyre8/QCM-D_data_processing, data/S1_20230523_d-h-hex-50nm_1-ps_4-pip_slb.txt
+   (``Time_1;F_1:5;D_1:5;...;Meas. Temp. Time;Tact``; its values start at 0: shifts), and by
+   the column map of pyQCM-BraTaDio (github.com/b-pardi/pyQCM, format_file.py,
+   ``format_Qsense``), which takes F as Δf/n and D in units of 1e-6 ("qsense records just
+   change in frequency", its README). The header states none of these units, so this reader
+   asks for ``time_unit``, ``df_divided_by_n`` and ``dissipation_scale`` (and ``fundamental``,
+   for ΔΓ = ΔD n f_F / 2).
+B. ``Time_k [s]``, ``fn_k [Hz]``, ``Dn_k [ppm]`` (e.g. ``f3_1 [Hz]``; a QSoft export to a
+   spreadsheet saved as text). **Not confirmed by a sample file**: the names are those used by
+   third-party scripts that read QSoft exports (a public code search for "Time_1 [s]" and
+   "D3_1 [ppm]"). Time in s and D in ppm come from the header; whether the f columns hold f_n
+   or shifts is told from the values (:data:`~.base.ABSOLUTE_FREQUENCY_HZ`); shifts ask for
+   ``df_divided_by_n``, resonance frequencies for a ``baseline``.
+
+QSoft's own .qsd files and Excel workbooks are binary and not read: export the sheet as text.
+QSoft shows Δf/n (github.com/jmfriedt/read_qsense_qtools, README): say so with
+``df_divided_by_n=True`` if the export kept that normalisation.
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+from types import MappingProxyType
+
+from .base import (
+    ExportReader,
+    ExportTable,
+    Layout,
+    check_keys,
+    header_names,
+    pick_channel,
+    read_rows,
+)
+from .tidy import convert
+
+__all__ = ["CONVENTIONS", "NAME", "READER", "SUFFIXES", "detect", "load"]
+
+NAME = "qsense"
+SUFFIXES = (".txt", ".csv", ".tsv")
+SOURCE = (
+    "github.com/safyre8/QCM-D_data_processing (sample export, layout A); "
+    "github.com/b-pardi/pyQCM format_file.py (column map); scripts reading QSoft exports "
+    "(layout B, names only)"
+)
+CONVENTIONS = MappingProxyType(
+    {
+        "time": "Time_k: unit not stated (asked: time_unit); Time_k [s]: seconds",
+        "frequency": "F_k:n: shifts, Δf or Δf/n not stated (asked: df_divided_by_n); "
+        "fn_k [Hz]: f_n or shifts, told from the values",
+        "dissipation": "D_k:n: D, unit not stated (asked: dissipation_scale, 1e-6 for ppm); "
+        "Dn_k [ppm]: D in 1e-6",
+        "overtones": "as named in the columns (n of F_k:n, fn_k)",
+        "channels": "sensors k = 1-4 (asked: channel, when the file holds several)",
+    }
+)
+
+# Layout A: (k) ; (k, n) ; (k, n). Layout B: (k) ; (n, k) ; (n, k).
+_A = (re.compile(r"^Time_(\d+)$"), re.compile(r"^F_(\d+):(\d+)$"), re.compile(r"^D_(\d+):(\d+)$"))
+_B = (
+    re.compile(r"^Time_(\d+) \[s\]$", re.IGNORECASE),
+    re.compile(r"^f(\d+)_(\d+) \[Hz\]$", re.IGNORECASE),
+    re.compile(r"^D(\d+)_(\d+) \[ppm\]$", re.IGNORECASE),
+)
+
+
+def _columns(names: list[str], patterns, swap: bool):
+    """Time columns by sensor and (f, D) columns by (sensor, overtone)."""
+    times, freqs, diss = {}, {}, {}
+    for name in names:
+        if m := patterns[0].match(name):
+            times.setdefault(m.group(1), name)
+        elif m := patterns[1].match(name):
+            k, n = (m.group(2), m.group(1)) if swap else (m.group(1), m.group(2))
+            freqs.setdefault((k, int(n)), name)
+        elif m := patterns[2].match(name):
+            k, n = (m.group(2), m.group(1)) if swap else (m.group(1), m.group(2))
+            diss.setdefault((k, int(n)), name)
+    return times, freqs, diss
+
+
+def _layout_of(names: list[str]):
+    """("A" or "B", times, freqs, diss) of the layout the names follow, or None."""
+    for tag, patterns, swap in (("A", _A, False), ("B", _B, True)):
+        times, freqs, diss = _columns(names, patterns, swap)
+        if times and any(key[0] in times for key in freqs.keys() & diss.keys()):
+            return tag, times, freqs, diss
+    return None
+
+
+def detect(path: Path, head: str) -> bool:
+    """True for a header with a QSense time column and F/D columns of the same sensor."""
+    return _layout_of(header_names(head)) is not None
+
+
+def _layout(path: Path, names: list[str], channel) -> Layout:
+    found = _layout_of(names)
+    if found is None:
+        raise ValueError(f"{path}: no QSense columns (Time_k with F_k:n and D_k:n, or fn_k [Hz])")
+    tag, times, freqs, diss = found
+    pairs = sorted(key for key in freqs.keys() & diss.keys() if key[0] in times)
+    k = pick_channel(path, NAME, (key[0] for key in pairs), channel)
+    traces = tuple((n, freqs[(k, n)], diss[(k, n)]) for kk, n in pairs if kk == k)
+    for n, fcol, _ in traces:
+        if n < 1 or n % 2 == 0:
+            raise ValueError(f"{path}, column {fcol!r}: overtone {n} is not odd (QSense export)")
+    if tag == "A":
+        text = "QSense text export: Time_k, F_k:n, D_k:n (units not in the header)"
+        return Layout(text, times[k], traces, channel=k)
+    text = "QSense text export: Time_k [s], fn_k [Hz], Dn_k [ppm]"
+    return Layout(text, times[k], traces, channel=k, time_unit="s", dissipation_scale=1e-6)
+
+
+def load(path, **conventions) -> ExportTable:
+    """Read a QSense text export (see the module docstring for the conventions asked for)."""
+    path = Path(path)
+    check_keys(path, NAME, conventions)
+    raw = read_rows(path)
+    layout = _layout(path, list(raw.columns), conventions.get("channel"))
+    return convert(path, NAME, raw, layout, conventions)
+
+
+READER = ExportReader(NAME, SUFFIXES, detect, load, CONVENTIONS, SOURCE)

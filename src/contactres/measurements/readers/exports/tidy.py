@@ -1,0 +1,301 @@
+"""From the columns of an export to the tidy Δf, ΔΓ table, with every convention recorded.
+
+Conversions (paper 2, Eqs. 1-2: Γ is the half width at half maximum, D = 2Γ/f):
+
+* shifts: Δf_n = n x value when the file holds Δf_n/n; ΔΓ_n = ΔD_n x scale x n f_F / 2, first
+  order in Δf/f (the error is D Δf / 2: below 1e-3 Hz for D < 1e-5 and Δf < 100 Hz);
+* absolute values: Γ_n = D_n x scale x f_n / 2 row by row, then Δf = f_n - f_ref and
+  ΔΓ = Γ_n - Γ_ref with the references of the baseline (first point, or mean over a window);
+* a file of Γ (Hz) is taken as it is.
+
+Checks on the way, each a one-line error naming file, line, column, value and rule: a frequency
+cell on the wrong side of :data:`~.base.ABSOLUTE_FREQUENCY_HZ` (shifts and resonance
+frequencies mixed), |D| x scale >= :data:`MAX_DISSIPATION` (a mis-scaled D), a negative
+absolute D, absolute f_n/n that differ between overtones by more than
+:data:`FUNDAMENTAL_TOLERANCE` (columns divided by n, or misnumbered), a fundamental given that
+disagrees with the file, a baseline window without points.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Mapping
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from .base import (
+    ABSOLUTE_FREQUENCY_HZ,
+    COLUMNS,
+    CONVENTION_KEYS,
+    TIME_UNITS,
+    ExportTable,
+    Layout,
+    fail_at,
+    missing,
+    numbers,
+    parse_baseline,
+)
+
+__all__ = ["FUNDAMENTAL_TOLERANCE", "MAX_DISSIPATION", "convert"]
+
+#: |D| x scale at or above this is no dissipation factor (a Q of 10): a mis-scaled column.
+MAX_DISSIPATION = 0.1
+
+#: Relative spread of f_n/n between overtones (and against a fundamental given) tolerated.
+FUNDAMENTAL_TOLERANCE = 0.05
+
+
+def _agree(path: Path, reader: str, key: str, from_file, given):
+    """The file's value of one convention, or the caller's; they must agree when both exist."""
+    if from_file is not None and given is not None and given != from_file:
+        raise ValueError(
+            f"{path}: {key}={given!r} ({CONVENTION_KEYS[key]}) contradicts the file, whose "
+            f"header says {from_file!r} ({reader} export)"
+        )
+    return from_file if from_file is not None else given
+
+
+def _reference(kind: str, t0: float, t1: float, t: np.ndarray, values: np.ndarray) -> float:
+    """The baseline value of one series (NaN when the window holds no point)."""
+    if kind == "first":
+        return float(values[0]) if values.size else math.nan
+    inside = (t >= t0) & (t <= t1)
+    return float(values[inside].mean()) if inside.any() else math.nan
+
+
+def _frequency_kind(raw, path: Path, traces, stated: str | None) -> str:
+    """'absolute' or 'shift': from the header, else from the first value; all cells agree."""
+    kind = stated
+    for _, fcol, _ in traces:
+        f = numbers(raw, fcol, path)
+        finite = np.isfinite(f)
+        if kind is None and finite.any():
+            kind = "absolute" if abs(f[finite][0]) > ABSOLUTE_FREQUENCY_HZ else "shift"
+        if kind is None:
+            continue
+        wrong = finite & ((np.abs(f) <= ABSOLUTE_FREQUENCY_HZ) == (kind == "absolute"))
+        if wrong.any():
+            fail_at(
+                raw,
+                path,
+                fcol,
+                wrong,
+                f"is no resonance frequency (the column holds f_n > {ABSOLUTE_FREQUENCY_HZ:g} Hz)"
+                if kind == "absolute"
+                else f"is no shift (the column holds shifts below {ABSOLUTE_FREQUENCY_HZ:g} Hz)",
+            )
+    if kind is None:
+        raise ValueError(f"{path}: no frequency value in the file ({traces[0][1]!r} and others)")
+    return kind
+
+
+def _choices(path: Path, reader: str, layout: Layout, given: dict, kind: str):
+    """Time unit, Δf divided by n, D scale and baseline: the file's or the caller's. Every
+    choice the file does not tell and the caller did not give is named in one error."""
+    needed = []
+    unit = _agree(path, reader, "time_unit", layout.time_unit, given.get("time_unit"))
+    if unit is None:
+        needed.append(
+            ("time_unit", f"the time column {layout.time_column!r} has no unit (s, min or h)")
+        )
+    elif unit not in TIME_UNITS:
+        raise ValueError(f"{path}: time_unit {unit!r} is not one of {', '.join(TIME_UNITS)}")
+    divided = False
+    if kind == "absolute" and given.get("df_divided_by_n"):
+        raise ValueError(
+            f"{path}: df_divided_by_n=True (--df-divided-by-n) does not apply: the file holds "
+            f"resonance frequencies f_n, not shifts ({reader} export)"
+        )
+    if kind == "shift":
+        got = given.get("df_divided_by_n")
+        divided = _agree(path, reader, "df_divided_by_n", layout.divided_by_n, got)
+        if divided is None:
+            needed.append(("df_divided_by_n", "the header does not say Δf or Δf/n"))
+    scale = None
+    if layout.dissipation == "D":
+        scale = given.get("dissipation_scale", layout.dissipation_scale)
+        if scale is None:
+            needed.append(
+                ("dissipation_scale", "the header does not say the unit of D (1e-6 for ppm, or 1)")
+            )
+        else:
+            scale = float(scale)
+            if not (math.isfinite(scale) and 0 < scale <= 1):
+                raise ValueError(f"{path}: dissipation_scale {scale!r} must lie in (0, 1]")
+            if layout.dissipation_scale is not None and not math.isclose(
+                scale, layout.dissipation_scale, rel_tol=1e-9
+            ):
+                raise ValueError(
+                    f"{path}: dissipation_scale={scale:g} (--dissipation-scale) contradicts the "
+                    f"header, whose unit of D is {layout.dissipation_scale:g} ({reader} export)"
+                )
+    base = given.get("baseline")
+    if base is None and kind == "absolute":
+        needed.append(
+            (
+                "baseline",
+                "the file holds resonance frequencies, not shifts: which "
+                "points are the reference (first, window:T0:T1)",
+            )
+        )
+    if kind == "shift" and layout.dissipation == "D" and given.get("fundamental") is None:
+        needed.append(("fundamental", "ΔΓ = ΔD n f_F / 2 needs the fundamental f_F (Hz)"))
+    if needed:
+        raise missing(path, reader, needed)
+    baseline = parse_baseline("as-exported" if base is None else str(base))
+    if baseline[0] == "as-exported" and kind == "absolute":
+        raise ValueError(
+            f"{path}: baseline as-exported (--baseline) needs a file of shifts; this one holds "
+            f"resonance frequencies: use first or window:T0:T1 ({reader} export)"
+        )
+    return unit, bool(divided), scale, baseline
+
+
+def _series(raw, path: Path, layout: Layout, traces, t_all, kind: str, scale):
+    """(n, column, kept rows, f, D x scale or Γ) per overtone, with the checks of D."""
+    series, skipped = [], 0
+    for n, fcol, dcol in traces:
+        f, d = numbers(raw, fcol, path), numbers(raw, dcol, path)
+        keep = np.isfinite(t_all) & np.isfinite(f) & np.isfinite(d)
+        skipped += int((~keep).sum())
+        if scale is not None:
+            d = d * scale
+            too_big = keep & (np.abs(d) >= MAX_DISSIPATION)
+            if too_big.any():
+                rule = (
+                    f"x dissipation_scale {scale:g} is no dissipation factor "
+                    f"(|D| < {MAX_DISSIPATION:g}): check the scale (1e-6 for ppm)"
+                )
+                fail_at(raw, path, dcol, too_big, rule)
+        if kind == "absolute" and (keep & (d < 0)).any():
+            fail_at(raw, path, dcol, keep & (d < 0), "is negative: an absolute D or Γ is >= 0")
+        series.append((n, fcol, keep, f, d))
+    if not any(s[2].any() for s in series):
+        raise ValueError(f"{path}: no row with time, frequency and dissipation")
+    return series, skipped
+
+
+def _fundamental(path: Path, reader: str, given, kind, baseline, t_all, series):
+    """f_F and where it came from: given (checked against absolute f_n/n) or from the file."""
+    fundamental = given.get("fundamental")
+    source = "given"
+    if fundamental is not None:
+        fundamental = float(fundamental)
+        if not (math.isfinite(fundamental) and fundamental > 0):
+            raise ValueError(f"{path}: fundamental {fundamental!r} Hz must be a positive number")
+    if kind != "absolute":
+        return fundamental, (source if fundamental is not None else None)
+    per_n = {}
+    for n, fcol, keep, f, _ in series:
+        ref = _reference(*baseline, t_all[keep], f[keep])
+        if not math.isnan(ref):
+            per_n[n] = (ref / n, fcol)
+    if not per_n:
+        return fundamental, (source if fundamental is not None else None)
+    median = float(np.median([v for v, _ in per_n.values()]))
+    for n, (v, fcol) in per_n.items():
+        if abs(v / median - 1) > FUNDAMENTAL_TOLERANCE:
+            raise ValueError(
+                f"{path}, column {fcol!r}: f_{n}/{n} = {v:.6g} Hz at the baseline differs from "
+                f"the other overtones' {median:.6g} Hz by more than {FUNDAMENTAL_TOLERANCE:.0%}: "
+                "the columns are not n f_F (divided by n, or misnumbered)"
+            )
+    if fundamental is None:
+        return median, "from the file: median of f_n/n at the baseline"
+    if abs(median / fundamental - 1) > FUNDAMENTAL_TOLERANCE:
+        raise ValueError(
+            f"{path}: fundamental={fundamental:g} Hz (--fundamental) disagrees with the file, "
+            f"whose f_n/n is {median:.6g} Hz at the baseline ({reader} export)"
+        )
+    return fundamental, source
+
+
+def convert(
+    path: Path, reader: str, raw: pd.DataFrame, layout: Layout, conventions: Mapping[str, object]
+) -> ExportTable:
+    """The columns of ``layout`` in ``raw`` (from :func:`~.base.read_rows`) as an ExportTable.
+
+    ``conventions`` are the caller's choices (keys of :data:`~.base.CONVENTION_KEYS`, None for
+    not given); those the file states must agree with it, those it does not state must be given
+    where they are needed (one-line ValueError naming the file and the choice otherwise).
+    """
+    path = Path(path)
+    given = {k: v for k, v in conventions.items() if v is not None}
+    traces = layout.traces
+    if "overtone" in given and layout.overtone_in_file:
+        traces = tuple(tr for tr in traces if tr[0] == int(given["overtone"]))
+        if not traces:
+            held = ", ".join(str(tr[0]) for tr in layout.traces)
+            raise ValueError(
+                f"{path}: overtone {given['overtone']} (--overtone) is not in the file; it holds "
+                f"{held} ({reader} export)"
+            )
+    kind = _frequency_kind(raw, path, traces, layout.frequency)
+    unit, divided, scale, baseline = _choices(path, reader, layout, given, kind)
+    t_all = numbers(raw, layout.time_column, path) * TIME_UNITS[unit]
+    series, skipped = _series(raw, path, layout, traces, t_all, kind, scale)
+    fundamental, fsource = _fundamental(path, reader, given, kind, baseline, t_all, series)
+    bkind, t0, t1 = baseline
+    frames, refs_f, refs_g = [], {}, {}
+    for n, fcol, keep, f, d in series:
+        t, f, d = t_all[keep], f[keep], d[keep]
+        if kind == "absolute":
+            gamma = d * f / 2.0 if scale is not None else d
+        else:
+            f = f * n if divided else f
+            gamma = d * n * fundamental / 2.0 if scale is not None else d
+        if bkind != "as-exported":
+            rf, rg = _reference(*baseline, t, f), _reference(*baseline, t, gamma)
+            if math.isnan(rf):
+                span = f"run from {t.min():g} to {t.max():g} s" if t.size else "are missing"
+                raise ValueError(
+                    f"{path}: no point of overtone {n} ({fcol!r}) in the baseline window "
+                    f"{t0:g} <= t <= {t1:g} s (--baseline; its times {span})"
+                )
+            refs_f[str(n)], refs_g[str(n)] = rf, rg
+            f, gamma = f - rf, gamma - rg
+        frames.append(pd.DataFrame({"time_s": t, "overtone": n, "df_Hz": f, "dgamma_Hz": gamma}))
+    data = pd.concat(frames, ignore_index=True)
+    data["overtone"] = data["overtone"].astype(int)
+    record = {
+        "source_file": str(path),
+        "reader": reader,
+        "layout": layout.description,
+        "channel": layout.channel,
+        "overtones": [int(tr[0]) for tr in traces],
+        "time_unit_as_read": unit,
+        "frequency_as_read": "absolute f_n" if kind == "absolute" else "shift",
+        "df_as_read": (
+            "absolute (not divided by n)"
+            if kind == "absolute"
+            else ("divided by n (Δf_n/n)" if divided else "per overtone (Δf_n)")
+        ),
+        "dissipation_as_read": "D" if scale is not None else "Gamma (Hz)",
+        "dissipation_scale": scale,
+        "baseline": {
+            "first": "the first point of each overtone",
+            "window": f"the mean over {t0:g} <= t <= {t1:g} s of each overtone",
+            "as-exported": "as exported (the reference the instrument software chose)",
+        }[bkind],
+        "reference_frequency_Hz": refs_f if kind == "absolute" else None,
+        "reference_gamma_Hz": refs_g if kind == "absolute" else None,
+        "shift_offsets_removed_Hz": (
+            {"df": refs_f, "dgamma": refs_g} if kind == "shift" and refs_f else None
+        ),
+        "fundamental_Hz": fundamental,
+        "fundamental_source": fsource,
+        "gamma_rule": (
+            "Γ read from the file (Hz)"
+            if scale is None
+            else (
+                "Γ_n = D_n x scale x f_n / 2 per row, ΔΓ = Γ_n - Γ_ref"
+                if kind == "absolute"
+                else "ΔΓ_n = ΔD_n x scale x n f_F / 2 (first order in Δf/f)"
+            )
+        ),
+        "empty_cells_skipped": skipped,
+        "given_by_user": sorted(given),
+    }
+    return ExportTable(data[list(COLUMNS)], record)

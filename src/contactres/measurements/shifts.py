@@ -1,0 +1,344 @@
+"""From fitted admittance spectra to the sweep table: shifts and oscillation amplitudes.
+
+Each spectrum of an amplitude sweep (:class:`~contactres.measurements.spectra_table.SpectraTable`)
+has been fitted for its resonance frequency f_r and half-bandwidth Γ
+(:func:`contactres.measurements.spectra.fit_resonances`). Against the no-contact reference
+spectra of the same overtone (and of the same configuration, medium and experiment where the
+reference names them) the shifts are
+
+    Δf = f_r − f_ref,   ΔΓ = Γ − Γ_ref   (Hz; Δf not divided by n, Γ the half-bandwidth),
+
+with f_ref, Γ_ref the mean of the matching references and standard errors
+σ_Δ² = σ² + σ_ref² (σ_ref: the larger of the fit errors' combination √(Σσ_i²)/N and, for
+N >= 2 references, their scatter sd/√N).
+
+Oscillation amplitude. A thickness-shear plate of thickness d driven by a voltage U (amplitude)
+across its electrodes is loaded by the piezoelectric stress e26 U/d at both faces; projected on
+the mode cos(nπz/d) of the odd overtone n this is a modal force 2 e26 U/d (per area) against the
+modal stiffness c66 (nπ/d)² d/2, and at resonance the response is Q times the static one. The
+surface amplitude is therefore
+
+    u0 = 4 d26 Q U/(nπ)²,   d26 = e26/c66,   Q = f_r/(2Γ)
+
+(e.g. D. Johannsmann, *The Quartz Crystal Microbalance in Soft Matter Research*, Springer 2015;
+checked in the tests against the exact solution of the damped piezoelectric plate). Q is that of
+the spectrum itself (the contact's damping lowers it). e26 = 9.65e-2 C/m² is the AT-cut value of
+the QCM literature, c66 = 28.98 GPa that of :func:`contactres.materials.at_cut_quartz`
+(McSkimin 1965): d26 = 3.33 pm/V (not re-checked against a measured d26; pass ``d26`` or a
+calibration factor u0/U in m/V measured on your instrument instead).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pandas as pd
+
+from .spectra_table import SpectraTable
+
+__all__ = [
+    "D26_AT",
+    "E26_AT",
+    "shear_amplitude",
+    "sweeps_from_spectra",
+]
+
+#: Piezoelectric stress constant e26 of AT-cut quartz, C/m² (the QCM literature's value).
+E26_AT = 9.65e-2
+#: d26 = e26/c66 of AT-cut quartz, m/V (c66 = 28.98 GPa, the package's AT-cut constants).
+D26_AT = E26_AT / 28.98e9
+#: Labels that select the references of a spectrum (besides the overtone) when a reference
+#: names them.
+_MATCH = ("configuration", "medium", "experiment")
+_DEFAULTS = {"configuration": "default", "medium": "unspecified", "experiment": "1"}
+
+
+def shear_amplitude(drive_voltage, overtone, quality, d26: float = D26_AT):
+    """Surface amplitude u0 = 4 d26 Q U/(nπ)² of a thickness-shear resonator at resonance, m.
+
+    Parameters
+    ----------
+    drive_voltage : float or array
+        Amplitude (peak) U of the voltage across the crystal, V.
+    overtone : int or array
+        Odd overtone order n.
+    quality : float or array
+        Quality factor Q = f_r/(2Γ) of the resonance (Γ: half-bandwidth).
+    d26 : float
+        Piezoelectric strain constant, m/V (default :data:`D26_AT`).
+
+    Returns
+    -------
+    float or ndarray
+        u0 in m (module docstring for the derivation and sources).
+    """
+    n = np.asarray(overtone, dtype=float)
+    return 4 * d26 * np.asarray(quality) * np.asarray(drive_voltage) / (n * math.pi) ** 2
+
+
+def _references(spectra: pd.DataFrame, measured: pd.Series) -> np.ndarray:
+    """Mask of the usable references of one measured spectrum (module docstring)."""
+    ref = spectra["reference"].to_numpy(bool) & np.isfinite(spectra["f_r_Hz"].to_numpy(float))
+    ref &= spectra["overtone"].to_numpy(float) == float(measured["overtone"])
+    for col in _MATCH:
+        mine = spectra[col].astype(str).to_numpy()
+        named = (mine != "") & (mine != _DEFAULTS[col])
+        ref &= ~named | (mine == str(measured[col]))
+    return ref
+
+
+def _reference_value(values: np.ndarray, errors: np.ndarray) -> tuple[float, float]:
+    n = values.size
+    err = math.sqrt(float(np.sum(errors**2))) / n
+    if n >= 2:
+        err = max(err, float(np.std(values, ddof=1)) / math.sqrt(n))
+    return float(np.mean(values)), err
+
+
+def sweeps_from_spectra(
+    table: SpectraTable,
+    fits: pd.DataFrame,
+    *,
+    reference=None,
+    d26: float = D26_AT,
+    calibration_m_per_V: float | None = None,
+) -> tuple[pd.DataFrame, list[str]]:
+    """The sweep table (Δf, ΔΓ, u0 per spectrum) of fitted spectra, and what was left out.
+
+    Parameters
+    ----------
+    table : SpectraTable
+        The spectra and their labels.
+    fits : DataFrame
+        :func:`~contactres.measurements.spectra.fit_resonances` of ``table.points`` (columns
+        spectrum, f_r_Hz, f_r_err_Hz, gamma_Hz, gamma_err_Hz, flags).
+    reference : iterable of str, optional
+        Ids of the reference spectra; default: the ``reference`` column of the table.
+    d26 : float
+        Piezoelectric strain constant, m/V, for the amplitude (default :data:`D26_AT`).
+    calibration_m_per_V : float, optional
+        u0/U measured on the instrument, m/V: then u0 = this × U instead of the Q formula.
+
+    Returns
+    -------
+    (DataFrame, list of str)
+        One row per measured (non-reference) spectrum with a valid fit, in the columns of the
+        sweep table (``sweep``, ``amplitude_m``, ``df_Hz``, ``dgamma_Hz``, ``df_err_Hz``,
+        ``dgamma_err_Hz``, ``normal_force_N``, ``experiment``, ``configuration``, ``medium``,
+        ``ramp``, ``overtone``, ``time_s``) plus ``spectrum``, ``f_r_Hz``, ``gamma_Hz``,
+        ``quality``, ``drive_voltage_V``; and one line per spectrum left out (its fit flags).
+
+    Raises
+    ------
+    ValueError
+        No reference, a measured spectrum without a matching reference, without drive voltage
+        (and no calibration), overtone, sweep or normal force; unknown reference ids.
+    """
+    if calibration_m_per_V is not None and not (
+        math.isfinite(calibration_m_per_V) and calibration_m_per_V > 0
+    ):
+        raise ValueError(f"the calibration u0/U must be > 0 m/V, got {calibration_m_per_V!r}")
+    if not (math.isfinite(d26) and d26 > 0):
+        raise ValueError(f"d26 must be > 0 m/V, got {d26!r}")
+    spectra = table.spectra.merge(
+        fits.drop(columns=["n_points"], errors="ignore"), on="spectrum", how="left"
+    )
+    if reference is not None:
+        ids = [str(x).strip() for x in reference]
+        unknown = sorted(set(ids) - set(spectra["spectrum"]))
+        if unknown:
+            raise ValueError(f"{table.source}: no spectrum with id(s) {unknown} (--reference)")
+        spectra["reference"] = spectra["spectrum"].isin(ids)
+    refs = spectra["reference"].to_numpy(bool)
+    if not refs.any():
+        raise ValueError(
+            f"{table.source}: no reference spectrum (no contact): mark them in the column "
+            "'reference' or name them (--reference ID,...)"
+        )
+    ok = np.isfinite(spectra["f_r_Hz"].to_numpy(float)) & np.isfinite(
+        spectra["gamma_Hz"].to_numpy(float)
+    )
+    left_out = [
+        f"spectrum {row.spectrum} (line {row.line}): not used, fit flags {row.flags or 'none'}"
+        for row in spectra[~ok].itertuples()
+    ]
+    measured = spectra[~refs & ok]
+    for col, what in (("overtone", "overtone"), ("normal_force_N", "normal force")):
+        bad = ~np.isfinite(measured[col].to_numpy(float))
+        if bad.any():
+            row = measured[bad].iloc[0]
+            raise ValueError(
+                f"{table.source}, line {row['line']}: spectrum {row['spectrum']} has no {what} "
+                f"(column {col!r}); every measured spectrum needs one"
+            )
+    no_sweep = (
+        np.ones(len(measured), bool)
+        if "sweep" not in measured.columns
+        else (measured["sweep"].astype(str).str.strip() == "").to_numpy()
+    )
+    if no_sweep.any():
+        row = measured[no_sweep].iloc[0]
+        raise ValueError(
+            f"{table.source}, line {row['line']}: spectrum {row['spectrum']} is not a reference "
+            "and has no sweep id (column 'sweep')"
+        )
+    if calibration_m_per_V is None:
+        bad = ~np.isfinite(measured["drive_voltage_V"].to_numpy(float))
+        if bad.any():
+            row = measured[bad].iloc[0]
+            raise ValueError(
+                f"{table.source}, line {row['line']}: spectrum {row['spectrum']} has no drive "
+                "voltage (column 'drive_voltage_V'); give it, or a calibration u0/U"
+            )
+    # One pass per distinct reference set (a handful), not per point.
+    keys = measured[["overtone", *_MATCH]].astype(str).agg("|".join, axis=1)
+    f_ref = np.empty(len(measured))
+    g_ref = np.empty(len(measured))
+    f_ref_err = np.empty(len(measured))
+    g_ref_err = np.empty(len(measured))
+    for key in keys.unique():
+        mine = (keys == key).to_numpy()
+        first = measured[mine].iloc[0]
+        use = _references(spectra, first)
+        if not use.any():
+            raise ValueError(
+                f"{table.source}, line {first['line']}: spectrum {first['spectrum']} (overtone "
+                f"{first['overtone']:g}, {', '.join(f'{c} {first[c]}' for c in _MATCH)}) has no "
+                "usable reference spectrum of the same overtone"
+            )
+        r = spectra[use]
+        f_ref[mine], f_ref_err[mine] = _reference_value(
+            r["f_r_Hz"].to_numpy(float), r["f_r_err_Hz"].to_numpy(float)
+        )
+        g_ref[mine], g_ref_err[mine] = _reference_value(
+            r["gamma_Hz"].to_numpy(float), r["gamma_err_Hz"].to_numpy(float)
+        )
+    f_r = measured["f_r_Hz"].to_numpy(float)
+    gamma = measured["gamma_Hz"].to_numpy(float)
+    quality = f_r / (2 * gamma)
+    u = measured["drive_voltage_V"].to_numpy(float)
+    n = measured["overtone"].to_numpy(float)
+    if calibration_m_per_V is None:
+        amplitude = shear_amplitude(u, n, quality, d26)
+    else:
+        amplitude = calibration_m_per_V * u
+    out = pd.DataFrame(
+        {
+            "sweep": measured["sweep"].astype(str).to_numpy(),
+            "amplitude_m": amplitude,
+            "df_Hz": f_r - f_ref,
+            "dgamma_Hz": gamma - g_ref,
+            "df_err_Hz": np.hypot(measured["f_r_err_Hz"].to_numpy(float), f_ref_err),
+            "dgamma_err_Hz": np.hypot(measured["gamma_err_Hz"].to_numpy(float), g_ref_err),
+            "normal_force_N": measured["normal_force_N"].to_numpy(float),
+            "experiment": measured["experiment"].astype(str).to_numpy(),
+            "configuration": measured["configuration"].astype(str).to_numpy(),
+            "medium": measured["medium"].astype(str).to_numpy(),
+            "ramp": measured["ramp"].to_numpy(float),
+            "overtone": n,
+            "time_s": measured["time_s"].to_numpy(float),
+            "spectrum": measured["spectrum"].to_numpy(),
+            "f_r_Hz": f_r,
+            "gamma_Hz": gamma,
+            "quality": quality,
+            "drive_voltage_V": u,
+        }
+    )
+    # Columns that no spectrum gave are left out (the sweep table treats them as absent).
+    for col in ("ramp", "time_s"):
+        if not np.isfinite(out[col]).any():
+            out = out.drop(columns=col)
+    if "ramp" in out.columns:
+        out["ramp"] = out["ramp"].astype("Int64")
+    out["overtone"] = out["overtone"].astype(int)
+    out.attrs["conventions"] = {
+        "df": "Δf = f_r − f_ref in Hz (not divided by n)",
+        "dgamma": "ΔΓ: shift of the half-bandwidth at half height of G, Hz (not D)",
+        "amplitude": (
+            f"u0 = {calibration_m_per_V:g} m/V × U"
+            if calibration_m_per_V is not None
+            else f"u0 = 4 d26 Q U/(nπ)², d26 = {d26:.4g} m/V, Q = f_r/(2Γ)"
+        ),
+        "reference": "mean of the reference spectra of the same overtone (and labels)",
+    }
+    return out, left_out
+
+
+def is_spectra_input(path) -> bool:
+    """True if ``path`` is a folder (of spectrum files) or a table whose header has the
+    spectra columns ``frequency_Hz`` and ``G_S`` (rather than a sweep table)."""
+    from pathlib import Path
+
+    p = Path(path)
+    if p.is_dir():
+        return True
+    try:
+        with p.open(encoding="utf-8-sig", errors="replace") as fh:
+            for text in fh:
+                if text.strip() and not text.lstrip().startswith("#"):
+                    names = {x.strip().strip('"') for x in text.replace(";", ",").split(",")}
+                    names |= {x.strip() for x in text.split("\t")}
+                    return {"frequency_Hz", "G_S"} <= names
+    except OSError:
+        return False
+    return False
+
+
+def read_spectra_sweeps(
+    path,
+    *,
+    reference=None,
+    layout: str | None = None,
+    reference_impedance: float = 50.0,
+    voltage: str = "amplitude",
+    d26: float = D26_AT,
+    calibration_m_per_V: float | None = None,
+    **constants,
+):
+    """Spectra -> resonance fits -> the validated sweep table, in one call.
+
+    Parameters
+    ----------
+    path : str or path-like
+        Tidy spectra table or folder (:func:`~contactres.measurements.spectra_table.read_spectra`).
+    reference, d26, calibration_m_per_V
+        As in :func:`sweeps_from_spectra`.
+    layout, reference_impedance, voltage
+        As in :func:`~contactres.measurements.spectra_table.read_spectra`.
+    **constants
+        The sweep table's constants (``area_m2``, ``fundamental_Hz``, ...), as in
+        :func:`~contactres.measurements.sweeps.read_sweeps`.
+
+    Returns
+    -------
+    (SweepTable, DataFrame, DataFrame, list of str)
+        The validated sweep table, the sweep rows with their errors and spectrum columns
+        (:func:`sweeps_from_spectra`), the resonance fits (one row per spectrum) and one line
+        per spectrum left out.
+    """
+    from .spectra import fit_resonances
+    from .spectra_table import read_spectra
+    from .sweeps import validate_sweeps
+
+    table = read_spectra(
+        path, layout=layout, reference_impedance=reference_impedance, voltage=voltage
+    )
+    p = table.points
+    fits = fit_resonances(
+        p["spectrum"].to_numpy(),
+        p["frequency_Hz"].to_numpy(),
+        p["G_S"].to_numpy(),
+        None if p["B_S"].isna().all() else p["B_S"].to_numpy(),
+    )
+    rows, left_out = sweeps_from_spectra(
+        table, fits, reference=reference, d26=d26, calibration_m_per_V=calibration_m_per_V
+    )
+    if rows.empty:
+        raise ValueError(f"{table.source}: no measured spectrum has a usable resonance fit")
+    given = {k: v for k, v in constants.items() if v is not None}
+    raw = rows.drop(columns=["spectrum", "f_r_Hz", "gamma_Hz", "quality", "drive_voltage_V"])
+    line = table.spectra.set_index("spectrum")["line"]
+    raw["line"] = line.reindex(rows["spectrum"]).to_numpy()
+    sweeps = validate_sweeps(raw, source=table.source, constants=given)
+    return sweeps, rows, fits, left_out

@@ -1,0 +1,402 @@
+"""Reader plug-ins for QCM-D instrument exports (contactres.measurements.readers.exports).
+
+Every layout is written here from known shifts (Δf_n, ΔΓ_n per overtone), read back with its
+conventions applied (Δf/n -> Δf, D -> Γ = D f_n / 2 with the D scale, time unit, baseline),
+and compared with the known values. Detection must pick each layout's reader and no other, and
+none for the package's tidy sweep table; a convention the file does not tell gives one line.
+"""
+
+from __future__ import annotations
+
+import json
+from importlib import resources
+
+import numpy as np
+import pytest
+
+from contactres.measurements.readers.exports import (
+    EXPORT_READERS,
+    ExportTable,
+    export_reader,
+    pick_export_reader,
+    read_export,
+)
+
+F_F = 4.95e6  # fundamental, Hz
+T = np.arange(6) * 2.0  # s
+OVERTONES = (3, 5, 7)
+MULTI = (1, 3, 5, 7, 9)  # the five overtones of an openQCM Next multiscan log
+
+
+def true_df(n):
+    """Δf_n (Hz, not divided by n), zero at t = 0."""
+    return -n * (0.4 * T + 0.01 * T**2)
+
+
+def true_dg(n):
+    """ΔΓ_n (Hz, half-bandwidth), zero at t = 0."""
+    return n * (0.05 * T + 0.002 * T**2)
+
+
+def gamma0(n):
+    """Γ_n of the unloaded crystal (Hz): D ~ 1e-5 at the fundamental."""
+    return 25.0 + 3.0 * n
+
+
+def dD(n):
+    """The D shift that gives ΔΓ_n (first order): ΔD = 2 ΔΓ / (n f_F)."""
+    return 2 * true_dg(n) / (n * F_F)
+
+
+def write(path, header, rows, sep=",", comma=False):
+    def cell(v):
+        text = v if isinstance(v, str) else repr(float(v))
+        return text.replace(".", ",") if comma and not isinstance(v, str) else text
+
+    lines = [sep.join(header)] + [sep.join(cell(v) for v in row) for row in rows]
+    path.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    return path
+
+
+def qsense_a(tmp_path, name="qsense_a.txt"):
+    """QSense text export, layout A: two sensors, Δf/n, D in ppm, time in minutes, decimal comma."""
+    header = ["Time_1"] + [f"{c}_1:{n}" for n in OVERTONES for c in "FD"]
+    header += ["Time_2", "F_2:3", "D_2:3", "Meas. Temp. Time", "Tact"]
+    rows = []
+    for i, t in enumerate(T):
+        row = [t / 60]
+        for n in OVERTONES:
+            row += [true_df(n)[i] / n, dD(n)[i] * 1e6]
+        rows.append([*row, t / 60, 1.0, 0.5, t, 22.0])
+    return write(tmp_path / name, header, rows, sep=";", comma=True)
+
+
+def qsense_b(tmp_path):
+    """QSense export, layout B: absolute f_n in Hz, absolute D in ppm, time in s (tab)."""
+    pairs = (("f", "Hz"), ("D", "ppm"))
+    header = ["Time_1 [s]"] + [f"{c}{n}_1 [{u}]" for n in OVERTONES for c, u in pairs]
+    rows = []
+    for i, t in enumerate(T):
+        row = [t]
+        for n in OVERTONES:
+            f = n * F_F + true_df(n)[i]
+            row += [f, 2 * (gamma0(n) + true_dg(n)[i]) / f * 1e6]
+        rows.append(row)
+    return write(tmp_path / "qsense_b.txt", header, rows, sep="\t")
+
+
+def awsensors(tmp_path):
+    """AWSensors: Time_(s), Delta_F/n_n=N_(Hz), Delta_D_n=N_() with D in ppm (comma)."""
+    pairs = (("F/n", "Hz"), ("D", ""))
+    header = ["Time_(s)"] + [f"Delta_{q}_n={n}_({u})" for n in OVERTONES for q, u in pairs]
+    rows = [[t] + [v for n in OVERTONES for v in (true_df(n)[i] / n, dD(n)[i] * 1e6)]
+            for i, t in enumerate(T)]  # fmt: skip
+    return write(tmp_path / "aws.csv", header, rows)
+
+
+def qcmi(tmp_path):
+    """QCM-I: tab-separated, absolute f_n and D (plain), FWHM and Variation columns, repeated
+    flow and temperature columns (as in the sample export of pyQCM-BraTaDio)."""
+    header = ["Channel A QCM Time [sec]"]
+    for n in (1, *OVERTONES):
+        label = "Fundamental" if n == 1 else f"{n}."
+        freq = "Fundamental Frequency" if n == 1 else f"{n}. Overtone"
+        header += [f"Channel A {label} Dissipation  [ ]", "Channel A Flow [ul/min]",
+                   f"Channel A {freq} [Hz]", f"Channel A {label} FWHM [Hz]",
+                   "Channel A Temp [Celsius]", f"Channel A {freq} Variation [Hz]"]  # fmt: skip
+    rows = []
+    for i, t in enumerate(T):
+        row = [t]
+        for n in (1, *OVERTONES):
+            df = true_df(n)[i]
+            f, g = n * F_F + df, gamma0(n) + true_dg(n)[i]
+            row += [2 * g / f, 0, f, 2 * g, 25.0, df]
+        rows.append(row)
+    return write(tmp_path / "qcmi.txt", header, rows, sep="\t")
+
+
+def openqcm_multi(tmp_path):
+    """openQCM Next multiscan log: Frequency_i (n = 2i + 1, i = 0-4), D in ppm."""
+    header = ["Date", "Time", "Relative_time", "Temperature"]
+    for i in range(5):
+        header += [f"Frequency_{i}", f"Dissipation_{i}"]
+    rows = []
+    for j, t in enumerate(T):
+        row = ["2026-01-01", f"12:00:{j:02d}", t, 24.8]
+        for n in MULTI:
+            f = n * F_F + true_df(n)[j]
+            row += [f, 2 * (gamma0(n) + true_dg(n)[j]) / f * 1e6]
+        rows.append(row)
+    return write(tmp_path / "multi.csv", header, rows)
+
+
+def openqcm_single(tmp_path):
+    """openQCM Q-1 log: one overtone (5), D as a plain number."""
+    header = ["Date", "Time", "Relative_time", "Temperature", "Resonance_Frequency", "Dissipation"]
+    rows = []
+    for j, t in enumerate(T):
+        f = 5 * F_F + true_df(5)[j]
+        rows.append(
+            ["2026-01-01", f"12:00:{j:02d}", t, 24.8, f, 2 * (gamma0(5) + true_dg(5)[j]) / f]
+        )
+    return write(tmp_path / "F0.csv", header, rows)
+
+
+# (maker, reader, conventions, overtones, ΔΓ exact?)  ΔΓ from a D shift is first order in Δf/f.
+CASES = {
+    "qsense-A": (qsense_a, "qsense", dict(time_unit="min", df_divided_by_n=True,
+                 dissipation_scale=1e-6, fundamental=F_F, channel="1"), OVERTONES),
+    "qsense-B": (qsense_b, "qsense", dict(baseline="first"), OVERTONES),
+    "awsensors": (awsensors, "awsensors", dict(dissipation_scale=1e-6, fundamental=F_F),
+                  OVERTONES),
+    "qcmi": (qcmi, "qcmi", dict(baseline="first"), (1, *OVERTONES)),
+    "openqcm-multi": (openqcm_multi, "openqcm", dict(dissipation_scale=1e-6, baseline="first"),
+                      MULTI),
+    "openqcm-single": (openqcm_single, "openqcm", dict(dissipation_scale=1, baseline="first",
+                       overtone=5), (5,)),
+}  # fmt: skip
+
+
+@pytest.mark.parametrize("case", CASES)
+def test_each_layout_reads_back_the_known_shifts(tmp_path, case):
+    maker, name, conventions, overtones = CASES[case]
+    path = maker(tmp_path)
+    table = read_export(path, **conventions)
+    assert isinstance(table, ExportTable)
+    assert list(table.data.columns) == ["time_s", "overtone", "df_Hz", "dgamma_Hz"]
+    assert table.conventions["reader"] == name
+    assert table.conventions["source_file"] == str(path)
+    assert table.conventions["overtones"] == list(overtones)
+    for n in overtones:
+        part = table.data[table.data.overtone == n]
+        np.testing.assert_allclose(part.time_s, T, rtol=1e-12, atol=1e-12)
+        np.testing.assert_allclose(part.df_Hz, true_df(n), rtol=1e-9, atol=1e-6)
+        np.testing.assert_allclose(part.dgamma_Hz, true_dg(n), rtol=1e-9, atol=1e-6)
+    json.dumps(dict(table.conventions))  # every convention is recorded in JSON-ready form
+
+
+def test_conventions_record_what_was_read_and_done(tmp_path):
+    a = read_export(qsense_a(tmp_path), **CASES["qsense-A"][2]).conventions
+    assert a["df_as_read"] == "divided by n (Δf_n/n)"
+    assert a["dissipation_as_read"] == "D" and a["dissipation_scale"] == 1e-6
+    assert a["time_unit_as_read"] == "min" and a["channel"] == "1"
+    assert a["baseline"].startswith("as exported") and a["fundamental_source"] == "given"
+    assert a["given_by_user"] == sorted(CASES["qsense-A"][2])
+    b = read_export(qsense_b(tmp_path), baseline="first").conventions
+    assert b["frequency_as_read"] == "absolute f_n" and b["dissipation_scale"] == 1e-6
+    assert b["baseline"] == "the first point of each overtone"
+    assert b["reference_frequency_Hz"]["3"] == pytest.approx(3 * F_F)
+    assert b["reference_gamma_Hz"]["5"] == pytest.approx(gamma0(5))
+    assert b["fundamental_Hz"] == pytest.approx(F_F) and "from the file" in b["fundamental_source"]
+
+
+def test_gamma_is_d_times_f_over_two_by_hand(tmp_path):
+    """One value by hand: Γ = D f / 2 with the D scale, against the file's own FWHM (QCM-I)."""
+    # the first two rows of the QCM-I sample export in pyQCM-BraTaDio (offset_data/...STA.txt)
+    path = write(
+        tmp_path / "sample.txt",
+        ["Channel A QCM Time [sec]", "Channel A Fundamental Dissipation [ ]",
+         "Channel A Fundamental Frequency [Hz]", "Channel A Fundamental FWHM [Hz]"],
+        [[5.0501468, 1.31161656206037e-05, 4961272.01729206, 65.0728654676696],
+         [5.045002, 1.33234290197324e-05, 4961264.47245154, 66.1010550468283]],
+        sep="\t",
+    )  # fmt: skip
+    t = read_export(path, baseline="first").data
+    assert t.df_Hz.iloc[1] == pytest.approx(4961264.47245154 - 4961272.01729206, rel=1e-12)
+    assert t.dgamma_Hz.iloc[1] == pytest.approx((66.1010550468283 - 65.0728654676696) / 2, rel=1e-5)
+
+
+def test_real_qsense_rows_decimal_comma(tmp_path):
+    """The first rows of a real QSense export (safyre8/QCM-D_data_processing, S1_...slb.txt)."""
+    path = tmp_path / "S1.txt"
+    path.write_text(
+        "Time_1;F_1:5;D_1:5;F_1:7;D_1:7;Meas. Temp. Time;Tact\n"
+        "0,0955409351736307;4,60659066447988E-10;0;-4,07453626394272E-10;0;"
+        "-0,0367393270134926;22,0311783160223\n"
+        "2,27098176069558;-0,328020308450959;-0,0392417522828907;-0,300130797691509;"
+        "0,190391210680261;0,822157015092671;22,0288766386672\n",
+        encoding="utf-8",
+    )
+    t = read_export(path, time_unit="s", df_divided_by_n=True, dissipation_scale=1e-6,
+                    fundamental=4.95e6).data  # fmt: skip
+    row = t[(t.overtone == 7)].iloc[1]
+    assert row.time_s == pytest.approx(2.27098176069558)
+    assert row.df_Hz == pytest.approx(7 * -0.300130797691509, rel=1e-12)
+    assert row.dgamma_Hz == pytest.approx(0.190391210680261e-6 * 7 * 4.95e6 / 2, rel=1e-12)
+
+
+# ------------------------------------------------------------------ detection
+MAKERS = {
+    "qsense": (qsense_a, qsense_b),
+    "awsensors": (awsensors,),
+    "qcmi": (qcmi,),
+    "openqcm": (openqcm_multi, openqcm_single),
+}
+
+
+def test_detection_does_not_confuse_the_formats(tmp_path):
+    files = {name: [m(tmp_path) for m in makers] for name, makers in MAKERS.items()}
+    for name, paths in files.items():
+        for path in paths:
+            head = path.read_text(encoding="utf-8")[:4096]
+            hits = [r.name for r in EXPORT_READERS if r.detect(path, head)]
+            assert hits == [name], (path.name, hits)
+            assert pick_export_reader(path).name == name
+
+
+def test_the_tidy_sweep_table_is_no_export():
+    sweeps = resources.files("contactres") / "data" / "example_sweeps.csv"
+    with resources.as_file(sweeps) as path:
+        head = path.read_text(encoding="utf-8")[:4096]
+        assert not [r.name for r in EXPORT_READERS if r.detect(path, head)]
+        with pytest.raises(ValueError, match="no export reader recognises") as info:
+            pick_export_reader(path)
+    assert len(str(info.value).splitlines()) == 1
+
+
+def test_every_reader_declares_itself():
+    assert [r.name for r in EXPORT_READERS] == ["qsense", "awsensors", "qcmi", "openqcm"]
+    for r in EXPORT_READERS:
+        assert r.suffixes and all(s.startswith(".") for s in r.suffixes)
+        assert {"time", "frequency", "dissipation", "overtones", "channels"} <= set(r.conventions)
+        assert "github.com" in r.source
+        assert export_reader(r.name.upper()) is r
+    with pytest.raises(ValueError, match="known: qsense, awsensors, qcmi, openqcm"):
+        export_reader("biolin")
+
+
+def test_binary_and_empty_files_are_refused(tmp_path):
+    for name, text in (("run.xlsx", "PK"), ("empty.txt", "  \n")):
+        (tmp_path / name).write_text(text)
+        with pytest.raises(ValueError, match=name):
+            read_export(tmp_path / name)
+
+
+# ------------------------------------------------------------------ missing and wrong choices
+def one_line(exc_info, *words):
+    text = str(exc_info.value)
+    assert len(text.splitlines()) == 1, text
+    for w in words:
+        assert w in text, text
+    return text
+
+
+@pytest.mark.parametrize(
+    "maker, given, missing",
+    [
+        (qsense_a, dict(channel="1"),
+         ["time_unit", "df_divided_by_n", "dissipation_scale", "fundamental"]),
+        (qsense_a, dict(time_unit="s", df_divided_by_n=True, dissipation_scale=1e-6,
+                        fundamental=F_F), ["channel", "1, 2"]),
+        (qsense_b, {}, ["baseline", "--baseline"]),
+        (awsensors, dict(fundamental=F_F), ["dissipation_scale", "--dissipation-scale"]),
+        (awsensors, dict(dissipation_scale=1e-6), ["fundamental", "--fundamental"]),
+        (qcmi, {}, ["baseline"]),
+        (openqcm_multi, dict(baseline="first"), ["dissipation_scale"]),
+        (openqcm_single, dict(baseline="first", dissipation_scale=1), ["overtone", "--overtone"]),
+    ],
+)  # fmt: skip
+def test_a_convention_the_file_does_not_tell_is_asked_for(tmp_path, maker, given, missing):
+    path = maker(tmp_path)
+    with pytest.raises(ValueError) as info:
+        read_export(path, **given)
+    one_line(info, str(path), *missing)
+
+
+@pytest.mark.parametrize(
+    "maker, given, words",
+    [
+        (awsensors, dict(dissipation_scale=1e-6, fundamental=F_F, df_divided_by_n=False),
+         ["df_divided_by_n=False", "--df-per-overtone", "contradicts"]),
+        (qsense_b, dict(baseline="first", dissipation_scale=1), ["dissipation_scale=1",
+                                                                   "contradicts", "1e-06"]),
+        (qsense_b, dict(baseline="first", df_divided_by_n=True), ["does not apply"]),
+        (qsense_b, dict(baseline="as-exported"),
+         ["as-exported", "--baseline", "needs a file of shifts"]),
+        (qsense_b, dict(baseline="window:100:200"), ["no point of overtone 3", "100 <= t"]),
+        (qsense_b, dict(baseline="window:5:1"), ["T0 < T1"]),
+        (qsense_b, dict(baseline="first", fundamental=10e6), ["fundamental=1e+07", "disagrees"]),
+        (qsense_b, dict(baseline="first", overtone=9),
+         ["overtone 9", "--overtone", "is not in the file"]),
+        (qsense_b, dict(baseline="first", channel="4"),
+         ["channel '4'", "--channel", "is not in the file"]),
+        (qsense_b, dict(baseline="first", time_unit="min"),
+         ["time_unit='min'", "--time-unit", "contradicts"]),
+        (openqcm_single, dict(baseline="first", dissipation_scale=1e-6, overtone=5, channel="A"),
+         ["channel", "--channel", "does not apply"]),
+        (openqcm_single, dict(baseline="first", dissipation_scale=1e-6, overtone=4),
+         ["odd"]),
+        (openqcm_multi, dict(baseline="first", dissipation_scale=1), ["no dissipation factor",
+                                                                        "1e-6 for ppm"]),
+        (openqcm_multi, dict(baseline="first", dissipation_scale=1e-6, sensor=1),
+         ["unknown convention", "'sensor'"]),
+    ],
+)  # fmt: skip
+def test_a_wrong_choice_is_one_line(tmp_path, maker, given, words):
+    with pytest.raises(ValueError) as info:
+        read_export(maker(tmp_path), **given)
+    one_line(info, *words)
+
+
+def test_a_bad_cell_names_file_line_column_value_and_rule(tmp_path):
+    path = qsense_a(tmp_path)
+    lines = path.read_text().splitlines()
+    cells = lines[3].split(";")
+    cells[3] = "n/a"
+    lines[3] = ";".join(cells)
+    path.write_text("\n".join(lines) + "\n")
+    with pytest.raises(ValueError) as info:
+        read_export(path, **CASES["qsense-A"][2])
+    one_line(info, str(path), "line 4", "'F_1:5'", "'n/a'", "is not a finite number")
+
+
+def test_empty_cells_are_skipped_and_counted(tmp_path):
+    path = openqcm_multi(tmp_path)
+    lines = path.read_text().splitlines()
+    lines[2] = ",".join(lines[2].split(",")[:-2])  # a short row: no 9th overtone there
+    path.write_text("\n".join(lines) + "\n")
+    table = read_export(path, baseline="first", dissipation_scale=1e-6)
+    assert table.conventions["empty_cells_skipped"] == 1
+    assert (table.data.overtone == 9).sum() == len(T) - 1
+
+
+def test_frequencies_divided_by_n_are_caught(tmp_path):
+    """Absolute f_n/n in a log (all overtones near f_F) are not n f_F: one line, column named."""
+    path = openqcm_multi(tmp_path)
+    text = path.read_text()
+    for n in MULTI[1:]:
+        text = text.replace(repr(n * F_F + 0.0), repr(F_F))
+    path.write_text(text)
+    with pytest.raises(ValueError) as info:
+        read_export(path, baseline="first", dissipation_scale=1e-6)
+    one_line(info, "not n f_F", "Frequency_")
+
+
+def test_shifts_and_resonance_frequencies_mixed(tmp_path):
+    path = awsensors(tmp_path)
+    lines = path.read_text().splitlines()
+    cells = lines[2].split(",")
+    cells[1] = "4950000.5"
+    lines[2] = ",".join(cells)
+    path.write_text("\n".join(lines) + "\n")
+    with pytest.raises(ValueError) as info:
+        read_export(path, dissipation_scale=1e-6, fundamental=F_F)
+    one_line(info, "line 3", "'Delta_F/n_n=3_(Hz)'", "4950000.5", "is no shift")
+
+
+def test_window_baseline_and_re_zeroed_shifts(tmp_path):
+    """A window baseline on a file of shifts removes the mean over the window (recorded)."""
+    table = read_export(awsensors(tmp_path), dissipation_scale=1e-6, fundamental=F_F,
+                        baseline="window:0:2.5")  # fmt: skip
+    part = table.data[table.data.overtone == 3]
+    ref = true_df(3)[:2].mean()
+    np.testing.assert_allclose(part.df_Hz, true_df(3) - ref, atol=1e-9)
+    assert table.conventions["shift_offsets_removed_Hz"]["df"]["3"] == pytest.approx(ref)
+
+
+def test_read_with_a_named_reader_and_overtone_filter(tmp_path):
+    table = read_export(qcmi(tmp_path), "qcmi", baseline="first", overtone=5)
+    assert set(table.data.overtone) == {5}
+    with pytest.raises(ValueError) as info:
+        read_export(qcmi(tmp_path), "awsensors", dissipation_scale=1e-6, fundamental=F_F)
+    one_line(info, "no AWSensors columns")

@@ -1,0 +1,172 @@
+"""Reading admittance spectra (tidy table, folder of network-analyser files) and the amplitude.
+
+Independent checks: the S11 -> Y conversion against the impedance of a known circuit written
+here, the Touchstone formats (RI, MA, DB) against each other, and u0 = 4 d26 Q U/(nπ)² against
+the exact steady state of a damped piezoelectric plate (1-D wave equation with the piezoelectric
+boundary stress), not against the modal argument behind the formula.
+"""
+
+import cmath
+import math
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from contactres.measurements.shifts import D26_AT, E26_AT, shear_amplitude
+from contactres.measurements.spectra_table import read_spectra
+
+F = np.linspace(14.99e6, 15.01e6, 41)
+
+
+def _circuit(f, r=200.0, fr=15.0e6, q=2e4, c0=5e-12):
+    """Admittance of a series R-L-C in parallel with C0 (written here, independently)."""
+    w = 2 * np.pi * f
+    L = q * r / (2 * np.pi * fr)
+    C = 1 / ((2 * np.pi * fr) ** 2 * L)
+    return 1 / (r + 1j * w * L + 1 / (1j * w * C)) + 1j * w * c0
+
+
+def _tidy(tmp_path, rows):
+    path = tmp_path / "spectra.csv"
+    pd.DataFrame(rows).to_csv(path, index=False)
+    return path
+
+
+def test_tidy_table_reads_and_sorts(tmp_path):
+    y = _circuit(F)
+    rows = []
+    for sid, ref in (("ref", True), ("s1", False)):
+        for f, v in zip(F[::-1], y[::-1], strict=True):  # written in falling frequency
+            rows.append(
+                {"spectrum": sid, "frequency_Hz": f, "G_S": v.real, "B_S": v.imag,
+                 "reference": ref, "overtone": 3, "drive_voltage_V": 0.5,
+                 "sweep": "" if ref else "A", "normal_force_N": "" if ref else 2e-3}
+            )  # fmt: skip
+    t = read_spectra(_tidy(tmp_path, rows))
+    assert list(t.spectra["spectrum"]) == ["ref", "s1"]
+    assert list(t.spectra["reference"]) == [True, False]
+    assert np.all(np.diff(t.points[t.points.spectrum == "s1"]["frequency_Hz"]) > 0)
+    assert t.spectra["n_points"].tolist() == [41, 41]
+
+
+def _folder(tmp_path, files, index_rows):
+    folder = tmp_path / "run"
+    folder.mkdir()
+    for name, text in files.items():
+        (folder / name).write_text(text)
+    pd.DataFrame(index_rows).to_csv(folder / "index.csv", index=False)
+    return folder
+
+
+@pytest.mark.parametrize("fmt", ["RI", "MA", "DB"])
+def test_touchstone_s11_gives_the_circuit_admittance(tmp_path, fmt):
+    z0 = 50.0
+    y = _circuit(F)
+    s = (1 - z0 * y) / (1 + z0 * y)  # S11 of an admittance y against z0
+    lines = [f"! test\n# MHz S {fmt} R {z0:g}"]
+    for f, v in zip(F, s, strict=True):
+        if fmt == "RI":
+            a, b = v.real, v.imag
+        elif fmt == "MA":
+            a, b = abs(v), math.degrees(cmath.phase(v))
+        else:
+            a, b = 20 * math.log10(abs(v)), math.degrees(cmath.phase(v))
+        lines.append(f"{f / 1e6:.9f} {a:.15g} {b:.15g}")
+    folder = _folder(
+        tmp_path,
+        {"a.s1p": "\n".join(lines)},
+        [{"file": "a.s1p", "reference": "yes", "overtone": 3}],
+    )
+    t = read_spectra(folder)
+    got = t.points["G_S"].to_numpy() + 1j * t.points["B_S"].to_numpy()
+    assert np.allclose(got, y, rtol=1e-9, atol=1e-12 * np.max(abs(y)))
+    assert t.spectra["spectrum"].tolist() == ["a"]
+
+
+@pytest.mark.parametrize("layout", ["G/B", "Y-RI", "S11-RI", "Y-MA"])
+def test_delimited_layouts(tmp_path, layout):
+    y = _circuit(F)
+    s = (1 - 50 * y) / (1 + 50 * y)
+    cols = {
+        "G/B": {"G_S": y.real, "B_S": y.imag},
+        "Y-RI": {"Y_re_S": y.real, "Y_im_S": y.imag},
+        "S11-RI": {"S11_re": s.real, "S11_im": s.imag},
+        "Y-MA": {"Y_mag_S": abs(y), "Y_phase_deg": np.degrees(np.angle(y))},
+    }[layout]
+    text = pd.DataFrame({"frequency_Hz": F, **cols}).to_csv(index=False, float_format="%.15g")
+    folder = _folder(tmp_path, {"b.csv": text}, [{"file": "b.csv", "spectrum": "s7"}])
+    t = read_spectra(folder)
+    got = t.points["G_S"].to_numpy() + 1j * t.points["B_S"].to_numpy()
+    assert np.allclose(got, y, rtol=1e-9, atol=1e-12 * np.max(abs(y)))
+    assert t.spectra["spectrum"].tolist() == ["s7"]
+
+
+@pytest.mark.parametrize(
+    "change, words",
+    [
+        ({"frequency_Hz": "abc"}, ["line 3", "frequency_Hz", "'abc'"]),
+        ({"G_S": "nan"}, ["line 3", "G_S", "finite"]),
+        ({"frequency_Hz": "-1"}, ["line 3", "frequency_Hz", "> 0"]),
+        ({"overtone": "2"}, ["overtone", "odd"]),
+        ({"reference": "maybe"}, ["reference", "true/false"]),
+        ({"drive_voltage_V": "0"}, ["drive_voltage_V", "> 0"]),
+    ],
+)
+def test_bad_cells_name_line_column_value(tmp_path, change, words):
+    rows = [
+        {"spectrum": "s", "frequency_Hz": f, "G_S": 1e-3, "B_S": 0.0, "overtone": 3,
+         "reference": "false", "drive_voltage_V": 1.0}
+        for f in F[:5]
+    ]  # fmt: skip
+    rows[1].update(change)
+    if "overtone" in change or "reference" in change or "drive_voltage_V" in change:
+        for r in rows:
+            r.update(change)
+    path = _tidy(tmp_path, rows)
+    with pytest.raises(ValueError) as info:
+        read_spectra(path)
+    msg = str(info.value)
+    assert "\n" not in msg and str(path) in msg
+    for w in words:
+        assert w in msg, msg
+
+
+def test_other_bad_inputs(tmp_path):
+    path = _tidy(tmp_path, [{"spectrum": "s", "frequency_Hz": 1e6, "G_S": 1.0}] * 2)
+    with pytest.raises(ValueError, match="appears twice"):
+        read_spectra(path)
+    with pytest.raises(ValueError, match="missing column"):
+        read_spectra(_tidy(tmp_path, [{"spectrum": "s", "f": 1.0}]))
+    folder = tmp_path / "empty"
+    folder.mkdir()
+    with pytest.raises(ValueError, match=r"index\.csv"):
+        read_spectra(folder)
+    with pytest.raises(FileNotFoundError):
+        read_spectra(tmp_path / "nothing.csv")
+
+
+# ------------------------------------------------------------------ the amplitude
+def _plate_amplitude(f, n, q, voltage, d=None):
+    """|u(0)| of an AT-cut plate (c66, ρ, e26) with loss c66 (1 + i/Q), driven by U at f: the
+    exact solution of ρω²u + c̃ u'' = 0 with the traction-free faces c̃u' − e26 U/d = 0."""
+    rho, c = 2648.0, 28.98e9
+    if d is None:
+        d = n * math.sqrt(c / rho) / (2 * 15e6)  # overtone n near 15 MHz
+    ct = c * (1 + 1j / q)
+    k = 2 * math.pi * f * np.sqrt(rho / ct)
+    field = E26_AT * voltage / d
+    b = field / (ct * k)
+    a = b * (np.cos(k * d) - 1) / np.sin(k * d)
+    return np.abs(a), d
+
+
+@pytest.mark.parametrize("n", [1, 3, 5])
+def test_amplitude_formula_matches_the_exact_plate(n):
+    q, voltage = 5e4, 0.3
+    f0 = 15e6 * n / n  # the plate is cut so that overtone n lies at 15 MHz
+    f = f0 * (1 + np.linspace(-3, 3, 20001) / q)
+    amp, _ = _plate_amplitude(f, n, q, voltage)
+    exact = amp.max()
+    assert exact == pytest.approx(shear_amplitude(voltage, n, q), rel=1e-3)
+    assert D26_AT == pytest.approx(E26_AT / 28.98e9)
