@@ -1,10 +1,14 @@
-"""Make ``src/contactres/data/example_sweeps.csv``: synthetic QCM amplitude sweeps (paper 2).
+"""Make ``src/contactres/data/example_sweeps.csv``: synthetic QCM amplitude sweeps (paper 2), and
+``example_spectra.csv``: the admittance spectra of a part of them (issue 14).
 
 Run ``python scripts/make_example_data.py`` (seeded: the same file every time). The recipe is
 :func:`contactres.measurements.studies.example_study` (its docstring lists every parameter)
 with the seed ``EXAMPLE_SEED``; the points come from the package's own forward model (paper 2,
 Eqs. 1-14) plus Gaussian noise. With ``--experiments 14`` the same recipe gives the ~1,300-sweep
-table of ``benchmarks/bench_analyze.py``.
+table of ``benchmarks/bench_analyze.py``. The spectra: configuration SiO2_1.2mm in air,
+experiment e1, ramps 2 and 3 (every load), 40 points per spectrum, from
+:func:`contactres.measurements.synthetic_spectra.spectra_from_sweeps` (BVD resonator, peak
+signal-to-noise 1000, two reference spectra), seed ``EXAMPLE_SEED``.
 """
 
 from __future__ import annotations
@@ -14,6 +18,7 @@ from pathlib import Path
 
 from contactres.measurements.studies import EXAMPLE_SEED, example_study
 from contactres.measurements.synthetic import synthetic_sweeps
+from contactres.measurements.synthetic_spectra import spectra_from_sweeps
 
 
 def main(argv: list[str] | None = None) -> None:
@@ -29,6 +34,21 @@ def main(argv: list[str] | None = None) -> None:
     table.to_csv(args.out, index=False, float_format="%.7g")
     size = args.out.stat().st_size
     print(f"wrote {args.out}: {table['sweep'].nunique()} sweeps, {len(table)} points, {size} bytes")
+    if args.experiments != 4:
+        return
+    part = table[
+        (table["configuration"] == "SiO2_1.2mm")
+        & (table["medium"] == "air")
+        & (table["experiment"] == "e1")
+        & table["ramp"].isin([2, 3])
+    ]
+    spectra = spectra_from_sweeps(part, n_points=40, seed=EXAMPLE_SEED)
+    target = args.out.with_name("example_spectra.csv")
+    # Frequencies to 0.01 Hz (the shifts are ~0.1-100 Hz), G and B to 7 digits (noise 1e-3).
+    spectra["frequency_Hz"] = spectra["frequency_Hz"].map(lambda v: f"{v:.2f}")
+    spectra.to_csv(target, index=False, float_format="%.7g")
+    n_spec = spectra["spectrum"].nunique()
+    print(f"wrote {target}: {n_spec} spectra, {len(spectra)} points, {target.stat().st_size} bytes")
 
 
 if __name__ == "__main__":

@@ -34,6 +34,25 @@ def _qcm_analysis_step(out: Path) -> list[Path]:
     return write_report(analyze(table), ensure_dir(out / "qcm-analysis"))
 
 
+def _qcm_spectra_step(out: Path) -> list[Path]:
+    """From the instrument: the bundled admittance spectra -> resonance fits -> sweep table ->
+    paper 2's analysis (issue 14): qcm-spectra/ (sweeps.csv, fits.csv and the results)."""
+    from importlib.resources import as_file, files
+
+    from ..analysis import analyze
+    from ..measurements.shifts import read_spectra_sweeps
+    from ..report import write_report
+
+    folder = ensure_dir(out / "qcm-spectra")
+    with as_file(files("contactres") / "data" / "example_spectra.csv") as path:
+        table, rows, fits, _ = read_spectra_sweeps(path)
+    written = [
+        write_csv(folder / "sweeps.csv", rows, float_format="%.10g"),
+        write_csv(folder / "fits.csv", fits, float_format="%.10g"),
+    ]
+    return written + write_report(analyze(table), ensure_dir(folder / "analysis"))
+
+
 def _paper2_forward_step(out: Path) -> list[Path]:
     """Paper 2 forward model: loops (Fig. 2C-D) and Δf(u0), ΔΓ(u0) (Fig. 1D): paper2-forward/."""
     from .paper2 import write_paper2_figures
@@ -53,6 +72,10 @@ DEMO_STEPS: list[tuple[str, Callable[[Path], list[Path]]]] = [
     (
         "QCM sweep analysis of the bundled example (paper 2: Table 1, Figs. 4, 5, 7, 8)",
         _qcm_analysis_step,
+    ),
+    (
+        "from the instrument: bundled admittance spectra -> shifts -> analysis (issue 14)",
+        _qcm_spectra_step,
     ),
     ("built-in crystals and their anisotropy", _crystals_step),
     ("paper 2 forward: partial-slip loops and QCM shifts (Figs. 1D, 2C-D)", _paper2_forward_step),

@@ -20,7 +20,7 @@ from ._common import MagnitudeType, MaterialType, emit, format_option, odd_overt
 
 
 @qcm.command("analyze")
-@click.argument("sweeps", type=click.Path(dir_okay=False))
+@click.argument("sweeps", type=click.Path())
 @click.option(
     "--out",
     type=click.Path(file_okay=False),
@@ -125,8 +125,10 @@ def analyze_command(
 
     SWEEPS is a CSV table with one row per point (columns sweep, amplitude_m, df_Hz,
     dgamma_Hz, normal_force_N; optional experiment, configuration, medium, ramp and the
-    constants). Constants missing from it come from these options or from a TOML file beside
-    it (SWEEPS with suffix .toml, or contactres.toml). Prints Table 1 (E, γ per configuration
+    constants), or admittance spectra (a table with frequency_Hz and G_S, or a folder with
+    index.csv: see 'contactres qcm spectra', whose defaults are used here). Constants missing
+    from it come from these options or from a TOML file beside a sweep table (SWEEPS with
+    suffix .toml, or contactres.toml). Prints Table 1 (E, γ per configuration
     and medium) and writes everything into OUT. With --sphere-material and --plate-material
     also the loss of the sound each contact radiates into the two bodies, against the measured
     loss tangent (radiation.csv, radiation_loss.png, and a line per group).
@@ -134,6 +136,7 @@ def analyze_command(
     from ..analysis import AnalysisSettings, analyze
     from ..analysis.flags import Flag, has
     from ..fileio import ResultSet
+    from ..measurements.shifts import is_spectra_input, read_spectra_sweeps
     from ..measurements.sweeps import read_sweeps
     from ..report.console import friction_table, radiation_lines, table1_text, withheld_lines
     from ..report.tables import report_files, write_report
@@ -164,7 +167,14 @@ def analyze_command(
     with ResultSet(out, names=names, inputs=inputs, owned=owned) as rs:
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
-            table = read_sweeps(sweeps, **constants)
+            if is_spectra_input(source):
+                # Admittance spectra: fitted and turned into the sweep table first, with the
+                # defaults of 'contactres qcm spectra' (run it for other choices).
+                table, _, _, left_out = read_spectra_sweeps(source, **constants)
+                for line in left_out:
+                    click.echo(f"contactres: warning: {line}", err=True)
+            else:
+                table = read_sweeps(sweeps, **constants)
         _echo_warnings(caught)
         if workers is None:
             many = table.data["sweep"].nunique() >= 10_000

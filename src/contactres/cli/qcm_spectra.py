@@ -119,11 +119,13 @@ def spectra_command(
         voltage=voltage,
         d26=D26_AT if d26 is None else d26,
         calibration_m_per_V=calibration,
+        validate=False,
     )
     table = rows.drop(columns=["quality"])
-    write_csv(targets[0], table, index=False)
+    # Ten significant digits: below every stated error, no floating-point noise.
+    write_csv(targets[0], table, index=False, float_format="%.10g")
     if fits:
-        write_csv(targets[1], fitted, index=False)
+        write_csv(targets[1], fitted, index=False, float_format="%.10g")
     for line in left_out:
         click.echo(f"contactres: warning: {line}", err=True)
     conventions = rows.attrs.get("conventions", {})

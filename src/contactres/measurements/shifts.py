@@ -35,7 +35,7 @@ import math
 import numpy as np
 import pandas as pd
 
-from .spectra_table import SpectraTable
+from .spectra_table import CONSTANT_COLUMNS, SpectraTable
 
 __all__ = [
     "D26_AT",
@@ -245,6 +245,9 @@ def sweeps_from_spectra(
             "drive_voltage_V": u,
         }
     )
+    for col in CONSTANT_COLUMNS:  # constants the spectra carried, passed on
+        if col in measured.columns and np.isfinite(measured[col].to_numpy(float)).any():
+            out[col] = measured[col].to_numpy(float)
     # Columns that no spectrum gave are left out (the sweep table treats them as absent).
     for col in ("ramp", "time_s"):
         if not np.isfinite(out[col]).any():
@@ -294,6 +297,7 @@ def read_spectra_sweeps(
     voltage: str = "amplitude",
     d26: float = D26_AT,
     calibration_m_per_V: float | None = None,
+    validate: bool = True,
     **constants,
 ):
     """Spectra -> resonance fits -> the validated sweep table, in one call.
@@ -306,6 +310,10 @@ def read_spectra_sweeps(
         As in :func:`sweeps_from_spectra`.
     layout, reference_impedance, voltage
         As in :func:`~contactres.measurements.spectra_table.read_spectra`.
+    validate : bool
+        Validate the sweep table (needs its constants: from columns of the spectra table or
+        ``constants``); False returns None in its place (``qcm spectra`` writes the rows, and
+        the constants may come later, with the analysis).
     **constants
         The sweep table's constants (``area_m2``, ``fundamental_Hz``, ...), as in
         :func:`~contactres.measurements.sweeps.read_sweeps`.
@@ -336,6 +344,8 @@ def read_spectra_sweeps(
     )
     if rows.empty:
         raise ValueError(f"{table.source}: no measured spectrum has a usable resonance fit")
+    if not validate:
+        return None, rows, fits, left_out
     given = {k: v for k, v in constants.items() if v is not None}
     raw = rows.drop(columns=["spectrum", "f_r_Hz", "gamma_Hz", "quality", "drive_voltage_V"])
     line = table.spectra.set_index("spectrum")["line"]

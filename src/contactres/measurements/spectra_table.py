@@ -6,7 +6,8 @@ spectrum Y(f) = G + iB of the quartz around one overtone. Two inputs are read:
 * a **tidy table** (CSV, as the sweep table: comma, semicolon or tab separated), one row per
   frequency point, columns :data:`SPECTRA_TABLE` (``spectrum``, ``frequency_Hz``, ``G_S``,
   optional ``B_S``, and per spectrum the drive voltage, overtone, whether it is a no-contact
-  reference, and the sweep labels);
+  reference, and the sweep labels; optionally the constants of the sweep table,
+  :data:`CONSTANT_COLUMNS`, passed on to it);
 * a **folder** of one file per spectrum as network analysers write them, with an ``index.csv``
   naming each file (column ``file``) and carrying the same per-spectrum labels. A file is a
   Touchstone one-port file (``.s1p``, ``.y1p``, ``.z1p``: its option line ``# Hz S RI R 50``
@@ -36,6 +37,7 @@ from .readers import delimited
 from .schema import Column, TableSchema
 
 __all__ = [
+    "CONSTANT_COLUMNS",
     "SPECTRA_TABLE",
     "SPECTRUM_LAYOUTS",
     "SpectraTable",
@@ -87,8 +89,12 @@ SPECTRUM_LAYOUTS = {
 }
 _TRUE = {"true", "1", "yes", "y", "t"}
 _FALSE = {"false", "0", "no", "n", "f", ""}
-_LABELS = tuple(c.name for c in SPECTRA_TABLE.columns if c.level == "sweep")
-_NUMERIC_LABELS = ("overtone", "drive_voltage_V", "time_s", "ramp", "normal_force_N")
+#: Constants of the sweep table a spectra table may carry as columns (passed on to the sweeps).
+CONSTANT_COLUMNS = ("fundamental_Hz", "area_m2", "n_contacts", "sphere_radius_m", "poisson")
+_LABELS = (*(c.name for c in SPECTRA_TABLE.columns if c.level == "sweep"), *CONSTANT_COLUMNS)
+_NUMERIC_LABELS = (
+    "overtone", "drive_voltage_V", "time_s", "ramp", "normal_force_N", *CONSTANT_COLUMNS
+)  # fmt: skip
 
 
 @dataclass(frozen=True)

@@ -184,3 +184,87 @@ def synthetic_spectra(
             "B_S": (y.imag + z[..., 1]).ravel(),
         }
     )
+
+
+def spectra_from_sweeps(
+    sweeps: pd.DataFrame,
+    *,
+    gamma_ref: float = 300.0,
+    g_max_ref: float = 5e-3,
+    n_points: int = 60,
+    span: float = 10.0,
+    noise: float = 1e-3,
+    c0: float = 4e-12,
+    n_references: int = 2,
+    d26: float | None = None,
+    seed=None,
+) -> pd.DataFrame:
+    """The admittance spectra behind a sweep table: the tidy spectra table of a study.
+
+    Every point of ``sweeps`` (columns of the sweep table: sweep, amplitude_m, df_Hz,
+    dgamma_Hz, normal_force_N, overtone, fundamental_Hz and the labels) becomes one spectrum of
+    the BVD resonator with f_r = f_ref + Δf and Γ = Γ_ref + ΔΓ (f_ref = n × fundamental_Hz);
+    its peak conductance falls as 1/Γ (G_max = 1/R, R ∝ Γ) and its drive voltage is the one
+    that gives the point's amplitude, U = u0 (nπ)²/(4 d26 Q), Q = f_r/(2Γ)
+    (:func:`contactres.measurements.shifts.shear_amplitude`). ``n_references`` no-contact
+    reference spectra (f_ref, Γ_ref) are added per (overtone, configuration, medium,
+    experiment). Noise, C0 and span as in :func:`synthetic_spectra`; seeded.
+
+    Returns
+    -------
+    pandas.DataFrame
+        The tidy spectra table (columns of
+        :data:`contactres.measurements.spectra_table.SPECTRA_TABLE`), references first.
+    """
+    from .shifts import D26_AT
+
+    d26 = D26_AT if d26 is None else float(d26)
+    n = sweeps["overtone"].to_numpy(float)
+    f_ref = n * sweeps["fundamental_Hz"].to_numpy(float)
+    f_r = f_ref + sweeps["df_Hz"].to_numpy(float)
+    gamma = gamma_ref + sweeps["dgamma_Hz"].to_numpy(float)
+    quality = f_r / (2 * gamma)
+    voltage = sweeps["amplitude_m"].to_numpy(float) * (n * np.pi) ** 2 / (4 * d26 * quality)
+    keys = ["overtone", "fundamental_Hz", "configuration", "medium", "experiment"]
+    refs = sweeps[keys].drop_duplicates().reset_index(drop=True)
+    refs = refs.loc[refs.index.repeat(n_references)].reset_index(drop=True)
+    ref_f = refs["overtone"].to_numpy(float) * refs["fundamental_Hz"].to_numpy(float)
+    all_f = np.concatenate([ref_f, f_r])
+    all_gamma = np.concatenate([np.full(ref_f.size, gamma_ref), gamma])
+    spectra = synthetic_spectra(
+        all_f,
+        all_gamma,
+        g_max_ref * gamma_ref / all_gamma,
+        n_points=n_points,
+        span=span,
+        noise=noise * gamma_ref / all_gamma,  # the same absolute noise on every spectrum
+        c0=c0,
+        seed=seed,
+    )
+    n_ref = ref_f.size
+    labels = pd.DataFrame(
+        {
+            "reference": np.r_[np.ones(n_ref, bool), np.zeros(len(sweeps), bool)],
+            "overtone": np.r_[refs["overtone"].to_numpy(int), n.astype(int)],
+            "drive_voltage_V": np.r_[np.full(n_ref, 0.1), voltage],
+            "sweep": np.r_[np.full(n_ref, ""), sweeps["sweep"].astype(str).to_numpy()],
+            "normal_force_N": np.r_[
+                np.full(n_ref, np.nan), sweeps["normal_force_N"].to_numpy(float)
+            ],
+            **{
+                col: np.r_[refs[col].astype(str).to_numpy(), sweeps[col].astype(str).to_numpy()]
+                for col in ("configuration", "medium", "experiment")
+            },
+        }
+    )
+    if "ramp" in sweeps.columns:
+        labels["ramp"] = np.r_[np.full(n_ref, np.nan), sweeps["ramp"].to_numpy(float)]
+    for col in ("area_m2", "n_contacts", "sphere_radius_m", "poisson", "fundamental_Hz"):
+        if col in sweeps.columns:  # the sweep table's constants, carried along
+            labels[col] = np.r_[np.full(n_ref, np.nan), sweeps[col].to_numpy(float)]
+    ids = spectra["spectrum"].drop_duplicates().to_numpy()
+    labels.insert(0, "spectrum", ids)
+    out = spectra.merge(labels, on="spectrum", how="left", validate="many_to_one")
+    if "ramp" in out.columns:
+        out["ramp"] = out["ramp"].astype("Int64")
+    return out

@@ -14,6 +14,7 @@ from ..analysis.flags import DESCRIPTIONS, Flag
 from ..analysis.radiation import RADIATION_RESULTS
 from ..measurements.resonances import AFM_TABLE, RUM_TABLE
 from ..measurements.schema import GROUP_RESULTS, LOAD_RESULTS, SWEEP_RESULTS, SWEEP_TABLE
+from ..measurements.spectra_table import SPECTRA_TABLE
 
 __all__ = ["BLOCK", "dictionary_tables", "flags_markdown", "update_blocks"]
 
@@ -38,6 +39,7 @@ def dictionary_tables() -> dict[str, str]:
         "loads-csv": LOAD_RESULTS.markdown(),
         "summary-json": GROUP_RESULTS.markdown(),
         "radiation-csv": RADIATION_RESULTS.markdown(),
+        "spectra-table": SPECTRA_TABLE.markdown(with_required=True),
         "flags": flags_markdown(),
         "afm-table": AFM_TABLE.markdown(with_required=True),
         "rum-table": RUM_TABLE.markdown(with_required=True),
