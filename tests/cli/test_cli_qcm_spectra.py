@@ -2,6 +2,7 @@
 
 from importlib.resources import files
 
+import numpy as np
 import pandas as pd
 import pytest
 from cli_checks import invoke, one_line_error, option_names, run
@@ -71,6 +72,35 @@ def test_each_option_refuses_bad_input_in_one_line(tmp_path, option, value):
 
 def test_bad_spectra_files_in_one_line(tmp_path):
     bad = tmp_path / "bad.csv"
-    bad.write_text("spectrum,frequency_Hz,G_S\ns,1e6,nan\n")
-    one_line_error(run("qcm", "spectra", bad, "--out", tmp_path / "s.csv"), "G_S", "finite")
+    bad.write_text("spectrum,frequency_Hz,G_S\ns,1e6,abc\n")
+    one_line_error(run("qcm", "spectra", bad, "--out", tmp_path / "s.csv"), "G_S", "'abc'")
     one_line_error(run("qcm", "spectra", tmp_path / "missing.csv", "--out", tmp_path / "s.csv"))
+
+
+def test_each_bad_spectrum_gets_one_line_and_the_others_are_kept(tmp_path):
+    """A NaN point, a peak outside the span, one point only, no peak (noise): each of these
+    spectra is left out with one warning line naming it and its flag; the run goes on."""
+    frame = pd.read_csv(SPECTRA, keep_default_na=False, dtype=str)
+    ids = [s for s in frame["spectrum"].unique() if s not in ("s000", "s001")][:4]
+    g = frame["G_S"].astype(float)
+    nan_id, edge_id, one_id, noise_id = ids
+    frame.loc[(frame["spectrum"] == nan_id).to_numpy().nonzero()[0][5], "G_S"] = "nan"
+    edge = (frame["spectrum"] == edge_id).to_numpy().nonzero()[0]
+    one = (frame["spectrum"] == one_id).to_numpy().nonzero()[0]
+    frame = frame.drop(index=[*edge[:24], *one[1:]])  # the edge spectrum starts past its peak
+    noise = frame["spectrum"] == noise_id
+    rng = np.random.default_rng(0)
+    frame.loc[noise, "G_S"] = [f"{v:.7g}" for v in rng.normal(0, 1e-6, noise.sum())]
+    frame.loc[noise, "B_S"] = [f"{v:.7g}" for v in rng.normal(0, 1e-6, noise.sum())]
+    path = tmp_path / "four_bad.csv"
+    frame.to_csv(path, index=False)
+    r = run("qcm", "spectra", path, "--out", tmp_path / "s.csv")
+    assert r.exit_code == 0, r.output
+    warnings = [ln for ln in r.stderr.splitlines() if ln.startswith("contactres: warning:")]
+    assert len(warnings) == 4, r.stderr
+    for sid, flag in zip(
+        ids, ("bad-values", "peak-not-covered", "too-few-points", "no-peak"), strict=True
+    ):
+        assert any(sid in w and flag in w for w in warnings), (sid, flag, warnings)
+    assert len(pd.read_csv(tmp_path / "s.csv")) == 156 - 4
+    assert g.notna().all()

@@ -51,7 +51,9 @@ SPECTRA_TABLE = TableSchema(
     (
         Column("spectrum", "text", "id of one spectrum (one amplitude step)", required=True),
         Column("frequency_Hz", "Hz", "frequency of the point", required=True, rule="> 0"),
-        Column("G_S", "S", "conductance Re Y", required=True, rule="finite"),
+        Column(
+            "G_S", "S", "conductance Re Y (a NaN leaves its spectrum out, flagged)", required=True
+        ),
         Column("B_S", "S", "susceptance Im Y (empty or absent: G alone is fitted)"),
         Column(
             "reference",
@@ -141,7 +143,8 @@ def validate_spectra(raw: pd.DataFrame, source: str = "<table>") -> SpectraTable
     """Validate a raw tidy table (string cells and a ``line`` column, as the readers give it).
 
     Checks: the required columns; numbers where numbers belong; frequencies > 0 and distinct
-    within a spectrum; G (and B where given) finite; the per-spectrum labels single-valued
+    within a spectrum (a NaN G or B is left to the fit, which flags that spectrum); the
+    per-spectrum labels single-valued
     within a spectrum; overtone an odd integer, ramp an integer >= 1, drive voltage and force
     > 0. Raises ValueError naming the file, line, column and value of the first problem.
     """
@@ -168,17 +171,14 @@ def validate_spectra(raw: pd.DataFrame, source: str = "<table>") -> SpectraTable
             pts[col] = _number(raw, col, source, decimal)
         else:
             pts[col] = np.nan
-    for col in ("frequency_Hz", "G_S"):
-        bad = ~np.isfinite(pts[col].to_numpy())
-        if bad.any():
-            raise ValueError(f"{at_cell(raw, source, bad, col)}: must be a finite number")
+    # A NaN or empty G/B is left to the fit, which flags that spectrum (bad-values) and leaves
+    # it out with one line: one bad spectrum does not cost the others.
+    bad = ~np.isfinite(pts["frequency_Hz"].to_numpy())
+    if bad.any():
+        raise ValueError(f"{at_cell(raw, source, bad, 'frequency_Hz')}: must be a finite number")
     bad = ~(pts["frequency_Hz"].to_numpy() > 0)
     if bad.any():
         raise ValueError(f"{at_cell(raw, source, bad, 'frequency_Hz')}: must be > 0 Hz")
-    b = pts["B_S"].to_numpy()
-    bad = np.isinf(b)
-    if bad.any():
-        raise ValueError(f"{at_cell(raw, source, bad, 'B_S')}: must be finite (or empty)")
     dup = pts.duplicated(["spectrum", "frequency_Hz"]).to_numpy()
     if dup.any():
         raise ValueError(
