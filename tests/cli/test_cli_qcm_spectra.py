@@ -17,7 +17,7 @@ def test_bundled_spectra_to_sweeps_and_fits(tmp_path):
     out, fits = tmp_path / "sweeps.csv", tmp_path / "fits.csv"
     r = run("qcm", "spectra", SPECTRA, "--out", out, "--fits", fits)
     assert r.exit_code == 0, r.output
-    rows, fitted = pd.read_csv(out), pd.read_csv(fits)
+    rows, fitted = pd.read_csv(out, comment="#"), pd.read_csv(fits)
     assert len(fitted) == 158 and len(rows) == 156
     for col in ("sweep", "amplitude_m", "df_Hz", "dgamma_Hz", "df_err_Hz", "dgamma_err_Hz"):
         assert rows[col].notna().all(), col
@@ -37,7 +37,7 @@ def test_calibration_replaces_the_formula(tmp_path):
     out = tmp_path / "s.csv"
     r = run("qcm", "spectra", SPECTRA, "--out", out, "--calibration", 2e-9)
     assert r.exit_code == 0, r.output
-    rows = pd.read_csv(out)
+    rows = pd.read_csv(out, comment="#")
     assert rows["amplitude_m"].to_numpy() == pytest.approx(
         2e-9 * rows["drive_voltage_V"].to_numpy(), rel=1e-9
     )
@@ -102,5 +102,37 @@ def test_each_bad_spectrum_gets_one_line_and_the_others_are_kept(tmp_path):
         ids, ("bad-values", "peak-not-covered", "too-few-points", "no-peak"), strict=True
     ):
         assert any(sid in w and flag in w for w in warnings), (sid, flag, warnings)
-    assert len(pd.read_csv(tmp_path / "s.csv")) == 156 - 4
+    assert len(pd.read_csv(tmp_path / "s.csv", comment="#")) == 156 - 4
     assert g.notna().all()
+
+
+def test_fits_and_out_must_differ(tmp_path):
+    out = tmp_path / "o.csv"
+    one_line_error(run("qcm", "spectra", SPECTRA, "--out", out, "--fits", out))
+
+
+def test_no_usable_spectrum_is_one_line(tmp_path):
+    frame = pd.read_csv(SPECTRA, keep_default_na=False, dtype=str)
+    frame.loc[frame["reference"] == "False", "G_S"] = "nan"
+    path = tmp_path / "all_bad.csv"
+    frame.to_csv(path, index=False)
+    one_line_error(run("qcm", "spectra", path, "--out", tmp_path / "s.csv"), "no measured")
+
+
+def test_references_serve_only_their_own_experiment(tmp_path):
+    """Experiment "2" is experiment "1" measured 100 Hz higher, with its own references: the
+    shifts of both are the same (a reference labelled "1" must not serve experiment "2")."""
+    one = pd.read_csv(SPECTRA, keep_default_na=False, dtype=str)
+    one["experiment"] = "1"
+    two = one.copy()
+    two["experiment"] = "2"
+    two["spectrum"] = "b" + two["spectrum"]
+    two["sweep"] = [s + "-2" if s else s for s in two["sweep"]]
+    two["frequency_Hz"] = (two["frequency_Hz"].astype(float) + 100).map("{:.2f}".format)
+    path = tmp_path / "two.csv"
+    pd.concat([one, two]).to_csv(path, index=False)
+    r = run("qcm", "spectra", path, "--out", tmp_path / "s.csv")
+    assert r.exit_code == 0, r.output
+    rows = pd.read_csv(tmp_path / "s.csv", comment="#")
+    df = rows.groupby("experiment")["df_Hz"].mean()
+    assert abs(df[1] - df[2]) < 1.0  # the fit noise of two copies; 100 Hz if mixed

@@ -168,5 +168,26 @@ def test_amplitude_formula_matches_the_exact_plate(n):
     f = f0 * (1 + np.linspace(-3, 3, 20001) / q)
     amp, _ = _plate_amplitude(f, n, q, voltage)
     exact = amp.max()
-    assert exact == pytest.approx(shear_amplitude(voltage, n, q), rel=1e-3)
-    assert D26_AT == pytest.approx(E26_AT / 28.98e9)
+    # The plate's own d26 = e26/c66 (the package's default is the literature's 3.1 pm/V).
+    assert exact == pytest.approx(shear_amplitude(voltage, n, q, E26_AT / 28.98e9), rel=1e-3)
+    assert D26_AT / (E26_AT / 28.98e9) == pytest.approx(0.93, abs=0.01)
+
+
+def test_a_layout_needs_both_of_its_columns(tmp_path):
+    y = _circuit(F)
+    text = pd.DataFrame({"frequency_Hz": F, "Y_re_S": y.real}).to_csv(index=False)
+    folder = _folder(tmp_path, {"c.csv": text}, [{"file": "c.csv"}])
+    with pytest.raises(ValueError, match="needs both columns"):
+        read_spectra(folder)
+
+
+def test_touchstone_y_is_normalised_to_r(tmp_path):
+    """Touchstone 1 stores y = Y R: a .y1p with R 50 gives back Y."""
+    y = _circuit(F)
+    lines = ["# MHz Y RI R 50"] + [
+        f"{f / 1e6:.9f} {v.real * 50:.15g} {v.imag * 50:.15g}" for f, v in zip(F, y, strict=True)
+    ]
+    folder = _folder(tmp_path, {"d.y1p": "\n".join(lines)}, [{"file": "d.y1p"}])
+    t = read_spectra(folder)
+    got = t.points["G_S"].to_numpy() + 1j * t.points["B_S"].to_numpy()
+    assert np.allclose(got, y, rtol=1e-9, atol=1e-12 * np.max(abs(y)))

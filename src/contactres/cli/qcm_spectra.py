@@ -75,8 +75,8 @@ def _positive(name: str, low: float, high: float, unit: str):
     type=float,
     default=None,
     callback=_positive("piezoelectric constant d26", 1e-13, 1e-10, "m/V"),
-    help="Piezoelectric strain constant of the quartz, m/V (default 3.33e-12: AT-cut, "
-    "e26/c66). The amplitude is u0 = 4 d26 Q U/(nπ)², Q = f_r/(2Γ).",
+    help="Piezoelectric strain constant of the quartz, m/V (default 3.1e-12: AT-cut, "
+    "Johannsmann et al. 2021). The amplitude is u0 = 4 d26 Q U/(nπ)², Q = f_r/(2Γ).",
 )
 @click.option(
     "--calibration",
@@ -102,12 +102,16 @@ def spectra_command(
 
     Example: contactres qcm spectra spectra.csv --out sweeps.csv --fits fits.csv
     """
-    from ..fileio import check_output_file, write_csv
+    from ..fileio import check_output_file, write_csv, write_text
     from ..measurements.shifts import D26_AT, read_spectra_sweeps
 
+    from pathlib import Path
+
+    if fits and Path(fits).resolve() == Path(out).resolve():
+        raise click.BadParameter("must name another file than --out", param_hint="'--fits'")
     targets = [check_output_file(out, [spectra])]
     if fits:
-        targets.append(check_output_file(fits, [spectra]))
+        targets.append(check_output_file(fits, [spectra, out]))
     ids = None if reference is None else [x for x in reference.split(",") if x.strip()]
     if reference is not None and not ids:
         raise click.BadParameter("give at least one spectrum id", param_hint="'--reference'")
@@ -122,13 +126,17 @@ def spectra_command(
         validate=False,
     )
     table = rows.drop(columns=["quality"])
-    # Ten significant digits: below every stated error, no floating-point noise.
-    write_csv(targets[0], table, index=False, float_format="%.10g")
+    conventions = rows.attrs.get("conventions", {})
+    if voltage == "rms":
+        conventions = {**conventions, "voltage": "drive_voltage_V read as rms, times √2"}
+    # The conventions go into the file as comment lines (the sweep reader skips them); ten
+    # significant digits: below every stated error, no floating-point noise.
+    header = "".join(f"# {k}: {v}\n" for k, v in conventions.items())
+    write_text(targets[0], header + table.to_csv(index=False, float_format="%.10g"))
     if fits:
         write_csv(targets[1], fitted, index=False, float_format="%.10g")
     for line in left_out:
         click.echo(f"contactres: warning: {line}", err=True)
-    conventions = rows.attrs.get("conventions", {})
     record = {
         "spectra": len(fitted),
         "references": int(len(fitted) - len(rows) - len(left_out)),
@@ -145,7 +153,7 @@ def spectra_command(
     click.echo(
         f"{record['spectra']} spectra: {record['points']} points of {record['sweeps']} sweeps, "
         f"{record['references']} references, {record['left_out']} left out; amplitudes "
-        f"{record['amplitude_range_m'][0]:.3g}-{record['amplitude_range_m'][1]:.3g} m"
+        f"{record['amplitude_range_m'][0]:.3g} to {record['amplitude_range_m'][1]:.3g} m"
     )
     for key, text in conventions.items():
         click.echo(f"  {key}: {text}")

@@ -210,7 +210,7 @@ def stiffness_command(
     with ResultSet(out, names=FILES, inputs=(source,)) as rs:
         table = read_export(source, reader, **conventions)
         result, caught = stiffness_table(table, area, n_contacts, zq)
-        result.to_csv(rs.path("stiffness.csv"), index=False)
+        result.to_csv(rs.path("stiffness.csv"), index=False, float_format="%.10g")
         sidecar = {
             "conventions": dict(table.conventions),
             "constants": {

@@ -22,10 +22,12 @@ surface amplitude is therefore
 
 (e.g. D. Johannsmann, *The Quartz Crystal Microbalance in Soft Matter Research*, Springer 2015;
 checked in the tests against the exact solution of the damped piezoelectric plate). Q is that of
-the spectrum itself (the contact's damping lowers it). e26 = 9.65e-2 C/m² is the AT-cut value of
-the QCM literature, c66 = 28.98 GPa that of :func:`contactres.materials.at_cut_quartz`
-(McSkimin 1965): d26 = 3.33 pm/V (not re-checked against a measured d26; pass ``d26`` or a
-calibration factor u0/U in m/V measured on your instrument instead).
+the spectrum itself (the contact's damping lowers it). d26 = 3.1 pm/V, the AT-cut value of the
+QCM literature (D. Johannsmann et al., "Quartz crystal microbalance with dissipation
+monitoring…", Sensors 21, 3490 (2021), with e26 = 9.65e-2 C/m²); e26/c66 with c66 = 28.98 GPa of
+:func:`contactres.materials.at_cut_quartz` gives 3.33 pm/V, 7 % more — the amplitude is no
+better known than that: pass ``d26`` or a calibration factor u0/U in m/V measured on your
+instrument for better.
 """
 
 from __future__ import annotations
@@ -46,12 +48,11 @@ __all__ = [
 
 #: Piezoelectric stress constant e26 of AT-cut quartz, C/m² (the QCM literature's value).
 E26_AT = 9.65e-2
-#: d26 = e26/c66 of AT-cut quartz, m/V (c66 = 28.98 GPa, the package's AT-cut constants).
-D26_AT = E26_AT / 28.98e9
+#: Piezoelectric strain constant d26 of AT-cut quartz, m/V (Johannsmann et al. 2021).
+D26_AT = 3.1e-12
 #: Labels that select the references of a spectrum (besides the overtone) when a reference
 #: names them.
 _MATCH = ("configuration", "medium", "experiment")
-_DEFAULTS = {"configuration": "default", "medium": "unspecified", "experiment": "1"}
 
 
 def shear_amplitude(drive_voltage, overtone, quality, d26: float = D26_AT):
@@ -83,8 +84,9 @@ def _references(spectra: pd.DataFrame, measured: pd.Series) -> np.ndarray:
     ref &= spectra["overtone"].to_numpy(float) == float(measured["overtone"])
     for col in _MATCH:
         mine = spectra[col].astype(str).to_numpy()
-        named = (mine != "") & (mine != _DEFAULTS[col])
-        ref &= ~named | (mine == str(measured[col]))
+        # Only an empty label is a wildcard: a reference that names a label (also "1" or a
+        # default) serves only the spectra with that label.
+        ref &= (mine == "") | (mine == str(measured[col]))
     return ref
 
 
@@ -156,14 +158,24 @@ def sweeps_from_spectra(
             f"{table.source}: no reference spectrum (no contact): mark them in the column "
             "'reference' or name them (--reference ID,...)"
         )
-    ok = np.isfinite(spectra["f_r_Hz"].to_numpy(float)) & np.isfinite(
-        spectra["gamma_Hz"].to_numpy(float)
+    # A flagged fit is no result, also where it has values (e.g. too few points at the peak).
+    flags = spectra["flags"].fillna("").astype(str).str.strip()
+    ok = (
+        np.isfinite(spectra["f_r_Hz"].to_numpy(float))
+        & np.isfinite(spectra["gamma_Hz"].to_numpy(float))
+        & (flags == "").to_numpy()
     )
     left_out = [
         f"spectrum {row.spectrum} (line {row.line}): not used, fit flags {row.flags or 'none'}"
         for row in spectra[~ok].itertuples()
     ]
     measured = spectra[~refs & ok]
+    if measured.empty:
+        more = " ..." if len(left_out) > 3 else ""
+        raise ValueError(
+            f"{table.source}: no measured spectrum has a usable resonance fit "
+            f"({len(left_out)} left out: {'; '.join(left_out[:3])}{more})"
+        )
     for col, what in (("overtone", "overtone"), ("normal_force_N", "normal force")):
         bad = ~np.isfinite(measured[col].to_numpy(float))
         if bad.any():

@@ -267,6 +267,11 @@ def _touchstone(path: Path) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndar
         text = text.split("!", 1)[0].strip()
         if not text:
             continue
+        if text.startswith("["):
+            raise ValueError(
+                f"{path}, line {number}: Touchstone 2 keyword {shown_value(text)}: save the "
+                "spectrum as a Touchstone 1 file (.s1p) or as CSV"
+            )
         option = _OPTION_LINE.match(text)
         if option:
             words = option.group(1).lower().split()
@@ -302,12 +307,13 @@ def _touchstone(path: Path) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndar
     else:
         mag = 10 ** (a / 20) if fmt == "DB" else a
         x = mag * np.exp(1j * np.radians(b))
+    # Touchstone 1: Y and Z are normalised to R (y = Y R, z = Z/R), S is dimensionless.
     if param == "S":
         y = (1 - x) / (z0 * (1 + x))
     elif param == "Z":
-        y = 1 / x
+        y = 1 / (x * z0)
     else:
-        y = x
+        y = x / z0
     return np.array(freq), y.real, y.imag, np.array(lines)
 
 
@@ -337,11 +343,12 @@ def _delimited_spectrum(path: Path, layout: str | None, z0: float):
     decimal = raw.attrs.get("decimal", ".")
     f = _number(raw, "frequency_Hz", source, decimal)
     first = _number(raw, names[0], source, decimal)
-    second = (
-        _number(raw, names[1], source, decimal)
-        if names[1] in raw.columns
-        else np.full(f.shape, np.nan)
-    )
+    if names[1] in raw.columns:
+        second = _number(raw, names[1], source, decimal)
+    elif layout == "G/B":
+        second = np.full(f.shape, np.nan)  # G alone: fitted alone
+    else:
+        raise ValueError(f"{path}: layout {layout} needs both columns {names[0]} and {names[1]}")
     if layout == "G/B":
         return f, first, second, raw["line"].to_numpy()
     if layout == "Y-RI":
@@ -387,9 +394,12 @@ def _read_folder(folder: Path, layout, z0: float) -> pd.DataFrame:
                 "line": lines,
             }
         )
+        comma = index.attrs.get("decimal", ".") == ","
         for col in _LABELS:
             if col in index.columns:
-                part[col] = str(row[col])
+                cell = str(row[col])
+                # The index's decimal comma: its numbers are joined to files read with a point.
+                part[col] = cell.replace(",", ".") if comma and col in _NUMERIC_LABELS else cell
         parts.append(part)
     if not parts:
         raise ValueError(f"{index_path}: no rows (one per spectrum file)")
