@@ -102,10 +102,10 @@ def spectra_command(
 
     Example: contactres qcm spectra spectra.csv --out sweeps.csv --fits fits.csv
     """
+    from pathlib import Path
+
     from ..fileio import check_output_file, write_csv, write_text
     from ..measurements.shifts import D26_AT, read_spectra_sweeps
-
-    from pathlib import Path
 
     if fits and Path(fits).resolve() == Path(out).resolve():
         raise click.BadParameter("must name another file than --out", param_hint="'--fits'")
