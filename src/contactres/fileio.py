@@ -36,6 +36,7 @@ from contextlib import contextmanager
 from pathlib import Path
 
 __all__ = [
+    "CSV_FLOAT_FORMAT",
     "MANIFEST",
     "OutputError",
     "ResultSet",
@@ -47,6 +48,8 @@ __all__ = [
     "write_csv",
     "write_text",
 ]
+
+CSV_FLOAT_FORMAT = "%.10g"  #: CSV floats: 10 digits, no noise (0.30000000000000004 -> 0.3)
 
 #: The file of a result set written last: its files, sizes and SHA-256 sums.
 MANIFEST = "manifest.json"

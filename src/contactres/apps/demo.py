@@ -10,7 +10,7 @@ from __future__ import annotations
 from collections.abc import Callable
 from pathlib import Path
 
-from ..fileio import ensure_dir, write_csv
+from ..fileio import CSV_FLOAT_FORMAT, ensure_dir, write_csv
 
 __all__ = ["DEMO_STEPS", "run_demo"]
 
@@ -18,7 +18,7 @@ __all__ = ["DEMO_STEPS", "run_demo"]
 def _crystals_step(out: Path) -> list[Path]:
     from ..crystals import crystal_table
 
-    return [write_csv(out / "crystals.csv", crystal_table())]
+    return [write_csv(out / "crystals.csv", crystal_table(), float_format=CSV_FLOAT_FORMAT)]
 
 
 def _qcm_analysis_step(out: Path) -> list[Path]:
@@ -47,8 +47,8 @@ def _qcm_spectra_step(out: Path) -> list[Path]:
     with as_file(files("contactres") / "data" / "example_spectra.csv") as path:
         table, rows, fits, _ = read_spectra_sweeps(path)
     written = [
-        write_csv(folder / "sweeps.csv", rows, float_format="%.10g"),
-        write_csv(folder / "fits.csv", fits, float_format="%.10g"),
+        write_csv(folder / "sweeps.csv", rows, float_format=CSV_FLOAT_FORMAT),
+        write_csv(folder / "fits.csv", fits, float_format=CSV_FLOAT_FORMAT),
     ]
     return written + write_report(analyze(table), ensure_dir(folder / "analysis"))
 

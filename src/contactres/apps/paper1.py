@@ -13,6 +13,7 @@ damping Q⁻¹ = 0.02. Every figure is written as PNG together with the CSV of t
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
@@ -23,6 +24,7 @@ from matplotlib.ticker import NullLocator
 from ..dynamic import contact_displacement, dcsf, dcsf_models
 from ..fileio import ensure_dir, save_figure, write_csv
 from ..materials import Material
+from ..report.figures import key_below
 
 __all__ = [
     "PAPER_MODELS",
@@ -60,15 +62,20 @@ def dcsf_curves_figure(
     of each case as a thin line of the same colour (label "... exact"). ``ylim`` clips both
     panels (the CSV keeps every value). Returns (figure, table): columns kla, curve, re, im.
     """
-    fig = Figure(figsize=(8, 3.6))
+    fig = Figure(figsize=(8, 4.2), layout="constrained")
     ax1, ax2 = fig.subplots(1, 2, sharex=True)
     rows = []
     exact = exact or {}
+    beyond = []
     for i, (label, v) in enumerate(curves.items()):
         style = "-" if i == 0 else ("--", ":", "-.", (0, (5, 1, 1, 1)), (0, (1, 2)))[(i - 1) % 5]
         (line,) = ax1.plot(kla, v.real, linestyle=style, label=label)
         ax2.plot(kla, v.imag, linestyle=style, label=label)
         rows.append(pd.DataFrame({"kla": kla, "curve": label, "re": v.real, "im": v.imag}))
+        if ylim is not None and np.any(
+            (np.r_[v.real, v.imag] < ylim[0]) | (np.r_[v.real, v.imag] > ylim[1])
+        ):
+            beyond.append(label)
         if label in exact:
             e = exact[label]
             name = f"{label} exact" if len(curves) > 1 else "exact"
@@ -81,11 +88,12 @@ def dcsf_curves_figure(
         ax.set_xlabel("k_l a")
         ax.axhline(0, color="0.7", lw=0.5)
         ax.set_title(tag, fontsize=9, loc="left")
-        ax.legend(fontsize=7)
         if ylim is not None:
             ax.set_ylim(*ylim)
+    if beyond:
+        title += f"\ncut at the y-range: {', '.join(beyond)}"
     fig.suptitle(title, fontsize=9)
-    fig.tight_layout()
+    key_below(fig, ncols=3 if len(curves) > 5 and not exact else min(len(curves), 5), fontsize=7)
     return fig, pd.concat(rows, ignore_index=True)
 
 
@@ -131,7 +139,7 @@ def displacement_figure(kla=(0.3, 0.6, 0.9, 1.2, 1.7), A: float = 0.5, nu: float
     kla = np.asarray(kla, dtype=float)
     N = contact_displacement(m, kla[:, None], rbar[None, :], 0.0, loss=LOSS)
     ratio = np.abs(N) / np.abs(N[:, :1])
-    fig = Figure(figsize=(4.8, 3.6))
+    fig = Figure(figsize=(5.6, 3.6), layout="constrained")
     ax = fig.subplots()
     rows = []
     for i, k in enumerate(kla):
@@ -150,9 +158,8 @@ def displacement_figure(kla=(0.3, 0.6, 0.9, 1.2, 1.7), A: float = 0.5, nu: float
     ax.set_xlabel("r/a")
     ax.set_ylabel("|u_z(r)| / |u_z(0)|")
     ax.set_ylim(bottom=0)
-    ax.legend(fontsize=7)
-    ax.set_title(f"Fig. 2: A = {A:g}, ν = {nu:g}, Q⁻¹ = {LOSS:g}", fontsize=9)
-    fig.tight_layout()
+    fig.legend(loc="outside right upper", fontsize=7)
+    ax.set_title(f"Fig. 2: A = {A:g}, ν = {nu:g}, Q⁻¹ = {LOSS:g}, along [100]", fontsize=9)
     return fig, pd.concat(rows, ignore_index=True)
 
 
@@ -195,24 +202,51 @@ def model_ranking(kla=KLA, zeners=(0.25, 0.5, 1.0, 2.0, 4.0), nu: float = 0.25):
                 }
             )
     table = pd.DataFrame(rows)
-    fig = Figure(figsize=(8, 3.6))
+    fig = Figure(figsize=(8, 4.0), layout="constrained")
     axes = fig.subplots(1, 2, sharey=True)
+    labels = _coincident_labels(table, names)
     for ax, col, lim in zip(
         axes, ("max_rel_error_kla_le_1", "max_rel_error_kla_le_2"), ("1", "2"), strict=True
     ):
-        for n in names:
+        for i, n in enumerate(names):
             t = table[table.model == n]
-            ax.semilogy(t.zener, t[col], marker="o", label=n)
+            twin = labels[n] != n  # drawn over an earlier model: open markers, dashed
+            ax.semilogy(
+                t.zener,
+                t[col],
+                marker=_RANK_MARKERS[i % len(_RANK_MARKERS)],
+                ls="--" if twin else "-",
+                mfc="none" if twin else None,
+                ms=7 if twin else 5,
+                label=labels[n],
+            )
         ax.set_xscale("log")
         ax.xaxis.set_minor_locator(NullLocator())
         ax.set_xticks(list(zeners), [f"{A:g}" for A in zeners])
         ax.set_xlabel("Zener ratio A")
         ax.set_title(f"max |DCSF/exact − 1|, k_l a <= {lim}", fontsize=9)
-    axes[0].set_ylabel("relative error")
-    axes[0].legend(fontsize=7)
-    fig.suptitle(f"Displacement models against the exact rigid punch, ν = {nu:g}", fontsize=9)
-    fig.tight_layout()
+    axes[0].set_ylabel("relative error (-)")
+    fig.suptitle(
+        f"Displacement models against the exact rigid punch, ν = {nu:g}, Q⁻¹ = {LOSS:g}",
+        fontsize=9,
+    )
+    key_below(fig, ncols=3, fontsize=7)
     return fig, table
+
+
+_RANK_MARKERS = ("o", "s", "^", "D", "v", "P", "X")
+
+
+def _coincident_labels(table: pd.DataFrame, names) -> dict[str, str]:
+    """Legend labels; a model whose errors are within 10 % of an earlier model's (the curves
+    overlap on the log axis) says so, and is drawn dashed with open markers."""
+    cols = ["max_rel_error_kla_le_1", "max_rel_error_kla_le_2"]
+    values = {n: table.loc[table.model == n, cols].to_numpy(float) for n in names}
+    labels = {}
+    for i, n in enumerate(names):
+        same = [m for m in names[:i] if np.allclose(values[n], values[m], rtol=0.1)]
+        labels[n] = f"{n} (overlaps {same[0]}: within 10 %)" if same else n
+    return labels
 
 
 def write_crystal_dcsf(out) -> list[Path]:
@@ -225,17 +259,23 @@ def write_crystal_dcsf(out) -> list[Path]:
     ]
 
 
-def write_paper1_figures(out) -> list[Path]:
-    """Write Figs. 2-5 of paper 1 (PNG + CSV) into folder ``out``; return the paths."""
+def write_paper1_figures(out, progress: Callable[[str], None] | None = None) -> list[Path]:
+    """Write Figs. 2-5 of paper 1 (PNG + CSV) into folder ``out``; return the paths.
+
+    ``progress`` (optional) is called with the name of each figure before it is computed.
+    """
     folder = ensure_dir(out)
     written = []
-    for stem, make in (
+    steps = (
         ("paper1_fig2_displacement", displacement_figure),
         ("paper1_fig3_models", fig3_models),
         ("paper1_fig4_anisotropy", fig4_anisotropy),
         ("paper1_fig5_poisson", fig5_poisson),
         ("paper1_model_ranking", model_ranking),
-    ):
+    )
+    for i, (stem, make) in enumerate(steps, start=1):
+        if progress is not None:
+            progress(f"[{i}/{len(steps)}] {stem}")
         fig, table = make()
         written.append(write_csv(folder / f"{stem}.csv", table))
         written.append(save_figure(folder / f"{stem}.png", fig))

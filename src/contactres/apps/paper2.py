@@ -17,6 +17,7 @@ from matplotlib.figure import Figure
 
 from ..fileio import ensure_dir, save_figure, write_csv
 from ..normal.isotropic import effective_modulus, jkr_contact_radius
+from ..report.figures import key_below
 from ..resonators.qcm import QCM, shifts_from_loop
 from ..tangential import (
     CattaneoMindlinLoop,
@@ -88,7 +89,7 @@ def loops_figure(example: Paper2Example | None = None, amplitudes=(10e-9, 20e-9)
     (ΔΓ ∝ area/u0²).
     """
     ex = example or Paper2Example()
-    fig = Figure(figsize=(8, 3.6))
+    fig = Figure(figsize=(8, 4.2), layout="constrained")
     axes = fig.subplots(1, 2, sharey=True)
     tables = []
     for ax, (name, loop, title) in zip(
@@ -103,17 +104,37 @@ def loops_figure(example: Paper2Example | None = None, amplitudes=(10e-9, 20e-9)
             t = _loop_table(name, loop, u0)
             tables.append(t)
             x = t.u_m * 1e9
-            ax.plot(x, t.F_plus_N * 1e3, color="C0")
-            ax.plot(x, t.F_minus_N * 1e3, color="C1")
-            ax.fill_between(x, t.F_minus_N * 1e3, t.F_plus_N * 1e3, hatch="//", alpha=0.15)
+            ax.plot(x, t.F_plus_N * 1e3, color="C0", label="branch F₊(u)")
+            ax.plot(x, t.F_minus_N * 1e3, "--", color="C1", label="branch F₋(u)")
+            ax.fill_between(
+                x,
+                t.F_minus_N * 1e3,
+                t.F_plus_N * 1e3,
+                hatch="//",
+                color="0.5",
+                alpha=0.2,
+                label="loop area (ΔΓ ∝ area/u0²)",
+            )
             Fu0 = loop.branches(u0, u0)[0]
-            ax.plot([u0 * 1e9, -u0 * 1e9], [Fu0 * 1e3, -Fu0 * 1e3], "ko")
+            ax.plot(
+                [u0 * 1e9, -u0 * 1e9],
+                [Fu0 * 1e3, -Fu0 * 1e3],
+                "ko",
+                ls="none",
+                label="turning points ±u0 (Δf ∝ F(u0)/u0)",
+            )
         ax.set_title(title, fontsize=10)
         ax.set_xlabel("displacement u (nm)")
         ax.axhline(0, color="0.7", lw=0.5)
         ax.axvline(0, color="0.7", lw=0.5)
     axes[0].set_ylabel("tangential force F (mN)")
-    fig.tight_layout()
+    amps = ", ".join(f"{u0 * 1e9:g}" for u0 in amplitudes)
+    fig.suptitle(
+        f"u0 = {amps} nm; F_N = {ex.normal_force * 1e3:.2f} mN, κ = {ex.kappa:.3g} N/m, "
+        f"μ = {ex.mu:g}, Voigt loss tangent ωξ/κ = {ex.loss_tangent:g}",
+        fontsize=9,
+    )
+    key_below(fig, ncols=4, fontsize=7)
     return fig, pd.concat(tables, ignore_index=True)
 
 
@@ -136,7 +157,7 @@ def shifts_figure(example: Paper2Example | None = None, u0=None):
             "dgamma_savkoor_Hz": dg_sv,
         }
     )
-    fig = Figure(figsize=(8, 3.6))
+    fig = Figure(figsize=(8, 4.0), layout="constrained")
     ax1, ax2 = fig.subplots(1, 2, sharex=True)
     x = u0 * 1e9
     ax1.plot(x, df_cm, label="Cattaneo-Mindlin")
@@ -147,13 +168,13 @@ def shifts_figure(example: Paper2Example | None = None, u0=None):
     ax2.set_ylabel("ΔΓ (Hz)")
     for ax in (ax1, ax2):
         ax.set_xlabel("amplitude u0 (nm)")
-        ax.legend(fontsize=8)
     fig.suptitle(
-        f"n = {ex.qcm.overtone}, F_N = {ex.normal_force * 1e3:.2f} mN, κ = {ex.kappa:.3g} N/m, "
-        f"μ = {ex.mu:g}",
+        f"{ex.qcm.fundamental / 1e6:g} MHz QCM, n = {ex.qcm.overtone}, {ex.n_contacts} contacts; "
+        f"F_N = {ex.normal_force * 1e3:.2f} mN, κ = {ex.kappa:.3g} N/m, μ = {ex.mu:g}, "
+        f"loss tangent ωξ/κ = {ex.loss_tangent:g}",
         fontsize=9,
     )
-    fig.tight_layout()
+    key_below(fig, ncols=2, fontsize=8)
     return fig, table
 
 

@@ -173,6 +173,9 @@ class MaterialType(click.ParamType):
 
 
 FORMATS = ("plain", "csv", "json")
+#: How the CSV outputs write floats: ten significant digits, below every stated error and free
+#: of floating-point noise (0.30000000000000004 -> 0.3).
+CSV_FLOAT_FORMAT = "%.10g"
 
 
 def format_option(default: str = "plain"):
@@ -199,6 +202,7 @@ def emit(table: pd.DataFrame, fmt: str, stream=None) -> None:
     """Print a table in the chosen format to ``stream`` (stdout)."""
     out = stream or sys.stdout
     if fmt == "csv":
+        # Full precision: the printed CSV is read back by scripts (ten digits are left open).
         table.to_csv(out, index=False)
     elif fmt == "json":
         # Python's own float repr (shortest exact), not pandas' to_json, which rounds to a
@@ -219,3 +223,17 @@ def emit_record(record: dict, fmt: str, stream=None) -> None:
     import pandas as pd
 
     emit(pd.DataFrame([record]), fmt, stream)
+
+
+def _interactive() -> bool:
+    """True when stderr is a terminal (progress lines would not land in a pipe or a log)."""
+    isatty = getattr(sys.stderr, "isatty", None)
+    return bool(isatty and isatty())
+
+
+def step(command: str, text: str) -> None:
+    """One progress line ``contactres COMMAND: step TEXT`` on stderr, on a terminal only: the
+    stages of a command that takes more than a second, as 'contactres qcm analyze' shows its
+    progress bar; piped or captured output (a CSV on stdout, one-line errors) stays clean."""
+    if _interactive():
+        click.echo(f"contactres {command}: step {text}", err=True)

@@ -7,7 +7,7 @@ from pathlib import Path
 import click
 
 from ._app import afm
-from ._common import MagnitudeType, emit, format_option
+from ._common import MagnitudeType, emit, format_option, step
 from ._crystal_face import crystal_face
 
 
@@ -34,7 +34,7 @@ from ._crystal_face import crystal_face
     type=MagnitudeType("mode_tolerance"),
     default="0.05",
     show_default=True,
-    help="Relative disagreement of κ between modes beyond which a row is flagged "
+    help="Relative disagreement of κ between modes, dimensionless, beyond which a row is flagged "
     "inconsistent-modes (three modes with r solved: also picks the crossing the third confirms).",
 )
 @click.option(
@@ -60,7 +60,8 @@ from ._crystal_face import crystal_face
     type=MagnitudeType("loss"),
     default="0",
     show_default=True,
-    help="Material loss Q^-1 of the sample for the dynamic correction (0: lossless).",
+    help="Material loss Q^-1 of the sample for the dynamic correction, dimensionless "
+    "(0: lossless).",
 )
 @format_option()
 def afm_invert(table, out, normalisation, mode_tolerance, crystal, surface, inplane, loss, fmt):
@@ -79,6 +80,9 @@ def afm_invert(table, out, normalisation, mode_tolerance, crystal, surface, inpl
     reported (k_static_N_per_m, k_a, dcsf_real, dcsf_imag): every mode is corrected at its
     own frequency, K_static = k*/Re DCSF (J. Tian, Am. J. Eng. Appl. Sci. 3, 56 (2010),
     Eq. 29, exact model). Writes OUT atomically; prints a summary.
+
+    Example: contactres afm invert src/contactres/data/example_afm.csv --crystal Si --out
+    afm_moduli.csv
     """
     import numpy as np
 
@@ -92,7 +96,9 @@ def afm_invert(table, out, normalisation, mode_tolerance, crystal, surface, inpl
         sample = crystal_face(crystal, None, None, None, None, None, surface, inplane)
     elif inplane is not None or surface != "001":
         raise ValueError("--surface/--inplane describe the sample: give --crystal too")
+    step("afm invert", f"reading {Path(table).name}")
     checked = read_resonance_table(table, AFM_TABLE)
+    step("afm invert", f"inverting {len(checked)} rows")
     result = invert_afm_table(
         checked,
         str(Path(table)),

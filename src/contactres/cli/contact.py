@@ -31,7 +31,7 @@ from ._crystal_face import crystal_face, crystal_face_options
     default=None,
     help="Oscillation frequency f, Hz (a number, START:STOP:NUM or a comma list; needs the "
     "density: --crystal). Adds the exact dynamic normal stiffness (lossless solid), and with "
-    "--tangential the dynamic tangential one. Default: none (static only).",
+    "--tangential the dynamic tangential one. Without it: static only.",
 )
 @click.option(
     "--tangential",

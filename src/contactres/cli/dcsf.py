@@ -8,7 +8,7 @@ import click
 # this import is the one library import of the CLI at module level.
 from ..dynamic import MODELS, WAVENUMBERS
 from ._app import main
-from ._common import MagnitudeType, RangeType, emit, format_option
+from ._common import MagnitudeType, RangeType, emit, format_option, step
 from ._crystal_face import crystal_face, crystal_face_options
 
 # The options that together give k a from a physical contact (instead of --ka).
@@ -103,6 +103,8 @@ def dcsf(ctx, model, ka, radius, force, frequency, loss, wavenumber, rtol, fmt, 
     pole, R0 has negative damping near k_l a = 1.8-2). R1, SA, WA and TP depend on the
     in-plane axis --inplane (up to 12 % on Cu(001)); exact and WA2D do not. Ranking:
     'contactres figures paper1' writes paper1_model_ranking.csv.
+
+    Example: contactres dcsf --crystal Cu --surface 111 --model all --ka 0:1:5
     """
     import numpy as np
     import pandas as pd
@@ -138,7 +140,9 @@ def dcsf(ctx, model, ka, radius, force, frequency, loss, wavenumber, rtol, fmt, 
         ka = points["ka"]
     names = list(ALL_MODELS) if model.lower() == "all" else [model]
     # One kernel table serves every model (--model all shares it, and the far-field basis).
+    step("dcsf", "kernel table of the face")
     table = prepare(m, loss, rtol)
+    step("dcsf", f"DCSF of {len(names)} model(s) at {np.size(ka)} values of k a")
     out = dcsf_models(m, ka, names, loss=loss, wavenumber=wavenumber, rtol=rtol, prepared=table)
     frames = []
     for name, v in out.items():

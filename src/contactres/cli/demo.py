@@ -16,7 +16,12 @@ from ._app import main
     help="Folder to write the results into (created if missing).",
 )
 def demo(out: str) -> None:
-    """Run the main job on the bundled example data and write its results into OUT."""
+    """Run the main job on the bundled example data and write its results into OUT.
+
+    Takes about 10 s; a line per step on stderr.
+
+    Example: contactres demo --out contactres-demo
+    """
     from ..apps.demo import run_demo
 
     written = run_demo(out, progress=lambda title: click.echo(f"  - {title}", err=True))

@@ -28,5 +28,6 @@ def paper1(out: str) -> None:
     """
     from ..apps.paper1 import write_paper1_figures
 
-    for path in write_paper1_figures(out):
+    progress = lambda step: click.echo(f"  - {step}", err=True)  # noqa: E731
+    for path in write_paper1_figures(out, progress=progress):
         click.echo(str(path))

@@ -32,22 +32,24 @@ from ._common import MagnitudeType, MaterialType, emit, format_option, odd_overt
     "--overtone",
     type=MagnitudeType("overtone", integer=True),
     callback=odd_overtone,
-    help="Overtone order n (odd).",
+    help="Overtone order n, dimensionless (odd).",
 )
 @click.option(
     "--fundamental",
     type=MagnitudeType("frequency"),
-    help="Fundamental frequency f_F (Hz) [default: 5e6].",
+    show_default="5e6",
+    help="Fundamental frequency f_F (Hz).",
 )
 @click.option(
     "--n-contacts",
     type=MagnitudeType("contacts", integer=True),
-    help="Number of equal contacts (3 for a tripod).",
+    help="Number of equal contacts, dimensionless (3 for a tripod).",
 )
 @click.option(
     "--poisson",
     type=MagnitudeType("poisson"),
-    help="Poisson ratio ν (dimensionless) fixed in the JKR fit [default: 0.17].",
+    show_default="0.17",
+    help="Poisson ratio ν (dimensionless) fixed in the JKR fit.",
 )
 @click.option("--sphere-radius", type=MagnitudeType("sphere_radius"), help="Sphere radius R (m).")
 @click.option(
@@ -77,12 +79,13 @@ from ._common import MagnitudeType, MaterialType, emit, format_option, odd_overt
     type=click.IntRange(min=0),
     default=200,
     show_default=True,
-    help="Bootstrap resamples over experiments for the errors of E and γ (0: none).",
+    help="Bootstrap resamples over experiments for the errors of E and γ, dimensionless (0: none).",
 )
 @click.option(
     "--workers",
     type=click.IntRange(min=1),
-    help="Processes for the fits [default: all cores from 10,000 sweeps on, else 1].",
+    show_default="all cores from 10,000 sweeps on, else 1",
+    help="Processes for the fits, dimensionless.",
 )
 @click.option(
     "--sphere-material",
@@ -132,6 +135,8 @@ def analyze_command(
     and medium) and writes everything into OUT. With --sphere-material and --plate-material
     also the loss of the sound each contact radiates into the two bodies, against the measured
     loss tangent (radiation.csv, radiation_loss.png, and a line per group).
+
+    Example: contactres qcm analyze src/contactres/data/example_sweeps.csv --out qcm_results
     """
     from ..analysis import AnalysisSettings, analyze
     from ..analysis.flags import Flag, has

@@ -7,7 +7,7 @@ import math
 import click
 
 from ._app import qcm
-from ._common import emit_record, format_option
+from ._common import emit_record, format_option, step
 
 _LAYOUTS = ("G/B", "Y-RI", "S11-RI", "Y-MA")
 
@@ -46,8 +46,8 @@ def _positive(name: str, low: float, high: float, unit: str):
 )
 @click.option(
     "--reference",
-    help="Ids of the no-contact reference spectra, comma separated (default: the column "
-    "'reference' of the table or index.csv).",
+    show_default="the column 'reference' of the table or index.csv",
+    help="Ids of the no-contact reference spectra, comma separated.",
 )
 @click.option(
     "--layout",
@@ -75,8 +75,9 @@ def _positive(name: str, low: float, high: float, unit: str):
     type=float,
     default=None,
     callback=_positive("piezoelectric constant d26", 1e-13, 1e-10, "m/V"),
-    help="Piezoelectric strain constant of the quartz, m/V (default 3.1e-12: AT-cut, "
-    "Johannsmann et al. 2021). The amplitude is u0 = 4 d26 Q U/(nπ)², Q = f_r/(2Γ).",
+    show_default="3.1e-12, AT-cut, Johannsmann et al. 2021",
+    help="Piezoelectric strain constant of the quartz, m/V. The amplitude is "
+    "u0 = 4 d26 Q U/(nπ)², Q = f_r/(2Γ).",
 )
 @click.option(
     "--calibration",
@@ -100,11 +101,12 @@ def spectra_command(
     of G); Δf and ΔΓ are taken against the reference spectra of the same overtone (Δf not
     divided by n; Γ, not D); the amplitude follows from the drive voltage.
 
-    Example: contactres qcm spectra spectra.csv --out sweeps.csv --fits fits.csv
+    Example: contactres qcm spectra src/contactres/data/example_spectra.csv --out sweeps.csv
+    --fits fits.csv
     """
     from pathlib import Path
 
-    from ..fileio import check_output_file, write_csv, write_text
+    from ..fileio import CSV_FLOAT_FORMAT, check_output_file, write_csv, write_text
     from ..measurements.shifts import D26_AT, read_spectra_sweeps
 
     if fits and Path(fits).resolve() == Path(out).resolve():
@@ -124,6 +126,7 @@ def spectra_command(
         d26=D26_AT if d26 is None else d26,
         calibration_m_per_V=calibration,
         validate=False,
+        progress=lambda text: step("qcm spectra", text),
     )
     table = rows.drop(columns=["quality"])
     conventions = rows.attrs.get("conventions", {})
@@ -132,9 +135,9 @@ def spectra_command(
     # The conventions go into the file as comment lines (the sweep reader skips them); ten
     # significant digits: below every stated error, no floating-point noise.
     header = "".join(f"# {k}: {v}\n" for k, v in conventions.items())
-    write_text(targets[0], header + table.to_csv(index=False, float_format="%.10g"))
+    write_text(targets[0], header + table.to_csv(index=False, float_format=CSV_FLOAT_FORMAT))
     if fits:
-        write_csv(targets[1], fitted, index=False, float_format="%.10g")
+        write_csv(targets[1], fitted, index=False, float_format=CSV_FLOAT_FORMAT)
     for line in left_out:
         click.echo(f"contactres: warning: {line}", err=True)
     record = {

@@ -22,7 +22,7 @@ from pathlib import Path
 import click
 
 from ._app import qcm
-from ._common import MagnitudeType, odd_overtone
+from ._common import MagnitudeType, odd_overtone, step
 
 #: The files the command writes into its folder.
 FILES = ("stiffness.csv", "stiffness.json", "stiffness.png")
@@ -113,7 +113,8 @@ class Baseline(click.ParamType):
 @click.option(
     "--reader",
     type=ReaderName(),
-    help=f"Export format: {', '.join(READER_NAMES)} [default: recognised from the header].",
+    show_default="recognised from the header",
+    help=f"Export format: {', '.join(READER_NAMES)}.",
 )
 @click.option(
     "--df-per-overtone/--df-divided-by-n",
@@ -132,8 +133,8 @@ class Baseline(click.ParamType):
     "--baseline",
     type=Baseline(),
     help="Reference of the shifts: first (first point of each overtone), window:T0:T1 (mean "
-    "over T0 <= t <= T1, s) or as-exported (files of shifts) [default: as-exported for shifts; "
-    "absolute frequencies need one].",
+    "over T0 <= t <= T1, s) or as-exported (files of shifts).",
+    show_default="as-exported for shifts; absolute frequencies need one",
 )
 @click.option(
     "--time-unit",
@@ -150,13 +151,15 @@ class Baseline(click.ParamType):
     type=MagnitudeType("overtone", integer=True),
     callback=odd_overtone,
     help="Overtone order n, dimensionless (odd): that of a single-overtone openQCM log, or "
-    "the one to keep [default: all in the file].",
+    "the one to keep.",
+    show_default="all in the file",
 )
 @click.option(
     "--fundamental",
     type=MagnitudeType("frequency"),
     help="Fundamental frequency f_F of the quartz, Hz: needed for ΔΓ = ΔD n f_F/2 when the "
-    "file holds shifts only [default: f_n/n from a file of absolute frequencies].",
+    "file holds shifts only.",
+    show_default="f_n/n from a file of absolute frequencies",
 )
 @click.option(
     "--zq",
@@ -188,13 +191,16 @@ def stiffness_command(
     the half-bandwidth (Hz; Γ = D f_n/2). Writes stiffness.csv, stiffness.json (the conventions
     the file was read with) and stiffness.png into OUT.
 
-    Example (a QSense export with Δf/n, D in ppm, time in s, three contacts on 0.2 cm²):
+    Example: contactres qcm stiffness src/contactres/data/example_qcmd.csv --dissipation-scale
+    1e-6 --fundamental 4.95e6 --area 2e-5 --n-contacts 3 --out qcmd_stiffness
+
+    A QSense export with Δf/n, D in ppm, time in s, three contacts on 0.2 cm²:
 
     \b
         contactres qcm stiffness run.txt --df-divided-by-n --dissipation-scale 1e-6
         --time-unit s --fundamental 4.95e6 --area 2e-5 --n-contacts 3 --out run-stiffness
     """
-    from ..fileio import ResultSet, save_figure
+    from ..fileio import CSV_FLOAT_FORMAT, ResultSet, save_figure
     from ..measurements.readers.exports import read_export
 
     source = Path(export)
@@ -208,9 +214,11 @@ def stiffness_command(
         "fundamental": fundamental,
     }
     with ResultSet(out, names=FILES, inputs=(source,)) as rs:
+        step("qcm stiffness", f"reading {source.name}")
         table = read_export(source, reader, **conventions)
+        step("qcm stiffness", f"κ and ωξ of {len(table.data)} points")
         result, caught = stiffness_table(table, area, n_contacts, zq)
-        result.to_csv(rs.path("stiffness.csv"), index=False, float_format="%.10g")
+        result.to_csv(rs.path("stiffness.csv"), index=False, float_format=CSV_FLOAT_FORMAT)
         sidecar = {
             "conventions": dict(table.conventions),
             "constants": {
@@ -224,6 +232,7 @@ def stiffness_command(
         }
         text = json.dumps(sidecar, indent=1, ensure_ascii=False, allow_nan=False) + "\n"
         rs.path("stiffness.json").write_text(text, encoding="utf-8")
+        step("qcm stiffness", "figure stiffness.png")
         save_figure(rs.path("stiffness.png"), stiffness_figure(result, source.name))
     for line in caught:
         click.echo(f"contactres: warning: {line}", err=True)

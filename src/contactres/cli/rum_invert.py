@@ -7,7 +7,7 @@ from pathlib import Path
 import click
 
 from ._app import rum
-from ._common import emit, format_option
+from ._common import emit, format_option, step
 
 
 @rum.command("invert")
@@ -27,14 +27,19 @@ def rum_invert(table, out, fmt):
     (a rod free at one end with the contact at the other, mode 1: k* = (EA/L)(kL) tan(kL),
     EA/L = 4 m f0²). Other columns are copied to OUT. Writes OUT atomically; prints a summary
     (or the table with --format csv/json).
+
+    Example: contactres rum invert src/contactres/data/example_rum.csv --out rum_kstar.csv
     """
     from ..analysis.resonance_tables import invert_rum_table
-    from ..fileio import check_output_file, write_csv
+    from ..fileio import CSV_FLOAT_FORMAT, check_output_file, write_csv
     from ..measurements.resonances import RUM_TABLE, read_resonance_table
 
     check_output_file(out, inputs=[table])
-    result = invert_rum_table(read_resonance_table(table, RUM_TABLE), str(Path(table)))
-    write_csv(out, result)
+    step("rum invert", f"reading {Path(table).name}")
+    checked = read_resonance_table(table, RUM_TABLE)
+    step("rum invert", f"inverting {len(checked)} rows")
+    result = invert_rum_table(checked, str(Path(table)))
+    write_csv(out, result, float_format=CSV_FLOAT_FORMAT)
     if fmt != "plain":
         emit(result, fmt)
         return

@@ -310,6 +310,7 @@ def read_spectra_sweeps(
     d26: float = D26_AT,
     calibration_m_per_V: float | None = None,
     validate: bool = True,
+    progress=None,
     **constants,
 ):
     """Spectra -> resonance fits -> the validated sweep table, in one call.
@@ -326,6 +327,8 @@ def read_spectra_sweeps(
         Validate the sweep table (needs its constants: from columns of the spectra table or
         ``constants``); False returns None in its place (``qcm spectra`` writes the rows, and
         the constants may come later, with the analysis).
+    progress : callable, optional
+        Called with a short text at each stage (the fits, the shifts): the CLI's progress lines.
     **constants
         The sweep table's constants (``area_m2``, ``fundamental_Hz``, ...), as in
         :func:`~contactres.measurements.sweeps.read_sweeps`.
@@ -345,12 +348,16 @@ def read_spectra_sweeps(
         path, layout=layout, reference_impedance=reference_impedance, voltage=voltage
     )
     p = table.points
+    if progress is not None:
+        progress(f"fitting the resonances of {p['spectrum'].nunique()} spectra")
     fits = fit_resonances(
         p["spectrum"].to_numpy(),
         p["frequency_Hz"].to_numpy(),
         p["G_S"].to_numpy(),
         None if p["B_S"].isna().all() else p["B_S"].to_numpy(),
     )
+    if progress is not None:
+        progress("shifts against the references and amplitudes")
     rows, left_out = sweeps_from_spectra(
         table, fits, reference=reference, d26=d26, calibration_m_per_V=calibration_m_per_V
     )

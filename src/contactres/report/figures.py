@@ -37,6 +37,7 @@ __all__ = [
     "figure_radiation",
     "figure_stiffness",
     "figure_sweeps",
+    "key_below",
     "write_figures",
 ]
 
@@ -64,14 +65,43 @@ def _label(value) -> str:
     return text.replace("$", r"\$")
 
 
-def _figure(nrows: int, ncols: int, width=3.2, height=2.6):
+def _figure(nrows: int, ncols: int, width=3.2, height=2.6, **share):
+    fig = _blank(width * ncols, height * nrows)
+    axes = fig.subplots(nrows, ncols, squeeze=False, **share)
+    return fig, axes
+
+
+def _blank(width: float, height: float) -> Figure:
+    """An empty figure with the constrained layout (room for a key outside the panels)."""
     from matplotlib.backends.backend_agg import FigureCanvasAgg
     from matplotlib.figure import Figure
 
-    fig = Figure(figsize=(width * ncols, height * nrows), layout="constrained")
+    fig = Figure(figsize=(width, height), layout="constrained")
     FigureCanvasAgg(fig)
-    axes = fig.subplots(nrows, ncols, squeeze=False)
-    return fig, axes
+    return fig
+
+
+def key_below(fig, extra=(), ncols: int = 3, fontsize=7) -> None:
+    """One key for the whole figure, below the panels, so that it never covers data.
+
+    The key holds the labelled artists of every axes, each label once (first wins), then the
+    ``extra`` (handle, label) pairs (e.g. a proxy line saying what the lines are). Needs the
+    constrained layout (``loc="outside ..."``).
+    """
+    seen: dict[str, object] = {}
+    for ax in fig.axes:
+        for handle, label in zip(*ax.get_legend_handles_labels(), strict=True):
+            seen.setdefault(label, handle)
+    for handle, label in extra:
+        seen.setdefault(label, handle)
+    if seen:
+        fig.legend(
+            list(seen.values()),
+            list(seen),
+            loc="outside lower center",
+            ncols=min(ncols, len(seen)),
+            fontsize=fontsize,
+        )
 
 
 def _media(results) -> list[str]:
@@ -79,7 +109,8 @@ def _media(results) -> list[str]:
 
 
 def _pick_examples(sw: pd.DataFrame, medium: str) -> list[pd.DataFrame]:
-    """The used sweeps of one typical (Cattaneo-Mindlin) load and of one other-shaped load."""
+    """The used sweeps of one typical (Cattaneo-Mindlin) load and of one other-shaped load
+    (any used load when the medium has neither)."""
     part = sw[(sw["medium"] == medium) & sw["used"]]
     keys = ["experiment", "configuration", "normal_force_N"]
     picks = []
@@ -89,47 +120,55 @@ def _pick_examples(sw: pd.DataFrame, medium: str) -> list[pd.DataFrame]:
     other = part[part["model"].isin(["plateau", "savkoor"])]
     if len(other):
         picks.append(part.merge(other.iloc[[0]][keys], on=keys))
+    if not picks and len(part):
+        picks.append(part.merge(part.iloc[[0]][keys], on=keys))
     return picks
 
 
 def figure_sweeps(results) -> Figure:
     """Fig. 4: Δf and ΔΓ against u0 for a typical load and an unusual one, per medium.
 
-    Points: the used ramps of one load of one experiment; lines: the model chosen for each sweep.
+    Points: the used ramps of one load of one experiment (one marker and colour per ramp);
+    lines: the model chosen for each sweep, in the colour of its ramp. Only the loads that
+    exist are drawn (two pairs of panels per row, no empty panel); the key is below the panels.
     """
+    from matplotlib.lines import Line2D
+
     sw = results.sweeps
     p = results.padded
     index = {s: i for i, s in enumerate(p.sweeps)}
-    media = _media(results)
-    fig, axes = _figure(len(media), 4)
-    for r, medium in enumerate(media):
-        for c, sel in enumerate(_pick_examples(sw, medium)):
-            ax_f, ax_g = axes[r, 2 * c], axes[r, 2 * c + 1]
-            for k, (_, row) in enumerate(sel.iterrows()):
-                i = index[row["sweep"]]
-                u, df, dg = p.points(i)
-                color = f"C{k % 10}"
-                label = f"ramp {row['ramp']} ({row['direction']})"
-                ax_f.plot(u * NM, df, MARKERS[k % 6], ms=3, color=color, label=label)
-                ax_g.plot(u * NM, dg, MARKERS[k % 6], ms=3, color=color)
-                uu = np.linspace(0.0, u.max(), 100)
-                f, g = model_curves(row, uu)
-                ax_f.plot(uu * NM, f, "-", lw=1, color=color)
-                ax_g.plot(uu * NM, g, "-", lw=1, color=color)
-            row = sel.iloc[0]
-            title = (
-                f"{_label(medium)}, {_label(row['configuration'])}, "
-                f"F_N = {row['normal_force_N'] * 1e3:.3g} mN"
-            )
-            ax_f.set_title(f"{title}\n{row['model']}", fontsize=8)
-            ax_g.set_title(f"exp. {_label(row['experiment'])}", fontsize=8)
-            ax_f.legend(fontsize=6)
-            for ax, lab in ((ax_f, "Δf (Hz)"), (ax_g, "ΔΓ (Hz)")):
-                ax.set_xlabel("amplitude u0 (nm)")
-                ax.set_ylabel(lab)
-        for ax in axes[r]:
-            if not ax.has_data():
-                ax.set_axis_off()
+    ramps = sorted(sw.loc[sw["used"], "ramp"].unique())
+    picks = [(m, sel) for m in _media(results) for sel in _pick_examples(sw, m)]
+    per_row = 2 if len(picks) > 1 else 1
+    nrows = -(-len(picks) // per_row)
+    fig = _blank(3.2 * 2 * per_row, 2.6 * nrows + 0.5)
+    grid = fig.add_gridspec(nrows, 2 * per_row)
+    for n, (medium, sel) in enumerate(picks):
+        r, c = divmod(n, per_row)
+        ax_f, ax_g = fig.add_subplot(grid[r, 2 * c]), fig.add_subplot(grid[r, 2 * c + 1])
+        for _, row in sel.iterrows():
+            k = ramps.index(row["ramp"])
+            u, df, dg = p.points(index[row["sweep"]])
+            color, marker = f"C{k % 10}", MARKERS[k % len(MARKERS)]
+            label = f"ramp {row['ramp']} ({row['direction']})"
+            ax_f.plot(u * NM, df, marker, ms=3, color=color, ls="none", label=label)
+            ax_g.plot(u * NM, dg, marker, ms=3, color=color, ls="none", label=label)
+            uu = np.linspace(0.0, u.max(), 100)
+            f, g = model_curves(row, uu)
+            ax_f.plot(uu * NM, f, "-", lw=1, color=color)
+            ax_g.plot(uu * NM, g, "-", lw=1, color=color)
+        row = sel.iloc[0]
+        title = (
+            f"{_label(medium)}, {_label(row['configuration'])}, "
+            f"F_N = {row['normal_force_N'] * 1e3:.3g} mN"
+        )
+        ax_f.set_title(f"{title}\nmodel: {row['model']}", fontsize=8)
+        ax_g.set_title(f"exp. {_label(row['experiment'])}", fontsize=8)
+        for ax, lab in ((ax_f, "Δf (Hz)"), (ax_g, "ΔΓ (Hz)")):
+            ax.set_xlabel("amplitude u0 (nm)")
+            ax.set_ylabel(lab)
+    fit = Line2D([], [], color="0.3", lw=1)
+    key_below(fig, [(fit, "line: model fitted to the ramp of its colour")], ncols=4)
     return fig
 
 
@@ -138,28 +177,53 @@ def _by_config(results):
     return sorted(loads["configuration"].unique()), loads
 
 
+def _top(mean, sd) -> float:
+    """Top of a y-range from zero: every mean, the bars up to twice the 90th percentile."""
+    mean, sd = np.asarray(mean, float), np.nan_to_num(np.asarray(sd, float))
+    if not np.isfinite(mean).any():
+        return 1.0
+    reach = min(np.nanmax(mean + sd), 2.0 * np.nanpercentile(mean, 90))
+    return 1.05 * max(np.nanmax(mean), reach)
+
+
+def _from_zero(fig) -> None:
+    """Every y-axis from zero, once all data are drawn (shared axes see all their data)."""
+    for ax in fig.axes:
+        ax.set_ylim(0.0, ax.get_ylim()[1])
+
+
+def _has_data(loads, config, quantity) -> bool:
+    part = loads[loads["configuration"] == config]
+    return bool(np.isfinite(part[f"{quantity}_mean"].to_numpy(float)).any())
+
+
 def _errorbars(ax, loads, config, quantity, scale=1.0):
+    """Mean ± sd per medium; the lower bar stops at zero (every quantity drawn is >= 0)."""
     for j, medium in enumerate(sorted(loads["medium"].unique())):
         part = loads[(loads["configuration"] == config) & (loads["medium"] == medium)]
         if part.empty:
             continue
-        filled = j == 0
+        mean = part[f"{quantity}_mean"].to_numpy(float) * scale
+        sd = np.abs(np.nan_to_num(part[f"{quantity}_sd"].to_numpy(float) * scale))
+        lower = np.where(mean > 0, np.minimum(sd, np.abs(mean)), sd)
         ax.errorbar(
             part["normal_force_N"] * 1e3,
-            part[f"{quantity}_mean"] * scale,
-            yerr=np.nan_to_num(part[f"{quantity}_sd"].to_numpy() * scale),
+            mean,
+            yerr=np.vstack([lower, sd]),
             fmt=MARKERS[j % 6],
             color=f"C{j}",
-            mfc=f"C{j}" if filled else "white",
+            mfc=f"C{j}" if j == 0 else "white",
             capsize=2,
-            label=_label(medium),
+            label=f"{_label(medium)} (mean ± sd over experiments)",
         )
 
 
 def figure_stiffness(results) -> Figure:
     """Fig. 5: low-amplitude Δf0 against F_N (mean ± sd over experiments) with the JKR fits."""
     configs, loads = _by_config(results)
-    fig, axes = _figure(1, len(configs))
+    configs = [c for c in configs if _has_data(loads, c, "df0_Hz")] or configs
+    media = sorted(loads["medium"].unique())
+    fig, axes = _figure(1, len(configs), height=3.2, sharey=True)
     for c, config in enumerate(configs):
         ax = axes[0, c]
         _errorbars(ax, loads, config, "df0_Hz")
@@ -173,52 +237,71 @@ def figure_stiffness(results) -> Figure:
                 F * 1e3,
                 g["P_Hz_per_N_per_m"] * k,
                 ":",
-                color=f"C{sorted(loads['medium'].unique()).index(g['medium'])}",
+                color=f"C{media.index(g['medium'])}",
                 label=(
-                    f"JKR {_label(g['medium'])}: E = {g['E_Pa'] / 1e9:.3g} GPa, "
-                    f"γ = {g['gamma_J_m2'] * 1e3:.3g} mJ/m²"
+                    f"JKR-Mindlin fit, {_label(config)}, {_label(g['medium'])}: "
+                    f"E = {g['E_Pa'] / 1e9:.3g} GPa, γ = {g['gamma_J_m2'] * 1e3:.3g} mJ/m²"
                 ),
             )
         ax.set_title(_label(config), fontsize=9)
         ax.set_xlabel("normal force per contact F_N (mN)")
         ax.set_ylabel("Δf0 (Hz)")
-        ax.legend(fontsize=6)
+    _from_zero(fig)
+    key_below(fig, ncols=2, fontsize=6)
     return fig
 
 
 def figure_dissipation(results) -> Figure:
-    """Fig. 7: ΔΓ0 (top) and the loss tangent ΔΓ0/Δf0 (bottom) against F_N."""
+    """Fig. 7: ΔΓ0 (top) and the loss tangent ΔΓ0/Δf0 (bottom) against F_N.
+
+    One column per configuration with data; each row shares its y-range, from zero."""
     configs, loads = _by_config(results)
-    fig, axes = _figure(2, len(configs))
+    rows = [
+        (q, lab)
+        for q, lab in (("dgamma0_Hz", "ΔΓ0 (Hz)"), ("loss_tangent", "loss tangent ΔΓ0/Δf0 (-)"))
+        if any(_has_data(loads, c, q) for c in configs)
+    ] or [("dgamma0_Hz", "ΔΓ0 (Hz)")]
+    configs = [c for c in configs if any(_has_data(loads, c, q) for q, _ in rows)] or configs
+    fig, axes = _figure(len(rows), len(configs), height=2.4, sharey="row", sharex=True)
     for c, config in enumerate(configs):
-        _errorbars(axes[0, c], loads, config, "dgamma0_Hz")
-        _errorbars(axes[1, c], loads, config, "loss_tangent")
         axes[0, c].set_title(_label(config), fontsize=9)
-        axes[0, c].set_ylabel("ΔΓ0 (Hz)")
-        axes[1, c].set_ylabel("loss tangent ΔΓ0/Δf0")
-        axes[1, c].set_xlabel("normal force per contact F_N (mN)")
-        axes[0, c].legend(fontsize=6)
+        axes[-1, c].set_xlabel("normal force per contact F_N (mN)")
+        for r, (q, lab) in enumerate(rows):
+            _errorbars(axes[r, c], loads, config, q)
+            axes[r, c].set_ylabel(lab)
+    _from_zero(fig)
+    key_below(fig, ncols=2)
     return fig
 
 
 def figure_friction(results) -> Figure:
-    """Fig. 8: μ from the Δf slope, the ΔΓ slope and the exact-loop fit against F_N."""
+    """Fig. 8: μ from the Δf slope, the ΔΓ slope and the exact-loop fit against F_N.
+
+    Only the estimates with data get a column; each column (estimate) shares one y-range from
+    zero that shows every mean (bars much longer than the spread of the means are cut at the
+    top, which the title says)."""
     configs, loads = _by_config(results)
-    kinds = (
-        ("mu_df", "μ from Δf slope"),
-        ("mu_dgamma", "μ from ΔΓ slope"),
-        ("mu_fit", "μ, loop fit"),
-    )
-    fig, axes = _figure(len(configs), 3)
-    for r, config in enumerate(configs):
-        for c, (q, label) in enumerate(kinds):
+    kinds = [
+        (q, label)
+        for q, label in (
+            ("mu_df", "μ from Δf slope"),
+            ("mu_dgamma", "μ from ΔΓ slope"),
+            ("mu_fit", "μ, loop fit"),
+        )
+        if any(_has_data(loads, c, q) for c in configs)
+    ] or [("mu_df", "μ from Δf slope")]
+    configs = [c for c in configs if any(_has_data(loads, c, q) for q, _ in kinds)] or configs
+    fig, axes = _figure(len(configs), len(kinds), height=2.4, sharey="col", sharex=True)
+    for c, (q, label) in enumerate(kinds):
+        for r, config in enumerate(configs):
             ax = axes[r, c]
             _errorbars(ax, loads, config, q)
             ax.set_title(f"{_label(config)}: {label}", fontsize=8)
-            ax.set_xlabel("F_N (mN)")
-            ax.set_ylabel("μ")
-            if c == 0:
-                ax.legend(fontsize=6)
+            ax.set_ylabel("friction coefficient μ (-)")
+        axes[-1, c].set_xlabel("normal force per contact F_N (mN)")
+        axes[0, c].set_ylim(0.0, _top(loads[f"{q}_mean"], loads[f"{q}_sd"]))
+    fig.suptitle("error bars: ± sd over experiments, cut at 0 and at the top", fontsize=8)
+    key_below(fig, ncols=2)
     return fig
 
 
@@ -242,7 +325,7 @@ def figure_radiation(results) -> Figure:
             measured = ax.errorbar(
                 F,
                 part["tan_delta_measured"],
-                yerr=np.nan_to_num(part["tan_delta_measured_sem"].to_numpy(float)),
+                yerr=_clipped(part["tan_delta_measured"], part["tan_delta_measured_sem"]),
                 fmt=marker,
                 color=color,
                 capsize=2,
@@ -264,6 +347,12 @@ def figure_radiation(results) -> Figure:
     )
     fig.legend(list(key.values()), list(key), loc="outside lower center", ncols=2, fontsize=7)
     return fig
+
+
+def _clipped(mean, err) -> np.ndarray:
+    """Asymmetric (2, n) error bars whose lower bar stops at zero."""
+    mean, err = np.asarray(mean, float), np.abs(np.nan_to_num(np.asarray(err, float)))
+    return np.vstack([np.where(mean > 0, np.minimum(err, np.abs(mean)), err), err])
 
 
 def write_figures(results, folder: str | Path | Callable[[str], Path]) -> list[Path]:

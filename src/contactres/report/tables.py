@@ -60,7 +60,7 @@ import pandas as pd
 from ..analysis.flags import render
 from ..analysis.radiation import RADIATION_RESULTS, radiation_summary
 from ..analysis.results import Results
-from ..fileio import ResultSet, write_csv, write_text
+from ..fileio import CSV_FLOAT_FORMAT, ResultSet, write_csv, write_text
 from ..measurements.schema import CONVENTIONS, GROUP_RESULTS, LOAD_RESULTS, SWEEP_RESULTS
 from .figures import FIGURE_FILES, RADIATION_FIGURE
 
@@ -216,11 +216,13 @@ def write_report(results: Results, folder, formats=FORMATS, *, inputs=None) -> l
 def _write_into(results: Results, rs: ResultSet, formats: tuple[str, ...]) -> list[Path]:
     names = []
     if "csv" in formats:
-        write_csv(rs.path("sweeps.csv"), sweeps_table(results))
-        write_csv(rs.path("loads.csv"), loads_table(results))
+        write_csv(rs.path("sweeps.csv"), sweeps_table(results), float_format=CSV_FLOAT_FORMAT)
+        write_csv(rs.path("loads.csv"), loads_table(results), float_format=CSV_FLOAT_FORMAT)
         names += ["sweeps.csv", "loads.csv"]
         if results.radiation is not None:
-            write_csv(rs.path("radiation.csv"), radiation_table(results))
+            write_csv(
+                rs.path("radiation.csv"), radiation_table(results), float_format=CSV_FLOAT_FORMAT
+            )
             names.append("radiation.csv")
     if "json" in formats:
         text = json.dumps(summary(results), indent=1, ensure_ascii=False) + "\n"

@@ -1,0 +1,173 @@
+"""The layout of every figure the package draws (issue 15, "figures fixed").
+
+Each figure is drawn (Agg) and checked in display coordinates: no legend box holds a visible data
+point or a point of a visible line (segments sampled densely), every labelled artist appears in
+a legend, no axes is empty, and no error bar of a positive quantity goes below zero.
+"""
+
+from importlib.resources import as_file, files
+
+import numpy as np
+import pytest
+from matplotlib.backends.backend_agg import FigureCanvasAgg
+from matplotlib.collections import Collection, LineCollection
+from matplotlib.lines import Line2D
+
+import contactres
+from contactres.analysis import AnalysisSettings
+from contactres.apps import paper1, paper2
+from contactres.report import figures
+
+KLA = np.linspace(0.0, 2.0, 11)
+
+
+@pytest.fixture(scope="module")
+def results():
+    with as_file(files("contactres") / "data" / "example_sweeps.csv") as path:
+        table = contactres.read_sweeps(path)
+    settings = AnalysisSettings(bootstrap=0, sphere_material="glass", plate_material="quartz-AT")
+    return contactres.analyze(table, settings=settings)
+
+
+def _line_points(line: Line2D) -> np.ndarray:
+    """Display coordinates of a line's markers, and of its segments sampled 20 times each."""
+    xy = np.asarray(line.get_xydata(), float)
+    xy = xy[np.isfinite(xy).all(axis=1)]
+    pts = line.get_transform().transform(xy) if len(xy) else np.empty((0, 2))
+    if line.get_linestyle() not in ("None", "none", "", " ") and len(pts) > 1:
+        t = np.linspace(0.0, 1.0, 20)[:, None, None]
+        pts = (pts[:-1] + t * (pts[1:] - pts[:-1])).reshape(-1, 2)
+    return pts
+
+
+def _collection_points(coll: Collection) -> np.ndarray:
+    parts = [p.vertices for p in coll.get_paths() if len(p.vertices)]
+    if not parts:
+        return np.empty((0, 2))
+    xy = np.concatenate(parts)
+    return coll.get_transform().transform(xy[np.isfinite(xy).all(axis=1)])
+
+
+def _inside(box, pts: np.ndarray) -> np.ndarray:
+    """Which display points lie in a bounding box (edges included)."""
+    x, y = pts[:, 0], pts[:, 1]
+    return (x >= box.x0) & (x <= box.x1) & (y >= box.y0) & (y <= box.y1)
+
+
+def _visible_points(ax) -> np.ndarray:
+    """Every data point of the axes that is drawn inside it (clipped ones are not shown)."""
+    pts = [_line_points(line) for line in ax.lines]
+    pts += [_collection_points(c) for c in ax.collections]
+    pts = np.concatenate([np.empty((0, 2)), *pts])
+    return pts[_inside(ax.get_window_extent(), pts)] if len(pts) else pts
+
+
+def _has_data(ax) -> bool:
+    lines = any(np.isfinite(np.asarray(line.get_xydata(), float)).all(1).any() for line in ax.lines)
+    return lines or any(len(c.get_paths()) for c in ax.collections)
+
+
+def check_layout(fig) -> None:
+    FigureCanvasAgg(fig)  # a Figure made without pyplot has a base canvas that draws nothing
+    fig.canvas.draw()
+    legends = [*fig.legends, *(ax.get_legend() for ax in fig.axes if ax.get_legend())]
+    keyed = {t.get_text() for leg in legends for t in leg.get_texts()}
+    for ax in fig.axes:
+        assert _has_data(ax), f"empty axes: {ax.get_title()!r}"
+        pts = _visible_points(ax)
+        for leg in legends:
+            box = leg.get_window_extent()
+            inside = _inside(box, pts)
+            assert not inside.any(), f"legend over {inside.sum()} points of {ax.get_title()!r}"
+        labels = {lab for lab in ax.get_legend_handles_labels()[1] if not lab.startswith("_")}
+        assert labels <= keyed, f"not keyed: {labels - keyed}"
+
+
+def _lower_error_ends(fig) -> np.ndarray:
+    ends = [
+        np.concatenate([seg[:, 1] for seg in coll.get_segments()])
+        for ax in fig.axes
+        for coll in ax.collections
+        if isinstance(coll, LineCollection) and coll.get_segments()
+    ]
+    return np.concatenate(ends) if ends else np.empty(0)
+
+
+MAKERS = {
+    "fig4_sweeps": figures.figure_sweeps,
+    "fig5_df0": figures.figure_stiffness,
+    "fig7_dissipation": figures.figure_dissipation,
+    "fig8_friction": figures.figure_friction,
+    "radiation": figures.figure_radiation,
+}
+
+
+@pytest.mark.parametrize("name", MAKERS)
+def test_analysis_figures(results, name):
+    fig = MAKERS[name](results)
+    check_layout(fig)
+    if name != "fig4_sweeps":
+        # every quantity with error bars (Δf0, ΔΓ0, loss tangents, μ) is >= 0
+        assert _lower_error_ends(fig).size and (_lower_error_ends(fig) >= 0).all()
+    assert fig.legends, "the key is below the panels"
+
+
+PAPER_FIGURES = {
+    "paper1_fig2": lambda f=paper1.displacement_figure: f(kla=(0.5, 1.5)),
+    "paper1_fig3": lambda f=paper1.fig3_models: f(kla=KLA),
+    "paper1_fig4": lambda f=paper1.fig4_anisotropy: f(kla=KLA, zeners=(0.5, 2.0)),
+    "paper1_fig5": lambda f=paper1.fig5_poisson: f(kla=KLA, nus=(0.2, 0.3)),
+    "paper1_ranking": lambda f=paper1.model_ranking: f(kla=KLA, zeners=(0.5, 2.0)),
+    "paper1_crystals": lambda: paper1.crystals_figure(names=("KCl", "Cu"), kla=KLA),
+    "paper2_loops": paper2.loops_figure,
+    "paper2_shifts": paper2.shifts_figure,
+}
+
+
+@pytest.mark.parametrize("name", PAPER_FIGURES)
+def test_paper_figures(name):
+    fig, table = PAPER_FIGURES[name]()
+    check_layout(fig)
+    assert len(table) and fig.legends
+
+
+def test_the_check_catches_a_legend_over_the_data():
+    """The control: a legend placed on the curves fails the check."""
+    fig, _ = paper2.shifts_figure()
+    for leg in fig.legends:
+        leg.remove()
+    fig.legends.clear()
+    ax = fig.axes[0]
+    ax.legend(loc="upper left")  # both curves start there, at u0 = 0
+    with pytest.raises(AssertionError, match="legend over"):
+        check_layout(fig)
+
+
+def test_coinciding_models_are_both_visible_and_say_so():
+    fig, _ = paper1.model_ranking(kla=np.linspace(0.0, 2.0, 21))
+    lines = {line.get_label(): line for line in fig.axes[0].lines}
+    (wa2d,) = [lab for lab in lines if lab.startswith("WA2D")]
+    assert "overlaps WA" in wa2d
+    assert lines[wa2d].get_linestyle() == "--" and lines["WA"].get_linestyle() == "-"
+
+
+def test_clipped_curves_are_named_in_the_title():
+    fig, _ = paper1.fig3_models(kla=np.linspace(0.0, 2.0, 21))
+    assert "cut at the y-range: SA model" in fig._suptitle.get_text()
+
+
+def test_write_paper1_figures_reports_progress(tmp_path, monkeypatch):
+    for name, make in PAPER_FIGURES.items():
+        if name.startswith("paper1_") and name != "paper1_crystals":
+            attr = {
+                "paper1_fig2": "displacement_figure",
+                "paper1_fig3": "fig3_models",
+                "paper1_fig4": "fig4_anisotropy",
+                "paper1_fig5": "fig5_poisson",
+                "paper1_ranking": "model_ranking",
+            }[name]
+            monkeypatch.setattr(paper1, attr, make)
+    steps = []
+    written = paper1.write_paper1_figures(tmp_path, progress=steps.append)
+    assert len(written) == 10
+    assert steps[0] == "[1/5] paper1_fig2_displacement" and steps[-1].startswith("[5/5]")
