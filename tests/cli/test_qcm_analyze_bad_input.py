@@ -273,6 +273,7 @@ def test_numpy_warnings_become_one_clear_line(base, tmp_path, monkeypatch):
         ("--poisson", "0.6", ("--poisson 0.6", "Poisson ratio")),
         ("--sphere-radius", "1.1", ("--sphere-radius 1.1", "millimetres")),
         ("--bootstrap", "-1", ("--bootstrap",)),
+        ("--report", "pdf", ("--report", "'pdf' is not one of 'none', 'html'")),
     ],
 )
 def test_every_constant_option_is_checked_before_reading(tmp_path, base, option, value, words):

@@ -6,7 +6,7 @@ import pytest
 from click.testing import CliRunner
 
 from contactres.cli import main
-from contactres.report.console import DASH, _pm
+from contactres.report.console import DASH, plus_minus
 
 
 @pytest.mark.parametrize(
@@ -21,7 +21,7 @@ from contactres.report.console import DASH, _pm
     ],
 )
 def test_value_with_error(value, err, text):
-    assert _pm(value, err) == text
+    assert plus_minus(value, err) == text
 
 
 def test_area_in_mm2_prints_dashes_and_says_which_input(tmp_path):

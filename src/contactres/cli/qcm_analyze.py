@@ -103,6 +103,14 @@ from ._common import MagnitudeType, MaterialType, emit, format_option, odd_overt
     "axis) or a built-in solid in its crystal frame. Only with --sphere-material.",
 )
 @click.option("--no-figures", is_flag=True, help="Skip the PNG figures.")
+@click.option(
+    "--report",
+    type=click.Choice(["none", "html"]),
+    default="none",
+    show_default=True,
+    help="html: also report.html in OUT, one self-contained page (Table 1, loads, every sweep "
+    "with its fit, flags, conventions), no network needed.",
+)
 @format_option()
 def analyze_command(
     sweeps,
@@ -122,6 +130,7 @@ def analyze_command(
     sphere_material,
     plate_material,
     no_figures,
+    report,
     fmt,
 ):
     """Analyse QCM amplitude sweeps (paper 2): stiffness, loss tangent, friction, E and γ.
@@ -144,6 +153,7 @@ def analyze_command(
     from ..measurements.shifts import is_spectra_input, read_spectra_sweeps
     from ..measurements.sweeps import read_sweeps
     from ..report.console import friction_table, radiation_lines, table1_text, withheld_lines
+    from ..report.html import HTML_FILE, write_html
     from ..report.tables import report_files, write_report
 
     if (sphere_material is None) != (plate_material is None):
@@ -168,7 +178,9 @@ def analyze_command(
     # Every file the run reads: the table and the TOML files its constants may come from.
     inputs = (source, source.with_suffix(".toml"), source.parent / "contactres.toml")
     names = report_files(formats, radiation=radiation)
-    owned = report_files(radiation=True)
+    if report == "html":
+        names += (HTML_FILE,)
+    owned = (*report_files(radiation=True), HTML_FILE)
     with ResultSet(out, names=names, inputs=inputs, owned=owned) as rs:
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
@@ -207,6 +219,9 @@ def analyze_command(
 
             results = analyze(table, settings=settings, progress=progress)
             written = write_report(results, rs, formats)
+            if report == "html":
+                write_html(results, rs.path(HTML_FILE))
+                written.append(rs.final(HTML_FILE))
             bar.update(steps)
         _echo_warnings(caught)
     for message in results.messages:  # what the analysis found odd in the input

@@ -16,12 +16,12 @@ import pandas as pd
 from ..analysis.radiation import radiation_summary
 from ..analysis.results import Results
 
-__all__ = ["friction_table", "radiation_lines", "table1_text", "withheld_lines"]
+__all__ = ["friction_table", "plus_minus", "radiation_lines", "table1_text", "withheld_lines"]
 
 DASH = "—"
 
 
-def _pm(value: float, err: float, digits: int = 3) -> str:
+def plus_minus(value: float, err: float, digits: int = 3) -> str:
     """``value ± err`` with the error to 2 significant digits and the value to match."""
     if not math.isfinite(value):
         return DASH
@@ -44,8 +44,8 @@ def table1_text(results: Results) -> pd.DataFrame:
             {
                 "configuration": g["configuration"],
                 "medium": g["medium"],
-                "E (GPa)": _pm(g["E_Pa"] / 1e9, g["E_err_Pa"] / 1e9),
-                "γ (mJ/m²)": _pm(g["gamma_J_m2"] * 1e3, g["gamma_err_J_m2"] * 1e3),
+                "E (GPa)": plus_minus(g["E_Pa"] / 1e9, g["E_err_Pa"] / 1e9),
+                "γ (mJ/m²)": plus_minus(g["gamma_J_m2"] * 1e3, g["gamma_err_J_m2"] * 1e3),
                 "experiments": g["n_experiments"],
                 "sweeps": g["n_sweeps_used"],
                 "t95": _t95(g.get("t95", math.nan)),
@@ -74,7 +74,7 @@ def friction_table(results: Results) -> pd.DataFrame:
             "medium": loads["medium"],
             "F_N (mN)": [f"{f * 1e3:.4g}" for f in loads["normal_force_N"]],
             "μ (loop fit)": [
-                _pm(m, e, 2)
+                plus_minus(m, e, 2)
                 for m, e in zip(loads["mu_fit_median"], loads["mu_fit_median_err"], strict=True)
             ],
             "experiments": loads["n_experiments"],

@@ -1,0 +1,128 @@
+"""The HTML page of ``qcm analyze`` (``report.html``): self-contained, complete, escaped."""
+
+import json
+import warnings
+from html.parser import HTMLParser
+from pathlib import Path
+
+import pytest
+from click.testing import CliRunner
+
+import contactres
+from contactres.cli import main
+from contactres.fileio import MANIFEST
+from contactres.report import html_report, summary, write_html
+from contactres.report.console import plus_minus
+
+EXAMPLE = Path(contactres.__file__).parent / "data" / "example_sweeps.csv"
+SETTINGS = {"bootstrap": 0}
+
+
+@pytest.fixture(scope="module")
+def results():
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        table = contactres.read_sweeps(EXAMPLE)
+        return contactres.analyze(table, settings=contactres.AnalysisSettings(**SETTINGS))
+
+
+@pytest.fixture(scope="module")
+def page(results):
+    return html_report(results)
+
+
+class _Strict(HTMLParser):
+    """Parses the page; counts the sweep rows and checks that every opened element closes."""
+
+    VOID = frozenset(
+        {"meta", "br", "hr", "img", "input", "link", "circle", "path", "polyline", "rect"}
+    )
+
+    def __init__(self):
+        super().__init__()
+        self.stack, self.rows, self.errors, self.in_sweeps = [], 0, [], False
+
+    def handle_starttag(self, tag, attrs):
+        if tag == "table" and ("id", "sweeps") in attrs:
+            self.in_sweeps = True
+        if self.in_sweeps and tag == "tr" and any(k == "data-configuration" for k, _ in attrs):
+            self.rows += 1
+        if tag not in self.VOID:
+            self.stack.append(tag)
+
+    def handle_startendtag(self, tag, attrs):
+        pass
+
+    def handle_endtag(self, tag):
+        if tag in self.VOID:
+            return
+        if not self.stack or self.stack[-1] != tag:
+            self.errors.append(f"</{tag}> closes {self.stack[-1:]}")
+            return
+        self.stack.pop()
+        if tag == "table":
+            self.in_sweeps = False
+
+
+def parse(text):
+    parser = _Strict()
+    parser.feed(text)
+    parser.close()
+    return parser
+
+
+def test_the_page_parses_and_has_one_row_per_sweep(results, page):
+    parser = parse(page)
+    assert parser.errors == [] and parser.stack == []
+    assert parser.rows == len(results.sweeps) > 0
+
+
+def test_every_table1_number_of_the_summary_is_on_the_page(results, page):
+    groups = summary(results)["groups"]
+    assert groups
+    for g in groups:
+        assert plus_minus(g["E_Pa"] / 1e9, g["E_err_Pa"] / 1e9) in page
+        assert plus_minus(g["gamma_J_m2"] * 1e3, g["gamma_err_J_m2"] * 1e3) in page
+    assert "example_sweeps.csv" in page and contactres.__version__ in page
+    import hashlib
+
+    assert hashlib.sha256(EXAMPLE.read_bytes()).hexdigest() in page
+
+
+def test_the_page_is_self_contained_and_small(page):
+    for link in ('src="http', "src='http", 'href="http', "href='http", "@import", "url("):
+        assert link not in page
+    assert len(page.encode()) < 2_000_000
+
+
+def test_labels_are_escaped(results):
+    sweeps = results.sweeps.assign(configuration="<script>alert(1)</script>")
+    odd = type(results)(**{**results.__dict__, "sweeps": sweeps})
+    text = html_report(odd)
+    assert "<script>alert" not in text
+    assert "&lt;script&gt;alert(1)&lt;/script&gt;" in text
+    assert parse(text).errors == []
+
+
+def test_write_html_is_atomic_and_leaves_no_temporary(results, tmp_path):
+    path = write_html(results, tmp_path / "report.html")
+    assert path.read_text(encoding="utf-8").startswith("<!DOCTYPE html>")
+    assert [p.name for p in tmp_path.iterdir()] == ["report.html"]
+
+
+def run(*args):
+    return CliRunner().invoke(main, ["qcm", "analyze", *map(str, args)])
+
+
+def test_the_cli_writes_report_html_into_the_set(tmp_path):
+    out = tmp_path / "o"
+    r = run(EXAMPLE, "--out", out, "--bootstrap", "0", "--no-figures", "--report", "html")
+    assert r.exit_code == 0, r.output
+    manifest = json.loads((out / MANIFEST).read_text())
+    assert "report.html" in manifest["files"]
+    assert parse((out / "report.html").read_text(encoding="utf-8")).errors == []
+    assert not [p for p in tmp_path.iterdir() if p.name.startswith(".")]
+    # a later run without --report drops the page of the earlier set
+    r = run(EXAMPLE, "--out", out, "--bootstrap", "0", "--no-figures")
+    assert r.exit_code == 0, r.output
+    assert not (out / "report.html").exists()
