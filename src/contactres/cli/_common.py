@@ -173,9 +173,6 @@ class MaterialType(click.ParamType):
 
 
 FORMATS = ("plain", "csv", "json")
-#: How the CSV outputs write floats: ten significant digits, below every stated error and free
-#: of floating-point noise (0.30000000000000004 -> 0.3).
-CSV_FLOAT_FORMAT = "%.10g"
 
 
 def format_option(default: str = "plain"):
@@ -237,3 +234,14 @@ def step(command: str, text: str) -> None:
     progress bar; piped or captured output (a CSV on stdout, one-line errors) stays clean."""
     if _interactive():
         click.echo(f"contactres {command}: step {text}", err=True)
+
+
+def computed_rounded(result, copied) -> object:
+    """``result`` (DataFrame) with its computed float columns as text to 10 significant
+    digits (no floating-point noise) and the ``copied`` input columns untouched (the user's
+    values, written back exactly)."""
+    out = result.copy()
+    for col in out.columns:
+        if col not in set(copied) and out[col].dtype.kind == "f":
+            out[col] = [("" if v != v else f"{v:.10g}") for v in out[col].to_numpy()]
+    return out

@@ -7,7 +7,7 @@ from pathlib import Path
 import click
 
 from ._app import afm
-from ._common import MagnitudeType, emit, format_option, step
+from ._common import MagnitudeType, computed_rounded, emit, format_option, step
 from ._crystal_face import crystal_face
 
 
@@ -81,8 +81,7 @@ def afm_invert(table, out, normalisation, mode_tolerance, crystal, surface, inpl
     own frequency, K_static = k*/Re DCSF (J. Tian, Am. J. Eng. Appl. Sci. 3, 56 (2010),
     Eq. 29, exact model). Writes OUT atomically; prints a summary.
 
-    Example: contactres afm invert src/contactres/data/example_afm.csv --crystal Si --out
-    afm_moduli.csv
+    Example: contactres afm invert src/contactres/data/example_afm.csv --out afm_moduli.csv
     """
     import numpy as np
 
@@ -107,7 +106,7 @@ def afm_invert(table, out, normalisation, mode_tolerance, crystal, surface, inpl
         loss=loss,
         mode_tolerance=mode_tolerance,
     )
-    write_csv(out, result)
+    write_csv(out, computed_rounded(result, checked.columns))
     if fmt != "plain":
         emit(result, fmt)
         return

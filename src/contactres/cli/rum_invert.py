@@ -7,7 +7,7 @@ from pathlib import Path
 import click
 
 from ._app import rum
-from ._common import emit, format_option, step
+from ._common import computed_rounded, emit, format_option, step
 
 
 @rum.command("invert")
@@ -31,7 +31,7 @@ def rum_invert(table, out, fmt):
     Example: contactres rum invert src/contactres/data/example_rum.csv --out rum_kstar.csv
     """
     from ..analysis.resonance_tables import invert_rum_table
-    from ..fileio import CSV_FLOAT_FORMAT, check_output_file, write_csv
+    from ..fileio import check_output_file, write_csv
     from ..measurements.resonances import RUM_TABLE, read_resonance_table
 
     check_output_file(out, inputs=[table])
@@ -39,7 +39,7 @@ def rum_invert(table, out, fmt):
     checked = read_resonance_table(table, RUM_TABLE)
     step("rum invert", f"inverting {len(checked)} rows")
     result = invert_rum_table(checked, str(Path(table)))
-    write_csv(out, result, float_format=CSV_FLOAT_FORMAT)
+    write_csv(out, computed_rounded(result, checked.columns))
     if fmt != "plain":
         emit(result, fmt)
         return

@@ -187,9 +187,16 @@ def _top(mean, sd) -> float:
 
 
 def _from_zero(fig) -> None:
-    """Every y-axis from zero, once all data are drawn (shared axes see all their data)."""
+    """Every y-axis from zero, once all data are drawn (shared axes see all their data) —
+    unless some data lie below zero (a negative mean must stay visible, not be cut off)."""
     for ax in fig.axes:
-        ax.set_ylim(0.0, ax.get_ylim()[1])
+        lows = [
+            np.nanmin(np.asarray(line.get_ydata(), dtype=float))
+            for line in ax.get_lines()
+            if np.size(line.get_ydata()) and np.isfinite(np.asarray(line.get_ydata(), float)).any()
+        ]
+        if not lows or min(lows) >= 0:
+            ax.set_ylim(0.0, ax.get_ylim()[1])
 
 
 def _has_data(loads, config, quantity) -> bool:
