@@ -25,6 +25,10 @@ def paper1(out: str) -> None:
     CSV columns: kla, curve, re, im (DCSF, relative to the static stiffness); Fig. 2: kla,
     rbar (r/a), re_N, im_N, abs_ratio; ranking: zener, model, max_rel_error_kla_le_1,
     max_rel_error_kla_le_2, rank_kla_le_1.
+
+    It takes about 20 s.
+
+    Example: contactres figures paper1 --out paper1_figures
     """
     from ..apps.paper1 import write_paper1_figures
 
