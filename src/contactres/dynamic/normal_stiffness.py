@@ -85,6 +85,7 @@ __all__ = [
     "dcsf_models",
     "dynamic_contact_stiffness",
     "model_n",
+    "shear_ka",
     "shear_wavenumber_ratio",
 ]
 
@@ -111,7 +112,8 @@ def _check_model(model: str) -> str:
     return key
 
 
-def _ks_a(m: Material, ka, wavenumber: str) -> np.ndarray:
+def shear_ka(m: Material, ka, wavenumber: str) -> np.ndarray:
+    """k_s a from ``ka`` given in the convention ``wavenumber`` ("shear" or "longitudinal")."""
     require_material(m, lossless=True)
     ka = np.asarray(nonnegative("ka (normalised wave number k a)", ka))
     if wavenumber == "longitudinal":
@@ -257,7 +259,7 @@ def dcsf_models(
         raise ValueError(f"chunk must be a positive integer, got {chunk!r}")
     if interpolate not in (None, True, False):
         raise ValueError(f"interpolate must be None, True or False, got {interpolate!r}")
-    ksa = _ks_a(m, ka, wavenumber)
+    ksa = shear_ka(m, ka, wavenumber)
     table = _table(m, ksa, loss, rtol, prepared)
     flat = ksa.ravel()
     uniq, inverse = np.unique(flat, return_inverse=True)
@@ -444,7 +446,7 @@ def contact_displacement(
     """
     if shape not in ("flat", "hertz"):
         raise ValueError(f"shape must be 'flat' or 'hertz', got {shape!r}")
-    ksa = _ks_a(m, ka, wavenumber)
+    ksa = shear_ka(m, ka, wavenumber)
     r, p = _contact_points(rbar, phi, edge=True)
     ksa, r, p = np.broadcast_arrays(ksa, r, p)
     table = _table(m, ksa, loss, rtol, prepared)
@@ -481,7 +483,7 @@ def contact_pressure(
     rbar, phi : float or array
         Points r/a in [0, 1) and polar angle (rad, from the surface x axis); they broadcast.
     """
-    ksa = _ks_a(m, ka, wavenumber)
+    ksa = shear_ka(m, ka, wavenumber)
     if ksa.ndim != 0:
         raise ValueError("contact_pressure takes one ka at a time")
     r, p = np.broadcast_arrays(*_contact_points(rbar, phi, edge=False))

@@ -45,6 +45,7 @@ __all__ = [
     "max_slowness",
     "prepare",
     "resolution_for",
+    "wavenumber_nodes",
 ]
 
 # T1 = _T1_FACTOR x the largest in-plane bulk slowness (units of 1/c_s); the Rayleigh slowness
@@ -407,23 +408,28 @@ def _theta_values(m, kappa, q, static_fn, nth, symmetry, old=None):
     return values[:, base], static[base]
 
 
-def _build_table(m: Material, q: float, res: Resolution) -> KernelTable:
-    c44 = shear_reference(m)
+def wavenumber_nodes(m: Material, res: Resolution):
+    """The κ nodes every kernel table of ``m`` uses (units of k_s): T₁, the near-field nodes
+    κ(t) = t + i h sin(π t/T₁) on [0, T₁] then the real segment [T₁, 2T₁] with their weights
+    dκ χ(κ), and the Chebyshev nodes x of the far field in w = (T₁/κ)², x = 2w − 1."""
     kb = max_slowness(m)
     t1 = _T1_FACTOR * kb
     height = _CONTOUR_HEIGHT * kb
-
-    # Near field: κ(t) = t + i h sin(π t/T1) on [0, T1], then the real segment [T1, 2 T1].
     t, wt = gauss_legendre(0.0, t1, res.n_contour)
     kc = t + 1j * height * np.sin(np.pi * t / t1)
     wc = wt * (1 + 1j * height * np.pi / t1 * np.cos(np.pi * t / t1))
     ks, ws = gauss_legendre(t1, 2 * t1, res.n_segment)
-    ws = ws * handover(ks, t1)
     near_kappa = np.concatenate([kc, ks.astype(complex)])
-    near_weight = np.concatenate([wc, ws])
+    near_weight = np.concatenate([wc, ws * handover(ks, t1)])
+    x = np.cos(np.pi * (np.arange(res.n_fit) + 0.5) / res.n_fit)
+    return t1, near_kappa, near_weight, x
+
+
+def _build_table(m: Material, q: float, res: Resolution) -> KernelTable:
+    c44 = shear_reference(m)
+    t1, near_kappa, near_weight, x = wavenumber_nodes(m, res)
     # Far field: (g − g∞)/w as a Chebyshev series in x = 2w − 1, w = (T1/κ)² in (0, 1).
     nf = res.n_fit
-    x = np.cos(np.pi * (np.arange(nf) + 0.5) / nf)
     w = 0.5 * (x + 1)
     kappa = np.concatenate([near_kappa, t1 / np.sqrt(w)])
 

@@ -35,7 +35,7 @@ import numpy as np
 from ..halfspace import shear_reference
 from ..materials import Material, require_material
 from ..validation import nonnegative, positive
-from .models import WAVENUMBERS
+from .normal_stiffness import shear_ka
 from .table import check_loss
 from .tangential_galerkin import TangentialTable, prepare_tangential, tangential_per_a
 
@@ -71,17 +71,6 @@ def _per_a(m: Material, ksa: np.ndarray, loss: float, rtol: float, prepared) -> 
     uniq, inverse = np.unique(flat, return_inverse=True)
     out = tangential_per_a(table, uniq)
     return out[inverse].reshape(*ksa.shape, 2, 2)
-
-
-def _ks_a(m: Material, ka, wavenumber: str) -> np.ndarray:
-    from .normal_stiffness import shear_wavenumber_ratio
-
-    ka = np.asarray(nonnegative("ka (normalised wave number k a)", ka))
-    if wavenumber == "shear":
-        return ka
-    if wavenumber == "longitudinal":
-        return ka * shear_wavenumber_ratio(m)
-    raise ValueError(f"wavenumber must be one of {', '.join(WAVENUMBERS)}, got {wavenumber!r}")
 
 
 def tangential_dcsf(
@@ -127,7 +116,7 @@ def tangential_dcsf(
         1 + i Q⁻¹ at ka = 0; real part: stiffness, imaginary part: radiation + material loss.
     """
     m = require_material(material, lossless=True)
-    ksa = _ks_a(m, ka, wavenumber)
+    ksa = shear_ka(m, ka, wavenumber)
     e = _unit(direction)
     K = _per_a(m, np.concatenate([[0.0], ksa.ravel()]), loss, rtol, prepared)
     # The static tensor of the undamped constants (ka = 0 gives it times 1 + iQ⁻¹).

@@ -28,17 +28,12 @@ from .table import (
     Resolution,
     check_contrast,
     check_loss,
-    gauss_legendre,
-    handover,
-    max_slowness,
     resolution_for,
+    wavenumber_nodes,
 )
 
 __all__ = ["HARMONIC_STEPS", "TangentialTable", "max_harmonics", "prepare_tangential"]
 
-# As in the normal table: T1 = this x the largest in-plane slowness; contour height.
-T1_FACTOR = 1.75
-_CONTOUR_HEIGHT = 0.3
 # θ grid on [0, 2π): first size, largest size, and the convergence test of the harmonics.
 _N_THETA_START = 64
 _N_THETA_MAX = 1024
@@ -175,17 +170,8 @@ def prepare_tangential(
     max_order = int(max_order or 2 * n_harmonics)
     c44 = shear_reference(m)
     c = scaled_tensor(m).real.astype(complex)
-    kb = max_slowness(m)
-    t1 = T1_FACTOR * kb
-    height = _CONTOUR_HEIGHT * kb
-    t, wt = gauss_legendre(0.0, t1, res.n_contour)
-    kc = t + 1j * height * np.sin(np.pi * t / t1)
-    wc = wt * (1 + 1j * height * np.pi / t1 * np.cos(np.pi * t / t1))
-    ks, ws = gauss_legendre(t1, 2 * t1, res.n_segment)
-    near_kappa = np.concatenate([kc, ks.astype(complex)])
-    near_weight = np.concatenate([wc, ws * handover(ks, t1)])
+    t1, near_kappa, near_weight, x = wavenumber_nodes(m, res)
     nf = res.n_fit
-    x = np.cos(np.pi * (np.arange(nf) + 0.5) / nf)
     w = 0.5 * (x + 1)
     # The lossy solid C(1 + iQ⁻¹) from the elastic one: h(κ√(1 + iQ⁻¹))/(1 + iQ⁻¹).
     f = 1 + 1j * q
