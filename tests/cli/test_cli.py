@@ -97,3 +97,18 @@ def test_json_output_keeps_small_values_exactly():
     rows = json.loads(out.getvalue())
     assert rows[0]["u0_m"] == 1.234567890123e-12
     assert rows[1]["u0_m"] is None and rows[0]["x"] is None  # no JSON form: null
+
+
+def test_csv_output_has_no_float_noise_and_keeps_15_digits():
+    import io
+
+    import pandas as pd
+
+    from contactres.cli._common import emit
+
+    value = 1.234567890123456e-12
+    out = io.StringIO()
+    emit(pd.DataFrame({"x": [0.1 + 0.2, value]}), "csv", out)
+    lines = out.getvalue().split()
+    assert lines[1] == "0.3"  # not 0.30000000000000004
+    assert abs(float(lines[2]) - value) <= 5e-15 * value  # half a unit in the 15th digit

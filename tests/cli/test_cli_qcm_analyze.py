@@ -120,3 +120,10 @@ def test_keep_drift_and_law_per_load_reach_the_settings(sweeps_csv, tmp_path):
     used = sweeps[sweeps["used"]]
     assert set(used["decided_by"]) == {"block"}
     assert used["runner_up"].notna().all() and np.isfinite(used["delta_bic"]).all()
+
+
+def test_no_progress_bar_in_a_pipe(sweeps_csv, tmp_path):
+    # The runner's stderr is no terminal, as in a pipe or a log: the bar and its label stay out.
+    r = run("qcm", "analyze", sweeps_csv, "--out", tmp_path / "o", *OPTS, "--no-figures")
+    assert r.exit_code == 0, r.output
+    assert "analysing" not in r.output and "Table 1" in r.output

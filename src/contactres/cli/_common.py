@@ -199,8 +199,9 @@ def emit(table: pd.DataFrame, fmt: str, stream=None) -> None:
     """Print a table in the chosen format to ``stream`` (stdout)."""
     out = stream or sys.stdout
     if fmt == "csv":
-        # Full precision: the printed CSV is read back by scripts (ten digits are left open).
-        table.to_csv(out, index=False)
+        # 15 significant digits: read back by scripts to 5e-15, yet without the float noise of
+        # the 17-digit repr (0.1 + 0.2 prints as 0.3, not 0.30000000000000004).
+        table.to_csv(out, index=False, float_format="%.15g")
     elif fmt == "json":
         # Python's own float repr (shortest exact), not pandas' to_json, which rounds to a
         # number of decimals and so writes 1.23e-12 m as 0.0.
@@ -226,6 +227,14 @@ def _interactive() -> bool:
     """True when stderr is a terminal (progress lines would not land in a pipe or a log)."""
     isatty = getattr(sys.stderr, "isatty", None)
     return bool(isatty and isatty())
+
+
+def progress_stream():
+    """Where a progress bar draws: stderr on a terminal, else a sink (a pipe or a log gets
+    neither the bar nor its label)."""
+    import io
+
+    return sys.stderr if _interactive() else io.StringIO()
 
 
 def step(command: str, text: str) -> None:

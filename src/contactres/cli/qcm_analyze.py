@@ -9,14 +9,20 @@ leaves the folder as it was. Warnings (the data's and numerical ones) become one
 from __future__ import annotations
 
 import os
-import sys
 import warnings
 from pathlib import Path
 
 import click
 
 from ._app import qcm
-from ._common import MagnitudeType, MaterialType, emit, format_option, odd_overtone
+from ._common import (
+    MagnitudeType,
+    MaterialType,
+    emit,
+    format_option,
+    odd_overtone,
+    progress_stream,
+)
 
 
 @qcm.command("analyze")
@@ -210,7 +216,7 @@ def analyze_command(
         steps = 6 + n_groups + radiation + (0 if no_figures else 1)
         with (
             warnings.catch_warnings(record=True) as caught,
-            click.progressbar(length=steps, label="analysing", file=sys.stderr) as bar,
+            click.progressbar(length=steps, label="analysing", file=progress_stream()) as bar,
         ):
             warnings.simplefilter("always")
 

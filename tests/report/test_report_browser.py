@@ -1,0 +1,132 @@
+"""The HTML report of the bundled example in a real browser (headless Chromium).
+
+* The page loads with no console message at all (an error, a warning or a stray log line all
+  fail: the report's script logs nothing) and a screenshot is saved.
+* The sweep filter works in the browser: a probe script, appended to a copy of the report, picks
+  a configuration in the filter and the count of rows shown must equal the number of sweeps of
+  that configuration in ``sweeps.csv``, which the test reads itself.
+* A control page with a deliberate ``console.error`` must be caught, so the console check
+  cannot pass by reading nothing.
+
+Chromium is found as ``$CONTACTRES_BROWSER`` or ``chromium``, ``chromium-browser``,
+``google-chrome`` on PATH; without one the tests are skipped with that reason, except under CI
+(``CI=true``), where ``.ci/run`` installs Chromium and a missing browser is a failure. The
+screenshot goes to ``$CONTACTRES_ARTIFACTS`` (default: the test's temporary folder) and its path is
+printed.
+"""
+
+from __future__ import annotations
+
+import os
+import re
+import shutil
+import subprocess
+from html import unescape
+from pathlib import Path
+
+import pandas as pd
+import pytest
+from click.testing import CliRunner
+
+import contactres
+from contactres.cli import main
+
+EXAMPLE = Path(contactres.__file__).parent / "data" / "example_sweeps.csv"
+BROWSERS = ("chromium", "chromium-browser", "google-chrome")
+#: Chromium writes every console message of the page to stderr as ``...:CONSOLE:<line>] "<text>"``.
+CONSOLE = re.compile(r":CONSOLE(?::|\()\d+\)?\] (?P<text>.*)")
+
+
+def _browser() -> str | None:
+    named = os.environ.get("CONTACTRES_BROWSER")
+    if named:
+        return shutil.which(named) or named
+    return next((path for b in BROWSERS if (path := shutil.which(b))), None)
+
+
+@pytest.fixture(scope="module")
+def browser() -> str:
+    path = _browser()
+    if path is None:
+        if os.environ.get("CI") == "true":
+            pytest.fail("CI: no Chromium found; .ci/run must install it (apt-get install chromium)")
+        pytest.skip("no headless browser: install Chromium (apt-get install chromium) to run it")
+    return path
+
+
+def _run(browser: str, page: Path, profile: Path, *args: str) -> subprocess.CompletedProcess:
+    """Open ``page`` in headless Chromium with console logging on stderr."""
+    command = [
+        browser,
+        "--headless",
+        "--no-sandbox",  # CI runs as root, where Chromium's sandbox refuses to start
+        "--disable-gpu",
+        "--no-first-run",
+        f"--user-data-dir={profile}",
+        "--enable-logging=stderr",
+        "--v=0",
+        *args,
+        page.as_uri(),
+    ]
+    return subprocess.run(command, capture_output=True, text=True, timeout=120, check=False)
+
+
+def _console(stderr: str) -> list[str]:
+    return [m["text"] for m in CONSOLE.finditer(stderr)]
+
+
+@pytest.fixture(scope="module")
+def report(tmp_path_factory) -> Path:
+    out = tmp_path_factory.mktemp("browser") / "results"
+    args = ["qcm", "analyze", str(EXAMPLE), "--out", str(out), "--report", "html"]
+    result = CliRunner().invoke(main, [*args, "--bootstrap", "0"])
+    assert result.exit_code == 0, result.output
+    return out
+
+
+def test_the_report_loads_without_console_messages_and_is_screenshot(browser, report, tmp_path):
+    shots = Path(os.environ.get("CONTACTRES_ARTIFACTS", tmp_path))
+    shots.mkdir(parents=True, exist_ok=True)
+    shot = shots / "report.png"
+    done = _run(
+        browser,
+        report / "report.html",
+        tmp_path / "profile",
+        f"--screenshot={shot}",
+        "--window-size=1280,1600",
+    )
+    assert done.returncode == 0, done.stderr[-2000:]
+    assert _console(done.stderr) == []
+    assert shot.exists() and shot.stat().st_size > 10_000  # a rendered page, not a blank
+    print(f"screenshot: {shot}")
+
+
+def test_the_sweep_filter_works_in_the_browser(browser, report, tmp_path):
+    sweeps = pd.read_csv(report / "sweeps.csv")
+    configuration = sweeps["configuration"].astype(str).value_counts().index[-1]
+    expected = int((sweeps["configuration"].astype(str) == configuration).sum())
+    assert 0 < expected < len(sweeps)  # the filter must hide something for the check to bite
+    probe = (
+        "<script>window.addEventListener('load',function(){"
+        "var s=document.querySelector('.filters select[name=configuration]');"
+        f"s.value={configuration!r};s.dispatchEvent(new Event('change'));"
+        "var n=0;document.querySelectorAll('#sweeps tbody tr').forEach(function(r){"
+        "if(getComputedStyle(r).display!=='none')n++;});"
+        "document.body.setAttribute('data-probe',n+'/'+document.getElementById('shown')"
+        ".textContent);});</script>"
+    )
+    page = tmp_path / "probe.html"
+    html = (report / "report.html").read_text(encoding="utf-8")
+    page.write_text(html.replace("</body>", probe + "</body>"), encoding="utf-8")
+    done = _run(browser, page, tmp_path / "profile", "--dump-dom")
+    assert _console(done.stderr) == []
+    match = re.search(r'data-probe="(\d+)/(\d+)"', done.stdout)
+    assert match, "the probe did not run: " + unescape(done.stdout[:300])
+    assert (int(match[1]), int(match[2])) == (expected, expected)
+
+
+def test_a_console_error_is_caught(browser, tmp_path):
+    page = tmp_path / "control.html"
+    page.write_text("<html><body><script>console.error('boom')</script></body></html>")
+    done = _run(browser, page, tmp_path / "profile", "--dump-dom")
+    assert any("boom" in text for text in _console(done.stderr))
