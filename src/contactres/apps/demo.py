@@ -61,7 +61,7 @@ def _paper2_forward_step(out: Path) -> list[Path]:
 
 
 def _paper1_dcsf_step(out: Path) -> list[Path]:
-    """Paper 1: DCSF (WA model) of built-in crystals on (001) faces (as Fig. 4): paper1-dcsf/."""
+    """Paper 1: exact DCSF of built-in crystals on (001) faces (as Fig. 4): paper1-dcsf/."""
     from .paper1 import write_crystal_dcsf
 
     return write_crystal_dcsf(out / "paper1-dcsf")
@@ -79,7 +79,7 @@ DEMO_STEPS: list[tuple[str, Callable[[Path], list[Path]]]] = [
     ),
     ("built-in crystals and their anisotropy", _crystals_step),
     ("paper 2 forward: partial-slip loops and QCM shifts (Figs. 1D, 2C-D)", _paper2_forward_step),
-    ("paper 1: dynamic contact stiffness of a sphere on crystals (WA, Fig. 4)", _paper1_dcsf_step),
+    ("paper 1: dynamic contact stiffness on crystals (exact, Fig. 4)", _paper1_dcsf_step),
 ]
 
 

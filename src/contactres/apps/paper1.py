@@ -22,7 +22,7 @@ from matplotlib.figure import Figure
 from matplotlib.ticker import NullLocator
 
 from ..dynamic import contact_displacement, dcsf, dcsf_models
-from ..fileio import ensure_dir, save_figure, write_csv
+from ..fileio import CSV_FLOAT_FORMAT, ensure_dir, save_figure, write_csv
 from ..materials import Material
 from ..report.figures import key_below
 
@@ -249,13 +249,16 @@ def _coincident_labels(table: pd.DataFrame, names) -> dict[str, str]:
     return labels
 
 
-def write_crystal_dcsf(out) -> list[Path]:
-    """The demo step of paper 1: :func:`crystals_figure` as PNG + CSV in folder ``out``."""
+def write_crystal_dcsf(out, model: str = "exact") -> list[Path]:
+    """The demo step of paper 1: :func:`crystals_figure` as PNG + CSV in folder ``out``.
+
+    With the model the README recommends, the exact rigid punch (the paper's figure uses WA).
+    """
     folder = ensure_dir(out)
-    fig, table = crystals_figure()
+    fig, table = crystals_figure(model=model)
     return [
-        write_csv(folder / "crystals_dcsf_WA.csv", table),
-        save_figure(folder / "crystals_dcsf_WA.png", fig),
+        write_csv(folder / f"crystals_dcsf_{model}.csv", table, float_format=CSV_FLOAT_FORMAT),
+        save_figure(folder / f"crystals_dcsf_{model}.png", fig),
     ]
 
 
@@ -277,6 +280,6 @@ def write_paper1_figures(out, progress: Callable[[str], None] | None = None) -> 
         if progress is not None:
             progress(f"[{i}/{len(steps)}] {stem}")
         fig, table = make()
-        written.append(write_csv(folder / f"{stem}.csv", table))
+        written.append(write_csv(folder / f"{stem}.csv", table, float_format=CSV_FLOAT_FORMAT))
         written.append(save_figure(folder / f"{stem}.png", fig))
     return written

@@ -15,7 +15,7 @@ import numpy as np
 import pandas as pd
 from matplotlib.figure import Figure
 
-from ..fileio import ensure_dir, save_figure, write_csv
+from ..fileio import CSV_FLOAT_FORMAT, ensure_dir, save_figure, write_csv
 from ..normal.isotropic import effective_modulus, jkr_contact_radius
 from ..report.figures import key_below
 from ..resonators.qcm import QCM, shifts_from_loop
@@ -184,6 +184,6 @@ def write_paper2_figures(out, example: Paper2Example | None = None) -> list[Path
     written = []
     for stem, make in (("paper2_fig2_loops", loops_figure), ("paper2_fig1d_shifts", shifts_figure)):
         fig, table = make(example)
-        written.append(write_csv(folder / f"{stem}.csv", table))
+        written.append(write_csv(folder / f"{stem}.csv", table, float_format=CSV_FLOAT_FORMAT))
         written.append(save_figure(folder / f"{stem}.png", fig))
     return written
