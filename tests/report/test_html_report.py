@@ -1,6 +1,7 @@
 """The HTML page of ``qcm analyze`` (``report.html``): self-contained, complete, escaped."""
 
 import json
+import re
 import warnings
 from html.parser import HTMLParser
 from pathlib import Path
@@ -126,3 +127,34 @@ def test_the_cli_writes_report_html_into_the_set(tmp_path):
     r = run(EXAMPLE, "--out", out, "--bootstrap", "0", "--no-figures")
     assert r.exit_code == 0, r.output
     assert not (out / "report.html").exists()
+
+
+def _flat(value, path=""):
+    """The test's own walk of a JSON record: {dotted path: leaf}."""
+    if isinstance(value, dict):
+        return {
+            k: v
+            for key, item in value.items()
+            for k, v in _flat(item, f"{path}.{key}".lstrip(".")).items()
+        }
+    if isinstance(value, list):
+        return {
+            k: v for i, item in enumerate(value) for k, v in _flat(item, f"{path}[{i}]").items()
+        }
+    return {path: value}
+
+
+def test_the_page_holds_every_number_of_summary_json(results, page):
+    cells = dict(
+        re.findall(r'<tr data-key="([^"]+)"><td><code>[^<]*</code></td><td>([^<]*)</td>', page)
+    )
+    record = json.loads(json.dumps(summary(results)))  # as summary.json holds it
+    numbers = {
+        k: v
+        for k, v in _flat(record).items()
+        if isinstance(v, (int, float)) and not isinstance(v, bool)
+    }
+    assert len(numbers) > 50  # groups, settings, running-in ...
+    for key, value in numbers.items():
+        assert key in cells, key
+        assert float(cells[key]) == pytest.approx(value, rel=1e-6, abs=1e-300), key

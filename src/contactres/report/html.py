@@ -5,8 +5,9 @@ sweep is drawn as inline SVG (points and the chosen model's curve, Δf and ΔΓ 
 holds the input file's name and SHA-256, the package version, Table 1 (E and γ per
 configuration and medium, as printed by ``qcm analyze``), the statistics per load, every sweep
 with its model and flags (filtered by configuration, medium, load and flag with a few lines of
-inline JavaScript), the flags in words, the conventions and constants, and the radiation loss
-where the analysis has it. Every label of the data is HTML-escaped.
+inline JavaScript), every entry of ``summary.json`` (folded), the flags in words, the
+conventions and constants, and the radiation loss where the analysis has it. Every label of the
+data is HTML-escaped.
 """
 
 from __future__ import annotations
@@ -26,6 +27,7 @@ from ..fileio import write_text
 from ..measurements.schema import CONVENTIONS
 from ..measurements.sweeps import CONSTANTS
 from .console import DASH, friction_table, plus_minus, radiation_lines, table1_text, withheld_lines
+from .tables import summary
 
 __all__ = ["HTML_FILE", "html_report", "write_html"]
 
@@ -218,6 +220,36 @@ def _sweeps_section(results: Results) -> str:
     )
 
 
+def _leaves(value, path: str):
+    """(dotted path, value) of every number and text of a JSON record, lists by index."""
+    if isinstance(value, dict):
+        for k, v in value.items():
+            yield from _leaves(v, f"{path}.{k}" if path else str(k))
+    elif isinstance(value, list):
+        for i, v in enumerate(value):
+            yield from _leaves(v, f"{path}[{i}]")
+    else:
+        yield path, value
+
+
+def _summary_section(results: Results) -> str:
+    """Every entry of ``summary.json`` (numbers to 7 digits), one row each, folded."""
+    rows = []
+    for key, value in _leaves(summary(results), ""):
+        if isinstance(value, bool) or value is None or isinstance(value, str):
+            shown = DASH if value is None else str(value)
+        else:
+            shown = f"{value:.7g}"
+        rows.append(
+            f'<tr data-key="{_e(key)}"><td><code>{_e(key)}</code></td><td>{_e(shown)}</td></tr>'
+        )
+    return (
+        "<details><summary>Every entry of <code>summary.json</code> (groups in the order of "
+        "Table 1)</summary><table><thead><tr><th>key</th><th>value</th></tr></thead>"
+        f"<tbody>{''.join(rows)}</tbody></table></details>"
+    )
+
+
 def html_report(results: Results) -> str:
     """The page as text (see the module docstring)."""
     source = None if results.table is None else results.table.source
@@ -257,6 +289,8 @@ def html_report(results: Results) -> str:
         parts.append("</ul>")
     parts.append("<h2>Sweeps: the model chosen for each</h2>")
     parts.append(_sweeps_section(results))
+    parts.append("<h2>The summary record</h2>")
+    parts.append(_summary_section(results))
     parts.append("<h2>Flags</h2><dl>")
     parts += [f"<dt><code>{_e(f.text)}</code></dt><dd>{_e(DESCRIPTIONS[f])}</dd>" for f in Flag]
     parts.append("</dl><h2>Conventions</h2><ul>")
