@@ -121,7 +121,15 @@ def _records() -> list[CrystalRecord]:
 
 
 def crystal_names() -> list[str]:
-    """Names of the built-in solids: the cubic crystals, then the others, in table order."""
+    """Names of the built-in solids: the cubic crystals, then the others, in table order.
+
+    Examples
+    --------
+    >>> from contactres import crystal_names
+    >>> names = crystal_names()
+    >>> "Cu" in names and "Si" in names
+    True
+    """
     return [row["name"] for row in _rows("crystals.csv") + _rows("materials.csv")]
 
 
@@ -149,6 +157,14 @@ def crystal_table() -> pd.DataFrame:
     ν = C12/(C11 + C12) (paper 1's cubic parameters) are given where they apply: for the cubic
     rows and the isotropic ones (A = 1 and ν = Poisson's ratio); NaN for the trigonal rows, as
     are the constants a row's symmetry does not have.
+
+    Examples
+    --------
+    >>> from contactres import crystal_table
+    >>> t = crystal_table()
+    >>> row = t.set_index("name").loc["Si"]
+    >>> print(row["c11_GPa"], row["c12_GPa"], row["c44_GPa"], row["symmetry"])
+    165.7 63.9 79.6 cubic
     """
     import pandas as pd  # only the table needs pandas; records and names do not
 

@@ -306,14 +306,11 @@ class ResultSet:
         with ResultSet("out", names=["a.csv", "b.png"], inputs=["data.csv"]) as rs:
             frame.to_csv(rs.path("a.csv"))
 
-    Parameters
-    ----------
-    folder : the output folder (created if missing; symbolic links are followed)
-    names : the files this run may write (:meth:`path` refuses others)
-    inputs : input files of the run: no file of the set may be one of them
-    owned : every name a set of this kind can hold; those the new set lacks are removed from
-        the folder (files an earlier set wrote), and a folder holding only such files (and its
-        manifest) is replaced as a whole
+    ``folder`` is the output folder (created if missing; symbolic links are followed); ``names``
+    the files this run may write (:meth:`path` refuses others); ``inputs`` the input files of the
+    run (no file of the set may be one of them); ``owned`` every name a set of this kind can hold:
+    those the new set lacks are removed from the folder (files an earlier set wrote), and a folder
+    holding only such files (and its manifest) is replaced as a whole.
 
     Raises :class:`OutputError` on entering: see :func:`check_output`, or another run holds the
     lock. Where the folder's parent cannot be written but the folder itself can, the lock file and

@@ -178,7 +178,15 @@ class Material:
     def isotropic(
         cls, E: float, nu: float, density: float | None = None, name: str | None = None
     ) -> Material:
-        """Isotropic solid of Young's modulus ``E`` (Pa) and Poisson's ratio ``nu`` in (-1, 0.5)."""
+        """Isotropic solid of Young's modulus ``E`` (Pa) and Poisson's ratio ``nu`` in (-1, 0.5).
+
+        Examples
+        --------
+        >>> from contactres import Material
+        >>> glass = Material.isotropic(70e9, 0.22, density=2500.0)  # E in Pa, ρ in kg/m³
+        >>> round(float(glass.C[3, 3]) / 1e9, 4), round(70 / (2 * (1 + 0.22)), 4)  # C44 = G, GPa
+        (28.6885, 28.6885)
+        """
         E = positive("E", E, "Pa")
         nu = _poisson(nu)
         lam = E * nu / ((1 + nu) * (1 - 2 * nu))
@@ -196,7 +204,14 @@ class Material:
     ) -> Material:
         """Cubic crystal in its cube-axis frame; ``c11, c12, c44`` in Pa.
 
-        Stability (positive definiteness) requires c11 > |c12|, c11 + 2 c12 > 0, c44 > 0.
+        Stability (positive definiteness) requires c11 > ``|c12|``, c11 + 2 c12 > 0, c44 > 0.
+
+        Examples
+        --------
+        >>> from contactres import Material
+        >>> cu = Material.cubic(168.4e9, 121.4e9, 75.4e9, density=8960.0, name="Cu")  # Pa, kg/m³
+        >>> round(float(cu.zener_ratio), 4), round(2 * 75.4 / (168.4 - 121.4), 4)  # 2c44/(c11-c12)
+        (3.2085, 3.2085)
         """
         for v, n in ((c11, "c11"), (c44, "c44")):
             positive(n, v, "Pa")
@@ -280,7 +295,7 @@ class Material:
         the handedness and the edition of the standard): pass the constants with the sign their
         source gives in its own frame, and give directions (:meth:`rotated`) in that frame.
 
-        Stability (positive definiteness) requires C11 > |C12|, C44 > 0,
+        Stability (positive definiteness) requires C11 > ``|C12|``, C44 > 0,
         C13² < C33 (C11 + C12)/2 and C14² < C44 (C11 - C12)/2: C splits into the block
         [[C11 + C12, √2 C13], [√2 C13, C33]] (in-plane dilatation, e33) and two blocks each
         congruent to [[C66, C14], [C14, C44]] (an in-plane shear with a transverse one).
@@ -325,6 +340,13 @@ class Material:
         ``"soda-lime-glass"``, ``"Si3N4"``) need none. ``contactres crystals`` and
         :func:`contactres.crystal_names` list them with their sources; unknown names raise
         ValueError. For the AT-cut quartz plate of a QCM see :func:`at_cut_quartz`.
+
+        Examples
+        --------
+        >>> from contactres import Material
+        >>> si = Material.crystal("Si")
+        >>> print(f"c11 = {si.C[0, 0] / 1e9:.1f} GPa, ρ = {si.density:.0f} kg/m^3")
+        c11 = 165.7 GPa, ρ = 2329 kg/m^3
         """
         r = crystal_record(name)
         if r.symmetry == "isotropic":
@@ -448,6 +470,15 @@ def at_cut_quartz(theta: float = AT_CUT_ANGLE) -> Material:
     ----------
     theta : float
         Cut angle in degrees (default :data:`AT_CUT_ANGLE`, 35.25°).
+
+    Examples
+    --------
+    The thickness-shear constant C55 and the shear-wave impedance √(ρ C55) (cf. ``QCM.zq``):
+
+    >>> from contactres import at_cut_quartz
+    >>> q = at_cut_quartz()  # z along the plate normal
+    >>> print(f"C55 = {q.C[4, 4] / 1e9:.2f} GPa, Z = {(q.density * q.C[4, 4]) ** 0.5:.3g} kg/m²s")
+    C55 = 28.98 GPa, Z = 8.76e+06 kg/m²s
     """
     t = np.radians(float(theta))
     if not np.isfinite(t):

@@ -5,7 +5,7 @@ control) as u(t) = u0 cos ωt. Every loop here is a small frozen dataclass with
 
 * ``virgin(d)`` - the force on first loading from rest to displacement d, N;
 * ``branches(u, u0)`` - the forces ``(F_plus, F_minus)`` on the way up (u from -u0 to u0) and on
-  the way down, at displacement u with |u| <= u0, N;
+  the way down, at displacement u with ``|u|`` <= u0, N;
 * ``area(u0)`` - the loop area ∮F du, J (= energy dissipated per cycle);
 * ``kinks(u0)`` - positions x = u/u0 in [-1, 1] where F₊ + F₋ is not smooth (nan if none), used by
   :func:`contactres.shifts_from_loop` to split its quadrature.
@@ -121,7 +121,6 @@ class MasingLoop:
 
     kappa: float
 
-    # -- to be provided by subclasses -------------------------------------------------------
     def _virgin(self, d):  # pragma: no cover - abstract
         raise NotImplementedError
 
@@ -158,14 +157,13 @@ class MasingLoop:
         d = np.asarray(d, dtype=float)
         return self.kappa * d - self._virgin(d)
 
-    # -- common interface -------------------------------------------------------------------
     def virgin(self, d):
         """Virgin (first-loading) force F(d), N; odd in d."""
         d = np.asarray(d, dtype=float)
         return _out(np.sign(d) * self._virgin(np.abs(d)))
 
     def branches(self, u, u0):
-        """(F₊, F₋) at displacement u (|u| <= u0) of the loop of amplitude u0, N (Masing)."""
+        """(F₊, F₋) at displacement u (``|u|`` <= u0) of the loop of amplitude u0, N (Masing)."""
         u, u0 = _branch_args(u, u0)
         Fu0 = self._virgin(u0)
         up = -Fu0 + 2.0 * self._virgin(np.maximum((u + u0) / 2.0, 0.0))
@@ -203,6 +201,12 @@ class CattaneoMindlinLoop(MasingLoop):
 
     F(d) = μF_N [1 - (1 - d/d*)^{3/2}] for d <= d* = 3μF_N/(2κ), F = μF_N beyond (full sliding:
     the loop becomes a parallelogram of height 2μF_N). ``kappa`` N/m, ``mu`` -, ``normal_force`` N.
+
+    Examples
+    --------
+    >>> loop = CattaneoMindlinLoop(kappa=1000.0, mu=0.5, normal_force=1e-3)  # N/m, -, N
+    >>> loop.slip_displacement, loop.sliding_force, loop.virgin(loop.slip_displacement)  # m, N, N
+    (7.5e-07, 0.0005, 0.0005)
     """
 
     kappa: float
@@ -400,10 +404,7 @@ class PlateauLoop(MasingLoop):
         return self.loop.slopes(e)
 
     def area(self, u0):
-        """Loop area, J: the inner loop's area at v = u0 - d_c plus 4 d_c (κv - F_inner(v)).
-
-        (From area = -4∫(κ - F')(u0 - 2d) dd; free of the cancellation of 8∫F - 4u0F.)
-        """
+        """Loop area, J: inner area at v = u0 - d_c + 4 d_c (κv - F_inner(v)), no cancellation."""
         u0 = _amplitude(u0)
         v = np.maximum(u0 - self.critical_displacement, 0.0)
         inner = np.asarray(self.loop.area(v), dtype=float)

@@ -36,7 +36,7 @@ __all__ = [
     "unit_slip",
 ]
 
-#: |Δf|/f above which the small-load approximation (paper 2, Eq. 1) is questioned.
+#: ``|Δf|``/f above which the small-load approximation (paper 2, Eq. 1) is questioned.
 SMALL_LOAD_LIMIT = 1e-3
 
 #: Largest plausible QCM oscillation amplitude, m. Contact-resonance ramps reach tens of nm; 1 µm

@@ -13,6 +13,7 @@ Three steps, all vectorised over the pixels of a map (arrays broadcast together)
    correcting the whole series stiffness overstates the (small) correction by at most the factor
    M_sample/E* (exact for a rigid tip).
 2. Reduced modulus E* from the static stiffness, either
+
    * Hertz with known tip radius R and load P (K. L. Johnson, Contact Mechanics, Cambridge
      University Press 1985, Eqs. 4.22-4.23): K = 2aE*, a³ = 3PR/(4E*), so
      E* = √(K³/(6RP)); or
@@ -22,6 +23,7 @@ Three steps, all vectorised over the pixels of a map (arrays broadcast together)
      E*_s = E*_ref (K_s/K_ref)^m, m = 3/2 (Hertz, default) or 1 (flat punch), or m fitted to two
      references, m = ln(E*_ref2/E*_ref1)/ln(K_ref2/K_ref1), then E*_s from reference 1. The
      reference's E*_ref = 1/(1/M_tip + 1/M_ref).
+
 3. Tip compliance (series law): 1/E* = 1/M_tip + 1/M_sample, M_sample = 1/(1/E* − 1/M_tip);
    where 1/E* − 1/M_tip <= 0 the sample looks stiffer than the tip allows (check M_tip):
    M_sample is NaN and :attr:`ModulusFlag.TIP_LIMIT` is set.
@@ -37,10 +39,10 @@ p0 = 3P/(2πa²) (Johnson Eq. 4.23) when the load P is known. p0 above ``hardnes
 :attr:`ModulusFlag.NOT_ELASTIC` (a flag, not a warning): the contact yields, k* is not elastic.
 
 Size of the dynamic correction, Si(001), exact model, lossless (tests/analysis/test_inversion.py):
-DCSF ≈ 1 − 0.298 (k_l a)² + 1.228i k_l a for small k_l a. |DCSF − 1| (dominated by the radiation
-term) reaches 1e-3 at k_l a ≈ 8.1e-4, but the correction applied, |1/Re DCSF − 1|, reaches 1e-3
-only at k_l a ≈ 0.058. A 50 nm Si[001] tip on Si(001) (E* = M/2, M = 164.8 GPa, c_l = 8435 m/s)
-at 1 µN and 1 MHz has a ≈ 7.7 nm, k_l a ≈ 5.7e-6, |DCSF − 1| ≈ 7e-6 and |1/Re DCSF − 1| ≈ 1e-11:
+DCSF ≈ 1 − 0.298 (k_l a)² + 1.228i k_l a for small k_l a. ``|DCSF − 1|`` (dominated by the radiation
+term) reaches 1e-3 at k_l a ≈ 8.1e-4, but the correction applied, ``|1/Re DCSF − 1|``, reaches 1e-3
+only at k_l a ≈ 0.058. A 50 nm Si[001] tip on Si(001) (E* = M/2, M = 164.8 GPa, c_l = 8435 m/s) at 1
+µN and 1 MHz has a ≈ 7.7 nm, k_l a ≈ 5.7e-6, ``|DCSF − 1|`` ≈ 7e-6 and ``|1/Re DCSF − 1|`` ≈ 1e-11:
 negligible. It matters for µm-size contacts at MHz (paper 1's RUM: k_l a up to ~0.2).
 
 Paper 1: J. Tian, "Anisotropy Influence of Cubic Solid on Dynamic Hertzian Contact Stiffness for
@@ -188,7 +190,7 @@ def dcsf_values(m: Material, ka, *, loss: float = 0.0, grid: int = DCSF_GRID, pr
     """DCSF (model "exact", ``wavenumber="longitudinal"``) of ``m`` at the k_l a values ``ka``.
 
     At most ``grid`` distinct values are evaluated directly; more are interpolated between
-    Chebyshev points with a measured error below 1e-7 of the largest |1/DCSF| on the range
+    Chebyshev points with a measured error below 1e-7 of the largest ``|1/DCSF|`` on the range
     (``interpolate=True`` of :func:`contactres.dynamic.dcsf`). ``prepared``: the kernel table
     of ``m`` and ``loss`` (rtol 1e-6), built here when not given.
     """
@@ -277,6 +279,18 @@ def modulus_from_contact_stiffness(
     -------
     ModulusResult
         Arrays of the broadcast shape of the array inputs.
+
+    Examples
+    --------
+    Hertz with a known tip radius (m) and load (N): E* = √(k*³/(6RP)), a = k*/(2E*):
+
+    >>> import numpy as np
+    >>> from contactres import modulus_from_contact_stiffness
+    >>> r = modulus_from_contact_stiffness(1262.8, tip_radius=50e-9, load=1e-6)  # k* in N/m
+    >>> print(f"E* = {float(r.E_star) / 1e9:.2f} GPa, a = {float(r.contact_radius) * 1e9:.2f} nm")
+    E* = 81.93 GPa, a = 7.71 nm
+    >>> bool(np.isclose(r.E_star, np.sqrt(1262.8**3 / (6 * 50e-9 * 1e-6))))
+    True
     """
     k = np.asarray(positive("k_star (contact stiffness k*)", k_star, "N/m"), dtype=float)
     if tip_modulus is not None and tip is not None:

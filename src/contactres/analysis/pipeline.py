@@ -43,7 +43,7 @@
    false-alarm probability ``drift_p``),
    ``junction-growth`` (Δf rises with u0 by more than 2 standard errors), ``gross-sliding`` (the
    exact loop fits best beyond x = κu0/(μF_N) = 30; for a plateau, its excess beyond d_c),
-   ``small-load`` (|Δf|/f > 1e-3), ``plateau-slope`` (a plateau sweep: no μ from the slopes).
+   ``small-load`` (``|Δf|``/f > 1e-3), ``plateau-slope`` (a plateau sweep: no μ from the slopes).
 5. **Per load** (configuration, medium, normal force): the used sweeps of each experiment are
    averaged, then mean and standard deviation over experiments (NaN values, e.g. the slope μ of
    plateau sweeps, are skipped; a load without any value gets NaN).

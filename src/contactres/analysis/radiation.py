@@ -244,7 +244,7 @@ def radiation_loss(
         "quartz-AT")
     frequency_Hz : the overtone frequency f, Hz: one number or one per row of ``loads``
         (:func:`load_frequencies`)
-    experiments : the points of the JKR fits, one row per (experiment, load) with
+    experiments : the points of the JKR fits, one row per experiment and load, with
         ``kappa_N_per_m`` (:attr:`~contactres.analysis.results.Results.experiments`); None:
         the loads' ``kappa_N_per_m_mean`` (E is then refitted on the means)
 

@@ -30,10 +30,13 @@ class RampCheck:
 
     Attributes
     ----------
-    first : the running-in sweep of each load (first in file order; labelled 1 when the
-        labels agree with the file)
-    suspect : sweeps of loads whose labels disagree with the data
-    messages : one line per problem, naming experiment, load, sweeps and ramps
+    first
+        The running-in sweep of each load (first in file order; labelled 1 when the labels
+        agree with the file).
+    suspect
+        Sweeps of loads whose labels disagree with the data.
+    messages
+        One line per problem, naming experiment, load, sweeps and ramps.
     """
 
     first: np.ndarray

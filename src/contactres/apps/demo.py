@@ -36,7 +36,7 @@ def _qcm_analysis_step(out: Path) -> list[Path]:
 
 def _qcm_spectra_step(out: Path) -> list[Path]:
     """From the instrument: the bundled admittance spectra -> resonance fits -> sweep table ->
-    paper 2's analysis (issue 14): qcm-spectra/ (sweeps.csv, fits.csv and the results)."""
+    paper 2's analysis: qcm-spectra/ (sweeps.csv, fits.csv and the results)."""
     from importlib.resources import as_file, files
 
     from ..analysis import analyze
@@ -74,7 +74,7 @@ DEMO_STEPS: list[tuple[str, Callable[[Path], list[Path]]]] = [
         _qcm_analysis_step,
     ),
     (
-        "from the instrument: bundled admittance spectra -> shifts -> analysis (issue 14)",
+        "from the instrument: bundled admittance spectra -> shifts -> analysis",
         _qcm_spectra_step,
     ),
     ("built-in crystals and their anisotropy", _crystals_step),

@@ -3,7 +3,8 @@
 Abscissa: the longitudinal wave number k_l a = ω a √(ρ/C11) of the (001) face, as in the paper;
 damping Q⁻¹ = 0.02. Every figure is written as PNG together with the CSV of the plotted numbers:
 
-* Fig. 2: |u_z(r̄)|/|u_z(0)| across the contact (along [100]) for several k_l a, A = 0.5, ν = 0.25;
+* Fig. 2: ``|u_z(r̄)|``/``|u_z(0)|`` across the contact (along [100]) for several k_l a,
+  A = 0.5, ν = 0.25;
 * Fig. 3: DCSF of the five displacement models at A = 0.5, ν = 0.25;
 * Fig. 4: DCSF (WA) for A = 0.25, 0.5, 1, 2, 4 at ν = 0.25;
 * Fig. 5: DCSF (WA) at A = 2 for ν = 0.1, 0.2, 0.25, 0.3, 0.4;
@@ -82,10 +83,10 @@ def dcsf_curves_figure(
             for ax, part in ((ax1, e.real), (ax2, e.imag)):
                 ax.plot(kla, part, color=line.get_color(), lw=0.8, alpha=0.7, label=name)
             rows.append(pd.DataFrame({"kla": kla, "curve": name, "re": e.real, "im": e.imag}))
-    ax1.set_ylabel("Re DCSF (stiffness)")
-    ax2.set_ylabel("Im DCSF (damping)")
+    ax1.set_ylabel("Re DCSF (stiffness, -)")
+    ax2.set_ylabel("Im DCSF (damping, -)")
     for ax, tag in ((ax1, "(a)"), (ax2, "(b)")):
-        ax.set_xlabel("k_l a")
+        ax.set_xlabel("k_l a (-)")
         ax.axhline(0, color="0.7", lw=0.5)
         ax.set_title(tag, fontsize=9, loc="left")
         if ylim is not None:
@@ -130,7 +131,7 @@ def fig5_poisson(kla=KLA, A: float = 2.0, nus=(0.1, 0.2, 0.25, 0.3, 0.4)):
 
 
 def displacement_figure(kla=(0.3, 0.6, 0.9, 1.2, 1.7), A: float = 0.5, nu: float = 0.25):
-    """Fig. 2: |u_z(r̄)|/|u_z(0)| along [100] under the oscillating flat-punch pressure.
+    """Fig. 2: ``|u_z(r̄)|``/``|u_z(0)|`` along [100] under the oscillating flat-punch pressure.
 
     Returns (figure, table) with columns kla, rbar, re_N, im_N, abs_ratio.
     """
@@ -155,8 +156,8 @@ def displacement_figure(kla=(0.3, 0.6, 0.9, 1.2, 1.7), A: float = 0.5, nu: float
                 }
             )
         )
-    ax.set_xlabel("r/a")
-    ax.set_ylabel("|u_z(r)| / |u_z(0)|")
+    ax.set_xlabel("r/a (-)")
+    ax.set_ylabel("|u_z(r)| / |u_z(0)| (-)")
     ax.set_ylim(bottom=0)
     fig.legend(loc="outside right upper", fontsize=7)
     ax.set_title(f"Fig. 2: A = {A:g}, ν = {nu:g}, Q⁻¹ = {LOSS:g}, along [100]", fontsize=9)
@@ -178,7 +179,7 @@ def crystals_figure(names=("RbI", "KCl", "W", "Cu", "Li"), kla=KLA, model: str =
 def model_ranking(kla=KLA, zeners=(0.25, 0.5, 1.0, 2.0, 4.0), nu: float = 0.25):
     """How far each approximate model is from the exact rigid punch (issue 7's question).
 
-    For each A (ν = 0.25, Q⁻¹ = 0.02): the largest relative error |DCSF_model/DCSF_exact − 1|
+    For each A (ν = 0.25, Q⁻¹ = 0.02): the largest relative error ``|DCSF_model/DCSF_exact − 1|``
     over k_l a <= 1 and over k_l a <= 2. Returns (figure, table) with columns zener, model,
     max_rel_error_kla_le_1, max_rel_error_kla_le_2, rank_kla_le_1 (1 = closest to exact).
     """

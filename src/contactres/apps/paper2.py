@@ -166,8 +166,9 @@ def shifts_figure(example: Paper2Example | None = None, u0=None):
     ax2.plot(x, dg_sv, "--", label="Savkoor")
     ax1.set_ylabel("Δf (Hz)")
     ax2.set_ylabel("ΔΓ (Hz)")
-    for ax in (ax1, ax2):
+    for ax, tag in ((ax1, "(a)"), (ax2, "(b)")):
         ax.set_xlabel("amplitude u0 (nm)")
+        ax.set_title(tag, fontsize=9, loc="left")
     fig.suptitle(
         f"{ex.qcm.fundamental / 1e6:g} MHz QCM, n = {ex.qcm.overtone}, {ex.n_contacts} contacts; "
         f"F_N = {ex.normal_force * 1e3:.2f} mN, κ = {ex.kappa:.3g} N/m, μ = {ex.mu:g}, "

@@ -37,7 +37,7 @@ from ._crystal_face import crystal_face, crystal_face_options
     "--tangential",
     is_flag=True,
     help="Add the tangential stiffness K_t of the contact (rigid disk of radius a translating "
-    "along --direction, relaxed contact: no normal traction; issue 13).",
+    "along --direction, relaxed contact: no normal traction).",
 )
 @click.option(
     "--direction",

@@ -85,7 +85,10 @@ from ._common import (
     type=click.IntRange(min=0),
     default=200,
     show_default=True,
-    help="Bootstrap resamples over experiments for the errors of E and γ, dimensionless (0: none).",
+    help=(
+        "Bootstrap resamples over experiments for the errors of E and γ, dimensionless (0: none;"
+        " the errors are then the fit's own, from its residuals, which can differ several-fold)."
+    ),
 )
 @click.option(
     "--workers",

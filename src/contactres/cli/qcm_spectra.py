@@ -91,7 +91,7 @@ def _positive(name: str, low: float, high: float, unit: str):
 def spectra_command(
     spectra, out, fits, reference, layout, reference_impedance, voltage, d26, calibration, fmt
 ):
-    """Fit admittance spectra and write the sweep table (issue 14).
+    """Fit admittance spectra and write the sweep table.
 
     SPECTRA is a tidy CSV (one row per frequency point: spectrum, frequency_Hz, G_S, B_S, and
     per spectrum drive_voltage_V, overtone, reference, sweep, ramp, experiment,

@@ -247,7 +247,7 @@ def stiffness_command(
 
 def stiffness_table(table, area: float, n_contacts: int, zq: float):
     """The export's rows with κ and ωξ per contact (paper 2, Eq. 2), and the distinct warnings
-    of the small-load check (|Δf|/f above 1e-3) as text lines."""
+    of the small-load check (``|Δf|``/f above 1e-3) as text lines."""
     import numpy as np
 
     from ..resonators.qcm import QCM, stiffness_from_shifts

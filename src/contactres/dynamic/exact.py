@@ -4,16 +4,17 @@ With the contact radius fixed and frictionless contact, the exact dynamic proble
 displacement conditions is the rigid flat punch on the lossy anisotropic half-space: the pressure
 on the disk whose displacement is uniform (Luco & Westmann 1971 for the isotropic solid).
 
-Galerkin (Rayleigh-Ritz) on the disk r̄ = r/a <= 1. The pressure is expanded as
+Galerkin (Rayleigh-Ritz) on the disk r̄ = r/a <= 1. The pressure is expanded as::
 
     p(r̄, φ) = Σ_{n, k} c_{nk} f_{nk}(r̄) e^{inφ},
     f_{nk}(r̄) = √π Γ(|n|+k+1)/(Γ(k+½) |n|!) r̄^{|n|} ₂F₁(|n|+k+1, ½−k; |n|+1; r̄²)
               = r̄^{|n|} (1 − r̄²)^{-1/2} × (polynomial of degree k in r̄²),
 
-whose order-|n| Hankel transforms are spherical Bessel functions, ∫₀¹ r̄ f_{nk} J_|n|(s r̄) dr̄ =
-j_{|n|+2k}(s) (Weber-Schafheitlin): the flat punch f₀₀ = 1/√(1 − r̄²) has sin s/s. Only the angular
-harmonics that the face couples to n = 0 enter (n ≡ 0 mod 4 on a 4-fold face, even n otherwise).
-The Galerkin matrix of the displacement, in the normalisation of N (paper 1, Eq. 22),
+whose order-``|n|`` Hankel transforms are spherical Bessel functions,
+∫₀¹ r̄ f_{nk} J_{``|n|``}(s r̄) dr̄ = j_{``|n|+2k``}(s) (Weber-Schafheitlin): the flat punch
+f₀₀ = 1/√(1 − r̄²) has sin s/s. Only the angular harmonics that the face couples to n = 0
+enter (n ≡ 0 mod 4 on a 4-fold face, even n otherwise).
+The Galerkin matrix of the displacement, in the normalisation of N (paper 1, Eq. 22)::
 
     M_ab = (−1)^{(n_a+n_b)/2} ∫₀^∞ ds Ĝ_{n_a+n_b}(s/ka) j_{p_a}(s) j_{p_b}(s),
     Ĝ_m(κ) = ∫₀^{2π} g(κ, θ) e^{imθ} dθ,   p = |n| + 2k,
@@ -49,7 +50,7 @@ __all__ = [
 
 @dataclass(frozen=True)
 class GalerkinSize:
-    """Number of radial terms per harmonic and of angular harmonics (|n| <= step × n_harmonics)."""
+    """Radial terms per harmonic and angular harmonics (``|n| <= step × n_harmonics``)."""
 
     n_radial: int
     n_harmonics: int
@@ -66,10 +67,10 @@ def galerkin_size(ksa_max: float, rtol: float = 1e-6, *, pressure: bool = False)
 
     N_exact is variational (its error is quadratic in that of the pressure): measured against
     twice the terms (k_l a <= 2, A = 0.2-10, ν = 0.25-0.45), ceil(0.6 k_s a) + 4 radial terms and
-    harmonics |n| <= 3 × step (the default) leave < 1e-9 on (001) faces and 5e-11-7e-8 on
+    harmonics ``|n|`` <= 3 × step (the default) leave < 1e-9 on (001) faces and 5e-11-7e-8 on
     Cu(111) and Cu(123); two radial terms fewer < 1e-8 (rtol >= 1e-4). The harmonics must reach
     the face's first coupled one: a (111) face is six-fold, so with step 2 it couples n = ±6,
-    and |n| <= 2 × step missed it (3e-4 off on Cu(111), found by review). rtol <= 1e-8 takes two
+    and ``|n|`` <= 2 × step missed it (3e-4 off on Cu(111), found by review). rtol <= 1e-8 takes two
     terms and one harmonic more.
     ``pressure=True`` sizes the basis for the pressure field itself (:func:`contact_pressure
     <contactres.dynamic.normal_stiffness.contact_pressure>`), which converges only linearly:
@@ -90,7 +91,7 @@ def _basis(table: KernelTable, size: GalerkinSize) -> list[tuple[int, int]]:
 
 
 def pressure_basis(n: int, k: int, rbar) -> np.ndarray:
-    """f_nk(r̄) of the module docstring (its order-|n| Hankel transform is j_{|n|+2k}(s))."""
+    """f_nk(r̄) of the module docstring (its order-``|n|`` Hankel transform is j_{``|n|+2k``}(s))."""
     n = abs(int(n))
     r = np.asarray(rbar, dtype=float)
     norm = math.sqrt(math.pi) * math.exp(special.gammaln(n + k + 1) - special.gammaln(k + 0.5))
@@ -115,7 +116,7 @@ class GalerkinPlan:
     Attributes
     ----------
     basis : [(n, k), ...] the pressure basis (angular order n, radial index k)
-    orders : (n_p,) the distinct Hankel orders p = |n| + 2k
+    orders : (n_p,) the distinct Hankel orders p = ``|n|`` + 2k
     pairs : (2, n_t) order indices (i <= j) of the products j_p j_q the matrix needs
     ms : (n_m,) the angular orders n_a + n_b of the kernel harmonics Ĝ_m
     m_index, t_index : (nb, nb) where M_ab reads its harmonic (into ``ms``) and its pair

@@ -12,7 +12,7 @@ The nodes are Chebyshev–Lobatto points x_j = cos(πj/n) mapped onto [min, max]
 values; going from n to 2n intervals keeps every old node, so each refinement costs only the new
 points. The error of the n-interval interpolant is measured at the n new points (the midpoints
 in angle, where it is largest) against the direct values there; the refinement stops once it is
-below ``tol`` × max|f| (then the 2n-interval interpolant, which is used, is far more accurate
+below ``tol`` × ``max|f|`` (then the 2n-interval interpolant, which is used, is far more accurate
 still). The values are evaluated by the barycentric formula (scipy's
 :class:`~scipy.interpolate.BarycentricInterpolator`, stable for these nodes).
 """
@@ -57,7 +57,7 @@ def chebyshev_values(
     x : 1-D array
         Where the curves are wanted (any order, repeats allowed).
     tol : float
-        Largest interpolation error accepted, relative to the largest |value| of each curve
+        Largest interpolation error accepted, relative to the largest ``|value|`` of each curve
         on the nodes, as measured at the next refinement's new nodes.
     first, largest : int
         Intervals of the first grid and the largest grid tried.

@@ -33,7 +33,7 @@ much as one of them: use it. Against it (``contactres figures paper1``, paper1_m
 (2-40 %), SA, R1, R0 (10-100 %); up to k_l a = 2 only TP stays within 10 % for A >= 1. The
 paper recommends WA because R0, SA and TP turn negative at high k a; the wiggles of WA (the
 maxima of Fig. 4) are not in the exact curve. See :mod:`contactres.dynamic.quadrature` for the
-numerics and their accuracy. Defaults: ``model="exact"``, ``loss=0``.
+numerics and their accuracy.
 
 Two traps of the approximations (measured, lossless and Q⁻¹ = 0.02 alike): R0 has negative
 damping, Im DCSF < 0, at high k a (k_l a >= 1.93 on Cu(001), >= 1.58 at A = 0.5, ν = 0.25; not
@@ -91,8 +91,7 @@ __all__ = [
 
 # Largest k_s a × (largest slowness) accepted: the contour's weights grow like e^{0.3 x this}.
 _KA_MAX = 60.0
-# k a values evaluated together: the far-field basis takes ~0.6 MB per value (every other array
-# of a chunk is smaller), so 64 values stay near 40 MB of temporaries whatever the call's size.
+# k a values evaluated together: ~0.6 MB of far-field basis each, ~40 MB at 64, for any call size.
 _CHUNK = 64
 #: Above this many distinct k a values a call interpolates (``interpolate=None``): the direct
 #: cost is ~0.7 ms per value, a Chebyshev curve 33-129 direct values whatever the call's size.
@@ -209,17 +208,13 @@ def _direct(table, flat, names, rtol, chunk, span=None) -> dict[str, np.ndarray]
     pos = flat[flat > 0]
     if span is not None:
         pos = np.append(pos, span)
-    # What every chunk shares, built once per call: the far-field grid (from the smallest k a
-    # of the call), its weights, the Galerkin bookkeeping (sized for the largest k a) and the
-    # near-field θ grid (also from the largest), so a chunked call computes what one unchunked
-    # call would, point by point.
+    # Shared by every chunk, built once per call (far-field grid and weights from the smallest k a,
+    # Galerkin bookkeeping and near θ grid from the largest): chunking does not change a result.
     smax = float(np.max(pos, initial=0.0))
     grid = far_grid(table, float(np.min(pos))) if pos.size else None
     size = galerkin_size(smax, rtol)
-    # No threadpool_limits here: it is process-wide, so two threads sharing a table (see
-    # tests/dynamic/test_prepared.py) would flip each other's BLAS thread count mid-call and
-    # change the last digits; after vectorising, the products are large enough that one BLAS
-    # thread was no faster (measured: 7 models, 41 points, 0.10-0.17 s either way).
+    # No threadpool_limits: process-wide, it would let threads sharing a table (test_prepared.py)
+    # change each other's last digits; one BLAS thread was no faster (7 models, 41 points).
     far_op = far_operator(table, grid) if approx and grid is not None else None
     plan = galerkin_plan(table, size, grid.s if grid else None) if "exact" in names else None
     for lo in range(0, flat.size, chunk):
@@ -266,9 +261,8 @@ def dcsf_models(
     if interpolate is None:
         interpolate = uniq.size > INTERPOLATE_ABOVE
     if interpolate and uniq.size > 2 and uniq[-1] > 0:
-        # N, not the DCSF, is interpolated: N is smooth, N_st/N of SA (R1) has a pole where N
-        # passes zero. The interpolation adds at most a tenth of the stated error.
-        # One discretisation for every node set (sized by the finest grid's smallest node).
+        # N is interpolated, not the DCSF (N_st/N of SA, R1 has poles), to a tenth of rtol; one
+        # discretisation for every node set (sized by the finest grid's smallest node).
         low = uniq[0] if uniq[0] > 0 else uniq[-1] * (1 - math.cos(math.pi / LARGEST))
         span = (low / 2, uniq[-1])
 
@@ -305,14 +299,13 @@ def dcsf(
         Normalised wave number k a >= 0 (a: contact radius), in the convention ``wavenumber``.
     model : str
         Displacement condition: "exact" (default): the rigid flat punch (uniform displacement;
-        Galerkin, see :mod:`contactres.dynamic.exact`), the reference the others approximate;
-        or "R0", "R1", "SA", "WA", "TP" (paper 1, Eqs. 24-28), "WA2D". Of these, R0 has negative
-        damping near k_l a = 1.6-2 and R1, SA, WA, TP depend on the in-plane x axis (up to
-        1.2 % on Cu(001) for k_l a <= 1, 7-32 % at k_l a = 2; see :func:`model_n`).
+        Galerkin, see :mod:`contactres.dynamic.exact`), the reference the others approximate; or
+        "R0", "R1", "SA", "WA", "TP" (paper 1, Eqs. 24-28), "WA2D". Of these, R0 has negative
+        damping near k_l a = 1.6-2 and R1, SA, WA, TP depend on the in-plane x axis (module
+        docstring; :func:`model_n`).
     loss : float
-        Q⁻¹ in C (1 + i Q⁻¹), in [0, 1). Default 0: the lossless solid (only radiation
-        damping). The paper's figures use 0.02; a material loss belongs here only when the
-        solid has it.
+        Q⁻¹ in C (1 + i Q⁻¹), in [0, 1). Default 0: the lossless solid (only radiation damping); the
+        paper's figures use 0.02.
     wavenumber : str
         "longitudinal": k = ω√(ρ/C33) (the paper's k_l a, default) or "shear": k = ω√(ρ/C44).
     rtol : float
@@ -322,17 +315,16 @@ def dcsf(
         The kernel table from :func:`prepare` for this material, ``loss`` and ``rtol`` (a
         ValueError if it was prepared for others); built for this call when not given.
     chunk : int
-        Keyword only: k a values evaluated together (default 64). Memory grows with it, not
-        with the size of ``ka`` (~0.6 MB per value, ~40 MB at the default); the cost is linear
-        in the number of values, and the result does not depend on it (to ~1e-15).
+        Keyword only: k a values evaluated together (default 64; memory ~0.6 MB per value, not
+        growing with the size of ``ka``); the result does not depend on it (to ~1e-15).
     interpolate : bool or None
-        Keyword only. True: evaluate directly at 33-257 Chebyshev points of [min, max] of
-        ``ka`` and interpolate 1/DCSF (smooth; the DCSF of SA and R1 can have poles), refining
-        until the interpolation error, measured at the next refinement's points, is below
-        rtol/10 of the largest |1/DCSF| on the curve (if 257 points do not reach it, every
-        value is evaluated directly). False: every distinct
-        value directly. None (default): interpolate above :data:`INTERPOLATE_ABOVE` distinct
-        values, so a curve or map of any size costs about as much as ~100 points.
+        Keyword only. True: evaluate directly at 33-257 Chebyshev points of [min, max] of ``ka`` and
+        interpolate 1/DCSF (smooth; the DCSF of SA and R1 can have poles), refining until the
+        interpolation error, measured at the next refinement's points, is below rtol/10 of the
+        largest ``|1/DCSF|`` on the curve (if 257 points do not reach it, every value is evaluated
+        directly). False: every distinct value directly. None (default): interpolate above
+        :data:`INTERPOLATE_ABOVE` distinct values, so a curve or map of any size costs about as much
+        as ~100 points.
 
     Returns
     -------
@@ -346,6 +338,12 @@ def dcsf(
         For bad arguments, and for a nearly incompressible solid (stiffness contrast beyond
         :data:`~contactres.dynamic.table.MAX_STIFFNESS_CONTRAST`, isotropic ν > 0.4999), where
         the stated accuracy cannot be met.
+
+    Examples
+    --------
+    >>> d = dcsf(Material.crystal("Si"), [0.0, 0.1])  # Si(001), k_l a: ≈ 1 − 0.298 ka² + 1.228i ka
+    >>> [complex(round(x.real, 4), round(x.imag, 4)) for x in d]
+    [(1+0j), (0.997+0.1229j)]
     """
     key = _check_model(model)
     out = dcsf_models(
@@ -381,8 +379,7 @@ def dynamic_contact_stiffness(
     radius : float or array
         Sphere radius R, m.
     force : float or array
-        Static normal force F, N (the contact radius a comes from the anisotropic Hertz
-        solution, paper 1 Eqs. 1-4, :func:`contactres.sphere_contact`).
+        Static normal force F, N (a from anisotropic Hertz, :func:`contactres.sphere_contact`).
     frequency : float or array
         Oscillation frequency f, Hz (ω = 2πf). ``radius``, ``force`` and ``frequency`` broadcast.
     model, loss, rtol, prepared
@@ -392,6 +389,12 @@ def dynamic_contact_stiffness(
     -------
     complex or ndarray of complex
         K_da in N/m; its real part is the contact stiffness, ω⁻¹ Im K_da the damping (N s/m).
+
+    Examples
+    --------
+    >>> k = dynamic_contact_stiffness(Material.crystal("Si"), 50e-9, 1e-6, 1e6)  # R m, F N, f Hz
+    >>> print(f"K = {k.real:.1f} N/m, damping {k.imag / (2 * np.pi * 1e6):.3g} N s/m")
+    K = 2012.3 N/m, damping 1.79e-09 N s/m
     """
     from ..normal.anisotropic import sphere_contact
 
@@ -424,7 +427,7 @@ def contact_displacement(
     """The displacement function N(r̄, φ; k a) under the oscillating pressure (paper 1, Eq. 22).
 
     u_z = (2a δa/(π C44 R I₁)) N. Statically N is uniform over the contact (N_st); dynamically it
-    is not (paper 1, Fig. 2: |N(r̄)|/|N(0)|).
+    is not (paper 1, Fig. 2: ``|N(r̄)|``/``|N(0)|``).
 
     Parameters
     ----------

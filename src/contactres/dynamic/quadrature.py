@@ -3,8 +3,8 @@
 The six linear functionals of N that the displacement conditions of paper 1 (Eqs. 24-28) need,
 and N itself at given points, from a prepared kernel table (:mod:`contactres.dynamic.table`).
 
-Numerical method (all exact rearrangements; the accuracy is set by the table's Resolution)
------------------------------------------------------------------------------------------
+Numerical method (all exact rearrangements; the accuracy is set by the table's Resolution):
+
 * s = κ·(k_s a) turns ∫ds g(s/ka) F(s) into ka ∫dκ g(κ) F(κ ka): one table of g per material
   serves every frequency and every model.
 * The static part g∞(θ) is integrated in closed form: the flat-punch pressure displaces the contact
@@ -44,7 +44,7 @@ __all__ = ["FUNCTIONALS", "far_operator", "functionals", "near_theta_integrals",
 # ----------------------------------------------------------------------------------- functionals
 def _resampled(values: np.ndarray, n_out: int) -> np.ndarray:
     """Rows sampled on n equispaced θ in [0, π), trigonometrically resampled to n_out points
-    (harmonics |m| < min(n, n_out)/2 kept: the weights they multiply vanish beyond)."""
+    (harmonics ``|m|`` < min(n, n_out)/2 kept: the weights they multiply vanish beyond)."""
     n = values.shape[-1]
     if n_out == n:
         return values
@@ -57,8 +57,8 @@ def _resampled(values: np.ndarray, n_out: int) -> np.ndarray:
 
 
 def _n_theta_near(smax: float) -> int:
-    """θ nodes on [0, π) that resolve cos(s cos θ), |s| <= smax: its harmonics e^{2imθ} are
-    J_2m(s), negligible beyond 2|m| ~ |s| + 12."""
+    """θ nodes on [0, π) that resolve cos(s cos θ), ``|s|`` <= smax: its harmonics e^{2imθ} are
+    J_2m(s), negligible beyond ``2|m| ~ |s| + 12``."""
     return int(8 * math.ceil((1.1 * smax + 24) / 8))
 
 
@@ -80,10 +80,10 @@ def _static_values(table: KernelTable) -> dict:
 def near_theta_integrals(table: KernelTable, s: np.ndarray, smax: float):
     """The θ integrals of the near field at s = k_s a κ (near nodes κ of ``table``).
 
-    ∫₀^{2π} cos(s cos θ) (g − g∞) dθ = 2π Σ_m (−1)^m J_{2|m|}(s) ĝ_m and
-    ∫₀^{2π} W(s cos θ) (g − g∞) dθ = 2π Σ_m (−1)^m W_{2|m|}(s) ĝ_m (Jacobi-Anger; W the WA line
+    ∫₀^{2π} cos(s cos θ) (g − g∞) dθ = 2π Σ_m (−1)^m J_{``2|m|``}(s) ĝ_m and
+    ∫₀^{2π} W(s cos θ) (g − g∞) dθ = 2π Σ_m (−1)^m W_{``2|m|``}(s) ĝ_m (Jacobi-Anger; W the WA line
     weight, W_n its harmonics), ĝ_m the harmonics e^{2imθ} of the tabulated g − g∞. The same
-    harmonics |m| < min(n_θ, nt)/2 as the trapezoidal rule on the nt = :func:`_n_theta_near`
+    harmonics ``|m|`` < min(n_θ, nt)/2 as the trapezoidal rule on the nt = :func:`_n_theta_near`
     nodes of θ (the weights of the others are negligible, J_{2m}(s) ~ (e s/4m)^{2m}), at a cost
     of O(harmonics) per (s, κ) instead of O(nt) evaluations of cos and W.
 
@@ -94,7 +94,7 @@ def near_theta_integrals(table: KernelTable, s: np.ndarray, smax: float):
     s : ndarray
         (na, nk) complex s = k_s a κ (nonzero).
     smax : float
-        Bound of |s| of the whole call (sets the harmonics kept, the same for every chunk).
+        Bound of ``|s|`` of the whole call (sets the harmonics kept, the same for every chunk).
 
     Returns
     -------

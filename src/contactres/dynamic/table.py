@@ -6,8 +6,8 @@ displacement model of one material and loss; :func:`prepare` builds it, and the 
 and passes it on (``prepared=``) to evaluate many curves without rebuilding it. The table is an
 immutable object of numpy arrays; it pickles, so a process pool or a dask worker can receive it.
 
-Nodes (all exact rearrangements; their number is set by :class:`Resolution`)
---------------------------------------------------------------------------
+Nodes (all exact rearrangements; their number is set by :class:`Resolution`):
+
 * Near field 0 < κ < T₁ (T₁ beyond every bulk and Rayleigh slowness): a Gauss-Legendre contour in
   the upper half κ plane, where g is analytic (the branch points and the Rayleigh near-pole lie
   on or below the real axis), so ``loss=0`` (Q⁻¹ -> 0⁺) works as well as Q⁻¹ = 0.02. A uniform
@@ -92,8 +92,8 @@ class Resolution:
     s_far : end of the far-field s grid; beyond it the leading asymptotic term (~ s_far^-2.5) is
         added in closed form and the rest (~ s_far^-3.5) neglected
     n_gauss : Gauss-Legendre nodes per far-field s panel below s_coarse
-    s_coarse : start of the wide far-field s panels (there only the oscillation, of frequency
-        <= 2 in s, and the hand-over of the larger k a, of width >= s_coarse/18, are resolved)
+    s_coarse : start of the wide far-field s panels (there only the oscillation, whose frequency
+        is <= 2 in s, and the hand-over of the larger k a, of width >= s_coarse/18, are resolved)
     s_panel_coarse : width of the far-field s panels above s_coarse
     n_gauss_coarse : Gauss-Legendre nodes per far-field s panel above s_coarse
     theta_tol : n_theta is doubled until the angular harmonics of g in the upper half of the

@@ -3,16 +3,16 @@
 The tangential counterpart of :mod:`contactres.dynamic.exact`. Relaxed contact: under the disk
 r̄ = r/a <= 1 the normal traction is zero and the disk translates rigidly, u_α = U_α e^{iωt}
 (α = x, y). The in-plane surface response of the half-space to a traction t_β,
-û_α(ξ) = Ĝ_αβ(κ, θ)/|ξ| t̂_β(ξ) with κ = |ξ|/k_s (k_s = ω√(ρ/C44), C44 of the surface frame),
+û_α(ξ) = Ĝ_αβ(κ, θ)/``|ξ|`` t̂_β(ξ) with κ = ``|ξ|``/k_s (k_s = ω√(ρ/C44), C44 of the surface frame),
 is the in-plane block of the surface compliance, Ĝ = −H(θ, 1/κ²)/C44
 (:func:`contactres.halfspace.surface_compliance`); as κ -> ∞ it tends to the static kernel of
 :mod:`contactres.dynamic.tangential_static`.
 
 Galerkin on the disk, with the traction basis of the static solution (angular harmonics
-e^{inφ}, |n| <= N_h, for each component; Jacobi radial functions whose order-|n| Hankel
-transforms are the spherical Bessel functions j_p(s), p = |n| + 2k, k < N_r; and the
+e^{inφ}, ``|n|`` <= N_h, for each component; Jacobi radial functions whose order-``|n|`` Hankel
+transforms are the spherical Bessel functions j_p(s), p = ``|n|`` + 2k, k < N_r; and the
 λ-derivatives d = 1, 2 of the first N_e of them, the ln(1 − r̄²) and ln²(1 − r̄²) factors of the
-oscillatory edge singularity that the odd imaginary part of the static kernel creates):
+oscillatory edge singularity that the odd imaginary part of the static kernel creates)::
 
     M_ab = i^{|n_a| − |n_b|} ∫₀^∞ ds Ĝ_{α_a β_b, n_b − n_a}(s/k_s a) H_a(s) H_b(s),
     Ĝ_{αβ, m}(κ) = ∫₀^{2π} Ĝ_αβ(κ, θ) e^{imθ} dθ,
@@ -27,9 +27,9 @@ Chebyshev series in w = (T₁/κ)² per angular harmonic, integrated against pro
 transforms on the far-field grid (:mod:`contactres.dynamic.farfield`), plus its closed-form tail.
 
 The transforms of the λ-derivative functions are used in the dynamic remainder through their
-expansion in the polynomial ones (Neumann series H^{(d)} = Σ_q A_q j_{|n|+2q}, with A_q from the
-same closed-form integrals, orthogonality of the j_p), truncated at Q terms; the series
-converges for |s| below ~|n| + 2Q, and the remainder's weight ~(k_s a/s)² makes the truncation
+expansion in the polynomial ones (Neumann series H^{(d)} = Σ_q A_q j_{``|n|+2q``}, with A_q from the
+same closed-form integrals, orthogonality of the j_p), truncated at Q terms; the series converges
+for ``|s|`` below about ``|n| + 2Q``, and the remainder's weight ~(k_s a/s)² makes the truncation
 error fall like Q^{-3.5} × the small enrichment coefficients (measured in the tests against 2Q).
 
 The solve is done in the eigenbasis of the static matrix (Hermitian, positive definite up to
@@ -83,7 +83,7 @@ KSA_SMALL = 1e-6
 
 @dataclass(frozen=True)
 class TangentialSize:
-    """Galerkin basis: harmonics |n| <= n_harmonics, n_radial polynomial terms per harmonic,
+    """Galerkin basis: harmonics ``|n|`` <= n_harmonics, n_radial polynomial terms per harmonic,
     n_enriched of them with their λ-derivatives d = 1..n_log, and n_series terms of the
     Neumann series of the enriched transforms."""
 
@@ -106,9 +106,9 @@ class TangentialSize:
 
 def tangential_size(ksa_max: float, rtol: float = 1e-6, n_harmonics: int = 6) -> TangentialSize:
     """Default basis reaching ``rtol`` up to k_s a = ksa_max with traction harmonics
-    |n| <= ``n_harmonics`` (the table's, :func:`~.tangential_table.max_harmonics`).
+    ``|n|`` <= ``n_harmonics`` (the table's, :func:`~.tangential_table.max_harmonics`).
 
-    Measured against |n| <= 16, 10 radial terms, ln and ln² enrichment and 32 series terms
+    Measured against ``|n|`` <= 16, 10 radial terms, ln and ln² enrichment and 32 series terms
     (AT-cut quartz, Cu(111), Cu(123), isotropic ν = 0.3; k_s a <= 5): ceil(0.6 k_s a) + 2
     radial terms leave < 3e-9 for k_s a <= 3 and 1.5e-8 at 5; the ln² terms move K by <= 1.2e-8
     (Cu(111), k_s a = 5), 12 series terms instead of 24 by <= 5.5e-10. rtol <= 1e-8 takes two
@@ -126,7 +126,7 @@ def tangential_size(ksa_max: float, rtol: float = 1e-6, n_harmonics: int = 6) ->
 @dataclass(frozen=True, eq=False)
 class _Basis:
     """Index bookkeeping of one basis: per function its component, harmonic, radial id; per
-    radial id its |n|, k, d and its transform as coefficients on the orders p."""
+    radial id its ``|n|``, k, d and its transform as coefficients on the orders p."""
 
     alpha: np.ndarray
     n: np.ndarray

@@ -7,21 +7,21 @@ K the 2x2 tangential stiffness tensor, N/m. Isotropic: K = 8Ga/(2 − ν) I, car
 t ∝ (a² − r²)^(-1/2) (Mindlin 1949).
 
 Kernel. With ``m`` in its surface frame (z = inward normal, :meth:`Material.rotated`), a traction
-t_β applied to the surface (positive along +x, +y on the solid) gives û_α(ξ) = Ĝ_αβ(θ)/|ξ| t̂_β(ξ),
-ξ = |ξ| (cos θ, sin θ), f̂(ξ) = ∫ f(x) e^{-iξ·x} d²x. Since t_i = −σ_i3 on the face z = 0,
-Ĝ = −H/C44 with H the dimensionless surface compliance at s = 0
+t_β applied to the surface (positive along +x, +y on the solid) gives û_α(ξ) = Ĝ_αβ(θ)/``|ξ|``
+t̂_β(ξ), ξ = ``|ξ|`` (cos θ, sin θ), f̂(ξ) = ∫ f(x) e^{-iξ·x} d²x. Since t_i = −σ_i3 on the face z =
+0, Ĝ = −H/C44 with H the dimensionless surface compliance at s = 0
 (:func:`contactres.halfspace.surface_compliance`); the normal-normal entry is the
-:func:`~contactres.halfspace.static_kernel` Ĝ(θ). Isotropic: Ĝ_αβ = (δ_αβ − ν n_α n_β)/G
-(Cerruti). Ĝ_αβ(θ) is Hermitian (reciprocity) with Ĝ(θ + π) = conj Ĝ(θ) (a real field): its
-real part is symmetric and π-periodic, its imaginary part antisymmetric and odd under θ -> θ + π.
-The imaginary part vanishes when the surface is a mirror plane (cubic (001), (011)) but not in
-general (cubic (111): ~4 % of the real part, AT-cut quartz similar).
+:func:`~contactres.halfspace.static_kernel` Ĝ(θ). Isotropic: Ĝ_αβ = (δ_αβ − ν n_α n_β)/G (Cerruti).
+Ĝ_αβ(θ) is Hermitian (reciprocity) with Ĝ(θ + π) = conj Ĝ(θ) (a real field): its real part is
+symmetric and π-periodic, its imaginary part antisymmetric and odd under θ -> θ + π. The imaginary
+part vanishes when the surface is a mirror plane (cubic (001), (011)) but not in general (cubic
+(111): ~4 % of the real part, AT-cut quartz similar).
 
-Galerkin (Rayleigh-Ritz for tractions). Each component of the traction is expanded, on r̄ = r/a,
-in angular harmonics e^{inφ} times radial functions whose order-|n| Hankel transforms are
-√(π/2) J_{p+½+λ}(s)/s^{½+λ}, p = |n| + 2k (Jacobi polynomials P_k^{(λ−½, |n|)}(1 − 2r̄²) times
-r̄^{|n|} (1 − r̄²)^{λ−½}); at λ = 0 these are the flat-punch functions of
-:mod:`contactres.dynamic.exact` (transform j_p(s)). The matrix of the displacement functional is
+Galerkin (Rayleigh-Ritz for tractions). Each component of the traction is expanded, on r̄ = r/a, in
+angular harmonics e^{inφ} times radial functions whose order-``|n|`` Hankel transforms are √(π/2)
+J_{p+½+λ}(s)/s^{½+λ}, p = ``|n|`` + 2k (Jacobi polynomials ``P_k^{(λ−½, |n|)}(1 − 2r̄²)`` times
+r̄^{``|n|``} (1 − r̄²)^{λ−½}); at λ = 0 these are the flat-punch functions of
+:mod:`contactres.dynamic.exact` (transform j_p(s)). The matrix of the displacement functional is::
 
     M_ab = i^{|n_a|−|n_b|} Ĝ_{αβ, n_b − n_a} R(p_a, λ_a; p_b, λ_b),
     Ĝ_{αβ, m} = ∫₀^{2π} Ĝ_αβ(θ) e^{imθ} dθ,
@@ -111,7 +111,7 @@ def inplane_kernel(m: Material, theta) -> np.ndarray:
     Returns
     -------
     ndarray, complex, shape ``theta.shape + (2, 2)``
-        Ĝ_αβ(θ): û_α(ξ) = Ĝ_αβ(θ)/|ξ| t̂_β(ξ) for a tangential surface traction t applied to
+        Ĝ_αβ(θ): û_α(ξ) = Ĝ_αβ(θ)/``|ξ|`` t̂_β(ξ) for a tangential surface traction t applied to
         the solid (module docstring). Hermitian; isotropic (δ_αβ − ν n_α n_β)/G.
     """
     m = require_material(m, lossless=True)
@@ -157,7 +157,7 @@ def radial_integrals(p_max: int, n_log: int) -> np.ndarray:
     Returns an array (n_log + 1, n_log + 1, p_max + 1, p_max + 1), real. Weber-Schafheitlin with
     μ = p_a + ½ + λ_a, ν = p_b + ½ + λ_b, exponent L = 1 + λ_a + λ_b:
     R = (π/2) Γ(L) Γ((p_a+p_b+1)/2) / (2^L Γ((p_b−p_a)/2 + 1 + λ_b) Γ((p_a+p_b+3)/2 + λ_a + λ_b)
-    Γ((p_a−p_b)/2 + 1 + λ_a)); derivatives by Cauchy's formula on |λ| = ρ in each variable.
+    Γ((p_a−p_b)/2 + 1 + λ_a)); derivatives by Cauchy's formula on ``|λ|`` = ρ in each variable.
     """
     nc, rho = CAUCHY_POINTS, CAUCHY_RADIUS
     z = rho * np.exp(2j * np.pi * np.arange(nc) / nc)
@@ -300,12 +300,12 @@ def tangential_stiffness_static(
         ψ, degrees from the surface x axis towards y (right-handed about the inward normal z):
         K_ψ = e_ψ·K·e_ψ with e_ψ = (cos ψ, sin ψ), the force component along a motion e_ψ.
     rtol : float
-        Relative accuracy of K: harmonics |n| <= 6 and 2 radial terms per harmonic and log order
+        Relative accuracy of K: harmonics ``|n|`` <= 6 and 2 radial terms per harmonic and log order
         to start; the harmonics are doubled until K moves by less than ``rtol`` (max-norm,
         relative to the largest entry), then the radial terms, until that doubling also moves
         it by less; in [1e-13, 1e-2]. Ignored with ``terms`` or ``one_term``.
     terms : (int, int), optional
-        Fixed basis: angular harmonics |n| <= terms[0] and terms[1] radial terms per harmonic
+        Fixed basis: angular harmonics ``|n|`` <= terms[0] and terms[1] radial terms per harmonic
         and log order (no convergence check).
     one_term : bool
         Mindlin's traction shape only: K₁ = 8π a [∫₀^{2π} Re Ĝ(θ) dθ]⁻¹, a lower bound of K
@@ -321,6 +321,20 @@ def tangential_stiffness_static(
     -----
     Isotropic: K = 8Ga/(2 − ν) (Mindlin 1949; Johnson 1985, §7.2), reproduced by the Galerkin to
     round-off. K is linear in a, so the Galerkin runs once per call.
+
+    Examples
+    --------
+    Isotropic glass, contact radius 1 µm: Mindlin's K = 8Ga/(2 − ν) (one basis term is exact here):
+
+    >>> import numpy as np
+    >>> from contactres import Material, tangential_stiffness_static
+    >>> glass = Material.isotropic(70e9, 0.22)
+    >>> K = tangential_stiffness_static(glass, 1e-6, one_term=True)  # N/m
+    >>> print(f"{K:.5g} N/m")
+    1.2894e+05 N/m
+    >>> G = 70e9 / (2 * (1 + 0.22))
+    >>> bool(np.isclose(K, 8 * G * 1e-6 / (2 - 0.22)))
+    True
     """
     m = require_material(material, lossless=True)
     a = np.asarray(positive("radius", radius, "m"), dtype=float)

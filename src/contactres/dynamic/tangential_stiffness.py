@@ -164,6 +164,17 @@ def tangential_contact_stiffness(
     complex or ndarray of complex
         K_ψ in N/m (shaped like the broadcast of ``radius`` and ``frequency``), or with
         ``tensor`` the tensors (shape + (2, 2)).
+
+    Examples
+    --------
+    Glass (density needed), contact radius 1 µm, at 100 MHz: the real part stays close to the static
+    K = 1.289e5 N/m, the imaginary part is the radiation damping ω c:
+
+    >>> from contactres import Material, tangential_contact_stiffness
+    >>> glass = Material.isotropic(70e9, 0.22, density=2500.0)
+    >>> K = tangential_contact_stiffness(glass, 1e-6, 1e8, rtol=1e-3)  # a in m, f in Hz
+    >>> print(f"Re K = {K.real:.4g} N/m, Im K = {K.imag:.3g} N/m")
+    Re K = 1.287e+05 N/m, Im K = 1.45e+04 N/m
     """
     m = require_material(material, lossless=True)
     a = np.asarray(positive("radius", radius, "m"), dtype=float)

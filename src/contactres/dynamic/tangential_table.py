@@ -3,7 +3,7 @@
 The table behind :mod:`contactres.dynamic.tangential_galerkin`: the angular harmonics
 Ĝ_{αβ,m}(κ) = ∫₀^{2π} Ĝ_αβ(κ, θ) e^{imθ} dθ of the in-plane block (α, β = x, y) of the dynamic
 surface Green's function, Ĝ = −H(θ, 1/κ²)/C44 (:func:`contactres.halfspace.surface_compliance`;
-κ = |ξ|/k_s, k_s = ω√(ρ/C44), C44 = Re C[3, 3] of the surface frame), minus its static limit,
+κ = ``|ξ|``/k_s, k_s = ω√(ρ/C44), C44 = Re C[3, 3] of the surface frame), minus its static limit,
 on the nodes of the normal problem's table (:mod:`contactres.dynamic.table`, paper 1): a
 complex contour above the branch points and the Rayleigh pole (loss -> 0⁺ exact), the real
 hand-over segment, and Chebyshev nodes in w = (T₁/κ)² for the far field. A uniform loss enters
@@ -40,7 +40,7 @@ _N_THETA_MAX = 1024
 _THETA_TOL = 1e-11
 
 
-#: Candidate largest traction harmonics |n| of the Galerkin basis, smallest first.
+#: Candidate largest traction harmonics ``|n|`` of the Galerkin basis, smallest first.
 HARMONIC_STEPS = (6, 8, 10, 12, 16, 20, 24)
 # The truncation error of the harmonics, measured against |n| <= 16 (AT-cut quartz, Cu(111),
 # Cu(123), Na(123), Li(111), Pb(123); k_s a <= 2) is below 0.02 tail², tail the largest
@@ -49,11 +49,11 @@ _TAIL_FACTOR = 0.02
 
 
 def max_harmonics(m: Material, rtol: float) -> int:
-    """Largest traction harmonic |n| of the Galerkin basis for ``m`` at accuracy ``rtol``: the
+    """Largest traction harmonic ``|n|`` of the Galerkin basis for ``m`` at accuracy ``rtol``: the
     first of :data:`HARMONIC_STEPS` whose kernel tail t (the largest static in-plane kernel
     harmonic beyond it, relative to the axisymmetric one) has 0.02 t² <= rtol/3; measured error
-    at |n| <= 6 / 8 / 10: Cu(123) 1.3e-7 / 3.9e-9 / 7.6e-10, Na(123) 1.3e-6 / 6.8e-8 / 2.8e-8,
-    Li(111) 6.2e-7 / 6.2e-7 / 4.2e-8 (t = 5.4e-3, 1.6e-2, 8.0e-3 at |n| <= 6)."""
+    at ``|n|`` <= 6 / 8 / 10: Cu(123) 1.3e-7 / 3.9e-9 / 7.6e-10, Na(123) 1.3e-6 / 6.8e-8 / 2.8e-8,
+    Li(111) 6.2e-7 / 6.2e-7 / 4.2e-8 (t = 5.4e-3, 1.6e-2, 8.0e-3 at ``|n|`` <= 6)."""
     from .tangential_static import inplane_kernel_harmonics
 
     top = HARMONIC_STEPS[-1] + 1
@@ -80,7 +80,7 @@ class TangentialTable:
     resolution : the discretisation (that of the normal kernel table at this rtol)
     c44 : the reference stiffness C44, Pa
     t1 : start of the far field, units of k_s
-    n_harmonics : largest traction harmonic |n| of the Galerkin basis (:func:`max_harmonics`)
+    n_harmonics : largest traction harmonic ``|n|`` of the Galerkin basis (:func:`max_harmonics`)
     max_order : kernel harmonics m = −max_order..max_order are held (>= 2 n_harmonics)
     ginf : (2M+1, 2, 2) harmonics of the lossy static kernel h∞ = C44 Ĝ∞/(1 + iQ⁻¹)
     ginf0 : (2M+1, 2, 2) the same of the undamped constants

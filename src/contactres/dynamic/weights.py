@@ -44,7 +44,7 @@ def j1_over_s(s):
     """j₁(s)/s = (sin s − s cos s)/s³: the Hankel transform of the Hertz shape √(1 − ρ²).
 
     The second pressure of the two-parameter (TP) model (Tian et al. 2004; paper 1, Fig. 3).
-    Below |s| = 0.3 the Taylor series is used: the closed form loses digits to cancellation.
+    Below ``|s|`` = 0.3 the Taylor series is used: the closed form loses digits to cancellation.
 
     Parameters
     ----------
@@ -80,9 +80,9 @@ del _constant
 
 
 def _series_terms(zmax: float) -> int:
-    """Terms of the W series that reach its round-off for |z| <= zmax (< 8).
+    """Terms of the W series that reach its round-off for ``|z|`` <= zmax (< 8).
 
-    Term k is bounded by |c_k| zmax^{2k}; the sum stops at the first k beyond the largest term
+    Term k is bounded by ``|c_k|`` zmax^{2k}; the sum stops at the first k beyond the largest term
     where that bound is below 1e-17 × the largest (the series alternates, the terms fall faster
     than geometrically from there, so the dropped rest is below 2e-17 of the largest term,
     i.e. below the round-off of the sum itself, ~1e-16 × the largest term).
@@ -97,8 +97,9 @@ def wa_line_weight(z):
     """W(z) = ∫₀¹ r cos(z r)/√(1 − r²) dr = 1 − (π/2) H₁(z), even in z (H₁: Struve function).
 
     The weighted average of paper 1, Eq. 27, applied to the plane wave cos(s r̄ cos θ) of Eq. 22.
-    Power series for |z| < 8; for larger |z|, W = 1 − (π/2) Y₁(z) − ∫₀^∞ e^{-u} √(1 + u²/z²) du
-    (Re z > 0; 24-node Gauss-Laguerre, error < 1e-14).
+    Power series for ``|z|`` < 8; for larger ``|z|``,
+    W = 1 − (π/2) Y₁(z) − ∫₀^∞ e^{-u} √(1 + u²/z²) du (Re z > 0;
+    24-node Gauss-Laguerre, error < 1e-14).
 
     Parameters
     ----------
@@ -223,19 +224,19 @@ def wa_harmonic_weights(s: np.ndarray, n_max: int) -> np.ndarray:
 
 
 def wa_harmonic_weights_complex(z: np.ndarray, k_max: int) -> np.ndarray:
-    """W_{2k}(z), k = 0..k_max, of :func:`wa_harmonic_weights` for complex z (|z| > 0).
+    """W_{2k}(z), k = 0..k_max, of :func:`wa_harmonic_weights` for complex z (``|z|`` > 0).
 
     Parameters
     ----------
     z : ndarray
-        Nonzero complex (or real) arguments of any shape; |Im z| moderate (<~10).
+        Nonzero complex (or real) arguments of any shape; ``|Im z|`` moderate (<~10).
     k_max : int
         Highest index k (order 2 k_max).
 
     Returns
     -------
     ndarray
-        Shape (k_max + 1, *z.shape).
+        Shape ``(k_max + 1, *z.shape)``.
     """
     return _wa_from_spherical(k_max, 0.5 * np.asarray(z))
 
@@ -259,11 +260,11 @@ def bessel_orders(n_max: int, z: np.ndarray) -> np.ndarray:
     """Bessel functions J_n(z), n = 0..n_max, of real or complex nonzero z (Miller's method).
 
     The ratios r_n = J_n/J_{n−1} from the continued fraction r_n = z/(2n − z r_{n+1}), run
-    downwards from r = 0 at an order well above n_max and |z| (J is the minimal solution of the
+    downwards from r = 0 at an order well above n_max and ``|z|`` (J is the minimal solution of the
     recurrence, so the ratios are stable), normalised by 1 = J₀ + 2 Σ_k J_{2k}. Written with
     d = 2 − z r₂ (r₁ = z/d) as J₀ = d/D, J_n = z Q_n/D, Q_n = r₂ ⋯ r_n, D = d + 2z Σ_k Q_{2k},
     nothing is divided by J₀ (which vanishes on the real axis) and nothing overflows. The
-    normalisation loses ~ max_n |J_n| ~ e^{|Im z|} digits' worth, harmless for the moderate
+    normalisation loses ~ max_n ``|J_n|`` ~ e^{``|Im z|``} digits' worth, harmless for the moderate
     imaginary parts of the near-field contour. For complex z, where scipy's jv (AMOS) costs
     a call per order and point; real z > 0 is cheaper with :func:`bessel_even`.
 
@@ -277,7 +278,7 @@ def bessel_orders(n_max: int, z: np.ndarray) -> np.ndarray:
     Returns
     -------
     ndarray
-        Shape (n_max + 1, *z.shape): row n holds J_n(z).
+        Shape ``(n_max + 1, *z.shape)``: row n holds J_n(z).
     """
     z = np.asarray(z)
     zmax = float(np.max(np.abs(z), initial=0.0))
@@ -310,14 +311,14 @@ def bessel_orders(n_max: int, z: np.ndarray) -> np.ndarray:
 
 
 def spherical_bessel(p_max: int, z: np.ndarray) -> np.ndarray:
-    """Spherical Bessel functions j_p(z), p = 0..p_max, of real or complex z (|z| > 0).
+    """Spherical Bessel functions j_p(z), p = 0..p_max, of real or complex z (``|z|`` > 0).
 
     j₀ = sin z/z and j₁ = (sin z/z − cos z)/z in closed form; above them the ratios
     r_p = j_p/j_{p−1} from the continued fraction r_p = z/(2p + 1 − z r_{p+1}), run downwards
-    from r = 0 at an order well above p_max and |z| (j is the minimal solution of the
+    from r = 0 at an order well above p_max and ``|z|`` (j is the minimal solution of the
     recurrence, so the ratios are stable and nothing overflows; high orders at small z
-    underflow gracefully to 0). Every j_p is anchored on the larger of |j₀| and |j₁|, so that no
-    zero of either costs digits. Relative accuracy ~1e-15 (tested against scipy's
+    underflow gracefully to 0). Every j_p is anchored on the larger of ``|j₀|`` and ``|j₁|``, so
+    that no zero of either costs digits. Relative accuracy ~1e-15 (tested against scipy's
     half-integer order jv), one pass over the orders instead of one scipy call per order.
 
     Parameters
@@ -325,13 +326,13 @@ def spherical_bessel(p_max: int, z: np.ndarray) -> np.ndarray:
     p_max : int
         Highest order (>= 0).
     z : ndarray
-        Arguments (dimensionless), real or complex, nonzero; |Im z| is moderate (the
+        Arguments (dimensionless), real or complex, nonzero; ``|Im z|`` is moderate (the
         near-field contour keeps it below ~10).
 
     Returns
     -------
     ndarray
-        Shape (p_max + 1, *z.shape): row p holds j_p(z).
+        Shape ``(p_max + 1, *z.shape)``: row p holds j_p(z).
     """
     z = np.asarray(z)
     out = np.empty((p_max + 1, *z.shape), dtype=z.dtype if np.iscomplexobj(z) else float)

@@ -8,7 +8,7 @@ z > 0 is built from the three roots with Im p > 0; they are the eigenvalues of t
 solvent* Z of W Z² + (R + Rᵀ) Z + Q − S = 0.
 
 The Möbius map p = iβ (1 + w)/(1 − w) sends the decaying half plane Im p > 0 to the unit disk
-|w| < 1 and turns the pencil into A0 + A1 w + A2 w²; cyclic reduction (Bini & Meini) then
+``|w|`` < 1 and turns the pencil into A0 + A1 w + A2 w²; cyclic reduction (Bini & Meini) then
 returns the minimal solvent G of A0 + A1 G + A2 G² = 0, whose eigenvalues are the images of the
 decaying roots. It never forms eigenvectors, so it is exact and continuous at degenerate points
 (the triple static root p = i of an isotropic solid, the double shear root in dynamics).
@@ -57,7 +57,7 @@ def decaying_solvent(Q, R, W, s, beta, may_stall=None, mirror=False):
         Diagonal of the balanced inertia term, ρω²/(C44 η²) per component (0 in statics;
         complex allowed).
     beta : ndarray, shape (N,)
-        Möbius parameter β > 0 of p = iβ (1 + w)/(1 − w), of the order of |p|.
+        Möbius parameter β > 0 of p = iβ (1 + w)/(1 − w), of the order of ``|p|``.
     may_stall : ndarray of bool, shape (N,), optional
         Points (lossless, real κ) that may have real roots p: if they have not come near
         convergence after ``_STALL_ITER`` steps they are given up (roots on the unit circle).

@@ -36,6 +36,16 @@ def static_kernel(m: Material, theta) -> np.ndarray:
     ndarray
         Ĝ(θ), 1/Pa, shaped like ``theta``: real for a lossless material, complex for a lossy
         one.
+
+    Examples
+    --------
+    Isotropic: Ĝ(θ) = (1 − ν²)/(πE) for every direction θ (Boussinesq):
+
+    >>> import numpy as np
+    >>> from contactres import Material, static_kernel
+    >>> g = static_kernel(Material.isotropic(70e9, 0.22), np.array([0.0, np.pi / 4]))
+    >>> bool(np.allclose(g, (1 - 0.22**2) / (np.pi * 70e9)))
+    True
     """
     c = scaled_tensor(m)
     g = -normal_compliance(c, theta, 0.0) / shear_reference(m)

@@ -3,7 +3,7 @@
 One row per pixel in the schema of :data:`~contactres.measurements.resonances.AFM_TABLE`, so the
 table goes straight into ``contactres afm invert`` / :func:`contactres.invert_afm_table`; the
 pixel coordinates ``x_m``, ``y_m`` are extra columns, carried through to the output. The forward
-chain, per grain:
+chain, per grain::
 
     surface normal of the grain -> M_sample = indentation modulus of Cu on that face
     (paper 1, Eq. 4; :func:`~contactres.normal.anisotropic.indentation_modulus`)

@@ -23,7 +23,7 @@ The parameters (φ = 0, baseline removed; Q = f_r/(2Γ)):
   is exactly the half width at half height of G; the midpoint of f± lies Γ²/(2f_r) = Γ/(4Q)
   above f_r. For "lorentzian", G = G_max Γ²/((f − f_r)² + Γ²): symmetric, half width Γ.
 - u_bvd = u_lor (1 + ε u_lor)/(1 + 2ε u_lor), ε = Γ/(2f_r) = 1/(4Q): an odd distortion of
-  first order in ε. A Lorentzian fitted to a BVD curve returns Γ to second order, |Γ_lor/Γ − 1|
+  first order in ε. A Lorentzian fitted to a BVD curve returns Γ to second order, ``|Γ_lor/Γ − 1|``
   ~ ε² = 1/(16Q²) (< 1e-9 at Q >= 1e4), and f_r off by up to εΓ = Γ/(4Q) (2.5e-5 Γ at
   Q = 1e4): with B by −εΓ (the real part √(f_r² − Γ²) of the complex pole), for G alone by a
   fraction of +εΓ (0.59 over f_r ± 5Γ). tests/measurements/test_spectra_fit.py checks this.
@@ -42,7 +42,7 @@ checked per spectrum (:data:`STEP_TOL`); a spectrum that fails is iterated again
 Standard errors: inv(JᵀJ)·s², J the Jacobian of the full curve (8 real parameters, 5 for G
 alone; the baseline marginalised), s² = RSS/(N − P) the residual variance of the spectrum (N
 real residuals), so they hold whatever the noise. ``reduced_chi2`` = s²/σ², σ = ``noise_S`` if
-given, else the point-to-point noise of the residuals, σ² = Σ|r_{j+1} − r_j|²/(2(N − 1)) per
+given, else the point-to-point noise of the residuals, ``σ² = Σ|r_{j+1} − r_j|²/(2(N − 1))`` per
 component (von Neumann): about 1 for white residuals, above 1 for a curve that does not fit.
 """
 
@@ -284,8 +284,8 @@ def _solve(b: _Batch, p0, q0, lo, hi):
 
     Spectrum k's residuals r_k (2m real numbers) and their Jacobian J_k (2m x 2, Kaufman's form
     −(I − P)∂curve, P the projector on the amplitude's column) are handed to scipy as the three
-    numbers c_k = (Q_kᵀr_k, |(I − Q_kQ_kᵀ) r_k|) with the Jacobian (R_k; 0), J_k = Q_k R_k (QR
-    by Cholesky of the 2 x 2 J_kᵀJ_k). Then |c_k| = |r_k|, R_kᵀc_k = J_kᵀr_k, R_kᵀR_k = J_kᵀJ_k:
+    numbers c_k = (Q_kᵀr_k, ``|(I − Q_kQ_kᵀ) r_k|``) with the Jacobian (R_k; 0), J_k = Q_k R_k (QR
+    by Cholesky of the 2 x 2 J_kᵀJ_k). Then ``|c_k| = |r_k|``, R_kᵀc_k = J_kᵀr_k, R_kᵀR_k = J_kᵀJ_k:
     the cost, gradient and Gauss–Newton model, hence every step and stopping test of scipy's
     trust-region method, are those of the full problem, at 3 rows a spectrum instead of 2m.
     LSMR stops at 10 iterations: the near-singular blocks of lost spectra would take hundreds.
@@ -401,7 +401,7 @@ def fit_resonances(
     ----------
     spectrum : the spectrum id of every point (the tidy table's ``spectrum`` column); the points
         of a spectrum need not be contiguous, their order within it is kept
-    frequency_Hz : frequency of every point, Hz, strictly increasing within a spectrum
+    frequency_Hz : the frequency of every point, Hz, strictly increasing within a spectrum
     G_S : conductance G of every point, S
     B_S : susceptance B, S, or None (G alone for every spectrum); a spectrum whose B is all NaN
         is fitted on G alone

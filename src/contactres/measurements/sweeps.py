@@ -202,6 +202,16 @@ def read_sweeps(path, **constants) -> SweepTable:
     ------
     ValueError
         On every bad input, naming file, line, column and value (see :func:`validate_sweeps`).
+
+    Examples
+    --------
+    The example table shipped with the package:
+
+    >>> from importlib.resources import files
+    >>> from contactres import read_sweeps
+    >>> table = read_sweeps(files("contactres") / "data" / "example_sweeps.csv")
+    >>> len(table), table.data["sweep"].nunique()
+    (4608, 384)
     """
     p = Path(path)
     if not p.exists():

@@ -1,7 +1,7 @@
 """Synthetic QCM amplitude sweeps from the package's forward model (paper 2).
 
 The one generator of synthetic sweep tables for the example data, the tests and the benchmarks.
-Every point follows the forward chain of paper 2:
+Every point follows the forward chain of paper 2::
 
     sphere + load -> JKR contact radius a (Eq. 9, with E* of Eq. 10)
     -> Mindlin stiffness κ = 2G*a (Eq. 7, G = E/(2(1 + ν)) of Eq. 8)

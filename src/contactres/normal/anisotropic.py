@@ -218,6 +218,23 @@ def indentation_modulus(m: Material, rtol: float = THETA_RTOL) -> float:
         When the θ quadrature of an anisotropic solid does not reach ``rtol``; the message
         says whether round-off (a nearly incompressible solid, :func:`stiffness_contrast`)
         or strong anisotropy is the reason.
+
+    Examples
+    --------
+    For an isotropic solid M is the plane-strain modulus E/(1 − ν²):
+
+    >>> import math
+    >>> from contactres import Material, indentation_modulus
+    >>> math.isclose(indentation_modulus(Material.isotropic(70e9, 0.22)), 70e9 / (1 - 0.22**2))
+    True
+
+    Copper is stiffest along [111]:
+
+    >>> cu = Material.crystal("Cu")
+    >>> for hkl in [(0, 0, 1), (1, 1, 1)]:
+    ...     print(hkl, f"{indentation_modulus(cu.rotated(hkl)) / 1e9:.1f} GPa")
+    (0, 0, 1) 134.0 GPa
+    (1, 1, 1) 151.6 GPa
     """
     I0 = contact_integrals(m, rtol).I0
     return 4 * np.pi / I0
@@ -239,7 +256,7 @@ class AnisotropicContact:
     I0, I1 : the angular integrals of Ĝ, 1/Pa
     circular : True when the contact is exactly circular (second harmonic of Ĝ vanishes, e.g. a
         3- or 4-fold face); False: the circular formulas are an approximation
-    noncircularity : |I₂|/I₀, the relative second harmonic of Ĝ (0 for a circular contact)
+    noncircularity : ``|I₂|``/I₀, the relative second harmonic of Ĝ (0 for a circular contact)
     model : "anisotropic-hertz"
     """
 
@@ -288,6 +305,20 @@ def sphere_contact(m: Material, radius, force, rtol: float = THETA_RTOL) -> Anis
     Exact for a face whose Ĝ has no second angular harmonic (3- or 4-fold symmetry about the
     normal). Elsewhere the true contact is elliptic; these circular formulas then use I₁ along
     the surface x axis (the paper's choice) and ``circular`` is False.
+
+    Examples
+    --------
+    On an isotropic half-space the contact is Hertz with E* = M (rigid sphere):
+
+    >>> import numpy as np
+    >>> from contactres import Material, hertz, indentation_modulus, sphere_contact
+    >>> glass = Material.isotropic(70e9, 0.22)
+    >>> c = sphere_contact(glass, 5e-6, 1e-3)  # radius m, force N
+    >>> print(f"a = {float(c.contact_radius) * 1e9:.1f} nm")
+    a = 370.8 nm
+    >>> a_hertz = hertz(indentation_modulus(glass), 5e-6, 1e-3).contact_radius
+    >>> bool(np.isclose(c.contact_radius, a_hertz))
+    True
     """
     m = require_material(m)
     if m.is_lossy:

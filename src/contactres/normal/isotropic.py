@@ -82,7 +82,14 @@ def _out(x):
 
 
 def shear_modulus(E, nu):
-    """Shear modulus G = E / (2(1 + ν)) of an isotropic solid (paper 2, Eq. 8), Pa."""
+    """Shear modulus G = E / (2(1 + ν)) of an isotropic solid (paper 2, Eq. 8), Pa.
+
+    Examples
+    --------
+    >>> from contactres import shear_modulus
+    >>> print(f"{float(shear_modulus(70e9, 0.22)) / 1e9:.3f} GPa")
+    28.689 GPa
+    """
     return _out(_positive("E", E) / (2.0 * (1.0 + _poisson("nu", nu))))
 
 
@@ -91,6 +98,20 @@ def effective_modulus(E1, nu1, E2=None, nu2=None):
 
     1/E* = (1 - ν₁²)/E₁ + (1 - ν₂²)/E₂. Without ``E2``/``nu2`` the second body is the same
     material as the first (the paper's assumption); ``E2=np.inf`` makes it rigid.
+
+    Examples
+    --------
+    Glass (E = 70 GPa, ν = 0.22) on sapphire-like alumina (E = 400 GPa, ν = 0.23):
+
+    >>> from contactres import effective_modulus
+    >>> print(f"{float(effective_modulus(70e9, 0.22, 400e9, 0.23)) / 1e9:.2f} GPa")
+    62.65 GPa
+
+    On a rigid flat, E* is the plane-strain modulus E/(1 − ν²) of the sphere:
+
+    >>> import numpy as np
+    >>> bool(np.isclose(effective_modulus(70e9, 0.22, np.inf), 70e9 / (1 - 0.22**2)))
+    True
     """
     E1, nu1 = _positive("E1", E1), _poisson("nu1", nu1)
     E2 = E1 if E2 is None else np.asarray(E2, dtype=float)
@@ -107,6 +128,17 @@ def effective_shear_modulus(G1, nu1, G2=None, nu2=None):
     (:func:`contactres.mindlin_stiffness`). Johnson's book defines G*_J = [Σ(2 - ν_i)/G_i]⁻¹ with
     κ = 8 G*_J a: the same stiffness. Without ``G2``/``nu2`` both bodies are the same material;
     ``G2=np.inf`` makes the second rigid.
+
+    Examples
+    --------
+    With the paper's G*, κ = 2 G* a is Mindlin's 8Ga/(2 − ν) for a rigid partner:
+
+    >>> import numpy as np
+    >>> from contactres import effective_shear_modulus, mindlin_stiffness, shear_modulus
+    >>> G = shear_modulus(70e9, 0.22)
+    >>> G_star = effective_shear_modulus(G, 0.22, np.inf)
+    >>> bool(np.isclose(mindlin_stiffness(1e-6, G_star), 8 * G * 1e-6 / (2 - 0.22)))
+    True
     """
     G1, nu1 = _positive("G1", G1), _poisson("nu1", nu1)
     G2 = G1 if G2 is None else np.asarray(G2, dtype=float)
@@ -121,12 +153,37 @@ def hertz(E_star, radius, force) -> Contact:
 
     a³ = 3FR/(4E*), δ = a²/R, p_centre = 3F/(2πa²), k = dF/dδ = 2E*a (Johnson, Ch. 4; paper 2,
     Eq. 9 with γ = 0). ``E_star`` in Pa (:func:`effective_modulus`), ``radius`` m, ``force`` N.
+
+    Examples
+    --------
+    A glass sphere of radius 5 µm pressed with 1 mN on glass:
+
+    >>> import numpy as np
+    >>> from contactres import effective_modulus, hertz
+    >>> E_star = effective_modulus(70e9, 0.22)  # Pa, two identical bodies
+    >>> c = hertz(E_star, 5e-6, 1e-3)
+    >>> print(f"a = {float(c.contact_radius) * 1e9:.1f} nm, k = {float(c.stiffness):.4g} N/m")
+    a = 467.2 nm, k = 3.436e+04 N/m
+    >>> bool(np.isclose(c.contact_radius, (3 * 1e-3 * 5e-6 / (4 * E_star)) ** (1 / 3)))
+    True
+    >>> bool(np.isclose(c.depth, c.contact_radius**2 / 5e-6))
+    True
     """
     return jkr(E_star, radius, force, 0.0, _model="hertz")
 
 
 def jkr_pull_off_force(radius, gamma):
-    """JKR pull-off force (force control) F = -3πγR, N (paper 2's γ; w = 2γ)."""
+    """JKR pull-off force (force control) F = -3πγR, N (paper 2's γ; w = 2γ).
+
+    Examples
+    --------
+    >>> import math
+    >>> from contactres import jkr_pull_off_force
+    >>> print(f"{float(jkr_pull_off_force(5e-6, 0.05)) * 1e6:.3f} µN")
+    -2.356 µN
+    >>> math.isclose(float(jkr_pull_off_force(5e-6, 0.05)), -3 * math.pi * 0.05 * 5e-6)
+    True
+    """
     return _out(-3.0 * np.pi * _nonnegative("gamma", gamma) * _positive("radius", radius))
 
 
@@ -195,6 +252,20 @@ def jkr(E_star, radius, force, gamma, *, _model: str = "jkr") -> Contact:
     Contact with a from Eq. 9, δ = a²/R - √(4πγa/E*) = a²/R - √(2πwa/E*), the normal stiffness
     dF/dδ (zero slope at the pull-off point, where dδ/da = 0 is not reached: dF/da = 0 there), and
     the pressure at the centre 2E*a/(πR) - √(2wE*/(πa)).
+
+    Examples
+    --------
+    Adhesion keeps a finite contact at zero load; the pull-off force is −3πγR:
+
+    >>> import numpy as np
+    >>> from contactres import effective_modulus, hertz, jkr
+    >>> E_star = effective_modulus(70e9, 0.22)
+    >>> c = jkr(E_star, 5e-6, 0.0, 0.05)  # γ = 0.05 J/m²
+    >>> print(f"a(F = 0) = {float(c.contact_radius) * 1e9:.1f} nm")
+    a(F = 0) = 98.7 nm
+    >>> bool(np.isclose(jkr(E_star, 5e-6, 1e-3, 0.0).contact_radius,
+    ...                 hertz(E_star, 5e-6, 1e-3).contact_radius))
+    True
     """
     E_star = _positive("E_star", E_star)
     R = _positive("radius", radius)
@@ -254,6 +325,19 @@ def dmt(E_star, radius, force, gamma) -> Contact:
 
     a³ = 3R(F + 4πγR)/(4E*), δ = a²/R, stiffness 2E*a, pull-off force -4πγR (= -2πwR with the
     paper's γ, w = 2γ). Valid for stiff, small, weakly adhesive contacts (Tabor parameter < 0.1).
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from contactres import dmt, effective_modulus, hertz
+    >>> E_star = effective_modulus(70e9, 0.22)
+    >>> c = dmt(E_star, 5e-6, 0.0, 0.05)
+
+    DMT is Hertz under the applied load plus the adhesive load 4πγR:
+
+    >>> a_hertz = hertz(E_star, 5e-6, 4 * np.pi * 0.05 * 5e-6).contact_radius
+    >>> bool(np.isclose(c.contact_radius, a_hertz))
+    True
     """
     E_star = _positive("E_star", E_star)
     R = _positive("radius", radius)
@@ -285,6 +369,13 @@ def tabor_parameter(E_star, radius, gamma, z0=0.3e-9):
 
     ``z0`` is the equilibrium separation of the surface potential (default 0.3 nm). See
     :func:`which_adhesion_model`.
+
+    Examples
+    --------
+    >>> from contactres import effective_modulus, tabor_parameter
+    >>> E_star = effective_modulus(70e9, 0.22)
+    >>> round(float(tabor_parameter(E_star, 5e-6, 0.05)), 3)
+    1.11
     """
     E_star = _positive("E_star", E_star)
     R = _positive("radius", radius)
@@ -296,7 +387,18 @@ def tabor_parameter(E_star, radius, gamma, z0=0.3e-9):
 def which_adhesion_model(E_star, radius, gamma, z0=0.3e-9) -> str:
     """Which adhesive contact model applies: "jkr" (μ_T > 5), "dmt" (μ_T < 0.1), else
     "maugis" (the transition, Maugis-Dugdale; JKR and DMT both approximate), Johnson & Greenwood
-    1997 adhesion map. Scalars only."""
+    1997 adhesion map. Scalars only.
+
+    Examples
+    --------
+    A stiff small glass sphere sits between DMT and JKR; a soft large one is JKR:
+
+    >>> from contactres import effective_modulus, which_adhesion_model
+    >>> which_adhesion_model(effective_modulus(70e9, 0.22), 5e-6, 0.05)
+    'maugis'
+    >>> which_adhesion_model(1e6, 1e-3, 0.05)
+    'jkr'
+    """
     mu = float(np.asarray(tabor_parameter(E_star, radius, gamma, z0)))
     if mu > 5.0:
         return "jkr"

@@ -35,11 +35,12 @@ write (e.g. its figures) are removed. The columns are those of
     ``--plate-material``): one row per load, the columns of
     :data:`contactres.analysis.radiation.RADIATION_RESULTS` (the radiation loss of the contact
     against the measured one).
-``fig4_sweeps.png``, ``fig5_df0_vs_load.png``, ``fig7_dissipation_vs_load.png``,
-``fig8_friction_vs_load.png``
-    the figures of paper 2 for these data (:mod:`contactres.report.figures`; none when no
-    sweep is used, with a :class:`~contactres.measurements.sweeps.SweepWarning`), and with the
-    radiation table ``radiation_loss.png`` (measured and radiation loss tangent per load).
+``fig4_*.png``, ``fig5_*.png``, ``fig7_*.png``, ``fig8_*.png``
+    ``fig4_sweeps.png``, ``fig5_df0_vs_load.png``, ``fig7_dissipation_vs_load.png`` and
+    ``fig8_friction_vs_load.png``: the figures of paper 2 for these data
+    (:mod:`contactres.report.figures`; none when no sweep is used, with a
+    :class:`~contactres.measurements.sweeps.SweepWarning`), and with the radiation table
+    ``radiation_loss.png`` (measured and radiation loss tangent per load).
 ``manifest.json``
     written last: the files of the set with their sizes and SHA-256 sums.
 

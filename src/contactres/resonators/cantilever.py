@@ -28,7 +28,7 @@ segments leave a 4 x 4 determinant in (β, κ): :func:`characteristic_determinan
 
 Normal spring only (α = 0, η = 0 or φ = 0, with k* cos²φ as the effective spring), eliminating
 the unknowns by hand gives the closed form (Rabe et al. 1996, Eq. 8, rewritten for the *end*
-stiffness k_c = 3EI/L³; the paper normalises by 3EI/L1³, which differs by r³):
+stiffness k_c = 3EI/L³; the paper normalises by 3EI/L1³, which differs by r³)::
 
     κ = 2 β³ (1 + cos β cosh β) / (3 D),    p = βr,  q = β(1 − r),
     D = (sin q cosh q − cos q sinh q)(1 − cos p cosh p)
@@ -102,6 +102,13 @@ class Cantilever:
     normalisation : "global" (β from f_1 only) or "modewise" (β_n from f_n): see module notes
     free_q_factors : quality factors of the free modes (same length), or None (no air/intrinsic
         damping subtracted from the contact damping)
+
+    Examples
+    --------
+    >>> from contactres import Cantilever
+    >>> lever = Cantilever(free_frequencies=(13e3,), spring_constant=0.2)  # Hz, N/m
+    >>> lever.normalisation
+    'global'
     """
 
     free_frequencies: tuple[float, ...]
@@ -360,6 +367,19 @@ def contact_frequencies(
     -------
     ndarray of shape broadcast(...) + (len(modes),), Hz: real, or complex f′ + i f″ (Q = f′/2f″)
     when κ is complex or the cantilever's free Q factors are known.
+
+    Examples
+    --------
+    With no contact (κ = 0) the modes are the free ones, f₂/f₁ = (β₂⁰/β₁⁰)² = 6.267; a contact
+    spring raises every mode:
+
+    >>> import numpy as np
+    >>> from contactres import Cantilever, contact_frequencies
+    >>> lever = Cantilever(free_frequencies=(13e3,), spring_constant=0.2)  # Hz, N/m
+    >>> f = contact_frequencies(lever, [0.0, 1e3], 1.0, modes=(1, 2))  # κ = k*/k_c, tip at r = 1
+    >>> print(np.round(f / 1e3, 2))  # kHz, one row per κ
+    [[ 13.    81.47]
+     [ 56.73 181.57]]
     """
     kap = np.asarray(kappa)
     nonnegative("kappa (real part)", kap.real, "k*/k_c, dimensionless")

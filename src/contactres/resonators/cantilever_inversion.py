@@ -24,8 +24,8 @@ with contact-resonance atomic force microscopy", J. Appl. Phys. 102, 033509 (200
 two-mode method): one contact, so κ_a(r) = κ_b(r). Δ(r) = Re κ_a − Re κ_b is scanned on a grid
 of r in (0, 1] (:data:`R_GRID`, with one point past 1 so that r = 1 is bracketed), every sign
 change between finite values is refined by bisection on whole arrays of (pixel, interval)
-pairs, and a limit is kept only if |Δ| <= 1e-6 (|κ_a| + |κ_b|) there (a pole, where κ jumps
-through infinity, gives a huge |Δ| instead). The physical crossing is the largest r in
+pairs, and a limit is kept only if ``|Δ| <= 1e-6 (|κ_a| + |κ_b|)`` there (a pole, where κ jumps
+through infinity, gives a huge ``|Δ|`` instead). The physical crossing is the largest r in
 [0.5, 1] (the tip sits near the free end); all crossings are returned as candidates.
 
 Three or more modes (the consistency check). The crossing still comes from the first two

@@ -71,6 +71,15 @@ class QCM:
     overtone : overtone order n (odd, >= 1)
     area : acoustically effective area A_eff, m²
     zq : shear-wave impedance of the quartz, kg m⁻² s⁻¹ (AT-cut: 8.8e6)
+
+    Examples
+    --------
+    A 5 MHz crystal on its 3rd overtone, 10 mm² effective area:
+
+    >>> from contactres import QCM
+    >>> q = QCM(fundamental=5e6, overtone=3, area=1e-5)
+    >>> print(f"{q.frequency / 1e6:g} MHz, {q.sensitivity(n_contacts=1000):.4f} Hz per N/m")
+    15 MHz, 0.1919 Hz per N/m
     """
 
     fundamental: float = 5e6
@@ -119,7 +128,20 @@ def _out(x):
 
 
 def shifts_from_stiffness(q: QCM, kappa, xi, n_contacts=1):
-    """Δf, ΔΓ (Hz) of n_P Voigt contacts (κ in N/m, ξ in kg/s): paper 2, Eq. 1. Vectorised."""
+    """Δf, ΔΓ (Hz) of n_P Voigt contacts (κ in N/m, ξ in kg/s): paper 2, Eq. 1. Vectorised.
+
+    Examples
+    --------
+    1000 contacts of stiffness 1 kN/m and damping 1e-7 kg/s each:
+
+    >>> from contactres import QCM, shifts_from_stiffness
+    >>> q = QCM(fundamental=5e6, overtone=3, area=1e-5)
+    >>> df, dgamma = shifts_from_stiffness(q, 1000.0, 1e-7, n_contacts=1000)
+    >>> print(f"Δf = {df:.2f} Hz, ΔΓ = {dgamma:.3f} Hz")
+    Δf = 191.90 Hz, ΔΓ = 1.809 Hz
+    >>> round(df, 6) == round(q.sensitivity(1000) * 1000.0, 6)  # Δf = P κ
+    True
+    """
     P = q.sensitivity(n_contacts)
     df = P * np.asarray(kappa, dtype=float)
     dg = P * q.omega * np.asarray(xi, dtype=float)
@@ -128,7 +150,21 @@ def shifts_from_stiffness(q: QCM, kappa, xi, n_contacts=1):
 
 
 def stiffness_from_shifts(q: QCM, df, dgamma, n_contacts=1):
-    """κ (N/m), ξ (kg/s) per contact from Δf, ΔΓ (Hz): paper 2, Eq. 2 (inverse of Eq. 1)."""
+    """κ (N/m), ξ (kg/s) per contact from Δf, ΔΓ (Hz): paper 2, Eq. 2 (inverse of Eq. 1).
+
+    Examples
+    --------
+    The inverse of :func:`shifts_from_stiffness` (a round trip):
+
+    >>> from contactres import QCM, shifts_from_stiffness, stiffness_from_shifts
+    >>> q = QCM(fundamental=5e6, overtone=3, area=1e-5)
+    >>> kappa, xi = stiffness_from_shifts(q, 191.9, 1.809, n_contacts=1000)
+    >>> print(f"κ = {kappa:.1f} N/m, ξ = {xi:.3g} kg/s")
+    κ = 1000.0 N/m, ξ = 1e-07 kg/s
+    >>> df, dgamma = shifts_from_stiffness(q, kappa, xi, n_contacts=1000)
+    >>> round(float(df), 6), round(float(dgamma), 6)
+    (191.9, 1.809)
+    """
     P = q.sensitivity(n_contacts)
     _check_small(q, df)
     return _out(np.asarray(df, dtype=float) / P), _out(
@@ -177,8 +213,10 @@ def masing_stiffness(loop: MasingLoop, u0: np.ndarray, n: int):
     """K′, K″ of a Masing loop from its slope deficit (paper 2, Eqs. 4-5 after Masing's rule).
 
     With s = d/u0 on the virgin curve (Eq. 4 integrated by parts; Eq. 5 with the loop area
-    4∫F'(d)(u0 - 2d) dd) and, for K″, ∫(1 - 2s) ds = 0:
+    4∫F'(d)(u0 - 2d) dd) and, for K″, ∫(1 - 2s) ds = 0::
+
         K′ = (8/π) ∫₀¹ F'(u0 s) √(s(1 - s)) ds,    K″ = -(4/π) ∫₀¹ L(u0 s) (1 - 2s) ds,
+
     L = κ - F'. Using F' for K′ and L for K″ avoids cancellation at large and small u0.
     """
     # Beyond the last break the contact slides (F' = 0, L = κ): integrate only up to
@@ -279,6 +317,23 @@ def shifts_from_loop(q: QCM, loop, u0, n_contacts=1, nodes: int = DEFAULT_NODES)
 
     Vectorised over the amplitude array ``u0`` (m); returns two arrays of its shape (floats for
     a scalar). Relative accuracy 1e-9 (:func:`loop_stiffness`).
+
+    Examples
+    --------
+    Cattaneo-Mindlin contacts: at small amplitude the shifts are those of the linear spring κ, at
+    larger amplitude partial slip lowers Δf and raises ΔΓ:
+
+    >>> import numpy as np
+    >>> from contactres import CattaneoMindlinLoop, QCM, shifts_from_loop, shifts_from_stiffness
+    >>> q = QCM(fundamental=5e6, overtone=3, area=1e-5)
+    >>> loop = CattaneoMindlinLoop(kappa=1000.0, mu=0.5, normal_force=1e-3)  # N/m, -, N
+    >>> u0 = np.array([1e-10, 1e-7])  # amplitudes, m
+    >>> df, dgamma = shifts_from_loop(q, loop, u0, n_contacts=1000)
+    >>> [round(float(x), 2) for x in df], [round(float(x), 4) for x in dgamma]
+    ([191.89, 185.36], [0.0027, 2.8111])
+    >>> df_spring, _ = shifts_from_stiffness(q, 1000.0, 0.0, n_contacts=1000)
+    >>> bool(np.isclose(df[0], df_spring, rtol=1e-4))
+    True
     """
     k = np.asarray(loop_stiffness(loop, u0, nodes))
     P = q.sensitivity(n_contacts)

@@ -37,7 +37,7 @@ Two models of the oscillator (SI units: Hz, N/m, kg):
     converges from θ = arctan(β/(nπ)) in a few steps for every β.
 
     Modal stiffness and calibration. The free mode U = cos(nπx/L), normalised to the tip
-    displacement (|U(L)| = 1), has effective mass m_eff = ρA ∫₀ᴸ cos² = m/2 (m = ρAL the rod's
+    displacement (``|U(L)|`` = 1), has effective mass m_eff = ρA ∫₀ᴸ cos² = m/2 (m = ρAL the rod's
     mass), so K_eff = m_eff (2πf0)² = 2π² m f0² = (EA/L)(nπ)²/2. A rod is therefore fixed by
     f0 and m alone (EA/L = 4 m f0²/n²): :meth:`RUMOscillator.rod`. Expanding the
     characteristic equation for small s = k*/K_eff gives f/f0 = 1 + s/2 − s²/4 + O(s³), the

@@ -137,8 +137,9 @@ class ExportReader:
         File suffixes (lower case, with dot) this reader is tried for first.
     detect : callable(path, head: str) -> bool
         True if the file (whose first few kB are ``head``) is in this format.
-    load : callable(path, **conventions) -> ExportTable
-        Reads the file; the conventions are those of :data:`CONVENTION_KEYS`.
+    load : callable
+        ``load(path, **conventions) -> ExportTable`` reads the file; the conventions are those
+        of :data:`CONVENTION_KEYS`.
     conventions : mapping of str to str
         What the file holds, in words: time, frequency, dissipation, overtones, channels, and
         which choices the reader asks for.

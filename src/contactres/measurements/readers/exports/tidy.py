@@ -10,7 +10,7 @@ Conversions (paper 2, Eqs. 1-2: Γ is the half width at half maximum, D = 2Γ/f)
 
 Checks on the way, each a one-line error naming file, line, column, value and rule: a frequency
 cell on the wrong side of :data:`~.base.ABSOLUTE_FREQUENCY_HZ` (shifts and resonance
-frequencies mixed), |D| x scale >= :data:`MAX_DISSIPATION` (a mis-scaled D), a negative
+frequencies mixed), ``|D|`` x scale >= :data:`MAX_DISSIPATION` (a mis-scaled D), a negative
 absolute D, absolute f_n/n that differ between overtones by more than
 :data:`FUNDAMENTAL_TOLERANCE` (columns divided by n, or misnumbered), a fundamental given that
 disagrees with the file, a baseline window without points.
@@ -40,7 +40,7 @@ from .base import (
 
 __all__ = ["FUNDAMENTAL_TOLERANCE", "MAX_DISSIPATION", "convert"]
 
-#: |D| x scale at or above this is no dissipation factor (a Q of 10): a mis-scaled column.
+#: ``|D|`` x scale at or above this is no dissipation factor (a Q of 10): a mis-scaled column.
 MAX_DISSIPATION = 0.1
 
 #: Relative spread of f_n/n between overtones (and against a fundamental given) tolerated.
