@@ -289,7 +289,7 @@ def modulus_from_contact_stiffness(
     >>> r = modulus_from_contact_stiffness(1262.8, tip_radius=50e-9, load=1e-6)  # k* in N/m
     >>> print(f"E* = {float(r.E_star) / 1e9:.2f} GPa, a = {float(r.contact_radius) * 1e9:.2f} nm")
     E* = 81.93 GPa, a = 7.71 nm
-    >>> bool(np.isclose(r.E_star, np.sqrt(1262.8**3 / (6 * 50e-9 * 1e-6))))
+    >>> bool(np.isclose(r.E_star, np.sqrt(1262.8**3 / (6 * 50e-9 * 1e-6)), atol=0))
     True
     """
     k = np.asarray(positive("k_star (contact stiffness k*)", k_star, "N/m"), dtype=float)
