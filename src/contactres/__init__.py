@@ -117,6 +117,7 @@ _SUBMODULES: frozenset[str] = frozenset(
         "measurements",
         "normal",
         "numerics",
+        "polycrystal",
         "report",
         "resonators",
         "tangential",

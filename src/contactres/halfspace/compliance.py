@@ -32,6 +32,7 @@ __all__ = [
     "normal_compliance",
     "scaled_tensor",
     "shear_reference",
+    "stacked_normal_compliance",
     "surface_compliance",
 ]
 
@@ -158,6 +159,60 @@ def normal_compliance(c: np.ndarray, theta, s) -> np.ndarray:
     return _compliance(c, theta, s, normal_only=True)
 
 
+def stacked_normal_compliance(c: np.ndarray, theta, s=0.0) -> np.ndarray:
+    """H_33 of a stack of M solids in one vectorised evaluation (same algorithm and accuracy
+    as :func:`normal_compliance`, which it equals solid by solid).
+
+    Parameters
+    ----------
+    c : ndarray, shape (M, 3, 3, 3, 3)
+        Stiffness tensors in their surface frames, each divided by its reference C44 (complex
+        allowed).
+    theta : array_like, shape (K,) or (M, K)
+        Directions of the surface wave vector, rad: shared by the solids, or one row each.
+    s : array_like
+        ρω²/(C44 η²) = 1/κ² (0 in statics); broadcasts against ``theta`` as (M, K).
+
+    Returns
+    -------
+    ndarray, complex, shape (M, K)
+        H_33 of every (solid, direction) pair (paper 1, Eqs. 12, 19).
+    """
+    c = np.asarray(c)
+    m = c.shape[0]
+    theta, s = np.broadcast_arrays(np.asarray(theta, dtype=float), np.asarray(s, dtype=complex))
+    k = theta.shape[-1]
+    th = np.broadcast_to(theta, (m, k)).ravel()
+    sv = np.broadcast_to(s, (m, k)).ravel()
+    # The 3x3 pieces of every solid that the blocks Q, R, W combine (see _blocks).
+    pieces = np.stack(
+        [
+            c[:, :, 0, :, 0],
+            c[:, :, 0, :, 1] + c[:, :, 1, :, 0],
+            c[:, :, 1, :, 1],
+            c[:, :, 0, :, 2],
+            c[:, :, 1, :, 2],
+            c[:, :, 2, :, 2],
+        ],
+        axis=1,
+    )
+    odd = (np.sum(np.indices((3, 3, 3, 3)) == 2, axis=0) % 2).astype(bool)
+    mirror = np.max(np.abs(c[:, odd]), axis=1) <= 1e-14 * np.max(np.abs(c), axis=(1, 2, 3, 4))
+    lossless = not np.iscomplexobj(c) or not np.any(c.imag)
+    H = np.empty(m * k, dtype=complex)
+    # Mirror-plane solids take the cheaper doubling step; chunks keep the working set in cache.
+    for group in (True, False):
+        pts = np.flatnonzero(np.repeat(mirror == group, k))
+        for i in range(0, pts.size, _CHUNK):
+            p = pts[i : i + _CHUNK]
+            n1, n2 = np.cos(th[p]), np.sin(th[p])
+            a = np.ascontiguousarray(np.moveaxis(pieces[p // k], 0, -1))
+            Q = a[0] * n1**2 + a[1] * (n1 * n2) + a[2] * n2**2
+            R = a[3] * n1 + a[4] * n2
+            H[p] = _pencil_compliance(Q, R, a[5], th[p], sv[p], group, True, lossless)
+    return H.reshape(m, k)
+
+
 def _compliance(c: np.ndarray, theta, s, normal_only: bool) -> np.ndarray:
     """H as (3, 3, *shape), or only H_33 (shape) if ``normal_only``."""
     theta, s = np.broadcast_arrays(np.asarray(theta, dtype=float), np.asarray(s, dtype=complex))
@@ -177,18 +232,23 @@ def _compliance_chunk(c, th, sv, mirror: bool, normal_only: bool) -> np.ndarray:
     """H (3, 3, N), or H_33 (N), for flat arrays of directions ``th`` and inertia terms ``sv``;
     ``mirror``: the solid has the mirror plane z -> −z (:func:`has_mirror_plane`)."""
     Q, R, W = _blocks(c, th)
+    lossless = not np.iscomplexobj(c) or not np.any(c.imag)
+    return _pencil_compliance(Q, R, W, th, sv, mirror, normal_only, lossless)
+
+
+def _pencil_compliance(Q, R, W, th, sv, mirror, normal_only, lossless):
+    """H (3, 3, N), or H_33 (N), of the pencil blocks Q, R, W (3, 3, N) of flat points."""
     # Balance the pencil by the congruence D (.) D, D = diag(W)^(-1/2): W gets a unit diagonal.
     # Then Z = D Z~ D^-1, the identity in Q − sI becomes D², and H = D H~ D.
-    d = 1.0 / np.sqrt(np.real(np.diagonal(c[:, 2, :, 2])))
-    DD = (d[:, None] * d[None, :])[..., None]
+    d = 1.0 / np.sqrt(np.real(np.diagonal(W, axis1=0, axis2=1).T))
+    DD = d[:, None] * d[None, :]
     Q, R, W = Q * DD, R * DD, W * DD
     # Scale of the vertical wave numbers: |p| ~ 1 in statics, ~ sqrt(|s|) at high frequency.
     beta = np.sqrt(1.0 + np.abs(sv))
-    s3 = d[:, None] ** 2 * sv
+    s3 = d**2 * sv
     # A lossless solid at a real wave number below a bulk cutoff has real vertical wave numbers
     # (propagating partial waves): no decaying/growing split, so the doubling cannot converge.
     # Those points take the eigen-decomposition with the limiting-absorption choice below.
-    lossless = not np.iscomplexobj(c) or not np.any(c.imag)
     real_s = (sv.imag == 0) if lossless else np.zeros(sv.shape, dtype=bool)
     G, ok, resid = decaying_solvent(Q, R, W, s3, beta, may_stall=real_s, mirror=mirror)
     propagating = ~ok & real_s
