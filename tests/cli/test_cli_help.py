@@ -46,6 +46,12 @@ def test_defaults_shown_one_way_and_units_stated(words, command):
         assert "default:" not in p.help.lower() and "(default" not in p.help.lower(), p.opts
         if p.type.name in NUMERIC:
             assert UNIT.search(p.help), (words, p.opts, p.help)
+    # A value is shown as a value, [default: 5e6], whether click or a later file applies it;
+    # parentheses are kept for a described default, [default: (all in the file)].
+    for described in re.findall(
+        r"\[default: \(([^)]*)\)\]", " ".join(run(*words, "--help").output.split())
+    ):
+        assert not re.fullmatch(r"[-+0-9.eE]+", described), (words, described)
 
 
 def _example(words):

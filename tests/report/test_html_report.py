@@ -144,11 +144,21 @@ def _flat(value, path=""):
     return {path: value}
 
 
-def test_the_page_holds_every_number_of_summary_json(results, page):
+@pytest.fixture(scope="module")
+def written(tmp_path_factory):
+    """The results set the command line writes for the example: (summary.json, report.html)."""
+    out = tmp_path_factory.mktemp("cli") / "o"
+    r = run(EXAMPLE, "--out", out, "--bootstrap", "0", "--no-figures", "--report", "html")
+    assert r.exit_code == 0, r.output
+    record = json.loads((out / "summary.json").read_text(encoding="utf-8"))
+    return record, (out / "report.html").read_text(encoding="utf-8")
+
+
+def test_the_page_holds_every_number_of_summary_json(written):
+    record, page = written
     cells = dict(
         re.findall(r'<tr data-key="([^"]+)"><td><code>[^<]*</code></td><td>([^<]*)</td>', page)
     )
-    record = json.loads(json.dumps(summary(results)))  # as summary.json holds it
     numbers = {
         k: v
         for k, v in _flat(record).items()
@@ -158,3 +168,9 @@ def test_the_page_holds_every_number_of_summary_json(results, page):
     for key, value in numbers.items():
         assert key in cells, key
         assert float(cells[key]) == pytest.approx(value, rel=1e-6, abs=1e-300), key
+
+
+def test_errors_say_the_bootstrap_was_off(results):
+    # The example has 4 experiments: with --bootstrap 0 the reason is the switch, not the data.
+    methods = {g["error_method"] for g in summary(results)["groups"]}
+    assert methods == {"fit residuals (Jacobian), bootstrap off (--bootstrap 0)"}

@@ -278,7 +278,10 @@ def fit_group(
         )
     if not out["error_method"]:
         out.update(E_err_Pa=res.errors["E"], gamma_err_J_m2=res.errors["gamma"])
-        out["error_method"] = "fit residuals (Jacobian), no repeats to resample"
+        # Say why the repeats were not resampled: the user switched the bootstrap off, or
+        # there are none to resample.
+        why = "bootstrap off (--bootstrap 0)" if bootstrap <= 0 else "no repeats to resample"
+        out["error_method"] = f"fit residuals (Jacobian), {why}"
         dof = len(pts) - 2
     elif n_exp >= 2:
         dof = n_exp - 1

@@ -64,6 +64,18 @@ def odd_overtone(ctx, param, value):
     return value
 
 
+class ValueDefault(click.Option):
+    """An option whose default is a plain value applied later (from a file's column or a TOML
+    file, so ``default`` stays None): its help shows ``[default: 5e6]`` like any other value,
+    not click's parenthesised form of a described default, ``[default: (5e6)]``."""
+
+    def get_help_extra(self, ctx):
+        extra = super().get_help_extra(ctx)
+        if isinstance(self.show_default, str) and "default" in extra:
+            extra["default"] = self.show_default
+        return extra
+
+
 class MagnitudeType(click.ParamType):
     """A click parameter for one number of a physical quantity, checked against its plausible
     range (:data:`contactres.units.QUANTITIES`): a unit slip, NaN, inf or a negative value where

@@ -18,6 +18,7 @@ from ._app import qcm
 from ._common import (
     MagnitudeType,
     MaterialType,
+    ValueDefault,
     emit,
     format_option,
     odd_overtone,
@@ -44,6 +45,7 @@ from ._common import (
     "--fundamental",
     type=MagnitudeType("frequency"),
     show_default="5e6",
+    cls=ValueDefault,
     help="Fundamental frequency f_F (Hz).",
 )
 @click.option(
@@ -55,6 +57,7 @@ from ._common import (
     "--poisson",
     type=MagnitudeType("poisson"),
     show_default="0.17",
+    cls=ValueDefault,
     help="Poisson ratio ν (dimensionless) fixed in the JKR fit.",
 )
 @click.option("--sphere-radius", type=MagnitudeType("sphere_radius"), help="Sphere radius R (m).")

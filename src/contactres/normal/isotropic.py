@@ -263,6 +263,8 @@ def jkr(E_star, radius, force, gamma, *, _model: str = "jkr") -> Contact:
     >>> c = jkr(E_star, 5e-6, 0.0, 0.05)  # γ = 0.05 J/m²
     >>> print(f"a(F = 0) = {float(c.contact_radius) * 1e9:.1f} nm")
     a(F = 0) = 98.7 nm
+    >>> bool(np.isclose(c.contact_radius, (9 * np.pi * 0.05 * 5e-6**2 / E_star) ** (1 / 3), atol=0))
+    True
     >>> bool(np.isclose(jkr(E_star, 5e-6, 1e-3, 0.0).contact_radius,
     ...                 hertz(E_star, 5e-6, 1e-3).contact_radius, atol=0))
     True
