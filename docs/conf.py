@@ -55,6 +55,9 @@ plot_html_show_source_link = True
 plot_include_source = False
 plot_rcparams = {"figure.autolayout": False}
 
+# Option names (--remove-drift) and code-like text stay as typed: no en dashes or curly quotes.
+smartquotes = False
+
 html_theme = "furo"
 html_title = f"contactres {release}"
 html_static_path: list[str] = []

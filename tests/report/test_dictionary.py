@@ -8,15 +8,27 @@ import pytest
 from contactres.analysis.flags import DESCRIPTIONS, Flag, has, render
 from contactres.measurements.schema import SWEEP_TABLE
 from contactres.measurements.sweeps import VALIDATED_COLUMNS
-from contactres.report.dictionary import BLOCK, dictionary_tables, update_blocks
+from contactres.report.dictionary import (
+    AFM_INVERT_RESULTS,
+    BLOCK,
+    DOCS_ONLY,
+    RESONANCE_FLAGS,
+    RUM_INVERT_RESULTS,
+    SPECTRA_FITS,
+    STIFFNESS_CSV,
+    dictionary_tables,
+    update_blocks,
+)
 
-README = Path(__file__).resolve().parents[2] / "README.md"
+ROOT = Path(__file__).resolve().parents[2]
+README = ROOT / "README.md"
+DATA = ROOT / "src" / "contactres" / "data"
 
 
 def test_readme_tables_are_the_schema():
     text = README.read_text(encoding="utf-8")
     found = {m.group("name"): m.group("body").strip() for m in BLOCK.finditer(text)}
-    tables = dictionary_tables()
+    tables = {k: v for k, v in dictionary_tables().items() if k not in DOCS_ONLY}
     assert set(found) == set(tables), "README blocks and schema tables differ in name"
     for name, table in tables.items():
         assert found[name] == table, f"README block {name!r} is stale: run scripts/update_readme.py"
@@ -47,3 +59,50 @@ def test_flags_table_has_two_cells_per_row():
     from contactres.report.dictionary import flags_markdown
 
     assert all(line.count("|") == 3 for line in flags_markdown().splitlines())
+
+
+def test_docs_page_includes_every_table():
+    page = (ROOT / "docs" / "dictionary.md").read_text(encoding="utf-8")
+    for name in dictionary_tables():
+        assert f"_generated/{name}.md" in page, f"docs/dictionary.md does not show {name!r}"
+
+
+def test_spectra_fits_columns_and_flags_are_the_code():
+    from contactres.measurements.spectra import COLUMNS, FLAGS
+
+    assert SPECTRA_FITS.names == COLUMNS
+    table = dictionary_tables()["spectra-fit-flags"]
+    assert [line.split("`")[1] for line in table.splitlines()[2:]] == list(FLAGS)
+
+
+def test_stiffness_csv_columns_are_the_code():
+    from contactres.cli.qcm_stiffness import COLUMN_UNITS
+
+    assert STIFFNESS_CSV.names == tuple(COLUMN_UNITS)
+
+
+def test_resonance_flags_are_the_code():
+    from contactres.analysis.inversion import ModulusFlag
+    from contactres.resonators.cantilever_inversion import flag_names
+
+    names = [n.replace("_", "-") for n in flag_names(~0)]
+    assert list(RESONANCE_FLAGS) == names
+    table = dictionary_tables()["resonance-flags"]
+    listed = [line.split("`")[1] for line in table.splitlines()[2:]]
+    assert listed == names + [f.name.lower().replace("_", "-") for f in ModulusFlag]
+
+
+def test_invert_outputs_append_exactly_the_listed_columns():
+    from contactres.analysis.resonance_tables import invert_afm_table, invert_rum_table
+    from contactres.materials import Material
+    from contactres.measurements.resonances import AFM_TABLE, RUM_TABLE, read_resonance_table
+
+    afm = read_resonance_table(DATA / "example_afm.csv", AFM_TABLE)
+    sample = Material.crystal("Cu").rotated((0, 0, 1))
+    out = invert_afm_table(afm, "example_afm.csv", sample=sample)
+    given = [c for c in out.columns if c in afm.columns]
+    assert tuple(c for c in out.columns if c not in given) == AFM_INVERT_RESULTS.names
+    rum = read_resonance_table(DATA / "example_rum.csv", RUM_TABLE)
+    out = invert_rum_table(rum, "example_rum.csv")
+    appended = tuple(c for c in out.columns if c not in rum.columns)
+    assert appended == RUM_INVERT_RESULTS.names
