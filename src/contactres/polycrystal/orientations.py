@@ -128,7 +128,7 @@ def surface_matrices_from_euler(phi1, Phi, phi2, *, degrees: bool) -> np.ndarray
     Raises
     ------
     ValueError
-        For non-finite angles or an angle beyond two turns (|angle| > 4π rad or > 720°), the
+        For non-finite angles or an angle beyond two turns (``|angle|`` > 4π rad or > 720°), the
         sign of a unit mix-up.
 
     Examples
@@ -247,14 +247,14 @@ def surface_matrix_from_miller(hkl, uvw) -> np.ndarray:
     Returns
     -------
     ndarray, shape (..., 3, 3)
-        Rows x = uvw/|uvw|, y = z × x, z = hkl/|hkl|: the matrix of
+        Rows x = uvw/``|uvw|``, y = z × x, z = hkl/``|hkl|``: the matrix of
         :func:`~contactres.materials.rotation_to_surface` ``(hkl, uvw)``.
 
     Raises
     ------
     ValueError
         For a zero or non-finite vector, or when uvw does not lie in the plane
-        (|hkl · uvw| > 1e-9 |hkl| |uvw|).
+        (``|hkl · uvw| > 1e-9 |hkl| |uvw|``).
 
     Notes
     -----
