@@ -44,6 +44,7 @@ __all__ = [
     "check_output",
     "check_output_file",
     "ensure_dir",
+    "replace_folder",
     "save_figure",
     "write_csv",
     "write_text",
@@ -262,13 +263,8 @@ def _exchange(a: Path, b: Path) -> bool:
         renameat2 = ctypes.CDLL(None, use_errno=True).renameat2
     except (OSError, AttributeError):  # a C library without renameat2 (glibc < 2.28, musl)
         return False
-    renameat2.argtypes = [
-        ctypes.c_int,
-        ctypes.c_char_p,
-        ctypes.c_int,
-        ctypes.c_char_p,
-        ctypes.c_uint,
-    ]
+    fd, name = ctypes.c_int, ctypes.c_char_p
+    renameat2.argtypes = [fd, name, fd, name, ctypes.c_uint]
     at_fdcwd, rename_exchange = -100, 2  # <fcntl.h>, <linux/fs.h>
     if renameat2(at_fdcwd, os.fsencode(a), at_fdcwd, os.fsencode(b), rename_exchange) == 0:
         return True
@@ -276,6 +272,16 @@ def _exchange(a: Path, b: Path) -> bool:
     if code in (errno.EINVAL, errno.ENOSYS, errno.EOPNOTSUPP):
         return False
     raise OSError(code, os.strerror(code), str(b))
+
+
+def replace_folder(new: Path, target: Path, aside: Path) -> Path:
+    """Put the folder ``new`` at the existing ``target``; return where the earlier one now lies:
+    at ``new`` after a one-step exchange, else at ``aside`` after two renames."""
+    if _exchange(new, target):
+        return new
+    os.rename(target, aside)
+    os.rename(new, target)
+    return aside
 
 
 def _digest(path: Path) -> dict:
@@ -459,12 +465,9 @@ class ResultSet:
                     return
             else:
                 os.chmod(staging, self.folder.stat().st_mode & 0o7777)
-                if not _exchange(staging, self.folder):
-                    old = self._workspace / f"{self._prefix()}-{secrets.token_hex(6)}.old"
-                    os.rename(self.folder, old)
-                    os.rename(staging, self.folder)
-                    self._staging = old
-                # either way the staging path now holds the earlier set: removed on release
+                old = self._workspace / f"{self._prefix()}-{secrets.token_hex(6)}.old"
+                # self._staging now holds the earlier set: removed on release
+                self._staging = replace_folder(staging, self.folder, old)
                 return
         self._commit_in_place(staging, staged)
 

@@ -41,6 +41,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..fileio import replace_folder
 from ..materials import Material
 from .moduli import indentation_moduli
 from .orientations import surface_matrices_from_euler
@@ -389,8 +390,9 @@ def write_map(path: str | os.PathLike, dataset, *, chunks: tuple[int, int] = (25
     """Write a map Dataset (or an :class:`OrientationMap`) as a chunked Zarr store, atomically.
 
     The store is written into a hidden staging folder beside ``path`` and renamed onto it; an
-    earlier store at ``path`` is moved aside first and removed after (a kill in between leaves
-    it as a hidden folder beside the target, never a half-written store at ``path``). Every
+    earlier store at ``path`` is exchanged with it in one step where the system can, else moved
+    aside first (:func:`contactres.fileio.replace_folder`), and removed after: a kill never
+    leaves a half-written store at ``path``. Every
     (y, x) variable is chunked ``chunks`` = (rows, columns) (``euler`` with its 3 angles in one
     chunk).
 
@@ -413,13 +415,11 @@ def write_map(path: str | os.PathLike, dataset, *, chunks: tuple[int, int] = (25
         encoding[name] = {"chunks": tuple(sizes.get(d, n) for d, n in var.sizes.items())}
     try:
         dataset.to_zarr(stage, mode="w-", encoding=encoding, consolidated=False)
-        old = None
         if target.exists():
-            old = target.parent / f".{target.name}.{secrets.token_hex(6)}.old"
-            os.replace(target, old)
-        os.replace(stage, target)
-        if old is not None:
-            shutil.rmtree(old, ignore_errors=True)
+            aside = target.parent / f".{target.name}.{secrets.token_hex(6)}.old"
+            shutil.rmtree(replace_folder(stage, target, aside), ignore_errors=True)
+        else:
+            os.replace(stage, target)
     except BaseException:
         shutil.rmtree(stage, ignore_errors=True)
         raise
