@@ -145,11 +145,9 @@ def _flat(value, path=""):
 
 
 @pytest.fixture(scope="module")
-def written(tmp_path_factory):
+def written(example_set):
     """The results set the command line writes for the example: (summary.json, report.html)."""
-    out = tmp_path_factory.mktemp("cli") / "o"
-    r = run(EXAMPLE, "--out", out, "--bootstrap", "0", "--no-figures", "--report", "html")
-    assert r.exit_code == 0, r.output
+    out = example_set
     record = json.loads((out / "summary.json").read_text(encoding="utf-8"))
     return record, (out / "report.html").read_text(encoding="utf-8")
 

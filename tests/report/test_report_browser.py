@@ -26,12 +26,7 @@ from pathlib import Path
 
 import pandas as pd
 import pytest
-from click.testing import CliRunner
 
-import contactres
-from contactres.cli import main
-
-EXAMPLE = Path(contactres.__file__).parent / "data" / "example_sweeps.csv"
 BROWSERS = ("chromium", "chromium-browser", "google-chrome")
 #: Chromium writes every console message of the page to stderr as ``...:CONSOLE:<line>] "<text>"``.
 CONSOLE = re.compile(r":CONSOLE(?::|\()\d+\)?\] (?P<text>.*)")
@@ -76,12 +71,9 @@ def _console(stderr: str) -> list[str]:
 
 
 @pytest.fixture(scope="module")
-def report(tmp_path_factory) -> Path:
-    out = tmp_path_factory.mktemp("browser") / "results"
-    args = ["qcm", "analyze", str(EXAMPLE), "--out", str(out), "--report", "html"]
-    result = CliRunner().invoke(main, [*args, "--bootstrap", "0"])
-    assert result.exit_code == 0, result.output
-    return out
+def report(example_set) -> Path:
+    """The results folder of the bundled example, with report.html (tests/report/conftest.py)."""
+    return example_set
 
 
 def test_the_report_loads_without_console_messages_and_is_screenshot(browser, report, tmp_path):
