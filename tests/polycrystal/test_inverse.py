@@ -153,3 +153,55 @@ def test_fit_map_on_a_200x200_pixel_map_with_known_calibration():
     assert np.all(np.abs(err) < 3 * np.array([res.c12_c11_error, res.c44_c11_error]))
     assert abs(res.c11 - C11) < 3 * res.c11_error
     assert 0.5 < res.chi2_dof < 2.0
+
+
+def test_reported_errors_cover_the_true_ratios_over_ten_noise_draws(grains):
+    # The 2000 x 2000-equivalent case over ten noise draws (two of the seeds are those of the
+    # fixture: the draws are independent of the other tests anyway). If the reported σ are
+    # honest, each draw lands within 2σ with probability 0.954, so the number of hits out of 10
+    # is Binomial(10, 0.954): P(hits <= 7) = 1.0 %, hence the bound ">= 8". C12/C11 and C44/C11
+    # share the weak direction (their errors are strongly correlated), so the two counts are
+    # one test, not two independent ones. For a Gaussian error ``|z|`` has mean sqrt(2/π) = 0.80
+    # and standard deviation sqrt(1 − 2/π) = 0.60, so the mean of ten has a standard deviation
+    # of 0.19: 0.4 < mean < 1.3 is a > 2σ band either side, and it catches reported σ too small
+    # by 1.6x or too large by 2x. Ten fits take ~15 s.
+    R, k = grains
+    z = []
+    for seed in range(10):
+        res = fit_cubic_constants(R, *noisy_means(k, 66_667, seed), guess=GUESS)
+        assert res.weak_identified
+        est = np.array([res.c12_c11, res.c44_c11])
+        z.append((est - TRUE) / np.array([res.c12_c11_error, res.c44_c11_error]))
+    z = np.abs(np.array(z))
+    hits = np.sum(z < 2, axis=0)
+    assert np.all(hits >= 8), hits
+    assert np.all((z.mean(axis=0) > 0.4) & (z.mean(axis=0) < 1.3)), z.mean(axis=0)
+
+
+def test_anisotropy_111_matches_the_scalar_modulus_of_rotated_copper():
+    # Independent path: the scalar indentation_modulus of Cu rotated to (111) and (001).
+    from contactres import indentation_modulus
+    from contactres.polycrystal.inverse import anisotropy_111
+
+    truth = indentation_modulus(CU.rotated((1, 1, 1))) / indentation_modulus(CU)
+    value, error = anisotropy_111(TRUE, np.diag([1e-4, 1e-4]))
+    assert value == pytest.approx(truth, rel=1e-9)
+    assert 0 < error < 0.01 * value
+
+
+def test_anisotropy_is_reported_honestly_when_the_ratios_are_not(grains):
+    # 15 grains with 0.06 % per grain: the weak combination is not determined and the fitted
+    # ratios wander along the valley, but M(111)/M(001) stays where the data put it.
+    from contactres import indentation_modulus
+
+    R, k = grains
+    truth = indentation_modulus(CU.rotated((1, 1, 1))) / indentation_modulus(CU)
+    pulls = []
+    for seed in (3, 4, 5):
+        y, se = noisy_means(k[:15], 256, seed)
+        res = fit_cubic_constants(R[:15], y, se, guess=GUESS)
+        assert not res.weak_identified and np.isnan(res.c12_c11)
+        assert res.anisotropy_111_error < 0.005 * truth
+        pulls.append(abs(res.anisotropy_111 - truth) / res.anisotropy_111_error)
+        assert "M(111)/M(001)" in res.summary()
+    assert max(pulls) < 3.5, pulls

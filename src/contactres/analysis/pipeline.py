@@ -115,10 +115,11 @@ class AnalysisSettings:
     workers : processes for the per-sweep and per-block fits (1: none; more pay from ~10^4
         sweeps on; a script that passes more must be importable where processes are spawned,
         see :func:`contactres.analysis.classify.fit_sweeps`)
-    sphere_material, plate_material : names of the two bodies for the radiation loss of the
-        contact (:func:`contactres.analysis.radiation.material_by_name`: a built-in solid, e.g.
-        ``"soda-lime-glass"`` or ``"glass"``; the plate also ``"quartz-AT"``, the AT-cut
-        quartz of the QCM); both or neither (None: no radiation table)
+    sphere_material, plate_material : str or None
+        Names of the two bodies for the radiation loss of the contact
+        (:func:`contactres.analysis.radiation.material_by_name`: a built-in solid, e.g.
+        ``"soda-lime-glass"`` or ``"glass"``; the plate also ``"quartz-AT"``, the AT-cut quartz
+        of the QCM); both or neither (None: no radiation table).
     """
 
     keep_first_ramp: bool = False

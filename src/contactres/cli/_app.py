@@ -104,5 +104,10 @@ def rum() -> None:
 
 
 @main.group()
+def maps() -> None:
+    """Polycrystal maps: EBSD orientations -> M and k* per pixel, and back to the constants."""
+
+
+@main.group()
 def figures() -> None:
     """Reproduce the figures of the two core papers (PNG + CSV)."""

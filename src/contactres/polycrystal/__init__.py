@@ -11,7 +11,10 @@ cluster: the optional extra ``maps``) and Zarr IO; :mod:`.ebsd` reads .ang/.ctf 
 """
 
 from .ebsd import read_ang, read_ctf, read_ebsd, write_ang, write_ctf
+from .grains import GrainOrientations, folded_normals, grain_orientations, segment_grains
 from .inverse import CubicInverseResult, fit_cubic_constants, fit_map, grain_means
+from .inverse_hexagonal import HexagonalInverseResult, fit_hexagonal_constants
+from .ipf import IPFTriangle, ipf_colors, ipf_triangle
 from .maps import (
     MAP_CONVENTIONS,
     ExactModulus,
@@ -43,6 +46,9 @@ __all__ = [
     "MAP_CONVENTIONS",
     "CubicInverseResult",
     "ExactModulus",
+    "GrainOrientations",
+    "HexagonalInverseResult",
+    "IPFTriangle",
     "NormalTable",
     "OrientationMap",
     "SyntheticPolycrystal",
@@ -51,9 +57,14 @@ __all__ = [
     "euler_from_surface_matrices",
     "evaluate_map",
     "fit_cubic_constants",
+    "fit_hexagonal_constants",
     "fit_map",
+    "folded_normals",
     "grain_means",
+    "grain_orientations",
     "indentation_moduli",
+    "ipf_colors",
+    "ipf_triangle",
     "map_from_dataset",
     "map_to_dataset",
     "map_wavenumbers",
@@ -66,6 +77,7 @@ __all__ = [
     "read_map",
     "reduce_normals",
     "reduce_to_fundamental_zone",
+    "segment_grains",
     "surface_matrices_from_euler",
     "surface_matrices_from_quaternions",
     "surface_matrix_from_miller",

@@ -41,7 +41,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..fileio import replace_folder
+from ..fileio import OutputError, check_output_file, replace_folder
 from ..materials import Material
 from .moduli import indentation_moduli
 from .orientations import surface_matrices_from_euler
@@ -50,6 +50,7 @@ __all__ = [
     "MAP_CONVENTIONS",
     "ExactModulus",
     "OrientationMap",
+    "check_map_output",
     "evaluate_map",
     "map_from_dataset",
     "map_to_dataset",
@@ -384,6 +385,25 @@ def map_from_dataset(ds) -> OrientationMap:
 
 def _is_zarr_store(path: Path) -> bool:
     return path.is_dir() and any((path / n).exists() for n in ("zarr.json", ".zgroup", ".zattrs"))
+
+
+def check_map_output(path: str | os.PathLike, inputs=()) -> Path:
+    """Check, writing nothing, that a map store may be written at ``path`` (before long work).
+
+    Raises :class:`~contactres.fileio.OutputError` (one line) when the folder of ``path`` is
+    missing or not writable, ``path`` is one of ``inputs``, or ``path`` exists and is not a
+    Zarr store (:func:`write_map` overwrites only a store).
+    """
+    target = Path(path)
+    if target.exists() and not _is_zarr_store(target):
+        raise OutputError(f"output {str(target)!r} exists and is not a Zarr store: not overwritten")
+    if target.is_dir():  # an earlier store: check the folder above it and the inputs only
+        for given in inputs:
+            if Path(given).resolve() == target.resolve():
+                raise OutputError(f"output {str(target)!r} is also an input")
+        check_output_file(target.parent / f".{target.name}.check", inputs)
+        return target
+    return check_output_file(target, inputs)
 
 
 def write_map(path: str | os.PathLike, dataset, *, chunks: tuple[int, int] = (256, 256)) -> Path:

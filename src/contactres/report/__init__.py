@@ -2,12 +2,14 @@
 HTML page (:func:`write_html`)."""
 
 from .html import html_report, write_html
+from .map_figures import modulus_map_figure
 from .tables import FORMATS, loads_table, report_files, summary, sweeps_table, write_report
 
 __all__ = [
     "FORMATS",
     "html_report",
     "loads_table",
+    "modulus_map_figure",
     "report_files",
     "summary",
     "sweeps_table",

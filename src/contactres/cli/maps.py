@@ -1,0 +1,386 @@
+"""CLI: ``contactres maps synthetic|predict|fit`` (polycrystal maps: EBSD -> contact stiffness,
+and measured stiffness + orientations -> single-crystal constants)."""
+
+from __future__ import annotations
+
+import click
+
+from ._app import maps
+from ._common import MagnitudeType, emit_record, format_option, step
+from ._map_options import (
+    map_material,
+    map_shape,
+    material_options,
+    progress_callback,
+    scheduler_address,
+    tip_options,
+)
+
+
+@maps.command("synthetic")
+@click.option("--out", type=click.Path(), required=True, help="Output map store (Zarr folder).")
+@material_options
+@tip_options(required=True)
+@click.option(
+    "--shape",
+    default="512x512",
+    show_default=True,
+    callback=map_shape,
+    help="Map size ROWSxCOLUMNS, pixels.",
+)
+@click.option(
+    "--grains",
+    type=click.IntRange(min=1),
+    default=60,
+    show_default=True,
+    help="Number of Voronoi grains, dimensionless.",
+)
+@click.option(
+    "--seed",
+    type=click.IntRange(min=0),
+    default=1,
+    show_default=True,
+    help="Seed of the random generator (grains, orientations, noise), dimensionless.",
+)
+@click.option(
+    "--noise",
+    type=click.FloatRange(0, 0.5, max_open=True),
+    default=0.01,
+    show_default=True,
+    help="Relative noise per pixel of k*, dimensionless.",
+)
+@click.option(
+    "--pixel-size",
+    type=MagnitudeType("contact_radius"),
+    default=1e-6,
+    show_default=True,
+    help="Pixel pitch, m.",
+)
+def maps_synthetic(
+    out,
+    crystal,
+    c11,
+    c12,
+    c13,
+    c33,
+    c44,
+    density,
+    tip_radius,
+    force,
+    tip_modulus,
+    shape,
+    grains,
+    seed,
+    noise,
+    pixel_size,
+):
+    """A seeded Voronoi polycrystal with a noisy contact-stiffness map k* (N/m), as a Zarr map
+    store: Bunge Euler angles (rad), grain labels and k_star_N_per_m, ready for 'maps fit'.
+
+    Example: contactres maps synthetic --crystal Cu --tip-radius 2e-8 --force 1e-6 --out cu.zarr
+    """
+    import math
+
+    from ..apps.maps import TipLoad, synthetic_map
+    from ..polycrystal.maps import check_map_output, write_map
+
+    check_map_output(out)
+    material, lattice = map_material(crystal, c11, c12, c13, c33, c44, density)
+    tipload = TipLoad(tip_radius, force, math.inf if tip_modulus is None else tip_modulus)
+    step("maps synthetic", f"{shape[0]}x{shape[1]} pixels, {grains} grains")
+    ds = synthetic_map(
+        material,
+        lattice,
+        tipload,
+        shape=shape,
+        n_grains=grains,
+        seed=seed,
+        noise=noise,
+        pixel_size=pixel_size,
+    )
+    write_map(out, ds)
+    k = ds["k_star_N_per_m"].values
+    click.echo(
+        f"{shape[0]}x{shape[1]} map, {grains} grains, noise {noise:g}: k* from "
+        f"{k.min():.4g} to {k.max():.4g} N/m; wrote {out}"
+    )
+
+
+@maps.command("predict")
+@click.argument("map_path", metavar="MAP", type=click.Path(exists=True))
+@click.option("--out", type=click.Path(), required=True, help="Output map store (Zarr folder).")
+@material_options
+@tip_options(required=True)
+@click.option(
+    "--method",
+    type=click.Choice(["auto", "interpolated", "exact", "grains"]),
+    default="auto",
+    show_default=True,
+    help="M per pixel: tabulated over the fundamental triangle and interpolated, "
+    "exact per pixel, or exact per grain (labelled maps); auto: grains if labelled.",
+)
+@click.option(
+    "--rtol",
+    type=click.FloatRange(1e-8, 1e-2),
+    default=1e-4,
+    show_default=True,
+    help="Interpolation tolerance of M, relative, dimensionless (1e-8 to 1e-2).",
+)
+@click.option(
+    "--frequency",
+    type=MagnitudeType("frequency"),
+    help="Hz: add paper 1's DCSF and the dynamic contact stiffness of every pixel.",
+)
+@click.option(
+    "--model",
+    type=click.Choice(["exact", "WA2D"]),
+    default="exact",
+    show_default=True,
+    help="DCSF model (with --frequency).",
+)
+@click.option(
+    "--chunks",
+    type=click.IntRange(min=1),
+    default=256,
+    show_default=True,
+    help="Square chunk size in pixels, dimensionless (the unit of work on a cluster).",
+)
+@click.option(
+    "--scheduler",
+    callback=scheduler_address,
+    show_default="this machine",
+    help="Dask scheduler address tcp://HOST:PORT: evaluate M on that cluster.",
+)
+@click.option(
+    "--figure",
+    type=click.Path(dir_okay=False),
+    help="PNG: M map, IPF-Z map and the M legend over the standard triangle.",
+)
+@format_option()
+def maps_predict(
+    map_path,
+    out,
+    crystal,
+    c11,
+    c12,
+    c13,
+    c33,
+    c44,
+    density,
+    tip_radius,
+    force,
+    tip_modulus,
+    method,
+    rtol,
+    frequency,
+    model,
+    chunks,
+    scheduler,
+    figure,
+    fmt,
+):
+    """Predicted indentation modulus M (Pa) and contact stiffness k* (N/m) of every pixel of an
+    orientation map (a Zarr map store, or an EBSD export .ang/.ctf; Bunge angles, sample
+    z = inward surface normal). Writes MAP's variables plus M_Pa, E_star_Pa,
+    contact_radius_m, k_star_N_per_m (and the DCSF with --frequency) to OUT atomically.
+
+    Example: contactres maps predict src/contactres/data/example_cu_map.ang --crystal Cu
+    --tip-radius 2e-8 --force 1e-6 --out cu_predicted.zarr
+    """
+    import math
+
+    import numpy as np
+
+    from ..apps.maps import TipLoad, open_map, predict_map
+    from ..polycrystal.maps import check_map_output, write_map
+
+    check_map_output(out, inputs=[map_path])
+    if figure is not None:
+        from ..fileio import check_output_file
+
+        check_output_file(figure, inputs=[map_path])
+    material, lattice = map_material(crystal, c11, c12, c13, c33, c44, density)
+    if frequency is not None and material.density is None:
+        raise ValueError("--frequency needs the density: give --density (kg/m^3)")
+    tipload = TipLoad(tip_radius, force, math.inf if tip_modulus is None else tip_modulus)
+    step("maps predict", f"reading {map_path}")
+    omap, _ = open_map(map_path)
+    ds, info = predict_map(
+        omap,
+        material,
+        lattice,
+        tipload,
+        method=method,
+        rtol=rtol,
+        frequency=frequency,
+        model=model,
+        chunks=(chunks, chunks),
+        scheduler=scheduler,
+        progress=progress_callback("M per chunk"),
+    )
+    write_map(out, ds, chunks=(chunks, chunks))
+    if figure is not None:
+        _prediction_figure(figure, ds, material, lattice)
+    M, k = ds["M_Pa"].values, ds["k_star_N_per_m"].values
+    record = {
+        "pixels": int(np.isfinite(M).sum()),
+        "method": info["method"],
+        "M_stated_error": info["stated_error"],
+        "exact_evaluations": info["exact_evaluations"],
+        "M_min_Pa": float(np.nanmin(M)),
+        "M_max_Pa": float(np.nanmax(M)),
+        "k_star_min_N_per_m": float(np.nanmin(k)),
+        "k_star_max_N_per_m": float(np.nanmax(k)),
+        "out": str(out),
+    }
+    if fmt != "plain":
+        emit_record(record, fmt)
+        return
+    click.echo(
+        f"{record['pixels']} pixels, M {info['method']} ({info['exact_evaluations']} exact "
+        f"evaluations, error {info['stated_error']}): M from {record['M_min_Pa'] / 1e9:.4g} to "
+        f"{record['M_max_Pa'] / 1e9:.4g} GPa, k* from {record['k_star_min_N_per_m']:.4g} to "
+        f"{record['k_star_max_N_per_m']:.4g} N/m; wrote {out}"
+    )
+
+
+def _prediction_figure(path, ds, material, lattice) -> None:
+    from ..fileio import save_figure
+    from ..polycrystal.grains import folded_normals
+    from ..polycrystal.maps import map_from_dataset
+    from ..polycrystal.moduli import indentation_moduli
+    from ..polycrystal.normal_table import surface_matrices_from_normals
+    from ..report.map_figures import modulus_map_figure
+
+    omap = map_from_dataset(ds)
+    fig = modulus_map_figure(
+        ds["M_Pa"].values,
+        folded_normals(omap, lattice),
+        lattice,
+        lambda n: indentation_moduli(material, surface_matrices_from_normals(n)),
+        pixel_size=omap.step_x,
+        material_name=material.name or "",
+    )
+    save_figure(path, fig)
+
+
+@maps.command("fit")
+@click.argument("map_path", metavar="MAP", type=click.Path(exists=True))
+@click.option(
+    "--out",
+    type=click.Path(dir_okay=False),
+    required=True,
+    help="Output JSON: the constants, their errors, the identifiability, warnings.",
+)
+@click.option(
+    "--values",
+    "values_path",
+    type=click.Path(exists=True, dir_okay=False),
+    help="The measured map: .npy, or .csv with ROWS lines of COLUMNS numbers (no "
+    "header; empty = not measured), on MAP's grid.",
+)
+@click.option(
+    "--variable",
+    default="k_star_N_per_m",
+    show_default=True,
+    help="Variable of the MAP store holding the measured map (without --values).",
+)
+@click.option(
+    "--quantity",
+    type=click.Choice(["stiffness", "modulus"]),
+    default="stiffness",
+    show_default=True,
+    help="The measured map: k* (N/m) or M (Pa).",
+)
+@click.option(
+    "--lattice",
+    type=click.Choice(["cubic", "hexagonal"]),
+    default="cubic",
+    show_default=True,
+    help="Crystal symmetry of the constants fitted.",
+)
+@click.option(
+    "--tolerance-deg",
+    type=click.FloatRange(0, 30, min_open=True),
+    default=2.0,
+    show_default=True,
+    help="Grains of an unlabelled map: largest angle between "
+    "neighbouring pixels' normals within one grain, degrees.",
+)
+@click.option(
+    "--tip-radius",
+    type=MagnitudeType("sphere_radius"),
+    help="Tip radius R, m (with --force: fixes the calibration of a k* map).",
+)
+@click.option("--force", type=MagnitudeType("force"), help="Static normal force F, N.")
+@click.option(
+    "--tip-modulus",
+    type=MagnitudeType("modulus"),
+    show_default="rigid",
+    help="Plane-strain modulus of the tip E/(1 - ν²), Pa.",
+)
+@format_option()
+def maps_fit(
+    map_path,
+    out,
+    values_path,
+    variable,
+    quantity,
+    lattice,
+    tolerance_deg,
+    tip_radius,
+    force,
+    tip_modulus,
+    fmt,
+):
+    """Single-crystal constants (ratios to C11, and C11 when the calibration is known) from a
+    measured contact-stiffness or modulus map and the orientations, with uncertainties and the
+    identifiability (the weak combination of the ratios and its error).
+
+    Example: contactres maps fit src/contactres/data/example_cu_map.ang --values
+    src/contactres/data/example_cu_kstar.csv --out cu_fit.json
+    """
+    from ..apps.maps import TipLoad, fit_measured_map, fit_record, open_map, read_value_grid
+    from ..fileio import check_output_file, write_text
+
+    check_output_file(out, inputs=[map_path] + ([values_path] if values_path else []))
+    if (tip_radius is None) != (force is None):
+        raise click.UsageError("give --tip-radius and --force together (or neither)")
+    step("maps fit", f"reading {map_path}")
+    omap, ds = open_map(map_path)
+    if values_path is not None:
+        values = read_value_grid(values_path)
+        if values.shape != omap.shape:
+            raise ValueError(
+                f"--values {values_path}: {values.shape[0]} rows x {values.shape[1]} columns, "
+                f"but MAP has {omap.shape[0]} x {omap.shape[1]} pixels (same grid needed)"
+            )
+    elif ds is not None and variable in ds:
+        values = ds[variable].values
+    else:
+        raise ValueError(
+            f"{map_path}: no variable {variable!r}; give the measured map with --values FILE"
+        )
+    tipload = None if tip_radius is None else TipLoad(tip_radius, force)
+    result, _, used = fit_measured_map(
+        omap,
+        values,
+        quantity=quantity,
+        lattice=lattice,
+        tipload=tipload,
+        tip_modulus=tip_modulus,
+        tolerance_deg=tolerance_deg,
+    )
+    record = fit_record(
+        result,
+        source=str(map_path),
+        pixels=used,
+        segmented=omap.labels is None,
+        tolerance_deg=tolerance_deg,
+    )
+    write_text(out, record["json"])
+    if fmt != "plain":
+        emit_record(record["flat"], fmt)
+        return
+    click.echo(result.summary())
+    click.echo(f"{used} pixels in {result.n_grains} grains; wrote {out}")

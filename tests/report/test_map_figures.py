@@ -1,0 +1,136 @@
+"""The modulus-map figure (contactres.report.map_figures): panels, labels, colour ranges, layout.
+
+The colour range of the legend is checked against M evaluated independently (exact
+indentation_moduli at the triangle's grid); the layout by the text boxes in display space.
+"""
+
+from __future__ import annotations
+
+import io
+import itertools
+import warnings
+
+import numpy as np
+import pytest
+from matplotlib.image import AxesImage
+from matplotlib.text import Text
+
+from contactres import Material
+from contactres.polycrystal.ipf import ipf_triangle
+from contactres.polycrystal.moduli import indentation_moduli
+from contactres.polycrystal.normal_table import surface_matrices_from_normals
+from contactres.polycrystal.synthetic import synthetic_polycrystal
+from contactres.report.map_figures import modulus_map_figure
+
+CU = Material.crystal("Cu")
+TI = Material.hexagonal(162.4e9, 92.0e9, 69.0e9, 180.7e9, 46.7e9, density=4506.0)
+GRID = 31
+
+
+def exact(material):
+    return lambda n: indentation_moduli(material, surface_matrices_from_normals(n))
+
+
+def draw(material, lattice, **kw):
+    m = synthetic_polycrystal((30, 45), 6, seed=2)
+    R = m.surface_matrices()
+    M = indentation_moduli(material, R.reshape(-1, 3, 3)).reshape(m.shape)
+    fig = modulus_map_figure(M, R[..., 2, :], lattice, exact(material), grid_points=GRID, **kw)
+    return fig, M
+
+
+def visible_texts(fig):
+    """(text, display box) of every drawn text: titles, axis labels, annotations, the
+    suptitle and the tick labels of ticks inside the view (matplotlib keeps, undrawn, labels
+    of ticks just outside it)."""
+    renderer = fig.canvas.get_renderer()
+    texts = list(fig.texts)  # the suptitle among them
+    for ax in fig.axes:
+        texts += [ax.title, *ax.texts]
+        for axis in (ax.xaxis, ax.yaxis):
+            texts.append(axis.label)
+            lo, hi = sorted(axis.get_view_interval())
+            eps = 1e-9 * max(1.0, abs(hi - lo))
+            for tick in axis.get_major_ticks():
+                if lo - eps <= tick.get_loc() <= hi + eps:
+                    texts += [tick.label1, tick.label2]
+    return [
+        (t.get_text(), t.get_window_extent(renderer))
+        for t in texts
+        if isinstance(t, Text) and t.get_visible() and t.get_text().strip()
+    ]
+
+
+@pytest.mark.parametrize(("material", "lattice"), [(CU, "cubic"), (TI, "hexagonal")])
+def test_panels_labels_and_colour_ranges(material, lattice):
+    fig, M = draw(material, lattice, pixel_size=2e-6, material_name="Cu")
+    ax_m, ax_ipf, ax_tri, ax_key, cb_m, cb_tri = fig.axes
+    assert ax_m.get_title().startswith("(a)") and ax_ipf.get_title().startswith("(b)")
+    assert ax_tri.get_title().startswith("(c)") and "key" in ax_key.get_title()
+    for ax in (ax_m, ax_ipf):
+        assert ax.get_xlabel() == "x (µm)" and ax.get_ylabel() == "y (µm)"
+        # 45 pixels of 2 µm along x
+        assert np.allclose(sorted(ax.get_images()[0].get_extent()[:2]), [0, 90], atol=1e-9)
+    assert cb_m.get_ylabel() == "M (GPa)" and cb_tri.get_ylabel() == "M (GPa)"
+    # The legend's range is min/max of M over the triangle (exact M, independent evaluation).
+    tri = ipf_triangle(lattice, GRID)
+    m_tri = exact(material)(tri.inside_normals) / 1e9
+    (img,) = [a for a in ax_tri.get_children() if isinstance(a, AxesImage)]
+    assert np.isclose(img.norm.vmin, m_tri.min(), rtol=1e-9, atol=0)
+    assert np.isclose(img.norm.vmax, m_tri.max(), rtol=1e-9, atol=0)
+    # The map's M lies within the range of all orientations: the same scale in (a).
+    (map_img,) = ax_m.get_images()
+    assert map_img.norm.vmin <= np.nanmin(M) / 1e9 + 1e-9
+    assert np.isclose(map_img.norm.vmin, img.norm.vmin, rtol=1e-3, atol=0)
+    # Corner labels are shown.
+    fig.canvas.draw()
+    texts = {t for t, _ in visible_texts(fig)}
+    labels = ("[001]", "[101]", "[111]") if lattice == "cubic" else ("[0001]",)
+    assert set(labels) <= texts
+
+
+def test_no_overlapping_text_and_png_without_warnings():
+    fig, _ = draw(CU, "cubic", material_name="copper $1$ " + "x" * 80)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        buf = io.BytesIO()
+        fig.savefig(buf, format="png", dpi=80)
+    assert buf.getvalue()[:8] == b"\x89PNG\r\n\x1a\n"
+    fig.canvas.draw()
+    boxes = visible_texts(fig)
+    for (ta, a), (tb, b) in itertools.combinations(boxes, 2):
+        assert not a.overlaps(b), f"text {ta!r} overlaps {tb!r}"
+    fbox = fig.bbox
+    for t, box in boxes:
+        assert fbox.x0 - 1 <= box.x0 and box.x1 <= fbox.x1 + 1, f"{t!r} cut at the sides"
+        assert fbox.y0 - 1 <= box.y0 and box.y1 <= fbox.y1 + 1, f"{t!r} cut at the top/bottom"
+
+
+def test_pixels_without_data_and_pixel_axes():
+    m = synthetic_polycrystal((20, 20), 4, seed=1)
+    R = m.surface_matrices()
+    M = indentation_moduli(CU, R.reshape(-1, 3, 3)).reshape(m.shape)
+    n = R[..., 2, :].copy()
+    M[0, 0], n[1, 1] = np.nan, np.nan
+    fig = modulus_map_figure(M, n, "cubic", exact(CU), grid_points=GRID)
+    ax_m, ax_ipf = fig.axes[:2]
+    assert ax_m.get_xlabel() == "x (pixel)"
+    rgba = ax_ipf.get_images()[0].get_array()
+    assert rgba[1, 1, 3] == 0 and np.all(rgba[0, 0, :3] >= 0) and rgba[0, 0, 3] == 1
+
+
+def test_bad_input():
+    M = np.full((4, 5), 1e11)
+    n = np.tile([0.0, 0.0, 1.0], (4, 5, 1))
+    with pytest.raises(ValueError, match="normals must have shape"):
+        modulus_map_figure(M, n[:3], "cubic", exact(CU))
+    with pytest.raises(ValueError, match="moduli must be a map"):
+        modulus_map_figure(M.ravel(), n, "cubic", exact(CU))
+    with pytest.raises(ValueError, match="no finite"):
+        modulus_map_figure(M * np.nan, n, "cubic", exact(CU))
+    with pytest.raises(ValueError, match="lattice"):
+        modulus_map_figure(M, n, "monoclinic", exact(CU))
+    with pytest.raises(ValueError, match="pixel_size"):
+        modulus_map_figure(M, n, "cubic", exact(CU), pixel_size=-1.0)
+    with pytest.raises(ValueError, match="one finite M"):
+        modulus_map_figure(M, n, "cubic", lambda v: np.ones(3), grid_points=GRID)
