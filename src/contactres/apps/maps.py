@@ -98,15 +98,23 @@ def open_map(path: str | os.PathLike):
     return read_ebsd(p), None
 
 
+def _first_pixels(labels: np.ndarray) -> np.ndarray:
+    """Flat index of the first pixel of each grain 0 .. G-1 (-1 for a grain without pixels);
+    unlabelled pixels (-1) belong to no grain."""
+    lab = labels.ravel()
+    first = np.full(int(lab.max(initial=-1)) + 1, -1)
+    valid = np.flatnonzero(lab >= 0)
+    first[lab[valid][::-1]] = valid[::-1]  # reversed: the earliest pixel is written last
+    return first
+
+
 def _uniform_grains(omap: OrientationMap, normals: np.ndarray) -> bool:
     """True when every labelled grain has one orientation (a synthetic or cleaned map)."""
     lab = omap.labels.ravel()
     keep = lab >= 0
-    n = normals.reshape(-1, 3)[keep]
-    first = np.full(int(lab.max(initial=-1)) + 1, -1)
-    order = np.flatnonzero(keep)
-    first[lab[order][::-1]] = np.arange(order.size)[::-1]  # first pixel of each grain
-    return bool(np.all(np.linalg.norm(n - n[first[lab[keep]]], axis=1) <= _UNIFORM_RAD))
+    n = normals.reshape(-1, 3)
+    ref = n[_first_pixels(lab)[lab[keep]]]
+    return bool(np.all(np.linalg.norm(n[keep] - ref, axis=1) <= _UNIFORM_RAD))
 
 
 def predict_map(
@@ -171,10 +179,8 @@ def predict_map(
     info = {"method": method}
     if method == "grains":
         lab = omap.labels
-        G = int(lab.max(initial=-1)) + 1
-        idx = np.full(G, -1)
-        valid = np.flatnonzero(lab.ravel() >= 0)  # unlabelled pixels (-1) belong to no grain
-        idx[lab.ravel()[valid][::-1]] = valid[::-1]  # the first pixel of each grain
+        idx = _first_pixels(lab)
+        G = idx.size
         present = idx >= 0
         e = omap.euler.reshape(-1, 3)[idx[present]]
         R = surface_matrices_from_euler(e[:, 0], e[:, 1], e[:, 2], degrees=False)
