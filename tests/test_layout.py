@@ -16,8 +16,9 @@ a dependency of the design even if it never runs). The tests fail on
     ``contactres.x._y``); or a private module (``pkg._m``) imported or reached from outside its
     package ``pkg``. Private names of other distributions are not our concern;
 
-and, separately, on a module over :data:`MAX_LINES` lines, and on module-level caches (a fit or
-a forward model is a pure function of its arguments):
+and, separately, on a module over :data:`MAX_LINES` lines of code (docstrings, comments and
+blank lines not counted: documentation is never shortened to meet the rule), and on
+module-level caches (a fit or a forward model is a pure function of its arguments):
 
 (e) any use of ``functools.lru_cache`` / ``functools.cache``;
 (f) a hand-written cache: a module-level name bound to a mutable container (a dict, list or set
@@ -59,7 +60,9 @@ from __future__ import annotations
 
 import ast
 import dataclasses
+import io
 import itertools
+import tokenize
 from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
@@ -73,7 +76,9 @@ PACKAGE = "contactres"
 # (contactres.dynamic.exact -> "dynamic"). The root package (__init__: re-exports only) and
 # __main__ sit above every layer.
 LAYERS: tuple[frozenset[str], ...] = (
-    frozenset({"validation", "fileio", "fitting", "crystals", "units", "numerics", "_version"}),
+    frozenset(
+        {"errors", "validation", "fileio", "fitting", "crystals", "units", "numerics", "_version"}
+    ),
     frozenset({"materials"}),
     frozenset({"halfspace"}),
     frozenset({"normal"}),
@@ -122,7 +127,8 @@ REGISTRIES: dict[tuple[str, str], str] = {
 
 CLI = "cli"
 ENTRY_POINTS = frozenset({"__main__"})  # may import the CLI: `python -m contactres`
-MAX_LINES = 500
+# Lines of code: past ~450 a module usually holds two concepts (split it).
+MAX_LINES = 450
 CACHE_DECORATORS = frozenset({"functools.lru_cache", "functools.cache"})
 # Calls that build a mutable container (builtins by name, the rest by dotted origin).
 MUTABLE_FACTORIES = frozenset(
@@ -235,7 +241,7 @@ def scan(src: Path, package: str) -> dict[str, Module]:
             path=path,
             is_package=is_package,
             tree=ast.parse(text, filename=str(path)),
-            n_lines=len(text.splitlines()),
+            n_lines=code_lines(text),
         )
     return modules
 
@@ -622,9 +628,39 @@ def private_attributes(modules: Mapping[str, Module], package: str, root: Path) 
     return lines
 
 
+def code_lines(text: str) -> int:
+    """Lines that hold code: not blank, not only a comment, not part of a docstring.
+
+    A docstring is any statement that is a bare string (module, class and function docstrings,
+    and attribute docstrings below an assignment). Tokens are read with :mod:`tokenize`, so a
+    ``#`` inside a string is not taken for a comment.
+    """
+    skip = {
+        tokenize.COMMENT,
+        tokenize.NL,
+        tokenize.NEWLINE,
+        tokenize.INDENT,
+        tokenize.DEDENT,
+        tokenize.ENCODING,
+        tokenize.ENDMARKER,
+    }
+    lines: set[int] = set()
+    for tok in tokenize.generate_tokens(io.StringIO(text).readline):
+        if tok.type not in skip:
+            lines.update(range(tok.start[0], tok.end[0] + 1))
+    for node in ast.walk(ast.parse(text)):
+        if (
+            isinstance(node, ast.Expr)
+            and isinstance(node.value, ast.Constant)
+            and isinstance(node.value.value, str)
+        ):
+            lines.difference_update(range(node.lineno, (node.end_lineno or node.lineno) + 1))
+    return len(lines)
+
+
 def long_modules(modules: Mapping[str, Module], limit: int, root: Path) -> list[str]:
     return [
-        f"{m.path.relative_to(root)}: {m.n_lines} lines (limit {limit})"
+        f"{m.path.relative_to(root)}: {m.n_lines} lines of code (limit {limit})"
         for m in sorted(modules.values(), key=lambda m: -m.n_lines)
         if m.n_lines > limit
     ]
@@ -931,7 +967,7 @@ def test_no_private_names_cross_module_borders(layout):
 
 
 def test_no_module_over_the_line_limit(layout):
-    fail_with(f"modules over {MAX_LINES} lines", layout.long)
+    fail_with(f"modules over {MAX_LINES} lines of code", layout.long)
 
 
 def test_no_module_level_caches(layout):
@@ -1127,14 +1163,16 @@ def test_machinery_reports_unknown_units_and_unresolved_imports(tmp_path):
 def test_machinery_reports_long_modules_and_caches(tmp_path):
     layout = fake_layout(
         tmp_path,
-        util_py="x = 1\n" * 21,
+        # 21 lines of code among a docstring, a comment and blank lines (not counted); the
+        # "#" inside a string is code
+        util_py='"""A docstring\nover lines.\n"""\n\n# a comment\nx = "# text"\n' + "x = 1\n" * 20,
         side_py=(
             "import functools as ft\nfrom functools import lru_cache as memo, cache\n\n\n"
             "@memo(maxsize=None)\ndef a():\n    pass\n\n\n@ft.cache\ndef b():\n    pass\n\n\n"
             "c = cache(b)\n"
         ),
     )
-    assert layout.long == ["src/fake/util.py: 21 lines (limit 20)"]
+    assert layout.long == ["src/fake/util.py: 21 lines of code (limit 20)"]
     assert layout.caches == [
         "src/fake/side.py:10: functools.cache",
         "src/fake/side.py:15: functools.cache",

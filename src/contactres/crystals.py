@@ -18,6 +18,8 @@ from dataclasses import asdict, dataclass
 from importlib import resources
 from typing import TYPE_CHECKING
 
+from .errors import ContactresInputError
+
 if TYPE_CHECKING:
     import pandas as pd
 
@@ -94,11 +96,11 @@ def _other_record(row: dict[str, str]) -> CrystalRecord:
     """A row of materials.csv; a malformed row (wrong or missing cells) is a ValueError."""
     name, symmetry = row["name"], row["symmetry"]
     if symmetry not in SYMMETRIES:
-        raise ValueError(f"materials.csv row {name!r}: unknown symmetry {symmetry!r}")
+        raise ContactresInputError(f"materials.csv row {name!r}: unknown symmetry {symmetry!r}")
     needed = SYMMETRIES[symmetry]
     filled = {c for c in _CONSTANT_COLUMNS if row[c].strip()}
     if filled != set(needed):
-        raise ValueError(
+        raise ContactresInputError(
             f"materials.csv row {name!r} ({symmetry}) must fill exactly {', '.join(needed)}; "
             f"it fills {', '.join(sorted(filled)) or 'none'}"
         )
@@ -146,7 +148,9 @@ def crystal_record(name: str) -> CrystalRecord:
         for row in _rows(filename):
             if row["name"].lower() == key:
                 return build(row)
-    raise ValueError(f"unknown crystal {name!r}; known crystals: {', '.join(crystal_names())}")
+    raise ContactresInputError(
+        f"unknown crystal {name!r}; known crystals: {', '.join(crystal_names())}"
+    )
 
 
 def crystal_table() -> pd.DataFrame:

@@ -35,6 +35,8 @@ from collections.abc import Iterable, Iterator
 from contextlib import contextmanager
 from pathlib import Path
 
+from .errors import ContactresInputError
+
 __all__ = [
     "CSV_FLOAT_FORMAT",
     "MANIFEST",
@@ -56,7 +58,7 @@ CSV_FLOAT_FORMAT = "%.10g"  #: CSV floats: 10 digits, no noise (0.30000000000000
 MANIFEST = "manifest.json"
 
 
-class OutputError(ValueError):
+class OutputError(ContactresInputError):
     """An output folder that cannot (or must not) be written; the message says why."""
 
 
@@ -64,7 +66,7 @@ def ensure_dir(folder: str | os.PathLike) -> Path:
     """Create ``folder`` (and parents) if needed; error if it exists and is not a directory."""
     p = Path(folder)
     if p.exists() and not p.is_dir():
-        raise ValueError(f"output folder {str(p)!r} exists and is not a directory")
+        raise ContactresInputError(f"output folder {str(p)!r} exists and is not a directory")
     p.mkdir(parents=True, exist_ok=True)
     return p
 
@@ -416,7 +418,9 @@ class ResultSet:
         if self._staging is None:
             raise RuntimeError("ResultSet.path is only valid inside its with-block")
         if name not in self.names or Path(name).name != name or name == MANIFEST:
-            raise ValueError(f"{name!r} is not one of the files declared for this result set")
+            raise ContactresInputError(
+                f"{name!r} is not one of the files declared for this result set"
+            )
         return self._staging / name
 
     def final(self, name: str) -> Path:

@@ -21,6 +21,8 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.optimize import least_squares
 
+from .errors import ContactresInputError
+
 __all__ = ["FitResult", "Model", "ModelRegistry", "Parameter", "fit"]
 
 
@@ -74,7 +76,7 @@ class ModelRegistry(Mapping[str, Model]):
         self._models: dict[str, Model] = {}
         for m in models:
             if m.key in self._models:
-                raise ValueError(f"model {m.key!r} is registered twice")
+                raise ContactresInputError(f"model {m.key!r} is registered twice")
             self._models[m.key] = m
 
     def __getitem__(self, key: str) -> Model:
@@ -138,7 +140,9 @@ def fit(
     free = [p for p in model.parameters if p.key not in fixed]
     missing = [p.key for p in model.parameters if p.fixed and p.key not in fixed]
     if missing:
-        raise ValueError(f"model {model.key!r}: fixed parameter(s) {missing} need a value")
+        raise ContactresInputError(
+            f"model {model.key!r}: fixed parameter(s) {missing} need a value"
+        )
     x = np.asarray(x, dtype=float)
     y = np.asarray(y, dtype=float)
     w = np.ones_like(y) if sigma is None else 1.0 / np.asarray(sigma, dtype=float)

@@ -19,6 +19,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from .crystals import crystal_record
+from .errors import ContactresInputError
 from .validation import nonnegative, positive
 
 __all__ = [
@@ -62,10 +63,10 @@ def rotate_tensor(c: np.ndarray, R: np.ndarray) -> np.ndarray:
 def _unit(v, name: str) -> np.ndarray:
     v = np.asarray(v, dtype=float)
     if v.shape != (3,) or not np.all(np.isfinite(v)):
-        raise ValueError(f"{name} must be three finite numbers, got {v.tolist()!r}")
+        raise ContactresInputError(f"{name} must be three finite numbers, got {v.tolist()!r}")
     n = np.linalg.norm(v)
     if n == 0:
-        raise ValueError(f"{name} must not be the zero vector")
+        raise ContactresInputError(f"{name} must not be the zero vector")
     return v / n
 
 
@@ -97,7 +98,9 @@ def rotation_to_surface(normal, inplane=None) -> np.ndarray:
     x = x - (x @ z) * z
     nx = np.linalg.norm(x)
     if nx < 1e-9:
-        raise ValueError(f"inplane {list(inplane)!r} is parallel to normal {list(normal)!r}")
+        raise ContactresInputError(
+            f"inplane {list(inplane)!r} is parallel to normal {list(normal)!r}"
+        )
     x = x / nx
     y = np.cross(z, x)
     return np.vstack([x, y, z])
@@ -106,29 +109,29 @@ def rotation_to_surface(normal, inplane=None) -> np.ndarray:
 def _check_stiffness(C) -> np.ndarray:
     C = np.array(C, dtype=complex if np.iscomplexobj(C) else float)
     if C.shape != (6, 6):
-        raise ValueError(f"stiffness C must be a 6x6 Voigt matrix, got shape {C.shape}")
+        raise ContactresInputError(f"stiffness C must be a 6x6 Voigt matrix, got shape {C.shape}")
     if not np.all(np.isfinite(C)):
-        raise ValueError("stiffness C must be finite (found NaN or inf)")
+        raise ContactresInputError("stiffness C must be finite (found NaN or inf)")
     scale = np.max(np.abs(C))
     if scale == 0:
-        raise ValueError("stiffness C must not be all zero")
+        raise ContactresInputError("stiffness C must not be all zero")
     asym = np.max(np.abs(C - C.T))
     if asym > _SYM_RTOL * scale:
-        raise ValueError(
+        raise ContactresInputError(
             f"stiffness C must be symmetric: max |C - C^T| = {asym:.3g} Pa "
             f"(relative {asym / scale:.2g} > {_SYM_RTOL:g})"
         )
     C = 0.5 * (C + C.T)
     eig = np.linalg.eigvalsh(C.real)
     if eig[0] <= 1e-12 * eig[-1]:
-        raise ValueError(
+        raise ContactresInputError(
             "stiffness C must have a positive-definite real part: smallest eigenvalue "
             f"{eig[0]:.4g} Pa (largest {eig[-1]:.4g} Pa)"
         )
     if np.iscomplexobj(C):
         loss_min = np.linalg.eigvalsh(C.imag)[0]
         if loss_min < -1e-12 * eig[-1]:
-            raise ValueError(
+            raise ContactresInputError(
                 "stiffness C has an active loss part: Im C must be positive semi-definite (no "
                 f"energy gain), smallest eigenvalue {loss_min:.4g} Pa"
             )
@@ -139,7 +142,7 @@ def _check_stiffness(C) -> np.ndarray:
 def _poisson(nu, name: str = "nu") -> float:
     v = float(nu)
     if not (-1.0 < v < 0.5):
-        raise ValueError(f"{name} (Poisson's ratio) must lie in (-1, 0.5), got {nu!r}")
+        raise ContactresInputError(f"{name} (Poisson's ratio) must lie in (-1, 0.5), got {nu!r}")
     return v
 
 
@@ -216,9 +219,9 @@ class Material:
         for v, n in ((c11, "c11"), (c44, "c44")):
             positive(n, v, "Pa")
         if not np.isfinite(c12):
-            raise ValueError(f"c12 must be finite, got {c12!r}")
+            raise ContactresInputError(f"c12 must be finite, got {c12!r}")
         if not (c11 > abs(c12) and c11 + 2 * c12 > 0):
-            raise ValueError(
+            raise ContactresInputError(
                 f"cubic constants c11={c11:.4g}, c12={c12:.4g} Pa are unstable: need "
                 "c11 > |c12| and c11 + 2 c12 > 0"
             )
@@ -308,7 +311,7 @@ class Material:
         values = {"c11": c11, "c12": c12, "c13": c13, "c14": c14, "c33": c33, "c44": c44}
         for n, v in values.items():
             if not np.isfinite(v):
-                raise ValueError(f"trigonal constant {n} must be finite, got {v!r}")
+                raise ContactresInputError(f"trigonal constant {n} must be finite, got {v!r}")
         failed = [
             rule
             for ok, rule in (
@@ -321,7 +324,7 @@ class Material:
         ]
         if failed:
             got = ", ".join(f"{n}={v:.4g}" for n, v in values.items())
-            raise ValueError(
+            raise ContactresInputError(
                 f"trigonal constants {got} Pa are unstable (C not positive definite): need "
                 + " and ".join(failed)
             )
@@ -401,7 +404,7 @@ class Material:
             and np.max(np.abs(C[3:, 3:] - np.diag(np.diag(C)[3:]))) <= tol
         )
         if not ok:
-            raise ValueError(
+            raise ContactresInputError(
                 "material does not have cubic symmetry in its current frame (zener_ratio and "
                 "cubic_poisson are defined for a cubic crystal in its cube-axis frame)"
             )
@@ -424,7 +427,7 @@ class Material:
         """(E, ν) of an isotropic material (Pa, dimensionless); error if not isotropic."""
         c11, c12, c44 = self._cubic_constants()
         if abs(c11 - c12 - 2 * c44) > 1e-9 * c11:
-            raise ValueError(
+            raise ContactresInputError(
                 f"material is not isotropic (Zener ratio {2 * c44 / (c11 - c12):.6g} != 1)"
             )
         mu, lam = c44, c12
@@ -482,7 +485,7 @@ def at_cut_quartz(theta: float = AT_CUT_ANGLE) -> Material:
     """
     t = np.radians(float(theta))
     if not np.isfinite(t):
-        raise ValueError(f"theta (cut angle, degrees) must be finite, got {theta!r}")
+        raise ContactresInputError(f"theta (cut angle, degrees) must be finite, got {theta!r}")
     quartz = Material.crystal("quartz")
     return quartz.rotated(normal=(0.0, np.cos(t), np.sin(t)), inplane=(1.0, 0.0, 0.0))
 
@@ -491,9 +494,9 @@ def require_material(m, *, lossless: bool = False) -> Material:
     """``m`` itself after checking that it is a :class:`Material` (and, with ``lossless``, that
     its constants are real); a ValueError naming what was passed otherwise."""
     if not isinstance(m, Material):
-        raise ValueError(f"m must be a contactres.Material, got {type(m).__name__}")
+        raise ContactresInputError(f"m must be a contactres.Material, got {type(m).__name__}")
     if lossless and m.is_lossy:
-        raise ValueError(
+        raise ContactresInputError(
             "pass the undamped material (real constants) and set the damping with loss= "
             "(constants C (1 + i loss), paper 1); the material given is already lossy"
         )

@@ -8,6 +8,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from .errors import ContactresInputError
+
 __all__ = ["gauss_legendre", "gauss_legendre_unit"]
 
 
@@ -35,7 +37,9 @@ def gauss_legendre_unit(n: int) -> tuple[np.ndarray, np.ndarray]:
     """
     n_int = int(n)
     if n_int != n or n_int < 1:
-        raise ValueError(f"n (number of Gauss-Legendre nodes) must be an integer >= 1, got {n!r}")
+        raise ContactresInputError(
+            f"n (number of Gauss-Legendre nodes) must be an integer >= 1, got {n!r}"
+        )
     x, w = np.polynomial.legendre.leggauss(n_int)
     x01, w01 = 0.5 * (x + 1.0), 0.5 * w
     x01.setflags(write=False)
@@ -61,7 +65,9 @@ def gauss_legendre(a, b, n: int) -> tuple[np.ndarray, np.ndarray]:
     """
     n_int = int(n)
     if n_int != n or n_int < 1:
-        raise ValueError(f"n (number of Gauss-Legendre nodes) must be an integer >= 1, got {n!r}")
+        raise ContactresInputError(
+            f"n (number of Gauss-Legendre nodes) must be an integer >= 1, got {n!r}"
+        )
     x, w = np.polynomial.legendre.leggauss(n_int)
     a = np.asarray(a)
     b = np.asarray(b)

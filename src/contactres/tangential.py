@@ -28,6 +28,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.special import binom
 
+from .errors import ContactresInputError
 from .normal.isotropic import (
     effective_modulus,
     effective_shear_modulus,
@@ -67,7 +68,9 @@ def _branch_args(u, u0):
     if np.any(outside):
         i = np.flatnonzero(outside)[0]
         bad_u, bad_u0 = float(u.flat[i]), float(u0.flat[i])
-        raise ValueError(f"branches(u, u0) needs |u| <= u0, got u = {bad_u!r} m, u0 = {bad_u0!r} m")
+        raise ContactresInputError(
+            f"branches(u, u0) needs |u| <= u0, got u = {bad_u!r} m, u0 = {bad_u0!r} m"
+        )
     return u, u0
 
 
@@ -101,7 +104,7 @@ def mindlin_deresiewicz_energy(force_amplitude, kappa, mu, normal_force):
     Q = np.asarray(force_amplitude, dtype=float)
     q = Q / (mu * P)
     if not np.all(q >= 0) or np.any(q > 1 + 1e-12):
-        raise ValueError(f"force_amplitude must lie in [0, μP] = [0, {mu * P!r}] N")
+        raise ContactresInputError(f"force_amplitude must lie in [0, μP] = [0, {mu * P!r}] N")
     q = np.minimum(q, 1.0)
     r = 1.0 - q
     w = 1.0 - r ** (5.0 / 3.0) - (5.0 * q / 6.0) * (1.0 + r ** (2.0 / 3.0))
@@ -359,7 +362,9 @@ class PlateauLoop(MasingLoop):
 
     def __post_init__(self):
         if not isinstance(self.loop, MasingLoop):
-            raise ValueError("PlateauLoop needs a Masing loop (Cattaneo-Mindlin, Savkoor)")
+            raise ContactresInputError(
+                "PlateauLoop needs a Masing loop (Cattaneo-Mindlin, Savkoor)"
+            )
         _nonneg("critical_displacement", self.critical_displacement)
 
     @property
@@ -459,7 +464,7 @@ class DashpotLoop:
         _pos("omega", self.omega)
         for name in ("virgin", "branches", "area", "kinks"):
             if not hasattr(self.loop, name):
-                raise ValueError(f"DashpotLoop: the inner loop has no {name}()")
+                raise ContactresInputError(f"DashpotLoop: the inner loop has no {name}()")
 
     @property
     def kappa(self) -> float:

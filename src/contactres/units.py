@@ -19,6 +19,8 @@ import math
 from dataclasses import dataclass
 from types import MappingProxyType
 
+from .errors import ContactresInputError
+
 __all__ = [
     "ABSOLUTE_FREQUENCY_FRACTION",
     "JUNCTION_SIGMAS",
@@ -280,7 +282,7 @@ def _quantity(quantity: str) -> Plausible:
     try:
         return QUANTITIES[quantity]
     except KeyError:
-        raise ValueError(
+        raise ContactresInputError(
             f"unknown quantity {quantity!r}: use one of {', '.join(QUANTITIES)}"
         ) from None
 
@@ -362,18 +364,20 @@ def check_magnitude(
         try:
             v = float(value)
         except ValueError:
-            raise ValueError(f"{option} {value.strip()!r} is not a number: {rule}") from None
+            raise ContactresInputError(
+                f"{option} {value.strip()!r} is not a number: {rule}"
+            ) from None
     else:
         v = float(value)
         typed = format_number(v) if text is None else text
     if q.accepts(v, allow_zero=allow_zero, signed=signed):
         return v
     if not math.isfinite(v):
-        raise ValueError(f"{option} {typed} is not a finite number: {rule}")
+        raise ContactresInputError(f"{option} {typed} is not a finite number: {rule}")
     if v < 0 and not signed and q.lo >= 0:
-        raise ValueError(f"{option} {typed} is negative: {rule}")
+        raise ContactresInputError(f"{option} {typed} is negative: {rule}")
     message = f"{option} {typed} is outside the plausible range: {rule}"
     slip = unit_slip(quantity, v, signed=signed)
     if slip is not None:
         message += f"; it looks like {slip}: check the unit of {option}"
-    raise ValueError(message)
+    raise ContactresInputError(message)

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from .errors import ContactresInputError
+
 __all__ = ["amplitude", "nonnegative", "positive"]
 
 
@@ -15,7 +17,7 @@ def _check(name: str, value, unit: str | None, ok, rule: str):
             raise TypeError  # casting would drop the imaginary part silently
         v = np.asarray(v.real if np.iscomplexobj(v) else v, dtype=float)
     except (TypeError, ValueError):  # text, complex, ragged lists
-        raise ValueError(
+        raise ContactresInputError(
             f"{name} must be a real number or array, finite and {rule}{unit_text}, got {value!r}"
         ) from None
     good = np.isfinite(v) & ok(v)
@@ -26,7 +28,7 @@ def _check(name: str, value, unit: str | None, ok, rule: str):
             idx = np.unravel_index(np.flatnonzero(~good.ravel())[0], v.shape)
             where = idx[0] if len(idx) == 1 else tuple(int(i) for i in idx)
             got = f"{float(v[idx])!r} at index {where}"
-        raise ValueError(f"{name} must be finite and {rule}{unit_text}, got {got}")
+        raise ContactresInputError(f"{name} must be finite and {rule}{unit_text}, got {got}")
     return float(v) if v.ndim == 0 else v
 
 

@@ -60,6 +60,7 @@ from types import MappingProxyType
 import numpy as np
 
 from ..dynamic import dcsf, prepare
+from ..errors import ContactresInputError
 from ..materials import Material, require_material
 from ..normal.anisotropic import indentation_modulus
 from ..units import QUANTITIES
@@ -161,7 +162,7 @@ def surface_material(spec, name: str) -> Material:
         return spec[0].rotated(spec[1])
     if isinstance(spec, Material):
         return spec
-    raise ValueError(
+    raise ContactresInputError(
         f"{name} must be a number (Pa), a contactres.Material in its surface frame or a "
         f"(Material, (h, k, l)) pair, got {type(spec).__name__}"
     )
@@ -182,7 +183,9 @@ def longitudinal_velocity(m: Material) -> float:
     """c_l = √(Re C33/ρ) of a material in its surface frame, m/s (needs the density)."""
     m = require_material(m)
     if m.density is None:
-        raise ValueError("the sample material needs its density (kg/m^3) for the wave number")
+        raise ContactresInputError(
+            "the sample material needs its density (kg/m^3) for the wave number"
+        )
     return math.sqrt(float(np.real(m.C[2, 2])) / m.density)
 
 
@@ -205,11 +208,13 @@ def _exponent(reference_k_star, E_ref, reference2_k_star, E_ref2, exponent):
     if reference2_k_star is None:
         return 1.5 if exponent is None else positive("exponent", exponent, "dimensionless")
     if exponent is not None:
-        raise ValueError("give either exponent or a second reference (which fits it), not both")
+        raise ContactresInputError(
+            "give either exponent or a second reference (which fits it), not both"
+        )
     k1, k2 = np.asarray(reference_k_star), np.asarray(reference2_k_star)
     ratio = np.log(k2 / k1)
     if np.any(np.abs(ratio) < 1e-12):
-        raise ValueError(
+        raise ContactresInputError(
             f"the two references need different contact stiffness, got {reference_k_star!r} "
             f"and {reference2_k_star!r} N/m"
         )
@@ -294,7 +299,7 @@ def modulus_from_contact_stiffness(
     """
     k = np.asarray(positive("k_star (contact stiffness k*)", k_star, "N/m"), dtype=float)
     if tip_modulus is not None and tip is not None:
-        raise ValueError("give tip_modulus or tip, not both")
+        raise ContactresInputError("give tip_modulus or tip, not both")
     if tip_modulus is not None:
         M_tip = positive("tip_modulus (M_tip)", tip_modulus, "Pa")
     elif tip is not None:
@@ -307,13 +312,17 @@ def modulus_from_contact_stiffness(
 
     if reference_k_star is not None:
         if reference_modulus is None:
-            raise ValueError("reference_k_star needs reference_modulus (Pa or a Material)")
+            raise ContactresInputError(
+                "reference_k_star needs reference_modulus (Pa or a Material)"
+            )
         k_ref = np.asarray(positive("reference_k_star", reference_k_star, "N/m"))
         E_ref = 1.0 / (1.0 / M_tip + 1.0 / modulus_of(reference_modulus, "reference_modulus"))
         E_ref2 = None
         if reference2_k_star is not None:
             if reference2_modulus is None:
-                raise ValueError("reference2_k_star needs reference2_modulus (Pa or a Material)")
+                raise ContactresInputError(
+                    "reference2_k_star needs reference2_modulus (Pa or a Material)"
+                )
             positive("reference2_k_star", reference2_k_star, "N/m")
             M2 = modulus_of(reference2_modulus, "reference2_modulus")
             E_ref2 = 1.0 / (1.0 / M_tip + 1.0 / M2)
@@ -332,7 +341,7 @@ def modulus_from_contact_stiffness(
         def e_star(K):
             return np.sqrt(K**3 / (6.0 * R * P))
     else:
-        raise ValueError(
+        raise ContactresInputError(
             "give tip_radius and load (Hertz) or reference_k_star and reference_modulus "
             "(reference sample)"
         )
@@ -344,12 +353,16 @@ def modulus_from_contact_stiffness(
         arrays.append(f)
         k_l = 2.0 * np.pi * f / longitudinal_velocity(surface)
     elif dynamic:
-        raise ValueError("dynamic=True needs frequency (Hz) and sample (Material, with density)")
+        raise ContactresInputError(
+            "dynamic=True needs frequency (Hz) and sample (Material, with density)"
+        )
     try:
         shape = np.broadcast_shapes(*(np.shape(x) for x in arrays))
     except ValueError:
         shapes = ", ".join(str(np.shape(x)) for x in arrays)
-        raise ValueError(f"the array inputs do not broadcast together: {shapes}") from None
+        raise ContactresInputError(
+            f"the array inputs do not broadcast together: {shapes}"
+        ) from None
     k = np.broadcast_to(k, shape)
 
     K = k
@@ -357,7 +370,7 @@ def modulus_from_contact_stiffness(
     if dynamic:
         n_it = int(iterations)
         if n_it < 1:
-            raise ValueError(f"iterations must be >= 1, got {iterations!r}")
+            raise ContactresInputError(f"iterations must be >= 1, got {iterations!r}")
         table = prepare(surface, loss) if prepared is None else prepared
         for _ in range(n_it):
             ka = k_l * K / (2.0 * e_star(K))
@@ -391,7 +404,7 @@ def modulus_from_contact_stiffness(
         H = np.asarray(hardness, dtype=float)  # NaN: no hardness for that pixel, no check
         positive("hardness", H[~np.isnan(H)], "Pa")
         if P is None:
-            raise ValueError("hardness needs load (N) for the peak pressure")
+            raise ContactresInputError("hardness needs load (N) for the peak pressure")
         flags[p0 > H] |= int(ModulusFlag.NOT_ELASTIC)
     if method.startswith("reference"):
         how = "fitted" if reference2_k_star is not None else "given"

@@ -14,6 +14,7 @@ import numpy as np
 import pandas as pd
 from scipy import stats
 
+from ..errors import ContactresInputError
 from ..fitting import FitResult, fit
 from ..tangential import kappa_jkr_mindlin
 from .models import REGISTRY
@@ -193,7 +194,7 @@ def fit_group(
     nus = exp["poisson"].unique()
     for name, vals, unit in (("sphere_radius_m", radii, "m"), ("poisson", nus, "")):
         if len(vals) > 1:
-            raise ValueError(
+            raise ContactresInputError(
                 f"configuration {config!r}, medium {medium!r}: several values of {name} "
                 f"({sorted(vals.tolist())} {unit}); one configuration has one geometry"
             )

@@ -40,6 +40,7 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
+from ..errors import ContactresInputError
 from ..resonators.qcm import (
     DEFAULT_NODES,
     QCM,
@@ -328,6 +329,6 @@ def plateau_loop_shape(x, c) -> tuple[np.ndarray, np.ndarray]:
     """
     x, c = np.broadcast_arrays(np.asarray(x, dtype=float), np.asarray(c, dtype=float))
     if np.any(~(x >= 0)) or np.any(~(c >= 0)):
-        raise ValueError("plateau_loop_shape needs x >= 0 and c >= 0")
+        raise ContactresInputError("plateau_loop_shape needs x >= 0 and c >= 0")
     k1, k2 = masing_stiffness(_UnitPlateauLoops(c.ravel()), x.ravel(), DEFAULT_NODES)
     return k1.reshape(x.shape), k2.reshape(x.shape)

@@ -66,6 +66,7 @@ import numpy as np
 import pandas as pd
 
 from .._version import __version__
+from ..errors import ContactresInputError
 from ..measurements.schema import SWEEP_TABLE
 from ..measurements.sweeps import SweepTable
 from ..resonators.qcm import QCM
@@ -138,17 +139,19 @@ class AnalysisSettings:
 
     def __post_init__(self):
         if not self.delta_bic >= 0:
-            raise ValueError(f"delta_bic must be >= 0, got {self.delta_bic!r}")
+            raise ContactresInputError(f"delta_bic must be >= 0, got {self.delta_bic!r}")
         if not 0 < self.drift_p < 1:
-            raise ValueError(f"drift_p must lie in (0, 1), got {self.drift_p!r}")
+            raise ContactresInputError(f"drift_p must lie in (0, 1), got {self.drift_p!r}")
         if int(self.bootstrap) != self.bootstrap or self.bootstrap < 0:
-            raise ValueError(f"bootstrap must be a whole number >= 0, got {self.bootstrap!r}")
+            raise ContactresInputError(
+                f"bootstrap must be a whole number >= 0, got {self.bootstrap!r}"
+            )
         if not self.zq > 0:
-            raise ValueError(f"zq must be > 0, got {self.zq!r}")
+            raise ContactresInputError(f"zq must be > 0, got {self.zq!r}")
         if int(self.workers) != self.workers or self.workers < 1:
-            raise ValueError(f"workers must be a whole number >= 1, got {self.workers!r}")
+            raise ContactresInputError(f"workers must be a whole number >= 1, got {self.workers!r}")
         if (self.sphere_material is None) != (self.plate_material is None):
-            raise ValueError(
+            raise ContactresInputError(
                 "sphere_material and plate_material go together: give both (e.g. "
                 "'soda-lime-glass' and 'quartz-AT') or neither"
             )

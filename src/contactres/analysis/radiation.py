@@ -55,6 +55,7 @@ import pandas as pd
 from ..crystals import crystal_names
 from ..dynamic.tangential_galerkin import KSA_MAX
 from ..dynamic.tangential_stiffness import two_body_contact_stiffness
+from ..errors import ContactresInputError
 from ..halfspace import shear_reference
 from ..materials import Material, at_cut_quartz
 from ..measurements.schema import Column, TableSchema
@@ -129,7 +130,7 @@ RADIATION_RESULTS = TableSchema(
 def known_materials(role: str = "sphere") -> list[str]:
     """The names :func:`material_by_name` accepts for ``role`` ("sphere" or "plate")."""
     if role not in ("sphere", "plate"):
-        raise ValueError(f"role must be 'sphere' or 'plate', got {role!r}")
+        raise ContactresInputError(f"role must be 'sphere' or 'plate', got {role!r}")
     first = [AT_CUT_PLATE] if role == "plate" else []
     return [*first, *MATERIAL_ALIASES, *crystal_names()]
 
@@ -150,7 +151,7 @@ def material_by_name(name: str, role: str = "sphere") -> Material:
     for candidate in crystal_names():
         if candidate.lower() == key:
             return Material.crystal(candidate)
-    raise ValueError(f"unknown {role} material {name!r}; known: {', '.join(known)}")
+    raise ContactresInputError(f"unknown {role} material {name!r}; known: {', '.join(known)}")
 
 
 def _material(m: Material | str, role: str) -> Material:

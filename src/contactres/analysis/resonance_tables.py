@@ -15,6 +15,7 @@ import numpy as np
 import pandas as pd
 
 from ..dynamic import prepare
+from ..errors import ContactresInputError
 from ..measurements.messages import at_cell, where_rows
 from ..resonators.cantilever import Cantilever
 from ..resonators.cantilever_inversion import (
@@ -67,13 +68,13 @@ def _lumped_rows(table: pd.DataFrame, source: str) -> np.ndarray:
     rod = table["mass_kg"].notna().to_numpy()
     both = lumped & rod
     if both.any():
-        raise ValueError(
+        raise ContactresInputError(
             f"{at_cell(table, source, both, 'mass_kg')}: give K_eff_N_per_m (lumped model) or "
             "mass_kg (rod model) in a row, not both"
         )
     neither = ~(lumped | rod)
     if neither.any():
-        raise ValueError(
+        raise ContactresInputError(
             f"{at_cell(table, source, neither, 'K_eff_N_per_m')}: each row needs "
             "K_eff_N_per_m (lumped model) or mass_kg (rod model)"
         )
@@ -96,7 +97,7 @@ def invert_rum_table(table: pd.DataFrame, source: str = "table") -> pd.DataFrame
     fc = table["fc_Hz"].to_numpy(float)
     below = fc < f0
     if below.any():
-        raise ValueError(
+        raise ContactresInputError(
             f"{at_cell(table, source, below, 'fc_Hz')}: the contact resonance is below the free "
             "resonance f0_Hz of its row; a contact spring can only raise it (check the columns)"
         )
@@ -115,7 +116,7 @@ def invert_rum_table(table: pd.DataFrame, source: str = "table") -> pd.DataFrame
             if over.any():
                 mask = np.zeros(len(table), bool)
                 mask[rows[over]] = True
-                raise ValueError(
+                raise ContactresInputError(
                     f"{at_cell(table, source, mask, 'fc_Hz')}: at or above the clamped limit "
                     f"1.5 f0 = {osc.clamped_frequency:.6g} Hz of the rod model, which no finite "
                     "contact stiffness reaches (check f0_Hz and fc_Hz)"
@@ -214,7 +215,7 @@ def _check_free_q(table: pd.DataFrame, source: str) -> None:
         other = table[[f"Q{m}_free" for m in _MODES]].notna().any(axis=1).to_numpy()
         bad = f & ~q & other
         if bad.any():
-            raise ValueError(
+            raise ContactresInputError(
                 f"{where_rows(table, source, bad, f'Q{n}_free')}: is empty while another free "
                 "Q is given; give the Q of every free mode or of none"
             )
@@ -257,14 +258,14 @@ def invert_afm_table(
     fc = table[[f"fc{n}_Hz" for n in _MODES]].to_numpy(float)
     none = np.isnan(fc).all(axis=1)
     if none.any():
-        raise ValueError(
+        raise ContactresInputError(
             f"{where_rows(table, source, none, 'fc1_Hz')}: no contact resonance in this row "
             "(fc1_Hz, fc2_Hz and fc3_Hz are all empty)"
         )
     for n in _MODES:  # a contact spring only raises a mode: below the free lever is impossible
         below = fc[:, n - 1] < table[f"f{n}_free_Hz"].to_numpy(float)
         if below.any():
-            raise ValueError(
+            raise ContactresInputError(
                 f"{at_cell(table, source, below, f'fc{n}_Hz')}: below the free resonance "
                 f"f{n}_free_Hz of its row; a contact can only raise it (check the columns)"
             )
@@ -273,7 +274,7 @@ def invert_afm_table(
         for n in _MODES:
             lacking = ~np.isnan(fc[:, n - 1]) & table[f"f{n}_free_Hz"].isna().to_numpy()
             if lacking.any():
-                raise ValueError(
+                raise ContactresInputError(
                     f"{where_rows(table, source, lacking, f'f{n}_free_Hz')}: is empty while "
                     f"fc{n}_Hz is given; modewise normalisation needs the free frequency of "
                     "every mode used (or use --normalisation global)"

@@ -25,6 +25,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..errors import ContactresInputError
 from ..materials import Material
 from ..polycrystal.ebsd import read_ebsd
 from ..polycrystal.grains import folded_normals, grain_orientations, segment_grains
@@ -165,13 +166,13 @@ def predict_map(
         evaluated (method, stated error, exact evaluations).
     """
     if method not in METHODS:
-        raise ValueError(f"method must be one of {METHODS}, got {method!r}")
+        raise ContactresInputError(f"method must be one of {METHODS}, got {method!r}")
     normals = folded_normals(omap, lattice)  # M depends on the folded normal only
     uniform = omap.labels is not None and _uniform_grains(omap, normals)
     if method == "auto":
         method = "grains" if uniform else "interpolated"
     if method == "grains" and not uniform:
-        raise ValueError(
+        raise ContactresInputError(
             "method 'grains' needs grain labels with one orientation per grain; use "
             "'interpolated' for a map whose orientations vary within grains"
         )
@@ -301,7 +302,9 @@ def synthetic_map(
     ``k_star_N_per_m`` (measured) and the truth as attributes (``truth_*``).
     """
     if not (0 <= noise < 0.5 and math.isfinite(noise)):
-        raise ValueError(f"noise must be a relative standard deviation in [0, 0.5), got {noise!r}")
+        raise ContactresInputError(
+            f"noise must be a relative standard deviation in [0, 0.5), got {noise!r}"
+        )
     sp = synthetic_polycrystal(shape, n_grains, seed, pixel_size)
     R = surface_matrices_from_euler(*sp.grain_euler.T, degrees=False)
     Mg = indentation_moduli(material, R)
@@ -343,7 +346,7 @@ def fit_measured_map(
     """
     vals = np.asarray(values, dtype=float)
     if vals.shape != omap.shape:
-        raise ValueError(
+        raise ContactresInputError(
             f"the measured map has shape {vals.shape}, the orientation map {omap.shape}: they "
             "must be on the same grid"
         )
@@ -377,7 +380,7 @@ def read_value_grid(path: str | os.PathLike) -> np.ndarray:
     if p.suffix.lower() == ".npy":
         grid = np.load(p, allow_pickle=False)
         if grid.ndim != 2 or grid.dtype.kind not in "iuf":
-            raise ValueError(
+            raise ContactresInputError(
                 f"{p.name}: need a 2-D array of numbers, got {grid.dtype} {grid.shape}"
             )
         grid = grid.astype(float)
@@ -389,9 +392,9 @@ def read_value_grid(path: str | os.PathLike) -> np.ndarray:
                 p, header=None, sep=sep, dtype=str, keep_default_na=False, skip_blank_lines=True
             )
         except pd.errors.ParserError as exc:
-            raise ValueError(f"{p.name}: rows of unequal length ({exc})") from None
+            raise ContactresInputError(f"{p.name}: rows of unequal length ({exc})") from None
         except pd.errors.EmptyDataError:
-            raise ValueError(f"{p.name}: no data") from None
+            raise ContactresInputError(f"{p.name}: no data") from None
         text = cells.to_numpy()
         blank = np.char.strip(text.astype(str)) == ""
         grid = (
@@ -404,19 +407,19 @@ def read_value_grid(path: str | os.PathLike) -> np.ndarray:
         )
         if bad_text.any():
             i, j = np.argwhere(bad_text)[0]
-            raise ValueError(
+            raise ContactresInputError(
                 f"{p.name}: row {i + 1}, column {j + 1}: {text[i, j]!r} is not a number"
             )
     bad = ~(np.isnan(grid) | (np.isfinite(grid) & (grid > 0)))
     if bad.any():
         i, j = np.argwhere(bad)[0]
         shown = grid[i, j] if cells is None else cells.iat[i, j]
-        raise ValueError(
+        raise ContactresInputError(
             f"{p.name}: row {i + 1}, column {j + 1}: {shown} must be finite and > 0 "
             "(a stiffness in N/m or a modulus in Pa)"
         )
     if not np.isfinite(grid).any():
-        raise ValueError(f"{p.name}: no measured value")
+        raise ContactresInputError(f"{p.name}: no measured value")
     return grid
 
 

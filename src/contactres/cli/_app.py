@@ -7,9 +7,13 @@ import sys
 
 import click
 
-# Errors that mean "the user's input is wrong" or "the system refused" (a path through a file,
-# a full disk, no permission): one line, exit code 2, no traceback.
-USER_ERRORS = (ValueError, OSError)
+from ..errors import ContactresInputError
+
+# Errors that mean "the user's input is wrong" (raised by contactres' own checks, and only by
+# them) or "the system refused" (a path through a file, a full disk, no permission): one line,
+# exit code 2, no traceback. Any other exception, a ValueError of numpy or pandas included, is
+# a fault of contactres and is reported as an internal error.
+USER_ERRORS = (ContactresInputError, OSError)
 # Longest error line printed (the messages cut long values themselves; this is the backstop).
 MAX_MESSAGE_CHARS = 2000
 
@@ -68,8 +72,9 @@ class App(click.Group):
             if os.environ.get("CONTACTRES_DEBUG"):
                 raise
             click.echo(
-                f"{prog}: internal error: {type(exc).__name__}: {_one_line(exc)} "
-                "(set CONTACTRES_DEBUG=1 for a traceback)",
+                f"{prog}: internal error: {type(exc).__name__}: {_one_line(exc)} (a fault of "
+                "contactres, not of your input: please report it, with the command; set "
+                "CONTACTRES_DEBUG=1 for a traceback)",
                 err=True,
             )
             sys.exit(1)

@@ -8,6 +8,8 @@ from typing import TYPE_CHECKING
 
 import click
 
+from ..errors import ContactresInputError
+
 if TYPE_CHECKING:  # annotations only: numpy and pandas are imported when a command runs
     import numpy as np
     import pandas as pd
@@ -31,12 +33,12 @@ def parse_range(text: str) -> np.ndarray:
         else:
             values = np.array([float(v) for v in s.split(",") if v.strip()])
     except ValueError:
-        raise ValueError(
+        raise ContactresInputError(
             f"{text!r} is not a range: use START:STOP:NUM (NUM >= 1 points), "
             "a comma list or a number"
         ) from None
     if values.size == 0 or not np.all(np.isfinite(values)):
-        raise ValueError(f"{text!r} is not a range of finite numbers")
+        raise ContactresInputError(f"{text!r} is not a range of finite numbers")
     return values
 
 

@@ -7,6 +7,7 @@ from typing import TYPE_CHECKING
 
 import click
 
+from ..errors import ContactresInputError
 from ._common import MagnitudeType
 
 if TYPE_CHECKING:  # annotations only: the library is imported when a command runs
@@ -29,12 +30,12 @@ def parse_direction(text: str, name: str = "surface") -> tuple[float, float, flo
             raise ValueError
         v = tuple(float(p) for p in parts)
     except ValueError:
-        raise ValueError(
+        raise ContactresInputError(
             f"--{name} {text!r} is not a direction: give three indices such as 001, 1-10, "
             "'1 1 1' or 1,1,0"
         ) from None
     if not np.all(np.isfinite(v)) or not any(v):
-        raise ValueError(f"--{name} {text!r} must be three finite numbers, not all zero")
+        raise ContactresInputError(f"--{name} {text!r} must be three finite numbers, not all zero")
     return v
 
 
@@ -46,17 +47,17 @@ def material_from_options(crystal, c11, c12, c44, zener, poisson) -> Material:
     by_ratios = zener is not None or poisson is not None
     chosen = sum([crystal is not None, by_constants, by_ratios])
     if chosen != 1:
-        raise ValueError(
+        raise ContactresInputError(
             "give exactly one of: --crystal NAME, --c11/--c12/--c44 (Pa), or "
             "--zener/--poisson/--c44 (Pa)"
         )
     if crystal is not None:
         if c44 is not None:
-            raise ValueError("--c44 cannot be combined with --crystal")
+            raise ContactresInputError("--c44 cannot be combined with --crystal")
         try:
             return Material.crystal(crystal)
         except ValueError as exc:  # unknown name: the library's message lists the known ones
-            raise ValueError(f"--crystal: {exc}") from None
+            raise ContactresInputError(f"--crystal: {exc}") from None
     missing = [
         n
         for n, v in (
@@ -67,7 +68,7 @@ def material_from_options(crystal, c11, c12, c44, zener, poisson) -> Material:
         if v is None
     ]
     if missing:
-        raise ValueError(f"missing {', '.join(missing)}")
+        raise ContactresInputError(f"missing {', '.join(missing)}")
     # Each option passed its own range check; what is left is their combination (stability).
     try:
         if by_constants:
@@ -75,7 +76,7 @@ def material_from_options(crystal, c11, c12, c44, zener, poisson) -> Material:
         return Material.cubic_from_ratios(zener, poisson, c44=c44)
     except ValueError as exc:
         options = "--c11/--c12/--c44" if by_constants else "--zener/--poisson/--c44"
-        raise ValueError(f"{options}: {exc}") from None
+        raise ContactresInputError(f"{options}: {exc}") from None
 
 
 def crystal_face_options(
@@ -145,7 +146,7 @@ def crystal_face(crystal, c11, c12, c44, zener, poisson, surface, inplane) -> Ma
             or inplane is not None
             or any(v is not None for v in (c11, c12, c44, zener, poisson))
         ):
-            raise ValueError(
+            raise ContactresInputError(
                 "--crystal quartz-AT is already a cut (x = the X axis, z = the plate normal): "
                 "leave out --surface, --inplane and the elastic constants"
             )
@@ -156,4 +157,4 @@ def crystal_face(crystal, c11, c12, c44, zener, poisson, surface, inplane) -> Ma
     try:
         return m.rotated(normal, x)
     except ValueError as exc:  # both are valid directions: only their combination can fail
-        raise ValueError(f"--surface {surface} / --inplane {inplane}: {exc}") from None
+        raise ContactresInputError(f"--surface {surface} / --inplane {inplane}: {exc}") from None

@@ -7,6 +7,7 @@ import re
 
 import click
 
+from ..errors import ContactresInputError
 from ._common import MagnitudeType, progress_stream
 
 
@@ -51,13 +52,15 @@ def map_material(crystal, c11, c12, c13, c33, c44, density):
     given = [k for k, v in constants.items() if v is not None]
     if crystal is not None:
         if given:
-            raise ValueError(f"give --crystal or the constants, not both ({', '.join(given)})")
+            raise ContactresInputError(
+                f"give --crystal or the constants, not both ({', '.join(given)})"
+            )
         try:
             record = crystal_record(crystal)
         except ValueError as exc:
-            raise ValueError(f"--crystal: {exc}") from None
+            raise ContactresInputError(f"--crystal: {exc}") from None
         if record.symmetry not in ("cubic", "isotropic"):
-            raise ValueError(
+            raise ContactresInputError(
                 f"--crystal {crystal}: maps handle cubic and hexagonal crystals; {record.name} "
                 f"is {record.symmetry}"
             )
@@ -67,18 +70,18 @@ def map_material(crystal, c11, c12, c13, c33, c44, density):
     need = ["--c11", "--c12", "--c44"] + (["--c13", "--c33"] if hexagonal else [])
     missing = [k for k in need if constants[k] is None]
     if not given:
-        raise ValueError(
+        raise ContactresInputError(
             "give --crystal NAME, or --c11/--c12/--c44 (cubic, Pa), or "
             "--c11/--c12/--c13/--c33/--c44 (hexagonal, Pa)"
         )
     if missing:
-        raise ValueError(f"missing {', '.join(missing)}")
+        raise ContactresInputError(f"missing {', '.join(missing)}")
     try:
         if hexagonal:
             return Material.hexagonal(c11, c12, c13, c33, c44, density=density), "hexagonal"
         return Material.cubic(c11, c12, c44, density=density), "cubic"
     except ValueError as exc:
-        raise ValueError(f"{'/'.join(need)}: {exc}") from None
+        raise ContactresInputError(f"{'/'.join(need)}: {exc}") from None
 
 
 def tip_options(required: bool):

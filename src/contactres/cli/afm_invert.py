@@ -6,6 +6,7 @@ from pathlib import Path
 
 import click
 
+from ..errors import ContactresInputError
 from ._app import afm
 from ._common import MagnitudeType, computed_rounded, emit, format_option, step
 from ._crystal_face import crystal_face
@@ -94,7 +95,7 @@ def afm_invert(table, out, normalisation, mode_tolerance, crystal, surface, inpl
     if crystal is not None:  # the built-in solids all carry their density (for k_l = 2πf/c_l)
         sample = crystal_face(crystal, None, None, None, None, None, surface, inplane)
     elif inplane is not None or surface != "001":
-        raise ValueError("--surface/--inplane describe the sample: give --crystal too")
+        raise ContactresInputError("--surface/--inplane describe the sample: give --crystal too")
     step("afm invert", f"reading {Path(table).name}")
     checked = read_resonance_table(table, AFM_TABLE)
     step("afm invert", f"inverting {len(checked)} rows")

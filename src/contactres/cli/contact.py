@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import click
 
+from ..errors import ContactresInputError
 from ._app import main
 from ._common import RangeType, emit, format_option
 from ._crystal_face import crystal_face, crystal_face_options
@@ -77,16 +78,22 @@ def contact(radius, force, frequency, tangential, direction, fmt, **face):
     try:
         R, F, f = np.broadcast_arrays(radius, force, freq)
     except ValueError:
-        raise ValueError(
+        raise ContactresInputError(
             f"--radius ({len(radius)} values), --force ({len(force)} values) and --frequency "
             f"({len(freq)} values) must have the same number of values, or single values"
         ) from None
     if frequency is not None and m.density is None:
-        raise ValueError("--frequency needs the density of the solid: choose it by --crystal")
+        raise ContactresInputError(
+            "--frequency needs the density of the solid: choose it by --crystal"
+        )
     if not np.isfinite(direction):
-        raise ValueError(f"--direction must be a finite angle in degrees, got {direction!r}")
+        raise ContactresInputError(
+            f"--direction must be a finite angle in degrees, got {direction!r}"
+        )
     if direction != 0.0 and not tangential:
-        raise ValueError("--direction is the direction of the tangential motion: add --tangential")
+        raise ContactresInputError(
+            "--direction is the direction of the tangential motion: add --tangential"
+        )
     c = sphere_contact(m, R, F)
     table = pd.DataFrame(
         {

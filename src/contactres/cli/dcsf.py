@@ -7,6 +7,7 @@ import click
 # The option choices need these names while the command tree is built (and --help printed):
 # this import is the one library import of the CLI at module level.
 from ..dynamic import MODELS, WAVENUMBERS
+from ..errors import ContactresInputError
 from ._app import main
 from ._common import MagnitudeType, RangeType, emit, format_option, step
 from ._crystal_face import crystal_face, crystal_face_options
@@ -172,7 +173,7 @@ def _physical_points(m, radius, force, frequency, wavenumber):
     try:
         R, F, f = np.broadcast_arrays(radius, force, frequency)
     except ValueError:
-        raise ValueError(
+        raise ContactresInputError(
             f"--radius ({radius.size}), --force ({force.size}) and --frequency ({frequency.size}"
             ") must have the same number of values, or a single value"
         ) from None

@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import click
 
+from ..errors import ContactresInputError
 from ._app import maps
 from ._common import MagnitudeType, emit_record, format_option, step
 from ._map_options import (
@@ -201,7 +202,7 @@ def maps_predict(
         check_output_file(figure, inputs=[map_path])
     material, lattice = map_material(crystal, c11, c12, c13, c33, c44, density)
     if frequency is not None and material.density is None:
-        raise ValueError("--frequency needs the density: give --density (kg/m^3)")
+        raise ContactresInputError("--frequency needs the density: give --density (kg/m^3)")
     tipload = TipLoad(tip_radius, force, math.inf if tip_modulus is None else tip_modulus)
     step("maps predict", f"reading {map_path}")
     omap, _ = open_map(map_path)
@@ -351,14 +352,14 @@ def maps_fit(
     if values_path is not None:
         values = read_value_grid(values_path)
         if values.shape != omap.shape:
-            raise ValueError(
+            raise ContactresInputError(
                 f"--values {values_path}: {values.shape[0]} rows x {values.shape[1]} columns, "
                 f"but MAP has {omap.shape[0]} x {omap.shape[1]} pixels (same grid needed)"
             )
     elif ds is not None and variable in ds:
         values = ds[variable].values
     else:
-        raise ValueError(
+        raise ContactresInputError(
             f"{map_path}: no variable {variable!r}; give the measured map with --values FILE"
         )
     tipload = None if tip_radius is None else TipLoad(tip_radius, force)

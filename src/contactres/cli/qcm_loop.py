@@ -6,6 +6,7 @@ import warnings
 
 import click
 
+from ..errors import ContactresInputError
 from ._app import qcm
 from ._common import MagnitudeType, RangeType, emit, format_option, odd_overtone
 
@@ -16,12 +17,12 @@ def build_loop(model, kappa, mu, normal_force, tau, contact_radius, xi, plateau,
 
     def need(name, value):
         if value is None:
-            raise ValueError(f"--model {model} needs --{name}")
+            raise ContactresInputError(f"--model {model} needs --{name}")
         return value
 
     if model == "voigt":
         if plateau:
-            raise ValueError("--plateau applies to --model cm or savkoor only")
+            raise ContactresInputError("--plateau applies to --model cm or savkoor only")
         return VoigtLoop(kappa, xi, omega)
     if model == "cm":
         loop = CattaneoMindlinLoop(kappa, need("mu", mu), need("normal-force", normal_force))

@@ -34,6 +34,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import special
 
+from ..errors import ContactresInputError
 from .farfield import FarBasis, far_basis, low_rank
 from .table import KernelTable
 from .weights import spherical_bessel
@@ -205,7 +206,7 @@ def exact_n(
     if na and far is None:
         far = far_basis(table, ka)
     elif na and not np.array_equal(far.ka, ka):
-        raise ValueError("the far-field basis was built for other k a values")
+        raise ContactresInputError("the far-field basis was built for other k a values")
     if plan is None:
         plan = galerkin_plan(table, size, far.s if na else None)
     nb = len(plan.basis)

@@ -61,6 +61,7 @@ import math
 
 import numpy as np
 
+from ..errors import ContactresInputError
 from ..halfspace import shear_reference
 from ..materials import Material, require_material
 from ..validation import nonnegative
@@ -105,7 +106,9 @@ def _check_model(model: str) -> str:
     key = str(model).upper()
     key = "exact" if key == "EXACT" else key
     if key not in ALL_MODELS:
-        raise ValueError(f"model must be one of {', '.join(MODELS)}, exact; got {model!r}")
+        raise ContactresInputError(
+            f"model must be one of {', '.join(MODELS)}, exact; got {model!r}"
+        )
     return key
 
 
@@ -117,7 +120,9 @@ def shear_ka(m: Material, ka, wavenumber: str) -> np.ndarray:
         return ka * shear_wavenumber_ratio(m)
     if wavenumber == "shear":
         return ka
-    raise ValueError(f"wavenumber must be one of {', '.join(WAVENUMBERS)}, got {wavenumber!r}")
+    raise ContactresInputError(
+        f"wavenumber must be one of {', '.join(WAVENUMBERS)}, got {wavenumber!r}"
+    )
 
 
 def _table(m: Material, ksa: np.ndarray, loss: float, rtol: float, prepared):
@@ -128,12 +133,12 @@ def _table(m: Material, ksa: np.ndarray, loss: float, rtol: float, prepared):
     elif isinstance(prepared, KernelTable):
         table = prepared.check_for(m, loss, rtol)
     else:
-        raise ValueError(
+        raise ContactresInputError(
             f"prepared must be a kernel table from contactres.dynamic.prepare, "
             f"got {type(prepared).__name__}"
         )
     if ksa.size and float(np.max(ksa)) * table.t1 > _KA_MAX:
-        raise ValueError(
+        raise ContactresInputError(
             f"ka too large: k_s a = {float(np.max(ksa)):.4g} (k_s a x slowness {table.t1:.3g} "
             f"must stay below {_KA_MAX:g}; the paper's range is k_l a <= 2)"
         )
@@ -146,10 +151,10 @@ def _contact_points(rbar, phi, edge: bool):
     below_top = r <= 1 if edge else r < 1
     if not np.all(np.isfinite(r) & (r >= 0) & below_top):
         where = "[0, 1]" if edge else "[0, 1) (the edge is singular)"
-        raise ValueError(f"rbar (r/a) must lie in {where}, got {rbar!r}")
+        raise ContactresInputError(f"rbar (r/a) must lie in {where}, got {rbar!r}")
     p = np.asarray(phi, dtype=float)
     if not np.all(np.isfinite(p)):
-        raise ValueError(f"phi must be finite (rad), got {phi!r}")
+        raise ContactresInputError(f"phi must be finite (rad), got {phi!r}")
     return r, p
 
 
@@ -249,9 +254,9 @@ def dcsf_models(
     """
     names = [_check_model(x) for x in ([models] if isinstance(models, str) else models)]
     if not (isinstance(chunk, int | np.integer) and chunk >= 1):
-        raise ValueError(f"chunk must be a positive integer, got {chunk!r}")
+        raise ContactresInputError(f"chunk must be a positive integer, got {chunk!r}")
     if interpolate not in (None, True, False):
-        raise ValueError(f"interpolate must be None, True or False, got {interpolate!r}")
+        raise ContactresInputError(f"interpolate must be None, True or False, got {interpolate!r}")
     ksa = shear_ka(m, ka, wavenumber)
     table = _table(m, ksa, loss, rtol, prepared)
     flat = ksa.ravel()
@@ -399,7 +404,7 @@ def dynamic_contact_stiffness(
     from ..normal.anisotropic import sphere_contact
 
     if require_material(m).density is None:
-        raise ValueError("dynamic_contact_stiffness needs the material density (kg/m^3)")
+        raise ContactresInputError("dynamic_contact_stiffness needs the material density (kg/m^3)")
     f = np.asarray(nonnegative("frequency", frequency, "Hz"))
     contact = sphere_contact(m, radius, force)
     a = np.asarray(contact.contact_radius, dtype=float)
@@ -448,7 +453,7 @@ def contact_displacement(
     complex ndarray (broadcast shape), dimensionless.
     """
     if shape not in ("flat", "hertz"):
-        raise ValueError(f"shape must be 'flat' or 'hertz', got {shape!r}")
+        raise ContactresInputError(f"shape must be 'flat' or 'hertz', got {shape!r}")
     ksa = shear_ka(m, ka, wavenumber)
     r, p = _contact_points(rbar, phi, edge=True)
     ksa, r, p = np.broadcast_arrays(ksa, r, p)
@@ -488,7 +493,7 @@ def contact_pressure(
     """
     ksa = shear_ka(m, ka, wavenumber)
     if ksa.ndim != 0:
-        raise ValueError("contact_pressure takes one ka at a time")
+        raise ContactresInputError("contact_pressure takes one ka at a time")
     r, p = np.broadcast_arrays(*_contact_points(rbar, phi, edge=False))
     table = _table(m, ksa, loss, rtol, prepared)
     size = galerkin_size(float(ksa), rtol, pressure=True)

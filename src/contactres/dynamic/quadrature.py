@@ -26,6 +26,7 @@ import math
 
 import numpy as np
 
+from ..errors import ContactresInputError
 from .farfield import (
     FarBasis,
     FarGrid,
@@ -198,7 +199,7 @@ def functionals(
     if far is None:
         far = far_basis(table, ka)
     elif not np.array_equal(far.ka, ka):
-        raise ValueError("the far-field basis was built for other k a values")
+        raise ContactresInputError("the far-field basis was built for other k a values")
     if far_op is None:
         far_op = far_operator(table, FarGrid(far.s, np.empty(0), far.s_end))
     # Σ_f Σ_s T_f(...)[a, s] v[f, s, j] as one product over (f, s): one BLAS call rather than

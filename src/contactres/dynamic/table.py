@@ -29,6 +29,7 @@ from dataclasses import dataclass, fields, replace
 import numpy as np
 from scipy import special
 
+from ..errors import ContactresInputError
 from ..halfspace import dynamic_kernel, shear_reference, static_kernel
 from ..materials import Material, require_material, voigt_to_tensor
 
@@ -164,7 +165,7 @@ def resolution_for(rtol: float) -> Resolution:
     """
     r = float(rtol)
     if not (np.isfinite(r) and 1e-10 <= r < 1):
-        raise ValueError(f"rtol must lie in [1e-10, 1), got {rtol!r}")
+        raise ContactresInputError(f"rtol must lie in [1e-10, 1), got {rtol!r}")
     if r >= 1e-4:
         return Resolution(
             n_contour=32,
@@ -188,7 +189,7 @@ def check_contrast(m: Material) -> float:
     contrast = stiffness_contrast(m)
     if not contrast <= MAX_STIFFNESS_CONTRAST:
         nu = contrast_poisson(contrast)
-        raise ValueError(
+        raise ContactresInputError(
             f"the solid is too nearly incompressible for the dynamic kernels: stiffness "
             f"contrast (bulk/shear) {contrast:.4g}, as an isotropic solid with nu = {nu:.7g}; "
             f"the DCSF keeps its accuracy 1e-6 up to {MAX_STIFFNESS_CONTRAST:g} "
@@ -201,7 +202,7 @@ def check_loss(loss) -> float:
     """Q⁻¹ as a float after checking that it lies in [0, 1) (0: the lossless limit)."""
     q = float(loss)
     if not (np.isfinite(q) and 0 <= q < 1):
-        raise ValueError(f"loss (Q^-1) must lie in [0, 1), got {loss!r}")
+        raise ContactresInputError(f"loss (Q^-1) must lie in [0, 1), got {loss!r}")
     return q
 
 
@@ -288,7 +289,7 @@ class KernelTable:
         elif self.rtol != float(rtol):
             wrong.append(f"rtol={self.rtol!r}, not {rtol!r}")
         if wrong:
-            raise ValueError(
+            raise ContactresInputError(
                 "the prepared kernel table was made for "
                 + "; ".join(wrong)
                 + ": pass the same material, loss and rtol, or prepare(m, loss, rtol) again"

@@ -55,6 +55,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import special
 
+from ..errors import ContactresInputError
 from .farfield import far_basis, far_grid
 from .tangential_static import CAUCHY_POINTS, CAUCHY_RADIUS, load_derivatives, radial_integrals
 from .tangential_table import TangentialTable, prepare_tangential
@@ -299,14 +300,14 @@ def tangential_per_a(
     ksa = np.asarray(ksa, dtype=float).ravel()
     top = float(np.max(ksa, initial=0.0))
     if not top <= KSA_MAX:
-        raise ValueError(
+        raise ContactresInputError(
             f"k_s a = {top:.6g} is beyond the range where the dynamic tangential stiffness is "
             f"checked (k_s a <= {KSA_MAX:g}, k_s = ω√(ρ/C44)): check the frequency and the "
             "contact radius (units?)"
         )
     size = size or tangential_size(top, table.rtol, table.n_harmonics)
     if 2 * size.n_harmonics > table.max_order:
-        raise ValueError("the basis needs more kernel harmonics than the table holds")
+        raise ContactresInputError("the basis needs more kernel harmonics than the table holds")
     out = np.empty((ksa.size, 2, 2), dtype=complex)
     # Static eigenbasis (undamped, Hermitian): well-conditioned coordinates for every k a.
     b0 = _basis(table, size, table.ginf0)

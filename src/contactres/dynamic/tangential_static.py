@@ -63,6 +63,7 @@ import math
 import numpy as np
 from scipy import special
 
+from ..errors import ContactresInputError
 from ..halfspace import shear_reference, surface_compliance
 from ..halfspace.compliance import scaled_tensor
 from ..materials import Material, require_material
@@ -145,7 +146,7 @@ def inplane_kernel_harmonics(m: Material, max_order: int, rtol: float = 1e-13) -
             if change <= rtol:
                 return h
         if n >= _N_THETA_MAX:
-            raise ValueError(
+            raise ContactresInputError(
                 f"kernel harmonics did not converge to rtol={rtol:g} with {n} theta points"
             )
         prev, n = h, 2 * n
@@ -244,7 +245,9 @@ def _tensor(m: Material, terms, rtol: float, one_term: bool) -> tuple[np.ndarray
     if terms is not None:
         nh, nr = (int(v) for v in terms)
         if nh < 0 or nr < 1:
-            raise ValueError(f"terms must be (n_harmonics >= 0, n_radial >= 1), got {terms!r}")
+            raise ContactresInputError(
+                f"terms must be (n_harmonics >= 0, n_radial >= 1), got {terms!r}"
+            )
         harm = inplane_kernel_harmonics(m, 2 * nh)
         return 4 * np.pi**2 * _compliance_form(harm, nh, nr, N_LOG), (nh, nr)
     # Angular harmonics first (they converge slowest: e.g. cubic (111) couples n = 0 to
@@ -263,7 +266,7 @@ def _tensor(m: Material, terms, rtol: float, one_term: bool) -> tuple[np.ndarray
         while True:
             nh2, nr2 = (nh, 2 * nr) if grow_radial else (2 * nh, nr)
             if nh2 > _MAX_HARMONICS or nr2 > _MAX_RADIAL:
-                raise ValueError(
+                raise ContactresInputError(
                     f"tangential Galerkin did not converge to rtol={rtol:g} with {nh} "
                     f"harmonics and {nr} radial terms (last change {change:.3g} relative)"
                 )
@@ -340,7 +343,7 @@ def tangential_stiffness_static(
     a = np.asarray(positive("radius", radius, "m"), dtype=float)
     rtol = float(rtol)
     if not (1e-13 <= rtol <= 1e-2):
-        raise ValueError(f"rtol must lie in [1e-13, 1e-2], got {rtol!r}")
+        raise ContactresInputError(f"rtol must lie in [1e-13, 1e-2], got {rtol!r}")
     k_per_a, _ = _tensor(m, terms, rtol, one_term)
     k_per_a = 0.5 * (k_per_a + k_per_a.T)  # reciprocity; removes the round-off asymmetry
     if tensor:

@@ -32,6 +32,7 @@ import math
 
 import numpy as np
 
+from ..errors import ContactresInputError
 from ..halfspace import shear_reference
 from ..materials import Material, require_material
 from ..validation import nonnegative, positive
@@ -50,9 +51,13 @@ def _unit(direction) -> np.ndarray:
     try:
         psi = math.radians(float(direction))
     except (TypeError, ValueError):
-        raise ValueError(f"direction must be an angle in degrees, got {direction!r}") from None
+        raise ContactresInputError(
+            f"direction must be an angle in degrees, got {direction!r}"
+        ) from None
     if not math.isfinite(psi):
-        raise ValueError(f"direction must be a finite angle in degrees, got {direction!r}")
+        raise ContactresInputError(
+            f"direction must be a finite angle in degrees, got {direction!r}"
+        )
     return np.array([math.cos(psi), math.sin(psi)])
 
 
@@ -182,7 +187,9 @@ def tangential_contact_stiffness(
     f = np.asarray(nonnegative("frequency", frequency, "Hz"), dtype=float)
     a, f = np.broadcast_arrays(a, f)
     if np.any(f > 0) and m.density is None:
-        raise ValueError("a dynamic tangential stiffness needs the material density (kg/m^3)")
+        raise ContactresInputError(
+            "a dynamic tangential stiffness needs the material density (kg/m^3)"
+        )
     ks = 2 * np.pi * f * math.sqrt(m.density / shear_reference(m)) if np.any(f > 0) else 0 * f
     K = a[..., None, None] * _per_a(m, ks * a, loss, rtol, prepared)
     if tensor:

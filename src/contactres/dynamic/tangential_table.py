@@ -21,6 +21,7 @@ from dataclasses import dataclass, fields
 
 import numpy as np
 
+from ..errors import ContactresInputError
 from ..halfspace import shear_reference, surface_compliance
 from ..halfspace.compliance import scaled_tensor
 from ..materials import Material, require_material
@@ -124,7 +125,7 @@ class TangentialTable:
         if self.rtol != float(rtol):
             wrong.append(f"rtol={self.rtol!r}, not {rtol!r}")
         if wrong:
-            raise ValueError(
+            raise ContactresInputError(
                 "the prepared tangential table was made for "
                 + "; ".join(wrong)
                 + ": pass the same material, loss and rtol, or prepare_tangential again"

@@ -22,6 +22,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..errors import ContactresInputError
 from ..materials import Material, voigt_to_tensor
 from .doubling import decaying_solvent
 from .outgoing import outgoing_compliance
@@ -67,7 +68,7 @@ def shear_reference(m: Material) -> float:
     """
     c44 = float(np.real(np.asarray(m.C)[3, 3]))
     if not c44 > 0:
-        raise ValueError(f"surface-frame C44 must be positive, got {c44!r} Pa")
+        raise ContactresInputError(f"surface-frame C44 must be positive, got {c44!r} Pa")
     return c44
 
 
@@ -269,7 +270,7 @@ def _pencil_compliance(Q, R, W, th, sv, mirror, normal_only, lossless):
         resid[j] = res2[better]
     if not np.all(ok | propagating):
         bad = np.flatnonzero(~(ok | propagating))[0]
-        raise ValueError(
+        raise ContactresInputError(
             "no decaying/growing split of the partial waves at theta="
             f"{th[bad]:.6g} rad, 1/kappa^2={sv[bad]:.6g} (cyclic reduction did not converge)"
         )

@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..errors import ContactresInputError
 from ..validation import nonnegative
 
 __all__ = ["isotropic_dynamic_kernel"]
@@ -40,7 +41,9 @@ def isotropic_dynamic_kernel(kappa, c11_over_c44, loss: float = 0.0) -> np.ndarr
     kappa = np.asarray(kappa, dtype=complex)
     ratio = float(c11_over_c44)
     if not ratio > 4.0 / 3.0:
-        raise ValueError(f"c11_over_c44 must exceed 4/3 (positive bulk modulus), got {ratio!r}")
+        raise ContactresInputError(
+            f"c11_over_c44 must exceed 4/3 (positive bulk modulus), got {ratio!r}"
+        )
     q = nonnegative("loss (Q^-1)", loss)
     c44 = 1 + 1j * q
     c11 = ratio * c44

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..errors import ContactresInputError
 from ..materials import Material
 from .compliance import normal_compliance, scaled_tensor, shear_reference
 
@@ -90,12 +91,12 @@ def dynamic_kernel(m: Material, kappa, theta) -> np.ndarray:
     kappa = np.asarray(kappa)
     if np.iscomplexobj(kappa) and np.any(kappa.imag != 0):
         if m.is_lossy:
-            raise ValueError(
+            raise ContactresInputError(
                 "complex kappa is supported for lossless materials only; "
                 "for a lossy material use real kappa > 0"
             )
         if np.any(kappa.imag < 0):
-            raise ValueError("complex kappa must have Im(kappa) >= 0 (upper half plane)")
+            raise ContactresInputError("complex kappa must have Im(kappa) >= 0 (upper half plane)")
         bad = (kappa.imag == 0) & ~(kappa.real > 0)
     else:
         kappa = kappa.real if np.iscomplexobj(kappa) else kappa.astype(float)
@@ -103,7 +104,7 @@ def dynamic_kernel(m: Material, kappa, theta) -> np.ndarray:
     bad = bad | ~np.isfinite(kappa)
     if np.any(bad):
         first = kappa.ravel()[np.flatnonzero(bad.ravel())[0]]
-        raise ValueError(
+        raise ContactresInputError(
             f"kappa (wave number / shear wave number) must be finite and > 0, got {first}"
         )
     c = scaled_tensor(m)

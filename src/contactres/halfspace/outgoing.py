@@ -12,6 +12,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..errors import ContactresInputError
+
 __all__ = ["outgoing_compliance"]
 
 # Eigenvalues of the Stroh matrix closer than this (relative) to the imaginary axis are treated as
@@ -81,7 +83,7 @@ def outgoing_compliance(Q, R, W, s3, th, sv) -> np.ndarray:
     count = keep.sum(axis=-1)
     if np.any(count != 3):
         bad = np.flatnonzero(count != 3)[0]
-        raise ValueError(
+        raise ContactresInputError(
             f"cannot split the partial waves at theta={th[bad]:.6g} rad, "
             f"1/kappa^2={sv[bad]:.6g}: a lossless solid exactly at a bulk-wave cutoff. Add loss "
             "(Material.with_loss) or move kappa off the real axis."
@@ -92,7 +94,7 @@ def outgoing_compliance(Q, R, W, s3, th, sv) -> np.ndarray:
     try:
         H = A @ np.linalg.inv(B)
     except np.linalg.LinAlgError:
-        raise ValueError(
+        raise ContactresInputError(
             "a lossless solid exactly at its Rayleigh pole (infinite surface response); add loss "
             "or move kappa off the real axis"
         ) from None

@@ -28,6 +28,7 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
+from ..errors import ContactresInputError
 from ..materials import Material
 from ..normal.anisotropic import indentation_modulus
 from ..resonators.cantilever import FREE_ROOTS, Cantilever, contact_frequencies
@@ -131,13 +132,13 @@ def example_afm_map(
         k_star_N_per_m, kappa and the noise-free fc1_Hz, fc2_Hz.
     """
     if np.ndim(shape) != 1 or len(shape) != 2:
-        raise ValueError(f"shape must be (ny, nx) pixels, got {shape!r}")
+        raise ContactresInputError(f"shape must be (ny, nx) pixels, got {shape!r}")
     ny, nx = (int(v) for v in shape)
     positive("shape", np.array([ny, nx]), "pixels")
     positive("pixel_size", pixel_size, "m")
     nonnegative("noise", noise, "Hz")
     if int(n_grains) < len(NAMED_SURFACES):
-        raise ValueError(f"n_grains must be >= {len(NAMED_SURFACES)}, got {n_grains!r}")
+        raise ContactresInputError(f"n_grains must be >= {len(NAMED_SURFACES)}, got {n_grains!r}")
     rng = np.random.default_rng(seed)
     grain = _grains((ny, nx), int(n_grains), rng).ravel()
     normals = [*NAMED_SURFACES, *rng.standard_normal((int(n_grains) - 3, 3))]

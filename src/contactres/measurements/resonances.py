@@ -17,6 +17,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from ..errors import ContactresInputError
 from ..units import QUANTITIES, unit_slip
 from .messages import at_cell, shown_value, where_rows
 from .readers import pick_reader
@@ -118,7 +119,7 @@ def _numbers(raw: pd.DataFrame, col: str, source: str, decimal: str) -> np.ndarr
     values = pd.to_numeric(s, errors="coerce").to_numpy(dtype=float)
     bad = (np.isnan(values) & (s != "").to_numpy()) | np.isinf(values)
     if bad.any():
-        raise ValueError(f"{at_cell(raw, source, bad, col)} is not a finite number")
+        raise ContactresInputError(f"{at_cell(raw, source, bad, col)} is not a finite number")
     return values
 
 
@@ -132,15 +133,15 @@ def validate_resonance_table(raw: pd.DataFrame, schema: TableSchema, source: str
     lower = {n.lower(): n for n in names}
     for col in raw.columns:
         if col not in names and col.lower() in lower:
-            raise ValueError(
+            raise ContactresInputError(
                 f"{source}: column {shown_value(col)} is not known; did you mean "
                 f"{lower[col.lower()]!r}? (names are case-sensitive: the unit is in the name)"
             )
     missing = [c for c in schema.required if c not in raw.columns]
     if missing:
-        raise ValueError(f"{source}: required column(s) missing: {', '.join(missing)}")
+        raise ContactresInputError(f"{source}: required column(s) missing: {', '.join(missing)}")
     if len(raw) == 0:
-        raise ValueError(f"{source}: no data rows after the header")
+        raise ContactresInputError(f"{source}: no data rows after the header")
     decimal = raw.attrs.get("decimal", ".")
     out = raw.copy()
     # The columns as given (the output keeps these, not the schema's absent ones).
@@ -153,12 +154,14 @@ def validate_resonance_table(raw: pd.DataFrame, schema: TableSchema, source: str
         rule = RULES[c.name]
         given = ~np.isnan(v)
         if c.required and not given.all():
-            raise ValueError(f"{where_rows(raw, source, ~given, c.name)}: is empty (required)")
+            raise ContactresInputError(
+                f"{where_rows(raw, source, ~given, c.name)}: is empty (required)"
+            )
         bad = given & ~rule.accepts(v)
         if bad.any():
             slip = unit_slip(rule.quantity, v[bad][0]) if rule.quantity else None
             hint = f"; it looks like {slip}" if slip else ""
-            raise ValueError(f"{at_cell(raw, source, bad, c.name)}: {c.rule}{hint}")
+            raise ContactresInputError(f"{at_cell(raw, source, bad, c.name)}: {c.rule}{hint}")
         out[c.name] = v
     return out
 
@@ -173,6 +176,6 @@ def read_resonance_table(path, schema: TableSchema) -> pd.DataFrame:
     if not p.exists():
         raise FileNotFoundError(f"{p}: no such file")
     if p.is_dir():
-        raise ValueError(f"{p}: is a directory, expected a table file")
+        raise ContactresInputError(f"{p}: is a directory, expected a table file")
     raw = pick_reader(p).load(p)
     return validate_resonance_table(raw, schema, str(p))

@@ -21,6 +21,7 @@ from __future__ import annotations
 
 from dataclasses import dataclass
 
+from ..errors import ContactresInputError
 from ..units import MAX_AMPLITUDE_M, POISSON_OPEN_RANGE
 
 __all__ = [
@@ -64,7 +65,7 @@ class Column:
 
     def __post_init__(self):
         if self.level not in LEVELS:
-            raise ValueError(f"column {self.name!r}: level must be one of {LEVELS}")
+            raise ContactresInputError(f"column {self.name!r}: level must be one of {LEVELS}")
 
 
 @dataclass(frozen=True)

@@ -37,6 +37,7 @@ import math
 import numpy as np
 import pandas as pd
 
+from ..errors import ContactresInputError
 from .spectra_table import CONSTANT_COLUMNS, SpectraTable
 
 __all__ = [
@@ -140,9 +141,11 @@ def sweeps_from_spectra(
     if calibration_m_per_V is not None and not (
         math.isfinite(calibration_m_per_V) and calibration_m_per_V > 0
     ):
-        raise ValueError(f"the calibration u0/U must be > 0 m/V, got {calibration_m_per_V!r}")
+        raise ContactresInputError(
+            f"the calibration u0/U must be > 0 m/V, got {calibration_m_per_V!r}"
+        )
     if not (math.isfinite(d26) and d26 > 0):
-        raise ValueError(f"d26 must be > 0 m/V, got {d26!r}")
+        raise ContactresInputError(f"d26 must be > 0 m/V, got {d26!r}")
     spectra = table.spectra.merge(
         fits.drop(columns=["n_points"], errors="ignore"), on="spectrum", how="left"
     )
@@ -150,11 +153,13 @@ def sweeps_from_spectra(
         ids = [str(x).strip() for x in reference]
         unknown = sorted(set(ids) - set(spectra["spectrum"]))
         if unknown:
-            raise ValueError(f"{table.source}: no spectrum with id(s) {unknown} (--reference)")
+            raise ContactresInputError(
+                f"{table.source}: no spectrum with id(s) {unknown} (--reference)"
+            )
         spectra["reference"] = spectra["spectrum"].isin(ids)
     refs = spectra["reference"].to_numpy(bool)
     if not refs.any():
-        raise ValueError(
+        raise ContactresInputError(
             f"{table.source}: no reference spectrum (no contact): mark them in the column "
             "'reference' or name them (--reference ID,...)"
         )
@@ -172,7 +177,7 @@ def sweeps_from_spectra(
     measured = spectra[~refs & ok]
     if measured.empty:
         more = " ..." if len(left_out) > 3 else ""
-        raise ValueError(
+        raise ContactresInputError(
             f"{table.source}: no measured spectrum has a usable resonance fit "
             f"({len(left_out)} left out: {'; '.join(left_out[:3])}{more})"
         )
@@ -180,7 +185,7 @@ def sweeps_from_spectra(
         bad = ~np.isfinite(measured[col].to_numpy(float))
         if bad.any():
             row = measured[bad].iloc[0]
-            raise ValueError(
+            raise ContactresInputError(
                 f"{table.source}, line {row['line']}: spectrum {row['spectrum']} has no {what} "
                 f"(column {col!r}); every measured spectrum needs one"
             )
@@ -191,7 +196,7 @@ def sweeps_from_spectra(
     )
     if no_sweep.any():
         row = measured[no_sweep].iloc[0]
-        raise ValueError(
+        raise ContactresInputError(
             f"{table.source}, line {row['line']}: spectrum {row['spectrum']} is not a reference "
             "and has no sweep id (column 'sweep')"
         )
@@ -199,7 +204,7 @@ def sweeps_from_spectra(
         bad = ~np.isfinite(measured["drive_voltage_V"].to_numpy(float))
         if bad.any():
             row = measured[bad].iloc[0]
-            raise ValueError(
+            raise ContactresInputError(
                 f"{table.source}, line {row['line']}: spectrum {row['spectrum']} has no drive "
                 "voltage (column 'drive_voltage_V'); give it, or a calibration u0/U"
             )
@@ -214,7 +219,7 @@ def sweeps_from_spectra(
         first = measured[mine].iloc[0]
         use = _references(spectra, first)
         if not use.any():
-            raise ValueError(
+            raise ContactresInputError(
                 f"{table.source}, line {first['line']}: spectrum {first['spectrum']} (overtone "
                 f"{first['overtone']:g}, {', '.join(f'{c} {first[c]}' for c in _MATCH)}) has no "
                 "usable reference spectrum of the same overtone"
@@ -362,7 +367,9 @@ def read_spectra_sweeps(
         table, fits, reference=reference, d26=d26, calibration_m_per_V=calibration_m_per_V
     )
     if rows.empty:
-        raise ValueError(f"{table.source}: no measured spectrum has a usable resonance fit")
+        raise ContactresInputError(
+            f"{table.source}: no measured spectrum has a usable resonance fit"
+        )
     if not validate:
         return None, rows, fits, left_out
     given = {k: v for k, v in constants.items() if v is not None}

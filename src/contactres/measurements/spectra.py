@@ -55,6 +55,8 @@ import pandas as pd
 from scipy import sparse
 from scipy.optimize import least_squares
 
+from ..errors import ContactresInputError
+
 __all__ = ["COLUMNS", "FLAGS", "MODELS", "fit_resonances", "resonance_curve"]
 
 #: The fitted curves (see the module docstring).
@@ -106,7 +108,7 @@ def resonance_curve(
     Hz, G_max and offset in S, slope in S/Hz, φ in rad, f_c = f_r by default, ``model`` "bvd" or
     "lorentzian" (module docstring). With φ = 0 its real part is the curve fitted to G alone."""
     if model not in MODELS:
-        raise ValueError(f"model must be one of {', '.join(MODELS)}, got {model!r}")
+        raise ContactresInputError(f"model must be one of {', '.join(MODELS)}, got {model!r}")
     f = np.asarray(frequency_Hz, dtype=float)
     f_r, gamma = np.asarray(f_r, dtype=float), np.asarray(gamma, dtype=float)
     u = _u((f - f_r) / gamma, gamma / f, 1.0, model)
@@ -375,13 +377,15 @@ def _fit_group(f, y, wt, model: str, sigma_given: bool) -> dict:
 def _numeric(name: str, value, n: int) -> np.ndarray:
     """``value`` as a 1-D float array of length n (NaN for missing), else a one-line ValueError."""
     if np.ndim(value) != 1:
-        raise ValueError(f"{name} must be a 1-D array, got {np.ndim(value)} dimensions")
+        raise ContactresInputError(f"{name} must be a 1-D array, got {np.ndim(value)} dimensions")
     kind = pd.api.types.infer_dtype(value, skipna=True)
     if kind not in _NUMERIC:
-        raise ValueError(f"{name} must be real numbers, got {kind} values")
+        raise ContactresInputError(f"{name} must be real numbers, got {kind} values")
     arr = pd.Series(value).to_numpy(dtype=float, na_value=np.nan)
     if arr.size != n:
-        raise ValueError(f"{name} has {arr.size} values, spectrum has {n}: the lengths must agree")
+        raise ContactresInputError(
+            f"{name} has {arr.size} values, spectrum has {n}: the lengths must agree"
+        )
     return arr
 
 
@@ -427,21 +431,23 @@ def fit_resonances(
         ``model``, ``noise_S`` or ``batch_size``. Bad *spectra* are flagged, never raised.
     """
     if model not in MODELS:
-        raise ValueError(f"model must be one of {', '.join(MODELS)}, got {model!r}")
+        raise ContactresInputError(f"model must be one of {', '.join(MODELS)}, got {model!r}")
     if int(batch_size) < 1:
-        raise ValueError(f"batch_size must be >= 1, got {batch_size}")
+        raise ContactresInputError(f"batch_size must be >= 1, got {batch_size}")
     if np.ndim(spectrum) != 1:
-        raise ValueError(f"spectrum must be a 1-D array of ids, got {np.ndim(spectrum)} dimensions")
+        raise ContactresInputError(
+            f"spectrum must be a 1-D array of ids, got {np.ndim(spectrum)} dimensions"
+        )
     codes, uniques = pd.factorize(np.asarray(spectrum, dtype=object), sort=False)
     if np.any(codes < 0):
-        raise ValueError("spectrum must not contain missing ids (NaN or None)")
+        raise ContactresInputError("spectrum must not contain missing ids (NaN or None)")
     n = codes.size
     f, g = _numeric("frequency_Hz", frequency_Hz, n), _numeric("G_S", G_S, n)
     b = np.full(n, np.nan) if B_S is None else _numeric("B_S", B_S, n)
     sigma = 1.0 if noise_S is None else noise_S
     sigma = _numeric("noise_S", np.full(n, sigma) if np.ndim(sigma) == 0 else sigma, n)
     if not np.all(np.isfinite(sigma) & (sigma > 0)):
-        raise ValueError("noise_S must be finite and > 0 (S)")
+        raise ContactresInputError("noise_S must be finite and > 0 (S)")
     ids, n_spec = np.asarray(uniques, dtype=object), uniques.size
     order = np.argsort(codes, kind="stable")
     codes, f, g, b, sigma = codes[order], f[order], g[order], b[order], sigma[order]

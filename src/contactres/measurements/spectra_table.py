@@ -32,6 +32,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from ..errors import ContactresInputError
 from .messages import at_cell, column_names, shown_value, where_rows
 from .readers import delimited
 from .schema import Column, TableSchema
@@ -127,7 +128,7 @@ def _number(raw: pd.DataFrame, col: str, source: str, decimal: str = ".") -> np.
     values = pd.to_numeric(s, errors="coerce").to_numpy(dtype=float)
     bad = np.isnan(values) & (s != "").to_numpy() & ~s.str.lower().isin(["nan"]).to_numpy()
     if bad.any():
-        raise ValueError(f"{at_cell(raw, source, bad, col)} is not a number")
+        raise ContactresInputError(f"{at_cell(raw, source, bad, col)} is not a number")
     return values
 
 
@@ -135,7 +136,9 @@ def _flag(raw: pd.DataFrame, col: str, source: str) -> np.ndarray:
     s = raw[col].astype(str).str.strip().str.lower()
     bad = ~s.isin(_TRUE | _FALSE).to_numpy()
     if bad.any():
-        raise ValueError(f"{at_cell(raw, source, bad, col)} is not true/false (or 1/0, yes/no)")
+        raise ContactresInputError(
+            f"{at_cell(raw, source, bad, col)} is not true/false (or 1/0, yes/no)"
+        )
     return s.isin(_TRUE).to_numpy()
 
 
@@ -153,18 +156,20 @@ def validate_spectra(raw: pd.DataFrame, source: str = "<table>") -> SpectraTable
         raw["line"] = np.arange(2, len(raw) + 2)
     missing = [c for c in SPECTRA_TABLE.required if c not in raw.columns]
     if missing:
-        raise ValueError(
+        raise ContactresInputError(
             f"{source}: missing column(s) {missing}; the columns found are "
             f"{column_names(c for c in raw.columns if c != 'line')} (a spectra table needs "
             "spectrum, frequency_Hz, G_S)"
         )
     if len(raw) == 0:
-        raise ValueError(f"{source}: no data rows")
+        raise ContactresInputError(f"{source}: no data rows")
     decimal = raw.attrs.get("decimal", ".")
     sid = raw["spectrum"].astype(str).str.strip()
     empty = (sid == "").to_numpy()
     if empty.any():
-        raise ValueError(f"{at_cell(raw, source, empty, 'spectrum')} is empty; every row needs one")
+        raise ContactresInputError(
+            f"{at_cell(raw, source, empty, 'spectrum')} is empty; every row needs one"
+        )
     pts = pd.DataFrame({"spectrum": sid.to_numpy(), "line": raw["line"].to_numpy()})
     for col in ("frequency_Hz", "G_S", "B_S"):
         if col in raw.columns:
@@ -175,13 +180,15 @@ def validate_spectra(raw: pd.DataFrame, source: str = "<table>") -> SpectraTable
     # it out with one line: one bad spectrum does not cost the others.
     bad = ~np.isfinite(pts["frequency_Hz"].to_numpy())
     if bad.any():
-        raise ValueError(f"{at_cell(raw, source, bad, 'frequency_Hz')}: must be a finite number")
+        raise ContactresInputError(
+            f"{at_cell(raw, source, bad, 'frequency_Hz')}: must be a finite number"
+        )
     bad = ~(pts["frequency_Hz"].to_numpy() > 0)
     if bad.any():
-        raise ValueError(f"{at_cell(raw, source, bad, 'frequency_Hz')}: must be > 0 Hz")
+        raise ContactresInputError(f"{at_cell(raw, source, bad, 'frequency_Hz')}: must be > 0 Hz")
     dup = pts.duplicated(["spectrum", "frequency_Hz"]).to_numpy()
     if dup.any():
-        raise ValueError(
+        raise ContactresInputError(
             f"{where_rows(raw, source, dup, 'frequency_Hz')}: frequency "
             f"{shown_value(raw['frequency_Hz'].iloc[int(np.flatnonzero(dup)[0])])} appears "
             "twice in spectrum "
@@ -214,7 +221,7 @@ def _spectrum_labels(
         if (per > 1).any():
             sid = per.index[int(np.flatnonzero(per.to_numpy() > 1)[0])]
             mask = (table["spectrum"] == sid).to_numpy()
-            raise ValueError(
+            raise ContactresInputError(
                 f"{where_rows(raw, source, mask, col)}: spectrum {shown_value(sid)} has "
                 f"several values of {col!r}; it takes one value per spectrum"
             )
@@ -237,7 +244,7 @@ def _check_label_rules(first: pd.DataFrame, raw, table, source: str) -> None:
     def fail(mask_first: np.ndarray, col: str, rule: str) -> None:
         sid = first["spectrum"].to_numpy()[mask_first][0]
         mask = (table["spectrum"] == sid).to_numpy()
-        raise ValueError(f"{at_cell(raw, source, mask, col)}: {rule}")
+        raise ContactresInputError(f"{at_cell(raw, source, mask, col)}: {rule}")
 
     n = first["overtone"].to_numpy(float)
     bad = np.isfinite(n) & ((n < 1) | (n % 2 != 1))
@@ -268,7 +275,7 @@ def _touchstone(path: Path) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndar
         if not text:
             continue
         if text.startswith("["):
-            raise ValueError(
+            raise ContactresInputError(
                 f"{path}, line {number}: Touchstone 2 keyword {shown_value(text)}: save the "
                 "spectrum as a Touchstone 1 file (.s1p) or as CSV"
             )
@@ -289,12 +296,12 @@ def _touchstone(path: Path) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndar
         try:
             values = [float(x) for x in fields]
         except ValueError:
-            raise ValueError(
+            raise ContactresInputError(
                 f"{path}, line {number}: {shown_value(text)} is not three numbers "
                 "(frequency and the two parts of the one-port parameter)"
             ) from None
         if len(values) != 3:
-            raise ValueError(
+            raise ContactresInputError(
                 f"{path}, line {number}: {len(values)} numbers, a one-port Touchstone line has 3"
             )
         freq.append(values[0] * unit)
@@ -321,7 +328,7 @@ def _delimited_spectrum(path: Path, layout: str | None, z0: float):
     """(frequency Hz, G S, B S (NaN where absent), line numbers) of a delimited file."""
     raw = delimited.load(path)
     if "frequency_Hz" not in raw.columns:
-        raise ValueError(
+        raise ContactresInputError(
             f"{path}: no column 'frequency_Hz'; the columns are "
             f"{column_names(c for c in raw.columns if c != 'line')}"
         )
@@ -331,13 +338,15 @@ def _delimited_spectrum(path: Path, layout: str | None, z0: float):
             known = "; ".join(
                 f"{k}: {' + '.join(n)} ({w})" for k, (n, w) in SPECTRUM_LAYOUTS.items()
             )
-            raise ValueError(
+            raise ContactresInputError(
                 f"{path}: cannot tell what the columns hold (found layouts {found or 'none'}); "
                 f"name them as one of: {known}, or give the layout"
             )
         layout = found[0]
     if layout not in SPECTRUM_LAYOUTS:
-        raise ValueError(f"layout must be one of {list(SPECTRUM_LAYOUTS)}, got {layout!r}")
+        raise ContactresInputError(
+            f"layout must be one of {list(SPECTRUM_LAYOUTS)}, got {layout!r}"
+        )
     names = SPECTRUM_LAYOUTS[layout][0]
     source = str(path)
     decimal = raw.attrs.get("decimal", ".")
@@ -348,7 +357,9 @@ def _delimited_spectrum(path: Path, layout: str | None, z0: float):
     elif layout == "G/B":
         second = np.full(f.shape, np.nan)  # G alone: fitted alone
     else:
-        raise ValueError(f"{path}: layout {layout} needs both columns {names[0]} and {names[1]}")
+        raise ContactresInputError(
+            f"{path}: layout {layout} needs both columns {names[0]} and {names[1]}"
+        )
     if layout == "G/B":
         return f, first, second, raw["line"].to_numpy()
     if layout == "Y-RI":
@@ -364,19 +375,21 @@ def _delimited_spectrum(path: Path, layout: str | None, z0: float):
 def _read_folder(folder: Path, layout, z0: float) -> pd.DataFrame:
     index_path = folder / "index.csv"
     if not index_path.exists():
-        raise ValueError(
+        raise ContactresInputError(
             f"{folder}: a folder of spectra needs an index.csv naming each file (column 'file') "
             "with its labels (drive_voltage_V, overtone, reference, sweep, ...)"
         )
     index = delimited.load(index_path)
     if "file" not in index.columns:
-        raise ValueError(f"{index_path}: no column 'file' (the spectrum file of each row)")
+        raise ContactresInputError(
+            f"{index_path}: no column 'file' (the spectrum file of each row)"
+        )
     parts = []
     for _, row in index.iterrows():  # one row per file: the loop is over files, not points
         name = str(row["file"]).strip()
         path = folder / name
         if not name or not path.is_file():
-            raise ValueError(
+            raise ContactresInputError(
                 f"{index_path}, line {row['line']}, column 'file': no such file "
                 f"{shown_value(name)} in {folder}"
             )
@@ -402,7 +415,7 @@ def _read_folder(folder: Path, layout, z0: float) -> pd.DataFrame:
                 part[col] = cell.replace(",", ".") if comma and col in _NUMERIC_LABELS else cell
         parts.append(part)
     if not parts:
-        raise ValueError(f"{index_path}: no rows (one per spectrum file)")
+        raise ContactresInputError(f"{index_path}: no rows (one per spectrum file)")
     return pd.concat(parts, ignore_index=True)
 
 
@@ -438,9 +451,11 @@ def read_spectra(
         raise FileNotFoundError(f"{p}: no such file or folder")
     z0 = float(reference_impedance)
     if not (math.isfinite(z0) and z0 > 0):
-        raise ValueError(f"reference impedance must be > 0 Ω, got {reference_impedance!r}")
+        raise ContactresInputError(
+            f"reference impedance must be > 0 Ω, got {reference_impedance!r}"
+        )
     if voltage not in ("amplitude", "rms"):
-        raise ValueError(f"voltage must be 'amplitude' or 'rms', got {voltage!r}")
+        raise ContactresInputError(f"voltage must be 'amplitude' or 'rms', got {voltage!r}")
     raw = _read_folder(p, layout, z0) if p.is_dir() else delimited.load(p)
     table = validate_spectra(raw, str(p))
     if voltage == "rms":

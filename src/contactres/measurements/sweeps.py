@@ -26,6 +26,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from ..errors import ContactresInputError
 from ..units import (
     ABSOLUTE_FREQUENCY_FRACTION,
     MAX_AMPLITUDE_M,
@@ -104,7 +105,7 @@ class SweepTable:
         if not isinstance(self.data, pd.DataFrame) or list(self.data.columns) != list(
             VALIDATED_COLUMNS
         ):
-            raise ValueError(
+            raise ContactresInputError(
                 "a SweepTable holds a validated table: build it with read_sweeps() or "
                 "validate_sweeps(frame, constants={...})"
             )
@@ -117,7 +118,7 @@ class SweepTable:
         row, validated again as a whole (as :func:`validate_sweeps` does)."""
         unknown = sorted(set(values) - set(CONSTANTS))
         if unknown:
-            raise ValueError(f"unknown constant(s) {unknown}; allowed: {list(CONSTANTS)}")
+            raise ContactresInputError(f"unknown constant(s) {unknown}; allowed: {list(CONSTANTS)}")
         given = {name: _check_constant(name, v, f"argument {name}") for name, v in values.items()}
         return validate_sweeps(self.data.drop(columns=list(given)), self.source, constants=given)
 
@@ -132,12 +133,14 @@ def _toml_constants(path: Path) -> tuple[dict, Path | None]:
             try:
                 data = tomllib.loads(candidate.read_bytes().decode("utf-8"))
             except UnicodeDecodeError as exc:
-                raise ValueError(f"{candidate}: not UTF-8 text (offset {exc.start})") from None
+                raise ContactresInputError(
+                    f"{candidate}: not UTF-8 text (offset {exc.start})"
+                ) from None
             except tomllib.TOMLDecodeError as exc:
-                raise ValueError(f"{candidate}: not valid TOML ({exc})") from None
+                raise ContactresInputError(f"{candidate}: not valid TOML ({exc})") from None
             unknown = sorted(set(data) - set(CONSTANTS))
             if unknown:
-                raise ValueError(
+                raise ContactresInputError(
                     f"{candidate}: unknown key(s) {column_names(unknown)}; "
                     f"allowed: {list(CONSTANTS)}"
                 )
@@ -149,31 +152,33 @@ def _check_constant(name: str, value, where: str, shown=None) -> float:
     """``value`` as a float if it passes the rule of ``name`` (``shown``: as written, if not it)."""
     shown = shown_value(value if shown is None else shown)
     if isinstance(value, (bool, np.bool_)):  # TOML true/false: float() would make it 1/0
-        raise ValueError(f"{where}: {name} = {str(value).lower()} is a boolean, not a number")
+        raise ContactresInputError(
+            f"{where}: {name} = {str(value).lower()} is a boolean, not a number"
+        )
     try:
         v = float(value)
     except (TypeError, ValueError):
-        raise ValueError(f"{where}: {name} = {shown} is not a number") from None
+        raise ContactresInputError(f"{where}: {name} = {shown} is not a number") from None
     if not math.isfinite(v):
-        raise ValueError(f"{where}: {name} = {shown} is not finite")
+        raise ContactresInputError(f"{where}: {name} = {shown} is not finite")
     if name in ("overtone", "n_contacts") and abs(v) > _LARGEST_WHOLE:
-        raise ValueError(f"{where}: {name} = {shown} is too large to be a count")
+        raise ContactresInputError(f"{where}: {name} = {shown} is too large to be a count")
     if name == "overtone":
         if v != int(v) or v < 1 or int(v) % 2 == 0:
-            raise ValueError(
+            raise ContactresInputError(
                 f"{where}: overtone = {shown} is not allowed; a thickness-shear resonator "
                 "has odd overtones only (1, 3, 5, ...)"
             )
     elif name == "n_contacts":
         if v != int(v) or v < 1:
-            raise ValueError(f"{where}: n_contacts = {shown} must be a positive integer")
+            raise ContactresInputError(f"{where}: n_contacts = {shown} must be a positive integer")
     elif name == "poisson":
         if not poisson_in_range(v):
             lo, hi = POISSON_OPEN_RANGE
-            raise ValueError(f"{where}: poisson = {shown} is outside ({lo:g}, {hi:g})")
+            raise ContactresInputError(f"{where}: poisson = {shown} is outside ({lo:g}, {hi:g})")
     elif v <= 0:
         unit = CONSTANTS[name][0]
-        raise ValueError(f"{where}: {name} = {shown} must be > 0 ({unit})")
+        raise ContactresInputError(f"{where}: {name} = {shown} must be > 0 ({unit})")
     return v
 
 
@@ -217,10 +222,10 @@ def read_sweeps(path, **constants) -> SweepTable:
     if not p.exists():
         raise FileNotFoundError(f"{p}: no such file")
     if p.is_dir():
-        raise ValueError(f"{p}: is a directory, expected a sweep table file")
+        raise ContactresInputError(f"{p}: is a directory, expected a sweep table file")
     unknown = sorted(set(constants) - set(CONSTANTS))
     if unknown:
-        raise ValueError(f"unknown constant(s) {unknown}; allowed: {list(CONSTANTS)}")
+        raise ContactresInputError(f"unknown constant(s) {unknown}; allowed: {list(CONSTANTS)}")
     given = {k: v for k, v in constants.items() if v is not None}
     toml, toml_path = _toml_constants(p)
     raw = pick_reader(p).load(p)
@@ -249,10 +254,12 @@ def _numeric(raw: pd.DataFrame, col: str, source: str, decimal: str) -> np.ndarr
         what = (
             "is empty" if not str(shown).strip() else f"value {shown_value(shown)} is not a number"
         )
-        raise ValueError(f"{where_rows(raw, source, bad, col)}: {what}")
+        raise ContactresInputError(f"{where_rows(raw, source, bad, col)}: {what}")
     nonfinite = ~np.isfinite(values)
     if nonfinite.any():
-        raise ValueError(f"{at_cell(raw, source, nonfinite, col)} is not finite (NaN or infinite)")
+        raise ContactresInputError(
+            f"{at_cell(raw, source, nonfinite, col)} is not finite (NaN or infinite)"
+        )
     return values
 
 
@@ -262,7 +269,7 @@ def _labels_and_numbers(raw: pd.DataFrame, source: str, decimal: str) -> pd.Data
     out["sweep"] = raw["sweep"].astype(str).str.strip().to_numpy()
     empty = (out["sweep"] == "").to_numpy() | raw["sweep"].isna().to_numpy()
     if empty.any():
-        raise ValueError(
+        raise ContactresInputError(
             f"{at_cell(out, source, empty, 'sweep')} is empty; every row needs a sweep id"
         )
     for col, default in LABEL_DEFAULTS.items():
@@ -270,7 +277,7 @@ def _labels_and_numbers(raw: pd.DataFrame, source: str, decimal: str) -> pd.Data
             out[col] = raw[col].astype(str).str.strip().to_numpy()
             blank = (out[col] == "").to_numpy()
             if blank.any():
-                raise ValueError(f"{at_cell(out, source, blank, col)} is empty")
+                raise ContactresInputError(f"{at_cell(out, source, blank, col)} is empty")
         else:
             out[col] = default
     for col in ("amplitude_m", "df_Hz", "dgamma_Hz", "normal_force_N"):
@@ -287,7 +294,9 @@ def _labels_and_numbers(raw: pd.DataFrame, source: str, decimal: str) -> pd.Data
         bad = (ramp != np.round(ramp)) | (ramp < 1)
         if bad.any():
             out["ramp"] = ramp
-            raise ValueError(f"{at_cell(out, source, bad, 'ramp')} is not a positive integer")
+            raise ContactresInputError(
+                f"{at_cell(out, source, bad, 'ramp')} is not a positive integer"
+            )
         out["ramp"] = ramp.astype(int)
     else:
         out["ramp"] = 0
@@ -337,7 +346,7 @@ def _fill_constants(
         else:
             absent.append(f"{name} ({CONSTANTS[name][0]})")
     if absent:
-        raise ValueError(
+        raise ContactresInputError(
             f"{source}: constant(s) missing: {', '.join(absent)}; give each as a column, as an "
             f"argument/CLI option, or in a TOML file beside the data "
             f"('{Path(source).with_suffix('.toml').name}', e.g. area_m2 = 2.5e-5)"
@@ -351,18 +360,18 @@ def _check_physics(out: pd.DataFrame, source: str) -> None:
     amp = out["amplitude_m"].to_numpy()
     neg = amp < 0
     if neg.any():
-        raise ValueError(
+        raise ContactresInputError(
             f"{at_cell(out, source, neg, 'amplitude_m')} is negative; amplitudes must be >= 0 m"
         )
     big = amp > MAX_AMPLITUDE_M
     if big.any():
-        raise ValueError(
+        raise ContactresInputError(
             f"{at_cell(out, source, big, 'amplitude_m')} is above {MAX_AMPLITUDE_M:g} m: it looks "
             "like nanometres in a metre column (multiply nm by 1e-9)"
         )
     nonpos = out["normal_force_N"].to_numpy() <= 0
     if nonpos.any():
-        raise ValueError(
+        raise ContactresInputError(
             f"{at_cell(out, source, nonpos, 'normal_force_N')} is not positive; the normal force "
             "per contact must be > 0 N"
         )
@@ -371,7 +380,7 @@ def _check_physics(out: pd.DataFrame, source: str) -> None:
         v = np.abs(out[col].to_numpy())
         absolute = v > ABSOLUTE_FREQUENCY_FRACTION * out["fundamental_Hz"].to_numpy()
         if absolute.any():
-            raise ValueError(
+            raise ContactresInputError(
                 f"{at_cell(out, source, absolute, col)} looks like an absolute frequency, not a "
                 "shift "
                 f"(above {ABSOLUTE_FREQUENCY_FRACTION:g} of the fundamental); subtract the "
@@ -409,7 +418,7 @@ def _conflict(table: pd.DataFrame, source: str, by: str, col: str, rule: str) ->
         name = counts.index[counts.to_numpy() > 1][0]
         rows = table[table[by] == name]
         a, b = rows.iloc[0], rows.loc[rows[col] != rows[col].iloc[0]].iloc[0]
-        raise ValueError(
+        raise ContactresInputError(
             f"{source}, {by} {shown_value(name)}: conflicting values in column {col!r}: "
             f"{shown_value(a[col])} (line {a['line']}) and {shown_value(b[col])} "
             f"(line {b['line']}); {rule}"
@@ -465,16 +474,20 @@ def validate_sweeps(
     names = pd.Series(raw.columns)
     if names.duplicated().any():
         dups = names[names.duplicated()].unique()
-        raise ValueError(f"{source}: duplicate column name(s) {column_names(dups)}; one name each")
+        raise ContactresInputError(
+            f"{source}: duplicate column name(s) {column_names(dups)}; one name each"
+        )
     if "line" not in raw.columns:
         raw["line"] = np.arange(2, len(raw) + 2)
     decimal = raw.attrs.get("decimal", ".")
     data_cols = [c for c in raw.columns if c != "line"]
     if len(raw) == 0:
-        raise ValueError(f"{source}: header only, no data rows; columns: {column_names(data_cols)}")
+        raise ContactresInputError(
+            f"{source}: header only, no data rows; columns: {column_names(data_cols)}"
+        )
     missing = [c for c in REQUIRED_COLUMNS if c not in raw.columns]
     if missing:
-        raise ValueError(
+        raise ContactresInputError(
             f"{source}: missing required column(s) {missing}; "
             f"columns found: {column_names(data_cols)}; "
             f"required: {list(REQUIRED_COLUMNS)}, optional: {list(OPTIONAL_COLUMNS)}"

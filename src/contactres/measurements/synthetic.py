@@ -27,6 +27,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
+from ..errors import ContactresInputError
 from ..normal.isotropic import effective_modulus, jkr_contact_radius
 from ..resonators.qcm import QCM, shifts_from_loop, shifts_from_stiffness
 from ..tangential import (
@@ -92,7 +93,9 @@ class SweepGroup:
         u = nonnegative(f"{self.configuration}/{self.medium} amplitudes", self.amplitudes, "m")
         u = np.atleast_1d(u)
         if u.size < 1 or np.any(np.diff(u) <= 0):
-            raise ValueError(f"amplitudes must increase strictly, got {self.amplitudes!r}")
+            raise ContactresInputError(
+                f"amplitudes must increase strictly, got {self.amplitudes!r}"
+            )
         # A tuple keeps the dataclass hashable and its values exactly as given.
         object.__setattr__(self, "amplitudes", tuple(float(x) for x in u))
         positive("sphere radius", self.radius, "m")
@@ -183,28 +186,38 @@ class SweepStudy:
         object.__setattr__(self, "ramps", tuple(int(r) for r in self.ramps))
         object.__setattr__(self, "scatter", tuple((str(q), float(s)) for q, s in self.scatter))
         if not self.groups:
-            raise ValueError("a study needs at least one group")
+            raise ContactresInputError("a study needs at least one group")
         if not self.normal_forces:
-            raise ValueError("a study needs at least one normal force")
+            raise ContactresInputError("a study needs at least one normal force")
         positive("normal_forces", self.normal_forces, "N")
         if self.n_experiments < 1 or not self.ramps or min(self.ramps) < 1:
-            raise ValueError("n_experiments and ramp numbers must be >= 1, with at least one ramp")
+            raise ContactresInputError(
+                "n_experiments and ramp numbers must be >= 1, with at least one ramp"
+            )
         positive("mu", self.mu)
         for name in ("plateau_fraction", "running_in_kappa", "running_in_mu", "savkoor_sliding"):
             positive(name, getattr(self, name))
         if self.model not in LOOP_MODELS:
-            raise ValueError(f"model must be one of {LOOP_MODELS}, got {self.model!r}")
+            raise ContactresInputError(f"model must be one of {LOOP_MODELS}, got {self.model!r}")
         for q, sd in self.scatter:
             if q not in SCATTERED:
-                raise ValueError(f"scatter quantity must be one of {SCATTERED}, got {q!r}")
+                raise ContactresInputError(
+                    f"scatter quantity must be one of {SCATTERED}, got {q!r}"
+                )
             nonnegative(f"scatter of {q}", sd)
         if self.scatter_law not in ("lognormal", "normal"):
-            raise ValueError(f"scatter_law: 'lognormal' or 'normal', not {self.scatter_law!r}")
+            raise ContactresInputError(
+                f"scatter_law: 'lognormal' or 'normal', not {self.scatter_law!r}"
+            )
         if self.scatter_per not in ("experiment", "load"):
-            raise ValueError(f"scatter_per: 'experiment' or 'load', not {self.scatter_per!r}")
+            raise ContactresInputError(
+                f"scatter_per: 'experiment' or 'load', not {self.scatter_per!r}"
+            )
         lo, hi = self.random_plateau_range
         if not (0.0 <= self.random_plateau <= 1.0 and 0.0 <= lo <= hi):
-            raise ValueError("random_plateau must lie in [0, 1] and its range in order, >= 0")
+            raise ContactresInputError(
+                "random_plateau must lie in [0, 1] and its range in order, >= 0"
+            )
 
 
 def contact_loop(
@@ -254,7 +267,7 @@ def contact_loop(
         if model == "plateau":
             loop = PlateauLoop(loop, critical_displacement)
     else:
-        raise ValueError(f"model must be one of {LOOP_MODELS}, got {model!r}")
+        raise ContactresInputError(f"model must be one of {LOOP_MODELS}, got {model!r}")
     return with_dashpot(loop, xi, omega)
 
 

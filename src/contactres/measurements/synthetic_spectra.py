@@ -29,6 +29,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
+from ..errors import ContactresInputError
 from ..validation import nonnegative, positive
 
 __all__ = ["bvd_admittance", "bvd_circuit", "bvd_parameters", "synthetic_spectra"]
@@ -151,7 +152,7 @@ def synthetic_spectra(
     """
     n_points = int(n_points)
     if n_points < 1:
-        raise ValueError(f"n_points must be >= 1, got {n_points}")
+        raise ContactresInputError(f"n_points must be >= 1, got {n_points}")
     given = (f_r, gamma, g_max, span, centre, noise, c0, c0_drift, offset, baseline_slope, phase)
     names = "f_r gamma g_max span centre noise c0 c0_drift offset baseline_slope phase".split()
     arg = {k: np.ravel(v) for k, v in zip(names, np.broadcast_arrays(*given), strict=True)}
@@ -162,14 +163,18 @@ def synthetic_spectra(
     for k in ("centre", "c0_drift", "phase", "offset", "baseline_slope"):
         arg[k] = np.asarray(arg[k], dtype=complex if k in ("offset", "baseline_slope") else float)
         if not np.all(np.isfinite(arg[k])):
-            raise ValueError(f"{k} must be finite, got {arg[k][~np.isfinite(arg[k])][0]!r}")
+            raise ContactresInputError(
+                f"{k} must be finite, got {arg[k][~np.isfinite(arg[k])][0]!r}"
+            )
     arg = {k: np.reshape(v, (-1, 1)) for k, v in arg.items()}  # one row per spectrum
     f_r, gamma, g_max = arg["f_r"], arg["gamma"], arg["g_max"]
     n = f_r.shape[0]
     t = np.linspace(0.0, 1.0, n_points) if n_points > 1 else np.full(1, 0.5)
     f = f_r + gamma * (arg["centre"] + arg["span"] * (t - 0.5))
     if np.any(f <= 0):
-        raise ValueError("the frequencies f_r + Γ (centre + span (t − 1/2)) must be > 0 (Hz)")
+        raise ContactresInputError(
+            "the frequencies f_r + Γ (centre + span (t − 1/2)) must be > 0 (Hz)"
+        )
     y = bvd_admittance(f, f_r, gamma, g_max) + 2j * np.pi * f * (arg["c0"] + arg["c0_drift"] * t)
     y = np.exp(1j * arg["phase"]) * y + arg["offset"] + arg["baseline_slope"] * (f - f_r)
     rng = np.random.default_rng(seed)

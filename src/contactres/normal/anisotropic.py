@@ -28,6 +28,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..errors import ContactresInputError
 from ..halfspace import static_kernel
 from ..materials import Material, require_material
 from ..validation import nonnegative, positive
@@ -162,7 +163,7 @@ def contact_integrals(m: Material, rtol: float = THETA_RTOL) -> ContactIntegrals
     m = require_material(m)
     rtol = float(rtol)
     if not (1e-15 <= rtol <= 1e-2):
-        raise ValueError(f"rtol must lie in [1e-15, 1e-2], got {rtol!r}")
+        raise ContactresInputError(f"rtol must lie in [1e-15, 1e-2], got {rtol!r}")
     iso = isotropic_constants(m)
     if iso is not None:
         # Closed form, Ĝ = 2(1 − ν²)/E = C11/(2 C44 (C11 − C44)): exact for every ν < 1/2,
@@ -195,7 +196,7 @@ def contact_integrals(m: Material, rtol: float = THETA_RTOL) -> ContactIntegrals
                 )
             else:
                 reason = "the solid is too anisotropic for it"
-            raise ValueError(
+            raise ContactresInputError(
                 f"contact_integrals: the theta quadrature did not reach rtol={rtol:g} with "
                 f"{n} points (last change {err:.3g}); {reason}"
             )
@@ -322,7 +323,7 @@ def sphere_contact(m: Material, radius, force, rtol: float = THETA_RTOL) -> Anis
     """
     m = require_material(m)
     if m.is_lossy:
-        raise ValueError(
+        raise ContactresInputError(
             "sphere_contact needs real (undamped) constants: the static contact of a lossy "
             "material is that of its elastic part (drop with_loss)"
         )
@@ -331,7 +332,7 @@ def sphere_contact(m: Material, radius, force, rtol: float = THETA_RTOL) -> Anis
     try:
         np.broadcast_shapes(R.shape, F.shape)
     except ValueError:
-        raise ValueError(
+        raise ContactresInputError(
             f"radius (shape {R.shape}) and force (shape {F.shape}) do not broadcast together"
         ) from None
     ci = contact_integrals(m, rtol)

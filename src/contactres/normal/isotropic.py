@@ -25,6 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..errors import ContactresInputError
 from ..validation import nonnegative as _nonnegative
 from ..validation import positive as _positive
 
@@ -72,7 +73,7 @@ class Contact:
 def _poisson(name: str, value) -> np.ndarray:
     v = np.asarray(value, dtype=float)
     if not np.all(np.isfinite(v)) or np.any(v <= -1) or np.any(v >= 0.5):
-        raise ValueError(f"{name} must lie in (-1, 0.5), got {value!r}")
+        raise ContactresInputError(f"{name} must lie in (-1, 0.5), got {value!r}")
     return v
 
 
@@ -116,7 +117,7 @@ def effective_modulus(E1, nu1, E2=None, nu2=None):
     E1, nu1 = _positive("E1", E1), _poisson("nu1", nu1)
     E2 = E1 if E2 is None else np.asarray(E2, dtype=float)
     if not np.all(E2 > 0):
-        raise ValueError(f"E2 must be > 0 (np.inf for a rigid body), got {E2!r}")
+        raise ContactresInputError(f"E2 must be > 0 (np.inf for a rigid body), got {E2!r}")
     nu2 = nu1 if nu2 is None else _poisson("nu2", nu2)
     return _out(1.0 / ((1.0 - nu1**2) / E1 + (1.0 - nu2**2) / E2))
 
@@ -143,7 +144,7 @@ def effective_shear_modulus(G1, nu1, G2=None, nu2=None):
     G1, nu1 = _positive("G1", G1), _poisson("nu1", nu1)
     G2 = G1 if G2 is None else np.asarray(G2, dtype=float)
     if not np.all(G2 > 0):
-        raise ValueError(f"G2 must be > 0, got {G2!r}")
+        raise ContactresInputError(f"G2 must be > 0, got {G2!r}")
     nu2 = nu1 if nu2 is None else _poisson("nu2", nu2)
     return _out(1.0 / ((2.0 - nu1) / (4.0 * G1) + (2.0 - nu2) / (4.0 * G2)))
 
@@ -199,12 +200,12 @@ def jkr_contact_radius(E_star, radius, force, gamma):
     gamma = _nonnegative("gamma", gamma)
     F = np.asarray(force, dtype=float)
     if not np.all(np.isfinite(F)):
-        raise ValueError(f"force must be finite, got {force!r}")
+        raise ContactresInputError(f"force must be finite, got {force!r}")
     b = 6.0 * np.pi * gamma * R
     disc = 12.0 * np.pi * gamma * R * F + b**2
     # disc >= 0 exactly when F >= -3πγR (the pull-off force); allow rounding at the limit.
     if np.any(disc < -1e-12 * np.maximum(b**2, 1e-300)) or np.any((gamma == 0) & (F < 0)):
-        raise ValueError(
+        raise ContactresInputError(
             f"force {force!r} N is below the pull-off force -3πγR = "
             f"{float(np.min(-3 * np.pi * gamma * R))!r} N (γ={gamma!r}, R={radius!r}); "
             "without adhesion (γ = 0) the force must be >= 0"
@@ -298,7 +299,7 @@ def jkr_from_depth(E_star, radius, depth, gamma) -> Contact:
     d = np.asarray(depth, dtype=float)
     E_star, R, gamma, d = np.broadcast_arrays(E_star, R, gamma, d)
     if not np.all(np.isfinite(d)):
-        raise ValueError(f"depth must be finite, got {depth!r}")
+        raise ContactresInputError(f"depth must be finite, got {depth!r}")
     # f(a) = a²/R - c√a - δ, c = √(4πγ/E*), is convex with its minimum d_min at
     # a_min = (cR/4)^(2/3); the stable branch is the root above a_min. Convexity with f'' >= 2/R
     # bounds that root by a_min + √(R(δ - d_min)), so Newton from there converges monotonically.
@@ -306,7 +307,7 @@ def jkr_from_depth(E_star, radius, depth, gamma) -> Contact:
     a_min = np.cbrt(c * R / 4.0) ** 2
     d_min = a_min**2 / R - c * np.sqrt(a_min)
     if np.any(d < d_min * (1 + 1e-12)) or np.any((gamma == 0) & (d < 0)):
-        raise ValueError(
+        raise ContactresInputError(
             f"depth {depth!r} m is below the smallest penetration of a JKR contact "
             f"({np.min(d_min)!r} m, reached at displacement-controlled pull-off)"
         )
@@ -347,7 +348,7 @@ def dmt(E_star, radius, force, gamma) -> Contact:
     F = np.asarray(force, dtype=float)
     load = F + 4.0 * np.pi * gamma * R
     if not np.all(np.isfinite(F)) or np.any(load < 0):
-        raise ValueError(
+        raise ContactresInputError(
             f"force {force!r} N must be finite and >= the DMT pull-off force -4πγR = "
             f"{float(np.min(-4 * np.pi * gamma * R))!r} N (γ={gamma!r}, R={radius!r})"
         )

@@ -39,6 +39,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from ..errors import ContactresInputError
 from ..fileio import write_text
 from .maps import OrientationMap
 
@@ -62,7 +63,7 @@ def _line(path: Path, lineno: int) -> str:
 
 
 def _bad(path: Path, row: int, lineno: int, column: str, value: str, rule: str) -> ValueError:
-    return ValueError(
+    return ContactresInputError(
         f"{path.name}: data row {row} (line {lineno}), column {column!r}: value {value!r}: {rule}"
     )
 
@@ -118,7 +119,7 @@ def _grid(path: Path, x: np.ndarray, y: np.ndarray, step_x: float, step_y: float
                    "grid position given twice")  # fmt: skip
     if np.any(counts == 0):
         miss = int(np.flatnonzero(counts == 0)[0])
-        raise ValueError(
+        raise ContactresInputError(
             f"{path.name}: grid position (row {miss // W}, column {miss % W}) of the "
             f"{H} x {W} grid has no data row (x = {x.min() + miss % W * step_x:g} µm, "
             f"y = {y.min() + miss // W * step_y:g} µm)"
@@ -128,15 +129,19 @@ def _grid(path: Path, x: np.ndarray, y: np.ndarray, step_x: float, step_y: float
 
 def _header_float(path: Path, header: dict, key: str) -> float:
     if key not in header:
-        raise ValueError(f"{path.name}: header entry {key!r} is missing (the grid step, µm)")
+        raise ContactresInputError(
+            f"{path.name}: header entry {key!r} is missing (the grid step, µm)"
+        )
     try:
         v = float(header[key])
     except ValueError:
-        raise ValueError(
+        raise ContactresInputError(
             f"{path.name}: header entry {key!r} = {header[key]!r} is not a number"
         ) from None
     if not (np.isfinite(v) and v > 0):
-        raise ValueError(f"{path.name}: header entry {key!r} = {v!r} must be a positive step")
+        raise ContactresInputError(
+            f"{path.name}: header entry {key!r} = {v!r} must be a positive step"
+        )
     return v
 
 
@@ -151,9 +156,9 @@ def _read_block(path: Path, skip: int, sep: str, header) -> pd.DataFrame:
                 raise
             return pd.read_csv(path, dtype=str, keep_default_na=False, **kwargs)
     except pd.errors.EmptyDataError:
-        raise ValueError(f"{path.name}: no data rows after the header") from None
+        raise ContactresInputError(f"{path.name}: no data rows after the header") from None
     except pd.errors.ParserError as exc:
-        raise ValueError(f"{path.name}: malformed data rows: {exc}") from None
+        raise ContactresInputError(f"{path.name}: malformed data rows: {exc}") from None
 
 
 def _assemble(path, euler, x, y, phase, conf, conf_name, steps, first_line) -> OrientationMap:
@@ -198,7 +203,7 @@ def read_ang(path: str | os.PathLike) -> OrientationMap:
                 header[m.group(1).upper()] = m.group(2).strip()
     grid = header.get("GRID", "SqrGrid")
     if grid.lower() != "sqrgrid":
-        raise ValueError(
+        raise ContactresInputError(
             f"{path.name}: '# GRID: {grid}' is not supported: only square grids (SqrGrid) are "
             "read; resample a hexagonal scan onto a square grid first"
         )
@@ -247,19 +252,21 @@ def read_ctf(path: str | os.PathLike) -> OrientationMap:
             if len(fields) >= 2:
                 header.setdefault(fields[0].strip(), fields[1].strip())
     if n_head is None:
-        raise ValueError(
+        raise ContactresInputError(
             f"{path.name}: no column line (tab-separated {' '.join(_CTF_LINE)}) found: not a "
             ".ctf file"
         )
     mode = header.get("JobMode", "Grid")
     if mode != "Grid":
-        raise ValueError(f"{path.name}: JobMode {mode!r} is not supported: only 'Grid' maps")
+        raise ContactresInputError(
+            f"{path.name}: JobMode {mode!r} is not supported: only 'Grid' maps"
+        )
     steps = (_header_float(path, header, "XStep"), _header_float(path, header, "YStep"))
     frame = _read_block(path, n_head, "\t", 0)
     frame.columns = [str(c).strip() for c in frame.columns]
     missing = [c for c in CTF_COLUMNS if c not in frame.columns]
     if missing:
-        raise ValueError(
+        raise ContactresInputError(
             f"{path.name}: column line (line {n_head + 1}) lacks the columns {missing}; a .ctf "
             f"file needs {list(CTF_COLUMNS)}"
         )
@@ -287,7 +294,9 @@ def read_ebsd(path: str | os.PathLike) -> OrientationMap:
         return read_ang(path)
     if suffix == ".ctf":
         return read_ctf(path)
-    raise ValueError(f"{Path(path).name}: unknown EBSD export {suffix!r} (expected .ang or .ctf)")
+    raise ContactresInputError(
+        f"{Path(path).name}: unknown EBSD export {suffix!r} (expected .ang or .ctf)"
+    )
 
 
 def _points(m: OrientationMap):

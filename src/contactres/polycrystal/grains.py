@@ -45,6 +45,7 @@ import numpy as np
 from scipy.sparse import csr_array
 from scipy.sparse.csgraph import connected_components
 
+from ..errors import ContactresInputError
 from .maps import OrientationMap
 from .normal_table import reduce_normals, surface_matrices_from_normals, zone_bounds
 
@@ -86,7 +87,7 @@ def _source(orientations) -> tuple[OrientationMap | np.ndarray, int, int]:
         return orientations, *orientations.shape
     R = np.asarray(orientations)
     if R.ndim != 4 or R.shape[2:] != (3, 3):
-        raise ValueError(
+        raise ContactresInputError(
             f"orientations must be surface matrices of shape (H, W, 3, 3) or an "
             f"OrientationMap, got an array of shape {R.shape}"
         )
@@ -203,11 +204,13 @@ def segment_grains(
     zone_bounds(lattice)
     tol = float(tolerance_deg)
     if not (math.isfinite(tol) and 0.0 < tol <= 180.0):
-        raise ValueError(f"tolerance_deg must lie in (0, 180] degrees, got {tolerance_deg!r}")
+        raise ContactresInputError(
+            f"tolerance_deg must lie in (0, 180] degrees, got {tolerance_deg!r}"
+        )
     if isinstance(min_pixels, bool) or not isinstance(min_pixels, int | np.integer):
-        raise ValueError(f"min_pixels must be a positive integer, got {min_pixels!r}")
+        raise ContactresInputError(f"min_pixels must be a positive integer, got {min_pixels!r}")
     if min_pixels < 1:
-        raise ValueError(f"min_pixels must be a positive integer, got {min_pixels!r}")
+        raise ContactresInputError(f"min_pixels must be a positive integer, got {min_pixels!r}")
     F = folded_normals(orientations, lattice)
     # Angle < tol <=> chord |a - b| < 2 sin(tol/2); NaN pixels compare False (no edge).
     chord2 = (2.0 * math.sin(math.radians(tol) / 2.0)) ** 2
@@ -276,16 +279,16 @@ def grain_orientations(labels, orientations, lattice: str, n_grains: int | None 
     _, H, W = _source(orientations)
     lab = np.asarray(labels)
     if lab.shape != (H, W):
-        raise ValueError(f"labels must have the map's shape {(H, W)}, got {lab.shape}")
+        raise ContactresInputError(f"labels must have the map's shape {(H, W)}, got {lab.shape}")
     if not np.issubdtype(lab.dtype, np.integer):
-        raise ValueError("labels must be integers")
+        raise ContactresInputError("labels must be integers")
     F = folded_normals(orientations, lattice).reshape(-1, 3)
     lab = lab.ravel()
     use = (lab >= 0) & np.all(np.isfinite(F), axis=-1)
     lab, F = lab[use], F[use]
     G = int(lab.max(initial=-1)) + 1 if n_grains is None else int(n_grains)
     if lab.size and lab.max() >= G:
-        raise ValueError(f"label {int(lab.max())} >= n_grains = {G}")
+        raise ContactresInputError(f"label {int(lab.max())} >= n_grains = {G}")
     count = np.bincount(lab, minlength=G)
     total = np.stack([np.bincount(lab, weights=F[:, k], minlength=G) for k in range(3)], -1)
     norm = np.linalg.norm(total, axis=-1, keepdims=True)

@@ -24,6 +24,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..errors import ContactresInputError
 from ..materials import Material
 from .inverse_hexagonal import HexagonalInverseResult, fit_hexagonal_constants
 from .moduli import indentation_moduli
@@ -221,14 +222,14 @@ def grain_means(labels, values, n_grains: int | None = None):
     lab = np.asarray(labels).ravel()
     val = np.asarray(values, dtype=float).ravel()
     if lab.shape != val.shape:
-        raise ValueError(f"labels and values differ in size: {lab.size} vs {val.size}")
+        raise ContactresInputError(f"labels and values differ in size: {lab.size} vs {val.size}")
     if not np.issubdtype(lab.dtype, np.integer):
-        raise ValueError("labels must be integers")
+        raise ContactresInputError("labels must be integers")
     keep = (lab >= 0) & np.isfinite(val)
     lab, val = lab[keep], val[keep]
     G = int(lab.max(initial=-1)) + 1 if n_grains is None else int(n_grains)
     if lab.size and lab.max() >= G:
-        raise ValueError(f"label {int(lab.max())} >= n_grains = {G}")
+        raise ContactresInputError(f"label {int(lab.max())} >= n_grains = {G}")
     count = np.bincount(lab, minlength=G).astype(float)
     with np.errstate(invalid="ignore", divide="ignore"):
         mean = np.bincount(lab, weights=val, minlength=G) / count
@@ -366,10 +367,12 @@ def fit_map(
         Grains with fewer than two pixels are left out.
     """
     if lattice not in LATTICE_FITS:
-        raise ValueError(f"lattice must be one of {sorted(LATTICE_FITS)}, got {lattice!r}")
+        raise ContactresInputError(
+            f"lattice must be one of {sorted(LATTICE_FITS)}, got {lattice!r}"
+        )
     R = np.asarray(grain_orientations, dtype=float)
     if R.ndim != 3 or R.shape[1:] != (3, 3):
-        raise ValueError(f"grain_orientations must have shape (G, 3, 3), got {R.shape}")
+        raise ContactresInputError(f"grain_orientations must have shape (G, 3, 3), got {R.shape}")
     mean, err, _ = grain_means(labels, values, n_grains=R.shape[0])
     ok = np.isfinite(mean) & np.isfinite(err) & (err > 0)
     return LATTICE_FITS[lattice](R[ok], mean[ok], err[ok], **kwargs)

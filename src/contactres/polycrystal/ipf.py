@@ -39,6 +39,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..errors import ContactresInputError
 from .normal_table import reduce_normals, zone_bounds
 
 __all__ = ["IPF_CORNER_LABELS", "IPFTriangle", "ipf_colors", "ipf_triangle", "triangle_geometry"]
@@ -192,13 +193,15 @@ def ipf_triangle(lattice: str, n: int = 101, boundary_points: int = 60) -> IPFTr
     """
     corners, inward = triangle_geometry(lattice)
     if isinstance(n, bool) or not isinstance(n, int | np.integer) or n < 2:
-        raise ValueError(f"n must be an integer >= 2 (grid points per axis), got {n!r}")
+        raise ContactresInputError(f"n must be an integer >= 2 (grid points per axis), got {n!r}")
     if (
         isinstance(boundary_points, bool)
         or not isinstance(boundary_points, int | np.integer)
         or boundary_points < 2
     ):
-        raise ValueError(f"boundary_points must be an integer >= 2, got {boundary_points!r}")
+        raise ContactresInputError(
+            f"boundary_points must be an integer >= 2, got {boundary_points!r}"
+        )
     # Edges red-green, green-blue, blue-red as slerps between the corners.
     t = np.linspace(0.0, 1.0, boundary_points)[:, None]
     arcs = []

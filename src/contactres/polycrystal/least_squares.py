@@ -16,6 +16,8 @@ from collections.abc import Callable
 
 import numpy as np
 
+from ..errors import ContactresInputError
+
 __all__ = ["MAX_LOG_STEP", "levenberg_marquardt"]
 
 # The largest change of a (log-)parameter per iteration: the valleys of the fits are long and
@@ -62,7 +64,7 @@ def levenberg_marquardt(
     lo, hi = np.asarray(lo, dtype=float), np.asarray(hi, dtype=float)
     r, J = evaluate(theta, True)
     if r is None:
-        raise ValueError("the starting point is outside the admissible region")
+        raise ContactresInputError("the starting point is outside the admissible region")
     chi2 = float(r @ r)
     lam = 1e-6
     h = 0.1

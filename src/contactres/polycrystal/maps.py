@@ -41,6 +41,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..errors import ContactresInputError
 from ..fileio import OutputError, check_output_file, replace_folder
 from ..materials import Material
 from .moduli import indentation_moduli
@@ -117,11 +118,11 @@ class OrientationMap:
     def __post_init__(self) -> None:
         e = np.asarray(self.euler, dtype=float)
         if e.ndim != 3 or e.shape[2] != 3:
-            raise ValueError(f"euler must have shape (H, W, 3), got {e.shape}")
+            raise ContactresInputError(f"euler must have shape (H, W, 3), got {e.shape}")
         for name in ("step_x", "step_y"):
             v = float(getattr(self, name))
             if not (np.isfinite(v) and v > 0):
-                raise ValueError(f"{name} must be a positive length in m, got {v!r}")
+                raise ContactresInputError(f"{name} must be a positive length in m, got {v!r}")
             object.__setattr__(self, name, v)
         object.__setattr__(self, "euler", e)
         for name, dtype in (("phase", np.int64), ("confidence", float), ("labels", np.int64)):
@@ -130,7 +131,7 @@ class OrientationMap:
                 continue
             v = np.asarray(v, dtype=dtype)
             if v.shape != e.shape[:2]:
-                raise ValueError(f"{name} must have shape {e.shape[:2]}, got {v.shape}")
+                raise ContactresInputError(f"{name} must have shape {e.shape[:2]}, got {v.shape}")
             object.__setattr__(self, name, v)
 
     @property
@@ -172,7 +173,7 @@ def _euler_block(func: Callable, euler_block: np.ndarray, dtype) -> np.ndarray:
     R = surface_matrices_from_euler(e[..., 0], e[..., 1], e[..., 2], degrees=False)
     out = np.asarray(func(R))
     if out.shape != e.shape[:2]:
-        raise ValueError(
+        raise ContactresInputError(
             f"the per-pixel function must map shape (..., 3, 3) to (...): got {out.shape} "
             f"for a chunk of {e.shape[:2]}"
         )
@@ -191,11 +192,13 @@ def _check_chunks(chunks) -> tuple[int, int]:
     try:
         cy, cx = (int(c) for c in chunks)
     except (TypeError, ValueError) as exc:
-        raise ValueError(
+        raise ContactresInputError(
             f"chunks must be two positive integers (rows, columns), got {chunks!r}"
         ) from exc
     if cy < 1 or cx < 1:
-        raise ValueError(f"chunks must be two positive integers (rows, columns), got {chunks!r}")
+        raise ContactresInputError(
+            f"chunks must be two positive integers (rows, columns), got {chunks!r}"
+        )
     return cy, cx
 
 
@@ -264,13 +267,15 @@ def evaluate_map(
     """
     cy, cx = _check_chunks(chunks)
     if client is not None and scheduler is not None:
-        raise ValueError("give either client or scheduler, not both")
+        raise ContactresInputError("give either client or scheduler, not both")
     if isinstance(euler, OrientationMap):
         euler = euler.euler
     if hasattr(euler, "dims") and hasattr(euler, "data"):  # an xarray DataArray
         euler = euler.data
     if len(getattr(euler, "shape", ())) != 3 or euler.shape[2] != 3:
-        raise ValueError(f"euler must have shape (H, W, 3), got {getattr(euler, 'shape', None)}")
+        raise ContactresInputError(
+            f"euler must have shape (H, W, 3), got {getattr(euler, 'shape', None)}"
+        )
     if client is None and scheduler is None:
         return _evaluate_serial(func, euler, (cy, cx), progress, dtype)
     if scheduler is not None:
@@ -369,7 +374,9 @@ def map_from_dataset(ds) -> OrientationMap:
     """
     for key, value in MAP_CONVENTIONS.items():
         if ds.attrs.get(key) != value:
-            raise ValueError(f"map attribute {key!r} is {ds.attrs.get(key)!r}, expected {value!r}")
+            raise ContactresInputError(
+                f"map attribute {key!r} is {ds.attrs.get(key)!r}, expected {value!r}"
+            )
     labels = ds["labels"].values if "labels" in ds else None
     return OrientationMap(
         euler=ds["euler"].values,
@@ -427,7 +434,9 @@ def write_map(path: str | os.PathLike, dataset, *, chunks: tuple[int, int] = (25
     cy, cx = _check_chunks(chunks)
     target = Path(path)
     if target.exists() and not _is_zarr_store(target):
-        raise ValueError(f"{str(target)!r} exists and is not a Zarr store: not overwritten")
+        raise ContactresInputError(
+            f"{str(target)!r} exists and is not a Zarr store: not overwritten"
+        )
     stage = target.parent / f".{target.name}.{secrets.token_hex(6)}.tmp"
     encoding = {}
     for name, var in dataset.data_vars.items():

@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..errors import ContactresInputError
 from ..halfspace.compliance import stacked_normal_compliance
 from ..materials import Material, require_material, voigt_to_tensor
 from ..normal.anisotropic import (
@@ -111,16 +112,16 @@ def indentation_moduli(
     m = require_material(material)
     rtol = float(rtol)
     if not (1e-15 <= rtol <= 1e-2):
-        raise ValueError(f"rtol must lie in [1e-15, 1e-2], got {rtol!r}")
+        raise ContactresInputError(f"rtol must lie in [1e-15, 1e-2], got {rtol!r}")
     R = np.asarray(surface_matrices, dtype=float)
     if R.ndim != 3 or R.shape[1:] != (3, 3):
-        raise ValueError(f"surface_matrices must have shape (N, 3, 3), got {R.shape}")
+        raise ContactresInputError(f"surface_matrices must have shape (N, 3, 3), got {R.shape}")
     if not np.all(np.isfinite(R)):
-        raise ValueError("surface_matrices must be finite")
+        raise ContactresInputError("surface_matrices must be finite")
     dev = np.abs(R @ R.transpose(0, 2, 1) - np.eye(3)).max(axis=(1, 2), initial=0.0)
     if np.any(dev > _ORTHO_TOL):
         bad = int(np.flatnonzero(dev > _ORTHO_TOL)[0])
-        raise ValueError(
+        raise ContactresInputError(
             f"surface_matrices[{bad}] is not orthogonal (|R R^T - I| = {dev[bad]:.3g})"
         )
     dtype = complex if m.is_lossy else float
@@ -145,7 +146,7 @@ def _moduli(m: Material, c: np.ndarray, R: np.ndarray, rtol: float, offset: int)
     c44 = np.real(cs[:, 1, 2, 1, 2])
     if not np.all(c44 > 0):
         bad = int(np.flatnonzero(~(c44 > 0))[0])
-        raise ValueError(f"surface-frame C44 must be positive, got {c44[bad]!r} Pa")
+        raise ContactresInputError(f"surface-frame C44 must be positive, got {c44[bad]!r} Pa")
     cs = cs / c44[:, None, None, None, None]
     lossy = m.is_lossy
 
@@ -178,7 +179,7 @@ def _moduli(m: Material, c: np.ndarray, R: np.ndarray, rtol: float, offset: int)
                 )
             else:
                 reason = "the solid is too anisotropic for it"
-            raise ValueError(
+            raise ContactresInputError(
                 f"indentation_moduli: the theta quadrature of orientation {offset + active[j]} "
                 f"did not reach rtol={rtol:g} with {n} points (last change {err[j]:.3g}); "
                 f"{reason}"

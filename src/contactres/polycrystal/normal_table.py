@@ -44,6 +44,7 @@ import numpy as np
 from scipy.interpolate import RectBivariateSpline, make_interp_spline
 
 from ..dynamic import dcsf_models, prepare
+from ..errors import ContactresInputError
 from ..materials import Material, require_material
 from .moduli import indentation_moduli
 from .orientations import LATTICES
@@ -70,7 +71,7 @@ def zone_bounds(lattice: str) -> tuple[float, float]:
         return math.atan(math.sqrt(2.0)), math.pi / 4
     if lattice == "hexagonal":
         return math.pi / 2, math.pi / 6
-    raise ValueError(f"lattice must be one of {sorted(LATTICES)}, got {lattice!r}")
+    raise ContactresInputError(f"lattice must be one of {sorted(LATTICES)}, got {lattice!r}")
 
 
 def normals_from_coordinates(theta, phi, lattice: str) -> np.ndarray:
@@ -122,12 +123,12 @@ def reduce_normals(n, lattice: str) -> tuple[np.ndarray, np.ndarray]:
     zone_bounds(lattice)
     v = np.asarray(n, dtype=float)
     if v.ndim < 1 or v.shape[-1] != 3:
-        raise ValueError(f"normals must have shape (..., 3), got {v.shape}")
+        raise ContactresInputError(f"normals must have shape (..., 3), got {v.shape}")
     if not np.all(np.isfinite(v)):
-        raise ValueError("normals must be finite (found NaN or inf)")
+        raise ContactresInputError("normals must be finite (found NaN or inf)")
     norm = np.linalg.norm(v, axis=-1, keepdims=True)
     if np.any(norm < _MIN_NORM):
-        raise ValueError("normals must not be zero vectors")
+        raise ContactresInputError("normals must not be zero vectors")
     v = v / norm
     if lattice == "cubic":
         red = np.sort(np.abs(v), axis=-1)
@@ -162,12 +163,12 @@ def surface_matrices_from_normals(n) -> np.ndarray:
 def _normals_of(orientations=None, normals=None) -> np.ndarray:
     """The normals of surface matrices (..., 3, 3) or given normals (..., 3), one of the two."""
     if (orientations is None) == (normals is None):
-        raise ValueError("give exactly one of the surface matrices or normals=")
+        raise ContactresInputError("give exactly one of the surface matrices or normals=")
     if normals is not None:
         return np.asarray(normals, dtype=float)
     R = np.asarray(orientations, dtype=float)
     if R.ndim < 2 or R.shape[-2:] != (3, 3):
-        raise ValueError(f"surface matrices must have shape (..., 3, 3), got {R.shape}")
+        raise ContactresInputError(f"surface matrices must have shape (..., 3, 3), got {R.shape}")
     return R[..., 2, :]
 
 
@@ -328,12 +329,12 @@ class NormalTable:
         between the nodes). Other arguments as :meth:`modulus`.
         """
         if self.dcsf_values is None or self.ka is None:
-            raise ValueError("the table has no DCSF: pass ka= to prepare_normal_table")
+            raise ContactresInputError("the table has no DCSF: pass ka= to prepare_normal_table")
         _, c = reduce_normals(_normals_of(orientations, normals), self.lattice)
         x = np.asarray(ka, dtype=float)
         lo, hi = float(self.ka[0]), float(self.ka[-1])
         if not np.all((x >= lo * (1 - 1e-12)) & (x <= hi * (1 + 1e-12))):
-            raise ValueError(
+            raise ContactresInputError(
                 f"ka must lie within the table's nodes [{lo:g}, {hi:g}] (k_l a); got "
                 f"{float(np.min(x)):g} to {float(np.max(x)):g}"
             )
@@ -428,7 +429,7 @@ def prepare_normal_table(
     bounds = zone_bounds(lattice)
     rtol = float(rtol)
     if not 1e-8 <= rtol <= 1e-2:
-        raise ValueError(f"rtol must lie in [1e-8, 1e-2], got {rtol!r}")
+        raise ContactresInputError(f"rtol must lie in [1e-8, 1e-2], got {rtol!r}")
 
     def exact_m(theta, phi):
         R = surface_matrices_from_normals(normals_from_coordinates(theta, phi, lattice))
@@ -442,18 +443,18 @@ def prepare_normal_table(
     if ka is None:
         return table
     if model not in DCSF_MODELS:
-        raise ValueError(
+        raise ContactresInputError(
             f"model must be one of {DCSF_MODELS} (R1, SA, WA, TP depend on the in-plane axis, "
             f"R0 has negative damping), got {model!r}"
         )
     nodes = np.atleast_1d(np.asarray(ka, dtype=float))
     if nodes.ndim != 1 or not np.all(np.isfinite(nodes)) or np.any(nodes < 0):
-        raise ValueError(f"ka must be a 1-D array of finite values >= 0, got {ka!r}")
+        raise ContactresInputError(f"ka must be a 1-D array of finite values >= 0, got {ka!r}")
     if np.any(np.diff(nodes) <= 0):
-        raise ValueError("ka nodes must be strictly increasing")
+        raise ContactresInputError("ka nodes must be strictly increasing")
     dcsf_rtol = float(dcsf_rtol)
     if not 1e-6 <= dcsf_rtol <= 1e-1:
-        raise ValueError(f"dcsf_rtol must lie in [1e-6, 1e-1], got {dcsf_rtol!r}")
+        raise ContactresInputError(f"dcsf_rtol must lie in [1e-6, 1e-1], got {dcsf_rtol!r}")
     mids = 0.5 * (nodes[1:] + nodes[:-1])
     allka = np.concatenate([nodes, mids])
     weights = _ka_weights(nodes, mids)

@@ -48,6 +48,8 @@ import warnings
 import numpy as np
 from scipy.spatial.transform import Rotation
 
+from ..errors import ContactresInputError
+
 __all__ = [
     "LATTICES",
     "euler_from_surface_matrices",
@@ -74,12 +76,12 @@ TIE_TOL = 1e-9
 def _angles(value, name: str, degrees: bool) -> np.ndarray:
     a = np.asarray(value, dtype=float)
     if not np.all(np.isfinite(a)):
-        raise ValueError(f"Euler angle {name} must be finite (found NaN or inf)")
+        raise ContactresInputError(f"Euler angle {name} must be finite (found NaN or inf)")
     limit = MAX_TURNS * (360.0 if degrees else 2 * np.pi)
     worst = float(np.max(np.abs(a))) if a.size else 0.0
     if worst > limit:
         unit, other = ("degrees", "radians") if degrees else ("radians", "degrees")
-        raise ValueError(
+        raise ContactresInputError(
             f"Euler angle {name} = {worst:.6g} {unit} exceeds the rule |angle| <= "
             f"{limit:.6g} {unit} ({MAX_TURNS:g} turns): were the angles given in {other}? "
             f"Pass degrees={not degrees} if so"
@@ -91,18 +93,18 @@ def _rotations(R, name: str = "R") -> tuple[np.ndarray, tuple[int, ...]]:
     """Check a stack of rotation matrices; return it as (N, 3, 3) with the leading shape."""
     R = np.asarray(R, dtype=float)
     if R.ndim < 2 or R.shape[-2:] != (3, 3):
-        raise ValueError(f"{name} must have shape (..., 3, 3), got {R.shape}")
+        raise ContactresInputError(f"{name} must have shape (..., 3, 3), got {R.shape}")
     if not np.all(np.isfinite(R)):
-        raise ValueError(f"{name} must be finite (found NaN or inf)")
+        raise ContactresInputError(f"{name} must be finite (found NaN or inf)")
     flat = R.reshape(-1, 3, 3)
     err = np.abs(flat @ np.swapaxes(flat, -1, -2) - np.eye(3))
     if flat.size and float(err.max()) > ORTHOGONALITY_TOL:
-        raise ValueError(
+        raise ContactresInputError(
             f"{name} must be orthogonal: max |R Rᵀ - I| = {float(err.max()):.3g} "
             f"(> {ORTHOGONALITY_TOL:g})"
         )
     if flat.size and np.any(np.linalg.det(flat) < 0):
-        raise ValueError(f"{name} must be a proper rotation (det = +1), found det = -1")
+        raise ContactresInputError(f"{name} must be a proper rotation (det = +1), found det = -1")
     return flat, R.shape[:-2]
 
 
@@ -201,12 +203,12 @@ def surface_matrices_from_quaternions(q, scalar_first: bool = True) -> np.ndarra
     """
     q = np.asarray(q, dtype=float)
     if q.ndim < 1 or q.shape[-1] != 4:
-        raise ValueError(f"quaternions must have shape (..., 4), got {q.shape}")
+        raise ContactresInputError(f"quaternions must have shape (..., 4), got {q.shape}")
     if not np.all(np.isfinite(q)):
-        raise ValueError("quaternions must be finite (found NaN or inf)")
+        raise ContactresInputError("quaternions must be finite (found NaN or inf)")
     norm = np.linalg.norm(q, axis=-1)
     if norm.size and float(np.max(np.abs(norm - 1))) > QUATERNION_NORM_TOL:
-        raise ValueError(
+        raise ContactresInputError(
             f"quaternions must have unit norm (to {QUATERNION_NORM_TOL:g}): found norms from "
             f"{float(norm.min()):.4g} to {float(norm.max()):.4g}"
         )
@@ -274,18 +276,18 @@ def surface_matrix_from_miller(hkl, uvw) -> np.ndarray:
     d = np.asarray(uvw, dtype=float)
     for v, name in ((n, "hkl"), (d, "uvw")):
         if v.ndim < 1 or v.shape[-1] != 3:
-            raise ValueError(f"{name} must have shape (..., 3), got {v.shape}")
+            raise ContactresInputError(f"{name} must have shape (..., 3), got {v.shape}")
         if not np.all(np.isfinite(v)):
-            raise ValueError(f"{name} must be finite (found NaN or inf)")
+            raise ContactresInputError(f"{name} must be finite (found NaN or inf)")
         if np.any(np.linalg.norm(v, axis=-1) == 0):
-            raise ValueError(f"{name} must not be the zero vector")
+            raise ContactresInputError(f"{name} must not be the zero vector")
     n, d = np.broadcast_arrays(n, d)
     nn, nd = np.linalg.norm(n, axis=-1), np.linalg.norm(d, axis=-1)
     dot = np.sum(n * d, axis=-1)
     bad = np.abs(dot) > 1e-9 * nn * nd
     if np.any(bad):
         i = np.unravel_index(int(np.argmax(bad)), bad.shape)
-        raise ValueError(
+        raise ContactresInputError(
             f"[uvw] = {d[i].tolist()!r} does not lie in the plane (hkl) = {n[i].tolist()!r}: "
             f"hkl · uvw = {float(dot[i]):g}, must be 0"
         )
@@ -311,7 +313,7 @@ def symmetry_operators(lattice: str) -> np.ndarray:
         12. Entries that are 0 or ±1 are exact.
     """
     if lattice not in LATTICES:
-        raise ValueError(f"lattice must be one of {sorted(LATTICES)}, got {lattice!r}")
+        raise ContactresInputError(f"lattice must be one of {sorted(LATTICES)}, got {lattice!r}")
     S = Rotation.create_group(LATTICES[lattice]).as_matrix()
     for exact in (0.0, 1.0, -1.0):  # clean round-off so that the cubic operators are exact
         S[np.isclose(S, exact, rtol=0, atol=1e-12)] = exact
@@ -380,7 +382,7 @@ def random_orientations(n: int, seed: int | np.random.Generator | None = None) -
         distributed, so they are uniform as ``g`` too.
     """
     if isinstance(n, bool) or not isinstance(n, int | np.integer) or n < 0:
-        raise ValueError(f"n must be a non-negative integer, got {n!r}")
+        raise ContactresInputError(f"n must be a non-negative integer, got {n!r}")
     if n == 0:
         return np.zeros((0, 3, 3))
     return Rotation.random(int(n), rng=np.random.default_rng(seed)).as_matrix().reshape(-1, 3, 3)

@@ -37,6 +37,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..errors import ContactresInputError
 from ..materials import Material, voigt_to_tensor
 from .normal_table import NormalTable
 
@@ -99,11 +100,13 @@ def tip_modulus(tip) -> float:
         try:
             E, nu = (float(x) for x in tip)
         except (TypeError, ValueError):
-            raise ValueError(f"tip must be a Material, (E, nu) or None, got {tip!r}") from None
+            raise ContactresInputError(
+                f"tip must be a Material, (E, nu) or None, got {tip!r}"
+            ) from None
     if not (E > 0) or math.isnan(E):
-        raise ValueError(f"tip Young's modulus must be > 0 (inf for rigid), got {E!r} Pa")
+        raise ContactresInputError(f"tip Young's modulus must be > 0 (inf for rigid), got {E!r} Pa")
     if not -1.0 < nu < 0.5:
-        raise ValueError(f"tip Poisson's ratio must lie in (-1, 0.5), got {nu!r}")
+        raise ContactresInputError(f"tip Poisson's ratio must lie in (-1, 0.5), got {nu!r}")
     return E / (1.0 - nu * nu)
 
 
@@ -132,12 +135,12 @@ def contact_stiffness_map(moduli, tip, radius: float, force: float) -> ContactMa
     """
     M = np.asarray(moduli)
     if np.iscomplexobj(M) or not np.all(np.asarray(M, float) > 0):
-        raise ValueError("moduli must be real and > 0 (Pa)")
+        raise ContactresInputError("moduli must be real and > 0 (Pa)")
     R, F = np.asarray(radius, float), np.asarray(force, float)
     if not np.all(R > 0) or not np.all(np.isfinite(R)):
-        raise ValueError(f"radius must be finite and > 0 (m), got {radius!r}")
+        raise ContactresInputError(f"radius must be finite and > 0 (m), got {radius!r}")
     if not np.all(F >= 0) or not np.all(np.isfinite(F)):
-        raise ValueError(f"force must be finite and >= 0 (N), got {force!r}")
+        raise ContactresInputError(f"force must be finite and >= 0 (N), got {force!r}")
     E_star = 1.0 / (1.0 / M + 1.0 / tip_modulus(tip))
     a = np.cbrt(3.0 * F * R / (4.0 * E_star))
     return ContactMap(E_star, a, 2.0 * a * E_star)
@@ -152,10 +155,10 @@ def map_wavenumbers(material: Material, normals, contact_radius, frequency: floa
     ``material`` needs its density (kg/m^3).
     """
     if material.density is None:
-        raise ValueError("map_wavenumbers needs the material density (kg/m^3)")
+        raise ContactresInputError("map_wavenumbers needs the material density (kg/m^3)")
     f = float(frequency)
     if not (f >= 0 and math.isfinite(f)):
-        raise ValueError(f"frequency must be finite and >= 0 (Hz), got {frequency!r}")
+        raise ContactresInputError(f"frequency must be finite and >= 0 (Hz), got {frequency!r}")
     n = np.asarray(normals, float)
     n = n / np.linalg.norm(n, axis=-1, keepdims=True)
     c = voigt_to_tensor(np.real(np.asarray(material.C)))

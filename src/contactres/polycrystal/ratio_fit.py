@@ -35,6 +35,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..errors import ContactresInputError
 from ..materials import Material
 from .least_squares import levenberg_marquardt
 from .moduli import indentation_moduli
@@ -166,25 +167,29 @@ class RatioFit:
 def check_inputs(orientations, values, errors, quantity: str, tip_modulus, calibration):
     """Validated (R (G, 3, 3), values (G,), errors (G,), p, tip modulus in Pa or inf)."""
     if quantity not in QUANTITIES:
-        raise ValueError(f"quantity must be one of {sorted(QUANTITIES)}, got {quantity!r}")
+        raise ContactresInputError(
+            f"quantity must be one of {sorted(QUANTITIES)}, got {quantity!r}"
+        )
     R = np.asarray(orientations, dtype=float)
     y = np.asarray(values, dtype=float)
     sig = np.asarray(errors, dtype=float)
     G = y.size
     if R.shape != (G, 3, 3) or sig.shape != y.shape or y.ndim != 1:
-        raise ValueError(
+        raise ContactresInputError(
             f"need orientations (G, 3, 3), values (G,), errors (G,); got {R.shape}, "
             f"{y.shape}, {sig.shape}"
         )
     if not (np.all(np.isfinite(y)) and np.all(y > 0)):
-        raise ValueError("values must be finite and positive")
+        raise ContactresInputError("values must be finite and positive")
     if not (np.all(np.isfinite(sig)) and np.all(sig > 0)):
-        raise ValueError("errors must be finite and positive (drop grains without an error)")
+        raise ContactresInputError(
+            "errors must be finite and positive (drop grains without an error)"
+        )
     mt = np.inf if tip_modulus is None else float(tip_modulus)
     if not mt > 0:
-        raise ValueError(f"tip_modulus must be positive, got {tip_modulus!r}")
+        raise ContactresInputError(f"tip_modulus must be positive, got {tip_modulus!r}")
     if calibration is not None and not (np.isfinite(calibration) and calibration > 0):
-        raise ValueError(f"calibration must be finite and positive, got {calibration!r}")
+        raise ContactresInputError(f"calibration must be finite and positive, got {calibration!r}")
     return R, y, sig, QUANTITIES[quantity], mt
 
 
@@ -222,7 +227,9 @@ def fit_ratios(
     k = len(param.names)
     unknown = set(guess or {}) - {*param.names, "c11"}
     if unknown:
-        raise ValueError(f"unknown guess keys {sorted(unknown)}; use {[*param.names, 'c11']}")
+        raise ContactresInputError(
+            f"unknown guess keys {sorted(unknown)}; use {[*param.names, 'c11']}"
+        )
     g = {**dict(zip(param.names, param.default_guess, strict=True)), "c11": 150e9, **(guess or {})}
     rigid, free_c = np.isinf(mt), calibration is None
     fit_c11 = not (rigid and free_c)
@@ -277,7 +284,7 @@ def fit_ratios(
     )
     theta0 = np.clip(theta0, lo + 0.01, hi - 0.01)
     if not param.admissible(np.exp(theta0[n_scale:])):
-        raise ValueError(
+        raise ContactresInputError(
             f"the guess {dict(zip(param.names, np.exp(theta0[n_scale:]), strict=True))} is not a "
             f"stable {param.lattice} crystal (stiffness not positive definite)"
         )

@@ -14,6 +14,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.spatial import cKDTree
 
+from ..errors import ContactresInputError
 from .maps import OrientationMap
 from .orientations import euler_from_surface_matrices, random_orientations
 
@@ -78,16 +79,18 @@ def synthetic_polycrystal(
     try:
         H, W = (int(n) for n in shape)
     except (TypeError, ValueError) as exc:
-        raise ValueError(f"shape must be two positive integers (H, W), got {shape!r}") from exc
+        raise ContactresInputError(
+            f"shape must be two positive integers (H, W), got {shape!r}"
+        ) from exc
     if H < 1 or W < 1:
-        raise ValueError(f"shape must be two positive integers (H, W), got {shape!r}")
+        raise ContactresInputError(f"shape must be two positive integers (H, W), got {shape!r}")
     if isinstance(n_grains, bool) or not isinstance(n_grains, int | np.integer):
-        raise ValueError(f"n_grains must be an integer, got {n_grains!r}")
+        raise ContactresInputError(f"n_grains must be an integer, got {n_grains!r}")
     if not 1 <= n_grains <= H * W:
-        raise ValueError(f"n_grains must lie in [1, {H * W}] (pixels), got {n_grains}")
+        raise ContactresInputError(f"n_grains must lie in [1, {H * W}] (pixels), got {n_grains}")
     pixel_size = float(pixel_size)
     if not (np.isfinite(pixel_size) and pixel_size > 0):
-        raise ValueError(f"pixel_size must be a positive length in m, got {pixel_size!r}")
+        raise ContactresInputError(f"pixel_size must be a positive length in m, got {pixel_size!r}")
     rng = np.random.default_rng(seed)
     seeds = rng.uniform(size=(int(n_grains), 2)) * np.array([W, H]) - 0.5  # pixel units (x, y)
     grain_R = random_orientations(int(n_grains), rng)

@@ -22,6 +22,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ..errors import ContactresInputError
 from .figures import LABEL_CHARS
 
 if TYPE_CHECKING:
@@ -140,23 +141,27 @@ def modulus_map_figure(
     M = np.asarray(moduli, dtype=float)
     n = np.asarray(normals, dtype=float)
     if M.ndim != 2:
-        raise ValueError(f"moduli must be a map of shape (H, W), got {M.shape}")
+        raise ContactresInputError(f"moduli must be a map of shape (H, W), got {M.shape}")
     if n.shape != (*M.shape, 3):
-        raise ValueError(f"normals must have shape {(*M.shape, 3)} (the map's), got {n.shape}")
+        raise ContactresInputError(
+            f"normals must have shape {(*M.shape, 3)} (the map's), got {n.shape}"
+        )
     if not np.isfinite(M).any():
-        raise ValueError("moduli has no finite value: nothing to draw")
+        raise ContactresInputError("moduli has no finite value: nothing to draw")
     tri = ipf_triangle(lattice, grid_points)  # ValueError for an unknown lattice
     if pixel_size is not None:
         pixel_size = float(pixel_size)
         if not (np.isfinite(pixel_size) and pixel_size > 0):
-            raise ValueError(f"pixel_size must be a positive length in m, got {pixel_size!r}")
+            raise ContactresInputError(
+                f"pixel_size must be a positive length in m, got {pixel_size!r}"
+            )
     # The cells cut by the outline are drawn too (then clipped), so evaluate one cell beyond
     # it, at the folded equivalents there (same M by symmetry): no gap along the edges.
     cells = _dilated(tri.inside)
     folded, _ = reduce_normals(tri.normals[cells], lattice)
     m_tri = np.asarray(modulus_of_normals(folded), dtype=float)
     if m_tri.shape != (folded.shape[0],) or not np.all(np.isfinite(m_tri)):
-        raise ValueError(
+        raise ContactresInputError(
             f"modulus_of_normals must return one finite M (Pa) per direction: shape "
             f"({folded.shape[0]},), got {m_tri.shape}"
         )

@@ -61,6 +61,7 @@ import pandas as pd
 from ..analysis.flags import render
 from ..analysis.radiation import RADIATION_RESULTS, radiation_summary
 from ..analysis.results import Results
+from ..errors import ContactresInputError
 from ..fileio import CSV_FLOAT_FORMAT, ResultSet, write_csv, write_text
 from ..measurements.schema import CONVENTIONS, GROUP_RESULTS, LOAD_RESULTS, SWEEP_RESULTS
 from .figures import FIGURE_FILES, RADIATION_FIGURE
@@ -122,7 +123,9 @@ def loads_table(results: Results) -> pd.DataFrame:
 def radiation_table(results: Results) -> pd.DataFrame:
     """The ``radiation.csv`` table: the columns of ``RADIATION_RESULTS`` (results with one)."""
     if results.radiation is None:
-        raise ValueError("these results have no radiation table (no materials were given)")
+        raise ContactresInputError(
+            "these results have no radiation table (no materials were given)"
+        )
     return _finite_or_nan(results.radiation[list(RADIATION_RESULTS.names)])
 
 
@@ -163,7 +166,7 @@ def _formats(formats) -> tuple[str, ...]:
     formats = (formats,) if isinstance(formats, str) else tuple(formats)
     unknown = sorted(set(formats) - set(FORMATS))
     if unknown:
-        raise ValueError(f"unknown report format(s) {unknown}; allowed: {list(FORMATS)}")
+        raise ContactresInputError(f"unknown report format(s) {unknown}; allowed: {list(FORMATS)}")
     return formats
 
 

@@ -49,6 +49,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..errors import ContactresInputError
 from ..validation import nonnegative, positive
 
 __all__ = [
@@ -119,21 +120,23 @@ class Cantilever:
     def __post_init__(self):
         f = tuple(float(x) for x in np.atleast_1d(np.asarray(self.free_frequencies, float)))
         if not 1 <= len(f) <= 3:
-            raise ValueError(f"Cantilever needs 1 to 3 free frequencies (Hz), got {len(f)}")
+            raise ContactresInputError(
+                f"Cantilever needs 1 to 3 free frequencies (Hz), got {len(f)}"
+            )
         positive("Cantilever free_frequencies", np.asarray(f), "Hz")
         if np.any(np.diff(f) <= 0):
-            raise ValueError(f"Cantilever free_frequencies must increase (Hz), got {f!r}")
+            raise ContactresInputError(f"Cantilever free_frequencies must increase (Hz), got {f!r}")
         object.__setattr__(self, "free_frequencies", f)
         positive("Cantilever spring_constant", self.spring_constant, "N/m")
         if self.normalisation not in NORMALISATIONS:
-            raise ValueError(
+            raise ContactresInputError(
                 f"Cantilever normalisation must be one of {NORMALISATIONS}, "
                 f"got {self.normalisation!r}"
             )
         if self.free_q_factors is not None:
             q = tuple(float(x) for x in np.atleast_1d(np.asarray(self.free_q_factors, float)))
             if len(q) != len(f):
-                raise ValueError(
+                raise ContactresInputError(
                     f"Cantilever free_q_factors needs one Q per free frequency ({len(f)}), "
                     f"got {len(q)}"
                 )
@@ -148,7 +151,7 @@ class Cantilever:
             idx = np.zeros_like(mode)
         else:
             if np.any(mode > len(self.free_frequencies)) or np.any(mode < 1):
-                raise ValueError(
+                raise ContactresInputError(
                     f"modewise normalisation needs the free frequency of every mode used; "
                     f"the cantilever has {len(self.free_frequencies)}, modes used "
                     f"{[int(x) for x in np.unique(mode)]}"
@@ -195,7 +198,7 @@ def tip_coefficients(lateral_ratio=0.0, tip_height=0.0, tilt=0.0):
     eta = nonnegative("tip_height", tip_height, "h/L, dimensionless")
     phi = nonnegative("tilt", tilt, "degrees")
     if np.any(np.asarray(phi) >= 90.0):
-        raise ValueError(f"tilt must be < 90 (degrees), got {tilt!r}")
+        raise ContactresInputError(f"tilt must be < 90 (degrees), got {tilt!r}")
     s, c = np.sin(np.radians(phi)), np.cos(np.radians(phi))
     g_yy = c * c + a * s * s
     g_yt = -eta * s * c * (1.0 - a)
@@ -206,7 +209,7 @@ def tip_coefficients(lateral_ratio=0.0, tip_height=0.0, tilt=0.0):
 def _check_position(tip_position):
     r = positive("tip_position", tip_position, "L1/L, dimensionless")
     if np.any(np.asarray(r) > 1.0):
-        raise ValueError(f"tip_position must be in (0, 1] (L1/L), got {tip_position!r}")
+        raise ContactresInputError(f"tip_position must be in (0, 1] (L1/L), got {tip_position!r}")
     return r
 
 
@@ -387,7 +390,7 @@ def contact_frequencies(
     g = tip_coefficients(lateral_ratio, tip_height, tilt)
     modes = tuple(int(m) for m in np.atleast_1d(modes))
     if min(modes) < 1 or max(modes) > len(FREE_ROOTS) - 2:
-        raise ValueError(f"modes must be in 1..{len(FREE_ROOTS) - 2}, got {modes!r}")
+        raise ContactresInputError(f"modes must be in 1..{len(FREE_ROOTS) - 2}, got {modes!r}")
     shape = np.broadcast_shapes(kap.shape, np.shape(r), *(np.shape(x) for x in g))
     flat = [np.broadcast_to(x, shape).reshape(-1, 1) for x in (kap, r, *g)]
     kap_c, r_f, g_f = flat[0], flat[1], tuple(flat[2:])

@@ -52,6 +52,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..errors import ContactresInputError
 from .cantilever import (
     FREE_ROOTS,
     Cantilever,
@@ -324,19 +325,21 @@ def invert_contact_resonance(
     n_cols = f.shape[-1]
     modes = tuple(range(1, n_cols + 1)) if modes is None else tuple(int(m) for m in modes)
     if len(modes) != n_cols or min(modes) < 1 or max(modes) > len(FREE_ROOTS) - 2:
-        raise ValueError(f"modes must give a mode (1..8) per column ({n_cols}), got {modes!r}")
+        raise ContactresInputError(
+            f"modes must give a mode (1..8) per column ({n_cols}), got {modes!r}"
+        )
     if not 0 < mode_tolerance < np.inf:
-        raise ValueError(f"mode_tolerance must be > 0 (relative), got {mode_tolerance!r}")
+        raise ContactresInputError(f"mode_tolerance must be > 0 (relative), got {mode_tolerance!r}")
     measured = ~np.isnan(f)
     if np.any(~np.isfinite(f[measured]) | (f[measured] <= 0)):
-        raise ValueError("frequencies must be > 0 and finite (Hz) or NaN (not measured)")
+        raise ContactresInputError("frequencies must be > 0 and finite (Hz) or NaN (not measured)")
     q = None
     no_q = np.ones(f.shape, bool)
     if q_factors is not None:
         q = np.broadcast_to(np.asarray(q_factors, dtype=float), f.shape)
         no_q = np.isnan(q)  # a cell without a Q: real ω there, σ unknown
         if np.any(~(q[measured & ~no_q] > 0) | ~np.isfinite(q[measured & ~no_q])):
-            raise ValueError("q_factors must be finite and > 0 (dimensionless) or NaN")
+            raise ContactresInputError("q_factors must be finite and > 0 (dimensionless) or NaN")
         q = np.where(no_q, np.inf, q)
     g = tuple(np.asarray(x)[..., None] for x in tip_coefficients(lateral_ratio, tip_height, tilt))
     mode_arr = np.array(modes)
@@ -348,14 +351,14 @@ def invert_contact_resonance(
             bad = ~(r > 0) | ~(r <= 1)
             if np.any(bad):
                 shown = float(r[bad].ravel()[0]) if r.ndim else float(r)
-                raise ValueError(f"tip_position must be in (0, 1] (L1/L), got {shown!r}")
+                raise ContactresInputError(f"tip_position must be in (0, 1] (L1/L), got {shown!r}")
             r = r[..., None]
             cand = np.full((*np.broadcast_shapes(f.shape[:-1], r.shape[:-1]), 0), np.nan)
             cand_k = cand
             method = "tip position given"
         else:
             if n_cols < 2:
-                raise ValueError("tip_position=None needs two measured modes (columns)")
+                raise ContactresInputError("tip_position=None needs two measured modes (columns)")
             r, cand, cand_k, n_win = _two_modes(beta, mode_arr, measured, g, mode_tolerance)
             method = (
                 "two modes (first two measured columns), tip position from κ_a(r) = κ_b(r) "

@@ -30,6 +30,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..errors import ContactresInputError
 from ..numerics import gauss_legendre_unit
 from ..tangential import CattaneoMindlinLoop, DashpotLoop, MasingLoop, SavkoorLoop
 from ..units import SMALL_LOAD_LIMIT
@@ -92,7 +93,7 @@ class QCM:
             positive(f"QCM {name}", getattr(self, name), unit)
         n = self.overtone
         if not np.isfinite(n) or int(n) != n or n < 1 or int(n) % 2 == 0:
-            raise ValueError(f"QCM overtone must be an odd integer >= 1, got {n!r}")
+            raise ContactresInputError(f"QCM overtone must be an odd integer >= 1, got {n!r}")
 
     @property
     def frequency(self) -> float:
@@ -107,7 +108,7 @@ class QCM:
     def sensitivity(self, n_contacts: float = 1) -> float:
         """P = n_P / (2nπ² A_eff Z_q), Hz per (N/m) (paper 2, Eq. 1)."""
         if not np.isfinite(n_contacts) or n_contacts <= 0:
-            raise ValueError(f"n_contacts must be > 0, got {n_contacts!r}")
+            raise ContactresInputError(f"n_contacts must be > 0, got {n_contacts!r}")
         return n_contacts / (2.0 * self.overtone * np.pi**2 * self.area * self.zq)
 
 
@@ -299,7 +300,7 @@ def loop_stiffness(loop, u0, nodes: int = DEFAULT_NODES):
     u0 = amplitude(u0)
     n = int(nodes)
     if n < 2:
-        raise ValueError(f"nodes must be >= 2, got {nodes!r}")
+        raise ContactresInputError(f"nodes must be >= 2, got {nodes!r}")
     if isinstance(loop, DashpotLoop):
         return loop_stiffness(loop.loop, u0, n) + 1j * loop.omega * loop.xi
     if isinstance(loop, MasingLoop):
@@ -307,7 +308,9 @@ def loop_stiffness(loop, u0, nodes: int = DEFAULT_NODES):
     elif all(hasattr(loop, m) for m in ("branches", "kinks")):
         k1, k2 = _generic_stiffness(loop, u0, n)
     else:
-        raise ValueError(f"{type(loop).__name__} is not a loop (needs branches(u, u0), kinks(u0))")
+        raise ContactresInputError(
+            f"{type(loop).__name__} is not a loop (needs branches(u, u0), kinks(u0))"
+        )
     k = k1 + 1j * k2
     return complex(k) if k.ndim == 0 else k
 
@@ -358,7 +361,7 @@ def cattaneo_mindlin_expansion(loop: CattaneoMindlinLoop, u0, omega_xi: float = 
     Eq. 11 shows 1/3 and 4/(9π), twice these.
     """
     if order not in (1, 2):
-        raise ValueError(f"order must be 1 or 2, got {order!r}")
+        raise ContactresInputError(f"order must be 1 or 2, got {order!r}")
     u0 = amplitude(u0)
     k = loop.kappa
     e = k * u0 / loop.sliding_force
@@ -393,7 +396,7 @@ def friction_from_slopes(
     kappa = np.asarray(kappa, dtype=float)
     F = np.asarray(normal_force, dtype=float)
     if np.any(kappa <= 0) or np.any(F <= 0):
-        raise ValueError(
+        raise ContactresInputError(
             "friction_from_slopes needs kappa > 0 (N/m) and normal_force > 0 (N), got "
             f"kappa={_out(kappa)!r}, normal_force={_out(F)!r}"
         )

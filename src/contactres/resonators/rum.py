@@ -55,6 +55,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from ..errors import ContactresInputError
 from ..validation import nonnegative, positive
 
 __all__ = ["RUM_MODELS", "RUMOscillator"]
@@ -96,14 +97,16 @@ class RUMOscillator:
         positive("RUM free_frequency f0", self.free_frequency, "Hz")
         positive("RUM effective_stiffness K_eff", self.effective_stiffness, "N/m")
         if self.model not in RUM_MODELS:
-            raise ValueError(
+            raise ContactresInputError(
                 f"RUM model must be one of {', '.join(RUM_MODELS)}, got {self.model!r}"
             )
         n = self.mode
         if not np.isfinite(n) or int(n) != n or n < 1:
-            raise ValueError(f"RUM mode must be an integer >= 1, got {n!r}")
+            raise ContactresInputError(f"RUM mode must be an integer >= 1, got {n!r}")
         if self.model == "lumped" and n != 1:
-            raise ValueError(f"the lumped RUM model has one mode (mode=1), got mode={n!r}")
+            raise ContactresInputError(
+                f"the lumped RUM model has one mode (mode=1), got mode={n!r}"
+            )
 
     # ----------------------------------------------------------------------------- constructors
     @classmethod
@@ -130,7 +133,7 @@ class RUMOscillator:
         E = positive("RUM rod modulus E", modulus, "Pa")
         rho = positive("RUM rod density", density, "kg/m^3")
         if not np.isfinite(mode) or int(mode) != mode or mode < 1:
-            raise ValueError(f"RUM mode must be an integer >= 1, got {mode!r}")
+            raise ContactresInputError(f"RUM mode must be an integer >= 1, got {mode!r}")
         f0 = mode * math.sqrt(E / rho) / (2.0 * L)
         return cls.rod(f0, rho * A * L, int(mode))
 
@@ -163,7 +166,7 @@ class RUMOscillator:
             idx = np.unravel_index(np.flatnonzero(bad.ravel())[0], f.shape)
             where = "" if f.ndim == 0 else f" at index {idx[0] if len(idx) == 1 else idx}"
             upper = "" if self.model == "lumped" else f" and < the clamped limit {fc:.10g} Hz"
-            raise ValueError(
+            raise ContactresInputError(
                 f"contact resonance frequency f must be >= the free resonance f0 = {f0:.10g} Hz"
                 f"{upper} ({self.model} model, mode {self.mode}), got {float(f[idx]):.10g} Hz"
                 f"{where}"

@@ -14,6 +14,7 @@ from pathlib import Path
 
 import pandas as pd
 
+from ...errors import ContactresInputError
 from . import delimited
 
 __all__ = ["READERS", "SweepReader", "pick_reader", "register_reader"]
@@ -51,7 +52,7 @@ READERS: list[SweepReader] = [
 def register_reader(reader: SweepReader) -> SweepReader:
     """Add a reader plug-in (tried before the built-in ones); its name must be new."""
     if any(r.name == reader.name for r in READERS):
-        raise ValueError(f"a reader named {reader.name!r} is already registered")
+        raise ContactresInputError(f"a reader named {reader.name!r} is already registered")
     READERS.insert(0, reader)
     return reader
 
@@ -61,11 +62,13 @@ def pick_reader(path: Path) -> SweepReader:
     with path.open(encoding="utf-8-sig", errors="replace") as fh:
         head = fh.read(4096)
     if not head.strip():
-        raise ValueError(f"{path}: the file is empty (expected a header line and data rows)")
+        raise ContactresInputError(
+            f"{path}: the file is empty (expected a header line and data rows)"
+        )
     by_suffix = [r for r in READERS if path.suffix.lower() in r.suffixes]
     others = [r for r in READERS if r not in by_suffix]
     for reader in by_suffix + others:
         if reader.detect(path, head):
             return reader
     names = ", ".join(f"{r.name} ({'/'.join(r.suffixes)})" for r in READERS)
-    raise ValueError(f"{path}: no reader recognises this file; formats known: {names}")
+    raise ContactresInputError(f"{path}: no reader recognises this file; formats known: {names}")

@@ -16,6 +16,8 @@ from pathlib import Path
 
 import pandas as pd
 
+from ...errors import ContactresInputError
+
 __all__ = ["detect", "load", "suffixes"]
 
 suffixes = (".csv", ".txt", ".tsv")
@@ -58,7 +60,7 @@ def _decode(path: Path) -> str:
     except UnicodeDecodeError as exc:
         at = bom + exc.start
         line = data.count(b"\n", 0, at) + 1
-        raise ValueError(
+        raise ContactresInputError(
             f"{path}: not UTF-8 text (byte 0x{data[at]:02x} at offset {at}, line {line}); save "
             "the table as UTF-8"
         ) from None
@@ -81,7 +83,7 @@ def _check_header(path: Path, number: int, header: str, sep: str) -> None:
             for n, cols in list(dups.items())[:3]
         )
         more = f"; and {len(dups) - 3} more name(s)" if len(dups) > 3 else ""
-        raise ValueError(
+        raise ContactresInputError(
             f"{path}, line {number}: duplicate column name(s) {shown}{more}; every column "
             "needs its own name"
         )
@@ -101,7 +103,9 @@ def load(path: Path) -> pd.DataFrame:
         if ln.strip() and not ln.lstrip().startswith("#")
     ]
     if not kept:
-        raise ValueError(f"{path}: the file is empty (expected a header line and data rows)")
+        raise ContactresInputError(
+            f"{path}: the file is empty (expected a header line and data rows)"
+        )
     sep, decimal = _dialect("\n".join(ln for _, ln in kept[:51]))
     _check_header(path, *kept[0], sep)
     try:
@@ -120,7 +124,9 @@ def load(path: Path) -> pd.DataFrame:
             what = f"line {number} has {found.group(3)} fields, the header {found.group(1)}"
         else:
             what = " ".join(str(exc).split())[:200]
-        raise ValueError(f"{path}: not a readable {sep!r}-separated table ({what})") from None
+        raise ContactresInputError(
+            f"{path}: not a readable {sep!r}-separated table ({what})"
+        ) from None
     raw.columns = [str(c).strip() for c in raw.columns]
     # A short row leaves NaN in its missing cells: make them empty cells, as written.
     raw = raw.fillna("")

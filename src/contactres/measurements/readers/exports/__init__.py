@@ -22,6 +22,7 @@ from __future__ import annotations
 
 from pathlib import Path
 
+from ....errors import ContactresInputError
 from . import awsensors, openqcm, qcmi, qsense
 from .base import CONVENTION_KEYS, ExportReader, ExportTable, parse_baseline
 
@@ -54,7 +55,7 @@ def export_reader(name: str, readers: tuple[ExportReader, ...] = EXPORT_READERS)
         if reader.name == str(name).strip().lower():
             return reader
     known = ", ".join(r.name for r in readers)
-    raise ValueError(f"no export reader is called {str(name)!r}; known: {known}")
+    raise ContactresInputError(f"no export reader is called {str(name)!r}; known: {known}")
 
 
 def pick_export_reader(path, readers: tuple[ExportReader, ...] = EXPORT_READERS) -> ExportReader:
@@ -62,20 +63,22 @@ def pick_export_reader(path, readers: tuple[ExportReader, ...] = EXPORT_READERS)
     tried first). ValueError naming the file and the known formats if none does."""
     path = Path(path)
     if path.suffix.lower() in BINARY_SUFFIXES:
-        raise ValueError(
+        raise ContactresInputError(
             f"{path}: a {path.suffix} file is binary; export the data from the instrument "
             "software as text (tab, semicolon or comma separated)"
         )
     with path.open(encoding="utf-8-sig", errors="replace") as fh:
         head = fh.read(4096)
     if not head.strip():
-        raise ValueError(f"{path}: the file is empty (expected a header line and data rows)")
+        raise ContactresInputError(
+            f"{path}: the file is empty (expected a header line and data rows)"
+        )
     by_suffix = [r for r in readers if path.suffix.lower() in r.suffixes]
     for reader in by_suffix + [r for r in readers if r not in by_suffix]:
         if reader.detect(path, head):
             return reader
     names = ", ".join(r.name for r in readers)
-    raise ValueError(
+    raise ContactresInputError(
         f"{path}: no export reader recognises its header (formats known: {names}); name one "
         "with reader=... (--reader), or see the layouts in contactres.measurements.readers.exports"
     )

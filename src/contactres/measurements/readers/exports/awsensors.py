@@ -20,6 +20,7 @@ import re
 from pathlib import Path
 from types import MappingProxyType
 
+from ....errors import ContactresInputError
 from .base import ExportReader, ExportTable, Layout, check_keys, header_names, read_rows
 from .tidy import convert
 
@@ -65,17 +66,19 @@ def _layout(path: Path, names: list[str]) -> Layout:
     freqs, diss = _columns(names)
     overtones = sorted(freqs.keys() & diss.keys())
     if _TIME not in names or not overtones:
-        raise ValueError(f"{path}: no AWSensors columns (Time_(s), Delta_F/n_n=3_(Hz), ...)")
+        raise ContactresInputError(
+            f"{path}: no AWSensors columns (Time_(s), Delta_F/n_n=3_(Hz), ...)"
+        )
     for n in overtones:
         if n < 1 or n % 2 == 0:
-            raise ValueError(f"{path}, column {freqs[n][0]!r}: overtone {n} is not odd")
+            raise ContactresInputError(f"{path}, column {freqs[n][0]!r}: overtone {n} is not odd")
     divided = {freqs[n][1] for n in overtones}
     if len(divided) > 1:
-        raise ValueError(f"{path}: the Delta_F columns mix F/n and F (AWSensors export)")
+        raise ContactresInputError(f"{path}: the Delta_F columns mix F/n and F (AWSensors export)")
     units = {diss[n][1] for n in overtones}
     unknown = units - set(_SCALES)
     if len(units) > 1 or unknown:
-        raise ValueError(
+        raise ContactresInputError(
             f"{path}: the Delta_D columns have the unit(s) {', '.join(map(repr, sorted(units)))}"
             f"; one of {', '.join(repr(u) for u in _SCALES)} is understood (AWSensors export)"
         )
@@ -97,7 +100,7 @@ def load(path, **conventions) -> ExportTable:
     path = Path(path)
     check_keys(path, NAME, conventions)
     if conventions.get("channel") is not None:
-        raise ValueError(
+        raise ContactresInputError(
             f"{path}: channel (--channel) does not apply: the AWSensors export has one channel"
         )
     raw = read_rows(path)

@@ -47,6 +47,7 @@ from types import MappingProxyType
 import numpy as np
 import pandas as pd
 
+from ....errors import ContactresInputError
 from ....units import ABSOLUTE_FREQUENCY_FRACTION
 from ...messages import shown_value
 
@@ -121,7 +122,9 @@ class ExportTable:
 
     def __post_init__(self):
         if tuple(self.data.columns) != COLUMNS:
-            raise ValueError(f"ExportTable needs the columns {COLUMNS}, got {tuple(self.data)}")
+            raise ContactresInputError(
+                f"ExportTable needs the columns {COLUMNS}, got {tuple(self.data)}"
+            )
         object.__setattr__(self, "conventions", MappingProxyType(dict(self.conventions)))
 
 
@@ -202,7 +205,7 @@ def missing(path: Path, reader: str, choices: list[tuple[str, str]]) -> ValueErr
     whys = "; ".join(why for _, why in choices)
     keys = ", ".join(f"{key}=..." for key, _ in choices)
     options = "; ".join(CONVENTION_KEYS[key] for key, _ in choices)
-    return ValueError(
+    return ContactresInputError(
         f"{path}: {whys} ({reader} export); give {keys} ({options} on the command line)"
     )
 
@@ -211,7 +214,7 @@ def check_keys(path: Path, reader: str, conventions: Mapping[str, object]) -> No
     """ValueError for a convention no reader knows (a typo must not be ignored)."""
     unknown = sorted(set(conventions) - set(CONVENTION_KEYS))
     if unknown:
-        raise ValueError(
+        raise ContactresInputError(
             f"{path}: unknown convention(s) {', '.join(map(repr, unknown))} for the {reader} "
             f"reader; known: {', '.join(CONVENTION_KEYS)}"
         )
@@ -247,7 +250,9 @@ def read_rows(path: Path) -> pd.DataFrame:
         if ln.strip() and not ln.lstrip().startswith("#")
     ]
     if not kept:
-        raise ValueError(f"{path}: the file is empty (expected a header line and data rows)")
+        raise ContactresInputError(
+            f"{path}: the file is empty (expected a header line and data rows)"
+        )
     header = kept[0][1]
     sep = "\t" if "\t" in header else ";" if ";" in header else ","
     rows = list(csv.reader((ln for _, ln in kept), delimiter=sep))
@@ -258,7 +263,7 @@ def read_rows(path: Path) -> pd.DataFrame:
     width, cells = len(names), []
     for (number, _), row in zip(kept[1:], rows[1:], strict=True):
         if len(row) > width and any(c.strip() for c in row[width:]):
-            raise ValueError(
+            raise ContactresInputError(
                 f"{path}, line {number}: {len(row)} fields, the header (line {kept[0][0]}) has "
                 f"{width}: not one table"
             )
@@ -276,14 +281,14 @@ def pick_channel(path: Path, reader: str, available: Iterable[str], wanted) -> s
     """The channel to read: the one given, or the only one in the file."""
     found = sorted(dict.fromkeys(available))
     if not found:
-        raise ValueError(f"{path}: no channel found in the header ({reader} export)")
+        raise ContactresInputError(f"{path}: no channel found in the header ({reader} export)")
     if wanted is None:
         if len(found) > 1:
             why = f"the file holds the channels {', '.join(found)}"
             raise missing(path, reader, [("channel", why)])
         return found[0]
     if str(wanted).strip() not in found:
-        raise ValueError(
+        raise ContactresInputError(
             f"{path}: channel {str(wanted)!r} (--channel) is not in the file; it holds "
             f"{', '.join(found)} ({reader} export)"
         )
@@ -301,11 +306,13 @@ def parse_baseline(text: str) -> tuple[str, float, float]:
             raise ValueError
         t0, t1 = float(parts[1]), float(parts[2])
     except ValueError:
-        raise ValueError(
+        raise ContactresInputError(
             f"baseline {str(text)!r} is not one of first, as-exported or window:T0:T1 (seconds)"
         ) from None
     if not (math.isfinite(t0) and math.isfinite(t1) and t0 < t1):
-        raise ValueError(f"baseline {str(text)!r}: the window needs finite T0 < T1 (seconds)")
+        raise ContactresInputError(
+            f"baseline {str(text)!r}: the window needs finite T0 < T1 (seconds)"
+        )
     return "window", t0, t1
 
 
@@ -317,7 +324,7 @@ def numbers(raw: pd.DataFrame, column: str, path: Path) -> np.ndarray:
     bad = (cells != "").to_numpy() & ~np.isfinite(values)
     if bad.any():
         i = int(np.flatnonzero(bad)[0])
-        raise ValueError(
+        raise ContactresInputError(
             f"{path}, line {raw.attrs['lines'][i]}, column {column!r}: value "
             f"{shown_value(cells.iloc[i])} is not a finite number"
         )
@@ -328,6 +335,6 @@ def fail_at(raw: pd.DataFrame, path: Path, column: str, rows: np.ndarray, rule: 
     """Raise for the first row of ``rows`` (a boolean mask): file, line, column, value, rule."""
     i = int(np.flatnonzero(rows)[0])
     value = shown_value(raw[column].iloc[i])
-    raise ValueError(
+    raise ContactresInputError(
         f"{path}, line {raw.attrs['lines'][i]}, column {column!r}: value {value} {rule}"
     )

@@ -33,6 +33,7 @@ import re
 from pathlib import Path
 from types import MappingProxyType
 
+from ....errors import ContactresInputError
 from .base import ExportReader, ExportTable, Layout, check_keys, header_names, missing, read_rows
 from .tidy import convert
 
@@ -69,7 +70,7 @@ def detect(path: Path, head: str) -> bool:
 
 def _layout(path: Path, names: list[str], overtone) -> Layout:
     if names[:4] != _HEAD:
-        raise ValueError(f"{path}: not an openQCM log (header {', '.join(_HEAD)}, ...)")
+        raise ContactresInputError(f"{path}: not an openQCM log (header {', '.join(_HEAD)}, ...)")
     multi = [
         (2 * int(m.group(1)) + 1, name, f"Dissipation_{m.group(1)}")
         for name in names
@@ -81,13 +82,15 @@ def _layout(path: Path, names: list[str], overtone) -> Layout:
             text, "Relative_time", tuple(sorted(multi)), time_unit="s", frequency="absolute"
         )
     if "Resonance_Frequency" not in names or "Dissipation" not in names:
-        raise ValueError(f"{path}: no openQCM frequency and dissipation columns")
+        raise ContactresInputError(f"{path}: no openQCM frequency and dissipation columns")
     if overtone is None:
         why = "a single-overtone log does not say its overtone"
         raise missing(path, NAME, [("overtone", why)])
     n = int(overtone)
     if n < 1 or n % 2 == 0:
-        raise ValueError(f"{path}: overtone {overtone!r} (--overtone) must be an odd integer >= 1")
+        raise ContactresInputError(
+            f"{path}: overtone {overtone!r} (--overtone) must be an odd integer >= 1"
+        )
     text = "openQCM single-overtone log: Relative_time, Resonance_Frequency, Dissipation"
     trace = ((n, "Resonance_Frequency", "Dissipation"),)
     return Layout(
@@ -100,7 +103,7 @@ def load(path, **conventions) -> ExportTable:
     path = Path(path)
     check_keys(path, NAME, conventions)
     if conventions.get("channel") is not None:
-        raise ValueError(
+        raise ContactresInputError(
             f"{path}: channel (--channel) does not apply: an openQCM log has one channel"
         )
     raw = read_rows(path)

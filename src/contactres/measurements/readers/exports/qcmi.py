@@ -23,6 +23,7 @@ import re
 from pathlib import Path
 from types import MappingProxyType
 
+from ....errors import ContactresInputError
 from .base import (
     ExportReader,
     ExportTable,
@@ -79,12 +80,14 @@ def detect(path: Path, head: str) -> bool:
 def _layout(path: Path, names: list[str], channel) -> Layout:
     times, freqs, diss, pairs = _columns(names)
     if not pairs:
-        raise ValueError(f"{path}: no QCM-I columns (Channel A QCM Time [sec], ...)")
+        raise ContactresInputError(f"{path}: no QCM-I columns (Channel A QCM Time [sec], ...)")
     x = pick_channel(path, NAME, (key[0] for key in pairs), channel)
     traces = tuple((n, freqs[(xx, n)], diss[(xx, n)]) for xx, n in pairs if xx == x)
     for n, fcol, _ in traces:
         if n % 2 == 0:
-            raise ValueError(f"{path}, column {fcol!r}: overtone {n} is not odd (QCM-I export)")
+            raise ContactresInputError(
+                f"{path}, column {fcol!r}: overtone {n} is not odd (QCM-I export)"
+            )
     text = "QCM-I text export: Channel X QCM Time [sec], ... Frequency/Overtone [Hz], Dissipation"
     return Layout(text, times[x], traces, channel=x, time_unit="s", dissipation_scale=1.0)
 

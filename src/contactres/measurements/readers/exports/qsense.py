@@ -29,6 +29,7 @@ import re
 from pathlib import Path
 from types import MappingProxyType
 
+from ....errors import ContactresInputError
 from .base import (
     ExportReader,
     ExportTable,
@@ -102,14 +103,18 @@ def detect(path: Path, head: str) -> bool:
 def _layout(path: Path, names: list[str], channel) -> Layout:
     found = _layout_of(names)
     if found is None:
-        raise ValueError(f"{path}: no QSense columns (Time_k with F_k:n and D_k:n, or fn_k [Hz])")
+        raise ContactresInputError(
+            f"{path}: no QSense columns (Time_k with F_k:n and D_k:n, or fn_k [Hz])"
+        )
     tag, times, freqs, diss = found
     pairs = sorted(key for key in freqs.keys() & diss.keys() if key[0] in times)
     k = pick_channel(path, NAME, (key[0] for key in pairs), channel)
     traces = tuple((n, freqs[(k, n)], diss[(k, n)]) for kk, n in pairs if kk == k)
     for n, fcol, _ in traces:
         if n < 1 or n % 2 == 0:
-            raise ValueError(f"{path}, column {fcol!r}: overtone {n} is not odd (QSense export)")
+            raise ContactresInputError(
+                f"{path}, column {fcol!r}: overtone {n} is not odd (QSense export)"
+            )
     if tag == "A":
         text = "QSense text export: Time_k, F_k:n, D_k:n (units not in the header)"
         return Layout(text, times[k], traces, channel=k)

@@ -25,6 +25,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from ....errors import ContactresInputError
 from .base import (
     ABSOLUTE_FREQUENCY_HZ,
     COLUMNS,
@@ -50,7 +51,7 @@ FUNDAMENTAL_TOLERANCE = 0.05
 def _agree(path: Path, reader: str, key: str, from_file, given):
     """The file's value of one convention, or the caller's; they must agree when both exist."""
     if from_file is not None and given is not None and given != from_file:
-        raise ValueError(
+        raise ContactresInputError(
             f"{path}: {key}={given!r} ({CONVENTION_KEYS[key]}) contradicts the file, whose "
             f"header says {from_file!r} ({reader} export)"
         )
@@ -87,7 +88,9 @@ def _frequency_kind(raw, path: Path, traces, stated: str | None) -> str:
                 else f"is no shift (the column holds shifts below {ABSOLUTE_FREQUENCY_HZ:g} Hz)",
             )
     if kind is None:
-        raise ValueError(f"{path}: no frequency value in the file ({traces[0][1]!r} and others)")
+        raise ContactresInputError(
+            f"{path}: no frequency value in the file ({traces[0][1]!r} and others)"
+        )
     return kind
 
 
@@ -101,10 +104,12 @@ def _choices(path: Path, reader: str, layout: Layout, given: dict, kind: str):
             ("time_unit", f"the time column {layout.time_column!r} has no unit (s, min or h)")
         )
     elif unit not in TIME_UNITS:
-        raise ValueError(f"{path}: time_unit {unit!r} is not one of {', '.join(TIME_UNITS)}")
+        raise ContactresInputError(
+            f"{path}: time_unit {unit!r} is not one of {', '.join(TIME_UNITS)}"
+        )
     divided = False
     if kind == "absolute" and given.get("df_divided_by_n"):
-        raise ValueError(
+        raise ContactresInputError(
             f"{path}: df_divided_by_n=True (--df-divided-by-n) does not apply: the file holds "
             f"resonance frequencies f_n, not shifts ({reader} export)"
         )
@@ -123,11 +128,13 @@ def _choices(path: Path, reader: str, layout: Layout, given: dict, kind: str):
         else:
             scale = float(scale)
             if not (math.isfinite(scale) and 0 < scale <= 1):
-                raise ValueError(f"{path}: dissipation_scale {scale!r} must lie in (0, 1]")
+                raise ContactresInputError(
+                    f"{path}: dissipation_scale {scale!r} must lie in (0, 1]"
+                )
             if layout.dissipation_scale is not None and not math.isclose(
                 scale, layout.dissipation_scale, rel_tol=1e-9
             ):
-                raise ValueError(
+                raise ContactresInputError(
                     f"{path}: dissipation_scale={scale:g} (--dissipation-scale) contradicts the "
                     f"header, whose unit of D is {layout.dissipation_scale:g} ({reader} export)"
                 )
@@ -146,7 +153,7 @@ def _choices(path: Path, reader: str, layout: Layout, given: dict, kind: str):
         raise missing(path, reader, needed)
     baseline = parse_baseline("as-exported" if base is None else str(base))
     if baseline[0] == "as-exported" and kind == "absolute":
-        raise ValueError(
+        raise ContactresInputError(
             f"{path}: baseline as-exported (--baseline) needs a file of shifts; this one holds "
             f"resonance frequencies: use first or window:T0:T1 ({reader} export)"
         )
@@ -173,7 +180,7 @@ def _series(raw, path: Path, layout: Layout, traces, t_all, kind: str, scale):
             fail_at(raw, path, dcol, keep & (d < 0), "is negative: an absolute D or Γ is >= 0")
         series.append((n, fcol, keep, f, d))
     if not any(s[2].any() for s in series):
-        raise ValueError(f"{path}: no row with time, frequency and dissipation")
+        raise ContactresInputError(f"{path}: no row with time, frequency and dissipation")
     return series, skipped
 
 
@@ -184,7 +191,9 @@ def _fundamental(path: Path, reader: str, given, kind, baseline, t_all, series):
     if fundamental is not None:
         fundamental = float(fundamental)
         if not (math.isfinite(fundamental) and fundamental > 0):
-            raise ValueError(f"{path}: fundamental {fundamental!r} Hz must be a positive number")
+            raise ContactresInputError(
+                f"{path}: fundamental {fundamental!r} Hz must be a positive number"
+            )
     if kind != "absolute":
         return fundamental, (source if fundamental is not None else None)
     per_n = {}
@@ -197,7 +206,7 @@ def _fundamental(path: Path, reader: str, given, kind, baseline, t_all, series):
     median = float(np.median([v for v, _ in per_n.values()]))
     for n, (v, fcol) in per_n.items():
         if abs(v / median - 1) > FUNDAMENTAL_TOLERANCE:
-            raise ValueError(
+            raise ContactresInputError(
                 f"{path}, column {fcol!r}: f_{n}/{n} = {v:.6g} Hz at the baseline differs from "
                 f"the other overtones' {median:.6g} Hz by more than {FUNDAMENTAL_TOLERANCE:.0%}: "
                 "the columns are not n f_F (divided by n, or misnumbered)"
@@ -205,7 +214,7 @@ def _fundamental(path: Path, reader: str, given, kind, baseline, t_all, series):
     if fundamental is None:
         return median, "from the file: median of f_n/n at the baseline"
     if abs(median / fundamental - 1) > FUNDAMENTAL_TOLERANCE:
-        raise ValueError(
+        raise ContactresInputError(
             f"{path}: fundamental={fundamental:g} Hz (--fundamental) disagrees with the file, "
             f"whose f_n/n is {median:.6g} Hz at the baseline ({reader} export)"
         )
@@ -228,7 +237,7 @@ def convert(
         traces = tuple(tr for tr in traces if tr[0] == int(given["overtone"]))
         if not traces:
             held = ", ".join(str(tr[0]) for tr in layout.traces)
-            raise ValueError(
+            raise ContactresInputError(
                 f"{path}: overtone {given['overtone']} (--overtone) is not in the file; it holds "
                 f"{held} ({reader} export)"
             )
@@ -250,7 +259,7 @@ def convert(
             rf, rg = _reference(*baseline, t, f), _reference(*baseline, t, gamma)
             if math.isnan(rf):
                 span = f"run from {t.min():g} to {t.max():g} s" if t.size else "are missing"
-                raise ValueError(
+                raise ContactresInputError(
                     f"{path}: no point of overtone {n} ({fcol!r}) in the baseline window "
                     f"{t0:g} <= t <= {t1:g} s (--baseline; its times {span})"
                 )

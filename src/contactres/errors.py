@@ -1,0 +1,24 @@
+"""The package's own exception: bad input, as opposed to a fault of contactres itself.
+
+Every check of what a user gives contactres (a file, a table cell, an option, a physical
+parameter) raises :class:`ContactresInputError`. It subclasses :class:`ValueError`, so code
+written against earlier versions that catches ``ValueError`` keeps working. The command line
+prints it as one line naming the input and the rule, and exits with status 2; any other
+exception (numpy's ``LinAlgError``, pandas' ``MergeError``, a ``KeyError`` ...) is a fault of
+contactres and is reported as an internal error, with a request to report it.
+"""
+
+from __future__ import annotations
+
+__all__ = ["ContactresInputError"]
+
+
+class ContactresInputError(ValueError):
+    """Input that breaks a stated rule; the message names the input, the value and the rule.
+
+    Examples
+    --------
+    >>> from contactres.errors import ContactresInputError
+    >>> issubclass(ContactresInputError, ValueError)
+    True
+    """
