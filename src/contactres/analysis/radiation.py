@@ -58,7 +58,7 @@ from ..dynamic.tangential_stiffness import two_body_contact_stiffness
 from ..errors import ContactresInputError
 from ..halfspace import shear_reference
 from ..materials import Material, at_cut_quartz
-from ..measurements.schema import Column, TableSchema
+from ..measurements.schema import RADIATION_RESULTS
 from ..normal.isotropic import effective_modulus, jkr_contact_radius
 from .jkr import fit_jkr_mindlin
 from .loads import LOAD_KEYS
@@ -79,52 +79,6 @@ __all__ = [
 AT_CUT_PLATE = "quartz-AT"
 #: Short names of built-in solids.
 MATERIAL_ALIASES = {"glass": "soda-lime-glass"}
-
-RADIATION_RESULTS = TableSchema(
-    "radiation.csv",
-    "one row per (configuration, medium, normal force): radiation loss of the contact vs measured",
-    tuple(
-        Column(name, unit, meaning, level="sweep")
-        for name, unit, meaning in (
-            ("configuration", "text", "configuration"),
-            ("medium", "text", "medium"),
-            ("normal_force_N", "N", "normal force per contact"),
-            ("sphere_material", "text", "material of the sphere (--sphere-material)"),
-            ("plate_material", "text", "material of the plate (--plate-material)"),
-            ("frequency_Hz", "Hz", "frequency of the overtone, fundamental_Hz x overtone"),
-            (
-                "contact_radius_m",
-                "m",
-                "contact radius a from the group's JKR fit (paper 2, Eq. 9) at this load",
-            ),
-            ("stiffness_static_N_per_m", "N/m", "tangential stiffness K₀ of the contact at f = 0"),
-            ("stiffness_real_N_per_m", "N/m", "Re K at the frequency (sphere and plate in series)"),
-            ("stiffness_imag_N_per_m", "N/m", "Im K at the frequency: waves radiated"),
-            ("tan_delta_rad", "-", "radiation loss tangent Im K/Re K"),
-            ("tan_delta_measured", "-", "measured loss tangent ΔΓ0/Δf0 (loss_tangent_mean)"),
-            ("tan_delta_measured_sem", "-", "standard error of tan_delta_measured"),
-            (
-                "radiation_share",
-                "-",
-                "tan_delta_rad/tan_delta_measured: the fraction of ΔΓ0 the radiation explains",
-            ),
-            ("dynamic_softening", "-", "Re K/K₀ - 1: change of the elastic part with frequency"),
-            ("E_Pa", "Pa", "E of the group's JKR fit (κ taken as static)"),
-            (
-                "E_static_corrected_Pa",
-                "Pa",
-                "E refitted with κ/(Re K/K₀) per point (the group's, repeated per load)",
-            ),
-            ("E_relative_change", "-", "E_static_corrected_Pa/E_Pa - 1"),
-            (
-                "note",
-                "text",
-                "why the row has no radiation values, or why they exceed the measured loss "
-                "(empty: computed and below the measured)",
-            ),
-        )
-    ),
-)
 
 
 def known_materials(role: str = "sphere") -> list[str]:

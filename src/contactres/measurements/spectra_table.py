@@ -35,7 +35,7 @@ import pandas as pd
 from ..errors import ContactresInputError
 from .messages import at_cell, column_names, shown_value, where_rows
 from .readers import delimited
-from .schema import Column, TableSchema
+from .schema import NUMBER_TEXT, SPECTRA_TABLE, broken_rule, check_cells
 
 __all__ = [
     "CONSTANT_COLUMNS",
@@ -45,43 +45,6 @@ __all__ = [
     "read_spectra",
     "validate_spectra",
 ]
-
-SPECTRA_TABLE = TableSchema(
-    "spectra table",
-    "one row per frequency point of an admittance spectrum (CSV, as the sweep table)",
-    (
-        Column("spectrum", "text", "id of one spectrum (one amplitude step)", required=True),
-        Column("frequency_Hz", "Hz", "frequency of the point", required=True, rule="> 0"),
-        Column(
-            "G_S", "S", "conductance Re Y (a NaN leaves its spectrum out, flagged)", required=True
-        ),
-        Column("B_S", "S", "susceptance Im Y (empty or absent: G alone is fitted)"),
-        Column(
-            "reference",
-            "-",
-            "true for a no-contact reference spectrum (true/false, 1/0, yes/no)",
-            level="sweep",
-            default="false",
-        ),
-        Column("overtone", "-", "overtone order n", level="sweep", rule="odd integer >= 1"),
-        Column(
-            "drive_voltage_V",
-            "V",
-            "amplitude (peak) of the drive voltage across the crystal",
-            level="sweep",
-            rule="> 0",
-        ),
-        Column("time_s", "s", "time of the spectrum (any origin)", level="sweep", rule="finite"),
-        Column(
-            "sweep", "text", "amplitude ramp of the spectrum (empty: a reference)", level="sweep"
-        ),
-        Column("ramp", "-", "ramp number of the sweep", level="sweep", rule="integer >= 1"),
-        Column("experiment", "text", "experiment of the sweep", level="sweep", default="1"),
-        Column("normal_force_N", "N", "normal force per contact", level="sweep", rule="> 0"),
-        Column("configuration", "text", "configuration", level="sweep", default="default"),
-        Column("medium", "text", "medium", level="sweep", default="unspecified"),
-    ),
-)
 
 #: Header names of the two data columns of a delimited spectrum file -> layout name.
 SPECTRUM_LAYOUTS = {
@@ -125,11 +88,8 @@ def _number(raw: pd.DataFrame, col: str, source: str, decimal: str = ".") -> np.
     s = raw[col].astype(str).str.strip()
     if decimal == ",":
         s = s.str.replace(",", ".", regex=False)
-    values = pd.to_numeric(s, errors="coerce").to_numpy(dtype=float)
-    bad = np.isnan(values) & (s != "").to_numpy() & ~s.str.lower().isin(["nan"]).to_numpy()
-    if bad.any():
-        raise ContactresInputError(f"{at_cell(raw, source, bad, col)} is not a number")
-    return values
+    check_cells(raw, source, col, (NUMBER_TEXT,), s.to_numpy())
+    return pd.to_numeric(s, errors="coerce").to_numpy(dtype=float)
 
 
 def _flag(raw: pd.DataFrame, col: str, source: str) -> np.ndarray:
@@ -165,11 +125,7 @@ def validate_spectra(raw: pd.DataFrame, source: str = "<table>") -> SpectraTable
         raise ContactresInputError(f"{source}: no data rows")
     decimal = raw.attrs.get("decimal", ".")
     sid = raw["spectrum"].astype(str).str.strip()
-    empty = (sid == "").to_numpy()
-    if empty.any():
-        raise ContactresInputError(
-            f"{at_cell(raw, source, empty, 'spectrum')} is empty; every row needs one"
-        )
+    SPECTRA_TABLE.check_cells(raw, source, "spectrum", sid.to_numpy())
     pts = pd.DataFrame({"spectrum": sid.to_numpy(), "line": raw["line"].to_numpy()})
     for col in ("frequency_Hz", "G_S", "B_S"):
         if col in raw.columns:
@@ -178,14 +134,7 @@ def validate_spectra(raw: pd.DataFrame, source: str = "<table>") -> SpectraTable
             pts[col] = np.nan
     # A NaN or empty G/B is left to the fit, which flags that spectrum (bad-values) and leaves
     # it out with one line: one bad spectrum does not cost the others.
-    bad = ~np.isfinite(pts["frequency_Hz"].to_numpy())
-    if bad.any():
-        raise ContactresInputError(
-            f"{at_cell(raw, source, bad, 'frequency_Hz')}: must be a finite number"
-        )
-    bad = ~(pts["frequency_Hz"].to_numpy() > 0)
-    if bad.any():
-        raise ContactresInputError(f"{at_cell(raw, source, bad, 'frequency_Hz')}: must be > 0 Hz")
+    SPECTRA_TABLE.check_cells(raw, source, "frequency_Hz", pts["frequency_Hz"].to_numpy())
     dup = pts.duplicated(["spectrum", "frequency_Hz"]).to_numpy()
     if dup.any():
         raise ContactresInputError(
@@ -241,24 +190,18 @@ def _spectrum_labels(
 
 
 def _check_label_rules(first: pd.DataFrame, raw, table, source: str) -> None:
-    def fail(mask_first: np.ndarray, col: str, rule: str) -> None:
-        sid = first["spectrum"].to_numpy()[mask_first][0]
-        mask = (table["spectrum"] == sid).to_numpy()
-        raise ContactresInputError(f"{at_cell(raw, source, mask, col)}: {rule}")
-
-    n = first["overtone"].to_numpy(float)
-    bad = np.isfinite(n) & ((n < 1) | (n % 2 != 1))
-    if bad.any():
-        fail(bad, "overtone", "the overtone must be an odd integer >= 1")
-    for col in ("drive_voltage_V", "normal_force_N"):
+    """The rules of the numeric labels, on the value given for each spectrum (NaN: none); an
+    error names the rows of the first spectrum that breaks one."""
+    for col in _NUMERIC_LABELS:
+        if col not in SPECTRA_TABLE.names:
+            continue  # a constant of the sweep table: checked when the sweeps are validated
         v = first[col].to_numpy(float)
-        bad = np.isfinite(v) & ~(v > 0)
-        if bad.any():
-            fail(bad, col, "must be > 0")
-    r = first["ramp"].to_numpy(float)
-    bad = np.isfinite(r) & ((r < 1) | (r % 1 != 0))
-    if bad.any():
-        fail(bad, "ramp", "the ramp must be an integer >= 1")
+        found = broken_rule(SPECTRA_TABLE.column(col).rules, v, np.isfinite(v))
+        if found is not None:
+            r, bad = found
+            sid = first["spectrum"].to_numpy()[bad][0]
+            mask = (table["spectrum"] == sid).to_numpy()
+            raise ContactresInputError(f"{at_cell(raw, source, mask, col)}{r.message}")
 
 
 # ----------------------------------------------------------------------------- the readers

@@ -27,17 +27,10 @@ import numpy as np
 import pandas as pd
 
 from ..errors import ContactresInputError
-from ..units import (
-    ABSOLUTE_FREQUENCY_FRACTION,
-    MAX_AMPLITUDE_M,
-    MIN_SWEEP_POINTS,
-    POISSON_OPEN_RANGE,
-    SMALL_LOAD_LIMIT,
-    poisson_in_range,
-)
+from ..units import ABSOLUTE_FREQUENCY_FRACTION, MIN_SWEEP_POINTS, SMALL_LOAD_LIMIT
 from .messages import at_cell, column_names, shown_value, where_rows
-from .readers import READERS, SweepReader, pick_reader, register_reader
-from .schema import SWEEP_TABLE
+from .readers import SweepReader, pick_reader
+from .schema import FINITE, SWEEP_TABLE, check_cells, check_value
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -47,13 +40,11 @@ else:  # pragma: no cover - Python 3.10
 __all__ = [
     "CONSTANTS",
     "OPTIONAL_COLUMNS",
-    "READERS",
     "REQUIRED_COLUMNS",
     "SweepReader",
     "SweepTable",
     "SweepWarning",
     "read_sweeps",
-    "register_reader",
     "validate_sweeps",
 ]
 
@@ -78,9 +69,6 @@ VALIDATED_COLUMNS = (
     "sweep", "experiment", "configuration", "medium", "ramp", "normal_force_N", "amplitude_m",
     "df_Hz", "dgamma_Hz", *CONSTANTS, "time_s", "line",
 )  # fmt: skip
-#: Largest count (overtone, n_contacts) taken: above 2**53 a float no longer holds every whole
-#: number, and the integer columns of the table would overflow soon after.
-_LARGEST_WHOLE = 2**53
 
 
 class SweepWarning(UserWarning):
@@ -161,24 +149,7 @@ def _check_constant(name: str, value, where: str, shown=None) -> float:
         raise ContactresInputError(f"{where}: {name} = {shown} is not a number") from None
     if not math.isfinite(v):
         raise ContactresInputError(f"{where}: {name} = {shown} is not finite")
-    if name in ("overtone", "n_contacts") and abs(v) > _LARGEST_WHOLE:
-        raise ContactresInputError(f"{where}: {name} = {shown} is too large to be a count")
-    if name == "overtone":
-        if v != int(v) or v < 1 or int(v) % 2 == 0:
-            raise ContactresInputError(
-                f"{where}: overtone = {shown} is not allowed; a thickness-shear resonator "
-                "has odd overtones only (1, 3, 5, ...)"
-            )
-    elif name == "n_contacts":
-        if v != int(v) or v < 1:
-            raise ContactresInputError(f"{where}: n_contacts = {shown} must be a positive integer")
-    elif name == "poisson":
-        if not poisson_in_range(v):
-            lo, hi = POISSON_OPEN_RANGE
-            raise ContactresInputError(f"{where}: poisson = {shown} is outside ({lo:g}, {hi:g})")
-    elif v <= 0:
-        unit = CONSTANTS[name][0]
-        raise ContactresInputError(f"{where}: {name} = {shown} must be > 0 ({unit})")
+    check_value(name, v, where, shown, SWEEP_TABLE.column(name).rules)
     return v
 
 
@@ -255,11 +226,7 @@ def _numeric(raw: pd.DataFrame, col: str, source: str, decimal: str) -> np.ndarr
             "is empty" if not str(shown).strip() else f"value {shown_value(shown)} is not a number"
         )
         raise ContactresInputError(f"{where_rows(raw, source, bad, col)}: {what}")
-    nonfinite = ~np.isfinite(values)
-    if nonfinite.any():
-        raise ContactresInputError(
-            f"{at_cell(raw, source, nonfinite, col)} is not finite (NaN or infinite)"
-        )
+    check_cells(raw, source, col, (FINITE,), values)
     return values
 
 
@@ -267,17 +234,13 @@ def _labels_and_numbers(raw: pd.DataFrame, source: str, decimal: str) -> pd.Data
     """Sweep ids, label columns (or their defaults), the measured numbers and the ramp."""
     out = pd.DataFrame({"line": raw["line"].to_numpy()})
     out["sweep"] = raw["sweep"].astype(str).str.strip().to_numpy()
-    empty = (out["sweep"] == "").to_numpy() | raw["sweep"].isna().to_numpy()
-    if empty.any():
-        raise ContactresInputError(
-            f"{at_cell(out, source, empty, 'sweep')} is empty; every row needs a sweep id"
-        )
+    # A missing cell of a table built in memory is empty too (its text would be "nan").
+    ids = np.where(raw["sweep"].isna().to_numpy(), "", out["sweep"].to_numpy())
+    SWEEP_TABLE.check_cells(out, source, "sweep", ids)
     for col, default in LABEL_DEFAULTS.items():
         if col in raw.columns:
             out[col] = raw[col].astype(str).str.strip().to_numpy()
-            blank = (out[col] == "").to_numpy()
-            if blank.any():
-                raise ContactresInputError(f"{at_cell(out, source, blank, col)} is empty")
+            SWEEP_TABLE.check_cells(out, source, col)
         else:
             out[col] = default
     for col in ("amplitude_m", "df_Hz", "dgamma_Hz", "normal_force_N"):
@@ -290,14 +253,9 @@ def _labels_and_numbers(raw: pd.DataFrame, source: str, decimal: str) -> pd.Data
     given = "time_s" in raw and not blank.all()
     out["time_s"] = _numeric(raw, "time_s", source, decimal) if given else np.nan
     if "ramp" in raw.columns:
-        ramp = _numeric(raw, "ramp", source, decimal)
-        bad = (ramp != np.round(ramp)) | (ramp < 1)
-        if bad.any():
-            out["ramp"] = ramp
-            raise ContactresInputError(
-                f"{at_cell(out, source, bad, 'ramp')} is not a positive integer"
-            )
-        out["ramp"] = ramp.astype(int)
+        out["ramp"] = _numeric(raw, "ramp", source, decimal)
+        SWEEP_TABLE.check_cells(out, source, "ramp")
+        out["ramp"] = out["ramp"].to_numpy().astype(int)
     else:
         out["ramp"] = 0
         warnings.warn(
@@ -357,24 +315,8 @@ def _fill_constants(
 
 def _check_physics(out: pd.DataFrame, source: str) -> None:
     """Amplitudes, forces and shifts in their physical (and unit-plausible) ranges."""
-    amp = out["amplitude_m"].to_numpy()
-    neg = amp < 0
-    if neg.any():
-        raise ContactresInputError(
-            f"{at_cell(out, source, neg, 'amplitude_m')} is negative; amplitudes must be >= 0 m"
-        )
-    big = amp > MAX_AMPLITUDE_M
-    if big.any():
-        raise ContactresInputError(
-            f"{at_cell(out, source, big, 'amplitude_m')} is above {MAX_AMPLITUDE_M:g} m: it looks "
-            "like nanometres in a metre column (multiply nm by 1e-9)"
-        )
-    nonpos = out["normal_force_N"].to_numpy() <= 0
-    if nonpos.any():
-        raise ContactresInputError(
-            f"{at_cell(out, source, nonpos, 'normal_force_N')} is not positive; the normal force "
-            "per contact must be > 0 N"
-        )
+    for col in ("amplitude_m", "normal_force_N"):
+        SWEEP_TABLE.check_cells(out, source, col)
     f_res = out["fundamental_Hz"].to_numpy() * out["overtone"].to_numpy()
     for col in ("df_Hz", "dgamma_Hz"):
         v = np.abs(out[col].to_numpy())

@@ -1,15 +1,15 @@
 """The data dictionary: the columns of the tables contactres reads or writes, and the flags.
 
-Generated from :mod:`contactres.measurements.schema`, :mod:`contactres.analysis.flags` and (for
-``radiation.csv``) ``contactres.analysis.radiation.RADIATION_RESULTS``; the
-README's blocks between ``<!-- dictionary:NAME -->`` and ``<!-- /dictionary -->`` are these
+Generated from :mod:`contactres.measurements.schema` (every table: inputs with their rules,
+outputs), :mod:`contactres.analysis.flags` and the flags of the spectra fits and the inversions;
+the README's blocks between ``<!-- dictionary:NAME -->`` and ``<!-- /dictionary -->`` are these
 tables (``python scripts/update_readme.py`` rewrites them; a test fails when they differ).
 
-The outputs that have no schema object in the package (``fits.csv`` of ``qcm spectra``,
-``stiffness.csv`` of ``qcm stiffness``, the columns ``afm invert`` and ``rum invert`` append)
-are described here; their column names, units and flag names are checked against the code by
-``tests/report/test_dictionary.py``. Their tables are on the documentation's data dictionary
-page only (:data:`DOCS_ONLY`), not in README blocks.
+The outputs of the other commands (``fits.csv`` of ``qcm spectra``, ``stiffness.csv`` of
+``qcm stiffness``, the columns ``afm invert`` and ``rum invert`` append) have their schemas in
+:mod:`contactres.measurements.schema` too (re-exported here); ``tests/report/test_dictionary.py``
+compares their column names and the flag names with the code that writes them. Their tables are
+on the documentation's data dictionary page only (:data:`DOCS_ONLY`), not in README blocks.
 """
 
 from __future__ import annotations
@@ -18,18 +18,21 @@ import re
 
 from ..analysis.flags import DESCRIPTIONS, Flag
 from ..analysis.inversion import FLAG_DESCRIPTIONS as MODULUS_FLAG_DESCRIPTIONS
-from ..analysis.radiation import RADIATION_RESULTS
-from ..measurements.resonances import AFM_TABLE, RUM_TABLE
 from ..measurements.schema import (
+    AFM_INVERT_RESULTS,
+    AFM_TABLE,
     GROUP_RESULTS,
     LOAD_RESULTS,
+    RADIATION_RESULTS,
+    RUM_INVERT_RESULTS,
+    RUM_TABLE,
+    SPECTRA_FITS,
+    SPECTRA_TABLE,
+    STIFFNESS_CSV,
     SWEEP_RESULTS,
     SWEEP_TABLE,
-    Column,
-    TableSchema,
 )
 from ..measurements.spectra import FLAGS as SPECTRA_FIT_FLAGS
-from ..measurements.spectra_table import SPECTRA_TABLE
 
 __all__ = [
     "AFM_INVERT_RESULTS",
@@ -43,78 +46,6 @@ __all__ = [
     "flags_markdown",
     "update_blocks",
 ]
-
-#: ``fits.csv`` of ``contactres qcm spectra --fits``: the columns of
-#: :func:`contactres.measurements.spectra.fit_resonances`, in its order.
-SPECTRA_FITS = TableSchema(
-    "fits.csv",
-    "the resonance fit of every spectrum, one row per spectrum",
-    (
-        Column("spectrum", "text", "the spectrum id (the spectra table's `spectrum` column)"),
-        Column("f_r_Hz", "Hz", "resonance frequency f_r (NaN where a flag says so)"),
-        Column("f_r_err_Hz", "Hz", "standard error of f_r"),
-        Column("gamma_Hz", "Hz", "half width at half height Γ of the conductance G"),
-        Column("gamma_err_Hz", "Hz", "standard error of Γ"),
-        Column("g_max_S", "S", "conductance at the peak G_max"),
-        Column("phase_rad", "rad", "phase φ of the resonance (NaN: G alone, not fitted)"),
-        Column("reduced_chi2", "-", "reduced χ² of the fit (against the given noise, if any)"),
-        Column("n_points", "-", "points of the spectrum"),
-        Column("converged", "-", "true: a fit ran and its remaining step is negligible"),
-        Column("flags", "text", "';'-separated names of the fit flags (empty: none)"),
-    ),
-)
-
-#: ``stiffness.csv`` of ``contactres qcm stiffness`` (units as in its ``stiffness.json``).
-STIFFNESS_CSV = TableSchema(
-    "stiffness.csv",
-    "κ + iωξ of one contact against time, one row per time and overtone",
-    (
-        Column("time_s", "s", "time of the export's row"),
-        Column("overtone", "-", "overtone order n (odd)"),
-        Column("df_Hz", "Hz", "frequency shift Δf (not divided by n)"),
-        Column("dgamma_Hz", "Hz", "shift of the half-bandwidth ΔΓ"),
-        Column("kappa_N_per_m", "N/m", "contact stiffness κ of one contact (paper 2, Eq. 2)"),
-        Column("omega_xi_N_per_m", "N/m", "ωξ of one contact (damping times angular frequency)"),
-    ),
-)
-
-#: The columns ``contactres afm invert`` appends to the input's (which it copies).
-AFM_INVERT_RESULTS = TableSchema(
-    "afm invert output",
-    "the input columns, then these",
-    (
-        Column("kappa", "-", "normalised contact stiffness κ = Re k*/k_c"),
-        Column("k_star_N_per_m", "N/m", "contact stiffness k* = κ k_c (NaN without k_c)"),
-        Column("tip_position_used", "-", "tip position r = L1/L (given, or the chosen crossing)"),
-        Column("sigma_N_s_per_m", "N s/m", "contact damping σ (NaN without Q or k_c)"),
-        Column("mode_spread", "-", "(max − min)/κ of the per-mode κ (inf: a mode contradicts r)"),
-        Column("E_star_Pa", "Pa", "reduced modulus E* (Hertz or reference method)"),
-        Column("M_sample_Pa", "Pa", "indentation modulus of the sample (tip compliance removed)"),
-        Column("contact_radius_m", "m", "contact radius a (Hertz rows)"),
-        Column(
-            "modulus_method",
-            "text",
-            '"hertz", "reference (given m …)" or "reference (fitted m …)", with " + dynamic" '
-            "where the dynamic correction was applied; empty: no modulus",
-        ),
-        Column("k_static_N_per_m", "N/m", "static stiffness k*/Re DCSF (with `--crystal` only)"),
-        Column("k_a", "-", "k_l a of the first corrected mode (with `--crystal` only)"),
-        Column("dcsf_real", "-", "Re DCSF of that mode (with `--crystal` only)"),
-        Column("dcsf_imag", "-", "Im DCSF of that mode (with `--crystal` only)"),
-        Column("flags", "text", "';'-separated resonance and modulus flags (empty: none)"),
-        Column("normalisation", "text", "the `--normalisation` used: global or modewise"),
-    ),
-)
-
-#: The columns ``contactres rum invert`` appends to the input's (which it copies).
-RUM_INVERT_RESULTS = TableSchema(
-    "rum invert output",
-    "the input columns, then these",
-    (
-        Column("rum_model", "text", "lumped (K_eff_N_per_m given) or rod (mass_kg given)"),
-        Column("k_star_N_per_m", "N/m", "contact stiffness k* from the contact resonance"),
-    ),
-)
 
 #: The resonance flags of ``afm invert``: the names of
 #: :func:`contactres.resonators.cantilever_inversion.flag_names`, written with hyphens.

@@ -1,129 +1,23 @@
-"""Every column of every table contactres reads or writes: the one source of names and units.
+"""The tables ``qcm analyze`` writes: the one source of their names, units and meanings.
 
-The reader and validator of sweep tables (:mod:`contactres.measurements.sweeps`), the analysis,
-the writers of the results folder (:mod:`contactres.report`) and the README's column tables are
-generated from, or checked against, the schemas here:
-
-* :data:`SWEEP_TABLE`: the input, one row per measured point of an amplitude ramp;
 * :data:`SWEEP_RESULTS`: ``sweeps.csv``, one row per sweep;
 * :data:`LOAD_RESULTS`: ``loads.csv``, one row per (configuration, medium, normal force);
 * :data:`GROUP_RESULTS`: the groups of ``summary.json``, one per (configuration, medium): the
   JKR + Mindlin fit (Table 1 of paper 2).
 
-Conventions (recorded in every output): Δf is the frequency shift, not Δf/n; ΔΓ the shift of the
-half-bandwidth at half height, not the dissipation D = 2Γ/f; amplitudes in m; forces per contact
-in N. Paper 2: J. Vlachová, R. König, D. Johannsmann, "Stiffness of sphere-plate contacts at MHz
-frequencies: dependence on normal load, oscillation amplitude, and ambient medium", Beilstein J.
-Nanotechnol. 6, 845-856 (2015), doi:10.3762/bjnano.6.87.
+Conventions (recorded in every output, :data:`CONVENTIONS`): Δf is the frequency shift, not
+Δf/n; ΔΓ the shift of the half-bandwidth at half height, not the dissipation D = 2Γ/f;
+amplitudes in m; forces per contact in N. Paper 2: J. Vlachová, R. König, D. Johannsmann,
+"Stiffness of sphere-plate contacts at MHz frequencies: dependence on normal load, oscillation
+amplitude, and ambient medium", Beilstein J. Nanotechnol. 6, 845-856 (2015),
+doi:10.3762/bjnano.6.87.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from .columns import Column, TableSchema
 
-from ..errors import ContactresInputError
-from ..units import MAX_AMPLITUDE_M, POISSON_OPEN_RANGE
-
-__all__ = [
-    "CONVENTIONS",
-    "GROUP_RESULTS",
-    "LOAD_QUANTITIES",
-    "LOAD_RESULTS",
-    "SWEEP_RESULTS",
-    "SWEEP_TABLE",
-    "Column",
-    "TableSchema",
-]
-
-#: Levels of a column: one value per point, one per sweep, or a constant of the instrument or
-#: the sample (also one per sweep, and filled from options or a TOML file when absent).
-LEVELS = ("point", "sweep", "constant")
-
-
-@dataclass(frozen=True)
-class Column:
-    """One column of a table.
-
-    Attributes
-    ----------
-    name : column name (its unit is part of the name where it has one: ``df_Hz``)
-    unit : SI unit, ``-`` for a number without unit, ``text`` for a label
-    meaning : one line for people
-    required : the column must be present (input tables only)
-    level : ``point``, ``sweep`` or ``constant`` (see :data:`LEVELS`)
-    rule : the check a value must pass, in words (empty: any finite number or any label)
-    default : value used when an optional input column is absent (None: no default)
-    """
-
-    name: str
-    unit: str
-    meaning: str
-    required: bool = False
-    level: str = "point"
-    rule: str = ""
-    default: object = None
-
-    def __post_init__(self):
-        if self.level not in LEVELS:
-            raise ContactresInputError(f"column {self.name!r}: level must be one of {LEVELS}")
-
-
-@dataclass(frozen=True)
-class TableSchema:
-    """An ordered set of :class:`Column` with a name and a one-line description."""
-
-    name: str
-    description: str
-    columns: tuple[Column, ...]
-
-    @property
-    def names(self) -> tuple[str, ...]:
-        """Column names, in order."""
-        return tuple(c.name for c in self.columns)
-
-    @property
-    def required(self) -> tuple[str, ...]:
-        """Names of the required columns."""
-        return tuple(c.name for c in self.columns if c.required)
-
-    @property
-    def optional(self) -> tuple[str, ...]:
-        """Names of the optional columns."""
-        return tuple(c.name for c in self.columns if not c.required)
-
-    def column(self, name: str) -> Column:
-        """The column called ``name`` (KeyError if the table has none)."""
-        for c in self.columns:
-            if c.name == name:
-                return c
-        raise KeyError(f"{self.name} has no column {name!r}")
-
-    def where(self, *, level: str | None = None, unit: str | None = None) -> tuple[str, ...]:
-        """Names of the columns at ``level`` and/or with ``unit``."""
-        return tuple(
-            c.name
-            for c in self.columns
-            if (level is None or c.level == level) and (unit is None or c.unit == unit)
-        )
-
-    def markdown(self, with_required: bool = False) -> str:
-        """The table as a Markdown table (the README's column tables are checked against this)."""
-        head = ["column", "unit", *(["required"] if with_required else []), "meaning"]
-        lines = ["| " + " | ".join(head) + " |", "|" + "---|" * len(head)]
-        for c in self.columns:
-            cells = [f"`{c.name}`", c.unit]
-            if with_required:
-                cells.append("yes" if c.required else "no")
-            rule = f" ({c.rule})" if c.rule else ""
-            default = "" if c.default is None else f"; default {_shown(c.default)}"
-            cells.append(f"{c.meaning}{rule}{default}")
-            lines.append("| " + " | ".join(cells) + " |")
-        return "\n".join(lines)
-
-
-def _shown(value) -> str:
-    return f"{value:g}" if isinstance(value, float) else f'"{value}"'
-
+__all__ = ["CONVENTIONS", "GROUP_RESULTS", "LOAD_QUANTITIES", "LOAD_RESULTS", "SWEEP_RESULTS"]
 
 CONVENTIONS = {
     "df": "frequency shift Δf in Hz (not Δf/n)",
@@ -134,90 +28,6 @@ CONVENTIONS = {
     "E": "Young's modulus of both bodies (E1 = E2), Pa, with ν fixed (settings/poisson)",
     "errors": "_err: standard error of a fit; _sd: standard deviation over experiments",
 }
-
-# --------------------------------------------------------------------------------------------
-# Input: the sweep table
-
-SWEEP_TABLE = TableSchema(
-    "sweep table",
-    "one row per measured point of an amplitude ramp (CSV: comma, semicolon or tab separated)",
-    (
-        Column("sweep", "text", "id of one amplitude ramp", required=True, level="sweep"),
-        Column(
-            "amplitude_m",
-            "m",
-            "oscillation amplitude u0",
-            required=True,
-            rule=f">= 0, <= {MAX_AMPLITUDE_M:g}",
-        ),
-        Column(
-            "df_Hz", "Hz", "frequency shift Δf against the reference (no contact)", required=True
-        ),
-        Column("dgamma_Hz", "Hz", "shift of the half-bandwidth ΔΓ at half height", required=True),
-        Column(
-            "time_s",
-            "s",
-            "time of the point (any origin): lets a linear drift be removed (--remove-drift)",
-            rule="finite",
-        ),
-        Column(
-            "normal_force_N",
-            "N",
-            "normal force per contact",
-            required=True,
-            level="sweep",
-            rule="> 0",
-        ),
-        Column(
-            "experiment",
-            "text",
-            "one mounting of the sample (repeats are experiments)",
-            level="sweep",
-            default="1",
-        ),
-        Column(
-            "configuration",
-            "text",
-            'groups with one material and geometry, e.g. "SiO2_2.2mm"',
-            level="sweep",
-            default="default",
-        ),
-        Column("medium", "text", '"air", "water", ...', level="sweep", default="unspecified"),
-        Column(
-            "ramp",
-            "-",
-            "1, 2, ...: order of the ramps of one load (ramp 1 is running-in)",
-            level="sweep",
-            rule="integer >= 1",
-        ),
-        Column(
-            "fundamental_Hz",
-            "Hz",
-            "fundamental frequency f_F of the resonator",
-            level="constant",
-            rule="> 0",
-            default=5e6,
-        ),
-        Column("overtone", "-", "overtone order n", level="constant", rule="odd integer >= 1"),
-        Column("area_m2", "m^2", "acoustically effective area A_eff", level="constant", rule="> 0"),
-        Column(
-            "n_contacts",
-            "-",
-            "number of equal contacts (3 for a tripod)",
-            level="constant",
-            rule="integer >= 1",
-        ),
-        Column("sphere_radius_m", "m", "sphere radius R", level="constant", rule="> 0"),
-        Column(
-            "poisson",
-            "-",
-            "Poisson ratio ν, fixed in the JKR + Mindlin fit",
-            level="constant",
-            rule="in ({:g}, {:g})".format(*POISSON_OPEN_RANGE),
-            default=0.17,
-        ),
-    ),
-)
 
 # --------------------------------------------------------------------------------------------
 # Outputs

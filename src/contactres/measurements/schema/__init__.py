@@ -1,0 +1,104 @@
+"""Every table contactres reads or writes: the one source of names, units and rules.
+
+The readers and validators of the input tables, the writers of the output tables, the README's
+column tables and the documentation's data dictionary (:mod:`contactres.report.dictionary`)
+are generated from, or checked against, the schemas here (:data:`SCHEMAS`):
+
+* inputs (:mod:`.inputs`): :data:`SWEEP_TABLE`, :data:`SPECTRA_TABLE`, :data:`AFM_TABLE`,
+  :data:`RUM_TABLE`, each column with its rules (:class:`Rule`: a callable check and its words),
+  which one validator runs (:func:`check_cells`, :func:`check_value`) to give the one-line error
+  naming file, line, column, value and rule;
+* outputs of ``qcm analyze`` (:mod:`.results`): :data:`SWEEP_RESULTS` (``sweeps.csv``),
+  :data:`LOAD_RESULTS` (``loads.csv``), :data:`GROUP_RESULTS` (``summary.json``) and
+  :data:`RADIATION_RESULTS` (``radiation.csv``, :mod:`.outputs`);
+* the other outputs (:mod:`.outputs`): :data:`SPECTRA_FITS`, :data:`STIFFNESS_CSV`,
+  :data:`AFM_INVERT_RESULTS`, :data:`RUM_INVERT_RESULTS`.
+
+The module sits in the measurements layer (its rules name the cells of a table with
+:mod:`contactres.measurements.messages`), below analysis and report, which import it.
+"""
+
+from __future__ import annotations
+
+from .columns import (
+    LEVELS,
+    Column,
+    Rule,
+    TableSchema,
+    broken_rule,
+    check_cells,
+    check_value,
+    rule,
+)
+from .inputs import (
+    A_NUMBER,
+    AFM_TABLE,
+    FINITE,
+    LARGEST_COUNT,
+    NOT_EMPTY,
+    NUMBER_TEXT,
+    RUM_TABLE,
+    SPECTRA_TABLE,
+    SWEEP_TABLE,
+    interval,
+    plausible,
+)
+from .outputs import (
+    AFM_INVERT_RESULTS,
+    RADIATION_RESULTS,
+    RUM_INVERT_RESULTS,
+    SPECTRA_FITS,
+    STIFFNESS_CSV,
+)
+from .results import CONVENTIONS, GROUP_RESULTS, LOAD_QUANTITIES, LOAD_RESULTS, SWEEP_RESULTS
+
+__all__ = [
+    "AFM_INVERT_RESULTS",
+    "AFM_TABLE",
+    "A_NUMBER",
+    "CONVENTIONS",
+    "FINITE",
+    "GROUP_RESULTS",
+    "INPUTS",
+    "LARGEST_COUNT",
+    "LEVELS",
+    "LOAD_QUANTITIES",
+    "LOAD_RESULTS",
+    "NOT_EMPTY",
+    "NUMBER_TEXT",
+    "OUTPUTS",
+    "RADIATION_RESULTS",
+    "RUM_INVERT_RESULTS",
+    "RUM_TABLE",
+    "SCHEMAS",
+    "SPECTRA_FITS",
+    "SPECTRA_TABLE",
+    "STIFFNESS_CSV",
+    "SWEEP_RESULTS",
+    "SWEEP_TABLE",
+    "Column",
+    "Rule",
+    "TableSchema",
+    "broken_rule",
+    "check_cells",
+    "check_value",
+    "interval",
+    "plausible",
+    "rule",
+]
+
+#: The tables contactres reads (their columns carry the rules the readers run).
+INPUTS: tuple[TableSchema, ...] = (SWEEP_TABLE, SPECTRA_TABLE, AFM_TABLE, RUM_TABLE)
+#: The tables contactres writes.
+OUTPUTS: tuple[TableSchema, ...] = (
+    SWEEP_RESULTS,
+    LOAD_RESULTS,
+    GROUP_RESULTS,
+    RADIATION_RESULTS,
+    SPECTRA_FITS,
+    STIFFNESS_CSV,
+    AFM_INVERT_RESULTS,
+    RUM_INVERT_RESULTS,
+)
+#: Every schema, inputs first.
+SCHEMAS: tuple[TableSchema, ...] = INPUTS + OUTPUTS

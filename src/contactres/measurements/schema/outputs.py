@@ -1,0 +1,143 @@
+"""The tables contactres writes besides those of ``qcm analyze`` (:mod:`.results`).
+
+* :data:`SPECTRA_FITS`: ``fits.csv`` of ``qcm spectra --fits``, one row per spectrum;
+* :data:`STIFFNESS_CSV`: ``stiffness.csv`` of ``qcm stiffness``, one row per time and overtone;
+* :data:`AFM_INVERT_RESULTS`, :data:`RUM_INVERT_RESULTS`: the columns ``afm invert`` and
+  ``rum invert`` append to the input's;
+* :data:`RADIATION_RESULTS`: ``radiation.csv`` of ``qcm analyze --radiation``, one row per
+  (configuration, medium, normal force).
+
+The code that writes each table is checked against these names by the tests
+(``tests/report/test_dictionary.py``, ``tests/analysis``).
+"""
+
+from __future__ import annotations
+
+from .columns import Column, TableSchema
+
+__all__ = [
+    "AFM_INVERT_RESULTS",
+    "RADIATION_RESULTS",
+    "RUM_INVERT_RESULTS",
+    "SPECTRA_FITS",
+    "STIFFNESS_CSV",
+]
+
+#: ``fits.csv`` of ``contactres qcm spectra --fits``: the columns of
+#: :func:`contactres.measurements.spectra.fit_resonances`, in its order.
+SPECTRA_FITS = TableSchema(
+    "fits.csv",
+    "the resonance fit of every spectrum, one row per spectrum",
+    (
+        Column("spectrum", "text", "the spectrum id (the spectra table's `spectrum` column)"),
+        Column("f_r_Hz", "Hz", "resonance frequency f_r (NaN where a flag says so)"),
+        Column("f_r_err_Hz", "Hz", "standard error of f_r"),
+        Column("gamma_Hz", "Hz", "half width at half height Γ of the conductance G"),
+        Column("gamma_err_Hz", "Hz", "standard error of Γ"),
+        Column("g_max_S", "S", "conductance at the peak G_max"),
+        Column("phase_rad", "rad", "phase φ of the resonance (NaN: G alone, not fitted)"),
+        Column("reduced_chi2", "-", "reduced χ² of the fit (against the given noise, if any)"),
+        Column("n_points", "-", "points of the spectrum"),
+        Column("converged", "-", "true: a fit ran and its remaining step is negligible"),
+        Column("flags", "text", "';'-separated names of the fit flags (empty: none)"),
+    ),
+)
+
+#: ``stiffness.csv`` of ``contactres qcm stiffness`` (units as in its ``stiffness.json``).
+STIFFNESS_CSV = TableSchema(
+    "stiffness.csv",
+    "κ + iωξ of one contact against time, one row per time and overtone",
+    (
+        Column("time_s", "s", "time of the export's row"),
+        Column("overtone", "-", "overtone order n (odd)"),
+        Column("df_Hz", "Hz", "frequency shift Δf (not divided by n)"),
+        Column("dgamma_Hz", "Hz", "shift of the half-bandwidth ΔΓ"),
+        Column("kappa_N_per_m", "N/m", "contact stiffness κ of one contact (paper 2, Eq. 2)"),
+        Column("omega_xi_N_per_m", "N/m", "ωξ of one contact (damping times angular frequency)"),
+    ),
+)
+
+#: The columns ``contactres afm invert`` appends to the input's (which it copies).
+AFM_INVERT_RESULTS = TableSchema(
+    "afm invert output",
+    "the input columns, then these",
+    (
+        Column("kappa", "-", "normalised contact stiffness κ = Re k*/k_c"),
+        Column("k_star_N_per_m", "N/m", "contact stiffness k* = κ k_c (NaN without k_c)"),
+        Column("tip_position_used", "-", "tip position r = L1/L (given, or the chosen crossing)"),
+        Column("sigma_N_s_per_m", "N s/m", "contact damping σ (NaN without Q or k_c)"),
+        Column("mode_spread", "-", "(max − min)/κ of the per-mode κ (inf: a mode contradicts r)"),
+        Column("E_star_Pa", "Pa", "reduced modulus E* (Hertz or reference method)"),
+        Column("M_sample_Pa", "Pa", "indentation modulus of the sample (tip compliance removed)"),
+        Column("contact_radius_m", "m", "contact radius a (Hertz rows)"),
+        Column(
+            "modulus_method",
+            "text",
+            '"hertz", "reference (given m …)" or "reference (fitted m …)", with " + dynamic" '
+            "where the dynamic correction was applied; empty: no modulus",
+        ),
+        Column("k_static_N_per_m", "N/m", "static stiffness k*/Re DCSF (with `--crystal` only)"),
+        Column("k_a", "-", "k_l a of the first corrected mode (with `--crystal` only)"),
+        Column("dcsf_real", "-", "Re DCSF of that mode (with `--crystal` only)"),
+        Column("dcsf_imag", "-", "Im DCSF of that mode (with `--crystal` only)"),
+        Column("flags", "text", "';'-separated resonance and modulus flags (empty: none)"),
+        Column("normalisation", "text", "the `--normalisation` used: global or modewise"),
+    ),
+)
+
+#: The columns ``contactres rum invert`` appends to the input's (which it copies).
+RUM_INVERT_RESULTS = TableSchema(
+    "rum invert output",
+    "the input columns, then these",
+    (
+        Column("rum_model", "text", "lumped (K_eff_N_per_m given) or rod (mass_kg given)"),
+        Column("k_star_N_per_m", "N/m", "contact stiffness k* from the contact resonance"),
+    ),
+)
+
+#: ``radiation.csv``: the radiation loss of each load against the measured loss.
+RADIATION_RESULTS = TableSchema(
+    "radiation.csv",
+    "one row per (configuration, medium, normal force): radiation loss of the contact vs measured",
+    tuple(
+        Column(name, unit, meaning, level="sweep")
+        for name, unit, meaning in (
+            ("configuration", "text", "configuration"),
+            ("medium", "text", "medium"),
+            ("normal_force_N", "N", "normal force per contact"),
+            ("sphere_material", "text", "material of the sphere (--sphere-material)"),
+            ("plate_material", "text", "material of the plate (--plate-material)"),
+            ("frequency_Hz", "Hz", "frequency of the overtone, fundamental_Hz x overtone"),
+            (
+                "contact_radius_m",
+                "m",
+                "contact radius a from the group's JKR fit (paper 2, Eq. 9) at this load",
+            ),
+            ("stiffness_static_N_per_m", "N/m", "tangential stiffness K₀ of the contact at f = 0"),
+            ("stiffness_real_N_per_m", "N/m", "Re K at the frequency (sphere and plate in series)"),
+            ("stiffness_imag_N_per_m", "N/m", "Im K at the frequency: waves radiated"),
+            ("tan_delta_rad", "-", "radiation loss tangent Im K/Re K"),
+            ("tan_delta_measured", "-", "measured loss tangent ΔΓ0/Δf0 (loss_tangent_mean)"),
+            ("tan_delta_measured_sem", "-", "standard error of tan_delta_measured"),
+            (
+                "radiation_share",
+                "-",
+                "tan_delta_rad/tan_delta_measured: the fraction of ΔΓ0 the radiation explains",
+            ),
+            ("dynamic_softening", "-", "Re K/K₀ - 1: change of the elastic part with frequency"),
+            ("E_Pa", "Pa", "E of the group's JKR fit (κ taken as static)"),
+            (
+                "E_static_corrected_Pa",
+                "Pa",
+                "E refitted with κ/(Re K/K₀) per point (the group's, repeated per load)",
+            ),
+            ("E_relative_change", "-", "E_static_corrected_Pa/E_Pa - 1"),
+            (
+                "note",
+                "text",
+                "why the row has no radiation values, or why they exceed the measured loss "
+                "(empty: computed and below the measured)",
+            ),
+        )
+    ),
+)
