@@ -118,12 +118,8 @@ ALLOWED: dict[tuple[str, str], str] = {
 }
 
 # (module, module-level name) -> why: containers mutated on purpose (registries, not caches).
-REGISTRIES: dict[tuple[str, str], str] = {
-    ("contactres.measurements.readers", "READERS"): (
-        "the reader plug-in registry: register_reader inserts a user's reader; it holds what "
-        "callers registered, never a result computed from arguments (a registry, not a cache)"
-    ),
-}
+# (The reader registry is an immutable value now: contactres.measurements.readers.recipe.)
+REGISTRIES: dict[tuple[str, str], str] = {}
 
 CLI = "cli"
 ENTRY_POINTS = frozenset({"__main__"})  # may import the CLI: `python -m contactres`

@@ -231,26 +231,27 @@ def test_bom_and_windows_line_endings(tmp_path):
     assert len(t) == 18 and t.columns[0] == "sweep"
 
 
-def test_reader_plugin(tmp_path, monkeypatch):
-    import contactres.measurements.readers as readers
-
-    monkeypatch.setattr(readers, "READERS", list(readers.READERS))
+def test_reader_plugin(tmp_path):
+    """A reader of one's own joins a new registry; the built-in one is left as it was."""
+    from contactres.measurements.readers import BUILT_IN, Reader
 
     def load(path):
         frame = pd.read_json(path).astype(str)
         frame["line"] = range(1, len(frame) + 1)
         return frame
 
-    readers.register_reader(
-        readers.SweepReader("json", (".json",), lambda p, head: head.lstrip().startswith("["), load)
+    json_reader = Reader(
+        "json", (".json",), lambda p, head: head.lstrip().startswith("["), load, "sweeps"
     )
+    readers = BUILT_IN.with_reader(json_reader)
     with pytest.raises(ValueError, match="already registered"):
-        readers.register_reader(readers.READERS[0])
+        readers.with_reader(BUILT_IN.of_kind("sweeps")[0])
     path = tmp_path / "sweeps.json"
     good_frame().to_json(path, orient="records")
-    t = read_sweeps(path, **CONST).data
+    t = read_sweeps(path, readers=readers, **CONST).data
     assert len(t) == 18
     np.testing.assert_allclose(t["df_Hz"], good_frame()["df_Hz"])
+    assert [r.name for r in BUILT_IN.of_kind("sweeps")] == ["csv"]
 
 
 # ---- issue 11: nothing mixed, nothing lost, every bad input in one short line ---------------

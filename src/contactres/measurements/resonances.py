@@ -19,7 +19,7 @@ import pandas as pd
 
 from ..errors import ContactresInputError
 from .messages import at_cell, shown_value, where_rows
-from .readers import pick_reader
+from .readers.registry import BUILT_IN
 from .schema import AFM_TABLE, RUM_TABLE, Rule, TableSchema
 
 __all__ = ["AFM_TABLE", "RUM_TABLE", "Rule", "read_resonance_table", "validate_resonance_table"]
@@ -75,10 +75,12 @@ def validate_resonance_table(raw: pd.DataFrame, schema: TableSchema, source: str
     return out
 
 
-def read_resonance_table(path, schema: TableSchema) -> pd.DataFrame:
+def read_resonance_table(path, schema: TableSchema, *, readers=None) -> pd.DataFrame:
     """Read and check a table of resonances (:data:`AFM_TABLE` or :data:`RUM_TABLE`).
 
-    The file (CSV: comma, semicolon or tab separated) is never modified. See
+    The file (CSV: comma, semicolon or tab separated) is never modified; ``readers`` is the
+    registry its reader is picked from (kind ``resonances``; default
+    :data:`~contactres.measurements.readers.registry.BUILT_IN`). See
     :func:`validate_resonance_table` for what is returned and checked.
     """
     p = Path(path)
@@ -86,5 +88,5 @@ def read_resonance_table(path, schema: TableSchema) -> pd.DataFrame:
         raise FileNotFoundError(f"{p}: no such file")
     if p.is_dir():
         raise ContactresInputError(f"{p}: is a directory, expected a table file")
-    raw = pick_reader(p).load(p)
+    raw = (BUILT_IN if readers is None else readers).pick(p, "resonances").load(p)
     return validate_resonance_table(raw, schema, str(p))

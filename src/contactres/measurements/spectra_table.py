@@ -19,13 +19,14 @@ spectrum Y(f) = G + iB of the quartz around one overtone. Two inputs are read:
 
 Conventions: frequencies in Hz, G and B in S (siemens); the drive voltage is the amplitude
 (peak) voltage across the crystal, V (``voltage="rms"`` converts an rms value by √2). Every
-error names the file, the line, the column and the value.
+error names the file, the line, the column and the value. The readers of both inputs are the
+recipes of kind ``spectra`` in :mod:`contactres.measurements.readers.spectra`; the columns and
+their rules are :data:`contactres.measurements.schema.SPECTRA_TABLE`.
 """
 
 from __future__ import annotations
 
 import math
-import re
 from dataclasses import dataclass
 from pathlib import Path
 
@@ -34,8 +35,15 @@ import pandas as pd
 
 from ..errors import ContactresInputError
 from .messages import at_cell, column_names, shown_value, where_rows
-from .readers import delimited
-from .schema import NUMBER_TEXT, SPECTRA_TABLE, broken_rule, check_cells
+from .readers.registry import BUILT_IN
+from .readers.spectra import (
+    CONSTANT_COLUMNS,
+    LABELS,
+    NUMERIC_LABELS,
+    SPECTRUM_LAYOUTS,
+    cells_as_numbers,
+)
+from .schema import SPECTRA_TABLE, TRUE_WORDS, broken_rule
 
 __all__ = [
     "CONSTANT_COLUMNS",
@@ -45,22 +53,6 @@ __all__ = [
     "read_spectra",
     "validate_spectra",
 ]
-
-#: Header names of the two data columns of a delimited spectrum file -> layout name.
-SPECTRUM_LAYOUTS = {
-    "G/B": (("G_S", "B_S"), "conductance and susceptance, S"),
-    "Y-RI": (("Y_re_S", "Y_im_S"), "real and imaginary part of Y, S"),
-    "S11-RI": (("S11_re", "S11_im"), "real and imaginary part of S11"),
-    "Y-MA": (("Y_mag_S", "Y_phase_deg"), "|Y| in S and its phase in degrees"),
-}
-_TRUE = {"true", "1", "yes", "y", "t"}
-_FALSE = {"false", "0", "no", "n", "f", ""}
-#: Constants of the sweep table a spectra table may carry as columns (passed on to the sweeps).
-CONSTANT_COLUMNS = ("fundamental_Hz", "area_m2", "n_contacts", "sphere_radius_m", "poisson")
-_LABELS = (*(c.name for c in SPECTRA_TABLE.columns if c.level == "sweep"), *CONSTANT_COLUMNS)
-_NUMERIC_LABELS = (
-    "overtone", "drive_voltage_V", "time_s", "ramp", "normal_force_N", *CONSTANT_COLUMNS
-)  # fmt: skip
 
 
 @dataclass(frozen=True)
@@ -83,23 +75,11 @@ class SpectraTable:
     source: str
 
 
-def _number(raw: pd.DataFrame, col: str, source: str, decimal: str = ".") -> np.ndarray:
-    """Parse ``col`` as numbers; empty cells are NaN; anything else not a number is an error."""
-    s = raw[col].astype(str).str.strip()
-    if decimal == ",":
-        s = s.str.replace(",", ".", regex=False)
-    check_cells(raw, source, col, (NUMBER_TEXT,), s.to_numpy())
-    return pd.to_numeric(s, errors="coerce").to_numpy(dtype=float)
-
-
 def _flag(raw: pd.DataFrame, col: str, source: str) -> np.ndarray:
-    s = raw[col].astype(str).str.strip().str.lower()
-    bad = ~s.isin(_TRUE | _FALSE).to_numpy()
-    if bad.any():
-        raise ContactresInputError(
-            f"{at_cell(raw, source, bad, col)} is not true/false (or 1/0, yes/no)"
-        )
-    return s.isin(_TRUE).to_numpy()
+    """A true/false column as bools (its rule: one of :data:`~.schema.inputs.TRUE_WORDS` and
+    :data:`~.schema.inputs.FALSE_WORDS`)."""
+    SPECTRA_TABLE.check_cells(raw, source, col)
+    return raw[col].astype(str).str.strip().str.lower().isin(TRUE_WORDS).to_numpy()
 
 
 def validate_spectra(raw: pd.DataFrame, source: str = "<table>") -> SpectraTable:
@@ -129,7 +109,7 @@ def validate_spectra(raw: pd.DataFrame, source: str = "<table>") -> SpectraTable
     pts = pd.DataFrame({"spectrum": sid.to_numpy(), "line": raw["line"].to_numpy()})
     for col in ("frequency_Hz", "G_S", "B_S"):
         if col in raw.columns:
-            pts[col] = _number(raw, col, source, decimal)
+            pts[col] = cells_as_numbers(raw, col, source, decimal)
         else:
             pts[col] = np.nan
     # A NaN or empty G/B is left to the fit, which flags that spectrum (bad-values) and leaves
@@ -155,13 +135,13 @@ def _spectrum_labels(
 ) -> pd.DataFrame:
     """One row per spectrum: the labels, checked single-valued and against their rules."""
     cols = {}
-    for col in _LABELS:
+    for col in LABELS:
         if col not in raw.columns:
             continue
         if col == "reference":
             cols[col] = _flag(raw, col, source)
-        elif col in _NUMERIC_LABELS:
-            cols[col] = _number(raw, col, source, decimal)
+        elif col in NUMERIC_LABELS:
+            cols[col] = cells_as_numbers(raw, col, source, decimal)
         else:
             cols[col] = raw[col].astype(str).str.strip().to_numpy()
     table = pd.DataFrame({"spectrum": pts["spectrum"], "line": pts["line"], **cols})
@@ -182,7 +162,7 @@ def _spectrum_labels(
     for col in ("configuration", "medium"):
         if col not in first.columns:
             first[col] = SPECTRA_TABLE.column(col).default
-    for col in _NUMERIC_LABELS:
+    for col in NUMERIC_LABELS:
         if col not in first.columns:
             first[col] = np.nan
     _check_label_rules(first, raw, table, source)
@@ -192,7 +172,7 @@ def _spectrum_labels(
 def _check_label_rules(first: pd.DataFrame, raw, table, source: str) -> None:
     """The rules of the numeric labels, on the value given for each spectrum (NaN: none); an
     error names the rows of the first spectrum that breaks one."""
-    for col in _NUMERIC_LABELS:
+    for col in NUMERIC_LABELS:
         if col not in SPECTRA_TABLE.names:
             continue  # a constant of the sweep table: checked when the sweeps are validated
         v = first[col].to_numpy(float)
@@ -204,170 +184,13 @@ def _check_label_rules(first: pd.DataFrame, raw, table, source: str) -> None:
             raise ContactresInputError(f"{at_cell(raw, source, mask, col)}{r.message}")
 
 
-# ----------------------------------------------------------------------------- the readers
-_OPTION_LINE = re.compile(r"^\s*#(.*)$")
-_UNITS = {"hz": 1.0, "khz": 1e3, "mhz": 1e6, "ghz": 1e9}
-
-
-def _touchstone(path: Path) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """(frequency Hz, G S, B S, line numbers) of a one-port Touchstone file."""
-    unit, param, fmt, z0 = 1e9, "S", "MA", 50.0  # the Touchstone defaults
-    freq, a, b, lines = [], [], [], []
-    for number, text in enumerate(path.read_text(errors="replace").splitlines(), start=1):
-        text = text.split("!", 1)[0].strip()
-        if not text:
-            continue
-        if text.startswith("["):
-            raise ContactresInputError(
-                f"{path}, line {number}: Touchstone 2 keyword {shown_value(text)}: save the "
-                "spectrum as a Touchstone 1 file (.s1p) or as CSV"
-            )
-        option = _OPTION_LINE.match(text)
-        if option:
-            words = option.group(1).lower().split()
-            for i, w in enumerate(words):
-                if w in _UNITS:
-                    unit = _UNITS[w]
-                elif w in ("s", "y", "z"):
-                    param = w.upper()
-                elif w in ("ri", "ma", "db"):
-                    fmt = w.upper()
-                elif w == "r" and i + 1 < len(words):
-                    z0 = float(words[i + 1])
-            continue
-        fields = text.split()
-        try:
-            values = [float(x) for x in fields]
-        except ValueError:
-            raise ContactresInputError(
-                f"{path}, line {number}: {shown_value(text)} is not three numbers "
-                "(frequency and the two parts of the one-port parameter)"
-            ) from None
-        if len(values) != 3:
-            raise ContactresInputError(
-                f"{path}, line {number}: {len(values)} numbers, a one-port Touchstone line has 3"
-            )
-        freq.append(values[0] * unit)
-        a.append(values[1])
-        b.append(values[2])
-        lines.append(number)
-    a, b = np.array(a), np.array(b)
-    if fmt == "RI":
-        x = a + 1j * b
-    else:
-        mag = 10 ** (a / 20) if fmt == "DB" else a
-        x = mag * np.exp(1j * np.radians(b))
-    # Touchstone 1: Y and Z are normalised to R (y = Y R, z = Z/R), S is dimensionless.
-    if param == "S":
-        y = (1 - x) / (z0 * (1 + x))
-    elif param == "Z":
-        y = 1 / (x * z0)
-    else:
-        y = x / z0
-    return np.array(freq), y.real, y.imag, np.array(lines)
-
-
-def _delimited_spectrum(path: Path, layout: str | None, z0: float):
-    """(frequency Hz, G S, B S (NaN where absent), line numbers) of a delimited file."""
-    raw = delimited.load(path)
-    if "frequency_Hz" not in raw.columns:
-        raise ContactresInputError(
-            f"{path}: no column 'frequency_Hz'; the columns are "
-            f"{column_names(c for c in raw.columns if c != 'line')}"
-        )
-    found = [k for k, (names, _) in SPECTRUM_LAYOUTS.items() if names[0] in raw.columns]
-    if layout is None:
-        if len(found) != 1:
-            known = "; ".join(
-                f"{k}: {' + '.join(n)} ({w})" for k, (n, w) in SPECTRUM_LAYOUTS.items()
-            )
-            raise ContactresInputError(
-                f"{path}: cannot tell what the columns hold (found layouts {found or 'none'}); "
-                f"name them as one of: {known}, or give the layout"
-            )
-        layout = found[0]
-    if layout not in SPECTRUM_LAYOUTS:
-        raise ContactresInputError(
-            f"layout must be one of {list(SPECTRUM_LAYOUTS)}, got {layout!r}"
-        )
-    names = SPECTRUM_LAYOUTS[layout][0]
-    source = str(path)
-    decimal = raw.attrs.get("decimal", ".")
-    f = _number(raw, "frequency_Hz", source, decimal)
-    first = _number(raw, names[0], source, decimal)
-    if names[1] in raw.columns:
-        second = _number(raw, names[1], source, decimal)
-    elif layout == "G/B":
-        second = np.full(f.shape, np.nan)  # G alone: fitted alone
-    else:
-        raise ContactresInputError(
-            f"{path}: layout {layout} needs both columns {names[0]} and {names[1]}"
-        )
-    if layout == "G/B":
-        return f, first, second, raw["line"].to_numpy()
-    if layout == "Y-RI":
-        y = first + 1j * second
-    elif layout == "S11-RI":
-        s = first + 1j * second
-        y = (1 - s) / (z0 * (1 + s))
-    else:
-        y = first * np.exp(1j * np.radians(second))
-    return f, y.real, y.imag, raw["line"].to_numpy()
-
-
-def _read_folder(folder: Path, layout, z0: float) -> pd.DataFrame:
-    index_path = folder / "index.csv"
-    if not index_path.exists():
-        raise ContactresInputError(
-            f"{folder}: a folder of spectra needs an index.csv naming each file (column 'file') "
-            "with its labels (drive_voltage_V, overtone, reference, sweep, ...)"
-        )
-    index = delimited.load(index_path)
-    if "file" not in index.columns:
-        raise ContactresInputError(
-            f"{index_path}: no column 'file' (the spectrum file of each row)"
-        )
-    parts = []
-    for _, row in index.iterrows():  # one row per file: the loop is over files, not points
-        name = str(row["file"]).strip()
-        path = folder / name
-        if not name or not path.is_file():
-            raise ContactresInputError(
-                f"{index_path}, line {row['line']}, column 'file': no such file "
-                f"{shown_value(name)} in {folder}"
-            )
-        if path.suffix.lower() in (".s1p", ".y1p", ".z1p"):
-            f, g, b, lines = _touchstone(path)
-        else:
-            f, g, b, lines = _delimited_spectrum(path, layout, z0)
-        sid = str(row.get("spectrum", "") or "").strip() or path.stem
-        part = pd.DataFrame(
-            {
-                "spectrum": sid,
-                "frequency_Hz": [repr(float(x)) for x in f],
-                "G_S": [repr(float(x)) for x in g],
-                "B_S": [repr(float(x)) if np.isfinite(x) else "" for x in b],
-                "line": lines,
-            }
-        )
-        comma = index.attrs.get("decimal", ".") == ","
-        for col in _LABELS:
-            if col in index.columns:
-                cell = str(row[col])
-                # The index's decimal comma: its numbers are joined to files read with a point.
-                part[col] = cell.replace(",", ".") if comma and col in _NUMERIC_LABELS else cell
-        parts.append(part)
-    if not parts:
-        raise ContactresInputError(f"{index_path}: no rows (one per spectrum file)")
-    return pd.concat(parts, ignore_index=True)
-
-
 def read_spectra(
     path,
     *,
     layout: str | None = None,
     reference_impedance: float = 50.0,
     voltage: str = "amplitude",
+    readers=None,
 ) -> SpectraTable:
     """Read admittance spectra from a tidy table or a folder of spectrum files.
 
@@ -384,6 +207,9 @@ def read_spectra(
     voltage : str
         "amplitude" (default): ``drive_voltage_V`` is the peak voltage; "rms": it is the rms
         value (multiplied by √2 here).
+    readers : Readers, optional
+        The registry to pick the reader from (kind ``spectra``; default
+        :data:`~contactres.measurements.readers.registry.BUILT_IN`): a folder, else a table.
 
     Returns
     -------
@@ -399,7 +225,8 @@ def read_spectra(
         )
     if voltage not in ("amplitude", "rms"):
         raise ContactresInputError(f"voltage must be 'amplitude' or 'rms', got {voltage!r}")
-    raw = _read_folder(p, layout, z0) if p.is_dir() else delimited.load(p)
+    registry = BUILT_IN if readers is None else readers
+    raw = registry.pick(p, "spectra").load(p, layout=layout, reference_impedance=z0)
     table = validate_spectra(raw, str(p))
     if voltage == "rms":
         spectra = table.spectra.assign(drive_voltage_V=table.spectra["drive_voltage_V"] * 2**0.5)

@@ -29,7 +29,8 @@ import pandas as pd
 from ..errors import ContactresInputError
 from ..units import ABSOLUTE_FREQUENCY_FRACTION, MIN_SWEEP_POINTS, SMALL_LOAD_LIMIT
 from .messages import at_cell, column_names, shown_value, where_rows
-from .readers import SweepReader, pick_reader
+from .readers import SweepReader
+from .readers.registry import BUILT_IN
 from .schema import FINITE, SWEEP_TABLE, check_cells, check_value
 
 if sys.version_info >= (3, 11):
@@ -157,7 +158,7 @@ def _check_constant(name: str, value, where: str, shown=None) -> float:
 # Reading
 
 
-def read_sweeps(path, **constants) -> SweepTable:
+def read_sweeps(path, *, readers=None, **constants) -> SweepTable:
     """Read an amplitude-sweep table into a validated :class:`SweepTable`.
 
     Parameters
@@ -169,6 +170,10 @@ def read_sweeps(path, **constants) -> SweepTable:
         Values for constants missing from the file: ``fundamental_Hz`` (Hz), ``overtone``,
         ``area_m2`` (m^2, acoustically effective area), ``n_contacts``, ``sphere_radius_m`` (m),
         ``poisson``. ``None`` means "not given".
+    readers : Readers, optional
+        The registry to pick the file's reader from (kind ``sweeps``; default
+        :data:`~contactres.measurements.readers.registry.BUILT_IN`). A reader of your own:
+        ``readers=BUILT_IN.with_reader(Reader(name, suffixes, detect, load, "sweeps"))``.
 
     Returns
     -------
@@ -199,7 +204,7 @@ def read_sweeps(path, **constants) -> SweepTable:
         raise ContactresInputError(f"unknown constant(s) {unknown}; allowed: {list(CONSTANTS)}")
     given = {k: v for k, v in constants.items() if v is not None}
     toml, toml_path = _toml_constants(p)
-    raw = pick_reader(p).load(p)
+    raw = (BUILT_IN if readers is None else readers).pick(p, "sweeps").load(p)
     return validate_sweeps(
         raw,
         source=str(p),

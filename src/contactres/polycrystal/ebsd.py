@@ -41,9 +41,10 @@ import pandas as pd
 
 from ..errors import ContactresInputError
 from ..fileio import write_text
+from ..measurements.readers.recipe import Reader
 from .maps import OrientationMap
 
-__all__ = ["read_ang", "read_ctf", "read_ebsd", "write_ang", "write_ctf"]
+__all__ = ["EBSD_READERS", "read_ang", "read_ctf", "read_ebsd", "write_ang", "write_ctf"]
 
 #: The first 8 columns of an .ang row (more may follow and are ignored).
 ANG_COLUMNS = ("phi1", "Phi", "phi2", "x", "y", "IQ", "CI", "phase")
@@ -286,14 +287,31 @@ def read_ctf(path: str | os.PathLike) -> OrientationMap:
     )  # fmt: skip
 
 
+def _looks_like_ang(path: Path, head: str) -> bool:
+    """An ``.ang`` header: ``#`` lines with the grid step."""
+    return any(line.startswith("# XSTEP:") for line in head.splitlines())
+
+
+def _looks_like_ctf(path: Path, head: str) -> bool:
+    """A ``.ctf`` header: its first line."""
+    return head.lstrip().startswith("Channel Text File")
+
+
+#: The EBSD reader recipes (kind ``ebsd``), in the polycrystal layer that owns the formats; the
+#: full registry of every kind is composed above it (``contactres.apps.readers``).
+EBSD_READERS: tuple[Reader, ...] = (
+    Reader("ang", (".ang",), _looks_like_ang, read_ang, "ebsd"),
+    Reader("ctf", (".ctf",), _looks_like_ctf, read_ctf, "ebsd"),
+)
+
+
 def read_ebsd(path: str | os.PathLike) -> OrientationMap:
     """Read an EBSD text export by its suffix: ``.ang`` (:func:`read_ang`) or ``.ctf``
-    (:func:`read_ctf`)."""
+    (:func:`read_ctf`), the recipes of :data:`EBSD_READERS`."""
     suffix = Path(path).suffix.lower()
-    if suffix == ".ang":
-        return read_ang(path)
-    if suffix == ".ctf":
-        return read_ctf(path)
+    for reader in EBSD_READERS:
+        if suffix in reader.suffixes:
+            return reader.load(path)
     raise ContactresInputError(
         f"{Path(path).name}: unknown EBSD export {suffix!r} (expected .ang or .ctf)"
     )

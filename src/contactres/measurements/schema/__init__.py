@@ -33,6 +33,7 @@ from .columns import (
 from .inputs import (
     A_NUMBER,
     AFM_TABLE,
+    FALSE_WORDS,
     FINITE,
     LARGEST_COUNT,
     NOT_EMPTY,
@@ -40,6 +41,7 @@ from .inputs import (
     RUM_TABLE,
     SPECTRA_TABLE,
     SWEEP_TABLE,
+    TRUE_WORDS,
     interval,
     plausible,
 )
@@ -57,6 +59,7 @@ __all__ = [
     "AFM_TABLE",
     "A_NUMBER",
     "CONVENTIONS",
+    "FALSE_WORDS",
     "FINITE",
     "GROUP_RESULTS",
     "INPUTS",
@@ -76,6 +79,7 @@ __all__ = [
     "STIFFNESS_CSV",
     "SWEEP_RESULTS",
     "SWEEP_TABLE",
+    "TRUE_WORDS",
     "Column",
     "Rule",
     "TableSchema",

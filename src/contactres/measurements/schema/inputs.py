@@ -22,6 +22,7 @@ from .columns import Column, Rule, TableSchema, rule
 __all__ = [
     "AFM_TABLE",
     "A_NUMBER",
+    "FALSE_WORDS",
     "FINITE",
     "LARGEST_COUNT",
     "NOT_EMPTY",
@@ -29,6 +30,7 @@ __all__ = [
     "RUM_TABLE",
     "SPECTRA_TABLE",
     "SWEEP_TABLE",
+    "TRUE_WORDS",
     "interval",
     "plausible",
 ]
@@ -66,6 +68,15 @@ A_NUMBER = Rule(FINITE.name, FINITE.check, FINITE.text, FINITE.message, shown=Fa
 NOT_EMPTY = rule("not empty", _filled, "not empty", " is empty", shown=False)
 #: A cell of a spectra table that reads as a number (blank or NaN: not given).
 NUMBER_TEXT = rule("number", _number_text, "a number", " is not a number", shown=False)
+
+
+#: The words of a true/false cell (lower case; blank is false).
+TRUE_WORDS = frozenset({"true", "1", "yes", "y", "t"})
+FALSE_WORDS = frozenset({"false", "0", "no", "n", "f", ""})
+
+
+def _one_of(words):
+    return lambda v: pd.Series(v, dtype=object).astype(str).str.strip().str.lower().isin(words)
 
 
 def _positive(message: str) -> Rule:
@@ -299,6 +310,15 @@ SPECTRA_TABLE = TableSchema(
             "-",
             "true for a no-contact reference spectrum (true/false, 1/0, yes/no)",
             level="sweep",
+            rules=(
+                rule(
+                    "one of",
+                    _one_of(TRUE_WORDS | FALSE_WORDS),
+                    "true/false, 1/0, yes/no",
+                    " is not true/false (or 1/0, yes/no)",
+                    shown=False,  # the meaning says it
+                ),
+            ),
             default="false",
         ),
         Column(

@@ -14,8 +14,9 @@ What a file does not say (Δf or Δf/n, the unit of D, the time unit, the baseli
 fundamental, the channel, the overtone of a single-overtone log) is asked for: a keyword of
 :func:`read_export` (:data:`~.base.CONVENTION_KEYS`), never a silent default.
 
-:data:`EXPORT_READERS` is a tuple: pass your own tuple of readers to :func:`pick_export_reader`
-and :func:`read_export` to add one.
+:data:`EXPORT_READERS` is a tuple of recipes (:class:`~..recipe.Reader` of kind ``export``, part
+of :data:`contactres.measurements.readers.registry.BUILT_IN`): pass your own tuple of readers to
+:func:`pick_export_reader` and :func:`read_export` to add one.
 """
 
 from __future__ import annotations
@@ -23,6 +24,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from ....errors import ContactresInputError
+from ..recipe import first_detected, read_head
 from . import awsensors, openqcm, qcmi, qsense
 from .base import CONVENTION_KEYS, ExportReader, ExportTable, parse_baseline
 
@@ -67,16 +69,9 @@ def pick_export_reader(path, readers: tuple[ExportReader, ...] = EXPORT_READERS)
             f"{path}: a {path.suffix} file is binary; export the data from the instrument "
             "software as text (tab, semicolon or comma separated)"
         )
-    with path.open(encoding="utf-8-sig", errors="replace") as fh:
-        head = fh.read(4096)
-    if not head.strip():
-        raise ContactresInputError(
-            f"{path}: the file is empty (expected a header line and data rows)"
-        )
-    by_suffix = [r for r in readers if path.suffix.lower() in r.suffixes]
-    for reader in by_suffix + [r for r in readers if r not in by_suffix]:
-        if reader.detect(path, head):
-            return reader
+    found = first_detected(readers, path, read_head(path))
+    if found is not None:
+        return found
     names = ", ".join(r.name for r in readers)
     raise ContactresInputError(
         f"{path}: no export reader recognises its header (formats known: {names}); name one "

@@ -107,4 +107,4 @@ def load(path, **conventions) -> ExportTable:
     return convert(path, NAME, raw, _layout(path, list(raw.columns)), conventions)
 
 
-READER = ExportReader(NAME, SUFFIXES, detect, load, CONVENTIONS, SOURCE)
+READER = ExportReader(NAME, SUFFIXES, detect, load, conventions=CONVENTIONS, source=SOURCE)

@@ -39,8 +39,8 @@ from __future__ import annotations
 import csv
 import math
 import re
-from collections.abc import Callable, Iterable, Mapping
-from dataclasses import dataclass
+from collections.abc import Iterable, Mapping
+from dataclasses import dataclass, field
 from pathlib import Path
 from types import MappingProxyType
 
@@ -50,6 +50,7 @@ import pandas as pd
 from ....errors import ContactresInputError
 from ....units import ABSOLUTE_FREQUENCY_FRACTION
 from ...messages import shown_value
+from ..recipe import Reader
 
 __all__ = [
     "ABSOLUTE_FREQUENCY_HZ",
@@ -129,8 +130,8 @@ class ExportTable:
 
 
 @dataclass(frozen=True)
-class ExportReader:
-    """A reader plug-in for one instrument's export.
+class ExportReader(Reader):
+    """The recipe of one instrument's export (a :class:`~..recipe.Reader` of kind ``export``).
 
     Attributes
     ----------
@@ -143,6 +144,8 @@ class ExportReader:
     load : callable
         ``load(path, **conventions) -> ExportTable`` reads the file; the conventions are those
         of :data:`CONVENTION_KEYS`.
+    kind : str
+        ``export``.
     conventions : mapping of str to str
         What the file holds, in words: time, frequency, dissipation, overtones, channels, and
         which choices the reader asks for.
@@ -150,12 +153,15 @@ class ExportReader:
         Where the layout is documented.
     """
 
-    name: str
-    suffixes: tuple[str, ...]
-    detect: Callable[[Path, str], bool]
-    load: Callable[..., ExportTable]
-    conventions: Mapping[str, str]
-    source: str
+    kind: str = "export"
+    conventions: Mapping[str, str] = field(default_factory=dict)
+    source: str = ""
+
+    def __post_init__(self):
+        super().__post_init__()
+        if self.kind != "export":
+            raise ContactresInputError(f"export reader {self.name!r}: kind must be 'export'")
+        object.__setattr__(self, "conventions", MappingProxyType(dict(self.conventions)))
 
 
 @dataclass(frozen=True)

@@ -111,4 +111,4 @@ def load(path, **conventions) -> ExportTable:
     return convert(path, NAME, raw, layout, conventions)
 
 
-READER = ExportReader(NAME, SUFFIXES, detect, load, CONVENTIONS, SOURCE)
+READER = ExportReader(NAME, SUFFIXES, detect, load, conventions=CONVENTIONS, source=SOURCE)

@@ -1,0 +1,166 @@
+"""A reader recipe and a registry of them: immutable values, never module state.
+
+A :class:`Reader` is what it takes to read one file format: a name, the suffixes it is tried for
+first, ``detect`` (is this file in my format?), ``load`` and the ``kind`` of input it reads
+(:data:`KINDS`, which also says what ``load`` returns). A :class:`Readers` is an ordered tuple
+of recipes; :meth:`Readers.with_reader` returns a new registry with one more recipe (tried
+before the others of its kind), so a user adds a format without changing anything shared:
+
+>>> from contactres.measurements.readers.registry import BUILT_IN
+>>> BUILT_IN.of_kind("sweeps")[0].name
+'csv'
+
+The built-in registry is :data:`contactres.measurements.readers.registry.BUILT_IN`.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Iterable
+from dataclasses import dataclass
+from pathlib import Path
+from types import MappingProxyType
+
+from ...errors import ContactresInputError
+
+__all__ = ["KINDS", "Reader", "Readers", "first_detected", "read_head"]
+
+#: The kinds of input, and what ``load`` of a reader of that kind returns.
+KINDS = MappingProxyType(
+    {
+        "sweeps": "load(path) -> DataFrame: a sweep table as string cells and a `line` column",
+        "spectra": (
+            "load(path, *, layout=None, reference_impedance=50.0) -> DataFrame: tidy spectra "
+            "rows as string cells and a `line` column"
+        ),
+        "export": "load(path, **conventions) -> ExportTable: an instrument's QCM-D export",
+        "resonances": (
+            "load(path) -> DataFrame: a CR-AFM or RUM table as string cells and a `line` column"
+        ),
+        "ebsd": "load(path) -> OrientationMap: an EBSD map",
+        "grid": "load(path) -> 2-D float array: a measured value per pixel (NaN: not measured)",
+    }
+)
+
+#: How many characters of a file ``detect`` sees.
+HEAD_CHARS = 4096
+
+
+@dataclass(frozen=True)
+class Reader:
+    """The recipe of one file format.
+
+    Attributes
+    ----------
+    name : str
+        Short name of the format (unique within its kind).
+    suffixes : tuple of str
+        File suffixes (lower case, with the dot) this reader is tried for first.
+    detect : callable(path, head: str) -> bool
+        True if the file, whose first :data:`HEAD_CHARS` characters are ``head`` ("" for a
+        folder), is in this format.
+    load : callable
+        Reads the file; its arguments and what it returns depend on ``kind`` (:data:`KINDS`).
+    kind : str
+        The kind of input, a key of :data:`KINDS`.
+    """
+
+    name: str
+    suffixes: tuple[str, ...]
+    detect: Callable[[Path, str], bool]
+    load: Callable[..., object]
+    kind: str
+
+    def __post_init__(self):
+        if self.kind not in KINDS:
+            raise ContactresInputError(
+                f"reader {self.name!r}: kind {self.kind!r} is not one of {list(KINDS)}"
+            )
+        if isinstance(self.suffixes, str) or not all(
+            isinstance(s, str) and s.startswith(".") and s == s.lower() for s in self.suffixes
+        ):
+            raise ContactresInputError(
+                f"reader {self.name!r}: suffixes must be a tuple of lower-case suffixes with the "
+                f"dot ('.csv'), got {self.suffixes!r}"
+            )
+        if not (callable(self.detect) and callable(self.load)):
+            raise ContactresInputError(f"reader {self.name!r}: detect and load must be callable")
+
+
+def read_head(path: Path) -> str:
+    """The first :data:`HEAD_CHARS` characters of a file ("" for a folder); an empty file is a
+    one-line error."""
+    if path.is_dir():
+        return ""
+    with path.open(encoding="utf-8-sig", errors="replace") as fh:
+        head = fh.read(HEAD_CHARS)
+    if not head.strip():
+        raise ContactresInputError(
+            f"{path}: the file is empty (expected a header line and data rows)"
+        )
+    return head
+
+
+def first_detected(readers: Iterable[Reader], path: Path, head: str) -> Reader | None:
+    """The first of ``readers`` that recognises the file: those whose suffix matches are tried
+    first, then the others, each group in order. None if none does."""
+    readers = tuple(readers)
+    by_suffix = [r for r in readers if path.suffix.lower() in r.suffixes]
+    for reader in by_suffix + [r for r in readers if r not in by_suffix]:
+        if reader.detect(path, head):
+            return reader
+    return None
+
+
+@dataclass(frozen=True)
+class Readers:
+    """An ordered, immutable registry of :class:`Reader` recipes."""
+
+    readers: tuple[Reader, ...] = ()
+
+    def __post_init__(self):
+        object.__setattr__(self, "readers", tuple(self.readers))
+        seen = set()
+        for r in self.readers:
+            if (r.kind, r.name) in seen:
+                raise ContactresInputError(
+                    f"a {r.kind} reader named {r.name!r} is already registered"
+                )
+            seen.add((r.kind, r.name))
+
+    def __iter__(self):
+        return iter(self.readers)
+
+    def __len__(self) -> int:
+        return len(self.readers)
+
+    def with_reader(self, *readers: Reader) -> Readers:
+        """A new registry with ``readers`` tried before the others of their kind (each name new
+        within its kind); this one is unchanged."""
+        return Readers((*readers, *self.readers))
+
+    def of_kind(self, kind: str) -> tuple[Reader, ...]:
+        """The readers of ``kind``, in the order they are tried."""
+        if kind not in KINDS:
+            raise ContactresInputError(f"kind {kind!r} is not one of {list(KINDS)}")
+        return tuple(r for r in self.readers if r.kind == kind)
+
+    def named(self, name: str, kind: str) -> Reader:
+        """The reader of ``kind`` called ``name`` (one-line error listing the known names)."""
+        found = [r for r in self.of_kind(kind) if r.name == str(name).strip().lower()]
+        if not found:
+            known = ", ".join(r.name for r in self.of_kind(kind))
+            raise ContactresInputError(f"no {kind} reader is called {str(name)!r}; known: {known}")
+        return found[0]
+
+    def pick(self, path, kind: str) -> Reader:
+        """The reader of ``kind`` that recognises ``path`` (its suffix first, then the others);
+        a one-line error naming the file and the known formats if none does."""
+        path = Path(path)
+        candidates = self.of_kind(kind)
+        found = first_detected(candidates, path, read_head(path))
+        if found is None:
+            names = ", ".join(f"{r.name} ({'/'.join(r.suffixes)})" for r in candidates)
+            raise ContactresInputError(
+                f"{path}: no reader recognises this file; formats known: {names}"
+            )
+        return found

@@ -1,0 +1,46 @@
+"""The built-in reader recipes of the measurements layer, in one immutable registry.
+
+:data:`BUILT_IN` holds, by kind (:data:`~.recipe.KINDS`): the delimited-text reader of sweep
+tables and of resonance tables (``csv``), the spectra readers (a folder of spectrum files, a tidy
+table: :data:`~.spectra.SPECTRA_READERS`) and the instrument exports
+(:data:`~.exports.EXPORT_READERS`). EBSD maps and value grids are read by recipes of the layers
+that own their formats (:data:`contactres.polycrystal.ebsd.EBSD_READERS`,
+``contactres.apps.readers``), which compose the full registry above this layer; a recipe here
+never imports a higher layer, not even when it is called.
+
+To add a reader, build a new registry (``BUILT_IN.with_reader(my_reader)``) and pass it to the
+function that reads (``read_sweeps(path, readers=...)``), or pass ``extra=(my_reader,)`` to
+:func:`pick_reader`; nothing shared changes.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Iterable
+from pathlib import Path
+
+from . import delimited
+from .exports import EXPORT_READERS
+from .recipe import Reader, Readers
+from .spectra import SPECTRA_READERS
+
+__all__ = ["BUILT_IN", "BUILT_IN_READERS", "pick_reader"]
+
+#: The built-in recipes, in the order they are tried within each kind (after those whose
+#: suffix matches).
+BUILT_IN_READERS: tuple[Reader, ...] = (
+    Reader("csv", delimited.suffixes, delimited.detect, delimited.load, "sweeps"),
+    Reader("csv", delimited.suffixes, delimited.detect, delimited.load, "resonances"),
+    *SPECTRA_READERS,
+    *EXPORT_READERS,
+)
+#: The built-in registry.
+BUILT_IN = Readers(BUILT_IN_READERS)
+
+
+def pick_reader(path, kind: str = "sweeps", extra: Iterable[Reader] = ()) -> Reader:
+    """The reader of ``kind`` for ``path``: ``extra`` readers first, then the built-in ones
+    (within each, those whose suffix matches first). One-line error naming the file and the
+    formats known if none recognises it, or if the file is empty."""
+    extra = tuple(extra)
+    registry = BUILT_IN.with_reader(*extra) if extra else BUILT_IN
+    return registry.pick(Path(path), kind)

@@ -1,0 +1,244 @@
+"""Reader recipes of admittance spectra: a tidy table, or a folder of one file per spectrum.
+
+The folder holds an ``index.csv`` naming each file (column ``file``) with its labels, and one
+file per spectrum as network analysers write them: a Touchstone one-port file (``.s1p``,
+``.y1p``, ``.z1p``: its option line ``# Hz S RI R 50`` says the frequency unit, the parameter
+(S11, Y or Z), the format (RI real/imaginary, MA magnitude/angle in degrees, DB dB/angle) and
+the reference impedance), or a delimited file whose header names say what its two columns hold
+(:data:`SPECTRUM_LAYOUTS`; the ``layout`` argument when they do not). S11 becomes
+Y = (1 − S)/(Z0 (1 + S)) with the reference impedance Z0 (Touchstone: its R; otherwise
+``reference_impedance``, 50 Ω by default).
+
+Both recipes (:data:`SPECTRA_READERS`, kind ``spectra``) give the rows of a tidy spectra table
+as string cells with a ``line`` column, which
+:func:`contactres.measurements.spectra_table.validate_spectra` checks.
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from ...errors import ContactresInputError
+from ..messages import column_names, shown_value
+from ..schema import NUMBER_TEXT, SPECTRA_TABLE, check_cells
+from . import delimited
+from .recipe import Reader
+
+__all__ = [
+    "CONSTANT_COLUMNS",
+    "LABELS",
+    "NUMERIC_LABELS",
+    "SPECTRA_READERS",
+    "SPECTRUM_LAYOUTS",
+    "cells_as_numbers",
+    "load_folder",
+    "load_table",
+]
+
+#: Header names of the two data columns of a delimited spectrum file -> layout name.
+SPECTRUM_LAYOUTS = {
+    "G/B": (("G_S", "B_S"), "conductance and susceptance, S"),
+    "Y-RI": (("Y_re_S", "Y_im_S"), "real and imaginary part of Y, S"),
+    "S11-RI": (("S11_re", "S11_im"), "real and imaginary part of S11"),
+    "Y-MA": (("Y_mag_S", "Y_phase_deg"), "|Y| in S and its phase in degrees"),
+}
+#: Constants of the sweep table a spectra table may carry as columns (passed on to the sweeps).
+CONSTANT_COLUMNS = ("fundamental_Hz", "area_m2", "n_contacts", "sphere_radius_m", "poisson")
+#: The per-spectrum labels a row may carry (an index.csv passes them on to its files).
+LABELS = (*(c.name for c in SPECTRA_TABLE.columns if c.level == "sweep"), *CONSTANT_COLUMNS)
+#: The labels that are numbers.
+NUMERIC_LABELS = (
+    "overtone", "drive_voltage_V", "time_s", "ramp", "normal_force_N", *CONSTANT_COLUMNS
+)  # fmt: skip
+
+
+def cells_as_numbers(raw: pd.DataFrame, col: str, source: str, decimal: str = ".") -> np.ndarray:
+    """The cells of ``col`` as numbers (decimal comma where ``decimal`` is ","); blank or NaN
+    cells are NaN; any other cell that is not a number is a one-line error (:data:`~contactres
+    .measurements.schema.NUMBER_TEXT`)."""
+    s = raw[col].astype(str).str.strip()
+    if decimal == ",":
+        s = s.str.replace(",", ".", regex=False)
+    check_cells(raw, source, col, (NUMBER_TEXT,), s.to_numpy())
+    return pd.to_numeric(s, errors="coerce").to_numpy(dtype=float)
+
+
+_OPTION_LINE = re.compile(r"^\s*#(.*)$")
+_UNITS = {"hz": 1.0, "khz": 1e3, "mhz": 1e6, "ghz": 1e9}
+
+
+def _touchstone(path: Path) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """(frequency Hz, G S, B S, line numbers) of a one-port Touchstone file."""
+    unit, param, fmt, z0 = 1e9, "S", "MA", 50.0  # the Touchstone defaults
+    freq, a, b, lines = [], [], [], []
+    for number, text in enumerate(path.read_text(errors="replace").splitlines(), start=1):
+        text = text.split("!", 1)[0].strip()
+        if not text:
+            continue
+        if text.startswith("["):
+            raise ContactresInputError(
+                f"{path}, line {number}: Touchstone 2 keyword {shown_value(text)}: save the "
+                "spectrum as a Touchstone 1 file (.s1p) or as CSV"
+            )
+        option = _OPTION_LINE.match(text)
+        if option:
+            words = option.group(1).lower().split()
+            for i, w in enumerate(words):
+                if w in _UNITS:
+                    unit = _UNITS[w]
+                elif w in ("s", "y", "z"):
+                    param = w.upper()
+                elif w in ("ri", "ma", "db"):
+                    fmt = w.upper()
+                elif w == "r" and i + 1 < len(words):
+                    z0 = float(words[i + 1])
+            continue
+        fields = text.split()
+        try:
+            values = [float(x) for x in fields]
+        except ValueError:
+            raise ContactresInputError(
+                f"{path}, line {number}: {shown_value(text)} is not three numbers "
+                "(frequency and the two parts of the one-port parameter)"
+            ) from None
+        if len(values) != 3:
+            raise ContactresInputError(
+                f"{path}, line {number}: {len(values)} numbers, a one-port Touchstone line has 3"
+            )
+        freq.append(values[0] * unit)
+        a.append(values[1])
+        b.append(values[2])
+        lines.append(number)
+    a, b = np.array(a), np.array(b)
+    if fmt == "RI":
+        x = a + 1j * b
+    else:
+        mag = 10 ** (a / 20) if fmt == "DB" else a
+        x = mag * np.exp(1j * np.radians(b))
+    # Touchstone 1: Y and Z are normalised to R (y = Y R, z = Z/R), S is dimensionless.
+    if param == "S":
+        y = (1 - x) / (z0 * (1 + x))
+    elif param == "Z":
+        y = 1 / (x * z0)
+    else:
+        y = x / z0
+    return np.array(freq), y.real, y.imag, np.array(lines)
+
+
+def _delimited_spectrum(path: Path, layout: str | None, z0: float):
+    """(frequency Hz, G S, B S (NaN where absent), line numbers) of a delimited file."""
+    raw = delimited.load(path)
+    if "frequency_Hz" not in raw.columns:
+        raise ContactresInputError(
+            f"{path}: no column 'frequency_Hz'; the columns are "
+            f"{column_names(c for c in raw.columns if c != 'line')}"
+        )
+    found = [k for k, (names, _) in SPECTRUM_LAYOUTS.items() if names[0] in raw.columns]
+    if layout is None:
+        if len(found) != 1:
+            known = "; ".join(
+                f"{k}: {' + '.join(n)} ({w})" for k, (n, w) in SPECTRUM_LAYOUTS.items()
+            )
+            raise ContactresInputError(
+                f"{path}: cannot tell what the columns hold (found layouts {found or 'none'}); "
+                f"name them as one of: {known}, or give the layout"
+            )
+        layout = found[0]
+    if layout not in SPECTRUM_LAYOUTS:
+        raise ContactresInputError(
+            f"layout must be one of {list(SPECTRUM_LAYOUTS)}, got {layout!r}"
+        )
+    names = SPECTRUM_LAYOUTS[layout][0]
+    source = str(path)
+    decimal = raw.attrs.get("decimal", ".")
+    f = cells_as_numbers(raw, "frequency_Hz", source, decimal)
+    first = cells_as_numbers(raw, names[0], source, decimal)
+    if names[1] in raw.columns:
+        second = cells_as_numbers(raw, names[1], source, decimal)
+    elif layout == "G/B":
+        second = np.full(f.shape, np.nan)  # G alone: fitted alone
+    else:
+        raise ContactresInputError(
+            f"{path}: layout {layout} needs both columns {names[0]} and {names[1]}"
+        )
+    if layout == "G/B":
+        return f, first, second, raw["line"].to_numpy()
+    if layout == "Y-RI":
+        y = first + 1j * second
+    elif layout == "S11-RI":
+        s = first + 1j * second
+        y = (1 - s) / (z0 * (1 + s))
+    else:
+        y = first * np.exp(1j * np.radians(second))
+    return f, y.real, y.imag, raw["line"].to_numpy()
+
+
+def _read_folder(folder: Path, layout, z0: float) -> pd.DataFrame:
+    index_path = folder / "index.csv"
+    if not index_path.exists():
+        raise ContactresInputError(
+            f"{folder}: a folder of spectra needs an index.csv naming each file (column 'file') "
+            "with its labels (drive_voltage_V, overtone, reference, sweep, ...)"
+        )
+    index = delimited.load(index_path)
+    if "file" not in index.columns:
+        raise ContactresInputError(
+            f"{index_path}: no column 'file' (the spectrum file of each row)"
+        )
+    parts = []
+    for _, row in index.iterrows():  # one row per file: the loop is over files, not points
+        name = str(row["file"]).strip()
+        path = folder / name
+        if not name or not path.is_file():
+            raise ContactresInputError(
+                f"{index_path}, line {row['line']}, column 'file': no such file "
+                f"{shown_value(name)} in {folder}"
+            )
+        if path.suffix.lower() in (".s1p", ".y1p", ".z1p"):
+            f, g, b, lines = _touchstone(path)
+        else:
+            f, g, b, lines = _delimited_spectrum(path, layout, z0)
+        sid = str(row.get("spectrum", "") or "").strip() or path.stem
+        part = pd.DataFrame(
+            {
+                "spectrum": sid,
+                "frequency_Hz": [repr(float(x)) for x in f],
+                "G_S": [repr(float(x)) for x in g],
+                "B_S": [repr(float(x)) if np.isfinite(x) else "" for x in b],
+                "line": lines,
+            }
+        )
+        comma = index.attrs.get("decimal", ".") == ","
+        for col in LABELS:
+            if col in index.columns:
+                cell = str(row[col])
+                # The index's decimal comma: its numbers are joined to files read with a point.
+                part[col] = cell.replace(",", ".") if comma and col in NUMERIC_LABELS else cell
+        parts.append(part)
+    if not parts:
+        raise ContactresInputError(f"{index_path}: no rows (one per spectrum file)")
+    return pd.concat(parts, ignore_index=True)
+
+
+def load_table(path, **options) -> pd.DataFrame:
+    """A tidy spectra table as string cells and ``line`` (the options concern folders only)."""
+    return delimited.load(Path(path))
+
+
+def load_folder(path, *, layout=None, reference_impedance: float = 50.0) -> pd.DataFrame:
+    """The files of a folder of spectra as the rows of a tidy table (string cells, ``line``)."""
+    return _read_folder(Path(path), layout, float(reference_impedance))
+
+
+#: The spectra recipes: a folder of spectrum files, else a tidy table (any other file: its
+#: validator names what is missing).
+SPECTRA_READERS: tuple[Reader, ...] = (
+    Reader("folder", (), lambda path, head: Path(path).is_dir(), load_folder, "spectra"),
+    Reader(
+        "csv", delimited.suffixes, lambda path, head: not Path(path).is_dir(), load_table, "spectra"
+    ),
+)
