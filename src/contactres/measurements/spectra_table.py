@@ -176,7 +176,7 @@ def _check_label_rules(first: pd.DataFrame, raw, table, source: str) -> None:
         if col not in SPECTRA_TABLE.names:
             continue  # a constant of the sweep table: checked when the sweeps are validated
         v = first[col].to_numpy(float)
-        found = broken_rule(SPECTRA_TABLE.column(col).rules, v, np.isfinite(v))
+        found = broken_rule(SPECTRA_TABLE.column(col).rules, v, ~np.isnan(v))
         if found is not None:
             r, bad = found
             sid = first["spectrum"].to_numpy()[bad][0]
