@@ -13,6 +13,8 @@ cell says it.
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 import pandas as pd
 
@@ -63,7 +65,7 @@ def _odd(v: np.ndarray) -> np.ndarray:
 #: Every number of a sweep table: finite (the error of the sweep table's reader).
 FINITE = rule("finite", np.isfinite, "finite", " is not finite (NaN or infinite)")
 #: The same, unsaid in the dictionary: any measured number is finite.
-A_NUMBER = Rule(FINITE.name, FINITE.check, FINITE.text, FINITE.message, shown=False)
+A_NUMBER = replace(FINITE, shown=False)
 #: A label that must not be blank.
 NOT_EMPTY = rule("not empty", _filled, "not empty", " is empty", shown=False)
 #: A cell of a spectra table that reads as a number (blank or NaN: not given).
@@ -83,15 +85,14 @@ def _positive(message: str) -> Rule:
     return rule("positive", lambda v: v > 0, "> 0", message)
 
 
-def _count(what: str) -> Rule:
-    """A count no larger than :data:`LARGEST_COUNT` (checked before its other rules)."""
-    return rule(
-        "count",
-        lambda v: np.abs(v) <= LARGEST_COUNT,
-        what,
-        " is too large to be a count",
-        shown=False,
-    )
+#: A count no larger than :data:`LARGEST_COUNT` (checked before the other rules of a count).
+_COUNT = rule(
+    "count",
+    lambda v: np.abs(v) <= LARGEST_COUNT,
+    "a count",
+    " is too large to be a count",
+    shown=False,
+)
 
 
 # --------------------------------------------------------------------------------------------
@@ -216,7 +217,7 @@ SWEEP_TABLE = TableSchema(
             "overtone order n",
             level="constant",
             rules=(
-                _count("a count"),
+                _COUNT,
                 rule(
                     "odd",
                     _odd,
@@ -239,7 +240,7 @@ SWEEP_TABLE = TableSchema(
             "number of equal contacts (3 for a tripod)",
             level="constant",
             rules=(
-                _count("a count"),
+                _COUNT,
                 rule("whole", _whole, "integer >= 1", " must be a positive integer"),
             ),
         ),
