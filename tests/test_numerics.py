@@ -1,4 +1,4 @@
-"""Tests of contactres.numerics: the Gauss-Legendre rule on [0, 1]."""
+"""Tests of contactres.numerics: the Gauss-Legendre rules on [0, 1] and on panels [a, b]."""
 
 import math
 
@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from scipy.special import eval_legendre
 
-from contactres.numerics import gauss_legendre_unit
+from contactres.numerics import gauss_legendre, gauss_legendre_unit
 
 
 @pytest.mark.parametrize("n", [1, 2, 5, 24, 48])
@@ -51,3 +51,35 @@ def test_arrays_are_read_only_and_bad_n_is_refused():
     for bad in (0, -3, 2.5):
         with pytest.raises(ValueError, match="Gauss-Legendre"):
             gauss_legendre_unit(bad)
+
+
+@pytest.mark.parametrize("n", [1, 3, 12, 20, 32, 48])
+def test_panel_rule_integrates_polynomials_of_degree_2n_minus_1_on_every_panel(n):
+    # Panels of shape (P, 1), as the far-field grid passes them; powers of t - mid (mid the
+    # centre of the panel) keep the rounding small and have integrals known in closed form.
+    a = np.array([-1.5, 0.0, 0.25, 3.0])[:, None]
+    b = np.array([-0.5, 2.0, 0.3, 7.0])[:, None]
+    x, w = gauss_legendre(a, b, n)
+    assert x.shape == w.shape == (4, n)
+    assert np.all((x > a) & (x < b)) and np.all(w > 0)
+    np.testing.assert_allclose(w.sum(axis=-1), (b - a)[:, 0], rtol=1e-14)
+    mid, half = 0.5 * (a + b)[:, 0], 0.5 * (b - a)[:, 0]
+    for k in range(2 * n):
+        # ∫ (t - mid)^k dt over [a, b]: 0 for odd k, 2 half^(k+1)/(k + 1) for even k; errors
+        # are measured against ∫ |t - mid|^k, the size of the terms that are summed.
+        size = 2.0 * half ** (k + 1) / (k + 1)
+        exact = size if k % 2 == 0 else 0.0 * size
+        got = np.sum(w * (x - mid[:, None]) ** k, axis=-1)
+        assert np.max(np.abs(got - exact) / size) < 1e-12, k  # rounding of high powers ~3e-13
+
+
+@pytest.mark.parametrize("n", [4, 24])
+def test_panel_rule_on_the_unit_interval_matches_numpy_leggauss(n):
+    # scipy's roots_legendre against numpy's leggauss (gauss_legendre_unit): two independent
+    # constructions of the same rule.
+    x, w = gauss_legendre(0.0, 1.0, n)
+    xu, wu = gauss_legendre_unit(n)
+    np.testing.assert_allclose(x, xu, rtol=0, atol=1e-15)
+    np.testing.assert_allclose(w, wu, rtol=1e-13)
+    with pytest.raises(ValueError, match="Gauss-Legendre"):
+        gauss_legendre(0.0, 1.0, 0)

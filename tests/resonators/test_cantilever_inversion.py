@@ -161,15 +161,24 @@ def test_mode_spread_is_the_third_modes_own_kappa_and_flags_beyond_the_tolerance
 
 
 def test_a_third_mode_above_its_pinned_limit_contradicts_the_crossing():
-    # r = 0.65, κ = 1423 (noise-free, mode 1 deep in saturation: just below r = 0.65 its
-    # frequency is above the pinned limit, so the scan sees no sign change there): modes 1 and 2
-    # cross only near r = 0.96 on the scan, where mode 3 lies above its pinned frequency, which
-    # no κ > 0 gives. That r is contradicted, not unchecked: flagged, with an infinite spread
-    # (found by review: it was returned unflagged, κ = 141 instead of 1423).
-    lever = Cantilever((160e3, 160e3 * (FREE_ROOTS[1] / FREE_ROOTS[0]) ** 2), 40.0)
-    f = contact_frequencies(lever, np.array([1422.91447398]), 0.65, modes=(1, 2, 3))
-    res = invert_contact_resonance(lever, f)
-    assert abs(res.tip_position[0] - 0.65) > 0.2  # the two-mode scan misses the true crossing
+    # A crossing built explicitly: modes 1 and 2 of one contact (κ = 300 at r = 0.8, a clean
+    # sign change of κ_a - κ_b, the only crossing of the pair), and a mode 3 measured 10 % above
+    # its pinned limit at that r (the κ -> ∞ limit of the forward model), which no κ > 0 gives.
+    # That r is contradicted, not unchecked: flagged, with an infinite spread (found by review:
+    # such a crossing was returned unflagged). Built this way the outcome does not depend on
+    # where the scan's grid points fall (the earlier version relied on the scan missing a
+    # crossing of a saturated mode, which it finds on some machines).
+    r0, kappa0 = 0.8, 300.0
+    f = contact_frequencies(GLOBAL, np.array([kappa0]), r0, modes=(1, 2, 3))
+    pinned_3 = contact_frequencies(GLOBAL, np.array([1e11]), r0, modes=(3,))[0, 0]
+    free_4 = 1e5 * (FREE_ROOTS[3] / FREE_ROOTS[0]) ** 2
+    f[0, 2] = 1.1 * pinned_3
+    assert f[0, 2] < free_4  # still on mode 3's side of the free mode 4
+    # Independent of the check: mode 3 alone at r0 is above its pinned limit.
+    alone = invert_contact_resonance(GLOBAL, f[:, 2:], r0, modes=(3,))
+    assert alone.flags[0] & FLAG_ABOVE_PINNED
+    res = invert_contact_resonance(GLOBAL, f)
+    assert abs(res.tip_position[0] - r0) < 1e-9 and abs(res.kappa[0] / kappa0 - 1) < 1e-8
+    assert np.array_equal(res.flags_modes[0, :2], [0, 0])  # the crossing itself is sound
+    assert res.flags_modes[0, 2] & FLAG_ABOVE_PINNED
     assert res.flags[0] & FLAG_INCONSISTENT_MODES and np.isinf(res.mode_spread[0])
-    alone = invert_contact_resonance(lever, f[:, 2:], res.tip_position, modes=(3,))
-    assert alone.flags[0] & FLAG_ABOVE_PINNED  # mode 3 alone at that r: above its pinned limit

@@ -24,10 +24,13 @@ and the finite differences of the old fit blurred into errors of ~10⁴ Hz.
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 import pandas as pd
 from scipy import special
 
+from ..fitting import LMOptions, levenberg_marquardt, solve_stacked
 from ..numerics import gauss_legendre_unit
 from .amplitude import PLATEAU_MIN_SLOPE
 from .loops import X_MAX, LoopTable, fit_cm_loops, loop_fit_fields, solve_projected
@@ -36,6 +39,19 @@ __all__ = ["PLATEAU_LOOP_COLUMNS", "fit_plateau_loops", "plateau_loop_slopes"]
 
 #: Nodes of the Gauss-Legendre rule of the small-x integrals of :func:`plateau_loop_slopes`.
 SMALL_X_NODES = 16
+
+#: The Levenberg-Marquardt iteration of the fit (:func:`contactres.fitting.levenberg_marquardt`
+#: on the Gauss-Newton form of the projected χ², tolerances set per pass): Marquardt's scaling
+#: and Nielsen's update of the damping from the ratio of the actual to the predicted decrease
+#: of χ² (the residuals are not small: a Gauss-Newton step may overshoot along a narrow
+#: valley), bounds by projection (a parameter on a bound that the gradient pushes outwards is
+#: held there for the step), at most 60 steps per sweep. A sweep stops when a step moves p by
+#: < tol (relative) or lowers χ² by < tol of it, when both the actual and the predicted
+#: decrease of a step are below tol of χ² (MINPACK's ftol test), or when no step lowers χ² any
+#: more. With tol = 1e-7 the parameters agree with scipy's least_squares at 1e-10 within 1e-3
+#: of their standard errors (tests/analysis/test_scale.py); 1e-10 and 200 steps cost 2.3x the
+#: time for nothing a model choice or an error bar can see.
+PLATEAU_LM = LMOptions(damping="marquardt", update="nielsen", lam0=1e-3, lam_max=1e14, max_iter=60)
 
 #: Numeric columns of :func:`fit_plateau_loops` (besides ``edge``).
 PLATEAU_LOOP_COLUMNS = (
@@ -179,7 +195,9 @@ def _plateau_model(p, u, umax, df, dg, w, wf, wg, rule) -> dict[str, np.ndarray]
     phi = np.stack([phi_a, phi_b], axis=1)  # (R, 2, 2M)
     gram = np.einsum("rim,rjm->rij", phi, phi)
     pd_ = np.einsum("rim,rjm->rij", phi, D)
-    hess = np.einsum("rim,rjm->rij", D, D) - np.einsum("rki,rkj->rij", pd_, _solve2(gram, pd_))
+    hess = np.einsum("rim,rjm->rij", D, D) - np.einsum(
+        "rki,rkj->rij", pd_, solve_stacked(gram, pd_)
+    )
     grad = -np.einsum("rim,rm->ri", D, r)
     return {
         "A": A,
@@ -194,76 +212,6 @@ def _plateau_model(p, u, umax, df, dg, w, wf, wg, rule) -> dict[str, np.ndarray]
         "c": c,
         "slopes": (g1, g2, g1x, g1c, g2x, g2c),
     }
-
-
-def _solve2(a, b):
-    """a⁻¹ b for stacks of 2 x 2 matrices a (R, 2, 2) and b (R, 2, K), by Cramer's rule."""
-    det = a[:, 0, 0] * a[:, 1, 1] - a[:, 0, 1] * a[:, 1, 0]
-    det = np.where(det != 0, det, np.finfo(float).tiny)[:, None]
-    return (
-        np.stack(
-            [
-                a[:, 1, 1, None] * b[:, 0] - a[:, 0, 1, None] * b[:, 1],
-                a[:, 0, 0, None] * b[:, 1] - a[:, 1, 0, None] * b[:, 0],
-            ],
-            axis=1,
-        )
-        / det[:, None]
-    )
-
-
-def _levenberg_marquardt(model, p, lo, hi, max_iter: int = 60, tol: float = 1e-7) -> np.ndarray:
-    """Minimise χ²(p) of every row at once within lo <= p <= hi (rows (R, 2)).
-
-    Levenberg-Marquardt with Marquardt's scaling and Nielsen's update of the damping from the
-    ratio of the actual to the predicted decrease of χ² (the residuals are not small: a
-    Gauss-Newton step may overshoot along a narrow valley); bounds by projection (a parameter
-    on a bound that the gradient pushes outwards is held there for the step). A row stops when
-    a step moves p by < ``tol`` (relative) or lowers χ² by < ``tol`` of it, when both the actual
-    and the predicted decrease of a step are below ``tol`` of χ² (MINPACK's ftol test), or when
-    no step lowers χ² any more, or after ``max_iter`` steps. With ``tol`` = 1e-7 and 60 steps
-    the parameters agree with scipy's least_squares at 1e-10 within 1e-3 of their standard
-    errors (tests/analysis/test_scale.py); 1e-10 and 200 steps cost 2.3x the time for nothing
-    a model choice or an error bar can see.
-    ``model(p, rows)`` returns the dict of :func:`_plateau_model` for those rows.
-    """
-    p = p.copy()
-    cur = model(p, np.arange(len(p)))
-    lam, nu = np.full(len(p), 1e-3), np.full(len(p), 2.0)
-    active = np.isfinite(cur["chi2"])
-    for _ in range(max_iter):  # iterations, all sweeps at once
-        idx = np.flatnonzero(active)
-        if idx.size == 0:
-            break
-        g, H, q = cur["grad"][idx], cur["hess"][idx], p[idx]
-        held = ((q <= lo[idx]) & (g > 0)) | ((q >= hi[idx]) & (g < 0))
-        diag = np.maximum(np.diagonal(H, axis1=1, axis2=2), 1e-300)
-        Hs = H + lam[idx, None, None] * diag[:, :, None] * np.eye(2)
-        Hs = np.where(held[:, :, None] | held[:, None, :], np.eye(2) * diag[:, :, None], Hs)
-        step = np.clip(
-            q - _solve2(Hs, np.where(held, 0.0, g)[:, :, None])[:, :, 0], lo[idx], hi[idx]
-        )
-        step -= q
-        new = model(q + step, idx)
-        gain = cur["chi2"][idx] - new["chi2"]
-        pred = -2.0 * np.einsum("ri,ri->r", g, step) - np.einsum("ri,rij,rj->r", step, H, step)
-        rho = np.where(pred > 0, gain / np.where(pred > 0, pred, 1.0), 0.5)
-        better = gain > 0  # NaN: not better
-        acc = idx[better]
-        p[acc] += step[better]
-        for key in ("chi2", "grad", "hess"):
-            cur[key][acc] = new[key][better]
-        shrink = np.maximum(1.0 / 3.0, 1.0 - (2.0 * rho - 1.0) ** 3)
-        lam[idx] = np.where(better, np.maximum(lam[idx] * shrink, 1e-15), lam[idx] * nu[idx])
-        nu[idx] = np.where(better, 2.0, 2.0 * nu[idx])
-        tiny = np.all(np.abs(step) <= tol * (1e-10 + np.abs(q)), axis=1)
-        tiny |= better & (gain <= tol * cur["chi2"][idx])
-        # MINPACK's ftol test: the step's actual and predicted relative decrease both tiny
-        # (at the optimum no step gains more than the rounding: stop, do not raise λ on).
-        scale = tol * cur["chi2"][idx]
-        tiny |= (np.abs(np.nan_to_num(gain)) <= scale) & (pred <= scale)
-        active[idx[tiny | (lam[idx] > 1e14)]] = False
-    return p
 
 
 def fit_plateau_loops(
@@ -321,8 +269,13 @@ def fit_plateau_loops(
                 p, data[0][i], um[i], *(a[i] for a in data[1:]), wf[i], wg[i], rule
             )
 
-        p = _levenberg_marquardt(model, starts, np.tile(lo, (k, 1)), np.tile(hi, (k, 1)), tol=tol)
-        return p, model(p, np.arange(len(p)))
+        def evaluate(p, i, jacobian):  # the Gauss-Newton form, always complete
+            fit = model(p, i)
+            return {"chi2": fit["chi2"], "gradient": fit["grad"], "hessian": fit["hess"]}
+
+        options = replace(PLATEAU_LM, xtol=tol, x_abs=1e-10 * tol, ftol=tol)
+        p = levenberg_marquardt(evaluate, starts, np.tile(lo, (k, 1)), np.tile(hi, (k, 1)), options)
+        return p.x, model(p.x, np.arange(len(p.x)))
 
     # Pass 1, weighted by the noise of the hinge fit; started at the hinge and at the amplitude
     # below it (the hinge sits at or above d_c), θ from the loop fitted to the excess; the

@@ -19,7 +19,8 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import special
 
-from .table import KernelTable, Resolution, gauss_legendre, handover
+from ..numerics import gauss_legendre
+from .table import KernelTable, Resolution, handover
 from .weights import bessel_even, j1_over_s, sinc, wa_harmonic_weights
 
 __all__ = [

@@ -32,6 +32,7 @@ from scipy import special
 from ..errors import ContactresInputError
 from ..halfspace import dynamic_kernel, shear_reference, static_kernel
 from ..materials import Material, require_material, voigt_to_tensor
+from ..numerics import gauss_legendre
 
 __all__ = [
     "MAX_ISOTROPIC_POISSON",
@@ -40,7 +41,6 @@ __all__ = [
     "Resolution",
     "check_contrast",
     "check_loss",
-    "gauss_legendre",
     "handover",
     "kernel_table",
     "max_slowness",
@@ -204,17 +204,6 @@ def check_loss(loss) -> float:
     if not (np.isfinite(q) and 0 <= q < 1):
         raise ContactresInputError(f"loss (Q^-1) must lie in [0, 1), got {loss!r}")
     return q
-
-
-def gauss_legendre(a, b, n: int) -> tuple[np.ndarray, np.ndarray]:
-    """Nodes and weights of the n-point Gauss-Legendre rule on [a, b] (or on many panels, as
-    :func:`contactres.numerics.gauss_legendre`: ``a``, ``b`` broadcast against the node axis,
-    which comes last). From scipy's ``roots_legendre`` (same rule to ~1e-15), ~5x cheaper than
-    numpy's ``leggauss`` (~1.5 ms at n = 40), which a table and a far grid need several of."""
-    x, w = special.roots_legendre(int(n))
-    a = np.asarray(a)
-    b = np.asarray(b)
-    return 0.5 * (b - a) * x + 0.5 * (b + a), 0.5 * (b - a) * w
 
 
 def handover(kappa, t1: float):

@@ -3,7 +3,7 @@
 The measured value of grain i is ``value_i = c · E*_i^p`` (p = 2/3 for a contact-stiffness map,
 1 for a modulus map), E* the indentation modulus M(n; C) of the grain (paper 1, Eq. 4; Vlassak &
 Nix 1994) in series with the tip; the model and the fit shared with the hexagonal case are in
-:mod:`.ratio_fit`, the solver in :mod:`.least_squares`, the hexagonal crystal in
+:mod:`.ratio_fit`, the solver in :mod:`contactres.fitting`, the hexagonal crystal in
 :mod:`.inverse_hexagonal`.
 
 Parametrisation (logarithmic): ln(C12/C11), ln(C44/C11) and the scale. With a free calibration c

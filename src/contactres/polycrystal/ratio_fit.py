@@ -36,8 +36,8 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import ContactresInputError
+from ..fitting import LMOptions, levenberg_marquardt
 from ..materials import Material
-from .least_squares import levenberg_marquardt
 from .moduli import indentation_moduli
 
 __all__ = [
@@ -61,6 +61,36 @@ LOG_STEP = 1e-3
 BOUND_TOL = 1e-4
 MIN_EIGENVALUE = 1e-2
 QUANTITIES = {"stiffness": 2.0 / 3.0, "modulus": 1.0}
+
+#: The largest change of a log-parameter per step: the valleys of the fits are long and curved,
+#: and a linearised step much longer than this leaves them.
+MAX_LOG_STEP = 0.2
+
+#: The Levenberg-Marquardt iteration of the fit (:func:`contactres.fitting.levenberg_marquardt`):
+#: all parameters are logarithms, so Levenberg's damping λ s₀² I (s₀ the largest singular value
+#: of the weighted sensitivity), divided or multiplied by 10 (at least 1e-9, starting at 1e-6);
+#: geodesic acceleration (Transtrum & Sethna 2012) with h = 0.1 bends the steps along the curved
+#: valleys; steps of at most MAX_LOG_STEP. Converged when a step moves every log-parameter by
+#: <= 1e-9 or lowers χ² by <= 1e-9 max(χ², 1) (accepted steps only); failed after 12 rejected
+#: steps in a row or 30 accepted ones. A stiffness that is not positive definite is outside the
+#: admissible region: the step is rejected, as one that raises χ², so no penalty term biases the
+#: minimum.
+RATIO_LM = LMOptions(
+    damping="levenberg",
+    update="tenfold",
+    lam0=1e-6,
+    lam_min=1e-9,
+    max_reject=12,
+    geodesic=0.1,
+    max_step=MAX_LOG_STEP,
+    xtol=0.0,
+    x_abs=1e-9,
+    ftol=1e-9,
+    chi2_floor=1.0,
+    judge_failed=False,
+    max_iter=30 * 13,  # never reached first: 30 accepted steps, each after <= 11 failures
+    max_accepted=30,
+)
 
 #: Said under a summary when a combination is not determined: the errors printed are those of a
 #: linearisation at the fitted point, which the curved valley of the undetermined combination
@@ -290,7 +320,17 @@ def fit_ratios(
         )
     if free_c:
         theta0[0] = float(np.mean(np.log(y) - log_model(theta0, R, False)[0]))
-    sol = levenberg_marquardt(evaluate, theta0, lo_in, hi_in)
+
+    def batch(p, rows, jacobian):  # one problem: a batch of one
+        r, jac = evaluate(p[0], jacobian)
+        if r is None:  # outside the admissible region
+            return {"residuals": np.full((1, y.size), np.nan)}
+        return {"residuals": r[None], "jacobian": None if jac is None else jac[None]}
+
+    res = levenberg_marquardt(batch, theta0, lo_in, hi_in, RATIO_LM)
+    if not np.isfinite(res.chi2[0]):
+        raise ContactresInputError("the starting point is outside the admissible region")
+    sol = (res.x[0], bool(res.converged[0]), res.message(0))
     theta = sol[0]
     r, J = evaluate(theta, True)
     model = (param, names, n_scale, split, log_model, (lo, hi))

@@ -1,0 +1,156 @@
+"""Tests of contactres.fitting.levenberg_marquardt, the batched solver of the package's fits,
+against independent answers: numpy's lstsq on linear problems, the known minimum of
+Rosenbrock's function, a box-constrained separable problem solved by hand, and each member of a
+batch solved alone."""
+
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from contactres.fitting import LMOptions, levenberg_marquardt
+
+# The settings of the two fits of the package, in spirit: the plateau fit (Marquardt, Nielsen)
+# and the ratio fit (Levenberg, tenfold, geodesic acceleration, short steps).
+MARQUARDT = LMOptions(xtol=1e-12, x_abs=1e-14, ftol=1e-14, max_iter=500)
+LEVENBERG = LMOptions(
+    damping="levenberg",
+    update="tenfold",
+    lam0=1e-6,
+    lam_min=1e-9,
+    max_reject=12,
+    xtol=0.0,
+    x_abs=1e-12,
+    ftol=1e-14,
+    judge_failed=False,
+    max_iter=2000,
+)
+GEODESIC = replace(LEVENBERG, geodesic=0.1, max_step=0.5)
+ALL = [MARQUARDT, LEVENBERG, GEODESIC]
+
+
+def jacobian_form(residuals, jacobian):
+    """evaluate() of the Jacobian form from functions of one parameter vector."""
+
+    def evaluate(p, rows, want):
+        out = {"residuals": np.array([residuals(q, i) for q, i in zip(p, rows, strict=True)])}
+        if want:
+            out["jacobian"] = np.array([jacobian(q, i) for q, i in zip(p, rows, strict=True)])
+        return out
+
+    return evaluate
+
+
+def linear_problem(P, seed):
+    rng = np.random.default_rng(seed)
+    A = rng.normal(size=(40, P)) * np.logspace(0, 3, P)  # columns of very different scale
+    b = rng.normal(size=40)
+    return A, b
+
+
+@pytest.mark.parametrize("options", ALL)
+@pytest.mark.parametrize("P", [2, 5])
+def test_linear_problem_matches_lstsq(options, P):
+    A, b = linear_problem(P, P)
+    exact = np.linalg.lstsq(A, b, rcond=None)[0]
+    ev = jacobian_form(lambda p, i: A @ p - b, lambda p, i: A)
+    res = levenberg_marquardt(ev, np.ones(P), options=options)
+    assert res.converged[0], res.message(0)
+    np.testing.assert_allclose(res.x[0], exact, rtol=1e-8, atol=1e-12)
+    assert res.chi2[0] == pytest.approx(np.sum((A @ exact - b) ** 2), rel=1e-12)
+
+
+@pytest.mark.parametrize("P", [2, 5])  # Cramer's rule for two parameters, LU beyond
+def test_gauss_newton_form_matches_lstsq(P):
+    A, b = linear_problem(P, 10 + P)
+    exact = np.linalg.lstsq(A, b, rcond=None)[0]
+
+    def evaluate(p, rows, want):
+        r = p @ A.T - b
+        H = np.broadcast_to(A.T @ A, (len(p), P, P))
+        return {"chi2": np.sum(r * r, axis=1), "gradient": r @ A, "hessian": H}
+
+    res = levenberg_marquardt(evaluate, np.outer([0.0, 1.0, -2.0], np.ones(P)), options=MARQUARDT)
+    assert res.converged.all()
+    np.testing.assert_allclose(res.x, np.tile(exact, (3, 1)), rtol=1e-8, atol=1e-12)
+
+
+def rosenbrock(a):
+    """Residuals (10 (y - x²), a - x): χ² is Rosenbrock's function with its minimum 0 at
+    (a, a²), at the end of a long curved valley."""
+    return (
+        lambda p, i: np.array([10.0 * (p[1] - p[0] ** 2), a[i] - p[0]]),
+        lambda p, i: np.array([[-20.0 * p[0], 10.0], [-1.0, 0.0]]),
+    )
+
+
+@pytest.mark.parametrize("options", ALL)
+def test_rosenbrock_reaches_its_minimum(options):
+    ev = jacobian_form(*rosenbrock(np.array([1.0])))
+    res = levenberg_marquardt(ev, [-1.2, 1.0], options=options)
+    assert res.converged[0], res.message(0)
+    np.testing.assert_allclose(res.x[0], [1.0, 1.0], rtol=0, atol=1e-7)
+    assert res.chi2[0] < 1e-14
+
+
+@pytest.mark.parametrize("options", ALL)
+def test_a_batch_is_its_members_solved_alone(options):
+    a = np.array([1.0, 0.5, -0.7, 2.0])
+    starts = np.array([[-1.2, 1.0], [0.0, 0.0], [2.0, -1.0], [1.9, 3.9]])
+    ev = jacobian_form(*rosenbrock(a))
+    batch = levenberg_marquardt(ev, starts, options=options)
+    for i in range(len(a)):
+        # the member alone: its residuals see row index i whatever the batch
+        alone = levenberg_marquardt(
+            lambda p, rows, want, i=i: ev(p, np.full(len(rows), i), want),
+            starts[i],
+            options=options,
+        )
+        assert batch.converged[i] and alone.converged[0]
+        np.testing.assert_allclose(batch.x[i], alone.x[0], rtol=1e-12, atol=1e-15)
+        np.testing.assert_allclose(batch.x[i], [a[i], a[i] ** 2], rtol=0, atol=1e-6)
+    assert len(set(batch.n_iter)) > 1  # the members stopped at different steps
+
+
+def test_bounds_hold_a_parameter_on_its_bound():
+    # Separable: r = (p - c) * w, so the constrained minimum is c clipped into the box.
+    c, w = np.array([3.0, -2.0, 0.5]), np.array([1.0, 30.0, 0.2])
+    lo, hi = np.array([0.0, -1.0, -5.0]), np.array([1.0, 5.0, 5.0])
+    ev = jacobian_form(lambda p, i: (p - c) * w, lambda p, i: np.diag(w))
+    for options in ALL:
+        res = levenberg_marquardt(ev, [0.5, 0.0, 0.0], lo, hi, options)
+        assert res.converged[0], res.message(0)
+        np.testing.assert_allclose(res.x[0], np.clip(c, lo, hi), rtol=0, atol=1e-9)
+
+
+def test_admissible_region_is_never_left_and_a_bad_start_is_reported():
+    # r = p - 10 with the region p < 3 admissible (NaN residuals beyond): the fit must stop
+    # inside, at the border, with every accepted point admissible.
+    seen = []
+
+    def evaluate(p, rows, want):
+        r = np.where(p < 3.0, p - 10.0, np.nan)
+        seen.extend(p[:, 0][np.isfinite(r[:, 0])])
+        return {"residuals": r, "jacobian": np.ones((len(p), 1, 1)) if want else None}
+
+    for options in ALL:
+        res = levenberg_marquardt(evaluate, [0.0], options=options)
+        assert 2.99 < res.x[0, 0] < 3.0 and np.isfinite(res.chi2[0])
+    assert max(seen) < 3.0
+    res = levenberg_marquardt(evaluate, [[0.0], [4.0]], options=MARQUARDT)
+    assert np.isinf(res.chi2[1]) and not res.converged[1] and res.x[1, 0] == 4.0
+    assert "outside the admissible region" in res.message(1)
+    assert res.converged[0]
+
+
+def test_options_are_checked():
+    with pytest.raises(ValueError, match="damping"):
+        LMOptions(damping="trust-region")
+    with pytest.raises(ValueError, match="update"):
+        LMOptions(update="fast")
+
+    def gauss_newton(p, rows, want):
+        return {"chi2": np.sum(p * p, 1), "gradient": p, "hessian": np.ones((len(p), 1, 1))}
+
+    with pytest.raises(ValueError, match="geodesic"):
+        levenberg_marquardt(gauss_newton, [1.0], options=GEODESIC)
