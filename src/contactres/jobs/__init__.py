@@ -23,5 +23,6 @@ used (``from contactres.jobs import dcsf``): this package imports nothing itself
 The jobs: ``contact`` (Hertz contact, normal and tangential stiffness), ``dcsf`` (the DCSF
 curve), ``qcm_loop`` (Δf, ΔΓ against the amplitude of a partial-slip contact), ``afm_invert``
 and ``rum_invert`` (contact resonances -> k*, modulus), ``qcm_stiffness`` (κ + iωξ against time
-from a QCM-D export), ``qcm_spectra`` (admittance spectra -> the sweep table).
+from a QCM-D export), ``qcm_spectra`` (admittance spectra -> the sweep table), ``qcm_sweeps``
+(paper 2's analysis of amplitude sweeps), ``crystals`` (the built-in solids and their moduli).
 """

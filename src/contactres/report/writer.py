@@ -89,8 +89,9 @@ def write_report(
     Parameters
     ----------
     result : JobResult or contactres.analysis.Results
-        A job's Result, or the QCM sweep analysis (written by
-        :func:`contactres.report.tables.write_report`, its own layout).
+        A job's Result, or the QCM sweep analysis (:class:`contactres.analysis.Results` or the
+        ``qcm_sweeps`` job's Result: written by :func:`contactres.report.tables.write_report`,
+        its own layout).
     folder : path or ResultSet
         The results folder (created if missing), or a :class:`~contactres.fileio.ResultSet`
         the caller opened (declared with :func:`report_names`), which moves the files into
@@ -109,6 +110,10 @@ def write_report(
         ``inputs``, or another run is writing into the folder.
     """
     from ..analysis import Results
+    from ..jobs.qcm_sweeps import Result as SweepsResult
+
+    if isinstance(result, SweepsResult):  # the job's Result carries the analysis's
+        result = result.analysis
     if isinstance(result, Results):
         return qcm_tables.write_report(result, folder, formats, inputs=inputs)
     if not isinstance(result, JobResult):
