@@ -5,7 +5,7 @@ Each function takes a Result and returns a matplotlib Figure (Agg canvas, no pyp
 
 from __future__ import annotations
 
-__all__ = ["stiffness_figure"]
+__all__ = ["prediction_figure", "stiffness_figure"]
 
 
 def stiffness_figure(result):
@@ -38,3 +38,24 @@ def stiffness_figure(result):
         fontsize=8,
     )
     return fig
+
+
+def prediction_figure(result):
+    """The map of M of a :class:`contactres.jobs.maps_predict.Result` with the IPF-coloured
+    legend of the faces (:func:`contactres.report.map_figures.modulus_map_figure`)."""
+    from ..polycrystal.grains import folded_normals
+    from ..polycrystal.maps import map_from_dataset
+    from ..polycrystal.moduli import indentation_moduli
+    from ..polycrystal.normal_table import surface_matrices_from_normals
+    from .map_figures import modulus_map_figure
+
+    ds, material, lattice = result.dataset, result.material, result.lattice
+    omap = map_from_dataset(ds)
+    return modulus_map_figure(
+        ds["M_Pa"].values,
+        folded_normals(omap, lattice),
+        lattice,
+        lambda n: indentation_moduli(material, surface_matrices_from_normals(n)),
+        pixel_size=omap.step_x,
+        material_name=material.name or "",
+    )
