@@ -24,5 +24,8 @@ The jobs: ``contact`` (Hertz contact, normal and tangential stiffness), ``dcsf``
 curve), ``qcm_loop`` (Δf, ΔΓ against the amplitude of a partial-slip contact), ``afm_invert``
 and ``rum_invert`` (contact resonances -> k*, modulus), ``qcm_stiffness`` (κ + iωξ against time
 from a QCM-D export), ``qcm_spectra`` (admittance spectra -> the sweep table), ``qcm_sweeps``
-(paper 2's analysis of amplitude sweeps), ``crystals`` (the built-in solids and their moduli).
+(paper 2's analysis of amplitude sweeps), ``crystals`` (the built-in solids and their moduli),
+``maps_synthetic``, ``maps_predict`` and ``maps_fit`` (polycrystal maps; their computations in
+:mod:`contactres.jobs.maps`), ``paper1`` and ``paper2`` (the numbers of the papers' figures)
+and ``demo`` (the main workflows on the bundled data).
 """
