@@ -31,7 +31,7 @@ __all__ = ["Result", "Settings", "run"]
 class Settings:
     """How to invert a CR-AFM table.
 
-    Attributes
+    Parameters
     ----------
     normalisation : str
         "global" (β_n from f1_free_Hz only) or "modewise" (each mode's own free frequency).

@@ -33,7 +33,7 @@ __all__ = ["Result", "Settings", "run"]
 class Settings:
     """The contact to compute.
 
-    Attributes
+    Parameters
     ----------
     radius, force : array
         Sphere radius R (m) and normal force F (N); they broadcast with ``frequency``.

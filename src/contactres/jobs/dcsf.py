@@ -34,7 +34,7 @@ __all__ = ["Result", "Settings", "run"]
 class Settings:
     """The DCSF curve to compute.
 
-    Attributes
+    Parameters
     ----------
     models : tuple of str
         Displacement conditions (``contactres.dynamic.ALL_MODELS``: "exact", "R0", ...).

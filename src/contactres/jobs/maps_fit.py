@@ -28,7 +28,7 @@ __all__ = ["Result", "Settings", "run"]
 class Settings:
     """The fit.
 
-    Attributes
+    Parameters
     ----------
     values_path : str or None
         A CSV grid of the measured values, the map's shape (None: the variable ``variable``

@@ -32,7 +32,7 @@ __all__ = ["Result", "Settings", "run"]
 class Settings:
     """The prediction.
 
-    Attributes
+    Parameters
     ----------
     material : Material
         The crystal, cube (or crystal) axes; with its density for a frequency.

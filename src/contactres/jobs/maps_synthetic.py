@@ -24,7 +24,7 @@ __all__ = ["Result", "Settings", "run"]
 class Settings:
     """The synthetic map.
 
-    Attributes
+    Parameters
     ----------
     material : Material
         The crystal, cube (or crystal) axes.

@@ -32,13 +32,13 @@ MODELS = ("cm", "savkoor", "voigt")
 class Settings:
     """The contact loop and the resonator.
 
-    Attributes
+    Parameters
     ----------
+    kappa : float
+        Low-amplitude stiffness κ of one contact, N/m.
     model : str
         "cm" (Cattaneo-Mindlin: needs ``mu`` and ``normal_force``), "savkoor" (needs ``tau`` and
         ``contact_radius``) or "voigt" (linear).
-    kappa : float
-        Low-amplitude stiffness κ of one contact, N/m.
     mu, normal_force, tau, contact_radius : float or None
         Friction coefficient μ, normal force F_N (N), sliding traction τ0 (Pa), contact radius
         a (m).
@@ -53,8 +53,8 @@ class Settings:
         impedance Z_q (kg m^-2 s^-1), number of equal contacts n_P.
     """
 
+    kappa: float
     model: str = "cm"
-    kappa: float = 1e5
     mu: float | None = None
     normal_force: float | None = None
     tau: float | None = None

@@ -29,7 +29,7 @@ __all__ = ["Result", "Settings", "run"]
 class Settings:
     """How to read and reduce the spectra.
 
-    Attributes
+    Parameters
     ----------
     reference : tuple of str or None
         Ids of the no-contact reference spectra (None: the column ``reference``).

@@ -43,7 +43,7 @@ EQUATION = "κ + iωξ = (Δf + iΔΓ)/P, P = n_P/(2nπ² A_eff Z_q) (paper 2, E
 class Settings:
     """The constants of the contact and how to read the export.
 
-    Attributes
+    Parameters
     ----------
     area : float
         Effective area A_eff of the electrode, m^2.

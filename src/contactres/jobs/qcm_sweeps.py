@@ -40,7 +40,7 @@ MANY_SWEEPS = 10_000
 class Settings:
     """The constants and the choices of the analysis.
 
-    Attributes
+    Parameters
     ----------
     area_m2, overtone, fundamental_Hz, n_contacts, poisson, sphere_radius_m
         Constants missing from the input (None: from the input or a TOML file beside it):
