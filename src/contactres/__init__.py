@@ -113,6 +113,7 @@ _SUBMODULES: frozenset[str] = frozenset(
         "fileio",
         "fitting",
         "halfspace",
+        "jobs",
         "materials",
         "measurements",
         "normal",

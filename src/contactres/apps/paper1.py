@@ -22,8 +22,9 @@ import pandas as pd
 from matplotlib.figure import Figure
 from matplotlib.ticker import NullLocator
 
-from ..dynamic import contact_displacement, dcsf, dcsf_models
 from ..fileio import CSV_FLOAT_FORMAT, ensure_dir, save_figure, write_csv
+from ..jobs import paper1 as job
+from ..jobs.paper1 import KLA, LOSS, PAPER_MODELS
 from ..materials import Material
 from ..report.figures import key_below
 
@@ -40,14 +41,7 @@ __all__ = [
     "write_paper1_figures",
 ]
 
-#: The five displacement conditions of the paper (Fig. 3).
-PAPER_MODELS = ("WA", "R0", "R1", "SA", "TP")
-LOSS = 0.02
-KLA = np.linspace(0.0, 2.0, 81)
-
-
-def _cubic(A: float, nu: float) -> Material:
-    return Material.cubic_from_ratios(zener=A, poisson=nu)
+_cubic = job.cubic
 
 
 def dcsf_curves_figure(
@@ -100,9 +94,7 @@ def dcsf_curves_figure(
 
 def fig3_models(kla=KLA, A: float = 0.5, nu: float = 0.25):
     """Fig. 3: the five displacement models at A = 0.5, ν = 0.25. Returns (figure, table)."""
-    out = dcsf_models(_cubic(A, nu), kla, (*PAPER_MODELS, "exact"), loss=LOSS)
-    curves = {f"{name} model": out[name] for name in PAPER_MODELS}
-    curves["exact (rigid punch)"] = out["exact"]
+    curves = job.fig3_curves(kla, A, nu)
     # SA has a pole where N(0) + N(1, 0) vanishes (k_l a ~ 1.88): clip as the paper does.
     title = f"Fig. 3: A = {A:g}, ν = {nu:g}, Q⁻¹ = {LOSS:g}"
     return dcsf_curves_figure(curves, kla, title, ylim=(-5, 6))
@@ -110,9 +102,7 @@ def fig3_models(kla=KLA, A: float = 0.5, nu: float = 0.25):
 
 def _wa_with_exact(cases: dict[str, Material], kla, title: str):
     """WA curves of labelled materials, each with its exact rigid-punch curve (Figs. 4, 5)."""
-    res = {label: dcsf_models(m, kla, ("WA", "exact"), loss=LOSS) for label, m in cases.items()}
-    curves = {label: r["WA"] for label, r in res.items()}
-    exact = {label: r["exact"] for label, r in res.items()}
+    curves, exact = job.wa_with_exact(cases, kla)
     return dcsf_curves_figure(curves, kla, title, exact=exact)
 
 
@@ -135,11 +125,11 @@ def displacement_figure(kla=(0.3, 0.6, 0.9, 1.2, 1.7), A: float = 0.5, nu: float
 
     Returns (figure, table) with columns kla, rbar, re_N, im_N, abs_ratio.
     """
-    m = _cubic(A, nu)
-    rbar = np.linspace(0.0, 1.0, 41)
-    kla = np.asarray(kla, dtype=float)
-    N = contact_displacement(m, kla[:, None], rbar[None, :], 0.0, loss=LOSS)
-    ratio = np.abs(N) / np.abs(N[:, :1])
+    return _draw_displacement(*job.displacement(kla, A, nu), A, nu)
+
+
+def _draw_displacement(kla, rbar, N, ratio, A: float = 0.5, nu: float = 0.25):
+    """Fig. 2 from :func:`contactres.jobs.paper1.displacement`: (figure, table)."""
     fig = Figure(figsize=(5.6, 3.6), layout="constrained")
     ax = fig.subplots()
     rows = []
@@ -169,10 +159,11 @@ def crystals_figure(names=("RbI", "KCl", "W", "Cu", "Li"), kla=KLA, model: str =
 
     Returns (figure, table) with columns kla, curve (crystal name with its A), re, im.
     """
-    curves = {}
-    for name in names:
-        m = Material.crystal(name)
-        curves[f"{name} (A = {m.zener_ratio:.2f})"] = dcsf(m, kla, model, loss=LOSS)
+    return _crystal_dcsf_figure(job.crystal_curves(names, kla, model), kla, model)
+
+
+def _crystal_dcsf_figure(curves: dict, kla, model: str):
+    """The crystals' DCSF curves drawn (figure, table)."""
     return dcsf_curves_figure(curves, kla, f"{model} model on (001) faces, Q⁻¹ = {LOSS:g}")
 
 
@@ -183,26 +174,13 @@ def model_ranking(kla=KLA, zeners=(0.25, 0.5, 1.0, 2.0, 4.0), nu: float = 0.25):
     over k_l a <= 1 and over k_l a <= 2. Returns (figure, table) with columns zener, model,
     max_rel_error_kla_le_1, max_rel_error_kla_le_2, rank_kla_le_1 (1 = closest to exact).
     """
-    kla = np.asarray(kla, dtype=float)
+    table = job.ranking_table(kla, zeners, nu)
+    return _draw_ranking(table, zeners, nu), table
+
+
+def _draw_ranking(table: pd.DataFrame, zeners, nu: float = 0.25):
+    """The ranking figure from :func:`contactres.jobs.paper1.ranking_table`."""
     names = (*PAPER_MODELS, "WA2D")
-    rows = []
-    for A in zeners:
-        out = dcsf_models(_cubic(A, nu), kla, (*names, "exact"), loss=LOSS)
-        ex = out["exact"]
-        errs = {n: np.abs(out[n] / ex - 1) for n in names}
-        e1 = {n: float(np.max(e[kla <= 1 + 1e-12])) for n, e in errs.items()}
-        order = sorted(names, key=lambda n: e1[n])
-        for n in names:
-            rows.append(
-                {
-                    "zener": A,
-                    "model": n,
-                    "max_rel_error_kla_le_1": e1[n],
-                    "max_rel_error_kla_le_2": float(np.max(errs[n])),
-                    "rank_kla_le_1": order.index(n) + 1,
-                }
-            )
-    table = pd.DataFrame(rows)
     fig = Figure(figsize=(8, 4.0), layout="constrained")
     axes = fig.subplots(1, 2, sharey=True)
     labels = _coincident_labels(table, names)
@@ -232,7 +210,7 @@ def model_ranking(kla=KLA, zeners=(0.25, 0.5, 1.0, 2.0, 4.0), nu: float = 0.25):
         fontsize=9,
     )
     key_below(fig, ncols=3, fontsize=7)
-    return fig, table
+    return fig
 
 
 _RANK_MARKERS = ("o", "s", "^", "D", "v", "P", "X")
@@ -250,37 +228,49 @@ def _coincident_labels(table: pd.DataFrame, names) -> dict[str, str]:
     return labels
 
 
-def write_crystal_dcsf(out, model: str = "exact") -> list[Path]:
+def write_crystal_dcsf(out, model: str = "exact", curves: dict | None = None) -> list[Path]:
     """The demo step of paper 1: :func:`crystals_figure` as PNG + CSV in folder ``out``.
 
     With the model the README recommends, the exact rigid punch (the paper's figure uses WA).
+    ``curves``: :func:`contactres.jobs.paper1.crystal_curves` of that model, when computed
+    already.
     """
     folder = ensure_dir(out)
-    fig, table = crystals_figure(model=model)
+    if curves is None:
+        fig, table = crystals_figure(model=model)
+    else:
+        fig, table = _crystal_dcsf_figure(curves, KLA, model)
     return [
         write_csv(folder / f"crystals_dcsf_{model}.csv", table, float_format=CSV_FLOAT_FORMAT),
         save_figure(folder / f"crystals_dcsf_{model}.png", fig),
     ]
 
 
-def write_paper1_figures(out, progress: Callable[[str], None] | None = None) -> list[Path]:
+def write_paper1_figures(
+    out, progress: Callable[[str], None] | None = None, result: job.Result | None = None
+) -> list[Path]:
     """Write Figs. 2-5 of paper 1 (PNG + CSV) into folder ``out``; return the paths.
 
-    ``progress`` (optional) is called with the name of each figure before it is computed.
+    ``result``: what :func:`contactres.jobs.paper1.run` returned (else it runs here, and
+    ``progress``, optional, is called with the name of each figure before it is computed).
     """
+    if result is None:
+        result = job.run(None, job.Settings(), progress)
     folder = ensure_dir(out)
-    written = []
-    steps = (
-        ("paper1_fig2_displacement", displacement_figure),
-        ("paper1_fig3_models", fig3_models),
-        ("paper1_fig4_anisotropy", fig4_anisotropy),
-        ("paper1_fig5_poisson", fig5_poisson),
-        ("paper1_model_ranking", model_ranking),
+    kla = result.kla
+    fig4_title = f"Fig. 4: WA model (thin: exact), ν = {0.25:g}, Q⁻¹ = {LOSS:g}"
+    fig5_title = f"Fig. 5: WA model (thin: exact), A = {2.0:g}, Q⁻¹ = {LOSS:g}"
+    drawn = (
+        _draw_displacement(*result.fig2),
+        dcsf_curves_figure(
+            result.fig3, kla, f"Fig. 3: A = {0.5:g}, ν = {0.25:g}, Q⁻¹ = {LOSS:g}", ylim=(-5, 6)
+        ),
+        dcsf_curves_figure(result.fig4[0], kla, fig4_title, exact=result.fig4[1]),
+        dcsf_curves_figure(result.fig5[0], kla, fig5_title, exact=result.fig5[1]),
+        (_draw_ranking(result.ranking, result.zeners), result.ranking),
     )
-    for i, (stem, make) in enumerate(steps, start=1):
-        if progress is not None:
-            progress(f"[{i}/{len(steps)}] {stem}")
-        fig, table = make()
+    written = []
+    for stem, (fig, table) in zip(job.STEMS, drawn, strict=True):
         written.append(write_csv(folder / f"{stem}.csv", table, float_format=CSV_FLOAT_FORMAT))
         written.append(save_figure(folder / f"{stem}.png", fig))
     return written

@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import click
 
 from ..errors import ContactresInputError
@@ -86,9 +84,8 @@ def afm_invert(table, out, normalisation, mode_tolerance, crystal, surface, inpl
     """
     import numpy as np
 
-    from ..analysis.resonance_tables import invert_afm_table
     from ..fileio import check_output_file, write_csv
-    from ..measurements.resonances import AFM_TABLE, read_resonance_table
+    from ..jobs import afm_invert as job
 
     check_output_file(out, inputs=[table])
     sample = None
@@ -96,18 +93,10 @@ def afm_invert(table, out, normalisation, mode_tolerance, crystal, surface, inpl
         sample = crystal_face(crystal, None, None, None, None, None, surface, inplane)
     elif inplane is not None or surface != "001":
         raise ContactresInputError("--surface/--inplane describe the sample: give --crystal too")
-    step("afm invert", f"reading {Path(table).name}")
-    checked = read_resonance_table(table, AFM_TABLE)
-    step("afm invert", f"inverting {len(checked)} rows")
-    result = invert_afm_table(
-        checked,
-        str(Path(table)),
-        normalisation=normalisation,
-        sample=sample,
-        loss=loss,
-        mode_tolerance=mode_tolerance,
-    )
-    write_csv(out, computed_rounded(result, checked.columns))
+    settings = job.Settings(normalisation, mode_tolerance, sample, loss)
+    done = job.run(table, settings, progress=lambda text: step("afm invert", text))
+    result = done.table
+    write_csv(out, computed_rounded(result, done.input_columns))
     if fmt != "plain":
         emit(result, fmt)
         return

@@ -69,14 +69,13 @@ def contact(radius, force, frequency, tangential, direction, fmt, **face):
     --frequency 15e6
     """
     import numpy as np
-    import pandas as pd
 
-    from ..normal.anisotropic import sphere_contact
+    from ..jobs import contact as job
 
     m = crystal_face(**face)
     freq = np.zeros(1) if frequency is None else frequency
     try:
-        R, F, f = np.broadcast_arrays(radius, force, freq)
+        np.broadcast_shapes(radius.shape, force.shape, freq.shape)
     except ValueError:
         raise ContactresInputError(
             f"--radius ({len(radius)} values), --force ({len(force)} values) and --frequency "
@@ -94,58 +93,16 @@ def contact(radius, force, frequency, tangential, direction, fmt, **face):
         raise ContactresInputError(
             "--direction is the direction of the tangential motion: add --tangential"
         )
-    c = sphere_contact(m, R, F)
-    table = pd.DataFrame(
-        {
-            "radius_m": R,
-            "force_N": F,
-            "contact_radius_m": c.contact_radius,
-            "peak_pressure_Pa": c.peak_pressure,
-            "depth_m": c.depth,
-            "stiffness_N_per_m": c.stiffness,
-            "indentation_modulus_Pa": c.indentation_modulus,
-        }
-    )
-    if frequency is not None:
-        _add_dynamic(table, m, c, f, tangential, direction)
-    elif tangential:
-        table["tangential_stiffness_N_per_m"] = _tangential(
-            m, c.contact_radius, 0.0, direction
-        ).real
-    emit(table, fmt)
-    if not c.circular:
+    settings = job.Settings(radius, force, frequency, tangential, direction)
+    result = job.run(m, settings)
+    emit(result.table, fmt)
+    if not result.circular:
         click.echo(
             f"note: surface {_face_name(face)} has no 3- or 4-fold symmetry: the contact is "
             f"slightly elliptic (relative 2nd harmonic of the compliance "
-            f"{c.noncircularity:.3g}); the circular Hertz result is an approximation",
+            f"{result.noncircularity:.3g}); the circular Hertz result is an approximation",
             err=True,
         )
-
-
-def _add_dynamic(table, m, c, f, tangential: bool, direction: float) -> None:
-    """The dynamic normal (and tangential) stiffness columns at the frequencies ``f``."""
-    import math
-
-    import numpy as np
-
-    from ..dynamic import dcsf
-    from ..halfspace import shear_reference
-
-    a = np.asarray(c.contact_radius, dtype=float)
-    ksa = 2 * np.pi * f * a * math.sqrt(m.density / shear_reference(m))
-    table["frequency_Hz"] = f
-    table["ks_a"] = ksa
-    kn = c.stiffness * dcsf(m, ksa, wavenumber="shear")
-    table["dynamic_stiffness_real_N_per_m"] = np.real(kn)
-    table["dynamic_stiffness_imag_N_per_m"] = np.imag(kn)
-    if tangential:
-        kt = _tangential(m, a, f, direction)
-        table["tangential_stiffness_real_N_per_m"] = kt.real
-        table["tangential_stiffness_imag_N_per_m"] = kt.imag
-        # No contact (F = 0): no loss tangent (NaN, printed empty), not a division warning.
-        loss = np.full(kt.shape, np.nan)
-        np.divide(kt.imag, kt.real, out=loss, where=kt.real > 0)
-        table["tangential_loss_tangent"] = loss
 
 
 def _face_name(face: dict) -> str:
@@ -156,17 +113,3 @@ def _face_name(face: dict) -> str:
     if crystal is not None and crystal.strip().lower() in AT_CUT_NAMES:
         return "of the AT cut"
     return str(face["surface"])
-
-
-def _tangential(m, a, f, direction: float):
-    """K_t at contact radii ``a`` and frequencies ``f`` (broadcast); 0 where a = 0 (F = 0)."""
-    import numpy as np
-
-    from ..dynamic import tangential_contact_stiffness
-
-    a, f = np.broadcast_arrays(np.asarray(a, dtype=float), np.asarray(f, dtype=float))
-    out = np.zeros(a.shape, dtype=complex)
-    touching = a > 0
-    if touching.any():
-        out[touching] = tangential_contact_stiffness(m, a[touching], f[touching], direction)
-    return out

@@ -9,8 +9,6 @@ import click
 from ._app import main
 from ._common import emit, format_option
 
-# Faces given by cube-axis Miller indices: meaningful for cubic (and isotropic) solids only.
-_CUBIC_FACES = (("M011_GPa", (0, 1, 1)), ("M111_GPa", (1, 1, 1)))
 #: Width of the plain output, characters: two tables and the wrapped sources fit in it.
 PLAIN_WIDTH = 100
 #: The columns of the first plain table (the others but the source are in the second).
@@ -35,23 +33,9 @@ def crystals(fmt: str) -> None:
 
     Example: contactres crystals --format csv
     """
-    import numpy as np
+    from ..jobs import crystals as job
 
-    from ..crystals import crystal_table
-    from ..materials import Material
-    from ..normal.anisotropic import indentation_modulus
-
-    table = crystal_table()
-    solids = [Material.crystal(name) for name in table["name"]]
-    cubic_like = table["symmetry"].isin(["cubic", "isotropic"]).to_numpy()
-    at = table.columns.get_loc("source")
-    table.insert(at, "M001_GPa", [indentation_modulus(m.rotated((0, 0, 1))) / 1e9 for m in solids])
-    for label, normal in _CUBIC_FACES:
-        values = [
-            indentation_modulus(m.rotated(normal)) / 1e9 if ok else np.nan
-            for m, ok in zip(solids, cubic_like, strict=True)
-        ]
-        table.insert(table.columns.get_loc("source"), label, values)
+    table = job.run(None, job.Settings()).table
     if fmt != "plain":
         emit(table, fmt)
         return

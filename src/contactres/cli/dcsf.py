@@ -107,10 +107,8 @@ def dcsf(ctx, model, ka, radius, force, frequency, loss, wavenumber, rtol, fmt, 
 
     Example: contactres dcsf --crystal Cu --surface 111 --model all --ka 0:1:5
     """
-    import numpy as np
-    import pandas as pd
-
-    from ..dynamic import ALL_MODELS, dcsf_models, prepare
+    from ..dynamic import ALL_MODELS
+    from ..jobs import dcsf as job
 
     contact_options = {"radius": radius, "force": force, "frequency": frequency}
     given = [name for name in _CONTACT_OPTIONS if contact_options[name] is not None]
@@ -129,7 +127,6 @@ def dcsf(ctx, model, ka, radius, force, frequency, loss, wavenumber, rtol, fmt, 
     if ratios_only:
         face["c44"] = 1.0  # the DCSF depends on the ratios only
     m = crystal_face(**face)
-    c33, c44 = float(np.real(m.C[2, 2])), float(np.real(m.C[3, 3]))
     if physical:
         if ratios_only or m.density is None:
             raise click.UsageError(
@@ -137,74 +134,39 @@ def dcsf(ctx, model, ka, radius, force, frequency, loss, wavenumber, rtol, fmt, 
                 "density: use --crystal NAME",
                 ctx,
             )
-        points, extra = _physical_points(m, radius, force, frequency, wavenumber)
-        ka = points["ka"]
-    names = list(ALL_MODELS) if model.lower() == "all" else [model]
-    # One kernel table serves every model (--model all shares it, and the far-field basis).
-    step("dcsf", "kernel table of the face")
-    table = prepare(m, loss, rtol)
-    step("dcsf", f"DCSF of {len(names)} model(s) at {np.size(ka)} values of k a")
-    out = dcsf_models(m, ka, names, loss=loss, wavenumber=wavenumber, rtol=rtol, prepared=table)
-    frames = []
-    for name, v in out.items():
-        cols = {"ka": ka, "model": name, "re": v.real, "im": v.imag}
-        if physical:
-            k = extra["stiffness_N_per_m"] * v
-            cols.update(extra, K_re_N_per_m=k.real, K_im_N_per_m=k.imag)
-        frames.append(pd.DataFrame(cols))
-    result = pd.concat(frames, ignore_index=True)
-    speeds = _face_constants(c33, c44, None if ratios_only else m.density, ratios_only)
+        _check_same_size(radius, force, frequency)
+    settings = job.Settings(
+        models=tuple(ALL_MODELS) if model.lower() == "all" else (model,),
+        ka=None if physical else ka,
+        radius=radius,
+        force=force,
+        frequency=frequency,
+        loss=loss,
+        wavenumber=wavenumber,
+        rtol=rtol,
+        constants_in_pa=not ratios_only,
+    )
+    result = job.run(m, settings, progress=lambda text: step("dcsf", text))
+    table = result.table
     if fmt == "plain":
-        click.echo("# " + _face_line(speeds))
+        click.echo("# " + _face_line(result.face))
     else:
-        for key, value in speeds.items():
-            result[key] = value
-    emit(result, fmt)
+        for key, value in result.face.items():
+            table[key] = value
+    emit(table, fmt)
 
 
-def _physical_points(m, radius, force, frequency, wavenumber):
-    """k a (in the ``wavenumber`` convention) and the contact columns of R, F, f broadcast."""
-    import math
-
+def _check_same_size(radius, force, frequency) -> None:
+    """--radius, --force and --frequency broadcast (the same number of values, or one)."""
     import numpy as np
 
-    from ..normal.anisotropic import sphere_contact
-
     try:
-        R, F, f = np.broadcast_arrays(radius, force, frequency)
+        np.broadcast_shapes(radius.shape, force.shape, frequency.shape)
     except ValueError:
         raise ContactresInputError(
             f"--radius ({radius.size}), --force ({force.size}) and --frequency ({frequency.size}"
             ") must have the same number of values, or a single value"
         ) from None
-    c = sphere_contact(m, R, F)
-    a = np.asarray(c.contact_radius, dtype=float)
-    # k = ω√(ρ/C) with C = C33 (longitudinal) or C44 (shear) of the surface frame, undamped.
-    modulus = float(np.real(m.C[2, 2] if wavenumber == "longitudinal" else m.C[3, 3]))
-    ka = 2 * np.pi * f * a * math.sqrt(m.density / modulus)
-    extra = {
-        "radius_m": R,
-        "force_N": F,
-        "frequency_Hz": f,
-        "contact_radius_m": a,
-        "stiffness_N_per_m": np.asarray(c.stiffness, dtype=float),
-    }
-    return {"ka": ka}, extra
-
-
-def _face_constants(c33: float, c44: float, density, ratios_only: bool) -> dict:
-    """C33, C44 (Pa; NaN when the constants were given as ratios) and the wave speeds (m/s;
-    NaN without a density) of the rotated material."""
-    import math
-
-    nan = float("nan")
-    if ratios_only:
-        return {"C33_over_C44": c33 / c44, "C33_Pa": nan, "C44_Pa": nan, "v_l_m_per_s": nan,
-                "v_s_m_per_s": nan}  # fmt: skip
-    v_l = math.sqrt(c33 / density) if density else nan
-    v_s = math.sqrt(c44 / density) if density else nan
-    return {"C33_over_C44": c33 / c44, "C33_Pa": c33, "C44_Pa": c44, "v_l_m_per_s": v_l,
-            "v_s_m_per_s": v_s}  # fmt: skip
 
 
 def _face_line(speeds: dict) -> str:

@@ -22,9 +22,13 @@ def demo(out: str) -> None:
 
     Example: contactres demo --out contactres-demo
     """
-    from ..apps.demo import run_demo
+    from ..apps.demo import write_demo
+    from ..fileio import ensure_dir
+    from ..jobs import demo as job
 
-    written = run_demo(out, progress=lambda title: click.echo(f"  - {title}", err=True))
+    ensure_dir(out)  # a path that cannot be the folder is refused before the work
+    progress = lambda title: click.echo(f"  - {title}", err=True)  # noqa: E731
+    written = write_demo(job.run(None, job.Settings(), progress), out)
     click.echo(f"wrote {len(written)} files into {out}/")
     for p in written:
         click.echo(f"  {p}")

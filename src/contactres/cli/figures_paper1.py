@@ -31,7 +31,9 @@ def paper1(out: str) -> None:
     Example: contactres figures paper1 --out paper1_figures
     """
     from ..apps.paper1 import write_paper1_figures
+    from ..jobs import paper1 as job
 
     progress = lambda step: click.echo(f"  - {step}", err=True)  # noqa: E731
-    for path in write_paper1_figures(out, progress=progress):
+    result = job.run(None, job.Settings(), progress)
+    for path in write_paper1_figures(out, result=result):
         click.echo(str(path))

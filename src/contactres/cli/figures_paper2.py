@@ -24,6 +24,7 @@ def paper2(out: str) -> None:
     Example: contactres figures paper2 --out paper2_figures
     """
     from ..apps.paper2 import write_paper2_figures
+    from ..jobs import paper2 as job
 
-    for path in write_paper2_figures(out):
+    for path in write_paper2_figures(out, result=job.run(None, job.Settings())):
         click.echo(str(path))

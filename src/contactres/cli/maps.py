@@ -82,23 +82,15 @@ def maps_synthetic(
     """
     import math
 
-    from ..apps.maps import TipLoad, synthetic_map
+    from ..jobs import maps_synthetic as job
+    from ..jobs.maps import TipLoad
     from ..polycrystal.maps import check_map_output, write_map
 
     check_map_output(out)
     material, lattice = map_material(crystal, c11, c12, c13, c33, c44, density)
     tipload = TipLoad(tip_radius, force, math.inf if tip_modulus is None else tip_modulus)
-    step("maps synthetic", f"{shape[0]}x{shape[1]} pixels, {grains} grains")
-    ds = synthetic_map(
-        material,
-        lattice,
-        tipload,
-        shape=shape,
-        n_grains=grains,
-        seed=seed,
-        noise=noise,
-        pixel_size=pixel_size,
-    )
+    settings = job.Settings(material, lattice, tipload, shape, grains, seed, noise, pixel_size)
+    ds = job.run(None, settings, progress=lambda text: step("maps synthetic", text)).dataset
     write_map(out, ds)
     k = ds["k_star_N_per_m"].values
     click.echo(
@@ -192,7 +184,8 @@ def maps_predict(
 
     import numpy as np
 
-    from ..apps.maps import TipLoad, open_map, predict_map
+    from ..jobs import maps_predict as job
+    from ..jobs.maps import TipLoad
     from ..polycrystal.maps import check_map_output, write_map
 
     check_map_output(out, inputs=[map_path])
@@ -204,24 +197,22 @@ def maps_predict(
     if frequency is not None and material.density is None:
         raise ContactresInputError("--frequency needs the density: give --density (kg/m^3)")
     tipload = TipLoad(tip_radius, force, math.inf if tip_modulus is None else tip_modulus)
-    step("maps predict", f"reading {map_path}")
-    omap, _ = open_map(map_path)
-    ds, info = predict_map(
-        omap,
-        material,
-        lattice,
-        tipload,
-        method=method,
-        rtol=rtol,
-        frequency=frequency,
-        model=model,
-        chunks=(chunks, chunks),
-        scheduler=scheduler,
-        progress=progress_callback("M per chunk"),
+    settings = job.Settings(
+        material, lattice, tipload, method, rtol, frequency, model, chunks, scheduler
     )
+    result = job.run(
+        map_path,
+        settings,
+        progress=lambda text: step("maps predict", text),
+        chunk_progress=progress_callback("M per chunk"),
+    )
+    ds, info = result.dataset, result.info
     write_map(out, ds, chunks=(chunks, chunks))
     if figure is not None:
-        _prediction_figure(figure, ds, material, lattice)
+        from ..fileio import save_figure
+        from ..report.job_figures import prediction_figure
+
+        save_figure(figure, prediction_figure(result))
     M, k = ds["M_Pa"].values, ds["k_star_N_per_m"].values
     record = {
         "pixels": int(np.isfinite(M).sum()),
@@ -243,26 +234,6 @@ def maps_predict(
         f"{record['M_max_Pa'] / 1e9:.4g} GPa, k* from {record['k_star_min_N_per_m']:.4g} to "
         f"{record['k_star_max_N_per_m']:.4g} N/m; wrote {out}"
     )
-
-
-def _prediction_figure(path, ds, material, lattice) -> None:
-    from ..fileio import save_figure
-    from ..polycrystal.grains import folded_normals
-    from ..polycrystal.maps import map_from_dataset
-    from ..polycrystal.moduli import indentation_moduli
-    from ..polycrystal.normal_table import surface_matrices_from_normals
-    from ..report.map_figures import modulus_map_figure
-
-    omap = map_from_dataset(ds)
-    fig = modulus_map_figure(
-        ds["M_Pa"].values,
-        folded_normals(omap, lattice),
-        lattice,
-        lambda n: indentation_moduli(material, surface_matrices_from_normals(n)),
-        pixel_size=omap.step_x,
-        material_name=material.name or "",
-    )
-    save_figure(path, fig)
 
 
 @maps.command("fit")
@@ -341,44 +312,24 @@ def maps_fit(
     Example: contactres maps fit src/contactres/data/example_cu_map.ang --values
     src/contactres/data/example_cu_kstar.csv --out cu_fit.json
     """
-    from ..apps.maps import TipLoad, fit_measured_map, fit_record, open_map, read_value_grid
     from ..fileio import check_output_file, write_text
+    from ..jobs import maps_fit as job
+    from ..jobs.maps import TipLoad
 
     check_output_file(out, inputs=[map_path] + ([values_path] if values_path else []))
     if (tip_radius is None) != (force is None):
         raise click.UsageError("give --tip-radius and --force together (or neither)")
-    step("maps fit", f"reading {map_path}")
-    omap, ds = open_map(map_path)
-    if values_path is not None:
-        values = read_value_grid(values_path)
-        if values.shape != omap.shape:
-            raise ContactresInputError(
-                f"--values {values_path}: {values.shape[0]} rows x {values.shape[1]} columns, "
-                f"but MAP has {omap.shape[0]} x {omap.shape[1]} pixels (same grid needed)"
-            )
-    elif ds is not None and variable in ds:
-        values = ds[variable].values
-    else:
-        raise ContactresInputError(
-            f"{map_path}: no variable {variable!r}; give the measured map with --values FILE"
-        )
-    tipload = None if tip_radius is None else TipLoad(tip_radius, force)
-    result, _, used = fit_measured_map(
-        omap,
-        values,
+    settings = job.Settings(
+        values_path=values_path,
+        variable=variable,
         quantity=quantity,
         lattice=lattice,
-        tipload=tipload,
+        tolerance_deg=tolerance_deg,
+        tipload=None if tip_radius is None else TipLoad(tip_radius, force),
         tip_modulus=tip_modulus,
-        tolerance_deg=tolerance_deg,
     )
-    record = fit_record(
-        result,
-        source=str(map_path),
-        pixels=used,
-        segmented=omap.labels is None,
-        tolerance_deg=tolerance_deg,
-    )
+    done = job.run(map_path, settings, progress=lambda text: step("maps fit", text))
+    result, used, record = done.fit, done.pixels, done.record
     write_text(out, record["json"])
     if fmt != "plain":
         emit_record(record["flat"], fmt)

@@ -8,7 +8,6 @@ leaves the folder as it was. Warnings (the data's and numerical ones) become one
 
 from __future__ import annotations
 
-import os
 import warnings
 from pathlib import Path
 
@@ -159,14 +158,13 @@ def analyze_command(
 
     Example: contactres qcm analyze src/contactres/data/example_sweeps.csv --out qcm_results
     """
-    from ..analysis import AnalysisSettings, analyze
     from ..analysis.flags import Flag, has
     from ..fileio import ResultSet
-    from ..measurements.shifts import is_spectra_input, read_spectra_sweeps
-    from ..measurements.sweeps import read_sweeps
+    from ..jobs import qcm_sweeps as job
     from ..report.console import friction_table, radiation_lines, table1_text, withheld_lines
     from ..report.html import HTML_FILE, write_html
-    from ..report.tables import report_files, write_report
+    from ..report.tables import report_files
+    from ..report.writer import write_report
 
     if (sphere_material is None) != (plate_material is None):
         given = "--sphere-material" if plate_material is None else "--plate-material"
@@ -176,14 +174,21 @@ def analyze_command(
             click.get_current_context(),
         )
     radiation = sphere_material is not None
-
-    constants = dict(
+    settings = job.Settings(
         area_m2=area,
         overtone=overtone,
         fundamental_Hz=fundamental,
         n_contacts=n_contacts,
         poisson=poisson,
         sphere_radius_m=sphere_radius,
+        keep_first_ramp=keep_first_ramp,
+        keep_drift=keep_drift,
+        remove_drift=remove_drift,
+        law_per_load=law_per_load,
+        bootstrap=bootstrap,
+        workers=workers,
+        sphere_material=sphere_material,
+        plate_material=plate_material,
     )
     formats = ("csv", "json") if no_figures else ("csv", "json", "png")
     source = Path(sweeps)
@@ -194,48 +199,25 @@ def analyze_command(
         names += (HTML_FILE,)
     owned = (*report_files(radiation=True), HTML_FILE)
     with ResultSet(out, names=names, inputs=inputs, owned=owned) as rs:
-        with warnings.catch_warnings(record=True) as caught:
-            warnings.simplefilter("always")
-            if is_spectra_input(source):
-                # Admittance spectra: fitted and turned into the sweep table first, with the
-                # defaults of 'contactres qcm spectra' (run it for other choices).
-                table, _, _, left_out = read_spectra_sweeps(source, **constants)
-                for line in left_out:
-                    click.echo(f"contactres: warning: {line}", err=True)
-            else:
-                table = read_sweeps(sweeps, **constants)
-        _echo_warnings(caught)
-        if workers is None:
-            many = table.data["sweep"].nunique() >= 10_000
-            workers = max(1, os.cpu_count() or 1) if many else 1
-        settings = AnalysisSettings(
-            workers=workers,
-            keep_first_ramp=keep_first_ramp,
-            keep_drift=keep_drift,
-            remove_drift=remove_drift,
-            pool_experiments=not law_per_load,
-            bootstrap=bootstrap,
-            sphere_material=sphere_material,
-            plate_material=plate_material,
-        )
-        n_groups = table.data.groupby(["configuration", "medium"]).ngroups
-        steps = 6 + n_groups + radiation + (0 if no_figures else 1)
+        reading = job.read(sweeps, settings)
+        for line in reading.left_out:
+            click.echo(f"contactres: warning: {line}", err=True)
+        _echo(reading.warnings)
+        steps = job.stages(reading, settings) + (0 if no_figures else 1)
         with (
             warnings.catch_warnings(record=True) as caught,
             click.progressbar(length=steps, label="analysing", file=progress_stream()) as bar,
         ):
             warnings.simplefilter("always")
-
-            def progress(_step: str) -> None:
-                bar.update(1)
-
-            results = analyze(table, settings=settings, progress=progress)
-            written = write_report(results, rs, formats)
+            done = job.run(reading, settings, progress=lambda _step: bar.update(1))
+            results = done.analysis
+            written = write_report(done, rs, formats)
             if report == "html":
                 write_html(results, rs.path(HTML_FILE))
                 written.append(rs.final(HTML_FILE))
             bar.update(steps)
-        _echo_warnings(caught)
+        # The analysis's warnings, then those of the writing, each distinct line once.
+        _echo(dict.fromkeys((*done.warnings, *job.warning_lines(caught))))
     for message in results.messages:  # what the analysis found odd in the input
         click.echo(f"contactres: warning: {' '.join(str(message).split())}", err=True)
     if fmt != "plain":
@@ -280,21 +262,7 @@ def _text(table) -> str:
     return table.to_string(index=False)
 
 
-def _echo_warnings(caught: list[warnings.WarningMessage]) -> None:
-    """Each distinct warning as one line on stderr: the data's (SweepWarning) as they are, any
-    other (a numpy RuntimeWarning, say) with where it arose, never with a source line."""
-    from ..measurements.sweeps import SweepWarning
-
-    seen = set()
-    for w in caught:
-        text = " ".join(str(w.message).split())
-        where = f"{Path(w.filename).name}, line {w.lineno}"
-        if issubclass(w.category, SweepWarning):
-            line = text
-        elif issubclass(w.category, RuntimeWarning):  # numpy: NaN or inf met on the way
-            line = f"numerical: {text} ({where}); NaN and inf results are written as empty cells"
-        else:
-            line = f"{w.category.__name__}: {text} ({where})"
-        if line not in seen:
-            seen.add(line)
-            click.echo(f"contactres: warning: {line}", err=True)
+def _echo(lines) -> None:
+    """Each warning line on stderr."""
+    for line in lines:
+        click.echo(f"contactres: warning: {line}", err=True)

@@ -2,41 +2,16 @@
 
 from __future__ import annotations
 
-import warnings
-
 import click
 
-from ..errors import ContactresInputError
 from ._app import qcm
 from ._common import MagnitudeType, RangeType, emit, format_option, odd_overtone
-
-
-def build_loop(model, kappa, mu, normal_force, tau, contact_radius, xi, plateau, omega):
-    """The loop named by the CLI options (ValueError naming the missing option)."""
-    from ..tangential import CattaneoMindlinLoop, PlateauLoop, SavkoorLoop, VoigtLoop, with_dashpot
-
-    def need(name, value):
-        if value is None:
-            raise ContactresInputError(f"--model {model} needs --{name}")
-        return value
-
-    if model == "voigt":
-        if plateau:
-            raise ContactresInputError("--plateau applies to --model cm or savkoor only")
-        return VoigtLoop(kappa, xi, omega)
-    if model == "cm":
-        loop = CattaneoMindlinLoop(kappa, need("mu", mu), need("normal-force", normal_force))
-    else:
-        loop = SavkoorLoop(kappa, need("tau", tau), need("contact-radius", contact_radius))
-    if plateau:
-        loop = PlateauLoop(loop, plateau)
-    return with_dashpot(loop, xi, omega) if xi > 0 else loop
 
 
 @qcm.command("loop")
 @click.option(
     "--model",
-    type=click.Choice(["cm", "savkoor", "voigt"]),
+    type=click.Choice(["cm", "savkoor", "voigt"]),  # contactres.jobs.qcm_loop.MODELS
     default="cm",
     show_default=True,
     help="Cattaneo-Mindlin (Eq. 6), Savkoor (Eqs. 13-14) or a linear Voigt element.",
@@ -145,27 +120,25 @@ def loop_command(
     Example: contactres qcm loop --model cm --kappa 1e5 --mu 0.5 --normal-force 1e-3
     --u0 0:20e-9:11
     """
-    import numpy as np
-    import pandas as pd
+    from ..jobs import qcm_loop as job
 
-    from ..resonators.qcm import QCM, shifts_from_loop
-
-    q = QCM(fundamental=fundamental, overtone=overtone, area=area, zq=zq)
-    loop = build_loop(model, kappa, mu, normal_force, tau, contact_radius, xi, plateau, q.omega)
-    u0 = np.asarray(u0, dtype=float)
-    with warnings.catch_warnings(record=True) as caught:
-        warnings.simplefilter("always", RuntimeWarning)
-        df, dgamma = shifts_from_loop(q, loop, u0, n_contacts)
-    for w in caught:  # the library's small-load check (paper 2, Eq. 1), as one stderr line
-        click.echo(f"contactres: warning: {w.message}", err=True)
-    P = q.sensitivity(n_contacts)
-    table = pd.DataFrame(
-        {
-            "u0_m": u0,
-            "df_Hz": df,
-            "dgamma_Hz": dgamma,
-            "K1_N_per_m": np.asarray(df) / P,
-            "K2_N_per_m": np.asarray(dgamma) / P,
-        }
+    settings = job.Settings(
+        model=model,
+        kappa=kappa,
+        mu=mu,
+        normal_force=normal_force,
+        tau=tau,
+        contact_radius=contact_radius,
+        xi=xi,
+        plateau=plateau,
+        u0=u0,
+        fundamental=fundamental,
+        overtone=overtone,
+        area=area,
+        zq=zq,
+        n_contacts=n_contacts,
     )
-    emit(table, fmt)
+    result = job.run(None, settings)
+    for message in result.warnings:  # the library's small-load check (paper 2, Eq. 1)
+        click.echo(f"contactres: warning: {message}", err=True)
+    emit(result.table, fmt)

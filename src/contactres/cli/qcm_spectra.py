@@ -107,7 +107,7 @@ def spectra_command(
     from pathlib import Path
 
     from ..fileio import CSV_FLOAT_FORMAT, check_output_file, write_csv, write_text
-    from ..measurements.shifts import D26_AT, read_spectra_sweeps
+    from ..jobs import qcm_spectra as job
 
     if fits and Path(fits).resolve() == Path(out).resolve():
         raise click.BadParameter("must name another file than --out", param_hint="'--fits'")
@@ -117,33 +117,28 @@ def spectra_command(
     ids = None if reference is None else [x for x in reference.split(",") if x.strip()]
     if reference is not None and not ids:
         raise click.BadParameter("give at least one spectrum id", param_hint="'--reference'")
-    _validated, rows, fitted, left_out = read_spectra_sweeps(
-        spectra,
-        reference=ids,
+    settings = job.Settings(
+        reference=None if ids is None else tuple(ids),
         layout=layout,
         reference_impedance=reference_impedance,
         voltage=voltage,
-        d26=D26_AT if d26 is None else d26,
-        calibration_m_per_V=calibration,
-        validate=False,
-        progress=lambda text: step("qcm spectra", text),
+        d26=d26,
+        calibration=calibration,
     )
-    table = rows.drop(columns=["quality"])
-    conventions = rows.attrs.get("conventions", {})
-    if voltage == "rms":
-        conventions = {**conventions, "voltage": "drive_voltage_V read as rms, times √2"}
+    result = job.run(spectra, settings, progress=lambda text: step("qcm spectra", text))
+    rows, fitted, conventions = result.sweeps, result.fits, result.conventions
     # The conventions go into the file as comment lines (the sweep reader skips them); ten
     # significant digits: below every stated error, no floating-point noise.
     header = "".join(f"# {k}: {v}\n" for k, v in conventions.items())
-    write_text(targets[0], header + table.to_csv(index=False, float_format=CSV_FLOAT_FORMAT))
+    write_text(targets[0], header + rows.to_csv(index=False, float_format=CSV_FLOAT_FORMAT))
     if fits:
         write_csv(targets[1], fitted, index=False, float_format=CSV_FLOAT_FORMAT)
-    for line in left_out:
+    for line in result.warnings:
         click.echo(f"contactres: warning: {line}", err=True)
     record = {
         "spectra": len(fitted),
-        "references": int(len(fitted) - len(rows) - len(left_out)),
-        "left_out": len(left_out),
+        "references": int(len(fitted) - len(rows) - len(result.warnings)),
+        "left_out": len(result.warnings),
         "sweeps": int(rows["sweep"].nunique()),
         "points": len(rows),
         "amplitude_range_m": [float(rows["amplitude_m"].min()), float(rows["amplitude_m"].max())],

@@ -14,9 +14,7 @@ The results folder is one :class:`contactres.fileio.ResultSet` (whole or not at 
 
 from __future__ import annotations
 
-import json
 import math
-import warnings
 from pathlib import Path
 
 import click
@@ -28,16 +26,15 @@ from ._common import MagnitudeType, odd_overtone, step
 FILES = ("stiffness.csv", "stiffness.json", "stiffness.png")
 #: The readers the help names (``contactres.measurements.readers.exports.EXPORT_READERS``).
 READER_NAMES = ("qsense", "awsensors", "qcmi", "openqcm")
-#: Units of the CSV columns (recorded in the JSON sidecar).
-COLUMN_UNITS = {
-    "time_s": "s",
-    "overtone": "1",
-    "df_Hz": "Hz (Δf, not divided by n)",
-    "dgamma_Hz": "Hz (ΔΓ, half-bandwidth)",
-    "kappa_N_per_m": "N/m (per contact)",
-    "omega_xi_N_per_m": "N/m (per contact)",
-}
-EQUATION = "κ + iωξ = (Δf + iΔΓ)/P, P = n_P/(2nπ² A_eff Z_q) (paper 2, Eqs. 1-2)"
+
+
+def __getattr__(name: str):
+    """``COLUMN_UNITS`` (the units of stiffness.csv's columns) is the job's, loaded on use."""
+    if name == "COLUMN_UNITS":
+        from ..jobs.qcm_stiffness import COLUMN_UNITS
+
+        return COLUMN_UNITS
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 class ReaderName(click.ParamType):
@@ -200,8 +197,9 @@ def stiffness_command(
         contactres qcm stiffness run.txt --df-divided-by-n --dissipation-scale 1e-6
         --time-unit s --fundamental 4.95e6 --area 2e-5 --n-contacts 3 --out run-stiffness
     """
-    from ..fileio import CSV_FLOAT_FORMAT, ResultSet, save_figure
-    from ..measurements.readers.exports import read_export
+    from ..fileio import ResultSet
+    from ..jobs import qcm_stiffness as job
+    from ..report.writer import write_report
 
     source = Path(export)
     conventions = {
@@ -213,93 +211,18 @@ def stiffness_command(
         "overtone": overtone,
         "fundamental": fundamental,
     }
+    settings = job.Settings(area, n_contacts, reader, conventions, zq)
+    progress = lambda text: step("qcm stiffness", text)  # noqa: E731
+    # The folder is checked (and locked) before the export is read: an output error comes first.
     with ResultSet(out, names=FILES, inputs=(source,)) as rs:
-        step("qcm stiffness", f"reading {source.name}")
-        table = read_export(source, reader, **conventions)
-        step("qcm stiffness", f"κ and ωξ of {len(table.data)} points")
-        result, caught = stiffness_table(table, area, n_contacts, zq)
-        result.to_csv(rs.path("stiffness.csv"), index=False, float_format=CSV_FLOAT_FORMAT)
-        sidecar = {
-            "conventions": dict(table.conventions),
-            "constants": {
-                "area_m2": area,
-                "n_contacts": n_contacts,
-                "zq_kg_per_m2_s": zq,
-                "fundamental_Hz": table.conventions["fundamental_Hz"],
-            },
-            "equation": EQUATION,
-            "columns": COLUMN_UNITS,
-        }
-        text = json.dumps(sidecar, indent=1, ensure_ascii=False, allow_nan=False) + "\n"
-        rs.path("stiffness.json").write_text(text, encoding="utf-8")
-        step("qcm stiffness", "figure stiffness.png")
-        save_figure(rs.path("stiffness.png"), stiffness_figure(result, source.name))
-    for line in caught:
+        result = job.run(source, settings, progress)
+        write_report(result, rs, progress=progress)
+    for line in result.warnings:
         click.echo(f"contactres: warning: {line}", err=True)
-    click.echo(f"{source.name} ({table.conventions['reader']}): κ and ωξ per contact, N/m")
-    for n, part in result.groupby("overtone"):
+    click.echo(f"{source.name} ({result.conventions['reader']}): κ and ωξ per contact, N/m")
+    for n, part in result.stiffness.groupby("overtone"):
         click.echo(
             f"  n = {n}: {len(part)} points, median κ = {part['kappa_N_per_m'].median():.6g}, "
             f"median ωξ = {part['omega_xi_N_per_m'].median():.6g}"
         )
     click.echo(f"wrote {len(FILES)} files into {out}/")
-
-
-def stiffness_table(table, area: float, n_contacts: int, zq: float):
-    """The export's rows with κ and ωξ per contact (paper 2, Eq. 2), and the distinct warnings
-    of the small-load check (``|Δf|``/f above 1e-3) as text lines."""
-    import numpy as np
-
-    from ..resonators.qcm import QCM, stiffness_from_shifts
-
-    data = table.data.copy()
-    kappa = np.full(len(data), np.nan)
-    omega_xi = np.full(len(data), np.nan)
-    fundamental = table.conventions["fundamental_Hz"]
-    lines: list[str] = []
-    for n, index in data.groupby("overtone").groups.items():
-        q = QCM(fundamental=fundamental, overtone=int(n), area=area, zq=zq)
-        part = data.loc[index]
-        with warnings.catch_warnings(record=True) as caught:
-            warnings.simplefilter("always", RuntimeWarning)
-            df, dg = part["df_Hz"].to_numpy(float), part["dgamma_Hz"].to_numpy(float)
-            k, xi = stiffness_from_shifts(q, df, dg, n_contacts)
-        for w in caught:
-            line = f"overtone {n}: {' '.join(str(w.message).split())}"
-            if line not in lines:
-                lines.append(line)
-        kappa[data.index.get_indexer(index)] = k
-        omega_xi[data.index.get_indexer(index)] = np.asarray(xi) * q.omega
-    data["kappa_N_per_m"] = kappa
-    data["omega_xi_N_per_m"] = omega_xi
-    return data, lines
-
-
-def stiffness_figure(result, title: str):
-    """κ and ωξ against time, one colour per overtone, the key right of the panels."""
-    from matplotlib.backends.backend_agg import FigureCanvasAgg
-    from matplotlib.figure import Figure
-
-    fig = Figure(figsize=(7.5, 5.0), layout="constrained")
-    FigureCanvasAgg(fig)
-    ax_k, ax_x = fig.subplots(2, 1, sharex=True)
-    handles = []
-    for j, (n, part) in enumerate(result.groupby("overtone")):
-        style = {"color": f"C{j % 10}", "marker": ".", "ms": 2, "lw": 0.8}
-        (line,) = ax_k.plot(part["time_s"], part["kappa_N_per_m"], **style)
-        ax_x.plot(part["time_s"], part["omega_xi_N_per_m"], **style)
-        handles.append((line, f"n = {n}"))
-    ax_k.set_ylabel("κ per contact (N/m)")
-    ax_x.set_ylabel("ωξ per contact (N/m)")
-    ax_x.set_xlabel("time (s)")
-    label = " ".join(str(title).split())
-    label = (label if len(label) <= 60 else label[:59] + "…").replace("$", r"\$")
-    fig.suptitle(f"{label}: contact stiffness (paper 2, Eq. 2)", fontsize=9)
-    fig.legend(
-        [h for h, _ in handles],
-        [t for _, t in handles],
-        loc="outside right upper",
-        title="overtone",
-        fontsize=8,
-    )
-    return fig

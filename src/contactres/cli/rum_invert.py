@@ -2,8 +2,6 @@
 
 from __future__ import annotations
 
-from pathlib import Path
-
 import click
 
 from ._app import rum
@@ -30,16 +28,13 @@ def rum_invert(table, out, fmt):
 
     Example: contactres rum invert src/contactres/data/example_rum.csv --out rum_kstar.csv
     """
-    from ..analysis.resonance_tables import invert_rum_table
     from ..fileio import check_output_file, write_csv
-    from ..measurements.resonances import RUM_TABLE, read_resonance_table
+    from ..jobs import rum_invert as job
 
     check_output_file(out, inputs=[table])
-    step("rum invert", f"reading {Path(table).name}")
-    checked = read_resonance_table(table, RUM_TABLE)
-    step("rum invert", f"inverting {len(checked)} rows")
-    result = invert_rum_table(checked, str(Path(table)))
-    write_csv(out, computed_rounded(result, checked.columns))
+    done = job.run(table, job.Settings(), progress=lambda text: step("rum invert", text))
+    result = done.table
+    write_csv(out, computed_rounded(result, done.input_columns))
     if fmt != "plain":
         emit(result, fmt)
         return

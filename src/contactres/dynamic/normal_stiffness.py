@@ -84,8 +84,10 @@ __all__ = [
     "dcsf_models",
     "dynamic_contact_stiffness",
     "model_n",
+    "normalised_wavenumber",
     "shear_ka",
     "shear_wavenumber_ratio",
+    "wave_modulus",
 ]
 
 # Largest k_s a × (largest slowness) accepted: the contour's weights grow like e^{0.3 x this}.
@@ -110,6 +112,63 @@ def _check_model(model: str) -> str:
             f"model must be one of {', '.join(MODELS)}, exact; got {model!r}"
         )
     return key
+
+
+def wave_modulus(m: Material, wavenumber: str = "shear") -> float:
+    """The stiffness C of the wave number k = ω√(ρ/C) in the convention ``wavenumber``, Pa.
+
+    ``"shear"``: Re C44 of the surface frame (:func:`contactres.halfspace.shear_reference`,
+    k_s, paper 1, Eq. 21); ``"longitudinal"``: Re C33 of the surface frame (k_l, the wave number
+    of the paper's figures). The undamped constants: a loss does not change the wave number.
+    """
+    if wavenumber == "shear":
+        return shear_reference(m)
+    if wavenumber == "longitudinal":
+        return float(np.real(np.asarray(m.C)[2, 2]))
+    raise ContactresInputError(
+        f"wavenumber must be one of {', '.join(WAVENUMBERS)}, got {wavenumber!r}"
+    )
+
+
+def normalised_wavenumber(frequency, contact_radius, density, modulus):
+    """The normalised wave number k a = ω a √(ρ/C) of a contact (paper 1, Eq. 21), dimensionless.
+
+    The one place where the library turns a frequency and a contact radius into the k a of the
+    DCSF: :func:`dynamic_contact_stiffness`, the tangential stiffness, the polycrystal maps and
+    the command line all call it.
+
+    Parameters
+    ----------
+    frequency : float or array
+        Oscillation frequency f, Hz (ω = 2πf).
+    contact_radius : float or array
+        Contact radius a, m.
+    density : float
+        Mass density ρ, kg/m^3.
+    modulus : float or array
+        The stiffness C of the wave, Pa: Re C44 for k_s a, Re C33 for k_l a
+        (:func:`wave_modulus`); an array gives one value per point (a map's faces).
+
+    Returns
+    -------
+    ndarray
+        k a, the arguments broadcast.
+
+    Examples
+    --------
+    A wave speed √(C/ρ) of 1000 m/s, f = 1 MHz, a = 1 mm: k a = 2π f a/v = 2π.
+
+    >>> round(float(normalised_wavenumber(1e6, 1e-3, 1000.0, 1e9)), 12)
+    6.28318530718
+    """
+    # One order of the products for every caller, so a k a is the same number wherever made.
+    return (
+        2
+        * np.pi
+        * np.asarray(frequency)
+        * np.asarray(contact_radius)
+        * np.sqrt(density / np.asarray(modulus))
+    )
 
 
 def shear_ka(m: Material, ka, wavenumber: str) -> np.ndarray:
@@ -408,8 +467,7 @@ def dynamic_contact_stiffness(
     f = np.asarray(nonnegative("frequency", frequency, "Hz"))
     contact = sphere_contact(m, radius, force)
     a = np.asarray(contact.contact_radius, dtype=float)
-    k_s = 2 * np.pi * f * math.sqrt(m.density / shear_reference(m))
-    ksa = k_s * a
+    ksa = normalised_wavenumber(f, a, m.density, shear_reference(m))
     ksa, k_sa = np.broadcast_arrays(ksa, np.asarray(contact.stiffness, dtype=float))
     out = k_sa * dcsf(
         m, ksa, model=model, loss=loss, wavenumber="shear", rtol=rtol, prepared=prepared

@@ -36,7 +36,7 @@ from ..errors import ContactresInputError
 from ..halfspace import shear_reference
 from ..materials import Material, require_material
 from ..validation import nonnegative, positive
-from .normal_stiffness import shear_ka
+from .normal_stiffness import normalised_wavenumber, shear_ka
 from .table import check_loss
 from .tangential_galerkin import TangentialTable, prepare_tangential, tangential_per_a
 
@@ -190,8 +190,9 @@ def tangential_contact_stiffness(
         raise ContactresInputError(
             "a dynamic tangential stiffness needs the material density (kg/m^3)"
         )
-    ks = 2 * np.pi * f * math.sqrt(m.density / shear_reference(m)) if np.any(f > 0) else 0 * f
-    K = a[..., None, None] * _per_a(m, ks * a, loss, rtol, prepared)
+    # No density is needed (nor read) for a static contact, f = 0 everywhere.
+    ksa = normalised_wavenumber(f, a, m.density, shear_reference(m)) if np.any(f > 0) else 0 * f
+    K = a[..., None, None] * _per_a(m, ksa, loss, rtol, prepared)
     if tensor:
         return K
     e = _unit(direction)

@@ -163,7 +163,9 @@ def map_wavenumbers(material: Material, normals, contact_radius, frequency: floa
     n = n / np.linalg.norm(n, axis=-1, keepdims=True)
     c = voigt_to_tensor(np.real(np.asarray(material.C)))
     c33 = np.einsum("...i,...j,...k,...l,ijkl->...", n, n, n, n, c, optimize=True)
-    return 2 * math.pi * f * np.asarray(contact_radius) * np.sqrt(material.density / c33)
+    from ..dynamic import normalised_wavenumber  # the lazy package: no scipy until here
+
+    return normalised_wavenumber(f, contact_radius, material.density, c33)
 
 
 def dynamic_factor_map(

@@ -1,0 +1,158 @@
+"""Job ``dcsf``: the dynamic contact stiffness factor DCSF = K_da/K_sa of a rigid sphere on a
+crystal face, against k a or for physical contacts (paper 1, Eq. 29).
+
+Inputs: the solid in the frame of its face (a :class:`~contactres.materials.Material`; its
+constants may be ratios only, C44 = 1, when ``Settings.constants_in_pa`` is False: the DCSF
+depends on ratios only). Settings: the displacement models, either the values of k a or the
+contacts (sphere radius, force and frequency, which give k a through the static Hertz contact
+radius a: :func:`contactres.dynamic.normalised_wavenumber`), the loss factor, the wave-number
+convention and the accuracy. One kernel table of the face serves every model
+(:func:`contactres.dynamic.prepare`, :func:`contactres.dynamic.dcsf_models`).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from types import MappingProxyType
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+from ..errors import ContactresInputError
+from .contract import JobResult, Progress, say
+
+if TYPE_CHECKING:
+    import pandas as pd
+
+    from ..materials import Material
+
+__all__ = ["Result", "Settings", "run"]
+
+
+@dataclass(frozen=True)
+class Settings:
+    """The DCSF curve to compute.
+
+    Parameters
+    ----------
+    models : tuple of str
+        Displacement conditions (``contactres.dynamic.ALL_MODELS``: "exact", "R0", ...).
+    ka : array or None
+        Normalised wave numbers k a, dimensionless; None when the contacts give them.
+    radius, force, frequency : array or None
+        Sphere radius R (m), static force F (N) and frequency f (Hz) of physical contacts
+        (all three, broadcast; the face needs its density), or None.
+    loss : float
+        Loss factor Q⁻¹ of the constants, dimensionless (0: lossless).
+    wavenumber : str
+        "longitudinal" (k_l a, the paper's figures) or "shear" (k_s a).
+    rtol : float
+        Target relative accuracy of the DCSF.
+    constants_in_pa : bool
+        False when the face's constants are ratios only (C44 = 1): no C33, C44 in Pa and no
+        wave speeds are reported, and physical contacts are refused.
+    """
+
+    models: tuple[str, ...] = ("exact",)
+    ka: np.ndarray | None = None
+    radius: np.ndarray | None = None
+    force: np.ndarray | None = None
+    frequency: np.ndarray | None = None
+    loss: float = 0.0
+    wavenumber: str = "longitudinal"
+    rtol: float = 1e-6
+    constants_in_pa: bool = True
+
+
+@dataclass(frozen=True)
+class Result(JobResult):
+    """``table``: one row per (model, k a): ka, model, re, im (DCSF relative to K_sa), and for
+    physical contacts radius_m, force_N, frequency_Hz, contact_radius_m, stiffness_N_per_m and
+    K = K_sa DCSF (K_re_N_per_m, K_im_N_per_m). ``face``: C33/C44, C33 and C44 (Pa) of the face
+    and its wave speeds v_l = √(C33/ρ), v_s = √(C44/ρ) (m/s); NaN where unknown."""
+
+    SCHEMAS = MappingProxyType({"table": None})
+
+    table: pd.DataFrame
+    face: dict
+
+
+def run(inputs: Material, settings: Settings, progress: Progress | None = None) -> Result:
+    """The DCSF of ``settings`` on the face ``inputs`` (see the module docstring)."""
+    import pandas as pd
+
+    from ..dynamic import dcsf_models, prepare
+
+    m, s = inputs, settings
+    contacts = [v is not None for v in (s.radius, s.force, s.frequency)]
+    if any(contacts) and not all(contacts):
+        raise ContactresInputError("radius, force and frequency go together: give all three")
+    physical = all(contacts)
+    if physical == (s.ka is not None):
+        raise ContactresInputError("give either ka or radius/force/frequency (which give k a)")
+    c33, c44 = float(np.real(m.C[2, 2])), float(np.real(m.C[3, 3]))
+    ka = s.ka
+    if physical:
+        if not s.constants_in_pa or m.density is None:
+            raise ContactresInputError(
+                "physical contacts need the elastic constants in Pa and the density"
+            )
+        ka, extra = _contact_points(m, s)
+    # One kernel table serves every model (several models share it, and the far-field basis).
+    say(progress, "kernel table of the face")
+    table = prepare(m, s.loss, s.rtol)
+    say(progress, f"DCSF of {len(s.models)} model(s) at {np.size(ka)} values of k a")
+    out = dcsf_models(
+        m, ka, list(s.models), loss=s.loss, wavenumber=s.wavenumber, rtol=s.rtol, prepared=table
+    )
+    frames = []
+    for name, v in out.items():
+        cols = {"ka": ka, "model": name, "re": v.real, "im": v.imag}
+        if physical:
+            k = extra["stiffness_N_per_m"] * v
+            cols.update(extra, K_re_N_per_m=k.real, K_im_N_per_m=k.imag)
+        frames.append(pd.DataFrame(cols))
+    density = m.density if s.constants_in_pa else None
+    return Result(
+        table=pd.concat(frames, ignore_index=True),
+        face=_face_constants(c33, c44, density, not s.constants_in_pa),
+    )
+
+
+def _contact_points(m, s: Settings):
+    """k a (in the ``wavenumber`` convention) and the contact columns of R, F, f broadcast."""
+    from ..dynamic import normalised_wavenumber, wave_modulus
+    from ..normal.anisotropic import sphere_contact
+
+    try:
+        R, F, f = np.broadcast_arrays(s.radius, s.force, s.frequency)
+    except ValueError:
+        raise ContactresInputError(
+            f"radius ({np.size(s.radius)}), force ({np.size(s.force)}) and frequency "
+            f"({np.size(s.frequency)}) must have the same number of values, or a single value"
+        ) from None
+    c = sphere_contact(m, R, F)
+    a = np.asarray(c.contact_radius, dtype=float)
+    ka = normalised_wavenumber(f, a, m.density, wave_modulus(m, s.wavenumber))
+    extra = {
+        "radius_m": R,
+        "force_N": F,
+        "frequency_Hz": f,
+        "contact_radius_m": a,
+        "stiffness_N_per_m": np.asarray(c.stiffness, dtype=float),
+    }
+    return ka, extra
+
+
+def _face_constants(c33: float, c44: float, density, ratios_only: bool) -> dict:
+    """C33, C44 (Pa; NaN when the constants were given as ratios) and the wave speeds (m/s;
+    NaN without a density) of the rotated material."""
+    nan = float("nan")
+    if ratios_only:
+        return {"C33_over_C44": c33 / c44, "C33_Pa": nan, "C44_Pa": nan, "v_l_m_per_s": nan,
+                "v_s_m_per_s": nan}  # fmt: skip
+    v_l = math.sqrt(c33 / density) if density else nan
+    v_s = math.sqrt(c44 / density) if density else nan
+    return {"C33_over_C44": c33 / c44, "C33_Pa": c33, "C44_Pa": c44, "v_l_m_per_s": v_l,
+            "v_s_m_per_s": v_s}  # fmt: skip

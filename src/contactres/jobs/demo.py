@@ -1,0 +1,139 @@
+"""Job ``demo``: the main workflows of contactres on the bundled example data.
+
+Inputs: none (pass None; the data are the package's, ``contactres/data``). Settings: none.
+:func:`run` computes every part, in the order of :data:`STEPS` (``progress`` gets each title
+before its part); :mod:`contactres.apps.demo` writes them into one folder (``contactres demo``):
+
+* paper 2's analysis of the bundled sweeps (:func:`contactres.analyze`);
+* from the instrument: the bundled admittance spectra -> resonance fits -> sweep table -> the
+  analysis;
+* the built-in crystals (:func:`contactres.crystal_table`);
+* paper 2's forward model (the ``paper2`` job);
+* paper 1's exact DCSF of built-in crystals on (001) faces (as Fig. 4);
+* the bundled EBSD-style Cu map: predicted M and k* per pixel (20 nm tip, 1 µN), and the
+  constants fitted back from the bundled measured k* map.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from importlib.resources import as_file, files
+from types import MappingProxyType
+
+from .contract import JobResult, Progress, say
+
+__all__ = ["STEPS", "Result", "Settings", "run"]
+
+#: The titles of the parts, in the order computed and written.
+STEPS = (
+    "QCM sweep analysis of the bundled example (paper 2: Table 1, Figs. 4, 5, 7, 8)",
+    "from the instrument: bundled admittance spectra -> shifts -> analysis",
+    "built-in crystals and their anisotropy",
+    "paper 2 forward: partial-slip loops and QCM shifts (Figs. 1D, 2C-D)",
+    "paper 1: dynamic contact stiffness on crystals (exact, Fig. 4)",
+    "polycrystal map: EBSD -> M and k* per pixel, and the constants back",
+)
+#: The model of the crystals' DCSF: the exact rigid punch the README recommends.
+CRYSTAL_DCSF_MODEL = "exact"
+
+
+@dataclass(frozen=True)
+class Settings:
+    """Nothing to choose: the demo runs on the bundled data."""
+
+
+@dataclass(frozen=True)
+class Result(JobResult):
+    """Every part of the demo: the analyses (``sweeps_analysis``; ``spectra_rows``,
+    ``spectra_fits`` and ``spectra_analysis``), the ``crystals`` table, the ``paper2`` job's
+    Result, the crystals' DCSF curves (``crystal_dcsf``: label -> DCSF on the grid
+    ``contactres.jobs.paper1.KLA``) and the polycrystal map (``map_dataset``, the orientation
+    map ``map_orientations``, the fit record ``map_fit``)."""
+
+    SCHEMAS = MappingProxyType({"crystals": None, "spectra_rows": None, "spectra_fits": None})
+    NOT_VALUES = (
+        "sweeps_analysis",
+        "spectra_analysis",
+        "paper2",
+        "crystal_dcsf",
+        "map_dataset",
+        "map_orientations",
+        "map_fit",
+        "warnings",
+    )
+
+    sweeps_analysis: object
+    spectra_rows: object
+    spectra_fits: object
+    spectra_analysis: object
+    crystals: object
+    paper2: object
+    crystal_dcsf: dict
+    map_dataset: object
+    map_orientations: object
+    map_fit: dict
+
+
+def _sweeps():
+    from ..analysis import analyze
+    from ..measurements.sweeps import read_sweeps
+
+    with as_file(files("contactres") / "data" / "example_sweeps.csv") as path:
+        table = read_sweeps(path)
+    return analyze(table)
+
+
+def _spectra():
+    from ..analysis import analyze
+    from ..measurements.shifts import read_spectra_sweeps
+
+    with as_file(files("contactres") / "data" / "example_spectra.csv") as path:
+        table, rows, fits, _ = read_spectra_sweeps(path)
+    return rows, fits, analyze(table)
+
+
+def _polycrystal():
+    """The predicted map of the bundled Cu orientations and the fit of the measured map."""
+    from ..materials import Material
+    from .maps import TipLoad, fit_measured_map, fit_record, open_map, predict_map, read_value_grid
+
+    cu = Material.crystal("Cu")
+    data = files("contactres") / "data"
+    with as_file(data / "example_cu_map.ang") as ang, as_file(data / "example_cu_kstar.csv") as k:
+        omap, _ = open_map(ang)
+        measured = read_value_grid(k)
+    ds, _ = predict_map(omap, cu, "cubic", TipLoad(radius=20e-9, force=1e-6))
+    result, _, used = fit_measured_map(omap, measured, quantity="stiffness")
+    record = fit_record(result, source="example_cu_map.ang + example_cu_kstar.csv", pixels=used)
+    return ds, omap, record
+
+
+def run(inputs: None = None, settings: Settings | None = None, progress: Progress | None = None):
+    """Every part of the demo (see the module docstring)."""
+    from ..crystals import crystal_table
+    from . import paper1, paper2
+
+    say(progress, STEPS[0])
+    sweeps_analysis = _sweeps()
+    say(progress, STEPS[1])
+    rows, fits, spectra_analysis = _spectra()
+    say(progress, STEPS[2])
+    crystals = crystal_table()
+    say(progress, STEPS[3])
+    forward = paper2.run()
+    say(progress, STEPS[4])
+    curves = paper1.crystal_curves(model=CRYSTAL_DCSF_MODEL)
+    say(progress, STEPS[5])
+    ds, omap, record = _polycrystal()
+    return Result(
+        sweeps_analysis=sweeps_analysis,
+        spectra_rows=rows,
+        spectra_fits=fits,
+        spectra_analysis=spectra_analysis,
+        crystals=crystals,
+        paper2=forward,
+        crystal_dcsf=curves,
+        map_dataset=ds,
+        map_orientations=omap,
+        map_fit=record,
+    )

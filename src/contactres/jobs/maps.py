@@ -1,0 +1,455 @@
+"""The computations of the map jobs: synthetic maps, predicted maps and the fit of measured maps.
+
+Each function takes an :class:`~contactres.polycrystal.maps.OrientationMap` (read from a Zarr
+map store or an EBSD export by :func:`open_map`) and returns an :mod:`xarray` Dataset or a fit
+result; the jobs :mod:`~contactres.jobs.maps_synthetic`, :mod:`~contactres.jobs.maps_predict` and
+:mod:`~contactres.jobs.maps_fit` run them, and the command line writes what they return (Zarr
+stores atomically, JSON/CSV atomically).
+
+Physics: the indentation modulus M of each pixel (paper 1, Eq. 4; Vlassak & Nix 1994), the
+Hertz contact of a spherical tip with its compliance in series (Johnson 1985, Ch. 4), paper 1's
+DCSF (Eq. 29) and the inverse of :mod:`contactres.polycrystal.inverse`.
+
+References
+----------
+Paper 1: J. Tian, Am. J. Eng. Appl. Sci. 3(1), 56-63 (2010). J. J. Vlassak and W. D. Nix,
+J. Mech. Phys. Solids 42, 1223 (1994). K. L. Johnson, *Contact Mechanics*, Cambridge
+University Press (1985).
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from collections.abc import Callable
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+
+from ..errors import ContactresInputError
+from ..materials import Material
+from ..polycrystal.ebsd import read_ebsd
+from ..polycrystal.grains import folded_normals, grain_orientations, segment_grains
+from ..polycrystal.inverse import fit_map
+from ..polycrystal.maps import (
+    ExactModulus,
+    OrientationMap,
+    evaluate_map,
+    map_from_dataset,
+    map_to_dataset,
+    read_map,
+)
+from ..polycrystal.moduli import indentation_moduli
+from ..polycrystal.normal_table import prepare_normal_table
+from ..polycrystal.orientations import surface_matrices_from_euler
+from ..polycrystal.predicted import ContactMap, contact_stiffness_map, dynamic_factor_map
+from ..polycrystal.synthetic import synthetic_polycrystal
+
+__all__ = [
+    "METHODS",
+    "TipLoad",
+    "fit_measured_map",
+    "fit_record",
+    "open_map",
+    "predict_map",
+    "read_value_grid",
+    "synthetic_map",
+]
+
+#: How ``predict_map`` evaluates M: tabulated and interpolated, exact per pixel, exact per grain.
+METHODS = ("auto", "interpolated", "exact", "grains")
+# Largest angle (rad) between two pixels' normals for a labelled grain to count as uniform.
+_UNIFORM_RAD = 1e-9
+
+
+@dataclass(frozen=True)
+class TipLoad:
+    """The spherical tip and its load.
+
+    Attributes
+    ----------
+    radius : float
+        Tip radius R, m.
+    force : float
+        Static normal force F, N.
+    tip_modulus : float
+        Plane-strain modulus of the tip E/(1 − ν²), Pa; ``math.inf`` for a rigid tip.
+    """
+
+    radius: float
+    force: float
+    tip_modulus: float = math.inf
+
+    @property
+    def tip(self) -> tuple[float, float] | None:
+        """The tip as :func:`~contactres.polycrystal.predicted.contact_stiffness_map` takes it
+        (a plane-strain modulus is (E, ν = 0))."""
+        return None if math.isinf(self.tip_modulus) else (self.tip_modulus, 0.0)
+
+
+def open_map(path: str | os.PathLike):
+    """Read a map: a Zarr map store (:func:`~contactres.polycrystal.maps.write_map`) or an EBSD
+    export (.ang, .ctf). Returns (OrientationMap, Dataset or None): the store's Dataset keeps
+    its other variables (a measured map, a prediction)."""
+    p = Path(path)
+    if not p.exists():
+        raise FileNotFoundError(f"{str(p)!r}: no such file or map store")
+    if p.is_dir():
+        ds = read_map(p)
+        return map_from_dataset(ds), ds
+    return read_ebsd(p), None
+
+
+def _first_pixels(labels: np.ndarray) -> np.ndarray:
+    """Flat index of the first pixel of each grain 0 .. G-1 (-1 for a grain without pixels);
+    unlabelled pixels (-1) belong to no grain."""
+    lab = labels.ravel()
+    first = np.full(int(lab.max(initial=-1)) + 1, -1)
+    valid = np.flatnonzero(lab >= 0)
+    first[lab[valid][::-1]] = valid[::-1]  # reversed: the earliest pixel is written last
+    return first
+
+
+def _uniform_grains(omap: OrientationMap, normals: np.ndarray) -> bool:
+    """True when every labelled grain has one orientation (a synthetic or cleaned map)."""
+    lab = omap.labels.ravel()
+    keep = lab >= 0
+    n = normals.reshape(-1, 3)
+    ref = n[_first_pixels(lab)[lab[keep]]]
+    return bool(np.all(np.linalg.norm(n[keep] - ref, axis=1) <= _UNIFORM_RAD))
+
+
+def predict_map(
+    omap: OrientationMap,
+    material: Material,
+    lattice: str,
+    tipload: TipLoad,
+    *,
+    method: str = "auto",
+    rtol: float = 1e-4,
+    frequency: float | None = None,
+    model: str = "exact",
+    dcsf_rtol: float = 1e-3,
+    chunks: tuple[int, int] = (256, 256),
+    scheduler: str | None = None,
+    client=None,
+    progress: Callable[[int, int], None] | None = None,
+):
+    """Predicted M, static (and dynamic) contact stiffness of every pixel, as a Dataset.
+
+    Parameters
+    ----------
+    omap : OrientationMap
+    material : Material
+        The crystal in its crystal frame, Pa (density in kg/m^3 for ``frequency``).
+    lattice : {"cubic", "hexagonal"}
+    tipload : TipLoad
+    method : {"auto", "interpolated", "exact", "grains"}
+        "interpolated": M tabulated over the fundamental triangle until the interpolation
+        error at the cell centres is below ``rtol``
+        (:func:`~contactres.polycrystal.normal_table.prepare_normal_table`); "exact": M of
+        every pixel (slow; worth a cluster); "grains": exact per labelled grain (needs labels
+        and one orientation per grain); "auto": "grains" when that holds, else "interpolated".
+    rtol : float
+        Interpolation tolerance of M (relative).
+    frequency : float, optional
+        Hz: add paper 1's DCSF of every pixel (``model``, tabulated to ``dcsf_rtol``) and the
+        dynamic contact stiffness.
+    chunks, scheduler, client, progress
+        Of :func:`~contactres.polycrystal.maps.evaluate_map` (the M evaluation).
+
+    Returns
+    -------
+    (xarray.Dataset, dict)
+        The map's variables plus ``M_Pa``, ``E_star_Pa``, ``contact_radius_m``,
+        ``k_star_N_per_m`` (and ``ka_l``, ``dcsf_real``, ``dcsf_imag``,
+        ``k_dynamic_real_N_per_m``, ``k_dynamic_imag_N_per_m``); a dict describing how M was
+        evaluated (method, stated error, exact evaluations).
+    """
+    if method not in METHODS:
+        raise ContactresInputError(f"method must be one of {METHODS}, got {method!r}")
+    normals = folded_normals(omap, lattice)  # M depends on the folded normal only
+    uniform = omap.labels is not None and _uniform_grains(omap, normals)
+    if method == "auto":
+        method = "grains" if uniform else "interpolated"
+    if method == "grains" and not uniform:
+        raise ContactresInputError(
+            "method 'grains' needs grain labels with one orientation per grain; use "
+            "'interpolated' for a map whose orientations vary within grains"
+        )
+    table = None
+    info = {"method": method}
+    if method == "grains":
+        lab = omap.labels
+        idx = _first_pixels(lab)
+        G = idx.size
+        present = idx >= 0
+        e = omap.euler.reshape(-1, 3)[idx[present]]
+        R = surface_matrices_from_euler(e[:, 0], e[:, 1], e[:, 2], degrees=False)
+        Mg = np.full(G, np.nan)
+        Mg[present] = indentation_moduli(material, R)
+        M = np.where(lab >= 0, Mg[np.maximum(lab, 0)], np.nan)
+        info.update(exact_evaluations=int(present.sum()), stated_error="exact (rtol 1e-10)")
+    elif method == "exact":
+        M = evaluate_map(
+            ExactModulus(material),
+            omap,
+            chunks=chunks,
+            scheduler=scheduler,
+            client=client,
+            progress=progress,
+        )
+        info.update(exact_evaluations=int(M.size), stated_error="exact (rtol 1e-10)")
+    else:
+        table = prepare_normal_table(material, lattice, rtol)
+        M = evaluate_map(
+            table.modulus,
+            omap,
+            chunks=chunks,
+            scheduler=scheduler,
+            client=client,
+            progress=progress,
+        )
+        info.update(exact_evaluations=table.evaluations, stated_error=f"{table.error:.2g}")
+    contact = _contact_where_finite(M, tipload)
+    ds = map_to_dataset(omap)
+    dims = ("y", "x")
+    ds["M_Pa"] = (dims, M, {"units": "Pa", "long_name": "indentation modulus M"})
+    ds["E_star_Pa"] = (dims, contact.effective_modulus, {"units": "Pa"})
+    ds["contact_radius_m"] = (dims, contact.contact_radius, {"units": "m"})
+    ds["k_star_N_per_m"] = (dims, contact.stiffness, {"units": "N/m"})
+    if frequency is not None:
+        _add_dynamic(
+            ds, material, lattice, tipload, normals, M, contact, frequency, model, dcsf_rtol, info
+        )
+    ds.attrs.update(_prediction_attrs(material, lattice, tipload, frequency, info))
+    return ds, info
+
+
+def _contact_where_finite(M: np.ndarray, tipload: TipLoad) -> ContactMap:
+    """Hertz contact of every pixel with an M; NaN where M is NaN (unlabelled pixels)."""
+    ok = np.isfinite(M)
+    c = contact_stiffness_map(M[ok], tipload.tip, tipload.radius, tipload.force)
+    out = [np.full(M.shape, np.nan) for _ in range(3)]
+    for full, part in zip(out, (c.effective_modulus, c.contact_radius, c.stiffness), strict=True):
+        full[ok] = part
+    return ContactMap(*out)
+
+
+def _add_dynamic(
+    ds, material, lattice, tipload, normals, M, contact, frequency, model, dcsf_rtol, info
+) -> None:
+    """The DCSF per pixel from a table over the map's k_l a range (3 nodes, spline)."""
+    from ..polycrystal.normal_table import surface_matrices_from_normals
+    from ..polycrystal.predicted import map_wavenumbers
+
+    ka = map_wavenumbers(material, normals, contact.contact_radius, frequency)
+    lo, hi = float(np.nanmin(ka)), float(np.nanmax(ka))
+    nodes = np.array([lo]) if hi - lo <= 1e-9 * hi else np.linspace(lo, hi, 3)
+    table = prepare_normal_table(material, lattice, ka=nodes, model=model, dcsf_rtol=dcsf_rtol)
+    dyn = dynamic_factor_map(
+        table,
+        surface_matrices_from_normals(normals),
+        tipload.tip,
+        tipload.radius,
+        tipload.force,
+        frequency,
+        moduli=M,
+    )
+    dims = ("y", "x")
+    ds["ka_l"] = (dims, dyn.ka, {"units": "1", "long_name": "k_l a"})
+    ds["dcsf_real"] = (dims, dyn.dcsf.real, {"units": "1"})
+    ds["dcsf_imag"] = (dims, dyn.dcsf.imag, {"units": "1"})
+    ds["k_dynamic_real_N_per_m"] = (dims, dyn.stiffness.real, {"units": "N/m"})
+    ds["k_dynamic_imag_N_per_m"] = (dims, dyn.stiffness.imag, {"units": "N/m"})
+    info.update(
+        dcsf_model=model,
+        dcsf_stated_error=f"{table.dcsf_error:.2g}",
+        dcsf_orientations=table.dcsf_evaluations,
+    )
+
+
+def _prediction_attrs(material, lattice, tipload, frequency, info) -> dict:
+    attrs = {
+        "lattice": lattice,
+        "stiffness_voigt_Pa": np.real(np.asarray(material.C)).ravel().tolist(),
+        "tip_radius_m": tipload.radius,
+        "force_N": tipload.force,
+        "tip_modulus_Pa": "rigid" if math.isinf(tipload.tip_modulus) else tipload.tip_modulus,
+        "k_star_convention": "Hertz, k* = 2 a E*, 1/E* = 1/M + 1/M_tip (static)",
+    }
+    if frequency is not None:
+        attrs["frequency_Hz"] = float(frequency)
+        attrs["dcsf_convention"] = "K_da/K_sa of the sample (paper 1, Eq. 29), k_l a"
+    attrs.update({f"M_{k}": v for k, v in info.items()})
+    return attrs
+
+
+def synthetic_map(
+    material: Material,
+    lattice: str,
+    tipload: TipLoad,
+    *,
+    shape: tuple[int, int],
+    n_grains: int,
+    seed: int,
+    noise: float,
+    pixel_size: float = 1e-6,
+):
+    """A seeded Voronoi polycrystal with a noisy 'measured' contact-stiffness map.
+
+    k* per grain from the exact M (rigid or given tip, Hertz), times (1 + noise·N(0, 1)) per
+    pixel (``numpy.random.default_rng(seed + 1)``). Returns the Dataset of the map with
+    ``k_star_N_per_m`` (measured) and the truth as attributes (``truth_*``).
+    """
+    if not (0 <= noise < 0.5 and math.isfinite(noise)):
+        raise ContactresInputError(
+            f"noise must be a relative standard deviation in [0, 0.5), got {noise!r}"
+        )
+    sp = synthetic_polycrystal(shape, n_grains, seed, pixel_size)
+    R = surface_matrices_from_euler(*sp.grain_euler.T, degrees=False)
+    Mg = indentation_moduli(material, R)
+    kg = contact_stiffness_map(Mg, tipload.tip, tipload.radius, tipload.force).stiffness
+    rng = np.random.default_rng(seed + 1)
+    k = kg[sp.labels] * (1.0 + noise * rng.standard_normal(sp.labels.shape))
+    ds = map_to_dataset(sp)
+    ds["k_star_N_per_m"] = (
+        ("y", "x"),
+        k,
+        {"units": "N/m", "long_name": "contact stiffness (synthetic, noisy)"},
+    )
+    ds.attrs.update(_prediction_attrs(material, lattice, tipload, None, {}))
+    ds.attrs.update(truth_noise_relative=float(noise), truth_seed=int(seed))
+    return ds
+
+
+def fit_measured_map(
+    omap: OrientationMap,
+    values: np.ndarray,
+    *,
+    quantity: str,
+    lattice: str = "cubic",
+    tipload: TipLoad | None = None,
+    tip_modulus: float | None = None,
+    tolerance_deg: float = 2.0,
+    min_pixels: int = 10,
+):
+    """Fit the single-crystal constants to a measured map of k* (N/m) or M (Pa).
+
+    Grains: the map's labels, else :func:`~contactres.polycrystal.grains.segment_grains`
+    (regions of equal surface normal within ``tolerance_deg``). Per grain: the mean and its
+    standard error, and the orientation of the mean normal. With ``tipload`` (force and tip
+    radius known) the calibration of a stiffness map is c = (6 F R)^{1/3}; else it is free.
+
+    Returns
+    -------
+    (result, labels, n_pixels_used)
+    """
+    vals = np.asarray(values, dtype=float)
+    if vals.shape != omap.shape:
+        raise ContactresInputError(
+            f"the measured map has shape {vals.shape}, the orientation map {omap.shape}: they "
+            "must be on the same grid"
+        )
+    labels = omap.labels
+    if labels is None:
+        labels = segment_grains(omap, lattice, tolerance_deg=tolerance_deg, min_pixels=min_pixels)
+    grains = grain_orientations(labels, omap, lattice)
+    calibration = None
+    if tipload is not None:
+        calibration = (
+            (6 * tipload.force * tipload.radius) ** (1 / 3) if quantity == "stiffness" else 1.0
+        )
+    kwargs = {"quantity": quantity, "tip_modulus": tip_modulus, "calibration": calibration}
+    if lattice != "cubic":
+        kwargs["lattice"] = lattice
+    result = fit_map(labels, vals, grains.matrices, **kwargs)
+    used = int(np.sum((labels >= 0) & np.isfinite(vals)))
+    return result, labels, used
+
+
+def read_value_grid(path: str | os.PathLike) -> np.ndarray:
+    """A measured map: ``.npy`` (2-D float array) or a CSV/text grid (one line per row y, one
+    number per column x, comma- or whitespace-separated, no header; an empty cell or NaN is a
+    pixel not measured). Values must be finite and > 0 where given.
+
+    Raises ValueError naming the file, row, column and value of the first bad cell.
+    """
+    import pandas as pd
+
+    p = Path(path)
+    if p.suffix.lower() == ".npy":
+        grid = np.load(p, allow_pickle=False)
+        if grid.ndim != 2 or grid.dtype.kind not in "iuf":
+            raise ContactresInputError(
+                f"{p.name}: need a 2-D array of numbers, got {grid.dtype} {grid.shape}"
+            )
+        grid = grid.astype(float)
+        cells = None
+    else:
+        sep = "," if "," in p.read_text(encoding="utf-8", errors="replace")[:4096] else r"\s+"
+        try:
+            cells = pd.read_csv(
+                p, header=None, sep=sep, dtype=str, keep_default_na=False, skip_blank_lines=True
+            )
+        except pd.errors.ParserError as exc:
+            raise ContactresInputError(f"{p.name}: rows of unequal length ({exc})") from None
+        except pd.errors.EmptyDataError:
+            raise ContactresInputError(f"{p.name}: no data") from None
+        text = cells.to_numpy()
+        blank = np.char.strip(text.astype(str)) == ""
+        grid = (
+            pd.DataFrame(np.where(blank, "nan", text))
+            .apply(pd.to_numeric, errors="coerce")
+            .to_numpy(float)
+        )
+        bad_text = (
+            np.isnan(grid) & ~blank & (np.char.lower(np.char.strip(text.astype(str))) != "nan")
+        )
+        if bad_text.any():
+            i, j = np.argwhere(bad_text)[0]
+            raise ContactresInputError(
+                f"{p.name}: row {i + 1}, column {j + 1}: {text[i, j]!r} is not a number"
+            )
+    bad = ~(np.isnan(grid) | (np.isfinite(grid) & (grid > 0)))
+    if bad.any():
+        i, j = np.argwhere(bad)[0]
+        shown = grid[i, j] if cells is None else cells.iat[i, j]
+        raise ContactresInputError(
+            f"{p.name}: row {i + 1}, column {j + 1}: {shown} must be finite and > 0 "
+            "(a stiffness in N/m or a modulus in Pa)"
+        )
+    if not np.isfinite(grid).any():
+        raise ContactresInputError(f"{p.name}: no measured value")
+    return grid
+
+
+def fit_record(result, **context) -> dict:
+    """The fit as JSON text (``"json"``: every field, arrays as lists, undetermined values as
+    null, with the conventions) and a flat record of its scalars (``"flat"``)."""
+    import dataclasses
+    import json
+
+    def clean(v):
+        if isinstance(v, np.ndarray):
+            return [clean(x) for x in v.tolist()]
+        if isinstance(v, (list, tuple)):
+            return [clean(x) for x in v]
+        if isinstance(v, (float, np.floating)):
+            v = float(v)
+            return v if math.isfinite(v) else None
+        if isinstance(v, np.integer | np.bool_):
+            return v.item()
+        return v
+
+    fields = {f.name: clean(getattr(result, f.name)) for f in dataclasses.fields(result)}
+    conventions = {
+        "ratios": "C_ij/C11, dimensionless; C11 in Pa",
+        "errors": "one standard error (covariance inflated by chi2/dof when > 1)",
+        "null": "not determined (see warnings): never reported as a value",
+        "values": "per grain: mean of the pixels and its standard error",
+    }
+    doc = {"conventions": conventions, **{k: clean(v) for k, v in context.items()}, **fields}
+    flat = {k: v for k, v in doc.items() if not isinstance(v, (dict, list))}
+    return {"json": json.dumps(doc, indent=1, allow_nan=False) + "\n", "flat": flat}

@@ -1,0 +1,110 @@
+"""Job ``maps_fit``: a measured contact-stiffness (or modulus) map and the orientations -> the
+single-crystal elastic constants, with uncertainties and the identifiability.
+
+Inputs: the path of the orientation map (a Zarr map store or an EBSD export). Settings: where
+the measured values are (a CSV grid, or a variable of the store), which quantity they are, the
+lattice, the tolerance that segments unlabelled grains and the tip and load (for a stiffness
+map). The fit is :func:`contactres.jobs.maps.fit_measured_map` (the inverse of
+:mod:`contactres.polycrystal.inverse`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+from ..errors import ContactresInputError
+from .contract import JobResult, Progress, say
+
+if TYPE_CHECKING:
+    import os
+
+    from .maps import TipLoad
+
+__all__ = ["Result", "Settings", "run"]
+
+
+@dataclass(frozen=True)
+class Settings:
+    """The fit.
+
+    Parameters
+    ----------
+    values_path : str or None
+        A CSV grid of the measured values, the map's shape (None: the variable ``variable``
+        of the map store).
+    variable : str
+        The store's variable of the measured values.
+    quantity : str
+        What the values are (:func:`contactres.jobs.maps.fit_measured_map`).
+    lattice : str
+        "cubic" or "hexagonal".
+    tolerance_deg : float
+        Grains of an unlabelled map: largest angle between neighbouring pixels' normals
+        within one grain, degrees.
+    tipload : TipLoad or None
+        Tip radius and force of a stiffness map (None: as the quantity allows).
+    tip_modulus : float or None
+        The tip's indentation modulus, Pa (None: rigid or fitted, as the fit decides).
+    """
+
+    values_path: str | None = None
+    variable: str = "k_star_N_per_m"
+    quantity: str = "stiffness"
+    lattice: str = "cubic"
+    tolerance_deg: float = 2.0
+    tipload: TipLoad | None = None
+    tip_modulus: float | None = None
+
+
+@dataclass(frozen=True)
+class Result(JobResult):
+    """``fit``: the fit result (constants, errors, identifiability, ``summary()``); ``pixels``:
+    the pixels used; ``record``: the fit as JSON text (``"json"``) and its scalars (``"flat"``),
+    :func:`contactres.jobs.maps.fit_record`."""
+
+    NOT_VALUES = ("fit", "record", "warnings")
+    NAME = "fit"
+
+    fit: object
+    pixels: int
+    record: dict
+
+
+def run(inputs: str | os.PathLike, settings: Settings, progress: Progress | None = None) -> Result:
+    """Fit the constants to the measured map over the orientations ``inputs``."""
+    from .maps import fit_measured_map, fit_record, open_map, read_value_grid
+
+    s = settings
+    say(progress, f"reading {inputs}")
+    omap, ds = open_map(inputs)
+    if s.values_path is not None:
+        values = read_value_grid(s.values_path)
+        if values.shape != omap.shape:
+            raise ContactresInputError(
+                f"--values {s.values_path}: {values.shape[0]} rows x {values.shape[1]} columns, "
+                f"but MAP has {omap.shape[0]} x {omap.shape[1]} pixels (same grid needed)"
+            )
+    elif ds is not None and s.variable in ds:
+        values = ds[s.variable].values
+    else:
+        raise ContactresInputError(
+            f"{inputs}: no variable {s.variable!r}; give the measured map with --values FILE"
+        )
+    fit, _, used = fit_measured_map(
+        omap,
+        values,
+        quantity=s.quantity,
+        lattice=s.lattice,
+        tipload=s.tipload,
+        tip_modulus=s.tip_modulus,
+        tolerance_deg=s.tolerance_deg,
+    )
+    record = fit_record(
+        fit,
+        source=str(inputs),
+        pixels=used,
+        segmented=omap.labels is None,
+        tolerance_deg=s.tolerance_deg,
+    )
+    return Result(fit=fit, pixels=used, record=record)

@@ -1,0 +1,111 @@
+"""Job ``maps_predict``: an orientation map -> the indentation modulus M, the contact stiffness
+k* (and, at a frequency, paper 1's DCSF) of every pixel.
+
+Inputs: the path of an orientation map (a Zarr map store, or an EBSD export .ang/.ctf; Bunge
+angles, sample z = inward surface normal). Settings: the crystal, the tip and load, how M is
+evaluated, the frequency and model of the DCSF, the chunks and the dask scheduler. The map is
+:func:`contactres.jobs.maps.predict_map`.
+
+Besides ``progress`` (one line per stage), :func:`run` takes ``chunk_progress(done, total)``,
+called after each chunk of pixels: the evaluation of a large map is long, and a bar needs
+numbers, not lines.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+from .contract import JobResult, Progress, say
+
+if TYPE_CHECKING:
+    import os
+
+    from ..materials import Material
+    from .maps import TipLoad
+
+__all__ = ["Result", "Settings", "run"]
+
+
+@dataclass(frozen=True)
+class Settings:
+    """The prediction.
+
+    Parameters
+    ----------
+    material : Material
+        The crystal, cube (or crystal) axes; with its density for a frequency.
+    lattice : str
+        "cubic" or "hexagonal".
+    tipload : TipLoad
+        Tip radius (m), force (N) and tip modulus (Pa; inf: rigid).
+    method : str
+        How M is evaluated (:data:`contactres.jobs.maps.METHODS`).
+    rtol : float
+        Target relative accuracy of M.
+    frequency : float or None
+        Frequency of the DCSF, Hz (None: static only).
+    model : str
+        Displacement model of the DCSF.
+    chunks : int
+        Pixels per side of a chunk.
+    scheduler : str or None
+        Address of a dask scheduler (None: in this process).
+    """
+
+    material: Material
+    lattice: str
+    tipload: TipLoad
+    method: str = "auto"
+    rtol: float = 1e-4
+    frequency: float | None = None
+    model: str = "exact"
+    chunks: int = 256
+    scheduler: str | None = None
+
+
+@dataclass(frozen=True)
+class Result(JobResult):
+    """``dataset``: the map's variables plus M_Pa, E_star_Pa, contact_radius_m, k_star_N_per_m
+    (and the DCSF at a frequency), an :mod:`xarray` Dataset; ``info``: how M was evaluated
+    (method, stated_error, exact_evaluations); ``material`` and ``lattice``: the crystal, for
+    the figure of the map."""
+
+    NOT_VALUES = ("dataset", "material", "warnings")
+
+    dataset: object
+    info: dict
+    material: Material
+    lattice: str
+
+
+def run(
+    inputs: str | os.PathLike,
+    settings: Settings,
+    progress: Progress | None = None,
+    chunk_progress: Callable[[int, int], None] | None = None,
+) -> Result:
+    """The predicted map of the orientations ``inputs`` (see the module docstring)."""
+    from ..errors import ContactresInputError
+    from .maps import open_map, predict_map
+
+    s = settings
+    if s.frequency is not None and s.material.density is None:
+        raise ContactresInputError("a frequency needs the density of the material (kg/m^3)")
+    say(progress, f"reading {inputs}")
+    omap, _ = open_map(inputs)
+    ds, info = predict_map(
+        omap,
+        s.material,
+        s.lattice,
+        s.tipload,
+        method=s.method,
+        rtol=s.rtol,
+        frequency=s.frequency,
+        model=s.model,
+        chunks=(s.chunks, s.chunks),
+        scheduler=s.scheduler,
+        progress=chunk_progress,
+    )
+    return Result(dataset=ds, info=dict(info), material=s.material, lattice=s.lattice)

@@ -1,0 +1,81 @@
+"""Job ``maps_synthetic``: a seeded synthetic polycrystal and its noisy 'measured' contact
+stiffness map (the test input of ``maps_fit``).
+
+Inputs: none (pass None). Settings: the crystal, the tip and load, the map's size, grains,
+seed, noise and pixel size. The map is :func:`contactres.jobs.maps.synthetic_map` (Voronoi
+grains, k* per grain from the exact indentation modulus M, paper 1, Eq. 4, and Hertz).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+from typing import TYPE_CHECKING
+
+from .contract import JobResult, Progress, say
+
+if TYPE_CHECKING:
+    from ..materials import Material
+    from .maps import TipLoad
+
+__all__ = ["Result", "Settings", "run"]
+
+
+@dataclass(frozen=True)
+class Settings:
+    """The synthetic map.
+
+    Parameters
+    ----------
+    material : Material
+        The crystal, cube (or crystal) axes.
+    lattice : str
+        "cubic" or "hexagonal".
+    tipload : TipLoad
+        Tip radius (m), force (N) and tip modulus (Pa; inf: rigid).
+    shape : (int, int)
+        Rows and columns of pixels.
+    n_grains, seed : int
+        Grains, and the seed of the grains and the noise.
+    noise : float
+        Relative standard deviation of the noise on k*, in [0, 0.5).
+    pixel_size : float
+        Pixel size, m.
+    """
+
+    material: Material
+    lattice: str
+    tipload: TipLoad
+    shape: tuple[int, int] = (64, 64)
+    n_grains: int = 20
+    seed: int = 0
+    noise: float = 0.02
+    pixel_size: float = 1e-6
+
+
+@dataclass(frozen=True)
+class Result(JobResult):
+    """``dataset``: the map (Bunge angles, grain labels, k_star_N_per_m; the truth as
+    attributes), an :mod:`xarray` Dataset written as a Zarr store."""
+
+    NOT_VALUES = ("dataset", "warnings")
+
+    dataset: object
+
+
+def run(inputs: None, settings: Settings, progress: Progress | None = None) -> Result:
+    """The synthetic map of ``settings`` (see the module docstring)."""
+    from .maps import synthetic_map
+
+    s = settings
+    say(progress, f"{s.shape[0]}x{s.shape[1]} pixels, {s.n_grains} grains")
+    ds = synthetic_map(
+        s.material,
+        s.lattice,
+        s.tipload,
+        shape=s.shape,
+        n_grains=s.n_grains,
+        seed=s.seed,
+        noise=s.noise,
+        pixel_size=s.pixel_size,
+    )
+    return Result(dataset=ds)

@@ -1,0 +1,84 @@
+"""The forward jobs (contact, dcsf, qcm_loop) through their Python API, and the one wave-number
+function they share, each against an independent computation."""
+
+import math
+
+import numpy as np
+import pytest
+
+from contactres import QCM, Material, dcsf, shifts_from_loop
+from contactres.dynamic import normalised_wavenumber, wave_modulus
+from contactres.errors import ContactresInputError
+from contactres.jobs import contact, qcm_loop
+from contactres.jobs import dcsf as dcsf_job
+from contactres.tangential import CattaneoMindlinLoop
+
+
+def test_normalised_wavenumber_is_omega_a_over_the_wave_speed():
+    # k a = ω a / v with v = √(C/ρ): the same number written through the wave speed.
+    rho, c, f, a = 8960.0, 75.4e9, 3e6, 2e-6
+    v = math.sqrt(c / rho)
+    assert normalised_wavenumber(f, a, rho, c) == pytest.approx(2 * math.pi * f * a / v, 1e-14)
+    out = normalised_wavenumber(np.array([1e6, 2e6]), a, rho, np.array([c, 4 * c]))
+    assert out[1] == pytest.approx(out[0], rel=1e-14)  # twice f, a stiffer wave by 4: same k a
+
+
+def test_wave_modulus_picks_c44_or_c33_of_the_face():
+    cu = Material.crystal("Cu").rotated((0, 0, 1))
+    assert wave_modulus(cu, "shear") == pytest.approx(75.4e9, rel=0.02)
+    assert wave_modulus(cu, "longitudinal") == pytest.approx(168.4e9, rel=0.02)
+    with pytest.raises(ContactresInputError, match="wavenumber"):
+        wave_modulus(cu, "bulk")
+
+
+def test_contact_job_on_an_isotropic_solid_is_hertz():
+    glass = Material.isotropic(70e9, 0.22, density=2500.0)
+    s = contact.Settings(radius=np.array([1e-3]), force=np.array([0.5, 1.0]))
+    result = contact.run(glass, s)
+    # Rigid sphere on an isotropic flat: a³ = 3FR/(4E*), E* = E/(1 − ν²) (Johnson, Ch. 4).
+    a = (3 * np.array([0.5, 1.0]) * 1e-3 / (4 * 70e9 / (1 - 0.22**2))) ** (1 / 3)
+    assert result.table["contact_radius_m"].to_numpy() == pytest.approx(a, rel=1e-9)
+    assert result.circular
+    assert list(result.tables()) == ["table"]
+    assert result.values() == {"circular": True, "noncircularity": pytest.approx(0, abs=1e-12)}
+
+
+def test_contact_job_dynamic_column_is_ksa_times_dcsf():
+    glass = Material.isotropic(70e9, 0.22, density=2500.0)
+    s = contact.Settings(radius=np.array([1e-3]), force=np.array([1.0]), frequency=np.array([2e6]))
+    row = contact.run(glass, s).table.iloc[0]
+    g = 70e9 / (2 * 1.22)
+    assert row["ks_a"] == pytest.approx(
+        2 * math.pi * 2e6 * row["contact_radius_m"] / math.sqrt(g / 2500), 1e-12
+    )
+    k = row["stiffness_N_per_m"] * dcsf(glass, row["ks_a"], wavenumber="shear")
+    assert row["dynamic_stiffness_real_N_per_m"] == pytest.approx(k.real, rel=1e-9)
+
+
+def test_contact_job_refuses_a_frequency_without_density():
+    m = Material.cubic(168.4e9, 121.4e9, 75.4e9)
+    s = contact.Settings(radius=np.array([1e-3]), force=np.array([1.0]), frequency=np.array([1e6]))
+    with pytest.raises(ContactresInputError, match="density"):
+        contact.run(m, s)
+
+
+def test_dcsf_job_at_small_ka_tends_to_one():
+    cu = Material.crystal("Cu").rotated((0, 0, 1))
+    result = dcsf_job.run(cu, dcsf_job.Settings(ka=np.array([1e-4]), models=("exact", "WA")))
+    assert list(result.table["model"]) == ["exact", "WA"]
+    assert result.table["re"].to_numpy() == pytest.approx(1.0, abs=1e-3)
+    rho = cu.density
+    assert result.face["v_s_m_per_s"] == pytest.approx(math.sqrt(result.face["C44_Pa"] / rho))
+    with pytest.raises(ContactresInputError, match="either"):
+        dcsf_job.run(cu, dcsf_job.Settings())
+
+
+def test_qcm_loop_job_matches_the_library_shifts():
+    s = qcm_loop.Settings(kappa=1e5, mu=0.5, normal_force=1e-3, u0=np.array([1e-9, 5e-9]))
+    result = qcm_loop.run(None, s)
+    q = QCM(fundamental=5e6, overtone=3, area=1e-5, zq=8.8e6)
+    df, dg = shifts_from_loop(q, CattaneoMindlinLoop(1e5, 0.5, 1e-3), np.array([1e-9, 5e-9]), 1)
+    assert result.table["df_Hz"].to_numpy() == pytest.approx(df, rel=1e-12)
+    assert result.table["dgamma_Hz"].to_numpy() == pytest.approx(dg, rel=1e-12, abs=1e-30)
+    with pytest.raises(ContactresInputError, match="--mu"):
+        qcm_loop.run(None, qcm_loop.Settings(kappa=1e5))

@@ -1,0 +1,74 @@
+"""The generic report writer: any job's Result as CSV tables, JSON values and its registered
+figures, in one result set; the QCM analysis still goes to its own writer."""
+
+import json
+from dataclasses import dataclass
+from types import MappingProxyType
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from contactres.errors import ContactresInputError
+from contactres.jobs import qcm_stiffness
+from contactres.jobs.contract import JobResult
+from contactres.report import write_report
+from contactres.report.writer import figure_registry, report_names
+
+EXPORT = "src/contactres/data/example_qcmd.csv"
+
+
+@dataclass(frozen=True)
+class Toy(JobResult):
+    SCHEMAS = MappingProxyType({"points": None})
+    NAME = "toy"
+
+    points: pd.DataFrame
+    slope: float
+    label: str
+    warnings: tuple[str, ...] = ()
+
+
+def test_a_result_is_written_as_its_tables_and_values(tmp_path):
+    toy = Toy(pd.DataFrame({"x_m": [0.5, 1.0]}), np.float64(2.5), "a", warnings=("w",))
+    written = write_report(toy, tmp_path / "out")
+    assert sorted(p.name for p in written) == ["points.csv", "toy.json"]
+    assert pd.read_csv(tmp_path / "out" / "points.csv")["x_m"].tolist() == [0.5, 1.0]
+    # The values as plain JSON; the warnings are for the user, not values of the result.
+    assert json.loads((tmp_path / "out" / "toy.json").read_text()) == {"slope": 2.5, "label": "a"}
+    assert report_names(Toy) == ("points.csv", "toy.json")
+    assert report_names(Toy, "csv") == ("points.csv",)
+
+
+def test_a_non_finite_value_is_written_as_null():
+    toy = Toy(pd.DataFrame({"x_m": [0.5]}), float("nan"), "b")
+    assert toy.values() == {"slope": None, "label": "b"}
+
+
+def test_only_results_are_written(tmp_path):
+    with pytest.raises(ContactresInputError, match="write_report"):
+        write_report({"a": 1}, tmp_path / "x")
+    with pytest.raises(ContactresInputError, match="format"):
+        write_report(Toy(pd.DataFrame(), 1.0, "c"), tmp_path / "y", formats=("xml",))
+
+
+def test_the_stiffness_job_report_has_its_figure(tmp_path):
+    settings = qcm_stiffness.Settings(
+        area=2e-5, n_contacts=3, conventions={"dissipation_scale": 1e-6, "fundamental": 4.95e6}
+    )
+    result = qcm_stiffness.run(EXPORT, settings)
+    assert figure_registry()[qcm_stiffness.Result][0][0] == "stiffness.png"
+    written = write_report(result, tmp_path / "s")
+    assert [p.name for p in written] == ["stiffness.csv", "stiffness.json", "stiffness.png"]
+    sidecar = json.loads((tmp_path / "s" / "stiffness.json").read_text(encoding="utf-8"))
+    assert list(sidecar) == ["conventions", "constants", "equation", "columns"]
+    table = pd.read_csv(tmp_path / "s" / "stiffness.csv")
+    # κ = Δf/P, P = n_P/(2nπ² A_eff Z_q) (paper 2, Eq. 2), written out here independently.
+    n = table["overtone"].to_numpy()
+    P = 3 / (2 * n * np.pi**2 * 2e-5 * 8.8e6)
+    assert table["kappa_N_per_m"].to_numpy() == pytest.approx(table["df_Hz"] / P, rel=1e-9)
+
+
+def test_the_figure_registry_is_immutable():
+    with pytest.raises(TypeError):
+        figure_registry()[Toy] = ()
