@@ -44,14 +44,14 @@ def crystals(fmt: str) -> None:
     table = crystal_table()
     solids = [Material.crystal(name) for name in table["name"]]
     cubic_like = table["symmetry"].isin(["cubic", "isotropic"]).to_numpy()
-    at = table.columns.get_loc("source")
+    at = list(table.columns).index("source")
     table.insert(at, "M001_GPa", [indentation_modulus(m.rotated((0, 0, 1))) / 1e9 for m in solids])
     for label, normal in _CUBIC_FACES:
         values = [
             indentation_modulus(m.rotated(normal)) / 1e9 if ok else np.nan
             for m, ok in zip(solids, cubic_like, strict=True)
         ]
-        table.insert(table.columns.get_loc("source"), label, values)
+        table.insert(list(table.columns).index("source"), label, values)
     if fmt != "plain":
         emit(table, fmt)
         return

@@ -403,12 +403,13 @@ def dynamic_contact_stiffness(
     """
     from ..normal.anisotropic import sphere_contact
 
-    if require_material(m).density is None:
+    density = require_material(m).density
+    if density is None:
         raise ContactresInputError("dynamic_contact_stiffness needs the material density (kg/m^3)")
     f = np.asarray(nonnegative("frequency", frequency, "Hz"))
     contact = sphere_contact(m, radius, force)
     a = np.asarray(contact.contact_radius, dtype=float)
-    k_s = 2 * np.pi * f * math.sqrt(m.density / shear_reference(m))
+    k_s = 2 * np.pi * f * math.sqrt(density / shear_reference(m))
     ksa = k_s * a
     ksa, k_sa = np.broadcast_arrays(ksa, np.asarray(contact.stiffness, dtype=float))
     out = k_sa * dcsf(

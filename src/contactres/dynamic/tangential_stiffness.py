@@ -186,11 +186,14 @@ def tangential_contact_stiffness(
     a = np.asarray(positive("radius", radius, "m"), dtype=float)
     f = np.asarray(nonnegative("frequency", frequency, "Hz"), dtype=float)
     a, f = np.broadcast_arrays(a, f)
-    if np.any(f > 0) and m.density is None:
-        raise ContactresInputError(
-            "a dynamic tangential stiffness needs the material density (kg/m^3)"
-        )
-    ks = 2 * np.pi * f * math.sqrt(m.density / shear_reference(m)) if np.any(f > 0) else 0 * f
+    if np.any(f > 0):
+        if m.density is None:
+            raise ContactresInputError(
+                "a dynamic tangential stiffness needs the material density (kg/m^3)"
+            )
+        ks = 2 * np.pi * f * math.sqrt(m.density / shear_reference(m))
+    else:
+        ks = 0 * f
     K = a[..., None, None] * _per_a(m, ks * a, loss, rtol, prepared)
     if tensor:
         return K

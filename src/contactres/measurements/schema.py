@@ -61,7 +61,7 @@ class Column:
     required: bool = False
     level: str = "point"
     rule: str = ""
-    default: object = None
+    default: str | float | None = None
 
     def __post_init__(self):
         if self.level not in LEVELS:

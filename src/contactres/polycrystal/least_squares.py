@@ -69,6 +69,8 @@ def levenberg_marquardt(
     lam = 1e-6
     h = 0.1
     for _ in range(max_iter):
+        # theta is admissible here (the start, checked, or an accepted step): both are given
+        assert r is not None and J is not None
         U, s, Vt = np.linalg.svd(J, full_matrices=False)
         keep = s > s[0] * 1e-13
         s_k, U_k, V_k = s[keep], U[:, keep], Vt[keep].T
