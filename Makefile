@@ -34,9 +34,11 @@ docs: $(STAMP)
 	$(BIN)/python -m sphinx -b html -W --keep-going -q -d docs/_build/doctrees docs docs/_build/html
 	@echo "docs: docs/_build/html/index.html"
 
+# ruff, then mypy on src/contactres (its settings: [tool.mypy] in pyproject.toml).
 lint: $(STAMP)
 	$(BIN)/ruff check src tests benchmarks scripts $(DOCS_PY)
 	$(BIN)/ruff format --check src tests benchmarks scripts $(DOCS_PY)
+	$(BIN)/mypy
 
 clean:
-	rm -rf $(VENV) contactres-demo .pytest_cache .ruff_cache docs/_build docs/_generated docs/generated
+	rm -rf $(VENV) contactres-demo .pytest_cache .ruff_cache .mypy_cache docs/_build docs/_generated docs/generated

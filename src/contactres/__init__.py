@@ -129,6 +129,143 @@ _SUBMODULES: frozenset[str] = frozenset(
 
 __all__ = sorted([*_EXPORTS, "__version__"])
 
+# What type checkers see: the real objects behind every public name and subpackage, so that a
+# user's mypy or pyright checks calls against their signatures instead of the ``Any`` that
+# ``__getattr__`` returns. Never run (TYPE_CHECKING is False at run time): the imports stay lazy.
+# tests/test_public_api.py keeps these imports and ``_EXPORTS``/``_SUBMODULES`` the same.
+# ``X as X`` marks an explicit re-export (mypy --strict, pyright); isort would split every such
+# name onto a line of its own, hence one block per module, sorted by hand.
+if TYPE_CHECKING:
+    # isort: off
+    from . import (
+        analysis as analysis,
+        apps as apps,
+        crystals as crystals,
+        dynamic as dynamic,
+        fileio as fileio,
+        fitting as fitting,
+        halfspace as halfspace,
+        materials as materials,
+        measurements as measurements,
+        normal as normal,
+        numerics as numerics,
+        polycrystal as polycrystal,
+        report as report,
+        resonators as resonators,
+        tangential as tangential,
+        units as units,
+        validation as validation,
+    )
+    from .analysis import (
+        AnalysisSettings as AnalysisSettings,
+        Flag as Flag,
+        Results as Results,
+        analyze as analyze,
+    )
+    from .analysis.inversion import (
+        ModulusResult as ModulusResult,
+        modulus_from_contact_stiffness as modulus_from_contact_stiffness,
+    )
+    from .analysis.resonance_tables import (
+        invert_afm_table as invert_afm_table,
+        invert_rum_table as invert_rum_table,
+    )
+    from .crystals import (
+        crystal_names as crystal_names,
+        crystal_table as crystal_table,
+    )
+    from .dynamic import (
+        contact_displacement as contact_displacement,
+        contact_pressure as contact_pressure,
+        dcsf as dcsf,
+        dcsf_models as dcsf_models,
+        dynamic_contact_stiffness as dynamic_contact_stiffness,
+        tangential_contact_stiffness as tangential_contact_stiffness,
+        tangential_dcsf as tangential_dcsf,
+        tangential_stiffness_static as tangential_stiffness_static,
+        two_body_contact_stiffness as two_body_contact_stiffness,
+    )
+    from .halfspace import (
+        dynamic_kernel as dynamic_kernel,
+        isotropic_dynamic_kernel as isotropic_dynamic_kernel,
+        shear_reference as shear_reference,
+        static_kernel as static_kernel,
+    )
+    from .materials import (
+        Material as Material,
+        at_cut_quartz as at_cut_quartz,
+    )
+    from .measurements.afm_example import (
+        example_afm_map as example_afm_map,
+    )
+    from .measurements.resonances import (
+        read_resonance_table as read_resonance_table,
+    )
+    from .measurements.sweeps import (
+        SweepTable as SweepTable,
+        SweepWarning as SweepWarning,
+        read_sweeps as read_sweeps,
+        validate_sweeps as validate_sweeps,
+    )
+    from .normal.anisotropic import (
+        AnisotropicContact as AnisotropicContact,
+        contact_integrals as contact_integrals,
+        indentation_modulus as indentation_modulus,
+        sphere_contact as sphere_contact,
+    )
+    from .normal.isotropic import (
+        Contact as Contact,
+        dmt as dmt,
+        effective_modulus as effective_modulus,
+        effective_shear_modulus as effective_shear_modulus,
+        hertz as hertz,
+        jkr as jkr,
+        jkr_contact_radius as jkr_contact_radius,
+        jkr_from_depth as jkr_from_depth,
+        jkr_pull_off_force as jkr_pull_off_force,
+        shear_modulus as shear_modulus,
+        tabor_parameter as tabor_parameter,
+        which_adhesion_model as which_adhesion_model,
+    )
+    from .report import (
+        write_report as write_report,
+    )
+    from .resonators.cantilever import (
+        Cantilever as Cantilever,
+        contact_frequencies as contact_frequencies,
+    )
+    from .resonators.cantilever_inversion import (
+        ContactResonanceResult as ContactResonanceResult,
+        invert_contact_resonance as invert_contact_resonance,
+    )
+    from .resonators.qcm import (
+        QCM as QCM,
+        cattaneo_mindlin_expansion as cattaneo_mindlin_expansion,
+        friction_from_slopes as friction_from_slopes,
+        loop_stiffness as loop_stiffness,
+        savkoor_expansion as savkoor_expansion,
+        shifts_from_loop as shifts_from_loop,
+        shifts_from_stiffness as shifts_from_stiffness,
+        stiffness_from_shifts as stiffness_from_shifts,
+    )
+    from .resonators.rum import (
+        RUMOscillator as RUMOscillator,
+    )
+    from .tangential import (
+        CattaneoMindlinLoop as CattaneoMindlinLoop,
+        DashpotLoop as DashpotLoop,
+        MasingLoop as MasingLoop,
+        PlateauLoop as PlateauLoop,
+        SavkoorLoop as SavkoorLoop,
+        VoigtLoop as VoigtLoop,
+        mindlin_deresiewicz_energy as mindlin_deresiewicz_energy,
+        mindlin_stiffness as mindlin_stiffness,
+        with_dashpot as with_dashpot,
+    )
+    from ._version import __version__ as __version__
+
+    # isort: on
+
 
 def __getattr__(name: str) -> Any:
     """Import the module behind a public name (or a subpackage) on first access."""

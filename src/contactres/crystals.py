@@ -104,16 +104,37 @@ def _other_record(row: dict[str, str]) -> CrystalRecord:
             f"materials.csv row {name!r} ({symmetry}) must fill exactly {', '.join(needed)}; "
             f"it fills {', '.join(sorted(filled)) or 'none'}"
         )
-    common = {"name": name, "density": float(row["density_kg_m3"]), "source": row["source"]}
+    density, source = float(row["density_kg_m3"]), row["source"]
     if symmetry == "isotropic":
         E, nu = float(row["E_GPa"]) * _GPa, float(row["nu"])
         lam = E * nu / ((1 + nu) * (1 - 2 * nu))
         mu = E / (2 * (1 + nu))
         return CrystalRecord(
-            c11=lam + 2 * mu, c12=lam, c44=mu, symmetry=symmetry, E=E, nu=nu, **common
+            name=name,
+            c11=lam + 2 * mu,
+            c12=lam,
+            c44=mu,
+            density=density,
+            source=source,
+            symmetry=symmetry,
+            E=E,
+            nu=nu,
         )
-    c = {k: float(row[f"{k}_GPa"]) * _GPa for k in ("c11", "c12", "c13", "c14", "c33", "c44")}
-    return CrystalRecord(symmetry=symmetry, **c, **common)
+    c11, c12, c13, c14, c33, c44 = (
+        float(row[f"{k}_GPa"]) * _GPa for k in ("c11", "c12", "c13", "c14", "c33", "c44")
+    )
+    return CrystalRecord(
+        name=name,
+        c11=c11,
+        c12=c12,
+        c44=c44,
+        density=density,
+        source=source,
+        symmetry=symmetry,
+        c13=c13,
+        c14=c14,
+        c33=c33,
+    )
 
 
 def _records() -> list[CrystalRecord]:

@@ -325,7 +325,14 @@ class ResultSet:
     the staging folder live inside the folder (hidden) and the files are moved in one by one.
     """
 
-    def __init__(self, folder, *, names=(), inputs=(), owned=()):
+    def __init__(
+        self,
+        folder: str | os.PathLike[str],
+        *,
+        names: Iterable[str] = (),
+        inputs: Iterable[str | os.PathLike[str]] = (),
+        owned: Iterable[str] = (),
+    ) -> None:
         self.given = Path(folder)
         self.names = tuple(names)
         self.inputs = tuple(inputs)
@@ -356,6 +363,13 @@ class ResultSet:
             raise
         return self
 
+    @property
+    def _work(self) -> Path:
+        """The folder of the lock and the staging folders (chosen on entering the with-block)."""
+        if self._workspace is None:
+            raise RuntimeError("a ResultSet writes only inside its with-block")
+        return self._workspace
+
     def _prefix(self) -> str:
         """Name prefix of the lock and the staging folders (hidden)."""
         if self._workspace == self.folder:
@@ -363,7 +377,7 @@ class ResultSet:
         return f".{self.folder.name}.contactres"
 
     def _take_lock(self) -> None:
-        lock = self._workspace / f"{self._prefix()}.lock"
+        lock = self._work / f"{self._prefix()}.lock"
         for _ in range(2):
             try:
                 fd = os.open(lock, os.O_CREAT | os.O_EXCL | os.O_WRONLY, 0o644)
@@ -386,7 +400,7 @@ class ResultSet:
 
     def _new_dir(self, kind: str) -> Path:
         for _ in range(100):
-            p = self._workspace / f"{self._prefix()}-{secrets.token_hex(6)}.{kind}"
+            p = self._work / f"{self._prefix()}-{secrets.token_hex(6)}.{kind}"
             try:
                 p.mkdir()  # umask default, as a plain mkdir of the target would give
             except FileExistsError:
@@ -403,7 +417,7 @@ class ResultSet:
 
     def _clean_leftovers(self) -> None:
         """Remove what killed runs into this folder left (we hold the lock: none is live)."""
-        left = [p for p in self._workspace.iterdir() if self._ours(p) and p.is_dir()]
+        left = [p for p in self._work.iterdir() if self._ours(p) and p.is_dir()]
         old = [p for p in left if p.suffix == ".old"]
         if not self.folder.exists() and len(old) == 1:
             os.rename(old[0], self.folder)  # a kill fell between the two renames of a swap
@@ -455,6 +469,7 @@ class ResultSet:
 
     def _commit(self) -> None:
         staging = self._staging
+        assert staging is not None, "made on entering, kept until the commit"
         staged = sorted(p.name for p in staging.iterdir() if not p.name.startswith("."))
         record = {"files": {name: _digest(staging / name) for name in staged}}
         write_text(staging / MANIFEST, json.dumps(record, indent=1) + "\n")
@@ -469,7 +484,7 @@ class ResultSet:
                     return
             else:
                 os.chmod(staging, self.folder.stat().st_mode & 0o7777)
-                old = self._workspace / f"{self._prefix()}-{secrets.token_hex(6)}.old"
+                old = self._work / f"{self._prefix()}-{secrets.token_hex(6)}.old"
                 # self._staging now holds the earlier set: removed on release
                 self._staging = replace_folder(staging, self.folder, old)
                 return

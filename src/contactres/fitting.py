@@ -25,8 +25,9 @@ of variable projection) and the ratio fit of polycrystal maps
 
 from __future__ import annotations
 
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Iterable, Iterator, Mapping
 from dataclasses import dataclass, field
+from typing import Any
 
 import numpy as np
 from scipy.optimize import least_squares
@@ -82,7 +83,7 @@ class Model:
     observable: str
     unit: str
     source: str
-    function: Callable | None = None
+    function: Callable[..., Any]
 
 
 class ModelRegistry(Mapping[str, Model]):
@@ -92,7 +93,7 @@ class ModelRegistry(Mapping[str, Model]):
     registers is exactly what its module defines.
     """
 
-    def __init__(self, models):
+    def __init__(self, models: Iterable[Model]) -> None:
         self._models: dict[str, Model] = {}
         for m in models:
             if m.key in self._models:
@@ -105,7 +106,7 @@ class ModelRegistry(Mapping[str, Model]):
         except KeyError:
             raise KeyError(f"no model {key!r}; registered: {', '.join(self._models)}") from None
 
-    def __iter__(self):
+    def __iter__(self) -> Iterator[str]:
         return iter(self._models)
 
     def __len__(self) -> int:
@@ -189,7 +190,8 @@ def fit(
     n, p = y.size, len(free)
     cov = np.full((p, p), np.nan)
     if n > p:
-        jtj = sol.jac.T @ sol.jac
+        jac = np.asarray(sol.jac)  # dense: neither jac_sparsity nor tr_solver="lsmr" is used
+        jtj = jac.T @ jac
         if np.linalg.matrix_rank(jtj) == p:
             cov = np.linalg.inv(jtj) * (rss / (n - p)) * np.outer(scale, scale)
     values = params(sol.x)

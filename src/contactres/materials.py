@@ -353,8 +353,10 @@ class Material:
         """
         r = crystal_record(name)
         if r.symmetry == "isotropic":
+            assert r.E is not None and r.nu is not None  # the table fills both (crystals.py)
             return cls.isotropic(r.E, r.nu, density=r.density, name=r.name)
         if r.symmetry == "trigonal":
+            assert r.c13 is not None and r.c14 is not None and r.c33 is not None  # as above
             return cls.trigonal(
                 r.c11, r.c12, r.c13, r.c14, r.c33, r.c44, density=r.density, name=r.name
             )

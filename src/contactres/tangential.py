@@ -24,6 +24,7 @@ J. Nanotechnol. 6, 845-856 (2015), doi:10.3762/bjnano.6.87.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Protocol
 
 import numpy as np
 from scipy.special import binom
@@ -448,6 +449,22 @@ class VoigtLoop:
         return np.empty((*np.shape(u0), 0))
 
 
+class HysteresisLoop(Protocol):
+    """What :class:`DashpotLoop` reads of the loop inside it (any loop of this module will do):
+    initial slope ``kappa`` (N/m), the virgin curve, the two branches, the area and the kinks."""
+
+    @property
+    def kappa(self) -> float: ...
+
+    def virgin(self, d): ...
+
+    def branches(self, u, u0): ...
+
+    def area(self, u0): ...
+
+    def kinks(self, u0): ...
+
+
 @dataclass(frozen=True)
 class DashpotLoop:
     """Any loop with a linear dashpot ξ in parallel (paper 2, Eq. 12: the ad-hoc viscous term).
@@ -455,7 +472,7 @@ class DashpotLoop:
     Adds ±ωξ√(u0² - u²) to the branches and πωξu0² to the area, hence exactly ωξ to K″.
     """
 
-    loop: object
+    loop: HysteresisLoop
     xi: float
     omega: float
 

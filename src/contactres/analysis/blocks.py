@@ -207,6 +207,7 @@ def choose_blocks(
         contend = crit[i] <= others + PLATEAU_CONTENDER
         sweeps = np.flatnonzero(member & contend[np.maximum(code, 0)])
         if sweeps.size:
+            assert tables is not None  # the caller builds them for the exact loops
             sw = add_plateau_fits(p, sw, sweeps, delta_bic, tables, workers)
             crit = excluded(_criteria(bf, sw, code, n, R, exact_loop))
     # Candidate a is nested in b if its class is (NESTED) and it is shared or b is per ramp.

@@ -130,6 +130,7 @@ def _fit_block(
     _closed_form("hinge", hinge.line, out)
     out["hinge_u_c_m"], out["hinge_found"] = hinge.u_c, hinge.found
     if exact_loop:
+        assert tables is not None  # classify_sweeps builds them for the exact loops
         sigma = np.sqrt(line.rss / np.maximum(n - 2, 1))
         for prefix, table in (("cm", tables.cm), ("sv", tables.savkoor)):
             loop = fit_cm_loops(b.u, b.df, b.dg, b.w, sigma[0], sigma[1], table)

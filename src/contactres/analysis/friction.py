@@ -137,7 +137,9 @@ def loop_friction(sw: pd.DataFrame, P: np.ndarray) -> LoopFriction:
     """
     S = len(sw)
     out = LoopFriction(
-        *(np.full(S, np.nan) for _ in range(3)),
+        np.full(S, np.nan),
+        np.full(S, np.nan),
+        np.full(S, np.nan),
         np.zeros(S, bool),
         np.full(S, np.nan),
         np.full(S, np.nan),

@@ -287,6 +287,7 @@ def fit_group(
     elif n_exp >= 2:
         dof = n_exp - 1
     else:  # repeated sweeps of one experiment: sweeps minus the per-load means
+        assert sweeps is not None  # only the bootstrap over them leaves this case
         dof = len(sweeps) - sweeps["normal_force_N"].nunique()
     out.update(error_dof(dof))
     return out

@@ -49,7 +49,7 @@ from ..resonators.qcm import (
     shifts_from_loop,
     shifts_from_stiffness,
 )
-from ..tangential import CattaneoMindlinLoop, SavkoorLoop
+from ..tangential import CattaneoMindlinLoop, MasingLoop, SavkoorLoop
 
 __all__ = [
     "N_TABLE",
@@ -204,9 +204,10 @@ def fit_cm_loops(
     table = table if table is not None else cm_loop_table()
     # 49 (then 17) trial θ per sweep: chunks of sweeps keep those arrays at a few MB.
     step = max(1, CHUNK_CELLS // (49 * max(u.shape[1], 1)))
+    chunks = (slice(i, i + step) for i in range(0, max(u.shape[0], 1), step))
     parts = [
-        _fit_cm_chunk(*(a[i : i + step] for a in (u, df, dg, w, sigma_df, sigma_dg)), table, rounds)
-        for i in range(0, max(u.shape[0], 1), step)
+        _fit_cm_chunk(u[s], df[s], dg[s], w[s], sigma_df[s], sigma_dg[s], table, rounds)
+        for s in chunks
     ]
     return pd.DataFrame({c: np.concatenate([q[c] for q in parts]) for c in parts[0]})
 
@@ -296,7 +297,7 @@ def loop_fit_fields(A, B, theta, cov, umax) -> dict:
 # Plateau loop (the quadrature reference; the fit is in contactres.analysis.plateau)
 
 
-class _UnitPlateauLoops:
+class _UnitPlateauLoops(MasingLoop):
     """:class:`contactres.PlateauLoop` around ``CattaneoMindlinLoop(1, 1, 1)`` for an array of
     critical displacements ``c`` (one per amplitude), in the form that the Masing quadrature of
     :mod:`contactres.resonators.qcm` integrates (breaks and singular points per amplitude, last

@@ -164,9 +164,10 @@ def _sensitivity(info: pd.DataFrame, zq: float) -> np.ndarray:
     """P = n_P/(2nπ²A_eff Z_q) of every sweep, Hz per N/m (paper 2, Eq. 1)."""
     keys = ["fundamental_Hz", "overtone", "area_m2", "n_contacts"]
     P = np.empty(len(info))
+    # pandas-stubs type these keys Hashable: grouped by a list of columns, each is a tuple
     for key, idx in info.groupby(keys, sort=False).indices.items():
-        q = QCM(fundamental=key[0], overtone=int(key[1]), area=key[2], zq=zq)
-        P[idx] = q.sensitivity(int(key[3]))
+        q = QCM(fundamental=key[0], overtone=int(key[1]), area=key[2], zq=zq)  # type: ignore[index]
+        P[idx] = q.sensitivity(int(key[3]))  # type: ignore[index]
     return P
 
 
@@ -389,7 +390,7 @@ def analyze(
         _savkoor_traction(sw, member, g)
 
     radiation = None
-    if settings.sphere_material is not None:
+    if settings.sphere_material is not None and settings.plate_material is not None:
         say("radiation loss of the contacts")
         radiation = radiation_loss(
             loads,

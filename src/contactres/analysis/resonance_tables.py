@@ -59,7 +59,7 @@ def _flag_text(codes: np.ndarray, names) -> np.ndarray:
 
 
 def _modulus_names(code: int) -> list[str]:
-    return [f.name.lower() for f in ModulusFlag if int(code) & f]
+    return [f.name.lower() for f in ModulusFlag if f.name and int(code) & f]
 
 
 def _lumped_rows(table: pd.DataFrame, source: str) -> np.ndarray:
@@ -296,8 +296,10 @@ def invert_afm_table(
     groups = table[list(AFM_GROUP_COLUMNS)].assign(r_given=~np.isnan(r_in))
     for rows in groups.groupby(keys, sort=False, dropna=False).indices.values():
         first = groups.iloc[rows[0]]
+        free = _leading(first[["f1_free_Hz", "f2_free_Hz", "f3_free_Hz"]].to_numpy(float))
+        assert free is not None  # f1_free_Hz is a required column: never empty
         lever = Cantilever(
-            _leading(first[["f1_free_Hz", "f2_free_Hz", "f3_free_Hz"]].to_numpy(float)),
+            free,
             1.0,  # κ = k*/k_c is what the frequencies give; k* = κ k_c below, where k_c is known
             normalisation=normalisation,
             free_q_factors=_leading(first[["Q1_free", "Q2_free", "Q3_free"]].to_numpy(float)),
@@ -309,7 +311,7 @@ def invert_afm_table(
         )
         r = r_in[rows] if first["r_given"] else None
         qs = q[rows] if np.isfinite(q[rows]).any() else None
-        out = invert_contact_resonance(
+        inv = invert_contact_resonance(
             lever,
             fc[rows],
             tip_position=r,
@@ -317,20 +319,20 @@ def invert_afm_table(
             mode_tolerance=mode_tolerance,
             **geometry,
         )
-        res["kappa"][rows] = out.kappa
-        res["tip_position_used"][rows] = out.tip_position
-        res["sigma_N_s_per_m"][rows] = out.sigma * np.where(have_kc[rows], k_c[rows], np.nan)
-        res["mode_spread"][rows] = out.mode_spread
-        k_modes[rows] = np.where(out.averaged_modes, out.kappa_modes, np.nan)
-        flags[rows] = out.flags
-        solved = np.isfinite(out.tip_position)  # two modes without a crossing: no reference
+        res["kappa"][rows] = inv.kappa
+        res["tip_position_used"][rows] = inv.tip_position
+        res["sigma_N_s_per_m"][rows] = inv.sigma * np.where(have_kc[rows], k_c[rows], np.nan)
+        res["mode_spread"][rows] = inv.mode_spread
+        k_modes[rows] = np.where(inv.averaged_modes, inv.kappa_modes, np.nan)
+        flags[rows] = inv.flags
+        solved = np.isfinite(inv.tip_position)  # two modes without a crossing: no reference
         for j in (0, 1):
             take = solved & ~np.isnan(f_ref[rows, j])
             if take.any():
                 freqs = np.full((int(take.sum()), 3), np.nan)
                 freqs[:, 0] = f_ref[rows[take], j]
                 back = invert_contact_resonance(
-                    lever, freqs, tip_position=out.tip_position[take], **geometry
+                    lever, freqs, tip_position=inv.tip_position[take], **geometry
                 )
                 refs[rows[take], j] = back.kappa
     k_star = res["kappa"] * k_c

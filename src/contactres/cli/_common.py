@@ -145,6 +145,7 @@ class RangeType(click.ParamType):
 
         from ..units import QUANTITIES, format_number
 
+        assert self.quantity is not None  # convert checks only a quantity it was given
         bad = ~np.asarray(QUANTITIES[self.quantity].accepts(values, **self.rule))
         if not bad.any():
             return

@@ -14,7 +14,7 @@ if TYPE_CHECKING:  # annotations only: the library is imported when a command ru
     from ..materials import Material
 
 
-def parse_direction(text: str, name: str = "surface") -> tuple[float, float, float]:
+def parse_direction(text: str, name: str = "surface") -> tuple[float, ...]:
     """Parse Miller-like indices: ``001``, ``1-10``, ``-1 1 0`` or ``1,1,1``."""
     import numpy as np
 

@@ -18,6 +18,12 @@ from __future__ import annotations
 import importlib
 from types import MappingProxyType
 
+# Only type checkers need `Any`: a module-level TYPE_CHECKING = False is read as True by mypy and
+# pyright, and keeps `typing` out of the command line's start-up.
+TYPE_CHECKING = False
+if TYPE_CHECKING:
+    from typing import Any
+
 # Public name -> the module that defines it.
 _EXPORTS = MappingProxyType(
     {
@@ -47,8 +53,47 @@ _EXPORTS = MappingProxyType(
 
 __all__ = sorted(_EXPORTS)
 
+# What type checkers see: the real objects behind the public names (never run, so the imports
+# stay lazy; tests/test_public_api.py keeps these imports and ``_EXPORTS`` the same). ``X as X``
+# marks an explicit re-export; isort would split each onto its own import, hence off here.
+if TYPE_CHECKING:
+    # isort: off
+    from .models import (
+        ALL_MODELS as ALL_MODELS,
+        MODELS as MODELS,
+        WAVENUMBERS as WAVENUMBERS,
+    )
+    from .normal_stiffness import (
+        contact_displacement as contact_displacement,
+        contact_pressure as contact_pressure,
+        dcsf as dcsf,
+        dcsf_models as dcsf_models,
+        dynamic_contact_stiffness as dynamic_contact_stiffness,
+        shear_wavenumber_ratio as shear_wavenumber_ratio,
+    )
+    from .table import (
+        KernelTable as KernelTable,
+        MAX_ISOTROPIC_POISSON as MAX_ISOTROPIC_POISSON,
+        MAX_STIFFNESS_CONTRAST as MAX_STIFFNESS_CONTRAST,
+        prepare as prepare,
+    )
+    from .tangential_static import (
+        tangential_stiffness_static as tangential_stiffness_static,
+    )
+    from .tangential_stiffness import (
+        tangential_contact_stiffness as tangential_contact_stiffness,
+        tangential_dcsf as tangential_dcsf,
+        two_body_contact_stiffness as two_body_contact_stiffness,
+    )
+    from .tangential_table import (
+        TangentialTable as TangentialTable,
+        prepare_tangential as prepare_tangential,
+    )
 
-def __getattr__(name: str):
+    # isort: on
+
+
+def __getattr__(name: str) -> Any:
     """Import the module behind a public name on first access (nothing is kept in globals)."""
     if name in _EXPORTS:
         return getattr(importlib.import_module(_EXPORTS[name], __name__), name)

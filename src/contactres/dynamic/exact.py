@@ -203,12 +203,13 @@ def exact_n(
     pos = ksa > 0
     ka = ksa[pos]
     na = ka.size
-    if na and far is None:
-        far = far_basis(table, ka)
-    elif na and not np.array_equal(far.ka, ka):
-        raise ContactresInputError("the far-field basis was built for other k a values")
+    if na:
+        if far is None:
+            far = far_basis(table, ka)
+        elif not np.array_equal(far.ka, ka):
+            raise ContactresInputError("the far-field basis was built for other k a values")
     if plan is None:
-        plan = galerkin_plan(table, size, far.s if na else None)
+        plan = galerkin_plan(table, size, far.s if na and far is not None else None)
     nb = len(plan.basis)
     orders, (ti, tj) = plan.orders, plan.pairs
     out_n = np.empty(ksa.shape, dtype=complex)
@@ -216,6 +217,8 @@ def exact_n(
     e0 = np.zeros(nb)
     e0[0] = 1.0
     if na:
+        # far: built above for these k a; its grid is the plan's (the caller's contract)
+        assert far is not None and plan.far_products is not None
         # I[a, m, t]: ∫ ds Ĝ_m(s/ka) j_p j_q for the harmonics m and pairs t = (p, q).
         # Static part: Ĝ_m^∞ δ_pq π/(2(2p + 1)).
         diag = np.where(ti == tj, np.pi / (2 * (2 * orders[ti] + 1)), 0.0)

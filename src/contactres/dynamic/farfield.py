@@ -23,6 +23,10 @@ from ..numerics import gauss_legendre
 from .table import KernelTable, Resolution, handover
 from .weights import bessel_even, j1_over_s, sinc, wa_harmonic_weights
 
+TYPE_CHECKING = False
+if TYPE_CHECKING:
+    from .tangential_table import TangentialTable
+
 __all__ = [
     "FarBasis",
     "FarGrid",
@@ -72,13 +76,13 @@ def _far_grid(res: Resolution, s_low: float):
     mid = max(top, min(res.s_coarse, res.s_far))
     n_uni = max(1, math.ceil((mid - top) / res.s_panel))
     edges.extend(top + res.s_panel * np.arange(1, n_uni + 1))
-    edges = np.asarray(edges)
-    s, ws = gauss_legendre(edges[:-1, None], edges[1:, None], res.n_gauss)
+    bounds = np.asarray(edges)
+    s, ws = gauss_legendre(bounds[:-1, None], bounds[1:, None], res.n_gauss)
     s, ws = s.ravel(), ws.ravel()
-    n_wide = math.ceil((res.s_far - edges[-1]) / res.s_panel_coarse)
+    n_wide = math.ceil((res.s_far - bounds[-1]) / res.s_panel_coarse)
     if n_wide <= 0:
-        return s, ws, float(edges[-1])
-    wide = edges[-1] + res.s_panel_coarse * np.arange(n_wide + 1)
+        return s, ws, float(bounds[-1])
+    wide = bounds[-1] + res.s_panel_coarse * np.arange(n_wide + 1)
     s2, ws2 = gauss_legendre(wide[:-1, None], wide[1:, None], res.n_gauss_coarse)
     return np.concatenate([s, s2.ravel()]), np.concatenate([ws, ws2.ravel()]), float(wide[-1])
 
@@ -93,7 +97,7 @@ class FarGrid:
     s_end: float
 
 
-def far_grid(table: KernelTable, ka_min: float) -> FarGrid:
+def far_grid(table: KernelTable | TangentialTable, ka_min: float) -> FarGrid:
     """The far-field grid of a call whose smallest positive k_s a is ``ka_min``.
 
     It starts at a power of ``Resolution.s_ratio`` just below T₁ × ka_min, so every chunk of a
@@ -105,7 +109,9 @@ def far_grid(table: KernelTable, ka_min: float) -> FarGrid:
     return FarGrid(*_far_grid(res, res.s_ratio**level))
 
 
-def far_basis(table: KernelTable, ka: np.ndarray, grid: FarGrid | None = None) -> FarBasis:
+def far_basis(
+    table: KernelTable | TangentialTable, ka: np.ndarray, grid: FarGrid | None = None
+) -> FarBasis:
     """The far-field s grid for the k_s a values ``ka`` (1-D, > 0) and the Chebyshev basis on it.
 
     ``grid`` (from :func:`far_grid`) is the grid of the whole call when ``ka`` is one chunk of

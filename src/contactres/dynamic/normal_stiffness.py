@@ -462,7 +462,8 @@ def dynamic_contact_stiffness(
     """
     from ..normal.anisotropic import sphere_contact
 
-    if require_material(m).density is None:
+    density = require_material(m).density
+    if density is None:
         raise ContactresInputError("dynamic_contact_stiffness needs the material density (kg/m^3)")
     f = np.asarray(nonnegative("frequency", frequency, "Hz"))
     contact = sphere_contact(m, radius, force)

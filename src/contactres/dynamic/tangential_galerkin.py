@@ -195,14 +195,14 @@ def _basis(table: TangentialTable, size: TangentialSize, ginf: np.ndarray) -> _B
     series[enr[:, None], pq] = 2 * (2 * pq + 1) / np.pi * deriv[rad_d[enr], np.arange(enr.size)]
     # The basis: component α, harmonic n, radial id of (|n|, k, d).
     per_n = len(kd)
-    alpha, n, radial = [], [], []
+    alphas, harmonics, radials = [], [], []
     for a in range(2):
         for nn in range(-nh, nh + 1):
             for j in range(per_n):
-                alpha.append(a)
-                n.append(nn)
-                radial.append(abs(nn) * per_n + j)
-    alpha, n, radial = np.array(alpha), np.array(n), np.array(radial)
+                alphas.append(a)
+                harmonics.append(nn)
+                radials.append(abs(nn) * per_n + j)
+    alpha, n, radial = np.array(alphas), np.array(harmonics), np.array(radials)
     mid = table.max_order
     G = ginf[mid + n[None, :] - n[:, None], alpha[:, None], alpha[None, :]]
     static = (

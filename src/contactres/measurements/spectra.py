@@ -48,7 +48,7 @@ component (von Neumann): about 1 for white residuals, above 1 for a curve that d
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 import pandas as pd
@@ -137,7 +137,7 @@ class _Batch:
 
     def take(self, k: np.ndarray) -> _Batch:
         names = [n for n in self.__dataclass_fields__ if n != "model"]
-        return _Batch(*(getattr(self, n)[k] for n in names), model=self.model)
+        return replace(self, **{n: getattr(self, n)[k] for n in names})
 
     def moved(self, f_c: np.ndarray, w: np.ndarray) -> _Batch:
         """The same spectra in the units of another start (the baseline span is the same)."""
@@ -314,12 +314,15 @@ def _solve(b: _Batch, p0, q0, lo, hi):
             last["R"] = np.stack([r11, r12, r22], 1).ravel()
         return last
 
+    def residuals(theta):
+        return evaluate(theta)["c"]
+
     def jac(theta):
         return sparse.csr_matrix((evaluate(theta)["R"], indices, indptr), shape=(3 * nb, 2 * nb))
 
     x0 = np.clip(np.stack([p0, q0], 1), lo + 1e-9 * (hi - lo), hi - 1e-9 * (hi - lo)).ravel()
     sol = least_squares(
-        lambda theta: evaluate(theta)["c"],
+        residuals,
         x0,
         jac=jac,
         bounds=(lo.ravel(), hi.ravel()),
@@ -339,7 +342,8 @@ def _fit_group(f, y, wt, model: str, sigma_given: bool) -> dict:
     """Fit one padded batch (spectra as rows): values, errors and what the flags need."""
     b, lo, hi, fmin, fmax, scale = _batch(f, y, wt, model)
     nb = f.shape[0]
-    p, q, st, groups, lost = np.zeros(nb), np.zeros(nb), {}, [np.arange(nb)], np.zeros(nb)
+    p, q, groups, lost = np.zeros(nb), np.zeros(nb), [np.arange(nb)], np.zeros(nb)
+    st: dict[str, np.ndarray] = {}
     for _ in range(PASSES):
         for k in groups:
             sub = b.take(k)

@@ -50,13 +50,14 @@ def example_study(n_experiments: int = 4) -> SweepStudy:
     P = q.sensitivity(3)
     g = 9.81
     loads = tuple((0.5e-3 + m) * g / 3.0 for m in (0.0, 0.5e-3, 1.0e-3, 1.5e-3, 2.0e-3, 2.5e-3))
-    air = dict(amplitudes=tuple(np.linspace(0.5e-9, 10e-9, 13)), omega_xi=5.0 / P, noise=0.3)
-    water = dict(amplitudes=tuple(np.linspace(0.3e-9, 5e-9, 11)), omega_xi=8.0 / P, noise=0.6)
+    # per medium: amplitudes (m), omega_xi (N/m), noise (Hz), the last fields of SweepGroup
+    air = (tuple(np.linspace(0.5e-9, 10e-9, 13)), 5.0 / P, 0.3)
+    water = (tuple(np.linspace(0.3e-9, 5e-9, 11)), 8.0 / P, 0.6)
     groups = (
-        SweepGroup("SiO2_2.2mm", "air", 1.1e-3, 70e9, 0.19, **air),
-        SweepGroup("SiO2_2.2mm", "water", 1.1e-3, 77e9, 0.05, **water),
-        SweepGroup("SiO2_1.2mm", "air", 0.6e-3, 61e9, 0.03, **air),
-        SweepGroup("SiO2_1.2mm", "water", 0.6e-3, 67e9, 0.02, **water),
+        SweepGroup("SiO2_2.2mm", "air", 1.1e-3, 70e9, 0.19, *air),
+        SweepGroup("SiO2_2.2mm", "water", 1.1e-3, 77e9, 0.05, *water),
+        SweepGroup("SiO2_1.2mm", "air", 0.6e-3, 61e9, 0.03, *air),
+        SweepGroup("SiO2_1.2mm", "water", 0.6e-3, 67e9, 0.02, *water),
     )
     return SweepStudy(
         groups=groups,

@@ -59,7 +59,9 @@ LABEL_DEFAULTS = {
 }
 #: Constants: name -> (unit, documented default or None when it must be supplied).
 CONSTANTS: dict[str, tuple[str, float | None]] = {
-    c.name: (c.unit, c.default) for c in SWEEP_TABLE.columns if c.level == "constant"
+    c.name: (c.unit, None if c.default is None else float(c.default))
+    for c in SWEEP_TABLE.columns
+    if c.level == "constant"
 }
 #: Columns that must take one value within a sweep.
 PER_SWEEP_COLUMNS = tuple(
@@ -304,8 +306,8 @@ def _fill_constants(
             out[name] = _check_constant(
                 name, file_constants[name], f"{file_constants_source}, key {name!r}"
             )
-        elif CONSTANTS[name][1] is not None:
-            out[name] = float(CONSTANTS[name][1])
+        elif (default := CONSTANTS[name][1]) is not None:
+            out[name] = default
         else:
             absent.append(f"{name} ({CONSTANTS[name][0]})")
     if absent:

@@ -33,6 +33,7 @@ from ..resonators.qcm import QCM, shifts_from_loop, shifts_from_stiffness
 from ..tangential import (
     CattaneoMindlinLoop,
     DashpotLoop,
+    MasingLoop,
     PlateauLoop,
     SavkoorLoop,
     VoigtLoop,
@@ -261,7 +262,7 @@ def contact_loop(
         return VoigtLoop(kappa, xi, omega)
     if model == "savkoor":
         tau = kappa * sliding_amplitude / (4.0 * contact_radius**2)
-        loop = SavkoorLoop(kappa, tau, contact_radius)
+        loop: MasingLoop = SavkoorLoop(kappa, tau, contact_radius)
     elif model in ("cattaneo-mindlin", "plateau"):
         loop = CattaneoMindlinLoop(kappa, mu, normal_force)
         if model == "plateau":
@@ -433,7 +434,8 @@ def synthetic_sweeps(
                     parts.append((u, df, dg))
     # One table from whole columns: per-sweep labels repeated over the sweep's points.
     sizes = [u.size for u, _, _ in parts]
-    names = ("sweep", "experiment", "configuration", "medium", "ramp", "normal_force_N")
+    names: tuple[str, ...] = ("sweep", "experiment", "configuration", "medium", "ramp")
+    names = (*names, "normal_force_N")
     names = (*names, "sphere_radius_m")
     table = {
         name: np.repeat(np.asarray(values), sizes)

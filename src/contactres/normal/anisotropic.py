@@ -206,7 +206,7 @@ def contact_integrals(m: Material, rtol: float = THETA_RTOL) -> ContactIntegrals
     return ContactIntegrals(I0=I0, I1=I1, I2=complex(I2), n_theta=n, error=err * abs(I0))
 
 
-def indentation_modulus(m: Material, rtol: float = THETA_RTOL) -> float:
+def indentation_modulus(m: Material, rtol: float = THETA_RTOL) -> complex | float:
     """Indentation modulus M = 4π/I₀, Pa (paper 1, Eq. 4; Vlassak & Nix 1994).
 
     A rigid sphere on ``m`` (stiffness in the surface frame) behaves as on an isotropic solid
@@ -267,9 +267,9 @@ class AnisotropicContact:
     peak_pressure: np.ndarray | float
     stiffness: np.ndarray | float
     force: np.ndarray | float
-    indentation_modulus: float
-    I0: float
-    I1: float
+    indentation_modulus: complex | float  # complex for a lossy solid, as I0 and I1
+    I0: complex | float
+    I1: complex | float
     circular: bool
     noncircularity: float
     model: str = "anisotropic-hertz"

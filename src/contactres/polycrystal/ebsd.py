@@ -162,7 +162,9 @@ def _read_block(path: Path, skip: int, sep: str, header) -> pd.DataFrame:
         raise ContactresInputError(f"{path.name}: malformed data rows: {exc}") from None
 
 
-def _assemble(path, euler, x, y, phase, conf, conf_name, steps, first_line) -> OrientationMap:
+def _assemble(
+    path, euler, x, y, phase, conf, conf_name, steps: tuple[float, float], first_line
+) -> OrientationMap:
     i, j, shape = _grid(path, x, y, *steps, first_line)
     grid = np.empty((*shape, 3))
     grid[i, j] = euler

@@ -20,6 +20,7 @@ W. D. Nix, J. Mech. Phys. Solids 42, 1223 (1994).
 
 from __future__ import annotations
 
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -338,7 +339,10 @@ def fit_cubic_constants(
 
 
 # The fit of each lattice that :func:`fit_map` dispatches to (a constant lookup table).
-LATTICE_FITS = {"cubic": fit_cubic_constants, "hexagonal": fit_hexagonal_constants}
+LATTICE_FITS: dict[str, Callable[..., CubicInverseResult | HexagonalInverseResult]] = {
+    "cubic": fit_cubic_constants,
+    "hexagonal": fit_hexagonal_constants,
+}
 
 
 def fit_map(

@@ -120,10 +120,10 @@ class OrientationMap:
         if e.ndim != 3 or e.shape[2] != 3:
             raise ContactresInputError(f"euler must have shape (H, W, 3), got {e.shape}")
         for name in ("step_x", "step_y"):
-            v = float(getattr(self, name))
-            if not (np.isfinite(v) and v > 0):
-                raise ContactresInputError(f"{name} must be a positive length in m, got {v!r}")
-            object.__setattr__(self, name, v)
+            step = float(getattr(self, name))
+            if not (np.isfinite(step) and step > 0):
+                raise ContactresInputError(f"{name} must be a positive length in m, got {step!r}")
+            object.__setattr__(self, name, step)
         object.__setattr__(self, "euler", e)
         for name, dtype in (("phase", np.int64), ("confidence", float), ("labels", np.int64)):
             v = getattr(self, name)

@@ -38,6 +38,7 @@ from __future__ import annotations
 
 import math
 import warnings
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -195,7 +196,16 @@ def _relative(got: np.ndarray, exact: np.ndarray) -> float:
     return float(np.max(np.abs(got - exact) / np.abs(exact)))
 
 
-def _refine(exact, width, bounds, rtol, start, largest, label, measure=_relative):
+def _refine(
+    exact: Callable[[np.ndarray, np.ndarray], np.ndarray],
+    width: int,
+    bounds: tuple[float, float],
+    rtol: float,
+    start: int,
+    largest: int,
+    label: str,
+    measure: Callable[[np.ndarray, np.ndarray], float] = _relative,
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, tuple[float, ...], int]:
     """Double a uniform (θ, φ) grid until the error at the cell centres is below ``rtol``.
 
     ``exact(theta, phi)`` returns exact values (P, width) at P points; ``measure(got, exact)``
@@ -328,7 +338,12 @@ class NormalTable:
         n_i n_j n_k n_l C_ijkl), within [ka[0], ka[-1]] of the table (cubic spline in k a
         between the nodes). Other arguments as :meth:`modulus`.
         """
-        if self.dcsf_values is None or self.ka is None:
+        if (
+            self.dcsf_values is None
+            or self.ka is None
+            or self.dcsf_theta is None
+            or self.dcsf_phi is None
+        ):  # all four are given together (prepare_normal_table with ka=) or none
             raise ContactresInputError("the table has no DCSF: pass ka= to prepare_normal_table")
         _, c = reduce_normals(_normals_of(orientations, normals), self.lattice)
         x = np.asarray(ka, dtype=float)

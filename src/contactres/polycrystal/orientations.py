@@ -314,7 +314,9 @@ def symmetry_operators(lattice: str) -> np.ndarray:
     """
     if lattice not in LATTICES:
         raise ContactresInputError(f"lattice must be one of {sorted(LATTICES)}, got {lattice!r}")
-    S = Rotation.create_group(LATTICES[lattice]).as_matrix()
+    # scipy-stubs list the group names as Literal[..., "Dn", ...]: n stands for 2, 3, ..., so
+    # "D6" is valid (scipy's documentation), and no Literal admits it.
+    S = Rotation.create_group(LATTICES[lattice]).as_matrix()  # type: ignore[arg-type]
     for exact in (0.0, 1.0, -1.0):  # clean round-off so that the cubic operators are exact
         S[np.isclose(S, exact, rtol=0, atol=1e-12)] = exact
     first = int(np.argmax(np.trace(S, axis1=1, axis2=2)))  # the identity, trace 3

@@ -267,7 +267,7 @@ def fit_ratios(
     n_scale = len(names)
     names += [f"ln_{n}" for n in param.names]
     ln_c11_fixed = np.log(float(g["c11"]))
-    ln_c0 = 0.0 if free_c else np.log(calibration)
+    ln_c0 = 0.0 if calibration is None else np.log(calibration)  # free_c: None
 
     def split(theta):
         ln_c = theta[0] if free_c else ln_c0

@@ -111,7 +111,7 @@ def dictionary_tables() -> dict[str, str]:
             [
                 *RESONANCE_FLAGS.items(),
                 *(
-                    (f.name.lower().replace("_", "-"), t)
+                    (str(f.name).lower().replace("_", "-"), t)
                     for f, t in MODULUS_FLAG_DESCRIPTIONS.items()
                 ),
             ]

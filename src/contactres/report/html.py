@@ -161,7 +161,8 @@ def _constants(results: Results):
     if not len(sw) or not names:
         return ""
     table = sw.groupby(["configuration", "medium"], sort=True)[names].agg(
-        lambda s: ", ".join(f"{v:.6g}" for v in sorted(set(s.dropna())))
+        # pandas-stubs: the overloads of agg leave mypy no type for a lambda (a def has one)
+        lambda s: ", ".join(f"{v:.6g}" for v in sorted(set(s.dropna())))  # type: ignore[misc]
     )
     table = table.reset_index()
     table.columns = ["configuration", "medium"] + [f"{c} ({CONSTANTS[c][0]})" for c in names]
@@ -196,7 +197,7 @@ def _sweeps_section(results: Results) -> str:
     rows = []
     for (_, row), text, load in zip(sw.iterrows(), flags, loads, strict=True):
         i = index.get(row["sweep"])
-        plot = _sweep_svg(row, p.points(i)) if i is not None else DASH
+        plot = _sweep_svg(row, p.points(i)) if i is not None and p is not None else DASH
         model = row["model"] if isinstance(row["model"], str) and row["model"] else DASH
         rows.append(
             f'<tr data-configuration="{_e(row["configuration"])}" data-medium="{_e(row["medium"])}"'

@@ -27,6 +27,7 @@ from .figures import LABEL_CHARS
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
+    from matplotlib.image import AxesImage
 
 __all__ = ["modulus_map_figure"]
 
@@ -55,7 +56,7 @@ def _dilated(mask: np.ndarray) -> np.ndarray:
     return out
 
 
-def _triangle_panel(ax, tri, image, fontsize: float, **imshow) -> object:
+def _triangle_panel(ax, tri, image, fontsize: float, **imshow) -> AxesImage:
     """Draw ``image`` (n, n[, 4]) over the triangle's grid, clipped to its outline; label it."""
     from matplotlib.patches import Polygon
 
@@ -168,10 +169,9 @@ def modulus_map_figure(
     grid = np.full(tri.inside.shape, np.nan)
     grid[cells] = m_tri * GPA
     inner = grid[tri.inside]  # the colour range: M over the triangle itself
-    tri_norm = Normalize(float(inner.min()), float(inner.max()))
-    map_norm = Normalize(
-        min(tri_norm.vmin, float(np.nanmin(M)) * GPA), max(tri_norm.vmax, float(np.nanmax(M)) * GPA)
-    )
+    lo, hi = float(inner.min()), float(inner.max())
+    tri_norm = Normalize(lo, hi)
+    map_norm = Normalize(min(lo, float(np.nanmin(M)) * GPA), max(hi, float(np.nanmax(M)) * GPA))
     # IPF colours of the valid pixels; the others stay transparent.
     ok = np.all(np.isfinite(n), axis=-1) & (np.linalg.norm(np.nan_to_num(n), axis=-1) > 0)
     rgba = np.zeros((*M.shape, 4))

@@ -130,7 +130,7 @@ def radiation_table(results: Results) -> pd.DataFrame:
 
 
 def _radiation_record(table: pd.DataFrame) -> dict:
-    first = table.iloc[0] if len(table) else {}
+    first: pd.Series | dict = table.iloc[0] if len(table) else {}
     return {
         "sphere_material": first.get("sphere_material"),
         "plate_material": first.get("plate_material"),

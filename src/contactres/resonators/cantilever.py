@@ -170,7 +170,7 @@ def beta_from_frequency(cantilever: Cantilever, frequency, mode, q_factor=None) 
     the free lever's Q is known, real otherwise. ``mode`` (1-based) broadcasts with frequency.
     """
     b_ref, w_ref = cantilever.reference(mode)
-    w = 2.0 * np.pi * np.asarray(frequency, dtype=float)
+    w: np.ndarray = 2.0 * np.pi * np.asarray(frequency, dtype=float)  # complex with a Q
     if q_factor is not None:
         w = w * (1.0 + 0.5j / np.asarray(q_factor, dtype=float))
     return b_ref * np.sqrt(w / w_ref)

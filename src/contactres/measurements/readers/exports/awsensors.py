@@ -46,7 +46,8 @@ _SCALES = MappingProxyType({"": None, "ppm": 1e-6, "1e-6": 1e-6})
 
 
 def _columns(names: list[str]):
-    freqs, diss = {}, {}
+    freqs: dict[int, tuple[str, bool]] = {}  # overtone -> (column, divided by n)
+    diss: dict[int, tuple[str, str]] = {}  # overtone -> (column, unit)
     for name in names:
         if m := _F.match(name):
             freqs.setdefault(int(m.group(2)), (name, m.group(1) is not None))

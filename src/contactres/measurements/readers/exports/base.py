@@ -262,7 +262,8 @@ def read_rows(path: Path) -> pd.DataFrame:
     header = kept[0][1]
     sep = "\t" if "\t" in header else ";" if ";" in header else ","
     rows = list(csv.reader((ln for _, ln in kept), delimiter=sep))
-    names, seen = [], {}
+    names: list[str] = []
+    seen: dict[str, int] = {}
     for name in (" ".join(c.split()) for c in rows[0]):
         seen[name] = seen.get(name, 0) + 1
         names.append(name if seen[name] == 1 else f"{name} #{seen[name]}")

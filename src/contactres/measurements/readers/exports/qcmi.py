@@ -60,7 +60,9 @@ _D = re.compile(r"^Channel ([A-Z]) (?:Fundamental|(\d+)\.) Dissipation \[ ?\]$")
 
 
 def _columns(names: list[str]):
-    times, freqs, diss = {}, {}, {}
+    times: dict[str, str] = {}  # sensor -> time column
+    freqs: dict[tuple[str, int], str] = {}  # (sensor, overtone) -> column
+    diss: dict[tuple[str, int], str] = {}
     for name in names:
         if m := _TIME.match(name):
             times.setdefault(m.group(1), name)

@@ -73,7 +73,9 @@ _B = (
 
 def _columns(names: list[str], patterns, swap: bool):
     """Time columns by sensor and (f, D) columns by (sensor, overtone)."""
-    times, freqs, diss = {}, {}, {}
+    times: dict[str, str] = {}  # sensor -> time column
+    freqs: dict[tuple[str, int], str] = {}  # (sensor, overtone) -> column
+    diss: dict[tuple[str, int], str] = {}
     for name in names:
         if m := patterns[0].match(name):
             times.setdefault(m.group(1), name)

@@ -94,7 +94,9 @@ def _frequency_kind(raw, path: Path, traces, stated: str | None) -> str:
     return kind
 
 
-def _choices(path: Path, reader: str, layout: Layout, given: dict, kind: str):
+def _choices(
+    path: Path, reader: str, layout: Layout, given: dict, kind: str
+) -> tuple[str, bool, float | None, tuple[str, float, float]]:
     """Time unit, Δf divided by n, D scale and baseline: the file's or the caller's. Every
     choice the file does not tell and the caller did not give is named in one error."""
     needed = []
@@ -184,7 +186,9 @@ def _series(raw, path: Path, layout: Layout, traces, t_all, kind: str, scale):
     return series, skipped
 
 
-def _fundamental(path: Path, reader: str, given, kind, baseline, t_all, series):
+def _fundamental(
+    path: Path, reader: str, given, kind, baseline: tuple[str, float, float], t_all, series
+):
     """f_F and where it came from: given (checked against absolute f_n/n) or from the file."""
     fundamental = given.get("fundamental")
     source = "given"
@@ -222,7 +226,11 @@ def _fundamental(path: Path, reader: str, given, kind, baseline, t_all, series):
 
 
 def convert(
-    path: Path, reader: str, raw: pd.DataFrame, layout: Layout, conventions: Mapping[str, object]
+    path: Path,
+    reader: str,
+    raw: pd.DataFrame,
+    layout: Layout,
+    conventions: Mapping[str, str | float | None],
 ) -> ExportTable:
     """The columns of ``layout`` in ``raw`` (from :func:`~.base.read_rows`) as an ExportTable.
 

@@ -1,0 +1,431 @@
+"""The public API stays put, and users' type checkers see it.
+
+In the manner of scipy's ``scipy/_lib/tests/test_public_api.py``, the public names are pinned here
+as literal lists: adding or removing a public name is a deliberate edit of this file, not a side
+effect of an edit elsewhere.
+
+* ``contactres.__all__`` exactly (the names the API reference, docs/api.md, lists;
+  tests/report/test_docs_site.py keeps that reference complete).
+* The subpackages ``contactres`` loads on attribute access.
+* For each public subpackage (or module) with names of its own, the names of its ``__all__`` that
+  the documentation names: a top-level name, or one the docs or the README call by its qualified
+  name (``contactres.polycrystal.fit_map``). The rest of each ``__all__`` (named nowhere in the
+  docs) are listed apart, in ``UNDOCUMENTED``, and are not public: a later step renames the
+  internal helpers among them with a leading underscore and drops them from that list.
+
+Type checking: the package ships ``py.typed`` (PEP 561), and the lazily loaded names of
+``contactres`` and ``contactres.dynamic`` (PEP 562 ``__getattr__``) are also imported under
+``if TYPE_CHECKING:``, which never runs; the imports must name exactly the lazy ones, and mypy,
+run on a user's file, must reveal the real signatures, not ``Any``.
+"""
+
+from __future__ import annotations
+
+import ast
+import importlib
+import sys
+import types
+from pathlib import Path
+
+import pytest
+
+import contactres
+
+if sys.version_info >= (3, 11):
+    import tomllib
+else:  # pragma: no cover - Python 3.10
+    import tomli as tomllib
+
+PACKAGE_DIR = Path(contactres.__file__).parent
+PYPROJECT = Path(__file__).resolve().parents[1] / "pyproject.toml"
+
+# contactres.__all__, exactly.
+TOP_LEVEL = [
+    "AnalysisSettings",
+    "AnisotropicContact",
+    "Cantilever",
+    "CattaneoMindlinLoop",
+    "Contact",
+    "ContactResonanceResult",
+    "DashpotLoop",
+    "Flag",
+    "MasingLoop",
+    "Material",
+    "ModulusResult",
+    "PlateauLoop",
+    "QCM",
+    "RUMOscillator",
+    "Results",
+    "SavkoorLoop",
+    "SweepTable",
+    "SweepWarning",
+    "VoigtLoop",
+    "__version__",
+    "analyze",
+    "at_cut_quartz",
+    "cattaneo_mindlin_expansion",
+    "contact_displacement",
+    "contact_frequencies",
+    "contact_integrals",
+    "contact_pressure",
+    "crystal_names",
+    "crystal_table",
+    "dcsf",
+    "dcsf_models",
+    "dmt",
+    "dynamic_contact_stiffness",
+    "dynamic_kernel",
+    "effective_modulus",
+    "effective_shear_modulus",
+    "example_afm_map",
+    "friction_from_slopes",
+    "hertz",
+    "indentation_modulus",
+    "invert_afm_table",
+    "invert_contact_resonance",
+    "invert_rum_table",
+    "isotropic_dynamic_kernel",
+    "jkr",
+    "jkr_contact_radius",
+    "jkr_from_depth",
+    "jkr_pull_off_force",
+    "loop_stiffness",
+    "mindlin_deresiewicz_energy",
+    "mindlin_stiffness",
+    "modulus_from_contact_stiffness",
+    "read_resonance_table",
+    "read_sweeps",
+    "savkoor_expansion",
+    "shear_modulus",
+    "shear_reference",
+    "shifts_from_loop",
+    "shifts_from_stiffness",
+    "sphere_contact",
+    "static_kernel",
+    "stiffness_from_shifts",
+    "tabor_parameter",
+    "tangential_contact_stiffness",
+    "tangential_dcsf",
+    "tangential_stiffness_static",
+    "two_body_contact_stiffness",
+    "validate_sweeps",
+    "which_adhesion_model",
+    "with_dashpot",
+    "write_report",
+]
+
+# The subpackages and modules `contactres.X` loads on first access (the CLI is left out on
+# purpose). apps, measurements and resonators define no names of their own: their public names
+# are those of contactres (resonators.qcm.QCM is contactres.QCM).
+SUBPACKAGES = [
+    "analysis",
+    "apps",
+    "crystals",
+    "dynamic",
+    "fileio",
+    "fitting",
+    "halfspace",
+    "materials",
+    "measurements",
+    "normal",
+    "numerics",
+    "polycrystal",
+    "report",
+    "resonators",
+    "tangential",
+    "units",
+    "validation",
+]
+
+# Documented names of each subpackage's __all__ (normal has no __all__: the names it re-exports).
+PUBLIC = {
+    "analysis": ["AnalysisSettings", "Flag", "Results", "analyze"],
+    "crystals": ["crystal_names", "crystal_table"],
+    "dynamic": [
+        "MAX_STIFFNESS_CONTRAST",
+        "contact_displacement",
+        "contact_pressure",
+        "dcsf",
+        "dcsf_models",
+        "dynamic_contact_stiffness",
+        "prepare",
+        "prepare_tangential",
+        "shear_wavenumber_ratio",
+        "tangential_contact_stiffness",
+        "tangential_dcsf",
+        "tangential_stiffness_static",
+        "two_body_contact_stiffness",
+    ],
+    "halfspace": [
+        "dynamic_kernel",
+        "isotropic_dynamic_kernel",
+        "shear_reference",
+        "static_kernel",
+        "surface_compliance",
+    ],
+    "materials": ["Material", "at_cut_quartz"],
+    "normal": [
+        "AnisotropicContact",
+        "Contact",
+        "contact_integrals",
+        "dmt",
+        "effective_modulus",
+        "effective_shear_modulus",
+        "hertz",
+        "indentation_modulus",
+        "jkr",
+        "jkr_contact_radius",
+        "jkr_from_depth",
+        "jkr_pull_off_force",
+        "shear_modulus",
+        "sphere_contact",
+        "tabor_parameter",
+        "which_adhesion_model",
+    ],
+    "polycrystal": [
+        "MAP_CONVENTIONS",
+        "CubicInverseResult",
+        "ExactModulus",
+        "contact_stiffness_map",
+        "evaluate_map",
+        "fit_map",
+        "grain_orientations",
+        "prepare_normal_table",
+        "segment_grains",
+        "synthetic_polycrystal",
+    ],
+    "report": ["modulus_map_figure", "summary", "sweeps_table", "write_html", "write_report"],
+    "tangential": [
+        "CattaneoMindlinLoop",
+        "DashpotLoop",
+        "MasingLoop",
+        "PlateauLoop",
+        "SavkoorLoop",
+        "VoigtLoop",
+        "kappa_jkr_mindlin",
+        "mindlin_deresiewicz_energy",
+        "mindlin_stiffness",
+        "with_dashpot",
+    ],
+}
+
+# In __all__ (or re-exported) but named nowhere in the docs: internal, not pinned as public.
+UNDOCUMENTED = {
+    "analysis": ["REGISTRY", "fit_jkr_mindlin"],
+    "crystals": ["SYMMETRIES", "CrystalRecord", "crystal_record"],
+    "dynamic": [
+        "ALL_MODELS",
+        "KernelTable",
+        "MAX_ISOTROPIC_POISSON",
+        "MODELS",
+        "TangentialTable",
+        "WAVENUMBERS",
+    ],
+    "fileio": [
+        "CSV_FLOAT_FORMAT",
+        "MANIFEST",
+        "OutputError",
+        "ResultSet",
+        "atomic_path",
+        "check_output",
+        "check_output_file",
+        "ensure_dir",
+        "replace_folder",
+        "save_figure",
+        "write_csv",
+        "write_text",
+    ],
+    "fitting": ["FitResult", "Model", "ModelRegistry", "Parameter", "fit"],
+    "halfspace": ["has_mirror_plane"],
+    "materials": [
+        "AT_CUT_ANGLE",
+        "require_material",
+        "rotate_tensor",
+        "rotation_to_surface",
+        "tensor_to_voigt",
+        "voigt_to_tensor",
+    ],
+    "normal": ["ContactIntegrals"],
+    "numerics": ["gauss_legendre", "gauss_legendre_unit"],
+    "polycrystal": [
+        "LATTICES",
+        "GrainOrientations",
+        "HexagonalInverseResult",
+        "IPFTriangle",
+        "NormalTable",
+        "OrientationMap",
+        "SyntheticPolycrystal",
+        "dynamic_factor_map",
+        "euler_from_surface_matrices",
+        "fit_cubic_constants",
+        "fit_hexagonal_constants",
+        "folded_normals",
+        "grain_means",
+        "indentation_moduli",
+        "ipf_colors",
+        "ipf_triangle",
+        "map_from_dataset",
+        "map_to_dataset",
+        "map_wavenumbers",
+        "quaternions_from_surface_matrices",
+        "random_orientations",
+        "read_ang",
+        "read_ctf",
+        "read_ebsd",
+        "read_map",
+        "reduce_normals",
+        "reduce_to_fundamental_zone",
+        "surface_matrices_from_euler",
+        "surface_matrices_from_quaternions",
+        "surface_matrix_from_miller",
+        "symmetry_operators",
+        "write_ang",
+        "write_ctf",
+        "write_map",
+    ],
+    "report": ["FORMATS", "html_report", "loads_table", "report_files"],
+    "units": [
+        "ABSOLUTE_FREQUENCY_FRACTION",
+        "JUNCTION_SIGMAS",
+        "LINEAR_ONSET_X",
+        "MAX_AMPLITUDE_M",
+        "MAX_KA",
+        "MIN_SWEEP_POINTS",
+        "POISSON_OPEN_RANGE",
+        "QUANTITIES",
+        "SMALL_LOAD_LIMIT",
+        "Plausible",
+        "check_magnitude",
+        "format_number",
+        "poisson_in_range",
+        "unit_slip",
+    ],
+    "validation": ["amplitude", "nonnegative", "positive"],
+}
+
+
+def own_names(module: types.ModuleType) -> set[str]:
+    """``__all__``, else the public attributes that are not modules (a re-exporting package)."""
+    if hasattr(module, "__all__"):
+        return set(module.__all__)
+    return {
+        name
+        for name, value in vars(module).items()
+        if not name.startswith("_") and not isinstance(value, types.ModuleType)
+    }
+
+
+# --- the names ---------------------------------------------------------------------------------
+
+
+def test_top_level_names_are_pinned():
+    assert sorted(contactres.__all__) == TOP_LEVEL
+
+
+def test_subpackages_are_pinned():
+    assert sorted(contactres._SUBMODULES) == SUBPACKAGES
+
+
+@pytest.mark.parametrize("name", SUBPACKAGES)
+def test_subpackage_names_are_pinned(name):
+    module = importlib.import_module(f"contactres.{name}")
+    public, undocumented = set(PUBLIC.get(name, [])), set(UNDOCUMENTED.get(name, []))
+    assert not public & undocumented
+    assert own_names(module) == public | undocumented
+    missing = sorted(n for n in public if not hasattr(module, n))
+    assert not missing, f"contactres.{name}: pinned public names that do not resolve: {missing}"
+
+
+def test_pinned_lists_have_no_duplicates():
+    for lists in (PUBLIC, UNDOCUMENTED):
+        for name, names in lists.items():
+            assert len(set(names)) == len(names), name
+    assert len(set(TOP_LEVEL)) == len(TOP_LEVEL)
+
+
+# --- what type checkers see --------------------------------------------------------------------
+
+
+def type_checking_imports(path: Path) -> dict[str, str]:
+    """Name -> relative module of every ``from .x import name as name`` under TYPE_CHECKING.
+
+    ``from . import sub as sub`` gives ``sub -> "."``; ``typing`` imports are left out.
+    """
+    found: dict[str, str] = {}
+    for node in ast.parse(path.read_text(encoding="utf-8")).body:
+        if not (isinstance(node, ast.If) and ast.unparse(node.test) == "TYPE_CHECKING"):
+            continue
+        for stmt in node.body:
+            if isinstance(stmt, ast.ImportFrom) and stmt.level:
+                module = "." * stmt.level + (stmt.module or "")
+                for alias in stmt.names:
+                    # `name as name`: an explicit re-export for mypy --strict and pyright
+                    assert alias.asname == alias.name, f"{path.name}: import {alias.name} as itself"
+                    found[alias.name] = module
+    return found
+
+
+def test_py_typed_ships_with_the_package():
+    assert (PACKAGE_DIR / "py.typed").is_file()
+    package_data = tomllib.loads(PYPROJECT.read_text(encoding="utf-8"))["tool"]["setuptools"]
+    assert "py.typed" in package_data["package-data"]["contactres"]
+
+
+def test_type_checkers_see_every_lazy_name_of_contactres():
+    seen = type_checking_imports(PACKAGE_DIR / "__init__.py")
+    expected = {
+        **contactres._EXPORTS,
+        **dict.fromkeys(contactres._SUBMODULES, "."),
+        "__version__": "._version",
+    }
+    assert seen == expected
+
+
+def test_type_checkers_see_every_lazy_name_of_contactres_dynamic():
+    import contactres.dynamic as dynamic
+
+    seen = type_checking_imports(PACKAGE_DIR / "dynamic" / "__init__.py")
+    assert seen == dict(dynamic._EXPORTS)
+
+
+USER_FILE = """
+import contactres
+from contactres import Material, hertz
+
+reveal_type(contactres.hertz)
+reveal_type(hertz)
+reveal_type(Material)
+reveal_type(contactres.dynamic.prepare)
+reveal_type(contactres.polycrystal.fit_map)
+reveal_type(contactres.__version__)
+"""
+
+
+def test_mypy_sees_the_real_objects_in_a_users_file(tmp_path, monkeypatch):
+    """A user's mypy reveals signatures, not ``Any`` (the lazy ``__getattr__`` returns ``Any``).
+
+    mypy finds contactres where this process imports it from (its sys.path), and reads the
+    annotations only because of ``py.typed``: without it every name would be ``Any``.
+    """
+    mypy_api = pytest.importorskip("mypy.api", reason="mypy is not installed (the dev extra)")
+    (tmp_path / "user.py").write_text(USER_FILE, encoding="utf-8")
+    monkeypatch.chdir(tmp_path)  # no project configuration: a user's plain mypy
+    stdout, stderr, status = mypy_api.run(
+        ["--cache-dir", str(tmp_path / "cache"), "--no-error-summary", "user.py"]
+    )
+    revealed = [
+        line.split('Revealed type is "', 1)[1].removesuffix('"')
+        for line in stdout.splitlines()
+        if "Revealed type is" in line
+    ]
+    assert len(revealed) == USER_FILE.count("reveal_type"), stdout + stderr
+    assert not any(r.startswith("Any") for r in revealed), stdout
+    hertz_attr, hertz_imported, material, prepare, fit_map, version = revealed
+    assert hertz_attr == hertz_imported
+    assert hertz_attr.startswith("def (") and "contactres.normal.isotropic.Contact" in hertz_attr
+    assert material.startswith("def (") and material.endswith("-> contactres.materials.Material")
+    assert "-> contactres.dynamic.table.KernelTable" in prepare
+    assert fit_map.startswith("def (")
+    assert version.startswith("builtins.str") or version.startswith("str")
+    # reveal_type is a note: the check passes (an error would break a user's type check)
+    assert status == 0, stdout + stderr
