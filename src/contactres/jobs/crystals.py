@@ -52,11 +52,14 @@ def run(inputs: None = None, settings: Settings | None = None, progress: Progres
     solids = [Material.crystal(name) for name in table["name"]]
     cubic_like = table["symmetry"].isin(["cubic", "isotropic"]).to_numpy()
     at = table.columns.get_loc("source")
+    assert isinstance(at, int)  # one column of that name: get_loc gives its position
     table.insert(at, "M001_GPa", [indentation_modulus(m.rotated((0, 0, 1))) / 1e9 for m in solids])
     for label, normal in CUBIC_FACES:
         values = [
             indentation_modulus(m.rotated(normal)) / 1e9 if ok else np.nan
             for m, ok in zip(solids, cubic_like, strict=True)
         ]
-        table.insert(table.columns.get_loc("source"), label, values)
+        at = table.columns.get_loc("source")
+        assert isinstance(at, int)  # as above
+        table.insert(at, label, values)
     return Result(table=table)

@@ -99,6 +99,7 @@ def run(inputs: Material, settings: Settings, progress: Progress | None = None) 
                 "physical contacts need the elastic constants in Pa and the density"
             )
         ka, extra = _contact_points(m, s)
+    assert ka is not None  # given, or computed from the contacts (checked above: one of them)
     # One kernel table serves every model (several models share it, and the far-field basis).
     say(progress, "kernel table of the face")
     table = prepare(m, s.loss, s.rtol)
@@ -125,6 +126,8 @@ def _contact_points(m, s: Settings):
     from ..dynamic import normalised_wavenumber, wave_modulus
     from ..normal.anisotropic import sphere_contact
 
+    # run calls this only when all three are given
+    assert s.radius is not None and s.force is not None and s.frequency is not None
     try:
         R, F, f = np.broadcast_arrays(s.radius, s.force, s.frequency)
     except ValueError:

@@ -19,8 +19,15 @@ from __future__ import annotations
 from dataclasses import dataclass
 from importlib.resources import as_file, files
 from types import MappingProxyType
+from typing import TYPE_CHECKING
 
 from .contract import JobResult, Progress, say
+
+if TYPE_CHECKING:
+    import xarray as xr
+
+    from ..polycrystal.maps import OrientationMap
+    from . import paper2
 
 __all__ = ["STEPS", "Result", "Settings", "run"]
 
@@ -67,10 +74,10 @@ class Result(JobResult):
     spectra_fits: object
     spectra_analysis: object
     crystals: object
-    paper2: object
+    paper2: paper2.Result
     crystal_dcsf: dict
-    map_dataset: object
-    map_orientations: object
+    map_dataset: xr.Dataset
+    map_orientations: OrientationMap
     map_fit: dict
 
 

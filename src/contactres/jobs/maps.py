@@ -24,6 +24,7 @@ import os
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
+from typing import Any
 
 import numpy as np
 
@@ -113,6 +114,8 @@ def _first_pixels(labels: np.ndarray) -> np.ndarray:
 
 def _uniform_grains(omap: OrientationMap, normals: np.ndarray) -> bool:
     """True when every labelled grain has one orientation (a synthetic or cleaned map)."""
+    if omap.labels is None:  # no grains at all
+        return False
     lab = omap.labels.ravel()
     keep = lab >= 0
     n = normals.reshape(-1, 3)
@@ -179,9 +182,10 @@ def predict_map(
             "'interpolated' for a map whose orientations vary within grains"
         )
     table = None
-    info = {"method": method}
+    info: dict[str, str | int] = {"method": method}
     if method == "grains":
         lab = omap.labels
+        assert lab is not None  # uniform grains are labelled
         idx = _first_pixels(lab)
         G = idx.size
         present = idx >= 0
@@ -312,6 +316,7 @@ def synthetic_map(
     Mg = indentation_moduli(material, R)
     kg = contact_stiffness_map(Mg, tipload.tip, tipload.radius, tipload.force).stiffness
     rng = np.random.default_rng(seed + 1)
+    assert sp.labels is not None  # a synthetic polycrystal is labelled
     k = kg[sp.labels] * (1.0 + noise * rng.standard_normal(sp.labels.shape))
     ds = map_to_dataset(sp)
     ds["k_star_N_per_m"] = (
@@ -361,7 +366,11 @@ def fit_measured_map(
         calibration = (
             (6 * tipload.force * tipload.radius) ** (1 / 3) if quantity == "stiffness" else 1.0
         )
-    kwargs = {"quantity": quantity, "tip_modulus": tip_modulus, "calibration": calibration}
+    kwargs: dict[str, Any] = {
+        "quantity": quantity,
+        "tip_modulus": tip_modulus,
+        "calibration": calibration,
+    }
     if lattice != "cubic":
         kwargs["lattice"] = lattice
     result = fit_map(labels, vals, grains.matrices, **kwargs)
@@ -415,7 +424,7 @@ def read_value_grid(path: str | os.PathLike) -> np.ndarray:
     bad = ~(np.isnan(grid) | (np.isfinite(grid) & (grid > 0)))
     if bad.any():
         i, j = np.argwhere(bad)[0]
-        shown = grid[i, j] if cells is None else cells.iat[i, j]
+        shown: object = grid[i, j] if cells is None else cells.iat[i, j]
         raise ContactresInputError(
             f"{p.name}: row {i + 1}, column {j + 1}: {shown} must be finite and > 0 "
             "(a stiffness in N/m or a modulus in Pa)"

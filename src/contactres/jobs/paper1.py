@@ -70,7 +70,9 @@ def wa_with_exact(cases: dict[str, Material], kla):
     }
 
 
-def displacement(kla=DISPLACEMENT_KLA, A: float = 0.5, nu: float = 0.25):
+def displacement(
+    kla=DISPLACEMENT_KLA, A: float = 0.5, nu: float = 0.25
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """Fig. 2: N(r̄) along [100] under the oscillating flat-punch pressure at each k_l a:
     (kla, rbar, N, ratio) with ``ratio`` = ``|N(r̄)|``/``|N(0)|``, one row per k_l a."""
     m = cubic(A, nu)

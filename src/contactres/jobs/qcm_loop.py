@@ -22,6 +22,8 @@ from .contract import JobResult, Progress, say
 if TYPE_CHECKING:
     import pandas as pd
 
+    from ..tangential import MasingLoop
+
 __all__ = ["MODELS", "Result", "Settings", "build_loop", "run"]
 
 #: The loop models: Cattaneo-Mindlin, Savkoor, linear Voigt element.
@@ -98,7 +100,9 @@ def build_loop(s: Settings, omega: float):
             raise ContactresInputError("--plateau applies to --model cm or savkoor only")
         return VoigtLoop(s.kappa, s.xi, omega)
     if s.model == "cm":
-        loop = CattaneoMindlinLoop(s.kappa, need("mu", s.mu), need("normal-force", s.normal_force))
+        loop: MasingLoop = CattaneoMindlinLoop(
+            s.kappa, need("mu", s.mu), need("normal-force", s.normal_force)
+        )
     else:
         loop = SavkoorLoop(s.kappa, need("tau", s.tau), need("contact-radius", s.contact_radius))
     if s.plateau:

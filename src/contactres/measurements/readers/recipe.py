@@ -19,6 +19,7 @@ from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 from pathlib import Path
 from types import MappingProxyType
+from typing import Any, TypeVar
 
 from ...errors import ContactresInputError
 
@@ -67,7 +68,9 @@ class Reader:
     name: str
     suffixes: tuple[str, ...]
     detect: Callable[[Path, str], bool]
-    load: Callable[..., object]
+    # What load returns depends on the kind (KINDS: a DataFrame, an ExportTable, an
+    # OrientationMap, an array): only the caller, which picked the kind, knows the type.
+    load: Callable[..., Any]
     kind: str
 
     def __post_init__(self):
@@ -100,7 +103,12 @@ def read_head(path: Path) -> str:
     return head
 
 
-def first_detected(readers: Iterable[Reader], path: Path, head: str) -> Reader | None:
+# first_detected returns one of the readers it is given, with their type (an ExportReader of
+# export readers).
+_R = TypeVar("_R", bound=Reader)
+
+
+def first_detected(readers: Iterable[_R], path: Path, head: str) -> _R | None:
     """The first of ``readers`` that recognises the file: those whose suffix matches are tried
     first, then the others, each group in order. None if none does."""
     readers = tuple(readers)

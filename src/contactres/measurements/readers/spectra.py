@@ -113,12 +113,12 @@ def _touchstone(path: Path) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndar
         a.append(values[1])
         b.append(values[2])
         lines.append(number)
-    a, b = np.array(a), np.array(b)
+    first, second = np.array(a), np.array(b)
     if fmt == "RI":
-        x = a + 1j * b
+        x = first + 1j * second
     else:
-        mag = 10 ** (a / 20) if fmt == "DB" else a
-        x = mag * np.exp(1j * np.radians(b))
+        mag = 10 ** (first / 20) if fmt == "DB" else first
+        x = mag * np.exp(1j * np.radians(second))
     # Touchstone 1: Y and Z are normalised to R (y = Y R, z = Z/R), S is dimensionless.
     if param == "S":
         y = (1 - x) / (z0 * (1 + x))

@@ -101,7 +101,7 @@ class Column:
     required: bool = False
     level: str = "point"
     rules: tuple[Rule, ...] = ()
-    default: object = None
+    default: str | float | None = None
 
     def __post_init__(self):
         if self.level not in LEVELS:
