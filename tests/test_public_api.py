@@ -12,6 +12,8 @@ effect of an edit elsewhere.
   name (``contactres.polycrystal.fit_map``). The rest of each ``__all__`` (named nowhere in the
   docs) are listed apart, in ``UNDOCUMENTED``, and are not public: a later step renames the
   internal helpers among them with a leading underscore and drops them from that list.
+* The modules of ``contactres.jobs``, one per workflow, and the names of each: ``Settings``,
+  ``Result`` and ``run`` are the public API of every job (docs/developer/adding.md).
 
 Type checking: the package ships ``py.typed`` (PEP 561), and the lazily loaded names of
 ``contactres`` and ``contactres.dynamic`` (PEP 562 ``__getattr__``) are also imported under
@@ -22,7 +24,10 @@ run on a user's file, must reveal the real signatures, not ``Any``.
 from __future__ import annotations
 
 import ast
+import dataclasses
 import importlib
+import inspect
+import pkgutil
 import sys
 import types
 from pathlib import Path
@@ -116,7 +121,8 @@ TOP_LEVEL = [
 
 # The subpackages and modules `contactres.X` loads on first access (the CLI is left out on
 # purpose). apps, measurements and resonators define no names of their own: their public names
-# are those of contactres (resonators.qcm.QCM is contactres.QCM).
+# are those of contactres (resonators.qcm.QCM is contactres.QCM). jobs defines none either and
+# imports none of its modules: its public names are its modules (JOBS, below).
 SUBPACKAGES = [
     "analysis",
     "apps",
@@ -125,6 +131,7 @@ SUBPACKAGES = [
     "fileio",
     "fitting",
     "halfspace",
+    "jobs",
     "materials",
     "measurements",
     "normal",
@@ -137,6 +144,29 @@ SUBPACKAGES = [
     "validation",
 ]
 
+# The workflows of contactres.jobs, one module each (`from contactres.jobs import dcsf`), and the
+# two modules beside them: the contract every job keeps and the computations of the map jobs.
+JOBS = [
+    "afm_invert",
+    "contact",
+    "crystals",
+    "dcsf",
+    "demo",
+    "maps_fit",
+    "maps_predict",
+    "maps_synthetic",
+    "paper1",
+    "paper2",
+    "qcm_loop",
+    "qcm_spectra",
+    "qcm_stiffness",
+    "qcm_sweeps",
+    "rum_invert",
+]
+JOB_HELPERS = ["contract", "maps"]
+# The public API of every job (docs/developer/adding.md: always the same three names).
+JOB_API = ["Result", "Settings", "run"]
+
 # Documented names of each subpackage's __all__ (normal has no __all__: the names it re-exports).
 PUBLIC = {
     "analysis": ["AnalysisSettings", "Flag", "Results", "analyze"],
@@ -148,6 +178,7 @@ PUBLIC = {
         "dcsf",
         "dcsf_models",
         "dynamic_contact_stiffness",
+        "normalised_wavenumber",
         "prepare",
         "prepare_tangential",
         "shear_wavenumber_ratio",
@@ -207,6 +238,8 @@ PUBLIC = {
         "mindlin_stiffness",
         "with_dashpot",
     ],
+    **{f"jobs.{job}": JOB_API for job in JOBS},
+    "jobs.contract": ["JobResult", "say"],
 }
 
 # In __all__ (or re-exported) but named nowhere in the docs: internal, not pinned as public.
@@ -220,6 +253,7 @@ UNDOCUMENTED = {
         "MODELS",
         "TangentialTable",
         "WAVENUMBERS",
+        "wave_modulus",
     ],
     "fileio": [
         "CSV_FLOAT_FORMAT",
@@ -235,7 +269,17 @@ UNDOCUMENTED = {
         "write_csv",
         "write_text",
     ],
-    "fitting": ["FitResult", "Model", "ModelRegistry", "Parameter", "fit"],
+    "fitting": [
+        "FitResult",
+        "LMOptions",
+        "LeastSquaresResult",
+        "Model",
+        "ModelRegistry",
+        "Parameter",
+        "fit",
+        "levenberg_marquardt",
+        "solve_stacked",
+    ],
     "halfspace": ["has_mirror_plane"],
     "materials": [
         "AT_CUT_ANGLE",
@@ -301,6 +345,33 @@ UNDOCUMENTED = {
         "unit_slip",
     ],
     "validation": ["amplitude", "nonnegative", "positive"],
+    "jobs.contract": ["Progress", "json_value"],
+    "jobs.demo": ["STEPS"],
+    "jobs.maps": [
+        "METHODS",
+        "TipLoad",
+        "fit_measured_map",
+        "fit_record",
+        "open_map",
+        "predict_map",
+        "read_value_grid",
+        "synthetic_map",
+    ],
+    "jobs.paper1": [
+        "KLA",
+        "LOSS",
+        "PAPER_MODELS",
+        "crystal_curves",
+        "cubic",
+        "displacement",
+        "fig3_curves",
+        "ranking_table",
+        "wa_with_exact",
+    ],
+    "jobs.paper2": ["Paper2Example", "loop_cases", "loops_table", "shifts_table"],
+    "jobs.qcm_loop": ["MODELS", "build_loop"],
+    "jobs.qcm_stiffness": ["COLUMN_UNITS", "EQUATION", "stiffness_table"],
+    "jobs.qcm_sweeps": ["Reading", "read", "stages", "warning_lines"],
 }
 
 
@@ -326,7 +397,7 @@ def test_subpackages_are_pinned():
     assert sorted(contactres._SUBMODULES) == SUBPACKAGES
 
 
-@pytest.mark.parametrize("name", SUBPACKAGES)
+@pytest.mark.parametrize("name", [*SUBPACKAGES, *(f"jobs.{m}" for m in (*JOBS, *JOB_HELPERS))])
 def test_subpackage_names_are_pinned(name):
     module = importlib.import_module(f"contactres.{name}")
     public, undocumented = set(PUBLIC.get(name, [])), set(UNDOCUMENTED.get(name, []))
@@ -334,6 +405,26 @@ def test_subpackage_names_are_pinned(name):
     assert own_names(module) == public | undocumented
     missing = sorted(n for n in public if not hasattr(module, n))
     assert not missing, f"contactres.{name}: pinned public names that do not resolve: {missing}"
+
+
+def test_job_modules_are_pinned():
+    import contactres.jobs as jobs
+
+    found = {info.name for info in pkgutil.iter_modules(jobs.__path__)}
+    assert sorted(found) == sorted([*JOBS, *JOB_HELPERS])
+
+
+@pytest.mark.parametrize("name", JOBS)
+def test_every_job_keeps_the_contract(name):
+    """Settings and Result frozen dataclasses, Result a JobResult, run(inputs, settings,
+    progress, ...): what docs/developer/adding.md promises of every job."""
+    from contactres.jobs.contract import JobResult
+
+    job = importlib.import_module(f"contactres.jobs.{name}")
+    for cls in (job.Settings, job.Result):
+        assert dataclasses.is_dataclass(cls) and cls.__dataclass_params__.frozen, cls
+    assert issubclass(job.Result, JobResult)
+    assert list(inspect.signature(job.run).parameters)[:3] == ["inputs", "settings", "progress"]
 
 
 def test_pinned_lists_have_no_duplicates():

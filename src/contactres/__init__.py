@@ -145,6 +145,7 @@ if TYPE_CHECKING:
         fileio as fileio,
         fitting as fitting,
         halfspace as halfspace,
+        jobs as jobs,
         materials as materials,
         measurements as measurements,
         normal as normal,

@@ -69,7 +69,9 @@ if TYPE_CHECKING:
         dcsf as dcsf,
         dcsf_models as dcsf_models,
         dynamic_contact_stiffness as dynamic_contact_stiffness,
+        normalised_wavenumber as normalised_wavenumber,
         shear_wavenumber_ratio as shear_wavenumber_ratio,
+        wave_modulus as wave_modulus,
     )
     from .table import (
         KernelTable as KernelTable,
