@@ -128,26 +128,30 @@ ISO = _cubic(1.0, NU)
 C11 = float(ISO.C[0, 0] / ISO.C[3, 3])
 
 
+G_INF = isotropic_dynamic_kernel(1e9, C11, Q)  # g∞: the kernel far beyond every pole
+
+
 def _lamb(kappa):
-    return isotropic_dynamic_kernel(kappa, C11, Q) - isotropic_dynamic_kernel(1e9, C11, Q)
+    return isotropic_dynamic_kernel(kappa, C11, Q) - G_INF
 
 
-def _hankel_reference(ksa, weight):
+def _hankel_reference(ksa, weight, lamb=_lamb):
     """2π ∫₀^∞ ds (g − g∞)(s/ksa) weight(s) + static, by scipy.integrate.quad on the real κ axis
-    with breakpoints at the branch points and the Rayleigh pole (an independent algorithm)."""
+    with breakpoints at the branch points and the Rayleigh pole (an independent algorithm).
+    ``lamb`` is g − g∞ of κ (default :func:`_lamb`; the same function remembering its values
+    when called for several weights)."""
     kr = 1.0876638735805375  # Rayleigh slowness for ν = 1/4: root of (2 − x)² = 4√(1 − x/3)√(1 − x)
     pts = [1 / math.sqrt(C11), 1.0, kr]
     total = 0j
     for part, unit in ((np.real, 1.0), (np.imag, 1j)):
 
         def f(k, part=part):
-            return part(_lamb(k)) * weight(k * ksa) * ksa
+            return part(lamb(k)) * weight(k * ksa) * ksa
 
         near = integrate.quad(f, 0, 4, points=pts, limit=400, epsabs=1e-13, epsrel=1e-12)[0]
         far = integrate.quad(f, 4, 3000, limit=4000, epsabs=1e-13)[0]
         total += unit * (near + far)
-    g0 = isotropic_dynamic_kernel(1e9, C11, Q)
-    return total, g0
+    return total, G_INF
 
 
 def test_isotropic_rayleigh_slowness_constant():
@@ -176,8 +180,11 @@ _REFERENCE_CASES = {
 @functools.lru_cache(maxsize=4)
 def _reference_functionals(ksa):
     out = {}
+    # The ten quad calls (five weights, real and imaginary parts) mostly sample the same κ
+    # nodes: the kernel at each node is computed once (the numbers are those without it).
+    lamb = functools.lru_cache(maxsize=None)(_lamb)
     for name, (weight, static) in _REFERENCE_CASES.items():
-        dyn, g0 = _hankel_reference(ksa, weight)
+        dyn, g0 = _hankel_reference(ksa, weight, lamb)
         out[name] = 2 * np.pi * dyn + static * g0
     out["FW"] = out["F2D"]  # axisymmetric: the WA average along x is the whole-contact one
     return out
