@@ -90,6 +90,23 @@ def test_every_table1_number_of_the_summary_is_on_the_page(results, page):
     assert hashlib.sha256(EXAMPLE.read_bytes()).hexdigest() in page
 
 
+def test_the_checksum_is_the_one_taken_when_the_table_was_read(results, tmp_path):
+    import dataclasses
+    import hashlib
+
+    data = EXAMPLE.read_bytes()
+    copy = tmp_path / "sweeps.csv"
+    copy.write_bytes(data)
+    table = contactres.read_sweeps(copy)
+    assert table.source_sha256 == hashlib.sha256(data).hexdigest()
+    assert table.with_constants(poisson=0.25).source_sha256 == table.source_sha256
+    copy.write_bytes(data + b"\n")  # changed after the analysis read it: the page keeps the old
+    read = dataclasses.replace(results, table=table)
+    assert table.source_sha256 in html_report(read)
+    memory = contactres.validate_sweeps(table.data.drop(columns="line"))
+    assert memory.source_sha256 is None
+
+
 def test_the_page_is_self_contained_and_small(page):
     for link in ('src="http', "src='http", 'href="http', "href='http", "@import", "url("):
         assert link not in page

@@ -3,7 +3,6 @@
 from __future__ import annotations
 
 from dataclasses import dataclass, field
-from pathlib import Path
 
 import numpy as np
 import pandas as pd
@@ -74,15 +73,3 @@ class Results:
                 }
             )
         return pd.DataFrame(rows)
-
-    def write(self, folder, figures: bool = True) -> list[Path]:
-        """Alias of ``contactres.write_report(results, folder)`` (without ``png`` if not
-        ``figures``).
-
-        Kept for scripts written against contactres 0.1; :func:`contactres.write_report` is the
-        writer (this thin alias reaches up to the report layer at call time, the one exception
-        that tests/test_layout.py allows).
-        """
-        from ..report import FORMATS, write_report
-
-        return write_report(self, folder, [f for f in FORMATS if figures or f != "png"])

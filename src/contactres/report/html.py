@@ -12,7 +12,6 @@ data is HTML-escaped.
 
 from __future__ import annotations
 
-import hashlib
 import math
 from html import escape
 from pathlib import Path
@@ -70,14 +69,6 @@ def _table(frame, numeric=()) -> str:
         )
         rows.append(f"<tr>{cells}</tr>")
     return f"<table><thead><tr>{head}</tr></thead><tbody>{''.join(rows)}</tbody></table>"
-
-
-def _sha256(path: Path) -> str:
-    h = hashlib.sha256()
-    with path.open("rb") as fh:
-        for block in iter(lambda: fh.read(1 << 20), b""):
-            h.update(block)
-    return h.hexdigest()
 
 
 def _panel(x0, u, y, uu, yy, label) -> str:
@@ -255,7 +246,9 @@ def html_report(results: Results) -> str:
     source = None if results.table is None else results.table.source
     path = Path(source) if source and source != "<table>" else None
     name = path.name if path is not None else "table in memory"
-    checksum = _sha256(path) if path is not None and path.is_file() else DASH
+    # The checksum taken when the input was read: the file may have changed since.
+    digest = None if results.table is None else results.table.source_sha256
+    checksum = digest or DASH
     parts = [
         "<!DOCTYPE html>",
         '<html lang="en"><head><meta charset="utf-8">',
