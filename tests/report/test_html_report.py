@@ -107,6 +107,21 @@ def test_the_checksum_is_the_one_taken_when_the_table_was_read(results, tmp_path
     assert memory.source_sha256 is None
 
 
+def test_the_report_draws_the_curves_of_the_analysis_without_a_model(results, monkeypatch):
+    # Every loop shape refuses to be evaluated: the page and Fig. 4 draw from Results.curves.
+    from contactres.analysis import models
+    from contactres.report.figures import figure_sweeps
+
+    def refuse(*args, **kwargs):
+        raise AssertionError("the report evaluated a loop model")
+
+    for name in ("cm_loop_shape", "savkoor_loop_shape", "plateau_loop_shape"):
+        monkeypatch.setattr(models, name, refuse)
+    page = html_report(results)
+    assert page.count("<polyline") == 2 * len(results.sweeps)  # Δf and ΔΓ of every sweep
+    assert figure_sweeps(results).axes
+
+
 def test_the_page_is_self_contained_and_small(page):
     for link in ('src="http', "src='http", 'href="http', "href='http", "@import", "url("):
         assert link not in page

@@ -28,7 +28,7 @@ from ..tangential import kappa_jkr_mindlin
 from ..units import POISSON_OPEN_RANGE
 from .loops import cm_loop_shape, plateau_loop_shape, savkoor_loop_shape
 
-__all__ = ["AMPLITUDE_MODELS", "N_PARAMETERS", "REGISTRY", "model_curves"]
+__all__ = ["AMPLITUDE_MODELS", "N_PARAMETERS", "REGISTRY", "exact_model", "model_curves"]
 
 #: The amplitude classes, simplest and most common first (the order of the model choice).
 AMPLITUDE_MODELS = ("elastic", "cattaneo-mindlin", "savkoor", "plateau")
@@ -225,6 +225,14 @@ _EXACT = {
     "savkoor-loop": "savkoor-loop",
     "plateau-loop": "plateau-loop",
 }
+
+
+def exact_model(model, limits_from) -> str | None:
+    """The registered model that draws a sweep of class ``model`` whose limits come from
+    ``limits_from`` (its exact loop where they come from one); None where there is none (a
+    sweep without a class)."""
+    key = _EXACT.get(limits_from, model)
+    return key if isinstance(key, str) and key in REGISTRY else None
 
 
 def model_curves(row, u) -> tuple[np.ndarray, np.ndarray]:

@@ -51,7 +51,9 @@
    JKR (Eq. 9) + Mindlin (κ = 2G*a, Eq. 7, 8, 10) with E1 = E2 = E and ν fixed (column
    ``poisson``), E and γ free; standard errors from the Jacobian scaled by the residual
    variance, and a bootstrap over experiments (``bootstrap`` resamples, seeded).
-7. **Radiation** (only with ``sphere_material`` and ``plate_material``): the loss tangent of
+7. **Curves**: the points of every sweep as fitted and its chosen model on the grids the
+   report draws (:mod:`contactres.analysis.curves`; ``Results.points``, ``Results.curves``).
+8. **Radiation** (only with ``sphere_material`` and ``plate_material``): the loss tangent of
    the sound the contact radiates into sphere and plate at each load's JKR contact radius and
    overtone frequency, its share of the measured ΔΓ0/Δf0, and E refitted for the dynamic
    softening of κ (:mod:`contactres.analysis.radiation`; ``Results.radiation``).
@@ -75,6 +77,7 @@ from ..units import JUNCTION_SIGMAS, LINEAR_ONSET_X, MIN_SWEEP_POINTS, SMALL_LOA
 from .amplitude import pad_sweeps
 from .blocks import block_codes, choose_blocks
 from .classify import apply_models, fit_sweeps
+from .curves import fitted_curves, sweep_points
 from .drift import LOAD_OF_EXPERIMENT, drifting_sweeps, remove_linear_drift
 from .flags import Flag
 from .friction import block_friction, loop_friction, slope_friction
@@ -388,6 +391,9 @@ def analyze(
         groups.append(g)
         _savkoor_traction(sw, member, g)
 
+    say("the fitted curves of every sweep")
+    curves = fitted_curves(sw, padded)
+
     radiation = None
     if settings.sphere_material is not None:
         say("radiation loss of the contacts")
@@ -410,7 +416,8 @@ def analyze(
         settings=record,
         version=__version__,
         table=table,
-        padded=padded,
+        points=sweep_points(padded),
+        curves=curves,
         blocks=blocks,
         messages=tuple(messages),
         radiation=radiation,

@@ -8,7 +8,6 @@ import numpy as np
 import pandas as pd
 
 from ..measurements.sweeps import SweepTable
-from .amplitude import Padded
 
 __all__ = ["Results"]
 
@@ -28,7 +27,12 @@ class Results:
     settings : the settings used
     version : contactres version
     table : the input sweep table
-    padded : the sweeps as padded arrays (for the figures)
+    points : one row per point as the analysis fitted it (after any drift correction):
+        ``sweep``, ``amplitude_m``, ``df_Hz``, ``dgamma_Hz``
+        (:func:`contactres.analysis.curves.sweep_points`)
+    curves : the model chosen for each sweep on the grids the report draws: ``sweep``,
+        ``grid_points``, ``amplitude_m``, ``df_model_Hz``, ``dgamma_model_Hz``
+        (:func:`contactres.analysis.curves.fitted_curves`)
     messages : what the analysis found odd in the input, one line each (e.g. ramp labels that
         disagree with the file order)
     blocks : one row per load block judged jointly (:mod:`contactres.analysis.blocks`)
@@ -43,7 +47,8 @@ class Results:
     settings: dict
     version: str
     table: SweepTable | None = None
-    padded: Padded | None = field(default=None, repr=False)
+    points: pd.DataFrame | None = field(default=None, repr=False)
+    curves: pd.DataFrame | None = field(default=None, repr=False)
     messages: tuple[str, ...] = ()
     blocks: pd.DataFrame | None = None
     radiation: pd.DataFrame | None = None
