@@ -109,14 +109,18 @@ def test_the_checksum_is_the_one_taken_when_the_table_was_read(results, tmp_path
 
 def test_the_report_draws_the_curves_of_the_analysis_without_a_model(results, monkeypatch):
     # Every loop shape refuses to be evaluated: the page and Fig. 4 draw from Results.curves.
-    from contactres.analysis import models
+    from contactres.analysis.models import cm_loop, plateau_loop, savkoor_loop
     from contactres.report.figures import figure_sweeps
 
     def refuse(*args, **kwargs):
         raise AssertionError("the report evaluated a loop model")
 
-    for name in ("cm_loop_shape", "savkoor_loop_shape", "plateau_loop_shape"):
-        monkeypatch.setattr(models, name, refuse)
+    for module, name in (
+        (cm_loop, "cm_loop_shape"),
+        (savkoor_loop, "savkoor_loop_shape"),
+        (plateau_loop, "plateau_loop_shape"),
+    ):
+        monkeypatch.setattr(module, name, refuse)
     page = html_report(results)
     assert page.count("<polyline") == 2 * len(results.sweeps)  # Δf and ΔΓ of every sweep
     assert figure_sweeps(results).axes

@@ -4,7 +4,8 @@
 :class:`contactres.analysis.results.Results`. Its steps:
 
 1. **Per sweep** (:mod:`contactres.analysis.classify`, all sweeps at once): every amplitude
-   model fitted (the exact Cattaneo-Mindlin, Savkoor and plateau loops, the elastic mean, and
+   model of the registry fitted by its batched fitter (:mod:`contactres.analysis.models`, one
+   fit table per model in ``Results.fits``) (the exact Cattaneo-Mindlin, Savkoor and plateau loops, the elastic mean, and
    the straight line and parabola for slopes and curvatures), and the class of the sweep alone
    (lowest BIC, a nested simpler class kept within ``delta_bic``). Then **per load block**
    (:mod:`contactres.analysis.blocks`): the used ramps of one load of one experiment get one
@@ -84,7 +85,7 @@ from .friction import block_friction, loop_friction, slope_friction
 from .jkr import fit_group
 from .loads import GROUP_KEYS, per_experiment, per_load
 from .loops import X_MAX, loop_tables
-from .models import AMPLITUDE_MODELS
+from .models import AMPLITUDE_MODELS, fit_columns, fit_tables
 from .radiation import load_frequencies, material_by_name, radiation_loss
 from .ramps import check_ramps
 from .results import Results
@@ -408,8 +409,11 @@ def analyze(
 
     record = asdict(settings)
     record["x_max_table"] = X_MAX
+    # The user's sweep table keeps the named columns; each fit's fields go to its own table.
+    fits = fit_tables(sw)
     return Results(
-        sweeps=sw,
+        sweeps=sw.drop(columns=fit_columns(sw)),
+        fits=fits,
         loads=loads,
         experiments=exp,
         groups=groups,

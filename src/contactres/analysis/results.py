@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -18,8 +19,18 @@ class Results:
 
     Attributes
     ----------
-    sweeps : one row per sweep (all columns, including internal ones); ``flags`` is a bit mask
-        of :class:`contactres.analysis.flags.Flag` (text only when written)
+    sweeps : one row per sweep: the columns of ``sweeps.csv``
+        (:data:`contactres.measurements.schema.SWEEP_RESULTS`), the sweep's labels and constants
+        from the input, and what the model choice used (``n_points``, ``u_max_m``, the noise
+        levels ``sigma_df_Hz``, ``sigma_dgamma_Hz``, ``bic_<class>``, ``limits_from``,
+        ``P_Hz_per_N_per_m``, ``block``, ...); ``flags`` is a bit mask of
+        :class:`contactres.analysis.flags.Flag` (text only when written)
+    fits : one table per registered model fitted to every sweep (key of
+        :data:`contactres.analysis.models.REGISTRY` -> DataFrame, one row per sweep in the order
+        of ``sweeps``): ``sweep``, the parameters under their keys with their standard errors
+        (``<key>_err``), the residual sums ``rss_df``, ``rss_dgamma`` and the fit's other fields
+        (:func:`contactres.analysis.models.fit_tables`); the exact loops only with
+        ``exact_loop``
     loads : one row per (configuration, medium, normal force)
     experiments : one row per (configuration, medium, normal force, experiment): the means of
         its used sweeps (the points of the JKR fit)
@@ -47,6 +58,7 @@ class Results:
     settings: dict
     version: str
     table: SweepTable | None = None
+    fits: Mapping[str, pd.DataFrame] = field(default_factory=dict, repr=False)
     points: pd.DataFrame | None = field(default=None, repr=False)
     curves: pd.DataFrame | None = field(default=None, repr=False)
     messages: tuple[str, ...] = ()
