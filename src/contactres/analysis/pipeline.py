@@ -4,10 +4,11 @@
 :class:`contactres.analysis.results.Results`. Its steps:
 
 1. **Per sweep** (:mod:`contactres.analysis.classify`, all sweeps at once): every amplitude
-   model of the registry fitted by its batched fitter (:mod:`contactres.analysis.models`, one
-   fit table per model in ``Results.fits``) (the exact Cattaneo-Mindlin, Savkoor and plateau loops, the elastic mean, and
-   the straight line and parabola for slopes and curvatures), and the class of the sweep alone
-   (lowest BIC, a nested simpler class kept within ``delta_bic``). Then **per load block**
+   model of the registry fitted by its batched fitter (:mod:`contactres.analysis.models`; one
+   fit table per model in ``Results.fits``): the exact Cattaneo-Mindlin, Savkoor and plateau
+   loops, the elastic mean, and the straight line and parabola for slopes and curvatures; and
+   the class of the sweep alone (lowest BIC, a nested simpler class kept within
+   ``delta_bic``). Then **per load block**
    (:mod:`contactres.analysis.blocks`): the used ramps of one load of one experiment get one
    class, chosen from all their points (shared parameters, or each ramp its own where the data
    demand it); the limits Δf0, ΔΓ0 with standard errors and the critical displacement of a
