@@ -14,6 +14,7 @@ stick plateau for a ``plateau`` sweep.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
 
 import numpy as np
@@ -22,12 +23,14 @@ import pandas as pd
 from ..resonators.qcm import mu_from_slopes
 
 __all__ = [
+    "LOOP_OF_CLASS",
     "LoopFriction",
     "SlopeFriction",
     "block_friction",
     "loop_fit_force",
     "loop_force",
     "loop_friction",
+    "loop_table_force",
     "model_averaged_mu",
     "slip_sweeps",
     "slope_friction",
@@ -127,13 +130,39 @@ def loop_fit_force(frame: pd.DataFrame, prefix: str, P: np.ndarray):
     return force, err, (col["edge"] == "") & (col["df0_Hz"].astype(float) > 0)
 
 
-def loop_friction(sw: pd.DataFrame, P: np.ndarray) -> LoopFriction:
+#: The exact loop (key of ``Results.fits``) whose fit gives the friction of each slipping class.
+LOOP_OF_CLASS = (
+    ("cattaneo-mindlin", "cattaneo-mindlin-loop"),
+    ("plateau", "plateau-loop"),
+    ("savkoor", "savkoor-loop"),
+)
+
+
+def loop_table_force(table: pd.DataFrame, P: np.ndarray):
+    """:func:`loop_force` of the rows of an exact loop's fit table (parameters under their
+    keys, :func:`contactres.analysis.models.fit_tables`), and where it is resolved (Δf0 > 0 and
+    the fit not at an edge of the loop table)."""
+    df0 = table["df0"].to_numpy()
+    force, err = loop_force(
+        df0,
+        table["df0_err"].to_numpy(),
+        table["inverse_slip_scale"].to_numpy(),
+        table["ln_inverse_slip_scale_err"].to_numpy(),
+        table["cov_df0_ln_inverse_slip_scale"].to_numpy(),
+        P,
+    )
+    return force, err, (table["edge"].to_numpy() == "") & (df0.astype(float) > 0)
+
+
+def loop_friction(
+    sw: pd.DataFrame, fits: Mapping[str, pd.DataFrame], P: np.ndarray
+) -> LoopFriction:
     """μ and Savkoor's sliding force from the exact-loop fits of each sweep's class.
 
-    The Cattaneo-Mindlin loop from u0 = 0 (``cm_*`` columns) for a Cattaneo-Mindlin sweep, the
-    plateau loop (``pl_*``) for a plateau sweep, Savkoor's loop (``sv_*``) for a Savkoor sweep
-    (its sliding force, no μ); NaN elsewhere and where not resolved. ``gross_sliding`` marks
-    fits that end beyond the loop table (x > 30).
+    The Cattaneo-Mindlin loop from u0 = 0 for a Cattaneo-Mindlin sweep, the plateau loop for a
+    plateau sweep, Savkoor's loop for a Savkoor sweep (its sliding force, no μ); NaN elsewhere
+    and where not resolved. ``fits``: the fit table of each loop (:data:`LOOP_OF_CLASS`), one
+    row per row of ``sw``. ``gross_sliding`` marks fits that end beyond the loop table (x > 30).
     """
     S = len(sw)
     out = LoopFriction(
@@ -144,13 +173,13 @@ def loop_friction(sw: pd.DataFrame, P: np.ndarray) -> LoopFriction:
     )
     model = sw["model"].to_numpy()
     positive = sw["df0_Hz"].to_numpy() > 0
-    for name, src in (("cattaneo-mindlin", "cm"), ("plateau", "pl"), ("savkoor", "sv")):
+    for name, key in LOOP_OF_CLASS:
         idx = np.flatnonzero((model == name) & positive)
         if idx.size == 0:
             continue
-        part = sw.iloc[idx]
-        force, err, resolved = loop_fit_force(part, f"{src}_", P[idx])
-        edge = part[f"{src}_edge"].to_numpy()
+        part = fits[key].iloc[idx]
+        force, err, resolved = loop_table_force(part, P[idx])
+        edge = part["edge"].to_numpy()
         if name == "savkoor":
             out.sliding_force[idx] = np.where(resolved, np.pi / 4 * force, np.nan)
             out.sliding_force_err[idx] = np.where(resolved, np.pi / 4 * err, np.nan)
@@ -158,7 +187,7 @@ def loop_friction(sw: pd.DataFrame, P: np.ndarray) -> LoopFriction:
             F = sw["normal_force_N"].to_numpy()[idx]
             out.mu_fit[idx] = np.where(resolved, force / F, np.nan)
             out.mu_fit_err[idx] = np.where(resolved, err / F, np.nan)
-        out.x_max[idx] = part[f"{src}_x_max"].to_numpy(float)
+        out.x_max[idx] = part["x_max"].to_numpy(float)
         out.gross_sliding[idx] = edge == "high"
     return out
 

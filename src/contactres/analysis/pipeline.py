@@ -305,6 +305,7 @@ def analyze(
         pool_experiment=settings.pool_experiments,
     )
     sw = apply_models(sw, decided["model"].to_numpy(), settings.exact_loop)
+    fits = fit_tables(sw)  # every model's fit of every sweep, final: the steps below read them
     for col in ("block", "runner_up", "delta_bic", "decided_by"):
         sw[col] = decided[col].to_numpy()
     for col in ("df_slope_Hz_per_m", "dgamma_slope_Hz_per_m"):
@@ -342,7 +343,7 @@ def analyze(
     sw["mu_block_err"] = np.nan
     if settings.exact_loop:
         say("friction from the exact loops")
-        loops = loop_friction(sw, P)
+        loops = loop_friction(sw, fits, P)
         sw["mu_fit"] = loops.mu_fit
         sw["mu_fit_err"] = loops.mu_fit_err
         sw["x_max"] = loops.x_max
@@ -410,8 +411,7 @@ def analyze(
 
     record = asdict(settings)
     record["x_max_table"] = X_MAX
-    # The user's sweep table keeps the named columns; each fit's fields go to its own table.
-    fits = fit_tables(sw)
+    # The user's sweep table keeps the named columns; each fit's fields are in its own table.
     return Results(
         sweeps=sw.drop(columns=fit_columns(sw)),
         fits=fits,
