@@ -23,6 +23,7 @@ import pandas as pd
 from ..resonators.qcm import mu_from_slopes
 
 __all__ = [
+    "COULOMB_LOOPS",
     "LOOP_OF_CLASS",
     "LoopFriction",
     "SlopeFriction",
@@ -192,20 +193,25 @@ def loop_friction(
     return out
 
 
-def _joint_mu(blocks: pd.DataFrame, src: str, P: np.ndarray):
-    """μ, its error and the shared BIC of the joint ``src`` loop fit of every block (NaN, NaN,
-    inf where unresolved or not fitted)."""
-    nan = np.full(len(blocks), np.nan)
-    if f"{src}_df0_Hz" not in blocks:
-        return nan, nan, np.full(len(blocks), np.inf)
-    force, err, ok = loop_fit_force(blocks, f"{src}_", P)
-    bic = blocks[f"bic_shared_{src}"].to_numpy(float)
+#: The two Coulomb loops whose joint fits of a block are averaged (keys of the block fits).
+COULOMB_LOOPS = ("cattaneo-mindlin-loop", "plateau-loop")
+
+
+def _joint_mu(table: pd.DataFrame | None, F: np.ndarray, P: np.ndarray):
+    """μ, its error and the shared BIC (column ``bic_shared``) of one loop's joint fit of every
+    block, from its fit table (NaN, NaN, inf where unresolved or not fitted)."""
+    nan = np.full(len(F), np.nan)
+    if table is None:
+        return nan, nan, np.full(len(F), np.inf)
+    force, err, ok = loop_table_force(table, P)
+    bic = table["bic_shared"].to_numpy(float)
     ok &= np.isfinite(force) & np.isfinite(err) & np.isfinite(bic)
-    F = blocks["normal_force_N"].to_numpy(float)
     return np.where(ok, force / F, nan), np.where(ok, err / F, nan), np.where(ok, bic, np.inf)
 
 
-def model_averaged_mu(blocks: pd.DataFrame, P: np.ndarray) -> tuple[np.ndarray, ...]:
+def model_averaged_mu(
+    blocks: pd.DataFrame, joint: Mapping[str, pd.DataFrame], P: np.ndarray
+) -> tuple[np.ndarray, ...]:
     """μ of every block averaged over the two Coulomb loops, and its unconditional error.
 
     Where the Cattaneo-Mindlin loop and the plateau loop both describe a block (the plateau
@@ -218,9 +224,13 @@ def model_averaged_mu(blocks: pd.DataFrame, P: np.ndarray) -> tuple[np.ndarray, 
     Sec. 4.3): the spread between the models enters the error rather than being hidden by the
     choice. A decisive choice (ΔBIC ≳ 10) leaves the winner's μ and error unchanged.
 
+    ``joint``: the fit table of each loop of :data:`COULOMB_LOOPS` (one row per row of
+    ``blocks``, with ``bic_shared``; :func:`contactres.analysis.blocks.choose_blocks`).
+
     Returns μ̄, its error and the weight of the plateau loop (NaN where neither loop resolves μ).
     """
-    fits = [_joint_mu(blocks, src, P) for src in ("cm", "pl")]
+    F = blocks["normal_force_N"].to_numpy(float)
+    fits = [_joint_mu(joint.get(key), F, P) for key in COULOMB_LOOPS]
     mu, err, crit = (np.stack(v) for v in zip(*fits, strict=True))
     best = crit.min(axis=0)
     with np.errstate(invalid="ignore"):
@@ -236,11 +246,14 @@ def model_averaged_mu(blocks: pd.DataFrame, P: np.ndarray) -> tuple[np.ndarray, 
     )
 
 
-def block_friction(blocks: pd.DataFrame, sw: pd.DataFrame) -> pd.DataFrame:
+def block_friction(
+    blocks: pd.DataFrame, joint: Mapping[str, pd.DataFrame], sw: pd.DataFrame
+) -> pd.DataFrame:
     """μ (``mu``, ``mu_err``: averaged over the Cattaneo-Mindlin and plateau loops,
     :func:`model_averaged_mu`; ``mu_plateau_weight``) and Savkoor's sliding force
     (``sliding_force_N``, ``sliding_force_err_N``) from the joint fit of every shared block
-    (:func:`contactres.analysis.blocks.choose_blocks`); NaN where none. Returns a new frame."""
+    (:func:`contactres.analysis.blocks.choose_blocks`: ``blocks`` with the winner's joint fit,
+    ``joint`` every model's joint fit); NaN where none. Returns a new frame."""
     blocks = blocks.copy()
     for col in ("mu", "mu_err", "mu_plateau_weight", "sliding_force_N", "sliding_force_err_N"):
         blocks[col] = np.nan
@@ -257,7 +270,7 @@ def block_friction(blocks: pd.DataFrame, sw: pd.DataFrame) -> pd.DataFrame:
     force, err, resolved = loop_fit_force(blocks, "", P)
     resolved &= blocks["shared"].to_numpy(bool)
     friction = resolved & blocks["model"].isin(["cattaneo-mindlin", "plateau"]).to_numpy()
-    mu, mu_err, w_pl = model_averaged_mu(blocks, P)
+    mu, mu_err, w_pl = model_averaged_mu(blocks, joint, P)
     blocks["mu"] = np.where(friction, mu, np.nan)
     blocks["mu_err"] = np.where(friction, mu_err, np.nan)
     blocks["mu_plateau_weight"] = np.where(friction, w_pl, np.nan)

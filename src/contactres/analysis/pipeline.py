@@ -294,7 +294,7 @@ def analyze(
     sw["used"] = used
 
     say("choosing the model of every load block")
-    blocks, decided, sw = choose_blocks(
+    blocks, decided, sw, block_fits = choose_blocks(
         padded,
         sw,
         used,
@@ -352,7 +352,7 @@ def analyze(
         flags |= _flag(loops.gross_sliding, Flag.GROSS_SLIDING)
         cm = (sw["model"] == "cattaneo-mindlin").to_numpy()
         flags |= _flag(cm & (loops.x_max > LINEAR_ONSET_X), Flag.BEYOND_ONSET)
-        blocks = block_friction(blocks, sw)
+        blocks = block_friction(blocks, block_fits, sw)
         member = sw["block"].to_numpy() >= 0
         for col in ("mu_block", "mu_block_err"):
             values = blocks[col.replace("_block", "")].to_numpy(float)
@@ -424,6 +424,7 @@ def analyze(
         points=sweep_points(padded),
         curves=curves,
         blocks=blocks,
+        block_fits=block_fits,
         messages=tuple(messages),
         radiation=radiation,
     )

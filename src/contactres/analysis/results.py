@@ -47,6 +47,8 @@ class Results:
     messages : what the analysis found odd in the input, one line each (e.g. ramp labels that
         disagree with the file order)
     blocks : one row per load block judged jointly (:mod:`contactres.analysis.blocks`)
+    block_fits : every model's joint fit of every load block, like ``fits`` with ``block`` in
+        place of ``sweep`` (the Coulomb loops' with ``bic_shared``, their shared criterion)
     radiation : one row per load: the radiation loss of the contact against the measured one
         (:func:`contactres.analysis.radiation.radiation_loss`; None: no materials were given)
     """
@@ -63,6 +65,7 @@ class Results:
     curves: pd.DataFrame | None = field(default=None, repr=False)
     messages: tuple[str, ...] = ()
     blocks: pd.DataFrame | None = None
+    block_fits: Mapping[str, pd.DataFrame] = field(default_factory=dict, repr=False)
     radiation: pd.DataFrame | None = None
 
     def table1(self) -> pd.DataFrame:
