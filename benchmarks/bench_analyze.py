@@ -27,6 +27,7 @@ from contactres.analysis.loops import cm_loop_table
 from contactres.measurements.studies import EXAMPLE_SEED, example_study
 from contactres.measurements.sweeps import read_sweeps
 from contactres.measurements.synthetic import synthetic_sweeps
+from contactres.report import write_report
 
 TARGET_S = 5.0
 N_EXPERIMENTS = 14
@@ -48,7 +49,7 @@ def main() -> int:
         t1 = time.perf_counter()
         res = analyze(sweeps)
         t2 = time.perf_counter()
-        res.write(Path(tmp) / "out", figures=False)
+        write_report(res, Path(tmp) / "out", formats=("csv", "json"))
         t3 = time.perf_counter()
     total = t3 - t0
     print(f"qcm analyze: {n_sweeps} sweeps, {n_points} points")

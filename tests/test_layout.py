@@ -51,8 +51,8 @@ Not seen here: imports by string (``importlib.import_module``), which is how the
 checks that the library never imports the CLI. Nor ``getattr(module, "_x")``, nor a container
 mutated from *another* module (``from .m import X`` then ``X.append(...)``).
 
-The one known import exception lives in :data:`ALLOWED`, with its reason; it is honoured only
-for an import inside a function (at call time), never for one at module level. An entry of
+An import exception would live in :data:`ALLOWED`, with its reason (there is none); it is honoured
+only for an import inside a function (at call time), never for one at module level. An entry of
 :data:`REGISTRIES` that no longer names a mutated module-level container is reported (stale).
 """
 
@@ -112,12 +112,7 @@ LAYER_NAMES: tuple[str, ...] = (
 KEPT_APART: tuple[frozenset[str], ...] = (frozenset({"dynamic", "tangential"}),)
 
 # (importer module, imported module or package) -> why. Honoured for call-time imports only.
-ALLOWED: dict[tuple[str, str], str] = {
-    ("contactres.analysis.results", "contactres.report"): (
-        "Results.write is a thin alias of report.write_report kept for scripts written against "
-        "0.1; it imports write_report when called, so importing analysis never imports report"
-    ),
-}
+ALLOWED: dict[tuple[str, str], str] = {}
 
 # (module, module-level name) -> why: containers mutated on purpose (registries, not caches).
 # (The reader registry is an immutable value now: contactres.measurements.readers.recipe.)

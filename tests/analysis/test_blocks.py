@@ -261,27 +261,34 @@ def test_loads_of_one_experiment_take_the_block_mu_in_every_statistic():
 
 
 def _two_loop_blocks(mu_cm, err_cm, mu_pl, err_pl, bic_cm, bic_pl, force=2e-3):
-    """A block table whose joint CM and plateau fits give the μ and errors asked for (P = 1,
-    Δf0 = 10 Hz without error, so the error of μ is that of ln θ alone)."""
-    rows = {"normal_force_N": [force]}
-    for src, mu, err, b in (("cm", mu_cm, err_cm, bic_cm), ("pl", mu_pl, err_pl, bic_pl)):
-        rows |= {
-            f"{src}_df0_Hz": [10.0],
-            f"{src}_df0_err_Hz": [0.0],
-            f"{src}_theta_per_m": [10.0 / (mu * force)],
-            f"{src}_lntheta_err": [err / mu],
-            f"{src}_cov_df0_lntheta": [0.0],
-            f"{src}_edge": [""],
-            f"bic_shared_{src}": [b],
-        }
-    return pd.DataFrame(rows)
+    """A block table and the joint CM and plateau loop fits (their fit tables) that give the μ
+    and errors asked for (P = 1, Δf0 = 10 Hz without error, so the error of μ is that of ln θ
+    alone)."""
+    blocks = pd.DataFrame({"normal_force_N": [force]})
+    joint = {}
+    for key, mu, err, b in (
+        ("cattaneo-mindlin-loop", mu_cm, err_cm, bic_cm),
+        ("plateau-loop", mu_pl, err_pl, bic_pl),
+    ):
+        joint[key] = pd.DataFrame(
+            {
+                "df0": [10.0],
+                "df0_err": [0.0],
+                "inverse_slip_scale": [10.0 / (mu * force)],
+                "ln_inverse_slip_scale_err": [err / mu],
+                "cov_df0_ln_inverse_slip_scale": [0.0],
+                "edge": [""],
+                "bic_shared": [b],
+            }
+        )
+    return blocks, joint
 
 
 def test_decisive_evidence_leaves_the_winners_mu():
     from contactres.analysis.friction import model_averaged_mu
 
     b = _two_loop_blocks(1.0, 0.05, 0.6, 0.04, bic_cm=100.0, bic_pl=160.0)
-    mu, err, w = model_averaged_mu(b, np.ones(1))
+    mu, err, w = model_averaged_mu(*b, np.ones(1))
     assert mu[0] == pytest.approx(1.0, rel=1e-12) and err[0] == pytest.approx(0.05, rel=1e-9)
     assert w[0] == pytest.approx(np.exp(-30.0), rel=1e-9)
 
@@ -293,7 +300,7 @@ def test_model_averaged_mu_is_the_mean_and_spread_of_the_weighted_mixture():
     from contactres.analysis.friction import model_averaged_mu
 
     b = _two_loop_blocks(1.5, 0.10, 1.0, 0.20, bic_cm=50.0, bic_pl=52.0)
-    mu, err, w = model_averaged_mu(b, np.ones(1))
+    mu, err, w = model_averaged_mu(*b, np.ones(1))
     w_pl = np.exp(-1.0) / (1 + np.exp(-1.0))
     assert w[0] == pytest.approx(w_pl, rel=1e-12)
     rng = np.random.default_rng(7)
@@ -308,9 +315,9 @@ def test_a_loop_without_a_fit_gets_no_weight():
     from contactres.analysis.friction import model_averaged_mu
 
     b = _two_loop_blocks(1.2, 0.1, 0.8, 0.1, bic_cm=10.0, bic_pl=np.inf)
-    mu, err, w = model_averaged_mu(b, np.ones(1))
+    mu, err, w = model_averaged_mu(*b, np.ones(1))
     assert (mu[0], err[0], w[0]) == pytest.approx((1.2, 0.1, 0.0))
-    b.loc[0, "cm_edge"] = "high"  # beyond the loop table: CM does not resolve μ either
-    b.loc[0, "bic_shared_pl"] = 11.0
-    mu, err, w = model_averaged_mu(b, np.ones(1))
+    b[1]["cattaneo-mindlin-loop"].loc[0, "edge"] = "high"  # beyond the table: no μ from CM
+    b[1]["plateau-loop"].loc[0, "bic_shared"] = 11.0
+    mu, err, w = model_averaged_mu(*b, np.ones(1))
     assert (mu[0], err[0], w[0]) == pytest.approx((0.8, 0.1, 1.0))

@@ -14,7 +14,6 @@ import pandas as pd
 import pytest
 from click.testing import CliRunner
 
-from contactres.analysis import radiation
 from contactres.analysis.pipeline import AnalysisSettings
 from contactres.analysis.radiation import (
     RADIATION_RESULTS,
@@ -23,6 +22,7 @@ from contactres.analysis.radiation import (
     radiation_summary,
 )
 from contactres.cli import main
+from contactres.dynamic import tangential_stiffness
 from contactres.dynamic.tangential_stiffness import two_body_contact_stiffness
 from contactres.materials import Material, at_cut_quartz
 
@@ -150,7 +150,7 @@ def test_uniform_softening_biases_E_by_its_three_halves_power(monkeypatch):
         radius, frequency = np.broadcast_arrays(radius, frequency)
         return c * radius * np.where(frequency > 0, s + 0.05j, 1.0)
 
-    monkeypatch.setattr(radiation, "two_body_contact_stiffness", stand_in)
+    monkeypatch.setattr(tangential_stiffness, "two_body_contact_stiffness", stand_in)
     loads, groups = study()
     out = radiation_loss(loads, groups, "glass", "quartz-AT", frequency_Hz=F_QCM)
     fitted = out.iloc[:3]
@@ -164,7 +164,7 @@ def test_a_radius_the_solver_refuses_is_a_note_not_a_crash(monkeypatch):
     def refuses(sphere, plate, radius, frequency, direction=0.0):
         raise ValueError("k_s a = 99 is beyond the range\nof the solver")
 
-    monkeypatch.setattr(radiation, "two_body_contact_stiffness", refuses)
+    monkeypatch.setattr(tangential_stiffness, "two_body_contact_stiffness", refuses)
     loads, groups = study()
     out = radiation_loss(loads, groups, "glass", "quartz-AT", frequency_Hz=F_QCM)
     assert out["tan_delta_rad"].isna().all() and out["E_static_corrected_Pa"].isna().all()

@@ -90,6 +90,42 @@ def test_every_table1_number_of_the_summary_is_on_the_page(results, page):
     assert hashlib.sha256(EXAMPLE.read_bytes()).hexdigest() in page
 
 
+def test_the_checksum_is_the_one_taken_when_the_table_was_read(results, tmp_path):
+    import dataclasses
+    import hashlib
+
+    data = EXAMPLE.read_bytes()
+    copy = tmp_path / "sweeps.csv"
+    copy.write_bytes(data)
+    table = contactres.read_sweeps(copy)
+    assert table.source_sha256 == hashlib.sha256(data).hexdigest()
+    assert table.with_constants(poisson=0.25).source_sha256 == table.source_sha256
+    copy.write_bytes(data + b"\n")  # changed after the analysis read it: the page keeps the old
+    read = dataclasses.replace(results, table=table)
+    assert table.source_sha256 in html_report(read)
+    memory = contactres.validate_sweeps(table.data.drop(columns="line"))
+    assert memory.source_sha256 is None
+
+
+def test_the_report_draws_the_curves_of_the_analysis_without_a_model(results, monkeypatch):
+    # Every loop shape refuses to be evaluated: the page and Fig. 4 draw from Results.curves.
+    from contactres.analysis.models import cm_loop, plateau_loop, savkoor_loop
+    from contactres.report.figures import figure_sweeps
+
+    def refuse(*args, **kwargs):
+        raise AssertionError("the report evaluated a loop model")
+
+    for module, name in (
+        (cm_loop, "cm_loop_shape"),
+        (savkoor_loop, "savkoor_loop_shape"),
+        (plateau_loop, "plateau_loop_shape"),
+    ):
+        monkeypatch.setattr(module, name, refuse)
+    page = html_report(results)
+    assert page.count("<polyline") == 2 * len(results.sweeps)  # Δf and ΔΓ of every sweep
+    assert figure_sweeps(results).axes
+
+
 def test_the_page_is_self_contained_and_small(page):
     for link in ('src="http', "src='http", 'href="http', "href='http", "@import", "url("):
         assert link not in page

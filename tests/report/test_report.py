@@ -127,7 +127,7 @@ def test_nan_becomes_null_and_json_is_strict(results, tmp_path):
 def test_write_is_atomic_and_repeatable(results, tmp_path):
     write_report(results, tmp_path, formats=("csv",))
     first = (tmp_path / "sweeps.csv").read_bytes()
-    results.write(tmp_path, figures=False)  # the alias of write_report kept from 0.1
+    write_report(results, tmp_path, formats=("csv", "json"))  # written again: same bytes
     assert (tmp_path / "sweeps.csv").read_bytes() == first
     assert not [p for p in tmp_path.iterdir() if p.name.startswith(".")]  # no temporaries left
 

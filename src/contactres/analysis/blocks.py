@@ -34,6 +34,7 @@ from .amplitude import Padded, bic, pad_sweeps
 from .classify import (
     CLASS_SOURCES,
     NESTED,
+    SOURCE_MODEL,
     add_plateau_fits,
     fit_sweeps,
     n_parameters,
@@ -43,7 +44,7 @@ from .classify import (
 )
 from .drift import LOAD_OF_EXPERIMENT
 from .loops import LoopTables
-from .models import AMPLITUDE_MODELS
+from .models import AMPLITUDE_MODELS, fit_tables
 
 __all__ = ["BLOCK_COLUMNS", "PLATEAU_CONTENDER", "block_codes", "choose_blocks"]
 
@@ -58,6 +59,22 @@ BLOCK_COLUMNS = (
     "runner_up",
     "delta_bic",
 )
+
+
+# The joint fit's fields that the block table holds for its winner: column -> fit-table field.
+_JOINT = {
+    "df0_Hz": "df0",
+    "df0_err_Hz": "df0_err",
+    "dgamma0_Hz": "dgamma0",
+    "dgamma0_err_Hz": "dgamma0_err",
+}
+_JOINT_LOOP = {
+    "theta_per_m": "inverse_slip_scale",
+    "lntheta_err": "ln_inverse_slip_scale_err",
+    "cov_df0_lntheta": "cov_df0_ln_inverse_slip_scale",
+    "x_max": "x_max",
+}
+_JOINT_PLATEAU = {"d_c_m": "critical_displacement", "d_c_err_m": "critical_displacement_err"}
 
 
 #: A block whose shared plateau is within this of the best of its other candidates gets the
@@ -150,6 +167,10 @@ def choose_blocks(
         else the sweep's own), ``runner_up``, ``delta_bic``, ``decided_by`` (``block`` or
         ``sweep``)
     sw : ``sw`` with the plateau loop fitted to the sweeps of the contending blocks
+    joint : every model's joint fit of every block: its fit table
+        (:func:`contactres.analysis.models.fit_tables`, ``block`` in place of ``sweep``, one row
+        per row of ``blocks``); the Coulomb loops' with ``bic_shared``, their shared criterion
+        ({} where there is no block)
     """
     S = len(sw)
     per_sweep = pd.DataFrame(
@@ -164,7 +185,7 @@ def choose_blocks(
     )
     code = block_codes(sw, joint)
     if code.max() < 0:
-        return pd.DataFrame(columns=[*LOAD_OF_EXPERIMENT, *BLOCK_COLUMNS]), per_sweep, sw
+        return pd.DataFrame(columns=[*LOAD_OF_EXPERIMENT, *BLOCK_COLUMNS]), per_sweep, sw, {}
     B = code.max() + 1
     member = code >= 0
     rows = np.flatnonzero(member)
@@ -176,6 +197,8 @@ def choose_blocks(
     bf = fit_sweeps(bp, delta_bic, exact_loop, tables, workers)
     bf.index = bf["sweep"].to_numpy(int)
     bf = bf.sort_index()
+    # Every model's joint fit of every block (its fit table, one row per block in order).
+    joint = {key: table.rename(columns={"sweep": "block"}) for key, table in fit_tables(bf).items()}
 
     # The 2 x 4 criteria of every block: (shared, per ramp) for each class.
     n_r = sw["n_points"].to_numpy(float)
@@ -230,9 +253,7 @@ def choose_blocks(
     blocks["runner_up"] = classes[runner]
     blocks["delta_bic"] = evidence
     # The joint fit of the winning class (NaN where the ramps keep their own parameters).
-    fields = ("df0_Hz", "df0_err_Hz", "dgamma0_Hz", "dgamma0_err_Hz")
-    loop_fields = ("theta_per_m", "lntheta_err", "cov_df0_lntheta", "x_max")
-    for field in (*fields, *loop_fields, "d_c_m", "d_c_err_m"):
+    for field in (*_JOINT, *_JOINT_LOOP, *_JOINT_PLATEAU):
         blocks[field] = np.nan
     blocks["edge"] = ""
     for m in AMPLITUDE_MODELS:
@@ -240,27 +261,23 @@ def choose_blocks(
         rows = (winner == m) & blocks["shared"].to_numpy()
         if not rows.any():
             continue
-        for field in fields:
-            blocks.loc[rows, field] = bf[f"{src}_{field}"].to_numpy(float)[rows]
+        table = joint[SOURCE_MODEL[src]]
+        fields = {**_JOINT, **(_JOINT_LOOP if src in ("cm", "sv", "pl") else {})}
+        fields |= _JOINT_PLATEAU if src == "pl" else {}
+        for field, column in fields.items():
+            blocks.loc[rows, field] = table[column].to_numpy(float)[rows]
         if src in ("cm", "sv", "pl"):
-            for field in loop_fields:
-                blocks.loc[rows, field] = bf[f"{src}_{field}"].to_numpy(float)[rows]
-            blocks.loc[rows, "edge"] = bf[f"{src}_edge"].to_numpy(object)[rows]
-        if src == "pl":
-            for field in ("d_c_m", "d_c_err_m"):
-                blocks.loc[rows, field] = bf[f"pl_{field}"].to_numpy(float)[rows]
+            blocks.loc[rows, "edge"] = table["edge"].to_numpy(object)[rows]
 
     # The joint exact Coulomb loops, winner or not: μ of the block is averaged over the two
     # with their BIC weights where they compete (friction.block_friction).
     if exact_loop:
-        for m, src in (("cattaneo-mindlin", "cm"), ("plateau", "pl")):
-            blocks[f"bic_shared_{src}"] = crit[2 * AMPLITUDE_MODELS.index(m)]
-            for field in (*fields, *loop_fields, "edge"):
-                blocks[f"{src}_{field}"] = bf[f"{src}_{field}"].to_numpy()
+        for m, key in (("cattaneo-mindlin", "cattaneo-mindlin-loop"), ("plateau", "plateau-loop")):
+            joint[key] = joint[key].assign(bic_shared=crit[2 * AMPLITUDE_MODELS.index(m)])
 
     per_sweep.loc[member, "block"] = code[member]
     per_sweep.loc[member, "model"] = winner[code[member]]
     per_sweep.loc[member, "runner_up"] = classes[runner][code[member]]
     per_sweep.loc[member, "delta_bic"] = evidence[code[member]]
     per_sweep.loc[member, "decided_by"] = "block"
-    return blocks, per_sweep, sw
+    return blocks, per_sweep, sw, joint

@@ -37,19 +37,11 @@ from itertools import repeat
 import numpy as np
 import pandas as pd
 
-from .amplitude import (
-    PLATEAU_MIN_FLAT,
-    PLATEAU_MIN_SLOPE,
-    Block,
-    LineFit,
-    Padded,
-    bic,
-    fit_hinge,
-    fit_line,
-)
-from .loops import LoopTable, LoopTables, fit_cm_loops, loop_tables
-from .models import AMPLITUDE_MODELS, N_PARAMETERS
-from .plateau import PLATEAU_LOOP_COLUMNS, fit_plateau_loops
+from .amplitude import Block, Padded, bic
+from .loops import LoopTable, LoopTables, loop_tables
+from .models import AMPLITUDE_MODELS, N_PARAMETERS, SWEEP_FITS
+from .models.base import LoopInputs
+from .models.plateau_loop import fit_plateaus
 
 __all__ = [
     "CLASS_SOURCES",
@@ -74,15 +66,7 @@ CLASS_SOURCES = {
     False: {"elastic": "el", "cattaneo-mindlin": "line", "savkoor": "parabola", "plateau": "hinge"},
 }
 #: The registered model (:data:`~contactres.analysis.models.REGISTRY`) behind each source.
-SOURCE_MODEL = {
-    "el": "elastic",
-    "line": "cattaneo-mindlin",
-    "parabola": "savkoor",
-    "hinge": "plateau",
-    "cm": "cattaneo-mindlin-loop",
-    "sv": "savkoor-loop",
-    "pl": "plateau-loop",
-}
+SOURCE_MODEL = {fit.source: fit.model for fit in SWEEP_FITS}
 #: ``limits_from`` of a sweep whose limits come from each source.
 LIMITS_FROM = {
     "el": "mean",
@@ -95,86 +79,29 @@ LIMITS_FROM = {
 }
 
 
-def _closed_form(prefix: str, fit: LineFit, out: dict) -> None:
-    """The fields of a straight-line fit (both channels) as ``<prefix>_*`` columns."""
-    for c, name in enumerate(("df", "dgamma")):
-        out[f"{prefix}_{name}0_Hz"] = fit.a[c]
-        out[f"{prefix}_{name}0_err_Hz"] = np.sqrt(fit.var_a[c])
-        out[f"{prefix}_{name}_b"] = fit.b[c]
-        out[f"{prefix}_{name}_b_err"] = np.sqrt(fit.var_b[c])
-        out[f"{prefix}_{name}_cov_ab"] = fit.cov_ab[c]
-        out[f"{prefix}_rss_{name}"] = fit.rss[c]
-
-
 def _fit_block(
     b: Block, exact_loop: bool, tables: LoopTables | None, plateau: np.ndarray
 ) -> dict[str, np.ndarray]:
-    """Every model fitted to one block of sweeps (arrays with the sweep as last axis); the
-    plateau loop only to the sweeps ``plateau`` (the others get NaN)."""
-    Y = np.stack([b.df, b.dg])
-    n = b.n.astype(float)
-    u_max = np.max(np.where(b.w > 0, b.u, 0.0), axis=1)
-    out = {"u_max": u_max}
-    mean = (b.w * Y).sum(-1) / n  # elastic
-    rss_el = (b.w * (Y - mean[..., None]) ** 2).sum(-1)
-    var_mean = rss_el / np.maximum(n - 1, 1) / n
-    for c, name in enumerate(("df", "dgamma")):
-        out[f"el_{name}0_Hz"] = mean[c]
-        out[f"el_{name}0_err_Hz"] = np.sqrt(var_mean[c])
-        out[f"el_rss_{name}"] = rss_el[c]
-    line = fit_line(b.u, Y, b.w)  # cattaneo-mindlin; its residuals give the noise levels
-    parabola = fit_line(b.u**2, Y, b.w)  # savkoor: a straight line in u0²
-    hinge = fit_hinge(b)  # plateau
-    _closed_form("line", line, out)
-    _closed_form("parabola", parabola, out)
-    _closed_form("hinge", hinge.line, out)
-    out["hinge_u_c_m"], out["hinge_found"] = hinge.u_c, hinge.found
-    if exact_loop:
-        assert tables is not None  # classify_sweeps builds them for the exact loops
-        sigma = np.sqrt(line.rss / np.maximum(n - 2, 1))
-        for prefix, table in (("cm", tables.cm), ("sv", tables.savkoor)):
-            loop = fit_cm_loops(b.u, b.df, b.dg, b.w, sigma[0], sigma[1], table)
-            out.update({f"{prefix}_{col}": loop[col].to_numpy() for col in loop.columns})
-        rss = np.where(hinge.found, hinge.line.rss, line.rss)
-        start = (hinge.found, hinge.u_c, rss, out["cm_theta_per_m"])
-        out.update(_fit_plateaus(b, *start, tables.cm, plateau))
-    return out
-
-
-def _fit_plateaus(
-    b: Block, found, u_c, rss, theta, table: LoopTable, plateau: np.ndarray
-) -> dict[str, np.ndarray]:
-    """The exact plateau loop fitted to the sweeps ``plateau`` of ``b`` that are long enough.
-
-    Started at the hinge where one was ``found`` (at ``u_c``), else at 0.3 of the largest
-    amplitude; weighted by the noise of the hinge fit (``rss``, (2, S): of the straight line
-    where no hinge was found); θ started from the Cattaneo-Mindlin loop fitted to the whole
-    sweep (``theta``).
-    """
-    S = len(b.n)
-    out = {f"pl_{col}": np.full(S, np.nan) for col in PLATEAU_LOOP_COLUMNS}
-    out["pl_edge"] = np.full(S, "", dtype=object)
-    # Enough distinct amplitudes for a plateau and a slope (a block may repeat amplitudes).
-    distinct = (b.w > 0) & np.concatenate([np.ones((S, 1), bool), np.diff(b.u, axis=1) > 0], axis=1)
-    fit = (distinct.sum(axis=1) >= PLATEAU_MIN_FLAT + PLATEAU_MIN_SLOPE) & plateau
-    if not fit.any():
-        return out
-    n = b.n.astype(float)
-    u_max = np.max(np.where(b.w > 0, b.u, 0.0), axis=1)
-    sig = np.sqrt(rss / np.maximum(n - np.where(found, 3, 2), 1))
-    u_c = np.where(found, u_c, 0.3 * u_max)
-    i = np.flatnonzero(fit)
-    res = fit_plateau_loops(
-        b.u[i], b.df[i], b.dg[i], b.w[i], sig[0, i], sig[1, i], u_c[i], table, theta[i]
-    )
-    for col in res.columns:
-        out[f"pl_{col}"][i] = res[col].to_numpy()
+    """Every registered sweep model (:data:`~contactres.analysis.models.SWEEP_FITS`, the
+    exact loops only with ``exact_loop``) fitted to one block of sweeps, in the registry's
+    order (arrays with the sweep as last axis, fields as ``<source>_<field>``); the plateau loop
+    only to the sweeps ``plateau`` (the others get NaN)."""
+    out = {"u_max": np.max(np.where(b.w > 0, b.u, 0.0), axis=1)}
+    inputs = LoopInputs(tables, plateau)
+    done: dict[str, dict[str, np.ndarray]] = {}
+    for fit in SWEEP_FITS:
+        if fit.exact and not exact_loop:
+            continue
+        done[fit.source] = fields = fit.fit(b, done, inputs)
+        out.update({f"{fit.source}_{field}": v for field, v in fields.items()})
     return out
 
 
 def _plateaus_of_rows(b: Block, found, u_c, rss, theta, table: LoopTable) -> dict[str, np.ndarray]:
-    """:func:`_fit_plateaus` of every sweep of ``b`` (a picklable call for :func:`_run`)."""
-    return _fit_plateaus(b, found, u_c, rss, theta, table, np.ones(len(b.n), bool))
+    """The plateau loop (:func:`~contactres.analysis.models.plateau_loop.fit_plateaus`) of
+    every sweep of ``b``, fields as ``pl_<field>`` (a picklable call for :func:`_run`)."""
+    fields = fit_plateaus(b, found, u_c, rss, theta, table, np.ones(len(b.n), bool))
+    return {f"pl_{field}": v for field, v in fields.items()}
 
 
 def _run(fn, workers: int, first: list, *rest) -> list:

@@ -14,6 +14,7 @@ stick plateau for a ``plateau`` sweep.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass
 
 import numpy as np
@@ -22,12 +23,15 @@ import pandas as pd
 from ..resonators.qcm import mu_from_slopes
 
 __all__ = [
+    "COULOMB_LOOPS",
+    "LOOP_OF_CLASS",
     "LoopFriction",
     "SlopeFriction",
     "block_friction",
     "loop_fit_force",
     "loop_force",
     "loop_friction",
+    "loop_table_force",
     "model_averaged_mu",
     "slip_sweeps",
     "slope_friction",
@@ -127,13 +131,39 @@ def loop_fit_force(frame: pd.DataFrame, prefix: str, P: np.ndarray):
     return force, err, (col["edge"] == "") & (col["df0_Hz"].astype(float) > 0)
 
 
-def loop_friction(sw: pd.DataFrame, P: np.ndarray) -> LoopFriction:
+#: The exact loop (key of ``Results.fits``) whose fit gives the friction of each slipping class.
+LOOP_OF_CLASS = (
+    ("cattaneo-mindlin", "cattaneo-mindlin-loop"),
+    ("plateau", "plateau-loop"),
+    ("savkoor", "savkoor-loop"),
+)
+
+
+def loop_table_force(table: pd.DataFrame, P: np.ndarray):
+    """:func:`loop_force` of the rows of an exact loop's fit table (parameters under their
+    keys, :func:`contactres.analysis.models.fit_tables`), and where it is resolved (Δf0 > 0 and
+    the fit not at an edge of the loop table)."""
+    df0 = table["df0"].to_numpy()
+    force, err = loop_force(
+        df0,
+        table["df0_err"].to_numpy(),
+        table["inverse_slip_scale"].to_numpy(),
+        table["ln_inverse_slip_scale_err"].to_numpy(),
+        table["cov_df0_ln_inverse_slip_scale"].to_numpy(),
+        P,
+    )
+    return force, err, (table["edge"].to_numpy() == "") & (df0.astype(float) > 0)
+
+
+def loop_friction(
+    sw: pd.DataFrame, fits: Mapping[str, pd.DataFrame], P: np.ndarray
+) -> LoopFriction:
     """μ and Savkoor's sliding force from the exact-loop fits of each sweep's class.
 
-    The Cattaneo-Mindlin loop from u0 = 0 (``cm_*`` columns) for a Cattaneo-Mindlin sweep, the
-    plateau loop (``pl_*``) for a plateau sweep, Savkoor's loop (``sv_*``) for a Savkoor sweep
-    (its sliding force, no μ); NaN elsewhere and where not resolved. ``gross_sliding`` marks
-    fits that end beyond the loop table (x > 30).
+    The Cattaneo-Mindlin loop from u0 = 0 for a Cattaneo-Mindlin sweep, the plateau loop for a
+    plateau sweep, Savkoor's loop for a Savkoor sweep (its sliding force, no μ); NaN elsewhere
+    and where not resolved. ``fits``: the fit table of each loop (:data:`LOOP_OF_CLASS`), one
+    row per row of ``sw``. ``gross_sliding`` marks fits that end beyond the loop table (x > 30).
     """
     S = len(sw)
     out = LoopFriction(
@@ -146,13 +176,13 @@ def loop_friction(sw: pd.DataFrame, P: np.ndarray) -> LoopFriction:
     )
     model = sw["model"].to_numpy()
     positive = sw["df0_Hz"].to_numpy() > 0
-    for name, src in (("cattaneo-mindlin", "cm"), ("plateau", "pl"), ("savkoor", "sv")):
+    for name, key in LOOP_OF_CLASS:
         idx = np.flatnonzero((model == name) & positive)
         if idx.size == 0:
             continue
-        part = sw.iloc[idx]
-        force, err, resolved = loop_fit_force(part, f"{src}_", P[idx])
-        edge = part[f"{src}_edge"].to_numpy()
+        part = fits[key].iloc[idx]
+        force, err, resolved = loop_table_force(part, P[idx])
+        edge = part["edge"].to_numpy()
         if name == "savkoor":
             out.sliding_force[idx] = np.where(resolved, np.pi / 4 * force, np.nan)
             out.sliding_force_err[idx] = np.where(resolved, np.pi / 4 * err, np.nan)
@@ -160,25 +190,30 @@ def loop_friction(sw: pd.DataFrame, P: np.ndarray) -> LoopFriction:
             F = sw["normal_force_N"].to_numpy()[idx]
             out.mu_fit[idx] = np.where(resolved, force / F, np.nan)
             out.mu_fit_err[idx] = np.where(resolved, err / F, np.nan)
-        out.x_max[idx] = part[f"{src}_x_max"].to_numpy(float)
+        out.x_max[idx] = part["x_max"].to_numpy(float)
         out.gross_sliding[idx] = edge == "high"
     return out
 
 
-def _joint_mu(blocks: pd.DataFrame, src: str, P: np.ndarray):
-    """μ, its error and the shared BIC of the joint ``src`` loop fit of every block (NaN, NaN,
-    inf where unresolved or not fitted)."""
-    nan = np.full(len(blocks), np.nan)
-    if f"{src}_df0_Hz" not in blocks:
-        return nan, nan, np.full(len(blocks), np.inf)
-    force, err, ok = loop_fit_force(blocks, f"{src}_", P)
-    bic = blocks[f"bic_shared_{src}"].to_numpy(float)
+#: The two Coulomb loops whose joint fits of a block are averaged (keys of the block fits).
+COULOMB_LOOPS = ("cattaneo-mindlin-loop", "plateau-loop")
+
+
+def _joint_mu(table: pd.DataFrame | None, F: np.ndarray, P: np.ndarray):
+    """μ, its error and the shared BIC (column ``bic_shared``) of one loop's joint fit of every
+    block, from its fit table (NaN, NaN, inf where unresolved or not fitted)."""
+    nan = np.full(len(F), np.nan)
+    if table is None:
+        return nan, nan, np.full(len(F), np.inf)
+    force, err, ok = loop_table_force(table, P)
+    bic = table["bic_shared"].to_numpy(float)
     ok &= np.isfinite(force) & np.isfinite(err) & np.isfinite(bic)
-    F = blocks["normal_force_N"].to_numpy(float)
     return np.where(ok, force / F, nan), np.where(ok, err / F, nan), np.where(ok, bic, np.inf)
 
 
-def model_averaged_mu(blocks: pd.DataFrame, P: np.ndarray) -> tuple[np.ndarray, ...]:
+def model_averaged_mu(
+    blocks: pd.DataFrame, joint: Mapping[str, pd.DataFrame], P: np.ndarray
+) -> tuple[np.ndarray, ...]:
     """μ of every block averaged over the two Coulomb loops, and its unconditional error.
 
     Where the Cattaneo-Mindlin loop and the plateau loop both describe a block (the plateau
@@ -191,9 +226,13 @@ def model_averaged_mu(blocks: pd.DataFrame, P: np.ndarray) -> tuple[np.ndarray, 
     Sec. 4.3): the spread between the models enters the error rather than being hidden by the
     choice. A decisive choice (ΔBIC ≳ 10) leaves the winner's μ and error unchanged.
 
+    ``joint``: the fit table of each loop of :data:`COULOMB_LOOPS` (one row per row of
+    ``blocks``, with ``bic_shared``; :func:`contactres.analysis.blocks.choose_blocks`).
+
     Returns μ̄, its error and the weight of the plateau loop (NaN where neither loop resolves μ).
     """
-    fits = [_joint_mu(blocks, src, P) for src in ("cm", "pl")]
+    F = blocks["normal_force_N"].to_numpy(float)
+    fits = [_joint_mu(joint.get(key), F, P) for key in COULOMB_LOOPS]
     mu, err, crit = (np.stack(v) for v in zip(*fits, strict=True))
     best = crit.min(axis=0)
     with np.errstate(invalid="ignore"):
@@ -209,11 +248,14 @@ def model_averaged_mu(blocks: pd.DataFrame, P: np.ndarray) -> tuple[np.ndarray, 
     )
 
 
-def block_friction(blocks: pd.DataFrame, sw: pd.DataFrame) -> pd.DataFrame:
+def block_friction(
+    blocks: pd.DataFrame, joint: Mapping[str, pd.DataFrame], sw: pd.DataFrame
+) -> pd.DataFrame:
     """μ (``mu``, ``mu_err``: averaged over the Cattaneo-Mindlin and plateau loops,
     :func:`model_averaged_mu`; ``mu_plateau_weight``) and Savkoor's sliding force
     (``sliding_force_N``, ``sliding_force_err_N``) from the joint fit of every shared block
-    (:func:`contactres.analysis.blocks.choose_blocks`); NaN where none. Returns a new frame."""
+    (:func:`contactres.analysis.blocks.choose_blocks`: ``blocks`` with the winner's joint fit,
+    ``joint`` every model's joint fit); NaN where none. Returns a new frame."""
     blocks = blocks.copy()
     for col in ("mu", "mu_err", "mu_plateau_weight", "sliding_force_N", "sliding_force_err_N"):
         blocks[col] = np.nan
@@ -230,7 +272,7 @@ def block_friction(blocks: pd.DataFrame, sw: pd.DataFrame) -> pd.DataFrame:
     force, err, resolved = loop_fit_force(blocks, "", P)
     resolved &= blocks["shared"].to_numpy(bool)
     friction = resolved & blocks["model"].isin(["cattaneo-mindlin", "plateau"]).to_numpy()
-    mu, mu_err, w_pl = model_averaged_mu(blocks, P)
+    mu, mu_err, w_pl = model_averaged_mu(blocks, joint, P)
     blocks["mu"] = np.where(friction, mu, np.nan)
     blocks["mu_err"] = np.where(friction, mu_err, np.nan)
     blocks["mu_plateau_weight"] = np.where(friction, w_pl, np.nan)

@@ -4,9 +4,11 @@
 :class:`contactres.analysis.results.Results`. Its steps:
 
 1. **Per sweep** (:mod:`contactres.analysis.classify`, all sweeps at once): every amplitude
-   model fitted (the exact Cattaneo-Mindlin, Savkoor and plateau loops, the elastic mean, and
-   the straight line and parabola for slopes and curvatures), and the class of the sweep alone
-   (lowest BIC, a nested simpler class kept within ``delta_bic``). Then **per load block**
+   model of the registry fitted by its batched fitter (:mod:`contactres.analysis.models`; one
+   fit table per model in ``Results.fits``): the exact Cattaneo-Mindlin, Savkoor and plateau
+   loops, the elastic mean, and the straight line and parabola for slopes and curvatures; and
+   the class of the sweep alone (lowest BIC, a nested simpler class kept within
+   ``delta_bic``). Then **per load block**
    (:mod:`contactres.analysis.blocks`): the used ramps of one load of one experiment get one
    class, chosen from all their points (shared parameters, or each ramp its own where the data
    demand it); the limits Δf0, ΔΓ0 with standard errors and the critical displacement of a
@@ -51,7 +53,9 @@
    JKR (Eq. 9) + Mindlin (κ = 2G*a, Eq. 7, 8, 10) with E1 = E2 = E and ν fixed (column
    ``poisson``), E and γ free; standard errors from the Jacobian scaled by the residual
    variance, and a bootstrap over experiments (``bootstrap`` resamples, seeded).
-7. **Radiation** (only with ``sphere_material`` and ``plate_material``): the loss tangent of
+7. **Curves**: the points of every sweep as fitted and its chosen model on the grids the
+   report draws (:mod:`contactres.analysis.curves`; ``Results.points``, ``Results.curves``).
+8. **Radiation** (only with ``sphere_material`` and ``plate_material``): the loss tangent of
    the sound the contact radiates into sphere and plate at each load's JKR contact radius and
    overtone frequency, its share of the measured ΔΓ0/Δf0, and E refitted for the dynamic
    softening of κ (:mod:`contactres.analysis.radiation`; ``Results.radiation``).
@@ -75,13 +79,14 @@ from ..units import JUNCTION_SIGMAS, LINEAR_ONSET_X, MIN_SWEEP_POINTS, SMALL_LOA
 from .amplitude import pad_sweeps
 from .blocks import block_codes, choose_blocks
 from .classify import apply_models, fit_sweeps
+from .curves import fitted_curves, sweep_points
 from .drift import LOAD_OF_EXPERIMENT, drifting_sweeps, remove_linear_drift
 from .flags import Flag
 from .friction import block_friction, loop_friction, slope_friction
 from .jkr import fit_group
 from .loads import GROUP_KEYS, per_experiment, per_load
 from .loops import X_MAX, loop_tables
-from .models import AMPLITUDE_MODELS
+from .models import AMPLITUDE_MODELS, fit_columns, fit_tables
 from .radiation import load_frequencies, material_by_name, radiation_loss
 from .ramps import check_ramps
 from .results import Results
@@ -290,7 +295,7 @@ def analyze(
     sw["used"] = used
 
     say("choosing the model of every load block")
-    blocks, decided, sw = choose_blocks(
+    blocks, decided, sw, block_fits = choose_blocks(
         padded,
         sw,
         used,
@@ -301,6 +306,7 @@ def analyze(
         pool_experiment=settings.pool_experiments,
     )
     sw = apply_models(sw, decided["model"].to_numpy(), settings.exact_loop)
+    fits = fit_tables(sw)  # every model's fit of every sweep, final: the steps below read them
     for col in ("block", "runner_up", "delta_bic", "decided_by"):
         sw[col] = decided[col].to_numpy()
     for col in ("df_slope_Hz_per_m", "dgamma_slope_Hz_per_m"):
@@ -338,7 +344,7 @@ def analyze(
     sw["mu_block_err"] = np.nan
     if settings.exact_loop:
         say("friction from the exact loops")
-        loops = loop_friction(sw, P)
+        loops = loop_friction(sw, fits, P)
         sw["mu_fit"] = loops.mu_fit
         sw["mu_fit_err"] = loops.mu_fit_err
         sw["x_max"] = loops.x_max
@@ -347,7 +353,7 @@ def analyze(
         flags |= _flag(loops.gross_sliding, Flag.GROSS_SLIDING)
         cm = (sw["model"] == "cattaneo-mindlin").to_numpy()
         flags |= _flag(cm & (loops.x_max > LINEAR_ONSET_X), Flag.BEYOND_ONSET)
-        blocks = block_friction(blocks, sw)
+        blocks = block_friction(blocks, block_fits, sw)
         member = sw["block"].to_numpy() >= 0
         for col in ("mu_block", "mu_block_err"):
             values = blocks[col.replace("_block", "")].to_numpy(float)
@@ -389,6 +395,9 @@ def analyze(
         groups.append(g)
         _savkoor_traction(sw, member, g)
 
+    say("the fitted curves of every sweep")
+    curves = fitted_curves(sw, padded)
+
     radiation = None
     if settings.sphere_material is not None and settings.plate_material is not None:
         say("radiation loss of the contacts")
@@ -403,16 +412,20 @@ def analyze(
 
     record = asdict(settings)
     record["x_max_table"] = X_MAX
+    # The user's sweep table keeps the named columns; each fit's fields are in its own table.
     return Results(
-        sweeps=sw,
+        sweeps=sw.drop(columns=fit_columns(sw)),
+        fits=fits,
         loads=loads,
         experiments=exp,
         groups=groups,
         settings=record,
         version=__version__,
         table=table,
-        padded=padded,
+        points=sweep_points(padded),
+        curves=curves,
         blocks=blocks,
+        block_fits=block_fits,
         messages=tuple(messages),
         radiation=radiation,
     )

@@ -53,8 +53,6 @@ import numpy as np
 import pandas as pd
 
 from ..crystals import crystal_names
-from ..dynamic.tangential_galerkin import KSA_MAX
-from ..dynamic.tangential_stiffness import two_body_contact_stiffness
 from ..errors import ContactresInputError
 from ..halfspace import shear_reference
 from ..materials import Material, at_cut_quartz
@@ -211,6 +209,11 @@ def radiation_loss(
         the solver refuses (its ValueError, e.g. k_s a out of range), has NaN values and says
         why in ``note``.
     """
+    # The dynamic contact solver is imported here, where it is used: an analysis without
+    # materials (and the report, which reads this module's schema) never loads contactres.dynamic.
+    from ..dynamic.tangential_galerkin import KSA_MAX
+    from ..dynamic.tangential_stiffness import two_body_contact_stiffness
+
     sphere, plate = _material(sphere, "sphere"), _material(plate, "plate")
     n = len(loads)
     f = np.broadcast_to(np.asarray(frequency_Hz, dtype=float), (n,)).copy()

@@ -2,14 +2,13 @@
 
 from __future__ import annotations
 
+from collections.abc import Mapping
 from dataclasses import dataclass, field
-from pathlib import Path
 
 import numpy as np
 import pandas as pd
 
 from ..measurements.sweeps import SweepTable
-from .amplitude import Padded
 
 __all__ = ["Results"]
 
@@ -20,8 +19,18 @@ class Results:
 
     Attributes
     ----------
-    sweeps : one row per sweep (all columns, including internal ones); ``flags`` is a bit mask
-        of :class:`contactres.analysis.flags.Flag` (text only when written)
+    sweeps : one row per sweep: the columns of ``sweeps.csv``
+        (:data:`contactres.measurements.schema.SWEEP_RESULTS`), the sweep's labels and constants
+        from the input, and what the model choice used (``n_points``, ``u_max_m``, the noise
+        levels ``sigma_df_Hz``, ``sigma_dgamma_Hz``, ``bic_<class>``, ``limits_from``,
+        ``P_Hz_per_N_per_m``, ``block``, ...); ``flags`` is a bit mask of
+        :class:`contactres.analysis.flags.Flag` (text only when written)
+    fits : one table per registered model fitted to every sweep (key of
+        :data:`contactres.analysis.models.REGISTRY` -> DataFrame, one row per sweep in the order
+        of ``sweeps``): ``sweep``, the parameters under their keys with their standard errors
+        (``<key>_err``), the residual sums ``rss_df``, ``rss_dgamma`` and the fit's other fields
+        (:func:`contactres.analysis.models.fit_tables`); the exact loops only with
+        ``exact_loop``
     loads : one row per (configuration, medium, normal force)
     experiments : one row per (configuration, medium, normal force, experiment): the means of
         its used sweeps (the points of the JKR fit)
@@ -29,10 +38,17 @@ class Results:
     settings : the settings used
     version : contactres version
     table : the input sweep table
-    padded : the sweeps as padded arrays (for the figures)
+    points : one row per point as the analysis fitted it (after any drift correction):
+        ``sweep``, ``amplitude_m``, ``df_Hz``, ``dgamma_Hz``
+        (:func:`contactres.analysis.curves.sweep_points`)
+    curves : the model chosen for each sweep on the grids the report draws: ``sweep``,
+        ``grid_points``, ``amplitude_m``, ``df_model_Hz``, ``dgamma_model_Hz``
+        (:func:`contactres.analysis.curves.fitted_curves`)
     messages : what the analysis found odd in the input, one line each (e.g. ramp labels that
         disagree with the file order)
     blocks : one row per load block judged jointly (:mod:`contactres.analysis.blocks`)
+    block_fits : every model's joint fit of every load block, like ``fits`` with ``block`` in
+        place of ``sweep`` (the Coulomb loops' with ``bic_shared``, their shared criterion)
     radiation : one row per load: the radiation loss of the contact against the measured one
         (:func:`contactres.analysis.radiation.radiation_loss`; None: no materials were given)
     """
@@ -44,9 +60,12 @@ class Results:
     settings: dict
     version: str
     table: SweepTable | None = None
-    padded: Padded | None = field(default=None, repr=False)
+    fits: Mapping[str, pd.DataFrame] = field(default_factory=dict, repr=False)
+    points: pd.DataFrame | None = field(default=None, repr=False)
+    curves: pd.DataFrame | None = field(default=None, repr=False)
     messages: tuple[str, ...] = ()
     blocks: pd.DataFrame | None = None
+    block_fits: Mapping[str, pd.DataFrame] = field(default_factory=dict, repr=False)
     radiation: pd.DataFrame | None = None
 
     def table1(self) -> pd.DataFrame:
@@ -74,15 +93,3 @@ class Results:
                 }
             )
         return pd.DataFrame(rows)
-
-    def write(self, folder, figures: bool = True) -> list[Path]:
-        """Alias of ``contactres.write_report(results, folder)`` (without ``png`` if not
-        ``figures``).
-
-        Kept for scripts written against contactres 0.1; :func:`contactres.write_report` is the
-        writer (this thin alias reaches up to the report layer at call time, the one exception
-        that tests/test_layout.py allows).
-        """
-        from ..report import FORMATS, write_report
-
-        return write_report(self, folder, [f for f in FORMATS if figures or f != "png"])

@@ -33,6 +33,7 @@ instrument for better.
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pandas as pd
@@ -347,8 +348,9 @@ def read_spectra_sweeps(
     """
     from .spectra import fit_resonances
     from .spectra_table import read_spectra
-    from .sweeps import validate_sweeps
+    from .sweeps import file_sha256, validate_sweeps
 
+    digest = file_sha256(path)  # of the file as read (None for a folder of spectra)
     table = read_spectra(
         path, layout=layout, reference_impedance=reference_impedance, voltage=voltage
     )
@@ -377,4 +379,5 @@ def read_spectra_sweeps(
     line = table.spectra.set_index("spectrum")["line"]
     raw["line"] = line.reindex(rows["spectrum"]).to_numpy()
     sweeps = validate_sweeps(raw, source=table.source, constants=given)
+    sweeps = replace(sweeps, source_sha256=digest)
     return sweeps, rows, fits, left_out

@@ -17,10 +17,11 @@ file, the line, the column and the value.
 
 from __future__ import annotations
 
+import hashlib
 import math
 import sys
 import warnings
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 
 import numpy as np
@@ -45,6 +46,7 @@ __all__ = [
     "SweepReader",
     "SweepTable",
     "SweepWarning",
+    "file_sha256",
     "read_sweeps",
     "validate_sweeps",
 ]
@@ -87,10 +89,13 @@ class SweepTable:
     data : one row per point, the columns of :data:`VALIDATED_COLUMNS` (every constant filled
         in; ``line`` is the line number of the row in the file)
     source : the file (or ``<table>`` for a table built in memory)
+    source_sha256 : SHA-256 (hex) of the file's bytes, taken when it was read (None: a table
+        built in memory, or read from a folder); the report shows it
     """
 
     data: pd.DataFrame
     source: str = "<table>"
+    source_sha256: str | None = None
 
     def __post_init__(self):
         if not isinstance(self.data, pd.DataFrame) or list(self.data.columns) != list(
@@ -111,7 +116,8 @@ class SweepTable:
         if unknown:
             raise ContactresInputError(f"unknown constant(s) {unknown}; allowed: {list(CONSTANTS)}")
         given = {name: _check_constant(name, v, f"argument {name}") for name, v in values.items()}
-        return validate_sweeps(self.data.drop(columns=list(given)), self.source, constants=given)
+        table = validate_sweeps(self.data.drop(columns=list(given)), self.source, constants=given)
+        return replace(table, source_sha256=self.source_sha256)  # the same input file
 
 
 # --------------------------------------------------------------------------------------------
@@ -206,14 +212,29 @@ def read_sweeps(path, *, readers=None, **constants) -> SweepTable:
         raise ContactresInputError(f"unknown constant(s) {unknown}; allowed: {list(CONSTANTS)}")
     given = {k: v for k, v in constants.items() if v is not None}
     toml, toml_path = _toml_constants(p)
+    digest = file_sha256(p)
     raw = (BUILT_IN if readers is None else readers).pick(p, "sweeps").load(p)
-    return validate_sweeps(
+    table = validate_sweeps(
         raw,
         source=str(p),
         constants=given,
         file_constants=toml,
         file_constants_source=str(toml_path) if toml_path else None,
     )
+    return replace(table, source_sha256=digest)
+
+
+def file_sha256(path) -> str | None:
+    """SHA-256 (hex) of the bytes of the file ``path``, read in blocks of 1 MiB; None for a
+    folder (an input read from several files has no one checksum)."""
+    p = Path(path)
+    if not p.is_file():
+        return None
+    h = hashlib.sha256()
+    with p.open("rb") as fh:
+        for block in iter(lambda: fh.read(1 << 20), b""):
+            h.update(block)
+    return h.hexdigest()
 
 
 # --------------------------------------------------------------------------------------------

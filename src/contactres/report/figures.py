@@ -20,7 +20,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 import pandas as pd
 
-from ..analysis.models import model_curves
+from ..analysis.curves import FIGURE_POINTS, sweep_rows
 from ..fileio import save_figure
 from ..measurements.sweeps import SweepWarning
 from ..tangential import kappa_jkr_mindlin
@@ -53,6 +53,8 @@ RADIATION_FIGURE = "radiation_loss.png"
 #: Longest label from the data shown in a figure (longer ones end in an ellipsis).
 LABEL_CHARS = 40
 
+#: The columns of :attr:`~contactres.analysis.results.Results.curves` drawn: u0, Δf, ΔΓ.
+CURVE_COLUMNS = ("amplitude_m", "df_model_Hz", "dgamma_model_Hz")
 MARKERS = ("o", "s", "^", "D", "v", "P")
 NM = 1e9
 
@@ -135,8 +137,9 @@ def figure_sweeps(results) -> Figure:
     from matplotlib.lines import Line2D
 
     sw = results.sweeps
-    p = results.padded
-    index = {s: i for i, s in enumerate(p.sweeps)}
+    points = sweep_rows(results.points)
+    curves = results.curves[results.curves["grid_points"] == FIGURE_POINTS]
+    curve = sweep_rows(curves)
     ramps = sorted(sw.loc[sw["used"], "ramp"].unique())
     picks = [(m, sel) for m in _media(results) for sel in _pick_examples(sw, m)]
     per_row = 2 if len(picks) > 1 else 1
@@ -148,13 +151,16 @@ def figure_sweeps(results) -> Figure:
         ax_f, ax_g = fig.add_subplot(grid[r, 2 * c]), fig.add_subplot(grid[r, 2 * c + 1])
         for _, row in sel.iterrows():
             k = ramps.index(row["ramp"])
-            u, df, dg = p.points(index[row["sweep"]])
+            pts = results.points.iloc[points[row["sweep"]]]
+            u, df, dg = (pts[c].to_numpy() for c in ("amplitude_m", "df_Hz", "dgamma_Hz"))
             color, marker = f"C{k % 10}", MARKERS[k % len(MARKERS)]
             label = f"ramp {row['ramp']} ({row['direction']})"
             ax_f.plot(u * NM, df, marker, ms=3, color=color, ls="none", label=label)
             ax_g.plot(u * NM, dg, marker, ms=3, color=color, ls="none", label=label)
-            uu = np.linspace(0.0, u.max(), 100)
-            f, g = model_curves(row, uu)
+            fit = curves.iloc[curve[row["sweep"]]]  # computed by the analysis, not here
+            uu, f, g = (
+                fit[c].to_numpy() for c in ("amplitude_m", "df_model_Hz", "dgamma_model_Hz")
+            )
             ax_f.plot(uu * NM, f, "-", lw=1, color=color)
             ax_g.plot(uu * NM, g, "-", lw=1, color=color)
         row = sel.iloc[0]

@@ -12,7 +12,6 @@ data is HTML-escaped.
 
 from __future__ import annotations
 
-import hashlib
 import math
 from html import escape
 from pathlib import Path
@@ -20,8 +19,8 @@ from pathlib import Path
 import numpy as np
 
 from .._version import __version__
+from ..analysis.curves import PAGE_POINTS, sweep_rows
 from ..analysis.flags import DESCRIPTIONS, Flag, render
-from ..analysis.models import model_curves
 from ..analysis.results import Results
 from ..fileio import write_text
 from ..measurements.schema import CONVENTIONS
@@ -72,14 +71,6 @@ def _table(frame, numeric=()) -> str:
     return f"<table><thead><tr>{head}</tr></thead><tbody>{''.join(rows)}</tbody></table>"
 
 
-def _sha256(path: Path) -> str:
-    h = hashlib.sha256()
-    with path.open("rb") as fh:
-        for block in iter(lambda: fh.read(1 << 20), b""):
-            h.update(block)
-    return h.hexdigest()
-
-
 def _panel(x0, u, y, uu, yy, label) -> str:
     """One panel of a sweep plot: points, model curve, the y range as text."""
     w, h, pad = 150.0, 90.0, 4.0
@@ -117,15 +108,12 @@ def _panel(x0, u, y, uu, yy, label) -> str:
     )
 
 
-def _sweep_svg(row, points) -> str:
-    """Δf and ΔΓ against u0 (0 … u_max) with the chosen model's curve, inline SVG."""
-    u, df, dg = points
-    u = np.asarray(u, dtype=float)
-    uu = np.linspace(0.0, float(np.nanmax(u)) if len(u) else 0.0, 30)
-    try:
-        f, g = model_curves(row, uu)
-    except Exception:  # a sweep with no model fitted (too few points): points only
-        f = g = np.full(uu.shape, np.nan)
+def _sweep_svg(points, curve) -> str:
+    """Δf and ΔΓ against u0 (0 … u_max) with the chosen model's curve, inline SVG: the
+    sweep's rows of ``Results.points`` and of ``Results.curves`` (NaN where the sweep has no
+    model fitted, e.g. too few points: points only)."""
+    u, df, dg = (points[c].to_numpy(float) for c in ("amplitude_m", "df_Hz", "dgamma_Hz"))
+    uu, f, g = (curve[c].to_numpy(float) for c in ("amplitude_m", "df_model_Hz", "dgamma_model_Hz"))
     body = _panel(0, u, np.asarray(df, float), uu, f, "Δf") + _panel(
         160, u, np.asarray(dg, float), uu, g, "ΔΓ"
     )
@@ -181,8 +169,9 @@ def _sweeps_section(results: Results) -> str:
     sw = results.sweeps
     if not len(sw):
         return "<p>No sweeps.</p>"
-    p = results.padded
-    index = {s: i for i, s in enumerate(p.sweeps)} if p is not None else {}
+    points = results.points
+    curves = results.curves[results.curves["grid_points"] == PAGE_POINTS]
+    index, curve = sweep_rows(points), sweep_rows(curves)
     flags = render(sw["flags"].to_numpy())
     loads = [f"{f * 1e3:.4g}" for f in sw["normal_force_N"]]
     used_flags = sorted({t for text in flags for t in text.split(";") if t})
@@ -197,7 +186,9 @@ def _sweeps_section(results: Results) -> str:
     rows = []
     for (_, row), text, load in zip(sw.iterrows(), flags, loads, strict=True):
         i = index.get(row["sweep"])
-        plot = _sweep_svg(row, p.points(i)) if i is not None and p is not None else DASH
+        plot = DASH
+        if i is not None:
+            plot = _sweep_svg(points.iloc[i], curves.iloc[curve[row["sweep"]]])
         model = row["model"] if isinstance(row["model"], str) and row["model"] else DASH
         rows.append(
             f'<tr data-configuration="{_e(row["configuration"])}" data-medium="{_e(row["medium"])}"'
@@ -256,7 +247,9 @@ def html_report(results: Results) -> str:
     source = None if results.table is None else results.table.source
     path = Path(source) if source and source != "<table>" else None
     name = path.name if path is not None else "table in memory"
-    checksum = _sha256(path) if path is not None and path.is_file() else DASH
+    # The checksum taken when the input was read: the file may have changed since.
+    digest = None if results.table is None else results.table.source_sha256
+    checksum = digest or DASH
     parts = [
         "<!DOCTYPE html>",
         '<html lang="en"><head><meta charset="utf-8">',
