@@ -143,7 +143,7 @@ def choose_blocks(
     tables: LoopTables | None,
     workers: int = 1,
     pool_experiment: bool = True,
-) -> tuple[pd.DataFrame, pd.DataFrame, pd.DataFrame]:
+) -> tuple[pd.DataFrame, pd.DataFrame, pd.DataFrame, dict[str, pd.DataFrame]]:
     """Choose the class of every load block of the sweeps ``joint`` (see the module docstring).
 
     Parameters
@@ -198,7 +198,7 @@ def choose_blocks(
     bf.index = bf["sweep"].to_numpy(int)
     bf = bf.sort_index()
     # Every model's joint fit of every block (its fit table, one row per block in order).
-    joint = {key: table.rename(columns={"sweep": "block"}) for key, table in fit_tables(bf).items()}
+    fits = {key: table.rename(columns={"sweep": "block"}) for key, table in fit_tables(bf).items()}
 
     # The 2 x 4 criteria of every block: (shared, per ramp) for each class.
     n_r = sw["n_points"].to_numpy(float)
@@ -261,7 +261,7 @@ def choose_blocks(
         rows = (winner == m) & blocks["shared"].to_numpy()
         if not rows.any():
             continue
-        table = joint[SOURCE_MODEL[src]]
+        table = fits[SOURCE_MODEL[src]]
         fields = {**_JOINT, **(_JOINT_LOOP if src in ("cm", "sv", "pl") else {})}
         fields |= _JOINT_PLATEAU if src == "pl" else {}
         for field, column in fields.items():
@@ -273,11 +273,11 @@ def choose_blocks(
     # with their BIC weights where they compete (friction.block_friction).
     if exact_loop:
         for m, key in (("cattaneo-mindlin", "cattaneo-mindlin-loop"), ("plateau", "plateau-loop")):
-            joint[key] = joint[key].assign(bic_shared=crit[2 * AMPLITUDE_MODELS.index(m)])
+            fits[key] = fits[key].assign(bic_shared=crit[2 * AMPLITUDE_MODELS.index(m)])
 
     per_sweep.loc[member, "block"] = code[member]
     per_sweep.loc[member, "model"] = winner[code[member]]
     per_sweep.loc[member, "runner_up"] = classes[runner][code[member]]
     per_sweep.loc[member, "delta_bic"] = evidence[code[member]]
     per_sweep.loc[member, "decided_by"] = "block"
-    return blocks, per_sweep, sw, joint
+    return blocks, per_sweep, sw, fits

@@ -169,9 +169,14 @@ def _sweeps_section(results: Results) -> str:
     sw = results.sweeps
     if not len(sw):
         return "<p>No sweeps.</p>"
-    points = results.points
-    curves = results.curves[results.curves["grid_points"] == PAGE_POINTS]
-    index, curve = sweep_rows(points), sweep_rows(curves)
+    points, curves = results.points, results.curves
+    index: dict = {}
+    curve: dict = {}
+    # Results built by hand (not by analyze) may carry no curves: their sweeps are listed
+    # without plots.
+    if points is not None and curves is not None:
+        curves = curves[curves["grid_points"] == PAGE_POINTS]
+        index, curve = sweep_rows(points), sweep_rows(curves)
     flags = render(sw["flags"].to_numpy())
     loads = [f"{f * 1e3:.4g}" for f in sw["normal_force_N"]]
     used_flags = sorted({t for text in flags for t in text.split(";") if t})
@@ -187,7 +192,7 @@ def _sweeps_section(results: Results) -> str:
     for (_, row), text, load in zip(sw.iterrows(), flags, loads, strict=True):
         i = index.get(row["sweep"])
         plot = DASH
-        if i is not None:
+        if i is not None and points is not None and curves is not None:
             plot = _sweep_svg(points.iloc[i], curves.iloc[curve[row["sweep"]]])
         model = row["model"] if isinstance(row["model"], str) and row["model"] else DASH
         rows.append(
