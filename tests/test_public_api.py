@@ -472,11 +472,11 @@ def test_type_checkers_see_every_lazy_name_of_contactres():
     assert seen == expected
 
 
-def test_type_checkers_see_every_lazy_name_of_contactres_dynamic():
-    import contactres.dynamic as dynamic
-
-    seen = type_checking_imports(PACKAGE_DIR / "dynamic" / "__init__.py")
-    assert seen == dict(dynamic._EXPORTS)
+@pytest.mark.parametrize("name", ["dynamic", "normal"])
+def test_type_checkers_see_every_lazy_name_of_a_subpackage(name):
+    package = importlib.import_module(f"contactres.{name}")
+    seen = type_checking_imports(PACKAGE_DIR / name / "__init__.py")
+    assert seen == dict(package._EXPORTS)
 
 
 USER_FILE = """

@@ -27,6 +27,7 @@ with tempfile.TemporaryDirectory() as folder:
     write_report(results, folder + "/out", formats=("csv", "json"))
 print(json.dumps({
     "dynamic": sorted(m for m in sys.modules if m.startswith("contactres.dynamic")),
+    "halfspace": sorted(m for m in sys.modules if m.startswith("contactres.halfspace")),
     "radiation": results.radiation is not None,
 }))
 """
@@ -57,5 +58,39 @@ def test_the_dynamic_solver_is_loaded_only_for_the_radiation_loss(materials, rad
     assert loaded["radiation"] is radiation
     if radiation:
         assert "contactres.dynamic.tangential_stiffness" in loaded["dynamic"]
+        assert "contactres.halfspace.compliance" in loaded["halfspace"]
     else:
         assert loaded["dynamic"] == []
+        assert loaded["halfspace"] == []
+
+
+def test_the_command_loads_no_solver_without_materials(tmp_path):
+    """``contactres qcm analyze`` itself (its command tree and job): no contactres.dynamic or
+    contactres.halfspace module without --sphere-material/--plate-material."""
+    code = (
+        "import sys, json\n"
+        "from contactres.cli import main\n"
+        "try:\n"
+        "    main(sys.argv[1:])\n"
+        "except SystemExit:\n"
+        "    pass\n"
+        "print(json.dumps(sorted(m for m in sys.modules\n"
+        "    if m.startswith(('contactres.dynamic', 'contactres.halfspace')))))\n"
+    )
+    from importlib.resources import files
+
+    example = str(files("contactres") / "data" / "example_sweeps.csv")
+    env = dict(os.environ)
+    env["PYTHONPATH"] = os.pathsep.join([*sys.path])
+    args = ["qcm", "analyze", example, "--out", str(tmp_path / "out"), "--no-figures"]
+    run = subprocess.run(
+        [sys.executable, "-c", code, *args],
+        capture_output=True,
+        text=True,
+        env=env,
+        timeout=600,
+        check=False,
+    )
+    assert run.returncode == 0, run.stderr
+    assert (tmp_path / "out" / "summary.json").exists()
+    assert json.loads(run.stdout.splitlines()[-1]) == []

@@ -87,7 +87,6 @@ from .jkr import fit_group
 from .loads import GROUP_KEYS, per_experiment, per_load
 from .loops import X_MAX, loop_tables
 from .models import AMPLITUDE_MODELS, fit_columns, fit_tables
-from .radiation import load_frequencies, material_by_name, radiation_loss
 from .ramps import check_ramps
 from .results import Results
 from .running_in import running_in
@@ -161,6 +160,9 @@ class AnalysisSettings:
                 "'soda-lime-glass' and 'quartz-AT') or neither"
             )
         if self.sphere_material is not None:
+            # Imported here: an analysis without materials loads no half-space or dynamic solver.
+            from .radiation import material_by_name
+
             material_by_name(self.sphere_material, "sphere")  # ValueError naming the known
             material_by_name(self.plate_material, "plate")
 
@@ -401,6 +403,8 @@ def analyze(
     radiation = None
     if settings.sphere_material is not None and settings.plate_material is not None:
         say("radiation loss of the contacts")
+        from .radiation import load_frequencies, radiation_loss
+
         radiation = radiation_loss(
             loads,
             groups,

@@ -54,7 +54,6 @@ import pandas as pd
 
 from ..crystals import crystal_names
 from ..errors import ContactresInputError
-from ..halfspace import shear_reference
 from ..materials import Material, at_cut_quartz
 from ..measurements.schema import RADIATION_RESULTS
 from ..normal.isotropic import effective_modulus, jkr_contact_radius
@@ -209,10 +208,13 @@ def radiation_loss(
         the solver refuses (its ValueError, e.g. k_s a out of range), has NaN values and says
         why in ``note``.
     """
-    # The dynamic contact solver is imported here, where it is used: an analysis without
-    # materials (and the report, which reads this module's schema) never loads contactres.dynamic.
+    # The dynamic contact solver and the half-space are imported here, where they are used: an
+    # analysis without materials (and the report, which reads this module's schema) loads
+    # neither contactres.dynamic nor contactres.halfspace.
+    from ..dynamic.normal_stiffness import normalised_wavenumber
     from ..dynamic.tangential_galerkin import KSA_MAX
     from ..dynamic.tangential_stiffness import two_body_contact_stiffness
+    from ..halfspace import shear_reference
 
     sphere, plate = _material(sphere, "sphere"), _material(plate, "plate")
     n = len(loads)
@@ -222,11 +224,12 @@ def radiation_loss(
     note[no_f & (note == "")] = "no single overtone frequency (several, or no used sweep)"
     valid = np.isfinite(a) & (a > 0) & ~no_f
     # Rows beyond the solver's range of k_s a (in either body) are left out one by one.
-    ks = 2 * np.pi * np.where(valid, f, 0.0) * np.where(valid, a, 0.0)
+    f_valid, a_valid = np.where(valid, f, 0.0), np.where(valid, a, 0.0)
     for body in (sphere, plate):
         if body.density is None:
             continue
-        far = valid & (ks * np.sqrt(body.density / shear_reference(body)) > KSA_MAX)
+        ksa = normalised_wavenumber(f_valid, a_valid, body.density, shear_reference(body))
+        far = valid & (ksa > KSA_MAX)
         note[far] = f"k_s a beyond {KSA_MAX:g} (contact radius or frequency too large)"
         valid &= ~far
     K = np.full(n, np.nan + 0j)

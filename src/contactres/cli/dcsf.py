@@ -6,11 +6,16 @@ import click
 
 # The option choices need these names while the command tree is built (and --help printed):
 # this import is the one library import of the CLI at module level.
-from ..dynamic import MODELS, WAVENUMBERS
 from ..errors import ContactresInputError
 from ._app import main
 from ._common import MagnitudeType, RangeType, emit, format_option, step
 from ._crystal_face import crystal_face, crystal_face_options
+
+# The choices of --model and --wavenumber: contactres.dynamic's MODELS and WAVENUMBERS, written
+# out so that building the command tree (every command's, 'qcm analyze' too) imports no module
+# of contactres.dynamic; tests/test_startup.py checks that they are the library's names.
+MODEL_CHOICES = ("R0", "R1", "SA", "WA", "TP", "WA2D")
+WAVENUMBER_CHOICES = ("longitudinal", "shear")
 
 # The options that together give k a from a physical contact (instead of --ka).
 _CONTACT_OPTIONS = ("radius", "force", "frequency")
@@ -25,7 +30,7 @@ _CONTACT_OPTIONS = ("radius", "force", "frequency")
     "--model",
     default="exact",
     show_default=True,
-    type=click.Choice([*MODELS, "exact", "all"], case_sensitive=False),
+    type=click.Choice([*MODEL_CHOICES, "exact", "all"], case_sensitive=False),
     help="Displacement condition, 'exact' (rigid flat punch, recommended) or 'all' (every one).",
 )
 @click.option(
@@ -66,7 +71,7 @@ _CONTACT_OPTIONS = ("radius", "force", "frequency")
 )
 @click.option(
     "--wavenumber",
-    type=click.Choice(WAVENUMBERS),
+    type=click.Choice(WAVENUMBER_CHOICES),
     default="longitudinal",
     show_default=True,
     help="k = ω√(ρ/C33) (longitudinal, the paper's k_l a) or ω√(ρ/C44) (shear, k_s a).",

@@ -1,26 +1,84 @@
 """Normal contact: isotropic Hertz/JKR/DMT (``isotropic``) and anisotropic Hertz (``anisotropic``).
 
-The public functions of both modules are re-exported here and from :mod:`contactres`.
+The public functions of both modules are re-exported here and from :mod:`contactres`. They are
+loaded on first use (PEP 562 module ``__getattr__``): a caller of the isotropic formulas (the
+tangential loops, the QCM analysis) does not import the anisotropic half-space behind
+``anisotropic``.
 """
 
-from .anisotropic import (  # noqa: F401
-    AnisotropicContact,
-    ContactIntegrals,
-    contact_integrals,
-    indentation_modulus,
-    sphere_contact,
+from __future__ import annotations
+
+import importlib
+from types import MappingProxyType
+
+# Only type checkers need `Any`: a module-level TYPE_CHECKING = False is read as True by mypy and
+# pyright, and keeps `typing` out of the command line's start-up.
+TYPE_CHECKING = False
+if TYPE_CHECKING:
+    from typing import Any
+
+# Public name -> the module that defines it.
+_EXPORTS = MappingProxyType(
+    {
+        "AnisotropicContact": ".anisotropic",
+        "ContactIntegrals": ".anisotropic",
+        "contact_integrals": ".anisotropic",
+        "indentation_modulus": ".anisotropic",
+        "sphere_contact": ".anisotropic",
+        "Contact": ".isotropic",
+        "dmt": ".isotropic",
+        "effective_modulus": ".isotropic",
+        "effective_shear_modulus": ".isotropic",
+        "hertz": ".isotropic",
+        "jkr": ".isotropic",
+        "jkr_contact_radius": ".isotropic",
+        "jkr_from_depth": ".isotropic",
+        "jkr_pull_off_force": ".isotropic",
+        "shear_modulus": ".isotropic",
+        "tabor_parameter": ".isotropic",
+        "which_adhesion_model": ".isotropic",
+    }
 )
-from .isotropic import (  # noqa: F401
-    Contact,
-    dmt,
-    effective_modulus,
-    effective_shear_modulus,
-    hertz,
-    jkr,
-    jkr_contact_radius,
-    jkr_from_depth,
-    jkr_pull_off_force,
-    shear_modulus,
-    tabor_parameter,
-    which_adhesion_model,
-)
+
+__all__ = sorted(_EXPORTS)
+
+# What type checkers see: the real objects behind the public names (never run, so the imports
+# stay lazy; tests/test_public_api.py keeps these imports and ``_EXPORTS`` the same). ``X as X``
+# marks an explicit re-export; isort would split each onto its own import, hence off here.
+if TYPE_CHECKING:
+    # isort: off
+    from .anisotropic import (
+        AnisotropicContact as AnisotropicContact,
+        ContactIntegrals as ContactIntegrals,
+        contact_integrals as contact_integrals,
+        indentation_modulus as indentation_modulus,
+        sphere_contact as sphere_contact,
+    )
+    from .isotropic import (
+        Contact as Contact,
+        dmt as dmt,
+        effective_modulus as effective_modulus,
+        effective_shear_modulus as effective_shear_modulus,
+        hertz as hertz,
+        jkr as jkr,
+        jkr_contact_radius as jkr_contact_radius,
+        jkr_from_depth as jkr_from_depth,
+        jkr_pull_off_force as jkr_pull_off_force,
+        shear_modulus as shear_modulus,
+        tabor_parameter as tabor_parameter,
+        which_adhesion_model as which_adhesion_model,
+    )
+
+    # isort: on
+
+
+def __getattr__(name: str) -> Any:
+    """Import the module behind a public name on first access (nothing is kept in globals)."""
+    if name in _EXPORTS:
+        return getattr(importlib.import_module(_EXPORTS[name], __name__), name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    """The public names and the loaded submodules, as ``dir()`` and tab completion expect."""
+    return sorted({*globals(), *__all__})
