@@ -152,10 +152,11 @@ def read(inputs: str | os.PathLike, settings: Settings) -> Reading:
 
 def stages(reading: Reading, settings: Settings) -> int:
     """The length of a progress bar over :func:`run` of ``reading`` and the writing of the
-    tables: at most 5 analysis stages, one per (configuration, medium) group and one for the
-    radiation loss, then one for the tables (a caller drawing figures adds one more)."""
+    tables: at most 6 analysis stages (the fitted curves the last), one per (configuration,
+    medium) group and one for the radiation loss, then one for the tables (a caller drawing
+    figures adds one more)."""
     n_groups = reading.table.data.groupby(["configuration", "medium"]).ngroups
-    return 6 + n_groups + (settings.sphere_material is not None)
+    return 7 + n_groups + (settings.sphere_material is not None)
 
 
 def run(
