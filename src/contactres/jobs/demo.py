@@ -20,6 +20,7 @@ from dataclasses import dataclass
 from importlib.resources import as_file, files
 from types import MappingProxyType
 
+from ..measurements.schema import CRYSTAL_TABLE, SPECTRA_FITS, SPECTRA_SWEEPS
 from .contract import JobResult, Progress, say
 
 __all__ = ["STEPS", "Result", "Settings", "run"]
@@ -45,12 +46,17 @@ class Settings:
 @dataclass(frozen=True)
 class Result(JobResult):
     """Every part of the demo: the analyses (``sweeps_analysis``; ``spectra_rows``,
-    ``spectra_fits`` and ``spectra_analysis``), the ``crystals`` table, the ``paper2`` job's
+    ``spectra_fits`` and ``spectra_analysis``; the tables bound to
+    :data:`~contactres.measurements.schema.SPECTRA_SWEEPS` and
+    :data:`~contactres.measurements.schema.SPECTRA_FITS`), the ``crystals`` table
+    (:data:`~contactres.measurements.schema.CRYSTAL_TABLE`), the ``paper2`` job's
     Result, the crystals' DCSF curves (``crystal_dcsf``: label -> DCSF on the grid
     ``contactres.jobs.paper1.KLA``) and the polycrystal map (``map_dataset``, the orientation
     map ``map_orientations``, the fit record ``map_fit``)."""
 
-    SCHEMAS = MappingProxyType({"crystals": None, "spectra_rows": None, "spectra_fits": None})
+    SCHEMAS = MappingProxyType(
+        {"crystals": CRYSTAL_TABLE, "spectra_rows": SPECTRA_SWEEPS, "spectra_fits": SPECTRA_FITS}
+    )
     NOT_VALUES = (
         "sweeps_analysis",
         "spectra_analysis",
