@@ -101,13 +101,14 @@ def _spectra():
 def _polycrystal():
     """The predicted map of the bundled Cu orientations and the fit of the measured map."""
     from ..materials import Material
-    from .maps import TipLoad, fit_measured_map, fit_record, open_map, predict_map, read_value_grid
+    from .maps import TipLoad, fit_measured_map, fit_record, open_map, predict_map
+    from .readers import read_grid_file
 
     cu = Material.crystal("Cu")
     data = files("contactres") / "data"
     with as_file(data / "example_cu_map.ang") as ang, as_file(data / "example_cu_kstar.csv") as k:
         omap, _ = open_map(ang)
-        measured = read_value_grid(k)
+        measured = read_grid_file(k)
     ds, _ = predict_map(omap, cu, "cubic", TipLoad(radius=20e-9, force=1e-6))
     result, _, used = fit_measured_map(omap, measured, quantity="stiffness")
     record = fit_record(result, source="example_cu_map.ang + example_cu_kstar.csv", pixels=used)
