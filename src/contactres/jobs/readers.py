@@ -24,6 +24,7 @@ from __future__ import annotations
 import os
 import re
 from pathlib import Path
+from typing import cast
 
 import numpy as np
 
@@ -131,4 +132,4 @@ def read_grid_file(path: str | os.PathLike, readers: Readers = ALL_READERS) -> n
     """A measured value grid read by the ``grid`` recipe of ``readers`` for its suffix, or by
     the first ``grid`` recipe for another suffix (a text grid may be called anything)."""
     reader = readers.for_suffix(path, "grid") or readers.of_kind("grid")[0]
-    return reader.load(path)
+    return cast(np.ndarray, reader.load(path))  # what a grid recipe returns (KINDS["grid"])
