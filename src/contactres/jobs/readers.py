@@ -85,7 +85,7 @@ def read_value_grid(path: str | os.PathLike) -> np.ndarray:
     bad = ~(np.isnan(grid) | (np.isfinite(grid) & (grid > 0)))
     if bad.any():
         i, j = np.argwhere(bad)[0]
-        shown = grid[i, j] if cells is None else cells.iat[i, j]
+        shown: object = grid[i, j] if cells is None else cells.iat[i, j]
         raise ContactresInputError(
             f"{p.name}: row {i + 1}, column {j + 1}: {shown} must be finite and > 0 "
             "(a stiffness in N/m or a modulus in Pa)"
