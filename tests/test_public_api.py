@@ -163,7 +163,7 @@ JOBS = [
     "qcm_sweeps",
     "rum_invert",
 ]
-JOB_HELPERS = ["contract", "maps"]
+JOB_HELPERS = ["contract", "maps", "readers"]
 # The public API of every job (docs/developer/adding.md: always the same three names).
 JOB_API = ["Result", "Settings", "run"]
 
@@ -240,6 +240,7 @@ PUBLIC = {
     ],
     **{f"jobs.{job}": JOB_API for job in JOBS},
     "jobs.contract": ["JobResult", "say"],
+    "jobs.readers": ["ALL_READERS"],
 }
 
 # In __all__ (or re-exported) but named nowhere in the docs: internal, not pinned as public.
@@ -372,6 +373,7 @@ UNDOCUMENTED = {
     "jobs.qcm_loop": ["MODELS", "build_loop"],
     "jobs.qcm_stiffness": ["COLUMN_UNITS", "EQUATION", "stiffness_table"],
     "jobs.qcm_sweeps": ["Reading", "read", "stages", "warning_lines"],
+    "jobs.readers": ["GRID_READER", "read_ebsd_file", "read_grid_file", "read_value_grid"],
 }
 
 

@@ -31,11 +31,11 @@ def test_afm_job_reports_progress_and_keeps_the_input_columns():
 
 
 def test_spectra_job_gives_the_sweep_table_bound_to_its_schema():
-    from contactres.measurements.schema import SWEEP_TABLE
+    from contactres.measurements.schema import SPECTRA_SWEEPS, SWEEP_TABLE
 
     result = qcm_spectra.run(DATA + "example_spectra.csv")
     frame, schema = result.tables()["sweeps"]
-    assert schema is SWEEP_TABLE
-    assert set(schema.required) <= set(frame.columns)
+    assert schema is SPECTRA_SWEEPS
+    assert set(SWEEP_TABLE.required) <= set(frame.columns)
     assert "quality" not in frame.columns
     assert len(result.fits) == pd.read_csv(DATA + "example_spectra.csv")["spectrum"].nunique()

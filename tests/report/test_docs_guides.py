@@ -1,7 +1,8 @@
 """The user guides' code runs as written, so the pages cannot drift from the package.
 
-For each page (``docs/getting-started.md`` and every ``docs/guide/*.md``) the fenced blocks run
-in document order in one temporary working directory:
+For each page (``docs/getting-started.md``, every ``docs/guide/*.md`` and the developer page
+``docs/developer/adding.md``) the fenced blocks run in document order in one temporary working
+directory:
 
 * every ```python block, all blocks of a page in one namespace (they build on each other),
   except those named in :data:`SKIPPED`;
@@ -29,8 +30,12 @@ import pytest
 
 ROOT = Path(__file__).resolve().parents[2]
 DOCS = ROOT / "docs"
-PAGES = [DOCS / "getting-started.md", *sorted((DOCS / "guide").glob("*.md"))]
-EXPECTED = ["getting-started.md"] + [
+PAGES = [
+    DOCS / "getting-started.md",
+    *sorted((DOCS / "guide").glob("*.md")),
+    DOCS / "developer" / "adding.md",
+]
+EXPECTED = ["getting-started.md", "developer/adding.md"] + [
     f"guide/{name}.md"
     for name in ("qcm-sweeps", "spectra", "anisotropic-contact", "dynamic-stiffness", "cr-afm-rum")
 ]

@@ -24,16 +24,25 @@ from ._common import MagnitudeType, odd_overtone, step
 
 #: The files the command writes into its folder.
 FILES = ("stiffness.csv", "stiffness.json", "stiffness.png")
-#: The readers the help names (``contactres.measurements.readers.exports.EXPORT_READERS``).
-READER_NAMES = ("qsense", "awsensors", "qcmi", "openqcm")
+
+
+def reader_names() -> tuple[str, ...]:
+    """The names of the export readers, in the order they are tried: those of the registry
+    (``contactres.measurements.readers.exports.EXPORT_READERS``; imported without pandas)."""
+    from ..measurements.readers.exports import EXPORT_READERS
+
+    return tuple(r.name for r in EXPORT_READERS)
 
 
 def __getattr__(name: str):
-    """``COLUMN_UNITS`` (the units of stiffness.csv's columns) is the job's, loaded on use."""
+    """``COLUMN_UNITS`` (the units of stiffness.csv's columns) is the job's and
+    ``READER_NAMES`` (:func:`reader_names`) the registry's, loaded on use."""
     if name == "COLUMN_UNITS":
         from ..jobs.qcm_stiffness import COLUMN_UNITS
 
         return COLUMN_UNITS
+    if name == "READER_NAMES":
+        return reader_names()
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
@@ -49,6 +58,19 @@ class ReaderName(click.ParamType):
             return export_reader(value).name
         except ValueError as exc:
             self.fail(str(exc), param, ctx)
+
+
+class ReaderOption(click.Option):
+    """``--reader``, whose help names the export readers of the registry, read when the help is
+    shown (building the command imports no reader)."""
+
+    @property
+    def help(self) -> str:
+        return f"Export format: {', '.join(reader_names())}."
+
+    @help.setter
+    def help(self, value) -> None:
+        """click sets the help when it builds the option; the text is the registry's."""
 
 
 class DissipationScale(click.ParamType):
@@ -109,9 +131,9 @@ class Baseline(click.ParamType):
 )
 @click.option(
     "--reader",
+    cls=ReaderOption,
     type=ReaderName(),
     show_default="recognised from the header",
-    help=f"Export format: {', '.join(READER_NAMES)}.",
 )
 @click.option(
     "--df-per-overtone/--df-divided-by-n",

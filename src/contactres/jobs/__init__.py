@@ -27,5 +27,7 @@ from a QCM-D export), ``qcm_spectra`` (admittance spectra -> the sweep table), `
 (paper 2's analysis of amplitude sweeps), ``crystals`` (the built-in solids and their moduli),
 ``maps_synthetic``, ``maps_predict`` and ``maps_fit`` (polycrystal maps; their computations in
 :mod:`contactres.jobs.maps`), ``paper1`` and ``paper2`` (the numbers of the papers' figures)
-and ``demo`` (the main workflows on the bundled data).
+and ``demo`` (the main workflows on the bundled data). Shared by them: :mod:`contactres.jobs.maps`
+(the map computations) and :mod:`contactres.jobs.readers` (every reader recipe in one registry,
+through which the jobs read EBSD exports and value grids).
 """

@@ -15,6 +15,7 @@ from pathlib import Path
 from types import MappingProxyType
 from typing import TYPE_CHECKING
 
+from ..measurements.schema import AFM_INVERT_RESULTS
 from .contract import JobResult, Progress, say
 
 if TYPE_CHECKING:
@@ -53,9 +54,10 @@ class Settings:
 @dataclass(frozen=True)
 class Result(JobResult):
     """``table``: the input's columns (``input_columns``, copied) then the computed ones
-    (``contactres.report.dictionary.AFM_INVERT_RESULTS``)."""
+    (:data:`contactres.measurements.schema.AFM_INVERT_RESULTS`, which lists the computed
+    ones only)."""
 
-    SCHEMAS = MappingProxyType({"table": None})
+    SCHEMAS = MappingProxyType({"table": AFM_INVERT_RESULTS})
 
     table: pd.DataFrame
     input_columns: tuple[str, ...]

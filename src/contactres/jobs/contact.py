@@ -19,6 +19,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..errors import ContactresInputError
+from ..measurements.schema import CONTACT_TABLE
 from .contract import JobResult, Progress, say
 
 if TYPE_CHECKING:
@@ -55,11 +56,12 @@ class Settings:
 
 @dataclass(frozen=True)
 class Result(JobResult):
-    """One row per (R, F, f): ``table`` (columns in SI units, named with them), and whether the
+    """One row per (R, F, f): ``table`` (columns in SI units, named with them:
+    :data:`contactres.measurements.schema.CONTACT_TABLE`), and whether the
     contact is circular (the face has 3- or 4-fold symmetry) with the relative 2nd harmonic of
     its compliance, ``noncircularity``."""
 
-    SCHEMAS = MappingProxyType({"table": None})
+    SCHEMAS = MappingProxyType({"table": CONTACT_TABLE})
 
     table: pd.DataFrame
     circular: bool

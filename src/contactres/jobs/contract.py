@@ -7,8 +7,9 @@ A job is one workflow of contactres (a QCM sweep analysis, a DCSF curve, a CR-AF
   functions take them); its defaults are those of the command line;
 * ``Result``: a frozen dataclass deriving from :class:`JobResult`, whose fields are its tables
   (:class:`pandas.DataFrame`, each bound in :attr:`JobResult.SCHEMAS` to the
-  :class:`~contactres.measurements.schema.TableSchema` that documents its columns, or ``None``
-  where no schema is declared yet) and its values (numbers, text, small dicts);
+  :class:`~contactres.measurements.schema.TableSchema` that documents its columns: every table
+  has one, ``tests/jobs/test_job_schemas.py`` checks it) and its values (numbers, text, small
+  dicts);
 * ``run(inputs, settings, progress=None) -> Result``: the computation, a pure function of its
   arguments apart from reading the input files it is given. ``progress`` (a :data:`Progress`)
   receives one short line per stage ("reading x.csv", "inverting 12 rows").
@@ -68,7 +69,7 @@ class JobResult:
     :class:`pandas.DataFrame` each) with their schema. Every other field is a value.
     """
 
-    #: Table field -> its schema (None: no schema declared for that table yet).
+    #: Table field -> its schema (None only while a schema is being written: the tests refuse it).
     SCHEMAS: ClassVar[Mapping[str, TableSchema | None]] = MappingProxyType({})
     #: Fields that are not values of the result: messages for the user (``warnings``, a tuple
     #: of lines, printed) and labels (the input's name, for a figure's title).

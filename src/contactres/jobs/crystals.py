@@ -12,6 +12,7 @@ from dataclasses import dataclass
 from types import MappingProxyType
 from typing import TYPE_CHECKING
 
+from ..measurements.schema import CRYSTALS_LISTING
 from .contract import JobResult, Progress, say
 
 if TYPE_CHECKING:
@@ -31,9 +32,10 @@ class Settings:
 @dataclass(frozen=True)
 class Result(JobResult):
     """``table``: one row per solid: the columns of :func:`contactres.crystal_table`, with
-    M001_GPa, M011_GPa and M111_GPa (GPa; NaN where the face does not apply) before the source."""
+    M001_GPa, M011_GPa and M111_GPa (GPa; NaN where the face does not apply) before the source
+    (:data:`contactres.measurements.schema.CRYSTALS_LISTING`)."""
 
-    SCHEMAS = MappingProxyType({"table": None})
+    SCHEMAS = MappingProxyType({"table": CRYSTALS_LISTING})
     NAME = "crystals"
 
     table: pd.DataFrame

@@ -20,6 +20,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..errors import ContactresInputError
+from ..measurements.schema import DCSF_TABLE
 from .contract import JobResult, Progress, say
 
 if TYPE_CHECKING:
@@ -69,10 +70,11 @@ class Settings:
 class Result(JobResult):
     """``table``: one row per (model, k a): ka, model, re, im (DCSF relative to K_sa), and for
     physical contacts radius_m, force_N, frequency_Hz, contact_radius_m, stiffness_N_per_m and
-    K = K_sa DCSF (K_re_N_per_m, K_im_N_per_m). ``face``: C33/C44, C33 and C44 (Pa) of the face
-    and its wave speeds v_l = √(C33/ρ), v_s = √(C44/ρ) (m/s); NaN where unknown."""
+    K = K_sa DCSF (K_re_N_per_m, K_im_N_per_m): :data:`contactres.measurements.schema.DCSF_TABLE`.
+    ``face``: C33/C44, C33 and C44 (Pa) of the face and its wave speeds v_l = √(C33/ρ),
+    v_s = √(C44/ρ) (m/s); NaN where unknown."""
 
-    SCHEMAS = MappingProxyType({"table": None})
+    SCHEMAS = MappingProxyType({"table": DCSF_TABLE})
 
     table: pd.DataFrame
     face: dict

@@ -21,6 +21,7 @@ from importlib.resources import as_file, files
 from types import MappingProxyType
 from typing import TYPE_CHECKING
 
+from ..measurements.schema import CRYSTAL_TABLE, SPECTRA_FITS, SPECTRA_SWEEPS
 from .contract import JobResult, Progress, say
 
 if TYPE_CHECKING:
@@ -52,12 +53,17 @@ class Settings:
 @dataclass(frozen=True)
 class Result(JobResult):
     """Every part of the demo: the analyses (``sweeps_analysis``; ``spectra_rows``,
-    ``spectra_fits`` and ``spectra_analysis``), the ``crystals`` table, the ``paper2`` job's
+    ``spectra_fits`` and ``spectra_analysis``; the tables bound to
+    :data:`~contactres.measurements.schema.SPECTRA_SWEEPS` and
+    :data:`~contactres.measurements.schema.SPECTRA_FITS`), the ``crystals`` table
+    (:data:`~contactres.measurements.schema.CRYSTAL_TABLE`), the ``paper2`` job's
     Result, the crystals' DCSF curves (``crystal_dcsf``: label -> DCSF on the grid
     ``contactres.jobs.paper1.KLA``) and the polycrystal map (``map_dataset``, the orientation
     map ``map_orientations``, the fit record ``map_fit``)."""
 
-    SCHEMAS = MappingProxyType({"crystals": None, "spectra_rows": None, "spectra_fits": None})
+    SCHEMAS = MappingProxyType(
+        {"crystals": CRYSTAL_TABLE, "spectra_rows": SPECTRA_SWEEPS, "spectra_fits": SPECTRA_FITS}
+    )
     NOT_VALUES = (
         "sweeps_analysis",
         "spectra_analysis",
@@ -102,13 +108,14 @@ def _spectra():
 def _polycrystal():
     """The predicted map of the bundled Cu orientations and the fit of the measured map."""
     from ..materials import Material
-    from .maps import TipLoad, fit_measured_map, fit_record, open_map, predict_map, read_value_grid
+    from .maps import TipLoad, fit_measured_map, fit_record, open_map, predict_map
+    from .readers import read_grid_file
 
     cu = Material.crystal("Cu")
     data = files("contactres") / "data"
     with as_file(data / "example_cu_map.ang") as ang, as_file(data / "example_cu_kstar.csv") as k:
         omap, _ = open_map(ang)
-        measured = read_value_grid(k)
+        measured = read_grid_file(k)
     ds, _ = predict_map(omap, cu, "cubic", TipLoad(radius=20e-9, force=1e-6))
     result, _, used = fit_measured_map(omap, measured, quantity="stiffness")
     record = fit_record(result, source="example_cu_map.ang + example_cu_kstar.csv", pixels=used)

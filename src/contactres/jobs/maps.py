@@ -24,13 +24,12 @@ import os
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
 from ..errors import ContactresInputError
 from ..materials import Material
-from ..polycrystal.ebsd import read_ebsd
 from ..polycrystal.grains import folded_normals, grain_orientations, segment_grains
 from ..polycrystal.inverse import fit_map
 from ..polycrystal.maps import (
@@ -46,6 +45,10 @@ from ..polycrystal.normal_table import prepare_normal_table
 from ..polycrystal.orientations import surface_matrices_from_euler
 from ..polycrystal.predicted import ContactMap, contact_stiffness_map, dynamic_factor_map
 from ..polycrystal.synthetic import synthetic_polycrystal
+from .readers import ALL_READERS, read_ebsd_file, read_value_grid
+
+if TYPE_CHECKING:
+    from ..measurements.readers.recipe import Readers
 
 __all__ = [
     "METHODS",
@@ -89,17 +92,18 @@ class TipLoad:
         return None if math.isinf(self.tip_modulus) else (self.tip_modulus, 0.0)
 
 
-def open_map(path: str | os.PathLike):
+def open_map(path: str | os.PathLike, readers: Readers = ALL_READERS):
     """Read a map: a Zarr map store (:func:`~contactres.polycrystal.maps.write_map`) or an EBSD
-    export (.ang, .ctf). Returns (OrientationMap, Dataset or None): the store's Dataset keeps
-    its other variables (a measured map, a prediction)."""
+    export (.ang, .ctf: the ``ebsd`` recipes of ``readers``, :func:`read_ebsd_file`). Returns
+    (OrientationMap, Dataset or None): the store's Dataset keeps its other variables (a measured
+    map, a prediction)."""
     p = Path(path)
     if not p.exists():
         raise FileNotFoundError(f"{str(p)!r}: no such file or map store")
     if p.is_dir():
         ds = read_map(p)
         return map_from_dataset(ds), ds
-    return read_ebsd(p), None
+    return read_ebsd_file(p, readers), None
 
 
 def _first_pixels(labels: np.ndarray) -> np.ndarray:
@@ -376,62 +380,6 @@ def fit_measured_map(
     result = fit_map(labels, vals, grains.matrices, **kwargs)
     used = int(np.sum((labels >= 0) & np.isfinite(vals)))
     return result, labels, used
-
-
-def read_value_grid(path: str | os.PathLike) -> np.ndarray:
-    """A measured map: ``.npy`` (2-D float array) or a CSV/text grid (one line per row y, one
-    number per column x, comma- or whitespace-separated, no header; an empty cell or NaN is a
-    pixel not measured). Values must be finite and > 0 where given.
-
-    Raises ValueError naming the file, row, column and value of the first bad cell.
-    """
-    import pandas as pd
-
-    p = Path(path)
-    if p.suffix.lower() == ".npy":
-        grid = np.load(p, allow_pickle=False)
-        if grid.ndim != 2 or grid.dtype.kind not in "iuf":
-            raise ContactresInputError(
-                f"{p.name}: need a 2-D array of numbers, got {grid.dtype} {grid.shape}"
-            )
-        grid = grid.astype(float)
-        cells = None
-    else:
-        sep = "," if "," in p.read_text(encoding="utf-8", errors="replace")[:4096] else r"\s+"
-        try:
-            cells = pd.read_csv(
-                p, header=None, sep=sep, dtype=str, keep_default_na=False, skip_blank_lines=True
-            )
-        except pd.errors.ParserError as exc:
-            raise ContactresInputError(f"{p.name}: rows of unequal length ({exc})") from None
-        except pd.errors.EmptyDataError:
-            raise ContactresInputError(f"{p.name}: no data") from None
-        text = cells.to_numpy()
-        blank = np.char.strip(text.astype(str)) == ""
-        grid = (
-            pd.DataFrame(np.where(blank, "nan", text))
-            .apply(pd.to_numeric, errors="coerce")
-            .to_numpy(float)
-        )
-        bad_text = (
-            np.isnan(grid) & ~blank & (np.char.lower(np.char.strip(text.astype(str))) != "nan")
-        )
-        if bad_text.any():
-            i, j = np.argwhere(bad_text)[0]
-            raise ContactresInputError(
-                f"{p.name}: row {i + 1}, column {j + 1}: {text[i, j]!r} is not a number"
-            )
-    bad = ~(np.isnan(grid) | (np.isfinite(grid) & (grid > 0)))
-    if bad.any():
-        i, j = np.argwhere(bad)[0]
-        shown: object = grid[i, j] if cells is None else cells.iat[i, j]
-        raise ContactresInputError(
-            f"{p.name}: row {i + 1}, column {j + 1}: {shown} must be finite and > 0 "
-            "(a stiffness in N/m or a modulus in Pa)"
-        )
-    if not np.isfinite(grid).any():
-        raise ContactresInputError(f"{p.name}: no measured value")
-    return grid
 
 
 def fit_record(result, **context) -> dict:

@@ -2,9 +2,10 @@
 single-crystal elastic constants, with uncertainties and the identifiability.
 
 Inputs: the path of the orientation map (a Zarr map store or an EBSD export). Settings: where
-the measured values are (a CSV grid, or a variable of the store), which quantity they are, the
-lattice, the tolerance that segments unlabelled grains and the tip and load (for a stiffness
-map). The fit is :func:`contactres.jobs.maps.fit_measured_map` (the inverse of
+the measured values are (a CSV grid, read by the ``grid`` recipe of
+:data:`contactres.jobs.readers.ALL_READERS`, or a variable of the store), which quantity they
+are, the lattice, the tolerance that segments unlabelled grains and the tip and load (for a
+stiffness map). The fit is :func:`contactres.jobs.maps.fit_measured_map` (the inverse of
 :mod:`contactres.polycrystal.inverse`).
 """
 
@@ -73,13 +74,14 @@ class Result(JobResult):
 
 def run(inputs: str | os.PathLike, settings: Settings, progress: Progress | None = None) -> Result:
     """Fit the constants to the measured map over the orientations ``inputs``."""
-    from .maps import fit_measured_map, fit_record, open_map, read_value_grid
+    from .maps import fit_measured_map, fit_record, open_map
+    from .readers import read_grid_file
 
     s = settings
     say(progress, f"reading {inputs}")
     omap, ds = open_map(inputs)
     if s.values_path is not None:
-        values = read_value_grid(s.values_path)
+        values = read_grid_file(s.values_path)
         if values.shape != omap.shape:
             raise ContactresInputError(
                 f"--values {s.values_path}: {values.shape[0]} rows x {values.shape[1]} columns, "

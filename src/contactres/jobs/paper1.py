@@ -19,6 +19,7 @@ import pandas as pd
 
 from ..dynamic import contact_displacement, dcsf, dcsf_models
 from ..materials import Material
+from ..measurements.schema import PAPER1_RANKING
 from .contract import JobResult, Progress, say
 
 __all__ = [
@@ -130,10 +131,11 @@ class Settings:
 @dataclass(frozen=True)
 class Result(JobResult):
     """The curves of every figure: ``fig2`` (kla, rbar, N, ratio), ``fig3`` (label -> DCSF),
-    ``fig4`` and ``fig5`` ((WA curves, exact curves)), ``ranking`` (table), on the grid
+    ``fig4`` and ``fig5`` ((WA curves, exact curves)), ``ranking`` (table:
+    :data:`contactres.measurements.schema.PAPER1_RANKING`), on the grid
     ``kla``; the grids of Figs. 4, 5 (``zeners``, ``poissons``)."""
 
-    SCHEMAS = MappingProxyType({"ranking": None})
+    SCHEMAS = MappingProxyType({"ranking": PAPER1_RANKING})
     NOT_VALUES = ("fig2", "fig3", "fig4", "fig5", "kla", "warnings")
 
     kla: np.ndarray

@@ -16,6 +16,7 @@ from types import MappingProxyType
 import numpy as np
 import pandas as pd
 
+from ..measurements.schema import PAPER2_LOOPS, PAPER2_SHIFTS, PAPER2_TURNING
 from ..normal.isotropic import effective_modulus, jkr_contact_radius
 from ..resonators.qcm import QCM, shifts_from_loop
 from ..tangential import (
@@ -137,10 +138,14 @@ class Settings:
 
 @dataclass(frozen=True)
 class Result(JobResult):
-    """``loops`` and ``turning`` (:func:`loops_table`), ``shifts`` (:func:`shifts_table`) and
-    the ``example`` they belong to."""
+    """``loops`` and ``turning`` (:func:`loops_table`;
+    :data:`~contactres.measurements.schema.PAPER2_LOOPS`,
+    :data:`~contactres.measurements.schema.PAPER2_TURNING`), ``shifts`` (:func:`shifts_table`;
+    :data:`~contactres.measurements.schema.PAPER2_SHIFTS`) and the ``example`` they belong to."""
 
-    SCHEMAS = MappingProxyType({"loops": None, "turning": None, "shifts": None})
+    SCHEMAS = MappingProxyType(
+        {"loops": PAPER2_LOOPS, "turning": PAPER2_TURNING, "shifts": PAPER2_SHIFTS}
+    )
     NOT_VALUES = ("example", "warnings")
 
     loops: pd.DataFrame

@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..errors import ContactresInputError
+from ..measurements.schema import QCM_LOOP_TABLE
 from .contract import JobResult, Progress, say
 
 if TYPE_CHECKING:
@@ -74,9 +75,10 @@ class Settings:
 @dataclass(frozen=True)
 class Result(JobResult):
     """``table``: u0_m, df_Hz, dgamma_Hz (ΔΓ the half-bandwidth) and K1_N_per_m, K2_N_per_m
-    (K′, K″ of one contact); ``warnings``: the library's small-load warnings (paper 2, Eq. 1)."""
+    (K′, K″ of one contact): :data:`contactres.measurements.schema.QCM_LOOP_TABLE`;
+    ``warnings``: the library's small-load warnings (paper 2, Eq. 1)."""
 
-    SCHEMAS = MappingProxyType({"table": None})
+    SCHEMAS = MappingProxyType({"table": QCM_LOOP_TABLE})
 
     table: pd.DataFrame
     warnings: tuple[str, ...] = ()

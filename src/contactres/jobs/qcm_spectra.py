@@ -14,7 +14,7 @@ from dataclasses import dataclass
 from types import MappingProxyType
 from typing import TYPE_CHECKING
 
-from ..measurements.schema import SWEEP_TABLE
+from ..measurements.schema import SPECTRA_FITS, SPECTRA_SWEEPS
 from .contract import JobResult, Progress
 
 if TYPE_CHECKING:
@@ -56,12 +56,13 @@ class Settings:
 
 @dataclass(frozen=True)
 class Result(JobResult):
-    """``sweeps``: the sweep table (the input of the QCM analysis, columns of
-    :data:`contactres.measurements.schema.SWEEP_TABLE`); ``fits``: the resonance fit of every
-    spectrum (``contactres.report.dictionary.SPECTRA_FITS``); ``conventions``: how the
+    """``sweeps``: the sweep table (the input of the QCM analysis: the columns of
+    :data:`contactres.measurements.schema.SWEEP_TABLE` with the errors and the spectrum's own,
+    :data:`~contactres.measurements.schema.SPECTRA_SWEEPS`); ``fits``: the resonance fit of
+    every spectrum (:data:`~contactres.measurements.schema.SPECTRA_FITS`); ``conventions``: how the
     spectra were read; ``warnings``: one line per spectrum left out."""
 
-    SCHEMAS = MappingProxyType({"sweeps": SWEEP_TABLE, "fits": None})
+    SCHEMAS = MappingProxyType({"sweeps": SPECTRA_SWEEPS, "fits": SPECTRA_FITS})
 
     sweeps: pd.DataFrame
     fits: pd.DataFrame

@@ -16,6 +16,7 @@ from pathlib import Path
 from types import MappingProxyType
 from typing import TYPE_CHECKING
 
+from ..measurements.schema import STIFFNESS_CSV
 from .contract import JobResult, Progress, say
 
 if TYPE_CHECKING:
@@ -70,11 +71,11 @@ class Settings:
 @dataclass(frozen=True)
 class Result(JobResult):
     """``stiffness``: the export's rows (time_s, overtone, df_Hz, dgamma_Hz) with κ and ωξ of
-    one contact (N/m); the conventions the file was read with, the constants, the equation and
-    the units of the columns; ``source`` the file's name and ``warnings`` the distinct
-    small-load warnings (``|Δf|``/f above 1e-3)."""
+    one contact (N/m), :data:`contactres.measurements.schema.STIFFNESS_CSV`; the conventions the
+    file was read with, the constants, the equation and the units of the columns; ``source`` the
+    file's name and ``warnings`` the distinct small-load warnings (``|Δf|``/f above 1e-3)."""
 
-    SCHEMAS = MappingProxyType({"stiffness": None})
+    SCHEMAS = MappingProxyType({"stiffness": STIFFNESS_CSV})
     NOT_VALUES = ("source", "warnings")
     NAME = "stiffness"
 

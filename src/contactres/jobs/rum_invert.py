@@ -15,6 +15,7 @@ from pathlib import Path
 from types import MappingProxyType
 from typing import TYPE_CHECKING
 
+from ..measurements.schema import RUM_INVERT_RESULTS
 from .contract import JobResult, Progress, say
 
 if TYPE_CHECKING:
@@ -33,9 +34,10 @@ class Settings:
 @dataclass(frozen=True)
 class Result(JobResult):
     """``table``: the input's columns (``input_columns``, copied), then rum_model and
-    k_star_N_per_m (``contactres.report.dictionary.RUM_INVERT_RESULTS``)."""
+    k_star_N_per_m (:data:`contactres.measurements.schema.RUM_INVERT_RESULTS`, which lists the
+    computed ones only)."""
 
-    SCHEMAS = MappingProxyType({"table": None})
+    SCHEMAS = MappingProxyType({"table": RUM_INVERT_RESULTS})
 
     table: pd.DataFrame
     input_columns: tuple[str, ...]

@@ -3,8 +3,12 @@ value (shortened, never a numpy repr)."""
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
-import pandas as pd
+
+if TYPE_CHECKING:  # annotations only: the messages need no pandas (the export readers, which
+    import pandas as pd  # use them, are imported by the command line's help: no pandas there)
 
 __all__ = ["SHOWN_CHARS", "at_cell", "column_names", "shown_value", "where_rows"]
 

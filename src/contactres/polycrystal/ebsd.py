@@ -300,7 +300,7 @@ def _looks_like_ctf(path: Path, head: str) -> bool:
 
 
 #: The EBSD reader recipes (kind ``ebsd``), in the polycrystal layer that owns the formats; the
-#: full registry of every kind is composed above it (``contactres.apps.readers``).
+#: full registry of every kind is composed above it (``contactres.jobs.readers``).
 EBSD_READERS: tuple[Reader, ...] = (
     Reader("ang", (".ang",), _looks_like_ang, read_ang, "ebsd"),
     Reader("ctf", (".ctf",), _looks_like_ctf, read_ctf, "ebsd"),

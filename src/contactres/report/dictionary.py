@@ -5,11 +5,14 @@ outputs), :mod:`contactres.analysis.flags` and the flags of the spectra fits and
 the README's blocks between ``<!-- dictionary:NAME -->`` and ``<!-- /dictionary -->`` are these
 tables (``python scripts/update_readme.py`` rewrites them; a test fails when they differ).
 
-The outputs of the other commands (``fits.csv`` of ``qcm spectra``, ``stiffness.csv`` of
-``qcm stiffness``, the columns ``afm invert`` and ``rum invert`` append) have their schemas in
-:mod:`contactres.measurements.schema` too (re-exported here); ``tests/report/test_dictionary.py``
-compares their column names and the flag names with the code that writes them. Their tables are
-on the documentation's data dictionary page only (:data:`DOCS_ONLY`), not in README blocks.
+The outputs of the other commands (the sweep table and ``fits.csv`` of ``qcm spectra``,
+``stiffness.csv`` of ``qcm stiffness``, the columns ``afm invert`` and ``rum invert`` append,
+the listings of ``contact``, ``dcsf``, ``qcm loop`` and ``crystals``, the CSV of ``figures`` and
+``demo``) have their schemas in :mod:`contactres.measurements.schema` too, the schemas the jobs
+bind their tables to (:mod:`contactres.jobs`); ``tests/report/test_dictionary.py`` and
+``tests/jobs/test_job_schemas.py`` compare their column names and the flag names with the code
+that writes them. Their tables are on the documentation's data dictionary page only
+(:data:`DOCS_ONLY`), not in README blocks.
 """
 
 from __future__ import annotations
@@ -21,12 +24,21 @@ from ..analysis.inversion import FLAG_DESCRIPTIONS as MODULUS_FLAG_DESCRIPTIONS
 from ..measurements.schema import (
     AFM_INVERT_RESULTS,
     AFM_TABLE,
+    CONTACT_TABLE,
+    CRYSTAL_TABLE,
+    CRYSTALS_LISTING,
+    DCSF_TABLE,
     GROUP_RESULTS,
     LOAD_RESULTS,
+    PAPER1_RANKING,
+    PAPER2_LOOPS,
+    PAPER2_SHIFTS,
+    QCM_LOOP_TABLE,
     RADIATION_RESULTS,
     RUM_INVERT_RESULTS,
     RUM_TABLE,
     SPECTRA_FITS,
+    SPECTRA_SWEEPS,
     SPECTRA_TABLE,
     STIFFNESS_CSV,
     SWEEP_RESULTS,
@@ -62,12 +74,21 @@ RESONANCE_FLAGS = {
 
 #: Tables on the documentation's dictionary page that have no README block.
 DOCS_ONLY = (
+    "spectra-sweeps",
     "spectra-fits",
     "spectra-fit-flags",
     "stiffness-csv",
     "afm-invert",
     "rum-invert",
     "resonance-flags",
+    "contact-listing",
+    "dcsf-listing",
+    "qcm-loop-listing",
+    "crystals-listing",
+    "crystals-csv",
+    "paper1-ranking",
+    "paper2-loops",
+    "paper2-shifts",
 )
 
 
@@ -102,6 +123,7 @@ def dictionary_tables() -> dict[str, str]:
         "flags": flags_markdown(),
         "afm-table": AFM_TABLE.markdown(with_required=True),
         "rum-table": RUM_TABLE.markdown(with_required=True),
+        "spectra-sweeps": SPECTRA_SWEEPS.markdown(),
         "spectra-fits": SPECTRA_FITS.markdown(),
         "spectra-fit-flags": _flag_table(SPECTRA_FIT_FLAGS.items()),
         "stiffness-csv": STIFFNESS_CSV.markdown(),
@@ -116,6 +138,14 @@ def dictionary_tables() -> dict[str, str]:
                 ),
             ]
         ),
+        "contact-listing": CONTACT_TABLE.markdown(),
+        "dcsf-listing": DCSF_TABLE.markdown(),
+        "qcm-loop-listing": QCM_LOOP_TABLE.markdown(),
+        "crystals-listing": CRYSTALS_LISTING.markdown(),
+        "crystals-csv": CRYSTAL_TABLE.markdown(),
+        "paper1-ranking": PAPER1_RANKING.markdown(),
+        "paper2-loops": PAPER2_LOOPS.markdown(),
+        "paper2-shifts": PAPER2_SHIFTS.markdown(),
     }
 
 

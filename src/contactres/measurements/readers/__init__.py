@@ -14,9 +14,17 @@ The formats: delimited text (:mod:`.delimited`, sweep and resonance tables), spe
 from __future__ import annotations
 
 import warnings
+from typing import TYPE_CHECKING
 
 from .recipe import KINDS, Reader, Readers
-from .registry import BUILT_IN, BUILT_IN_READERS, pick_reader
+
+if TYPE_CHECKING:
+    from .registry import BUILT_IN, BUILT_IN_READERS, pick_reader
+
+#: The names of :mod:`.registry`, loaded on first use (PEP 562): the registry imports every
+#: reader and pandas, and a reader's package (the export readers, whose names the command
+#: line's help shows) is imported with this one; the help starts without pandas.
+_FROM_REGISTRY = ("BUILT_IN", "BUILT_IN_READERS", "pick_reader")
 
 __all__ = [
     "BUILT_IN",
@@ -41,3 +49,15 @@ def SweepReader(name, suffixes, detect, load) -> Reader:
         stacklevel=2,
     )
     return Reader(name, tuple(suffixes), detect, load, "sweeps")
+
+
+def __getattr__(name: str):
+    if name in _FROM_REGISTRY:
+        from . import registry
+
+        return getattr(registry, name)
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+
+
+def __dir__() -> list[str]:
+    return sorted({*globals(), *_FROM_REGISTRY})

@@ -160,6 +160,16 @@ class Readers:
             raise ContactresInputError(f"no {kind} reader is called {str(name)!r}; known: {known}")
         return found[0]
 
+    def for_suffix(self, path, kind: str) -> Reader | None:
+        """The first reader of ``kind`` whose suffixes hold ``path``'s (None if none does).
+
+        For formats told apart by their suffix alone (EBSD exports, value grids): the file is
+        not opened, so the reader chosen gives its own precise error for a file that is not
+        right, where :meth:`pick` would only say that no reader recognises it.
+        """
+        suffix = Path(path).suffix.lower()
+        return next((r for r in self.of_kind(kind) if suffix in r.suffixes), None)
+
     def pick(self, path, kind: str) -> Reader:
         """The reader of ``kind`` that recognises ``path`` (its suffix first, then the others);
         a one-line error naming the file and the known formats if none does."""

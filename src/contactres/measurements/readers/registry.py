@@ -5,7 +5,7 @@ tables and of resonance tables (``csv``), the spectra readers (a folder of spect
 table: :data:`~.spectra.SPECTRA_READERS`) and the instrument exports
 (:data:`~.exports.EXPORT_READERS`). EBSD maps and value grids are read by recipes of the layers
 that own their formats (:data:`contactres.polycrystal.ebsd.EBSD_READERS`,
-``contactres.apps.readers``), which compose the full registry above this layer; a recipe here
+``contactres.jobs.readers``), which compose the full registry above this layer; a recipe here
 never imports a higher layer, not even when it is called.
 
 To add a reader, build a new registry (``BUILT_IN.with_reader(my_reader)``) and pass it to the

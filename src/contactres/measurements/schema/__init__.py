@@ -11,8 +11,13 @@ are generated from, or checked against, the schemas here (:data:`SCHEMAS`):
 * outputs of ``qcm analyze`` (:mod:`.results`): :data:`SWEEP_RESULTS` (``sweeps.csv``),
   :data:`LOAD_RESULTS` (``loads.csv``), :data:`GROUP_RESULTS` (``summary.json``) and
   :data:`RADIATION_RESULTS` (``radiation.csv``, :mod:`.outputs`);
-* the other outputs (:mod:`.outputs`): :data:`SPECTRA_FITS`, :data:`STIFFNESS_CSV`,
-  :data:`AFM_INVERT_RESULTS`, :data:`RUM_INVERT_RESULTS`.
+* the other outputs (:mod:`.outputs`): :data:`SPECTRA_SWEEPS`, :data:`SPECTRA_FITS`,
+  :data:`STIFFNESS_CSV`, :data:`AFM_INVERT_RESULTS`, :data:`RUM_INVERT_RESULTS`;
+* the tables of the forward computations (:mod:`.listings`): :data:`CONTACT_TABLE`,
+  :data:`DCSF_TABLE`, :data:`QCM_LOOP_TABLE`, :data:`CRYSTAL_TABLE`, :data:`CRYSTALS_LISTING`,
+  :data:`PAPER1_RANKING`, :data:`PAPER2_LOOPS`, :data:`PAPER2_TURNING`, :data:`PAPER2_SHIFTS`.
+
+Every table of every job's Result (:mod:`contactres.jobs`) is bound to one of these.
 
 The module sits in the measurements layer (its rules name the cells of a table with
 :mod:`contactres.measurements.messages`), below analysis and report, which import it.
@@ -45,11 +50,23 @@ from .inputs import (
     interval,
     plausible,
 )
+from .listings import (
+    CONTACT_TABLE,
+    CRYSTAL_TABLE,
+    CRYSTALS_LISTING,
+    DCSF_TABLE,
+    PAPER1_RANKING,
+    PAPER2_LOOPS,
+    PAPER2_SHIFTS,
+    PAPER2_TURNING,
+    QCM_LOOP_TABLE,
+)
 from .outputs import (
     AFM_INVERT_RESULTS,
     RADIATION_RESULTS,
     RUM_INVERT_RESULTS,
     SPECTRA_FITS,
+    SPECTRA_SWEEPS,
     STIFFNESS_CSV,
 )
 from .results import CONVENTIONS, GROUP_RESULTS, LOAD_QUANTITIES, LOAD_RESULTS, SWEEP_RESULTS
@@ -58,7 +75,11 @@ __all__ = [
     "AFM_INVERT_RESULTS",
     "AFM_TABLE",
     "A_NUMBER",
+    "CONTACT_TABLE",
     "CONVENTIONS",
+    "CRYSTALS_LISTING",
+    "CRYSTAL_TABLE",
+    "DCSF_TABLE",
     "FALSE_WORDS",
     "FINITE",
     "GROUP_RESULTS",
@@ -70,11 +91,17 @@ __all__ = [
     "NOT_EMPTY",
     "NUMBER_TEXT",
     "OUTPUTS",
+    "PAPER1_RANKING",
+    "PAPER2_LOOPS",
+    "PAPER2_SHIFTS",
+    "PAPER2_TURNING",
+    "QCM_LOOP_TABLE",
     "RADIATION_RESULTS",
     "RUM_INVERT_RESULTS",
     "RUM_TABLE",
     "SCHEMAS",
     "SPECTRA_FITS",
+    "SPECTRA_SWEEPS",
     "SPECTRA_TABLE",
     "STIFFNESS_CSV",
     "SWEEP_RESULTS",
@@ -99,10 +126,20 @@ OUTPUTS: tuple[TableSchema, ...] = (
     LOAD_RESULTS,
     GROUP_RESULTS,
     RADIATION_RESULTS,
+    SPECTRA_SWEEPS,
     SPECTRA_FITS,
     STIFFNESS_CSV,
     AFM_INVERT_RESULTS,
     RUM_INVERT_RESULTS,
+    CONTACT_TABLE,
+    DCSF_TABLE,
+    QCM_LOOP_TABLE,
+    CRYSTAL_TABLE,
+    CRYSTALS_LISTING,
+    PAPER1_RANKING,
+    PAPER2_LOOPS,
+    PAPER2_TURNING,
+    PAPER2_SHIFTS,
 )
 #: Every schema, inputs first.
 SCHEMAS: tuple[TableSchema, ...] = INPUTS + OUTPUTS

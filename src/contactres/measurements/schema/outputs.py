@@ -1,5 +1,7 @@
 """The tables contactres writes besides those of ``qcm analyze`` (:mod:`.results`).
 
+* :data:`SPECTRA_SWEEPS`: the sweep table ``qcm spectra`` writes (``--out``), one row per
+  measured spectrum: the sweep table's columns with the errors and the spectrum's own;
 * :data:`SPECTRA_FITS`: ``fits.csv`` of ``qcm spectra --fits``, one row per spectrum;
 * :data:`STIFFNESS_CSV`: ``stiffness.csv`` of ``qcm stiffness``, one row per time and overtone;
 * :data:`AFM_INVERT_RESULTS`, :data:`RUM_INVERT_RESULTS`: the columns ``afm invert`` and
@@ -13,15 +15,89 @@ The code that writes each table is checked against these names by the tests
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 from .columns import Column, TableSchema
+from .inputs import SPECTRA_TABLE, SWEEP_TABLE
 
 __all__ = [
     "AFM_INVERT_RESULTS",
     "RADIATION_RESULTS",
     "RUM_INVERT_RESULTS",
     "SPECTRA_FITS",
+    "SPECTRA_SWEEPS",
     "STIFFNESS_CSV",
 ]
+
+
+def _written(schema: TableSchema, name: str, meaning: str | None = None) -> Column:
+    """Column ``name`` of the input table ``schema`` as an output column: its unit, level and
+    meaning (or ``meaning``), without the rules, the default or the "required" of a reader."""
+    c = schema.column(name)
+    return replace(c, meaning=meaning or c.meaning, required=False, rules=(), default=None)
+
+
+#: The sweep table of ``contactres qcm spectra`` (``--out``; ``qcm-spectra/sweeps.csv`` of
+#: ``contactres demo``): what :func:`contactres.measurements.shifts.sweeps_from_spectra`
+#: returns, one row per measured spectrum, in its order. ``qcm analyze`` reads it as a sweep table
+#: (:data:`~.inputs.SWEEP_TABLE`), whose columns it repeats, and ignores the others.
+SPECTRA_SWEEPS = TableSchema(
+    "sweeps.csv of qcm spectra",
+    "the sweep table from the spectra, one row per measured spectrum (references left out)",
+    (
+        _written(SWEEP_TABLE, "sweep"),
+        _written(
+            SWEEP_TABLE,
+            "amplitude_m",
+            "oscillation amplitude u0 = 4 d26 Q U/(nπ)², "
+            "Q = f_r/(2Γ) (or the calibration u0/U times U)",
+        ),
+        _written(
+            SWEEP_TABLE,
+            "df_Hz",
+            "frequency shift Δf = f_r − (mean f_r of the references of its overtone)",
+        ),
+        _written(
+            SWEEP_TABLE,
+            "dgamma_Hz",
+            "half-bandwidth shift ΔΓ = Γ − (mean Γ of the references of its overtone)",
+        ),
+        Column(
+            "df_err_Hz",
+            "Hz",
+            "standard error of Δf: the fit's and the references' mean's, in quadrature",
+        ),
+        Column(
+            "dgamma_err_Hz",
+            "Hz",
+            "standard error of ΔΓ: the fit's and the references' mean's, in quadrature",
+        ),
+        _written(SWEEP_TABLE, "normal_force_N"),
+        _written(SWEEP_TABLE, "experiment"),
+        _written(SWEEP_TABLE, "configuration"),
+        _written(SWEEP_TABLE, "medium"),
+        _written(SWEEP_TABLE, "ramp", "ramp number of the sweep (absent: no spectrum gave one)"),
+        _written(SWEEP_TABLE, "overtone"),
+        _written(SWEEP_TABLE, "time_s", "time of the spectrum (absent: no spectrum gave one)"),
+        _written(SPECTRA_TABLE, "spectrum"),
+        Column("f_r_Hz", "Hz", "fitted resonance frequency f_r of the spectrum"),
+        Column("gamma_Hz", "Hz", "fitted half width at half height Γ of the spectrum"),
+        Column(
+            "quality",
+            "-",
+            "quality factor Q = f_r/(2Γ) (in the sweep table of `contactres demo` only)",
+        ),
+        _written(SPECTRA_TABLE, "drive_voltage_V"),
+        *(
+            _written(
+                SWEEP_TABLE,
+                name,
+                f"{SWEEP_TABLE.column(name).meaning} (where the spectra carried it)",
+            )
+            for name in ("fundamental_Hz", "area_m2", "n_contacts", "sphere_radius_m", "poisson")
+        ),
+    ),
+)
 
 #: ``fits.csv`` of ``contactres qcm spectra --fits``: the columns of
 #: :func:`contactres.measurements.spectra.fit_resonances`, in its order.

@@ -43,14 +43,17 @@ from collections.abc import Iterable, Mapping
 from dataclasses import dataclass, field
 from pathlib import Path
 from types import MappingProxyType
+from typing import TYPE_CHECKING
 
 import numpy as np
-import pandas as pd
 
 from ....errors import ContactresInputError
 from ....units import ABSOLUTE_FREQUENCY_FRACTION
 from ...messages import shown_value
 from ..recipe import Reader
+
+if TYPE_CHECKING:  # pandas is imported where a file is read: the command line's help imports
+    import pandas as pd  # this package for the names of the readers, and starts without pandas
 
 __all__ = [
     "ABSOLUTE_FREQUENCY_HZ",
@@ -275,6 +278,8 @@ def read_rows(path: Path) -> pd.DataFrame:
                 f"{width}: not one table"
             )
         cells.append(row[:width] + [""] * (width - len(row)))
+    import pandas as pd
+
     raw = pd.DataFrame(cells, columns=names, dtype=str)
     decimal = "."
     if sep != ",":
@@ -325,6 +330,8 @@ def parse_baseline(text: str) -> tuple[str, float, float]:
 
 def numbers(raw: pd.DataFrame, column: str, path: Path) -> np.ndarray:
     """A column as floats, NaN for an empty cell; a cell that is no finite number is an error."""
+    import pandas as pd
+
     cells = raw[column].astype(str).str.strip()
     text = cells.str.replace(",", ".", regex=False) if raw.attrs.get("decimal") == "," else cells
     values = pd.to_numeric(text.where(text != "", "nan"), errors="coerce").to_numpy(float)

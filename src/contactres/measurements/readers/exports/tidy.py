@@ -21,9 +21,9 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
-import pandas as pd
 
 from ....errors import ContactresInputError
 from .base import (
@@ -38,6 +38,9 @@ from .base import (
     numbers,
     parse_baseline,
 )
+
+if TYPE_CHECKING:  # pandas is imported where a table is made (see .base: the help needs none)
+    import pandas as pd
 
 __all__ = ["FUNDAMENTAL_TOLERANCE", "MAX_DISSIPATION", "convert"]
 
@@ -238,6 +241,8 @@ def convert(
     not given); those the file states must agree with it, those it does not state must be given
     where they are needed (one-line ValueError naming the file and the choice otherwise).
     """
+    import pandas as pd
+
     path = Path(path)
     given = {k: v for k, v in conventions.items() if v is not None}
     traces = layout.traces
