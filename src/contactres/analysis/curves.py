@@ -18,6 +18,8 @@ steps.
 
 from __future__ import annotations
 
+from collections.abc import Mapping
+
 import numpy as np
 import pandas as pd
 
@@ -40,6 +42,9 @@ PAGE_POINTS = 30
 #: The grids of :func:`fitted_curves`, by number of points.
 CURVE_GRIDS = (FIGURE_POINTS, PAGE_POINTS)
 
+# The fit table of each model, by key (``Results.fits``).
+Fits = Mapping[str, pd.DataFrame]
+
 
 def sweep_points(p: Padded) -> pd.DataFrame:
     """The points of every sweep as the analysis fitted them (after any drift correction).
@@ -61,7 +66,7 @@ def sweep_points(p: Padded) -> pd.DataFrame:
     )
 
 
-def _values_of(sw: pd.DataFrame, fits, rows: np.ndarray, key: str) -> tuple:
+def _values_of(sw: pd.DataFrame, fits: Fits, rows: np.ndarray, key: str) -> tuple:
     """The table that holds the fitted values of the model ``key`` for the sweeps ``rows`` of
     ``sw`` (the sweep results for a closed form; for an exact loop its fit table ``fits[key]``)
     and the positions of those sweeps in it."""
@@ -69,10 +74,12 @@ def _values_of(sw: pd.DataFrame, fits, rows: np.ndarray, key: str) -> tuple:
         return sw, rows
     table = fits[key]
     at = pd.Index(table["sweep"]).get_indexer(sw["sweep"].to_numpy()[rows])
+    if (at < 0).any():  # the analysis fits every loop to every sweep: a caller's mistake
+        raise KeyError(f"sweeps without a row in the {key} fit table")
     return table, at
 
 
-def _curves_of(sw: pd.DataFrame, fits, rows: np.ndarray, key: str, grid: np.ndarray) -> tuple:
+def _curves_of(sw: pd.DataFrame, fits: Fits, rows: np.ndarray, key: str, grid: np.ndarray) -> tuple:
     """Δf, ΔΓ (Hz) of the model ``key`` for the sweeps ``rows`` on ``grid`` (rows, N).
 
     One call of the model function for all of them (its parameters broadcast along the
@@ -95,7 +102,7 @@ def _curves_of(sw: pd.DataFrame, fits, rows: np.ndarray, key: str, grid: np.ndar
         return f, g
 
 
-def fitted_curves(sw: pd.DataFrame, p: Padded, fits, grids=CURVE_GRIDS) -> pd.DataFrame:
+def fitted_curves(sw: pd.DataFrame, p: Padded, fits: Fits, grids=CURVE_GRIDS) -> pd.DataFrame:
     """The chosen model of every sweep of ``sw`` on each grid of ``grids`` (see the module
     docstring).
 

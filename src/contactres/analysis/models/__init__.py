@@ -28,6 +28,8 @@ model is one new module and one line in :data:`MODULES`. The tests check each fi
 
 from __future__ import annotations
 
+from collections.abc import Mapping
+
 import numpy as np
 import pandas as pd
 
@@ -95,14 +97,14 @@ def model_curves(row, u, loop=None) -> tuple[np.ndarray, np.ndarray]:
     model = REGISTRY[key]
     if key in EXACT_LOOPS:
         if loop is None:
-            raise ValueError(f"the curve of a sweep drawn as the {key} needs its fit's row")
+            raise TypeError(f"the curve of a sweep drawn as the {key} needs its fit's row")
         row = loop
     values = {p.key: row[p.column] for p in model.parameters}
     df, dg = model.function(u, **values)
     return np.broadcast_to(df, u.shape).astype(float), np.broadcast_to(dg, u.shape).astype(float)
 
 
-def fit_tables(sweep, fields) -> dict[str, pd.DataFrame]:
+def fit_tables(sweep, fields: Mapping[str, pd.DataFrame]) -> dict[str, pd.DataFrame]:
     """One table per registered sweep model fitted in ``fields`` (the fields of each fit by
     source, :data:`contactres.analysis.classify.FieldTables`): ``sweep`` (the ids of the rows)
     and the fields under the names of :attr:`SweepFit.table` (the parameters under their
@@ -115,6 +117,6 @@ def fit_tables(sweep, fields) -> dict[str, pd.DataFrame]:
             continue  # not fitted (the exact loops without exact_loop)
         table = {"sweep": np.asarray(sweep)}
         for field, values in fields[fit.source].items():
-            table[fit.table.get(field, field)] = values.to_numpy()
+            table[fit.table.get(str(field), str(field))] = values.to_numpy()
         out[fit.model] = pd.DataFrame(table)
     return out
