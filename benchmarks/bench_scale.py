@@ -120,7 +120,7 @@ def measure(name: str) -> dict:
     for workers in (1, 2):
         reset_peak()
         t0 = time.perf_counter()
-        sw = fit_sweeps(pad_sweeps(sweeps.data), tables=loop_table, workers=workers)
+        sw, _ = fit_sweeps(pad_sweeps(sweeps.data), tables=loop_table, workers=workers)
         out[f"fit_sweeps_{workers}_s"] = time.perf_counter() - t0
         out[f"fit_sweeps_{workers}_gb"] = peak_gb()
     reset_peak()

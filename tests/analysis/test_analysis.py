@@ -9,7 +9,7 @@ from contactres.analysis.classify import fit_sweeps
 from contactres.analysis.flags import Flag, has
 from contactres.analysis.jkr import bootstrap_jkr, fit_jkr_mindlin
 from contactres.analysis.loops import cm_loop_table, fit_cm_loops, plateau_loop_shape
-from contactres.analysis.models import model_curves
+from contactres.analysis.models import EXACT_LOOPS, exact_model, fit_tables, model_curves
 from contactres.analysis.pipeline import AnalysisSettings, analyze
 from contactres.fitting import Model, Parameter, fit
 from contactres.measurements.sweeps import validate_sweeps
@@ -391,7 +391,7 @@ def test_plateau_loop_fit_recovers_mu_within_its_errors(dc_fraction):
 )
 def test_models_told_apart_on_clear_cases(kind, expected):
     t = make_table(kind=kind, loads=(3e-3,), n_exp=4, u_max=8e-9, n_points=14, noise=0.1, mu=1.5)
-    sw = fit_sweeps(pad_sweeps(t.data))
+    sw, _ = fit_sweeps(pad_sweeps(t.data))
     assert (sw["model"] == expected).mean() >= 0.9, sw["model"].value_counts()
 
 
@@ -403,7 +403,7 @@ def test_plateau_amplitude_found():
     t = make_table(kind="plateau", loads=(3e-3,), n_exp=4, u_max=u_max, n_points=14, noise=0.1)
     step = u_max * 0.95 / 13
     d_c = frac * u_max
-    hinge = fit_sweeps(pad_sweeps(t.data), exact_loop=False)
+    hinge, _ = fit_sweeps(pad_sweeps(t.data), exact_loop=False)
     hinge = hinge.loc[hinge["model"] == "plateau", "plateau_amplitude_m"]
     assert len(hinge) >= 10
     assert np.all((hinge > d_c - 0.5 * step) & (hinge < d_c + 2.0 * step))
@@ -542,12 +542,16 @@ def test_model_curves_follow_the_forward_model(kind, u_max, exact_loop, limits_f
     # noise-free shifts of the loop that made the data; tol is a fraction of their range.
     kw = dict(loads=(3e-3,), n_exp=1, ramps=(2,), n_points=14, u_max=u_max, mu=1.5)
     t = make_table(kind=kind, noise=0.01, **kw)
-    row = fit_sweeps(pad_sweeps(t.data), exact_loop=exact_loop).iloc[0]
+    sw, fields = fit_sweeps(pad_sweeps(t.data), exact_loop=exact_loop)
+    row = sw.iloc[0]
     assert row["limits_from"] == limits_from
+    # An exact loop is drawn with the values of its fit table, a closed form with the row's.
+    key = exact_model(row["model"], limits_from)
+    loop = fit_tables(sw["sweep"], fields)[key].iloc[0] if key in EXACT_LOOPS else None
     u = np.linspace(0.05, 1.0, 14) * u_max
     kappa = kappa_jkr_mindlin(3e-3, 70e9, 0.1, R, NU)
     truth = cm_shifts(kappa, 1.5, 3e-3, u, kind=kind, dc=0.4 * u_max)
-    for curve, exact in zip(model_curves(row, u), truth, strict=True):
+    for curve, exact in zip(model_curves(row, u, loop), truth, strict=True):
         assert curve.shape == u.shape
         assert np.max(np.abs(curve - exact)) < tol * np.ptp(exact) + 0.01
 

@@ -146,7 +146,7 @@ def test_savkoor_sweep_gives_its_sliding_force():
 def test_model_sweep_keeps_the_sweeps_own_choice():
     # A block decision must not overwrite what the sweep alone would get (it once did).
     raw = _block_table("cattaneo-mindlin", 4, 0.3, 5)
-    sw = fit_sweeps(pad_sweeps(raw), tables=loop_tables())
+    sw, _ = fit_sweeps(pad_sweeps(raw), tables=loop_tables())
     res = analyze(
         validate_sweeps(raw.filter(regex="^(?!true_)"), constants=CONST),
         settings=AnalysisSettings(bootstrap=0),

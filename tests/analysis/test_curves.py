@@ -70,15 +70,18 @@ def test_a_sweep_without_a_usable_fit_gets_no_curve_and_the_others_keep_theirs(r
     from contactres.analysis.amplitude import pad_sweeps
     from contactres.analysis.classify import fit_sweeps
     from contactres.analysis.curves import fitted_curves
+    from contactres.analysis.models import fit_tables
 
     padded = pad_sweeps(results.table.data)
-    sw = fit_sweeps(padded)  # the working table: every fit's fields as columns
+    sw, fields = fit_sweeps(padded)  # the named table and every fit's fields
+    fits = fit_tables(sw["sweep"], fields)
     plateaus = sw.index[sw["limits_from"] == "plateau-loop"][:3]
     assert len(plateaus) == 3
-    sw.loc[plateaus[0], "pl_d_c_m"] = np.nan  # the plateau loop's quadrature refuses it
+    loop = fits["plateau-loop"]
+    loop.loc[plateaus[0], "critical_displacement"] = np.nan  # the quadrature refuses it
     with pytest.raises(ValueError):
-        model_curves(sw.loc[plateaus[0]], np.linspace(0.0, 1e-9, 5))
-    curves = fitted_curves(sw.loc[plateaus], padded, grids=(5,))
+        model_curves(sw.loc[plateaus[0]], np.linspace(0.0, 1e-9, 5), loop.loc[plateaus[0]])
+    curves = fitted_curves(sw.loc[plateaus], padded, fits, grids=(5,))
     broken = (curves["sweep"] == sw.loc[plateaus[0], "sweep"]).to_numpy()
     assert broken.sum() == 5
     assert curves.loc[broken, ["df_model_Hz", "dgamma_model_Hz"]].isna().all().all()

@@ -29,6 +29,7 @@ from contactres.analysis.loops import (
     plateau_loop_shape,
     solve_projected,
 )
+from contactres.analysis.models import fit_tables
 from contactres.analysis.plateau import fit_plateau_loops, plateau_loop_slopes
 from contactres.measurements.sweeps import validate_sweeps
 from contactres.measurements.synthetic import SweepGroup, SweepStudy, synthetic_sweeps
@@ -148,19 +149,31 @@ def test_sweeps_fit_the_same_alone_and_among_others():
         _study(n_points=7, name="short"),
     )
     table = loop_tables()
-    alone = fit_sweeps(pad_sweeps(short), tables=table)
-    among = fit_sweeps(pad_sweeps(mixed), tables=table)
-    among = among[among["sweep"].isin(alone["sweep"])].reset_index(drop=True)
-    pd.testing.assert_frame_equal(alone, among)
+    alone, alone_fits = _with_fits(fit_sweeps(pad_sweeps(short), tables=table))
+    among, among_fits = _with_fits(fit_sweeps(pad_sweeps(mixed), tables=table))
+    keep = among["sweep"].isin(alone["sweep"]).to_numpy()
+    pd.testing.assert_frame_equal(alone, among[keep].reset_index(drop=True))
+    assert list(alone_fits) == list(among_fits)
+    for key, fits in alone_fits.items():
+        pd.testing.assert_frame_equal(fits, among_fits[key][keep].reset_index(drop=True))
+
+
+def _with_fits(fitted):
+    """The named table of :func:`fit_sweeps` and every model's fit table."""
+    sw, fields = fitted
+    return sw, fit_tables(sw["sweep"], fields)
 
 
 def test_workers_give_the_same_table():
     data = _table(_study(model="plateau", n_exp=3), _study(n_points=9, name="h"))
     p = pad_sweeps(data)
     table = loop_tables()
-    pd.testing.assert_frame_equal(
-        fit_sweeps(p, tables=table), fit_sweeps(p, tables=table, workers=2)
-    )
+    one, one_fits = _with_fits(fit_sweeps(p, tables=table))
+    two, two_fits = _with_fits(fit_sweeps(p, tables=table, workers=2))
+    pd.testing.assert_frame_equal(one, two)
+    assert list(one_fits) == list(two_fits)
+    for key, fits in one_fits.items():
+        pd.testing.assert_frame_equal(fits, two_fits[key])
 
 
 # ---- plateau loop: closed form and batched fit ------------------------------------------------

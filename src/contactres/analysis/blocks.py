@@ -35,6 +35,7 @@ from .classify import (
     CLASS_SOURCES,
     NESTED,
     SOURCE_MODEL,
+    FieldTables,
     add_plateau_fits,
     fit_sweeps,
     n_parameters,
@@ -83,20 +84,21 @@ _JOINT_PLATEAU = {"d_c_m": "critical_displacement", "d_c_err_m": "critical_displ
 PLATEAU_CONTENDER = 3.0
 
 
-def _criteria(bf, sw, code, n, R, exact_loop: bool) -> np.ndarray:
-    """(8, B): for each class of AMPLITUDE_MODELS its shared and its per-ramp criterion."""
+def _criteria(bf, fields, n_r, code, n, R, exact_loop: bool) -> np.ndarray:
+    """(8, B): for each class of AMPLITUDE_MODELS its shared and its per-ramp criterion, from
+    the field tables of the blocks' joint fits ``bf`` and of the sweeps' own fits ``fields``
+    (``n_r`` points each)."""
     member = code >= 0
     B = len(n)
     lnN = np.log(2 * n)
-    n_r = sw["n_points"].to_numpy(float)
     out = []
     for m in AMPLITUDE_MODELS:
         src = CLASS_SOURCES[exact_loop][m]
         k = n_parameters(src) + 2
         shared = bic(source_rss(bf, src), n, k)
         shared = np.where(source_valid(bf, src), shared, np.inf)
-        ll = bic(source_rss(sw, src), n_r, 0)  # the per-ramp likelihood terms; penalty below
-        ok = source_valid(sw, src)
+        ll = bic(source_rss(fields, src), n_r, 0)  # the per-ramp likelihood terms; penalty below
+        ok = source_valid(fields, src)
         sums = np.bincount(code[member], weights=np.where(ok, ll, 0.0)[member], minlength=B)
         bad = np.bincount(code[member], weights=(~ok)[member].astype(float), minlength=B) > 0
         out += [shared, np.where(bad, np.inf, sums + R * k * lnN)]
@@ -137,13 +139,14 @@ def _friction_law(crit, classes, blocks: pd.DataFrame, delta_bic: float) -> np.n
 def choose_blocks(
     p: Padded,
     sw: pd.DataFrame,
+    fields: FieldTables,
     joint: np.ndarray,
     delta_bic: float,
     exact_loop: bool,
     tables: LoopTables | None,
     workers: int = 1,
     pool_experiment: bool = True,
-) -> tuple[pd.DataFrame, pd.DataFrame, pd.DataFrame, dict[str, pd.DataFrame]]:
+) -> tuple[pd.DataFrame, pd.DataFrame, pd.DataFrame, FieldTables, dict[str, pd.DataFrame]]:
     """Choose the class of every load block of the sweeps ``joint`` (see the module docstring).
 
     Parameters
@@ -152,6 +155,8 @@ def choose_blocks(
     sw : the per-sweep fits (:func:`~contactres.analysis.classify.fit_sweeps`) with the labels
         of :data:`~contactres.analysis.drift.LOAD_OF_EXPERIMENT`; the sweeps of a block need not
         have the plateau loop fitted (it is added where the block's plateau is a contender)
+    fields : the fields of the per-sweep fits, by source (from the same call), in the order
+        of ``sw``
     joint : which sweeps enter their block (the used ones); blocks of one sweep are left alone
     delta_bic, exact_loop, tables, workers : as for :func:`fit_sweeps`
     pool_experiment : decide the friction law (Coulomb or Savkoor) once per experiment
@@ -166,7 +171,8 @@ def choose_blocks(
     per_sweep : one row per sweep of ``sw``: ``block`` (-1: none), ``model`` (the block's class,
         else the sweep's own), ``runner_up``, ``delta_bic``, ``decided_by`` (``block`` or
         ``sweep``)
-    sw : ``sw`` with the plateau loop fitted to the sweeps of the contending blocks
+    sw, fields : ``sw`` and ``fields`` with the plateau loop fitted to the sweeps of the
+        contending blocks
     joint : every model's joint fit of every block: its fit table
         (:func:`contactres.analysis.models.fit_tables`, ``block`` in place of ``sweep``, one row
         per row of ``blocks``); the Coulomb loops' with ``bic_shared``, their shared criterion
@@ -185,7 +191,8 @@ def choose_blocks(
     )
     code = block_codes(sw, joint)
     if code.max() < 0:
-        return pd.DataFrame(columns=[*LOAD_OF_EXPERIMENT, *BLOCK_COLUMNS]), per_sweep, sw, {}
+        empty = pd.DataFrame(columns=[*LOAD_OF_EXPERIMENT, *BLOCK_COLUMNS])
+        return empty, per_sweep, sw, fields, {}
     B = code.max() + 1
     member = code >= 0
     rows = np.flatnonzero(member)
@@ -194,11 +201,13 @@ def choose_blocks(
         {"sweep": np.repeat(code[rows], p.n[rows]), "amplitude_m": u, "df_Hz": df, "dgamma_Hz": dg}
     )
     bp = pad_sweeps(points)
-    bf = fit_sweeps(bp, delta_bic, exact_loop, tables, workers)
-    bf.index = bf["sweep"].to_numpy(int)
-    bf = bf.sort_index()
+    bs, bf = fit_sweeps(bp, delta_bic, exact_loop, tables, workers)
+    # The blocks in order of their code (the padding keeps their order of first appearance).
+    order = np.argsort(bs["sweep"].to_numpy(int))
+    bf = {src: table.iloc[order].reset_index(drop=True) for src, table in bf.items()}
     # Every model's joint fit of every block (its fit table, one row per block in order).
-    fits = {key: table.rename(columns={"sweep": "block"}) for key, table in fit_tables(bf).items()}
+    block = bs["sweep"].to_numpy()[order]
+    fits = {key: t.rename(columns={"sweep": "block"}) for key, t in fit_tables(block, bf).items()}
 
     # The 2 x 4 criteria of every block: (shared, per ramp) for each class.
     n_r = sw["n_points"].to_numpy(float)
@@ -207,7 +216,7 @@ def choose_blocks(
     classes = np.repeat(np.asarray(AMPLITUDE_MODELS), 2)
     keys = sw.loc[member, LOAD_OF_EXPERIMENT].assign(block=code[member])
     blocks = keys.drop_duplicates("block").sort_values("block").reset_index(drop=True)
-    crit = _criteria(bf, sw, code, n, R, exact_loop)
+    crit = _criteria(bf, fields, n_r, code, n, R, exact_loop)
     family = _friction_law(crit, classes, blocks, delta_bic) if pool_experiment else None
 
     def excluded(crit):  # the family the experiment's friction law rules out
@@ -231,8 +240,8 @@ def choose_blocks(
         sweeps = np.flatnonzero(member & contend[np.maximum(code, 0)])
         if sweeps.size:
             assert tables is not None  # the caller builds them for the exact loops
-            sw = add_plateau_fits(p, sw, sweeps, delta_bic, tables, workers)
-            crit = excluded(_criteria(bf, sw, code, n, R, exact_loop))
+            sw, fields = add_plateau_fits(p, sw, fields, sweeps, delta_bic, tables, workers)
+            crit = excluded(_criteria(bf, fields, n_r, code, n, R, exact_loop))
     # Candidate a is nested in b if its class is (NESTED) and it is shared or b is per ramp.
     per_ramp = np.arange(len(classes)) % 2 == 1
     cls = np.repeat(np.arange(len(AMPLITUDE_MODELS)), 2)
@@ -262,9 +271,9 @@ def choose_blocks(
         if not rows.any():
             continue
         table = fits[SOURCE_MODEL[src]]
-        fields = {**_JOINT, **(_JOINT_LOOP if src in ("cm", "sv", "pl") else {})}
-        fields |= _JOINT_PLATEAU if src == "pl" else {}
-        for field, column in fields.items():
+        joint_map = {**_JOINT, **(_JOINT_LOOP if src in ("cm", "sv", "pl") else {})}
+        joint_map |= _JOINT_PLATEAU if src == "pl" else {}
+        for field, column in joint_map.items():
             blocks.loc[rows, field] = table[column].to_numpy(float)[rows]
         if src in ("cm", "sv", "pl"):
             blocks.loc[rows, "edge"] = table["edge"].to_numpy(object)[rows]
@@ -280,4 +289,4 @@ def choose_blocks(
     per_sweep.loc[member, "runner_up"] = classes[runner][code[member]]
     per_sweep.loc[member, "delta_bic"] = evidence[code[member]]
     per_sweep.loc[member, "decided_by"] = "block"
-    return blocks, per_sweep, sw, fits
+    return blocks, per_sweep, sw, fields, fits

@@ -41,13 +41,14 @@ from .amplitude import Block, Padded, bic
 from .loops import LoopTable, LoopTables, loop_tables
 from .models import AMPLITUDE_MODELS, N_PARAMETERS, SWEEP_FITS
 from .models.base import LoopInputs
-from .models.plateau_loop import fit_plateaus
+from .models.plateau_loop import fit_plateaus, plateau_start
 
 __all__ = [
     "CLASS_SOURCES",
     "LIMITS_FROM",
     "NESTED",
     "SOURCE_MODEL",
+    "FieldTables",
     "add_plateau_fits",
     "apply_models",
     "choose",
@@ -79,29 +80,33 @@ LIMITS_FROM = {
 }
 
 
+#: The fields of every per-sweep fit, by source (``el``, ``line``, ... ``pl``): one table each,
+#: a row per sweep in the order of the sweep table, the columns the fitter's own field names.
+FieldTables = dict[str, pd.DataFrame]
+
+
 def _fit_block(
     b: Block, exact_loop: bool, tables: LoopTables | None, plateau: np.ndarray
-) -> dict[str, np.ndarray]:
+) -> tuple[np.ndarray, dict[str, dict[str, np.ndarray]]]:
     """Every registered sweep model (:data:`~contactres.analysis.models.SWEEP_FITS`, the
     exact loops only with ``exact_loop``) fitted to one block of sweeps, in the registry's
-    order (arrays with the sweep as last axis, fields as ``<source>_<field>``); the plateau loop
-    only to the sweeps ``plateau`` (the others get NaN)."""
-    out = {"u_max": np.max(np.where(b.w > 0, b.u, 0.0), axis=1)}
+    order: the largest amplitude of each sweep and the fields of each fit by source (arrays
+    with the sweep as last axis); the plateau loop only to the sweeps ``plateau`` (the others
+    get NaN)."""
+    u_max = np.max(np.where(b.w > 0, b.u, 0.0), axis=1)
     inputs = LoopInputs(tables, plateau)
     done: dict[str, dict[str, np.ndarray]] = {}
     for fit in SWEEP_FITS:
         if fit.exact and not exact_loop:
             continue
-        done[fit.source] = fields = fit.fit(b, done, inputs)
-        out.update({f"{fit.source}_{field}": v for field, v in fields.items()})
-    return out
+        done[fit.source] = fit.fit(b, done, inputs)
+    return u_max, done
 
 
 def _plateaus_of_rows(b: Block, found, u_c, rss, theta, table: LoopTable) -> dict[str, np.ndarray]:
     """The plateau loop (:func:`~contactres.analysis.models.plateau_loop.fit_plateaus`) of
-    every sweep of ``b``, fields as ``pl_<field>`` (a picklable call for :func:`_run`)."""
-    fields = fit_plateaus(b, found, u_c, rss, theta, table, np.ones(len(b.n), bool))
-    return {f"pl_{field}": v for field, v in fields.items()}
+    every sweep of ``b`` (a picklable call for :func:`_run`)."""
+    return fit_plateaus(b, found, u_c, rss, theta, table, np.ones(len(b.n), bool))
 
 
 def _run(fn, workers: int, first: list, *rest) -> list:
@@ -113,23 +118,33 @@ def _run(fn, workers: int, first: list, *rest) -> list:
     return [fn(*args) for args in zip(first, *rest, strict=False)]
 
 
+def _put(out: dict[str, np.ndarray], part: dict[str, np.ndarray], rows, S: int) -> None:
+    """Write the arrays of ``part`` (sweep as last axis) at the sweeps ``rows`` of ``out``
+    (``S`` sweeps), making each array of ``out`` on first sight."""
+    for key, v in part.items():
+        if key not in out:
+            dtype = object if v.dtype.kind in "OUS" else v.dtype
+            out[key] = np.empty((*v.shape[:-1], S), dtype=dtype)
+        out[key][..., rows] = v
+
+
 def _fit_blocks(
     p: Padded, exact_loop: bool, tables: LoopTables | None, workers: int, plateau: np.ndarray
-) -> dict[str, np.ndarray]:
-    """:func:`_fit_block` on every block of ``p``, put together in the order of the sweeps."""
+) -> tuple[np.ndarray, FieldTables]:
+    """:func:`_fit_block` on every block of ``p``, put together in the order of the sweeps:
+    the largest amplitude of each sweep and the field tables of every fit."""
     S = len(p.n)
-    out: dict[str, np.ndarray] = {}
+    u_max: dict[str, np.ndarray] = {}
+    fields: dict[str, dict[str, np.ndarray]] = {}
     groups = p.blocks()  # <= BLOCK_POINTS points each: the fits' temporaries stay at a few MB
     blocks = [p.block(rows) for rows in groups]
     masks = [plateau[rows] for rows in groups]
     parts = _run(_fit_block, workers, blocks, repeat(exact_loop), repeat(tables), masks)
-    for rows, part in zip(groups, parts, strict=True):
-        for key, v in part.items():
-            if key not in out:
-                dtype = object if v.dtype.kind in "OUS" else v.dtype
-                out[key] = np.empty((*v.shape[:-1], S), dtype=dtype)
-            out[key][..., rows] = v
-    return out
+    for rows, (top, done) in zip(groups, parts, strict=True):
+        _put(u_max, {"u_max": top}, rows, S)
+        for source, part in done.items():
+            _put(fields.setdefault(source, {}), part, rows, S)
+    return u_max["u_max"], {source: pd.DataFrame(f) for source, f in fields.items()}
 
 
 def n_parameters(source: str) -> int:
@@ -137,32 +152,34 @@ def n_parameters(source: str) -> int:
     return N_PARAMETERS[SOURCE_MODEL[source]]
 
 
-def source_rss(fits: pd.DataFrame, source: str) -> np.ndarray:
-    """(2, rows): the residual sums of Δf and ΔΓ of the fits of ``source``."""
-    return np.stack([fits[f"{source}_rss_df"].to_numpy(float), fits[f"{source}_rss_dgamma"]])
+def source_rss(fields: FieldTables, source: str) -> np.ndarray:
+    """(2, rows): the residual sums of Δf and ΔΓ of the fits of ``source`` (its table of
+    ``fields``)."""
+    table = fields[source]
+    return np.stack([table["rss_df"].to_numpy(float), table["rss_dgamma"]])
 
 
-def source_valid(sw: pd.DataFrame, source: str) -> np.ndarray:
-    """Whether the fit of ``source`` exists and is physical for each sweep (a loop needs
-    Pκ > 0; a hinge must have been found)."""
-    rss = sw[f"{source}_rss_df"].to_numpy(float) + sw[f"{source}_rss_dgamma"].to_numpy(float)
+def source_valid(fields: FieldTables, source: str) -> np.ndarray:
+    """Whether the fit of ``source`` (its table of ``fields``) exists and is physical for each
+    sweep (a loop needs Pκ > 0; a hinge must have been found)."""
+    table = fields[source]
+    rss = table["rss_df"].to_numpy(float) + table["rss_dgamma"].to_numpy(float)
     ok = np.isfinite(rss)
     if source == "hinge":
-        ok &= sw["hinge_found"].to_numpy(bool)
+        ok &= table["found"].to_numpy(bool)
     if source in ("cm", "sv", "pl"):
-        ok &= sw[f"{source}_df0_Hz"].to_numpy(float) > 0
+        ok &= table["df0_Hz"].to_numpy(float) > 0
     return ok
 
 
-def class_criteria(sw: pd.DataFrame, exact_loop: bool) -> np.ndarray:
-    """BIC of each class of :data:`AMPLITUDE_MODELS` for every sweep, (4, S); inf where the
-    class's fit is not valid (:func:`source_valid`)."""
-    n = sw["n_points"].to_numpy(float)
+def class_criteria(fields: FieldTables, n: np.ndarray, exact_loop: bool) -> np.ndarray:
+    """BIC of each class of :data:`AMPLITUDE_MODELS` for every sweep (``n`` points each) from
+    the fits ``fields``, (4, S); inf where the class's fit is not valid (:func:`source_valid`)."""
     out = []
     for model in AMPLITUDE_MODELS:
         src = CLASS_SOURCES[exact_loop][model]
-        crit = bic(source_rss(sw, src), n, n_parameters(src))
-        out.append(np.where(source_valid(sw, src), crit, np.inf))
+        crit = bic(source_rss(fields, src), n, n_parameters(src))
+        out.append(np.where(source_valid(fields, src), crit, np.inf))
     return np.stack(out)
 
 
@@ -205,10 +222,14 @@ def choose(criteria: np.ndarray, delta_bic: float) -> tuple[np.ndarray, np.ndarr
     return choice, runner, evidence
 
 
-def apply_models(sw: pd.DataFrame, model: np.ndarray, exact_loop: bool) -> pd.DataFrame:
+def apply_models(
+    sw: pd.DataFrame, fields: FieldTables, model: np.ndarray, exact_loop: bool
+) -> pd.DataFrame:
     """Set the class of every sweep and take its limits, their errors and its plateau from the
-    fit of that class (``model``: names from :data:`AMPLITUDE_MODELS`). Returns a new frame."""
+    fit of that class (``model``: names from :data:`AMPLITUDE_MODELS`; the fits ``fields``, in
+    the order of ``sw``). Returns a new frame."""
     sw = sw.copy()
+    hinge_fit, line_fit = fields["hinge"], fields["line"]
     model = np.asarray(model, dtype=object)
     sources = CLASS_SOURCES[exact_loop]
     src = np.array([sources[m] for m in model], dtype=object)
@@ -218,25 +239,26 @@ def apply_models(sw: pd.DataFrame, model: np.ndarray, exact_loop: bool) -> pd.Da
         err = np.full(len(sw), np.nan)
         for s in set(src):
             rows = src == s
-            a[rows] = sw[f"{s}_{name}0_Hz"].to_numpy(float)[rows]
-            err[rows] = sw[f"{s}_{name}0_err_Hz"].to_numpy(float)[rows]
+            a[rows] = fields[s][f"{name}0_Hz"].to_numpy(float)[rows]
+            err[rows] = fields[s][f"{name}0_err_Hz"].to_numpy(float)[rows]
         sw[f"{name}0_Hz"] = a
         sw[f"{name}0_err_Hz"] = err
         # Slope of the linear part: the hinge slope for a plateau, the straight line otherwise.
-        hinge = is_pl & sw["hinge_found"].to_numpy(bool)
+        hinge = is_pl & hinge_fit["found"].to_numpy(bool)
         slope_src = np.where(hinge, "hinge", "line")
         for col, key in (("_slope_Hz_per_m", "_b"), ("_slope_err_Hz_per_m", "_b_err")):
             sw[f"{name}{col}"] = np.where(
-                hinge, sw[f"hinge_{name}{key}"].to_numpy(float), sw[f"line_{name}{key}"]
+                hinge, hinge_fit[f"{name}{key}"].to_numpy(float), line_fit[f"{name}{key}"]
             )
         # The covariance of Δf0 and the slope is known where both come from the same fit.
         same = src == slope_src
-        cov = np.where(hinge, sw[f"hinge_{name}_cov_ab"], sw[f"line_{name}_cov_ab"])
+        cov = np.where(hinge, hinge_fit[f"{name}_cov_ab"], line_fit[f"{name}_cov_ab"])
         sw[f"{name}0_slope_cov"] = np.where(same, cov, 0.0)
     if exact_loop:
-        d_c, d_c_err = sw["pl_d_c_m"].to_numpy(float), sw["pl_d_c_err_m"].to_numpy(float)
+        pl = fields["pl"]
+        d_c, d_c_err = pl["d_c_m"].to_numpy(float), pl["d_c_err_m"].to_numpy(float)
     else:
-        d_c, d_c_err = sw["hinge_u_c_m"].to_numpy(float), np.full(len(sw), np.nan)
+        d_c, d_c_err = hinge_fit["u_c_m"].to_numpy(float), np.full(len(sw), np.nan)
     sw["plateau_amplitude_m"] = np.where(is_pl, d_c, np.nan)
     sw["plateau_amplitude_err_m"] = np.where(is_pl, d_c_err, np.nan)
     sw["model"] = model.astype(str)
@@ -251,7 +273,7 @@ def fit_sweeps(
     tables: LoopTables | None = None,
     workers: int = 1,
     plateau: np.ndarray | None = None,
-) -> pd.DataFrame:
+) -> tuple[pd.DataFrame, FieldTables]:
     """Fit every amplitude model to every sweep and choose one (see the module docstring).
 
     Parameters
@@ -271,41 +293,47 @@ def fit_sweeps(
 
     Returns
     -------
-    DataFrame
+    sweeps : DataFrame
         One row per sweep (order of first appearance): the low-amplitude limits with standard
         errors from the chosen class (``limits_from``: ``mean``, ``cm-loop``, ``savkoor-loop``,
         ``plateau-loop``, or ``line``, ``parabola``, ``plateau`` without ``exact_loop``), the
         slopes (straight line; a found hinge for a plateau) and curvatures (parabola), the
         plateau's critical displacement, the noise levels (straight line), ``bic_<class>``,
         ``model``, ``runner_up`` and ``delta_bic`` (:func:`choose`), ``model_sweep`` (the same
-        as ``model`` here; :mod:`contactres.analysis.blocks` may change ``model``) and every
-        fit: ``el_``, ``line_``, ``parabola_``, ``hinge_`` and, with ``exact_loop``, the loop
-        fits ``cm_``, ``sv_`` (columns of :func:`~contactres.analysis.loops.fit_cm_loops`) and
-        ``pl_`` (of :func:`~contactres.analysis.plateau.fit_plateau_loops`).
+        as ``model`` here; :mod:`contactres.analysis.blocks` may change ``model``).
+    fields : FieldTables
+        Every fit's fields by source, one row per row of ``sweeps``: ``el``, ``line``,
+        ``parabola``, ``hinge`` and, with ``exact_loop``, the loop fits ``cm``, ``sv``
+        (columns of :func:`~contactres.analysis.loops.fit_cm_loops`) and ``pl`` (of
+        :func:`~contactres.analysis.plateau.fit_plateau_loops`); named as the fitters name
+        them (:func:`contactres.analysis.models.fit_tables` gives them the registry's names).
     """
     n = p.n.astype(float)
     if exact_loop and tables is None:
         tables = loop_tables()
     plateau = np.ones(len(p.n), bool) if plateau is None else np.asarray(plateau, bool)
-    f = _fit_blocks(p, exact_loop, tables, workers, plateau)
-    rows = {"sweep": p.sweeps, "n_points": p.n, "direction": p.direction, "u_max_m": f.pop("u_max")}
-    rows.update(f)
-    sw = pd.DataFrame(rows)
+    u_max, fields = _fit_blocks(p, exact_loop, tables, workers, plateau)
+    sw = pd.DataFrame(
+        {"sweep": p.sweeps, "n_points": p.n, "direction": p.direction, "u_max_m": u_max}
+    )
+    line, parabola = fields["line"], fields["parabola"]
     for name in ("df", "dgamma"):
-        sw[f"sigma_{name}_Hz"] = np.sqrt(sw[f"line_rss_{name}"] / np.maximum(n - 2, 1))
-        sw[f"{name}_curvature_Hz_per_m2"] = sw[f"parabola_{name}_b"]
-        sw[f"{name}_curvature_err_Hz_per_m2"] = sw[f"parabola_{name}_b_err"]
-    return _choose_each(sw, delta_bic, exact_loop)
+        sw[f"sigma_{name}_Hz"] = np.sqrt(line[f"rss_{name}"].to_numpy() / np.maximum(n - 2, 1))
+        sw[f"{name}_curvature_Hz_per_m2"] = parabola[f"{name}_b"].to_numpy()
+        sw[f"{name}_curvature_err_Hz_per_m2"] = parabola[f"{name}_b_err"].to_numpy()
+    return _choose_each(sw, fields, delta_bic, exact_loop), fields
 
 
-def _choose_each(sw: pd.DataFrame, delta_bic: float, exact_loop: bool) -> pd.DataFrame:
+def _choose_each(
+    sw: pd.DataFrame, fields: FieldTables, delta_bic: float, exact_loop: bool
+) -> pd.DataFrame:
     """The class of every sweep alone from its fits (:func:`choose`, :func:`apply_models`)."""
-    criteria = class_criteria(sw, exact_loop)
+    criteria = class_criteria(fields, sw["n_points"].to_numpy(float), exact_loop)
     for m, crit in zip(AMPLITUDE_MODELS, criteria, strict=True):
         sw[f"bic_{m}"] = crit
     choice, runner, evidence = choose(criteria, delta_bic)
     names = np.asarray(AMPLITUDE_MODELS)
-    sw = apply_models(sw, names[choice], exact_loop)
+    sw = apply_models(sw, fields, names[choice], exact_loop)
     sw["model_sweep"] = sw["model"]
     sw["runner_up"] = names[runner]
     sw["delta_bic"] = evidence
@@ -316,39 +344,40 @@ def _choose_each(sw: pd.DataFrame, delta_bic: float, exact_loop: bool) -> pd.Dat
 def add_plateau_fits(
     p: Padded,
     sw: pd.DataFrame,
+    fields: FieldTables,
     rows: np.ndarray,
     delta_bic: float,
     tables: LoopTables,
     workers: int = 1,
-) -> pd.DataFrame:
+) -> tuple[pd.DataFrame, FieldTables]:
     """Fit the exact plateau loop to the sweeps ``rows`` of ``sw`` (from
-    :func:`fit_sweeps` with ``exact_loop``, in the order of ``p``) that do not have it yet, and
-    choose their class again with it. Returns a new frame."""
+    :func:`fit_sweeps` with ``exact_loop``, in the order of ``p``; its fits ``fields``) that do
+    not have it yet, and choose their class again with it. Returns a new frame and new fields
+    (the plateau loop's table a new one, the others shared)."""
     sw = sw.copy()
     rows = np.asarray(rows, dtype=np.intp)
-    rows = rows[~np.isfinite(sw["pl_rss_df"].to_numpy(float)[rows])]
+    rows = rows[~np.isfinite(fields["pl"]["rss_df"].to_numpy(float)[rows])]
     if rows.size == 0:
-        return sw
+        return sw, fields
     groups = p.blocks(rows)
-    cols = {
-        "found": sw["hinge_found"].to_numpy(bool),
-        "u_c": sw["hinge_u_c_m"].to_numpy(float),
-        "theta": sw["cm_theta_per_m"].to_numpy(float),
-    }
-    rss = np.where(cols["found"], source_rss(sw, "hinge"), source_rss(sw, "line"))
+    hinge, line = ({c: t[c].to_numpy() for c in t} for t in (fields["hinge"], fields["line"]))
+    found, u_c, rss = plateau_start(hinge, line)
+    theta = fields["cm"]["theta_per_m"].to_numpy(float)
     parts = _run(
         _plateaus_of_rows,
         workers,
         [p.block(g) for g in groups],
-        [cols["found"][g] for g in groups],
-        [cols["u_c"][g] for g in groups],
+        [found[g] for g in groups],
+        [u_c[g] for g in groups],
         [rss[:, g] for g in groups],
-        [cols["theta"][g] for g in groups],
+        [theta[g] for g in groups],
         repeat(tables.cm),
     )
+    pl = fields["pl"].copy()
     for g, part in zip(groups, parts, strict=True):
         for key, v in part.items():
-            values = sw[key].to_numpy(copy=True)
+            values = pl[key].to_numpy(copy=True)
             values[g] = v
-            sw[key] = values
-    return _choose_each(sw, delta_bic, True)
+            pl[key] = values
+    fields = {**fields, "pl": pl}
+    return _choose_each(sw, fields, delta_bic, True), fields

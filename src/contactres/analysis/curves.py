@@ -9,18 +9,22 @@ are quadratures) or reads the analysis' internal arrays.
 The curve of a sweep is the registered model function (:mod:`contactres.analysis.models`) of
 its class, evaluated with its fitted values; a sweep whose limits come from an exact loop (the
 Cattaneo-Mindlin, Savkoor or plateau loop, paper 2, Eqs. 4-6 and 13-14) is drawn as that loop
-(:func:`~contactres.analysis.models.model_curves`, the same function per sweep). The grid runs
-from u0 = 0 to the sweep's largest amplitude in :data:`FIGURE_POINTS` (Fig. 4) and
-:data:`PAGE_POINTS` (the inline SVG of the page) equal steps.
+(:func:`~contactres.analysis.models.model_curves`, the same function per sweep), with the
+values of that loop's fit table (``Results.fits``); a closed form with the named columns of
+the sweep results. The grid runs from u0 = 0 to the sweep's largest amplitude in
+:data:`FIGURE_POINTS` (Fig. 4) and :data:`PAGE_POINTS` (the inline SVG of the page) equal
+steps.
 """
 
 from __future__ import annotations
+
+from collections.abc import Mapping
 
 import numpy as np
 import pandas as pd
 
 from .amplitude import Padded
-from .models import REGISTRY, exact_model, model_curves
+from .models import EXACT_LOOPS, REGISTRY, exact_model, model_curves
 
 __all__ = [
     "CURVE_GRIDS",
@@ -37,6 +41,9 @@ FIGURE_POINTS = 100
 PAGE_POINTS = 30
 #: The grids of :func:`fitted_curves`, by number of points.
 CURVE_GRIDS = (FIGURE_POINTS, PAGE_POINTS)
+
+# The fit table of each model, by key (``Results.fits``).
+Fits = Mapping[str, pd.DataFrame]
 
 
 def sweep_points(p: Padded) -> pd.DataFrame:
@@ -59,37 +66,54 @@ def sweep_points(p: Padded) -> pd.DataFrame:
     )
 
 
-def _curves_of(sw: pd.DataFrame, rows: np.ndarray, key: str, grid: np.ndarray) -> tuple:
+def _values_of(sw: pd.DataFrame, fits: Fits, rows: np.ndarray, key: str) -> tuple:
+    """The table that holds the fitted values of the model ``key`` for the sweeps ``rows`` of
+    ``sw`` (the sweep results for a closed form; for an exact loop its fit table ``fits[key]``)
+    and the positions of those sweeps in it."""
+    if key not in EXACT_LOOPS:
+        return sw, rows
+    table = fits[key]
+    at = pd.Index(table["sweep"]).get_indexer(sw["sweep"].to_numpy()[rows])
+    if (at < 0).any():  # the analysis fits every loop to every sweep: a caller's mistake
+        raise KeyError(f"sweeps without a row in the {key} fit table")
+    return table, at
+
+
+def _curves_of(sw: pd.DataFrame, fits: Fits, rows: np.ndarray, key: str, grid: np.ndarray) -> tuple:
     """Δf, ΔΓ (Hz) of the model ``key`` for the sweeps ``rows`` on ``grid`` (rows, N).
 
     One call of the model function for all of them (its parameters broadcast along the
     sweeps); where that fails (a sweep without a usable fit, e.g. NaN parameters that a loop's
     quadrature refuses) sweep by sweep, NaN for a sweep that fails alone."""
     model = REGISTRY[key]
-    values = {q.key: sw[q.column].to_numpy(float)[rows][:, None] for q in model.parameters}
+    table, at = _values_of(sw, fits, rows, key)
+    values = {q.key: table[q.column].to_numpy(float)[at][:, None] for q in model.parameters}
     try:
         f, g = model.function(grid, **values)
         return np.broadcast_to(f, grid.shape), np.broadcast_to(g, grid.shape)
     except Exception:  # some sweep of the batch has no curve: find which, one by one
         f, g = np.full(grid.shape, np.nan), np.full(grid.shape, np.nan)
-        for j, i in enumerate(rows):
+        for j, (i, k) in enumerate(zip(rows, at, strict=True)):
+            loop = table.iloc[k] if table is not sw else None
             try:
-                f[j], g[j] = model_curves(sw.iloc[i], grid[j])
+                f[j], g[j] = model_curves(sw.iloc[i], grid[j], loop)
             except Exception:  # no curve for this sweep: its points are drawn alone
                 continue
         return f, g
 
 
-def fitted_curves(sw: pd.DataFrame, p: Padded, grids=CURVE_GRIDS) -> pd.DataFrame:
+def fitted_curves(sw: pd.DataFrame, p: Padded, fits: Fits, grids=CURVE_GRIDS) -> pd.DataFrame:
     """The chosen model of every sweep of ``sw`` on each grid of ``grids`` (see the module
     docstring).
 
     Parameters
     ----------
-    sw : the per-sweep results (``sweep``, ``model``, ``limits_from`` and the fitted values
-        in the columns that the registered parameters name)
+    sw : the per-sweep results (``sweep``, ``model``, ``limits_from`` and the fitted values of
+        the closed forms in the columns that the registered parameters name)
     p : the sweeps' points (:func:`contactres.analysis.amplitude.pad_sweeps`), for the
         largest amplitude of each
+    fits : the fit table of each model (:func:`contactres.analysis.models.fit_tables`,
+        ``Results.fits``): the exact loops' values, by sweep
     grids : numbers of grid points (each a grid from 0 to the largest amplitude)
 
     Returns
@@ -113,7 +137,7 @@ def fitted_curves(sw: pd.DataFrame, p: Padded, grids=CURVE_GRIDS) -> pd.DataFram
         f, g = np.full(grid.shape, np.nan), np.full(grid.shape, np.nan)
         for k in sorted({k for k in key if k is not None}):
             rows = np.flatnonzero(key == k)
-            f[rows], g[rows] = _curves_of(sw, rows, k, grid[rows])
+            f[rows], g[rows] = _curves_of(sw, fits, rows, k, grid[rows])
         parts.append(
             pd.DataFrame(
                 {

@@ -113,11 +113,13 @@ def loop_force(A, A_err, theta, lntheta_err, cov, P):
     return force, np.abs(force) * np.sqrt(np.maximum(var_ln, 0.0))
 
 
-def loop_fit_force(frame: pd.DataFrame, prefix: str, P: np.ndarray):
-    """:func:`loop_force` of the loop fit in the columns ``{prefix}df0_Hz`` ... of ``frame``, and
-    where it is resolved (Δf0 > 0 and the fit not at an edge of the loop table)."""
+def loop_fit_force(frame: pd.DataFrame, P: np.ndarray):
+    """:func:`loop_force` of the loop fit in the named columns ``df0_Hz``, ``df0_err_Hz``,
+    ``theta_per_m``, ``lntheta_err``, ``cov_df0_lntheta``, ``edge`` of ``frame`` (the block
+    table of :func:`contactres.analysis.blocks.choose_blocks`), and where it is resolved
+    (Δf0 > 0 and the fit not at an edge of the loop table)."""
     col = {
-        c: frame[f"{prefix}{c}"].to_numpy()
+        c: frame[c].to_numpy()
         for c in ("df0_Hz", "df0_err_Hz", "theta_per_m", "lntheta_err", "cov_df0_lntheta", "edge")
     }
     force, err = loop_force(
@@ -269,7 +271,7 @@ def block_friction(
         .reindex(blocks["block"])
         .to_numpy()
     )
-    force, err, resolved = loop_fit_force(blocks, "", P)
+    force, err, resolved = loop_fit_force(blocks, P)
     resolved &= blocks["shared"].to_numpy(bool)
     friction = resolved & blocks["model"].isin(["cattaneo-mindlin", "plateau"]).to_numpy()
     mu, mu_err, w_pl = model_averaged_mu(blocks, joint, P)

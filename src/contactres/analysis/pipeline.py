@@ -86,7 +86,7 @@ from .friction import block_friction, loop_friction, slope_friction
 from .jkr import fit_group
 from .loads import GROUP_KEYS, per_experiment, per_load
 from .loops import X_MAX, loop_tables
-from .models import AMPLITUDE_MODELS, fit_columns, fit_tables
+from .models import AMPLITUDE_MODELS, fit_tables
 from .ramps import check_ramps
 from .results import Results
 from .running_in import running_in
@@ -288,7 +288,7 @@ def analyze(
     say("fitting the amplitude models of every sweep")
     tables = loop_tables() if settings.exact_loop else None
     alone = block_codes(info, used) < 0  # the sweeps judged alone get every model now
-    sw = fit_sweeps(
+    sw, fields = fit_sweeps(
         padded, settings.delta_bic, settings.exact_loop, tables, settings.workers, plateau=alone
     )
     sw = info.merge(sw, on="sweep", how="right", validate="one_to_one")
@@ -297,9 +297,10 @@ def analyze(
     sw["used"] = used
 
     say("choosing the model of every load block")
-    blocks, decided, sw, block_fits = choose_blocks(
+    blocks, decided, sw, fields, block_fits = choose_blocks(
         padded,
         sw,
+        fields,
         used,
         settings.delta_bic,
         settings.exact_loop,
@@ -307,8 +308,9 @@ def analyze(
         settings.workers,
         pool_experiment=settings.pool_experiments,
     )
-    sw = apply_models(sw, decided["model"].to_numpy(), settings.exact_loop)
-    fits = fit_tables(sw)  # every model's fit of every sweep, final: the steps below read them
+    sw = apply_models(sw, fields, decided["model"].to_numpy(), settings.exact_loop)
+    # Every model's fit of every sweep, final: the steps below read them.
+    fits = fit_tables(sw["sweep"].to_numpy(), fields)
     for col in ("block", "runner_up", "delta_bic", "decided_by"):
         sw[col] = decided[col].to_numpy()
     for col in ("df_slope_Hz_per_m", "dgamma_slope_Hz_per_m"):
@@ -398,7 +400,7 @@ def analyze(
         _savkoor_traction(sw, member, g)
 
     say("the fitted curves of every sweep")
-    curves = fitted_curves(sw, padded)
+    curves = fitted_curves(sw, padded, fits)
 
     radiation = None
     if settings.sphere_material is not None and settings.plate_material is not None:
@@ -416,9 +418,9 @@ def analyze(
 
     record = asdict(settings)
     record["x_max_table"] = X_MAX
-    # The user's sweep table keeps the named columns; each fit's fields are in its own table.
+    # The user's sweep table holds the named columns; each fit's fields are in its own table.
     return Results(
-        sweeps=sw.drop(columns=fit_columns(sw)),
+        sweeps=sw,
         fits=fits,
         loads=loads,
         experiments=exp,

@@ -28,6 +28,8 @@ model is one new module and one line in :data:`MODULES`. The tests check each fi
 
 from __future__ import annotations
 
+from collections.abc import Mapping
+
 import numpy as np
 import pandas as pd
 
@@ -37,12 +39,12 @@ from .base import SweepFit
 
 __all__ = [
     "AMPLITUDE_MODELS",
+    "EXACT_LOOPS",
     "MODULES",
     "N_PARAMETERS",
     "REGISTRY",
     "SWEEP_FITS",
     "exact_model",
-    "fit_columns",
     "fit_tables",
     "model_curves",
 ]
@@ -68,6 +70,8 @@ _EXACT = {
     "savkoor-loop": "savkoor-loop",
     "plateau-loop": "plateau-loop",
 }
+#: The exact loops: their parameters' columns are those of their fit tables (``Results.fits``).
+EXACT_LOOPS = frozenset(_EXACT.values())
 
 
 def exact_model(model, limits_from) -> str | None:
@@ -78,41 +82,41 @@ def exact_model(model, limits_from) -> str | None:
     return key if isinstance(key, str) and key in REGISTRY else None
 
 
-def model_curves(row, u) -> tuple[np.ndarray, np.ndarray]:
-    """Δf(u0), ΔΓ(u0) in Hz of the model chosen for one sweep (a row of the sweep results).
+def model_curves(row, u, loop=None) -> tuple[np.ndarray, np.ndarray]:
+    """Δf(u0), ΔΓ(u0) in Hz of the model chosen for one sweep.
 
     Evaluates the registered model function with the sweep's fitted values, read from the
-    columns its parameters name; a sweep whose limits come from an exact loop (Cattaneo-Mindlin,
-    Savkoor or plateau, column ``limits_from``) is drawn as that loop.
+    columns its parameters name: those of ``row`` (a row of the sweep results: ``model``,
+    ``limits_from`` and the named limits, slopes, curvatures, plateau) for a closed form; a
+    sweep whose limits come from an exact loop (Cattaneo-Mindlin, Savkoor or plateau, column
+    ``limits_from``) is drawn as that loop, with the values of ``loop``, the sweep's row of
+    that loop's fit table (``Results.fits[key]``, :func:`fit_tables`).
     """
     u = np.asarray(u, dtype=float)
-    model = REGISTRY[_EXACT.get(row.get("limits_from"), row["model"])]
+    key = _EXACT.get(row.get("limits_from"), row["model"])
+    model = REGISTRY[key]
+    if key in EXACT_LOOPS:
+        if loop is None:
+            raise TypeError(f"the curve of a sweep drawn as the {key} needs its fit's row")
+        row = loop
     values = {p.key: row[p.column] for p in model.parameters}
     df, dg = model.function(u, **values)
     return np.broadcast_to(df, u.shape).astype(float), np.broadcast_to(dg, u.shape).astype(float)
 
 
-def fit_tables(sw: pd.DataFrame) -> dict[str, pd.DataFrame]:
-    """One table per registered sweep model fitted in ``sw`` (the analysis' working table,
-    whose fields of each fit are ``<source>_<field>``): ``sweep`` and the fields under the
-    names of :attr:`SweepFit.table` (the parameters under their keys), one row per sweep.
+def fit_tables(sweep, fields: Mapping[str, pd.DataFrame]) -> dict[str, pd.DataFrame]:
+    """One table per registered sweep model fitted in ``fields`` (the fields of each fit by
+    source, :data:`contactres.analysis.classify.FieldTables`): ``sweep`` (the ids of the rows)
+    and the fields under the names of :attr:`SweepFit.table` (the parameters under their
+    keys), one row per sweep.
 
     Fields a fitter adds beyond its ``table`` keep their own names."""
     out = {}
     for fit in SWEEP_FITS:
-        prefix = f"{fit.source}_"
-        cols = [c for c in sw.columns if c.startswith(prefix)]
-        if not cols:
+        if fit.source not in fields:
             continue  # not fitted (the exact loops without exact_loop)
-        table = {"sweep": sw["sweep"].to_numpy()}
-        for c in cols:
-            field = c[len(prefix) :]
-            table[fit.table.get(field, field)] = sw[c].to_numpy()
+        table = {"sweep": np.asarray(sweep)}
+        for field, values in fields[fit.source].items():
+            table[fit.table.get(str(field), str(field))] = values.to_numpy()
         out[fit.model] = pd.DataFrame(table)
     return out
-
-
-def fit_columns(sw: pd.DataFrame) -> list[str]:
-    """The columns of ``sw`` that hold the fields of a per-sweep fit (``<source>_<field>``)."""
-    prefixes = tuple(f"{fit.source}_" for fit in SWEEP_FITS)
-    return [c for c in sw.columns if c.startswith(prefixes)]

@@ -63,23 +63,19 @@ def amplitude_model(key, display, extra, source, function) -> Model:
     )
 
 
-def loop_parameters(prefix: str, scale: str = "κ/(μF_N)") -> tuple[Parameter, ...]:
+def loop_parameters(scale: str = "κ/(μF_N)") -> tuple[Parameter, ...]:
     """Pκ and Pωξ (the low-amplitude limits) and the loop's amplitude scale (κ/(μF_N), or 1/d_s
-    for Savkoor's loop), held in the columns ``<prefix>df0_Hz``, ``<prefix>dgamma0_Hz``,
-    ``<prefix>theta_per_m`` of the per-sweep fits (``cm_`` for the Cattaneo-Mindlin loop fit,
-    ``sv_`` for Savkoor's loop, ``pl_`` for the plateau loop)."""
+    for Savkoor's loop). Each is held in the loop's fit table (``Results.fits[key]``) under its
+    own key, so the column a parameter names is its key (the named limits of the sweep
+    results are the chosen model's, not the loop's)."""
     return (
-        Parameter(
-            "df0", "Pκ (low-amplitude Δf0)", "Hz", f"{prefix}df0_Hz", (0.0, np.inf), scale=100.0
-        ),
-        Parameter(
-            "dgamma0", "Pωξ (low-amplitude ΔΓ0)", "Hz", f"{prefix}dgamma0_Hz", ANY, scale=10.0
-        ),
+        Parameter("df0", "Pκ (low-amplitude Δf0)", "Hz", "df0", (0.0, np.inf), scale=100.0),
+        Parameter("dgamma0", "Pωξ (low-amplitude ΔΓ0)", "Hz", "dgamma0", ANY, scale=10.0),
         Parameter(
             "inverse_slip_scale",
             scale,
             "1/m",
-            f"{prefix}theta_per_m",
+            "inverse_slip_scale",
             (0.0, np.inf),
             scale=1e8,
         ),
@@ -102,9 +98,9 @@ class SweepFit:
     Attributes
     ----------
     model : key of the model in :data:`contactres.analysis.models.REGISTRY`
-    source : the short name of the fit (``el``, ``line``, ... ``pl``): the prefix of its fields
-        in the analysis' working table, and its name in the model choice
-        (:data:`contactres.analysis.classify.CLASS_SOURCES`)
+    source : the short name of the fit (``el``, ``line``, ... ``pl``): the key of its field
+        table in the analysis (:data:`contactres.analysis.classify.FieldTables`), and its name
+        in the model choice (:data:`contactres.analysis.classify.CLASS_SOURCES`)
     exact : fitted only with ``exact_loop`` (the exact loops)
     fit : ``fit(block, done, inputs) -> {field: (S,) array}``; ``done`` holds the fields of the
         fits before it, by source (a fit may start from or be weighted by an earlier one)

@@ -28,7 +28,7 @@ def cm_loop(u, df0, dgamma0, inverse_slip_scale):
 MODEL = Model(
     "cattaneo-mindlin-loop",
     "exact Cattaneo-Mindlin loop with a dashpot",
-    loop_parameters("cm_"),
+    loop_parameters(),
     "amplitude",
     "m",
     "df, dgamma",

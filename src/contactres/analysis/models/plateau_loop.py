@@ -32,12 +32,12 @@ MODEL = Model(
     "plateau-loop",
     "exact Cattaneo-Mindlin loop behind a stick plateau, with a dashpot",
     (
-        *loop_parameters("pl_"),
+        *loop_parameters(),
         Parameter(
             "critical_displacement",
             "critical displacement d_c",
             "m",
-            "pl_d_c_m",
+            "critical_displacement",
             (0.0, 1e-6),
             scale=1e-9,
         ),

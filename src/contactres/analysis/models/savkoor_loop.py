@@ -28,7 +28,7 @@ def savkoor_loop(u, df0, dgamma0, inverse_slip_scale):
 MODEL = Model(
     "savkoor-loop",
     "exact Savkoor loop (constant sliding traction) with a dashpot",
-    loop_parameters("sv_", "1/d_s = κ/(4a²τ0)"),
+    loop_parameters("1/d_s = κ/(4a²τ0)"),
     "amplitude",
     "m",
     "df, dgamma",
