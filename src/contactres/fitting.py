@@ -320,7 +320,7 @@ class LeastSquaresResult:
 
 
 def levenberg_marquardt(evaluate, p0, lo=-np.inf, hi=np.inf, options: LMOptions = LMOptions()):
-    """Minimise χ² = |r(p)|² of R independent problems at once by Levenberg-Marquardt.
+    """Minimise χ² = ‖r(p)‖² of R independent problems at once by Levenberg-Marquardt.
 
     The problems share the number of parameters P (and, in the Jacobian form, of residuals G:
     pad with zero residuals); each keeps its own damping and stops on its own while the others

@@ -3,26 +3,27 @@
 Amplitude models of one sweep, Δf(u0) and ΔΓ(u0) (paper 2, Figs. 1D and 4), each fitted to both
 channels at once:
 
-=========================  ======================================================  ============
-key                        model                                                    module
-=========================  ======================================================  ============
-``elastic``                Δf = Δf0, ΔΓ = ΔΓ0 (a Voigt element, paper 2, Eq. 1)     elastic
-``cattaneo-mindlin``       straight line in u0 (paper 2, Eq. 12)                    line
-``savkoor``                straight line in u0² (paper 2, Eq. 15)                   parabola
-``plateau``                flat below u_c, straight line above (Fig. 4C, D)         hinge
-``cattaneo-mindlin-loop``  the exact Cattaneo-Mindlin loop with a dashpot (Eqs. 4-6) cm_loop
-``savkoor-loop``           the exact Savkoor loop with a dashpot (Eqs. 13-14)       savkoor_loop
-``plateau-loop``           the Cattaneo-Mindlin loop behind a stick plateau d_c     plateau_loop
-=========================  ======================================================  ============
+=========================  ==========================================================  ============
+key                        model                                                       module
+=========================  ==========================================================  ============
+``elastic``                Δf = Δf0, ΔΓ = ΔΓ0 (a Voigt element, paper 2, Eq. 1)        elastic
+``cattaneo-mindlin``       straight line in u0 (paper 2, Eq. 12)                       line
+``savkoor``                straight line in u0² (paper 2, Eq. 15)                      parabola
+``plateau``                flat below u_c, straight line above (Fig. 4C, D)            hinge
+``cattaneo-mindlin-loop``  the exact Cattaneo-Mindlin loop with a dashpot (Eqs. 4-6)   cm_loop
+``savkoor-loop``           the exact Savkoor loop with a dashpot (Eqs. 13-14)          savkoor_loop
+``plateau-loop``           the Cattaneo-Mindlin loop behind a stick plateau d_c        plateau_loop
+=========================  ==========================================================  ============
 
 and the model of the load dependence, ``jkr-mindlin``: κ(F_N) = 2G*a with the JKR contact
 radius (paper 2, Eqs. 7-10; module jkr_mindlin). Each module holds the model's metadata
 (``MODEL``, a :class:`contactres.fitting.Model`: parameters with keys, units, bounds, fixed
 flags, and the model function) and, for a model fitted to every sweep, its batched fitter
 (``FIT``, a :class:`~contactres.analysis.models.base.SweepFit`). The analysis fits every
-registered sweep model through :data:`SWEEP_FITS` (:func:`contactres.analysis.classify.
-fit_sweeps`) and keeps one fit table per model (:func:`fit_tables`, ``Results.fits``). A new
-model is one new module and one line in :data:`MODULES`. The tests check each fitter against
+registered sweep model through :data:`SWEEP_FITS`
+(:func:`contactres.analysis.classify.fit_sweeps`) and keeps one fit table per model
+(:func:`fit_tables`, ``Results.fits``). A new model is one new module and one line in
+:data:`MODULES`. The tests check each fitter against
 :func:`contactres.fitting.fit` on the registered function (a second algorithm).
 """
 

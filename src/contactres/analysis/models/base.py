@@ -118,8 +118,8 @@ class SweepFit:
 
 
 def closed_form_fields(fit) -> dict[str, np.ndarray]:
-    """The fields of a closed-form straight-line fit (:class:`contactres.analysis.amplitude.
-    LineFit`, both channels) in the order the analysis keeps them."""
+    """The fields of a closed-form straight-line fit (both channels) in the order the analysis
+    keeps them; ``fit`` is a :class:`contactres.analysis.amplitude.LineFit`."""
     out = {}
     for c, name in enumerate(("df", "dgamma")):
         out[f"{name}0_Hz"] = fit.a[c]

@@ -1,4 +1,5 @@
-"""The tables contactres writes besides those of ``qcm analyze`` (:mod:`.results`).
+"""The tables contactres writes besides those of ``qcm analyze``
+(:mod:`contactres.measurements.schema.results`).
 
 * :data:`SPECTRA_SWEEPS`: the sweep table ``qcm spectra`` writes (``--out``), one row per
   measured spectrum: the sweep table's columns with the errors and the spectrum's own;
