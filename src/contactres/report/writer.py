@@ -19,6 +19,13 @@ results folder, and registers the figures of paper 2 and ``report.html`` here. T
 Results that :func:`contactres.analyze` returns are written as the job's Result that carries
 them, so ``contactres.write_report(results, folder)`` writes the folder described in
 :mod:`contactres.report.tables`.
+
+Map stores are not written here: ``maps synthetic|predict`` write a Zarr store with
+:func:`contactres.polycrystal.maps.write_map`. A store is itself the output the user names (not
+a file inside a results folder), a tree of chunk files whose chunking is a choice of the writing
+(``--chunks``), replaced as a whole (in one step where the system can); a report is a folder
+of named files, each digested in its ``manifest.json``, that a
+:class:`~contactres.fileio.ResultSet` moves in.
 """
 
 from __future__ import annotations
