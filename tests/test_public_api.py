@@ -372,7 +372,16 @@ UNDOCUMENTED = {
     "jobs.paper2": ["Paper2Example", "loop_cases", "loops_table", "shifts_table"],
     "jobs.qcm_loop": ["MODELS", "build_loop"],
     "jobs.qcm_stiffness": ["COLUMN_UNITS", "EQUATION", "stiffness_table"],
-    "jobs.qcm_sweeps": ["Reading", "read", "stages", "warning_lines"],
+    "jobs.qcm_sweeps": [
+        "Reading",
+        "loads_table",
+        "radiation_table",
+        "read",
+        "stages",
+        "summary",
+        "sweeps_table",
+        "warning_lines",
+    ],
     "jobs.readers": ["GRID_READER", "read_ebsd_file", "read_grid_file", "read_value_grid"],
 }
 

@@ -62,17 +62,27 @@ def test_no_table_is_unbound(name):
 
 
 def test_the_sweep_analysis_binds_its_own_tables():
-    # qcm_sweeps carries the analysis's Results and overrides tables(): no job run needed to
-    # see which schemas it gives.
+    # qcm_sweeps carries the analysis's Results and overrides tables() (the tables of the
+    # results folder): no job run needed to see which schemas it gives. The stub's empty
+    # tables have the analysis's columns and one more, which the folder's tables leave out.
     from contactres.jobs import qcm_sweeps
-    from contactres.measurements.schema import LOAD_RESULTS, SWEEP_RESULTS
+    from contactres.measurements.schema import LOAD_RESULTS, RADIATION_RESULTS, SWEEP_RESULTS
 
-    stub = SimpleNamespace(sweeps=pd.DataFrame(), loads=pd.DataFrame())
+    def empty(schema):
+        return pd.DataFrame(columns=["extra", *schema.names])
+
+    stub = SimpleNamespace(sweeps=empty(SWEEP_RESULTS), loads=empty(LOAD_RESULTS), radiation=None)
     tables = qcm_sweeps.Result(analysis=stub, reading=None).tables()
     assert {k: s for k, (_, s) in tables.items()} == {
         "sweeps": SWEEP_RESULTS,
         "loads": LOAD_RESULTS,
     }
+    with_radiation = SimpleNamespace(**{**vars(stub), "radiation": empty(RADIATION_RESULTS)})
+    tables = qcm_sweeps.Result(analysis=with_radiation).tables()
+    assert tables["radiation"][1] is RADIATION_RESULTS
+    assert set(qcm_sweeps.Result.table_names()) == set(tables)
+    for frame, schema in tables.values():
+        assert_columns(frame, schema)
 
 
 def assert_columns(frame: pd.DataFrame, schema: TableSchema, absent=(), before=()) -> None:

@@ -1,5 +1,5 @@
 """The generic report writer: any job's Result as CSV tables, JSON values and its registered
-figures, in one result set; the QCM analysis still goes to its own writer."""
+figures and page, in one result set; the QCM analysis through the same registries."""
 
 import json
 from dataclasses import dataclass
@@ -10,12 +10,14 @@ import pandas as pd
 import pytest
 
 from contactres.errors import ContactresInputError
-from contactres.jobs import qcm_stiffness
+from contactres.jobs import qcm_stiffness, qcm_sweeps
 from contactres.jobs.contract import JobResult
-from contactres.report import write_report
-from contactres.report.writer import figure_registry, report_names
+from contactres.report import html_report, write_report
+from contactres.report import writer as writer_module
+from contactres.report.writer import FORMATS, figure_registry, html_registry, report_names
 
 EXPORT = "src/contactres/data/example_qcmd.csv"
+SWEEPS = "src/contactres/data/example_sweeps.csv"
 
 
 @dataclass(frozen=True)
@@ -69,6 +71,46 @@ def test_the_stiffness_job_report_has_its_figure(tmp_path):
     assert table["kappa_N_per_m"].to_numpy() == pytest.approx(table["df_Hz"] / P, rel=1e-9)
 
 
-def test_the_figure_registry_is_immutable():
+def test_the_registries_are_immutable():
     with pytest.raises(TypeError):
         figure_registry()[Toy] = ()
+    with pytest.raises(TypeError):
+        html_registry()[Toy] = ("toy.html", str)
+
+
+def test_a_drawing_with_nothing_to_draw_writes_no_file(tmp_path, monkeypatch):
+    registry = MappingProxyType({Toy: (("empty.png", lambda result: None),)})
+    monkeypatch.setattr(writer_module, "figure_registry", lambda: registry)
+    toy = Toy(pd.DataFrame({"x_m": [1.0]}), 1.0, "d")
+    assert report_names(Toy, FORMATS) == ("points.csv", "toy.json", "empty.png")
+    written = write_report(toy, tmp_path / "out", ("csv", "png", "html"))  # Toy has no page
+    assert [p.name for p in written] == ["points.csv"]
+    assert sorted(p.name for p in (tmp_path / "out").iterdir()) == ["manifest.json", "points.csv"]
+
+
+def test_the_sweep_analysis_is_reported_through_the_registries(tmp_path):
+    result = qcm_sweeps.run(SWEEPS, qcm_sweeps.Settings(bootstrap=0))
+    figures = [name for name, _ in figure_registry()[qcm_sweeps.Result]]
+    assert figures[-1] == "radiation_loss.png" and len(figures) == 5
+    assert html_registry()[qcm_sweeps.Result][0] == "report.html"
+    assert report_names(qcm_sweeps.Result, ("csv", "json", "html")) == (
+        "sweeps.csv",
+        "loads.csv",
+        "radiation.csv",
+        "summary.json",
+        "report.html",
+    )
+    formats = ("csv", "json", "html")
+    job = write_report(result, tmp_path / "job", formats)
+    library = write_report(result.analysis, tmp_path / "library", formats)
+    # No materials: no radiation table; the analysis alone is written as the job's Result.
+    names = ["sweeps.csv", "loads.csv", "summary.json", "report.html"]
+    assert [p.name for p in job] == [p.name for p in library] == names
+    for name in names:
+        assert (tmp_path / "job" / name).read_bytes() == (tmp_path / "library" / name).read_bytes()
+    page = (tmp_path / "job" / "report.html").read_text(encoding="utf-8")
+    assert page == html_report(result.analysis)
+    summary = json.loads((tmp_path / "job" / "summary.json").read_text(encoding="utf-8"))
+    assert len(summary["groups"]) == len(result.analysis.groups) and "radiation" not in summary
+    swept = pd.read_csv(tmp_path / "job" / "sweeps.csv")
+    assert swept["sweep"].tolist() == result.analysis.sweeps["sweep"].tolist()

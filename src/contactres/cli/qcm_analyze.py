@@ -159,12 +159,9 @@ def analyze_command(
     Example: contactres qcm analyze src/contactres/data/example_sweeps.csv --out qcm_results
     """
     from ..analysis.flags import Flag, has
-    from ..fileio import ResultSet
     from ..jobs import qcm_sweeps as job
     from ..report.console import friction_table, radiation_lines, table1_text, withheld_lines
-    from ..report.html import HTML_FILE, write_html
-    from ..report.tables import report_files
-    from ..report.writer import write_report
+    from ..report.writer import report_set, write_report
 
     if (sphere_material is None) != (plate_material is None):
         given = "--sphere-material" if plate_material is None else "--plate-material"
@@ -173,7 +170,6 @@ def analyze_command(
             "together (e.g. --sphere-material glass --plate-material quartz-AT) or neither",
             click.get_current_context(),
         )
-    radiation = sphere_material is not None
     settings = job.Settings(
         area_m2=area,
         overtone=overtone,
@@ -190,15 +186,13 @@ def analyze_command(
         sphere_material=sphere_material,
         plate_material=plate_material,
     )
-    formats = ("csv", "json") if no_figures else ("csv", "json", "png")
+    formats: tuple[str, ...] = ("csv", "json") if no_figures else ("csv", "json", "png")
+    if report == "html":  # the page registered for the job's Result, as its figures are
+        formats += ("html",)
     source = Path(sweeps)
     # Every file the run reads: the table and the TOML files its constants may come from.
     inputs = (source, source.with_suffix(".toml"), source.parent / "contactres.toml")
-    names = report_files(formats, radiation=radiation)
-    if report == "html":
-        names += (HTML_FILE,)
-    owned = (*report_files(radiation=True), HTML_FILE)
-    with ResultSet(out, names=names, inputs=inputs, owned=owned) as rs:
+    with report_set(job.Result, out, formats, inputs=inputs) as rs:
         reading = job.read(sweeps, settings)
         for line in reading.left_out:
             click.echo(f"contactres: warning: {line}", err=True)
@@ -212,9 +206,6 @@ def analyze_command(
             done = job.run(reading, settings, progress=lambda _step: bar.update(1))
             results = done.analysis
             written = write_report(done, rs, formats)
-            if report == "html":
-                write_html(results, rs.path(HTML_FILE))
-                written.append(rs.final(HTML_FILE))
             bar.update(steps)
         # The analysis's warnings, then those of the writing, each distinct line once.
         _echo(dict.fromkeys((*done.warnings, *job.warning_lines(caught))))

@@ -16,8 +16,9 @@ A job is one workflow of contactres (a QCM sweep analysis, a DCSF curve, a CR-AF
 
 A job never writes a file nor prints: the command line prints a Result and
 :func:`contactres.report.writer.write_report` writes one (its tables as CSV, its values as JSON,
-and the figures registered for its type). A job imports the library below it (analysis,
-polycrystal, ...), never :mod:`contactres.report`, :mod:`contactres.apps` or the command line.
+the figures and the HTML page registered for its type). A job imports the library below it
+(analysis, polycrystal, ...), never :mod:`contactres.report`, :mod:`contactres.apps` or the
+command line.
 User errors raise :class:`contactres.errors.ContactresInputError`, as in the rest of the library.
 """
 
@@ -77,6 +78,12 @@ class JobResult:
     #: The stem of the file of the values (``<NAME>.json``) when a report writes the result.
     NAME: ClassVar[str] = "result"
 
+    @classmethod
+    def table_names(cls) -> tuple[str, ...]:
+        """Every table a result of this type can hold (known before the job runs, so that a
+        report can declare its files): the keys of :attr:`SCHEMAS`."""
+        return tuple(cls.SCHEMAS)
+
     def tables(self) -> Mapping[str, tuple[pd.DataFrame, TableSchema | None]]:
         """The tables of the result: field name -> (DataFrame, schema), in declaration order."""
         return MappingProxyType(
@@ -91,3 +98,8 @@ class JobResult:
             for f in dataclasses.fields(self)  # type: ignore[arg-type]
             if f.name not in self.SCHEMAS and f.name not in self.NOT_VALUES
         }
+
+    def input_files(self) -> tuple[str, ...]:
+        """The files the result was computed from, which a report of it must never overwrite
+        (none known here: a job whose Result knows its input says it)."""
+        return ()

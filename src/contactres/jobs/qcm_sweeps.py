@@ -12,10 +12,17 @@ bodies of the contact for the radiation loss (both or neither). The analysis is
 Two stages, so that a caller can show a progress bar of known length: :func:`read` (the sweep
 table and what reading it said) and :func:`run` (reads unless given a :class:`Reading`, then
 analyses; :func:`stages` gives the length of a progress bar over it).
+
+The Result's tables are those of the results folder, each bound to its schema
+(:func:`sweeps_table`, :func:`loads_table` and, with the two bodies, :func:`radiation_table`),
+and its values the ``summary.json`` record (:func:`summary`): a report writes them as it writes
+every job's (:func:`contactres.report.writer.write_report`; the folder's files are described in
+:mod:`contactres.report.tables`).
 """
 
 from __future__ import annotations
 
+import math
 import os
 import warnings
 from dataclasses import dataclass
@@ -23,14 +30,34 @@ from pathlib import Path
 from types import MappingProxyType
 from typing import TYPE_CHECKING
 
-from ..measurements.schema import LOAD_RESULTS, SWEEP_RESULTS
+from ..measurements.schema import (
+    CONVENTIONS,
+    GROUP_RESULTS,
+    LOAD_RESULTS,
+    RADIATION_RESULTS,
+    SWEEP_RESULTS,
+)
 from .contract import JobResult, Progress
 
 if TYPE_CHECKING:
+    import pandas as pd
+
     from ..analysis import Results
     from ..measurements.sweeps import SweepTable
 
-__all__ = ["Reading", "Result", "Settings", "read", "run", "stages", "warning_lines"]
+__all__ = [
+    "Reading",
+    "Result",
+    "Settings",
+    "loads_table",
+    "radiation_table",
+    "read",
+    "run",
+    "stages",
+    "summary",
+    "sweeps_table",
+    "warning_lines",
+]
 
 #: From this many sweeps on, ``workers=None`` uses every core.
 MANY_SWEEPS = 10_000
@@ -90,26 +117,139 @@ class Reading:
 
 @dataclass(frozen=True)
 class Result(JobResult):
-    """``analysis``: the :class:`contactres.analysis.Results` (its tables ``sweeps`` and
-    ``loads``, bound to :data:`~contactres.measurements.schema.SWEEP_RESULTS` and
-    :data:`~contactres.measurements.schema.LOAD_RESULTS`); ``reading``: what reading said;
-    ``warnings``: the analysis's warnings, one line each."""
+    """``analysis``: the :class:`contactres.analysis.Results`; ``reading``: what reading said
+    (None for Results analysed elsewhere, :meth:`of`); ``warnings``: the analysis's warnings,
+    one line each.
+
+    Its tables (:meth:`tables`) are those of the results folder: ``sweeps`` and ``loads``, bound
+    to :data:`~contactres.measurements.schema.SWEEP_RESULTS` and
+    :data:`~contactres.measurements.schema.LOAD_RESULTS`, and ``radiation``
+    (:data:`~contactres.measurements.schema.RADIATION_RESULTS`) where the analysis has the
+    radiation loss; its values (:meth:`values`) the ``summary.json`` record.
+    """
 
     NOT_VALUES = ("analysis", "reading", "warnings")
     NAME = "summary"
 
     analysis: Results
-    reading: Reading
+    reading: Reading | None = None
     warnings: tuple[str, ...] = ()
 
+    @classmethod
+    def of(cls, analysis: Results) -> Result:
+        """The Result that carries ``analysis`` (what :func:`contactres.analyze` returned), so
+        that it is reported as the job's is."""
+        return cls(analysis=analysis)
+
+    @classmethod
+    def table_names(cls) -> tuple[str, ...]:
+        """Every table a Result can hold: ``radiation`` only with the radiation loss."""
+        return ("sweeps", "loads", "radiation")
+
     def tables(self):
-        """The analysis's per-sweep and per-load tables with their schemas."""
-        return MappingProxyType(
-            {
-                "sweeps": (self.analysis.sweeps, SWEEP_RESULTS),
-                "loads": (self.analysis.loads, LOAD_RESULTS),
-            }
+        """The tables of the results folder with their schemas (see the class docstring)."""
+        tables = {
+            "sweeps": (sweeps_table(self.analysis), SWEEP_RESULTS),
+            "loads": (loads_table(self.analysis), LOAD_RESULTS),
+        }
+        if self.analysis.radiation is not None:
+            tables["radiation"] = (radiation_table(self.analysis), RADIATION_RESULTS)
+        return MappingProxyType(tables)
+
+    def values(self) -> dict:
+        """The ``summary.json`` record (:func:`summary`)."""
+        return summary(self.analysis)
+
+    def input_files(self) -> tuple[str, ...]:
+        """The sweep table the analysis read, when it came from a file."""
+        table = self.analysis.table
+        source = None if table is None else table.source
+        return () if source is None or source == "<table>" else (source,)
+
+
+def _clean(value):
+    """JSON-safe: NaN/inf -> None, numpy scalars -> Python."""
+    if isinstance(value, dict):
+        return {str(k): _clean(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_clean(v) for v in value]
+    if hasattr(value, "item") and not isinstance(value, (str, bytes)):
+        value = value.item()
+    if isinstance(value, float) and not math.isfinite(value):
+        return None
+    return value
+
+
+def _finite_or_nan(table: pd.DataFrame) -> pd.DataFrame:
+    """``table`` with ±inf as NaN (an empty cell in CSV): an infinite error or ratio is 'not
+    applicable', as NaN is, and the README promises empty cells for both."""
+    import numpy as np
+
+    out = table.copy()
+    for col in out.select_dtypes(include="floating").columns:
+        values = out[col].to_numpy()
+        out[col] = np.where(np.isinf(values), np.nan, values)
+    return out
+
+
+def sweeps_table(results: Results) -> pd.DataFrame:
+    """The ``sweeps.csv`` table: the columns of ``SWEEP_RESULTS``, flags as text."""
+    from ..analysis.flags import render
+
+    table = _finite_or_nan(results.sweeps[list(SWEEP_RESULTS.names)])
+    table["flags"] = render(table["flags"].to_numpy())
+    return table
+
+
+def loads_table(results: Results) -> pd.DataFrame:
+    """The ``loads.csv`` table: the columns of ``LOAD_RESULTS``."""
+    return _finite_or_nan(results.loads[list(LOAD_RESULTS.names)])
+
+
+def radiation_table(results: Results) -> pd.DataFrame:
+    """The ``radiation.csv`` table: the columns of ``RADIATION_RESULTS`` (results with one)."""
+    from ..errors import ContactresInputError
+
+    if results.radiation is None:
+        raise ContactresInputError(
+            "these results have no radiation table (no materials were given)"
         )
+    return _finite_or_nan(results.radiation[list(RADIATION_RESULTS.names)])
+
+
+def _radiation_record(table: pd.DataFrame) -> dict:
+    from ..analysis.radiation import radiation_summary
+
+    first: pd.Series | dict = table.iloc[0] if len(table) else {}
+    return {
+        "sphere_material": first.get("sphere_material"),
+        "plate_material": first.get("plate_material"),
+        "file": "radiation.csv",
+        "groups": radiation_summary(table),
+    }
+
+
+def summary(results: Results) -> dict:
+    """The ``summary.json`` record (JSON-safe): groups in the key order of ``GROUP_RESULTS``,
+    and the radiation section where the results have the radiation table."""
+    groups = []
+    for g in results.groups:
+        unknown = sorted(set(g) - set(GROUP_RESULTS.names))
+        if unknown:
+            raise KeyError(f"group keys {unknown} are missing from the schema GROUP_RESULTS")
+        groups.append({k: g[k] for k in GROUP_RESULTS.names if k in g})
+    source = None if results.table is None else results.table.source
+    record = {
+        "groups": groups,
+        "settings": results.settings,
+        "version": results.version,
+        "source": source,
+        "messages": list(results.messages),
+        "conventions": CONVENTIONS,
+    }
+    if results.radiation is not None:
+        record["radiation"] = _radiation_record(results.radiation)
+    return _clean(record)
 
 
 def warning_lines(caught) -> tuple[str, ...]:

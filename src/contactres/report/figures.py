@@ -31,6 +31,7 @@ if TYPE_CHECKING:
 __all__ = [
     "FIGURE_FILES",
     "LABEL_CHARS",
+    "NO_SWEEP_USED",
     "RADIATION_FIGURE",
     "figure_dissipation",
     "figure_friction",
@@ -50,6 +51,11 @@ FIGURE_FILES = (
 )
 #: The figure of the radiation table (written only when the results have one).
 RADIATION_FIGURE = "radiation_loss.png"
+#: What a report says when no sweep is used (all are ramp 1, say): there is nothing to draw.
+NO_SWEEP_USED = (
+    "no sweep is used (all are ramp 1 or have too few points), so no figure is drawn; "
+    "--keep-first-ramp (keep_first_ramp=True) uses ramp 1 too"
+)
 #: Longest label from the data shown in a figure (longer ones end in an ellipsis).
 LABEL_CHARS = 40
 
@@ -378,12 +384,7 @@ def write_figures(results, folder: str | Path | Callable[[str], Path]) -> list[P
     """
     where = folder if callable(folder) else (lambda name: Path(folder) / name)
     if not results.sweeps["used"].any():
-        warnings.warn(
-            "no sweep is used (all are ramp 1 or have too few points), so no figure is drawn; "
-            "--keep-first-ramp (keep_first_ramp=True) uses ramp 1 too",
-            SweepWarning,
-            stacklevel=2,
-        )
+        warnings.warn(NO_SWEEP_USED, SweepWarning, stacklevel=2)
         return []
     makers = (figure_sweeps, figure_stiffness, figure_dissipation, figure_friction)
     written = [

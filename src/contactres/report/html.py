@@ -23,12 +23,12 @@ from ..analysis.curves import PAGE_POINTS, sweep_rows
 from ..analysis.flags import DESCRIPTIONS, Flag, render
 from ..analysis.results import Results
 from ..fileio import write_text
+from ..jobs.qcm_sweeps import summary
 from ..measurements.schema import CONVENTIONS
 from ..measurements.sweeps import CONSTANTS
 from .console import DASH, friction_table, plus_minus, radiation_lines, table1_text, withheld_lines
-from .tables import summary
 
-__all__ = ["HTML_FILE", "html_report", "write_html"]
+__all__ = ["HTML_FILE", "html_report", "sweeps_page", "write_html"]
 
 #: The file name of the page in the results folder.
 HTML_FILE = "report.html"
@@ -307,3 +307,9 @@ def html_report(results: Results) -> str:
 def write_html(results: Results, path) -> Path:
     """Write :func:`html_report` to ``path`` atomically; return the path."""
     return write_text(path, html_report(results))
+
+
+def sweeps_page(result) -> str:
+    """The page of a :class:`contactres.jobs.qcm_sweeps.Result` (its analysis's
+    :func:`html_report`), as :func:`contactres.report.writer.html_registry` registers it."""
+    return html_report(result.analysis)

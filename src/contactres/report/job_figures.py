@@ -1,11 +1,82 @@
 """Figures of the jobs' Results, registered by :func:`contactres.report.writer.figure_registry`.
 
-Each function takes a Result and returns a matplotlib Figure (Agg canvas, no pyplot state).
+Each function takes a Result and returns a matplotlib Figure (Agg canvas, no pyplot state), or
+None when the Result has nothing to draw in that figure (no file is written then).
+
+The QCM sweep analysis (a :class:`contactres.jobs.qcm_sweeps.Result`) has the figures of
+paper 2 (Figs. 4, 5, 7, 8: :mod:`contactres.report.figures`), none when no sweep is used (Fig.
+4's function says so once, a :class:`~contactres.measurements.sweeps.SweepWarning`), and the
+radiation loss where the analysis has it.
 """
 
 from __future__ import annotations
 
-__all__ = ["prediction_figure", "stiffness_figure"]
+import warnings
+
+__all__ = [
+    "dissipation_figure",
+    "friction_figure",
+    "load_figure",
+    "prediction_figure",
+    "radiation_figure",
+    "stiffness_figure",
+    "sweeps_figure",
+]
+
+
+def _drawn(result):
+    """The analysis of a qcm_sweeps Result, or None when no sweep is used (nothing to draw)."""
+    analysis = result.analysis
+    return analysis if analysis.sweeps["used"].any() else None
+
+
+def sweeps_figure(result):
+    """Fig. 4 of paper 2: Δf and ΔΓ against u0 for a typical load and an unusual one, per
+    medium, with the chosen models (a qcm_sweeps Result); with no sweep used, None and a
+    SweepWarning that no figure is drawn."""
+    from ..measurements.sweeps import SweepWarning
+    from .figures import NO_SWEEP_USED, figure_sweeps
+
+    analysis = _drawn(result)
+    if analysis is None:
+        warnings.warn(NO_SWEEP_USED, SweepWarning, stacklevel=2)
+        return None
+    return figure_sweeps(analysis)
+
+
+def load_figure(result):
+    """Fig. 5 of paper 2: the low-amplitude Δf0 against F_N with the JKR fits."""
+    from .figures import figure_stiffness
+
+    analysis = _drawn(result)
+    return None if analysis is None else figure_stiffness(analysis)
+
+
+def dissipation_figure(result):
+    """Fig. 7 of paper 2: ΔΓ0 and the loss tangent ΔΓ0/Δf0 against F_N."""
+    from .figures import figure_dissipation
+
+    analysis = _drawn(result)
+    return None if analysis is None else figure_dissipation(analysis)
+
+
+def friction_figure(result):
+    """Fig. 8 of paper 2: the friction coefficient μ (from the slopes, from the exact-loop fit)
+    against F_N."""
+    from .figures import figure_friction
+
+    analysis = _drawn(result)
+    return None if analysis is None else figure_friction(analysis)
+
+
+def radiation_figure(result):
+    """Measured and radiation loss tangent per load, where the analysis has the radiation
+    table (with rows) and a sweep is used."""
+    from .figures import figure_radiation
+
+    analysis = _drawn(result)
+    radiation = None if analysis is None else analysis.radiation
+    return None if radiation is None or not len(radiation) else figure_radiation(analysis)
 
 
 def stiffness_figure(result):
