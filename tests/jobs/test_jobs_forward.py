@@ -55,6 +55,34 @@ def test_contact_job_dynamic_column_is_ksa_times_dcsf():
     assert row["dynamic_stiffness_real_N_per_m"] == pytest.approx(k.real, rel=1e-9)
 
 
+def test_contact_job_takes_single_values_from_python_and_checks_the_frequency():
+    """Floats, as a Python user passes them, make one row (the CLI passes arrays); a negative
+    frequency is the user's error, not pandas'."""
+    glass = Material.isotropic(70e9, 0.22, density=2500.0)
+    one = contact.run(glass, contact.Settings(radius=1e-3, force=1.0, frequency=2e6)).table
+    rows = contact.Settings(
+        radius=np.array([1e-3]), force=np.array([1.0]), frequency=np.array([2e6])
+    )
+    assert one.equals(contact.run(glass, rows).table)
+    with pytest.raises(ContactresInputError, match="frequency must be finite and >= 0"):
+        contact.run(glass, contact.Settings(radius=1e-3, force=1.0, frequency=-5.0))
+
+
+def test_dcsf_and_loop_jobs_take_single_values_from_python():
+    """A float where the CLI passes an array gives one row per model (one amplitude), and a
+    negative frequency is named as such."""
+    cu = Material.crystal("Cu")
+    one = dcsf_job.run(cu, dcsf_job.Settings(ka=0.5, models=("WA",))).table
+    assert len(one) == 1
+    assert complex(one["re"].iloc[0], one["im"].iloc[0]) == pytest.approx(dcsf(cu, 0.5, "WA"))
+    s = dcsf_job.Settings(models=("WA",), radius=1e-6, force=1e-6, frequency=1e6)
+    assert len(dcsf_job.run(cu, s).table) == 1
+    with pytest.raises(ContactresInputError, match="frequency must be finite and >= 0"):
+        dcsf_job.run(cu, dcsf_job.Settings(models=("WA",), radius=1e-6, force=1e-6, frequency=-1.0))
+    loop = qcm_loop.Settings(model="cm", kappa=1e5, mu=0.3, normal_force=1e-3, u0=1e-9)
+    assert len(qcm_loop.run(None, loop).table) == 1
+
+
 def test_contact_job_refuses_a_frequency_without_density():
     m = Material.cubic(168.4e9, 121.4e9, 75.4e9)
     s = contact.Settings(radius=np.array([1e-3]), force=np.array([1.0]), frequency=np.array([1e6]))

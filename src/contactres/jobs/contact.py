@@ -20,6 +20,7 @@ import numpy as np
 
 from ..errors import ContactresInputError
 from ..measurements.schema import CONTACT_TABLE
+from ..validation import nonnegative
 from .contract import JobResult, Progress, say
 
 if TYPE_CHECKING:
@@ -77,11 +78,14 @@ def run(inputs: Material, settings: Settings, progress: Progress | None = None) 
     m, s = inputs, settings
     freq = np.zeros(1) if s.frequency is None else s.frequency
     try:
-        R, F, f = np.broadcast_arrays(s.radius, s.force, freq)
+        # At least one row: single values from Python (floats) make a table of one row.
+        R, F, f = (np.atleast_1d(x) for x in np.broadcast_arrays(s.radius, s.force, freq))
     except ValueError:
         raise ContactresInputError(
             "radius, force and frequency must have the same number of values, or single values"
         ) from None
+    if s.frequency is not None:
+        f = np.asarray(nonnegative("frequency", f, "Hz"), dtype=float)
     if s.frequency is not None and m.density is None:
         raise ContactresInputError("a dynamic stiffness (frequency) needs the density of the solid")
     if not math.isfinite(s.direction):

@@ -21,6 +21,7 @@ import numpy as np
 
 from ..errors import ContactresInputError
 from ..measurements.schema import DCSF_TABLE
+from ..validation import nonnegative
 from .contract import JobResult, Progress, say
 
 if TYPE_CHECKING:
@@ -94,7 +95,8 @@ def run(inputs: Material, settings: Settings, progress: Progress | None = None) 
     if physical == (s.ka is not None):
         raise ContactresInputError("give either ka or radius/force/frequency (which give k a)")
     c33, c44 = float(np.real(m.C[2, 2])), float(np.real(m.C[3, 3]))
-    ka = s.ka
+    # At least one row: a single k a from Python (a float) makes a table of one row per model.
+    ka = None if s.ka is None else np.atleast_1d(np.asarray(s.ka, dtype=float))
     if physical:
         if not s.constants_in_pa or m.density is None:
             raise ContactresInputError(
@@ -131,12 +133,13 @@ def _contact_points(m, s: Settings):
     # run calls this only when all three are given
     assert s.radius is not None and s.force is not None and s.frequency is not None
     try:
-        R, F, f = np.broadcast_arrays(s.radius, s.force, s.frequency)
+        R, F, f = (np.atleast_1d(x) for x in np.broadcast_arrays(s.radius, s.force, s.frequency))
     except ValueError:
         raise ContactresInputError(
             f"radius ({np.size(s.radius)}), force ({np.size(s.force)}) and frequency "
             f"({np.size(s.frequency)}) must have the same number of values, or a single value"
         ) from None
+    f = np.asarray(nonnegative("frequency", f, "Hz"), dtype=float)
     c = sphere_contact(m, R, F)
     a = np.asarray(c.contact_radius, dtype=float)
     ka = normalised_wavenumber(f, a, m.density, wave_modulus(m, s.wavenumber))

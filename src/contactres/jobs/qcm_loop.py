@@ -121,7 +121,7 @@ def run(inputs: None, settings: Settings, progress: Progress | None = None) -> R
     s = settings
     q = QCM(fundamental=s.fundamental, overtone=s.overtone, area=s.area, zq=s.zq)
     loop = build_loop(s, q.omega)
-    u0 = np.asarray(s.u0, dtype=float)
+    u0 = np.atleast_1d(np.asarray(s.u0, dtype=float))  # a single amplitude: one row
     say(progress, f"shifts at {u0.size} amplitudes")
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always", RuntimeWarning)
