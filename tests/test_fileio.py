@@ -166,7 +166,7 @@ def test_an_error_inside_leaves_the_earlier_set_and_no_new_folders(tmp_path):
 def test_only_declared_names_can_be_written(tmp_path):
     with ResultSet(tmp_path / "out", names=["a.csv"]) as rs:
         for bad in ("b.csv", MANIFEST, "../a.csv"):
-            with pytest.raises(ValueError, match="not one of the files declared"):
+            with pytest.raises(KeyError, match="not one of the files declared"):
                 rs.path(bad)
         rs.path("a.csv").write_text("x")
 

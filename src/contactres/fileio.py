@@ -432,9 +432,8 @@ class ResultSet:
         if self._staging is None:
             raise RuntimeError("ResultSet.path is only valid inside its with-block")
         if name not in self.names or Path(name).name != name or name == MANIFEST:
-            raise ContactresInputError(
-                f"{name!r} is not one of the files declared for this result set"
-            )
+            # The caller's fault (a file it did not declare), never the user's input.
+            raise KeyError(f"{name!r} is not one of the files declared for this result set")
         return self._staging / name
 
     def final(self, name: str) -> Path:

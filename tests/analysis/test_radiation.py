@@ -24,6 +24,7 @@ from contactres.analysis.radiation import (
 from contactres.cli import main
 from contactres.dynamic import tangential_stiffness
 from contactres.dynamic.tangential_stiffness import two_body_contact_stiffness
+from contactres.errors import ContactresInputError
 from contactres.materials import Material, at_cut_quartz
 
 R, NU, E, GAMMA = 1.1e-3, 0.21, 70e9, 0.05  # m, -, Pa, J/m² (paper 2's γ)
@@ -162,7 +163,8 @@ def test_uniform_softening_biases_E_by_its_three_halves_power(monkeypatch):
 
 def test_a_radius_the_solver_refuses_is_a_note_not_a_crash(monkeypatch):
     def refuses(sphere, plate, radius, frequency, direction=0.0):
-        raise ValueError("k_s a = 99 is beyond the range\nof the solver")
+        # The solver's range error is the typed input error (anything else is a fault).
+        raise ContactresInputError("k_s a = 99 is beyond the range\nof the solver")
 
     monkeypatch.setattr(tangential_stiffness, "two_body_contact_stiffness", refuses)
     loads, groups = study()

@@ -48,7 +48,7 @@ def test_a_non_finite_value_is_written_as_null():
 
 
 def test_only_results_are_written(tmp_path):
-    with pytest.raises(ContactresInputError, match="write_report"):
+    with pytest.raises(TypeError, match="write_report"):  # the caller's fault, not the input's
         write_report({"a": 1}, tmp_path / "x")
     with pytest.raises(ContactresInputError, match="format"):
         write_report(Toy(pd.DataFrame(), 1.0, "c"), tmp_path / "y", formats=("xml",))

@@ -23,6 +23,7 @@ from collections.abc import Mapping
 import numpy as np
 import pandas as pd
 
+from ..errors import ContactresInputError
 from .amplitude import Padded
 from .models import EXACT_LOOPS, REGISTRY, exact_model, model_curves
 
@@ -91,13 +92,13 @@ def _curves_of(sw: pd.DataFrame, fits: Fits, rows: np.ndarray, key: str, grid: n
     try:
         f, g = model.function(grid, **values)
         return np.broadcast_to(f, grid.shape), np.broadcast_to(g, grid.shape)
-    except Exception:  # some sweep of the batch has no curve: find which, one by one
+    except ContactresInputError:  # some sweep of the batch has no curve: find which, one by one
         f, g = np.full(grid.shape, np.nan), np.full(grid.shape, np.nan)
         for j, (i, k) in enumerate(zip(rows, at, strict=True)):
             loop = table.iloc[k] if table is not sw else None
             try:
                 f[j], g[j] = model_curves(sw.iloc[i], grid[j], loop)
-            except Exception:  # no curve for this sweep: its points are drawn alone
+            except ContactresInputError:  # no curve for this sweep: its points are drawn alone
                 continue
         return f, g
 

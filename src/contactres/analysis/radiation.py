@@ -140,12 +140,12 @@ def _radii(loads: pd.DataFrame, groups: Sequence[Mapping]) -> tuple[np.ndarray, 
         note[member] = ""
         try:
             a[member] = jkr_contact_radius(E_star, R, force[member], gamma)
-        except ValueError:
+        except ContactresInputError:
             # Some load below the JKR pull-off force: those rows only (a handful of loads).
             for i in np.flatnonzero(member):
                 try:
                     a[i] = jkr_contact_radius(E_star, R, force[i], gamma)
-                except ValueError:
+                except ContactresInputError:
                     note[i] = "normal force below the JKR pull-off of the fit: no contact radius"
     none = np.isfinite(a) & ~(a > 0)
     note[none] = "contact radius 0 (no contact at this load): no radiation"
@@ -245,7 +245,7 @@ def radiation_loss(
                 np.concatenate([a[valid], a[valid]]),
                 np.concatenate([f[valid], np.zeros(m)]),
             )
-        except ValueError as exc:  # e.g. k_s a beyond the solver's range: say so per row
+        except ContactresInputError as exc:  # e.g. k_s a beyond the solver's range: per row
             note[valid] = f"stiffness not computed: {' '.join(str(exc).split())}"
             valid[:] = False
         else:

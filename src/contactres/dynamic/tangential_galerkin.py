@@ -307,7 +307,8 @@ def tangential_per_a(
         )
     size = size or tangential_size(top, table.rtol, table.n_harmonics)
     if 2 * size.n_harmonics > table.max_order:
-        raise ContactresInputError("the basis needs more kernel harmonics than the table holds")
+        # A table prepared for fewer harmonics than this basis: a fault of the caller.
+        raise RuntimeError("the basis needs more kernel harmonics than the table holds")
     out = np.empty((ksa.size, 2, 2), dtype=complex)
     # Static eigenbasis (undamped, Hermitian): well-conditioned coordinates for every k a.
     b0 = _basis(table, size, table.ginf0)

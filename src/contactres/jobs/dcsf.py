@@ -107,9 +107,11 @@ def run(inputs: Material, settings: Settings, progress: Progress | None = None) 
     # One kernel table serves every model (several models share it, and the far-field basis).
     say(progress, "kernel table of the face")
     table = prepare(m, s.loss, s.rtol)
-    say(progress, f"DCSF of {len(s.models)} model(s) at {np.size(ka)} values of k a")
+    # One model name given as a string (from Python) is one model, not its letters.
+    models = [s.models] if isinstance(s.models, str) else list(s.models)
+    say(progress, f"DCSF of {len(models)} model(s) at {np.size(ka)} values of k a")
     out = dcsf_models(
-        m, ka, list(s.models), loss=s.loss, wavenumber=s.wavenumber, rtol=s.rtol, prepared=table
+        m, ka, models, loss=s.loss, wavenumber=s.wavenumber, rtol=s.rtol, prepared=table
     )
     frames = []
     for name, v in out.items():

@@ -208,12 +208,8 @@ def loads_table(results: Results) -> pd.DataFrame:
 
 def radiation_table(results: Results) -> pd.DataFrame:
     """The ``radiation.csv`` table: the columns of ``RADIATION_RESULTS`` (results with one)."""
-    from ..errors import ContactresInputError
-
-    if results.radiation is None:
-        raise ContactresInputError(
-            "these results have no radiation table (no materials were given)"
-        )
+    if results.radiation is None:  # the caller asked for a table these results do not hold
+        raise RuntimeError("these results have no radiation table (no materials were given)")
     return _finite_or_nan(results.radiation[list(RADIATION_RESULTS.names)])
 
 

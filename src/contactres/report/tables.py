@@ -37,7 +37,7 @@ write (e.g. its figures) are removed. The columns are those of
 ``radiation.csv``
     only when the analysis was given the two materials (``--sphere-material`` and
     ``--plate-material``): one row per load, the columns of
-    :data:`contactres.analysis.radiation.RADIATION_RESULTS` (the radiation loss of the contact
+    :data:`contactres.measurements.schema.RADIATION_RESULTS` (the radiation loss of the contact
     against the measured one).
 ``fig4_*.png``, ``fig5_*.png``, ``fig7_*.png``, ``fig8_*.png``
     ``fig4_sweeps.png``, ``fig5_df0_vs_load.png``, ``fig7_dissipation_vs_load.png`` and

@@ -118,7 +118,7 @@ def _job_result(result) -> JobResult:
     if isinstance(result, Results):
         return qcm_sweeps.Result.of(result)
     if not isinstance(result, JobResult):
-        raise ContactresInputError(
+        raise TypeError(
             f"write_report writes a job's Result or analysis Results, got {type(result).__name__}"
         )
     return result

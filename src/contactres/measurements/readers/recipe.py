@@ -154,7 +154,8 @@ class Readers:
 
     def named(self, name: str, kind: str) -> Reader:
         """The reader of ``kind`` called ``name`` (one-line error listing the known names)."""
-        found = [r for r in self.of_kind(kind) if r.name == str(name).strip().lower()]
+        wanted = str(name).strip().lower()  # names compare case-insensitively, both sides
+        found = [r for r in self.of_kind(kind) if r.name.lower() == wanted]
         if not found:
             known = ", ".join(r.name for r in self.of_kind(kind))
             raise ContactresInputError(f"no {kind} reader is called {str(name)!r}; known: {known}")
