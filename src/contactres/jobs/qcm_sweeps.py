@@ -22,7 +22,6 @@ every job's (:func:`contactres.report.writer.write_report`; the folder's files a
 
 from __future__ import annotations
 
-import math
 import os
 import warnings
 from dataclasses import dataclass
@@ -37,7 +36,7 @@ from ..measurements.schema import (
     RADIATION_RESULTS,
     SWEEP_RESULTS,
 )
-from .contract import JobResult, Progress
+from .contract import JobResult, Progress, json_value
 
 if TYPE_CHECKING:
     import pandas as pd
@@ -167,19 +166,6 @@ class Result(JobResult):
         return () if source is None or source == "<table>" else (source,)
 
 
-def _clean(value):
-    """JSON-safe: NaN/inf -> None, numpy scalars -> Python."""
-    if isinstance(value, dict):
-        return {str(k): _clean(v) for k, v in value.items()}
-    if isinstance(value, (list, tuple)):
-        return [_clean(v) for v in value]
-    if hasattr(value, "item") and not isinstance(value, (str, bytes)):
-        value = value.item()
-    if isinstance(value, float) and not math.isfinite(value):
-        return None
-    return value
-
-
 def _finite_or_nan(table: pd.DataFrame) -> pd.DataFrame:
     """``table`` with ±inf as NaN (an empty cell in CSV): an infinite error or ratio is 'not
     applicable', as NaN is, and the README promises empty cells for both."""
@@ -245,7 +231,7 @@ def summary(results: Results) -> dict:
     }
     if results.radiation is not None:
         record["radiation"] = _radiation_record(results.radiation)
-    return _clean(record)
+    return json_value(record)
 
 
 def warning_lines(caught) -> tuple[str, ...]:
