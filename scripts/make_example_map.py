@@ -2,7 +2,7 @@
 Cu polycrystal) and ``example_cu_kstar.csv`` (its 'measured' contact-stiffness map, N/m).
 
 Run ``python scripts/make_example_map.py`` (seeded: the same files every time). The recipe:
-:func:`contactres.apps.maps.synthetic_map` with Cu (built-in constants), 64 x 64 pixels of
+:func:`contactres.jobs.maps.synthetic_map` with Cu (built-in constants), 64 x 64 pixels of
 1 µm, 16 Voronoi grains with random orientations (seed 7), a rigid tip of R = 20 nm at
 F = 1 µN (Hertz, k* = 2aM), and 1 % Gaussian noise per pixel. The .ang holds no grain labels
 (``contactres maps fit`` reconstructs the grains); the CSV has one line per row y, one value
@@ -15,7 +15,7 @@ from pathlib import Path
 
 import numpy as np
 
-from contactres.apps.maps import TipLoad, synthetic_map
+from contactres.jobs.maps import TipLoad, synthetic_map
 from contactres.materials import Material
 from contactres.polycrystal.ebsd import write_ang
 from contactres.polycrystal.maps import map_from_dataset

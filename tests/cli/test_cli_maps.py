@@ -431,7 +431,7 @@ def test_predict_per_grain_ignores_unlabelled_pixels():
     # Labels [0, 0, -1, 1]: the -1 pixel (another orientation) must not lend grain 1 its
     # orientation, and gets NaN, not an error.
     from contactres import Material, indentation_modulus
-    from contactres.apps.maps import TipLoad, predict_map
+    from contactres.jobs.maps import TipLoad, predict_map
     from contactres.polycrystal.maps import OrientationMap
 
     euler = np.zeros((1, 4, 3))

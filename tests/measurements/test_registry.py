@@ -12,8 +12,8 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from contactres.apps.readers import ALL_READERS, GRID_READER
 from contactres.errors import ContactresInputError
+from contactres.jobs.readers import ALL_READERS, GRID_READER
 from contactres.measurements import schema
 from contactres.measurements.readers import BUILT_IN, KINDS, Reader, Readers, pick_reader
 from contactres.measurements.schema import (

@@ -8,8 +8,8 @@ Eq. 4; Vlassak & Nix 1994) from the table over the standard triangle
 
 Figure 2: a synthetic contact-stiffness map (512 x 512 pixels, 60 grains, seed 1, rigid tip of
 R = 20 nm at F = 1 µN, 1 % Gaussian noise per pixel;
-:func:`contactres.apps.maps.synthetic_map`) fitted with the grains' labels
-(:func:`contactres.apps.maps.fit_measured_map`): the fitted quantities over their true values
+:func:`contactres.jobs.maps.synthetic_map`) fitted with the grains' labels
+(:func:`contactres.jobs.maps.fit_measured_map`): the fitted quantities over their true values
 with ±1σ, and the ratio plane with the valley the data fix and the 1σ/2σ ellipse.
 
 Built with the documentation (matplotlib's plot directive); run it alone to get the same
@@ -22,7 +22,7 @@ from matplotlib.collections import LineCollection
 from matplotlib.figure import Figure
 
 from contactres import Material, indentation_modulus
-from contactres.apps.maps import TipLoad, fit_measured_map, synthetic_map
+from contactres.jobs.maps import TipLoad, fit_measured_map, synthetic_map
 from contactres.polycrystal import (
     evaluate_map,
     folded_normals,

@@ -6,7 +6,7 @@ that sees them all: the measurements' built-in ones
 (:data:`contactres.measurements.readers.registry.BUILT_IN`: sweep tables, spectra, instrument
 exports, resonance tables), the EBSD maps of :data:`contactres.polycrystal.ebsd.EBSD_READERS`
 and the measured value grids of :func:`read_value_grid` (:data:`GRID_READER`). So a recipe
-never imports a layer above its own. (:mod:`contactres.apps.readers` re-exports them.)
+never imports a layer above its own.
 
 EBSD exports and value grids are told apart by their suffix alone
 (:meth:`~contactres.measurements.readers.recipe.Readers.for_suffix`): the reader of the
