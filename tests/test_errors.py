@@ -9,7 +9,7 @@ import pandas as pd
 import pytest
 
 from contactres.cli._app import App
-from contactres.errors import ContactresInputError
+from contactres.errors import ContactresInputError, MissingExtraError
 
 
 def _run(exc: BaseException, capsys, monkeypatch) -> tuple[int, str]:
@@ -83,3 +83,14 @@ def test_debug_shows_the_traceback(monkeypatch):
 
     with pytest.raises(np.linalg.LinAlgError):
         app.main(["boom"], prog_name="contactres")
+
+
+def test_a_missing_optional_extra_says_what_to_install(capsys, monkeypatch):
+    """Not the user's input and not a bug: one line naming the extra, exit 2, no report asked."""
+    message = "xarray is needed for polycrystal maps; install the optional extra: pip install x"
+    code, err = _run(MissingExtraError(message), capsys, monkeypatch)
+    assert code == 2
+    assert err == f"contactres: error: {message}\n"
+    # A plain ImportError (a module of contactres that does not import) is still internal.
+    code, err = _run(ImportError("cannot import name 'nope'"), capsys, monkeypatch)
+    assert code == 1 and "internal error: ImportError" in err

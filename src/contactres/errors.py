@@ -10,7 +10,7 @@ contactres and is reported as an internal error, with a request to report it.
 
 from __future__ import annotations
 
-__all__ = ["ContactresInputError"]
+__all__ = ["ContactresInputError", "MissingExtraError"]
 
 
 class ContactresInputError(ValueError):
@@ -21,4 +21,12 @@ class ContactresInputError(ValueError):
     >>> from contactres.errors import ContactresInputError
     >>> issubclass(ContactresInputError, ValueError)
     True
+    """
+
+
+class MissingExtraError(ImportError):
+    """An optional dependency is not installed; the message names the extra that brings it.
+
+    Neither the user's input nor a fault of contactres: the command line prints it as one line
+    (exit 2) saying what to install.
     """

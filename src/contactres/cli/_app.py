@@ -7,13 +7,13 @@ import sys
 
 import click
 
-from ..errors import ContactresInputError
+from ..errors import ContactresInputError, MissingExtraError
 
 # Errors that mean "the user's input is wrong" (raised by contactres' own checks, and only by
 # them) or "the system refused" (a path through a file, a full disk, no permission): one line,
 # exit code 2, no traceback. Any other exception, a ValueError of numpy or pandas included, is
 # a fault of contactres and is reported as an internal error.
-USER_ERRORS = (ContactresInputError, OSError)
+USER_ERRORS = (ContactresInputError, MissingExtraError, OSError)
 # Longest error line printed (the messages cut long values themselves; this is the backstop).
 MAX_MESSAGE_CHARS = 2000
 

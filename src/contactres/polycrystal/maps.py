@@ -41,7 +41,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..errors import ContactresInputError
+from ..errors import ContactresInputError, MissingExtraError
 from ..fileio import OutputError, check_output_file, replace_folder
 from ..materials import Material
 from .moduli import indentation_moduli
@@ -77,7 +77,7 @@ def require_maps_extra(module: str):
     try:
         return importlib.import_module(module)
     except ImportError as exc:  # pragma: no cover - the test environment has the extra
-        raise ImportError(
+        raise MissingExtraError(
             f"{module} is needed for polycrystal maps on dask/xarray/Zarr; install the optional "
             f"extra: {_EXTRA}"
         ) from exc
