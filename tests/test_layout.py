@@ -77,7 +77,17 @@ PACKAGE = "contactres"
 # __main__ sit above every layer.
 LAYERS: tuple[frozenset[str], ...] = (
     frozenset(
-        {"errors", "validation", "fileio", "fitting", "crystals", "units", "numerics", "_version"}
+        {
+            "_lazy",
+            "errors",
+            "validation",
+            "fileio",
+            "fitting",
+            "crystals",
+            "units",
+            "numerics",
+            "_version",
+        }
     ),
     frozenset({"materials"}),
     frozenset({"halfspace"}),

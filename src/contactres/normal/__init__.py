@@ -8,14 +8,12 @@ tangential loops, the QCM analysis) does not import the anisotropic half-space b
 
 from __future__ import annotations
 
-import importlib
 from types import MappingProxyType
 
-# Only type checkers need `Any`: a module-level TYPE_CHECKING = False is read as True by mypy and
-# pyright, and keeps `typing` out of the command line's start-up.
+from .._lazy import attach
+
+# Read as True by mypy and pyright (the real objects below), False at run time: no import.
 TYPE_CHECKING = False
-if TYPE_CHECKING:
-    from typing import Any
 
 # Public name -> the module that defines it.
 _EXPORTS = MappingProxyType(
@@ -72,13 +70,4 @@ if TYPE_CHECKING:
     # isort: on
 
 
-def __getattr__(name: str) -> Any:
-    """Import the module behind a public name on first access (nothing is kept in globals)."""
-    if name in _EXPORTS:
-        return getattr(importlib.import_module(_EXPORTS[name], __name__), name)
-    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-
-
-def __dir__() -> list[str]:
-    """The public names and the loaded submodules, as ``dir()`` and tab completion expect."""
-    return sorted({*globals(), *__all__})
+__getattr__, __dir__ = attach(__name__, _EXPORTS)
