@@ -51,7 +51,10 @@ _EXPORTS: dict[str, str] = {
     "AnisotropicContact": ".normal.anisotropic",
     "contact_integrals": ".normal.anisotropic",
     "indentation_modulus": ".normal.anisotropic",
-    "sphere_contact": ".normal.anisotropic",
+    "LayeredContact": ".normal.layered",
+    "flat_punch_stiffness": ".normal.layered",
+    "indentation_modulus_at": ".normal.layered",
+    "sphere_contact": ".normal.layered",
     # dynamic contact stiffness
     "contact_displacement": ".dynamic",
     "contact_pressure": ".dynamic",
@@ -220,7 +223,6 @@ if TYPE_CHECKING:
         AnisotropicContact as AnisotropicContact,
         contact_integrals as contact_integrals,
         indentation_modulus as indentation_modulus,
-        sphere_contact as sphere_contact,
     )
     from .normal.isotropic import (
         Contact as Contact,
@@ -235,6 +237,12 @@ if TYPE_CHECKING:
         shear_modulus as shear_modulus,
         tabor_parameter as tabor_parameter,
         which_adhesion_model as which_adhesion_model,
+    )
+    from .normal.layered import (
+        LayeredContact as LayeredContact,
+        flat_punch_stiffness as flat_punch_stiffness,
+        indentation_modulus_at as indentation_modulus_at,
+        sphere_contact as sphere_contact,
     )
     from .report import (
         write_report as write_report,

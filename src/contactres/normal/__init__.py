@@ -1,6 +1,11 @@
-"""Normal contact: isotropic Hertz/JKR/DMT (``isotropic``) and anisotropic Hertz (``anisotropic``).
+"""Normal contact: isotropic Hertz/JKR/DMT (``isotropic``), anisotropic Hertz (``anisotropic``) and
+the axisymmetric contact on a coated (layered) substrate (``axisymmetric``: the solver on a
+wave-number-dependent compliance; ``layered``: the punch, sphere and M(a) on a
+:class:`~contactres.LayeredMaterial`).
 
-The public functions of both modules are re-exported here and from :mod:`contactres`. They are
+The public functions of these modules are re-exported here and from :mod:`contactres`
+(:func:`sphere_contact` is the one of ``layered``, which hands a homogeneous material to
+``anisotropic``). They are
 loaded on first use (PEP 562 module ``__getattr__``): a caller of the isotropic formulas (the
 tangential loops, the QCM analysis) does not import the anisotropic half-space behind
 ``anisotropic``.
@@ -22,7 +27,10 @@ _EXPORTS = MappingProxyType(
         "ContactIntegrals": ".anisotropic",
         "contact_integrals": ".anisotropic",
         "indentation_modulus": ".anisotropic",
-        "sphere_contact": ".anisotropic",
+        "LayeredContact": ".layered",
+        "flat_punch_stiffness": ".layered",
+        "indentation_modulus_at": ".layered",
+        "sphere_contact": ".layered",
         "Contact": ".isotropic",
         "dmt": ".isotropic",
         "effective_modulus": ".isotropic",
@@ -50,7 +58,6 @@ if TYPE_CHECKING:
         ContactIntegrals as ContactIntegrals,
         contact_integrals as contact_integrals,
         indentation_modulus as indentation_modulus,
-        sphere_contact as sphere_contact,
     )
     from .isotropic import (
         Contact as Contact,
@@ -65,6 +72,12 @@ if TYPE_CHECKING:
         shear_modulus as shear_modulus,
         tabor_parameter as tabor_parameter,
         which_adhesion_model as which_adhesion_model,
+    )
+    from .layered import (
+        LayeredContact as LayeredContact,
+        flat_punch_stiffness as flat_punch_stiffness,
+        indentation_modulus_at as indentation_modulus_at,
+        sphere_contact as sphere_contact,
     )
 
     # isort: on
