@@ -25,9 +25,10 @@ value f_k(0) = √π k!/Γ(k + ½). With p = Σ c_k f_k the Galerkin equations a
 The matrix is split as g = g∞ + Δg, g∞ = lim_{η->∞} g (the top film's homogeneous value): the g∞
 part is closed form, g∞ π/(2(4k + 1)) δ_jk (∫ j_p j_q ds, Weber–Schafheitlin), and the rest,
 Δg -> 0 (like e^{−2ηh} for a film of thickness h), is integrated by Gauss–Legendre panels in η up
-to where ``|Δg|`` < ``tol`` g∞ (:func:`quadrature_nodes`). Only the first terms interact with Δg
-(j_{2k}(s) is negligible for s < 2k − O(k^{1/3})); the basis grows like a/h, h the thinnest
-layer (:func:`basis_size`), so the cost grows like (a/h)² to (a/h)³ and a/h is limited to ~500.
+to where ``|Δg|`` < ``tol`` g∞ (:func:`graded_breakpoints`, :func:`quadrature_nodes`). Only the
+first terms interact with Δg (j_{2k}(s) is negligible for s < 2k − O(k^{1/3})); the basis grows
+like a/h, h the thinnest layer (:func:`basis_size`), so the cost grows like (a/h)² to (a/h)³
+and a/h is limited to ~500.
 
 Flat punch (uniform u = δ on the disk, only f₀ carries force, ∫₀¹ r̄ f_j dr̄ = δ_j0): K = F/δ =
 2π a (M⁻¹)₀₀. Homogeneous: K = 4a/g = 2aE* (Sneddon).
@@ -69,6 +70,7 @@ __all__ = [
     "RadialKernel",
     "basis_size",
     "even_spherical_bessel",
+    "graded_breakpoints",
     "punch_and_sphere",
     "quadrature_nodes",
 ]
@@ -139,8 +141,10 @@ class AxisymmetricSolution:
     nodes: int
 
 
-def _panels(kernel: RadialKernel, a_max: float, tol: float):
-    """Breakpoints in η (1/m) of the graded panels, and the cut where ``|Δg|`` < tol g∞."""
+def graded_breakpoints(kernel: RadialKernel, tol: float = DEFAULT_TOL) -> np.ndarray:
+    """Breakpoints in η (1/m) of the kernel's own panels (independent of the contact radius):
+    0, then geometric (ratio 1.5) from 1e-3 over the largest length up to two panels beyond the
+    last breakpoint where ``|Δg|`` >= tol g∞."""
     h_min, h_max = kernel.lengths
     eta0 = _ETA_START / h_max
     # Geometric breakpoints up to where even the thinnest layer's e^{−2ηh} is below 1e-300.
@@ -150,31 +154,25 @@ def _panels(kernel: RadialKernel, a_max: float, tol: float):
     big = np.flatnonzero(d >= tol * abs(kernel.g_inf))
     # Two panels beyond the last breakpoint where Δg still matters (a margin for a wiggle).
     last = min(n_geo - 1, (int(big[-1]) if big.size else 0) + 2)
-    cuts = np.concatenate([[0.0], geo[: last + 1]])
-    # Subdivide each panel to at most π/a_max long (the oscillation of j_p(ηa) j_q(ηa)).
+    return np.concatenate([[0.0], geo[: last + 1]])
+
+
+def quadrature_nodes(cuts: np.ndarray, a_max: float) -> tuple[np.ndarray, np.ndarray]:
+    """Gauss–Legendre nodes and weights in η (1/m) for the Δg part of M at radii <= ``a_max``:
+    the panels of ``cuts`` (:func:`graded_breakpoints`) cut to at most 2π/a_max long (two
+    periods of the oscillation of j_p(ηa) j_q(ηa)), 16 nodes each."""
     width = _WIDTH / a_max
     pieces = [
         np.linspace(lo, hi, max(1, math.ceil((hi - lo) / width)) + 1)[:-1]
         for lo, hi in itertools.pairwise(cuts)
     ]
-    return np.concatenate([*pieces, cuts[-1:]])
-
-
-def quadrature_nodes(kernel: RadialKernel, a_max: float, tol: float = DEFAULT_TOL):
-    """Gauss–Legendre nodes and weights in η (1/m) for the Δg part of M at radii <= ``a_max``.
-
-    Returns
-    -------
-    (eta, weight, excess) : ndarrays
-        Nodes η (1/m), weights (1/m) and Δg(η) (1/Pa) there; ``|Δg|`` < tol g∞ beyond the last.
-    """
-    edges = _panels(kernel, a_max, tol)
+    edges = np.concatenate([*pieces, cuts[-1:]])
     x, w = np.polynomial.legendre.leggauss(_GL_NODES)
     half = 0.5 * np.diff(edges)
     mid = 0.5 * (edges[:-1] + edges[1:])
     eta = (mid[:, None] + half[:, None] * x[None, :]).ravel()
     weight = (half[:, None] * w[None, :]).ravel()
-    return eta, weight, np.asarray(kernel.excess(eta))
+    return eta, weight
 
 
 def basis_size(kernel: RadialKernel, a: float) -> int:
@@ -291,8 +289,9 @@ def punch_and_sphere(
         :func:`basis_size` at each radius.
     nodes : dict, optional
         The caller's store of quadrature nodes between calls on the same kernel and ``tol``
-        (the force solve of a sphere calls this repeatedly): radii in [2^(b−1), 2^b) m share the
-        nodes built for 2^b, kept under the key b; filled here.
+        (the force solve of a sphere calls this repeatedly): radii in (2^(b−1), 2^b] m share the
+        nodes built for 2^b (:func:`quadrature_nodes`) and the kernel values there, kept under
+        the key b, and the kernel's breakpoints under "cuts"; filled here.
 
     Returns
     -------
@@ -310,22 +309,30 @@ def punch_and_sphere(
     store = {} if nodes is None else nodes
     out = np.empty((4, flat.size), dtype=complex)
     buckets = np.ceil(np.log2(flat)).astype(int)
+    wanted = [int(b) for b in np.unique(buckets)]
+    if kernel.excess is not None:
+        # One kernel evaluation for the nodes of every new bucket (a layered kernel costs
+        # ~10 ms per call whatever the number of points).
+        if "cuts" not in store:
+            store["cuts"] = graded_breakpoints(kernel, tol)
+        new = [b for b in wanted if b not in store]
+        if new:
+            grids = [quadrature_nodes(store["cuts"], 2.0**b) for b in new]
+            dg_all = np.asarray(kernel.excess(np.concatenate([g[0] for g in grids])))
+            ends = np.cumsum([0] + [g[0].size for g in grids])
+            for b, (eta, weight), lo, hi in zip(new, grids, ends[:-1], ends[1:], strict=True):
+                store[b] = (eta, weight, dg_all[lo:hi])
     used_basis = used_nodes = 0
-    for b in np.unique(buckets):
-        b = int(b)
-        if kernel.excess is None:
-            eta = weight = dg = np.zeros(0)
-        else:
-            if b not in store:
-                store[b] = quadrature_nodes(kernel, 2.0**b, tol)
-            eta, weight, dg = store[b]
+    empty = (np.zeros(0), np.zeros(0), np.zeros(0))
+    for b in wanted:
+        eta, weight, dg = empty if kernel.excess is None else store[b]
         for i in np.flatnonzero(buckets == b):
             n = basis_size(kernel, float(flat[i])) if n_basis is None else int(n_basis)
             out[:, i] = _solve_one(kernel.g_inf, float(flat[i]), eta, weight, dg, n)
             used_basis = max(used_basis, n)
         used_nodes = max(used_nodes, int(eta.size))
     shape = a.shape
-    lossy = np.iscomplexobj(kernel.g_inf) or (kernel.excess is not None and np.iscomplexobj(dg))
+    lossy = np.iscomplexobj(kernel.g_inf) or bool(np.any(out[0].imag != 0))
     k_out = out[0] if lossy else out[0].real
     return AxisymmetricSolution(
         contact_radius=a,
