@@ -261,3 +261,29 @@ def test_bad_input():
         flat_punch_stiffness(stack, 1e-3)
     with pytest.raises(ContactresInputError, match="LayeredMaterial"):
         flat_punch_stiffness("glass", 1e-6)
+
+
+# --------------------------------------------------------------------- anisotropic and lossy
+@pytest.mark.parametrize("direction", ["normal", "tangential"])
+def test_cubic_film_with_A_to_1_is_the_isotropic_result(direction):
+    """A = 1 + 1e-8 takes the θ-averaged (anisotropic) route, A = 1 the one- or two-angle
+    isotropic route; the results differ by O(A − 1)."""
+    h = 100e-9
+    a = np.array([0.3, 3.0]) * h
+    iso = Material.cubic_from_ratios(1.0, 0.3, c44=30e9)
+    near = Material.cubic_from_ratios(1.0 + 1e-8, 0.3, c44=30e9)
+    K_iso = flat_punch_stiffness(LayeredMaterial(GLASS, [(iso, h)]), a, direction=direction)
+    K_near = flat_punch_stiffness(LayeredMaterial(GLASS, [(near, h)]), a, direction=direction)
+    np.testing.assert_allclose(K_near, K_iso, rtol=1e-7)
+
+
+def test_lossy_stack_is_the_correspondence_principle():
+    """Every layer with the same loss C(1 + iq): the compliance scales by 1/(1 + iq), the
+    stiffness by (1 + iq)."""
+    q = 0.05
+    stack = LayeredMaterial(GLASS, [(PMMA, 250e-9)])
+    a = np.array([50e-9, 1e-6])
+    K = flat_punch_stiffness(stack, a)
+    np.testing.assert_allclose(
+        flat_punch_stiffness(stack.with_loss(q), a), K * (1 + 1j * q), rtol=1e-10
+    )
