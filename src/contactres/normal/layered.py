@@ -28,8 +28,8 @@ Approximations, stated:
   estimate on the axisymmetric subspace: a lower bound of the true stiffness.
 
 The θ average is the trapezoidal rule on [0, π) (Ĝ_33, Ĝ_11 are π-periodic by reciprocity),
-with the number of angles doubled until the average of the top layer's and the substrate's
-homogeneous kernels moves by less than 1e-13; a stack whose materials are all isotropic needs one
+with the number of angles doubled until the average of every material's homogeneous kernel
+moves by less than 1e-13; a stack whose materials are all isotropic needs one
 angle (normal) or two, 0 and π/2 (tangential: Ĝ_11 = A(η) cos²θ + B(η) sin²θ).
 """
 
@@ -78,12 +78,13 @@ def _stack(material) -> LayeredMaterial:
 
 
 def _angles(stack: LayeredMaterial, comp: int) -> np.ndarray:
-    """θ points on [0, π) that average the stack's kernels to 1e-13 (module docstring)."""
+    """θ points on [0, π) that average the kernel of every material of the stack, each as a
+    homogeneous half-space, to 1e-13 (module docstring)."""
     if all(isotropic_constants(m) is not None for m in stack.materials):
         # Transversely isotropic about z: Ĝ_33 does not depend on θ, and Ĝ_11 = A cos²θ +
         # B sin²θ, whose average the two angles 0 and π/2 give exactly.
         return np.zeros(1) if comp == 2 else np.array([0.0, np.pi / 2])
-    ends = [LayeredMaterial(stack.top), LayeredMaterial(stack.substrate)]
+    ends = [LayeredMaterial(m) for m in stack.materials]
     n, prev = _THETA_START, None
     while True:
         theta = np.pi * np.arange(n) / n
