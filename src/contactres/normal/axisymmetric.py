@@ -41,6 +41,17 @@ contact dF/dδ at fixed shape equals the flat-punch stiffness at the same a (the
 contact radius does no work at first order: the pressure vanishes at the edge). Homogeneous:
 Hertz, δ = a²/R, F = 4E*a³/(3R), exactly (two terms).
 
+Tangential punch (bonded, relaxed, a rigid motion U e_x; :mod:`contactres.normal.layered`
+derives the kernels). The in-plane compliance has an isotropic part g(η) and a part d(η) along
+Q = [[cos 2θ, sin 2θ], [sin 2θ, −cos 2θ]], which couples the traction along the motion, f(r) e_x,
+to the pattern h(r) (cos 2φ, sin 2φ) (and only to it: Q² = I). With f = Σ c_k f_k (order-0
+transforms j_{2k}) and h = Σ b_l h_l (order-2 transforms j_{2l+2}, the n = 2 functions of
+:mod:`contactres.dynamic.exact`), the work ⟨t, u⟩ = 2π a³ ∫ [g (Σ c j_{2k})² + g (Σ b j_{2l+2})²
+− 2 d (Σ c j_{2k})(Σ b j_{2l+2})] ds (the θ integrals of the cross terms), so the Galerkin matrix
+has the blocks ∫ g j_{2k} j_{2k'}, ∫ g j_{2l+2} j_{2l'+2} and −∫ d j_{2k} j_{2l+2} (closed form for
+g∞, d∞: f_{l+1} and h_l share the order 2l + 2), and K = 2π a (M⁻¹)₀₀ as for the normal punch.
+Homogeneous: f₀ couples to nothing, K = 4a/g = 8Ga/(2 − ν) (Mindlin).
+
 Accuracy (measured in tests/normal/test_axisymmetric.py): with ``tol`` = 1e-12 (the default) the
 quadrature and the basis leave below 1e-9 relative in K, δ, F and p(0) for a/h from 0.01 to 30
 (twice the basis and a hundredth of ``tol`` move them by less); a second algorithm (the
@@ -109,11 +120,17 @@ class RadialKernel:
     lengths : (float, float)
         The smallest and largest length of the solid (m; the thinnest layer and the total
         thickness): Δg varies on η ~ 1/lengths[1] and decays on η ~ 1/lengths[0].
+    coupling_inf : float, complex or None
+        Tangential problems only (module docstring, "Tangential punch"): d∞ = lim d(η), 1/Pa,
+        of the Q part of the in-plane kernel, which couples the traction along the motion to
+        the traction pattern (cos 2φ, sin 2φ). With it, ``excess`` returns the pair
+        [Δg, Δd] stacked on a first axis of length 2. None: a normal problem (no coupling).
     """
 
     g_inf: float | complex
     excess: Callable[[np.ndarray], np.ndarray] | None = None
     lengths: tuple[float, float] = (1.0, 1.0)
+    coupling_inf: float | complex | None = None
 
 
 @dataclass(frozen=True)
@@ -151,6 +168,7 @@ def graded_breakpoints(kernel: RadialKernel, tol: float = DEFAULT_TOL) -> np.nda
     n_geo = math.ceil(math.log(400.0 / h_min / eta0) / math.log(_GRADING)) + 1
     geo = eta0 * _GRADING ** np.arange(n_geo)
     d = np.abs(np.asarray(kernel.excess(geo)))
+    d = d.max(axis=0) if d.ndim == 2 else d  # [Δg, Δd] of a tangential kernel: the larger
     big = np.flatnonzero(d >= tol * abs(kernel.g_inf))
     # Two panels beyond the last breakpoint where Δg still matters (a margin for a wiggle).
     last = min(n_geo - 1, (int(big[-1]) if big.size else 0) + 2)
@@ -267,6 +285,34 @@ def _solve_one(g_inf, a, eta, weight, dg, n: int) -> tuple[complex, complex, com
     return (2 * np.pi * a * A[0], depth, 2 * np.pi * c[0], _centre_values(n) @ c)
 
 
+def _solve_tangential(kernel, a, eta, weight, dgd, n: int) -> tuple[complex, float, float, float]:
+    """(K, nan, nan, nan): the tangential punch with the coupled traction (module docstring)."""
+    k = np.arange(n)
+    g_inf, d_inf = kernel.g_inf, kernel.coupling_inf
+    dtype = np.result_type(dgd, g_inf, d_inf, float)
+    mat = np.zeros((2 * n, 2 * n), dtype=dtype)
+    # Closed-form parts: ∫ j_p j_q ds = π/(2(2p + 1)) δ_pq (p − q even); f_k has p = 2k, the
+    # pattern's g_l has p = 2l + 2, so f_{l+1} and g_l share an order.
+    mat[:n, :n] = np.diag(np.pi / (2 * (4 * k + 1)))
+    mat[n:, n:] = np.diag(np.pi / (2 * (4 * k + 5)))
+    cross = np.zeros((n, n))
+    cross[k[1:], k[:-1]] = np.pi / (2 * (4 * k[1:] + 1))
+    mat[:n, n:] = -(d_inf / g_inf) * cross
+    if eta.size:
+        jb = even_spherical_bessel(n + 1, a * eta)  # j_0, j_2, ..., j_{2n}
+        jf, jg = jb[:n], jb[1:]
+        wg = a * weight * dgd[0] / g_inf
+        wd = a * weight * dgd[1] / g_inf
+        mat[:n, :n] += (jf * wg) @ jf.T
+        mat[n:, n:] += (jg * wg) @ jg.T
+        mat[:n, n:] -= (jf * wd) @ jg.T
+    mat[n:, :n] = mat[:n, n:].T
+    e0 = np.zeros(2 * n, dtype=dtype)
+    e0[0] = 1.0
+    A0 = np.linalg.solve(mat, e0)[0] / g_inf
+    return (2 * np.pi * a * A0, np.nan, np.nan, np.nan)
+
+
 def punch_and_sphere(
     kernel: RadialKernel,
     a,
@@ -321,14 +367,18 @@ def punch_and_sphere(
             dg_all = np.asarray(kernel.excess(np.concatenate([g[0] for g in grids])))
             ends = np.cumsum([0] + [g[0].size for g in grids])
             for b, (eta, weight), lo, hi in zip(new, grids, ends[:-1], ends[1:], strict=True):
-                store[b] = (eta, weight, dg_all[lo:hi])
+                store[b] = (eta, weight, dg_all[..., lo:hi])
     used_basis = used_nodes = 0
-    empty = (np.zeros(0), np.zeros(0), np.zeros(0))
+    coupled = kernel.coupling_inf is not None
+    empty = (np.zeros(0), np.zeros(0), np.zeros((2, 0) if coupled else 0))
     for b in wanted:
         eta, weight, dg = empty if kernel.excess is None else store[b]
         for i in np.flatnonzero(buckets == b):
             n = basis_size(kernel, float(flat[i])) if n_basis is None else int(n_basis)
-            out[:, i] = _solve_one(kernel.g_inf, float(flat[i]), eta, weight, dg, n)
+            if not coupled:
+                out[:, i] = _solve_one(kernel.g_inf, float(flat[i]), eta, weight, dg, n)
+            else:
+                out[:, i] = _solve_tangential(kernel, float(flat[i]), eta, weight, dg, n)
             used_basis = max(used_basis, n)
         used_nodes = max(used_nodes, int(eta.size))
     shape = a.shape
