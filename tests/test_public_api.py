@@ -328,7 +328,7 @@ UNDOCUMENTED = {
         "write_ctf",
         "write_map",
     ],
-    "report": ["FORMATS", "html_report", "loads_table", "report_files"],
+    "report": ["FORMATS", "html_report", "loads_table", "report_names"],
     "units": [
         "ABSOLUTE_FREQUENCY_FRACTION",
         "JUNCTION_SIGMAS",

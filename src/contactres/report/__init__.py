@@ -4,15 +4,15 @@
 
 from .html import html_report, write_html
 from .map_figures import modulus_map_figure
-from .tables import FORMATS, loads_table, report_files, summary, sweeps_table
-from .writer import write_report
+from .tables import loads_table, summary, sweeps_table
+from .writer import FORMATS, report_names, write_report
 
 __all__ = [
     "FORMATS",
     "html_report",
     "loads_table",
     "modulus_map_figure",
-    "report_files",
+    "report_names",
     "summary",
     "sweeps_table",
     "write_html",

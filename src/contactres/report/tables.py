@@ -60,49 +60,19 @@ from __future__ import annotations
 
 from pathlib import Path
 
-from ..errors import ContactresInputError
 from ..jobs.qcm_sweeps import loads_table, radiation_table, summary, sweeps_table
-from .figures import FIGURE_FILES, RADIATION_FIGURE
+from .writer import DEFAULT_FORMATS
 
 __all__ = [
-    "FORMATS",
     "loads_table",
     "radiation_table",
-    "report_files",
     "summary",
     "sweeps_table",
     "write_report",
 ]
 
-#: What :func:`write_report` writes unless told otherwise: csv (sweeps.csv, loads.csv), json
-#: (summary.json), png (the figures); ``html`` (report.html) is written when asked for.
-FORMATS = ("csv", "json", "png")
-#: The files of each format.
-FILES = {"csv": ("sweeps.csv", "loads.csv"), "json": ("summary.json",), "png": FIGURE_FILES}
-#: The further files of each format when the results hold the radiation table.
-RADIATION_FILES = {"csv": ("radiation.csv",), "json": (), "png": (RADIATION_FIGURE,)}
 
-
-def _formats(formats) -> tuple[str, ...]:
-    formats = (formats,) if isinstance(formats, str) else tuple(formats)
-    unknown = sorted(set(formats) - set(FORMATS))
-    if unknown:
-        raise ContactresInputError(f"unknown report format(s) {unknown}; allowed: {list(FORMATS)}")
-    return formats
-
-
-def report_files(formats=FORMATS, *, radiation: bool = False) -> tuple[str, ...]:
-    """The names of the files :func:`write_report` may write for ``formats`` (figures are left
-    out when there is nothing to draw); with ``radiation`` also those of the radiation table
-    (``radiation.csv``, ``radiation_loss.png``)."""
-    chosen = [f for f in FORMATS if f in _formats(formats)]
-    names = [name for f in chosen for name in FILES[f]]
-    if radiation:
-        names += [name for f in chosen for name in RADIATION_FILES[f]]
-    return tuple(names)
-
-
-def write_report(results, folder, formats=FORMATS, *, inputs=None) -> list[Path]:
+def write_report(results, folder, formats=DEFAULT_FORMATS, *, inputs=None) -> list[Path]:
     """Write the results folder (see the module docstring); return the paths written.
 
     :func:`contactres.report.writer.write_report` for the analysis: ``results`` is what
@@ -115,7 +85,7 @@ def write_report(results, folder, formats=FORMATS, *, inputs=None) -> list[Path]
         an error); or a :class:`~contactres.fileio.ResultSet` opened by the caller (declared
         with :func:`contactres.report.writer.report_set`), which moves the files into place
         when its block ends
-    formats : one of :data:`FORMATS` or ``html``, or a sequence of them
+    formats : one of :data:`~contactres.report.writer.FORMATS`, or a sequence of them
     inputs : files that must not be overwritten (default: the sweep table the results came
         from); ignored when ``folder`` is a ResultSet (it was given its inputs)
 
