@@ -154,7 +154,12 @@ def report_set(
     report can hold in any format, so those an earlier report wrote and this one does not are
     removed when it is moved into place. ``inputs``: files it must not overwrite."""
     names = report_names(kind, formats)
-    return ResultSet(folder, names=names, inputs=inputs, owned=report_names(kind, FORMATS))
+    # The kind of set is the job's name (its module's): a folder of another job's results is
+    # refused, never mixed with or removed by this one.
+    job = kind.__module__.rsplit(".", 1)[-1]
+    return ResultSet(
+        folder, names=names, inputs=inputs, owned=report_names(kind, FORMATS), kind=job
+    )
 
 
 def write_report(
