@@ -266,10 +266,24 @@ def test_hash_inside_a_cell_is_data_and_only_whole_lines_are_comments(tmp_path):
     text = "\n".join(["# exported 2024", lines[0], lines[1], "  # pause", *lines[2:]]) + "\n"
     path = tmp_path / "sweeps.csv"
     path.write_text(text)
-    t = read_sweeps(path, **CONST).data
+    # Issue 27: skipped comment lines are said (a commented-out row is lost data otherwise).
+    with pytest.warns(SweepWarning, match=r"2 comment line\(s\) skipped .*: line\(s\) 1, 4$"):
+        t = read_sweeps(path, **CONST).data
     assert len(t) == 18
     assert sorted(t["configuration"].unique()) == ["SiO2 #A", "SiO2 #B"]
     assert list(t["line"][:3]) == [3, 5, 6]
+
+
+def test_commented_out_rows_are_counted_and_located(tmp_path):
+    """Issue 27: commenting out 13 rows of a table lost a sweep without a word."""
+    lines = good_frame().to_csv(index=False).splitlines()
+    lines[1:14] = ["#" + ln for ln in lines[1:14]]
+    path = tmp_path / "sweeps.csv"
+    path.write_text("\n".join(lines) + "\n")
+    with pytest.warns(SweepWarning) as caught:
+        read_sweeps(path, **CONST)
+    said = [str(w.message) for w in caught if "comment" in str(w.message)]
+    assert said == [f"{path}: 13 comment line(s) skipped (first character '#'): line(s) 2–14"]
 
 
 def test_a_file_that_is_not_utf8_is_named_with_the_byte(tmp_path):

@@ -31,6 +31,7 @@ from ..errors import ContactresInputError
 from ..units import ABSOLUTE_FREQUENCY_FRACTION, MIN_SWEEP_POINTS, SMALL_LOAD_LIMIT
 from .messages import at_cell, column_names, shown_value, where_rows
 from .readers import SweepReader
+from .readers.delimited import line_ranges
 from .readers.registry import BUILT_IN
 from .schema import FINITE, SWEEP_TABLE, check_cells, check_value
 
@@ -450,6 +451,14 @@ def validate_sweeps(
     if "line" not in raw.columns:
         raw["line"] = np.arange(2, len(raw) + 2)
     decimal = raw.attrs.get("decimal", ".")
+    comments = raw.attrs.get("comment_lines", ())
+    if comments:
+        warnings.warn(
+            f"{source}: {len(comments)} comment line(s) skipped (first character '#'): "
+            f"line(s) {line_ranges(comments)}",
+            SweepWarning,
+            stacklevel=3,
+        )
     data_cols = [c for c in raw.columns if c != "line"]
     if len(raw) == 0:
         raise ContactresInputError(
