@@ -41,11 +41,11 @@ PRONY = Prony(1.0e9, ((2.0e9, 1e-3), (0.5e9, 2e-6)))
 
 
 def _fourier_modulus(law: Prony, f: float) -> complex:
-    """M*(ω) = iω ∫_0^∞ G(t) e^{-iωt} dt from the relaxation function: M_∞ + iω ∫_0^∞ (G(t) - M_∞)
-    e^{-iωt} dt (the e^{iωt} convention), i.e. storage M_∞ + ω ∫ ΔG sin ωt dt and loss
-    ω ∫ ΔG cos ωt dt, integrated numerically with quad's sine/cosine weights over the pieces
-    [0, 40 τ_1], [40 τ_1, 40 τ_2], ... (the relaxation times differ by decades; beyond 40 τ_max
-    ΔG < e^{-40} ΔG(0) is dropped)."""
+    """M*(ω) = iω ∫_0^∞ G(t) e^{-iωt} dt from the relaxation function G(t):
+    M_∞ + iω ∫_0^∞ ΔG(t) e^{-iωt} dt with ΔG = G - M_∞ (the e^{iωt} convention), i.e.
+    storage M_∞ + ω ∫ ΔG sin ωt dt and loss ω ∫ ΔG cos ωt dt, integrated numerically with
+    quad's sine/cosine weights over the pieces [0, 40 τ_1], [40 τ_1, 40 τ_2], ... (the
+    relaxation times differ by decades; beyond 40 τ_max ΔG < e^{-40} ΔG(0) is dropped)."""
     w = 2 * np.pi * f
 
     def dg(t):

@@ -107,7 +107,7 @@ class Prony:
 
     storage M_∞ + Σ M_i ω²τ_i²/(1 + ω²τ_i²) and loss Σ M_i ωτ_i/(1 + ω²τ_i²) >= 0 (e.g.
     N. W. Tschoegl, *The Phenomenological Theory of Linear Viscoelastic Behavior*, Springer
-    1989, ch. 3). Static (relaxed) limit M_∞, glassy (instantaneous) limit M_∞ + Σ M_i.
+    1989). Static (relaxed) limit M_∞, glassy (instantaneous) limit M_∞ + Σ M_i.
 
     Parameters
     ----------
@@ -477,10 +477,11 @@ class ViscoelasticMaterial:
         if f.ndim:
             raise ContactresInputError("at(frequency) takes one frequency (Hz), not an array")
         for law, _ in self.terms:
-            if not float(np.real(law(f))) > 0:
+            storage = float(np.real(law(f)))
+            if not storage > 0:
                 raise ContactresInputError(
-                    f"{type(law).__name__} has storage modulus {float(np.real(law(f))):.4g} Pa "
-                    f"at {float(f):g} Hz: no solid there (a fluid's static limit?)"
+                    f"{type(law).__name__} has storage modulus {storage:.4g} Pa at {float(f):g} "
+                    "Hz: no solid there (the static limit of a fluid?)"
                 )
         return Material(C=self.stiffness(f), density=self.density, name=self.name, frame=self.frame)
 
@@ -541,12 +542,15 @@ def _through(static: float, speed: float, other: complex = 0.0) -> PowerLaw:
 def pmma() -> ViscoelasticMaterial:
     """Glassy poly(methyl methacrylate) near 20 °C: isotropic, shear and bulk power laws.
 
-    Meant for 1 Hz to ~50 MHz at room temperature (the β relaxation of PMMA is broad and
-    centred near room temperature at ~1 Hz, so a near-constant loss over this band is a fair
-    description; it fails near and above the glass transition, ~105 °C, and at GHz).
+    Meant for 1 Hz to ~50 MHz at room temperature. PMMA's secondary (β) relaxation is broad and
+    lies near room temperature at low frequencies, so a nearly constant loss tangent over this
+    band is a fair first description (a qualitative statement, not fitted to a loss spectrum
+    here); the law is not meant near or above the glass transition (~105 °C) nor at GHz.
 
-    Anchors (published values; the first three are typical handbook/datasheet numbers for cast
-    PMMA, not re-checked against one original here):
+    Anchors (published values; the static ones are typical handbook and datasheet numbers for
+    cast PMMA, and neither they nor the wave speeds were re-checked against one original here:
+    the values are the middles of the ranges the literature quotes, and the ranges give the
+    uncertainty below):
 
     - density ρ = 1190 kg/m³;
     - quasi-static Young's modulus E = 3.0 GPa (datasheets: 2.4–3.3 GPa) and Poisson ratio
@@ -560,14 +564,15 @@ def pmma() -> ViscoelasticMaterial:
     velocity c_T at 5 MHz, the bulk law's the one for which a longitudinal wave (modulus
     K* + 4G*/3) has c_L. So the phase follows from the two anchors through the power law's
     own Kramers–Kronig pair, φ = (π/2) d ln|M|/d ln f. Results: shear φ_G = 0.0725 rad
-    (tan δ_G = 0.073), bulk φ_K = 0.040 rad. The shear loss tangent of 0.07 agrees in order of
-    magnitude with the shear quality factors of PMMA measured from 20 kHz to 12 MHz
-    (D. Laux et al., Ultrasonics 134, 107104 (2023): Q falls at low frequencies).
+    (tan δ_G = 0.073), bulk φ_K = 0.040 rad. D. Laux et al., Ultrasonics 134, 107104 (2023)
+    measured the shear and longitudinal quality factors of PMMA from 20 kHz to 12 MHz and found
+    them falling towards low frequencies; their numbers were not at hand to compare with this
+    law's constant tan δ (a check worth making).
 
     At 15 MHz (paper 2's QCM overtone): G' = 2.34 GPa, tan δ = 0.073. Uncertainty, from the
     anchors' ranges (c_T 1340–1400 m/s, E 2.4–3.3 GPa, ν 0.35–0.40, all corners): G'(15 MHz)
-    from 2.22 to 2.49 GPa and tan δ from 0.057 to 0.10; a film spin-cast from solution may be softer
-    (residual solvent, lower density) — the issue's 1.5–2.3 GPa allows for that.
+    from 2.22 to 2.49 GPa and tan δ from 0.057 to 0.10; a film spin-cast from solution may be
+    softer (residual solvent, lower density) — the issue's 1.5–2.3 GPa allows for that.
     """
     g_static = PMMA_STATIC_E / (2 * (1 + PMMA_STATIC_POISSON))
     k_static = PMMA_STATIC_E / (3 * (1 - 2 * PMMA_STATIC_POISSON))
