@@ -89,7 +89,7 @@ LAYERS: tuple[frozenset[str], ...] = (
             "_version",
         }
     ),
-    frozenset({"materials"}),
+    frozenset({"materials", "viscoelastic"}),
     frozenset({"halfspace"}),
     frozenset({"normal"}),
     frozenset({"dynamic", "tangential"}),

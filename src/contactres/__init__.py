@@ -33,6 +33,13 @@ _EXPORTS: dict[str, str] = {
     "isotropic_dynamic_kernel": ".halfspace",
     "shear_reference": ".halfspace",
     "static_kernel": ".halfspace",
+    # viscoelastic materials
+    "ConstantLoss": ".viscoelastic",
+    "ModulusTable": ".viscoelastic",
+    "PowerLaw": ".viscoelastic",
+    "Prony": ".viscoelastic",
+    "ViscoelasticMaterial": ".viscoelastic",
+    "pmma": ".viscoelastic",
     # static normal contact
     "Contact": ".normal.isotropic",
     "dmt": ".normal.isotropic",
@@ -124,6 +131,7 @@ _SUBMODULES: frozenset[str] = frozenset(
         "tangential",
         "units",
         "validation",
+        "viscoelastic",
     }
 )
 
@@ -156,6 +164,7 @@ if TYPE_CHECKING:
         tangential as tangential,
         units as units,
         validation as validation,
+        viscoelastic as viscoelastic,
     )
     from .analysis import (
         AnalysisSettings as AnalysisSettings,
@@ -262,6 +271,14 @@ if TYPE_CHECKING:
         mindlin_deresiewicz_energy as mindlin_deresiewicz_energy,
         mindlin_stiffness as mindlin_stiffness,
         with_dashpot as with_dashpot,
+    )
+    from .viscoelastic import (
+        ConstantLoss as ConstantLoss,
+        ModulusTable as ModulusTable,
+        PowerLaw as PowerLaw,
+        Prony as Prony,
+        ViscoelasticMaterial as ViscoelasticMaterial,
+        pmma as pmma,
     )
     from ._version import __version__ as __version__
 
