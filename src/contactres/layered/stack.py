@@ -132,8 +132,11 @@ class LayeredMaterial:
         out = []
         for j, pair in enumerate(layers, start=1):
             if not (isinstance(pair, (tuple, list)) and len(pair) == 2):
+                got = type(pair).__name__
+                if isinstance(pair, (tuple, list)):
+                    got += f" of {len(pair)} items"
                 raise ContactresInputError(
-                    f"layer {j} must be a (material, thickness_m) pair, got {pair!r}"
+                    f"layer {j} must be a (material, thickness_m) pair, got a {got}"
                 )
             m = _check_material(pair[0], f"layer {j} material")
             out.append((m, _check_thickness(pair[1], j, len(layers))))
