@@ -126,6 +126,18 @@ def test_against_a_global_boundary_value_solution(case, frequency):
             assert rel(H, reference_compliance(mats, hs, eta, theta, frequency)) < 1e-9
 
 
+@pytest.mark.parametrize("frequency", [15e6, 300e6])
+def test_complex_wavenumber_of_a_lossless_stack_against_the_boundary_value_solution(frequency):
+    # Im η > 0: the decaying rule of the substrate (Re λ < 0 of N, i.e. Im p > 0) in both codes,
+    # the analytic continuation from large real η (as for contactres.dynamic_kernel).
+    mats, hs = [PMMA, SI111, QUARTZ], [250e-9, 300e-9]
+    stack = LayeredMaterial(QUARTZ, [(PMMA, 250e-9), (SI111, 300e-9)])
+    c44 = float(QUARTZ.C[3, 3])
+    for eta in (3e5 * (1 + 0.2j), 1e6 * (1 + 0.05j), 4e6 * (1 + 0.3j), 1e7 * (1 + 0.01j)):
+        H = surface_green(stack, eta, 0.7, frequency) * c44 * eta
+        assert rel(H, reference_compliance(mats, hs, eta, 0.7, frequency)) < 1e-9
+
+
 # --- cubic written isotropic ------------------------------------------------------------------
 
 

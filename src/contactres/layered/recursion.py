@@ -29,9 +29,10 @@ nothing overflows at any ηh (a transfer matrix carries e^{+ηh} terms and loses
 ηh ~ 35). A layer of the substrate's own material gives ρ = 0 exactly. This is the surface
 impedance (Riccati) form of the stiffness-matrix recursion of S. I. Rokhlin and L. Wang,
 "Stable recursive algorithm for elastic wave propagation in layered anisotropic media: Stiffness
-matrix method", J. Acoust. Soc. Am. 112(3), 822-834 (2002), with the partial waves of each layer
-from Stroh's formalism (A. N. Stroh, J. Math. Phys. 41, 77 (1962)) as the half-space code
-computes them.
+matrix method", J. Acoust. Soc. Am. 112(3), 822-834 (2002), doi:10.1121/1.1497365 (after
+L. Wang and S. I. Rokhlin, Ultrasonics 39, 413-424 (2001)), with the partial waves of each layer
+from Stroh's formalism (A. N. Stroh, "Steady state problems in anisotropic elasticity",
+J. Math. Phys. 41, 77 (1962)) as the half-space code computes them.
 
 Interfaces: welded (u and σ_i3 continuous). Bottom: the substrate half-space with decaying
 (lossless: outgoing) waves only. Top: the applied traction.
