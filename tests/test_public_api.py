@@ -197,7 +197,13 @@ PUBLIC = {
         "static_kernel",
         "surface_compliance",
     ],
-    "layered": ["LayeredMaterial", "material_at", "stack_compliance", "surface_green"],
+    "layered": [
+        "FrequencyDependentMaterial",
+        "LayeredMaterial",
+        "material_at",
+        "stack_compliance",
+        "surface_green",
+    ],
     "materials": ["Material", "at_cut_quartz"],
     "normal": [
         "AnisotropicContact",

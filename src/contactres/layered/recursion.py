@@ -265,9 +265,9 @@ def surface_green(material, wavenumber, theta, frequency: float = 0.0) -> np.nda
             "material must be a contactres.Material or LayeredMaterial, got "
             f"{type(material).__name__}"
         )
-    mats = stack.materials
+    mats = [material_at(m, f) for m in stack.materials]
     eta = _check_wavenumber(wavenumber, stack.is_lossy)
-    c44 = shear_reference(stack.substrate)
+    c44 = shear_reference(mats[-1])
     for m in mats:
         shear_reference(m)
     omega2 = (2 * np.pi * f) ** 2
