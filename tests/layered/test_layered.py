@@ -336,7 +336,9 @@ def test_bad_materials_and_arguments():
         surface_green(inner.with_loss(0.01), 1e6 + 1e3j, 0.0, 1e6)
     with pytest.raises(ContactresInputError, match="frequency must be finite and >= 0 Hz"):
         surface_green(inner, 1e6, 0.0, -1.0)
-    with pytest.raises(ContactresInputError, match="needs densities"):
+    with pytest.raises(
+        ContactresInputError, match="needs densities: layer 1 \\(unnamed\\) has none"
+    ):
         surface_green(
             LayeredMaterial(QUARTZ, [(cr.Material.isotropic(5e9, 0.3), 1e-7)]), 1e6, 0, 1e6
         )

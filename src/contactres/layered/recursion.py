@@ -271,8 +271,14 @@ def surface_green(material, wavenumber, theta, frequency: float = 0.0) -> np.nda
     for m in mats:
         shear_reference(m)
     omega2 = (2 * np.pi * f) ** 2
-    if omega2 > 0 and any(m.density is None for m in mats):
-        raise ContactresInputError("a dynamic surface response (frequency > 0) needs densities")
+    missing = [j for j, m in enumerate(mats) if m.density is None]
+    if omega2 > 0 and missing:
+        j = missing[0]
+        which = "the substrate" if j == len(mats) - 1 else f"layer {j + 1}"
+        raise ContactresInputError(
+            f"a dynamic surface response (frequency > 0) needs densities: {which} "
+            f"({mats[j].name or 'unnamed'}) has none"
+        )
     eta = np.asarray(eta, dtype=complex if np.iscomplexobj(eta) else float)
     tensors = [voigt_to_tensor(np.asarray(m.C, dtype=complex)) / c44 for m in mats]
     s = [(m.density or 0.0) * omega2 / (c44 * eta**2) for m in mats]
