@@ -33,6 +33,8 @@ _EXPORTS: dict[str, str] = {
     "isotropic_dynamic_kernel": ".halfspace",
     "shear_reference": ".halfspace",
     "static_kernel": ".halfspace",
+    "LayeredMaterial": ".layered",
+    "surface_green": ".layered",
     # viscoelastic materials
     "ConstantLoss": ".viscoelastic",
     "ModulusTable": ".viscoelastic",
@@ -121,6 +123,7 @@ _SUBMODULES: frozenset[str] = frozenset(
         "fitting",
         "halfspace",
         "jobs",
+        "layered",
         "materials",
         "measurements",
         "normal",
@@ -154,6 +157,7 @@ if TYPE_CHECKING:
         fitting as fitting,
         halfspace as halfspace,
         jobs as jobs,
+        layered as layered,
         materials as materials,
         measurements as measurements,
         normal as normal,
@@ -200,6 +204,10 @@ if TYPE_CHECKING:
         isotropic_dynamic_kernel as isotropic_dynamic_kernel,
         shear_reference as shear_reference,
         static_kernel as static_kernel,
+    )
+    from .layered import (
+        LayeredMaterial as LayeredMaterial,
+        surface_green as surface_green,
     )
     from .materials import (
         Material as Material,
