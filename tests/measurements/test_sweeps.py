@@ -406,3 +406,31 @@ def test_a_sweep_with_all_amplitudes_equal_is_named_in_a_warning(tmp_path):
     with pytest.warns(SweepWarning, match=r"sweep\(s\) 's1' have all amplitudes equal") as rec:
         t = read_sweeps(write(tmp_path, f), **CONST).data
     assert len(t) == 18 and len([w for w in rec if "amplitudes equal" in str(w.message)]) == 1
+
+
+def test_a_sign_slip_of_the_dissipation_is_an_error_and_one_odd_sweep_a_warning():
+    """Issue 27: a negative ΔΓ (an export giving −ΔΓ) was accepted and moved E by 25 %."""
+    f = good_frame()
+    flipped = f.assign(dgamma_Hz=-f["dgamma_Hz"])
+    with pytest.raises(
+        ValueError, match=r"dgamma_Hz is negative in 3 of 3 sweeps .*check its sign"
+    ):
+        validate_sweeps(flipped, constants=CONST)
+    one = f.assign(dgamma_Hz=np.where(f["sweep"] == "s1", -f["dgamma_Hz"], f["dgamma_Hz"]))
+    with pytest.warns(SweepWarning, match=r"sweep\(s\) 's1' have a negative median dgamma_Hz"):
+        validate_sweeps(one, constants=CONST)
+
+
+@pytest.mark.parametrize("where", ["column", "toml"])
+def test_a_sphere_radius_in_millimetres_is_refused_wherever_it_comes_from(tmp_path, where):
+    """Issue 27: the option was checked, the column and the TOML were not (E came out 2 GPa)."""
+    f = good_frame()
+    constants = dict(CONST)
+    constants.pop("sphere_radius_m", None)
+    if where == "column":
+        f["sphere_radius_m"] = 1.1
+    else:
+        (tmp_path / "sweeps.toml").write_text("sphere_radius_m = 1.1\n")
+    f.to_csv(tmp_path / "sweeps.csv", index=False)
+    with pytest.raises(ValueError, match=r"looks like millimetres \(1\.1 mm = 0\.0011 m\)"):
+        read_sweeps(tmp_path / "sweeps.csv", **constants)

@@ -173,6 +173,10 @@ def _checks(res: FitResult, model=None) -> list[tuple[Check, str]]:
     return found
 
 
+def _joined(*texts: str) -> str:
+    return "; ".join(t for t in texts if t)
+
+
 def fit_group(
     exp: pd.DataFrame, key, bootstrap: int, seed: int, sweeps: pd.DataFrame | None = None
 ) -> dict:
@@ -201,6 +205,15 @@ def fit_group(
     R, nu = float(radii[0]), float(nus[0])
     ok = np.isfinite(exp["kappa_N_per_m"].to_numpy()) & (exp["kappa_N_per_m"].to_numpy() > 0)
     pts = exp[ok]
+    # A κ <= 0 (Δf0 <= 0) cannot be a contact stiffness: left out of the fit, and said.
+    left = exp[~ok]
+    left_out = ""
+    if len(left):
+        loads = ", ".join(f"{v:.4g}" for v in sorted(left["normal_force_N"].unique())[:5])
+        left_out = (
+            f"{len(left)} point(s) with κ <= 0 or not finite (Δf0 <= 0) left out of the JKR "
+            f"fit, at normal force(s) {loads} N: check the sign of df_Hz"
+        )
     out = {
         "configuration": config,
         "medium": medium,
@@ -220,13 +233,15 @@ def fit_group(
         "checks": [],
         "err_dof": np.nan,
         "t95": np.nan,
+        "note": left_out,
     }
     n_loads = pts["normal_force_N"].nunique()
     if n_loads < 2 or len(pts) < 3:
         out["checks"] = [Check.TOO_FEW_LOADS.value]
-        out["note"] = (
+        out["note"] = _joined(
             f"JKR fit needs at least 3 points at 2 or more loads; found {len(pts)} point(s) at "
-            f"{n_loads} load(s)"
+            f"{n_loads} load(s)",
+            left_out,
         )
         return out
     res = fit_jkr_mindlin(pts["normal_force_N"], pts["kappa_N_per_m"], R, nu)
@@ -234,7 +249,7 @@ def fit_group(
     out["fit_rms_N_per_m"] = float(np.sqrt(res.rss / res.n_points))
     if found:
         out["checks"] = [c.value for c, _ in found]
-        out["note"] = "; ".join(text for _, text in found)
+        out["note"] = _joined(*(text for _, text in found), left_out)
         out["rejected_fit"] = {"E_Pa": res.values["E"], "gamma_J_m2": res.values["gamma"]}
         return out
     out.update(

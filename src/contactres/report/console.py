@@ -56,12 +56,15 @@ def table1_text(results: Results) -> pd.DataFrame:
 
 
 def withheld_lines(results: Results) -> list[str]:
-    """One line per group whose E and γ are withheld, with the reason and the input to check."""
+    """One line per group whose E and γ are withheld, with the reason and the input to check,
+    and per group whose fit left points out (κ <= 0), saying so."""
     return [
         f"{g['configuration']}, {g['medium']}: E and γ withheld ({', '.join(g['checks'])}): "
         f"{g['note']}"
-        for g in results.groups
         if g.get("checks")
+        else f"{g['configuration']}, {g['medium']}: {g['note']}"
+        for g in results.groups
+        if g.get("checks") or g.get("note")
     ]
 
 

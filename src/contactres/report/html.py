@@ -273,7 +273,7 @@ def html_report(results: Results) -> str:
         parts.append(
             "<p>± standard errors; 95 % interval: value ± t95 × error (Student t, few repeats).</p>"
         )
-        parts += [f"<p><b>Withheld:</b> {_e(line)}</p>" for line in withheld_lines(results)]
+        parts += [f"<p><b>Note:</b> {_e(line)}</p>" for line in withheld_lines(results)]
     parts.append("<h2>Per load</h2>")
     if len(results.loads):
         parts.append(_table(_load_stats(results), numeric=("F_N (mN)",)))
