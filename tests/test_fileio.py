@@ -295,3 +295,19 @@ def test_a_second_run_into_the_same_folder_is_refused_and_a_stale_lock_taken_ove
     lock.write_text(f"{_dead_pid()}\n{socket.gethostname()}\n")  # a killed run
     _write_set(tmp_path / "out", {"a.csv": "x"})
     assert _names(tmp_path) == ["out"]
+
+
+def test_text_cells_a_spreadsheet_would_run_are_neutralised(tmp_path):
+    """Issue 27 (CSV injection): labels starting with =, +, -, @ were written verbatim."""
+    import pandas as pd
+
+    from contactres.fileio import write_csv
+
+    frame = pd.DataFrame(
+        {"label": ["=1+1", "+x", "-y", "@SUM(A1)", "\tz", "plain", "a=b"], "value": [-1.5] * 7}
+    )
+    write_csv(tmp_path / "t.csv", frame)
+    back = pd.read_csv(tmp_path / "t.csv", keep_default_na=False)
+    assert back["label"].tolist() == ["'=1+1", "'+x", "'-y", "'@SUM(A1)", "'\tz", "plain", "a=b"]
+    assert back["value"].tolist() == [-1.5] * 7  # numbers stay numbers
+    assert frame["label"][0] == "=1+1"  # the caller's table is not changed

@@ -283,6 +283,7 @@ UNDOCUMENTED = {
     ],
     "fileio": [
         "CSV_FLOAT_FORMAT",
+        "FORMULA_START",
         "MANIFEST",
         "OutputError",
         "ResultSet",
@@ -290,6 +291,7 @@ UNDOCUMENTED = {
         "check_output",
         "check_output_file",
         "ensure_dir",
+        "neutralised",
         "replace_folder",
         "save_figure",
         "write_csv",

@@ -47,6 +47,7 @@ from .errors import ContactresInputError
 
 __all__ = [
     "CSV_FLOAT_FORMAT",
+    "FORMULA_START",
     "MANIFEST",
     "OutputError",
     "ResultSet",
@@ -54,6 +55,7 @@ __all__ = [
     "check_output",
     "check_output_file",
     "ensure_dir",
+    "neutralised",
     "replace_folder",
     "save_figure",
     "write_csv",
@@ -125,11 +127,38 @@ def write_text(path: str | os.PathLike, text: str) -> Path:
     return Path(path)
 
 
+#: First characters with which a spreadsheet reads a cell as a formula (CSV injection, OWASP):
+#: a text cell starting with one of them is written with a leading apostrophe.
+FORMULA_START = ("=", "+", "-", "@", "\t", "\r")
+
+
+def neutralised(frame):
+    """``frame`` with every text cell that a spreadsheet would run as a formula (it starts with
+    one of :data:`FORMULA_START`) prefixed by an apostrophe, which spreadsheets show as text.
+    Numbers are untouched (a negative number is a number, not a formula); only columns of text
+    (object or string dtype) are looked at. Returns ``frame`` itself when nothing needs it."""
+    columns = getattr(frame, "columns", None)
+    if columns is None:  # not a table: written as the caller's to_csv writes it
+        return frame
+    text = [c for c in columns if frame[c].dtype.kind == "O" or str(frame[c].dtype) == "str"]
+    if not text:
+        return frame
+    out = None
+    for c in text:
+        col = frame[c]
+        risky = col.map(lambda v: isinstance(v, str) and v.startswith(FORMULA_START))
+        if risky.any():
+            out = frame.copy() if out is None else out
+            out[c] = col.where(~risky, "'" + col.astype(str))
+    return frame if out is None else out
+
+
 def write_csv(path: str | os.PathLike, frame, **kwargs) -> Path:
-    """Write a pandas DataFrame as CSV atomically (no index unless asked)."""
+    """Write a pandas DataFrame as CSV atomically (no index unless asked); text cells that a
+    spreadsheet would run as formulas are neutralised (:func:`neutralised`)."""
     kwargs.setdefault("index", False)
     with atomic_path(path) as tmp:
-        frame.to_csv(tmp, **kwargs)
+        neutralised(frame).to_csv(tmp, **kwargs)
     return Path(path)
 
 

@@ -212,11 +212,13 @@ def _json_scalar(value):
 
 def emit(table: pd.DataFrame, fmt: str, stream=None) -> None:
     """Print a table in the chosen format to ``stream`` (stdout)."""
+    from ..fileio import neutralised
+
     out = stream or sys.stdout
     if fmt == "csv":
         # 15 significant digits: read back by scripts to 5e-15, yet without the float noise of
         # the 17-digit repr (0.1 + 0.2 prints as 0.3, not 0.30000000000000004).
-        table.to_csv(out, index=False, float_format="%.15g")
+        neutralised(table).to_csv(out, index=False, float_format="%.15g")
     elif fmt == "json":
         # Python's own float repr (shortest exact), not pandas' to_json, which rounds to a
         # number of decimals and so writes 1.23e-12 m as 0.0.

@@ -95,8 +95,8 @@ def load(path: Path) -> pd.DataFrame:
     ``attrs["decimal"]`` records the decimal mark for the validator. Comment lines and blank
     lines are dropped here, before parsing, so that ``#`` inside a cell stays data and every
     row keeps the number of its line in the file; ``attrs["comment_lines"]`` holds the numbers
-    of the comment lines, which the validator reports (a commented-out row is data the user
-    may not mean to drop).
+    of the comment lines below the header, which the validator reports (a commented-out row is
+    data the user may not mean to drop).
     """
     text = _decode(path)
     lines = _LINE_BREAK.split(text)
@@ -133,8 +133,10 @@ def load(path: Path) -> pd.DataFrame:
     numbers = [n for n, _ in kept[1:]]
     raw["line"] = numbers if len(numbers) == len(raw) else range(2, len(raw) + 2)
     raw.attrs["decimal"] = decimal
-    # Dropped lines are said, never silent: the validator reports them (line_ranges).
-    raw.attrs["comment_lines"] = tuple(comments)
+    # Dropped lines among the data are said, never silent: the validator reports them
+    # (line_ranges). Comments above the header are a preamble (an instrument's, or the
+    # conventions qcm spectra writes), not rows.
+    raw.attrs["comment_lines"] = tuple(n for n in comments if n > kept[0][0])
     return raw
 
 
