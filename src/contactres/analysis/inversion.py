@@ -85,6 +85,7 @@ class ModulusFlag(enum.IntFlag):
     NOT_ELASTIC = enum.auto()
     NOT_HERTZIAN = enum.auto()
     MODULUS_OUT_OF_RANGE = enum.auto()
+    NO_SPRING_CONSTANT = enum.auto()
 
 
 #: What each flag means.
@@ -105,6 +106,10 @@ FLAG_DESCRIPTIONS = MappingProxyType(
         ModulusFlag.MODULUS_OUT_OF_RANGE: (
             "M_sample outside the plausible range of contactres.units (0.1 MPa to 1.5 TPa): "
             "an input in the wrong unit, not a result; E* and M_sample are NaN"
+        ),
+        ModulusFlag.NO_SPRING_CONSTANT: (
+            "k_c_N_per_m is blank or its column is missing: only κ = k*/k_c is known; k* and "
+            "the Hertz modulus need the lever's spring constant (a reference sample does not)"
         ),
     }
 )

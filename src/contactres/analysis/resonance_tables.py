@@ -345,6 +345,10 @@ def invert_afm_table(
         dyn = _dynamic(col, k_modes * k_c[:, None], fc, hertz & np.isfinite(k_star), sample, loss)
         k_used = np.where(np.isfinite(dyn["k_static"]), dyn["k_static"], k_used)
     mod = _modulus(col, k_used, have_kc, *(refs * scale[:, None]).T)
+    # Without k_c a row has no k*: said in its flags, not left as bare empty cells (issue 27).
+    mod["modulus_flags"] = np.where(
+        have_kc, mod["modulus_flags"], mod["modulus_flags"] | ModulusFlag.NO_SPRING_CONSTANT
+    )
     out = _given_columns(table)
     out["kappa"] = res["kappa"]
     out["k_star_N_per_m"] = k_star

@@ -333,6 +333,8 @@ def maps_fit(
     write_text(out, record["json"])
     if fmt != "plain":
         emit_record(record["flat"], fmt)
+        for line in result.warnings:  # the plain summary prints them; here on stderr
+            click.echo(f"contactres: warning: {line}", err=True)
         return
     click.echo(result.summary())
     click.echo(f"{used} pixels in {result.n_grains} grains; wrote {out}")

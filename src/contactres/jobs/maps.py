@@ -409,4 +409,7 @@ def fit_record(result, **context) -> dict:
     }
     doc = {"conventions": conventions, **{k: clean(v) for k, v in context.items()}, **fields}
     flat = {k: v for k, v in doc.items() if not isinstance(v, (dict, list))}
+    # The warnings (a list) are kept in the flat record as one text: a fit that did not
+    # converge or is at a bound says so in every format (issue 27).
+    flat["warnings"] = "; ".join(doc.get("warnings") or ())
     return {"json": json.dumps(doc, indent=1, allow_nan=False) + "\n", "flat": flat}
