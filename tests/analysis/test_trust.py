@@ -246,6 +246,8 @@ def test_student_t_factor_of_an_error_from_few_repeats():
 
 def test_points_with_a_negative_stiffness_are_left_out_of_the_jkr_fit_and_said():
     """Issue 27: sweeps with Δf0 < 0 (κ < 0) were dropped from the JKR fit without a word."""
+    from types import SimpleNamespace
+
     import pandas as pd
 
     from contactres.analysis.jkr import fit_group
@@ -266,7 +268,5 @@ def test_points_with_a_negative_stiffness_are_left_out_of_the_jkr_fit_and_said()
         "force(s) 0.004 N: check the sign of df_Hz"
     )
 
-    class Shown:
-        groups = [{**g, "n_experiments": 2}]
-
-    assert withheld_lines(Shown()) == [f"glass, air: {g['note']}"]
+    shown = SimpleNamespace(groups=[{**g, "n_experiments": 2}])
+    assert withheld_lines(shown) == [f"glass, air: {g['note']}"]
