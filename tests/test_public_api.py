@@ -225,7 +225,24 @@ PUBLIC = {
         "segment_grains",
         "synthetic_polycrystal",
     ],
-    "report": ["modulus_map_figure", "summary", "sweeps_table", "write_html", "write_report"],
+    "apps": ["write_demo"],
+    "report": [
+        "FORMATS",
+        "friction_table",
+        "html_report",
+        "loads_table",
+        "modulus_map_figure",
+        "prediction_figure",
+        "radiation_lines",
+        "report_files",
+        "report_set",
+        "summary",
+        "sweeps_table",
+        "table1_text",
+        "withheld_lines",
+        "write_html",
+        "write_report",
+    ],
     "tangential": [
         "CattaneoMindlinLoop",
         "DashpotLoop",
@@ -242,6 +259,124 @@ PUBLIC = {
     "jobs.contract": ["JobResult", "say"],
     "jobs.readers": ["ALL_READERS"],
 }
+
+# scipy's rule: a subpackage's public surface is its ``__init__``; the modules that implement it
+# are private (``contactres/dynamic/_exact.py``). The modules below have no leading underscore
+# and are public on purpose: the top-level single modules, one module per workflow of
+# contactres.jobs (and the three beside them), and the modules the docs present as modules.
+PUBLIC_MODULES = [
+    "contactres.apps.paper1",  # the gallery calls its figure functions
+    "contactres.apps.paper2",
+    "contactres.crystals",
+    "contactres.errors",
+    "contactres.fileio",
+    "contactres.fitting",
+    *(f"contactres.jobs.{m}" for m in (*JOBS, *JOB_HELPERS)),
+    "contactres.materials",
+    "contactres.numerics",
+    "contactres.report.dictionary",  # the data dictionary page (docs/dictionary.md)
+    "contactres.report.figures",  # the gallery's figures; key_below for every figure
+    "contactres.tangential",
+    "contactres.units",
+    "contactres.validation",
+]
+
+# Implementation modules that do not have their leading underscore yet (a later step, after
+# the work under way in these subpackages): this list only shrinks.
+NOT_YET_PRIVATE = [
+    "contactres.analysis.amplitude",
+    "contactres.analysis.blocks",
+    "contactres.analysis.classify",
+    "contactres.analysis.curves",
+    "contactres.analysis.drift",
+    "contactres.analysis.flags",
+    "contactres.analysis.friction",
+    "contactres.analysis.inversion",
+    "contactres.analysis.jkr",
+    "contactres.analysis.loads",
+    "contactres.analysis.loops",
+    "contactres.analysis.models.base",
+    "contactres.analysis.models.cm_loop",
+    "contactres.analysis.models.elastic",
+    "contactres.analysis.models.hinge",
+    "contactres.analysis.models.jkr_mindlin",
+    "contactres.analysis.models.line",
+    "contactres.analysis.models.parabola",
+    "contactres.analysis.models.plateau_loop",
+    "contactres.analysis.models.savkoor_loop",
+    "contactres.analysis.pipeline",
+    "contactres.analysis.plateau",
+    "contactres.analysis.radiation",
+    "contactres.analysis.ramps",
+    "contactres.analysis.resonance_tables",
+    "contactres.analysis.results",
+    "contactres.analysis.running_in",
+    "contactres.dynamic.exact",
+    "contactres.dynamic.farfield",
+    "contactres.dynamic.interpolation",
+    "contactres.dynamic.models",
+    "contactres.dynamic.normal_stiffness",
+    "contactres.dynamic.quadrature",
+    "contactres.dynamic.table",
+    "contactres.dynamic.tangential_galerkin",
+    "contactres.dynamic.tangential_static",
+    "contactres.dynamic.tangential_stiffness",
+    "contactres.dynamic.tangential_table",
+    "contactres.dynamic.weights",
+    "contactres.halfspace.compliance",
+    "contactres.halfspace.doubling",
+    "contactres.halfspace.isotropic",
+    "contactres.halfspace.kernels",
+    "contactres.halfspace.outgoing",
+    "contactres.halfspace.stacked",
+    "contactres.measurements.afm_example",
+    "contactres.measurements.messages",
+    "contactres.measurements.readers.delimited",
+    "contactres.measurements.readers.exports.awsensors",
+    "contactres.measurements.readers.exports.base",
+    "contactres.measurements.readers.exports.openqcm",
+    "contactres.measurements.readers.exports.qcmi",
+    "contactres.measurements.readers.exports.qsense",
+    "contactres.measurements.readers.exports.tidy",
+    "contactres.measurements.readers.recipe",
+    "contactres.measurements.readers.registry",
+    "contactres.measurements.readers.spectra",
+    "contactres.measurements.resonances",
+    "contactres.measurements.schema.columns",
+    "contactres.measurements.schema.inputs",
+    "contactres.measurements.schema.listings",
+    "contactres.measurements.schema.outputs",
+    "contactres.measurements.schema.results",
+    "contactres.measurements.shifts",
+    "contactres.measurements.spectra",
+    "contactres.measurements.spectra_table",
+    "contactres.measurements.studies",
+    "contactres.measurements.sweeps",
+    "contactres.measurements.synthetic",
+    "contactres.measurements.synthetic_spectra",
+    "contactres.normal.anisotropic",
+    "contactres.normal.isotropic",
+    "contactres.polycrystal.ebsd",
+    "contactres.polycrystal.grains",
+    "contactres.polycrystal.inverse",
+    "contactres.polycrystal.inverse_hexagonal",
+    "contactres.polycrystal.ipf",
+    "contactres.polycrystal.maps",
+    "contactres.polycrystal.moduli",
+    "contactres.polycrystal.normal_table",
+    "contactres.polycrystal.orientations",
+    "contactres.polycrystal.predicted",
+    "contactres.polycrystal.ratio_fit",
+    "contactres.polycrystal.synthetic",
+    "contactres.resonators.cantilever",
+    "contactres.resonators.cantilever_inversion",
+    "contactres.resonators.qcm",
+    "contactres.resonators.rum",
+]
+
+# Subpackages whose ``__init__`` loads its public names on first use through
+# ``contactres._lazy.attach`` (dir() is then exactly the public names and public submodules).
+LAZY_PACKAGES = ["apps", "dynamic", "normal", "report"]
 
 # In __all__ (or re-exported) but named nowhere in the docs: internal, not pinned as public.
 UNDOCUMENTED = {
@@ -328,7 +463,6 @@ UNDOCUMENTED = {
         "write_ctf",
         "write_map",
     ],
-    "report": ["FORMATS", "html_report", "loads_table", "report_files"],
     "units": [
         "ABSOLUTE_FREQUENCY_FRACTION",
         "JUNCTION_SIGMAS",
@@ -438,6 +572,37 @@ def test_every_job_keeps_the_contract(name):
     assert list(inspect.signature(job.run).parameters)[:3] == ["inputs", "settings", "progress"]
 
 
+def _library_modules() -> dict[str, bool]:
+    """Every module of the installed package (name -> is a package), the command line left out:
+    ``contactres.cli`` is run, not imported (tests/test_layout.py keeps the library off it)."""
+    return {
+        info.name: info.ispkg
+        for info in pkgutil.walk_packages(contactres.__path__, "contactres.")
+        if not info.name.startswith("contactres.cli")
+    }
+
+
+def test_every_module_without_an_underscore_is_a_package_or_listed_public():
+    """scipy's test_all_modules_are_expected: a new module is private unless listed here."""
+    found = _library_modules()
+    public = sorted(
+        name
+        for name, is_package in found.items()
+        if not is_package and not any(part.startswith("_") for part in name.split("."))
+    )
+    assert public == sorted([*PUBLIC_MODULES, *NOT_YET_PRIVATE])
+
+
+@pytest.mark.parametrize("name", LAZY_PACKAGES)
+def test_dir_of_a_lazy_subpackage_is_its_public_names(name):
+    """``dir()`` shows what a user may call: the pinned names, and public submodules only."""
+    module = importlib.import_module(f"contactres.{name}")
+    names = [n for n in dir(module) if not isinstance(getattr(module, n), types.ModuleType)]
+    pinned = [*PUBLIC.get(name, []), *UNDOCUMENTED.get(name, [])]
+    assert names == sorted(module.__all__) == sorted(pinned)
+    assert not [n for n in dir(module) if n.startswith("_")]
+
+
 def test_pinned_lists_have_no_duplicates():
     for lists in (PUBLIC, UNDOCUMENTED):
         for name, names in lists.items():
@@ -483,7 +648,7 @@ def test_type_checkers_see_every_lazy_name_of_contactres():
     assert seen == expected
 
 
-@pytest.mark.parametrize("name", ["dynamic", "normal"])
+@pytest.mark.parametrize("name", LAZY_PACKAGES)
 def test_type_checkers_see_every_lazy_name_of_a_subpackage(name):
     package = importlib.import_module(f"contactres.{name}")
     seen = type_checking_imports(PACKAGE_DIR / name / "__init__.py")

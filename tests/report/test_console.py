@@ -6,7 +6,7 @@ import pytest
 from click.testing import CliRunner
 
 from contactres.cli import main
-from contactres.report.console import DASH, plus_minus
+from contactres.report._console import DASH, plus_minus
 
 
 @pytest.mark.parametrize(

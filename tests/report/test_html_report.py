@@ -13,7 +13,7 @@ import contactres
 from contactres.cli import main
 from contactres.fileio import MANIFEST
 from contactres.report import html_report, summary, write_html
-from contactres.report.console import plus_minus
+from contactres.report._console import plus_minus
 
 EXAMPLE = Path(contactres.__file__).parent / "data" / "example_sweeps.csv"
 SETTINGS = {"bootstrap": 0}

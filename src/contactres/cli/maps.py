@@ -210,7 +210,7 @@ def maps_predict(
     write_map(out, ds, chunks=(chunks, chunks))
     if figure is not None:
         from ..fileio import save_figure
-        from ..report.job_figures import prediction_figure
+        from ..report import prediction_figure
 
         save_figure(figure, prediction_figure(result))
     M, k = ds["M_Pa"].values, ds["k_star_N_per_m"].values

@@ -221,7 +221,7 @@ def stiffness_command(
     """
     from ..fileio import ResultSet
     from ..jobs import qcm_stiffness as job
-    from ..report.writer import write_report
+    from ..report import write_report
 
     source = Path(export)
     conventions = {

@@ -16,8 +16,8 @@ analyses; :func:`stages` gives the length of a progress bar over it).
 The Result's tables are those of the results folder, each bound to its schema
 (:func:`sweeps_table`, :func:`loads_table` and, with the two bodies, :func:`radiation_table`),
 and its values the ``summary.json`` record (:func:`summary`): a report writes them as it writes
-every job's (:func:`contactres.report.writer.write_report`; the folder's files are described in
-:mod:`contactres.report.tables`).
+every job's (:func:`contactres.report.write_report`; the folder's files are described in
+:func:`contactres.report.report_files`).
 """
 
 from __future__ import annotations

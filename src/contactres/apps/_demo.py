@@ -64,7 +64,7 @@ def _write_polycrystal(result: job.Result, out: Path) -> list[Path]:
     from ..polycrystal.grains import folded_normals
     from ..polycrystal.moduli import indentation_moduli
     from ..polycrystal.normal_table import surface_matrices_from_normals
-    from ..report.map_figures import modulus_map_figure
+    from ..report import modulus_map_figure
 
     folder = ensure_dir(out / "polycrystal")
     cu, omap = Material.crystal("Cu"), result.map_orientations

@@ -1,4 +1,4 @@
-"""Figures of the jobs' Results, registered by :func:`contactres.report.writer.figure_registry`.
+"""Figures of the jobs' Results, registered by :func:`contactres.report._writer.figure_registry`.
 
 Each function takes a Result and returns a matplotlib Figure (Agg canvas, no pyplot state), or
 None when the Result has nothing to draw in that figure (no file is written then).
@@ -113,12 +113,12 @@ def stiffness_figure(result):
 
 def prediction_figure(result):
     """The map of M of a :class:`contactres.jobs.maps_predict.Result` with the IPF-coloured
-    legend of the faces (:func:`contactres.report.map_figures.modulus_map_figure`)."""
+    legend of the faces (:func:`contactres.report.modulus_map_figure`)."""
     from ..polycrystal.grains import folded_normals
     from ..polycrystal.maps import map_from_dataset
     from ..polycrystal.moduli import indentation_moduli
     from ..polycrystal.normal_table import surface_matrices_from_normals
-    from .map_figures import modulus_map_figure
+    from ._map_figures import modulus_map_figure
 
     ds, material, lattice = result.dataset, result.material, result.lattice
     omap = map_from_dataset(ds)

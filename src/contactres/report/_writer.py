@@ -18,7 +18,7 @@ The QCM sweep analysis is reported as every job is: the ``qcm_sweeps`` job's Res
 results folder, and registers the figures of paper 2 and ``report.html`` here. The analysis
 Results that :func:`contactres.analyze` returns are written as the job's Result that carries
 them, so ``contactres.write_report(results, folder)`` writes the folder described in
-:mod:`contactres.report.tables`.
+:mod:`contactres.report._tables`.
 
 Map stores are not written here: ``maps synthetic|predict`` write a Zarr store with
 :func:`contactres.polycrystal.maps.write_map`. A store is itself the output the user names (not
@@ -74,7 +74,7 @@ def figure_registry() -> Mapping[type, tuple[tuple[str, Drawing], ...]]:
     (they need matplotlib, which the jobs never import).
     """
     from ..jobs import qcm_stiffness, qcm_sweeps
-    from . import job_figures as draw
+    from . import _job_figures as draw
     from .figures import FIGURE_FILES, RADIATION_FIGURE
 
     paper2 = (draw.sweeps_figure, draw.load_figure, draw.dissipation_figure, draw.friction_figure)
@@ -95,7 +95,7 @@ def html_registry() -> Mapping[type, tuple[str, Page]]:
     Built on each call, as :func:`figure_registry`.
     """
     from ..jobs import qcm_sweeps
-    from .html import HTML_FILE, sweeps_page
+    from ._html import HTML_FILE, sweeps_page
 
     return MappingProxyType({qcm_sweeps.Result: (HTML_FILE, sweeps_page)})
 

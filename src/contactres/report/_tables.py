@@ -2,7 +2,7 @@
 
 The folder is a report of the ``qcm_sweeps`` job's Result (:mod:`contactres.jobs.qcm_sweeps`:
 its tables, :func:`sweeps_table`, :func:`loads_table`, :func:`radiation_table`, and its values,
-:func:`summary`), written by :func:`contactres.report.writer.write_report` with the figures and
+:func:`summary`), written by :func:`contactres.report.write_report` with the figures and
 the page registered for it there (:mod:`.job_figures`, :mod:`.figures`, :mod:`.html`).
 :func:`write_report` writes the folder as one :class:`contactres.fileio.ResultSet`: nothing is
 written if a file of the set would replace an input (the sweep table, by default) or another run
@@ -47,7 +47,7 @@ write (e.g. its figures) are removed. The columns are those of
     ``radiation_loss.png`` (measured and radiation loss tangent per load).
 ``report.html``
     only when asked for (format ``html``, ``--report html``): one self-contained page of the
-    analysis (:func:`contactres.report.html.html_report`).
+    analysis (:func:`contactres.report.html_report`).
 ``manifest.json``
     written last: the files of the set with their sizes and SHA-256 sums.
 
@@ -105,7 +105,7 @@ def report_files(formats=FORMATS, *, radiation: bool = False) -> tuple[str, ...]
 def write_report(results, folder, formats=FORMATS, *, inputs=None) -> list[Path]:
     """Write the results folder (see the module docstring); return the paths written.
 
-    :func:`contactres.report.writer.write_report` for the analysis: ``results`` is what
+    :func:`contactres.report.write_report` for the analysis: ``results`` is what
     :func:`contactres.analyze` returned (or the ``qcm_sweeps`` job's Result).
 
     Parameters
@@ -113,7 +113,7 @@ def write_report(results, folder, formats=FORMATS, *, inputs=None) -> list[Path]
     results : what :func:`contactres.analyze` returned
     folder : the results folder, created if missing (a path that exists and is not a folder is
         an error); or a :class:`~contactres.fileio.ResultSet` opened by the caller (declared
-        with :func:`contactres.report.writer.report_set`), which moves the files into place
+        with :func:`contactres.report.report_set`), which moves the files into place
         when its block ends
     formats : one of :data:`FORMATS` or ``html``, or a sequence of them
     inputs : files that must not be overwritten (default: the sweep table the results came
@@ -129,6 +129,6 @@ def write_report(results, folder, formats=FORMATS, *, inputs=None) -> list[Path]
         Before anything is written: the folder cannot be written, a file of the set is one of
         ``inputs``, or another run is writing into the folder.
     """
-    from .writer import write_report as write
+    from ._writer import write_report as write
 
     return write(results, folder, formats, inputs=inputs)

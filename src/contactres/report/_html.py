@@ -26,7 +26,7 @@ from ..fileio import write_text
 from ..jobs.qcm_sweeps import summary
 from ..measurements.schema import CONVENTIONS
 from ..measurements.sweeps import CONSTANTS
-from .console import DASH, friction_table, plus_minus, radiation_lines, table1_text, withheld_lines
+from ._console import DASH, friction_table, plus_minus, radiation_lines, table1_text, withheld_lines
 
 __all__ = ["HTML_FILE", "html_report", "sweeps_page", "write_html"]
 
@@ -311,5 +311,5 @@ def write_html(results: Results, path) -> Path:
 
 def sweeps_page(result) -> str:
     """The page of a :class:`contactres.jobs.qcm_sweeps.Result` (its analysis's
-    :func:`html_report`), as :func:`contactres.report.writer.html_registry` registers it."""
+    :func:`html_report`), as :func:`contactres.report._writer.html_registry` registers it."""
     return html_report(result.analysis)
