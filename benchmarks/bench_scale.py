@@ -48,7 +48,7 @@ from contactres.measurements.synthetic import (
     SweepStudy,
     synthetic_sweeps,
 )
-from contactres.resonators.qcm import QCM
+from contactres.resonators import QCM
 
 COPIES = 75  # x 1,344 sweeps = 100,800
 LONG_POINTS = 700

@@ -226,6 +226,27 @@ PUBLIC = {
         "synthetic_polycrystal",
     ],
     "apps": ["write_demo"],
+    "resonators": [
+        "Cantilever",
+        "ContactResonanceResult",
+        "DEFAULT_NODES",
+        "FREE_ROOTS",
+        "MODE_TOLERANCE",
+        "QCM",
+        "RUMOscillator",
+        "cattaneo_mindlin_expansion",
+        "contact_frequencies",
+        "flag_names",
+        "friction_from_slopes",
+        "invert_contact_resonance",
+        "loop_stiffness",
+        "masing_stiffness",
+        "mu_from_slopes",
+        "savkoor_expansion",
+        "shifts_from_loop",
+        "shifts_from_stiffness",
+        "stiffness_from_shifts",
+    ],
     "report": [
         "FORMATS",
         "friction_table",
@@ -368,15 +389,11 @@ NOT_YET_PRIVATE = [
     "contactres.polycrystal.predicted",
     "contactres.polycrystal.ratio_fit",
     "contactres.polycrystal.synthetic",
-    "contactres.resonators.cantilever",
-    "contactres.resonators.cantilever_inversion",
-    "contactres.resonators.qcm",
-    "contactres.resonators.rum",
 ]
 
 # Subpackages whose ``__init__`` loads its public names on first use through
 # ``contactres._lazy.attach`` (dir() is then exactly the public names and public submodules).
-LAZY_PACKAGES = ["apps", "dynamic", "normal", "report"]
+LAZY_PACKAGES = ["apps", "dynamic", "normal", "report", "resonators"]
 
 # In __all__ (or re-exported) but named nowhere in the docs: internal, not pinned as public.
 UNDOCUMENTED = {

@@ -22,7 +22,7 @@ from contactres.measurements.synthetic import (
 )
 from contactres.normal.isotropic import effective_modulus, jkr_contact_radius
 from contactres.report import summary, sweeps_table
-from contactres.resonators.qcm import QCM, shifts_from_loop
+from contactres.resonators._qcm import QCM, shifts_from_loop
 from contactres.tangential import (
     CattaneoMindlinLoop,
     PlateauLoop,

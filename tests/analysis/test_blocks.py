@@ -22,7 +22,7 @@ from contactres.measurements.synthetic import (
     synthetic_sweeps,
 )
 from contactres.normal.isotropic import effective_modulus, jkr_contact_radius
-from contactres.resonators.qcm import QCM
+from contactres.resonators._qcm import QCM
 from contactres.tangential import kappa_jkr_mindlin
 from contactres.units import LINEAR_ONSET_X
 

@@ -14,7 +14,7 @@ from contactres.fitting import fit
 from contactres.measurements.schema import GROUP_RESULTS, SWEEP_RESULTS
 from contactres.measurements.sweeps import validate_sweeps
 from contactres.measurements.synthetic import SweepGroup, SweepStudy, synthetic_sweeps
-from contactres.resonators.qcm import QCM
+from contactres.resonators._qcm import QCM
 
 # Every parameter any fitted model may have: unit and the result columns that may hold it.
 # A new parameter must be added here with its unit, or this test fails.

@@ -33,7 +33,7 @@ from contactres.analysis.models import fit_tables
 from contactres.analysis.plateau import fit_plateau_loops, plateau_loop_slopes
 from contactres.measurements.sweeps import validate_sweeps
 from contactres.measurements.synthetic import SweepGroup, SweepStudy, synthetic_sweeps
-from contactres.resonators.qcm import QCM
+from contactres.resonators._qcm import QCM
 
 Q = QCM(fundamental=5e6, overtone=3, area=2.5e-5)
 P = Q.sensitivity(3)

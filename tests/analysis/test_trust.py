@@ -8,7 +8,7 @@ from contactres.analysis import AnalysisSettings, analyze
 from contactres.analysis.flags import Flag, has
 from contactres.measurements.sweeps import SweepWarning, validate_sweeps
 from contactres.measurements.synthetic import Drift, SweepGroup, SweepStudy, synthetic_sweeps
-from contactres.resonators.qcm import QCM
+from contactres.resonators._qcm import QCM
 
 Q = QCM(5e6, 3, 2.5e-5)
 CONST = dict(overtone=3, area_m2=2.5e-5, n_contacts=3)

@@ -83,7 +83,7 @@ def test_stiffness_csv_columns_are_the_code():
 
 def test_resonance_flags_are_the_code():
     from contactres.analysis.inversion import ModulusFlag
-    from contactres.resonators.cantilever_inversion import flag_names
+    from contactres.resonators._cantilever_inversion import flag_names
 
     names = [n.replace("_", "-") for n in flag_names(~0)]
     assert list(RESONANCE_FLAGS) == names

@@ -21,7 +21,7 @@ from contactres.measurements.sweeps import SweepWarning, validate_sweeps
 from contactres.measurements.synthetic import SweepGroup, SweepStudy, synthetic_sweeps
 from contactres.report import figures, write_report
 from contactres.report._tables import FORMATS, report_files, sweeps_table
-from contactres.resonators.qcm import QCM
+from contactres.resonators._qcm import QCM
 
 CONST = dict(overtone=3, area_m2=2.5e-5, n_contacts=3, sphere_radius_m=1e-3)
 CSV_JSON = ("csv", "json")

@@ -20,7 +20,7 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
-from ..resonators.qcm import mu_from_slopes
+from ..resonators import mu_from_slopes
 
 __all__ = [
     "COULOMB_LOOPS",

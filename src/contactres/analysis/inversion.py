@@ -249,7 +249,7 @@ def modulus_from_contact_stiffness(
     ----------
     k_star : float or array
         Measured contact stiffness k*, N/m (e.g. from
-        :meth:`contactres.resonators.rum.RUMOscillator.contact_stiffness`).
+        :meth:`contactres.resonators.RUMOscillator.contact_stiffness`).
     tip_radius, load : float or array, optional
         Tip radius R (m) and static load P (N): the Hertz method (Johnson Eq. 4.22-4.23).
         ``load`` also gives the peak pressure with the reference method.

@@ -41,7 +41,7 @@ import numpy as np
 import pandas as pd
 
 from ..errors import ContactresInputError
-from ..resonators.qcm import (
+from ..resonators import (
     DEFAULT_NODES,
     QCM,
     loop_stiffness,
@@ -300,7 +300,7 @@ def loop_fit_fields(A, B, theta, cov, umax) -> dict:
 class _UnitPlateauLoops(MasingLoop):
     """:class:`contactres.PlateauLoop` around ``CattaneoMindlinLoop(1, 1, 1)`` for an array of
     critical displacements ``c`` (one per amplitude), in the form that the Masing quadrature of
-    :mod:`contactres.resonators.qcm` integrates (breaks and singular points per amplitude, last
+    :mod:`contactres.resonators` integrates (breaks and singular points per amplitude, last
     axis)."""
 
     def __init__(self, c):

@@ -73,7 +73,7 @@ from .._version import __version__
 from ..errors import ContactresInputError
 from ..measurements.schema import SWEEP_TABLE
 from ..measurements.sweeps import SweepTable
-from ..resonators.qcm import QCM
+from ..resonators import QCM
 from ..tangential import effective_shear_modulus, shear_modulus
 from ..units import JUNCTION_SIGMAS, LINEAR_ONSET_X, MIN_SWEEP_POINTS, SMALL_LOAD_LIMIT
 from .amplitude import pad_sweeps

@@ -75,7 +75,7 @@ def plateau_loop_slopes(x, c, rule=None) -> tuple[np.ndarray, ...]:
 
     Returns G′ = K′/κ, G″ = (K″ - ωξ)/κ and ∂G′/∂x, ∂G′/∂c, ∂G″/∂x, ∂G″/∂c at x = κu0/(μF_N),
     c = κd_c/(μF_N) (broadcast together, x, c >= 0). Paper 2, Eqs. 4-6 with Masing's rule in
-    the virgin-curve form of :func:`contactres.resonators.qcm.masing_stiffness`, for the slope
+    the virgin-curve form of :func:`contactres.resonators.masing_stiffness`, for the slope
     F′(d) = 1 (d < c), √(1 - 2(d - c)/3) (c < d < e = c + 3/2), 0 beyond:
 
     * G″ = 4/(πx²) [c s(y) + W(y)], y = x - c, with s(y) = y - F_CM(y) and

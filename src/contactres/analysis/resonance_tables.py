@@ -17,13 +17,13 @@ import pandas as pd
 from ..dynamic import prepare
 from ..errors import ContactresInputError
 from ..measurements.messages import at_cell, where_rows
-from ..resonators.cantilever import Cantilever
-from ..resonators.cantilever_inversion import (
+from ..resonators import (
     MODE_TOLERANCE,
+    Cantilever,
+    RUMOscillator,
     flag_names,
     invert_contact_resonance,
 )
-from ..resonators.rum import RUMOscillator
 from .inversion import ModulusFlag, modulus_from_contact_stiffness, surface_material
 
 __all__ = ["AFM_GROUP_COLUMNS", "invert_afm_table", "invert_rum_table"]
@@ -87,7 +87,7 @@ def invert_rum_table(table: pd.DataFrame, source: str = "table") -> pd.DataFrame
 
     Lumped rows: (f/f0)² = 1 + k*/K_eff; rod rows (mass m): k* = (EA/L)(kL) tan(kL) of a rod
     free at one end with the contact spring at the other, EA/L = 4 m f0² (mode 1; see
-    :class:`~contactres.resonators.rum.RUMOscillator`). Raises ValueError naming the line for a
+    :class:`~contactres.resonators.RUMOscillator`). Raises ValueError naming the line for a
     contact resonance below f0 (a spring cannot lower it) or at/above the rod's clamped limit.
     The rows are grouped by their calibration (one oscillator per group; a file rarely holds
     more than a few), each group converted at once.
@@ -235,7 +235,7 @@ def invert_afm_table(
 
     Rows are grouped by their lever and tip geometry (:data:`AFM_GROUP_COLUMNS`) and by whether
     the tip position is given; each group is inverted at once by
-    :func:`~contactres.resonators.cantilever_inversion.invert_contact_resonance` (the modes
+    :func:`~contactres.resonators.invert_contact_resonance` (the modes
     used are the contact-resonance columns given in the row; r blank: solved from two modes; a
     blank Q: no damping for that cell). The modulus step
     (:func:`~contactres.analysis.inversion.modulus_from_contact_stiffness`) runs where

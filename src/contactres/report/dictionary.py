@@ -60,7 +60,7 @@ __all__ = [
 ]
 
 #: The resonance flags of ``afm invert``: the names of
-#: :func:`contactres.resonators.cantilever_inversion.flag_names`, written with hyphens.
+#: :func:`contactres.resonators.flag_names`, written with hyphens.
 RESONANCE_FLAGS = {
     "not-positive": "κ is <= 0, NaN or infinite",
     "below-free": "f below the mode's free frequency: only a negative κ reproduces it",

@@ -1,6 +1,6 @@
 """Contact-resonance AFM: contact stiffness (and tip position, damping) from measured resonances.
 
-The inverse of :mod:`contactres.resonators.cantilever`. For each measured mode n the frequency
+The inverse of :mod:`contactres.resonators`. For each measured mode n the frequency
 gives β_n (the cantilever's normalisation, complex with a quality factor), and κ = k*/k_c follows
 
 * normal spring only: explicitly, κ = 2β³(1 + cos β cosh β)/(3D) (U. Rabe, K. Janser,
@@ -53,7 +53,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import ContactresInputError
-from .cantilever import (
+from ._cantilever import (
     FREE_ROOTS,
     Cantilever,
     beta_from_frequency,
@@ -197,7 +197,7 @@ def kappa_on_branch(beta, mode, tip_position, g):
     beta : real or complex β, broadcasts with mode, tip_position and the g's
     mode : int array, 1-based
     tip_position : r (not validated here; may exceed 1 slightly in the two-mode scan)
-    g : (g_yy, g_yθ, g_θθ) of :func:`~contactres.resonators.cantilever.tip_coefficients`
+    g : (g_yy, g_yθ, g_θθ) of :func:`~contactres.resonators._cantilever.tip_coefficients`
 
     Returns
     -------
@@ -310,7 +310,7 @@ def invert_contact_resonance(
         (the first two measured columns of each pixel), module notes
     q_factors : (..., n_modes) contact-resonance quality factors, or None (σ = NaN)
     lateral_ratio, tip_height, tilt : α = k_lat/k*, η = h/L, φ (degrees), broadcasting with the
-        pixels (:func:`~contactres.resonators.cantilever.tip_coefficients`)
+        pixels (:func:`~contactres.resonators._cantilever.tip_coefficients`)
     modes : mode number (1-based) of each column; default 1..n_modes
     mode_tolerance : relative disagreement of κ between modes beyond which a pixel is flagged
         ``inconsistent_modes``; with r unknown it also picks the crossing that a third mode
