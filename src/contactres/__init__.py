@@ -93,10 +93,10 @@ _EXPORTS: dict[str, str] = {
     "Flag": ".analysis",
     "analyze": ".analysis",
     "Results": ".analysis",
-    "ModulusResult": ".analysis.inversion",
-    "modulus_from_contact_stiffness": ".analysis.inversion",
-    "invert_afm_table": ".analysis.resonance_tables",
-    "invert_rum_table": ".analysis.resonance_tables",
+    "ModulusResult": ".analysis",
+    "modulus_from_contact_stiffness": ".analysis",
+    "invert_afm_table": ".analysis",
+    "invert_rum_table": ".analysis",
     "read_resonance_table": ".measurements.resonances",
     "example_afm_map": ".measurements.afm_example",
     "write_report": ".report",
@@ -160,16 +160,12 @@ if TYPE_CHECKING:
     from .analysis import (
         AnalysisSettings as AnalysisSettings,
         Flag as Flag,
+        ModulusResult as ModulusResult,
         Results as Results,
         analyze as analyze,
-    )
-    from .analysis.inversion import (
-        ModulusResult as ModulusResult,
-        modulus_from_contact_stiffness as modulus_from_contact_stiffness,
-    )
-    from .analysis.resonance_tables import (
         invert_afm_table as invert_afm_table,
         invert_rum_table as invert_rum_table,
+        modulus_from_contact_stiffness as modulus_from_contact_stiffness,
     )
     from .crystals import (
         crystal_names as crystal_names,

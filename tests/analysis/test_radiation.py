@@ -14,8 +14,8 @@ import pandas as pd
 import pytest
 from click.testing import CliRunner
 
-from contactres.analysis.pipeline import AnalysisSettings
-from contactres.analysis.radiation import (
+from contactres.analysis._pipeline import AnalysisSettings
+from contactres.analysis._radiation import (
     RADIATION_RESULTS,
     material_by_name,
     radiation_loss,

@@ -5,7 +5,7 @@ import numpy as np
 import pytest
 
 from contactres.analysis import AnalysisSettings, analyze
-from contactres.analysis.flags import Flag, has
+from contactres.analysis._flags import Flag, has
 from contactres.measurements.sweeps import SweepWarning, validate_sweeps
 from contactres.measurements.synthetic import Drift, SweepGroup, SweepStudy, synthetic_sweeps
 from contactres.resonators._qcm import QCM
@@ -231,7 +231,7 @@ def test_remove_drift_without_times_says_so():
 
 
 def test_student_t_factor_of_an_error_from_few_repeats():
-    from contactres.analysis.jkr import error_dof
+    from contactres.analysis._jkr import error_dof
 
     # Student's table: t(0.975) = 12.706 (1 dof), 3.182 (3), 2.228 (10)
     for dof, t in ((1, 12.706), (3, 3.182), (10, 2.228)):

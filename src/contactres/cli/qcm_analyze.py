@@ -158,7 +158,7 @@ def analyze_command(
 
     Example: contactres qcm analyze src/contactres/data/example_sweeps.csv --out qcm_results
     """
-    from ..analysis.flags import Flag, has
+    from ..analysis import Flag, has
     from ..jobs import qcm_sweeps as job
     from ..report import (
         friction_table,

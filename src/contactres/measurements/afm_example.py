@@ -17,7 +17,7 @@ chain, per grain::
 
 The inversion runs the other way through different code (the closed form of κ(β) in
 :mod:`~contactres.resonators`, E* = √(k*³/(6RP)) in
-:mod:`~contactres.analysis.inversion`), so a noise-free map must come back to the
+:mod:`~contactres.analysis`), so a noise-free map must come back to the
 M_sample of the truth: tests/measurements/test_afm_example.py checks 1e-6.
 """
 

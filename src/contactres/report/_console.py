@@ -13,8 +13,7 @@ import math
 
 import pandas as pd
 
-from ..analysis.radiation import radiation_summary
-from ..analysis.results import Results
+from ..analysis import Results, radiation_summary
 
 __all__ = ["friction_table", "plus_minus", "radiation_lines", "table1_text", "withheld_lines"]
 

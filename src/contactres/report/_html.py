@@ -19,9 +19,7 @@ from pathlib import Path
 import numpy as np
 
 from .._version import __version__
-from ..analysis.curves import PAGE_POINTS, sweep_rows
-from ..analysis.flags import DESCRIPTIONS, Flag, render
-from ..analysis.results import Results
+from ..analysis import DESCRIPTIONS, PAGE_POINTS, Flag, Results, render, sweep_rows
 from ..fileio import write_text
 from ..jobs.qcm_sweeps import summary
 from ..measurements.schema import CONVENTIONS

@@ -23,7 +23,7 @@ write (e.g. its figures) are removed. The columns are those of
     sweeps only; empty for a plateau sweep (flag ``plateau-slope``: the shifts leave a plateau
     with no linear term, so no slope formula holds). ``mu_fit``: μ from the fit of the exact
     loop (Cattaneo-Mindlin, or Cattaneo-Mindlin behind the plateau). ``flags``: ';'-separated
-    (:class:`contactres.analysis.flags.Flag`; the README explains each).
+    (:class:`contactres.analysis.Flag`; the README explains each).
 ``loads.csv``
     one row per (configuration, medium, normal force): ``n_experiments``, ``n_sweeps`` and
     ``<quantity>_mean``, ``<quantity>_sd`` (standard deviation over experiments, ddof = 1) of
@@ -32,7 +32,7 @@ write (e.g. its figures) are removed. The columns are those of
     ``{"groups": [...], "settings": {...}, "version": ..., "conventions": {...}}``; one group per
     (configuration, medium) with the JKR + Mindlin fit (Table 1 of paper 2); with the radiation
     table also ``"radiation": {"sphere_material", "plate_material", "file", "groups": [...]}``
-    (:func:`contactres.analysis.radiation.radiation_summary`: per group the ranges of a and
+    (:func:`contactres.analysis.radiation_summary`: per group the ranges of a and
     tan δ_rad, the medians of tan δ_rad and of its share of the measured loss tangent).
 ``radiation.csv``
     only when the analysis was given the two materials (``--sphere-material`` and

@@ -1,6 +1,6 @@
 """Contact-resonance AFM: contact stiffness (and tip position, damping) from measured resonances.
 
-The inverse of :mod:`contactres.resonators`. For each measured mode n the frequency
+The inverse of :mod:`contactres.resonators._cantilever`. For each measured mode n the frequency
 gives β_n (the cantilever's normalisation, complex with a quality factor), and κ = k*/k_c follows
 
 * normal spring only: explicitly, κ = 2β³(1 + cos β cosh β)/(3D) (U. Rabe, K. Janser,

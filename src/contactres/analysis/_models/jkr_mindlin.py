@@ -1,8 +1,8 @@
 """``jkr-mindlin``: the load dependence κ(F_N) = 2G*a with the JKR contact radius a (paper 2,
 Eqs. 7-10; E1 = E2 = E, ν fixed).
 
-Fitted per configuration and medium by :func:`contactres.analysis.jkr.fit_jkr_mindlin` (not
-per sweep: no :class:`~contactres.analysis.models.base.SweepFit`).
+Fitted per configuration and medium by :func:`contactres.analysis.fit_jkr_mindlin` (not
+per sweep: no :class:`~contactres.analysis._models.base.SweepFit`).
 """
 
 from __future__ import annotations

@@ -1,10 +1,10 @@
 """The batched fit of the exact plateau loop (paper 2, Eqs. 4-6) to the ``plateau`` sweeps.
 
 The loop is :class:`contactres.PlateauLoop` around the Cattaneo-Mindlin loop (see
-:mod:`contactres.analysis.loops`): the contact sticks up to the critical displacement d_c, then
+:mod:`contactres.analysis._loops`): the contact sticks up to the critical displacement d_c, then
 slips as Cattaneo-Mindlin in the excess. The fit Δf = Pκ G′(θu0, θd_c), ΔΓ = P[ωξ + κ
 G″(θu0, θd_c)] (θ = κ/(μF_N)) solves Pκ and Pωξ in closed form for given (θ, d_c) (variable
-projection, :func:`contactres.analysis.loops.solve_projected`) and (ln θ, d_c) by a
+projection, :func:`contactres.analysis._loops.solve_projected`) and (ln θ, d_c) by a
 Levenberg-Marquardt iteration run for all sweeps at once, on the shapes and their derivatives
 in closed form (:func:`plateau_loop_slopes`, elliptic integrals). It starts from the hinge
 position and from the amplitude below it (the better of the two), θ from the Cattaneo-Mindlin
@@ -14,7 +14,7 @@ Pωξ, ln θ, d_c), scaled by the residual variance. The low-amplitude limits of
 its ``plateau_amplitude_m``, then come from this fit (``limits_from`` = ``plateau-loop``).
 
 It replaces a :func:`scipy.optimize.least_squares` fit per sweep on the quadrature of
-:func:`contactres.analysis.loops.plateau_loop_shape` (same starts, passes, bounds and
+:func:`contactres.analysis._loops.plateau_loop_shape` (same starts, passes, bounds and
 tolerances; tests/analysis/test_scale.py compares the two): on the bundled example the
 parameters agree within 1e-3 of their standard errors, at ~1/100 of the cost per sweep. The
 errors differ where d_c sits on its bound 0: there the d_c column of the Jacobian is (to
@@ -32,8 +32,8 @@ from scipy import special
 
 from ..fitting import LMOptions, levenberg_marquardt, solve_stacked
 from ..numerics import gauss_legendre_unit
-from .amplitude import PLATEAU_MIN_SLOPE
-from .loops import X_MAX, LoopTable, fit_cm_loops, loop_fit_fields, solve_projected
+from ._amplitude import PLATEAU_MIN_SLOPE
+from ._loops import X_MAX, LoopTable, fit_cm_loops, loop_fit_fields, solve_projected
 
 __all__ = ["PLATEAU_LOOP_COLUMNS", "fit_plateau_loops", "plateau_loop_slopes"]
 
@@ -71,7 +71,7 @@ PLATEAU_LOOP_COLUMNS = (
 
 
 def plateau_loop_slopes(x, c, rule=None) -> tuple[np.ndarray, ...]:
-    """:func:`contactres.analysis.loops.plateau_loop_shape` in closed form, with derivatives.
+    """:func:`contactres.analysis._loops.plateau_loop_shape` in closed form, with derivatives.
 
     Returns G′ = K′/κ, G″ = (K″ - ωξ)/κ and ∂G′/∂x, ∂G′/∂c, ∂G″/∂x, ∂G″/∂c at x = κu0/(μF_N),
     c = κd_c/(μF_N) (broadcast together, x, c >= 0). Paper 2, Eqs. 4-6 with Masing's rule in

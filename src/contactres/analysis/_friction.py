@@ -57,7 +57,7 @@ class SlopeFriction:
 def slope_friction(sw: pd.DataFrame, P: np.ndarray) -> SlopeFriction:
     """μ from the Δf and ΔΓ slopes with propagated errors (NaN where not a CM sweep).
 
-    ``sw``: the per-sweep fits (:func:`contactres.analysis.classify.fit_sweeps` with the sweep
+    ``sw``: the per-sweep fits (:func:`contactres.analysis._classify.fit_sweeps` with the sweep
     labels); ``P``: the sensitivity of each sweep, Hz per N/m (paper 2, Eq. 1).
     """
     df0 = sw["df0_Hz"].to_numpy()
@@ -116,7 +116,7 @@ def loop_force(A, A_err, theta, lntheta_err, cov, P):
 def loop_fit_force(frame: pd.DataFrame, P: np.ndarray):
     """:func:`loop_force` of the loop fit in the named columns ``df0_Hz``, ``df0_err_Hz``,
     ``theta_per_m``, ``lntheta_err``, ``cov_df0_lntheta``, ``edge`` of ``frame`` (the block
-    table of :func:`contactres.analysis.blocks.choose_blocks`), and where it is resolved
+    table of :func:`contactres.analysis._blocks.choose_blocks`), and where it is resolved
     (Δf0 > 0 and the fit not at an edge of the loop table)."""
     col = {
         c: frame[c].to_numpy()
@@ -143,7 +143,7 @@ LOOP_OF_CLASS = (
 
 def loop_table_force(table: pd.DataFrame, P: np.ndarray):
     """:func:`loop_force` of the rows of an exact loop's fit table (parameters under their
-    keys, :func:`contactres.analysis.models.fit_tables`), and where it is resolved (Δf0 > 0 and
+    keys, :func:`contactres.analysis._models.fit_tables`), and where it is resolved (Δf0 > 0 and
     the fit not at an edge of the loop table)."""
     df0 = table["df0"].to_numpy()
     force, err = loop_force(
@@ -229,7 +229,7 @@ def model_averaged_mu(
     choice. A decisive choice (ΔBIC ≳ 10) leaves the winner's μ and error unchanged.
 
     ``joint``: the fit table of each loop of :data:`COULOMB_LOOPS` (one row per row of
-    ``blocks``, with ``bic_shared``; :func:`contactres.analysis.blocks.choose_blocks`).
+    ``blocks``, with ``bic_shared``; :func:`contactres.analysis._blocks.choose_blocks`).
 
     Returns μ̄, its error and the weight of the plateau loop (NaN where neither loop resolves μ).
     """
@@ -256,7 +256,7 @@ def block_friction(
     """μ (``mu``, ``mu_err``: averaged over the Cattaneo-Mindlin and plateau loops,
     :func:`model_averaged_mu`; ``mu_plateau_weight``) and Savkoor's sliding force
     (``sliding_force_N``, ``sliding_force_err_N``) from the joint fit of every shared block
-    (:func:`contactres.analysis.blocks.choose_blocks`: ``blocks`` with the winner's joint fit,
+    (:func:`contactres.analysis._blocks.choose_blocks`: ``blocks`` with the winner's joint fit,
     ``joint`` every model's joint fit); NaN where none. Returns a new frame."""
     blocks = blocks.copy()
     for col in ("mu", "mu_err", "mu_plateau_weight", "sliding_force_N", "sliding_force_err_N"):

@@ -13,7 +13,7 @@ import numpy as np
 import pandas as pd
 from scipy.special import fdtrc
 
-from .amplitude import Padded
+from ._amplitude import Padded
 
 __all__ = ["LOAD_OF_EXPERIMENT", "drifting_sweeps", "remove_linear_drift"]
 

@@ -1,6 +1,6 @@
 """The model choice of every sweep: low-amplitude limits, slopes and the amplitude class.
 
-Every sweep is fitted with every amplitude model of :mod:`contactres.analysis.models`. With
+Every sweep is fitted with every amplitude model of :mod:`contactres.analysis._models`. With
 ``exact_loop`` (the default) the four classes are represented by the exact descriptions of
 paper 2, each fitted to both channels at once:
 
@@ -9,8 +9,8 @@ paper 2, each fitted to both channels at once:
 ``savkoor``           Savkoor's loop, constant sliding traction τ0 (Eqs. 13-15)    (k = 3)
 ``plateau``           the Cattaneo-Mindlin loop behind a stick plateau d_c          (k = 4)
 
-(:func:`~contactres.analysis.loops.fit_cm_loops` with the Cattaneo-Mindlin and the Savkoor
-tables, :func:`~contactres.analysis.plateau.fit_plateau_loops`). Without it, by their
+(:func:`~contactres.analysis._loops.fit_cm_loops` with the Cattaneo-Mindlin and the Savkoor
+tables, :func:`~contactres.analysis._plateau.fit_plateau_loops`). Without it, by their
 closed-form small-amplitude forms: a straight line in u0 (Eq. 12, k = 4), in u0² (Eq. 15,
 k = 4) and a hinge (flat, then straight; k = 5). The straight line and the parabola are fitted
 in both cases: their slopes and curvatures are reported, and the slopes give μ by Eq. 12.
@@ -25,8 +25,8 @@ Between models that are not nested (Cattaneo-Mindlin, Savkoor; Savkoor, plateau)
 alone decides. The
 runner-up is the class with the lowest BIC among the others, and ``delta_bic`` (column) is its
 BIC minus the winner's: the evidence for the choice (negative, down to -``delta_bic``, where a
-simpler nested class was kept against a slightly better one). :mod:`contactres.analysis.blocks` then
-makes the same choice for the ramps of one load block together.
+simpler nested class was kept against a slightly better one). :mod:`contactres.analysis._blocks`
+then makes the same choice for the ramps of one load block together.
 """
 
 from __future__ import annotations
@@ -37,11 +37,11 @@ from itertools import repeat
 import numpy as np
 import pandas as pd
 
-from .amplitude import Block, Padded, bic
-from .loops import LoopTable, LoopTables, loop_tables
-from .models import AMPLITUDE_MODELS, N_PARAMETERS, SWEEP_FITS
-from .models.base import LoopInputs
-from .models.plateau_loop import fit_plateaus, plateau_start
+from ._amplitude import Block, Padded, bic
+from ._loops import LoopTable, LoopTables, loop_tables
+from ._models import AMPLITUDE_MODELS, N_PARAMETERS, SWEEP_FITS
+from ._models.base import LoopInputs
+from ._models.plateau_loop import fit_plateaus, plateau_start
 
 __all__ = [
     "CLASS_SOURCES",
@@ -66,7 +66,7 @@ CLASS_SOURCES = {
     True: {"elastic": "el", "cattaneo-mindlin": "cm", "savkoor": "sv", "plateau": "pl"},
     False: {"elastic": "el", "cattaneo-mindlin": "line", "savkoor": "parabola", "plateau": "hinge"},
 }
-#: The registered model (:data:`~contactres.analysis.models.REGISTRY`) behind each source.
+#: The registered model (:data:`~contactres.analysis.REGISTRY`) behind each source.
 SOURCE_MODEL = {fit.source: fit.model for fit in SWEEP_FITS}
 #: ``limits_from`` of a sweep whose limits come from each source.
 LIMITS_FROM = {
@@ -88,7 +88,7 @@ FieldTables = dict[str, pd.DataFrame]
 def _fit_block(
     b: Block, exact_loop: bool, tables: LoopTables | None, plateau: np.ndarray
 ) -> tuple[np.ndarray, dict[str, dict[str, np.ndarray]]]:
-    """Every registered sweep model (:data:`~contactres.analysis.models.SWEEP_FITS`, the
+    """Every registered sweep model (:data:`~contactres.analysis._models.SWEEP_FITS`, the
     exact loops only with ``exact_loop``) fitted to one block of sweeps, in the registry's
     order: the largest amplitude of each sweep and the fields of each fit by source (arrays
     with the sweep as last axis); the plateau loop only to the sweeps ``plateau`` (the others
@@ -104,7 +104,7 @@ def _fit_block(
 
 
 def _plateaus_of_rows(b: Block, found, u_c, rss, theta, table: LoopTable) -> dict[str, np.ndarray]:
-    """The plateau loop (:func:`~contactres.analysis.models.plateau_loop.fit_plateaus`) of
+    """The plateau loop (:func:`~contactres.analysis._models.plateau_loop.fit_plateaus`) of
     every sweep of ``b`` (a picklable call for :func:`_run`)."""
     return fit_plateaus(b, found, u_c, rss, theta, table, np.ones(len(b.n), bool))
 
@@ -278,12 +278,12 @@ def fit_sweeps(
 
     Parameters
     ----------
-    p : the sweeps as padded arrays (:func:`contactres.analysis.amplitude.pad_sweeps`)
+    p : the sweeps as padded arrays (:func:`contactres.analysis._amplitude.pad_sweeps`)
     delta_bic : BIC margin within which the simpler model is kept
     exact_loop : the exact loops represent the classes (else their closed-form small-amplitude
         forms)
     tables : the Cattaneo-Mindlin and Savkoor loop tables
-        (:func:`contactres.analysis.loops.loop_tables`; built here if None and ``exact_loop``)
+        (:func:`contactres.analysis._loops.loop_tables`; built here if None and ``exact_loop``)
     workers : processes for the fits of the blocks of sweeps (1: none, in this process). More
         than one pays from ~10^4 sweeps on (both cores of a 2-core machine: ~1.8x faster at
         10^5 sweeps); it starts a process pool, so a script calling it must be importable
@@ -300,13 +300,13 @@ def fit_sweeps(
         slopes (straight line; a found hinge for a plateau) and curvatures (parabola), the
         plateau's critical displacement, the noise levels (straight line), ``bic_<class>``,
         ``model``, ``runner_up`` and ``delta_bic`` (:func:`choose`), ``model_sweep`` (the same
-        as ``model`` here; :mod:`contactres.analysis.blocks` may change ``model``).
+        as ``model`` here; :mod:`contactres.analysis._blocks` may change ``model``).
     fields : FieldTables
         Every fit's fields by source, one row per row of ``sweeps``: ``el``, ``line``,
         ``parabola``, ``hinge`` and, with ``exact_loop``, the loop fits ``cm``, ``sv``
-        (columns of :func:`~contactres.analysis.loops.fit_cm_loops`) and ``pl`` (of
-        :func:`~contactres.analysis.plateau.fit_plateau_loops`); named as the fitters name
-        them (:func:`contactres.analysis.models.fit_tables` gives them the registry's names).
+        (columns of :func:`~contactres.analysis._loops.fit_cm_loops`) and ``pl`` (of
+        :func:`~contactres.analysis._plateau.fit_plateau_loops`); named as the fitters name
+        them (:func:`contactres.analysis._models.fit_tables` gives them the registry's names).
     """
     n = p.n.astype(float)
     if exact_loop and tables is None:

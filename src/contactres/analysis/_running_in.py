@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from .drift import LOAD_OF_EXPERIMENT
+from ._drift import LOAD_OF_EXPERIMENT
 
 __all__ = ["QUANTITIES", "running_in"]
 

@@ -33,7 +33,7 @@ is the change of the elastic part with frequency. The JKR + Mindlin fit treats �
 stiffness; with κ = E^(2/3) h(F_N, γ) (E enters paper 2, Eqs. 7-10 only as this power) a factor
 s = Re K/K₀ common to all loads biases E by s^(3/2) (relative change of the static E ≈ −(3/2)
 (s − 1) to first order) and leaves γ alone. Since s depends on a, i.e. on the load, E is refitted
-instead: κ / s per point with :func:`contactres.analysis.jkr.fit_jkr_mindlin`, the group's own
+instead: κ / s per point with :func:`contactres.analysis.fit_jkr_mindlin`, the group's own
 fit (``E_static_corrected_Pa``, ``E_relative_change``). The radius stays that of the uncorrected
 fit (a second-order effect).
 
@@ -57,8 +57,8 @@ from ..errors import ContactresInputError
 from ..materials import Material, at_cut_quartz
 from ..measurements.schema import RADIATION_RESULTS
 from ..normal.isotropic import effective_modulus, jkr_contact_radius
-from .jkr import fit_jkr_mindlin
-from .loads import LOAD_KEYS
+from ._jkr import fit_jkr_mindlin
+from ._loads import LOAD_KEYS
 
 __all__ = [
     "AT_CUT_PLATE",
@@ -187,17 +187,17 @@ def radiation_loss(
     Parameters
     ----------
     loads : one row per (configuration, medium, normal force) with ``loss_tangent_mean`` and
-        ``loss_tangent_sem`` (:attr:`contactres.analysis.results.Results.loads`)
+        ``loss_tangent_sem`` (:attr:`contactres.analysis.Results.loads`)
     groups : the JKR fits, one dict per (configuration, medium) with ``E_Pa`` (Pa),
         ``gamma_J_m2`` (J/m²), ``sphere_radius_m`` (m), ``poisson`` and ``checks``
-        (:attr:`~contactres.analysis.results.Results.groups`); NaN E: no radius, NaN row
+        (:attr:`~contactres.analysis.Results.groups`); NaN E: no radius, NaN row
     sphere, plate : the two bodies (:class:`contactres.Material` with density, each in its own
         surface frame) or names for :func:`material_by_name` (e.g. "soda-lime-glass",
         "quartz-AT")
     frequency_Hz : the overtone frequency f, Hz: one number or one per row of ``loads``
         (:func:`load_frequencies`)
     experiments : the points of the JKR fits, one row per experiment and load, with
-        ``kappa_N_per_m`` (:attr:`~contactres.analysis.results.Results.experiments`); None:
+        ``kappa_N_per_m`` (:attr:`~contactres.analysis.Results.experiments`); None:
         the loads' ``kappa_N_per_m_mean`` (E is then refitted on the means)
 
     Returns

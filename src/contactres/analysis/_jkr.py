@@ -2,7 +2,7 @@
 
 κ(F_N) of every experiment and load is fitted with JKR (paper 2, Eq. 9) + Mindlin (κ = 2G*a,
 Eqs. 7, 8, 10) with E1 = E2 = E and ν fixed, E and γ free (the model ``jkr-mindlin`` of
-:data:`contactres.analysis.models.REGISTRY`); standard errors from the Jacobian scaled by the
+:data:`contactres.analysis.REGISTRY`); standard errors from the Jacobian scaled by the
 residual variance, and a bootstrap over experiments (seeded).
 """
 
@@ -17,7 +17,7 @@ from scipy import stats
 from ..errors import ContactresInputError
 from ..fitting import FitResult, fit
 from ..tangential import kappa_jkr_mindlin
-from .models import REGISTRY
+from ._models import REGISTRY
 
 __all__ = [
     "E_RANGE_PA",

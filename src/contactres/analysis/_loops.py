@@ -9,7 +9,7 @@ projection: for fixed θ, Pκ and Pωξ follow in closed form; θ is found by a 
 (Pκ, Pωξ, ln θ), scaled by the residual variance. Points are weighted by the noise level of
 each channel taken from the straight-line fit.
 
-**Plateau loop.** A sweep classified ``plateau`` is refitted (:mod:`contactres.analysis.plateau`)
+**Plateau loop.** A sweep classified ``plateau`` is refitted (:mod:`contactres.analysis._plateau`)
 with the loop of :class:`contactres.PlateauLoop` around the Cattaneo-Mindlin loop: the contact
 sticks up to the critical displacement d_c, then slips as Cattaneo-Mindlin in the excess
 d - d_c. In units of μF_N/κ (x = κu0/(μF_N), c = κd_c/(μF_N), y = x - c) its shapes depend on
@@ -24,7 +24,7 @@ The loss part is the table at the shifted argument y plus a closed-form term (ve
 √((e + c)(y - e)) is not the weight of any single Cattaneo-Mindlin amplitude.
 :func:`plateau_loop_shape` integrates both with the package's Masing-loop quadrature (relative
 accuracy 1e-9, vectorised over amplitudes): the reference that the closed form of
-:func:`contactres.analysis.plateau.plateau_loop_slopes`, which the fit uses, is checked against.
+:func:`contactres.analysis._plateau.plateau_loop_slopes`, which the fit uses, is checked against.
 
 Near d_c the shifts leave the plateau as K″ - ωξ ≈ (2/(3π)) κ²v²/(μF_N d_c) and
 K′ - κ ≈ -(32/(45π)) κ²v^{5/2}/(μF_N d_c^{3/2}) in the excess v = u0 - d_c ≪ d_c, μF_N/κ
@@ -113,7 +113,7 @@ def cm_loop_table() -> LoopTable:
     Made from the forward model (paper 2, Eqs. 4-6 with Masing's rule) with κ = μF_N = 1, so
     x = u0, on a grid 0 <= x <= X_MAX (uniform, refined near full sliding at x = 3/2); linear
     interpolation in it is accurate to 1e-6 (a test checks). Costs ~0.1 s: build it once and
-    pass it to :func:`fit_cm_loops` (and :func:`contactres.analysis.classify.fit_sweeps`).
+    pass it to :func:`fit_cm_loops` (and :func:`contactres.analysis._classify.fit_sweeps`).
     """
     return _loop_table(CattaneoMindlinLoop(kappa=1.0, mu=1.0, normal_force=1.0), 1.5)
 
@@ -294,7 +294,7 @@ def loop_fit_fields(A, B, theta, cov, umax) -> dict:
 
 
 # --------------------------------------------------------------------------------------------
-# Plateau loop (the quadrature reference; the fit is in contactres.analysis.plateau)
+# Plateau loop (the quadrature reference; the fit is in contactres.analysis._plateau)
 
 
 class _UnitPlateauLoops(MasingLoop):

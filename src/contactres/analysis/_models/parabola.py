@@ -2,14 +2,14 @@
 loop (constant sliding traction; paper 2, Eq. 15).
 
 Fitted in closed form to both channels as a straight line in u0²
-(:func:`contactres.analysis.amplitude.fit_line`); its slopes are the reported curvatures.
+(:func:`contactres.analysis._amplitude.fit_line`); its slopes are the reported curvatures.
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from ..amplitude import fit_line
+from .._amplitude import fit_line
 from .base import CURVATURES, SweepFit, amplitude_model, closed_form_fields, closed_form_table
 
 __all__ = ["FIT", "MODEL"]

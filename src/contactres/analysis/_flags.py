@@ -12,7 +12,7 @@ import enum
 import numpy as np
 
 from ..units import JUNCTION_SIGMAS, LINEAR_ONSET_X, MIN_SWEEP_POINTS, SMALL_LOAD_LIMIT
-from .loops import X_MAX
+from ._loops import X_MAX
 
 __all__ = ["DESCRIPTIONS", "Flag", "has", "render"]
 

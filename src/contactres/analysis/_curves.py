@@ -2,14 +2,14 @@
 
 The figures (paper 2, Fig. 4) and the HTML page draw each sweep's points with the curve of the
 model chosen for it. Both are computed here, once, by the analysis, and carried by the results
-(:attr:`contactres.analysis.results.Results.points`, :attr:`~contactres.analysis.results.
+(:attr:`contactres.analysis.Results.points`, :attr:`~contactres.analysis._results.
 Results.curves`), so that the report draws numbers and never evaluates a model (the exact loops
 are quadratures) or reads the analysis' internal arrays.
 
-The curve of a sweep is the registered model function (:mod:`contactres.analysis.models`) of
+The curve of a sweep is the registered model function (:mod:`contactres.analysis._models`) of
 its class, evaluated with its fitted values; a sweep whose limits come from an exact loop (the
 Cattaneo-Mindlin, Savkoor or plateau loop, paper 2, Eqs. 4-6 and 13-14) is drawn as that loop
-(:func:`~contactres.analysis.models.model_curves`, the same function per sweep), with the
+(:func:`~contactres.analysis._models.model_curves`, the same function per sweep), with the
 values of that loop's fit table (``Results.fits``); a closed form with the named columns of
 the sweep results. The grid runs from u0 = 0 to the sweep's largest amplitude in
 :data:`FIGURE_POINTS` (Fig. 4) and :data:`PAGE_POINTS` (the inline SVG of the page) equal
@@ -24,8 +24,8 @@ import numpy as np
 import pandas as pd
 
 from ..errors import ContactresInputError
-from .amplitude import Padded
-from .models import EXACT_LOOPS, REGISTRY, exact_model, model_curves
+from ._amplitude import Padded
+from ._models import EXACT_LOOPS, REGISTRY, exact_model, model_curves
 
 __all__ = [
     "CURVE_GRIDS",
@@ -111,9 +111,9 @@ def fitted_curves(sw: pd.DataFrame, p: Padded, fits: Fits, grids=CURVE_GRIDS) ->
     ----------
     sw : the per-sweep results (``sweep``, ``model``, ``limits_from`` and the fitted values of
         the closed forms in the columns that the registered parameters name)
-    p : the sweeps' points (:func:`contactres.analysis.amplitude.pad_sweeps`), for the
+    p : the sweeps' points (:func:`contactres.analysis._amplitude.pad_sweeps`), for the
         largest amplitude of each
-    fits : the fit table of each model (:func:`contactres.analysis.models.fit_tables`,
+    fits : the fit table of each model (:func:`contactres.analysis._models.fit_tables`,
         ``Results.fits``): the exact loops' values, by sweep
     grids : numbers of grid points (each a grid from 0 to the largest amplitude)
 

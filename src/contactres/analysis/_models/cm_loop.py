@@ -2,8 +2,8 @@
 Eqs. 4-6, Masing loops, and Eq. 12).
 
 Δf = Pκ g1(x), ΔΓ = Pωξ + Pκ g2(x) with x = θu0, θ = κ/(μF_N)
-(:func:`contactres.analysis.loops.cm_loop_shape`). Fitted by variable projection on the loop
-table (:func:`contactres.analysis.loops.fit_cm_loops`), each channel weighted by the noise
+(:func:`contactres.analysis._loops.cm_loop_shape`). Fitted by variable projection on the loop
+table (:func:`contactres.analysis._loops.fit_cm_loops`), each channel weighted by the noise
 level of the straight line (``line``, fitted before it).
 """
 
@@ -12,7 +12,7 @@ from __future__ import annotations
 import numpy as np
 
 from ...fitting import Model
-from ..loops import cm_loop_shape, fit_cm_loops
+from .._loops import cm_loop_shape, fit_cm_loops
 from .base import LOOP_TABLE, SweepFit, loop_parameters
 
 __all__ = ["FIT", "MODEL", "line_noise"]

@@ -16,7 +16,7 @@ from dataclasses import dataclass
 import numpy as np
 import pandas as pd
 
-from .drift import LOAD_OF_EXPERIMENT
+from ._drift import LOAD_OF_EXPERIMENT
 
 __all__ = ["RampCheck", "check_ramps"]
 
@@ -48,7 +48,7 @@ def check_ramps(info: pd.DataFrame, first_line: np.ndarray, direction: np.ndarra
     """Check the ramp labels of every load of every experiment against the data.
 
     ``info``: one row per sweep with ``sweep``, ``ramp`` and the columns of
-    :data:`~contactres.analysis.drift.LOAD_OF_EXPERIMENT`; ``first_line``: the line of each
+    :data:`~contactres.analysis._drift.LOAD_OF_EXPERIMENT`; ``first_line``: the line of each
     sweep's first row in the file; ``direction``: ``up``, ``down`` or ``mixed`` from the order of
     its amplitudes in the file. A table without ramp labels (ramp 0) is not checked.
     """

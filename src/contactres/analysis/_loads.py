@@ -11,7 +11,7 @@ import numpy as np
 import pandas as pd
 
 from ..measurements.schema import LOAD_QUANTITIES
-from .jkr import t95_factor
+from ._jkr import t95_factor
 
 __all__ = ["GROUP_KEYS", "LOAD_KEYS", "QUANTITIES", "per_experiment", "per_load"]
 

@@ -1,15 +1,15 @@
 """The analysis of QCM amplitude sweeps (paper 2): sweeps -> loads -> JKR modulus and adhesion.
 
 :func:`analyze` is a pure function of (sweep table, settings) and returns a
-:class:`contactres.analysis.results.Results`. Its steps:
+:class:`contactres.analysis.Results`. Its steps:
 
-1. **Per sweep** (:mod:`contactres.analysis.classify`, all sweeps at once): every amplitude
-   model of the registry fitted by its batched fitter (:mod:`contactres.analysis.models`; one
+1. **Per sweep** (:mod:`contactres.analysis._classify`, all sweeps at once): every amplitude
+   model of the registry fitted by its batched fitter (:mod:`contactres.analysis._models`; one
    fit table per model in ``Results.fits``): the exact Cattaneo-Mindlin, Savkoor and plateau
    loops, the elastic mean, and the straight line and parabola for slopes and curvatures; and
    the class of the sweep alone (lowest BIC, a nested simpler class kept within
    ``delta_bic``). Then **per load block**
-   (:mod:`contactres.analysis.blocks`): the used ramps of one load of one experiment get one
+   (:mod:`contactres.analysis._blocks`): the used ramps of one load of one experiment get one
    class, chosen from all their points (shared parameters, or each ramp its own where the data
    demand it); the limits Δf0, ΔΓ0 with standard errors and the critical displacement of a
    plateau come from each sweep's fit of that class.
@@ -39,7 +39,7 @@
    error (the air recipe, 0.3 Hz noise and u0 <= 10 nm: unbiased, z standard deviation 1.2).
 4. **Flags**: ``first-ramp`` (the first ramp of a load in the file set aside as running-in unless
    ``keep_first_ramp``), ``ramp-order`` (ramp labels that disagree with the file order or the
-   amplitudes, :mod:`contactres.analysis.ramps`),
+   amplitudes, :mod:`contactres.analysis._ramps`),
    ``few-points`` (< 4 points: not used), ``drift`` (the used ramps of one load of one experiment
    are offset from each other beyond noise: F test of per-ramp offsets on a common quadratic,
    false-alarm probability ``drift_p``),
@@ -54,11 +54,11 @@
    ``poisson``), E and γ free; standard errors from the Jacobian scaled by the residual
    variance, and a bootstrap over experiments (``bootstrap`` resamples, seeded).
 7. **Curves**: the points of every sweep as fitted and its chosen model on the grids the
-   report draws (:mod:`contactres.analysis.curves`; ``Results.points``, ``Results.curves``).
+   report draws (:mod:`contactres.analysis._curves`; ``Results.points``, ``Results.curves``).
 8. **Radiation** (only with ``sphere_material`` and ``plate_material``): the loss tangent of
    the sound the contact radiates into sphere and plate at each load's JKR contact radius and
    overtone frequency, its share of the measured ΔΓ0/Δf0, and E refitted for the dynamic
-   softening of κ (:mod:`contactres.analysis.radiation`; ``Results.radiation``).
+   softening of κ (:mod:`contactres.analysis._radiation`; ``Results.radiation``).
 """
 
 from __future__ import annotations
@@ -76,20 +76,20 @@ from ..measurements.sweeps import SweepTable
 from ..resonators import QCM
 from ..tangential import effective_shear_modulus, shear_modulus
 from ..units import JUNCTION_SIGMAS, LINEAR_ONSET_X, MIN_SWEEP_POINTS, SMALL_LOAD_LIMIT
-from .amplitude import pad_sweeps
-from .blocks import block_codes, choose_blocks
-from .classify import apply_models, fit_sweeps
-from .curves import fitted_curves, sweep_points
-from .drift import LOAD_OF_EXPERIMENT, drifting_sweeps, remove_linear_drift
-from .flags import Flag
-from .friction import block_friction, loop_friction, slope_friction
-from .jkr import fit_group
-from .loads import GROUP_KEYS, per_experiment, per_load
-from .loops import X_MAX, loop_tables
-from .models import AMPLITUDE_MODELS, fit_tables
-from .ramps import check_ramps
-from .results import Results
-from .running_in import running_in
+from ._amplitude import pad_sweeps
+from ._blocks import block_codes, choose_blocks
+from ._classify import apply_models, fit_sweeps
+from ._curves import fitted_curves, sweep_points
+from ._drift import LOAD_OF_EXPERIMENT, drifting_sweeps, remove_linear_drift
+from ._flags import Flag
+from ._friction import block_friction, loop_friction, slope_friction
+from ._jkr import fit_group
+from ._loads import GROUP_KEYS, per_experiment, per_load
+from ._loops import X_MAX, loop_tables
+from ._models import AMPLITUDE_MODELS, fit_tables
+from ._ramps import check_ramps
+from ._results import Results
+from ._running_in import running_in
 
 __all__ = ["AnalysisSettings", "analyze"]
 
@@ -109,7 +109,7 @@ class AnalysisSettings:
     remove_drift : where the table has ``time_s``, remove a drift linear in time from the loads
         found drifting, test them again and use those that pass (flag ``drift-removed``)
     pool_experiments : decide the friction law (Coulomb or Savkoor) once per experiment from
-        all its loads (:mod:`contactres.analysis.blocks`); False: per load block
+        all its loads (:mod:`contactres.analysis._blocks`); False: per load block
     delta_bic : BIC margin within which the simpler amplitude model is kept
     drift_p : false-alarm probability of the drift test
     bootstrap : number of bootstrap resamples over experiments for E and γ (0: none)
@@ -119,10 +119,10 @@ class AnalysisSettings:
     zq : shear-wave impedance of the quartz, kg m⁻² s⁻¹
     workers : processes for the per-sweep and per-block fits (1: none; more pay from ~10^4
         sweeps on; a script that passes more must be importable where processes are spawned,
-        see :func:`contactres.analysis.classify.fit_sweeps`)
+        see :func:`contactres.analysis._classify.fit_sweeps`)
     sphere_material, plate_material : str or None
         Names of the two bodies for the radiation loss of the contact
-        (:func:`contactres.analysis.radiation.material_by_name`: a built-in solid, e.g.
+        (:func:`contactres.analysis.material_by_name`: a built-in solid, e.g.
         ``"soda-lime-glass"`` or ``"glass"``; the plate also ``"quartz-AT"``, the AT-cut quartz
         of the QCM); both or neither (None: no radiation table).
     """
@@ -161,7 +161,7 @@ class AnalysisSettings:
             )
         if self.sphere_material is not None:
             # Imported here: an analysis without materials loads no half-space or dynamic solver.
-            from .radiation import material_by_name
+            from ._radiation import material_by_name
 
             material_by_name(self.sphere_material, "sphere")  # ValueError naming the known
             material_by_name(self.plate_material, "plate")
@@ -235,7 +235,7 @@ def analyze(
 
     Returns
     -------
-    contactres.analysis.results.Results
+    contactres.analysis.Results
     """
     if not isinstance(table, SweepTable):
         raise TypeError(
@@ -405,7 +405,7 @@ def analyze(
     radiation = None
     if settings.sphere_material is not None and settings.plate_material is not None:
         say("radiation loss of the contacts")
-        from .radiation import load_frequencies, radiation_loss
+        from ._radiation import load_frequencies, radiation_loss
 
         radiation = radiation_loss(
             loads,

@@ -2,8 +2,8 @@
 a dashpot (paper 2, Eqs. 4-6 with Masing's rule, Fig. 4C, D, and Eq. 12).
 
 Linear up to the critical displacement d_c, then the Cattaneo-Mindlin loop in the excess
-(:class:`contactres.PlateauLoop`, :func:`contactres.analysis.loops.plateau_loop_shape`).
-Fitted by :func:`contactres.analysis.plateau.fit_plateau_loops` (the batched
+(:class:`contactres.PlateauLoop`, :func:`contactres.analysis._loops.plateau_loop_shape`).
+Fitted by :func:`contactres.analysis._plateau.fit_plateau_loops` (the batched
 Levenberg-Marquardt solver), started from the hinge (``hinge``) and from the Cattaneo-Mindlin
 loop (``cm``), both fitted before it.
 """
@@ -13,9 +13,9 @@ from __future__ import annotations
 import numpy as np
 
 from ...fitting import Model, Parameter
-from ..amplitude import PLATEAU_MIN_FLAT, PLATEAU_MIN_SLOPE
-from ..loops import plateau_loop_shape
-from ..plateau import PLATEAU_LOOP_COLUMNS, fit_plateau_loops
+from .._amplitude import PLATEAU_MIN_FLAT, PLATEAU_MIN_SLOPE
+from .._loops import plateau_loop_shape
+from .._plateau import PLATEAU_LOOP_COLUMNS, fit_plateau_loops
 from .base import LOOP_TABLE, SweepFit, loop_parameters
 
 __all__ = ["FIT", "MODEL", "fit_plateaus", "plateau_start"]

@@ -2,7 +2,7 @@
 (paper 2, Eqs. 13-14 with Masing's rule, and Eq. 12).
 
 Δf = Pκ g1(x), ΔΓ = Pωξ + Pκ g2(x) with x = u0/d_s, d_s = 4a²τ0/κ the amplitude of full
-sliding (:func:`contactres.analysis.loops.savkoor_loop_shape`). Fitted like the
+sliding (:func:`contactres.analysis._loops.savkoor_loop_shape`). Fitted like the
 Cattaneo-Mindlin loop, on Savkoor's table.
 """
 
@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 from ...fitting import Model
-from ..loops import fit_cm_loops, savkoor_loop_shape
+from .._loops import fit_cm_loops, savkoor_loop_shape
 from .base import LOOP_TABLE, SweepFit, loop_parameters
 from .cm_loop import line_noise
 

@@ -2,7 +2,7 @@
 
 The used ramps of one load of one experiment (ramps 2-4 in paper 2's protocol) measure the same
 contact, so their class is chosen from all their points at once, which is far more decisive than
-each sweep alone. For every class of :data:`~contactres.analysis.models.AMPLITUDE_MODELS` two
+each sweep alone. For every class of :data:`~contactres.analysis._models.AMPLITUDE_MODELS` two
 descriptions of the block compete (k parameters of the class's fit, plus the two noise levels
 of Δf and ΔΓ, n the points of the block, N = 2n the residuals):
 
@@ -14,9 +14,9 @@ of Δf and ΔΓ, n the points of the block, N = 2n the residuals):
 
 so that ramp-to-ramp differences are allowed where the data demand them. The class of the
 lowest of these 2 x 4 criteria wins, except that a candidate nested in it (a nested class,
-:data:`~contactres.analysis.classify.NESTED`, and ``shared`` within ``per ramp``) is kept within
+:data:`~contactres.analysis._classify.NESTED`, and ``shared`` within ``per ramp``) is kept within
 ``delta_bic`` of the lowest, the simplest first, as for one sweep
-(:mod:`contactres.analysis.classify`). The runner-up is the best candidate of another class and
+(:mod:`contactres.analysis._classify`). The runner-up is the best candidate of another class and
 ``delta_bic`` its criterion minus the winner's. Every sweep of the block takes the block's
 class; its own parameters come from its own fit of that class. The friction law (Coulomb:
 Cattaneo-Mindlin or plateau; or Savkoor's constant traction) is first decided per experiment
@@ -30,8 +30,8 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from .amplitude import Padded, bic, pad_sweeps
-from .classify import (
+from ._amplitude import Padded, bic, pad_sweeps
+from ._classify import (
     CLASS_SOURCES,
     NESTED,
     SOURCE_MODEL,
@@ -43,9 +43,9 @@ from .classify import (
     source_rss,
     source_valid,
 )
-from .drift import LOAD_OF_EXPERIMENT
-from .loops import LoopTables
-from .models import AMPLITUDE_MODELS, fit_tables
+from ._drift import LOAD_OF_EXPERIMENT
+from ._loops import LoopTables
+from ._models import AMPLITUDE_MODELS, fit_tables
 
 __all__ = ["BLOCK_COLUMNS", "PLATEAU_CONTENDER", "block_codes", "choose_blocks"]
 
@@ -152,8 +152,8 @@ def choose_blocks(
     Parameters
     ----------
     p : the sweeps as padded arrays (the order of ``sw``)
-    sw : the per-sweep fits (:func:`~contactres.analysis.classify.fit_sweeps`) with the labels
-        of :data:`~contactres.analysis.drift.LOAD_OF_EXPERIMENT`; the sweeps of a block need not
+    sw : the per-sweep fits (:func:`~contactres.analysis._classify.fit_sweeps`) with the labels
+        of :data:`~contactres.analysis._drift.LOAD_OF_EXPERIMENT`; the sweeps of a block need not
         have the plateau loop fitted (it is added where the block's plateau is a contender)
     fields : the fields of the per-sweep fits, by source (from the same call), in the order
         of ``sw``
@@ -174,7 +174,7 @@ def choose_blocks(
     sw, fields : ``sw`` and ``fields`` with the plateau loop fitted to the sweeps of the
         contending blocks
     joint : every model's joint fit of every block: its fit table
-        (:func:`contactres.analysis.models.fit_tables`, ``block`` in place of ``sweep``, one row
+        (:func:`contactres.analysis._models.fit_tables`, ``block`` in place of ``sweep``, one row
         per row of ``blocks``); the Coulomb loops' with ``bic_shared``, their shared criterion
         ({} where there is no block)
     """

@@ -19,9 +19,9 @@ and the model of the load dependence, ``jkr-mindlin``: κ(F_N) = 2G*a with the J
 radius (paper 2, Eqs. 7-10; module jkr_mindlin). Each module holds the model's metadata
 (``MODEL``, a :class:`contactres.fitting.Model`: parameters with keys, units, bounds, fixed
 flags, and the model function) and, for a model fitted to every sweep, its batched fitter
-(``FIT``, a :class:`~contactres.analysis.models.base.SweepFit`). The analysis fits every
+(``FIT``, a :class:`~contactres.analysis._models.base.SweepFit`). The analysis fits every
 registered sweep model through :data:`SWEEP_FITS`
-(:func:`contactres.analysis.classify.fit_sweeps`) and keeps one fit table per model
+(:func:`contactres.analysis._classify.fit_sweeps`) and keeps one fit table per model
 (:func:`fit_tables`, ``Results.fits``). A new model is one new module and one line in
 :data:`MODULES`. The tests check each fitter against
 :func:`contactres.fitting.fit` on the registered function (a second algorithm).
@@ -107,7 +107,7 @@ def model_curves(row, u, loop=None) -> tuple[np.ndarray, np.ndarray]:
 
 def fit_tables(sweep, fields: Mapping[str, pd.DataFrame]) -> dict[str, pd.DataFrame]:
     """One table per registered sweep model fitted in ``fields`` (the fields of each fit by
-    source, :data:`contactres.analysis.classify.FieldTables`): ``sweep`` (the ids of the rows)
+    source, :data:`contactres.analysis._classify.FieldTables`): ``sweep`` (the ids of the rows)
     and the fields under the names of :attr:`SweepFit.table` (the parameters under their
     keys), one row per sweep.
 

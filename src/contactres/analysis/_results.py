@@ -24,12 +24,12 @@ class Results:
         from the input, and what the model choice used (``n_points``, ``u_max_m``, the noise
         levels ``sigma_df_Hz``, ``sigma_dgamma_Hz``, ``bic_<class>``, ``limits_from``,
         ``P_Hz_per_N_per_m``, ``block``, ...); ``flags`` is a bit mask of
-        :class:`contactres.analysis.flags.Flag` (text only when written)
+        :class:`contactres.analysis.Flag` (text only when written)
     fits : one table per registered model fitted to every sweep (key of
-        :data:`contactres.analysis.models.REGISTRY` -> DataFrame, one row per sweep in the order
+        :data:`contactres.analysis.REGISTRY` -> DataFrame, one row per sweep in the order
         of ``sweeps``): ``sweep``, the parameters under their keys with their standard errors
         (``<key>_err``), the residual sums ``rss_df``, ``rss_dgamma`` and the fit's other fields
-        (:func:`contactres.analysis.models.fit_tables`); the exact loops only with
+        (:func:`contactres.analysis._models.fit_tables`); the exact loops only with
         ``exact_loop``
     loads : one row per (configuration, medium, normal force)
     experiments : one row per (configuration, medium, normal force, experiment): the means of
@@ -40,17 +40,17 @@ class Results:
     table : the input sweep table
     points : one row per point as the analysis fitted it (after any drift correction):
         ``sweep``, ``amplitude_m``, ``df_Hz``, ``dgamma_Hz``
-        (:func:`contactres.analysis.curves.sweep_points`)
+        (:func:`contactres.analysis._curves.sweep_points`)
     curves : the model chosen for each sweep on the grids the report draws: ``sweep``,
         ``grid_points``, ``amplitude_m``, ``df_model_Hz``, ``dgamma_model_Hz``
-        (:func:`contactres.analysis.curves.fitted_curves`)
+        (:func:`contactres.analysis._curves.fitted_curves`)
     messages : what the analysis found odd in the input, one line each (e.g. ramp labels that
         disagree with the file order)
-    blocks : one row per load block judged jointly (:mod:`contactres.analysis.blocks`)
+    blocks : one row per load block judged jointly (:mod:`contactres.analysis._blocks`)
     block_fits : every model's joint fit of every load block, like ``fits`` with ``block`` in
         place of ``sweep`` (the Coulomb loops' with ``bic_shared``, their shared criterion)
     radiation : one row per load: the radiation loss of the contact against the measured one
-        (:func:`contactres.analysis.radiation.radiation_loss`; None: no materials were given)
+        (:func:`contactres.analysis.radiation_loss`; None: no materials were given)
     """
 
     sweeps: pd.DataFrame

@@ -1,7 +1,7 @@
 """``cattaneo-mindlin`` (closed form): a straight line in u0, the small-amplitude form of the
 Cattaneo-Mindlin loop (paper 2, Eq. 12).
 
-Fitted in closed form to both channels (:func:`contactres.analysis.amplitude.fit_line`); its
+Fitted in closed form to both channels (:func:`contactres.analysis._amplitude.fit_line`); its
 residuals also give the noise levels that weight the exact loops, and its slopes μ by Eq. 12.
 """
 
@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..amplitude import fit_line
+from .._amplitude import fit_line
 from .base import SLOPES, SweepFit, amplitude_model, closed_form_fields, closed_form_table
 
 __all__ = ["FIT", "MODEL"]

@@ -1,4 +1,4 @@
-"""What every amplitude model module of :mod:`contactres.analysis.models` declares.
+"""What every amplitude model module of :mod:`contactres.analysis._models` declares.
 
 A model module holds the model's metadata (:class:`contactres.fitting.Model`: parameters with
 keys, units, bounds, fixed flags, and the model function) and, for a model that the analysis
@@ -85,7 +85,7 @@ def loop_parameters(scale: str = "κ/(μF_N)") -> tuple[Parameter, ...]:
 @dataclass(frozen=True)
 class LoopInputs:
     """What the fitters of the exact loops need besides the points: the loop tables
-    (:func:`contactres.analysis.loops.loop_tables`) and which sweeps get the plateau loop."""
+    (:func:`contactres.analysis._loops.loop_tables`) and which sweeps get the plateau loop."""
 
     tables: object  # LoopTables
     plateau: np.ndarray  # (S,) bool
@@ -97,10 +97,10 @@ class SweepFit:
 
     Attributes
     ----------
-    model : key of the model in :data:`contactres.analysis.models.REGISTRY`
+    model : key of the model in :data:`contactres.analysis.REGISTRY`
     source : the short name of the fit (``el``, ``line``, ... ``pl``): the key of its field
-        table in the analysis (:data:`contactres.analysis.classify.FieldTables`), and its name
-        in the model choice (:data:`contactres.analysis.classify.CLASS_SOURCES`)
+        table in the analysis (:data:`contactres.analysis._classify.FieldTables`), and its name
+        in the model choice (:data:`contactres.analysis._classify.CLASS_SOURCES`)
     exact : fitted only with ``exact_loop`` (the exact loops)
     fit : ``fit(block, done, inputs) -> {field: (S,) array}``; ``done`` holds the fields of the
         fits before it, by source (a fit may start from or be weighted by an earlier one)
@@ -119,7 +119,7 @@ class SweepFit:
 
 def closed_form_fields(fit) -> dict[str, np.ndarray]:
     """The fields of a closed-form straight-line fit (both channels) in the order the analysis
-    keeps them; ``fit`` is a :class:`contactres.analysis.amplitude.LineFit`."""
+    keeps them; ``fit`` is a :class:`contactres.analysis._amplitude.LineFit`."""
     out = {}
     for c, name in enumerate(("df", "dgamma")):
         out[f"{name}0_Hz"] = fit.a[c]
@@ -144,7 +144,7 @@ def closed_form_table(slope: str) -> dict[str, str]:
     return out
 
 
-#: Fit-table columns of an exact-loop fit (:func:`contactres.analysis.loops.loop_fit_fields`):
+#: Fit-table columns of an exact-loop fit (:func:`contactres.analysis._loops.loop_fit_fields`):
 #: θ is the parameter ``inverse_slip_scale``, its error that of ln θ.
 LOOP_TABLE = {
     "df0_Hz": "df0",

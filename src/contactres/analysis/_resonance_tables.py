@@ -2,7 +2,7 @@
 
 The orchestration behind ``contactres rum invert`` and ``contactres afm invert``: the checked
 tables of :mod:`contactres.measurements.resonances` go through the oscillator models of
-:mod:`contactres.resonators` and the modulus step of :mod:`contactres.analysis.inversion`;
+:mod:`contactres.resonators` and the modulus step of :mod:`contactres.analysis._inversion`;
 the output keeps every input column and appends the results. Rows that the physics rejects
 (a contact resonance below the free one) are errors naming the line; rows that only cannot be
 inverted (no crossing of two modes, a mode without sensitivity) keep empty results and say why
@@ -24,7 +24,7 @@ from ..resonators import (
     flag_names,
     invert_contact_resonance,
 )
-from .inversion import ModulusFlag, modulus_from_contact_stiffness, surface_material
+from ._inversion import ModulusFlag, modulus_from_contact_stiffness, surface_material
 
 __all__ = ["AFM_GROUP_COLUMNS", "invert_afm_table", "invert_rum_table"]
 
@@ -238,7 +238,7 @@ def invert_afm_table(
     :func:`~contactres.resonators.invert_contact_resonance` (the modes
     used are the contact-resonance columns given in the row; r blank: solved from two modes; a
     blank Q: no damping for that cell). The modulus step
-    (:func:`~contactres.analysis.inversion.modulus_from_contact_stiffness`) runs where
+    (:func:`~contactres.analysis.modulus_from_contact_stiffness`) runs where
     tip_radius_m, load_N and k_c_N_per_m (Hertz) or fc1_ref_Hz and M_ref_Pa (reference samples,
     inverted with the same lever and tip position; k_c not needed) are given. ``flags`` names
     why a value is missing; ``normalisation`` is recorded in every row. ``mode_spread`` is the

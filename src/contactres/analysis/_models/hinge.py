@@ -1,7 +1,7 @@
 """``plateau`` (closed form): flat below the critical amplitude u_c, a straight line above
 (the stick plateau of paper 2, Fig. 4C, D).
 
-Fitted by :func:`contactres.analysis.amplitude.fit_hinge` (u_c on a grid of the amplitudes,
+Fitted by :func:`contactres.analysis._amplitude.fit_hinge` (u_c on a grid of the amplitudes,
 both channels in closed form for each); ``found`` is False where no u_c leaves enough points on
 both sides.
 """
@@ -11,7 +11,7 @@ from __future__ import annotations
 import numpy as np
 
 from ...fitting import Parameter
-from ..amplitude import fit_hinge
+from .._amplitude import fit_hinge
 from .base import SLOPES, SweepFit, amplitude_model, closed_form_fields, closed_form_table
 
 __all__ = ["FIT", "MODEL"]
