@@ -22,8 +22,8 @@ from contactres.analysis._radiation import (
     radiation_summary,
 )
 from contactres.cli import main
-from contactres.dynamic import tangential_stiffness
-from contactres.dynamic.tangential_stiffness import two_body_contact_stiffness
+from contactres.dynamic import _tangential_stiffness as tangential_stiffness
+from contactres.dynamic._tangential_stiffness import two_body_contact_stiffness
 from contactres.errors import ContactresInputError
 from contactres.materials import Material, at_cut_quartz
 

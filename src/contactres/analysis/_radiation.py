@@ -5,7 +5,7 @@ crystal) radiates shear, longitudinal and Rayleigh waves into the sphere and int
 (issue 13). Its complex tangential stiffness K(ω) = Re K (1 + i tan δ_rad) has a loss tangent
 tan δ_rad ≈ 0.6 k_s a per body (k_s the shear wave number, a the contact radius) even for a
 contact that neither slips nor loses energy in its materials.
-:func:`contactres.dynamic.tangential_stiffness.two_body_contact_stiffness` gives K of a rigid
+:func:`contactres.dynamic.two_body_contact_stiffness` gives K of a rigid
 disk of radius a between two half-spaces (compliances in series; a ≪ R). For every load of an
 analysed study, :func:`radiation_loss` evaluates it at
 
@@ -211,9 +211,7 @@ def radiation_loss(
     # The dynamic contact solver and the half-space are imported here, where they are used: an
     # analysis without materials (and the report, which reads this module's schema) loads
     # neither contactres.dynamic nor contactres.halfspace.
-    from ..dynamic.normal_stiffness import normalised_wavenumber
-    from ..dynamic.tangential_galerkin import KSA_MAX
-    from ..dynamic.tangential_stiffness import two_body_contact_stiffness
+    from ..dynamic import KSA_MAX, normalised_wavenumber, two_body_contact_stiffness
     from ..halfspace import shear_reference
 
     sphere, plate = _material(sphere, "sphere"), _material(plate, "plate")

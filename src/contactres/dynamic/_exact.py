@@ -35,9 +35,9 @@ import numpy as np
 from scipy import special
 
 from ..errors import ContactresInputError
-from .farfield import FarBasis, far_basis, low_rank
-from .table import KernelTable
-from .weights import spherical_bessel
+from ._farfield import FarBasis, far_basis, low_rank
+from ._table import KernelTable
+from ._weights import spherical_bessel
 
 __all__ = [
     "GalerkinPlan",
@@ -74,7 +74,7 @@ def galerkin_size(ksa_max: float, rtol: float = 1e-6, *, pressure: bool = False)
     and ``|n|`` <= 2 × step missed it (3e-4 off on Cu(111), found by review). rtol <= 1e-8 takes two
     terms and one harmonic more.
     ``pressure=True`` sizes the basis for the pressure field itself (:func:`contact_pressure
-    <contactres.dynamic.normal_stiffness.contact_pressure>`), which converges only linearly:
+    <contactres.dynamic.contact_pressure>`), which converges only linearly:
     two radial terms and one harmonic more.
     """
     extra = 2 if rtol <= 1e-8 else (0 if rtol < 1e-4 else -2)
@@ -137,7 +137,7 @@ class GalerkinPlan:
 
 def galerkin_plan(table: KernelTable, size: GalerkinSize, far_s=None) -> GalerkinPlan:
     """The :class:`GalerkinPlan` of ``size`` on ``table``; with the far-field nodes ``far_s``
-    (those of :func:`contactres.dynamic.farfield.far_grid`) also the Bessel products there."""
+    (those of :func:`contactres.dynamic._farfield.far_grid`) also the Bessel products there."""
     basis = _basis(table, size)
     n_of = np.array([b[0] for b in basis])
     p_of = np.array([abs(b[0]) + 2 * b[1] for b in basis])

@@ -21,7 +21,7 @@ Galerkin (Rayleigh-Ritz for tractions). Each component of the traction is expand
 angular harmonics e^{inφ} times radial functions whose order-``|n|`` Hankel transforms are √(π/2)
 J_{p+½+λ}(s)/s^{½+λ}, p = ``|n|`` + 2k (Jacobi polynomials ``P_k^{(λ−½, |n|)}(1 − 2r̄²)`` times
 r̄^{``|n|``} (1 − r̄²)^{λ−½}); at λ = 0 these are the flat-punch functions of
-:mod:`contactres.dynamic.exact` (transform j_p(s)). The matrix of the displacement functional is::
+:mod:`contactres.dynamic._exact` (transform j_p(s)). The matrix of the displacement functional is::
 
     M_ab = i^{|n_a|−|n_b|} Ĝ_{αβ, n_b − n_a} R(p_a, λ_a; p_b, λ_b),
     Ĝ_{αβ, m} = ∫₀^{2π} Ĝ_αβ(θ) e^{imθ} dθ,

@@ -20,12 +20,12 @@ import numpy as np
 from scipy import special
 
 from ..numerics import gauss_legendre
-from .table import KernelTable, Resolution, handover
-from .weights import bessel_even, j1_over_s, sinc, wa_harmonic_weights
+from ._table import KernelTable, Resolution, handover
+from ._weights import bessel_even, j1_over_s, sinc, wa_harmonic_weights
 
 TYPE_CHECKING = False
 if TYPE_CHECKING:
-    from .tangential_table import TangentialTable
+    from ._tangential_table import TangentialTable
 
 __all__ = [
     "FarBasis",
@@ -157,7 +157,7 @@ def far_weights(table: KernelTable, s: np.ndarray, orders=None) -> np.ndarray:
     """Analytic weights of the far field on the nodes ``s`` (of :func:`far_basis`).
 
     Returns a (6, n_o, n_s) array: for the functionals F0, F1, FW, F2D, H0, H1 (see
-    :func:`contactres.dynamic.quadrature.functionals`) and the harmonic e^{inθ} of order n in
+    :func:`contactres.dynamic._quadrature.functionals`) and the harmonic e^{inθ} of order n in
     ``orders`` (default: n = 2|m| for the m of ``table.far_harmonics``, one row per distinct
     n: the weights of e^{±inθ} are the same), the factor 2π iⁿ × (Hankel transform of the
     pressure shape: sin s/s or j₁(s)/s) × (J_n(s r̄) at the point, or its weighted average W_n,

@@ -1,7 +1,7 @@
 """Quadrature of the oscillating-pressure displacement N(r̄, φ) (paper 1, Eqs. 21-22).
 
 The six linear functionals of N that the displacement conditions of paper 1 (Eqs. 24-28) need,
-and N itself at given points, from a prepared kernel table (:mod:`contactres.dynamic.table`).
+and N itself at given points, from a prepared kernel table (:mod:`contactres.dynamic._table`).
 
 Numerical method (all exact rearrangements; the accuracy is set by the table's Resolution):
 
@@ -17,7 +17,7 @@ Numerical method (all exact rearrangements; the accuracy is set by the table's R
   (:func:`point_values`) the θ integral is the trapezoidal rule (spectrally accurate for the
   smooth periodic integrand), with g upsampled by FFT so the rule also resolves cos(s r̄ cos θ).
 * Far field: the Chebyshev series of the table against the analytic Bessel weights of each
-  angular harmonic (:mod:`contactres.dynamic.farfield`).
+  angular harmonic (:mod:`contactres.dynamic._farfield`).
 """
 
 from __future__ import annotations
@@ -27,7 +27,7 @@ import math
 import numpy as np
 
 from ..errors import ContactresInputError
-from .farfield import (
+from ._farfield import (
     FarBasis,
     FarGrid,
     far_basis,
@@ -36,8 +36,8 @@ from .farfield import (
     far_weights,
     tail_sine,
 )
-from .table import KernelTable
-from .weights import bessel_even, bessel_orders, j1_over_s, sinc, wa_harmonic_weights_complex
+from ._table import KernelTable
+from ._weights import bessel_even, bessel_orders, j1_over_s, sinc, wa_harmonic_weights_complex
 
 __all__ = ["FUNCTIONALS", "far_operator", "functionals", "near_theta_integrals", "point_values"]
 
@@ -159,7 +159,7 @@ def functionals(
         k_s a values (1-D, >= 0; dimensionless).
     far : FarBasis, optional
         The far-field basis of the positive ``ksa`` (from
-        :func:`contactres.dynamic.farfield.far_basis`), when the caller shares it with other
+        :func:`contactres.dynamic._farfield.far_basis`), when the caller shares it with other
         models of the same call; built here otherwise.
     smax : float, optional
         The largest k_s a of the whole call when ``ksa`` is one chunk of it (it sets the θ

@@ -1,10 +1,10 @@
 """The in-plane dynamic surface kernel of one material on the nodes every k a reuses.
 
-The table behind :mod:`contactres.dynamic.tangential_galerkin`: the angular harmonics
+The table behind :mod:`contactres.dynamic._tangential_galerkin`: the angular harmonics
 Ĝ_{αβ,m}(κ) = ∫₀^{2π} Ĝ_αβ(κ, θ) e^{imθ} dθ of the in-plane block (α, β = x, y) of the dynamic
 surface Green's function, Ĝ = −H(θ, 1/κ²)/C44 (:func:`contactres.halfspace.surface_compliance`;
 κ = ``|ξ|``/k_s, k_s = ω√(ρ/C44), C44 = Re C[3, 3] of the surface frame), minus its static limit,
-on the nodes of the normal problem's table (:mod:`contactres.dynamic.table`, paper 1): a
+on the nodes of the normal problem's table (:mod:`contactres.dynamic._table`, paper 1): a
 complex contour above the branch points and the Rayleigh pole (loss -> 0⁺ exact), the real
 hand-over segment, and Chebyshev nodes in w = (T₁/κ)² for the far field. A uniform loss enters
 as g_lossy(κ) = g(κ√(1 + iQ⁻¹))/(1 + iQ⁻¹). The θ grid covers [0, 2π) (the in-plane kernel
@@ -25,7 +25,7 @@ from ..errors import ContactresInputError
 from ..halfspace import shear_reference, surface_compliance
 from ..halfspace.compliance import scaled_tensor
 from ..materials import Material, require_material
-from .table import (
+from ._table import (
     Resolution,
     check_contrast,
     check_loss,
@@ -55,7 +55,7 @@ def max_harmonics(m: Material, rtol: float) -> int:
     harmonic beyond it, relative to the axisymmetric one) has 0.02 t² <= rtol/3; measured error
     at ``|n|`` <= 6 / 8 / 10: Cu(123) 1.3e-7 / 3.9e-9 / 7.6e-10, Na(123) 1.3e-6 / 6.8e-8 / 2.8e-8,
     Li(111) 6.2e-7 / 6.2e-7 / 4.2e-8 (t = 5.4e-3, 1.6e-2, 8.0e-3 at ``|n|`` <= 6)."""
-    from .tangential_static import inplane_kernel_harmonics
+    from ._tangential_static import inplane_kernel_harmonics
 
     top = HARMONIC_STEPS[-1] + 1
     h = np.abs(inplane_kernel_harmonics(m, top)).max(axis=(1, 2))

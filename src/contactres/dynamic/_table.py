@@ -104,7 +104,7 @@ class Resolution:
 
     The wide panels start at s_coarse and have edges at s_coarse + j s_panel_coarse; s = 120,
     where the WA weights of the non-axisymmetric harmonics stop
-    (:func:`~contactres.dynamic.farfield.far_weights`), is one of them (also when doubled).
+    (:func:`~contactres.dynamic._farfield.far_weights`), is one of them (also when doubled).
 
     The defaults are the accuracy rtol = 1e-6 with a margin of 10 or more: against every
     resolution doubled (tests and benchmarks/bench_dcsf.py, k_l a <= 2, A = 0.25-10, ν =

@@ -6,8 +6,8 @@ free) translates tangentially, u = U (cos ψ, sin ψ) e^{iωt}, without rotating
 F_α = K_αβ(ω) U_β with K the complex 2x2 tangential stiffness tensor, N/m (Im K > 0: energy
 carried away by shear, longitudinal and Rayleigh waves, and material loss).
 
-* Static: :mod:`contactres.dynamic.tangential_static` (isotropic K = 8Ga/(2 − ν), Mindlin 1949).
-* Dynamic: :mod:`contactres.dynamic.tangential_galerkin`, the Galerkin solution on the disk with
+* Static: :mod:`contactres.dynamic._tangential_static` (isotropic K = 8Ga/(2 − ν), Mindlin 1949).
+* Dynamic: :mod:`contactres.dynamic._tangential_galerkin`, the Galerkin solution on the disk with
   the in-plane block of the dynamic surface Green's function of
   :mod:`contactres.halfspace`; K(ω)/K₀ = k_t(a₀) + i a₀ c_t(a₀), a₀ = k_s a (isotropic
   c_t(0) = 0.617, 0.598, 0.580 at ν = 0.17, 0.25, 1/3); accuracy 1e-6 up to k_s a = 2
@@ -36,9 +36,9 @@ from ..errors import ContactresInputError
 from ..halfspace import shear_reference
 from ..materials import Material, require_material
 from ..validation import nonnegative, positive
-from .normal_stiffness import normalised_wavenumber, shear_ka
-from .table import check_loss
-from .tangential_galerkin import TangentialTable, prepare_tangential, tangential_per_a
+from ._normal_stiffness import normalised_wavenumber, shear_ka
+from ._table import check_loss
+from ._tangential_galerkin import TangentialTable, prepare_tangential, tangential_per_a
 
 __all__ = [
     "tangential_contact_stiffness",
@@ -110,9 +110,9 @@ def tangential_dcsf(
         instead of K_ψ(ka)/K_ψ0.
     rtol : float
         Target relative accuracy (default 1e-6, met for k_s a <= 2; see
-        :mod:`contactres.dynamic.tangential_galerkin`).
+        :mod:`contactres.dynamic._tangential_galerkin`).
     prepared : TangentialTable, optional
-        :func:`~contactres.dynamic.tangential_galerkin.prepare_tangential` of this material,
+        :func:`~contactres.dynamic.prepare_tangential` of this material,
         ``loss`` and ``rtol`` (most of the cost of a curve); built for this call otherwise.
 
     Returns

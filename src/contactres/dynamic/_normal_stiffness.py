@@ -27,12 +27,12 @@ small k a (Si(001), 1 MHz: Im K 28 000 times the lossless one for R = 10 nm, F =
 for R = 1 mm, F = 1 N): pass it only to reproduce them, or for a solid that has that loss.
 
 Which model? ``model="exact"`` (the rigid flat punch: uniform displacement under the sphere,
-Galerkin, :mod:`contactres.dynamic.exact`) is what the approximations aim at and costs about as
+Galerkin, :mod:`contactres.dynamic._exact`) is what the approximations aim at and costs about as
 much as one of them: use it. Against it (``contactres figures paper1``, paper1_model_ranking.csv;
 ν = 0.25, A = 0.25 ... 4, k_l a <= 1) the paper's approximations rank TP (0.2-5 %), WA ≈ WA2D
 (2-40 %), SA, R1, R0 (10-100 %); up to k_l a = 2 only TP stays within 10 % for A >= 1. The
 paper recommends WA because R0, SA and TP turn negative at high k a; the wiggles of WA (the
-maxima of Fig. 4) are not in the exact curve. See :mod:`contactres.dynamic.quadrature` for the
+maxima of Fig. 4) are not in the exact curve. See :mod:`contactres.dynamic._quadrature` for the
 numerics and their accuracy.
 
 Two traps of the approximations (measured, lossless and Q⁻¹ = 0.02 alike): R0 has negative
@@ -42,12 +42,12 @@ in-plane axis (the x axis of the surface frame, along which they take the edge p
 average): turning it by 0-45° on Cu(001) changes WA by up to 1.2 % for k_l a <= 1 and 19 % at
 k_l a = 2 (R1 2.7 %/21 %, SA 0.9 %/32 %, TP 0.6 %/7 %); R0, WA2D and exact do not depend on it.
 
-Near incompressibility (contrast above :data:`~contactres.dynamic.table.MAX_STIFFNESS_CONTRAST`,
+Near incompressibility (contrast above :data:`~contactres.dynamic.MAX_STIFFNESS_CONTRAST`,
 isotropic ν > 0.4999) the kernels lose the stated accuracy to round-off: ValueError then.
 
 Curves of many k a values (more than :data:`INTERPOLATE_ABOVE` distinct ones) are interpolated
 by default between 33-257 direct values at Chebyshev points (1/DCSF, which is smooth), with the
-interpolation error measured and kept below rtol/10 (:mod:`contactres.dynamic.interpolation`;
+interpolation error measured and kept below rtol/10 (:mod:`contactres.dynamic._interpolation`;
 ``interpolate=False`` evaluates every value).
 
 Most of the cost of a curve is the material's kernel table: :func:`prepare` builds it once, and
@@ -65,13 +65,13 @@ from ..errors import ContactresInputError
 from ..halfspace import shear_reference
 from ..materials import Material, require_material
 from ..validation import nonnegative
-from .exact import exact_n, galerkin_plan, galerkin_size, pressure_basis
-from .farfield import far_basis, far_grid
-from .interpolation import MAX_INTERVALS as LARGEST
-from .interpolation import chebyshev_values
-from .models import ALL_MODELS, MODELS, WAVENUMBERS
-from .quadrature import far_operator, functionals, point_values
-from .table import KernelTable, prepare
+from ._exact import exact_n, galerkin_plan, galerkin_size, pressure_basis
+from ._farfield import far_basis, far_grid
+from ._interpolation import MAX_INTERVALS as LARGEST
+from ._interpolation import chebyshev_values
+from ._models import ALL_MODELS, MODELS, WAVENUMBERS
+from ._quadrature import far_operator, functionals, point_values
+from ._table import KernelTable, prepare
 
 __all__ = [
     "ALL_MODELS",
@@ -232,7 +232,7 @@ def model_n(f: dict, model: str) -> np.ndarray:
     Parameters
     ----------
     f : dict
-        The functionals of :func:`contactres.dynamic.quadrature.functionals` (complex arrays).
+        The functionals of :func:`contactres.dynamic._quadrature.functionals` (complex arrays).
     model : str
         One of :data:`MODELS`.
 
@@ -359,7 +359,7 @@ def dcsf(
         Normalised wave number k a >= 0 (a: contact radius), in the convention ``wavenumber``.
     model : str
         Displacement condition: "exact" (default): the rigid flat punch (uniform displacement;
-        Galerkin, see :mod:`contactres.dynamic.exact`), the reference the others approximate; or
+        Galerkin, see :mod:`contactres.dynamic._exact`), the reference the others approximate; or
         "R0", "R1", "SA", "WA", "TP" (paper 1, Eqs. 24-28), "WA2D". Of these, R0 has negative
         damping near k_l a = 1.6-2 and R1, SA, WA, TP depend on the in-plane x axis (module
         docstring; :func:`model_n`).
@@ -396,7 +396,7 @@ def dcsf(
     ------
     ValueError
         For bad arguments, and for a nearly incompressible solid (stiffness contrast beyond
-        :data:`~contactres.dynamic.table.MAX_STIFFNESS_CONTRAST`, isotropic ν > 0.4999), where
+        :data:`~contactres.dynamic.MAX_STIFFNESS_CONTRAST`, isotropic ν > 0.4999), where
         the stated accuracy cannot be met.
 
     Examples
@@ -536,7 +536,7 @@ def contact_pressure(
 ):
     """Oscillating pressure of the exact solution (rigid flat punch), over its mean δP/(π a²).
 
-    The converged Galerkin pressure of model "exact" (:mod:`contactres.dynamic.exact`). Static
+    The converged Galerkin pressure of model "exact" (:mod:`contactres.dynamic._exact`). Static
     limit: the flat-punch shape 1/(2√(1 − r̄²)). Complex (phase relative to the displacement).
 
     Parameters

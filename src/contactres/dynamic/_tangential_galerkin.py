@@ -1,12 +1,12 @@
 """Exact dynamic tangential stiffness of a rigid disk on an anisotropic half-space (Galerkin).
 
-The tangential counterpart of :mod:`contactres.dynamic.exact`. Relaxed contact: under the disk
+The tangential counterpart of :mod:`contactres.dynamic._exact`. Relaxed contact: under the disk
 r̄ = r/a <= 1 the normal traction is zero and the disk translates rigidly, u_α = U_α e^{iωt}
 (α = x, y). The in-plane surface response of the half-space to a traction t_β,
 û_α(ξ) = Ĝ_αβ(κ, θ)/``|ξ|`` t̂_β(ξ) with κ = ``|ξ|``/k_s (k_s = ω√(ρ/C44), C44 of the surface frame),
 is the in-plane block of the surface compliance, Ĝ = −H(θ, 1/κ²)/C44
 (:func:`contactres.halfspace.surface_compliance`); as κ -> ∞ it tends to the static kernel of
-:mod:`contactres.dynamic.tangential_static`.
+:mod:`contactres.dynamic._tangential_static`.
 
 Galerkin on the disk, with the traction basis of the static solution (angular harmonics
 e^{inφ}, ``|n|`` <= N_h, for each component; Jacobi radial functions whose order-``|n|`` Hankel
@@ -21,10 +21,10 @@ and K = 4π² a Bᵀ M⁻¹ B (B: the force carried by each basis function; only
 λ-derivatives carry force), as in the static module. Split Ĝ = Ĝ∞ + (Ĝ − Ĝ∞): the static part
 is the closed form of the static module (Weber-Schafheitlin with its λ-derivatives), exact for
 every basis function; only the dynamic remainder (~κ⁻²) is integrated, on the nodes of the
-normal problem (:mod:`contactres.dynamic.table`): a complex contour above the branch points
+normal problem (:mod:`contactres.dynamic._table`): a complex contour above the branch points
 and the Rayleigh pole (so loss -> 0⁺ is exact), the hand-over segment, and the far field as a
 Chebyshev series in w = (T₁/κ)² per angular harmonic, integrated against products of the
-transforms on the far-field grid (:mod:`contactres.dynamic.farfield`), plus its closed-form tail.
+transforms on the far-field grid (:mod:`contactres.dynamic._farfield`), plus its closed-form tail.
 
 The transforms of the λ-derivative functions are used in the dynamic remainder through their
 expansion in the polynomial ones (Neumann series H^{(d)} = Σ_q A_q j_{``|n|+2q``}, with A_q from the
@@ -56,10 +56,10 @@ import numpy as np
 from scipy import special
 
 from ..errors import ContactresInputError
-from .farfield import far_basis, far_grid
-from .tangential_static import CAUCHY_POINTS, CAUCHY_RADIUS, load_derivatives, radial_integrals
-from .tangential_table import TangentialTable, prepare_tangential
-from .weights import spherical_bessel
+from ._farfield import far_basis, far_grid
+from ._tangential_static import CAUCHY_POINTS, CAUCHY_RADIUS, load_derivatives, radial_integrals
+from ._tangential_table import TangentialTable, prepare_tangential
+from ._weights import spherical_bessel
 
 __all__ = [
     "KSA_MAX",
@@ -143,7 +143,7 @@ class _Basis:
 
 def _series_integrals(pa: np.ndarray, pb: np.ndarray, n_log: int) -> np.ndarray:
     """∂^d_λ R(p_a, λ; p_b, 0) at λ = 0, d = 0..n_log (R of
-    :func:`contactres.dynamic.tangential_static.radial_integrals`, its second function at
+    :func:`contactres.dynamic._tangential_static.radial_integrals`, its second function at
     λ = 0), shape (n_log + 1, *broadcast(pa, pb).shape); Cauchy's formula in λ on the same
     circle as there."""
     nc, rho = CAUCHY_POINTS, CAUCHY_RADIUS
