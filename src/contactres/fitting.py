@@ -20,7 +20,7 @@ optional geodesic acceleration; :class:`LMOptions` chooses among the classic var
 matrix, update of the damping, tolerances). It serves the plateau-loop fit of the sweeps
 (:mod:`contactres.analysis`, thousands of two-parameter problems in the Gauss-Newton form
 of variable projection) and the ratio fit of polycrystal maps
-(:mod:`contactres.polycrystal.ratio_fit`, one ill-conditioned problem in the Jacobian form).
+(:mod:`contactres.polycrystal._ratio_fit`, one ill-conditioned problem in the Jacobian form).
 """
 
 from __future__ import annotations

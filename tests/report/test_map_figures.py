@@ -16,10 +16,10 @@ from matplotlib.image import AxesImage
 from matplotlib.text import Text
 
 from contactres import Material
-from contactres.polycrystal.ipf import ipf_triangle
-from contactres.polycrystal.moduli import indentation_moduli
-from contactres.polycrystal.normal_table import surface_matrices_from_normals
-from contactres.polycrystal.synthetic import synthetic_polycrystal
+from contactres.polycrystal._ipf import ipf_triangle
+from contactres.polycrystal._moduli import indentation_moduli
+from contactres.polycrystal._normal_table import surface_matrices_from_normals
+from contactres.polycrystal._synthetic import synthetic_polycrystal
 from contactres.report._map_figures import modulus_map_figure
 
 CU = Material.crystal("Cu")

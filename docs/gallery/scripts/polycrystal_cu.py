@@ -50,7 +50,7 @@ fig1 = modulus_map_figure(
 )
 # On the maps (a), (b): the grain boundaries (pixel edges between different labels, µm);
 # on the triangles (c): the surface normals of the map's grains, in the stereographic
-# projection of contactres.polycrystal.ipf, (X, Y) = (n_y, n_x)/(1 + n_z) for cubic.
+# projection of contactres.polycrystal._ipf, (X, Y) = (n_y, n_x)/(1 + n_z) for cubic.
 um = sp.step_x * 1e6
 i, j = np.nonzero(sp.labels[:, 1:] != sp.labels[:, :-1])  # between columns j and j + 1
 vertical = np.stack([np.stack([j + 1, i], -1), np.stack([j + 1, i + 1], -1)], 1)

@@ -61,9 +61,7 @@ def _write_polycrystal(result: job.Result, out: Path) -> list[Path]:
     fitted back from the measured k* map (fit.json): polycrystal/."""
     from ..fileio import save_figure, write_text
     from ..materials import Material
-    from ..polycrystal.grains import folded_normals
-    from ..polycrystal.moduli import indentation_moduli
-    from ..polycrystal.normal_table import surface_matrices_from_normals
+    from ..polycrystal import folded_normals, indentation_moduli, surface_matrices_from_normals
     from ..report import modulus_map_figure
 
     folder = ensure_dir(out / "polycrystal")

@@ -84,7 +84,7 @@ def maps_synthetic(
 
     from ..jobs import maps_synthetic as job
     from ..jobs.maps import TipLoad
-    from ..polycrystal.maps import check_map_output, write_map
+    from ..polycrystal import check_map_output, write_map
 
     check_map_output(out)
     material, lattice = map_material(crystal, c11, c12, c13, c33, c44, density)
@@ -186,7 +186,7 @@ def maps_predict(
 
     from ..jobs import maps_predict as job
     from ..jobs.maps import TipLoad
-    from ..polycrystal.maps import check_map_output, write_map
+    from ..polycrystal import check_map_output, write_map
 
     check_map_output(out, inputs=[map_path])
     if figure is not None:

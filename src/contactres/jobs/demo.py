@@ -28,7 +28,7 @@ from .contract import JobResult, Progress, say
 if TYPE_CHECKING:
     import xarray as xr
 
-    from ..polycrystal.maps import OrientationMap
+    from ..polycrystal import OrientationMap
     from . import paper2
 
 __all__ = ["STEPS", "Result", "Settings", "run"]

@@ -114,10 +114,12 @@ def stiffness_figure(result):
 def prediction_figure(result):
     """The map of M of a :class:`contactres.jobs.maps_predict.Result` with the IPF-coloured
     legend of the faces (:func:`contactres.report.modulus_map_figure`)."""
-    from ..polycrystal.grains import folded_normals
-    from ..polycrystal.maps import map_from_dataset
-    from ..polycrystal.moduli import indentation_moduli
-    from ..polycrystal.normal_table import surface_matrices_from_normals
+    from ..polycrystal import (
+        folded_normals,
+        indentation_moduli,
+        map_from_dataset,
+        surface_matrices_from_normals,
+    )
     from ._map_figures import modulus_map_figure
 
     ds, material, lattice = result.dataset, result.material, result.lattice

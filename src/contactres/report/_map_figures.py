@@ -4,11 +4,11 @@
 
 (a) the map of the indentation modulus M, GPa, with its colour bar;
 (b) the inverse-pole-figure colours of the surface normal (IPF-Z,
-    :func:`contactres.polycrystal.ipf.ipf_colors`);
+    :func:`contactres.polycrystal.ipf_colors`);
 (c) the legend that links them: the standard triangle of surface normals coloured by M (same
     colour map), and below it the IPF colour key. A colour of (b) is found in the key; the same
     place of the triangle above gives M. With M a function of the normal alone (paper 1,
-    Eqs. 1-4; :mod:`contactres.polycrystal.normal_table`) this reads every pixel.
+    Eqs. 1-4; :mod:`contactres.polycrystal._normal_table`) this reads every pixel.
 
 Object API only (:class:`matplotlib.figure.Figure` with an Agg canvas, constrained layout),
 matplotlib imported when the figure is drawn; save it with
@@ -136,8 +136,7 @@ def modulus_map_figure(
     from matplotlib.colors import Normalize
     from matplotlib.figure import Figure
 
-    from ..polycrystal.ipf import ipf_colors, ipf_triangle
-    from ..polycrystal.normal_table import reduce_normals
+    from ..polycrystal import ipf_colors, ipf_triangle, reduce_normals
 
     M = np.asarray(moduli, dtype=float)
     n = np.asarray(normals, dtype=float)

@@ -21,7 +21,7 @@ them, so ``contactres.write_report(results, folder)`` writes the folder describe
 :mod:`contactres.report._tables`.
 
 Map stores are not written here: ``maps synthetic|predict`` write a Zarr store with
-:func:`contactres.polycrystal.maps.write_map`. A store is itself the output the user names (not
+:func:`contactres.polycrystal.write_map`. A store is itself the output the user names (not
 a file inside a results folder), a tree of chunk files whose chunking is a choice of the writing
 (``--chunks``), replaced as a whole (in one step where the system can); a report is a folder
 of named files, each digested in its ``manifest.json``, that a

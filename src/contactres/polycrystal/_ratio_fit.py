@@ -38,7 +38,7 @@ import numpy as np
 from ..errors import ContactresInputError
 from ..fitting import LMOptions, levenberg_marquardt
 from ..materials import Material
-from .moduli import indentation_moduli
+from ._moduli import indentation_moduli
 
 __all__ = [
     "CONDITIONAL_NOTE",
@@ -240,7 +240,7 @@ def fit_ratios(
     param : RatioParametrisation
         The lattice.
     orientations, values, errors, quantity, tip_modulus, calibration
-        As :func:`contactres.polycrystal.inverse.fit_cubic_constants`: surface matrices
+        As :func:`contactres.polycrystal.fit_cubic_constants`: surface matrices
         (G, 3, 3); k* (N/m) or M (Pa) per grain and its standard errors; tip plane-strain
         modulus (Pa, None: rigid); the factor c of ``value = c E*^p`` (None: free).
     guess : mapping, optional

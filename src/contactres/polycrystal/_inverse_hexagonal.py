@@ -15,7 +15,7 @@ combination is determined (relative error <= ``IDENTIFIABILITY_RTOL``), else NaN
 warning.
 
 Stability: the fit accepts only steps whose unit stiffness (C11 = 1) is positive definite with
-its smallest eigenvalue above :data:`contactres.polycrystal.ratio_fit.MIN_EIGENVALUE` (for a
+its smallest eigenvalue above :data:`contactres.polycrystal._ratio_fit.MIN_EIGENVALUE` (for a
 hexagonal crystal: C44 > 0, C11 > ``|C12|`` and (C11 + C12) C33 > 2 C13²). A step that leaves the
 region is rejected like one that raises χ² (more damping, a shorter step), with no penalty
 term, so the minimum and its covariance are those of the data; the box bounds keep C12, C13 > 0
@@ -32,7 +32,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..materials import Material
-from .ratio_fit import CONDITIONAL_NOTE, RatioParametrisation, fit_ratios
+from ._ratio_fit import CONDITIONAL_NOTE, RatioParametrisation, fit_ratios
 
 __all__ = ["HEXAGONAL", "HexagonalInverseResult", "fit_hexagonal_constants"]
 
@@ -184,12 +184,12 @@ def fit_hexagonal_constants(
     ----------
     orientations : array_like, shape (G, 3, 3)
         Surface-frame matrices of the grains (rows = sample axes in crystal coordinates, crystal
-        z = c axis; the convention of :mod:`contactres.polycrystal.orientations`).
+        z = c axis; the convention of :mod:`contactres.polycrystal._orientations`).
     values : array_like, shape (G,)
         Measured contact stiffness k* (N/m) or indentation modulus (Pa) per grain.
     errors : array_like, shape (G,)
         Standard errors of ``values`` (same unit), e.g. from
-        :func:`contactres.polycrystal.inverse.grain_means`.
+        :func:`contactres.polycrystal.grain_means`.
     quantity : {"stiffness", "modulus"}
         k* = c E*^{2/3} with c = (6 F R)^{1/3} (Hertz), or M = c E* (c = 1 for a map in Pa).
     tip_modulus : float, optional
@@ -210,7 +210,7 @@ def fit_hexagonal_constants(
     Notes
     -----
     A Jacobian costs nine exact evaluations of M for all grains. The fit is
-    :func:`contactres.polycrystal.ratio_fit.fit_ratios` with :data:`HEXAGONAL`.
+    :func:`contactres.polycrystal._ratio_fit.fit_ratios` with :data:`HEXAGONAL`.
 
     The directions and errors are linearised at the fitted point. When a combination is not
     determined the fit can end far along it (tens of per cent in the ratios) where the valley

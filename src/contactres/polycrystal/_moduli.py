@@ -104,7 +104,7 @@ def indentation_moduli(
     >>> import numpy as np
     >>> from contactres import Material
     >>> from contactres.materials import rotation_to_surface
-    >>> from contactres.polycrystal.moduli import indentation_moduli
+    >>> from contactres.polycrystal._moduli import indentation_moduli
     >>> R = np.stack([rotation_to_surface(n) for n in [(0, 0, 1), (1, 1, 1)]])
     >>> print(np.round(indentation_moduli(Material.crystal("Cu"), R) / 1e9, 1))
     [134.  151.6]

@@ -15,8 +15,8 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 from ..errors import ContactresInputError
-from .maps import OrientationMap
-from .orientations import euler_from_surface_matrices, random_orientations
+from ._maps import OrientationMap
+from ._orientations import euler_from_surface_matrices, random_orientations
 
 __all__ = ["SyntheticPolycrystal", "synthetic_polycrystal"]
 
@@ -26,7 +26,7 @@ _ROWS_PER_QUERY = 256
 
 @dataclass(frozen=True, eq=False, kw_only=True)
 class SyntheticPolycrystal(OrientationMap):
-    """An :class:`~contactres.polycrystal.maps.OrientationMap` with its grains.
+    """An :class:`~contactres.polycrystal.OrientationMap` with its grains.
 
     Adds ``grain_euler`` (G, 3), the Bunge angles of grain g in radians (φ1, φ2 in [0, 2π),
     Φ in [0, π]), and ``seed_points`` (G, 2), the Voronoi seeds (x, y) in m. ``labels[i, j]``

@@ -17,11 +17,11 @@ on both sides, but not a segmentation for other purposes (texture, boundary char
 Why folding is exact
 --------------------
 The symmetry of a direction is the Laue group (the proper point group of
-:func:`~contactres.polycrystal.orientations.symmetry_operators` with the inversion; the
+:func:`~contactres.polycrystal.symmetry_operators` with the inversion; the
 stiffness is centrosymmetric): m-3m (48 operations) or 6/mmm (24). Both are finite reflection
 groups, m-3m = B3 (mirrors x = 0, x = y, y = z) and 6/mmm = A1 x I2(6) (mirror z = 0 and the
 vertical mirrors at 0° and 30° from a1), and the fundamental triangle of
-:func:`~contactres.polycrystal.normal_table.reduce_normals` is a closed chamber of the group: a
+:func:`~contactres.polycrystal.reduce_normals` is a closed chamber of the group: a
 strict fundamental domain, each orbit meets it exactly once (Humphreys 1990, Thm. 1.12). For u,
 v in the closed chamber and any w of the group, v − w v is a non-negative combination of the
 positive roots, and u · α ≥ 0 for every positive root α, so u · (w v) ≤ u · v (Humphreys 1990,
@@ -46,8 +46,8 @@ from scipy.sparse import csr_array
 from scipy.sparse.csgraph import connected_components
 
 from ..errors import ContactresInputError
-from .maps import OrientationMap
-from .normal_table import reduce_normals, surface_matrices_from_normals, zone_bounds
+from ._maps import OrientationMap
+from ._normal_table import reduce_normals, surface_matrices_from_normals, zone_bounds
 
 __all__ = ["GrainOrientations", "folded_normals", "grain_orientations", "segment_grains"]
 

@@ -2,7 +2,7 @@
 
 The IPF colour of a crystal direction (here usually the surface normal, IPF-Z = ND) is a colour
 of its equivalent in the fundamental triangle of the Laue group
-(:func:`~contactres.polycrystal.normal_table.reduce_normals`), with the usual corner colours:
+(:func:`~contactres.polycrystal.reduce_normals`), with the usual corner colours:
 
 cubic (m-3m)
     [001] red, [101] green, [111] blue. The triangle of :func:`reduce_normals` is
@@ -40,7 +40,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..errors import ContactresInputError
-from .normal_table import reduce_normals, zone_bounds
+from ._normal_table import reduce_normals, zone_bounds
 
 __all__ = ["IPF_CORNER_LABELS", "IPFTriangle", "ipf_colors", "ipf_triangle", "triangle_geometry"]
 

@@ -1,7 +1,7 @@
 """Predicted maps of a polycrystal: contact stiffness and dynamic factor per pixel.
 
 From the indentation modulus M of each pixel (interpolated, :class:`NormalTable.modulus
-<contactres.polycrystal.normal_table.NormalTable>`, or exact) and a spherical tip of radius R
+<contactres.polycrystal.NormalTable>`, or exact) and a spherical tip of radius R
 pressed with a force F:
 
 * :func:`contact_stiffness_map`: the static Hertz contact (Johnson 1985, Ch. 4) with the tip's
@@ -39,7 +39,7 @@ import numpy as np
 
 from ..errors import ContactresInputError
 from ..materials import Material, voigt_to_tensor
-from .normal_table import NormalTable
+from ._normal_table import NormalTable
 
 __all__ = [
     "ContactMap",
@@ -120,7 +120,7 @@ def contact_stiffness_map(moduli, tip, radius: float, force: float) -> ContactMa
     ----------
     moduli : array_like
         Indentation modulus M of each pixel, Pa (real, > 0): :meth:`NormalTable.modulus` or
-        exact :func:`~contactres.polycrystal.moduli.indentation_moduli`.
+        exact :func:`~contactres.polycrystal.indentation_moduli`.
     tip : Material, (E, ν) or None
         The isotropic tip (:func:`tip_modulus`); None or E = inf: rigid.
     radius : float
@@ -188,7 +188,7 @@ def dynamic_factor_map(
     Parameters
     ----------
     table : NormalTable
-        From :func:`~contactres.polycrystal.normal_table.prepare_normal_table` with ``ka``; its
+        From :func:`~contactres.polycrystal.prepare_normal_table` with ``ka``; its
         material needs a density.
     orientations : array_like, shape (..., 3, 3)
         Surface matrices of the pixels.

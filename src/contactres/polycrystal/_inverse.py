@@ -27,10 +27,10 @@ import numpy as np
 
 from ..errors import ContactresInputError
 from ..materials import Material
-from .inverse_hexagonal import HexagonalInverseResult, fit_hexagonal_constants
-from .moduli import indentation_moduli
-from .orientations import surface_matrix_from_miller
-from .ratio_fit import (
+from ._inverse_hexagonal import HexagonalInverseResult, fit_hexagonal_constants
+from ._moduli import indentation_moduli
+from ._orientations import surface_matrix_from_miller
+from ._ratio_fit import (
     CONDITIONAL_NOTE,
     IDENTIFIABILITY_RTOL,
     LOG_STEP,
@@ -185,8 +185,8 @@ def anisotropy_111(ratios, log_covariance) -> tuple[float, float]:
     """M(111)/M(001) of a cubic crystal with ratios (C12/C11, C44/C11) and its standard error.
 
     The error propagates ``log_covariance`` (covariance of ln(C12/C11), ln(C44/C11)) through
-    central differences (step :data:`~contactres.polycrystal.ratio_fit.LOG_STEP`) of
-    ln(M(111)/M(001)); M from :func:`~contactres.polycrystal.moduli.indentation_moduli` (paper 1,
+    central differences (step :data:`~contactres.polycrystal._ratio_fit.LOG_STEP`) of
+    ln(M(111)/M(001)); M from :func:`~contactres.polycrystal.indentation_moduli` (paper 1,
     Eq. 4; Vlassak & Nix 1994).
     """
     R = np.stack([np.eye(3), surface_matrix_from_miller((1, 1, 1), (1, -1, 0))])
@@ -257,7 +257,7 @@ def fit_cubic_constants(
     ----------
     orientations : array_like, shape (G, 3, 3)
         Surface-frame matrices of the grains (rows = sample axes in crystal coordinates, the
-        convention of :mod:`contactres.polycrystal.orientations`).
+        convention of :mod:`contactres.polycrystal._orientations`).
     values : array_like, shape (G,)
         Measured contact stiffness k* (N/m) or indentation modulus (Pa) per grain.
     errors : array_like, shape (G,)
@@ -283,7 +283,7 @@ def fit_cubic_constants(
     -----
     Covariance (JᵀJ)⁻¹ · max(1, χ²/dof) (J: d((value − data)/error)/d ln parameter); a
     Jacobian costs five exact evaluations of M for all grains (~0.1-0.3 s for 60 Cu grains).
-    The fit itself is :func:`contactres.polycrystal.ratio_fit.fit_ratios`.
+    The fit itself is :func:`contactres.polycrystal._ratio_fit.fit_ratios`.
     """
     fit = fit_ratios(CUBIC, orientations, values, errors, quantity, tip_modulus, calibration, guess)
     ok = fit.ratios_determined
@@ -361,7 +361,7 @@ def fit_map(
         Surface matrices of the grains, indexed by label.
     lattice : {"cubic", "hexagonal"}
         :func:`fit_cubic_constants` or
-        :func:`contactres.polycrystal.inverse_hexagonal.fit_hexagonal_constants`.
+        :func:`contactres.polycrystal.fit_hexagonal_constants`.
     **kwargs
         Passed to the fit (quantity, tip_modulus, calibration, guess).
 

@@ -47,8 +47,8 @@ from scipy.interpolate import RectBivariateSpline, make_interp_spline
 from ..dynamic import dcsf_models, prepare
 from ..errors import ContactresInputError
 from ..materials import Material, require_material
-from .moduli import indentation_moduli
-from .orientations import LATTICES
+from ._moduli import indentation_moduli
+from ._orientations import LATTICES
 
 __all__ = [
     "DCSF_MODELS",
@@ -100,7 +100,7 @@ def reduce_normals(n, lattice: str) -> tuple[np.ndarray, np.ndarray]:
         normalised here.
     lattice : {"cubic", "hexagonal"}
         The crystal symmetry (m-3m or 6/mmm: the proper group of
-        :func:`~contactres.polycrystal.orientations.symmetry_operators` with the inversion).
+        :func:`~contactres.polycrystal.symmetry_operators` with the inversion).
 
     Returns
     -------
@@ -391,7 +391,7 @@ def prepare_normal_table(
 
     M: a uniform (θ, φ) grid of 4 intervals per axis over the bounding rectangle of the
     triangle, doubled until the bicubic interpolant differs from the exact M
-    (:func:`~contactres.polycrystal.moduli.indentation_moduli`, one vectorised call per grid)
+    (:func:`~contactres.polycrystal.indentation_moduli`, one vectorised call per grid)
     by at most ``rtol`` relative at every cell centre. Measured for Cu (cubic): the default
     rtol = 1e-4 stops at 16 x 16 intervals (errors 1.5e-3, 1.4e-4, 6.0e-6 at 4, 8, 16):
     545 exact evaluations (289 nodes + 256 centres, earlier grids reused), ~0.3 s; over 2000
@@ -417,14 +417,14 @@ def prepare_normal_table(
         Lossless for the DCSF (its damping is ``loss``).
     lattice : {"cubic", "hexagonal"}
         Its Laue symmetry. Trigonal or lower symmetries are not reduced here (use the exact
-        :func:`~contactres.polycrystal.moduli.indentation_moduli`).
+        :func:`~contactres.polycrystal.indentation_moduli`).
     rtol : float
         Target relative interpolation error of M, in [1e-8, 1e-2].
     ka : array_like, optional
         Increasing k_l a nodes (≥ 0; 1 value or at least 2) at which to tabulate the DCSF, in
         the longitudinal convention of :func:`contactres.dcsf` for each face. Between nodes a
         cubic spline (linear for 2 nodes); choose them to cover the map's k a range
-        (:func:`contactres.polycrystal.predicted.map_wavenumbers`).
+        (:func:`contactres.polycrystal.map_wavenumbers`).
     model : {"exact", "WA2D"}
         The DCSF model (only those invariant about the normal).
     loss : float

@@ -1,8 +1,8 @@
 """Orientation maps: the container, per-pixel evaluation chunk by chunk (numpy or dask), Zarr IO.
 
 An :class:`OrientationMap` holds the Bunge Euler angles of a regular square grid (an EBSD scan,
-:mod:`contactres.polycrystal.ebsd`, or a synthetic polycrystal,
-:mod:`contactres.polycrystal.synthetic`). :func:`evaluate_map` applies a
+:mod:`contactres.polycrystal._ebsd`, or a synthetic polycrystal,
+:mod:`contactres.polycrystal._synthetic`). :func:`evaluate_map` applies a
 per-pixel function ``f(R) -> values`` of the surface-frame matrices (shape (..., 3, 3) ->
 (...), pure, numpy in and out; :class:`ExactModulus` is the exact indentation modulus) over
 rectangular chunks of the map:
@@ -44,8 +44,8 @@ import numpy as np
 from ..errors import ContactresInputError, MissingExtraError
 from ..fileio import OutputError, check_output_file, replace_folder
 from ..materials import Material
-from .moduli import indentation_moduli
-from .orientations import surface_matrices_from_euler
+from ._moduli import indentation_moduli
+from ._orientations import surface_matrices_from_euler
 
 __all__ = [
     "MAP_CONVENTIONS",
