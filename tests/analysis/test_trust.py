@@ -5,10 +5,10 @@ import numpy as np
 import pytest
 
 from contactres.analysis import AnalysisSettings, analyze
-from contactres.analysis.flags import Flag, has
+from contactres.analysis._flags import Flag, has
 from contactres.measurements.sweeps import SweepWarning, validate_sweeps
 from contactres.measurements.synthetic import Drift, SweepGroup, SweepStudy, synthetic_sweeps
-from contactres.resonators.qcm import QCM
+from contactres.resonators._qcm import QCM
 
 Q = QCM(5e6, 3, 2.5e-5)
 CONST = dict(overtone=3, area_m2=2.5e-5, n_contacts=3)
@@ -236,7 +236,7 @@ def test_remove_drift_without_times_says_so():
 
 
 def test_student_t_factor_of_an_error_from_few_repeats():
-    from contactres.analysis.jkr import error_dof
+    from contactres.analysis._jkr import error_dof
 
     # Student's table: t(0.975) = 12.706 (1 dof), 3.182 (3), 2.228 (10)
     for dof, t in ((1, 12.706), (3, 3.182), (10, 2.228)):
@@ -250,8 +250,8 @@ def test_points_with_a_negative_stiffness_are_left_out_of_the_jkr_fit_and_said()
 
     import pandas as pd
 
-    from contactres.analysis.jkr import fit_group
-    from contactres.report.console import withheld_lines
+    from contactres.analysis._jkr import fit_group
+    from contactres.report import withheld_lines
     from contactres.tangential import kappa_jkr_mindlin
 
     forces = np.repeat([2e-3, 4e-3, 6e-3, 8e-3], 2)

@@ -440,7 +440,7 @@ def test_predict_per_grain_ignores_unlabelled_pixels():
     # orientation, and gets NaN, not an error.
     from contactres import Material, indentation_modulus
     from contactres.jobs.maps import TipLoad, predict_map
-    from contactres.polycrystal.maps import OrientationMap
+    from contactres.polycrystal._maps import OrientationMap
 
     euler = np.zeros((1, 4, 3))
     euler[0, :2] = (0.3, 0.9, 0.2)

@@ -7,7 +7,7 @@ from click.testing import CliRunner
 
 from contactres.cli import main
 from contactres.normal.isotropic import hertz
-from contactres.resonators.cantilever import Cantilever, contact_frequencies
+from contactres.resonators._cantilever import Cantilever, contact_frequencies
 
 
 def _run(*args):

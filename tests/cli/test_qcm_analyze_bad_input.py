@@ -23,7 +23,7 @@ from contactres.cli import main
 from contactres.fileio import MANIFEST
 from contactres.measurements.synthetic import SweepGroup, SweepStudy, synthetic_sweeps
 from contactres.report.figures import FIGURE_FILES
-from contactres.resonators.qcm import QCM
+from contactres.resonators._qcm import QCM
 
 OPTS = ["--area", "2.5e-5", "--overtone", "3", "--n-contacts", "3", "--bootstrap", "0"]
 CSV_JSON = ("sweeps.csv", "loads.csv", "summary.json")

@@ -20,8 +20,8 @@ from contactres.fileio import MANIFEST, OutputError
 from contactres.measurements.sweeps import SweepWarning, validate_sweeps
 from contactres.measurements.synthetic import SweepGroup, SweepStudy, synthetic_sweeps
 from contactres.report import figures, write_report
-from contactres.report.tables import sweeps_table
-from contactres.resonators.qcm import QCM
+from contactres.report._tables import sweeps_table
+from contactres.resonators._qcm import QCM
 
 FORMATS = ("csv", "json", "png")
 # The files of the analysis' report, written out here (not taken from the writer's registry).
@@ -214,7 +214,7 @@ def test_the_file_names_are_declared_in_one_place():
     """The writer's declaration (report_names) lists the files a report holds, and those of
     the radiation table that a run with a sphere material adds."""
     from contactres.jobs import qcm_sweeps
-    from contactres.report.writer import report_names
+    from contactres.report import report_names
 
     radiation = {"csv": ("radiation.csv",), "json": (), "png": (figures.RADIATION_FIGURE,)}
     for formats in (("png",), ("csv", "json"), FORMATS):

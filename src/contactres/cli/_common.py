@@ -170,7 +170,7 @@ class MaterialType(click.ParamType):
     """A click parameter for the name of a solid in a contact (``role`` "sphere" or "plate"):
     a built-in solid (``contactres crystals``), ``glass`` (soda-lime glass) and, for the plate,
     ``quartz-AT`` (:func:`contactres.materials.at_cut_quartz`). An unknown name is refused in one
-    line listing the known ones (:func:`contactres.analysis.radiation.material_by_name`)."""
+    line listing the known ones (:func:`contactres.analysis.material_by_name`)."""
 
     name = "NAME"
 
@@ -178,7 +178,7 @@ class MaterialType(click.ParamType):
         self.role = role
 
     def convert(self, value, param, ctx):
-        from ..analysis.radiation import material_by_name
+        from ..analysis import material_by_name
 
         try:
             material_by_name(value, self.role)

@@ -217,7 +217,7 @@ def stiffness_command(
         --time-unit s --fundamental 4.95e6 --area 2e-5 --n-contacts 3 --out run-stiffness
     """
     from ..jobs import qcm_stiffness as job
-    from ..report.writer import report_set, write_report
+    from ..report import report_set, write_report
 
     source = Path(export)
     conventions = {

@@ -6,7 +6,7 @@ the measured values are (a CSV grid, read by the ``grid`` recipe of
 :data:`contactres.jobs.readers.ALL_READERS`, or a variable of the store), which quantity they
 are, the lattice, the tolerance that segments unlabelled grains and the tip and load (for a
 stiffness map). The fit is :func:`contactres.jobs.maps.fit_measured_map` (the inverse of
-:mod:`contactres.polycrystal.inverse`).
+:mod:`contactres.polycrystal._inverse`).
 """
 
 from __future__ import annotations

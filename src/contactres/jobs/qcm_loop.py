@@ -121,7 +121,7 @@ def run(inputs: None, settings: Settings, progress: Progress | None = None) -> R
     """The shifts of ``settings`` (``inputs``: None; see the module docstring)."""
     import pandas as pd
 
-    from ..resonators.qcm import QCM, shifts_from_loop
+    from ..resonators import QCM, shifts_from_loop
 
     s = settings
     q = QCM(fundamental=s.fundamental, overtone=s.overtone, area=s.area, zq=s.zq)

@@ -141,7 +141,7 @@ def stiffness_table(table, area: float, n_contacts: int, zq: float):
     of the small-load check (``|Δf|``/f above 1e-3) as text lines."""
     import numpy as np
 
-    from ..resonators.qcm import QCM, stiffness_from_shifts
+    from ..resonators import QCM, stiffness_from_shifts
 
     data = table.data.copy()
     kappa = np.full(len(data), np.nan)
