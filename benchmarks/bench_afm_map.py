@@ -18,8 +18,7 @@ import time
 import numpy as np
 from _verdict import exit_code, target
 
-from contactres.resonators.cantilever import Cantilever, contact_frequencies
-from contactres.resonators.cantilever_inversion import invert_contact_resonance
+from contactres.resonators import Cantilever, contact_frequencies, invert_contact_resonance
 
 TARGET_S = 5.0
 SIDE = 512

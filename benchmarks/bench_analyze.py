@@ -23,7 +23,7 @@ from pathlib import Path
 from _verdict import exit_code, target
 
 from contactres.analysis import analyze
-from contactres.analysis.loops import cm_loop_table
+from contactres.analysis._loops import cm_loop_table
 from contactres.measurements.studies import EXAMPLE_SEED, example_study
 from contactres.measurements.sweeps import read_sweeps
 from contactres.measurements.synthetic import synthetic_sweeps

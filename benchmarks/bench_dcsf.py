@@ -29,10 +29,10 @@ from _verdict import exit_code, target
 
 from contactres import Material
 from contactres.dynamic import ALL_MODELS, MODELS, dcsf_models, prepare, shear_wavenumber_ratio
-from contactres.dynamic.exact import exact_n, galerkin_size
-from contactres.dynamic.normal_stiffness import model_n
-from contactres.dynamic.quadrature import functionals
-from contactres.dynamic.table import kernel_table, resolution_for
+from contactres.dynamic._exact import exact_n, galerkin_size
+from contactres.dynamic._normal_stiffness import model_n
+from contactres.dynamic._quadrature import functionals
+from contactres.dynamic._table import kernel_table, resolution_for
 
 TARGET_S = 0.5
 TARGET_EXACT_S = 1.0

@@ -19,7 +19,7 @@ from _verdict import exit_code, target
 from scipy.integrate import IntegrationWarning, quad
 
 import contactres as cr
-from contactres.resonators.qcm import DEFAULT_NODES, loop_stiffness
+from contactres.resonators import DEFAULT_NODES, loop_stiffness
 
 N = 100_000
 TARGET_S = 0.5

@@ -1,12 +1,12 @@
 """Benchmark: a polycrystal map on a local dask cluster (2 workers) against the serial path.
 
-Issue 16: the same :func:`contactres.polycrystal.maps.evaluate_map` call, serial (numpy, chunk
+Issue 16: the same :func:`contactres.polycrystal.evaluate_map` call, serial (numpy, chunk
 by chunk in this process) and on a ``LocalCluster(n_workers=2, threads_per_worker=1,
 processes=True)``, on synthetic Cu polycrystals (Voronoi grains, uniformly random orientations,
 seeded). Two cases:
 
 * **exact**: the exact indentation modulus M of every pixel
-  (:class:`~contactres.polycrystal.maps.ExactModulus`, ~0.4 ms per pixel) on a 250 x 250 map
+  (:class:`~contactres.polycrystal.ExactModulus`, ~0.4 ms per pixel) on a 250 x 250 map
   with 60 grains; per pixel on the full 1000 x 1000 map it would take ~400 s serially, too long
   for a benchmark. This is the production path of an exact map, cost per pixel included.
 * **cheap**: Young's modulus along the surface normal (closed form of the cubic compliance, a
@@ -40,8 +40,13 @@ import numpy as np
 from _verdict import exit_code, target
 
 from contactres import Material
-from contactres.polycrystal.maps import ExactModulus, evaluate_map, read_map, write_map
-from contactres.polycrystal.synthetic import synthetic_polycrystal
+from contactres.polycrystal import (
+    ExactModulus,
+    evaluate_map,
+    read_map,
+    synthetic_polycrystal,
+    write_map,
+)
 
 EXACT_SHAPE = (250, 250)
 BIG_SHAPE = (1000, 1000)

@@ -13,7 +13,7 @@ its own (``resource.getrusage``, peak RSS of the process minus that after buildi
 * **cattaneo-mindlin**: the same 500 sweeps with the plain Cattaneo-Mindlin loop, for the
   per-sweep cost of the others.
 
-Timed: :func:`contactres.analysis.classify.fit_sweeps` with its padding (every model, the
+Timed: :func:`contactres.analysis._classify.fit_sweeps` with its padding (every model, the
 exact plateau loop included, fitted to every sweep; the loop tables built once before), in
 this process and in 2 worker processes, and the whole :func:`contactres.analysis.analyze` (no
 bootstrap, which is per group, not per sweep; 2 worker processes, as ``qcm analyze`` uses all
@@ -36,11 +36,10 @@ import numpy as np
 import pandas as pd
 from _verdict import exit_code, target
 
-from contactres.analysis import analyze
-from contactres.analysis.amplitude import pad_sweeps
-from contactres.analysis.classify import fit_sweeps
-from contactres.analysis.loops import loop_tables
-from contactres.analysis.pipeline import AnalysisSettings
+from contactres.analysis import AnalysisSettings, analyze
+from contactres.analysis._amplitude import pad_sweeps
+from contactres.analysis._classify import fit_sweeps
+from contactres.analysis._loops import loop_tables
 from contactres.measurements.studies import EXAMPLE_SEED, example_study
 from contactres.measurements.sweeps import validate_sweeps
 from contactres.measurements.synthetic import (
@@ -48,7 +47,7 @@ from contactres.measurements.synthetic import (
     SweepStudy,
     synthetic_sweeps,
 )
-from contactres.resonators.qcm import QCM
+from contactres.resonators import QCM
 
 COPIES = 75  # x 1,344 sweeps = 100,800
 LONG_POINTS = 700

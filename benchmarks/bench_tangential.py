@@ -17,8 +17,8 @@ import numpy as np
 from _verdict import exit_code, target
 
 from contactres import Material, at_cut_quartz
-from contactres.dynamic.table import Resolution
-from contactres.dynamic.tangential_galerkin import (
+from contactres.dynamic._table import Resolution
+from contactres.dynamic._tangential_galerkin import (
     TangentialSize,
     prepare_tangential,
     tangential_per_a,

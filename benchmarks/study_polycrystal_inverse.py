@@ -4,7 +4,7 @@ For each seed: a synthetic Cu polycrystal (:func:`contactres.jobs.maps.synthetic
 Voronoi grains, random orientations, exact M per grain, Hertz k* of a rigid 20 nm tip at 1 µN,
 1 % Gaussian noise on every pixel), then the fit of C12/C11 and C44/C11
 (:func:`contactres.jobs.maps.fit_measured_map`) twice: with the map's grain labels, and without
-them (grains reconstructed by :func:`contactres.polycrystal.grains.segment_grains`, 2°). Prints
+them (grains reconstructed by :func:`contactres.polycrystal.segment_grains`, 2°). Prints
 per fit the relative errors of the ratios, their reported standard errors, the weak combination
 and its relative error, M(111)/M(001) against the truth, and the time.
 
@@ -27,7 +27,7 @@ import numpy as np
 
 from contactres import Material, indentation_modulus
 from contactres.jobs.maps import TipLoad, fit_measured_map, synthetic_map
-from contactres.polycrystal.maps import map_from_dataset
+from contactres.polycrystal import map_from_dataset
 
 CU = Material.crystal("Cu")
 TRUE = np.array([CU.C[0, 1] / CU.C[0, 0], CU.C[3, 3] / CU.C[0, 0]])

@@ -33,8 +33,7 @@ import numpy as np
 import pandas as pd
 from scipy import stats
 
-from contactres.analysis import AnalysisSettings, analyze
-from contactres.analysis.jkr import fit_jkr_mindlin
+from contactres.analysis import AnalysisSettings, analyze, fit_jkr_mindlin
 from contactres.measurements.studies import validation_study
 from contactres.measurements.sweeps import validate_sweeps
 from contactres.measurements.synthetic import synthetic_sweeps

@@ -41,9 +41,9 @@ myst_dmath_double_inline = True
 autosummary_generate = True
 autodoc_typehints = "description"
 autodoc_member_order = "bysource"
-# A package page lists what the package defines, not what it re-exports from its modules (each
-# object is documented once, on its module's page).
-autodoc_default_options = {"members": True, "ignore-module-all": True}
+# A package page lists the names of its ``__all__``: for a subpackage whose modules are private
+# (scipy's rule) these are the names it re-exports from them, each documented once, there.
+autodoc_default_options = {"members": True}
 napoleon_numpy_docstring = True
 napoleon_google_docstring = False
 napoleon_use_rtype = False

@@ -17,8 +17,7 @@ import numpy as np
 
 from contactres.jobs.maps import TipLoad, synthetic_map
 from contactres.materials import Material
-from contactres.polycrystal.ebsd import write_ang
-from contactres.polycrystal.maps import map_from_dataset
+from contactres.polycrystal import map_from_dataset, write_ang
 
 SHAPE, GRAINS, SEED, NOISE = (64, 64), 16, 7, 0.01
 TIP = TipLoad(radius=20e-9, force=1e-6)

@@ -125,6 +125,72 @@ def test_a_folder_with_other_files_keeps_them(tmp_path):
     assert _names(tmp_path) == ["out"]
 
 
+def test_a_name_in_a_manifest_contactres_did_not_write_is_never_removed(tmp_path):
+    """Issue 27: a manifest.json someone else wrote listing a file made the next set delete it."""
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "raw.dat").write_text("x")
+    (out / MANIFEST).write_text('{"files": {"raw.dat": {}}}')
+    with pytest.raises(OutputError, match=r"manifest\.json that contactres did not write"):
+        _write_set(out, {"a.csv": "new"})
+    assert (out / "raw.dat").read_text() == "x" and _names(out) == [MANIFEST, "raw.dat"]
+    # Not JSON at all: refused the same way, nothing touched.
+    (out / MANIFEST).write_text("my notes")
+    with pytest.raises(OutputError, match="did not write"):
+        _write_set(out, {"a.csv": "new"})
+    assert _names(out) == [MANIFEST, "raw.dat"]
+
+
+def test_another_kind_of_set_is_refused_not_removed(tmp_path):
+    """Issue 27: qcm analyze into a folder of qcm stiffness results deleted them."""
+    out = tmp_path / "out"
+    with ResultSet(out, names=["k.csv"], owned=["k.csv"], kind="qcm_stiffness") as rs:
+        rs.path("k.csv").write_text("stiffness")
+    with pytest.raises(OutputError, match=r"another command \('qcm_stiffness' results"):
+        with ResultSet(out, names=["a.csv"], owned=OWNED, kind="qcm_sweeps") as rs:
+            rs.path("a.csv").write_text("new")
+    assert _names(out) == ["k.csv", MANIFEST] and (out / "k.csv").read_text() == "stiffness"
+    assert json.loads((out / MANIFEST).read_text())["kind"] == "qcm_stiffness"
+
+
+def test_a_file_changed_since_the_earlier_set_wrote_it_stays(tmp_path):
+    """Only files whose size and SHA-256 still match the earlier manifest are the set's own."""
+    out = _write_set(tmp_path / "out", {"a.csv": "old", "c.png": "old figure"})
+    (out / "c.png").write_text("the user's own figure now")
+    _write_set(out, {"a.csv": "new"})
+    assert _names(out) == ["a.csv", "c.png", MANIFEST]
+    assert (out / "c.png").read_text() == "the user's own figure now"
+    assert set(json.loads((out / MANIFEST).read_text())["files"]) == {"a.csv"}
+
+
+def test_an_older_contactres_manifest_is_taken_over_by_its_own_names(tmp_path):
+    """A manifest of contactres 0.2 (file records only, no writer or kind): its verified files
+    are the earlier set's when every name it lists is one of this kind's; else refused."""
+    out = _write_set(tmp_path / "out", {"a.csv": "old", "c.png": "old figure"})
+    record = json.loads((out / MANIFEST).read_text())
+    (out / MANIFEST).write_text(json.dumps({"files": record["files"]}))
+    _write_set(out, {"a.csv": "new"})
+    assert _names(out) == ["a.csv", MANIFEST]
+    legacy = {"files": {"k.csv": {"bytes": 1, "sha256": "0" * 64}}}
+    (out / MANIFEST).write_text(json.dumps(legacy))
+    with pytest.raises(OutputError, match=r"lists 'k\.csv'"):
+        _write_set(out, {"a.csv": "newer"})
+    assert (out / "a.csv").read_text() == "new"
+
+
+def test_the_manifest_records_its_writer_and_kind(tmp_path):
+    from contactres import __version__
+
+    with ResultSet(tmp_path / "o", names=["a.csv"], kind="demo") as rs:
+        rs.path("a.csv").write_text("1")
+    record = json.loads((tmp_path / "o" / MANIFEST).read_text())
+    assert (record["generator"], record["version"], record["kind"]) == (
+        "contactres",
+        __version__,
+        "demo",
+    )
+
+
 def test_without_an_atomic_exchange_the_two_renames_give_the_same_result(tmp_path, monkeypatch):
     import ctypes
 
@@ -229,3 +295,19 @@ def test_a_second_run_into_the_same_folder_is_refused_and_a_stale_lock_taken_ove
     lock.write_text(f"{_dead_pid()}\n{socket.gethostname()}\n")  # a killed run
     _write_set(tmp_path / "out", {"a.csv": "x"})
     assert _names(tmp_path) == ["out"]
+
+
+def test_text_cells_a_spreadsheet_would_run_are_neutralised(tmp_path):
+    """Issue 27 (CSV injection): labels starting with =, +, -, @ were written verbatim."""
+    import pandas as pd
+
+    from contactres.fileio import write_csv
+
+    frame = pd.DataFrame(
+        {"label": ["=1+1", "+x", "-y", "@SUM(A1)", "\tz", "plain", "a=b"], "value": [-1.5] * 7}
+    )
+    write_csv(tmp_path / "t.csv", frame)
+    back = pd.read_csv(tmp_path / "t.csv", keep_default_na=False)
+    assert back["label"].tolist() == ["'=1+1", "'+x", "'-y", "'@SUM(A1)", "'\tz", "plain", "a=b"]
+    assert back["value"].tolist() == [-1.5] * 7  # numbers stay numbers
+    assert frame["label"][0] == "=1+1"  # the caller's table is not changed

@@ -73,7 +73,7 @@ SRC = Path(__file__).resolve().parents[1] / "src"
 PACKAGE = "contactres"
 
 # Bottom to top. The key of a module is its first name below the package root
-# (contactres.dynamic.exact -> "dynamic"). The root package (__init__: re-exports only) and
+# (contactres.dynamic._exact -> "dynamic"). The root package (__init__: re-exports only) and
 # __main__ sit above every layer.
 LAYERS: tuple[frozenset[str], ...] = (
     frozenset(
@@ -89,7 +89,7 @@ LAYERS: tuple[frozenset[str], ...] = (
             "_version",
         }
     ),
-    frozenset({"materials"}),
+    frozenset({"materials", "viscoelastic"}),
     frozenset({"halfspace"}),
     frozenset({"layered"}),
     frozenset({"normal"}),
@@ -195,7 +195,7 @@ class Rules:
 class Module:
     """One parsed source file."""
 
-    name: str  # dotted: contactres.dynamic.exact; a package is named by its __init__
+    name: str  # dotted: contactres.dynamic._exact; a package is named by its __init__
     path: Path
     is_package: bool
     tree: ast.Module
@@ -362,7 +362,7 @@ def _unique(edges: Iterable[Edge]) -> list[Edge]:
 
 
 def unit_of(module: str, package: str) -> str:
-    """``contactres.dynamic.exact`` -> ``dynamic``; the root package -> ``__init__``."""
+    """``contactres.dynamic._exact`` -> ``dynamic``; the root package -> ``__init__``."""
     if module == package:
         return "__init__"
     return module.split(".")[1]

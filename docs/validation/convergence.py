@@ -1,6 +1,6 @@
 """Convergence of the two exact rigid-punch solutions: error against resolution.
 
-(a, b) The package's Galerkin (``dcsf(..., "exact")``; :mod:`contactres.dynamic.exact`) on cubic
+(a, b) The package's Galerkin (``dcsf(..., "exact")``; :mod:`contactres.dynamic._exact`) on cubic
 (001) faces, Q⁻¹ = 0.02, k_l a = 0.4 ... 2, as tests/dynamic/test_dynamic_exact.py
 (test_convergence_in_terms_and_resolution): the largest |DCSF/DCSF_ref − 1| when the number of
 radial terms (a) or of angular harmonics (b) is cut, the other at its default, the reference
@@ -19,8 +19,8 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from contactres import Material
-from contactres.dynamic.exact import GalerkinSize, exact_n, galerkin_size
-from contactres.dynamic.table import kernel_table, resolution_for
+from contactres.dynamic._exact import GalerkinSize, exact_n, galerkin_size
+from contactres.dynamic._table import kernel_table, resolution_for
 from contactres.report.figures import key_below
 
 # the plot directive runs the script with sys.argv = [its path] (so does python script.py)

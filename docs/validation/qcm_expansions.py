@@ -15,7 +15,7 @@ from matplotlib.figure import Figure
 
 import contactres as cr
 from contactres.report.figures import key_below
-from contactres.resonators.qcm import loop_stiffness
+from contactres.resonators import loop_stiffness
 
 CM = cr.CattaneoMindlinLoop(kappa=4e5, mu=0.8, normal_force=5e-3)
 SV = cr.SavkoorLoop(kappa=4e5, tau=20e6, a=5e-6)

@@ -17,7 +17,7 @@ from scipy.integrate import IntegrationWarning, quad
 
 import contactres as cr
 from contactres.report.figures import key_below
-from contactres.resonators.qcm import loop_stiffness
+from contactres.resonators import loop_stiffness
 
 warnings.simplefilter("ignore", IntegrationWarning)  # quad at epsrel 1e-14: round-off notes
 LOOPS = {

@@ -15,7 +15,7 @@ import numpy as np
 from matplotlib.figure import Figure
 
 from contactres import Material
-from contactres.dynamic.tangential_stiffness import tangential_dcsf
+from contactres.dynamic import tangential_dcsf
 from contactres.report.figures import key_below
 
 # the plot directive runs the script with sys.argv = [its path] (so does python script.py)

@@ -35,6 +35,13 @@ _EXPORTS: dict[str, str] = {
     "static_kernel": ".halfspace",
     "LayeredMaterial": ".layered",
     "surface_green": ".layered",
+    # viscoelastic materials
+    "ConstantLoss": ".viscoelastic",
+    "ModulusTable": ".viscoelastic",
+    "PowerLaw": ".viscoelastic",
+    "Prony": ".viscoelastic",
+    "ViscoelasticMaterial": ".viscoelastic",
+    "pmma": ".viscoelastic",
     # static normal contact
     "Contact": ".normal.isotropic",
     "dmt": ".normal.isotropic",
@@ -51,10 +58,10 @@ _EXPORTS: dict[str, str] = {
     "AnisotropicContact": ".normal.anisotropic",
     "contact_integrals": ".normal.anisotropic",
     "indentation_modulus": ".normal.anisotropic",
-    "LayeredContact": ".normal.layered",
-    "flat_punch_stiffness": ".normal.layered",
-    "indentation_modulus_at": ".normal.layered",
-    "sphere_contact": ".normal.layered",
+    "LayeredContact": ".normal",
+    "flat_punch_stiffness": ".normal",
+    "indentation_modulus_at": ".normal",
+    "sphere_contact": ".normal",
     # dynamic contact stiffness
     "contact_displacement": ".dynamic",
     "contact_pressure": ".dynamic",
@@ -76,19 +83,19 @@ _EXPORTS: dict[str, str] = {
     "mindlin_stiffness": ".tangential",
     "with_dashpot": ".tangential",
     # resonators
-    "QCM": ".resonators.qcm",
-    "cattaneo_mindlin_expansion": ".resonators.qcm",
-    "friction_from_slopes": ".resonators.qcm",
-    "loop_stiffness": ".resonators.qcm",
-    "savkoor_expansion": ".resonators.qcm",
-    "shifts_from_loop": ".resonators.qcm",
-    "shifts_from_stiffness": ".resonators.qcm",
-    "stiffness_from_shifts": ".resonators.qcm",
-    "Cantilever": ".resonators.cantilever",
-    "contact_frequencies": ".resonators.cantilever",
-    "ContactResonanceResult": ".resonators.cantilever_inversion",
-    "invert_contact_resonance": ".resonators.cantilever_inversion",
-    "RUMOscillator": ".resonators.rum",
+    "QCM": ".resonators",
+    "cattaneo_mindlin_expansion": ".resonators",
+    "friction_from_slopes": ".resonators",
+    "loop_stiffness": ".resonators",
+    "savkoor_expansion": ".resonators",
+    "shifts_from_loop": ".resonators",
+    "shifts_from_stiffness": ".resonators",
+    "stiffness_from_shifts": ".resonators",
+    "Cantilever": ".resonators",
+    "contact_frequencies": ".resonators",
+    "ContactResonanceResult": ".resonators",
+    "invert_contact_resonance": ".resonators",
+    "RUMOscillator": ".resonators",
     # measurements and analysis
     "SweepTable": ".measurements.sweeps",
     "SweepWarning": ".measurements.sweeps",
@@ -98,10 +105,10 @@ _EXPORTS: dict[str, str] = {
     "Flag": ".analysis",
     "analyze": ".analysis",
     "Results": ".analysis",
-    "ModulusResult": ".analysis.inversion",
-    "modulus_from_contact_stiffness": ".analysis.inversion",
-    "invert_afm_table": ".analysis.resonance_tables",
-    "invert_rum_table": ".analysis.resonance_tables",
+    "ModulusResult": ".analysis",
+    "modulus_from_contact_stiffness": ".analysis",
+    "invert_afm_table": ".analysis",
+    "invert_rum_table": ".analysis",
     "read_resonance_table": ".measurements.resonances",
     "example_afm_map": ".measurements.afm_example",
     "write_report": ".report",
@@ -130,6 +137,7 @@ _SUBMODULES: frozenset[str] = frozenset(
         "tangential",
         "units",
         "validation",
+        "viscoelastic",
     }
 )
 
@@ -163,20 +171,17 @@ if TYPE_CHECKING:
         tangential as tangential,
         units as units,
         validation as validation,
+        viscoelastic as viscoelastic,
     )
     from .analysis import (
         AnalysisSettings as AnalysisSettings,
         Flag as Flag,
+        ModulusResult as ModulusResult,
         Results as Results,
         analyze as analyze,
-    )
-    from .analysis.inversion import (
-        ModulusResult as ModulusResult,
-        modulus_from_contact_stiffness as modulus_from_contact_stiffness,
-    )
-    from .analysis.resonance_tables import (
         invert_afm_table as invert_afm_table,
         invert_rum_table as invert_rum_table,
+        modulus_from_contact_stiffness as modulus_from_contact_stiffness,
     )
     from .crystals import (
         crystal_names as crystal_names,
@@ -238,7 +243,7 @@ if TYPE_CHECKING:
         tabor_parameter as tabor_parameter,
         which_adhesion_model as which_adhesion_model,
     )
-    from .normal.layered import (
+    from .normal import (
         LayeredContact as LayeredContact,
         flat_punch_stiffness as flat_punch_stiffness,
         indentation_modulus_at as indentation_modulus_at,
@@ -247,26 +252,20 @@ if TYPE_CHECKING:
     from .report import (
         write_report as write_report,
     )
-    from .resonators.cantilever import (
+    from .resonators import (
         Cantilever as Cantilever,
-        contact_frequencies as contact_frequencies,
-    )
-    from .resonators.cantilever_inversion import (
         ContactResonanceResult as ContactResonanceResult,
-        invert_contact_resonance as invert_contact_resonance,
-    )
-    from .resonators.qcm import (
         QCM as QCM,
+        RUMOscillator as RUMOscillator,
         cattaneo_mindlin_expansion as cattaneo_mindlin_expansion,
+        contact_frequencies as contact_frequencies,
         friction_from_slopes as friction_from_slopes,
+        invert_contact_resonance as invert_contact_resonance,
         loop_stiffness as loop_stiffness,
         savkoor_expansion as savkoor_expansion,
         shifts_from_loop as shifts_from_loop,
         shifts_from_stiffness as shifts_from_stiffness,
         stiffness_from_shifts as stiffness_from_shifts,
-    )
-    from .resonators.rum import (
-        RUMOscillator as RUMOscillator,
     )
     from .tangential import (
         CattaneoMindlinLoop as CattaneoMindlinLoop,
@@ -278,6 +277,14 @@ if TYPE_CHECKING:
         mindlin_deresiewicz_energy as mindlin_deresiewicz_energy,
         mindlin_stiffness as mindlin_stiffness,
         with_dashpot as with_dashpot,
+    )
+    from .viscoelastic import (
+        ConstantLoss as ConstantLoss,
+        ModulusTable as ModulusTable,
+        PowerLaw as PowerLaw,
+        Prony as Prony,
+        ViscoelasticMaterial as ViscoelasticMaterial,
+        pmma as pmma,
     )
     from ._version import __version__ as __version__
 

@@ -12,6 +12,7 @@ from __future__ import annotations
 import importlib
 import sys
 from collections.abc import Callable, Mapping
+from types import ModuleType
 
 TYPE_CHECKING = False
 if TYPE_CHECKING:
@@ -38,7 +39,13 @@ def attach(
         raise AttributeError(f"module {package!r} has no attribute {name!r}")
 
     def __dir__() -> list[str]:
-        """The public names and the loaded submodules, as ``dir()`` and tab completion expect."""
-        return sorted({*vars(sys.modules[package]), *exports})
+        """The public names and the loaded public submodules, as tab completion expects.
+
+        Not the package's own helpers (``attach``, ``TYPE_CHECKING``, ...) nor its private
+        modules: ``dir()`` shows what a user may call, as scipy's subpackages do.
+        """
+        loaded = vars(sys.modules[package])
+        modules = (n for n, v in loaded.items() if isinstance(v, ModuleType) and n[0] != "_")
+        return sorted({*exports, *modules})
 
     return __getattr__, __dir__

@@ -14,7 +14,14 @@ that belong together is written as one :class:`ResultSet`:
   kill falls between them); a folder holding other files too (the data, say) gets the files one
   by one, its manifest removed first;
 * ``manifest.json`` (:data:`MANIFEST`), written last, lists the files with sizes and SHA-256
-  sums; files of an earlier set that the new one lacks (its figures, say) are removed.
+  sums, the writer (``contactres`` and its version) and the kind of set (the job that wrote
+  it); files of an earlier set that the new one lacks (its figures, say) are removed.
+
+A set owns only the files it can show it wrote: those its kind's earlier manifest lists *and*
+whose size and SHA-256 still match the record. A file someone else wrote or changed since is
+never removed (it may be overwritten only by a file of the same name the new set writes), and
+a folder whose manifest contactres did not write, or that holds another kind of set (``qcm
+stiffness`` results when ``qcm analyze`` writes, say), is refused before anything is computed.
 
 So a kill leaves the earlier set or the new one (plus hidden leftovers the next run removes), or
 a folder without a manifest (files moved one by one): never a mixture that looks complete.
@@ -35,10 +42,12 @@ from collections.abc import Iterable, Iterator
 from contextlib import contextmanager
 from pathlib import Path
 
+from ._version import __version__
 from .errors import ContactresInputError
 
 __all__ = [
     "CSV_FLOAT_FORMAT",
+    "FORMULA_START",
     "MANIFEST",
     "OutputError",
     "ResultSet",
@@ -46,6 +55,7 @@ __all__ = [
     "check_output",
     "check_output_file",
     "ensure_dir",
+    "neutralised",
     "replace_folder",
     "save_figure",
     "write_csv",
@@ -117,11 +127,38 @@ def write_text(path: str | os.PathLike, text: str) -> Path:
     return Path(path)
 
 
+#: First characters with which a spreadsheet reads a cell as a formula (CSV injection, OWASP):
+#: a text cell starting with one of them is written with a leading apostrophe.
+FORMULA_START = ("=", "+", "-", "@", "\t", "\r")
+
+
+def neutralised(frame):
+    """``frame`` with every text cell that a spreadsheet would run as a formula (it starts with
+    one of :data:`FORMULA_START`) prefixed by an apostrophe, which spreadsheets show as text.
+    Numbers are untouched (a negative number is a number, not a formula); only columns of text
+    (object or string dtype) are looked at. Returns ``frame`` itself when nothing needs it."""
+    columns = getattr(frame, "columns", None)
+    if columns is None:  # not a table: written as the caller's to_csv writes it
+        return frame
+    text = [c for c in columns if frame[c].dtype.kind == "O" or str(frame[c].dtype) == "str"]
+    if not text:
+        return frame
+    out = None
+    for c in text:
+        col = frame[c]
+        risky = col.map(lambda v: isinstance(v, str) and v.startswith(FORMULA_START))
+        if risky.any():
+            out = frame.copy() if out is None else out
+            out[c] = col.where(~risky, "'" + col.astype(str))
+    return frame if out is None else out
+
+
 def write_csv(path: str | os.PathLike, frame, **kwargs) -> Path:
-    """Write a pandas DataFrame as CSV atomically (no index unless asked)."""
+    """Write a pandas DataFrame as CSV atomically (no index unless asked); text cells that a
+    spreadsheet would run as formulas are neutralised (:func:`neutralised`)."""
     kwargs.setdefault("index", False)
     with atomic_path(path) as tmp:
-        frame.to_csv(tmp, **kwargs)
+        neutralised(frame).to_csv(tmp, **kwargs)
     return Path(path)
 
 
@@ -168,15 +205,78 @@ def check_output_file(path: str | os.PathLike, inputs: Iterable[str | os.PathLik
     return folder / given.name
 
 
-def _manifest_names(folder: Path) -> set[str]:
-    """Plain file names listed in the manifest of ``folder`` (empty if none or unreadable)."""
+#: The writer recorded in a manifest (a manifest without it is refused unless it is an older
+#: contactres one: file records with sizes and SHA-256 sums, names all of this kind of set).
+GENERATOR = "contactres"
+
+
+def _read_manifest(folder: Path) -> dict | None:
+    """The manifest of ``folder`` as a dict; None if there is none; {} if it cannot be read as
+    a contactres manifest (not JSON, no ``files`` table)."""
+    path = folder / MANIFEST
+    if not path.is_file():
+        return None
     try:
-        listed = json.loads((folder / MANIFEST).read_text(encoding="utf-8"))["files"]
-        names = {str(n) for n in listed}
-    except (OSError, ValueError, KeyError, TypeError):
-        return set()
+        record = json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, ValueError):
+        return {}
+    if not isinstance(record, dict) or not isinstance(record.get("files"), dict):
+        return {}
+    return record
+
+
+def _plain_name(n: str) -> bool:
     # Never trust a path from a file: only names of files directly inside the folder.
-    return {n for n in names if Path(n).name == n and not n.startswith(".") and n != MANIFEST}
+    return Path(n).name == n and not n.startswith(".") and n != MANIFEST
+
+
+def _manifest_owner(folder: Path, given: Path, kind: str, owned: frozenset[str]) -> dict:
+    """The manifest of ``folder`` if this kind of set may take the folder over ({} if there is
+    none); OutputError naming the folder if it holds a manifest contactres did not write or
+    another kind of set (whose files would otherwise be removed or left without a record)."""
+    record = _read_manifest(folder)
+    if record is None:
+        return {}
+    names = [str(n) for n in record.get("files", {})]
+    if record.get("generator") == GENERATOR:
+        if record.get("kind", "") != kind:
+            raise OutputError(
+                f"output folder {str(given)!r} holds the results of another command "
+                f"({record.get('kind') or 'unnamed'!r} results, {MANIFEST}); choose another folder"
+            )
+    elif not record or not all(
+        isinstance(r, dict) and "sha256" in r for r in record["files"].values()
+    ):
+        raise OutputError(
+            f"output folder {str(given)!r} holds a {MANIFEST} that contactres did not write; "
+            "choose another folder (its files are not touched)"
+        )
+    elif not set(names) <= owned:  # an older contactres manifest: its names tell its kind
+        raise OutputError(
+            f"output folder {str(given)!r} holds the results of another command ({MANIFEST} "
+            f"lists {sorted(set(names) - owned)[0]!r}); choose another folder"
+        )
+    return record
+
+
+def _verified_names(folder: Path, record: dict) -> set[str]:
+    """The names of ``record`` (a manifest :func:`_manifest_owner` accepted) whose files in
+    ``folder`` still have the recorded size and SHA-256: the files the earlier set wrote and
+    nobody changed since. Only those may be removed."""
+    out = set()
+    for name, rec in record.get("files", {}).items():
+        name = str(name)
+        path = folder / name
+        if not (_plain_name(name) and isinstance(rec, dict)):
+            continue
+        if path.is_file() and not path.is_symlink():
+            try:
+                same = _digest(path) == {"bytes": rec.get("bytes"), "sha256": rec.get("sha256")}
+            except OSError:
+                same = False
+            if same:
+                out.add(name)
+    return out
 
 
 def _leftover_temporary(name: str, owned: Iterable[str]) -> bool:
@@ -214,7 +314,7 @@ def check_output(
     elif not nearest.is_dir() or not _writable(nearest):
         why = "is not writable" if nearest.is_dir() else "is not a directory"
         raise OutputError(f"output folder {str(given)!r} cannot be created: {str(nearest)!r} {why}")
-    _check_names(target, given, {*names, MANIFEST} | _manifest_names(target), inputs)
+    _check_names(target, given, {*names, MANIFEST}, inputs)
     return target
 
 
@@ -316,11 +416,14 @@ class ResultSet:
 
     ``folder`` is the output folder (created if missing; symbolic links are followed); ``names``
     the files this run may write (:meth:`path` refuses others); ``inputs`` the input files of the
-    run (no file of the set may be one of them); ``owned`` every name a set of this kind can hold:
-    those the new set lacks are removed from the folder (files an earlier set wrote), and a folder
+    run (no file of the set may be one of them); ``owned`` every name a set of this kind can
+    hold; ``kind`` the name of that kind (the job's), recorded in the manifest. Files of an
+    earlier set of the same kind that the new set lacks are removed if the earlier manifest lists
+    them with their current size and SHA-256 (nothing else is ever removed), and a folder
     holding only such files (and its manifest) is replaced as a whole.
 
-    Raises :class:`OutputError` on entering: see :func:`check_output`, or another run holds the
+    Raises :class:`OutputError` on entering: see :func:`check_output`; the folder holds a
+    manifest contactres did not write or one of another kind of set; or another run holds the
     lock. Where the folder's parent cannot be written but the folder itself can, the lock file and
     the staging folder live inside the folder (hidden) and the files are moved in one by one.
     """
@@ -332,8 +435,10 @@ class ResultSet:
         names: Iterable[str] = (),
         inputs: Iterable[str | os.PathLike[str]] = (),
         owned: Iterable[str] = (),
+        kind: str = "",
     ) -> None:
         self.given = Path(folder)
+        self.kind = str(kind)
         self.names = tuple(names)
         self.inputs = tuple(inputs)
         self.owned = frozenset(owned) | frozenset(self.names)
@@ -342,11 +447,13 @@ class ResultSet:
         self._staging: Path | None = None
         self._lock: Path | None = None
         self._created: list[Path] = []
+        self._earlier: set[str] = set()
 
     # -- set-up ---------------------------------------------------------------------------
 
     def __enter__(self) -> ResultSet:
         self.folder = check_output(self.given, self.owned, self.inputs)
+        _manifest_owner(self.folder, self.given, self.kind, self.owned)
         parent = self.folder.parent
         missing = [p for p in (parent, *parent.parents) if not p.exists()]
         try:
@@ -459,10 +566,12 @@ class ResultSet:
         cwd = Path.cwd().resolve()
         if cwd == self.folder or self.folder in cwd.parents:
             return False
-        ours = self.owned | _manifest_names(self.folder) | {MANIFEST}
+        # Swapping the folder drops every file of it that the new set does not write again:
+        # only the earlier set's own (verified) files and the manifest may go that way.
+        ours = self._earlier | set(self.names) | {MANIFEST}
         return all(
             (p.name in ours and p.is_file() and not p.is_symlink())
-            or _leftover_temporary(p.name, ours)
+            or _leftover_temporary(p.name, self.owned)
             for p in self.folder.iterdir()
         )
 
@@ -470,8 +579,16 @@ class ResultSet:
         staging = self._staging
         assert staging is not None, "made on entering, kept until the commit"
         staged = sorted(p.name for p in staging.iterdir() if not p.name.startswith("."))
-        record = {"files": {name: _digest(staging / name) for name in staged}}
+        record = {
+            "generator": GENERATOR,
+            "version": __version__,
+            "kind": self.kind,
+            "files": {name: _digest(staging / name) for name in staged},
+        }
         write_text(staging / MANIFEST, json.dumps(record, indent=1) + "\n")
+        # Checked again under the lock, just before the move: what the earlier set wrote now.
+        earlier = _manifest_owner(self.folder, self.given, self.kind, self.owned)
+        self._earlier = _verified_names(self.folder, earlier) if self.folder.exists() else set()
         if self._replaceable():
             if not self.folder.exists():
                 try:
@@ -491,14 +608,13 @@ class ResultSet:
 
     def _commit_in_place(self, staging: Path, staged: list[str]) -> None:
         """Move the files in one by one (the folder holds other files that must stay)."""
-        earlier = _manifest_names(self.folder)
         (self.folder / MANIFEST).unlink(missing_ok=True)  # no manifest while the set is mixed
         for name in staged:
             _move_in(staging / name, self.folder / name)
-        stale = (self.owned | earlier) - set(staged)
+        stale = self._earlier - set(staged)
         for p in self.folder.iterdir():
-            if p.name in stale or _leftover_temporary(p.name, self.owned | earlier):
-                if p.is_file() or p.is_symlink():
+            if p.name in stale or _leftover_temporary(p.name, self.owned):
+                if p.is_file() and not p.is_symlink():
                     p.unlink()
         _move_in(staging / MANIFEST, self.folder / MANIFEST)
 

@@ -5,7 +5,7 @@ A :class:`Model` carries everything needed to fit it and to report it: its param
 (:class:`Parameter`: key, display name, unit, output column, default bounds, fixed or free), the
 observable it predicts and its unit, and the source of its formula. A :class:`ModelRegistry` is an
 immutable mapping of models by key, built explicitly by the package that defines the models (the
-sweep analysis: :data:`contactres.analysis.models.REGISTRY`); a test walks it and holds every
+sweep analysis: :data:`contactres.analysis.REGISTRY`); a test walks it and holds every
 parameter to a closed table of names, units and columns.
 
 :func:`fit` wraps :func:`scipy.optimize.least_squares`: a pure function of (model, data,
@@ -18,9 +18,9 @@ axis; one problem is a batch of one), each with its own damping and stopping, wi
 (projection), an admissible region (a step outside it fails like one that raises χ²) and
 optional geodesic acceleration; :class:`LMOptions` chooses among the classic variants (damping
 matrix, update of the damping, tolerances). It serves the plateau-loop fit of the sweeps
-(:mod:`contactres.analysis.plateau`, thousands of two-parameter problems in the Gauss-Newton form
+(:mod:`contactres.analysis`, thousands of two-parameter problems in the Gauss-Newton form
 of variable projection) and the ratio fit of polycrystal maps
-(:mod:`contactres.polycrystal.ratio_fit`, one ill-conditioned problem in the Jacobian form).
+(:mod:`contactres.polycrystal._ratio_fit`, one ill-conditioned problem in the Jacobian form).
 """
 
 from __future__ import annotations

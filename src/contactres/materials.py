@@ -388,6 +388,12 @@ class Material:
             frame=self.frame,
         )
 
+    def at(self, frequency: float) -> Material:
+        """The solid at frequency ``frequency`` (Hz): ``self``, since an elastic or constant-loss
+        material does not depend on frequency. It lets callers treat a :class:`Material` and a
+        :class:`contactres.viscoelastic.ViscoelasticMaterial` alike (``m.at(f)``)."""
+        return self
+
     # ----------------------------------------------------------------------------- properties
     @property
     def is_lossy(self) -> bool:

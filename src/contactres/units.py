@@ -73,7 +73,7 @@ def poisson_in_range(nu: float) -> bool:
 
 
 #: Largest normalised wave number k a taken from a user: 30 times paper 1's range (k_l a <= 2).
-#: The DCSF kernels end near it too (k_s a x T1 < 60, dynamic/normal_stiffness.py), at a
+#: The DCSF kernels end near it too (k_s a x T1 < 60, dynamic/_normal_stiffness.py), at a
 #: material-dependent point that the library checks itself.
 MAX_KA = 60.0
 

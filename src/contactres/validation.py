@@ -47,6 +47,6 @@ def amplitude(u0) -> np.ndarray:
     it is finite and >= 0.
 
     The loops (:mod:`contactres.tangential`) and the QCM quadrature
-    (:mod:`contactres.resonators.qcm`) share this check, so their error messages agree.
+    (:mod:`contactres.resonators`) share this check, so their error messages agree.
     """
     return np.asarray(nonnegative("amplitude u0", u0, "m"), dtype=float)

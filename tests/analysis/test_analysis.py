@@ -4,13 +4,13 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from contactres.analysis.amplitude import pad_sweeps
-from contactres.analysis.classify import fit_sweeps
-from contactres.analysis.flags import Flag, has
-from contactres.analysis.jkr import bootstrap_jkr, fit_jkr_mindlin
-from contactres.analysis.loops import cm_loop_table, fit_cm_loops, plateau_loop_shape
-from contactres.analysis.models import EXACT_LOOPS, exact_model, fit_tables, model_curves
-from contactres.analysis.pipeline import AnalysisSettings, analyze
+from contactres.analysis._amplitude import pad_sweeps
+from contactres.analysis._classify import fit_sweeps
+from contactres.analysis._flags import Flag, has
+from contactres.analysis._jkr import bootstrap_jkr, fit_jkr_mindlin
+from contactres.analysis._loops import cm_loop_table, fit_cm_loops, plateau_loop_shape
+from contactres.analysis._models import EXACT_LOOPS, exact_model, fit_tables, model_curves
+from contactres.analysis._pipeline import AnalysisSettings, analyze
 from contactres.fitting import Model, Parameter, fit
 from contactres.measurements.sweeps import validate_sweeps
 from contactres.measurements.synthetic import (
@@ -22,7 +22,7 @@ from contactres.measurements.synthetic import (
 )
 from contactres.normal.isotropic import effective_modulus, jkr_contact_radius
 from contactres.report import summary, sweeps_table
-from contactres.resonators.qcm import QCM, shifts_from_loop
+from contactres.resonators._qcm import QCM, shifts_from_loop
 from contactres.tangential import (
     CattaneoMindlinLoop,
     PlateauLoop,
@@ -282,7 +282,7 @@ def test_plateau_loop_shape_matches_the_forward_model():
 
 
 def test_plateau_loss_part_is_the_shifted_table_plus_a_closed_form():
-    # From the virgin-curve form of Eq. 5 (contactres.analysis.loops docstring): with y = x - c,
+    # From the virgin-curve form of Eq. 5 (contactres.analysis._loops docstring): with y = x - c,
     # (K″ - ωξ)/κ = (y/x)² g″(y) + 4c (y - F(y))/(πx²), F the unit Cattaneo-Mindlin virgin
     # curve (closed form, paper 2, Eq. 6): the table reused at a shifted argument.
     tab = cm_loop_table()
@@ -299,7 +299,7 @@ def test_plateau_loss_part_is_the_shifted_table_plus_a_closed_form():
 
 def test_plateau_onset_has_no_linear_slope():
     # Small excess v = u0 - d_c (units μF_N/κ, so v = y): K″ - ωξ ≈ (2/(3π)) κ v²/d_c and K′ - κ ≈
-    # -(32/(45π)) κ v^(5/2)/d_c^(3/2) (contactres.analysis.loops docstring). The relative error of
+    # -(32/(45π)) κ v^(5/2)/d_c^(3/2) (contactres.analysis._loops docstring). The relative error of
     # these leading terms must be O(v): halving v halves it. No term linear in v exists for a slope
     # to pick up. (v >= 4e-3 keeps K′ - κ far above the 1e-9 accuracy of the quadrature.)
     for c in (0.5, 2.0):

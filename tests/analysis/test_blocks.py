@@ -5,9 +5,9 @@ import pandas as pd
 import pytest
 
 from contactres.analysis import AnalysisSettings, analyze
-from contactres.analysis.amplitude import pad_sweeps
-from contactres.analysis.classify import NESTED, fit_sweeps, prefer
-from contactres.analysis.loops import (
+from contactres.analysis._amplitude import pad_sweeps
+from contactres.analysis._classify import NESTED, fit_sweeps, prefer
+from contactres.analysis._loops import (
     cm_loop_shape,
     loop_tables,
     savkoor_loop_shape,
@@ -22,7 +22,7 @@ from contactres.measurements.synthetic import (
     synthetic_sweeps,
 )
 from contactres.normal.isotropic import effective_modulus, jkr_contact_radius
-from contactres.resonators.qcm import QCM
+from contactres.resonators._qcm import QCM
 from contactres.tangential import kappa_jkr_mindlin
 from contactres.units import LINEAR_ONSET_X
 
@@ -285,7 +285,7 @@ def _two_loop_blocks(mu_cm, err_cm, mu_pl, err_pl, bic_cm, bic_pl, force=2e-3):
 
 
 def test_decisive_evidence_leaves_the_winners_mu():
-    from contactres.analysis.friction import model_averaged_mu
+    from contactres.analysis._friction import model_averaged_mu
 
     b = _two_loop_blocks(1.0, 0.05, 0.6, 0.04, bic_cm=100.0, bic_pl=160.0)
     mu, err, w = model_averaged_mu(*b, np.ones(1))
@@ -297,7 +297,7 @@ def test_model_averaged_mu_is_the_mean_and_spread_of_the_weighted_mixture():
     """Two loops 2 units of BIC apart: weights 1 : e^-1. The averaged μ and its error are the
     mean and standard deviation of the mixture of the two normal estimates with those weights,
     checked here by drawing from that mixture (law of total variance)."""
-    from contactres.analysis.friction import model_averaged_mu
+    from contactres.analysis._friction import model_averaged_mu
 
     b = _two_loop_blocks(1.5, 0.10, 1.0, 0.20, bic_cm=50.0, bic_pl=52.0)
     mu, err, w = model_averaged_mu(*b, np.ones(1))
@@ -312,7 +312,7 @@ def test_model_averaged_mu_is_the_mean_and_spread_of_the_weighted_mixture():
 
 
 def test_a_loop_without_a_fit_gets_no_weight():
-    from contactres.analysis.friction import model_averaged_mu
+    from contactres.analysis._friction import model_averaged_mu
 
     b = _two_loop_blocks(1.2, 0.1, 0.8, 0.1, bic_cm=10.0, bic_pl=np.inf)
     mu, err, w = model_averaged_mu(*b, np.ones(1))

@@ -8,8 +8,8 @@ import numpy as np
 import pytest
 
 import contactres
-from contactres.analysis.curves import CURVE_GRIDS, sweep_rows
-from contactres.analysis.models import REGISTRY, model_curves
+from contactres.analysis._curves import CURVE_GRIDS, sweep_rows
+from contactres.analysis._models import REGISTRY, model_curves
 
 LOOPS = {
     "cm-loop": "cattaneo-mindlin-loop",
@@ -67,10 +67,10 @@ def test_every_sweep_has_its_model_on_each_grid(results):
 
 
 def test_a_sweep_without_a_usable_fit_gets_no_curve_and_the_others_keep_theirs(results):
-    from contactres.analysis.amplitude import pad_sweeps
-    from contactres.analysis.classify import fit_sweeps
-    from contactres.analysis.curves import fitted_curves
-    from contactres.analysis.models import fit_tables
+    from contactres.analysis._amplitude import pad_sweeps
+    from contactres.analysis._classify import fit_sweeps
+    from contactres.analysis._curves import fitted_curves
+    from contactres.analysis._models import fit_tables
 
     padded = pad_sweeps(results.table.data)
     sw, fields = fit_sweeps(padded)  # the named table and every fit's fields

@@ -9,7 +9,7 @@ import numpy as np
 import pytest
 
 import contactres
-from contactres.analysis.models import MODULES, REGISTRY, SWEEP_FITS
+from contactres.analysis._models import MODULES, REGISTRY, SWEEP_FITS
 from contactres.measurements.schema import SWEEP_RESULTS
 
 PREFIXES = ("el_", "line_", "parabola_", "hinge_", "cm_", "sv_", "pl_")

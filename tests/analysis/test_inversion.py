@@ -1,11 +1,11 @@
-"""Tests of contactres.analysis.inversion: contact stiffness -> reduced and sample modulus."""
+"""Tests of contactres.analysis._inversion: contact stiffness -> reduced and sample modulus."""
 
 import math
 
 import numpy as np
 import pytest
 
-from contactres.analysis.inversion import (
+from contactres.analysis._inversion import (
     FLAG_DESCRIPTIONS,
     ModulusFlag,
     dcsf_values,

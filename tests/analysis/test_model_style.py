@@ -6,15 +6,15 @@ import inspect
 import numpy as np
 import pytest
 
-from contactres.analysis.amplitude import pad_sweeps
-from contactres.analysis.classify import fit_sweeps
-from contactres.analysis.loops import loop_tables
-from contactres.analysis.models import AMPLITUDE_MODELS, REGISTRY, fit_tables
+from contactres.analysis._amplitude import pad_sweeps
+from contactres.analysis._classify import fit_sweeps
+from contactres.analysis._loops import loop_tables
+from contactres.analysis._models import AMPLITUDE_MODELS, REGISTRY, fit_tables
 from contactres.fitting import fit
 from contactres.measurements.schema import GROUP_RESULTS, SWEEP_RESULTS
 from contactres.measurements.sweeps import validate_sweeps
 from contactres.measurements.synthetic import SweepGroup, SweepStudy, synthetic_sweeps
-from contactres.resonators.qcm import QCM
+from contactres.resonators._qcm import QCM
 
 # Every parameter any fitted model may have: unit and the result columns that may hold it.
 # A new parameter must be added here with its unit, or this test fails.

@@ -14,16 +14,16 @@ import pandas as pd
 import pytest
 from click.testing import CliRunner
 
-from contactres.analysis.pipeline import AnalysisSettings
-from contactres.analysis.radiation import (
+from contactres.analysis._pipeline import AnalysisSettings
+from contactres.analysis._radiation import (
     RADIATION_RESULTS,
     material_by_name,
     radiation_loss,
     radiation_summary,
 )
 from contactres.cli import main
-from contactres.dynamic import tangential_stiffness
-from contactres.dynamic.tangential_stiffness import two_body_contact_stiffness
+from contactres.dynamic import _tangential_stiffness as tangential_stiffness
+from contactres.dynamic._tangential_stiffness import two_body_contact_stiffness
 from contactres.errors import ContactresInputError
 from contactres.materials import Material, at_cut_quartz
 

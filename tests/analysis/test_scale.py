@@ -11,7 +11,7 @@ import pandas as pd
 import pytest
 from scipy.optimize import least_squares
 
-from contactres.analysis.amplitude import (
+from contactres.analysis._amplitude import (
     BLOCK_POINTS,
     PLATEAU_MIN_FLAT,
     PLATEAU_MIN_SLOPE,
@@ -20,8 +20,8 @@ from contactres.analysis.amplitude import (
     fit_line,
     pad_sweeps,
 )
-from contactres.analysis.classify import fit_sweeps
-from contactres.analysis.loops import (
+from contactres.analysis._classify import fit_sweeps
+from contactres.analysis._loops import (
     X_MAX,
     cm_loop_table,
     fit_cm_loops,
@@ -29,11 +29,11 @@ from contactres.analysis.loops import (
     plateau_loop_shape,
     solve_projected,
 )
-from contactres.analysis.models import fit_tables
-from contactres.analysis.plateau import fit_plateau_loops, plateau_loop_slopes
+from contactres.analysis._models import fit_tables
+from contactres.analysis._plateau import fit_plateau_loops, plateau_loop_slopes
 from contactres.measurements.sweeps import validate_sweeps
 from contactres.measurements.synthetic import SweepGroup, SweepStudy, synthetic_sweeps
-from contactres.resonators.qcm import QCM
+from contactres.resonators._qcm import QCM
 
 Q = QCM(fundamental=5e6, overtone=3, area=2.5e-5)
 P = Q.sensitivity(3)

@@ -5,10 +5,10 @@ import numpy as np
 import pytest
 
 from contactres.analysis import AnalysisSettings, analyze
-from contactres.analysis.flags import Flag, has
+from contactres.analysis._flags import Flag, has
 from contactres.measurements.sweeps import SweepWarning, validate_sweeps
 from contactres.measurements.synthetic import Drift, SweepGroup, SweepStudy, synthetic_sweeps
-from contactres.resonators.qcm import QCM
+from contactres.resonators._qcm import QCM
 
 Q = QCM(5e6, 3, 2.5e-5)
 CONST = dict(overtone=3, area_m2=2.5e-5, n_contacts=3)
@@ -68,8 +68,13 @@ def test_two_experiments_use_their_two_fits():
 
 
 def test_area_in_square_millimetres_is_not_printed_as_a_result():
-    # 25 (mm²) typed for 2.5e-5 m²: P is 1e6 times too small, κ and E absurdly large.
-    res = run(study(n_experiments=3), 1, area_m2=25.0)
+    # 25 (mm²) typed for 2.5e-5 m² is refused when the table is read (issue 27: the constants
+    # are checked as plausible wherever they come from), naming the slip.
+    with pytest.raises(ValueError, match=r"looks like square millimetres"):
+        run(study(n_experiments=3), 1, area_m2=25.0)
+    # A wrong area inside the plausible range (100 times too large): P is 100 times too
+    # small, κ and E absurdly large, so E and γ are withheld, naming the area.
+    res = run(study(n_experiments=3), 1, area_m2=2.5e-3)
     for g in res.groups:
         assert np.isnan(g["E_Pa"]) and np.isnan(g["gamma_J_m2"])
         assert "E-out-of-range" in g["checks"] or "fit-at-bound" in g["checks"]
@@ -231,9 +236,37 @@ def test_remove_drift_without_times_says_so():
 
 
 def test_student_t_factor_of_an_error_from_few_repeats():
-    from contactres.analysis.jkr import error_dof
+    from contactres.analysis._jkr import error_dof
 
     # Student's table: t(0.975) = 12.706 (1 dof), 3.182 (3), 2.228 (10)
     for dof, t in ((1, 12.706), (3, 3.182), (10, 2.228)):
         assert error_dof(dof) == {"err_dof": dof, "t95": pytest.approx(t, abs=5e-4)}
     assert np.isnan(error_dof(0)["t95"]) and np.isnan(error_dof(np.nan)["err_dof"])
+
+
+def test_points_with_a_negative_stiffness_are_left_out_of_the_jkr_fit_and_said():
+    """Issue 27: sweeps with Δf0 < 0 (κ < 0) were dropped from the JKR fit without a word."""
+    from types import SimpleNamespace
+
+    import pandas as pd
+
+    from contactres.analysis._jkr import fit_group
+    from contactres.report import withheld_lines
+    from contactres.tangential import kappa_jkr_mindlin
+
+    forces = np.repeat([2e-3, 4e-3, 6e-3, 8e-3], 2)
+    kappa = kappa_jkr_mindlin(forces, 70e9, 0.1, 1.1e-3, 0.17)
+    kappa[3] = -kappa[3]  # a sign slip in one experiment at 4 mN
+    exp = pd.DataFrame(
+        {"normal_force_N": forces, "kappa_N_per_m": kappa, "sphere_radius_m": 1.1e-3,
+         "poisson": 0.17, "experiment": np.tile(["a", "b"], 4)}
+    )  # fmt: skip
+    g = fit_group(exp, ("glass", "air"), bootstrap=0, seed=0)
+    assert g["n_points_fitted"] == 7 and g["E_Pa"] == pytest.approx(70e9, rel=1e-6)
+    assert g["note"] == (
+        "1 point(s) with κ <= 0 or not finite (Δf0 <= 0) left out of the JKR fit, at normal "
+        "force(s) 0.004 N: check the sign of df_Hz"
+    )
+
+    shown = SimpleNamespace(groups=[{**g, "n_experiments": 2}])
+    assert withheld_lines(shown) == [f"glass, air: {g['note']}"]

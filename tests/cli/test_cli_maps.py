@@ -246,6 +246,14 @@ def test_fit_of_the_bundled_example_reports_the_weak_combination_undetermined(tm
     sigma = doc["anisotropy_111_error"]
     assert 0 < sigma < 0.01
     assert abs(doc["anisotropy_111"] - truth) < 3 * sigma, (doc["anisotropy_111"], truth, sigma)
+    # Issue 27: in --format csv/json the warnings (here: the weak combination undetermined)
+    # were only in the JSON file; they are in the record and on stderr too.
+    r = _ok(run("maps", "fit", DATA / "example_cu_map.ang", *values, "--out", out,
+                "--format", "json"))  # fmt: skip
+    (record,) = json.loads(r.stdout)  # one record, as a list of rows
+    assert record["warnings"] == "; ".join(doc["warnings"]) and doc["warnings"]
+    warned = [x for x in r.stderr.splitlines() if x.startswith("contactres: warning: ")]
+    assert [x.removeprefix("contactres: warning: ") for x in warned] == doc["warnings"]
 
 
 # ------------------------------------------------------------------------ output and inputs
@@ -432,7 +440,7 @@ def test_predict_per_grain_ignores_unlabelled_pixels():
     # orientation, and gets NaN, not an error.
     from contactres import Material, indentation_modulus
     from contactres.jobs.maps import TipLoad, predict_map
-    from contactres.polycrystal.maps import OrientationMap
+    from contactres.polycrystal._maps import OrientationMap
 
     euler = np.zeros((1, 4, 3))
     euler[0, :2] = (0.3, 0.9, 0.2)

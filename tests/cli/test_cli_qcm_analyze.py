@@ -8,7 +8,7 @@ import pytest
 from cli_checks import one_line_error, run
 
 from contactres.measurements.synthetic import SweepGroup, SweepStudy, synthetic_sweeps
-from contactres.resonators.qcm import QCM
+from contactres.resonators._qcm import QCM
 
 
 @pytest.fixture(scope="module")

@@ -220,3 +220,14 @@ def test_the_export_argument_is_checked(tmp_path):
     r = run("qcm", "stiffness", tmp_path / "run.xlsx", "--area", AREA, "--n-contacts", 1,
             "--out", tmp_path / "o")  # fmt: skip
     one_line_error(r, "run.xlsx", "export the data")
+
+
+def test_a_film_export_with_negative_stiffness_is_said_not_printed_silently(tmp_path):
+    """Issue 27: real film exports (Δf < 0: mass loading) printed negative κ medians without a
+    word. A contact spring raises f (Eq. 1-2), so κ < 0 is named per overtone."""
+    path = awsensors_file(tmp_path, kappa=lambda n: -2e5 * np.ones_like(T))
+    r = run("qcm", "stiffness", path, *AWS_ARGS, "--out", tmp_path / "o")
+    assert r.exit_code == 0, r.output
+    warned = [ln for ln in r.stderr.splitlines() if ln.startswith("contactres: warning:")]
+    assert [ln.split(":")[2].strip() for ln in warned] == [f"overtone {n}" for n in OVERTONES]
+    assert all("8 of 8 points have κ < 0: a negative Δf is mass loading" in ln for ln in warned)

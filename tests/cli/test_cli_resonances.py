@@ -7,7 +7,7 @@ from click.testing import CliRunner
 
 from contactres.cli import main
 from contactres.normal.isotropic import hertz
-from contactres.resonators.cantilever import Cantilever, contact_frequencies
+from contactres.resonators._cantilever import Cantilever, contact_frequencies
 
 
 def _run(*args):
@@ -153,6 +153,9 @@ def test_afm_hertz_needs_k_c_and_extra_columns_pass_through(afm_table, tmp_path)
     assert r.exit_code == 0, r.output
     assert out["M_sample_Pa"].isna().all() and out["kappa"].notna().all()
     assert list(out["x_m"].fillna("")) == ["", "1e-6", "note"]
+    # Issue 27: the missing k* was printed as "0 flagged"; every such row now says why.
+    assert (out["flags"] == "no-spring-constant").all()
+    assert "3 rows, 0 with k*; 3 flagged" in r.output
 
 
 def test_afm_q_given_in_some_cells_only_and_negative_tilt(afm_table, tmp_path):

@@ -5,6 +5,7 @@ rule, with exit code 2 and no traceback; nothing an input holds is ever lost, an
 runs are never mixed.
 """
 
+import hashlib
 import json
 import os
 import socket
@@ -21,11 +22,14 @@ from click.testing import CliRunner
 from contactres.cli import main
 from contactres.fileio import MANIFEST
 from contactres.measurements.synthetic import SweepGroup, SweepStudy, synthetic_sweeps
-from contactres.report.tables import report_files
-from contactres.resonators.qcm import QCM
+from contactres.report.figures import FIGURE_FILES
+from contactres.resonators._qcm import QCM
 
 OPTS = ["--area", "2.5e-5", "--overtone", "3", "--n-contacts", "3", "--bootstrap", "0"]
 CSV_JSON = ("sweeps.csv", "loads.csv", "summary.json")
+
+# The files of a default report of the example (no radiation table), written out here.
+REPORT = ("sweeps.csv", "loads.csv", "summary.json", *FIGURE_FILES)
 
 
 def run(*args):
@@ -117,6 +121,31 @@ def test_a_run_into_a_folder_another_run_writes_is_refused_before_any_work(base,
     assert sorted(manifest["files"]) == sorted(CSV_JSON)
 
 
+def test_files_it_did_not_write_are_never_removed(base, tmp_path):
+    """Issue 27 (1): a manifest.json listing a user's file made the run delete it (exit 0), and
+    a folder of qcm stiffness results lost them. Now both are refused before any work."""
+    data = write(tmp_path, base)
+    out = tmp_path / "F"
+    out.mkdir()
+    (out / "raw.dat").write_text("x")
+    (out / MANIFEST).write_text('{"files":{"raw.dat":{}}}')
+    r = run(data, "--out", out, *OPTS, "--no-figures")
+    one_line_error(r, "manifest.json that contactres did not write", "choose another folder")
+    assert "analysing" not in r.output
+    assert sorted(p.name for p in out.iterdir()) == [MANIFEST, "raw.dat"]
+    # A folder of another command's results (as qcm stiffness writes them).
+    (out / MANIFEST).unlink()
+    (out / "raw.dat").unlink()
+    stiffness = {"generator": "contactres", "kind": "qcm_stiffness", "files": {}}
+    (out / "stiffness.csv").write_text("time_s\n")
+    digest = hashlib.sha256(b"time_s\n").hexdigest()
+    stiffness["files"]["stiffness.csv"] = {"bytes": 7, "sha256": digest}
+    (out / MANIFEST).write_text(json.dumps(stiffness))
+    r = run(data, "--out", out, *OPTS, "--no-figures")
+    one_line_error(r, "another command", "qcm_stiffness")
+    assert (out / "stiffness.csv").read_text() == "time_s\n"
+
+
 # 4. -------------------------------------------------------------------------------------------
 
 
@@ -187,7 +216,7 @@ def test_odd_labels_do_not_break_the_figures(base, tmp_path):
     label = "SiO2 $x^2_$ " + "L" * 100_000
     r = run(write(tmp_path, base.assign(configuration=label)), "--out", tmp_path / "o", *OPTS)
     assert r.exit_code == 0, r.output
-    assert sorted(p.name for p in (tmp_path / "o").iterdir()) == sorted([*report_files(), MANIFEST])
+    assert sorted(p.name for p in (tmp_path / "o").iterdir()) == sorted([*REPORT, MANIFEST])
     assert max(len(ln) for ln in r.output.splitlines()) < 400  # the table on the terminal too
 
 

@@ -12,7 +12,7 @@ from scipy import special
 
 from contactres import Material
 from contactres.dynamic import ALL_MODELS, dcsf, dcsf_models, prepare
-from contactres.dynamic.weights import spherical_bessel, wa_line_weight
+from contactres.dynamic._weights import spherical_bessel, wa_line_weight
 
 
 @pytest.fixture(scope="module")

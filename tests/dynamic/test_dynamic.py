@@ -24,10 +24,10 @@ from contactres.dynamic import (
     dynamic_contact_stiffness,
     shear_wavenumber_ratio,
 )
-from contactres.dynamic.normal_stiffness import model_n
-from contactres.dynamic.quadrature import functionals
-from contactres.dynamic.table import kernel_table, resolution_for
-from contactres.dynamic.weights import bessel_even, wa_harmonic_weights, wa_line_weight
+from contactres.dynamic._normal_stiffness import model_n
+from contactres.dynamic._quadrature import functionals
+from contactres.dynamic._table import kernel_table, resolution_for
+from contactres.dynamic._weights import bessel_even, wa_harmonic_weights, wa_line_weight
 from contactres.halfspace import isotropic_dynamic_kernel
 
 Q = 0.02

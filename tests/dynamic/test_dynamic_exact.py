@@ -1,4 +1,4 @@
-"""Tests of contactres.dynamic.exact: the rigid flat punch (Galerkin) on an anisotropic solid.
+"""Tests of contactres.dynamic._exact: the rigid flat punch (Galerkin) on an anisotropic solid.
 
 Independent checks: the basis transforms against scipy quadrature, the one-term Galerkin against
 the whole-contact weighted average (a different code path), the isotropic lossless rigid-disk
@@ -15,9 +15,9 @@ from scipy import integrate, special
 
 from contactres import Material, contact_pressure, dcsf, dcsf_models
 from contactres.dynamic import ALL_MODELS
-from contactres.dynamic.exact import GalerkinSize, exact_n, galerkin_size, pressure_basis
-from contactres.dynamic.quadrature import functionals
-from contactres.dynamic.table import kernel_table, resolution_for
+from contactres.dynamic._exact import GalerkinSize, exact_n, galerkin_size, pressure_basis
+from contactres.dynamic._quadrature import functionals
+from contactres.dynamic._table import kernel_table, resolution_for
 
 Q = 0.02
 

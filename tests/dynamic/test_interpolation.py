@@ -3,8 +3,9 @@
 import numpy as np
 import pytest
 
-from contactres.dynamic import ALL_MODELS, dcsf, dcsf_models, normal_stiffness, prepare
-from contactres.dynamic.interpolation import chebyshev_values
+from contactres.dynamic import ALL_MODELS, dcsf, dcsf_models, prepare
+from contactres.dynamic import _normal_stiffness as normal_stiffness
+from contactres.dynamic._interpolation import chebyshev_values
 from contactres.materials import Material
 
 

@@ -18,10 +18,10 @@ from scipy import integrate, special
 
 from contactres import Material
 from contactres.dynamic import prepare
-from contactres.dynamic.exact import exact_n, galerkin_plan, galerkin_size
-from contactres.dynamic.farfield import far_basis, low_rank
-from contactres.dynamic.quadrature import _n_theta_near, near_theta_integrals
-from contactres.dynamic.weights import (
+from contactres.dynamic._exact import exact_n, galerkin_plan, galerkin_size
+from contactres.dynamic._farfield import far_basis, low_rank
+from contactres.dynamic._quadrature import _n_theta_near, near_theta_integrals
+from contactres.dynamic._weights import (
     bessel_orders,
     spherical_bessel,
     wa_harmonic_weights,
@@ -138,7 +138,7 @@ def test_exact_far_field_on_the_reduced_basis_equals_the_full_one(table, monkeyp
     """exact_n with the far-field basis projected on the leading directions of the
     coefficients against exact_n on the full Chebyshev basis (no truncation, identity as
     directions): the same N to round-off."""
-    import contactres.dynamic.exact as exact
+    import contactres.dynamic._exact as exact
 
     ka = np.array([0.4, 1.5, 3.0])
     size = galerkin_size(float(ka.max()))

@@ -29,9 +29,9 @@ from contactres.dynamic import (
     dynamic_contact_stiffness,
     prepare,
 )
-from contactres.dynamic.farfield import far_basis, tail_sine
-from contactres.dynamic.table import kernel_table
-from contactres.dynamic.weights import j1_over_s
+from contactres.dynamic._farfield import far_basis, tail_sine
+from contactres.dynamic._table import kernel_table
+from contactres.dynamic._weights import j1_over_s
 
 KLA = np.linspace(0.0, 2.0, 9)
 

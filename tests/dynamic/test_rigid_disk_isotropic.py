@@ -4,7 +4,7 @@ The massless rigid disk (radius a, frictionless, uniform vertical displacement �
 isotropic lossless half-space, solved here as the Fredholm integral equation of the second kind
 of Luco & Westmann (1971, J. Eng. Mech. Div. ASCE 97, 1381) and Robertson (1966, Proc. Camb.
 Phil. Soc. 62, 547), derived afresh and discretised by a Nyström-type
-collocation. Nothing is shared with :mod:`contactres.dynamic.exact` except the physics: the Lamb
+collocation. Nothing is shared with :mod:`contactres.dynamic._exact` except the physics: the Lamb
 kernel is written out here, the wave-number integral runs over a different variable (a Fourier
 cosine integral, not the Hankel/spherical-Bessel products of the Galerkin), and the unknown is
 the Abel transform θ(t) of the pressure on [0, 1], not its expansion on the disk.

@@ -1,4 +1,4 @@
-"""The exact dynamic tangential stiffness (contactres.dynamic.tangential_galerkin and its API).
+"""The exact dynamic tangential stiffness (contactres.dynamic._tangential_galerkin and its API).
 
 Independent checks: the isotropic reference written in the tests (tangential_isotropic_reference,
 its own Fourier-space Lamb/Cerruti kernel, basis and contour; nothing from contactres), the
@@ -17,15 +17,15 @@ import pytest
 from tangential_isotropic_reference import low_frequency_damping, tangential_disk
 
 import contactres as cr
-from contactres.dynamic.table import Resolution
-from contactres.dynamic.tangential_galerkin import (
+from contactres.dynamic._table import Resolution
+from contactres.dynamic._tangential_galerkin import (
     TangentialSize,
     prepare_tangential,
     tangential_per_a,
     tangential_size,
 )
-from contactres.dynamic.tangential_static import tangential_stiffness_static
-from contactres.dynamic.tangential_stiffness import (
+from contactres.dynamic._tangential_static import tangential_stiffness_static
+from contactres.dynamic._tangential_stiffness import (
     tangential_contact_stiffness,
     tangential_dcsf,
     two_body_contact_stiffness,

@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from scipy import integrate
 
-from contactres.dynamic.tangential_static import (
+from contactres.dynamic._tangential_static import (
     inplane_kernel,
     tangential_stiffness_static,
 )

@@ -12,7 +12,7 @@ from contactres.errors import ContactresInputError
 from contactres.jobs.maps import open_map
 from contactres.jobs.readers import ALL_READERS, read_ebsd_file, read_grid_file, read_value_grid
 from contactres.measurements.readers import Reader
-from contactres.polycrystal.ebsd import read_ebsd
+from contactres.polycrystal._ebsd import read_ebsd
 
 DATA = Path(__file__).resolve().parents[2] / "src" / "contactres" / "data"
 

@@ -12,9 +12,9 @@ import pytest
 from contactres.errors import ContactresInputError
 from contactres.jobs import qcm_stiffness, qcm_sweeps
 from contactres.jobs.contract import JobResult
+from contactres.report import _writer as writer_module
 from contactres.report import html_report, write_report
-from contactres.report import writer as writer_module
-from contactres.report.writer import FORMATS, figure_registry, html_registry, report_names
+from contactres.report._writer import FORMATS, figure_registry, html_registry, report_names
 
 EXPORT = "src/contactres/data/example_qcmd.csv"
 SWEEPS = "src/contactres/data/example_sweeps.csv"

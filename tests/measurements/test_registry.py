@@ -168,8 +168,8 @@ def test_pick_tries_the_matching_suffix_first(tmp_path):
 
 
 def test_the_ebsd_and_grid_recipes_recognise_their_files(tmp_path):
-    from contactres.polycrystal.ebsd import write_ang, write_ctf
-    from contactres.polycrystal.synthetic import synthetic_polycrystal
+    from contactres.polycrystal._ebsd import write_ang, write_ctf
+    from contactres.polycrystal._synthetic import synthetic_polycrystal
 
     m = synthetic_polycrystal((5, 7), n_grains=3, seed=2, pixel_size=0.5e-6)
     ang, ctf = write_ang(tmp_path / "m.ang", m), write_ctf(tmp_path / "m.ctf", m)

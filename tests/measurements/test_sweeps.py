@@ -266,10 +266,25 @@ def test_hash_inside_a_cell_is_data_and_only_whole_lines_are_comments(tmp_path):
     text = "\n".join(["# exported 2024", lines[0], lines[1], "  # pause", *lines[2:]]) + "\n"
     path = tmp_path / "sweeps.csv"
     path.write_text(text)
-    t = read_sweeps(path, **CONST).data
+    # Issue 27: skipped comment lines are said (a commented-out row is lost data otherwise).
+    # The preamble above the header is not reported; the comment among the rows is.
+    with pytest.warns(SweepWarning, match=r"1 comment line\(s\) skipped .*: line\(s\) 4$"):
+        t = read_sweeps(path, **CONST).data
     assert len(t) == 18
     assert sorted(t["configuration"].unique()) == ["SiO2 #A", "SiO2 #B"]
     assert list(t["line"][:3]) == [3, 5, 6]
+
+
+def test_commented_out_rows_are_counted_and_located(tmp_path):
+    """Issue 27: commenting out 13 rows of a table lost a sweep without a word."""
+    lines = good_frame().to_csv(index=False).splitlines()
+    lines[1:14] = ["#" + ln for ln in lines[1:14]]
+    path = tmp_path / "sweeps.csv"
+    path.write_text("\n".join(lines) + "\n")
+    with pytest.warns(SweepWarning) as caught:
+        read_sweeps(path, **CONST)
+    said = [str(w.message) for w in caught if "comment" in str(w.message)]
+    assert said == [f"{path}: 13 comment line(s) skipped (first character '#'): line(s) 2–14"]
 
 
 def test_a_file_that_is_not_utf8_is_named_with_the_byte(tmp_path):
@@ -392,3 +407,31 @@ def test_a_sweep_with_all_amplitudes_equal_is_named_in_a_warning(tmp_path):
     with pytest.warns(SweepWarning, match=r"sweep\(s\) 's1' have all amplitudes equal") as rec:
         t = read_sweeps(write(tmp_path, f), **CONST).data
     assert len(t) == 18 and len([w for w in rec if "amplitudes equal" in str(w.message)]) == 1
+
+
+def test_a_sign_slip_of_the_dissipation_is_an_error_and_one_odd_sweep_a_warning():
+    """Issue 27: a negative ΔΓ (an export giving −ΔΓ) was accepted and moved E by 25 %."""
+    f = good_frame()
+    flipped = f.assign(dgamma_Hz=-f["dgamma_Hz"])
+    with pytest.raises(
+        ValueError, match=r"dgamma_Hz is negative in 3 of 3 sweeps .*check its sign"
+    ):
+        validate_sweeps(flipped, constants=CONST)
+    one = f.assign(dgamma_Hz=np.where(f["sweep"] == "s1", -f["dgamma_Hz"], f["dgamma_Hz"]))
+    with pytest.warns(SweepWarning, match=r"sweep\(s\) 's1' have a negative median dgamma_Hz"):
+        validate_sweeps(one, constants=CONST)
+
+
+@pytest.mark.parametrize("where", ["column", "toml"])
+def test_a_sphere_radius_in_millimetres_is_refused_wherever_it_comes_from(tmp_path, where):
+    """Issue 27: the option was checked, the column and the TOML were not (E came out 2 GPa)."""
+    f = good_frame()
+    constants = dict(CONST)
+    constants.pop("sphere_radius_m", None)
+    if where == "column":
+        f["sphere_radius_m"] = 1.1
+    else:
+        (tmp_path / "sweeps.toml").write_text("sphere_radius_m = 1.1\n")
+    f.to_csv(tmp_path / "sweeps.csv", index=False)
+    with pytest.raises(ValueError, match=r"looks like millimetres \(1\.1 mm = 0\.0011 m\)"):
+        read_sweeps(tmp_path / "sweeps.csv", **constants)

@@ -15,7 +15,7 @@ from contactres.measurements.synthetic import (
     SweepStudy,
     synthetic_sweeps,
 )
-from contactres.resonators.qcm import QCM
+from contactres.resonators._qcm import QCM
 
 Q = QCM(5e6, 3, 2.5e-5)
 ZQ, NP, NU = 8.8e6, 3, 0.17

@@ -12,7 +12,7 @@ Cooke, Q. J. Mech. Appl. Math. 16, 193 (1963)):
 with W = δ for the flat punch and W = δ − t²/R for the sphere (the Abel transform of r²/(2R)).
 The force is F = 2π P(0) = 2π ∫₀^a φ dt; the sphere's pressure is bounded at the edge when
 φ(a) = 0, which fixes δ. Solved here by Nyström on Gauss–Legendre nodes (spectrally accurate
-for a smooth c), independently of the Galerkin of :mod:`contactres.normal.axisymmetric`.
+for a smooth c), independently of the Galerkin of :mod:`contactres.normal._axisymmetric`.
 """
 
 import numpy as np

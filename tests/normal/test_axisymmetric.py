@@ -1,4 +1,4 @@
-"""Tests of contactres.normal.axisymmetric: the Galerkin on a wave-number-dependent compliance.
+"""Tests of contactres.normal._axisymmetric: the Galerkin on a wave-number-dependent compliance.
 
 References used here, none of them the Galerkin itself:
 
@@ -16,7 +16,7 @@ from fredholm_reference import fredholm
 from scipy.special import spherical_jn
 
 from contactres.errors import ContactresInputError
-from contactres.normal.axisymmetric import (
+from contactres.normal._axisymmetric import (
     RadialKernel,
     even_spherical_bessel,
     punch_and_sphere,

@@ -1,4 +1,4 @@
-"""Tests of contactres.normal.layered: punch, sphere and M(a) on coated substrates (issue 26).
+"""Tests of contactres.normal._layered: punch, sphere and M(a) on coated substrates (issue 26).
 
 Anchors, each independent of the axisymmetric Galerkin:
 
@@ -34,7 +34,7 @@ from contactres import (
     tangential_stiffness_static,
 )
 from contactres.errors import ContactresInputError
-from contactres.normal.layered import radial_kernel
+from contactres.normal._layered import radial_kernel
 
 GLASS = Material.isotropic(70e9, 0.22, name="glass")
 PMMA = Material.isotropic(5e9, 0.35, name="PMMA")
@@ -324,7 +324,7 @@ def test_tangential_pattern_coupling_is_variational():
     """The coupled (cos 2φ, sin 2φ) traction pattern adds freedom: the Galerkin stiffness can
     only grow over Mindlin's axisymmetric traction alone, and on PMMA/glass it grows by a little
     (measured 1e-9 at a/h = 0.1, ~1e-3 at a/h = 3-10)."""
-    from contactres.normal.axisymmetric import RadialKernel, punch_and_sphere
+    from contactres.normal._axisymmetric import RadialKernel, punch_and_sphere
 
     h = 250e-9
     ker = radial_kernel(LayeredMaterial(GLASS, [(PMMA, h)]), "tangential")

@@ -5,8 +5,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from contactres.polycrystal.ebsd import read_ang, read_ctf, read_ebsd, write_ang, write_ctf
-from contactres.polycrystal.synthetic import synthetic_polycrystal
+from contactres.polycrystal._ebsd import read_ang, read_ctf, read_ebsd, write_ang, write_ctf
+from contactres.polycrystal._synthetic import synthetic_polycrystal
 
 ANG = """\
 # TEM_PIXperUM          1.000000

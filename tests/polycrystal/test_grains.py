@@ -1,4 +1,4 @@
-"""Grains of unlabelled maps (contactres.polycrystal.grains).
+"""Grains of unlabelled maps (contactres.polycrystal._grains).
 
 Independent checks: the true Voronoi grains of synthetic maps, the angle modulo symmetry by
 brute force over the 48 (24) operations of the Laue group, symmetric-equivalent pixels, the
@@ -14,9 +14,9 @@ from scipy.sparse.csgraph import connected_components
 from signed_permutations import cubic_group_by_hand
 
 from contactres.polycrystal import OrientationMap, synthetic_polycrystal
-from contactres.polycrystal.grains import folded_normals, grain_orientations, segment_grains
-from contactres.polycrystal.normal_table import reduce_normals
-from contactres.polycrystal.orientations import (
+from contactres.polycrystal._grains import folded_normals, grain_orientations, segment_grains
+from contactres.polycrystal._normal_table import reduce_normals
+from contactres.polycrystal._orientations import (
     euler_from_surface_matrices,
     surface_matrices_from_euler,
     symmetry_operators,

@@ -1,4 +1,4 @@
-"""Inverse problem of a polycrystal map (contactres.polycrystal.inverse).
+"""Inverse problem of a polycrystal map (contactres.polycrystal._inverse).
 
 Synthetic data built here: random grain orientations, the exact forward model (indentation_moduli
 of Cu), and per-grain means whose standard error is that of N pixels with 1 % noise each
@@ -11,14 +11,14 @@ import numpy as np
 import pytest
 
 from contactres import Material
-from contactres.polycrystal.inverse import (
+from contactres.polycrystal._inverse import (
     IDENTIFIABILITY_RTOL,
     fit_cubic_constants,
     fit_map,
     grain_means,
 )
-from contactres.polycrystal.moduli import indentation_moduli
-from contactres.polycrystal.orientations import random_orientations
+from contactres.polycrystal._moduli import indentation_moduli
+from contactres.polycrystal._orientations import random_orientations
 
 C11, C12, C44 = 168.4e9, 121.4e9, 75.4e9
 TRUE = np.array([C12 / C11, C44 / C11])
@@ -183,7 +183,7 @@ def test_reported_errors_cover_the_true_ratios_over_ten_noise_draws(grains, fits
 def test_anisotropy_111_matches_the_scalar_modulus_of_rotated_copper():
     # Independent path: the scalar indentation_modulus of Cu rotated to (111) and (001).
     from contactres import indentation_modulus
-    from contactres.polycrystal.inverse import anisotropy_111
+    from contactres.polycrystal._inverse import anisotropy_111
 
     truth = indentation_modulus(CU.rotated((1, 1, 1))) / indentation_modulus(CU)
     value, error = anisotropy_111(TRUE, np.diag([1e-4, 1e-4]))

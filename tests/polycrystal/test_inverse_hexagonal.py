@@ -1,4 +1,4 @@
-"""Inverse problem of a hexagonal polycrystal map (contactres.polycrystal.inverse_hexagonal).
+"""Inverse problem of a hexagonal polycrystal map (contactres.polycrystal._inverse_hexagonal).
 
 Synthetic data built here: random grain orientations and the exact forward model
 (indentation_moduli) of Zn, C11, C12, C13, C33, C44 = 165, 31.1, 50.0, 61.8, 39.6 GPa (room
@@ -12,10 +12,10 @@ import numpy as np
 import pytest
 
 from contactres import Material
-from contactres.polycrystal.inverse import fit_map
-from contactres.polycrystal.inverse_hexagonal import HEXAGONAL, fit_hexagonal_constants
-from contactres.polycrystal.moduli import indentation_moduli
-from contactres.polycrystal.orientations import random_orientations
+from contactres.polycrystal._inverse import fit_map
+from contactres.polycrystal._inverse_hexagonal import HEXAGONAL, fit_hexagonal_constants
+from contactres.polycrystal._moduli import indentation_moduli
+from contactres.polycrystal._orientations import random_orientations
 
 ZN_C = np.array([165.0, 31.1, 50.0, 61.8, 39.6]) * 1e9
 ZN = Material.hexagonal(*ZN_C)

@@ -1,4 +1,4 @@
-"""IPF colours and the standard triangle (contactres.polycrystal.ipf).
+"""IPF colours and the standard triangle (contactres.polycrystal._ipf).
 
 Independent facts: the corner directions and their conventional colours, the Laue group (48 or
 24 operations), the stereographic projection of known directions.
@@ -11,8 +11,8 @@ import math
 import numpy as np
 import pytest
 
-from contactres.polycrystal.ipf import ipf_colors, ipf_triangle
-from contactres.polycrystal.orientations import symmetry_operators
+from contactres.polycrystal._ipf import ipf_colors, ipf_triangle
+from contactres.polycrystal._orientations import symmetry_operators
 
 RED, GREEN, BLUE = np.eye(3)
 C30, S30 = math.cos(math.pi / 6), math.sin(math.pi / 6)

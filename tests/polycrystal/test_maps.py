@@ -11,7 +11,7 @@ import numpy as np
 import pytest
 
 from contactres import Material
-from contactres.polycrystal.maps import (
+from contactres.polycrystal._maps import (
     MAP_CONVENTIONS,
     ExactModulus,
     OrientationMap,
@@ -21,9 +21,9 @@ from contactres.polycrystal.maps import (
     read_map,
     write_map,
 )
-from contactres.polycrystal.moduli import indentation_moduli
-from contactres.polycrystal.orientations import surface_matrices_from_euler
-from contactres.polycrystal.synthetic import synthetic_polycrystal
+from contactres.polycrystal._moduli import indentation_moduli
+from contactres.polycrystal._orientations import surface_matrices_from_euler
+from contactres.polycrystal._synthetic import synthetic_polycrystal
 
 
 def normal_z(R: np.ndarray, scale: float = 1.0) -> np.ndarray:
@@ -209,8 +209,8 @@ def test_write_map_refuses_to_overwrite_other_files(cu_map, tmp_path):
 
 def test_the_package_does_not_import_dask_xarray_or_zarr():
     code = (
-        "import sys, contactres.polycrystal, contactres.polycrystal.maps, "
-        "contactres.polycrystal.ebsd, contactres.polycrystal.synthetic; "
+        "import sys, contactres.polycrystal, contactres.polycrystal._maps, "
+        "contactres.polycrystal._ebsd, contactres.polycrystal._synthetic; "
         "print(sorted(m for m in sys.modules if m.split('.')[0] in "
         "('dask', 'distributed', 'xarray', 'zarr')))"
     )

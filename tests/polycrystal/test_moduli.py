@@ -1,4 +1,4 @@
-"""Batched indentation modulus of many orientations (contactres.polycrystal.moduli).
+"""Batched indentation modulus of many orientations (contactres.polycrystal._moduli).
 
 Independent checks: the scalar path (indentation_modulus of Material.rotated, one orientation
 at a time), the isotropic closed form, the cubic point group and rotations of the sample frame
@@ -19,7 +19,7 @@ from contactres.halfspace.compliance import (
 )
 from contactres.materials import rotation_to_surface
 from contactres.normal.anisotropic import indentation_modulus
-from contactres.polycrystal.moduli import indentation_moduli
+from contactres.polycrystal._moduli import indentation_moduli
 
 CU = Material.crystal("Cu")
 FACES = [(0, 0, 1), (0, 1, 1), (1, 1, 1), (1, 2, 3)]

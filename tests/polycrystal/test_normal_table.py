@@ -1,4 +1,4 @@
-"""Interpolated M and DCSF over the fundamental triangle (contactres.polycrystal.normal_table).
+"""Interpolated M and DCSF over the fundamental triangle (contactres.polycrystal._normal_table).
 
 Independent checks: exact per-orientation evaluation (indentation_moduli, contactres.dcsf of
 Material.rotated), invariance under in-plane rotations and the crystal symmetry, the signed
@@ -13,15 +13,15 @@ from signed_permutations import cubic_group_by_hand
 
 from contactres import Material, dcsf
 from contactres.dynamic import dcsf_models, prepare
-from contactres.polycrystal.moduli import indentation_moduli
-from contactres.polycrystal.normal_table import (
+from contactres.polycrystal._moduli import indentation_moduli
+from contactres.polycrystal._normal_table import (
     normals_from_coordinates,
     prepare_normal_table,
     reduce_normals,
     surface_matrices_from_normals,
     zone_bounds,
 )
-from contactres.polycrystal.orientations import random_orientations, symmetry_operators
+from contactres.polycrystal._orientations import random_orientations, symmetry_operators
 
 CU = Material.crystal("Cu")
 TI = Material.hexagonal(162.4e9, 92.0e9, 69.0e9, 180.7e9, 46.7e9, density=4506.0)

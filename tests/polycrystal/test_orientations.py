@@ -18,7 +18,7 @@ from contactres.materials import (
     tensor_to_voigt,
     voigt_to_tensor,
 )
-from contactres.polycrystal.orientations import (
+from contactres.polycrystal._orientations import (
     euler_from_surface_matrices,
     quaternions_from_surface_matrices,
     random_orientations,

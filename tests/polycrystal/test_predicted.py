@@ -1,4 +1,4 @@
-"""Predicted per-pixel maps (contactres.polycrystal.predicted).
+"""Predicted per-pixel maps (contactres.polycrystal._predicted).
 
 Independent checks: contactres.hertz and effective_modulus (isotropic closed forms), springs in
 series, exact per-grain moduli, contactres.dcsf of the rotated crystal.
@@ -12,10 +12,10 @@ import numpy as np
 import pytest
 
 from contactres import Material, dcsf, effective_modulus, hertz
-from contactres.polycrystal.moduli import indentation_moduli
-from contactres.polycrystal.normal_table import prepare_normal_table
-from contactres.polycrystal.orientations import random_orientations
-from contactres.polycrystal.predicted import (
+from contactres.polycrystal._moduli import indentation_moduli
+from contactres.polycrystal._normal_table import prepare_normal_table
+from contactres.polycrystal._orientations import random_orientations
+from contactres.polycrystal._predicted import (
     contact_stiffness_map,
     dynamic_factor_map,
     map_wavenumbers,

@@ -6,7 +6,7 @@ import pytest
 from click.testing import CliRunner
 
 from contactres.cli import main
-from contactres.report.console import DASH, plus_minus
+from contactres.report._console import DASH, plus_minus
 
 
 @pytest.mark.parametrize(
@@ -31,12 +31,16 @@ def test_area_in_mm2_prints_dashes_and_says_which_input(tmp_path):
     from contactres.measurements.synthetic import synthetic_sweeps
 
     raw = synthetic_sweeps(example_study(2), 1, constants=True)
-    raw["area_m2"] = 25.0  # mm² typed into a m² column
+    raw["area_m2"] = 25.0  # mm² typed into a m² column: refused when read (issue 27)
     path = tmp_path / "sweeps.csv"
     raw.to_csv(path, index=False)
-    r = CliRunner().invoke(
-        main, ["qcm", "analyze", str(path), "--out", str(tmp_path / "out"), "--no-figures"]
-    )
+    args = ["qcm", "analyze", str(path), "--out", str(tmp_path / "out"), "--no-figures"]
+    r = CliRunner().invoke(main, args)
+    assert r.exit_code == 2 and "looks like square millimetres" in r.stderr
+    # A wrong area inside the plausible range (100 times too large) is found by the fit.
+    raw["area_m2"] = 100 * 2.5e-5
+    raw.to_csv(path, index=False)
+    r = CliRunner().invoke(main, args)
     assert r.exit_code == 0
     assert "nan" not in r.stdout.lower() and DASH in r.stdout
     assert "E and γ withheld" in r.stderr and "check area_m2" in r.stderr

@@ -5,7 +5,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from contactres.analysis.flags import DESCRIPTIONS, Flag, has, render
+from contactres.analysis._flags import DESCRIPTIONS, Flag, has, render
 from contactres.measurements.schema import SWEEP_TABLE
 from contactres.measurements.sweeps import VALIDATED_COLUMNS
 from contactres.report.dictionary import (
@@ -82,8 +82,8 @@ def test_stiffness_csv_columns_are_the_code():
 
 
 def test_resonance_flags_are_the_code():
-    from contactres.analysis.inversion import ModulusFlag
-    from contactres.resonators.cantilever_inversion import flag_names
+    from contactres.analysis._inversion import ModulusFlag
+    from contactres.resonators._cantilever_inversion import flag_names
 
     names = [n.replace("_", "-") for n in flag_names(~0)]
     assert list(RESONANCE_FLAGS) == names
@@ -93,7 +93,7 @@ def test_resonance_flags_are_the_code():
 
 
 def test_invert_outputs_append_exactly_the_listed_columns():
-    from contactres.analysis.resonance_tables import invert_afm_table, invert_rum_table
+    from contactres.analysis._resonance_tables import invert_afm_table, invert_rum_table
     from contactres.materials import Material
     from contactres.measurements.resonances import AFM_TABLE, RUM_TABLE, read_resonance_table
 

@@ -13,7 +13,7 @@ import contactres
 from contactres.cli import main
 from contactres.fileio import MANIFEST
 from contactres.report import html_report, summary, write_html
-from contactres.report.console import plus_minus
+from contactres.report._console import plus_minus
 
 EXAMPLE = Path(contactres.__file__).parent / "data" / "example_sweeps.csv"
 SETTINGS = {"bootstrap": 0}
@@ -109,7 +109,7 @@ def test_the_checksum_is_the_one_taken_when_the_table_was_read(results, tmp_path
 
 def test_the_report_draws_the_curves_of_the_analysis_without_a_model(results, monkeypatch):
     # Every loop shape refuses to be evaluated: the page and Fig. 4 draw from Results.curves.
-    from contactres.analysis.models import cm_loop, plateau_loop, savkoor_loop
+    from contactres.analysis._models import cm_loop, plateau_loop, savkoor_loop
     from contactres.report.figures import figure_sweeps
 
     def refuse(*args, **kwargs):

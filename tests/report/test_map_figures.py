@@ -1,4 +1,4 @@
-"""The modulus-map figure (contactres.report.map_figures): panels, labels, colour ranges, layout.
+"""The modulus-map figure (contactres.report._map_figures): panels, labels, colour ranges, layout.
 
 The colour range of the legend is checked against M evaluated independently (exact
 indentation_moduli at the triangle's grid); the layout by the text boxes in display space.
@@ -16,11 +16,11 @@ from matplotlib.image import AxesImage
 from matplotlib.text import Text
 
 from contactres import Material
-from contactres.polycrystal.ipf import ipf_triangle
-from contactres.polycrystal.moduli import indentation_moduli
-from contactres.polycrystal.normal_table import surface_matrices_from_normals
-from contactres.polycrystal.synthetic import synthetic_polycrystal
-from contactres.report.map_figures import modulus_map_figure
+from contactres.polycrystal._ipf import ipf_triangle
+from contactres.polycrystal._moduli import indentation_moduli
+from contactres.polycrystal._normal_table import surface_matrices_from_normals
+from contactres.polycrystal._synthetic import synthetic_polycrystal
+from contactres.report._map_figures import modulus_map_figure
 
 CU = Material.crystal("Cu")
 TI = Material.hexagonal(162.4e9, 92.0e9, 69.0e9, 180.7e9, 46.7e9, density=4506.0)

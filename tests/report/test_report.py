@@ -11,7 +11,7 @@ from contactres.measurements.schema import GROUP_RESULTS, SWEEP_RESULTS
 from contactres.measurements.sweeps import validate_sweeps
 from contactres.measurements.synthetic import SweepGroup, SweepStudy, synthetic_sweeps
 from contactres.report import write_report
-from contactres.resonators.qcm import QCM
+from contactres.resonators._qcm import QCM
 
 Q = QCM(5e6, 3, 2.5e-5)
 CONST = dict(overtone=3, area_m2=2.5e-5, n_contacts=3, sphere_radius_m=1e-3)

@@ -20,8 +20,22 @@ from contactres.fileio import MANIFEST, OutputError
 from contactres.measurements.sweeps import SweepWarning, validate_sweeps
 from contactres.measurements.synthetic import SweepGroup, SweepStudy, synthetic_sweeps
 from contactres.report import figures, write_report
-from contactres.report.tables import FORMATS, report_files, sweeps_table
-from contactres.resonators.qcm import QCM
+from contactres.report._tables import sweeps_table
+from contactres.resonators._qcm import QCM
+
+FORMATS = ("csv", "json", "png")
+# The files of the analysis' report, written out here (not taken from the writer's registry).
+FILES = {
+    "csv": ("sweeps.csv", "loads.csv"),
+    "json": ("summary.json",),
+    "png": tuple(figures.FIGURE_FILES),
+}
+
+
+def report_files(formats=FORMATS) -> tuple[str, ...]:
+    """The files a report of the example (no radiation table) holds for ``formats``."""
+    return tuple(name for f in FORMATS if f in formats for name in FILES[f])
+
 
 CONST = dict(overtone=3, area_m2=2.5e-5, n_contacts=3, sphere_radius_m=1e-3)
 CSV_JSON = ("csv", "json")
@@ -197,6 +211,14 @@ def test_with_no_used_sweep_no_figure_is_drawn_and_a_warning_says_so(results, tm
 
 
 def test_the_file_names_are_declared_in_one_place():
-    assert report_files(("png",)) == figures.FIGURE_FILES
-    assert report_files() == ("sweeps.csv", "loads.csv", "summary.json", *figures.FIGURE_FILES)
-    assert MANIFEST not in report_files()
+    """The writer's declaration (report_names) lists the files a report holds, and those of
+    the radiation table that a run with a sphere material adds."""
+    from contactres.jobs import qcm_sweeps
+    from contactres.report import report_names
+
+    radiation = {"csv": ("radiation.csv",), "json": (), "png": (figures.RADIATION_FIGURE,)}
+    for formats in (("png",), ("csv", "json"), FORMATS):
+        expected = {*report_files(formats), *(n for f in formats for n in radiation[f])}
+        assert set(report_names(qcm_sweeps.Result, formats)) == expected
+    assert report_names(qcm_sweeps.Result, ("html",)) == ("report.html",)
+    assert MANIFEST not in report_names(qcm_sweeps.Result, FORMATS)

@@ -1,4 +1,4 @@
-"""Tests of contactres.resonators.cantilever: free and pinned limits, the closed form against the
+"""Tests of contactres.resonators._cantilever: free and pinned limits, the closed form against the
 4x4 determinant and an independent 8x8 one, and a finite-element beam (Hermite cubics)."""
 
 import numpy as np
@@ -6,7 +6,7 @@ import pytest
 from scipy.linalg import eigh
 from scipy.optimize import brentq
 
-from contactres.resonators.cantilever import (
+from contactres.resonators._cantilever import (
     FREE_ROOTS,
     PINNED_ROOTS,
     Cantilever,

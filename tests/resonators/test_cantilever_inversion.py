@@ -1,11 +1,11 @@
-"""Tests of contactres.resonators.cantilever_inversion: round trips forward -> inverse for every
+"""Tests of contactres.resonators._cantilever_inversion: round trips forward -> inverse for every
 model (normal, tilt, lateral + tilt, damped, two modes, both normalisations) and the flags."""
 
 import numpy as np
 import pytest
 
-from contactres.resonators.cantilever import FREE_ROOTS, Cantilever, contact_frequencies
-from contactres.resonators.cantilever_inversion import (
+from contactres.resonators._cantilever import FREE_ROOTS, Cantilever, contact_frequencies
+from contactres.resonators._cantilever_inversion import (
     FLAG_ABOVE_PINNED,
     FLAG_BELOW_FREE,
     FLAG_INCONSISTENT_MODES,

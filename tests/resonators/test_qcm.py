@@ -1,4 +1,4 @@
-"""Tests of contactres.resonators.qcm: paper 2, Eqs. 1-2, the loop quadrature (Eqs. 4-5), the
+"""Tests of contactres.resonators._qcm: paper 2, Eqs. 1-2, the loop quadrature (Eqs. 4-5), the
 expansions (Eqs. 11-12, 15) and the friction coefficient."""
 
 import warnings
@@ -11,7 +11,7 @@ from hypothesis.extra.numpy import array_shapes
 from scipy.integrate import quad
 
 import contactres as cr
-from contactres.resonators.qcm import loop_stiffness
+from contactres.resonators._qcm import loop_stiffness
 from contactres.tangential import PlateauLoop
 
 # scipy.quad at epsrel ~1e-13 warns about round-off it cannot beat; the tests compare values.

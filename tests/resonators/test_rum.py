@@ -1,4 +1,4 @@
-"""Tests of contactres.resonators.rum: the lumped and rod models of the RUM oscillator."""
+"""Tests of contactres.resonators._rum: the lumped and rod models of the RUM oscillator."""
 
 import math
 
@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
-from contactres.resonators.rum import RUMOscillator
+from contactres.resonators._rum import RUMOscillator
 
 F0 = 1.0e6  # Hz
 MASS = 2.0e-4  # kg

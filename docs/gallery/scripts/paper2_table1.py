@@ -1,7 +1,7 @@
 """Paper 2, Table 1: E and γ of every configuration and medium, from the bundled example.
 
 The table ``contactres qcm analyze src/contactres/data/example_sweeps.csv`` prints
-(:func:`contactres.report.console.table1_text`; the numbers are in its ``summary.json``), drawn
+(:func:`contactres.report.table1_text`; the numbers are in its ``summary.json``), drawn
 as a figure because the plot directive makes figures. Built with the documentation; run it alone
 to get the same figure.
 """
@@ -10,7 +10,7 @@ import matplotlib.pyplot as plt
 from _example import results
 from matplotlib.figure import Figure
 
-from contactres.report.console import table1_text
+from contactres.report import table1_text
 
 table = table1_text(results())
 # a note common to every row goes under the table, not into each cell

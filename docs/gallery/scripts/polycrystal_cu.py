@@ -4,7 +4,7 @@ Figure 1: a seeded synthetic Cu polycrystal (256 x 256 pixels of 1 µm, 40 Voron
 uniformly random orientations, seed 1), the indentation modulus M of every pixel (paper 1,
 Eq. 4; Vlassak & Nix 1994) from the table over the standard triangle
 (:func:`contactres.polycrystal.prepare_normal_table`), drawn by
-:func:`contactres.report.map_figures.modulus_map_figure`.
+:func:`contactres.report.modulus_map_figure`.
 
 Figure 2: a synthetic contact-stiffness map (512 x 512 pixels, 60 grains, seed 1, rigid tip of
 R = 20 nm at F = 1 µN, 1 % Gaussian noise per pixel;
@@ -32,7 +32,7 @@ from contactres.polycrystal import (
     surface_matrices_from_euler,
     synthetic_polycrystal,
 )
-from contactres.report.map_figures import modulus_map_figure
+from contactres.report import modulus_map_figure
 
 CU = Material.crystal("Cu")
 
@@ -50,7 +50,7 @@ fig1 = modulus_map_figure(
 )
 # On the maps (a), (b): the grain boundaries (pixel edges between different labels, µm);
 # on the triangles (c): the surface normals of the map's grains, in the stereographic
-# projection of contactres.polycrystal.ipf, (X, Y) = (n_y, n_x)/(1 + n_z) for cubic.
+# projection of contactres.polycrystal._ipf, (X, Y) = (n_y, n_x)/(1 + n_z) for cubic.
 um = sp.step_x * 1e6
 i, j = np.nonzero(sp.labels[:, 1:] != sp.labels[:, :-1])  # between columns j and j + 1
 vertical = np.stack([np.stack([j + 1, i], -1), np.stack([j + 1, i + 1], -1)], 1)

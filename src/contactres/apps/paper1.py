@@ -8,7 +8,7 @@ damping Q⁻¹ = 0.02. Every figure is written as PNG together with the CSV of t
 * Fig. 3: DCSF of the five displacement models at A = 0.5, ν = 0.25;
 * Fig. 4: DCSF (WA) for A = 0.25, 0.5, 1, 2, 4 at ν = 0.25;
 * Fig. 5: DCSF (WA) at A = 2 for ν = 0.1, 0.2, 0.25, 0.3, 0.4;
-* the exact rigid-punch DCSF (:mod:`contactres.dynamic.exact`) on Figs. 3-5, and a ranking of
+* the exact rigid-punch DCSF (:mod:`contactres.dynamic._exact`) on Figs. 3-5, and a ranking of
   the models by their largest relative error against it (k_l a <= 1 and <= 2).
 """
 

@@ -170,7 +170,7 @@ class MaterialType(click.ParamType):
     """A click parameter for the name of a solid in a contact (``role`` "sphere" or "plate"):
     a built-in solid (``contactres crystals``), ``glass`` (soda-lime glass) and, for the plate,
     ``quartz-AT`` (:func:`contactres.materials.at_cut_quartz`). An unknown name is refused in one
-    line listing the known ones (:func:`contactres.analysis.radiation.material_by_name`)."""
+    line listing the known ones (:func:`contactres.analysis.material_by_name`)."""
 
     name = "NAME"
 
@@ -178,7 +178,7 @@ class MaterialType(click.ParamType):
         self.role = role
 
     def convert(self, value, param, ctx):
-        from ..analysis.radiation import material_by_name
+        from ..analysis import material_by_name
 
         try:
             material_by_name(value, self.role)
@@ -212,11 +212,13 @@ def _json_scalar(value):
 
 def emit(table: pd.DataFrame, fmt: str, stream=None) -> None:
     """Print a table in the chosen format to ``stream`` (stdout)."""
+    from ..fileio import neutralised
+
     out = stream or sys.stdout
     if fmt == "csv":
         # 15 significant digits: read back by scripts to 5e-15, yet without the float noise of
         # the 17-digit repr (0.1 + 0.2 prints as 0.3, not 0.30000000000000004).
-        table.to_csv(out, index=False, float_format="%.15g")
+        neutralised(table).to_csv(out, index=False, float_format="%.15g")
     elif fmt == "json":
         # Python's own float repr (shortest exact), not pandas' to_json, which rounds to a
         # number of decimals and so writes 1.23e-12 m as 0.0.

@@ -5,7 +5,6 @@ from __future__ import annotations
 
 import click
 
-from ..errors import ContactresInputError
 from ._app import main
 from ._common import RangeType, emit, format_option
 from ._crystal_face import crystal_face, crystal_face_options
@@ -68,31 +67,10 @@ def contact(radius, force, frequency, tangential, direction, fmt, **face):
     Example: contactres contact --crystal quartz-AT --radius 5e-3 --force 1e-3 --tangential
     --frequency 15e6
     """
-    import numpy as np
 
     from ..jobs import contact as job
 
     m = crystal_face(**face)
-    freq = np.zeros(1) if frequency is None else frequency
-    try:
-        np.broadcast_shapes(radius.shape, force.shape, freq.shape)
-    except ValueError:
-        raise ContactresInputError(
-            f"--radius ({len(radius)} values), --force ({len(force)} values) and --frequency "
-            f"({len(freq)} values) must have the same number of values, or single values"
-        ) from None
-    if frequency is not None and m.density is None:
-        raise ContactresInputError(
-            "--frequency needs the density of the solid: choose it by --crystal"
-        )
-    if not np.isfinite(direction):
-        raise ContactresInputError(
-            f"--direction must be a finite angle in degrees, got {direction!r}"
-        )
-    if direction != 0.0 and not tangential:
-        raise ContactresInputError(
-            "--direction is the direction of the tangential motion: add --tangential"
-        )
     settings = job.Settings(radius, force, frequency, tangential, direction)
     result = job.run(m, settings)
     emit(result.table, fmt)

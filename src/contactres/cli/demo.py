@@ -22,7 +22,7 @@ def demo(out: str) -> None:
 
     Example: contactres demo --out contactres-demo
     """
-    from ..apps.demo import write_demo
+    from ..apps import write_demo
     from ..fileio import ensure_dir
     from ..jobs import demo as job
 

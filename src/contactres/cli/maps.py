@@ -84,7 +84,7 @@ def maps_synthetic(
 
     from ..jobs import maps_synthetic as job
     from ..jobs.maps import TipLoad
-    from ..polycrystal.maps import check_map_output, write_map
+    from ..polycrystal import check_map_output, write_map
 
     check_map_output(out)
     material, lattice = map_material(crystal, c11, c12, c13, c33, c44, density)
@@ -186,7 +186,7 @@ def maps_predict(
 
     from ..jobs import maps_predict as job
     from ..jobs.maps import TipLoad
-    from ..polycrystal.maps import check_map_output, write_map
+    from ..polycrystal import check_map_output, write_map
 
     check_map_output(out, inputs=[map_path])
     if figure is not None:
@@ -210,7 +210,7 @@ def maps_predict(
     write_map(out, ds, chunks=(chunks, chunks))
     if figure is not None:
         from ..fileio import save_figure
-        from ..report.job_figures import prediction_figure
+        from ..report import prediction_figure
 
         save_figure(figure, prediction_figure(result))
     M, k = ds["M_Pa"].values, ds["k_star_N_per_m"].values
@@ -333,6 +333,8 @@ def maps_fit(
     write_text(out, record["json"])
     if fmt != "plain":
         emit_record(record["flat"], fmt)
+        for line in result.warnings:  # the plain summary prints them; here on stderr
+            click.echo(f"contactres: warning: {line}", err=True)
         return
     click.echo(result.summary())
     click.echo(f"{used} pixels in {result.n_grains} grains; wrote {out}")

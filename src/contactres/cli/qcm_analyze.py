@@ -158,10 +158,16 @@ def analyze_command(
 
     Example: contactres qcm analyze src/contactres/data/example_sweeps.csv --out qcm_results
     """
-    from ..analysis.flags import Flag, has
+    from ..analysis import Flag, has
     from ..jobs import qcm_sweeps as job
-    from ..report.console import friction_table, radiation_lines, table1_text, withheld_lines
-    from ..report.writer import report_set, write_report
+    from ..report import (
+        friction_table,
+        radiation_lines,
+        report_set,
+        table1_text,
+        withheld_lines,
+        write_report,
+    )
 
     if (sphere_material is None) != (plate_material is None):
         given = "--sphere-material" if plate_material is None else "--plate-material"

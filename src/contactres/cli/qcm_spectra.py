@@ -106,7 +106,7 @@ def spectra_command(
     """
     from pathlib import Path
 
-    from ..fileio import CSV_FLOAT_FORMAT, check_output_file, write_csv, write_text
+    from ..fileio import CSV_FLOAT_FORMAT, check_output_file, neutralised, write_csv, write_text
     from ..jobs import qcm_spectra as job
 
     if fits and Path(fits).resolve() == Path(out).resolve():
@@ -130,7 +130,8 @@ def spectra_command(
     # The conventions go into the file as comment lines (the sweep reader skips them); ten
     # significant digits: below every stated error, no floating-point noise.
     header = "".join(f"# {k}: {v}\n" for k, v in conventions.items())
-    write_text(targets[0], header + rows.to_csv(index=False, float_format=CSV_FLOAT_FORMAT))
+    body = neutralised(rows).to_csv(index=False, float_format=CSV_FLOAT_FORMAT)
+    write_text(targets[0], header + body)
     if fits:
         write_csv(targets[1], fitted, index=False, float_format=CSV_FLOAT_FORMAT)
     for line in result.warnings:

@@ -22,9 +22,6 @@ import click
 from ._app import qcm
 from ._common import MagnitudeType, odd_overtone, step
 
-#: The files the command writes into its folder.
-FILES = ("stiffness.csv", "stiffness.json", "stiffness.png")
-
 
 def reader_names() -> tuple[str, ...]:
     """The names of the export readers, in the order they are tried: those of the registry
@@ -219,9 +216,8 @@ def stiffness_command(
         contactres qcm stiffness run.txt --df-divided-by-n --dissipation-scale 1e-6
         --time-unit s --fundamental 4.95e6 --area 2e-5 --n-contacts 3 --out run-stiffness
     """
-    from ..fileio import ResultSet
     from ..jobs import qcm_stiffness as job
-    from ..report.writer import write_report
+    from ..report import report_set, write_report
 
     source = Path(export)
     conventions = {
@@ -236,9 +232,9 @@ def stiffness_command(
     settings = job.Settings(area, n_contacts, reader, conventions, zq)
     progress = lambda text: step("qcm stiffness", text)  # noqa: E731
     # The folder is checked (and locked) before the export is read: an output error comes first.
-    with ResultSet(out, names=FILES, inputs=(source,)) as rs:
+    with report_set(job.Result, out, inputs=(source,)) as rs:
         result = job.run(source, settings, progress)
-        write_report(result, rs, progress=progress)
+        written = write_report(result, rs, progress=progress)
     for line in result.warnings:
         click.echo(f"contactres: warning: {line}", err=True)
     click.echo(f"{source.name} ({result.conventions['reader']}): κ and ωξ per contact, N/m")
@@ -247,4 +243,4 @@ def stiffness_command(
             f"  n = {n}: {len(part)} points, median κ = {part['kappa_N_per_m'].median():.6g}, "
             f"median ωξ = {part['omega_xi_N_per_m'].median():.6g}"
         )
-    click.echo(f"wrote {len(FILES)} files into {out}/")
+    click.echo(f"wrote {len(written)} files into {out}/")

@@ -11,6 +11,8 @@ and two bodies in series (:func:`two_body_contact_stiffness`, the QCM contact of
 
 The public names are loaded on first use (PEP 562 module ``__getattr__``): the model names
 (``MODELS``, ``ALL_MODELS``, ``WAVENUMBERS``) come without scipy, for the command line's options.
+The modules that implement them are private (``_normal_stiffness``, ``_exact``, ``_table``, ...,
+scipy's rule): import from ``contactres.dynamic``.
 """
 
 from __future__ import annotations
@@ -25,27 +27,28 @@ TYPE_CHECKING = False
 # Public name -> the module that defines it.
 _EXPORTS = MappingProxyType(
     {
-        "ALL_MODELS": ".models",
-        "MODELS": ".models",
-        "WAVENUMBERS": ".models",
-        "KernelTable": ".table",
-        "MAX_ISOTROPIC_POISSON": ".table",
-        "MAX_STIFFNESS_CONTRAST": ".table",
-        "prepare": ".table",
-        "contact_displacement": ".normal_stiffness",
-        "contact_pressure": ".normal_stiffness",
-        "dcsf": ".normal_stiffness",
-        "dcsf_models": ".normal_stiffness",
-        "dynamic_contact_stiffness": ".normal_stiffness",
-        "normalised_wavenumber": ".normal_stiffness",
-        "shear_wavenumber_ratio": ".normal_stiffness",
-        "wave_modulus": ".normal_stiffness",
-        "TangentialTable": ".tangential_table",
-        "prepare_tangential": ".tangential_table",
-        "tangential_contact_stiffness": ".tangential_stiffness",
-        "tangential_dcsf": ".tangential_stiffness",
-        "tangential_stiffness_static": ".tangential_static",
-        "two_body_contact_stiffness": ".tangential_stiffness",
+        "ALL_MODELS": "._models",
+        "MODELS": "._models",
+        "WAVENUMBERS": "._models",
+        "KernelTable": "._table",
+        "MAX_ISOTROPIC_POISSON": "._table",
+        "MAX_STIFFNESS_CONTRAST": "._table",
+        "prepare": "._table",
+        "contact_displacement": "._normal_stiffness",
+        "contact_pressure": "._normal_stiffness",
+        "dcsf": "._normal_stiffness",
+        "dcsf_models": "._normal_stiffness",
+        "dynamic_contact_stiffness": "._normal_stiffness",
+        "normalised_wavenumber": "._normal_stiffness",
+        "shear_wavenumber_ratio": "._normal_stiffness",
+        "wave_modulus": "._normal_stiffness",
+        "KSA_MAX": "._tangential_galerkin",
+        "TangentialTable": "._tangential_table",
+        "prepare_tangential": "._tangential_table",
+        "tangential_contact_stiffness": "._tangential_stiffness",
+        "tangential_dcsf": "._tangential_stiffness",
+        "tangential_stiffness_static": "._tangential_static",
+        "two_body_contact_stiffness": "._tangential_stiffness",
     }
 )
 
@@ -56,12 +59,12 @@ __all__ = sorted(_EXPORTS)
 # marks an explicit re-export; isort would split each onto its own import, hence off here.
 if TYPE_CHECKING:
     # isort: off
-    from .models import (
+    from ._models import (
         ALL_MODELS as ALL_MODELS,
         MODELS as MODELS,
         WAVENUMBERS as WAVENUMBERS,
     )
-    from .normal_stiffness import (
+    from ._normal_stiffness import (
         contact_displacement as contact_displacement,
         contact_pressure as contact_pressure,
         dcsf as dcsf,
@@ -71,21 +74,24 @@ if TYPE_CHECKING:
         shear_wavenumber_ratio as shear_wavenumber_ratio,
         wave_modulus as wave_modulus,
     )
-    from .table import (
+    from ._table import (
         KernelTable as KernelTable,
         MAX_ISOTROPIC_POISSON as MAX_ISOTROPIC_POISSON,
         MAX_STIFFNESS_CONTRAST as MAX_STIFFNESS_CONTRAST,
         prepare as prepare,
     )
-    from .tangential_static import (
+    from ._tangential_galerkin import (
+        KSA_MAX as KSA_MAX,
+    )
+    from ._tangential_static import (
         tangential_stiffness_static as tangential_stiffness_static,
     )
-    from .tangential_stiffness import (
+    from ._tangential_stiffness import (
         tangential_contact_stiffness as tangential_contact_stiffness,
         tangential_dcsf as tangential_dcsf,
         two_body_contact_stiffness as two_body_contact_stiffness,
     )
-    from .tangential_table import (
+    from ._tangential_table import (
         TangentialTable as TangentialTable,
         prepare_tangential as prepare_tangential,
     )

@@ -16,7 +16,7 @@ the Python API calls the same ``run``::
 
 Conventions (:mod:`contactres.jobs.contract`): SI units in the settings and in the tables (each
 column name carries its unit); a job never writes a file nor prints (the report writes a Result:
-:func:`contactres.report.writer.write_report`); ``progress`` gets one line per stage; a user's
+:func:`contactres.report.write_report`); ``progress`` gets one line per stage; a user's
 error raises :class:`contactres.errors.ContactresInputError`. The modules are imported when first
 used (``from contactres.jobs import dcsf``): this package imports nothing itself.
 

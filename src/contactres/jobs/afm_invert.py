@@ -65,7 +65,7 @@ class Result(JobResult):
 
 def run(inputs: str | os.PathLike, settings: Settings, progress: Progress | None = None) -> Result:
     """Invert every row of the CR-AFM table ``inputs`` (see the module docstring)."""
-    from ..analysis.resonance_tables import invert_afm_table
+    from ..analysis import invert_afm_table
     from ..measurements.resonances import AFM_TABLE, read_resonance_table
 
     s = settings

@@ -87,10 +87,18 @@ def run(inputs: Material, settings: Settings, progress: Progress | None = None) 
     if s.frequency is not None:
         f = np.asarray(nonnegative("frequency", f, "Hz"), dtype=float)
     if s.frequency is not None and m.density is None:
-        raise ContactresInputError("a dynamic stiffness (frequency) needs the density of the solid")
+        raise ContactresInputError(
+            "a dynamic stiffness (frequency) needs the density of the solid (a --crystal on the "
+            "command line)"
+        )
     if not math.isfinite(s.direction):
         raise ContactresInputError(
-            f"direction must be a finite angle in degrees, got {s.direction!r}"
+            f"direction (--direction) must be a finite angle in degrees, got {s.direction!r}"
+        )
+    if s.direction != 0.0 and not s.tangential:
+        raise ContactresInputError(
+            "direction (--direction) is the direction of the tangential motion: set tangential "
+            "(--tangential)"
         )
     say(progress, "static contact")
     c = sphere_contact(m, R, F)

@@ -15,7 +15,7 @@ A job is one workflow of contactres (a QCM sweep analysis, a DCSF curve, a CR-AF
   receives one short line per stage ("reading x.csv", "inverting 12 rows").
 
 A job never writes a file nor prints: the command line prints a Result and
-:func:`contactres.report.writer.write_report` writes one (its tables as CSV, its values as JSON,
+:func:`contactres.report.write_report` writes one (its tables as CSV, its values as JSON,
 the figures and the HTML page registered for its type). A job imports the library below it
 (analysis, polycrystal, ...), never :mod:`contactres.report`, :mod:`contactres.apps` or the
 command line.

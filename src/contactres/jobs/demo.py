@@ -2,7 +2,8 @@
 
 Inputs: none (pass None; the data are the package's, ``contactres/data``). Settings: none.
 :func:`run` computes every part, in the order of :data:`STEPS` (``progress`` gets each title
-before its part); :mod:`contactres.apps.demo` writes them into one folder (``contactres demo``):
+before its part); :func:`contactres.apps.write_demo` writes them into one folder
+(``contactres demo``):
 
 * paper 2's analysis of the bundled sweeps (:func:`contactres.analyze`);
 * from the instrument: the bundled admittance spectra -> resonance fits -> sweep table -> the
@@ -27,7 +28,7 @@ from .contract import JobResult, Progress, say
 if TYPE_CHECKING:
     import xarray as xr
 
-    from ..polycrystal.maps import OrientationMap
+    from ..polycrystal import OrientationMap
     from . import paper2
 
 __all__ = ["STEPS", "Result", "Settings", "run"]

@@ -1,6 +1,6 @@
 """The computations of the map jobs: synthetic maps, predicted maps and the fit of measured maps.
 
-Each function takes an :class:`~contactres.polycrystal.maps.OrientationMap` (read from a Zarr
+Each function takes an :class:`~contactres.polycrystal.OrientationMap` (read from a Zarr
 map store or an EBSD export by :func:`open_map`) and returns an :mod:`xarray` Dataset or a fit
 result; the jobs :mod:`~contactres.jobs.maps_synthetic`, :mod:`~contactres.jobs.maps_predict` and
 :mod:`~contactres.jobs.maps_fit` run them, and the command line writes what they return (Zarr
@@ -8,7 +8,7 @@ stores atomically, JSON/CSV atomically).
 
 Physics: the indentation modulus M of each pixel (paper 1, Eq. 4; Vlassak & Nix 1994), the
 Hertz contact of a spherical tip with its compliance in series (Johnson 1985, Ch. 4), paper 1's
-DCSF (Eq. 29) and the inverse of :mod:`contactres.polycrystal.inverse`.
+DCSF (Eq. 29) and the inverse of :mod:`contactres.polycrystal._inverse`.
 
 References
 ----------
@@ -30,21 +30,25 @@ import numpy as np
 
 from ..errors import ContactresInputError
 from ..materials import Material
-from ..polycrystal.grains import folded_normals, grain_orientations, segment_grains
-from ..polycrystal.inverse import fit_map
-from ..polycrystal.maps import (
+from ..polycrystal import (
+    ContactMap,
     ExactModulus,
     OrientationMap,
+    contact_stiffness_map,
+    dynamic_factor_map,
     evaluate_map,
+    fit_map,
+    folded_normals,
+    grain_orientations,
+    indentation_moduli,
     map_from_dataset,
     map_to_dataset,
+    prepare_normal_table,
     read_map,
+    segment_grains,
+    surface_matrices_from_euler,
+    synthetic_polycrystal,
 )
-from ..polycrystal.moduli import indentation_moduli
-from ..polycrystal.normal_table import prepare_normal_table
-from ..polycrystal.orientations import surface_matrices_from_euler
-from ..polycrystal.predicted import ContactMap, contact_stiffness_map, dynamic_factor_map
-from ..polycrystal.synthetic import synthetic_polycrystal
 from .readers import ALL_READERS, read_ebsd_file, read_value_grid
 
 if TYPE_CHECKING:
@@ -87,13 +91,13 @@ class TipLoad:
 
     @property
     def tip(self) -> tuple[float, float] | None:
-        """The tip as :func:`~contactres.polycrystal.predicted.contact_stiffness_map` takes it
+        """The tip as :func:`~contactres.polycrystal.contact_stiffness_map` takes it
         (a plane-strain modulus is (E, ν = 0))."""
         return None if math.isinf(self.tip_modulus) else (self.tip_modulus, 0.0)
 
 
 def open_map(path: str | os.PathLike, readers: Readers = ALL_READERS):
-    """Read a map: a Zarr map store (:func:`~contactres.polycrystal.maps.write_map`) or an EBSD
+    """Read a map: a Zarr map store (:func:`~contactres.polycrystal.write_map`) or an EBSD
     export (.ang, .ctf: the ``ebsd`` recipes of ``readers``, :func:`read_ebsd_file`). Returns
     (OrientationMap, Dataset or None): the store's Dataset keeps its other variables (a measured
     map, a prediction)."""
@@ -155,7 +159,7 @@ def predict_map(
     method : {"auto", "interpolated", "exact", "grains"}
         "interpolated": M tabulated over the fundamental triangle until the interpolation
         error at the cell centres is below ``rtol``
-        (:func:`~contactres.polycrystal.normal_table.prepare_normal_table`); "exact": M of
+        (:func:`~contactres.polycrystal.prepare_normal_table`); "exact": M of
         every pixel (slow; worth a cluster); "grains": exact per labelled grain (needs labels
         and one orientation per grain); "auto": "grains" when that holds, else "interpolated".
     rtol : float
@@ -164,7 +168,7 @@ def predict_map(
         Hz: add paper 1's DCSF of every pixel (``model``, tabulated to ``dcsf_rtol``) and the
         dynamic contact stiffness.
     chunks, scheduler, client, progress
-        Of :func:`~contactres.polycrystal.maps.evaluate_map` (the M evaluation).
+        Of :func:`~contactres.polycrystal.evaluate_map` (the M evaluation).
 
     Returns
     -------
@@ -249,8 +253,7 @@ def _add_dynamic(
     ds, material, lattice, tipload, normals, M, contact, frequency, model, dcsf_rtol, info
 ) -> None:
     """The DCSF per pixel from a table over the map's k_l a range (3 nodes, spline)."""
-    from ..polycrystal.normal_table import surface_matrices_from_normals
-    from ..polycrystal.predicted import map_wavenumbers
+    from ..polycrystal import map_wavenumbers, surface_matrices_from_normals
 
     ka = map_wavenumbers(material, normals, contact.contact_radius, frequency)
     lo, hi = float(np.nanmin(ka)), float(np.nanmax(ka))
@@ -346,7 +349,7 @@ def fit_measured_map(
 ):
     """Fit the single-crystal constants to a measured map of k* (N/m) or M (Pa).
 
-    Grains: the map's labels, else :func:`~contactres.polycrystal.grains.segment_grains`
+    Grains: the map's labels, else :func:`~contactres.polycrystal.segment_grains`
     (regions of equal surface normal within ``tolerance_deg``). Per grain: the mean and its
     standard error, and the orientation of the mean normal. With ``tipload`` (force and tip
     radius known) the calibration of a stiffness map is c = (6 F R)^{1/3}; else it is free.
@@ -409,4 +412,7 @@ def fit_record(result, **context) -> dict:
     }
     doc = {"conventions": conventions, **{k: clean(v) for k, v in context.items()}, **fields}
     flat = {k: v for k, v in doc.items() if not isinstance(v, (dict, list))}
+    # The warnings (a list) are kept in the flat record as one text: a fit that did not
+    # converge or is at a bound says so in every format (issue 27).
+    flat["warnings"] = "; ".join(doc.get("warnings") or ())
     return {"json": json.dumps(doc, indent=1, allow_nan=False) + "\n", "flat": flat}

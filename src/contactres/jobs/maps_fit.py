@@ -6,7 +6,7 @@ the measured values are (a CSV grid, read by the ``grid`` recipe of
 :data:`contactres.jobs.readers.ALL_READERS`, or a variable of the store), which quantity they
 are, the lattice, the tolerance that segments unlabelled grains and the tip and load (for a
 stiffness map). The fit is :func:`contactres.jobs.maps.fit_measured_map` (the inverse of
-:mod:`contactres.polycrystal.inverse`).
+:mod:`contactres.polycrystal._inverse`).
 """
 
 from __future__ import annotations
@@ -84,14 +84,16 @@ def run(inputs: str | os.PathLike, settings: Settings, progress: Progress | None
         values = read_grid_file(s.values_path)
         if values.shape != omap.shape:
             raise ContactresInputError(
-                f"--values {s.values_path}: {values.shape[0]} rows x {values.shape[1]} columns, "
+                f"values file (--values) {s.values_path}: {values.shape[0]} rows x "
+                f"{values.shape[1]} columns, "
                 f"but MAP has {omap.shape[0]} x {omap.shape[1]} pixels (same grid needed)"
             )
     elif ds is not None and s.variable in ds:
         values = ds[s.variable].values
     else:
         raise ContactresInputError(
-            f"{inputs}: no variable {s.variable!r}; give the measured map with --values FILE"
+            f"{inputs}: no variable {s.variable!r}; give the measured map as values_path "
+            "(--values FILE on the command line)"
         )
     fit, _, used = fit_measured_map(
         omap,

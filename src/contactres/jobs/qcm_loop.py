@@ -92,21 +92,26 @@ def build_loop(s: Settings, omega: float):
 
     def need(name, value):
         if value is None:
-            raise ContactresInputError(f"--model {s.model} needs --{name}")
+            # Named both ways: the setting of the Python API and the option of the command line.
+            raise ContactresInputError(
+                f"model {s.model!r} needs {name} (--{name.replace('_', '-')} on the command line)"
+            )
         return value
 
     if s.model not in MODELS:
         raise ContactresInputError(f"model must be one of {', '.join(MODELS)}, got {s.model!r}")
     if s.model == "voigt":
         if s.plateau:
-            raise ContactresInputError("--plateau applies to --model cm or savkoor only")
+            raise ContactresInputError(
+                "plateau (--plateau) applies to model 'cm' or 'savkoor' only"
+            )
         return VoigtLoop(s.kappa, s.xi, omega)
     if s.model == "cm":
         loop: MasingLoop = CattaneoMindlinLoop(
-            s.kappa, need("mu", s.mu), need("normal-force", s.normal_force)
+            s.kappa, need("mu", s.mu), need("normal_force", s.normal_force)
         )
     else:
-        loop = SavkoorLoop(s.kappa, need("tau", s.tau), need("contact-radius", s.contact_radius))
+        loop = SavkoorLoop(s.kappa, need("tau", s.tau), need("contact_radius", s.contact_radius))
     if s.plateau:
         loop = PlateauLoop(loop, s.plateau)
     return with_dashpot(loop, s.xi, omega) if s.xi > 0 else loop
@@ -116,7 +121,7 @@ def run(inputs: None, settings: Settings, progress: Progress | None = None) -> R
     """The shifts of ``settings`` (``inputs``: None; see the module docstring)."""
     import pandas as pd
 
-    from ..resonators.qcm import QCM, shifts_from_loop
+    from ..resonators import QCM, shifts_from_loop
 
     s = settings
     q = QCM(fundamental=s.fundamental, overtone=s.overtone, area=s.area, zq=s.zq)

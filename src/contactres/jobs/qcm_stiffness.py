@@ -97,6 +97,7 @@ def run(inputs: str | os.PathLike, settings: Settings, progress: Progress | None
     table = read_export(source, s.reader, **(s.conventions or {}))
     say(progress, f"κ and ωξ of {len(table.data)} points")
     result, caught = stiffness_table(table, s.area, s.n_contacts, s.zq)
+    caught = [*caught, *_sign_warnings(result)]
     return Result(
         stiffness=result,
         conventions=dict(table.conventions),
@@ -113,12 +114,34 @@ def run(inputs: str | os.PathLike, settings: Settings, progress: Progress | None
     )
 
 
+def _sign_warnings(result) -> list[str]:
+    """Lines saying which overtones have a negative median κ or ωξ: a contact spring raises the
+    frequency and adds damping (paper 2, Eq. 2), so a negative κ is mass loading (a film, a
+    liquid, adsorbed material), not a contact, and a negative ωξ less damping than the
+    reference (issue 27: such medians were printed without a word)."""
+    import numpy as np
+
+    lines = []
+    for n, part in result.groupby("overtone"):
+        for col, what in (
+            ("kappa_N_per_m", "κ < 0: a negative Δf is mass loading (a film or a liquid), not a "
+             "contact spring; Eq. 2 holds for point contacts"),
+            ("omega_xi_N_per_m", "ωξ < 0: less damping than the reference; check the baseline "
+             "and the sign of ΔΓ or D"),
+        ):  # fmt: skip
+            values = part[col].to_numpy(dtype=float)
+            if np.isfinite(values).any() and np.nanmedian(values) < 0:
+                share = int(np.sum(values < 0))
+                lines.append(f"overtone {n}: {share} of {len(values)} points have {what}")
+    return lines
+
+
 def stiffness_table(table, area: float, n_contacts: int, zq: float):
     """The export's rows with κ and ωξ per contact (paper 2, Eq. 2), and the distinct warnings
     of the small-load check (``|Δf|``/f above 1e-3) as text lines."""
     import numpy as np
 
-    from ..resonators.qcm import QCM, stiffness_from_shifts
+    from ..resonators import QCM, stiffness_from_shifts
 
     data = table.data.copy()
     kappa = np.full(len(data), np.nan)

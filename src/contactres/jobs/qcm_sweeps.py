@@ -16,8 +16,8 @@ analyses; :func:`stages` gives the length of a progress bar over it).
 The Result's tables are those of the results folder, each bound to its schema
 (:func:`sweeps_table`, :func:`loads_table` and, with the two bodies, :func:`radiation_table`),
 and its values the ``summary.json`` record (:func:`summary`): a report writes them as it writes
-every job's (:func:`contactres.report.writer.write_report`; the folder's files are described in
-:mod:`contactres.report.tables`).
+every job's (:func:`contactres.report.write_report`; the folder's files are described in
+:func:`contactres.report.report_files`).
 """
 
 from __future__ import annotations
@@ -79,7 +79,7 @@ class Settings:
         Processes; None: every core from :data:`MANY_SWEEPS` sweeps on, else 1.
     sphere_material, plate_material : str or None
         The bodies of the contact (names of
-        :func:`contactres.analysis.radiation.material_by_name`) for the radiation loss.
+        :func:`contactres.analysis.material_by_name`) for the radiation loss.
     """
 
     area_m2: float | None = None
@@ -180,7 +180,7 @@ def _finite_or_nan(table: pd.DataFrame) -> pd.DataFrame:
 
 def sweeps_table(results: Results) -> pd.DataFrame:
     """The ``sweeps.csv`` table: the columns of ``SWEEP_RESULTS``, flags as text."""
-    from ..analysis.flags import render
+    from ..analysis import render
 
     table = _finite_or_nan(results.sweeps[list(SWEEP_RESULTS.names)])
     table["flags"] = render(table["flags"].to_numpy())
@@ -200,7 +200,7 @@ def radiation_table(results: Results) -> pd.DataFrame:
 
 
 def _radiation_record(table: pd.DataFrame) -> dict:
-    from ..analysis.radiation import radiation_summary
+    from ..analysis import radiation_summary
 
     first: pd.Series | dict = table.iloc[0] if len(table) else {}
     return {

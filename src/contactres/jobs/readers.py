@@ -4,7 +4,7 @@ readers of the map jobs' files through it.
 The recipes live in the layer that owns each format and are composed here, the lowest layer
 that sees them all: the measurements' built-in ones
 (:data:`contactres.measurements.readers.registry.BUILT_IN`: sweep tables, spectra, instrument
-exports, resonance tables), the EBSD maps of :data:`contactres.polycrystal.ebsd.EBSD_READERS`
+exports, resonance tables), the EBSD maps of :data:`contactres.polycrystal.EBSD_READERS`
 and the measured value grids of :func:`read_value_grid` (:data:`GRID_READER`). So a recipe
 never imports a layer above its own.
 
@@ -31,7 +31,7 @@ import numpy as np
 from ..errors import ContactresInputError
 from ..measurements.readers.recipe import Reader, Readers
 from ..measurements.readers.registry import BUILT_IN
-from ..polycrystal.ebsd import EBSD_READERS
+from ..polycrystal import EBSD_READERS
 
 __all__ = ["ALL_READERS", "GRID_READER", "read_ebsd_file", "read_grid_file", "read_value_grid"]
 
@@ -115,7 +115,7 @@ ALL_READERS = Readers((*BUILT_IN, *EBSD_READERS, GRID_READER))
 def read_ebsd_file(path: str | os.PathLike, readers: Readers = ALL_READERS):
     """An EBSD export read by the ``ebsd`` recipe of ``readers`` for its suffix.
 
-    Returns the :class:`~contactres.polycrystal.maps.OrientationMap`; a suffix no recipe
+    Returns the :class:`~contactres.polycrystal.OrientationMap`; a suffix no recipe
     claims is a one-line error naming the file and the suffixes known.
     """
     reader = readers.for_suffix(path, "ebsd")

@@ -47,7 +47,7 @@ def run(
     inputs: str | os.PathLike, settings: Settings | None = None, progress: Progress | None = None
 ) -> Result:
     """k* of every row of the RUM table ``inputs`` (see the module docstring)."""
-    from ..analysis.resonance_tables import invert_rum_table
+    from ..analysis import invert_rum_table
     from ..measurements.resonances import RUM_TABLE, read_resonance_table
 
     say(progress, f"reading {Path(inputs).name}")

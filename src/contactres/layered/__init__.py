@@ -17,6 +17,12 @@ Accuracy: see :mod:`.recursion`.
 from __future__ import annotations
 
 from .recursion import stack_compliance, surface_green
-from .stack import LayeredMaterial, material_at
+from .stack import FrequencyDependentMaterial, LayeredMaterial, material_at
 
-__all__ = ["LayeredMaterial", "material_at", "stack_compliance", "surface_green"]
+__all__ = [
+    "FrequencyDependentMaterial",
+    "LayeredMaterial",
+    "material_at",
+    "stack_compliance",
+    "surface_green",
+]

@@ -13,20 +13,34 @@ returns a :class:`~contactres.Material` (``at(0)``: the static, relaxed limit).
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
+from typing import Any, Protocol
 
 import numpy as np
 
 from ..errors import ContactresInputError
 from ..materials import Material
 
-__all__ = ["LayeredMaterial", "material_at"]
+__all__ = ["FrequencyDependentMaterial", "LayeredMaterial", "material_at"]
 
 # A film thicker than this is not a film: the substrate under it cannot be seen by any contact.
 MAX_THICKNESS_M = 1.0
 
 
-def material_at(m, frequency: float) -> Material:
+class FrequencyDependentMaterial(Protocol):
+    """What a layer or substrate needs beyond a plain :class:`~contactres.Material`: its elastic
+    constants at a frequency (Hz; 0 is the static, relaxed limit), e.g. a viscoelastic solid."""
+
+    def at(self, frequency: float) -> Material:
+        """The Material at ``frequency`` (Hz)."""
+        ...
+
+
+AnyMaterial = Material | FrequencyDependentMaterial
+
+
+def material_at(m: AnyMaterial, frequency: float) -> Material:
     """The :class:`~contactres.Material` of ``m`` at ``frequency`` (Hz).
 
     Parameters
@@ -117,8 +131,8 @@ class LayeredMaterial:
     'PMMA 250 nm on quartz'
     """
 
-    substrate: object
-    layers: tuple = ()
+    substrate: AnyMaterial
+    layers: Sequence[tuple[Any, float]] = ()
 
     def __post_init__(self) -> None:
         _check_material(self.substrate, "substrate")
@@ -132,8 +146,11 @@ class LayeredMaterial:
         out = []
         for j, pair in enumerate(layers, start=1):
             if not (isinstance(pair, (tuple, list)) and len(pair) == 2):
+                got = type(pair).__name__
+                if isinstance(pair, (tuple, list)):
+                    got += f" of {len(pair)} items"
                 raise ContactresInputError(
-                    f"layer {j} must be a (material, thickness_m) pair, got {pair!r}"
+                    f"layer {j} must be a (material, thickness_m) pair, got a {got}"
                 )
             m = _check_material(pair[0], f"layer {j} material")
             out.append((m, _check_thickness(pair[1], j, len(layers))))
@@ -184,7 +201,7 @@ class LayeredMaterial:
         if not (math.isfinite(f) and f >= 0):
             raise ContactresInputError(f"frequency must be finite and >= 0 Hz, got {frequency!r}")
         return LayeredMaterial(
-            material_at(self.substrate, f), [(material_at(m, f), h) for m, h in self.layers]
+            material_at(self.substrate, f), tuple((material_at(m, f), h) for m, h in self.layers)
         )
 
     def rotated(self, normal=(0, 0, 1), inplane=None) -> LayeredMaterial:
@@ -197,7 +214,7 @@ class LayeredMaterial:
                 raise ContactresInputError(f"{type(m).__name__} cannot be rotated")
             return m.rotated(normal, inplane)
 
-        return LayeredMaterial(turn(self.substrate), [(turn(m), h) for m, h in self.layers])
+        return LayeredMaterial(turn(self.substrate), tuple((turn(m), h) for m, h in self.layers))
 
     def with_loss(self, q_inv: float) -> LayeredMaterial:
         """The stack with every material given the loss C (1 + i Q^-1)
@@ -208,4 +225,4 @@ class LayeredMaterial:
                 raise ContactresInputError(f"{type(m).__name__} has no with_loss")
             return m.with_loss(q_inv)
 
-        return LayeredMaterial(lossy(self.substrate), [(lossy(m), h) for m, h in self.layers])
+        return LayeredMaterial(lossy(self.substrate), tuple((lossy(m), h) for m, h in self.layers))

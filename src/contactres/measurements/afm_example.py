@@ -12,12 +12,12 @@ chain, per grain::
        University Press 1985, Eqs. 4.22-4.23)
     -> κ = k*/k_c -> contact resonances of modes 1 and 2 of an Euler-Bernoulli lever with the tip
        at r = L1/L (U. Rabe, K. Janser, W. Arnold, Rev. Sci. Instrum. 67, 3281 (1996);
-       :func:`~contactres.resonators.cantilever.contact_frequencies`)
+       :func:`~contactres.resonators.contact_frequencies`)
     -> optional Gaussian noise on every frequency, Hz.
 
 The inversion runs the other way through different code (the closed form of κ(β) in
-:mod:`~contactres.resonators.cantilever_inversion`, E* = √(k*³/(6RP)) in
-:mod:`~contactres.analysis.inversion`), so a noise-free map must come back to the
+:mod:`~contactres.resonators`, E* = √(k*³/(6RP)) in
+:mod:`~contactres.analysis`), so a noise-free map must come back to the
 M_sample of the truth: tests/measurements/test_afm_example.py checks 1e-6.
 """
 
@@ -31,7 +31,7 @@ import pandas as pd
 from ..errors import ContactresInputError
 from ..materials import Material
 from ..normal.anisotropic import indentation_modulus
-from ..resonators.cantilever import FREE_ROOTS, Cantilever, contact_frequencies
+from ..resonators import FREE_ROOTS, Cantilever, contact_frequencies
 from ..validation import nonnegative, positive
 
 __all__ = ["NAMED_SURFACES", "ExampleLever", "example_afm_map"]

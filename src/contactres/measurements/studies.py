@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..resonators.qcm import QCM
+from ..resonators import QCM
 from .synthetic import Drift, SweepGroup, SweepStudy
 
 __all__ = ["EXAMPLE_SEED", "example_study", "validation_study"]

@@ -31,6 +31,7 @@ from ..errors import ContactresInputError
 from ..units import ABSOLUTE_FREQUENCY_FRACTION, MIN_SWEEP_POINTS, SMALL_LOAD_LIMIT
 from .messages import at_cell, column_names, shown_value, where_rows
 from .readers import SweepReader
+from .readers.delimited import line_ranges
 from .readers.registry import BUILT_IN
 from .schema import FINITE, SWEEP_TABLE, check_cells, check_value
 
@@ -405,6 +406,31 @@ def _check_per_sweep(table: pd.DataFrame, source: str) -> None:
         _conflict(table, source, "configuration", col, "one configuration has one sphere")
 
 
+def _check_dissipation_sign(table: pd.DataFrame, source: str) -> None:
+    """A contact adds dissipation: ΔΓ (the half-bandwidth shift) of a sweep is positive. Most
+    sweeps with a negative median ΔΓ is a sign slip (an export giving −ΔΓ; it moved E by 25 %,
+    issue 27): an error. A few such sweeps are named in a warning (noise on a tiny ΔΓ, or a
+    reference taken in contact)."""
+    median = table.groupby("sweep", sort=False)["dgamma_Hz"].median()
+    negative = median < 0
+    if not negative.any():
+        return
+    names = [shown_value(n) for n in median.index[negative.to_numpy()]]
+    shown = ", ".join(names[:5]) + (f" ... ({len(names)} in all)" if len(names) > 5 else "")
+    if negative.sum() * 2 > len(median):
+        raise ContactresInputError(
+            f"{source}: dgamma_Hz is negative in {int(negative.sum())} of {len(median)} sweeps "
+            f"(median {median.median():.4g} Hz); ΔΓ, the shift of the half-bandwidth, grows "
+            "with the contact's dissipation: check its sign (an export may give −ΔΓ)"
+        )
+    warnings.warn(
+        f"{source}: sweep(s) {shown} have a negative median dgamma_Hz (a contact adds "
+        "dissipation: check the reference of ΔΓ)",
+        SweepWarning,
+        stacklevel=3,
+    )
+
+
 def _warn_sweeps(table: pd.DataFrame, source: str) -> None:
     """Warn by name of sweeps with too few points, and of sweeps whose amplitudes are all equal
     (all zero, say): a line through a single amplitude has no slope."""
@@ -450,6 +476,14 @@ def validate_sweeps(
     if "line" not in raw.columns:
         raw["line"] = np.arange(2, len(raw) + 2)
     decimal = raw.attrs.get("decimal", ".")
+    comments = raw.attrs.get("comment_lines", ())
+    if comments:
+        warnings.warn(
+            f"{source}: {len(comments)} comment line(s) skipped (first character '#'): "
+            f"line(s) {line_ranges(comments)}",
+            SweepWarning,
+            stacklevel=3,
+        )
     data_cols = [c for c in raw.columns if c != "line"]
     if len(raw) == 0:
         raise ContactresInputError(
@@ -468,5 +502,6 @@ def validate_sweeps(
     _check_physics(out, source)
     out = _drop_duplicates(out, source)
     _check_per_sweep(out, source)
+    _check_dissipation_sign(out, source)
     _warn_sweeps(out, source)
     return SweepTable(out[list(VALIDATED_COLUMNS)].reset_index(drop=True), source)

@@ -29,7 +29,7 @@ import pandas as pd
 
 from ..errors import ContactresInputError
 from ..normal.isotropic import effective_modulus, jkr_contact_radius
-from ..resonators.qcm import QCM, shifts_from_loop, shifts_from_stiffness
+from ..resonators import QCM, shifts_from_loop, shifts_from_stiffness
 from ..tangential import (
     CattaneoMindlinLoop,
     DashpotLoop,

@@ -27,10 +27,10 @@ _EXPORTS = MappingProxyType(
         "ContactIntegrals": ".anisotropic",
         "contact_integrals": ".anisotropic",
         "indentation_modulus": ".anisotropic",
-        "LayeredContact": ".layered",
-        "flat_punch_stiffness": ".layered",
-        "indentation_modulus_at": ".layered",
-        "sphere_contact": ".layered",
+        "LayeredContact": "._layered",
+        "flat_punch_stiffness": "._layered",
+        "indentation_modulus_at": "._layered",
+        "sphere_contact": "._layered",
         "Contact": ".isotropic",
         "dmt": ".isotropic",
         "effective_modulus": ".isotropic",
@@ -73,7 +73,7 @@ if TYPE_CHECKING:
         tabor_parameter as tabor_parameter,
         which_adhesion_model as which_adhesion_model,
     )
-    from .layered import (
+    from ._layered import (
         LayeredContact as LayeredContact,
         flat_punch_stiffness as flat_punch_stiffness,
         indentation_modulus_at as indentation_modulus_at,

@@ -1,89 +1,163 @@
 """Polycrystals: per-pixel contact properties of an orientation map (EBSD).
 
-:mod:`.orientations` holds the orientations: Bunge Euler angles, quaternions and (hkl)[uvw] as
-surface-frame matrices (the convention of :func:`contactres.materials.rotation_to_surface`), the
-crystal symmetry groups (cubic, hexagonal) and the reduction to a fundamental zone;
-:mod:`.moduli` the indentation modulus of many orientations in one vectorised evaluation.
+The orientations (private module ``_orientations``): Bunge Euler angles, quaternions and
+(hkl)[uvw] as surface-frame matrices (the convention of
+:func:`contactres.materials.rotation_to_surface`), the crystal symmetry groups (cubic,
+hexagonal) and the reduction to a fundamental zone; the indentation modulus of many orientations
+in one vectorised evaluation (:func:`indentation_moduli`) and its table over the standard
+triangle (:func:`prepare_normal_table`).
 
-:mod:`.maps` holds the map container, the chunked per-pixel evaluation (numpy, or dask on a
-cluster: the optional extra ``maps``) and Zarr IO; :mod:`.ebsd` reads .ang/.ctf exports;
-:mod:`.synthetic` builds seeded Voronoi polycrystals.
+The map container (:class:`OrientationMap`), the chunked per-pixel evaluation
+(:func:`evaluate_map`: numpy, or dask on a cluster: the optional extra ``maps``) and Zarr IO
+(``_maps``); .ang/.ctf exports (:func:`read_ebsd`, ``_ebsd``); seeded Voronoi polycrystals
+(:func:`synthetic_polycrystal`); grains, the predicted contact-stiffness map and the inverse
+fits of the elastic constants to a measured map (:func:`fit_map`).
+
+The public names are loaded on first use (PEP 562 module ``__getattr__``); the modules that
+implement them are private (scipy's rule): import from ``contactres.polycrystal``.
 """
 
-from .ebsd import read_ang, read_ctf, read_ebsd, write_ang, write_ctf
-from .grains import GrainOrientations, folded_normals, grain_orientations, segment_grains
-from .inverse import CubicInverseResult, fit_cubic_constants, fit_map, grain_means
-from .inverse_hexagonal import HexagonalInverseResult, fit_hexagonal_constants
-from .ipf import IPFTriangle, ipf_colors, ipf_triangle
-from .maps import (
-    MAP_CONVENTIONS,
-    ExactModulus,
-    OrientationMap,
-    evaluate_map,
-    map_from_dataset,
-    map_to_dataset,
-    read_map,
-    write_map,
-)
-from .moduli import indentation_moduli
-from .normal_table import NormalTable, prepare_normal_table, reduce_normals
-from .orientations import (
-    LATTICES,
-    euler_from_surface_matrices,
-    quaternions_from_surface_matrices,
-    random_orientations,
-    reduce_to_fundamental_zone,
-    surface_matrices_from_euler,
-    surface_matrices_from_quaternions,
-    surface_matrix_from_miller,
-    symmetry_operators,
-)
-from .predicted import contact_stiffness_map, dynamic_factor_map, map_wavenumbers
-from .synthetic import SyntheticPolycrystal, synthetic_polycrystal
+from __future__ import annotations
 
-__all__ = [
-    "LATTICES",
-    "MAP_CONVENTIONS",
-    "CubicInverseResult",
-    "ExactModulus",
-    "GrainOrientations",
-    "HexagonalInverseResult",
-    "IPFTriangle",
-    "NormalTable",
-    "OrientationMap",
-    "SyntheticPolycrystal",
-    "contact_stiffness_map",
-    "dynamic_factor_map",
-    "euler_from_surface_matrices",
-    "evaluate_map",
-    "fit_cubic_constants",
-    "fit_hexagonal_constants",
-    "fit_map",
-    "folded_normals",
-    "grain_means",
-    "grain_orientations",
-    "indentation_moduli",
-    "ipf_colors",
-    "ipf_triangle",
-    "map_from_dataset",
-    "map_to_dataset",
-    "map_wavenumbers",
-    "prepare_normal_table",
-    "quaternions_from_surface_matrices",
-    "random_orientations",
-    "read_ang",
-    "read_ctf",
-    "read_ebsd",
-    "read_map",
-    "reduce_normals",
-    "reduce_to_fundamental_zone",
-    "segment_grains",
-    "surface_matrices_from_euler",
-    "surface_matrices_from_quaternions",
-    "surface_matrix_from_miller",
-    "symmetry_operators",
-    "synthetic_polycrystal",
-    "write_ang",
-    "write_ctf",
-    "write_map",
-]
+from types import MappingProxyType
+
+from .._lazy import attach
+
+# Read as True by mypy and pyright (the real objects below), False at run time: no import.
+TYPE_CHECKING = False
+
+# Public name -> the (private) module that defines it.
+_EXPORTS = MappingProxyType(
+    {
+        "EBSD_READERS": "._ebsd",
+        "read_ang": "._ebsd",
+        "read_ctf": "._ebsd",
+        "read_ebsd": "._ebsd",
+        "write_ang": "._ebsd",
+        "write_ctf": "._ebsd",
+        "folded_normals": "._grains",
+        "grain_orientations": "._grains",
+        "segment_grains": "._grains",
+        "GrainOrientations": "._grains",
+        "fit_cubic_constants": "._inverse",
+        "fit_map": "._inverse",
+        "grain_means": "._inverse",
+        "CubicInverseResult": "._inverse",
+        "fit_hexagonal_constants": "._inverse_hexagonal",
+        "HexagonalInverseResult": "._inverse_hexagonal",
+        "ipf_colors": "._ipf",
+        "ipf_triangle": "._ipf",
+        "IPFTriangle": "._ipf",
+        "MAP_CONVENTIONS": "._maps",
+        "check_map_output": "._maps",
+        "evaluate_map": "._maps",
+        "map_from_dataset": "._maps",
+        "map_to_dataset": "._maps",
+        "read_map": "._maps",
+        "write_map": "._maps",
+        "ExactModulus": "._maps",
+        "OrientationMap": "._maps",
+        "indentation_moduli": "._moduli",
+        "prepare_normal_table": "._normal_table",
+        "reduce_normals": "._normal_table",
+        "surface_matrices_from_normals": "._normal_table",
+        "NormalTable": "._normal_table",
+        "LATTICES": "._orientations",
+        "euler_from_surface_matrices": "._orientations",
+        "quaternions_from_surface_matrices": "._orientations",
+        "random_orientations": "._orientations",
+        "reduce_to_fundamental_zone": "._orientations",
+        "surface_matrices_from_euler": "._orientations",
+        "surface_matrices_from_quaternions": "._orientations",
+        "surface_matrix_from_miller": "._orientations",
+        "symmetry_operators": "._orientations",
+        "contact_stiffness_map": "._predicted",
+        "dynamic_factor_map": "._predicted",
+        "map_wavenumbers": "._predicted",
+        "ContactMap": "._predicted",
+        "synthetic_polycrystal": "._synthetic",
+        "SyntheticPolycrystal": "._synthetic",
+    }
+)
+
+__all__ = sorted(_EXPORTS)
+
+# What type checkers see: the real objects behind the public names (never run, so the imports
+# stay lazy; tests/test_public_api.py keeps these imports and ``_EXPORTS`` the same). ``X as X``
+# marks an explicit re-export; isort would split each onto its own import, hence off here.
+if TYPE_CHECKING:
+    # isort: off
+    from ._ebsd import (
+        EBSD_READERS as EBSD_READERS,
+        read_ang as read_ang,
+        read_ctf as read_ctf,
+        read_ebsd as read_ebsd,
+        write_ang as write_ang,
+        write_ctf as write_ctf,
+    )
+    from ._grains import (
+        GrainOrientations as GrainOrientations,
+        folded_normals as folded_normals,
+        grain_orientations as grain_orientations,
+        segment_grains as segment_grains,
+    )
+    from ._inverse import (
+        CubicInverseResult as CubicInverseResult,
+        fit_cubic_constants as fit_cubic_constants,
+        fit_map as fit_map,
+        grain_means as grain_means,
+    )
+    from ._inverse_hexagonal import (
+        HexagonalInverseResult as HexagonalInverseResult,
+        fit_hexagonal_constants as fit_hexagonal_constants,
+    )
+    from ._ipf import (
+        IPFTriangle as IPFTriangle,
+        ipf_colors as ipf_colors,
+        ipf_triangle as ipf_triangle,
+    )
+    from ._maps import (
+        ExactModulus as ExactModulus,
+        MAP_CONVENTIONS as MAP_CONVENTIONS,
+        OrientationMap as OrientationMap,
+        check_map_output as check_map_output,
+        evaluate_map as evaluate_map,
+        map_from_dataset as map_from_dataset,
+        map_to_dataset as map_to_dataset,
+        read_map as read_map,
+        write_map as write_map,
+    )
+    from ._moduli import (
+        indentation_moduli as indentation_moduli,
+    )
+    from ._normal_table import (
+        NormalTable as NormalTable,
+        prepare_normal_table as prepare_normal_table,
+        reduce_normals as reduce_normals,
+        surface_matrices_from_normals as surface_matrices_from_normals,
+    )
+    from ._orientations import (
+        LATTICES as LATTICES,
+        euler_from_surface_matrices as euler_from_surface_matrices,
+        quaternions_from_surface_matrices as quaternions_from_surface_matrices,
+        random_orientations as random_orientations,
+        reduce_to_fundamental_zone as reduce_to_fundamental_zone,
+        surface_matrices_from_euler as surface_matrices_from_euler,
+        surface_matrices_from_quaternions as surface_matrices_from_quaternions,
+        surface_matrix_from_miller as surface_matrix_from_miller,
+        symmetry_operators as symmetry_operators,
+    )
+    from ._predicted import (
+        ContactMap as ContactMap,
+        contact_stiffness_map as contact_stiffness_map,
+        dynamic_factor_map as dynamic_factor_map,
+        map_wavenumbers as map_wavenumbers,
+    )
+    from ._synthetic import (
+        SyntheticPolycrystal as SyntheticPolycrystal,
+        synthetic_polycrystal as synthetic_polycrystal,
+    )
+
+    # isort: on
+
+__getattr__, __dir__ = attach(__name__, _EXPORTS)

@@ -1,7 +1,7 @@
 """The data dictionary: the columns of the tables contactres reads or writes, and the flags.
 
 Generated from :mod:`contactres.measurements.schema` (every table: inputs with their rules,
-outputs), :mod:`contactres.analysis.flags` and the flags of the spectra fits and the inversions;
+outputs), :mod:`contactres.analysis` and the flags of the spectra fits and the inversions;
 the README's blocks between ``<!-- dictionary:NAME -->`` and ``<!-- /dictionary -->`` are these
 tables (``python scripts/update_readme.py`` rewrites them; a test fails when they differ).
 
@@ -19,8 +19,8 @@ from __future__ import annotations
 
 import re
 
-from ..analysis.flags import DESCRIPTIONS, Flag
-from ..analysis.inversion import FLAG_DESCRIPTIONS as MODULUS_FLAG_DESCRIPTIONS
+from ..analysis import DESCRIPTIONS, Flag
+from ..analysis import FLAG_DESCRIPTIONS as MODULUS_FLAG_DESCRIPTIONS
 from ..measurements.schema import (
     AFM_INVERT_RESULTS,
     AFM_TABLE,
@@ -60,7 +60,7 @@ __all__ = [
 ]
 
 #: The resonance flags of ``afm invert``: the names of
-#: :func:`contactres.resonators.cantilever_inversion.flag_names`, written with hyphens.
+#: :func:`contactres.resonators.flag_names`, written with hyphens.
 RESONANCE_FLAGS = {
     "not-positive": "κ is <= 0, NaN or infinite",
     "below-free": "f below the mode's free frequency: only a negative κ reproduces it",

@@ -20,7 +20,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 import pandas as pd
 
-from ..analysis.curves import FIGURE_POINTS, sweep_rows
+from ..analysis import FIGURE_POINTS, sweep_rows
 from ..fileio import save_figure
 from ..measurements.sweeps import SweepWarning
 from ..tangential import kappa_jkr_mindlin
@@ -59,7 +59,7 @@ NO_SWEEP_USED = (
 #: Longest label from the data shown in a figure (longer ones end in an ellipsis).
 LABEL_CHARS = 40
 
-#: The columns of :attr:`~contactres.analysis.results.Results.curves` drawn: u0, Δf, ΔΓ.
+#: The columns of :attr:`~contactres.analysis.Results.curves` drawn: u0, Δf, ΔΓ.
 CURVE_COLUMNS = ("amplitude_m", "df_model_Hz", "dgamma_model_Hz")
 MARKERS = ("o", "s", "^", "D", "v", "P")
 NM = 1e9

@@ -94,14 +94,14 @@ def load(path: Path) -> pd.DataFrame:
 
     ``attrs["decimal"]`` records the decimal mark for the validator. Comment lines and blank
     lines are dropped here, before parsing, so that ``#`` inside a cell stays data and every
-    row keeps the number of its line in the file.
+    row keeps the number of its line in the file; ``attrs["comment_lines"]`` holds the numbers
+    of the comment lines below the header, which the validator reports (a commented-out row is
+    data the user may not mean to drop).
     """
     text = _decode(path)
-    kept = [
-        (i + 1, ln)
-        for i, ln in enumerate(_LINE_BREAK.split(text))
-        if ln.strip() and not ln.lstrip().startswith("#")
-    ]
+    lines = _LINE_BREAK.split(text)
+    kept = [(i + 1, ln) for i, ln in enumerate(lines) if ln.strip() and not _is_comment(ln)]
+    comments = [i + 1 for i, ln in enumerate(lines) if _is_comment(ln)]
     if not kept:
         raise ContactresInputError(
             f"{path}: the file is empty (expected a header line and data rows)"
@@ -133,7 +133,27 @@ def load(path: Path) -> pd.DataFrame:
     numbers = [n for n, _ in kept[1:]]
     raw["line"] = numbers if len(numbers) == len(raw) else range(2, len(raw) + 2)
     raw.attrs["decimal"] = decimal
+    # Dropped lines among the data are said, never silent: the validator reports them
+    # (line_ranges). Comments above the header are a preamble (an instrument's, or the
+    # conventions qcm spectra writes), not rows.
+    raw.attrs["comment_lines"] = tuple(n for n in comments if n > kept[0][0])
     return raw
+
+
+def _is_comment(line: str) -> bool:
+    return line.lstrip().startswith("#")
+
+
+def line_ranges(numbers) -> str:
+    """Line numbers as ranges, e.g. ``2–14, 20, 31–32`` (at most five ranges, then "...")."""
+    spans: list[list[int]] = []
+    for n in sorted(int(x) for x in numbers):
+        if spans and n == spans[-1][1] + 1:
+            spans[-1][1] = n
+        else:
+            spans.append([n, n])
+    shown = [f"{a}" if a == b else f"{a}–{b}" for a, b in spans[:5]]
+    return ", ".join(shown) + (", ..." if len(spans) > 5 else "")
 
 
 def detect(path: Path, head: str) -> bool:

@@ -4,7 +4,7 @@
 tables and of resonance tables (``csv``), the spectra readers (a folder of spectrum files, a tidy
 table: :data:`~.spectra.SPECTRA_READERS`) and the instrument exports
 (:data:`~.exports.EXPORT_READERS`). EBSD maps and value grids are read by recipes of the layers
-that own their formats (:data:`contactres.polycrystal.ebsd.EBSD_READERS`,
+that own their formats (:data:`contactres.polycrystal.EBSD_READERS`,
 ``contactres.jobs.readers``), which compose the full registry above this layer; a recipe here
 never imports a higher layer, not even when it is called.
 

@@ -98,9 +98,34 @@ _COUNT = rule(
 # --------------------------------------------------------------------------------------------
 # The sweep table
 
+
+def plausible(quantity: str) -> Rule:
+    """The rule "a plausible value of ``quantity``" (:data:`contactres.units.QUANTITIES`), its
+    error naming the unit slip the value looks like (nm typed for m, ...)."""
+    text = QUANTITIES[quantity].describe()
+
+    def hint(value) -> str:
+        slip = unit_slip(quantity, value)
+        return f"; it looks like {slip}" if slip else ""
+
+    return rule(
+        quantity,
+        lambda v: np.asarray(QUANTITIES[quantity].accepts(v), dtype=bool),
+        text,
+        f": {text}",
+        hint=hint,
+    )
+
+
+# The constants of a sweep table are checked as their command-line options are: positive and
+# plausible (a sphere radius in mm in a metre column gave E = 2 GPa, issue 27).
 _SWEEP_CONSTANT = {
-    name: (_positive(f" must be > 0 ({unit})"),)
-    for name, unit in (("fundamental_Hz", "Hz"), ("area_m2", "m^2"), ("sphere_radius_m", "m"))
+    name: (_positive(f" must be > 0 ({unit})"), plausible(quantity))
+    for name, unit, quantity in (
+        ("fundamental_Hz", "Hz", "frequency"),
+        ("area_m2", "m^2", "area"),
+        ("sphere_radius_m", "m", "sphere_radius"),
+    )
 }
 
 SWEEP_TABLE = TableSchema(
@@ -370,24 +395,6 @@ SPECTRA_TABLE = TableSchema(
 
 # --------------------------------------------------------------------------------------------
 # Tables of measured resonances: CR-AFM and the resonance ultrasound microscope
-
-
-def plausible(quantity: str) -> Rule:
-    """The rule "a plausible value of ``quantity``" (:data:`contactres.units.QUANTITIES`), its
-    error naming the unit slip the value looks like (nm typed for m, ...)."""
-    text = QUANTITIES[quantity].describe()
-
-    def hint(value) -> str:
-        slip = unit_slip(quantity, value)
-        return f"; it looks like {slip}" if slip else ""
-
-    return rule(
-        quantity,
-        lambda v: np.asarray(QUANTITIES[quantity].accepts(v), dtype=bool),
-        text,
-        f": {text}",
-        hint=hint,
-    )
 
 
 def interval(

@@ -1,0 +1,292 @@
+"""The model choice of a load block: the ramps of one load of one experiment judged together.
+
+The used ramps of one load of one experiment (ramps 2-4 in paper 2's protocol) measure the same
+contact, so their class is chosen from all their points at once, which is far more decisive than
+each sweep alone. For every class of :data:`~contactres.analysis._models.AMPLITUDE_MODELS` two
+descriptions of the block compete (k parameters of the class's fit, plus the two noise levels
+of Δf and ΔΓ, n the points of the block, N = 2n the residuals):
+
+``shared``    one fit of all the block's points: the ramps share κ, ωξ and the class's own
+              parameters (μ, τ0, d_c) and the noise levels,
+              ``BIC = n ln(RSS_f/n) + n ln(RSS_Γ/n) + (k + 2) ln N``;
+``per ramp``  each ramp its own parameters and noise levels (the per-sweep fits),
+              ``BIC = Σ_r [n_r ln(RSS_f,r/n_r) + n_r ln(RSS_Γ,r/n_r)] + R (k + 2) ln N``,
+
+so that ramp-to-ramp differences are allowed where the data demand them. The class of the
+lowest of these 2 x 4 criteria wins, except that a candidate nested in it (a nested class,
+:data:`~contactres.analysis._classify.NESTED`, and ``shared`` within ``per ramp``) is kept within
+``delta_bic`` of the lowest, the simplest first, as for one sweep
+(:mod:`contactres.analysis._classify`). The runner-up is the best candidate of another class and
+``delta_bic`` its criterion minus the winner's. Every sweep of the block takes the block's
+class; its own parameters come from its own fit of that class. The friction law (Coulomb:
+Cattaneo-Mindlin or plateau; or Savkoor's constant traction) is first decided per experiment
+over all its loads (:func:`_friction_law`; ``pool_experiment``). Where the block is ``shared``,
+the joint fit's parameters (μ, the Savkoor sliding force, d_c) are the block's values that the
+per-load statistics use.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from ._amplitude import Padded, bic, pad_sweeps
+from ._classify import (
+    CLASS_SOURCES,
+    NESTED,
+    SOURCE_MODEL,
+    FieldTables,
+    add_plateau_fits,
+    fit_sweeps,
+    n_parameters,
+    prefer,
+    source_rss,
+    source_valid,
+)
+from ._drift import LOAD_OF_EXPERIMENT
+from ._loops import LoopTables
+from ._models import AMPLITUDE_MODELS, fit_tables
+
+__all__ = ["BLOCK_COLUMNS", "PLATEAU_CONTENDER", "block_codes", "choose_blocks"]
+
+#: Columns of the block table besides the keys of :data:`LOAD_OF_EXPERIMENT`.
+BLOCK_COLUMNS = (
+    "block",
+    "friction_law",
+    "n_sweeps",
+    "n_points",
+    "model",
+    "shared",
+    "runner_up",
+    "delta_bic",
+)
+
+
+# The joint fit's fields that the block table holds for its winner: column -> fit-table field.
+_JOINT = {
+    "df0_Hz": "df0",
+    "df0_err_Hz": "df0_err",
+    "dgamma0_Hz": "dgamma0",
+    "dgamma0_err_Hz": "dgamma0_err",
+}
+_JOINT_LOOP = {
+    "theta_per_m": "inverse_slip_scale",
+    "lntheta_err": "ln_inverse_slip_scale_err",
+    "cov_df0_lntheta": "cov_df0_ln_inverse_slip_scale",
+    "x_max": "x_max",
+}
+_JOINT_PLATEAU = {"d_c_m": "critical_displacement", "d_c_err_m": "critical_displacement_err"}
+
+
+#: A block whose shared plateau is within this of the best of its other candidates gets the
+#: plateau loop fitted to each of its ramps too (for the per-ramp candidate and the ramps' own
+#: parameters); one unit of BIC more than the default ``delta_bic``.
+PLATEAU_CONTENDER = 3.0
+
+
+def _criteria(bf, fields, n_r, code, n, R, exact_loop: bool) -> np.ndarray:
+    """(8, B): for each class of AMPLITUDE_MODELS its shared and its per-ramp criterion, from
+    the field tables of the blocks' joint fits ``bf`` and of the sweeps' own fits ``fields``
+    (``n_r`` points each)."""
+    member = code >= 0
+    B = len(n)
+    lnN = np.log(2 * n)
+    out = []
+    for m in AMPLITUDE_MODELS:
+        src = CLASS_SOURCES[exact_loop][m]
+        k = n_parameters(src) + 2
+        shared = bic(source_rss(bf, src), n, k)
+        shared = np.where(source_valid(bf, src), shared, np.inf)
+        ll = bic(source_rss(fields, src), n_r, 0)  # the per-ramp likelihood terms; penalty below
+        ok = source_valid(fields, src)
+        sums = np.bincount(code[member], weights=np.where(ok, ll, 0.0)[member], minlength=B)
+        bad = np.bincount(code[member], weights=(~ok)[member].astype(float), minlength=B) > 0
+        out += [shared, np.where(bad, np.inf, sums + R * k * lnN)]
+    return np.stack(out)
+
+
+def block_codes(info: pd.DataFrame, joint: np.ndarray) -> np.ndarray:
+    """The load block (0 ... B-1, in the order of the keys of :data:`LOAD_OF_EXPERIMENT`) of
+    every sweep ``joint`` whose load of its experiment has two or more of them; -1 elsewhere."""
+    S = len(info)
+    code = np.full(S, -1)
+    idx = np.flatnonzero(joint)
+    if idx.size:
+        code[idx] = info.iloc[idx].groupby(LOAD_OF_EXPERIMENT, sort=True).ngroup().to_numpy()
+    sizes = np.bincount(code[code >= 0], minlength=max(code.max() + 1, 1))
+    code = np.where((code >= 0) & (sizes[np.maximum(code, 0)] >= 2), code, -1)
+    keep = np.unique(code[code >= 0])
+    return np.where(code >= 0, np.searchsorted(keep, code), -1)
+
+
+def _friction_law(crit, classes, blocks: pd.DataFrame, delta_bic: float) -> np.ndarray:
+    """The friction law of every block's experiment: ``coulomb``, ``savkoor`` or ``""`` (open).
+
+    Paper 2 found whole experiments (mountings) following Savkoor, others Cattaneo-Mindlin
+    with occasional stick plateaus: the law of the interface belongs to the experiment, not to
+    one load. So the two families are compared over all loads of an experiment at once: the
+    sum over its blocks of [best Coulomb criterion (Cattaneo-Mindlin or plateau) - best Savkoor
+    criterion]; beyond ``delta_bic`` either way, the other family is excluded from its blocks.
+    """
+    sv = crit[classes == "savkoor"].min(axis=0)
+    cm = crit[np.isin(classes, ["cattaneo-mindlin", "plateau"])].min(axis=0)
+    diff = np.where(np.isfinite(sv) & np.isfinite(cm), cm - sv, 0.0)
+    exp = blocks.groupby(["configuration", "medium", "experiment"], sort=False).ngroup()
+    total = np.bincount(exp.to_numpy(), weights=diff)[exp.to_numpy()]
+    return np.where(total > delta_bic, "savkoor", np.where(total < -delta_bic, "coulomb", ""))
+
+
+def choose_blocks(
+    p: Padded,
+    sw: pd.DataFrame,
+    fields: FieldTables,
+    joint: np.ndarray,
+    delta_bic: float,
+    exact_loop: bool,
+    tables: LoopTables | None,
+    workers: int = 1,
+    pool_experiment: bool = True,
+) -> tuple[pd.DataFrame, pd.DataFrame, pd.DataFrame, FieldTables, dict[str, pd.DataFrame]]:
+    """Choose the class of every load block of the sweeps ``joint`` (see the module docstring).
+
+    Parameters
+    ----------
+    p : the sweeps as padded arrays (the order of ``sw``)
+    sw : the per-sweep fits (:func:`~contactres.analysis._classify.fit_sweeps`) with the labels
+        of :data:`~contactres.analysis._drift.LOAD_OF_EXPERIMENT`; the sweeps of a block need not
+        have the plateau loop fitted (it is added where the block's plateau is a contender)
+    fields : the fields of the per-sweep fits, by source (from the same call), in the order
+        of ``sw``
+    joint : which sweeps enter their block (the used ones); blocks of one sweep are left alone
+    delta_bic, exact_loop, tables, workers : as for :func:`fit_sweeps`
+    pool_experiment : decide the friction law (Coulomb or Savkoor) once per experiment
+        (:func:`_friction_law`)
+
+    Returns
+    -------
+    blocks : one row per block of two or more sweeps: the keys, :data:`BLOCK_COLUMNS`, and the
+        joint fit of the winning class (``df0_Hz``, ``dgamma0_Hz``, their errors, and for a
+        loop ``theta_per_m``, ``lntheta_err``, ``cov_df0_lntheta``, ``x_max``, ``edge``,
+        ``d_c_m``, ``d_c_err_m``), NaN where the block is not ``shared``
+    per_sweep : one row per sweep of ``sw``: ``block`` (-1: none), ``model`` (the block's class,
+        else the sweep's own), ``runner_up``, ``delta_bic``, ``decided_by`` (``block`` or
+        ``sweep``)
+    sw, fields : ``sw`` and ``fields`` with the plateau loop fitted to the sweeps of the
+        contending blocks
+    joint : every model's joint fit of every block: its fit table
+        (:func:`contactres.analysis._models.fit_tables`, ``block`` in place of ``sweep``, one row
+        per row of ``blocks``); the Coulomb loops' with ``bic_shared``, their shared criterion
+        ({} where there is no block)
+    """
+    S = len(sw)
+    per_sweep = pd.DataFrame(
+        {
+            "block": np.full(S, -1),
+            # Copies: the frame is changed below, the sweep fits must not be.
+            "model": np.array(sw["model_sweep"], dtype=object),
+            "runner_up": np.array(sw["runner_up"], dtype=object),
+            "delta_bic": np.array(sw["delta_bic"], dtype=float),
+            "decided_by": np.full(S, "sweep", dtype=object),
+        }
+    )
+    code = block_codes(sw, joint)
+    if code.max() < 0:
+        empty = pd.DataFrame(columns=[*LOAD_OF_EXPERIMENT, *BLOCK_COLUMNS])
+        return empty, per_sweep, sw, fields, {}
+    B = code.max() + 1
+    member = code >= 0
+    rows = np.flatnonzero(member)
+    u, df, dg = p.points(rows)
+    points = pd.DataFrame(
+        {"sweep": np.repeat(code[rows], p.n[rows]), "amplitude_m": u, "df_Hz": df, "dgamma_Hz": dg}
+    )
+    bp = pad_sweeps(points)
+    bs, bf = fit_sweeps(bp, delta_bic, exact_loop, tables, workers)
+    # The blocks in order of their code (the padding keeps their order of first appearance).
+    order = np.argsort(bs["sweep"].to_numpy(int))
+    bf = {src: table.iloc[order].reset_index(drop=True) for src, table in bf.items()}
+    # Every model's joint fit of every block (its fit table, one row per block in order).
+    block = bs["sweep"].to_numpy()[order]
+    fits = {key: t.rename(columns={"sweep": "block"}) for key, t in fit_tables(block, bf).items()}
+
+    # The 2 x 4 criteria of every block: (shared, per ramp) for each class.
+    n_r = sw["n_points"].to_numpy(float)
+    n = np.bincount(code[member], weights=n_r[member], minlength=B)
+    R = np.bincount(code[member], minlength=B).astype(float)
+    classes = np.repeat(np.asarray(AMPLITUDE_MODELS), 2)
+    keys = sw.loc[member, LOAD_OF_EXPERIMENT].assign(block=code[member])
+    blocks = keys.drop_duplicates("block").sort_values("block").reset_index(drop=True)
+    crit = _criteria(bf, fields, n_r, code, n, R, exact_loop)
+    family = _friction_law(crit, classes, blocks, delta_bic) if pool_experiment else None
+
+    def excluded(crit):  # the family the experiment's friction law rules out
+        if family is None:
+            return crit
+        savkoor = classes == "savkoor"
+        coulomb = np.isin(classes, ["cattaneo-mindlin", "plateau"])
+        crit = np.where(savkoor[:, None] & (family == "coulomb")[None, :], np.inf, crit)
+        return np.where(coulomb[:, None] & (family == "savkoor")[None, :], np.inf, crit)
+
+    crit = excluded(crit)
+    if exact_loop:
+        # The per-ramp plateau needs the plateau loop of each ramp: fitted where the block's
+        # shared plateau contends (within PLATEAU_CONTENDER of the best other candidate left by
+        # the friction law; a plateau nests Cattaneo-Mindlin, so it is always close to it), not
+        # everywhere. A block whose shared plateau wins is always such a contender, so its
+        # ramps have their own plateau fits.
+        i = 2 * AMPLITUDE_MODELS.index("plateau")
+        others = np.delete(crit, [i, i + 1], axis=0).min(axis=0)
+        contend = crit[i] <= others + PLATEAU_CONTENDER
+        sweeps = np.flatnonzero(member & contend[np.maximum(code, 0)])
+        if sweeps.size:
+            assert tables is not None  # the caller builds them for the exact loops
+            sw, fields = add_plateau_fits(p, sw, fields, sweeps, delta_bic, tables, workers)
+            crit = excluded(_criteria(bf, fields, n_r, code, n, R, exact_loop))
+    # Candidate a is nested in b if its class is (NESTED) and it is shared or b is per ramp.
+    per_ramp = np.arange(len(classes)) % 2 == 1
+    cls = np.repeat(np.arange(len(AMPLITUDE_MODELS)), 2)
+    nested = NESTED[cls][:, cls] & (~per_ramp[:, None] | per_ramp[None, :])
+    pick = prefer(crit, nested, delta_bic)
+    cols = np.arange(B)
+    winner = classes[pick]
+    others = np.where(classes[:, None] == winner[None, :], np.inf, crit)
+    runner = np.argmin(others, axis=0)
+    with np.errstate(invalid="ignore"):
+        evidence = others[runner, cols] - crit[pick, cols]
+
+    blocks["friction_law"] = family if family is not None else ""
+    blocks["n_sweeps"] = R.astype(int)
+    blocks["n_points"] = n.astype(int)
+    blocks["model"] = winner
+    blocks["shared"] = pick % 2 == 0
+    blocks["runner_up"] = classes[runner]
+    blocks["delta_bic"] = evidence
+    # The joint fit of the winning class (NaN where the ramps keep their own parameters).
+    for field in (*_JOINT, *_JOINT_LOOP, *_JOINT_PLATEAU):
+        blocks[field] = np.nan
+    blocks["edge"] = ""
+    for m in AMPLITUDE_MODELS:
+        src = CLASS_SOURCES[exact_loop][m]
+        rows = (winner == m) & blocks["shared"].to_numpy()
+        if not rows.any():
+            continue
+        table = fits[SOURCE_MODEL[src]]
+        joint_map = {**_JOINT, **(_JOINT_LOOP if src in ("cm", "sv", "pl") else {})}
+        joint_map |= _JOINT_PLATEAU if src == "pl" else {}
+        for field, column in joint_map.items():
+            blocks.loc[rows, field] = table[column].to_numpy(float)[rows]
+        if src in ("cm", "sv", "pl"):
+            blocks.loc[rows, "edge"] = table["edge"].to_numpy(object)[rows]
+
+    # The joint exact Coulomb loops, winner or not: μ of the block is averaged over the two
+    # with their BIC weights where they compete (friction.block_friction).
+    if exact_loop:
+        for m, key in (("cattaneo-mindlin", "cattaneo-mindlin-loop"), ("plateau", "plateau-loop")):
+            fits[key] = fits[key].assign(bic_shared=crit[2 * AMPLITUDE_MODELS.index(m)])
+
+    per_sweep.loc[member, "block"] = code[member]
+    per_sweep.loc[member, "model"] = winner[code[member]]
+    per_sweep.loc[member, "runner_up"] = classes[runner][code[member]]
+    per_sweep.loc[member, "delta_bic"] = evidence[code[member]]
+    per_sweep.loc[member, "decided_by"] = "block"
+    return blocks, per_sweep, sw, fields, fits

@@ -1,0 +1,96 @@
+"""The flags the sweep analysis sets: a closed, documented set, held as a bit mask per sweep.
+
+Inside the analysis a sweep's flags are one integer (a :class:`Flag` bit mask), combined with
+vectorised ``|``; they become the ';'-separated text of ``sweeps.csv`` only when written
+(:func:`render`), always in the order of :class:`Flag`.
+"""
+
+from __future__ import annotations
+
+import enum
+
+import numpy as np
+
+from ..units import JUNCTION_SIGMAS, LINEAR_ONSET_X, MIN_SWEEP_POINTS, SMALL_LOAD_LIMIT
+from ._loops import X_MAX
+
+__all__ = ["DESCRIPTIONS", "Flag", "has", "render"]
+
+
+class Flag(enum.IntFlag):
+    """Why a sweep is set aside, or what to keep in mind when reading its numbers."""
+
+    FIRST_RAMP = enum.auto()
+    FEW_POINTS = enum.auto()
+    JUNCTION_GROWTH = enum.auto()
+    SMALL_LOAD = enum.auto()
+    PLATEAU_SLOPE = enum.auto()
+    GROSS_SLIDING = enum.auto()
+    DRIFT = enum.auto()
+    RAMP_ORDER = enum.auto()
+    FLAT_AMPLITUDE = enum.auto()
+    BEYOND_ONSET = enum.auto()
+    DRIFT_REMOVED = enum.auto()
+
+    @property
+    def text(self) -> str:
+        """The flag as written in ``sweeps.csv`` (``first-ramp``, ...)."""
+        return str(self.name).lower().replace("_", "-")
+
+
+#: What each flag means, in the words of the README.
+DESCRIPTIONS: dict[Flag, str] = {
+    Flag.FIRST_RAMP: "ramp 1 of a load, set aside as running-in (unless --keep-first-ramp)",
+    Flag.FEW_POINTS: f"fewer than {MIN_SWEEP_POINTS} points: not used",
+    Flag.JUNCTION_GROWTH: (
+        f"Δf rises with u0 by more than {JUNCTION_SIGMAS:g} standard errors (the junction "
+        "grows): no μ from the Δf slope"
+    ),
+    Flag.SMALL_LOAD: (
+        f"Δf0 above {SMALL_LOAD_LIMIT:g} of the resonance frequency in magnitude: paper 2's Eq. 1 "
+        "may fail"
+    ),
+    Flag.PLATEAU_SLOPE: (
+        "a plateau sweep: the shifts leave the plateau with no linear term, so no μ from the "
+        "slopes (μ from the exact plateau loop instead)"
+    ),
+    Flag.GROSS_SLIDING: (
+        f"the exact loop fits best beyond κu0/(μF_N) = {X_MAX:g} (gross sliding): μ not resolved"
+    ),
+    Flag.DRIFT: (
+        "the used ramps of this load of this experiment are offset from each other beyond the "
+        "noise (F test): the baseline moved"
+    ),
+    Flag.RAMP_ORDER: (
+        "the ramp labels of this load disagree with the file order or the amplitudes (see the "
+        "messages); the first sweep in the file is taken as the running-in ramp"
+    ),
+    Flag.FLAT_AMPLITUDE: (
+        "all amplitudes of the sweep are equal: no slope, so no μ from it (its Δf0 and ΔΓ0 are "
+        "the mean shifts at that amplitude)"
+    ),
+    Flag.BEYOND_ONSET: (
+        f"a Cattaneo-Mindlin sweep reaching κu0/(μF_N) > {LINEAR_ONSET_X:g} (exact-loop fit): "
+        "beyond the linear onset, so μ from the slopes (paper 2, Eq. 12) reads low (by > 10 % "
+        "from the ΔΓ slope); use mu_fit"
+    ),
+    Flag.DRIFT_REMOVED: (
+        "this load drifted; a drift linear in time (column time_s) was removed from its points "
+        "and it passed the drift test again (--remove-drift; the rates are in summary.json)"
+    ),
+}
+
+
+def has(mask, flag: Flag) -> np.ndarray:
+    """Boolean array: which entries of the bit-mask array ``mask`` carry ``flag``."""
+    return (np.asarray(mask, dtype=np.int64) & int(flag)) != 0
+
+
+def render(mask) -> np.ndarray:
+    """The ';'-separated text of each bit mask in ``mask`` (object array of str)."""
+    mask = np.asarray(mask, dtype=np.int64)
+    out = np.full(mask.shape, "", dtype=object)
+    for flag in Flag:
+        on = has(mask, flag)
+        out[on] = np.where(out[on] == "", flag.text, out[on] + ";" + flag.text)
+    return out

@@ -1,0 +1,81 @@
+"""Statistics per load: the used sweeps of each experiment averaged, then over experiments.
+
+Paper 2 reports, per configuration, medium and normal force, the mean and the spread of the
+quantities over repeated experiments (its Figs. 5, 7, 8); a NaN value (e.g. the slope μ of a
+plateau sweep) is skipped, and a load without any value gets NaN.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from ..measurements.schema import LOAD_QUANTITIES
+from ._jkr import t95_factor
+
+__all__ = ["GROUP_KEYS", "LOAD_KEYS", "QUANTITIES", "per_experiment", "per_load"]
+
+#: The quantities averaged per load (columns of the sweep results).
+QUANTITIES = tuple(name for name, _, _ in LOAD_QUANTITIES)
+#: One group of the JKR fit, one load of a group.
+GROUP_KEYS = ["configuration", "medium"]
+LOAD_KEYS = ["configuration", "medium", "normal_force_N"]
+
+
+def _used(sw: pd.DataFrame) -> pd.DataFrame:
+    """The used sweeps, with ``mu_fit`` the joint fit of their load block where there is one
+    (``mu_block``): one μ for ramps that share a contact, better conditioned than the mean of
+    their separate nonlinear fits. Both statistics below take μ from here."""
+    used = sw[sw["used"]]
+    if "mu_block" in used:
+        block = used["mu_block"].to_numpy(float)
+        used = used.assign(mu_fit=np.where(np.isfinite(block), block, used["mu_fit"]))
+    return used
+
+
+def per_experiment(sw: pd.DataFrame) -> pd.DataFrame:
+    """One row per (load, experiment): the means of its used sweeps and their number (``mu_fit``:
+    the joint fit of the load block, ``mu_block``, where there is one)."""
+    used = _used(sw)
+    g = used.groupby([*LOAD_KEYS, "experiment"], sort=True)
+    exp = g[list(QUANTITIES)].mean()
+    exp["n_sweeps"] = g.size()
+    for c in ("sphere_radius_m", "poisson", "P_Hz_per_N_per_m"):
+        exp[c] = g[c].first()
+    return exp.reset_index()
+
+
+def per_load(exp: pd.DataFrame, sw: pd.DataFrame) -> pd.DataFrame:
+    """One row per load: mean, sd (ddof = 1), standard error and median over experiments.
+
+    ``exp``: :func:`per_experiment`; ``sw``: the sweep results (``used`` marks the sweeps behind
+    the means). The standard error ``_sem`` is sd/√n over the experiments; a load measured in
+    one experiment only gets it from its repeated sweeps instead (sd over the used sweeps/√n,
+    which does not include what remounting the sample changes); ``errors_from`` says which.
+    ``_median`` is the median over the experiments (over the sweeps for one experiment), a
+    location robust to one odd experiment, with ``_median_err`` = 1.2533 × ``_sem`` (the median's
+    large-sample error for normal scatter). ``dof`` (experiments - 1, or sweeps - 1 for one
+    experiment) and ``t95`` (the Student-t factor of a two-sided 95 % interval) say how far to
+    trust an error estimated from a few repeats.
+    """
+    g = exp.groupby(LOAD_KEYS, sort=True)
+    out = g.size().rename("n_experiments").to_frame()
+    out["n_sweeps"] = g["n_sweeps"].sum()
+    used = _used(sw).groupby(LOAD_KEYS, sort=True)
+    single = (out["n_experiments"] == 1).to_numpy()
+    out["errors_from"] = np.where(single, "sweeps of one experiment", "experiments")
+    out.loc[single & (out["n_sweeps"] < 2).to_numpy(), "errors_from"] = ""
+    # A standard error from a few repeats has their number minus one degrees of freedom.
+    dof = np.where(single, out["n_sweeps"] - 1, out["n_experiments"] - 1).astype(float)
+    out["dof"] = np.where(dof >= 1, dof, np.nan)
+    out["t95"] = t95_factor(out["dof"])
+    for q in QUANTITIES:
+        sweep_sd = used[q].std(ddof=1).reindex(out.index)
+        sweep_n = used[q].count().reindex(out.index)
+        out[f"{q}_mean"] = g[q].mean()
+        out[f"{q}_sd"] = g[q].std(ddof=1)
+        sem = out[f"{q}_sd"] / np.sqrt(g[q].count())
+        out[f"{q}_sem"] = np.where(single, sweep_sd / np.sqrt(sweep_n), sem)
+        out[f"{q}_median"] = np.where(single, used[q].median().reindex(out.index), g[q].median())
+        out[f"{q}_median_err"] = 1.2533 * out[f"{q}_sem"]
+    return out.reset_index()

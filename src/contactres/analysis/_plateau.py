@@ -1,0 +1,331 @@
+"""The batched fit of the exact plateau loop (paper 2, Eqs. 4-6) to the ``plateau`` sweeps.
+
+The loop is :class:`contactres.PlateauLoop` around the Cattaneo-Mindlin loop (see
+:mod:`contactres.analysis._loops`): the contact sticks up to the critical displacement d_c, then
+slips as Cattaneo-Mindlin in the excess. The fit Δf = Pκ G′(θu0, θd_c), ΔΓ = P[ωξ + κ
+G″(θu0, θd_c)] (θ = κ/(μF_N)) solves Pκ and Pωξ in closed form for given (θ, d_c) (variable
+projection, :func:`contactres.analysis._loops.solve_projected`) and (ln θ, d_c) by a
+Levenberg-Marquardt iteration run for all sweeps at once, on the shapes and their derivatives
+in closed form (:func:`plateau_loop_slopes`, elliptic integrals). It starts from the hinge
+position and from the amplitude below it (the better of the two), θ from the Cattaneo-Mindlin
+loop fitted to the amplitudes in excess of the hinge. Pass 1 weights the points by the noise of
+the hinge fit, pass 2 by that of pass 1's own residuals. Errors come from the Jacobian in (Pκ,
+Pωξ, ln θ, d_c), scaled by the residual variance. The low-amplitude limits of such a sweep, and
+its ``plateau_amplitude_m``, then come from this fit (``limits_from`` = ``plateau-loop``).
+
+It replaces a :func:`scipy.optimize.least_squares` fit per sweep on the quadrature of
+:func:`contactres.analysis._loops.plateau_loop_shape` (same starts, passes, bounds and
+tolerances; tests/analysis/test_scale.py compares the two): on the bundled example the
+parameters agree within 1e-3 of their standard errors, at ~1/100 of the cost per sweep. The
+errors differ where d_c sits on its bound 0: there the d_c column of the Jacobian is (to
+rounding) a combination of the others, which exact derivatives show (pinv drops that direction)
+and the finite differences of the old fit blurred into errors of ~10⁴ Hz.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+import pandas as pd
+from scipy import special
+
+from ..fitting import LMOptions, levenberg_marquardt, solve_stacked
+from ..numerics import gauss_legendre_unit
+from ._amplitude import PLATEAU_MIN_SLOPE
+from ._loops import X_MAX, LoopTable, fit_cm_loops, loop_fit_fields, solve_projected
+
+__all__ = ["PLATEAU_LOOP_COLUMNS", "fit_plateau_loops", "plateau_loop_slopes"]
+
+#: Nodes of the Gauss-Legendre rule of the small-x integrals of :func:`plateau_loop_slopes`.
+SMALL_X_NODES = 16
+
+#: The Levenberg-Marquardt iteration of the fit (:func:`contactres.fitting.levenberg_marquardt`
+#: on the Gauss-Newton form of the projected χ², tolerances set per pass): Marquardt's scaling
+#: and Nielsen's update of the damping from the ratio of the actual to the predicted decrease
+#: of χ² (the residuals are not small: a Gauss-Newton step may overshoot along a narrow
+#: valley), bounds by projection (a parameter on a bound that the gradient pushes outwards is
+#: held there for the step), at most 60 steps per sweep. A sweep stops when a step moves p by
+#: < tol (relative) or lowers χ² by < tol of it, when both the actual and the predicted
+#: decrease of a step are below tol of χ² (MINPACK's ftol test), or when no step lowers χ² any
+#: more. With tol = 1e-7 the parameters agree with scipy's least_squares at 1e-10 within 1e-3
+#: of their standard errors (tests/analysis/test_scale.py); 1e-10 and 200 steps cost 2.3x the
+#: time for nothing a model choice or an error bar can see.
+PLATEAU_LM = LMOptions(damping="marquardt", update="nielsen", lam0=1e-3, lam_max=1e14, max_iter=60)
+
+#: Numeric columns of :func:`fit_plateau_loops` (besides ``edge``).
+PLATEAU_LOOP_COLUMNS = (
+    "df0_Hz",
+    "df0_err_Hz",
+    "dgamma0_Hz",
+    "dgamma0_err_Hz",
+    "theta_per_m",
+    "lntheta_err",
+    "cov_df0_lntheta",
+    "x_max",
+    "d_c_m",
+    "d_c_err_m",
+    "rss_df",
+    "rss_dgamma",
+)
+
+
+def plateau_loop_slopes(x, c, rule=None) -> tuple[np.ndarray, ...]:
+    """:func:`contactres.analysis._loops.plateau_loop_shape` in closed form, with derivatives.
+
+    Returns G′ = K′/κ, G″ = (K″ - ωξ)/κ and ∂G′/∂x, ∂G′/∂c, ∂G″/∂x, ∂G″/∂c at x = κu0/(μF_N),
+    c = κd_c/(μF_N) (broadcast together, x, c >= 0). Paper 2, Eqs. 4-6 with Masing's rule in
+    the virgin-curve form of :func:`contactres.resonators.masing_stiffness`, for the slope
+    F′(d) = 1 (d < c), √(1 - 2(d - c)/3) (c < d < e = c + 3/2), 0 beyond:
+
+    * G″ = 4/(πx²) [c s(y) + W(y)], y = x - c, with s(y) = y - F_CM(y) and
+      W(y) = ∫₀^min(y, 3/2) √(1 - 2t/3)(y - 2t) dt, both polynomials in r = √(1 - 2y/3);
+    * G′ = 8/(πx²) [∫₀^c √(d(x - d)) dd + √(2/3) ∫_c^b √(d(x - d)(e - d)) dd], b = min(x, e):
+      the second integral and those of the derivatives reduce to ∫ dᵏ/√(d(x - d)(e - d)),
+      k = 0, 1, 2, i.e. to Legendre's incomplete elliptic integrals F and E of parameter
+      m = b/max(x, e). For m < 0.1 (small x, where their combination cancels) the three
+      integrals are instead summed by a 16-point Gauss-Legendre rule in φ, d = x(1 - cos φ)/2,
+      whose integrand is then smooth.
+
+    ``rule``: the 16-point rule ``gauss_legendre_unit(16)`` (made here if None; pass it when
+    calling many times, as the fit does). Agrees with that quadrature to ~2e-11 (its own
+    accuracy; tests/analysis/test_scale.py), at ~1 µs per point for all six arrays, several
+    times less than the quadrature of G′, G″ alone.
+    """
+    x, c = np.broadcast_arrays(np.asarray(x, dtype=float), np.asarray(c, dtype=float))
+    rule = gauss_legendre_unit(SMALL_X_NODES) if rule is None else rule
+    out = [np.ones(x.shape)] + [np.zeros(x.shape) for _ in range(5)]
+    slip = x > c  # below d_c the contact sticks: G′ = 1, G″ = 0, and so do their derivatives
+    if slip.any():
+        for o, v in zip(out, _slipping(x[slip], c[slip], rule), strict=True):
+            o[slip] = v
+    return tuple(out)
+
+
+def _slipping(x, c, rule) -> tuple[np.ndarray, ...]:
+    """:func:`plateau_loop_slopes` where x > c (1-d arrays)."""
+    y, e = x - c, c + 1.5
+    J, Jx, Jc = np.empty_like(x), np.empty_like(x), np.empty_like(x)
+    small = x < 0.1 * e  # m = x/e < 0.1
+    J[small], Jx[small], Jc[small] = _small_x_integrals(x[small], c[small], rule)
+    J[~small], Jx[~small], Jc[~small] = _elliptic_integrals(x[~small], c[~small])
+    half = 2.0 * np.arcsin(np.sqrt(c / x))  # d = c at φ = half
+    rcy = np.sqrt(c * y)
+    H = x**2 / 8.0 * half - 0.25 * rcy * (y - c) + np.sqrt(2.0 / 3.0) * J
+    Hx = 0.5 * (0.5 * x * half - rcy) + Jx / np.sqrt(6.0)
+    Hc = Jc / np.sqrt(6.0)
+    # Loss part: s(y) = ∫₀^y (1 - √(1 - 2t/3)) dt and W(y), with 1 - r = (2y/3)/(1 + r).
+    inside = y < 1.5
+    r = np.sqrt(np.maximum(1.0 - y / 1.5, 0.0))
+    q = np.where(inside, (y / 1.5) / (1.0 + r), 1.0)
+    s_y = np.where(inside, q * q * (0.5 + r), y - 1.0)
+    W = np.where(inside, 0.3 * q**3 * (r * r + 3.0 * r + 1.0), y - 1.2)
+    dW = np.where(inside, 1.0 - r**3 - y * r, 1.0)
+    k1, k2 = 8.0 / (np.pi * x**2), 4.0 / (np.pi * x**2)
+    g1, g2 = k1 * H, k2 * (c * s_y + W)
+    dg1 = (k1 * Hx - 2.0 * g1 / x, k1 * Hc)
+    dg2 = (k2 * (c * q + dW) - 2.0 * g2 / x, k2 * (s_y - c * q - dW))
+    return g1, g2, *dg1, *dg2
+
+
+def _elliptic_integrals(x, c):
+    """J = ∫_c^b √Q, ∫d(e - d)/√Q and ∫d(x - d)/√Q (Q = d(x - d)(e - d), b = min(x, e)) of
+    :func:`plateau_loop_slopes`, from Legendre's incomplete elliptic integrals F and E."""
+    e = c + 1.5
+    r2, r3 = np.minimum(x, e), np.maximum(x, e)
+    m = r2 / r3
+    # I_k = ∫_c^r2 dᵏ dd/√Q with d = r2 sin²θ; K from K(1 - m) keeps its precision as x nears e.
+    K = np.where(m < 0.5, special.ellipk(m), special.ellipkm1(np.maximum(1.0 - m, 1e-300)))
+    phi = np.arcsin(np.sqrt(np.minimum(c / r2, 1.0)))
+    kf = K - special.ellipkinc(phi, m)
+    ef = special.ellipe(m) - special.ellipeinc(phi, m)
+    sq3 = np.sqrt(r3)
+    S, P = x + e, x * e
+    qc = np.sqrt(1.5 * c * (x - c))  # √Q at d = c
+    I1 = 2.0 * sq3 * (kf - ef)
+    I2 = (2.0 * S * I1 - P * (2.0 / sq3) * kf - 2.0 * qc) / 3.0
+    # ∫√Q = [(2d/5 - 2S/15)√Q] + ∫(SP/15 + (2P/5 - 2S²/15) d)/√Q: d/dd of the bracket is √Q.
+    a1 = 0.4 * P - 2.0 * S**2 / 15.0
+    J = (2.0 * S / 15.0 - 0.4 * c) * qc + (2.0 / 15.0) * sq3 * kf * (r3 - r2) * (r2 - 2 * r3)
+    return J - 2.0 * a1 * sq3 * ef, e * I1 - I2, x * I1 - I2
+
+
+def _small_x_integrals(x, c, rule):
+    """J, ∫d(e - d)/√Q, ∫d(x - d)/√Q of :func:`plateau_loop_slopes` for x < e/10, by
+    Gauss-Legendre in φ (d = x(1 - cos φ)/2 from d = c to x: √(d(x - d)) = x sin φ/2)."""
+    t, wt = rule
+    lo = 2.0 * np.arcsin(np.sqrt(c / x))
+    ph = lo[:, None] + (np.pi - lo)[:, None] * t
+    dphi = (np.pi - lo)[:, None] * wt
+    cos, sin = np.cos(ph), np.sin(ph)
+    d = 0.5 * x[:, None] * (1.0 - cos)
+    f = np.sqrt(1.0 - (d - c[:, None]) / 1.5)  # √((e - d)/(3/2))
+    x2 = 0.25 * x[:, None] ** 2 * sin * sin * dphi  # √(d(x - d)) dd
+    J = np.sqrt(1.5) * (x2 * f).sum(-1)
+    Jx = np.sqrt(1.5) * (f * 0.5 * x[:, None] * (1.0 - cos) * dphi).sum(-1)  # √(d/(x - d)) dd
+    Jc = (x2 / f).sum(-1) / np.sqrt(1.5)
+    return J, Jx, Jc
+
+
+def _plateau_model(p, u, umax, df, dg, w, wf, wg, rule) -> dict[str, np.ndarray]:
+    """Projected fit of the plateau loop at p = (ln θ(u_max - d_c), d_c/u_max), rows (R, 2):
+    Pκ, Pωξ, χ², the RSS of the channels, the gradient of χ²/2 in p and its Gauss-Newton
+    Hessian (Kaufman's variable projection: exact gradient, Jacobian projected off Pκ, Pωξ)."""
+    ly, dl = p[:, 0], p[:, 1]
+    ey = np.exp(ly)
+    theta = ey / (umax * (1.0 - dl))  # θ(u_max - d_c) = e^ly
+    c = (theta * dl * umax)[:, None]
+    x = theta[:, None] * u
+    g1, g2, g1x, g1c, g2x, g2c = plateau_loop_slopes(x, c, rule)
+    A, B, chi2, rss_f, rss_g = solve_projected(g1, g2, df, dg, w, wf, wg)
+    sf, sg = np.sqrt(wf)[:, None] * w, np.sqrt(wg)[:, None] * w
+    dx = x / (1.0 - dl)[:, None]  # ∂x/∂(d_c/u_max); ∂x/∂ln(...) = x
+    dc = (ey / (1.0 - dl) ** 2)[:, None]
+    # Weighted columns of the linear part (Pκ, Pωξ) and of ∂(model)/∂p, channels side by side.
+    phi_a = np.concatenate([sf * g1, sg * g2], axis=1)
+    phi_b = np.concatenate([np.zeros_like(sf), sg], axis=1)
+    D = A[:, None, None] * np.stack(
+        [
+            np.concatenate([sf * (g1x * x + g1c * c), sg * (g2x * x + g2c * c)], axis=1),
+            np.concatenate([sf * (g1x * dx + g1c * dc), sg * (g2x * dx + g2c * dc)], axis=1),
+        ],
+        axis=1,
+    )  # (R, 2, 2M)
+    r = np.concatenate([sf * (df - A[:, None] * g1), sg * (dg - B[:, None] - A[:, None] * g2)], 1)
+    phi = np.stack([phi_a, phi_b], axis=1)  # (R, 2, 2M)
+    gram = np.einsum("rim,rjm->rij", phi, phi)
+    pd_ = np.einsum("rim,rjm->rij", phi, D)
+    hess = np.einsum("rim,rjm->rij", D, D) - np.einsum(
+        "rki,rkj->rij", pd_, solve_stacked(gram, pd_)
+    )
+    grad = -np.einsum("rim,rm->ri", D, r)
+    return {
+        "A": A,
+        "B": B,
+        "chi2": chi2,
+        "rss_f": rss_f,
+        "rss_g": rss_g,
+        "grad": grad,
+        "hess": hess,
+        "theta": theta,
+        "x": x,
+        "c": c,
+        "slopes": (g1, g2, g1x, g1c, g2x, g2c),
+    }
+
+
+def fit_plateau_loops(
+    u, df, dg, w, sigma_df, sigma_dg, u_c, table: LoopTable | None = None, theta_start=None
+) -> pd.DataFrame:
+    """Fit the exact plateau loop (+ dashpot) to every row of padded sweeps (module docstring).
+
+    Parameters
+    ----------
+    u, df, dg, w : (S, M) amplitudes (m), shifts (Hz), weights (0 for padding)
+    sigma_df, sigma_dg : (S,) noise levels of the two channels, Hz
+    u_c : (S,) start of the critical displacement (the hinge of the plateau model), m
+    table : the Cattaneo-Mindlin loop table for the start of θ (built here if None)
+    theta_start : (S,) start of θ = κ/(μF_N), 1/m (e.g. from the Cattaneo-Mindlin loop fitted
+        to the whole sweep); if None, from that loop fitted to the amplitudes in excess of u_c
+
+    Returns
+    -------
+    DataFrame with the columns of :func:`fit_cm_loops` (``theta_per_m`` = κ/(μF_N), ``x_max``
+    = θ·max(u0); ``edge`` "high" if the excess beyond d_c reaches gross sliding beyond
+    x = X_MAX, "low" if no slip is resolved) plus ``d_c_m`` and ``d_c_err_m``.
+    """
+    u_c = np.asarray(u_c, dtype=float)
+    rule = gauss_legendre_unit(SMALL_X_NODES)  # made once for the hundreds of model calls
+    S = u.shape[0]
+    rows = np.arange(S)
+    n = w.sum(axis=1)
+    umax = np.max(np.where(w > 0, u, 0.0), axis=1)
+    floor_f = 1e-6 * np.maximum(np.abs(df).max(axis=1), 1e-12)
+    floor_g = 1e-6 * np.maximum(np.abs(dg).max(axis=1), 1e-12)
+    lo = np.tile([np.log(10.0**-2.5), 0.0], (S, 1))
+    # d_c/umax: from 0 (no plateau) to the amplitude that leaves PLATEAU_MIN_SLOPE - 1 distinct
+    # amplitudes above it (a row may repeat amplitudes: the ramps of a block fitted jointly).
+    data = w > 0
+    distinct = data & np.concatenate([np.ones((S, 1), bool), np.diff(u, axis=1) > 0], axis=1)
+    count = np.cumsum(distinct, axis=1)  # u ascending: distinct amplitudes <= u
+    above = count[:, -1:] - count
+    room = data & (above >= PLATEAU_MIN_SLOPE - 1)
+    hi = np.column_stack([np.full(S, np.log(X_MAX)), np.max(np.where(room, u, 0.0), axis=1) / umax])
+    # Start of θ: the Cattaneo-Mindlin loop fitted to the amplitudes in excess of the hinge.
+    if theta_start is None:
+        excess = np.maximum(u - u_c[:, None], 0.0)
+        y0 = fit_cm_loops(excess, df, dg, w, sigma_df, sigma_dg, table)["x_max"].to_numpy()
+    else:
+        y0 = np.asarray(theta_start, dtype=float) * np.maximum(umax - u_c, 0.0)
+
+    def run(starts, sig_f, sig_g, k, tol):  # k starts per sweep, stacked start after start
+        wf = np.tile(1.0 / np.maximum(sig_f, floor_f) ** 2, k)
+        wg = np.tile(1.0 / np.maximum(sig_g, floor_g) ** 2, k)
+        data = [np.tile(a, (k, 1)) for a in (u, df, dg, w)]
+        um = np.tile(umax, k)
+
+        def model(p, i):
+            return _plateau_model(
+                p, data[0][i], um[i], *(a[i] for a in data[1:]), wf[i], wg[i], rule
+            )
+
+        def evaluate(p, i, jacobian):  # the Gauss-Newton form, always complete
+            fit = model(p, i)
+            return {"chi2": fit["chi2"], "gradient": fit["grad"], "hessian": fit["hess"]}
+
+        options = replace(PLATEAU_LM, xtol=tol, x_abs=1e-10 * tol, ftol=tol)
+        p = levenberg_marquardt(evaluate, starts, np.tile(lo, (k, 1)), np.tile(hi, (k, 1)), options)
+        return p.x, model(p.x, np.arange(len(p.x)))
+
+    # Pass 1, weighted by the noise of the hinge fit; started at the hinge and at the amplitude
+    # below it (the hinge sits at or above d_c), θ from the loop fitted to the excess; the
+    # better of the two (the first on a tie).
+    first = np.minimum(u_c / umax, hi[:, 1])
+    below = np.max(np.where((w > 0) & (u < (u_c * (1.0 - 1e-9))[:, None]), u, -np.inf), axis=1)
+    second = np.where(np.isfinite(below), below / umax, first)
+    dl0 = np.concatenate([first, second])
+    uc2 = np.tile(u_c / umax, 2)
+    ly0 = np.log(np.tile(np.maximum(y0, 1e-300), 2) * (1.0 - dl0) / np.maximum(1.0 - uc2, 1e-12))
+    p0 = np.column_stack([np.clip(ly0, lo[0, 0], hi[0, 0]), dl0])
+    # Pass 1 only chooses between the starts and brings pass 2 near the optimum: 1e-4 will do.
+    p1, fit1 = run(p0, sigma_df, sigma_dg, 2, 1e-4)
+    take = np.where(fit1["chi2"][S:] < fit1["chi2"][:S], S + rows, rows)
+    x1 = p1[take]
+    # Pass 2, weighted by the noise of this fit's own residuals (the hinge misfits the onset).
+    dof = np.maximum(n - 2, 1)
+    sig = [np.sqrt(fit1[k][take] / dof) for k in ("rss_f", "rss_g")]
+    p2, fit = run(x1, sig[0], sig[1], 1, 1e-7)
+    ly, dl = p2[:, 0], p2[:, 1]
+    A, theta, d_c = fit["A"], fit["theta"], dl * umax
+    # Jacobian of the weighted residuals in (A, B, ln θ, d_c) at fixed d_c and θ respectively.
+    g1, g2, g1x, g1c, g2x, g2c = fit["slopes"]
+    x, c = fit["x"], fit["c"]
+    wf = 1.0 / np.maximum(sig[0], floor_f) ** 2
+    wg = 1.0 / np.maximum(sig[1], floor_g) ** 2
+    sf, sg = np.sqrt(wf)[:, None] * w, np.sqrt(wg)[:, None] * w
+    a = -A[:, None]
+    zero, one = np.zeros_like(g1), np.ones_like(g1)
+    Jf = sf[..., None] * np.stack(
+        [-g1, zero, a * (g1x * x + g1c * c), a * g1c * theta[:, None]], axis=-1
+    )
+    Jg = sg[..., None] * np.stack(
+        [-g2, -one, a * (g2x * x + g2c * c), a * g2c * theta[:, None]], axis=-1
+    )
+    J = np.concatenate([Jf, Jg], axis=1)  # (S, 2M, 4)
+    # Columns scaled to unit norm first: d_c in m makes JᵀJ too ill-scaled for pinv's cutoff.
+    norm = np.linalg.norm(J, axis=1)
+    norm = np.where(norm > 0, norm, 1.0)
+    Js = J / norm[:, None, :]
+    cov = np.linalg.pinv(np.einsum("smi,smj->sij", Js, Js)) / (norm[:, :, None] * norm[:, None, :])
+    cov *= (fit["chi2"] / np.maximum(2 * n - 4, 1))[:, None, None]
+    edge = np.where(ly > hi[:, 0] - 1e-6, "high", np.where(ly < lo[:, 0] + 1e-6, "low", ""))
+    return pd.DataFrame(
+        {
+            **loop_fit_fields(A, fit["B"], theta, cov, umax),
+            "d_c_m": d_c,
+            "d_c_err_m": np.sqrt(cov[:, 3, 3]),
+            "edge": edge,
+            "rss_df": fit["rss_f"],
+            "rss_dgamma": fit["rss_g"],
+        }
+    )

@@ -1,0 +1,370 @@
+"""Tables of measured resonances -> contact stiffness (and modulus), one row per point or pixel.
+
+The orchestration behind ``contactres rum invert`` and ``contactres afm invert``: the checked
+tables of :mod:`contactres.measurements.resonances` go through the oscillator models of
+:mod:`contactres.resonators` and the modulus step of :mod:`contactres.analysis._inversion`;
+the output keeps every input column and appends the results. Rows that the physics rejects
+(a contact resonance below the free one) are errors naming the line; rows that only cannot be
+inverted (no crossing of two modes, a mode without sensitivity) keep empty results and say why
+in ``flags``.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+import pandas as pd
+
+from ..dynamic import prepare
+from ..errors import ContactresInputError
+from ..measurements.messages import at_cell, where_rows
+from ..resonators import (
+    MODE_TOLERANCE,
+    Cantilever,
+    RUMOscillator,
+    flag_names,
+    invert_contact_resonance,
+)
+from ._inversion import ModulusFlag, modulus_from_contact_stiffness, surface_material
+
+__all__ = ["AFM_GROUP_COLUMNS", "invert_afm_table", "invert_rum_table"]
+
+#: Columns that define one lever and one tip geometry: rows sharing them are inverted at once.
+AFM_GROUP_COLUMNS = (
+    "f1_free_Hz",
+    "f2_free_Hz",
+    "f3_free_Hz",
+    "Q1_free",
+    "Q2_free",
+    "Q3_free",
+    "lateral_ratio",
+    "tip_height_over_L",
+    "tilt_deg",
+)
+_MODES = (1, 2, 3)
+#: The Hertz and reference inputs of the modulus step (floats; NaN where blank).
+_MODULUS_INPUTS = ("tip_radius_m", "load_N", "M_tip_Pa", "hardness_Pa", "M_ref_Pa", "M_ref2_Pa")
+
+
+def _given_columns(table: pd.DataFrame) -> pd.DataFrame:
+    """The columns of the table as the file gave them (not the schema's absent ones)."""
+    return table[table.attrs.get("given", [c for c in table.columns if c != "line"])].copy()
+
+
+def _flag_text(codes: np.ndarray, names) -> np.ndarray:
+    """Bit masks as ';'-joined hyphenated names (``names(code)`` -> list), one per distinct
+    mask rather than per row."""
+    uniq, inverse = np.unique(np.asarray(codes, dtype=int), return_inverse=True)
+    text = np.array([";".join(n.replace("_", "-") for n in names(c)) for c in uniq], dtype=object)
+    return text[inverse.reshape(-1)]
+
+
+def _modulus_names(code: int) -> list[str]:
+    return [f.name.lower() for f in ModulusFlag if f.name and int(code) & f]
+
+
+def _lumped_rows(table: pd.DataFrame, source: str) -> np.ndarray:
+    """Which rows are lumped (K_eff_N_per_m given) rather than rods (mass_kg given)."""
+    lumped = table["K_eff_N_per_m"].notna().to_numpy()
+    rod = table["mass_kg"].notna().to_numpy()
+    both = lumped & rod
+    if both.any():
+        raise ContactresInputError(
+            f"{at_cell(table, source, both, 'mass_kg')}: give K_eff_N_per_m (lumped model) or "
+            "mass_kg (rod model) in a row, not both"
+        )
+    neither = ~(lumped | rod)
+    if neither.any():
+        raise ContactresInputError(
+            f"{at_cell(table, source, neither, 'K_eff_N_per_m')}: each row needs "
+            "K_eff_N_per_m (lumped model) or mass_kg (rod model)"
+        )
+    return lumped
+
+
+def invert_rum_table(table: pd.DataFrame, source: str = "table") -> pd.DataFrame:
+    """k* of every row of a checked RUM table (:data:`~contactres.measurements.resonances
+    .RUM_TABLE`): ``k_star_N_per_m`` and ``rum_model`` appended.
+
+    Lumped rows: (f/f0)² = 1 + k*/K_eff; rod rows (mass m): k* = (EA/L)(kL) tan(kL) of a rod
+    free at one end with the contact spring at the other, EA/L = 4 m f0² (mode 1; see
+    :class:`~contactres.resonators.RUMOscillator`). Raises ValueError naming the line for a
+    contact resonance below f0 (a spring cannot lower it) or at/above the rod's clamped limit.
+    The rows are grouped by their calibration (one oscillator per group; a file rarely holds
+    more than a few), each group converted at once.
+    """
+    lumped = _lumped_rows(table, source)
+    f0 = table["f0_Hz"].to_numpy(float)
+    fc = table["fc_Hz"].to_numpy(float)
+    below = fc < f0
+    if below.any():
+        raise ContactresInputError(
+            f"{at_cell(table, source, below, 'fc_Hz')}: the contact resonance is below the free "
+            "resonance f0_Hz of its row; a contact spring can only raise it (check the columns)"
+        )
+    calib = np.where(lumped, table["K_eff_N_per_m"], table["mass_kg"]).astype(float)
+    k_star = np.full(len(table), np.nan)
+    groups = pd.DataFrame({"lumped": lumped, "f0": f0, "calib": calib}).groupby(
+        ["lumped", "f0", "calib"], sort=False
+    )
+    for rows in groups.indices.values():  # one oscillator per calibration, not per row
+        i = rows[0]
+        if lumped[i]:
+            osc = RUMOscillator.lumped(f0[i], calib[i])
+        else:
+            osc = RUMOscillator.rod(f0[i], calib[i])
+            over = fc[rows] >= osc.clamped_frequency
+            if over.any():
+                mask = np.zeros(len(table), bool)
+                mask[rows[over]] = True
+                raise ContactresInputError(
+                    f"{at_cell(table, source, mask, 'fc_Hz')}: at or above the clamped limit "
+                    f"1.5 f0 = {osc.clamped_frequency:.6g} Hz of the rod model, which no finite "
+                    "contact stiffness reaches (check f0_Hz and fc_Hz)"
+                )
+        k_star[rows] = osc.contact_stiffness(fc[rows])
+    out = _given_columns(table)
+    out["rum_model"] = np.where(lumped, "lumped", "rod")
+    out["k_star_N_per_m"] = k_star
+    return out
+
+
+def _leading(values: np.ndarray) -> tuple[float, ...] | None:
+    """The leading given (non-NaN) values of a lever's constants (f1, f2, ...), or None."""
+    n = int(np.argmin(np.append(~np.isnan(values), False)))
+    return tuple(float(v) for v in values[:n]) or None
+
+
+def _dynamic(col, k_modes, fc, rows, sample, loss) -> dict:
+    """Paper 1's correction of the Hertz rows ``rows``: every averaged mode n corrected at its
+    own frequency, K_n = k*_n/Re DCSF(k_l(f_n) a_n) (each with its own fixed point for a), and
+    K_static the mean of the K_n; k_a and the DCSF reported are those of the row's first
+    averaged mode. ``k_modes``: (rows, modes) k* per mode, NaN where not averaged."""
+    n = len(rows)
+    out = {k: np.full(n, np.nan) for k in ("k_static", "k_a", "dcsf_real", "dcsf_imag")}
+    i, j = np.nonzero(rows[:, None] & np.isfinite(k_modes) & (k_modes > 0))
+    if i.size == 0:
+        return out
+    surface = surface_material(sample, "sample")
+    res = modulus_from_contact_stiffness(
+        k_modes[i, j],
+        tip_radius=col["tip_radius_m"][i],
+        load=col["load_N"][i],
+        frequency=fc[i, j],
+        sample=surface,
+        dynamic=True,
+        loss=loss,
+        prepared=prepare(surface, loss),  # one kernel table for every row and mode
+    )
+    count = np.bincount(i, minlength=n)
+    with np.errstate(invalid="ignore"):
+        out["k_static"] = np.bincount(i, weights=res.k_static, minlength=n) / count
+    first = np.unique(i, return_index=True)[1]  # (i, j) come row by row, modes ascending
+    out["k_a"][i[first]] = res.k_a[first]
+    out["dcsf_real"][i[first]] = res.dcsf.real[first]
+    out["dcsf_imag"][i[first]] = res.dcsf.imag[first]
+    return out
+
+
+def _modulus(col: dict, k_star: np.ndarray, have_kc: np.ndarray, ref, ref2) -> dict:
+    """E*, M_sample, a and the modulus flags of every row: Hertz where tip_radius_m, load_N and
+    k_c are given, else the reference sample(s) where fc1_ref_Hz and M_ref_Pa are; NaN
+    elsewhere. A blank M_tip_Pa is a rigid tip; a blank hardness_Pa is no plasticity check."""
+    n = len(k_star)
+    out = {k: np.full(n, np.nan) for k in ("E_star_Pa", "M_sample_Pa", "contact_radius_m")}
+    out["modulus_method"] = np.full(n, "", dtype=object)
+    out["modulus_flags"] = np.zeros(n, dtype=int)
+    load = col["load_N"]
+    hertz = ~np.isnan(col["tip_radius_m"]) & ~np.isnan(load) & have_kc
+    refd = ~hertz & ~np.isnan(ref) & ~np.isnan(col["M_ref_Pa"])
+    two = refd & ~np.isnan(ref2) & ~np.isnan(col["M_ref2_Pa"])
+    one_ref = dict(reference_k_star=ref, reference_modulus=col["M_ref_Pa"])
+    methods = (
+        (hertz, dict(tip_radius=col["tip_radius_m"])),
+        (refd & ~two, one_ref),
+        (two, dict(one_ref, reference2_k_star=ref2, reference2_modulus=col["M_ref2_Pa"])),
+    )
+    tip, hardness = col["M_tip_Pa"], col["hardness_Pa"]
+    for rows, kwargs in methods:
+        for rigid in (True, False):
+            for loaded in (True, False):  # a reference method uses the load where given
+                ok = rows & np.isfinite(k_star) & (k_star > 0) & (np.isnan(tip) == rigid)
+                ok &= np.isnan(load) != loaded
+                if not ok.any():
+                    continue
+                H = hardness[ok] if loaded and not np.isnan(hardness[ok]).all() else None
+                res = modulus_from_contact_stiffness(
+                    k_star[ok],
+                    load=load[ok] if loaded else None,
+                    tip_modulus=None if rigid else tip[ok],
+                    hardness=H,
+                    **{k: v[ok] for k, v in kwargs.items()},
+                )
+                out["E_star_Pa"][ok] = res.E_star
+                out["M_sample_Pa"][ok] = res.M_sample
+                out["contact_radius_m"][ok] = res.contact_radius
+                out["modulus_method"][ok] = res.method
+                out["modulus_flags"][ok] = res.flags
+    return out
+
+
+def _check_free_q(table: pd.DataFrame, source: str) -> None:
+    """A free Q for every free frequency given, or none (the lever's damping is per mode)."""
+    for n in _MODES:
+        f = table[f"f{n}_free_Hz"].notna().to_numpy()
+        q = table[f"Q{n}_free"].notna().to_numpy()
+        other = table[[f"Q{m}_free" for m in _MODES]].notna().any(axis=1).to_numpy()
+        bad = f & ~q & other
+        if bad.any():
+            raise ContactresInputError(
+                f"{where_rows(table, source, bad, f'Q{n}_free')}: is empty while another free "
+                "Q is given; give the Q of every free mode or of none"
+            )
+
+
+def invert_afm_table(
+    table: pd.DataFrame,
+    source: str = "table",
+    normalisation: str = "global",
+    *,
+    sample=None,
+    loss: float = 0.0,
+    mode_tolerance: float = MODE_TOLERANCE,
+) -> pd.DataFrame:
+    """κ, k*, r, σ and (where the inputs allow) E* and M_sample of every row of a checked CR-AFM
+    table (:data:`~contactres.measurements.resonances.AFM_TABLE`).
+
+    Rows are grouped by their lever and tip geometry (:data:`AFM_GROUP_COLUMNS`) and by whether
+    the tip position is given; each group is inverted at once by
+    :func:`~contactres.resonators.invert_contact_resonance` (the modes
+    used are the contact-resonance columns given in the row; r blank: solved from two modes; a
+    blank Q: no damping for that cell). The modulus step
+    (:func:`~contactres.analysis.modulus_from_contact_stiffness`) runs where
+    tip_radius_m, load_N and k_c_N_per_m (Hertz) or fc1_ref_Hz and M_ref_Pa (reference samples,
+    inverted with the same lever and tip position; k_c not needed) are given. ``flags`` names
+    why a value is missing; ``normalisation`` is recorded in every row. ``mode_spread`` is the
+    largest relative disagreement of κ between the modes that check it (three modes with r
+    solved, two or more with r given; flag ``inconsistent-modes`` beyond ``mode_tolerance``).
+
+    ``sample`` (a :class:`~contactres.materials.Material` in its surface frame, with density,
+    or a ``(material, (h, k, l))`` pair) applies paper 1's dynamic correction to the Hertz
+    rows: each mode averaged into κ is corrected at its own frequency, K_n = k*_n/Re
+    DCSF(k_l(f_n) a) (Q⁻¹ = ``loss``), and the modulus follows from the mean K_static
+    (``k_static_N_per_m``); ``k_a``, ``dcsf_real``, ``dcsf_imag`` are those of the row's first
+    averaged mode. With r solved from two modes the crossing itself is found on the measured
+    (dynamic) κ; the correction then changes each mode's κ by its own factor. The reference
+    rows are not corrected: sample and reference are measured at nearly the same frequency and
+    contact size, so their corrections cancel to second order in k_l a.
+    """
+    fc = table[[f"fc{n}_Hz" for n in _MODES]].to_numpy(float)
+    none = np.isnan(fc).all(axis=1)
+    if none.any():
+        raise ContactresInputError(
+            f"{where_rows(table, source, none, 'fc1_Hz')}: no contact resonance in this row "
+            "(fc1_Hz, fc2_Hz and fc3_Hz are all empty)"
+        )
+    for n in _MODES:  # a contact spring only raises a mode: below the free lever is impossible
+        below = fc[:, n - 1] < table[f"f{n}_free_Hz"].to_numpy(float)
+        if below.any():
+            raise ContactresInputError(
+                f"{at_cell(table, source, below, f'fc{n}_Hz')}: below the free resonance "
+                f"f{n}_free_Hz of its row; a contact can only raise it (check the columns)"
+            )
+    _check_free_q(table, source)
+    if normalisation == "modewise":  # each mode measured needs its own free frequency
+        for n in _MODES:
+            lacking = ~np.isnan(fc[:, n - 1]) & table[f"f{n}_free_Hz"].isna().to_numpy()
+            if lacking.any():
+                raise ContactresInputError(
+                    f"{where_rows(table, source, lacking, f'f{n}_free_Hz')}: is empty while "
+                    f"fc{n}_Hz is given; modewise normalisation needs the free frequency of "
+                    "every mode used (or use --normalisation global)"
+                )
+    q = table[[f"Q{n}" for n in _MODES]].to_numpy(float)
+    f_ref = table[["fc1_ref_Hz", "fc1_ref2_Hz"]].to_numpy(float)
+    r_in = table["tip_position"].to_numpy(float)
+    k_c = table["k_c_N_per_m"].to_numpy(float)
+    have_kc = ~np.isnan(k_c)
+    n = len(table)
+    res = {
+        c: np.full(n, np.nan)
+        for c in ("kappa", "tip_position_used", "sigma_N_s_per_m", "mode_spread")
+    }
+    flags = np.zeros(n, dtype=int)
+    k_modes = np.full((n, len(_MODES)), np.nan)  # κ of each mode averaged into κ (else NaN)
+    refs = np.full((n, 2), np.nan)  # κ on the reference samples (k* = κ k_c; ratios need κ)
+    keys = [*AFM_GROUP_COLUMNS, "r_given"]
+    groups = table[list(AFM_GROUP_COLUMNS)].assign(r_given=~np.isnan(r_in))
+    for rows in groups.groupby(keys, sort=False, dropna=False).indices.values():
+        first = groups.iloc[rows[0]]
+        free = _leading(first[["f1_free_Hz", "f2_free_Hz", "f3_free_Hz"]].to_numpy(float))
+        assert free is not None  # f1_free_Hz is a required column: never empty
+        lever = Cantilever(
+            free,
+            1.0,  # κ = k*/k_c is what the frequencies give; k* = κ k_c below, where k_c is known
+            normalisation=normalisation,
+            free_q_factors=_leading(first[["Q1_free", "Q2_free", "Q3_free"]].to_numpy(float)),
+        )
+        geometry = dict(
+            lateral_ratio=np.nan_to_num(first["lateral_ratio"]),
+            tip_height=np.nan_to_num(first["tip_height_over_L"]),
+            tilt=np.nan_to_num(first["tilt_deg"]),
+        )
+        r = r_in[rows] if first["r_given"] else None
+        qs = q[rows] if np.isfinite(q[rows]).any() else None
+        inv = invert_contact_resonance(
+            lever,
+            fc[rows],
+            tip_position=r,
+            q_factors=qs,
+            mode_tolerance=mode_tolerance,
+            **geometry,
+        )
+        res["kappa"][rows] = inv.kappa
+        res["tip_position_used"][rows] = inv.tip_position
+        res["sigma_N_s_per_m"][rows] = inv.sigma * np.where(have_kc[rows], k_c[rows], np.nan)
+        res["mode_spread"][rows] = inv.mode_spread
+        k_modes[rows] = np.where(inv.averaged_modes, inv.kappa_modes, np.nan)
+        flags[rows] = inv.flags
+        solved = np.isfinite(inv.tip_position)  # two modes without a crossing: no reference
+        for j in (0, 1):
+            take = solved & ~np.isnan(f_ref[rows, j])
+            if take.any():
+                freqs = np.full((int(take.sum()), 3), np.nan)
+                freqs[:, 0] = f_ref[rows[take], j]
+                back = invert_contact_resonance(
+                    lever, freqs, tip_position=inv.tip_position[take], **geometry
+                )
+                refs[rows[take], j] = back.kappa
+    k_star = res["kappa"] * k_c
+    # Without k_c, k* is unknown, but the reference method needs only ratios of k*: it runs on κ.
+    col = {c: table[c].to_numpy(float) for c in _MODULUS_INPUTS}
+    scale = np.where(have_kc, k_c, 1.0)
+    k_used = np.where(have_kc, k_star, res["kappa"])
+    if sample is not None:
+        hertz = have_kc & ~np.isnan(col["tip_radius_m"]) & ~np.isnan(col["load_N"])
+        dyn = _dynamic(col, k_modes * k_c[:, None], fc, hertz & np.isfinite(k_star), sample, loss)
+        k_used = np.where(np.isfinite(dyn["k_static"]), dyn["k_static"], k_used)
+    mod = _modulus(col, k_used, have_kc, *(refs * scale[:, None]).T)
+    # Without k_c a row has no k*: said in its flags, not left as bare empty cells (issue 27).
+    mod["modulus_flags"] = np.where(
+        have_kc, mod["modulus_flags"], mod["modulus_flags"] | ModulusFlag.NO_SPRING_CONSTANT
+    )
+    out = _given_columns(table)
+    out["kappa"] = res["kappa"]
+    out["k_star_N_per_m"] = k_star
+    out["tip_position_used"] = res["tip_position_used"]
+    out["sigma_N_s_per_m"] = res["sigma_N_s_per_m"]
+    out["mode_spread"] = res["mode_spread"]
+    names = ["E_star_Pa", "M_sample_Pa", "contact_radius_m", "modulus_method"]
+    for name in names:
+        out[name] = mod[name]
+    if sample is not None:
+        out["k_static_N_per_m"] = dyn["k_static"]
+        for name in ("k_a", "dcsf_real", "dcsf_imag"):
+            out[name] = dyn[name]
+        corrected = np.isfinite(dyn["k_static"]) & (out["modulus_method"] != "")
+        out.loc[corrected, "modulus_method"] = out.loc[corrected, "modulus_method"] + " + dynamic"
+    text = [_flag_text(flags, flag_names), _flag_text(mod["modulus_flags"], _modulus_names)]
+    out["flags"] = [";".join(t for t in pair if t) for pair in zip(*text, strict=True)]
+    out["normalisation"] = normalisation
+    return out

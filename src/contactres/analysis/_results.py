@@ -1,0 +1,95 @@
+"""What :func:`contactres.analyze` found: plain data, written by :func:`contactres.write_report`."""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+from dataclasses import dataclass, field
+
+import numpy as np
+import pandas as pd
+
+from ..measurements.sweeps import SweepTable
+
+__all__ = ["Results"]
+
+
+@dataclass(frozen=True)
+class Results:
+    """Everything :func:`contactres.analyze` found.
+
+    Attributes
+    ----------
+    sweeps : one row per sweep: the columns of ``sweeps.csv``
+        (:data:`contactres.measurements.schema.SWEEP_RESULTS`), the sweep's labels and constants
+        from the input, and what the model choice used (``n_points``, ``u_max_m``, the noise
+        levels ``sigma_df_Hz``, ``sigma_dgamma_Hz``, ``bic_<class>``, ``limits_from``,
+        ``P_Hz_per_N_per_m``, ``block``, ...); ``flags`` is a bit mask of
+        :class:`contactres.analysis.Flag` (text only when written)
+    fits : one table per registered model fitted to every sweep (key of
+        :data:`contactres.analysis.REGISTRY` -> DataFrame, one row per sweep in the order
+        of ``sweeps``): ``sweep``, the parameters under their keys with their standard errors
+        (``<key>_err``), the residual sums ``rss_df``, ``rss_dgamma`` and the fit's other fields
+        (:func:`contactres.analysis._models.fit_tables`); the exact loops only with
+        ``exact_loop``
+    loads : one row per (configuration, medium, normal force)
+    experiments : one row per (configuration, medium, normal force, experiment): the means of
+        its used sweeps (the points of the JKR fit)
+    groups : one dict per (configuration, medium): JKR + Mindlin fit and counts
+    settings : the settings used
+    version : contactres version
+    table : the input sweep table
+    points : one row per point as the analysis fitted it (after any drift correction):
+        ``sweep``, ``amplitude_m``, ``df_Hz``, ``dgamma_Hz``
+        (:func:`contactres.analysis._curves.sweep_points`)
+    curves : the model chosen for each sweep on the grids the report draws: ``sweep``,
+        ``grid_points``, ``amplitude_m``, ``df_model_Hz``, ``dgamma_model_Hz``
+        (:func:`contactres.analysis._curves.fitted_curves`)
+    messages : what the analysis found odd in the input, one line each (e.g. ramp labels that
+        disagree with the file order)
+    blocks : one row per load block judged jointly (:mod:`contactres.analysis._blocks`)
+    block_fits : every model's joint fit of every load block, like ``fits`` with ``block`` in
+        place of ``sweep`` (the Coulomb loops' with ``bic_shared``, their shared criterion)
+    radiation : one row per load: the radiation loss of the contact against the measured one
+        (:func:`contactres.analysis.radiation_loss`; None: no materials were given)
+    """
+
+    sweeps: pd.DataFrame
+    loads: pd.DataFrame
+    experiments: pd.DataFrame
+    groups: list[dict]
+    settings: dict
+    version: str
+    table: SweepTable | None = None
+    fits: Mapping[str, pd.DataFrame] = field(default_factory=dict, repr=False)
+    points: pd.DataFrame | None = field(default=None, repr=False)
+    curves: pd.DataFrame | None = field(default=None, repr=False)
+    messages: tuple[str, ...] = ()
+    blocks: pd.DataFrame | None = None
+    block_fits: Mapping[str, pd.DataFrame] = field(default_factory=dict, repr=False)
+    radiation: pd.DataFrame | None = None
+
+    def table1(self) -> pd.DataFrame:
+        """Table 1 of paper 2 for these data: E (GPa) and γ (mJ/m²) per configuration/medium.
+
+        ``errors`` says how the errors were found, ``t95`` the Student-t factor of their 95 %
+        interval; where a check withholds E and γ they are NaN
+        and ``note`` says why and which input to check.
+        """
+        rows = []
+        for g in self.groups:
+            rows.append(
+                {
+                    "configuration": g["configuration"],
+                    "medium": g["medium"],
+                    "E_GPa": g["E_Pa"] / 1e9,
+                    "E_err_GPa": g["E_err_Pa"] / 1e9,
+                    "gamma_mJ_m2": g["gamma_J_m2"] * 1e3,
+                    "gamma_err_mJ_m2": g["gamma_err_J_m2"] * 1e3,
+                    "n_exp": g["n_experiments"],
+                    "n_sweeps": g["n_sweeps_used"],
+                    "errors": g.get("error_method", ""),
+                    "t95": g.get("t95", np.nan),
+                    "note": g.get("note", ""),
+                }
+            )
+        return pd.DataFrame(rows)

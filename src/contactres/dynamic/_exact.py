@@ -1,0 +1,275 @@
+"""Exact small-oscillation stiffness of the contact: the rigid flat punch (Galerkin).
+
+With the contact radius fixed and frictionless contact, the exact dynamic problem behind paper 1's
+displacement conditions is the rigid flat punch on the lossy anisotropic half-space: the pressure
+on the disk whose displacement is uniform (Luco & Westmann 1971 for the isotropic solid).
+
+Galerkin (Rayleigh-Ritz) on the disk r̄ = r/a <= 1. The pressure is expanded as::
+
+    p(r̄, φ) = Σ_{n, k} c_{nk} f_{nk}(r̄) e^{inφ},
+    f_{nk}(r̄) = √π Γ(|n|+k+1)/(Γ(k+½) |n|!) r̄^{|n|} ₂F₁(|n|+k+1, ½−k; |n|+1; r̄²)
+              = r̄^{|n|} (1 − r̄²)^{-1/2} × (polynomial of degree k in r̄²),
+
+whose order-``|n|`` Hankel transforms are spherical Bessel functions,
+∫₀¹ r̄ f_{nk} J_{``|n|``}(s r̄) dr̄ = j_{``|n|+2k``}(s) (Weber-Schafheitlin): the flat punch
+f₀₀ = 1/√(1 − r̄²) has sin s/s. Only the angular harmonics that the face couples to n = 0
+enter (n ≡ 0 mod 4 on a 4-fold face, even n otherwise).
+The Galerkin matrix of the displacement, in the normalisation of N (paper 1, Eq. 22)::
+
+    M_ab = (−1)^{(n_a+n_b)/2} ∫₀^∞ ds Ĝ_{n_a+n_b}(s/ka) j_{p_a}(s) j_{p_b}(s),
+    Ĝ_m(κ) = ∫₀^{2π} g(κ, θ) e^{imθ} dθ,   p = |n| + 2k,
+
+uses the same kernel table as the other models: its static part is closed form (∫ j_p j_q ds =
+π/(2(2p+1)) δ_pq, so the static solution is the flat punch itself), the rest is the near-field
+contour and the Chebyshev far field. Uniform displacement gives M c = e₀ (only f₀₀ carries force),
+N_exact = 1/c₀ and DCSF = N_st/N_exact. With one term, N_exact = M₀₀ = N_WA2D: the whole-contact
+weighted average is the one-term Galerkin (variational) estimate.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+from scipy import special
+
+from ..errors import ContactresInputError
+from ._farfield import FarBasis, far_basis, low_rank
+from ._table import KernelTable
+from ._weights import spherical_bessel
+
+__all__ = [
+    "GalerkinPlan",
+    "GalerkinSize",
+    "exact_n",
+    "galerkin_plan",
+    "galerkin_size",
+    "pressure_basis",
+]
+
+
+@dataclass(frozen=True)
+class GalerkinSize:
+    """Radial terms per harmonic and angular harmonics (``|n| <= step × n_harmonics``)."""
+
+    n_radial: int
+    n_harmonics: int
+
+    def doubled(self) -> GalerkinSize:
+        """Twice the radial terms and twice the harmonics (the convergence check of the tests)."""
+        return GalerkinSize(2 * self.n_radial, 2 * self.n_harmonics)
+
+
+def galerkin_size(ksa_max: float, rtol: float = 1e-6, *, pressure: bool = False) -> GalerkinSize:
+    """Default basis size reaching ``rtol`` up to k_s a = ksa_max (from the convergence tests:
+    the radial series converges like a Neumann series in (k a/2p)², the angular one like the
+    harmonics of g).
+
+    N_exact is variational (its error is quadratic in that of the pressure): measured against
+    twice the terms (k_l a <= 2, A = 0.2-10, ν = 0.25-0.45), ceil(0.6 k_s a) + 4 radial terms and
+    harmonics ``|n|`` <= 3 × step (the default) leave < 1e-9 on (001) faces and 5e-11-7e-8 on
+    Cu(111) and Cu(123); two radial terms fewer < 1e-8 (rtol >= 1e-4). The harmonics must reach
+    the face's first coupled one: a (111) face is six-fold, so with step 2 it couples n = ±6,
+    and ``|n|`` <= 2 × step missed it (3e-4 off on Cu(111), found by review). rtol <= 1e-8 takes two
+    terms and one harmonic more.
+    ``pressure=True`` sizes the basis for the pressure field itself (:func:`contact_pressure
+    <contactres.dynamic.contact_pressure>`), which converges only linearly:
+    two radial terms and one harmonic more.
+    """
+    extra = 2 if rtol <= 1e-8 else (0 if rtol < 1e-4 else -2)
+    more = 2 if pressure else 0
+    harmonics = 4 if rtol <= 1e-8 else 3
+    return GalerkinSize(
+        n_radial=max(2, math.ceil(0.6 * ksa_max) + 4 + extra + more), n_harmonics=harmonics
+    )
+
+
+def _basis(table: KernelTable, size: GalerkinSize) -> list[tuple[int, int]]:
+    step = 4 if table.fourfold else 2
+    ns = [0] + [s * step * j for j in range(1, size.n_harmonics + 1) for s in (1, -1)]
+    return [(n, k) for n in ns for k in range(size.n_radial)]
+
+
+def pressure_basis(n: int, k: int, rbar) -> np.ndarray:
+    """f_nk(r̄) of the module docstring (its order-``|n|`` Hankel transform is j_{``|n|+2k``}(s))."""
+    n = abs(int(n))
+    r = np.asarray(rbar, dtype=float)
+    norm = math.sqrt(math.pi) * math.exp(special.gammaln(n + k + 1) - special.gammaln(k + 0.5))
+    norm /= math.factorial(n)
+    with np.errstate(divide="ignore"):
+        return norm * r**n * special.hyp2f1(n + k + 1, 0.5 - k, n + 1, r * r)
+
+
+def _harmonics(values: np.ndarray, ms) -> np.ndarray:
+    """Ĝ_m = ∫₀^{2π} g e^{imθ} dθ of rows sampled on [0, π) (period π; m even), stacked as
+    (len(ms), *values.shape[:-1])."""
+    n = values.shape[-1]
+    h = np.fft.fft(values, axis=-1) / n  # a_j of e^{2ijθ}
+    j = (-np.asarray(ms, dtype=int) // 2) % n
+    return 2 * np.pi * np.moveaxis(h[..., j], -1, 0)
+
+
+@dataclass(frozen=True, eq=False)
+class GalerkinPlan:
+    """The index bookkeeping of one Galerkin basis, built once per call and shared by its chunks.
+
+    Attributes
+    ----------
+    basis : [(n, k), ...] the pressure basis (angular order n, radial index k)
+    orders : (n_p,) the distinct Hankel orders p = ``|n|`` + 2k
+    pairs : (2, n_t) order indices (i <= j) of the products j_p j_q the matrix needs
+    ms : (n_m,) the angular orders n_a + n_b of the kernel harmonics Ĝ_m
+    m_index, t_index : (nb, nb) where M_ab reads its harmonic (into ``ms``) and its pair
+    sign : (nb, nb) (−1)^{(n_a + n_b)/2}
+    far_products : (n_t, n_s) j_p(s) j_q(s) on the far-field grid (None without a grid)
+    """
+
+    basis: list
+    orders: np.ndarray
+    pairs: np.ndarray
+    ms: np.ndarray
+    m_index: np.ndarray
+    t_index: np.ndarray
+    sign: np.ndarray
+    far_products: np.ndarray | None
+
+
+def galerkin_plan(table: KernelTable, size: GalerkinSize, far_s=None) -> GalerkinPlan:
+    """The :class:`GalerkinPlan` of ``size`` on ``table``; with the far-field nodes ``far_s``
+    (those of :func:`contactres.dynamic._farfield.far_grid`) also the Bessel products there."""
+    basis = _basis(table, size)
+    n_of = np.array([b[0] for b in basis])
+    p_of = np.array([abs(b[0]) + 2 * b[1] for b in basis])
+    orders = np.unique(p_of)
+    pidx = np.searchsorted(orders, p_of)
+    ms = np.unique(n_of[:, None] + n_of[None, :])
+    # Only the (p, q) pairs some matrix entry reads, upper triangle (the products are symmetric).
+    lo = np.minimum(pidx[:, None], pidx[None, :])
+    hi = np.maximum(pidx[:, None], pidx[None, :])
+    key = lo * orders.size + hi
+    used, t_index = np.unique(key, return_inverse=True)
+    pairs = np.stack([used // orders.size, used % orders.size])
+    products = None
+    if far_s is not None:
+        js = spherical_bessel(int(orders[-1]), np.asarray(far_s, dtype=float))[orders]
+        products = js[pairs[0]] * js[pairs[1]]
+    return GalerkinPlan(
+        basis=basis,
+        orders=orders,
+        pairs=pairs,
+        ms=ms,
+        m_index=np.searchsorted(ms, n_of[:, None] + n_of[None, :]),
+        t_index=t_index.reshape(len(basis), len(basis)),
+        sign=np.where(((n_of[:, None] + n_of[None, :]) // 2) % 2 == 0, 1.0, -1.0),
+        far_products=products,
+    )
+
+
+def exact_n(
+    table: KernelTable,
+    ksa: np.ndarray,
+    size: GalerkinSize,
+    return_coeffs: bool = False,
+    far: FarBasis | None = None,
+    *,
+    plan: GalerkinPlan | None = None,
+):
+    """N_exact of the rigid flat punch at k_s a values ``ksa`` (module docstring).
+
+    Parameters
+    ----------
+    table : KernelTable
+        The prepared kernel table of the material and loss.
+    ksa : ndarray
+        k_s a values (1-D, >= 0; dimensionless).
+    size : GalerkinSize
+        Number of radial terms and angular harmonics of the pressure basis.
+    return_coeffs : bool
+        Also return the Galerkin coefficients c (per ksa) and the basis [(n, k), ...].
+    far : FarBasis, optional
+        The far-field basis of the positive ``ksa``, when the caller shares it with the other
+        models of the same call; built here otherwise.
+    plan : GalerkinPlan, optional
+        :func:`galerkin_plan` of ``size`` on the grid of ``far`` (shared by the chunks of one
+        call); built here otherwise.
+
+    Returns
+    -------
+    ndarray or tuple
+        Complex N_exact shaped like ``ksa`` (DCSF = N_st/N_exact, paper 1, Eq. 29); with
+        ``return_coeffs`` also c (ksa.shape + (n_basis,)) and the basis list.
+    """
+    pos = ksa > 0
+    ka = ksa[pos]
+    na = ka.size
+    if na:
+        if far is None:
+            far = far_basis(table, ka)
+        elif not np.array_equal(far.ka, ka):
+            raise ContactresInputError("the far-field basis was built for other k a values")
+    if plan is None:
+        plan = galerkin_plan(table, size, far.s if na and far is not None else None)
+    nb = len(plan.basis)
+    orders, (ti, tj) = plan.orders, plan.pairs
+    out_n = np.empty(ksa.shape, dtype=complex)
+    coeffs = np.empty((*ksa.shape, nb), dtype=complex)
+    e0 = np.zeros(nb)
+    e0[0] = 1.0
+    if na:
+        # far: built above for these k a; its grid is the plan's (the caller's contract)
+        assert far is not None and plan.far_products is not None
+        # I[a, m, t]: ∫ ds Ĝ_m(s/ka) j_p j_q for the harmonics m and pairs t = (p, q).
+        # Static part: Ĝ_m^∞ δ_pq π/(2(2p + 1)).
+        diag = np.where(ti == tj, np.pi / (2 * (2 * orders[ti] + 1)), 0.0)
+        integral = np.broadcast_to(
+            _harmonics(table.ginf, plan.ms)[:, None] * diag[None, :],
+            (na, plan.ms.size, ti.size),
+        ).copy()
+        # Near field: contour + hand-over segment, harmonics of the tabulated g − g∞.
+        near_h = _harmonics(table.near_values, plan.ms)  # (n_m, nk)
+        s = ka[:, None] * table.near_kappa[None, :]  # (na, nk)
+        # Pair products laid out (na, n_t, nk), so that the sum over the near nodes k is one
+        # complex product with no transposed copy: one BLAS call, not one per k a (on 2 cores
+        # shared with other work, every threaded call can wait a scheduler tick).
+        jp = np.moveaxis(spherical_bessel(int(orders[-1]), s)[orders], 0, 1)  # (na, n_p, nk)
+        wk = table.near_weight[None, :] * ka[:, None]
+        prod = (jp * wk[:, None, :])[:, ti] * jp[:, tj]  # (na, n_t, nk)
+        near = (prod.reshape(-1, prod.shape[-1]) @ near_h.T).reshape(na, ti.size, -1)
+        integral += near.transpose(0, 2, 1)  # (na, n_m, n_t)
+        # Far field: Chebyshev series in w = (T1 ka/s)² of each harmonic, against j_p j_q.
+        nf = far.basis.shape[-1]
+        harm = {int(j): i for i, j in enumerate(table.far_harmonics)}
+        coef = np.zeros((plan.ms.size, nf), dtype=complex)
+        for i, m in enumerate(plan.ms):
+            if -int(m) // 2 in harm:
+                coef[i] = 2 * np.pi * table.far_coeffs[harm[-int(m) // 2]]
+        # The large product runs over the s grid for every row (direction, ka). The real
+        # coefficient matrix [Re; Im] (2 n_m x nf) has rapidly falling singular values (the
+        # series of all harmonics decay alike): only its directions above 1e-15 of the largest
+        # can move the sum beyond round-off, so the basis is projected on those first (about
+        # half of the nf rows).
+        left, right = low_rank(np.concatenate([coef.real, coef.imag]))  # (2 n_m, k), (k, nf)
+        k = right.shape[0]
+        cheb = np.moveaxis(far.basis, -1, 0)  # (nf, na, ns), contiguous (see far_basis)
+        proj = (right @ cheb.reshape(nf, -1)).reshape(k * na, -1)
+        phi = (proj @ plan.far_products.T).reshape(k, na, -1)
+        mixed = np.tensordot(left, phi, axes=(1, 0))  # (2 n_m, na, n_t)
+        far_part = mixed[: plan.ms.size] + 1j * mixed[plan.ms.size :]  # (n_m, na, n_t)
+        integral += far_part.transpose(1, 0, 2)
+        # Beyond the grid: j_p j_q -> (−1)^{(p−q)/2}/(2 s²) on average, g − g∞ -> w C₁.
+        alt = np.where(np.arange(nf) % 2 == 0, 1.0, -1.0)
+        tail_sign = np.where(((orders[ti] - orders[tj]) // 2) % 2 == 0, 1.0, -1.0)
+        scale = (table.t1 * ka) ** 2 / (6 * far.s_end**3)
+        integral += scale[:, None, None] * (coef @ alt)[None, :, None] * tail_sign[None, None, :]
+        # Assemble M_ab = sign_ab I[n_a + n_b][p_a, p_b] and solve M c = e0 for every ka.
+        M = plan.sign * integral[:, plan.m_index, plan.t_index]
+        c = np.linalg.solve(M, np.broadcast_to(e0, (na, nb))[..., None])[..., 0]
+        out_n[pos] = 1 / c[:, 0]
+        coeffs[pos] = c
+    static = np.pi**2 * np.mean(table.ginf)
+    out_n[~pos] = static
+    coeffs[~pos] = e0 / static
+    if return_coeffs:
+        return out_n, coeffs, plan.basis
+    return out_n

@@ -1,0 +1,562 @@
+"""Dynamic contact stiffness of a rigid sphere on an anisotropic half-space (paper 1, Eqs. 5-29).
+
+A sphere pressed statically onto the half-space (anisotropic Hertz, contact radius a) gets a small
+oscillating force on top. For small amplitudes the oscillating pressure over the fixed contact has
+the flat-punch shape δf ∝ 1/√(1 − r̄²) (Eqs. 5-9), and its normal displacement (Eqs. 21-22) is
+
+    u_z(r̄, φ) = (2a δa/(π C44 R I₁)) N(r̄, φ),
+    N(r̄, φ) = ∫₀^{2π} dθ ∫₀^∞ ds g(s/(k_s a), θ) (sin s / s) cos(s r̄ cos(θ − φ)),
+
+g(κ, θ) the dimensionless dynamic kernel of :mod:`contactres.halfspace` and k_s = ω√(ρ/C44). The
+displacement is not uniform, so a displacement condition fixes which N the sphere feels:
+
+    R0 (Sung)      N(0)                     R1   N(1, φ = 0) (edge, along x = [100])
+    SA (Barkan)    [N(0) + N(1, 0)]/2       WA (Bycroft)  ∫₀¹ N(r̄, 0) r̄/√(1 − r̄²) dr̄ (Eq. 27)
+    TP (Tian)      two-parameter pressure α√(1 − r̄²) + β/√(1 − r̄²) with u(0) = u(1, 0)
+    WA2D           the WA average over the whole contact (all φ; an extension)
+
+and K_da = 4π² a C44/N_model (Eq. 28); DCSF = K_da/K_sa = N_st/N_model (Eq. 29), N_st the static
+N of the undamped constants, so DCSF -> 1 + iQ⁻¹ as k a -> 0.
+
+The wave number of the paper's figures is the longitudinal one, k_l a = ω a √(ρ/C33) (C33 of the
+surface frame; C11 for a cubic (001) face): ``wavenumber="longitudinal"`` (default) or
+``"shear"`` (k_s a). Damping: constants C (1 + i Q⁻¹) with Q⁻¹ = ``loss``. The default is the
+lossless solid, ``loss=0`` (the limit Q⁻¹ -> 0⁺, exact, by a contour above the real axis): Im DCSF
+is then the radiation damping alone. The paper's figures use Q⁻¹ = 0.02, which swamps it at
+small k a (Si(001), 1 MHz: Im K 28 000 times the lossless one for R = 10 nm, F = 10 nN; 2.3 times
+for R = 1 mm, F = 1 N): pass it only to reproduce them, or for a solid that has that loss.
+
+Which model? ``model="exact"`` (the rigid flat punch: uniform displacement under the sphere,
+Galerkin, :mod:`contactres.dynamic._exact`) is what the approximations aim at and costs about as
+much as one of them: use it. Against it (``contactres figures paper1``, paper1_model_ranking.csv;
+ν = 0.25, A = 0.25 ... 4, k_l a <= 1) the paper's approximations rank TP (0.2-5 %), WA ≈ WA2D
+(2-40 %), SA, R1, R0 (10-100 %); up to k_l a = 2 only TP stays within 10 % for A >= 1. The
+paper recommends WA because R0, SA and TP turn negative at high k a; the wiggles of WA (the
+maxima of Fig. 4) are not in the exact curve. See :mod:`contactres.dynamic._quadrature` for the
+numerics and their accuracy.
+
+Two traps of the approximations (measured, lossless and Q⁻¹ = 0.02 alike): R0 has negative
+damping, Im DCSF < 0, at high k a (k_l a >= 1.91 on Cu(001), >= 1.56 at A = 0.5, ν = 0.25; not
+for A >= 1 up to k_l a = 2), which no passive contact has. And R1, SA, WA and TP depend on the
+in-plane axis (the x axis of the surface frame, along which they take the edge point or the line
+average): turning it by 0-45° on Cu(001) changes WA by up to 1.2 % for k_l a <= 1 and 19 % at
+k_l a = 2 (R1 2.7 %/21 %, SA 0.9 %/32 %, TP 0.6 %/7 %); R0, WA2D and exact do not depend on it.
+
+Near incompressibility (contrast above :data:`~contactres.dynamic.MAX_STIFFNESS_CONTRAST`,
+isotropic ν > 0.4999) the kernels lose the stated accuracy to round-off: ValueError then.
+
+Curves of many k a values (more than :data:`INTERPOLATE_ABOVE` distinct ones) are interpolated
+by default between 33-257 direct values at Chebyshev points (1/DCSF, which is smooth), with the
+interpolation error measured and kept below rtol/10 (:mod:`contactres.dynamic._interpolation`;
+``interpolate=False`` evaluates every value).
+
+Most of the cost of a curve is the material's kernel table: :func:`prepare` builds it once, and
+every function here takes it as ``prepared=`` (same material, loss and rtol) to evaluate many
+curves without rebuilding it; otherwise each call prepares its own (nothing is cached).
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from ..errors import ContactresInputError
+from ..halfspace import shear_reference
+from ..materials import Material, require_material
+from ..validation import nonnegative
+from ._exact import exact_n, galerkin_plan, galerkin_size, pressure_basis
+from ._farfield import far_basis, far_grid
+from ._interpolation import MAX_INTERVALS as LARGEST
+from ._interpolation import chebyshev_values
+from ._models import ALL_MODELS, MODELS, WAVENUMBERS
+from ._quadrature import far_operator, functionals, point_values
+from ._table import KernelTable, prepare
+
+__all__ = [
+    "ALL_MODELS",
+    "INTERPOLATE_ABOVE",
+    "MODELS",
+    "WAVENUMBERS",
+    "contact_displacement",
+    "contact_pressure",
+    "dcsf",
+    "dcsf_models",
+    "dynamic_contact_stiffness",
+    "model_n",
+    "normalised_wavenumber",
+    "shear_ka",
+    "shear_wavenumber_ratio",
+    "wave_modulus",
+]
+
+# Largest k_s a × (largest slowness) accepted: the contour's weights grow like e^{0.3 x this}.
+_KA_MAX = 60.0
+# k a values evaluated together: ~0.6 MB of far-field basis each, ~40 MB at 64, for any call size.
+_CHUNK = 64
+#: Above this many distinct k a values a call interpolates (``interpolate=None``): the direct
+#: cost is ~0.7 ms per value, a Chebyshev curve 33-129 direct values whatever the call's size.
+INTERPOLATE_ABOVE = 128
+
+
+def shear_wavenumber_ratio(m: Material) -> float:
+    """k_s/k_l = √(C33/C44) of the surface frame (Re parts): k_s a = k_l a × this ratio."""
+    return math.sqrt(float(np.real(m.C[2, 2])) / shear_reference(m))
+
+
+def _check_model(model: str) -> str:
+    key = str(model).upper()
+    key = "exact" if key == "EXACT" else key
+    if key not in ALL_MODELS:
+        raise ContactresInputError(
+            f"model must be one of {', '.join(MODELS)}, exact; got {model!r}"
+        )
+    return key
+
+
+def wave_modulus(m: Material, wavenumber: str = "shear") -> float:
+    """The stiffness C of the wave number k = ω√(ρ/C) in the convention ``wavenumber``, Pa.
+
+    ``"shear"``: Re C44 of the surface frame (:func:`contactres.halfspace.shear_reference`,
+    k_s, paper 1, Eq. 21); ``"longitudinal"``: Re C33 of the surface frame (k_l, the wave number
+    of the paper's figures). The undamped constants: a loss does not change the wave number.
+    """
+    if wavenumber == "shear":
+        return shear_reference(m)
+    if wavenumber == "longitudinal":
+        return float(np.real(np.asarray(m.C)[2, 2]))
+    raise ContactresInputError(
+        f"wavenumber must be one of {', '.join(WAVENUMBERS)}, got {wavenumber!r}"
+    )
+
+
+def normalised_wavenumber(frequency, contact_radius, density, modulus):
+    """The normalised wave number k a = ω a √(ρ/C) of a contact (paper 1, Eq. 21), dimensionless.
+
+    The one place where the library turns a frequency and a contact radius into the k a of the
+    DCSF: :func:`dynamic_contact_stiffness`, the tangential stiffness, the polycrystal maps and
+    the command line all call it.
+
+    Parameters
+    ----------
+    frequency : float or array
+        Oscillation frequency f, Hz (ω = 2πf).
+    contact_radius : float or array
+        Contact radius a, m.
+    density : float
+        Mass density ρ, kg/m^3.
+    modulus : float or array
+        The stiffness C of the wave, Pa: Re C44 for k_s a, Re C33 for k_l a
+        (:func:`wave_modulus`); an array gives one value per point (a map's faces).
+
+    Returns
+    -------
+    ndarray
+        k a, the arguments broadcast.
+
+    Examples
+    --------
+    A wave speed √(C/ρ) of 1000 m/s, f = 1 MHz, a = 1 mm: k a = 2π f a/v = 2π.
+
+    >>> round(float(normalised_wavenumber(1e6, 1e-3, 1000.0, 1e9)), 12)
+    6.28318530718
+    """
+    # One order of the products for every caller, so a k a is the same number wherever made:
+    # the wave number k = 2πf√(ρ/C) first, then times a (the order of the dynamic normal and
+    # tangential stiffness before this function existed: their results, and the radiation loss
+    # refitted from them, stay the same to the bit).
+    k = 2 * np.pi * np.asarray(frequency) * np.sqrt(density / np.asarray(modulus))
+    return k * np.asarray(contact_radius)
+
+
+def shear_ka(m: Material, ka, wavenumber: str) -> np.ndarray:
+    """k_s a from ``ka`` given in the convention ``wavenumber`` ("shear" or "longitudinal")."""
+    require_material(m, lossless=True)
+    ka = np.asarray(nonnegative("ka (normalised wave number k a)", ka))
+    if wavenumber == "longitudinal":
+        return ka * shear_wavenumber_ratio(m)
+    if wavenumber == "shear":
+        return ka
+    raise ContactresInputError(
+        f"wavenumber must be one of {', '.join(WAVENUMBERS)}, got {wavenumber!r}"
+    )
+
+
+def _table(m: Material, ksa: np.ndarray, loss: float, rtol: float, prepared):
+    """The kernel table of ``m`` (``prepared``, checked to be made for ``m``, ``loss`` and
+    ``rtol``, or a new one), after checking that k_s a stays where its contour is accurate."""
+    if prepared is None:
+        table = prepare(m, loss, rtol)
+    elif isinstance(prepared, KernelTable):
+        table = prepared.check_for(m, loss, rtol)
+    else:
+        raise ContactresInputError(
+            f"prepared must be a kernel table from contactres.dynamic.prepare, "
+            f"got {type(prepared).__name__}"
+        )
+    if ksa.size and float(np.max(ksa)) * table.t1 > _KA_MAX:
+        raise ContactresInputError(
+            f"ka too large: k_s a = {float(np.max(ksa)):.4g} (k_s a x slowness {table.t1:.3g} "
+            f"must stay below {_KA_MAX:g}; the paper's range is k_l a <= 2)"
+        )
+    return table
+
+
+def _contact_points(rbar, phi, edge: bool):
+    """r̄ in [0, 1] (``edge``) or [0, 1) and finite φ, as float arrays."""
+    r = np.asarray(rbar, dtype=float)
+    below_top = r <= 1 if edge else r < 1
+    if not np.all(np.isfinite(r) & (r >= 0) & below_top):
+        where = "[0, 1]" if edge else "[0, 1) (the edge is singular)"
+        raise ContactresInputError(f"rbar (r/a) must lie in {where}, got {rbar!r}")
+    p = np.asarray(phi, dtype=float)
+    if not np.all(np.isfinite(p)):
+        raise ContactresInputError(f"phi must be finite (rad), got {phi!r}")
+    return r, p
+
+
+def model_n(f: dict, model: str) -> np.ndarray:
+    """N_model of a displacement condition, from the six functionals of N (paper 1, Eqs. 24-28).
+
+    R0: N(0) (Eq. 24); R1: N(1, 0) (Eq. 25); SA: their mean (Eq. 26); WA: the weighted average
+    along φ = 0 (Eq. 27); WA2D: the weighted average over the whole contact; TP: the pressure
+    α√(1 − r̄²) + β/√(1 − r̄²) of Tian et al. (2004; paper 1, Fig. 3) with u(0) = u(1, 0), i.e.
+    α/β = −(N_F(0) − N_F(1, 0))/(N_H(0) − N_H(1, 0)) and N_TP = (α N_H(0) + β N_F(0))/(α/3 + β).
+    K_da = 4π² a C44/N_model (Eq. 28).
+
+    R0 gives negative damping (Im DCSF < 0) at high k a (k_l a >= 1.91 on Cu(001), >= 1.56 at
+    A = 0.5). R1, SA, WA and TP use the direction φ = 0, so they depend on the in-plane x axis of
+    the surface frame: on Cu(001), turning it by up to 45° changes WA by 1.2 % (k_l a <= 1) and
+    19 % (k_l a = 2), R1 by 21 %, SA by 32 %, TP by 7 % at k_l a = 2. R0 and WA2D do not.
+
+    Parameters
+    ----------
+    f : dict
+        The functionals of :func:`contactres.dynamic._quadrature.functionals` (complex arrays).
+    model : str
+        One of :data:`MODELS`.
+
+    Returns
+    -------
+    ndarray
+        Complex N_model, shaped like the functionals.
+    """
+    if model == "R0":
+        return f["F0"]
+    if model == "R1":
+        return f["F1"]
+    if model == "SA":
+        return 0.5 * (f["F0"] + f["F1"])
+    if model == "WA":
+        return f["FW"]
+    if model == "WA2D":
+        return f["F2D"]
+    # TP: δp = α√(1 − ρ²) + β/√(1 − ρ²) with u(0) = u(1, 0); force ∝ α/3 + β (β = 1 here).
+    alpha = -(f["F0"] - f["F1"]) / (f["H0"] - f["H1"])
+    return (alpha * f["H0"] + f["F0"]) / (alpha / 3 + 1)
+
+
+def _direct(table, flat, names, rtol, chunk, span=None) -> dict[str, np.ndarray]:
+    """N of every model (the denominator of its DCSF, smooth in k a where the DCSF of SA or R1
+    can pass through a pole) at the k_s a values ``flat`` (1-D), point by point in chunks.
+
+    ``span`` = (smallest positive, largest) k_s a that sizes the discretisation (default: those
+    of ``flat``); calls with one span discretise alike, so their values fit one smooth curve.
+    """
+    approx = [n for n in names if n != "exact"]
+    n_out = {name: np.empty(flat.shape, dtype=complex) for name in names}
+    pos = flat[flat > 0]
+    if span is not None:
+        pos = np.append(pos, span)
+    # Shared by every chunk, built once per call (far-field grid and weights from the smallest k a,
+    # Galerkin bookkeeping and near θ grid from the largest): chunking does not change a result.
+    smax = float(np.max(pos, initial=0.0))
+    grid = far_grid(table, float(np.min(pos))) if pos.size else None
+    size = galerkin_size(smax, rtol)
+    # No threadpool_limits: process-wide, it would let threads sharing a table (test_prepared.py)
+    # change each other's last digits; one BLAS thread was no faster (7 models, 41 points).
+    far_op = far_operator(table, grid) if approx and grid is not None else None
+    plan = galerkin_plan(table, size, grid.s if grid else None) if "exact" in names else None
+    for lo in range(0, flat.size, chunk):
+        part = flat[lo : lo + chunk]
+        p = part[part > 0]
+        far = far_basis(table, p, grid) if p.size else None
+        if approx:
+            f = functionals(table, part, far=far, smax=smax, far_op=far_op)
+            for name in approx:
+                n_out[name][lo : lo + chunk] = model_n(f, name)
+        if plan is not None:
+            n_out["exact"][lo : lo + chunk] = exact_n(table, part, size, far=far, plan=plan)
+        del far  # the largest array of a chunk (~0.6 MB per k a value)
+    return n_out
+
+
+def dcsf_models(
+    m: Material,
+    ka,
+    models=ALL_MODELS,
+    loss: float = 0.0,
+    wavenumber: str = "longitudinal",
+    rtol: float = 1e-6,
+    prepared: KernelTable | None = None,
+    *,
+    chunk: int = _CHUNK,
+    interpolate: bool | None = None,
+) -> dict[str, np.ndarray]:
+    """DCSF = K_da/K_sa of several displacement models at once (they share all the work).
+
+    Parameters and returns as :func:`dcsf`, with ``models`` a sequence of model names; returns
+    ``{model: complex array shaped like ka}``. ``chunk`` and ``interpolate`` (keyword only) as
+    in :func:`dcsf`.
+    """
+    names = [_check_model(x) for x in ([models] if isinstance(models, str) else models)]
+    if not (isinstance(chunk, int | np.integer) and chunk >= 1):
+        raise ContactresInputError(f"chunk must be a positive integer, got {chunk!r}")
+    if interpolate not in (None, True, False):
+        raise ContactresInputError(f"interpolate must be None, True or False, got {interpolate!r}")
+    ksa = shear_ka(m, ka, wavenumber)
+    table = _table(m, ksa, loss, rtol, prepared)
+    flat = ksa.ravel()
+    uniq, inverse = np.unique(flat, return_inverse=True)
+    if interpolate is None:
+        interpolate = uniq.size > INTERPOLATE_ABOVE
+    if interpolate and uniq.size > 2 and uniq[-1] > 0:
+        # N is interpolated, not the DCSF (N_st/N of SA, R1 has poles), to a tenth of rtol; one
+        # discretisation for every node set (sized by the finest grid's smallest node).
+        low = uniq[0] if uniq[0] > 0 else uniq[-1] * (1 - math.cos(math.pi / LARGEST))
+        span = (low / 2, uniq[-1])
+
+        def direct(x):
+            return _direct(table, x, names, rtol, chunk, span)
+
+        found = chebyshev_values(direct, uniq, rtol / 10, largest=LARGEST)
+        out = found[0] if found is not None else _direct(table, uniq, names, rtol, chunk)
+    else:
+        out = _direct(table, uniq, names, rtol, chunk)
+    return {k: (table.n_static / v)[inverse].reshape(ksa.shape) for k, v in out.items()}
+
+
+def dcsf(
+    m: Material,
+    ka,
+    model: str = "exact",
+    loss: float = 0.0,
+    wavenumber: str = "longitudinal",
+    rtol: float = 1e-6,
+    prepared: KernelTable | None = None,
+    *,
+    chunk: int = _CHUNK,
+    interpolate: bool | None = None,
+):
+    """Dynamic-contact-stiffness factor DCSF = K_da/K_sa (paper 1, Eq. 29), complex.
+
+    Parameters
+    ----------
+    m : Material
+        Undamped elastic constants in the surface frame (z = inward normal; for a crystal face
+        use ``Material.crystal("Cu").rotated((0, 0, 1))``). Density is not needed.
+    ka : float or array
+        Normalised wave number k a >= 0 (a: contact radius), in the convention ``wavenumber``.
+    model : str
+        Displacement condition: "exact" (default): the rigid flat punch (uniform displacement;
+        Galerkin, see :mod:`contactres.dynamic._exact`), the reference the others approximate; or
+        "R0", "R1", "SA", "WA", "TP" (paper 1, Eqs. 24-28), "WA2D". Of these, R0 has negative
+        damping near k_l a = 1.6-2 and R1, SA, WA, TP depend on the in-plane x axis (module
+        docstring; :func:`model_n`).
+    loss : float
+        Q⁻¹ in C (1 + i Q⁻¹), in [0, 1). Default 0: the lossless solid (only radiation damping); the
+        paper's figures use 0.02.
+    wavenumber : str
+        "longitudinal": k = ω√(ρ/C33) (the paper's k_l a, default) or "shear": k = ω√(ρ/C44).
+    rtol : float
+        Target relative accuracy (default 1e-6; met for k_l a <= 2 and A in [0.2, 10], see the
+        convergence tests). rtol >= 1e-4 selects a coarser, faster resolution.
+    prepared : KernelTable, optional
+        The kernel table from :func:`prepare` for this material, ``loss`` and ``rtol`` (a
+        ValueError if it was prepared for others); built for this call when not given.
+    chunk : int
+        Keyword only: k a values evaluated together (default 64; memory ~0.6 MB per value, not
+        growing with the size of ``ka``); the result does not depend on it (to ~1e-15).
+    interpolate : bool or None
+        Keyword only. True: evaluate directly at 33-257 Chebyshev points of [min, max] of ``ka`` and
+        interpolate 1/DCSF (smooth; the DCSF of SA and R1 can have poles), refining until the
+        interpolation error, measured at the next refinement's points, is below rtol/10 of the
+        largest ``|1/DCSF|`` on the curve (if 257 points do not reach it, every value is evaluated
+        directly). False: every distinct value directly. None (default): interpolate above
+        :data:`INTERPOLATE_ABOVE` distinct values, so a curve or map of any size costs about as much
+        as ~100 points.
+
+    Returns
+    -------
+    complex or ndarray of complex
+        K_da/K_sa, K_sa the static stiffness of the undamped constants (DCSF(0) = 1 + i Q⁻¹).
+        Real part: stiffness; imaginary part: radiation (and material) damping.
+
+    Raises
+    ------
+    ValueError
+        For bad arguments, and for a nearly incompressible solid (stiffness contrast beyond
+        :data:`~contactres.dynamic.MAX_STIFFNESS_CONTRAST`, isotropic ν > 0.4999), where
+        the stated accuracy cannot be met.
+
+    Examples
+    --------
+    >>> d = dcsf(Material.isotropic(70e9, 1 / 3, density=2500.0), 0.5, wavenumber="shear")
+    >>> bool(abs(d - (0.9689 + 0.5j * 0.7931)) < 1e-4)  # rigid disk, (k, c) at a0 = 0.5
+    True
+    """
+    key = _check_model(model)
+    out = dcsf_models(
+        m,
+        ka,
+        (key,),
+        loss=loss,
+        wavenumber=wavenumber,
+        rtol=rtol,
+        prepared=prepared,
+        chunk=chunk,
+        interpolate=interpolate,
+    )[key]
+    return complex(out) if out.ndim == 0 else out
+
+
+def dynamic_contact_stiffness(
+    m: Material,
+    radius,
+    force,
+    frequency,
+    model: str = "exact",
+    loss: float = 0.0,
+    rtol: float = 1e-6,
+    prepared: KernelTable | None = None,
+):
+    """Dynamic contact stiffness K_da = K_sa × DCSF of a rigid sphere on ``m``, N/m (complex).
+
+    Parameters
+    ----------
+    m : Material
+        Undamped constants in the surface frame, with ``density`` (kg/m^3).
+    radius : float or array
+        Sphere radius R, m.
+    force : float or array
+        Static normal force F, N (a from anisotropic Hertz, :func:`contactres.sphere_contact`).
+    frequency : float or array
+        Oscillation frequency f, Hz (ω = 2πf). ``radius``, ``force`` and ``frequency`` broadcast.
+    model, loss, rtol, prepared
+        As in :func:`dcsf` (defaults: the exact model, a lossless solid).
+
+    Returns
+    -------
+    complex or ndarray of complex
+        K_da in N/m; its real part is the contact stiffness, ω⁻¹ Im K_da the damping (N s/m).
+
+    Examples
+    --------
+    >>> from contactres import sphere_contact
+    >>> si = Material.crystal("Si")  # (001); R = 50 nm, F = 1 µN, f = 1 MHz: k a ≈ 1e-5
+    >>> k = dynamic_contact_stiffness(si, 50e-9, 1e-6, 1e6)
+    >>> bool(abs(k.real / sphere_contact(si, 50e-9, 1e-6).stiffness - 1) < 1e-9), k.imag > 0
+    (True, True)
+    """
+    from ..normal.anisotropic import sphere_contact
+
+    density = require_material(m).density
+    if density is None:
+        raise ContactresInputError("dynamic_contact_stiffness needs the material density (kg/m^3)")
+    f = np.asarray(nonnegative("frequency", frequency, "Hz"))
+    contact = sphere_contact(m, radius, force)
+    a = np.asarray(contact.contact_radius, dtype=float)
+    ksa = normalised_wavenumber(f, a, m.density, shear_reference(m))
+    ksa, k_sa = np.broadcast_arrays(ksa, np.asarray(contact.stiffness, dtype=float))
+    out = k_sa * dcsf(
+        m, ksa, model=model, loss=loss, wavenumber="shear", rtol=rtol, prepared=prepared
+    )
+    out = np.asarray(out)
+    return complex(out) if out.ndim == 0 else out
+
+
+def contact_displacement(
+    m: Material,
+    ka,
+    rbar,
+    phi=0.0,
+    shape: str = "flat",
+    loss: float = 0.0,
+    wavenumber: str = "longitudinal",
+    rtol: float = 1e-6,
+    prepared: KernelTable | None = None,
+):
+    """The displacement function N(r̄, φ; k a) under the oscillating pressure (paper 1, Eq. 22).
+
+    u_z = (2a δa/(π C44 R I₁)) N. Statically N is uniform over the contact (N_st); dynamically it
+    is not (paper 1, Fig. 2: ``|N(r̄)|``/``|N(0)|``).
+
+    Parameters
+    ----------
+    m, loss, wavenumber, rtol, prepared
+        As in :func:`dcsf`.
+    ka : float or array
+        Normalised wave number(s).
+    rbar : float or array
+        r/a, in [0, 1] (inside the contact).
+    phi : float or array
+        Polar angle from the surface-frame x axis, rad. ``ka``, ``rbar`` and ``phi`` broadcast.
+    shape : str
+        "flat": the flat-punch pressure 1/√(1 − r̄²) (the paper's δf); "hertz": √(1 − r̄²)
+        (the second pressure of the TP model).
+
+    Returns
+    -------
+    complex ndarray (broadcast shape), dimensionless.
+    """
+    if shape not in ("flat", "hertz"):
+        raise ContactresInputError(f"shape must be 'flat' or 'hertz', got {shape!r}")
+    ksa = shear_ka(m, ka, wavenumber)
+    r, p = _contact_points(rbar, phi, edge=True)
+    ksa, r, p = np.broadcast_arrays(ksa, r, p)
+    table = _table(m, ksa, loss, rtol, prepared)
+    out = np.empty(ksa.shape, dtype=complex)
+    flat_k, flat_r, flat_p = ksa.ravel(), r.ravel(), p.ravel()
+    res = out.reshape(-1)
+    for k in np.unique(flat_k):
+        sel = flat_k == k
+        res[sel] = point_values(table, float(k), flat_r[sel], flat_p[sel], shape)
+    return out
+
+
+def contact_pressure(
+    m: Material,
+    ka,
+    rbar,
+    phi=0.0,
+    loss: float = 0.0,
+    wavenumber: str = "longitudinal",
+    rtol: float = 1e-6,
+    prepared: KernelTable | None = None,
+):
+    """Oscillating pressure of the exact solution (rigid flat punch), over its mean δP/(π a²).
+
+    The converged Galerkin pressure of model "exact" (:mod:`contactres.dynamic._exact`). Static
+    limit: the flat-punch shape 1/(2√(1 − r̄²)). Complex (phase relative to the displacement).
+
+    Parameters
+    ----------
+    m, loss, wavenumber, rtol, prepared
+        As in :func:`dcsf`.
+    ka : float
+        Normalised wave number (one value).
+    rbar, phi : float or array
+        Points r/a in [0, 1) and polar angle (rad, from the surface x axis); they broadcast.
+    """
+    ksa = shear_ka(m, ka, wavenumber)
+    if ksa.ndim != 0:
+        raise ContactresInputError("contact_pressure takes one ka at a time")
+    r, p = np.broadcast_arrays(*_contact_points(rbar, phi, edge=False))
+    table = _table(m, ksa, loss, rtol, prepared)
+    size = galerkin_size(float(ksa), rtol, pressure=True)
+    _, c, basis = exact_n(table, np.atleast_1d(ksa), size, return_coeffs=True)
+    c = c[0]
+    out = np.zeros(r.shape, dtype=complex)
+    for coef, (n, k) in zip(c, basis, strict=True):
+        out += coef * pressure_basis(n, k, r) * np.exp(1j * n * p)
+    return out / (2 * c[0])

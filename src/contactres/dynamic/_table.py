@@ -1,0 +1,480 @@
+"""The prepared kernel table of a material: g(κ, θ) − g∞(θ) on the nodes every frequency reuses.
+
+The displacement function N(r̄, φ) of paper 1, Eq. 22 integrates the dimensionless kernel
+g(s/(k_s a), θ) over s. With s = κ·(k_s a) one table of g in κ serves every frequency and every
+displacement model of one material and loss; :func:`prepare` builds it, and the caller holds it
+and passes it on (``prepared=``) to evaluate many curves without rebuilding it. The table is an
+immutable object of numpy arrays; it pickles, so a process pool or a dask worker can receive it.
+
+Nodes (all exact rearrangements; their number is set by :class:`Resolution`):
+
+* Near field 0 < κ < T₁ (T₁ beyond every bulk and Rayleigh slowness): a Gauss-Legendre contour in
+  the upper half κ plane, where g is analytic (the branch points and the Rayleigh near-pole lie
+  on or below the real axis), so ``loss=0`` (Q⁻¹ -> 0⁺) works as well as Q⁻¹ = 0.02. A uniform
+  loss C(1 + iQ⁻¹) is exactly a rescaling of the wave number: g_lossy(κ) = g_elastic(κ √(1 +
+  iQ⁻¹))/(1 + iQ⁻¹), so only the elastic kernel is evaluated.
+* A smooth partition of unity χ(κ) (:func:`handover`) hands the real axis over from the near field
+  (Gauss-Legendre in κ on [T₁, 2T₁]) to the far field κ > T₁, where g − g∞ is tabulated as a
+  Chebyshev series in w = (T₁/κ)², split into the angular harmonics e^{2imθ} (only cos 4mθ on a
+  cubic (001) face).
+* θ on [0, π) (g has period π) with an adaptive number of nodes: doubled until the angular
+  harmonics of g have decayed (strong anisotropy needs more: A = 0.2 takes 128 nodes).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, fields, replace
+
+import numpy as np
+from scipy import special
+
+from ..errors import ContactresInputError
+from ..halfspace import dynamic_kernel, shear_reference, static_kernel
+from ..materials import Material, require_material, voigt_to_tensor
+from ..numerics import gauss_legendre
+
+__all__ = [
+    "MAX_ISOTROPIC_POISSON",
+    "MAX_STIFFNESS_CONTRAST",
+    "KernelTable",
+    "Resolution",
+    "check_contrast",
+    "check_loss",
+    "handover",
+    "kernel_table",
+    "max_slowness",
+    "prepare",
+    "resolution_for",
+    "wavenumber_nodes",
+]
+
+# T1 = _T1_FACTOR x the largest in-plane bulk slowness (units of 1/c_s); the Rayleigh slowness
+# is below 1/0.69 of it for any isotropic Poisson ratio, so T1 clears every singularity.
+_T1_FACTOR = 1.75
+# Height of the near-field contour over the real κ axis, relative to the largest slowness.
+_CONTOUR_HEIGHT = 0.3
+# Width parameter of the erfc hand-over on [T1, 2 T1]: χ(T1) = 1 - 1e-17, χ(2 T1) = 1e-17.
+_CHI_STEPS = 12.0
+# Far-field harmonics kept: those whose Chebyshev coefficients reach this fraction of the
+# largest (|J_n| <= 1, so a dropped one moves N by less than ~1e-11 relative).
+_FAR_HARMONIC_TOL = 1e-11
+# Upper bound of the adaptive number of θ nodes on [0, π).
+_N_THETA_MAX = 1024
+
+#: Largest stiffness contrast (λ_max/λ_min of the Kelvin stiffness,
+#: :func:`contactres.normal.anisotropic.stiffness_contrast`; isotropic (1 + ν)/(1 − 2ν) = 3K/2G)
+#: accepted by the DCSF. Near incompressibility the general kernels of
+#: :mod:`contactres.halfspace` lose digits to round-off (~ε × contrast²). Measured for the
+#: isotropic exact model, lossless, k_s a = 0.01-2, against the independent Fredholm solution of
+#: tests/dynamic/test_rigid_disk_isotropic.py: max. error 5e-8 up to ν = 0.49998 (as at
+#: ν = 0.45), 8.4e-7 at ν = 0.499984 (contrast 4.7e4), 1.4e-6 at 0.499986, 3e-6 at 0.49999,
+#: 7e-4 at 0.499999 and garbage (negative damping) at 0.4999999. The limit keeps a factor 6 in
+#: contrast from the first failure (the error there jumps with round-off). A candidate for
+#: :mod:`contactres.units`.
+MAX_STIFFNESS_CONTRAST = 7500.0
+#: The isotropic Poisson ratio at that contrast: (1 + ν)/(1 − 2ν) = 7499.5 at ν = 0.4999.
+MAX_ISOTROPIC_POISSON = 0.4999
+
+
+# ----------------------------------------------------------------------------------- resolution
+@dataclass(frozen=True)
+class Resolution:
+    """Discretisation of the N(r̄, φ) integrals; :meth:`doubled` refines every one of them.
+
+    Attributes
+    ----------
+    n_theta : θ nodes of the kernel table on [0, π) (period of g), before adaptive doubling
+    n_contour : Gauss-Legendre nodes on the complex near-field contour 0 -> T₁
+    n_segment : Gauss-Legendre nodes on the real hand-over segment [T₁, 2T₁]
+    n_fit : Chebyshev nodes of the far field in w = (T₁/κ)²
+    s_ratio : ratio of the geometric far-field s panels (below s = 8)
+    s_panel : width of the uniform far-field s panels on [8, s_coarse]
+    s_far : end of the far-field s grid; beyond it the leading asymptotic term (~ s_far^-2.5) is
+        added in closed form and the rest (~ s_far^-3.5) neglected
+    n_gauss : Gauss-Legendre nodes per far-field s panel below s_coarse
+    s_coarse : start of the wide far-field s panels (there only the oscillation, whose frequency
+        is <= 2 in s, and the hand-over of the larger k a, of width >= s_coarse/18, are resolved)
+    s_panel_coarse : width of the far-field s panels above s_coarse
+    n_gauss_coarse : Gauss-Legendre nodes per far-field s panel above s_coarse
+    theta_tol : n_theta is doubled until the angular harmonics of g in the upper half of the
+        resolved band are below theta_tol times the axisymmetric part (the functionals use only
+        the low harmonics; measured for k_l a <= 2: 64 nodes with a tail of 5e-5 (A = 0.2) move
+        the DCSF by 2e-12, 32 nodes with 5e-4 (A = 0.25) by 3e-7, with 1.2e-3 (A = 0.2) by 5e-6)
+
+    The wide panels start at s_coarse and have edges at s_coarse + j s_panel_coarse; s = 120,
+    where the WA weights of the non-axisymmetric harmonics stop
+    (:func:`~contactres.dynamic._farfield.far_weights`), is one of them (also when doubled).
+
+    The defaults are the accuracy rtol = 1e-6 with a margin of 10 or more: against every
+    resolution doubled (tests and benchmarks/bench_dcsf.py, k_l a <= 2, A = 0.25-10, ν =
+    0.25-0.42, Q⁻¹ = 0 and 0.02) the largest relative deviation of the seven models is 4e-8
+    (SA near its zero at A = 0.25; the far-field end s_far), most are 1e-9-1e-11; at A = 0.2,
+    ν = 0.45 TP reaches 9e-7 (no margin left; found by review). Measured one
+    at a time, n_contour = 36, n_segment = 24, s_panel = 4 or s_ratio = 1.5 move it to 1e-7-4e-7;
+    n_fit = 8, 64 θ nodes, wide panels from s = 16 or with 2 nodes per unit of s do not move it
+    beyond 1e-8.
+    """
+
+    n_theta: int = 32
+    n_contour: int = 48
+    n_segment: int = 32
+    n_fit: int = 10
+    s_ratio: float = 1.25
+    s_panel: float = 2.0
+    s_far: float = 600.0
+    n_gauss: int = 12
+    theta_tol: float = 3e-5
+    s_coarse: float = 32.0
+    s_panel_coarse: float = 8.0
+    n_gauss_coarse: int = 20
+
+    def doubled(self) -> Resolution:
+        """Every resolution doubled (the convergence check of the tests)."""
+        return replace(
+            self,
+            n_theta=2 * self.n_theta,
+            n_contour=2 * self.n_contour,
+            n_segment=2 * self.n_segment,
+            n_fit=2 * self.n_fit,
+            s_ratio=math.sqrt(self.s_ratio),
+            s_panel=self.s_panel / 2,
+            s_far=2 * self.s_far,
+            n_gauss=2 * self.n_gauss,
+            theta_tol=self.theta_tol * 1e-2,
+            s_coarse=2 * self.s_coarse,
+            s_panel_coarse=self.s_panel_coarse / 2,
+            n_gauss_coarse=2 * self.n_gauss_coarse,
+        )
+
+
+def resolution_for(rtol: float) -> Resolution:
+    """The :class:`Resolution` that reaches relative accuracy ``rtol`` of the DCSF.
+
+    Measured (tests and benchmarks/bench_dcsf.py, k_l a <= 2, A in [0.2, 10], ν up to 0.45,
+    Q⁻¹ = 0 and 0.02): the default (rtol in (1e-8, 1e-4)) moves by < 1e-7 when every resolution
+    is doubled (at most 7e-8, ~1e-9 typically), except at A = 0.2, ν = 0.45, where TP moves by
+    up to 9e-7 (the far-field end s_far; so before this grid too); rtol >= 1e-4 takes a coarser
+    grid (< 1e-5, at most 7e-6, but TP 2.3e-4 at A = 0.2, ν = 0.45); rtol <= 1e-8 doubles
+    everything.
+
+    Parameters
+    ----------
+    rtol : float
+        Target relative accuracy of the DCSF, in [1e-10, 1).
+    """
+    r = float(rtol)
+    if not (np.isfinite(r) and 1e-10 <= r < 1):
+        raise ContactresInputError(f"rtol must lie in [1e-10, 1), got {rtol!r}")
+    if r >= 1e-4:
+        return Resolution(
+            n_contour=32,
+            n_segment=24,
+            n_fit=8,
+            s_far=150.0,
+            n_gauss=10,
+            theta_tol=1e-4,
+            n_gauss_coarse=16,
+        )
+    if r <= 1e-8:
+        return Resolution().doubled()
+    return Resolution()
+
+
+def check_contrast(m: Material) -> float:
+    """The stiffness contrast of ``m``, after refusing one beyond :data:`MAX_STIFFNESS_CONTRAST`
+    (a nearly incompressible solid, where the DCSF would miss its stated accuracy 1e-6)."""
+    from ..normal.anisotropic import contrast_poisson, stiffness_contrast
+
+    contrast = stiffness_contrast(m)
+    if not contrast <= MAX_STIFFNESS_CONTRAST:
+        nu = contrast_poisson(contrast)
+        raise ContactresInputError(
+            f"the solid is too nearly incompressible for the dynamic kernels: stiffness "
+            f"contrast (bulk/shear) {contrast:.4g}, as an isotropic solid with nu = {nu:.7g}; "
+            f"the DCSF keeps its accuracy 1e-6 up to {MAX_STIFFNESS_CONTRAST:g} "
+            f"(isotropic nu <= {MAX_ISOTROPIC_POISSON}) and is not computed beyond"
+        )
+    return contrast
+
+
+def check_loss(loss) -> float:
+    """Q⁻¹ as a float after checking that it lies in [0, 1) (0: the lossless limit)."""
+    q = float(loss)
+    if not (np.isfinite(q) and 0 <= q < 1):
+        raise ContactresInputError(f"loss (Q^-1) must lie in [0, 1), got {loss!r}")
+    return q
+
+
+def handover(kappa, t1: float):
+    """Smooth hand-over χ(κ) from the near to the far field: 1 below T₁, 0 above 2T₁ (to 1e-17),
+    erfc-shaped between (of Re κ). ``kappa`` and ``t1`` are dimensionless (units of 1/k_s)."""
+    width = t1 / _CHI_STEPS
+    return 0.5 * special.erfc((np.real(kappa) - 1.5 * t1) / width)
+
+
+# ----------------------------------------------------------------------------------- the table
+@dataclass(frozen=True, eq=False)
+class KernelTable:
+    """g(κ, θ) − g∞(θ) of one material and loss on the nodes every frequency and model reuse.
+
+    Made by :func:`prepare` (or :func:`kernel_table` for an explicit :class:`Resolution`);
+    immutable (its arrays are read-only, also after unpickling). Dimensionless: κ in units of
+    the shear wave number k_s, g = C44 η Ĝ_dyn (paper 1, Eq. 21); θ on [0, π) (g has period π).
+
+    Attributes
+    ----------
+    constants : (6, 6) Voigt stiffness (Pa, surface frame) the table was prepared for
+    loss : Q⁻¹ it was prepared for
+    rtol : the accuracy it was prepared for (None when built for an explicit Resolution)
+    resolution : the discretisation
+    t1 : T₁, start of the far field (and end of the near-field contour)
+    theta : (nθ,) θ nodes on [0, π)
+    ginf : (nθ,) lossy static kernel g∞(θ) = C44 Ĝ(θ)/(1 + iQ⁻¹)
+    n_static : N_st of the undamped constants, (π/2) ∫₀^{2π} g∞ dθ (paper 1, Eq. 29)
+    near_kappa : (nk,) complex near-field nodes (contour, then the real segment [T₁, 2T₁])
+    near_weight : (nk,) quadrature weights dκ × χ(κ)
+    near_values : (nk, nθ) g − g∞ at the near nodes
+    far_harmonics : (n_m,) indices m of the harmonics e^{2imθ} kept in the far field
+    far_coeffs : (n_m, n_fit) Chebyshev coefficients of (g − g∞)/w per harmonic
+    fourfold : g(θ + π/2) = g(θ) (only harmonics e^{4ijθ})
+    """
+
+    constants: np.ndarray
+    loss: float
+    rtol: float | None
+    resolution: Resolution
+    t1: float
+    theta: np.ndarray
+    ginf: np.ndarray
+    n_static: float
+    near_kappa: np.ndarray
+    near_weight: np.ndarray
+    near_values: np.ndarray
+    far_harmonics: np.ndarray
+    far_coeffs: np.ndarray
+    fourfold: bool
+
+    def __post_init__(self) -> None:
+        for f in fields(self):
+            value = getattr(self, f.name)
+            if isinstance(value, np.ndarray):
+                value.setflags(write=False)
+
+    def __reduce__(self):
+        # Unpickling goes through __init__, so the arrays come back read-only.
+        return (type(self), tuple(getattr(self, f.name) for f in fields(self)))
+
+    def check_for(self, m: Material, loss: float, rtol: float) -> KernelTable:
+        """``self`` if it was prepared for the constants of ``m``, ``loss`` and ``rtol``; a
+        ValueError saying what differs otherwise."""
+        wrong = []
+        if not np.array_equal(self.constants, np.asarray(m.C)):
+            wrong.append("another material (elastic constants)")
+        if self.loss != check_loss(loss):
+            wrong.append(f"loss={self.loss!r}, not {loss!r}")
+        if self.rtol is None:
+            wrong.append(f"an explicit Resolution, not rtol={rtol!r}")
+        elif self.rtol != float(rtol):
+            wrong.append(f"rtol={self.rtol!r}, not {rtol!r}")
+        if wrong:
+            raise ContactresInputError(
+                "the prepared kernel table was made for "
+                + "; ".join(wrong)
+                + ": pass the same material, loss and rtol, or prepare(m, loss, rtol) again"
+            )
+        return self
+
+
+def prepare(m: Material, loss: float = 0.0, rtol: float = 1e-6) -> KernelTable:
+    """The kernel table of ``m`` with loss Q⁻¹ at accuracy ``rtol``, to pass on as ``prepared=``.
+
+    Building it is most of the cost of a DCSF curve. Every function of
+    :mod:`contactres.dynamic` (``dcsf``, ``dcsf_models``, ``dynamic_contact_stiffness``,
+    ``contact_displacement``, ``contact_pressure``) takes it as ``prepared=`` for the same
+    material, loss and rtol (and checks that they are the same). Nothing is cached: the caller
+    holds the table.
+
+    Parameters
+    ----------
+    m : Material
+        Undamped elastic constants in the surface frame (z = inward normal), Pa.
+    loss : float
+        Q⁻¹ of the constants C (1 + i Q⁻¹), in [0, 1) (default 0: the lossless solid; 0.02
+        in paper 1's figures).
+    rtol : float
+        Target relative accuracy of the DCSF (as in :func:`~contactres.dynamic.dcsf`).
+
+    Returns
+    -------
+    KernelTable
+        Immutable, picklable, safe to share between threads.
+
+    Raises
+    ------
+    ValueError
+        For a nearly incompressible solid (stiffness contrast beyond
+        :data:`MAX_STIFFNESS_CONTRAST`, isotropic ν > 0.4999), where the kernels lose the
+        stated accuracy to round-off.
+    """
+    table = kernel_table(m, loss, resolution_for(rtol))
+    return replace(table, rtol=float(rtol))
+
+
+def kernel_table(m: Material, loss: float = 0.0, resolution: Resolution | None = None):
+    """The :class:`KernelTable` of the undamped material ``m`` (surface frame) with loss Q⁻¹
+    for an explicit :class:`Resolution` (default: ``Resolution()``). Not cached."""
+    m = require_material(m, lossless=True)
+    q = check_loss(loss)
+    check_contrast(m)
+    return _build_table(m, q, resolution or Resolution())
+
+
+def _elastic_kernel(m: Material, kappa, theta, loss: float):
+    """g of the lossy solid C(1 + iQ⁻¹) from the elastic one: g(κ√(1 + iQ⁻¹))/(1 + iQ⁻¹)."""
+    f = 1 + 1j * loss
+    k = np.asarray(kappa, dtype=complex) * np.sqrt(f)
+    return dynamic_kernel(m, k, theta) / f
+
+
+def max_slowness(m: Material) -> float:
+    """Largest slowness of bulk waves travelling along the surface, in units of 1/c_s."""
+    c = voigt_to_tensor(np.asarray(m.C).real) / shear_reference(m)
+    th = np.linspace(0.0, np.pi, 181)
+    n = np.stack([np.cos(th), np.sin(th), np.zeros_like(th)], axis=-1)
+    gamma = np.einsum("ijkl,tj,tl->tik", c, n, n)
+    lam = np.linalg.eigvalsh(gamma)[:, 0]
+    return float(np.max(1.0 / np.sqrt(lam)))
+
+
+def _symmetry(m: Material) -> tuple[bool, bool]:
+    """(mirror, fourfold): g(−θ) = g(θ) (mirror plane y -> −y) and g(θ + π/2) = g(θ) (4-fold
+    axis along z) of the surface-frame stiffness; a cubic (001) face has both."""
+    c = voigt_to_tensor(np.asarray(m.C).real)
+    scale = np.max(np.abs(c))
+
+    def same(perm, sign):
+        # The rotation R with rows sign_i e_perm(i) (a signed permutation): c'_ijkl =
+        # sign_i sign_j sign_k sign_l c_{perm(i) perm(j) perm(k) perm(l)}, exactly what
+        # rotate_tensor gives, without its einsum (whose path search costs ~0.7 ms).
+        p = np.asarray(perm)
+        sg = np.asarray(sign, dtype=float)
+        cr = c[np.ix_(p, p, p, p)] * np.einsum("i,j,k,l->ijkl", sg, sg, sg, sg)
+        return bool(np.max(np.abs(cr - c)) <= 1e-12 * scale)
+
+    # Mirror y -> −y: R = diag(1, −1, 1); 4-fold about z: R = [[0, −1, 0], [1, 0, 0], [0, 0, 1]].
+    return same((0, 1, 2), (1, -1, 1)), same((1, 0, 2), (-1, 1, 1))
+
+
+def _theta_base(nth: int, symmetry) -> np.ndarray:
+    """For each θ_j = πj/nth the index of the node with the same g by ``symmetry``."""
+    mirror, fourfold = symmetry
+    j = np.arange(nth)
+    base = j % (nth // 2) if fourfold else j
+    if mirror:
+        period = nth // 2 if fourfold else nth
+        base = np.minimum(base, period - base)
+    return base
+
+
+def _theta_values(m, kappa, q, static_fn, nth, symmetry, old=None):
+    """(g − g∞ on κ × (θ_j = πj/nth), the undamped static kernel g∞₀ on the θ_j): reuses ``old``
+    (the pair at nth/2) and the symmetry. g∞ = g∞₀/(1 + iQ⁻¹); ``static_fn(j, nth)`` gives g∞₀
+    at the θ_j."""
+    base = _theta_base(nth, symmetry)
+    need = np.unique(base)
+    values = np.empty((kappa.size, nth), dtype=complex)
+    static = np.empty(nth)
+    if old is not None:
+        have = need[need % 2 == 0]
+        values[:, have] = old[0][:, have // 2]
+        static[have] = old[1][have // 2]
+        need = need[need % 2 == 1]
+    theta = np.pi * need / nth
+    static[need] = static_fn(need, nth)
+    values[:, need] = _elastic_kernel(m, kappa[:, None], theta[None, :], q) - static[need] / (
+        1 + 1j * q
+    )
+    return values[:, base], static[base]
+
+
+def wavenumber_nodes(m: Material, res: Resolution):
+    """The κ nodes every kernel table of ``m`` uses (units of k_s): T₁, the near-field nodes
+    κ(t) = t + i h sin(π t/T₁) on [0, T₁] then the real segment [T₁, 2T₁] with their weights
+    dκ χ(κ), and the Chebyshev nodes x of the far field in w = (T₁/κ)², x = 2w − 1."""
+    kb = max_slowness(m)
+    t1 = _T1_FACTOR * kb
+    height = _CONTOUR_HEIGHT * kb
+    t, wt = gauss_legendre(0.0, t1, res.n_contour)
+    kc = t + 1j * height * np.sin(np.pi * t / t1)
+    wc = wt * (1 + 1j * height * np.pi / t1 * np.cos(np.pi * t / t1))
+    ks, ws = gauss_legendre(t1, 2 * t1, res.n_segment)
+    near_kappa = np.concatenate([kc, ks.astype(complex)])
+    near_weight = np.concatenate([wc, ws * handover(ks, t1)])
+    x = np.cos(np.pi * (np.arange(res.n_fit) + 0.5) / res.n_fit)
+    return t1, near_kappa, near_weight, x
+
+
+def _build_table(m: Material, q: float, res: Resolution) -> KernelTable:
+    c44 = shear_reference(m)
+    t1, near_kappa, near_weight, x = wavenumber_nodes(m, res)
+    # Far field: (g − g∞)/w as a Chebyshev series in x = 2w − 1, w = (T1/κ)² in (0, 1).
+    nf = res.n_fit
+    w = 0.5 * (x + 1)
+    kappa = np.concatenate([near_kappa, t1 / np.sqrt(w)])
+
+    symmetry = _symmetry(m)
+    # The static kernel of the first three doublings in one call: its cost is mostly per call.
+    fine = min(_N_THETA_MAX, 8 * res.n_theta)
+    fine_base = _theta_base(fine, symmetry)
+    fine_need = np.unique(fine_base)
+    static_fine = np.empty(fine)
+    static_fine[fine_need] = c44 * static_kernel(m, np.pi * fine_need / fine)
+    static_fine = static_fine[fine_base]
+
+    def static_fn(j, nth):
+        if fine % nth == 0:
+            return static_fine[j * (fine // nth)]
+        return c44 * static_kernel(m, np.pi * j / nth)
+
+    nth = res.n_theta
+    both = None
+    while True:
+        # The static kernel comes along on the same θ nodes (and symmetry), so that it is not
+        # evaluated again on every node at the end.
+        both = _theta_values(m, kappa, q, static_fn, nth, symmetry, both)
+        values = both[0]
+        harm = np.abs(np.fft.fft(values, axis=1))
+        tail = np.max(harm[:, nth // 4 : nth - nth // 4 + 1])
+        if tail <= res.theta_tol * np.max(harm[:, 0]) or nth >= _N_THETA_MAX:
+            break
+        nth *= 2
+    theta = np.pi * np.arange(nth) / nth
+    ginf0 = both[1]  # undamped
+    ginf = ginf0 / (1 + 1j * q)
+    n_static = 0.5 * np.pi * (2 * np.pi) * float(np.mean(ginf0))
+    near_values = values[: near_kappa.size]
+    vals = values[near_kappa.size :] / w[:, None]
+    tk = np.polynomial.chebyshev.chebvander(x, nf - 1)  # (nf, nf)
+    coeffs = (2.0 / nf) * (tk.T @ vals)  # (nf, nθ)
+    coeffs[0] *= 0.5
+    harm = np.fft.fft(coeffs, axis=1) / nth  # (nf, nθ) harmonic m at index m mod nθ
+    mm = np.fft.fftfreq(nth, 1.0 / nth).astype(int)
+    keep = np.max(np.abs(harm), axis=0) > _FAR_HARMONIC_TOL * np.max(np.abs(harm))
+    keep &= np.abs(mm) < nth // 2
+    return KernelTable(
+        constants=np.array(m.C),
+        loss=q,
+        rtol=None,
+        resolution=res,
+        t1=t1,
+        theta=theta,
+        ginf=ginf,
+        n_static=n_static,
+        near_kappa=near_kappa,
+        near_weight=near_weight,
+        near_values=near_values,
+        far_harmonics=mm[keep],
+        far_coeffs=harm[:, keep].T,
+        fourfold=symmetry[1],
+    )

@@ -1,0 +1,213 @@
+"""The in-plane dynamic surface kernel of one material on the nodes every k a reuses.
+
+The table behind :mod:`contactres.dynamic._tangential_galerkin`: the angular harmonics
+Ĝ_{αβ,m}(κ) = ∫₀^{2π} Ĝ_αβ(κ, θ) e^{imθ} dθ of the in-plane block (α, β = x, y) of the dynamic
+surface Green's function, Ĝ = −H(θ, 1/κ²)/C44 (:func:`contactres.halfspace.surface_compliance`;
+κ = ``|ξ|``/k_s, k_s = ω√(ρ/C44), C44 = Re C[3, 3] of the surface frame), minus its static limit,
+on the nodes of the normal problem's table (:mod:`contactres.dynamic._table`, paper 1): a
+complex contour above the branch points and the Rayleigh pole (loss -> 0⁺ exact), the real
+hand-over segment, and Chebyshev nodes in w = (T₁/κ)² for the far field. A uniform loss enters
+as g_lossy(κ) = g(κ√(1 + iQ⁻¹))/(1 + iQ⁻¹). The θ grid covers [0, 2π) (the in-plane kernel
+has an odd imaginary part on faces that are not mirror planes) and is doubled until the
+harmonics move by less than 1e-11 of the static one.
+
+Reference: J. Tian, "Anisotropy Influence of Cubic Solid on Dynamic Hertzian Contact Stiffness
+for a Vibrating Rigid Indenter", Am. J. Eng. Appl. Sci. 3(1), 56-63 (2010) (paper 1).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, fields
+
+import numpy as np
+
+from ..errors import ContactresInputError
+from ..halfspace import shear_reference, surface_compliance
+from ..halfspace.compliance import scaled_tensor
+from ..materials import Material, require_material
+from ._table import (
+    Resolution,
+    check_contrast,
+    check_loss,
+    resolution_for,
+    wavenumber_nodes,
+)
+
+__all__ = ["HARMONIC_STEPS", "TangentialTable", "max_harmonics", "prepare_tangential"]
+
+# θ grid on [0, 2π): first size, largest size, and the convergence test of the harmonics.
+_N_THETA_START = 64
+_N_THETA_MAX = 1024
+_THETA_TOL = 1e-11
+
+
+#: Candidate largest traction harmonics ``|n|`` of the Galerkin basis, smallest first.
+HARMONIC_STEPS = (6, 8, 10, 12, 16, 20, 24)
+# The truncation error of the harmonics, measured against |n| <= 16 (AT-cut quartz, Cu(111),
+# Cu(123), Na(123), Li(111), Pb(123); k_s a <= 2) is below 0.02 tail², tail the largest
+# static kernel harmonic beyond |n| relative to the axisymmetric one.
+_TAIL_FACTOR = 0.02
+
+
+def max_harmonics(m: Material, rtol: float) -> int:
+    """Largest traction harmonic ``|n|`` of the Galerkin basis for ``m`` at accuracy ``rtol``: the
+    first of :data:`HARMONIC_STEPS` whose kernel tail t (the largest static in-plane kernel
+    harmonic beyond it, relative to the axisymmetric one) has 0.02 t² <= rtol/3; measured error
+    at ``|n|`` <= 6 / 8 / 10: Cu(123) 1.3e-7 / 3.9e-9 / 7.6e-10, Na(123) 1.3e-6 / 6.8e-8 / 2.8e-8,
+    Li(111) 6.2e-7 / 6.2e-7 / 4.2e-8 (t = 5.4e-3, 1.6e-2, 8.0e-3 at ``|n|`` <= 6)."""
+    from ._tangential_static import inplane_kernel_harmonics
+
+    top = HARMONIC_STEPS[-1] + 1
+    h = np.abs(inplane_kernel_harmonics(m, top)).max(axis=(1, 2))
+    mid = h.size // 2
+    mag = np.maximum(h[mid:], h[mid::-1]) / h[mid]
+    for n in HARMONIC_STEPS:
+        if _TAIL_FACTOR * np.max(mag[n + 1 :]) ** 2 <= rtol / 3:
+            return n
+    return HARMONIC_STEPS[-1]
+
+
+@dataclass(frozen=True, eq=False)
+class TangentialTable:
+    """The in-plane dynamic kernel of one material and loss on the nodes every k a reuses.
+
+    Dimensionless: h = C44 Ĝ (C44 = Re C[3, 3] of the surface frame), κ in units of k_s.
+
+    Attributes
+    ----------
+    constants : (6, 6) Voigt stiffness (Pa) it was prepared for
+    loss : Q⁻¹
+    rtol : the accuracy it was prepared for
+    resolution : the discretisation (that of the normal kernel table at this rtol)
+    c44 : the reference stiffness C44, Pa
+    t1 : start of the far field, units of k_s
+    n_harmonics : largest traction harmonic ``|n|`` of the Galerkin basis (:func:`max_harmonics`)
+    max_order : kernel harmonics m = −max_order..max_order are held (>= 2 n_harmonics)
+    ginf : (2M+1, 2, 2) harmonics of the lossy static kernel h∞ = C44 Ĝ∞/(1 + iQ⁻¹)
+    ginf0 : (2M+1, 2, 2) the same of the undamped constants
+    near_kappa, near_weight : (nk,) near-field nodes and weights dκ χ(κ) (as the normal table)
+    near_values : (nk, 2M+1, 2, 2) harmonics of h − h∞ at the near nodes
+    far_coeffs : ((2M+1)·4, n_fit) Chebyshev coefficients in x = 2w − 1 of (h − h∞)/w
+    """
+
+    constants: np.ndarray
+    loss: float
+    rtol: float
+    resolution: Resolution
+    c44: float
+    t1: float
+    n_harmonics: int
+    max_order: int
+    ginf: np.ndarray
+    ginf0: np.ndarray
+    near_kappa: np.ndarray
+    near_weight: np.ndarray
+    near_values: np.ndarray
+    far_coeffs: np.ndarray
+
+    def __post_init__(self) -> None:
+        for f in fields(self):
+            value = getattr(self, f.name)
+            if isinstance(value, np.ndarray):
+                value.setflags(write=False)
+
+    def __reduce__(self):
+        return (type(self), tuple(getattr(self, f.name) for f in fields(self)))
+
+    def check_for(self, m: Material, loss: float, rtol: float) -> TangentialTable:
+        """``self`` if prepared for the constants of ``m``, ``loss`` and ``rtol``; else a
+        ValueError naming what differs."""
+        wrong = []
+        if not np.array_equal(self.constants, np.asarray(m.C)):
+            wrong.append("another material (elastic constants)")
+        if self.loss != check_loss(loss):
+            wrong.append(f"loss={self.loss!r}, not {loss!r}")
+        if self.rtol != float(rtol):
+            wrong.append(f"rtol={self.rtol!r}, not {rtol!r}")
+        if wrong:
+            raise ContactresInputError(
+                "the prepared tangential table was made for "
+                + "; ".join(wrong)
+                + ": pass the same material, loss and rtol, or prepare_tangential again"
+            )
+        return self
+
+
+def _inplane(c: np.ndarray, kappa: np.ndarray, theta: np.ndarray) -> np.ndarray:
+    """h = −H_in of the dimensionless tensor c at (κ, θ) (κ = ∞: static), (nκ, nθ, 2, 2)."""
+    kappa = np.asarray(kappa, dtype=complex)
+    finite = np.isfinite(kappa)
+    s = np.zeros(kappa.shape, dtype=complex)
+    s[finite] = 1.0 / kappa[finite] ** 2
+    H = surface_compliance(c, theta[None, :], s[:, None])
+    return -H[..., :2, :2]
+
+
+def _harmonics(values: np.ndarray, max_order: int) -> np.ndarray:
+    """∫₀^{2π} v(θ) e^{imθ} dθ, m = −M..M, of rows sampled at θ_j = 2πj/n (axis 1)."""
+    n = values.shape[1]
+    orders = np.arange(-max_order, max_order + 1)
+    return (2 * np.pi / n) * np.fft.fft(values, axis=1)[:, (-orders) % n]
+
+
+def prepare_tangential(
+    m: Material,
+    loss: float = 0.0,
+    rtol: float = 1e-6,
+    *,
+    resolution: Resolution | None = None,
+    max_order: int | None = None,
+) -> TangentialTable:
+    """The in-plane kernel table of ``m`` (surface frame, undamped constants, Pa) with loss Q⁻¹
+    at accuracy ``rtol`` (in [1e-10, 1)), to pass as ``prepared=``; ``resolution`` overrides
+    the discretisation and ``max_order`` the highest kernel harmonic held (default
+    2 × :func:`max_harmonics`, the basis's own need; convergence tests). Immutable,
+    picklable; nothing is cached."""
+    m = require_material(m, lossless=True)
+    q = check_loss(loss)
+    check_contrast(m)
+    res = resolution or resolution_for(rtol)
+    n_harmonics = max_harmonics(m, rtol)
+    max_order = int(max_order or 2 * n_harmonics)
+    c44 = shear_reference(m)
+    c = scaled_tensor(m).real.astype(complex)
+    t1, near_kappa, near_weight, x = wavenumber_nodes(m, res)
+    nf = res.n_fit
+    w = 0.5 * (x + 1)
+    # The lossy solid C(1 + iQ⁻¹) from the elastic one: h(κ√(1 + iQ⁻¹))/(1 + iQ⁻¹).
+    f = 1 + 1j * q
+    kappa = np.concatenate([near_kappa, t1 / np.sqrt(w)]) * np.sqrt(f)
+    nodes = np.concatenate([kappa, [np.inf]])
+    n = _N_THETA_START
+    prev = None
+    while True:
+        theta = 2 * np.pi * np.arange(n) / n
+        harm = _harmonics(_inplane(c, nodes, theta), max_order)
+        if prev is not None:
+            scale = np.max(np.abs(harm[-1]))
+            if np.max(np.abs(harm - prev)) <= _THETA_TOL * scale or n >= _N_THETA_MAX:
+                break
+        prev, n = harm, 2 * n
+    ginf0 = harm[-1]
+    dyn = (harm[:-1] - ginf0[None]) / f  # harmonics of h − h∞ (lossy)
+    near_values = dyn[: near_kappa.size]
+    vals = dyn[near_kappa.size :].reshape(nf, -1) / w[:, None]
+    tk = np.polynomial.chebyshev.chebvander(x, nf - 1)
+    coeffs = (2.0 / nf) * (tk.T @ vals)
+    coeffs[0] *= 0.5
+    return TangentialTable(
+        constants=np.array(m.C),
+        loss=q,
+        rtol=float(rtol),
+        resolution=res,
+        c44=c44,
+        t1=t1,
+        n_harmonics=n_harmonics,
+        max_order=max_order,
+        ginf=ginf0 / f,
+        ginf0=ginf0,
+        near_kappa=near_kappa,
+        near_weight=near_weight,
+        near_values=near_values,
+        far_coeffs=coeffs.T.copy(),
+    )

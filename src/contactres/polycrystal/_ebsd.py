@@ -1,0 +1,379 @@
+"""EBSD text exports as orientation maps: EDAX/TSL ``.ang`` and Oxford HKL ``.ctf`` (square grids).
+
+Formats, as widely documented (OIM Analysis and Channel 5 exports; the readers of orix,
+kikuchipy, MTEX and DREAM.3D read them this way); the authoritative vendor specifications were
+*not* consulted, so the points marked "not confirmed" are assumptions:
+
+``.ang`` (EDAX/TSL OIM): header lines beginning with ``#`` (``# GRID: SqrGrid`` or ``HexGrid``,
+``# XSTEP:``, ``# YSTEP:`` in µm, ``# NCOLS_ODD:``, ``# NCOLS_EVEN:``, ``# NROWS:``), then one
+whitespace-separated row per point with at least 8 columns: φ1, Φ, φ2 (Bunge, **radians**),
+x, y (µm), image quality IQ, confidence index CI, phase id; further columns (detector signal,
+fit, ...) are ignored. Unindexed points are commonly written with angles 4π (12.566) and
+CI = -1 (not confirmed); they are kept as they are (angles up to 4π are valid rotations).
+
+``.ctf`` (Oxford HKL Channel 5 / AZtec): a tab-separated header block (``Channel Text File``,
+``JobMode Grid``, ``XCells``, ``YCells``, ``XStep``, ``YStep`` in µm, a line ``Euler angles
+refer to Sample Coordinate system (CS0)!``, ``Phases n`` and n phase lines), ending with the
+column line ``Phase X Y Bands Error Euler1 Euler2 Euler3 MAD BC BS`` (tab-separated); then one
+tab-separated row per point. Euler1..3 are Bunge angles in **degrees**, X and Y in µm; Phase 0
+is "not indexed"; MAD is the mean angular deviation (degrees, lower is better).
+
+Not confirmed and not corrected here: the relation of the vendors' Euler reference frame to the
+map's x/y axes (OIM and Channel 5 setups differ by rotations about the normal, and hexagonal
+phases in .ctf by a 30° convention about c). The angles are taken as Bunge angles of the
+map's sample frame x = map X, y = map Y, z = ND (:mod:`.orientations`), as written.
+
+Only regular square grids are read (every point on ``(x0 + j·XSTEP, y0 + i·YSTEP)``, each grid
+position exactly once, in any order): a hexagonal ``.ang`` grid or a ``.ctf`` whose ``JobMode``
+is not ``Grid`` raises ValueError. Bad input raises ValueError naming the file, the data row
+(and line of the file), the column, the value and the rule broken.
+"""
+
+from __future__ import annotations
+
+import itertools
+import os
+import re
+from pathlib import Path
+
+import numpy as np
+import pandas as pd
+
+from ..errors import ContactresInputError
+from ..fileio import write_text
+from ..measurements.readers.recipe import Reader
+from ._maps import OrientationMap
+
+__all__ = ["EBSD_READERS", "read_ang", "read_ctf", "read_ebsd", "write_ang", "write_ctf"]
+
+#: The first 8 columns of an .ang row (more may follow and are ignored).
+ANG_COLUMNS = ("phi1", "Phi", "phi2", "x", "y", "IQ", "CI", "phase")
+#: The columns of a .ctf file that are read (by name from the column line).
+CTF_COLUMNS = ("Phase", "X", "Y", "Euler1", "Euler2", "Euler3", "MAD")
+_CTF_LINE = ("Phase", "X", "Y", "Bands", "Error", "Euler1", "Euler2", "Euler3", "MAD", "BC", "BS")
+#: Largest ``|angle|`` accepted: two turns (as :func:`.surface_matrices_from_euler`).
+_MAX_RAD = 4 * np.pi
+#: A point is on the grid when within this fraction of a step of a grid position.
+_GRID_TOL = 1e-3
+_ENCODING = "latin-1"  # any byte decodes; the data are ASCII, headers may hold other text
+
+
+def _line(path: Path, lineno: int) -> str:
+    with open(path, encoding=_ENCODING) as f:
+        return next(itertools.islice(f, lineno - 1, lineno), "").rstrip("\r\n")
+
+
+def _bad(path: Path, row: int, lineno: int, column: str, value: str, rule: str) -> ValueError:
+    return ContactresInputError(
+        f"{path.name}: data row {row} (line {lineno}), column {column!r}: value {value!r}: {rule}"
+    )
+
+
+def _numeric(path: Path, frame: pd.DataFrame, names, positions, first_line: int, sep) -> dict:
+    """Columns ``names`` (at field ``positions``) of ``frame`` as float arrays; ValueError at the
+    first missing, non-numeric or non-finite value (the raw token is read back from the file)."""
+    out = {}
+    for name, pos, (_, col) in zip(names, positions, frame.items(), strict=True):
+        values = pd.to_numeric(col, errors="coerce").to_numpy(dtype=float)
+        bad = ~np.isfinite(values)
+        if bad.any():
+            k = int(np.flatnonzero(bad)[0])
+            lineno = first_line + k
+            fields = re.split(sep, _line(path, lineno).strip())
+            token = fields[pos] if pos < len(fields) else "<missing>"
+            rule = (
+                f"missing (the row has {len(fields)} fields)"
+                if pos >= len(fields) or token == ""
+                else "must be a finite number"
+            )
+            raise _bad(path, k + 1, lineno, name, token, rule)
+        out[name] = values
+    return out
+
+
+def _check_angles(path: Path, angles: np.ndarray, names, first_line: int, limit: float, unit: str):
+    bad = np.abs(angles) > limit
+    if bad.any():
+        k, c = (int(v) for v in np.argwhere(bad)[0])
+        raise _bad(
+            path, k + 1, first_line + k, names[c], repr(float(angles[k, c])),
+            f"Euler angle beyond two turns (|angle| <= {limit:g} {unit})",
+        )  # fmt: skip
+
+
+def _grid(path: Path, x: np.ndarray, y: np.ndarray, step_x: float, step_y: float, first_line):
+    """Row and column index of every point of a square grid (µm in), checked."""
+    fx, fy = (x - x.min()) / step_x, (y - y.min()) / step_y
+    j, i = np.rint(fx).astype(np.int64), np.rint(fy).astype(np.int64)
+    off = np.maximum(np.abs(fx - j), np.abs(fy - i)) > _GRID_TOL
+    if off.any():
+        k = int(np.flatnonzero(off)[0])
+        col, value = ("x", x[k]) if abs(fx[k] - j[k]) > _GRID_TOL else ("y", y[k])
+        raise _bad(path, k + 1, first_line + k, col, repr(float(value)),
+                   f"not on the square grid of step ({step_x:g}, {step_y:g}) µm")  # fmt: skip
+    H, W = int(i.max()) + 1, int(j.max()) + 1
+    flat = i * W + j
+    counts = np.bincount(flat, minlength=H * W)
+    if np.any(counts > 1):
+        k = int(np.flatnonzero(counts[flat] > 1)[1 if counts[flat[0]] > 1 else 0])
+        raise _bad(path, k + 1, first_line + k, "x, y", f"{x[k]:g}, {y[k]:g}",
+                   "grid position given twice")  # fmt: skip
+    if np.any(counts == 0):
+        miss = int(np.flatnonzero(counts == 0)[0])
+        raise ContactresInputError(
+            f"{path.name}: grid position (row {miss // W}, column {miss % W}) of the "
+            f"{H} x {W} grid has no data row (x = {x.min() + miss % W * step_x:g} µm, "
+            f"y = {y.min() + miss // W * step_y:g} µm)"
+        )
+    return i, j, (H, W)
+
+
+def _header_float(path: Path, header: dict, key: str) -> float:
+    if key not in header:
+        raise ContactresInputError(
+            f"{path.name}: header entry {key!r} is missing (the grid step, µm)"
+        )
+    try:
+        v = float(header[key])
+    except ValueError:
+        raise ContactresInputError(
+            f"{path.name}: header entry {key!r} = {header[key]!r} is not a number"
+        ) from None
+    if not (np.isfinite(v) and v > 0):
+        raise ContactresInputError(
+            f"{path.name}: header entry {key!r} = {v!r} must be a positive step"
+        )
+    return v
+
+
+def _read_block(path: Path, skip: int, sep: str, header) -> pd.DataFrame:
+    """The data rows: all-float in one fast pass, else as text (the checks find the culprit)."""
+    kwargs = dict(sep=sep, header=header, skiprows=skip, encoding=_ENCODING)
+    try:
+        try:
+            return pd.read_csv(path, dtype=float, **kwargs)
+        except ValueError as exc:
+            if isinstance(exc, pd.errors.ParserError):
+                raise
+            return pd.read_csv(path, dtype=str, keep_default_na=False, **kwargs)
+    except pd.errors.EmptyDataError:
+        raise ContactresInputError(f"{path.name}: no data rows after the header") from None
+    except pd.errors.ParserError as exc:
+        raise ContactresInputError(f"{path.name}: malformed data rows: {exc}") from None
+
+
+def _assemble(
+    path, euler, x, y, phase, conf, conf_name, steps: tuple[float, float], first_line
+) -> OrientationMap:
+    i, j, shape = _grid(path, x, y, *steps, first_line)
+    grid = np.empty((*shape, 3))
+    grid[i, j] = euler
+    ph = np.empty(shape, dtype=np.int64)
+    ph[i, j] = phase
+    cf = np.empty(shape)
+    cf[i, j] = conf
+    return OrientationMap(
+        euler=grid, step_x=steps[0] * 1e-6, step_y=steps[1] * 1e-6, phase=ph, confidence=cf,
+        confidence_name=conf_name, source=path.name,
+    )  # fmt: skip
+
+
+def read_ang(path: str | os.PathLike) -> OrientationMap:
+    """Read an EDAX/TSL ``.ang`` file (square grid) as an :class:`OrientationMap`.
+
+    Returns Euler angles in radians as written (φ1, Φ, φ2 columns), steps in m (header XSTEP,
+    YSTEP in µm), ``phase`` = the phase id column, ``confidence`` = CI. See the module
+    docstring for the assumptions on the format.
+
+    Raises
+    ------
+    ValueError
+        For a hexagonal grid, a missing step, a row with fewer than 8 columns, a non-numeric or
+        non-finite value, an angle beyond 4π, or points not filling a square grid (the message
+        names the file, row, line, column, value and rule).
+    """
+    path = Path(path)
+    header: dict[str, str] = {}
+    n_head = 0
+    with open(path, encoding=_ENCODING) as f:
+        for line in f:
+            s = line.strip()
+            if s and not s.startswith("#"):
+                break
+            n_head += 1
+            m = re.match(r"#\s*([A-Za-z_][\w-]*)\s*:?\s*(.*)$", s)
+            if m and m.group(1).upper() in ("GRID", "XSTEP", "YSTEP", "NCOLS_ODD", "NCOLS_EVEN"):
+                header[m.group(1).upper()] = m.group(2).strip()
+    grid = header.get("GRID", "SqrGrid")
+    if grid.lower() != "sqrgrid":
+        raise ContactresInputError(
+            f"{path.name}: '# GRID: {grid}' is not supported: only square grids (SqrGrid) are "
+            "read; resample a hexagonal scan onto a square grid first"
+        )
+    steps = (_header_float(path, header, "XSTEP"), _header_float(path, header, "YSTEP"))
+    frame = _read_block(path, n_head, r"\s+", None)
+    first_line = n_head + 1
+    if frame.shape[1] < len(ANG_COLUMNS):
+        raise _bad(path, 1, first_line, ANG_COLUMNS[frame.shape[1]], "<missing>",
+                   f"an .ang row needs {len(ANG_COLUMNS)} columns {ANG_COLUMNS}, "
+                   f"found {frame.shape[1]}")  # fmt: skip
+    cols = _numeric(path, frame.iloc[:, :8], ANG_COLUMNS, range(8), first_line, r"\s+")
+    euler = np.stack([cols["phi1"], cols["Phi"], cols["phi2"]], axis=-1)
+    _check_angles(path, euler, ANG_COLUMNS[:3], first_line, _MAX_RAD, "rad")
+    phase = cols["phase"]
+    if np.any(phase != np.rint(phase)):
+        k = int(np.flatnonzero(phase != np.rint(phase))[0])
+        raise _bad(path, k + 1, first_line + k, "phase", repr(float(phase[k])),
+                   "the phase id must be an integer")  # fmt: skip
+    return _assemble(path, euler, cols["x"], cols["y"], phase, cols["CI"], "CI", steps, first_line)
+
+
+def read_ctf(path: str | os.PathLike) -> OrientationMap:
+    """Read an Oxford HKL ``.ctf`` file (``JobMode Grid``) as an :class:`OrientationMap`.
+
+    Returns Euler angles converted from degrees to radians, steps in m (header XStep, YStep in
+    µm), ``phase`` = the Phase column (0 = not indexed), ``confidence`` = MAD (degrees). See the
+    module docstring for the assumptions on the format.
+
+    Raises
+    ------
+    ValueError
+        For a JobMode other than Grid, a missing step or column line, a missing column among
+        :data:`CTF_COLUMNS`, a non-numeric or non-finite value, an angle beyond 720°, or points
+        not filling a square grid (the message names the file, row, line, column, value and
+        rule).
+    """
+    path = Path(path)
+    header: dict[str, str] = {}
+    n_head = None
+    with open(path, encoding=_ENCODING) as f:
+        for n, line in enumerate(f):
+            fields = line.rstrip("\r\n").split("\t")
+            if fields[0].strip() == "Phase" and "Euler1" in (s.strip() for s in fields):
+                n_head = n
+                break
+            if len(fields) >= 2:
+                header.setdefault(fields[0].strip(), fields[1].strip())
+    if n_head is None:
+        raise ContactresInputError(
+            f"{path.name}: no column line (tab-separated {' '.join(_CTF_LINE)}) found: not a "
+            ".ctf file"
+        )
+    mode = header.get("JobMode", "Grid")
+    if mode != "Grid":
+        raise ContactresInputError(
+            f"{path.name}: JobMode {mode!r} is not supported: only 'Grid' maps"
+        )
+    steps = (_header_float(path, header, "XStep"), _header_float(path, header, "YStep"))
+    frame = _read_block(path, n_head, "\t", 0)
+    frame.columns = [str(c).strip() for c in frame.columns]
+    missing = [c for c in CTF_COLUMNS if c not in frame.columns]
+    if missing:
+        raise ContactresInputError(
+            f"{path.name}: column line (line {n_head + 1}) lacks the columns {missing}; a .ctf "
+            f"file needs {list(CTF_COLUMNS)}"
+        )
+    positions = [list(frame.columns).index(c) for c in CTF_COLUMNS]
+    first_line = n_head + 2
+    cols = _numeric(path, frame[list(CTF_COLUMNS)], CTF_COLUMNS, positions, first_line, "\t")
+    euler = np.stack([cols["Euler1"], cols["Euler2"], cols["Euler3"]], axis=-1)
+    _check_angles(path, euler, CTF_COLUMNS[3:6], first_line, 720.0, "degrees")
+    phase = cols["Phase"]
+    if np.any(phase != np.rint(phase)):
+        k = int(np.flatnonzero(phase != np.rint(phase))[0])
+        raise _bad(path, k + 1, first_line + k, "Phase", repr(float(phase[k])),
+                   "the phase must be an integer")  # fmt: skip
+    return _assemble(
+        path, np.radians(euler), cols["X"], cols["Y"], phase, cols["MAD"], "MAD (degrees)",
+        steps, first_line,
+    )  # fmt: skip
+
+
+def _looks_like_ang(path: Path, head: str) -> bool:
+    """An ``.ang`` header: ``#`` lines with the grid step."""
+    return any(line.startswith("# XSTEP:") for line in head.splitlines())
+
+
+def _looks_like_ctf(path: Path, head: str) -> bool:
+    """A ``.ctf`` header: its first line."""
+    return head.lstrip().startswith("Channel Text File")
+
+
+#: The EBSD reader recipes (kind ``ebsd``), in the polycrystal layer that owns the formats; the
+#: full registry of every kind is composed above it (``contactres.jobs.readers``).
+EBSD_READERS: tuple[Reader, ...] = (
+    Reader("ang", (".ang",), _looks_like_ang, read_ang, "ebsd"),
+    Reader("ctf", (".ctf",), _looks_like_ctf, read_ctf, "ebsd"),
+)
+
+
+def read_ebsd(path: str | os.PathLike) -> OrientationMap:
+    """Read an EBSD text export by its suffix: ``.ang`` (:func:`read_ang`) or ``.ctf``
+    (:func:`read_ctf`), the recipes of :data:`EBSD_READERS`."""
+    suffix = Path(path).suffix.lower()
+    for reader in EBSD_READERS:
+        if suffix in reader.suffixes:
+            return reader.load(path)
+    raise ContactresInputError(
+        f"{Path(path).name}: unknown EBSD export {suffix!r} (expected .ang or .ctf)"
+    )
+
+
+def _points(m: OrientationMap):
+    """Points in file order (x fastest): x, y (µm), euler (N, 3) rad, phase, confidence, zeros."""
+    H, W = m.shape
+    yy, xx = np.meshgrid(np.arange(H) * m.step_y * 1e6, np.arange(W) * m.step_x * 1e6,
+                         indexing="ij")  # fmt: skip
+    zeros = np.zeros(H * W, dtype=np.int64)
+    return (
+        xx.ravel(),
+        yy.ravel(),
+        m.euler.reshape(-1, 3),
+        m.phase.ravel(),
+        m.confidence.ravel(),
+        zeros,
+    )
+
+
+def write_ang(path: str | os.PathLike, m: OrientationMap) -> Path:
+    """Write a minimal square-grid ``.ang`` file of ``m`` (atomically; for tests and exchange).
+
+    Header: ``# GRID: SqrGrid``, steps in µm and the grid size; rows: φ1 Φ φ2 (rad), x y (µm),
+    IQ (0), CI (``m.confidence``), phase id, with 17 significant digits so that
+    :func:`read_ang` gives the angles back bit for bit.
+    """
+    H, W = m.shape
+    head = [
+        f"# XSTEP: {m.step_x * 1e6!r}", f"# YSTEP: {m.step_y * 1e6!r}", "# GRID: SqrGrid",
+        f"# NCOLS_ODD: {W}", f"# NCOLS_EVEN: {W}", f"# NROWS: {H}", "#",
+    ]  # fmt: skip
+    x, y, e, phase, conf, zeros = _points(m)
+    table = pd.DataFrame({
+        "phi1": e[:, 0], "Phi": e[:, 1], "phi2": e[:, 2], "x": x, "y": y, "IQ": zeros,
+        "CI": conf, "phase": phase,
+    })  # fmt: skip
+    rows = table.to_csv(sep=" ", header=False, index=False, float_format="%.17g")
+    return write_text(path, "\n".join(head) + "\n" + rows)
+
+
+def write_ctf(path: str | os.PathLike, m: OrientationMap) -> Path:
+    """Write a minimal ``.ctf`` file of ``m`` (atomically; for tests and exchange).
+
+    Angles in degrees (17 significant digits), X, Y in µm, Bands 0, Error 0, MAD =
+    ``m.confidence``, BC 0, BS 0.
+    """
+    H, W = m.shape
+    head = [
+        "Channel Text File", "Prj\tcontactres", "JobMode\tGrid", f"XCells\t{W}",
+        f"YCells\t{H}", f"XStep\t{m.step_x * 1e6!r}", f"YStep\t{m.step_y * 1e6!r}",
+        "Euler angles refer to Sample Coordinate system (CS0)!\tMag\t0", "Phases\t1",
+        "3.615;3.615;3.615\t90;90;90\tCopper\t11\t225", "\t".join(_CTF_LINE),
+    ]  # fmt: skip
+    x, y, e, phase, conf, zeros = _points(m)
+    d = np.degrees(e)
+    table = pd.DataFrame({
+        "Phase": phase, "X": x, "Y": y, "Bands": zeros, "Error": zeros, "Euler1": d[:, 0],
+        "Euler2": d[:, 1], "Euler3": d[:, 2], "MAD": conf, "BC": zeros, "BS": zeros,
+    })  # fmt: skip
+    rows = table.to_csv(sep="\t", header=False, index=False, float_format="%.17g")
+    return write_text(path, "\n".join(head) + "\n" + rows)

@@ -1,0 +1,313 @@
+"""One self-contained HTML page of a sweep analysis: ``report.html`` (``--report html``).
+
+The page needs nothing but itself: no network, no external CSS or JavaScript; the fit of every
+sweep is drawn as inline SVG (points and the chosen model's curve, Δf and ΔΓ against u0). It
+holds the input file's name and SHA-256, the package version, Table 1 (E and γ per
+configuration and medium, as printed by ``qcm analyze``), the statistics per load, every sweep
+with its model and flags (filtered by configuration, medium, load and flag with a few lines of
+inline JavaScript), every entry of ``summary.json`` (folded), the flags in words, the
+conventions and constants, and the radiation loss where the analysis has it. Every label of the
+data is HTML-escaped.
+"""
+
+from __future__ import annotations
+
+import math
+from html import escape
+from pathlib import Path
+
+import numpy as np
+
+from .._version import __version__
+from ..analysis import DESCRIPTIONS, PAGE_POINTS, Flag, Results, render, sweep_rows
+from ..fileio import write_text
+from ..jobs.qcm_sweeps import summary
+from ..measurements.schema import CONVENTIONS
+from ..measurements.sweeps import CONSTANTS
+from ._console import DASH, friction_table, plus_minus, radiation_lines, table1_text, withheld_lines
+
+__all__ = ["HTML_FILE", "html_report", "sweeps_page", "write_html"]
+
+#: The file name of the page in the results folder.
+HTML_FILE = "report.html"
+
+_CSS = """
+body{font-family:sans-serif;margin:1em 2em;color:#222}
+table{border-collapse:collapse;margin:.5em 0;font-size:90%}
+th,td{border:1px solid #bbb;padding:2px 6px;text-align:left;vertical-align:top}
+th{background:#eee}
+td.n{text-align:right;white-space:nowrap}
+svg{background:#fff}
+.filters label{margin-right:1em}
+code{background:#f4f4f4}
+"""
+
+_JS = """
+function crFilter(){
+ var f={};document.querySelectorAll('.filters select').forEach(function(s){f[s.name]=s.value;});
+ var n=0;document.querySelectorAll('#sweeps tbody tr').forEach(function(r){
+  var ok=Object.keys(f).every(function(k){return !f[k]||(k==='flag'?
+   (' '+r.dataset.flag+' ').indexOf(' '+f[k]+' ')>=0:r.dataset[k]===f[k]);});
+  r.style.display=ok?'':'none';if(ok)n++;});
+ document.getElementById('shown').textContent=n;}
+"""
+
+
+def _e(value) -> str:
+    return escape(str(value), quote=True)
+
+
+def _table(frame, numeric=()) -> str:
+    head = "".join(f"<th>{_e(c)}</th>" for c in frame.columns)
+    rows = []
+    for _, row in frame.iterrows():
+        cells = "".join(
+            f'<td class="n">{_e(v)}</td>' if c in numeric else f"<td>{_e(v)}</td>"
+            for c, v in row.items()
+        )
+        rows.append(f"<tr>{cells}</tr>")
+    return f"<table><thead><tr>{head}</tr></thead><tbody>{''.join(rows)}</tbody></table>"
+
+
+def _panel(x0, u, y, uu, yy, label) -> str:
+    """One panel of a sweep plot: points, model curve, the y range as text."""
+    w, h, pad = 150.0, 90.0, 4.0
+    ys = np.concatenate([y[np.isfinite(y)], yy[np.isfinite(yy)]])
+    if not len(ys) or not len(u):
+        return ""
+    lo, hi = float(ys.min()), float(ys.max())
+    if hi <= lo:
+        lo, hi = lo - 1.0, hi + 1.0
+    umax = float(max(np.nanmax(u), uu.max() if len(uu) else 0.0)) or 1.0
+
+    def xy(a, b):
+        px = x0 + pad + (a / umax) * (w - 2 * pad)
+        py = 14 + pad + (hi - b) / (hi - lo) * (h - 2 * pad)
+        return px, py
+
+    marks = "".join(
+        f"M{px:.0f} {py:.0f}h0"
+        for px, py in (xy(a, b) for a, b in zip(u, y, strict=True))
+        if math.isfinite(px) and math.isfinite(py)
+    )
+    dots = f'<path d="{marks}" stroke="#236" stroke-width="3" stroke-linecap="round"/>'
+    line = ""
+    ok = np.isfinite(yy)
+    if ok.any():
+        pts = " ".join(
+            f"{px:.0f},{py:.0f}"
+            for px, py in (xy(a, b) for a, b in zip(uu[ok], yy[ok], strict=True))
+        )
+        line = f'<polyline points="{pts}" fill="none" stroke="#c33" stroke-width="1"/>'
+    return (
+        f'<rect x="{x0}" y="14" width="{w:g}" height="{h:g}" fill="none" stroke="#999"/>'
+        f'<text x="{x0 + 2}" y="11">{_e(label)} {lo:.4g}…{hi:.4g} Hz</text>'
+        f"{dots}{line}"
+    )
+
+
+def _sweep_svg(points, curve) -> str:
+    """Δf and ΔΓ against u0 (0 … u_max) with the chosen model's curve, inline SVG: the
+    sweep's rows of ``Results.points`` and of ``Results.curves`` (NaN where the sweep has no
+    model fitted, e.g. too few points: points only)."""
+    u, df, dg = (points[c].to_numpy(float) for c in ("amplitude_m", "df_Hz", "dgamma_Hz"))
+    uu, f, g = (curve[c].to_numpy(float) for c in ("amplitude_m", "df_model_Hz", "dgamma_model_Hz"))
+    body = _panel(0, u, np.asarray(df, float), uu, f, "Δf") + _panel(
+        160, u, np.asarray(dg, float), uu, g, "ΔΓ"
+    )
+    return f'<svg width="312" height="110" font-size="9" role="img">{body}</svg>'
+
+
+def _load_stats(results: Results):
+    import pandas as pd
+
+    loads = results.loads
+    rows = []
+    for _, ld in loads.iterrows():
+        rows.append(
+            {
+                "configuration": ld["configuration"],
+                "medium": ld["medium"],
+                "F_N (mN)": f"{ld['normal_force_N'] * 1e3:.4g}",
+                "experiments": ld["n_experiments"],
+                "sweeps": ld["n_sweeps"],
+                "κ (N/m)": plus_minus(ld["kappa_N_per_m_mean"], ld["kappa_N_per_m_sd"]),
+                "loss tangent": plus_minus(ld["loss_tangent_mean"], ld["loss_tangent_sd"]),
+                "μ (Δf)": plus_minus(ld["mu_df_mean"], ld["mu_df_sd"], 2),
+                "μ (ΔΓ)": plus_minus(ld["mu_dgamma_mean"], ld["mu_dgamma_sd"], 2),
+                "μ (loop fit)": plus_minus(ld["mu_fit_mean"], ld["mu_fit_sd"], 2),
+            }
+        )
+    return pd.DataFrame(rows)
+
+
+def _constants(results: Results):
+    sw = results.sweeps
+    names = [c for c in CONSTANTS if c in sw.columns]
+    if not len(sw) or not names:
+        return ""
+    table = sw.groupby(["configuration", "medium"], sort=True)[names].agg(
+        # pandas-stubs: the overloads of agg leave mypy no type for a lambda (a def has one)
+        lambda s: ", ".join(f"{v:.6g}" for v in sorted(set(s.dropna())))  # type: ignore[misc]
+    )
+    table = table.reset_index()
+    table.columns = ["configuration", "medium"] + [f"{c} ({CONSTANTS[c][0]})" for c in names]
+    return _table(table)
+
+
+def _select(name: str, values) -> str:
+    opts = "".join(f'<option value="{_e(v)}">{_e(v)}</option>' for v in values)
+    return (
+        f'<label>{_e(name)} <select name="{_e(name)}" onchange="crFilter()">'
+        f'<option value="">all</option>{opts}</select></label>'
+    )
+
+
+def _sweeps_section(results: Results) -> str:
+    sw = results.sweeps
+    if not len(sw):
+        return "<p>No sweeps.</p>"
+    points, curves = results.points, results.curves
+    index: dict = {}
+    curve: dict = {}
+    # Results built by hand (not by analyze) may carry no curves: their sweeps are listed
+    # without plots.
+    if points is not None and curves is not None:
+        curves = curves[curves["grid_points"] == PAGE_POINTS]
+        index, curve = sweep_rows(points), sweep_rows(curves)
+    flags = render(sw["flags"].to_numpy())
+    loads = [f"{f * 1e3:.4g}" for f in sw["normal_force_N"]]
+    used_flags = sorted({t for text in flags for t in text.split(";") if t})
+    filters = (
+        '<p class="filters">'
+        + _select("configuration", sorted(sw["configuration"].astype(str).unique()))
+        + _select("medium", sorted(sw["medium"].astype(str).unique()))
+        + _select("load", sorted(set(loads), key=float))
+        + _select("flag", used_flags)
+        + f' shown: <span id="shown">{len(sw)}</span> of {len(sw)}</p>'
+    )
+    rows = []
+    for (_, row), text, load in zip(sw.iterrows(), flags, loads, strict=True):
+        i = index.get(row["sweep"])
+        plot = DASH
+        if i is not None and points is not None and curves is not None:
+            plot = _sweep_svg(points.iloc[i], curves.iloc[curve[row["sweep"]]])
+        model = row["model"] if isinstance(row["model"], str) and row["model"] else DASH
+        rows.append(
+            f'<tr data-configuration="{_e(row["configuration"])}" data-medium="{_e(row["medium"])}"'
+            f' data-load="{_e(load)}" data-flag="{_e(text.replace(";", " "))}">'
+            f"<td>{_e(row['sweep'])}</td><td>{_e(row['configuration'])}</td>"
+            f'<td>{_e(row["medium"])}</td><td class="n">{_e(load)}</td>'
+            f"<td>{_e(row['experiment'])}</td><td>{_e(row['ramp'])}</td>"
+            f"<td>{'yes' if row['used'] else 'no'}</td><td>{_e(model)}</td>"
+            f"<td>{_e(text.replace(';', ', ')) or DASH}</td><td>{plot}</td></tr>"
+        )
+    head = "".join(
+        f"<th>{h}</th>"
+        for h in (
+            "sweep", "configuration", "medium", "F_N (mN)", "experiment", "ramp", "used",
+            "model", "flags", "Δf, ΔΓ (Hz) against u0 (points; line: model)",
+        )
+    )  # fmt: skip
+    return (
+        filters + f'<table id="sweeps"><thead><tr>{head}</tr></thead><tbody>{"".join(rows)}</tbody>'
+        "</table>"
+    )
+
+
+def _leaves(value, path: str):
+    """(dotted path, value) of every number and text of a JSON record, lists by index."""
+    if isinstance(value, dict):
+        for k, v in value.items():
+            yield from _leaves(v, f"{path}.{k}" if path else str(k))
+    elif isinstance(value, list):
+        for i, v in enumerate(value):
+            yield from _leaves(v, f"{path}[{i}]")
+    else:
+        yield path, value
+
+
+def _summary_section(results: Results) -> str:
+    """Every entry of ``summary.json`` (numbers to 7 digits), one row each, folded."""
+    rows = []
+    for key, value in _leaves(summary(results), ""):
+        if isinstance(value, bool) or value is None or isinstance(value, str):
+            shown = DASH if value is None else str(value)
+        else:
+            shown = f"{value:.7g}"
+        rows.append(
+            f'<tr data-key="{_e(key)}"><td><code>{_e(key)}</code></td><td>{_e(shown)}</td></tr>'
+        )
+    return (
+        "<details><summary>Every entry of <code>summary.json</code> (groups in the order of "
+        "Table 1)</summary><table><thead><tr><th>key</th><th>value</th></tr></thead>"
+        f"<tbody>{''.join(rows)}</tbody></table></details>"
+    )
+
+
+def html_report(results: Results) -> str:
+    """The page as text (see the module docstring)."""
+    source = None if results.table is None else results.table.source
+    path = Path(source) if source and source != "<table>" else None
+    name = path.name if path is not None else "table in memory"
+    # The checksum taken when the input was read: the file may have changed since.
+    digest = None if results.table is None else results.table.source_sha256
+    checksum = digest or DASH
+    parts = [
+        "<!DOCTYPE html>",
+        '<html lang="en"><head><meta charset="utf-8">',
+        f"<title>contactres report: {_e(name)}</title>",
+        f"<style>{_CSS}</style><script>{_JS}</script></head><body>",
+        f"<h1>QCM sweep analysis: {_e(name)}</h1>",
+        f"<p>Input: <code>{_e(name)}</code>, SHA-256 <code>{_e(checksum)}</code>; "
+        f"contactres {_e(__version__)}.</p>",
+        "<h2>Table 1: E and γ per configuration and medium</h2>",
+    ]
+    table1 = table1_text(results)
+    if table1.empty:
+        parts.append("<p>No configuration to fit (no sweep is used).</p>")
+    else:
+        parts.append(_table(table1, numeric=("E (GPa)", "γ (mJ/m²)", "t95")))
+        parts.append(
+            "<p>± standard errors; 95 % interval: value ± t95 × error (Student t, few repeats).</p>"
+        )
+        parts += [f"<p><b>Note:</b> {_e(line)}</p>" for line in withheld_lines(results)]
+    parts.append("<h2>Per load</h2>")
+    if len(results.loads):
+        parts.append(_table(_load_stats(results), numeric=("F_N (mN)",)))
+        parts.append("<p>mean ± standard deviation over experiments.</p>")
+        parts.append("<h3>Friction coefficient per load (median over experiments)</h3>")
+        parts.append(_table(friction_table(results)))
+    else:
+        parts.append("<p>No loads.</p>")
+    if results.radiation is not None:
+        parts.append("<h2>Radiation loss</h2><ul>")
+        parts += [f"<li>{_e(line)}</li>" for line in radiation_lines(results)]
+        parts.append("</ul>")
+    parts.append("<h2>Sweeps: the model chosen for each</h2>")
+    parts.append(_sweeps_section(results))
+    parts.append("<h2>The summary record</h2>")
+    parts.append(_summary_section(results))
+    parts.append("<h2>Flags</h2><dl>")
+    parts += [f"<dt><code>{_e(f.text)}</code></dt><dd>{_e(DESCRIPTIONS[f])}</dd>" for f in Flag]
+    parts.append("</dl><h2>Conventions</h2><ul>")
+    parts += [f"<li><code>{_e(k)}</code>: {_e(v)}</li>" for k, v in CONVENTIONS.items()]
+    parts.append("</ul><h2>Constants</h2>")
+    parts.append(_constants(results))
+    if results.messages:
+        parts.append("<h2>Messages</h2><ul>")
+        parts += [f"<li>{_e(' '.join(str(m).split()))}</li>" for m in results.messages]
+        parts.append("</ul>")
+    parts.append("</body></html>\n")
+    return "\n".join(parts)
+
+
+def write_html(results: Results, path) -> Path:
+    """Write :func:`html_report` to ``path`` atomically; return the path."""
+    return write_text(path, html_report(results))
+
+
+def sweeps_page(result) -> str:
+    """The page of a :class:`contactres.jobs.qcm_sweeps.Result` (its analysis's
+    :func:`html_report`), as :func:`contactres.report._writer.html_registry` registers it."""
+    return html_report(result.analysis)

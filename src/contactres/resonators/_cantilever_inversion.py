@@ -1,0 +1,480 @@
+"""Contact-resonance AFM: contact stiffness (and tip position, damping) from measured resonances.
+
+The inverse of :mod:`contactres.resonators._cantilever`. For each measured mode n the frequency
+gives β_n (the cantilever's normalisation, complex with a quality factor), and κ = k*/k_c follows
+
+* normal spring only: explicitly, κ = 2β³(1 + cos β cosh β)/(3D) (U. Rabe, K. Janser,
+  W. Arnold, "Vibrations of free and surface-coupled atomic force microscope cantilevers:
+  theory and experiment", Rev. Sci. Instrum. 67, 3281 (1996), for k_c = 3EI/L³), divided by
+  g_yy = cos²φ when the lever is tilted;
+* with a lateral spring at a tip of height h: det M(β, κ) is a polynomial a κ² + b κ + c (its
+  coefficients are determinants of the rows, exact by multilinearity); of its roots, the one on mode
+  n's branch is chosen by counting (below).
+
+Branch of mode n. Adding a positive stiffness raises every eigenvalue, so β_n(κ) increases from
+β_n⁰ (free) to its κ → ∞ limit, and at a fixed β the roots κ > 0 of det M, taken in increasing
+order, belong to the modes N₀, N₀ − 1, ... that cross β as κ grows (N₀ = number of free roots
+below β: the smaller κ belongs to the higher mode). Mode n is root number N₀ − n (0-based) among
+the positive roots; none when N₀ < n (frequency below the free one: κ < 0, returned as the
+branch continued through zero, the root of largest non-positive real part) or when there are too
+few positive roots (frequency at or above the κ → ∞ limit: κ = NaN).
+
+Two modes, tip position unknown (D. C. Hurley and J. A. Turner, "Measurement of Poisson's ratio
+with contact-resonance atomic force microscopy", J. Appl. Phys. 102, 033509 (2007), the
+two-mode method): one contact, so κ_a(r) = κ_b(r). Δ(r) = Re κ_a − Re κ_b is scanned on a grid
+of r in (0, 1] (:data:`R_GRID`, with one point past 1 so that r = 1 is bracketed), every sign
+change between finite values is refined by bisection on whole arrays of (pixel, interval)
+pairs, and a limit is kept only if ``|Δ| <= 1e-6 (|κ_a| + |κ_b|)`` there (a pole, where κ jumps
+through infinity, gives a huge ``|Δ|`` instead). The physical crossing is the largest r in
+[0.5, 1] (the tip sits near the free end); all crossings are returned as candidates.
+
+Three or more modes (the consistency check). The crossing still comes from the first two
+measured modes; every further measured mode gives its own κ at each candidate r. A candidate
+is *consistent* where those agree with the crossing's κ within ``mode_tolerance`` (relative);
+a further mode that no positive κ reproduces there (below its free or above its pinned
+frequency) contradicts the candidate. The largest consistent r in [0.5, 1] is chosen (a
+spurious crossing of the first two modes is rejected by the third), and the pixel is flagged
+``inconsistent_modes`` when no candidate is consistent (then the largest r, as with two modes).
+``mode_spread`` is the relative range (max κ_n − min κ_n)/κ over κ and the modes that check it:
+the further modes with r solved, every usable mode with r given (κ their mean); inf where a
+further mode contradicts r, NaN where no mode checks (one mode with r given, two with r
+solved). The Euler-Bernoulli lever is the model being checked: a real lever (tip mass,
+trapezoidal section, a tip not at a point) can disagree by a few per cent between modes,
+which is why the default tolerance is 5 % and not the accuracy of the frequencies.
+
+Damping: σ = k_c κ″/ω (N s/m), ω = 2πf, from complex κ = κ′ + iκ″; with the free lever's Q
+known the reference frequency is complex too, so a lossless contact gives σ = 0.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import ContactresInputError
+from ._cantilever import (
+    FREE_ROOTS,
+    Cantilever,
+    beta_from_frequency,
+    determinant_coefficients,
+    normal_kappa,
+    tip_coefficients,
+)
+
+__all__ = [
+    "FLAG_ABOVE_PINNED",
+    "FLAG_BELOW_FREE",
+    "FLAG_INCONSISTENT_MODES",
+    "FLAG_INSENSITIVE",
+    "FLAG_NOT_MEASURED",
+    "FLAG_NOT_POSITIVE",
+    "FLAG_NO_CROSSING",
+    "FLAG_SEVERAL_CROSSINGS",
+    "MIN_SENSITIVITY",
+    "MODE_TOLERANCE",
+    "R_GRID",
+    "ContactResonanceResult",
+    "flag_names",
+    "invert_contact_resonance",
+    "kappa_on_branch",
+]
+
+#: κ is <= 0, NaN or infinite.
+FLAG_NOT_POSITIVE = 1
+#: f below the mode's free frequency: only a negative κ reproduces it.
+FLAG_BELOW_FREE = 2
+#: f at or above the κ → ∞ limit of the mode for this tip position and springs (κ = NaN).
+FLAG_ABOVE_PINNED = 4
+#: d ln f / d ln κ < MIN_SENSITIVITY: tip near a node of the mode, κ saturated, or κ → 0.
+FLAG_INSENSITIVE = 8
+#: two-mode inversion: no crossing κ_a(r) = κ_b(r) with r in [0.5, 1].
+FLAG_NO_CROSSING = 16
+#: two-mode inversion: more than one crossing with r in [0.5, 1] (the largest r was taken).
+FLAG_SEVERAL_CROSSINGS = 32
+#: a frequency is NaN (not measured).
+FLAG_NOT_MEASURED = 64
+#: the modes disagree on κ by more than ``mode_tolerance`` (module notes: three modes).
+FLAG_INCONSISTENT_MODES = 128
+
+_NAMES = (
+    (FLAG_NOT_POSITIVE, "not_positive"),
+    (FLAG_BELOW_FREE, "below_free"),
+    (FLAG_ABOVE_PINNED, "above_pinned"),
+    (FLAG_INSENSITIVE, "insensitive"),
+    (FLAG_NO_CROSSING, "no_crossing"),
+    (FLAG_SEVERAL_CROSSINGS, "several_crossings"),
+    (FLAG_NOT_MEASURED, "not_measured"),
+    (FLAG_INCONSISTENT_MODES, "inconsistent_modes"),
+)
+
+#: Line below which a mode is "insensitive": s = d ln f / d ln κ < 1e-3 means a relative
+#: frequency error of 1e-5 (a few Hz at a few hundred kHz, typical of contact-resonance
+#: tracking) becomes > 1 % in κ. Reached near a node of the mode, deep in saturation
+#: (κ ≳ 1e3 for mode 1 at r = 1) and, trivially, as κ → 0 (the contact hardly shifts f).
+MIN_SENSITIVITY = 1e-3
+
+#: Flags of a mode that no positive κ reproduces at the tip position (it contradicts r).
+_CONTRADICTS = FLAG_NOT_POSITIVE | FLAG_BELOW_FREE | FLAG_ABOVE_PINNED
+
+#: Default relative disagreement of κ between modes beyond which a pixel is flagged
+#: ``inconsistent_modes`` (module notes: the model error of a real lever, not the noise).
+MODE_TOLERANCE = 0.05
+
+#: Grid of tip positions scanned by the two-mode inversion (step 0.005, one point past 1).
+R_GRID = np.append(np.linspace(0.01, 1.0, 199), 1.005)
+R_GRID.setflags(write=False)
+
+
+def flag_names(flags: int) -> list[str]:
+    """Short names of the bits set in one ``flags`` value (e.g. ["above_pinned"])."""
+    return [name for bit, name in _NAMES if int(flags) & bit]
+
+
+@dataclass(frozen=True)
+class ContactResonanceResult:
+    """Result of :func:`invert_contact_resonance`; arrays have the pixel shape (...) unless noted.
+
+    Attributes
+    ----------
+    kappa : κ′ = Re k*/k_c (mean over the usable modes with r known; the crossing for two modes)
+    k_star : κ k_c, N/m
+    tip_position : r = L1/L (given, or the chosen crossing; NaN if none)
+    sigma : contact damping k_c κ″/ω, N s/m (mean over the usable modes); NaN without Q
+    flags : int bit mask, OR over the modes used (FLAG_* constants, :func:`flag_names`)
+    candidates, candidate_kappa : (..., K) every crossing r and its κ, NaN-padded (K = 0 when r
+        was given)
+    kappa_modes, sigma_modes, flags_modes : (..., n_modes) per measured column
+    mode_spread : (max − min)/κ of the per-mode κ (and κ) over the modes that check it (module
+        notes); inf where a further mode contradicts r; NaN where no mode checks
+    averaged_modes : (..., n_modes) bool, the modes whose κ was averaged into ``kappa``
+    modes : the mode number of each column
+    normalisation : "global" or "modewise" (from the cantilever)
+    method : what was done, in words
+    """
+
+    kappa: np.ndarray
+    k_star: np.ndarray
+    tip_position: np.ndarray
+    sigma: np.ndarray
+    flags: np.ndarray
+    candidates: np.ndarray
+    candidate_kappa: np.ndarray
+    kappa_modes: np.ndarray
+    sigma_modes: np.ndarray
+    flags_modes: np.ndarray
+    mode_spread: np.ndarray
+    averaged_modes: np.ndarray
+    modes: tuple[int, ...]
+    normalisation: str
+    method: str
+
+
+def _roots(beta, r, g):
+    """The (up to two) roots κ of det M(β, ·) = 0; the second is NaN where det M is linear."""
+    g_yy, g_yt, g_tt = g
+    if not (np.any(g_yt) or np.any(g_tt)):
+        k = normal_kappa(beta, r) / g_yy  # closed form; the tilt leaves k* cos²φ
+        return k, np.full_like(k, np.nan)
+    a, b, c = determinant_coefficients(beta, r, g)
+    quad = (g_yy * g_tt - g_yt**2) > 0  # det of the tip stiffness: α η² (module notes)
+    a = np.where(quad, a, 0.0)
+    s = np.sqrt((b * b - 4.0 * a * c).astype(complex))
+    s = np.where((np.conj(b) * s).real >= 0, s, -s)  # no cancellation in b + s
+    qq = -0.5 * (b + s)
+    k1 = np.where(quad, qq / np.where(quad, a, 1.0), -c / b)
+    k2 = np.where(quad, c / qq, np.nan)
+    if not (np.iscomplexobj(beta) and np.any(np.imag(beta))):
+        k1, k2 = k1.real, k2.real  # real β: keep the real roots (complex pairs are unphysical)
+    return k1, k2
+
+
+def kappa_on_branch(beta, mode, tip_position, g):
+    """κ of mode ``mode`` (1-based) at wavenumber β, and its flags (module notes: branch).
+
+    Parameters
+    ----------
+    beta : real or complex β, broadcasts with mode, tip_position and the g's
+    mode : int array, 1-based
+    tip_position : r (not validated here; may exceed 1 slightly in the two-mode scan)
+    g : (g_yy, g_yθ, g_θθ) of :func:`~contactres.resonators._cantilever.tip_coefficients`
+
+    Returns
+    -------
+    (kappa, flags) : κ (dtype of β), int flags (FLAG_NOT_POSITIVE, FLAG_BELOW_FREE,
+        FLAG_ABOVE_PINNED; FLAG_INSENSITIVE is added by the caller)
+    """
+    k1, k2 = _roots(beta, tip_position, g)
+    n0 = np.searchsorted(FREE_ROOTS, np.real(beta))  # free modes below β (N₀)
+    j = n0 - np.asarray(mode)
+    p1, p2 = np.real(k1) > 0, np.real(k2) > 0
+    first_small = ~p2 | (p1 & (np.real(k1) <= np.real(k2)))
+    small = np.where(p1 & first_small, k1, np.where(p2, k2, np.nan))
+    large = np.where(p1 & p2, np.where(first_small, k2, k1), np.nan)
+    n_pos = p1.astype(int) + p2
+    # Below the free frequency: continue the branch through κ = 0 (largest non-positive root).
+    n1, n2 = np.real(k1) <= 0, np.real(k2) <= 0
+    below = np.where(n1 & (~n2 | (np.real(k1) >= np.real(k2))), k1, np.where(n2, k2, np.nan))
+    kappa = np.where(j < 0, below, np.where(j == 0, small, np.where(j == 1, large, np.nan)))
+    flags = np.where(j < 0, FLAG_BELOW_FREE, 0) | np.where(
+        (j >= 0) & (j >= n_pos), FLAG_ABOVE_PINNED, 0
+    )
+    ok = np.isfinite(kappa) & (np.real(kappa) > 0)
+    return kappa, flags | np.where(ok, 0, FLAG_NOT_POSITIVE)
+
+
+def _sensitivity_flags(beta, mode, r, g, kappa):
+    """FLAG_INSENSITIVE where s = d ln f / d ln κ = 2κ/(β dκ/dβ) < MIN_SENSITIVITY."""
+    eps = 1e-6  # central difference: truncation ~eps², rounding ~1e-16/eps, both far below 1e-3
+    k_hi, _ = kappa_on_branch(beta * (1.0 + eps), mode, r, g)
+    k_lo, _ = kappa_on_branch(beta * (1.0 - eps), mode, r, g)
+    slope = np.real(k_hi - k_lo) / (2.0 * eps)  # β dκ/dβ
+    s = 2.0 * np.real(kappa) / slope
+    weak = ~(np.abs(s) >= MIN_SENSITIVITY)  # NaN (no neighbour on the branch) counts as weak
+    return np.where(weak & np.isfinite(kappa), FLAG_INSENSITIVE, 0)
+
+
+def _mean_where(values, use, axis=-1):
+    n = use.sum(axis=axis)
+    total = np.where(use, values, 0.0).sum(axis=axis)
+    return np.where(n > 0, total / np.maximum(n, 1), np.nan)
+
+
+def _crossings(beta_a, mode_a, beta_b, mode_b, g):
+    """Every crossing Re κ_a(r) = Re κ_b(r) on R_GRID, per pixel (flat arrays of length N).
+
+    Returns (pixel index, r, κ) of the accepted crossings (flat, any order).
+    """
+    n = beta_a.shape[0]
+    col = [x.reshape(-1, 1) if np.ndim(x) else x for x in (beta_a, mode_a, beta_b, mode_b)]
+    gc = tuple(x.reshape(-1, 1) if np.ndim(x) else x for x in g)
+
+    def delta(rows, r):
+        gg = tuple(x[rows] if np.ndim(x) else x for x in gc)
+        ka, _ = kappa_on_branch(col[0][rows], col[1][rows], r, gg)
+        kb, _ = kappa_on_branch(col[2][rows], col[3][rows], r, gg)
+        return np.real(ka) - np.real(kb), ka, kb
+
+    pix, lo = [], []
+    chunk = max(1, 1_000_000 // R_GRID.size)  # bounded memory: a loop over chunks of pixels
+    for start in range(0, n, chunk):
+        rows = np.arange(start, min(n, start + chunk))
+        d, _, _ = delta(rows, R_GRID[None, :])
+        s = np.sign(d)
+        change = (s[:, :-1] * s[:, 1:] < 0) | (s[:, :-1] == 0)  # NaN ends never count
+        p, i = np.nonzero(change)
+        pix.append(rows[p])
+        lo.append(R_GRID[i])
+    pix = np.concatenate(pix).astype(int)
+    lo = np.concatenate(lo)
+    hi = lo + np.diff(R_GRID)[np.searchsorted(R_GRID, lo)]
+    f_lo = delta(pix, lo[:, None])[0]
+    lo, hi = lo[:, None], hi[:, None]
+    for _ in range(55):  # 55 halvings of a 0.005 bracket: r to the last bit
+        mid = 0.5 * (lo + hi)
+        f_mid = delta(pix, mid)[0]
+        same = np.sign(f_mid) == np.sign(f_lo)
+        lo, f_lo = np.where(same, mid, lo), np.where(same, f_mid, f_lo)
+        hi = np.where(same, hi, mid)
+    r = 0.5 * (lo + hi)
+    d, ka, kb = delta(pix, r)
+    ok = (
+        np.isfinite(d)
+        & (np.real(ka) > 0)
+        & (np.real(kb) > 0)
+        & (np.abs(d) <= 1e-6 * (np.abs(ka) + np.abs(kb)))  # rejects poles (|Δ| → ∞)
+        & (r <= 1.0 + 1e-9)
+    )[:, 0]
+    kappa = 0.5 * (ka + kb)[:, 0]
+    return pix[ok], np.minimum(r[ok, 0], 1.0), kappa[ok]
+
+
+def invert_contact_resonance(
+    cantilever: Cantilever,
+    frequencies,
+    tip_position=None,
+    q_factors=None,
+    lateral_ratio=0.0,
+    tip_height=0.0,
+    tilt=0.0,
+    modes=None,
+    mode_tolerance: float = MODE_TOLERANCE,
+) -> ContactResonanceResult:
+    """κ = k*/k_c (and r, σ) from contact-resonance frequencies, pixel by pixel, vectorised.
+
+    Parameters
+    ----------
+    cantilever : the free lever (free frequencies, k_c = 3EI/L³, normalisation, free Q)
+    frequencies : (..., n_modes) contact resonances, Hz (NaN = not measured)
+    tip_position : r = L1/L in (0, 1], broadcasting with the pixels; None: from two modes
+        (the first two measured columns of each pixel), module notes
+    q_factors : (..., n_modes) contact-resonance quality factors, or None (σ = NaN)
+    lateral_ratio, tip_height, tilt : α = k_lat/k*, η = h/L, φ (degrees), broadcasting with the
+        pixels (:func:`~contactres.resonators._cantilever.tip_coefficients`)
+    modes : mode number (1-based) of each column; default 1..n_modes
+    mode_tolerance : relative disagreement of κ between modes beyond which a pixel is flagged
+        ``inconsistent_modes``; with r unknown it also picks the crossing that a third mode
+        confirms (module notes: three modes). Default :data:`MODE_TOLERANCE` (5 %).
+
+    Returns
+    -------
+    ContactResonanceResult
+    """
+    f = np.asarray(frequencies, dtype=float)
+    f = f[None] if f.ndim == 0 else f
+    n_cols = f.shape[-1]
+    modes = tuple(range(1, n_cols + 1)) if modes is None else tuple(int(m) for m in modes)
+    if len(modes) != n_cols or min(modes) < 1 or max(modes) > len(FREE_ROOTS) - 2:
+        raise ContactresInputError(
+            f"modes must give a mode (1..8) per column ({n_cols}), got {modes!r}"
+        )
+    if not 0 < mode_tolerance < np.inf:
+        raise ContactresInputError(f"mode_tolerance must be > 0 (relative), got {mode_tolerance!r}")
+    measured = ~np.isnan(f)
+    if np.any(~np.isfinite(f[measured]) | (f[measured] <= 0)):
+        raise ContactresInputError("frequencies must be > 0 and finite (Hz) or NaN (not measured)")
+    q = None
+    no_q = np.ones(f.shape, bool)
+    if q_factors is not None:
+        q = np.broadcast_to(np.asarray(q_factors, dtype=float), f.shape)
+        no_q = np.isnan(q)  # a cell without a Q: real ω there, σ unknown
+        if np.any(~(q[measured & ~no_q] > 0) | ~np.isfinite(q[measured & ~no_q])):
+            raise ContactresInputError("q_factors must be finite and > 0 (dimensionless) or NaN")
+        q = np.where(no_q, np.inf, q)
+    g = tuple(np.asarray(x)[..., None] for x in tip_coefficients(lateral_ratio, tip_height, tilt))
+    mode_arr = np.array(modes)
+    k_c = cantilever.spring_constant
+    with np.errstate(all="ignore"):  # NaN pixels and poles are flagged, not warned about
+        beta = beta_from_frequency(cantilever, f, mode_arr, q)
+        if tip_position is not None:
+            r = np.asarray(tip_position, dtype=float)
+            bad = ~(r > 0) | ~(r <= 1)
+            if np.any(bad):
+                shown = float(r[bad].ravel()[0]) if r.ndim else float(r)
+                raise ContactresInputError(f"tip_position must be in (0, 1] (L1/L), got {shown!r}")
+            r = r[..., None]
+            cand = np.full((*np.broadcast_shapes(f.shape[:-1], r.shape[:-1]), 0), np.nan)
+            cand_k = cand
+            method = "tip position given"
+        else:
+            if n_cols < 2:
+                raise ContactresInputError("tip_position=None needs two measured modes (columns)")
+            r, cand, cand_k, n_win = _two_modes(beta, mode_arr, measured, g, mode_tolerance)
+            method = (
+                "two modes (first two measured columns), tip position from κ_a(r) = κ_b(r) "
+                "(Hurley & Turner 2007): the largest crossing r in [0.5, 1] (that further "
+                "modes confirm, where measured)"
+            )
+        kappa_m, flags_m = kappa_on_branch(beta, mode_arr, r, g)
+        flags_m = flags_m | _sensitivity_flags(beta, mode_arr, r, g, kappa_m)
+        flags_m = np.where(measured, flags_m, FLAG_NOT_MEASURED | FLAG_NOT_POSITIVE)
+        sigma_m = k_c * np.imag(kappa_m) / (2.0 * np.pi * f) if q is not None else None
+        if sigma_m is not None:
+            sigma_m = np.where(no_q, np.nan, sigma_m)
+        usable = flags_m == 0
+        if tip_position is not None:
+            kappa = _mean_where(np.real(kappa_m), usable)
+            averaged = usable
+            used = measured
+        else:
+            used = _first_two(np.broadcast_to(measured, kappa_m.shape))[1]
+            kappa = _mean_where(np.real(kappa_m), used)
+            averaged = used
+        flags = np.bitwise_or.reduce(np.where(used, flags_m, 0), axis=-1)
+        none = ~np.any(used, axis=-1)
+        flags = np.where(none, FLAG_NOT_MEASURED | FLAG_NOT_POSITIVE, flags)
+        # The modes that check κ: the usable ones beyond the crossing's two (r solved), or all
+        # usable ones when there are at least two (r given).
+        # A further measured mode that no κ > 0 reproduces at r (below free, above pinned)
+        # contradicts r: an infinite spread, not a missing check.
+        wrong = measured & ~used & ((flags_m & _CONTRADICTS) != 0)
+        if tip_position is None:
+            check = (usable & ~used) | wrong
+        else:
+            check = usable & (usable.sum(-1) > 1)[..., None]
+        k_chk = np.where(wrong, np.inf, np.real(kappa_m))
+        hi = np.maximum(np.max(np.where(check, k_chk, -np.inf), axis=-1), kappa)
+        lo = np.minimum(np.min(np.where(check, k_chk, np.inf), axis=-1), kappa)
+        spread = np.where(check.any(axis=-1) & np.isfinite(kappa), (hi - lo) / kappa, np.nan)
+        flags = flags | np.where(spread > mode_tolerance, FLAG_INCONSISTENT_MODES, 0)
+        if tip_position is None:
+            flags = flags | np.where(n_win == 0, FLAG_NO_CROSSING, 0)
+            flags = flags | np.where(n_win > 1, FLAG_SEVERAL_CROSSINGS, 0)
+            flags = flags | np.where(measured.sum(-1) < 2, FLAG_NOT_MEASURED, 0)
+        if sigma_m is None:
+            sigma_m = np.full(kappa_m.shape, np.nan)
+            sigma = np.full(kappa.shape, np.nan)
+        else:
+            sigma = _mean_where(sigma_m, usable if tip_position is not None else used)
+    normal = "closed form" if not (np.any(g[1]) or np.any(g[2])) else "4x4 determinant"
+    return ContactResonanceResult(
+        kappa=kappa,
+        k_star=kappa * k_c,
+        tip_position=np.broadcast_to(r[..., 0], kappa.shape).copy(),
+        sigma=sigma,
+        flags=flags.astype(int),
+        candidates=cand,
+        candidate_kappa=cand_k,
+        kappa_modes=np.real(kappa_m),
+        sigma_modes=sigma_m,
+        flags_modes=flags_m.astype(int),
+        mode_spread=spread,
+        averaged_modes=np.broadcast_to(averaged, kappa_m.shape).copy(),
+        modes=modes,
+        normalisation=cantilever.normalisation,
+        method=f"{method}; κ per mode by the {normal}; normalisation {cantilever.normalisation}",
+    )
+
+
+def _first_two(measured):
+    """Indices (..., 2) of the first two measured columns of each pixel, and the mask of those
+    that are measured (the two modes whose crossing gives r)."""
+    first_two = np.argsort(~measured, axis=-1, kind="stable")[..., :2]
+    mask = np.zeros(measured.shape, bool)
+    np.put_along_axis(mask, first_two, True, axis=-1)
+    return first_two, mask & measured
+
+
+def _two_modes(beta, mode_arr, measured, g, tolerance):
+    """(r[..., None], candidates, candidate κ, number of eligible crossings) of the two-mode
+    inversion; further measured modes choose among the crossings (module notes)."""
+    shape = np.broadcast_shapes(beta.shape, *(np.shape(x) for x in g))
+    pix_shape = shape[:-1]
+    beta = np.broadcast_to(beta, shape)
+    meas = np.broadcast_to(measured, shape)
+    first_two, crossing = _first_two(meas)
+    b2 = np.take_along_axis(beta, first_two, axis=-1).reshape(-1, 2)
+    m2 = mode_arr[first_two].reshape(-1, 2)
+    gf = tuple(np.broadcast_to(x[..., 0], pix_shape).reshape(-1) for x in g)
+    n = b2.shape[0]
+    pix, r, kap = _crossings(b2[:, 0], m2[:, 0], b2[:, 1], m2[:, 1], gf)
+    order = np.lexsort((r, pix))
+    pix, r, kap = pix[order], r[order], kap[order]
+    counts = np.bincount(pix, minlength=n)
+    k_max = int(counts.max(initial=0))
+    rank = np.arange(pix.size) - np.repeat(np.cumsum(counts) - counts, counts)
+    cand = np.full((n, k_max), np.nan)
+    cand_k = np.full((n, k_max), np.nan)
+    cand[pix, rank] = r
+    cand_k[pix, rank] = np.real(kap)
+    in_win = (cand >= 0.5) & (cand <= 1.0)
+    # Further modes: κ of each at every candidate r, its largest deviation from the crossing's.
+    extra = (meas & ~crossing).reshape(n, -1)
+    dev = np.full((n, k_max), -np.inf)
+    gk = tuple(x[:, None] for x in gf)
+    for c in np.flatnonzero(extra.any(axis=0)):  # a loop over modes (<= 8), not over pixels
+        k_c, f_c = kappa_on_branch(beta.reshape(n, -1)[:, c, None], mode_arr[c], cand, gk)
+        k_c = np.where((f_c & _CONTRADICTS) != 0, np.inf, np.real(k_c))  # module notes
+        dev = np.where(extra[:, c, None], np.fmax(dev, np.abs(k_c / cand_k - 1.0)), dev)
+    checked = in_win & np.isfinite(dev)
+    consistent = checked & (dev <= tolerance)
+    decide = consistent.any(axis=-1, keepdims=True)  # else: the two-mode rule, flagged later
+    eligible = np.where(decide, consistent, in_win)
+    chosen = np.max(np.where(eligible, cand, -np.inf), axis=-1, initial=-np.inf)
+    chosen = np.where(np.isfinite(chosen), chosen, np.nan)
+    return (
+        chosen.reshape((*pix_shape, 1)),
+        cand.reshape((*pix_shape, k_max)),
+        cand_k.reshape((*pix_shape, k_max)),
+        eligible.sum(axis=-1).reshape(pix_shape),
+    )
