@@ -186,6 +186,25 @@ def test_gao_first_order_weights(nu):
     np.testing.assert_allclose(dnu, gao_I1(h / a) / (1 - nu), rtol=2e-5)
 
 
+@pytest.mark.parametrize("ratio", [0.8, 1.25])
+def test_gao_full_formula_near_equal_moduli(ratio):
+    """Gao's effective G and ν (their Eqs. with I₀, I₁) hold to 2 % for film and substrate
+    moduli within 25 % of each other (measured 1.1 % at E_s/E_f = 0.8 and 1.25; 10 % at 0.5 and
+    2, up to 5x at 20: docs/guide/coated-substrates.md)."""
+    h, nu, E_f = 1e-6, 0.3, 10e9
+    E_s = ratio * E_f
+    a = np.geomspace(0.01, 100, 9) * h
+    M = indentation_modulus_at(
+        LayeredMaterial(Material.isotropic(E_s, nu), [(Material.isotropic(E_f, nu), h)]), a
+    )
+    x = h / a
+    i1 = gao_I1(x)
+    nu_eff = 1 - (1 - nu) ** 2 / (1 - (1 - i1) * nu - i1 * nu)
+    G_f, G_s = E_f / (2 * (1 + nu)), E_s / (2 * (1 + nu))
+    gao = 2 * (G_s + (G_f - G_s) * gao_I0(x, nu_eff)) / (1 - nu_eff)
+    np.testing.assert_allclose(gao, M, rtol=2e-2)
+
+
 # --------------------------------------------------------------------- Dimitriadis et al. (2002)
 def dimitriadis_stack(nu):
     film = Material.isotropic(1e3, nu)
