@@ -1,10 +1,10 @@
 """Normal contact: isotropic Hertz/JKR/DMT (``isotropic``), anisotropic Hertz (``anisotropic``) and
-the axisymmetric contact on a coated (layered) substrate (``axisymmetric``: the solver on a
-wave-number-dependent compliance; ``layered``: the punch, sphere and M(a) on a
+the axisymmetric contact on a coated (layered) substrate (the private ``_axisymmetric``: the
+solver on a wave-number-dependent compliance; ``_layered``: the punch, sphere and M(a) on a
 :class:`~contactres.LayeredMaterial`).
 
 The public functions of these modules are re-exported here and from :mod:`contactres`
-(:func:`sphere_contact` is the one of ``layered``, which hands a homogeneous material to
+(:func:`sphere_contact` is the one of ``_layered``, which hands a homogeneous material to
 ``anisotropic``). They are
 loaded on first use (PEP 562 module ``__getattr__``): a caller of the isotropic formulas (the
 tangential loops, the QCM analysis) does not import the anisotropic half-space behind
