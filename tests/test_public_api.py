@@ -274,8 +274,10 @@ PUBLIC = {
         "GrainOrientations",
         "HexagonalInverseResult",
         "IPFTriangle",
+        "IndexedPixels",
         "LATTICES",
         "MAP_CONVENTIONS",
+        "MIN_CI",
         "NormalTable",
         "OrientationMap",
         "SyntheticPolycrystal",
@@ -291,6 +293,7 @@ PUBLIC = {
         "grain_means",
         "grain_orientations",
         "indentation_moduli",
+        "indexed_pixels",
         "ipf_colors",
         "ipf_triangle",
         "map_from_dataset",
@@ -399,6 +402,7 @@ PUBLIC_MODULES = [
     "contactres.tangential",
     "contactres.units",
     "contactres.validation",
+    "contactres.viscoelastic",
 ]
 
 # Implementation modules that do not have their leading underscore yet (a later step, after
@@ -410,6 +414,9 @@ NOT_YET_PRIVATE = [
     "contactres.halfspace.kernels",
     "contactres.halfspace.outgoing",
     "contactres.halfspace.stacked",
+    "contactres.layered.expm",
+    "contactres.layered.recursion",
+    "contactres.layered.stack",
     "contactres.measurements.afm_example",
     "contactres.measurements.messages",
     "contactres.measurements.readers.delimited",

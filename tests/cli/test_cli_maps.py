@@ -345,6 +345,9 @@ BAD = [
     ("predict", PRE, "--scheduler", "localhost:8786", None),
     ("predict", PRE, "--figure", "nodir/m.png", ("nodir",)),
     ("predict", PRE, "--format", "xml", None),
+    ("predict", PRE, "--min-confidence", "2", ("--min-confidence",)),
+    ("predict", PRE, "--max-mad", "0", ("--max-mad",)),
+    ("predict", PRE, "--phase", "3", ("phase 3",)),
     ("fit", FIT, "map", "nosuch.zarr", ("MAP", "nosuch.zarr")),
     ("fit", FIT, "--out", "nodir/f.json", ("nodir",)),
     ("fit", FIT, "--values", "badcell.csv", ("badcell.csv", "row 3", "column 5", "1.3e3x")),
@@ -356,6 +359,9 @@ BAD = [
     ("fit", FIT, "--force", "-1", None),
     ("fit", FIT, "--tip-modulus", "1.14e3", None),
     ("fit", FIT, "--format", "xml", None),
+    ("fit", FIT, "--min-confidence", "nan", ("--min-confidence",)),
+    ("fit", FIT, "--max-mad", "-1", ("--max-mad",)),
+    ("fit", FIT, "--phase", "-1", ("--phase",)),
 ]
 
 # More cases: combinations and the other ways a file or an output can be wrong.
@@ -453,3 +459,67 @@ def test_predict_per_grain_ignores_unlabelled_pixels():
     M = ds["M_Pa"].values[0]
     assert info["method"] == "grains" and np.isnan(M[2]) and np.isnan(ds["k_star_N_per_m"][0, 2])
     assert M[3] == pytest.approx(indentation_modulus(cu), rel=1e-9)  # Euler (0, 0, 0): (001)
+
+
+# ------------------------------------------------------------------ pixels that are not indexed
+
+
+def _with_holes(store, tmp_path):
+    """The .ang of the synthetic map with a 30x30 block not indexed (CI -1, phase 0, angles 0,
+    as OIM writes such pixels) and its measured k* (the instrument measured there too)."""
+    from dataclasses import replace
+
+    from contactres.polycrystal import map_from_dataset, write_ang
+
+    ds = read_map(store)
+    omap = map_from_dataset(ds)
+    hole = np.zeros(omap.shape, dtype=bool)
+    hole[10:40, 20:50] = True
+    euler = np.where(hole[..., None], 0.0, omap.euler)
+    omap = replace(
+        omap,
+        euler=euler,
+        labels=None,
+        phase=np.where(hole, 0, 1),
+        confidence=np.where(hole, -1.0, 0.9),
+        confidence_name="CI",
+    )
+    ang = write_ang(tmp_path / "holes.ang", omap)
+    values = tmp_path / "kstar.csv"
+    np.savetxt(values, ds["k_star_N_per_m"].values, delimiter=",")
+    return ang, values, hole
+
+
+def test_unindexed_pixels_are_left_out_of_predictions_and_fits(tmp_path):
+    """Issue 27: unindexed pixels (phase 0, CI -1) got a Cu modulus, and a fit on such a map
+    moved the strong combination far outside its error. They are left out and counted."""
+    store = tmp_path / "big.zarr"
+    _ok(run("maps", "synthetic", "--shape", "120x120", "--grains", 30, "--noise", NOISE,
+            "--crystal", "Cu", *TIP, "--out", store))  # fmt: skip
+    ang, values, hole = _with_holes(store, tmp_path)
+    r = _ok(_predict(ang, tmp_path / "p.zarr"))
+    assert r.stdout.splitlines()[0] == "900 of 14400 pixels left out: 900 not indexed"
+    M = read_map(tmp_path / "p.zarr")["M_Pa"].values
+    assert np.isnan(M[hole]).all() and np.isfinite(M[~hole]).all()
+    r = _ok(run("maps", "fit", ang, "--values", values, "--out", tmp_path / "f.json"))
+    doc = json.loads((tmp_path / "f.json").read_text())
+    assert doc["pixels_left_out"] == 900 and doc["pixels"] <= 14400 - 900
+    # The same fit as of the map without that block (angles and values NaN: no indexing rule
+    # involved), a second path through the API; with the placeholder angles kept, not.
+    from dataclasses import replace
+
+    from contactres.jobs.maps import fit_measured_map
+    from contactres.polycrystal import map_from_dataset
+
+    ds = read_map(store)
+    omap = replace(map_from_dataset(ds), labels=None)
+    k = ds["k_star_N_per_m"].values
+    blank = replace(omap, euler=np.where(hole[..., None], np.nan, omap.euler))
+    ref, _, _ = fit_measured_map(blank, np.where(hole, np.nan, k), quantity="stiffness")
+    assert doc["strong_combination"] == pytest.approx(ref.strong_combination, rel=1e-12)
+    assert doc["n_grains"] == ref.n_grains
+    # A phase the map does not hold, and a threshold outside CI's range: one line each.
+    bad = _predict(ang, tmp_path / "q.zarr", "--phase", 3)
+    assert bad.exit_code == 2 and "no indexed pixel of phase 3; its phases are 1" in bad.output
+    bad = _predict(ang, tmp_path / "q.zarr", "--min-confidence", 2)
+    assert bad.exit_code == 2 and "--min-confidence" in bad.output

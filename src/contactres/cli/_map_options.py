@@ -1,5 +1,6 @@
 """Shared options of ``contactres maps``: the crystal (cubic or hexagonal), the tip and its
-load, the scheduler address, the map shape and a progress callback."""
+load, which pixels of an EBSD map are used, the scheduler address, the map shape and a progress
+callback."""
 
 from __future__ import annotations
 
@@ -38,6 +39,46 @@ def material_options(f):
         ),
     ]
 
+    for option in reversed(options):
+        f = option(f)
+    return f
+
+
+def _finite(ctx, param, value):
+    """click's FloatRange lets NaN through (every comparison with NaN is false)."""
+    if value is not None and value != value:
+        raise click.BadParameter("must be a finite number, not nan", ctx, param)
+    return value
+
+
+def pixel_options(f):
+    """--min-confidence, --max-mad, --phase: which pixels of an EBSD map are used
+    (:func:`contactres.polycrystal.indexed_pixels`)."""
+    options = [
+        click.option(
+            "--min-confidence",
+            type=click.FloatRange(-1.0, 1.0),
+            callback=_finite,
+            show_default="0.1",
+            help="Lowest confidence index CI of a used .ang pixel, dimensionless (CI = -1: not "
+            "indexed). Pixels below it are left out and counted.",
+        ),
+        click.option(
+            "--max-mad",
+            type=click.FloatRange(0.0, 180.0, min_open=True),
+            callback=_finite,
+            show_default="no limit",
+            help="Largest mean angular deviation MAD of a used .ctf pixel, degrees (phase 0 is "
+            "always left out: not indexed).",
+        ),
+        click.option(
+            "--phase",
+            type=click.IntRange(0),
+            show_default="the map's one phase",
+            help="Phase id whose pixels are used, dimensionless (needed when the map holds "
+            "several phases).",
+        ),
+    ]
     for option in reversed(options):
         f = option(f)
     return f

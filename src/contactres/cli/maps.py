@@ -12,6 +12,7 @@ from ._map_options import (
     map_material,
     map_shape,
     material_options,
+    pixel_options,
     progress_callback,
     scheduler_address,
     tip_options,
@@ -149,6 +150,7 @@ def maps_synthetic(
     type=click.Path(dir_okay=False),
     help="PNG: M map, IPF-Z map and the M legend over the standard triangle.",
 )
+@pixel_options
 @format_option()
 def maps_predict(
     map_path,
@@ -170,6 +172,9 @@ def maps_predict(
     chunks,
     scheduler,
     figure,
+    min_confidence,
+    max_mad,
+    phase,
     fmt,
 ):
     """Predicted indentation modulus M (Pa) and contact stiffness k* (N/m) of every pixel of an
@@ -198,7 +203,18 @@ def maps_predict(
         raise ContactresInputError("--frequency needs the density: give --density (kg/m^3)")
     tipload = TipLoad(tip_radius, force, math.inf if tip_modulus is None else tip_modulus)
     settings = job.Settings(
-        material, lattice, tipload, method, rtol, frequency, model, chunks, scheduler
+        material,
+        lattice,
+        tipload,
+        method,
+        rtol,
+        frequency,
+        model,
+        chunks,
+        scheduler,
+        min_confidence=min_confidence,
+        max_mad=max_mad,
+        phase=phase,
     )
     result = job.run(
         map_path,
@@ -219,6 +235,7 @@ def maps_predict(
         "method": info["method"],
         "M_stated_error": info["stated_error"],
         "exact_evaluations": info["exact_evaluations"],
+        "pixels_left_out": info["pixels_left_out"],
         "M_min_Pa": float(np.nanmin(M)),
         "M_max_Pa": float(np.nanmax(M)),
         "k_star_min_N_per_m": float(np.nanmin(k)),
@@ -228,6 +245,8 @@ def maps_predict(
     if fmt != "plain":
         emit_record(record, fmt)
         return
+    if info["pixels_left_out"]:
+        click.echo(info["pixels"])
     click.echo(
         f"{record['pixels']} pixels, M {info['method']} ({info['exact_evaluations']} exact "
         f"evaluations, error {info['stated_error']}): M from {record['M_min_Pa'] / 1e9:.4g} to "
@@ -291,6 +310,7 @@ def maps_predict(
     show_default="rigid",
     help="Plane-strain modulus of the tip E/(1 - ν²), Pa.",
 )
+@pixel_options
 @format_option()
 def maps_fit(
     map_path,
@@ -303,6 +323,9 @@ def maps_fit(
     tip_radius,
     force,
     tip_modulus,
+    min_confidence,
+    max_mad,
+    phase,
     fmt,
 ):
     """Single-crystal constants (ratios to C11, and C11 when the calibration is known) from a
@@ -327,6 +350,9 @@ def maps_fit(
         tolerance_deg=tolerance_deg,
         tipload=None if tip_radius is None else TipLoad(tip_radius, force),
         tip_modulus=tip_modulus,
+        min_confidence=min_confidence,
+        max_mad=max_mad,
+        phase=phase,
     )
     done = job.run(map_path, settings, progress=lambda text: step("maps fit", text))
     result, used, record = done.fit, done.pixels, done.record
@@ -337,4 +363,6 @@ def maps_fit(
             click.echo(f"contactres: warning: {line}", err=True)
         return
     click.echo(result.summary())
+    if record["flat"].get("pixels_left_out"):
+        click.echo(record["flat"]["pixel_rule"])
     click.echo(f"{used} pixels in {result.n_grains} grains; wrote {out}")

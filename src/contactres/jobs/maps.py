@@ -22,7 +22,7 @@ from __future__ import annotations
 import math
 import os
 from collections.abc import Callable
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -33,6 +33,7 @@ from ..materials import Material
 from ..polycrystal import (
     ContactMap,
     ExactModulus,
+    IndexedPixels,
     OrientationMap,
     contact_stiffness_map,
     dynamic_factor_map,
@@ -41,6 +42,7 @@ from ..polycrystal import (
     folded_normals,
     grain_orientations,
     indentation_moduli,
+    indexed_pixels,
     map_from_dataset,
     map_to_dataset,
     prepare_normal_table,
@@ -146,6 +148,7 @@ def predict_map(
     scheduler: str | None = None,
     client=None,
     progress: Callable[[int, int], None] | None = None,
+    pixels: IndexedPixels | None = None,
 ):
     """Predicted M, static (and dynamic) contact stiffness of every pixel, as a Dataset.
 
@@ -169,6 +172,10 @@ def predict_map(
         dynamic contact stiffness.
     chunks, scheduler, client, progress
         Of :func:`~contactres.polycrystal.evaluate_map` (the M evaluation).
+    pixels : IndexedPixels, optional
+        The pixels to predict (:func:`~contactres.polycrystal.indexed_pixels`; default: its
+        rules with their defaults): the others (not indexed, low confidence, another phase)
+        get NaN, not the modulus of a placeholder orientation.
 
     Returns
     -------
@@ -180,6 +187,7 @@ def predict_map(
     """
     if method not in METHODS:
         raise ContactresInputError(f"method must be one of {METHODS}, got {method!r}")
+    pixels = indexed_pixels(omap) if pixels is None else pixels
     normals = folded_normals(omap, lattice)  # M depends on the folded normal only
     uniform = omap.labels is not None and _uniform_grains(omap, normals)
     if method == "auto":
@@ -224,6 +232,8 @@ def predict_map(
             progress=progress,
         )
         info.update(exact_evaluations=table.evaluations, stated_error=f"{table.error:.2g}")
+    M = np.where(pixels.mask, M, np.nan)
+    info.update(pixels=pixels.summary(), pixels_left_out=pixels.left_out)
     contact = _contact_where_finite(M, tipload)
     ds = map_to_dataset(omap)
     dims = ("y", "x")
@@ -346,6 +356,7 @@ def fit_measured_map(
     tip_modulus: float | None = None,
     tolerance_deg: float = 2.0,
     min_pixels: int = 10,
+    pixels: IndexedPixels | None = None,
 ):
     """Fit the single-crystal constants to a measured map of k* (N/m) or M (Pa).
 
@@ -353,6 +364,9 @@ def fit_measured_map(
     (regions of equal surface normal within ``tolerance_deg``). Per grain: the mean and its
     standard error, and the orientation of the mean normal. With ``tipload`` (force and tip
     radius known) the calibration of a stiffness map is c = (6 F R)^{1/3}; else it is free.
+    ``pixels`` (:func:`~contactres.polycrystal.indexed_pixels`, default: its rules with their
+    defaults): only these pixels enter the fit (a not-indexed pixel's orientation is a
+    placeholder).
 
     Returns
     -------
@@ -364,6 +378,10 @@ def fit_measured_map(
             f"the measured map has shape {vals.shape}, the orientation map {omap.shape}: they "
             "must be on the same grid"
         )
+    pixels = indexed_pixels(omap) if pixels is None else pixels
+    vals = np.where(pixels.mask, vals, np.nan)
+    # A pixel left out has no orientation either: NaN angles keep it out of the grains.
+    omap = replace(omap, euler=np.where(pixels.mask[..., None], omap.euler, np.nan))
     labels = omap.labels
     if labels is None:
         labels = segment_grains(omap, lattice, tolerance_deg=tolerance_deg, min_pixels=min_pixels)

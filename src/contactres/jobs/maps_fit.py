@@ -47,6 +47,9 @@ class Settings:
         Tip radius and force of a stiffness map (None: as the quantity allows).
     tip_modulus : float or None
         The tip's indentation modulus, Pa (None: rigid or fitted, as the fit decides).
+    min_confidence, max_mad, phase : float, float, int or None
+        Which pixels of an EBSD map are used (:func:`contactres.polycrystal.indexed_pixels`;
+        None: its defaults).
     """
 
     values_path: str | None = None
@@ -56,6 +59,9 @@ class Settings:
     tolerance_deg: float = 2.0
     tipload: TipLoad | None = None
     tip_modulus: float | None = None
+    min_confidence: float | None = None
+    max_mad: float | None = None
+    phase: int | None = None
 
 
 @dataclass(frozen=True)
@@ -74,6 +80,7 @@ class Result(JobResult):
 
 def run(inputs: str | os.PathLike, settings: Settings, progress: Progress | None = None) -> Result:
     """Fit the constants to the measured map over the orientations ``inputs``."""
+    from ..polycrystal import indexed_pixels
     from .maps import fit_measured_map, fit_record, open_map
     from .readers import read_grid_file
 
@@ -95,6 +102,8 @@ def run(inputs: str | os.PathLike, settings: Settings, progress: Progress | None
             f"{inputs}: no variable {s.variable!r}; give the measured map as values_path "
             "(--values FILE on the command line)"
         )
+    pixels = indexed_pixels(omap, min_confidence=s.min_confidence, max_mad=s.max_mad, phase=s.phase)
+    say(progress, pixels.summary())
     fit, _, used = fit_measured_map(
         omap,
         values,
@@ -103,11 +112,14 @@ def run(inputs: str | os.PathLike, settings: Settings, progress: Progress | None
         tipload=s.tipload,
         tip_modulus=s.tip_modulus,
         tolerance_deg=s.tolerance_deg,
+        pixels=pixels,
     )
     record = fit_record(
         fit,
         source=str(inputs),
         pixels=used,
+        pixels_left_out=pixels.left_out,
+        pixel_rule=pixels.summary(),
         segmented=omap.labels is None,
         tolerance_deg=s.tolerance_deg,
     )

@@ -52,6 +52,9 @@ class Settings:
         Pixels per side of a chunk.
     scheduler : str or None
         Address of a dask scheduler (None: in this process).
+    min_confidence, max_mad, phase : float, float, int or None
+        Which pixels of an EBSD map are used (:func:`contactres.polycrystal.indexed_pixels`;
+        None: its defaults).
     """
 
     material: Material
@@ -63,6 +66,9 @@ class Settings:
     model: str = "exact"
     chunks: int = 256
     scheduler: str | None = None
+    min_confidence: float | None = None
+    max_mad: float | None = None
+    phase: int | None = None
 
 
 @dataclass(frozen=True)
@@ -88,6 +94,7 @@ def run(
 ) -> Result:
     """The predicted map of the orientations ``inputs`` (see the module docstring)."""
     from ..errors import ContactresInputError
+    from ..polycrystal import indexed_pixels
     from .maps import open_map, predict_map
 
     s = settings
@@ -95,6 +102,8 @@ def run(
         raise ContactresInputError("a frequency needs the density of the material (kg/m^3)")
     say(progress, f"reading {inputs}")
     omap, _ = open_map(inputs)
+    pixels = indexed_pixels(omap, min_confidence=s.min_confidence, max_mad=s.max_mad, phase=s.phase)
+    say(progress, pixels.summary())
     ds, info = predict_map(
         omap,
         s.material,
@@ -107,5 +116,6 @@ def run(
         chunks=(s.chunks, s.chunks),
         scheduler=s.scheduler,
         progress=chunk_progress,
+        pixels=pixels,
     )
     return Result(dataset=ds, info=dict(info), material=s.material, lattice=s.lattice)

@@ -57,6 +57,9 @@ _EXPORTS = MappingProxyType(
         "write_map": "._maps",
         "ExactModulus": "._maps",
         "OrientationMap": "._maps",
+        "MIN_CI": "._indexing",
+        "IndexedPixels": "._indexing",
+        "indexed_pixels": "._indexing",
         "indentation_moduli": "._moduli",
         "prepare_normal_table": "._normal_table",
         "reduce_normals": "._normal_table",
@@ -126,6 +129,11 @@ if TYPE_CHECKING:
         map_to_dataset as map_to_dataset,
         read_map as read_map,
         write_map as write_map,
+    )
+    from ._indexing import (
+        MIN_CI as MIN_CI,
+        IndexedPixels as IndexedPixels,
+        indexed_pixels as indexed_pixels,
     )
     from ._moduli import (
         indentation_moduli as indentation_moduli,
