@@ -20,7 +20,7 @@ are generated from, or checked against, the schemas here (:data:`SCHEMAS`):
 Every table of every job's Result (:mod:`contactres.jobs`) is bound to one of these.
 
 The module sits in the measurements layer (its rules name the cells of a table with
-:mod:`contactres.measurements.messages`), below analysis and report, which import it.
+:mod:`contactres.measurements._messages`), below analysis and report, which import it.
 """
 
 from __future__ import annotations

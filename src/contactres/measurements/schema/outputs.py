@@ -39,7 +39,7 @@ def _written(schema: TableSchema, name: str, meaning: str | None = None) -> Colu
 
 
 #: The sweep table of ``contactres qcm spectra`` (``--out``; ``qcm-spectra/sweeps.csv`` of
-#: ``contactres demo``): what :func:`contactres.measurements.shifts.sweeps_from_spectra`
+#: ``contactres demo``): what :func:`contactres.measurements._shifts.sweeps_from_spectra`
 #: returns, one row per measured spectrum, in its order. ``qcm analyze`` reads it as a sweep table
 #: (:data:`~.inputs.SWEEP_TABLE`), whose columns it repeats, and ignores the others.
 SPECTRA_SWEEPS = TableSchema(
@@ -101,7 +101,7 @@ SPECTRA_SWEEPS = TableSchema(
 )
 
 #: ``fits.csv`` of ``contactres qcm spectra --fits``: the columns of
-#: :func:`contactres.measurements.spectra.fit_resonances`, in its order.
+#: :func:`contactres.measurements.fit_resonances`, in its order.
 SPECTRA_FITS = TableSchema(
     "fits.csv",
     "the resonance fit of every spectrum, one row per spectrum",
