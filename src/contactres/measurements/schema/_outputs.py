@@ -1,5 +1,5 @@
 """The tables contactres writes besides those of ``qcm analyze``
-(:mod:`contactres.measurements.schema.results`).
+(:mod:`contactres.measurements.schema._results`).
 
 * :data:`SPECTRA_SWEEPS`: the sweep table ``qcm spectra`` writes (``--out``), one row per
   measured spectrum: the sweep table's columns with the errors and the spectrum's own;
@@ -18,8 +18,8 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from .columns import Column, TableSchema
-from .inputs import SPECTRA_TABLE, SWEEP_TABLE
+from ._columns import Column, TableSchema
+from ._inputs import SPECTRA_TABLE, SWEEP_TABLE
 
 __all__ = [
     "AFM_INVERT_RESULTS",
