@@ -1,7 +1,7 @@
 """Benchmark: ``contactres qcm analyze`` on ~1,300 sweeps (~16,000 points), without figures.
 
 Target: under 5 s end to end on the 2-core reference machine. The table is the
-recipe of the bundled example data (:func:`contactres.measurements.studies.example_study`)
+recipe of the bundled example data (:func:`contactres.measurements.example_study`)
 with 14 experiments: 1,344 sweeps, 16,128 points. Timed, once, as a user's run would be:
 reading + validating the CSV, the whole analysis (every sweep fitted with four amplitude models
 and the exact Cattaneo-Mindlin loop, drift tests, per-load statistics, JKR fits with a
@@ -24,9 +24,7 @@ from _verdict import exit_code, target
 
 from contactres.analysis import analyze
 from contactres.analysis._loops import cm_loop_table
-from contactres.measurements.studies import EXAMPLE_SEED, example_study
-from contactres.measurements.sweeps import read_sweeps
-from contactres.measurements.synthetic import synthetic_sweeps
+from contactres.measurements import EXAMPLE_SEED, example_study, read_sweeps, synthetic_sweeps
 from contactres.report import write_report
 
 TARGET_S = 5.0

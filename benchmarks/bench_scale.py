@@ -3,8 +3,8 @@
 Three tables, each analysed in a fresh process so that the peak resident memory it reports is
 its own (``resource.getrusage``, peak RSS of the process minus that after building the table):
 
-* **large**: the recipe of the bundled example (:func:`contactres.measurements.synthetic.
-  example_study`, 14 experiments, 1,344 sweeps of 11 or 13 points) repeated 75 times with
+* **large**: the recipe of the bundled example (:func:`contactres.measurements.example_study`,
+  14 experiments, 1,344 sweeps of 11 or 13 points) repeated 75 times with
   fresh noise (0.1 Hz on top, so that no two copies are alike): 100,800 sweeps, ~1.2 million
   points; plus one sweep of 700 points (the same forward model, one load). Built by repeating
   the forward model's output, not by calling it 10^5 times.
@@ -40,12 +40,13 @@ from contactres.analysis import AnalysisSettings, analyze
 from contactres.analysis._amplitude import pad_sweeps
 from contactres.analysis._classify import fit_sweeps
 from contactres.analysis._loops import loop_tables
-from contactres.measurements.studies import EXAMPLE_SEED, example_study
-from contactres.measurements.sweeps import validate_sweeps
-from contactres.measurements.synthetic import (
+from contactres.measurements import (
+    EXAMPLE_SEED,
     SweepGroup,
     SweepStudy,
+    example_study,
     synthetic_sweeps,
+    validate_sweeps,
 )
 from contactres.resonators import QCM
 

@@ -21,8 +21,7 @@ import time
 import numpy as np
 from _verdict import exit_code, target
 
-from contactres.measurements.spectra import fit_resonances
-from contactres.measurements.synthetic_spectra import synthetic_spectra
+from contactres.measurements import fit_resonances, synthetic_spectra
 
 N, POINTS = 10_000, 200
 TARGET_S = 5.0

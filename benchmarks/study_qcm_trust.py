@@ -1,6 +1,6 @@
 """How far the QCM analysis can be trusted: the validation study of issue 11, measured.
 
-Generates :func:`contactres.measurements.studies.validation_study` (3 configurations, air and
+Generates :func:`contactres.measurements.validation_study` (3 configurations, air and
 water, 6 loads, repeated experiments, 4 ramps, water noise, 15 % plateau blocks, Savkoor
 experiments, running-in, drift) with ``--studies`` seeds, analyses each with the default
 settings and prints
@@ -34,9 +34,7 @@ import pandas as pd
 from scipy import stats
 
 from contactres.analysis import AnalysisSettings, analyze, fit_jkr_mindlin
-from contactres.measurements.studies import validation_study
-from contactres.measurements.sweeps import validate_sweeps
-from contactres.measurements.synthetic import synthetic_sweeps
+from contactres.measurements import synthetic_sweeps, validate_sweeps, validation_study
 
 CONSTANTS = dict(overtone=3, area_m2=2.5e-5, n_contacts=3)
 MODELS = ("elastic", "cattaneo-mindlin", "savkoor", "plateau")

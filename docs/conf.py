@@ -41,8 +41,9 @@ myst_dmath_double_inline = True
 autosummary_generate = True
 autodoc_typehints = "description"
 autodoc_member_order = "bysource"
-# A package page lists the names of its ``__all__``: for a subpackage whose modules are private
-# (scipy's rule) these are the names it re-exports from them, each documented once, there.
+# A page lists what its module defines, not what it re-exports, except the page of a subpackage
+# whose modules are private (scipy's rule): it lists the names of its __all__, documented there
+# only (docs/_ext/contactres_docs.py adds ``:ignore-module-all:`` to every other page).
 autodoc_default_options = {"members": True}
 napoleon_numpy_docstring = True
 napoleon_google_docstring = False

@@ -2,12 +2,12 @@
 ``example_spectra.csv``: the admittance spectra of a part of them (issue 14).
 
 Run ``python scripts/make_example_data.py`` (seeded: the same file every time). The recipe is
-:func:`contactres.measurements.studies.example_study` (its docstring lists every parameter)
+:func:`contactres.measurements.example_study` (its docstring lists every parameter)
 with the seed ``EXAMPLE_SEED``; the points come from the package's own forward model (paper 2,
 Eqs. 1-14) plus Gaussian noise. With ``--experiments 14`` the same recipe gives the ~1,300-sweep
 table of ``benchmarks/bench_analyze.py``. The spectra: configuration SiO2_1.2mm in air,
 experiment e1, ramps 2 and 3 (every load), 40 points per spectrum, from
-:func:`contactres.measurements.synthetic_spectra.spectra_from_sweeps` (BVD resonator, peak
+:func:`contactres.measurements.spectra_from_sweeps` (BVD resonator, peak
 signal-to-noise 1000, two reference spectra), seed ``EXAMPLE_SEED``.
 """
 
@@ -16,9 +16,12 @@ from __future__ import annotations
 import argparse
 from pathlib import Path
 
-from contactres.measurements.studies import EXAMPLE_SEED, example_study
-from contactres.measurements.synthetic import synthetic_sweeps
-from contactres.measurements.synthetic_spectra import spectra_from_sweeps
+from contactres.measurements import (
+    EXAMPLE_SEED,
+    example_study,
+    spectra_from_sweeps,
+    synthetic_sweeps,
+)
 
 
 def main(argv: list[str] | None = None) -> None:

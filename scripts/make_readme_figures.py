@@ -27,8 +27,8 @@ import numpy as np
 from matplotlib.ticker import FixedLocator, FormatStrFormatter, NullFormatter
 
 import contactres as cr
-from contactres.measurements.afm_example import NAMED_SURFACES, ExampleLever
-from contactres.measurements.resonances import AFM_TABLE
+from contactres.measurements import NAMED_SURFACES, ExampleLever
+from contactres.measurements.schema import AFM_TABLE
 
 OUT = Path(__file__).resolve().parents[1] / "docs" / "figures" / "afm_walkthrough.png"
 #: The README's call: cr.example_afm_map((64, 64), noise=50.0, seed=0).

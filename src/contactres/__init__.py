@@ -97,10 +97,10 @@ _EXPORTS: dict[str, str] = {
     "invert_contact_resonance": ".resonators",
     "RUMOscillator": ".resonators",
     # measurements and analysis
-    "SweepTable": ".measurements.sweeps",
-    "SweepWarning": ".measurements.sweeps",
-    "read_sweeps": ".measurements.sweeps",
-    "validate_sweeps": ".measurements.sweeps",
+    "SweepTable": ".measurements",
+    "SweepWarning": ".measurements",
+    "read_sweeps": ".measurements",
+    "validate_sweeps": ".measurements",
     "AnalysisSettings": ".analysis",
     "Flag": ".analysis",
     "analyze": ".analysis",
@@ -109,8 +109,8 @@ _EXPORTS: dict[str, str] = {
     "modulus_from_contact_stiffness": ".analysis",
     "invert_afm_table": ".analysis",
     "invert_rum_table": ".analysis",
-    "read_resonance_table": ".measurements.resonances",
-    "example_afm_map": ".measurements.afm_example",
+    "read_resonance_table": ".measurements",
+    "example_afm_map": ".measurements",
     "write_report": ".report",
 }
 
@@ -212,15 +212,11 @@ if TYPE_CHECKING:
         Material as Material,
         at_cut_quartz as at_cut_quartz,
     )
-    from .measurements.afm_example import (
-        example_afm_map as example_afm_map,
-    )
-    from .measurements.resonances import (
-        read_resonance_table as read_resonance_table,
-    )
-    from .measurements.sweeps import (
+    from .measurements import (
         SweepTable as SweepTable,
         SweepWarning as SweepWarning,
+        example_afm_map as example_afm_map,
+        read_resonance_table as read_resonance_table,
         read_sweeps as read_sweeps,
         validate_sweeps as validate_sweeps,
     )

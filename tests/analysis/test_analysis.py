@@ -12,8 +12,8 @@ from contactres.analysis._loops import cm_loop_table, fit_cm_loops, plateau_loop
 from contactres.analysis._models import EXACT_LOOPS, exact_model, fit_tables, model_curves
 from contactres.analysis._pipeline import AnalysisSettings, analyze
 from contactres.fitting import Model, Parameter, fit
-from contactres.measurements.sweeps import validate_sweeps
-from contactres.measurements.synthetic import (
+from contactres.measurements._sweeps import validate_sweeps
+from contactres.measurements._synthetic import (
     SweepGroup,
     SweepStudy,
     contact_loop,

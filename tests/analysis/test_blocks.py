@@ -13,8 +13,8 @@ from contactres.analysis._loops import (
     savkoor_loop_shape,
     savkoor_loop_table,
 )
-from contactres.measurements.sweeps import validate_sweeps
-from contactres.measurements.synthetic import (
+from contactres.measurements._sweeps import validate_sweeps
+from contactres.measurements._synthetic import (
     SweepGroup,
     SweepStudy,
     contact_loop,
@@ -238,7 +238,7 @@ def test_savkoor_traction_from_the_group_modulus():
 def test_every_used_sweep_has_its_limits(seed):
     # A block whose friction law (Savkoor ruled out) leaves the plateau winning must have the
     # plateau loop fitted to its ramps (it once had not: Δf0 NaN for used sweeps).
-    from contactres.measurements.studies import validation_study
+    from contactres.measurements._studies import validation_study
 
     raw = synthetic_sweeps(validation_study(4), seed)
     res = analyze(validate_sweeps(raw, constants=CONST), settings=AnalysisSettings(bootstrap=0))

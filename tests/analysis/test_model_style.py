@@ -11,9 +11,9 @@ from contactres.analysis._classify import fit_sweeps
 from contactres.analysis._loops import loop_tables
 from contactres.analysis._models import AMPLITUDE_MODELS, REGISTRY, fit_tables
 from contactres.fitting import fit
+from contactres.measurements._sweeps import validate_sweeps
+from contactres.measurements._synthetic import SweepGroup, SweepStudy, synthetic_sweeps
 from contactres.measurements.schema import GROUP_RESULTS, SWEEP_RESULTS
-from contactres.measurements.sweeps import validate_sweeps
-from contactres.measurements.synthetic import SweepGroup, SweepStudy, synthetic_sweeps
 from contactres.resonators._qcm import QCM
 
 # Every parameter any fitted model may have: unit and the result columns that may hold it.

@@ -31,8 +31,8 @@ from contactres.analysis._loops import (
 )
 from contactres.analysis._models import fit_tables
 from contactres.analysis._plateau import fit_plateau_loops, plateau_loop_slopes
-from contactres.measurements.sweeps import validate_sweeps
-from contactres.measurements.synthetic import SweepGroup, SweepStudy, synthetic_sweeps
+from contactres.measurements._sweeps import validate_sweeps
+from contactres.measurements._synthetic import SweepGroup, SweepStudy, synthetic_sweeps
 from contactres.resonators._qcm import QCM
 
 Q = QCM(fundamental=5e6, overtone=3, area=2.5e-5)

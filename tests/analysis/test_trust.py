@@ -6,8 +6,8 @@ import pytest
 
 from contactres.analysis import AnalysisSettings, analyze
 from contactres.analysis._flags import Flag, has
-from contactres.measurements.sweeps import SweepWarning, validate_sweeps
-from contactres.measurements.synthetic import Drift, SweepGroup, SweepStudy, synthetic_sweeps
+from contactres.measurements._sweeps import SweepWarning, validate_sweeps
+from contactres.measurements._synthetic import Drift, SweepGroup, SweepStudy, synthetic_sweeps
 from contactres.resonators._qcm import QCM
 
 Q = QCM(5e6, 3, 2.5e-5)

@@ -7,7 +7,7 @@ import pandas as pd
 import pytest
 from cli_checks import one_line_error, run
 
-from contactres.measurements.synthetic import SweepGroup, SweepStudy, synthetic_sweeps
+from contactres.measurements._synthetic import SweepGroup, SweepStudy, synthetic_sweeps
 from contactres.resonators._qcm import QCM
 
 

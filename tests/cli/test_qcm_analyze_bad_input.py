@@ -21,7 +21,7 @@ from click.testing import CliRunner
 
 from contactres.cli import main
 from contactres.fileio import MANIFEST
-from contactres.measurements.synthetic import SweepGroup, SweepStudy, synthetic_sweeps
+from contactres.measurements._synthetic import SweepGroup, SweepStudy, synthetic_sweeps
 from contactres.report.figures import FIGURE_FILES
 from contactres.resonators._qcm import QCM
 
@@ -254,7 +254,7 @@ def test_three_nan_amplitudes_are_counted_and_located(base, tmp_path):
 def test_an_output_folder_that_cannot_be_written_is_found_before_reading(
     base, tmp_path, monkeypatch
 ):
-    import contactres.measurements.sweeps as sweeps
+    import contactres.measurements._sweeps as sweeps
 
     def never(*args, **kwargs):
         raise AssertionError("the input was read before the output folder was checked")

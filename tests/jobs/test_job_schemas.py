@@ -197,7 +197,7 @@ def test_stiffness_and_spectra_columns():
     # The demo's tables: the same reading, which keeps Q, and the built-in solids.
     from contactres.crystals import crystal_table
     from contactres.jobs import demo
-    from contactres.measurements.shifts import read_spectra_sweeps
+    from contactres.measurements._shifts import read_spectra_sweeps
 
     _, rows, fits, _ = read_spectra_sweeps(DATA / "example_spectra.csv")
     assert demo.Result.SCHEMAS["spectra_rows"] is SPECTRA_SWEEPS

@@ -12,8 +12,8 @@ from click.testing import CliRunner
 
 import contactres as cr
 from contactres.cli import main
-from contactres.measurements.afm_example import NAMED_SURFACES, ExampleLever
-from contactres.measurements.resonances import AFM_TABLE
+from contactres.measurements._afm_example import NAMED_SURFACES, ExampleLever
+from contactres.measurements._resonances import AFM_TABLE
 
 SHAPE = (24, 20)  # small and not square: rows and columns cannot be swapped unnoticed
 

@@ -7,8 +7,10 @@ import pandas as pd
 import pytest
 
 from contactres.errors import ContactresInputError
+from contactres.measurements._resonances import validate_resonance_table
+from contactres.measurements._spectra_table import validate_spectra
+from contactres.measurements._sweeps import validate_sweeps
 from contactres.measurements.readers.delimited import load
-from contactres.measurements.resonances import validate_resonance_table
 from contactres.measurements.schema import (
     AFM_TABLE,
     GROUP_RESULTS,
@@ -18,8 +20,6 @@ from contactres.measurements.schema import (
     SWEEP_RESULTS,
     SWEEP_TABLE,
 )
-from contactres.measurements.spectra_table import validate_spectra
-from contactres.measurements.sweeps import validate_sweeps
 
 # One value that breaks each rule of the schema (column -> bad value). A new rule needs a line
 # here, so that no rule is written in the schema without the validator enforcing it.

@@ -11,13 +11,13 @@ import pandas as pd
 import pytest
 
 from contactres.analysis import analyze
-from contactres.measurements.shifts import read_spectra_sweeps, sweeps_from_spectra
-from contactres.measurements.spectra import fit_resonances
-from contactres.measurements.spectra_table import read_spectra
-from contactres.measurements.studies import EXAMPLE_SEED, example_study
-from contactres.measurements.sweeps import validate_sweeps
-from contactres.measurements.synthetic import synthetic_sweeps
-from contactres.measurements.synthetic_spectra import spectra_from_sweeps
+from contactres.measurements._shifts import read_spectra_sweeps, sweeps_from_spectra
+from contactres.measurements._spectra import fit_resonances
+from contactres.measurements._spectra_table import read_spectra
+from contactres.measurements._studies import EXAMPLE_SEED, example_study
+from contactres.measurements._sweeps import validate_sweeps
+from contactres.measurements._synthetic import synthetic_sweeps
+from contactres.measurements._synthetic_spectra import spectra_from_sweeps
 
 
 @pytest.fixture(scope="module")

@@ -1,6 +1,6 @@
 """The resonance-curve fit of QCM admittance spectra against the Butterworth–van Dyke circuit.
 
-The truth always comes from the generator (contactres.measurements.synthetic_spectra), which
+The truth always comes from the generator (contactres.measurements._synthetic_spectra), which
 evaluates the circuit R + iωL + 1/(iωC) in parallel with C0 through its impedance, never the
 fit's own resonance curve; the parameters are the ones the spectra were generated with.
 """
@@ -10,8 +10,8 @@ import pandas as pd
 import pytest
 from scipy.optimize import brentq
 
-from contactres.measurements.spectra import COLUMNS, FLAGS, fit_resonances, resonance_curve
-from contactres.measurements.synthetic_spectra import (
+from contactres.measurements._spectra import COLUMNS, FLAGS, fit_resonances, resonance_curve
+from contactres.measurements._synthetic_spectra import (
     bvd_admittance,
     bvd_circuit,
     bvd_parameters,

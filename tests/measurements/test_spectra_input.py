@@ -13,8 +13,8 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from contactres.measurements.shifts import D26_AT, E26_AT, shear_amplitude
-from contactres.measurements.spectra_table import read_spectra
+from contactres.measurements._shifts import D26_AT, E26_AT, shear_amplitude
+from contactres.measurements._spectra_table import read_spectra
 
 F = np.linspace(14.99e6, 15.01e6, 41)
 

@@ -6,7 +6,7 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from contactres.measurements.sweeps import SweepWarning, read_sweeps, validate_sweeps
+from contactres.measurements._sweeps import SweepWarning, read_sweeps, validate_sweeps
 
 CONST = dict(overtone=3, area_m2=2.5e-5, n_contacts=3, sphere_radius_m=1.1e-3)
 

@@ -7,9 +7,9 @@ import numpy as np
 import pandas as pd
 import pytest
 
-from contactres.measurements.studies import EXAMPLE_SEED, example_study
-from contactres.measurements.sweeps import validate_sweeps
-from contactres.measurements.synthetic import (
+from contactres.measurements._studies import EXAMPLE_SEED, example_study
+from contactres.measurements._sweeps import validate_sweeps
+from contactres.measurements._synthetic import (
     Drift,
     SweepGroup,
     SweepStudy,

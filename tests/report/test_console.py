@@ -27,8 +27,8 @@ def test_value_with_error(value, err, text):
 def test_area_in_mm2_prints_dashes_and_says_which_input(tmp_path):
     import pandas as pd
 
-    from contactres.measurements.studies import example_study
-    from contactres.measurements.synthetic import synthetic_sweeps
+    from contactres.measurements._studies import example_study
+    from contactres.measurements._synthetic import synthetic_sweeps
 
     raw = synthetic_sweeps(example_study(2), 1, constants=True)
     raw["area_m2"] = 25.0  # mm² typed into a m² column: refused when read (issue 27)

@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 
 from contactres.analysis._flags import DESCRIPTIONS, Flag, has, render
+from contactres.measurements._sweeps import VALIDATED_COLUMNS
 from contactres.measurements.schema import SWEEP_TABLE
-from contactres.measurements.sweeps import VALIDATED_COLUMNS
 from contactres.report.dictionary import (
     AFM_INVERT_RESULTS,
     BLOCK,
@@ -68,7 +68,7 @@ def test_docs_page_includes_every_table():
 
 
 def test_spectra_fits_columns_and_flags_are_the_code():
-    from contactres.measurements.spectra import COLUMNS, FLAGS
+    from contactres.measurements._spectra import COLUMNS, FLAGS
 
     assert SPECTRA_FITS.names == COLUMNS
     table = dictionary_tables()["spectra-fit-flags"]
@@ -95,7 +95,7 @@ def test_resonance_flags_are_the_code():
 def test_invert_outputs_append_exactly_the_listed_columns():
     from contactres.analysis._resonance_tables import invert_afm_table, invert_rum_table
     from contactres.materials import Material
-    from contactres.measurements.resonances import AFM_TABLE, RUM_TABLE, read_resonance_table
+    from contactres.measurements._resonances import AFM_TABLE, RUM_TABLE, read_resonance_table
 
     afm = read_resonance_table(DATA / "example_afm.csv", AFM_TABLE)
     sample = Material.crystal("Cu").rotated((0, 0, 1))

@@ -19,7 +19,15 @@ README = DOCS.parent / "README.md"
 
 
 # Subpackages whose implementation modules are private: every name of their __all__ is listed.
-PRIVATE_MODULE_PACKAGES = ["analysis", "apps", "dynamic", "polycrystal", "report", "resonators"]
+PRIVATE_MODULE_PACKAGES = [
+    "analysis",
+    "apps",
+    "dynamic",
+    "measurements",
+    "polycrystal",
+    "report",
+    "resonators",
+]
 
 
 def _listed() -> set[str]:

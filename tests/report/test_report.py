@@ -7,9 +7,9 @@ import pandas as pd
 import pytest
 
 from contactres.analysis import AnalysisSettings, analyze
+from contactres.measurements._sweeps import validate_sweeps
+from contactres.measurements._synthetic import SweepGroup, SweepStudy, synthetic_sweeps
 from contactres.measurements.schema import GROUP_RESULTS, SWEEP_RESULTS
-from contactres.measurements.sweeps import validate_sweeps
-from contactres.measurements.synthetic import SweepGroup, SweepStudy, synthetic_sweeps
 from contactres.report import write_report
 from contactres.resonators._qcm import QCM
 

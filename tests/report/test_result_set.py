@@ -17,8 +17,8 @@ import pytest
 
 from contactres.analysis import AnalysisSettings, analyze
 from contactres.fileio import MANIFEST, OutputError
-from contactres.measurements.sweeps import SweepWarning, validate_sweeps
-from contactres.measurements.synthetic import SweepGroup, SweepStudy, synthetic_sweeps
+from contactres.measurements._sweeps import SweepWarning, validate_sweeps
+from contactres.measurements._synthetic import SweepGroup, SweepStudy, synthetic_sweeps
 from contactres.report import figures, write_report
 from contactres.report._tables import sweeps_table
 from contactres.resonators._qcm import QCM

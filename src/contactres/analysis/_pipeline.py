@@ -71,8 +71,8 @@ import pandas as pd
 
 from .._version import __version__
 from ..errors import ContactresInputError
+from ..measurements import SweepTable
 from ..measurements.schema import SWEEP_TABLE
-from ..measurements.sweeps import SweepTable
 from ..resonators import QCM
 from ..tangential import effective_shear_modulus, shear_modulus
 from ..units import JUNCTION_SIGMAS, LINEAR_ONSET_X, MIN_SWEEP_POINTS, SMALL_LOAD_LIMIT
@@ -226,9 +226,9 @@ def analyze(
 
     Parameters
     ----------
-    table : a :class:`~contactres.measurements.sweeps.SweepTable` from
+    table : a :class:`~contactres.measurements.SweepTable` from
         :func:`contactres.read_sweeps` or :func:`contactres.validate_sweeps` (the constants
-        live in the table: :meth:`~contactres.measurements.sweeps.SweepTable.with_constants`
+        live in the table: :meth:`~contactres.measurements.SweepTable.with_constants`
         changes them)
     settings : :class:`AnalysisSettings` (defaults if None)
     progress : optional callback called with the name of each step as it starts

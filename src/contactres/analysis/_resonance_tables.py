@@ -1,7 +1,7 @@
 """Tables of measured resonances -> contact stiffness (and modulus), one row per point or pixel.
 
 The orchestration behind ``contactres rum invert`` and ``contactres afm invert``: the checked
-tables of :mod:`contactres.measurements.resonances` go through the oscillator models of
+tables of :mod:`contactres.measurements` go through the oscillator models of
 :mod:`contactres.resonators` and the modulus step of :mod:`contactres.analysis._inversion`;
 the output keeps every input column and appends the results. Rows that the physics rejects
 (a contact resonance below the free one) are errors naming the line; rows that only cannot be
@@ -16,7 +16,7 @@ import pandas as pd
 
 from ..dynamic import prepare
 from ..errors import ContactresInputError
-from ..measurements.messages import at_cell, where_rows
+from ..measurements import at_cell, where_rows
 from ..resonators import (
     MODE_TOLERANCE,
     Cantilever,
@@ -82,8 +82,8 @@ def _lumped_rows(table: pd.DataFrame, source: str) -> np.ndarray:
 
 
 def invert_rum_table(table: pd.DataFrame, source: str = "table") -> pd.DataFrame:
-    """k* of every row of a checked RUM table (:data:`~contactres.measurements.resonances
-    .RUM_TABLE`): ``k_star_N_per_m`` and ``rum_model`` appended.
+    """k* of every row of a checked RUM table (:data:`~contactres.measurements.schema.RUM_TABLE`):
+    ``k_star_N_per_m`` and ``rum_model`` appended.
 
     Lumped rows: (f/f0)² = 1 + k*/K_eff; rod rows (mass m): k* = (EA/L)(kL) tan(kL) of a rod
     free at one end with the contact spring at the other, EA/L = 4 m f0² (mode 1; see
@@ -231,7 +231,7 @@ def invert_afm_table(
     mode_tolerance: float = MODE_TOLERANCE,
 ) -> pd.DataFrame:
     """κ, k*, r, σ and (where the inputs allow) E* and M_sample of every row of a checked CR-AFM
-    table (:data:`~contactres.measurements.resonances.AFM_TABLE`).
+    table (:data:`~contactres.measurements.schema.AFM_TABLE`).
 
     Rows are grouped by their lever and tip geometry (:data:`AFM_GROUP_COLUMNS`) and by whether
     the tip position is given; each group is inverted at once by

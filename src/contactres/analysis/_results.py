@@ -8,7 +8,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
-from ..measurements.sweeps import SweepTable
+from ..measurements import SweepTable
 
 __all__ = ["Results"]
 

@@ -2,7 +2,7 @@
 position, damping and modulus, one row per point or map pixel.
 
 Inputs: the path of the resonance table (CSV, columns
-:data:`contactres.measurements.resonances.AFM_TABLE`). Settings: the normalisation of the
+:data:`contactres.measurements.schema.AFM_TABLE`). Settings: the normalisation of the
 frequencies, the tolerance between modes, and the sample for paper 1's dynamic correction of
 the Hertz rows. The inversion is :func:`contactres.invert_afm_table` (Euler-Bernoulli lever,
 U. Rabe et al., Rev. Sci. Instrum. 67, 3281 (1996)).
@@ -66,7 +66,8 @@ class Result(JobResult):
 def run(inputs: str | os.PathLike, settings: Settings, progress: Progress | None = None) -> Result:
     """Invert every row of the CR-AFM table ``inputs`` (see the module docstring)."""
     from ..analysis import invert_afm_table
-    from ..measurements.resonances import AFM_TABLE, read_resonance_table
+    from ..measurements import read_resonance_table
+    from ..measurements.schema import AFM_TABLE
 
     s = settings
     say(progress, f"reading {Path(inputs).name}")

@@ -90,7 +90,7 @@ class Result(JobResult):
 
 def _sweeps():
     from ..analysis import analyze
-    from ..measurements.sweeps import read_sweeps
+    from ..measurements import read_sweeps
 
     with as_file(files("contactres") / "data" / "example_sweeps.csv") as path:
         table = read_sweeps(path)
@@ -99,7 +99,7 @@ def _sweeps():
 
 def _spectra():
     from ..analysis import analyze
-    from ..measurements.shifts import read_spectra_sweeps
+    from ..measurements import read_spectra_sweeps
 
     with as_file(files("contactres") / "data" / "example_spectra.csv") as path:
         table, rows, fits, _ = read_spectra_sweeps(path)

@@ -1,7 +1,7 @@
 """Job ``qcm_spectra``: admittance spectra -> resonance fits -> the sweep table (Δf, ΔΓ, u0).
 
 Inputs: a tidy CSV of spectra (one row per frequency point) or a folder of network-analyser
-files with an ``index.csv`` (:func:`contactres.measurements.shifts.read_spectra_sweeps`).
+files with an ``index.csv`` (:func:`contactres.measurements.read_spectra_sweeps`).
 Settings: the reference spectra, the layout and reference impedance of delimited files, how the
 drive voltage is given and how it becomes the amplitude (u0 = 4 d26 Q U/(nπ)², Q = f_r/(2Γ),
 or a measured calibration u0/U). Every spectrum is fitted for its resonance frequency f_r and
@@ -74,7 +74,7 @@ def run(
     inputs: str | os.PathLike, settings: Settings | None = None, progress: Progress | None = None
 ) -> Result:
     """The sweep table of the spectra ``inputs`` (see the module docstring)."""
-    from ..measurements.shifts import D26_AT, read_spectra_sweeps
+    from ..measurements import D26_AT, read_spectra_sweeps
 
     s = settings or Settings()
     _validated, rows, fitted, left_out = read_spectra_sweeps(

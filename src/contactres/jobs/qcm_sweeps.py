@@ -42,7 +42,7 @@ if TYPE_CHECKING:
     import pandas as pd
 
     from ..analysis import Results
-    from ..measurements.sweeps import SweepTable
+    from ..measurements import SweepTable
 
 __all__ = [
     "Reading",
@@ -237,7 +237,7 @@ def summary(results: Results) -> dict:
 def warning_lines(caught) -> tuple[str, ...]:
     """Each distinct caught warning as one line: the data's (SweepWarning) as they are, any
     other (a numpy RuntimeWarning, say) with where it arose, never with a source line."""
-    from ..measurements.sweeps import SweepWarning
+    from ..measurements import SweepWarning
 
     lines: list[str] = []
     for w in caught:
@@ -256,8 +256,7 @@ def warning_lines(caught) -> tuple[str, ...]:
 
 def read(inputs: str | os.PathLike, settings: Settings) -> Reading:
     """The sweep table of ``inputs`` (a sweep table, or spectra fitted first)."""
-    from ..measurements.shifts import is_spectra_input, read_spectra_sweeps
-    from ..measurements.sweeps import read_sweeps
+    from ..measurements import is_spectra_input, read_spectra_sweeps, read_sweeps
 
     source, left_out = Path(inputs), ()
     with warnings.catch_warnings(record=True) as caught:

@@ -2,7 +2,7 @@
 point or map pixel.
 
 Inputs: the path of the resonance table (CSV, columns
-:data:`contactres.measurements.resonances.RUM_TABLE`): f0_Hz, fc_Hz and the calibration,
+:data:`contactres.measurements.schema.RUM_TABLE`): f0_Hz, fc_Hz and the calibration,
 K_eff_N_per_m (lumped oscillator, (f/f0)² = 1 + k*/K_eff) or mass_kg (a rod free at one end,
 k* = (EA/L)(kL) tan(kL)). Settings: none (the calibration columns choose the model). The
 inversion is :func:`contactres.invert_rum_table`.
@@ -48,7 +48,8 @@ def run(
 ) -> Result:
     """k* of every row of the RUM table ``inputs`` (see the module docstring)."""
     from ..analysis import invert_rum_table
-    from ..measurements.resonances import RUM_TABLE, read_resonance_table
+    from ..measurements import read_resonance_table
+    from ..measurements.schema import RUM_TABLE
 
     say(progress, f"reading {Path(inputs).name}")
     checked = read_resonance_table(inputs, RUM_TABLE)

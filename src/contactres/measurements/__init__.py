@@ -1,1 +1,108 @@
-"""Measured data: the schema of every table, the readers, validated tables, synthetic data."""
+"""Measured data: the schema of every table, the readers, validated tables, synthetic data.
+
+Two public subpackages: :mod:`contactres.measurements.schema` (every input and output table,
+its columns and rules) and :mod:`contactres.measurements.readers` (the reader recipes and their
+registry; the instrument exports in :mod:`contactres.measurements.readers.exports`). The names
+below are those of the private modules beside them: the validated sweep table
+(:func:`read_sweeps`, :class:`SweepTable`), the resonance tables of CR-AFM and RUM
+(:func:`read_resonance_table`), admittance spectra to sweeps (:func:`read_spectra_sweeps`,
+:func:`fit_resonances`), the synthetic data (:func:`synthetic_sweeps`,
+:func:`synthetic_spectra`, :func:`example_study`, :func:`example_afm_map`) and the wording of
+the messages that point at a cell of a table (:func:`at_cell`, :func:`where_rows`).
+
+The public names are loaded on first use (PEP 562 module ``__getattr__``); the modules that
+implement them are private (``_sweeps``, ``_shifts``, ..., scipy's rule).
+"""
+
+from __future__ import annotations
+
+from types import MappingProxyType
+
+from .._lazy import attach
+
+# Read as True by mypy and pyright (the real objects below), False at run time: no import.
+TYPE_CHECKING = False
+
+# Public name -> the (private) module that defines it.
+_EXPORTS = MappingProxyType(
+    {
+        "NAMED_SURFACES": "._afm_example",
+        "example_afm_map": "._afm_example",
+        "ExampleLever": "._afm_example",
+        "at_cell": "._messages",
+        "where_rows": "._messages",
+        "read_resonance_table": "._resonances",
+        "D26_AT": "._shifts",
+        "is_spectra_input": "._shifts",
+        "read_spectra_sweeps": "._shifts",
+        "FLAGS": "._spectra",
+        "fit_resonances": "._spectra",
+        "EXAMPLE_SEED": "._studies",
+        "example_study": "._studies",
+        "validation_study": "._studies",
+        "CONSTANTS": "._sweeps",
+        "read_sweeps": "._sweeps",
+        "validate_sweeps": "._sweeps",
+        "SweepTable": "._sweeps",
+        "SweepWarning": "._sweeps",
+        "synthetic_sweeps": "._synthetic",
+        "SweepGroup": "._synthetic",
+        "SweepStudy": "._synthetic",
+        "spectra_from_sweeps": "._synthetic_spectra",
+        "synthetic_spectra": "._synthetic_spectra",
+    }
+)
+
+__all__ = sorted(_EXPORTS)
+
+# What type checkers see: the real objects behind the public names (never run, so the imports
+# stay lazy; tests/test_public_api.py keeps these imports and ``_EXPORTS`` the same). ``X as X``
+# marks an explicit re-export; isort would split each onto its own import, hence off here.
+if TYPE_CHECKING:
+    # isort: off
+    from ._afm_example import (
+        ExampleLever as ExampleLever,
+        NAMED_SURFACES as NAMED_SURFACES,
+        example_afm_map as example_afm_map,
+    )
+    from ._messages import (
+        at_cell as at_cell,
+        where_rows as where_rows,
+    )
+    from ._resonances import (
+        read_resonance_table as read_resonance_table,
+    )
+    from ._shifts import (
+        D26_AT as D26_AT,
+        is_spectra_input as is_spectra_input,
+        read_spectra_sweeps as read_spectra_sweeps,
+    )
+    from ._spectra import (
+        FLAGS as FLAGS,
+        fit_resonances as fit_resonances,
+    )
+    from ._studies import (
+        EXAMPLE_SEED as EXAMPLE_SEED,
+        example_study as example_study,
+        validation_study as validation_study,
+    )
+    from ._sweeps import (
+        CONSTANTS as CONSTANTS,
+        SweepTable as SweepTable,
+        SweepWarning as SweepWarning,
+        read_sweeps as read_sweeps,
+        validate_sweeps as validate_sweeps,
+    )
+    from ._synthetic import (
+        SweepGroup as SweepGroup,
+        SweepStudy as SweepStudy,
+        synthetic_sweeps as synthetic_sweeps,
+    )
+    from ._synthetic_spectra import (
+        spectra_from_sweeps as spectra_from_sweeps,
+        synthetic_spectra as synthetic_spectra,
+    )
+
+    # isort: on
+
+__getattr__, __dir__ = attach(__name__, _EXPORTS)

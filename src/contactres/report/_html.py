@@ -22,8 +22,8 @@ from .._version import __version__
 from ..analysis import DESCRIPTIONS, PAGE_POINTS, Flag, Results, render, sweep_rows
 from ..fileio import write_text
 from ..jobs.qcm_sweeps import summary
+from ..measurements import CONSTANTS
 from ..measurements.schema import CONVENTIONS
-from ..measurements.sweeps import CONSTANTS
 from ._console import DASH, friction_table, plus_minus, radiation_lines, table1_text, withheld_lines
 
 __all__ = ["HTML_FILE", "html_report", "sweeps_page", "write_html"]

@@ -5,7 +5,7 @@ None when the Result has nothing to draw in that figure (no file is written then
 
 The QCM sweep analysis (a :class:`contactres.jobs.qcm_sweeps.Result`) has the figures of
 paper 2 (Figs. 4, 5, 7, 8: :mod:`contactres.report.figures`), none when no sweep is used (Fig.
-4's function says so once, a :class:`~contactres.measurements.sweeps.SweepWarning`), and the
+4's function says so once, a :class:`~contactres.measurements.SweepWarning`), and the
 radiation loss where the analysis has it.
 """
 
@@ -34,7 +34,7 @@ def sweeps_figure(result):
     """Fig. 4 of paper 2: Δf and ΔΓ against u0 for a typical load and an unusual one, per
     medium, with the chosen models (a qcm_sweeps Result); with no sweep used, None and a
     SweepWarning that no figure is drawn."""
-    from ..measurements.sweeps import SweepWarning
+    from ..measurements import SweepWarning
     from .figures import NO_SWEEP_USED, figure_sweeps
 
     analysis = _drawn(result)

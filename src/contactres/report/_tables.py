@@ -43,7 +43,7 @@ write (e.g. its figures) are removed. The columns are those of
     ``fig4_sweeps.png``, ``fig5_df0_vs_load.png``, ``fig7_dissipation_vs_load.png`` and
     ``fig8_friction_vs_load.png``: the figures of paper 2 for these data
     (:mod:`contactres.report.figures`; none when no sweep is used, with a
-    :class:`~contactres.measurements.sweeps.SweepWarning`), and with the radiation table
+    :class:`~contactres.measurements.SweepWarning`), and with the radiation table
     ``radiation_loss.png`` (measured and radiation loss tangent per load).
 ``report.html``
     only when asked for (format ``html``, ``--report html``): one self-contained page of the

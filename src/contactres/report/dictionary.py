@@ -21,6 +21,7 @@ import re
 
 from ..analysis import DESCRIPTIONS, Flag
 from ..analysis import FLAG_DESCRIPTIONS as MODULUS_FLAG_DESCRIPTIONS
+from ..measurements import FLAGS as SPECTRA_FIT_FLAGS
 from ..measurements.schema import (
     AFM_INVERT_RESULTS,
     AFM_TABLE,
@@ -44,7 +45,6 @@ from ..measurements.schema import (
     SWEEP_RESULTS,
     SWEEP_TABLE,
 )
-from ..measurements.spectra import FLAGS as SPECTRA_FIT_FLAGS
 
 __all__ = [
     "AFM_INVERT_RESULTS",

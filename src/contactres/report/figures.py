@@ -22,7 +22,7 @@ import pandas as pd
 
 from ..analysis import FIGURE_POINTS, sweep_rows
 from ..fileio import save_figure
-from ..measurements.sweeps import SweepWarning
+from ..measurements import SweepWarning
 from ..tangential import kappa_jkr_mindlin
 
 if TYPE_CHECKING:

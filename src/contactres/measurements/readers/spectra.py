@@ -11,7 +11,7 @@ Y = (1 − S)/(Z0 (1 + S)) with the reference impedance Z0 (Touchstone: its R; o
 
 Both recipes (:data:`SPECTRA_READERS`, kind ``spectra``) give the rows of a tidy spectra table
 as string cells with a ``line`` column, which
-:func:`contactres.measurements.spectra_table.validate_spectra` checks.
+:func:`contactres.measurements._spectra_table.validate_spectra` checks.
 """
 
 from __future__ import annotations
@@ -23,7 +23,7 @@ import numpy as np
 import pandas as pd
 
 from ...errors import ContactresInputError
-from ..messages import column_names, shown_value
+from .._messages import column_names, shown_value
 from ..schema import NUMBER_TEXT, SPECTRA_TABLE, check_cells
 from . import delimited
 from .recipe import Reader

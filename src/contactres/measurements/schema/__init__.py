@@ -20,12 +20,12 @@ are generated from, or checked against, the schemas here (:data:`SCHEMAS`):
 Every table of every job's Result (:mod:`contactres.jobs`) is bound to one of these.
 
 The module sits in the measurements layer (its rules name the cells of a table with
-:mod:`contactres.measurements.messages`), below analysis and report, which import it.
+:mod:`contactres.measurements._messages`), below analysis and report, which import it.
 """
 
 from __future__ import annotations
 
-from .columns import (
+from ._columns import (
     LEVELS,
     Column,
     Rule,
@@ -35,7 +35,7 @@ from .columns import (
     check_value,
     rule,
 )
-from .inputs import (
+from ._inputs import (
     A_NUMBER,
     AFM_TABLE,
     FALSE_WORDS,
@@ -50,7 +50,7 @@ from .inputs import (
     interval,
     plausible,
 )
-from .listings import (
+from ._listings import (
     CONTACT_TABLE,
     CRYSTAL_TABLE,
     CRYSTALS_LISTING,
@@ -61,7 +61,7 @@ from .listings import (
     PAPER2_TURNING,
     QCM_LOOP_TABLE,
 )
-from .outputs import (
+from ._outputs import (
     AFM_INVERT_RESULTS,
     RADIATION_RESULTS,
     RUM_INVERT_RESULTS,
@@ -69,7 +69,7 @@ from .outputs import (
     SPECTRA_SWEEPS,
     STIFFNESS_CSV,
 )
-from .results import CONVENTIONS, GROUP_RESULTS, LOAD_QUANTITIES, LOAD_RESULTS, SWEEP_RESULTS
+from ._results import CONVENTIONS, GROUP_RESULTS, LOAD_QUANTITIES, LOAD_RESULTS, SWEEP_RESULTS
 
 __all__ = [
     "AFM_INVERT_RESULTS",

@@ -49,7 +49,7 @@ import numpy as np
 
 from ....errors import ContactresInputError
 from ....units import ABSOLUTE_FREQUENCY_FRACTION
-from ...messages import shown_value
+from ..._messages import shown_value
 from ..recipe import Reader
 
 if TYPE_CHECKING:  # pandas is imported where a file is read: the command line's help imports

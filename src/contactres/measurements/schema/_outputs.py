@@ -1,5 +1,5 @@
 """The tables contactres writes besides those of ``qcm analyze``
-(:mod:`contactres.measurements.schema.results`).
+(:mod:`contactres.measurements.schema._results`).
 
 * :data:`SPECTRA_SWEEPS`: the sweep table ``qcm spectra`` writes (``--out``), one row per
   measured spectrum: the sweep table's columns with the errors and the spectrum's own;
@@ -18,8 +18,8 @@ from __future__ import annotations
 
 from dataclasses import replace
 
-from .columns import Column, TableSchema
-from .inputs import SPECTRA_TABLE, SWEEP_TABLE
+from ._columns import Column, TableSchema
+from ._inputs import SPECTRA_TABLE, SWEEP_TABLE
 
 __all__ = [
     "AFM_INVERT_RESULTS",
@@ -39,7 +39,7 @@ def _written(schema: TableSchema, name: str, meaning: str | None = None) -> Colu
 
 
 #: The sweep table of ``contactres qcm spectra`` (``--out``; ``qcm-spectra/sweeps.csv`` of
-#: ``contactres demo``): what :func:`contactres.measurements.shifts.sweeps_from_spectra`
+#: ``contactres demo``): what :func:`contactres.measurements._shifts.sweeps_from_spectra`
 #: returns, one row per measured spectrum, in its order. ``qcm analyze`` reads it as a sweep table
 #: (:data:`~.inputs.SWEEP_TABLE`), whose columns it repeats, and ignores the others.
 SPECTRA_SWEEPS = TableSchema(
@@ -101,7 +101,7 @@ SPECTRA_SWEEPS = TableSchema(
 )
 
 #: ``fits.csv`` of ``contactres qcm spectra --fits``: the columns of
-#: :func:`contactres.measurements.spectra.fit_resonances`, in its order.
+#: :func:`contactres.measurements.fit_resonances`, in its order.
 SPECTRA_FITS = TableSchema(
     "fits.csv",
     "the resonance fit of every spectrum, one row per spectrum",

@@ -1,6 +1,6 @@
 """A synthetic contact-resonance AFM map of polycrystalline copper (the README's walkthrough).
 
-One row per pixel in the schema of :data:`~contactres.measurements.resonances.AFM_TABLE`, so the
+One row per pixel in the schema of :data:`~contactres.measurements._resonances.AFM_TABLE`, so the
 table goes straight into ``contactres afm invert`` / :func:`contactres.invert_afm_table`; the
 pixel coordinates ``x_m``, ``y_m`` are extra columns, carried through to the output. The forward
 chain, per grain::

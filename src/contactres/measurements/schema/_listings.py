@@ -18,7 +18,7 @@ the columns of each table with these.
 
 from __future__ import annotations
 
-from .columns import Column, TableSchema
+from ._columns import Column, TableSchema
 
 __all__ = [
     "CONTACT_TABLE",

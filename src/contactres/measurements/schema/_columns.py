@@ -19,7 +19,7 @@ import numpy as np
 import pandas as pd
 
 from ...errors import ContactresInputError
-from ..messages import at_cell
+from .._messages import at_cell
 
 __all__ = [
     "LEVELS",

@@ -29,7 +29,7 @@ import pandas as pd
 
 from ..errors import ContactresInputError
 from ..units import ABSOLUTE_FREQUENCY_FRACTION, MIN_SWEEP_POINTS, SMALL_LOAD_LIMIT
-from .messages import at_cell, column_names, shown_value, where_rows
+from ._messages import at_cell, column_names, shown_value, where_rows
 from .readers import SweepReader
 from .readers.delimited import line_ranges
 from .readers.registry import BUILT_IN

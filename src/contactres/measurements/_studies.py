@@ -1,7 +1,7 @@
 """Recipes of synthetic QCM studies: the bundled example data and the validation study.
 
-Each recipe is a :class:`~contactres.measurements.synthetic.SweepStudy` modelled on paper 2's
-experiment; :func:`~contactres.measurements.synthetic.synthetic_sweeps` turns it and a seed into
+Each recipe is a :class:`~contactres.measurements.SweepStudy` modelled on paper 2's
+experiment; :func:`~contactres.measurements.synthetic_sweeps` turns it and a seed into
 a sweep table.
 """
 
@@ -10,7 +10,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..resonators import QCM
-from .synthetic import Drift, SweepGroup, SweepStudy
+from ._synthetic import Drift, SweepGroup, SweepStudy
 
 __all__ = ["EXAMPLE_SEED", "example_study", "validation_study"]
 

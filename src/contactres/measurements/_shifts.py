@@ -1,8 +1,8 @@
 """From fitted admittance spectra to the sweep table: shifts and oscillation amplitudes.
 
-Each spectrum of an amplitude sweep (:class:`~contactres.measurements.spectra_table.SpectraTable`)
+Each spectrum of an amplitude sweep (:class:`~contactres.measurements._spectra_table.SpectraTable`)
 has been fitted for its resonance frequency f_r and half-bandwidth Γ
-(:func:`contactres.measurements.spectra.fit_resonances`). Against the no-contact reference
+(:func:`contactres.measurements.fit_resonances`). Against the no-contact reference
 spectra of the same overtone (and of the same configuration, medium and experiment where the
 reference names them) the shifts are
 
@@ -39,7 +39,7 @@ import numpy as np
 import pandas as pd
 
 from ..errors import ContactresInputError
-from .spectra_table import CONSTANT_COLUMNS, SpectraTable
+from ._spectra_table import CONSTANT_COLUMNS, SpectraTable
 
 __all__ = [
     "D26_AT",
@@ -115,7 +115,7 @@ def sweeps_from_spectra(
     table : SpectraTable
         The spectra and their labels.
     fits : DataFrame
-        :func:`~contactres.measurements.spectra.fit_resonances` of ``table.points`` (columns
+        :func:`~contactres.measurements.fit_resonances` of ``table.points`` (columns
         spectrum, f_r_Hz, f_r_err_Hz, gamma_Hz, gamma_err_Hz, flags).
     reference : iterable of str, optional
         Ids of the reference spectra; default: the ``reference`` column of the table.
@@ -324,11 +324,11 @@ def read_spectra_sweeps(
     Parameters
     ----------
     path : str or path-like
-        Tidy spectra table or folder (:func:`~contactres.measurements.spectra_table.read_spectra`).
+        Tidy spectra table or folder (:func:`~contactres.measurements._spectra_table.read_spectra`).
     reference, d26, calibration_m_per_V
         As in :func:`sweeps_from_spectra`.
     layout, reference_impedance, voltage
-        As in :func:`~contactres.measurements.spectra_table.read_spectra`.
+        As in :func:`~contactres.measurements._spectra_table.read_spectra`.
     validate : bool
         Validate the sweep table (needs its constants: from columns of the spectra table or
         ``constants``); False returns None in its place (``qcm spectra`` writes the rows, and
@@ -337,7 +337,7 @@ def read_spectra_sweeps(
         Called with a short text at each stage (the fits, the shifts): the CLI's progress lines.
     **constants
         The sweep table's constants (``area_m2``, ``fundamental_Hz``, ...), as in
-        :func:`~contactres.measurements.sweeps.read_sweeps`.
+        :func:`~contactres.measurements.read_sweeps`.
 
     Returns
     -------
@@ -346,9 +346,9 @@ def read_spectra_sweeps(
         (:func:`sweeps_from_spectra`), the resonance fits (one row per spectrum) and one line
         per spectrum left out.
     """
-    from .spectra import fit_resonances
-    from .spectra_table import read_spectra
-    from .sweeps import file_sha256, validate_sweeps
+    from ._spectra import fit_resonances
+    from ._spectra_table import read_spectra
+    from ._sweeps import file_sha256, validate_sweeps
 
     digest = file_sha256(path)  # of the file as read (None for a folder of spectra)
     table = read_spectra(

@@ -15,7 +15,7 @@ doi:10.3762/bjnano.6.87.
 
 from __future__ import annotations
 
-from .columns import Column, TableSchema
+from ._columns import Column, TableSchema
 
 __all__ = ["CONVENTIONS", "GROUP_RESULTS", "LOAD_QUANTITIES", "LOAD_RESULTS", "SWEEP_RESULTS"]
 

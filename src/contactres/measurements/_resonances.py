@@ -18,7 +18,7 @@ import numpy as np
 import pandas as pd
 
 from ..errors import ContactresInputError
-from .messages import at_cell, shown_value, where_rows
+from ._messages import at_cell, shown_value, where_rows
 from .readers.registry import BUILT_IN
 from .schema import AFM_TABLE, RUM_TABLE, Rule, TableSchema
 

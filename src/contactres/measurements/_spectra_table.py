@@ -34,7 +34,7 @@ import numpy as np
 import pandas as pd
 
 from ..errors import ContactresInputError
-from .messages import at_cell, column_names, shown_value, where_rows
+from ._messages import at_cell, column_names, shown_value, where_rows
 from .readers.registry import BUILT_IN
 from .readers.spectra import (
     CONSTANT_COLUMNS,

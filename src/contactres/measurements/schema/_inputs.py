@@ -19,7 +19,7 @@ import numpy as np
 import pandas as pd
 
 from ...units import MAX_AMPLITUDE_M, POISSON_OPEN_RANGE, QUANTITIES, unit_slip
-from .columns import Column, Rule, TableSchema, rule
+from ._columns import Column, Rule, TableSchema, rule
 
 __all__ = [
     "AFM_TABLE",

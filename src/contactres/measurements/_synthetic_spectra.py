@@ -1,6 +1,6 @@
 """Synthetic admittance spectra of a quartz resonator: the Butterworth–van Dyke circuit.
 
-The forward side of the resonance-curve fit (:mod:`contactres.measurements.spectra`): the data
+The forward side of the resonance-curve fit (:mod:`contactres.measurements._spectra`): the data
 that the tests and the benchmark fit come from the *circuit* (R, L, C in series, C0 in parallel),
 evaluated through its impedance, never through the fit's own resonance curve.
 
@@ -211,7 +211,7 @@ def spectra_from_sweeps(
     the BVD resonator with f_r = f_ref + Δf and Γ = Γ_ref + ΔΓ (f_ref = n × fundamental_Hz);
     its peak conductance falls as 1/Γ (G_max = 1/R, R ∝ Γ) and its drive voltage is the one
     that gives the point's amplitude, U = u0 (nπ)²/(4 d26 Q), Q = f_r/(2Γ)
-    (:func:`contactres.measurements.shifts.shear_amplitude`). ``n_references`` no-contact
+    (:func:`contactres.measurements._shifts.shear_amplitude`). ``n_references`` no-contact
     reference spectra (f_ref, Γ_ref) are added per (overtone, configuration, medium,
     experiment). Noise, C0 and span as in :func:`synthetic_spectra`; seeded.
 
@@ -219,9 +219,9 @@ def spectra_from_sweeps(
     -------
     pandas.DataFrame
         The tidy spectra table (columns of
-        :data:`contactres.measurements.spectra_table.SPECTRA_TABLE`), references first.
+        :data:`contactres.measurements._spectra_table.SPECTRA_TABLE`), references first.
     """
-    from .shifts import D26_AT
+    from ._shifts import D26_AT
 
     d26 = D26_AT if d26 is None else float(d26)
     n = sweeps["overtone"].to_numpy(float)

@@ -14,7 +14,7 @@ A study is a frozen :class:`SweepStudy` (groups of configuration x medium, loads
 ramps, scatter, special cases); :func:`synthetic_sweeps` turns it and a seeded random generator
 into a sweep table, one row per point. The random numbers are drawn in a fixed, documented order
 (see :func:`synthetic_sweeps`), so a study and a seed give the same table on every run.
-:mod:`contactres.measurements.studies` holds the recipes (the bundled example, the validation
+:mod:`contactres.measurements._studies` holds the recipes (the bundled example, the validation
 study).
 
 All quantities SI: forces N, lengths m, moduli Pa, γ J/m², stiffness N/m, shifts Hz.
@@ -41,7 +41,7 @@ from ..tangential import (
     with_dashpot,
 )
 from ..validation import nonnegative, positive
-from .sweeps import VALIDATED_COLUMNS
+from ._sweeps import VALIDATED_COLUMNS
 
 __all__ = [
     "LOOP_MODELS",
