@@ -22,6 +22,7 @@ import numpy as np
 import pytest
 from fredholm_reference import fredholm
 
+import contactres as cr
 from contactres import (
     AnisotropicContact,
     LayeredContact,
@@ -358,3 +359,27 @@ def test_tangential_pattern_coupling_is_variational():
     assert np.all(coupled / single - 1 < 1e-2)
     doubled = punch_and_sphere(ker, a, tol=1e-14, n_basis=2 * punch_and_sphere(ker, a).basis)
     np.testing.assert_allclose(doubled.punch_stiffness, coupled, rtol=1e-9)
+
+
+def test_an_elastic_sphere_adds_its_compliance_as_hertz_does():
+    """indenter=: two homogeneous bodies give Hertz with 1/E* = 1/E*_1 + 1/E*_2 (Johnson, Eq.
+    4.22), either way round; on a film equal to its substrate the same; a sphere 1e6 times
+    stiffer than the plate is the rigid sphere."""
+    glass = Material.isotropic(70e9, 0.17)
+    steel = Material.isotropic(210e9, 0.3)
+    forces = np.array([1e-4, 1e-3, 1e-2])
+    hertz = cr.hertz(cr.effective_modulus(70e9, 0.17, 210e9, 0.3), 1e-3, forces)
+    for plate, sphere in ((glass, steel), (steel, glass)):
+        c = cr.sphere_contact(plate, 1e-3, forces, indenter=sphere)
+        np.testing.assert_allclose(c.contact_radius, hertz.contact_radius, rtol=1e-10)
+        np.testing.assert_allclose(c.depth, hertz.depth, rtol=1e-10)
+        np.testing.assert_allclose(c.stiffness, hertz.stiffness, rtol=1e-10)
+    same = cr.LayeredMaterial(glass, [(glass, 1e-6)])
+    c = cr.sphere_contact(same, 1e-3, forces, indenter=steel)
+    np.testing.assert_allclose(c.contact_radius, hertz.contact_radius, rtol=1e-9)
+    coated = cr.LayeredMaterial(glass, [(Material.isotropic(5e9, 0.35), 250e-9)])
+    rigid = cr.sphere_contact(coated, 1e-3, forces)
+    stiff = cr.sphere_contact(coated, 1e-3, forces, indenter=Material.isotropic(5e15, 0.3))
+    np.testing.assert_allclose(stiff.contact_radius, rigid.contact_radius, rtol=1e-5)
+    soft = cr.sphere_contact(coated, 1e-3, forces, indenter=glass)
+    assert np.all(soft.contact_radius > rigid.contact_radius)

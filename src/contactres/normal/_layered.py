@@ -42,13 +42,13 @@ sin² 2θ are exact with four).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
 from ..errors import ContactresInputError
 from ..layered import LayeredMaterial, surface_green
-from ..materials import Material
+from ..materials import Material, require_material
 from ..validation import nonnegative, positive
 from ._axisymmetric import DEFAULT_TOL, RadialKernel, punch_and_sphere
 from .anisotropic import THETA_RTOL, isotropic_constants
@@ -355,8 +355,16 @@ def _solve_radius(kernel, R, F, tol):
     raise ContactresInputError("sphere_contact: the contact radius did not converge")
 
 
-def sphere_contact(material, radius, force, rtol: float = THETA_RTOL, *, tol: float = DEFAULT_TOL):
-    """Frictionless contact of a rigid sphere on a homogeneous or layered half-space.
+def sphere_contact(
+    material,
+    radius,
+    force,
+    rtol: float = THETA_RTOL,
+    *,
+    tol: float = DEFAULT_TOL,
+    indenter: Material | None = None,
+):
+    """Frictionless contact of a rigid (or elastic) sphere on a homogeneous or layered half-space.
 
     A :class:`~contactres.Material` (or a stack without layers) is passed to the anisotropic
     Hertz solution (:func:`contactres.normal.anisotropic.sphere_contact`, exact on a circular
@@ -377,6 +385,12 @@ def sphere_contact(material, radius, force, rtol: float = THETA_RTOL, *, tol: fl
         (:func:`contactres.contact_integrals`).
     tol : float
         Truncation of the kernel integral (layered only).
+    indenter : Material, optional
+        The sphere's own material (homogeneous, static constants; default: rigid). Its surface
+        compliance is added to the plate's (the two bodies take the same pressure: Hertz's
+        1/E* = 1/E*_1 + 1/E*_2, here with the θ-averaged compliance of the sphere's face
+        pointing at the plate, ``indenter`` in that frame). The result is then always a
+        :class:`LayeredContact`, its ``indentation_modulus`` the two bodies' E* together.
 
     Returns
     -------
@@ -396,10 +410,10 @@ def sphere_contact(material, radius, force, rtol: float = THETA_RTOL, *, tol: fl
     >>> print(f"a = {c.contact_radius * 1e6:.3f} um, K = {c.stiffness / 1e3:.1f} kN/m")
     a = 1.015 um, K = 27.0 kN/m
     """
-    if not isinstance(material, LayeredMaterial):
+    if indenter is None and not isinstance(material, LayeredMaterial):
         return homogeneous_sphere_contact(material, radius, force, rtol)
-    stack = material.at(0.0)
-    if not stack.layers:
+    stack = material.at(0.0) if isinstance(material, LayeredMaterial) else _stack(material)
+    if indenter is None and not stack.layers:
         return homogeneous_sphere_contact(stack.substrate, radius, force, rtol)
     if stack.is_lossy:
         raise ContactresInputError(
@@ -416,6 +430,9 @@ def sphere_contact(material, radius, force, rtol: float = THETA_RTOL, *, tol: fl
         ) from None
     Rb, Fb = np.broadcast_to(R, shape).ravel(), np.broadcast_to(F, shape).ravel()
     kernel = radial_kernel(stack)
+    if indenter is not None:
+        sphere = radial_kernel(require_material(indenter, lossless=True))
+        kernel = replace(kernel, g_inf=kernel.g_inf + sphere.g_inf)
     a = np.zeros(Fb.shape)
     pos = Fb > 0
     if pos.any():
