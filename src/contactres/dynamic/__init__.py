@@ -9,6 +9,9 @@ stiffness tensor (:func:`tangential_stiffness_static`), the exact dynamic one
 (:func:`tangential_contact_stiffness`, :func:`tangential_dcsf`, table :func:`prepare_tangential`)
 and two bodies in series (:func:`two_body_contact_stiffness`, the QCM contact of paper 2).
 
+On a layered or viscoelastic substrate: the time-harmonic normal stiffness of the rigid flat
+punch (:func:`layered_punch_stiffness`).
+
 The public names are loaded on first use (PEP 562 module ``__getattr__``): the model names
 (``MODELS``, ``ALL_MODELS``, ``WAVENUMBERS``) come without scipy, for the command line's options.
 """
@@ -37,6 +40,7 @@ _EXPORTS = MappingProxyType(
         "dcsf": ".normal_stiffness",
         "dcsf_models": ".normal_stiffness",
         "dynamic_contact_stiffness": ".normal_stiffness",
+        "layered_punch_stiffness": ".layered_punch",
         "normalised_wavenumber": ".normal_stiffness",
         "shear_wavenumber_ratio": ".normal_stiffness",
         "wave_modulus": ".normal_stiffness",
@@ -56,6 +60,9 @@ __all__ = sorted(_EXPORTS)
 # marks an explicit re-export; isort would split each onto its own import, hence off here.
 if TYPE_CHECKING:
     # isort: off
+    from .layered_punch import (
+        layered_punch_stiffness as layered_punch_stiffness,
+    )
     from .models import (
         ALL_MODELS as ALL_MODELS,
         MODELS as MODELS,

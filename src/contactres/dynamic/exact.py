@@ -46,6 +46,7 @@ __all__ = [
     "galerkin_matrix",
     "galerkin_plan",
     "galerkin_size",
+    "kernel_harmonics",
     "pressure_basis",
 ]
 
@@ -102,7 +103,7 @@ def pressure_basis(n: int, k: int, rbar) -> np.ndarray:
         return norm * r**n * special.hyp2f1(n + k + 1, 0.5 - k, n + 1, r * r)
 
 
-def _harmonics(values: np.ndarray, ms) -> np.ndarray:
+def kernel_harmonics(values: np.ndarray, ms) -> np.ndarray:
     """Ĝ_m = ∫₀^{2π} g e^{imθ} dθ of rows sampled on [0, π) (period π; m even), stacked as
     (len(ms), *values.shape[:-1])."""
     n = values.shape[-1]
@@ -259,11 +260,11 @@ def galerkin_matrix(
     # Static part: Ĝ_m^∞ δ_pq π/(2(2p + 1)).
     diag = np.where(ti == tj, np.pi / (2 * (2 * orders[ti] + 1)), 0.0)
     integral = np.broadcast_to(
-        _harmonics(table.ginf, plan.ms)[:, None] * diag[None, :],
+        kernel_harmonics(table.ginf, plan.ms)[:, None] * diag[None, :],
         (na, plan.ms.size, ti.size),
     ).copy()
     # Near field: contour + hand-over segment, harmonics of the tabulated g − g∞.
-    near_h = _harmonics(table.near_values, plan.ms)  # (n_m, nk)
+    near_h = kernel_harmonics(table.near_values, plan.ms)  # (n_m, nk)
     s = ka[:, None] * table.near_kappa[None, :]  # (na, nk)
     # Pair products laid out (na, n_t, nk), so that the sum over the near nodes k is one
     # complex product with no transposed copy: one BLAS call, not one per k a (on 2 cores

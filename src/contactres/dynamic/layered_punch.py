@@ -1,0 +1,436 @@
+"""Time-harmonic normal stiffness of a rigid flat punch on a layered (or viscoelastic) substrate.
+
+The rigid, frictionless flat punch of radius a, moved normally by a uniform displacement
+δ e^{iωt}, on bonded layers over a half-space (:class:`contactres.layered.LayeredMaterial`),
+every material evaluated at the frequency (:func:`contactres.layered.material_at`). The
+Galerkin method of :mod:`contactres.dynamic.exact` (pressure basis f_nk, Hankel transforms
+j_p(s), s = η a) applies unchanged to any surface kernel; only the kernel changes. With the
+top film's shear reference C44_f (real part) and the dimensionless kernel of the stack
+
+    g(η, θ) = −C44_f η Ĝ_33(η, θ)      (Ĝ: :func:`contactres.layered.surface_green`, m/Pa),
+
+the Galerkin matrix is split as
+
+    M = M_film + ΔM,   ΔM_ab = (−1)^{(n_a+n_b)/2} ∫₀^∞ ds Δg_{n_a+n_b}(s/a) j_{p_a}(s) j_{p_b}(s),
+
+where M_film is the matrix of the film as a homogeneous half-space at k_s a (its prepared
+kernel table, contour and far field: :func:`contactres.dynamic.exact.galerkin_matrix`) and
+Δg = g_stack − g_film. The difference is the response of what lies under the film: it decays
+like e^{−2ηh} once η h ≫ 1 (h the total thickness of the layers), so its integral has a finite
+end and needs neither the far field nor a static split.
+
+The path of the ΔM integral (lossless: the limit of loss -> 0⁺). Δg is analytic in the upper
+half η plane; on the real axis of a lossless stack it has the poles of the guided modes (and the
+film's Rayleigh pole, in both terms) and the branch points of the substrate, all at
+η <= T = 1.75 ω × (largest bulk slowness of any material). The path is the arc
+s(t) = t + i H sin(π t/S₁) on 0 <= t <= S₁ = T a (Gauss-Legendre panels no wider than H),
+lifted by H = min(0.3 S₁, 1): the products j_p j_q grow like e^{2 Im s}, so the lift stays O(1)
+in s (O(1/a) in η). Beyond S₁, on the real axis, Δg has no singularity and varies only on the
+scales 1/h and the wave numbers (not on the period π of j_p j_q): on geometric panels of ratio
+1.5 it is sampled at Chebyshev points (in ln s) and interpolated onto Gauss-Legendre nodes dense
+enough for the oscillation of j_p j_q; the panels stop beyond η h = 5 once ``|Δg|`` falls below
+1e-3 rtol of the film's ``|g|``. A lossy stack is passed on the same path (its singularities
+lie below the real axis). In statics (f = 0) the real axis from 0 is used.
+
+A frequency-dependent film is handled at each frequency. The film's kernel table needs
+constants of the form C (1 + iQ⁻¹) with real C (elastic, a uniform loss, or a viscoelastic
+film whose every channel has one loss tangent, as
+:meth:`contactres.viscoelastic.ViscoelasticMaterial.isotropic` without ``bulk``); other
+complex films are refused. The substrate and lower layers may have any constants.
+
+Size of the pressure basis: the default of the exact model at the largest k_s a of any material
+of the stack, grown until four more radial terms move N by less than rtol/10 (a thin film on a
+much stiffer or softer substrate concentrates the pressure near the edge and needs more).
+
+Result: K = 4π² a C44_f c₀ (c = M⁻¹ e₀, paper 1, Eq. 28 with N = 1/c₀), complex N/m,
+e^{iωt}; Im K >= 0 (radiation and material loss). Static limit: 2 a E* on a homogeneous
+isotropic solid.
+
+References: J. E. Luco and R. A. Westmann, "Dynamic response of circular footings",
+J. Eng. Mech. Div. ASCE 97, 1381-1395 (1971) (the homogeneous isotropic punch, relaxed);
+J. Tian, paper 1 (the Galerkin kernel table of :mod:`contactres.dynamic.exact`).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from ..errors import ContactresInputError
+from ..halfspace import shear_reference
+from ..layered import LayeredMaterial, material_at, stack_compliance
+from ..materials import Material, voigt_to_tensor
+from ..numerics import gauss_legendre
+from ..validation import nonnegative, positive
+from .exact import (
+    GalerkinSize,
+    galerkin_matrix,
+    galerkin_plan,
+    galerkin_size,
+    kernel_harmonics,
+)
+from .farfield import far_basis
+from .table import KernelTable, check_loss, max_slowness, prepare
+
+__all__ = ["PunchResolution", "layered_punch_stiffness", "punch_resolution"]
+
+# T = _POLE_FACTOR × ω × (largest bulk slowness): beyond every pole and branch point (the same
+# margin as the far-field start T₁ of the kernel table).
+_POLE_FACTOR = 1.75
+# Largest number of radial terms per harmonic the adaptive basis may reach.
+_MAX_RADIAL = 48
+# Largest number of real-axis panels (a ratio of 1.5 reaches s = 1e17).
+_MAX_PANELS = 100
+
+
+@dataclass(frozen=True)
+class PunchResolution:
+    """Discretisation of the ΔM integral; :meth:`doubled` refines every part.
+
+    Attributes
+    ----------
+    n_panel : Gauss-Legendre nodes per panel of the lifted arc (panels no wider than the lift)
+    n_cheb : Chebyshev samples of Δg per real-axis panel (in ln s)
+    ratio : ratio of the geometric real-axis panels
+    per_unit : Gauss-Legendre nodes per unit of s on the real axis (j_p j_q has period π)
+    n_start : nodes of the first real panel [0, s₀] (statics) or [S₁, s₀]
+    decay : the panels stop when ``|Δg|`` falls below decay × ``|g_film|`` (and η h > 5)
+    """
+
+    n_panel: int = 16
+    n_cheb: int = 12
+    ratio: float = 1.5
+    per_unit: float = 3.0
+    n_start: int = 16
+    decay: float = 1e-9
+
+    def doubled(self) -> PunchResolution:
+        """Twice the nodes everywhere, panels of the square-root ratio, decay 1e-2 lower."""
+        return replace(
+            self,
+            n_panel=2 * self.n_panel,
+            n_cheb=2 * self.n_cheb,
+            ratio=math.sqrt(self.ratio),
+            per_unit=2 * self.per_unit,
+            n_start=2 * self.n_start,
+            decay=self.decay * 1e-2,
+        )
+
+
+def punch_resolution(rtol: float) -> PunchResolution:
+    """The :class:`PunchResolution` for relative accuracy ``rtol`` (checked in the tests against
+    :meth:`PunchResolution.doubled`)."""
+    base = PunchResolution(decay=1e-3 * rtol)
+    if rtol <= 1e-8:
+        return replace(base, n_panel=24, n_cheb=16, per_unit=4.0)
+    return base
+
+
+def _split_loss(m: Material) -> tuple[Material, float]:
+    """(undamped material, Q⁻¹) of constants C (1 + iQ⁻¹) with real C; a clear error otherwise."""
+    C = np.asarray(m.C)
+    if not m.is_lossy:
+        return m, 0.0
+    re, im = C.real, C.imag
+    big = np.abs(re) > 1e-12 * np.max(np.abs(re))
+    q = float(np.max(im[big] / re[big]))
+    if not np.allclose(im, q * re, rtol=0, atol=1e-10 * np.max(np.abs(C))):
+        raise ContactresInputError(
+            f"the top film ({m.name or 'unnamed'}) has complex constants whose loss differs "
+            "between channels: the layered punch needs a film with one loss tangent "
+            "(C (1 + i Q^-1)); put a thin layer of another material on top, or use one loss"
+        )
+    check_loss(q)
+    undamped = Material(C=re, density=m.density, name=m.name)
+    return undamped, q
+
+
+def _axisymmetric(mats) -> bool:
+    """True if every material is unchanged by a rotation about the normal (transversely
+    isotropic about z): then g does not depend on θ."""
+    for m in mats:
+        c = np.asarray(m.C)
+        turned = m.rotated((0, 0, 1), (math.cos(0.7), math.sin(0.7), 0)).C
+        if not np.allclose(turned, c, rtol=0, atol=1e-12 * np.max(np.abs(c))):
+            return False
+    return True
+
+
+@dataclass(frozen=True, eq=False)
+class _Stack:
+    """One frequency's stack in the film's units: tensors / C44_f, ρ_j ω²/C44_f, thicknesses."""
+
+    tensors: list
+    inertia: list  # ρ_j ω²/C44_f, 1/m² (s_j = inertia_j/η²)
+    thicknesses: np.ndarray
+    pole: float  # T, 1/m: beyond every pole and branch point on the real η axis
+    k_max: float  # largest shear wave number of any material, 1/m
+    axisymmetric: bool
+
+    def delta_g(self, eta: np.ndarray, theta: np.ndarray) -> np.ndarray:
+        """Δg = g_stack − g_film at wavenumbers ``eta`` (1/m, complex) × directions ``theta``,
+        shape (len(eta), len(theta))."""
+        e = eta[:, None] * np.ones_like(theta)[None, :]
+        th = np.broadcast_to(theta[None, :], e.shape)
+        s = [r / e**2 for r in self.inertia]
+        stack = stack_compliance(self.tensors, s, [e * h for h in self.thicknesses], th)
+        film = stack_compliance(self.tensors[:1], s[:1], [], th)
+        return film[..., 2, 2] - stack[..., 2, 2]
+
+
+def _stack_at(mats, thicknesses, film: Material, frequency: float) -> _Stack:
+    c44 = shear_reference(film)
+    omega = 2 * math.pi * frequency
+    if omega > 0:
+        missing = [j for j, m in enumerate(mats) if m.density is None]
+        if missing:
+            j = missing[0]
+            which = "the substrate" if j == len(mats) - 1 else f"layer {j + 1}"
+            raise ContactresInputError(
+                f"the dynamic punch stiffness (frequency > 0) needs densities: {which} "
+                f"({mats[j].name or 'unnamed'}) has none"
+            )
+    ks = [omega * math.sqrt((m.density or 0.0) / shear_reference(m)) for m in mats]
+    slow = [k * max_slowness(m) for k, m in zip(ks, mats, strict=True)]
+    return _Stack(
+        tensors=[voigt_to_tensor(np.asarray(m.C, dtype=complex)) / c44 for m in mats],
+        inertia=[(m.density or 0.0) * omega**2 / c44 for m in mats],
+        thicknesses=np.asarray(thicknesses, dtype=float),
+        pole=_POLE_FACTOR * max(slow),
+        k_max=max(ks),
+        axisymmetric=_axisymmetric(mats),
+    )
+
+
+def _cheb_interp(x_nodes, values, x):
+    """Barycentric interpolation from the Chebyshev points of the first kind ``x_nodes`` (on
+    [−1, 1], n of them) to ``x``; ``values`` (n, ...) -> (len(x), ...)."""
+    n = x_nodes.size
+    j = np.arange(n)
+    w = (-1.0) ** j * np.sin((2 * j + 1) * np.pi / (2 * n))
+    d = x[:, None] - x_nodes[None, :]
+    exact = d == 0
+    d[exact] = 1.0
+    c = w[None, :] / d
+    out = (c @ values.reshape(n, -1)) / np.sum(c, axis=1)[:, None]
+    hit = np.any(exact, axis=1)
+    if np.any(hit):
+        out[hit] = values.reshape(n, -1)[np.argmax(exact[hit], axis=1)]
+    return out.reshape((x.size, *values.shape[1:]))
+
+
+def _correction_nodes(stack: _Stack, a: float, theta: np.ndarray, res: PunchResolution, gref):
+    """Nodes s (complex), weights ds and Δg(s/a, θ) (len(s), len(theta)) of the ΔM integral."""
+    s_all, w_all, g_all = [], [], []
+
+    def add(s, w):
+        s_all.append(s)
+        w_all.append(w)
+        g_all.append(stack.delta_g(s / a, theta))
+
+    s1 = stack.pole * a
+    h_tot = float(np.sum(stack.thicknesses))
+    s0 = 0.1 * min(1.0, a / h_tot)
+    if s1 > 0:
+        lift = min(0.3 * s1, 1.0)
+        n_pan = max(4, math.ceil(s1 / lift))
+        edges = np.linspace(0.0, s1, n_pan + 1)
+        t, wt = gauss_legendre(edges[:-1, None], edges[1:, None], res.n_panel)
+        t, wt = t.ravel(), wt.ravel()
+        arg = np.pi * t / s1
+        add(t + 1j * lift * np.sin(arg), wt * (1 + 1j * lift * np.pi / s1 * np.cos(arg)))
+    start = max(s1, s0)
+    if start > s1:
+        t, wt = gauss_legendre(s1, start, res.n_start)
+        add(t.astype(complex), wt.astype(complex))
+    xc = np.cos(np.pi * (np.arange(res.n_cheb) + 0.5) / res.n_cheb)
+    lo = start
+    for _ in range(_MAX_PANELS):
+        hi = lo * res.ratio
+        # Δg at Chebyshev points in ln s, interpolated onto nodes that resolve j_p j_q.
+        u0, u1 = math.log(lo), math.log(hi)
+        sc = np.exp(0.5 * (u0 + u1) + 0.5 * (u1 - u0) * xc)
+        gc = stack.delta_g(sc.astype(complex) / a, theta)
+        # Sub-panels of n_panel nodes each, per_unit nodes per unit of s on average.
+        n_sub = max(1, math.ceil(res.per_unit * (hi - lo) / res.n_panel))
+        edges = np.linspace(lo, hi, n_sub + 1)
+        t, wt = gauss_legendre(edges[:-1, None], edges[1:, None], res.n_panel)
+        t, wt = t.ravel(), wt.ravel()
+        x = (2 * np.log(t) - u0 - u1) / (u1 - u0)
+        s_all.append(t.astype(complex))
+        w_all.append(wt.astype(complex))
+        g_all.append(_cheb_interp(xc, gc, x))
+        lo = hi
+        small = np.max(np.abs(gc)) < res.decay * gref
+        if small and lo * h_tot / a > 5:
+            break
+    else:
+        raise ContactresInputError(
+            "the layered correction did not decay: check the thicknesses and the radius"
+        )
+    return np.concatenate(s_all), np.concatenate(w_all), np.concatenate(g_all)
+
+
+def _correction_integrals(s, w, dg_harm, plan) -> np.ndarray:
+    """∫ Δg_m j_p j_q ds, (n_m, n_t), from the nodes and the harmonics Δg_m (n_m, len(s))."""
+    from .weights import spherical_bessel
+
+    orders, (ti, tj) = plan.orders, plan.pairs
+    jp = np.empty((orders.size, s.size), dtype=complex)
+    # Real nodes apart: their Bessel functions come from the cheap upward recurrence (the
+    # continued fraction of complex arguments would start above 1.3 max|s| for every node).
+    real = s.imag == 0
+    jp[:, real] = spherical_bessel(int(orders[-1]), s[real].real)[orders]
+    jp[:, ~real] = spherical_bessel(int(orders[-1]), s[~real])[orders]
+    prod = (jp * w[None, :])[ti] * jp[tj]  # (n_t, ns)
+    return dg_harm @ prod.T
+
+
+def _assemble(integral, plan) -> np.ndarray:
+    return plan.sign * integral[plan.m_index, plan.t_index]
+
+
+def _film_matrices(table: KernelTable, ksa: np.ndarray, size: GalerkinSize):
+    """(M_film at k_s a values ``ksa`` (>= 0), (len(ksa), nb, nb); the Galerkin plan)."""
+    pos = ksa > 0
+    far = far_basis(table, ksa[pos]) if np.any(pos) else None
+    plan = galerkin_plan(table, size, None if far is None else far.s)
+    nb = len(plan.basis)
+    out = np.empty((ksa.size, nb, nb), dtype=complex)
+    orders, (ti, tj) = plan.orders, plan.pairs
+    # Static part of the exact model: Ĝ_m^∞ δ_pq π/(2(2p + 1)) (closed form).
+    diag = np.where(ti == tj, np.pi / (2 * (2 * orders[ti] + 1)), 0.0)
+    out[~pos] = _assemble(kernel_harmonics(table.ginf, plan.ms)[:, None] * diag[None, :], plan)
+    if far is not None:
+        out[pos] = galerkin_matrix(table, ksa[pos], plan, far)
+    return out, plan
+
+
+def _solve_c0(M: np.ndarray, n_radial: int, plan) -> np.ndarray:
+    """c₀ of M c = e₀ on the sub-basis of the first ``n_radial`` radial terms per harmonic."""
+    keep = np.array([k < n_radial for _, k in plan.basis])
+    sub = M[:, keep][:, :, keep]
+    e0 = np.zeros(sub.shape[-1])
+    e0[0] = 1.0
+    return np.linalg.solve(sub, np.broadcast_to(e0, sub.shape[:-1])[..., None])[..., 0, 0]
+
+
+def _stack_of(material, frequency: float):
+    if isinstance(material, LayeredMaterial):
+        stack = material.at(frequency)
+    elif isinstance(material, Material) or callable(getattr(material, "at", None)):
+        stack = LayeredMaterial(material_at(material, frequency))
+    else:
+        raise ContactresInputError(
+            "material must be a contactres.Material or LayeredMaterial, got "
+            f"{type(material).__name__}"
+        )
+    return [material_at(m, frequency) for m in stack.materials], stack.thicknesses
+
+
+def layered_punch_stiffness(
+    material,
+    radius,
+    frequency=0.0,
+    direction: str = "normal",
+    rtol: float = 1e-6,
+    *,
+    resolution: PunchResolution | None = None,
+):
+    """Normal stiffness K(ω) = F/δ of a rigid flat punch on a layered substrate, N/m (complex).
+
+    The rigid, frictionless disk of radius a, displaced uniformly (normal, δ e^{iωt}), on a
+    homogeneous, layered and/or viscoelastic substrate (module docstring for the method). On a
+    layered or viscoelastic substrate K/K_static depends on the frequency and the radius
+    separately, not on k a alone.
+
+    Parameters
+    ----------
+    material : Material, LayeredMaterial or frequency-dependent material
+        In the surface frame (z the inward normal); every material is evaluated at each
+        frequency (``at(f)``); densities are needed for f > 0. The top material must have
+        one loss tangent (C (1 + iQ⁻¹), real C); lossless materials give the limit Q⁻¹ -> 0⁺.
+    radius : float or array
+        Punch radius a > 0, m.
+    frequency : float or array
+        f >= 0, Hz (ω = 2πf); broadcasts against ``radius``. 0: the static stiffness.
+    direction : str
+        "normal" (the only one so far).
+    rtol : float
+        Target relative accuracy, in [1e-10, 1e-3] (default 1e-6).
+    resolution : PunchResolution, optional
+        Keyword only: the discretisation of the layered correction (default
+        :func:`punch_resolution` of rtol; ``.doubled()`` for a convergence check).
+
+    Returns
+    -------
+    complex or ndarray of complex
+        K in N/m, shaped like broadcast(radius, frequency); Im K >= 0.
+
+    Examples
+    --------
+    The static punch on a homogeneous solid is 2 a E/(1 − ν²):
+
+    >>> from contactres import Material
+    >>> k = layered_punch_stiffness(Material.isotropic(70e9, 0.25), 1e-6)
+    >>> bool(abs(k / (2e-6 * 70e9 / (1 - 0.25**2)) - 1) < 1e-9)
+    True
+    """
+    if direction != "normal":
+        raise ContactresInputError(
+            f"direction must be 'normal' (the tangential layered punch is not available yet), "
+            f"got {direction!r}"
+        )
+    r = float(rtol)
+    if not (math.isfinite(r) and 1e-10 <= r <= 1e-3):
+        raise ContactresInputError(f"rtol must lie in [1e-10, 1e-3], got {rtol!r}")
+    a = np.asarray(positive("radius", radius, "m"), dtype=float)
+    f = np.asarray(nonnegative("frequency", frequency, "Hz"), dtype=float)
+    a, f = np.broadcast_arrays(a, f)
+    res = resolution or punch_resolution(r)
+    out = np.empty(a.shape, dtype=complex)
+    flat_a, flat_f, flat_out = a.ravel(), f.ravel(), out.reshape(-1)
+    tables: dict = {}
+    for freq in np.unique(flat_f):
+        sel = np.flatnonzero(flat_f == freq)
+        mats, hs = _stack_of(material, float(freq))
+        film, q = _split_loss(mats[0])
+        key = (np.asarray(film.C).tobytes(), q)
+        if key not in tables:  # one table per distinct film (a frequency-dependent one: each f)
+            tables = {key: prepare(film, q, r)}
+        flat_out[sel] = _punch(tables[key], mats, hs, film, float(freq), flat_a[sel], r, res)
+    return complex(out) if out.ndim == 0 else out
+
+
+def _punch(table, mats, hs, film, freq, radii, rtol, res) -> np.ndarray:
+    """K (N/m) of one frequency at the radii ``radii`` (1-D)."""
+    c44 = shear_reference(film)
+    stack = _stack_at(mats, hs, film, freq)
+    ks_film = 2 * math.pi * freq * math.sqrt((film.density or 0.0) / c44)
+    ksa = ks_film * radii
+    n_radial = galerkin_size(float(np.max(stack.k_max * radii)), rtol).n_radial
+    n_harm = galerkin_size(0.0, rtol).n_harmonics
+    layered = len(mats) > 1
+    theta = np.zeros(1) if stack.axisymmetric else np.asarray(table.theta)
+    gref = float(np.max(np.abs(table.ginf)))
+    nodes = [_correction_nodes(stack, float(a), theta, res, gref) for a in radii] if layered else []
+    while True:
+        grow = n_radial + 4 if layered else n_radial
+        size = GalerkinSize(grow, 0 if stack.axisymmetric else n_harm)
+        M, plan = _film_matrices(table, ksa, size)
+        for i, (s, w, dg) in enumerate(nodes):
+            if stack.axisymmetric:
+                harm = np.where(plan.ms == 0, 2 * np.pi, 0.0)[:, None] * dg[:, 0][None, :]
+            else:
+                harm = kernel_harmonics(dg, plan.ms)
+            M[i] += _assemble(_correction_integrals(s, w, harm, plan), plan)
+        c_big = _solve_c0(M, grow, plan)
+        if not layered:
+            break
+        c_small = _solve_c0(M, n_radial, plan)
+        if np.max(np.abs(c_big / c_small - 1)) < rtol / 10 or grow >= _MAX_RADIAL:
+            break
+        n_radial = min(_MAX_RADIAL - 4, math.ceil(1.5 * n_radial))
+    return 4 * np.pi**2 * radii * c44 * c_big
