@@ -251,14 +251,8 @@ def _cheb_interp(x_nodes, values, x):
 def _correction_nodes(stack: _Stack, a: float, theta: np.ndarray, res: PunchResolution, gref):
     """Nodes s (complex), weights ds and Δg(s/a, θ) (len(s), len(theta)) of the ΔM integral,
     and the end S of the nodes with Δg(S/a, θ) there (for the tail beyond S)."""
-    s_all, w_all, g_all = [], [], []
     shift = stack.static_shift(theta)
-
-    def add(s, w):
-        s_all.append(s)
-        w_all.append(w)
-        g_all.append(stack.delta_g(s / a, theta, shift))
-
+    nodes, weights = [], []
     s1 = stack.pole * a
     h_tot = float(np.sum(stack.thicknesses))
     s0 = 0.1 * min(1.0, a / h_tot) if h_tot > 0 else 0.1
@@ -269,43 +263,55 @@ def _correction_nodes(stack: _Stack, a: float, theta: np.ndarray, res: PunchReso
         t, wt = gauss_legendre(edges[:-1, None], edges[1:, None], res.n_panel)
         t, wt = t.ravel(), wt.ravel()
         arg = np.pi * t / s1
-        add(t + 1j * lift * np.sin(arg), wt * (1 + 1j * lift * np.pi / s1 * np.cos(arg)))
+        nodes.append(t + 1j * lift * np.sin(arg))
+        weights.append(wt * (1 + 1j * lift * np.pi / s1 * np.cos(arg)))
     start = max(s1, s0)
     if start > s1:
         t, wt = gauss_legendre(s1, start, res.n_start)
-        add(t.astype(complex), wt.astype(complex))
+        nodes.append(t.astype(complex))
+        weights.append(wt.astype(complex))
+    # The real-axis panel edges e_k = start × ratio^k up to _S_MAX, probed in one call: the last
+    # panel ends past every edge where what lies beyond (~|Δg(e)|/e, as j_p j_q <= 1/s²) is
+    # still above 1e-3 rtol of |g|; Δg of layers decays like e^{−2ηh} (η h > 5 first), that of
+    # a film with unequal losses like 1/s² (s > 20 first, for the tail formula).
+    n_edges = math.ceil(math.log(_S_MAX / start) / math.log(res.ratio))
+    edges = start * res.ratio ** np.arange(n_edges + 1)
+    probe = stack.delta_g(edges.astype(complex) / a, theta, shift)
+    big = np.max(np.abs(probe), axis=1) / edges >= res.decay * gref
+    big |= (edges <= 20) | ((h_tot > 0) & (edges * h_tot / a <= 5))
+    last = int(np.flatnonzero(big)[-1]) + 1 if np.any(big) else 1
+    if last > n_edges:
+        raise ContactresInputError(
+            f"the layered correction did not decay by η a = {_S_MAX:.3g}: a film {h_tot:.3g} m "
+            f"thin under a punch of radius {a:.3g} m (h/a = {h_tot / a:.2g}) is out of reach"
+        )
+    # Δg at Chebyshev points in ln s per panel, interpolated onto nodes that resolve j_p j_q.
     xc = np.cos(np.pi * (np.arange(res.n_cheb) + 0.5) / res.n_cheb)
-    lo = start
-    small = False
-    while not small:
-        hi = lo * res.ratio
-        # Δg at Chebyshev points in ln s, interpolated onto nodes that resolve j_p j_q.
-        u0, u1 = math.log(lo), math.log(hi)
-        sc = np.exp(0.5 * (u0 + u1) + 0.5 * (u1 - u0) * xc)
-        gc = stack.delta_g(sc.astype(complex) / a, theta, shift)
+    u = np.log(edges[: last + 1])
+    uc = 0.5 * (u[:-1, None] + u[1:, None]) + 0.5 * (u[1:, None] - u[:-1, None]) * xc[None, :]
+    n_head = sum(x.size for x in nodes)
+    sample = np.concatenate([*nodes, np.exp(uc).ravel().astype(complex)])
+    values = stack.delta_g(sample / a, theta, shift)
+    s_all, w_all, g_all = [*nodes], [*weights], [values[:n_head]]
+    cheb = values[n_head:].reshape(last, res.n_cheb, -1)
+    for j in range(last):
+        lo, hi = edges[j], edges[j + 1]
         # Sub-panels of n_panel nodes each, per_unit nodes per unit of s on average.
         n_sub = max(1, math.ceil(res.per_unit * (hi - lo) / res.n_panel))
-        edges = np.linspace(lo, hi, n_sub + 1)
-        t, wt = gauss_legendre(edges[:-1, None], edges[1:, None], res.n_panel)
+        sub = np.linspace(lo, hi, n_sub + 1)
+        t, wt = gauss_legendre(sub[:-1, None], sub[1:, None], res.n_panel)
         t, wt = t.ravel(), wt.ravel()
-        x = (2 * np.log(t) - u0 - u1) / (u1 - u0)
+        x = (2 * np.log(t) - u[j] - u[j + 1]) / (u[j + 1] - u[j])
         s_all.append(t.astype(complex))
         w_all.append(wt.astype(complex))
-        g_all.append(_cheb_interp(xc, gc, x))
-        lo = hi
-        # What lies beyond S is below ~|Δg(S)|/S (j_p j_q <= 1/s²); Δg of the layers decays
-        # like e^{−2ηh} (η h > 5 first), that of a film with unequal losses like 1/s².
-        small = np.max(np.abs(gc)) / lo < res.decay * gref
-        small = small and (h_tot == 0 or lo * h_tot / a > 5) and lo > 20
-        if lo > _S_MAX:
-            break
-    if not small:
-        raise ContactresInputError(
-            f"the layered correction did not decay by η a = {lo:.3g}: a film {h_tot:.3g} m thin "
-            f"under a punch of radius {a:.3g} m (h/a = {h_tot / a:.2g}) is out of reach"
-        )
-    end = stack.delta_g(np.array([lo / a], dtype=complex), theta, shift)[0]
-    return np.concatenate(s_all), np.concatenate(w_all), np.concatenate(g_all), lo, end
+        g_all.append(_cheb_interp(xc, cheb[j], x))
+    return (
+        np.concatenate(s_all),
+        np.concatenate(w_all),
+        np.concatenate(g_all),
+        float(edges[last]),
+        probe[last],
+    )
 
 
 def _correction_integrals(s, w, dg_harm, plan, s_end, end_harm) -> np.ndarray:
