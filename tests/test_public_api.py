@@ -188,6 +188,7 @@ PUBLIC = {
         "dcsf",
         "dcsf_models",
         "dynamic_contact_stiffness",
+        "layered_dcsf",
         "layered_punch_stiffness",
         "normalised_wavenumber",
         "prepare",

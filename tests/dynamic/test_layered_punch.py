@@ -14,8 +14,12 @@ import pytest
 from scipy import integrate, special
 from test_rigid_disk_isotropic import fredholm_disk
 
-from contactres import LayeredMaterial, Material, surface_green, viscoelastic
-from contactres.dynamic.layered_punch import layered_punch_stiffness, punch_resolution
+from contactres import LayeredMaterial, Material, dcsf, surface_green, viscoelastic
+from contactres.dynamic.layered_punch import (
+    layered_dcsf,
+    layered_punch_stiffness,
+    punch_resolution,
+)
 from contactres.errors import ContactresInputError
 
 QUARTZ = Material.isotropic(72e9, 0.17, density=2650.0, name="quartz")
@@ -185,6 +189,20 @@ def test_cubic_film_near_isotropy_equals_the_isotropic_film():
     iso = layered_punch_stiffness(LayeredMaterial(QUARTZ, [(PMMA, 0.2 * A)]), A, f)
     cub = layered_punch_stiffness(LayeredMaterial(QUARTZ, [(cubic, 0.2 * A)]), A, f)
     assert np.max(np.abs(cub / iso - 1)) < 1e-6
+
+
+def test_layered_dcsf_is_paper_1s_exact_dcsf_on_a_homogeneous_solid():
+    """Against contactres.dcsf (model "exact"), lossless and with Q⁻¹ = 0.02 (then DCSF(0) =
+    1 + iQ⁻¹: K_st of the undamped constants)."""
+    ksa = np.array([0.0, 0.5, 1.5])
+    for q in (0.0, 0.02):
+        m = QUARTZ.with_loss(q) if q else QUARTZ
+        got = layered_dcsf(m, A, _freq(QUARTZ, ksa))
+        ref = dcsf(QUARTZ, ksa, model="exact", loss=q, wavenumber="shear")
+        np.testing.assert_allclose(got, ref, rtol=1e-6, atol=0)
+    stack = LayeredMaterial(QUARTZ, [(viscoelastic.pmma(), 0.05 * A)])
+    with pytest.raises(ContactresInputError, match="static limit"):
+        layered_dcsf(stack, A, 15e6)
 
 
 def test_bad_input():

@@ -10,7 +10,7 @@ stiffness tensor (:func:`tangential_stiffness_static`), the exact dynamic one
 and two bodies in series (:func:`two_body_contact_stiffness`, the QCM contact of paper 2).
 
 On a layered or viscoelastic substrate: the time-harmonic normal stiffness of the rigid flat
-punch (:func:`layered_punch_stiffness`).
+punch (:func:`layered_punch_stiffness`) and its DCSF (:func:`layered_dcsf`).
 
 The public names are loaded on first use (PEP 562 module ``__getattr__``): the model names
 (``MODELS``, ``ALL_MODELS``, ``WAVENUMBERS``) come without scipy, for the command line's options.
@@ -40,6 +40,7 @@ _EXPORTS = MappingProxyType(
         "dcsf": ".normal_stiffness",
         "dcsf_models": ".normal_stiffness",
         "dynamic_contact_stiffness": ".normal_stiffness",
+        "layered_dcsf": ".layered_punch",
         "layered_punch_stiffness": ".layered_punch",
         "normalised_wavenumber": ".normal_stiffness",
         "shear_wavenumber_ratio": ".normal_stiffness",
@@ -61,6 +62,7 @@ __all__ = sorted(_EXPORTS)
 if TYPE_CHECKING:
     # isort: off
     from .layered_punch import (
+        layered_dcsf as layered_dcsf,
         layered_punch_stiffness as layered_punch_stiffness,
     )
     from .models import (

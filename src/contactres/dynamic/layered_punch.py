@@ -89,7 +89,7 @@ from .exact import (
 from .farfield import far_basis
 from .table import KernelTable, max_slowness, prepare
 
-__all__ = ["PunchResolution", "layered_punch_stiffness", "punch_resolution"]
+__all__ = ["PunchResolution", "layered_dcsf", "layered_punch_stiffness", "punch_resolution"]
 
 # T = _POLE_FACTOR × ω × (largest bulk slowness): beyond every pole and branch point (the same
 # margin as the far-field start T₁ of the kernel table).
@@ -453,6 +453,50 @@ def layered_punch_stiffness(
         if key not in tables:  # one table per distinct film (a frequency-dependent one: each f)
             tables = {key: prepare(film, q, r)}
         flat_out[sel] = _punch(tables[key], mats, hs, (film, q), float(freq), flat_a[sel], r, res)
+    return complex(out) if out.ndim == 0 else out
+
+
+def _storage(material):
+    """The stack (or material) at f = 0 with the real parts of every material's constants:
+    the undamped static solid that normalises the DCSF."""
+    mats, hs = _stack_of(material, 0.0)
+    real = [Material(C=np.asarray(m.C).real, density=m.density, name=m.name) for m in mats]
+    return LayeredMaterial(real[-1], list(zip(real[:-1], hs, strict=True)))
+
+
+def layered_dcsf(
+    material,
+    radius,
+    frequency,
+    rtol: float = 1e-6,
+    *,
+    resolution: PunchResolution | None = None,
+):
+    """Paper 1's dynamic-contact-stiffness factor (exact model) on a layered or viscoelastic
+    substrate: K(f)/K_st of the rigid flat punch, complex.
+
+    K(f) is :func:`layered_punch_stiffness`; K_st the static (f = 0) stiffness of the same
+    punch on the undamped stack: every material at f = 0 (its relaxed limit) with the real part
+    of its constants, as paper 1's K_sa is the static stiffness of the undamped constants (so a
+    homogeneous solid with constant loss Q⁻¹ gives DCSF(0) = 1 + iQ⁻¹, as
+    :func:`contactres.dcsf`). On a layered or viscoelastic substrate the DCSF is a function of
+    the frequency and the radius separately, not of k a alone: the film thickness and the
+    frequency dependence of the moduli set their own scales.
+
+    Parameters
+    ----------
+    material, radius, frequency, rtol, resolution
+        As in :func:`layered_punch_stiffness` (normal direction); the materials need a static
+        limit (a springpot, a power law without one, is refused at f = 0).
+
+    Returns
+    -------
+    complex or ndarray of complex
+        K/K_st, shaped like broadcast(radius, frequency).
+    """
+    k = layered_punch_stiffness(material, radius, frequency, rtol=rtol, resolution=resolution)
+    k_st = layered_punch_stiffness(_storage(material), radius, 0.0, rtol=rtol)
+    out = np.asarray(k) / np.asarray(k_st).real
     return complex(out) if out.ndim == 0 else out
 
 
