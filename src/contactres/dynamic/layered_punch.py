@@ -444,15 +444,21 @@ def layered_punch_stiffness(
     res = resolution or punch_resolution(r)
     out = np.empty(a.shape, dtype=complex)
     flat_a, flat_f, flat_out = a.ravel(), f.ravel(), out.reshape(-1)
-    tables: dict = {}
+    # Points grouped by film table (one for a film that does not depend on frequency): the film
+    # matrices of a group come from one call, the correction is per point.
+    groups: dict = {}
     for freq in np.unique(flat_f):
         sel = np.flatnonzero(flat_f == freq)
         mats, hs = _stack_of(material, float(freq))
         film, q = _reference(mats[0])
         key = (np.asarray(film.C).tobytes(), q)
-        if key not in tables:  # one table per distinct film (a frequency-dependent one: each f)
-            tables = {key: prepare(film, q, r)}
-        flat_out[sel] = _punch(tables[key], mats, hs, (film, q), float(freq), flat_a[sel], r, res)
+        if key not in groups:
+            groups[key] = ((film, q), [])
+        stack = _stack_at(mats, hs, film, q, float(freq))
+        groups[key][1].extend((i, stack, float(freq)) for i in sel)
+    for (film, q), items in groups.values():
+        index = np.array([i for i, _, _ in items])
+        flat_out[index] = _punch(prepare(film, q, r), film, items, flat_a[index], r, res)
     return complex(out) if out.ndim == 0 else out
 
 
@@ -500,38 +506,49 @@ def layered_dcsf(
     return complex(out) if out.ndim == 0 else out
 
 
-def _punch(table, mats, hs, reference, freq, radii, rtol, res) -> np.ndarray:
-    """K (N/m) of one frequency at the radii ``radii`` (1-D); ``reference`` = (undamped
-    material, Q⁻¹) of the table."""
-    film, q = reference
+def _punch(table, film, items, radii, rtol, res) -> np.ndarray:
+    """K (N/m) at the points ``items`` [(index, _Stack, frequency), ...] of one film table
+    (``film``: its undamped reference material) with radii ``radii``."""
     c44 = shear_reference(film)
-    stack = _stack_at(mats, hs, film, q, freq)
-    ks_film = 2 * math.pi * freq * math.sqrt((film.density or 0.0) / c44)
-    ksa = ks_film * radii
-    n_radial = galerkin_size(float(np.max(stack.k_max * radii)), rtol).n_radial
-    n_harm = galerkin_size(0.0, rtol).n_harmonics
-    # A correction is needed under layers, or for a film that is not its reference.
-    layered = len(mats) > 1 or not np.allclose(
-        stack.tensors[0], stack.reference, rtol=0, atol=1e-14 * np.max(np.abs(stack.reference))
+    stacks = [st for _, st, _ in items]
+    ks_film = (
+        2 * np.pi * np.array([f for _, _, f in items]) * math.sqrt((film.density or 0.0) / c44)
     )
-    theta = np.zeros(1) if stack.axisymmetric else np.asarray(table.theta)
+    ksa = ks_film * radii
+    k_max = np.array([st.k_max for st in stacks]) * radii
+    n_radial = galerkin_size(float(np.max(k_max)), rtol).n_radial
+    n_harm = galerkin_size(0.0, rtol).n_harmonics
+    axisymmetric = all(st.axisymmetric for st in stacks)
+    theta = np.zeros(1) if axisymmetric else np.asarray(table.theta)
     gref = float(np.max(np.abs(table.ginf)))
-    nodes = [_correction_nodes(stack, float(a), theta, res, gref) for a in radii] if layered else []
+    # A correction is needed under layers, or for a film that is not its reference.
+    needs = [
+        len(st.tensors) > 1
+        or not np.allclose(
+            st.tensors[0], st.reference, rtol=0, atol=1e-14 * np.max(np.abs(st.reference))
+        )
+        for st in stacks
+    ]
+    nodes = {
+        i: _correction_nodes(st, float(radii[i]), theta, res, gref)
+        for i, st in enumerate(stacks)
+        if needs[i]
+    }
     while True:
-        grow = n_radial + 4 if layered else n_radial
-        size = GalerkinSize(grow, 0 if stack.axisymmetric else n_harm)
+        grow = n_radial + 4 if nodes else n_radial
+        size = GalerkinSize(grow, 0 if axisymmetric else n_harm)
         M, plan = _film_matrices(table, ksa, size)
         orders, (ti, tj) = plan.orders, plan.pairs
         diag = np.where(ti == tj, np.pi / (2 * (2 * orders[ti] + 1)), 0.0)
-        shift = _harmonics_of(stack.static_shift(theta)[None, :], plan, stack.axisymmetric)[:, 0]
-        for i, (s, w, dg, s_end, end) in enumerate(nodes):
-            harm = _harmonics_of(dg, plan, stack.axisymmetric)
-            end_h = _harmonics_of(end[None, :], plan, stack.axisymmetric)[:, 0]
+        for i, (s, w, dg, s_end, end) in nodes.items():
+            shift = _harmonics_of(stacks[i].static_shift(theta)[None, :], plan, axisymmetric)
+            harm = _harmonics_of(dg, plan, axisymmetric)
+            end_h = _harmonics_of(end[None, :], plan, axisymmetric)[:, 0]
             integral = _correction_integrals(s, w, harm, plan, s_end, end_h)
             # The static difference of film and reference: closed form, as in the exact model.
-            M[i] += _assemble(integral + shift[:, None] * diag[None, :], plan)
+            M[i] += _assemble(integral + shift[:, 0][:, None] * diag[None, :], plan)
         c_big = _solve_c0(M, grow, plan)
-        if not layered:
+        if not nodes:
             break
         c_small = _solve_c0(M, n_radial, plan)
         if np.max(np.abs(c_big / c_small - 1)) < rtol / 10 or grow >= _MAX_RADIAL:
