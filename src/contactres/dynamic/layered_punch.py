@@ -327,9 +327,12 @@ def _correction_integrals(s, w, dg_harm, plan, s_end, end_harm) -> np.ndarray:
     real = s.imag == 0
     jp[:, real] = spherical_bessel(int(orders[-1]), s[real].real)[orders]
     jp[:, ~real] = spherical_bessel(int(orders[-1]), s[~real])[orders]
-    prod = (jp * w[None, :])[ti] * jp[tj]  # (n_t, ns)
     sign = np.where(((orders[ti] - orders[tj]) // 2) % 2 == 0, 1.0, -1.0)
-    return dg_harm @ prod.T + end_harm[:, None] * sign[None, :] / (6 * s_end)
+    out = end_harm[:, None] * sign[None, :] / (6 * s_end)
+    # Per harmonic, all order pairs at once: J diag(w Δg_m) Jᵀ (one matrix product).
+    for m in range(dg_harm.shape[0]):
+        out[m] += ((jp * (w * dg_harm[m])[None, :]) @ jp.T)[ti, tj]
+    return out
 
 
 def _harmonics_of(values, plan, axisymmetric: bool) -> np.ndarray:
