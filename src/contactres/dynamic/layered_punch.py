@@ -250,7 +250,8 @@ def _cheb_interp(x_nodes, values, x):
 
 def _correction_nodes(stack: _Stack, a: float, theta: np.ndarray, res: PunchResolution, gref):
     """Nodes s (complex), weights ds and Δg(s/a, θ) (len(s), len(theta)) of the ΔM integral,
-    and the end S of the nodes with Δg(S/a, θ) there (for the tail beyond S)."""
+    the end S of the nodes with Δg(S/a, θ) there (for the tail beyond S), and the static
+    shift g∞_film − g∞_ref (θ)."""
     shift = stack.static_shift(theta)
     nodes, weights = [], []
     s1 = stack.pole * a
@@ -311,6 +312,7 @@ def _correction_nodes(stack: _Stack, a: float, theta: np.ndarray, res: PunchReso
         np.concatenate(g_all),
         float(edges[last]),
         probe[last],
+        shift,
     )
 
 
@@ -543,8 +545,8 @@ def _punch(table, film, items, radii, rtol, res) -> np.ndarray:
         M, plan = _film_matrices(table, ksa, size)
         orders, (ti, tj) = plan.orders, plan.pairs
         diag = np.where(ti == tj, np.pi / (2 * (2 * orders[ti] + 1)), 0.0)
-        for i, (s, w, dg, s_end, end) in nodes.items():
-            shift = _harmonics_of(stacks[i].static_shift(theta)[None, :], plan, axisymmetric)
+        for i, (s, w, dg, s_end, end, static) in nodes.items():
+            shift = _harmonics_of(static[None, :], plan, axisymmetric)
             harm = _harmonics_of(dg, plan, axisymmetric)
             end_h = _harmonics_of(end[None, :], plan, axisymmetric)[:, 0]
             integral = _correction_integrals(s, w, harm, plan, s_end, end_h)
