@@ -59,7 +59,7 @@ _EXPORTS: dict[str, str] = {
     "contact_integrals": ".normal.anisotropic",
     "indentation_modulus": ".normal.anisotropic",
     "LayeredContact": ".normal",
-    "flat_punch_stiffness": ".normal",
+    "flat_punch_stiffness": ".dynamic",
     "indentation_modulus_at": ".normal",
     "sphere_contact": ".normal",
     # dynamic contact stiffness
@@ -189,6 +189,7 @@ if TYPE_CHECKING:
     )
     from .dynamic import (
         contact_displacement as contact_displacement,
+        flat_punch_stiffness as flat_punch_stiffness,
         contact_pressure as contact_pressure,
         dcsf as dcsf,
         dcsf_models as dcsf_models,
@@ -241,7 +242,6 @@ if TYPE_CHECKING:
     )
     from .normal import (
         LayeredContact as LayeredContact,
-        flat_punch_stiffness as flat_punch_stiffness,
         indentation_modulus_at as indentation_modulus_at,
         sphere_contact as sphere_contact,
     )

@@ -298,8 +298,8 @@ def test_sphere_stiffness_is_dF_ddelta_and_vectorised():
 # --------------------------------------------------------------------- errors
 def test_bad_input():
     stack = LayeredMaterial(GLASS, [(PMMA, 250e-9)])
-    with pytest.raises(ContactresInputError, match="dynamic flat punch on a layered substrate"):
-        flat_punch_stiffness(stack, 1e-6, frequency=1e6)
+    with pytest.raises(ContactresInputError, match="tangential punch at a frequency > 0"):
+        flat_punch_stiffness(stack, 1e-6, frequency=1e6, direction="tangential")
     with pytest.raises(ContactresInputError, match="direction"):
         flat_punch_stiffness(stack, 1e-6, direction="shear")
     with pytest.raises(ContactresInputError, match="radius"):
@@ -383,3 +383,21 @@ def test_an_elastic_sphere_adds_its_compliance_as_hertz_does():
     np.testing.assert_allclose(stiff.contact_radius, rigid.contact_radius, rtol=1e-5)
     soft = cr.sphere_contact(coated, 1e-3, forces, indenter=glass)
     assert np.all(soft.contact_radius > rigid.contact_radius)
+
+
+def test_the_static_and_the_dynamic_punch_agree_at_frequency_zero():
+    """Two algorithms for the same static punch on a stack: the axisymmetric Galerkin of the
+    static layered solid (contactres.normal) and the dynamic route at f = 0 (the film's exact
+    Galerkin plus the stack's correction, contactres.dynamic.layered_punch_stiffness)."""
+    from contactres.dynamic import layered_punch_stiffness
+    from contactres.normal import static_punch_stiffness
+
+    quartz = Material.isotropic(72e9, 0.17, density=2200.0)
+    pmma = Material.isotropic(5e9, 0.35, density=1190.0)
+    for h in (50e-9, 250e-9, 2e-6):
+        stack = LayeredMaterial(quartz, [(pmma, h)])
+        a = np.array([1e-6, 5e-6])
+        static = static_punch_stiffness(stack, a)
+        dynamic = layered_punch_stiffness(stack, a, 0.0, rtol=1e-9)
+        np.testing.assert_allclose(dynamic, static, rtol=1e-8)
+        np.testing.assert_allclose(flat_punch_stiffness(stack, a), static, rtol=0)

@@ -9,6 +9,9 @@ stiffness tensor (:func:`tangential_stiffness_static`), the exact dynamic one
 (:func:`tangential_contact_stiffness`, :func:`tangential_dcsf`, table :func:`prepare_tangential`)
 and two bodies in series (:func:`two_body_contact_stiffness`, the QCM contact of paper 2).
 
+On a layered or viscoelastic substrate: the time-harmonic normal stiffness of the rigid flat
+punch (:func:`layered_punch_stiffness`) and its DCSF (:func:`layered_dcsf`).
+
 The public names are loaded on first use (PEP 562 module ``__getattr__``): the model names
 (``MODELS``, ``ALL_MODELS``, ``WAVENUMBERS``) come without scipy, for the command line's options.
 The modules that implement them are private (``_normal_stiffness``, ``_exact``, ``_table``, ...,
@@ -39,6 +42,9 @@ _EXPORTS = MappingProxyType(
         "dcsf": "._normal_stiffness",
         "dcsf_models": "._normal_stiffness",
         "dynamic_contact_stiffness": "._normal_stiffness",
+        "flat_punch_stiffness": "._layered_punch",
+        "layered_dcsf": "._layered_punch",
+        "layered_punch_stiffness": "._layered_punch",
         "normalised_wavenumber": "._normal_stiffness",
         "shear_wavenumber_ratio": "._normal_stiffness",
         "wave_modulus": "._normal_stiffness",
@@ -59,6 +65,11 @@ __all__ = sorted(_EXPORTS)
 # marks an explicit re-export; isort would split each onto its own import, hence off here.
 if TYPE_CHECKING:
     # isort: off
+    from ._layered_punch import (
+        flat_punch_stiffness as flat_punch_stiffness,
+        layered_dcsf as layered_dcsf,
+        layered_punch_stiffness as layered_punch_stiffness,
+    )
     from ._models import (
         ALL_MODELS as ALL_MODELS,
         MODELS as MODELS,

@@ -43,8 +43,10 @@ __all__ = [
     "GalerkinPlan",
     "GalerkinSize",
     "exact_n",
+    "galerkin_matrix",
     "galerkin_plan",
     "galerkin_size",
+    "kernel_harmonics",
     "pressure_basis",
 ]
 
@@ -101,7 +103,7 @@ def pressure_basis(n: int, k: int, rbar) -> np.ndarray:
         return norm * r**n * special.hyp2f1(n + k + 1, 0.5 - k, n + 1, r * r)
 
 
-def _harmonics(values: np.ndarray, ms) -> np.ndarray:
+def kernel_harmonics(values: np.ndarray, ms) -> np.ndarray:
     """Ĝ_m = ∫₀^{2π} g e^{imθ} dθ of rows sampled on [0, π) (period π; m even), stacked as
     (len(ms), *values.shape[:-1])."""
     n = values.shape[-1]
@@ -211,59 +213,14 @@ def exact_n(
     if plan is None:
         plan = galerkin_plan(table, size, far.s if na and far is not None else None)
     nb = len(plan.basis)
-    orders, (ti, tj) = plan.orders, plan.pairs
     out_n = np.empty(ksa.shape, dtype=complex)
     coeffs = np.empty((*ksa.shape, nb), dtype=complex)
     e0 = np.zeros(nb)
     e0[0] = 1.0
     if na:
         # far: built above for these k a; its grid is the plan's (the caller's contract)
-        assert far is not None and plan.far_products is not None
-        # I[a, m, t]: ∫ ds Ĝ_m(s/ka) j_p j_q for the harmonics m and pairs t = (p, q).
-        # Static part: Ĝ_m^∞ δ_pq π/(2(2p + 1)).
-        diag = np.where(ti == tj, np.pi / (2 * (2 * orders[ti] + 1)), 0.0)
-        integral = np.broadcast_to(
-            _harmonics(table.ginf, plan.ms)[:, None] * diag[None, :],
-            (na, plan.ms.size, ti.size),
-        ).copy()
-        # Near field: contour + hand-over segment, harmonics of the tabulated g − g∞.
-        near_h = _harmonics(table.near_values, plan.ms)  # (n_m, nk)
-        s = ka[:, None] * table.near_kappa[None, :]  # (na, nk)
-        # Pair products laid out (na, n_t, nk), so that the sum over the near nodes k is one
-        # complex product with no transposed copy: one BLAS call, not one per k a (on 2 cores
-        # shared with other work, every threaded call can wait a scheduler tick).
-        jp = np.moveaxis(spherical_bessel(int(orders[-1]), s)[orders], 0, 1)  # (na, n_p, nk)
-        wk = table.near_weight[None, :] * ka[:, None]
-        prod = (jp * wk[:, None, :])[:, ti] * jp[:, tj]  # (na, n_t, nk)
-        near = (prod.reshape(-1, prod.shape[-1]) @ near_h.T).reshape(na, ti.size, -1)
-        integral += near.transpose(0, 2, 1)  # (na, n_m, n_t)
-        # Far field: Chebyshev series in w = (T1 ka/s)² of each harmonic, against j_p j_q.
-        nf = far.basis.shape[-1]
-        harm = {int(j): i for i, j in enumerate(table.far_harmonics)}
-        coef = np.zeros((plan.ms.size, nf), dtype=complex)
-        for i, m in enumerate(plan.ms):
-            if -int(m) // 2 in harm:
-                coef[i] = 2 * np.pi * table.far_coeffs[harm[-int(m) // 2]]
-        # The large product runs over the s grid for every row (direction, ka). The real
-        # coefficient matrix [Re; Im] (2 n_m x nf) has rapidly falling singular values (the
-        # series of all harmonics decay alike): only its directions above 1e-15 of the largest
-        # can move the sum beyond round-off, so the basis is projected on those first (about
-        # half of the nf rows).
-        left, right = low_rank(np.concatenate([coef.real, coef.imag]))  # (2 n_m, k), (k, nf)
-        k = right.shape[0]
-        cheb = np.moveaxis(far.basis, -1, 0)  # (nf, na, ns), contiguous (see far_basis)
-        proj = (right @ cheb.reshape(nf, -1)).reshape(k * na, -1)
-        phi = (proj @ plan.far_products.T).reshape(k, na, -1)
-        mixed = np.tensordot(left, phi, axes=(1, 0))  # (2 n_m, na, n_t)
-        far_part = mixed[: plan.ms.size] + 1j * mixed[plan.ms.size :]  # (n_m, na, n_t)
-        integral += far_part.transpose(1, 0, 2)
-        # Beyond the grid: j_p j_q -> (−1)^{(p−q)/2}/(2 s²) on average, g − g∞ -> w C₁.
-        alt = np.where(np.arange(nf) % 2 == 0, 1.0, -1.0)
-        tail_sign = np.where(((orders[ti] - orders[tj]) // 2) % 2 == 0, 1.0, -1.0)
-        scale = (table.t1 * ka) ** 2 / (6 * far.s_end**3)
-        integral += scale[:, None, None] * (coef @ alt)[None, :, None] * tail_sign[None, None, :]
-        # Assemble M_ab = sign_ab I[n_a + n_b][p_a, p_b] and solve M c = e0 for every ka.
-        M = plan.sign * integral[:, plan.m_index, plan.t_index]
+        assert far is not None
+        M = galerkin_matrix(table, ka, plan, far)
         c = np.linalg.solve(M, np.broadcast_to(e0, (na, nb))[..., None])[..., 0]
         out_n[pos] = 1 / c[:, 0]
         coeffs[pos] = c
@@ -273,3 +230,74 @@ def exact_n(
     if return_coeffs:
         return out_n, coeffs, plan.basis
     return out_n
+
+
+def galerkin_matrix(
+    table: KernelTable, ka: np.ndarray, plan: GalerkinPlan, far: FarBasis
+) -> np.ndarray:
+    """The Galerkin matrix M_ab of the module docstring at k_s a values ``ka``.
+
+    Parameters
+    ----------
+    table : KernelTable
+        The prepared kernel table of the material and loss.
+    ka : ndarray
+        k_s a values (1-D, > 0; dimensionless), those ``far`` was built for.
+    plan : GalerkinPlan
+        :func:`galerkin_plan` on the grid of ``far`` (with its far-field products).
+    far : FarBasis
+        The far-field basis of ``ka`` (:func:`contactres.dynamic.farfield.far_basis`).
+
+    Returns
+    -------
+    ndarray, complex, shape (len(ka), n_basis, n_basis)
+        M in the normalisation of N (dimensionless): M c = e₀ gives N_exact = 1/c₀.
+    """
+    assert plan.far_products is not None
+    na = ka.size
+    orders, (ti, tj) = plan.orders, plan.pairs
+    # I[a, m, t]: ∫ ds Ĝ_m(s/ka) j_p j_q for the harmonics m and pairs t = (p, q).
+    # Static part: Ĝ_m^∞ δ_pq π/(2(2p + 1)).
+    diag = np.where(ti == tj, np.pi / (2 * (2 * orders[ti] + 1)), 0.0)
+    integral = np.broadcast_to(
+        kernel_harmonics(table.ginf, plan.ms)[:, None] * diag[None, :],
+        (na, plan.ms.size, ti.size),
+    ).copy()
+    # Near field: contour + hand-over segment, harmonics of the tabulated g − g∞.
+    near_h = kernel_harmonics(table.near_values, plan.ms)  # (n_m, nk)
+    s = ka[:, None] * table.near_kappa[None, :]  # (na, nk)
+    # Pair products laid out (na, n_t, nk), so that the sum over the near nodes k is one
+    # complex product with no transposed copy: one BLAS call, not one per k a (on 2 cores
+    # shared with other work, every threaded call can wait a scheduler tick).
+    jp = np.moveaxis(spherical_bessel(int(orders[-1]), s)[orders], 0, 1)  # (na, n_p, nk)
+    wk = table.near_weight[None, :] * ka[:, None]
+    prod = (jp * wk[:, None, :])[:, ti] * jp[:, tj]  # (na, n_t, nk)
+    near = (prod.reshape(-1, prod.shape[-1]) @ near_h.T).reshape(na, ti.size, -1)
+    integral += near.transpose(0, 2, 1)  # (na, n_m, n_t)
+    # Far field: Chebyshev series in w = (T1 ka/s)² of each harmonic, against j_p j_q.
+    nf = far.basis.shape[-1]
+    harm = {int(j): i for i, j in enumerate(table.far_harmonics)}
+    coef = np.zeros((plan.ms.size, nf), dtype=complex)
+    for i, m in enumerate(plan.ms):
+        if -int(m) // 2 in harm:
+            coef[i] = 2 * np.pi * table.far_coeffs[harm[-int(m) // 2]]
+    # The large product runs over the s grid for every row (direction, ka). The real
+    # coefficient matrix [Re; Im] (2 n_m x nf) has rapidly falling singular values (the
+    # series of all harmonics decay alike): only its directions above 1e-15 of the largest
+    # can move the sum beyond round-off, so the basis is projected on those first (about
+    # half of the nf rows).
+    left, right = low_rank(np.concatenate([coef.real, coef.imag]))  # (2 n_m, k), (k, nf)
+    k = right.shape[0]
+    cheb = np.moveaxis(far.basis, -1, 0)  # (nf, na, ns), contiguous (see far_basis)
+    proj = (right @ cheb.reshape(nf, -1)).reshape(k * na, -1)
+    phi = (proj @ plan.far_products.T).reshape(k, na, -1)
+    mixed = np.tensordot(left, phi, axes=(1, 0))  # (2 n_m, na, n_t)
+    far_part = mixed[: plan.ms.size] + 1j * mixed[plan.ms.size :]  # (n_m, na, n_t)
+    integral += far_part.transpose(1, 0, 2)
+    # Beyond the grid: j_p j_q -> (−1)^{(p−q)/2}/(2 s²) on average, g − g∞ -> w C₁.
+    alt = np.where(np.arange(nf) % 2 == 0, 1.0, -1.0)
+    tail_sign = np.where(((orders[ti] - orders[tj]) // 2) % 2 == 0, 1.0, -1.0)
+    scale = (table.t1 * ka) ** 2 / (6 * far.s_end**3)
+    integral += scale[:, None, None] * (coef @ alt)[None, :, None] * tail_sign[None, None, :]
+    # Assemble M_ab = sign_ab I[n_a + n_b][p_a, p_b].
+    return plan.sign * integral[:, plan.m_index, plan.t_index]

@@ -28,7 +28,7 @@ _EXPORTS = MappingProxyType(
         "contact_integrals": ".anisotropic",
         "indentation_modulus": ".anisotropic",
         "LayeredContact": "._layered",
-        "flat_punch_stiffness": "._layered",
+        "static_punch_stiffness": "._layered",
         "indentation_modulus_at": "._layered",
         "sphere_contact": "._layered",
         "Contact": ".isotropic",
@@ -75,7 +75,7 @@ if TYPE_CHECKING:
     )
     from ._layered import (
         LayeredContact as LayeredContact,
-        flat_punch_stiffness as flat_punch_stiffness,
+        static_punch_stiffness as static_punch_stiffness,
         indentation_modulus_at as indentation_modulus_at,
         sphere_contact as sphere_contact,
     )

@@ -162,6 +162,8 @@ def graded_breakpoints(kernel: RadialKernel, tol: float = DEFAULT_TOL) -> np.nda
     """Breakpoints in η (1/m) of the kernel's own panels (independent of the contact radius):
     0, then geometric (ratio 1.5) from 1e-3 over the largest length up to two panels beyond the
     last breakpoint where ``|Δg|`` >= tol g∞."""
+    if kernel.excess is None:  # a homogeneous solid: no panels of its own
+        return np.zeros(1)
     h_min, h_max = kernel.lengths
     eta0 = _ETA_START / h_max
     # Geometric breakpoints up to where even the thinnest layer's e^{−2ηh} is below 1e-300.

@@ -56,10 +56,10 @@ from .anisotropic import sphere_contact as homogeneous_sphere_contact
 
 __all__ = [
     "LayeredContact",
-    "flat_punch_stiffness",
     "indentation_modulus_at",
     "radial_kernel",
     "sphere_contact",
+    "static_punch_stiffness",
 ]
 
 # θ average: doubled from this many angles on [0, π) until it moves by less than _THETA_RTOL.
@@ -173,10 +173,13 @@ def _shaped(x, shape):
     return x[()] if x.ndim == 0 else x
 
 
-def flat_punch_stiffness(
-    material, radius, frequency: float = 0.0, direction: str = "normal", *, tol: float = DEFAULT_TOL
+def static_punch_stiffness(
+    material, radius, direction: str = "normal", *, tol: float = DEFAULT_TOL
 ):
     """Static stiffness of a rigid flat circular punch on a homogeneous or layered half-space.
+
+    :func:`contactres.flat_punch_stiffness` is the same at frequency 0 and adds the dynamic
+    punch.
 
     Normal: frictionless, K = F/δ (uniform normal displacement δ, no shear traction).
     Tangential: bonded (no slip) and relaxed (no normal traction), K = F_x/U_x for a rigid motion
@@ -189,11 +192,6 @@ def flat_punch_stiffness(
         (correspondence principle, static constants ``at(0)``).
     radius : float or array
         Punch radius a > 0, m.
-    frequency : float
-        Must be 0 (statics). The dynamic punch is not here: :mod:`contactres.normal` sits below
-        :mod:`contactres.dynamic`, whose exact Galerkin
-        (:func:`contactres.dynamic_contact_stiffness`) is the dynamic punch of a homogeneous
-        solid.
     direction : {"normal", "tangential"}
         Which stiffness.
     tol : float
@@ -209,26 +207,21 @@ def flat_punch_stiffness(
     Raises
     ------
     ContactresInputError
-        For frequency > 0, a bad radius or direction.
+        For a bad radius or direction.
 
     Examples
     --------
     A 1 µm punch on 250 nm of PMMA on fused quartz has 43 % of its stiffness on bare quartz:
 
-    >>> from contactres import LayeredMaterial, Material, flat_punch_stiffness
+    >>> from contactres import LayeredMaterial, Material
+    >>> from contactres.normal import static_punch_stiffness
     >>> quartz = Material.isotropic(72e9, 0.17, name="quartz")
     >>> pmma = Material.isotropic(5e9, 0.35, name="PMMA")
     >>> coated = LayeredMaterial(quartz, [(pmma, 250e-9)])
-    >>> ratio = flat_punch_stiffness(coated, 1e-6) / flat_punch_stiffness(quartz, 1e-6)
+    >>> ratio = static_punch_stiffness(coated, 1e-6) / static_punch_stiffness(quartz, 1e-6)
     >>> print(f"{ratio.real:.3f}")
     0.427
     """
-    f = float(frequency)
-    if f != 0.0:
-        raise ContactresInputError(
-            "dynamic flat punch on a layered substrate: not yet (only frequency=0 here); use "
-            "dynamic_contact_stiffness for a homogeneous one"
-        )
     a = _radii("radius", radius)
     kernel = radial_kernel(material, direction)
     sol = punch_and_sphere(kernel, a, tol=tol)
@@ -414,7 +407,7 @@ def sphere_contact(
         return homogeneous_sphere_contact(material, radius, force, rtol)
     stack = material.at(0.0) if isinstance(material, LayeredMaterial) else _stack(material)
     if indenter is None and not stack.layers:
-        return homogeneous_sphere_contact(stack.substrate, radius, force, rtol)
+        return homogeneous_sphere_contact(require_material(stack.substrate), radius, force, rtol)
     if stack.is_lossy:
         raise ContactresInputError(
             "sphere_contact needs real (undamped) constants: the static contact of a lossy "
