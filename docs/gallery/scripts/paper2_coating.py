@@ -21,6 +21,7 @@ the paper did, force by force, to the apparent E of the homogeneous model.
   paper's ν).
 """
 
+import matplotlib.pyplot as plt
 import numpy as np
 from matplotlib.figure import Figure
 from scipy.optimize import brentq
@@ -87,3 +88,4 @@ ax.set_xlabel("normal force per contact F_N (mN)")
 ax.set_ylabel("apparent E on PMMA / on SiO2")
 ax.set_ylim(0.4, 1.05)
 key_below(fig, ncols=1)
+plt.figure(fig)  # hand the figure to pyplot: the plot directive saves pyplot's figures
