@@ -203,7 +203,7 @@ SLOW_SCRIPTS = {
     "paper1_fig4_anisotropy.py": "5 s; paper1.fig4_anisotropy above",
     "paper1_fig5_poisson.py": "5 s; paper1.fig5_poisson above",
     "paper1_model_ranking.py": "6 s; paper1.model_ranking above",
-    "paper2_coating.py": "30 s; the coated contact is tested in tests/normal/test_layered_contact.py",
+    "paper2_coating.py": "30 s; its contacts are tested in tests/normal/test_layered_contact.py",
 }
 DOC_SCRIPTS = sorted(
     p
