@@ -192,14 +192,14 @@ class PowerLaw:
     A constant phase angle φ (loss tangent tan φ at every frequency) with the modulus growing
     as f^{2φ/π}: the pair that the Kramers–Kronig relations allow for a power law (the only
     causal solid with a frequency-independent phase). The QCM power law of RheoQCM is the same
-    law: its ``grho(n, props)`` returns |G*|ρ at harmonic n as grho3 · (n/3)^{φ/90} with φ in
+    law: its ``grho(n, props)`` returns ``|G*| ρ`` at harmonic n as grho3 · (n/3)^{φ/90} with φ in
     degrees (shullgroup/rheoQCM, QCMFuncs/QCM_functions.py), i.e. modulus_ref = grho3/ρ,
     frequency_ref = 3 f_1 and phase = radians(φ).
 
     Parameters
     ----------
     modulus_ref : float
-        |M*| at ``frequency_ref`` (Pa), > 0.
+        ``|M*|`` at ``frequency_ref`` (Pa), > 0.
     frequency_ref : float
         Reference frequency (Hz), > 0.
     phase : float
@@ -207,7 +207,7 @@ class PowerLaw:
 
     Notes
     -----
-    No static limit: |M*| -> 0 as f -> 0 for φ > 0, and the law is meant for a band of
+    No static limit: ``|M*|`` -> 0 as f -> 0 for φ > 0, and the law is meant for a band of
     frequencies only; ``__call__`` refuses f = 0 (for φ = 0 too, to keep one rule).
     """
 
@@ -233,7 +233,7 @@ class PowerLaw:
 
     @property
     def exponent(self) -> float:
-        """2φ/π: the slope d ln|M*| / d ln f."""
+        """2φ/π: the slope d ln ``|M*|`` / d ln f."""
         return 2 * self.phase / np.pi
 
     def __call__(self, frequency) -> np.ndarray:
@@ -535,10 +535,10 @@ def _phase_velocity(modulus: complex) -> float:
 
 
 def _through(static: float, speed: float, other: complex = 0.0) -> PowerLaw:
-    """The power law with |M*| = ``static`` at PMMA_STATIC_FREQUENCY such that a wave of
+    """The power law with ``|M*|`` = ``static`` at PMMA_STATIC_FREQUENCY such that a wave of
     modulus M* + ``other`` (the shear part 4G*/3 of the longitudinal modulus) has phase
     velocity ``speed`` at PMMA_ULTRASONIC_FREQUENCY; the phase is found by bisection (the
-    velocity grows with the phase, since |M*| at 5 MHz does)."""
+    velocity grows with the phase, since ``|M*|`` at 5 MHz does)."""
     from scipy.optimize import brentq  # deferred: scipy costs import time
 
     def law(phi: float) -> PowerLaw:
@@ -566,7 +566,7 @@ def pmma() -> ViscoelasticMaterial:
 
     - density ρ = 1190 kg/m³;
     - quasi-static Young's modulus E = 3.0 GPa (datasheets: 2.4–3.3 GPa) and Poisson ratio
-      ν = 0.37 (0.35–0.40), taken as |E*| and ν at 1 Hz: G = 1.095 GPa, K = 3.85 GPa;
+      ν = 0.37 (0.35–0.40), taken as ``|E*|`` and ν at 1 Hz: G = 1.095 GPa, K = 3.85 GPa;
     - ultrasonic phase velocities at 5 MHz: shear c_T = 1370 m/s and longitudinal
       c_L = 2700 m/s (the middle of the published 1340–1400 and 2690–2750 m/s; e.g.
       B. Hartmann and J. Jarzynski, J. Acoust. Soc. Am. 56, 1469 (1974); not re-checked here).
@@ -575,7 +575,7 @@ def pmma() -> ViscoelasticMaterial:
     shear law's phase is the one for which a shear wave (k = ω √(ρ/G*)) has the phase
     velocity c_T at 5 MHz, the bulk law's the one for which a longitudinal wave (modulus
     K* + 4G*/3) has c_L. So the phase follows from the two anchors through the power law's
-    own Kramers–Kronig pair, φ = (π/2) d ln|M|/d ln f. Results: shear φ_G = 0.0725 rad
+    own Kramers–Kronig pair, φ = (π/2) d ln ``|M|`` / d ln f. Results: shear φ_G = 0.0725 rad
     (tan δ_G = 0.073), bulk φ_K = 0.040 rad. D. Laux et al., Ultrasonics 134, 107104 (2023)
     measured the shear and longitudinal quality factors of PMMA from 20 kHz to 12 MHz and found
     them falling towards low frequencies; their numbers were not at hand to compare with this

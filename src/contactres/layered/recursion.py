@@ -223,7 +223,7 @@ def surface_green(material, wavenumber, theta, frequency: float = 0.0) -> np.nda
     material : Material, LayeredMaterial or frequency-dependent material
         In the surface frame (:meth:`LayeredMaterial.rotated` turns the whole stack).
     wavenumber : array_like
-        η = |ξ|, 1/m: real > 0; for a lossless material also complex with Im η > 0 (the
+        η = ``|ξ|``, 1/m: real > 0; for a lossless material also complex with Im η > 0 (the
         analytic continuation, as for :func:`contactres.dynamic_kernel`).
     theta : array_like
         Direction of ξ, rad; broadcasts against ``wavenumber``.
