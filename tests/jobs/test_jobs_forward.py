@@ -211,3 +211,16 @@ def test_coating_materials_are_pmma_and_the_isotropic_solids():
         "pmma",
         *t.loc[t["symmetry"] == "isotropic", "name"],
     )
+
+
+def test_pmma_coating_dynamic_columns_are_its_moduli_at_the_frequency():
+    """At 1 Hz the dynamic stiffness is the static one (the same 1 Hz constants; no inertia at
+    k a ~ 1e-8, the loss enters Re K at second order, tan² δ ~ 0.005); Im K > 0 (a passive
+    film); PMMA stiffens with frequency (its power laws), so Re K grows with f."""
+    glass = Material.crystal("fused-silica")
+    t = _table(glass, ("pmma:250e-9",), np.array([1.0, 1e3, 15e6]), force=(1e-3,))
+    k, re, im = (t[c].to_numpy() for c in ("stiffness_N_per_m", "dynamic_stiffness_real_N_per_m",
+                                          "dynamic_stiffness_imag_N_per_m"))  # fmt: skip
+    assert re[0] == pytest.approx(k[0], rel=0.01)
+    assert (im > 0).all()
+    assert re[0] < re[1] < re[2]

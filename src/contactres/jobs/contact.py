@@ -12,6 +12,13 @@ contact, rigid disk of radius a); on a coated face both are :func:`contactres.fl
 of the stack at the contact radius (the tangential one static only: the layered tangential punch
 at a frequency is not available yet).
 
+On a coated face the contact is solved with the θ-averaged (axisymmetric) compliance of the
+stack (:func:`contactres.sphere_contact` on a :class:`~contactres.LayeredMaterial`): exact for
+isotropic layers on a face with 3- or 4-fold symmetry, an approximation elsewhere (there the
+coated tangential stiffness is the θ average, the same for every ``direction``, and a film of
+the substrate's own material does not give back the bare face's circular-Hertz numbers, which
+use the x axis).
+
 Frequency-dependent (viscoelastic) materials of a stack, e.g. the built-in PMMA, whose power laws
 have no relaxed (0 Hz) limit: the static columns use their storage constants at
 :data:`STATIC_FREQUENCY_HZ` (1 Hz, the quasi-static modulus their anchors are quoted at), the
