@@ -224,3 +224,9 @@ def test_pmma_coating_dynamic_columns_are_its_moduli_at_the_frequency():
     assert re[0] == pytest.approx(k[0], rel=0.01)
     assert (im > 0).all()
     assert re[0] < re[1] < re[2]
+
+
+def test_a_stiffer_film_has_a_negative_share():
+    """Si3N4 (E = 300 GPa) on fused silica (73 GPa): the film stiffens the contact."""
+    t = _table(Material.crystal("fused-silica"), ("Si3N4:1e-6",), force=(1e-3,))
+    assert t["film_share"][0] < 0

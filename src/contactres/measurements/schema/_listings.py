@@ -65,7 +65,8 @@ CONTACT_TABLE = TableSchema(
             "film_share",
             "-",
             "1 − K_sa(coated)/K_sa(bare face) at the same force: how much of the contact "
-            "stiffness the film takes; empty without contact (with `--coating`)",
+            "stiffness the film takes (< 0: a film stiffer than the face); empty without "
+            "contact (with `--coating`)",
         ),
         (
             "tangential_stiffness_N_per_m",
