@@ -537,6 +537,12 @@ UNDOCUMENTED = {
         "unit_slip",
     ],
     "validation": ["amplitude", "nonnegative", "positive"],
+    "jobs.contact": [
+        "MAX_COATING_LAYERS",
+        "STATIC_FREQUENCY_HZ",
+        "coating_materials",
+        "parse_coating",
+    ],
     "jobs.contract": ["Progress", "json_value"],
     "jobs.demo": ["STEPS"],
     "jobs.maps": [

@@ -122,6 +122,7 @@ BAD = [
     (CRYSTAL, "--format", "xml"),
     (CRYSTAL, "--frequency", "15"),
     (CRYSTAL, "--direction", "east"),
+    (CRYSTAL, "--coating", "pmma:250"),
 ]
 # Flags take no value: their misuse is a combination (test_contact_tangential_bad_input).
 FLAGS = {"--tangential"}
@@ -314,3 +315,60 @@ def test_contact_tangential_at_zero_force_is_zero_not_an_error():
     assert rows[0]["tangential_stiffness_real_N_per_m"] == 0
     assert rows[0]["tangential_loss_tangent"] is None
     assert rows[1]["tangential_stiffness_real_N_per_m"] > 0
+
+
+# ------------------------------------------------------------------------------ coated faces
+def test_contact_coating_matches_the_job_and_notes_the_static_pmma():
+    from contactres.jobs import contact as job
+
+    r = run("contact", "--crystal", "fused-silica", "--radius", 1.1e-3, "--force", "1e-3,1e-2",
+            "--coating", "pmma:250e-9", "--format", "json")  # fmt: skip
+    rows = _json(r)
+    s = job.Settings(np.array([1.1e-3]), np.array([1e-3, 1e-2]), coating=("pmma:250e-9",))
+    t = job.run(Material.crystal("fused-silica"), s).table
+    for row, (_, want) in zip(rows, t.iterrows(), strict=True):
+        assert row["coating"] == "PMMA 250 nm"
+        for key in ("contact_radius_m", "stiffness_N_per_m", "film_share"):
+            assert row[key] == pytest.approx(want[key], rel=1e-12)
+    assert "note: the static columns use the storage modulus at 1 Hz of PMMA" in r.stderr
+
+
+def test_contact_two_coatings_top_first():
+    r = run("contact", "--crystal", "Si3N4", "--radius", 1e-3, "--force", 1e-3, "--coating",
+            "pmma:1e-7", "--coating", "fused-silica:2e-7", "--format", "json")  # fmt: skip
+    row = _json(r)[0]
+    assert row["coating"] == "PMMA 100 nm on fused-silica 200 nm"
+    assert 0 < row["film_share"] < 1
+
+
+@pytest.mark.parametrize(
+    "coating, words",
+    [
+        (["pmma250e-9"], ["--coating", "MATERIAL:THICKNESS"]),
+        (["SiO2:1e-7"], ["--coating", "unknown coating material", "pmma", "fused-silica"]),
+        (["pmma:-1e-9"], ["--coating", "positive finite", " m"]),
+        (["pmma:nan"], ["--coating", "positive finite"]),
+        (["pmma:250"], ["--coating", "nm/µm"]),
+        (["pmma:1e-8"] * 11, ["--coating", "at most 10"]),
+    ],
+)
+def test_contact_coating_bad_input_one_line(coating, words):
+    args = [x for c in coating for x in ("--coating", c)]
+    r = run("contact", "--crystal", "fused-silica", "--radius", 1e-3, "--force", 1e-3, *args)
+    one_line_error(r, *words)
+
+
+def test_contact_coating_tangential_at_a_frequency_is_one_line():
+    r = run("contact", "--crystal", "fused-silica", "--radius", 1e-3, "--force", 1e-3,
+            "--coating", "pmma:250e-9", "--tangential", "--frequency", 15e6)  # fmt: skip
+    one_line_error(r, "--coating", "not available yet")
+
+
+def test_contact_coating_help_states_format_and_units():
+    from contactres.cli.contact import contact
+
+    (p,) = (p for p in contact.params if p.opts[0] == "--coating")
+    assert p.metavar == "MATERIAL:THICKNESS" and p.multiple
+    assert "thickness in m" in p.help and "top first" in p.help
+    assert "1 Hz storage modulus" in p.help
+    assert "MATERIAL:THICKNESS" in run("contact", "--help").output

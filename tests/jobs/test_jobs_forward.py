@@ -110,3 +110,123 @@ def test_qcm_loop_job_matches_the_library_shifts():
     assert result.table["dgamma_Hz"].to_numpy() == pytest.approx(dg, rel=1e-12, abs=1e-30)
     with pytest.raises(ContactresInputError, match="--mu"):
         qcm_loop.run(None, qcm_loop.Settings(kappa=1e5))
+
+
+# ------------------------------------------------------------------------------ coated faces
+_COLUMNS = ("contact_radius_m", "peak_pressure_Pa", "depth_m", "stiffness_N_per_m",
+            "indentation_modulus_Pa")  # fmt: skip
+
+
+def _table(face, coating=(), frequency=None, tangential=False, force=(0.0, 1e-3, 1e-2)):
+    s = contact.Settings(np.array([1e-3]), np.array(force), frequency, tangential, 0.0, coating)
+    return contact.run(face, s).table
+
+
+@pytest.mark.parametrize("frequency, tangential", [(None, True), (np.array([15e6]), False)])
+def test_coating_of_the_substrate_itself_gives_the_bare_numbers(frequency, tangential):
+    """A film of the substrate's own material is no film: every column of the bare face, to
+    1e-8 (the bare face's numbers come from the homogeneous Hertz and DCSF, another route)."""
+    glass = Material.crystal("fused-silica")
+    bare = _table(glass, frequency=frequency, tangential=tangential)
+    coated = _table(glass, ("fused-silica:1e-6",), frequency, tangential)
+    for col in bare.columns:
+        np.testing.assert_allclose(coated[col], bare[col], rtol=1e-8, atol=0, err_msg=col)
+    assert (coated["coating"] == "fused-silica 1000 nm").all()
+    assert np.isnan(coated["film_share"][0])  # no contact at F = 0
+    np.testing.assert_allclose(coated["film_share"][1:], 0.0, atol=1e-8)
+
+
+def test_thick_pmma_film_gives_bulk_pmma_hertz():
+    """h >> a (1 mm of PMMA, a ≈ 7 µm): Hertz on PMMA's 1 Hz storage constants, to 1 %; the
+    film then takes almost all the stiffness of the silicon nitride face."""
+    from contactres import hertz, pmma
+
+    C = np.real(pmma().at(contact.STATIC_FREQUENCY_HZ).C)
+    c11, c44 = C[0, 0], C[3, 3]
+    e_star = 4 * c44 * (c11 - c44) / c11  # E/(1 − ν²) of an isotropic solid from C11, C44
+    t = _table(Material.crystal("Si3N4"), ("pmma:1e-2",), force=(1e-3, 1e-2))
+    h = hertz(e_star, 1e-3, np.array([1e-3, 1e-2]))
+    np.testing.assert_allclose(t["contact_radius_m"], h.contact_radius, rtol=0.01)
+    np.testing.assert_allclose(t["stiffness_N_per_m"], 2 * h.contact_radius * e_star, rtol=0.01)
+    np.testing.assert_allclose(t["indentation_modulus_Pa"], e_star, rtol=0.01)
+    assert (t["film_share"] > 0.9).all()
+
+
+def test_pmma_on_fused_silica_is_softer_than_bare():
+    glass = Material.crystal("fused-silica")
+    bare, coated = _table(glass), _table(glass, ("pmma:250e-9",))
+    assert (coated["contact_radius_m"][1:] > bare["contact_radius_m"][1:]).all()
+    assert (coated["stiffness_N_per_m"][1:] < bare["stiffness_N_per_m"][1:]).all()
+    share = coated["film_share"][1:]
+    assert ((share > 0) & (share < 1)).all()
+    # A larger force makes a wider contact that reaches deeper below the film.
+    assert share.iloc[1] < share.iloc[0]
+    assert (coated["coating"] == "PMMA 250 nm").all()
+
+
+def test_a_layered_material_as_inputs_equals_the_coating_setting():
+    from contactres import LayeredMaterial, pmma
+
+    glass = Material.crystal("fused-silica")
+    stack = LayeredMaterial(glass, [(pmma(), 250e-9)])
+    a, b = _table(stack), _table(glass, ("pmma:250e-9",))
+    assert a.equals(b)
+    assert _table(glass, [("PMMA", 250e-9)]).equals(b)
+    assert _table(glass, "pmma:250e-9").equals(b)  # one layer as a bare string
+    with pytest.raises(ContactresInputError, match="not both"):
+        _table(stack, ("pmma:1e-7",))
+
+
+@pytest.mark.parametrize(
+    "coating, words",
+    [
+        (("pmma250e-9",), ["MATERIAL:THICKNESS"]),
+        (("glass:1e-7",), ["unknown coating material", "pmma", "fused-silica"]),
+        (("pmma:0",), ["positive finite"]),
+        (("pmma:inf",), ["positive finite"]),
+        (("pmma:250",), ["nm/µm"]),
+        (("pmma:1e-8",) * 11, ["at most 10"]),
+        ((42,), ["MATERIAL:THICKNESS"]),
+    ],
+)
+def test_coating_bad_input(coating, words):
+    with pytest.raises(ContactresInputError) as err:
+        contact.parse_coating(coating)
+    for w in words:
+        assert w in str(err.value)
+    assert "--coating" in str(err.value)
+
+
+def test_coating_with_tangential_at_a_frequency_is_not_available_yet():
+    glass = Material.crystal("fused-silica")
+    with pytest.raises(ContactresInputError, match="not available yet"):
+        _table(glass, ("pmma:250e-9",), np.array([15e6]), True)
+
+
+def test_coating_materials_are_pmma_and_the_isotropic_solids():
+    from contactres import crystal_table
+
+    t = crystal_table()
+    assert contact.coating_materials() == (
+        "pmma",
+        *t.loc[t["symmetry"] == "isotropic", "name"],
+    )
+
+
+def test_pmma_coating_dynamic_columns_are_its_moduli_at_the_frequency():
+    """At 1 Hz the dynamic stiffness is the static one (the same 1 Hz constants; no inertia at
+    k a ~ 1e-8, the loss enters Re K at second order, tan² δ ~ 0.005); Im K > 0 (a passive
+    film); PMMA stiffens with frequency (its power laws), so Re K grows with f."""
+    glass = Material.crystal("fused-silica")
+    t = _table(glass, ("pmma:250e-9",), np.array([1.0, 1e3, 15e6]), force=(1e-3,))
+    k, re, im = (t[c].to_numpy() for c in ("stiffness_N_per_m", "dynamic_stiffness_real_N_per_m",
+                                          "dynamic_stiffness_imag_N_per_m"))  # fmt: skip
+    assert re[0] == pytest.approx(k[0], rel=0.01)
+    assert (im > 0).all()
+    assert re[0] < re[1] < re[2]
+
+
+def test_a_stiffer_film_has_a_negative_share():
+    """Si3N4 (E = 300 GPa) on fused silica (73 GPa): the film stiffens the contact."""
+    t = _table(Material.crystal("fused-silica"), ("Si3N4:1e-6",), force=(1e-3,))
+    assert t["film_share"][0] < 0

@@ -46,8 +46,17 @@ from ._crystal_face import crystal_face, crystal_face_options
     show_default=True,
     help="Direction of the tangential motion, degrees from the surface x axis (--inplane).",
 )
+@click.option(
+    "--coating",
+    multiple=True,
+    metavar="MATERIAL:THICKNESS",
+    help="A film on the face, thickness in m (e.g. pmma:250e-9); repeat for more layers, top "
+    "first. MATERIAL: pmma (viscoelastic: static columns use its 1 Hz storage modulus, dynamic "
+    "ones its modulus at --frequency) or an isotropic solid of `contactres crystals` "
+    "(fused-silica, soda-lime-glass, Si3N4). Adds the columns coating and film_share.",
+)
 @format_option()
-def contact(radius, force, frequency, tangential, direction, fmt, **face):
+def contact(radius, force, frequency, tangential, direction, coating, fmt, **face):
     """Hertz contact of a rigid sphere on a crystal face (paper 1, Eqs. 1-4).
 
     Prints the contact radius a (m), the peak (centre) pressure p0 (Pa), the indentation depth
@@ -64,16 +73,23 @@ def contact(radius, force, frequency, tangential, direction, fmt, **face):
     Im K/Re K). --crystal quartz-AT is the AT-cut quartz plate of a QCM (x = the crystal's X
     axis, its shear direction).
 
+    --coating puts films on the face (top first): the contact is then solved on the layered
+    solid (axisymmetric), with film_share = 1 − K_sa/K_sa(bare) and the dynamic normal
+    stiffness of the layered punch; the tangential one is static only on a coating.
+
     Example: contactres contact --crystal quartz-AT --radius 5e-3 --force 1e-3 --tangential
-    --frequency 15e6
+    --frequency 15e6; coated: contactres contact --crystal fused-silica --radius 1.1e-3
+    --force 1e-3 --coating pmma:250e-9
     """
 
     from ..jobs import contact as job
 
     m = crystal_face(**face)
-    settings = job.Settings(radius, force, frequency, tangential, direction)
+    settings = job.Settings(radius, force, frequency, tangential, direction, tuple(coating))
     result = job.run(m, settings)
     emit(result.table, fmt)
+    for message in result.warnings:
+        click.echo(f"note: {message}", err=True)
     if not result.circular:
         click.echo(
             f"note: surface {_face_name(face)} has no 3- or 4-fold symmetry: the contact is "

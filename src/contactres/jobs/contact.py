@@ -1,12 +1,28 @@
 """Job ``contact``: Hertz contact of a rigid sphere on a crystal face (paper 1, Eqs. 1-4), and
-its normal and tangential stiffness, static or at a frequency.
+its normal and tangential stiffness, static or at a frequency; on a bare or a coated face.
 
 Inputs: the solid in the frame of its face (a :class:`~contactres.materials.Material`, z the
-inward normal). Settings: sphere radius, force and frequency (broadcast), the tangential
-stiffness on or off and the direction of the tangential motion. The static contact is
-:func:`contactres.sphere_contact`; the dynamic normal stiffness
-:func:`contactres.dynamic_contact_stiffness` (exact model, lossless solid); the tangential one
-:func:`contactres.tangential_contact_stiffness` (relaxed contact, rigid disk of radius a).
+inward normal), or a coated one (a :class:`~contactres.LayeredMaterial`). Settings: sphere
+radius, force and frequency (broadcast), the tangential stiffness on or off, the direction of
+the tangential motion, and a coating of built-in films put on the face (``coating``, parsed by
+:func:`parse_coating`). The static contact is :func:`contactres.sphere_contact`; on a bare face
+the dynamic normal stiffness is :func:`contactres.dynamic_contact_stiffness` (exact model,
+lossless solid) and the tangential one :func:`contactres.tangential_contact_stiffness` (relaxed
+contact, rigid disk of radius a); on a coated face both are :func:`contactres.flat_punch_stiffness`
+of the stack at the contact radius (the tangential one static only: the layered tangential punch
+at a frequency is not available yet).
+
+On a coated face the contact is solved with the θ-averaged (axisymmetric) compliance of the
+stack (:func:`contactres.sphere_contact` on a :class:`~contactres.LayeredMaterial`): exact for
+isotropic layers on a face with 3- or 4-fold symmetry, an approximation elsewhere (there the
+coated tangential stiffness is the θ average, the same for every ``direction``, and a film of
+the substrate's own material does not give back the bare face's circular-Hertz numbers, which
+use the x axis).
+
+Frequency-dependent (viscoelastic) materials of a stack, e.g. the built-in PMMA, whose power laws
+have no relaxed (0 Hz) limit: the static columns use their storage constants at
+:data:`STATIC_FREQUENCY_HZ` (1 Hz, the quasi-static modulus their anchors are quoted at), the
+dynamic columns their complex constants at the frequency (the correspondence principle).
 """
 
 from __future__ import annotations
@@ -19,6 +35,8 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..errors import ContactresInputError
+from ..layered import LayeredMaterial
+from ..materials import Material
 from ..measurements.schema import CONTACT_TABLE
 from ..validation import nonnegative
 from .contract import JobResult, Progress, say
@@ -26,9 +44,25 @@ from .contract import JobResult, Progress, say
 if TYPE_CHECKING:
     import pandas as pd
 
-    from ..materials import Material
+__all__ = [
+    "MAX_COATING_LAYERS",
+    "STATIC_FREQUENCY_HZ",
+    "Result",
+    "Settings",
+    "coating_materials",
+    "parse_coating",
+    "run",
+]
 
-__all__ = ["Result", "Settings", "run"]
+# The frequency (Hz) at which a viscoelastic layer's storage constants stand for its static
+# ones: the built-in PMMA's quasi-static anchors are quoted at 1 Hz, and its power laws relax to
+# zero at 0 Hz (no static limit).
+STATIC_FREQUENCY_HZ = 1.0
+# More layers than this is a typing slip, not a coating anyone measures.
+MAX_COATING_LAYERS = 10
+# Thicker than this is not a film (as contactres.LayeredMaterial); larger values are most
+# likely thicknesses typed in nm or µm.
+_MAX_THICKNESS_M = 1.0
 
 
 @dataclass(frozen=True)
@@ -46,6 +80,11 @@ class Settings:
         Add the tangential stiffness K_t (N/m).
     direction : float
         Direction of the tangential motion, degrees from the surface x axis.
+    coating : tuple
+        Films put on the face, top first: each ``"MATERIAL:THICKNESS"`` (thickness in m, e.g.
+        ``"pmma:250e-9"``) or a ``(material_name, thickness_m)`` pair, the materials named as in
+        :func:`coating_materials` (see :func:`parse_coating`). Empty: the bare face (or the
+        stack given as ``inputs``).
     """
 
     radius: np.ndarray
@@ -53,6 +92,7 @@ class Settings:
     frequency: np.ndarray | None = None
     tangential: bool = False
     direction: float = 0.0
+    coating: tuple = ()
 
 
 @dataclass(frozen=True)
@@ -60,22 +100,28 @@ class Result(JobResult):
     """One row per (R, F, f): ``table`` (columns in SI units, named with them:
     :data:`contactres.measurements.schema.CONTACT_TABLE`), and whether the
     contact is circular (the face has 3- or 4-fold symmetry) with the relative 2nd harmonic of
-    its compliance, ``noncircularity``."""
+    its compliance, ``noncircularity`` (on a coated face: those of the substrate's face).
+    ``warnings``: notes for the user (with a viscoelastic film: its static columns use its
+    storage constants at :data:`STATIC_FREQUENCY_HZ`)."""
 
     SCHEMAS = MappingProxyType({"table": CONTACT_TABLE})
 
     table: pd.DataFrame
     circular: bool
     noncircularity: float
+    warnings: tuple[str, ...] = ()
 
 
-def run(inputs: Material, settings: Settings, progress: Progress | None = None) -> Result:
-    """The contact of ``settings`` on the face ``inputs`` (see the module docstring)."""
+def run(
+    inputs: Material | LayeredMaterial, settings: Settings, progress: Progress | None = None
+) -> Result:
+    """The contact of ``settings`` on the face ``inputs``, bare or coated (module docstring)."""
     import pandas as pd
 
     from ..normal.anisotropic import sphere_contact
 
     m, s = inputs, settings
+    stack = _coated(m, s.coating)
     freq = np.zeros(1) if s.frequency is None else s.frequency
     try:
         # At least one row: single values from Python (floats) make a table of one row.
@@ -86,7 +132,7 @@ def run(inputs: Material, settings: Settings, progress: Progress | None = None) 
         ) from None
     if s.frequency is not None:
         f = np.asarray(nonnegative("frequency", f, "Hz"), dtype=float)
-    if s.frequency is not None and m.density is None:
+    if s.frequency is not None and not _has_densities(m if stack is None else stack):
         raise ContactresInputError(
             "a dynamic stiffness (frequency) needs the density of the solid (a --crystal on the "
             "command line)"
@@ -100,6 +146,8 @@ def run(inputs: Material, settings: Settings, progress: Progress | None = None) 
             "direction (--direction) is the direction of the tangential motion: set tangential "
             "(--tangential)"
         )
+    if stack is not None:
+        return _run_coated(stack, R, F, f, s, progress)
     say(progress, "static contact")
     c = sphere_contact(m, R, F)
     table = pd.DataFrame(
@@ -153,3 +201,226 @@ def _tangential(m, a, f, direction: float):
     if touching.any():
         out[touching] = tangential_contact_stiffness(m, a[touching], f[touching], direction)
     return out
+
+
+# ------------------------------------------------------------------------------ coated faces
+def coating_materials() -> tuple[str, ...]:
+    """The built-in names a coating layer may take: ``pmma`` (the viscoelastic
+    :func:`contactres.pmma`) and the isotropic solids of :func:`contactres.crystal_names`
+    (amorphous or polycrystalline films, the same in every frame)."""
+    from ..crystals import crystal_names, crystal_record
+
+    return ("pmma", *(n for n in crystal_names() if crystal_record(n).symmetry == "isotropic"))
+
+
+def _coating_material(name: str):
+    """The material of the coating name ``name`` (case-insensitive)."""
+    from ..viscoelastic import pmma
+
+    key = name.strip().lower()
+    known = coating_materials()
+    if key == "pmma":
+        return pmma()
+    for n in known[1:]:
+        if n.lower() == key:
+            return Material.crystal(n)
+    raise ContactresInputError(
+        f"unknown coating material {name!r} (--coating); known: {', '.join(known)}"
+    )
+
+
+def _thickness(text, spec) -> float:
+    """A layer's thickness in m from ``text`` (a number or its text), checked."""
+    try:
+        h = float(text)
+    except (TypeError, ValueError):
+        h = math.nan
+    if not (math.isfinite(h) and h > 0):
+        raise ContactresInputError(
+            f"coating thickness (--coating {spec}) must be a positive finite number in m, "
+            f"got {text!r}"
+        )
+    if h > _MAX_THICKNESS_M:
+        raise ContactresInputError(
+            f"coating thickness (--coating {spec}) {h:g} m is above {_MAX_THICKNESS_M:g} m: "
+            "looks like nm/µm? give metres (250 nm = 250e-9)"
+        )
+    return h
+
+
+def parse_coating(coating) -> tuple[tuple[object, float], ...]:
+    """The layers of a coating, top first, as (material, thickness_m) pairs for
+    :class:`~contactres.LayeredMaterial`.
+
+    Parameters
+    ----------
+    coating : sequence
+        Each item ``"MATERIAL:THICKNESS"`` (the command line's ``--coating``; thickness in m)
+        or a ``(material_name, thickness_m)`` pair (one string alone: one layer); at most
+        :data:`MAX_COATING_LAYERS` items. Material names: :func:`coating_materials`
+        (case-insensitive).
+
+    Returns
+    -------
+    tuple of (Material or ViscoelasticMaterial, float)
+        ``pmma`` is :func:`contactres.pmma` (frequency dependent); the others
+        ``Material.crystal(name)``.
+
+    Raises
+    ------
+    ContactresInputError
+        One line naming ``--coating``: an unknown material (the known ones listed), a missing
+        colon, a thickness that is not a positive finite number of metres or is above 1 m, too
+        many layers.
+
+    Examples
+    --------
+    >>> from contactres.jobs.contact import parse_coating
+    >>> [(m.name, h) for m, h in parse_coating(["pmma:250e-9", "fused-silica:1e-7"])]
+    [('PMMA', 2.5e-07), ('fused-silica', 1e-07)]
+    """
+    # One layer given as a bare string (Python API) is one item, not its characters.
+    items = (coating,) if isinstance(coating, str) else tuple(coating)
+    if len(items) > MAX_COATING_LAYERS:
+        raise ContactresInputError(
+            f"at most {MAX_COATING_LAYERS} coating layers (--coating), got {len(items)}"
+        )
+    layers = []
+    for item in items:
+        if isinstance(item, str):
+            name, colon, thickness = item.partition(":")
+            if not colon:
+                raise ContactresInputError(
+                    f"coating (--coating {item}) must be MATERIAL:THICKNESS with the thickness "
+                    "in m, e.g. pmma:250e-9"
+                )
+            spec = item
+        elif isinstance(item, (tuple, list)) and len(item) == 2 and isinstance(item[0], str):
+            name, thickness = item
+            spec = f"{name}:{thickness}"
+        else:
+            raise ContactresInputError(
+                "each coating layer (--coating) must be 'MATERIAL:THICKNESS' or a "
+                f"(material_name, thickness_m) pair, got {item!r}"
+            )
+        layers.append((_coating_material(name), _thickness(thickness, spec)))
+    return tuple(layers)
+
+
+def _coated(inputs, coating) -> LayeredMaterial | None:
+    """The coated solid: ``inputs`` under the layers of ``coating``, or ``inputs`` if it is a
+    stack already; None for a bare face."""
+    if isinstance(inputs, LayeredMaterial):
+        if coating:
+            raise ContactresInputError(
+                "give the coating either as the layers of the LayeredMaterial or as the "
+                "coating setting (--coating), not both"
+            )
+        return inputs if inputs.layers else None
+    if not coating:
+        return None
+    return LayeredMaterial(inputs, parse_coating(coating))
+
+
+def _has_densities(m) -> bool:
+    """Whether every material of ``m`` (a solid or a stack) has a density."""
+    materials = m.materials if isinstance(m, LayeredMaterial) else (m,)
+    return all(getattr(x, "density", None) is not None for x in materials)
+
+
+def _static(m) -> Material:
+    """A material's static constants: a Material as is, a frequency-dependent one its storage
+    constants at STATIC_FREQUENCY_HZ (real part: the undamped solid of the static contact)."""
+    if isinstance(m, Material):
+        return m
+    at = m.at(STATIC_FREQUENCY_HZ)
+    return Material(C=np.real(at.C), density=at.density, name=at.name, frame=at.frame)
+
+
+def _coating_label(stack: LayeredMaterial) -> str:
+    """E.g. ``"PMMA 250 nm"``; layers top first, joined by "on" (thicknesses in nm)."""
+    return " on ".join(
+        f"{getattr(m, 'name', None) or 'film'} {h * 1e9:.4g} nm" for m, h in stack.layers
+    )
+
+
+def _run_coated(stack: LayeredMaterial, R, F, f, s: Settings, progress) -> Result:
+    """The rows of ``run`` on a coated face (module docstring)."""
+    import pandas as pd
+
+    from ..dynamic import flat_punch_stiffness
+    from ..normal import sphere_contact
+
+    dynamic = s.frequency is not None
+    if dynamic and s.tangential and np.any(f > 0):
+        raise ContactresInputError(
+            "the tangential stiffness at a frequency (--tangential with --frequency) on a "
+            "coating (--coating) is not available yet; without --frequency it is"
+        )
+    static = LayeredMaterial(
+        _static(stack.substrate), tuple((_static(m), h) for m, h in stack.layers)
+    )
+    say(progress, "static contact, bare and coated")
+    bare = sphere_contact(static.substrate, R, F)
+    c = sphere_contact(static, R, F)
+    k, k_bare = np.asarray(c.stiffness, dtype=float), np.asarray(bare.stiffness, dtype=float)
+    # No contact (F = 0): no share (NaN, printed empty), not a division warning.
+    share = np.full(k.shape, np.nan)
+    np.divide(k_bare - k, k_bare, out=share, where=k_bare > 0)
+    a = np.asarray(c.contact_radius, dtype=float)
+    table = pd.DataFrame(
+        {
+            "radius_m": R,
+            "force_N": F,
+            "contact_radius_m": a,
+            "peak_pressure_Pa": c.peak_pressure,
+            "depth_m": c.depth,
+            "stiffness_N_per_m": k,
+            "indentation_modulus_Pa": c.indentation_modulus,
+            "coating": _coating_label(stack),
+            "film_share": share,
+        }
+    )
+    touching = a > 0
+    kt = np.zeros(a.shape)
+    if s.tangential:
+        turn = math.radians(s.direction)
+        # The layered punch moves along the surface x axis: turn the stack so x is the direction.
+        solid = static.rotated((0, 0, 1), (math.cos(turn), math.sin(turn), 0))
+        if touching.any():
+            kt[touching] = np.real(flat_punch_stiffness(solid, a[touching], 0.0, "tangential"))
+    if dynamic:
+        from ..dynamic import normalised_wavenumber, wave_modulus
+
+        say(progress, "dynamic stiffness")
+        sub = static.substrate
+        table["frequency_Hz"] = f
+        table["ks_a"] = normalised_wavenumber(f, a, sub.density, wave_modulus(sub, "shear"))
+        kn = k.astype(complex)  # f = 0: the static stiffness; a = 0: no contact, 0
+        moving = touching & (f > 0)
+        if moving.any():
+            kn[moving] = flat_punch_stiffness(stack, a[moving], f[moving])
+        table["dynamic_stiffness_real_N_per_m"] = kn.real
+        table["dynamic_stiffness_imag_N_per_m"] = kn.imag
+        if s.tangential:  # every f is 0 here (checked above): the static K_t, no loss
+            table["tangential_stiffness_real_N_per_m"] = kt
+            table["tangential_stiffness_imag_N_per_m"] = 0.0
+            table["tangential_loss_tangent"] = np.where(touching, 0.0, np.nan)
+    elif s.tangential:
+        table["tangential_stiffness_N_per_m"] = kt
+    viscous = [
+        getattr(m, "name", None) or "film" for m in stack.materials if not isinstance(m, Material)
+    ]
+    notes = ()
+    if viscous:
+        notes = (
+            f"the static columns use the storage modulus at {STATIC_FREQUENCY_HZ:g} Hz of "
+            f"{', '.join(viscous)} (viscoelastic)"
+            + ("; the dynamic ones its modulus at the frequency" if dynamic else ""),
+        )
+    return Result(
+        table=table,
+        circular=bool(getattr(bare, "circular", True)),
+        noncircularity=float(getattr(bare, "noncircularity", 0.0)),
+        warnings=notes,
+    )

@@ -39,29 +39,47 @@ def _columns(*rows: tuple[str, str, str]) -> tuple[Column, ...]:
 
 
 #: ``contactres contact``: the Hertz contact of a rigid sphere on a crystal face (paper 1,
-#: Eqs. 1-4), with its dynamic normal and tangential stiffness when asked for.
+#: Eqs. 1-4), with its dynamic normal and tangential stiffness when asked for; on a coated face
+#: (``--coating``) the axisymmetric contact on the layered solid.
 CONTACT_TABLE = TableSchema(
     "contact listing",
     "one row per (sphere radius, force, frequency): the contact and its stiffness",
     _columns(
         ("radius_m", "m", "sphere radius R"),
         ("force_N", "N", "normal force F"),
-        ("contact_radius_m", "m", "Hertz contact radius a"),
+        ("contact_radius_m", "m", "Hertz contact radius a (coated: of the layered solid)"),
         ("peak_pressure_Pa", "Pa", "pressure p0 at the centre of the contact"),
         ("depth_m", "m", "indentation depth δ"),
         ("stiffness_N_per_m", "N/m", "static normal contact stiffness K_sa = dF/dδ"),
-        ("indentation_modulus_Pa", "Pa", "indentation modulus M of the face (paper 1, Eq. 4)"),
+        (
+            "indentation_modulus_Pa",
+            "Pa",
+            "indentation modulus M of the face (paper 1, Eq. 4); coated: M(a) = K_sa/(2a)",
+        ),
+        (
+            "coating",
+            "text",
+            "the films on the face, top first, e.g. `PMMA 250 nm` (with `--coating`)",
+        ),
+        (
+            "film_share",
+            "-",
+            "1 − K_sa(coated)/K_sa(bare face) at the same force: how much of the contact "
+            "stiffness the film takes (< 0: a film stiffer than the face); empty without "
+            "contact (with `--coating`)",
+        ),
         (
             "tangential_stiffness_N_per_m",
             "N/m",
             "static tangential stiffness K_t of the contact (with `--tangential`, no frequency)",
         ),
         ("frequency_Hz", "Hz", "oscillation frequency f (with `--frequency`)"),
-        ("ks_a", "-", "k_s a = ω a √(ρ/C44) (with `--frequency`)"),
+        ("ks_a", "-", "k_s a = ω a √(ρ/C44) of the (substrate's) face (with `--frequency`)"),
         (
             "dynamic_stiffness_real_N_per_m",
             "N/m",
-            "Re K_da = K_sa Re DCSF, exact model, lossless solid (with `--frequency`)",
+            "Re K_da = K_sa Re DCSF, exact model, lossless solid; coated: the layered flat "
+            "punch at a, films at f (with `--frequency`)",
         ),
         ("dynamic_stiffness_imag_N_per_m", "N/m", "Im K_da (with `--frequency`)"),
         (
