@@ -36,7 +36,7 @@ import numpy as np
 
 from ..errors import ContactresInputError
 from ..layered import LayeredMaterial
-from ..materials import Material
+from ..materials import Material, require_material
 from ..measurements.schema import CONTACT_TABLE
 from ..validation import nonnegative
 from .contract import JobResult, Progress, say
@@ -149,7 +149,7 @@ def run(
     if stack is not None:
         return _run_coated(stack, R, F, f, s, progress)
     say(progress, "static contact")
-    c = sphere_contact(m, R, F)
+    c = sphere_contact(require_material(m), R, F)
     table = pd.DataFrame(
         {
             "radius_m": R,
@@ -393,7 +393,7 @@ def _run_coated(stack: LayeredMaterial, R, F, f, s: Settings, progress) -> Resul
         from ..dynamic import normalised_wavenumber, wave_modulus
 
         say(progress, "dynamic stiffness")
-        sub = static.substrate
+        sub = require_material(static.substrate)  # evaluated: a Material
         table["frequency_Hz"] = f
         table["ks_a"] = normalised_wavenumber(f, a, sub.density, wave_modulus(sub, "shear"))
         kn = k.astype(complex)  # f = 0: the static stiffness; a = 0: no contact, 0
@@ -411,7 +411,7 @@ def _run_coated(stack: LayeredMaterial, R, F, f, s: Settings, progress) -> Resul
     viscous = [
         getattr(m, "name", None) or "film" for m in stack.materials if not isinstance(m, Material)
     ]
-    notes = ()
+    notes: tuple[str, ...] = ()
     if viscous:
         notes = (
             f"the static columns use the storage modulus at {STATIC_FREQUENCY_HZ:g} Hz of "
