@@ -526,6 +526,7 @@ UNDOCUMENTED = {
         "LINEAR_ONSET_X",
         "MAX_AMPLITUDE_M",
         "MAX_KA",
+        "MAX_MU",
         "MIN_SWEEP_POINTS",
         "POISSON_OPEN_RANGE",
         "QUANTITIES",

@@ -27,6 +27,7 @@ __all__ = [
     "LINEAR_ONSET_X",
     "MAX_AMPLITUDE_M",
     "MAX_KA",
+    "MAX_MU",
     "MIN_SWEEP_POINTS",
     "POISSON_OPEN_RANGE",
     "QUANTITIES",
@@ -64,6 +65,12 @@ JUNCTION_SIGMAS = 2.0
 #: 5 % to 100 % of the largest reads μ 6 % low from the Δf slope and 9 % low from the ΔΓ slope
 #: at 0.5 (tests/analysis/test_blocks.py recomputes it from the forward model).
 LINEAR_ONSET_X = 0.5
+
+#: The largest friction coefficient reported as one. Clean metals in vacuum, where adhesion
+#: dominates, reach μ of a few to ~10; above that the number is a wrong input (a normal force
+#: per resonator for one per contact, an area in mm²), not a coefficient (issue 27: μ above 50
+#: was printed).
+MAX_MU = 10.0
 
 
 def poisson_in_range(nu: float) -> bool:

@@ -270,3 +270,18 @@ def test_points_with_a_negative_stiffness_are_left_out_of_the_jkr_fit_and_said()
 
     shown = SimpleNamespace(groups=[{**g, "n_experiments": 2}])
     assert withheld_lines(shown) == [f"glass, air: {g['note']}"]
+
+
+def test_a_friction_coefficient_beyond_any_real_one_is_withheld_and_flagged():
+    """Issue 27: μ above 50 was printed. A normal force 50 times too small (per resonator
+    divided twice, say) makes μ from the slopes ~50 times too large: withheld, flagged."""
+    raw = synthetic_sweeps(study(n_experiments=2), 3, constants=False)
+    raw["normal_force_N"] = raw["normal_force_N"] / 50
+    res = analyze(validate_sweeps(raw, constants={**CONST}), settings=FAST)
+    sw = res.sweeps
+    for col in ("mu_df", "mu_dgamma", "mu_fit"):
+        values = sw[col].to_numpy(float)
+        assert not np.any(values > 10), col  # never printed as a coefficient
+    flagged = has(sw["flags"], Flag.MU_OUT_OF_RANGE)
+    assert flagged.any()
+    assert sw.loc[flagged, ["mu_df", "mu_dgamma"]].isna().any(axis=1).all()

@@ -11,7 +11,7 @@ import enum
 
 import numpy as np
 
-from ..units import JUNCTION_SIGMAS, LINEAR_ONSET_X, MIN_SWEEP_POINTS, SMALL_LOAD_LIMIT
+from ..units import JUNCTION_SIGMAS, LINEAR_ONSET_X, MAX_MU, MIN_SWEEP_POINTS, SMALL_LOAD_LIMIT
 from ._loops import X_MAX
 
 __all__ = ["DESCRIPTIONS", "Flag", "has", "render"]
@@ -31,6 +31,7 @@ class Flag(enum.IntFlag):
     FLAT_AMPLITUDE = enum.auto()
     BEYOND_ONSET = enum.auto()
     DRIFT_REMOVED = enum.auto()
+    MU_OUT_OF_RANGE = enum.auto()
 
     @property
     def text(self) -> str:
@@ -73,6 +74,10 @@ DESCRIPTIONS: dict[Flag, str] = {
         f"a Cattaneo-Mindlin sweep reaching κu0/(μF_N) > {LINEAR_ONSET_X:g} (exact-loop fit): "
         "beyond the linear onset, so μ from the slopes (paper 2, Eq. 12) reads low (by > 10 % "
         "from the ΔΓ slope); use mu_fit"
+    ),
+    Flag.MU_OUT_OF_RANGE: (
+        f"μ above {MAX_MU:g} (from a slope or the exact loop): not a friction coefficient but a "
+        "wrong input (check normal_force_N, per contact, and area_m2); withheld"
     ),
     Flag.DRIFT_REMOVED: (
         "this load drifted; a drift linear in time (column time_s) was removed from its points "

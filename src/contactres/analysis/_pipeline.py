@@ -75,7 +75,7 @@ from ..measurements import SweepTable
 from ..measurements.schema import SWEEP_TABLE
 from ..resonators import QCM
 from ..tangential import effective_shear_modulus, shear_modulus
-from ..units import JUNCTION_SIGMAS, LINEAR_ONSET_X, MIN_SWEEP_POINTS, SMALL_LOAD_LIMIT
+from ..units import JUNCTION_SIGMAS, LINEAR_ONSET_X, MAX_MU, MIN_SWEEP_POINTS, SMALL_LOAD_LIMIT
 from ._amplitude import pad_sweeps
 from ._blocks import block_codes, choose_blocks
 from ._classify import apply_models, fit_sweeps
@@ -365,6 +365,12 @@ def analyze(
     else:
         for col in ("mu_fit", "mu_fit_err", "x_max", "sliding_force_N", "sliding_force_err_N"):
             sw[col] = np.nan
+    # A μ beyond any friction coefficient is a wrong input, not a result: withheld and flagged.
+    for col in ("mu_df", "mu_dgamma", "mu_fit", "mu_block"):
+        absurd = (sw[col] > MAX_MU).to_numpy()
+        if absurd.any():
+            sw.loc[absurd, [col, f"{col}_err"]] = np.nan
+            flags |= _flag(absurd, Flag.MU_OUT_OF_RANGE)
     sw["flags"] = flags
 
     sw["tau0_Pa"] = np.nan
