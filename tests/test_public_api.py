@@ -241,10 +241,15 @@ PUBLIC = {
     ],
     "halfspace": [
         "dynamic_kernel",
+        "inv3",
         "isotropic_dynamic_kernel",
+        "mm",
+        "scaled_tensor",
         "shear_reference",
+        "stacked_normal_compliance",
         "static_kernel",
         "surface_compliance",
+        "transpose",
     ],
     "layered": [
         "FrequencyDependentMaterial",
@@ -443,12 +448,6 @@ PUBLIC_MODULES = [
 # Implementation modules that do not have their leading underscore yet (a later step, after
 # the work under way in these subpackages): this list only shrinks.
 NOT_YET_PRIVATE = [
-    "contactres.halfspace.compliance",
-    "contactres.halfspace.doubling",
-    "contactres.halfspace.isotropic",
-    "contactres.halfspace.kernels",
-    "contactres.halfspace.outgoing",
-    "contactres.halfspace.stacked",
     "contactres.layered.expm",
     "contactres.layered.recursion",
     "contactres.layered.stack",

@@ -12,7 +12,7 @@ import pytest
 from signed_permutations import cubic_group_by_hand
 
 from contactres import Material
-from contactres.halfspace.compliance import (
+from contactres.halfspace._compliance import (
     normal_compliance,
     scaled_tensor,
     stacked_normal_compliance,

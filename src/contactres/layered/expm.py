@@ -24,7 +24,7 @@ import math
 
 import numpy as np
 
-from ..halfspace.stacked import mm
+from ..halfspace import mm
 
 __all__ = ["expm3"]
 

@@ -65,8 +65,7 @@ import math
 import numpy as np
 
 from ..errors import ContactresInputError
-from ..halfspace import shear_reference, surface_compliance
-from ..halfspace.stacked import inv3, mm, transpose
+from ..halfspace import inv3, mm, shear_reference, surface_compliance, transpose
 from ..materials import Material, voigt_to_tensor
 from .expm import expm3
 from .stack import LayeredMaterial, material_at

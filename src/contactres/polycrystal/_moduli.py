@@ -5,7 +5,7 @@ that grain is M = 4π/I₀ with I₀ = ∫₀^{2π} Ĝ(θ) dθ (paper 1, Eq. 4; 
 static surface Green's function of the crystal in the sample (surface) frame
 (:func:`contactres.halfspace.static_kernel`). :func:`indentation_moduli` rotates the stiffness
 of all orientations at once, evaluates Ĝ on an (orientation x θ) grid in stacked calls of the
-doubling algorithm (:func:`contactres.halfspace.compliance.stacked_normal_compliance`) and
+doubling algorithm (:func:`contactres.halfspace.stacked_normal_compliance`) and
 applies the same trapezoidal rule and stopping test as
 :func:`contactres.normal.anisotropic.contact_integrals`, orientation by orientation.
 
@@ -20,7 +20,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import ContactresInputError
-from ..halfspace.compliance import stacked_normal_compliance
+from ..halfspace import stacked_normal_compliance
 from ..materials import Material, require_material, voigt_to_tensor
 from ..normal.anisotropic import (
     THETA_RTOL,
