@@ -448,9 +448,6 @@ PUBLIC_MODULES = [
 # Implementation modules that do not have their leading underscore yet (a later step, after
 # the work under way in these subpackages): this list only shrinks.
 NOT_YET_PRIVATE = [
-    "contactres.layered.expm",
-    "contactres.layered.recursion",
-    "contactres.layered.stack",
     "contactres.measurements.readers.delimited",
     "contactres.measurements.readers.exports.awsensors",
     "contactres.measurements.readers.exports.base",
