@@ -18,7 +18,7 @@ from contactres.halfspace._compliance import (
     stacked_normal_compliance,
 )
 from contactres.materials import rotation_to_surface
-from contactres.normal.anisotropic import indentation_modulus
+from contactres.normal import indentation_modulus
 from contactres.polycrystal._moduli import indentation_moduli
 
 CU = Material.crystal("Cu")

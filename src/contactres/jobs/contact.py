@@ -73,7 +73,8 @@ def run(inputs: Material, settings: Settings, progress: Progress | None = None) 
     """The contact of ``settings`` on the face ``inputs`` (see the module docstring)."""
     import pandas as pd
 
-    from ..normal.anisotropic import sphere_contact
+    from ..materials import require_material
+    from ..normal import sphere_contact
 
     m, s = inputs, settings
     freq = np.zeros(1) if s.frequency is None else s.frequency
@@ -101,7 +102,7 @@ def run(inputs: Material, settings: Settings, progress: Progress | None = None) 
             "(--tangential)"
         )
     say(progress, "static contact")
-    c = sphere_contact(m, R, F)
+    c = sphere_contact(require_material(m), R, F)  # homogeneous only: no layered stack here
     table = pd.DataFrame(
         {
             "radius_m": R,
