@@ -30,7 +30,7 @@ the choice, never a silent default:
     The overtone of a file that does not name it (a single-overtone openQCM log), or the one to
     keep of a file that holds several.
 
-The conversions to Δf and ΔΓ are in :mod:`.tidy` (:func:`~.tidy.convert`). Errors name the
+The conversions to Δf and ΔΓ are in :mod:`._tidy` (:func:`~._tidy.convert`). Errors name the
 file, the line, the column, the value and the rule in one line.
 """
 
