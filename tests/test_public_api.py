@@ -451,12 +451,7 @@ PUBLIC_MODULES = [
 
 # Implementation modules that do not have their leading underscore yet (a later step, after
 # the work under way in these subpackages): this list only shrinks.
-NOT_YET_PRIVATE = [
-    "contactres.measurements.readers.delimited",
-    "contactres.measurements.readers.recipe",
-    "contactres.measurements.readers.registry",
-    "contactres.measurements.readers.spectra",
-]
+NOT_YET_PRIVATE: list[str] = []
 
 # Subpackages whose ``__init__`` loads its public names on first use through
 # ``contactres._lazy.attach`` (dir() is then exactly the public names and public submodules).

@@ -17,8 +17,9 @@ What a file does not say (Δf or Δf/n, the unit of D, the time unit, the baseli
 fundamental, the channel, the overtone of a single-overtone log) is asked for: a keyword of
 :func:`read_export` (:data:`CONVENTION_KEYS`), never a silent default.
 
-:data:`EXPORT_READERS` is a tuple of recipes (:class:`~..recipe.Reader` of kind ``export``, part
-of :data:`contactres.measurements.readers.registry.BUILT_IN`): pass your own tuple of readers to
+:data:`EXPORT_READERS` is a tuple of recipes
+(:class:`~contactres.measurements.readers.Reader` of kind ``export``, part of
+:data:`contactres.measurements.readers.BUILT_IN`): pass your own tuple of readers to
 :func:`pick_export_reader` and :func:`read_export` to add one.
 """
 
@@ -27,7 +28,7 @@ from __future__ import annotations
 from pathlib import Path
 
 from ....errors import ContactresInputError
-from ..recipe import first_detected, read_head
+from .._recipe import first_detected, read_head
 from . import _awsensors, _openqcm, _qcmi, _qsense
 from ._base import CONVENTION_KEYS, ExportReader, ExportTable, parse_baseline
 

@@ -50,7 +50,7 @@ import numpy as np
 from ....errors import ContactresInputError
 from ....units import ABSOLUTE_FREQUENCY_FRACTION
 from ..._messages import shown_value
-from ..recipe import Reader
+from .._recipe import Reader
 
 if TYPE_CHECKING:  # pandas is imported where a file is read: the command line's help imports
     import pandas as pd  # this package for the names of the readers, and starts without pandas
@@ -134,7 +134,8 @@ class ExportTable:
 
 @dataclass(frozen=True)
 class ExportReader(Reader):
-    """The recipe of one instrument's export (a :class:`~..recipe.Reader` of kind ``export``).
+    """The recipe of one instrument's export (a :class:`~contactres.measurements.readers.Reader`
+    of kind ``export``).
 
     Attributes
     ----------
