@@ -2,7 +2,7 @@
 half-space (contactres.surface_green), static and dynamic, on a 128 x 128 (η x θ) grid.
 
 The layered response costs the substrate's half-space compliance, the film's at θ and θ + π,
-two 3x3 exponentials and a few 3x3 products and inverses per point (contactres.layered.recursion;
+two 3x3 exponentials and a few 3x3 products and inverses per point (contactres.layered._recursion;
 a mirror-plane film, e.g. isotropic, needs the film at θ only and one exponential). The target
 is at most 2.5x the time of the two homogeneous half-spaces (the substrate's and the film's,
 through the same function) together, a ratio that holds however loaded the machine is. Each

@@ -127,7 +127,7 @@ KEPT_APART: tuple[frozenset[str], ...] = (frozenset({"dynamic", "tangential"}),)
 ALLOWED: dict[tuple[str, str], str] = {}
 
 # (module, module-level name) -> why: containers mutated on purpose (registries, not caches).
-# (The reader registry is an immutable value now: contactres.measurements.readers.recipe.)
+# (The reader registry is an immutable value now: contactres.measurements.readers.Readers.)
 REGISTRIES: dict[tuple[str, str], str] = {}
 
 CLI = "cli"

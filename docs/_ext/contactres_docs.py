@@ -13,8 +13,8 @@ comment is taken from the module that defines the constant instead.
 And which package pages list the names of the package's ``__all__``: those of a subpackage whose
 modules are private (scipy's rule: ``contactres.dynamic``, whose names live in ``_exact``,
 ``_table``, ...), since each name is documented there only. A package that re-exports names of
-its public modules (``contactres.measurements.readers``) lists none of them: they are documented
-on their modules' pages, and twice would make every short reference to them ambiguous.
+its public modules lists none of them: they are documented on their modules' pages, and twice
+would make every short reference to them ambiguous.
 """
 
 from __future__ import annotations

@@ -3,7 +3,7 @@
 A subpackage whose ``__init__`` re-exports names from its modules passes its mapping name ->
 module to :func:`attach` and binds the two functions it returns as ``__getattr__`` and
 ``__dir__``: ``import contactres.normal`` then imports none of its modules, and
-``contactres.normal.hertz`` imports only :mod:`contactres.normal.isotropic`. Nothing is kept
+``contactres.normal.hertz`` imports only ``contactres.normal._isotropic``. Nothing is kept
 between calls: the import system holds each module once in ``sys.modules``.
 """
 

@@ -23,12 +23,12 @@ from .errors import ContactresInputError
 if TYPE_CHECKING:
     import pandas as pd
 
-__all__ = ["SYMMETRIES", "CrystalRecord", "crystal_names", "crystal_record", "crystal_table"]
+__all__ = ["CrystalRecord", "crystal_names", "crystal_record", "crystal_table"]
 
 _GPa = 1e9
 
 # The CSV columns each symmetry of materials.csv fills; every other constant cell must be empty.
-SYMMETRIES: dict[str, tuple[str, ...]] = {
+_SYMMETRIES: dict[str, tuple[str, ...]] = {
     "trigonal": ("c11_GPa", "c12_GPa", "c13_GPa", "c14_GPa", "c33_GPa", "c44_GPa"),
     "isotropic": ("E_GPa", "nu"),
 }
@@ -95,9 +95,9 @@ def _cubic_record(row: dict[str, str]) -> CrystalRecord:
 def _other_record(row: dict[str, str]) -> CrystalRecord:
     """A row of materials.csv; a malformed row (wrong or missing cells) is a ValueError."""
     name, symmetry = row["name"], row["symmetry"]
-    if symmetry not in SYMMETRIES:
+    if symmetry not in _SYMMETRIES:
         raise ContactresInputError(f"materials.csv row {name!r}: unknown symmetry {symmetry!r}")
-    needed = SYMMETRIES[symmetry]
+    needed = _SYMMETRIES[symmetry]
     filled = {c for c in _CONSTANT_COLUMNS if row[c].strip()}
     if filled != set(needed):
         raise ContactresInputError(

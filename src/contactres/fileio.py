@@ -1,6 +1,6 @@
 """File output: results appear whole or not at all, and inputs are never touched.
 
-Single files are written atomically (:func:`atomic_path`, :func:`write_text`, :func:`write_csv`,
+Single files are written atomically (``_atomic_path``, :func:`write_text`, :func:`write_csv`,
 :func:`save_figure`): a temporary file beside the target is renamed onto it. A folder of results
 that belong together is written as one :class:`ResultSet`:
 
@@ -47,11 +47,9 @@ from .errors import ContactresInputError
 
 __all__ = [
     "CSV_FLOAT_FORMAT",
-    "FORMULA_START",
     "MANIFEST",
     "OutputError",
     "ResultSet",
-    "atomic_path",
     "check_output",
     "check_output_file",
     "ensure_dir",
@@ -99,7 +97,7 @@ def _create_beside(target: Path) -> Path:
 
 
 @contextmanager
-def atomic_path(path: str | os.PathLike) -> Iterator[Path]:
+def _atomic_path(path: str | os.PathLike) -> Iterator[Path]:
     """Yield a temporary path beside ``path``; on success rename it onto ``path`` atomically.
 
     On an exception the temporary file is removed and ``path`` is left as it was. The result
@@ -122,19 +120,20 @@ def atomic_path(path: str | os.PathLike) -> Iterator[Path]:
 
 def write_text(path: str | os.PathLike, text: str) -> Path:
     """Write ``text`` to ``path`` atomically (UTF-8)."""
-    with atomic_path(path) as tmp:
+    with _atomic_path(path) as tmp:
         tmp.write_text(text, encoding="utf-8")
     return Path(path)
 
 
 #: First characters with which a spreadsheet reads a cell as a formula (CSV injection, OWASP):
 #: a text cell starting with one of them is written with a leading apostrophe.
-FORMULA_START = ("=", "+", "-", "@", "\t", "\r")
+_FORMULA_START = ("=", "+", "-", "@", "\t", "\r")
 
 
 def neutralised(frame):
     """``frame`` with every text cell that a spreadsheet would run as a formula (it starts with
-    one of :data:`FORMULA_START`) prefixed by an apostrophe, which spreadsheets show as text.
+    one of ``= + - @``, a tab or a carriage return) prefixed by an apostrophe, which spreadsheets
+    show as text.
     Numbers are untouched (a negative number is a number, not a formula); only columns of text
     (object or string dtype) are looked at. Returns ``frame`` itself when nothing needs it."""
     columns = getattr(frame, "columns", None)
@@ -146,7 +145,7 @@ def neutralised(frame):
     out = None
     for c in text:
         col = frame[c]
-        risky = col.map(lambda v: isinstance(v, str) and v.startswith(FORMULA_START))
+        risky = col.map(lambda v: isinstance(v, str) and v.startswith(_FORMULA_START))
         if risky.any():
             out = frame.copy() if out is None else out
             out[c] = col.where(~risky, "'" + col.astype(str))
@@ -157,7 +156,7 @@ def write_csv(path: str | os.PathLike, frame, **kwargs) -> Path:
     """Write a pandas DataFrame as CSV atomically (no index unless asked); text cells that a
     spreadsheet would run as formulas are neutralised (:func:`neutralised`)."""
     kwargs.setdefault("index", False)
-    with atomic_path(path) as tmp:
+    with _atomic_path(path) as tmp:
         neutralised(frame).to_csv(tmp, **kwargs)
     return Path(path)
 
@@ -168,7 +167,7 @@ def save_figure(path: str | os.PathLike, fig, dpi: int = 150) -> Path:
 
     target = Path(path)
     try:
-        with atomic_path(target) as tmp:
+        with _atomic_path(target) as tmp:
             fig.savefig(tmp, dpi=dpi, format=target.suffix.lstrip(".") or "png")
     finally:
         plt.close(fig)
@@ -280,7 +279,7 @@ def _verified_names(folder: Path, record: dict) -> set[str]:
 
 
 def _leftover_temporary(name: str, owned: Iterable[str]) -> bool:
-    """True for the hidden temporary of :func:`atomic_path` for one of ``owned``, left by a kill."""
+    """True for the hidden temporary of ``_atomic_path`` for one of ``owned``, left by a kill."""
     return (
         name.startswith(".")
         and name.endswith(".tmp")
@@ -401,7 +400,7 @@ def _move_in(src: Path, dst: Path) -> None:
     except OSError as exc:
         if exc.errno != errno.EXDEV:
             raise
-        with atomic_path(dst) as tmp:
+        with _atomic_path(dst) as tmp:
             shutil.copyfile(src, tmp)
 
 

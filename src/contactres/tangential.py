@@ -30,7 +30,7 @@ import numpy as np
 from scipy.special import binom
 
 from .errors import ContactresInputError
-from .normal.isotropic import (
+from .normal import (
     effective_modulus,
     effective_shear_modulus,
     jkr_contact_radius,

@@ -26,7 +26,6 @@ __all__ = [
     "JUNCTION_SIGMAS",
     "LINEAR_ONSET_X",
     "MAX_AMPLITUDE_M",
-    "MAX_KA",
     "MAX_MU",
     "MIN_SWEEP_POINTS",
     "POISSON_OPEN_RANGE",
@@ -35,7 +34,6 @@ __all__ = [
     "Plausible",
     "check_magnitude",
     "format_number",
-    "poisson_in_range",
     "unit_slip",
 ]
 
@@ -73,7 +71,7 @@ LINEAR_ONSET_X = 0.5
 MAX_MU = 10.0
 
 
-def poisson_in_range(nu: float) -> bool:
+def _poisson_in_range(nu: float) -> bool:
     """True if ``nu`` lies strictly inside :data:`POISSON_OPEN_RANGE`."""
     lo, hi = POISSON_OPEN_RANGE
     return lo < nu < hi
@@ -82,7 +80,7 @@ def poisson_in_range(nu: float) -> bool:
 #: Largest normalised wave number k a taken from a user: 30 times paper 1's range (k_l a <= 2).
 #: The DCSF kernels end near it too (k_s a x T1 < 60, dynamic/_normal_stiffness.py), at a
 #: material-dependent point that the library checks itself.
-MAX_KA = 60.0
+_MAX_KA = 60.0
 
 # Unit slips: (factor to SI, unit symbol, unit in words). A value outside its range whose product
 # with a factor falls inside looks typed in that unit. Lengths and forces are typed too large
@@ -267,8 +265,8 @@ QUANTITIES = MappingProxyType(
         # Loss factor Q^-1 of C (1 + i Q^-1): 0 is the lossless limit; the DCSF kernels assume
         # a loss below 1 (the lossiest rubbers have tan δ ~ 1).
         "loss": Plausible("loss factor Q^-1", "", 0.0, 1.0, 0.02, hi_open=True),
-        # k a >= 0; MAX_KA above says why it ends there.
-        "ka": Plausible("normalised wave number k a", "", 0.0, MAX_KA, 1.0),
+        # k a >= 0; _MAX_KA above says why it ends there.
+        "ka": Plausible("normalised wave number k a", "", 0.0, _MAX_KA, 1.0),
         # Target relative accuracy of a quadrature: below 1e-10 round-off wins, at 1 it means
         # nothing.
         "rtol": Plausible("relative tolerance", "", 1e-10, 1.0, 1e-6, hi_open=True),

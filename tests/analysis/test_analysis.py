@@ -20,7 +20,7 @@ from contactres.measurements._synthetic import (
     sweep_shifts,
     synthetic_sweeps,
 )
-from contactres.normal.isotropic import effective_modulus, jkr_contact_radius
+from contactres.normal import effective_modulus, jkr_contact_radius
 from contactres.report import summary, sweeps_table
 from contactres.resonators._qcm import QCM, shifts_from_loop
 from contactres.tangential import (

@@ -21,7 +21,7 @@ from contactres.measurements._synthetic import (
     sweep_shifts,
     synthetic_sweeps,
 )
-from contactres.normal.isotropic import effective_modulus, jkr_contact_radius
+from contactres.normal import effective_modulus, jkr_contact_radius
 from contactres.resonators._qcm import QCM
 from contactres.tangential import kappa_jkr_mindlin
 from contactres.units import LINEAR_ONSET_X

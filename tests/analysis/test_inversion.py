@@ -15,8 +15,7 @@ from contactres.analysis._inversion import (
 )
 from contactres.dynamic import dcsf, prepare
 from contactres.materials import Material
-from contactres.normal.anisotropic import indentation_modulus
-from contactres.normal.isotropic import effective_modulus, hertz
+from contactres.normal import effective_modulus, hertz, indentation_modulus
 
 R, P = 50e-9, 1e-6  # m, N
 SI = Material.crystal("Si")
@@ -28,7 +27,7 @@ def series(a, b):
 
 
 def test_hertz_inversion_of_the_forward_hertz_contact():
-    """k* = 2aE* from contactres.normal.isotropic.hertz, inverted to 1e-12 (also a and p0)."""
+    """k* = 2aE* from contactres.normal.hertz, inverted to 1e-12 (also a and p0)."""
     E = np.array([[1e9, 10e9], [80e9, 300e9]])
     c = hertz(E, R, P)
     res = modulus_from_contact_stiffness(c.stiffness, tip_radius=R, load=P)

@@ -58,7 +58,7 @@ def test_the_dynamic_solver_is_loaded_only_for_the_radiation_loss(materials, rad
     assert loaded["radiation"] is radiation
     if radiation:
         assert "contactres.dynamic._tangential_stiffness" in loaded["dynamic"]
-        assert "contactres.halfspace.compliance" in loaded["halfspace"]
+        assert "contactres.halfspace._compliance" in loaded["halfspace"]
     else:
         assert loaded["dynamic"] == []
         assert loaded["halfspace"] == []

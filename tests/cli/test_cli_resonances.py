@@ -6,7 +6,7 @@ import pytest
 from click.testing import CliRunner
 
 from contactres.cli import main
-from contactres.normal.isotropic import hertz
+from contactres.normal import hertz
 from contactres.resonators._cantilever import Cantilever, contact_frequencies
 
 

@@ -18,7 +18,7 @@ import contactres as cr
 from contactres.errors import ContactresInputError
 from contactres.halfspace import surface_compliance
 from contactres.layered import LayeredMaterial, stack_compliance, surface_green
-from contactres.layered.expm import expm3
+from contactres.layered._expm import expm3
 from contactres.materials import voigt_to_tensor
 
 QUARTZ = cr.Material.isotropic(72e9, 0.17, density=2650.0, name="quartz")

@@ -10,7 +10,7 @@ from contactres.errors import ContactresInputError
 from contactres.measurements._resonances import validate_resonance_table
 from contactres.measurements._spectra_table import validate_spectra
 from contactres.measurements._sweeps import validate_sweeps
-from contactres.measurements.readers.delimited import load
+from contactres.measurements.readers._delimited import load
 from contactres.measurements.schema import (
     AFM_TABLE,
     GROUP_RESULTS,

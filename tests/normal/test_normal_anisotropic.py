@@ -1,4 +1,4 @@
-"""Tests of contactres.normal.anisotropic: anisotropic Hertz contact (paper 1, Eqs. 1-4)."""
+"""Tests of contactres.normal._anisotropic: anisotropic Hertz contact (paper 1, Eqs. 1-4)."""
 
 import numpy as np
 import pytest
@@ -31,7 +31,7 @@ def test_isotropic_integrals_and_hertz():
 
 
 def test_matches_isotropic_hertz_module_when_available():
-    iso = pytest.importorskip("contactres.normal.isotropic")
+    iso = pytest.importorskip("contactres.normal._isotropic")
     E_star = 80e9 / (1 - 0.3**2)
     h = iso.hertz(E_star, 1e-3, 0.5)
     c = sphere_contact(Material.isotropic(80e9, 0.3), 1e-3, 0.5)
@@ -173,7 +173,7 @@ def test_zero_force_gives_zero_contact():
 def test_isotropic_indentation_modulus_up_to_incompressibility(nu):
     """E/(1 − ν²) for every ν < 1/2, in any frame (before: "too anisotropic" from ν = 0.4999,
     the round-off of the general kernel taken for anisotropy)."""
-    from contactres.normal.anisotropic import contact_integrals, indentation_modulus
+    from contactres.normal import contact_integrals, indentation_modulus
 
     m = Material.isotropic(E=2e9, nu=nu)
     want = 2e9 / (1 - nu**2)
@@ -186,7 +186,7 @@ def test_isotropic_indentation_modulus_up_to_incompressibility(nu):
 
 
 def test_isotropic_closed_form_agrees_with_the_general_rule():
-    from contactres.normal.anisotropic import indentation_modulus
+    from contactres.normal import indentation_modulus
 
     # A = 1 ± 1e-9 is not detected as isotropic: the general rule, continuous through A = 1
     iso = indentation_modulus(Material.cubic_from_ratios(1.0, 0.3))
@@ -195,7 +195,7 @@ def test_isotropic_closed_form_agrees_with_the_general_rule():
 
 
 def test_nearly_incompressible_anisotropic_solid_is_refused_for_the_right_reason():
-    from contactres.normal.anisotropic import indentation_modulus, stiffness_contrast
+    from contactres.normal import indentation_modulus, stiffness_contrast
 
     m = Material.cubic_from_ratios(2.0, 0.4999)
     assert stiffness_contrast(m) > 1e3
@@ -209,7 +209,7 @@ def test_nearly_incompressible_anisotropic_solid_is_refused_for_the_right_reason
 
 
 def test_stiffness_contrast_isotropic_and_cubic():
-    from contactres.normal.anisotropic import stiffness_contrast
+    from contactres.normal import stiffness_contrast
 
     for nu in (0.0, 0.25, 0.49):
         m = Material.isotropic(E=1.0, nu=nu)

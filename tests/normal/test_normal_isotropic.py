@@ -1,4 +1,4 @@
-"""Tests of contactres.normal.isotropic: Hertz, JKR, DMT, effective moduli, Tabor parameter."""
+"""Tests of contactres.normal._isotropic: Hertz, JKR, DMT, effective moduli, Tabor parameter."""
 
 import numpy as np
 import pytest
@@ -6,7 +6,7 @@ from hypothesis import given
 from hypothesis import strategies as st
 
 import contactres as cr
-from contactres.normal.isotropic import (
+from contactres.normal import (
     jkr_contact_radius,
     jkr_from_depth,
     jkr_pull_off_force,

@@ -12,13 +12,13 @@ import pytest
 from signed_permutations import cubic_group_by_hand
 
 from contactres import Material
-from contactres.halfspace.compliance import (
+from contactres.halfspace._compliance import (
     normal_compliance,
     scaled_tensor,
     stacked_normal_compliance,
 )
 from contactres.materials import rotation_to_surface
-from contactres.normal.anisotropic import indentation_modulus
+from contactres.normal import indentation_modulus
 from contactres.polycrystal._moduli import indentation_moduli
 
 CU = Material.crystal("Cu")

@@ -31,7 +31,7 @@ Three steps, all vectorised over the pixels of a map (arrays broadcast together)
 Moduli of tip, sample and references are indentation moduli M (Pa): a number, or a
 :class:`~contactres.materials.Material` already in its surface frame (z along the contact
 normal), or a pair ``(material, (h, k, l))`` which is rotated here. M of a material is
-:func:`contactres.normal.anisotropic.indentation_modulus` (paper 1, Eq. 4; isotropic:
+:func:`contactres.normal.indentation_modulus` (paper 1, Eq. 4; isotropic:
 M = E/(1 − ν²)). A silicon tip along [001]: ``tip=(Material.crystal("Si"), (0, 0, 1))``.
 
 Contact radius a = K_static/(2E*) (for Hertz identical to (3PR/(4E*))^(1/3)); Hertz peak pressure
@@ -62,7 +62,7 @@ import numpy as np
 from ..dynamic import dcsf, prepare
 from ..errors import ContactresInputError
 from ..materials import Material, require_material
-from ..normal.anisotropic import indentation_modulus
+from ..normal import indentation_modulus
 from ..units import QUANTITIES
 from ..validation import nonnegative, positive
 
@@ -176,7 +176,7 @@ def surface_material(spec, name: str) -> Material:
 def modulus_of(spec, name: str = "modulus"):
     """Indentation modulus M (Pa) of a number or array (taken as M, Pa; one per pixel), a
     Material in its surface frame, or a (Material, (h, k, l)) pair:
-    :func:`~contactres.normal.anisotropic.indentation_modulus` (paper 1, Eq. 4; E/(1 − ν²) for
+    :func:`~contactres.normal.indentation_modulus` (paper 1, Eq. 4; E/(1 − ν²) for
     an isotropic material)."""
     if isinstance(spec, (int, float, np.floating, np.integer, np.ndarray)):
         return positive(name, spec, "Pa")

@@ -12,7 +12,7 @@ analysed study, :func:`radiation_loss` evaluates it at
 * the contact radius of the group's JKR fit (paper 2, Eq. 9 with E* from Eq. 10, E1 = E2 = E
   and ν of the fit, paper 2's γ: work of adhesion w = 2γ),
   a³ = (3R/4E*) [F + 6πγR + √(12πγRF + (6πγR)²)]
-  (:func:`contactres.normal.isotropic.jkr_contact_radius`), and
+  (:func:`contactres.normal.jkr_contact_radius`), and
 * the frequency of the overtone, f = ``fundamental_Hz`` x ``overtone`` of the load's sweeps,
 
 and compares it with the measured loss tangent ΔΓ0/Δf0 = ωξ/κ (``loss_tangent_mean`` of
@@ -56,7 +56,7 @@ from ..crystals import crystal_names
 from ..errors import ContactresInputError
 from ..materials import Material, at_cut_quartz
 from ..measurements.schema import RADIATION_RESULTS
-from ..normal.isotropic import effective_modulus, jkr_contact_radius
+from ..normal import effective_modulus, jkr_contact_radius
 from ._jkr import fit_jkr_mindlin
 from ._loads import LOAD_KEYS
 

@@ -458,7 +458,7 @@ def dynamic_contact_stiffness(
     >>> bool(abs(k.real / sphere_contact(si, 50e-9, 1e-6).stiffness - 1) < 1e-9), k.imag > 0
     (True, True)
     """
-    from ..normal.anisotropic import sphere_contact
+    from ..normal import sphere_contact
 
     density = require_material(m).density
     if density is None:

@@ -63,7 +63,7 @@ _FAR_HARMONIC_TOL = 1e-11
 _N_THETA_MAX = 1024
 
 #: Largest stiffness contrast (λ_max/λ_min of the Kelvin stiffness,
-#: :func:`contactres.normal.anisotropic.stiffness_contrast`; isotropic (1 + ν)/(1 − 2ν) = 3K/2G)
+#: :func:`contactres.normal.stiffness_contrast`; isotropic (1 + ν)/(1 − 2ν) = 3K/2G)
 #: accepted by the DCSF. Near incompressibility the general kernels of
 #: :mod:`contactres.halfspace` lose digits to round-off (~ε × contrast²). Measured for the
 #: isotropic exact model, lossless, k_s a = 0.01-2, against the independent Fredholm solution of
@@ -184,7 +184,7 @@ def resolution_for(rtol: float) -> Resolution:
 def check_contrast(m: Material) -> float:
     """The stiffness contrast of ``m``, after refusing one beyond :data:`MAX_STIFFNESS_CONTRAST`
     (a nearly incompressible solid, where the DCSF would miss its stated accuracy 1e-6)."""
-    from ..normal.anisotropic import contrast_poisson, stiffness_contrast
+    from ..normal import contrast_poisson, stiffness_contrast
 
     contrast = stiffness_contrast(m)
     if not contrast <= MAX_STIFFNESS_CONTRAST:

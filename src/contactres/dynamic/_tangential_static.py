@@ -64,8 +64,7 @@ import numpy as np
 from scipy import special
 
 from ..errors import ContactresInputError
-from ..halfspace import shear_reference, surface_compliance
-from ..halfspace.compliance import scaled_tensor
+from ..halfspace import scaled_tensor, shear_reference, surface_compliance
 from ..materials import Material, require_material
 from ..validation import positive
 

@@ -22,8 +22,7 @@ from dataclasses import dataclass, fields
 import numpy as np
 
 from ..errors import ContactresInputError
-from ..halfspace import shear_reference, surface_compliance
-from ..halfspace.compliance import scaled_tensor
+from ..halfspace import scaled_tensor, shear_reference, surface_compliance
 from ..materials import Material, require_material
 from ._table import (
     Resolution,

@@ -9,19 +9,23 @@ outgoing choice). The surface compliance H = −i (Rᵀ + W Z)⁻¹ follows, and
 displacement under a unit normal point force (pressing into the solid, σ_33 = −1) is
 Ĝ = −H_33/(C44 η).
 
-Modules, bottom up:
+The modules that implement it are private (scipy's rule: import from ``contactres.halfspace``),
+bottom up:
 
-- :mod:`.stacked`: arithmetic on stacks of 3x3 matrices (products, adjugate inverse).
-- :mod:`.doubling`: the decaying solvent by cyclic reduction after a Möbius map (a quadratically
+- ``_stacked``: arithmetic on stacks of 3x3 matrices (:func:`mm` products, :func:`inv3` adjugate
+  inverse, :func:`transpose`).
+- ``_doubling``: the decaying solvent by cyclic reduction after a Möbius map (a quadratically
   convergent doubling algorithm, exact and continuous at degenerate points), with a
   block-structured step, a third of the cost, when the surface is a mirror plane of the solid.
-- :mod:`.outgoing`: the 6x6 Stroh eigen-decomposition for the points where a lossless solid has
+- ``_outgoing``: the 6x6 Stroh eigen-decomposition for the points where a lossless solid has
   propagating partial waves (limiting absorption, Im κ -> 0+).
-- :mod:`.compliance`: the surface compliance H of the dimensionless tensor c = C/C44
-  (:func:`surface_compliance`, :func:`shear_reference`, :func:`has_mirror_plane`).
-- :mod:`.kernels`: the normal kernels of a :class:`~contactres.materials.Material`, static
+- ``_compliance``: the surface compliance H of the dimensionless tensor c = C/C44
+  (:func:`surface_compliance`, :func:`shear_reference`, :func:`has_mirror_plane`), the tensor
+  c itself (:func:`scaled_tensor`) and the static normal compliance of many tensors at once
+  (:func:`stacked_normal_compliance`, one per orientation of a polycrystal).
+- ``_kernels``: the normal kernels of a :class:`~contactres.materials.Material`, static
   Ĝ(θ) (:func:`static_kernel`) and dynamic g(κ, θ) (:func:`dynamic_kernel`).
-- :mod:`.isotropic`: Lamb's closed form :func:`isotropic_dynamic_kernel`, an independent check.
+- ``_isotropic``: Lamb's closed form :func:`isotropic_dynamic_kernel`, an independent check.
 
 Accuracy: the doubling stops when its last update is below 1e-10 (relative); what remains is
 then ~1e-16 (convergence is quadratic), and the kernels agree with closed forms and with a
@@ -46,15 +50,30 @@ a Vibrating Rigid Indenter", American Journal of Engineering and Applied Science
 
 from __future__ import annotations
 
-from .compliance import has_mirror_plane, shear_reference, surface_compliance
-from .isotropic import isotropic_dynamic_kernel
-from .kernels import dynamic_kernel, static_kernel
+from ._compliance import (
+    has_mirror_plane,
+    scaled_tensor,
+    shear_reference,
+    stacked_normal_compliance,
+    surface_compliance,
+)
+from ._isotropic import isotropic_dynamic_kernel
+from ._kernels import dynamic_kernel, static_kernel
+from ._stacked import inv3, mm, transpose
 
+# The kernels, and beside them the lower-level pieces the layers above build on (the layered
+# recursion, the tangential tables, the polycrystal moduli): the dimensionless tensor, the
+# batched normal compliance and the 3x3 stack arithmetic.
 __all__ = [
     "dynamic_kernel",
     "has_mirror_plane",
+    "inv3",
     "isotropic_dynamic_kernel",
+    "mm",
+    "scaled_tensor",
     "shear_reference",
+    "stacked_normal_compliance",
     "static_kernel",
     "surface_compliance",
+    "transpose",
 ]

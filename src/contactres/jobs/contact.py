@@ -118,7 +118,8 @@ def run(
     """The contact of ``settings`` on the face ``inputs``, bare or coated (module docstring)."""
     import pandas as pd
 
-    from ..normal.anisotropic import sphere_contact
+    from ..materials import require_material
+    from ..normal import sphere_contact
 
     m, s = inputs, settings
     stack = _coated(m, s.coating)
@@ -149,7 +150,7 @@ def run(
     if stack is not None:
         return _run_coated(stack, R, F, f, s, progress)
     say(progress, "static contact")
-    c = sphere_contact(require_material(m), R, F)
+    c = sphere_contact(require_material(m), R, F)  # homogeneous only: no layered stack here
     table = pd.DataFrame(
         {
             "radius_m": R,

@@ -47,7 +47,7 @@ def run(inputs: None = None, settings: Settings | None = None, progress: Progres
 
     from ..crystals import crystal_table
     from ..materials import Material
-    from ..normal.anisotropic import indentation_modulus
+    from ..normal import indentation_modulus
 
     table = crystal_table()
     say(progress, f"indentation moduli of {len(table)} solids")

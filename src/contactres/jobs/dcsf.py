@@ -130,7 +130,8 @@ def run(inputs: Material, settings: Settings, progress: Progress | None = None) 
 def _contact_points(m, s: Settings):
     """k a (in the ``wavenumber`` convention) and the contact columns of R, F, f broadcast."""
     from ..dynamic import normalised_wavenumber, wave_modulus
-    from ..normal.anisotropic import sphere_contact
+    from ..materials import require_material
+    from ..normal import sphere_contact
 
     # run calls this only when all three are given
     assert s.radius is not None and s.force is not None and s.frequency is not None
@@ -142,7 +143,7 @@ def _contact_points(m, s: Settings):
             f"({np.size(s.frequency)}) must have the same number of values, or a single value"
         ) from None
     f = np.asarray(nonnegative("frequency", f, "Hz"), dtype=float)
-    c = sphere_contact(m, R, F)
+    c = sphere_contact(require_material(m), R, F)  # homogeneous only: no layered stack here
     a = np.asarray(c.contact_radius, dtype=float)
     ka = normalised_wavenumber(f, a, m.density, wave_modulus(m, s.wavenumber))
     extra = {

@@ -54,7 +54,7 @@ from ..polycrystal import (
 from .readers import ALL_READERS, read_ebsd_file, read_value_grid
 
 if TYPE_CHECKING:
-    from ..measurements.readers.recipe import Readers
+    from ..measurements.readers import Readers
 
 __all__ = [
     "METHODS",

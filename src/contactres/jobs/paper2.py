@@ -17,7 +17,7 @@ import numpy as np
 import pandas as pd
 
 from ..measurements.schema import PAPER2_LOOPS, PAPER2_SHIFTS, PAPER2_TURNING
-from ..normal.isotropic import effective_modulus, jkr_contact_radius
+from ..normal import effective_modulus, jkr_contact_radius
 from ..resonators import QCM, shifts_from_loop
 from ..tangential import (
     CattaneoMindlinLoop,

@@ -3,13 +3,13 @@ readers of the map jobs' files through it.
 
 The recipes live in the layer that owns each format and are composed here, the lowest layer
 that sees them all: the measurements' built-in ones
-(:data:`contactres.measurements.readers.registry.BUILT_IN`: sweep tables, spectra, instrument
+(:data:`contactres.measurements.readers.BUILT_IN`: sweep tables, spectra, instrument
 exports, resonance tables), the EBSD maps of :data:`contactres.polycrystal.EBSD_READERS`
 and the measured value grids of :func:`read_value_grid` (:data:`GRID_READER`). So a recipe
 never imports a layer above its own.
 
 EBSD exports and value grids are told apart by their suffix alone
-(:meth:`~contactres.measurements.readers.recipe.Readers.for_suffix`): the reader of the
+(:meth:`~contactres.measurements.readers.Readers.for_suffix`): the reader of the
 suffix reads the file and gives its own precise error for a file that is not right.
 :func:`read_ebsd_file` and :func:`read_grid_file` take the registry to use (``readers=``), so a
 caller adds a format with ``ALL_READERS.with_reader(...)`` and changes nothing shared.
@@ -29,8 +29,7 @@ from typing import cast
 import numpy as np
 
 from ..errors import ContactresInputError
-from ..measurements.readers.recipe import Reader, Readers
-from ..measurements.readers.registry import BUILT_IN
+from ..measurements.readers import BUILT_IN, Reader, Readers
 from ..polycrystal import EBSD_READERS
 
 __all__ = ["ALL_READERS", "GRID_READER", "read_ebsd_file", "read_grid_file", "read_value_grid"]

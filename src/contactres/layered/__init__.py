@@ -1,23 +1,24 @@
 """Layered substrates: bonded layers on an elastic half-space, and their surface response.
 
-Modules, bottom up:
+The modules that implement it are private (scipy's rule: import from ``contactres.layered``),
+bottom up:
 
-- :mod:`.stack`: :class:`LayeredMaterial`, the stack (top layer first) of materials and
+- ``_stack``: :class:`LayeredMaterial`, the stack (top layer first) of materials and
   thicknesses on a substrate, with frequency-dependent materials evaluated by ``at(f)``.
-- :mod:`.expm`: the exponential of stacks of 3x3 matrices (scaling and squaring).
-- :mod:`.recursion`: the surface compliance of the stack by a stable impedance recursion over
+- ``_expm``: the exponential of stacks of 3x3 matrices (scaling and squaring).
+- ``_recursion``: the surface compliance of the stack by a stable impedance recursion over
   the half-space solutions of every layer (:func:`stack_compliance`, dimensionless) and the
   surface Green's function in SI units (:func:`surface_green`, m/Pa).
 
 Bottom and interface conditions: welded interfaces (u and σ_i3 continuous), a substrate that
 carries only decaying (lossless: outgoing) waves, the traction applied on the top surface.
-Accuracy: see :mod:`.recursion`.
+Accuracy: see ``_recursion`` (and :func:`surface_green`).
 """
 
 from __future__ import annotations
 
-from .recursion import stack_compliance, surface_green
-from .stack import FrequencyDependentMaterial, LayeredMaterial, material_at
+from ._recursion import stack_compliance, surface_green
+from ._stack import FrequencyDependentMaterial, LayeredMaterial, material_at
 
 __all__ = [
     "FrequencyDependentMaterial",

@@ -6,7 +6,7 @@ pixel coordinates ``x_m``, ``y_m`` are extra columns, carried through to the out
 chain, per grain::
 
     surface normal of the grain -> M_sample = indentation modulus of Cu on that face
-    (paper 1, Eq. 4; :func:`~contactres.normal.anisotropic.indentation_modulus`)
+    (paper 1, Eq. 4; :func:`~contactres.normal.indentation_modulus`)
     -> 1/E* = 1/M_tip + 1/M_sample (Si tip along [001])
     -> Hertz: a = (3PR/(4E*))^(1/3), k* = 2aE* (K. L. Johnson, Contact Mechanics, Cambridge
        University Press 1985, Eqs. 4.22-4.23)
@@ -30,7 +30,7 @@ import pandas as pd
 
 from ..errors import ContactresInputError
 from ..materials import Material
-from ..normal.anisotropic import indentation_modulus
+from ..normal import indentation_modulus
 from ..resonators import FREE_ROOTS, Cantilever, contact_frequencies
 from ..validation import nonnegative, positive
 

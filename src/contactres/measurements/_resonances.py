@@ -19,7 +19,7 @@ import pandas as pd
 
 from ..errors import ContactresInputError
 from ._messages import at_cell, shown_value, where_rows
-from .readers.registry import BUILT_IN
+from .readers import BUILT_IN
 from .schema import AFM_TABLE, RUM_TABLE, Rule, TableSchema
 
 __all__ = ["AFM_TABLE", "RUM_TABLE", "Rule", "read_resonance_table", "validate_resonance_table"]
@@ -80,7 +80,7 @@ def read_resonance_table(path, schema: TableSchema, *, readers=None) -> pd.DataF
 
     The file (CSV: comma, semicolon or tab separated) is never modified; ``readers`` is the
     registry its reader is picked from (kind ``resonances``; default
-    :data:`~contactres.measurements.readers.registry.BUILT_IN`). See
+    :data:`~contactres.measurements.readers.BUILT_IN`). See
     :func:`validate_resonance_table` for what is returned and checked.
     """
     p = Path(path)

@@ -20,7 +20,7 @@ spectrum Y(f) = G + iB of the quartz around one overtone. Two inputs are read:
 Conventions: frequencies in Hz, G and B in S (siemens); the drive voltage is the amplitude
 (peak) voltage across the crystal, V (``voltage="rms"`` converts an rms value by √2). Every
 error names the file, the line, the column and the value. The readers of both inputs are the
-recipes of kind ``spectra`` in :mod:`contactres.measurements.readers.spectra`; the columns and
+recipes of kind ``spectra`` of :mod:`contactres.measurements.readers`; the columns and
 their rules are :data:`contactres.measurements.schema.SPECTRA_TABLE`.
 """
 
@@ -35,8 +35,8 @@ import pandas as pd
 
 from ..errors import ContactresInputError
 from ._messages import at_cell, column_names, shown_value, where_rows
-from .readers.registry import BUILT_IN
-from .readers.spectra import (
+from .readers import (
+    BUILT_IN,
     CONSTANT_COLUMNS,
     LABELS,
     NUMERIC_LABELS,
@@ -209,7 +209,7 @@ def read_spectra(
         value (multiplied by √2 here).
     readers : Readers, optional
         The registry to pick the reader from (kind ``spectra``; default
-        :data:`~contactres.measurements.readers.registry.BUILT_IN`): a folder, else a table.
+        :data:`~contactres.measurements.readers.BUILT_IN`): a folder, else a table.
 
     Returns
     -------

@@ -30,9 +30,7 @@ import pandas as pd
 from ..errors import ContactresInputError
 from ..units import ABSOLUTE_FREQUENCY_FRACTION, MIN_SWEEP_POINTS, SMALL_LOAD_LIMIT
 from ._messages import at_cell, column_names, shown_value, where_rows
-from .readers import SweepReader
-from .readers.delimited import line_ranges
-from .readers.registry import BUILT_IN
+from .readers import BUILT_IN, SweepReader, line_ranges
 from .schema import FINITE, SWEEP_TABLE, check_cells, check_value
 
 if sys.version_info >= (3, 11):
@@ -181,7 +179,7 @@ def read_sweeps(path, *, readers=None, **constants) -> SweepTable:
         ``poisson``. ``None`` means "not given".
     readers : Readers, optional
         The registry to pick the file's reader from (kind ``sweeps``; default
-        :data:`~contactres.measurements.readers.registry.BUILT_IN`). A reader of your own:
+        :data:`~contactres.measurements.readers.BUILT_IN`). A reader of your own:
         ``readers=BUILT_IN.with_reader(Reader(name, suffixes, detect, load, "sweeps"))``.
 
     Returns

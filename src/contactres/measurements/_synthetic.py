@@ -28,7 +28,7 @@ import numpy as np
 import pandas as pd
 
 from ..errors import ContactresInputError
-from ..normal.isotropic import effective_modulus, jkr_contact_radius
+from ..normal import effective_modulus, jkr_contact_radius
 from ..resonators import QCM, shifts_from_loop, shifts_from_stiffness
 from ..tangential import (
     CattaneoMindlinLoop,

@@ -1,14 +1,18 @@
-"""Normal contact: isotropic Hertz/JKR/DMT (``isotropic``), anisotropic Hertz (``anisotropic``) and
-the axisymmetric contact on a coated (layered) substrate (the private ``_axisymmetric``: the
-solver on a wave-number-dependent compliance; ``_layered``: the punch, sphere and M(a) on a
-:class:`~contactres.LayeredMaterial`).
+"""Normal contact: isotropic Hertz/JKR/DMT (``_isotropic``), anisotropic Hertz (``_anisotropic``)
+and the axisymmetric contact on a coated (layered) substrate (``_axisymmetric``: the solver on a
+wave-number-dependent compliance; ``_layered``: the punch, sphere and M(a) on a
+:class:`~contactres.LayeredMaterial`). These modules are private (scipy's rule): import from
+``contactres.normal``.
 
 The public functions of these modules are re-exported here and from :mod:`contactres`
-(:func:`sphere_contact` is the one of ``_layered``, which hands a homogeneous material to
-``anisotropic``). They are
-loaded on first use (PEP 562 module ``__getattr__``): a caller of the isotropic formulas (the
-tangential loops, the QCM analysis) does not import the anisotropic half-space behind
-``anisotropic``.
+(:func:`sphere_contact` is the one of ``_layered``, which hands a homogeneous material to the
+anisotropic Hertz contact of ``_anisotropic``). Beside them, the pieces of the anisotropic
+contact that the polycrystal moduli and the dynamic tables build on: the stiffness contrast of a
+solid (:func:`stiffness_contrast`, :func:`contrast_poisson`), the isotropic constants of a
+stiffness (:func:`isotropic_constants`) and the default accuracy of the θ integrals
+(``THETA_RTOL``). They are loaded on first use (PEP 562 module ``__getattr__``): a caller of the
+isotropic formulas (the tangential loops, the QCM analysis) does not import the anisotropic
+half-space behind ``_anisotropic``.
 """
 
 from __future__ import annotations
@@ -23,26 +27,30 @@ TYPE_CHECKING = False
 # Public name -> the module that defines it.
 _EXPORTS = MappingProxyType(
     {
-        "AnisotropicContact": ".anisotropic",
-        "ContactIntegrals": ".anisotropic",
-        "contact_integrals": ".anisotropic",
-        "indentation_modulus": ".anisotropic",
+        "AnisotropicContact": "._anisotropic",
+        "ContactIntegrals": "._anisotropic",
+        "contact_integrals": "._anisotropic",
+        "indentation_modulus": "._anisotropic",
+        "THETA_RTOL": "._anisotropic",
+        "contrast_poisson": "._anisotropic",
+        "isotropic_constants": "._anisotropic",
+        "stiffness_contrast": "._anisotropic",
         "LayeredContact": "._layered",
         "static_punch_stiffness": "._layered",
         "indentation_modulus_at": "._layered",
         "sphere_contact": "._layered",
-        "Contact": ".isotropic",
-        "dmt": ".isotropic",
-        "effective_modulus": ".isotropic",
-        "effective_shear_modulus": ".isotropic",
-        "hertz": ".isotropic",
-        "jkr": ".isotropic",
-        "jkr_contact_radius": ".isotropic",
-        "jkr_from_depth": ".isotropic",
-        "jkr_pull_off_force": ".isotropic",
-        "shear_modulus": ".isotropic",
-        "tabor_parameter": ".isotropic",
-        "which_adhesion_model": ".isotropic",
+        "Contact": "._isotropic",
+        "dmt": "._isotropic",
+        "effective_modulus": "._isotropic",
+        "effective_shear_modulus": "._isotropic",
+        "hertz": "._isotropic",
+        "jkr": "._isotropic",
+        "jkr_contact_radius": "._isotropic",
+        "jkr_from_depth": "._isotropic",
+        "jkr_pull_off_force": "._isotropic",
+        "shear_modulus": "._isotropic",
+        "tabor_parameter": "._isotropic",
+        "which_adhesion_model": "._isotropic",
     }
 )
 
@@ -53,13 +61,17 @@ __all__ = sorted(_EXPORTS)
 # marks an explicit re-export; isort would split each onto its own import, hence off here.
 if TYPE_CHECKING:
     # isort: off
-    from .anisotropic import (
+    from ._anisotropic import (
         AnisotropicContact as AnisotropicContact,
         ContactIntegrals as ContactIntegrals,
+        THETA_RTOL as THETA_RTOL,
         contact_integrals as contact_integrals,
+        contrast_poisson as contrast_poisson,
         indentation_modulus as indentation_modulus,
+        isotropic_constants as isotropic_constants,
+        stiffness_contrast as stiffness_contrast,
     )
-    from .isotropic import (
+    from ._isotropic import (
         Contact as Contact,
         dmt as dmt,
         effective_modulus as effective_modulus,

@@ -12,7 +12,7 @@ E* = E/(1 − ν²); tangential: (2 − ν)/(2G)). For an axisymmetric traction 
 P(η) = ∫₀^∞ p(r) J₀(ηr) r dr the surface displacement is u(r) = ∫₀^∞ g(η) P(η) J₀(ηr) dη.
 Anisotropic solids: the θ average is the axisymmetric approximation (exact for a solid that is
 transversely isotropic about the normal; the same approximation as the circular-contact formulas
-of :mod:`contactres.normal.anisotropic`, which use I₀ = 2π g on a non-circular face).
+of :mod:`contactres.normal`, which use I₀ = 2π g on a non-circular face).
 
 Galerkin on the disk r̄ = r/a <= 1. The traction is expanded in the functions f_k(r̄) whose Hankel
 transforms are spherical Bessel functions, ∫₀¹ r̄ f_k(r̄) J₀(s r̄) dr̄ = j_{2k}(s) (those of

@@ -50,9 +50,9 @@ from ..errors import ContactresInputError
 from ..layered import LayeredMaterial, surface_green
 from ..materials import Material, require_material
 from ..validation import nonnegative, positive
+from ._anisotropic import THETA_RTOL, isotropic_constants
+from ._anisotropic import sphere_contact as homogeneous_sphere_contact
 from ._axisymmetric import DEFAULT_TOL, RadialKernel, punch_and_sphere
-from .anisotropic import THETA_RTOL, isotropic_constants
-from .anisotropic import sphere_contact as homogeneous_sphere_contact
 
 __all__ = [
     "LayeredContact",
@@ -275,7 +275,7 @@ def indentation_modulus_at(material, contact_radius, *, tol: float = DEFAULT_TOL
 class LayeredContact:
     """Frictionless contact of a rigid sphere on a layered half-space (axisymmetric solution).
 
-    Field names as :class:`~contactres.normal.anisotropic.AnisotropicContact` where they mean
+    Field names as :class:`~contactres.normal.AnisotropicContact` where they mean
     the same.
 
     Attributes
@@ -360,7 +360,7 @@ def sphere_contact(
     """Frictionless contact of a rigid (or elastic) sphere on a homogeneous or layered half-space.
 
     A :class:`~contactres.Material` (or a stack without layers) is passed to the anisotropic
-    Hertz solution (:func:`contactres.normal.anisotropic.sphere_contact`, exact on a circular
+    Hertz solution (the ``sphere_contact`` of the private ``_anisotropic``, exact on a circular
     face). A :class:`~contactres.LayeredMaterial` is solved by the axisymmetric Galerkin of
     :mod:`contactres.normal._axisymmetric`: the contact radius a at which the pressure with no
     edge singularity carries the force (solved to 1e-12 relative in F; F(a) increases with a).

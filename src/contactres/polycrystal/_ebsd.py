@@ -41,7 +41,7 @@ import pandas as pd
 
 from ..errors import ContactresInputError
 from ..fileio import write_text
-from ..measurements.readers.recipe import Reader
+from ..measurements.readers import Reader
 from ._maps import OrientationMap
 
 __all__ = ["EBSD_READERS", "read_ang", "read_ctf", "read_ebsd", "write_ang", "write_ctf"]

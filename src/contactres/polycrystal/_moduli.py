@@ -5,9 +5,9 @@ that grain is M = 4π/I₀ with I₀ = ∫₀^{2π} Ĝ(θ) dθ (paper 1, Eq. 4; 
 static surface Green's function of the crystal in the sample (surface) frame
 (:func:`contactres.halfspace.static_kernel`). :func:`indentation_moduli` rotates the stiffness
 of all orientations at once, evaluates Ĝ on an (orientation x θ) grid in stacked calls of the
-doubling algorithm (:func:`contactres.halfspace.compliance.stacked_normal_compliance`) and
+doubling algorithm (:func:`contactres.halfspace.stacked_normal_compliance`) and
 applies the same trapezoidal rule and stopping test as
-:func:`contactres.normal.anisotropic.contact_integrals`, orientation by orientation.
+:func:`contactres.normal.contact_integrals`, orientation by orientation.
 
 Paper 1: J. Tian, "Anisotropy Influence of Cubic Solid on Dynamic Hertzian Contact Stiffness for
 a Vibrating Rigid Indenter", American Journal of Engineering and Applied Sciences 3(1), 56-63
@@ -20,9 +20,9 @@ from __future__ import annotations
 import numpy as np
 
 from ..errors import ContactresInputError
-from ..halfspace.compliance import stacked_normal_compliance
+from ..halfspace import stacked_normal_compliance
 from ..materials import Material, require_material, voigt_to_tensor
-from ..normal.anisotropic import (
+from ..normal import (
     THETA_RTOL,
     contrast_poisson,
     isotropic_constants,
@@ -59,7 +59,7 @@ def indentation_moduli(
     on the (orientation x θ) grid by the stacked doubling algorithm, and the trapezoidal rule
     on [0, π) starts at 16 points and adds the midpoints for the orientations whose I₀ or I₁
     still moved by more than ``rtol`` relative to I₀ (the rule of
-    :func:`contactres.normal.anisotropic.contact_integrals`, applied orientation by
+    :func:`contactres.normal.contact_integrals`, applied orientation by
     orientation; Cu converges at 64 points). An isotropic solid takes the closed form
     M = 4 C44 (C11 − C44)/C11 for every orientation.
 
@@ -92,7 +92,7 @@ def indentation_moduli(
     Accuracy: the trapezoidal rule converges exponentially for the smooth periodic Ĝ, so the
     last change (<= ``rtol`` relative) bounds the quadrature error; the kernel itself is
     accurate to ~1e-13 (see :mod:`contactres.halfspace`). Tests: agreement with
-    :func:`contactres.normal.anisotropic.indentation_modulus` of the rotated material to 1e-12
+    :func:`contactres.normal.indentation_modulus` of the rotated material to 1e-12
     (Cu principal faces and random orientations, trigonal sapphire and quartz, lossy Cu),
     the isotropic closed form to 1e-12, invariance under the cubic point group and under
     rotations of the sample frame about the normal to 1e-12. Cost: ~0.5 ms per Cu

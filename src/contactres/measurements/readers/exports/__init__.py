@@ -1,21 +1,25 @@
 """Reader plug-ins for the exports of commercial and open QCM-D instruments.
 
-Each plug-in (:class:`~.base.ExportReader`: name, suffixes, ``detect``, ``load``, conventions,
-source of the layout) turns one instrument's text export into an :class:`~.base.ExportTable`:
+Each plug-in (:class:`ExportReader`: name, suffixes, ``detect``, ``load``, conventions,
+source of the layout) turns one instrument's text export into an :class:`ExportTable`:
 a tidy table ``time_s, overtone, df_Hz, dgamma_Hz`` (Δf not divided by n, ΔΓ the half-bandwidth
 shift) and the conventions it was read with. The built-in readers, in the order they are tried:
 
-* ``qsense``: Biolin Scientific QSense (QSoft, Dfind, QTools) text exports (:mod:`.qsense`);
-* ``awsensors``: AWSensors exports (:mod:`.awsensors`);
-* ``qcmi``: MicroVacuum QCM-I exports (:mod:`.qcmi`);
-* ``openqcm``: openQCM Q-1 and Next data logs (:mod:`.openqcm`).
+* ``qsense``: Biolin Scientific QSense (QSoft, Dfind, QTools) text exports (``_qsense``);
+* ``awsensors``: AWSensors exports (``_awsensors``);
+* ``qcmi``: MicroVacuum QCM-I exports (``_qcmi``);
+* ``openqcm``: openQCM Q-1 and Next data logs (``_openqcm``).
+
+The modules of the plug-ins, and ``_base`` (the recipe and the table) and ``_tidy`` (the
+conversions) beside them, are private (scipy's rule): import from this package.
 
 What a file does not say (Δf or Δf/n, the unit of D, the time unit, the baseline, the
 fundamental, the channel, the overtone of a single-overtone log) is asked for: a keyword of
-:func:`read_export` (:data:`~.base.CONVENTION_KEYS`), never a silent default.
+:func:`read_export` (:data:`CONVENTION_KEYS`), never a silent default.
 
-:data:`EXPORT_READERS` is a tuple of recipes (:class:`~..recipe.Reader` of kind ``export``, part
-of :data:`contactres.measurements.readers.registry.BUILT_IN`): pass your own tuple of readers to
+:data:`EXPORT_READERS` is a tuple of recipes
+(:class:`~contactres.measurements.readers.Reader` of kind ``export``, part of
+:data:`contactres.measurements.readers.BUILT_IN`): pass your own tuple of readers to
 :func:`pick_export_reader` and :func:`read_export` to add one.
 """
 
@@ -24,9 +28,9 @@ from __future__ import annotations
 from pathlib import Path
 
 from ....errors import ContactresInputError
-from ..recipe import first_detected, read_head
-from . import awsensors, openqcm, qcmi, qsense
-from .base import CONVENTION_KEYS, ExportReader, ExportTable, parse_baseline
+from .._recipe import first_detected, read_head
+from . import _awsensors, _openqcm, _qcmi, _qsense
+from ._base import CONVENTION_KEYS, ExportReader, ExportTable, parse_baseline
 
 __all__ = [
     "CONVENTION_KEYS",
@@ -41,10 +45,10 @@ __all__ = [
 
 #: The built-in export readers, in the order they are tried (after those whose suffix matches).
 EXPORT_READERS: tuple[ExportReader, ...] = (
-    qsense.READER,
-    awsensors.READER,
-    qcmi.READER,
-    openqcm.READER,
+    _qsense.READER,
+    _awsensors.READER,
+    _qcmi.READER,
+    _openqcm.READER,
 )
 
 #: Binary files an instrument also writes, which no reader here reads.

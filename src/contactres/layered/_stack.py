@@ -1,6 +1,6 @@
 """A layered substrate: bonded layers of given thickness on an elastic half-space.
 
-:class:`LayeredMaterial` describes the solid whose surface response :mod:`.recursion` computes:
+:class:`LayeredMaterial` describes the solid whose surface response :mod:`._recursion` computes:
 layers j = 1..n (top first) of thickness h_j, welded to each other and to the substrate (the
 displacement and the traction σ_i3 are continuous across every interface), on a half-space
 that extends to z -> ∞ (only decaying or, for a lossless solid, outgoing waves in it: no wave

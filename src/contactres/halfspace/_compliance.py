@@ -3,7 +3,7 @@
 Paper 1, Eqs. 10-20, in a form that holds for any anisotropy, the degenerate isotropic solid
 included. For a surface wave vector ξ = η (cos θ, sin θ) the displacement field decaying into
 the solid z > 0 is ``u(z) = exp(i η Z z) u(0)``, where Z is the decaying solvent
-(:mod:`.doubling`) of the Christoffel pencil
+(:mod:`._doubling`) of the Christoffel pencil
 
     W Z² + (R + Rᵀ) Z + Q − s I = 0,     Q_ik = c_iakb n_a n_b,  R_ik = c_iak3 n_a,  W_ik = c_i3k3,
 
@@ -15,7 +15,7 @@ projector on the decaying subspace, reduced to 3x3 blocks.
 This module assembles the blocks, balances the pencil, picks the doubling step (general, or
 block-structured when the surface is a mirror plane), retries another Möbius parameter where
 the doubling loses accuracy, and sends the points with propagating partial waves of a lossless
-solid to the eigen-decomposition of :mod:`.outgoing`.
+solid to the eigen-decomposition of :mod:`._outgoing`.
 """
 
 from __future__ import annotations
@@ -24,9 +24,9 @@ import numpy as np
 
 from ..errors import ContactresInputError
 from ..materials import Material, voigt_to_tensor
-from .doubling import decaying_solvent
-from .outgoing import outgoing_compliance
-from .stacked import inv3, mm, transpose
+from ._doubling import decaying_solvent
+from ._outgoing import outgoing_compliance
+from ._stacked import inv3, mm, transpose
 
 __all__ = [
     "has_mirror_plane",

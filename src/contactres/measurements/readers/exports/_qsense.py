@@ -15,7 +15,7 @@ B. ``Time_k [s]``, ``fn_k [Hz]``, ``Dn_k [ppm]`` (e.g. ``f3_1 [Hz]``; a QSoft ex
    spreadsheet saved as text). **Not confirmed by a sample file**: the names are those used by
    third-party scripts that read QSoft exports (a public code search for "Time_1 [s]" and
    "D3_1 [ppm]"). Time in s and D in ppm come from the header; whether the f columns hold f_n
-   or shifts is told from the values (:data:`~.base.ABSOLUTE_FREQUENCY_HZ`); shifts ask for
+   or shifts is told from the values (:data:`~._base.ABSOLUTE_FREQUENCY_HZ`); shifts ask for
    ``df_divided_by_n``, resonance frequencies for a ``baseline``.
 
 QSoft's own .qsd files and Excel workbooks are binary and not read: export the sheet as text.
@@ -30,7 +30,7 @@ from pathlib import Path
 from types import MappingProxyType
 
 from ....errors import ContactresInputError
-from .base import (
+from ._base import (
     ExportReader,
     ExportTable,
     Layout,
@@ -39,7 +39,7 @@ from .base import (
     pick_channel,
     read_rows,
 )
-from .tidy import convert
+from ._tidy import convert
 
 __all__ = ["CONVENTIONS", "NAME", "READER", "SUFFIXES", "detect", "load"]
 

@@ -50,7 +50,7 @@ tests/layered/layered_reference.py, scipy's expm and Schur) agrees to 3e-14; a c
 A = 1 equals the isotropic film to 1e-15 and A = 1 ± 1e-6 moves it by 7.6e-7; a film of
 η h = 1e-9 changes the substrate's response by 1.7e-9 (first order in η h), and for η h >= 30 the
 stack is the film's half-space to 7e-16 (no overflow at η h = 1e3). The exponentials add
-< 1e-19 of truncation (:mod:`.expm`).
+< 1e-19 of truncation (:mod:`._expm`).
 
 Cost (``benchmarks/bench_layered.py``): per layer and point, a mirror-plane film (isotropic,
 cubic (001), ...) costs one half-space evaluation and one 3x3 exponential, any other film two
@@ -65,11 +65,10 @@ import math
 import numpy as np
 
 from ..errors import ContactresInputError
-from ..halfspace import shear_reference, surface_compliance
-from ..halfspace.stacked import inv3, mm, transpose
+from ..halfspace import inv3, mm, shear_reference, surface_compliance, transpose
 from ..materials import Material, voigt_to_tensor
-from .expm import expm3
-from .stack import LayeredMaterial, material_at
+from ._expm import expm3
+from ._stack import LayeredMaterial, material_at
 
 __all__ = ["stack_compliance", "surface_green"]
 
@@ -216,7 +215,8 @@ def surface_green(material, wavenumber, theta, frequency: float = 0.0) -> np.nda
     Layers are welded to each other and to the substrate (u and σ_i3 continuous); the
     substrate carries only decaying (lossless: outgoing) waves. The recursion is the stable
     surface-impedance form of the stiffness-matrix method (Rokhlin & Wang, J. Acoust. Soc. Am.
-    112, 822 (2002)); see :mod:`contactres.layered.recursion` for its derivation and accuracy.
+    112, 822 (2002)); see the docstring of the private module ``contactres.layered._recursion``
+    for its derivation and accuracy.
 
     Parameters
     ----------
@@ -241,7 +241,8 @@ def surface_green(material, wavenumber, theta, frequency: float = 0.0) -> np.nda
     Reciprocity: Ĝ(θ + π) = Ĝ(θ)ᵀ; in statics of a lossless solid Ĝ is Hermitian. Passivity
     (e^{iωt}): the power into the solid per unit area under σ̂ is (ω/2) Im(σ̂ᴴ Ĝ σ̂) >= 0, so the
     anti-Hermitian part (Ĝ − Ĝᴴ)/(2i) is positive semi-definite. A lossless stack has guided-mode
-    poles on the real η axis (see :mod:`contactres.layered.recursion`): there an error is raised.
+    poles on the real η axis (see the private module ``contactres.layered._recursion``): there an
+    error is raised.
 
     Examples
     --------

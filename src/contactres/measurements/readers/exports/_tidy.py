@@ -9,7 +9,7 @@ Conversions (paper 2, Eqs. 1-2: Γ is the half width at half maximum, D = 2Γ/f)
 * a file of Γ (Hz) is taken as it is.
 
 Checks on the way, each a one-line error naming file, line, column, value and rule: a frequency
-cell on the wrong side of :data:`~.base.ABSOLUTE_FREQUENCY_HZ` (shifts and resonance
+cell on the wrong side of :data:`~._base.ABSOLUTE_FREQUENCY_HZ` (shifts and resonance
 frequencies mixed), ``|D|`` x scale >= :data:`MAX_DISSIPATION` (a mis-scaled D), a negative
 absolute D, absolute f_n/n that differ between overtones by more than
 :data:`FUNDAMENTAL_TOLERANCE` (columns divided by n, or misnumbered), a fundamental given that
@@ -26,7 +26,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ....errors import ContactresInputError
-from .base import (
+from ._base import (
     ABSOLUTE_FREQUENCY_HZ,
     COLUMNS,
     CONVENTION_KEYS,
@@ -235,9 +235,9 @@ def convert(
     layout: Layout,
     conventions: Mapping[str, str | float | None],
 ) -> ExportTable:
-    """The columns of ``layout`` in ``raw`` (from :func:`~.base.read_rows`) as an ExportTable.
+    """The columns of ``layout`` in ``raw`` (from :func:`~._base.read_rows`) as an ExportTable.
 
-    ``conventions`` are the caller's choices (keys of :data:`~.base.CONVENTION_KEYS`, None for
+    ``conventions`` are the caller's choices (keys of :data:`~._base.CONVENTION_KEYS`, None for
     not given); those the file states must agree with it, those it does not state must be given
     where they are needed (one-line ValueError naming the file and the choice otherwise).
     """

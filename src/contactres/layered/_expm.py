@@ -1,6 +1,6 @@
 """Matrix exponential of stacks of 3x3 matrices, (3, 3, N), by scaling and squaring.
 
-The layer recursion (:mod:`.recursion`) needs exp(i η h Z) for the solvents Z of every layer at
+The layer recursion (:mod:`._recursion`) needs exp(i η h Z) for the solvents Z of every layer at
 every (η, θ) point. An eigen-decomposition will not do: the static isotropic solid has a triple,
 defective vertical wave number (Z is not diagonalisable), and near-degenerate points would lose
 digits. Scaling and squaring with a Taylor polynomial works for any matrix (Higham, "The scaling
@@ -24,7 +24,7 @@ import math
 
 import numpy as np
 
-from ..halfspace.stacked import mm
+from ..halfspace import mm
 
 __all__ = ["expm3"]
 

@@ -1,8 +1,8 @@
 """The built-in reader recipes of the measurements layer, in one immutable registry.
 
-:data:`BUILT_IN` holds, by kind (:data:`~.recipe.KINDS`): the delimited-text reader of sweep
+:data:`BUILT_IN` holds, by kind (:data:`KINDS`): the delimited-text reader of sweep
 tables and of resonance tables (``csv``), the spectra readers (a folder of spectrum files, a tidy
-table: :data:`~.spectra.SPECTRA_READERS`) and the instrument exports
+table: ``SPECTRA_READERS`` of ``_spectra``) and the instrument exports
 (:data:`~.exports.EXPORT_READERS`). EBSD maps and value grids are read by recipes of the layers
 that own their formats (:data:`contactres.polycrystal.EBSD_READERS`,
 ``contactres.jobs.readers``), which compose the full registry above this layer; a recipe here
@@ -18,18 +18,18 @@ from __future__ import annotations
 from collections.abc import Iterable
 from pathlib import Path
 
-from . import delimited
+from . import _delimited
+from ._recipe import Reader, Readers
+from ._spectra import SPECTRA_READERS
 from .exports import EXPORT_READERS
-from .recipe import Reader, Readers
-from .spectra import SPECTRA_READERS
 
 __all__ = ["BUILT_IN", "BUILT_IN_READERS", "pick_reader"]
 
 #: The built-in recipes, in the order they are tried within each kind (after those whose
 #: suffix matches).
 BUILT_IN_READERS: tuple[Reader, ...] = (
-    Reader("csv", delimited.suffixes, delimited.detect, delimited.load, "sweeps"),
-    Reader("csv", delimited.suffixes, delimited.detect, delimited.load, "resonances"),
+    Reader("csv", _delimited.suffixes, _delimited.detect, _delimited.load, "sweeps"),
+    Reader("csv", _delimited.suffixes, _delimited.detect, _delimited.load, "resonances"),
     *SPECTRA_READERS,
     *EXPORT_READERS,
 )

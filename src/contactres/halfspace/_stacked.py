@@ -2,7 +2,7 @@
 
 Every entry of such a stack is a contiguous vector of N values, so the elementwise formulas
 below run at memory speed; a batched LAPACK call per 3x3 matrix is much slower. The doubling
-algorithm (:mod:`.doubling`) and the surface compliance (:mod:`.compliance`) work on these
+algorithm (:mod:`._doubling`) and the surface compliance (:mod:`._compliance`) work on these
 stacks; the matrices are the dimensionless blocks of the Christoffel pencil of paper 1,
 Eqs. 10-20, so the entries carry no unit.
 """

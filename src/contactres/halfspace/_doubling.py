@@ -2,7 +2,7 @@
 
 For a surface wave vector ξ = η (cos θ, sin θ) the partial waves of the half-space have vertical
 wave numbers p η, the roots of det(W p² + (R + Rᵀ) p + Q − S) = 0 (the Christoffel equation of
-paper 1, Eqs. 10-12, with the dimensionless blocks of :mod:`.compliance`; S is the diagonal
+paper 1, Eqs. 10-12, with the dimensionless blocks of :mod:`._compliance`; S is the diagonal
 inertia term, ρω²/(C44 η²) per component after balancing). The field decaying into the solid
 z > 0 is built from the three roots with Im p > 0; they are the eigenvalues of the *decaying
 solvent* Z of W Z² + (R + Rᵀ) Z + Q − S = 0.
@@ -16,7 +16,7 @@ decaying roots. It never forms eigenvectors, so it is exact and continuous at de
 Convergence is quadratic: the number of steps is set by how close the mapped roots come to the
 unit circle (~5 in the evanescent range, ~10 for barely damped propagating waves), not by β.
 A lossless solid at a real κ below a bulk-wave cutoff has roots on the circle (real p): those
-points stall and are handed back as not converged (:mod:`.outgoing` takes them).
+points stall and are handed back as not converged (:mod:`._outgoing` takes them).
 
 When the surface is a mirror plane of the solid (:func:`.compliance.has_mirror_plane`) the
 pencil has the block structure used by :func:`_cyclic_reduction_mirror` and a step costs a
@@ -28,7 +28,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from .stacked import inv3, maxabs, mm, transpose
+from ._stacked import inv3, maxabs, mm, transpose
 
 __all__ = ["decaying_solvent"]
 

@@ -1,6 +1,6 @@
 """Closed-form dynamic kernel of an isotropic half-space (Lamb 1904).
 
-The isotropic special case of the kernels in :mod:`.kernels` (paper 1, Eqs. 10-20), written
+The isotropic special case of the kernels in :mod:`._kernels` (paper 1, Eqs. 10-20), written
 with the Rayleigh function: an independent reference for the general algorithm.
 """
 

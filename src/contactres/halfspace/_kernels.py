@@ -1,6 +1,6 @@
 """The normal surface kernels of an anisotropic half-space: static Ĝ(θ) and dynamic g(κ, θ).
 
-Both are the normal-normal entry of the surface compliance (:mod:`.compliance`) of the solid in
+Both are the normal-normal entry of the surface compliance (:mod:`._compliance`) of the solid in
 its surface frame, under a unit normal point force pressing into the solid (σ_33 = −1):
 Ĝ = −H_33/(C44 η) in statics (paper 1, Eqs. 1-4) and g = C44 η Ĝ_dyn = −H_33 at the
 dimensionless wave number κ = η/k_s (paper 1, Eqs. 10-21).
@@ -12,7 +12,7 @@ import numpy as np
 
 from ..errors import ContactresInputError
 from ..materials import Material
-from .compliance import normal_compliance, scaled_tensor, shear_reference
+from ._compliance import normal_compliance, scaled_tensor, shear_reference
 
 __all__ = ["dynamic_kernel", "static_kernel"]
 

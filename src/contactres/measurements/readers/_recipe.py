@@ -6,11 +6,11 @@ first, ``detect`` (is this file in my format?), ``load`` and the ``kind`` of inp
 of recipes; :meth:`Readers.with_reader` returns a new registry with one more recipe (tried
 before the others of its kind), so a user adds a format without changing anything shared:
 
->>> from contactres.measurements.readers.registry import BUILT_IN
+>>> from contactres.measurements.readers import BUILT_IN
 >>> BUILT_IN.of_kind("sweeps")[0].name
 'csv'
 
-The built-in registry is :data:`contactres.measurements.readers.registry.BUILT_IN`.
+The built-in registry is :data:`contactres.measurements.readers.BUILT_IN`.
 """
 
 from __future__ import annotations

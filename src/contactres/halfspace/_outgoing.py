@@ -1,7 +1,7 @@
 """Surface compliance where partial waves propagate: the 6x6 Stroh eigen-decomposition.
 
 A lossless solid at a real κ below a bulk-wave cutoff has real vertical wave numbers p: there is
-no decaying/growing split and the doubling algorithm (:mod:`.doubling`) cannot converge. Those
+no decaying/growing split and the doubling algorithm (:mod:`._doubling`) cannot converge. Those
 points (only those) are diagonalised in the first-order (Stroh) form of the same equations
 (paper 1, Eqs. 10-19), keeping the partial waves that carry energy into the solid: the limit
 Im κ -> 0+ of the decaying choice (limiting absorption). About 40 µs per (κ, θ) point, ~10x the

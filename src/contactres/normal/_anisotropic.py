@@ -44,7 +44,7 @@ __all__ = [
     "stiffness_contrast",
 ]
 
-# Default relative accuracy of I0, I1 (trapezoidal rule in θ, doubled until it moves less).
+#: Default relative accuracy of I0, I1 (trapezoidal rule in θ, doubled until it moves less).
 THETA_RTOL = 1e-12
 # Doubling starts from this many points on [0, π) and stops with an error beyond the maximum.
 _N_START = 16

@@ -30,7 +30,7 @@ the choice, never a silent default:
     The overtone of a file that does not name it (a single-overtone openQCM log), or the one to
     keep of a file that holds several.
 
-The conversions to Δf and ΔΓ are in :mod:`.tidy` (:func:`~.tidy.convert`). Errors name the
+The conversions to Δf and ΔΓ are in :mod:`._tidy` (:func:`~._tidy.convert`). Errors name the
 file, the line, the column, the value and the rule in one line.
 """
 
@@ -50,7 +50,7 @@ import numpy as np
 from ....errors import ContactresInputError
 from ....units import ABSOLUTE_FREQUENCY_FRACTION
 from ..._messages import shown_value
-from ..recipe import Reader
+from .._recipe import Reader
 
 if TYPE_CHECKING:  # pandas is imported where a file is read: the command line's help imports
     import pandas as pd  # this package for the names of the readers, and starts without pandas
@@ -134,7 +134,8 @@ class ExportTable:
 
 @dataclass(frozen=True)
 class ExportReader(Reader):
-    """The recipe of one instrument's export (a :class:`~..recipe.Reader` of kind ``export``).
+    """The recipe of one instrument's export (a :class:`~contactres.measurements.readers.Reader`
+    of kind ``export``).
 
     Attributes
     ----------

@@ -25,8 +25,8 @@ import pandas as pd
 from ...errors import ContactresInputError
 from .._messages import column_names, shown_value
 from ..schema import NUMBER_TEXT, SPECTRA_TABLE, check_cells
-from . import delimited
-from .recipe import Reader
+from . import _delimited
+from ._recipe import Reader
 
 __all__ = [
     "CONSTANT_COLUMNS",
@@ -131,7 +131,7 @@ def _touchstone(path: Path) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndar
 
 def _delimited_spectrum(path: Path, layout: str | None, z0: float):
     """(frequency Hz, G S, B S (NaN where absent), line numbers) of a delimited file."""
-    raw = delimited.load(path)
+    raw = _delimited.load(path)
     if "frequency_Hz" not in raw.columns:
         raise ContactresInputError(
             f"{path}: no column 'frequency_Hz'; the columns are "
@@ -184,7 +184,7 @@ def _read_folder(folder: Path, layout, z0: float) -> pd.DataFrame:
             f"{folder}: a folder of spectra needs an index.csv naming each file (column 'file') "
             "with its labels (drive_voltage_V, overtone, reference, sweep, ...)"
         )
-    index = delimited.load(index_path)
+    index = _delimited.load(index_path)
     if "file" not in index.columns:
         raise ContactresInputError(
             f"{index_path}: no column 'file' (the spectrum file of each row)"
@@ -226,7 +226,7 @@ def _read_folder(folder: Path, layout, z0: float) -> pd.DataFrame:
 
 def load_table(path, **options) -> pd.DataFrame:
     """A tidy spectra table as string cells and ``line`` (the options concern folders only)."""
-    return delimited.load(Path(path))
+    return _delimited.load(Path(path))
 
 
 def load_folder(path, *, layout=None, reference_impedance: float = 50.0) -> pd.DataFrame:
@@ -239,6 +239,10 @@ def load_folder(path, *, layout=None, reference_impedance: float = 50.0) -> pd.D
 SPECTRA_READERS: tuple[Reader, ...] = (
     Reader("folder", (), lambda path, head: Path(path).is_dir(), load_folder, "spectra"),
     Reader(
-        "csv", delimited.suffixes, lambda path, head: not Path(path).is_dir(), load_table, "spectra"
+        "csv",
+        _delimited.suffixes,
+        lambda path, head: not Path(path).is_dir(),
+        load_table,
+        "spectra",
     ),
 )

@@ -24,7 +24,7 @@ from pathlib import Path
 from types import MappingProxyType
 
 from ....errors import ContactresInputError
-from .base import (
+from ._base import (
     ExportReader,
     ExportTable,
     Layout,
@@ -33,7 +33,7 @@ from .base import (
     pick_channel,
     read_rows,
 )
-from .tidy import convert
+from ._tidy import convert
 
 __all__ = ["CONVENTIONS", "NAME", "READER", "SUFFIXES", "detect", "load"]
 

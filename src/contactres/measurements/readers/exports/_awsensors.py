@@ -21,8 +21,8 @@ from pathlib import Path
 from types import MappingProxyType
 
 from ....errors import ContactresInputError
-from .base import ExportReader, ExportTable, Layout, check_keys, header_names, read_rows
-from .tidy import convert
+from ._base import ExportReader, ExportTable, Layout, check_keys, header_names, read_rows
+from ._tidy import convert
 
 __all__ = ["CONVENTIONS", "NAME", "READER", "SUFFIXES", "detect", "load"]
 
