@@ -59,7 +59,7 @@ from types import MappingProxyType
 
 import numpy as np
 
-from ..dynamic import dcsf, prepare
+from ..dynamic import dcsf, normalised_wavenumber, prepare, wave_modulus
 from ..errors import ContactresInputError
 from ..materials import Material, require_material
 from ..normal import indentation_modulus
@@ -356,7 +356,9 @@ def modulus_from_contact_stiffness(
         surface = surface_material(sample, "sample")
         f = np.asarray(positive("frequency", frequency, "Hz"))
         arrays.append(f)
-        k_l = 2.0 * np.pi * f / longitudinal_velocity(surface)
+        longitudinal_velocity(surface)  # a clear error without the density
+        # The one wave-number function of the package (k per metre: a = 1 m).
+        k_l = normalised_wavenumber(f, 1.0, surface.density, wave_modulus(surface, "longitudinal"))
     elif dynamic:
         raise ContactresInputError(
             "dynamic=True needs frequency (Hz) and sample (Material, with density)"
