@@ -76,8 +76,9 @@ DESCRIPTIONS: dict[Flag, str] = {
         "from the ΔΓ slope); use mu_fit"
     ),
     Flag.MU_OUT_OF_RANGE: (
-        f"μ above {MAX_MU:g} (from a slope or the exact loop): not a friction coefficient but a "
-        "wrong input (check normal_force_N, per contact, and area_m2); withheld"
+        f"μ above {MAX_MU:g} by more than twice its error (from a slope or the exact loop): not a "
+        "friction coefficient but a wrong input (check normal_force_N, per contact, and "
+        "area_m2); withheld"
     ),
     Flag.DRIFT_REMOVED: (
         "this load drifted; a drift linear in time (column time_s) was removed from its points "

@@ -365,9 +365,12 @@ def analyze(
     else:
         for col in ("mu_fit", "mu_fit_err", "x_max", "sliding_force_N", "sliding_force_err_N"):
             sw[col] = np.nan
-    # A μ beyond any friction coefficient is a wrong input, not a result: withheld and flagged.
+    # A μ beyond any friction coefficient by more than twice its error is a wrong input, not a
+    # result: withheld and flagged. A noisy estimate (μ = 12 ± 60 from a flat ΔΓ slope in
+    # water) is kept: censoring it would bias the statistics per load.
     for col in ("mu_df", "mu_dgamma", "mu_fit", "mu_block"):
-        absurd = (sw[col] > MAX_MU).to_numpy()
+        mu, err = sw[col].to_numpy(float), sw[f"{col}_err"].to_numpy(float)
+        absurd = (mu > MAX_MU) & ~(mu - 2 * np.nan_to_num(err, nan=0.0) <= MAX_MU)
         if absurd.any():
             sw.loc[absurd, [col, f"{col}_err"]] = np.nan
             flags |= _flag(absurd, Flag.MU_OUT_OF_RANGE)
