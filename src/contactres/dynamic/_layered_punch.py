@@ -87,6 +87,7 @@ from ._exact import (
     kernel_harmonics,
 )
 from ._farfield import far_basis
+from ._normal_stiffness import normalised_wavenumber
 from ._table import KernelTable, max_slowness, prepare
 
 __all__ = [
@@ -224,7 +225,11 @@ def _stack_at(mats, thicknesses, film: Material, q: float, frequency: float) -> 
                 f"the dynamic punch stiffness (frequency > 0) needs densities: {which} "
                 f"({mats[j].name or 'unnamed'}) has none"
             )
-    ks = [omega * math.sqrt((m.density or 0.0) / shear_reference(m)) for m in mats]
+    # The shear wave number of every material, per metre (the one wave-number function).
+    ks = [
+        float(normalised_wavenumber(frequency, 1.0, m.density or 0.0, shear_reference(m)))
+        for m in mats
+    ]
     slow = [k * max_slowness(m) for k, m in zip(ks, mats, strict=True)]
     return _Stack(
         tensors=[voigt_to_tensor(np.asarray(m.C, dtype=complex)) / c44 for m in mats],
@@ -590,10 +595,8 @@ def _punch(table, film, items, radii, rtol, res) -> np.ndarray:
     (``film``: its undamped reference material) with radii ``radii``."""
     c44 = shear_reference(film)
     stacks = [st for _, st, _ in items]
-    ks_film = (
-        2 * np.pi * np.array([f for _, _, f in items]) * math.sqrt((film.density or 0.0) / c44)
-    )
-    ksa = ks_film * radii
+    freqs = np.array([f for _, _, f in items])
+    ksa = normalised_wavenumber(freqs, radii, film.density or 0.0, c44)
     k_max = np.array([st.k_max for st in stacks]) * radii
     n_radial = galerkin_size(float(np.max(k_max)), rtol).n_radial
     n_harm = galerkin_size(0.0, rtol).n_harmonics
