@@ -159,3 +159,36 @@ def test_table1(results):
     t1 = results.table1()
     assert list(t1["medium"]) == ["air", "water"]
     assert np.all(t1["E_GPa"].between(60, 90))
+
+
+def test_fig5_draws_the_jkr_curve_the_analysis_computed(results):
+    """Issue 25: the report draws curves the analysis computed (Results.jkr) and evaluates no
+    model; the curve itself is paper 2's Eqs. 6-10 with the fitted E and γ (kappa_jkr_mindlin,
+    times P, Eq. 1)."""
+    from dataclasses import replace
+
+    from contactres.report.figures import figure_stiffness
+    from contactres.tangential import kappa_jkr_mindlin
+
+    for g in results.groups:
+        if not np.isfinite(g["E_Pa"]):
+            continue
+        jkr = results.jkr
+        c = jkr[(jkr["configuration"] == g["configuration"]) & (jkr["medium"] == g["medium"])]
+        k = kappa_jkr_mindlin(
+            c["normal_force_N"], g["E_Pa"], g["gamma_J_m2"], g["sphere_radius_m"], g["poisson"]
+        )
+        np.testing.assert_allclose(c["df0_model_Hz"], g["P_Hz_per_N_per_m"] * k, rtol=1e-12)
+    # A changed curve changes the figure: the figure draws it, it does not recompute it.
+    doubled = results.jkr.assign(df0_model_Hz=2 * results.jkr["df0_model_Hz"])
+    lines = [
+        ln.get_ydata()
+        for fig in (figure_stiffness(results), figure_stiffness(replace(results, jkr=doubled)))
+        for ax in fig.axes
+        for ln in ax.get_lines()
+        if str(ln.get_label()).startswith("JKR-Mindlin fit")
+    ]
+    half = len(lines) // 2
+    assert half > 0
+    for a, b in zip(lines[:half], lines[half:], strict=True):
+        np.testing.assert_allclose(b, 2 * np.asarray(a), rtol=1e-12)

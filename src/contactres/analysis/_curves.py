@@ -32,6 +32,7 @@ __all__ = [
     "FIGURE_POINTS",
     "PAGE_POINTS",
     "fitted_curves",
+    "jkr_curves",
     "sweep_points",
     "sweep_rows",
 ]
@@ -42,6 +43,9 @@ FIGURE_POINTS = 100
 PAGE_POINTS = 30
 #: The grids of :func:`fitted_curves`, by number of points.
 CURVE_GRIDS = (FIGURE_POINTS, PAGE_POINTS)
+#: Points of the JKR + Mindlin curve of a group (Fig. 5), from F_N = 0 to 1.05 times the
+#: configuration's largest load.
+JKR_POINTS = 100
 
 # The fit table of each model, by key (``Results.fits``).
 Fits = Mapping[str, pd.DataFrame]
@@ -157,3 +161,45 @@ def sweep_rows(table: pd.DataFrame) -> dict:
     """Positions of the rows of each sweep in a long table with a ``sweep`` column (such as
     :func:`sweep_points` or :func:`fitted_curves`), in table order: sweep id -> int array."""
     return table.groupby("sweep", sort=False).indices
+
+
+def jkr_curves(groups, loads: pd.DataFrame, n: int = JKR_POINTS) -> pd.DataFrame:
+    """The fitted JKR + Mindlin curve κ(F_N) of every group with an E, on the grid Fig. 5 draws.
+
+    Parameters
+    ----------
+    groups : the group records of the analysis (``configuration``, ``medium``, ``E_Pa``,
+        ``gamma_J_m2``, ``sphere_radius_m``, ``poisson``, ``P_Hz_per_N_per_m``)
+    loads : the per-load table (``configuration``, ``normal_force_N``): the grid of a group
+        runs from 0 to 1.05 times the largest load of its configuration (every medium)
+    n : points per curve
+
+    Returns
+    -------
+    DataFrame
+        ``configuration``, ``medium``, ``normal_force_N`` (N), ``kappa_N_per_m`` (N/m, paper 2,
+        Eqs. 6-10 with the fitted E and γ) and ``df0_model_Hz`` (= P κ, Hz, paper 2, Eq. 1);
+        no rows for a group whose E is withheld.
+    """
+    from ..tangential import kappa_jkr_mindlin
+
+    frames = []
+    for g in groups:
+        if not np.isfinite(g["E_Pa"]):
+            continue
+        part = loads[loads["configuration"] == g["configuration"]]
+        F = np.linspace(0.0, part["normal_force_N"].max() * 1.05, n)
+        k = kappa_jkr_mindlin(F, g["E_Pa"], g["gamma_J_m2"], g["sphere_radius_m"], g["poisson"])
+        frames.append(
+            pd.DataFrame(
+                {
+                    "configuration": g["configuration"],
+                    "medium": g["medium"],
+                    "normal_force_N": F,
+                    "kappa_N_per_m": k,
+                    "df0_model_Hz": g["P_Hz_per_N_per_m"] * k,
+                }
+            )
+        )
+    columns = ["configuration", "medium", "normal_force_N", "kappa_N_per_m", "df0_model_Hz"]
+    return pd.concat(frames, ignore_index=True) if frames else pd.DataFrame(columns=columns)

@@ -79,7 +79,7 @@ from ..units import JUNCTION_SIGMAS, LINEAR_ONSET_X, MAX_MU, MIN_SWEEP_POINTS, S
 from ._amplitude import pad_sweeps
 from ._blocks import block_codes, choose_blocks
 from ._classify import apply_models, fit_sweeps
-from ._curves import fitted_curves, sweep_points
+from ._curves import fitted_curves, jkr_curves, sweep_points
 from ._drift import LOAD_OF_EXPERIMENT, drifting_sweeps, remove_linear_drift
 from ._flags import Flag
 from ._friction import block_friction, loop_friction, slope_friction
@@ -410,6 +410,7 @@ def analyze(
 
     say("the fitted curves of every sweep")
     curves = fitted_curves(sw, padded, fits)
+    jkr = jkr_curves(groups, loads)
 
     radiation = None
     if settings.sphere_material is not None and settings.plate_material is not None:
@@ -443,4 +444,5 @@ def analyze(
         block_fits=block_fits,
         messages=tuple(messages),
         radiation=radiation,
+        jkr=jkr,
     )

@@ -51,6 +51,8 @@ class Results:
         place of ``sweep`` (the Coulomb loops' with ``bic_shared``, their shared criterion)
     radiation : one row per load: the radiation loss of the contact against the measured one
         (:func:`contactres.analysis.radiation_loss`; None: no materials were given)
+    jkr : the fitted JKR + Mindlin curve κ(F_N) of every group on the grid Fig. 5 draws
+        (:func:`contactres.analysis._curves.jkr_curves`)
     """
 
     sweeps: pd.DataFrame
@@ -67,6 +69,7 @@ class Results:
     blocks: pd.DataFrame | None = None
     block_fits: Mapping[str, pd.DataFrame] = field(default_factory=dict, repr=False)
     radiation: pd.DataFrame | None = None
+    jkr: pd.DataFrame | None = field(default=None, repr=False)
 
     def table1(self) -> pd.DataFrame:
         """Table 1 of paper 2 for these data: E (GPa) and γ (mJ/m²) per configuration/medium.

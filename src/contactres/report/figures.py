@@ -23,7 +23,6 @@ import pandas as pd
 from ..analysis import FIGURE_POINTS, sweep_rows
 from ..fileio import save_figure
 from ..measurements import SweepWarning
-from ..tangential import kappa_jkr_mindlin
 
 if TYPE_CHECKING:
     from matplotlib.figure import Figure
@@ -249,12 +248,13 @@ def figure_stiffness(results) -> Figure:
         for g in sorted(results.groups, key=lambda g: g["medium"]):
             if g["configuration"] != config or not np.isfinite(g["E_Pa"]):
                 continue
-            part = loads[loads["configuration"] == config]
-            F = np.linspace(0.0, part["normal_force_N"].max() * 1.05, 100)
-            k = kappa_jkr_mindlin(F, g["E_Pa"], g["gamma_J_m2"], g["sphere_radius_m"], g["poisson"])
+            # The curve the analysis computed with the fit (Results.jkr): drawn, not evaluated.
+            curve = results.jkr[
+                (results.jkr["configuration"] == config) & (results.jkr["medium"] == g["medium"])
+            ]
             ax.plot(
-                F * 1e3,
-                g["P_Hz_per_N_per_m"] * k,
+                curve["normal_force_N"].to_numpy() * 1e3,
+                curve["df0_model_Hz"].to_numpy(),
                 ":",
                 color=f"C{media.index(g['medium'])}",
                 label=(
