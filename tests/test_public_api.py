@@ -7,13 +7,10 @@ effect of an edit elsewhere.
 * ``contactres.__all__`` exactly (the names the API reference, docs/api.md, lists;
   tests/report/test_docs_site.py keeps that reference complete).
 * The subpackages ``contactres`` loads on attribute access.
-* For each public subpackage (or module) with names of its own, the names of its ``__all__`` that
-  the documentation names: a top-level name, or one the docs or the README call by its qualified
-  name (``contactres.polycrystal.fit_map``). The rest of each ``__all__`` (named nowhere in the
-  docs) are listed apart, in ``UNDOCUMENTED``, and are not public: a later step renames the
-  internal helpers among them with a leading underscore and drops them from that list. The
-  subpackages whose modules are private (below) have no such names: every name of their
-  ``__all__`` is documented (docs/api.md).
+* For each public subpackage (or module) with names of its own, every name of its ``__all__``:
+  each is public and listed at its public path in the API reference, docs/api.md
+  (tests/report/test_docs_site.py). A helper that is not meant for users has a leading
+  underscore and is in no ``__all__``.
 * The modules of ``contactres.jobs``, one per workflow, and the names of each: ``Settings``,
   ``Result`` and ``run`` are the public API of every job (docs/developer/adding.md).
 * scipy's rule (its ``test_all_modules_are_expected``): the public surface of a subpackage is its
@@ -211,7 +208,12 @@ PUBLIC = {
         "render",
         "sweep_rows",
     ],
-    "crystals": ["crystal_names", "crystal_table"],
+    "crystals": [
+        "CrystalRecord",
+        "crystal_names",
+        "crystal_record",
+        "crystal_table",
+    ],
     "dynamic": [
         "ALL_MODELS",
         "KSA_MAX",
@@ -241,6 +243,7 @@ PUBLIC = {
     ],
     "halfspace": [
         "dynamic_kernel",
+        "has_mirror_plane",
         "inv3",
         "isotropic_dynamic_kernel",
         "mm",
@@ -258,7 +261,16 @@ PUBLIC = {
         "stack_compliance",
         "surface_green",
     ],
-    "materials": ["Material", "at_cut_quartz"],
+    "materials": [
+        "AT_CUT_ANGLE",
+        "Material",
+        "at_cut_quartz",
+        "require_material",
+        "rotate_tensor",
+        "rotation_to_surface",
+        "tensor_to_voigt",
+        "voigt_to_tensor",
+    ],
     "measurements": [
         "CONSTANTS",
         "D26_AT",
@@ -288,6 +300,7 @@ PUBLIC = {
     "normal": [
         "AnisotropicContact",
         "Contact",
+        "ContactIntegrals",
         "LayeredContact",
         "THETA_RTOL",
         "contact_integrals",
@@ -325,6 +338,7 @@ PUBLIC = {
         "NormalTable",
         "OrientationMap",
         "SyntheticPolycrystal",
+        "TriangleModuli",
         "check_map_output",
         "contact_stiffness_map",
         "dynamic_factor_map",
@@ -359,11 +373,14 @@ PUBLIC = {
         "surface_matrix_from_miller",
         "symmetry_operators",
         "synthetic_polycrystal",
+        "triangle_moduli",
         "write_ang",
         "write_ctf",
         "write_map",
     ],
-    "apps": ["write_demo"],
+    "apps": [
+        "write_demo",
+    ],
     "resonators": [
         "Cantilever",
         "ContactResonanceResult",
@@ -422,9 +439,133 @@ PUBLIC = {
         "mindlin_stiffness",
         "with_dashpot",
     ],
+    "fileio": [
+        "CSV_FLOAT_FORMAT",
+        "MANIFEST",
+        "OutputError",
+        "ResultSet",
+        "check_output",
+        "check_output_file",
+        "ensure_dir",
+        "neutralised",
+        "replace_folder",
+        "save_figure",
+        "write_csv",
+        "write_text",
+    ],
+    "fitting": [
+        "FitResult",
+        "LMOptions",
+        "LeastSquaresResult",
+        "Model",
+        "ModelRegistry",
+        "Parameter",
+        "fit",
+        "levenberg_marquardt",
+        "solve_stacked",
+    ],
+    "jobs.maps": [
+        "METHODS",
+        "TipLoad",
+        "fit_measured_map",
+        "fit_record",
+        "open_map",
+        "predict_map",
+        "read_value_grid",
+        "synthetic_map",
+    ],
+    "numerics": [
+        "gauss_legendre",
+        "gauss_legendre_unit",
+    ],
+    "units": [
+        "ABSOLUTE_FREQUENCY_FRACTION",
+        "JUNCTION_SIGMAS",
+        "LINEAR_ONSET_X",
+        "MAX_AMPLITUDE_M",
+        "MAX_MU",
+        "MIN_SWEEP_POINTS",
+        "POISSON_OPEN_RANGE",
+        "Plausible",
+        "QUANTITIES",
+        "SMALL_LOAD_LIMIT",
+        "check_magnitude",
+        "format_number",
+        "unit_slip",
+    ],
+    "validation": [
+        "amplitude",
+        "nonnegative",
+        "positive",
+    ],
     **{f"jobs.{job}": JOB_API for job in JOBS},
-    "jobs.contract": ["JobResult", "say"],
-    "jobs.readers": ["ALL_READERS"],
+    "jobs.contact": [
+        *JOB_API,
+        "MAX_COATING_LAYERS",
+        "STATIC_FREQUENCY_HZ",
+        "coating_materials",
+        "parse_coating",
+    ],
+    "jobs.demo": [
+        *JOB_API,
+        "STEPS",
+    ],
+    "jobs.maps_predict": [
+        *JOB_API,
+        "TRIANGLE_GRID",
+    ],
+    "jobs.paper1": [
+        *JOB_API,
+        "KLA",
+        "LOSS",
+        "PAPER_MODELS",
+        "crystal_curves",
+        "cubic",
+        "displacement",
+        "fig3_curves",
+        "ranking_table",
+        "wa_with_exact",
+    ],
+    "jobs.paper2": [
+        *JOB_API,
+        "Paper2Example",
+        "loops_table",
+        "shifts_table",
+    ],
+    "jobs.qcm_loop": [
+        *JOB_API,
+        "MODELS",
+    ],
+    "jobs.qcm_stiffness": [
+        *JOB_API,
+        "COLUMN_UNITS",
+        "EQUATION",
+        "stiffness_table",
+    ],
+    "jobs.qcm_sweeps": [
+        *JOB_API,
+        "Reading",
+        "loads_table",
+        "radiation_table",
+        "read",
+        "stages",
+        "summary",
+        "sweeps_table",
+        "warning_lines",
+    ],
+    "jobs.contract": [
+        "JobResult",
+        "Progress",
+        "json_value",
+        "say",
+    ],
+    "jobs.readers": [
+        "ALL_READERS",
+        "GRID_READER",
+        "read_ebsd_file",
+        "read_grid_file",
+        "read_value_grid",
+    ],
 }
 
 # scipy's rule: a subpackage's public surface is its ``__init__``; the modules that implement it
@@ -466,106 +607,6 @@ LAZY_PACKAGES = [
     "resonators",
 ]
 
-# In __all__ (or re-exported) but named nowhere in the docs: internal, not pinned as public.
-UNDOCUMENTED = {
-    "crystals": ["CrystalRecord", "crystal_record"],
-    "fileio": [
-        "CSV_FLOAT_FORMAT",
-        "MANIFEST",
-        "OutputError",
-        "ResultSet",
-        "check_output",
-        "check_output_file",
-        "ensure_dir",
-        "neutralised",
-        "replace_folder",
-        "save_figure",
-        "write_csv",
-        "write_text",
-    ],
-    "fitting": [
-        "FitResult",
-        "LMOptions",
-        "LeastSquaresResult",
-        "Model",
-        "ModelRegistry",
-        "Parameter",
-        "fit",
-        "levenberg_marquardt",
-        "solve_stacked",
-    ],
-    "halfspace": ["has_mirror_plane"],
-    "materials": [
-        "AT_CUT_ANGLE",
-        "require_material",
-        "rotate_tensor",
-        "rotation_to_surface",
-        "tensor_to_voigt",
-        "voigt_to_tensor",
-    ],
-    "normal": ["ContactIntegrals"],
-    "numerics": ["gauss_legendre", "gauss_legendre_unit"],
-    "units": [
-        "ABSOLUTE_FREQUENCY_FRACTION",
-        "JUNCTION_SIGMAS",
-        "LINEAR_ONSET_X",
-        "MAX_AMPLITUDE_M",
-        "MAX_MU",
-        "MIN_SWEEP_POINTS",
-        "POISSON_OPEN_RANGE",
-        "QUANTITIES",
-        "SMALL_LOAD_LIMIT",
-        "Plausible",
-        "check_magnitude",
-        "format_number",
-        "unit_slip",
-    ],
-    "validation": ["amplitude", "nonnegative", "positive"],
-    "jobs.contact": [
-        "MAX_COATING_LAYERS",
-        "STATIC_FREQUENCY_HZ",
-        "coating_materials",
-        "parse_coating",
-    ],
-    "jobs.contract": ["Progress", "json_value"],
-    "jobs.demo": ["STEPS"],
-    "jobs.maps": [
-        "METHODS",
-        "TipLoad",
-        "fit_measured_map",
-        "fit_record",
-        "open_map",
-        "predict_map",
-        "read_value_grid",
-        "synthetic_map",
-    ],
-    "jobs.paper1": [
-        "KLA",
-        "LOSS",
-        "PAPER_MODELS",
-        "crystal_curves",
-        "cubic",
-        "displacement",
-        "fig3_curves",
-        "ranking_table",
-        "wa_with_exact",
-    ],
-    "jobs.paper2": ["Paper2Example", "loop_cases", "loops_table", "shifts_table"],
-    "jobs.qcm_loop": ["MODELS", "build_loop"],
-    "jobs.qcm_stiffness": ["COLUMN_UNITS", "EQUATION", "stiffness_table"],
-    "jobs.qcm_sweeps": [
-        "Reading",
-        "loads_table",
-        "radiation_table",
-        "read",
-        "stages",
-        "summary",
-        "sweeps_table",
-        "warning_lines",
-    ],
-    "jobs.readers": ["GRID_READER", "read_ebsd_file", "read_grid_file", "read_value_grid"],
-}
-
 
 def own_names(module: types.ModuleType) -> set[str]:
     """``__all__``, else the public attributes that are not modules (a re-exporting package)."""
@@ -592,9 +633,8 @@ def test_subpackages_are_pinned():
 @pytest.mark.parametrize("name", [*SUBPACKAGES, *(f"jobs.{m}" for m in (*JOBS, *JOB_HELPERS))])
 def test_subpackage_names_are_pinned(name):
     module = importlib.import_module(f"contactres.{name}")
-    public, undocumented = set(PUBLIC.get(name, [])), set(UNDOCUMENTED.get(name, []))
-    assert not public & undocumented
-    assert own_names(module) == public | undocumented
+    public = set(PUBLIC.get(name, []))
+    assert own_names(module) == public
     missing = sorted(n for n in public if not hasattr(module, n))
     assert not missing, f"contactres.{name}: pinned public names that do not resolve: {missing}"
 
@@ -645,15 +685,14 @@ def test_dir_of_a_lazy_subpackage_is_its_public_names(name):
     """``dir()`` shows what a user may call: the pinned names, and public submodules only."""
     module = importlib.import_module(f"contactres.{name}")
     names = [n for n in dir(module) if not isinstance(getattr(module, n), types.ModuleType)]
-    pinned = [*PUBLIC.get(name, []), *UNDOCUMENTED.get(name, [])]
+    pinned = PUBLIC.get(name, [])
     assert names == sorted(module.__all__) == sorted(pinned)
     assert not [n for n in dir(module) if n.startswith("_")]
 
 
 def test_pinned_lists_have_no_duplicates():
-    for lists in (PUBLIC, UNDOCUMENTED):
-        for name, names in lists.items():
-            assert len(set(names)) == len(names), name
+    for name, names in PUBLIC.items():
+        assert len(set(names)) == len(names), name
     assert len(set(TOP_LEVEL)) == len(TOP_LEVEL)
 
 

@@ -5,10 +5,14 @@
   so a name added to ``contactres.__all__`` cannot be missing from the reference; every entry
   names a public name of a public module; and every public name of the subpackages whose
   modules are private (scipy's rule: their ``__init__`` is their public surface) is listed.
+* Every name of the ``__all__`` of every public module (a package or module without a leading
+  underscore in its path: the subpackages, the jobs, the top-level modules) is listed at that
+  module's path: nothing public goes undocumented.
 * The README links the docs' entry page, and that page exists.
 """
 
 import importlib
+import pkgutil
 import re
 from pathlib import Path
 
@@ -51,6 +55,27 @@ def test_every_entry_of_the_api_reference_is_a_public_name_of_a_public_module():
         module, _, name = entry.rpartition(".")
         assert not any(part.startswith("_") for part in entry.split(".")), entry
         assert name in importlib.import_module(module).__all__, entry
+
+
+def _public_modules() -> list[str]:
+    found = []
+    for info in pkgutil.walk_packages(contactres.__path__, "contactres."):
+        if not any(part.startswith("_") for part in info.name.split(".")):
+            found.append(info.name)
+    return sorted(found)
+
+
+def test_every_name_of_every_public_module_is_listed():
+    listed = _listed()
+    modules = _public_modules()
+    assert "contactres.fileio" in modules and "contactres.jobs.maps" in modules  # the walk works
+    missing = []
+    for name in modules:
+        module = importlib.import_module(name)
+        missing += [
+            f"{name}.{n}" for n in getattr(module, "__all__", []) if f"{name}.{n}" not in listed
+        ]
+    assert missing == []
 
 
 def test_the_readme_links_the_docs_entry_page():

@@ -134,3 +134,76 @@ def test_bad_input():
         modulus_map_figure(M, n, "cubic", exact(CU), pixel_size=-1.0)
     with pytest.raises(ValueError, match="one finite M"):
         modulus_map_figure(M, n, "cubic", lambda v: np.ones(3), grid_points=GRID)
+
+
+# ------------------------------------------------------------ the legend the job computed
+
+
+def _triangle_image(fig):
+    ax_tri = fig.axes[2]
+    (img,) = [a for a in ax_tri.get_children() if isinstance(a, AxesImage)]
+    return img
+
+
+def test_triangle_moduli_at_the_corners_are_the_faces_indentation_moduli():
+    from contactres.normal import indentation_modulus
+    from contactres.polycrystal import triangle_moduli
+
+    tri = triangle_moduli("cubic", exact(CU), GRID)
+    # [001] is the origin of the projection, <110> (written [011] in the triangle's crystal
+    # coordinates) the end of its X axis: corners of the grid
+    assert np.allclose(tri.triangle.normals[0, 0], [0, 0, 1])
+    assert np.allclose(tri.triangle.normals[0, -1], np.array([0, 1, 1]) / np.sqrt(2))
+    # an independent route: the θ integral of paper 1, Eq. 4 on the rotated crystal
+    for (i, j), face in (((0, 0), (0, 0, 1)), ((0, -1), (0, 1, 1))):
+        expected = indentation_modulus(CU.rotated(normal=face))
+        assert tri.moduli[i, j] == pytest.approx(expected, rel=1e-7)
+    assert np.isnan(tri.moduli[~tri.cells]).all() and np.isfinite(tri.moduli[tri.cells]).all()
+    lo, hi = tri.inside_range
+    assert lo == pytest.approx(indentation_modulus(CU.rotated(normal=(0, 0, 1))), rel=1e-7)
+    assert hi == pytest.approx(indentation_modulus(CU.rotated(normal=(1, 1, 1))), rel=1e-2)
+
+
+def test_the_figure_draws_the_triangle_it_is_given_without_evaluating_m():
+    from contactres.polycrystal import triangle_moduli
+
+    def fake(n):  # any function of the normal: the figure must draw exactly these values
+        return 1e11 * (1.0 + n[:, 0] + 2.0 * n[:, 1])
+
+    given = triangle_moduli("cubic", fake, GRID)
+    m = synthetic_polycrystal((10, 12), 3, seed=4)
+    R = m.surface_matrices()
+    M = np.full(m.shape, 1.2e11)
+    fig = modulus_map_figure(M, R[..., 2, :], "cubic", given)
+    img = _triangle_image(fig)
+    drawn = np.ma.filled(img.get_array().astype(float), np.nan)
+    np.testing.assert_array_equal(np.isnan(drawn), np.isnan(given.moduli))
+    ok = np.isfinite(drawn)
+    np.testing.assert_allclose(drawn[ok], given.moduli[ok] / 1e9, rtol=1e-15)
+    assert img.norm.vmin == pytest.approx(given.inside_range[0] / 1e9, rel=1e-15)
+    with pytest.raises(ValueError, match="hexagonal lattice"):
+        modulus_map_figure(M, R[..., 2, :], "cubic", triangle_moduli("hexagonal", fake, GRID))
+
+
+def test_prediction_figure_draws_the_triangle_of_the_maps_predict_result():
+    import dataclasses
+    from importlib.resources import as_file, files
+
+    from contactres.jobs import maps_predict
+    from contactres.jobs.maps import TipLoad
+    from contactres.polycrystal import triangle_moduli
+    from contactres.report import prediction_figure
+
+    settings = maps_predict.Settings(CU, "cubic", TipLoad(radius=20e-9, force=1e-6))
+    with as_file(files("contactres") / "data" / "example_cu_map.ang") as ang:
+        result = maps_predict.run(ang, settings)
+    # the job's legend is exact M over the triangle
+    assert result.triangle.moduli.shape == (maps_predict.TRIANGLE_GRID,) * 2
+    ok = result.triangle.cells
+    n = result.triangle.normals
+    np.testing.assert_allclose(result.triangle.moduli[ok], exact(CU)(n), rtol=1e-12)
+    # the figure draws the result's values: swap them for others and see those drawn
+    other = triangle_moduli("cubic", lambda v: 1e11 + 1e10 * v[:, 2], maps_predict.TRIANGLE_GRID)
+    fig = prediction_figure(dataclasses.replace(result, triangle=other))
+    drawn = np.ma.filled(_triangle_image(fig).get_array().astype(float), np.nan)
+    np.testing.assert_allclose(drawn[other.cells], other.moduli[other.cells] / 1e9, rtol=1e-15)

@@ -60,17 +60,16 @@ def _write_polycrystal(result: job.Result, out: Path) -> list[Path]:
     """The bundled Cu map: the M map with the IPF-coloured legend (M_map.png) and the constants
     fitted back from the measured k* map (fit.json): polycrystal/."""
     from ..fileio import save_figure, write_text
-    from ..materials import Material
-    from ..polycrystal import folded_normals, indentation_moduli, surface_matrices_from_normals
+    from ..polycrystal import folded_normals
     from ..report import modulus_map_figure
 
     folder = ensure_dir(out / "polycrystal")
-    cu, omap = Material.crystal("Cu"), result.map_orientations
+    omap = result.map_orientations
     fig = modulus_map_figure(
         result.map_dataset["M_Pa"].values,
         folded_normals(omap, "cubic"),
         "cubic",
-        lambda n: indentation_moduli(cu, surface_matrices_from_normals(n)),
+        result.map_triangle,
         pixel_size=omap.step_x,
         material_name="Cu",
     )

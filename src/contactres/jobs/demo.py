@@ -28,7 +28,7 @@ from .contract import JobResult, Progress, say
 if TYPE_CHECKING:
     import xarray as xr
 
-    from ..polycrystal import OrientationMap
+    from ..polycrystal import OrientationMap, TriangleModuli
     from . import paper2
 
 __all__ = ["STEPS", "Result", "Settings", "run"]
@@ -60,7 +60,8 @@ class Result(JobResult):
     (:data:`~contactres.measurements.schema.CRYSTAL_TABLE`), the ``paper2`` job's
     Result, the crystals' DCSF curves (``crystal_dcsf``: label -> DCSF on the grid
     ``contactres.jobs.paper1.KLA``) and the polycrystal map (``map_dataset``, the orientation
-    map ``map_orientations``, the fit record ``map_fit``)."""
+    map ``map_orientations``, the fit record ``map_fit``, M over the standard triangle for the
+    legend of the map's figure ``map_triangle``)."""
 
     SCHEMAS = MappingProxyType(
         {"crystals": CRYSTAL_TABLE, "spectra_rows": SPECTRA_SWEEPS, "spectra_fits": SPECTRA_FITS}
@@ -73,6 +74,7 @@ class Result(JobResult):
         "map_dataset",
         "map_orientations",
         "map_fit",
+        "map_triangle",
         "warnings",
     )
 
@@ -86,6 +88,7 @@ class Result(JobResult):
     map_dataset: xr.Dataset
     map_orientations: OrientationMap
     map_fit: dict
+    map_triangle: TriangleModuli
 
 
 def _sweeps():
@@ -107,9 +110,12 @@ def _spectra():
 
 
 def _polycrystal():
-    """The predicted map of the bundled Cu orientations and the fit of the measured map."""
+    """The predicted map of the bundled Cu orientations (with M over the standard triangle, the
+    legend of its figure) and the fit of the measured map."""
     from ..materials import Material
+    from ..polycrystal import indentation_moduli, surface_matrices_from_normals, triangle_moduli
     from .maps import TipLoad, fit_measured_map, fit_record, open_map, predict_map
+    from .maps_predict import TRIANGLE_GRID
     from .readers import read_grid_file
 
     cu = Material.crystal("Cu")
@@ -120,7 +126,12 @@ def _polycrystal():
     ds, _ = predict_map(omap, cu, "cubic", TipLoad(radius=20e-9, force=1e-6))
     result, _, used = fit_measured_map(omap, measured, quantity="stiffness")
     record = fit_record(result, source="example_cu_map.ang + example_cu_kstar.csv", pixels=used)
-    return ds, omap, record
+    triangle = triangle_moduli(
+        "cubic",
+        lambda n: indentation_moduli(cu, surface_matrices_from_normals(n)),
+        TRIANGLE_GRID,
+    )
+    return ds, omap, record, triangle
 
 
 def run(inputs: None = None, settings: Settings | None = None, progress: Progress | None = None):
@@ -139,7 +150,7 @@ def run(inputs: None = None, settings: Settings | None = None, progress: Progres
     say(progress, STEPS[4])
     curves = paper1.crystal_curves(model=CRYSTAL_DCSF_MODEL)
     say(progress, STEPS[5])
-    ds, omap, record = _polycrystal()
+    ds, omap, record, triangle = _polycrystal()
     return Result(
         sweeps_analysis=sweeps_analysis,
         spectra_rows=rows,
@@ -151,4 +162,5 @@ def run(inputs: None = None, settings: Settings | None = None, progress: Progres
         map_dataset=ds,
         map_orientations=omap,
         map_fit=record,
+        map_triangle=triangle,
     )

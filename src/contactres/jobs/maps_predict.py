@@ -9,6 +9,10 @@ evaluated, the frequency and model of the DCSF, the chunks and the dask schedule
 Besides ``progress`` (one line per stage), :func:`run` takes ``chunk_progress(done, total)``,
 called after each chunk of pixels: the evaluation of a large map is long, and a bar needs
 numbers, not lines.
+
+The result also holds M over the standard triangle of surface normals (exact, paper 1's
+Eqs. 1-4 for each normal, on a grid of :data:`TRIANGLE_GRID` points per axis): the legend of
+the map's figure (:func:`contactres.report.prediction_figure` draws it, never evaluates M).
 """
 
 from __future__ import annotations
@@ -23,9 +27,13 @@ if TYPE_CHECKING:
     import os
 
     from ..materials import Material
+    from ..polycrystal import TriangleModuli
     from .maps import TipLoad
 
-__all__ = ["Result", "Settings", "run"]
+__all__ = ["TRIANGLE_GRID", "Result", "Settings", "run"]
+
+#: Grid points per axis of the standard triangle on which M is evaluated for the figure's legend.
+TRIANGLE_GRID = 81
 
 
 @dataclass(frozen=True)
@@ -75,15 +83,16 @@ class Settings:
 class Result(JobResult):
     """``dataset``: the map's variables plus M_Pa, E_star_Pa, contact_radius_m, k_star_N_per_m
     (and the DCSF at a frequency), an :mod:`xarray` Dataset; ``info``: how M was evaluated
-    (method, stated_error, exact_evaluations); ``material`` and ``lattice``: the crystal, for
-    the figure of the map."""
+    (method, stated_error, exact_evaluations); ``material`` and ``lattice``: the crystal;
+    ``triangle``: M (Pa) over the standard triangle, exact (the legend of the map's figure)."""
 
-    NOT_VALUES = ("dataset", "material", "warnings")
+    NOT_VALUES = ("dataset", "material", "triangle", "warnings")
 
     dataset: object
     info: dict
     material: Material
     lattice: str
+    triangle: TriangleModuli
 
 
 def run(
@@ -94,7 +103,12 @@ def run(
 ) -> Result:
     """The predicted map of the orientations ``inputs`` (see the module docstring)."""
     from ..errors import ContactresInputError
-    from ..polycrystal import indexed_pixels
+    from ..polycrystal import (
+        indentation_moduli,
+        indexed_pixels,
+        surface_matrices_from_normals,
+        triangle_moduli,
+    )
     from .maps import open_map, predict_map
 
     s = settings
@@ -118,4 +132,11 @@ def run(
         progress=chunk_progress,
         pixels=pixels,
     )
-    return Result(dataset=ds, info=dict(info), material=s.material, lattice=s.lattice)
+    triangle = triangle_moduli(
+        s.lattice,
+        lambda n: indentation_moduli(s.material, surface_matrices_from_normals(n)),
+        TRIANGLE_GRID,
+    )
+    return Result(
+        dataset=ds, info=dict(info), material=s.material, lattice=s.lattice, triangle=triangle
+    )

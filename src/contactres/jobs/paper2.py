@@ -32,7 +32,6 @@ __all__ = [
     "Paper2Example",
     "Result",
     "Settings",
-    "loop_cases",
     "loops_table",
     "run",
     "shifts_table",
@@ -84,7 +83,7 @@ class Paper2Example:
         return VoigtLoop(self.kappa, self.xi, self.qcm.omega)
 
 
-def loop_cases(example: Paper2Example):
+def _loop_cases(example: Paper2Example):
     """The loops of Fig. 2C-D: (name, loop) of the Voigt contact and of Cattaneo-Mindlin
     without dashpot."""
     return (("voigt", example.voigt()), ("cattaneo_mindlin", example.cattaneo_mindlin(False)))
@@ -101,7 +100,7 @@ def loops_table(example: Paper2Example, amplitudes=(10e-9, 20e-9)):
     u_m, F_plus_N, F_minus_N (201 points a loop); ``turning``: model, u0_m and the force at the
     turning point F(u0), N (Δf ∝ F(u0)/u0)."""
     tables, turning = [], []
-    for name, loop in loop_cases(example):
+    for name, loop in _loop_cases(example):
         for u0 in amplitudes:
             tables.append(_loop_table(name, loop, u0))
             turning.append({"model": name, "u0_m": u0, "F_u0_N": loop.branches(u0, u0)[0]})

@@ -25,7 +25,7 @@ if TYPE_CHECKING:
 
     from ..tangential import MasingLoop
 
-__all__ = ["MODELS", "Result", "Settings", "build_loop", "run"]
+__all__ = ["MODELS", "Result", "Settings", "run"]
 
 #: The loop models: Cattaneo-Mindlin, Savkoor, linear Voigt element.
 MODELS = ("cm", "savkoor", "voigt")
@@ -84,7 +84,7 @@ class Result(JobResult):
     warnings: tuple[str, ...] = ()
 
 
-def build_loop(s: Settings, omega: float):
+def _build_loop(s: Settings, omega: float):
     """The loop of the settings ``s`` at angular frequency ``omega`` (rad/s), as
     :func:`contactres.shifts_from_loop` takes it (ContactresInputError naming a missing
     parameter)."""
@@ -125,7 +125,7 @@ def run(inputs: None, settings: Settings, progress: Progress | None = None) -> R
 
     s = settings
     q = QCM(fundamental=s.fundamental, overtone=s.overtone, area=s.area, zq=s.zq)
-    loop = build_loop(s, q.omega)
+    loop = _build_loop(s, q.omega)
     u0 = np.atleast_1d(np.asarray(s.u0, dtype=float))  # a single amplitude: one row
     say(progress, f"shifts at {u0.size} amplitudes")
     with warnings.catch_warnings(record=True) as caught:

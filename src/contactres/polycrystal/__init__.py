@@ -48,6 +48,8 @@ _EXPORTS = MappingProxyType(
         "ipf_colors": "._ipf",
         "ipf_triangle": "._ipf",
         "IPFTriangle": "._ipf",
+        "TriangleModuli": "._ipf",
+        "triangle_moduli": "._ipf",
         "MAP_CONVENTIONS": "._maps",
         "check_map_output": "._maps",
         "evaluate_map": "._maps",
@@ -118,6 +120,8 @@ if TYPE_CHECKING:
         IPFTriangle as IPFTriangle,
         ipf_colors as ipf_colors,
         ipf_triangle as ipf_triangle,
+        TriangleModuli as TriangleModuli,
+        triangle_moduli as triangle_moduli,
     )
     from ._maps import (
         ExactModulus as ExactModulus,

@@ -35,6 +35,7 @@ G. Nolze and R. Hielscher, "Orientations - perfectly colored", J. Appl. Cryst. 4
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
@@ -42,7 +43,15 @@ import numpy as np
 from ..errors import ContactresInputError
 from ._normal_table import reduce_normals, zone_bounds
 
-__all__ = ["IPF_CORNER_LABELS", "IPFTriangle", "ipf_colors", "ipf_triangle", "triangle_geometry"]
+__all__ = [
+    "IPF_CORNER_LABELS",
+    "IPFTriangle",
+    "TriangleModuli",
+    "ipf_colors",
+    "ipf_triangle",
+    "triangle_geometry",
+    "triangle_moduli",
+]
 
 #: Corner labels (red, green, blue) as matplotlib mathtext, per lattice.
 IPF_CORNER_LABELS: dict[str, tuple[str, str, str]] = {
@@ -230,3 +239,93 @@ def ipf_triangle(lattice: str, n: int = 101, boundary_points: int = 60) -> IPFTr
         _to_plane(corners, lattice),
         IPF_CORNER_LABELS[lattice],
     )
+
+
+def _dilated(mask: np.ndarray) -> np.ndarray:
+    """``mask`` grown by one cell in the 8 directions (array shifts, no loop over cells)."""
+    out = mask.copy()
+    out[1:] |= mask[:-1]
+    out[:-1] |= mask[1:]
+    grown = out.copy()
+    out[:, 1:] |= grown[:, :-1]
+    out[:, :-1] |= grown[:, 1:]
+    return out
+
+
+@dataclass(frozen=True)
+class TriangleModuli:
+    """A modulus over the grid of the standard triangle: the legend of a modulus map.
+
+    Attributes
+    ----------
+    triangle : IPFTriangle
+        The triangle and its grid (:func:`ipf_triangle`).
+    cells : ndarray of bool, shape (n, n)
+        The grid points where the modulus was evaluated: those inside the triangle and one
+        cell beyond its outline (a figure draws the cells cut by the outline, then clips them).
+    normals : ndarray, shape (P, 3)
+        The unit crystal directions of the ``cells``, folded into the triangle
+        (:func:`reduce_normals`; beyond the outline they are the equivalents inside it).
+    moduli : ndarray, shape (n, n)
+        The modulus at each grid point, Pa; NaN outside ``cells``.
+    """
+
+    triangle: IPFTriangle
+    cells: np.ndarray
+    normals: np.ndarray
+    moduli: np.ndarray
+
+    @property
+    def inside_range(self) -> tuple[float, float]:
+        """(min, max) of the modulus over the triangle itself (not the cells beyond), Pa."""
+        inner = self.moduli[self.triangle.inside]
+        return float(inner.min()), float(inner.max())
+
+
+def triangle_moduli(
+    lattice: str, modulus_of_normals: Callable[[np.ndarray], np.ndarray], n: int = 81
+) -> TriangleModuli:
+    """Evaluate a modulus of the surface normal over the standard triangle's grid.
+
+    Parameters
+    ----------
+    lattice : {"cubic", "hexagonal"}
+        Laue group m-3m or 6/mmm.
+    modulus_of_normals : callable
+        ``f(normals) -> M`` in Pa for unit crystal directions of shape (P, 3), e.g.
+        ``lambda v: indentation_moduli(material, surface_matrices_from_normals(v))``
+        (:func:`indentation_moduli`, paper 1, Eqs. 1-4). Called once, on every cell at once.
+    n : int
+        Grid points per axis (≥ 2), as :func:`ipf_triangle`.
+
+    Returns
+    -------
+    TriangleModuli
+
+    Raises
+    ------
+    ContactresInputError
+        For an unknown lattice, a bad ``n``, or a ``modulus_of_normals`` that does not return
+        one finite value per direction.
+
+    Examples
+    --------
+    The modulus of a direction-independent function is that constant everywhere:
+
+    >>> import numpy as np
+    >>> t = triangle_moduli("cubic", lambda v: np.full(len(v), 1e11), n=11)
+    >>> t.inside_range
+    (100000000000.0, 100000000000.0)
+    """
+    tri = ipf_triangle(lattice, n)
+    cells = _dilated(tri.inside)
+    folded, _ = reduce_normals(tri.normals[cells], lattice)
+    values = np.asarray(modulus_of_normals(folded), dtype=float)
+    if values.shape != (folded.shape[0],) or not np.all(np.isfinite(values)):
+        raise ContactresInputError(
+            f"modulus_of_normals must return one finite M (Pa) per direction: shape "
+            f"({folded.shape[0]},), got {values.shape}"
+        )
+    grid = np.full(tri.inside.shape, np.nan)
+    grid[cells] = values
+    return TriangleModuli(triangle=tri, cells=cells, normals=folded, moduli=grid)

@@ -113,13 +113,9 @@ def stiffness_figure(result):
 
 def prediction_figure(result):
     """The map of M of a :class:`contactres.jobs.maps_predict.Result` with the IPF-coloured
-    legend of the faces (:func:`contactres.report.modulus_map_figure`)."""
-    from ..polycrystal import (
-        folded_normals,
-        indentation_moduli,
-        map_from_dataset,
-        surface_matrices_from_normals,
-    )
+    legend of the faces (:func:`contactres.report.modulus_map_figure`): M over the standard
+    triangle as the job computed it (``result.triangle``)."""
+    from ..polycrystal import folded_normals, map_from_dataset
     from ._map_figures import modulus_map_figure
 
     ds, material, lattice = result.dataset, result.material, result.lattice
@@ -128,7 +124,7 @@ def prediction_figure(result):
         ds["M_Pa"].values,
         folded_normals(omap, lattice),
         lattice,
-        lambda n: indentation_moduli(material, surface_matrices_from_normals(n)),
+        result.triangle,
         pixel_size=omap.step_x,
         material_name=material.name or "",
     )

@@ -29,6 +29,8 @@ if TYPE_CHECKING:
     from matplotlib.figure import Figure
     from matplotlib.image import AxesImage
 
+    from ..polycrystal import TriangleModuli
+
 __all__ = ["modulus_map_figure"]
 
 GPA = 1e-9
@@ -43,17 +45,6 @@ def _plain(text: str) -> str:
     if len(text) > LABEL_CHARS:
         text = text[: LABEL_CHARS - 1] + "…"
     return text.replace("$", r"\$")
-
-
-def _dilated(mask: np.ndarray) -> np.ndarray:
-    """``mask`` grown by one cell in the 8 directions (array shifts, no loop over cells)."""
-    out = mask.copy()
-    out[1:] |= mask[:-1]
-    out[:-1] |= mask[1:]
-    grown = out.copy()
-    out[:, 1:] |= grown[:, :-1]
-    out[:, :-1] |= grown[:, 1:]
-    return out
 
 
 def _triangle_panel(ax, tri, image, fontsize: float, **imshow) -> AxesImage:
@@ -86,7 +77,7 @@ def modulus_map_figure(
     moduli,
     normals,
     lattice: str,
-    modulus_of_normals: Callable[[np.ndarray], np.ndarray],
+    modulus_of_normals: Callable[[np.ndarray], np.ndarray] | TriangleModuli,
     *,
     pixel_size: float | None = None,
     material_name: str = "",
@@ -104,17 +95,20 @@ def modulus_map_figure(
         matrices); non-finite or zero rows are not shown.
     lattice : {"cubic", "hexagonal"}
         Laue group m-3m or 6/mmm (the triangle and the IPF key).
-    modulus_of_normals : callable
-        ``f(n) -> M`` in Pa for unit crystal directions n of shape (P, 3), e.g.
+    modulus_of_normals : TriangleModuli or callable
+        M over the triangle as a job computed it (a
+        :class:`~contactres.polycrystal.TriangleModuli`, drawn as it is: ``grid_points`` is then
+        its grid), or ``f(n) -> M`` in Pa for unit crystal directions n of shape (P, 3), e.g.
         ``lambda n: indentation_moduli(material, surface_matrices_from_normals(n))`` (exact) or
-        ``lambda n: table.modulus(normals=n)`` (a :class:`~contactres.polycrystal.NormalTable`).
-        Evaluated once on the triangle's grid.
+        ``lambda n: table.modulus(normals=n)`` (a :class:`~contactres.polycrystal.NormalTable`),
+        evaluated once on the triangle's grid (:func:`~contactres.polycrystal.triangle_moduli`).
     pixel_size : float, optional
         Square pixel pitch, m: the map axes in µm. Without it they count pixels.
     material_name : str
         Shown in the figure title (plain text).
     grid_points : int
-        Grid points per axis of the triangle panels (≥ 2).
+        Grid points per axis of the triangle panels (≥ 2), when ``modulus_of_normals`` is a
+        callable.
     cmap : str
         Colour map of M, shared by panels (a) and (c).
 
@@ -136,7 +130,7 @@ def modulus_map_figure(
     from matplotlib.colors import Normalize
     from matplotlib.figure import Figure
 
-    from ..polycrystal import ipf_colors, ipf_triangle, reduce_normals
+    from ..polycrystal import TriangleModuli, ipf_colors, triangle_moduli
 
     M = np.asarray(moduli, dtype=float)
     n = np.asarray(normals, dtype=float)
@@ -148,27 +142,24 @@ def modulus_map_figure(
         )
     if not np.isfinite(M).any():
         raise ContactresInputError("moduli has no finite value: nothing to draw")
-    tri = ipf_triangle(lattice, grid_points)  # ValueError for an unknown lattice
+    if isinstance(modulus_of_normals, TriangleModuli):
+        legend = modulus_of_normals
+        if legend.triangle.lattice != lattice:
+            raise ContactresInputError(
+                f"the triangle's moduli are of the {legend.triangle.lattice} lattice, the map's "
+                f"of {lattice}"
+            )
+    else:
+        legend = triangle_moduli(lattice, modulus_of_normals, grid_points)
+    tri, cells, folded = legend.triangle, legend.cells, legend.normals
     if pixel_size is not None:
         pixel_size = float(pixel_size)
         if not (np.isfinite(pixel_size) and pixel_size > 0):
             raise ContactresInputError(
                 f"pixel_size must be a positive length in m, got {pixel_size!r}"
             )
-    # The cells cut by the outline are drawn too (then clipped), so evaluate one cell beyond
-    # it, at the folded equivalents there (same M by symmetry): no gap along the edges.
-    cells = _dilated(tri.inside)
-    folded, _ = reduce_normals(tri.normals[cells], lattice)
-    m_tri = np.asarray(modulus_of_normals(folded), dtype=float)
-    if m_tri.shape != (folded.shape[0],) or not np.all(np.isfinite(m_tri)):
-        raise ContactresInputError(
-            f"modulus_of_normals must return one finite M (Pa) per direction: shape "
-            f"({folded.shape[0]},), got {m_tri.shape}"
-        )
-    grid = np.full(tri.inside.shape, np.nan)
-    grid[cells] = m_tri * GPA
-    inner = grid[tri.inside]  # the colour range: M over the triangle itself
-    lo, hi = float(inner.min()), float(inner.max())
+    grid = legend.moduli * GPA
+    lo, hi = (v * GPA for v in legend.inside_range)  # the colour range: M over the triangle
     tri_norm = Normalize(lo, hi)
     map_norm = Normalize(min(lo, float(np.nanmin(M)) * GPA), max(hi, float(np.nanmax(M)) * GPA))
     # IPF colours of the valid pixels; the others stay transparent.
