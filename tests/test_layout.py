@@ -82,6 +82,7 @@ LAYERS: tuple[frozenset[str], ...] = (
             "errors",
             "validation",
             "fileio",
+            "examples",
             "fitting",
             "crystals",
             "units",

@@ -94,6 +94,7 @@ TOP_LEVEL = [
     "effective_modulus",
     "effective_shear_modulus",
     "example_afm_map",
+    "example_path",
     "flat_punch_stiffness",
     "friction_from_slopes",
     "hertz",
@@ -142,6 +143,7 @@ SUBPACKAGES = [
     "apps",
     "crystals",
     "dynamic",
+    "examples",
     "fileio",
     "fitting",
     "halfspace",
@@ -168,6 +170,7 @@ JOBS = [
     "crystals",
     "dcsf",
     "demo",
+    "examples",
     "maps_fit",
     "maps_predict",
     "maps_synthetic",
@@ -185,6 +188,7 @@ JOB_API = ["Result", "Settings", "run"]
 
 # Documented names of each subpackage's __all__ (normal has no __all__: the names it re-exports).
 PUBLIC = {
+    "examples": ["EXAMPLES", "Example", "copy_examples", "example_path"],
     "analysis": [
         "AnalysisSettings",
         "DESCRIPTIONS",
@@ -450,6 +454,7 @@ PUBLIC = {
         "neutralised",
         "replace_folder",
         "save_figure",
+        "write_bytes",
         "write_csv",
         "write_text",
     ],
@@ -577,6 +582,7 @@ PUBLIC_MODULES = [
     "contactres.apps.paper2",
     "contactres.crystals",
     "contactres.errors",
+    "contactres.examples",
     "contactres.fileio",
     "contactres.fitting",
     *(f"contactres.jobs.{m}" for m in (*JOBS, *JOB_HELPERS)),

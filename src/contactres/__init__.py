@@ -28,6 +28,7 @@ _EXPORTS: dict[str, str] = {
     "Material": ".materials",
     "crystal_names": ".crystals",
     "crystal_table": ".crystals",
+    "example_path": ".examples",
     "at_cut_quartz": ".materials",
     "dynamic_kernel": ".halfspace",
     "isotropic_dynamic_kernel": ".halfspace",
@@ -122,6 +123,7 @@ _SUBMODULES: frozenset[str] = frozenset(
         "apps",
         "crystals",
         "dynamic",
+        "examples",
         "fileio",
         "fitting",
         "halfspace",
@@ -156,6 +158,7 @@ if TYPE_CHECKING:
         apps as apps,
         crystals as crystals,
         dynamic as dynamic,
+        examples as examples,
         fileio as fileio,
         fitting as fitting,
         halfspace as halfspace,
@@ -187,6 +190,7 @@ if TYPE_CHECKING:
         crystal_names as crystal_names,
         crystal_table as crystal_table,
     )
+    from .examples import example_path as example_path
     from .dynamic import (
         contact_displacement as contact_displacement,
         flat_punch_stiffness as flat_punch_stiffness,

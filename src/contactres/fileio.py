@@ -56,6 +56,7 @@ __all__ = [
     "neutralised",
     "replace_folder",
     "save_figure",
+    "write_bytes",
     "write_csv",
     "write_text",
 ]
@@ -122,6 +123,13 @@ def write_text(path: str | os.PathLike, text: str) -> Path:
     """Write ``text`` to ``path`` atomically (UTF-8)."""
     with _atomic_path(path) as tmp:
         tmp.write_text(text, encoding="utf-8")
+    return Path(path)
+
+
+def write_bytes(path: str | os.PathLike, data: bytes) -> Path:
+    """Write ``data`` to ``path`` atomically."""
+    with _atomic_path(path) as tmp:
+        tmp.write_bytes(data)
     return Path(path)
 
 

@@ -81,3 +81,22 @@ def test_every_name_of_every_public_module_is_listed():
 def test_the_readme_links_the_docs_entry_page():
     assert "](docs/index.md)" in README.read_text(encoding="utf-8")
     assert (DOCS / "index.md").is_file()
+
+
+def test_getting_started_shows_the_command_tree_and_names_every_subcommand():
+    import click
+    from click.testing import CliRunner
+
+    from contactres.cli import main
+
+    text = (DOCS / "getting-started.md").read_text(encoding="utf-8")
+    tree = text[text.index("Commands:") :]
+    tree = tree[: tree.index("```")]
+    out = CliRunner().invoke(main, ["--help"]).output
+    listed = [line.split()[0] for line in tree.splitlines()[1:] if line.strip()]
+    printed = [line.split()[0] for line in out[out.index("Commands:") :].splitlines()[1:]]
+    assert listed == printed == sorted(main.commands)  # the tree as the command prints it
+    for name, command in main.commands.items():
+        if isinstance(command, click.Group):
+            for sub in command.commands:
+                assert f"`{sub}`" in text, f"getting started does not name '{name} {sub}'"

@@ -13,9 +13,10 @@ are generated from, or checked against, the schemas here (:data:`SCHEMAS`):
   :data:`RADIATION_RESULTS` (``radiation.csv``, :mod:`.outputs`);
 * the other outputs (:mod:`.outputs`): :data:`SPECTRA_SWEEPS`, :data:`SPECTRA_FITS`,
   :data:`STIFFNESS_CSV`, :data:`AFM_INVERT_RESULTS`, :data:`RUM_INVERT_RESULTS`;
-* the tables of the forward computations (:mod:`.listings`): :data:`CONTACT_TABLE`,
+* the tables of the forward computations and listings (:mod:`.listings`): :data:`CONTACT_TABLE`,
   :data:`DCSF_TABLE`, :data:`QCM_LOOP_TABLE`, :data:`CRYSTAL_TABLE`, :data:`CRYSTALS_LISTING`,
-  :data:`PAPER1_RANKING`, :data:`PAPER2_LOOPS`, :data:`PAPER2_TURNING`, :data:`PAPER2_SHIFTS`.
+  :data:`EXAMPLES_LISTING`, :data:`PAPER1_RANKING`, :data:`PAPER2_LOOPS`, :data:`PAPER2_TURNING`,
+  :data:`PAPER2_SHIFTS`.
 
 Every table of every job's Result (:mod:`contactres.jobs`) is bound to one of these.
 
@@ -55,6 +56,7 @@ from ._listings import (
     CRYSTAL_TABLE,
     CRYSTALS_LISTING,
     DCSF_TABLE,
+    EXAMPLES_LISTING,
     PAPER1_RANKING,
     PAPER2_LOOPS,
     PAPER2_SHIFTS,
@@ -80,6 +82,7 @@ __all__ = [
     "CRYSTALS_LISTING",
     "CRYSTAL_TABLE",
     "DCSF_TABLE",
+    "EXAMPLES_LISTING",
     "FALSE_WORDS",
     "FINITE",
     "GROUP_RESULTS",
@@ -136,6 +139,7 @@ OUTPUTS: tuple[TableSchema, ...] = (
     QCM_LOOP_TABLE,
     CRYSTAL_TABLE,
     CRYSTALS_LISTING,
+    EXAMPLES_LISTING,
     PAPER1_RANKING,
     PAPER2_LOOPS,
     PAPER2_TURNING,

@@ -25,6 +25,7 @@ __all__ = [
     "CRYSTALS_LISTING",
     "CRYSTAL_TABLE",
     "DCSF_TABLE",
+    "EXAMPLES_LISTING",
     "PAPER1_RANKING",
     "PAPER2_LOOPS",
     "PAPER2_SHIFTS",
@@ -170,6 +171,19 @@ CRYSTALS_LISTING = TableSchema(
             ("M111_GPa", "GPa", "M of the cubic (111) face (cubic and isotropic)"),
         ),
         CRYSTAL_TABLE.column("source"),
+    ),
+)
+
+#: ``contactres examples``: the example files installed with contactres.
+EXAMPLES_LISTING = TableSchema(
+    "examples listing",
+    "one row per example file installed with contactres (contactres.examples)",
+    _columns(
+        ("name", "text", "file name"),
+        ("size_bytes", "bytes", "size of the file"),
+        ("description", "text", "what the file holds"),
+        ("command", "text", "a command that reads it, run from a folder holding a copy"),
+        ("path", "text", "where it is installed, or where it was copied to"),
     ),
 )
 
