@@ -20,7 +20,9 @@ lowest of these 2 x 4 criteria wins, except that a candidate nested in it (a nes
 ``delta_bic`` its criterion minus the winner's. Every sweep of the block takes the block's
 class; its own parameters come from its own fit of that class. The friction law (Coulomb:
 Cattaneo-Mindlin or plateau; or Savkoor's constant traction) is first decided per experiment
-over all its loads (:func:`_friction_law`; ``pool_experiment``). Where the block is ``shared``,
+over all its loads (:func:`_friction_law`; ``pool_experiment``). With it, the shared criteria of the
+Cattaneo-Mindlin and the plateau loop weigh their μ against the friction of the experiment's
+other loads (:mod:`contactres.analysis._mu_prior`). Where the block is ``shared``,
 the joint fit's parameters (μ, the Savkoor sliding force, d_c) are the block's values that the
 per-load statistics use.
 """
