@@ -10,6 +10,9 @@ settings and prints
 - the per-load friction coefficient of ``loads.csv`` (``mu_fit_mean`` and the robust
   ``mu_fit_median`` over experiments) against the truth (the mean true μ of the same sweeps):
   median and largest |relative error| (the target is checked on the median);
+- per study (seed), the share of plateau sweeps classified right in each medium (the spread
+  over seeds beside the pooled rate), and the per-block μ of the load blocks whose truth is a
+  plateau: median |relative error| and the share inside ±1.96 printed errors (issue 27);
 - E and γ of every group against the generator's values, with the printed errors, and the
   calibration of those errors: the scatter of E and γ over the repeated studies divided by the
   mean printed error (1 is perfect; the target is within a factor 2), beside the scatter of
@@ -66,6 +69,31 @@ def confusion(sw: pd.DataFrame) -> dict[str, pd.DataFrame]:
     return out
 
 
+def plateau_rates(sw: pd.DataFrame) -> dict[str, float]:
+    """Share of the judged plateau sweeps (as :func:`confusion`) classified plateau, per medium."""
+    out = {}
+    for medium, m in confusion(sw).items():
+        if "plateau" in m.index and m.loc["plateau"].sum() > 0:
+            out[medium] = m.loc["plateau", "plateau"] / m.loc["plateau"].sum()
+    return out
+
+
+def block_mu(sw: pd.DataFrame, blocks: pd.DataFrame) -> pd.DataFrame:
+    """μ of every load block with a μ against the mean true μ of its sweeps, with the true model
+    (the last ramp's: ramps 2-4 of a plateau load all have it) and the pull (μ - truth)/error."""
+    member = sw[sw["block"] >= 0]
+    truth = member.groupby("block").agg(
+        true_model=("true_model", "last"),
+        true_mu_block=("true_mu", "mean"),
+        drift=("true_drift", "any"),
+    )
+    b = blocks.join(truth, on="block")
+    b = b[b["mu"].notna() & ~b["drift"].astype(bool)].copy()
+    b["rel_err"] = b["mu"] / b["true_mu_block"] - 1
+    b["pull"] = (b["mu"] - b["true_mu_block"]) / b["mu_err"]
+    return b
+
+
 def mu_errors(sw: pd.DataFrame, loads: pd.DataFrame) -> pd.DataFrame:
     """loads.csv's μ (mean and median over experiments) against the mean true μ of the same
     used sweeps."""
@@ -99,13 +127,15 @@ def main(argv=None) -> int:
     ap.add_argument("--experiments", type=int, default=4, help="experiments per group")
     args = ap.parse_args(argv)
     totals: dict[str, pd.DataFrame] = {}
-    mus, groups = [], []
+    mus, groups, rates, block_mus = [], [], [], []
     for k in range(args.studies):
         study, sw, res, seconds = one_study(1000 + k, args.experiments)
         print(f"study {k + 1}: {len(sw)} sweeps analysed in {seconds:.1f} s")
         for medium, m in confusion(sw).items():
             totals[medium] = m if medium not in totals else totals[medium].add(m, fill_value=0)
         mus.append(mu_errors(sw, res.loads).assign(study=k))
+        rates.append(plateau_rates(sw))
+        block_mus.append(block_mu(sw, res.blocks).assign(study=k))
         truth = {(g.configuration, g.medium): g for g in study.groups}
         oracle = oracle_E(sw)
         for g in res.groups:
@@ -142,6 +172,18 @@ def main(argv=None) -> int:
                 )
                 ok &= not hit.endswith(")")
                 print(f"  {model}: {rate:.1%} right{hit}")
+    print("\nplateau sweeps right per study (seed 1000 + k):")
+    for medium in ("air", "water"):
+        r = [f"{x[medium]:.0%}" for x in rates if medium in x]
+        print(f"  {medium}: {', '.join(r)}")
+    bm = pd.concat(block_mus)
+    print("per-block μ (shared joint fits, model-averaged) of blocks with a μ, by true model:")
+    for (medium, model), part in bm.groupby(["medium", "true_model"]):
+        inside = (part["pull"].abs() <= 1.96).mean()
+        print(
+            f"  {medium} {model}: {len(part)} blocks, median |rel. error| "
+            f"{part['rel_err'].abs().median():.1%}, inside ±1.96 errors {inside:.1%}"
+        )
     mu = pd.concat(mus)
     print("\nper-load μ of loads.csv vs truth, |relative error| over the loads:")
     for medium, part in mu.groupby("medium"):

@@ -20,7 +20,9 @@ lowest of these 2 x 4 criteria wins, except that a candidate nested in it (a nes
 ``delta_bic`` its criterion minus the winner's. Every sweep of the block takes the block's
 class; its own parameters come from its own fit of that class. The friction law (Coulomb:
 Cattaneo-Mindlin or plateau; or Savkoor's constant traction) is first decided per experiment
-over all its loads (:func:`_friction_law`; ``pool_experiment``). Where the block is ``shared``,
+over all its loads (:func:`_friction_law`; ``pool_experiment``). With it, the shared criteria of the
+Cattaneo-Mindlin and the plateau loop weigh their μ against the friction of the experiment's
+other loads (:mod:`contactres.analysis._mu_prior`). Where the block is ``shared``,
 the joint fit's parameters (μ, the Savkoor sliding force, d_c) are the block's values that the
 per-load statistics use.
 """
@@ -46,6 +48,7 @@ from ._classify import (
 from ._drift import LOAD_OF_EXPERIMENT
 from ._loops import LoopTables
 from ._models import AMPLITUDE_MODELS, fit_tables
+from ._mu_prior import mu_prior_penalties
 
 __all__ = ["BLOCK_COLUMNS", "PLATEAU_CONTENDER", "block_codes", "choose_blocks"]
 
@@ -103,6 +106,31 @@ def _criteria(bf, fields, n_r, code, n, R, exact_loop: bool) -> np.ndarray:
         bad = np.bincount(code[member], weights=(~ok)[member].astype(float), minlength=B) > 0
         out += [shared, np.where(bad, np.inf, sums + R * k * lnN)]
     return np.stack(out)
+
+
+def _mu_prior(sw, code, member, B, blocks, fits, crit, family) -> np.ndarray:
+    """(8, B): what the prior on μ from the experiment's other loads
+    (:func:`~contactres.analysis._mu_prior.mu_prior_penalties`) adds to the shared criterion of
+    the Cattaneo-Mindlin and the plateau loop of every block (``crit``: the 2 x 4 criteria
+    without it; blocks of a Savkoor experiment, ``family``, neither give nor get a prior)."""
+    P = (
+        pd.Series(sw["P_Hz_per_N_per_m"].to_numpy()[member], index=code[member])
+        .groupby(level=0)
+        .first()
+        .reindex(np.arange(B))
+        .to_numpy(float)
+    )
+    rows = {
+        "cattaneo-mindlin-loop": 2 * AMPLITUDE_MODELS.index("cattaneo-mindlin"),
+        "plateau-loop": 2 * AMPLITUDE_MODELS.index("plateau"),
+    }
+    joint = {key: fits[key].assign(bic_shared=crit[i]) for key, i in rows.items()}
+    usable = np.ones(B, bool) if family is None else family != "savkoor"
+    pen = mu_prior_penalties(blocks, joint, P, usable)
+    out = np.zeros_like(crit)
+    for key, i in rows.items():
+        out[i] = pen[key]
+    return out
 
 
 def block_codes(info: pd.DataFrame, joint: np.ndarray) -> np.ndarray:
@@ -228,6 +256,13 @@ def choose_blocks(
         return np.where(coulomb[:, None] & (family == "savkoor")[None, :], np.inf, crit)
 
     crit = excluded(crit)
+    # The friction of the experiment's other loads as a prior on μ of each Coulomb loop's shared
+    # fit (contactres.analysis._mu_prior): without it a plateau is often read as
+    # Cattaneo-Mindlin with a larger μ. The same for the contenders below and the choice.
+    prior = np.zeros_like(crit)
+    if exact_loop and pool_experiment and "P_Hz_per_N_per_m" in sw.columns:
+        prior = _mu_prior(sw, code, member, B, blocks.assign(n_points=n), fits, crit, family)
+    crit = crit + prior
     if exact_loop:
         # The per-ramp plateau needs the plateau loop of each ramp: fitted where the block's
         # shared plateau contends (within PLATEAU_CONTENDER of the best other candidate left by
@@ -241,7 +276,7 @@ def choose_blocks(
         if sweeps.size:
             assert tables is not None  # the caller builds them for the exact loops
             sw, fields = add_plateau_fits(p, sw, fields, sweeps, delta_bic, tables, workers)
-            crit = excluded(_criteria(bf, fields, n_r, code, n, R, exact_loop))
+            crit = excluded(_criteria(bf, fields, n_r, code, n, R, exact_loop)) + prior
     # Candidate a is nested in b if its class is (NESTED) and it is shared or b is per ramp.
     per_ramp = np.arange(len(classes)) % 2 == 1
     cls = np.repeat(np.arange(len(AMPLITUDE_MODELS)), 2)

@@ -109,7 +109,9 @@ class AnalysisSettings:
     remove_drift : where the table has ``time_s``, remove a drift linear in time from the loads
         found drifting, test them again and use those that pass (flag ``drift-removed``)
     pool_experiments : decide the friction law (Coulomb or Savkoor) once per experiment from
-        all its loads (:mod:`contactres.analysis._blocks`); False: per load block
+        all its loads (:mod:`contactres.analysis._blocks`), and weigh the μ of each load
+        block's Coulomb loops against the experiment's other loads in its class choice
+        (:mod:`contactres.analysis._mu_prior`); False: each load block alone
     delta_bic : BIC margin within which the simpler amplitude model is kept
     drift_p : false-alarm probability of the drift test
     bootstrap : number of bootstrap resamples over experiments for E and γ (0: none)

@@ -1,0 +1,157 @@
+"""The friction of an experiment's other loads as prior knowledge of each load block's μ.
+
+Why. In noisy data (water: σ = 0.6 Hz on shifts of 15-100 Hz, 11 amplitudes, x = κu0/(μF_N)
+< 1) a stick plateau of width d_c and a Cattaneo-Mindlin loop with a larger μ describe a load
+block almost equally well: on the validation study (``benchmarks/study_qcm_trust.py``) the best
+Cattaneo-Mindlin fit of a true plateau block comes within Δχ² = 2 of the *true* model in about
+half of the blocks, so the block's own points cannot tell them apart, whatever the criterion.
+What tells them apart is μ: the Cattaneo-Mindlin reading of a plateau puts the late onset of
+slip down to a larger friction force, a μ tens of per cent above that of the experiment's other
+loads, while the plateau loop finds their μ. The same contact (one mounting of the sample) at
+the other loads is therefore a prior on μ of this load, as paper 2 reads its data (Fig. 7: one
+friction law per experiment, μ falling slowly with load).
+
+How. For every load block of an experiment (:func:`reference_mu`), the model-averaged μ of the
+experiment's *other* load blocks (:func:`contactres.analysis._friction.model_averaged_mu`, each
+from its own points) are fitted by weighted least squares with a power law ln μ = a + b ln F_N
+(at least :data:`MU_PRIOR_MIN_LOADS` of them, weights 1/(relative error)²); the prior of this
+block is its prediction, with the variance of the prediction (scaled by the reduced χ² of the
+fit where that exceeds 1: a law that scatters more than its errors says is a broader prior).
+Leaving the block out keeps the prior independent of the block's own data.
+
+The class criterion then uses that prior (:func:`prior_penalty`). The BIC charges each parameter
+ln N, the Laplace approximation of a unit-information prior (Kass & Raftery, J. Am. Stat. Assoc.
+90, 773 (1995), Sec. 4.1.3). For ln μ of a Coulomb loop (Cattaneo-Mindlin or plateau) the prior
+N(m, v) is known instead, and the Laplace approximation of the evidence with a Gaussian prior on
+one linear combination of the parameters (ln μ = ln Pκ - ln θ - ln PF_N) whose posterior
+variance is s² replaces ln N by
+
+    ln(1 + v/s²) + (ln μ̂ - m)²/(s² + v),
+
+the Occam factor of the prior plus the misfit of the fitted μ̂ to it (exact for a Gaussian
+likelihood in ln μ; the prior variance v includes the error of the prediction). A loop whose μ
+agrees with the other loads thus costs less than ln N, one that needs another μ more. Only the
+class choice and the weights of the model average use the prior: μ of every block is still
+the one its own points give.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Mapping
+
+import numpy as np
+import pandas as pd
+
+from ._friction import COULOMB_LOOPS, loop_table_force, model_averaged_mu
+
+__all__ = [
+    "MU_PRIOR_MAX_REL",
+    "MU_PRIOR_MIN_LOADS",
+    "mu_prior_penalties",
+    "prior_penalty",
+    "reference_mu",
+]
+
+#: Largest relative error of a loop's μ that the prior is weighed against. Beyond it the fit
+#: does not resolve μ (a plateau loop whose d_c sits on its bound 0 has a degenerate Jacobian and
+#: errors of hundreds of per cent): there the prior would waive the parameter's ln N for nothing
+#: the data show, so such a fit keeps its BIC.
+MU_PRIOR_MAX_REL = 1.0
+
+#: Other load blocks of the experiment with a resolved μ that a prior needs: the power law has
+#: two parameters, and a third point is the least that shows its scatter.
+MU_PRIOR_MIN_LOADS = 3
+
+
+def reference_mu(experiment: np.ndarray, force: np.ndarray, mu: np.ndarray, mu_err: np.ndarray):
+    """The prior of ln μ of every load block from the other blocks of its experiment.
+
+    Parameters
+    ----------
+    experiment : (B,) a code of each block's experiment (configuration, medium, mounting)
+    force : (B,) normal force F_N of each block, N
+    mu, mu_err : (B,) μ of each block and its standard error (NaN: none)
+
+    Returns
+    -------
+    mean, var : (B,) the prior mean and variance of ln μ (module docstring: the weighted power
+        law ln μ = a + b ln F_N of the experiment's other blocks, its prediction at this F_N and
+        the variance of that prediction, scaled by the reduced χ² where it exceeds 1); NaN
+        where fewer than :data:`MU_PRIOR_MIN_LOADS` other blocks have a μ or their loads do not
+        span two values
+    """
+    experiment = np.asarray(experiment)
+    lnF = np.log(np.asarray(force, dtype=float))
+    mu = np.asarray(mu, dtype=float)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        y = np.log(mu)
+        rel = np.asarray(mu_err, dtype=float) / mu
+    good = np.isfinite(y) & np.isfinite(rel) & (rel > 0) & np.isfinite(lnF)
+    mean = np.full(len(mu), np.nan)
+    var = np.full(len(mu), np.nan)
+    for e in np.unique(experiment):
+        members = np.flatnonzero(experiment == e)
+        for i in members:
+            o = members[(members != i) & good[members]]
+            if o.size < MU_PRIOR_MIN_LOADS or np.ptp(lnF[o]) <= 0:
+                continue
+            w = 1.0 / rel[o] ** 2
+            X = np.column_stack([np.ones(o.size), lnF[o]])
+            cov = np.linalg.inv(X.T @ (w[:, None] * X))
+            beta = cov @ (X.T @ (w * y[o]))
+            chi2 = float(np.sum(w * (y[o] - X @ beta) ** 2)) / (o.size - 2)
+            x = np.array([1.0, lnF[i]])
+            mean[i] = x @ beta
+            var[i] = float(x @ cov @ x) * max(chi2, 1.0)
+    return mean, var
+
+
+def prior_penalty(mu, mu_err, mean, var, n_points) -> np.ndarray:
+    """What the prior N(mean, var) of ln μ changes in the criterion of a Coulomb loop's fit.
+
+    ``ln(1 + var/s²) + (ln μ - mean)²/(s² + var) - ln(2n)`` with s = ``mu_err``/``mu`` (the
+    module docstring: the prior's Occam factor and misfit in place of the BIC's ln N for one
+    parameter; ``n_points`` n per block, N = 2n residuals); 0 where there is no prior, no μ, or a
+    μ not resolved (relative error above :data:`MU_PRIOR_MAX_REL`).
+    """
+    mu, mu_err, mean, var = (np.asarray(a, dtype=float) for a in (mu, mu_err, mean, var))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        s2 = (mu_err / mu) ** 2
+        d = np.log(mu) - mean
+        pen = np.log1p(var / s2) + d**2 / (s2 + var) - np.log(2 * np.asarray(n_points, float))
+    ok = np.isfinite(pen) & (s2 > 0) & (s2 <= MU_PRIOR_MAX_REL**2)
+    return np.where(ok, pen, 0.0)
+
+
+def mu_prior_penalties(
+    blocks: pd.DataFrame, joint: Mapping[str, pd.DataFrame], P: np.ndarray, usable: np.ndarray
+) -> dict[str, np.ndarray]:
+    """:func:`prior_penalty` of the joint fit of each Coulomb loop of every load block.
+
+    Parameters
+    ----------
+    blocks : one row per block, with ``configuration``, ``medium``, ``experiment``,
+        ``normal_force_N``, ``n_points``
+    joint : the joint fit table of each loop of :data:`~contactres.analysis._friction.
+        COULOMB_LOOPS` (one row per block) with ``bic_shared``, its shared criterion without
+        the prior (the weights of the model-averaged μ of the other blocks)
+    P : (B,) the sensitivity of each block, Hz per N/m (paper 2, Eq. 1)
+    usable : (B,) blocks that may serve as (and receive) a prior: those whose experiment's
+        friction law is not Savkoor's
+
+    Returns
+    -------
+    The penalty of each loop of COULOMB_LOOPS (key -> (B,) array; 0 where there is no prior).
+    """
+    F = blocks["normal_force_N"].to_numpy(float)
+    mu, err, _ = model_averaged_mu(blocks, joint, P)
+    mu = np.where(usable, mu, np.nan)
+    experiment = blocks.groupby(["configuration", "medium", "experiment"], sort=False).ngroup()
+    mean, var = reference_mu(experiment.to_numpy(), F, mu, err)
+    n = blocks["n_points"].to_numpy(float)
+    out = {}
+    for key in COULOMB_LOOPS:
+        force, ferr, ok = loop_table_force(joint[key], P)
+        pen = prior_penalty(force / F, ferr / F, mean, var, n)
+        out[key] = np.where(ok & usable, pen, 0.0)
+    return out
