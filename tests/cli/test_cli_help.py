@@ -81,9 +81,10 @@ def test_every_example_runs(words, tmp_path, monkeypatch):
     if "--out" in args:  # write into the test's folder, not the repository
         i = args.index("--out") + 1
         args[i] = str(tmp_path / args[i])
-    if "--fits" in args:
-        i = args.index("--fits") + 1
-        args[i] = str(tmp_path / args[i])
+    for option in ("--fits", "--copy"):
+        if option in args:
+            i = args.index(option) + 1
+            args[i] = str(tmp_path / args[i])
     if words == ("qcm", "analyze"):
         args += ["--no-figures", "--bootstrap", "0"]  # the example, faster (~2 s)
     start = time.perf_counter()
