@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import html
+import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
 
@@ -13,7 +15,17 @@ from ..measurements import SweepTable
 __all__ = ["Results"]
 
 
-@dataclass(frozen=True)
+def _pm(value: float, error: float, digits: int = 3) -> str:
+    """``value ± error`` to ``digits`` significant digits of the value (NaN: a dash)."""
+    if not math.isfinite(value):
+        return "—"
+    text = f"{value:.{digits}g}"
+    return f"{text} ± {error:.2g}" if math.isfinite(error) else text
+
+
+# repr=False: the dataclass repr would print every table in full (~10,000 characters); the
+# class gives a summary of its own (__repr__, _repr_html_ for notebooks).
+@dataclass(frozen=True, repr=False)
 class Results:
     """Everything :func:`contactres.analyze` found.
 
@@ -96,3 +108,48 @@ class Results:
                 }
             )
         return pd.DataFrame(rows)
+
+    def _group_rows(self) -> list[tuple[str, str, str]]:
+        """(configuration, medium, the fitted E and γ or why they are withheld) per group."""
+        rows = []
+        for g in self.groups:
+            if g.get("checks"):
+                text = f"E and γ withheld ({', '.join(g['checks'])}): {g.get('note', '')}"
+            else:
+                text = (
+                    f"E = {_pm(g['E_Pa'] / 1e9, g['E_err_Pa'] / 1e9)} GPa, "
+                    f"γ = {_pm(g['gamma_J_m2'] * 1e3, g['gamma_err_J_m2'] * 1e3)} mJ/m² "
+                    f"({g['n_experiments']} experiments, {g['n_sweeps_used']} sweeps)"
+                )
+            rows.append((str(g["configuration"]), str(g["medium"]), text))
+        return rows
+
+    def _counts(self) -> str:
+        used = int(self.sweeps["used"].sum()) if "used" in self.sweeps else len(self.sweeps)
+        return (
+            f"{len(self.sweeps)} sweeps ({used} used), {len(self.loads)} loads, "
+            f"{len(self.groups)} configuration/medium groups"
+        )
+
+    def __repr__(self) -> str:
+        """A summary: the counts and Table 1 (E and γ per group, errors as in ``table1``)."""
+        lines = [f"Results (contactres {self.version}): {self._counts()}"]
+        lines += [f"  {c}, {m}: {text}" for c, m, text in self._group_rows()]
+        lines.append(
+            "  tables: .sweeps, .loads, .experiments, .table1(); write them with "
+            "contactres.write_report(results, folder)"
+        )
+        return "\n".join(lines)
+
+    def _repr_html_(self) -> str:
+        """The summary of :meth:`__repr__` as HTML, for notebooks (every label escaped)."""
+        rows = "".join(
+            f"<tr><td>{html.escape(c)}</td><td>{html.escape(m)}</td><td>{html.escape(t)}</td></tr>"
+            for c, m, t in self._group_rows()
+        )
+        return (
+            f"<p><b>Results</b> (contactres {html.escape(self.version)}): "
+            f"{html.escape(self._counts())}</p>"
+            "<table><thead><tr><th>configuration</th><th>medium</th><th>E and γ (Table 1)</th>"
+            f"</tr></thead><tbody>{rows}</tbody></table>"
+        )
