@@ -207,3 +207,41 @@ def test_prediction_figure_draws_the_triangle_of_the_maps_predict_result():
     fig = prediction_figure(dataclasses.replace(result, triangle=other))
     drawn = np.ma.filled(_triangle_image(fig).get_array().astype(float), np.nan)
     np.testing.assert_allclose(drawn[other.cells], other.moduli[other.cells] / 1e9, rtol=1e-15)
+
+
+def test_the_legend_is_optional_and_the_report_draws_the_map(tmp_path):
+    import dataclasses
+    from importlib.resources import as_file, files
+
+    from contactres.errors import ContactresInputError
+    from contactres.jobs import maps_predict
+    from contactres.jobs.maps import TipLoad
+    from contactres.report import prediction_figure, write_report
+
+    settings = maps_predict.Settings(CU, "cubic", TipLoad(20e-9, 1e-6), legend=False)
+    with as_file(files("contactres") / "data" / "example_cu_map.ang") as ang:
+        bare = maps_predict.run(ang, settings)
+    assert bare.triangle is None
+    with pytest.raises(ContactresInputError, match="legend=True"):
+        prediction_figure(bare)
+    write_report(bare, tmp_path / "bare", ("json", "png"))
+    assert not (tmp_path / "bare" / "M_map.png").exists()
+    legend = triangle_moduli_of_cu()
+    write_report(dataclasses.replace(bare, triangle=legend), tmp_path / "full", ("json", "png"))
+    assert (tmp_path / "full" / "M_map.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def triangle_moduli_of_cu():
+    from contactres.jobs.maps_predict import TRIANGLE_GRID
+    from contactres.polycrystal import triangle_moduli
+
+    return triangle_moduli("cubic", exact(CU), TRIANGLE_GRID)
+
+
+def test_the_demo_carries_the_legend_of_its_map():
+    from contactres.jobs import demo
+
+    *_, triangle = demo._polycrystal()
+    ok = triangle.cells
+    np.testing.assert_allclose(triangle.moduli[ok], exact(CU)(triangle.normals), rtol=1e-12)
+    assert triangle.moduli.shape == (81, 81) and triangle.triangle.lattice == "cubic"

@@ -215,6 +215,7 @@ def maps_predict(
         min_confidence=min_confidence,
         max_mad=max_mad,
         phase=phase,
+        legend=figure is not None,
     )
     result = job.run(
         map_path,

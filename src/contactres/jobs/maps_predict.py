@@ -10,9 +10,11 @@ Besides ``progress`` (one line per stage), :func:`run` takes ``chunk_progress(do
 called after each chunk of pixels: the evaluation of a large map is long, and a bar needs
 numbers, not lines.
 
-The result also holds M over the standard triangle of surface normals (exact, paper 1's
-Eqs. 1-4 for each normal, on a grid of :data:`TRIANGLE_GRID` points per axis): the legend of
-the map's figure (:func:`contactres.report.prediction_figure` draws it, never evaluates M).
+With ``Settings(legend=True)`` (the default) the result also holds M over the standard
+triangle of surface normals (exact, paper 1's Eqs. 1-4 for each normal, on a grid of
+:data:`TRIANGLE_GRID` points per axis: ~3,600 evaluations, about a second): the legend of the
+map's figure (:func:`contactres.report.prediction_figure` draws it, never evaluates M). The
+command line asks for it only with ``--figure``.
 """
 
 from __future__ import annotations
@@ -63,6 +65,9 @@ class Settings:
     min_confidence, max_mad, phase : float, float, int or None
         Which pixels of an EBSD map are used (:func:`contactres.polycrystal.indexed_pixels`;
         None: its defaults).
+    legend : bool
+        Evaluate M over the standard triangle, the legend of the map's figure (False: no
+        ``triangle`` in the result, and no figure).
     """
 
     material: Material
@@ -77,6 +82,7 @@ class Settings:
     min_confidence: float | None = None
     max_mad: float | None = None
     phase: int | None = None
+    legend: bool = True
 
 
 @dataclass(frozen=True)
@@ -84,7 +90,8 @@ class Result(JobResult):
     """``dataset``: the map's variables plus M_Pa, E_star_Pa, contact_radius_m, k_star_N_per_m
     (and the DCSF at a frequency), an :mod:`xarray` Dataset; ``info``: how M was evaluated
     (method, stated_error, exact_evaluations); ``material`` and ``lattice``: the crystal;
-    ``triangle``: M (Pa) over the standard triangle, exact (the legend of the map's figure)."""
+    ``triangle``: M (Pa) over the standard triangle, exact (the legend of the map's figure;
+    None unless ``Settings.legend``)."""
 
     NOT_VALUES = ("dataset", "material", "triangle", "warnings")
 
@@ -92,7 +99,7 @@ class Result(JobResult):
     info: dict
     material: Material
     lattice: str
-    triangle: TriangleModuli
+    triangle: TriangleModuli | None
 
 
 def run(
@@ -132,11 +139,14 @@ def run(
         progress=chunk_progress,
         pixels=pixels,
     )
-    triangle = triangle_moduli(
-        s.lattice,
-        lambda n: indentation_moduli(s.material, surface_matrices_from_normals(n)),
-        TRIANGLE_GRID,
-    )
+    triangle = None
+    if s.legend:
+        say(progress, "M over the standard triangle (the figure's legend)")
+        triangle = triangle_moduli(
+            s.lattice,
+            lambda n: indentation_moduli(s.material, surface_matrices_from_normals(n)),
+            TRIANGLE_GRID,
+        )
     return Result(
         dataset=ds, info=dict(info), material=s.material, lattice=s.lattice, triangle=triangle
     )

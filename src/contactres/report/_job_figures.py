@@ -13,6 +13,8 @@ from __future__ import annotations
 
 import warnings
 
+from ..errors import ContactresInputError
+
 __all__ = [
     "dissipation_figure",
     "friction_figure",
@@ -111,13 +113,25 @@ def stiffness_figure(result):
     return fig
 
 
+def _prediction_or_nothing(result):
+    """:func:`prediction_figure`, or None (no file) for a result computed without its legend:
+    the figure of a maps-predict result in a report."""
+    return None if result.triangle is None else prediction_figure(result)
+
+
 def prediction_figure(result):
     """The map of M of a :class:`contactres.jobs.maps_predict.Result` with the IPF-coloured
     legend of the faces (:func:`contactres.report.modulus_map_figure`): M over the standard
-    triangle as the job computed it (``result.triangle``)."""
+    triangle as the job computed it (``result.triangle``; a result without it, from
+    ``Settings(legend=False)``, raises ContactresInputError)."""
     from ..polycrystal import folded_normals, map_from_dataset
     from ._map_figures import modulus_map_figure
 
+    if result.triangle is None:
+        raise ContactresInputError(
+            "this maps-predict result has no legend (M over the standard triangle): run the "
+            "job with Settings(legend=True) to draw its figure"
+        )
     ds, material, lattice = result.dataset, result.material, result.lattice
     omap = map_from_dataset(ds)
     return modulus_map_figure(

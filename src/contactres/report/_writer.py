@@ -73,13 +73,14 @@ def figure_registry() -> Mapping[type, tuple[tuple[str, Drawing], ...]]:
     Result has figures adds its line here; the drawing functions live in the report package
     (they need matplotlib, which the jobs never import).
     """
-    from ..jobs import qcm_stiffness, qcm_sweeps
+    from ..jobs import maps_predict, qcm_stiffness, qcm_sweeps
     from . import _job_figures as draw
     from .figures import FIGURE_FILES, RADIATION_FIGURE
 
     paper2 = (draw.sweeps_figure, draw.load_figure, draw.dissipation_figure, draw.friction_figure)
     return MappingProxyType(
         {
+            maps_predict.Result: (("M_map.png", draw._prediction_or_nothing),),
             qcm_stiffness.Result: (("stiffness.png", draw.stiffness_figure),),
             qcm_sweeps.Result: (
                 *zip(FIGURE_FILES, paper2, strict=True),
