@@ -27,8 +27,9 @@ t ∝ (1 − r̄²)^{-1/2} e_x is exact; on a coated solid the pattern carries ~
 Approximations, stated:
 
 - Anisotropic layers: the θ averages are the axisymmetric approximation (exact when every layer is
-  transversely isotropic about the normal, e.g. isotropic layers, and the same approximation as
-  :func:`contactres.sphere_contact` makes on a non-circular face of a homogeneous crystal). The
+  transversely isotropic about the normal, e.g. isotropic layers; on a homogeneous face without
+  a 3- or 4-fold axis it is Hertz with the indentation modulus M, a circle, where
+  :func:`contactres.sphere_contact` solves the ellipse). The
   tangential Galerkin then works on the two-function family above, a subspace of the true
   tractions: a lower bound of the stiffness (exact for a homogeneous face that is a mirror
   plane, e.g. cubic (001), where the x direction is also a symmetry direction).
@@ -360,8 +361,9 @@ def sphere_contact(
     """Frictionless contact of a rigid (or elastic) sphere on a homogeneous or layered half-space.
 
     A :class:`~contactres.Material` (or a stack without layers) is passed to the anisotropic
-    Hertz solution (the ``sphere_contact`` of the private ``_anisotropic``, exact on a circular
-    face). A :class:`~contactres.LayeredMaterial` is solved by the axisymmetric Galerkin of
+    Hertz solution (the ``sphere_contact`` of the private ``_anisotropic``: an ellipse on a face
+    without a 3- or 4-fold axis, :class:`~contactres.normal.AnisotropicContact`). A
+    :class:`~contactres.LayeredMaterial` is solved by the axisymmetric Galerkin of
     :mod:`contactres.normal._axisymmetric`: the contact radius a at which the pressure with no
     edge singularity carries the force (solved to 1e-12 relative in F; F(a) increases with a).
 
