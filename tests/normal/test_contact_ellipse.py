@@ -127,16 +127,20 @@ def test_contact_ellipse_refuses_loss_and_bad_rtol():
 
 
 # ------------------------------------------------------- second route: the contact on a grid
-def _real_space(m):
+def _real_space(m, sphere=None):
     """The normal displacement under a unit point force in real space, w = g(α)/r.
 
     From û = Ĝ(θ) p̂/η: the inverse transform of Ĝ(θ)/η along the direction α of x picks the
     wave vectors normal to x (∫₀^∞ cos(η r cos(θ − α)) dη = π δ(r cos(θ − α))), so
     g(α) = Ĝ(α + π/2)/(2π) (isotropic: 1/(π E* r), Boussinesq). Ĝ is tabulated on 4096 angles
-    of [0, π] and interpolated linearly (error ~1e-7)."""
+    of [0, π] and interpolated linearly (error ~1e-7). An isotropic elastic ``sphere`` adds its
+    own Boussinesq compliance 2/E*_sphere to Ĝ."""
     n = 4096
     t = np.pi * np.arange(n + 1) / n
     G = static_kernel(m, t[:-1])
+    if sphere is not None:
+        E, nu = sphere
+        G = G + 2 * (1 - nu**2) / E
     G = np.append(G, G[0])
     return lambda alpha: np.interp(np.mod(alpha + np.pi / 2, np.pi), t, G) / (2 * np.pi)
 
@@ -159,7 +163,7 @@ def _influence(g, N, h):
     return K[::-1, ::-1]  # the response at x to a load at x' depends on x − x'
 
 
-def _grid_contact(m, radius, force, half, N=64):
+def _grid_contact(m, radius, force, half, N=64, sphere=None):
     """Frictionless contact of a rigid sphere on a grid of N x N cells over [−half, half]²:
     the conjugate-gradient method of Polonsky & Keer (Wear 231, 206 (1999)) for a fixed load,
     p >= 0, the convolution by FFT on a zero-padded 2N x 2N grid. Returns x, y, p, δ."""
@@ -167,7 +171,7 @@ def _grid_contact(m, radius, force, half, N=64):
     x = (np.arange(N) - (N - 1) / 2) * h
     X, Y = np.meshgrid(x, x, indexing="ij")
     Kp = np.zeros((2 * N, 2 * N))
-    Kp[: 2 * N - 1, : 2 * N - 1] = _influence(_real_space(m), N, h)
+    Kp[: 2 * N - 1, : 2 * N - 1] = _influence(_real_space(m, sphere), N, h)
     Kf = np.fft.rfft2(np.roll(Kp, (-(N - 1), -(N - 1)), axis=(0, 1)))
 
     def conv(p):
@@ -213,14 +217,17 @@ def _fit_ellipse(X, Y, p):
     return 1 / np.sqrt(ev[0]), 1 / np.sqrt(ev[1]), np.arctan2(vec[1, 0], vec[0, 0]), np.sqrt(c[0])
 
 
-@pytest.mark.parametrize("name, psi", [("Li", 0.4), ("Cu", 0.0)])
-def test_grid_solution_gives_the_same_ellipse(name, psi):
+@pytest.mark.parametrize(
+    "name, psi, sphere", [("Li", 0.4, None), ("Cu", 0.0, None), ("Li", 1.2, (70e9, 0.17))]
+)
+def test_grid_solution_gives_the_same_ellipse(name, psi, sphere):
     m = turned(Material.crystal(name).rotated((0, 1, 1)), psi)
     force = 1.0
     half = 1.3 * hertz(indentation_modulus(m), R, force).contact_radius  # room for the ellipse
-    X, Y, p, delta = _grid_contact(m, R, force, half)
+    X, Y, p, delta = _grid_contact(m, R, force, half, sphere=sphere)
     a, b, phi, p0 = _fit_ellipse(X, Y, p)
-    c = sphere_contact(m, R, force)
+    indenter = None if sphere is None else Material.isotropic(*sphere)
+    c = sphere_contact(m, R, force, indenter=indenter)
     # measured with 64 x 64 cells: within 6e-4 (a, b), 1e-4 (δ, p0), 0.02° (φ)
     assert a == pytest.approx(c.semi_major, rel=3e-3)
     assert b == pytest.approx(c.semi_minor, rel=3e-3)
@@ -228,3 +235,55 @@ def test_grid_solution_gives_the_same_ellipse(name, psi):
     assert delta == pytest.approx(c.depth, rel=1e-3)
     assert p0 == pytest.approx(c.peak_pressure, rel=1e-3)
     assert abs(axis_difference(phi, c.orientation)) < np.radians(0.2)
+
+
+# ------------------------------------------------------------------ an elastic sphere
+GLASS = Material.isotropic(70e9, 0.17)
+
+
+def test_elastic_sphere_on_a_noncircular_face_is_the_ellipse_of_both_compliances():
+    import contactres as cr
+    from contactres.normal import AnisotropicContact
+
+    face = Material.crystal("Cu").rotated((0, 1, 1))
+    ref = cr.sphere_contact(face, R, F, indenter=GLASS)  # the public dispatcher
+    assert isinstance(ref, AnisotropicContact) and not ref.circular
+    # softer than on the rigid sphere, and a rounder ellipse (the glass adds a constant)
+    rigid = sphere_contact(face, R, F)
+    assert np.all(ref.stiffness < rigid.stiffness)
+    assert rigid.ellipticity < ref.ellipticity < 1
+    E_glass = 70e9 / (1 - 0.17**2)
+    M = 1 / (1 / indentation_modulus(face) + 1 / E_glass)
+    assert ref.indentation_modulus == pytest.approx(M, rel=1e-12)
+    for psi in (0.3, 2.0):
+        c = cr.sphere_contact(turned(face, psi), R, F, indenter=GLASS)
+        np.testing.assert_allclose(c.semi_major, ref.semi_major, rtol=1e-8)
+        np.testing.assert_allclose(c.semi_minor, ref.semi_minor, rtol=1e-8)
+        np.testing.assert_allclose(c.stiffness, ref.stiffness, rtol=1e-8)
+        assert abs(axis_difference(c.orientation, ref.orientation - psi)) < 1e-8
+    # a sphere 1e5 times stiffer than the plate is the rigid sphere
+    hard = sphere_contact(face, R, F, indenter=Material.isotropic(1e16, 0.3))
+    np.testing.assert_allclose(hard.semi_major, rigid.semi_major, rtol=1e-5)
+    np.testing.assert_allclose(hard.stiffness, rigid.stiffness, rtol=1e-5)
+
+
+def test_anisotropic_sphere_is_seen_mirrored_through_the_plate_frame():
+    """The sphere's frame is the plate's turned by π about x (y -> −y): a Cu(011) sphere on a
+    nearly rigid plate makes the contact of a rigid sphere on Cu(011) mirrored, φ -> −φ."""
+    hard_plate = Material.isotropic(1e16, 0.3)
+    for psi in (0.0, 0.4, 1.1):
+        cu = turned(Material.crystal("Cu").rotated((0, 1, 1)), psi)
+        on_cu = sphere_contact(cu, R, F)
+        c = sphere_contact(hard_plate, R, F, indenter=cu)
+        np.testing.assert_allclose(c.semi_major, on_cu.semi_major, rtol=1e-5)
+        np.testing.assert_allclose(c.semi_minor, on_cu.semi_minor, rtol=1e-5)
+        assert abs(axis_difference(c.orientation, -on_cu.orientation)) < 1e-4
+
+
+def test_circular_pairs_keep_the_axisymmetric_route():
+    import contactres as cr
+    from contactres.normal import LayeredContact
+
+    steel = Material.isotropic(210e9, 0.3)
+    for plate in (GLASS, Material.crystal("Cu").rotated((1, 1, 1))):
+        assert isinstance(cr.sphere_contact(plate, R, F, indenter=steel), LayeredContact)

@@ -154,6 +154,8 @@ class ContactIntegrals:
     n_theta : number of θ points on [0, π) of the trapezoidal rule that met the tolerance
     error : size of the last change when the points were doubled (an upper bound of the error
         of I0 in practice: the rule converges exponentially for the smooth periodic Ĝ)
+    noncircularity, circular : properties: ``|I₂|``/``|I₀|``, and whether it is below 1e-9
+        (the Hertz contact is then a circle)
     """
 
     I0: complex | float
@@ -161,6 +163,17 @@ class ContactIntegrals:
     I2: complex
     n_theta: int
     error: float
+
+    @property
+    def noncircularity(self) -> float:
+        """``|I₂|``/``|I₀|``, the relative second harmonic of Ĝ."""
+        return float(abs(self.I2) / abs(self.I0))
+
+    @property
+    def circular(self) -> bool:
+        """Whether the Hertz contact is a circle: the second harmonic below 1e-9 of I₀ (round-off
+        level; the ellipse then differs from a circle by about as little)."""
+        return self.noncircularity <= _CIRCULAR_TOL
 
 
 def _trapezoid(m: Material, n: int, prev=None):
@@ -343,7 +356,42 @@ def _ellipse_newton(g, theta, w):
     raise ContactresInputError("contact_ellipse: Newton's method did not converge")
 
 
-def contact_ellipse(m: Material, rtol: float = THETA_RTOL) -> ContactEllipse:
+def _pair_kernel(m: Material, indenter: Material | None):
+    """Ĝ(θ) of the plate ``m`` plus that of the sphere ``indenter`` in the plate's frame, 1/Pa.
+
+    The sphere's frame is the plate's turned by π about x (x, −y, −z: z its own inward normal),
+    so its kernel at the plate's θ is Ĝ_sphere(−θ); the two bodies take the same pressure and
+    their normal displacements add to the approach. An isotropic sphere: its constant
+    C11/(2 C44 (C11 − C44)) = 2/E*, exact up to incompressibility."""
+    if indenter is None:
+        return lambda theta: static_kernel(m, theta)
+    iso = isotropic_constants(indenter)
+    if iso is not None:
+        c11, c44 = iso
+        g_sphere = float(np.real(c11 / (2 * c44 * (c11 - c44))))
+        return lambda theta: static_kernel(m, theta) + g_sphere
+    return lambda theta: static_kernel(m, theta) + static_kernel(indenter, -theta)
+
+
+def pair_integrals(m: Material, indenter: Material | None, rtol: float = THETA_RTOL):
+    """:func:`contact_integrals` of the plate ``m`` and a sphere ``indenter`` together (or of
+    ``m`` alone for None): I₀ and I₁ add, the sphere's I₂ enters conjugated (its Ĝ(−θ))."""
+    ci = contact_integrals(m, rtol)
+    if indenter is None:
+        return ci
+    cs = contact_integrals(require_material(indenter, lossless=True), rtol)
+    return ContactIntegrals(
+        I0=ci.I0 + cs.I0,
+        I1=ci.I1 + cs.I1,
+        I2=ci.I2 + np.conj(cs.I2),
+        n_theta=max(ci.n_theta, cs.n_theta),
+        error=ci.error + cs.error,
+    )
+
+
+def contact_ellipse(
+    m: Material, rtol: float = THETA_RTOL, *, indenter: Material | None = None
+) -> ContactEllipse:
     """Shape of the Hertz contact of a sphere on the anisotropic half-space ``m`` (an ellipse).
 
     Minimises Φ(w) = ∫ Ĝ(θ)/ŝ(θ) dθ over the shape w = ρ (cos 2φ, sin 2φ), ŝ² = 1 + w·(cos 2θ,
@@ -358,6 +406,9 @@ def contact_ellipse(m: Material, rtol: float = THETA_RTOL) -> ContactEllipse:
         Lossless stiffness in the surface frame (z the inward normal), Pa.
     rtol : float
         Accuracy, in [1e-15, 1e-2].
+    indenter : Material, optional
+        The sphere's material (lossless, in its own frame: the plate's turned by π about x, z
+        its inward normal); default rigid. Its Ĝ(−θ) adds to the plate's.
 
     Returns
     -------
@@ -390,18 +441,23 @@ def contact_ellipse(m: Material, rtol: float = THETA_RTOL) -> ContactEllipse:
     rtol = float(rtol)
     if not (1e-15 <= rtol <= 1e-2):
         raise ContactresInputError(f"rtol must lie in [1e-15, 1e-2], got {rtol!r}")
-    if isotropic_constants(m) is not None:
-        ci = contact_integrals(m, rtol)
+    if indenter is not None:
+        indenter = require_material(indenter, lossless=True)
+    if isotropic_constants(m) is not None and (
+        indenter is None or isotropic_constants(indenter) is not None
+    ):
+        ci = pair_integrals(m, indenter, rtol)
         return ContactEllipse(0.0, 0.0, 1.0, float(ci.I1), float(ci.I0), 1, 0.0)
+    kernel = _pair_kernel(m, indenter)
     n = _N_START
     theta = np.pi * np.arange(n) / n
-    g = static_kernel(m, theta)
+    g = kernel(theta)
     w, J, phi = _ellipse_newton(g, theta, np.zeros(2))
     while True:
         # Double the points: the old ones interleaved with the midpoints.
         mid = theta + np.pi / (2 * n)
         theta = np.stack([theta, mid], axis=1).ravel()
-        g = np.stack([g, static_kernel(m, mid)], axis=1).ravel()
+        g = np.stack([g, kernel(mid)], axis=1).ravel()
         n *= 2
         w_new, J_new, phi_new = _ellipse_newton(g, theta, w)
         scale = 2 * np.pi / n
@@ -486,9 +542,17 @@ def _out(x):
     return float(x) if x.ndim == 0 else x
 
 
-def sphere_contact(m: Material, radius, force, rtol: float = THETA_RTOL) -> AnisotropicContact:
-    """Hertz contact of a rigid sphere on the anisotropic half-space ``m``: an ellipse (module
-    docstring; Willis 1966, Vlassak et al. 2003; paper 1, Eqs. 1-4, on a circular face).
+def sphere_contact(
+    m: Material,
+    radius,
+    force,
+    rtol: float = THETA_RTOL,
+    *,
+    indenter: Material | None = None,
+) -> AnisotropicContact:
+    """Hertz contact of a rigid (or elastic) sphere on the anisotropic half-space ``m``: an
+    ellipse (module docstring; Willis 1966, Vlassak et al. 2003; paper 1, Eqs. 1-4, on a
+    circular face).
 
     Parameters
     ----------
@@ -502,6 +566,11 @@ def sphere_contact(m: Material, radius, force, rtol: float = THETA_RTOL) -> Anis
     rtol : float
         Relative accuracy of the θ integrals (see :func:`contact_integrals` and
         :func:`contact_ellipse`).
+    indenter : Material, optional
+        The sphere's material (lossless, homogeneous, in its own frame: the plate's turned by π
+        about x, z its inward normal); default rigid. Its surface compliance adds to the
+        plate's (Hertz's 1/E* = 1/E*_1 + 1/E*_2 in the isotropic case); ``indentation_modulus``,
+        ``I0`` and ``I1`` are then those of the two bodies together.
 
     Returns
     -------
@@ -553,15 +622,14 @@ def sphere_contact(m: Material, radius, force, rtol: float = THETA_RTOL) -> Anis
         raise ContactresInputError(
             f"radius (shape {R.shape}) and force (shape {F.shape}) do not broadcast together"
         ) from None
-    ci = contact_integrals(m, rtol)
+    ci = pair_integrals(m, indenter, rtol)
     I0, I1 = ci.I0, ci.I1
-    ratio = abs(ci.I2) / abs(I0)
-    circular = bool(ratio <= _CIRCULAR_TOL)
+    ratio, circular = ci.noncircularity, ci.circular
     if circular:
         # Paper 1's circle: J = I₁, Φ = I₀ (the same formulas as the ellipse's with ρ = 0).
         rho, phi0, ell, J, Phi = 0.0, 0.0, 1.0, I1, I0
     else:
-        e = contact_ellipse(m, rtol)
+        e = contact_ellipse(m, rtol, indenter=indenter)
         rho, phi0, ell = e.rho, e.orientation, e.ellipticity
         J, Phi = e.curvature_integral, e.depth_integral
     # √λ, the geometric scale of the ellipse: λ^{3/2} = 3FRJ/(8π) (module docstring).

@@ -51,7 +51,7 @@ from ..errors import ContactresInputError
 from ..layered import LayeredMaterial, surface_green
 from ..materials import Material, require_material
 from ..validation import nonnegative, positive
-from ._anisotropic import THETA_RTOL, isotropic_constants
+from ._anisotropic import THETA_RTOL, isotropic_constants, pair_integrals
 from ._anisotropic import sphere_contact as homogeneous_sphere_contact
 from ._axisymmetric import DEFAULT_TOL, RadialKernel, punch_and_sphere
 
@@ -384,8 +384,11 @@ def sphere_contact(
         The sphere's own material (homogeneous, static constants; default: rigid). Its surface
         compliance is added to the plate's (the two bodies take the same pressure: Hertz's
         1/E* = 1/E*_1 + 1/E*_2, here with the θ-averaged compliance of the sphere's face
-        pointing at the plate, ``indenter`` in that frame). The result is then always a
-        :class:`LayeredContact`, its ``indentation_modulus`` the two bodies' E* together.
+        pointing at the plate, ``indenter`` in that frame). The result is then a
+        :class:`LayeredContact`, its ``indentation_modulus`` the two bodies' E* together; but
+        for two homogeneous bodies whose contact is not circular (a face without a 3- or 4-fold
+        axis) the elliptic :class:`~contactres.normal.AnisotropicContact` with both compliances
+        (the sphere's frame: the plate's turned by π about x).
 
     Returns
     -------
@@ -410,6 +413,14 @@ def sphere_contact(
     stack = material.at(0.0) if isinstance(material, LayeredMaterial) else _stack(material)
     if indenter is None and not stack.layers:
         return homogeneous_sphere_contact(require_material(stack.substrate), radius, force, rtol)
+    if not stack.layers and isinstance(stack.substrate, Material) and not stack.is_lossy:
+        # Two homogeneous bodies whose contact is not circular: the ellipse, of which the
+        # axisymmetric solution below would be the circular approximation.
+        pair = pair_integrals(stack.substrate, require_material(indenter, lossless=True), rtol)
+        if not pair.circular:
+            return homogeneous_sphere_contact(
+                stack.substrate, radius, force, rtol, indenter=indenter
+            )
     if stack.is_lossy:
         raise ContactresInputError(
             "sphere_contact needs real (undamped) constants: the static contact of a lossy "
