@@ -492,8 +492,8 @@ def contact_ellipse(
 
 @dataclass(frozen=True)
 class AnisotropicContact:
-    """Static Hertz contact of a rigid sphere on an anisotropic half-space: an ellipse (module
-    docstring; paper 1, Eqs. 1-4, on a circular face).
+    """Static Hertz contact of a rigid (or elastic) sphere on an anisotropic half-space: an
+    ellipse (module docstring; paper 1, Eqs. 1-4, on a circular face).
 
     Every field but ``orientation`` and ``I1`` is independent of the in-plane axes of the surface
     frame.

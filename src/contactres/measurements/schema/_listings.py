@@ -133,7 +133,12 @@ DCSF_TABLE = TableSchema(
         ("radius_m", "m", "sphere radius R (with `--radius/--force/--frequency`)"),
         ("force_N", "N", "static force F (with `--radius/--force/--frequency`)"),
         ("frequency_Hz", "Hz", "frequency f (with `--radius/--force/--frequency`)"),
-        ("contact_radius_m", "m", "static Hertz contact radius a (with `--radius/...`)"),
+        (
+            "contact_radius_m",
+            "m",
+            "static Hertz contact radius a, √(ab) of the contact ellipse on a face without 3- or "
+            "4-fold symmetry (with `--radius/...`)",
+        ),
         ("stiffness_N_per_m", "N/m", "static contact stiffness K_sa (with `--radius/...`)"),
         ("K_re_N_per_m", "N/m", "Re K = K_sa Re DCSF (with `--radius/...`)"),
         ("K_im_N_per_m", "N/m", "Im K = K_sa Im DCSF (with `--radius/...`)"),
