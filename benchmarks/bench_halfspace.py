@@ -7,7 +7,8 @@ where the partial waves are barely damped and the doubling algorithm needs the m
 Cu (001) over a wider log range, a lossless solid in the evanescent range (κ > 1.5); these
 surfaces are mirror planes of the solid and take the block-structured doubling step. Cu (110)
 and Cu (111) are faces of the same crystal; (111) has no such mirror and takes the general 3x3
-step. Also the static kernel on 512 directions (no target).
+step. Also the static kernel on 512 directions and the elliptic Hertz contact on Cu(011) and
+Li(011) for 1000 forces (:func:`contactres.sphere_contact`; no target).
 
 Run: ``.venv/bin/python benchmarks/bench_halfspace.py`` (exit status 1 if a target is missed).
 """
@@ -20,7 +21,7 @@ import time
 import numpy as np
 from _verdict import exit_code, target
 
-from contactres import Material, dynamic_kernel, static_kernel
+from contactres import Material, contact_ellipse, dynamic_kernel, sphere_contact, static_kernel
 
 TARGET_S = 1.0
 N = 512
@@ -41,7 +42,7 @@ def best_time(fn) -> tuple[float, float]:
 
 def main() -> int:
     theta = np.linspace(0.0, np.pi / 2, N)[None, :]
-    cu = Material.crystal("Cu")
+    cu, li = Material.crystal("Cu"), Material.crystal("Li")
     wide = np.geomspace(0.05, 20.0, N)[:, None]
     cases = [
         (
@@ -68,6 +69,15 @@ def main() -> int:
     th = np.linspace(0.0, 2 * np.pi, N)
     t, _ = best_time(lambda: static_kernel(cu, th))
     print(f"static_kernel on {N} directions: {t * 1e3:.2f} ms (no target)")
+    # The elliptic Hertz contact built on it: the shape once, then every force (no target).
+    forces = np.geomspace(1e-6, 1.0, 1000)
+    for name, face in [("Cu(011)", cu.rotated((0, 1, 1))), ("Li(011)", li.rotated((0, 1, 1)))]:
+        t, _ = best_time(lambda face=face: sphere_contact(face, 1e-3, forces))
+        e = contact_ellipse(face)
+        print(
+            f"sphere_contact on {name}, 1000 forces: {t * 1e3:.2f} ms (no target; "
+            f"b/a = {e.ellipticity:.4f}, {e.n_theta} directions)"
+        )
     return exit_code(results)
 
 

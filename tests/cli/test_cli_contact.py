@@ -57,12 +57,20 @@ def test_csv_table_over_a_force_range_and_units_in_columns():
         "radius_m",
         "force_N",
         "contact_radius_m",
+        "semi_major_m",
+        "semi_minor_m",
+        "ellipticity",
+        "orientation_deg",
         "peak_pressure_Pa",
         "depth_m",
         "stiffness_N_per_m",
         "indentation_modulus_Pa",
     ]
     np.testing.assert_allclose(t.force_N, np.linspace(0, 2, 5))
+    # Al (001): a circle
+    np.testing.assert_array_equal(t.semi_major_m, t.contact_radius_m)
+    np.testing.assert_array_equal(t.semi_minor_m, t.contact_radius_m)
+    assert (t.ellipticity == 1).all() and (t.orientation_deg == 0).all()
     # a ∝ F^(1/3): independent of the modulus.
     np.testing.assert_allclose(
         t.contact_radius_m[1:] / t.force_N[1:] ** (1 / 3), t.contact_radius_m[4] / 2 ** (1 / 3)
@@ -76,6 +84,62 @@ def test_plain_output_and_note_on_low_symmetry_face():
     assert "elliptic" in r.stderr
     r = run("contact", "--crystal", "Cu", "--surface", "001", "--radius", 1e-3, "--force", 1)
     assert "elliptic" not in r.stderr
+
+
+@pytest.mark.parametrize(
+    "crystal, surface, hkl",
+    [("Cu", "011", (0, 1, 1)), ("Li", "011", (0, 1, 1)), ("Cu", "1 2 3", (1, 2, 3))],
+)
+def test_elliptic_contact_does_not_depend_on_the_inplane_axis(crystal, surface, hkl):
+    """Issue 27, point 9: turning the face about its normal (--inplane) moved the stiffness of
+    Cu(011) by 3.8 %; now only the orientation of the ellipse moves."""
+    common = ["--crystal", crystal, "--surface", surface, "--radius", 1e-3, "--force", "0.5,2"]
+    face = Material.crystal(crystal).rotated(hkl)
+    lib = sphere_contact(face, 1e-3, np.array([0.5, 2.0]))
+    for inplane in (None, (0, 1, -1), (1, -1, 1), (2, 1, -1), (-1, 0, 0)):
+        extra = [] if inplane is None else ["--inplane", " ".join(map(str, inplane))]
+        got = _json(run("contact", *common, *extra, "--format", "json"))
+        turned = Material.crystal(crystal).rotated(hkl, inplane=inplane)
+        phi = np.degrees(sphere_contact(turned, 1e-3, 1.0).orientation)
+        for i, row in enumerate(got):
+            for key, want in [
+                ("contact_radius_m", lib.contact_radius[i]),
+                ("semi_major_m", lib.semi_major[i]),
+                ("semi_minor_m", lib.semi_minor[i]),
+                ("depth_m", lib.depth[i]),
+                ("stiffness_N_per_m", lib.stiffness[i]),
+                ("peak_pressure_Pa", lib.peak_pressure[i]),
+                ("ellipticity", lib.ellipticity),
+            ]:
+                assert row[key] == pytest.approx(want, rel=1e-8), (inplane, key)
+            assert row["ellipticity"] < 0.99
+            assert row["orientation_deg"] == pytest.approx(phi, abs=1e-8)
+
+
+def test_contact_and_the_maps_route_agree_within_the_circular_approximation():
+    """The maps compute Hertz with M (a circle: K = 2aM); on Cu(011) the ellipse's stiffness is
+    within 0.1 % of it (5.0737e6 against 5.0702e6 N/m at R = 1 mm, F = 1 N), its radius √(ab)
+    within 0.2 % (17.171 against 17.200 µm)."""
+    from contactres import hertz
+
+    row = _json(
+        run(
+            "contact",
+            "--crystal",
+            "Cu",
+            "--surface",
+            "011",
+            "--radius",
+            1e-3,
+            "--force",
+            1,
+            "--format",
+            "json",
+        )
+    )[0]
+    h = hertz(indentation_modulus(Material.crystal("Cu").rotated((0, 1, 1))), 1e-3, 1.0)
+    assert row["stiffness_N_per_m"] == pytest.approx(h.stiffness, rel=1e-3)
+    assert row["contact_radius_m"] == pytest.approx(h.contact_radius, rel=2e-3)
 
 
 @pytest.mark.parametrize(

@@ -117,6 +117,8 @@ DYNAMIC_TANGENTIAL = (
     "tangential_loss_tangent",
 )
 COATED = ("coating", "film_share")
+# The contact ellipse: a bare face only (the coated contact is the axisymmetric approximation).
+ELLIPSE = ("semi_major_m", "semi_minor_m", "ellipticity", "orientation_deg")
 
 
 @pytest.mark.parametrize(
@@ -126,9 +128,9 @@ COATED = ("coating", "film_share")
         (None, True, (), COATED + DYNAMIC + DYNAMIC_TANGENTIAL),
         (1e6, False, (), COATED + STATIC_TANGENTIAL + DYNAMIC_TANGENTIAL),
         (1e6, True, (), COATED + STATIC_TANGENTIAL),
-        (None, False, ("Si3N4:1e-6",), STATIC_TANGENTIAL + DYNAMIC + DYNAMIC_TANGENTIAL),
-        (None, True, ("Si3N4:1e-6",), DYNAMIC + DYNAMIC_TANGENTIAL),
-        (1e6, False, ("Si3N4:1e-6",), STATIC_TANGENTIAL + DYNAMIC_TANGENTIAL),
+        (None, False, ("Si3N4:1e-6",), ELLIPSE + STATIC_TANGENTIAL + DYNAMIC + DYNAMIC_TANGENTIAL),
+        (None, True, ("Si3N4:1e-6",), ELLIPSE + DYNAMIC + DYNAMIC_TANGENTIAL),
+        (1e6, False, ("Si3N4:1e-6",), ELLIPSE + STATIC_TANGENTIAL + DYNAMIC_TANGENTIAL),
     ],
 )
 def test_contact_table_columns(frequency, tangential, coating, absent):

@@ -59,12 +59,14 @@ from ._crystal_face import crystal_face, crystal_face_options
 def contact(radius, force, frequency, tangential, direction, coating, fmt, **face):
     """Hertz contact of a rigid sphere on a crystal face (paper 1, Eqs. 1-4).
 
-    Prints the contact radius a (m), the peak (centre) pressure p0 (Pa), the indentation depth
-    (m), the static contact stiffness K_sa = dF/dw (N/m) and the indentation modulus M (Pa; the
-    E* of the isotropic solid that gives the same contact). Radius, force and frequency
-    broadcast: give one of them as a range for a table. On faces without 3- or 4-fold symmetry
-    (e.g. 011) the true contact is slightly elliptic and the circular result is an
-    approximation (a note says so).
+    Prints the contact radius (m), the semi-axes a >= b of the contact ellipse (m), its
+    ellipticity b/a and orientation (major axis, degrees from the surface x axis towards y), the
+    peak (centre) pressure p0 (Pa), the indentation depth (m), the static contact stiffness
+    K_sa = dF/dw (N/m) and the indentation modulus M (Pa; the E* of the isotropic solid that
+    gives nearly the same contact). Radius, force and frequency broadcast: give one of them as a
+    range for a table. On faces without 3- or 4-fold symmetry (e.g. 011) the contact is an
+    ellipse (a note says so) and the contact radius is √(ab); these numbers do not depend on
+    --inplane (but the orientation, measured from it).
 
     --direction needs --tangential. --frequency adds the exact dynamic normal stiffness
     K_da = K_sa DCSF (real and imaginary parts, N/m, and k_s a = ω a √(ρ/C44)); --tangential
@@ -90,11 +92,20 @@ def contact(radius, force, frequency, tangential, direction, coating, fmt, **fac
     emit(result.table, fmt)
     for message in result.warnings:
         click.echo(f"note: {message}", err=True)
-    if not result.circular:
+    if not result.circular and "ellipticity" in result.table:
+        row = result.table.iloc[0]
+        click.echo(
+            f"note: surface {_face_name(face)} has no 3- or 4-fold symmetry: the contact is "
+            f"elliptic (b/a = {row['ellipticity']:.4g}, major axis at "
+            f"{row['orientation_deg']:.4g} deg from x); contact_radius_m is sqrt(ab)",
+            err=True,
+        )
+    elif not result.circular:  # coated: the axisymmetric (circular) approximation
         click.echo(
             f"note: surface {_face_name(face)} has no 3- or 4-fold symmetry: the contact is "
             f"slightly elliptic (relative 2nd harmonic of the compliance "
-            f"{result.noncircularity:.3g}); the circular Hertz result is an approximation",
+            f"{result.noncircularity:.3g}); the circular result on the coating is an "
+            "approximation",
             err=True,
         )
 

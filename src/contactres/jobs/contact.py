@@ -1,5 +1,6 @@
-"""Job ``contact``: Hertz contact of a rigid sphere on a crystal face (paper 1, Eqs. 1-4), and
-its normal and tangential stiffness, static or at a frequency; on a bare or a coated face.
+"""Job ``contact``: Hertz contact of a rigid sphere on a crystal face (paper 1, Eqs. 1-4; an
+ellipse on a face without 3- or 4-fold symmetry), and its normal and tangential stiffness,
+static or at a frequency; on a bare or a coated face.
 
 Inputs: the solid in the frame of its face (a :class:`~contactres.materials.Material`, z the
 inward normal), or a coated one (a :class:`~contactres.LayeredMaterial`). Settings: sphere
@@ -12,12 +13,19 @@ contact, rigid disk of radius a); on a coated face both are :func:`contactres.fl
 of the stack at the contact radius (the tangential one static only: the layered tangential punch
 at a frequency is not available yet).
 
+On a bare face the contact is the ellipse of the anisotropic Hertz contact (Willis 1966; a
+circle on a face with 3- or 4-fold symmetry): the table gives its semi-axes, ellipticity b/a and
+orientation (the major axis, degrees from the surface x axis towards y), and ``contact_radius_m``
+is the equivalent radius √(ab), which the dynamic and tangential stiffness (rigid disks) take.
+The static normal columns but the orientation do not depend on the in-plane axis
+(``--inplane``).
+
 On a coated face the contact is solved with the θ-averaged (axisymmetric) compliance of the
 stack (:func:`contactres.sphere_contact` on a :class:`~contactres.LayeredMaterial`): exact for
 isotropic layers on a face with 3- or 4-fold symmetry, an approximation elsewhere (there the
 coated tangential stiffness is the θ average, the same for every ``direction``, and a film of
-the substrate's own material does not give back the bare face's circular-Hertz numbers, which
-use the x axis).
+the substrate's own material gives back the circle of Hertz with the face's M, not the bare
+face's ellipse); the ellipse columns are then left out.
 
 Frequency-dependent (viscoelastic) materials of a stack, e.g. the built-in PMMA, whose power laws
 have no relaxed (0 Hz) limit: the static columns use their storage constants at
@@ -97,8 +105,8 @@ class Settings:
 
 @dataclass(frozen=True)
 class Result(JobResult):
-    """One row per (R, F, f): ``table`` (columns in SI units, named with them:
-    :data:`contactres.measurements.schema.CONTACT_TABLE`), and whether the
+    """One row per (R, F, f): ``table`` (columns in SI units but the orientation in degrees,
+    named with them: :data:`contactres.measurements.schema.CONTACT_TABLE`), and whether the
     contact is circular (the face has 3- or 4-fold symmetry) with the relative 2nd harmonic of
     its compliance, ``noncircularity`` (on a coated face: those of the substrate's face).
     ``warnings``: notes for the user (with a viscoelastic film: its static columns use its
@@ -156,6 +164,10 @@ def run(
             "radius_m": R,
             "force_N": F,
             "contact_radius_m": c.contact_radius,
+            "semi_major_m": c.semi_major,
+            "semi_minor_m": c.semi_minor,
+            "ellipticity": c.ellipticity,
+            "orientation_deg": math.degrees(c.orientation),
             "peak_pressure_Pa": c.peak_pressure,
             "depth_m": c.depth,
             "stiffness_N_per_m": c.stiffness,

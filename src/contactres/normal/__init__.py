@@ -2,7 +2,7 @@
 and the axisymmetric contact on a coated (layered) substrate (``_axisymmetric``: the solver on a
 wave-number-dependent compliance; ``_layered``: the punch, sphere and M(a) on a
 :class:`~contactres.LayeredMaterial`). These modules are private (scipy's rule): import from
-``contactres.normal``.
+``contactres.normal``. The anisotropic Hertz contact is an ellipse (:func:`contact_ellipse`).
 
 The public functions of these modules are re-exported here and from :mod:`contactres`
 (:func:`sphere_contact` is the one of ``_layered``, which hands a homogeneous material to the
@@ -28,7 +28,9 @@ TYPE_CHECKING = False
 _EXPORTS = MappingProxyType(
     {
         "AnisotropicContact": "._anisotropic",
+        "ContactEllipse": "._anisotropic",
         "ContactIntegrals": "._anisotropic",
+        "contact_ellipse": "._anisotropic",
         "contact_integrals": "._anisotropic",
         "indentation_modulus": "._anisotropic",
         "THETA_RTOL": "._anisotropic",
@@ -63,8 +65,10 @@ if TYPE_CHECKING:
     # isort: off
     from ._anisotropic import (
         AnisotropicContact as AnisotropicContact,
+        ContactEllipse as ContactEllipse,
         ContactIntegrals as ContactIntegrals,
         THETA_RTOL as THETA_RTOL,
+        contact_ellipse as contact_ellipse,
         contact_integrals as contact_integrals,
         contrast_poisson as contrast_poisson,
         indentation_modulus as indentation_modulus,

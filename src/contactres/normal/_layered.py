@@ -27,8 +27,9 @@ t ∝ (1 − r̄²)^{-1/2} e_x is exact; on a coated solid the pattern carries ~
 Approximations, stated:
 
 - Anisotropic layers: the θ averages are the axisymmetric approximation (exact when every layer is
-  transversely isotropic about the normal, e.g. isotropic layers, and the same approximation as
-  :func:`contactres.sphere_contact` makes on a non-circular face of a homogeneous crystal). The
+  transversely isotropic about the normal, e.g. isotropic layers; on a homogeneous face without
+  a 3- or 4-fold axis it is Hertz with the indentation modulus M, a circle, where
+  :func:`contactres.sphere_contact` solves the ellipse). The
   tangential Galerkin then works on the two-function family above, a subspace of the true
   tractions: a lower bound of the stiffness (exact for a homogeneous face that is a mirror
   plane, e.g. cubic (001), where the x direction is also a symmetry direction).
@@ -50,7 +51,7 @@ from ..errors import ContactresInputError
 from ..layered import LayeredMaterial, surface_green
 from ..materials import Material, require_material
 from ..validation import nonnegative, positive
-from ._anisotropic import THETA_RTOL, isotropic_constants
+from ._anisotropic import THETA_RTOL, isotropic_constants, pair_integrals
 from ._anisotropic import sphere_contact as homogeneous_sphere_contact
 from ._axisymmetric import DEFAULT_TOL, RadialKernel, punch_and_sphere
 
@@ -360,8 +361,9 @@ def sphere_contact(
     """Frictionless contact of a rigid (or elastic) sphere on a homogeneous or layered half-space.
 
     A :class:`~contactres.Material` (or a stack without layers) is passed to the anisotropic
-    Hertz solution (the ``sphere_contact`` of the private ``_anisotropic``, exact on a circular
-    face). A :class:`~contactres.LayeredMaterial` is solved by the axisymmetric Galerkin of
+    Hertz solution (the ``sphere_contact`` of the private ``_anisotropic``: an ellipse on a face
+    without a 3- or 4-fold axis, :class:`~contactres.normal.AnisotropicContact`). A
+    :class:`~contactres.LayeredMaterial` is solved by the axisymmetric Galerkin of
     :mod:`contactres.normal._axisymmetric`: the contact radius a at which the pressure with no
     edge singularity carries the force (solved to 1e-12 relative in F; F(a) increases with a).
 
@@ -382,8 +384,11 @@ def sphere_contact(
         The sphere's own material (homogeneous, static constants; default: rigid). Its surface
         compliance is added to the plate's (the two bodies take the same pressure: Hertz's
         1/E* = 1/E*_1 + 1/E*_2, here with the θ-averaged compliance of the sphere's face
-        pointing at the plate, ``indenter`` in that frame). The result is then always a
-        :class:`LayeredContact`, its ``indentation_modulus`` the two bodies' E* together.
+        pointing at the plate, ``indenter`` in that frame). The result is then a
+        :class:`LayeredContact`, its ``indentation_modulus`` the two bodies' E* together; but
+        for two homogeneous bodies whose contact is not circular (a face without a 3- or 4-fold
+        axis) the elliptic :class:`~contactres.normal.AnisotropicContact` with both compliances
+        (the sphere's frame: the plate's turned by π about x).
 
     Returns
     -------
@@ -408,6 +413,14 @@ def sphere_contact(
     stack = material.at(0.0) if isinstance(material, LayeredMaterial) else _stack(material)
     if indenter is None and not stack.layers:
         return homogeneous_sphere_contact(require_material(stack.substrate), radius, force, rtol)
+    if not stack.layers and isinstance(stack.substrate, Material) and not stack.is_lossy:
+        # Two homogeneous bodies whose contact is not circular: the ellipse, of which the
+        # axisymmetric solution below would be the circular approximation.
+        pair = pair_integrals(stack.substrate, require_material(indenter, lossless=True), rtol)
+        if not pair.circular:
+            return homogeneous_sphere_contact(
+                stack.substrate, radius, force, rtol, indenter=indenter
+            )
     if stack.is_lossy:
         raise ContactresInputError(
             "sphere_contact needs real (undamped) constants: the static contact of a lossy "

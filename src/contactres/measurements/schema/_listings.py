@@ -40,16 +40,35 @@ def _columns(*rows: tuple[str, str, str]) -> tuple[Column, ...]:
 
 
 #: ``contactres contact``: the Hertz contact of a rigid sphere on a crystal face (paper 1,
-#: Eqs. 1-4), with its dynamic normal and tangential stiffness when asked for; on a coated face
-#: (``--coating``) the axisymmetric contact on the layered solid.
+#: Eqs. 1-4; an ellipse on a face without 3- or 4-fold symmetry), with its dynamic normal and
+#: tangential stiffness when asked for; on a coated face (``--coating``) the axisymmetric
+#: contact on the layered solid.
 CONTACT_TABLE = TableSchema(
     "contact listing",
     "one row per (sphere radius, force, frequency): the contact and its stiffness",
     _columns(
         ("radius_m", "m", "sphere radius R"),
         ("force_N", "N", "normal force F"),
-        ("contact_radius_m", "m", "Hertz contact radius a (coated: of the layered solid)"),
-        ("peak_pressure_Pa", "Pa", "pressure p0 at the centre of the contact"),
+        (
+            "contact_radius_m",
+            "m",
+            "contact radius: √(ab) of the contact ellipse, the Hertz a on a face with 3- or "
+            "4-fold symmetry (coated: of the layered solid, axisymmetric)",
+        ),
+        (
+            "semi_major_m",
+            "m",
+            "semi-axis a of the contact ellipse, a >= b (Willis 1966; bare face only)",
+        ),
+        ("semi_minor_m", "m", "semi-axis b of the contact ellipse (bare face only)"),
+        ("ellipticity", "-", "b/a, 1 for a circular contact (bare face only)"),
+        (
+            "orientation_deg",
+            "deg",
+            "angle of the major axis from the surface x axis (`--inplane`), positive towards y, "
+            "in (−90, 90]; 0 for a circular contact (bare face only)",
+        ),
+        ("peak_pressure_Pa", "Pa", "pressure p0 at the centre of the contact (3F/(2πab))"),
         ("depth_m", "m", "indentation depth δ"),
         ("stiffness_N_per_m", "N/m", "static normal contact stiffness K_sa = dF/dδ"),
         (
@@ -115,7 +134,12 @@ DCSF_TABLE = TableSchema(
         ("radius_m", "m", "sphere radius R (with `--radius/--force/--frequency`)"),
         ("force_N", "N", "static force F (with `--radius/--force/--frequency`)"),
         ("frequency_Hz", "Hz", "frequency f (with `--radius/--force/--frequency`)"),
-        ("contact_radius_m", "m", "static Hertz contact radius a (with `--radius/...`)"),
+        (
+            "contact_radius_m",
+            "m",
+            "static Hertz contact radius a, √(ab) of the contact ellipse on a face without 3- or "
+            "4-fold symmetry (with `--radius/...`)",
+        ),
         ("stiffness_N_per_m", "N/m", "static contact stiffness K_sa (with `--radius/...`)"),
         ("K_re_N_per_m", "N/m", "Re K = K_sa Re DCSF (with `--radius/...`)"),
         ("K_im_N_per_m", "N/m", "Im K = K_sa Im DCSF (with `--radius/...`)"),
