@@ -175,3 +175,20 @@ def test_the_index_names_files_of_its_own_folder_only(tmp_path, name):
         read_spectra(folder)
     _one_line(info, "index.csv, line 3", "outside the folder")
     assert "private" not in str(info.value)
+
+
+def test_an_admittance_beyond_any_measurement_is_flagged_not_an_internal_error(tmp_path):
+    """G of 1e300 S made the fit's residuals overflow: scipy's ValueError reached the user."""
+    rows = []
+    for sid, ref, fr, scale in (("ref", True, F_R, 1.0), ("s1", False, F_R + 40.0, 1.0),
+                                ("s2", False, F_R + 40.0, 1e300)):  # fmt: skip
+        y = _circuit(F, fr) * scale
+        rows += [{"spectrum": sid, "frequency_Hz": f, "G_S": v.real, "B_S": v.imag,
+                  "reference": ref, "overtone": N, "drive_voltage_V": 0.1,
+                  "sweep": "" if ref else "A", "normal_force_N": "" if ref else 1e-3}
+                 for f, v in zip(F, y, strict=True)]  # fmt: skip
+    path = tmp_path / "huge.csv"
+    pd.DataFrame(rows).to_csv(path, index=False, float_format="%.15g")
+    _, out, _fits, left_out = read_spectra_sweeps(path, validate=False)
+    assert out["spectrum"].tolist() == ["s1"]
+    assert len(left_out) == 1 and "spectrum s2" in left_out[0] and "bad-values" in left_out[0]
