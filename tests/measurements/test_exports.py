@@ -577,3 +577,16 @@ def test_awsensors_dimensionless_d_needs_no_scale(tmp_path):
     with pytest.raises(ValueError) as info:
         read_export(awsensors(tmp_path), fundamental=F_F)  # its D is in ppm
     one_line(info, "line 3", "'Delta_D_n=3_()'", "dissipation_scale=1e-6")
+
+
+def test_a_line_break_inside_a_quoted_cell_is_one_line(tmp_path):
+    """Issue 27, point 15: a CR inside a quoted cell made the rows and their lines disagree (an
+    internal error of the export reader)."""
+    path = awsensors(tmp_path)
+    lines = path.read_text().splitlines()
+    lines[0] += ",Note"
+    lines[2] += ',"a\rb"'
+    path.write_bytes(("\n".join(lines) + "\n").encode())
+    with pytest.raises(ValueError) as info:
+        read_export(path, dissipation_scale=1e-6, fundamental=F_F)
+    one_line(info, str(path), "line 3", "quoted cell runs over a line break")

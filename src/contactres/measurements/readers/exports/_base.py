@@ -316,6 +316,12 @@ def read_rows(path: Path) -> pd.DataFrame:
     header = kept[0][1]
     sep = "\t" if "\t" in header else ";" if ";" in header else ","
     rows = list(csv.reader((ln for _, ln in kept), delimiter=sep))
+    if len(rows) != len(kept):  # csv joined lines: a quoted cell holds a line break (CR, LF)
+        number = next((n for n, ln in kept if ln.count('"') % 2), kept[0][0])
+        raise ContactresInputError(
+            f"{path}, line {number}: a quoted cell runs over a line break (a CR or LF inside "
+            "quotes); write every cell on one line"
+        )
     names: list[str] = []
     seen: dict[str, int] = {}
     for name in (" ".join(c.split()) for c in rows[0]):
