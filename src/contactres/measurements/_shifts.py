@@ -165,8 +165,8 @@ def _check_near_references(table, measured: pd.DataFrame, f_ref, g_ref) -> None:
             f"{_where(table, row)} (overtone {row['overtone']:g}) resonates at "
             f"{row['f_r_Hz']:.9g} Hz (scanned {row['f_lo']:.9g} to {row['f_hi']:.9g} Hz), where "
             f"its references put the overtone at {f_ref[i] - k * g_ref[i]:.9g} to "
-            f"{f_ref[i] + k * g_ref[i]:.9g} Hz (f_ref ± {k:g} Γ_ref): another unit, overtone or "
-            "crystal than the references"
+            f"{f_ref[i] + k * g_ref[i]:.9g} Hz (f_ref ± {k:g} Γ_ref): another unit, overtone, "
+            "crystal or medium than its references (label the references' medium)"
         )
 
 
