@@ -101,8 +101,9 @@ _REPEATED = re.compile(r"^(.*) #(\d+)$")
 
 class ExportWarning(UserWarning):
     """Something of an export that was not read (an overtone without its frequency or
-    dissipation column, rows without a value, comment lines among the rows), named in the
-    message; the same lines are in the table's ``conventions["left_out"]``."""
+    dissipation column, rows without a value, comment lines among the rows), or rows out of time
+    order (the baseline "first" is then the earliest point), named in the message; the same
+    lines are in the table's ``conventions["left_out"]``."""
 
 
 #: The conventions a reader's ``load`` takes, with the command-line options that give them.

@@ -252,6 +252,23 @@ def _fundamental(
     return fundamental, source
 
 
+def _out_of_order(raw, t: np.ndarray) -> str | None:
+    """The line saying that the rows are out of time order and which row is the baseline
+    "first" (the earliest; a QCM-I sample export starts with a row 5 ms later than its
+    second), or None when the times do not decrease."""
+    finite = np.isfinite(t)
+    times, lines = t[finite], np.asarray(raw.attrs["lines"])[finite]
+    back = np.flatnonzero(np.diff(times) < 0)
+    if back.size == 0:
+        return None
+    i, first = int(back[0]), int(np.argmin(times))
+    return (
+        f"rows out of time order (line {lines[i + 1]}, t = {times[i + 1]:g} s, after line "
+        f"{lines[i]}, t = {times[i]:g} s): the baseline 'first' is the earliest point, line "
+        f"{lines[first]} (t = {times[first]:g} s)"
+    )
+
+
 def convert(
     path: Path,
     reader: str,
@@ -299,6 +316,8 @@ def convert(
             f"{len(comments)} comment line(s) among the rows skipped (first character '#'): "
             f"line(s) {line_ranges(comments)}"
         )
+    if baseline[0] == "first" and (order := _out_of_order(raw, t_all)) is not None:
+        notes.append(order)
     for note in notes:
         warnings.warn(f"{path}: {note}", ExportWarning, stacklevel=3)
     fundamental, fsource = _fundamental(path, reader, given, kind, baseline, t_all, series)
