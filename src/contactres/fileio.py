@@ -200,9 +200,19 @@ def _same_file(a: Path, b: Path) -> bool:
         return False
 
 
+def _named(path: str | os.PathLike, what: str) -> None:
+    """OutputError for an empty name: Path("") is the current folder, where an empty --out
+    wrote its files without a word (issue 27); "." says that on purpose."""
+    if not os.fspath(path).strip():
+        raise OutputError(
+            f'{what} {os.fspath(path)!r} is empty: name one ("." for the current folder)'
+        )
+
+
 def check_output_file(path: str | os.PathLike, inputs: Iterable[str | os.PathLike] = ()) -> Path:
-    """:func:`check_output` for one output file: OutputError (one line) when ``path`` is a
-    directory or one of ``inputs``, or its folder is missing or not writable."""
+    """:func:`check_output` for one output file: OutputError (one line) when ``path`` is empty,
+    a directory or one of ``inputs``, or its folder is missing or not writable."""
+    _named(path, "output file")
     given, folder = Path(path), Path(path).resolve().parent
     if not folder.is_dir():
         raise OutputError(f"output {str(given)!r}: folder {str(given.parent)!r} does not exist")
@@ -305,10 +315,11 @@ def check_output(
     ``folder``: the output folder (created later if missing); ``names``: every file name the
     set may write or remove in it; ``inputs``: the input files of the run (those that do not
     exist are ignored). Returns ``folder`` with symbolic links resolved. Raises
-    :class:`OutputError`, one line naming the folder and the reason: a path through a file, an
-    existing file, a folder that cannot be created or written, a file of the set that is an
-    input or a directory.
+    :class:`OutputError`, one line naming the folder and the reason: an empty name, a path
+    through a file, an existing file, a folder that cannot be created or written, a file of the
+    set that is an input or a directory.
     """
+    _named(folder, "output folder")
     given, target = Path(folder), Path(folder).resolve()
     nearest = target  # the folder, or the nearest of its parents that exists
     while not nearest.exists():
@@ -444,6 +455,7 @@ class ResultSet:
         owned: Iterable[str] = (),
         kind: str = "",
     ) -> None:
+        self._name = os.fspath(folder)  # as given: Path("") would be the current folder
         self.given = Path(folder)
         self.kind = str(kind)
         self.names = tuple(names)
@@ -459,6 +471,7 @@ class ResultSet:
     # -- set-up ---------------------------------------------------------------------------
 
     def __enter__(self) -> ResultSet:
+        _named(self._name, "output folder")
         self.folder = check_output(self.given, self.owned, self.inputs)
         _manifest_owner(self.folder, self.given, self.kind, self.owned)
         parent = self.folder.parent

@@ -136,3 +136,13 @@ def test_references_serve_only_their_own_experiment(tmp_path):
     rows = pd.read_csv(tmp_path / "s.csv", comment="#")
     df = rows.groupby("experiment")["df_Hz"].mean()
     assert abs(df[1] - df[2]) < 1.0  # the fit noise of two copies; 100 Hz if mixed
+
+
+@pytest.mark.parametrize("option", ["--out", "--fits"])
+def test_an_empty_output_name_is_refused(tmp_path, monkeypatch, option):
+    """Issue 27, point 15: --out '' wrote into the current folder, --fits '' was ignored."""
+    monkeypatch.chdir(tmp_path)
+    names = {"--out": "sweeps.csv", "--fits": "fits.csv", option: ""}
+    r = run("qcm", "spectra", SPECTRA, "--out", names["--out"], "--fits", names["--fits"])
+    one_line_error(r, "output file ''", "is empty")
+    assert list(tmp_path.iterdir()) == []

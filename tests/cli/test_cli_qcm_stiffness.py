@@ -144,7 +144,13 @@ def test_absolute_log_with_a_baseline(tmp_path):
 def test_a_missing_convention_is_one_line_naming_file_and_option(tmp_path):
     path = awsensors_file(tmp_path)
     r = run("qcm", "stiffness", path, "--area", AREA, "--n-contacts", N_P, "--out", tmp_path / "o")
-    one_line_error(r, "aws_run.csv", "--dissipation-scale", "--fundamental")
+    one_line_error(r, "aws_run.csv", "--fundamental")
+    assert not (tmp_path / "o").exists()
+    # The header's D unit '()' is dimensionless, so no scale is asked for; this file's D is in
+    # ppm, which a plain D shift cannot reach: one line asking for the scale (issue 27, 12).
+    r = run("qcm", "stiffness", path, "--area", AREA, "--n-contacts", N_P, "--fundamental", F_F,
+            "--out", tmp_path / "o")  # fmt: skip
+    one_line_error(r, "aws_run.csv", "--dissipation-scale 1e-6", "'()'")
     assert not (tmp_path / "o").exists()
 
 
@@ -231,3 +237,16 @@ def test_a_film_export_with_negative_stiffness_is_said_not_printed_silently(tmp_
     warned = [ln for ln in r.stderr.splitlines() if ln.startswith("contactres: warning:")]
     assert [ln.split(":")[2].strip() for ln in warned] == [f"overtone {n}" for n in OVERTONES]
     assert all("8 of 8 points have κ < 0: a negative Δf is mass loading" in ln for ln in warned)
+
+
+def test_an_overtone_left_out_is_said_on_the_console(tmp_path):
+    """Issue 27, point 3: an overtone without its dissipation column is named, not dropped."""
+    path = awsensors_file(tmp_path)
+    text = path.read_text().splitlines()
+    text[0] = text[0].replace("Delta_D_n=5_()", "Delta_Q_n=5")
+    path.write_text("\n".join(text) + "\n")
+    r = run("qcm", "stiffness", path, *AWS_ARGS, "--out", tmp_path / "o")
+    assert r.exit_code == 0, r.output
+    warned = [ln for ln in r.stderr.splitlines() if ln.startswith("contactres: warning:")]
+    assert any("overtone 5 not read" in ln and "Delta_F/n_n=5_(Hz)" in ln for ln in warned), warned
+    assert "n = 5" not in r.stdout and "n = 7" in r.stdout

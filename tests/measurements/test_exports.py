@@ -17,6 +17,7 @@ import pytest
 from contactres.measurements.readers.exports import (
     EXPORT_READERS,
     ExportTable,
+    ExportWarning,
     export_reader,
     pick_export_reader,
     read_export,
@@ -201,9 +202,14 @@ def test_gamma_is_d_times_f_over_two_by_hand(tmp_path):
          [5.045002, 1.33234290197324e-05, 4961264.47245154, 66.1010550468283]],
         sep="\t",
     )  # fmt: skip
-    t = read_export(path, baseline="first").data
-    assert t.df_Hz.iloc[1] == pytest.approx(4961264.47245154 - 4961272.01729206, rel=1e-12)
-    assert t.dgamma_Hz.iloc[1] == pytest.approx((66.1010550468283 - 65.0728654676696) / 2, rel=1e-5)
+    with pytest.warns(ExportWarning, match=r"out of time order .* line 3 \(t = 5.045 s\)"):
+        t = read_export(path, baseline="first").data
+    # The sample's second row is 5 ms earlier than its first: the reference (baseline "first")
+    # is the point of the earliest time, the second row (issue 27, point 3); the differences
+    # between the rows do not depend on it.
+    assert t.df_Hz.iloc[1] == 0 and t.dgamma_Hz.iloc[1] == 0
+    assert t.df_Hz.iloc[0] == pytest.approx(4961272.01729206 - 4961264.47245154, rel=1e-12)
+    assert t.dgamma_Hz.iloc[0] == pytest.approx((65.0728654676696 - 66.1010550468283) / 2, rel=1e-5)
 
 
 def test_real_qsense_rows_decimal_comma(tmp_path):
@@ -355,7 +361,8 @@ def test_empty_cells_are_skipped_and_counted(tmp_path):
     lines = path.read_text().splitlines()
     lines[2] = ",".join(lines[2].split(",")[:-2])  # a short row: no 9th overtone there
     path.write_text("\n".join(lines) + "\n")
-    table = read_export(path, baseline="first", dissipation_scale=1e-6)
+    with pytest.warns(ExportWarning, match=r"overtone 9: 1 row\(s\) .* \(line\(s\) 3\)"):
+        table = read_export(path, baseline="first", dissipation_scale=1e-6)
     assert table.conventions["empty_cells_skipped"] == 1
     assert (table.data.overtone == 9).sum() == len(T) - 1
 
@@ -400,3 +407,188 @@ def test_read_with_a_named_reader_and_overtone_filter(tmp_path):
     with pytest.raises(ValueError) as info:
         read_export(qcmi(tmp_path), "awsensors", dissipation_scale=1e-6, fundamental=F_F)
     one_line(info, "no AWSensors columns")
+
+
+# ------------------------------------------------------------------ nothing dropped silently
+# (issue 27, point 3: a repeated header name or an overtone without one of its columns lost
+# that overtone without a word; rows out of time order moved the "first" baseline)
+def _rename(path, old, new):
+    lines = path.read_text().splitlines()
+    lines[0] = lines[0].replace(old, new)
+    path.write_text("\n".join(lines) + "\n")
+    return path
+
+
+@pytest.mark.parametrize(
+    "maker, old, new, given, words",
+    [
+        (qsense_a, "F_1:5", "F_1:3", CASES["qsense-A"][2], ["'F_1:3'", "columns 2 and 4"]),
+        (qcmi, "Channel A 5. Overtone [Hz]", "Channel A 3. Overtone [Hz]", dict(baseline="first"),
+         ["'Channel A 3. Overtone [Hz]'", "columns 10 and 16"]),
+        (openqcm_multi, "Dissipation_2", "Dissipation_1",
+         dict(baseline="first", dissipation_scale=1e-6), ["'Dissipation_1'", "columns"]),
+        (awsensors, "Delta_D_n=5_()", "Delta_D_n=3_()", dict(dissipation_scale=1e-6,
+         fundamental=F_F), ["'Delta_D_n=3_()'", "columns 3 and 5"]),
+    ],
+)  # fmt: skip
+def test_a_repeated_header_name_is_an_error_naming_both_columns(tmp_path, maker, old, new,
+                                                                given, words):  # fmt: skip
+    path = _rename(maker(tmp_path), old, new)
+    with pytest.raises(ValueError) as info:
+        read_export(path, **given)
+    one_line(info, str(path), "twice", *words)
+
+
+@pytest.mark.parametrize(
+    "maker, old, new, given, n, column",
+    [
+        (qsense_a, "F_1:5", "F_1:5 (old)", CASES["qsense-A"][2], 5, "'D_1:5'"),
+        (qsense_a, "D_1:7", "Dx_1:7", CASES["qsense-A"][2], 7, "'F_1:7'"),
+        (qcmi, "Channel A 5. Dissipation  [ ]", "Channel A 5. Q [ ]", dict(baseline="first"), 5,
+         "'Channel A 5. Overtone [Hz]'"),
+        (openqcm_multi, "Frequency_2", "Freq_2", dict(baseline="first", dissipation_scale=1e-6),
+         5, "'Dissipation_2'"),
+        (awsensors, "Delta_F/n_n=7_(Hz)", "Delta_f7", dict(dissipation_scale=1e-6,
+         fundamental=F_F), 7, "'Delta_D_n=7_()'"),
+    ],
+)  # fmt: skip
+def test_an_overtone_without_one_of_its_columns_is_named(tmp_path, maker, old, new, given, n,
+                                                         column):  # fmt: skip
+    path = _rename(maker(tmp_path), old, new)
+    with pytest.warns(ExportWarning) as caught:
+        table = read_export(path, **given)
+    text = " | ".join(str(w.message) for w in caught)
+    assert f"overtone {n} not read" in text and column in text, text
+    assert n not in set(table.data.overtone)
+    assert any(f"overtone {n} not read" in line for line in table.conventions["left_out"])
+
+
+def test_rows_and_comment_lines_left_out_are_named(tmp_path):
+    path = openqcm_multi(tmp_path)
+    lines = path.read_text().splitlines()
+    lines[2] = ",".join(lines[2].split(",")[:-2])  # line 3: no 9th overtone
+    lines[4] = "# " + lines[4]  # line 5 commented out
+    path.write_text("\n".join(lines) + "\n")
+    with pytest.warns(ExportWarning) as caught:
+        table = read_export(path, baseline="first", dissipation_scale=1e-6)
+    text = " | ".join(str(w.message) for w in caught)
+    assert "overtone 9: 1 row(s)" in text and "line(s) 3)" in text, text
+    assert "1 comment line(s)" in text and "line(s) 5" in text, text
+    assert len(table.conventions["left_out"]) == 2
+
+
+def test_every_over_long_row_is_named(tmp_path):
+    path = awsensors(tmp_path)
+    lines = path.read_text().splitlines()
+    for i in (2, 4, 6):
+        lines[i] += ",1.5,2.5"
+    path.write_text("\n".join(lines) + "\n")
+    with pytest.raises(ValueError) as info:
+        read_export(path, dissipation_scale=1e-6, fundamental=F_F)
+    one_line(info, "line(s) 3 (9 fields), 5 (9 fields), 7 (9 fields)", "header (line 1, 7 fields)")
+
+
+def test_qcmi_rows_out_of_time_order_take_the_earliest_as_baseline(tmp_path):
+    path = qcmi(tmp_path)
+    lines = path.read_text().splitlines()
+    body = lines[1:]
+    order = [3, 0, 5, 1, 4, 2]  # the t = 0 row is the second row of the file
+    path.write_text("\n".join([lines[0], *(body[i] for i in order)]) + "\n")
+    with pytest.warns(ExportWarning, match="earliest point, line 3"):
+        table = read_export(path, baseline="first")
+    for n in (1, *OVERTONES):
+        part = table.data[table.data.overtone == n]
+        np.testing.assert_allclose(part.time_s, T[order], rtol=1e-12)
+        np.testing.assert_allclose(part.df_Hz, true_df(n)[order], rtol=1e-9, atol=1e-6)
+        np.testing.assert_allclose(part.dgamma_Hz, true_dg(n)[order], rtol=1e-9, atol=1e-6)
+    assert table.conventions["reference_frequency_Hz"]["3"] == pytest.approx(3 * F_F)
+
+
+# ------------------------------------------------------------------ issue 27, point 12
+_ORD = {1: "fundamental", 3: "3rd", 5: "5th", 7: "7th"}
+
+
+def pyqcm_table(tmp_path, calibrated: bool):
+    """A QSense export as pyQCM-BraTaDio's format_file.py rewrites it (Time, fundamental_freq,
+    3rd_freq, ..., fundamental_dis, 3rd_dis, ..., Temp_Time, Temp; comma separated). Without
+    calibration offsets the values stay QSense's (Δf/n, D in ppm); with them pyQCM writes
+    n x F plus the offset (f_n) and D x 1e-6 plus the offset (absolute D, plain)."""
+    ns = (1, *OVERTONES)
+    columns = {"Time": T}
+    for n in ns:
+        if calibrated:
+            f = n * F_F + true_df(n)
+            columns[f"{_ORD[n]}_freq"] = f
+        else:
+            columns[f"{_ORD[n]}_freq"] = true_df(n) / n
+    for n in ns:
+        if calibrated:
+            f = n * F_F + true_df(n)
+            columns[f"{_ORD[n]}_dis"] = 2 * (gamma0(n) + true_dg(n)) / f
+        else:
+            columns[f"{_ORD[n]}_dis"] = dD(n) * 1e6
+    columns["Temp_Time"], columns["Temp"] = T, 22.0
+    import pandas as pd
+
+    path = tmp_path / f"Formatted-run{int(calibrated)}.csv"
+    pd.DataFrame(columns).to_csv(path, index=False, float_format="%.17g")
+    return path
+
+
+@pytest.mark.parametrize(
+    "calibrated, given",
+    [
+        (False, dict(time_unit="s", df_divided_by_n=True, dissipation_scale=1e-6,
+                     fundamental=F_F)),
+        (True, dict(time_unit="s", dissipation_scale=1, baseline="first")),
+    ],
+)  # fmt: skip
+def test_the_pyqcm_table_is_read(tmp_path, calibrated, given):
+    path = pyqcm_table(tmp_path, calibrated)
+    head = path.read_text()[:4096]
+    assert [r.name for r in EXPORT_READERS if r.detect(path, head)] == ["qsense"]
+    table = read_export(path, **given)
+    assert "pyQCM" in table.conventions["layout"]
+    assert table.conventions["overtones"] == [1, *OVERTONES]
+    for n in (1, *OVERTONES):
+        part = table.data[table.data.overtone == n]
+        np.testing.assert_allclose(part.df_Hz, true_df(n), rtol=1e-9, atol=1e-6)
+        np.testing.assert_allclose(part.dgamma_Hz, true_dg(n), rtol=1e-6, atol=1e-6)
+
+
+def test_the_pyqcm_table_asks_for_the_units_it_does_not_state(tmp_path):
+    path = pyqcm_table(tmp_path, False)
+    with pytest.raises(ValueError) as info:
+        read_export(path)
+    one_line(info, "time_unit", "df_divided_by_n", "dissipation_scale", "fundamental")
+
+
+def test_awsensors_dimensionless_d_needs_no_scale(tmp_path):
+    """``Delta_D_n=3_()`` states a dimensionless D: plain values are read without a scale; ppm
+    values under it are caught (a plain ΔD of 1e-3 is no contact's)."""
+    pairs = (("F/n", "Hz"), ("D", ""))
+    header = ["Time_(s)"] + [f"Delta_{q}_n={n}_({u})" for n in OVERTONES for q, u in pairs]
+    rows = [[t] + [v for n in OVERTONES for v in (true_df(n)[i] / n, dD(n)[i])]
+            for i, t in enumerate(T)]  # fmt: skip
+    table = read_export(write(tmp_path / "plain.csv", header, rows), fundamental=F_F)
+    assert table.conventions["dissipation_scale"] == 1
+    assert "'()'" in table.conventions["dissipation_scale_source"]
+    for n in OVERTONES:
+        part = table.data[table.data.overtone == n]
+        np.testing.assert_allclose(part.dgamma_Hz, true_dg(n), rtol=1e-9, atol=1e-9)
+    with pytest.raises(ValueError) as info:
+        read_export(awsensors(tmp_path), fundamental=F_F)  # its D is in ppm
+    one_line(info, "line 3", "'Delta_D_n=3_()'", "dissipation_scale=1e-6")
+
+
+def test_a_line_break_inside_a_quoted_cell_is_one_line(tmp_path):
+    """Issue 27, point 15: a CR inside a quoted cell made the rows and their lines disagree (an
+    internal error of the export reader)."""
+    path = awsensors(tmp_path)
+    lines = path.read_text().splitlines()
+    lines[0] += ",Note"
+    lines[2] += ',"a\rb"'
+    path.write_bytes(("\n".join(lines) + "\n").encode())
+    with pytest.raises(ValueError) as info:
+        read_export(path, dissipation_scale=1e-6, fundamental=F_F)
+    one_line(info, str(path), "line 3", "quoted cell runs over a line break")

@@ -109,10 +109,11 @@ def spectra_command(
     from ..fileio import CSV_FLOAT_FORMAT, check_output_file, neutralised, write_csv, write_text
     from ..jobs import qcm_spectra as job
 
+    # An empty --fits is refused (check_output_file), not taken as "no fits file".
     if fits and Path(fits).resolve() == Path(out).resolve():
         raise click.BadParameter("must name another file than --out", param_hint="'--fits'")
     targets = [check_output_file(out, [spectra])]
-    if fits:
+    if fits is not None:
         targets.append(check_output_file(fits, [spectra, out]))
     ids = None if reference is None else [x for x in reference.split(",") if x.strip()]
     if reference is not None and not ids:
@@ -132,7 +133,7 @@ def spectra_command(
     header = "".join(f"# {k}: {v}\n" for k, v in conventions.items())
     body = neutralised(rows).to_csv(index=False, float_format=CSV_FLOAT_FORMAT)
     write_text(targets[0], header + body)
-    if fits:
+    if fits is not None:
         write_csv(targets[1], fitted, index=False, float_format=CSV_FLOAT_FORMAT)
     for line in result.warnings:
         click.echo(f"contactres: warning: {line}", err=True)

@@ -73,7 +73,9 @@ class Result(JobResult):
     """``stiffness``: the export's rows (time_s, overtone, df_Hz, dgamma_Hz) with κ and ωξ of
     one contact (N/m), :data:`contactres.measurements.schema.STIFFNESS_CSV`; the conventions the
     file was read with, the constants, the equation and the units of the columns; ``source`` the
-    file's name and ``warnings`` the distinct small-load warnings (``|Δf|``/f above 1e-3)."""
+    file's name and ``warnings`` what the reader left out (overtones, rows, comment lines), the
+    distinct small-load warnings (``|Δf|``/f above 1e-3) and the overtones of negative median κ
+    or ωξ."""
 
     SCHEMAS = MappingProxyType({"stiffness": STIFFNESS_CSV})
     NOT_VALUES = ("source", "warnings")
@@ -90,14 +92,22 @@ class Result(JobResult):
 
 def run(inputs: str | os.PathLike, settings: Settings, progress: Progress | None = None) -> Result:
     """κ and ωξ of the export ``inputs`` (see the module docstring)."""
-    from ..measurements.readers.exports import read_export
+    from ..measurements.readers.exports import ExportWarning, read_export
 
     source, s = Path(inputs), settings
     say(progress, f"reading {source.name}")
-    table = read_export(source, s.reader, **(s.conventions or {}))
+    # What the reader left out (overtones without a column, rows without a value) is said
+    # with the other warnings (the CLI prints them), never only in the JSON.
+    with warnings.catch_warnings(record=True) as seen:
+        warnings.simplefilter("always", ExportWarning)
+        table = read_export(source, s.reader, **(s.conventions or {}))
+    left_out = [" ".join(str(w.message).split()) for w in seen if w.category is ExportWarning]
+    for w in seen:
+        if w.category is not ExportWarning:
+            warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
     say(progress, f"κ and ωξ of {len(table.data)} points")
     result, caught = stiffness_table(table, s.area, s.n_contacts, s.zq)
-    caught = [*caught, *_sign_warnings(result)]
+    caught = [*left_out, *caught, *_sign_warnings(result)]
     return Result(
         stiffness=result,
         conventions=dict(table.conventions),

@@ -44,6 +44,9 @@ from ._spectra_table import CONSTANT_COLUMNS, SpectraTable
 __all__ = [
     "D26_AT",
     "E26_AT",
+    "FUNDAMENTAL_TOLERANCE",
+    "MAX_SHIFT_HALF_WIDTHS",
+    "QCM_FUNDAMENTAL_HZ",
     "shear_amplitude",
     "sweeps_from_spectra",
 ]
@@ -55,6 +58,16 @@ D26_AT = 3.1e-12
 #: Labels that select the references of a spectrum (besides the overtone) when a reference
 #: names them.
 _MATCH = ("configuration", "medium", "experiment")
+#: Fundamentals f_F of QCM crystals, Hz: 1 MHz (the lowest made) to 500 MHz (inverted-mesa
+#: high-frequency crystals reach ~150 MHz). A spectrum whose frequencies over its overtone lie
+#: outside is in another unit (a frequency column in MHz, a Touchstone option line's unit).
+QCM_FUNDAMENTAL_HZ = (1e6, 5e8)
+#: Relative tolerance of the spectra's f/n against a fundamental_Hz column.
+FUNDAMENTAL_TOLERANCE = 0.05
+#: Half-widths Γ_ref of the reference a measured resonance may lie from it: a contact moves the
+#: resonance by a fraction of Γ (paper 2: Δf/Γ_ref below 0.3 in the example), and a spectrum
+#: scanned a few Γ around it cannot hold one further away; 10 leaves room for stiff contacts.
+MAX_SHIFT_HALF_WIDTHS = 10.0
 
 
 def shear_amplitude(drive_voltage, overtone, quality, d26: float = D26_AT):
@@ -98,6 +111,63 @@ def _reference_value(values: np.ndarray, errors: np.ndarray) -> tuple[float, flo
     if n >= 2:
         err = max(err, float(np.std(values, ddof=1)) / math.sqrt(n))
     return float(np.mean(values)), err
+
+
+def _where(table: SpectraTable, row) -> str:
+    """The file (a folder's spectrum file) or the table's line of one spectrum."""
+    file = str(row.get("file", "") or "")
+    if file and file != "nan":
+        return f"{table.source}/{file}: spectrum {row['spectrum']}"
+    return f"{table.source}, line {row['line']}: spectrum {row['spectrum']}"
+
+
+def _scanned(table: SpectraTable) -> pd.DataFrame:
+    """Lowest and highest frequency of every spectrum, Hz (columns f_lo, f_hi)."""
+    f = table.points.groupby("spectrum", sort=False)["frequency_Hz"]
+    return pd.DataFrame({"f_lo": f.min(), "f_hi": f.max()})
+
+
+def _check_overtones(table: SpectraTable, spectra: pd.DataFrame) -> None:
+    """Every spectrum's frequencies where its overtone n of a QCM lies: f/n a QCM fundamental
+    (:data:`QCM_FUNDAMENTAL_HZ`), and within :data:`FUNDAMENTAL_TOLERANCE` of the
+    ``fundamental_Hz`` it carries. One line naming the file, the overtone, the expected and the
+    found range (issue 27: a frequency column in MHz gave Δf = ΔΓ = 0, a Touchstone unit that
+    did not match the data shifts of 1e7 Hz and more)."""
+    lo, hi = QCM_FUNDAMENTAL_HZ
+    for row in spectra.to_dict("records"):
+        n = float(row["overtone"])
+        if not np.isfinite(n):
+            continue
+        f_lo, f_hi = row["f_lo"], row["f_hi"]
+        expected, why = (n * lo, n * hi), f"a QCM's overtone {n:g} (fundamental 1-500 MHz)"
+        f_f = float(row.get("fundamental_Hz", np.nan))
+        if np.isfinite(f_f):
+            tol = FUNDAMENTAL_TOLERANCE
+            expected = (n * f_f * (1 - tol), n * f_f * (1 + tol))
+            why = f"overtone {n:g} of the fundamental {f_f:.6g} Hz (± {tol:.0%})"
+        if not (expected[0] <= 0.5 * (f_lo + f_hi) <= expected[1]):
+            raise ContactresInputError(
+                f"{_where(table, row)} runs from {f_lo:.6g} to {f_hi:.6g} Hz, where {why} "
+                f"lies at {expected[0]:.6g} to {expected[1]:.6g} Hz: check the frequency "
+                "unit (a column in MHz, a Touchstone option line) and the overtone"
+            )
+
+
+def _check_near_references(table, measured: pd.DataFrame, f_ref, g_ref) -> None:
+    """Every measured resonance within :data:`MAX_SHIFT_HALF_WIDTHS` half-widths of its
+    references' (one line naming the file, the overtone, the expected and found range)."""
+    far = np.abs(measured["f_r_Hz"].to_numpy(float) - f_ref) > MAX_SHIFT_HALF_WIDTHS * g_ref
+    if far.any():
+        i = int(np.flatnonzero(far)[0])
+        row = measured.iloc[i]
+        k = MAX_SHIFT_HALF_WIDTHS
+        raise ContactresInputError(
+            f"{_where(table, row)} (overtone {row['overtone']:g}) resonates at "
+            f"{row['f_r_Hz']:.9g} Hz (scanned {row['f_lo']:.9g} to {row['f_hi']:.9g} Hz), where "
+            f"its references put the overtone at {f_ref[i] - k * g_ref[i]:.9g} to "
+            f"{f_ref[i] + k * g_ref[i]:.9g} Hz (f_ref ± {k:g} Γ_ref): another unit, overtone, "
+            "crystal or medium than its references (label the references' medium)"
+        )
 
 
 def sweeps_from_spectra(
@@ -150,6 +220,8 @@ def sweeps_from_spectra(
     spectra = table.spectra.merge(
         fits.drop(columns=["n_points"], errors="ignore"), on="spectrum", how="left"
     )
+    spectra = spectra.join(_scanned(table), on="spectrum")
+    _check_overtones(table, spectra)
     if reference is not None:
         ids = [str(x).strip() for x in reference]
         unknown = sorted(set(ids) - set(spectra["spectrum"]))
@@ -190,6 +262,14 @@ def sweeps_from_spectra(
                 f"{table.source}, line {row['line']}: spectrum {row['spectrum']} has no {what} "
                 f"(column {col!r}); every measured spectrum needs one"
             )
+    zero = measured["normal_force_N"].to_numpy(float) == 0
+    if zero.any():  # 0 N (no contact) is the label of a reference only
+        row = measured[zero].iloc[0]
+        raise ContactresInputError(
+            f"{table.source}, line {row['line']}: spectrum {row['spectrum']} is no reference "
+            "and has normal force 0 N (column 'normal_force_N'); 0 N is no contact: mark it a "
+            "reference, or give the force of its contact"
+        )
     no_sweep = (
         np.ones(len(measured), bool)
         if "sweep" not in measured.columns
@@ -232,6 +312,7 @@ def sweeps_from_spectra(
         g_ref[mine], g_ref_err[mine] = _reference_value(
             r["gamma_Hz"].to_numpy(float), r["gamma_err_Hz"].to_numpy(float)
         )
+    _check_near_references(table, measured, f_ref, g_ref)
     f_r = measured["f_r_Hz"].to_numpy(float)
     gamma = measured["gamma_Hz"].to_numpy(float)
     quality = f_r / (2 * gamma)

@@ -68,6 +68,8 @@ COLUMNS = tuple(
 )
 #: Points a spectrum needs to be fitted (8 parameters with B, 5 for G alone).
 MIN_POINTS = 8
+#: |G| or |B| above this (S; a milliohm is 1e3 S) is no admittance a network analyser measures.
+MAX_ADMITTANCE_S = 1e6
 #: Fewer points than this within f_r ± Γ: flag ``too-few-points``.
 MIN_WITHIN = 5
 #: Fewer points than this within f_r ± Γ: no value either (the peak lies between the points).
@@ -87,7 +89,10 @@ _NUMERIC = frozenset({"floating", "integer", "mixed-integer-float", "decimal", "
 #: The flags, in the order listed. Each leaves the fitted values (f_r, Γ, G_max, φ, errors) NaN,
 #: except ``too-few-points`` with at least :data:`MIN_WITHIN_VALUE` points within f_r ± Γ.
 FLAGS = {
-    "bad-values": "NaN/inf frequency or G, inf B, B at some points only, or f <= 0: not fitted",
+    "bad-values": (
+        "NaN/inf frequency or G, inf B, B at some points only, f <= 0, or |G| or |B| above "
+        "1e6 S (no measured admittance): not fitted"
+    ),
     "frequencies-not-increasing": "not strictly increasing (duplicates, out of order): not fitted",
     "too-few-points": f"< {MIN_POINTS} points (not fitted), or < {MIN_WITHIN} within f_r ± Γ",
     "no-peak": f"G_max < {MIN_SIGNIFICANCE:g} standard errors (< 0, G alone): only noise",
@@ -466,7 +471,11 @@ def fit_resonances(
         return np.bincount(codes[points], minlength=n_spec) > 0
 
     flag = {name: np.zeros(n_spec, dtype=bool) for name in FLAGS}
-    bad = any_of(~np.isfinite(f) | ~(f > 0) | ~np.isfinite(g) | np.isinf(b))
+    # An admittance above MAX_ADMITTANCE_S is no measurement (and its squares overflow in the
+    # fit, which stopped the run with scipy's "residuals are not finite").
+    with np.errstate(invalid="ignore"):
+        huge = (np.abs(g) > MAX_ADMITTANCE_S) | (np.abs(b) > MAX_ADMITTANCE_S)
+    bad = any_of(~np.isfinite(f) | ~(f > 0) | ~np.isfinite(g) | np.isinf(b) | huge)
     flag["bad-values"] = bad | ((n_b_nan > 0) & (n_b_nan < counts))
     flag["frequencies-not-increasing"] = any_of(down) & ~flag["bad-values"]
     fit = ~flag["bad-values"] & ~flag["frequencies-not-increasing"]

@@ -124,6 +124,9 @@ def validate_spectra(raw: pd.DataFrame, source: str = "<table>") -> SpectraTable
             f"{shown_value(pts['spectrum'].iloc[int(np.flatnonzero(dup)[0])])}"
         )
     labels = _spectrum_labels(raw, pts, source, decimal)
+    if "file" in raw.columns:  # a folder's spectrum files, named in later messages
+        files = pd.Series(raw["file"].astype(str).to_numpy()).groupby(pts["spectrum"]).first()
+        labels["file"] = files.reindex(labels["spectrum"]).to_numpy()
     order = {s: i for i, s in enumerate(labels["spectrum"])}
     pts["_order"] = pts["spectrum"].map(order)
     pts = pts.sort_values(["_order", "frequency_Hz"], kind="stable").drop(columns="_order")
@@ -176,7 +179,12 @@ def _check_label_rules(first: pd.DataFrame, raw, table, source: str) -> None:
         if col not in SPECTRA_TABLE.names:
             continue  # a constant of the sweep table: checked when the sweeps are validated
         v = first[col].to_numpy(float)
-        found = broken_rule(SPECTRA_TABLE.column(col).rules, v, ~np.isnan(v))
+        checked = ~np.isnan(v)
+        if col == "normal_force_N":
+            # 0 N is no contact, the natural label of a reference spectrum; a measured spectrum
+            # with 0 N is refused where the references are known (sweeps_from_spectra).
+            checked &= v != 0
+        found = broken_rule(SPECTRA_TABLE.column(col).rules, v, checked)
         if found is not None:
             r, bad = found
             sid = first["spectrum"].to_numpy()[bad][0]

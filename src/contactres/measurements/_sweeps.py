@@ -17,6 +17,7 @@ file, the line, the column and the value.
 
 from __future__ import annotations
 
+import datetime
 import hashlib
 import math
 import sys
@@ -146,6 +147,13 @@ def _toml_constants(path: Path) -> tuple[dict, Path | None]:
 
 def _check_constant(name: str, value, where: str, shown=None) -> float:
     """``value`` as a float if it passes the rule of ``name`` (``shown``: as written, if not it)."""
+    if isinstance(value, (datetime.date, datetime.time)):  # TOML dates: as written, not a repr
+        raise ContactresInputError(
+            f"{where}: {name} = {value.isoformat()} is a date or time, not a number"
+        )
+    if isinstance(value, (list, dict)):
+        what = "an array" if isinstance(value, list) else "a table"
+        raise ContactresInputError(f"{where}: {name} is {what}, not a number")
     shown = shown_value(value if shown is None else shown)
     if isinstance(value, (bool, np.bool_)):  # TOML true/false: float() would make it 1/0
         raise ContactresInputError(
@@ -303,8 +311,11 @@ def _fill_constants(
     file_constants: dict,
     file_constants_source: str | None,
 ) -> None:
-    """Constants, in place: row value > argument > TOML beside the file > documented default."""
+    """Constants, in place: row value > argument > TOML beside the file > documented default.
+    Where an argument or the TOML gave one is kept in ``out.attrs["constant_sources"]``, for
+    the messages that blame it."""
     absent = []
+    sources = out.attrs.setdefault("constant_sources", {})
     for name in CONSTANTS:
         if name in raw.columns:
             vals = _numeric(raw, name, source, decimal)
@@ -322,10 +333,11 @@ def _fill_constants(
                 )
         elif name in constants:
             out[name] = _check_constant(name, constants[name], f"argument {name}")
+            sources[name] = f"argument {name}"
         elif name in file_constants:
-            out[name] = _check_constant(
-                name, file_constants[name], f"{file_constants_source}, key {name!r}"
-            )
+            where = f"{file_constants_source}, key {name!r}"
+            out[name] = _check_constant(name, file_constants[name], where)
+            sources[name] = where
         elif (default := CONSTANTS[name][1]) is not None:
             out[name] = default
         else:
@@ -349,11 +361,15 @@ def _check_physics(out: pd.DataFrame, source: str) -> None:
         v = np.abs(out[col].to_numpy())
         absolute = v > ABSOLUTE_FREQUENCY_FRACTION * out["fundamental_Hz"].to_numpy()
         if absolute.any():
+            # Either side may be wrong: name the fundamental and where it came from (a TOML
+            # fundamental_Hz = 5 was blamed on df_Hz alone, issue 27).
+            f_f = float(out["fundamental_Hz"].to_numpy()[np.flatnonzero(absolute)[0]])
+            given = out.attrs.get("constant_sources", {}).get("fundamental_Hz", "column")
             raise ContactresInputError(
-                f"{at_cell(out, source, absolute, col)} looks like an absolute frequency, not a "
-                "shift "
-                f"(above {ABSOLUTE_FREQUENCY_FRACTION:g} of the fundamental); subtract the "
-                "reference frequency"
+                f"{at_cell(out, source, absolute, col)} is above {ABSOLUTE_FREQUENCY_FRACTION:g} "
+                f"of the fundamental {f_f:g} Hz (fundamental_Hz, {given}): an absolute "
+                "frequency, not a shift (subtract the reference frequency), or a wrong "
+                "fundamental (a QCM's is 1 to 100 MHz)"
             )
         large = v > SMALL_LOAD_LIMIT * f_res
         if large.any():

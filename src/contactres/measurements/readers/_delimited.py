@@ -117,20 +117,17 @@ def load(path: Path) -> pd.DataFrame:
             skip_blank_lines=False,
         )
     except pd.errors.ParserError as exc:
-        # pandas counts lines of the text it was given; name the line of the file instead.
-        found = _FIELD_COUNT.search(str(exc))
-        if found and int(found.group(2)) <= len(kept):
-            number = kept[int(found.group(2)) - 1][0]
-            what = f"line {number} has {found.group(3)} fields, the header {found.group(1)}"
-        else:
-            what = " ".join(str(exc).split())[:200]
         raise ContactresInputError(
-            f"{path}: not a readable {sep!r}-separated table ({what})"
+            f"{path}: not a readable {sep!r}-separated table ({_bad_rows(kept, sep, exc)})"
         ) from None
     raw.columns = [str(c).strip() for c in raw.columns]
     # A short row leaves NaN in its missing cells: make them empty cells, as written.
     raw = raw.fillna("")
     numbers = [n for n, _ in kept[1:]]
+    if len(numbers) != len(raw):
+        # pandas joined lines: a quoted cell ran over a line break (a CR or LF inside quotes).
+        # Every row would be named by a wrong line, and the label would not be the one written.
+        _quoted_break(path, kept)
     raw["line"] = numbers if len(numbers) == len(raw) else range(2, len(raw) + 2)
     raw.attrs["decimal"] = decimal
     # Dropped lines among the data are said, never silent: the validator reports them
@@ -138,6 +135,36 @@ def load(path: Path) -> pd.DataFrame:
     # conventions qcm spectra writes), not rows.
     raw.attrs["comment_lines"] = tuple(n for n in comments if n > kept[0][0])
     return raw
+
+
+def _bad_rows(kept: list[tuple[int, str]], sep: str, exc: Exception) -> str:
+    """What pandas could not read, in the lines of the file: every row with more fields than
+    the header (the first five and the count), else pandas' own words."""
+    widths = [len(row) for row in csv.reader((ln for _, ln in kept), delimiter=sep)]
+    if len(widths) == len(kept):
+        long = [(kept[i][0], w) for i, w in enumerate(widths) if i and w > widths[0]]
+        if len(long) == 1:
+            return f"line {long[0][0]} has {long[0][1]} fields, the header {widths[0]}"
+        if long:
+            shown = ", ".join(f"{n} ({w} fields)" for n, w in long[:5])
+            more = ", ..." if len(long) > 5 else ""
+            head = f"{len(long)} rows have more fields than the header's {widths[0]}"
+            return f"{head}: lines {shown}{more}"
+    found = _FIELD_COUNT.search(str(exc))
+    if found and int(found.group(2)) <= len(kept):
+        number = kept[int(found.group(2)) - 1][0]
+        return f"line {number} has {found.group(3)} fields, the header {found.group(1)}"
+    return " ".join(str(exc).split())[:200]
+
+
+def _quoted_break(path: Path, kept: list[tuple[int, str]]) -> None:
+    """One-line error naming the first line whose quotes do not close on it (a quoted cell
+    holding a line break)."""
+    number = next((n for n, ln in kept if ln.count('"') % 2), kept[0][0])
+    raise ContactresInputError(
+        f"{path}, line {number}: a quoted cell runs over a line break (a CR or LF inside "
+        "quotes); write every label on one line"
+    )
 
 
 def _is_comment(line: str) -> bool:

@@ -91,16 +91,42 @@ class Reader:
 
 def read_head(path: Path) -> str:
     """The first :data:`HEAD_CHARS` characters of a file ("" for a folder); an empty file is a
-    one-line error."""
+    one-line error.
+
+    When those characters are all comment lines (``#``) or blank, the header lies further down
+    (a long preamble): the whole lines read are kept and the first :data:`HEAD_CHARS`
+    characters from the first line that is neither are added, so that ``detect`` sees the
+    header (issue 27: a valid table after 6 kB of comments was "recognised by no reader").
+    """
     if path.is_dir():
         return ""
     with path.open(encoding="utf-8-sig", errors="replace") as fh:
         head = fh.read(HEAD_CHARS)
+        if len(head) == HEAD_CHARS and all(_preamble(ln) for ln in head.splitlines()):
+            head = head[: head.rfind("\n") + 1]
+            fh.seek(0)
+            rest = next((ln for ln in fh if not _preamble(ln)), "")
+            head += (rest + fh.read(HEAD_CHARS))[:HEAD_CHARS]
     if not head.strip():
         raise ContactresInputError(
             f"{path}: the file is empty (expected a header line and data rows)"
         )
     return head
+
+
+def _preamble(line: str) -> bool:
+    """A blank line or a comment line (first non-blank character ``#``)."""
+    return not line.strip() or line.lstrip().startswith("#")
+
+
+def _first_line(head: str) -> str:
+    """The first line of ``head`` that is neither blank nor a comment (what ``detect`` saw)."""
+    return next((ln for ln in head.splitlines() if not _preamble(ln)), "")
+
+
+def _shown(text: str, limit: int = 80) -> str:
+    """A line of a file in a message: quoted, cut at ``limit`` characters."""
+    return repr(text if len(text) <= limit else text[: limit - 1] + "…")
 
 
 # first_detected returns one of the readers it is given, with their type (an ExportReader of
@@ -176,10 +202,17 @@ class Readers:
         a one-line error naming the file and the known formats if none does."""
         path = Path(path)
         candidates = self.of_kind(kind)
-        found = first_detected(candidates, path, read_head(path))
+        head = read_head(path)
+        found = first_detected(candidates, path, head)
         if found is None:
             names = ", ".join(f"{r.name} ({'/'.join(r.suffixes)})" for r in candidates)
+            first = _first_line(head)
+            seen = (
+                f"its first line that is not a comment is {_shown(first)}"
+                if first
+                else "it holds only comment lines ('#') and blank lines"
+            )
             raise ContactresInputError(
-                f"{path}: no reader recognises this file; formats known: {names}"
+                f"{path}: no reader recognises this file ({seen}); formats known: {names}"
             )
         return found

@@ -4,8 +4,10 @@ The folder holds an ``index.csv`` naming each file (column ``file``) with its la
 file per spectrum as network analysers write them: a Touchstone one-port file (``.s1p``,
 ``.y1p``, ``.z1p``: its option line ``# Hz S RI R 50`` says the frequency unit, the parameter
 (S11, Y or Z), the format (RI real/imaginary, MA magnitude/angle in degrees, DB dB/angle) and
-the reference impedance), or a delimited file whose header names say what its two columns hold
-(:data:`SPECTRUM_LAYOUTS`; the ``layout`` argument when they do not). S11 becomes
+the reference impedance; one option line, before the data; a word Touchstone does not define
+is an error, never a default), or a delimited file whose header names say what its two columns
+hold (:data:`SPECTRUM_LAYOUTS`; the ``layout`` argument when they do not). The index names
+files of its own folder only (a path leading out of it is refused). S11 becomes
 Y = (1 − S)/(Z0 (1 + S)) with the reference impedance Z0 (Touchstone: its R; otherwise
 ``reference_impedance``, 50 Ω by default).
 
@@ -16,6 +18,7 @@ as string cells with a ``line`` column, which
 
 from __future__ import annotations
 
+import math
 import re
 from pathlib import Path
 
@@ -68,12 +71,73 @@ def cells_as_numbers(raw: pd.DataFrame, col: str, source: str, decimal: str = ".
 
 
 _OPTION_LINE = re.compile(r"^\s*#(.*)$")
+#: The words of a Touchstone 1 option line, ``# <frequency unit> <parameter> <format> R <n>``
+#: (Touchstone File Format Specification 2.0, section "Option Line", which also defines
+#: version 1.x files): frequency units, parameters (H and G are two-port hybrid parameters, no
+#: one-port admittance: refused), formats.
 _UNITS = {"hz": 1.0, "khz": 1e3, "mhz": 1e6, "ghz": 1e9}
+_PARAMETERS = ("s", "y", "z", "h", "g")
+_FORMATS = ("ri", "ma", "db")
+_OPTION_SYNTAX = (
+    "# <frequency unit: Hz, kHz, MHz or GHz> <parameter: S, Y or Z> <format: RI, MA or DB> "
+    "R <reference impedance, Ω>"
+)
+
+
+def _options(path: Path, number: int, text: str) -> tuple[float, str, str, float]:
+    """(Hz per frequency unit, parameter, format, R) of a Touchstone option line; a word the
+    specification does not define, one given twice or an R that is no positive number is a
+    one-line error naming the file and the line. Words left out take the specification's
+    defaults (GHz, S, MA, R 50)."""
+    where = f"{path}, line {number}: option line {shown_value(text)}"
+    found: dict[str, str] = {}
+    z0 = None
+    words = text.lstrip()[1:].split()
+    i = 0
+    while i < len(words):
+        w = words[i].lower()
+        key = (
+            "unit" if w in _UNITS else "parameter" if w in _PARAMETERS else
+            "format" if w in _FORMATS else "r" if w == "r" else None
+        )  # fmt: skip
+        if key is None:
+            raise ContactresInputError(
+                f"{where}: unknown word {shown_value(words[i])}; Touchstone 1 has {_OPTION_SYNTAX}"
+            )
+        if key in found:
+            raise ContactresInputError(f"{where}: the {key} is given twice; {_OPTION_SYNTAX}")
+        found[key] = w
+        if key == "r":
+            value = words[i + 1] if i + 1 < len(words) else ""
+            try:
+                z0 = float(value)
+            except ValueError:
+                z0 = math.nan
+            if not (math.isfinite(z0) and z0 > 0):
+                raise ContactresInputError(
+                    f"{where}: R {shown_value(value)} is no reference impedance (a number > 0, Ω)"
+                )
+            i += 1
+        i += 1
+    if found.get("parameter") in ("h", "g"):
+        raise ContactresInputError(
+            f"{where}: {found['parameter'].upper()} parameters are two-port hybrid "
+            "parameters, not a one-port's; save the spectrum as S, Y or Z"
+        )
+    return (
+        _UNITS[found.get("unit", "ghz")],
+        found.get("parameter", "s").upper(),
+        found.get("format", "ma").upper(),
+        50.0 if z0 is None else z0,
+    )
 
 
 def _touchstone(path: Path) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """(frequency Hz, G S, B S, line numbers) of a one-port Touchstone file."""
-    unit, param, fmt, z0 = 1e9, "S", "MA", 50.0  # the Touchstone defaults
+    """(frequency Hz, G S, B S, line numbers) of a one-port Touchstone file. Its one option
+    line must come before the data: without it the unit and format would be the
+    specification's defaults (GHz, MA), which a file of Hz read silently (issue 27); a second
+    option line is an error (the specification allows one)."""
+    options = None
     freq, a, b, lines = [], [], [], []
     for number, text in enumerate(path.read_text(errors="replace").splitlines(), start=1):
         text = text.split("!", 1)[0].strip()
@@ -84,19 +148,20 @@ def _touchstone(path: Path) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndar
                 f"{path}, line {number}: Touchstone 2 keyword {shown_value(text)}: save the "
                 "spectrum as a Touchstone 1 file (.s1p) or as CSV"
             )
-        option = _OPTION_LINE.match(text)
-        if option:
-            words = option.group(1).lower().split()
-            for i, w in enumerate(words):
-                if w in _UNITS:
-                    unit = _UNITS[w]
-                elif w in ("s", "y", "z"):
-                    param = w.upper()
-                elif w in ("ri", "ma", "db"):
-                    fmt = w.upper()
-                elif w == "r" and i + 1 < len(words):
-                    z0 = float(words[i + 1])
+        if _OPTION_LINE.match(text):
+            if options is not None:
+                raise ContactresInputError(
+                    f"{path}, line {number}: a second option line {shown_value(text)} (the "
+                    f"first is line {options[0]}); a Touchstone file has one"
+                )
+            options = (number, *_options(path, number, text))
             continue
+        if options is None:
+            raise ContactresInputError(
+                f"{path}, line {number}: data before the option line; a Touchstone file "
+                f"starts with one ({_OPTION_SYNTAX}): without it the frequency unit and "
+                "format are not known"
+            )
         fields = text.split()
         try:
             values = [float(x) for x in fields]
@@ -109,24 +174,38 @@ def _touchstone(path: Path) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndar
             raise ContactresInputError(
                 f"{path}, line {number}: {len(values)} numbers, a one-port Touchstone line has 3"
             )
-        freq.append(values[0] * unit)
+        freq.append(values[0] * options[1])
         a.append(values[1])
         b.append(values[2])
         lines.append(number)
+    if options is None:
+        raise ContactresInputError(
+            f"{path}: no option line and no data; a Touchstone file has {_OPTION_SYNTAX} "
+            "and one line per frequency"
+        )
+    _, _, param, fmt, z0 = options
     first, second = np.array(a), np.array(b)
     if fmt == "RI":
         x = first + 1j * second
     else:
         mag = 10 ** (first / 20) if fmt == "DB" else first
         x = mag * np.exp(1j * np.radians(second))
-    # Touchstone 1: Y and Z are normalised to R (y = Y R, z = Z/R), S is dimensionless.
-    if param == "S":
-        y = (1 - x) / (z0 * (1 + x))
-    elif param == "Z":
-        y = 1 / (x * z0)
-    else:
-        y = x / z0
-    return np.array(freq), y.real, y.imag, np.array(lines)
+    return np.array(freq), *_admittance(param, x, z0), np.array(lines)
+
+
+def _admittance(param: str, x: np.ndarray, z0: float) -> tuple[np.ndarray, np.ndarray]:
+    """(G, B) in S of a one-port parameter. Touchstone 1 normalises Y and Z to R (y = Y R,
+    z = Z/R); S is dimensionless. S = -1 (a short) or Z = 0 has no finite Y: NaN or inf here,
+    which the resonance fit flags (bad-values) and leaves out with one line, with no numpy
+    warning on the console."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        if param == "S":
+            y = (1 - x) / (z0 * (1 + x))
+        elif param == "Z":
+            y = 1 / (x * z0)
+        else:
+            y = x / z0
+    return y.real, y.imag
 
 
 def _delimited_spectrum(path: Path, layout: str | None, z0: float):
@@ -170,8 +249,8 @@ def _delimited_spectrum(path: Path, layout: str | None, z0: float):
     if layout == "Y-RI":
         y = first + 1j * second
     elif layout == "S11-RI":
-        s = first + 1j * second
-        y = (1 - s) / (z0 * (1 + s))
+        g, b = _admittance("S", first + 1j * second, z0)
+        return f, g, b, raw["line"].to_numpy()
     else:
         y = first * np.exp(1j * np.radians(second))
     return f, y.real, y.imag, raw["line"].to_numpy()
@@ -190,9 +269,17 @@ def _read_folder(folder: Path, layout, z0: float) -> pd.DataFrame:
             f"{index_path}: no column 'file' (the spectrum file of each row)"
         )
     parts = []
+    home = folder.resolve()
     for _, row in index.iterrows():  # one row per file: the loop is over files, not points
         name = str(row["file"]).strip()
         path = folder / name
+        # The index names files of its own folder only: a path elsewhere (absolute, "..", or a
+        # link leading out) would read, and echo in an error, any file (issue 27, point 14).
+        if name and not path.resolve().is_relative_to(home):
+            raise ContactresInputError(
+                f"{index_path}, line {row['line']}, column 'file': {shown_value(name)} is "
+                f"outside the folder {folder}; the index names files in its own folder"
+            )
         if not name or not path.is_file():
             raise ContactresInputError(
                 f"{index_path}, line {row['line']}, column 'file': no such file "
@@ -210,6 +297,7 @@ def _read_folder(folder: Path, layout, z0: float) -> pd.DataFrame:
                 "G_S": [repr(float(x)) for x in g],
                 "B_S": [repr(float(x)) if np.isfinite(x) else "" for x in b],
                 "line": lines,
+                "file": name,  # named in the checks of the spectra's frequencies
             }
         )
         comma = index.attrs.get("decimal", ".") == ","

@@ -15,7 +15,11 @@ conversions) beside them, are private (scipy's rule): import from this package.
 
 What a file does not say (Δf or Δf/n, the unit of D, the time unit, the baseline, the
 fundamental, the channel, the overtone of a single-overtone log) is asked for: a keyword of
-:func:`read_export` (:data:`CONVENTION_KEYS`), never a silent default.
+:func:`read_export` (:data:`CONVENTION_KEYS`), never a silent default. Nothing is dropped
+without a word: a header naming a time, frequency or dissipation column twice is an error, and
+an overtone without its frequency or dissipation column, rows without a value and comment
+lines among the rows are named in an :class:`ExportWarning` (and in the table's
+``conventions["left_out"]``).
 
 :data:`EXPORT_READERS` is a tuple of recipes
 (:class:`~contactres.measurements.readers.Reader` of kind ``export``, part of
@@ -30,13 +34,14 @@ from pathlib import Path
 from ....errors import ContactresInputError
 from .._recipe import first_detected, read_head
 from . import _awsensors, _openqcm, _qcmi, _qsense
-from ._base import CONVENTION_KEYS, ExportReader, ExportTable, parse_baseline
+from ._base import CONVENTION_KEYS, ExportReader, ExportTable, ExportWarning, parse_baseline
 
 __all__ = [
     "CONVENTION_KEYS",
     "EXPORT_READERS",
     "ExportReader",
     "ExportTable",
+    "ExportWarning",
     "export_reader",
     "parse_baseline",
     "pick_export_reader",
@@ -110,6 +115,11 @@ def read_export(
     ------
     ValueError
         One line naming the file and, for a choice the file does not tell, the missing choice.
+
+    Warns
+    -----
+    ExportWarning
+        One per overtone, group of rows or comment lines left out, naming them.
     """
     path = Path(path)
     chosen = pick_export_reader(path, readers) if reader is None else export_reader(reader, readers)

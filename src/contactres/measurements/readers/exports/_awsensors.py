@@ -9,9 +9,16 @@ rows, comma, semicolon or tab separated.
 
 What the header tells: time in seconds, shifts ("Delta"), divided by n where the name says
 ``F/n`` (a name ``Delta_F_n=3_(Hz)`` is read as Δf itself; that variant is not confirmed). The
-unit of D is written in the last parentheses: empty (as in the confirmed names) means not
-stated, so ``dissipation_scale`` is asked for (1e-6 if the values are in ppm, as BraTaDio
-takes them); ``(ppm)`` or ``(1e-6)`` mean 1e-6. ``fundamental`` is asked for (ΔΓ = ΔD n f_F/2).
+unit of D is written in the last parentheses: ``(ppm)`` or ``(1e-6)`` mean 1e-6; empty, ``()``
+(as in the confirmed names), is the unit of a dimensionless number, so D is read as a plain
+number (scale 1) without asking. A D column in ppm under ``()`` is caught: a plain ΔD of
+:data:`~._tidy.MAX_PLAIN_D_SHIFT` or more is no contact's (one line asking for
+``dissipation_scale=1e-6``), and a ``dissipation_scale`` given replaces the ``()`` reading
+(pyQCM-BraTaDio multiplies these D values by 1e-6 when it adds calibration offsets, so some
+exports may hold ppm). ``fundamental`` is asked for (ΔΓ = ΔD n f_F/2).
+
+A header naming a column twice is an error; an overtone with a Delta_F column and no Delta_D
+column, or the reverse, is left out with a warning (:class:`~._base.ExportWarning`).
 """
 
 from __future__ import annotations
@@ -21,7 +28,16 @@ from pathlib import Path
 from types import MappingProxyType
 
 from ....errors import ContactresInputError
-from ._base import ExportReader, ExportTable, Layout, check_keys, header_names, read_rows
+from ._base import (
+    ExportReader,
+    ExportTable,
+    Layout,
+    check_duplicates,
+    check_keys,
+    header_names,
+    read_rows,
+    unpaired,
+)
 from ._tidy import convert
 
 __all__ = ["CONVENTIONS", "NAME", "READER", "SUFFIXES", "detect", "load"]
@@ -33,7 +49,8 @@ CONVENTIONS = MappingProxyType(
     {
         "time": "Time_(s): seconds",
         "frequency": "Delta_F/n_n=N_(Hz): shifts divided by n (Delta_F_n=N_(Hz): Δf)",
-        "dissipation": "Delta_D_n=N_(): shift of D, unit not stated (asked: dissipation_scale)",
+        "dissipation": "Delta_D_n=N_(): shift of D, dimensionless (a dissipation_scale given "
+        "replaces it); (ppm) or (1e-6): D in 1e-6",
         "overtones": "as named (n=N)",
         "channels": "one",
     }
@@ -42,7 +59,8 @@ CONVENTIONS = MappingProxyType(
 _TIME = "Time_(s)"
 _F = re.compile(r"^Delta_F(/n)?_n=(\d+)_\(Hz\)$")
 _D = re.compile(r"^Delta_D_n=(\d+)_\(([^)]*)\)$")
-_SCALES = MappingProxyType({"": None, "ppm": 1e-6, "1e-6": 1e-6})
+# "" is the unit of a dimensionless number (1); see the module docstring.
+_SCALES = MappingProxyType({"": 1.0, "ppm": 1e-6, "1e-6": 1e-6})
 
 
 def _columns(names: list[str]):
@@ -64,6 +82,7 @@ def detect(path: Path, head: str) -> bool:
 
 
 def _layout(path: Path, names: list[str]) -> Layout:
+    check_duplicates(path, NAME, names, (re.compile(re.escape(_TIME) + "$"), _F, _D))
     freqs, diss = _columns(names)
     overtones = sorted(freqs.keys() & diss.keys())
     if _TIME not in names or not overtones:
@@ -85,6 +104,8 @@ def _layout(path: Path, names: list[str]) -> Layout:
         )
     traces = tuple((n, freqs[n][0], diss[n][0]) for n in overtones)
     text = "AWSensors text export: Time_(s), Delta_F/n_n=N_(Hz), Delta_D_n=N_()"
+    unit = units.pop()
+    # "()" is a dimensionless D read as it is unless a scale is given; "(ppm)" states the unit.
     return Layout(
         text,
         _TIME,
@@ -92,7 +113,11 @@ def _layout(path: Path, names: list[str]) -> Layout:
         time_unit="s",
         frequency="shift",
         divided_by_n=divided.pop(),
-        dissipation_scale=_SCALES[units.pop()],
+        dissipation_scale=None if unit == "" else _SCALES[unit],
+        left_out=unpaired(
+            {n: c for n, (c, _) in freqs.items()}, {n: c for n, (c, _) in diss.items()}
+        ),
+        dissipation_scale_default=_SCALES[unit] if unit == "" else None,
     )
 
 

@@ -17,9 +17,9 @@ the choice, never a silent default:
 ``time_unit`` ("s", "min", "h")
     The unit of the time column.
 ``baseline`` ("first", "window:T0:T1", "as-exported")
-    The reference of the shifts: the first point of each overtone, the mean over T0 <= t <= T1
-    (seconds), or the instrument software's own reference (files of shifts only). Files of
-    absolute frequencies need "first" or a window.
+    The reference of the shifts: the first point (earliest time) of each overtone, the mean
+    over T0 <= t <= T1 (seconds), or the instrument software's own reference (files of shifts
+    only). Files of absolute frequencies need "first" or a window.
 ``fundamental`` (Hz)
     The fundamental f_F: needed to turn a D shift into ΔΓ = ΔD n f_F / 2 when the file holds no
     absolute frequency (with absolute f_n it is read from the file: the median of f_n/n at the
@@ -64,7 +64,9 @@ __all__ = [
     "TIME_UNITS",
     "ExportReader",
     "ExportTable",
+    "ExportWarning",
     "Layout",
+    "check_duplicates",
     "check_keys",
     "fail_at",
     "header_names",
@@ -73,6 +75,8 @@ __all__ = [
     "parse_baseline",
     "pick_channel",
     "read_rows",
+    "rows_left_out",
+    "unpaired",
 ]
 
 #: Columns of :attr:`ExportTable.data`.
@@ -90,6 +94,17 @@ TIME_UNITS = MappingProxyType({"s": 1.0, "min": 60.0, "h": 3600.0})
 #: A frequency cell above this is a resonance frequency f_n, below it a shift: a tenth of the
 #: lowest QCM fundamental (1 MHz), the rule of :data:`contactres.units.ABSOLUTE_FREQUENCY_FRACTION`.
 ABSOLUTE_FREQUENCY_HZ = ABSOLUTE_FREQUENCY_FRACTION * 1e6
+
+#: A column name that :func:`read_rows` made unique: the header's name repeated, with `` #k``.
+_REPEATED = re.compile(r"^(.*) #(\d+)$")
+
+
+class ExportWarning(UserWarning):
+    """Something of an export that was not read (an overtone without its frequency or
+    dissipation column, rows without a value, comment lines among the rows), or rows out of time
+    order (the baseline "first" is then the earliest point), named in the message; the same
+    lines are in the table's ``conventions["left_out"]``."""
+
 
 #: The conventions a reader's ``load`` takes, with the command-line options that give them.
 CONVENTION_KEYS = MappingProxyType(
@@ -195,6 +210,13 @@ class Layout:
         The unit of D if the header says it (1e-6 for ppm), else None (asked for).
     overtone_in_file : bool
         False when the file does not name its overtone (then ``overtone`` is asked for).
+    left_out : tuple of (int, str)
+        (overtone n, why) of the overtones of the header that are not read: a frequency
+        column without its dissipation column or the reverse (:func:`unpaired`).
+    dissipation_scale_default : float or None
+        The unit of D the header implies without stating it as a number (an AWSensors ``()``:
+        dimensionless, 1), used when the caller gives none; a ``dissipation_scale`` given
+        replaces it.
     """
 
     description: str
@@ -207,6 +229,37 @@ class Layout:
     dissipation: str = "D"
     dissipation_scale: float | None = None
     overtone_in_file: bool = True
+    left_out: tuple[tuple[int, str], ...] = ()
+    dissipation_scale_default: float | None = None
+
+
+def check_duplicates(path: Path, reader: str, names: list[str], patterns) -> None:
+    """One-line error for a header that names a time, frequency or dissipation column twice
+    (``patterns``: the reader's regular expressions of those names). The two columns cannot
+    be told apart, and taking either would drop or misplace an overtone (issue 27)."""
+    for i, name in enumerate(names):
+        m = _REPEATED.match(name)
+        if m and m.group(1) in names and any(p.match(m.group(1)) for p in patterns):
+            first = names.index(m.group(1)) + 1
+            raise ContactresInputError(
+                f"{path}: the header names the column {m.group(1)!r} twice (columns {first} "
+                f"and {i + 1}): which one holds the data is not known; rename the wrong one "
+                f"({reader} export)"
+            )
+
+
+def unpaired(freqs: Mapping[int, str], diss: Mapping[int, str]) -> tuple[tuple[int, str], ...]:
+    """(n, why) of the overtones with a frequency column and no dissipation column, or the
+    reverse (``freqs``, ``diss``: column by overtone, of the channel read): they are left out
+    of the table, and said (:attr:`Layout.left_out`)."""
+    lines = []
+    for n in sorted(freqs.keys() ^ diss.keys()):
+        if n in freqs:
+            why = f"frequency column {freqs[n]!r} has no dissipation column"
+        else:
+            why = f"dissipation column {diss[n]!r} has no frequency column"
+        lines.append((n, f"overtone {n} not read: its {why}"))
+    return tuple(lines)
 
 
 def missing(path: Path, reader: str, choices: list[tuple[str, str]]) -> ValueError:
@@ -242,8 +295,9 @@ def read_rows(path: Path) -> pd.DataFrame:
     """The file as a table of string cells; the line of each row in ``attrs["lines"]``.
 
     Comma, semicolon or tab separated (from the header line); a decimal comma is recognised with
-    semicolon or tab separators. Blank lines and lines starting with ``#`` are skipped. Column
-    names get runs of blanks made one blank; a repeated name (QCM-I repeats its flow and
+    semicolon or tab separators. Blank lines and lines starting with ``#`` are skipped (those
+    below the header are recorded in ``attrs["comment_lines"]``, which the conversion names).
+    Column names get runs of blanks made one blank; a repeated name (QCM-I repeats its flow and
     temperature columns per overtone) gets `` #2``, `` #3``, ... Text is UTF-8 (a byte order
     mark is skipped), else read as Windows-1252, as instrument software on Windows writes it.
     Short rows are padded with empty cells; empty cells past the header's width are dropped.
@@ -254,11 +308,8 @@ def read_rows(path: Path) -> pd.DataFrame:
         text, encoding = data.decode("utf-8-sig"), "utf-8"
     except UnicodeDecodeError:
         text, encoding = data.decode("cp1252", errors="replace"), "cp1252"
-    kept = [
-        (i + 1, ln)
-        for i, ln in enumerate(LINE_BREAK.split(text))
-        if ln.strip() and not ln.lstrip().startswith("#")
-    ]
+    lines = LINE_BREAK.split(text)
+    kept = [(i + 1, ln) for i, ln in enumerate(lines) if ln.strip() and not _comment(ln)]
     if not kept:
         raise ContactresInputError(
             f"{path}: the file is empty (expected a header line and data rows)"
@@ -266,19 +317,29 @@ def read_rows(path: Path) -> pd.DataFrame:
     header = kept[0][1]
     sep = "\t" if "\t" in header else ";" if ";" in header else ","
     rows = list(csv.reader((ln for _, ln in kept), delimiter=sep))
+    if len(rows) != len(kept):  # csv joined lines: a quoted cell holds a line break (CR, LF)
+        number = next((n for n, ln in kept if ln.count('"') % 2), kept[0][0])
+        raise ContactresInputError(
+            f"{path}, line {number}: a quoted cell runs over a line break (a CR or LF inside "
+            "quotes); write every cell on one line"
+        )
     names: list[str] = []
     seen: dict[str, int] = {}
     for name in (" ".join(c.split()) for c in rows[0]):
         seen[name] = seen.get(name, 0) + 1
         names.append(name if seen[name] == 1 else f"{name} #{seen[name]}")
-    width, cells = len(names), []
+    width, cells, long = len(names), [], []
     for (number, _), row in zip(kept[1:], rows[1:], strict=True):
         if len(row) > width and any(c.strip() for c in row[width:]):
-            raise ContactresInputError(
-                f"{path}, line {number}: {len(row)} fields, the header (line {kept[0][0]}) has "
-                f"{width}: not one table"
-            )
+            long.append((number, len(row)))
         cells.append(row[:width] + [""] * (width - len(row)))
+    if long:  # every such row is named (the first few), not only the first
+        shown = ", ".join(f"{n} ({k} fields)" for n, k in long[:5])
+        more = f", ... ({len(long)} rows in all)" if len(long) > 5 else ""
+        raise ContactresInputError(
+            f"{path}: line(s) {shown}{more} have more fields than the header (line "
+            f"{kept[0][0]}, {width} fields): not one table"
+        )
     import pandas as pd
 
     raw = pd.DataFrame(cells, columns=names, dtype=str)
@@ -286,8 +347,31 @@ def read_rows(path: Path) -> pd.DataFrame:
     if sep != ",":
         sample = (c.strip() for row in cells[:50] for c in row)
         decimal = "," if any(DECIMAL_COMMA.match(c) for c in sample) else "."
-    raw.attrs.update(lines=[n for n, _ in kept[1:]], decimal=decimal, encoding=encoding)
+    # Comment lines below the header are rows the user may have commented out: named by the
+    # conversion (a preamble above the header is not a row).
+    comments = tuple(i + 1 for i, ln in enumerate(lines) if i + 1 > kept[0][0] and _comment(ln))
+    raw.attrs.update(
+        lines=[n for n, _ in kept[1:]], decimal=decimal, encoding=encoding, comment_lines=comments
+    )
     return raw
+
+
+def _comment(line: str) -> bool:
+    return line.lstrip().startswith("#")
+
+
+def rows_left_out(raw: pd.DataFrame, n: int, keep: np.ndarray) -> str | None:
+    """The line naming the rows of overtone ``n`` left out (``keep`` False: an empty time,
+    frequency or dissipation cell), or None."""
+    if keep.all():
+        return None
+    from .._delimited import line_ranges  # imports pandas: not at start-up (the CLI's help)
+
+    numbers = np.asarray(raw.attrs["lines"])[~keep]
+    return (
+        f"overtone {n}: {numbers.size} row(s) without a time, frequency or dissipation value "
+        f"left out (line(s) {line_ranges(numbers)})"
+    )
 
 
 def pick_channel(path: Path, reader: str, available: Iterable[str], wanted) -> str:

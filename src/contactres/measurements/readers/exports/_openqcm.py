@@ -34,7 +34,17 @@ from pathlib import Path
 from types import MappingProxyType
 
 from ....errors import ContactresInputError
-from ._base import ExportReader, ExportTable, Layout, check_keys, header_names, missing, read_rows
+from ._base import (
+    ExportReader,
+    ExportTable,
+    Layout,
+    check_duplicates,
+    check_keys,
+    header_names,
+    missing,
+    read_rows,
+    unpaired,
+)
 from ._tidy import convert
 
 __all__ = ["CONVENTIONS", "NAME", "READER", "SUFFIXES", "detect", "load"]
@@ -58,6 +68,9 @@ CONVENTIONS = MappingProxyType(
 
 _HEAD = ["Date", "Time", "Relative_time", "Temperature"]
 _F = re.compile(r"^Frequency_(\d+)$")
+_D = re.compile(r"^Dissipation_(\d+)$")
+_SINGLE = (re.compile(r"^Relative_time$"), re.compile(r"^Resonance_Frequency$"),
+           re.compile(r"^Dissipation$"))  # fmt: skip
 
 
 def detect(path: Path, head: str) -> bool:
@@ -71,6 +84,7 @@ def detect(path: Path, head: str) -> bool:
 def _layout(path: Path, names: list[str], overtone) -> Layout:
     if names[:4] != _HEAD:
         raise ContactresInputError(f"{path}: not an openQCM log (header {', '.join(_HEAD)}, ...)")
+    check_duplicates(path, NAME, names, (_F, _D, *_SINGLE))
     multi = [
         (2 * int(m.group(1)) + 1, name, f"Dissipation_{m.group(1)}")
         for name in names
@@ -78,8 +92,17 @@ def _layout(path: Path, names: list[str], overtone) -> Layout:
     ]
     if multi:
         text = "openQCM Next multiscan log: Relative_time, Frequency_i, Dissipation_i (n = 2i+1)"
+        left = unpaired(
+            {2 * int(m.group(1)) + 1: c for c in names if (m := _F.match(c))},
+            {2 * int(m.group(1)) + 1: c for c in names if (m := _D.match(c))},
+        )
         return Layout(
-            text, "Relative_time", tuple(sorted(multi)), time_unit="s", frequency="absolute"
+            text,
+            "Relative_time",
+            tuple(sorted(multi)),
+            time_unit="s",
+            frequency="absolute",
+            left_out=left,
         )
     if "Resonance_Frequency" not in names or "Dissipation" not in names:
         raise ContactresInputError(f"{path}: no openQCM frequency and dissipation columns")

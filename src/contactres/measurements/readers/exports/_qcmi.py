@@ -15,6 +15,10 @@ What the header tells: time in seconds, D as a plain number (``dissipation_scale
 the frequency columns hold f_n or shifts is told from the values; with f_n a ``baseline`` is
 asked for (the file's "Variation" columns are f_n minus its first row in the sample:
 ``baseline="first"`` reproduces them). ``channel`` is asked for when the file holds several.
+Rows out of time order: ``baseline="first"`` takes the point of the earliest time. A header
+naming a time, frequency or dissipation column twice is an error (the flow and temperature
+columns, repeated per overtone, are not read); an overtone with a frequency column and no
+dissipation column, or the reverse, is left out with a warning.
 """
 
 from __future__ import annotations
@@ -28,10 +32,12 @@ from ._base import (
     ExportReader,
     ExportTable,
     Layout,
+    check_duplicates,
     check_keys,
     header_names,
     pick_channel,
     read_rows,
+    unpaired,
 )
 from ._tidy import convert
 
@@ -83,6 +89,7 @@ def _layout(path: Path, names: list[str], channel) -> Layout:
     times, freqs, diss, pairs = _columns(names)
     if not pairs:
         raise ContactresInputError(f"{path}: no QCM-I columns (Channel A QCM Time [sec], ...)")
+    check_duplicates(path, NAME, names, (_TIME, _F, _D))
     x = pick_channel(path, NAME, (key[0] for key in pairs), channel)
     traces = tuple((n, freqs[(xx, n)], diss[(xx, n)]) for xx, n in pairs if xx == x)
     for n, fcol, _ in traces:
@@ -91,7 +98,13 @@ def _layout(path: Path, names: list[str], channel) -> Layout:
                 f"{path}, column {fcol!r}: overtone {n} is not odd (QCM-I export)"
             )
     text = "QCM-I text export: Channel X QCM Time [sec], ... Frequency/Overtone [Hz], Dissipation"
-    return Layout(text, times[x], traces, channel=x, time_unit="s", dissipation_scale=1.0)
+    left = unpaired(
+        {n: c for (xx, n), c in freqs.items() if xx == x},
+        {n: c for (xx, n), c in diss.items() if xx == x},
+    )
+    return Layout(
+        text, times[x], traces, channel=x, time_unit="s", dissipation_scale=1.0, left_out=left
+    )
 
 
 def load(path, **conventions) -> ExportTable:

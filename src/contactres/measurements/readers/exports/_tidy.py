@@ -5,7 +5,8 @@ Conversions (paper 2, Eqs. 1-2: Γ is the half width at half maximum, D = 2Γ/f)
 * shifts: Δf_n = n x value when the file holds Δf_n/n; ΔΓ_n = ΔD_n x scale x n f_F / 2, first
   order in Δf/f (the error is D Δf / 2: below 1e-3 Hz for D < 1e-5 and Δf < 100 Hz);
 * absolute values: Γ_n = D_n x scale x f_n / 2 row by row, then Δf = f_n - f_ref and
-  ΔΓ = Γ_n - Γ_ref with the references of the baseline (first point, or mean over a window);
+  ΔΓ = Γ_n - Γ_ref with the references of the baseline (the point of earliest time, or the mean
+  over a window);
 * a file of Γ (Hz) is taken as it is.
 
 Checks on the way, each a one-line error naming file, line, column, value and rule: a frequency
@@ -19,6 +20,7 @@ disagrees with the file, a baseline window without points.
 from __future__ import annotations
 
 import math
+import warnings
 from collections.abc import Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING
@@ -32,20 +34,27 @@ from ._base import (
     CONVENTION_KEYS,
     TIME_UNITS,
     ExportTable,
+    ExportWarning,
     Layout,
     fail_at,
     missing,
     numbers,
     parse_baseline,
+    rows_left_out,
 )
 
 if TYPE_CHECKING:  # pandas is imported where a table is made (see .base: the help needs none)
     import pandas as pd
 
-__all__ = ["FUNDAMENTAL_TOLERANCE", "MAX_DISSIPATION", "convert"]
+__all__ = ["FUNDAMENTAL_TOLERANCE", "MAX_DISSIPATION", "MAX_PLAIN_D_SHIFT", "convert"]
 
 #: ``|D|`` x scale at or above this is no dissipation factor (a Q of 10): a mis-scaled column.
 MAX_DISSIPATION = 0.1
+
+#: A D shift read with the unit ``()`` (dimensionless, AWSensors) at or above this is D in
+#: ppm: ΔD = 1e-3 is ΔΓ = 7.5 kHz on the 3rd overtone of a 5 MHz quartz, far beyond a contact
+#: (tens of Hz) or water (ΔD ~ 2e-4), while a ppm column reaches it with ΔD = 0.001 ppm.
+MAX_PLAIN_D_SHIFT = 1e-3
 
 #: Relative spread of f_n/n between overtones (and against a fundamental given) tolerated.
 FUNDAMENTAL_TOLERANCE = 0.05
@@ -62,9 +71,11 @@ def _agree(path: Path, reader: str, key: str, from_file, given):
 
 
 def _reference(kind: str, t0: float, t1: float, t: np.ndarray, values: np.ndarray) -> float:
-    """The baseline value of one series (NaN when the window holds no point)."""
+    """The baseline value of one series (NaN when the window holds no point). "first" is the
+    point of the earliest time, not the first row: rows out of time order (a QCM-I export
+    appended to, or sorted by another column) must not make a later point the reference."""
     if kind == "first":
-        return float(values[0]) if values.size else math.nan
+        return float(values[int(np.argmin(t))]) if values.size else math.nan
     inside = (t >= t0) & (t <= t1)
     return float(values[inside].mean()) if inside.any() else math.nan
 
@@ -127,6 +138,8 @@ def _choices(
     if layout.dissipation == "D":
         scale = given.get("dissipation_scale", layout.dissipation_scale)
         if scale is None:
+            scale = layout.dissipation_scale_default
+        if scale is None:
             needed.append(
                 ("dissipation_scale", "the header does not say the unit of D (1e-6 for ppm, or 1)")
             )
@@ -165,13 +178,24 @@ def _choices(
     return unit, bool(divided), scale, baseline
 
 
-def _series(raw, path: Path, layout: Layout, traces, t_all, kind: str, scale):
-    """(n, column, kept rows, f, D x scale or Γ) per overtone, with the checks of D."""
-    series, skipped = [], 0
+def _series(raw, path: Path, layout: Layout, traces, t_all, kind: str, scale, implied: bool):
+    """(n, column, kept rows, f, D x scale or Γ) per overtone, with the checks of D; the
+    number of rows left out and a line per overtone naming them. ``implied``: the scale is
+    the one the header implies (:attr:`Layout.dissipation_scale_default`), checked here."""
+    series, skipped, notes = [], 0, []
     for n, fcol, dcol in traces:
         f, d = numbers(raw, fcol, path), numbers(raw, dcol, path)
         keep = np.isfinite(t_all) & np.isfinite(f) & np.isfinite(d)
         skipped += int((~keep).sum())
+        if (note := rows_left_out(raw, n, keep)) is not None:
+            notes.append(note)
+        if implied and (keep & (np.abs(d) >= MAX_PLAIN_D_SHIFT)).any():
+            rule = (
+                f"is no D shift in the header's unit '()' (dimensionless: |ΔD| < "
+                f"{MAX_PLAIN_D_SHIFT:g}); D in ppm? give dissipation_scale=1e-6 "
+                "(--dissipation-scale 1e-6)"
+            )
+            fail_at(raw, path, dcol, keep & (np.abs(d) >= MAX_PLAIN_D_SHIFT), rule)
         if scale is not None:
             d = d * scale
             too_big = keep & (np.abs(d) >= MAX_DISSIPATION)
@@ -186,7 +210,7 @@ def _series(raw, path: Path, layout: Layout, traces, t_all, kind: str, scale):
         series.append((n, fcol, keep, f, d))
     if not any(s[2].any() for s in series):
         raise ContactresInputError(f"{path}: no row with time, frequency and dissipation")
-    return series, skipped
+    return series, skipped, notes
 
 
 def _fundamental(
@@ -228,6 +252,23 @@ def _fundamental(
     return fundamental, source
 
 
+def _out_of_order(raw, t: np.ndarray) -> str | None:
+    """The line saying that the rows are out of time order and which row is the baseline
+    "first" (the earliest; a QCM-I sample export starts with a row 5 ms later than its
+    second), or None when the times do not decrease."""
+    finite = np.isfinite(t)
+    times, lines = t[finite], np.asarray(raw.attrs["lines"])[finite]
+    back = np.flatnonzero(np.diff(times) < 0)
+    if back.size == 0:
+        return None
+    i, first = int(back[0]), int(np.argmin(times))
+    return (
+        f"rows out of time order (line {lines[i + 1]}, t = {times[i + 1]:g} s, after line "
+        f"{lines[i]}, t = {times[i]:g} s): the baseline 'first' is the earliest point, line "
+        f"{lines[first]} (t = {times[first]:g} s)"
+    )
+
+
 def convert(
     path: Path,
     reader: str,
@@ -256,8 +297,29 @@ def convert(
             )
     kind = _frequency_kind(raw, path, traces, layout.frequency)
     unit, divided, scale, baseline = _choices(path, reader, layout, given, kind)
+    implied = (
+        scale is not None
+        and layout.dissipation_scale is None
+        and "dissipation_scale" not in given
+        and layout.dissipation_scale_default is not None
+    )
     t_all = numbers(raw, layout.time_column, path) * TIME_UNITS[unit]
-    series, skipped = _series(raw, path, layout, traces, t_all, kind, scale)
+    series, skipped, notes = _series(raw, path, layout, traces, t_all, kind, scale, implied)
+    # Nothing is left out without a word (issue 27): overtones without their frequency or
+    # dissipation column, rows without a value, comment lines among the rows.
+    kept_n = {tr[0] for tr in traces}
+    notes = [why for n, why in layout.left_out if "overtone" not in given or n in kept_n] + notes
+    if comments := raw.attrs.get("comment_lines", ()):
+        from .._delimited import line_ranges
+
+        notes.append(
+            f"{len(comments)} comment line(s) among the rows skipped (first character '#'): "
+            f"line(s) {line_ranges(comments)}"
+        )
+    if baseline[0] == "first" and (order := _out_of_order(raw, t_all)) is not None:
+        notes.append(order)
+    for note in notes:
+        warnings.warn(f"{path}: {note}", ExportWarning, stacklevel=3)
     fundamental, fsource = _fundamental(path, reader, given, kind, baseline, t_all, series)
     bkind, t0, t1 = baseline
     frames, refs_f, refs_g = [], {}, {}
@@ -296,6 +358,15 @@ def convert(
         ),
         "dissipation_as_read": "D" if scale is not None else "Gamma (Hz)",
         "dissipation_scale": scale,
+        "dissipation_scale_source": (
+            None
+            if scale is None
+            else "given"
+            if "dissipation_scale" in given
+            else "implied by the header (unit '()': dimensionless)"
+            if implied
+            else "the header"
+        ),
         "baseline": {
             "first": "the first point of each overtone",
             "window": f"the mean over {t0:g} <= t <= {t1:g} s of each overtone",
@@ -318,6 +389,7 @@ def convert(
             )
         ),
         "empty_cells_skipped": skipped,
+        "left_out": notes,
         "given_by_user": sorted(given),
     }
     return ExportTable(data[list(COLUMNS)], record)
