@@ -115,6 +115,7 @@ CLI_COMMANDS: list[list[str]] = [
     ["crystals"],
     ["dcsf"],
     ["demo"],
+    ["examples"],
     ["figures"],
     ["figures", "paper1"],
     ["figures", "paper2"],
