@@ -113,7 +113,7 @@ def stiffness_figure(result):
     return fig
 
 
-def _prediction_or_nothing(result):
+def prediction_if_legend(result):
     """:func:`prediction_figure`, or None (no file) for a result computed without its legend:
     the figure of a maps-predict result in a report."""
     return None if result.triangle is None else prediction_figure(result)

@@ -80,7 +80,7 @@ def figure_registry() -> Mapping[type, tuple[tuple[str, Drawing], ...]]:
     paper2 = (draw.sweeps_figure, draw.load_figure, draw.dissipation_figure, draw.friction_figure)
     return MappingProxyType(
         {
-            maps_predict.Result: (("M_map.png", draw._prediction_or_nothing),),
+            maps_predict.Result: (("M_map.png", draw.prediction_if_legend),),
             qcm_stiffness.Result: (("stiffness.png", draw.stiffness_figure),),
             qcm_sweeps.Result: (
                 *zip(FIGURE_FILES, paper2, strict=True),
