@@ -81,7 +81,7 @@ _CONTACT_OPTIONS = ("radius", "force", "frequency")
     type=MagnitudeType("rtol"),
     default="1e-6",
     show_default=True,
-    help="Target relative accuracy of the DCSF, dimensionless.",
+    help="Target relative accuracy of the DCSF, dimensionless (checked at run time: rel_error).",
 )
 @format_option()
 @click.pass_context

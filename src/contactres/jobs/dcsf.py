@@ -53,7 +53,8 @@ class Settings:
     wavenumber : str
         "longitudinal" (k_l a, the paper's figures) or "shear" (k_s a).
     rtol : float
-        Target relative accuracy of the DCSF.
+        Target relative accuracy of the DCSF, checked at run time (each value against a
+        refined evaluation: the table's rel_error and flags).
     constants_in_pa : bool
         False when the face's constants are ratios only (C44 = 1): no C33, C44 in Pa and no
         wave speeds are reported, and physical contacts are refused.
