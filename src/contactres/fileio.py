@@ -230,10 +230,11 @@ def check_output_file(path: str | os.PathLike, inputs: Iterable[str | os.PathLik
 GENERATOR = "contactres"
 
 
-def _read_manifest(folder: Path) -> dict | None:
-    """The manifest of ``folder`` as a dict; None if there is none; {} if it cannot be read as
-    a contactres manifest (not JSON, no ``files`` table)."""
-    path = folder / MANIFEST
+def _read_manifest(folder: Path, name: str = MANIFEST) -> dict | None:
+    """The manifest of ``folder`` (or its file ``name`` of the same layout) as a dict; None if
+    there is none; {} if it cannot be read as a contactres manifest (not JSON, no ``files``
+    table)."""
+    path = folder / name
     if not path.is_file():
         return None
     try:
@@ -417,32 +418,26 @@ def _digest(path: Path) -> dict:
 
 # Suffix of a staging folder whose set is complete and on its way into the folder, and the file
 # in it that lists the earlier set's files to remove (hidden: never one of the set's files).
-_COMMITTED = ".commit"
-_JOURNAL = ".stale.json"
+_COMMITTED, _JOURNAL = ".commit", ".stale.json"
 
 
 def _roll_forward(committed: Path, folder: Path, owned: Iterable[str] = ()) -> None:
     """Move the files of a committed staging folder into ``folder``, remove the earlier set's
     files its journal lists (only those still as recorded: :func:`_verified_names`) and the
-    leftover temporaries of ``owned``, the manifest last. Done again after a kill, it picks up
-    where it stopped (moved files are gone from ``committed``; a manifest already moved in
-    means the move was complete)."""
-    if not (committed / MANIFEST).is_file():
-        return  # the manifest went in last: nothing left to do
-    try:
-        journal = json.loads((committed / _JOURNAL).read_text(encoding="utf-8"))
-    except (OSError, ValueError):
-        journal = {}
+    leftover temporaries of ``owned``, the manifest last, then ``committed`` itself. Done again
+    after a kill, it picks up where it stopped (moved files are gone from ``committed``; a
+    manifest already moved in means the move was complete: the caller checks that
+    ``committed`` still holds it)."""
     (folder / MANIFEST).unlink(missing_ok=True)  # no manifest while the set is mixed
-    for p in sorted(committed.iterdir()):
-        if not p.name.startswith(".") and p.name != MANIFEST:
-            _move_in(p, folder / p.name)
-    stale = _verified_names(folder, journal if isinstance(journal, dict) else {})
+    for p in sorted(p for p in committed.iterdir() if _plain_name(p.name)):
+        _move_in(p, folder / p.name)
+    stale = _verified_names(folder, _read_manifest(committed, _JOURNAL) or {})
     for p in folder.iterdir():
         if p.name in stale or _leftover_temporary(p.name, owned):
             if p.is_file() and not p.is_symlink():
                 p.unlink()
     _move_in(committed / MANIFEST, folder / MANIFEST)
+    shutil.rmtree(committed, ignore_errors=True)
 
 
 def _move_in(src: Path, dst: Path) -> None:
@@ -500,7 +495,6 @@ class ResultSet:
         self._lock: Path | None = None
         self._created: list[Path] = []
         self._earlier: set[str] = set()
-        self._earlier_files: dict[str, dict] = {}
 
     # -- set-up ---------------------------------------------------------------------------
 
@@ -518,8 +512,6 @@ class ResultSet:
             self._workspace = self.folder if inside else parent
             self._take_lock()
             self._clean_leftovers()
-            # A set completed just now (a killed run's) may be of another kind: refuse early.
-            _manifest_owner(self.folder, self.given, self.kind, self.owned)
             self._staging = self._new_dir("tmp")
         except BaseException:
             self._release(aborted=True)
@@ -588,7 +580,7 @@ class ResultSet:
             os.rename(old[0], self.folder)  # a kill fell between the two renames of a swap
             left.remove(old[0])
         for p in left:
-            if p.suffix == _COMMITTED and self.folder.is_dir():
+            if p.suffix == _COMMITTED and (p / MANIFEST).is_file() and self.folder.is_dir():
                 _roll_forward(p, self.folder)
             shutil.rmtree(p, ignore_errors=True)
 
@@ -649,7 +641,6 @@ class ResultSet:
         # Checked again under the lock, just before the move: what the earlier set wrote now.
         earlier = _manifest_owner(self.folder, self.given, self.kind, self.owned)
         self._earlier = _verified_names(self.folder, earlier) if self.folder.exists() else set()
-        self._earlier_files = {n: earlier["files"][n] for n in self._earlier}
         if self._replaceable():
             if not self.folder.exists():
                 try:
@@ -665,9 +656,9 @@ class ResultSet:
                 # self._staging now holds the earlier set: removed on release
                 self._staging = replace_folder(staging, self.folder, old)
                 return
-        self._commit_in_place(staging, staged)
+        self._commit_in_place(staging, staged, earlier)
 
-    def _commit_in_place(self, staging: Path, staged: list[str]) -> None:
+    def _commit_in_place(self, staging: Path, staged: list[str], earlier: dict) -> None:
         """Move the files in one by one (the folder holds other files that must stay).
 
         The staging folder, complete with its manifest and the record of the earlier set's
@@ -678,14 +669,12 @@ class ResultSet:
         before the rename) or the new one (after it), never a mixture; in between it has no
         manifest.
         """
-        stale = {n: self._earlier_files[n] for n in sorted(self._earlier - set(staged))}
+        stale = {n: earlier["files"][n] for n in sorted(self._earlier - set(staged))}
         write_text(staging / _JOURNAL, json.dumps({"files": stale}, indent=1) + "\n")
-        committed = staging.with_name(staging.stem + _COMMITTED)
-        os.rename(staging, committed)
+        committed = staging.rename(staging.with_name(staging.stem + _COMMITTED))
         # Kept if the move fails half-way: the next run finishes it, nothing removes it before.
         self._staging = None
         _roll_forward(committed, self.folder, self.owned)
-        shutil.rmtree(committed, ignore_errors=True)
 
     def _release(self, aborted: bool) -> None:
         if self._staging is not None:
