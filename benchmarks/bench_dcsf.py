@@ -8,7 +8,8 @@ timed call prepares its own kernel table and far-field weights (nothing is cache
 Also printed: the accuracy, the largest relative deviation of every model from a converged run
 (every resolution doubled; doubling twice moves the defaults by < 1e-7 too), the time of a
 second curve of the same material with the table prepared once (what apps/paper1.py and the CLI
-do), and that of all seven models in one call (``contactres dcsf --model all``).
+do), and that of all seven models in one call (``contactres dcsf --model all``); and, printed
+only, the cost of the command's job, which checks every value against a refined evaluation.
 
 Targets of the speed/memory issue: all seven models, 41 points, new material under 0.1 s; an
 extra k a point under 0.1 ms (41 vs 10041 points, table prepared: the default interpolates
@@ -33,6 +34,7 @@ from contactres.dynamic._exact import exact_n, galerkin_size
 from contactres.dynamic._normal_stiffness import model_n
 from contactres.dynamic._quadrature import functionals
 from contactres.dynamic._table import kernel_table, resolution_for
+from contactres.jobs import dcsf as dcsf_job
 
 TARGET_S = 0.5
 TARGET_EXACT_S = 1.0
@@ -120,6 +122,23 @@ def main() -> int:
         runs = ", ".join(f"{w:.3f}" for w in walls)
         print(f"  A={A:<5g} nu={nu:<5g} wall {min(walls):.3f} s (runs {runs})")
     results.append(target("dcsf 41 points, seven models, new material (worst)", worst, TARGET_7_S))
+
+    print(
+        "the same through the job of 'contactres dcsf', which checks every value against a "
+        "refined evaluation (checked_dcsf_models; no target: printed only)"
+    )
+    for k, (A, nu) in enumerate(CASES):
+        line = []
+        for models in (("exact",), ALL_MODELS):
+            walls, cpus = [], []
+            for rep in range(3):
+                m = Material.cubic_from_ratios(A * (1 + 1e-9 * (10 * k + rep + 41)), nu)
+                settings = dcsf_job.Settings(models=models, ka=KLA, loss=LOSS)
+                _, wall, cpu = timed(lambda m=m, s=settings: dcsf_job.run(m, s))
+                walls.append(wall)
+                cpus.append(cpu)
+            line.append(f"{len(models)} model(s) wall {min(walls):.3f} s cpu {min(cpus):.3f} s")
+        print(f"  A={A:<5g} nu={nu:<5g} " + ";  ".join(line))
 
     print(f"cost of an extra k a point: seven models, table prepared, 41 vs {41 + N_EXTRA} points")
     m = Material.cubic_from_ratios(0.5 * (1 + 1e-9 * 31), 0.25)

@@ -221,6 +221,7 @@ PUBLIC = {
     ],
     "dynamic": [
         "ALL_MODELS",
+        "CheckedDCSF",
         "KSA_MAX",
         "KernelTable",
         "MAX_ISOTROPIC_POISSON",
@@ -228,6 +229,7 @@ PUBLIC = {
         "MODELS",
         "TangentialTable",
         "WAVENUMBERS",
+        "checked_dcsf_models",
         "contact_displacement",
         "contact_pressure",
         "dcsf",

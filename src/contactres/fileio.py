@@ -23,8 +23,11 @@ never removed (it may be overwritten only by a file of the same name the new set
 a folder whose manifest contactres did not write, or that holds another kind of set (``qcm
 stiffness`` results when ``qcm analyze`` writes, say), is refused before anything is computed.
 
-So a kill leaves the earlier set or the new one (plus hidden leftovers the next run removes), or
-a folder without a manifest (files moved one by one): never a mixture that looks complete.
+So a kill leaves the earlier set or the new one (plus hidden leftovers the next run removes).
+Where the files go in one by one, the staging folder is first renamed to a committed folder
+(``.commit``, with the list of the earlier set's files to remove): a kill before that rename
+leaves the earlier set whole, a kill after it a folder without a manifest, whose move the next
+run into the folder finishes before anything else, so that it holds the new set whole.
 """
 
 from __future__ import annotations
@@ -227,10 +230,11 @@ def check_output_file(path: str | os.PathLike, inputs: Iterable[str | os.PathLik
 GENERATOR = "contactres"
 
 
-def _read_manifest(folder: Path) -> dict | None:
-    """The manifest of ``folder`` as a dict; None if there is none; {} if it cannot be read as
-    a contactres manifest (not JSON, no ``files`` table)."""
-    path = folder / MANIFEST
+def _read_manifest(folder: Path, name: str = MANIFEST) -> dict | None:
+    """The manifest of ``folder`` (or its file ``name`` of the same layout) as a dict; None if
+    there is none; {} if it cannot be read as a contactres manifest (not JSON, no ``files``
+    table)."""
+    path = folder / name
     if not path.is_file():
         return None
     try:
@@ -412,6 +416,30 @@ def _digest(path: Path) -> dict:
     return {"bytes": path.stat().st_size, "sha256": h.hexdigest()}
 
 
+# Suffix of a staging folder whose set is complete and on its way into the folder, and the file
+# in it that lists the earlier set's files to remove (hidden: never one of the set's files).
+_COMMITTED, _JOURNAL = ".commit", ".stale.json"
+
+
+def _roll_forward(committed: Path, folder: Path, owned: Iterable[str] = ()) -> None:
+    """Move the files of a committed staging folder into ``folder``, remove the earlier set's
+    files its journal lists (only those still as recorded: :func:`_verified_names`) and the
+    leftover temporaries of ``owned``, the manifest last, then ``committed`` itself. Done again
+    after a kill, it picks up where it stopped (moved files are gone from ``committed``; a
+    manifest already moved in means the move was complete: the caller checks that
+    ``committed`` still holds it)."""
+    (folder / MANIFEST).unlink(missing_ok=True)  # no manifest while the set is mixed
+    for p in sorted(p for p in committed.iterdir() if _plain_name(p.name)):
+        _move_in(p, folder / p.name)
+    stale = _verified_names(folder, _read_manifest(committed, _JOURNAL) or {})
+    for p in folder.iterdir():
+        if p.name in stale or _leftover_temporary(p.name, owned):
+            if p.is_file() and not p.is_symlink():
+                p.unlink()
+    _move_in(committed / MANIFEST, folder / MANIFEST)
+    shutil.rmtree(committed, ignore_errors=True)
+
+
 def _move_in(src: Path, dst: Path) -> None:
     """Move ``src`` onto ``dst`` atomically, copying if they lie on different file systems."""
     try:
@@ -539,17 +567,21 @@ class ResultSet:
         """True for the lock and the staging folders of runs into this folder."""
         prefix = self._prefix()
         return p.name == f"{prefix}.lock" or (
-            p.name.startswith(f"{prefix}-") and p.suffix in (".tmp", ".old")
+            p.name.startswith(f"{prefix}-") and p.suffix in (".tmp", ".old", _COMMITTED)
         )
 
     def _clean_leftovers(self) -> None:
-        """Remove what killed runs into this folder left (we hold the lock: none is live)."""
+        """Finish or remove what killed runs into this folder left (we hold the lock: none is
+        live): a committed set (complete, its move into the folder cut short) is moved in, a
+        staging folder not yet committed is removed (the earlier set is still whole)."""
         left = [p for p in self._work.iterdir() if self._ours(p) and p.is_dir()]
         old = [p for p in left if p.suffix == ".old"]
         if not self.folder.exists() and len(old) == 1:
             os.rename(old[0], self.folder)  # a kill fell between the two renames of a swap
             left.remove(old[0])
         for p in left:
+            if p.suffix == _COMMITTED and (p / MANIFEST).is_file() and self.folder.is_dir():
+                _roll_forward(p, self.folder)
             shutil.rmtree(p, ignore_errors=True)
 
     # -- writing --------------------------------------------------------------------------
@@ -624,19 +656,25 @@ class ResultSet:
                 # self._staging now holds the earlier set: removed on release
                 self._staging = replace_folder(staging, self.folder, old)
                 return
-        self._commit_in_place(staging, staged)
+        self._commit_in_place(staging, staged, earlier)
 
-    def _commit_in_place(self, staging: Path, staged: list[str]) -> None:
-        """Move the files in one by one (the folder holds other files that must stay)."""
-        (self.folder / MANIFEST).unlink(missing_ok=True)  # no manifest while the set is mixed
-        for name in staged:
-            _move_in(staging / name, self.folder / name)
-        stale = self._earlier - set(staged)
-        for p in self.folder.iterdir():
-            if p.name in stale or _leftover_temporary(p.name, self.owned):
-                if p.is_file() and not p.is_symlink():
-                    p.unlink()
-        _move_in(staging / MANIFEST, self.folder / MANIFEST)
+    def _commit_in_place(self, staging: Path, staged: list[str], earlier: dict) -> None:
+        """Move the files in one by one (the folder holds other files that must stay).
+
+        The staging folder, complete with its manifest and the record of the earlier set's
+        files to remove (:data:`_JOURNAL`, their verified sizes and SHA-256), is first renamed
+        to a committed folder in one step: from then on the new set is what the folder will
+        hold. If the move is cut short (a kill), the next run into the folder finishes it
+        (:meth:`_clean_leftovers`), so the folder ends with the earlier set whole (a kill
+        before the rename) or the new one (after it), never a mixture; in between it has no
+        manifest.
+        """
+        stale = {n: earlier["files"][n] for n in sorted(self._earlier - set(staged))}
+        write_text(staging / _JOURNAL, json.dumps({"files": stale}, indent=1) + "\n")
+        committed = staging.rename(staging.with_name(staging.stem + _COMMITTED))
+        # Kept if the move fails half-way: the next run finishes it, nothing removes it before.
+        self._staging = None
+        _roll_forward(committed, self.folder, self.owned)
 
     def _release(self, aborted: bool) -> None:
         if self._staging is not None:

@@ -254,3 +254,24 @@ def test_dcsf_refuses_a_nearly_incompressible_solid_in_one_line():
     r = run("dcsf", "--zener", "1", "--poisson", "0.49999", "--ka", "1")
     assert r.exit_code != 0 and r.stdout == ""
     assert len(r.stderr.splitlines()) == 1 and "incompressible" in r.stderr
+
+
+def test_dcsf_checks_its_accuracy_at_run_time_and_flags_negative_damping():
+    # Issue 27, point 7: rtol 1e-4 at k_l a = 10 printed 3.824 + 15.94i (converged:
+    # 0.666 + 19.78i); every value now comes with its estimated error.
+    r = run("dcsf", "--crystal", "Cu", "--ka", "10", "--rtol", "1e-4", "--format", "csv")
+    assert r.exit_code == 0, r.output
+    t = pd.read_csv(io.StringIO(r.output))
+    assert abs(t.re[0] - 0.6661) < 1e-3 and abs(t.im[0] - 19.7814) < 2e-3
+    assert t.rel_error[0] <= 1e-4 and t["flags"].isna().all()
+    # R0 has negative damping at k_l a = 2 on Cu(001) (Im DCSF = -0.43): flagged, and noted
+    # in one line on stderr; the exact model is not flagged.
+    r = run("dcsf", "--crystal", "Cu", "--model", "all", "--ka", "1,2", "--format", "csv")
+    assert r.exit_code == 0, r.output
+    lines = r.output.splitlines()
+    warnings = [x for x in lines if x.startswith("contactres: warning:")]
+    assert len(warnings) == 1 and "negative damping" in warnings[0] and "R0" in warnings[0]
+    t = pd.read_csv(io.StringIO("\n".join(x for x in lines if x not in warnings)))
+    flagged = t[t["flags"].fillna("").str.contains("negative-damping")]
+    assert not flagged.empty and set(flagged.model) <= {"R0", "SA", "WA"}
+    assert (flagged.im < 0).all() and (t[t["flags"].isna()].im >= 0).all()

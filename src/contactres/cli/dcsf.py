@@ -81,7 +81,7 @@ _CONTACT_OPTIONS = ("radius", "force", "frequency")
     type=MagnitudeType("rtol"),
     default="1e-6",
     show_default=True,
-    help="Target relative accuracy of the DCSF, dimensionless.",
+    help="Target relative accuracy of the DCSF, dimensionless (checked at run time: rel_error).",
 )
 @format_option()
 @click.pass_context
@@ -92,9 +92,13 @@ def dcsf(ctx, model, ka, radius, force, frequency, loss, wavenumber, rtol, fmt, 
     normally on the crystal face, for a displacement condition: R0 (centre), R1 (edge, along
     the surface x axis), SA (their mean), WA (pressure-weighted average along x, Bycroft),
     TP (two-parameter pressure, Tian et al.), WA2D (weighted average over the whole contact).
-    Columns: ka, model, re, im (re: stiffness, im: damping, both relative to K_sa), then the
-    face's C33, C44 (Pa) and wave speeds v_l = √(C33/ρ), v_s = √(C44/ρ) (m/s); the plain
-    format prints these as a '# ' line instead. Defaults: model exact, lossless solid.
+    Columns: ka, model, re, im (re: stiffness, im: damping, both relative to K_sa), rel_error
+    (the estimated relative error: each value is checked against a refined evaluation, and
+    refined where it misses --rtol), flags (not-converged: still above --rtol after two
+    refinements; negative-damping: Im < 0, which R0, SA and WA reach at high k a and no
+    passive contact has; each also noted in one line on stderr), then the face's C33, C44
+    (Pa) and wave speeds v_l = √(C33/ρ), v_s = √(C44/ρ) (m/s); the plain format prints these
+    as a '# ' line instead. Defaults: model exact, lossless solid.
 
     With --radius, --force and --frequency (all three) k a comes from the static Hertz contact
     (contact radius a) at that frequency, and the columns add R, F, f, a, K_sa and the dynamic
@@ -152,6 +156,8 @@ def dcsf(ctx, model, ka, radius, force, frequency, loss, wavenumber, rtol, fmt, 
         constants_in_pa=not ratios_only,
     )
     result = job.run(m, settings, progress=lambda text: step("dcsf", text))
+    for line in result.warnings:
+        click.echo(f"contactres: warning: {line}", err=True)
     table = result.table
     if fmt == "plain":
         click.echo("# " + _face_line(result.face))

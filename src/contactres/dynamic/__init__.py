@@ -3,6 +3,8 @@
 Paper 1: the displacement models R0, R1, SA, WA, TP (Eqs. 24-28), the whole-contact average WA2D
 and the exact rigid flat punch, as DCSF = K_da/K_sa (Eq. 29). :func:`prepare` builds the kernel
 table of a material once; pass it as ``prepared=`` to evaluate many curves of that material.
+:func:`checked_dcsf_models` checks each value against a refined evaluation at run time (and
+refines where it misses rtol), with an estimated error per value.
 
 The tangential counterpart (a rigid disk translating tangentially; relaxed contact): the static
 stiffness tensor (:func:`tangential_stiffness_static`), the exact dynamic one
@@ -33,6 +35,8 @@ _EXPORTS = MappingProxyType(
         "ALL_MODELS": "._models",
         "MODELS": "._models",
         "WAVENUMBERS": "._models",
+        "CheckedDCSF": "._convergence",
+        "checked_dcsf_models": "._convergence",
         "KernelTable": "._table",
         "MAX_ISOTROPIC_POISSON": "._table",
         "MAX_STIFFNESS_CONTRAST": "._table",
@@ -65,6 +69,10 @@ __all__ = sorted(_EXPORTS)
 # marks an explicit re-export; isort would split each onto its own import, hence off here.
 if TYPE_CHECKING:
     # isort: off
+    from ._convergence import (
+        CheckedDCSF as CheckedDCSF,
+        checked_dcsf_models as checked_dcsf_models,
+    )
     from ._layered_punch import (
         flat_punch_stiffness as flat_punch_stiffness,
         layered_dcsf as layered_dcsf,

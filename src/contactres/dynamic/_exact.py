@@ -63,7 +63,9 @@ class GalerkinSize:
         return GalerkinSize(2 * self.n_radial, 2 * self.n_harmonics)
 
 
-def galerkin_size(ksa_max: float, rtol: float = 1e-6, *, pressure: bool = False) -> GalerkinSize:
+def galerkin_size(
+    ksa_max: float, rtol: float = 1e-6, *, pressure: bool = False, refine: int = 0
+) -> GalerkinSize:
     """Default basis size reaching ``rtol`` up to k_s a = ksa_max (from the convergence tests:
     the radial series converges like a Neumann series in (k a/2p)², the angular one like the
     harmonics of g).
@@ -78,10 +80,13 @@ def galerkin_size(ksa_max: float, rtol: float = 1e-6, *, pressure: bool = False)
     ``pressure=True`` sizes the basis for the pressure field itself (:func:`contact_pressure
     <contactres.dynamic.contact_pressure>`), which converges only linearly:
     two radial terms and one harmonic more.
+    ``refine`` = L > 0 adds 4 L radial terms and 2 L harmonics: the refined evaluations of the
+    run-time convergence check (:mod:`contactres.dynamic._convergence`).
     """
     extra = 2 if rtol <= 1e-8 else (0 if rtol < 1e-4 else -2)
+    extra += 4 * refine
     more = 2 if pressure else 0
-    harmonics = 4 if rtol <= 1e-8 else 3
+    harmonics = (4 if rtol <= 1e-8 else 3) + 2 * refine
     return GalerkinSize(
         n_radial=max(2, math.ceil(0.6 * ksa_max) + 4 + extra + more), n_harmonics=harmonics
     )

@@ -78,15 +78,18 @@ __all__ = [
     "INTERPOLATE_ABOVE",
     "MODELS",
     "WAVENUMBERS",
+    "check_model",
     "contact_displacement",
     "contact_pressure",
     "dcsf",
     "dcsf_models",
     "dynamic_contact_stiffness",
+    "evaluate_models",
     "model_n",
     "normalised_wavenumber",
     "shear_ka",
     "shear_wavenumber_ratio",
+    "table_for",
     "wave_modulus",
 ]
 
@@ -104,7 +107,8 @@ def shear_wavenumber_ratio(m: Material) -> float:
     return math.sqrt(float(np.real(m.C[2, 2])) / shear_reference(m))
 
 
-def _check_model(model: str) -> str:
+def check_model(model: str) -> str:
+    """``model`` spelt as in :data:`ALL_MODELS` (case-insensitive), or a ContactresInputError."""
     key = str(model).upper()
     key = "exact" if key == "EXACT" else key
     if key not in ALL_MODELS:
@@ -182,7 +186,7 @@ def shear_ka(m: Material, ka, wavenumber: str) -> np.ndarray:
     )
 
 
-def _table(m: Material, ksa: np.ndarray, loss: float, rtol: float, prepared):
+def table_for(m: Material, ksa: np.ndarray, loss: float, rtol: float, prepared):
     """The kernel table of ``m`` (``prepared``, checked to be made for ``m``, ``loss`` and
     ``rtol``, or a new one), after checking that k_s a stays where its contour is accurate."""
     if prepared is None:
@@ -256,12 +260,13 @@ def model_n(f: dict, model: str) -> np.ndarray:
     return (alpha * f["H0"] + f["F0"]) / (alpha / 3 + 1)
 
 
-def _direct(table, flat, names, rtol, chunk, span=None) -> dict[str, np.ndarray]:
+def _direct(table, flat, names, rtol, chunk, span=None, refine=0) -> dict[str, np.ndarray]:
     """N of every model (the denominator of its DCSF, smooth in k a where the DCSF of SA or R1
     can pass through a pole) at the k_s a values ``flat`` (1-D), point by point in chunks.
 
     ``span`` = (smallest positive, largest) k_s a that sizes the discretisation (default: those
     of ``flat``); calls with one span discretise alike, so their values fit one smooth curve.
+    ``refine``: the refinement level of the Galerkin basis (:func:`galerkin_size`).
     """
     approx = [n for n in names if n != "exact"]
     n_out = {name: np.empty(flat.shape, dtype=complex) for name in names}
@@ -272,7 +277,7 @@ def _direct(table, flat, names, rtol, chunk, span=None) -> dict[str, np.ndarray]
     # Galerkin bookkeeping and near θ grid from the largest): chunking does not change a result.
     smax = float(np.max(pos, initial=0.0))
     grid = far_grid(table, float(np.min(pos))) if pos.size else None
-    size = galerkin_size(smax, rtol)
+    size = galerkin_size(smax, rtol, refine=refine)
     # No threadpool_limits: process-wide, it would let threads sharing a table (test_prepared.py)
     # change each other's last digits; one BLAS thread was no faster (7 models, 41 points).
     far_op = far_operator(table, grid) if approx and grid is not None else None
@@ -309,13 +314,33 @@ def dcsf_models(
     ``{model: complex array shaped like ka}``. ``chunk`` and ``interpolate`` (keyword only) as
     in :func:`dcsf`.
     """
-    names = [_check_model(x) for x in ([models] if isinstance(models, str) else models)]
+    names = [check_model(x) for x in ([models] if isinstance(models, str) else models)]
     if not (isinstance(chunk, int | np.integer) and chunk >= 1):
         raise ContactresInputError(f"chunk must be a positive integer, got {chunk!r}")
     if interpolate not in (None, True, False):
         raise ContactresInputError(f"interpolate must be None, True or False, got {interpolate!r}")
     ksa = shear_ka(m, ka, wavenumber)
-    table = _table(m, ksa, loss, rtol, prepared)
+    table = table_for(m, ksa, loss, rtol, prepared)
+    return evaluate_models(table, ksa, names, rtol, chunk=chunk, interpolate=interpolate)
+
+
+def evaluate_models(
+    table: KernelTable,
+    ksa: np.ndarray,
+    names: list[str],
+    rtol: float,
+    *,
+    chunk: int = _CHUNK,
+    interpolate: bool | None = None,
+    refine: int = 0,
+) -> dict[str, np.ndarray]:
+    """The DCSF of the checked model names ``names`` at the k_s a values ``ksa`` on ``table``
+    (the work of :func:`dcsf_models` after its checks): ``{model: complex array like ksa}``.
+
+    ``refine`` = L > 0 enlarges the Galerkin basis of the exact model (:func:`galerkin_size`);
+    with a kernel table whose resolution is doubled L times it is the refined evaluation of the
+    run-time convergence check (:mod:`contactres.dynamic._convergence`).
+    """
     flat = ksa.ravel()
     uniq, inverse = np.unique(flat, return_inverse=True)
     if interpolate is None:
@@ -327,12 +352,16 @@ def dcsf_models(
         span = (low / 2, uniq[-1])
 
         def direct(x):
-            return _direct(table, x, names, rtol, chunk, span)
+            return _direct(table, x, names, rtol, chunk, span, refine)
 
         found = chebyshev_values(direct, uniq, rtol / 10, largest=LARGEST)
-        out = found[0] if found is not None else _direct(table, uniq, names, rtol, chunk)
+        out = (
+            found[0]
+            if found is not None
+            else _direct(table, uniq, names, rtol, chunk, refine=refine)
+        )
     else:
-        out = _direct(table, uniq, names, rtol, chunk)
+        out = _direct(table, uniq, names, rtol, chunk, refine=refine)
     return {k: (table.n_static / v)[inverse].reshape(ksa.shape) for k, v in out.items()}
 
 
@@ -405,7 +434,7 @@ def dcsf(
     >>> bool(abs(d - (0.9689 + 0.5j * 0.7931)) < 1e-4)  # rigid disk, (k, c) at a0 = 0.5
     True
     """
-    key = _check_model(model)
+    key = check_model(model)
     out = dcsf_models(
         m,
         ka,
@@ -514,7 +543,7 @@ def contact_displacement(
     ksa = shear_ka(m, ka, wavenumber)
     r, p = _contact_points(rbar, phi, edge=True)
     ksa, r, p = np.broadcast_arrays(ksa, r, p)
-    table = _table(m, ksa, loss, rtol, prepared)
+    table = table_for(m, ksa, loss, rtol, prepared)
     out = np.empty(ksa.shape, dtype=complex)
     flat_k, flat_r, flat_p = ksa.ravel(), r.ravel(), p.ravel()
     res = out.reshape(-1)
@@ -552,7 +581,7 @@ def contact_pressure(
     if ksa.ndim != 0:
         raise ContactresInputError("contact_pressure takes one ka at a time")
     r, p = np.broadcast_arrays(*_contact_points(rbar, phi, edge=False))
-    table = _table(m, ksa, loss, rtol, prepared)
+    table = table_for(m, ksa, loss, rtol, prepared)
     size = galerkin_size(float(ksa), rtol, pressure=True)
     _, c, basis = exact_n(table, np.atleast_1d(ksa), size, return_coeffs=True)
     c = c[0]

@@ -7,7 +7,10 @@ depends on ratios only). Settings: the displacement models, either the values of
 contacts (sphere radius, force and frequency, which give k a through the static Hertz contact
 radius a: :func:`contactres.dynamic.normalised_wavenumber`), the loss factor, the wave-number
 convention and the accuracy. One kernel table of the face serves every model
-(:func:`contactres.dynamic.prepare`, :func:`contactres.dynamic.dcsf_models`).
+(:func:`contactres.dynamic.prepare`, :func:`contactres.dynamic.dcsf_models`). Every value is
+checked against a refined evaluation, and refined where it misses the accuracy
+(:func:`contactres.dynamic.checked_dcsf_models`): the table gives the estimated error of each
+row and flags the rows that still miss it, and those with negative damping.
 """
 
 from __future__ import annotations
@@ -50,7 +53,8 @@ class Settings:
     wavenumber : str
         "longitudinal" (k_l a, the paper's figures) or "shear" (k_s a).
     rtol : float
-        Target relative accuracy of the DCSF.
+        Target relative accuracy of the DCSF, checked at run time (each value against a
+        refined evaluation: the table's rel_error and flags).
     constants_in_pa : bool
         False when the face's constants are ratios only (C44 = 1): no C33, C44 in Pa and no
         wave speeds are reported, and physical contacts are refused.
@@ -69,23 +73,26 @@ class Settings:
 
 @dataclass(frozen=True)
 class Result(JobResult):
-    """``table``: one row per (model, k a): ka, model, re, im (DCSF relative to K_sa), and for
+    """``table``: one row per (model, k a): ka, model, re, im (DCSF relative to K_sa), rel_error
+    (its relative error, estimated against a refined evaluation) and flags, and for
     physical contacts radius_m, force_N, frequency_Hz, contact_radius_m, stiffness_N_per_m and
     K = K_sa DCSF (K_re_N_per_m, K_im_N_per_m): :data:`contactres.measurements.schema.DCSF_TABLE`.
     ``face``: C33/C44, C33 and C44 (Pa) of the face and its wave speeds v_l = √(C33/ρ),
-    v_s = √(C44/ρ) (m/s); NaN where unknown."""
+    v_s = √(C44/ρ) (m/s); NaN where unknown. ``warnings``: one line per kind of flag in the
+    table (rows that miss rtol, negative damping)."""
 
     SCHEMAS = MappingProxyType({"table": DCSF_TABLE})
 
     table: pd.DataFrame
     face: dict
+    warnings: tuple[str, ...] = ()
 
 
 def run(inputs: Material, settings: Settings, progress: Progress | None = None) -> Result:
     """The DCSF of ``settings`` on the face ``inputs`` (see the module docstring)."""
     import pandas as pd
 
-    from ..dynamic import dcsf_models, prepare
+    from ..dynamic import checked_dcsf_models, prepare
 
     m, s = inputs, settings
     contacts = [v is not None for v in (s.radius, s.force, s.frequency)]
@@ -109,22 +116,68 @@ def run(inputs: Material, settings: Settings, progress: Progress | None = None) 
     table = prepare(m, s.loss, s.rtol)
     # One model name given as a string (from Python) is one model, not its letters.
     models = [s.models] if isinstance(s.models, str) else list(s.models)
-    say(progress, f"DCSF of {len(models)} model(s) at {np.size(ka)} values of k a")
-    out = dcsf_models(
+    say(progress, f"DCSF of {len(models)} model(s) at {np.size(ka)} values of k a, checked")
+    out = checked_dcsf_models(
         m, ka, models, loss=s.loss, wavenumber=s.wavenumber, rtol=s.rtol, prepared=table
     )
     frames = []
-    for name, v in out.items():
+    for name, v in out.values.items():
+        flags = _flags(v, out.error[name], out.converged[name])
         cols = {"ka": ka, "model": name, "re": v.real, "im": v.imag}
+        cols.update(rel_error=out.error[name], flags=flags)
         if physical:
             k = extra["stiffness_N_per_m"] * v
             cols.update(extra, K_re_N_per_m=k.real, K_im_N_per_m=k.imag)
         frames.append(pd.DataFrame(cols))
+    frame = pd.concat(frames, ignore_index=True)
     density = m.density if s.constants_in_pa else None
     return Result(
-        table=pd.concat(frames, ignore_index=True),
+        table=frame,
         face=_face_constants(c33, c44, density, not s.constants_in_pa),
+        warnings=_warnings(frame, s.rtol),
     )
+
+
+def _flags(values: np.ndarray, error: np.ndarray, converged: np.ndarray) -> np.ndarray:
+    """The flags of one model's rows: "not-converged" (the estimated relative error exceeds
+    rtol after every refinement) and "negative-damping" (Im DCSF < 0 beyond that error: no
+    passive contact has it; R0, SA and WA reach it at high k a, paper 1's approximations)."""
+    negative = values.imag < -np.maximum(error, 1e-12) * np.abs(values)
+    out = np.full(values.shape, "", dtype=object)
+    out[~converged] = "not-converged"
+    both = negative & ~converged
+    out[negative] = "negative-damping"
+    out[both] = "not-converged;negative-damping"
+    return out
+
+
+def _warnings(frame: pd.DataFrame, rtol: float) -> tuple[str, ...]:
+    """One line per kind of flag in the listing (the rows of the flags column)."""
+    lines = []
+    flags = frame["flags"].astype(str)
+    bad = frame[flags.str.contains("not-converged")]
+    if len(bad):
+        lines.append(
+            f"{len(bad)} row(s) miss rtol = {rtol:g} after every refinement (flag not-converged;"
+            f" estimated relative error up to {bad['rel_error'].max():.2g}, k a "
+            f"{_span(bad['ka'])}): outside the validated range of the kernels (k_l a <= 2, "
+            "A = 0.2-10, nu <= 0.45)"
+        )
+    neg = frame[flags.str.contains("negative-damping")]
+    if len(neg):
+        names = ", ".join(sorted(set(neg["model"])))
+        lines.append(
+            f"{len(neg)} row(s) of model(s) {names} have negative damping, Im DCSF < 0 (flag "
+            f"negative-damping; k a {_span(neg['ka'])}): no passive contact has it, the "
+            "displacement condition fails there; use the exact model"
+        )
+    return tuple(lines)
+
+
+def _span(ka) -> str:
+    """'X' or 'X-Y': the k a values of some rows."""
+    lo, hi = float(np.min(ka)), float(np.max(ka))
+    return f"{lo:.4g}" if lo == hi else f"{lo:.4g}-{hi:.4g}"
 
 
 def _contact_points(m, s: Settings):

@@ -96,7 +96,15 @@ def run(inputs: str | os.PathLike, settings: Settings, progress: Progress | None
                 f"but MAP has {omap.shape[0]} x {omap.shape[1]} pixels (same grid needed)"
             )
     elif ds is not None and s.variable in ds:
-        values = ds[s.variable].values
+        try:
+            values = ds[s.variable].values
+        except (OSError, RuntimeError, ValueError, TypeError) as exc:
+            # A truncated or foreign chunk of a half-written store (codec errors).
+            raise ContactresInputError(
+                f"map store {str(inputs)!r}: variable {s.variable!r} cannot be read "
+                f"({type(exc).__name__}: {' '.join(str(exc).split())[:200]}): a half-written or "
+                "damaged store; write it again"
+            ) from None
     else:
         raise ContactresInputError(
             f"{inputs}: no variable {s.variable!r}; give the measured map as values_path "

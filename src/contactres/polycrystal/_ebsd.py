@@ -42,7 +42,7 @@ import pandas as pd
 from ..errors import ContactresInputError
 from ..fileio import write_text
 from ..measurements.readers import Reader
-from ._maps import OrientationMap
+from ._maps import OrientationMap, check_map_size
 
 __all__ = ["EBSD_READERS", "read_ang", "read_ctf", "read_ebsd", "write_ang", "write_ctf"]
 
@@ -112,6 +112,8 @@ def _grid(path: Path, x: np.ndarray, y: np.ndarray, step_x: float, step_y: float
         raise _bad(path, k + 1, first_line + k, col, repr(float(value)),
                    f"not on the square grid of step ({step_x:g}, {step_y:g}) µm")  # fmt: skip
     H, W = int(i.max()) + 1, int(j.max()) + 1
+    # Before the counts are allocated: two points far apart would span a grid of 10^10 pixels.
+    check_map_size((H, W), f"{path.name}: the points span a grid of")
     flat = i * W + j
     counts = np.bincount(flat, minlength=H * W)
     if np.any(counts > 1):

@@ -379,4 +379,18 @@ def fit_map(
         raise ContactresInputError(f"grain_orientations must have shape (G, 3, 3), got {R.shape}")
     mean, err, _ = grain_means(labels, values, n_grains=R.shape[0])
     ok = np.isfinite(mean) & np.isfinite(err) & (err > 0)
+    if not ok.any():
+        # Nothing to weight a fit with: say why instead of failing inside it.
+        measured = np.isfinite(mean) & np.isfinite(err)
+        if measured.any():
+            raise ContactresInputError(
+                f"no contrast to fit: the values are constant within each of the "
+                f"{int(measured.sum())} grain(s) with two or more measured pixels (standard "
+                f"error 0{', and equal in all' if np.ptp(mean[measured]) == 0 else ''}); a "
+                "measured map has noise, so this is not one"
+            )
+        raise ContactresInputError(
+            "no grain has two or more measured pixels (finite values inside the grains): "
+            "nothing to fit"
+        )
     return LATTICE_FITS[lattice](R[ok], mean[ok], err[ok], **kwargs)

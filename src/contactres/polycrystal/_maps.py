@@ -35,6 +35,7 @@ from __future__ import annotations
 import os
 import secrets
 import shutil
+import warnings
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
@@ -49,9 +50,11 @@ from ._orientations import surface_matrices_from_euler
 
 __all__ = [
     "MAP_CONVENTIONS",
+    "MAX_MAP_PIXELS",
     "ExactModulus",
     "OrientationMap",
     "check_map_output",
+    "check_map_size",
     "evaluate_map",
     "map_from_dataset",
     "map_to_dataset",
@@ -67,6 +70,29 @@ MAP_CONVENTIONS = {
 }
 
 _EXTRA = "pip install 'contactres[maps]'"
+
+#: Largest map accepted, in pixels (rows x columns): 2^25 ≈ 3.4e7 (a 5793 x 5793 map). A map's
+#: arrays take ~60 bytes a pixel (Euler angles, phase, confidence, labels and one value map):
+#: 2 GB at the limit. The synthetic maps, the Zarr map stores (:func:`read_map`, checked from
+#: the sizes a store declares, before any data is read) and the EBSD grids check it, so that a
+#: 116 kB store declaring 10^10 pixels is refused at once instead of running out of memory after
+#: minutes. From Python, ``max_pixels=`` of :func:`read_map` and
+#: :func:`~contactres.polycrystal.synthetic_polycrystal` sets another limit.
+MAX_MAP_PIXELS = 2**25
+# The variables map_from_dataset needs from a store.
+_MAP_VARIABLES = ("euler", "phase", "confidence")
+
+
+def check_map_size(shape, what: str, max_pixels: int = MAX_MAP_PIXELS) -> None:
+    """Refuse a map of ``shape`` = (rows, columns) beyond ``max_pixels`` pixels (a one-line
+    ContactresInputError beginning with ``what``, the map's name), before it is allocated."""
+    rows, cols = (int(n) for n in shape)
+    if rows * cols > max_pixels:
+        raise ContactresInputError(
+            f"{what}: {rows} x {cols} = {rows * cols:.4g} pixels, more than the limit of "
+            f"{max_pixels:.4g} ({max_pixels * 60 / 1e9:.3g} GB of arrays); from Python, "
+            "max_pixels= of read_map or synthetic_polycrystal sets another limit"
+        )
 
 
 def require_maps_extra(module: str):
@@ -377,17 +403,35 @@ def map_from_dataset(ds) -> OrientationMap:
             raise ContactresInputError(
                 f"map attribute {key!r} is {ds.attrs.get(key)!r}, expected {value!r}"
             )
-    labels = ds["labels"].values if "labels" in ds else None
+    labels = _loaded(ds, "labels") if "labels" in ds else None
     return OrientationMap(
-        euler=ds["euler"].values,
+        euler=_loaded(ds, "euler"),
         step_x=float(ds.attrs["step_x_m"]),
         step_y=float(ds.attrs["step_y_m"]),
-        phase=ds["phase"].values,
-        confidence=ds["confidence"].values,
+        phase=_loaded(ds, "phase"),
+        confidence=_loaded(ds, "confidence"),
         confidence_name=str(ds.attrs.get("confidence_name", "confidence")),
         labels=labels,
         source=str(ds.attrs.get("source", "")),
     )
+
+
+def _loaded(ds, name: str) -> np.ndarray:
+    """The values of variable ``name`` of ``ds``; a one-line ContactresInputError naming the
+    store (``ds.encoding["source"]``, set by :func:`read_map`) when a chunk cannot be read."""
+    try:
+        return ds[name].values
+    except KeyError:
+        raise ContactresInputError(
+            f"map store {ds.encoding.get('source', '')!r}: variable {name!r} is missing"
+        ) from None
+    except (OSError, RuntimeError, ValueError, TypeError) as exc:
+        # A truncated or foreign chunk (codec errors are RuntimeErrors or ValueErrors).
+        raise ContactresInputError(
+            f"map store {ds.encoding.get('source', '')!r}: variable {name!r} cannot be read "
+            f"({type(exc).__name__}: {' '.join(str(exc).split())[:200]}): a half-written or "
+            "damaged store; write it again"
+        ) from None
 
 
 def _is_zarr_store(path: Path) -> bool:
@@ -455,20 +499,48 @@ def write_map(path: str | os.PathLike, dataset, *, chunks: tuple[int, int] = (25
     return target
 
 
-def read_map(path: str | os.PathLike):
+def read_map(path: str | os.PathLike, *, max_pixels: int = MAX_MAP_PIXELS):
     """Open a map written by :func:`write_map` as a lazy, dask-chunked :class:`xarray.Dataset`.
 
     The variables are read chunk by chunk when used (``ds["euler"].data`` is a dask array that
     :func:`evaluate_map` or a cluster's workers read piecewise); :func:`map_from_dataset` loads
-    it into an :class:`OrientationMap`.
+    it into an :class:`OrientationMap`. Only the metadata is read here, and checked: the store
+    must hold the variables of a map (euler, phase, confidence) and declare at most
+    ``max_pixels`` pixels (default :data:`MAX_MAP_PIXELS`).
 
     Raises
     ------
     FileNotFoundError
         If there is no store at ``path``.
+    ValueError
+        (ContactresInputError, one line naming the store) when its metadata cannot be read, a
+        variable of the map is missing (a half-written store) or it declares more pixels than
+        ``max_pixels``.
     """
     xr = require_maps_extra("xarray")
     target = Path(path)
     if not _is_zarr_store(target):
         raise FileNotFoundError(f"no Zarr map store at {str(target)!r}")
-    return xr.open_zarr(target, consolidated=False)
+    try:
+        with warnings.catch_warnings():
+            # A folder left without its metadata by a half-written store: the check of the
+            # map's variables below names it, in one line.
+            warnings.filterwarnings("ignore", message=".*not recognized as a component")
+            ds = xr.open_zarr(target, consolidated=False)
+    except (OSError, KeyError, ValueError, TypeError) as exc:
+        # Broken JSON metadata (ValueError), a group without its arrays (KeyError), ...
+        raise ContactresInputError(
+            f"map store {str(target)!r}: not readable ({type(exc).__name__}: "
+            f"{' '.join(str(exc).split())[:200]}): a half-written or damaged store"
+        ) from None
+    missing = [name for name in _MAP_VARIABLES if name not in ds]
+    if missing:
+        raise ContactresInputError(
+            f"map store {str(target)!r}: variable(s) {', '.join(map(repr, missing))} missing "
+            "(a half-written store, or not a map): write it again"
+        )
+    check_map_size(
+        (ds.sizes.get("y", 0), ds.sizes.get("x", 0)), f"map store {str(target)!r}", max_pixels
+    )
+    ds.encoding["source"] = str(target)
+    return ds

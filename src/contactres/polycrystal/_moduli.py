@@ -55,7 +55,8 @@ def indentation_moduli(
     reciprocity). M is the E* of the isotropic solid on which a rigid sphere makes the same
     contact stiffness, K_sa = 2aM (Vlassak & Nix 1994); isotropic: M = E/(1 − ν²).
 
-    All orientations are evaluated together: one einsum rotates the stiffness, Ĝ is computed
+    All orientations are evaluated together: four contractions rotate the stiffness (numpy's
+    loops, no BLAS: the same bits in every process, whatever its threads), Ĝ is computed
     on the (orientation x θ) grid by the stacked doubling algorithm, and the trapezoidal rule
     on [0, π) starts at 16 points and adds the midpoints for the orientations whose I₀ or I₁
     still moved by more than ``rtol`` relative to I₀ (the rule of
@@ -139,9 +140,23 @@ def indentation_moduli(
     return out
 
 
+def _rotated(R: np.ndarray, c: np.ndarray) -> np.ndarray:
+    """c'_nijkl = R_nia R_njb R_nkc R_nld c_abcd for the stack of rotations ``R`` (n, 3, 3).
+
+    One index at a time, each a two-operand einsum without ``optimize``: numpy's own loops,
+    never BLAS. With ``optimize=True`` the path ran through BLAS, whose rounding depends on its
+    threads: a dask worker (one BLAS thread) gave 1 ulp off the serial result in 1 pixel of
+    10^4 (issue 27, point 10). This order of the sums is the same in every process.
+    """
+    t = np.einsum("nld,abcd->nlabc", R, c)
+    t = np.einsum("nkc,nlabc->nklab", R, t)
+    t = np.einsum("njb,nklab->njkla", R, t)
+    return np.einsum("nia,njkla->nijkl", R, t)
+
+
 def _moduli(m: Material, c: np.ndarray, R: np.ndarray, rtol: float, offset: int) -> np.ndarray:
     """M of one chunk of orientations ``R`` (n, 3, 3); ``offset``: index of the first one."""
-    cs = np.einsum("nia,njb,nkc,nld,abcd->nijkl", R, R, R, R, c, optimize=True)
+    cs = _rotated(R, c)
     # Reference C44 of each sample frame (Voigt C'44 = c'_yzyz), as in shear_reference.
     c44 = np.real(cs[:, 1, 2, 1, 2])
     if not np.all(c44 > 0):

@@ -15,7 +15,7 @@ import numpy as np
 from scipy.spatial import cKDTree
 
 from ..errors import ContactresInputError
-from ._maps import OrientationMap
+from ._maps import MAX_MAP_PIXELS, OrientationMap, check_map_size
 from ._orientations import euler_from_surface_matrices, random_orientations
 
 __all__ = ["SyntheticPolycrystal", "synthetic_polycrystal"]
@@ -49,7 +49,12 @@ class SyntheticPolycrystal(OrientationMap):
 
 
 def synthetic_polycrystal(
-    shape: tuple[int, int], n_grains: int, seed: int, pixel_size: float = 1e-6
+    shape: tuple[int, int],
+    n_grains: int,
+    seed: int,
+    pixel_size: float = 1e-6,
+    *,
+    max_pixels: int = MAX_MAP_PIXELS,
 ) -> SyntheticPolycrystal:
     """A seeded Voronoi polycrystal with uniformly random grain orientations.
 
@@ -63,6 +68,9 @@ def synthetic_polycrystal(
         Seed of :func:`numpy.random.default_rng`: seed points first, orientations second.
     pixel_size : float
         Square pixel pitch, m (default 1 µm).
+    max_pixels : int
+        Keyword only: the largest H·W accepted (default
+        :data:`~contactres.polycrystal._maps.MAX_MAP_PIXELS`), checked before allocating.
 
     Returns
     -------
@@ -84,6 +92,7 @@ def synthetic_polycrystal(
         ) from exc
     if H < 1 or W < 1:
         raise ContactresInputError(f"shape must be two positive integers (H, W), got {shape!r}")
+    check_map_size((H, W), "synthetic map", max_pixels)
     if isinstance(n_grains, bool) or not isinstance(n_grains, int | np.integer):
         raise ContactresInputError(f"n_grains must be an integer, got {n_grains!r}")
     if not 1 <= n_grains <= H * W:

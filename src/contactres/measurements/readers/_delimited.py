@@ -67,8 +67,15 @@ def _decode(path: Path) -> str:
 
 
 def _check_header(path: Path, number: int, header: str, sep: str) -> None:
-    """Duplicate column names are an error (pandas would rename them, in quadratic time)."""
-    names = [n.strip() for n in next(csv.reader([header], delimiter=sep))]
+    """Duplicate column names are an error (pandas would rename them, in quadratic time); so is
+    a header the csv module cannot split (a field over its limit of 128 kB: no column name)."""
+    try:
+        names = [n.strip() for n in next(csv.reader([header], delimiter=sep))]
+    except csv.Error as exc:
+        raise ContactresInputError(
+            f"{path}, line {number}: the header is not a readable {sep!r}-separated line "
+            f"({exc}); a header holds the column names"
+        ) from None
     seen: dict[str, int] = {}
     dups: dict[str, list[int]] = {}
     for i, name in enumerate(names, start=1):

@@ -131,6 +131,17 @@ DCSF_TABLE = TableSchema(
         ("model", "text", "displacement model (exact, WA, WA2D, TP, SA, R0, R1)"),
         ("re", "-", "Re DCSF"),
         ("im", "-", "Im DCSF (the radiation damping)"),
+        (
+            "rel_error",
+            "-",
+            "estimated relative error of the DCSF: its difference from a refined evaluation",
+        ),
+        (
+            "flags",
+            "text",
+            "';'-separated: not-converged (rel_error above `--rtol` after every refinement), "
+            "negative-damping (Im DCSF < 0, no passive contact has it); empty: none",
+        ),
         ("radius_m", "m", "sphere radius R (with `--radius/--force/--frequency`)"),
         ("force_N", "N", "static force F (with `--radius/--force/--frequency`)"),
         ("frequency_Hz", "Hz", "frequency f (with `--radius/--force/--frequency`)"),

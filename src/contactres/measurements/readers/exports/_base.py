@@ -288,7 +288,13 @@ def header_names(head: str) -> list[str]:
     first = next((ln for ln in head.splitlines() if ln.strip() and ln.lstrip()[0] != "#"), "")
     first = first.lstrip("\ufeff")
     sep = "\t" if "\t" in first else ";" if ";" in first else ","
-    return [" ".join(n.split()) for n in next(csv.reader([first], delimiter=sep), [])]
+    try:
+        cells = next(csv.reader([first], delimiter=sep), [])
+    except csv.Error:
+        # A field over the csv module's limit (128 kB): split plainly, for recognising the
+        # layout only; reading the file (read_rows) names the line in its error.
+        cells = first.split(sep)
+    return [" ".join(n.split()) for n in cells]
 
 
 def read_rows(path: Path) -> pd.DataFrame:
@@ -316,7 +322,15 @@ def read_rows(path: Path) -> pd.DataFrame:
         )
     header = kept[0][1]
     sep = "\t" if "\t" in header else ";" if ";" in header else ","
-    rows = list(csv.reader((ln for _, ln in kept), delimiter=sep))
+    reader = csv.reader((ln for _, ln in kept), delimiter=sep)
+    try:
+        rows = list(reader)
+    except csv.Error as exc:
+        # A field over the csv module's limit (128 kB) or a broken quote: name the file's line.
+        number = kept[max(1, min(reader.line_num, len(kept))) - 1][0]
+        raise ContactresInputError(
+            f"{path}, line {number}: not a readable {sep!r}-separated row ({exc})"
+        ) from None
     if len(rows) != len(kept):  # csv joined lines: a quoted cell holds a line break (CR, LF)
         number = next((n for n, ln in kept if ln.count('"') % 2), kept[0][0])
         raise ContactresInputError(

@@ -1,0 +1,114 @@
+"""Map inputs that used to end in an internal error or a hang (issue 27, point 15): each is now
+a one-line input error naming the map and what is wrong, raised before any large allocation."""
+
+import json
+import shutil
+from pathlib import Path
+
+import numpy as np
+import pytest
+from cli_checks import one_line_error, run
+
+from contactres.errors import ContactresInputError
+
+pytest.importorskip("zarr", reason="the maps extra (zarr, xarray) is not installed")
+
+from contactres.polycrystal import (
+    read_ebsd,
+    read_map,
+    synthetic_polycrystal,
+    write_map,
+)
+
+TIP = ["--tip-radius", 2e-8, "--force", 1e-6]
+
+
+@pytest.fixture(scope="module")
+def store(tmp_path_factory) -> Path:
+    path = tmp_path_factory.mktemp("maps") / "small.zarr"
+    r = run("maps", "synthetic", "--crystal", "Cu", *TIP, "--shape", "24x24", "--grains", 6,
+            "--out", path)  # fmt: skip
+    assert r.exit_code == 0, r.output
+    return path
+
+
+def _copy(store: Path, tmp_path: Path) -> Path:
+    out = tmp_path / "copy.zarr"
+    shutil.copytree(store, out)
+    return out
+
+
+def test_synthetic_map_beyond_the_pixel_limit_is_refused_before_allocating(tmp_path):
+    r = run("maps", "synthetic", "--crystal", "Cu", *TIP, "--shape", "100000x100000",
+            "--out", tmp_path / "big.zarr")  # fmt: skip
+    one_line_error(r, "100000 x 100000", "pixels", "limit")
+    assert not (tmp_path / "big.zarr").exists()
+    with pytest.raises(ContactresInputError, match="limit"):
+        synthetic_polycrystal((300, 300), 4, seed=1, max_pixels=80_000)
+    assert synthetic_polycrystal((30, 30), 4, seed=1, max_pixels=900).euler.shape == (30, 30, 3)
+
+
+def test_store_declaring_ten_billion_pixels_is_refused_from_its_metadata(store, tmp_path):
+    # A small store whose metadata declares 10^5 x 10^5 pixels (its chunks absent: fill
+    # values); main read it chunk by chunk for minutes.
+    path = _copy(store, tmp_path)
+    for meta in path.glob("*/zarr.json"):
+        info = json.loads(meta.read_text())
+        dims = info.get("dimension_names") or []
+        info["shape"] = [
+            100_000 if d in ("x", "y") else n for d, n in zip(dims, info["shape"], strict=True)
+        ]
+        meta.write_text(json.dumps(info))
+    assert sum(f.stat().st_size for f in path.rglob("*") if f.is_file()) < 200_000
+    with pytest.raises(ContactresInputError, match=r"100000 x 100000 = 1e\+10 pixels"):
+        read_map(path)
+    one_line_error(run("maps", "fit", path, "--out", tmp_path / "fit.json"), "copy.zarr", "limit")
+
+
+@pytest.mark.parametrize(
+    ("damage", "words"),
+    [
+        ("no-array", ("'euler'", "missing")),
+        ("no-metadata", ("'euler'", "missing")),
+        ("broken-json", ("not readable",)),
+        ("truncated-chunk", ("'euler'", "cannot be read")),
+        ("truncated-values", ("'k_star_N_per_m'", "cannot be read")),
+    ],
+)
+def test_half_written_store_is_one_line_naming_the_store(store, tmp_path, damage, words):
+    path = _copy(store, tmp_path)
+    euler = path / "euler"
+    if damage == "no-array":
+        shutil.rmtree(euler)
+    elif damage == "no-metadata":
+        (euler / "zarr.json").unlink()
+    elif damage == "broken-json":
+        (euler / "zarr.json").write_text("{\n")
+    else:
+        variable = euler if damage == "truncated-chunk" else path / "k_star_N_per_m"
+        chunk = next(f for f in (variable / "c").rglob("*") if f.is_file())
+        chunk.write_bytes(chunk.read_bytes()[:40])
+    r = run("maps", "fit", path, "--out", tmp_path / "fit.json")
+    one_line_error(r, "copy.zarr", *words)
+
+
+def test_fit_of_a_map_without_contrast_says_so(store, tmp_path):
+    ds = read_map(store).load()
+    ds["k_star_N_per_m"][:] = 1300.0
+    write_map(tmp_path / "constant.zarr", ds)
+    r = run("maps", "fit", tmp_path / "constant.zarr", "--out", tmp_path / "fit.json")
+    one_line_error(r, "no contrast to fit")
+    ds["k_star_N_per_m"][:] = np.nan
+    write_map(tmp_path / "empty.zarr", ds)
+    r = run("maps", "fit", tmp_path / "empty.zarr", "--out", tmp_path / "fit.json")
+    one_line_error(r, "no grain has two or more measured pixels")
+
+
+def test_ebsd_points_spanning_a_huge_grid_are_refused_before_allocating(tmp_path):
+    # Two points 10^5 steps apart in x and y span a grid of 10^10 pixels.
+    head = "# XSTEP: 1\n# YSTEP: 1\n# NCOLS_ODD: 2\n# NCOLS_EVEN: 2\n# NROWS: 2\n"
+    rows = ["0 0 0 0 0 0 1 1 0 0", "0 0 0 100000 100000 0 1 1 0 0"]
+    path = tmp_path / "far.ang"
+    path.write_text(head + "\n".join(rows) + "\n")
+    with pytest.raises(ContactresInputError, match=r"far\.ang: the points span a grid of"):
+        read_ebsd(path)
