@@ -203,6 +203,7 @@ PUBLIC = {
         "REGISTRY",
         "Results",
         "analyze",
+        "film_columns",
         "film_modulus_from_contact_stiffness",
         "fit_jkr_mindlin",
         "has",
@@ -526,6 +527,7 @@ UNDOCUMENTED = {
         "unit_slip",
     ],
     "validation": ["amplitude", "nonnegative", "positive"],
+    "jobs.afm_invert": ["add_film_columns", "coated_film"],
     "jobs.contact": [
         "MAX_COATING_LAYERS",
         "STATIC_FREQUENCY_HZ",

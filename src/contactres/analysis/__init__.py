@@ -43,6 +43,7 @@ _EXPORTS = MappingProxyType(
         "ModulusResult": "._inversion",
         "FILM_VERDICTS": "._film_inversion",
         "FilmModulusResult": "._film_inversion",
+        "film_columns": "._film_inversion",
         "film_modulus_from_contact_stiffness": "._film_inversion",
         "fit_jkr_mindlin": "._jkr",
         "REGISTRY": "._models",
@@ -79,6 +80,7 @@ if TYPE_CHECKING:
     from ._film_inversion import (
         FILM_VERDICTS as FILM_VERDICTS,
         FilmModulusResult as FilmModulusResult,
+        film_columns as film_columns,
         film_modulus_from_contact_stiffness as film_modulus_from_contact_stiffness,
     )
     from ._inversion import (

@@ -65,6 +65,7 @@ __all__ = [
     "FILM_VERDICTS",
     "RANGE_FACTOR",
     "FilmModulusResult",
+    "film_columns",
     "film_modulus_from_contact_stiffness",
 ]
 
@@ -330,3 +331,47 @@ def film_modulus_from_contact_stiffness(
         reference_modulus=M_ref,
         interpolation_error=error,
     )
+
+
+def film_columns(
+    k_star, tip_radius, load, tip_modulus, **film
+) -> tuple[dict, FilmModulusResult | None]:
+    """The film columns of a table of pixels (``afm invert``/``rum invert --coating``).
+
+    Parameters
+    ----------
+    k_star, tip_radius, load, tip_modulus : 1-D arrays
+        Per row: k* (N/m), R (m), P (N) and M_tip (Pa; NaN or inf: a rigid tip). Rows without
+        a positive finite k*, R and P are left out (empty verdict, NaN columns).
+    **film
+        ``substrate``, ``film``, ``thickness`` and the options of
+        :func:`film_modulus_from_contact_stiffness`.
+
+    Returns
+    -------
+    (dict, FilmModulusResult or None)
+        Columns M_film_Pa, film_contact_radius_m, film_weight (floats) and film_verdict (text),
+        and the result on the rows used (None without any).
+    """
+    k, R, P, tip = (np.asarray(x, dtype=float).ravel() for x in (k_star, tip_radius, load,
+                                                                  tip_modulus))  # fmt: skip
+    used = np.ones(k.size, dtype=bool)
+    for x in (k, R, P):
+        used &= np.isfinite(x) & (x > 0)
+    cols = {c: np.full(k.size, np.nan) for c in ("M_film_Pa", "film_contact_radius_m")}
+    cols["film_weight"] = np.full(k.size, np.nan)
+    cols["film_verdict"] = np.full(k.size, "", dtype=object)
+    if not used.any():
+        return cols, None
+    res = film_modulus_from_contact_stiffness(
+        k[used],
+        tip_radius=R[used],
+        load=P[used],
+        tip_modulus=np.where(np.isnan(tip[used]), np.inf, tip[used]),
+        **film,
+    )
+    cols["M_film_Pa"][used] = res.M_film
+    cols["film_contact_radius_m"][used] = res.contact_radius
+    cols["film_weight"][used] = res.film_weight
+    cols["film_verdict"][used] = res.verdict
+    return cols, res
