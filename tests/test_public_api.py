@@ -535,7 +535,7 @@ UNDOCUMENTED = {
         "parse_coating",
     ],
     "jobs.contract": ["Progress", "json_value"],
-    "jobs.demo": ["STEPS"],
+    "jobs.demo": ["COATED_CONTACT", "STEPS"],
     "jobs.maps": [
         "METHODS",
         "TipLoad",

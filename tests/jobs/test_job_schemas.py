@@ -162,10 +162,14 @@ def test_dcsf_table_columns():
 
     cu = Material.crystal("Cu").rotated((0, 0, 1))
     ka = dcsf.run(cu, dcsf.Settings(ka=np.array([0.1, 0.5]), models=("exact", "WA")))
-    check_result(ka, {"table": PHYSICAL})
+    check_result(ka, {"table": (*PHYSICAL, "coating")})
     one = np.array([1.0])
     contacts = dcsf.Settings(radius=one * 1e-3, force=one, frequency=one * 1e6)
-    check_result(dcsf.run(cu, contacts))
+    check_result(dcsf.run(cu, contacts), {"table": ("coating",)})
+    # A coated face: the same columns and the coating.
+    silica = Material.crystal("fused-silica")
+    coated = dataclasses.replace(contacts, coating=("fused-silica:1e-7",))
+    check_result(dcsf.run(silica, coated))
 
 
 def test_qcm_loop_and_crystals_columns():
