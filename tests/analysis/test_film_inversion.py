@@ -143,3 +143,27 @@ def test_bad_input_is_one_line(change, words):
     with pytest.raises(ContactresInputError, match=words) as err:
         film_modulus_from_contact_stiffness(**kwargs)
     assert "\n" not in str(err.value)
+
+
+def test_a_map_costs_one_curve_per_distinct_contact(monkeypatch):
+    """2000 pixels with one tip and load: ``nodes`` layered contacts in all (no loop over the
+    pixels), each pixel's M_film back to 1e-6."""
+    import contactres.normal as normal
+
+    calls = []
+    forward = normal.sphere_contact
+
+    def counted(*args, **kwargs):
+        calls.append(np.size(args[1]))
+        return forward(*args, **kwargs)
+
+    h, R, P = 20e-9, 20e-9, 1e-6
+    M = np.array([1e9, 4e9, 12e9])
+    k = np.stack([_k(m, h, R, P) for m in M])
+    pixels = np.resize(k, 2000)
+    monkeypatch.setattr(normal, "sphere_contact", counted)
+    r = film_modulus_from_contact_stiffness(
+        pixels, substrate=SILICA, film=GUESS, thickness=h, tip_radius=R, load=P, nodes=17
+    )
+    assert calls == [1] * 17
+    np.testing.assert_allclose(r.M_film, np.resize(M, 2000), rtol=1e-6)

@@ -303,3 +303,15 @@ def test_dcsf_on_a_coating_refuses_k_a_models_and_loss_in_one_line(args, words):
     assert len(lines) == 1 and "error:" in lines[0] and "Traceback" not in r.stderr
     for w in words:
         assert w in lines[0]
+
+
+def test_dcsf_on_a_film_of_the_substrates_own_material_is_the_bare_faces():
+    args = ("--crystal", "fused-silica", "--radius", "1.1e-3", "--force", "1e-2", "--frequency",
+            "15e6", "--format", "json")  # fmt: skip
+    bare = json.loads(run("dcsf", *args).stdout)[0]
+    coated = json.loads(run("dcsf", *args, "--coating", "fused-silica:250e-9").stdout)[0]
+    for key in ("ka", "contact_radius_m", "stiffness_N_per_m"):
+        assert coated[key] == pytest.approx(bare[key], rel=1e-9)
+    # The two exact models (homogeneous kernel, layered punch) each to their rtol of 1e-6.
+    assert coated["re"] == pytest.approx(bare["re"], rel=5e-6)
+    assert coated["im"] == pytest.approx(bare["im"], rel=5e-6)
