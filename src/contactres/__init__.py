@@ -109,6 +109,8 @@ _EXPORTS: dict[str, str] = {
     "Results": ".analysis",
     "ModulusResult": ".analysis",
     "modulus_from_contact_stiffness": ".analysis",
+    "FilmModulusResult": ".analysis",
+    "film_modulus_from_contact_stiffness": ".analysis",
     "invert_afm_table": ".analysis",
     "invert_rum_table": ".analysis",
     "read_resonance_table": ".measurements",
@@ -179,10 +181,12 @@ if TYPE_CHECKING:
     )
     from .analysis import (
         AnalysisSettings as AnalysisSettings,
+        FilmModulusResult as FilmModulusResult,
         Flag as Flag,
         ModulusResult as ModulusResult,
         Results as Results,
         analyze as analyze,
+        film_modulus_from_contact_stiffness as film_modulus_from_contact_stiffness,
         invert_afm_table as invert_afm_table,
         invert_rum_table as invert_rum_table,
         modulus_from_contact_stiffness as modulus_from_contact_stiffness,

@@ -4,6 +4,8 @@ import json
 import subprocess
 import sys
 
+import numpy as np
+import pandas as pd
 import pytest
 from cli_checks import run
 
@@ -60,6 +62,21 @@ def test_demo_writes_folder(tmp_path):
     r = run("demo", "--out", str(out))
     assert r.exit_code == 0, r.output
     assert (out / "crystals.csv").is_file()
+    # The coated substrate: paper 2's sphere on 250 nm of PMMA on fused silica. Its contact is
+    # between Hertz on bare silica and Hertz on bulk PMMA (1 Hz storage constants).
+    from contactres import Material, indentation_modulus, pmma
+    from contactres.jobs.demo import COATED_CONTACT
+    from contactres.normal import hertz
+
+    coated = pd.read_csv(out / "coated-contact" / "contact.csv")
+    assert list(coated["force_N"]) == list(COATED_CONTACT["forces"])
+    assert (coated["coating"] == "PMMA 250 nm").all()
+    assert coated["film_share"].between(0, 1).all()
+    silica = indentation_modulus(Material.crystal("fused-silica"))
+    film = indentation_modulus(Material(C=np.real(pmma().at(1.0).C)))
+    a = coated["contact_radius_m"]
+    assert (a > hertz(silica, 1.1e-3, coated["force_N"]).contact_radius).all()
+    assert (a < hertz(film, 1.1e-3, coated["force_N"]).contact_radius).all()
 
 
 def test_demo_onto_a_file_is_an_error(tmp_path):

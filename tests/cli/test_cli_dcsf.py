@@ -80,6 +80,7 @@ BAD = [
     (CONTACT, "--radius", "1000"),
     (CONTACT, "--force", "-1"),
     (CONTACT, "--frequency", "nan"),
+    (CONTACT, "--coating", "pmma:-1e-9"),
 ]
 
 
@@ -275,3 +276,63 @@ def test_dcsf_checks_its_accuracy_at_run_time_and_flags_negative_damping():
     flagged = t[t["flags"].fillna("").str.contains("negative-damping")]
     assert not flagged.empty and set(flagged.model) <= {"R0", "SA", "WA"}
     assert (flagged.im < 0).all() and (t[t["flags"].isna()].im >= 0).all()
+
+
+def test_dcsf_on_a_coating_is_the_layered_punchs():
+    """Si3N4 250 nm on fused silica, paper 2's sphere: the DCSF is layered_dcsf at the coated
+    contact radius (sphere_contact on the stack, computed here) and at each frequency."""
+    from contactres import LayeredMaterial, sphere_contact
+    from contactres.dynamic import layered_dcsf
+
+    stack = LayeredMaterial(Material.crystal("fused-silica"), [(Material.crystal("Si3N4"), 250e-9)])
+    r = run("dcsf", "--crystal", "fused-silica", "--coating", "Si3N4:250e-9", "--radius",
+            "1.1e-3", "--force", "1e-2", "--frequency", "5e6,15e6", "--format", "csv")  # fmt: skip
+    assert r.exit_code == 0, r.output
+    t = pd.read_csv(io.StringIO(r.output))
+    c = sphere_contact(stack, 1.1e-3, 1e-2)
+    np.testing.assert_allclose(t.contact_radius_m, c.contact_radius, rtol=1e-12)
+    want = layered_dcsf(stack, float(c.contact_radius), np.array([5e6, 15e6]))
+    np.testing.assert_allclose(t.re + 1j * t.im, want, rtol=1e-9)
+    np.testing.assert_allclose(t.K_re_N_per_m + 1j * t.K_im_N_per_m, want * c.stiffness, rtol=1e-9)
+    assert (t.coating == "Si3N4 250 nm").all() and (t.model == "exact").all()
+
+
+def test_dcsf_on_a_pmma_coating_notes_its_static_reference():
+    r = run("dcsf", "--crystal", "fused-silica", "--coating", "pmma:250e-9", "--radius",
+            "1.1e-3", "--force", "1e-2", "--frequency", "15e6", "--format", "json")  # fmt: skip
+    assert r.exit_code == 0, r.output
+    assert "storage modulus at 1 Hz of PMMA" in r.stderr
+    row = json.loads(r.stdout)[0]
+    # PMMA is stiffer at 15 MHz than at its 1 Hz reference: Re DCSF above 1; Im > 0 (passive).
+    assert row["re"] > 1 and row["im"] > 0
+
+
+@pytest.mark.parametrize(
+    "args, words",
+    [
+        (("--ka", "0:1:3"), ("--coating", "--radius")),
+        (("--radius", "1e-3", "--force", "1e-2", "--frequency", "1e6", "--model", "TP"),
+         ("--coating", "--model")),
+        (("--radius", "1e-3", "--force", "1e-2", "--frequency", "1e6", "--loss", "0.02"),
+         ("--coating", "--loss")),
+    ],
+)  # fmt: skip
+def test_dcsf_on_a_coating_refuses_k_a_models_and_loss_in_one_line(args, words):
+    r = run("dcsf", "--crystal", "fused-silica", "--coating", "pmma:250e-9", *args)
+    assert r.exit_code == 2 and r.stdout == ""
+    lines = r.stderr.splitlines()
+    assert len(lines) == 1 and "error:" in lines[0] and "Traceback" not in r.stderr
+    for w in words:
+        assert w in lines[0]
+
+
+def test_dcsf_on_a_film_of_the_substrates_own_material_is_the_bare_faces():
+    args = ("--crystal", "fused-silica", "--radius", "1.1e-3", "--force", "1e-2", "--frequency",
+            "15e6", "--format", "json")  # fmt: skip
+    bare = json.loads(run("dcsf", *args).stdout)[0]
+    coated = json.loads(run("dcsf", *args, "--coating", "fused-silica:250e-9").stdout)[0]
+    for key in ("ka", "contact_radius_m", "stiffness_N_per_m"):
+        assert coated[key] == pytest.approx(bare[key], rel=1e-9)
+    # The two exact models (homogeneous kernel, layered punch) each to their rtol of 1e-6.
+    assert coated["re"] == pytest.approx(bare["re"], rel=5e-6)
+    assert coated["im"] == pytest.approx(bare["im"], rel=5e-6)

@@ -119,6 +119,8 @@ DYNAMIC_TANGENTIAL = (
 COATED = ("coating", "film_share")
 # The contact ellipse: a bare face only (the coated contact is the axisymmetric approximation).
 ELLIPSE = ("semi_major_m", "semi_minor_m", "ellipticity", "orientation_deg")
+# The columns afm invert and rum invert add with a coating (the film's modulus).
+FILM = ("coating", "M_film_Pa", "film_contact_radius_m", "film_weight", "film_verdict")
 
 
 @pytest.mark.parametrize(
@@ -162,10 +164,14 @@ def test_dcsf_table_columns():
 
     cu = Material.crystal("Cu").rotated((0, 0, 1))
     ka = dcsf.run(cu, dcsf.Settings(ka=np.array([0.1, 0.5]), models=("exact", "WA")))
-    check_result(ka, {"table": PHYSICAL})
+    check_result(ka, {"table": (*PHYSICAL, "coating")})
     one = np.array([1.0])
     contacts = dcsf.Settings(radius=one * 1e-3, force=one, frequency=one * 1e6)
-    check_result(dcsf.run(cu, contacts))
+    check_result(dcsf.run(cu, contacts), {"table": ("coating",)})
+    # A coated face: the same columns and the coating.
+    silica = Material.crystal("fused-silica")
+    coated = dataclasses.replace(contacts, coating=("fused-silica:1e-7",))
+    check_result(dcsf.run(silica, coated))
 
 
 def test_qcm_loop_and_crystals_columns():
@@ -183,12 +189,25 @@ def test_inversion_tables_are_the_input_then_the_schema():
     sample = Material.crystal("Cu").rotated((0, 0, 1))
     afm = afm_invert.run(DATA / "example_afm.csv", afm_invert.Settings(sample=sample))
     rum = rum_invert.run(DATA / "example_rum.csv")
-    for result, name in ((afm, "example_afm.csv"), (rum, "example_rum.csv")):
+    # A coated sample (the film's modulus): the film columns, without the dynamic correction.
+    coated = dict(coating=("fused-silica:50e-9",), substrate=Material.crystal("Si"))
+    afm_film = afm_invert.run(DATA / "example_afm.csv", afm_invert.Settings(**coated))
+    rum_film = rum_invert.run(
+        DATA / "example_rum.csv", rum_invert.Settings(**coated, tip_radius=1e-6, force=1e-3)
+    )
+    runs = (
+        (afm, "example_afm.csv", FILM),
+        (rum, "example_rum.csv", FILM),
+        (afm_film, "example_afm.csv", ("k_static_N_per_m", "k_a", "dcsf_real", "dcsf_imag")),
+        (rum_film, "example_rum.csv", ()),
+    )
+    for result, name, absent in runs:
         # The columns the file gave are copied first (the optional ones it lacks are not).
         given = pd.read_csv(DATA / name).columns
         copied = [c for c in result.table.columns if c in set(given)]
         assert set(copied) <= set(result.input_columns)
-        check_result(result, before=copied)
+        check_result(result, {"table": absent}, before=copied)
+    assert afm.coating is None and rum_film.coating["label"] == "fused-silica 50 nm"
 
 
 def test_stiffness_and_spectra_columns():

@@ -9,7 +9,8 @@ batched fitters (``_models``, :data:`REGISTRY`), the model choice (``_classify``
 :func:`radiation_for`, :func:`radiation_loss`), the flags (``_flags``, :class:`Flag`), the
 points and fitted curves the report draws (``_curves``) and the results (``_results``). Beside
 them, the inversion of contact resonances to a modulus (:func:`modulus_from_contact_stiffness`,
-:func:`invert_afm_table`, :func:`invert_rum_table`).
+:func:`invert_afm_table`, :func:`invert_rum_table`) and to the modulus of a film on a known
+substrate (``_film_inversion``, :func:`film_modulus_from_contact_stiffness`).
 
 The public names are loaded on first use (PEP 562 module ``__getattr__``).
 
@@ -40,6 +41,10 @@ _EXPORTS = MappingProxyType(
         "FLAG_DESCRIPTIONS": "._inversion",
         "modulus_from_contact_stiffness": "._inversion",
         "ModulusResult": "._inversion",
+        "FILM_VERDICTS": "._film_inversion",
+        "FilmModulusResult": "._film_inversion",
+        "film_columns": "._film_inversion",
+        "film_modulus_from_contact_stiffness": "._film_inversion",
         "fit_jkr_mindlin": "._jkr",
         "REGISTRY": "._models",
         "analyze": "._pipeline",
@@ -71,6 +76,12 @@ if TYPE_CHECKING:
         Flag as Flag,
         has as has,
         render as render,
+    )
+    from ._film_inversion import (
+        FILM_VERDICTS as FILM_VERDICTS,
+        FilmModulusResult as FilmModulusResult,
+        film_columns as film_columns,
+        film_modulus_from_contact_stiffness as film_modulus_from_contact_stiffness,
     )
     from ._inversion import (
         FLAG_DESCRIPTIONS as FLAG_DESCRIPTIONS,

@@ -79,6 +79,13 @@ def _write_polycrystal(result: job.Result, out: Path) -> list[Path]:
     ]
 
 
+def _write_coated_contact(result: job.Result, out: Path) -> list[Path]:
+    """A sphere on a coated substrate (the ``contact`` job's table): coated-contact/contact.csv."""
+    folder = ensure_dir(out / "coated-contact")
+    table = result.coated_contact
+    return [write_csv(folder / "contact.csv", table, float_format=CSV_FLOAT_FORMAT)]
+
+
 #: The writers of the parts, in the order of :data:`contactres.jobs.demo.STEPS`.
 DEMO_WRITERS: tuple[Callable[[job.Result, Path], list[Path]], ...] = (
     _write_qcm_analysis,
@@ -87,6 +94,7 @@ DEMO_WRITERS: tuple[Callable[[job.Result, Path], list[Path]], ...] = (
     _write_paper2_forward,
     _write_paper1_dcsf,
     _write_polycrystal,
+    _write_coated_contact,
 )
 
 

@@ -239,7 +239,10 @@ def write_crystal_dcsf(out, model: str = "exact", curves: dict | None = None) ->
     if curves is None:
         fig, table = crystals_figure(model=model)
     else:
-        fig, table = _crystal_dcsf_figure(curves, KLA, model)
+        # the grid the job computed the curves on, read when it runs (not the one imported)
+        from ..jobs import paper1 as job
+
+        fig, table = _crystal_dcsf_figure(curves, job.KLA, model)
     return [
         write_csv(folder / f"crystals_dcsf_{model}.csv", table, float_format=CSV_FLOAT_FORMAT),
         save_figure(folder / f"crystals_dcsf_{model}.png", fig),

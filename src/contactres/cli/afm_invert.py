@@ -8,6 +8,7 @@ from ..errors import ContactresInputError
 from ._app import afm
 from ._common import MagnitudeType, computed_rounded, emit, format_option, step
 from ._crystal_face import crystal_face
+from ._film import coating_options, film_summary, parse_film_range
 
 
 @afm.command("invert")
@@ -18,7 +19,8 @@ from ._crystal_face import crystal_face
     required=True,
     help="Output CSV: the input columns plus kappa, k_star_N_per_m, tip_position_used, "
     "sigma_N_s_per_m, mode_spread, E_star_Pa, M_sample_Pa, contact_radius_m, modulus_method, "
-    "flags, normalisation (and k_static_N_per_m, k_a, dcsf_real, dcsf_imag with --crystal).",
+    "flags, normalisation (and k_static_N_per_m, k_a, dcsf_real, dcsf_imag with --crystal; "
+    "coating, M_film_Pa, film_contact_radius_m, film_weight, film_verdict with --coating).",
 )
 @click.option(
     "--normalisation",
@@ -46,7 +48,8 @@ from ._crystal_face import crystal_face
     "--surface",
     default="001",
     show_default=True,
-    help="Surface normal of the sample in crystal axes (Miller indices): 001, 011, 111, ...",
+    help="Surface normal of the sample (--crystal) or of the substrate (--substrate) in crystal "
+    "axes (Miller indices): 001, 011, 111, ...",
 )
 @click.option(
     "--inplane",
@@ -62,8 +65,23 @@ from ._crystal_face import crystal_face
     help="Material loss Q^-1 of the sample for the dynamic correction, dimensionless "
     "(0: lossless).",
 )
+@coating_options()
 @format_option()
-def afm_invert(table, out, normalisation, mode_tolerance, crystal, surface, inplane, loss, fmt):
+def afm_invert(
+    table,
+    out,
+    normalisation,
+    mode_tolerance,
+    crystal,
+    surface,
+    inplane,
+    loss,
+    coating,
+    substrate,
+    film_range,
+    min_film_weight,
+    fmt,
+):
     """Contact stiffness and modulus of every row (point or map pixel) of a CR-AFM table.
 
     TABLE gives per row the free-lever resonances (f1_free_Hz ...), the spring constant at the
@@ -80,6 +98,14 @@ def afm_invert(table, out, normalisation, mode_tolerance, crystal, surface, inpl
     own frequency, K_static = k*/Re DCSF (J. Tian, Am. J. Eng. Appl. Sci. 3, 56 (2010),
     Eq. 29, exact model). Writes OUT atomically; prints a summary.
 
+    With --coating MATERIAL:THICKNESS and --substrate NAME (its face: --surface, --inplane)
+    every Hertz row's k* is also turned into the film's indentation modulus M_film_Pa with the
+    exact layered contact (tip radius, load and tip modulus of the row): the film's
+    material gives its Poisson's ratio, its modulus is searched in --film-range.
+    film_verdict says whether the film is resolved (film), too thin for the tip
+    (film_weight below --min-film-weight: no modulus), too thick (the same as the
+    homogeneous inversion M_sample_Pa) or its modulus is outside the range (no modulus).
+
     Example: contactres afm invert src/contactres/data/example_afm.csv --out afm_moduli.csv
     """
     import numpy as np
@@ -88,12 +114,30 @@ def afm_invert(table, out, normalisation, mode_tolerance, crystal, surface, inpl
     from ..jobs import afm_invert as job
 
     check_output_file(out, inputs=[table])
-    sample = None
+    sample = base = None
+    if crystal is not None and substrate is not None:
+        raise ContactresInputError(
+            "--crystal (the sample, dynamic correction) and --substrate (under a --coating) "
+            "exclude each other: the dynamic correction of a coated sample is not available"
+        )
     if crystal is not None:  # the built-in solids all carry their density (for k_l = 2πf/c_l)
         sample = crystal_face(crystal, None, None, None, None, None, surface, inplane)
+    elif substrate is not None:
+        base = crystal_face(substrate, None, None, None, None, None, surface, inplane)
     elif inplane is not None or surface != "001":
-        raise ContactresInputError("--surface/--inplane describe the sample: give --crystal too")
-    settings = job.Settings(normalisation, mode_tolerance, sample, loss)
+        raise ContactresInputError(
+            "--surface/--inplane describe the sample: give --crystal (or --substrate) too"
+        )
+    settings = job.Settings(
+        normalisation,
+        mode_tolerance,
+        sample,
+        loss,
+        coating=tuple(coating),
+        substrate=base,
+        film_range=parse_film_range(film_range),
+        min_film_weight=min_film_weight,
+    )
     done = job.run(table, settings, progress=lambda text: step("afm invert", text))
     result = done.table
     write_csv(out, computed_rounded(result, done.input_columns))
@@ -118,3 +162,5 @@ def afm_invert(table, out, normalisation, mode_tolerance, crystal, surface, inpl
     elif sample is not None:
         line += "; no dynamic correction (it needs rows with k_c, tip_radius_m and load_N)"
     click.echo(f"{line}; {flagged} flagged ({normalisation} normalisation); wrote {out}")
+    if done.coating is not None:
+        click.echo(film_summary(result, done.coating))

@@ -83,9 +83,18 @@ _CONTACT_OPTIONS = ("radius", "force", "frequency")
     show_default=True,
     help="Target relative accuracy of the DCSF, dimensionless (checked at run time: rel_error).",
 )
+@click.option(
+    "--coating",
+    multiple=True,
+    metavar="MATERIAL:THICKNESS",
+    help="A film on the face, thickness in m (e.g. pmma:250e-9); repeat for more layers, top "
+    "first (as 'contactres contact --coating'). The DCSF is then that of the layered punch, "
+    "a function of f and a separately (not of k a alone): needs --radius, --force and "
+    "--frequency; model exact, no --loss (a pmma film carries its own).",
+)
 @format_option()
 @click.pass_context
-def dcsf(ctx, model, ka, radius, force, frequency, loss, wavenumber, rtol, fmt, **face):
+def dcsf(ctx, model, ka, radius, force, frequency, loss, wavenumber, rtol, coating, fmt, **face):
     """Dynamic contact stiffness factor DCSF = K_da/K_sa of a rigid sphere (paper 1, Eq. 29).
 
     The complex ratio of the dynamic to the static contact stiffness of a sphere vibrating
@@ -103,6 +112,12 @@ def dcsf(ctx, model, ka, radius, force, frequency, loss, wavenumber, rtol, fmt, 
     With --radius, --force and --frequency (all three) k a comes from the static Hertz contact
     (contact radius a) at that frequency, and the columns add R, F, f, a, K_sa and the dynamic
     stiffness K = K_sa DCSF (re and im, N/m).
+
+    With --coating (films on the face, and --radius, --force, --frequency) the DCSF is the
+    layered rigid punch's at the static contact radius on the coated face and at f: on a
+    stack it depends on the frequency and the contact radius separately, not on k a alone
+    (ka is then the substrate's, for orientation); a pmma film has no static limit, its K_sa
+    uses its 1 Hz storage modulus (a note says so). Columns add coating.
 
     exact: the rigid flat punch (uniform displacement under the sphere, Galerkin), the answer
     the approximations try to give. Which model to use: exact (as fast as the others). Of the
@@ -128,6 +143,11 @@ def dcsf(ctx, model, ka, radius, force, frequency, loss, wavenumber, rtol, fmt, 
             f"--radius, --force and --frequency go together: missing {', '.join(missing)}", ctx
         )
     ka_typed = ctx.get_parameter_source("ka") is not click.core.ParameterSource.DEFAULT
+    if coating and not physical:
+        raise ContactresInputError(
+            "--coating: on a coated face the DCSF depends on f and a separately, not on k a "
+            "alone: give --radius, --force and --frequency (not --ka)"
+        )
     if physical and ka_typed:
         raise click.UsageError(
             "give --ka or --radius/--force/--frequency (which give k a), not both", ctx
@@ -154,6 +174,7 @@ def dcsf(ctx, model, ka, radius, force, frequency, loss, wavenumber, rtol, fmt, 
         wavenumber=wavenumber,
         rtol=rtol,
         constants_in_pa=not ratios_only,
+        coating=tuple(coating),
     )
     result = job.run(m, settings, progress=lambda text: step("dcsf", text))
     for line in result.warnings:

@@ -6,6 +6,15 @@ Inputs: the path of the resonance table (CSV, columns
 frequencies, the tolerance between modes, and the sample for paper 1's dynamic correction of
 the Hertz rows. The inversion is :func:`contactres.invert_afm_table` (Euler-Bernoulli lever,
 U. Rabe et al., Rev. Sci. Instrum. 67, 3281 (1996)).
+
+On a coated sample (``coating``: one built-in film ``"MATERIAL:THICKNESS"``, parsed by
+:func:`contactres.jobs.contact.parse_coating`, on ``substrate``) every Hertz row's k* (with
+tip_radius_m, load_N and M_tip_Pa) is also turned into the film's modulus by
+:func:`contactres.analysis.film_modulus_from_contact_stiffness` (exact layered contact):
+columns coating, M_film_Pa, film_contact_radius_m, film_weight and film_verdict; the film
+material's static constants (a viscoelastic film's storage constants at 1 Hz, as ``contact``)
+give its anisotropy and Poisson's ratio, its modulus is the unknown. The coating, the search
+range and the thresholds are recorded in the result (``coating``).
 """
 
 from __future__ import annotations
@@ -15,6 +24,9 @@ from pathlib import Path
 from types import MappingProxyType
 from typing import TYPE_CHECKING
 
+import numpy as np
+
+from ..errors import ContactresInputError
 from ..measurements.schema import AFM_INVERT_RESULTS
 from .contract import JobResult, Progress, say
 
@@ -25,7 +37,7 @@ if TYPE_CHECKING:
 
     from ..materials import Material
 
-__all__ = ["Result", "Settings", "run"]
+__all__ = ["Result", "Settings", "add_film_columns", "coated_film", "run"]
 
 
 @dataclass(frozen=True)
@@ -43,24 +55,42 @@ class Settings:
         (with its density); None: no correction.
     loss : float
         Material loss Q⁻¹ of the sample for the correction, dimensionless (0: lossless).
+    coating : tuple
+        One film on the sample, ``("MATERIAL:THICKNESS",)`` (thickness in m, e.g.
+        ``"pmma:250e-9"``; :func:`contactres.jobs.contact.parse_coating`): adds the film's
+        modulus. Empty: a homogeneous sample.
+    substrate : Material or None
+        The substrate under the coating, in the frame of its face (needed with ``coating``).
+    film_range : (float, float) or None
+        Search range of the film's indentation modulus, Pa (None: the film material's own
+        modulus divided and multiplied by 10).
+    min_film_weight : float
+        Film weight below which the film is too thin to be resolved, dimensionless.
     """
 
     normalisation: str = "global"
     mode_tolerance: float = 0.05
     sample: Material | None = None
     loss: float = 0.0
+    coating: tuple = ()
+    substrate: Material | None = None
+    film_range: tuple[float, float] | None = None
+    min_film_weight: float = 0.1
 
 
 @dataclass(frozen=True)
 class Result(JobResult):
     """``table``: the input's columns (``input_columns``, copied) then the computed ones
     (:data:`contactres.measurements.schema.AFM_INVERT_RESULTS`, which lists the computed
-    ones only)."""
+    ones only). ``coating``: with a coating, its label, the substrate, the film's thickness
+    (m), its material's modulus, the search range (Pa), the thresholds and the estimated
+    interpolation error (:func:`add_film_columns`); None without."""
 
     SCHEMAS = MappingProxyType({"table": AFM_INVERT_RESULTS})
 
     table: pd.DataFrame
     input_columns: tuple[str, ...]
+    coating: dict | None = None
 
 
 def run(inputs: str | os.PathLike, settings: Settings, progress: Progress | None = None) -> Result:
@@ -70,6 +100,12 @@ def run(inputs: str | os.PathLike, settings: Settings, progress: Progress | None
     from ..measurements.schema import AFM_TABLE
 
     s = settings
+    if s.coating and s.sample is not None:
+        raise ContactresInputError(
+            "the dynamic correction (--crystal) of a coated sample (--coating) is not "
+            "available: give the substrate with --substrate and drop --crystal"
+        )
+    film = coated_film(s.coating, s.substrate)  # checked before the table is read
     say(progress, f"reading {Path(inputs).name}")
     checked = read_resonance_table(inputs, AFM_TABLE)
     say(progress, f"inverting {len(checked)} rows")
@@ -81,4 +117,82 @@ def run(inputs: str | os.PathLike, settings: Settings, progress: Progress | None
         loss=s.loss,
         mode_tolerance=s.mode_tolerance,
     )
-    return Result(table=table, input_columns=tuple(checked.columns))
+    coating = None
+    if film is not None:
+        say(progress, "film modulus on the coated substrate")
+        coating = add_film_columns(
+            table,
+            table["k_star_N_per_m"],
+            checked["tip_radius_m"],  # the checked table has every column (NaN: not given)
+            checked["load_N"],
+            checked["M_tip_Pa"],
+            film,
+            s,
+        )
+    return Result(table=table, input_columns=tuple(checked.columns), coating=coating)
+
+
+def coated_film(coating, substrate) -> tuple | None:
+    """(film material with static constants, thickness in m, coating label, substrate) of a
+    one-film ``coating`` on ``substrate``, or None without a coating (checked: one line for a
+    bad coating, a missing substrate or more than one film)."""
+    from ..layered import material_at
+    from ..materials import Material, require_material
+    from .contact import STATIC_FREQUENCY_HZ, parse_coating
+
+    if not coating:
+        if substrate is not None:
+            raise ContactresInputError(
+                "the substrate (--substrate) is the solid under a coating: give --coating too"
+            )
+        return None
+    layers = parse_coating(coating)
+    if len(layers) != 1:
+        raise ContactresInputError(
+            f"the film's modulus is found for one film (--coating), got {len(layers)} layers"
+        )
+    if substrate is None:
+        raise ContactresInputError(
+            "a coating (--coating) needs the substrate under it (--substrate, e.g. fused-silica)"
+        )
+    substrate = require_material(substrate)
+    ((material, h),) = layers
+    label = f"{getattr(material, 'name', None) or 'film'} {h * 1e9:.4g} nm"  # as contact's
+    if not isinstance(material, Material):  # viscoelastic: its storage constants, as contact's
+        at = material_at(material, STATIC_FREQUENCY_HZ)
+        material = Material(C=np.real(at.C), density=at.density, name=at.name, frame=at.frame)
+    return material, h, label, substrate
+
+
+def add_film_columns(table, k_star, tip_radius, load, tip_modulus, film, s) -> dict:
+    """Append the film columns to ``table`` (in place; k* (N/m), tip radius (m), load (N), tip
+    modulus (Pa, NaN: rigid) per row or one value) and return the ``coating`` record; ``film``
+    from :func:`coated_film`, ``s`` the settings (film_range, min_film_weight)."""
+    from ..analysis import film_columns
+
+    material, h, label, substrate = film
+    n = len(table)
+    arrays = (
+        np.broadcast_to(np.asarray(x, dtype=float), (n,))
+        for x in (k_star, tip_radius, load, tip_modulus)
+    )
+    cols, res = film_columns(
+        *arrays,
+        substrate=substrate,
+        film=material,
+        thickness=h,
+        film_range=s.film_range,
+        min_film_weight=s.min_film_weight,
+    )
+    table["coating"] = label
+    for name, values in cols.items():
+        table[name] = values
+    return {
+        "label": label,
+        "substrate": getattr(substrate, "name", None) or "substrate",
+        "thickness_m": h,
+        "film_material_modulus_Pa": None if res is None else res.reference_modulus,
+        "film_range_Pa": None if res is None else list(res.film_range),
+        "min_film_weight": s.min_film_weight,
+        "interpolation_error": None if res is None else res.interpolation_error,
+    }

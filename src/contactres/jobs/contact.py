@@ -52,6 +52,9 @@ from .contract import JobResult, Progress, say
 if TYPE_CHECKING:
     import pandas as pd
 
+    from ..layered import FrequencyDependentMaterial
+    from ..materials import Material
+
 __all__ = [
     "MAX_COATING_LAYERS",
     "STATIC_FREQUENCY_HZ",
@@ -261,7 +264,7 @@ def _thickness(text, spec) -> float:
     return h
 
 
-def parse_coating(coating) -> tuple[tuple[object, float], ...]:
+def parse_coating(coating) -> tuple[tuple[Material | FrequencyDependentMaterial, float], ...]:
     """The layers of a coating, top first, as (material, thickness_m) pairs for
     :class:`~contactres.LayeredMaterial`.
 

@@ -11,6 +11,17 @@ convention and the accuracy. One kernel table of the face serves every model
 checked against a refined evaluation, and refined where it misses the accuracy
 (:func:`contactres.dynamic.checked_dcsf_models`): the table gives the estimated error of each
 row and flags the rows that still miss it, and those with negative damping.
+
+On a coated face (``coating``: films ``"MATERIAL:THICKNESS"`` as the ``contact`` job's) the DCSF
+is a function of the frequency and the contact radius separately, not of k a alone (the films'
+thickness and their frequency-dependent moduli set their own scales): only physical contacts
+(radius, force, frequency) are taken, the model is "exact", and the static contact (contact
+radius a, K_sa) is the ``contact`` job's on the coated face. DCSF = K(f)/K_sa with K(f) the
+layered rigid flat punch at a (:func:`contactres.flat_punch_stiffness`): for elastic films
+:func:`contactres.dynamic.layered_dcsf` (K_sa the static punch of the undamped stack); a film
+without a static limit (the built-in PMMA's power laws) is referred to its storage constants at
+the ``contact`` job's ``STATIC_FREQUENCY_HZ`` (1 Hz), as that job's static columns are. The
+``ka`` column is then the substrate's k a, for orientation only.
 """
 
 from __future__ import annotations
@@ -58,6 +69,10 @@ class Settings:
     constants_in_pa : bool
         False when the face's constants are ratios only (C44 = 1): no C33, C44 in Pa and no
         wave speeds are reported, and physical contacts are refused.
+    coating : tuple
+        Films on the face, top first (``"MATERIAL:THICKNESS"``, thickness in m, as the
+        ``contact`` job's): the DCSF of the coated face (module docstring); physical contacts,
+        model "exact" and no ``loss`` only. Empty: the bare face.
     """
 
     models: tuple[str, ...] = ("exact",)
@@ -69,6 +84,7 @@ class Settings:
     wavenumber: str = "longitudinal"
     rtol: float = 1e-6
     constants_in_pa: bool = True
+    coating: tuple = ()
 
 
 @dataclass(frozen=True)
@@ -78,8 +94,11 @@ class Result(JobResult):
     physical contacts radius_m, force_N, frequency_Hz, contact_radius_m, stiffness_N_per_m and
     K = K_sa DCSF (K_re_N_per_m, K_im_N_per_m): :data:`contactres.measurements.schema.DCSF_TABLE`.
     ``face``: C33/C44, C33 and C44 (Pa) of the face and its wave speeds v_l = √(C33/ρ),
-    v_s = √(C44/ρ) (m/s); NaN where unknown. ``warnings``: one line per kind of flag in the
-    table (rows that miss rtol, negative damping)."""
+    v_s = √(C44/ρ) (m/s); NaN where unknown (on a coated face: the substrate's).
+    ``warnings``: one line per kind of flag in the table (rows that miss rtol, negative
+    damping), and with a coating how the films' static constants were taken. With a coating the
+    table adds ``coating``; its rel_error is not estimated (NaN: the layered punch meets its
+    rtol by construction, :func:`contactres.dynamic.layered_dcsf`)."""
 
     SCHEMAS = MappingProxyType({"table": DCSF_TABLE})
 
@@ -99,6 +118,14 @@ def run(inputs: Material, settings: Settings, progress: Progress | None = None) 
     if any(contacts) and not all(contacts):
         raise ContactresInputError("radius, force and frequency go together: give all three")
     physical = all(contacts)
+    if s.coating:
+        if not physical or s.ka is not None:
+            raise ContactresInputError(
+                "on a coating (--coating) the DCSF depends on the frequency and the contact "
+                "radius separately, not on k a alone: give --radius, --force and --frequency "
+                "(not --ka)"
+            )
+        return _run_coated(m, s, progress)
     if physical == (s.ka is not None):
         raise ContactresInputError("give either ka or radius/force/frequency (which give k a)")
     c33, c44 = float(np.real(m.C[2, 2])), float(np.real(m.C[3, 3]))
@@ -207,6 +234,82 @@ def _contact_points(m, s: Settings):
         "stiffness_N_per_m": np.asarray(c.stiffness, dtype=float),
     }
     return ka, extra
+
+
+def _run_coated(m, s: Settings, progress) -> Result:
+    """The DCSF of physical contacts on the coated face (module docstring)."""
+    import pandas as pd
+
+    from ..dynamic import flat_punch_stiffness, layered_dcsf, normalised_wavenumber, wave_modulus
+    from ..layered import LayeredMaterial
+    from ..materials import Material
+    from . import contact
+
+    models = [s.models] if isinstance(s.models, str) else list(s.models)
+    if models != ["exact"]:
+        raise ContactresInputError(
+            "on a coating (--coating) the DCSF is the exact model's (the layered rigid punch): "
+            "leave out --model"
+        )
+    if s.loss != 0:
+        raise ContactresInputError(
+            "on a coating (--coating) the materials carry their own loss (a viscoelastic film): "
+            "leave out --loss"
+        )
+    if not s.constants_in_pa or m.density is None:
+        raise ContactresInputError(
+            "physical contacts need the elastic constants in Pa and the density"
+        )
+    assert s.radius is not None and s.force is not None and s.frequency is not None
+    try:
+        R, F, f = (np.atleast_1d(x) for x in np.broadcast_arrays(s.radius, s.force, s.frequency))
+    except ValueError:
+        raise ContactresInputError(
+            f"radius ({np.size(s.radius)}), force ({np.size(s.force)}) and frequency "
+            f"({np.size(s.frequency)}) must have the same number of values, or a single value"
+        ) from None
+    f = np.asarray(nonnegative("frequency", f, "Hz"), dtype=float)
+    say(progress, "static contact on the coated face")
+    static = contact.run(m, contact.Settings(R, F, coating=tuple(s.coating)))
+    t = static.table
+    a = t["contact_radius_m"].to_numpy(dtype=float)
+    k_sa = t["stiffness_N_per_m"].to_numpy(dtype=float)
+    stack = LayeredMaterial(m, contact.parse_coating(s.coating))
+    touching = a > 0
+    say(progress, f"layered punch at {int(touching.sum())} contacts")
+    dcsf = np.full(a.shape, np.nan, dtype=complex)
+    if touching.any():
+        if all(isinstance(x, Material) for x in stack.materials):
+            dcsf[touching] = layered_dcsf(stack, a[touching], f[touching], s.rtol)
+        else:  # no static limit: K_sa of the storage constants at 1 Hz (the contact job's)
+            k = flat_punch_stiffness(stack, a[touching], f[touching], rtol=s.rtol)
+            dcsf[touching] = np.asarray(k) / k_sa[touching]
+    ka = normalised_wavenumber(f, a, m.density, wave_modulus(m, s.wavenumber))
+    table = pd.DataFrame(
+        {
+            "ka": ka,
+            "model": "exact",
+            "re": dcsf.real,
+            "im": dcsf.imag,
+            "radius_m": t["radius_m"],
+            "force_N": t["force_N"],
+            "frequency_Hz": f,
+            "contact_radius_m": a,
+            "stiffness_N_per_m": k_sa,
+            "K_re_N_per_m": (k_sa * dcsf).real,
+            "K_im_N_per_m": (k_sa * dcsf).imag,
+            "rel_error": np.nan,
+            "flags": "",
+            "coating": t["coating"],
+        }
+    )
+    table = table[[c for c in DCSF_TABLE.names if c in table.columns]]  # the schema's order
+    c33, c44 = float(np.real(m.C[2, 2])), float(np.real(m.C[3, 3]))
+    return Result(
+        table=table,
+        face=_face_constants(c33, c44, m.density, False),
+        warnings=tuple(static.warnings),
+    )
 
 
 def _face_constants(c33: float, c44: float, density, ratios_only: bool) -> dict:

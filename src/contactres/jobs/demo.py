@@ -12,7 +12,10 @@ before its part); :func:`contactres.apps.write_demo` writes them into one folder
 * paper 2's forward model (the ``paper2`` job);
 * paper 1's exact DCSF of built-in crystals on (001) faces (as Fig. 4);
 * the bundled EBSD-style Cu map: predicted M and k* per pixel (20 nm tip, 1 µN), and the
-  constants fitted back from the bundled measured k* map.
+  constants fitted back from the bundled measured k* map;
+* a coated substrate: paper 2's sphere (radius 1.1 mm) on 250 nm of PMMA on fused silica
+  (the ``contact`` job with a coating, :data:`COATED_CONTACT`), static, at four forces
+  (contact radii 3.8-7.4 µm, around paper 2's 3.7-5.4 µm).
 """
 
 from __future__ import annotations
@@ -22,7 +25,7 @@ from importlib.resources import as_file, files
 from types import MappingProxyType
 from typing import TYPE_CHECKING
 
-from ..measurements.schema import CRYSTAL_TABLE, SPECTRA_FITS, SPECTRA_SWEEPS
+from ..measurements.schema import CONTACT_TABLE, CRYSTAL_TABLE, SPECTRA_FITS, SPECTRA_SWEEPS
 from .contract import JobResult, Progress, say
 
 if TYPE_CHECKING:
@@ -31,7 +34,7 @@ if TYPE_CHECKING:
     from ..polycrystal import OrientationMap, TriangleModuli
     from . import paper2
 
-__all__ = ["STEPS", "Result", "Settings", "run"]
+__all__ = ["COATED_CONTACT", "STEPS", "Result", "Settings", "run"]
 
 #: The titles of the parts, in the order computed and written.
 STEPS = (
@@ -41,9 +44,16 @@ STEPS = (
     "paper 2 forward: partial-slip loops and QCM shifts (Figs. 1D, 2C-D)",
     "paper 1: dynamic contact stiffness on crystals (exact, Fig. 4)",
     "polycrystal map: EBSD -> M and k* per pixel, and the constants back",
+    "coated substrate: a sphere on 250 nm of PMMA on fused silica (paper 2's case)",
 )
 #: The model of the crystals' DCSF: the exact rigid punch the README recommends.
 CRYSTAL_DCSF_MODEL = "exact"
+#: The coated contact of the demo: the face, the film (``contact --coating``), the sphere's
+#: radius (m; paper 2's spheres are 2.2 mm across) and the forces (N).
+COATED_CONTACT = MappingProxyType(
+    {"crystal": "fused-silica", "coating": "pmma:250e-9", "radius": 1.1e-3,
+     "forces": (2e-3, 8e-3, 14e-3, 20e-3)}
+)  # fmt: skip
 
 
 @dataclass(frozen=True)
@@ -59,12 +69,18 @@ class Result(JobResult):
     :data:`~contactres.measurements.schema.SPECTRA_FITS`), the ``crystals`` table
     (:data:`~contactres.measurements.schema.CRYSTAL_TABLE`), the ``paper2`` job's
     Result, the crystals' DCSF curves (``crystal_dcsf``: label -> DCSF on the grid
-    ``contactres.jobs.paper1.KLA``) and the polycrystal map (``map_dataset``, the orientation
+    ``contactres.jobs.paper1.KLA``), the polycrystal map (``map_dataset``, the orientation
     map ``map_orientations``, the fit record ``map_fit``, M over the standard triangle for the
-    legend of the map's figure ``map_triangle``)."""
+    legend of the map's figure ``map_triangle``) and the coated contact (``coated_contact``,
+    :data:`~contactres.measurements.schema.CONTACT_TABLE`)."""
 
     SCHEMAS = MappingProxyType(
-        {"crystals": CRYSTAL_TABLE, "spectra_rows": SPECTRA_SWEEPS, "spectra_fits": SPECTRA_FITS}
+        {
+            "crystals": CRYSTAL_TABLE,
+            "spectra_rows": SPECTRA_SWEEPS,
+            "spectra_fits": SPECTRA_FITS,
+            "coated_contact": CONTACT_TABLE,
+        }
     )
     NOT_VALUES = (
         "sweeps_analysis",
@@ -89,6 +105,7 @@ class Result(JobResult):
     map_orientations: OrientationMap
     map_fit: dict
     map_triangle: TriangleModuli
+    coated_contact: object
 
 
 def _sweeps():
@@ -151,6 +168,8 @@ def run(inputs: None = None, settings: Settings | None = None, progress: Progres
     curves = paper1.crystal_curves(model=CRYSTAL_DCSF_MODEL)
     say(progress, STEPS[5])
     ds, omap, record, triangle = _polycrystal()
+    say(progress, STEPS[6])
+    coated = _coated_contact()
     return Result(
         sweeps_analysis=sweeps_analysis,
         spectra_rows=rows,
@@ -163,4 +182,19 @@ def run(inputs: None = None, settings: Settings | None = None, progress: Progres
         map_orientations=omap,
         map_fit=record,
         map_triangle=triangle,
+        coated_contact=coated,
     )
+
+
+def _coated_contact():
+    """The table of the ``contact`` job for :data:`COATED_CONTACT`."""
+    import numpy as np
+
+    from ..materials import Material
+    from . import contact
+
+    c = COATED_CONTACT
+    settings = contact.Settings(
+        radius=np.array([c["radius"]]), force=np.array(c["forces"]), coating=(c["coating"],)
+    )
+    return contact.run(Material.crystal(c["crystal"]), settings).table

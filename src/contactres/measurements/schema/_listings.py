@@ -154,6 +154,12 @@ DCSF_TABLE = TableSchema(
         ("stiffness_N_per_m", "N/m", "static contact stiffness K_sa (with `--radius/...`)"),
         ("K_re_N_per_m", "N/m", "Re K = K_sa Re DCSF (with `--radius/...`)"),
         ("K_im_N_per_m", "N/m", "Im K = K_sa Im DCSF (with `--radius/...`)"),
+        (
+            "coating",
+            "text",
+            "the films on the face, top first, e.g. `PMMA 250 nm` (with `--coating`: the DCSF "
+            "of the layered punch at a and f; ka is then the substrate's)",
+        ),
     ),
 )
 

@@ -134,6 +134,37 @@ STIFFNESS_CSV = TableSchema(
     ),
 )
 
+#: The film columns ``afm invert`` and ``rum invert`` add with ``--coating`` (the modulus of a
+#: film on a known substrate: :func:`contactres.analysis.film_modulus_from_contact_stiffness`).
+_FILM_COLUMNS = (
+    Column("coating", "text", "the film on the substrate, e.g. `PMMA 250 nm` (with `--coating`)"),
+    Column(
+        "M_film_Pa",
+        "Pa",
+        "indentation modulus of the film from k* on the coated substrate (with `--coating`; "
+        "empty where film_verdict is too-thin, below-range or above-range)",
+    ),
+    Column(
+        "film_contact_radius_m",
+        "m",
+        "contact radius of the coated contact at M_film (with `--coating`)",
+    ),
+    Column(
+        "film_weight",
+        "-",
+        "the film's share of the sensitivity of k*, (∂ln k*/∂ln M_film)/((2/3) "
+        "E*_film/M_film): 0 substrate only, 1 film only (with `--coating`)",
+    ),
+    Column(
+        "film_verdict",
+        "text",
+        "film (resolved), too-thick (= the homogeneous inversion of the film within 1 %), "
+        "too-thin (film_weight below the threshold: not identified), below-range or "
+        "above-range (outside the search range); empty: no k*, tip radius or load "
+        "(with `--coating`)",
+    ),
+)
+
 #: The columns ``contactres afm invert`` appends to the input's (which it copies).
 AFM_INVERT_RESULTS = TableSchema(
     "afm invert output",
@@ -159,6 +190,7 @@ AFM_INVERT_RESULTS = TableSchema(
         Column("dcsf_imag", "-", "Im DCSF of that mode (with `--crystal` only)"),
         Column("flags", "text", "';'-separated resonance and modulus flags (empty: none)"),
         Column("normalisation", "text", "the `--normalisation` used: global or modewise"),
+        *_FILM_COLUMNS,
     ),
 )
 
@@ -169,6 +201,7 @@ RUM_INVERT_RESULTS = TableSchema(
     (
         Column("rum_model", "text", "lumped (K_eff_N_per_m given) or rod (mass_kg given)"),
         Column("k_star_N_per_m", "N/m", "contact stiffness k* from the contact resonance"),
+        *_FILM_COLUMNS,
     ),
 )
 
