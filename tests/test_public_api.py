@@ -436,7 +436,15 @@ PUBLIC = {
     ],
     "viscoelastic": [
         "ConstantLoss",
+        "Law",
         "ModulusTable",
+        "PMMA_DENSITY",
+        "PMMA_LONGITUDINAL_SPEED",
+        "PMMA_SHEAR_SPEED",
+        "PMMA_STATIC_E",
+        "PMMA_STATIC_FREQUENCY",
+        "PMMA_STATIC_POISSON",
+        "PMMA_ULTRASONIC_FREQUENCY",
         "PowerLaw",
         "Prony",
         "ViscoelasticMaterial",
@@ -445,6 +453,7 @@ PUBLIC = {
     "tangential": [
         "CattaneoMindlinLoop",
         "DashpotLoop",
+        "HysteresisLoop",
         "MasingLoop",
         "PlateauLoop",
         "SavkoorLoop",
@@ -530,6 +539,7 @@ PUBLIC = {
     "jobs.demo": [
         *JOB_API,
         "COATED_CONTACT",
+        "CRYSTAL_DCSF_MODEL",
         "STEPS",
     ],
     "jobs.maps_predict": [
@@ -538,9 +548,13 @@ PUBLIC = {
     ],
     "jobs.paper1": [
         *JOB_API,
+        "DISPLACEMENT_KLA",
         "KLA",
         "LOSS",
         "PAPER_MODELS",
+        "POISSONS",
+        "STEMS",
+        "ZENERS",
         "crystal_curves",
         "cubic",
         "displacement",

@@ -227,7 +227,7 @@ def check_output_file(path: str | os.PathLike, inputs: Iterable[str | os.PathLik
 
 #: The writer recorded in a manifest (a manifest without it is refused unless it is an older
 #: contactres one: file records with sizes and SHA-256 sums, names all of this kind of set).
-GENERATOR = "contactres"
+_GENERATOR = "contactres"
 
 
 def _read_manifest(folder: Path, name: str = MANIFEST) -> dict | None:
@@ -259,7 +259,7 @@ def _manifest_owner(folder: Path, given: Path, kind: str, owned: frozenset[str])
     if record is None:
         return {}
     names = [str(n) for n in record.get("files", {})]
-    if record.get("generator") == GENERATOR:
+    if record.get("generator") == _GENERATOR:
         if record.get("kind", "") != kind:
             raise OutputError(
                 f"output folder {str(given)!r} holds the results of another command "
@@ -632,7 +632,7 @@ class ResultSet:
         assert staging is not None, "made on entering, kept until the commit"
         staged = sorted(p.name for p in staging.iterdir() if not p.name.startswith("."))
         record = {
-            "generator": GENERATOR,
+            "generator": _GENERATOR,
             "version": __version__,
             "kind": self.kind,
             "files": {name: _digest(staging / name) for name in staged},

@@ -214,7 +214,7 @@ def fit(
 # ------------------------------------------------------------------ Levenberg-Marquardt, batched
 #: Relative singular value below which a direction of the (scaled) Jacobian is never moved: the
 #: data say nothing about it (the rounding of J is ~1e-16 of its largest singular value).
-SINGULAR_CUTOFF = 1e-13
+_SINGULAR_CUTOFF = 1e-13
 
 # Codes of :attr:`LeastSquaresResult.status`.
 _RUNNING, _STEP, _CHI2, _EXHAUSTED, _MAX_ITER, _MAX_ACCEPTED, _OUTSIDE = range(7)
@@ -356,7 +356,7 @@ def levenberg_marquardt(evaluate, p0, lo=-np.inf, hi=np.inf, options: LMOptions 
     -----
     The damped normal equations (JᵀJ + λD) δ = -Jᵀr are solved, in the Jacobian form, through
     the SVD of J with its columns scaled by √diag D (filter factors s/(s² + λ)): a direction
-    whose singular value is below :data:`SINGULAR_CUTOFF` of the largest is never moved, so an
+    whose singular value is below 1e-13 (``_SINGULAR_CUTOFF``) of the largest is never moved, so an
     ill-conditioned problem (a parameter the data do not determine) takes no wild step along
     it. In the Gauss-Newton form they are solved directly (Cramer's rule for P = 2).
     """
@@ -499,7 +499,7 @@ def _damped_steps(loc, held, lam, damping: str):
         if keep_out.any():
             J = np.where(keep_out, 0.0, J)
         U, s, Vt = np.linalg.svd(J, full_matrices=False)
-        keep = s > s[0] * SINGULAR_CUTOFF
+        keep = s > s[0] * _SINGULAR_CUTOFF
         s_k, U_k, V_k = s[keep], U[:, keep], Vt[keep].T
         ref = s[0] ** 2 if damping == "levenberg" else 1.0
         factors.append((U_k, V_k, s_k / (s_k**2 + lam_i * ref), d, keep_out))

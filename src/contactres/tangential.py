@@ -43,6 +43,7 @@ from .validation import positive as _pos
 __all__ = [
     "CattaneoMindlinLoop",
     "DashpotLoop",
+    "HysteresisLoop",
     "MasingLoop",
     "PlateauLoop",
     "SavkoorLoop",

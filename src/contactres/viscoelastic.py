@@ -42,7 +42,15 @@ from .materials import (
 from .validation import nonnegative, positive
 
 __all__ = [
+    "PMMA_DENSITY",
+    "PMMA_LONGITUDINAL_SPEED",
+    "PMMA_SHEAR_SPEED",
+    "PMMA_STATIC_E",
+    "PMMA_STATIC_FREQUENCY",
+    "PMMA_STATIC_POISSON",
+    "PMMA_ULTRASONIC_FREQUENCY",
     "ConstantLoss",
+    "Law",
     "ModulusTable",
     "PowerLaw",
     "Prony",
@@ -326,6 +334,7 @@ class ModulusTable:
         return storage + 1j * loss
 
 
+#: A law of the complex modulus against frequency: any of the four classes above.
 Law = ConstantLoss | Prony | PowerLaw | ModulusTable
 _LAWS = (ConstantLoss, Prony, PowerLaw, ModulusTable)
 
@@ -520,13 +529,20 @@ class ViscoelasticMaterial:
 # ------------------------------------------------------------------------------------ PMMA
 # Anchors of the built-in PMMA (see pmma()); tests/test_viscoelastic.py checks the material
 # against these published numbers, computed there from the complex wave numbers.
-PMMA_DENSITY = 1190.0  # kg/m^3
-PMMA_STATIC_E = 3.0e9  # Pa, quasi-static (taken at 1 Hz)
+#: Density of the built-in PMMA, kg/m^3.
+PMMA_DENSITY = 1190.0
+#: Quasi-static Young's modulus of the built-in PMMA, Pa (taken at PMMA_STATIC_FREQUENCY).
+PMMA_STATIC_E = 3.0e9
+#: Quasi-static Poisson ratio of the built-in PMMA.
 PMMA_STATIC_POISSON = 0.37
-PMMA_STATIC_FREQUENCY = 1.0  # Hz
-PMMA_SHEAR_SPEED = 1370.0  # m/s, ultrasonic (phase velocity)
-PMMA_LONGITUDINAL_SPEED = 2700.0  # m/s, ultrasonic
-PMMA_ULTRASONIC_FREQUENCY = 5.0e6  # Hz
+#: The frequency of the quasi-static anchors, Hz.
+PMMA_STATIC_FREQUENCY = 1.0
+#: Ultrasonic shear phase velocity of the built-in PMMA, m/s (at PMMA_ULTRASONIC_FREQUENCY).
+PMMA_SHEAR_SPEED = 1370.0
+#: Ultrasonic longitudinal phase velocity of the built-in PMMA, m/s.
+PMMA_LONGITUDINAL_SPEED = 2700.0
+#: The frequency of the ultrasonic anchors, Hz.
+PMMA_ULTRASONIC_FREQUENCY = 5.0e6
 
 
 def _phase_velocity(modulus: complex) -> float:

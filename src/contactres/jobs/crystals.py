@@ -21,7 +21,7 @@ if TYPE_CHECKING:
 __all__ = ["Result", "Settings", "run"]
 
 # Faces given by cube-axis Miller indices: meaningful for cubic (and isotropic) solids only.
-CUBIC_FACES = (("M011_GPa", (0, 1, 1)), ("M111_GPa", (1, 1, 1)))
+_CUBIC_FACES = (("M011_GPa", (0, 1, 1)), ("M111_GPa", (1, 1, 1)))
 
 
 @dataclass(frozen=True)
@@ -56,7 +56,7 @@ def run(inputs: None = None, settings: Settings | None = None, progress: Progres
     at = table.columns.get_loc("source")
     assert isinstance(at, int)  # one column of that name: get_loc gives its position
     table.insert(at, "M001_GPa", [indentation_modulus(m.rotated((0, 0, 1))) / 1e9 for m in solids])
-    for label, normal in CUBIC_FACES:
+    for label, normal in _CUBIC_FACES:
         values = [
             indentation_modulus(m.rotated(normal)) / 1e9 if ok else np.nan
             for m, ok in zip(solids, cubic_like, strict=True)

@@ -34,7 +34,7 @@ if TYPE_CHECKING:
     from ..polycrystal import OrientationMap, TriangleModuli
     from . import paper2
 
-__all__ = ["COATED_CONTACT", "STEPS", "Result", "Settings", "run"]
+__all__ = ["COATED_CONTACT", "CRYSTAL_DCSF_MODEL", "STEPS", "Result", "Settings", "run"]
 
 #: The titles of the parts, in the order computed and written.
 STEPS = (

@@ -23,9 +23,13 @@ from ..measurements.schema import PAPER1_RANKING
 from .contract import JobResult, Progress, say
 
 __all__ = [
+    "DISPLACEMENT_KLA",
     "KLA",
     "LOSS",
     "PAPER_MODELS",
+    "POISSONS",
+    "STEMS",
+    "ZENERS",
     "Result",
     "Settings",
     "crystal_curves",
@@ -39,7 +43,9 @@ __all__ = [
 
 #: The five displacement conditions of the paper (Fig. 3).
 PAPER_MODELS = ("WA", "R0", "R1", "SA", "TP")
+#: The loss factor of the paper's figures.
 LOSS = 0.02
+#: k_l a of the paper's DCSF curves.
 KLA = np.linspace(0.0, 2.0, 81)
 #: k_l a of the displacement curves of Fig. 2.
 DISPLACEMENT_KLA = (0.3, 0.6, 0.9, 1.2, 1.7)

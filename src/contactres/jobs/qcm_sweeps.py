@@ -59,7 +59,7 @@ __all__ = [
 ]
 
 #: From this many sweeps on, ``workers=None`` uses every core.
-MANY_SWEEPS = 10_000
+_MANY_SWEEPS = 10_000
 
 
 @dataclass(frozen=True)
@@ -76,7 +76,7 @@ class Settings:
         As in :class:`contactres.analysis.AnalysisSettings` (``law_per_load``: one law per
         load, not pooled over experiments).
     workers : int or None
-        Processes; None: every core from :data:`MANY_SWEEPS` sweeps on, else 1.
+        Processes; None: every core from 10,000 sweeps on, else 1.
     sphere_material, plate_material : str or None
         The bodies of the contact (names of
         :func:`contactres.analysis.material_by_name`) for the radiation loss.
@@ -295,7 +295,7 @@ def run(
     reading = inputs if isinstance(inputs, Reading) else read(inputs, s)
     workers = s.workers
     if workers is None:
-        many = reading.table.data["sweep"].nunique() >= MANY_SWEEPS
+        many = reading.table.data["sweep"].nunique() >= _MANY_SWEEPS
         workers = max(1, os.cpu_count() or 1) if many else 1
     chosen = AnalysisSettings(
         workers=workers,

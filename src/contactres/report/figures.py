@@ -59,9 +59,9 @@ NO_SWEEP_USED = (
 LABEL_CHARS = 40
 
 #: The columns of :attr:`~contactres.analysis.Results.curves` drawn: u0, Δf, ΔΓ.
-CURVE_COLUMNS = ("amplitude_m", "df_model_Hz", "dgamma_model_Hz")
-MARKERS = ("o", "s", "^", "D", "v", "P")
-NM = 1e9
+_CURVE_COLUMNS = ("amplitude_m", "df_model_Hz", "dgamma_model_Hz")
+_MARKERS = ("o", "s", "^", "D", "v", "P")
+_NM = 1e9
 
 
 def _label(value) -> str:
@@ -158,16 +158,16 @@ def figure_sweeps(results) -> Figure:
             k = ramps.index(row["ramp"])
             pts = results.points.iloc[points[row["sweep"]]]
             u, df, dg = (pts[c].to_numpy() for c in ("amplitude_m", "df_Hz", "dgamma_Hz"))
-            color, marker = f"C{k % 10}", MARKERS[k % len(MARKERS)]
+            color, marker = f"C{k % 10}", _MARKERS[k % len(_MARKERS)]
             label = f"ramp {row['ramp']} ({row['direction']})"
-            ax_f.plot(u * NM, df, marker, ms=3, color=color, ls="none", label=label)
-            ax_g.plot(u * NM, dg, marker, ms=3, color=color, ls="none", label=label)
+            ax_f.plot(u * _NM, df, marker, ms=3, color=color, ls="none", label=label)
+            ax_g.plot(u * _NM, dg, marker, ms=3, color=color, ls="none", label=label)
             fit = curves.iloc[curve[row["sweep"]]]  # computed by the analysis, not here
             uu, f, g = (
                 fit[c].to_numpy() for c in ("amplitude_m", "df_model_Hz", "dgamma_model_Hz")
             )
-            ax_f.plot(uu * NM, f, "-", lw=1, color=color)
-            ax_g.plot(uu * NM, g, "-", lw=1, color=color)
+            ax_f.plot(uu * _NM, f, "-", lw=1, color=color)
+            ax_g.plot(uu * _NM, g, "-", lw=1, color=color)
         row = sel.iloc[0]
         title = (
             f"{_label(medium)}, {_label(row['configuration'])}, "
@@ -228,7 +228,7 @@ def _errorbars(ax, loads, config, quantity, scale=1.0):
             part["normal_force_N"] * 1e3,
             mean,
             yerr=np.vstack([lower, sd]),
-            fmt=MARKERS[j % 6],
+            fmt=_MARKERS[j % 6],
             color=f"C{j}",
             mfc=f"C{j}" if j == 0 else "white",
             capsize=2,
@@ -340,7 +340,7 @@ def figure_radiation(results) -> Figure:
             if part.empty:
                 continue
             F = part["normal_force_N"].to_numpy(float) * 1e3
-            color, marker = f"C{j % 10}", MARKERS[j % 6]
+            color, marker = f"C{j % 10}", _MARKERS[j % 6]
             measured = ax.errorbar(
                 F,
                 part["tan_delta_measured"],

@@ -57,7 +57,7 @@ EXPORT_READERS: tuple[ExportReader, ...] = (
 )
 
 #: Binary files an instrument also writes, which no reader here reads.
-BINARY_SUFFIXES = (".xlsx", ".xls", ".xlsm", ".qsd", ".h5")
+_BINARY_SUFFIXES = (".xlsx", ".xls", ".xlsm", ".qsd", ".h5")
 
 
 def export_reader(name: str, readers: tuple[ExportReader, ...] = EXPORT_READERS) -> ExportReader:
@@ -73,7 +73,7 @@ def pick_export_reader(path, readers: tuple[ExportReader, ...] = EXPORT_READERS)
     """The reader that recognises ``path`` from its first 4 kB (those whose suffix matches are
     tried first). ValueError naming the file and the known formats if none does."""
     path = Path(path)
-    if path.suffix.lower() in BINARY_SUFFIXES:
+    if path.suffix.lower() in _BINARY_SUFFIXES:
         raise ContactresInputError(
             f"{path}: a {path.suffix} file is binary; export the data from the instrument "
             "software as text (tab, semicolon or comma separated)"
