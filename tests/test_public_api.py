@@ -305,6 +305,7 @@ PUBLIC = {
         "jkr_pull_off_force",
         "shear_modulus",
         "sphere_contact",
+        "sphere_contact_at",
         "static_punch_stiffness",
         "stiffness_contrast",
         "tabor_parameter",
