@@ -556,6 +556,7 @@ UNDOCUMENTED = {
     "jobs.qcm_stiffness": ["COLUMN_UNITS", "EQUATION", "stiffness_table"],
     "jobs.qcm_sweeps": [
         "Reading",
+        "coating_layers",
         "loads_table",
         "radiation_table",
         "read",
