@@ -36,8 +36,8 @@ def independent_kappa(E, gamma, film, h, nonadhesive_force, frequency_film=None)
     """(F, κ) of the adhesive sphere on the coated plate at the contact radii where the
     frictionless contact carries ``nonadhesive_force``: the compliance method written out
     with the public sphere solution (a, K = dF/dδ = the pair's punch stiffness) and dC/da by
-    central differences in the force, Mindlin's sphere and the coated plate's tangential punch
-    in series."""
+    central differences in the force, and κ the tangential punch of sphere and coated plate
+    sharing the traction (their compliances added: static_punch_stiffness with indenter)."""
     sphere = cr.Material.isotropic(E, NU, name="sphere")
     plate = cr.LayeredMaterial(sphere, [(film, h)])
     Fp = np.asarray(nonadhesive_force, dtype=float)
@@ -50,10 +50,23 @@ def independent_kappa(E, gamma, film, h, nonadhesive_force, frequency_film=None)
     a = a3[0]
     minus_dC = -(C3[2] - C3[1]) / (a3[2] - a3[1])
     F = Fp - np.sqrt(8 * np.pi * gamma * a / minus_dC)
-    G = E / (2 * (1 + NU))
-    k_plate = np.real(static_punch_stiffness(plate, a, "tangential"))
-    kappa = 1 / ((2 - NU) / (8 * G * a) + 1 / k_plate)
+    kappa = np.real(static_punch_stiffness(plate, a, "tangential", indenter=sphere))
     return F, kappa, a
+
+
+def test_the_pair_punch_is_mindlin_and_below_the_series_of_the_two_punches():
+    E, G = 70e9, 70e9 / (2 * (1 + NU))
+    body = cr.Material.isotropic(E, NU)
+    a = np.array([1e-6, 4e-6])
+    same = cr.LayeredMaterial(body, [(body, 250e-9)])
+    pair = static_punch_stiffness(same, a, "tangential", indenter=body)
+    np.testing.assert_allclose(np.real(pair), 4 * G * a / (2 - NU), rtol=1e-10)
+    # On a film the shared traction is softer than two separately optimal ones in series.
+    coated = cr.LayeredMaterial(body, [(FILM, 250e-9)])
+    pair = np.real(static_punch_stiffness(coated, a, "tangential", indenter=body))
+    plate = np.real(static_punch_stiffness(coated, a, "tangential"))
+    series = 1 / ((2 - NU) / (8 * G * a) + 1 / plate)
+    assert np.all(pair < series) and np.all(series < 1.02 * pair)
 
 
 def test_the_compliance_method_with_the_substrate_as_film_is_jkr():

@@ -27,15 +27,15 @@ P = 4E*a³/(3R) − √(16πγE*a³), i.e. a³ = (3R/4E*)[P + 6πγR + √(12π�
 Eq. 9 (tests/analysis/test_coating.py checks it against :func:`contactres.jkr` to 1e-8). The
 contact is force controlled: a is the root on the stable branch (dP/da > 0).
 
-**Tangential stiffness.** κ = 1/(C_t,sphere + C_t,plate) at the same a: the sphere's Mindlin
-compliance (2 − ν)/(8Ga) (homogeneous, E and ν) in series with the compliance of the coated
-plate's bonded, relaxed tangential punch (:func:`contactres.normal.static_punch_stiffness`),
-real part (κ is the storage part: Δf0/P). Homogeneous: κ = 4Ga/(2 − ν) = 2G*a, paper 2's
-κ with G* of Eq. 7-8. Series at equal a is an approximation: the two bodies share one traction
-(equal and opposite), which their summed compliance would solve; two separately optimal
-tractions make the series stiffness an upper bound (the difference is below ~0.1 % for PMMA
-on glass at a/h ~ 20, where the coupled traction pattern carries ~0.1 % of the plate's
-stiffness: :mod:`contactres.normal._layered`).
+**Tangential stiffness.** κ is the stiffness of the sticking contact of radius a: the sphere
+(homogeneous, E and ν) and the coated plate take the same, equal and opposite, traction, so
+their in-plane surface compliances add, and κ is the bonded, relaxed tangential punch on the
+summed compliance (:func:`contactres.normal.static_punch_stiffness` with ``indenter=``), real
+part (κ is the storage part: Δf0/P). Homogeneous: κ = 4Ga/(2 − ν) = 2G*a, paper 2's κ with G*
+of Eqs. 7-8. The sphere's punch and the coated plate's punch in series (each with its own
+traction) is an upper bound: measured 0.3 % (a/h = 5) to 1 % (a/h = 20-40) above it for
+250 nm of PMMA on E = 70 GPa (the gallery's estimate, docs/gallery/scripts/paper2_coating.py,
+uses the series).
 
 **The film's constants.** A frequency-dependent film (:func:`contactres.pmma`) enters the
 normal (static) contact with its storage constants at 1 Hz and the tangential stiffness with its
@@ -49,7 +49,7 @@ in Hertz and JKR), the axisymmetric solution, the radiation of the plate not inc
 substrate scales), so the three film corrections
 
     q_n = (C(a) − 1/(2aE*)) a²/h,   q_f = (a³/(R P'(a)) − 3/(4E*)) a/h,
-    q_t = (C_t,plate(a) − (2 − ν)/(8Ga)) a²/h   (complex)
+    q_t = (C_t(a) − 2(2 − ν)/(8Ga)) a²/h   (complex; C_t the pair's tangential compliance)
 
 (E* = E/(2(1 − ν²)) of the homogeneous pair, h the total film thickness) are solved on a grid
 of contact radii and a few Young's moduli (:func:`build_law`) and interpolated: a cubic spline
@@ -218,8 +218,8 @@ def _corrections(E: float, nu: float, coating: Coating, frequency: float, a: np.
     normal = sphere_contact_at(static, 1.0, a, tol=_TABLE_TOL, indenter=sphere)
     q_n = (1 / np.asarray(normal.stiffness) - 1 / (2 * a * e_star)) * a**2 / h
     q_f = (a**3 / np.asarray(normal.force) - 3 / (4 * e_star)) * a / h
-    k_t = np.asarray(static_punch_stiffness(dynamic, a, "tangential", tol=_TABLE_TOL))
-    q_t = (1 / k_t - (2 - nu) / (8 * g * a)) * a**2 / h
+    pair = static_punch_stiffness(dynamic, a, "tangential", tol=_TABLE_TOL, indenter=sphere)
+    q_t = (1 / np.asarray(pair) - 2 * (2 - nu) / (8 * g * a)) * a**2 / h
     return np.stack([q_n, q_f, q_t.real, q_t.imag], axis=-1)
 
 
@@ -332,7 +332,8 @@ class CoatedLaw:
         return np.exp(x), below | above
 
     def tangential(self, E, a):
-        """κ at contact radius a, N/m: sphere and coated plate in series, storage part."""
+        """κ at contact radius a, N/m: sphere and coated plate sharing the traction, storage
+        part."""
         E, a = np.broadcast_arrays(np.asarray(E, float), np.asarray(a, float))
         h, nu = self.coating.thickness, self.poisson
         g = E / (2 * (1 + nu))

@@ -177,7 +177,12 @@ def _shaped(x, shape):
 
 
 def static_punch_stiffness(
-    material, radius, direction: str = "normal", *, tol: float = DEFAULT_TOL
+    material,
+    radius,
+    direction: str = "normal",
+    *,
+    tol: float = DEFAULT_TOL,
+    indenter: Material | None = None,
 ):
     """Static stiffness of a rigid flat circular punch on a homogeneous or layered half-space.
 
@@ -200,6 +205,13 @@ def static_punch_stiffness(
     tol : float
         Truncation of the kernel integral (:mod:`contactres.normal._axisymmetric`; the default
         leaves < 1e-9 relative).
+    indenter : Material, optional
+        A second, homogeneous body bonded to the punch face from above (default: none, a rigid
+        punch): the stiffness of the two bodies' contact of radius a, both taking the same
+        traction (equal and opposite), so their surface compliances add (normal g∞, and for
+        tangential g∞ and d∞: module docstring) — not the two punch stiffnesses in series,
+        which is an upper bound (two separately optimal tractions). Homogeneous pair:
+        2a/(1/E*₁ + 1/E*₂) and 8a/((2 − ν₁)/G₁ + (2 − ν₂)/G₂) (Mindlin).
 
     Returns
     -------
@@ -227,6 +239,10 @@ def static_punch_stiffness(
     """
     a = _radii("radius", radius)
     kernel = radial_kernel(material, direction)
+    if indenter is not None:
+        other = radial_kernel(require_material(indenter), direction)
+        coupling = None if other.coupling_inf is None else kernel.coupling_inf + other.coupling_inf
+        kernel = replace(kernel, g_inf=kernel.g_inf + other.g_inf, coupling_inf=coupling)
     sol = punch_and_sphere(kernel, a, tol=tol)
     return _shaped(np.asarray(sol.punch_stiffness, dtype=complex), a.shape)
 
