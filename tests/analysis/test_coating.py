@@ -124,6 +124,23 @@ def test_kappa_from_an_independent_route_gives_back_E_and_gamma(synthetic):
     np.testing.assert_allclose(g_b, res.values["gamma"], rtol=1e-2, atol=1e-4)
 
 
+def test_the_bootstrap_estimator_is_the_least_squares_fit(synthetic):
+    # Noisy data (1 % on κ), resamples as whole-number weights: the grid estimator of the
+    # bootstrap against least squares on the points repeated as often as they are drawn.
+    s = synthetic
+    rng = np.random.default_rng(3)
+    F = np.tile(s["F"], 3)
+    kappa = np.tile(s["kappa"], 3) * (1 + 0.01 * rng.standard_normal(F.size))
+    res = fit_coated(s["law"], F, kappa, R, {"E": 60e9, "gamma": 0.02}, 1e3)
+    W = rng.integers(0, 3, size=(4, F.size)).astype(float)
+    E_b, g_b = resampled_coated(s["law"], F, kappa, W, R, res, 1e3)
+    for w, E, g in zip(W, E_b, g_b, strict=True):
+        take = np.repeat(np.arange(F.size), w.astype(int))
+        ref = fit_coated(s["law"], F[take], kappa[take], R, {"E": 60e9, "gamma": 0.02}, 1e3)
+        assert E == pytest.approx(ref.values["E"], rel=2e-4)
+        assert g == pytest.approx(ref.values["gamma"], rel=5e-3, abs=1e-4)
+
+
 def test_a_soft_film_lowers_the_apparent_E_of_paper_2s_model(synthetic):
     # The gallery (paper2_coating.py) finds E(PMMA)/E(SiO2) ~ 0.7-0.9 for 250 nm of PMMA: the
     # uncoated model reads a soft film as a softer solid, never a stiffer one.
