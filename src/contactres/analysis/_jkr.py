@@ -138,8 +138,8 @@ def bootstrap_jkr_sweeps(
         members = np.flatnonzero(load == ell)
         pick = members[rng.integers(0, members.size, size=(n_resamples, members.size))]
         W += np.bincount((offset + pick).ravel(), minlength=W.size) / members.size
-    W = W.reshape(n_resamples, F.size)
-    E, gam = (resampled or _resampled_fits)(F, kappa, W, R, nu, res)
+    weights = W.reshape(n_resamples, F.size)
+    E, gam = (resampled or _resampled_fits)(F, kappa, weights, R, nu, res)
     return float(np.std(E, ddof=1)), float(np.std(gam, ddof=1))
 
 

@@ -432,12 +432,12 @@ def analyze(
         _savkoor_traction(sw, member, g)
 
     laws = None
-    if settings.coating is not None:
-        from ._coating import apply_coating
+    coating = settings.coating  # a Coating: __post_init__ made it one
+    if coating is not None:
+        from ._coating import Coating, apply_coating
 
-        laws = apply_coating(
-            groups, exp, sw[used], settings.coating, settings.bootstrap, settings.seed, say
-        )
+        assert isinstance(coating, Coating)
+        laws = apply_coating(groups, exp, sw[used], coating, settings.bootstrap, settings.seed, say)
 
     say("the fitted curves of every sweep")
     curves = fitted_curves(sw, padded, fits)
@@ -460,8 +460,8 @@ def analyze(
     record = asdict(replace(settings, coating=None))
     # The coating's record (names and thicknesses), and none at all without one.
     del record["coating"]
-    if settings.coating is not None:
-        record["coating"] = settings.coating.record()
+    if coating is not None:
+        record["coating"] = coating.record()
     record["x_max_table"] = X_MAX
     # The user's sweep table holds the named columns; each fit's fields are in its own table.
     return Results(

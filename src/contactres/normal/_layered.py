@@ -241,7 +241,9 @@ def static_punch_stiffness(
     kernel = radial_kernel(material, direction)
     if indenter is not None:
         other = radial_kernel(require_material(indenter), direction)
-        coupling = None if other.coupling_inf is None else kernel.coupling_inf + other.coupling_inf
+        coupling = kernel.coupling_inf
+        if coupling is not None and other.coupling_inf is not None:  # tangential
+            coupling = coupling + other.coupling_inf
         kernel = replace(kernel, g_inf=kernel.g_inf + other.g_inf, coupling_inf=coupling)
     sol = punch_and_sphere(kernel, a, tol=tol)
     return _shaped(np.asarray(sol.punch_stiffness, dtype=complex), a.shape)
