@@ -333,6 +333,7 @@ PUBLIC = {
         "jkr_pull_off_force",
         "shear_modulus",
         "sphere_contact",
+        "sphere_contact_at",
         "static_punch_stiffness",
         "stiffness_contrast",
         "tabor_parameter",
@@ -581,6 +582,7 @@ PUBLIC = {
     "jobs.qcm_sweeps": [
         *JOB_API,
         "Reading",
+        "coating_layers",
         "loads_table",
         "radiation_table",
         "read",

@@ -163,7 +163,7 @@ def sweep_rows(table: pd.DataFrame) -> dict:
     return table.groupby("sweep", sort=False).indices
 
 
-def jkr_curves(groups, loads: pd.DataFrame, n: int = JKR_POINTS) -> pd.DataFrame:
+def jkr_curves(groups, loads: pd.DataFrame, n: int = JKR_POINTS, laws=None) -> pd.DataFrame:
     """The fitted JKR + Mindlin curve κ(F_N) of every group with an E, on the grid Fig. 5 draws.
 
     Parameters
@@ -173,6 +173,9 @@ def jkr_curves(groups, loads: pd.DataFrame, n: int = JKR_POINTS) -> pd.DataFrame
     loads : the per-load table (``configuration``, ``normal_force_N``): the grid of a group
         runs from 0 to 1.05 times the largest load of its configuration (every medium)
     n : points per curve
+    laws : {(configuration, medium): CoatedLaw} of a coated plate, or None
+        With a coated plate the curve is that law's κ(F_N) (:mod:`contactres.analysis._coating`;
+        NaN where the contact radius is outside its table).
 
     Returns
     -------
@@ -189,7 +192,12 @@ def jkr_curves(groups, loads: pd.DataFrame, n: int = JKR_POINTS) -> pd.DataFrame
             continue
         part = loads[loads["configuration"] == g["configuration"]]
         F = np.linspace(0.0, part["normal_force_N"].max() * 1.05, n)
-        k = kappa_jkr_mindlin(F, g["E_Pa"], g["gamma_J_m2"], g["sphere_radius_m"], g["poisson"])
+        law = (laws or {}).get((g["configuration"], g["medium"]))
+        if law is None:
+            k = kappa_jkr_mindlin(F, g["E_Pa"], g["gamma_J_m2"], g["sphere_radius_m"], g["poisson"])
+        else:
+            a, out = law.contact_radius(F, g["E_Pa"], g["gamma_J_m2"], g["sphere_radius_m"])
+            k = np.where(out, np.nan, law.tangential(g["E_Pa"], a))
         frames.append(
             pd.DataFrame(
                 {

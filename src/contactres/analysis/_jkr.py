@@ -9,6 +9,8 @@ residual variance, and a bootstrap over experiments (seeded).
 from __future__ import annotations
 
 import enum
+from collections.abc import Callable
+from dataclasses import dataclass
 
 import numpy as np
 import pandas as pd
@@ -22,7 +24,9 @@ from ._models import REGISTRY
 __all__ = [
     "E_RANGE_PA",
     "GAMMA_RANGE_J_M2",
+    "HOMOGENEOUS",
     "Check",
+    "LoadLaw",
     "bootstrap_jkr",
     "bootstrap_jkr_sweeps",
     "error_dof",
@@ -82,13 +86,20 @@ def _resampled_fits(F, kappa, W, R: float, nu: float, res: FitResult):
 
 
 def bootstrap_jkr(
-    pts: pd.DataFrame, R: float, nu: float, res: FitResult, n_resamples: int, seed: int
+    pts: pd.DataFrame,
+    R: float,
+    nu: float,
+    res: FitResult,
+    n_resamples: int,
+    seed: int,
+    resampled: Callable | None = None,
 ):
     """Standard deviations of E and γ over ``n_resamples`` resamples of the experiments.
 
     ``pts``: one row per (experiment, load) with ``normal_force_N``, ``kappa_N_per_m`` and
     ``experiment``; the experiments are drawn with replacement (each keeps all its loads), and
-    each resample is fitted as :func:`fit_jkr_mindlin` fits the data.
+    each resample is fitted as :func:`fit_jkr_mindlin` fits the data (or by ``resampled``,
+    the estimator of another :class:`LoadLaw`).
     """
     F = pts["normal_force_N"].to_numpy(float)
     kappa = pts["kappa_N_per_m"].to_numpy(float)
@@ -96,19 +107,26 @@ def bootstrap_jkr(
     rng = np.random.default_rng(seed)
     pick = rng.integers(0, len(names), size=(n_resamples, len(names)))
     counts = (pick[:, :, None] == np.arange(len(names))[None, None, :]).sum(axis=1)
-    E, gam = _resampled_fits(F, kappa, counts[:, codes].astype(float), R, nu, res)
+    E, gam = (resampled or _resampled_fits)(F, kappa, counts[:, codes].astype(float), R, nu, res)
     return float(np.std(E, ddof=1)), float(np.std(gam, ddof=1))
 
 
 def bootstrap_jkr_sweeps(
-    sweeps: pd.DataFrame, R: float, nu: float, res: FitResult, n_resamples: int, seed: int
+    sweeps: pd.DataFrame,
+    R: float,
+    nu: float,
+    res: FitResult,
+    n_resamples: int,
+    seed: int,
+    resampled: Callable | None = None,
 ):
     """Standard deviations of E and γ over resamples of the repeated sweeps of each load.
 
     For one experiment: ``sweeps`` has one row per used sweep (``normal_force_N``,
     ``kappa_N_per_m``); within every load the sweeps are drawn with replacement, each load keeps
     its number of sweeps and the weight 1 of its mean (the estimator of :func:`fit_jkr_mindlin`
-    on per-load means). This is the spread of repeated sweeps, not of remounted samples.
+    on per-load means; or ``resampled``, as in :func:`bootstrap_jkr`). This is the spread of
+    repeated sweeps, not of remounted samples.
     """
     F = sweeps["normal_force_N"].to_numpy(float)
     kappa = sweeps["kappa_N_per_m"].to_numpy(float)
@@ -120,8 +138,30 @@ def bootstrap_jkr_sweeps(
         members = np.flatnonzero(load == ell)
         pick = members[rng.integers(0, members.size, size=(n_resamples, members.size))]
         W += np.bincount((offset + pick).ravel(), minlength=W.size) / members.size
-    E, gam = _resampled_fits(F, kappa, W.reshape(n_resamples, F.size), R, nu, res)
+    weights = W.reshape(n_resamples, F.size)
+    E, gam = (resampled or _resampled_fits)(F, kappa, weights, R, nu, res)
     return float(np.std(E, ddof=1)), float(np.std(gam, ddof=1))
+
+
+@dataclass(frozen=True)
+class LoadLaw:
+    """The model of κ(F_N) that :func:`fit_group` fits, with its two estimators.
+
+    Attributes
+    ----------
+    model : the :class:`~contactres.fitting.Model` (its bounds are the checks' bounds)
+    fit : (F, κ, R, ν) -> :class:`~contactres.fitting.FitResult`, E and γ free
+    resampled : (F, κ, W, R, ν, fit) -> (E, γ) arrays, the same estimator for every row of
+        weights W (bootstrap resamples)
+    """
+
+    model: object
+    fit: Callable[..., FitResult]
+    resampled: Callable
+
+
+#: Paper 2's law: JKR + Mindlin with E1 = E2 = E (homogeneous sphere and plate).
+HOMOGENEOUS = LoadLaw(REGISTRY["jkr-mindlin"], fit_jkr_mindlin, _resampled_fits)
 
 
 class Check(enum.Enum):
@@ -178,12 +218,18 @@ def _joined(*texts: str) -> str:
 
 
 def fit_group(
-    exp: pd.DataFrame, key, bootstrap: int, seed: int, sweeps: pd.DataFrame | None = None
+    exp: pd.DataFrame,
+    key,
+    bootstrap: int,
+    seed: int,
+    sweeps: pd.DataFrame | None = None,
+    law: LoadLaw = HOMOGENEOUS,
 ) -> dict:
     """The JKR + Mindlin fit of one (configuration, medium) from its per-experiment points.
 
     ``exp``: one row per (experiment, load) of the group (the means of its used sweeps);
-    ``sweeps``: the group's used sweeps (for the error of a single experiment).
+    ``sweeps``: the group's used sweeps (for the error of a single experiment); ``law``: the
+    model of κ(F_N) and its estimators (default paper 2's, :data:`HOMOGENEOUS`).
 
     The error of E and γ (``E_err_Pa``, ``gamma_err_J_m2``) respects the experiment structure;
     ``error_method`` says which one was used: the standard deviation over ``bootstrap``
@@ -244,8 +290,8 @@ def fit_group(
             left_out,
         )
         return out
-    res = fit_jkr_mindlin(pts["normal_force_N"], pts["kappa_N_per_m"], R, nu)
-    found = _checks(res)
+    res = law.fit(pts["normal_force_N"], pts["kappa_N_per_m"], R, nu)
+    found = _checks(res, law.model)
     out["fit_rms_N_per_m"] = float(np.sqrt(res.rss / res.n_points))
     if found:
         out["checks"] = [c.value for c, _ in found]
@@ -260,7 +306,7 @@ def fit_group(
     )
     n_exp = pts["experiment"].nunique()
     if bootstrap > 0 and n_exp >= 3:
-        E_sd, g_sd = bootstrap_jkr(pts, R, nu, res, int(bootstrap), seed)
+        E_sd, g_sd = bootstrap_jkr(pts, R, nu, res, int(bootstrap), seed, law.resampled)
         out.update(E_bootstrap_sd_Pa=E_sd, gamma_bootstrap_sd_J_m2=g_sd)
         # The bootstrap variance of a mean of n is (n - 1)/n of the unbiased one: with a few
         # experiments that bias matters (n = 4: 13 % in the error), so it is undone.
@@ -272,7 +318,7 @@ def fit_group(
         )
     elif n_exp == 2:
         fits = [
-            fit_jkr_mindlin(part["normal_force_N"], part["kappa_N_per_m"], R, nu)
+            law.fit(part["normal_force_N"], part["kappa_N_per_m"], R, nu)
             for _, part in pts.groupby("experiment", sort=True)
             if part["normal_force_N"].nunique() >= 2
         ]
@@ -286,7 +332,7 @@ def fit_group(
         and sweeps is not None
         and sweeps.groupby("normal_force_N").size().min() >= 2
     ):
-        E_sd, g_sd = bootstrap_jkr_sweeps(sweeps, R, nu, res, int(bootstrap), seed)
+        E_sd, g_sd = bootstrap_jkr_sweeps(sweeps, R, nu, res, int(bootstrap), seed, law.resampled)
         out.update(E_err_Pa=E_sd, gamma_err_J_m2=g_sd)
         out["error_method"] = (
             f"within one experiment: bootstrap over its repeated sweeps ({int(bootstrap)} "

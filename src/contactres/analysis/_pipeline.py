@@ -59,12 +59,18 @@
    the sound the contact radiates into sphere and plate at each load's JKR contact radius and
    overtone frequency, its share of the measured ΔΓ0/Δf0, and E refitted for the dynamic
    softening of κ (:mod:`contactres.analysis._radiation`; ``Results.radiation``).
+9. **Coated plate** (only with ``coating``): step 6 again with the contact mechanics of the
+   coated plate (:mod:`contactres.analysis._coating`: JKR by the compliance method on the
+   layered plate, Mindlin's sphere in series with the coated plate's tangential punch), started
+   from the uncoated fit, which each group keeps under ``coating`` with the film's share of κ
+   at each load; Fig. 5 draws the coated model. Not with the radiation step (the tangential
+   dynamic punch on a coated plate is not there yet).
 """
 
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import asdict, dataclass
+from dataclasses import asdict, dataclass, replace
 
 import numpy as np
 import pandas as pd
@@ -127,6 +133,12 @@ class AnalysisSettings:
         (:func:`contactres.analysis.material_by_name`: a built-in solid, e.g.
         ``"soda-lime-glass"`` or ``"glass"``; the plate also ``"quartz-AT"``, the AT-cut quartz
         of the QCM); both or neither (None: no radiation table).
+    coating : (material, thickness_m) pair, a sequence of them (top first), or None
+        The film(s) on the plate (:func:`contactres.analysis._coating.as_coating`; e.g.
+        ``(contactres.pmma(), 250e-9)``; from text, ``"pmma:250e-9"``, with
+        :func:`contactres.jobs.contact.parse_coating`): E and γ are then fitted with the coated
+        plate's contact mechanics (step 9), E the Young's modulus of the sphere and of the
+        plate's substrate. Thickness in (0, 1 mm]. Not with the radiation materials.
     """
 
     keep_first_ramp: bool = False
@@ -142,6 +154,7 @@ class AnalysisSettings:
     workers: int = 1
     sphere_material: str | None = None
     plate_material: str | None = None
+    coating: object = None
 
     def __post_init__(self):
         if not self.delta_bic >= 0:
@@ -167,6 +180,16 @@ class AnalysisSettings:
 
             material_by_name(self.sphere_material, "sphere")  # ValueError naming the known
             material_by_name(self.plate_material, "plate")
+        if self.coating is not None:
+            # Imported here: an analysis without a coating loads no layered solver.
+            from ._coating import as_coating
+
+            object.__setattr__(self, "coating", as_coating(self.coating))
+            if self.sphere_material is not None:
+                raise ContactresInputError(
+                    "the radiation loss (sphere_material, plate_material) on a coated plate "
+                    "(coating) is not available yet: give one or the other"
+                )
 
 
 def _sensitivity(info: pd.DataFrame, zq: float) -> np.ndarray:
@@ -410,9 +433,17 @@ def analyze(
         groups.append(g)
         _savkoor_traction(sw, member, g)
 
+    laws = None
+    coating = settings.coating  # a Coating: __post_init__ made it one
+    if coating is not None:
+        from ._coating import Coating, apply_coating
+
+        assert isinstance(coating, Coating)
+        laws = apply_coating(groups, exp, sw[used], coating, settings.bootstrap, settings.seed, say)
+
     say("the fitted curves of every sweep")
     curves = fitted_curves(sw, padded, fits)
-    jkr = jkr_curves(groups, loads)
+    jkr = jkr_curves(groups, loads, laws=laws)
 
     radiation = None
     if settings.sphere_material is not None and settings.plate_material is not None:
@@ -428,7 +459,11 @@ def analyze(
             experiments=exp,
         )
 
-    record = asdict(settings)
+    record = asdict(replace(settings, coating=None))
+    # The coating's record (names and thicknesses), and none at all without one.
+    del record["coating"]
+    if coating is not None:
+        record["coating"] = coating.record()
     record["x_max_table"] = X_MAX
     # The user's sweep table holds the named columns; each fit's fields are in its own table.
     return Results(

@@ -30,6 +30,7 @@ from types import MappingProxyType
 from typing import TYPE_CHECKING
 
 from ..measurements.schema import (
+    COATING_CONVENTIONS,
     CONVENTIONS,
     GROUP_RESULTS,
     LOAD_RESULTS,
@@ -48,6 +49,7 @@ __all__ = [
     "Reading",
     "Result",
     "Settings",
+    "coating_layers",
     "loads_table",
     "radiation_table",
     "read",
@@ -80,6 +82,10 @@ class Settings:
     sphere_material, plate_material : str or None
         The bodies of the contact (names of
         :func:`contactres.analysis.material_by_name`) for the radiation loss.
+    coating : str, sequence of str, or None
+        The film(s) on the plate, ``"MATERIAL:THICKNESS"`` (m) each, top first
+        (:func:`contactres.jobs.contact.parse_coating`; thickness at most 1 mm): E and γ fitted
+        on the coated plate (:mod:`contactres.analysis._coating`). Not with the radiation.
     """
 
     area_m2: float | None = None
@@ -96,6 +102,7 @@ class Settings:
     workers: int | None = None
     sphere_material: str | None = None
     plate_material: str | None = None
+    coating: str | tuple[str, ...] | None = None
 
     def constants(self) -> dict:
         """The constants, as :func:`contactres.read_sweeps` takes them."""
@@ -229,6 +236,8 @@ def summary(results: Results) -> dict:
         "messages": list(results.messages),
         "conventions": CONVENTIONS,
     }
+    if "coating" in results.settings:
+        record["conventions"] = {**CONVENTIONS, **COATING_CONVENTIONS}
     if results.radiation is not None:
         record["radiation"] = _radiation_record(results.radiation)
     return json_value(record)
@@ -277,7 +286,27 @@ def stages(reading: Reading, settings: Settings) -> int:
     medium) group and one for the radiation loss, then one for the tables (a caller drawing
     figures adds one more)."""
     n_groups = reading.table.data.groupby(["configuration", "medium"]).ngroups
-    return 7 + n_groups + (settings.sphere_material is not None)
+    coated = n_groups + 1 if settings.coating else 0  # the table, then a fit per group
+    return 7 + n_groups + (settings.sphere_material is not None) + coated
+
+
+def coating_layers(settings: Settings):
+    """The checked layers of ``settings.coating`` ((material, thickness_m) pairs, top first), or
+    None: names by :func:`contactres.jobs.contact.parse_coating`, thickness (0, 1 mm] and the
+    refusal of the radiation with a coating by :class:`contactres.analysis.AnalysisSettings`.
+    Raises ContactresInputError (one line)."""
+    if not settings.coating:
+        return None
+    from ..analysis import AnalysisSettings
+    from .contact import parse_coating
+
+    layers = parse_coating(settings.coating)
+    AnalysisSettings(
+        coating=layers,
+        sphere_material=settings.sphere_material,
+        plate_material=settings.plate_material,
+    )
+    return layers
 
 
 def run(
@@ -292,6 +321,7 @@ def run(
         raise ContactresInputError(
             "the radiation loss needs both bodies: sphere_material and plate_material"
         )
+    coating = coating_layers(s)
     reading = inputs if isinstance(inputs, Reading) else read(inputs, s)
     workers = s.workers
     if workers is None:
@@ -306,6 +336,7 @@ def run(
         bootstrap=s.bootstrap,
         sphere_material=s.sphere_material,
         plate_material=s.plate_material,
+        coating=coating,
     )
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")

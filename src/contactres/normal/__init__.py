@@ -41,6 +41,7 @@ _EXPORTS = MappingProxyType(
         "static_punch_stiffness": "._layered",
         "indentation_modulus_at": "._layered",
         "sphere_contact": "._layered",
+        "sphere_contact_at": "._layered",
         "Contact": "._isotropic",
         "dmt": "._isotropic",
         "effective_modulus": "._isotropic",
@@ -94,6 +95,7 @@ if TYPE_CHECKING:
         static_punch_stiffness as static_punch_stiffness,
         indentation_modulus_at as indentation_modulus_at,
         sphere_contact as sphere_contact,
+        sphere_contact_at as sphere_contact_at,
     )
 
     # isort: on

@@ -37,8 +37,8 @@ Approximations, stated:
 The θ average is the trapezoidal rule on [0, π) (Ĝ_33 and the traces are π-periodic by
 reciprocity), with the number of angles doubled until the average of every material's
 homogeneous kernel moves by less than 1e-13; a stack whose materials are all isotropic needs one
-angle (normal: Ĝ_33 does not depend on θ) or four, k π/4 (tangential: the averages of cos² 2θ and
-sin² 2θ are exact with four).
+angle (normal: Ĝ_33 does not depend on θ; tangential: the trace and the Q part of the in-plane
+block do not either, see ``_angles``).
 """
 
 from __future__ import annotations
@@ -60,6 +60,7 @@ __all__ = [
     "indentation_modulus_at",
     "radial_kernel",
     "sphere_contact",
+    "sphere_contact_at",
     "static_punch_stiffness",
 ]
 
@@ -89,9 +90,11 @@ def _angles(stack: LayeredMaterial, comp: int) -> np.ndarray:
     """θ points on [0, π) that average the kernel of every material of the stack, each as a
     homogeneous half-space, to 1e-13 (module docstring)."""
     if all(isotropic_constants(m) is not None for m in stack.materials):
-        # Transversely isotropic about z: Ĝ_33 does not depend on θ, and Ĝ_11 = A cos²θ +
-        # B sin²θ, whose average the two angles 0 and π/2 give exactly.
-        return np.zeros(1) if comp == 2 else np.pi * np.arange(4) / 4
+        # Transversely isotropic about z: Ĝ_33 does not depend on θ, and the in-plane block is
+        # A ê ê + B (I − ê ê) (ê = (cos θ, sin θ)), so (Ĝ_11 + Ĝ_22)/2 = (A + B)/2 and
+        # cos 2θ (Ĝ_11 − Ĝ_22) + sin 2θ (Ĝ_12 + Ĝ_21) = A − B at every θ: one angle is exact
+        # (four cost four times the kernel, which is most of a tangential punch).
+        return np.zeros(1)
     ends = [LayeredMaterial(m) for m in stack.materials]
     n, prev = _THETA_START, None
     while True:
@@ -175,7 +178,12 @@ def _shaped(x, shape):
 
 
 def static_punch_stiffness(
-    material, radius, direction: str = "normal", *, tol: float = DEFAULT_TOL
+    material,
+    radius,
+    direction: str = "normal",
+    *,
+    tol: float = DEFAULT_TOL,
+    indenter: Material | None = None,
 ):
     """Static stiffness of a rigid flat circular punch on a homogeneous or layered half-space.
 
@@ -198,6 +206,13 @@ def static_punch_stiffness(
     tol : float
         Truncation of the kernel integral (:mod:`contactres.normal._axisymmetric`; the default
         leaves < 1e-9 relative).
+    indenter : Material, optional
+        A second, homogeneous body bonded to the punch face from above (default: none, a rigid
+        punch): the stiffness of the two bodies' contact of radius a, both taking the same
+        traction (equal and opposite), so their surface compliances add (normal g∞, and for
+        tangential g∞ and d∞: module docstring) — not the two punch stiffnesses in series,
+        which is an upper bound (two separately optimal tractions). Homogeneous pair:
+        2a/(1/E*₁ + 1/E*₂) and 8a/((2 − ν₁)/G₁ + (2 − ν₂)/G₂) (Mindlin).
 
     Returns
     -------
@@ -225,6 +240,12 @@ def static_punch_stiffness(
     """
     a = _radii("radius", radius)
     kernel = radial_kernel(material, direction)
+    if indenter is not None:
+        other = radial_kernel(require_material(indenter), direction)
+        coupling = kernel.coupling_inf
+        if coupling is not None and other.coupling_inf is not None:  # tangential
+            coupling = coupling + other.coupling_inf
+        kernel = replace(kernel, g_inf=kernel.g_inf + other.g_inf, coupling_inf=coupling)
     sol = punch_and_sphere(kernel, a, tol=tol)
     return _shaped(np.asarray(sol.punch_stiffness, dtype=complex), a.shape)
 
@@ -349,6 +370,87 @@ def _solve_radius(kernel, R, F, tol):
     raise ContactresInputError("sphere_contact: the contact radius did not converge")
 
 
+def _pair_kernel(stack: LayeredMaterial, indenter) -> RadialKernel:
+    """The normal kernel of the plate, plus the sphere's constant compliance if elastic."""
+    kernel = radial_kernel(stack)
+    if indenter is not None:
+        sphere = radial_kernel(require_material(indenter, lossless=True))
+        kernel = replace(kernel, g_inf=kernel.g_inf + sphere.g_inf)
+    return kernel
+
+
+def sphere_contact_at(
+    material, radius, contact_radius, *, tol: float = DEFAULT_TOL, indenter: Material | None = None
+) -> LayeredContact:
+    """The frictionless sphere contact of :func:`sphere_contact` at given contact radii.
+
+    The inverse of :func:`sphere_contact` (which solves for a at a given force): the force,
+    depth, pressures and normal contact stiffness of the contact whose radius is a, from one
+    solution of the axisymmetric problem per radius (no force iteration). This is the
+    non-adhesive branch P'(a), δ'(a) that the compliance method of adhesive contact adds a
+    flat punch to (K. R. Shull, Mater. Sci. Eng. R 36, 1 (2002)).
+
+    Parameters
+    ----------
+    material : Material or LayeredMaterial
+        Lossless static constants in the surface frame (z the inward normal).
+    radius : float or array
+        Sphere radius R > 0, m.
+    contact_radius : float or array
+        a > 0, m (broadcasts against ``radius``).
+    tol : float
+        Truncation of the kernel integral (:mod:`contactres.normal._axisymmetric`).
+    indenter : Material, optional
+        The sphere's own material (default rigid), as in :func:`sphere_contact`.
+
+    Returns
+    -------
+    LayeredContact
+        Shaped like the broadcast of ``radius`` and ``contact_radius``. Homogeneous: Hertz,
+        F = 4E*a³/(3R), δ = a²/R, stiffness 2aE*.
+
+    Examples
+    --------
+    It inverts :func:`sphere_contact`:
+
+    >>> from contactres import LayeredMaterial, Material
+    >>> from contactres.normal import sphere_contact, sphere_contact_at
+    >>> glass = Material.isotropic(70e9, 0.22, name="glass")
+    >>> pmma = Material.isotropic(5e9, 0.35, name="PMMA")
+    >>> coated = LayeredMaterial(glass, [(pmma, 1e-6)])
+    >>> c = sphere_contact_at(coated, 10e-6, 1.2e-6)
+    >>> back = sphere_contact(coated, 10e-6, c.force)
+    >>> print(f"F = {c.force * 1e3:.4f} mN, a = {back.contact_radius * 1e6:.6f} um")
+    F = 1.7806 mN, a = 1.200000 um
+    """
+    stack = material.at(0.0) if isinstance(material, LayeredMaterial) else _stack(material)
+    if stack.is_lossy:
+        raise ContactresInputError(
+            "sphere_contact_at needs real (undamped) constants (drop with_loss)"
+        )
+    R = np.asarray(positive("radius", radius, "m"), dtype=float)
+    a = _radii("contact_radius", contact_radius)
+    try:
+        shape = np.broadcast_shapes(R.shape, a.shape)
+    except ValueError:
+        raise ContactresInputError(
+            f"radius (shape {R.shape}) and contact_radius (shape {a.shape}) do not broadcast"
+        ) from None
+    Rb, ab = np.broadcast_to(R, shape).ravel(), np.broadcast_to(a, shape).ravel()
+    sol = punch_and_sphere(_pair_kernel(stack, indenter), ab, tol=tol)
+    stiff = np.real(sol.punch_stiffness)
+    force = sol.force_factor * ab**3 / Rb
+    return LayeredContact(
+        contact_radius=_shaped(ab, shape),
+        depth=_shaped(sol.depth_factor * ab**2 / Rb, shape),
+        mean_pressure=_shaped(force / (np.pi * ab**2), shape),
+        peak_pressure=_shaped(sol.peak_factor * ab / Rb, shape),
+        stiffness=_shaped(stiff, shape),
+        force=_shaped(force, shape),
+        indentation_modulus=_shaped(stiff / (2 * ab), shape),
+    )
+
+
 def sphere_contact(
     material,
     radius,
@@ -435,10 +537,7 @@ def sphere_contact(
             f"radius (shape {R.shape}) and force (shape {F.shape}) do not broadcast together"
         ) from None
     Rb, Fb = np.broadcast_to(R, shape).ravel(), np.broadcast_to(F, shape).ravel()
-    kernel = radial_kernel(stack)
-    if indenter is not None:
-        sphere = radial_kernel(require_material(indenter, lossless=True))
-        kernel = replace(kernel, g_inf=kernel.g_inf + sphere.g_inf)
+    kernel = _pair_kernel(stack, indenter)
     a = np.zeros(Fb.shape)
     pos = Fb > 0
     if pos.any():

@@ -17,7 +17,14 @@ from __future__ import annotations
 
 from ._columns import Column, TableSchema
 
-__all__ = ["CONVENTIONS", "GROUP_RESULTS", "LOAD_QUANTITIES", "LOAD_RESULTS", "SWEEP_RESULTS"]
+__all__ = [
+    "COATING_CONVENTIONS",
+    "CONVENTIONS",
+    "GROUP_RESULTS",
+    "LOAD_QUANTITIES",
+    "LOAD_RESULTS",
+    "SWEEP_RESULTS",
+]
 
 CONVENTIONS = {
     "df": "frequency shift Δf in Hz (not Δf/n)",
@@ -27,6 +34,15 @@ CONVENTIONS = {
     "gamma": "paper 2's energy of adhesion γ in J/m² (work of adhesion w = 2γ)",
     "E": "Young's modulus of both bodies (E1 = E2), Pa, with ν fixed (settings/poisson)",
     "errors": "_err: standard error of a fit; _sd: standard deviation over experiments",
+}
+
+#: Added to :data:`CONVENTIONS` in summary.json when the plate is coated (``--coating``).
+COATING_CONVENTIONS = {
+    "E": "Young's modulus of the sphere and of the plate's substrate under the coating (the "
+    "film's own constants fixed), Pa, with ν fixed (settings/poisson)",
+    "coating": "groups/coating: the film(s), the uncoated (paper 2) fit, and per load the "
+    "contact radius, κ on the coated and on the bare plate (same E, γ, load) and film_share = "
+    "1 - κ/κ_bare, the share of the tangential contact stiffness the film takes",
 }
 
 # --------------------------------------------------------------------------------------------
@@ -285,6 +301,12 @@ GROUP_RESULTS = TableSchema(
             "drifting_loads",
             "-",
             "(experiment, normal force) of the loads left out because their ramps drift",
+        ),
+        Column(
+            "coating",
+            "-",
+            "with --coating: the film(s), the uncoated fit, the table's ranges and per load the "
+            "contact radius, κ coated and bare, and film_share = 1 - κ/κ_bare",
         ),
     ),
 )

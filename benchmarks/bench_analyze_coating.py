@@ -1,0 +1,54 @@
+"""Benchmark: the analysis of the bundled example on a coated plate against the uncoated one.
+
+Target (issue 26, point 4): with ``coating`` (250 nm of PMMA) the analysis of the bundled example
+(384 sweeps, 4 configuration/medium groups) takes under twice the uncoated analysis. The extra
+work is the table of the film corrections (five Young's moduli x ~8 contact radii of the layered
+normal and tangential solutions, :func:`contactres.analysis._coating.build_law`), the coated
+fits and their bootstrap. Both runs are timed as CPU time of this process (the fair measure on
+a shared machine; the wall time is printed too), each after one untimed run of the same call
+(imports and first-call costs out). The target is the uncoated time times 2.
+
+Measured (2-core machine shared with other jobs, ``OPENBLAS_NUM_THREADS=1``): 1.9-2.1 s
+against 0.6-0.8 s, 2.7-3x: the target is missed (the table ~0.7 s, the bootstrap ~0.4 s). With
+the default BLAS threads on the busy machine the layered solutions' small matrix products spin:
+7.2 s against 0.9 s.
+
+Run: ``OPENBLAS_NUM_THREADS=1 .venv/bin/python benchmarks/bench_analyze_coating.py`` (exit
+status 1 if missed).
+"""
+
+from __future__ import annotations
+
+import sys
+import time
+from importlib.resources import files
+
+from _verdict import exit_code, target
+
+import contactres as cr
+from contactres.analysis import AnalysisSettings, analyze
+
+RATIO = 2.0
+
+
+def _timed(table, settings) -> tuple[float, float]:
+    analyze(table, settings=settings)  # untimed: imports, first calls
+    c0, w0 = time.process_time(), time.perf_counter()
+    analyze(table, settings=settings)
+    return time.process_time() - c0, time.perf_counter() - w0
+
+
+def main() -> int:
+    table = cr.read_sweeps(files("contactres") / "data" / "example_sweeps.csv")
+    cpu0, wall0 = _timed(table, AnalysisSettings())
+    cpu1, wall1 = _timed(table, AnalysisSettings(coating=(cr.pmma(), 250e-9)))
+    print("qcm analyze, bundled example (384 sweeps, 4 groups)")
+    print(f"  uncoated:            {cpu0:.3f} s CPU ({wall0:.3f} s wall)")
+    print(f"  coated (PMMA 250 nm): {cpu1:.3f} s CPU ({wall1:.3f} s wall)")
+    print(f"  ratio:               {cpu1 / cpu0:.2f} (CPU), {wall1 / wall0:.2f} (wall)")
+    results = [target("analyze with a coating (CPU)", cpu1, RATIO * cpu0)]
+    return exit_code(results)
+
+
+if __name__ == "__main__":
+    sys.exit(main())

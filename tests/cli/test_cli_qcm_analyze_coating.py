@@ -1,0 +1,90 @@
+"""``contactres qcm analyze --coating MATERIAL:THICKNESS``: E and γ on a coated plate.
+
+A run on a small synthetic study prints Table 1 and the coating's lines and records the coating
+in summary.json; every bad coating is one line with exit code 2, before any file is written.
+"""
+
+import json
+
+import numpy as np
+import pytest
+from cli_checks import one_line_error, run
+
+from contactres.measurements._synthetic import SweepGroup, SweepStudy, synthetic_sweeps
+from contactres.resonators._qcm import QCM
+
+OPTS = ["--area", "2.5e-5", "--overtone", "3", "--n-contacts", "3", "--bootstrap", "20"]
+
+
+@pytest.fixture(scope="module")
+def sweeps(tmp_path_factory):
+    u = tuple(np.linspace(0.5e-9, 5e-9, 6))
+    study = SweepStudy(
+        groups=(SweepGroup("glass", "air", 1.1e-3, 70e9, 0.1, u, 2e4, 0.1),),
+        normal_forces=(2e-3, 4e-3, 6e-3),
+        n_experiments=3,
+        alternate=False,
+        qcm=QCM(5e6, 3, 2.5e-5),
+    )
+    path = tmp_path_factory.mktemp("coated") / "sweeps.csv"
+    synthetic_sweeps(study, 7).to_csv(path, index=False)
+    return path
+
+
+def test_a_coated_run_prints_and_records_the_coating(sweeps, tmp_path):
+    out = tmp_path / "out"
+    plain = run("qcm", "analyze", sweeps, "--out", tmp_path / "plain", "--no-figures", *OPTS)
+    assert plain.exit_code == 0, plain.output
+    r = run(
+        "qcm", "analyze", sweeps, "--out", out, "--no-figures", *OPTS, "--coating", "pmma:250e-9"
+    )
+    assert r.exit_code == 0, r.output
+    assert "coated plate: PMMA 250 nm" in r.output
+    assert "glass, air: uncoated E = " in r.output and "film share" in r.output
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["settings"]["coating"]["layers"] == [
+        {"material": "PMMA", "thickness_m": 2.5e-07}
+    ]
+    assert "coating" in summary["conventions"]
+    (g,) = summary["groups"]
+    before = json.loads((tmp_path / "plain" / "summary.json").read_text())
+    assert "coating" not in before["settings"] and "coating" not in before["conventions"]
+    assert g["coating"]["uncoated"]["E_Pa"] == before["groups"][0]["E_Pa"]
+    # A soft film: the substrate must be stiffer than the uncoated analysis says.
+    assert g["E_Pa"] > before["groups"][0]["E_Pa"]
+    assert [row["normal_force_N"] for row in g["coating"]["loads"]] == [2e-3, 4e-3, 6e-3]
+
+
+@pytest.mark.parametrize(
+    ("coating", "words"),
+    [
+        ("unobtainium:250e-9", ["unknown coating material", "pmma"]),
+        ("pmma:0", ["thickness"]),
+        ("pmma:-1e-9", ["thickness"]),
+        ("pmma:2e-3", ["thickness", "0.001"]),
+        ("pmma250e-9", ["MATERIAL:THICKNESS"]),
+    ],
+)
+def test_a_bad_coating_is_one_line(sweeps, tmp_path, coating, words):
+    out = tmp_path / "out"
+    r = run("qcm", "analyze", sweeps, "--out", out, *OPTS, "--coating", coating)
+    one_line_error(r, *words)
+    assert not out.exists()
+
+
+def test_the_radiation_step_with_a_coating_is_refused(sweeps, tmp_path):
+    r = run(
+        "qcm",
+        "analyze",
+        sweeps,
+        "--out",
+        tmp_path / "out",
+        *OPTS,
+        "--coating",
+        "pmma:250e-9",
+        "--sphere-material",
+        "glass",
+        "--plate-material",
+        "quartz-AT",
+    )
+    one_line_error(r, "--coating", "not available yet")
