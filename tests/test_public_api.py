@@ -708,6 +708,37 @@ def _library_modules() -> dict[str, bool]:
     }
 
 
+def _defined_names(path: str) -> set[str]:
+    """The names a module defines at its top level (functions, classes, assignments)."""
+    tree = ast.parse(Path(path).read_text(encoding="utf-8"))
+    names: set[str] = set()
+    for node in tree.body:
+        if isinstance(node, ast.FunctionDef | ast.AsyncFunctionDef | ast.ClassDef):
+            names.add(node.name)
+        elif isinstance(node, ast.Assign):
+            names |= {t.id for t in node.targets if isinstance(t, ast.Name)}
+        elif isinstance(node, ast.AnnAssign) and isinstance(node.target, ast.Name):
+            names.add(node.target.id)
+    return names - {"TYPE_CHECKING"}
+
+
+def test_a_public_modules_names_are_its_all_or_private():
+    """In a public module (and a subpackage's ``__init__``) every name it defines is in its
+    ``__all__`` (pinned above, documented in docs/api.md) or has a leading underscore: no
+    public-looking helper outside the documented surface."""
+    loose = []
+    for name in ["contactres", *_library_modules()]:
+        if any(part.startswith("_") for part in name.split(".")):
+            continue
+        module = importlib.import_module(name)
+        exported = set(getattr(module, "__all__", ()))
+        if module.__file__ is None:  # pragma: no cover - a namespace package
+            continue
+        extra = sorted(n for n in _defined_names(module.__file__) - exported if n[0] != "_")
+        loose += [f"{name}.{n}" for n in extra]
+    assert loose == []
+
+
 def test_every_module_without_an_underscore_is_a_package_or_listed_public():
     """scipy's test_all_modules_are_expected: a new module is private unless listed here."""
     found = _library_modules()
