@@ -107,6 +107,28 @@ def test_the_checksum_is_the_one_taken_when_the_table_was_read(results, tmp_path
     assert memory.source_sha256 is None
 
 
+def test_a_file_that_changes_while_it_is_read_is_refused(tmp_path):
+    """The hash is of the bytes parsed: a reader that sees other bytes than were hashed (here it
+    appends to the file as it reads, as a writer still at work would) is refused."""
+    import dataclasses
+
+    from contactres.measurements.readers import BUILT_IN
+
+    copy = tmp_path / "sweeps.csv"
+    copy.write_bytes(EXAMPLE.read_bytes())
+    csv = next(r for r in BUILT_IN.readers if r.kind == "sweeps" and ".csv" in r.suffixes)
+
+    def load_while_written(path):
+        frame = csv.load(path)
+        with open(path, "ab") as f:
+            f.write(b"\n")
+        return frame
+
+    growing = dataclasses.replace(csv, name="growing", load=load_while_written)
+    with pytest.raises(ValueError, match="changed while it was read"):
+        contactres.read_sweeps(copy, readers=BUILT_IN.with_reader(growing))
+
+
 def test_the_report_draws_the_curves_of_the_analysis_without_a_model(results, monkeypatch):
     # Every loop shape refuses to be evaluated: the page and Fig. 4 draw from Results.curves.
     from contactres.analysis._models import cm_loop, plateau_loop, savkoor_loop

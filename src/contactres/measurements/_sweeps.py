@@ -221,6 +221,12 @@ def read_sweeps(path, *, readers=None, **constants) -> SweepTable:
     toml, toml_path = _toml_constants(p)
     digest = file_sha256(p)
     raw = (BUILT_IN if readers is None else readers).pick(p, "sweeps").load(p)
+    # The hash must be of the bytes parsed: a file still being written (or replaced) between
+    # the two reads is refused rather than reported under a hash it no longer has.
+    if file_sha256(p) != digest:
+        raise ContactresInputError(
+            f"{p}: the file changed while it was read; read it again once it is complete"
+        )
     table = validate_sweeps(
         raw,
         source=str(p),
