@@ -56,8 +56,8 @@ class CheckedDCSF:
     Attributes
     ----------
     values : mapping model -> complex array shaped like ``ka``: DCSF = K_da/K_sa, dimensionless
-    error : mapping model -> float array: estimated relative error of the value, |DCSF at the
-        next refinement − DCSF| / |DCSF at the next refinement|
+    error : mapping model -> float array: estimated relative error of the value,
+        ``|DCSF' − DCSF| / |DCSF'|`` with DCSF' the value at the next refinement
     converged : mapping model -> bool array: the estimated error is at most rtol
     level : mapping model -> int array: the refinement level of the value (0: ordinary)
     rtol : the target relative accuracy
