@@ -71,6 +71,7 @@ __all__ = [
     "eigen_frame",
     "film_dynamic",
     "frame_solve",
+    "phase_of",
     "prepare_tangential",
     "tangential_per_a",
     "tangential_size",
@@ -250,7 +251,8 @@ def basis_of(table: TangentialTable, size: TangentialSize) -> _Basis:
     )
 
 
-def _phase(n: np.ndarray) -> np.ndarray:
+def phase_of(n: np.ndarray) -> np.ndarray:
+    """i^{(|n_a| − |n_b|) mod 4} of every pair of harmonics ``n``: the phases of the matrix."""
     return 1j ** ((np.abs(n)[:, None] - np.abs(n)[None, :]) % 4)
 
 
@@ -350,7 +352,7 @@ def frame_solve(frame: Frame, loss: float, dynamic: np.ndarray) -> np.ndarray:
 def film_dynamic(table: TangentialTable, basis: _Basis, ka: np.ndarray, grid) -> np.ndarray:
     """The dynamic remainder of the table's half-space, phases included, (len(ka), nb, nb) at
     k_s a values ``ka`` (> 0); ``grid``: :func:`~.farfield.far_grid` of the whole call."""
-    return _phase(basis.n)[None] * _dynamic_part(table, basis, ka, grid)
+    return phase_of(basis.n)[None] * _dynamic_part(table, basis, ka, grid)
 
 
 def tangential_per_a(
@@ -382,7 +384,7 @@ def tangential_per_a(
     out = np.empty((ksa.size, 2, 2), dtype=complex)
     # Static eigenbasis (undamped, Hermitian): well-conditioned coordinates for every k a.
     b0 = basis_of(table, size)
-    frame = eigen_frame(_phase(b0.n) * b0.static, b0.load)
+    frame = eigen_frame(phase_of(b0.n) * b0.static, b0.load)
     f = 1 + 1j * table.loss
     k_static = 4 * np.pi**2 * table.c44 * frame.static  # undamped, symmetric
     zero = ksa == 0
