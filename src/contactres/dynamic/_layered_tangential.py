@@ -32,7 +32,11 @@ transversely isotropic about z) h(θ) = R(θ) h(0) R(θ)ᵀ holds only the harmo
 from h(0) (one direction per node); otherwise Δh is sampled on 128 directions in [0, 2π) and
 transformed by FFT (harmonics up to 2 N_h).
 
-Basis. On an axisymmetric stack the film's static in-plane kernel has no odd imaginary part:
+Basis. On an axisymmetric stack the kernel couples t_± = t_x ± i t_y of harmonic n only to
+harmonics n and n ± 2 of the other, so the sectors of one total angular number decouple; the
+x-translation lives in two of them (t_+ of harmonics 0 and −2, t_− of 0 and 2), and the traction
+harmonics are kept to ``|n|`` <= 2 (the others decouple exactly; the solution is
+t = A(r) e_x + B(r) (cos 2φ, sin 2φ)). Its film's static in-plane kernel has no odd imaginary part:
 the edge singularity is the square root of the polynomial basis, and the logarithmic enrichment
 of the homogeneous module (needed for the oscillatory singularity of faces that are not mirror
 planes) is left out. Otherwise it is kept, its transforms as Neumann series of j_p with enough
@@ -188,7 +192,9 @@ def tangential_punch(
     }
     size = tangential_size(ka_top, rtol, table.n_harmonics)
     if axisymmetric:
-        size = replace(size, n_enriched=0, n_log=0)
+        # The x-translation of an axisymmetric stack lives in the harmonics |n| <= 2 (module
+        # docstring); the others decouple exactly.
+        size = replace(size, n_harmonics=2, n_enriched=0, n_log=0)
     elif nodes:
         s_top = max(float(np.max(np.abs(v[0]))) for v in nodes.values())
         n_series = max(size.n_series, math.ceil(0.75 * s_top) + 8)
