@@ -5,7 +5,9 @@ The layered curve costs the film's kernel table and exact Galerkin matrices (wha
 homogeneous curve costs) plus, per point, the correction of the stack: the layered surface
 response at ~100-300 wavenumbers on the lifted path and its Bessel products. The target
 (issue 26, point 6) is at most 3x the homogeneous exact curve of the film with its table (both
-prepared within the timed call). Each figure is the best wall-clock time of a few runs.
+prepared within the timed call). Each figure is the best wall-clock time of a few runs. The
+tangential punch on the same stacks is timed too, against the homogeneous exact tangential curve
+(printed only: no target yet).
 
 Run: ``.venv/bin/python benchmarks/bench_layered_dynamic.py`` (exit status 1 if the target is
 missed).
@@ -19,7 +21,7 @@ import time
 import numpy as np
 from _verdict import exit_code, target
 
-from contactres import LayeredMaterial, Material, dcsf
+from contactres import LayeredMaterial, Material, dcsf, tangential_dcsf
 from contactres.dynamic import layered_punch_stiffness
 
 N = 41
@@ -53,6 +55,19 @@ def main() -> int:
         print(f"  PMMA {h * 1e9:.0f} nm on quartz: {t_lay:.3f} s, ratio {t_lay / t_hom:.2f}")
         name = f"PMMA {h * 1e9:.0f} nm on quartz (vs {MAX_RATIO:g}x homogeneous exact)"
         results.append(target(name, t_lay, MAX_RATIO * t_hom))
+    # The tangential punch (no target yet: printed only), against the homogeneous exact
+    # tangential curve of the film.
+    t_hom_t = best_time(lambda: tangential_dcsf(pmma, ksa))
+    print(f"  tangential, homogeneous exact (PMMA half-space): {t_hom_t:.3f} s")
+    for h in (250e-9, 1e-6):
+        stack = LayeredMaterial(quartz, [(pmma, h)])
+        t_lay = best_time(
+            lambda stack=stack: layered_punch_stiffness(stack, a, f, direction="tangential")
+        )
+        print(
+            f"  tangential, PMMA {h * 1e9:.0f} nm on quartz: {t_lay:.3f} s, "
+            f"ratio {t_lay / t_hom_t:.2f}"
+        )
     return exit_code(results)
 
 

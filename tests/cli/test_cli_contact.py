@@ -422,10 +422,28 @@ def test_contact_coating_bad_input_one_line(coating, words):
     one_line_error(r, *words)
 
 
-def test_contact_coating_tangential_at_a_frequency_is_one_line():
+def test_contact_coating_tangential_at_a_frequency_has_the_bare_columns():
+    """The coated face at a frequency prints the bare face's columns (plus coating and
+    film_share), the tangential ones from the layered tangential punch at the contact radius."""
+    from contactres import LayeredMaterial, flat_punch_stiffness, pmma
+
+    common = ("contact", "--crystal", "fused-silica", "--radius", 1e-3, "--force", 1e-3,
+              "--tangential", "--frequency", 15e6, "--format", "json")  # fmt: skip
+    bare = _json(run(*common))[0]
+    row = _json(run(*common, "--coating", "pmma:250e-9"))[0]
+    assert list(row) == [*list(bare)[:7], "coating", "film_share", *list(bare)[7:]]
+    glass = Material.crystal("fused-silica")
+    stack = LayeredMaterial(glass, [(pmma(), 250e-9)])
+    want = flat_punch_stiffness(stack, row["contact_radius_m"], 15e6, "tangential")
+    assert row["tangential_stiffness_real_N_per_m"] == pytest.approx(want.real, rel=1e-12)
+    assert row["tangential_stiffness_imag_N_per_m"] == pytest.approx(want.imag, rel=1e-12)
+    assert row["tangential_loss_tangent"] == pytest.approx(want.imag / want.real, rel=1e-12)
+
+
+def test_contact_coating_tangential_beyond_its_range_is_one_line():
     r = run("contact", "--crystal", "fused-silica", "--radius", 1e-3, "--force", 1e-3,
-            "--coating", "pmma:250e-9", "--tangential", "--frequency", 15e6)  # fmt: skip
-    one_line_error(r, "--coating", "not available yet")
+            "--coating", "pmma:250e-9", "--tangential", "--frequency", 5e8)  # fmt: skip
+    one_line_error(r, "k_s a", "frequency")
 
 
 def test_contact_coating_help_states_format_and_units():

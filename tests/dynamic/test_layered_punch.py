@@ -205,7 +205,7 @@ def test_layered_dcsf_is_paper_1s_exact_dcsf_on_a_homogeneous_solid():
 
 def test_bad_input():
     with pytest.raises(ContactresInputError, match="direction"):
-        layered_punch_stiffness(QUARTZ, A, 1e6, direction="tangential")
+        layered_punch_stiffness(QUARTZ, A, 1e6, direction="sideways")
     with pytest.raises(ContactresInputError, match="densities"):
         layered_punch_stiffness(LayeredMaterial(Material.isotropic(1e9, 0.3), [(PMMA, A)]), A, 1e6)
     with pytest.raises(ContactresInputError):

@@ -122,7 +122,10 @@ def _table(face, coating=(), frequency=None, tangential=False, force=(0.0, 1e-3,
     return contact.run(face, s).table
 
 
-@pytest.mark.parametrize("frequency, tangential", [(None, True), (np.array([15e6]), False)])
+@pytest.mark.parametrize(
+    "frequency, tangential",
+    [(None, True), (np.array([15e6]), False), (np.array([15e6]), True)],
+)
 def test_coating_of_the_substrate_itself_gives_the_bare_numbers(frequency, tangential):
     """A film of the substrate's own material is no film: every column of the bare face, to
     1e-8 (the bare face's numbers come from the homogeneous Hertz and DCSF, another route)."""
@@ -201,10 +204,22 @@ def test_coating_bad_input(coating, words):
     assert "--coating" in str(err.value)
 
 
-def test_coating_with_tangential_at_a_frequency_is_not_available_yet():
+def test_coating_with_tangential_at_a_frequency_is_the_layered_punch():
+    """The tangential columns at a frequency on a coated face: the layered tangential punch of
+    the stack at the contact radius (its own tests), turned with --direction; no contact at
+    F = 0 (0 and no loss tangent)."""
+    from contactres import LayeredMaterial, flat_punch_stiffness, pmma
+
     glass = Material.crystal("fused-silica")
-    with pytest.raises(ContactresInputError, match="not available yet"):
-        _table(glass, ("pmma:250e-9",), np.array([15e6]), True)
+    t = _table(glass, ("pmma:250e-9",), np.array([15e6]), True)
+    a = t["contact_radius_m"].to_numpy()
+    stack = LayeredMaterial(glass, [(pmma(), 250e-9)])
+    want = flat_punch_stiffness(stack, a[1:], 15e6, "tangential")
+    np.testing.assert_allclose(t["tangential_stiffness_real_N_per_m"][1:], want.real, rtol=1e-12)
+    np.testing.assert_allclose(t["tangential_stiffness_imag_N_per_m"][1:], want.imag, rtol=1e-12)
+    np.testing.assert_allclose(t["tangential_loss_tangent"][1:], want.imag / want.real)
+    assert t["tangential_stiffness_real_N_per_m"][0] == 0
+    assert np.isnan(t["tangential_loss_tangent"][0])
 
 
 def test_coating_materials_are_pmma_and_the_isotropic_solids():

@@ -76,9 +76,10 @@ def contact(radius, force, frequency, tangential, direction, coating, fmt, **fac
     axis, its shear direction).
 
     --coating puts films on the face (top first): the contact is then solved on the layered
-    solid (axisymmetric), with film_share = 1 − K_sa/K_sa(bare) and the dynamic normal
-    stiffness of the layered punch; the tangential one is static only on a coating. For
-    instance 250 nm of PMMA on fused silica: --crystal fused-silica --coating pmma:250e-9.
+    solid (axisymmetric), with film_share = 1 − K_sa/K_sa(bare); at --frequency the dynamic
+    normal and (with --tangential) tangential stiffness are those of the layered flat punch of
+    radius a, the same columns as on a bare face. For instance 250 nm of PMMA on fused silica:
+    --crystal fused-silica --coating pmma:250e-9.
 
     Example: contactres contact --crystal quartz-AT --radius 5e-3 --force 1e-3 --tangential
     --frequency 15e6

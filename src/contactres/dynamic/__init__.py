@@ -11,8 +11,8 @@ stiffness tensor (:func:`tangential_stiffness_static`), the exact dynamic one
 (:func:`tangential_contact_stiffness`, :func:`tangential_dcsf`, table :func:`prepare_tangential`)
 and two bodies in series (:func:`two_body_contact_stiffness`, the QCM contact of paper 2).
 
-On a layered or viscoelastic substrate: the time-harmonic normal stiffness of the rigid flat
-punch (:func:`layered_punch_stiffness`) and its DCSF (:func:`layered_dcsf`).
+On a layered or viscoelastic substrate: the time-harmonic normal and tangential stiffness of
+the rigid flat punch (:func:`layered_punch_stiffness`) and its DCSF (:func:`layered_dcsf`).
 
 The public names are loaded on first use (PEP 562 module ``__getattr__``): the model names
 (``MODELS``, ``ALL_MODELS``, ``WAVENUMBERS``) come without scipy, for the command line's options.

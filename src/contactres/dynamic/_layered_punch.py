@@ -69,15 +69,13 @@ J. Tian, paper 1 (the Galerkin kernel table of the module ``contactres.dynamic._
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
 
 import numpy as np
 
 from ..errors import ContactresInputError
 from ..halfspace import shear_reference
-from ..layered import LayeredMaterial, material_at, stack_compliance
-from ..materials import Material, voigt_to_tensor
-from ..numerics import gauss_legendre
+from ..layered import LayeredMaterial
+from ..materials import Material
 from ..validation import nonnegative, positive
 from ._exact import (
     GalerkinSize,
@@ -87,8 +85,19 @@ from ._exact import (
     kernel_harmonics,
 )
 from ._farfield import far_basis
+from ._layered_path import (
+    PunchResolution,
+    bessel_on_nodes,
+    correction_nodes,
+    film_reference,
+    punch_resolution,
+    stack_at,
+    stack_of,
+)
+from ._layered_tangential import tangential_punch
 from ._normal_stiffness import normalised_wavenumber
-from ._table import KernelTable, max_slowness, prepare
+from ._table import KernelTable, prepare
+from ._tangential_table import prepare_tangential
 
 __all__ = [
     "PunchResolution",
@@ -98,248 +107,16 @@ __all__ = [
     "punch_resolution",
 ]
 
-# T = _POLE_FACTOR × ω × (largest bulk slowness): beyond every pole and branch point (the same
-# margin as the far-field start T₁ of the kernel table).
-_POLE_FACTOR = 1.75
 # Largest number of radial terms per harmonic the adaptive basis may reach.
 _MAX_RADIAL = 48
-# Largest η a of the correction's nodes: a film thinner than ~a/1e5 is out of reach (the nodes
-# resolve the oscillation of j_p j_q, ~3 per unit of s).
-_S_MAX = 1e6
-
-
-@dataclass(frozen=True)
-class PunchResolution:
-    """Discretisation of the ΔM integral; :meth:`doubled` refines every part.
-
-    Attributes
-    ----------
-    n_panel : Gauss-Legendre nodes per panel of the lifted arc (panels no wider than the lift)
-    n_cheb : Chebyshev samples of Δg per real-axis panel (in ln s)
-    ratio : ratio of the geometric real-axis panels
-    per_unit : Gauss-Legendre nodes per unit of s on the real axis (j_p j_q has period π)
-    n_start : nodes of the first real panel [0, s₀] (statics) or [S₁, s₀]
-    decay : the panels stop when ``|Δg|`` falls below decay × ``|g_film|`` (and η h > 5)
-    """
-
-    n_panel: int = 16
-    n_cheb: int = 12
-    ratio: float = 1.5
-    per_unit: float = 3.0
-    n_start: int = 16
-    decay: float = 1e-9
-
-    def doubled(self) -> PunchResolution:
-        """Twice the nodes everywhere, panels of the square-root ratio, decay 1e-2 lower."""
-        return replace(
-            self,
-            n_panel=2 * self.n_panel,
-            n_cheb=2 * self.n_cheb,
-            ratio=math.sqrt(self.ratio),
-            per_unit=2 * self.per_unit,
-            n_start=2 * self.n_start,
-            decay=self.decay * 1e-2,
-        )
-
-
-def punch_resolution(rtol: float) -> PunchResolution:
-    """The :class:`PunchResolution` for relative accuracy ``rtol`` (checked in the tests against
-    :meth:`PunchResolution.doubled`)."""
-    base = PunchResolution(decay=1e-3 * rtol)
-    if rtol <= 1e-8:
-        return replace(base, n_panel=24, n_cheb=16, per_unit=4.0)
-    return base
-
-
-def _reference(m: Material) -> tuple[Material, float]:
-    """(undamped material, Q⁻¹) of the reference half-space whose kernel table serves the film
-    ``m``: Re C with the loss of C44 (surface frame), C (1 + iQ⁻¹) exactly when ``m`` has one
-    loss tangent."""
-    C = np.asarray(m.C)
-    if not m.is_lossy:
-        return m, 0.0
-    q = float(C[3, 3].imag / C[3, 3].real)
-    if not 0 <= q < 1:
-        raise ContactresInputError(
-            f"the top film ({m.name or 'unnamed'}) has a shear loss tangent {q:.4g} outside "
-            "[0, 1) (a passive film with a moderate loss is needed)"
-        )
-    return Material(C=C.real, density=m.density, name=m.name), q
-
-
-def _axisymmetric(mats) -> bool:
-    """True if every material is unchanged by a rotation about the normal (transversely
-    isotropic about z): then g does not depend on θ."""
-    for m in mats:
-        c = np.asarray(m.C)
-        turned = m.rotated((0, 0, 1), (math.cos(0.7), math.sin(0.7), 0)).C
-        if not np.allclose(turned, c, rtol=0, atol=1e-12 * np.max(np.abs(c))):
-            return False
-    return True
-
-
-@dataclass(frozen=True, eq=False)
-class _Stack:
-    """One frequency's stack in the film's units: tensors / C44_f, ρ_j ω²/C44_f, thicknesses,
-    and the reference half-space of the film's kernel table (tensor / C44_f)."""
-
-    tensors: list
-    reference: np.ndarray
-    inertia: list  # ρ_j ω²/C44_f, 1/m² (s_j = inertia_j/η²)
-    thicknesses: np.ndarray
-    pole: float  # T, 1/m: beyond every pole and branch point on the real η axis
-    k_max: float  # largest shear wave number of any material, 1/m
-    axisymmetric: bool
-
-    def _h33(self, tensors, eta, theta, inertia=None):
-        e = eta[:, None] * np.ones_like(theta)[None, :]
-        th = np.broadcast_to(theta[None, :], e.shape)
-        s = [r / e**2 for r in (self.inertia if inertia is None else inertia)][: len(tensors)]
-        hs = [e * h for h in self.thicknesses][: len(tensors) - 1]
-        return stack_compliance(tensors, s, hs, th)[..., 2, 2]
-
-    def static_shift(self, theta: np.ndarray) -> np.ndarray:
-        """g∞_film − g∞_ref (θ): the static kernels of the film and of its reference."""
-        one, zero = np.ones(1), [0.0]
-        ref = self._h33([self.reference], one, theta, zero)
-        return (ref - self._h33(self.tensors[:1], one, theta, zero))[0]
-
-    def delta_g(self, eta: np.ndarray, theta: np.ndarray, shift: np.ndarray) -> np.ndarray:
-        """Δg = g_stack − g_ref − (g∞_film − g∞_ref) at wavenumbers ``eta`` (1/m, complex) ×
-        directions ``theta``, shape (len(eta), len(theta)); -> 0 as η -> ∞."""
-        ref = self._h33([self.reference], eta, theta)
-        return ref - self._h33(self.tensors, eta, theta) - shift[None, :]
-
-
-def _stack_at(mats, thicknesses, film: Material, q: float, frequency: float) -> _Stack:
-    """The :class:`_Stack` of the materials ``mats`` (top first) at ``frequency``, in the units
-    of the film's reference ``film`` (undamped) with loss ``q``."""
-    c44 = shear_reference(film)
-    omega = 2 * math.pi * frequency
-    if omega > 0:
-        missing = [j for j, m in enumerate(mats) if m.density is None]
-        if missing:
-            j = missing[0]
-            which = "the substrate" if j == len(mats) - 1 else f"layer {j + 1}"
-            raise ContactresInputError(
-                f"the dynamic punch stiffness (frequency > 0) needs densities: {which} "
-                f"({mats[j].name or 'unnamed'}) has none"
-            )
-    # The shear wave number of every material, per metre (the one wave-number function).
-    ks = [
-        float(normalised_wavenumber(frequency, 1.0, m.density or 0.0, shear_reference(m)))
-        for m in mats
-    ]
-    slow = [k * max_slowness(m) for k, m in zip(ks, mats, strict=True)]
-    return _Stack(
-        tensors=[voigt_to_tensor(np.asarray(m.C, dtype=complex)) / c44 for m in mats],
-        reference=voigt_to_tensor(np.asarray(film.C, dtype=complex)) * (1 + 1j * q) / c44,
-        inertia=[(m.density or 0.0) * omega**2 / c44 for m in mats],
-        thicknesses=np.asarray(thicknesses, dtype=float),
-        pole=_POLE_FACTOR * max(slow),
-        k_max=max(ks),
-        axisymmetric=_axisymmetric(mats),
-    )
-
-
-def _cheb_interp(x_nodes, values, x):
-    """Barycentric interpolation from the Chebyshev points of the first kind ``x_nodes`` (on
-    [−1, 1], n of them) to ``x``; ``values`` (n, ...) -> (len(x), ...)."""
-    n = x_nodes.size
-    j = np.arange(n)
-    w = (-1.0) ** j * np.sin((2 * j + 1) * np.pi / (2 * n))
-    d = x[:, None] - x_nodes[None, :]
-    exact = d == 0
-    d[exact] = 1.0
-    c = w[None, :] / d
-    out = (c @ values.reshape(n, -1)) / np.sum(c, axis=1)[:, None]
-    hit = np.any(exact, axis=1)
-    if np.any(hit):
-        out[hit] = values.reshape(n, -1)[np.argmax(exact[hit], axis=1)]
-    return out.reshape((x.size, *values.shape[1:]))
-
-
-def _correction_nodes(stack: _Stack, a: float, theta: np.ndarray, res: PunchResolution, gref):
-    """Nodes s (complex), weights ds and Δg(s/a, θ) (len(s), len(theta)) of the ΔM integral,
-    the end S of the nodes with Δg(S/a, θ) there (for the tail beyond S), and the static
-    shift g∞_film − g∞_ref (θ)."""
-    shift = stack.static_shift(theta)
-    nodes, weights = [], []
-    s1 = stack.pole * a
-    h_tot = float(np.sum(stack.thicknesses))
-    s0 = 0.1 * min(1.0, a / h_tot) if h_tot > 0 else 0.1
-    if s1 > 0:
-        lift = min(0.3 * s1, 1.0)
-        n_pan = max(4, math.ceil(s1 / lift))
-        edges = np.linspace(0.0, s1, n_pan + 1, dtype=np.float64)
-        t, wt = gauss_legendre(edges[:-1, None], edges[1:, None], res.n_panel)
-        t, wt = t.ravel(), wt.ravel()
-        arg = np.pi * t / s1
-        nodes.append(t + 1j * lift * np.sin(arg))
-        weights.append(wt * (1 + 1j * lift * np.pi / s1 * np.cos(arg)))
-    start = max(s1, s0)
-    if start > s1:
-        t, wt = gauss_legendre(s1, start, res.n_start)
-        nodes.append(t.astype(complex))
-        weights.append(wt.astype(complex))
-    # The real-axis panel edges e_k = start × ratio^k up to _S_MAX, probed in one call: the last
-    # panel ends past every edge where what lies beyond (~|Δg(e)|/e, as j_p j_q <= 1/s²) is
-    # still above 1e-3 rtol of |g|; Δg of layers decays like e^{−2ηh} (η h > 5 first), that of
-    # a film with unequal losses like 1/s² (s > 20 first, for the tail formula).
-    n_edges = math.ceil(math.log(_S_MAX / start) / math.log(res.ratio))
-    edges = start * res.ratio ** np.arange(n_edges + 1, dtype=np.float64)
-    probe = stack.delta_g(edges.astype(complex) / a, theta, shift)
-    big = np.max(np.abs(probe), axis=1) / edges >= res.decay * gref
-    big |= (edges <= 20) | ((h_tot > 0) & (edges * h_tot / a <= 5))
-    last = int(np.flatnonzero(big)[-1]) + 1 if np.any(big) else 1
-    if last > n_edges:
-        raise ContactresInputError(
-            f"the layered correction did not decay by η a = {_S_MAX:.3g}: a film {h_tot:.3g} m "
-            f"thin under a punch of radius {a:.3g} m (h/a = {h_tot / a:.2g}) is out of reach"
-        )
-    # Δg at Chebyshev points in ln s per panel, interpolated onto nodes that resolve j_p j_q.
-    xc = np.cos(np.pi * (np.arange(res.n_cheb) + 0.5) / res.n_cheb)
-    u = np.log(edges[: last + 1])
-    uc = 0.5 * (u[:-1, None] + u[1:, None]) + 0.5 * (u[1:, None] - u[:-1, None]) * xc[None, :]
-    n_head = sum(x.size for x in nodes)
-    sample = np.concatenate([*nodes, np.exp(uc).ravel().astype(complex)])
-    values = stack.delta_g(sample / a, theta, shift)
-    s_all, w_all, g_all = [*nodes], [*weights], [values[:n_head]]
-    cheb = values[n_head:].reshape(last, res.n_cheb, -1)
-    for j in range(last):
-        lo, hi = edges[j], edges[j + 1]
-        # Sub-panels of n_panel nodes each, per_unit nodes per unit of s on average.
-        n_sub = max(1, math.ceil(res.per_unit * (hi - lo) / res.n_panel))
-        sub = np.linspace(lo, hi, n_sub + 1)
-        t, wt = gauss_legendre(sub[:-1, None], sub[1:, None], res.n_panel)
-        t, wt = t.ravel(), wt.ravel()
-        x = (2 * np.log(t) - u[j] - u[j + 1]) / (u[j + 1] - u[j])
-        s_all.append(t.astype(complex))
-        w_all.append(wt.astype(complex))
-        g_all.append(_cheb_interp(xc, cheb[j], x))
-    return (
-        np.concatenate(s_all),
-        np.concatenate(w_all),
-        np.concatenate(g_all),
-        float(edges[last]),
-        probe[last],
-        shift,
-    )
 
 
 def _correction_integrals(s, w, dg_harm, plan, s_end, end_harm) -> np.ndarray:
     """∫ Δg_m j_p j_q ds, (n_m, n_t), from the nodes and the harmonics Δg_m (n_m, len(s)),
     with the tail beyond ``s_end``: Δg ~ Δg(S) S²/s² (its 1/s² decay) and j_p j_q ->
     (−1)^{(p−q)/2}/(2s²) on average, so the tail is Δg_m(S) (−1)^{(p−q)/2}/(6S)."""
-    from ._weights import spherical_bessel
-
     orders, (ti, tj) = plan.orders, plan.pairs
-    jp = np.empty((orders.size, s.size), dtype=complex)
-    # Real nodes apart: their Bessel functions come from the cheap upward recurrence (the
-    # continued fraction of complex arguments would start above 1.3 max|s| for every node).
-    real = s.imag == 0
-    jp[:, real] = spherical_bessel(int(orders[-1]), s[real].real)[orders]
-    jp[:, ~real] = spherical_bessel(int(orders[-1]), s[~real])[orders]
+    jp = bessel_on_nodes(int(orders[-1]), s)[orders]
     sign = np.where(((orders[ti] - orders[tj]) // 2) % 2 == 0, 1.0, -1.0)
     out = end_harm[:, None] * sign[None, :] / (6 * s_end)
     # Per harmonic, all order pairs at once: J diag(w Δg_m) Jᵀ (one matrix product).
@@ -385,19 +162,6 @@ def _solve_c0(M: np.ndarray, n_radial: int, plan) -> np.ndarray:
     return np.linalg.solve(sub, np.broadcast_to(e0, sub.shape[:-1])[..., None])[..., 0, 0]
 
 
-def _stack_of(material, frequency: float):
-    if isinstance(material, LayeredMaterial):
-        stack = material.at(frequency)
-    elif isinstance(material, Material) or callable(getattr(material, "at", None)):
-        stack = LayeredMaterial(material_at(material, frequency))
-    else:
-        raise ContactresInputError(
-            "material must be a contactres.Material or LayeredMaterial, got "
-            f"{type(material).__name__}"
-        )
-    return [material_at(m, frequency) for m in stack.materials], stack.thicknesses
-
-
 def layered_punch_stiffness(
     material,
     radius,
@@ -407,10 +171,13 @@ def layered_punch_stiffness(
     *,
     resolution: PunchResolution | None = None,
 ):
-    """Normal stiffness K(ω) = F/δ of a rigid flat punch on a layered substrate, N/m (complex).
+    """Normal or tangential stiffness K(ω) = F/δ of a rigid flat punch on a layered substrate,
+    N/m (complex).
 
-    The rigid, frictionless disk of radius a, displaced uniformly (normal, δ e^{iωt}), on a
-    homogeneous, layered and/or viscoelastic substrate (module docstring for the method). On a
+    The rigid disk of radius a, displaced uniformly (δ e^{iωt}: normal, frictionless; or along
+    the surface x axis, bonded and relaxed), on a homogeneous, layered and/or viscoelastic
+    substrate (module docstring for the method; for the tangential punch the module
+    ``contactres.dynamic._layered_tangential``). On a
     layered or viscoelastic substrate K/K_static depends on the frequency and the radius
     separately, not on k a alone.
 
@@ -425,7 +192,8 @@ def layered_punch_stiffness(
     frequency : float or array
         f >= 0, Hz (ω = 2πf); broadcasts against ``radius``. 0: the static stiffness.
     direction : str
-        "normal" (the only one so far).
+        "normal" (frictionless) or "tangential" (bonded and relaxed, along the surface x axis:
+        K_xx; module ``contactres.dynamic._layered_tangential``, k_s a <= 5 in every material).
     rtol : float
         Target relative accuracy, in [1e-10, 1e-3] (default 1e-6).
     resolution : PunchResolution, optional
@@ -446,11 +214,9 @@ def layered_punch_stiffness(
     >>> bool(abs(k / (2e-6 * 70e9 / (1 - 0.25**2)) - 1) < 1e-9)
     True
     """
-    if direction != "normal":
-        raise ContactresInputError(
-            f"direction must be 'normal' (the tangential layered punch is not available yet), "
-            f"got {direction!r}"
-        )
+    if direction not in ("normal", "tangential"):
+        raise ContactresInputError(f"direction must be 'normal' or 'tangential', got {direction!r}")
+    inplane = direction == "tangential"
     r = float(rtol)
     if not (math.isfinite(r) and 1e-10 <= r <= 1e-3):
         raise ContactresInputError(f"rtol must lie in [1e-10, 1e-3], got {rtol!r}")
@@ -465,23 +231,27 @@ def layered_punch_stiffness(
     groups: dict = {}
     for freq in np.unique(flat_f):
         sel = np.flatnonzero(flat_f == freq)
-        mats, hs = _stack_of(material, float(freq))
-        film, q = _reference(mats[0])
+        mats, hs = stack_of(material, float(freq))
+        film, q = film_reference(mats[0])
         key = (np.asarray(film.C).tobytes(), q)
         if key not in groups:
             groups[key] = ((film, q), [])
-        stack = _stack_at(mats, hs, film, q, float(freq))
+        stack = stack_at(mats, hs, film, q, float(freq), inplane)
         groups[key][1].extend((i, stack, float(freq)) for i in sel)
     for (film, q), items in groups.values():
         index = np.array([i for i, _, _ in items])
-        flat_out[index] = _punch(prepare(film, q, r), film, items, flat_a[index], r, res)
+        if inplane:
+            table = prepare_tangential(film, q, r)
+            flat_out[index] = tangential_punch(table, film, items, flat_a[index], r, res)
+        else:
+            flat_out[index] = _punch(prepare(film, q, r), film, items, flat_a[index], r, res)
     return complex(out) if out.ndim == 0 else out
 
 
 def _storage(material):
     """The stack (or material) at f = 0 with the real parts of every material's constants:
     the undamped static solid that normalises the DCSF."""
-    mats, hs = _stack_of(material, 0.0)
+    mats, hs = stack_of(material, 0.0)
     real = [Material(C=np.asarray(m.C).real, density=m.density, name=m.name) for m in mats]
     return LayeredMaterial(real[-1], list(zip(real[:-1], hs, strict=True)))
 
@@ -503,11 +273,9 @@ def flat_punch_stiffness(
 
     At frequency 0 this is :func:`contactres.normal.static_punch_stiffness` (the axisymmetric
     Galerkin of the static layered solid, < 1e-9); above 0, for ``"normal"``,
-    :func:`layered_punch_stiffness` (the film's exact dynamic Galerkin plus the stack's
-    correction on a lifted contour; on a layered or viscoelastic substrate K/K_static depends
-    on the frequency and the radius separately, not on k a alone). The tangential punch at a
-    frequency is not available for a layered substrate yet (for a homogeneous solid:
-    :func:`contactres.tangential_contact_stiffness`).
+    :func:`layered_punch_stiffness`, normal or tangential (the film's exact dynamic Galerkin
+    plus the stack's correction on a lifted contour; on a layered or viscoelastic substrate
+    K/K_static depends on the frequency and the radius separately, not on k a alone).
 
     Parameters
     ----------
@@ -546,11 +314,6 @@ def flat_punch_stiffness(
         shape = np.broadcast_shapes(a.shape, f.shape)
         k = static_punch_stiffness(material, np.broadcast_to(a, shape), direction)
         return complex(k) if np.ndim(k) == 0 else k
-    if direction == "tangential":
-        raise ContactresInputError(
-            "the tangential punch at a frequency > 0 on a layered substrate is not available yet "
-            "(frequency 0 is); for a homogeneous solid use tangential_contact_stiffness"
-        )
     return layered_punch_stiffness(material, radius, frequency, direction, rtol)
 
 
@@ -561,9 +324,11 @@ def layered_dcsf(
     rtol: float = 1e-6,
     *,
     resolution: PunchResolution | None = None,
+    direction: str = "normal",
 ):
     """Paper 1's dynamic-contact-stiffness factor (exact model) on a layered or viscoelastic
-    substrate: K(f)/K_st of the rigid flat punch, complex.
+    substrate: K(f)/K_st of the rigid flat punch, complex (``direction="tangential"``: the
+    tangential factor K_t(f)/K_t,st of the bonded, relaxed punch along x).
 
     K(f) is :func:`layered_punch_stiffness`; K_st the static (f = 0) stiffness of the same
     punch on the undamped stack: every material at f = 0 (its relaxed limit) with the real part
@@ -575,23 +340,23 @@ def layered_dcsf(
 
     Parameters
     ----------
-    material, radius, frequency, rtol, resolution
-        As in :func:`layered_punch_stiffness` (normal direction); the materials need a static
-        limit (a springpot, a power law without one, is refused at f = 0).
+    material, radius, frequency, rtol, resolution, direction
+        As in :func:`layered_punch_stiffness`; the materials need a static limit (a
+        springpot, a power law without one, is refused at f = 0).
 
     Returns
     -------
     complex or ndarray of complex
         K/K_st, shaped like broadcast(radius, frequency).
     """
-    k = layered_punch_stiffness(material, radius, frequency, rtol=rtol, resolution=resolution)
-    k_st = layered_punch_stiffness(_storage(material), radius, 0.0, rtol=rtol)
+    k = layered_punch_stiffness(material, radius, frequency, direction, rtol, resolution=resolution)
+    k_st = layered_punch_stiffness(_storage(material), radius, 0.0, direction, rtol)
     out = np.asarray(k) / np.asarray(k_st).real
     return complex(out) if out.ndim == 0 else out
 
 
 def _punch(table, film, items, radii, rtol, res) -> np.ndarray:
-    """K (N/m) at the points ``items`` [(index, _Stack, frequency), ...] of one film table
+    """K (N/m) at the points ``items`` [(index, Stack, frequency), ...] of one film table
     (``film``: its undamped reference material) with radii ``radii``."""
     c44 = shear_reference(film)
     stacks = [st for _, st, _ in items]
@@ -603,18 +368,10 @@ def _punch(table, film, items, radii, rtol, res) -> np.ndarray:
     axisymmetric = all(st.axisymmetric for st in stacks)
     theta = np.zeros(1) if axisymmetric else np.asarray(table.theta)
     gref = float(np.max(np.abs(table.ginf)))
-    # A correction is needed under layers, or for a film that is not its reference.
-    needs = [
-        len(st.tensors) > 1
-        or not np.allclose(
-            st.tensors[0], st.reference, rtol=0, atol=1e-14 * np.max(np.abs(st.reference))
-        )
-        for st in stacks
-    ]
     nodes = {
-        i: _correction_nodes(st, float(radii[i]), theta, res, gref)
+        i: correction_nodes(st, float(radii[i]), theta, res, gref)
         for i, st in enumerate(stacks)
-        if needs[i]
+        if st.needs_correction
     }
     while True:
         grow = n_radial + 4 if nodes else n_radial

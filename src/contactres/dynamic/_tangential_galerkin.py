@@ -64,8 +64,14 @@ from ._weights import spherical_bessel
 __all__ = [
     "KSA_MAX",
     "KSA_SMALL",
+    "Frame",
     "TangentialSize",
     "TangentialTable",
+    "basis_of",
+    "eigen_frame",
+    "film_dynamic",
+    "frame_solve",
+    "phase_of",
     "prepare_tangential",
     "tangential_per_a",
     "tangential_size",
@@ -138,7 +144,21 @@ class _Basis:
     series: np.ndarray  # (n_rad, p_max + 1): H_r = Σ_p series[r, p] j_p
     p_max: int
     load: np.ndarray  # (nb, 2)
-    static: np.ndarray  # (nb, nb) the static matrix of h∞ (lossy), in the normalisation of M
+    form: np.ndarray  # (nb, nb) R of every pair (the static matrix of a unit kernel harmonic)
+    max_order: int  # the kernel harmonics are held for m = −max_order..max_order
+    ginf0: np.ndarray  # (2 max_order + 1, 2, 2) the undamped static harmonics
+
+    def static_of(self, harmonics: np.ndarray) -> np.ndarray:
+        """The static matrix (phases not included) of a kernel whose harmonics ``harmonics``
+        ((2 max_order + 1, 2, 2), as the table's ginf) are independent of κ: Ĝ_{αβ, n_b − n_a}
+        R(p_a, λ_a; p_b, λ_b) in closed form."""
+        m = self.max_order + self.n[None, :] - self.n[:, None]
+        return harmonics[m, self.alpha[:, None], self.alpha[None, :]] * self.form
+
+    @property
+    def static(self) -> np.ndarray:
+        """The static matrix of the undamped kernel, in the normalisation of M."""
+        return self.static_of(self.ginf0)
 
 
 def _series_integrals(pa: np.ndarray, pb: np.ndarray, n_log: int) -> np.ndarray:
@@ -168,7 +188,9 @@ def _series_integrals(pa: np.ndarray, pb: np.ndarray, n_log: int) -> np.ndarray:
     return (coef * scale.reshape((-1,) + (1,) * (coef.ndim - 1))).real
 
 
-def _basis(table: TangentialTable, size: TangentialSize, ginf: np.ndarray) -> _Basis:
+def basis_of(table: TangentialTable, size: TangentialSize) -> _Basis:
+    """The Galerkin basis ``size`` on the harmonics of ``table`` (index bookkeeping, transforms
+    as series of j_p, loads and the radial integrals of the static matrix)."""
     nh, nr, ne, nlog, nq = (
         size.n_harmonics,
         size.n_radial,
@@ -203,25 +225,34 @@ def _basis(table: TangentialTable, size: TangentialSize, ginf: np.ndarray) -> _B
                 harmonics.append(nn)
                 radials.append(abs(nn) * per_n + j)
     alpha, n, radial = np.array(alphas), np.array(harmonics), np.array(radials)
-    mid = table.max_order
-    G = ginf[mid + n[None, :] - n[:, None], alpha[:, None], alpha[None, :]]
-    static = (
-        G
-        * R[
-            rad_d[radial][:, None],
-            rad_d[radial][None, :],
-            rad_p[radial][:, None],
-            rad_p[radial][None, :],
-        ]
-    )
+    form = R[
+        rad_d[radial][:, None],
+        rad_d[radial][None, :],
+        rad_p[radial][:, None],
+        rad_p[radial][None, :],
+    ]
     loads = load_derivatives(nlog)
     load = np.zeros((n.size, 2))
     carry = (n == 0) & (rad_k[radial] == 0)
     load[carry, alpha[carry]] = loads[rad_d[radial][carry]]
-    return _Basis(alpha, n, radial, rad_n, rad_p, rad_d, series, p_max, load, static)
+    return _Basis(
+        alpha,
+        n,
+        radial,
+        rad_n,
+        rad_p,
+        rad_d,
+        series,
+        p_max,
+        load,
+        form,
+        table.max_order,
+        table.ginf0,
+    )
 
 
-def _phase(n: np.ndarray) -> np.ndarray:
+def phase_of(n: np.ndarray) -> np.ndarray:
+    """i^{(|n_a| − |n_b|) mod 4} of every pair of harmonics ``n``: the phases of the matrix."""
     return 1j ** ((np.abs(n)[:, None] - np.abs(n)[None, :]) % 4)
 
 
@@ -283,6 +314,47 @@ def _dynamic_part(table: TangentialTable, basis: _Basis, ka: np.ndarray, grid) -
     return full.reshape(na, nb, nb)
 
 
+@dataclass(frozen=True, eq=False)
+class Frame:
+    """Coordinates in which the dynamic matrix is well conditioned: T with Tᴴ M0 T = I (M0 the
+    undamped static matrix, phases included, Hermitian; its nearly dependent directions, which
+    carry no energy, dropped below 1e-14 of the largest eigenvalue) and the loads Tᴴ B."""
+
+    T: np.ndarray  # (nb, n_keep)
+    load: np.ndarray  # (n_keep, 2)
+
+    @property
+    def static(self) -> np.ndarray:
+        """Bᵀ M0⁻¹ B (2x2, real): the undamped static K/(4π² a C44)."""
+        return (self.load.conj().T @ self.load).real
+
+
+def eigen_frame(m0: np.ndarray, load: np.ndarray) -> Frame:
+    """The :class:`Frame` of the static matrix ``m0`` (nb, nb, phases included) and the loads
+    ``load`` (nb, 2)."""
+    m0 = 0.5 * (m0 + m0.conj().T)
+    d = 1.0 / np.sqrt(np.real(np.diagonal(m0)))
+    w, V = np.linalg.eigh(d[:, None] * m0 * d[None, :])
+    keep = w > _EIG_CUTOFF * w[-1]
+    T = d[:, None] * V[:, keep] / np.sqrt(w[keep])[None, :]
+    return Frame(T, T.conj().T @ load)
+
+
+def frame_solve(frame: Frame, loss: float, dynamic: np.ndarray) -> np.ndarray:
+    """Bᵀ M⁻¹ B (n, 2, 2) of M = M0/(1 + iQ⁻¹) + ``dynamic`` ((n, nb, nb), phases included):
+    the lossy static matrix plus the dynamic remainder, solved in the frame's coordinates."""
+    Th = frame.T.conj().T
+    A = np.eye(frame.T.shape[1]) / (1 + 1j * loss) + Th @ dynamic @ frame.T
+    sol = np.linalg.solve(A, np.broadcast_to(frame.load, (A.shape[0], *frame.load.shape)))
+    return frame.load.conj().T @ sol
+
+
+def film_dynamic(table: TangentialTable, basis: _Basis, ka: np.ndarray, grid) -> np.ndarray:
+    """The dynamic remainder of the table's half-space, phases included, (len(ka), nb, nb) at
+    k_s a values ``ka`` (> 0); ``grid``: :func:`~.farfield.far_grid` of the whole call."""
+    return phase_of(basis.n)[None] * _dynamic_part(table, basis, ka, grid)
+
+
 def tangential_per_a(
     table: TangentialTable, ksa: np.ndarray, size: TangentialSize | None = None
 ) -> np.ndarray:
@@ -311,19 +383,10 @@ def tangential_per_a(
         raise RuntimeError("the basis needs more kernel harmonics than the table holds")
     out = np.empty((ksa.size, 2, 2), dtype=complex)
     # Static eigenbasis (undamped, Hermitian): well-conditioned coordinates for every k a.
-    b0 = _basis(table, size, table.ginf0)
-    phase = _phase(b0.n)
-    M0 = phase * b0.static
-    M0 = 0.5 * (M0 + M0.conj().T)
-    d = 1.0 / np.sqrt(np.real(np.diagonal(M0)))
-    w, V = np.linalg.eigh(d[:, None] * M0 * d[None, :])
-    keep = w > _EIG_CUTOFF * w[-1]
-    T = d[:, None] * V[:, keep] / np.sqrt(w[keep])[None, :]  # T^H M0 T = I
-    Th = T.conj().T
-    TB = Th @ b0.load  # (n_keep, 2): Tᴴ B
-    BT = TB.conj().T  # Bᵀ T (B is real)
+    b0 = basis_of(table, size)
+    frame = eigen_frame(phase_of(b0.n) * b0.static, b0.load)
     f = 1 + 1j * table.loss
-    k_static = 4 * np.pi**2 * table.c44 * (BT @ TB).real  # undamped, symmetric
+    k_static = 4 * np.pi**2 * table.c44 * frame.static  # undamped, symmetric
     zero = ksa == 0
     out[zero] = k_static * f
     pos = ~zero
@@ -338,12 +401,9 @@ def tangential_per_a(
         res = np.empty((ka.size, 2, 2), dtype=complex)
         # Chunks of k a values: memory stays bounded (~30 MB) whatever the call's size.
         for lo in range(0, ka.size, _CHUNK):
-            part = ka[lo : lo + _CHUNK]
-            dyn = phase[None] * _dynamic_part(table, b0, part, grid)
-            A = np.eye(T.shape[1]) / f + Th @ dyn @ T
-            sol = np.linalg.solve(A, np.broadcast_to(TB, (A.shape[0], *TB.shape)))
-            res[lo : lo + _CHUNK] = 4 * np.pi**2 * table.c44 * (BT @ sol)
-        out[pos] = res
+            dyn = film_dynamic(table, b0, ka[lo : lo + _CHUNK], grid)
+            res[lo : lo + _CHUNK] = frame_solve(frame, table.loss, dyn)
+        out[pos] = 4 * np.pi**2 * table.c44 * res
         if np.any(small):
             scale = (ksa[small] / KSA_SMALL)[:, None, None]
             out[small] = k_static * f + (out[small] - k_static * f) * scale

@@ -32,7 +32,13 @@ from ._table import (
     wavenumber_nodes,
 )
 
-__all__ = ["HARMONIC_STEPS", "TangentialTable", "max_harmonics", "prepare_tangential"]
+__all__ = [
+    "HARMONIC_STEPS",
+    "TangentialTable",
+    "angular_harmonics",
+    "max_harmonics",
+    "prepare_tangential",
+]
 
 # θ grid on [0, 2π): first size, largest size, and the convergence test of the harmonics.
 _N_THETA_START = 64
@@ -142,7 +148,7 @@ def _inplane(c: np.ndarray, kappa: np.ndarray, theta: np.ndarray) -> np.ndarray:
     return -H[..., :2, :2]
 
 
-def _harmonics(values: np.ndarray, max_order: int) -> np.ndarray:
+def angular_harmonics(values: np.ndarray, max_order: int) -> np.ndarray:
     """∫₀^{2π} v(θ) e^{imθ} dθ, m = −M..M, of rows sampled at θ_j = 2πj/n (axis 1)."""
     n = values.shape[1]
     orders = np.arange(-max_order, max_order + 1)
@@ -181,7 +187,7 @@ def prepare_tangential(
     prev = None
     while True:
         theta = 2 * np.pi * np.arange(n) / n
-        harm = _harmonics(_inplane(c, nodes, theta), max_order)
+        harm = angular_harmonics(_inplane(c, nodes, theta), max_order)
         if prev is not None:
             scale = np.max(np.abs(harm[-1]))
             if np.max(np.abs(harm - prev)) <= _THETA_TOL * scale or n >= _N_THETA_MAX:

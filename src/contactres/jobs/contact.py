@@ -10,8 +10,8 @@ the tangential motion, and a coating of built-in films put on the face (``coatin
 the dynamic normal stiffness is :func:`contactres.dynamic_contact_stiffness` (exact model,
 lossless solid) and the tangential one :func:`contactres.tangential_contact_stiffness` (relaxed
 contact, rigid disk of radius a); on a coated face both are :func:`contactres.flat_punch_stiffness`
-of the stack at the contact radius (the tangential one static only: the layered tangential punch
-at a frequency is not available yet).
+of the stack at the contact radius (normal: frictionless; tangential: bonded and relaxed, the
+stack turned so that its x axis is the direction of the motion), static or at the frequency.
 
 On a bare face the contact is the ellipse of the anisotropic Hertz contact (Willis 1966; a
 circle on a face with 3- or 4-fold symmetry): the table gives its semi-axes, ellipticity b/a and
@@ -368,11 +368,6 @@ def _run_coated(stack: LayeredMaterial, R, F, f, s: Settings, progress) -> Resul
     from ..normal import sphere_contact
 
     dynamic = s.frequency is not None
-    if dynamic and s.tangential and np.any(f > 0):
-        raise ContactresInputError(
-            "the tangential stiffness at a frequency (--tangential with --frequency) on a "
-            "coating (--coating) is not available yet; without --frequency it is"
-        )
     static = LayeredMaterial(
         _static(stack.substrate), tuple((_static(m), h) for m, h in stack.layers)
     )
@@ -398,13 +393,13 @@ def _run_coated(stack: LayeredMaterial, R, F, f, s: Settings, progress) -> Resul
         }
     )
     touching = a > 0
-    kt = np.zeros(a.shape)
-    if s.tangential:
-        turn = math.radians(s.direction)
-        # The layered punch moves along the surface x axis: turn the stack so x is the direction.
-        solid = static.rotated((0, 0, 1), (math.cos(turn), math.sin(turn), 0))
-        if touching.any():
-            kt[touching] = np.real(flat_punch_stiffness(solid, a[touching], 0.0, "tangential"))
+    kt = np.zeros(a.shape, dtype=complex)
+    # The layered punch moves along the surface x axis: turn the stack so x is the direction.
+    turn = math.radians(s.direction)
+    inplane = (math.cos(turn), math.sin(turn), 0)
+    if s.tangential and touching.any():
+        solid = static.rotated((0, 0, 1), inplane)
+        kt[touching] = flat_punch_stiffness(solid, a[touching], 0.0, "tangential")
     if dynamic:
         from ..dynamic import normalised_wavenumber, wave_modulus
 
@@ -414,16 +409,24 @@ def _run_coated(stack: LayeredMaterial, R, F, f, s: Settings, progress) -> Resul
         table["ks_a"] = normalised_wavenumber(f, a, sub.density, wave_modulus(sub, "shear"))
         kn = k.astype(complex)  # f = 0: the static stiffness; a = 0: no contact, 0
         moving = touching & (f > 0)
+        # The tangential punch first: its range (k_s a <= 5) is checked before the longer
+        # normal one. f = 0: the static K_t; a = 0: no contact, 0.
+        if s.tangential and moving.any():
+            turned = stack.rotated((0, 0, 1), inplane)
+            kt[moving] = flat_punch_stiffness(turned, a[moving], f[moving], "tangential")
         if moving.any():
             kn[moving] = flat_punch_stiffness(stack, a[moving], f[moving])
         table["dynamic_stiffness_real_N_per_m"] = kn.real
         table["dynamic_stiffness_imag_N_per_m"] = kn.imag
-        if s.tangential:  # every f is 0 here (checked above): the static K_t, no loss
-            table["tangential_stiffness_real_N_per_m"] = kt
-            table["tangential_stiffness_imag_N_per_m"] = 0.0
-            table["tangential_loss_tangent"] = np.where(touching, 0.0, np.nan)
+        if s.tangential:
+            table["tangential_stiffness_real_N_per_m"] = kt.real
+            table["tangential_stiffness_imag_N_per_m"] = kt.imag
+            # No contact (F = 0): no loss tangent (NaN, printed empty), as on a bare face.
+            loss = np.full(kt.shape, np.nan)
+            np.divide(kt.imag, kt.real, out=loss, where=kt.real > 0)
+            table["tangential_loss_tangent"] = loss
     elif s.tangential:
-        table["tangential_stiffness_N_per_m"] = kt
+        table["tangential_stiffness_N_per_m"] = kt.real
     viscous = [
         getattr(m, "name", None) or "film" for m in stack.materials if not isinstance(m, Material)
     ]

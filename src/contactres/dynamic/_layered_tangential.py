@@ -1,0 +1,231 @@
+"""Time-harmonic tangential stiffness of a rigid flat punch on a layered or viscoelastic substrate.
+
+The rigid disk of radius a, bonded to the surface and relaxed (no normal traction under it, the
+normal displacement free), translated along the surface x axis by U e^{iωt}, on bonded layers
+over a half-space (:class:`contactres.layered.LayeredMaterial`), every material evaluated at the
+frequency. The tangential Galerkin of the module ``contactres.dynamic._tangential_galerkin``
+(traction harmonics e^{inφ}, ``|n|`` <= N_h, of each in-plane component, Jacobi radial functions
+whose transforms H_a(s) are series of j_p(s), s = η a) applies unchanged to any in-plane surface
+kernel. With the top film's shear reference C44_f (real part) and the dimensionless in-plane
+kernel of the stack
+
+    h_αβ(η, θ) = −H_αβ(η, θ)     (α, β = x, y; H: :func:`contactres.layered.stack_compliance`
+                                  in C44_f units; = −C44_f η Ĝ_αβ, Ĝ of ``surface_green``),
+
+the Galerkin matrix is split as for the normal punch (``contactres.dynamic._layered_punch``;
+the path, nodes and tail of the module ``contactres.dynamic._layered_path`` are shared):
+
+    M = M_film + ΔM,   ΔM_ab = i^{|n_a|−|n_b|} ∫₀^∞ ds Δh_{α_a β_b, n_b − n_a}(s/a) H_a(s) H_b(s),
+    Δh_{αβ, m}(η) = ∫₀^{2π} (h_stack − h_film)_αβ(η, θ) e^{imθ} dθ,
+
+M_film the matrix of the film as a homogeneous half-space at its k_s a (the tangential kernel
+table, contour and far field). Δh decays like e^{−2ηh} (h the total thickness), so the integral
+has a finite end; it runs on the lifted arc above the guided-mode poles and branch points (the
+limit loss -> 0⁺) and on the real axis beyond (Chebyshev samples of Δh per geometric panel),
+exactly as the normal correction. A film whose channels have unequal loss tangents gets the
+table of a reference (Re C with the shear loss); the difference film − reference joins Δh, its
+static part in closed form (the static Galerkin form R(p_a, λ_a; p_b, λ_b) of the harmonics of
+h∞_film − h∞_ref) and the rest with its 1/s² tail Δh(S) ⟨H_a H_b⟩ s²/(6S) beyond the last node S.
+
+Angular harmonics. On a stack of materials unchanged by rotations about the normal (isotropic,
+transversely isotropic about z) h(θ) = R(θ) h(0) R(θ)ᵀ holds only the harmonics m = 0, ±2, taken
+from h(0) (one direction per node); otherwise Δh is sampled on 128 directions in [0, 2π) and
+transformed by FFT (harmonics up to 2 N_h).
+
+Basis. On an axisymmetric stack the kernel couples t_± = t_x ± i t_y of harmonic n only to
+harmonics n and n ± 2 of the other, so the sectors of one total angular number decouple; the
+x-translation lives in two of them (t_+ of harmonics 0 and −2, t_− of 0 and 2), and the traction
+harmonics are kept to ``|n|`` <= 2 (the others decouple exactly; the solution is
+t = A(r) e_x + B(r) (cos 2φ, sin 2φ)). Its film's static in-plane kernel has no odd imaginary part:
+the edge singularity is the square root of the polynomial basis, and the logarithmic enrichment
+of the homogeneous module (needed for the oscillatory singularity of faces that are not mirror
+planes) is left out. Otherwise it is kept, its transforms as Neumann series of j_p with enough
+terms to reach the last node (2Q >= 1.5 S + 16, at most _MAX_SERIES terms: on a stack that is
+not axisymmetric, a film so thin that the correction reaches beyond η a ≈ 150, a few hundredths
+of a, is refused). The radial terms start at the homogeneous default of the largest k_s a of the
+stack and grow until four more move K by less than rtol/10 (a thin film concentrates the
+traction at the edge), up to _MAX_RADIAL per harmonic.
+
+Accuracy (tests/dynamic/test_layered_tangential.py, measured at the default rtol = 1e-6): a
+film of the substrate's own material gives the homogeneous exact punch
+(:func:`contactres.tangential_contact_stiffness`) to 1e-11 (k_s a = 0.3-2); f = 0 gives the
+static layered tangential punch (``contactres.normal.static_punch_stiffness``) to 1.5e-12, and
+as f -> 0 Im K grows linearly and Re K − K₀ quadratically; a lossy stack (Q⁻¹ = 1e-3, PMMA
+h = 0.2a on quartz, k_s a = 1.5 in the film) agrees with a Galerkin of the x-translation
+integrated on the real axis by adaptive quadrature to 2.0e-9 (that reference reproduces the
+homogeneous exact punch to 1.1e-9), the viscoelastic built-in PMMA film (unequal losses,
+h = 0.05a, 15 MHz) to 8.9e-10; doubling every node of the correction moves K by < 5e-10 and
+rtol = 1e-9 by < 5e-10 (h = 0.05a and 0.2a); a cubic (111) film with A = 1 + 1e-7 (the
+non-axisymmetric path, with the enriched basis) equals the isotropic film to < 1e-6.
+
+Result: K_xx = 4π² a C44_f Bᵀ M⁻¹ B (the force along x per unit displacement along x), complex
+N/m, e^{iωt}; Im K >= 0. Static limit on a homogeneous isotropic solid: 8Ga/(2 − ν) (Mindlin).
+
+References: R. D. Mindlin, J. Appl. Mech. 16, 259-268 (1949) (static); J. Tian, paper 1 (the
+kernel table and contour); J. E. Luco and R. A. Westmann, J. Appl. Mech. 39, 527-534 (1972) (the
+homogeneous isotropic horizontal footing, welded; not reproduced here, whose contact is relaxed).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+import numpy as np
+
+from ..errors import ContactresInputError
+from ._farfield import far_grid
+from ._layered_path import PunchResolution, bessel_on_nodes, correction_nodes
+from ._normal_stiffness import normalised_wavenumber
+from ._tangential_galerkin import (
+    KSA_MAX,
+    KSA_SMALL,
+    TangentialTable,
+    basis_of,
+    eigen_frame,
+    film_dynamic,
+    frame_solve,
+    phase_of,
+    tangential_size,
+)
+from ._tangential_table import angular_harmonics
+
+__all__ = ["tangential_punch"]
+
+# Largest number of radial terms per harmonic the adaptive basis may reach.
+_MAX_RADIAL = 32
+# Largest number of Neumann-series terms of the enriched transforms (their coefficients need
+# Γ of arguments up to this; beyond ~150 they over- and underflow).
+_MAX_SERIES = 120
+# Directions sampled for the harmonics of a stack that is not axisymmetric.
+_N_THETA = 128
+# Directions of the rotated samples of an axisymmetric stack (exact for m = 0, ±2).
+_N_ROTATED = 8
+
+
+def _rotated(values: np.ndarray) -> np.ndarray:
+    """h(θ_j) = R(θ_j) h(0) R(θ_j)ᵀ on _N_ROTATED directions from ``values`` (n, 1, 2, 2)."""
+    th = 2 * np.pi * np.arange(_N_ROTATED) / _N_ROTATED
+    c, s = np.cos(th), np.sin(th)
+    R = np.stack([np.stack([c, -s], -1), np.stack([s, c], -1)], -2)  # (nθ, 2, 2)
+    return np.einsum("tij,njk,tlk->ntil", R, values[:, 0], R)
+
+
+def _kernel_harmonics(values: np.ndarray, max_order: int, axisymmetric: bool) -> np.ndarray:
+    """Δh_{αβ, m} (n, 2 max_order + 1, 2, 2) of samples ``values`` (n, nθ, 2, 2): on the
+    _N_THETA directions, or at θ = 0 only for an axisymmetric stack (then m = 0, ±2)."""
+    if not axisymmetric:
+        return angular_harmonics(values, max_order)
+    harm = angular_harmonics(_rotated(values), max_order)
+    orders = np.arange(-max_order, max_order + 1)
+    harm[:, ~np.isin(orders, (-2, 0, 2))] = 0.0
+    return harm
+
+
+def _correction(basis, nodes, axisymmetric: bool) -> np.ndarray:
+    """ΔM (nb, nb), phases included, from the nodes of ``_correction_nodes`` (s, ds, Δh, the
+    end S with Δh(S), and the static shift h∞_film − h∞_ref)."""
+    s, w, dh, s_end, end, shift = nodes
+    big_m = basis.max_order
+    harm = _kernel_harmonics(dh, big_m, axisymmetric).reshape(s.size, -1, 4)
+    end_h = _kernel_harmonics(end[None], big_m, axisymmetric).reshape(-1, 4)
+    shift_h = _kernel_harmonics(shift[None], big_m, axisymmetric)[0]
+    H = basis.series @ bessel_on_nodes(basis.p_max, s)  # (n_rad, len(s))
+    # Beyond S: H_a H_b -> (α_a α_b + β_a β_b)/(2 s²) on average (j_p ~ sin(s − pπ/2)/s).
+    p = np.arange(basis.p_max + 1)
+    amp_s, amp_c = basis.series @ np.cos(p * np.pi / 2), basis.series @ -np.sin(p * np.pi / 2)
+    avg = (np.outer(amp_s, amp_s) + np.outer(amp_c, amp_c)) / (6 * s_end)
+    entry_m = big_m + basis.n[None, :] - basis.n[:, None]
+    entry_c = 2 * basis.alpha[:, None] + basis.alpha[None, :]
+    ra, rb = np.broadcast_arrays(basis.radial[:, None], basis.radial[None, :])
+    out = basis.static_of(shift_h).astype(complex)
+    for m in np.unique(entry_m):
+        if not np.any(harm[:, m]) and not np.any(end_h[m]):
+            continue
+        at = entry_m == m
+        for c in range(4):
+            # ∫ Δh_{m,c} H_a H_b ds for every radial pair (one matrix product) and the tail.
+            part = (H * (w * harm[:, m, c])[None, :]) @ H.T + end_h[m, c] * avg
+            sel = at & (entry_c == c)
+            out[sel] += part[ra[sel], rb[sel]]
+    return phase_of(basis.n) * out
+
+
+def _sub_basis(basis, n_radial: int) -> np.ndarray:
+    """Mask of the functions with fewer than ``n_radial`` polynomial radial terms (all the
+    enriched ones kept)."""
+    k = (basis.rad_p - basis.rad_n) // 2
+    return (basis.rad_d[basis.radial] > 0) | (k[basis.radial] < n_radial)
+
+
+def _solve(basis, loss: float, matrices: np.ndarray, keep: np.ndarray) -> np.ndarray:
+    """Bᵀ M⁻¹ B (n, 2, 2) on the sub-basis ``keep`` (film static matrix + ``matrices``)."""
+    m0 = (phase_of(basis.n) * basis.static)[np.ix_(keep, keep)]
+    frame = eigen_frame(m0, basis.load[keep])
+    return frame_solve(frame, loss, matrices[:, keep][:, :, keep])
+
+
+def tangential_punch(
+    table: TangentialTable, film, items, radii, rtol: float, res: PunchResolution
+) -> np.ndarray:
+    """K_xx (N/m) at the points ``items`` [(index, stack, frequency), ...] (stacks of the
+    in-plane block from ``_layered_path.stack_at``) of one film table (``film``: its undamped
+    reference material) with radii ``radii`` (m)."""
+    c44 = table.c44
+    stacks = [st for _, st, _ in items]
+    freqs = np.array([f for _, _, f in items])
+    ksa = normalised_wavenumber(freqs, radii, film.density or 0.0, c44)
+    ka_top = float(np.max(np.array([st.k_max for st in stacks]) * radii))
+    if not ka_top <= KSA_MAX:
+        raise ContactresInputError(
+            f"k_s a = {ka_top:.4g} in a material of the stack is beyond the range where the "
+            f"dynamic tangential stiffness is checked (k_s a <= {KSA_MAX:g}, k_s = ω√(ρ/C44)): "
+            "check the frequency and the contact radius (units?)"
+        )
+    axisymmetric = all(st.axisymmetric for st in stacks)
+    theta = np.zeros(1) if axisymmetric else 2 * np.pi * np.arange(_N_THETA) / _N_THETA
+    gref = float(np.max(np.abs(table.ginf)))
+    nodes = {
+        i: correction_nodes(st, float(radii[i]), theta, res, gref)
+        for i, st in enumerate(stacks)
+        if st.needs_correction
+    }
+    size = tangential_size(ka_top, rtol, table.n_harmonics)
+    if axisymmetric:
+        # The x-translation of an axisymmetric stack lives in the harmonics |n| <= 2 (module
+        # docstring); the others decouple exactly.
+        size = replace(size, n_harmonics=2, n_enriched=0, n_log=0)
+    elif nodes:
+        s_top = max(float(np.max(np.abs(v[0]))) for v in nodes.values())
+        n_series = max(size.n_series, math.ceil(0.75 * s_top) + 8)
+        if n_series > _MAX_SERIES:
+            raise ContactresInputError(
+                "the tangential punch on a stack that is not axisymmetric needs the top film "
+                f"thicker than about a/50 (the layered correction reaches η a = {s_top:.3g})"
+            )
+        size = replace(size, n_series=n_series)
+    pos = ksa > 0
+    # Below KSA_SMALL the film's remainder is scaled linearly from its value there (as in the
+    # homogeneous module: the far-field grid would miss the band that radiates).
+    ka = np.maximum(ksa[pos], KSA_SMALL)
+    grid = far_grid(table, float(np.min(ka))) if np.any(pos) else None
+    n_radial = size.n_radial
+    while True:
+        grow = n_radial + 4 if nodes else n_radial
+        basis = basis_of(table, replace(size, n_radial=grow, n_series=max(size.n_series, grow)))
+        nb = basis.n.size
+        M = np.zeros((ksa.size, nb, nb), dtype=complex)
+        if np.any(pos):
+            scale = (ksa[pos] / ka)[:, None, None]
+            M[pos] = film_dynamic(table, basis, ka, grid) * scale
+        for i, values in nodes.items():
+            M[i] += _correction(basis, values, axisymmetric)
+        k_big = _solve(basis, table.loss, M, np.ones(nb, dtype=bool))
+        if not nodes:
+            break
+        k_small = _solve(basis, table.loss, M, _sub_basis(basis, n_radial))
+        change = np.max(np.abs(k_big[:, 0, 0] / k_small[:, 0, 0] - 1))
+        if change < rtol / 10 or grow >= _MAX_RADIAL:
+            break
+        n_radial = min(_MAX_RADIAL - 4, math.ceil(1.5 * n_radial))
+    return 4 * np.pi**2 * radii * c44 * k_big[:, 0, 0]
