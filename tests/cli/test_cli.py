@@ -79,6 +79,21 @@ def test_demo_writes_folder(tmp_path):
     assert (a < hertz(film, 1.1e-3, coated["force_N"]).contact_radius).all()
 
 
+def test_demo_without_the_maps_extra_leaves_the_map_out_in_one_line(tmp_path, monkeypatch):
+    """Installed without the ``maps`` extra (xarray cannot be imported), the demo writes every
+    other part and says in one line which step it left out and what to install."""
+    import sys
+
+    monkeypatch.setitem(sys.modules, "xarray", None)  # import xarray -> ImportError
+    out = tmp_path / "demo"
+    r = run("demo", "--out", str(out))
+    assert r.exit_code == 0, r.output
+    notes = [line for line in r.stderr.splitlines() if "left out" in line]
+    assert len(notes) == 1 and "polycrystal map" in notes[0] and "contactres[maps]" in notes[0]
+    assert not (out / "polycrystal").exists()
+    assert (out / "crystals.csv").is_file() and (out / "coated-contact" / "contact.csv").is_file()
+
+
 def test_demo_onto_a_file_is_an_error(tmp_path):
     f = tmp_path / "file"
     f.write_text("keep me")

@@ -63,8 +63,15 @@ def _write_polycrystal(result: job.Result, out: Path) -> list[Path]:
     from ..polycrystal import folded_normals
     from ..report import modulus_map_figure
 
-    folder = ensure_dir(out / "polycrystal")
     omap = result.map_orientations
+    if (
+        omap is None
+        or result.map_dataset is None
+        or result.map_fit is None
+        or result.map_triangle is None
+    ):
+        return []  # the step was left out (the job says why in its warnings)
+    folder = ensure_dir(out / "polycrystal")
     fig = modulus_map_figure(
         result.map_dataset["M_Pa"].values,
         folded_normals(omap, "cubic"),

@@ -28,7 +28,12 @@ def demo(out: str) -> None:
 
     ensure_dir(out)  # a path that cannot be the folder is refused before the work
     progress = lambda title: click.echo(f"  - {title}", err=True)  # noqa: E731
-    written = write_demo(job.run(None, job.Settings(), progress), out)
+    result = job.run(None, job.Settings(), progress)
+    written = write_demo(result, out)
+    for line in result.warnings:
+        click.echo(f"contactres demo: {line}", err=True)
+    # The numbers a user came for: the QCM analysis' counts and Table 1 (E and γ per group).
+    click.echo("\n".join(repr(result.sweeps_analysis).splitlines()[:-1]))  # not the Python hint
     click.echo(f"wrote {len(written)} files into {out}/")
     for p in written:
         click.echo(f"  {p}")

@@ -25,6 +25,7 @@ from importlib.resources import as_file, files
 from types import MappingProxyType
 from typing import TYPE_CHECKING
 
+from ..errors import MissingExtraError
 from ..measurements.schema import CONTACT_TABLE, CRYSTAL_TABLE, SPECTRA_FITS, SPECTRA_SWEEPS
 from .contract import JobResult, Progress, say
 
@@ -101,11 +102,13 @@ class Result(JobResult):
     crystals: object
     paper2: paper2.Result
     crystal_dcsf: dict
-    map_dataset: xr.Dataset
-    map_orientations: OrientationMap
-    map_fit: dict
-    map_triangle: TriangleModuli
+    map_dataset: xr.Dataset | None
+    map_orientations: OrientationMap | None
+    map_fit: dict | None
+    map_triangle: TriangleModuli | None
     coated_contact: object
+    #: The parts left out, one line each (the polycrystal map without the ``maps`` extra).
+    warnings: tuple[str, ...] = ()
 
 
 def _sweeps():
@@ -167,7 +170,14 @@ def run(inputs: None = None, settings: Settings | None = None, progress: Progres
     say(progress, STEPS[4])
     curves = paper1.crystal_curves(model=CRYSTAL_DCSF_MODEL)
     say(progress, STEPS[5])
-    ds, omap, record, triangle = _polycrystal()
+    # The map needs the optional extra (xarray, Zarr): without it the step is left out, said in
+    # one line, and the other parts are written.
+    skipped: list[str] = []
+    try:
+        ds, omap, record, triangle = _polycrystal()
+    except MissingExtraError as exc:
+        ds = omap = record = triangle = None
+        skipped.append(f"step 6 left out ({STEPS[5]}): {exc}")
     say(progress, STEPS[6])
     coated = _coated_contact()
     return Result(
@@ -183,6 +193,7 @@ def run(inputs: None = None, settings: Settings | None = None, progress: Progres
         map_fit=record,
         map_triangle=triangle,
         coated_contact=coated,
+        warnings=tuple(skipped),
     )
 
 
