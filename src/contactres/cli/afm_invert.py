@@ -106,7 +106,9 @@ def afm_invert(
     (film_weight below --min-film-weight: no modulus), too thick (the same as the
     homogeneous inversion M_sample_Pa) or its modulus is outside the range (no modulus).
 
-    Example: contactres afm invert src/contactres/data/example_afm.csv --out afm_moduli.csv
+    The example files: 'contactres examples --copy .' copies them into this folder.
+
+    Example: contactres afm invert example_afm.csv --out afm_moduli.csv
     """
     import numpy as np
 

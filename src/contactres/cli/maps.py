@@ -182,7 +182,9 @@ def maps_predict(
     z = inward surface normal). Writes MAP's variables plus M_Pa, E_star_Pa,
     contact_radius_m, k_star_N_per_m (and the DCSF with --frequency) to OUT atomically.
 
-    Example: contactres maps predict src/contactres/data/example_cu_map.ang --crystal Cu
+    The example files: 'contactres examples --copy .' copies them into this folder.
+
+    Example: contactres maps predict example_cu_map.ang --crystal Cu
     --tip-radius 2e-8 --force 1e-6 --out cu_predicted.zarr
     """
     import math
@@ -333,8 +335,10 @@ def maps_fit(
     measured contact-stiffness or modulus map and the orientations, with uncertainties and the
     identifiability (the weak combination of the ratios and its error).
 
-    Example: contactres maps fit src/contactres/data/example_cu_map.ang --values
-    src/contactres/data/example_cu_kstar.csv --out cu_fit.json
+    The example files: 'contactres examples --copy .' copies them into this folder.
+
+    Example: contactres maps fit example_cu_map.ang --values
+    example_cu_kstar.csv --out cu_fit.json
     """
     from ..fileio import check_output_file, write_text
     from ..jobs import maps_fit as job

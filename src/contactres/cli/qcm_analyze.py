@@ -168,7 +168,9 @@ def analyze_command(
     also the loss of the sound each contact radiates into the two bodies, against the measured
     loss tangent (radiation.csv, radiation_loss.png, and a line per group).
 
-    Example: contactres qcm analyze src/contactres/data/example_sweeps.csv --out qcm_results
+    The example files: 'contactres examples --copy .' copies them into this folder.
+
+    Example: contactres qcm analyze example_sweeps.csv --out qcm_results
     """
     from ..analysis import Flag, has
     from ..jobs import qcm_sweeps as job

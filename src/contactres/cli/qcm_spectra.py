@@ -101,7 +101,9 @@ def spectra_command(
     of G); Δf and ΔΓ are taken against the reference spectra of the same overtone (Δf not
     divided by n; Γ, not D); the amplitude follows from the drive voltage.
 
-    Example: contactres qcm spectra src/contactres/data/example_spectra.csv --out sweeps.csv
+    The example files: 'contactres examples --copy .' copies them into this folder.
+
+    Example: contactres qcm spectra example_spectra.csv --out sweeps.csv
     --fits fits.csv
     """
     from pathlib import Path

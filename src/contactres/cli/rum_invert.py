@@ -59,7 +59,9 @@ def rum_invert(
     (film), too thin for the contact (film_weight below --min-film-weight: no modulus), too
     thick (the same as a homogeneous film's Hertz inversion) or outside the range (no modulus).
 
-    Example: contactres rum invert src/contactres/data/example_rum.csv --out rum_kstar.csv
+    The example files: 'contactres examples --copy .' copies them into this folder.
+
+    Example: contactres rum invert example_rum.csv --out rum_kstar.csv
     """
     from ..fileio import check_output_file, write_csv
     from ..jobs import rum_invert as job
