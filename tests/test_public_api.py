@@ -501,8 +501,10 @@ PUBLIC = {
         "synthetic_map",
     ],
     "numerics": [
+        "IllinoisBracket",
         "gauss_legendre",
         "gauss_legendre_unit",
+        "illinois_step",
     ],
     "units": [
         "ABSOLUTE_FREQUENCY_FRACTION",

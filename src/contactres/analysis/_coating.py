@@ -75,6 +75,7 @@ from ..fitting import FitResult, Model, Parameter, fit
 from ..layered import LayeredMaterial
 from ..materials import Material
 from ..normal import jkr_contact_radius, sphere_contact_at, static_punch_stiffness
+from ..numerics import illinois_step
 from ..tangential import kappa_jkr_mindlin
 from ..units import POISSON_OPEN_RANGE
 from ._jkr import LoadLaw, fit_group
@@ -329,13 +330,7 @@ class CoatedLaw:
             x = np.where(todo, x_new, x)
             fx = np.where(todo, f(x), 0.0)
             todo &= np.abs(fx) > _FORCE_RTOL * scale
-            left = fx < 0
-            # Illinois: halve the kept end's value when the same end is kept twice.
-            f_hi = np.where(left & (side == -1), f_hi / 2, f_hi)
-            f_lo = np.where(~left & (side == 1), f_lo / 2, f_lo)
-            lo, f_lo = np.where(left, x, lo), np.where(left, fx, f_lo)
-            hi, f_hi = np.where(left, hi, x), np.where(left, f_hi, fx)
-            side = np.where(left, -1, 1)
+            lo, hi, f_lo, f_hi, side = illinois_step(x, fx, (lo, hi, f_lo, f_hi, side))
         return np.exp(x), below | above
 
     def tangential(self, E, a):

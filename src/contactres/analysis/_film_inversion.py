@@ -59,6 +59,7 @@ import numpy as np
 from ..errors import ContactresInputError
 from ..layered import LayeredMaterial
 from ..materials import Material, require_material
+from ..numerics import illinois_step
 from ..validation import positive
 
 __all__ = [
@@ -172,13 +173,7 @@ def _roots(coef, target):
         gx = g(x)
         if np.all(np.abs(gx) <= _ROOT_TOL):
             return x
-        left = gx < 0
-        # Illinois: halve the kept end's value when the same end is kept twice.
-        g_hi = np.where(left & (side == -1), g_hi / 2, g_hi)
-        g_lo = np.where(~left & (side == 1), g_lo / 2, g_lo)
-        lo, g_lo = np.where(left, x, lo), np.where(left, gx, g_lo)
-        hi, g_hi = np.where(left, hi, x), np.where(left, g_hi, gx)
-        side = np.where(left, -1, 1)
+        lo, hi, g_lo, g_hi, side = illinois_step(x, gx, (lo, hi, g_lo, g_hi, side))
     return x  # residuals of a few 1e-14 after the cap: far below the interpolation error
 
 

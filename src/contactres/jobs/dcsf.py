@@ -207,13 +207,10 @@ def _span(ka) -> str:
     return f"{lo:.4g}" if lo == hi else f"{lo:.4g}-{hi:.4g}"
 
 
-def _contact_points(m, s: Settings):
-    """k a (in the ``wavenumber`` convention) and the contact columns of R, F, f broadcast."""
-    from ..dynamic import normalised_wavenumber, wave_modulus
-    from ..materials import require_material
-    from ..normal import sphere_contact
-
-    # run calls this only when all three are given
+def _broadcast_contacts(s: Settings) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Sphere radii (m), forces (N) and frequencies (Hz, checked >= 0) broadcast to one shape,
+    at least 1-D (a one-line error for lengths that do not broadcast)."""
+    # the callers check that all three are given
     assert s.radius is not None and s.force is not None and s.frequency is not None
     try:
         R, F, f = (np.atleast_1d(x) for x in np.broadcast_arrays(s.radius, s.force, s.frequency))
@@ -222,7 +219,18 @@ def _contact_points(m, s: Settings):
             f"radius ({np.size(s.radius)}), force ({np.size(s.force)}) and frequency "
             f"({np.size(s.frequency)}) must have the same number of values, or a single value"
         ) from None
-    f = np.asarray(nonnegative("frequency", f, "Hz"), dtype=float)
+    return R, F, np.asarray(nonnegative("frequency", f, "Hz"), dtype=float)
+
+
+def _contact_points(m, s: Settings):
+    """k a (in the ``wavenumber`` convention) and the contact columns of R, F, f broadcast."""
+    from ..dynamic import normalised_wavenumber, wave_modulus
+    from ..materials import require_material
+    from ..normal import sphere_contact
+
+    # run calls this only when all three are given
+    assert s.radius is not None and s.force is not None and s.frequency is not None
+    R, F, f = _broadcast_contacts(s)
     c = sphere_contact(require_material(m), R, F)  # homogeneous only: no layered stack here
     a = np.asarray(c.contact_radius, dtype=float)
     ka = normalised_wavenumber(f, a, m.density, wave_modulus(m, s.wavenumber))
@@ -261,14 +269,7 @@ def _run_coated(m, s: Settings, progress) -> Result:
             "physical contacts need the elastic constants in Pa and the density"
         )
     assert s.radius is not None and s.force is not None and s.frequency is not None
-    try:
-        R, F, f = (np.atleast_1d(x) for x in np.broadcast_arrays(s.radius, s.force, s.frequency))
-    except ValueError:
-        raise ContactresInputError(
-            f"radius ({np.size(s.radius)}), force ({np.size(s.force)}) and frequency "
-            f"({np.size(s.frequency)}) must have the same number of values, or a single value"
-        ) from None
-    f = np.asarray(nonnegative("frequency", f, "Hz"), dtype=float)
+    R, F, f = _broadcast_contacts(s)
     say(progress, "static contact on the coated face")
     static = contact.run(m, contact.Settings(R, F, coating=tuple(s.coating)))
     t = static.table

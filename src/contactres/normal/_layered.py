@@ -50,6 +50,7 @@ import numpy as np
 from ..errors import ContactresInputError
 from ..layered import LayeredMaterial, surface_green
 from ..materials import Material, require_material
+from ..numerics import illinois_step
 from ..validation import nonnegative, positive
 from ._anisotropic import THETA_RTOL, isotropic_constants, pair_integrals
 from ._anisotropic import sphere_contact as homogeneous_sphere_contact
@@ -360,13 +361,7 @@ def _solve_radius(kernel, R, F, tol):
         fx = log_force(x) - target
         if np.all(np.abs(fx) <= _FORCE_RTOL):
             return np.exp(x)
-        left = fx < 0
-        # Illinois: halve the kept end's value when the same end is kept twice.
-        f_hi = np.where(left & (side == -1), f_hi / 2, f_hi)
-        f_lo = np.where(~left & (side == 1), f_lo / 2, f_lo)
-        lo, f_lo = np.where(left, x, lo), np.where(left, fx, f_lo)
-        hi, f_hi = np.where(left, hi, x), np.where(left, f_hi, fx)
-        side = np.where(left, -1, 1)
+        lo, hi, f_lo, f_hi, side = illinois_step(x, fx, (lo, hi, f_lo, f_hi, side))
     raise ContactresInputError("sphere_contact: the contact radius did not converge")
 
 
