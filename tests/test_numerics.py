@@ -96,7 +96,7 @@ def test_illinois_step_finds_cube_roots_elementwise_where_regula_falsi_stalls():
     def run(steps, halve):
         b = (lo, hi, lo**3 - c, hi**3 - c, np.zeros(4, dtype=int))
         for _ in range(steps):
-            lo_, hi_, f_lo, f_hi, side = b
+            lo_, hi_, f_lo, f_hi, _side = b
             x = (lo_ * f_hi - hi_ * f_lo) / (f_hi - f_lo)
             b = illinois_step(x, x**3 - c, b) if halve else _plain(x, x**3 - c, b)
         return x

@@ -144,7 +144,10 @@ def example_path(name: str) -> Path:
 
 
 def copy_examples(
-    folder: str | os.PathLike, names: Iterable[str] | None = None, *, overwrite: bool = False
+    folder: str | os.PathLike,
+    names: str | Iterable[str] | None = None,
+    *,
+    overwrite: bool = False,
 ) -> list[Path]:
     """Copy example files into ``folder`` (created if missing), each written atomically.
 
@@ -152,8 +155,8 @@ def copy_examples(
     ----------
     folder : str or path-like
         Where the copies go.
-    names : iterable of str, optional
-        Keys of :data:`EXAMPLES`; all of them by default.
+    names : str or iterable of str, optional
+        Keys of :data:`EXAMPLES` (one name as a string is one file); all of them by default.
     overwrite : bool
         Replace a file of the same name in ``folder``; by default such a file is kept and the
         copy refused (nothing is copied then).
@@ -169,6 +172,8 @@ def copy_examples(
         For an unknown name, or a file of the same name already in ``folder`` (without
         ``overwrite``).
     """
+    if isinstance(names, str):  # one name, not its letters
+        names = [names]
     chosen = list(EXAMPLES) if names is None else list(dict.fromkeys(names))
     resources = [(name, _resource(name)) for name in chosen]  # every name checked first
     target = Path(folder)

@@ -53,3 +53,17 @@ def test_repr_html_escapes_labels():
     page = res._repr_html_()
     assert "&lt;b&gt;x&lt;/b&gt;" in page and "a&amp;b" in page and "<b>x</b>" not in page
     assert "100 sweeps (70 used)" in page and "E = 70 ± 1.2 GPa" in page
+
+
+def test_a_coated_analysis_says_so_in_its_summary():
+    res = _results([_group("SiO2_2.2mm", "air", 71.23e9, 0.0567)])
+    coated = Results(
+        res.sweeps,
+        res.loads,
+        res.experiments,
+        res.groups,
+        {"coating": {"label": "PMMA 250 nm"}},
+        "9.9.9",
+    )
+    assert "fitted on the coated plate (PMMA 250 nm)" in repr(coated).splitlines()[0]
+    assert "PMMA 250 nm" in coated._repr_html_() and "coated" not in repr(res)

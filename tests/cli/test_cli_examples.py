@@ -34,7 +34,7 @@ def test_copies_are_byte_identical_and_existing_files_are_kept(tmp_path):
         copy_examples(tmp_path / "new", ["example_qcmd.csv", "example_rum.csv"])
     assert mine.read_text() == "my edits"  # nothing touched, nothing copied
     assert not (tmp_path / "new" / "example_qcmd.csv").exists()
-    copy_examples(tmp_path / "new", ["example_rum.csv"], overwrite=True)
+    copy_examples(tmp_path / "new", "example_rum.csv", overwrite=True)  # one name as a string
     assert mine.read_bytes() == example_path("example_rum.csv").read_bytes()
     with pytest.raises(ValueError, match=r"no example named 'crystals\.csv'"):
         example_path("crystals.csv")  # library data, not an example

@@ -98,7 +98,7 @@ AFM_BAD = [
     (("--coating", "pmma:2e-8", "--coating", "pmma:2e-8", "--substrate", "Si"), ["one film"]),
     (("--coating", "pmma:2e-8", "--substrate", "Si", "--crystal", "Si"), ["--crystal"]),
     (("--coating", "pmma:2e-8", "--substrate", "Si", "--film-range", "3e9"), ["--film-range"]),
-    (("--coating", "pmma:2e-8", "--substrate", "nope"), ["nope"]),
+    (("--coating", "pmma:2e-8", "--substrate", "nope"), ["--substrate:", "nope"]),
 ]
 
 
@@ -114,6 +114,19 @@ RUM_BAD = [
     (
         ("--coating", "pmma:0", "--substrate", "Si", "--tip-radius", "1e-6", "--force", "1e-3"),
         ["--coating", "positive"],
+    ),
+    (
+        (
+            "--coating",
+            "pmma:1e-7",
+            "--substrate",
+            "nope",
+            "--tip-radius",
+            "1e-6",
+            "--force",
+            "1e-3",
+        ),
+        ["--substrate:", "nope"],
     ),
 ]
 

@@ -126,9 +126,11 @@ class Results:
 
     def _counts(self) -> str:
         used = int(self.sweeps["used"].sum()) if "used" in self.sweeps else len(self.sweeps)
+        coating = self.settings.get("coating") if isinstance(self.settings, Mapping) else None
+        on = f"; fitted on the coated plate ({coating.get('label', '')})" if coating else ""
         return (
             f"{len(self.sweeps)} sweeps ({used} used), {len(self.loads)} loads, "
-            f"{len(self.groups)} configuration/medium groups"
+            f"{len(self.groups)} configuration/medium groups{on}"
         )
 
     def __repr__(self) -> str:

@@ -125,7 +125,10 @@ def afm_invert(
     if crystal is not None:  # the built-in solids all carry their density (for k_l = 2πf/c_l)
         sample = crystal_face(crystal, None, None, None, None, None, surface, inplane)
     elif substrate is not None:
-        base = crystal_face(substrate, None, None, None, None, None, surface, inplane)
+        try:
+            base = crystal_face(substrate, None, None, None, None, None, surface, inplane)
+        except ContactresInputError as exc:  # the name came with --substrate
+            raise ContactresInputError(str(exc).replace("--crystal", "--substrate", 1)) from None
     elif inplane is not None or surface != "001":
         raise ContactresInputError(
             "--surface/--inplane describe the sample: give --crystal (or --substrate) too"

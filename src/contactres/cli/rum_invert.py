@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import click
 
+from ..errors import ContactresInputError
 from ._app import rum
 from ._common import MagnitudeType, computed_rounded, emit, format_option, step
 from ._crystal_face import crystal_face
@@ -69,7 +70,10 @@ def rum_invert(
     check_output_file(out, inputs=[table])
     base = None
     if substrate is not None:
-        base = crystal_face(substrate, None, None, None, None, None, "001", None)
+        try:
+            base = crystal_face(substrate, None, None, None, None, None, "001", None)
+        except ContactresInputError as exc:  # the name came with --substrate
+            raise ContactresInputError(str(exc).replace("--crystal", "--substrate", 1)) from None
     settings = job.Settings(
         coating=tuple(coating),
         substrate=base,

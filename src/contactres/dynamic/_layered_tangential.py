@@ -41,10 +41,11 @@ the edge singularity is the square root of the polynomial basis, and the logarit
 of the homogeneous module (needed for the oscillatory singularity of faces that are not mirror
 planes) is left out. Otherwise it is kept, its transforms as Neumann series of j_p with enough
 terms to reach the last node (2Q >= 1.5 S + 16, at most _MAX_SERIES terms: on a stack that is
-not axisymmetric, a film so thin that the correction reaches beyond η a ≈ 150, a few hundredths
-of a, is refused). The radial terms start at the homogeneous default of the largest k_s a of the
-stack and grow until four more move K by less than rtol/10 (a thin film concentrates the
-traction at the edge), up to _MAX_RADIAL per harmonic.
+not axisymmetric, a film so thin that the correction reaches beyond η a ≈ 150 is refused: the
+correction's end scales like 13 a/h, so films thinner than about a tenth of a are (measured on
+PMMA over quartz-AT and Cu(111))). The radial terms start at the homogeneous default of the
+largest k_s a of the stack and grow until four more move K by less than rtol/10 (a thin film
+concentrates the traction at the edge), up to _MAX_RADIAL per harmonic.
 
 Accuracy (tests/dynamic/test_layered_tangential.py, measured at the default rtol = 1e-6): a
 film of the substrate's own material gives the homogeneous exact punch
@@ -199,9 +200,13 @@ def tangential_punch(
         s_top = max(float(np.max(np.abs(v[0]))) for v in nodes.values())
         n_series = max(size.n_series, math.ceil(0.75 * s_top) + 8)
         if n_series > _MAX_SERIES:
+            s_max = (_MAX_SERIES - 8) / 0.75
             raise ContactresInputError(
-                "the tangential punch on a stack that is not axisymmetric needs the top film "
-                f"thicker than about a/50 (the layered correction reaches η a = {s_top:.3g})"
+                "the tangential punch on a stack that is not axisymmetric needs a thicker top "
+                f"film for this contact radius: the layered correction reaches η a = "
+                f"{s_top:.3g}, beyond {s_max:.3g} (a top film about "
+                f"{math.ceil(100 * (s_top / s_max - 1)) + 1} % thicker, or a contact that much "
+                "smaller, would do)"
             )
         size = replace(size, n_series=n_series)
     pos = ksa > 0

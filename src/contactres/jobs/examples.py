@@ -60,7 +60,8 @@ def run(inputs: None = None, settings: Settings | None = None, progress: Progres
     from ..examples import EXAMPLES, copy_examples, example_path
 
     s = settings or Settings()
-    names = list(dict.fromkeys(s.names)) or list(EXAMPLES)
+    given = (s.names,) if isinstance(s.names, str) else s.names  # one name, not its letters
+    names = list(dict.fromkeys(given)) or list(EXAMPLES)
     if s.copy_to is None:
         paths = [example_path(name) for name in names]  # checks every name
     else:
