@@ -13,9 +13,10 @@ directory:
   would not fit this file's time budget; :func:`test_the_script_on_path_runs` checks once that
   the installed script itself runs.
 
-The pages give the bundled data as repository paths (``src/contactres/data/example_sweeps.csv``);
-the temporary directory gets a symlink ``src`` -> the repository's ``src`` so that those paths work
-verbatim, and every file a page writes lands in the temporary directory. Python blocks and
+The pages use the example files as an installed user has them: a page's first command that reads
+one is preceded by ``contactres examples --copy .``, which copies them into the (empty) temporary
+directory; no repository path is reachable from there, so a page that names one fails. Every
+file a page writes lands in the temporary directory. Python blocks and
 commands share that directory, so a command may read a file an earlier block wrote.
 """
 
@@ -74,7 +75,7 @@ def _cli(line: str) -> int:
     """Run one command line through the ``contactres`` entry point; its exit status."""
     from contactres.cli import main
 
-    args = shlex.split(line)
+    args = shlex.split(line, comments=True)  # a shell ignores a trailing "# ..."
     assert args[0] == "contactres", line
     try:
         main(args[1:], prog_name="contactres")
@@ -106,13 +107,12 @@ def run_page(page: Path) -> int:
 
 @pytest.fixture
 def workdir(monkeypatch, tmp_path):
-    """A temporary working directory with ``src`` linked and a non-interactive matplotlib."""
+    """An empty temporary working directory and a non-interactive matplotlib."""
     import matplotlib
 
     matplotlib.use("Agg")
     monkeypatch.setenv("MPLBACKEND", "Agg")
     monkeypatch.delenv("CONTACTRES_DEBUG", raising=False)
-    (tmp_path / "src").symlink_to(ROOT / "src", target_is_directory=True)
     monkeypatch.chdir(tmp_path)
     yield tmp_path
     import matplotlib.pyplot as plt

@@ -18,7 +18,7 @@ from ._app import main
 def demo(out: str) -> None:
     """Run the main job on the bundled example data and write its results into OUT.
 
-    Takes about 15 s; a line per step on stderr.
+    Takes 10-30 s; a line per step on stderr.
 
     Example: contactres demo --out contactres-demo
     """
