@@ -3,7 +3,6 @@ progress on a terminal, CSV without floating-point noise."""
 
 import re
 import shlex
-import time
 
 import click
 import pytest
@@ -94,10 +93,8 @@ def test_every_example_runs(words, tmp_path, monkeypatch):
             args[i] = str(tmp_path / args[i])
     if words == ("qcm", "analyze"):
         args += ["--no-figures", "--bootstrap", "0"]  # the example, faster (~2 s)
-    start = time.perf_counter()
     r = run(*args)
     assert r.exit_code == 0, r.output
-    assert time.perf_counter() - start < 20
 
 
 def test_crystals_plain_fits_100_columns_and_csv_keeps_every_column():
