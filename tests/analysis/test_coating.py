@@ -202,11 +202,14 @@ def test_bad_coatings_are_refused_in_one_line(coating, match):
     assert "\n" not in str(err.value)
 
 
-def test_the_radiation_step_is_refused_on_a_coated_plate():
-    with pytest.raises(ContactresInputError, match="not available yet"):
-        AnalysisSettings(
-            coating=(FILM, 250e-9), sphere_material="glass", plate_material="quartz-AT"
-        )
+def test_the_radiation_step_is_accepted_on_a_coated_plate():
+    # The radiation on the coated plate: tests/analysis/test_radiation_coated.py.
+    settings = AnalysisSettings(
+        coating=(FILM, 250e-9), sphere_material="glass", plate_material="quartz-AT"
+    )
+    assert settings.coating.layers == ((FILM, 250e-9),)
+    with pytest.raises(ContactresInputError, match="unknown plate material"):
+        AnalysisSettings(coating=(FILM, 250e-9), sphere_material="glass", plate_material="x")
 
 
 def test_without_a_coating_the_settings_record_has_no_coating(tmp_path):

@@ -72,7 +72,9 @@ def test_a_bad_coating_is_one_line(sweeps, tmp_path, coating, words):
     assert not out.exists()
 
 
-def test_the_radiation_step_with_a_coating_is_refused(sweeps, tmp_path):
+def test_a_bad_plate_material_with_a_coating_is_one_line(sweeps, tmp_path):
+    # The radiation on a coated plate runs (tests/analysis/test_radiation_coated.py); a bad
+    # material is still refused before any work.
     r = run(
         "qcm",
         "analyze",
@@ -85,6 +87,6 @@ def test_the_radiation_step_with_a_coating_is_refused(sweeps, tmp_path):
         "--sphere-material",
         "glass",
         "--plate-material",
-        "quartz-AT",
+        "quartz-XY",
     )
-    one_line_error(r, "--coating", "not available yet")
+    one_line_error(r, "--plate-material", "quartz-XY")

@@ -63,8 +63,9 @@
    coated plate (:mod:`contactres.analysis._coating`: JKR by the compliance method on the
    layered plate, Mindlin's sphere in series with the coated plate's tangential punch), started
    from the uncoated fit, which each group keeps under ``coating`` with the film's share of κ
-   at each load; Fig. 5 draws the coated model. Not with the radiation step (the tangential
-   dynamic punch on a coated plate is not there yet).
+   at each load; Fig. 5 draws the coated model. Done before step 8, which then takes the
+   coated fit's contact radius of each load and the plate's dynamic tangential punch on the
+   stack (compliances of sphere and coated plate in series at equal a; its module docstring).
 """
 
 from __future__ import annotations
@@ -138,7 +139,8 @@ class AnalysisSettings:
         ``(contactres.pmma(), 250e-9)``; from text, ``"pmma:250e-9"``, with
         :func:`contactres.jobs.contact.parse_coating`): E and γ are then fitted with the coated
         plate's contact mechanics (step 9), E the Young's modulus of the sphere and of the
-        plate's substrate. Thickness in (0, 1 mm]. Not with the radiation materials.
+        plate's substrate. Thickness in (0, 1 mm]. With the radiation materials, the radiation
+        loss is that of the coated plate (step 8).
     """
 
     keep_first_ramp: bool = False
@@ -185,11 +187,6 @@ class AnalysisSettings:
             from ._coating import as_coating
 
             object.__setattr__(self, "coating", as_coating(self.coating))
-            if self.sphere_material is not None:
-                raise ContactresInputError(
-                    "the radiation loss (sphere_material, plate_material) on a coated plate "
-                    "(coating) is not available yet: give one or the other"
-                )
 
 
 def _sensitivity(info: pd.DataFrame, zq: float) -> np.ndarray:
@@ -457,6 +454,7 @@ def analyze(
             settings.plate_material,
             frequency_Hz=load_frequencies(sw, loads),
             experiments=exp,
+            coating=coating,
         )
 
     record = asdict(replace(settings, coating=None))

@@ -122,7 +122,9 @@ from ._common import (
     "modulus at the overtone frequency for κ) or an isotropic solid of `contactres crystals` "
     "(fused-silica, soda-lime-glass, Si3N4). E and γ are then fitted with the coated plate's "
     "contact mechanics (E: sphere and substrate); summary.json gets each group's uncoated fit "
-    "and the film's share of κ per load. Not with --sphere-material.",
+    "and the film's share of κ per load. With --sphere-material/--plate-material the "
+    "radiation loss is that of the coated plate (the coated fit's contact radii; radiation.csv "
+    "names the film in plate_material).",
 )
 @click.option("--no-figures", is_flag=True, help="Skip the PNG figures.")
 @click.option(
@@ -188,13 +190,6 @@ def analyze_command(
         raise click.UsageError(
             f"{given} needs the other body too: give --sphere-material and --plate-material "
             "together (e.g. --sphere-material glass --plate-material quartz-AT) or neither",
-            click.get_current_context(),
-        )
-    if coating and sphere_material is not None:
-        raise click.UsageError(
-            "--coating with --sphere-material/--plate-material: the radiation loss on a coated "
-            "plate is not available yet (it needs the tangential dynamic punch on a stack); "
-            "give one or the other",
             click.get_current_context(),
         )
     settings = job.Settings(

@@ -85,7 +85,8 @@ class Settings:
     coating : str, sequence of str, or None
         The film(s) on the plate, ``"MATERIAL:THICKNESS"`` (m) each, top first
         (:func:`contactres.jobs.contact.parse_coating`; thickness at most 1 mm): E and γ fitted
-        on the coated plate (:mod:`contactres.analysis._coating`). Not with the radiation.
+        on the coated plate (:mod:`contactres.analysis._coating`). With the materials, the radiation
+        loss on the coated plate.
     """
 
     area_m2: float | None = None
@@ -293,7 +294,7 @@ def stages(reading: Reading, settings: Settings) -> int:
 def coating_layers(settings: Settings):
     """The checked layers of ``settings.coating`` ((material, thickness_m) pairs, top first), or
     None: names by :func:`contactres.jobs.contact.parse_coating`, thickness (0, 1 mm] and the
-    refusal of the radiation with a coating by :class:`contactres.analysis.AnalysisSettings`.
+    materials by :class:`contactres.analysis.AnalysisSettings`.
     Raises ContactresInputError (one line)."""
     if not settings.coating:
         return None

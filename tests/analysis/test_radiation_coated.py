@@ -1,0 +1,155 @@
+"""The radiation loss on a coated plate (issue 26, point 4): analysis.radiation with a coating.
+
+References are independent of the coated path: the bare plate's numbers from the public
+two-body API (a film of the plate's own material must reproduce them), and for a soft, thin,
+lossless film the quasi-static estimate "film = a massless spring in series", its stiffness from
+the static punch solver (flat_punch_stiffness at f = 0, a different solver from the dynamic
+layered Galerkin the coated radiation uses).
+"""
+
+import json
+from importlib.resources import as_file, files
+
+import numpy as np
+import pandas as pd
+import pytest
+from click.testing import CliRunner
+
+from contactres import LayeredMaterial, flat_punch_stiffness
+from contactres.analysis._coating import Coating
+from contactres.analysis._radiation import RADIATION_RESULTS, material_by_name, radiation_loss
+from contactres.cli import main
+from contactres.dynamic import tangential_contact_stiffness, two_body_contact_stiffness
+from contactres.materials import Material
+
+F_QCM = 15e6  # Hz: 3rd overtone of a 5 MHz crystal
+RADII = np.array([3e-6, 6e-6])  # m: the coated fit's contact radii of the two loads
+FORCES = np.array([2e-3, 5e-3])  # N
+
+
+@pytest.fixture(scope="module")
+def bodies():
+    return material_by_name("glass"), material_by_name("quartz-AT", "plate")
+
+
+def study():
+    """One coated group whose record gives the contact radius of each load (as
+    analysis._coating.apply_coating writes it)."""
+    loads = pd.DataFrame(
+        {
+            "configuration": ["glass"] * 2,
+            "medium": ["air"] * 2,
+            "normal_force_N": FORCES,
+            "loss_tangent_mean": [0.2, 0.2],
+            "loss_tangent_sem": [0.01, 0.01],
+            "kappa_N_per_m_mean": [1e6, 2e6],
+        }
+    )
+    record = [
+        {"normal_force_N": float(f), "contact_radius_m": float(a)}
+        for f, a in zip(FORCES, RADII, strict=True)
+    ]
+    group = {
+        "configuration": "glass",
+        "medium": "air",
+        "E_Pa": 70e9,
+        "gamma_J_m2": 0.05,
+        "sphere_radius_m": 1.1e-3,
+        "poisson": 0.21,
+        "checks": [],
+        "coating": {"label": "film", "loads": record},
+    }
+    return loads, [group]
+
+
+def test_a_film_of_the_plates_own_material_gives_the_bare_plate(bodies):
+    sphere, plate = bodies
+    loads, groups = study()
+    out = radiation_loss(
+        loads, groups, sphere, plate, frequency_Hz=F_QCM, coating=Coating(((plate, 250e-9),))
+    )
+    assert tuple(out.columns) == RADIATION_RESULTS.names
+    np.testing.assert_allclose(out["contact_radius_m"], RADII, rtol=0)
+    K = two_body_contact_stiffness(sphere, plate, RADII, F_QCM)
+    K0 = two_body_contact_stiffness(sphere, plate, RADII, 0.0).real
+    np.testing.assert_allclose(out["stiffness_real_N_per_m"], K.real, rtol=1e-6)
+    np.testing.assert_allclose(out["stiffness_imag_N_per_m"], K.imag, rtol=1e-6)
+    np.testing.assert_allclose(out["stiffness_static_N_per_m"], K0, rtol=1e-6)
+    np.testing.assert_allclose(out["tan_delta_rad"], K.imag / K.real, rtol=1e-6)
+    np.testing.assert_allclose(out["radiation_share"], K.imag / K.real / 0.2, rtol=1e-6)
+    np.testing.assert_allclose(out["dynamic_softening"], K.real / K0 - 1, rtol=1e-5)
+    assert set(out["plate_material"]) == {"quartz-AT coated with quartz-AT 250 nm"}
+    # No refit of E on a coated plate: said, not guessed.
+    assert out["E_static_corrected_Pa"].isna().all()
+    assert out["note"].str.contains("E not refitted on a coated plate").all()
+
+
+def test_a_soft_lossless_film_lowers_the_radiation_loss_tangent(bodies):
+    """A film much thinner than its shear wavelength (here 1 µm against ~1.5 mm at 15 MHz)
+    stores energy and radiates almost none: a nearly lossless spring in series with the
+    radiating plate. In series, the loss tangent of the pair is the plate's weighted by the
+    share of the compliance that is lossy, so a soft film lowers tan δ_rad (while it stays > 0:
+    the substrate still radiates)."""
+    sphere, plate = bodies
+    film = Material.isotropic(5e9, 0.35, density=1190.0, name="soft")
+    h = 1e-6
+    loads, groups = study()
+    out = radiation_loss(
+        loads, groups, sphere, plate, frequency_Hz=F_QCM, coating=Coating(((film, h),))
+    )
+    tan = out["tan_delta_rad"].to_numpy(float)
+    bare = two_body_contact_stiffness(sphere, plate, RADII, F_QCM)
+    assert np.all(tan > 0)
+    assert np.all(tan < 0.5 * bare.imag / bare.real)
+    # The quasi-static estimate: the film as a massless spring, K_f from the static solver.
+    coated = flat_punch_stiffness(LayeredMaterial(plate, [(film, h)]), RADII, 0.0, "tangential")
+    naked = flat_punch_stiffness(plate, RADII, 0.0, "tangential")
+    spring = 1 / (1 / coated.real - 1 / naked.real)
+    k_plate = tangential_contact_stiffness(plate, RADII, F_QCM)
+    k_sphere = tangential_contact_stiffness(sphere, RADII, F_QCM)
+    estimate = 1 / (1 / k_plate + 1 / k_sphere + 1 / spring)
+    # 2 % measured (the film's inertia and the static solver's θ average are left out).
+    np.testing.assert_allclose(tan, estimate.imag / estimate.real, rtol=0.05)
+
+
+def test_rows_the_layered_solver_refuses_say_why(bodies):
+    """A film thin against the contact radius on the anisotropic plate is beyond the layered
+    tangential punch (ContactresInputError): that row says so, the other is computed."""
+    sphere, plate = bodies
+    film = Material.isotropic(5e9, 0.35, density=1190.0, name="soft")
+    loads, groups = study()
+    groups[0]["coating"]["loads"][1]["contact_radius_m"] = 15e-6  # a/h = 50 (the other 10)
+    out = radiation_loss(
+        loads, groups, sphere, plate, frequency_Hz=F_QCM, coating=Coating(((film, 300e-9),))
+    )
+    assert np.isfinite(out.loc[0, "tan_delta_rad"]) and np.isnan(out.loc[1, "tan_delta_rad"])
+    assert out.loc[1, "note"].startswith("stiffness not computed: ")
+
+
+def test_cli_radiation_on_the_coated_example(tmp_path):
+    out = tmp_path / "res"
+    with as_file(files("contactres") / "data" / "example_sweeps.csv") as example:
+        args = ["qcm", "analyze", str(example), "--out", str(out), "--no-figures"]
+        args += ["--bootstrap", "0", "--coating", "pmma:250e-9"]
+        args += ["--sphere-material", "glass", "--plate-material", "quartz-AT"]
+        r = CliRunner().invoke(main, args)
+    assert r.exit_code == 0, r.output
+    table = pd.read_csv(out / "radiation.csv", keep_default_na=False, na_values=[""])
+    assert tuple(table.columns) == RADIATION_RESULTS.names
+    assert set(table["plate_material"]) == {"quartz-AT coated with PMMA 250 nm"}
+    summary = json.loads((out / "summary.json").read_text())
+    # Each row's radius is its group's coated one, at its load (10 digits in the CSV).
+    for g in summary["groups"]:
+        part = table[
+            (table["configuration"] == g["configuration"]) & (table["medium"] == g["medium"])
+        ]
+        want = {r["normal_force_N"]: r["contact_radius_m"] for r in g["coating"]["loads"]}
+        np.testing.assert_allclose(
+            part["contact_radius_m"], [want[f] for f in part["normal_force_N"]], rtol=1e-9
+        )
+    # Every row either has a positive loss tangent or says why not.
+    tan = table["tan_delta_rad"].to_numpy(float)
+    computed = np.isfinite(tan)
+    assert np.all(tan[computed] > 0)
+    assert table["note"][~computed].str.len().gt(0).all()
+    assert "radiation loss of the contacts" in r.output
