@@ -287,3 +287,13 @@ def test_circular_pairs_keep_the_axisymmetric_route():
     steel = Material.isotropic(210e9, 0.3)
     for plate in (GLASS, Material.crystal("Cu").rotated((1, 1, 1))):
         assert isinstance(cr.sphere_contact(plate, R, F, indenter=steel), LayeredContact)
+
+
+def test_an_axis_of_symmetry_along_x_gives_an_orientation_of_exactly_0_or_90_degrees():
+    """The X axis of quartz is a 2-fold axis and lies in the AT-cut plate: the contact ellipse is
+    symmetric about it, so its major axis is along x or y, reported without round-off."""
+    from contactres.materials import at_cut_quartz
+    from contactres.normal import contact_ellipse
+
+    phi = contact_ellipse(at_cut_quartz()).orientation
+    assert phi in (0.0, np.pi / 2)

@@ -475,7 +475,10 @@ def contact_ellipse(
                 f"points (last change {err:.3g})"
             )
     rho = float(np.hypot(*w))
-    orientation = 0.5 * float(np.arctan2(w[1], w[0])) if rho > 0 else 0.0
+    # A component at round-off of ρ is zero: an axis along x or y is reported as exactly 0 or
+    # 90 degrees, not 3e-14 (far below the quadrature's rtol, so nothing else moves).
+    wx, wy = (0.0 if abs(float(c)) <= 1e-12 * rho else float(c) for c in w)
+    orientation = 0.5 * float(np.arctan2(wy, wx)) if rho > 0 else 0.0
     # atan2 gives (−π, π]: keep φ in (−π/2, π/2], an axis at −π/2 up to round-off is at +π/2.
     if orientation <= -np.pi / 2 + 1e-12:
         orientation += np.pi
