@@ -8,6 +8,7 @@ A benchmark calls :func:`target` once per timed quantity and ends with
 from __future__ import annotations
 
 import re
+import time
 
 
 def target(name: str, seconds: float, target_s: float) -> bool:
@@ -19,6 +20,16 @@ def target(name: str, seconds: float, target_s: float) -> bool:
         f"-> {'met' if met else 'MISSED'}"
     )
     return met
+
+
+def best_time(fn, repeat: int = 3) -> float:
+    """Best wall-clock time (s) of ``repeat`` runs of ``fn()``."""
+    times = []
+    for _ in range(repeat):
+        t0 = time.perf_counter()
+        fn()
+        times.append(time.perf_counter() - t0)
+    return min(times)
 
 
 def exit_code(results: list[bool]) -> int:

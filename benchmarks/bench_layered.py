@@ -14,26 +14,15 @@ Run: ``.venv/bin/python benchmarks/bench_layered.py`` (exit status 1 if a target
 from __future__ import annotations
 
 import sys
-import time
 
 import numpy as np
-from _verdict import exit_code, target
+from _verdict import best_time, exit_code, target
 
 from contactres import LayeredMaterial, Material, surface_green
 
 N = 128
 REPEAT = 3
 MAX_RATIO = 2.5
-
-
-def best_time(fn) -> float:
-    """Best wall-clock time (s) of REPEAT runs."""
-    times = []
-    for _ in range(REPEAT):
-        t0 = time.perf_counter()
-        fn()
-        times.append(time.perf_counter() - t0)
-    return min(times)
 
 
 def main() -> int:
@@ -52,9 +41,9 @@ def main() -> int:
     for name, sub, film, f in cases:
         stack = LayeredMaterial(sub, [(film, 250e-9)])
         surface_green(stack, eta[:2], theta, f)  # warm-up
-        t_sub = best_time(lambda sub=sub, f=f: surface_green(sub, eta, theta, f))
-        t_film = best_time(lambda film=film, f=f: surface_green(film, eta, theta, f))
-        t_lay = best_time(lambda stack=stack, f=f: surface_green(stack, eta, theta, f))
+        t_sub = best_time(lambda sub=sub, f=f: surface_green(sub, eta, theta, f), REPEAT)
+        t_film = best_time(lambda film=film, f=f: surface_green(film, eta, theta, f), REPEAT)
+        t_lay = best_time(lambda stack=stack, f=f: surface_green(stack, eta, theta, f), REPEAT)
         us = 1e6 / (N * N)
         print(
             f"  {name}: {t_lay * us:.2f} us/point layered; half-spaces: substrate "

@@ -214,8 +214,23 @@ def handover(kappa, t1: float):
 
 
 # ----------------------------------------------------------------------------------- the table
+class ReadOnlyArrays:
+    """Base of the prepared tables (frozen dataclasses of arrays): their arrays are made
+    read-only, and stay so through pickling (a table goes to dask workers)."""
+
+    def __post_init__(self) -> None:
+        for f in fields(self):  # type: ignore[arg-type]
+            value = getattr(self, f.name)
+            if isinstance(value, np.ndarray):
+                value.setflags(write=False)
+
+    def __reduce__(self):
+        # Unpickling goes through __init__, so the arrays come back read-only.
+        return (type(self), tuple(getattr(self, f.name) for f in fields(self)))
+
+
 @dataclass(frozen=True, eq=False)
-class KernelTable:
+class KernelTable(ReadOnlyArrays):
     """g(κ, θ) − g∞(θ) of one material and loss on the nodes every frequency and model reuse.
 
     Made by :func:`prepare` (or :func:`kernel_table` for an explicit :class:`Resolution`);
@@ -254,16 +269,6 @@ class KernelTable:
     far_harmonics: np.ndarray
     far_coeffs: np.ndarray
     fourfold: bool
-
-    def __post_init__(self) -> None:
-        for f in fields(self):
-            value = getattr(self, f.name)
-            if isinstance(value, np.ndarray):
-                value.setflags(write=False)
-
-    def __reduce__(self):
-        # Unpickling goes through __init__, so the arrays come back read-only.
-        return (type(self), tuple(getattr(self, f.name) for f in fields(self)))
 
     def check_for(self, m: Material, loss: float, rtol: float) -> KernelTable:
         """``self`` if it was prepared for the constants of ``m``, ``loss`` and ``rtol``; a

@@ -17,7 +17,7 @@ for a Vibrating Rigid Indenter", Am. J. Eng. Appl. Sci. 3(1), 56-63 (2010) (pape
 
 from __future__ import annotations
 
-from dataclasses import dataclass, fields
+from dataclasses import dataclass
 
 import numpy as np
 
@@ -25,6 +25,7 @@ from ..errors import ContactresInputError
 from ..halfspace import scaled_tensor, shear_reference, surface_compliance
 from ..materials import Material, require_material
 from ._table import (
+    ReadOnlyArrays,
     Resolution,
     check_contrast,
     check_loss,
@@ -73,7 +74,7 @@ def max_harmonics(m: Material, rtol: float) -> int:
 
 
 @dataclass(frozen=True, eq=False)
-class TangentialTable:
+class TangentialTable(ReadOnlyArrays):
     """The in-plane dynamic kernel of one material and loss on the nodes every k a reuses.
 
     Dimensionless: h = C44 Ĝ (C44 = Re C[3, 3] of the surface frame), κ in units of k_s.
@@ -109,15 +110,6 @@ class TangentialTable:
     near_weight: np.ndarray
     near_values: np.ndarray
     far_coeffs: np.ndarray
-
-    def __post_init__(self) -> None:
-        for f in fields(self):
-            value = getattr(self, f.name)
-            if isinstance(value, np.ndarray):
-                value.setflags(write=False)
-
-    def __reduce__(self):
-        return (type(self), tuple(getattr(self, f.name) for f in fields(self)))
 
     def check_for(self, m: Material, loss: float, rtol: float) -> TangentialTable:
         """``self`` if prepared for the constants of ``m``, ``loss`` and ``rtol``; else a
