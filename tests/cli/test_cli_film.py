@@ -98,6 +98,10 @@ AFM_BAD = [
     (("--coating", "pmma:2e-8", "--coating", "pmma:2e-8", "--substrate", "Si"), ["one film"]),
     (("--coating", "pmma:2e-8", "--substrate", "Si", "--crystal", "Si"), ["--crystal"]),
     (("--coating", "pmma:2e-8", "--substrate", "Si", "--film-range", "3e9"), ["--film-range"]),
+    (  # GPa typed as Pa: the unit slip is named
+        ("--coating", "pmma:2e-8", "--substrate", "Si", "--film-range", "1:10"),
+        ["--film-range", "gigapascals"],
+    ),
     (("--coating", "pmma:2e-8", "--substrate", "nope"), ["--substrate:", "nope"]),
 ]
 
