@@ -8,7 +8,6 @@ import math
 import click
 
 from ..errors import ContactresInputError
-from ..units import check_magnitude
 from ._common import MagnitudeType
 
 
@@ -70,6 +69,8 @@ def parse_film_range(text: str | None) -> tuple[float, float] | None:
         raise ContactresInputError(
             f"--film-range must be LOW:HIGH, two moduli 0 < LOW < HIGH in Pa, got {text!r}"
         )
+    from ..units import check_magnitude  # here: the CLI imports no library module at start-up
+
     for v, part in zip(values, (low, high), strict=True):  # a modulus typed in GPa is caught
         check_magnitude("modulus", v, "--film-range", text=part.strip())
     return values
