@@ -242,16 +242,30 @@ def test_force_range_from_zero_is_checked_point_by_point():
     assert "--force 1e-13 (in 0:1e-11:101) is outside" in r.stderr
 
 
+SOFTEST = ["--c11", "2e5", "--c12", "1e5", "--c44", "1e5"]
+
+
 def test_plausible_extremes_print_finite_numbers():
-    # the stiffest crystal under the largest load and sphere, and the softest extreme
+    # the stiffest crystal under the largest load and sphere, and the softest extreme (its
+    # smallest sphere with a contact within Hertz's validity: a/R ≈ 0.06 by a³ = 3FR/(4E*))
     for args in (
         ["--crystal", "diamond", "--radius", "1", "--force", "1e3"],
-        ["--c11", "2e5", "--c12", "1e5", "--c44", "1e5", "--radius", "1e-9", "--force", "1e-12"],
+        [*SOFTEST, "--radius", "2e-7", "--force", "1e-12"],
     ):
         r = run("contact", *args, "--format", "csv")
         assert r.exit_code == 0, r.output
         t = pd.read_csv(io.StringIO(r.stdout))
         assert np.isfinite(t.to_numpy()).all()
+
+
+def test_a_contact_wider_than_hertz_allows_is_flagged_not_printed():
+    """R = 1 nm on the softest solid: a/R ≈ 2 (issue 30's a/R = 24 case in small): the row
+    keeps R and F, its values are empty, and one stderr line says which inputs to check."""
+    r = run("contact", *SOFTEST, "--radius", "1e-9", "--force", "1e-12", "--format", "csv")
+    assert r.exit_code == 0, r.output
+    t = pd.read_csv(io.StringIO(r.stdout))
+    assert t["flags"].iat[0].startswith("a/R = ") and t["contact_radius_m"].isna().all()
+    assert "check the sphere radius (m) and the force (N)" in r.stderr
 
 
 def test_help_states_units_and_shows_defaults_one_way():

@@ -117,6 +117,8 @@ DYNAMIC_TANGENTIAL = (
     "tangential_loss_tangent",
 )
 COATED = ("coating", "film_share")
+# Only when a row is beyond Hertz's validity (a/R > 0.1; none of these contacts).
+FLAGGED = ("flags",)
 # The contact ellipse: a bare face only (the coated contact is the axisymmetric approximation).
 ELLIPSE = ("semi_major_m", "semi_minor_m", "ellipticity", "orientation_deg")
 # The columns afm invert and rum invert add with a coating (the film's modulus).
@@ -144,7 +146,7 @@ def test_contact_table_columns(frequency, tangential, coating, absent):
     face = Material.crystal("soda-lime-glass" if coating else "Cu").rotated((0, 0, 1))
     freq = None if frequency is None else np.array([frequency])
     s = contact.Settings(np.array([1e-3]), np.array([0.5, 1.0]), freq, tangential, 0.0, coating)
-    check_result(contact.run(face, s), {"table": absent})
+    check_result(contact.run(face, s), {"table": absent + FLAGGED})
 
 
 PHYSICAL = (

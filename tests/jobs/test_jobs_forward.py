@@ -249,3 +249,38 @@ def test_a_stiffer_film_has_a_negative_share():
     """Si3N4 (E = 300 GPa) on fused silica (73 GPa): the film stiffens the contact."""
     t = _table(Material.crystal("fused-silica"), ("Si3N4:1e-6",), force=(1e-3,))
     assert t["film_share"][0] < 0
+
+
+@pytest.mark.parametrize(
+    ("coating", "ratios"), [((), (0.09, 0.11)), (("pmma:250e-9",), (0.01, 2.0))]
+)
+def test_contact_beyond_hertz_validity_is_flagged_and_left_empty(coating, ratios):
+    """A contact radius above HERTZ_MAX_RATIO R (issue 30: R = 20 nm, F = 1 N printed a/R = 24
+    and p0 = 2 TPa) is flagged with its a/R and has no value; the valid rows are untouched.
+    The boundary is placed with Hertz's own a³ = 3FR/(4E*) on isotropic glass (Johnson, Ch. 4):
+    R with a/R = 0.09 and 0.11 at F = 1 N, i.e. R² = 3F/(4E* (a/R)³); on a 250 nm PMMA film
+    (softer: a wider contact) bare ratios well inside and far outside the limit."""
+    glass = Material.isotropic(70e9, 0.22, density=2500.0)
+    e_star = 70e9 / (1 - 0.22**2)
+    ratios = np.asarray(ratios)
+    radii = np.sqrt(3 * 1.0 / (4 * e_star * ratios**3))
+    s = contact.Settings(radius=radii, force=np.array([1.0]), frequency=np.array([1e5]),
+                         coating=coating)  # fmt: skip
+    result = contact.run(glass, s)
+    table = result.table
+    ok, wide = table.iloc[0], table.iloc[1]
+    if not coating:
+        assert ok["contact_radius_m"] / ok["radius_m"] == pytest.approx(ratios[0], rel=1e-9)
+    assert np.isfinite(ok["stiffness_N_per_m"]) and ok["flags"] == ""
+    assert wide["flags"].startswith("a/R = ") and "beyond Hertz" in wide["flags"]
+    computed = [c for c in table.columns if c not in ("radius_m", "force_N", "frequency_Hz",
+                                                       "coating", "flags")]  # fmt: skip
+    assert all(np.isnan(wide[c]) for c in computed)
+    assert wide["force_N"] == 1.0 and wide["radius_m"] == radii[1]
+    assert any("1 of 2 rows" in w and "check the sphere radius" in w for w in result.warnings)
+
+
+def test_contacts_within_hertz_validity_get_no_flags_column():
+    glass = Material.isotropic(70e9, 0.22, density=2500.0)
+    result = contact.run(glass, contact.Settings(radius=np.array([1e-3]), force=np.array([1.0])))
+    assert "flags" not in result.table and result.warnings == ()

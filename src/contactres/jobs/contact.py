@@ -56,6 +56,7 @@ if TYPE_CHECKING:
     from ..materials import Material
 
 __all__ = [
+    "HERTZ_MAX_RATIO",
     "MAX_COATING_LAYERS",
     "STATIC_FREQUENCY_HZ",
     "Result",
@@ -71,6 +72,12 @@ __all__ = [
 STATIC_FREQUENCY_HZ = 1.0
 # More layers than this is a typing slip, not a coating anyone measures.
 MAX_COATING_LAYERS = 10
+#: Largest contact radius over sphere radius, a/R, whose contact is given: Hertz's theory (and
+#: the anisotropic and layered contacts built on it) takes the sphere as a paraboloid on a
+#: half-space in small strain, good for a ≪ R (K. L. Johnson, *Contact Mechanics*, Cambridge
+#: University Press (1985), §4.2: a/R ≲ 0.1). A wider contact is flagged and its values are
+#: left empty: most likely a radius or a force typed in the wrong unit.
+HERTZ_MAX_RATIO = 0.1
 # Thicker than this is not a film (as contactres.LayeredMaterial); larger values are most
 # likely thicknesses typed in nm or µm.
 _MAX_THICKNESS_M = 1.0
@@ -162,6 +169,10 @@ def run(
         return _run_coated(stack, R, F, f, s, progress)
     say(progress, "static contact")
     c = sphere_contact(require_material(m), R, F)  # homogeneous only: no layered stack here
+    wide = _too_wide(c.contact_radius, R)
+    # A contact beyond Hertz's validity gets no dynamic stiffness either (its k_s a may lie
+    # far outside every solver's range): it is computed as no contact, then left empty.
+    F_valid = np.where(wide, 0.0, F)
     table = pd.DataFrame(
         {
             "radius_m": R,
@@ -179,19 +190,66 @@ def run(
     )
     if s.frequency is not None:
         say(progress, "dynamic stiffness")
-        _add_dynamic(table, m, R, F, f, s.tangential, s.direction)
+        _add_dynamic(table, m, R, F_valid, f, s.tangential, s.direction)
     elif s.tangential:
         table["tangential_stiffness_N_per_m"] = _tangential(
-            m, c.contact_radius, 0.0, s.direction
+            m, np.where(wide, 0.0, c.contact_radius), 0.0, s.direction
         ).real
-    return Result(table=table, circular=bool(c.circular), noncircularity=float(c.noncircularity))
+    return Result(
+        table=_flag_wide(table, wide),
+        circular=bool(c.circular),
+        noncircularity=float(c.noncircularity),
+        warnings=_wide_warnings(table, wide),
+    )
+
+
+def _too_wide(contact_radius, radius) -> np.ndarray:
+    """Where a/R exceeds :data:`HERTZ_MAX_RATIO` (a boolean array of the rows)."""
+    a = np.atleast_1d(np.asarray(contact_radius, dtype=float))
+    return np.asarray(a > HERTZ_MAX_RATIO * np.atleast_1d(radius), dtype=bool)
+
+
+# Columns a contact beyond Hertz's validity keeps: what the user gave, not what was computed.
+_GIVEN = ("radius_m", "force_N", "frequency_Hz", "coating")
+
+
+def _flag_wide(table, wide: np.ndarray):
+    """``table`` with the computed values of the rows ``wide`` left empty (NaN) and a ``flags``
+    column saying why (only when a row is flagged: a table of valid contacts is unchanged)."""
+    if not wide.any():
+        return table
+    table = table.copy()
+    ratio = table["contact_radius_m"].to_numpy(dtype=float) / table["radius_m"].to_numpy(float)
+    for col in table.columns:
+        if col not in _GIVEN:
+            table[col] = table[col].where(~wide, np.nan)
+    table["flags"] = [
+        f"a/R = {r:.3g} > {HERTZ_MAX_RATIO:g}: beyond Hertz" if w else ""
+        for r, w in zip(ratio, wide, strict=True)
+    ]
+    return table
+
+
+def _wide_warnings(table, wide: np.ndarray) -> tuple[str, ...]:
+    """One line on the rows beyond Hertz's validity (none when every row is valid)."""
+    if not wide.any():
+        return ()
+    ratio = table["contact_radius_m"].to_numpy(dtype=float) / table["radius_m"].to_numpy(float)
+    worst = int(np.nanargmax(np.where(wide, ratio, -np.inf)))
+    return (
+        f"{int(wide.sum())} of {wide.size} rows have a contact radius beyond Hertz's validity "
+        f"(a/R up to {ratio[worst]:.3g} > {HERTZ_MAX_RATIO:g}, at R = "
+        f"{table['radius_m'].iat[worst]:.3g} m, F = {table['force_N'].iat[worst]:.3g} N): their "
+        "values are left empty; check the sphere radius (m) and the force (N)",
+    )
 
 
 def _add_dynamic(table, m, R, F, f, tangential: bool, direction: float) -> None:
     """The dynamic normal (and tangential) stiffness columns at the frequencies ``f``."""
     from ..dynamic import dynamic_contact_stiffness, normalised_wavenumber, wave_modulus
 
-    a = table["contact_radius_m"].to_numpy(dtype=float)
+    # F = 0 stands for no contact (also a contact beyond Hertz's validity: run).
+    a = np.where(np.asarray(F) > 0, table["contact_radius_m"].to_numpy(dtype=float), 0.0)
     table["frequency_Hz"] = f
     table["ks_a"] = normalised_wavenumber(f, a, m.density, wave_modulus(m, "shear"))
     kn = dynamic_contact_stiffness(m, R, F, f)
@@ -392,7 +450,9 @@ def _run_coated(stack: LayeredMaterial, R, F, f, s: Settings, progress) -> Resul
             "film_share": share,
         }
     )
-    touching = a > 0
+    wide = _too_wide(a, R)
+    # A contact beyond Hertz's validity is computed as no contact, then left empty (run).
+    touching = (a > 0) & ~wide
     kt = np.zeros(a.shape, dtype=complex)
     # The layered punch moves along the surface x axis: turn the stack so x is the direction.
     turn = math.radians(s.direction)
@@ -438,8 +498,8 @@ def _run_coated(stack: LayeredMaterial, R, F, f, s: Settings, progress) -> Resul
             + ("; the dynamic ones its modulus at the frequency" if dynamic else ""),
         )
     return Result(
-        table=table,
+        table=_flag_wide(table, wide),
         circular=bool(getattr(bare, "circular", True)),
         noncircularity=float(getattr(bare, "noncircularity", 0.0)),
-        warnings=notes,
+        warnings=notes + _wide_warnings(table, wide),
     )

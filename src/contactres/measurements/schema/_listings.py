@@ -117,6 +117,13 @@ CONTACT_TABLE = TableSchema(
             "-",
             "Im K_t/Re K_t, empty without contact (with `--frequency` and `--tangential`)",
         ),
+        (
+            "flags",
+            "text",
+            "why a row's computed values are empty: `a/R = … > 0.1: beyond Hertz` (a contact "
+            "wider than Hertz's small-contact theory allows; check the radius and the force); "
+            "present only when a row is flagged",
+        ),
     ),
 )
 
