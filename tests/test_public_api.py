@@ -534,6 +534,7 @@ PUBLIC = {
     ],
     "jobs.contact": [
         *JOB_API,
+        "HERTZ_APPROXIMATE_RATIO",
         "HERTZ_MAX_RATIO",
         "MAX_COATING_LAYERS",
         "STATIC_FREQUENCY_HZ",

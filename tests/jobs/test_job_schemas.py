@@ -117,7 +117,7 @@ DYNAMIC_TANGENTIAL = (
     "tangential_loss_tangent",
 )
 COATED = ("coating", "film_share")
-# Only when a row is beyond Hertz's validity (a/R > 0.1; none of these contacts).
+# Only when a contact is wider than Hertz allows (a/R > 0.1; none of these contacts).
 FLAGGED = ("flags",)
 # The contact ellipse: a bare face only (the coated contact is the axisymmetric approximation).
 ELLIPSE = ("semi_major_m", "semi_minor_m", "ellipticity", "orientation_deg")

@@ -252,14 +252,14 @@ def test_a_stiffer_film_has_a_negative_share():
 
 
 @pytest.mark.parametrize(
-    ("coating", "ratios"), [((), (0.09, 0.11)), (("pmma:250e-9",), (0.01, 2.0))]
+    ("coating", "ratios"), [((), (0.09, 0.11, 0.6)), (("pmma:250e-9",), (0.01, 0.2, 2.0))]
 )
-def test_contact_beyond_hertz_validity_is_flagged_and_left_empty(coating, ratios):
-    """A contact radius above HERTZ_MAX_RATIO R (issue 30: R = 20 nm, F = 1 N printed a/R = 24
-    and p0 = 2 TPa) is flagged with its a/R and has no value; the valid rows are untouched.
-    The boundary is placed with Hertz's own a³ = 3FR/(4E*) on isotropic glass (Johnson, Ch. 4):
-    R with a/R = 0.09 and 0.11 at F = 1 N, i.e. R² = 3F/(4E* (a/R)³); on a 250 nm PMMA film
-    (softer: a wider contact) bare ratios well inside and far outside the limit."""
+def test_contacts_wider_than_hertz_allows_are_flagged(coating, ratios):
+    """a/R above HERTZ_APPROXIMATE_RATIO is flagged with its values kept; above
+    HERTZ_MAX_RATIO the values are left empty (issue 30: R = 20 nm, F = 1 N printed a/R = 24
+    and p0 = 2 TPa). The radii are placed with Hertz's own a³ = 3FR/(4E*) on isotropic glass
+    (Johnson, Ch. 4), R² = 3F/(4E* (a/R)³) at F = 1 N; on a 250 nm PMMA film (softer: a wider
+    contact) bare ratios well inside, near and far outside the limits."""
     glass = Material.isotropic(70e9, 0.22, density=2500.0)
     e_star = 70e9 / (1 - 0.22**2)
     ratios = np.asarray(ratios)
@@ -268,16 +268,22 @@ def test_contact_beyond_hertz_validity_is_flagged_and_left_empty(coating, ratios
                          coating=coating)  # fmt: skip
     result = contact.run(glass, s)
     table = result.table
-    ok, wide = table.iloc[0], table.iloc[1]
+    small, approximate, wide = (table.iloc[i] for i in range(3))
+    ratio = (table["contact_radius_m"] / table["radius_m"]).to_numpy()
     if not coating:
-        assert ok["contact_radius_m"] / ok["radius_m"] == pytest.approx(ratios[0], rel=1e-9)
-    assert np.isfinite(ok["stiffness_N_per_m"]) and ok["flags"] == ""
-    assert wide["flags"].startswith("a/R = ") and "beyond Hertz" in wide["flags"]
+        assert ratio[:2] == pytest.approx(ratios[:2], rel=1e-9)
+    assert small["flags"] == "" and np.isfinite(small["stiffness_N_per_m"])
+    assert approximate["flags"].endswith("> 0.1: Hertz approximate")
+    assert contact.HERTZ_APPROXIMATE_RATIO < ratio[1] < contact.HERTZ_MAX_RATIO
+    assert np.isfinite(approximate["dynamic_stiffness_real_N_per_m"])
+    assert wide["flags"].endswith("> 0.5: beyond Hertz, no value")
     computed = [c for c in table.columns if c not in ("radius_m", "force_N", "frequency_Hz",
                                                        "coating", "flags")]  # fmt: skip
     assert all(np.isnan(wide[c]) for c in computed)
-    assert wide["force_N"] == 1.0 and wide["radius_m"] == radii[1]
-    assert any("1 of 2 rows" in w and "check the sphere radius" in w for w in result.warnings)
+    assert wide["force_N"] == 1.0 and wide["radius_m"] == radii[2]
+    assert len(result.warnings) - (1 if coating else 0) == 2  # (a PMMA note first)
+    assert "1 of 3 rows" in result.warnings[-2] and "check the sphere radius" in result.warnings[-2]
+    assert "values are kept" in result.warnings[-1]
 
 
 def test_contacts_within_hertz_validity_get_no_flags_column():

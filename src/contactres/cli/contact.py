@@ -66,7 +66,9 @@ def contact(radius, force, frequency, tangential, direction, coating, fmt, **fac
     gives nearly the same contact). Radius, force and frequency broadcast: give one of them as a
     range for a table. On faces without 3- or 4-fold symmetry (e.g. 011) the contact is an
     ellipse (a note says so) and the contact radius is √(ab); these numbers do not depend on
-    --inplane (but the orientation, measured from it).
+    --inplane (but the orientation, measured from it). Hertz holds for a contact small
+    against the sphere: rows with a/R > 0.1 get a flags column ("Hertz approximate", values
+    kept), rows with a/R > 0.5 are left empty (most likely a radius or force in the wrong unit).
 
     --direction needs --tangential. --frequency adds the exact dynamic normal stiffness
     K_da = K_sa DCSF (real and imaginary parts, N/m, and k_s a = ω a √(ρ/C44)); --tangential

@@ -56,6 +56,7 @@ if TYPE_CHECKING:
     from ..materials import Material
 
 __all__ = [
+    "HERTZ_APPROXIMATE_RATIO",
     "HERTZ_MAX_RATIO",
     "MAX_COATING_LAYERS",
     "STATIC_FREQUENCY_HZ",
@@ -72,12 +73,18 @@ __all__ = [
 STATIC_FREQUENCY_HZ = 1.0
 # More layers than this is a typing slip, not a coating anyone measures.
 MAX_COATING_LAYERS = 10
-#: Largest contact radius over sphere radius, a/R, whose contact is given: Hertz's theory (and
-#: the anisotropic and layered contacts built on it) takes the sphere as a paraboloid on a
-#: half-space in small strain, good for a ≪ R (K. L. Johnson, *Contact Mechanics*, Cambridge
-#: University Press (1985), §4.2: a/R ≲ 0.1). A wider contact is flagged and its values are
-#: left empty: most likely a radius or a force typed in the wrong unit.
-HERTZ_MAX_RATIO = 0.1
+#: Contact radius over sphere radius, a/R, above which a contact is flagged as approximate:
+#: Hertz's theory (and the anisotropic and layered contacts built on it) takes the sphere as a
+#: paraboloid on a half-space in small strain, good for a ≪ R (K. L. Johnson, *Contact
+#: Mechanics*, Cambridge University Press (1985), §4.2: a/R ≲ 0.1). Its values are kept (at
+#: a/R = 0.24, a CR-AFM tip's usual contact, the paraboloid's gap at the contact edge is 1.5 %
+#: below the sphere's) and the row's ``flags`` say so.
+HERTZ_APPROXIMATE_RATIO = 0.1
+#: a/R above which a contact gets no values: the paraboloid's gap at the edge is 7 % below the
+#: sphere's at a/R = 0.5 (and the depth a²/R a quarter of the radius), no longer a small-contact
+#: answer; most likely a radius or a force typed in the wrong unit (issue 30: R = 20 nm and F =
+#: 1 N gave a/R = 24 and p0 = 2 TPa).
+HERTZ_MAX_RATIO = 0.5
 # Thicker than this is not a film (as contactres.LayeredMaterial); larger values are most
 # likely thicknesses typed in nm or µm.
 _MAX_THICKNESS_M = 1.0
@@ -199,7 +206,7 @@ def run(
         table=_flag_wide(table, wide),
         circular=bool(c.circular),
         noncircularity=float(c.noncircularity),
-        warnings=_wide_warnings(table, wide),
+        warnings=_wide_warnings(table),
     )
 
 
@@ -213,35 +220,60 @@ def _too_wide(contact_radius, radius) -> np.ndarray:
 _GIVEN = ("radius_m", "force_N", "frequency_Hz", "coating")
 
 
+def _ratio(table) -> np.ndarray:
+    """a/R of every row (NaN without contact radius)."""
+    return table["contact_radius_m"].to_numpy(dtype=float) / table["radius_m"].to_numpy(float)
+
+
 def _flag_wide(table, wide: np.ndarray):
-    """``table`` with the computed values of the rows ``wide`` left empty (NaN) and a ``flags``
-    column saying why (only when a row is flagged: a table of valid contacts is unchanged)."""
-    if not wide.any():
+    """``table`` with a ``flags`` column where a/R > :data:`HERTZ_APPROXIMATE_RATIO` (only then:
+    a table of small contacts is unchanged), and the computed values of the rows ``wide`` left
+    empty (NaN)."""
+    ratio = _ratio(table)
+    approximate = ratio > HERTZ_APPROXIMATE_RATIO
+    if not approximate.any():
         return table
     table = table.copy()
-    ratio = table["contact_radius_m"].to_numpy(dtype=float) / table["radius_m"].to_numpy(float)
     for col in table.columns:
         if col not in _GIVEN:
             table[col] = table[col].where(~wide, np.nan)
     table["flags"] = [
-        f"a/R = {r:.3g} > {HERTZ_MAX_RATIO:g}: beyond Hertz" if w else ""
-        for r, w in zip(ratio, wide, strict=True)
+        f"a/R = {r:.3g} > {HERTZ_MAX_RATIO:g}: beyond Hertz, no value"
+        if w
+        else (f"a/R = {r:.3g} > {HERTZ_APPROXIMATE_RATIO:g}: Hertz approximate" if x else "")
+        for r, w, x in zip(ratio, wide, approximate, strict=True)
     ]
     return table
 
 
-def _wide_warnings(table, wide: np.ndarray) -> tuple[str, ...]:
-    """One line on the rows beyond Hertz's validity (none when every row is valid)."""
-    if not wide.any():
-        return ()
-    ratio = table["contact_radius_m"].to_numpy(dtype=float) / table["radius_m"].to_numpy(float)
-    worst = int(np.nanargmax(np.where(wide, ratio, -np.inf)))
-    return (
-        f"{int(wide.sum())} of {wide.size} rows have a contact radius beyond Hertz's validity "
-        f"(a/R up to {ratio[worst]:.3g} > {HERTZ_MAX_RATIO:g}, at R = "
-        f"{table['radius_m'].iat[worst]:.3g} m, F = {table['force_N'].iat[worst]:.3g} N): their "
-        "values are left empty; check the sphere radius (m) and the force (N)",
-    )
+def _wide_warnings(table) -> tuple[str, ...]:
+    """A line on the rows beyond :data:`HERTZ_MAX_RATIO` (left empty) and one on those beyond
+    :data:`HERTZ_APPROXIMATE_RATIO` (kept); none when every contact is small."""
+    ratio = _ratio(table)
+    lines = []
+    for low, high, what, advice in (
+        (
+            HERTZ_MAX_RATIO,
+            np.inf,
+            "beyond Hertz's validity: their values are left empty",
+            "check the sphere radius (m) and the force (N)",
+        ),
+        (
+            HERTZ_APPROXIMATE_RATIO,
+            HERTZ_MAX_RATIO,
+            "where Hertz is approximate (flagged)",
+            "their values are kept: Hertz takes the sphere as a paraboloid, for a ≪ R",
+        ),
+    ):
+        rows = (ratio > low) & (ratio <= high)
+        if rows.any():
+            worst = int(np.nanargmax(np.where(rows, ratio, -np.inf)))
+            lines.append(
+                f"{int(rows.sum())} of {rows.size} rows have a contact radius {what} (a/R up to "
+                f"{ratio[worst]:.3g} > {low:g}, at R = {table['radius_m'].iat[worst]:.3g} m, F = "
+                f"{table['force_N'].iat[worst]:.3g} N); {advice}"
+            )
+    return tuple(lines)
 
 
 def _add_dynamic(table, m, R, F, f, tangential: bool, direction: float) -> None:
@@ -501,5 +533,5 @@ def _run_coated(stack: LayeredMaterial, R, F, f, s: Settings, progress) -> Resul
         table=_flag_wide(table, wide),
         circular=bool(getattr(bare, "circular", True)),
         noncircularity=float(getattr(bare, "noncircularity", 0.0)),
-        warnings=notes + _wide_warnings(table, wide),
+        warnings=notes + _wide_warnings(table),
     )

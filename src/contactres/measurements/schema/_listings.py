@@ -120,9 +120,9 @@ CONTACT_TABLE = TableSchema(
         (
             "flags",
             "text",
-            "why a row's computed values are empty: `a/R = … > 0.1: beyond Hertz` (a contact "
-            "wider than Hertz's small-contact theory allows; check the radius and the force); "
-            "present only when a row is flagged",
+            "a contact wider than Hertz's small-contact theory allows: `a/R = … > 0.1: Hertz "
+            "approximate` (values kept) or `a/R = … > 0.5: beyond Hertz, no value` (values "
+            "empty: check the radius and the force); present only when a row is flagged",
         ),
     ),
 )
