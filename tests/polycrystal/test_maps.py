@@ -198,6 +198,19 @@ def test_write_map_replaces_a_store_and_leaves_nothing_beside(cu_map, tmp_path):
     assert sorted(p.name for p in tmp_path.iterdir()) == ["map.zarr"]
 
 
+def test_a_written_store_opens_in_xarray_without_a_warning(cu_map, tmp_path):
+    """The store carries consolidated metadata: xarray's default open finds it and does not
+    warn (issue 30: every open of a contactres store warned); writing warns nothing either."""
+    import warnings
+
+    xr = pytest.importorskip("xarray", reason="the maps extra (xarray, zarr) is not installed")
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        write_map(tmp_path / "map.zarr", cu_map)
+        with xr.open_zarr(tmp_path / "map.zarr") as ds:
+            assert np.array_equal(ds["euler"].values, map_to_dataset(cu_map)["euler"].values)
+
+
 def test_write_map_refuses_to_overwrite_other_files(cu_map, tmp_path):
     (tmp_path / "data.zarr").write_text("not a store")
     with pytest.raises(ValueError, match="not a Zarr store"):

@@ -487,7 +487,13 @@ def write_map(path: str | os.PathLike, dataset, *, chunks: tuple[int, int] = (25
         sizes = {"y": cy, "x": cx}
         encoding[name] = {"chunks": tuple(sizes.get(d, n) for d, n in var.sizes.items())}
     try:
-        dataset.to_zarr(stage, mode="w-", encoding=encoding, consolidated=False)
+        with warnings.catch_warnings():
+            # Consolidated metadata (one read of the whole store's metadata) is what xarray's
+            # open_zarr looks for first: without it xarray warns on every open (issue 30).
+            # zarr 3 warns that it is not yet part of the format 3 specification; xarray
+            # writes it by default all the same, and older readers ignore it.
+            warnings.filterwarnings("ignore", message="Consolidated metadata is currently not")
+            dataset.to_zarr(stage, mode="w-", encoding=encoding, consolidated=True)
         if target.exists():
             aside = target.parent / f".{target.name}.{secrets.token_hex(6)}.old"
             shutil.rmtree(replace_folder(stage, target, aside), ignore_errors=True)
