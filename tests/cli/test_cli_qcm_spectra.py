@@ -50,6 +50,7 @@ BAD = [
     ("--reference", "nope"),
     ("--layout", "XY"),
     ("--reference-impedance", "-5"),
+    ("--two-port", "S12"),
     ("--voltage", "peak"),
     ("--d26", "3.3"),
     ("--calibration", "0"),
@@ -146,3 +147,54 @@ def test_an_empty_output_name_is_refused(tmp_path, monkeypatch, option):
     r = run("qcm", "spectra", SPECTRA, "--out", names["--out"], "--fits", names["--fits"])
     one_line_error(r, "output file ''", "is empty")
     assert list(tmp_path.iterdir()) == []
+
+
+def _two_port_folder(tmp_path, shift_Hz):
+    """A reference and a measured two-port .s2p (the crystal on port 2, a resonance
+    ``shift_Hz`` higher when measured), each a series R-L-C ∥ C0 written by scikit-rf."""
+    skrf = pytest.importorskip("skrf", reason="scikit-rf (the peers extra) is not installed")
+    folder = tmp_path / "run"
+    folder.mkdir()
+    f = np.linspace(14.995e6, 15.005e6, 301)
+    rows = []
+    for name, fr in (("ref", 15e6), ("meas", 15e6 + shift_Hz)):
+        w, r, q = 2 * np.pi * f, 200.0, 2e4
+        L = q * r / (2 * np.pi * 15e6)
+        C = 1 / ((2 * np.pi * fr) ** 2 * L)
+        y = 1 / (r + 1j * w * L + 1 / (1j * w * C)) + 1j * w * 5e-12
+        params = np.zeros((f.size, 2, 2), dtype=complex)
+        params[:, 1, 1] = y
+        s = skrf.network.y2s(params, z0=50.0)
+        skrf.Network(frequency=skrf.Frequency.from_f(f, unit="Hz"), s=s).write_touchstone(
+            str(folder / name), form="ma"
+        )
+        rows.append({"file": f"{name}.s2p", "overtone": 3, "drive_voltage_V": 0.5,
+                     "reference": name == "ref", "sweep": "" if name == "ref" else "A",
+                     "normal_force_N": "" if name == "ref" else 1e-3})  # fmt: skip
+    pd.DataFrame(rows).to_csv(folder / "index.csv", index=False)
+    return folder
+
+
+def test_a_two_port_folder_needs_the_port_and_then_gives_the_shift(tmp_path):
+    """issue 30: a folder with .s2p files was misdiagnosed as a CSV without frequency_Hz. It
+    now asks for --two-port in one line, and with it gives the circuit's resonance shift."""
+    folder = _two_port_folder(tmp_path, 40.0)
+    r = run("qcm", "spectra", folder, "--out", tmp_path / "s.csv")
+    one_line_error(r, "--two-port")
+    out = tmp_path / "s.csv"
+    r = run("qcm", "spectra", folder, "--out", out, "--two-port", "S22")
+    assert r.exit_code == 0, r.output
+    rows = pd.read_csv(out, comment="#")
+    # The series resonance moves by 40 Hz; C0 pulls the conductance peak by far less than the
+    # fit's error at Q = 2e4 (the resonance fit's own tests bound that pull).
+    assert rows["df_Hz"].to_numpy() == pytest.approx([40.0], abs=0.05)
+    assert "two_port: S22 (reflection at port 2" in r.stdout
+
+
+def test_only_reference_spectra_is_one_line(tmp_path):
+    folder = _two_port_folder(tmp_path, 0.0)
+    index = pd.read_csv(folder / "index.csv")
+    index["reference"] = True
+    index.to_csv(folder / "index.csv", index=False)
+    r = run("qcm", "spectra", folder, "--out", tmp_path / "s.csv", "--two-port", "S22")
+    one_line_error(r, "every spectrum is a reference")

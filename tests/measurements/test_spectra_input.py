@@ -191,3 +191,57 @@ def test_touchstone_y_is_normalised_to_r(tmp_path):
     t = read_spectra(folder)
     got = t.points["G_S"].to_numpy() + 1j * t.points["B_S"].to_numpy()
     assert np.allclose(got, y, rtol=1e-9, atol=1e-12 * np.max(abs(y)))
+
+
+def _skrf_two_port(tmp_path, y_params, name):
+    """A two-port .s2p of the Y parameters ``y_params`` (F, 2, 2), converted to S and written
+    by scikit-rf (a peer: its y2s and Touchstone writer, not contactres's formulas)."""
+    skrf = pytest.importorskip("skrf", reason="scikit-rf (the peers extra) is not installed")
+    net = skrf.Network(
+        frequency=skrf.Frequency.from_f(F, unit="Hz"), s=skrf.network.y2s(y_params, z0=50.0)
+    )
+    net.write_touchstone(str(tmp_path / name), form="ri")
+    return tmp_path / f"{name}.s2p"
+
+
+@pytest.mark.parametrize("parameter", ["S11", "S22", "S21"])
+def test_two_port_touchstone_written_by_scikit_rf_gives_the_crystal(tmp_path, parameter):
+    """The crystal as a shunt on port 1 or port 2 (reflection), or in series between the ports
+    (transmission): Y parameters [[y, 0], [0, 0]], [[0, 0], [0, y]] or [[y, −y], [−y, y]]
+    (Pozar, Table 4.2), converted to S and written by scikit-rf; read back, the admittance is
+    the circuit's."""
+    y = _circuit(F)
+    params = np.zeros((F.size, 2, 2), dtype=complex)
+    if parameter == "S11":
+        params[:, 0, 0] = y
+    elif parameter == "S22":
+        params[:, 1, 1] = y
+    else:
+        params[:] = y[:, None, None] * np.array([[1, -1], [-1, 1]])
+    path = _skrf_two_port(tmp_path, params, "crystal")
+    folder = tmp_path / "run"
+    folder.mkdir()
+    path.rename(folder / path.name)
+    pd.DataFrame([{"file": path.name, "overtone": 3}]).to_csv(folder / "index.csv", index=False)
+    t = read_spectra(folder, two_port=parameter)
+    got = t.points["G_S"].to_numpy() + 1j * t.points["B_S"].to_numpy()
+    assert np.allclose(got, y, rtol=1e-8, atol=1e-10 * np.max(abs(y)))
+
+
+def test_two_port_file_needs_its_parameter_and_skips_noise_data(tmp_path):
+    y = _circuit(F[:3])
+    s11 = (1 - 50 * y) / (1 + 50 * y)
+    lines = ["# Hz S RI R 50"] + [
+        f"{f:.6f} {v.real:.15g} {v.imag:.15g} 0 0 0 0 0 0" for f, v in zip(F[:3], s11, strict=True)
+    ]
+    noise = ["! noise parameters", f"{F[0]:.6f} 1.5 0.3 20 0.2"]
+    folder = _folder(tmp_path, {"a.s2p": "\n".join(lines + noise)}, [{"file": "a.s2p"}])
+    with pytest.raises(ValueError, match=r"a\.s2p: a two-port Touchstone file: say which S"):
+        read_spectra(folder)
+    t = read_spectra(folder, two_port="S11")
+    assert t.points["frequency_Hz"].to_numpy() == pytest.approx(F[:3], rel=1e-12)
+    with pytest.raises(ValueError, match="two-port parameter must be one of S11, S22, S21"):
+        read_spectra(folder, two_port="S12")
+    (folder / "a.s2p").write_text("\n".join(["# Hz Y RI R 50", *lines[1:]]))
+    with pytest.raises(ValueError, match="two-port files of S parameters"):
+        read_spectra(folder, two_port="S11")

@@ -64,6 +64,13 @@ def _positive(name: str, low: float, high: float, unit: str):
     help="Reference impedance Z0 of S11 in delimited files, Ω (Touchstone files give theirs).",
 )
 @click.option(
+    "--two-port",
+    type=click.Choice(["S11", "S22", "S21"]),
+    help="Which S parameter of the folder's two-port Touchstone files (.s2p) is the crystal's "
+    "response: S11 or S22 (reflection: the crystal on port 1 or 2) or S21 (the crystal in "
+    "series between the ports).",
+)
+@click.option(
     "--voltage",
     type=click.Choice(["amplitude", "rms"]),
     default="amplitude",
@@ -89,17 +96,28 @@ def _positive(name: str, low: float, high: float, unit: str):
 )
 @format_option()
 def spectra_command(
-    spectra, out, fits, reference, layout, reference_impedance, voltage, d26, calibration, fmt
+    spectra,
+    out,
+    fits,
+    reference,
+    layout,
+    reference_impedance,
+    two_port,
+    voltage,
+    d26,
+    calibration,
+    fmt,
 ):
     """Fit admittance spectra and write the sweep table.
 
     SPECTRA is a tidy CSV (one row per frequency point: spectrum, frequency_Hz, G_S, B_S, and
     per spectrum drive_voltage_V, overtone, reference, sweep, ramp, experiment,
     normal_force_N, configuration, medium) or a folder of network-analyser files (Touchstone
-    .s1p/.y1p/.z1p or CSV) with an index.csv (column file + the same labels). Every spectrum
-    is fitted for its resonance frequency f_r and half-bandwidth Γ (half width at half height
-    of G); Δf and ΔΓ are taken against the reference spectra of the same overtone (Δf not
-    divided by n; Γ, not D); the amplitude follows from the drive voltage.
+    .s1p/.y1p/.z1p, .s2p with --two-port, or CSV) with an index.csv (column file + the same
+    labels). Every spectrum is fitted for its resonance frequency f_r and half-bandwidth Γ
+    (half width at half height of G); Δf and ΔΓ are taken against the reference spectra of
+    the same overtone (Δf not divided by n; Γ, not D); the amplitude follows from the drive
+    voltage.
 
     The example files: 'contactres examples --copy .' copies them into this folder.
 
@@ -127,6 +145,7 @@ def spectra_command(
         voltage=voltage,
         d26=d26,
         calibration=calibration,
+        two_port=two_port,
     )
     result = job.run(spectra, settings, progress=lambda text: step("qcm spectra", text))
     rows, fitted, conventions = result.sweeps, result.fits, result.conventions

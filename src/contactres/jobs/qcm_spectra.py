@@ -44,6 +44,10 @@ class Settings:
         Piezoelectric strain constant of the quartz, m/V (None: 3.1e-12, AT cut).
     calibration : float or None
         Measured amplitude per drive volt, m/V (replaces the d26 formula).
+    two_port : str or None
+        The S parameter of two-port Touchstone files (``.s2p``) that is the crystal's
+        response: "S11", "S22" (reflection) or "S21" (the crystal in series between the
+        ports); None: no two-port file is expected.
     """
 
     reference: tuple[str, ...] | None = None
@@ -52,6 +56,7 @@ class Settings:
     voltage: str = "amplitude"
     d26: float | None = None
     calibration: float | None = None
+    two_port: str | None = None
 
 
 @dataclass(frozen=True)
@@ -87,8 +92,13 @@ def run(
         calibration_m_per_V=s.calibration,
         validate=False,
         progress=progress,
+        two_port=s.two_port,
     )
     conventions = dict(rows.attrs.get("conventions", {}))
+    if s.two_port is not None:
+        from ..measurements.readers import TWO_PORT_PARAMETERS
+
+        conventions["two_port"] = f"{s.two_port} ({TWO_PORT_PARAMETERS[s.two_port]})"
     if s.voltage == "rms":
         conventions["voltage"] = "drive_voltage_V read as rms, times √2"
     return Result(

@@ -248,6 +248,11 @@ def sweeps_from_spectra(
         for row in spectra[~ok].itertuples()
     ]
     measured = spectra[~refs & ok]
+    if not (~refs).any():
+        raise ContactresInputError(
+            f"{table.source}: every spectrum is a reference (no contact); the shifts need "
+            "measured spectra too (reference = no, or not in --reference)"
+        )
     if measured.empty:
         more = " ..." if len(left_out) > 3 else ""
         raise ContactresInputError(
@@ -398,6 +403,7 @@ def read_spectra_sweeps(
     calibration_m_per_V: float | None = None,
     validate: bool = True,
     progress=None,
+    two_port: str | None = None,
     **constants,
 ):
     """Spectra -> resonance fits -> the validated sweep table, in one call.
@@ -408,7 +414,7 @@ def read_spectra_sweeps(
         Tidy spectra table or folder (:func:`~contactres.measurements._spectra_table.read_spectra`).
     reference, d26, calibration_m_per_V
         As in :func:`sweeps_from_spectra`.
-    layout, reference_impedance, voltage
+    layout, reference_impedance, voltage, two_port
         As in :func:`~contactres.measurements._spectra_table.read_spectra`.
     validate : bool
         Validate the sweep table (needs its constants: from columns of the spectra table or
@@ -433,7 +439,11 @@ def read_spectra_sweeps(
 
     digest = file_sha256(path)  # of the file as read (None for a folder of spectra)
     table = read_spectra(
-        path, layout=layout, reference_impedance=reference_impedance, voltage=voltage
+        path,
+        layout=layout,
+        reference_impedance=reference_impedance,
+        voltage=voltage,
+        two_port=two_port,
     )
     p = table.points
     if progress is not None:

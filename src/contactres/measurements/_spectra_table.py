@@ -199,6 +199,7 @@ def read_spectra(
     reference_impedance: float = 50.0,
     voltage: str = "amplitude",
     readers=None,
+    two_port: str | None = None,
 ) -> SpectraTable:
     """Read admittance spectra from a tidy table or a folder of spectrum files.
 
@@ -218,6 +219,11 @@ def read_spectra(
     readers : Readers, optional
         The registry to pick the reader from (kind ``spectra``; default
         :data:`~contactres.measurements.readers.BUILT_IN`): a folder, else a table.
+    two_port : str, optional
+        The S parameter of the folder's two-port Touchstone files (``.s2p``) that is the
+        crystal's response: "S11", "S22" (reflection) or "S21" (the crystal in series between
+        the ports); required when the folder holds one
+        (:data:`~contactres.measurements.readers.TWO_PORT_PARAMETERS`).
 
     Returns
     -------
@@ -234,7 +240,9 @@ def read_spectra(
     if voltage not in ("amplitude", "rms"):
         raise ContactresInputError(f"voltage must be 'amplitude' or 'rms', got {voltage!r}")
     registry = BUILT_IN if readers is None else readers
-    raw = registry.pick(p, "spectra").load(p, layout=layout, reference_impedance=z0)
+    raw = registry.pick(p, "spectra").load(
+        p, layout=layout, reference_impedance=z0, two_port=two_port
+    )
     table = validate_spectra(raw, str(p))
     if voltage == "rms":
         spectra = table.spectra.assign(drive_voltage_V=table.spectra["drive_voltage_V"] * 2**0.5)

@@ -11,7 +11,8 @@ The formats: delimited text (``_delimited``, sweep and resonance tables), spectr
 (``_spectra``) and instrument exports (:mod:`.exports`). The modules are private (scipy's rule:
 import from this package and from :mod:`.exports`). Beside the recipes, this package exports
 what the tables of :mod:`contactres.measurements` take from the readers: the spectra tables'
-layouts, labels and constant columns (:data:`SPECTRUM_LAYOUTS`, :data:`LABELS`,
+layouts, two-port parameters, labels and constant columns (:data:`SPECTRUM_LAYOUTS`,
+:data:`TWO_PORT_PARAMETERS`, :data:`LABELS`,
 :data:`NUMERIC_LABELS`, :data:`CONSTANT_COLUMNS`), their cells as numbers
 (:func:`cells_as_numbers`) and line numbers as ranges for messages (:func:`line_ranges`).
 """
@@ -32,6 +33,7 @@ if TYPE_CHECKING:
         LABELS,
         NUMERIC_LABELS,
         SPECTRUM_LAYOUTS,
+        TWO_PORT_PARAMETERS,
         cells_as_numbers,
     )
 
@@ -46,6 +48,7 @@ _LAZY = {
     "LABELS": "_spectra",
     "NUMERIC_LABELS": "_spectra",
     "SPECTRUM_LAYOUTS": "_spectra",
+    "TWO_PORT_PARAMETERS": "_spectra",
     "cells_as_numbers": "_spectra",
     "line_ranges": "_delimited",
 }
@@ -58,6 +61,7 @@ __all__ = [
     "LABELS",
     "NUMERIC_LABELS",
     "SPECTRUM_LAYOUTS",
+    "TWO_PORT_PARAMETERS",
     "Reader",
     "Readers",
     "SweepReader",

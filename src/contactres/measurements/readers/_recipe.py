@@ -30,7 +30,8 @@ KINDS = MappingProxyType(
     {
         "sweeps": "load(path) -> DataFrame: a sweep table as string cells and a `line` column",
         "spectra": (
-            "load(path, *, layout=None, reference_impedance=50.0) -> DataFrame: tidy spectra "
+            "load(path, *, layout=None, reference_impedance=50.0, two_port=None) -> DataFrame: "
+            "tidy spectra "
             "rows as string cells and a `line` column"
         ),
         "export": "load(path, **conventions) -> ExportTable: an instrument's QCM-D export",

@@ -5,8 +5,10 @@ file per spectrum as network analysers write them: a Touchstone one-port file (`
 ``.y1p``, ``.z1p``: its option line ``# Hz S RI R 50`` says the frequency unit, the parameter
 (S11, Y or Z), the format (RI real/imaginary, MA magnitude/angle in degrees, DB dB/angle) and
 the reference impedance; one option line, before the data; a word Touchstone does not define
-is an error, never a default), or a delimited file whose header names say what its two columns
-hold (:data:`SPECTRUM_LAYOUTS`; the ``layout`` argument when they do not). The index names
+is an error, never a default), a Touchstone two-port file of S parameters (``.s2p``, the
+parameter read chosen by the ``two_port`` argument: :data:`TWO_PORT_PARAMETERS`), or a
+delimited file whose header names say what its two columns hold (:data:`SPECTRUM_LAYOUTS`;
+the ``layout`` argument when they do not). The index names
 files of its own folder only (a path leading out of it is refused). S11 becomes
 Y = (1 − S)/(Z0 (1 + S)) with the reference impedance Z0 (Touchstone: its R; otherwise
 ``reference_impedance``, 50 Ω by default).
@@ -37,6 +39,7 @@ __all__ = [
     "NUMERIC_LABELS",
     "SPECTRA_READERS",
     "SPECTRUM_LAYOUTS",
+    "TWO_PORT_PARAMETERS",
     "cells_as_numbers",
     "load_folder",
     "load_table",
@@ -71,6 +74,21 @@ def cells_as_numbers(raw: pd.DataFrame, col: str, source: str, decimal: str = ".
 
 
 _OPTION_LINE = re.compile(r"^\s*#(.*)$")
+#: The S parameter of a two-port file (``.s2p``) read as the crystal's response, and how it
+#: becomes the crystal's admittance Y with the reference impedance Z0: in reflection (the
+#: crystal on port 1 or port 2, the other port not connected to it) the one-port relation
+#: Y = (1 − S)/(Z0 (1 + S)); in transmission through the crystal in series between the two
+#: ports, S21 = 2Z0/(2Z0 + Z), so Y = S21/(2 Z0 (1 − S21)) (D. M. Pozar, *Microwave
+#: Engineering*, 4th ed., Wiley (2012), Table 4.2: a series impedance).
+TWO_PORT_PARAMETERS = {
+    "S11": "reflection at port 1: the crystal on port 1",
+    "S22": "reflection at port 2: the crystal on port 2",
+    "S21": "transmission: the crystal in series between port 1 and port 2",
+}
+# Position of each S parameter's pair of numbers on a two-port data line (Touchstone 1: the
+# frequency, then S11, S21, S12, S22).
+_TWO_PORT_COLUMNS = {"S11": 1, "S21": 3, "S12": 5, "S22": 7}
+
 #: The words of a Touchstone 1 option line, ``# <frequency unit> <parameter> <format> R <n>``
 #: (Touchstone File Format Specification 2.0, section "Option Line", which also defines
 #: version 1.x files): frequency units, parameters (H and G are two-port hybrid parameters, no
@@ -132,13 +150,30 @@ def _options(path: Path, number: int, text: str) -> tuple[float, str, str, float
     )
 
 
-def _touchstone(path: Path) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """(frequency Hz, G S, B S, line numbers) of a one-port Touchstone file. Its one option
+def _touchstone(
+    path: Path, two_port: str | None = None
+) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """(frequency Hz, G S, B S, line numbers) of a Touchstone 1 file: one-port, or two-port
+    (``.s2p``) with the S parameter ``two_port`` (:data:`TWO_PORT_PARAMETERS`). Its one option
     line must come before the data: without it the unit and format would be the
     specification's defaults (GHz, MA), which a file of Hz read silently (issue 27); a second
-    option line is an error (the specification allows one)."""
+    option line is an error (the specification allows one). A two-port file's noise
+    parameters (lines of 5 numbers after the network data) are not read."""
+    ports = 2 if path.suffix.lower() == ".s2p" else 1
+    if ports == 2 and two_port is None:
+        raise ContactresInputError(
+            f"{path}: a two-port Touchstone file: say which S parameter is the crystal's "
+            f"response (two_port, --two-port {' or '.join(TWO_PORT_PARAMETERS)}: "
+            + "; ".join(f"{k} {v}" for k, v in TWO_PORT_PARAMETERS.items())
+            + ")"
+        )
+    width = 9 if ports == 2 else 3
+    column = 1 if ports == 1 else _TWO_PORT_COLUMNS[str(two_port)]
     options = None
-    freq, a, b, lines = [], [], [], []
+    freq: list[float] = []
+    a: list[float] = []
+    b: list[float] = []
+    lines: list[int] = []
     for number, text in enumerate(path.read_text(errors="replace").splitlines(), start=1):
         text = text.split("!", 1)[0].strip()
         if not text:
@@ -167,16 +202,19 @@ def _touchstone(path: Path) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndar
             values = [float(x) for x in fields]
         except ValueError:
             raise ContactresInputError(
-                f"{path}, line {number}: {shown_value(text)} is not three numbers "
-                "(frequency and the two parts of the one-port parameter)"
+                f"{path}, line {number}: {shown_value(text)} is not {width} numbers "
+                f"(frequency and the two parts of each of the {ports}-port file's parameters)"
             ) from None
-        if len(values) != 3:
+        if ports == 2 and len(values) == 5 and freq:
+            break  # the noise parameters of a two-port file: not the network's data
+        if len(values) != width:
             raise ContactresInputError(
-                f"{path}, line {number}: {len(values)} numbers, a one-port Touchstone line has 3"
+                f"{path}, line {number}: {len(values)} numbers, a {ports}-port Touchstone line "
+                f"has {width}"
             )
         freq.append(values[0] * options[1])
-        a.append(values[1])
-        b.append(values[2])
+        a.append(values[column])
+        b.append(values[column + 1])
         lines.append(number)
     if options is None:
         raise ContactresInputError(
@@ -184,12 +222,21 @@ def _touchstone(path: Path) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndar
             "and one line per frequency"
         )
     _, _, param, fmt, z0 = options
+    if ports == 2 and param != "S":
+        raise ContactresInputError(
+            f"{path}, line {options[0]}: a two-port file of {param} parameters; contactres reads "
+            "two-port files of S parameters (save them as S, or the crystal alone as a one-port)"
+        )
     first, second = np.array(a), np.array(b)
     if fmt == "RI":
         x = first + 1j * second
     else:
         mag = 10 ** (first / 20) if fmt == "DB" else first
         x = mag * np.exp(1j * np.radians(second))
+    if two_port == "S21":
+        with np.errstate(divide="ignore", invalid="ignore"):
+            y = x / (2.0 * z0 * (1.0 - x))  # a series element between the ports
+        return np.array(freq), y.real, y.imag, np.array(lines)
     return np.array(freq), *_admittance(param, x, z0), np.array(lines)
 
 
@@ -256,7 +303,7 @@ def _delimited_spectrum(path: Path, layout: str | None, z0: float):
     return f, y.real, y.imag, raw["line"].to_numpy()
 
 
-def _read_folder(folder: Path, layout, z0: float) -> pd.DataFrame:
+def _read_folder(folder: Path, layout, z0: float, two_port: str | None) -> pd.DataFrame:
     index_path = folder / "index.csv"
     if not index_path.exists():
         raise ContactresInputError(
@@ -285,8 +332,8 @@ def _read_folder(folder: Path, layout, z0: float) -> pd.DataFrame:
                 f"{index_path}, line {row['line']}, column 'file': no such file "
                 f"{shown_value(name)} in {folder}"
             )
-        if path.suffix.lower() in (".s1p", ".y1p", ".z1p"):
-            f, g, b, lines = _touchstone(path)
+        if path.suffix.lower() in (".s1p", ".y1p", ".z1p", ".s2p"):
+            f, g, b, lines = _touchstone(path, two_port)
         else:
             f, g, b, lines = _delimited_spectrum(path, layout, z0)
         sid = str(row.get("spectrum", "") or "").strip() or path.stem
@@ -317,9 +364,17 @@ def load_table(path, **options) -> pd.DataFrame:
     return _delimited.load(Path(path))
 
 
-def load_folder(path, *, layout=None, reference_impedance: float = 50.0) -> pd.DataFrame:
-    """The files of a folder of spectra as the rows of a tidy table (string cells, ``line``)."""
-    return _read_folder(Path(path), layout, float(reference_impedance))
+def load_folder(
+    path, *, layout=None, reference_impedance: float = 50.0, two_port: str | None = None
+) -> pd.DataFrame:
+    """The files of a folder of spectra as the rows of a tidy table (string cells, ``line``);
+    ``two_port``: the S parameter of its ``.s2p`` files (:data:`TWO_PORT_PARAMETERS`)."""
+    if two_port is not None and two_port not in TWO_PORT_PARAMETERS:
+        raise ContactresInputError(
+            f"two-port parameter must be one of {', '.join(TWO_PORT_PARAMETERS)}, got "
+            f"{shown_value(two_port)}"
+        )
+    return _read_folder(Path(path), layout, float(reference_impedance), two_port)
 
 
 #: The spectra recipes: a folder of spectrum files, else a tidy table (any other file: its
