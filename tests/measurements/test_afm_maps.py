@@ -13,6 +13,8 @@ as ``grid_scan_width_[m]``/``grid_scan_height_[m]`` attributes of the measuremen
 
 from __future__ import annotations
 
+import sys
+
 import numpy as np
 import pytest
 from afm_file_fixtures import DRIVE_FREQUENCY, write_dart_ibw
@@ -267,3 +269,16 @@ def test_read_afm_map_file_bad_files(tmp_path):
         read_afm_map_file(empty)
     with pytest.raises(ContactresInputError, match="no such file"):
         read_afm_map_file(tmp_path / "absent.ibw")
+
+
+def test_without_h5py_one_line_names_the_extra(tmp_path, monkeypatch):
+    from contactres.errors import MissingExtraError
+
+    path = tmp_path / "be.h5"
+    write_bglib(path)
+    monkeypatch.setitem(sys.modules, "h5py", None)  # as if not installed
+    with pytest.raises(MissingExtraError) as info:
+        read_be_sho(path)
+    assert str(info.value) == (
+        "reading band-excitation .h5 files needs h5py: pip install 'contactres[afm]'"
+    )
