@@ -114,6 +114,7 @@ _EXPORTS: dict[str, str] = {
     "invert_afm_table": ".analysis",
     "invert_rum_table": ".analysis",
     "read_resonance_table": ".measurements",
+    "read_ibw": ".measurements",
     "example_afm_map": ".measurements",
     "write_report": ".report",
 }
@@ -226,6 +227,7 @@ if TYPE_CHECKING:
         SweepTable as SweepTable,
         SweepWarning as SweepWarning,
         example_afm_map as example_afm_map,
+        read_ibw as read_ibw,
         read_resonance_table as read_resonance_table,
         read_sweeps as read_sweeps,
         validate_sweeps as validate_sweeps,
