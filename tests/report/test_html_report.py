@@ -6,6 +6,7 @@ import warnings
 from html.parser import HTMLParser
 from pathlib import Path
 
+import numpy as np
 import pytest
 from click.testing import CliRunner
 
@@ -230,3 +231,21 @@ def test_errors_say_the_bootstrap_was_off(results):
     # The example has 4 experiments: with --bootstrap 0 the reason is the switch, not the data.
     methods = {g["error_method"] for g in summary(results)["groups"]}
     assert methods == {"fit residuals (Jacobian), bootstrap off (--bootstrap 0)"}
+
+
+def test_unresolved_load_values_are_marked(example_set):
+    """issue 30: μ(ΔΓ) = 2.9 ± 3.7 was shown without a mark. Every per-load mean whose standard
+    deviation is at least its magnitude (counted here from loads.csv) carries the mark, and no
+    other value does (the page's legend names the mark once more)."""
+    import pandas as pd
+
+    from contactres.report._html import UNRESOLVED_MARK
+
+    loads = pd.read_csv(example_set / "loads.csv")
+    expected = 0
+    for q in ("kappa_N_per_m", "loss_tangent", "mu_df", "mu_dgamma", "mu_fit"):
+        mean, sd = loads[f"{q}_mean"].to_numpy(float), loads[f"{q}_sd"].to_numpy(float)
+        expected += int(np.sum(np.isfinite(mean) & (np.abs(mean) > 0) & (sd >= np.abs(mean))))
+    page = (example_set / "report.html").read_text(encoding="utf-8")
+    assert expected > 0  # the example has such values: the check bites
+    assert page.count(UNRESOLVED_MARK) == expected + 1

@@ -122,3 +122,32 @@ def test_a_console_error_is_caught(browser, tmp_path):
     page.write_text("<html><body><script>console.error('boom')</script></body></html>")
     done = _run(browser, page, tmp_path / "profile", "--dump-dom")
     assert any("boom" in text for text in _console(done.stderr))
+
+
+def test_the_result_plots_and_the_counts_show_in_the_browser(browser, report, tmp_path):
+    """issue 30: the page shows κ(F_N) with the JKR fits (and Figs. 7, 8) as images the browser
+    decodes (natural width > 0), a table of contents whose links all lead to a section, and
+    the line of sweeps used and left out, equal to sweeps.csv's counts."""
+    sweeps = pd.read_csv(report / "sweeps.csv")
+    probe = (
+        "<script>window.addEventListener('load',function(){"
+        "var im=[].slice.call(document.querySelectorAll('img.plot'));"
+        "var ok=im.filter(function(i){return i.complete&&i.naturalWidth>200;}).length;"
+        "var links=[].slice.call(document.querySelectorAll('nav a'));"
+        "var found=links.filter(function(a){return document.getElementById("
+        "a.getAttribute('href').slice(1));}).length;"
+        "document.body.setAttribute('data-probe',ok+'/'+im.length+'/'+found+'/'+links.length);"
+        "});</script>"
+    )
+    page = tmp_path / "probe.html"
+    html = (report / "report.html").read_text(encoding="utf-8")
+    page.write_text(html.replace("</body>", probe + "</body>"), encoding="utf-8")
+    done = _run(browser, page, tmp_path / "profile", "--dump-dom")
+    assert _console(done.stderr) == []
+    match = re.search(r'data-probe="(\d+)/(\d+)/(\d+)/(\d+)"', done.stdout)
+    assert match, "the probe did not run: " + unescape(done.stdout[:300])
+    images, shown, links, found = int(match[2]), int(match[1]), int(match[4]), int(match[3])
+    assert images == 3 and shown == 3 and links >= 9 and found == links
+    assert "κ (Δf0) against the normal force, with the JKR fits" in html
+    used = int(sweeps["used"].sum())
+    assert f"{len(sweeps)} sweeps, {used} used; the {len(sweeps) - used} left out" in html

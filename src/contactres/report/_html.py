@@ -1,13 +1,16 @@
 """One self-contained HTML page of a sweep analysis: ``report.html`` (``--report html``).
 
 The page needs nothing but itself: no network, no external CSS or JavaScript; the fit of every
-sweep is drawn as inline SVG (points and the chosen model's curve, Δf and ΔΓ against u0). It
-holds the input file's name and SHA-256, the package version, Table 1 (E and γ per
-configuration and medium, as printed by ``qcm analyze``), the statistics per load, every sweep
-with its model and flags (filtered by configuration, medium, load and flag with a few lines of
-inline JavaScript), every entry of ``summary.json`` (folded), the flags in words, the
-conventions and constants, and the radiation loss where the analysis has it. Every label of the
-data is HTML-escaped.
+sweep is drawn as inline SVG (points and the chosen model's curve, Δf and ΔΓ against u0), the
+result plots are embedded PNG (data: URIs). It holds a table of contents, the input file's name
+and SHA-256, the package version, how many sweeps were used and why the others were left out,
+Table 1 (E and γ per configuration and medium, as printed by ``qcm analyze``), the result plots
+(κ against F_N with the JKR fits, the dissipation and loss tangent, μ per load: paper 2's Figs.
+5, 7 and 8), the statistics per load (a value whose spread is as large as itself is marked: the
+data do not resolve it), every sweep with its model and flags (filtered by configuration,
+medium, load and flag with a few lines of inline JavaScript), every entry of ``summary.json``
+(folded), the flags in words, the conventions and constants, and the radiation loss where the
+analysis has it. Every label of the data is HTML-escaped.
 """
 
 from __future__ import annotations
@@ -26,7 +29,7 @@ from ..measurements import CONSTANTS
 from ..measurements.schema import CONVENTIONS
 from ._console import DASH, friction_table, plus_minus, radiation_lines, table1_text, withheld_lines
 
-__all__ = ["HTML_FILE", "html_report", "sweeps_page", "write_html"]
+__all__ = ["HTML_FILE", "UNRESOLVED_MARK", "html_report", "sweeps_page", "write_html"]
 
 #: The file name of the page in the results folder.
 HTML_FILE = "report.html"
@@ -40,7 +43,26 @@ td.n{text-align:right;white-space:nowrap}
 svg{background:#fff}
 .filters label{margin-right:1em}
 code{background:#f4f4f4}
+nav ul{columns:2;max-width:40em}
+img.plot{max-width:100%;border:1px solid #ddd;margin:.3em 0}
 """
+
+#: The sections of the page, in order: (anchor, title) — the table of contents.
+_SECTIONS = (
+    ("input", "Input and counts"),
+    ("table1", "Table 1: E and γ per configuration and medium"),
+    ("plots", "Result plots"),
+    ("loads", "Per load"),
+    ("radiation", "Radiation loss"),
+    ("sweeps", "Sweeps: the model chosen for each"),
+    ("summary", "The summary record"),
+    ("flags", "Flags"),
+    ("conventions", "Conventions"),
+    ("constants", "Constants"),
+    ("messages", "Messages"),
+)
+#: Mark of a mean whose standard deviation is at least its magnitude (not resolved).
+UNRESOLVED_MARK = "†"
 
 _JS = """
 function crFilter(){
@@ -118,6 +140,15 @@ def _sweep_svg(points, curve) -> str:
     return f'<svg width="312" height="110" font-size="9" role="img">{body}</svg>'
 
 
+def _marked(mean: float, sd: float, digits: int = 3) -> str:
+    """``mean ± sd``, with :data:`UNRESOLVED_MARK` where the spread is as large as the value
+    (e.g. μ(ΔΓ) = 2.9 ± 3.7: the data do not resolve it; issue 30)."""
+    text = plus_minus(mean, sd, digits)
+    if math.isfinite(mean) and math.isfinite(sd) and sd >= abs(mean) > 0:
+        return f"{text} {UNRESOLVED_MARK}"
+    return text
+
+
 def _load_stats(results: Results):
     import pandas as pd
 
@@ -131,14 +162,56 @@ def _load_stats(results: Results):
                 "F_N (mN)": f"{ld['normal_force_N'] * 1e3:.4g}",
                 "experiments": ld["n_experiments"],
                 "sweeps": ld["n_sweeps"],
-                "κ (N/m)": plus_minus(ld["kappa_N_per_m_mean"], ld["kappa_N_per_m_sd"]),
-                "loss tangent": plus_minus(ld["loss_tangent_mean"], ld["loss_tangent_sd"]),
-                "μ (Δf)": plus_minus(ld["mu_df_mean"], ld["mu_df_sd"], 2),
-                "μ (ΔΓ)": plus_minus(ld["mu_dgamma_mean"], ld["mu_dgamma_sd"], 2),
-                "μ (loop fit)": plus_minus(ld["mu_fit_mean"], ld["mu_fit_sd"], 2),
+                "κ (N/m)": _marked(ld["kappa_N_per_m_mean"], ld["kappa_N_per_m_sd"]),
+                "loss tangent": _marked(ld["loss_tangent_mean"], ld["loss_tangent_sd"]),
+                "μ (Δf)": _marked(ld["mu_df_mean"], ld["mu_df_sd"], 2),
+                "μ (ΔΓ)": _marked(ld["mu_dgamma_mean"], ld["mu_dgamma_sd"], 2),
+                "μ (loop fit)": _marked(ld["mu_fit_mean"], ld["mu_fit_sd"], 2),
             }
         )
     return pd.DataFrame(rows)
+
+
+def _counts(results: Results) -> str:
+    """ "384 sweeps, 285 used; left out: 60 with flag X, ..." — every sweep not used is counted
+    under each of its flags (a sweep may have several)."""
+    sw = results.sweeps
+    used = sw["used"].to_numpy(dtype=bool) if len(sw) else np.zeros(0, dtype=bool)
+    line = f"{len(sw)} sweeps, {int(used.sum())} used"
+    if (~used).any():
+        counts: dict[str, int] = {}
+        for text in render(sw["flags"].to_numpy()[~used]):
+            for flag in [t for t in text.split(";") if t] or ["no flag"]:
+                counts[flag] = counts.get(flag, 0) + 1
+        reasons = ", ".join(f"{n} {_e(flag)}" for flag, n in sorted(counts.items()))
+        line += f"; the {int((~used).sum())} left out, by flag: {reasons}"
+    return f"<p><b>{line}.</b></p>"
+
+
+def _plots(results: Results) -> str:
+    """Paper 2's Figs. 5, 7 and 8 of the analysis as embedded PNG (nothing when no sweep is
+    used: nothing to draw)."""
+    import base64
+    import io
+
+    from .figures import figure_dissipation, figure_friction, figure_stiffness
+
+    if not len(results.sweeps) or not results.sweeps["used"].any():
+        return "<p>No sweep is used: nothing to plot.</p>"
+    parts = []
+    for title, draw in (
+        ("κ (Δf0) against the normal force, with the JKR fits (paper 2, Fig. 5)", figure_stiffness),
+        ("ΔΓ0 and the loss tangent against the normal force (Fig. 7)", figure_dissipation),
+        ("The friction coefficient μ per load (Fig. 8)", figure_friction),
+    ):
+        buffer = io.BytesIO()
+        draw(results).savefig(buffer, format="png", dpi=90)
+        data = base64.b64encode(buffer.getvalue()).decode("ascii")
+        parts.append(
+            f"<h3>{_e(title)}</h3>"
+            f'<img class="plot" alt="{_e(title)}" src="data:image/png;base64,{data}">'
+        )
+    return "".join(parts)
 
 
 def _constants(results: Results):
@@ -253,15 +326,26 @@ def html_report(results: Results) -> str:
     # The checksum taken when the input was read: the file may have changed since.
     digest = None if results.table is None else results.table.source_sha256
     checksum = digest or DASH
+    sections = [
+        (anchor, title)
+        for anchor, title in _SECTIONS
+        if (anchor != "radiation" or results.radiation is not None)
+        and (anchor != "messages" or results.messages)
+    ]
+    titles = dict(sections)
+    toc = "".join(f'<li><a href="#{a}">{_e(t)}</a></li>' for a, t in sections)
     parts = [
         "<!DOCTYPE html>",
         '<html lang="en"><head><meta charset="utf-8">',
         f"<title>contactres report: {_e(name)}</title>",
         f"<style>{_CSS}</style><script>{_JS}</script></head><body>",
         f"<h1>QCM sweep analysis: {_e(name)}</h1>",
+        f"<nav><h2>Contents</h2><ul>{toc}</ul></nav>",
+        f'<h2 id="input">{titles["input"]}</h2>',
         f"<p>Input: <code>{_e(name)}</code>, SHA-256 <code>{_e(checksum)}</code>; "
         f"contactres {_e(__version__)}.</p>",
-        "<h2>Table 1: E and γ per configuration and medium</h2>",
+        _counts(results),
+        f'<h2 id="table1">{titles["table1"]}</h2>',
     ]
     table1 = table1_text(results)
     if table1.empty:
@@ -272,30 +356,35 @@ def html_report(results: Results) -> str:
             "<p>± standard errors; 95 % interval: value ± t95 × error (Student t, few repeats).</p>"
         )
         parts += [f"<p><b>Note:</b> {_e(line)}</p>" for line in withheld_lines(results)]
-    parts.append("<h2>Per load</h2>")
+    parts.append(f'<h2 id="plots">{titles["plots"]}</h2>')
+    parts.append(_plots(results))
+    parts.append(f'<h2 id="loads">{titles["loads"]}</h2>')
     if len(results.loads):
         parts.append(_table(_load_stats(results), numeric=("F_N (mN)",)))
-        parts.append("<p>mean ± standard deviation over experiments.</p>")
+        parts.append(
+            f"<p>mean ± standard deviation over experiments; {UNRESOLVED_MARK}: the spread is "
+            "as large as the value (not resolved by the data).</p>"
+        )
         parts.append("<h3>Friction coefficient per load (median over experiments)</h3>")
         parts.append(_table(friction_table(results)))
     else:
         parts.append("<p>No loads.</p>")
     if results.radiation is not None:
-        parts.append("<h2>Radiation loss</h2><ul>")
+        parts.append(f'<h2 id="radiation">{titles["radiation"]}</h2><ul>')
         parts += [f"<li>{_e(line)}</li>" for line in radiation_lines(results)]
         parts.append("</ul>")
-    parts.append("<h2>Sweeps: the model chosen for each</h2>")
+    parts.append(f'<h2 id="sweeps">{titles["sweeps"]}</h2>')
     parts.append(_sweeps_section(results))
-    parts.append("<h2>The summary record</h2>")
+    parts.append(f'<h2 id="summary">{titles["summary"]}</h2>')
     parts.append(_summary_section(results))
-    parts.append("<h2>Flags</h2><dl>")
+    parts.append(f'<h2 id="flags">{titles["flags"]}</h2><dl>')
     parts += [f"<dt><code>{_e(f.text)}</code></dt><dd>{_e(DESCRIPTIONS[f])}</dd>" for f in Flag]
-    parts.append("</dl><h2>Conventions</h2><ul>")
+    parts.append(f'</dl><h2 id="conventions">{titles["conventions"]}</h2><ul>')
     parts += [f"<li><code>{_e(k)}</code>: {_e(v)}</li>" for k, v in CONVENTIONS.items()]
-    parts.append("</ul><h2>Constants</h2>")
+    parts.append(f'</ul><h2 id="constants">{titles["constants"]}</h2>')
     parts.append(_constants(results))
     if results.messages:
-        parts.append("<h2>Messages</h2><ul>")
+        parts.append(f'<h2 id="messages">{titles["messages"]}</h2><ul>')
         parts += [f"<li>{_e(' '.join(str(m).split()))}</li>" for m in results.messages]
         parts.append("</ul>")
     parts.append("</body></html>\n")
