@@ -86,6 +86,7 @@ LAYERS: tuple[frozenset[str], ...] = (
             "fitting",
             "crystals",
             "units",
+            "typed_units",
             "numerics",
             "_version",
         }

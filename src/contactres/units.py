@@ -341,7 +341,9 @@ def check_magnitude(
     quantity : str
         A key of :data:`QUANTITIES` ("sphere_radius", "force", "modulus", ...).
     value : float or str
-        The value in SI units; a string is parsed (and is the value as typed).
+        The value in SI units; a string is parsed (and is the value as typed): a plain number
+        is SI, a number with its unit (``"1.1 mm"``) is converted to the quantity's SI unit
+        (:func:`contactres.typed_units.to_si`, which refuses a unit of another kind).
     option : str
         Who gave the value, for the message (``"--radius"``).
     text : str, optional
@@ -364,14 +366,20 @@ def check_magnitude(
     """
     q = _quantity(quantity)
     rule = q.describe(allow_zero=allow_zero, signed=signed)
+    with_unit = False
     if isinstance(value, str):
         typed = value.strip() if text is None else text
         try:
             v = float(value)
         except ValueError:
-            raise ContactresInputError(
-                f"{option} {value.strip()!r} is not a number: {rule}"
-            ) from None
+            from .typed_units import has_unit, to_si
+
+            if not has_unit(value):
+                raise ContactresInputError(
+                    f"{option} {value.strip()!r} is not a number: {rule}"
+                ) from None
+            v, with_unit = to_si(value, q.unit, option), True
+            typed = f"{typed} (= {format_number(v)} {q.unit})".replace(" )", ")")
     else:
         v = float(value)
         typed = format_number(v) if text is None else text
@@ -382,7 +390,8 @@ def check_magnitude(
     if v < 0 and not signed and q.lo >= 0:
         raise ContactresInputError(f"{option} {typed} is negative: {rule}")
     message = f"{option} {typed} is outside the plausible range: {rule}"
-    slip = unit_slip(quantity, v, signed=signed)
+    # A value typed with its unit has no unit slip to suggest: its unit was said.
+    slip = None if with_unit else unit_slip(quantity, v, signed=signed)
     if slip is not None:
         message += f"; it looks like {slip}: check the unit of {option}"
     raise ContactresInputError(message)

@@ -38,3 +38,39 @@ def test_crystals_job_moduli_of_an_isotropic_solid_are_e_over_one_minus_nu2():
     expected = iso["E_GPa"] / (1 - iso["nu"] ** 2)
     for face in ("M001_GPa", "M011_GPa", "M111_GPa"):
         assert iso[face] == pytest.approx(expected, rel=1e-6)
+
+
+def test_the_fitted_curves_are_tables_of_the_results_folder():
+    """issue 30: no fitted curve was in any file. curves.csv holds the chosen model of each
+    sweep on the page's grid (the curve the report draws), jkr_curves.csv the κ(F_N) of each
+    group. Checked against the data, not only the code: the Δf curve at the sweep's smallest
+    measured amplitude is within the largest residual of that sweep's points, and the JKR
+    curve of a group passes within 3 standard deviations of its loads' mean Δf0."""
+    import numpy as np
+
+    from contactres.measurements.schema import CURVE_RESULTS, JKR_CURVE_RESULTS
+
+    settings = qcm_sweeps.Settings(bootstrap=0)
+    result = qcm_sweeps.run(qcm_sweeps.read(SWEEPS, settings), settings)
+    tables = result.tables()
+    curves, schema = tables["curves"]
+    assert schema is CURVE_RESULTS and list(curves.columns) == list(CURVE_RESULTS.names)
+    jkr, schema = tables["jkr_curves"]
+    assert schema is JKR_CURVE_RESULTS and len(jkr) > 0
+    analysis = result.analysis
+    points = analysis.points
+    used = analysis.sweeps[analysis.sweeps["used"]]["sweep"]
+    assert set(used) <= set(curves["sweep"])
+    for sweep in list(used)[:20]:
+        pts = points[points["sweep"] == sweep].sort_values("amplitude_m")
+        curve = curves[curves["sweep"] == sweep]
+        model = np.interp(pts["amplitude_m"], curve["amplitude_m"], curve["df_model_Hz"])
+        resid = np.abs(model - pts["df_Hz"].to_numpy())
+        assert resid[0] <= max(resid.max(), 1e-9)  # the curve runs through the sweep
+        assert resid.max() < 0.2 * np.ptp(pts["df_Hz"]) + 0.5, sweep
+    loads = analysis.loads
+    for (config, medium), group in jkr.groupby(["configuration", "medium"]):
+        part = loads[(loads["configuration"] == config) & (loads["medium"] == medium)]
+        model = np.interp(part["normal_force_N"], group["normal_force_N"], group["df0_model_Hz"])
+        spread = 3 * part["df0_Hz_sd"].fillna(0).to_numpy() + 0.05 * np.abs(model)
+        assert np.all(np.abs(part["df0_Hz_mean"].to_numpy() - model) <= spread), (config, medium)

@@ -97,6 +97,8 @@ def test_the_sweep_analysis_is_reported_through_the_registries(tmp_path):
         "sweeps.csv",
         "loads.csv",
         "radiation.csv",
+        "curves.csv",
+        "jkr_curves.csv",
         "summary.json",
         "report.html",
     )
@@ -104,7 +106,14 @@ def test_the_sweep_analysis_is_reported_through_the_registries(tmp_path):
     job = write_report(result, tmp_path / "job", formats)
     library = write_report(result.analysis, tmp_path / "library", formats)
     # No materials: no radiation table; the analysis alone is written as the job's Result.
-    names = ["sweeps.csv", "loads.csv", "summary.json", "report.html"]
+    names = [
+        "sweeps.csv",
+        "loads.csv",
+        "curves.csv",
+        "jkr_curves.csv",
+        "summary.json",
+        "report.html",
+    ]
     assert [p.name for p in job] == [p.name for p in library] == names
     for name in names:
         assert (tmp_path / "job" / name).read_bytes() == (tmp_path / "library" / name).read_bytes()

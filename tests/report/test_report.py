@@ -72,7 +72,10 @@ def results():
 
 def test_schema_of_the_three_outputs(results, tmp_path):
     written = write_report(results, tmp_path, formats=("csv", "json"))
-    assert {p.name for p in written} == {"sweeps.csv", "loads.csv", "summary.json"}
+    # The three outputs of the issue and the fitted curves (issue 30).
+    assert {p.name for p in written} == {
+        "sweeps.csv", "loads.csv", "summary.json", "curves.csv", "jkr_curves.csv"
+    }  # fmt: skip
     sweeps = pd.read_csv(tmp_path / "sweeps.csv")
     assert list(sweeps.columns[: len(ISSUE_SWEEP_COLUMNS)]) == ISSUE_SWEEP_COLUMNS
     assert list(SWEEP_RESULTS.names[: len(ISSUE_SWEEP_COLUMNS)]) == ISSUE_SWEEP_COLUMNS

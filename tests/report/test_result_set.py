@@ -26,7 +26,7 @@ from contactres.resonators._qcm import QCM
 FORMATS = ("csv", "json", "png")
 # The files of the analysis' report, written out here (not taken from the writer's registry).
 FILES = {
-    "csv": ("sweeps.csv", "loads.csv"),
+    "csv": ("sweeps.csv", "loads.csv", "curves.csv", "jkr_curves.csv"),
     "json": ("summary.json",),
     "png": tuple(figures.FIGURE_FILES),
 }

@@ -89,7 +89,8 @@ def main() -> None:
     """contactres: contact mechanics at resonance.
 
     Forward models of normal, tangential and dynamic contacts, and the analysis of QCM amplitude
-    sweeps. SI units everywhere (m, N, Pa, Hz, kg). Run 'contactres COMMAND --help' for details.
+    sweeps. SI units everywhere (m, N, Pa, Hz, kg); an option may carry its unit instead
+    (--radius 1.1mm, --force 2mN). Run 'contactres COMMAND --help' for details.
     """
 
 

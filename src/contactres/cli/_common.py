@@ -131,12 +131,47 @@ class RangeType(click.ParamType):
         if isinstance(value, np.ndarray):
             return value
         try:
-            values = parse_range(value)
+            text = self._in_si(value, param)
+        except ValueError as exc:  # a unit pint refused: one line naming the option, as above
+            raise click.UsageError(str(exc), ctx) from None
+        try:
+            values = parse_range(text)
         except ValueError as exc:
             self.fail(str(exc), param, ctx)
         if self.quantity is not None:
             self._check(values, str(value).strip(), param, ctx)
         return values
+
+    def _in_si(self, value, param):
+        """``value`` with each number typed with its unit (``1.1mm``, ``0:2mN:5``'s ends, a
+        comma list's items) written in SI (:func:`contactres.typed_units.to_si`); plain numbers
+        as typed. Only for a quantity (its SI unit is known)."""
+        from ..typed_units import has_unit
+
+        text = str(value)
+        if self.quantity is None or not any(c.isalpha() for c in text):
+            return value
+        from ..typed_units import to_si
+        from ..units import QUANTITIES
+
+        unit = QUANTITIES[self.quantity].unit
+        option = _option_name(param)
+        sep = ":" if ":" in text else ","
+        parts = text.split(sep)
+        ends = parts[:2] if sep == ":" else parts  # NUM of START:STOP:NUM has no unit
+        typed = [has_unit(t) for t in ends]
+        if any(typed) and not all(typed):
+            # "1,1 mm" is a decimal comma, "1mm:2:5" an end without its unit: never guessed.
+            from ..errors import ContactresInputError
+
+            raise ContactresInputError(
+                f"{option} {text.strip()!r}: give every value with its unit or none (plain "
+                "numbers are SI); a decimal comma? write 1.1mm"
+            )
+        converted = [
+            repr(to_si(t, unit, option)) if u else t for t, u in zip(ends, typed, strict=True)
+        ]
+        return sep.join(converted + parts[len(ends) :])
 
     def _check(self, values, typed: str, param, ctx) -> None:
         """Refuse an implausible value, quoted as typed: a refused end of START:STOP:NUM (the
@@ -149,8 +184,12 @@ class RangeType(click.ParamType):
         bad = ~np.asarray(QUANTITIES[self.quantity].accepts(values, **self.rule))
         if not bad.any():
             return
+        from ..typed_units import has_unit
+
         if values.size == 1:
             i, text = 0, typed
+            if has_unit(typed):  # the value with its unit: no unit slip to suggest
+                _checked(self.quantity, _option_name(param), typed, ctx, **self.rule)
         elif ":" in typed:
             ends = typed.split(":")[:2]
             first = [k for k in (0, values.size - 1) if bad[k]]

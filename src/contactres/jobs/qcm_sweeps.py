@@ -32,7 +32,9 @@ from typing import TYPE_CHECKING
 from ..measurements.schema import (
     COATING_CONVENTIONS,
     CONVENTIONS,
+    CURVE_RESULTS,
     GROUP_RESULTS,
+    JKR_CURVE_RESULTS,
     LOAD_RESULTS,
     RADIATION_RESULTS,
     SWEEP_RESULTS,
@@ -130,9 +132,13 @@ class Result(JobResult):
 
     Its tables (:meth:`tables`) are those of the results folder: ``sweeps`` and ``loads``, bound
     to :data:`~contactres.measurements.schema.SWEEP_RESULTS` and
-    :data:`~contactres.measurements.schema.LOAD_RESULTS`, and ``radiation``
+    :data:`~contactres.measurements.schema.LOAD_RESULTS`, ``radiation``
     (:data:`~contactres.measurements.schema.RADIATION_RESULTS`) where the analysis has the
-    radiation loss; its values (:meth:`values`) the ``summary.json`` record.
+    radiation loss, and the fitted curves where the analysis computed them: ``curves`` (the
+    model of each sweep, :data:`~contactres.measurements.schema.CURVE_RESULTS`) and
+    ``jkr_curves`` (κ(F_N) of each group,
+    :data:`~contactres.measurements.schema.JKR_CURVE_RESULTS`); its values (:meth:`values`) the
+    ``summary.json`` record.
     """
 
     NOT_VALUES = ("analysis", "reading", "warnings")
@@ -150,8 +156,9 @@ class Result(JobResult):
 
     @classmethod
     def table_names(cls) -> tuple[str, ...]:
-        """Every table a Result can hold: ``radiation`` only with the radiation loss."""
-        return ("sweeps", "loads", "radiation")
+        """Every table a Result can hold: ``radiation`` only with the radiation loss, the
+        curves only where the analysis computed them."""
+        return ("sweeps", "loads", "radiation", "curves", "jkr_curves")
 
     def tables(self):
         """The tables of the results folder with their schemas (see the class docstring)."""
@@ -161,6 +168,21 @@ class Result(JobResult):
         }
         if self.analysis.radiation is not None:
             tables["radiation"] = (radiation_table(self.analysis), RADIATION_RESULTS)
+        curves, jkr = self.analysis.curves, self.analysis.jkr
+        if curves is not None:
+            # The coarser of the grids (the HTML page's, 30 points), for the sweeps with a
+            # model: 10^5 sweeps give 3·10^6 rows, not 10^7 (issue 31's large studies).
+            coarse = curves[curves["grid_points"] == curves["grid_points"].min()]
+            coarse = coarse[coarse.groupby("sweep")["df_model_Hz"].transform("count") > 0]
+            tables["curves"] = (
+                _finite_or_nan(coarse[list(CURVE_RESULTS.names)].reset_index(drop=True)),
+                CURVE_RESULTS,
+            )
+        if jkr is not None:
+            tables["jkr_curves"] = (
+                _finite_or_nan(jkr[list(JKR_CURVE_RESULTS.names)]),
+                JKR_CURVE_RESULTS,
+            )
         return MappingProxyType(tables)
 
     def values(self) -> dict:

@@ -135,6 +135,7 @@ def _toml_constants(path: Path) -> tuple[dict, Path | None]:
                 ) from None
             except tomllib.TOMLDecodeError as exc:
                 raise ContactresInputError(f"{candidate}: not valid TOML ({exc})") from None
+            data = _toml_keys_in_si(data, candidate)
             unknown = sorted(set(data) - set(CONSTANTS))
             if unknown:
                 raise ContactresInputError(
@@ -143,6 +144,33 @@ def _toml_constants(path: Path) -> tuple[dict, Path | None]:
                 )
             return data, candidate
     return {}, None
+
+
+def _si_unit(unit: str) -> str:
+    """A schema column's unit as pint reads it ("-" and "text" are none)."""
+    return "" if unit in ("-", "text") else unit
+
+
+def _bare_name(name: str) -> str:
+    """A column's name without its SI unit suffix: ``sphere_radius_m`` -> ``sphere_radius``."""
+    unit = SWEEP_TABLE.column(name).unit
+    suffix = "_" + unit.replace("^", "")
+    return name[: -len(suffix)] if _si_unit(unit) and name.endswith(suffix) else name
+
+
+def _toml_keys_in_si(data: dict, path: Path) -> dict:
+    """A TOML file's keys with a constant's bare name (``sphere_radius = "1.1 mm"``: the value
+    carries its unit) renamed to the constant (``sphere_radius_m``); both given is an error."""
+    bare = {_bare_name(name): name for name in CONSTANTS if _bare_name(name) != name}
+    out = {}
+    for key, value in data.items():
+        name = bare.get(key, key)
+        if name in out or (name != key and name in data):
+            raise ContactresInputError(
+                f"{path}: {key} and {name} are the same constant; give one of them"
+            )
+        out[name] = value
+    return out
 
 
 def _check_constant(name: str, value, where: str, shown=None) -> float:
@@ -162,11 +190,57 @@ def _check_constant(name: str, value, where: str, shown=None) -> float:
     try:
         v = float(value)
     except (TypeError, ValueError):
-        raise ContactresInputError(f"{where}: {name} = {shown} is not a number") from None
+        from ..typed_units import has_unit, to_si
+
+        if not has_unit(value):
+            raise ContactresInputError(f"{where}: {name} = {shown} is not a number") from None
+        # A value with its unit ("1.1 mm"): converted to the column's SI unit, then checked
+        # by the same rules as a plain number (issue 30).
+        v = to_si(value, _si_unit(SWEEP_TABLE.column(name).unit), f"{where}: {name} =")
     if not math.isfinite(v):
         raise ContactresInputError(f"{where}: {name} = {shown} is not finite")
     check_value(name, v, where, shown, SWEEP_TABLE.column(name).rules)
     return v
+
+
+def _columns_in_si(raw: pd.DataFrame, source: str) -> pd.DataFrame:
+    """``raw`` with every column named with another unit than the schema's (``sphere_radius_mm``
+    for ``sphere_radius_m``, ``normal_force_mN``, ``area_cm2``, ``amplitude_nm``) converted to
+    SI and renamed to the schema's name (issue 30: a radius in mm gave E ≈ 2 GPa without a
+    word). The cells stay text: the numbers are multiplied by the unit's factor, anything else
+    (an empty cell, a word) is left for the validation to name."""
+    known = set(raw.columns)
+    renames: dict[str, tuple[str, float]] = {}
+    for col in raw.columns:
+        if col in SWEEP_TABLE.names or col == "line":
+            continue
+        for target in SWEEP_TABLE.names:
+            bare, unit = _bare_name(target), _si_unit(SWEEP_TABLE.column(target).unit)
+            if bare == target or not col.startswith(bare + "_"):
+                continue
+            from ..typed_units import column_unit_factor
+
+            factor = column_unit_factor(col[len(bare) + 1 :], unit)
+            if factor is None:
+                continue
+            if target in known or target in renames.values():
+                raise ContactresInputError(
+                    f"{source}: columns {col} and {target} hold the same quantity; keep one"
+                )
+            renames[col] = (target, factor)
+    if not renames:
+        return raw
+    out = raw.copy()
+    decimal = raw.attrs.get("decimal", ".")
+    for col, (_, factor) in renames.items():
+        text = out[col].astype(str).str.strip()
+        numbers = pd.to_numeric(text.str.replace(decimal, ".", regex=False), errors="coerce")
+        scaled = (numbers * factor).map(lambda x: repr(float(x)))
+        out[col] = text.where(numbers.isna(), scaled.str.replace(".", decimal, regex=False))
+    out = out.rename(columns={c: t for c, (t, _) in renames.items()})
+    out.attrs = dict(raw.attrs)
+    out.attrs["converted_columns"] = {c: t for c, (t, _) in renames.items()}
+    return out
 
 
 # --------------------------------------------------------------------------------------------
@@ -487,6 +561,7 @@ def validate_sweeps(
     """
     raw = raw.copy()
     raw.columns = [str(c).strip() for c in raw.columns]
+    raw = _columns_in_si(raw, source)
     names = pd.Series(raw.columns)
     if names.duplicated().any():
         dups = names[names.duplicated()].unique()

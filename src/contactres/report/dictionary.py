@@ -28,8 +28,10 @@ from ..measurements.schema import (
     CONTACT_TABLE,
     CRYSTAL_TABLE,
     CRYSTALS_LISTING,
+    CURVE_RESULTS,
     DCSF_TABLE,
     GROUP_RESULTS,
+    JKR_CURVE_RESULTS,
     LOAD_RESULTS,
     PAPER1_RANKING,
     PAPER2_LOOPS,
@@ -74,6 +76,8 @@ RESONANCE_FLAGS = {
 
 #: Tables on the documentation's dictionary page that have no README block.
 DOCS_ONLY = (
+    "curves-csv",
+    "jkr-curves-csv",
     "spectra-sweeps",
     "spectra-fits",
     "spectra-fit-flags",
@@ -119,6 +123,8 @@ def dictionary_tables() -> dict[str, str]:
         "loads-csv": LOAD_RESULTS.markdown(),
         "summary-json": GROUP_RESULTS.markdown(),
         "radiation-csv": RADIATION_RESULTS.markdown(),
+        "curves-csv": CURVE_RESULTS.markdown(),
+        "jkr-curves-csv": JKR_CURVE_RESULTS.markdown(),
         "spectra-table": SPECTRA_TABLE.markdown(with_required=True),
         "flags": flags_markdown(),
         "afm-table": AFM_TABLE.markdown(with_required=True),

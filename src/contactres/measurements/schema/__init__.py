@@ -10,7 +10,8 @@ are generated from, or checked against, the schemas here (:data:`SCHEMAS`):
   naming file, line, column, value and rule;
 * outputs of ``qcm analyze`` (:mod:`.results`): :data:`SWEEP_RESULTS` (``sweeps.csv``),
   :data:`LOAD_RESULTS` (``loads.csv``), :data:`GROUP_RESULTS` (``summary.json``) and
-  :data:`RADIATION_RESULTS` (``radiation.csv``, :mod:`.outputs`);
+  :data:`RADIATION_RESULTS` (``radiation.csv``), :data:`CURVE_RESULTS` (``curves.csv``) and
+  :data:`JKR_CURVE_RESULTS` (``jkr_curves.csv``) (:mod:`.outputs`);
 * the other outputs (:mod:`.outputs`): :data:`SPECTRA_SWEEPS`, :data:`SPECTRA_FITS`,
   :data:`STIFFNESS_CSV`, :data:`AFM_INVERT_RESULTS`, :data:`RUM_INVERT_RESULTS`;
 * the tables of the forward computations and listings (:mod:`.listings`): :data:`CONTACT_TABLE`,
@@ -65,6 +66,8 @@ from ._listings import (
 )
 from ._outputs import (
     AFM_INVERT_RESULTS,
+    CURVE_RESULTS,
+    JKR_CURVE_RESULTS,
     RADIATION_RESULTS,
     RUM_INVERT_RESULTS,
     SPECTRA_FITS,
@@ -89,12 +92,14 @@ __all__ = [
     "CONVENTIONS",
     "CRYSTALS_LISTING",
     "CRYSTAL_TABLE",
+    "CURVE_RESULTS",
     "DCSF_TABLE",
     "EXAMPLES_LISTING",
     "FALSE_WORDS",
     "FINITE",
     "GROUP_RESULTS",
     "INPUTS",
+    "JKR_CURVE_RESULTS",
     "LARGEST_COUNT",
     "LEVELS",
     "LOAD_QUANTITIES",
@@ -137,6 +142,8 @@ OUTPUTS: tuple[TableSchema, ...] = (
     LOAD_RESULTS,
     GROUP_RESULTS,
     RADIATION_RESULTS,
+    CURVE_RESULTS,
+    JKR_CURVE_RESULTS,
     SPECTRA_SWEEPS,
     SPECTRA_FITS,
     STIFFNESS_CSV,

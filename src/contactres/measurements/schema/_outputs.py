@@ -23,6 +23,8 @@ from ._inputs import SPECTRA_TABLE, SWEEP_TABLE
 
 __all__ = [
     "AFM_INVERT_RESULTS",
+    "CURVE_RESULTS",
+    "JKR_CURVE_RESULTS",
     "RADIATION_RESULTS",
     "RUM_INVERT_RESULTS",
     "SPECTRA_FITS",
@@ -248,6 +250,45 @@ RADIATION_RESULTS = TableSchema(
                 "why the row has no radiation values, or why they exceed the measured loss "
                 "(empty: computed and below the measured)",
             ),
+        )
+    ),
+)
+
+
+#: ``curves.csv`` of ``qcm analyze``: the model chosen for each sweep with one, evaluated on a
+#: grid of amplitudes (the grid the HTML report draws), so that the fitted curves can be plotted
+#: from the file without contactres.
+CURVE_RESULTS = TableSchema(
+    "curves.csv",
+    "the model chosen for each sweep with one, on 30 amplitudes from 0 to the sweep's largest",
+    tuple(
+        Column(name, unit, meaning, level="point")
+        for name, unit, meaning in (
+            ("sweep", "text", "the sweep (as in sweeps.csv)"),
+            ("amplitude_m", "m", "oscillation amplitude u0 of the grid"),
+            ("df_model_Hz", "Hz", "Δf of the chosen model at u0 (empty: no usable fit)"),
+            ("dgamma_model_Hz", "Hz", "ΔΓ of the chosen model at u0 (empty: no usable fit)"),
+        )
+    ),
+)
+
+#: ``jkr_curves.csv`` of ``qcm analyze``: the fitted JKR + Mindlin κ(F_N) of every
+#: (configuration, medium) with an E (Fig. 5's lines).
+JKR_CURVE_RESULTS = TableSchema(
+    "jkr_curves.csv",
+    "the fitted JKR + Mindlin curve κ(F_N) of every configuration and medium with an E",
+    tuple(
+        Column(name, unit, meaning, level="sweep")
+        for name, unit, meaning in (
+            ("configuration", "text", "configuration"),
+            ("medium", "text", "medium"),
+            ("normal_force_N", "N", "normal force per contact, 0 to 1.05 times the largest load"),
+            (
+                "kappa_N_per_m",
+                "N/m",
+                "κ of the fitted E and γ (paper 2, Eqs. 6-10; coated plate: the coated law)",
+            ),
+            ("df0_model_Hz", "Hz", "Δf0 = P κ (paper 2, Eq. 1)"),
         )
     ),
 )
