@@ -270,8 +270,11 @@ PUBLIC = {
     "layered": [
         "FrequencyDependentMaterial",
         "LayeredMaterial",
+        "impedance_recursion",
+        "layer_waves",
         "material_at",
         "stack_compliance",
+        "substrate_impedance",
         "surface_green",
     ],
     "materials": [

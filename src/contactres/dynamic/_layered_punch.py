@@ -35,10 +35,16 @@ lifted by H = min(0.3 S₁, 1): the products j_p j_q grow like e^{2 Im s}, so th
 in s (O(1/a) in η). Beyond S₁, on the real axis, Δg has no singularity and varies only on the
 scales 1/h and the wave numbers (not on the period π of j_p j_q): on geometric panels of ratio
 1.5 it is sampled at Chebyshev points (in ln s) and interpolated onto Gauss-Legendre nodes dense
-enough for the oscillation of j_p j_q; the panels stop beyond η h = 5 and s = 20 once
+enough for the oscillation of j_p j_q (below s = 2L each panel's own; beyond, the panels of
+width L = 16/3 of one grid k L shared by every point, whose Bessel functions are computed once
+per call); the nodes stop at the first grid edge beyond η h = 5 and s = 20 where
 ``|Δg|``/s (what the rest can add) falls below 1e-3 rtol of the film's ``|g|``. A lossy
 stack is passed on the same path (its singularities lie below the real axis). In statics
-(f = 0) the real axis from 0 is used. Caveat: a lossless stack with a backward-wave guided mode
+(f = 0) the real axis from 0 is used. The layer solutions behind Δg depend on (η, ω) only
+through the slowness η/ω: on the real axis they come from one table in the slowness per stack
+(interpolated to round-off) and on the arc from one set of solutions, for every frequency
+(``contactres.dynamic._layered_waves``); the nodes of all frequencies are solved together.
+Caveat: a lossless stack with a backward-wave guided mode
 (group and phase velocity opposite, possible for a stiff film on a soft substrate) would have
 that pole's limiting-absorption side reversed; the passivity tests cover both stiff-on-soft and
 soft-on-stiff stacks, but no backward-wave case was constructed.
@@ -93,6 +99,7 @@ from ._layered_path import (
     punch_resolution,
     stack_at,
     stack_of,
+    weighted_gram,
 )
 from ._layered_tangential import tangential_punch
 from ._normal_stiffness import normalised_wavenumber
@@ -111,17 +118,17 @@ __all__ = [
 _MAX_RADIAL = 48
 
 
-def _correction_integrals(s, w, dg_harm, plan, s_end, end_harm) -> np.ndarray:
-    """∫ Δg_m j_p j_q ds, (n_m, n_t), from the nodes and the harmonics Δg_m (n_m, len(s)),
+def _correction_integrals(jp, w, dg_harm, plan, s_end, end_harm) -> np.ndarray:
+    """∫ Δg_m j_p j_q ds, (n_m, n_t), from j_p at the nodes (``jp``: the plan's orders, own and
+    grid parts of ``_layered_path.bessel_on_nodes``), the
+    weights and the harmonics Δg_m (n_m, len(s)),
     with the tail beyond ``s_end``: Δg ~ Δg(S) S²/s² (its 1/s² decay) and j_p j_q ->
     (−1)^{(p−q)/2}/(2s²) on average, so the tail is Δg_m(S) (−1)^{(p−q)/2}/(6S)."""
     orders, (ti, tj) = plan.orders, plan.pairs
-    jp = bessel_on_nodes(int(orders[-1]), s)[orders]
     sign = np.where(((orders[ti] - orders[tj]) // 2) % 2 == 0, 1.0, -1.0)
     out = end_harm[:, None] * sign[None, :] / (6 * s_end)
-    # Per harmonic, all order pairs at once: J diag(w Δg_m) Jᵀ (one matrix product).
-    for m in range(dg_harm.shape[0]):
-        out[m] += ((jp * (w * dg_harm[m])[None, :]) @ jp.T)[ti, tj]
+    # Every harmonic and order pair at once: J diag(w Δg_m) Jᵀ (one batched matrix product).
+    out += weighted_gram(jp, w[None, :] * dg_harm)[:, ti, tj]
     return out
 
 
@@ -229,6 +236,7 @@ def layered_punch_stiffness(
     # Points grouped by film table (one for a film that does not depend on frequency): the film
     # matrices of a group come from one call, the correction is per point.
     groups: dict = {}
+    known: dict = {}  # each material's slowness and symmetry, found once over the frequencies
     for freq in np.unique(flat_f):
         sel = np.flatnonzero(flat_f == freq)
         mats, hs = stack_of(material, float(freq))
@@ -236,7 +244,7 @@ def layered_punch_stiffness(
         key = (np.asarray(film.C).tobytes(), q)
         if key not in groups:
             groups[key] = ((film, q), [])
-        stack = stack_at(mats, hs, film, q, float(freq), inplane)
+        stack = stack_at(mats, hs, film, q, float(freq), inplane, known)
         groups[key][1].extend((i, stack, float(freq)) for i in sel)
     for (film, q), items in groups.values():
         index = np.array([i for i, _, _ in items])
@@ -368,22 +376,19 @@ def _punch(table, film, items, radii, rtol, res) -> np.ndarray:
     axisymmetric = all(st.axisymmetric for st in stacks)
     theta = np.zeros(1) if axisymmetric else np.asarray(table.theta)
     gref = float(np.max(np.abs(table.ginf)))
-    nodes = {
-        i: correction_nodes(st, float(radii[i]), theta, res, gref)
-        for i, st in enumerate(stacks)
-        if st.needs_correction
-    }
+    nodes = correction_nodes(stacks, radii, theta, res, gref)
     while True:
         grow = n_radial + 4 if nodes else n_radial
         size = GalerkinSize(grow, 0 if axisymmetric else n_harm)
         M, plan = _film_matrices(table, ksa, size)
         orders, (ti, tj) = plan.orders, plan.pairs
         diag = np.where(ti == tj, np.pi / (2 * (2 * orders[ti] + 1)), 0.0)
-        for i, (s, w, dg, s_end, end, static) in nodes.items():
-            shift = _harmonics_of(static[None, :], plan, axisymmetric)
-            harm = _harmonics_of(dg, plan, axisymmetric)
-            end_h = _harmonics_of(end[None, :], plan, axisymmetric)[:, 0]
-            integral = _correction_integrals(s, w, harm, plan, s_end, end_h)
+        jps = bessel_on_nodes(int(orders[-1]), nodes, res, lambda J, o=orders: J[o])
+        for i, v in nodes.items():
+            shift = _harmonics_of(v.shift[None, :], plan, axisymmetric)
+            harm = _harmonics_of(v.delta_g, plan, axisymmetric)
+            end_h = _harmonics_of(v.end[None, :], plan, axisymmetric)[:, 0]
+            integral = _correction_integrals(jps[i], v.weights, harm, plan, v.s_end, end_h)
             # The static difference of film and reference: closed form, as in the exact model.
             M[i] += _assemble(integral + shift[:, 0][:, None] * diag[None, :], plan)
         c_big = _solve_c0(M, grow, plan)
