@@ -177,9 +177,10 @@ def layered_punch_stiffness(
     rtol: float = 1e-6,
     *,
     resolution: PunchResolution | None = None,
+    tensor: bool = False,
 ):
     """Normal or tangential stiffness K(ω) = F/δ of a rigid flat punch on a layered substrate,
-    N/m (complex).
+    N/m (complex); ``tensor=True``: the 2x2 tangential tensor.
 
     The rigid disk of radius a, displaced uniformly (δ e^{iωt}: normal, frictionless; or along
     the surface x axis, bonded and relaxed), on a homogeneous, layered and/or viscoelastic
@@ -206,11 +207,20 @@ def layered_punch_stiffness(
     resolution : PunchResolution, optional
         Keyword only: the discretisation of the layered correction (default
         :func:`punch_resolution` of rtol; ``.doubled()`` for a convergence check).
+    tensor : bool
+        Keyword only, tangential only: return the tensor K_αβ (α, β = x, y of the surface
+        frame: the force along α per unit rigid displacement along β) instead of K_xx. On a
+        stack that is not unchanged by rotations about the normal (a crystal face without a
+        three-, four- or sixfold axis, in any layer) K_yy ≠ K_xx and K_xy ≠ 0; K_xy = K_yx
+        (reciprocity), and turning the stack about the normal turns the tensor. The basis then
+        grows until the whole tensor converges (relative to its largest entry), so K_xx may
+        differ from the default's by up to rtol/10.
 
     Returns
     -------
     complex or ndarray of complex
-        K in N/m, shaped like broadcast(radius, frequency); Im K >= 0.
+        K in N/m, shaped like broadcast(radius, frequency) (+ (2, 2) with ``tensor``);
+        Im K >= 0 (Im K_xx, Im K_yy with ``tensor``).
 
     Examples
     --------
@@ -224,6 +234,10 @@ def layered_punch_stiffness(
     if direction not in ("normal", "tangential"):
         raise ContactresInputError(f"direction must be 'normal' or 'tangential', got {direction!r}")
     inplane = direction == "tangential"
+    if tensor and not inplane:
+        raise ContactresInputError(
+            "tensor=True is the 2x2 tangential stiffness: give direction='tangential'"
+        )
     r = float(rtol)
     if not (math.isfinite(r) and 1e-10 <= r <= 1e-3):
         raise ContactresInputError(f"rtol must lie in [1e-10, 1e-3], got {rtol!r}")
@@ -231,8 +245,9 @@ def layered_punch_stiffness(
     f = np.asarray(nonnegative("frequency", frequency, "Hz"), dtype=float)
     a, f = np.broadcast_arrays(a, f)
     res = resolution or punch_resolution(r)
-    out = np.empty(a.shape, dtype=complex)
-    flat_a, flat_f, flat_out = a.ravel(), f.ravel(), out.reshape(-1)
+    out = np.empty(a.shape + ((2, 2) if tensor else ()), dtype=complex)
+    flat_a, flat_f = a.ravel(), f.ravel()
+    flat_out = out.reshape(-1, 2, 2) if tensor else out.reshape(-1)
     # Points grouped by film table (one for a film that does not depend on frequency): the film
     # matrices of a group come from one call, the correction is per point.
     groups: dict = {}
@@ -250,7 +265,8 @@ def layered_punch_stiffness(
         index = np.array([i for i, _, _ in items])
         if inplane:
             table = prepare_tangential(film, q, r)
-            flat_out[index] = tangential_punch(table, film, items, flat_a[index], r, res)
+            k = tangential_punch(table, film, items, flat_a[index], r, res, tensor)
+            flat_out[index] = k if tensor else k[:, 0, 0]
         else:
             flat_out[index] = _punch(prepare(film, q, r), film, items, flat_a[index], r, res)
     return complex(out) if out.ndim == 0 else out
@@ -271,8 +287,10 @@ def flat_punch_stiffness(
     direction: str = "normal",
     *,
     rtol: float = 1e-6,
+    tensor: bool = False,
 ):
-    """Stiffness of a rigid flat circular punch, static or time-harmonic, N/m (complex).
+    """Stiffness of a rigid flat circular punch, static or time-harmonic, N/m (complex);
+    ``tensor=True``: the 2x2 tangential stiffness tensor.
 
     The rigid disk of radius a on a homogeneous, layered and/or viscoelastic half-space:
     ``direction="normal"`` frictionless (K = F/δ), ``"tangential"`` bonded (no slip) and
@@ -298,12 +316,22 @@ def flat_punch_stiffness(
         Which stiffness.
     rtol : float
         Target relative accuracy of the dynamic punch (static: < 1e-9 always).
+    tensor : bool
+        Keyword only, with ``direction="tangential"``: the tensor K_αβ (α, β = x, y of the
+        surface frame; the force along α per unit rigid displacement along β), at every
+        frequency (0 included) from :func:`layered_punch_stiffness` (``tensor=True``): the
+        exact Galerkin with the kernel's full dependence on the direction, where the static
+        punch of ``tensor=False`` averages the compliance over directions (exact for
+        axisymmetric stacks, an approximation for the others). K_xy = K_yx; on a stack
+        unchanged by rotations about the normal K_yy = K_xx and K_xy = 0 (so a crystal face
+        with a three-, four- or sixfold axis also has an isotropic tensor); turning the stack
+        about the normal by ψ turns it: K' = Q K Qᵀ, Q = [[cos ψ, sin ψ], [−sin ψ, cos ψ]].
 
     Returns
     -------
     complex or ndarray of complex
-        K, N/m. Homogeneous isotropic statics: 2aE* (Sneddon, normal), 8Ga/(2 − ν) (Mindlin,
-        tangential).
+        K, N/m (+ (2, 2) with ``tensor``). Homogeneous isotropic statics: 2aE* (Sneddon,
+        normal), 8Ga/(2 − ν) (Mindlin, tangential).
 
     Examples
     --------
@@ -313,9 +341,18 @@ def flat_punch_stiffness(
     >>> k = flat_punch_stiffness(Material.isotropic(70e9, 0.25), 1e-6)
     >>> bool(abs(k / (2e-6 * 70e9 / (1 - 0.25**2)) - 1) < 1e-9)
     True
+
+    The tangential tensor of a Cu(110) face is not isotropic (its x axis along [001]):
+
+    >>> cu = Material.crystal("Cu").rotated((1, 1, 0), (0, 0, 1))
+    >>> k = flat_punch_stiffness(cu, 1e-6, direction="tangential", tensor=True)
+    >>> bool(abs(k[0, 1]) < 1e-9 * abs(k[0, 0]) and abs(k[1, 1] / k[0, 0] - 1) > 0.05)
+    True
     """
     from ..normal import static_punch_stiffness
 
+    if tensor:
+        return layered_punch_stiffness(material, radius, frequency, direction, rtol, tensor=True)
     f = np.asarray(nonnegative("frequency", frequency, "Hz"), dtype=float)
     if not np.any(f > 0):
         a = np.asarray(positive("radius", radius, "m"), dtype=float)
