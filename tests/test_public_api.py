@@ -343,6 +343,7 @@ PUBLIC = {
         "which_adhesion_model",
     ],
     "polycrystal": [
+        "CoatedModuli",
         "ContactMap",
         "CubicInverseResult",
         "EBSD_READERS",
@@ -359,6 +360,7 @@ PUBLIC = {
         "SyntheticPolycrystal",
         "TriangleModuli",
         "check_map_output",
+        "coated_moduli",
         "contact_stiffness_map",
         "dynamic_factor_map",
         "euler_from_surface_matrices",
@@ -369,6 +371,7 @@ PUBLIC = {
         "folded_normals",
         "grain_means",
         "grain_orientations",
+        "hill_poisson_ratio",
         "indentation_moduli",
         "indexed_pixels",
         "ipf_colors",
