@@ -144,10 +144,11 @@ def _assemble(integral, plan) -> np.ndarray:
     return plan.sign * integral[plan.m_index, plan.t_index]
 
 
-def _film_matrices(table: KernelTable, ksa: np.ndarray, size: GalerkinSize):
-    """(M_film at k_s a values ``ksa`` (>= 0), (len(ksa), nb, nb); the Galerkin plan)."""
+def _film_matrices(table: KernelTable, ksa: np.ndarray, size: GalerkinSize, far):
+    """(M_film at k_s a values ``ksa`` (>= 0), (len(ksa), nb, nb); the Galerkin plan), with
+    ``far`` the far-field basis of the positive ``ksa`` (None if there is none; it does not
+    depend on the basis size, so the growing basis of :func:`_punch` computes it once)."""
     pos = ksa > 0
-    far = far_basis(table, ksa[pos]) if np.any(pos) else None
     plan = galerkin_plan(table, size, None if far is None else far.s)
     nb = len(plan.basis)
     out = np.empty((ksa.size, nb, nb), dtype=complex)
@@ -414,10 +415,12 @@ def _punch(table, film, items, radii, rtol, res) -> np.ndarray:
     theta = np.zeros(1) if axisymmetric else np.asarray(table.theta)
     gref = float(np.max(np.abs(table.ginf)))
     nodes = correction_nodes(stacks, radii, theta, res, gref)
+    pos = ksa > 0
+    far = far_basis(table, ksa[pos]) if np.any(pos) else None
     while True:
         grow = n_radial + 4 if nodes else n_radial
         size = GalerkinSize(grow, 0 if axisymmetric else n_harm)
-        M, plan = _film_matrices(table, ksa, size)
+        M, plan = _film_matrices(table, ksa, size, far)
         orders, (ti, tj) = plan.orders, plan.pairs
         diag = np.where(ti == tj, np.pi / (2 * (2 * orders[ti] + 1)), 0.0)
         jps = bessel_on_nodes(int(orders[-1]), nodes, res, lambda J, o=orders: J[o])

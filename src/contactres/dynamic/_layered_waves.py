@@ -148,7 +148,11 @@ def waves_at(stack, theta: np.ndarray, x) -> StackWaves:
         )
     ]
     substrate = shaped(substrate_impedance(stack.tensors[-1], th, sv[-1]))
-    reference = shaped(substrate_impedance(stack.reference, th, sv[0]))
+    if layers and np.array_equal(stack.reference, stack.tensors[0]):
+        # A film with one loss tangent is its own reference: its D_d is the reference's Y.
+        reference = layers[0][0][0]
+    else:
+        reference = shaped(substrate_impedance(stack.reference, th, sv[0]))
     return StackWaves(layers, substrate, reference)
 
 
