@@ -18,9 +18,9 @@ stated in the result). Its limits are exact: a film of thickness -> 0 gives the 
 equivalent solid has the grain's M), a thick one the film's modulus everywhere, and for an
 isotropic crystal with a film of its own material the bare map. Measured against the
 axisymmetric layered solution with the anisotropic substrate itself (tests/polycrystal/
-test_coated_map.py; Cu, 20 nm films, a = 10-30 nm, normals [001], [011], [111] and a general
-one): 2e-6-9e-4 for fused silica and a 10 GPa film, up to 5e-3 for a 400 GPa film (stiffer
-than the grains, which then carry the load with their full anisotropy).
+test_coated_map.py, and a survey: Cu, 20 nm films, a = 5-30 nm, normals [001], [011], [111]
+and a general one): 2e-6-9e-4 for fused silica and a 10 GPa film, up to 5e-3 for a 400 GPa
+film (stiffer than the grains, which then carry the load with their full anisotropy).
 """
 
 from __future__ import annotations
