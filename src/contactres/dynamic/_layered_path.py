@@ -267,10 +267,15 @@ class _SharedWaves:
             z = arc_fraction(self.tau)
             self.arc = waves_at(st, theta, 1 / (st.pole_slowness * z) ** 2)
 
+    def static_at(self, n: int) -> StackWaves:
+        """The static waves (x = 0) on ``n`` nodes (statics: the same at every η)."""
+        assert self.static is not None  # built whenever a stack of the set is static
+        return self.static.repeated(np.full(1, n))
+
     def real(self, st: Stack, a: float, s: np.ndarray) -> StackWaves:
         """The waves at real nodes s >= S₁ (η = s/a) of the stack ``st``."""
         if st.omega == 0:
-            return self.static.repeated(np.full(1, s.size))
+            return self.static_at(s.size)
         if self.table is None:
             return waves_at(st, self.theta, (st.omega * a / s) ** 2)
         y = (st.pole * a / s) ** 2
@@ -283,7 +288,7 @@ def _head(shared: _SharedWaves, st: Stack, a: float, res: PunchResolution, s0: f
     s1 = st.pole * a
     if s1 == 0:
         t, wt = gauss_legendre(0.0, s0, res.n_start)
-        return t.astype(complex), wt.astype(complex), shared.static.repeated(np.full(1, t.size))
+        return t.astype(complex), wt.astype(complex), shared.static_at(t.size)
     lift = min(ARC_LIFT * s1, 1.0)
     if lift == ARC_LIFT * s1:
         # The arc of every frequency with this lift is one arc in the slowness (shared waves).
@@ -296,9 +301,9 @@ def _head(shared: _SharedWaves, st: Stack, a: float, res: PunchResolution, s0: f
     t, wt = gauss_legendre(edges[:-1, None], edges[1:, None], res.n_panel)
     t, wt = t.ravel(), wt.ravel()
     arg = np.pi * t / s1
-    nodes = t + 1j * lift * np.sin(arg)
-    weights = wt * (1 + 1j * lift * np.pi / s1 * np.cos(arg))
-    return nodes, weights, waves_at(st, shared.theta, (st.omega * a / nodes) ** 2)
+    lifted = t + 1j * lift * np.sin(arg)
+    along = wt * (1 + 1j * lift * np.pi / s1 * np.cos(arg))
+    return lifted, along, waves_at(st, shared.theta, (st.omega * a / lifted) ** 2)
 
 
 def _delta_g(shared: _SharedWaves, parts) -> list:
