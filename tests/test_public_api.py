@@ -271,8 +271,11 @@ PUBLIC = {
     "layered": [
         "FrequencyDependentMaterial",
         "LayeredMaterial",
+        "impedance_recursion",
+        "layer_waves",
         "material_at",
         "stack_compliance",
+        "substrate_impedance",
         "surface_green",
     ],
     "materials": [
@@ -350,6 +353,7 @@ PUBLIC = {
         "which_adhesion_model",
     ],
     "polycrystal": [
+        "CoatedModuli",
         "ContactMap",
         "CubicInverseResult",
         "EBSD_READERS",
@@ -366,6 +370,7 @@ PUBLIC = {
         "SyntheticPolycrystal",
         "TriangleModuli",
         "check_map_output",
+        "coated_moduli",
         "contact_stiffness_map",
         "dynamic_factor_map",
         "euler_from_surface_matrices",
@@ -376,6 +381,7 @@ PUBLIC = {
         "folded_normals",
         "grain_means",
         "grain_orientations",
+        "hill_poisson_ratio",
         "indentation_moduli",
         "indexed_pixels",
         "ipf_colors",

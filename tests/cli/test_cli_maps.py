@@ -183,6 +183,47 @@ def test_predict_at_a_low_frequency_is_the_static_limit(small, tmp_path):
     )
 
 
+def _film_modulus(name):
+    """E/(1 − ν²) of an isotropic built-in solid from its C11, C12 (ν = C12/(C11 + C12))."""
+    C = np.real(Material.crystal(name).C)
+    nu = C[0, 1] / (C[0, 0] + C[0, 1])
+    e = C[0, 0] * (1 + nu) * (1 - 2 * nu) / (1 - nu)
+    return e / (1 - nu**2)
+
+
+def test_predict_with_a_coating_of_the_crystals_own_material_is_the_bare_map(small, tmp_path):
+    """An isotropic crystal under a film of its own material: M_coated = M, k*_coated = k*."""
+    path, _ = small
+    out = tmp_path / "own.zarr"
+    r = _ok(
+        run("maps", "predict", path, "--out", out, "--crystal", "fused-silica", *TIP,
+            "--coating", "fused-silica:2e-9")
+    )  # fmt: skip
+    ds = read_map(out)
+    np.testing.assert_allclose(ds["M_coated_Pa"].values, ds["M_Pa"].values, rtol=1e-8)
+    np.testing.assert_allclose(
+        ds["k_star_coated_N_per_m"].values, ds["k_star_N_per_m"].values, rtol=1e-8
+    )
+    assert "under fused-silica 2 nm: M_coated from" in r.output
+
+
+def test_predict_under_a_thick_film_gives_the_films_modulus_everywhere(small, tmp_path):
+    """Cu under 1 mm of fused silica (a ≈ 5 nm): the film's E/(1 − ν²) at every pixel (the
+    substrate shows at O(a/h)), the bare variables as without --coating."""
+    path, _ = small
+    bare, coated = tmp_path / "bare.zarr", tmp_path / "thick.zarr"
+    _ok(_predict(path, bare))
+    rec = _json_record(_predict(path, coated, "--coating", "fused-silica:1e-3", "--format", "json"))
+    ds, ref = read_map(coated), read_map(bare)
+    M = ds["M_coated_Pa"].values
+    np.testing.assert_allclose(M, _film_modulus("fused-silica"), rtol=1e-5)
+    for name in ("M_Pa", "contact_radius_m", "k_star_N_per_m"):
+        np.testing.assert_array_equal(ds[name].values, ref[name].values)
+    assert rec["coating"] == "fused-silica 1e+06 nm"
+    assert rec["M_coated_max_Pa"] == pytest.approx(np.nanmax(M))
+    assert float(rec["M_coated_stated_error"]) <= 1e-6
+
+
 def test_predict_on_a_dask_cluster_equals_the_serial_run(small, tmp_path):
     distributed = pytest.importorskip("distributed", reason="dask.distributed not installed")
     path, _ = small
@@ -297,6 +338,8 @@ SYN = {"--out": "o.zarr", "--crystal": "Cu", "--tip-radius": "2e-8", "--force": 
        "--shape": "8x8", "--grains": "2"}  # fmt: skip
 SYN_BARE = {k: v for k, v in SYN.items() if k != "--crystal"}
 SYN_CONST = {**SYN_BARE, "--c11": "168.4e9", "--c12": "121.4e9", "--c44": "75.4e9"}
+
+
 PRE = {"map": "in.zarr", "--out": "p.zarr", "--crystal": "Cu", "--tip-radius": "2e-8",
        "--force": "1e-6"}  # fmt: skip
 PRE_CONST = {**{k: v for k, v in PRE.items() if k != "--crystal"},
@@ -348,6 +391,7 @@ BAD = [
     ("predict", PRE, "--min-confidence", "2", ("--min-confidence",)),
     ("predict", PRE, "--max-mad", "0", ("--max-mad",)),
     ("predict", PRE, "--phase", "3", ("phase 3",)),
+    ("predict", PRE, "--coating", "unobtainium:1e-8", ("--coating", "unobtainium")),
     ("fit", FIT, "map", "nosuch.zarr", ("MAP", "nosuch.zarr")),
     ("fit", FIT, "--out", "nodir/f.json", ("nodir",)),
     ("fit", FIT, "--values", "badcell.csv", ("badcell.csv", "row 3", "column 5", "1.3e3x")),
@@ -377,6 +421,14 @@ MORE = [
     ("predict", PRE_CONST, "--c13", "100e9", ("missing --c33",)),
     ("predict", PRE, "--rtol", "0.5", ("--rtol", "0.5")),
     ("predict", PRE_INTERP, "--rtol", "1e-9", ("--rtol", "1e-09")),
+    ("predict", PRE, "--coating", "pmma250e-9", ("--coating", "MATERIAL:THICKNESS")),
+    (
+        "predict",
+        {**PRE, "--frequency": "1e3"},
+        "--coating",
+        "pmma:2.5e-7",
+        ("--coating", "--frequency"),
+    ),
     ("fit", FIT, "--values", "neg.csv", ("neg.csv", "row 6", "column 2", "-1300")),
     ("fit", FIT, "--values", "shape.csv", ("--values", "shape.csv", "96 rows x 95 columns")),
     ("fit", FIT, "--values", "nosuch.csv", ("--values", "nosuch.csv")),

@@ -1,5 +1,7 @@
-"""The options of a coated sample shared by ``afm invert`` and ``rum invert`` (the film's
-modulus on a known substrate: :func:`contactres.analysis.film_modulus_from_contact_stiffness`)."""
+"""The options of a coated sample: ``--coating`` (films on the sample, parsed by
+:func:`contactres.jobs.contact.parse_coating`; :func:`coating_option`), and the set shared by
+``afm invert`` and ``rum invert`` (the film's modulus on a known substrate:
+:func:`contactres.analysis.film_modulus_from_contact_stiffness`; :func:`coating_options`)."""
 
 from __future__ import annotations
 
@@ -9,6 +11,19 @@ import click
 
 from ..errors import ContactresInputError
 from ._common import MagnitudeType
+
+
+def coating_option(what: str):
+    """``--coating MATERIAL:THICKNESS`` (repeatable, top first), its help ending in ``what``
+    (what the films add to the command's output)."""
+    return click.option(
+        "--coating",
+        multiple=True,
+        metavar="MATERIAL:THICKNESS",
+        help="A film on the sample, thickness in m (e.g. pmma:250e-9); repeat for more layers, "
+        "top first. MATERIAL: pmma (its 1 Hz storage modulus) or an isotropic solid of "
+        f"`contactres crystals` (fused-silica, soda-lime-glass, Si3N4). {what}",
+    )
 
 
 def coating_options():

@@ -22,10 +22,19 @@ from ..halfspace import shear_reference
 from ..layered import LayeredMaterial, material_at, stack_compliance
 from ..materials import Material, voigt_to_tensor
 from ..numerics import gauss_legendre
-from ._normal_stiffness import normalised_wavenumber
+from ._layered_waves import (
+    ARC_LIFT,
+    ARC_PANELS,
+    StackWaves,
+    arc_fraction,
+    chebyshev_matrix,
+    slowness_table,
+    waves_at,
+)
 from ._table import max_slowness
 
 __all__ = [
+    "CorrectionNodes",
     "PunchResolution",
     "Stack",
     "bessel_on_nodes",
@@ -34,6 +43,7 @@ __all__ = [
     "punch_resolution",
     "stack_at",
     "stack_of",
+    "weighted_gram",
 ]
 
 # T = _POLE_FACTOR × ω × (largest bulk slowness): beyond every pole and branch point (the same
@@ -121,19 +131,30 @@ class Stack:
 
     tensors: list
     reference: np.ndarray
-    inertia: list  # ρ_j ω²/C44_f, 1/m² (s_j = inertia_j/η²)
+    sigma: list  # ρ_j/C44_f, s²/m² (s_j = σ_j ω²/η²)
+    omega: float  # ω, rad/s
     thicknesses: np.ndarray
-    pole: float  # T, 1/m: beyond every pole and branch point on the real η axis
+    pole_slowness: float  # p₁ = T/ω, s/m: beyond every pole and branch point (T = p₁ ω)
     k_max: float  # largest shear wave number of any material, 1/m
     axisymmetric: bool
     inplane: bool = False  # the kernel: H_33 (normal punch) or the block H_αβ (tangential)
 
-    def _block(self, tensors, eta, theta, inertia=None):
-        e = eta[:, None] * np.ones_like(theta)[None, :]
-        th = np.broadcast_to(theta[None, :], e.shape)
-        s = [r / e**2 for r in (self.inertia if inertia is None else inertia)][: len(tensors)]
-        hs = [e * h for h in self.thicknesses][: len(tensors) - 1]
-        H = stack_compliance(tensors, s, hs, th)
+    @property
+    def pole(self) -> float:
+        """T = p₁ ω, 1/m: beyond every pole and branch point on the real η axis."""
+        return self.pole_slowness * self.omega
+
+    @property
+    def key(self) -> bytes:
+        """Equal for the stacks of one material set at any frequency (the waves of one
+        slowness are then the same: ``contactres.dynamic._layered_waves``)."""
+        parts = [*self.tensors, self.reference, np.asarray(self.sigma), self.thicknesses]
+        flags = np.array([self.inplane, self.axisymmetric, self.pole_slowness])
+        return b"".join(np.ascontiguousarray(x).tobytes() for x in (*parts, flags))
+
+    def _block(self, tensors, theta):
+        """The static kernel block of a half-space of the tensor ``tensors[0]``."""
+        H = stack_compliance(tensors, [0.0], [], theta)
         return H[..., :2, :2] if self.inplane else H[..., 2, 2]
 
     @property
@@ -146,24 +167,23 @@ class Stack:
 
     def static_shift(self, theta: np.ndarray) -> np.ndarray:
         """g∞_film − g∞_ref (θ): the static kernels of the film and of its reference."""
-        one, zero = np.ones(1), [0.0]
-        ref = self._block([self.reference], one, theta, zero)
-        return (ref - self._block(self.tensors[:1], one, theta, zero))[0]
-
-    def delta_g(self, eta: np.ndarray, theta: np.ndarray, shift: np.ndarray) -> np.ndarray:
-        """Δg = g_stack − g_ref − (g∞_film − g∞_ref) at wavenumbers ``eta`` (1/m, complex) ×
-        directions ``theta``, shape (len(eta), len(theta)) (+ (2, 2) for the in-plane block);
-        -> 0 as η -> ∞."""
-        ref = self._block([self.reference], eta, theta)
-        return ref - self._block(self.tensors, eta, theta) - shift[None]
+        return self._block([self.reference], theta) - self._block(self.tensors[:1], theta)
 
 
 def stack_at(
-    mats, thicknesses, film: Material, q: float, frequency: float, inplane: bool = False
+    mats,
+    thicknesses,
+    film: Material,
+    q: float,
+    frequency: float,
+    inplane: bool = False,
+    known: dict | None = None,
 ) -> Stack:
     """The :class:`Stack` of the materials ``mats`` (top first) at ``frequency``, in the units
     of the film's reference ``film`` (undamped) with loss ``q``; ``inplane``: the in-plane
-    block of the compliance (tangential punch) instead of H_33."""
+    block of the compliance (tangential punch) instead of H_33. ``known``: a dict the caller
+    keeps over its frequencies, where each material's symmetry and slowness are kept once
+    found (the same materials at every frequency need them once)."""
     c44 = shear_reference(film)
     omega = 2 * math.pi * frequency
     if omega > 0:
@@ -175,113 +195,318 @@ def stack_at(
                 f"the dynamic punch stiffness (frequency > 0) needs densities: {which} "
                 f"({mats[j].name or 'unnamed'}) has none"
             )
-    # The shear wave number of every material, per metre (the one wave-number function).
-    ks = [
-        float(normalised_wavenumber(frequency, 1.0, m.density or 0.0, shear_reference(m)))
-        for m in mats
-    ]
-    slow = [k * max_slowness(m) for k, m in zip(ks, mats, strict=True)]
+    known = {} if known is None else known
+    props = []
+    for m in mats:
+        key = (np.asarray(m.C).tobytes(), m.density)
+        if key not in known:
+            # The shear slowness √(ρ/C44) (k_s = ω × it), the largest bulk slowness along the
+            # surface and the symmetry about the normal of one material, s/m.
+            slow = math.sqrt((m.density or 0.0) / shear_reference(m))
+            known[key] = (slow, slow * max_slowness(m), _axisymmetric([m]))
+        props.append(known[key])
     return Stack(
         tensors=[voigt_to_tensor(np.asarray(m.C, dtype=complex)) / c44 for m in mats],
         reference=voigt_to_tensor(np.asarray(film.C, dtype=complex)) * (1 + 1j * q) / c44,
-        inertia=[(m.density or 0.0) * omega**2 / c44 for m in mats],
+        sigma=[(m.density or 0.0) / c44 for m in mats],
+        omega=omega,
         thicknesses=np.asarray(thicknesses, dtype=float),
-        pole=_POLE_FACTOR * max(slow),
-        k_max=max(ks),
-        axisymmetric=_axisymmetric(mats),
+        pole_slowness=_POLE_FACTOR * max(p[1] for p in props),
+        k_max=omega * max(p[0] for p in props),
+        axisymmetric=all(p[2] for p in props),
         inplane=inplane,
     )
 
 
-def _cheb_interp(x_nodes, values, x):
-    """Barycentric interpolation from the Chebyshev points of the first kind ``x_nodes`` (on
-    [−1, 1], n of them) to ``x``; ``values`` (n, ...) -> (len(x), ...)."""
-    n = x_nodes.size
-    j = np.arange(n)
-    w = (-1.0) ** j * np.sin((2 * j + 1) * np.pi / (2 * n))
-    d = x[:, None] - x_nodes[None, :]
-    exact = d == 0
-    d[exact] = 1.0
-    c = w[None, :] / d
-    out = (c @ values.reshape(n, -1)) / np.sum(c, axis=1)[:, None]
-    hit = np.any(exact, axis=1)
-    if np.any(hit):
-        out[hit] = values.reshape(n, -1)[np.argmax(exact[hit], axis=1)]
-    return out.reshape((x.size, *values.shape[1:]))
+def correction_nodes(stacks, radii, theta: np.ndarray, res: PunchResolution, gref) -> dict:
+    """The ΔM integral's nodes of every stack that needs a correction: index i of ``stacks``
+    (with radius ``radii[i]``) -> (s (complex), ds, Δg(s/a, θ) (len(s), len(theta)) (+ (2, 2)
+    in-plane), the end S of the nodes, Δg(S/a, θ) there (for the tail beyond S), the static
+    shift g∞_film − g∞_ref (θ)).
+
+    The stacks of one material set (one per frequency) share their layer waves on the
+    slowness (``contactres.dynamic._layered_waves``) and are solved together, in chunks of
+    at most ~_NODE_BUDGET nodes × directions."""
+    groups: dict = {}
+    for i, st in enumerate(stacks):
+        if st.needs_correction:
+            groups.setdefault(st.key, []).append(i)
+    out: dict = {}
+    per_chunk = max(1, _NODE_BUDGET // (_NODES_PER_POINT * theta.size))
+    for members in groups.values():
+        shared = _SharedWaves(stacks[members[0]], theta, res, [stacks[i] for i in members])
+        for k in range(0, len(members), per_chunk):
+            chunk = members[k : k + per_chunk]
+            out.update(_chunk_nodes(shared, [stacks[i] for i in chunk], radii, chunk, res, gref))
+    return out
 
 
-def correction_nodes(stack: Stack, a: float, theta: np.ndarray, res: PunchResolution, gref):
-    """Nodes s (complex), weights ds and Δg(s/a, θ) (len(s), len(theta)) of the ΔM integral,
-    the end S of the nodes with Δg(S/a, θ) there (for the tail beyond S), and the static
-    shift g∞_film − g∞_ref (θ)."""
-    shift = stack.static_shift(theta)
-    nodes, weights = [], []
-    s1 = stack.pole * a
-    h_tot = float(np.sum(stack.thicknesses))
-    s0 = 0.1 * min(1.0, a / h_tot) if h_tot > 0 else 0.1
-    if s1 > 0:
-        lift = min(0.3 * s1, 1.0)
-        n_pan = max(4, math.ceil(s1 / lift))
-        edges = np.linspace(0.0, s1, n_pan + 1, dtype=np.float64)
-        t, wt = gauss_legendre(edges[:-1, None], edges[1:, None], res.n_panel)
-        t, wt = t.ravel(), wt.ravel()
-        arg = np.pi * t / s1
-        nodes.append(t + 1j * lift * np.sin(arg))
-        weights.append(wt * (1 + 1j * lift * np.pi / s1 * np.cos(arg)))
-    # The geometric panels start at the end of the arc, where Δg varies on the scale S₁ (one
-    # panel [S₁, s₀] would not resolve it at small k a); in statics after a first panel [0, s₀].
-    start = s1 if s1 > 0 else s0
+# Nodes × directions solved together (memory: a few kB each), and a typical count of nodes per
+# point (sets the number of points per chunk).
+_NODE_BUDGET = 40000
+_NODES_PER_POINT = 250
+
+
+class _SharedWaves:
+    """What the stacks of one material set share: the static shift, the slowness table of the
+    real axis, the waves on the arc of lift 0.3 S₁ and the static waves."""
+
+    def __init__(self, st: Stack, theta, res: PunchResolution, stacks):
+        self.theta = theta
+        self.shift = st.static_shift(theta)
+        self.stack = st
+        dynamic = [x for x in stacks if x.omega > 0]
+        self.table = slowness_table(st, theta) if dynamic else None
+        self.static = waves_at(st, theta, [0.0]) if len(dynamic) < len(stacks) else None
+        edges = np.linspace(0.0, 1.0, ARC_PANELS + 1)
+        tau, wt = gauss_legendre(edges[:-1, None], edges[1:, None], res.n_panel)
+        self.tau, self.w_tau = tau.ravel(), wt.ravel()
+        self.arc = None
+        if dynamic:
+            # x = ω²/η² on the arc s = S₁ z(τ): 1/(p₁ z)², the same at every frequency.
+            z = arc_fraction(self.tau)
+            self.arc = waves_at(st, theta, 1 / (st.pole_slowness * z) ** 2)
+
+    def static_at(self, n: int) -> StackWaves:
+        """The static waves (x = 0) on ``n`` nodes (statics: the same at every η)."""
+        assert self.static is not None  # built whenever a stack of the set is static
+        return self.static.repeated(np.full(1, n))
+
+    def real(self, st: Stack, a: float, s: np.ndarray) -> StackWaves:
+        """The waves at real nodes s >= S₁ (η = s/a) of the stack ``st``."""
+        if st.omega == 0:
+            return self.static_at(s.size)
+        if self.table is None:
+            return waves_at(st, self.theta, (st.omega * a / s) ** 2)
+        y = (st.pole * a / s) ** 2
+        return self.table.interpolated(chebyshev_matrix(self.table.size, 2 * y - 1))
+
+
+def _head(shared: _SharedWaves, st: Stack, a: float, res: PunchResolution, s0: float):
+    """Nodes, weights and waves of the part before the real panels: the lifted arc (dynamic)
+    or the first real panel [0, s₀] (statics)."""
+    s1 = st.pole * a
     if s1 == 0:
         t, wt = gauss_legendre(0.0, s0, res.n_start)
-        nodes.append(t.astype(complex))
-        weights.append(wt.astype(complex))
-    # The real-axis panel edges e_k = start × ratio^k up to _S_MAX, probed in one call: the last
-    # panel ends past every edge where what lies beyond (~|Δg(e)|/e, as j_p j_q <= 1/s²) is
-    # still above 1e-3 rtol of |g|; Δg of layers decays like e^{−2ηh} (η h > 5 first), that of
-    # a film with unequal losses like 1/s² (s > 20 first, for the tail formula).
-    n_edges = math.ceil(math.log(_S_MAX / start) / math.log(res.ratio))
-    edges = start * res.ratio ** np.arange(n_edges + 1, dtype=np.float64)
-    probe = stack.delta_g(edges.astype(complex) / a, theta, shift)
-    big = np.abs(probe).reshape(edges.size, -1).max(axis=1) / edges >= res.decay * gref
-    big |= (edges <= 20) | ((h_tot > 0) & (edges * h_tot / a <= 5))
-    last = int(np.flatnonzero(big)[-1]) + 1 if np.any(big) else 1
-    if last > n_edges:
-        raise ContactresInputError(
-            f"the layered correction did not decay by η a = {_S_MAX:.3g}: a film {h_tot:.3g} m "
-            f"thin under a punch of radius {a:.3g} m (h/a = {h_tot / a:.2g}) is out of reach"
-        )
-    # Δg at Chebyshev points in ln s per panel, interpolated onto nodes that resolve j_p j_q.
+        return t.astype(complex), wt.astype(complex), shared.static_at(t.size)
+    lift = min(ARC_LIFT * s1, 1.0)
+    if lift == ARC_LIFT * s1:
+        # The arc of every frequency with this lift is one arc in the slowness (shared waves).
+        tau = shared.tau
+        nodes = s1 * arc_fraction(tau)
+        weights = s1 * shared.w_tau * (1 + 1j * ARC_LIFT * np.pi * np.cos(np.pi * tau))
+        return nodes, weights, shared.arc
+    n_pan = max(ARC_PANELS, math.ceil(s1 / lift))
+    edges = np.linspace(0.0, s1, n_pan + 1, dtype=np.float64)
+    t, wt = gauss_legendre(edges[:-1, None], edges[1:, None], res.n_panel)
+    t, wt = t.ravel(), wt.ravel()
+    arg = np.pi * t / s1
+    lifted = t + 1j * lift * np.sin(arg)
+    along = wt * (1 + 1j * lift * np.pi / s1 * np.cos(arg))
+    return lifted, along, waves_at(st, shared.theta, (st.omega * a / lifted) ** 2)
+
+
+def _delta_g(shared: _SharedWaves, parts) -> list:
+    """Δg at the nodes of every (stack, a, s, waves) of ``parts``, solved together."""
+    waves = StackWaves.combined([w for _, _, _, w in parts])
+    n_layers = len(shared.stack.tensors) - 1
+    eta_h = [
+        np.concatenate([s / a * st.thicknesses[j] for st, a, s, _ in parts])
+        for j in range(n_layers)
+    ]
+    values = waves.delta_g(shared.stack, eta_h, shared.shift)
+    return np.split(values, np.cumsum([s.size for _, _, s, _ in parts])[:-1])
+
+
+def _chunk_nodes(shared: _SharedWaves, stacks, radii, index, res: PunchResolution, gref) -> dict:
+    """:func:`correction_nodes` of the points ``index`` (stacks ``stacks``) of one set."""
+    plan = []
+    for st, i in zip(stacks, index, strict=True):
+        a = float(radii[i])
+        s1 = st.pole * a
+        h_tot = float(np.sum(st.thicknesses))
+        s0 = 0.1 * min(1.0, a / h_tot) if h_tot > 0 else 0.1
+        # The geometric panels start at the end of the arc, where Δg varies on the scale S₁
+        # (one panel [S₁, s₀] would not resolve it at small k a); in statics after a first
+        # panel [0, s₀]. Their edges e_k = start × ratio^k up to _S_MAX are probed together:
+        # the last panel ends past every edge where what lies beyond (~|Δg(e)|/e, as
+        # j_p j_q <= 1/s²) is still above 1e-3 rtol of |g|; Δg of layers decays like e^{−2ηh}
+        # (η h > 5 first), that of a film with unequal losses like 1/s² (s > 20 first, for the
+        # tail formula).
+        start = s1 if s1 > 0 else s0
+        n_edges = math.ceil(math.log(_S_MAX / start) / math.log(res.ratio)) + 1
+        edges = start * res.ratio ** np.arange(n_edges + 1, dtype=np.float64)
+        plan.append((st, a, h_tot, s0, edges))
+    probes = _delta_g(shared, [(st, a, e, shared.real(st, a, e)) for st, a, _, _, e in plan])
+    parts, lasts = [], []
     xc = np.cos(np.pi * (np.arange(res.n_cheb) + 0.5) / res.n_cheb)
-    u = np.log(edges[: last + 1])
-    uc = 0.5 * (u[:-1, None] + u[1:, None]) + 0.5 * (u[1:, None] - u[:-1, None]) * xc[None, :]
-    n_head = sum(x.size for x in nodes)
-    sample = np.concatenate([*nodes, np.exp(uc).ravel().astype(complex)])
-    values = stack.delta_g(sample / a, theta, shift)
-    s_all, w_all, g_all = [*nodes], [*weights], [values[:n_head]]
-    cheb = values[n_head:].reshape(last, res.n_cheb, -1)
-    for j in range(last):
-        lo, hi = edges[j], edges[j + 1]
-        # Sub-panels of n_panel nodes each, per_unit nodes per unit of s on average.
-        n_sub = max(1, math.ceil(res.per_unit * (hi - lo) / res.n_panel))
-        sub = np.linspace(lo, hi, n_sub + 1)
-        t, wt = gauss_legendre(sub[:-1, None], sub[1:, None], res.n_panel)
-        t, wt = t.ravel(), wt.ravel()
-        x = (2 * np.log(t) - u[j] - u[j + 1]) / (u[j + 1] - u[j])
-        s_all.append(t.astype(complex))
-        w_all.append(wt.astype(complex))
-        g_all.append(_cheb_interp(xc, cheb[j], x).reshape(x.size, *values.shape[1:]))
-    return (
-        np.concatenate(s_all),
-        np.concatenate(w_all),
-        np.concatenate(g_all),
-        float(edges[last]),
-        probe[last],
-        shift,
+    for (st, a, h_tot, s0, edges), probe in zip(plan, probes, strict=True):
+        big = np.abs(probe).reshape(edges.size, -1).max(axis=1) / edges >= res.decay * gref
+        big |= (edges <= 20) | ((h_tot > 0) & (edges * h_tot / a <= 5))
+        last = int(np.flatnonzero(big)[-1]) + 1 if np.any(big) else 1
+        if last > edges.size - 2:
+            raise ContactresInputError(
+                f"the layered correction did not decay by η a = {_S_MAX:.3g}: a film "
+                f"{h_tot:.3g} m thin under a punch of radius {a:.3g} m (h/a = {h_tot / a:.2g}) "
+                "is out of reach"
+            )
+        lasts.append(last)
+        # Δg at Chebyshev points in ln s per panel, after the arc (or first panel), one panel
+        # beyond edges[last] (the nodes end at the next grid edge, < 1.5 edges[last]).
+        u = np.log(edges[: last + 2])
+        uc = 0.5 * (u[:-1, None] + u[1:, None]) + 0.5 * (u[1:, None] - u[:-1, None]) * xc[None, :]
+        sc = np.exp(uc).ravel()
+        head = _head(shared, st, a, res, s0)
+        parts.append((st, a, head, sc))
+    samples = _delta_g(
+        shared,
+        [
+            (
+                st,
+                a,
+                np.concatenate([head[0], sc]),
+                StackWaves.combined([head[2], shared.real(st, a, sc)]),
+            )
+            for st, a, head, sc in parts
+        ],
+    )
+    out = {}
+    rule = gauss_legendre(0.0, 1.0, res.n_panel)
+    for k, i in enumerate(index):
+        edges, last, values = plan[k][4], lasts[k], samples[k]
+        out[i] = _assemble_nodes(res, rule, edges, last, parts[k][2], values, shared.shift)
+    return out
+
+
+def grid_width(res: PunchResolution) -> float:
+    """L: the width of the real-axis panels of n_panel nodes (per_unit nodes per unit of s)
+    on the grid k L shared by every point (their Bessel functions are computed once)."""
+    return res.n_panel / res.per_unit
+
+
+def _on_panels(rule, lo: np.ndarray, hi: np.ndarray):
+    """Nodes and weights (flat) of the unit Gauss-Legendre ``rule`` (x, w on [0, 1]) mapped
+    onto the panels [lo_k, hi_k]."""
+    x, w = rule
+    d = (hi - lo)[:, None]
+    return (lo[:, None] + d * x[None, :]).ravel(), (d * w[None, :]).ravel()
+
+
+def _assemble_nodes(res: PunchResolution, rule, edges, last: int, head, values, shift):
+    """The nodes of one point (:class:`CorrectionNodes`): the head's; the geometric panels'
+    own below 2L; a panel to the next edge of the shared grid k L (:func:`grid_width`); the
+    grid's panels up to the first grid edge S at or beyond ``edges[last]``. Δg at the real nodes is
+    interpolated from the Chebyshev samples (in ln s) of the geometric panel holding them."""
+    n_head = head[0].size
+    cheb = values[n_head:].reshape(last + 1, res.n_cheb, -1)
+    u = np.log(edges[: last + 2])
+    width = grid_width(res)
+    # Below 2L the geometric panels are narrower than the grid's (Δg varies on the scale of
+    # the arc's end S₁ there): each gets its own sub-panels, per_unit nodes per unit of s on
+    # average; from the first edge beyond 2L one panel to the next grid edge, then the grid.
+    own = int(np.searchsorted(edges[: last + 1], 2 * width))
+    width_j = np.diff(edges[: own + 1])
+    n_sub = np.maximum(1, np.ceil(res.per_unit * width_j / res.n_panel)).astype(int)
+    j = np.repeat(np.arange(own), n_sub)
+    k = np.arange(j.size) - np.repeat(np.cumsum(n_sub) - n_sub, n_sub)
+    k0 = math.ceil(edges[own] / width)
+    k1 = max(k0, math.ceil(edges[last] / width))
+    lo = np.concatenate(
+        [edges[j] + width_j[j] * k / n_sub[j], [edges[own]], width * np.arange(k0, k1)]
+    )
+    hi = np.concatenate(
+        [
+            edges[j] + width_j[j] * (k + 1) / n_sub[j],
+            [width * k0],
+            width * np.arange(k0 + 1, k1 + 1),
+        ]
+    )
+    t, wt = _on_panels(rule, lo, hi)
+    n_own = n_head + (lo.size - (k1 - k0)) * res.n_panel
+    end = np.array([width * k1])
+    where = np.concatenate([t, end])
+    panel = np.clip(np.searchsorted(edges[: last + 2], where) - 1, 0, last)
+    x = (2 * np.log(where) - u[panel] - u[panel + 1]) / (u[panel + 1] - u[panel])
+    B = chebyshev_matrix(res.n_cheb, x)
+    g = np.einsum("nc,nc...->n...", B, cheb[panel]).reshape(where.size, *values.shape[1:])
+    return CorrectionNodes(
+        s=np.concatenate([head[0], t.astype(complex)]),
+        weights=np.concatenate([head[1], wt.astype(complex)]),
+        delta_g=np.concatenate([values[:n_head], g[:-1]]),
+        s_end=float(end[0]),
+        end=g[-1],
+        shift=shift,
+        n_own=n_own,
+        grid_from=k0 * res.n_panel,
     )
 
 
-def bessel_on_nodes(p_max: int, s: np.ndarray) -> np.ndarray:
-    """j_p(s), p = 0..p_max, (p_max + 1, len(s)) complex, on the nodes ``s`` of the correction."""
+@dataclass(frozen=True, eq=False)
+class CorrectionNodes:
+    """The nodes of one point's ΔM integral (:func:`correction_nodes`).
+
+    Attributes
+    ----------
+    s, weights : complex nodes s = η a and weights ds
+    delta_g : Δg(s/a, θ), (len(s), nθ) (+ (2, 2) in-plane)
+    s_end : S, the end of the nodes (the tail beyond it is in closed form)
+    end : Δg(S/a, θ)
+    shift : g∞_film − g∞_ref (θ), the static difference of film and reference
+    n_own : the first ``n_own`` nodes are this point's own; the rest are the nodes
+        ``grid_from`` onwards of the shared real grid (:func:`bessel_on_nodes`)
+    grid_from : index of the first shared grid node
+    """
+
+    s: np.ndarray
+    weights: np.ndarray
+    delta_g: np.ndarray
+    s_end: float
+    end: np.ndarray
+    shift: np.ndarray
+    n_own: int
+    grid_from: int
+
+
+def bessel_on_nodes(p_max: int, nodes: dict, res: PunchResolution, transform) -> dict:
+    """T(J) of J = j_p(s), p = 0..p_max ((p_max + 1, n) complex), on the nodes of every point
+    of ``nodes`` (index -> :class:`CorrectionNodes`): index -> (T(J) on the point's own nodes,
+    T(J) on its shared grid nodes (a view)). J of the shared grid is computed once; ``transform``
+    T maps J (p_max + 1, n) to the rows the caller needs (R, n), column by column."""
+    if not nodes:
+        return {}
+    top = max(v.grid_from + v.s.size - v.n_own for v in nodes.values())
+    n_pan = math.ceil(top / res.n_panel)
+    edges = grid_width(res) * np.arange(n_pan + 1, dtype=np.float64)
+    t, _ = _on_panels(gauss_legendre(0.0, 1.0, res.n_panel), edges[:-1], edges[1:])
+    # Real nodes, real j_p: the grid's part of every Gram product runs in real arithmetic.
+    from ._weights import spherical_bessel
+
+    grid = transform(spherical_bessel(p_max, t))
+    # Every point's own nodes in one call (the recurrences run over orders: one pass for all).
+    own = transform(_bessel(p_max, np.concatenate([v.s[: v.n_own] for v in nodes.values()])))
+    cut = np.cumsum([v.n_own for v in nodes.values()])[:-1]
+    return {
+        i: (o, grid[:, v.grid_from : v.grid_from + v.s.size - v.n_own])
+        for (i, v), o in zip(nodes.items(), np.split(own, cut, axis=1), strict=True)
+    }
+
+
+def weighted_gram(parts, v: np.ndarray) -> np.ndarray:
+    """Σ_n J_an v_kn J_bn (K, R, R) over a point's nodes, from its two parts (own, grid) of J
+    (:func:`bessel_on_nodes`) and K rows of weights ``v`` (K, n) on all its nodes (own
+    first): one batched matrix product per part."""
+    own, grid = parts
+    n, k = own.shape[1], v.shape[0]
+    out = (own[None] * v[:, None, :n]) @ own.T
+    # The grid's J is real: the real and imaginary parts of v as 2K real products (half the
+    # arithmetic of complex ones).
+    both = np.concatenate([v.real[:, n:], v.imag[:, n:]])
+    g = (grid[None] * both[:, None, :]) @ grid.T
+    return out + (g[:k] + 1j * g[k:])
+
+
+def _bessel(p_max: int, s: np.ndarray) -> np.ndarray:
+    """j_p(s), p = 0..p_max, (p_max + 1, len(s)) complex, on nodes ``s``."""
     from ._weights import spherical_bessel
 
     out = np.empty((p_max + 1, s.size), dtype=complex)

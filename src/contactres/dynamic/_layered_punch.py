@@ -35,10 +35,16 @@ lifted by H = min(0.3 S₁, 1): the products j_p j_q grow like e^{2 Im s}, so th
 in s (O(1/a) in η). Beyond S₁, on the real axis, Δg has no singularity and varies only on the
 scales 1/h and the wave numbers (not on the period π of j_p j_q): on geometric panels of ratio
 1.5 it is sampled at Chebyshev points (in ln s) and interpolated onto Gauss-Legendre nodes dense
-enough for the oscillation of j_p j_q; the panels stop beyond η h = 5 and s = 20 once
+enough for the oscillation of j_p j_q (below s = 2L each panel's own; beyond, the panels of
+width L = 16/3 of one grid k L shared by every point, whose Bessel functions are computed once
+per call); the nodes stop at the first grid edge beyond η h = 5 and s = 20 where
 ``|Δg|``/s (what the rest can add) falls below 1e-3 rtol of the film's ``|g|``. A lossy
 stack is passed on the same path (its singularities lie below the real axis). In statics
-(f = 0) the real axis from 0 is used. Caveat: a lossless stack with a backward-wave guided mode
+(f = 0) the real axis from 0 is used. The layer solutions behind Δg depend on (η, ω) only
+through the slowness η/ω: on the real axis they come from one table in the slowness per stack
+(interpolated to round-off) and on the arc from one set of solutions, for every frequency
+(``contactres.dynamic._layered_waves``); the nodes of all frequencies are solved together.
+Caveat: a lossless stack with a backward-wave guided mode
 (group and phase velocity opposite, possible for a stiff film on a soft substrate) would have
 that pole's limiting-absorption side reversed; the passivity tests cover both stiff-on-soft and
 soft-on-stiff stacks, but no backward-wave case was constructed.
@@ -93,6 +99,7 @@ from ._layered_path import (
     punch_resolution,
     stack_at,
     stack_of,
+    weighted_gram,
 )
 from ._layered_tangential import tangential_punch
 from ._normal_stiffness import normalised_wavenumber
@@ -111,17 +118,17 @@ __all__ = [
 _MAX_RADIAL = 48
 
 
-def _correction_integrals(s, w, dg_harm, plan, s_end, end_harm) -> np.ndarray:
-    """∫ Δg_m j_p j_q ds, (n_m, n_t), from the nodes and the harmonics Δg_m (n_m, len(s)),
+def _correction_integrals(jp, w, dg_harm, plan, s_end, end_harm) -> np.ndarray:
+    """∫ Δg_m j_p j_q ds, (n_m, n_t), from j_p at the nodes (``jp``: the plan's orders, own and
+    grid parts of ``_layered_path.bessel_on_nodes``), the
+    weights and the harmonics Δg_m (n_m, len(s)),
     with the tail beyond ``s_end``: Δg ~ Δg(S) S²/s² (its 1/s² decay) and j_p j_q ->
     (−1)^{(p−q)/2}/(2s²) on average, so the tail is Δg_m(S) (−1)^{(p−q)/2}/(6S)."""
     orders, (ti, tj) = plan.orders, plan.pairs
-    jp = bessel_on_nodes(int(orders[-1]), s)[orders]
     sign = np.where(((orders[ti] - orders[tj]) // 2) % 2 == 0, 1.0, -1.0)
     out = end_harm[:, None] * sign[None, :] / (6 * s_end)
-    # Per harmonic, all order pairs at once: J diag(w Δg_m) Jᵀ (one matrix product).
-    for m in range(dg_harm.shape[0]):
-        out[m] += ((jp * (w * dg_harm[m])[None, :]) @ jp.T)[ti, tj]
+    # Every harmonic and order pair at once: J diag(w Δg_m) Jᵀ (one batched matrix product).
+    out += weighted_gram(jp, w[None, :] * dg_harm)[:, ti, tj]
     return out
 
 
@@ -137,10 +144,11 @@ def _assemble(integral, plan) -> np.ndarray:
     return plan.sign * integral[plan.m_index, plan.t_index]
 
 
-def _film_matrices(table: KernelTable, ksa: np.ndarray, size: GalerkinSize):
-    """(M_film at k_s a values ``ksa`` (>= 0), (len(ksa), nb, nb); the Galerkin plan)."""
+def _film_matrices(table: KernelTable, ksa: np.ndarray, size: GalerkinSize, far):
+    """(M_film at k_s a values ``ksa`` (>= 0), (len(ksa), nb, nb); the Galerkin plan), with
+    ``far`` the far-field basis of the positive ``ksa`` (None if there is none; it does not
+    depend on the basis size, so the growing basis of :func:`_punch` computes it once)."""
     pos = ksa > 0
-    far = far_basis(table, ksa[pos]) if np.any(pos) else None
     plan = galerkin_plan(table, size, None if far is None else far.s)
     nb = len(plan.basis)
     out = np.empty((ksa.size, nb, nb), dtype=complex)
@@ -170,9 +178,10 @@ def layered_punch_stiffness(
     rtol: float = 1e-6,
     *,
     resolution: PunchResolution | None = None,
+    tensor: bool = False,
 ):
     """Normal or tangential stiffness K(ω) = F/δ of a rigid flat punch on a layered substrate,
-    N/m (complex).
+    N/m (complex); ``tensor=True``: the 2x2 tangential tensor.
 
     The rigid disk of radius a, displaced uniformly (δ e^{iωt}: normal, frictionless; or along
     the surface x axis, bonded and relaxed), on a homogeneous, layered and/or viscoelastic
@@ -199,11 +208,20 @@ def layered_punch_stiffness(
     resolution : PunchResolution, optional
         Keyword only: the discretisation of the layered correction (default
         :func:`punch_resolution` of rtol; ``.doubled()`` for a convergence check).
+    tensor : bool
+        Keyword only, tangential only: return the tensor K_αβ (α, β = x, y of the surface
+        frame: the force along α per unit rigid displacement along β) instead of K_xx. On a
+        stack that is not unchanged by rotations about the normal (a crystal face without a
+        three-, four- or sixfold axis, in any layer) K_yy ≠ K_xx and K_xy ≠ 0; K_xy = K_yx
+        (reciprocity), and turning the stack about the normal turns the tensor. The basis then
+        grows until the whole tensor converges (relative to its largest entry), so K_xx may
+        differ from the default's by up to rtol/10.
 
     Returns
     -------
     complex or ndarray of complex
-        K in N/m, shaped like broadcast(radius, frequency); Im K >= 0.
+        K in N/m, shaped like broadcast(radius, frequency) (+ (2, 2) with ``tensor``);
+        Im K >= 0 (Im K_xx, Im K_yy with ``tensor``).
 
     Examples
     --------
@@ -217,6 +235,10 @@ def layered_punch_stiffness(
     if direction not in ("normal", "tangential"):
         raise ContactresInputError(f"direction must be 'normal' or 'tangential', got {direction!r}")
     inplane = direction == "tangential"
+    if tensor and not inplane:
+        raise ContactresInputError(
+            "tensor=True is the 2x2 tangential stiffness: give direction='tangential'"
+        )
     r = float(rtol)
     if not (math.isfinite(r) and 1e-10 <= r <= 1e-3):
         raise ContactresInputError(f"rtol must lie in [1e-10, 1e-3], got {rtol!r}")
@@ -224,11 +246,13 @@ def layered_punch_stiffness(
     f = np.asarray(nonnegative("frequency", frequency, "Hz"), dtype=float)
     a, f = np.broadcast_arrays(a, f)
     res = resolution or punch_resolution(r)
-    out = np.empty(a.shape, dtype=complex)
-    flat_a, flat_f, flat_out = a.ravel(), f.ravel(), out.reshape(-1)
+    out = np.empty(a.shape + ((2, 2) if tensor else ()), dtype=complex)
+    flat_a, flat_f = a.ravel(), f.ravel()
+    flat_out = out.reshape(-1, 2, 2) if tensor else out.reshape(-1)
     # Points grouped by film table (one for a film that does not depend on frequency): the film
     # matrices of a group come from one call, the correction is per point.
     groups: dict = {}
+    known: dict = {}  # each material's slowness and symmetry, found once over the frequencies
     for freq in np.unique(flat_f):
         sel = np.flatnonzero(flat_f == freq)
         mats, hs = stack_of(material, float(freq))
@@ -236,13 +260,14 @@ def layered_punch_stiffness(
         key = (np.asarray(film.C).tobytes(), q)
         if key not in groups:
             groups[key] = ((film, q), [])
-        stack = stack_at(mats, hs, film, q, float(freq), inplane)
+        stack = stack_at(mats, hs, film, q, float(freq), inplane, known)
         groups[key][1].extend((i, stack, float(freq)) for i in sel)
     for (film, q), items in groups.values():
         index = np.array([i for i, _, _ in items])
         if inplane:
             table = prepare_tangential(film, q, r)
-            flat_out[index] = tangential_punch(table, film, items, flat_a[index], r, res)
+            k = tangential_punch(table, film, items, flat_a[index], r, res, tensor)
+            flat_out[index] = k if tensor else k[:, 0, 0]
         else:
             flat_out[index] = _punch(prepare(film, q, r), film, items, flat_a[index], r, res)
     return complex(out) if out.ndim == 0 else out
@@ -263,8 +288,10 @@ def flat_punch_stiffness(
     direction: str = "normal",
     *,
     rtol: float = 1e-6,
+    tensor: bool = False,
 ):
-    """Stiffness of a rigid flat circular punch, static or time-harmonic, N/m (complex).
+    """Stiffness of a rigid flat circular punch, static or time-harmonic, N/m (complex);
+    ``tensor=True``: the 2x2 tangential stiffness tensor.
 
     The rigid disk of radius a on a homogeneous, layered and/or viscoelastic half-space:
     ``direction="normal"`` frictionless (K = F/δ), ``"tangential"`` bonded (no slip) and
@@ -290,12 +317,22 @@ def flat_punch_stiffness(
         Which stiffness.
     rtol : float
         Target relative accuracy of the dynamic punch (static: < 1e-9 always).
+    tensor : bool
+        Keyword only, with ``direction="tangential"``: the tensor K_αβ (α, β = x, y of the
+        surface frame; the force along α per unit rigid displacement along β), at every
+        frequency (0 included) from :func:`layered_punch_stiffness` (``tensor=True``): the
+        exact Galerkin with the kernel's full dependence on the direction, where the static
+        punch of ``tensor=False`` averages the compliance over directions (exact for
+        axisymmetric stacks, an approximation for the others). K_xy = K_yx; on a stack
+        unchanged by rotations about the normal K_yy = K_xx and K_xy = 0 (so a crystal face
+        with a three-, four- or sixfold axis also has an isotropic tensor); turning the stack
+        about the normal by ψ turns it: K' = Q K Qᵀ, Q = [[cos ψ, sin ψ], [−sin ψ, cos ψ]].
 
     Returns
     -------
     complex or ndarray of complex
-        K, N/m. Homogeneous isotropic statics: 2aE* (Sneddon, normal), 8Ga/(2 − ν) (Mindlin,
-        tangential).
+        K, N/m (+ (2, 2) with ``tensor``). Homogeneous isotropic statics: 2aE* (Sneddon,
+        normal), 8Ga/(2 − ν) (Mindlin, tangential).
 
     Examples
     --------
@@ -305,9 +342,18 @@ def flat_punch_stiffness(
     >>> k = flat_punch_stiffness(Material.isotropic(70e9, 0.25), 1e-6)
     >>> bool(abs(k / (2e-6 * 70e9 / (1 - 0.25**2)) - 1) < 1e-9)
     True
+
+    The tangential tensor of a Cu(110) face is not isotropic (its x axis along [001]):
+
+    >>> cu = Material.crystal("Cu").rotated((1, 1, 0), (0, 0, 1))
+    >>> k = flat_punch_stiffness(cu, 1e-6, direction="tangential", tensor=True)
+    >>> bool(abs(k[0, 1]) < 1e-9 * abs(k[0, 0]) and abs(k[1, 1] / k[0, 0] - 1) > 0.05)
+    True
     """
     from ..normal import static_punch_stiffness
 
+    if tensor:
+        return layered_punch_stiffness(material, radius, frequency, direction, rtol, tensor=True)
     f = np.asarray(nonnegative("frequency", frequency, "Hz"), dtype=float)
     if not np.any(f > 0):
         a = np.asarray(positive("radius", radius, "m"), dtype=float)
@@ -368,22 +414,21 @@ def _punch(table, film, items, radii, rtol, res) -> np.ndarray:
     axisymmetric = all(st.axisymmetric for st in stacks)
     theta = np.zeros(1) if axisymmetric else np.asarray(table.theta)
     gref = float(np.max(np.abs(table.ginf)))
-    nodes = {
-        i: correction_nodes(st, float(radii[i]), theta, res, gref)
-        for i, st in enumerate(stacks)
-        if st.needs_correction
-    }
+    nodes = correction_nodes(stacks, radii, theta, res, gref)
+    pos = ksa > 0
+    far = far_basis(table, ksa[pos]) if np.any(pos) else None
     while True:
         grow = n_radial + 4 if nodes else n_radial
         size = GalerkinSize(grow, 0 if axisymmetric else n_harm)
-        M, plan = _film_matrices(table, ksa, size)
+        M, plan = _film_matrices(table, ksa, size, far)
         orders, (ti, tj) = plan.orders, plan.pairs
         diag = np.where(ti == tj, np.pi / (2 * (2 * orders[ti] + 1)), 0.0)
-        for i, (s, w, dg, s_end, end, static) in nodes.items():
-            shift = _harmonics_of(static[None, :], plan, axisymmetric)
-            harm = _harmonics_of(dg, plan, axisymmetric)
-            end_h = _harmonics_of(end[None, :], plan, axisymmetric)[:, 0]
-            integral = _correction_integrals(s, w, harm, plan, s_end, end_h)
+        jps = bessel_on_nodes(int(orders[-1]), nodes, res, lambda J, o=orders: J[o])
+        for i, v in nodes.items():
+            shift = _harmonics_of(v.shift[None, :], plan, axisymmetric)
+            harm = _harmonics_of(v.delta_g, plan, axisymmetric)
+            end_h = _harmonics_of(v.end[None, :], plan, axisymmetric)[:, 0]
+            integral = _correction_integrals(jps[i], v.weights, harm, plan, v.s_end, end_h)
             # The static difference of film and reference: closed form, as in the exact model.
             M[i] += _assemble(integral + shift[:, 0][:, None] * diag[None, :], plan)
         c_big = _solve_c0(M, grow, plan)

@@ -354,7 +354,9 @@ def _thickness(text, spec) -> float:
     return h
 
 
-def parse_coating(coating) -> tuple[tuple[Material | FrequencyDependentMaterial, float], ...]:
+def parse_coating(
+    coating, *, static: bool = False
+) -> tuple[tuple[Material | FrequencyDependentMaterial, float], ...]:
     """The layers of a coating, top first, as (material, thickness_m) pairs for
     :class:`~contactres.LayeredMaterial`.
 
@@ -365,6 +367,10 @@ def parse_coating(coating) -> tuple[tuple[Material | FrequencyDependentMaterial,
         or a ``(material_name, thickness_m)`` pair (one string alone: one layer); at most
         :data:`MAX_COATING_LAYERS` items. Material names: :func:`coating_materials`
         (case-insensitive).
+    static : bool
+        Keyword only: every material with its static constants instead (a frequency-dependent
+        one its storage constants at :data:`STATIC_FREQUENCY_HZ`, real: the undamped solid of
+        a static contact).
 
     Returns
     -------
@@ -409,7 +415,8 @@ def parse_coating(coating) -> tuple[tuple[Material | FrequencyDependentMaterial,
                 "each coating layer (--coating) must be 'MATERIAL:THICKNESS' or a "
                 f"(material_name, thickness_m) pair, got {item!r}"
             )
-        layers.append((_coating_material(name), _thickness(thickness, spec)))
+        m = _coating_material(name)
+        layers.append((_static(m) if static else m, _thickness(thickness, spec)))
     return tuple(layers)
 
 

@@ -10,6 +10,15 @@ Besides ``progress`` (one line per stage), :func:`run` takes ``chunk_progress(do
 called after each chunk of pixels: the evaluation of a large map is long, and a bar needs
 numbers, not lines.
 
+With ``Settings(coating=...)`` (films on the sample, top first: ``"MATERIAL:THICKNESS"`` as
+``contactres contact --coating``) the result adds the coated indentation modulus M_coated_Pa and
+k_star_coated_N_per_m of every pixel: the static punch on the films over the grain, at the
+pixel's bare Hertz contact radius (:func:`contactres.polycrystal.coated_moduli`, which states
+the approximation: each grain's crystal under the films is the isotropic solid with its M and
+the crystal's Voigt-Reuss-Hill Poisson ratio; < 1e-3 against the anisotropic substrate for
+films softer than the grains, up to 5e-3 for much stiffer ones). The bare variables stay as
+they are; a coated map at a frequency (the DCSF) is not offered.
+
 With ``Settings(legend=True)`` (the default) the result also holds M over the standard
 triangle of surface normals (exact, paper 1's Eqs. 1-4 for each normal, on a grid of
 :data:`TRIANGLE_GRID` points per axis: ~3,600 evaluations, about a second): the legend of the
@@ -68,6 +77,11 @@ class Settings:
     legend : bool
         Evaluate M over the standard triangle, the legend of the map's figure (False: no
         ``triangle`` in the result, and no figure).
+    coating : tuple of str
+        Films on the sample, top first, ``"MATERIAL:THICKNESS"`` (thickness in m;
+        :func:`contactres.jobs.contact.parse_coating`; a viscoelastic film takes its 1 Hz
+        storage constants): adds M_coated_Pa and k_star_coated_N_per_m (module docstring).
+        Empty: the bare map only.
     """
 
     material: Material
@@ -83,6 +97,7 @@ class Settings:
     max_mad: float | None = None
     phase: int | None = None
     legend: bool = True
+    coating: tuple = ()
 
 
 @dataclass(frozen=True)
@@ -121,6 +136,12 @@ def run(
     s = settings
     if s.frequency is not None and s.material.density is None:
         raise ContactresInputError("a frequency needs the density of the material (kg/m^3)")
+    layers = _static_layers(s.coating)
+    if layers and s.frequency is not None:
+        raise ContactresInputError(
+            "--coating with --frequency: the coated map is static only (dcsf --coating gives "
+            "the DCSF of one coated contact)"
+        )
     say(progress, f"reading {inputs}")
     omap, _ = open_map(inputs)
     pixels = indexed_pixels(omap, min_confidence=s.min_confidence, max_mad=s.max_mad, phase=s.phase)
@@ -139,6 +160,9 @@ def run(
         progress=chunk_progress,
         pixels=pixels,
     )
+    if layers:
+        say(progress, "coated moduli (the films on each grain's equivalent isotropic solid)")
+        _add_coated(ds, info, s, layers)
     triangle = None
     if s.legend:
         say(progress, "M over the standard triangle (the figure's legend)")
@@ -150,3 +174,37 @@ def run(
     return Result(
         dataset=ds, info=dict(info), material=s.material, lattice=s.lattice, triangle=triangle
     )
+
+
+def _static_layers(coating) -> tuple:
+    """The films of ``coating`` with static, lossless constants (a viscoelastic film's storage
+    constants at 1 Hz, as the static coated contact takes them); () for none."""
+    from .contact import parse_coating
+
+    return parse_coating(coating, static=True) if coating else ()
+
+
+def _add_coated(ds, info: dict, s: Settings, layers) -> None:
+    """M_coated_Pa and k_star_coated_N_per_m of every pixel, with their attributes."""
+    from ..polycrystal import coated_moduli
+
+    t = s.tipload
+    rtol = min(max(s.rtol, 1e-9), 1e-6)
+    c = coated_moduli(s.material, layers, ds["M_Pa"].values, t.tip, t.radius, t.force, rtol)
+    label = " on ".join(f"{m.name or 'film'} {h * 1e9:.4g} nm" for m, h in layers)
+    dims = ("y", "x")
+    ds["M_coated_Pa"] = (
+        dims,
+        c.moduli,
+        {"units": "Pa", "long_name": f"indentation modulus under {label}"},
+    )
+    ds["k_star_coated_N_per_m"] = (dims, c.stiffness, {"units": "N/m"})
+    ds.attrs.update(
+        coating=label,
+        coating_model=(
+            "static punch on the films over each grain's isotropic equivalent (its M, the "
+            f"crystal's Hill Poisson ratio {c.poisson:.4g}), at the bare Hertz contact radius"
+        ),
+        M_coated_stated_error=f"{c.error:.2g}",
+    )
+    info.update(coating=label, coated_error=f"{c.error:.2g}", coated_evaluations=c.evaluations)

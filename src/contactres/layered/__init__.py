@@ -7,7 +7,9 @@ bottom up:
   thicknesses on a substrate, with frequency-dependent materials evaluated by ``at(f)``.
 - ``_expm``: the exponential of stacks of 3x3 matrices (scaling and squaring).
 - ``_recursion``: the surface compliance of the stack by a stable impedance recursion over
-  the half-space solutions of every layer (:func:`stack_compliance`, dimensionless) and the
+  the half-space solutions of every layer (:func:`stack_compliance`, dimensionless; its two
+  halves :func:`layer_waves` with :func:`substrate_impedance` and :func:`impedance_recursion`,
+  for callers that reuse the waves of a slowness at many wavenumbers) and the
   surface Green's function in SI units (:func:`surface_green`, m/Pa).
 
 Bottom and interface conditions: welded interfaces (u and σ_i3 continuous), a substrate that
@@ -17,13 +19,22 @@ Accuracy: see ``_recursion`` (and :func:`surface_green`).
 
 from __future__ import annotations
 
-from ._recursion import stack_compliance, surface_green
+from ._recursion import (
+    impedance_recursion,
+    layer_waves,
+    stack_compliance,
+    substrate_impedance,
+    surface_green,
+)
 from ._stack import FrequencyDependentMaterial, LayeredMaterial, material_at
 
 __all__ = [
     "FrequencyDependentMaterial",
     "LayeredMaterial",
+    "impedance_recursion",
+    "layer_waves",
     "material_at",
     "stack_compliance",
+    "substrate_impedance",
     "surface_green",
 ]

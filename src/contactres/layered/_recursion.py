@@ -70,7 +70,13 @@ from ..materials import Material, voigt_to_tensor
 from ._expm import expm3
 from ._stack import LayeredMaterial, material_at
 
-__all__ = ["stack_compliance", "surface_green"]
+__all__ = [
+    "impedance_recursion",
+    "layer_waves",
+    "stack_compliance",
+    "substrate_impedance",
+    "surface_green",
+]
 
 
 def _rw_blocks(c: np.ndarray, theta: np.ndarray):
@@ -99,32 +105,87 @@ def _flip(a: np.ndarray) -> np.ndarray:
     return out
 
 
-def _layer_impedance(c, th, s, eta_h, Y):
-    """Impedance at the top of one layer (tensor c, inertia s, thickness ηh) over impedance Y."""
+def layer_waves(c, th, s) -> tuple[np.ndarray, bool]:
+    """The partial waves of one layer (tensor c, inertia s) at the directions ``th``: the
+    impedances and exponents of its downward- and upward-decaying solutions.
+
+    Parameters
+    ----------
+    c : ndarray, shape (3, 3, 3, 3)
+        The layer's tensor over the stack's reference C44 (complex allowed).
+    th, s : ndarray, shape (N,)
+        Directions, rad, and ρω²/(C44_ref η²) (complex allowed).
+
+    Returns
+    -------
+    (waves, mirror) : (ndarray, shape (4, 3, 3, N), complex; bool)
+        D_d, D_u (module docstring) and A_d, A_u with X_d = exp(ηh A_d), X_u = exp(ηh A_u);
+        ``mirror`` if z -> −z is a symmetry of the layer (then A_u = M A_d M and X_u = M X_d M,
+        M = diag(1, 1, −1)). Each depends on (η, ω) only through s, so a table in s serves
+        every frequency (``contactres.dynamic._layered_path``).
+    """
     n = th.size
     R, W = _rw_blocks(c, th)
     Wi = inv3(np.broadcast_to(W, R.shape).copy())
     Rt = transpose(R)
-    if _is_mirror(c):
+    mirror = _is_mirror(c)
+    if mirror:
         # A mirror-plane solid (isotropic, cubic (001), ...): the pencil at θ + π is the one at θ
         # conjugated by M = diag(1, 1, −1), so H(θ + π) = M H(θ) M and X_u = M X_d M; one
         # half-space evaluation and one exponential instead of two.
         D_d = inv3(_halfspace(c, th, s))
         H_pi_inv = _flip(D_d)
-        X_d = expm3(1j * eta_h * mm(Wi, -1j * D_d - Rt))
-        X_u = _flip(X_d)
+        A_d = 1j * mm(Wi, -1j * D_d - Rt)
+        A_u = _flip(A_d)
     else:
         both = _halfspace(c, np.concatenate([th, th + np.pi]), np.concatenate([s, s]))
         D_d = inv3(np.ascontiguousarray(both[..., :n]))
         H_pi_inv = inv3(np.ascontiguousarray(both[..., n:]))
         # Z = W⁻¹(−i D − Rᵀ) at θ, and at θ + π (where R -> −R): the decaying solvents.
-        X_d = expm3(1j * eta_h * mm(Wi, -1j * D_d - Rt))
-        X_u = expm3(1j * eta_h * mm(Wi, -1j * H_pi_inv + Rt))
-    D_u = -H_pi_inv
+        A_d = 1j * mm(Wi, -1j * D_d - Rt)
+        A_u = 1j * mm(Wi, -1j * H_pi_inv + Rt)
+    return np.stack([D_d, -H_pi_inv, A_d, A_u]), mirror
+
+
+def substrate_impedance(c, th, s) -> np.ndarray:
+    """Y = H⁻¹ (3, 3, N) of the substrate half-space (tensor c, inertia s) at ``th``: what
+    :func:`impedance_recursion` starts from (depends on (η, ω) only through s)."""
+    return inv3(_halfspace(c, th, s))
+
+
+def _layer_impedance(waves, mirror: bool, eta_h, Y):
+    """Impedance at the top of one layer (its :func:`layer_waves`, thickness ηh) over Y."""
+    D_d, D_u, A_d, A_u = waves
+    X_d = expm3(eta_h * A_d)
+    X_u = _flip(X_d) if mirror else expm3(eta_h * A_u)
     rho = mm(inv3(D_u - Y), Y - D_d)
     T = mm(X_u, mm(rho, X_d))
     eye = np.eye(3)[..., None]
     return mm(D_d + mm(D_u, T), inv3(eye + T))
+
+
+def impedance_recursion(layers, eta_h, Y) -> np.ndarray:
+    """Surface impedance Y_top (3, 3, N) of layers over a substrate of impedance Y.
+
+    Parameters
+    ----------
+    layers : sequence of (ndarray, bool)
+        :func:`layer_waves` of every layer, top first, each (4, 3, 3, N) with its mirror flag.
+    eta_h : sequence of ndarray, shape (N,)
+        η h_j of every layer (complex on a lifted path).
+    Y : ndarray, shape (3, 3, N)
+        :func:`substrate_impedance`.
+
+    Returns
+    -------
+    ndarray, complex, shape (3, 3, N)
+        Y_top (module docstring); the stack's compliance is H = Y_top⁻¹. Non-finite where the
+        stack is singular (no error here: :func:`stack_compliance` raises).
+    """
+    with np.errstate(all="ignore"):
+        for (waves, mirror), eh in zip(reversed(layers), reversed(eta_h), strict=True):
+            Y = _layer_impedance(waves, mirror, eh, Y)
+    return Y
 
 
 def stack_compliance(tensors, s, eta_h, theta) -> np.ndarray:
@@ -165,10 +226,8 @@ def stack_compliance(tensors, s, eta_h, theta) -> np.ndarray:
     H = _halfspace(tensors[-1], th, sv[-1])
     if len(tensors) > 1:
         with np.errstate(all="ignore"):
-            Y = inv3(H)
-            for j in range(len(tensors) - 2, -1, -1):
-                Y = _layer_impedance(tensors[j], th, sv[j], hv[j], Y)
-            H = inv3(Y)
+            layers = [layer_waves(c, th, v) for c, v in zip(tensors[:-1], sv[:-1], strict=True)]
+            H = inv3(impedance_recursion(layers, hv, inv3(H)))
     bad = ~np.all(np.isfinite(H), axis=(0, 1))
     if np.any(bad):
         i = np.flatnonzero(bad)[0]

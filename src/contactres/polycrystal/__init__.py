@@ -10,8 +10,9 @@ triangle (:func:`prepare_normal_table`).
 The map container (:class:`OrientationMap`), the chunked per-pixel evaluation
 (:func:`evaluate_map`: numpy, or dask on a cluster: the optional extra ``maps``) and Zarr IO
 (``_maps``); .ang/.ctf exports (:func:`read_ebsd`, ``_ebsd``); seeded Voronoi polycrystals
-(:func:`synthetic_polycrystal`); grains, the predicted contact-stiffness map and the inverse
-fits of the elastic constants to a measured map (:func:`fit_map`).
+(:func:`synthetic_polycrystal`); grains, the predicted contact-stiffness map (bare, and under
+films: :func:`coated_moduli`) and the inverse fits of the elastic constants to a measured map
+(:func:`fit_map`).
 
 The public names are loaded on first use (PEP 562 module ``__getattr__``); the modules that
 implement them are private (scipy's rule): import from ``contactres.polycrystal``.
@@ -76,6 +77,9 @@ _EXPORTS = MappingProxyType(
         "surface_matrices_from_quaternions": "._orientations",
         "surface_matrix_from_miller": "._orientations",
         "symmetry_operators": "._orientations",
+        "CoatedModuli": "._coated",
+        "coated_moduli": "._coated",
+        "hill_poisson_ratio": "._coated",
         "contact_stiffness_map": "._predicted",
         "dynamic_factor_map": "._predicted",
         "map_wavenumbers": "._predicted",
@@ -158,6 +162,11 @@ if TYPE_CHECKING:
         surface_matrices_from_quaternions as surface_matrices_from_quaternions,
         surface_matrix_from_miller as surface_matrix_from_miller,
         symmetry_operators as symmetry_operators,
+    )
+    from ._coated import (
+        CoatedModuli as CoatedModuli,
+        coated_moduli as coated_moduli,
+        hill_poisson_ratio as hill_poisson_ratio,
     )
     from ._predicted import (
         ContactMap as ContactMap,

@@ -1,0 +1,174 @@
+"""The partial waves of a stack as functions of the slowness, shared by every frequency.
+
+The layered correction of the punch (``contactres.dynamic._layered_path``) needs the kernel
+difference Δg of the stack at a few hundred wavenumbers η per frequency. The layer solutions
+behind it — each material's downward and upward impedances D and exponents A
+(:func:`contactres.layered.layer_waves`), the substrate's impedance Y and the film reference's
+(:func:`contactres.layered.substrate_impedance`) — depend on (η, ω) only through
+s_j = ρ_j ω²/(C44_f η²) = σ_j x, x = ω²/η² (the squared slowness's inverse), not on η h;
+only the layer exponentials exp(η h A) and the recursion over them do. So:
+
+- on the real axis beyond the last pole and branch point, η >= T = p₁ ω (p₁ = 1.75 × the
+  largest bulk slowness, the same at every frequency), the waves are tabulated once in
+  y = x p₁² ∈ [0, 1] at Chebyshev points and interpolated (barycentric formula) onto every
+  node of every frequency: each is analytic in y there, its nearest singularity (a branch
+  point or the Rayleigh pole of one material) beyond y = 1.75²/1.1² ≈ 2.5, so
+  :data:`_N_TABLE` points give round-off (checked at construction against direct solutions at
+  points between the nodes; a stack where they differ by more than :data:`_TABLE_TOL` is
+  solved directly, as without a table);
+- on the lifted arc s = S₁ (τ + 0.3 i sin πτ), S₁ = T a, x = 1/(p₁ (τ + 0.3 i sin πτ))²
+  does not depend on the frequency either (wherever the lift is 0.3 S₁, i.e. S₁ <= 10/3), so
+  one set of arc solutions serves all those frequencies;
+- in statics (ω = 0) x = 0 at every η: one solution per direction.
+
+The recursion (:func:`contactres.layered.impedance_recursion`) then runs once over the nodes of
+all frequencies together. Results equal the direct solution of every node to the table's
+accuracy (measured: < 1e-13 relative on PMMA over quartz, isotropic and cubic (111) films).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from ..halfspace import inv3
+from ..layered import impedance_recursion, layer_waves, substrate_impedance
+
+__all__ = ["StackWaves", "arc_fraction", "chebyshev_matrix", "waves_at"]
+
+# Chebyshev points of the slowness table on y ∈ [0, 1], and the largest relative difference
+# between table and direct solutions (at points between the nodes) that lets the table serve.
+_N_TABLE = 28
+_TABLE_TOL = 1e-12
+# The arc's lift over its length S₁ (where the lift is below 1) and its panels.
+ARC_LIFT = 0.3
+ARC_PANELS = 4
+
+
+def arc_fraction(tau: np.ndarray) -> np.ndarray:
+    """z(τ) = τ + 0.3 i sin πτ: the lifted arc s = S₁ z(τ), 0 <= τ <= 1."""
+    return tau + 1j * ARC_LIFT * np.sin(np.pi * tau)
+
+
+def chebyshev_matrix(n: int, x: np.ndarray) -> np.ndarray:
+    """B (len(x), n): values at ``x`` (in [−1, 1]) of the polynomial through n samples at the
+    Chebyshev points of the first kind cos(π (j + 1/2)/n), j = 0..n−1 (barycentric formula,
+    exact at the points)."""
+    xc = np.cos(np.pi * (np.arange(n) + 0.5) / n)
+    j = np.arange(n)
+    w = (-1.0) ** j * np.sin((2 * j + 1) * np.pi / (2 * n))
+    d = x[:, None] - xc[None, :]
+    exact = d == 0
+    d[exact] = 1.0
+    c = w[None, :] / d
+    out = c / np.sum(c, axis=1)[:, None]
+    hit = np.any(exact, axis=1)
+    out[hit] = exact[hit].astype(float)
+    return out
+
+
+class StackWaves:
+    """The layer waves, substrate and reference impedances of one stack on a set of nodes ×
+    directions: ``layers`` [(waves (4, 3, 3, n, nθ), mirror)], ``substrate`` and ``reference``
+    (3, 3, n, nθ). Built by :func:`waves_at` or by interpolation (:meth:`combined`)."""
+
+    __slots__ = ("layers", "reference", "substrate")
+
+    def __init__(self, layers, substrate, reference):
+        self.layers = layers
+        self.substrate = substrate
+        self.reference = reference
+
+    @property
+    def size(self) -> int:
+        return self.substrate.shape[2]
+
+    def arrays(self) -> list:
+        return [w for w, _ in self.layers] + [self.substrate, self.reference]
+
+    def _with(self, arrays) -> StackWaves:
+        layers = [(a, m) for a, (_, m) in zip(arrays, self.layers, strict=False)]
+        return StackWaves(layers, arrays[-2], arrays[-1])
+
+    def interpolated(self, B: np.ndarray) -> StackWaves:
+        """The waves at the nodes whose Chebyshev row vectors are ``B`` (m, n)."""
+        out = []
+        for a in self.arrays():
+            # (m, n) @ (K, n, nθ) -> (K, m, nθ): one batched matrix product per array.
+            flat = a.reshape(-1, *a.shape[-2:])
+            out.append(np.matmul(B, flat).reshape((*a.shape[:-2], B.shape[0], a.shape[-1])))
+        return self._with(out)
+
+    def repeated(self, counts) -> StackWaves:
+        """Node j taken ``counts[j]`` times (a single static node broadcast to many)."""
+        return self._with([np.repeat(a, counts, axis=-2) for a in self.arrays()])
+
+    @staticmethod
+    def combined(parts) -> StackWaves:
+        """The nodes of ``parts`` one after the other."""
+        arrays = [
+            np.concatenate(group, axis=-2)
+            for group in zip(*(p.arrays() for p in parts), strict=True)
+        ]
+        return parts[0]._with(arrays)
+
+    def delta_g(self, stack, eta_h, shift) -> np.ndarray:
+        """Δg = g_ref − g_stack − shift (n, nθ) (+ (2, 2) in-plane) at these nodes, with
+        ``eta_h`` (n_layers, n) the layers' η h_j (complex on the arc)."""
+        n, nth = self.substrate.shape[2:]
+
+        def flat(a):
+            return a.reshape((*a.shape[:-2], n * nth))
+
+        layers = [(flat(w), m) for w, m in self.layers]
+        eh = [np.repeat(np.asarray(e, dtype=complex), nth) for e in eta_h]
+        with np.errstate(all="ignore"):
+            H = inv3(impedance_recursion(layers, eh, flat(self.substrate)))
+            H_ref = inv3(flat(self.reference))
+        H, H_ref = (np.moveaxis(x, (0, 1), (-2, -1)).reshape(n, nth, 3, 3) for x in (H, H_ref))
+        if stack.inplane:
+            return H_ref[..., :2, :2] - H[..., :2, :2] - shift[None]
+        return H_ref[..., 2, 2] - H[..., 2, 2] - shift[None]
+
+
+def waves_at(stack, theta: np.ndarray, x) -> StackWaves:
+    """The waves of ``stack`` (``_layered_path.Stack``) solved directly at x = ω²/η² (s_j =
+    σ_j x, complex allowed) × directions ``theta``."""
+    x = np.asarray(x, dtype=complex)
+    n, nth = x.size, theta.size
+    th = np.broadcast_to(theta[None, :], (n, nth)).ravel()
+    sv = [np.repeat(sig * x, nth) for sig in stack.sigma]
+
+    def shaped(a):
+        return a.reshape((*a.shape[:-1], n, nth))
+
+    layers = [
+        (shaped(w), m)
+        for w, m in (
+            layer_waves(c, th, v) for c, v in zip(stack.tensors[:-1], sv[:-1], strict=True)
+        )
+    ]
+    substrate = shaped(substrate_impedance(stack.tensors[-1], th, sv[-1]))
+    if layers and np.array_equal(stack.reference, stack.tensors[0]):
+        # A film with one loss tangent is its own reference: its D_d is the reference's Y.
+        reference = layers[0][0][0]
+    else:
+        reference = shaped(substrate_impedance(stack.reference, th, sv[0]))
+    return StackWaves(layers, substrate, reference)
+
+
+def slowness_table(stack, theta: np.ndarray) -> StackWaves | None:
+    """The waves at the Chebyshev points of y = x p₁² ∈ [0, 1] (module docstring), or None
+    where interpolating them would not reach :data:`_TABLE_TOL` (then solve directly)."""
+    p1 = stack.pole_slowness
+    yc = 0.5 * (1 + np.cos(np.pi * (np.arange(_N_TABLE) + 0.5) / _N_TABLE))
+    # Points between the nodes where the interpolant is checked against direct solutions.
+    y_check = np.array([0.013, 0.31, 0.62, 0.97, 1.0])
+    both = waves_at(stack, theta, np.concatenate([yc, y_check]) / p1**2)
+    table = both._with([a[..., :_N_TABLE, :] for a in both.arrays()])
+    direct = [a[..., _N_TABLE:, :] for a in both.arrays()]
+    approx = table.interpolated(chebyshev_matrix(_N_TABLE, 2 * y_check - 1)).arrays()
+    for d, t in zip(direct, approx, strict=True):
+        scale = np.max(np.abs(d), axis=tuple(range(d.ndim - 2)))
+        if not np.all(np.max(np.abs(d - t), axis=tuple(range(d.ndim - 2))) <= _TABLE_TOL * scale):
+            return None
+    return table
