@@ -645,6 +645,7 @@ PUBLIC_MODULES = [
     "contactres.report.dictionary",  # the data dictionary page (docs/dictionary.md)
     "contactres.report.figures",  # the gallery's figures; key_below for every figure
     "contactres.tangential",
+    "contactres.typed_units",  # values typed with their unit, to SI (pint)
     "contactres.units",
     "contactres.validation",
     "contactres.viscoelastic",
