@@ -418,6 +418,7 @@ PUBLIC = {
         "ContactResonanceResult",
         "DEFAULT_NODES",
         "FREE_ROOTS",
+        "FREE_TOLERANCE",
         "MODE_TOLERANCE",
         "QCM",
         "RUMOscillator",

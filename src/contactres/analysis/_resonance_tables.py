@@ -4,9 +4,10 @@ The orchestration behind ``contactres rum invert`` and ``contactres afm invert``
 tables of :mod:`contactres.measurements` go through the oscillator models of
 :mod:`contactres.resonators` and the modulus step of :mod:`contactres.analysis._inversion`;
 the output keeps every input column and appends the results. Rows that the physics rejects
-(a contact resonance below the free one) are errors naming the line; rows that only cannot be
-inverted (no crossing of two modes, a mode without sensitivity) keep empty results and say why
-in ``flags``.
+(a contact resonance below the free one by more than
+:data:`~contactres.resonators.FREE_TOLERANCE`) are errors naming the line; a CR-AFM resonance at
+the free one is no contact (κ = 0, flag ``no-contact``); rows that only cannot be inverted (no
+crossing of two modes, a mode without sensitivity) keep empty results and say why in ``flags``.
 """
 
 from __future__ import annotations
@@ -18,6 +19,7 @@ from ..dynamic import prepare
 from ..errors import ContactresInputError
 from ..measurements import at_cell, where_rows
 from ..resonators import (
+    FREE_TOLERANCE,
     MODE_TOLERANCE,
     Cantilever,
     RUMOscillator,
@@ -263,7 +265,9 @@ def invert_afm_table(
             "(fc1_Hz, fc2_Hz and fc3_Hz are all empty)"
         )
     for n in _MODES:  # a contact spring only raises a mode: below the free lever is impossible
-        below = fc[:, n - 1] < table[f"f{n}_free_Hz"].to_numpy(float)
+        # (at the free frequency or a hair below it, FREE_TOLERANCE: no contact, κ = 0)
+        free = table[f"f{n}_free_Hz"].to_numpy(float)
+        below = fc[:, n - 1] < free * (1.0 - FREE_TOLERANCE)
         if below.any():
             raise ContactresInputError(
                 f"{at_cell(table, source, below, f'fc{n}_Hz')}: below the free resonance "
@@ -287,7 +291,14 @@ def invert_afm_table(
     n = len(table)
     res = {
         c: np.full(n, np.nan)
-        for c in ("kappa", "tip_position_used", "sigma_N_s_per_m", "mode_spread")
+        for c in (
+            "kappa",
+            "tip_position_used",
+            "sigma_N_s_per_m",
+            "mode_spread",
+            "tip_position_other",
+            "kappa_other",
+        )
     }
     flags = np.zeros(n, dtype=int)
     k_modes = np.full((n, len(_MODES)), np.nan)  # κ of each mode averaged into κ (else NaN)
@@ -323,6 +334,8 @@ def invert_afm_table(
         res["tip_position_used"][rows] = inv.tip_position
         res["sigma_N_s_per_m"][rows] = inv.sigma * np.where(have_kc[rows], k_c[rows], np.nan)
         res["mode_spread"][rows] = inv.mode_spread
+        res["tip_position_other"][rows] = inv.tip_position_other
+        res["kappa_other"][rows] = inv.kappa_other
         k_modes[rows] = np.where(inv.averaged_modes, inv.kappa_modes, np.nan)
         flags[rows] = inv.flags
         solved = np.isfinite(inv.tip_position)  # two modes without a crossing: no reference
@@ -334,7 +347,8 @@ def invert_afm_table(
                 back = invert_contact_resonance(
                     lever, freqs, tip_position=inv.tip_position[take], **geometry
                 )
-                refs[rows[take], j] = back.kappa
+                # a reference at its free frequency (κ = 0, no contact) calibrates nothing
+                refs[rows[take], j] = np.where(back.kappa > 0, back.kappa, np.nan)
     k_star = res["kappa"] * k_c
     # Without k_c, k* is unknown, but the reference method needs only ratios of k*: it runs on κ.
     col = {c: table[c].to_numpy(float) for c in _MODULUS_INPUTS}
@@ -355,6 +369,8 @@ def invert_afm_table(
     out["tip_position_used"] = res["tip_position_used"]
     out["sigma_N_s_per_m"] = res["sigma_N_s_per_m"]
     out["mode_spread"] = res["mode_spread"]
+    out["tip_position_other"] = res["tip_position_other"]
+    out["kappa_other"] = res["kappa_other"]
     names = ["E_star_Pa", "M_sample_Pa", "contact_radius_m", "modulus_method"]
     for name in names:
         out[name] = mod[name]
