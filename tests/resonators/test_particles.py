@@ -286,3 +286,10 @@ def test_shifts_broadcast_over_time_steps_and_overtones():
     assert df.shape == dg.shape == (2, N.size)
     one, _ = particle_shifts(F0, N, SPHERE, 900.0, 1e-7, 1e11, medium=WATER)
     np.testing.assert_array_equal(df[1], one)
+
+
+def test_shifts_beyond_the_small_load_limit_warn():
+    # a monolayer of heavy 10 µm spheres rigidly attached: |Δf|/f of order 1e-2
+    big = Particle.sphere(10e-6, 8000.0)
+    with pytest.warns(RuntimeWarning, match="small-load"):
+        particle_shifts(F0, N, big, 1e25, 0.0, 2.5e9, rocking="locked")

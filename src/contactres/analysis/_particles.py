@@ -67,6 +67,7 @@ from ..resonators import (
     particle_compliance,
     particle_model_validity,
 )
+from ..validation import positive
 from ._particle_linear import equation_error, limit_chi2, series_variance, stacked_inverse
 
 __all__ = [
@@ -208,8 +209,7 @@ def fit_particles(
     f0, n, zf, wf, wg, estimate = _prepare(
         fundamental, overtones, df, dgamma, sigma_df, sigma_dgamma
     )
-    if zq <= 0 or not np.isfinite(zq):
-        raise ContactresInputError(f"zq must be finite and > 0 (kg m^-2 s^-1), got {zq!r}")
+    zq = positive("zq", zq, "kg m^-2 s^-1")
     fit_rocking = isinstance(rocking, str) and rocking.strip().lower() == "fit"
     freq = n * f0
     sens = 2.0 * n * np.pi**2 * zq  # z_n s_n = N K_L
@@ -259,10 +259,11 @@ def fit_particles(
 
 def _prepare(fundamental, overtones, df, dgamma, sigma_df, sigma_dgamma):
     """Checked arrays: f_F, n (n,), z = Δf + iΔΓ (T, n) and the weights 1/σ (T, n)."""
-    f0 = float(fundamental)
-    if not np.isfinite(f0) or f0 <= 0:
-        raise ContactresInputError(f"fundamental must be finite and > 0 (Hz), got {fundamental!r}")
-    n = np.asarray(overtones, dtype=float)
+    f0 = positive("fundamental frequency", fundamental, "Hz")
+    try:
+        n = np.asarray(overtones, dtype=float)
+    except (TypeError, ValueError):
+        raise ContactresInputError(f"overtones must be integers >= 1, got {overtones!r}") from None
     if n.ndim != 1 or n.size < 2:
         raise ContactresInputError(
             f"fit_particles needs at least two overtones (a 1-D list), got {overtones!r}"

@@ -59,11 +59,13 @@ particle papers as cited in issue 28, not re-checked.
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
 
 from ..errors import ContactresInputError
+from ..units import SMALL_LOAD_LIMIT
 from ..validation import nonnegative, positive
 
 __all__ = [
@@ -401,8 +403,9 @@ def particle_shifts(
 
     Δf + iΔΓ = (N/A) K_L(ω_n)/(2nπ² Z_q) (paper 2, Eq. 1 with n_P/A_eff -> coverage), at
     ω_n = 2π n f_F. Δf is not divided by n; ΔΓ is the change of the half bandwidth. Signs as in
-    :func:`~contactres.resonators.shifts_from_stiffness` (a spring raises f, a mass lowers it).
-    All arguments broadcast (e.g. overtones (n,) against parameters (T, 1)).
+    :func:`~contactres.resonators.shifts_from_stiffness` (a spring raises f, a mass lowers it),
+    and like it a RuntimeWarning where |Δf|/f exceeds the small-load limit (1e-3). All arguments
+    broadcast (e.g. overtones (n,) against parameters (T, 1)).
 
     Examples
     --------
@@ -424,6 +427,14 @@ def particle_shifts(
     z = positive("zq", zq, "kg m^-2 s^-1")
     k = particle_stiffness(particle, n * f0, kappa, xi, rocking=rocking, medium=medium)
     shift = cov * k / (2.0 * n * np.pi**2 * z)
+    worst = float(np.max(np.abs(shift.real) / (n * f0), initial=0.0))
+    if worst > SMALL_LOAD_LIMIT:
+        warnings.warn(
+            f"|Δf|/f = {worst:.2g} exceeds {SMALL_LOAD_LIMIT:g}: the small-load approximation "
+            "of paper 2, Eq. 1 may not hold",
+            RuntimeWarning,
+            stacklevel=2,
+        )
     return _out(shift.real), _out(shift.imag)
 
 
