@@ -1,0 +1,608 @@
+"""Contact stiffness, damping and coverage of attached particles from QCM-D shifts (issue 28).
+
+The inverse of :func:`~contactres.resonators.particle_shifts`: from Δf_n and ΔΓ_n over the
+measured overtones, per time step, the contact stiffness κ, its drag coefficient ξ and the
+coverage N/A (and, with ``rocking="fit"``, a rotational stiffness κ_r), with errors,
+correlations and the statement of what the data identify.
+
+Model (theory page docs/theory/particles.md): Δf_n + iΔΓ_n = N K_L(ω_n)/(2nπ² Z_q) with
+K_L = (1 - h)²/(c + 1/k) + g, k = κ + iωξ, where c, h and g describe the given particle
+(:func:`~contactres.resonators.particle_compliance`).
+
+Starts. Multiplied out by (ck + 1), the model is linear in (κ, ξ, Nκ, Nξ) once the small term
+N g is known: z_n s_n c_n (κ + iω_n ξ) + (z_n s_n - N g_n) = ((1 - h_n)² + g_n c_n)(Nκ + iω_n Nξ),
+with z_n = Δf_n + iΔΓ_n and s_n = 2nπ²Z_q; its weighted least squares, iterated with N g and
+the weights of the propagated noise (Sanathanan-Koerner), is exact for noise-free data (the
+"equation-error" start; ``_particle_linear``). Three more starts: the same with κ held where the
+peak of nΔΓ_n puts the coupled resonance (Im K_L peaks at f_coupled); the Sauerbrey limit
+(κ 10⁴ above the stiffness of a resonance at the top of the comb, the coverage fitted
+linearly); and the heavy-particle limit of paper 2, Eq. 1 (κ 10⁴ below a resonance at the
+bottom, with Nκ and Nξ from the linear fit of that limit). With rocking="fit" each start is the
+best over a scan of κ_r.
+Each is refined by the batched Levenberg-Marquardt of
+:func:`contactres.fitting.levenberg_marquardt` in its Gauss-Newton form (all time steps at once:
+no loop over steps) in ln κ, ξ, ln N (ln κ_r), within bounds 10⁸ beyond what the comb can see,
+and the lowest χ² is kept. A start after the first is refined only where it begins below the
+best fit so far, where that did not converge, where it fits poorly (χ² beyond dof + 2√(2 dof)
+noise variances), or, for a limit start, where the best fit so far puts the coupled resonance
+on the limit's side of the comb (the valley towards a limit can hold a second minimum);
+refining every start everywhere costs several times more.
+
+Errors. The covariance is (JᵀJ)⁻¹ with the residuals weighted by the stated noise
+(``sigma_df``, ``sigma_dgamma``: errors from the noise model alone, χ² a test of it); without
+a stated noise both observables get one noise level, estimated per time step from the
+residuals (s² = χ²/(2M - p), M measured overtones), and the covariance is scaled by it.
+
+Identifiability (the rule; names in :data:`PARTICLE_FLAGS`). Per time step:
+
+1. The two limits of the model are fitted by linear least squares: a rigid contact (κ -> ∞,
+   z = N(1 - h)/(c s)) and particles standing still (z = (1 - h)(Nκ + iωNξ)/s). A limit whose
+   χ² exceeds the fit's by less than :data:`LIMIT_CHI2` (9, in units of the noise variance) is
+   not rejected: "sauerbrey-like" (κ and ξ unresolved: only the mass N·m) or "inertial" (κ and
+   N unresolved: only N·κ and N·ξ, reported as ``coverage_kappa`` and ``coverage_xi``).
+2. Any parameter whose relative standard error exceeds :data:`RELATIVE_ERROR_LIMIT` (0.3), or
+   is not finite, is unresolved ("xi-unresolved" is the usual one: a loss at the noise level).
+3. A fit that did not converge, or a particle smaller than the penetration depth in a liquid
+   (:func:`~contactres.resonators.particle_model_validity`), leaves every parameter unresolved.
+
+Unresolved values are NaN, with their errors; f_coupled goes with κ. "outside-comb" says that
+the fitted coupled resonance lies outside [n_min f_F, n_max f_F] of the measured overtones
+(information: a resonance just outside the comb can still be resolved). The likelihood-ratio
+test of step 1 matters: far outside the comb the linearised error can look small at a point
+that is many of its σ from the truth, while the limit fits the data as well.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import ContactresInputError
+from ..fitting import LMOptions, levenberg_marquardt
+from ..resonators import (
+    Medium,
+    Particle,
+    coupled_resonance,
+    particle_compliance,
+    particle_model_validity,
+)
+from ..validation import positive
+from ._particle_linear import equation_error, limit_chi2, series_variance, stacked_inverse
+
+__all__ = [
+    "LIMIT_CHI2",
+    "PARTICLE_FLAGS",
+    "RELATIVE_ERROR_LIMIT",
+    "ParticleFit",
+    "fit_particles",
+]
+
+#: A fitted value whose relative standard error exceeds this is reported as unresolved (NaN).
+RELATIVE_ERROR_LIMIT = 0.3
+
+#: A limit of the model (rigid contact; particles standing still) whose best χ² exceeds the
+#: fit's by less than this (in units of the noise variance) is not rejected by the data.
+LIMIT_CHI2 = 9.0
+
+#: Flag name -> what it means (the names in :attr:`ParticleFit.flags`).
+PARTICLE_FLAGS = {
+    "sauerbrey-like": "a rigid contact fits as well (the particles move with the surface): "
+    "only the mass coverage·m is identified, not κ and ξ",
+    "inertial": "particles standing still fit as well (paper 2, Eq. 1): only coverage·κ and "
+    "coverage·ξ are identified, not κ and the coverage apart",
+    "outside-comb": "the coupled resonance lies outside the overtone comb",
+    "kappa-unresolved": "the contact stiffness κ (and f_coupled) is not identified by the data",
+    "xi-unresolved": "the contact drag ξ is not identified by the data (at the noise level)",
+    "coverage-unresolved": "the coverage is not identified by the data",
+    "rocking-unresolved": "the rotational stiffness κ_r is not identified by the data",
+    "fit-at-bound": "a parameter ended on its bound (ξ = 0)",
+    "not-converged": "the least-squares fit did not converge (no value is reported)",
+    "too-few-overtones": "fewer than two overtones measured at this time step",
+    "particle-smaller-than-delta": "the particle is smaller than the penetration depth of the "
+    "liquid: the hydrodynamic model does not hold (lattice Boltzmann is the tool)",
+}
+
+# Scan of κ_r for rocking="fit", in units of I (2π f_F)² (a rocking mode at f_F √(value)).
+_ROCKING_SCAN = np.logspace(-2.0, 4.0, 13)
+
+
+_LM = LMOptions(max_iter=300, xtol=1e-8, ftol=1e-10, max_step=2.0)
+
+
+@dataclass(frozen=True)
+class ParticleFit:
+    """Result of :func:`fit_particles`: arrays over the T time steps (NaN where unresolved).
+
+    Attributes
+    ----------
+    kappa, kappa_err : contact stiffness κ and its standard error, N/m
+    xi, xi_err : contact drag coefficient ξ, kg/s
+    coverage, coverage_err : particles per m²
+    f_coupled, f_coupled_err : coupled resonance, Hz
+        (:func:`~contactres.resonators.coupled_resonance`; the lower mode where there are two)
+    kappa_r, kappa_r_err : rotational stiffness, N m/rad (NaN unless rocking="fit")
+    coverage_kappa, coverage_kappa_err : the product N·κ, N/m per m² (what an inertial
+        response identifies: paper 2's Eq. 1 gives n_P κ/A_eff), NaN only where it is itself
+        unresolved
+    coverage_xi, coverage_xi_err : the product N·ξ, kg/s per m²
+    parameters : names of the fitted parameters, in the order of ``correlation``
+    correlation : (T, p, p) correlation matrix of the fitted parameters (ln κ, ξ, ln N, ln κ_r)
+    chi2 : χ² of each step (weighted by the stated noise; in Hz² without one)
+    dof : degrees of freedom, 2M - p
+    df_model, dgamma_model : (T, n) the fitted model at every overtone of ``overtones``, Hz
+        (also where a parameter is unresolved: the curve is identified when its parts are not)
+    raw : (T, p) the fitted values before the identifiability rule (κ, ξ, N, κ_r)
+    flags : per step, a tuple of names of :data:`PARTICLE_FLAGS`
+    """
+
+    kappa: np.ndarray
+    kappa_err: np.ndarray
+    xi: np.ndarray
+    xi_err: np.ndarray
+    coverage: np.ndarray
+    coverage_err: np.ndarray
+    f_coupled: np.ndarray
+    f_coupled_err: np.ndarray
+    kappa_r: np.ndarray
+    kappa_r_err: np.ndarray
+    coverage_kappa: np.ndarray
+    coverage_kappa_err: np.ndarray
+    coverage_xi: np.ndarray
+    coverage_xi_err: np.ndarray
+    parameters: tuple[str, ...]
+    correlation: np.ndarray
+    chi2: np.ndarray
+    dof: np.ndarray
+    df_model: np.ndarray
+    dgamma_model: np.ndarray
+    raw: np.ndarray
+    flags: tuple[tuple[str, ...], ...]
+
+
+def fit_particles(
+    fundamental,
+    overtones,
+    df,
+    dgamma,
+    particle: Particle,
+    *,
+    rocking="free",
+    medium: Medium | None = None,
+    sigma_df=None,
+    sigma_dgamma=None,
+    zq=8.8e6,
+) -> ParticleFit:
+    """Fit κ, ξ and the coverage (and κ_r) to QCM-D shifts of attached particles, per time step.
+
+    Parameters
+    ----------
+    fundamental : f_F, Hz
+    overtones : (n,) overtone orders
+    df, dgamma : (T, n) or (n,) Δf_n (not divided by n) and ΔΓ_n (half bandwidth), Hz, against
+        the bare sensor in the same medium; NaN = not measured
+    particle : :class:`~contactres.resonators.Particle` (mass, moment of inertia, radius known)
+    rocking : "free", "locked", a rotational stiffness in N m/rad, or "fit"
+    medium : None or a :class:`~contactres.resonators.Medium`
+    sigma_df, sigma_dgamma : noise of Δf_n and ΔΓ_n, Hz (scalars or broadcasting against df);
+        None: estimated from the residuals (module docstring)
+    zq : shear-wave impedance of the quartz, kg m⁻² s⁻¹
+
+    Returns
+    -------
+    :class:`ParticleFit`
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from contactres.analysis import fit_particles
+    >>> from contactres.resonators import Particle, particle_shifts
+    >>> p = Particle.sphere(1e-6, 2000.0)
+    >>> n = np.arange(1, 14, 2)
+    >>> df, dg = particle_shifts(5e6, n, p, 100.0, 2e-7, 2e9)  # κ N/m, ξ kg/s, per m²
+    >>> fit = fit_particles(5e6, n, df, dg, p, sigma_df=0.1, sigma_dgamma=0.1)
+    >>> print(f"{fit.kappa[0]:.1f} N/m, {fit.coverage[0]:.4g} /m², {fit.f_coupled[0]/1e6:.1f} MHz")
+    100.0 N/m, 2e+09 /m², 32.5 MHz
+    >>> fit.flags[0]  # nothing unresolved: the resonance lies within the comb
+    ()
+    """
+    f0, n, zf, wf, wg, estimate = _prepare(
+        fundamental, overtones, df, dgamma, sigma_df, sigma_dgamma
+    )
+    zq = positive("zq", zq, "kg m^-2 s^-1")
+    fit_rocking = isinstance(rocking, str) and rocking.strip().lower() == "fit"
+    freq = n * f0
+    sens = 2.0 * n * np.pi**2 * zq  # z_n s_n = N K_L
+    prob = _Problem(f0, particle, freq, sens, medium, zf, wf, wg, rocking, fit_rocking)
+    t = zf.shape[0]
+    p_best, chi2, conv = np.zeros((t, prob.n_par)), np.full(t, np.inf), np.zeros(t, bool)
+    dof = 2 * prob.count - prob.n_par
+    for i, p0 in enumerate(prob.starts()):
+        # A start is refined where it begins below the best fit so far, where that did not
+        # converge, or where it fits poorly (χ² above dof + 2√(2 dof) noise variances; the
+        # variance is the stated one, or the median of χ²/dof over the steps of a series).
+        # Refining every start everywhere would cost several times more: the limit starts
+        # crawl along their flat valleys for nothing where the data have a clear optimum.
+        start_chi2 = prob.evaluate(p0, np.arange(t), False)["chi2"]
+        poor = np.ones(t, bool)
+        if i > 0:
+            var = 1.0 if not estimate else series_variance(chi2, dof, conv)
+            poor = chi2 > var * (dof + 2.0 * np.sqrt(2.0 * np.maximum(dof, 1)))
+            # the limit starts also where the best fit so far lies on their side of the comb,
+            # where the valley towards the limit can hold a second minimum
+            with np.errstate(over="ignore", invalid="ignore"):
+                f_c = prob._resonance(p_best)
+            if i == 2:
+                poor |= ~(f_c <= prob.freq.max())
+            if i == 3:
+                poor |= ~(f_c >= prob.freq.min())
+        sel = np.flatnonzero((start_chi2 < chi2) | ~conv | poor)
+        if sel.size == 0:
+            continue
+        res = levenberg_marquardt(
+            lambda q, rows, jac, sel=sel: prob.evaluate(q, sel[rows], jac),
+            p0[sel],
+            lo=prob.lo[sel],
+            hi=prob.hi[sel],
+            options=_LM,
+        )
+        better = res.chi2 < chi2[sel]
+        take = sel[better]
+        p_best[take], chi2[take], conv[take] = (
+            res.x[better],
+            res.chi2[better],
+            res.converged[better],
+        )
+    reason = particle_model_validity(particle, freq, medium)
+    return prob.result(p_best, chi2, conv, estimate, reason)
+
+
+def _prepare(fundamental, overtones, df, dgamma, sigma_df, sigma_dgamma):
+    """Checked arrays: f_F, n (n,), z = Δf + iΔΓ (T, n) and the weights 1/σ (T, n)."""
+    f0 = positive("fundamental frequency", fundamental, "Hz")
+    try:
+        n = np.asarray(overtones, dtype=float)
+    except (TypeError, ValueError):
+        raise ContactresInputError(f"overtones must be integers >= 1, got {overtones!r}") from None
+    if n.ndim != 1 or n.size < 2:
+        raise ContactresInputError(
+            f"fit_particles needs at least two overtones (a 1-D list), got {overtones!r}"
+        )
+    if np.any(~np.isfinite(n)) or np.any(n < 1) or np.any(n != np.round(n)):
+        raise ContactresInputError(f"overtones must be integers >= 1, got {overtones!r}")
+    d = np.atleast_2d(np.asarray(df, dtype=float))
+    g = np.atleast_2d(np.asarray(dgamma, dtype=float))
+    if d.shape != g.shape or d.shape[-1] != n.size or d.ndim != 2:
+        raise ContactresInputError(
+            f"df and dgamma must both have shape (T, {n.size}) or ({n.size},) for {n.size} "
+            f"overtones, got {np.shape(df)} and {np.shape(dgamma)}"
+        )
+    if np.all(np.isnan(g)):
+        raise ContactresInputError(
+            "the bandwidth shifts dgamma are all missing: the particle fit needs Δf and ΔΓ"
+        )
+    estimate = sigma_df is None and sigma_dgamma is None
+    if (sigma_df is None) != (sigma_dgamma is None):
+        raise ContactresInputError("give both sigma_df and sigma_dgamma, or neither")
+    wf = np.ones(d.shape) if estimate else 1.0 / _sigma("sigma_df", sigma_df, d.shape)
+    wg = np.ones(d.shape) if estimate else 1.0 / _sigma("sigma_dgamma", sigma_dgamma, d.shape)
+    # an overtone counts only with both of its shifts
+    measured = np.isfinite(d) & np.isfinite(g)
+    wf, wg = np.where(measured, wf, 0.0), np.where(measured, wg, 0.0)
+    z = np.where(measured, d + 1j * g, 0.0)
+    return f0, n, z, wf, wg, estimate
+
+
+def _sigma(name, sigma, shape):
+    s = np.asarray(sigma, dtype=float)
+    if np.any(~np.isfinite(s)) or np.any(s <= 0):
+        raise ContactresInputError(f"{name} must be finite and > 0 (Hz), got {sigma!r}")
+    try:
+        return np.broadcast_to(s, shape)
+    except ValueError:
+        raise ContactresInputError(f"{name} of shape {s.shape} does not fit data {shape}") from None
+
+
+class _Problem:
+    """The batched least-squares problem of :func:`fit_particles` (its evaluate, starts and
+    result); an object only to keep the arrays of one call together (nothing is cached
+    beyond the call)."""
+
+    def __init__(self, f0, particle, freq, sens, medium, z, wf, wg, rocking, fit_rocking):
+        self.f0, self.particle, self.freq, self.sens = f0, particle, freq, sens
+        self.omega = 2.0 * np.pi * freq
+        self.medium, self.z, self.wf, self.wg = medium, z, wf, wg
+        self.fit_rocking = fit_rocking
+        self.rocking = rocking
+        self.n_par = 4 if fit_rocking else 3
+        if not fit_rocking:
+            c, h, g = particle_compliance(particle, freq, rocking=rocking, medium=medium)
+            self.chg = (c[None, :], h[None, :], g[None, :])
+        self.count = (wf > 0).sum(axis=1)
+        t = z.shape[0]
+        # Scales: the Sauerbrey coverage n0 (from the median |z_n| s_n/(m ω_n²)), the stiffness
+        # of a resonance at the comb's ends and the rocking stiffness of a rocking mode at f_F.
+        m = particle.mass
+        with np.errstate(invalid="ignore", divide="ignore"):
+            n0 = np.nanmedian(np.where(wf > 0, np.abs(z) * sens / (m * self.omega**2), np.nan), 1)
+        self.n0 = np.where(np.isfinite(n0) & (n0 > 0), n0, 1.0)
+        k_lo, k_hi = m * self.omega.min() ** 2, m * self.omega.max() ** 2
+        self.kr0 = particle.moment_of_inertia * (2 * np.pi * f0) ** 2
+        # Bounds far outside what the comb can see (a fit on a bound is flagged): 10⁴ in
+        # frequency beyond the comb for κ (10⁸ in κ) and κ_r, 10⁸ around n0 for the coverage.
+        lo = [np.log(k_lo * 1e-8), 0.0, np.log(self.n0 * 1e-8), np.log(self.kr0 * 1e-8)]
+        hi = [np.log(k_hi * 1e8), np.inf, np.log(self.n0 * 1e8), np.log(self.kr0 * 1e10)]
+        self.lo = np.stack(np.broadcast_arrays(*lo[: self.n_par]), axis=-1)
+        self.hi = np.stack(np.broadcast_arrays(*hi[: self.n_par]), axis=-1)
+        self.xi_scale = np.ones(t)
+
+    def _chg(self, p):
+        """c, h, g of the particle (rows, n) at the κ_r of p (or the given rocking)."""
+        if not self.fit_rocking:
+            return self.chg
+        return particle_compliance(
+            self.particle, self.freq, rocking=np.exp(p[:, 3:4]), medium=self.medium
+        )
+
+    def model(self, p, chg):
+        """z_n (Hz) for parameters p (rows, P), and dz/dk (the contact's k = κ + iωξ)."""
+        c, h, g = chg
+        kappa, xi, cov = np.exp(p[:, 0:1]), p[:, 1:2], np.exp(p[:, 2:3])
+        k = kappa + 1j * self.omega * xi
+        ck1 = c * k + 1.0
+        one_h2 = (1.0 - h) ** 2
+        kl = one_h2 * k / ck1 + g
+        return cov * kl / self.sens, cov * one_h2 / (ck1 * ck1) / self.sens
+
+    def evaluate(self, q, rows, jacobian):
+        p = q.copy()
+        p[:, 1] *= self.xi_scale[rows]
+        zm, dk = self.model(p, self._chg(p))
+        cols = [dk * np.exp(p[:, 0:1]), dk * 1j * self.omega * self.xi_scale[rows, None], zm]
+        if self.fit_rocking:
+            eps = 1e-6
+            p2 = p.copy()
+            p2[:, 3] += eps
+            cols.append((self.model(p2, self._chg(p2))[0] - zm) / eps)
+        wf, wg = self.wf[rows], self.wg[rows]
+        diff = zm - self.z[rows]
+        r = np.concatenate([diff.real * wf, diff.imag * wg], axis=1)
+        jac = np.empty((r.shape[0], r.shape[1], len(cols)))
+        half = diff.shape[1]
+        for j, col in enumerate(cols):
+            jac[:, :half, j] = col.real * wf
+            jac[:, half:, j] = col.imag * wg
+        chi2 = np.sum(r * r, axis=1)
+        chi2 = np.where(np.isfinite(chi2), chi2, np.inf)
+        r, jac = np.nan_to_num(r), np.nan_to_num(jac)
+        jt = jac.transpose(0, 2, 1)
+        return {"chi2": chi2, "gradient": (jt @ r[:, :, None])[:, :, 0], "hessian": jt @ jac}
+
+    def starts(self):
+        """Starting points (rows, P) in the fit's coordinates: the equation-error solution, and
+        the same with κ put where the peak of nΔΓ_n puts the coupled resonance (module
+        docstring). For rocking="fit" each is the best over a scan of κ_r."""
+        t = self.z.shape[0]
+        scan = [None]
+        if self.fit_rocking:
+            scan = list(
+                _ROCKING_SCAN * self.particle.moment_of_inertia * (2 * np.pi * self.f0) ** 2
+            )
+        found = []
+        for kind in ("equation", "peak", "sauerbrey", "heavy"):
+            best, best_chi2 = np.full((t, self.n_par), np.nan), np.full(t, np.inf)
+            for kr in scan:
+                chg = self.chg if kr is None else self._chg(np.full((t, 4), np.log(kr)))
+                kappa, xi, cov = self._start(kind, kr, chg)
+                p = np.column_stack(
+                    [np.log(kappa), xi, np.log(cov)]
+                    + ([] if kr is None else [np.full(t, np.log(kr))])
+                )
+                p = np.clip(np.where(np.isfinite(p), p, self._fallback()), self.lo, self.hi)
+                chi2 = self.evaluate(p / self._unit(p), np.arange(t), False)["chi2"]
+                take = chi2 < best_chi2
+                best = np.where(take[:, None], p, best)
+                best_chi2 = np.where(take, chi2, best_chi2)
+            found.append(np.where(np.isfinite(best), best, self._fallback()))
+        # ξ is fitted in units of its first start (Marquardt's damping is scale-free, but the
+        # bounds and the covariance read better in those units)
+        self.xi_scale = np.where(found[0][:, 1] > 0, found[0][:, 1], 1e-12)
+        return [f / self._unit(f) for f in found]
+
+    def _start(self, kind, kr, chg):
+        """κ, ξ, N (T,) of one kind of start (module docstring)."""
+        t = self.z.shape[0]
+        if kind in ("equation", "peak"):
+            fixed = self._peak_kappa(kr) if kind == "peak" else None
+            return equation_error(self.z, self.wf, self.wg, self.sens, self.omega, chg, fixed)
+        m = self.particle.mass
+        if kind == "heavy":
+            return self._heavy_start(chg, m * self.omega.min() ** 2 * 1e-4)
+        # The rigid limit: κ 10⁴ above the stiffness of a resonance at the top of the comb, ξ
+        # from the equation-error start (or 0) and the coverage that fits best with these
+        # (linear least squares in N).
+        _, xi, _ = equation_error(self.z, self.wf, self.wg, self.sens, self.omega, chg, None)
+        xi = np.where(np.isfinite(xi), xi, 0.0)
+        kappa = np.full(t, m * self.omega.max() ** 2 * 1e4)
+        unit = np.zeros((t, self.n_par))
+        unit[:, 0], unit[:, 1] = np.log(kappa), xi
+        one = self.model(unit, chg)[0]  # the shifts of a unit coverage
+        num = np.sum(self.wf**2 * one.real * self.z.real + self.wg**2 * one.imag * self.z.imag, 1)
+        den = np.sum(self.wf**2 * one.real**2 + self.wg**2 * one.imag**2, 1)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            cov = num / den
+        return kappa, xi, np.where(cov > 0, cov, np.nan)
+
+    def _heavy_start(self, chg, kappa):
+        """The particles standing still (paper 2, Eq. 1): Nκ and Nξ from z s = (1 - h)² N k by
+        linear least squares, then κ as given (10⁴ below a resonance at the bottom of the
+        comb) and N, ξ from the products."""
+        _, h, _ = chg
+        u = (1.0 - h) ** 2 / self.sens + 0 * self.z
+        cols = [u, 1j * self.omega * u]
+        a = [np.concatenate([col.real * self.wf, col.imag * self.wg], 1) for col in cols]
+        y = np.concatenate([self.z.real * self.wf, self.z.imag * self.wg], 1)
+        m = np.array([[np.sum(ai * aj, 1) for aj in a] for ai in a])  # (2, 2, T)
+        r = np.array([np.sum(ai * y, 1) for ai in a])
+        det = m[0, 0] * m[1, 1] - m[0, 1] * m[1, 0]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            nk = (m[1, 1] * r[0] - m[0, 1] * r[1]) / det
+            nx = (m[0, 0] * r[1] - m[1, 0] * r[0]) / det
+            cov = nk / kappa
+            xi = np.maximum(nx / cov, 0.0)
+        t = self.z.shape[0]
+        return np.full(t, kappa), np.where(np.isfinite(xi), xi, 0.0), np.where(cov > 0, cov, np.nan)
+
+    def _unit(self, p):
+        unit = np.ones_like(p)
+        unit[:, 1] = self.xi_scale
+        return unit
+
+    def _fallback(self):
+        """A start where the equation-error solution is not usable: κ of a resonance at the
+        middle of the comb, ξ = 0, the Sauerbrey coverage."""
+        mid = np.sqrt(self.freq.min() * self.freq.max())
+        kappa = self.particle.mass * (2 * np.pi * mid) ** 2
+        base = [np.log(kappa), 0.0, np.log(self.n0), np.log(self.kr0)][: self.n_par]
+        return np.stack(np.broadcast_arrays(*base), axis=-1)
+
+    def _peak_kappa(self, kr):
+        """κ that puts the coupled resonance (vacuum) at the largest nΔΓ_n of each step."""
+        score = np.where(self.wf > 0, self.z.imag * self.freq, -np.inf)
+        f_peak = self.freq[np.argmax(score, axis=1)]
+        rocking = self.rocking if kr is None else kr
+        f1 = coupled_resonance(self.particle, 1.0, rocking=rocking)
+        f1 = f1 if isinstance(rocking, str) else f1[..., 0]
+        return (f_peak / f1) ** 2  # f_coupled ∝ √κ in vacuum
+
+    def _resonance(self, p):
+        kap = np.exp(p[..., 0])
+        rocking = self.rocking if not self.fit_rocking else np.exp(p[..., 3])
+        f = coupled_resonance(self.particle, kap, rocking=rocking, medium=self.medium)
+        # two modes with a rotational stiffness: the lower (the translation's continuation)
+        return f if isinstance(rocking, str) else f[..., 0]
+
+    def result(self, q, chi2, conv, estimate, reason):
+        """The :class:`ParticleFit` at the fitted q (rows, P): errors, the rule, flags."""
+        t, npar = q.shape
+        p = q.copy()
+        p[:, 1] *= self.xi_scale
+        rows = np.arange(t)
+        hess = self.evaluate(q, rows, True)["hessian"]
+        dof = 2 * self.count - npar
+        with np.errstate(divide="ignore", invalid="ignore"):
+            s2 = np.where(dof > 0, chi2 / dof, np.nan) if estimate else np.ones(t)
+            cov_q = stacked_inverse(hess) * s2[:, None, None]
+            err_q = np.sqrt(np.diagonal(cov_q, axis1=1, axis2=2))
+            corr = cov_q / (err_q[:, :, None] * err_q[:, None, :])
+        kappa, xi, cov = np.exp(p[:, 0]), p[:, 1], np.exp(p[:, 2])
+        kappa_err, xi_err, cov_err = (
+            kappa * err_q[:, 0],
+            self.xi_scale * err_q[:, 1],
+            cov * err_q[:, 2],
+        )
+        if self.fit_rocking:
+            kr, kr_err = np.exp(p[:, 3]), np.exp(p[:, 3]) * err_q[:, 3]
+        else:
+            kr = kr_err = np.full(t, np.nan)
+        fc, fc_err = self._resonance_with_error(p, cov_q)
+        chg = self._chg(p)
+        zm = self.model(p, chg)[0]
+        # The likelihood-ratio test against the two limits of the model (module docstring)
+        scale = s2 if estimate else np.ones(t)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            lim_s, lim_h = limit_chi2(self.z, self.wf, self.wg, self.sens, self.omega, chg)
+            sauerbrey = (lim_s - chi2) / scale < LIMIT_CHI2
+            inertial = (lim_h - chi2) / scale < LIMIT_CHI2
+        # the products N·κ and N·ξ: ln(Nκ) = q0 + q2, ln(Nξ) = ln q1 + q2 (+ const)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            nk_rel = np.sqrt(cov_q[:, 0, 0] + cov_q[:, 2, 2] + 2 * cov_q[:, 0, 2])
+            q1 = q[:, 1]
+            nx_rel = np.sqrt(cov_q[:, 1, 1] / q1**2 + cov_q[:, 2, 2] + 2 * cov_q[:, 1, 2] / q1)
+            nk, nx = cov * kappa, cov * xi
+            nk_err, nx_err = nk * nk_rel, nx * nx_rel
+        nk_ok = np.isfinite(nk_rel) & (nk_rel <= RELATIVE_ERROR_LIMIT) & (self.count >= 2)
+        nx_ok = np.isfinite(nx_rel) & (nx_rel <= RELATIVE_ERROR_LIMIT) & (self.count >= 2)
+        if reason is not None:
+            nk_ok = nx_ok = np.zeros(t, bool)
+        names = ("kappa", "xi", "coverage", "kappa_r")[:npar]
+        flags, keep = [], np.ones((t, 4), bool)
+        measured = self.wf > 0
+        for i in range(t):
+            f = []
+            if self.count[i] < 2:
+                flags.append(("too-few-overtones",))
+                keep[i] = False
+                continue
+            rel = [
+                kappa_err[i] / kappa[i],
+                xi_err[i] / xi[i] if xi[i] > 0 else np.inf,
+                cov_err[i] / cov[i],
+                kr_err[i] / kr[i] if self.fit_rocking else 0.0,
+            ]
+            bad = [not (np.isfinite(r) and r <= RELATIVE_ERROR_LIMIT) for r in rel]
+            comb = self.freq[measured[i]]
+            if sauerbrey[i]:
+                f.append("sauerbrey-like")
+                bad[0] = bad[1] = True  # κ and ξ: a rigid contact fits as well
+            if inertial[i]:
+                f.append("inertial")
+                bad[0] = bad[2] = True  # κ and N: only their product
+            if not comb.min() <= fc[i] <= comb.max():
+                f.append("outside-comb")
+            if q[i, 1] <= 0.0:
+                f.append("fit-at-bound")
+            if not conv[i]:
+                # a fit that stopped in a flat valley: its point is not an estimate
+                f.append("not-converged")
+                bad = [True] * 4
+            if reason is not None:
+                f.append("particle-smaller-than-delta")
+                bad = [True] * 4
+            unresolved = ("kappa-unresolved", "xi-unresolved", "coverage-unresolved")
+            if self.fit_rocking:
+                unresolved += ("rocking-unresolved",)
+            f += [name for name, b in zip(unresolved, bad, strict=False) if b]
+            keep[i] = np.logical_not(bad)
+            flags.append(tuple(f))
+
+        def shown(value, col):
+            return np.where(keep[:, col], value, np.nan)
+
+        return ParticleFit(
+            kappa=shown(kappa, 0),
+            kappa_err=shown(kappa_err, 0),
+            xi=shown(xi, 1),
+            xi_err=shown(xi_err, 1),
+            coverage=shown(cov, 2),
+            coverage_err=shown(cov_err, 2),
+            f_coupled=shown(fc, 0),
+            f_coupled_err=shown(fc_err, 0),
+            kappa_r=shown(kr, 3) if self.fit_rocking else kr,
+            kappa_r_err=shown(kr_err, 3) if self.fit_rocking else kr_err,
+            coverage_kappa=np.where(nk_ok, nk, np.nan),
+            coverage_kappa_err=np.where(nk_ok, nk_err, np.nan),
+            coverage_xi=np.where(nx_ok, nx, np.nan),
+            coverage_xi_err=np.where(nx_ok, nx_err, np.nan),
+            parameters=names,
+            correlation=corr,
+            chi2=chi2,
+            dof=dof,
+            df_model=zm.real,
+            dgamma_model=zm.imag,
+            raw=np.column_stack([kappa, xi, cov, kr][:npar]),
+            flags=tuple(flags),
+        )
+
+    def _resonance_with_error(self, p, cov_q):
+        """f_coupled (Hz) and its standard error from the covariance of (ln κ, ln κ_r)."""
+        fc = self._resonance(p)
+        idx = [0, 3] if self.fit_rocking else [0]
+        grad = np.zeros((p.shape[0], p.shape[1]))
+        eps = 1e-6
+        for j in idx:
+            p2 = p.copy()
+            p2[:, j] += eps
+            grad[:, j] = (np.log(self._resonance(p2)) - np.log(fc)) / eps
+        var = np.einsum("ri,rij,rj->r", grad, cov_q, grad)
+        return fc, fc * np.sqrt(np.maximum(var, 0.0))
