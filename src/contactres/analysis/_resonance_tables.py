@@ -266,8 +266,8 @@ def invert_afm_table(
         )
     for n in _MODES:  # a contact spring only raises a mode: below the free lever is impossible
         # (at the free frequency or a hair below it, FREE_TOLERANCE: no contact, κ = 0)
-        free = table[f"f{n}_free_Hz"].to_numpy(float)
-        below = fc[:, n - 1] < free * (1.0 - FREE_TOLERANCE)
+        free_n = table[f"f{n}_free_Hz"].to_numpy(float)
+        below = fc[:, n - 1] < free_n * (1.0 - FREE_TOLERANCE)
         if below.any():
             raise ContactresInputError(
                 f"{at_cell(table, source, below, f'fc{n}_Hz')}: below the free resonance "
