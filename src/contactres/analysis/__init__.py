@@ -32,6 +32,11 @@ TYPE_CHECKING = False
 _EXPORTS = MappingProxyType(
     {
         "FIGURE_POINTS": "._curves",
+        "DART_FLAGS": "._dart",
+        "DartReconstruction": "._dart",
+        "dart_flag_names": "._dart",
+        "dart_reconstruct": "._dart",
+        "dart_reconstruction": "._dart",
         "PAGE_POINTS": "._curves",
         "sweep_rows": "._curves",
         "DESCRIPTIONS": "._flags",
@@ -70,6 +75,13 @@ if TYPE_CHECKING:
         FIGURE_POINTS as FIGURE_POINTS,
         PAGE_POINTS as PAGE_POINTS,
         sweep_rows as sweep_rows,
+    )
+    from ._dart import (
+        DART_FLAGS as DART_FLAGS,
+        DartReconstruction as DartReconstruction,
+        dart_flag_names as dart_flag_names,
+        dart_reconstruct as dart_reconstruct,
+        dart_reconstruction as dart_reconstruction,
     )
     from ._flags import (
         DESCRIPTIONS as DESCRIPTIONS,
