@@ -114,6 +114,7 @@ _EXPORTS: dict[str, str] = {
     "invert_afm_table": ".analysis",
     "invert_rum_table": ".analysis",
     "dart_reconstruct": ".analysis",
+    "invert_cr_map": ".analysis",
     "read_resonance_table": ".measurements",
     "example_afm_map": ".measurements",
     "write_report": ".report",
@@ -190,6 +191,7 @@ if TYPE_CHECKING:
         dart_reconstruct as dart_reconstruct,
         film_modulus_from_contact_stiffness as film_modulus_from_contact_stiffness,
         invert_afm_table as invert_afm_table,
+        invert_cr_map as invert_cr_map,
         invert_rum_table as invert_rum_table,
         modulus_from_contact_stiffness as modulus_from_contact_stiffness,
     )

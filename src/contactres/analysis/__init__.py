@@ -32,6 +32,9 @@ TYPE_CHECKING = False
 _EXPORTS = MappingProxyType(
     {
         "FIGURE_POINTS": "._curves",
+        "CR_MAP_UNITS": "._cr_map",
+        "ModulusModel": "._cr_map",
+        "invert_cr_map": "._cr_map",
         "DART_FLAGS": "._dart",
         "DartReconstruction": "._dart",
         "dart_flag_names": "._dart",
@@ -75,6 +78,11 @@ if TYPE_CHECKING:
         FIGURE_POINTS as FIGURE_POINTS,
         PAGE_POINTS as PAGE_POINTS,
         sweep_rows as sweep_rows,
+    )
+    from ._cr_map import (
+        CR_MAP_UNITS as CR_MAP_UNITS,
+        ModulusModel as ModulusModel,
+        invert_cr_map as invert_cr_map,
     )
     from ._dart import (
         DART_FLAGS as DART_FLAGS,

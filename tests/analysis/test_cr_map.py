@@ -1,0 +1,101 @@
+"""Maps of k*, σ, tan δ, E* and M from (f, Q) maps (contactres.invert_cr_map).
+
+The maps are made with the forward model of the lever (contactres.contact_frequencies, tested
+against an independent beam elsewhere) from a chosen complex κ = κ′ + iκ″ per pixel; the moduli
+are checked against Hertz, the flat punch and the series law written out here.
+"""
+
+from __future__ import annotations
+
+import json
+
+import numpy as np
+import pytest
+
+import contactres as cr
+from contactres.analysis import ModulusModel
+from contactres.errors import ContactresInputError
+
+LEVER = cr.Cantilever((300e3,), 40.0, free_q_factors=(400.0,))  # Hz, N/m
+R_TIP = 0.95
+
+
+def lever_map(kappa):
+    """(f, Q) maps of mode 1 for the complex κ map (Q = f′/(2f″))."""
+    fc = cr.contact_frequencies(LEVER, kappa, R_TIP, modes=(1,))[..., 0]
+    return fc.real, fc.real / (2.0 * fc.imag)
+
+
+def hertz_k(e_star, radius, load):
+    """Hertz contact stiffness k* = 2aE*, a³ = 3PR/(4E*) (Johnson Eqs. 4.22-4.23)."""
+    a = (3.0 * load * radius / (4.0 * e_star)) ** (1.0 / 3.0)
+    return 2.0 * a * e_star
+
+
+def test_kstar_sigma_and_loss_tangent_of_a_damped_contact():
+    kappa = np.linspace(20.0, 150.0, 12).reshape(3, 4) * (1 + 1j * np.linspace(0.01, 0.2, 4))
+    f, q = lever_map(kappa)
+    ds = cr.invert_cr_map(f, q, LEVER, tip_position=R_TIP, pixel_size=20e-9)
+    np.testing.assert_allclose(ds["k_star_N_per_m"], kappa.real * 40.0, rtol=1e-9)
+    omega = 2 * np.pi * f
+    np.testing.assert_allclose(ds["sigma_N_s_per_m"], 40.0 * kappa.imag / omega, rtol=1e-7)
+    np.testing.assert_allclose(ds["tan_delta"], kappa.imag / kappa.real, rtol=1e-7)
+    # A rigid tip: the sample's loss tangent is the contact's.
+    np.testing.assert_allclose(ds["tan_delta_sample"], ds["tan_delta"], rtol=0)
+    assert ds["x"].attrs["units"] == "m"
+    np.testing.assert_allclose(ds["x"].values, np.arange(4) * 20e-9)
+    assert ds["k_star_N_per_m"].attrs["units"] == "N/m"
+    conv = json.loads(ds.attrs["conventions"])
+    assert conv["modulus"]["method"] == "none" and conv["units"]["tan_delta"] == "1"
+
+
+def test_hertz_and_flat_punch_moduli_with_a_compliant_tip():
+    e_true = np.array([[2e9, 5e9], [40e9, 120e9]])  # reduced moduli, Pa
+    radius, load, m_tip = 30e-9, 200e-9, 160e9
+    k = hertz_k(e_true, radius, load)
+    f, q = lever_map(k / 40.0 * (1 + 0.03j))
+    hertz = ModulusModel(tip_radius=radius, load=load, tip_modulus=m_tip)
+    ds = cr.invert_cr_map(f, q, LEVER, tip_position=R_TIP, modulus=hertz)
+    np.testing.assert_allclose(ds["E_star_Pa"], e_true, rtol=1e-8)
+    np.testing.assert_allclose(ds["M_Pa"], 1 / (1 / e_true - 1 / m_tip), rtol=1e-8)
+    # The sample's loss: E* = E*′(1 + 0.03 i) in series with the real tip modulus.
+    e_c = e_true * (1 + 0.03j)
+    m_c = e_c * m_tip / (m_tip - e_c)
+    np.testing.assert_allclose(ds["tan_delta_sample"], m_c.imag / m_c.real, rtol=1e-6)
+    punch = ModulusModel(punch_radius=5e-9)
+    ds = cr.invert_cr_map(f, q, LEVER, tip_position=R_TIP, modulus=punch)
+    np.testing.assert_allclose(ds["E_star_Pa"], k / (2 * 5e-9), rtol=1e-8)
+    np.testing.assert_allclose(ds["M_Pa"], ds["E_star_Pa"], rtol=0)
+
+
+def test_reference_region_calibrates_each_map_of_a_worn_tip():
+    """Two regions (a reference of 3 GPa, a sample of 9 GPa) imaged with a sharp tip and again
+    after wear (a blunter tip): each map, calibrated against its own reference region, gives
+    the sample's modulus without the tip radius (Killgore et al. 2011)."""
+    m_ref, m_sample, load = 3e9, 9e9, 100e-9
+    e = np.full((4, 6), m_sample)
+    e[:, :2] = m_ref  # the reference: columns 0-1
+    model = ModulusModel(reference=(0, 4, 0, 2), reference_modulus=m_ref)
+    for radius in (10e-9, 35e-9):
+        f, q = lever_map(hertz_k(e, radius, load) / 40.0 + 0j)
+        ds = cr.invert_cr_map(f, q, LEVER, tip_position=R_TIP, modulus=model)
+        np.testing.assert_allclose(ds["M_Pa"], e, rtol=1e-8)
+        rec = json.loads(ds.attrs["conventions"])["modulus"]
+        np.testing.assert_allclose(rec["reference_k_star_N_per_m"], hertz_k(m_ref, radius, load))
+
+
+def test_unmeasured_pixels_stay_empty_and_bad_maps_are_refused():
+    f, q = lever_map(np.full((2, 3), 50.0 + 1j))
+    f[0, 0], q[1, 2] = 0.0, np.nan
+    ds = cr.invert_cr_map(f, q, LEVER, tip_position=R_TIP)
+    assert np.isnan(ds["k_star_N_per_m"][0, 0]) and ds["flags"][0, 0] != 0
+    assert np.isfinite(ds["k_star_N_per_m"][1, 2]) and np.isnan(ds["tan_delta"][1, 2])
+    with pytest.raises(ContactresInputError, match="no positive frequency"):
+        cr.invert_cr_map(np.zeros((3, 3)), None, LEVER)
+    with pytest.raises(ContactresInputError, match="not inside"):
+        bad = ModulusModel(reference=(0, 5, 0, 2), reference_modulus=1e9)
+        cr.invert_cr_map(f, q, LEVER, tip_position=R_TIP, modulus=bad)
+    with pytest.raises(ContactresInputError, match="shape"):
+        cr.invert_cr_map(f, q[:, :2], LEVER)
+    with pytest.raises(ContactresInputError, match="one way to the modulus"):
+        ModulusModel(tip_radius=1e-8, load=1e-7, punch_radius=1e-8)
