@@ -15,7 +15,7 @@ install: $(STAMP)
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
 	$(PIP) install --upgrade pip
-	$(PIP) install -e '.[test,dev,docs,maps]'
+	$(PIP) install -e '.[test,dev,docs,maps,afm]'
 	touch $(STAMP)
 
 demo: $(STAMP)

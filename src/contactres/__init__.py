@@ -116,6 +116,7 @@ _EXPORTS: dict[str, str] = {
     "dart_reconstruct": ".analysis",
     "invert_cr_map": ".analysis",
     "read_resonance_table": ".measurements",
+    "read_ibw": ".measurements",
     "example_afm_map": ".measurements",
     "write_report": ".report",
 }
@@ -230,6 +231,7 @@ if TYPE_CHECKING:
         SweepTable as SweepTable,
         SweepWarning as SweepWarning,
         example_afm_map as example_afm_map,
+        read_ibw as read_ibw,
         read_resonance_table as read_resonance_table,
         read_sweeps as read_sweeps,
         validate_sweeps as validate_sweeps,

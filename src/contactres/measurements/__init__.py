@@ -29,6 +29,9 @@ _EXPORTS = MappingProxyType(
         "NAMED_SURFACES": "._afm_example",
         "example_afm_map": "._afm_example",
         "ExampleLever": "._afm_example",
+        "IgorWave": "._ibw",
+        "parse_note": "._ibw",
+        "read_ibw": "._ibw",
         "at_cell": "._messages",
         "where_rows": "._messages",
         "read_resonance_table": "._resonances",
@@ -64,6 +67,11 @@ if TYPE_CHECKING:
         ExampleLever as ExampleLever,
         NAMED_SURFACES as NAMED_SURFACES,
         example_afm_map as example_afm_map,
+    )
+    from ._ibw import (
+        IgorWave as IgorWave,
+        parse_note as parse_note,
+        read_ibw as read_ibw,
     )
     from ._messages import (
         at_cell as at_cell,
