@@ -7,8 +7,12 @@ below are those of the private modules beside them: the validated sweep table
 (:func:`read_sweeps`, :class:`SweepTable`), the resonance tables of CR-AFM and RUM
 (:func:`read_resonance_table`), admittance spectra to sweeps (:func:`read_spectra_sweeps`,
 :func:`fit_resonances`), the synthetic data (:func:`synthetic_sweeps`,
-:func:`synthetic_spectra`, :func:`example_study`, :func:`example_afm_map`) and the wording of
-the messages that point at a cell of a table (:func:`at_cell`, :func:`where_rows`).
+:func:`synthetic_spectra`, :func:`example_study`, :func:`example_afm_map`), the wording of
+the messages that point at a cell of a table (:func:`at_cell`, :func:`where_rows`) and the
+contact-resonance AFM instrument files: Asylum Research ``.ibw`` images (:func:`read_ibw`,
+:class:`IgorWave`, :func:`parse_note`, :func:`dart_frequency_Hz`), BGlib band-excitation SHO
+fits (:func:`read_be_sho`) and NetCDF/Zarr grids (:func:`read_resonance_grid`), all as
+:class:`ResonanceMaps` where they give frequency and Q, and :func:`check_frequency_map`.
 
 The public names are loaded on first use (PEP 562 module ``__getattr__``); the modules that
 implement them are private (``_sweeps``, ``_shifts``, ..., scipy's rule).
@@ -29,6 +33,12 @@ _EXPORTS = MappingProxyType(
         "NAMED_SURFACES": "._afm_example",
         "example_afm_map": "._afm_example",
         "ExampleLever": "._afm_example",
+        "ResonanceMaps": "._afm_maps",
+        "SHO_FIELDS": "._afm_maps",
+        "check_frequency_map": "._afm_maps",
+        "dart_frequency_Hz": "._afm_maps",
+        "read_be_sho": "._afm_maps",
+        "read_resonance_grid": "._afm_maps",
         "IgorWave": "._ibw",
         "parse_note": "._ibw",
         "read_ibw": "._ibw",
@@ -67,6 +77,14 @@ if TYPE_CHECKING:
         ExampleLever as ExampleLever,
         NAMED_SURFACES as NAMED_SURFACES,
         example_afm_map as example_afm_map,
+    )
+    from ._afm_maps import (
+        SHO_FIELDS as SHO_FIELDS,
+        ResonanceMaps as ResonanceMaps,
+        check_frequency_map as check_frequency_map,
+        dart_frequency_Hz as dart_frequency_Hz,
+        read_be_sho as read_be_sho,
+        read_resonance_grid as read_resonance_grid,
     )
     from ._ibw import (
         IgorWave as IgorWave,

@@ -8,7 +8,8 @@ reader, build a new registry (``BUILT_IN.with_reader(my_reader)``) and pass it t
 that reads, or pass ``extra=(my_reader,)`` to :func:`pick_reader`: nothing shared changes.
 
 The formats: delimited text (``_delimited``, sweep and resonance tables), spectra
-(``_spectra``) and instrument exports (:mod:`.exports`). The modules are private (scipy's rule:
+(``_spectra``), instrument exports (:mod:`.exports`) and contact-resonance AFM maps (``_afm``:
+Asylum ``.ibw`` images, BGlib SHO fits, NetCDF/Zarr grids). The modules are private (scipy's rule:
 import from this package and from :mod:`.exports`). Beside the recipes, this package exports
 what the tables of :mod:`contactres.measurements` take from the readers: the spectra tables'
 layouts, labels and constant columns (:data:`SPECTRUM_LAYOUTS`, :data:`LABELS`,

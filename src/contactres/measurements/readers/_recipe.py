@@ -39,6 +39,10 @@ KINDS = MappingProxyType(
         ),
         "ebsd": "load(path) -> OrientationMap: an EBSD map",
         "grid": "load(path) -> 2-D float array: a measured value per pixel (NaN: not measured)",
+        "afm_map": (
+            "load(path) -> IgorWave (an Asylum image: its layers, labels and note) or "
+            "ResonanceMaps (contact-resonance frequency and Q maps, y by x, and the pixel size)"
+        ),
     }
 )
 

@@ -3,7 +3,9 @@
 :data:`BUILT_IN` holds, by kind (:data:`KINDS`): the delimited-text reader of sweep
 tables and of resonance tables (``csv``), the spectra readers (a folder of spectrum files, a tidy
 table: ``SPECTRA_READERS`` of ``_spectra``) and the instrument exports
-(:data:`~.exports.EXPORT_READERS`). EBSD maps and value grids are read by recipes of the layers
+(:data:`~.exports.EXPORT_READERS`), and the contact-resonance AFM maps (kind ``afm_map``: an
+Asylum ``.ibw`` image, a BGlib SHO fit ``.h5``, a NetCDF/Zarr grid; ``AFM_MAP_READERS`` of
+``_afm``). EBSD maps and value grids are read by recipes of the layers
 that own their formats (:data:`contactres.polycrystal.EBSD_READERS`,
 ``contactres.jobs.readers``), which compose the full registry above this layer; a recipe here
 never imports a higher layer, not even when it is called.
@@ -19,6 +21,7 @@ from collections.abc import Iterable
 from pathlib import Path
 
 from . import _delimited
+from ._afm import AFM_MAP_READERS
 from ._recipe import Reader, Readers
 from ._spectra import SPECTRA_READERS
 from .exports import EXPORT_READERS
@@ -32,6 +35,7 @@ BUILT_IN_READERS: tuple[Reader, ...] = (
     Reader("csv", _delimited.suffixes, _delimited.detect, _delimited.load, "resonances"),
     *SPECTRA_READERS,
     *EXPORT_READERS,
+    *AFM_MAP_READERS,
 )
 #: The built-in registry.
 BUILT_IN = Readers(BUILT_IN_READERS)
