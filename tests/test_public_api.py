@@ -622,6 +622,7 @@ PUBLIC = {
     "jobs.readers": [
         "ALL_READERS",
         "GRID_READER",
+        "read_afm_map_file",
         "read_ebsd_file",
         "read_grid_file",
         "read_value_grid",

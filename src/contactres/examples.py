@@ -84,6 +84,13 @@ EXAMPLES: Mapping[str, Example] = MappingProxyType(
                 "contactres rum invert example_rum.csv --out rum_kstar.csv",
             ),
             _example(
+                "example_dart.ibw",
+                "an Asylum Research DART image (Igor .ibw, 64 x 64 pixels over 2 µm, synthetic: "
+                "a polymer film with a round stiffer inclusion, contact resonance 266 and 305 kHz "
+                "on a 3 N/m lever; six layers and the instrument's note)",
+                "contactres afm map example_dart.ibw --out cr-map",
+            ),
+            _example(
                 "example_cu_map.ang",
                 "an EBSD orientation map of polycrystalline copper (64 x 64 pixels, TSL .ang)",
                 "contactres maps predict example_cu_map.ang --crystal Cu --tip-radius 2e-8 "

@@ -13,13 +13,15 @@ as ``grid_scan_width_[m]``/``grid_scan_height_[m]`` attributes of the measuremen
 
 from __future__ import annotations
 
+import sys
+
 import numpy as np
 import pytest
 from afm_file_fixtures import DRIVE_FREQUENCY, write_dart_ibw
 
 import contactres as cr
 from contactres.errors import ContactresInputError
-from contactres.jobs.readers import ALL_READERS
+from contactres.jobs.readers import ALL_READERS, read_afm_map_file
 from contactres.measurements import (
     ResonanceMaps,
     check_frequency_map,
@@ -108,6 +110,7 @@ def test_be_sho_guess_when_there_is_no_fit_and_a_step(tmp_path):
     expected = (truth["Frequency [Hz]"][..., 2] + 500.0).astype(np.float32)
     np.testing.assert_array_equal(maps.frequency_Hz, expected)
     assert maps.source.endswith("/Guess")
+    assert maps.steps == 3
     with pytest.raises(ContactresInputError, match="step 3 is out of range"):
         read_be_sho(path, step=3)
 
@@ -247,4 +250,35 @@ def test_recipes_of_kind_afm_map(tmp_path):
         renamed.write_bytes(path.read_bytes())
         assert ALL_READERS.pick(renamed, "afm_map").name == name
     assert isinstance(ALL_READERS.pick(h5, "afm_map").load(h5), ResonanceMaps)
+    assert isinstance(read_afm_map_file(ibw), cr.measurements.IgorWave)
+    assert read_afm_map_file(nc).frequency_Hz.shape == (4, 5)
     del xr
+
+
+def test_read_afm_map_file_bad_files(tmp_path):
+    text = tmp_path / "scan.ibw"
+    text.write_text("x,y\n1,2\n")
+    with pytest.raises(ContactresInputError) as info:
+        read_afm_map_file(text)
+    message = str(info.value)
+    assert message.startswith(f"{text}: not a contact-resonance map file contactres reads")
+    assert "ibw (.ibw), be-sho (.h5/.hdf5), grid (.nc/.zarr)" in message
+    empty = tmp_path / "empty.h5"
+    empty.write_bytes(b"")
+    with pytest.raises(ContactresInputError, match="the file is empty"):
+        read_afm_map_file(empty)
+    with pytest.raises(ContactresInputError, match="no such file"):
+        read_afm_map_file(tmp_path / "absent.ibw")
+
+
+def test_without_h5py_one_line_names_the_extra(tmp_path, monkeypatch):
+    from contactres.errors import MissingExtraError
+
+    path = tmp_path / "be.h5"
+    write_bglib(path)
+    monkeypatch.setitem(sys.modules, "h5py", None)  # as if not installed
+    with pytest.raises(MissingExtraError) as info:
+        read_be_sho(path)
+    assert str(info.value) == (
+        "reading band-excitation .h5 files needs h5py: pip install 'contactres[afm]'"
+    )

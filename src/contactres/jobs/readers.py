@@ -8,7 +8,9 @@ exports, resonance tables), the EBSD maps of :data:`contactres.polycrystal.EBSD_
 and the measured value grids of :func:`read_value_grid` (:data:`GRID_READER`). So a recipe
 never imports a layer above its own.
 
-EBSD exports and value grids are told apart by their suffix alone
+Contact-resonance AFM map files (kind ``afm_map``: an Asylum ``.ibw`` image, a BGlib SHO fit,
+a NetCDF/Zarr grid) are recognised by their first bytes, the recipe of their suffix tried first
+(:func:`read_afm_map_file`). EBSD exports and value grids are told apart by their suffix alone
 (:meth:`~contactres.measurements.readers.Readers.for_suffix`): the reader of the
 suffix reads the file and gives its own precise error for a file that is not right.
 :func:`read_ebsd_file` and :func:`read_grid_file` take the registry to use (``readers=``), so a
@@ -32,7 +34,14 @@ from ..errors import ContactresInputError
 from ..measurements.readers import BUILT_IN, Reader, Readers
 from ..polycrystal import EBSD_READERS
 
-__all__ = ["ALL_READERS", "GRID_READER", "read_ebsd_file", "read_grid_file", "read_value_grid"]
+__all__ = [
+    "ALL_READERS",
+    "GRID_READER",
+    "read_afm_map_file",
+    "read_ebsd_file",
+    "read_grid_file",
+    "read_value_grid",
+]
 
 # One cell of a text grid: a number, NaN or blank (a pixel not measured).
 _CELL = re.compile(r"^\s*([+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?|nan|NaN|NAN)?\s*$")
@@ -132,3 +141,30 @@ def read_grid_file(path: str | os.PathLike, readers: Readers = ALL_READERS) -> n
     the first ``grid`` recipe for another suffix (a text grid may be called anything)."""
     reader = readers.for_suffix(path, "grid") or readers.of_kind("grid")[0]
     return cast(np.ndarray, reader.load(path))  # what a grid recipe returns (KINDS["grid"])
+
+
+def read_afm_map_file(path: str | os.PathLike, readers: Readers = ALL_READERS):
+    """A contact-resonance AFM map file read by the ``afm_map`` recipe of ``readers`` that
+    recognises it (by its first bytes; the recipe of its suffix is tried first).
+
+    Returns what that recipe's ``load`` returns
+    (:data:`~contactres.measurements.readers.KINDS`): an
+    :class:`~contactres.measurements.IgorWave` for an Asylum image, a
+    :class:`~contactres.measurements.ResonanceMaps` for a BGlib SHO fit or a grid. A missing or
+    empty file, or one that no recipe recognises, is a one-line error naming the file and the
+    formats known.
+    """
+    p = Path(path)
+    if not p.exists():
+        raise ContactresInputError(f"{p}: no such file")
+    if p.is_file() and p.stat().st_size == 0:
+        raise ContactresInputError(f"{p}: the file is empty")
+    try:
+        reader = readers.pick(p, "afm_map")
+    except ContactresInputError:
+        # pick's message quotes the first line of a text file; these formats are binary.
+        known = ", ".join(f"{r.name} ({'/'.join(r.suffixes)})" for r in readers.of_kind("afm_map"))
+        raise ContactresInputError(
+            f"{p}: not a contact-resonance map file contactres reads; formats known: {known}"
+        ) from None
+    return reader.load(p)

@@ -77,6 +77,9 @@ class ResonanceMaps:
         The SHO phase, rad, where the file has it.
     r2 : ndarray (y, x) or None
         The fit's coefficient of determination, where the file has it.
+    steps : int
+        How many spectroscopic steps the file holds (one map each: the DC bias steps of a
+        BEPS experiment); 1 for a BE-line map or a grid.
     """
 
     frequency_Hz: np.ndarray
@@ -86,6 +89,7 @@ class ResonanceMaps:
     amplitude: np.ndarray | None = None
     phase_rad: np.ndarray | None = None
     r2: np.ndarray | None = None
+    steps: int = 1
 
 
 def check_frequency_map(frequency, source: str) -> np.ndarray:
@@ -343,7 +347,7 @@ def read_be_sho(path: str | os.PathLike, *, dataset: str | None = None, step: in
                 grid.flags.writeable = False
                 maps[attribute] = grid
         pixel_size = _be_pixel_size(sho, shape)
-    return ResonanceMaps(pixel_size=pixel_size, source=where, **maps)
+    return ResonanceMaps(pixel_size=pixel_size, source=where, steps=table.shape[1], **maps)
 
 
 def _units(variable) -> str:

@@ -31,7 +31,6 @@ import re
 import struct
 from dataclasses import dataclass, field
 from pathlib import Path
-from types import MappingProxyType
 
 import numpy as np
 
@@ -107,11 +106,11 @@ class IgorWave:
     labels : tuple of str
         The names of the layers in order, from the dimension labels of the last dimension
         (``""`` for a layer without a label; empty if the wave has no labels there).
-    note : mapping (read-only)
+    note : dict
         The note's ``key: value`` lines (:func:`parse_note`): numbers as floats, in the
         instrument's units (Asylum: SI, ``SpringConstant`` N/m, ``InvOLS`` m/V,
         ``DriveFrequency`` Hz, ``ScanSize`` m); text otherwise; a repeated key keeps its last
-        value.
+        value. A plain dict (it goes into JSON as it is), made afresh by every read.
     name : str
         The wave's name.
     scale : tuple of float or None
@@ -125,7 +124,7 @@ class IgorWave:
 
     data: np.ndarray
     labels: tuple[str, ...]
-    note: MappingProxyType = field(repr=False)
+    note: dict[str, float | str] = field(repr=False)
     name: str
     scale: tuple[float, float] | None
     source: str
@@ -297,7 +296,7 @@ def read_ibw(path: str | os.PathLike) -> IgorWave:
         data=values,
         # Labels are names (ASCII in practice): decoded as the note is.
         labels=_labels(wave, values.ndim, encoding),
-        note=MappingProxyType(note),
+        note=note,
         name=name,
         scale=_scale(header, note, encoding),
         source=source,
