@@ -172,6 +172,7 @@ SUBPACKAGES = [
 # two modules beside them: the contract every job keeps and the computations of the map jobs.
 JOBS = [
     "afm_invert",
+    "afm_map",
     "contact",
     "crystals",
     "dcsf",
@@ -552,6 +553,14 @@ PUBLIC = {
         "add_film_columns",
         "coated_film",
     ],
+    "jobs.afm_map": [
+        *JOB_API,
+        "DART_LAYERS",
+        "MapInput",
+        "PHASE_SIGNS",
+        "read_input",
+        "series",
+    ],
     "jobs.contact": [
         *JOB_API,
         "MAX_COATING_LAYERS",
@@ -634,6 +643,7 @@ PUBLIC = {
 # and are public on purpose: the top-level single modules, one module per workflow of
 # contactres.jobs (and the three beside them), and the modules the docs present as modules.
 PUBLIC_MODULES = [
+    "contactres.apps.afm_map",  # the command line and the demo write a CR map's folder with it
     "contactres.apps.paper1",  # the gallery calls its figure functions
     "contactres.apps.paper2",
     "contactres.crystals",

@@ -205,7 +205,11 @@ def _moduli(k_star, model: ModulusModel, shape):
         if k.size:
             r = modulus_from_contact_stiffness(k, tip_modulus=model.tip_modulus, **kwargs)
             e, m, a, f = r.E_star, r.M_sample, r.contact_radius, r.flags
-            record["equation"] = r.method
+            record["equation"] = (
+                "E* = sqrt(k*^3/(6 R P)) (Hertz)"
+                if method == "hertz"
+                else f"E* = E*_ref (k*/k*_ref)^m, {r.method}"
+            )
             record["exponent"] = float(r.exponent)
         else:
             e = m = a = np.array([])
@@ -252,8 +256,8 @@ def invert_cr_map(
         (:func:`contactres.invert_contact_resonance`).
     modulus : ModulusModel, optional
         How k* becomes E* and M; None: no modulus.
-    pixel_size : float, optional
-        Pixel pitch, m: the coordinates x, y in m (else pixel indices).
+    pixel_size : float or (float, float), optional
+        Pixel pitch, m, square or (dx, dy): the coordinates x, y in m (else pixel indices).
     conventions : dict, optional
         More conventions to record (the instrument's constants, the source); JSON-able.
 
@@ -344,7 +348,7 @@ def invert_cr_map(
         "modulus": record,
         "flags_present": inv_bits,
         "units": dict(CR_MAP_UNITS),
-        "pixel_size_m": None if pixel_size is None else float(pixel_size),
+        "pixel_size_m": None if pixel_size is None else np.ravel(pixel_size).tolist(),
         **(conventions or {}),
     }
     return _dataset(values, pixel_size, record_all)
@@ -363,8 +367,8 @@ def _dataset(values: dict, pixel_size, conventions: dict):
         coords = {"y": np.arange(h), "x": np.arange(w)}
         unit = "pixel"
     else:
-        step = positive("pixel size", pixel_size, "m")
-        coords = {"y": np.arange(h) * step, "x": np.arange(w) * step}
+        dx, dy = np.broadcast_to(positive("pixel size", pixel_size, "m"), (2,))
+        coords = {"y": np.arange(h) * dy, "x": np.arange(w) * dx}
         unit = "m"
     ds = xr.Dataset(
         {k: (("y", "x"), v, {"units": CR_MAP_UNITS.get(k, "1")}) for k, v in values.items()},

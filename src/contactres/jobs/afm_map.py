@@ -40,6 +40,7 @@ if TYPE_CHECKING:
     import os
 
     from ..analysis import ModulusModel
+    from ..measurements.readers import Readers
 
 __all__ = [
     "DART_LAYERS",
@@ -56,8 +57,6 @@ __all__ = [
 DART_LAYERS = ("Amplitude1", "Amplitude2", "Phase1", "Phase2", "Frequency")
 #: How the file's phases relate to the oscillator's lag (module notes).
 PHASE_SIGNS = ("auto", "lag", "lead")
-#: Suffixes of the files read, by kind.
-_SUFFIXES = {".ibw": "dart", ".h5": "be", ".hdf5": "be", ".nc": "grid", ".zarr": "grid"}
 
 
 @dataclass(frozen=True, eq=False)
@@ -71,7 +70,7 @@ class MapInput:
     dart : (A1, A2, phase1, phase2) of a DART image (amplitudes in one unit, phases in degrees
         as stored), or None
     note : the instrument's settings (an Asylum note), or {}
-    pixel_size : m, or None
+    pixel_size : (dx, dy) or one square pitch, m; or None
     source : the file read (or a name)
     """
 
@@ -79,7 +78,7 @@ class MapInput:
     q_factor: np.ndarray | None = None
     dart: tuple | None = None
     note: dict = field(default_factory=dict)
-    pixel_size: float | None = None
+    pixel_size: float | tuple[float, float] | None = None
     source: str = "map"
 
 
@@ -138,42 +137,31 @@ class Result(JobResult):
         return (self.source,) if Path(self.source).exists() else ()
 
 
-def read_input(path: str | os.PathLike) -> MapInput:
-    """The map of the file ``path`` (kind by suffix, module notes)."""
-    p = Path(path)
-    kind = _SUFFIXES.get(p.suffix.lower())
-    if kind is None:
-        raise ContactresInputError(
-            f"{p}: unknown kind of map file; give a DART image (.ibw), a band-excitation SHO fit "
-            "(.h5) or a grid of frequency and Q (.nc, .zarr)"
+def read_input(path: str | os.PathLike, readers: Readers | None = None) -> MapInput:
+    """The map of the file ``path``, read by the ``afm_map`` recipe that recognises it
+    (:func:`contactres.jobs.readers.read_afm_map_file`: its suffix first, then its first
+    bytes)."""
+    from ..measurements import IgorWave, check_frequency_map, dart_frequency_Hz
+    from .readers import ALL_READERS, read_afm_map_file
+
+    read = read_afm_map_file(path, ALL_READERS if readers is None else readers)
+    if not isinstance(read, IgorWave):  # frequency and Q per pixel (ResonanceMaps)
+        return MapInput(
+            frequency=check_frequency_map(read.frequency_Hz, str(read.source)),
+            q_factor=np.asarray(read.q_factor, dtype=float),
+            pixel_size=None if read.pixel_size is None else tuple(read.pixel_size),
+            source=str(read.source),
         )
-    if kind == "dart":
-        return _read_dart(p)
-    from .. import measurements
-
-    maps = measurements.read_be_sho(p) if kind == "be" else measurements.read_resonance_grid(p)
-    return MapInput(
-        frequency=np.asarray(maps.frequency_Hz, dtype=float),
-        q_factor=np.asarray(maps.q_factor, dtype=float),
-        pixel_size=None if maps.pixel_size is None else float(maps.pixel_size[0]),
-        source=str(maps.source),
-    )
-
-
-def _read_dart(p: Path) -> MapInput:
-    from .. import measurements
-
-    wave = measurements.read_ibw(p)
-    layers = [np.asarray(wave.layer(name), dtype=float) for name in DART_LAYERS[:4]]
-    centre = measurements.dart_frequency_Hz(wave)
-    if any(layer.shape != centre.T.shape for layer in layers):
-        raise ContactresInputError(f"{p}: the DART layers are not images of one shape")
+    layers = [np.asarray(read.layer(name), dtype=float) for name in DART_LAYERS[:4]]
+    centre = dart_frequency_Hz(read)
+    if any(layer.T.shape != centre.shape for layer in layers):
+        raise ContactresInputError(f"{path}: the DART layers are not images of one shape")
     return MapInput(
         frequency=np.asarray(centre, dtype=float),
         dart=tuple(layer.T for layer in layers),  # Igor's first index runs along x
-        note=dict(wave.note),
-        pixel_size=None if wave.scale is None else float(wave.scale[0]),
-        source=str(p),
+        note=dict(read.note),
+        pixel_size=None if read.scale is None else tuple(read.scale),  # (dx, dy)
+        source=str(path),
     )
 
 
