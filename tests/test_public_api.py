@@ -572,6 +572,7 @@ PUBLIC = {
         *JOB_API,
         "COATED_CONTACT",
         "CRYSTAL_DCSF_MODEL",
+        "CR_MAP",
         "STEPS",
     ],
     "jobs.maps_predict": [

@@ -80,3 +80,26 @@ def test_a_frequency_map_of_zeros_is_refused():
     data = job.MapInput(np.zeros((3, 3)), q_factor=np.full((3, 3), 50.0))
     with pytest.raises(ContactresInputError, match="no positive frequency"):
         job.run(data, job.Settings(spring_constant=K_C, free_frequency=F_FREE))
+
+
+def test_the_bundled_dart_image_gives_the_moduli_it_was_made_with():
+    """example_dart.ibw (scripts/make_example_dart.py): a film E = 2.5 GPa, ν = 0.35, tan δ =
+    0.04 with an inclusion E = 5 GPa, ν = 0.30, tan δ = 0.01, under a 20 nm Si tip at 50 nN;
+    with 0.2° of phase noise and 2 pm of amplitude noise per pixel, the medians come back."""
+    pytest.importorskip("igor2", reason="igor2 (the extra 'afm') reads .ibw files")
+    from contactres.jobs.demo import CR_MAP
+
+    settings = job.Settings(
+        tip_position=CR_MAP["tip_position"],
+        modulus=ModulusModel(
+            tip_radius=CR_MAP["tip_radius"], load=CR_MAP["load"], tip_modulus=CR_MAP["tip_modulus"]
+        ),
+    )
+    ds = job.run(cr.example_path("example_dart.ibw"), settings).dataset
+    m, tan = ds["M_Pa"].values, ds["tan_delta_sample"].values
+    film = m < 4e9  # the two phases are 2.8 and 5.5 GPa apart
+    assert 0.5 < film.mean() < 0.9
+    assert np.median(m[film]) == pytest.approx(2.5e9 / (1 - 0.35**2), rel=0.01)
+    assert np.median(m[~film]) == pytest.approx(5e9 / (1 - 0.30**2), rel=0.01)
+    assert np.median(tan[film]) == pytest.approx(0.04, rel=0.03)
+    assert np.median(tan[~film]) == pytest.approx(0.01, rel=0.1)
