@@ -423,6 +423,7 @@ PUBLIC = {
         "ContactResonanceResult",
         "DEFAULT_NODES",
         "FREE_ROOTS",
+        "FREE_TOLERANCE",
         "MODE_TOLERANCE",
         "QCM",
         "RUMOscillator",

@@ -18,6 +18,7 @@ from ..dynamic import prepare
 from ..errors import ContactresInputError
 from ..measurements import at_cell, where_rows
 from ..resonators import (
+    FREE_TOLERANCE,
     MODE_TOLERANCE,
     Cantilever,
     RUMOscillator,
@@ -263,7 +264,9 @@ def invert_afm_table(
             "(fc1_Hz, fc2_Hz and fc3_Hz are all empty)"
         )
     for n in _MODES:  # a contact spring only raises a mode: below the free lever is impossible
-        below = fc[:, n - 1] < table[f"f{n}_free_Hz"].to_numpy(float)
+        # (at the free frequency or a hair below it, FREE_TOLERANCE: no contact, κ = 0)
+        free = table[f"f{n}_free_Hz"].to_numpy(float)
+        below = fc[:, n - 1] < free * (1.0 - FREE_TOLERANCE)
         if below.any():
             raise ContactresInputError(
                 f"{at_cell(table, source, below, f'fc{n}_Hz')}: below the free resonance "
@@ -287,7 +290,14 @@ def invert_afm_table(
     n = len(table)
     res = {
         c: np.full(n, np.nan)
-        for c in ("kappa", "tip_position_used", "sigma_N_s_per_m", "mode_spread")
+        for c in (
+            "kappa",
+            "tip_position_used",
+            "sigma_N_s_per_m",
+            "mode_spread",
+            "tip_position_other",
+            "kappa_other",
+        )
     }
     flags = np.zeros(n, dtype=int)
     k_modes = np.full((n, len(_MODES)), np.nan)  # κ of each mode averaged into κ (else NaN)
@@ -323,6 +333,8 @@ def invert_afm_table(
         res["tip_position_used"][rows] = inv.tip_position
         res["sigma_N_s_per_m"][rows] = inv.sigma * np.where(have_kc[rows], k_c[rows], np.nan)
         res["mode_spread"][rows] = inv.mode_spread
+        res["tip_position_other"][rows] = inv.tip_position_other
+        res["kappa_other"][rows] = inv.kappa_other
         k_modes[rows] = np.where(inv.averaged_modes, inv.kappa_modes, np.nan)
         flags[rows] = inv.flags
         solved = np.isfinite(inv.tip_position)  # two modes without a crossing: no reference
@@ -355,6 +367,8 @@ def invert_afm_table(
     out["tip_position_used"] = res["tip_position_used"]
     out["sigma_N_s_per_m"] = res["sigma_N_s_per_m"]
     out["mode_spread"] = res["mode_spread"]
+    out["tip_position_other"] = res["tip_position_other"]
+    out["kappa_other"] = res["kappa_other"]
     names = ["E_star_Pa", "M_sample_Pa", "contact_radius_m", "modulus_method"]
     for name in names:
         out[name] = mod[name]

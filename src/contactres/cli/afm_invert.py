@@ -18,9 +18,10 @@ from ._film import coating_options, film_summary, parse_film_range
     type=click.Path(dir_okay=False),
     required=True,
     help="Output CSV: the input columns plus kappa, k_star_N_per_m, tip_position_used, "
-    "sigma_N_s_per_m, mode_spread, E_star_Pa, M_sample_Pa, contact_radius_m, modulus_method, "
-    "flags, normalisation (and k_static_N_per_m, k_a, dcsf_real, dcsf_imag with --crystal; "
-    "coating, M_film_Pa, film_contact_radius_m, film_weight, film_verdict with --coating).",
+    "sigma_N_s_per_m, mode_spread, tip_position_other, kappa_other, E_star_Pa, M_sample_Pa, "
+    "contact_radius_m, modulus_method, flags, normalisation (and k_static_N_per_m, k_a, "
+    "dcsf_real, dcsf_imag with --crystal; coating, M_film_Pa, film_contact_radius_m, "
+    "film_weight, film_verdict with --coating).",
 )
 @click.option(
     "--normalisation",

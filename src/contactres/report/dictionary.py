@@ -67,9 +67,13 @@ RESONANCE_FLAGS = {
     "above-pinned": "f at or above the κ → ∞ limit of the mode for this tip position (κ NaN)",
     "insensitive": "d ln f / d ln κ < 1e-3: tip near a node of the mode, κ saturated, or κ → 0",
     "no-crossing": "two modes: no crossing κ_a(r) = κ_b(r) with r in [0.5, 1]",
-    "several-crossings": "two modes: more than one crossing in [0.5, 1] (the largest r taken)",
+    "several-crossings": (
+        "two modes: more than one crossing in [0.5, 1] (information: the largest r taken, "
+        "the next in tip_position_other, kappa_other)"
+    ),
     "not-measured": "a frequency is NaN (not measured)",
     "inconsistent-modes": "the modes disagree on κ by more than `--mode-tolerance`",
+    "no-contact": "f at the free frequency or below it by at most 1e-6 of f: κ = 0 (no contact)",
 }
 
 #: Tables on the documentation's dictionary page that have no README block.

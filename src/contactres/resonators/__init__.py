@@ -23,6 +23,7 @@ TYPE_CHECKING = False
 _EXPORTS = MappingProxyType(
     {
         "FREE_ROOTS": "._cantilever",
+        "FREE_TOLERANCE": "._cantilever_inversion",
         "contact_frequencies": "._cantilever",
         "Cantilever": "._cantilever",
         "MODE_TOLERANCE": "._cantilever_inversion",
@@ -58,6 +59,7 @@ if TYPE_CHECKING:
     )
     from ._cantilever_inversion import (
         ContactResonanceResult as ContactResonanceResult,
+        FREE_TOLERANCE as FREE_TOLERANCE,
         MODE_TOLERANCE as MODE_TOLERANCE,
         flag_names as flag_names,
         invert_contact_resonance as invert_contact_resonance,

@@ -253,7 +253,7 @@ def _rows(beta, r, g):
         (chq - cq, shq - sq),
         (-sq - shq, cq - chq),
     )
-    zero = np.zeros_like(p)
+    zero = 0.0  # the springs act on the clamped-side unknowns only
     # κ-coefficients of the moment and shear rows (the tip springs act through y and y′ only)
     s3 = tuple(-3.0 / b**2 * (g_yt * left[0][j] + g_tt * b * left[1][j]) for j in range(2))
     s4 = tuple(3.0 / b**3 * (g_yy * left[0][j] + g_yt * b * left[1][j]) for j in range(2))
@@ -275,21 +275,59 @@ def _matrix(beta, kappa, r, g):
     return _stack(rows)
 
 
+#: Column pairs (j, k) of the first two rows, their complements (l, m) and the Laplace sign
+#: (−1)^(j+k+1) (0-based; rows 0 and 1 fixed): det = Σ sign · T_jk · B_lm.
+_LAPLACE = tuple(
+    ((j, k), tuple(c for c in range(4) if c not in (j, k)), (-1) ** (j + k + 1))
+    for j in range(4)
+    for k in range(j + 1, 4)
+)
+
+
+def _is_zero(e):
+    return isinstance(e, float) and e == 0.0
+
+
+def _laplace(minors, x, y):
+    """det of the 4 x 4 matrix with rows (R₁, R₂, x, y), elementwise over arrays.
+
+    Laplace expansion along the first two rows: their six 2 x 2 ``minors`` (in the order of
+    :data:`_LAPLACE`, :func:`_top_minors`) times the complementary minors of (x, y); entries
+    that are the float 0.0 (the κ-rows' free-end columns) are skipped. Plain products on whole
+    arrays, no stacked matrices: the inversion evaluates it on every pixel of a map, where
+    np.linalg.det of (N, 4, 4) arrays was its cost.
+    """
+    total = 0.0
+    for t, (_, (i, j), sign) in zip(minors, _LAPLACE, strict=True):
+        cross = 0.0
+        if not (_is_zero(x[i]) or _is_zero(y[j])):
+            cross = x[i] * y[j]
+        if not (_is_zero(x[j]) or _is_zero(y[i])):
+            cross = cross - x[j] * y[i]
+        if not _is_zero(cross):
+            total = total + t * cross if sign > 0 else total - t * cross
+    return total
+
+
+def _top_minors(top):
+    """The six 2 x 2 minors of the rows R₁, R₂ (continuity of y and y′), order of _LAPLACE."""
+    return [top[0][j] * top[1][k] - top[0][k] * top[1][j] for (j, k), _, _ in _LAPLACE]
+
+
 def determinant_coefficients(beta, tip_position, g):
     """(a, b, c) with det M(β, κ) = a κ² + b κ + c, from the rows' linearity in κ.
 
     Only the moment and shear rows depend on κ, linearly, so the determinant's multilinearity
     in its rows gives c = det(R₁, R₂, R₃⁰, R₄⁰), b = det(R₁, R₂, S₃, R₄⁰) + det(R₁, R₂, R₃⁰, S₄),
     a = det(R₁, R₂, S₃, S₄) (S: the κ-coefficients) without the cancellation of fitting a
-    parabola through det M at three κ. g as in :func:`determinant_from_coefficients`.
+    parabola through det M at three κ. Each determinant is a Laplace expansion along R₁, R₂
+    (:func:`_laplace`). g as in :func:`determinant_from_coefficients`.
     """
     rows0, s3, s4 = _rows(beta, np.asarray(tip_position), g)
-    r12 = rows0[:2]
-
-    def det(r3, r4):
-        return np.linalg.det(_stack([*r12, r3, r4]))
-
-    return det(s3, s4), det(s3, rows0[3]) + det(rows0[2], s4), det(rows0[2], rows0[3])
+    minors = _top_minors(rows0[:2])
+    a = _laplace(minors, s3, s4)
+    b = _laplace(minors, s3, rows0[3]) + _laplace(minors, rows0[2], s4)
+    return a, b, _laplace(minors, rows0[2], rows0[3])
 
 
 def characteristic_determinant(

@@ -69,8 +69,10 @@ __all__ = [
     "FLAG_INSENSITIVE",
     "FLAG_NOT_MEASURED",
     "FLAG_NOT_POSITIVE",
+    "FLAG_NO_CONTACT",
     "FLAG_NO_CROSSING",
     "FLAG_SEVERAL_CROSSINGS",
+    "FREE_TOLERANCE",
     "MIN_SENSITIVITY",
     "MODE_TOLERANCE",
     "R_GRID",
@@ -90,12 +92,15 @@ FLAG_ABOVE_PINNED = 4
 FLAG_INSENSITIVE = 8
 #: two-mode inversion: no crossing κ_a(r) = κ_b(r) with r in [0.5, 1].
 FLAG_NO_CROSSING = 16
-#: two-mode inversion: more than one crossing with r in [0.5, 1] (the largest r was taken).
+#: two-mode inversion: more than one crossing with r in [0.5, 1]; information, not a failure:
+#: the largest r was taken, the next is in ``tip_position_other`` and ``kappa_other``.
 FLAG_SEVERAL_CROSSINGS = 32
 #: a frequency is NaN (not measured).
 FLAG_NOT_MEASURED = 64
 #: the modes disagree on κ by more than ``mode_tolerance`` (module notes: three modes).
 FLAG_INCONSISTENT_MODES = 128
+#: f at the mode's free frequency, or below it by at most :data:`FREE_TOLERANCE`: κ = 0.
+FLAG_NO_CONTACT = 256
 
 _NAMES = (
     (FLAG_NOT_POSITIVE, "not_positive"),
@@ -106,6 +111,7 @@ _NAMES = (
     (FLAG_SEVERAL_CROSSINGS, "several_crossings"),
     (FLAG_NOT_MEASURED, "not_measured"),
     (FLAG_INCONSISTENT_MODES, "inconsistent_modes"),
+    (FLAG_NO_CONTACT, "no_contact"),
 )
 
 #: Line below which a mode is "insensitive": s = d ln f / d ln κ < 1e-3 means a relative
@@ -113,6 +119,16 @@ _NAMES = (
 #: tracking) becomes > 1 % in κ. Reached near a node of the mode, deep in saturation
 #: (κ ≳ 1e3 for mode 1 at r = 1) and, trivially, as κ → 0 (the contact hardly shifts f).
 MIN_SENSITIVITY = 1e-3
+
+#: Relative distance below a mode's free frequency (f_n⁰ = f_ref (β_n⁰/β_ref)², the model's
+#: free lever) within which a contact resonance is the free lever itself: κ = 0, flagged
+#: ``no_contact``, instead of ``below_free`` and a NaN. A free resonance is calibrated to about
+#: 1e-6 of f (a fraction of a Hz at a few hundred kHz, from a thermal spectrum or a sweep) and
+#: drifts by as much; a contact resonance that close to it, or equal to it, is no contact
+#: within that precision (the κ it would give, ~1e-6, is far below the ``insensitive`` line
+#: anyway). Further below, no κ >= 0 explains f: ``below_free`` (a wrong free frequency, a
+#: different mode or drift).
+FREE_TOLERANCE = 1e-6
 
 #: Flags of a mode that no positive κ reproduces at the tip position (it contradicts r).
 _CONTRADICTS = FLAG_NOT_POSITIVE | FLAG_BELOW_FREE | FLAG_ABOVE_PINNED
@@ -122,8 +138,18 @@ _CONTRADICTS = FLAG_NOT_POSITIVE | FLAG_BELOW_FREE | FLAG_ABOVE_PINNED
 MODE_TOLERANCE = 0.05
 
 #: Grid of tip positions scanned by the two-mode inversion (step 0.005, one point past 1).
+#: A crossing in (1, 1.005], past the free end by less than one step, is the tip at the end
+#: seen through the noise of the frequencies (a tip at r = 1 puts the crossing on either side
+#: of 1 at random): it is taken as r = 1, its κ evaluated there, when the two modes agree
+#: there within :data:`END_TOLERANCE`.
 R_GRID = np.append(np.linspace(0.01, 1.0, 199), 1.005)
 R_GRID.setflags(write=False)
+
+#: Largest relative disagreement of the two modes' κ at r = 1 for a crossing past the free end
+#: (:data:`R_GRID`) to count as the tip at the end. Frequency errors of ~1e-5 (tracking) move κ
+#: by ~1e-5/s, below 1e-3 for sensitivities s >= 1e-2; a crossing that truly lies past the end
+#: (the lever's saturated modes meeting there) disagrees by per cent at r = 1 and is rejected.
+END_TOLERANCE = 1e-3
 
 
 def flag_names(flags: int) -> list[str]:
@@ -137,10 +163,12 @@ class ContactResonanceResult:
 
     Attributes
     ----------
-    kappa : κ′ = Re k*/k_c (mean over the usable modes with r known; the crossing for two modes)
+    kappa : κ = k*/k_c, the contact's spring (mean over the usable modes with r known; the
+        crossing for two modes); with a Q the spring of the Kelvin-Voigt contact, Re κ_c +
+        Im κ_c/(2Q) (module notes: damping); 0 where the pixel is flagged ``no_contact``
     k_star : κ k_c, N/m
     tip_position : r = L1/L (given, or the chosen crossing; NaN if none)
-    sigma : contact damping k_c κ″/ω, N s/m (mean over the usable modes); NaN without Q
+    sigma : contact damping k_c Im κ_c/ω, N s/m (mean over the usable modes); NaN without Q
     flags : int bit mask, OR over the modes used (FLAG_* constants, :func:`flag_names`)
     candidates, candidate_kappa : (..., K) every crossing r and its κ, NaN-padded (K = 0 when r
         was given)
@@ -151,6 +179,9 @@ class ContactResonanceResult:
     modes : the mode number of each column
     normalisation : "global" or "modewise" (from the cantilever)
     method : what was done, in words
+    tip_position_other, kappa_other : the crossing not taken, r and κ (the largest other r in
+        [0.5, 1]; NaN when there is none or r was given): the alternative of a pixel flagged
+        ``several_crossings``
     """
 
     kappa: np.ndarray
@@ -168,6 +199,8 @@ class ContactResonanceResult:
     modes: tuple[int, ...]
     normalisation: str
     method: str
+    tip_position_other: np.ndarray
+    kappa_other: np.ndarray
 
 
 def _roots(beta, r, g):
@@ -240,20 +273,30 @@ def _mean_where(values, use, axis=-1):
     return np.where(n > 0, total / np.maximum(n, 1), np.nan)
 
 
-def _crossings(beta_a, mode_a, beta_b, mode_b, g):
-    """Every crossing Re κ_a(r) = Re κ_b(r) on R_GRID, per pixel (flat arrays of length N).
+def _spring(kappa, half_q):
+    """The contact's spring k*/k_c of a complex κ_c at ω_c = ω(1 + i/(2Q)) (module notes:
+    damping): Re κ_c + Im κ_c/(2Q); ``half_q`` = 1/(2Q), 0 without a Q (then Re κ_c)."""
+    return np.real(kappa) + np.imag(kappa) * half_q
 
-    Returns (pixel index, r, κ) of the accepted crossings (flat, any order).
+
+def _crossings(beta_a, mode_a, beta_b, mode_b, g, half_q=(0.0, 0.0)):
+    """Every crossing κ_a(r) = κ_b(r) of the springs (:func:`_spring`) on R_GRID, per pixel.
+
+    Flat arrays of length N (``half_q``: 1/(2Q) of the two modes, scalars or length N).
+    Returns (pixel index, r, κ) of the accepted crossings (flat, any order); r in (1, 1.005]
+    is returned as 1 with its κ there (:data:`R_GRID`).
     """
     n = beta_a.shape[0]
     col = [x.reshape(-1, 1) if np.ndim(x) else x for x in (beta_a, mode_a, beta_b, mode_b)]
+    col += [np.reshape(x, (-1, 1)) if np.ndim(x) else x for x in half_q]
     gc = tuple(x.reshape(-1, 1) if np.ndim(x) else x for x in g)
 
     def delta(rows, r):
         gg = tuple(x[rows] if np.ndim(x) else x for x in gc)
-        ka, _ = kappa_on_branch(col[0][rows], col[1][rows], r, gg)
-        kb, _ = kappa_on_branch(col[2][rows], col[3][rows], r, gg)
-        return np.real(ka) - np.real(kb), ka, kb
+        c = [x[rows] if np.ndim(x) else x for x in col]
+        ka = _spring(kappa_on_branch(c[0], c[1], r, gg)[0], c[4])
+        kb = _spring(kappa_on_branch(c[2], c[3], r, gg)[0], c[5])
+        return ka - kb, ka, kb
 
     pix, lo = [], []
     chunk = max(1, 1_000_000 // R_GRID.size)  # bounded memory: a loop over chunks of pixels
@@ -280,11 +323,16 @@ def _crossings(beta_a, mode_a, beta_b, mode_b, g):
     d, ka, kb = delta(pix, r)
     ok = (
         np.isfinite(d)
-        & (np.real(ka) > 0)
-        & (np.real(kb) > 0)
+        & (ka > 0)
+        & (kb > 0)
         & (np.abs(d) <= 1e-6 * (np.abs(ka) + np.abs(kb)))  # rejects poles (|Δ| → ∞)
-        & (r <= 1.0 + 1e-9)
     )[:, 0]
+    past = r > 1.0  # past the free end by less than one step: the tip at the end (R_GRID)
+    if np.any(past):
+        d_1, ka_1, kb_1 = delta(pix, np.minimum(r, 1.0))
+        ka, kb = np.where(past, ka_1, ka), np.where(past, kb_1, kb)
+        at_end = np.abs(d_1) <= END_TOLERANCE * 0.5 * (np.abs(ka_1) + np.abs(kb_1))
+        ok &= ~past[:, 0] | at_end[:, 0]
     kappa = 0.5 * (ka + kb)[:, 0]
     return pix[ok], np.minimum(r[ok, 0], 1.0), kappa[ok]
 
@@ -344,6 +392,7 @@ def invert_contact_resonance(
     g = tuple(np.asarray(x)[..., None] for x in tip_coefficients(lateral_ratio, tip_height, tilt))
     mode_arr = np.array(modes)
     k_c = cantilever.spring_constant
+    half_q = 0.0 if q is None else 0.5 / q  # 1/(2Q); 0 where no Q (q = inf there)
     with np.errstate(all="ignore"):  # NaN pixels and poles are flagged, not warned about
         beta = beta_from_frequency(cantilever, f, mode_arr, q)
         if tip_position is not None:
@@ -353,13 +402,17 @@ def invert_contact_resonance(
                 shown = float(r[bad].ravel()[0]) if r.ndim else float(r)
                 raise ContactresInputError(f"tip_position must be in (0, 1] (L1/L), got {shown!r}")
             r = r[..., None]
-            cand = np.full((*np.broadcast_shapes(f.shape[:-1], r.shape[:-1]), 0), np.nan)
+            pix = np.broadcast_shapes(f.shape[:-1], r.shape[:-1])
+            cand = np.full((*pix, 0), np.nan)
             cand_k = cand
+            other = other_k = np.full(pix, np.nan)
             method = "tip position given"
         else:
             if n_cols < 2:
                 raise ContactresInputError("tip_position=None needs two measured modes (columns)")
-            r, cand, cand_k, n_win = _two_modes(beta, mode_arr, measured, g, mode_tolerance)
+            r, cand, cand_k, n_win, other, other_k = _two_modes(
+                beta, mode_arr, measured, g, mode_tolerance, half_q
+            )
             method = (
                 "two modes (first two measured columns), tip position from κ_a(r) = κ_b(r) "
                 "(Hurley & Turner 2007): the largest crossing r in [0.5, 1] (that further "
@@ -367,18 +420,24 @@ def invert_contact_resonance(
             )
         kappa_m, flags_m = kappa_on_branch(beta, mode_arr, r, g)
         flags_m = flags_m | _sensitivity_flags(beta, mode_arr, r, g, kappa_m)
+        # At or a hair below the free frequency (FREE_TOLERANCE): no contact, κ = 0 exactly.
+        free = np.real(beta**2) / FREE_ROOTS[mode_arr - 1] ** 2
+        free = measured & (free <= 1.0) & (free >= 1.0 - FREE_TOLERANCE)
+        kappa_m = np.where(free, 0.0, kappa_m)
+        flags_m = np.where(free, FLAG_NO_CONTACT, flags_m)
         flags_m = np.where(measured, flags_m, FLAG_NOT_MEASURED | FLAG_NOT_POSITIVE)
+        spring_m = _spring(kappa_m, half_q)
         sigma_m = k_c * np.imag(kappa_m) / (2.0 * np.pi * f) if q is not None else None
         if sigma_m is not None:
             sigma_m = np.where(no_q, np.nan, sigma_m)
-        usable = flags_m == 0
+        usable = (flags_m & ~FLAG_NO_CONTACT) == 0  # κ = 0 of no contact is a value
         if tip_position is not None:
-            kappa = _mean_where(np.real(kappa_m), usable)
+            kappa = _mean_where(spring_m, usable)
             averaged = usable
             used = measured
         else:
             used = _first_two(np.broadcast_to(measured, kappa_m.shape))[1]
-            kappa = _mean_where(np.real(kappa_m), used)
+            kappa = _mean_where(spring_m, used)
             averaged = used
         flags = np.bitwise_or.reduce(np.where(used, flags_m, 0), axis=-1)
         none = ~np.any(used, axis=-1)
@@ -392,7 +451,7 @@ def invert_contact_resonance(
             check = (usable & ~used) | wrong
         else:
             check = usable & (usable.sum(-1) > 1)[..., None]
-        k_chk = np.where(wrong, np.inf, np.real(kappa_m))
+        k_chk = np.where(wrong, np.inf, spring_m)
         hi = np.maximum(np.max(np.where(check, k_chk, -np.inf), axis=-1), kappa)
         lo = np.minimum(np.min(np.where(check, k_chk, np.inf), axis=-1), kappa)
         spread = np.where(check.any(axis=-1) & np.isfinite(kappa), (hi - lo) / kappa, np.nan)
@@ -407,6 +466,8 @@ def invert_contact_resonance(
         else:
             sigma = _mean_where(sigma_m, usable if tip_position is not None else used)
     normal = "closed form" if not (np.any(g[1]) or np.any(g[2])) else "4x4 determinant"
+    if q is not None:
+        method += "; with Q: Kelvin-Voigt contact, k* = k_c(Re κ + Im κ/(2Q)), σ = k_c Im κ/ω"
     return ContactResonanceResult(
         kappa=kappa,
         k_star=kappa * k_c,
@@ -415,7 +476,7 @@ def invert_contact_resonance(
         flags=flags.astype(int),
         candidates=cand,
         candidate_kappa=cand_k,
-        kappa_modes=np.real(kappa_m),
+        kappa_modes=spring_m,
         sigma_modes=sigma_m,
         flags_modes=flags_m.astype(int),
         mode_spread=spread,
@@ -423,6 +484,8 @@ def invert_contact_resonance(
         modes=modes,
         normalisation=cantilever.normalisation,
         method=f"{method}; κ per mode by the {normal}; normalisation {cantilever.normalisation}",
+        tip_position_other=np.broadcast_to(other, kappa.shape).copy(),
+        kappa_other=np.broadcast_to(other_k, kappa.shape).copy(),
     )
 
 
@@ -435,9 +498,10 @@ def _first_two(measured):
     return first_two, mask & measured
 
 
-def _two_modes(beta, mode_arr, measured, g, tolerance):
-    """(r[..., None], candidates, candidate κ, number of eligible crossings) of the two-mode
-    inversion; further measured modes choose among the crossings (module notes)."""
+def _two_modes(beta, mode_arr, measured, g, tolerance, half_q):
+    """(r[..., None], candidates, candidate κ, number of eligible crossings, the other r and its
+    κ) of the two-mode inversion; further measured modes choose among the crossings (module
+    notes). ``half_q``: 1/(2Q) per cell (or 0), for the Kelvin-Voigt spring of each mode."""
     shape = np.broadcast_shapes(beta.shape, *(np.shape(x) for x in g))
     pix_shape = shape[:-1]
     beta = np.broadcast_to(beta, shape)
@@ -445,9 +509,11 @@ def _two_modes(beta, mode_arr, measured, g, tolerance):
     first_two, crossing = _first_two(meas)
     b2 = np.take_along_axis(beta, first_two, axis=-1).reshape(-1, 2)
     m2 = mode_arr[first_two].reshape(-1, 2)
+    w = np.broadcast_to(half_q, shape)
+    w2 = np.take_along_axis(w, first_two, axis=-1).reshape(-1, 2)
     gf = tuple(np.broadcast_to(x[..., 0], pix_shape).reshape(-1) for x in g)
     n = b2.shape[0]
-    pix, r, kap = _crossings(b2[:, 0], m2[:, 0], b2[:, 1], m2[:, 1], gf)
+    pix, r, kap = _crossings(b2[:, 0], m2[:, 0], b2[:, 1], m2[:, 1], gf, (w2[:, 0], w2[:, 1]))
     order = np.lexsort((r, pix))
     pix, r, kap = pix[order], r[order], kap[order]
     counts = np.bincount(pix, minlength=n)
@@ -456,25 +522,36 @@ def _two_modes(beta, mode_arr, measured, g, tolerance):
     cand = np.full((n, k_max), np.nan)
     cand_k = np.full((n, k_max), np.nan)
     cand[pix, rank] = r
-    cand_k[pix, rank] = np.real(kap)
+    cand_k[pix, rank] = kap
     in_win = (cand >= 0.5) & (cand <= 1.0)
     # Further modes: κ of each at every candidate r, its largest deviation from the crossing's.
     extra = (meas & ~crossing).reshape(n, -1)
     dev = np.full((n, k_max), -np.inf)
     gk = tuple(x[:, None] for x in gf)
+    w_all = w.reshape(n, -1)
     for c in np.flatnonzero(extra.any(axis=0)):  # a loop over modes (<= 8), not over pixels
         k_c, f_c = kappa_on_branch(beta.reshape(n, -1)[:, c, None], mode_arr[c], cand, gk)
-        k_c = np.where((f_c & _CONTRADICTS) != 0, np.inf, np.real(k_c))  # module notes
+        k_c = np.where((f_c & _CONTRADICTS) != 0, np.inf, _spring(k_c, w_all[:, c, None]))
         dev = np.where(extra[:, c, None], np.fmax(dev, np.abs(k_c / cand_k - 1.0)), dev)
     checked = in_win & np.isfinite(dev)
     consistent = checked & (dev <= tolerance)
     decide = consistent.any(axis=-1, keepdims=True)  # else: the two-mode rule, flagged later
     eligible = np.where(decide, consistent, in_win)
     chosen = np.max(np.where(eligible, cand, -np.inf), axis=-1, initial=-np.inf)
+    # The crossing not taken: the largest other r in the window (the rejected one when a
+    # further mode decided).
+    rest = in_win & (cand != chosen[:, None])
+    other = np.max(np.where(rest, cand, -np.inf), axis=-1, initial=-np.inf)
+    at = np.argmax(np.where(rest, cand, -np.inf), axis=-1) if k_max else np.zeros(n, int)
+    other_k = np.take_along_axis(cand_k, at[:, None], axis=-1)[:, 0] if k_max else other
+    other_k = np.where(np.isfinite(other), other_k, np.nan)
     chosen = np.where(np.isfinite(chosen), chosen, np.nan)
+    other = np.where(np.isfinite(other), other, np.nan)
     return (
         chosen.reshape((*pix_shape, 1)),
         cand.reshape((*pix_shape, k_max)),
         cand_k.reshape((*pix_shape, k_max)),
         eligible.sum(axis=-1).reshape(pix_shape),
+        other.reshape(pix_shape),
+        other_k.reshape(pix_shape),
     )

@@ -175,6 +175,12 @@ AFM_INVERT_RESULTS = TableSchema(
         Column("tip_position_used", "-", "tip position r = L1/L (given, or the chosen crossing)"),
         Column("sigma_N_s_per_m", "N s/m", "contact damping σ (NaN without Q or k_c)"),
         Column("mode_spread", "-", "(max − min)/κ of the per-mode κ (inf: a mode contradicts r)"),
+        Column(
+            "tip_position_other",
+            "-",
+            "r solved from two modes: the crossing in [0.5, 1] not taken (several-crossings)",
+        ),
+        Column("kappa_other", "-", "κ at tip_position_other (the alternative's stiffness/k_c)"),
         Column("E_star_Pa", "Pa", "reduced modulus E* (Hertz or reference method)"),
         Column("M_sample_Pa", "Pa", "indentation modulus of the sample (tip compliance removed)"),
         Column("contact_radius_m", "m", "contact radius a (Hertz rows)"),
