@@ -1,8 +1,9 @@
 """Maps of k*, σ, tan δ, E* and M from (f, Q) maps (contactres.invert_cr_map).
 
 The maps are made with the forward model of the lever (contactres.contact_frequencies, tested
-against an independent beam elsewhere) from a chosen complex κ = κ′ + iκ″ per pixel; the moduli
-are checked against Hertz, the flat punch and the series law written out here.
+against an independent beam elsewhere) on a Kelvin-Voigt contact of chosen k* and tan δ per pixel
+(tests/conftest.py); the moduli are checked against Hertz, the flat punch and the series law
+written out here.
 """
 
 from __future__ import annotations
@@ -20,10 +21,9 @@ LEVER = cr.Cantilever((300e3,), 40.0, free_q_factors=(400.0,))  # Hz, N/m
 R_TIP = 0.95
 
 
-def lever_map(kappa):
-    """(f, Q) maps of mode 1 for the complex κ map (Q = f′/(2f″))."""
-    fc = cr.contact_frequencies(LEVER, kappa, R_TIP, modes=(1,))[..., 0]
-    return fc.real, fc.real / (2.0 * fc.imag)
+def lever_map(kelvin_voigt, k_star, tan_delta=0.0):
+    """(f, Q) maps of mode 1 on a Kelvin-Voigt contact k*, tan δ (tests/conftest.py)."""
+    return kelvin_voigt(LEVER, k_star, tan_delta, R_TIP)
 
 
 def hertz_k(e_star, radius, load):
@@ -32,14 +32,15 @@ def hertz_k(e_star, radius, load):
     return 2.0 * a * e_star
 
 
-def test_kstar_sigma_and_loss_tangent_of_a_damped_contact():
-    kappa = np.linspace(20.0, 150.0, 12).reshape(3, 4) * (1 + 1j * np.linspace(0.01, 0.2, 4))
-    f, q = lever_map(kappa)
+def test_kstar_sigma_and_loss_tangent_of_a_damped_contact(kelvin_voigt):
+    k_true = np.linspace(800.0, 6000.0, 12).reshape(3, 4)  # N/m
+    tan_true = np.linspace(0.01, 0.2, 4)
+    f, q = lever_map(kelvin_voigt, k_true, tan_true)
     ds = cr.invert_cr_map(f, q, LEVER, tip_position=R_TIP, pixel_size=20e-9)
-    np.testing.assert_allclose(ds["k_star_N_per_m"], kappa.real * 40.0, rtol=1e-9)
+    np.testing.assert_allclose(ds["k_star_N_per_m"], k_true, rtol=1e-9)
     omega = 2 * np.pi * f
-    np.testing.assert_allclose(ds["sigma_N_s_per_m"], 40.0 * kappa.imag / omega, rtol=1e-7)
-    np.testing.assert_allclose(ds["tan_delta"], kappa.imag / kappa.real, rtol=1e-7)
+    np.testing.assert_allclose(ds["sigma_N_s_per_m"], tan_true * k_true / omega, rtol=1e-8)
+    np.testing.assert_allclose(ds["tan_delta"], np.broadcast_to(tan_true, f.shape), rtol=1e-8)
     # A rigid tip: the sample's loss tangent is the contact's.
     np.testing.assert_allclose(ds["tan_delta_sample"], ds["tan_delta"], rtol=0)
     assert ds["x"].attrs["units"] == "m"
@@ -49,11 +50,11 @@ def test_kstar_sigma_and_loss_tangent_of_a_damped_contact():
     assert conv["modulus"]["method"] == "none" and conv["units"]["tan_delta"] == "1"
 
 
-def test_hertz_and_flat_punch_moduli_with_a_compliant_tip():
+def test_hertz_and_flat_punch_moduli_with_a_compliant_tip(kelvin_voigt):
     e_true = np.array([[2e9, 5e9], [40e9, 120e9]])  # reduced moduli, Pa
     radius, load, m_tip = 30e-9, 200e-9, 160e9
     k = hertz_k(e_true, radius, load)
-    f, q = lever_map(k / 40.0 * (1 + 0.03j))
+    f, q = lever_map(kelvin_voigt, k, 0.03)
     hertz = ModulusModel(tip_radius=radius, load=load, tip_modulus=m_tip)
     ds = cr.invert_cr_map(f, q, LEVER, tip_position=R_TIP, modulus=hertz)
     np.testing.assert_allclose(ds["E_star_Pa"], e_true, rtol=1e-8)
@@ -68,7 +69,7 @@ def test_hertz_and_flat_punch_moduli_with_a_compliant_tip():
     np.testing.assert_allclose(ds["M_Pa"], ds["E_star_Pa"], rtol=0)
 
 
-def test_reference_region_calibrates_each_map_of_a_worn_tip():
+def test_reference_region_calibrates_each_map_of_a_worn_tip(kelvin_voigt):
     """Two regions (a reference of 3 GPa, a sample of 9 GPa) imaged with a sharp tip and again
     after wear (a blunter tip): each map, calibrated against its own reference region, gives
     the sample's modulus without the tip radius (Killgore et al. 2011)."""
@@ -77,15 +78,15 @@ def test_reference_region_calibrates_each_map_of_a_worn_tip():
     e[:, :2] = m_ref  # the reference: columns 0-1
     model = ModulusModel(reference=(0, 4, 0, 2), reference_modulus=m_ref)
     for radius in (10e-9, 35e-9):
-        f, q = lever_map(hertz_k(e, radius, load) / 40.0 + 0j)
+        f, q = lever_map(kelvin_voigt, hertz_k(e, radius, load), 0.02)
         ds = cr.invert_cr_map(f, q, LEVER, tip_position=R_TIP, modulus=model)
         np.testing.assert_allclose(ds["M_Pa"], e, rtol=1e-8)
         rec = json.loads(ds.attrs["conventions"])["modulus"]
         np.testing.assert_allclose(rec["reference_k_star_N_per_m"], hertz_k(m_ref, radius, load))
 
 
-def test_unmeasured_pixels_stay_empty_and_bad_maps_are_refused():
-    f, q = lever_map(np.full((2, 3), 50.0 + 1j))
+def test_unmeasured_pixels_stay_empty_and_bad_maps_are_refused(kelvin_voigt):
+    f, q = lever_map(kelvin_voigt, np.full((2, 3), 2000.0), 0.02)
     f[0, 0], q[1, 2] = 0.0, np.nan
     ds = cr.invert_cr_map(f, q, LEVER, tip_position=R_TIP)
     assert np.isnan(ds["k_star_N_per_m"][0, 0]) and ds["flags"][0, 0] != 0

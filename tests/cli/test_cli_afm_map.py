@@ -39,13 +39,15 @@ def _ok(r):
 
 
 def _forward(ds, k_c):
-    """The lever's mode-1 resonance (Hz) and Q at the k* and σ of the map, by the forward model
-    (κ = (k* + iωσ)/k_c, a lever without free damping)."""
+    """The lever's mode-1 resonance (Hz) and Q at the k* and σ of the map, by the forward model:
+    the Kelvin-Voigt contact at the complex frequency ω_c = ω(1 + i/(2Q)) of the map's f and Q,
+    κ_c = (k* + iω_c σ)/k_c, on a lever without free damping."""
     lever = cr.Cantilever((F_FREE,), k_c)
-    omega = 2 * np.pi * ds["frequency_Hz"].values
-    kappa = (ds["k_star_N_per_m"].values + 1j * omega * ds["sigma_N_s_per_m"].values) / k_c
-    f = cr.contact_frequencies(lever, kappa, R_TIP, modes=(1,))[..., 0]
-    return f.real, f.real / (2 * f.imag)
+    f, q = ds["frequency_Hz"].values, ds["q_factor"].values
+    omega_c = 2 * np.pi * f * (1 + 0.5j / q)
+    kappa = (ds["k_star_N_per_m"].values + 1j * omega_c * ds["sigma_N_s_per_m"].values) / k_c
+    fc = cr.contact_frequencies(lever, kappa, R_TIP, modes=(1,))[..., 0]
+    return fc.real, fc.real / (2 * fc.imag)
 
 
 def test_dart_image_to_maps_report_and_reference_calibration(fixtures, tmp_path):
@@ -99,21 +101,19 @@ def test_bglib_sho_fit_inverts_as_the_direct_inversion(tmp_path, monkeypatch):
     np.testing.assert_allclose(ds["sigma_N_s_per_m"], direct.sigma, rtol=1e-12)
 
 
-def test_a_netcdf_grid_of_frequency_and_q(tmp_path):
+def test_a_netcdf_grid_of_frequency_and_q(tmp_path, kelvin_voigt):
     lever = cr.Cantilever((F_FREE,), 2.0)
-    kappa = np.linspace(20.0, 60.0, 6).reshape(2, 3) * (1 + 0.05j)
-    fc = cr.contact_frequencies(lever, kappa, R_TIP, modes=(1,))[..., 0]
-    grid = xr.Dataset(
-        {"frequency_Hz": (("y", "x"), fc.real), "q_factor": (("y", "x"), fc.real / (2 * fc.imag))}
-    )
+    k_true = np.linspace(40.0, 120.0, 6).reshape(2, 3)  # N/m
+    f, q = kelvin_voigt(lever, k_true, 0.05, R_TIP)
+    grid = xr.Dataset({"frequency_Hz": (("y", "x"), f), "q_factor": (("y", "x"), q)})
     grid.to_netcdf(tmp_path / "grid.nc")
     out = tmp_path / "g"
     lever = ["--spring-constant", 2.0, "--free-frequency", F_FREE, "--tip-position", R_TIP]
     _ok(run("afm", "map", tmp_path / "grid.nc", "--out", out, *lever, "--punch-radius", 5e-9))
     ds = xr.load_dataset(out / "afm_map.nc")
-    np.testing.assert_allclose(ds["k_star_N_per_m"], 2.0 * kappa.real, rtol=1e-9)
-    np.testing.assert_allclose(ds["tan_delta"], 0.05, rtol=1e-7)
-    np.testing.assert_allclose(ds["E_star_Pa"], 2.0 * kappa.real / 1e-8, rtol=1e-9)
+    np.testing.assert_allclose(ds["k_star_N_per_m"], k_true, rtol=1e-9)
+    np.testing.assert_allclose(ds["tan_delta"], 0.05, rtol=1e-8)
+    np.testing.assert_allclose(ds["E_star_Pa"], k_true / 1e-8, rtol=1e-9)
 
 
 def test_bad_files_and_options_are_one_line(fixtures, tmp_path):

@@ -1,5 +1,5 @@
 """The ``afm_map`` job on DART maps made here from the damped oscillator and the lever's forward
-model (contactres.contact_frequencies): the k* and tan δ put in come back out."""
+model on a Kelvin-Voigt contact (tests/conftest.py): the k* and tan δ put in come back out."""
 
 from __future__ import annotations
 
@@ -20,12 +20,12 @@ def oscillator(f, f0, q, a_drive):
     return amp, np.arctan2(f * f0 / q, f0**2 - f**2)
 
 
-def dart_map(kappa, offset_deg=30.0, sign=1.0, centre_shift=200.0):
+def dart_map(kelvin_voigt, k_star, tan_delta=0.04, offset_deg=30.0, sign=1.0, centre_shift=200.0):
     """A MapInput of DART layers (phases in degrees, ``sign`` +1: lag, −1: lead) whose contact
-    resonance is the lever's at κ; the tracked centre ``centre_shift`` Hz off the resonance."""
+    resonance is the lever's on a Kelvin-Voigt contact k*, tan δ (tests/conftest.py); the
+    tracked centre ``centre_shift`` Hz off the resonance."""
     lever = cr.Cantilever((F_FREE,), K_C, free_q_factors=(Q_FREE,))
-    fc = cr.contact_frequencies(lever, kappa, R_TIP, modes=(1,))[..., 0]
-    f0, q = fc.real, fc.real / (2 * fc.imag)
+    f0, q = kelvin_voigt(lever, k_star, tan_delta, R_TIP)
     centre = f0 + centre_shift
     a1, p1 = oscillator(centre - WIDTH / 2, f0, q, 1e-10)
     a2, p2 = oscillator(centre + WIDTH / 2, f0, q, 1e-10)
@@ -39,34 +39,34 @@ def dart_map(kappa, offset_deg=30.0, sign=1.0, centre_shift=200.0):
     return job.MapInput(centre, dart=(a1, a2, deg(p1), deg(p2)), note=note, pixel_size=1e-8)
 
 
-KAPPA = np.linspace(30.0, 90.0, 12).reshape(3, 4) * (1 + 0.04j)
+K_STAR = np.linspace(84.0, 252.0, 12).reshape(3, 4)  # N/m
 
 
 @pytest.mark.parametrize("sign", [1.0, -1.0])
-def test_dart_map_gives_back_kstar_and_loss_tangent(sign):
+def test_dart_map_gives_back_kstar_and_loss_tangent(sign, kelvin_voigt):
     settings = job.Settings(tip_position=R_TIP, modulus=ModulusModel(punch_radius=10e-9))
-    result = job.run(dart_map(KAPPA, sign=sign), settings)
+    result = job.run(dart_map(kelvin_voigt, K_STAR, sign=sign), settings)
     ds = result.dataset
-    np.testing.assert_allclose(ds["k_star_N_per_m"], K_C * KAPPA.real, rtol=1e-8)
+    np.testing.assert_allclose(ds["k_star_N_per_m"], K_STAR, rtol=1e-8)
     np.testing.assert_allclose(ds["tan_delta"], 0.04, rtol=1e-6)
-    np.testing.assert_allclose(ds["E_star_Pa"], K_C * KAPPA.real / 20e-9, rtol=1e-8)
+    np.testing.assert_allclose(ds["E_star_Pa"], K_STAR / 20e-9, rtol=1e-8)
     assert not ds["dart_flags"].values.any()
     assert result.conventions["dart"]["phase_sign"] == ("lag" if sign > 0 else "lead")
     assert result.conventions["lever"]["spring_constant_N_per_m"]["note"] == K_C
     assert result.summary["pixels_with_k_star"] == 12
 
 
-def test_the_option_wins_over_the_note_and_both_are_reported():
+def test_the_option_wins_over_the_note_and_both_are_reported(kelvin_voigt):
     settings = job.Settings(spring_constant=2 * K_C, tip_position=R_TIP)
-    result = job.run(dart_map(KAPPA), settings)
+    result = job.run(dart_map(kelvin_voigt, K_STAR), settings)
     lever = result.conventions["lever"]["spring_constant_N_per_m"]
     assert (lever["option"], lever["note"], lever["used"]) == (2 * K_C, K_C, 2 * K_C)
     # κ is read from the frequencies alone: the stiffness scales with the k_c used.
-    np.testing.assert_allclose(result.dataset["k_star_N_per_m"], 2 * K_C * KAPPA.real, rtol=1e-8)
+    np.testing.assert_allclose(result.dataset["k_star_N_per_m"], 2 * K_STAR, rtol=1e-8)
 
 
-def test_missing_constants_are_one_line_naming_the_option():
-    data = dart_map(KAPPA)
+def test_missing_constants_are_one_line_naming_the_option(kelvin_voigt):
+    data = dart_map(kelvin_voigt, K_STAR)
     note = {"ThermalFrequency": F_FREE, "DFRTFrequencyWidth": WIDTH}
     no_k = job.MapInput(data.frequency, dart=data.dart, note=note)
     with pytest.raises(ContactresInputError, match=r"no SpringConstant.*--spring-constant"):
