@@ -7,8 +7,11 @@ Q). Per pixel:
 
 1. κ = k*/k_c and the contact damping σ (N s/m) by :func:`contactres.invert_contact_resonance`
    (mode 1, the tip position r = L1/L given; optional lateral spring ratio, tip height and tilt).
-   The contact is a spring k* in parallel with a dashpot σ: k* + iωσ = k_c (κ′ + iκ″),
-   ω = 2πf (Yuya, Hurley & Turner, J. Appl. Phys. 104, 074916 (2008)).
+   The contact is a spring k* in parallel with a dashpot σ (Kelvin-Voigt; Yuya, Hurley &
+   Turner, J. Appl. Phys. 104, 074916 (2008)). It enters the lever's characteristic equation at
+   the complex eigenfrequency ω_c = ω(1 + i/(2Q)), ω = 2πf, as k_c κ_c = k* + iω_c σ, so
+   σ = k_c Im κ_c/ω and k* = k_c (Re κ_c + Im κ_c/(2Q)) (the reading of
+   :func:`~contactres.invert_contact_resonance`).
 2. The reduced modulus E* and the sample's indentation modulus M, one of
 
    * Hertz, tip radius R and load P: E* = √(k*³/(6RP)) (Johnson, Contact Mechanics, Eqs.
@@ -26,7 +29,7 @@ Q). Per pixel:
    1/E* ≤ 1/M_tip).
 3. The loss tangent (Yuya et al. 2008; D. C. Hurley et al., Macromolecules 46, 9396 (2013)):
 
-       tan δ = ω σ / k* = κ″/κ′.
+       tan δ = ω σ / k*.
 
    Its assumptions: the storage and the loss of the contact share one contact geometry, so that
    k* = 2a E*′ and ωσ = 2a E*″ with the same contact radius a (Hertz or flat punch, a set by the
@@ -332,7 +335,7 @@ def invert_cr_map(
     }
     inv_bits = sorted({b for v in np.unique(res.flags) for b in flag_names(v)})
     record_all = {
-        "model": "damped harmonic contact: k* + i ω σ = k_c (κ′ + iκ″), ω = 2πf",
+        "model": "Kelvin-Voigt contact: k* + i ω_c σ = k_c κ_c at ω_c = 2πf (1 + i/(2Q))",
         "inversion": res.method,
         "mode": 1,
         "tip_position": float(tip_position),
@@ -342,7 +345,7 @@ def invert_cr_map(
         "spring_constant_N_per_m": float(cantilever.spring_constant),
         "free_frequency_Hz": float(cantilever.free_frequencies[0]),
         "free_q": None if cantilever.free_q_factors is None else cantilever.free_q_factors[0],
-        "tan_delta": "tan δ = ω σ / k* = κ″/κ′ (Yuya, Hurley & Turner 2008; Hurley et al. "
+        "tan_delta": "tan δ = ω σ / k*, ω = 2πf (Yuya, Hurley & Turner 2008; Hurley et al. "
         "2013): one contact geometry for storage and loss, the lever's damping removed via "
         "its free Q; tan_delta_sample: of M = 1/(1/E* − 1/M_tip)",
         "modulus": record,
