@@ -145,3 +145,60 @@ def test_bad_files_and_options_are_one_line(fixtures, tmp_path):
     ).to_netcdf(zeros)
     r = run("afm", "map", zeros, *base, "--spring-constant", 2.0)
     one_line_error(r, "zeros.nc", "no frequency")
+
+
+def test_a_series_calibrates_each_map_against_its_reference(tmp_path, kelvin_voigt):
+    """Two maps of one sample (a 3 GPa reference in columns 0-1, 9 GPa beside it), the second
+    with a worn, blunter tip: each map's own reference region gives the same moduli, and the
+    reference stiffness of each map shows the wear (Killgore et al. 2011)."""
+    lever = cr.Cantilever((F_FREE,), 2.0)
+    e = np.full((3, 5), 9e9)
+    e[:, :2] = 3e9
+    files = []
+    for name, radius in (("sharp", 10e-9), ("worn", 30e-9)):
+        a = (3 * 50e-9 * radius / (4 * e)) ** (1 / 3)  # Hertz at 50 nN, a rigid tip
+        f, q = kelvin_voigt(lever, 2 * a * e, 0.02, R_TIP)
+        path = tmp_path / f"{name}.nc"
+        xr.Dataset({"frequency_Hz": (("y", "x"), f), "q_factor": (("y", "x"), q)}).to_netcdf(path)
+        files.append(path)
+    lever_options = ["--spring-constant", 2.0, "--free-frequency", F_FREE, "--tip-position", R_TIP]
+    ref = ["--reference", "0:3,0:2", "--reference-modulus", 3e9]
+    out = tmp_path / "series"
+    r = _ok(run("afm", "map", *files, "--out", out, *lever_options, *ref))
+    assert r.output.count("wrote") == 2
+    k_ref = []
+    for name in ("sharp", "worn"):
+        ds = xr.load_dataset(out / name / "afm_map.nc")
+        np.testing.assert_allclose(ds["M_Pa"], e, rtol=1e-8)
+        record = json.loads((out / name / "afm_map.json").read_text())
+        k_ref.append(record["conventions"]["modulus"]["reference_k_star_N_per_m"])
+    assert k_ref[1] / k_ref[0] == pytest.approx(3 ** (1 / 3), rel=1e-8)  # k* ∝ R^(1/3)
+
+
+def test_scale_bar_is_a_round_length_near_a_fifth_of_the_width():
+    from contactres.report._cr_map_figures import scale_bar_length
+
+    assert scale_bar_length(2e-6) == pytest.approx(2e-7)
+    assert scale_bar_length(5e-6) == pytest.approx(1e-6)
+    assert scale_bar_length(3.3e-6) == pytest.approx(5e-7)
+    assert scale_bar_length(1e-7) == pytest.approx(2e-8)
+
+
+def test_a_series_on_a_dask_cluster_equals_the_serial_run(fixtures, tmp_path):
+    distributed = pytest.importorskip("distributed", reason="dask.distributed not installed")
+    files = []
+    for name in ("a", "b"):
+        files.append(tmp_path / f"{name}.ibw")
+        fixtures.write_dart_ibw(files[-1], points=12, lines=8)
+    options = ["--free-frequency", F_FREE, "--tip-position", R_TIP]
+    _ok(run("afm", "map", *files, "--out", tmp_path / "serial", *options))
+    with distributed.LocalCluster(
+        n_workers=1, processes=False, threads_per_worker=1, dashboard_address=None
+    ) as cluster:
+        address = cluster.scheduler_address
+        _ok(run("afm", "map", *files, "--out", tmp_path / "dask", *options, "--scheduler", address))
+    for name in ("a", "b"):
+        serial = xr.load_dataset(tmp_path / "serial" / name / "afm_map.nc")
+        clustered = xr.load_dataset(tmp_path / "dask" / name / "afm_map.nc")
+        assert np.isfinite(serial["k_star_N_per_m"]).all()
+        assert serial.equals(clustered)

@@ -33,7 +33,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..errors import ContactresInputError
+from ..errors import ContactresInputError, MissingExtraError
 from .contract import JobResult, Progress, say
 
 if TYPE_CHECKING:
@@ -317,9 +317,13 @@ def series(paths, settings: Settings, scheduler: str | None = None, progress=Non
     task per map; each map calibrated against its own reference region: tip wear)."""
     if scheduler is None:
         return [run(p, settings, progress) for p in paths]
-    from ..polycrystal import require_maps_extra
-
-    distributed = require_maps_extra("distributed")
+    try:
+        import distributed
+    except ImportError as exc:  # pragma: no cover - the test environment has the extra
+        raise MissingExtraError(
+            "dask.distributed is needed for --scheduler; install the optional extra: "
+            "pip install 'contactres[maps]'"
+        ) from exc
     say(progress, f"{len(paths)} maps on {scheduler}")
     with distributed.Client(scheduler) as client:
         return client.gather(client.map(run, list(paths), settings=settings, pure=False))
