@@ -100,3 +100,13 @@ def test_unmeasured_pixels_stay_empty_and_bad_maps_are_refused(kelvin_voigt):
         cr.invert_cr_map(f, q[:, :2], LEVER)
     with pytest.raises(ContactresInputError, match="one way to the modulus"):
         ModulusModel(tip_radius=1e-8, load=1e-7, punch_radius=1e-8)
+
+
+def test_a_pixel_at_the_free_resonance_has_no_contact_and_no_loss_tangent():
+    lever = cr.Cantilever((88e3,), 3.0, free_q_factors=(150.0,))  # Hz, N/m
+    ds = cr.invert_cr_map(np.array([[88e3]]), np.array([[150.0]]), lever, tip_position=0.95)
+    assert float(ds["k_star_N_per_m"][0, 0]) == 0.0
+    assert np.isnan(ds["tan_delta"][0, 0]) and np.isnan(ds["M_Pa"][0, 0])
+    bits = json.loads(ds.attrs["conventions"])["flag_bits"]["flags"]
+    flags = int(ds["flags"][0, 0])
+    assert [name for bit, name in bits.items() if flags & int(bit)] == ["no_contact"]

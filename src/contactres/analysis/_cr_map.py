@@ -55,7 +55,7 @@ import numpy as np
 from ..errors import ContactresInputError, MissingExtraError
 from ..units import QUANTITIES
 from ..validation import positive
-from ._inversion import ModulusFlag, modulus_from_contact_stiffness
+from ._inversion import FLAG_DESCRIPTIONS, ModulusFlag, modulus_from_contact_stiffness
 
 __all__ = ["CR_MAP_UNITS", "ModulusModel", "invert_cr_map", "reference_region"]
 
@@ -231,6 +231,15 @@ def _sample_loss_tangent(e_star, tan_delta, tip_modulus):
         return np.where(m.real > 0, m.imag / m.real, np.nan)
 
 
+def _flag_bits(flag_names) -> dict:
+    """What each bit of ``flags`` and ``modulus_flags`` means (JSON: bit value as text)."""
+    bits = {str(1 << i): flag_names(1 << i) for i in range(31)}
+    return {
+        "flags": {k: v[0] for k, v in bits.items() if v},
+        "modulus_flags": {str(int(f)): text for f, text in FLAG_DESCRIPTIONS.items()},
+    }
+
+
 def invert_cr_map(
     frequency,
     q_factor,
@@ -314,7 +323,8 @@ def invert_cr_map(
     k_star = np.where(np.isfinite(res.k_star), res.k_star, np.nan)
     sigma = res.sigma
     with np.errstate(all="ignore"):
-        tan_delta = 2.0 * np.pi * f * sigma / k_star
+        # No loss tangent without a contact spring (κ = 0: flagged no_contact by the inversion).
+        tan_delta = np.where(k_star > 0, 2.0 * np.pi * f * sigma / k_star, np.nan)
     e_star, m_s, radius, m_flags, record = _moduli(k_star, model, f.shape)
     tan_sample = _sample_loss_tangent(e_star, tan_delta, model.tip_modulus)
     if record["method"] == "none":
@@ -350,6 +360,7 @@ def invert_cr_map(
         "its free Q; tan_delta_sample: of M = 1/(1/E* − 1/M_tip)",
         "modulus": record,
         "flags_present": inv_bits,
+        "flag_bits": _flag_bits(flag_names),
         "units": dict(CR_MAP_UNITS),
         "pixel_size_m": None if pixel_size is None else np.ravel(pixel_size).tolist(),
         **(conventions or {}),

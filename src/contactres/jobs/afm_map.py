@@ -211,7 +211,7 @@ def _phase_sign(delta, sign: str) -> tuple[str, str]:
 
 def _reconstruct(data: MapInput, s: Settings):
     """(f0, Q, extra variables, conventions) of a DART map."""
-    from ..analysis import dart_reconstruction
+    from ..analysis import DART_FLAGS, dart_reconstruction
 
     width_note = _note_number(data.note, "DFRTFrequencyWidth")
     width = s.frequency_width if s.frequency_width is not None else width_note
@@ -243,6 +243,7 @@ def _reconstruct(data: MapInput, s: Settings):
             "phase_sign": sign,
             "phase_sign_chosen": how,
             "min_sin_delta": s.min_sin,
+            "flag_bits": {str(bit): text for bit, (_, text) in DART_FLAGS.items()},
         }
     }
     return r.f0, r.Q, extra, conv
