@@ -266,3 +266,25 @@ def test_afm_modewise_needs_the_free_frequency_of_every_mode_used(afm_table, tmp
     r, _ = _invert(frame, tmp_path, "--normalisation", "modewise")
     assert r.exit_code != 0 and "f2_free_Hz" in r.output and "line 2" in r.output
     assert "Traceback" not in r.output and "[" not in r.output.split("error:")[1]
+
+
+def test_afm_invert_no_contact_row_and_the_crossing_not_taken(afm_table, tmp_path):
+    # Row 1 at the free resonance: κ = 0 and k* = 0 flagged no-contact (was an empty row).
+    # Rows 2-3 with r blank and both modes: r solved, and the other crossing of the two modes
+    # (near r = 0.66 for this lever, its κ larger) in the columns beside it.
+    path, k_star = afm_table
+    lever = Cantilever((160e3, 1003e3), 40.0)
+    f = contact_frequencies(lever, k_star / 40.0, 0.95, modes=(1, 2))
+    frame = pd.read_csv(path).assign(fc2_Hz=f[:, 1], tip_position=[0.95, np.nan, np.nan])
+    frame.loc[0, "fc1_Hz"] = 160e3
+    frame.loc[0, "fc2_Hz"] = np.nan
+    r, out = _invert(frame, tmp_path)
+    assert r.exit_code == 0, r.output
+    assert out.loc[0, "kappa"] == 0 and out.loc[0, "k_star_N_per_m"] == 0
+    assert out.loc[0, "flags"] == "no-contact" and np.isnan(out.loc[0, "M_sample_Pa"])
+    assert np.allclose(out["tip_position_used"][1:], 0.95, atol=1e-9)
+    assert np.allclose(out["k_star_N_per_m"][1:], k_star[1:], rtol=1e-8)
+    assert (out["flags"][1:] == "several-crossings").all()
+    other = out["tip_position_other"][1:].to_numpy()
+    assert np.all((other > 0.6) & (other < 0.7)) and np.isnan(out.loc[0, "tip_position_other"])
+    assert np.all(out["kappa_other"][1:] > out["kappa"][1:])

@@ -158,6 +158,9 @@ def test_free_frequency_gives_zero_stiffness_flagged_no_contact():
         damped_lever, f_free[None, :1], 0.95, q_factors=[[300.0]], modes=(1,)
     )
     assert res.kappa[0] == 0.0 and res.sigma[0] == 0.0 and res.flags[0] == FLAG_NO_CONTACT
+    # the lever's Q known, the contact's not: still the free frequency, still no contact
+    res = invert_contact_resonance(damped_lever, f_free[None, :], 0.95)
+    assert res.kappa[0] == 0.0 and np.array_equal(res.flags_modes, [[FLAG_NO_CONTACT] * 3])
 
 
 def test_a_hair_below_the_free_frequency_is_no_contact_further_below_is_below_free():

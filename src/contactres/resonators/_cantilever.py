@@ -6,13 +6,20 @@ x = L; the tip sits at L1 = r L (r = ``tip_position`` in (0, 1]). With ξ = x/L 
 (U. Rabe, K. Janser, W. Arnold, "Vibrations of free and surface-coupled atomic force microscope
 cantilevers: theory and experiment", Rev. Sci. Instrum. 67, 3281 (1996)).
 
-Tip springs (derived here, not taken from the paper). The tip apex lies a height h below the
-beam axis; a rotation θ = y′ of the cross-section moves it along the axis by hθ, so the apex
-displacement in the beam frame is (u_x, u_y) = (hθ, y). The sample normal makes the angle φ
-(``tilt``, degrees; φ > 0 for the usual mounting with the free end nearer the sample) with the
-beam's y axis: n = (−sin φ, cos φ), t = (cos φ, sin φ). A normal spring k* and a lateral spring
-k_lat = α k* (α = ``lateral_ratio``) store ½ k* (u·n)² + ½ k_lat (u·t)², i.e. a 2 x 2 stiffness
-on (y, θ) at L1, written with k_c = 3EI/L³ and η = h/L (``tip_height``) as
+Tip springs (derived here, not taken from the paper). The beam frame: x along the lever from
+the clamp to the free end, y normal to it pointing away from the sample; the tip hangs on the
+sample's side, its apex a height h below the axis. A rotation θ = y′ of the cross-section
+moves the apex along the axis by hθ, so its displacement in the beam frame is
+(u_x, u_y) = (hθ, y). The tilt φ (``tilt``, degrees) is the angle from the sample's surface to
+the lever's axis, **positive when the free end is nearer the sample than the clamp** (the
+usual mounting, about 10-12°): then the sample's outward normal is n = (−sin φ, cos φ) and its
+tangent t = (cos φ, sin φ) in the beam frame, and a rotation θ > 0 pushes the apex towards the
+sample (u·n = y cos φ − hθ sin φ). A lever mounted the other way (free end farther from the
+sample) is not modelled; reading one convention for the other changes κ by per cent where the
+lateral spring differs from the normal one (α ≠ 1; at α = 1 the tilt drops out). A normal
+spring k* and a lateral spring k_lat = α k* (α = ``lateral_ratio``) store
+½ k* (u·n)² + ½ k_lat (u·t)², i.e. a 2 x 2 stiffness on (y, θ) at L1, written with
+k_c = 3EI/L³ and η = h/L (``tip_height``) as
 
     K_yy = k* g_yy,  K_yθ = k* L g_yθ,  K_θθ = k* L² g_θθ,
     g_yy = cos²φ + α sin²φ,  g_yθ = −η sin φ cos φ (1 − α),  g_θθ = η² (sin²φ + α cos²φ).
@@ -192,7 +199,8 @@ def tip_coefficients(lateral_ratio=0.0, tip_height=0.0, tilt=0.0):
     ----------
     lateral_ratio : α = k_lat/k*, >= 0
     tip_height : η = h/L, tip height over lever length, >= 0
-    tilt : φ, lever tilt, degrees in [0, 90)
+    tilt : φ, degrees in [0, 90): the angle from the sample's surface to the lever's axis,
+        positive with the free end nearer the sample than the clamp (module notes)
     """
     a = nonnegative("lateral_ratio", lateral_ratio, "k_lat/k*, dimensionless")
     eta = nonnegative("tip_height", tip_height, "h/L, dimensionless")
@@ -213,6 +221,22 @@ def _check_position(tip_position):
     return r
 
 
+def _trig(x):
+    """(cos x, sin x, cosh x, sinh x), elementwise.
+
+    Real x: numpy's functions. Complex x (a damped mode): from e^{ix} and e^{x}, two complex
+    exponentials and their reciprocals instead of four complex trigonometric functions (each
+    of which evaluates real sines and hyperbolic functions again): 2.5 times faster on a map,
+    equal to within a few units of the last place of the O(1) entries it feeds (the rows and
+    the closed form take their differences anyway, e.g. sin q − sinh q ≈ −q³/3).
+    """
+    if not np.iscomplexobj(x):
+        return np.cos(x), np.sin(x), np.cosh(x), np.sinh(x)
+    e, h = np.exp(1j * x), np.exp(x)
+    ie, ih = 1.0 / e, 1.0 / h
+    return 0.5 * (e + ie), -0.5j * (e - ie), 0.5 * (h + ih), 0.5 * (h - ih)
+
+
 def normal_kappa(beta, tip_position) -> np.ndarray:
     """κ = k*/k_c (k_c = 3EI/L³) of a normal tip spring that makes β a root (closed form).
 
@@ -222,11 +246,12 @@ def normal_kappa(beta, tip_position) -> np.ndarray:
     """
     b = np.asarray(beta)
     p, q = b * np.asarray(tip_position), b * (1.0 - np.asarray(tip_position))
-    cp, sp, chp, shp = np.cos(p), np.sin(p), np.cosh(p), np.sinh(p)
-    cq, sq, chq, shq = np.cos(q), np.sin(q), np.cosh(q), np.sinh(q)
+    cp, sp, chp, shp = _trig(p)
+    cq, sq, chq, shq = _trig(q)
     d = (sq * chq - cq * shq) * (1.0 - cp * chp) - (sp * chp - cp * shp) * (1.0 + cq * chq)
     with np.errstate(divide="ignore", invalid="ignore"):
-        return 2.0 * b**3 * (1.0 + np.cos(b) * np.cosh(b)) / (3.0 * d)
+        cb, _, chb, _ = _trig(b)
+        return 2.0 * b**3 * (1.0 + cb * chb) / (3.0 * d)
 
 
 def _rows(beta, r, g):
@@ -239,8 +264,8 @@ def _rows(beta, r, g):
     g_yy, g_yt, g_tt = g
     b = np.asarray(beta)
     p, q = b * r, b * (1.0 - r)
-    cp, sp, chp, shp = np.cos(p), np.sin(p), np.cosh(p), np.sinh(p)
-    cq, sq, chq, shq = np.cos(q), np.sin(q), np.cosh(q), np.sinh(q)
+    cp, sp, chp, shp = _trig(p)
+    cq, sq, chq, shq = _trig(q)
     left = (  # y, y′/β, y″/β², y‴/β³ of the two clamped-end functions
         (cp - chp, sp - shp),
         (-sp - shp, cp - chp),
@@ -401,7 +426,8 @@ def contact_frequencies(
     cantilever : the free lever (its k_c defines κ)
     kappa : κ = k*/k_c, >= 0 (complex κ′ + iκ″ for a damped contact, κ″ >= 0)
     tip_position : r = L1/L in (0, 1]
-    lateral_ratio, tip_height, tilt : α = k_lat/k*, η = h/L, φ (degrees); all arguments broadcast
+    lateral_ratio, tip_height, tilt : α = k_lat/k*, η = h/L, φ (degrees from the sample's
+        surface, > 0 with the free end nearer the sample); all arguments broadcast
     modes : 1-based mode numbers to return
 
     Returns

@@ -19,14 +19,33 @@ the positive roots; none when N₀ < n (frequency below the free one: κ < 0, re
 branch continued through zero, the root of largest non-positive real part) or when there are too
 few positive roots (frequency at or above the κ → ∞ limit: κ = NaN).
 
+No contact. A frequency equal to its mode's free one (β = β_n⁰: 1 + cos β cosh β = 0) is
+κ = 0, where the closed form is 0/0 and rounding alone would decide between a tiny κ and
+"below free". Equal, or below by at most :data:`FREE_TOLERANCE` (1e-6 of f, the precision of
+a free resonance), gives κ = 0 exactly with the flag ``no_contact`` (and σ = 0); further below
+stays ``below_free``. Just above the free frequency κ is small and positive, as the model says
+(flagged ``insensitive``).
+
 Two modes, tip position unknown (D. C. Hurley and J. A. Turner, "Measurement of Poisson's ratio
 with contact-resonance atomic force microscopy", J. Appl. Phys. 102, 033509 (2007), the
-two-mode method): one contact, so κ_a(r) = κ_b(r). Δ(r) = Re κ_a − Re κ_b is scanned on a grid
-of r in (0, 1] (:data:`R_GRID`, with one point past 1 so that r = 1 is bracketed), every sign
-change between finite values is refined by bisection on whole arrays of (pixel, interval)
-pairs, and a limit is kept only if ``|Δ| <= 1e-6 (|κ_a| + |κ_b|)`` there (a pole, where κ jumps
-through infinity, gives a huge ``|Δ|`` instead). The physical crossing is the largest r in
-[0.5, 1] (the tip sits near the free end); all crossings are returned as candidates.
+two-mode method): one contact, so κ_a(r) = κ_b(r). Δ(r) = κ_a − κ_b (the springs, below:
+damping) is scanned on a grid of r in (0, 1] (:data:`R_GRID`, with one point past 1 so that
+r = 1 is bracketed), every sign change between finite values is refined by bisection on whole
+arrays of (pixel, interval) pairs, and a limit is kept only if ``|Δ| <= 1e-6 (|κ_a| + |κ_b|)``
+there (a pole, where κ jumps through infinity, gives a huge ``|Δ|`` instead). A tip at r = 1
+with noisy frequencies puts the crossing on either side of 1: a crossing in (1, 1.005] is
+r = 1 when the two modes agree there within :data:`END_TOLERANCE` (a relative error of 1e-7
+in f2 sent such a pixel to the far crossing near r = 0.62, κ off by a factor 2.6 to 4). The
+physical crossing is the largest r in [0.5, 1] (the tip sits near the free end): for a lever
+with its tip at r >= 0.8 the other crossing of modes 1 and 2 lies near r = 0.63-0.69, and an
+independent beam's third mode confirms the larger r and rejects the smaller
+(tests/resonators/test_cantilever_independent.py). Several crossings in the window are
+information, not a failure: the pixel keeps the largest r and its κ, is flagged
+``several_crossings``, and the next one is reported beside it (``tip_position_other``,
+``kappa_other``); all crossings are returned as candidates. Two modes alone cannot tell a
+tip at r < 0.75 from its partner crossing near 0.88, nor, with a lateral spring and κ ≳ 300,
+the tip from a third crossing of the saturated modes just below r = 1: a third measured mode
+decides (below).
 
 Three or more modes (the consistency check). The crossing still comes from the first two
 measured modes; every further measured mode gives its own κ at each candidate r. A candidate
@@ -42,8 +61,16 @@ solved). The Euler-Bernoulli lever is the model being checked: a real lever (tip
 trapezoidal section, a tip not at a point) can disagree by a few per cent between modes,
 which is why the default tolerance is 5 % and not the accuracy of the frequencies.
 
-Damping: σ = k_c κ″/ω (N s/m), ω = 2πf, from complex κ = κ′ + iκ″; with the free lever's Q
-known the reference frequency is complex too, so a lossless contact gives σ = 0.
+Damping. A quality factor Q makes the mode's frequency complex, ω_c = ω(1 + i/(2Q)), ω = 2πf,
+and the root of the characteristic equation at ω_c is a complex κ_c = κ′ + iκ″. The contact
+is a Kelvin-Voigt spring and dashpot, k* + iω_c σ at that complex frequency, so
+k_c κ_c = k* − (ω/(2Q)) σ + iωσ exactly: σ = k_c κ″/ω (N s/m) and k* = k_c (κ′ + κ″/(2Q)).
+Taking k* = k_c κ′ instead is off by κ″/(2Qκ′), ~1e-3 (8e-4 at Q = 30, 5e-4 at Q = 47; a
+contact that sets Q gives κ″/κ′ ≈ 1/(sQ), s = d ln f/d ln κ), the difference independent
+checks found against the exact complex root. The lever's own loss, with its free Q known,
+enters as a complex bending stiffness (β = β_ref √(ω/ω_ref), ω_ref complex;
+:class:`Cantilever`), so a lossless contact gives σ = 0. The two-mode crossing compares
+the springs κ′ + κ″/(2Q).
 """
 
 from __future__ import annotations
@@ -356,9 +383,11 @@ def invert_contact_resonance(
     frequencies : (..., n_modes) contact resonances, Hz (NaN = not measured)
     tip_position : r = L1/L in (0, 1], broadcasting with the pixels; None: from two modes
         (the first two measured columns of each pixel), module notes
-    q_factors : (..., n_modes) contact-resonance quality factors, or None (σ = NaN)
-    lateral_ratio, tip_height, tilt : α = k_lat/k*, η = h/L, φ (degrees), broadcasting with the
-        pixels (:func:`~contactres.resonators._cantilever.tip_coefficients`)
+    q_factors : (..., n_modes) contact-resonance quality factors, or None (σ = NaN); with
+        them κ is the spring of a Kelvin-Voigt contact (module notes: damping)
+    lateral_ratio, tip_height, tilt : α = k_lat/k*, η = h/L, φ (degrees from the sample's
+        surface, > 0 with the free end nearer the sample), broadcasting with the pixels
+        (:func:`~contactres.resonators._cantilever.tip_coefficients`)
     modes : mode number (1-based) of each column; default 1..n_modes
     mode_tolerance : relative disagreement of κ between modes beyond which a pixel is flagged
         ``inconsistent_modes``; with r unknown it also picks the crossing that a third mode
@@ -367,6 +396,9 @@ def invert_contact_resonance(
     Returns
     -------
     ContactResonanceResult
+        A frequency at its mode's free one, or below it by at most :data:`FREE_TOLERANCE`,
+        gives κ = 0 flagged ``no_contact``; two modes with several crossings give the largest
+        r in [0.5, 1], flagged ``several_crossings``, the next in ``tip_position_other``.
     """
     f = np.asarray(frequencies, dtype=float)
     f = f[None] if f.ndim == 0 else f
@@ -421,7 +453,9 @@ def invert_contact_resonance(
         kappa_m, flags_m = kappa_on_branch(beta, mode_arr, r, g)
         flags_m = flags_m | _sensitivity_flags(beta, mode_arr, r, g, kappa_m)
         # At or a hair below the free frequency (FREE_TOLERANCE): no contact, κ = 0 exactly.
-        free = np.real(beta**2) / FREE_ROOTS[mode_arr - 1] ** 2
+        # Compared in real frequencies: the model's free f_n = f_ref (β_n⁰/β_ref)², whatever Q.
+        b_ref, w_ref = cantilever.reference(mode_arr)
+        free = f / (np.real(w_ref) / (2.0 * np.pi) * (FREE_ROOTS[mode_arr - 1] / b_ref) ** 2)
         free = measured & (free <= 1.0) & (free >= 1.0 - FREE_TOLERANCE)
         kappa_m = np.where(free, 0.0, kappa_m)
         flags_m = np.where(free, FLAG_NO_CONTACT, flags_m)

@@ -457,7 +457,7 @@ AFM_TABLE = TableSchema(
         _col(
             "tilt_deg",
             "deg",
-            "tilt of the lever to the sample, free end down",
+            "tilt of the lever from the sample's surface, > 0 with the free end nearer it",
             interval("deg", 0.0, 60.0),
         ),
         _col("tip_radius_m", "m", "tip radius R (Hertz)", plausible("sphere_radius")),
