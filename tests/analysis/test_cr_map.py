@@ -112,3 +112,15 @@ def test_a_pixel_at_the_free_resonance_has_no_contact_and_no_loss_tangent():
     bits = json.loads(ds.attrs["conventions"])["flag_bits"]["flags"]
     flags = int(ds["flags"][0, 0])
     assert [name for bit, name in bits.items() if flags & int(bit)] == ["no_contact"]
+
+
+def test_a_tilted_lever_with_a_lateral_spring_is_inverted_as_it_was_made():
+    lever = cr.Cantilever((88e3,), 3.0)  # Hz, N/m
+    k_true = np.array([[20.0, 60.0], [150.0, 400.0]])  # N/m
+    tip = {"lateral_ratio": 0.8, "tip_height": 0.03, "tilt": 11.0}
+    f = cr.contact_frequencies(lever, k_true / 3.0, R_TIP, modes=(1,), **tip)[..., 0]
+    ds = cr.invert_cr_map(f, None, lever, tip_position=R_TIP, **tip)
+    np.testing.assert_allclose(ds["k_star_N_per_m"], k_true, rtol=1e-8)
+    assert np.isnan(ds["tan_delta"]).all()  # no Q: no damping, no loss tangent
+    conv = json.loads(ds.attrs["conventions"])
+    assert (conv["lateral_ratio"], conv["tip_height"], conv["tilt_deg"]) == (0.8, 0.03, 11.0)

@@ -62,6 +62,8 @@ def test_demo_writes_folder(tmp_path):
     r = run("demo", "--out", str(out))
     assert r.exit_code == 0, r.output
     assert (out / "crystals.csv").is_file()
+    cr_map = {"afm_map.json", "afm_map.nc", "afm_maps.png", "afm_histograms.png"}
+    assert cr_map <= {p.name for p in (out / "cr-map").iterdir()}
     # The coated substrate: paper 2's sphere on 250 nm of PMMA on fused silica. Its contact is
     # between Hertz on bare silica and Hertz on bulk PMMA (1 Hz storage constants).
     from contactres import Material, indentation_modulus, pmma

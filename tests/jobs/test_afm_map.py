@@ -103,3 +103,16 @@ def test_the_bundled_dart_image_gives_the_moduli_it_was_made_with():
     assert np.median(m[~film]) == pytest.approx(5e9 / (1 - 0.30**2), rel=0.01)
     assert np.median(tan[film]) == pytest.approx(0.04, rel=0.03)
     assert np.median(tan[~film]) == pytest.approx(0.01, rel=0.1)
+
+
+def test_without_a_free_q_the_result_warns_that_sigma_holds_the_lever_damping(kelvin_voigt):
+    data = dart_map(kelvin_voigt, K_STAR)
+    note = {k: v for k, v in data.note.items() if k != "ThermalQ"}
+    result = job.run(job.MapInput(data.frequency, dart=data.dart, note=note), job.Settings())
+    assert any("no free Q" in line for line in result.warnings)
+    assert result.conventions["lever"]["free_q"] == {
+        "option": None,
+        "note": None,
+        "note_key": "ThermalQ",
+        "used": None,
+    }

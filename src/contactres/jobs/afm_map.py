@@ -302,6 +302,11 @@ def run(
         ds[name] = (("y", "x"), values, {"units": unit})
     conventions = json.loads(ds.attrs["conventions"])
     warnings = []
+    if lever.free_q_factors is None and np.isfinite(ds["sigma_N_s_per_m"].values).any():
+        warnings.append(
+            "no free Q (ThermalQ in the note, or --free-q): σ and tan δ include the lever's own "
+            "damping"
+        )
     if not np.isfinite(ds["k_star_N_per_m"].values).any():
         warnings.append("no pixel gave a contact stiffness: check the lever's constants")
     return Result(
