@@ -288,3 +288,18 @@ def test_afm_invert_no_contact_row_and_the_crossing_not_taken(afm_table, tmp_pat
     other = out["tip_position_other"][1:].to_numpy()
     assert np.all((other > 0.6) & (other < 0.7)) and np.isnan(out.loc[0, "tip_position_other"])
     assert np.all(out["kappa_other"][1:] > out["kappa"][1:])
+
+
+def test_afm_reference_at_the_free_frequency_calibrates_nothing(afm_table, tmp_path):
+    # A reference resonance equal to the free one is no contact (κ_ref = 0): no reference
+    # modulus for that row (no division by k*_ref = 0, no error), the others still calibrate.
+    path, _ = afm_table
+    frame = pd.read_csv(path).drop(columns=["tip_radius_m"])
+    lever = Cantilever((160e3, 1003e3), 40.0)
+    frame["fc1_ref_Hz"] = contact_frequencies(lever, 30.0, 0.95, modes=(1,))[0]
+    frame.loc[0, "fc1_ref_Hz"] = 160e3
+    frame["M_ref_Pa"] = 100e9
+    r, out = _invert(frame, tmp_path)
+    assert r.exit_code == 0, r.output
+    assert np.isnan(out.loc[0, "M_sample_Pa"]) and out.loc[0, "modulus_method"] != "reference"
+    assert np.isfinite(out["M_sample_Pa"][1:]).all()

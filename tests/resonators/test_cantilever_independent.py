@@ -220,8 +220,8 @@ def test_the_tilt_sign_convention_matters_and_is_the_documented_one():
 @pytest.mark.parametrize("r", [0.9, 0.95, 1.0])
 def test_two_modes_give_the_physical_crossing_and_the_other_beside_it(r):
     # The FE lever's modes 1-2 with the tip at r: κ_a(r) = κ_b(r) has a second root near
-    # r ≈ 0.64-0.69. Judged by the FE's third mode, the crossing near the end is the lever
-    # (f3 reproduced), the other is not: the largest r is the physical one.
+    # r ≈ 0.64-0.69 (its partner). Judged by the FE's third mode, the crossing near the end is
+    # the lever (f3 reproduced), the other is not: the largest r is the physical one.
     kappa = np.array([3.0, 30.0, 100.0])
     stiffness = tip_stiffness(0.0, 0.0, 0.0)
     fe = np.array([fe_frequencies(k, r, stiffness) for k in kappa])

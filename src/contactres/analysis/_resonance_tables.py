@@ -4,9 +4,10 @@ The orchestration behind ``contactres rum invert`` and ``contactres afm invert``
 tables of :mod:`contactres.measurements` go through the oscillator models of
 :mod:`contactres.resonators` and the modulus step of :mod:`contactres.analysis._inversion`;
 the output keeps every input column and appends the results. Rows that the physics rejects
-(a contact resonance below the free one) are errors naming the line; rows that only cannot be
-inverted (no crossing of two modes, a mode without sensitivity) keep empty results and say why
-in ``flags``.
+(a contact resonance below the free one by more than
+:data:`~contactres.resonators.FREE_TOLERANCE`) are errors naming the line; a CR-AFM resonance at
+the free one is no contact (κ = 0, flag ``no-contact``); rows that only cannot be inverted (no
+crossing of two modes, a mode without sensitivity) keep empty results and say why in ``flags``.
 """
 
 from __future__ import annotations
@@ -346,7 +347,8 @@ def invert_afm_table(
                 back = invert_contact_resonance(
                     lever, freqs, tip_position=inv.tip_position[take], **geometry
                 )
-                refs[rows[take], j] = back.kappa
+                # a reference at its free frequency (κ = 0, no contact) calibrates nothing
+                refs[rows[take], j] = np.where(back.kappa > 0, back.kappa, np.nan)
     k_star = res["kappa"] * k_c
     # Without k_c, k* is unknown, but the reference method needs only ratios of k*: it runs on κ.
     col = {c: table[c].to_numpy(float) for c in _MODULUS_INPUTS}

@@ -88,12 +88,17 @@ def afm_invert(
     TABLE gives per row the free-lever resonances (f1_free_Hz ...), the spring constant at the
     free end k_c_N_per_m (3EI/L³), the tip position r = L1/L (blank: solved from two modes,
     the largest crossing r in [0.5, 1]), the contact resonances fc1_Hz ... (those given are the
-    modes used) and optional Q factors, lateral spring, tip height, tilt; for the modulus either
+    modes used) and optional Q factors, lateral spring, tip height, tilt (tilt_deg: degrees
+    from the sample's surface to the lever, positive with the free end nearer the sample, the
+    usual mounting); for the modulus either
     tip_radius_m and load_N (Hertz, E* = √(k*³/6RP)) or a reference sample (fc1_ref_Hz,
     M_ref_Pa; a second one fits the exponent), and M_tip_Pa. Other columns are copied to OUT.
     Euler-Bernoulli lever, k_c the end stiffness (U. Rabe et al., Rev. Sci. Instrum. 67, 3281
     (1996), renormalised by r³). With three modes and r blank, the third picks the crossing
-    it confirms; mode_spread says how far the modes disagree on κ. With --crystal (the
+    it confirms; with two, the other crossing is in tip_position_other and kappa_other;
+    mode_spread says how far the modes disagree on κ. A contact resonance at the free one (or
+    at most 1e-6 of f below it) is no contact: κ = 0, flag no-contact. With Q factors the
+    contact is a spring and a dashpot at the mode's complex frequency. With --crystal (the
     sample, and --surface) paper 1's dynamic correction is applied to the Hertz rows and
     reported (k_static_N_per_m, k_a, dcsf_real, dcsf_imag): every mode is corrected at its
     own frequency, K_static = k*/Re DCSF (J. Tian, Am. J. Eng. Appl. Sci. 3, 56 (2010),

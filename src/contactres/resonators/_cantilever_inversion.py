@@ -36,16 +36,17 @@ there (a pole, where κ jumps through infinity, gives a huge ``|Δ|`` instead). 
 with noisy frequencies puts the crossing on either side of 1: a crossing in (1, 1.005] is
 r = 1 when the two modes agree there within :data:`END_TOLERANCE` (a relative error of 1e-7
 in f2 sent such a pixel to the far crossing near r = 0.62, κ off by a factor 2.6 to 4). The
-physical crossing is the largest r in [0.5, 1] (the tip sits near the free end): for a lever
-with its tip at r >= 0.8 the other crossing of modes 1 and 2 lies near r = 0.63-0.69, and an
-independent beam's third mode confirms the larger r and rejects the smaller
-(tests/resonators/test_cantilever_independent.py). Several crossings in the window are
-information, not a failure: the pixel keeps the largest r and its κ, is flagged
+physical crossing is the largest r in [0.5, 1] (the tip sits near the free end): the crossings
+of modes 1 and 2 come in pairs placed nearly symmetrically about r ≈ 0.78 (normal spring: a tip
+at r = 0.8, 0.9, 1 has its partner at 0.77, 0.69, 0.64), so for the tips of real levers,
+r ≳ 0.8, the larger is the tip, and an independent beam's third mode confirms it and rejects
+the partner (tests/resonators/test_cantilever_independent.py). Several crossings in the
+window are information, not a failure: the pixel keeps the largest r and its κ, is flagged
 ``several_crossings``, and the next one is reported beside it (``tip_position_other``,
 ``kappa_other``); all crossings are returned as candidates. Two modes alone cannot tell a
-tip at r < 0.75 from its partner crossing near 0.88, nor, with a lateral spring and κ ≳ 300,
-the tip from a third crossing of the saturated modes just below r = 1: a third measured mode
-decides (below).
+tip at r < 0.78 from its partner above it (0.82 for r = 0.75), nor, with a lateral spring and
+κ ≳ 300, the tip from a third crossing of the saturated modes just below r = 1: a third
+measured mode decides (below).
 
 Three or more modes (the consistency check). The crossing still comes from the first two
 measured modes; every further measured mode gives its own κ at each candidate r. A candidate
