@@ -25,6 +25,17 @@ def _region(ctx, param, value):
     return tuple(int(g) for g in m.groups())
 
 
+def _map_name(ctx, param, value):
+    """A plain file name ending in .nc or .zarr (checked before the work)."""
+    from pathlib import Path
+
+    if Path(value).name != value or Path(value).suffix.lower() not in (".nc", ".zarr"):
+        raise click.BadParameter(
+            f"{value!r} is not a plain file name ending in .nc (NetCDF) or .zarr (Zarr)", ctx, param
+        )
+    return value
+
+
 @afm.command("map")
 @click.argument("files", nargs=-1, required=True, type=click.Path(exists=True))
 @click.option(
@@ -38,6 +49,7 @@ def _region(ctx, param, value):
     "--map-name",
     default="afm_map.nc",
     show_default=True,
+    callback=_map_name,
     help="File name of the map Dataset in the folder: .nc (NetCDF) or .zarr (Zarr store).",
 )
 @click.option(
