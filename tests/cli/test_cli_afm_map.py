@@ -136,6 +136,10 @@ def test_bad_files_and_options_are_one_line(fixtures, tmp_path):
     )
     one_line_error(run("afm", "map", good, *base, "--reference", "0-3"), "Y0:Y1,X0:X1")
     one_line_error(run("afm", "map", good, *base, "--map-name", "maps.h5"), ".nc", ".zarr")
+    (tmp_path / "again").mkdir()
+    twin = tmp_path / "again" / "good.ibw"
+    twin.write_bytes(good.read_bytes())
+    one_line_error(run("afm", "map", good, twin, *base), "good", "twice")
     one_line_error(
         run("afm", "map", good, *base, "--tip-radius", 2e-8, "--punch-radius", 5e-9),
         "one way to the modulus",

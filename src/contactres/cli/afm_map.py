@@ -219,6 +219,13 @@ def afm_map(
         phase_sign=phase_sign,
     )
 
+    stems = [Path(f).stem for f in files]
+    if len(files) > 1 and len(set(stems)) < len(stems):
+        twice = sorted({s for s in stems if stems.count(s) > 1})
+        raise ContactresInputError(
+            f"a series writes one subfolder per file name: {', '.join(twice)} occurs twice"
+        )
+
     def progress(text):
         step("afm map", text)
 
