@@ -94,6 +94,7 @@ TOP_LEVEL = [
     "coupled_resonance",
     "crystal_names",
     "crystal_table",
+    "dart_reconstruct",
     "dcsf",
     "dcsf_models",
     "dmt",
@@ -112,6 +113,7 @@ TOP_LEVEL = [
     "indentation_modulus_at",
     "invert_afm_table",
     "invert_contact_resonance",
+    "invert_cr_map",
     "invert_rum_table",
     "isotropic_dynamic_kernel",
     "jkr",
@@ -183,6 +185,7 @@ SUBPACKAGES = [
 # two modules beside them: the contract every job keeps and the computations of the map jobs.
 JOBS = [
     "afm_invert",
+    "afm_map",
     "contact",
     "crystals",
     "dcsf",
@@ -208,13 +211,17 @@ PUBLIC = {
     "examples": ["EXAMPLES", "Example", "copy_examples", "example_path"],
     "analysis": [
         "AnalysisSettings",
+        "CR_MAP_UNITS",
+        "DART_FLAGS",
         "DESCRIPTIONS",
+        "DartReconstruction",
         "FIGURE_POINTS",
         "FILM_VERDICTS",
         "FLAG_DESCRIPTIONS",
         "FilmModulusResult",
         "Flag",
         "LIMIT_CHI2",
+        "ModulusModel",
         "ModulusResult",
         "PAGE_POINTS",
         "PARTICLE_FLAGS",
@@ -223,12 +230,16 @@ PUBLIC = {
         "RELATIVE_ERROR_LIMIT",
         "Results",
         "analyze",
+        "dart_flag_names",
+        "dart_reconstruct",
+        "dart_reconstruction",
         "film_columns",
         "film_modulus_from_contact_stiffness",
         "fit_jkr_mindlin",
         "fit_particles",
         "has",
         "invert_afm_table",
+        "invert_cr_map",
         "invert_rum_table",
         "material_by_name",
         "modulus_from_contact_stiffness",
@@ -581,6 +592,14 @@ PUBLIC = {
         "add_film_columns",
         "coated_film",
     ],
+    "jobs.afm_map": [
+        *JOB_API,
+        "DART_LAYERS",
+        "MapInput",
+        "PHASE_SIGNS",
+        "read_input",
+        "series",
+    ],
     "jobs.contact": [
         *JOB_API,
         "HERTZ_APPROXIMATE_RATIO",
@@ -594,6 +613,7 @@ PUBLIC = {
         *JOB_API,
         "COATED_CONTACT",
         "CRYSTAL_DCSF_MODEL",
+        "CR_MAP",
         "STEPS",
     ],
     "jobs.maps_predict": [
@@ -665,6 +685,7 @@ PUBLIC = {
 # and are public on purpose: the top-level single modules, one module per workflow of
 # contactres.jobs (and the three beside them), and the modules the docs present as modules.
 PUBLIC_MODULES = [
+    "contactres.apps.afm_map",  # the command line and the demo write a CR map's folder with it
     "contactres.apps.paper1",  # the gallery calls its figure functions
     "contactres.apps.paper2",
     "contactres.crystals",

@@ -111,6 +111,7 @@ CLI_COMMANDS: list[list[str]] = [
     [],
     ["afm"],
     ["afm", "invert"],
+    ["afm", "map"],
     ["contact"],
     ["crystals"],
     ["dcsf"],

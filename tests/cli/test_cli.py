@@ -62,6 +62,8 @@ def test_demo_writes_folder(tmp_path):
     r = run("demo", "--out", str(out))
     assert r.exit_code == 0, r.output
     assert (out / "crystals.csv").is_file()
+    cr_map = {"afm_map.json", "afm_map.nc", "afm_maps.png", "afm_histograms.png"}
+    assert cr_map <= {p.name for p in (out / "cr-map").iterdir()}
     # The coated substrate: paper 2's sphere on 250 nm of PMMA on fused silica. Its contact is
     # between Hertz on bare silica and Hertz on bulk PMMA (1 Hz storage constants).
     from contactres import Material, indentation_modulus, pmma
@@ -89,8 +91,10 @@ def test_demo_without_the_maps_extra_leaves_the_map_out_in_one_line(tmp_path, mo
     r = run("demo", "--out", str(out))
     assert r.exit_code == 0, r.output
     notes = [line for line in r.stderr.splitlines() if "left out" in line]
-    assert len(notes) == 1 and "polycrystal map" in notes[0] and "contactres[maps]" in notes[0]
-    assert not (out / "polycrystal").exists()
+    # One line for each map: the polycrystal map and the contact-resonance map.
+    assert len(notes) == 2 and all("contactres[maps]" in line for line in notes)
+    assert "polycrystal map" in notes[0] and "contact-resonance AFM map" in notes[1]
+    assert not (out / "polycrystal").exists() and not (out / "cr-map").exists()
     assert (out / "crystals.csv").is_file() and (out / "coated-contact" / "contact.csv").is_file()
 
 

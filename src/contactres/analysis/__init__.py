@@ -34,6 +34,14 @@ TYPE_CHECKING = False
 _EXPORTS = MappingProxyType(
     {
         "FIGURE_POINTS": "._curves",
+        "CR_MAP_UNITS": "._cr_map",
+        "ModulusModel": "._cr_map",
+        "invert_cr_map": "._cr_map",
+        "DART_FLAGS": "._dart",
+        "DartReconstruction": "._dart",
+        "dart_flag_names": "._dart",
+        "dart_reconstruct": "._dart",
+        "dart_reconstruction": "._dart",
         "PAGE_POINTS": "._curves",
         "sweep_rows": "._curves",
         "DESCRIPTIONS": "._flags",
@@ -77,6 +85,18 @@ if TYPE_CHECKING:
         FIGURE_POINTS as FIGURE_POINTS,
         PAGE_POINTS as PAGE_POINTS,
         sweep_rows as sweep_rows,
+    )
+    from ._cr_map import (
+        CR_MAP_UNITS as CR_MAP_UNITS,
+        ModulusModel as ModulusModel,
+        invert_cr_map as invert_cr_map,
+    )
+    from ._dart import (
+        DART_FLAGS as DART_FLAGS,
+        DartReconstruction as DartReconstruction,
+        dart_flag_names as dart_flag_names,
+        dart_reconstruct as dart_reconstruct,
+        dart_reconstruction as dart_reconstruction,
     )
     from ._flags import (
         DESCRIPTIONS as DESCRIPTIONS,

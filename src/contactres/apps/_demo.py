@@ -93,6 +93,15 @@ def _write_coated_contact(result: job.Result, out: Path) -> list[Path]:
     return [write_csv(folder / "contact.csv", table, float_format=CSV_FLOAT_FORMAT)]
 
 
+def _write_cr_map(result: job.Result, out: Path) -> list[Path]:
+    """The bundled DART image's maps (k*, M, tan δ), conventions and Dataset: cr-map/."""
+    from .afm_map import write_afm_map
+
+    if result.cr_map is None:
+        return []  # the step was left out (the job says why in its warnings)
+    return write_afm_map(result.cr_map, out / "cr-map")
+
+
 #: The writers of the parts, in the order of :data:`contactres.jobs.demo.STEPS`.
 DEMO_WRITERS: tuple[Callable[[job.Result, Path], list[Path]], ...] = (
     _write_qcm_analysis,
@@ -102,6 +111,7 @@ DEMO_WRITERS: tuple[Callable[[job.Result, Path], list[Path]], ...] = (
     _write_paper1_dcsf,
     _write_polycrystal,
     _write_coated_contact,
+    _write_cr_map,
 )
 
 

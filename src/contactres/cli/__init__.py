@@ -4,6 +4,7 @@ Each module here registers its subcommands on :data:`main` when imported.
 """
 
 from . import afm_invert as _afm_invert  # noqa: F401  (registers afm invert)
+from . import afm_map as _afm_map  # noqa: F401  (registers afm map)
 from . import contact as _contact  # noqa: F401  (registers contact)
 from . import crystals as _crystals  # noqa: F401  (registers crystals)
 from . import dcsf as _dcsf  # noqa: F401  (registers dcsf)

@@ -15,12 +15,15 @@ before its part); :func:`contactres.apps.write_demo` writes them into one folder
   constants fitted back from the bundled measured k* map;
 * a coated substrate: paper 2's sphere (radius 1.1 mm) on 250 nm of PMMA on fused silica
   (the ``contact`` job with a coating, :data:`COATED_CONTACT`), static, at four forces
-  (contact radii 3.8-7.4 µm, around paper 2's 3.7-5.4 µm).
+  (contact radii 3.8-7.4 µm, around paper 2's 3.7-5.4 µm);
+* the bundled DART image (``example_dart.ibw``): the contact resonance per pixel from its two
+  amplitudes and phases, then k*, σ, tan δ and M (the ``afm_map`` job, :data:`CR_MAP`: the tip
+  position, tip radius, load and tip modulus the image was made with).
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 from importlib.resources import as_file, files
 from types import MappingProxyType
 from typing import TYPE_CHECKING
@@ -33,9 +36,17 @@ if TYPE_CHECKING:
     import xarray as xr
 
     from ..polycrystal import OrientationMap, TriangleModuli
-    from . import paper2
+    from . import afm_map, paper2
 
-__all__ = ["COATED_CONTACT", "CRYSTAL_DCSF_MODEL", "STEPS", "Result", "Settings", "run"]
+__all__ = [
+    "COATED_CONTACT",
+    "CRYSTAL_DCSF_MODEL",
+    "CR_MAP",
+    "STEPS",
+    "Result",
+    "Settings",
+    "run",
+]
 
 #: The titles of the parts, in the order computed and written.
 STEPS = (
@@ -46,6 +57,7 @@ STEPS = (
     "paper 1: dynamic contact stiffness on crystals (exact, Fig. 4)",
     "polycrystal map: EBSD -> M and k* per pixel, and the constants back",
     "coated substrate: a sphere on 250 nm of PMMA on fused silica (paper 2's case)",
+    "contact-resonance AFM map: the bundled DART image -> k*, tan δ and M per pixel",
 )
 #: The model of the crystals' DCSF: the exact rigid punch the README recommends.
 CRYSTAL_DCSF_MODEL = "exact"
@@ -54,6 +66,14 @@ CRYSTAL_DCSF_MODEL = "exact"
 COATED_CONTACT = MappingProxyType(
     {"crystal": "fused-silica", "coating": "pmma:250e-9", "radius": 1.1e-3,
      "forces": (2e-3, 8e-3, 14e-3, 20e-3)}
+)  # fmt: skip
+
+
+#: The CR map of the demo: the bundled DART image and how it was made
+#: (scripts/make_example_dart.py): tip at r = 0.95, a 20 nm Si tip (M = 165 GPa) at 50 nN.
+CR_MAP = MappingProxyType(
+    {"file": "example_dart.ibw", "tip_position": 0.95, "tip_radius": 20e-9, "load": 50e-9,
+     "tip_modulus": 165e9}
 )  # fmt: skip
 
 
@@ -92,6 +112,7 @@ class Result(JobResult):
         "map_orientations",
         "map_fit",
         "map_triangle",
+        "cr_map",
         "warnings",
     )
 
@@ -107,7 +128,9 @@ class Result(JobResult):
     map_fit: dict | None
     map_triangle: TriangleModuli | None
     coated_contact: object
-    #: The parts left out, one line each (the polycrystal map without the ``maps`` extra).
+    #: The ``afm_map`` job's Result on the bundled DART image (None without its extras).
+    cr_map: afm_map.Result | None = None
+    #: The parts left out, one line each (the maps without the ``maps`` extra).
     warnings: tuple[str, ...] = ()
 
 
@@ -180,6 +203,12 @@ def run(inputs: None = None, settings: Settings | None = None, progress: Progres
         skipped.append(f"step 6 left out ({STEPS[5]}): {exc}")
     say(progress, STEPS[6])
     coated = _coated_contact()
+    say(progress, STEPS[7])
+    try:  # the reader (igor2) and the Dataset (xarray) are optional extras, as for step 6
+        cr_map = _cr_map()
+    except MissingExtraError as exc:
+        cr_map = None
+        skipped.append(f"step 8 left out ({STEPS[7]}): {exc}")
     return Result(
         sweeps_analysis=sweeps_analysis,
         spectra_rows=rows,
@@ -193,6 +222,7 @@ def run(inputs: None = None, settings: Settings | None = None, progress: Progres
         map_fit=record,
         map_triangle=triangle,
         coated_contact=coated,
+        cr_map=cr_map,
         warnings=tuple(skipped),
     )
 
@@ -209,3 +239,21 @@ def _coated_contact():
         radius=np.array([c["radius"]]), force=np.array(c["forces"]), coating=(c["coating"],)
     )
     return contact.run(Material.crystal(c["crystal"]), settings).table
+
+
+def _cr_map():
+    """The ``afm_map`` job on the bundled DART image (:data:`CR_MAP`)."""
+    from ..analysis import ModulusModel
+    from . import afm_map
+
+    c = CR_MAP
+    settings = afm_map.Settings(
+        tip_position=c["tip_position"],
+        modulus=ModulusModel(
+            tip_radius=c["tip_radius"], load=c["load"], tip_modulus=c["tip_modulus"]
+        ),
+    )
+    with as_file(files("contactres") / "data" / c["file"]) as path:
+        data = afm_map.read_input(path)
+    # The file by its name, as the other parts of the demo name theirs (not where it is installed).
+    return afm_map.run(replace(data, source=c["file"]), settings)

@@ -73,13 +73,18 @@ def figure_registry() -> Mapping[type, tuple[tuple[str, Drawing], ...]]:
     Result has figures adds its line here; the drawing functions live in the report package
     (they need matplotlib, which the jobs never import).
     """
-    from ..jobs import maps_predict, qcm_stiffness, qcm_sweeps
+    from ..jobs import afm_map, maps_predict, qcm_stiffness, qcm_sweeps
     from . import _job_figures as draw
+    from ._cr_map_figures import cr_histograms_figure, cr_maps_figure
     from .figures import FIGURE_FILES, RADIATION_FIGURE
 
     paper2 = (draw.sweeps_figure, draw.load_figure, draw.dissipation_figure, draw.friction_figure)
     return MappingProxyType(
         {
+            afm_map.Result: (
+                ("afm_maps.png", cr_maps_figure),
+                ("afm_histograms.png", cr_histograms_figure),
+            ),
             maps_predict.Result: (("M_map.png", draw.prediction_if_legend),),
             qcm_stiffness.Result: (("stiffness.png", draw.stiffness_figure),),
             qcm_sweeps.Result: (

@@ -1,0 +1,82 @@
+"""Write the maps of a contact-resonance map (``contactres afm map``, and the demo's CR map): the
+report of the ``afm_map`` job's Result and its map Dataset, into one folder.
+
+:func:`write_afm_map` writes ``afm_map.json`` (the conventions and the summary), the figures
+registered for the Result (``afm_maps.png``, ``afm_histograms.png``:
+:func:`contactres.report.figure_registry`) and the Dataset: NetCDF (``NAME.nc``, one file of
+the folder's result set, written whole or not at all) or Zarr (``NAME.zarr``, a store written
+beside the report with :func:`contactres.polycrystal.write_map`, replaced as a whole).
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import TYPE_CHECKING
+
+from ..errors import ContactresInputError
+
+if TYPE_CHECKING:
+    import os
+
+    from ..jobs.afm_map import Result
+
+__all__ = ["MAP_SUFFIXES", "write_afm_map"]
+
+#: The formats of the map Dataset, by suffix.
+MAP_SUFFIXES = (".nc", ".zarr")
+
+
+def _map_name(name: str) -> str:
+    name = str(name)
+    if Path(name).name != name or Path(name).suffix.lower() not in MAP_SUFFIXES:
+        raise ContactresInputError(
+            f"the map's file name must be a plain name ending in .nc (NetCDF) or .zarr (Zarr), "
+            f"got {name!r}"
+        )
+    return name
+
+
+def write_afm_map(
+    result: Result,
+    folder: str | os.PathLike,
+    *,
+    map_name: str = "afm_map.nc",
+    formats=None,
+    progress=None,
+) -> list[Path]:
+    """Write the report and the map Dataset of ``result`` into ``folder``; return the paths.
+
+    Parameters
+    ----------
+    result : contactres.jobs.afm_map.Result
+    folder : path
+        The results folder (created if missing).
+    map_name : str
+        The Dataset's file name: ``*.nc`` (NetCDF) or ``*.zarr`` (a Zarr store).
+    formats : sequence of str, optional
+        Of the report (default :data:`contactres.report.DEFAULT_FORMATS`).
+    progress : callable, optional
+        One line per figure drawn.
+    """
+    from ..fileio import ResultSet
+    from ..jobs.afm_map import Result
+    from ..report import FORMATS, report_names, write_report
+
+    name = _map_name(map_name)
+    chosen = {} if formats is None else {"formats": tuple(formats)}  # else the report's default
+    netcdf = name.lower().endswith(".nc")
+    extra = (name,) if netcdf else ()
+    names = (*report_names(Result, **chosen), *extra)
+    owned = (*report_names(Result, FORMATS), *extra)
+    with ResultSet(
+        folder, names=names, inputs=result.input_files(), owned=owned, kind="afm_map"
+    ) as rs:
+        written = write_report(result, rs, progress=progress, **chosen)
+        if netcdf:
+            result.dataset.to_netcdf(rs.path(name))
+            written.append(rs.final(name))
+    if not netcdf:
+        from ..polycrystal import write_map
+
+        written.append(write_map(Path(folder) / name, result.dataset))
+    return written
