@@ -49,6 +49,7 @@ from __future__ import annotations
 
 import json
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -176,16 +177,22 @@ def _moduli(k_star, model: ModulusModel, shape):
     ok = np.isfinite(k_star) & (k_star > 0)
     k = k_star[ok]
     if method == "punch":
-        e, m, f = _punch(k, model.punch_radius, m_tip)
-        a = np.full(k.shape, float(model.punch_radius))
-        record.update(punch_radius_m=float(model.punch_radius), equation="E* = k*/(2a)")
+        radius_m = model.punch_radius
+        assert radius_m is not None  # the method says which fields are given (ModulusModel)
+        e, m, f = _punch(k, radius_m, m_tip)
+        a = np.full(k.shape, float(radius_m))
+        record.update(punch_radius_m=float(radius_m), equation="E* = k*/(2a)")
     else:
-        kwargs = {}
+        kwargs: dict[str, Any] = {}
         if method == "hertz":
-            kwargs = {"tip_radius": model.tip_radius, "load": model.load}
-            record.update(tip_radius_m=float(model.tip_radius), load_N=float(model.load))
+            tip_radius, load = model.tip_radius, model.load
+            assert tip_radius is not None and load is not None  # method "hertz" has both
+            kwargs = {"tip_radius": tip_radius, "load": load}
+            record.update(tip_radius_m=float(tip_radius), load_N=float(load))
         else:
-            rows, cols = reference_region(model.reference, shape)
+            region_given, reference_modulus = model.reference, model.reference_modulus
+            assert region_given is not None and reference_modulus is not None  # "reference"
+            rows, cols = reference_region(region_given, shape)
             region = k_star[rows, cols]
             good = region[np.isfinite(region) & (region > 0)]
             if good.size == 0:
@@ -196,12 +203,12 @@ def _moduli(k_star, model: ModulusModel, shape):
             k_ref = float(np.median(good))
             kwargs = {
                 "reference_k_star": k_ref,
-                "reference_modulus": model.reference_modulus,
+                "reference_modulus": reference_modulus,
                 "exponent": model.exponent,
             }
             record.update(
-                reference_region=[int(v) for v in model.reference],
-                reference_modulus_Pa=float(model.reference_modulus),
+                reference_region=[int(v) for v in region_given],
+                reference_modulus_Pa=float(reference_modulus),
                 reference_k_star_N_per_m=k_ref,
                 reference_pixels=int(good.size),
             )
@@ -250,7 +257,7 @@ def invert_cr_map(
     tip_height: float = 0.0,
     tilt: float = 0.0,
     modulus: ModulusModel | None = None,
-    pixel_size: float | None = None,
+    pixel_size: float | tuple[float, float] | None = None,
     conventions: dict | None = None,
 ):
     """k*, σ, tan δ, E* and M per pixel of a contact-resonance map (module notes).

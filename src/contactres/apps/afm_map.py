@@ -73,7 +73,7 @@ def write_afm_map(
     ) as rs:
         written = write_report(result, rs, progress=progress, **chosen)
         if netcdf:
-            result.dataset.to_netcdf(rs.path(name))
+            result.dataset.to_netcdf(rs.path(name))  # type: ignore[attr-defined]  # a Dataset
             written.append(rs.final(name))
     if not netcdf:
         from ..polycrystal import write_map

@@ -160,7 +160,7 @@ def read_input(path: str | os.PathLike, readers: Readers | None = None) -> MapIn
         frequency=np.asarray(centre, dtype=float),
         dart=tuple(layer.T for layer in layers),  # Igor's first index runs along x
         note=dict(read.note),
-        pixel_size=None if read.scale is None else tuple(read.scale),  # (dx, dy)
+        pixel_size=read.scale,  # (dx, dy) or None
         source=str(path),
     )
 
@@ -220,6 +220,7 @@ def _reconstruct(data: MapInput, s: Settings):
             f"no DART drive separation: the note of {data.source} has no DFRTFrequencyWidth; "
             "give --frequency-width (Hz)"
         )
+    assert data.dart is not None  # run reconstructs only a map read with its DART layers
     a1, a2, p1, p2 = (np.asarray(x, dtype=float) for x in data.dart)
     p1, p2 = np.radians(p1), np.radians(p2)  # Asylum stores phases in degrees
     sign, how = _phase_sign(p2 - p1, s.phase_sign)
@@ -255,7 +256,7 @@ def _summary(ds) -> dict:
         v = v[np.isfinite(v)]
         return float(np.median(v)) if v.size else None
 
-    out = {"shape": list(ds["k_star_N_per_m"].shape)}
+    out: dict[str, object] = {"shape": list(ds["k_star_N_per_m"].shape)}
     out["pixels_with_k_star"] = int(np.isfinite(ds["k_star_N_per_m"].values).sum())
     out["pixels_flagged"] = int((ds["flags"].values != 0).sum())
     for name in ("k_star_N_per_m", "sigma_N_s_per_m", "tan_delta", "E_star_Pa", "M_Pa"):

@@ -116,7 +116,10 @@ def cr_maps_figure(result):
 
 def _scale_bar(ax, step: float, width_px: int) -> None:
     """A white bar with its length, at the lower left, in data (pixel) coordinates."""
-    from mpl_toolkits.axes_grid1.anchored_artists import AnchoredSizeBar
+    # mpl_toolkits ships without type information (matplotlib's own package has it).
+    from mpl_toolkits.axes_grid1.anchored_artists import (  # type: ignore[import-untyped]
+        AnchoredSizeBar,
+    )
 
     length = scale_bar_length(step * width_px)
     bar = AnchoredSizeBar(
