@@ -59,7 +59,11 @@ def _example(words):
     text = run(*words, "--help").output
     match = re.search(r"^\s*Example: (contactres .*?)(?:\n\s*\n|\Z)", text, re.M | re.S)
     assert match, f"no 'Example:' line in 'contactres {' '.join(words)} --help'"
-    return shlex.split(" ".join(match.group(1).split()))
+    # Printed as written (click's \b): one line, or lines joined by a shell's " \" as a user
+    # pastes them; a line click had wrapped (e.g. "--tip-" / "radius") would not survive.
+    lines = match.group(1).splitlines()
+    assert all(line.rstrip().endswith(" \\") for line in lines[:-1]), lines
+    return shlex.split(" ".join(line.rstrip().removesuffix("\\") for line in lines))
 
 
 @pytest.mark.parametrize("words", [w for w, _ in COMMANDS], ids=IDS)

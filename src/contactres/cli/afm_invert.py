@@ -114,6 +114,7 @@ def afm_invert(
 
     The example files: 'contactres examples --copy .' copies them into this folder.
 
+    \b
     Example: contactres afm invert example_afm.csv --out afm_moduli.csv
     """
     import numpy as np

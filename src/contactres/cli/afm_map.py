@@ -184,8 +184,9 @@ def afm_map(
 
     The example files: 'contactres examples --copy .' copies them into this folder.
 
-    Example: contactres afm map example_dart.ibw --tip-position 0.95 --tip-radius 2e-8
-    --force 5e-8 --tip-modulus 1.65e11 --out cr-map
+    \b
+    Example: contactres afm map example_dart.ibw --tip-position 0.95 --tip-radius 2e-8 \\
+        --force 5e-8 --tip-modulus 1.65e11 --out cr-map
     """
     from pathlib import Path
 

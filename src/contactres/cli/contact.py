@@ -83,8 +83,9 @@ def contact(radius, force, frequency, tangential, direction, coating, fmt, **fac
     radius a, the same columns as on a bare face. For instance 250 nm of PMMA on fused silica:
     --crystal fused-silica --coating pmma:250e-9.
 
-    Example: contactres contact --crystal quartz-AT --radius 5e-3 --force 1e-3 --tangential
-    --frequency 15e6
+    \b
+    Example: contactres contact --crystal quartz-AT --radius 5e-3 --force 1e-3 --tangential \\
+        --frequency 15e6
     """
 
     from ..jobs import contact as job

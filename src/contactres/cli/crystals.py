@@ -31,6 +31,7 @@ def crystals(fmt: str) -> None:
     columns: the elastic constants, then E, ν, the anisotropy and the moduli, then the sources;
     --format csv or json gives every column in one table.
 
+    \b
     Example: contactres crystals --format csv
     """
     from ..jobs import crystals as job

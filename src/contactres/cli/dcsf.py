@@ -129,6 +129,7 @@ def dcsf(ctx, model, ka, radius, force, frequency, loss, wavenumber, rtol, coati
     in-plane axis --inplane (up to 12 % on Cu(001)); exact and WA2D do not. Ranking:
     'contactres figures paper1' writes paper1_model_ranking.csv.
 
+    \b
     Example: contactres dcsf --crystal Cu --surface 111 --model all --ka 0:1:5
     """
     from ..dynamic import ALL_MODELS

@@ -20,6 +20,7 @@ def demo(out: str) -> None:
 
     Takes 10-30 s; a line per step on stderr.
 
+    \b
     Example: contactres demo --out contactres-demo
     """
     from ..apps import write_demo

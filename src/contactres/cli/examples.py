@@ -37,6 +37,7 @@ def examples(names: tuple[str, ...], copy_to: str | None, overwrite: bool, fmt: 
     written. --format csv or json gives the table (name, size_bytes, description, command,
     path).
 
+    \b
     Example: contactres examples --copy contactres_examples
     """
     from ..jobs import examples as job

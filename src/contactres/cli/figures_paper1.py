@@ -28,6 +28,7 @@ def paper1(out: str) -> None:
 
     It takes about 20 s.
 
+    \b
     Example: contactres figures paper1 --out paper1_figures
     """
     from ..apps.paper1 import write_paper1_figures

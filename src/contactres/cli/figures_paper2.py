@@ -21,6 +21,7 @@ def paper2(out: str) -> None:
     Cattaneo-Mindlin and Savkoor contacts of a glass sphere (R = 1.1 mm) on a 5 MHz QCM
     (3rd overtone); forces in N, displacements in m, shifts in Hz in the CSV files.
 
+    \b
     Example: contactres figures paper2 --out paper2_figures
     """
     from ..apps.paper2 import write_paper2_figures

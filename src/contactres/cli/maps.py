@@ -80,6 +80,7 @@ def maps_synthetic(
     """A seeded Voronoi polycrystal with a noisy contact-stiffness map k* (N/m), as a Zarr map
     store: Bunge Euler angles (rad), grain labels and k_star_N_per_m, ready for 'maps fit'.
 
+    \b
     Example: contactres maps synthetic --crystal Cu --tip-radius 2e-8 --force 1e-6 --out cu.zarr
     """
     import math
@@ -194,8 +195,9 @@ def maps_predict(
 
     The example files: 'contactres examples --copy .' copies them into this folder.
 
-    Example: contactres maps predict example_cu_map.ang --crystal Cu
-    --tip-radius 2e-8 --force 1e-6 --out cu_predicted.zarr
+    \b
+    Example: contactres maps predict example_cu_map.ang --crystal Cu \\
+        --tip-radius 2e-8 --force 1e-6 --out cu_predicted.zarr
     """
     import math
 
@@ -367,8 +369,9 @@ def maps_fit(
 
     The example files: 'contactres examples --copy .' copies them into this folder.
 
-    Example: contactres maps fit example_cu_map.ang --values
-    example_cu_kstar.csv --out cu_fit.json
+    \b
+    Example: contactres maps fit example_cu_map.ang --values \\
+        example_cu_kstar.csv --out cu_fit.json
     """
     from ..fileio import check_output_file, write_text
     from ..jobs import maps_fit as job

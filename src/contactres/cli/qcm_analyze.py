@@ -172,6 +172,7 @@ def analyze_command(
 
     The example files: 'contactres examples --copy .' copies them into this folder.
 
+    \b
     Example: contactres qcm analyze example_sweeps.csv --out qcm_results
     """
     from ..analysis import Flag, has

@@ -117,8 +117,9 @@ def loop_command(
     K′, K″ (N/m) of one contact, from the force-displacement loop of the chosen model
     (paper 2, Eqs. 4-5; relative accuracy 1e-9).
 
-    Example: contactres qcm loop --model cm --kappa 1e5 --mu 0.5 --normal-force 1e-3
-    --u0 0:20e-9:11
+    \b
+    Example: contactres qcm loop --model cm --kappa 1e5 --mu 0.5 --normal-force 1e-3 \\
+        --u0 0:20e-9:11
     """
     from ..jobs import qcm_loop as job
 

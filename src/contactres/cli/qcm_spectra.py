@@ -121,8 +121,9 @@ def spectra_command(
 
     The example files: 'contactres examples --copy .' copies them into this folder.
 
-    Example: contactres qcm spectra example_spectra.csv --out sweeps.csv
-    --fits fits.csv
+    \b
+    Example: contactres qcm spectra example_spectra.csv --out sweeps.csv \\
+        --fits fits.csv
     """
     from pathlib import Path
 

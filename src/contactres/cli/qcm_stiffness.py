@@ -209,8 +209,9 @@ def stiffness_command(
 
     The example files: 'contactres examples --copy .' copies them into this folder.
 
-    Example: contactres qcm stiffness example_qcmd.csv --dissipation-scale
-    1e-6 --fundamental 4.95e6 --area 2e-5 --n-contacts 3 --out qcmd_stiffness
+    \b
+    Example: contactres qcm stiffness example_qcmd.csv --dissipation-scale \\
+        1e-6 --fundamental 4.95e6 --area 2e-5 --n-contacts 3 --out qcmd_stiffness
 
     A QSense export with Δf/n, D in ppm, time in s, three contacts on 0.2 cm²:
 

@@ -62,6 +62,7 @@ def rum_invert(
 
     The example files: 'contactres examples --copy .' copies them into this folder.
 
+    \b
     Example: contactres rum invert example_rum.csv --out rum_kstar.csv
     """
     from ..fileio import check_output_file, write_csv
