@@ -180,7 +180,8 @@ def afm_map(
     (--reference and --reference-modulus), with --tip-modulus in series; none of them:
     k*, σ and tan δ only. The lever's constants come from the file's note where it has
     them (SpringConstant, ThermalFrequency, ThermalQ, DFRTFrequencyWidth); an option wins,
-    and afm_map.json gives both.
+    and afm_map.json gives both. It needs the extras afm (igor2, h5py) and maps (xarray):
+    pip install 'contactres[afm,maps]'.
 
     The example files: 'contactres examples --copy .' copies them into this folder.
 
