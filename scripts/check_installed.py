@@ -129,12 +129,14 @@ def main() -> None:
     if first is not None:
         (work / "readme_first.py").write_text(first.group(1), encoding="utf-8")
         _run([str(python), "readme_first.py"], work, env)
-    # The README's first shell lines, up to the 'cd ..' that ends the bundled-data part (the
-    # lines after it name a user's own sweeps.csv), through the shell, in a folder of their own.
-    shell = re.search(r"```sh\n(.*?)```", readme, re.S)
+    # The README's shell lines that start from the examples (the block with 'contactres examples
+    # --copy'), up to the 'cd ..' that ends the bundled-data part (the lines after it name a
+    # user's own sweeps.csv), through the shell, in a folder of their own.
+    blocks = re.findall(r"```sh\n(.*?)```", readme, re.S)
+    shell = next((b for b in blocks if "contactres examples --copy" in b), None)
     if shell is not None:
         lines = []
-        for line in shell.group(1).splitlines():
+        for line in shell.splitlines():
             lines.append(line.split("#", 1)[0].strip())
             if line.strip().startswith("cd .."):
                 break
