@@ -73,14 +73,20 @@ def figure_registry() -> Mapping[type, tuple[tuple[str, Drawing], ...]]:
     Result has figures adds its line here; the drawing functions live in the report package
     (they need matplotlib, which the jobs never import).
     """
-    from ..jobs import maps_predict, qcm_stiffness, qcm_sweeps
+    from ..jobs import maps_predict, qcm_particles, qcm_stiffness, qcm_sweeps
     from . import _job_figures as draw
+    from . import _particle_figures as particles
     from .figures import FIGURE_FILES, RADIATION_FIGURE
 
     paper2 = (draw.sweeps_figure, draw.load_figure, draw.dissipation_figure, draw.friction_figure)
     return MappingProxyType(
         {
             maps_predict.Result: (("M_map.png", draw.prediction_if_legend),),
+            qcm_particles.Result: (
+                ("particles_overtones.png", particles.overtones_figure),
+                ("particles_plane.png", particles.plane_figure),
+                ("particles_time.png", particles.time_figure),
+            ),
             qcm_stiffness.Result: (("stiffness.png", draw.stiffness_figure),),
             qcm_sweeps.Result: (
                 *zip(FIGURE_FILES, paper2, strict=True),
@@ -93,12 +99,24 @@ def figure_registry() -> Mapping[type, tuple[tuple[str, Drawing], ...]]:
 def html_registry() -> Mapping[type, tuple[str, Page]]:
     """Result type -> its page, as (file name, page function); written for the format ``html``.
 
-    Built on each call, as :func:`figure_registry`.
+    Built on each call, as :func:`figure_registry`. A job without a page of its own registers
+    the generic one (:func:`contactres.report._job_page.job_page`: values, flags, the tables'
+    first rows, the figures).
     """
-    from ..jobs import qcm_sweeps
+    from ..jobs import qcm_particles, qcm_sweeps
     from ._html import HTML_FILE, sweeps_page
+    from ._job_page import JOB_PAGE_FILE, job_page
 
-    return MappingProxyType({qcm_sweeps.Result: (HTML_FILE, sweeps_page)})
+    def generic(result) -> str:
+        # The generic page embeds the figures registered for the Result's type.
+        return job_page(result, figure_registry().get(type(result), ()))
+
+    return MappingProxyType(
+        {
+            qcm_sweeps.Result: (HTML_FILE, sweeps_page),
+            qcm_particles.Result: (JOB_PAGE_FILE, generic),
+        }
+    )
 
 
 def _formats(formats) -> tuple[str, ...]:

@@ -3,7 +3,8 @@
 :data:`BUILT_IN` holds, by kind (:data:`KINDS`): the delimited-text reader of sweep
 tables and of resonance tables (``csv``), the spectra readers (a folder of spectrum files, a tidy
 table: ``SPECTRA_READERS`` of ``_spectra``) and the instrument exports
-(:data:`~.exports.EXPORT_READERS`). EBSD maps and value grids are read by recipes of the layers
+(:data:`~.exports.EXPORT_READERS`, and the tidy table of shifts,
+:data:`~.exports.TIDY_READER`). EBSD maps and value grids are read by recipes of the layers
 that own their formats (:data:`contactres.polycrystal.EBSD_READERS`,
 ``contactres.jobs.readers``), which compose the full registry above this layer; a recipe here
 never imports a higher layer, not even when it is called.
@@ -21,7 +22,7 @@ from pathlib import Path
 from . import _delimited
 from ._recipe import Reader, Readers
 from ._spectra import SPECTRA_READERS
-from .exports import EXPORT_READERS
+from .exports import EXPORT_READERS, TIDY_READER
 
 __all__ = ["BUILT_IN", "BUILT_IN_READERS", "pick_reader"]
 
@@ -32,6 +33,7 @@ BUILT_IN_READERS: tuple[Reader, ...] = (
     Reader("csv", _delimited.suffixes, _delimited.detect, _delimited.load, "resonances"),
     *SPECTRA_READERS,
     *EXPORT_READERS,
+    TIDY_READER,
 )
 #: The built-in registry.
 BUILT_IN = Readers(BUILT_IN_READERS)
