@@ -7,7 +7,8 @@ cantilever of contact-resonance AFM (:class:`Cantilever`, :func:`contact_frequen
 inversion :func:`invert_contact_resonance`) and the RUM oscillator (:class:`RUMOscillator`).
 
 The public names are loaded on first use (PEP 562 module ``__getattr__``); the modules that
-implement them are private (``_qcm``, ``_cantilever``, ``_cantilever_inversion``, ``_rum``).
+implement them are private (``_qcm``, ``_particles``, ``_cantilever``, ``_cantilever_inversion``,
+``_rum``).
 """
 
 from __future__ import annotations
@@ -40,6 +41,19 @@ _EXPORTS = MappingProxyType(
         "shifts_from_loop": "._qcm",
         "shifts_from_stiffness": "._qcm",
         "stiffness_from_shifts": "._qcm",
+        "AIR": "._particles",
+        "Medium": "._particles",
+        "Particle": "._particles",
+        "VALIDITY_RADIUS_RATIO": "._particles",
+        "WATER": "._particles",
+        "coupled_resonance": "._particles",
+        "kanazawa_gordon": "._particles",
+        "medium_named": "._particles",
+        "particle_model_validity": "._particles",
+        "particle_shifts": "._particles",
+        "particle_stiffness": "._particles",
+        "penetration_depth": "._particles",
+        "sphere_drag": "._particles",
         "RUMOscillator": "._rum",
     }
 )
@@ -74,6 +88,21 @@ if TYPE_CHECKING:
         shifts_from_loop as shifts_from_loop,
         shifts_from_stiffness as shifts_from_stiffness,
         stiffness_from_shifts as stiffness_from_shifts,
+    )
+    from ._particles import (
+        AIR as AIR,
+        Medium as Medium,
+        Particle as Particle,
+        VALIDITY_RADIUS_RATIO as VALIDITY_RADIUS_RATIO,
+        WATER as WATER,
+        coupled_resonance as coupled_resonance,
+        kanazawa_gordon as kanazawa_gordon,
+        medium_named as medium_named,
+        particle_model_validity as particle_model_validity,
+        particle_shifts as particle_shifts,
+        particle_stiffness as particle_stiffness,
+        penetration_depth as penetration_depth,
+        sphere_drag as sphere_drag,
     )
     from ._rum import (
         RUMOscillator as RUMOscillator,
