@@ -608,7 +608,6 @@ PUBLIC = {
         "COLUMN_UNITS",
         "CONVENTIONS",
         "EQUATION",
-        "LIQUID_DENSITY",
         "ROCKING",
     ],
     "jobs.qcm_stiffness": [

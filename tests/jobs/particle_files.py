@@ -170,6 +170,14 @@ def penetration_depth(medium, frequency):
     return np.sqrt(2 * medium.viscosity / (medium.density * 2 * np.pi * np.asarray(frequency)))
 
 
+def particle_model_validity(particle, frequency, medium=None):
+    """R < δ in a medium denser than 100 kg/m³ (a liquid), else None."""
+    if medium is None or medium.density < 100:
+        return None
+    depth = float(penetration_depth(medium, frequency))
+    return f"R < δ = {depth:.3g} m" if particle.radius < depth else None
+
+
 def particle_shifts(fundamental, overtones, particle, kappa, xi, coverage, *, rocking="free",
                     medium=None, zq=8.8e6):  # fmt: skip
     """A particle translating on its contact (rotation locked, no medium): the load
@@ -185,12 +193,20 @@ def particle_shifts(fundamental, overtones, particle, kappa, xi, coverage, *, ro
 
 def fake_fit(truth, flagged):
     """A stand-in of fit_particles returning ``truth`` (the study's κ, ξ, coverage per step)
-    with 1 % errors; the steps of ``flagged`` (bool mask) are reported as identifying the mass
-    only: κ, ξ and f_coupled NaN and a flag."""
+    with 1 % errors and the stand-in's shifts at the truth as the model; the steps of
+    ``flagged`` (bool mask) are reported as identifying the mass only: κ, ξ and f_coupled NaN
+    and a flag."""
 
     def fit(fundamental, overtones, df, dgamma, particle, *, rocking, medium, sigma_df,
             sigma_dgamma, zq):  # fmt: skip
         assert df.shape == dgamma.shape == (len(truth), len(overtones))
+        model = particle_shifts(
+            fundamental,
+            np.asarray(overtones)[None, :],
+            particle,
+            *(truth[c].to_numpy(float)[:, None] for c in ("kappa_N_per_m", "xi_kg_per_s",
+                                                           "coverage_per_m2")),
+        )  # fmt: skip
         kappa = truth["kappa_N_per_m"].to_numpy(float).copy()
         xi = truth["xi_kg_per_s"].to_numpy(float).copy()
         coverage = truth["coverage_per_m2"].to_numpy(float).copy()
@@ -206,6 +222,8 @@ def fake_fit(truth, flagged):
             coverage_err=0.01 * coverage,
             f_coupled=f_c,
             f_coupled_err=0.01 * f_c,
+            df_model=model[0],
+            dgamma_model=model[1],
             flags=flags,
         )
 
@@ -221,6 +239,7 @@ def install_standin(monkeypatch, fit):
         ("Particle", Particle),
         ("medium_named", medium_named),
         ("penetration_depth", penetration_depth),
+        ("particle_model_validity", particle_model_validity),
         ("particle_shifts", particle_shifts),
     ):
         monkeypatch.setattr(contactres.resonators, name, value, raising=False)

@@ -39,7 +39,6 @@ __all__ = [
     "COLUMN_UNITS",
     "CONVENTIONS",
     "EQUATION",
-    "LIQUID_DENSITY",
     "ROCKING",
     "Result",
     "Settings",
@@ -57,11 +56,6 @@ ROCKING = MappingProxyType(
         "fit": "a rocking stiffness κ_r (N m/rad) at the contact, fitted per time step",
     }
 )
-
-#: A medium at least this dense (kg/m³) is a liquid: its penetration depth δ = √(2η/(ρω)) is
-#: checked against the particle's radius. A gas (about 1 kg/m³) loads the particles little
-#: enough that no check is needed (its δ, about 1 µm at 5 MHz, is beside the point).
-LIQUID_DENSITY = 100.0
 
 #: What the shifts are, recorded with every result.
 CONVENTIONS = MappingProxyType(
@@ -215,8 +209,7 @@ def run(inputs: str | os.PathLike, settings: Settings, progress: Progress | None
         zq=s.zq,
     )
     particles = _particles_table(times, fit)
-    say(progress, "the model's shifts")
-    shifts = _shifts_table(times, overtones, df, dgamma, fit, particle, s, medium, fundamental)
+    shifts = _shifts_table(times, overtones, df, dgamma, fit)
     counts = _flag_counts(particles["flags"])
     lines += [f"{k} of {len(times)} time steps flagged: {name}" for name, k in counts.items()]
     return Result(
@@ -323,30 +316,27 @@ def _grid(data: pd.DataFrame, source: Path):
 
 def _depth_check(particle, medium, fundamental: float, overtones, source: Path) -> list[str]:
     """In a liquid the model holds for particles larger than the penetration depth δ of the
-    shear wave (a smaller particle sits inside the liquid's boundary layer, where the
-    lattice-Boltzmann treatment is the tool): a one-line error when R < δ at every overtone
-    measured (δ is largest at the lowest), a warning line naming the overtones where R < δ."""
-    if medium is None or medium.density < LIQUID_DENSITY:
+    shear wave (:func:`contactres.resonators.particle_model_validity`: a smaller particle sits
+    inside the liquid's boundary layer, where a lattice-Boltzmann treatment is the tool): a
+    one-line error when the model fails at every overtone measured (δ is smallest at the
+    highest), a warning line naming the overtones where it fails."""
+    if medium is None:
         return []
-    import numpy as np
+    from ..resonators import particle_model_validity
 
-    from ..resonators import penetration_depth
-
-    depth = np.asarray(penetration_depth(medium, fundamental * np.asarray(overtones, float)))
-    small = particle.radius < depth
-    if small.all():
+    reasons = [particle_model_validity(particle, fundamental * n, medium) for n in overtones]
+    failed = [int(n) for n, why in zip(overtones, reasons, strict=True) if why is not None]
+    if len(failed) == len(reasons):
         raise ContactresInputError(
             f"{source}: particles of radius {particle.radius:.3g} m are smaller than the "
-            f"penetration depth of {medium.name} at every overtone measured (δ = "
-            f"{depth.min():.3g} m at n = {int(overtones[-1])}): the model of a particle on its "
-            "contact in a liquid needs R > δ (smaller particles: a lattice-Boltzmann treatment)"
+            f"penetration depth of {medium.name} at every overtone measured, up to n = "
+            f"{failed[-1]} ({reasons[-1]})"
         )
-    if small.any():
-        shown = ", ".join(str(int(n)) for n in np.asarray(overtones)[small])
+    if failed:
         return [
-            f"particles of radius {particle.radius:.3g} m are smaller than the penetration depth "
-            f"of {medium.name} at overtone(s) {shown} (δ up to {depth.max():.3g} m): the model "
-            "is rough there"
+            # δ is largest at the lowest overtone: its reason names the widest gap
+            f"overtone(s) {', '.join(map(str, failed))}: the particles are inside the penetration "
+            f"depth of {medium.name} ({reasons[0]}); the model is rough there"
         ]
     return []
 
@@ -396,39 +386,16 @@ def _particles_table(times, fit) -> pd.DataFrame:
     return pd.DataFrame(columns)[list(PARTICLES_CSV.names)]
 
 
-def _shifts_table(times, overtones, df, dgamma, fit, particle, s, medium, fundamental):
-    """``shifts.csv``: the shifts read and those of the fitted κ, ξ and coverage (and κ_r with
-    rocking ``fit``), per time and overtone; NaN where a step's fit lacks one of them."""
+def _shifts_table(times, overtones, df, dgamma, fit):
+    """``shifts.csv``: the shifts read and those of the fitted model (the fit's ``df_model``
+    and ``dgamma_model``, drawn also where a parameter is unresolved: the curve is identified
+    when its parts are not), per time and overtone."""
     import numpy as np
     import pandas as pd
 
-    from ..resonators import particle_shifts
-
-    size = times.size
-    kappa, xi, coverage = (_column(fit, f, size) for f in ("kappa", "xi", "coverage"))
-    rocking = s.rocking
-    kappa_r = None
-    if rocking == "fit":
-        kappa_r = _column(fit, "kappa_r", size)
-    model_f = np.full_like(df, np.nan)
-    model_g = np.full_like(df, np.nan)
-    ok = np.isfinite(kappa) & np.isfinite(xi) & np.isfinite(coverage)
-    if kappa_r is not None:
-        ok &= np.isfinite(kappa_r)
-    for k in np.flatnonzero(ok):
-        f, g = particle_shifts(
-            fundamental,
-            overtones,
-            particle,
-            kappa[k],
-            xi[k],
-            coverage[k],
-            rocking=rocking if kappa_r is None else float(kappa_r[k]),
-            medium=medium,
-            zq=s.zq,
-        )
-        model_f[k], model_g[k] = f, g
     n_t, n_o = df.shape
+    model_f = np.broadcast_to(np.asarray(fit.df_model, float), (n_t, n_o))
+    model_g = np.broadcast_to(np.asarray(fit.dgamma_model, float), (n_t, n_o))
     return pd.DataFrame(
         {
             "time_s": np.repeat(times, n_o),

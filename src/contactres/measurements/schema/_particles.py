@@ -115,8 +115,9 @@ PARTICLE_SHIFTS_CSV = TableSchema(
         Column(
             "df_model_Hz",
             "Hz",
-            "Δf_n of the fitted particles (empty where the step's fit has no κ, ξ and coverage)",
+            "Δf_n of the fitted model (also where a parameter is not identified: the curve is "
+            "when its parts are not)",
         ),
-        Column("dgamma_model_Hz", "Hz", "ΔΓ_n of the fitted particles (empty as df_model_Hz)"),
+        Column("dgamma_model_Hz", "Hz", "ΔΓ_n of the fitted model"),
     ),
 )
