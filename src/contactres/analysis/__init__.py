@@ -10,7 +10,9 @@ batched fitters (``_models``, :data:`REGISTRY`), the model choice (``_classify``
 points and fitted curves the report draws (``_curves``) and the results (``_results``). Beside
 them, the inversion of contact resonances to a modulus (:func:`modulus_from_contact_stiffness`,
 :func:`invert_afm_table`, :func:`invert_rum_table`) and to the modulus of a film on a known
-substrate (``_film_inversion``, :func:`film_modulus_from_contact_stiffness`).
+substrate (``_film_inversion``, :func:`film_modulus_from_contact_stiffness`). And the fit of
+attached particles' contact stiffness and coverage to QCM-D shifts (``_particles``,
+:func:`fit_particles`).
 
 The public names are loaded on first use (PEP 562 module ``__getattr__``).
 
@@ -53,6 +55,10 @@ _EXPORTS = MappingProxyType(
         "radiation_for": "._radiation",
         "radiation_loss": "._radiation",
         "radiation_summary": "._radiation",
+        "PARTICLE_FLAGS": "._particles",
+        "ParticleFit": "._particles",
+        "RELATIVE_ERROR_LIMIT": "._particles",
+        "fit_particles": "._particles",
         "invert_afm_table": "._resonance_tables",
         "invert_rum_table": "._resonance_tables",
         "Results": "._results",
@@ -93,6 +99,12 @@ if TYPE_CHECKING:
     )
     from ._models import (
         REGISTRY as REGISTRY,
+    )
+    from ._particles import (
+        PARTICLE_FLAGS as PARTICLE_FLAGS,
+        ParticleFit as ParticleFit,
+        RELATIVE_ERROR_LIMIT as RELATIVE_ERROR_LIMIT,
+        fit_particles as fit_particles,
     )
     from ._pipeline import (
         AnalysisSettings as AnalysisSettings,

@@ -64,6 +64,7 @@ __all__ = [
     "coupled_resonance",
     "kanazawa_gordon",
     "medium_named",
+    "particle_compliance",
     "particle_model_validity",
     "particle_shifts",
     "particle_stiffness",
@@ -272,6 +273,42 @@ def _compliance(particle: Particle, omega, kappa_r, medium: Medium | None):
         # contact point s = x - Rθ: the liquid's torque turns θ by iωZ_r θ_f / M_θ
         ht = np.where(locked, 0.0, -r * iw * zr * spin / mt)
     return cx + ct, hx + ht
+
+
+def particle_compliance(particle: Particle, frequency, *, rocking="free", medium=None):
+    """The particle as its contact sees it: compliance c and liquid drive h (module docstring).
+
+    c (m/N) is the displacement of the free particle's contact point per force applied there,
+    1/M_x + R²/M_θ (M_x = -mω² + iωZ_t, M_θ = -Iω² + κ_r + iωZ_r; locked rotation: 1/M_x);
+    h is the displacement of the contact point per unit surface displacement that the liquid's
+    shear wave imposes on the free particle (0 in vacuum). Any contact k = κ + iωξ then gives
+    K_L = (1 - h)/(c + 1/k) (:func:`particle_stiffness`); a fit that varies κ, ξ and the
+    coverage for a given particle needs c and h only once.
+
+    Parameters
+    ----------
+    particle, frequency, rocking, medium : as for :func:`particle_stiffness`
+
+    Returns
+    -------
+    (c, h): complex arrays of the broadcast shape of frequency and κ_r
+
+    Examples
+    --------
+    A free sphere in vacuum: c = -1/(m_eff ω²) with m_eff = 2m/7:
+
+    >>> import numpy as np
+    >>> from contactres.resonators import Particle, particle_compliance
+    >>> p = Particle.sphere(1e-6, 2000.0)
+    >>> c, h = particle_compliance(p, 5e6)
+    >>> print(f"{float(-1 / (c.real * (2 * np.pi * 5e6) ** 2) / p.mass):.6f}", abs(complex(h)))
+    0.285714 0.0
+    """
+    if medium is not None and not isinstance(medium, Medium):
+        raise ContactresInputError(f"medium must be a Medium or None, got {medium!r}")
+    f = np.asarray(positive("frequency", frequency, "Hz"), dtype=float)
+    c, h = _compliance(particle, 2.0 * np.pi * f, _rocking_stiffness(rocking), medium)
+    return np.asarray(c, dtype=complex), np.asarray(h, dtype=complex)
 
 
 def particle_stiffness(particle: Particle, frequency, kappa, xi, *, rocking="free", medium=None):

@@ -1,0 +1,625 @@
+"""Contact stiffness, damping and coverage of attached particles from QCM-D shifts (issue 28).
+
+The inverse of :func:`~contactres.resonators.particle_shifts`: from Δf_n and ΔΓ_n over the
+measured overtones, per time step, the contact stiffness κ, its drag coefficient ξ and the
+coverage N/A (and, with ``rocking="fit"``, a rotational stiffness κ_r), with errors,
+correlations and the statement of what the data identify.
+
+Model (theory page docs/theory/particles.md): Δf_n + iΔΓ_n = N K_L(ω_n)/(2nπ² Z_q) with
+K_L = (1 - h)/(c + 1/k), k = κ + iωξ, where c and h describe the given particle
+(:func:`~contactres.resonators.particle_compliance`).
+
+Starts. For a given coverage N the model is linear in 1/k: k_n = 1/(N(1 - h_n)/(z_n s_n) - c_n)
+(z_n = Δf_n + iΔΓ_n, s_n = 2nπ²Z_q), so κ = Re k_n and ξ = Im k_n/ω_n follow in closed form,
+averaged over the overtones with the weights of the propagated noise. A scan of N over ten
+decades around the Sauerbrey estimate (variable projection) contains both limits of the model:
+small N with a stiff contact (Sauerbrey: the particles move with the surface) and large N with
+a soft one (paper 2, Eq. 1: the particles stand still). A second start takes the coupled
+resonance read off the peak of nΔΓ_n (Im K_L peaks at f_coupled): the scanned N whose κ puts
+the resonance there. Both starts are refined by the batched Levenberg-Marquardt of
+:func:`contactres.fitting.levenberg_marquardt` (in its Gauss-Newton form: all time steps at
+once, no per-step loop) in ln κ, ξ and ln N (ln κ_r), and the better fit is kept.
+
+Errors. The covariance is (JᵀJ)⁻¹ with the residuals weighted by the stated noise
+(``sigma_df``, ``sigma_dgamma``: errors from the noise model alone, χ² a test of it); without
+a stated noise both observables get one noise level, estimated per time step from the residuals
+(s² = χ²/(2M - p), M measured overtones), and the covariance is scaled by it.
+
+Identifiability (the rule; names in :data:`PARTICLE_FLAGS`). A parameter is unresolved, left
+NaN and named in the flags, when its relative error exceeds :data:`RELATIVE_ERROR_LIMIT` (0.3)
+or is not finite. The regime is named beside it from the fitted coupled resonance against the
+overtone comb [n_min f_F, n_max f_F]: above it every overtone sees the particle move with the
+surface (Sauerbrey-like: only the mass N·m is identified), below it the particle stands still
+(inertial: only N·κ and N·ξ). f_coupled is unresolved with κ.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import ContactresInputError
+from ..fitting import LMOptions, levenberg_marquardt
+from ..resonators import (
+    Medium,
+    Particle,
+    coupled_resonance,
+    particle_compliance,
+    particle_model_validity,
+)
+
+__all__ = [
+    "LIMIT_CHI2",
+    "PARTICLE_FLAGS",
+    "RELATIVE_ERROR_LIMIT",
+    "ParticleFit",
+    "fit_particles",
+]
+
+#: A fitted value whose relative standard error exceeds this is reported as unresolved (NaN).
+RELATIVE_ERROR_LIMIT = 0.3
+
+#: A limit of the model (rigid contact; particles standing still) whose best χ² exceeds the
+#: fit's by less than this (in units of the noise variance) is not rejected by the data.
+LIMIT_CHI2 = 9.0
+
+#: Flag name -> what it means (the names in :attr:`ParticleFit.flags`).
+PARTICLE_FLAGS = {
+    "sauerbrey-like": "a rigid contact fits as well (the particles move with the surface): "
+    "only the mass coverage·m is identified, not κ and ξ",
+    "inertial": "particles standing still fit as well (paper 2, Eq. 1): only coverage·κ and "
+    "coverage·ξ are identified, not κ and the coverage apart",
+    "outside-comb": "the coupled resonance lies outside the overtone comb",
+    "kappa-unresolved": "the contact stiffness κ (and f_coupled) is not identified by the data",
+    "xi-unresolved": "the contact drag ξ is not identified by the data (at the noise level)",
+    "coverage-unresolved": "the coverage is not identified by the data",
+    "rocking-unresolved": "the rotational stiffness κ_r is not identified by the data",
+    "fit-at-bound": "a parameter ended on its bound (ξ = 0)",
+    "not-converged": "the least-squares fit did not converge (no value is reported)",
+    "too-few-overtones": "fewer than two overtones measured at this time step",
+    "particle-smaller-than-delta": "the particle is smaller than the penetration depth of the "
+    "liquid: the hydrodynamic model does not hold (lattice Boltzmann is the tool)",
+}
+
+# Scan of κ_r for rocking="fit", in units of I (2π f_F)² (a rocking mode at f_F √(value)).
+_ROCKING_SCAN = np.logspace(-2.0, 4.0, 13)
+
+
+_LM = LMOptions(max_iter=50, xtol=1e-8, ftol=1e-10, max_step=2.0)
+
+
+@dataclass(frozen=True)
+class ParticleFit:
+    """Result of :func:`fit_particles`: arrays over the T time steps (NaN where unresolved).
+
+    Attributes
+    ----------
+    kappa, kappa_err : contact stiffness κ and its standard error, N/m
+    xi, xi_err : contact drag coefficient ξ, kg/s
+    coverage, coverage_err : particles per m²
+    f_coupled, f_coupled_err : coupled resonance (:func:`~contactres.resonators.
+        coupled_resonance`; with rocking="fit" the lower mode), Hz
+    kappa_r, kappa_r_err : rotational stiffness, N m/rad (NaN unless rocking="fit")
+    coverage_kappa, coverage_kappa_err : the product N·κ, N/m per m² (what an inertial
+        response identifies: paper 2's Eq. 1 gives n_P κ/A_eff), NaN only where it is itself
+        unresolved
+    coverage_xi, coverage_xi_err : the product N·ξ, kg/s per m²
+    parameters : names of the fitted parameters, in the order of ``correlation``
+    correlation : (T, p, p) correlation matrix of the fitted parameters (ln κ, ξ, ln N, ln κ_r)
+    chi2 : χ² of each step (weighted by the stated noise; in Hz² without one)
+    dof : degrees of freedom, 2M - p
+    df_model, dgamma_model : (T, n) the fitted model at every overtone of ``overtones``, Hz
+        (also where a parameter is unresolved: the curve is identified when its parts are not)
+    raw : (T, p) the fitted values before the identifiability rule (κ, ξ, N, κ_r)
+    flags : per step, a tuple of names of :data:`PARTICLE_FLAGS`
+    """
+
+    kappa: np.ndarray
+    kappa_err: np.ndarray
+    xi: np.ndarray
+    xi_err: np.ndarray
+    coverage: np.ndarray
+    coverage_err: np.ndarray
+    f_coupled: np.ndarray
+    f_coupled_err: np.ndarray
+    kappa_r: np.ndarray
+    kappa_r_err: np.ndarray
+    coverage_kappa: np.ndarray
+    coverage_kappa_err: np.ndarray
+    coverage_xi: np.ndarray
+    coverage_xi_err: np.ndarray
+    parameters: tuple[str, ...]
+    correlation: np.ndarray
+    chi2: np.ndarray
+    dof: np.ndarray
+    df_model: np.ndarray
+    dgamma_model: np.ndarray
+    raw: np.ndarray
+    flags: tuple[tuple[str, ...], ...]
+
+
+def fit_particles(
+    fundamental,
+    overtones,
+    df,
+    dgamma,
+    particle: Particle,
+    *,
+    rocking="free",
+    medium: Medium | None = None,
+    sigma_df=None,
+    sigma_dgamma=None,
+    zq=8.8e6,
+) -> ParticleFit:
+    """Fit κ, ξ and the coverage (and κ_r) to QCM-D shifts of attached particles, per time step.
+
+    Parameters
+    ----------
+    fundamental : f_F, Hz
+    overtones : (n,) overtone orders
+    df, dgamma : (T, n) or (n,) Δf_n (not divided by n) and ΔΓ_n (half bandwidth), Hz, against
+        the bare sensor in the same medium; NaN = not measured
+    particle : :class:`~contactres.resonators.Particle` (mass, moment of inertia, radius known)
+    rocking : "free", "locked", a rotational stiffness in N m/rad, or "fit"
+    medium : None or a :class:`~contactres.resonators.Medium`
+    sigma_df, sigma_dgamma : noise of Δf_n and ΔΓ_n, Hz (scalars or broadcasting against df);
+        None: estimated from the residuals (module docstring)
+    zq : shear-wave impedance of the quartz, kg m⁻² s⁻¹
+
+    Returns
+    -------
+    :class:`ParticleFit`
+
+    Examples
+    --------
+    >>> import numpy as np
+    >>> from contactres.analysis import fit_particles
+    >>> from contactres.resonators import Particle, particle_shifts
+    >>> p = Particle.sphere(1e-6, 2000.0)
+    >>> n = np.arange(1, 14, 2)
+    >>> df, dg = particle_shifts(5e6, n, p, 100.0, 2e-7, 2e9)  # κ N/m, ξ kg/s, per m²
+    >>> fit = fit_particles(5e6, n, df, dg, p, sigma_df=0.1, sigma_dgamma=0.1)
+    >>> print(f"{fit.kappa[0]:.1f} N/m, {fit.coverage[0]:.4g} /m², {fit.f_coupled[0]/1e6:.1f} MHz")
+    100.0 N/m, 2e+09 /m², 32.5 MHz
+    >>> fit.flags[0]  # nothing unresolved: the resonance lies within the comb
+    ()
+    """
+    f0, n, zf, wf, wg, estimate = _prepare(
+        fundamental, overtones, df, dgamma, sigma_df, sigma_dgamma
+    )
+    if zq <= 0 or not np.isfinite(zq):
+        raise ContactresInputError(f"zq must be finite and > 0 (kg m^-2 s^-1), got {zq!r}")
+    fit_rocking = isinstance(rocking, str) and rocking.strip().lower() == "fit"
+    freq = n * f0
+    sens = 2.0 * n * np.pi**2 * zq  # z_n s_n = N K_L
+    prob = _Problem(f0, particle, freq, sens, medium, zf, wf, wg, rocking, fit_rocking)
+    p_best = chi2 = conv = None
+    for p0 in prob.starts():
+        res = levenberg_marquardt(prob.evaluate, p0, lo=prob.lo, hi=prob.hi, options=_LM)
+        if p_best is None:
+            p_best, chi2, conv = res.x, res.chi2, res.converged
+        else:
+            better = res.chi2 < chi2
+            p_best = np.where(better[:, None], res.x, p_best)
+            chi2 = np.where(better, res.chi2, chi2)
+            conv = np.where(better, res.converged, conv)
+    reason = particle_model_validity(particle, freq, medium)
+    return prob.result(p_best, chi2, conv, estimate, reason)
+
+
+def _prepare(fundamental, overtones, df, dgamma, sigma_df, sigma_dgamma):
+    """Checked arrays: f_F, n (n,), z = Δf + iΔΓ (T, n) and the weights 1/σ (T, n)."""
+    f0 = float(fundamental)
+    if not np.isfinite(f0) or f0 <= 0:
+        raise ContactresInputError(f"fundamental must be finite and > 0 (Hz), got {fundamental!r}")
+    n = np.asarray(overtones, dtype=float)
+    if n.ndim != 1 or n.size < 2:
+        raise ContactresInputError(
+            f"fit_particles needs at least two overtones (a 1-D list), got {overtones!r}"
+        )
+    if np.any(~np.isfinite(n)) or np.any(n < 1) or np.any(n != np.round(n)):
+        raise ContactresInputError(f"overtones must be integers >= 1, got {overtones!r}")
+    d = np.atleast_2d(np.asarray(df, dtype=float))
+    g = np.atleast_2d(np.asarray(dgamma, dtype=float))
+    if d.shape != g.shape or d.shape[-1] != n.size or d.ndim != 2:
+        raise ContactresInputError(
+            f"df and dgamma must both have shape (T, {n.size}) or ({n.size},) for {n.size} "
+            f"overtones, got {np.shape(df)} and {np.shape(dgamma)}"
+        )
+    if np.all(np.isnan(g)):
+        raise ContactresInputError(
+            "the bandwidth shifts dgamma are all missing: the particle fit needs Δf and ΔΓ"
+        )
+    estimate = sigma_df is None and sigma_dgamma is None
+    if (sigma_df is None) != (sigma_dgamma is None):
+        raise ContactresInputError("give both sigma_df and sigma_dgamma, or neither")
+    wf = np.ones(d.shape) if estimate else 1.0 / _sigma("sigma_df", sigma_df, d.shape)
+    wg = np.ones(d.shape) if estimate else 1.0 / _sigma("sigma_dgamma", sigma_dgamma, d.shape)
+    # an overtone counts only with both of its shifts
+    measured = np.isfinite(d) & np.isfinite(g)
+    wf, wg = np.where(measured, wf, 0.0), np.where(measured, wg, 0.0)
+    z = np.where(measured, d + 1j * g, 0.0)
+    return f0, n, z, wf, wg, estimate
+
+
+def _sigma(name, sigma, shape):
+    s = np.asarray(sigma, dtype=float)
+    if np.any(~np.isfinite(s)) or np.any(s <= 0):
+        raise ContactresInputError(f"{name} must be finite and > 0 (Hz), got {sigma!r}")
+    try:
+        return np.broadcast_to(s, shape)
+    except ValueError:
+        raise ContactresInputError(f"{name} of shape {s.shape} does not fit data {shape}") from None
+
+
+class _Problem:
+    """The batched least-squares problem of :func:`fit_particles` (its evaluate, starts and
+    result); an object only to keep the arrays of one call together (nothing is cached
+    beyond the call)."""
+
+    def __init__(self, f0, particle, freq, sens, medium, z, wf, wg, rocking, fit_rocking):
+        self.f0, self.particle, self.freq, self.sens = f0, particle, freq, sens
+        self.omega = 2.0 * np.pi * freq
+        self.medium, self.z, self.wf, self.wg = medium, z, wf, wg
+        self.fit_rocking = fit_rocking
+        self.rocking = rocking
+        self.n_par = 4 if fit_rocking else 3
+        if not fit_rocking:
+            c, h = particle_compliance(particle, freq, rocking=rocking, medium=medium)
+            self.c, self.h = c[None, :], h[None, :]
+        self.count = (wf > 0).sum(axis=1)
+        t = z.shape[0]
+        # Scales: the Sauerbrey coverage n0 (from the median |z_n| s_n/(m ω_n²)), the stiffness
+        # of a resonance at the comb's ends and the rocking stiffness of a rocking mode at f_F.
+        m = particle.mass
+        with np.errstate(invalid="ignore", divide="ignore"):
+            n0 = np.nanmedian(np.where(wf > 0, np.abs(z) * sens / (m * self.omega**2), np.nan), 1)
+        self.n0 = np.where(np.isfinite(n0) & (n0 > 0), n0, 1.0)
+        k_lo, k_hi = m * self.omega.min() ** 2, m * self.omega.max() ** 2
+        self.kr0 = particle.moment_of_inertia * (2 * np.pi * f0) ** 2
+        # Bounds far outside what the comb can see (a fit on a bound is flagged): 10⁴ in
+        # frequency beyond the comb for κ (10⁸ in κ) and κ_r, 10⁸ around n0 for the coverage.
+        lo = [np.log(k_lo * 1e-8), 0.0, np.log(self.n0 * 1e-8), np.log(self.kr0 * 1e-8)]
+        hi = [np.log(k_hi * 1e8), np.inf, np.log(self.n0 * 1e8), np.log(self.kr0 * 1e10)]
+        self.lo = np.stack(np.broadcast_arrays(*lo[: self.n_par]), axis=-1)
+        self.hi = np.stack(np.broadcast_arrays(*hi[: self.n_par]), axis=-1)
+        self.xi_scale = np.ones(t)
+
+    def _ch(self, p):
+        """c, h of the particle (rows, n) at the κ_r of p (or the given rocking)."""
+        if not self.fit_rocking:
+            return self.c, self.h
+        return particle_compliance(
+            self.particle, self.freq, rocking=np.exp(p[:, 3:4]), medium=self.medium
+        )
+
+    def model(self, p, c, h):
+        """z_n (Hz) and K_L for parameters p (rows, P) in the fit's coordinates."""
+        kappa, xi, cov = np.exp(p[:, 0:1]), p[:, 1:2], np.exp(p[:, 2:3])
+        k = kappa + 1j * self.omega * xi
+        kl = (1.0 - h) / (c + 1.0 / k)
+        return cov * kl / self.sens, kl, k
+
+    def evaluate(self, q, rows, jacobian):
+        p = q.copy()
+        p[:, 1] *= self.xi_scale[rows]
+        c, h = self._ch(p)
+        zm, kl, k = self.model(p, c, h)
+        cov = np.exp(p[:, 2:3])
+        # dK_L/dk = K_L²/((1 - h) k²)
+        dk = cov * kl * kl / ((1.0 - h) * k * k) / self.sens
+        cols = [dk * np.exp(p[:, 0:1]), dk * 1j * self.omega * self.xi_scale[rows, None], zm]
+        if self.fit_rocking:
+            eps = 1e-6
+            p2 = p.copy()
+            p2[:, 3] += eps
+            c2, h2 = self._ch(p2)
+            cols.append((self.model(p2, c2, h2)[0] - zm) / eps)
+        wf, wg = self.wf[rows], self.wg[rows]
+        diff = zm - self.z[rows]
+        r = np.concatenate([diff.real * wf, diff.imag * wg], axis=1)
+        jac = np.empty((r.shape[0], r.shape[1], len(cols)))
+        half = diff.shape[1]
+        for j, col in enumerate(cols):
+            jac[:, :half, j] = col.real * wf
+            jac[:, half:, j] = col.imag * wg
+        chi2 = np.sum(r * r, axis=1)
+        chi2 = np.where(np.isfinite(chi2), chi2, np.inf)
+        r, jac = np.nan_to_num(r), np.nan_to_num(jac)
+        jt = jac.transpose(0, 2, 1)
+        return {"chi2": chi2, "gradient": (jt @ r[:, :, None])[:, :, 0], "hessian": jt @ jac}
+
+    def starts(self):
+        """Starting points (rows, P) in the fit's coordinates: the equation-error solution, and
+        the same with κ put where the peak of nΔΓ_n puts the coupled resonance (module
+        docstring). For rocking="fit" each is the best over a scan of κ_r."""
+        t = self.z.shape[0]
+        scan = [None]
+        if self.fit_rocking:
+            scan = list(
+                _ROCKING_SCAN * self.particle.moment_of_inertia * (2 * np.pi * self.f0) ** 2
+            )
+        found = []
+        for kind in ("equation", "peak", "sauerbrey", "heavy"):
+            best, best_chi2 = np.full((t, self.n_par), np.nan), np.full(t, np.inf)
+            for kr in scan:
+                c, h = (self.c, self.h) if kr is None else self._ch(np.full((t, 4), np.log(kr)))
+                kappa, xi, cov = self._start(kind, kr, c, h)
+                p = np.column_stack(
+                    [np.log(kappa), xi, np.log(cov)]
+                    + ([] if kr is None else [np.full(t, np.log(kr))])
+                )
+                p = np.clip(np.where(np.isfinite(p), p, self._fallback()), self.lo, self.hi)
+                chi2 = self.evaluate(p / self._unit(p), np.arange(t), False)["chi2"]
+                take = chi2 < best_chi2
+                best = np.where(take[:, None], p, best)
+                best_chi2 = np.where(take, chi2, best_chi2)
+            found.append(np.where(np.isfinite(best), best, self._fallback()))
+        # ξ is fitted in units of its first start (Marquardt's damping is scale-free, but the
+        # bounds and the covariance read better in those units)
+        self.xi_scale = np.where(found[0][:, 1] > 0, found[0][:, 1], 1e-12)
+        return [f / self._unit(f) for f in found]
+
+    def _start(self, kind, kr, c, h):
+        """κ, ξ, N (T,) of one kind of start (module docstring)."""
+        t = self.z.shape[0]
+        if kind in ("equation", "peak"):
+            fixed = self._peak_kappa(kr) if kind == "peak" else None
+            return _equation_error(self.z, self.wf, self.wg, self.sens, self.omega, c, h, fixed)
+        # The two limits: the particles move with the surface (κ 10⁴ above the comb's
+        # resonance stiffness) or stand still (10⁴ below); ξ from the equation-error start, or
+        # 0, and the coverage that fits best with these (linear least squares in N).
+        _, xi, _ = _equation_error(self.z, self.wf, self.wg, self.sens, self.omega, c, h, None)
+        xi = np.where(np.isfinite(xi), xi, 0.0)
+        m = self.particle.mass
+        kappa = np.full(t, m * self.omega.max() ** 2 * 1e4 if kind == "sauerbrey" else 1.0)
+        if kind == "heavy":
+            kappa *= m * self.omega.min() ** 2 * 1e-4
+        k = kappa[:, None] + 1j * self.omega * xi[:, None]
+        g = (1.0 - h) / (c + 1.0 / k) / self.sens  # shift per unit coverage
+        num = np.sum(self.wf**2 * g.real * self.z.real + self.wg**2 * g.imag * self.z.imag, 1)
+        den = np.sum(self.wf**2 * g.real**2 + self.wg**2 * g.imag**2, 1)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            cov = num / den
+        return kappa, xi, np.where(cov > 0, cov, np.nan)
+
+    def _unit(self, p):
+        unit = np.ones_like(p)
+        unit[:, 1] = self.xi_scale
+        return unit
+
+    def _fallback(self):
+        """A start where the equation-error solution is not usable: κ of a resonance at the
+        middle of the comb, ξ = 0, the Sauerbrey coverage."""
+        mid = np.sqrt(self.freq.min() * self.freq.max())
+        kappa = self.particle.mass * (2 * np.pi * mid) ** 2
+        base = [np.log(kappa), 0.0, np.log(self.n0), np.log(self.kr0)][: self.n_par]
+        return np.stack(np.broadcast_arrays(*base), axis=-1)
+
+    def _peak_kappa(self, kr):
+        """κ that puts the coupled resonance (vacuum) at the largest nΔΓ_n of each step."""
+        score = np.where(self.wf > 0, self.z.imag * self.freq, -np.inf)
+        f_peak = self.freq[np.argmax(score, axis=1)]
+        rocking = self.rocking if kr is None else kr
+        f1 = coupled_resonance(self.particle, 1.0, rocking=rocking)
+        f1 = f1 if isinstance(rocking, str) else f1[..., 0]
+        return (f_peak / f1) ** 2  # f_coupled ∝ √κ in vacuum
+
+    def _resonance(self, p):
+        kap = np.exp(p[..., 0])
+        rocking = self.rocking if not self.fit_rocking else np.exp(p[..., 3])
+        f = coupled_resonance(self.particle, kap, rocking=rocking, medium=self.medium)
+        # two modes with a rotational stiffness: the lower (the translation's continuation)
+        return f if isinstance(rocking, str) else f[..., 0]
+
+    def result(self, q, chi2, conv, estimate, reason):
+        """The :class:`ParticleFit` at the fitted q (rows, P): errors, the rule, flags."""
+        t, npar = q.shape
+        p = q.copy()
+        p[:, 1] *= self.xi_scale
+        rows = np.arange(t)
+        hess = self.evaluate(q, rows, True)["hessian"]
+        dof = 2 * self.count - npar
+        with np.errstate(divide="ignore", invalid="ignore"):
+            s2 = np.where(dof > 0, chi2 / dof, np.nan) if estimate else np.ones(t)
+            cov_q = _inverse(hess) * s2[:, None, None]
+            err_q = np.sqrt(np.diagonal(cov_q, axis1=1, axis2=2))
+            corr = cov_q / (err_q[:, :, None] * err_q[:, None, :])
+        kappa, xi, cov = np.exp(p[:, 0]), p[:, 1], np.exp(p[:, 2])
+        kappa_err, xi_err, cov_err = (
+            kappa * err_q[:, 0],
+            self.xi_scale * err_q[:, 1],
+            cov * err_q[:, 2],
+        )
+        if self.fit_rocking:
+            kr, kr_err = np.exp(p[:, 3]), np.exp(p[:, 3]) * err_q[:, 3]
+        else:
+            kr = kr_err = np.full(t, np.nan)
+        fc, fc_err = self._resonance_with_error(p, cov_q)
+        # the products N·κ and N·ξ: ln(Nκ) = q0 + q2, ln(Nξ) = ln q1 + q2 (+ const)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            nk_rel = np.sqrt(cov_q[:, 0, 0] + cov_q[:, 2, 2] + 2 * cov_q[:, 0, 2])
+            q1 = q[:, 1]
+            nx_rel = np.sqrt(cov_q[:, 1, 1] / q1**2 + cov_q[:, 2, 2] + 2 * cov_q[:, 1, 2] / q1)
+            nk, nx = cov * kappa, cov * xi
+            nk_err, nx_err = nk * nk_rel, nx * nx_rel
+        nk_ok = np.isfinite(nk_rel) & (nk_rel <= RELATIVE_ERROR_LIMIT) & (self.count >= 2)
+        nx_ok = np.isfinite(nx_rel) & (nx_rel <= RELATIVE_ERROR_LIMIT) & (self.count >= 2)
+        if reason is not None:
+            nk_ok = nx_ok = np.zeros(t, bool)
+        c, h = self._ch(p)
+        zm = self.model(p, c, h)[0]
+        # The likelihood-ratio test against the two limits of the model (module docstring)
+        scale = s2 if estimate else np.ones(t)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            lim_s, lim_h = _limit_chi2(self.z, self.wf, self.wg, self.sens, self.omega, c, h)
+            sauerbrey = (lim_s - chi2) / scale < LIMIT_CHI2
+            inertial = (lim_h - chi2) / scale < LIMIT_CHI2
+        names = ("kappa", "xi", "coverage", "kappa_r")[:npar]
+        flags, keep = [], np.ones((t, 4), bool)
+        measured = self.wf > 0
+        for i in range(t):
+            f = []
+            if self.count[i] < 2:
+                flags.append(("too-few-overtones",))
+                keep[i] = False
+                continue
+            rel = [
+                kappa_err[i] / kappa[i],
+                xi_err[i] / xi[i] if xi[i] > 0 else np.inf,
+                cov_err[i] / cov[i],
+                kr_err[i] / kr[i] if self.fit_rocking else 0.0,
+            ]
+            bad = [not (np.isfinite(r) and r <= RELATIVE_ERROR_LIMIT) for r in rel]
+            comb = self.freq[measured[i]]
+            if sauerbrey[i]:
+                f.append("sauerbrey-like")
+                bad[0] = bad[1] = True  # κ and ξ: a rigid contact fits as well
+            if inertial[i]:
+                f.append("inertial")
+                bad[0] = bad[2] = True  # κ and N: only their product
+            if not comb.min() <= fc[i] <= comb.max():
+                f.append("outside-comb")
+            if q[i, 1] <= 0.0:
+                f.append("fit-at-bound")
+            if not conv[i]:
+                # a fit that stopped in a flat valley: its point is not an estimate
+                f.append("not-converged")
+                bad = [True] * 4
+            if reason is not None:
+                f.append("particle-smaller-than-delta")
+                bad = [True] * 4
+            unresolved = ("kappa-unresolved", "xi-unresolved", "coverage-unresolved")
+            if self.fit_rocking:
+                unresolved += ("rocking-unresolved",)
+            f += [name for name, b in zip(unresolved, bad, strict=False) if b]
+            keep[i] = np.logical_not(bad)
+            flags.append(tuple(f))
+
+        def shown(value, col):
+            return np.where(keep[:, col], value, np.nan)
+
+        return ParticleFit(
+            kappa=shown(kappa, 0),
+            kappa_err=shown(kappa_err, 0),
+            xi=shown(xi, 1),
+            xi_err=shown(xi_err, 1),
+            coverage=shown(cov, 2),
+            coverage_err=shown(cov_err, 2),
+            f_coupled=shown(fc, 0),
+            f_coupled_err=shown(fc_err, 0),
+            kappa_r=shown(kr, 3) if self.fit_rocking else kr,
+            kappa_r_err=shown(kr_err, 3) if self.fit_rocking else kr_err,
+            coverage_kappa=np.where(nk_ok, nk, np.nan),
+            coverage_kappa_err=np.where(nk_ok, nk_err, np.nan),
+            coverage_xi=np.where(nx_ok, nx, np.nan),
+            coverage_xi_err=np.where(nx_ok, nx_err, np.nan),
+            parameters=names,
+            correlation=corr,
+            chi2=chi2,
+            dof=dof,
+            df_model=zm.real,
+            dgamma_model=zm.imag,
+            raw=np.column_stack([kappa, xi, cov, kr][:npar]),
+            flags=tuple(flags),
+        )
+
+    def _resonance_with_error(self, p, cov_q):
+        """f_coupled (Hz) and its standard error from the covariance of (ln κ, ln κ_r)."""
+        fc = self._resonance(p)
+        idx = [0, 3] if self.fit_rocking else [0]
+        grad = np.zeros((p.shape[0], p.shape[1]))
+        eps = 1e-6
+        for j in idx:
+            p2 = p.copy()
+            p2[:, j] += eps
+            grad[:, j] = (np.log(self._resonance(p2)) - np.log(fc)) / eps
+        var = np.einsum("ri,rij,rj->r", grad, cov_q, grad)
+        return fc, fc * np.sqrt(np.maximum(var, 0.0))
+
+
+def _inverse(h):
+    """(JᵀJ)⁻¹ of a stack, inf on the diagonal where it is singular (an unidentified
+    direction) instead of the finite nonsense of a pseudo-inverse."""
+    d = np.sqrt(np.maximum(np.diagonal(h, axis1=1, axis2=2), 1e-300))
+    hn = h / (d[:, :, None] * d[:, None, :])
+    ev = np.linalg.eigvalsh(hn)
+    singular = ~(ev[:, 0] > 1e-14 * ev[:, -1])
+    safe = np.where(singular[:, None, None], np.eye(h.shape[-1]), hn)
+    inv = np.linalg.inv(safe) / (d[:, :, None] * d[:, None, :])
+    return np.where(singular[:, None, None], np.inf, inv)
+
+
+def _equation_error(z, wf, wg, sens, omega, c, h, kappa_fixed=None, sweeps=3):
+    """κ, ξ, N (T,) from the model multiplied out, linear in (κ, ξ, Nκ, Nξ):
+
+        z s c (κ + iωξ) + z s = (1 - h)(Nκ + iω Nξ)    (z s = N(1 - h)/(c + 1/k))
+
+    solved by weighted least squares, reweighted ``sweeps`` times with the noise of each
+    equation, |s(ck + 1)| σ (Sanathanan-Koerner). With ``kappa_fixed`` (T,) κ is held. Exact
+    for noise-free data; a start, not the fit."""
+    zs = z * sens
+    # the variance of one complex equation's noise, the mean of the two observables'
+    sf, sg = 1.0 / np.where(wf > 0, wf, 1.0), 1.0 / np.where(wg > 0, wg, 1.0)
+    sig2 = np.where(wf > 0, 0.5 * (sf**2 + sg**2), 0.0)
+    cols = [zs * c, 1j * omega * zs * c, -(1.0 - h) + 0 * zs, -1j * omega * (1.0 - h) + 0 * zs]
+    rhs = -zs
+    if kappa_fixed is not None:
+        rhs = rhs - cols[0] * kappa_fixed[:, None]
+        cols = cols[1:]
+    a = np.concatenate(
+        [np.stack([col.real for col in cols], -1), np.stack([col.imag for col in cols], -1)], 1
+    )
+    b = np.concatenate([rhs.real, rhs.imag], 1)
+    w = np.where(wf > 0, 1.0 / np.where(sig2 > 0, sig2, 1.0), 0.0)
+    x = None
+    for _ in range(sweeps):
+        ww = np.concatenate([w, w], 1)
+        aw = a * np.sqrt(ww)[:, :, None]
+        bw = b * np.sqrt(ww)
+        d = np.sqrt(np.maximum(np.einsum("rgp,rgp->rp", aw, aw), 1e-300))
+        an = aw / d[:, None, :]
+        m = np.einsum("rgp,rgq->rpq", an, an) + 1e-12 * np.eye(a.shape[-1])
+        rhs_n = np.einsum("rgp,rg->rp", an, bw)[:, :, None]
+        good = np.all(np.isfinite(m), axis=(1, 2)) & np.all(np.isfinite(rhs_n), axis=(1, 2))
+        m = np.where(good[:, None, None], m, np.eye(a.shape[-1]))
+        x = np.linalg.solve(m, np.where(good[:, None, None], rhs_n, np.nan))[:, :, 0] / d
+        kap = kappa_fixed if kappa_fixed is not None else x[:, 0]
+        k = kap[:, None] + 1j * omega * x[:, 1 if kappa_fixed is None else 0, None]
+        # the next weights; a start that overflows here just keeps the last ones
+        with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+            var = sig2 * np.abs(sens * (c * k + 1.0)) ** 2
+            w_new = np.where(wf > 0, 1.0 / np.where(var > 0, var, 1.0), 0.0)
+        w = np.where(np.isfinite(w_new), w_new, w)
+    if kappa_fixed is not None:
+        x = np.column_stack([kappa_fixed, x])
+    kappa, xi, a_nk = x[:, 0], x[:, 1], x[:, 2]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        cov = a_nk / kappa
+    ok = (kappa > 0) & (cov > 0)
+    return np.where(ok, kappa, np.nan), np.maximum(xi, 0.0), np.where(ok, cov, np.nan)
+
+
+def _limit_chi2(z, wf, wg, sens, omega, c, h):
+    """χ² (T,) of the best fits of the model's two limits, both linear least squares:
+    a rigid contact, z = N (1 - h)/(c s) (N free), and particles standing still,
+    z = (1 - h)(Nκ + iω Nξ)/s (Nκ, Nξ free)."""
+    zr, zi = z.real * wf, z.imag * wg
+
+    def chi2_of(basis):
+        a = np.stack([np.concatenate([b.real * wf, b.imag * wg], 1) for b in basis], -1)
+        y = np.concatenate([zr, zi], 1)
+        d = np.sqrt(np.maximum(np.einsum("rgp,rgp->rp", a, a), 1e-300))
+        an = a / d[:, None, :]
+        m = np.einsum("rgp,rgq->rpq", an, an) + 1e-12 * np.eye(len(basis))
+        good = np.all(np.isfinite(m), axis=(1, 2))
+        m = np.where(good[:, None, None], m, np.eye(len(basis)))
+        x = np.linalg.solve(m, np.einsum("rgp,rg->rp", an, y)[:, :, None])
+        r = y - (an @ x)[:, :, 0]
+        return np.where(good, np.sum(r * r, axis=1), np.inf)
+
+    c_b, h_b = np.broadcast_arrays(c, h, z)[:2]
+    rigid = chi2_of([(1.0 - h_b) / (c_b * sens)])
+    still = chi2_of([(1.0 - h_b) / sens, 1j * omega * (1.0 - h_b) / sens])
+    return rigid, still
