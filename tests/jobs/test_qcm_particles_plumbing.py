@@ -90,7 +90,8 @@ def test_tables_have_the_contract_columns_and_empty_cells_where_flagged(study, t
     assert values["constants"]["fundamental_Hz"] == F_F
     assert values["constants"]["overtones"] == list(STUDY.overtones)
     assert set(values["columns"]) >= set(PARTICLES_CSV.names) | set(PARTICLE_SHIFTS_CSV.names)
-    assert "2 of 6 time steps flagged: sauerbrey-like" in result.warnings
+    assert values["flag_meanings"]["sauerbrey-like"].startswith("a rigid contact fits as well")
+    assert "flagged time steps (of 6): sauerbrey-like 2;" in result.warnings[-1]
 
 
 def test_the_shifts_table_holds_the_data_and_the_fits_model(study, tmp_path):
@@ -226,7 +227,7 @@ def test_the_command_writes_the_folder(study, tmp_path):
         "particles.csv", "particles.json", "particles_overtones.png", "particles_plane.png",
         "particles_time.png", "report.html", "shifts.csv",
     ]  # fmt: skip
-    assert "6 time steps" in r.output and "2 of 6 time steps flagged" in r.output
+    assert "6 time steps" in r.output and "flagged time steps (of 6): sauerbrey-like 2" in r.output
     page = (out / "report.html").read_text(encoding="utf-8")
     assert page.count("data:image/png;base64,") == 3 and "sauerbrey-like" in page
 

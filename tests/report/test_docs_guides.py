@@ -38,7 +38,14 @@ PAGES = [
 ]
 EXPECTED = ["getting-started.md", "developer/adding.md"] + [
     f"guide/{name}.md"
-    for name in ("qcm-sweeps", "spectra", "anisotropic-contact", "dynamic-stiffness", "cr-afm-rum")
+    for name in (
+        "qcm-sweeps",
+        "spectra",
+        "particles",
+        "anisotropic-contact",
+        "dynamic-stiffness",
+        "cr-afm-rum",
+    )
 ]
 FENCE = re.compile(r"^```(?P<lang>\w*)\n(?P<code>.*?)^```", re.S | re.M)
 SHELL_LANGS = {"console", "bash"}

@@ -150,7 +150,8 @@ class Result(JobResult):
     ``shifts``: the shifts read and the fitted model's per time and overtone
     (:data:`~contactres.measurements.schema.PARTICLE_SHIFTS_CSV`). The conventions the file was
     read with and those of the shifts, the constants (particle, medium, quartz, noise), the
-    equation, the units of the columns and how many steps carry each flag; ``source`` the file's
+    equation, the units of the columns, how many steps carry each flag and what each flag means
+    (:data:`contactres.analysis.PARTICLE_FLAGS`); ``source`` the file's
     name and ``warnings`` what the reader left out and what the user should know."""
 
     SCHEMAS = MappingProxyType({"particles": PARTICLES_CSV, "shifts": PARTICLE_SHIFTS_CSV})
@@ -164,6 +165,7 @@ class Result(JobResult):
     equation: str
     columns: dict
     flag_counts: dict
+    flag_meanings: dict
     source: str = ""
     warnings: tuple[str, ...] = ()
 
@@ -176,7 +178,7 @@ def run(inputs: str | os.PathLike, settings: Settings, progress: Progress | None
     """Fit the particles of the file ``inputs`` (see the module docstring)."""
     import numpy as np
 
-    from ..analysis import fit_particles
+    from ..analysis import PARTICLE_FLAGS, fit_particles
 
     source, s = Path(inputs), settings
     if s.rocking not in ROCKING:
@@ -211,7 +213,12 @@ def run(inputs: str | os.PathLike, settings: Settings, progress: Progress | None
     particles = _particles_table(times, fit)
     shifts = _shifts_table(times, overtones, df, dgamma, fit)
     counts = _flag_counts(particles["flags"])
-    lines += [f"{k} of {len(times)} time steps flagged: {name}" for name, k in counts.items()]
+    if counts:
+        shown = ", ".join(f"{name} {k}" for name, k in counts.items())
+        lines.append(
+            f"flagged time steps (of {len(times)}): {shown}; what each flag means is in "
+            "particles.json (flag_meanings)"
+        )
     return Result(
         particles=particles,
         shifts=shifts,
@@ -220,6 +227,7 @@ def run(inputs: str | os.PathLike, settings: Settings, progress: Progress | None
         equation=EQUATION,
         columns=dict(COLUMN_UNITS),
         flag_counts=counts,
+        flag_meanings={name: PARTICLE_FLAGS.get(name, "") for name in counts},
         source=source.name,
         warnings=tuple(lines),
     )

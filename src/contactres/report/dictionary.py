@@ -20,7 +20,7 @@ from __future__ import annotations
 
 import re
 
-from ..analysis import DESCRIPTIONS, Flag
+from ..analysis import DESCRIPTIONS, PARTICLE_FLAGS, Flag
 from ..analysis import FLAG_DESCRIPTIONS as MODULUS_FLAG_DESCRIPTIONS
 from ..measurements import FLAGS as SPECTRA_FIT_FLAGS
 from ..measurements.schema import (
@@ -85,6 +85,7 @@ DOCS_ONLY = (
     "qcmd-shift-table",
     "particles-csv",
     "particle-shifts-csv",
+    "particle-flags",
     "afm-invert",
     "rum-invert",
     "resonance-flags",
@@ -137,6 +138,7 @@ def dictionary_tables() -> dict[str, str]:
         "qcmd-shift-table": QCMD_SHIFTS_TABLE.markdown(with_required=True),
         "particles-csv": PARTICLES_CSV.markdown(),
         "particle-shifts-csv": PARTICLE_SHIFTS_CSV.markdown(),
+        "particle-flags": _flag_table(PARTICLE_FLAGS.items()),
         "afm-invert": AFM_INVERT_RESULTS.markdown(),
         "rum-invert": RUM_INVERT_RESULTS.markdown(),
         "resonance-flags": _flag_table(
