@@ -170,3 +170,49 @@ def test_a_fitted_rocking_stiffness_runs_through_the_job(tmp_path):
     steps = result.particles.iloc[1:]
     deviation = steps["coverage_per_m2"] / truth["coverage_per_m2"].iloc[1:] - 1
     assert deviation.abs().max() < 0.02
+
+
+# --- the command line ------------------------------------------------------------------------
+
+
+def _cli(*args):
+    from click.testing import CliRunner
+
+    from contactres.cli import main
+
+    return CliRunner().invoke(main, [str(a) for a in args])
+
+
+def test_particles_inside_the_penetration_depth_are_one_line_on_the_command_line(tmp_path):
+    r = _cli("qcm", "particles", example_path("example_particles.csv"), "--particle-radius",
+             "5e-8", "--particle-density", "2200", "--fundamental", "5e6", "--medium", "water",
+             "--out", tmp_path / "out")  # fmt: skip
+    assert r.exit_code == 2, r.output
+    lines = r.output.strip().splitlines()
+    assert len(lines) == 1 and "Traceback" not in r.output
+    assert "smaller than the penetration depth of water at every overtone" in lines[0]
+    assert not (tmp_path / "out" / "particles.csv").exists()
+
+
+def test_an_export_with_its_options_on_the_command_line(tmp_path):
+    """A QSense export (Δf/n, D in ppm, time in minutes) read with the options of qcm
+    stiffness: the same particles as the tidy table of the same shifts."""
+    study = ParticleStudy(n_steps=3)
+    shifts, _ = synthetic_particle_study(study, 2)
+    path, _ = LAYOUTS["qsense"][0](tmp_path, shifts)
+    tidy, _ = LAYOUTS["tidy"][0](tmp_path, shifts)
+    common = ("--particle-radius", study.radius, "--particle-density", study.density,
+              "--fundamental", F_F, "--medium", "water", "--report", "none",
+              "--no-figures")  # fmt: skip
+    r = _cli("qcm", "particles", path, *common, "--df-divided-by-n", "--dissipation-scale",
+             "ppm", "--time-unit", "min", "--channel", "1", "--out", tmp_path / "a")  # fmt: skip
+    assert r.exit_code == 0, r.output
+    assert "(qsense)" in r.output
+    r = _cli("qcm", "particles", tidy, *common, "--out", tmp_path / "b")
+    assert r.exit_code == 0, r.output
+    assert sorted(p.name for p in (tmp_path / "a").iterdir()) == [
+        "manifest.json", "particles.csv", "particles.json", "shifts.csv",
+    ]  # fmt: skip
+    a = pd.read_csv(tmp_path / "a" / "particles.csv")
+    b = pd.read_csv(tmp_path / "b" / "particles.csv")
+    pd.testing.assert_frame_equal(a, b, rtol=1e-5)
