@@ -214,6 +214,7 @@ PUBLIC = {
         "FLAG_DESCRIPTIONS",
         "FilmModulusResult",
         "Flag",
+        "LIMIT_CHI2",
         "ModulusResult",
         "PAGE_POINTS",
         "PARTICLE_FLAGS",

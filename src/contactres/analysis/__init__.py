@@ -55,6 +55,7 @@ _EXPORTS = MappingProxyType(
         "radiation_for": "._radiation",
         "radiation_loss": "._radiation",
         "radiation_summary": "._radiation",
+        "LIMIT_CHI2": "._particles",
         "PARTICLE_FLAGS": "._particles",
         "ParticleFit": "._particles",
         "RELATIVE_ERROR_LIMIT": "._particles",
@@ -101,6 +102,7 @@ if TYPE_CHECKING:
         REGISTRY as REGISTRY,
     )
     from ._particles import (
+        LIMIT_CHI2 as LIMIT_CHI2,
         PARTICLE_FLAGS as PARTICLE_FLAGS,
         ParticleFit as ParticleFit,
         RELATIVE_ERROR_LIMIT as RELATIVE_ERROR_LIMIT,

@@ -9,28 +9,41 @@ Model (theory page docs/theory/particles.md): Δf_n + iΔΓ_n = N K_L(ω_n)/(2n�
 K_L = (1 - h)/(c + 1/k), k = κ + iωξ, where c and h describe the given particle
 (:func:`~contactres.resonators.particle_compliance`).
 
-Starts. For a given coverage N the model is linear in 1/k: k_n = 1/(N(1 - h_n)/(z_n s_n) - c_n)
-(z_n = Δf_n + iΔΓ_n, s_n = 2nπ²Z_q), so κ = Re k_n and ξ = Im k_n/ω_n follow in closed form,
-averaged over the overtones with the weights of the propagated noise. A scan of N over ten
-decades around the Sauerbrey estimate (variable projection) contains both limits of the model:
-small N with a stiff contact (Sauerbrey: the particles move with the surface) and large N with
-a soft one (paper 2, Eq. 1: the particles stand still). A second start takes the coupled
-resonance read off the peak of nΔΓ_n (Im K_L peaks at f_coupled): the scanned N whose κ puts
-the resonance there. Both starts are refined by the batched Levenberg-Marquardt of
-:func:`contactres.fitting.levenberg_marquardt` (in its Gauss-Newton form: all time steps at
-once, no per-step loop) in ln κ, ξ and ln N (ln κ_r), and the better fit is kept.
+Starts. Multiplied out, the model is linear in (κ, ξ, Nκ, Nξ):
+z_n s_n c_n (κ + iω_n ξ) + z_n s_n = (1 - h_n)(Nκ + iω_n Nξ), with z_n = Δf_n + iΔΓ_n and
+s_n = 2nπ²Z_q; its weighted least squares, reweighted with the propagated noise
+(Sanathanan-Koerner), is exact for noise-free data (the "equation-error" start). Three more
+starts: the same with κ held where the peak of nΔΓ_n puts the coupled resonance (Im K_L peaks
+at f_coupled); the Sauerbrey limit (κ 10⁴ above the stiffness of a resonance at the top of the
+comb, the coverage fitted linearly); and the heavy-particle limit of paper 2, Eq. 1 (κ 10⁴
+below a resonance at the bottom). With rocking="fit" each start is the best over a scan of κ_r.
+Each is refined by the batched Levenberg-Marquardt of
+:func:`contactres.fitting.levenberg_marquardt` in its Gauss-Newton form (all time steps at once:
+no loop over steps) in ln κ, ξ, ln N (ln κ_r), within bounds 10⁸ beyond what the comb can see,
+and the lowest χ² is kept.
 
 Errors. The covariance is (JᵀJ)⁻¹ with the residuals weighted by the stated noise
 (``sigma_df``, ``sigma_dgamma``: errors from the noise model alone, χ² a test of it); without
-a stated noise both observables get one noise level, estimated per time step from the residuals
-(s² = χ²/(2M - p), M measured overtones), and the covariance is scaled by it.
+a stated noise both observables get one noise level, estimated per time step from the
+residuals (s² = χ²/(2M - p), M measured overtones), and the covariance is scaled by it.
 
-Identifiability (the rule; names in :data:`PARTICLE_FLAGS`). A parameter is unresolved, left
-NaN and named in the flags, when its relative error exceeds :data:`RELATIVE_ERROR_LIMIT` (0.3)
-or is not finite. The regime is named beside it from the fitted coupled resonance against the
-overtone comb [n_min f_F, n_max f_F]: above it every overtone sees the particle move with the
-surface (Sauerbrey-like: only the mass N·m is identified), below it the particle stands still
-(inertial: only N·κ and N·ξ). f_coupled is unresolved with κ.
+Identifiability (the rule; names in :data:`PARTICLE_FLAGS`). Per time step:
+
+1. The two limits of the model are fitted by linear least squares: a rigid contact (κ -> ∞,
+   z = N(1 - h)/(c s)) and particles standing still (z = (1 - h)(Nκ + iωNξ)/s). A limit whose
+   χ² exceeds the fit's by less than :data:`LIMIT_CHI2` (9, in units of the noise variance) is
+   not rejected: "sauerbrey-like" (κ and ξ unresolved: only the mass N·m) or "inertial" (κ and
+   N unresolved: only N·κ and N·ξ, reported as ``coverage_kappa`` and ``coverage_xi``).
+2. Any parameter whose relative standard error exceeds :data:`RELATIVE_ERROR_LIMIT` (0.3), or
+   is not finite, is unresolved ("xi-unresolved" is the usual one: a loss at the noise level).
+3. A fit that did not converge, or a particle smaller than the penetration depth in a liquid
+   (:func:`~contactres.resonators.particle_model_validity`), leaves every parameter unresolved.
+
+Unresolved values are NaN, with their errors; f_coupled goes with κ. "outside-comb" says that
+the fitted coupled resonance lies outside [n_min f_F, n_max f_F] of the measured overtones
+(information: a resonance just outside the comb can still be resolved). The likelihood-ratio
+test of step 1 matters: far outside the comb the linearised error can look small at a point
+that is many of its σ from the truth, while the limit fits the data as well.
 """
 
 from __future__ import annotations
@@ -98,8 +111,8 @@ class ParticleFit:
     kappa, kappa_err : contact stiffness κ and its standard error, N/m
     xi, xi_err : contact drag coefficient ξ, kg/s
     coverage, coverage_err : particles per m²
-    f_coupled, f_coupled_err : coupled resonance (:func:`~contactres.resonators.
-        coupled_resonance`; with rocking="fit" the lower mode), Hz
+    f_coupled, f_coupled_err : coupled resonance, Hz
+        (:func:`~contactres.resonators.coupled_resonance`; the lower mode where there are two)
     kappa_r, kappa_r_err : rotational stiffness, N m/rad (NaN unless rocking="fit")
     coverage_kappa, coverage_kappa_err : the product N·κ, N/m per m² (what an inertial
         response identifies: paper 2's Eq. 1 gives n_P κ/A_eff), NaN only where it is itself

@@ -35,15 +35,18 @@ against the bare sensor in the same medium. Approximations (stated on the theory
 coverage (no particle-particle hydrodynamics, no screening of the surface's own liquid load),
 the wall neglected in the hydrodynamic force, the fluid's force on the particle not traced back
 to the surface. They fail where R ≲ δ: :func:`particle_model_validity` names that case, and the
-model is then not to be trusted (a lattice-Boltzmann treatment is the tool: Gopalakrishna et
-al., arXiv:2311.15880 (2023) for the state of the art).
+model is then not to be trusted (a full hydrodynamic treatment, lattice Boltzmann or finite
+elements, is the tool; A. M. Leshansky, I. Fouxon, B. Y. Rubinstein, arXiv:2311.15880 (2023),
+treat the stiff contact in full).
 
-References: A. Dybwad, J. Appl. Phys. 58, 2789 (1985) (the coupled resonance); A. Pomorska et
-al., Anal. Chem. 82, 2237 (2010) and M. Olsson et al., Anal. Chem. 84, 4504 (2012) (bacteria
-and particles on a QCM-D, the sign change of Δf); D. Johannsmann et al., Nanotechnology 26,
-484001 (2015) and D. Johannsmann, A. Langhoff, C. Leppin, Sensors 21, 3490 (2021) (the
-small-load approximation for point contacts and coupled resonances); paper 2 (Vlachová, König,
-Johannsmann, Beilstein J. Nanotechnol. 6, 845 (2015)).
+References: G. L. Dybwad, J. Appl. Phys. 58, 2789 (1985) (the coupled resonance of a particle on
+a QCM); A. Pomorska et al., Anal. Chem. 82, 2237 (2010) and A. L. J. Olsson et al., Anal. Chem.
+84, 4504 (2012) (colloids and bacteria on a QCM-D, the sign change of Δf); Johannsmann's group,
+Nanotechnology 26, 484001 (2015), and D. Johannsmann, A. Langhoff, C. Leppin, Sensors 21, 3490
+(2021) (the small-load approximation for point contacts; coupled resonances of translation and
+rotation, of which only the force at the contact shifts the resonance); paper 2 (Vlachová,
+König, Johannsmann, Beilstein J. Nanotechnol. 6, 845 (2015)). Titles and authors of the
+particle papers as cited in issue 28, not re-checked.
 """
 
 from __future__ import annotations
