@@ -169,10 +169,6 @@ class Result(JobResult):
     source: str = ""
     warnings: tuple[str, ...] = ()
 
-    def input_files(self) -> tuple[str, ...]:
-        """None known: the source is recorded by name only."""
-        return ()
-
 
 def run(inputs: str | os.PathLike, settings: Settings, progress: Progress | None = None) -> Result:
     """Fit the particles of the file ``inputs`` (see the module docstring)."""
