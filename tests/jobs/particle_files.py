@@ -231,9 +231,13 @@ def fake_fit(truth, flagged):
 
 
 def install_standin(monkeypatch, fit):
-    """Put the stand-in's names where the job imports them from."""
+    """Put the stand-in's names where the job imports them from. The library's fit is loaded
+    first: its module binds the resonators' names when imported, and must bind the real ones
+    (a stand-in bound there would outlive this test)."""
     import contactres.analysis
     import contactres.resonators
+
+    assert contactres.analysis.PARTICLE_FLAGS  # loads contactres.analysis._particles
 
     for name, value in (
         ("Particle", Particle),
