@@ -96,8 +96,9 @@ PARTICLES_CSV = TableSchema(
         Column(
             "flags",
             "text",
-            "';'-separated: what the data of this step do not identify, and why (empty: all "
-            "identified)",
+            "';'-separated names (contactres.analysis.PARTICLE_FLAGS): what the step's data do "
+            "not identify and why, and the fit's own notes (at a bound, not converged); empty: "
+            "all identified",
         ),
     ),
 )
