@@ -68,6 +68,7 @@ def test_the_rotational_stiffness_is_fitted_where_the_rocking_mode_is_in_the_com
         (PS, WATER, 8e6, 2e10),
         (PS, WATER, 30e6, 2e10),
         (PS, WATER, 60e6, 2e10),
+        (PS, WATER, 30e6, 2e9),  # ten times fewer particles: |Δf| up to 240 Hz
         (SILICA, None, 12e6, 5e10),
         (SILICA, None, 45e6, 5e10),
     ],
@@ -125,18 +126,18 @@ def test_a_resonance_far_above_the_comb_identifies_only_the_mass():
 
 def test_a_resonance_far_below_the_comb_identifies_only_the_products():
     # particles that stand still on soft contacts (paper 2's regime): Δf > 0 on every overtone,
-    # a few Hz against 0.1 Hz of noise
+    # 1.5-20 Hz against 0.1 Hz of noise
     kappa = _kappa_for(PS, 0.5e6, medium=WATER)
     xi = 0.1 * kappa / (2 * np.pi * 15e6)
-    df, dg = particle_shifts(F0, N, PS, kappa, xi, 2e10, medium=WATER)
+    df, dg = particle_shifts(F0, N, PS, kappa, xi, 1e11, medium=WATER)
     assert np.all(df > 0)
     d, g = _noisy(df, dg, 50, seed=4)
     fit = fit_particles(F0, N, d, g, PS, medium=WATER, sigma_df=NOISE, sigma_dgamma=NOISE)
     for flags in fit.flags:
-        assert {"inertial", "outside-comb", "kappa-unresolved", "coverage-unresolved"} <= set(flags)
+        assert {"inertial", "kappa-unresolved", "coverage-unresolved"} <= set(flags)
     assert np.all(np.isnan(fit.kappa)) and np.all(np.isnan(fit.coverage))
     # N·κ is what the data give (paper 2, Eq. 1), within its stated error
-    true = 2e10 * kappa
+    true = 1e11 * kappa
     assert np.all(np.abs(fit.coverage_kappa - true) < 5 * fit.coverage_kappa_err)
     assert np.mean(fit.coverage_kappa) == pytest.approx(true, rel=0.02)
 

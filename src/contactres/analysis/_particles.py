@@ -6,21 +6,27 @@ coverage N/A (and, with ``rocking="fit"``, a rotational stiffness κ_r), with er
 correlations and the statement of what the data identify.
 
 Model (theory page docs/theory/particles.md): Δf_n + iΔΓ_n = N K_L(ω_n)/(2nπ² Z_q) with
-K_L = (1 - h)/(c + 1/k), k = κ + iωξ, where c and h describe the given particle
+K_L = (1 - h)²/(c + 1/k) + g, k = κ + iωξ, where c, h and g describe the given particle
 (:func:`~contactres.resonators.particle_compliance`).
 
-Starts. Multiplied out, the model is linear in (κ, ξ, Nκ, Nξ):
-z_n s_n c_n (κ + iω_n ξ) + z_n s_n = (1 - h_n)(Nκ + iω_n Nξ), with z_n = Δf_n + iΔΓ_n and
-s_n = 2nπ²Z_q; its weighted least squares, reweighted with the propagated noise
-(Sanathanan-Koerner), is exact for noise-free data (the "equation-error" start). Three more
-starts: the same with κ held where the peak of nΔΓ_n puts the coupled resonance (Im K_L peaks
-at f_coupled); the Sauerbrey limit (κ 10⁴ above the stiffness of a resonance at the top of the
-comb, the coverage fitted linearly); and the heavy-particle limit of paper 2, Eq. 1 (κ 10⁴
-below a resonance at the bottom). With rocking="fit" each start is the best over a scan of κ_r.
+Starts. Multiplied out by (ck + 1), the model is linear in (κ, ξ, Nκ, Nξ) once the small term
+N g is known: z_n s_n c_n (κ + iω_n ξ) + (z_n s_n - N g_n) = ((1 - h_n)² + g_n c_n)(Nκ + iω_n Nξ),
+with z_n = Δf_n + iΔΓ_n and s_n = 2nπ²Z_q; its weighted least squares, iterated with N g and
+the weights of the propagated noise (Sanathanan-Koerner), is exact for noise-free data (the
+"equation-error" start; ``_particle_linear``). Three more starts: the same with κ held where the
+peak of nΔΓ_n puts the coupled resonance (Im K_L peaks at f_coupled); the Sauerbrey limit
+(κ 10⁴ above the stiffness of a resonance at the top of the comb, the coverage fitted
+linearly); and the heavy-particle limit of paper 2, Eq. 1 (κ 10⁴ below a resonance at the
+bottom, with Nκ and Nξ from the linear fit of that limit). With rocking="fit" each start is the
+best over a scan of κ_r.
 Each is refined by the batched Levenberg-Marquardt of
 :func:`contactres.fitting.levenberg_marquardt` in its Gauss-Newton form (all time steps at once:
 no loop over steps) in ln κ, ξ, ln N (ln κ_r), within bounds 10⁸ beyond what the comb can see,
-and the lowest χ² is kept.
+and the lowest χ² is kept. A start after the first is refined only where it begins below the
+best fit so far, where that did not converge, where it fits poorly (χ² beyond dof + 2√(2 dof)
+noise variances), or, for a limit start, where the best fit so far puts the coupled resonance
+on the limit's side of the comb (the valley towards a limit can hold a second minimum);
+refining every start everywhere costs several times more.
 
 Errors. The covariance is (JᵀJ)⁻¹ with the residuals weighted by the stated noise
 (``sigma_df``, ``sigma_dgamma``: errors from the noise model alone, χ² a test of it); without
@@ -61,6 +67,8 @@ from ..resonators import (
     particle_compliance,
     particle_model_validity,
 )
+from ..validation import positive
+from ._particle_linear import equation_error, limit_chi2, series_variance, stacked_inverse
 
 __all__ = [
     "LIMIT_CHI2",
@@ -99,7 +107,7 @@ PARTICLE_FLAGS = {
 _ROCKING_SCAN = np.logspace(-2.0, 4.0, 13)
 
 
-_LM = LMOptions(max_iter=50, xtol=1e-8, ftol=1e-10, max_step=2.0)
+_LM = LMOptions(max_iter=300, xtol=1e-8, ftol=1e-10, max_step=2.0)
 
 
 @dataclass(frozen=True)
@@ -201,32 +209,61 @@ def fit_particles(
     f0, n, zf, wf, wg, estimate = _prepare(
         fundamental, overtones, df, dgamma, sigma_df, sigma_dgamma
     )
-    if zq <= 0 or not np.isfinite(zq):
-        raise ContactresInputError(f"zq must be finite and > 0 (kg m^-2 s^-1), got {zq!r}")
+    zq = positive("zq", zq, "kg m^-2 s^-1")
     fit_rocking = isinstance(rocking, str) and rocking.strip().lower() == "fit"
     freq = n * f0
     sens = 2.0 * n * np.pi**2 * zq  # z_n s_n = N K_L
     prob = _Problem(f0, particle, freq, sens, medium, zf, wf, wg, rocking, fit_rocking)
-    p_best = chi2 = conv = None
-    for p0 in prob.starts():
-        res = levenberg_marquardt(prob.evaluate, p0, lo=prob.lo, hi=prob.hi, options=_LM)
-        if p_best is None:
-            p_best, chi2, conv = res.x, res.chi2, res.converged
-        else:
-            better = res.chi2 < chi2
-            p_best = np.where(better[:, None], res.x, p_best)
-            chi2 = np.where(better, res.chi2, chi2)
-            conv = np.where(better, res.converged, conv)
+    t = zf.shape[0]
+    p_best, chi2, conv = np.zeros((t, prob.n_par)), np.full(t, np.inf), np.zeros(t, bool)
+    dof = 2 * prob.count - prob.n_par
+    for i, p0 in enumerate(prob.starts()):
+        # A start is refined where it begins below the best fit so far, where that did not
+        # converge, or where it fits poorly (χ² above dof + 2√(2 dof) noise variances; the
+        # variance is the stated one, or the median of χ²/dof over the steps of a series).
+        # Refining every start everywhere would cost several times more: the limit starts
+        # crawl along their flat valleys for nothing where the data have a clear optimum.
+        start_chi2 = prob.evaluate(p0, np.arange(t), False)["chi2"]
+        poor = np.ones(t, bool)
+        if i > 0:
+            var = 1.0 if not estimate else series_variance(chi2, dof, conv)
+            poor = chi2 > var * (dof + 2.0 * np.sqrt(2.0 * np.maximum(dof, 1)))
+            # the limit starts also where the best fit so far lies on their side of the comb,
+            # where the valley towards the limit can hold a second minimum
+            with np.errstate(over="ignore", invalid="ignore"):
+                f_c = prob._resonance(p_best)
+            if i == 2:
+                poor |= ~(f_c <= prob.freq.max())
+            if i == 3:
+                poor |= ~(f_c >= prob.freq.min())
+        sel = np.flatnonzero((start_chi2 < chi2) | ~conv | poor)
+        if sel.size == 0:
+            continue
+        res = levenberg_marquardt(
+            lambda q, rows, jac, sel=sel: prob.evaluate(q, sel[rows], jac),
+            p0[sel],
+            lo=prob.lo[sel],
+            hi=prob.hi[sel],
+            options=_LM,
+        )
+        better = res.chi2 < chi2[sel]
+        take = sel[better]
+        p_best[take], chi2[take], conv[take] = (
+            res.x[better],
+            res.chi2[better],
+            res.converged[better],
+        )
     reason = particle_model_validity(particle, freq, medium)
     return prob.result(p_best, chi2, conv, estimate, reason)
 
 
 def _prepare(fundamental, overtones, df, dgamma, sigma_df, sigma_dgamma):
     """Checked arrays: f_F, n (n,), z = Δf + iΔΓ (T, n) and the weights 1/σ (T, n)."""
-    f0 = float(fundamental)
-    if not np.isfinite(f0) or f0 <= 0:
-        raise ContactresInputError(f"fundamental must be finite and > 0 (Hz), got {fundamental!r}")
-    n = np.asarray(overtones, dtype=float)
+    f0 = positive("fundamental frequency", fundamental, "Hz")
+    try:
+        n = np.asarray(overtones, dtype=float)
+    except (TypeError, ValueError):
+        raise ContactresInputError(f"overtones must be integers >= 1, got {overtones!r}") from None
     if n.ndim != 1 or n.size < 2:
         raise ContactresInputError(
             f"fit_particles needs at least two overtones (a 1-D list), got {overtones!r}"
@@ -279,8 +316,8 @@ class _Problem:
         self.rocking = rocking
         self.n_par = 4 if fit_rocking else 3
         if not fit_rocking:
-            c, h = particle_compliance(particle, freq, rocking=rocking, medium=medium)
-            self.c, self.h = c[None, :], h[None, :]
+            c, h, g = particle_compliance(particle, freq, rocking=rocking, medium=medium)
+            self.chg = (c[None, :], h[None, :], g[None, :])
         self.count = (wf > 0).sum(axis=1)
         t = z.shape[0]
         # Scales: the Sauerbrey coverage n0 (from the median |z_n| s_n/(m ω_n²)), the stiffness
@@ -299,36 +336,34 @@ class _Problem:
         self.hi = np.stack(np.broadcast_arrays(*hi[: self.n_par]), axis=-1)
         self.xi_scale = np.ones(t)
 
-    def _ch(self, p):
-        """c, h of the particle (rows, n) at the κ_r of p (or the given rocking)."""
+    def _chg(self, p):
+        """c, h, g of the particle (rows, n) at the κ_r of p (or the given rocking)."""
         if not self.fit_rocking:
-            return self.c, self.h
+            return self.chg
         return particle_compliance(
             self.particle, self.freq, rocking=np.exp(p[:, 3:4]), medium=self.medium
         )
 
-    def model(self, p, c, h):
-        """z_n (Hz) and K_L for parameters p (rows, P) in the fit's coordinates."""
+    def model(self, p, chg):
+        """z_n (Hz) for parameters p (rows, P), and dz/dk (the contact's k = κ + iωξ)."""
+        c, h, g = chg
         kappa, xi, cov = np.exp(p[:, 0:1]), p[:, 1:2], np.exp(p[:, 2:3])
         k = kappa + 1j * self.omega * xi
-        kl = (1.0 - h) / (c + 1.0 / k)
-        return cov * kl / self.sens, kl, k
+        ck1 = c * k + 1.0
+        one_h2 = (1.0 - h) ** 2
+        kl = one_h2 * k / ck1 + g
+        return cov * kl / self.sens, cov * one_h2 / (ck1 * ck1) / self.sens
 
     def evaluate(self, q, rows, jacobian):
         p = q.copy()
         p[:, 1] *= self.xi_scale[rows]
-        c, h = self._ch(p)
-        zm, kl, k = self.model(p, c, h)
-        cov = np.exp(p[:, 2:3])
-        # dK_L/dk = K_L²/((1 - h) k²)
-        dk = cov * kl * kl / ((1.0 - h) * k * k) / self.sens
+        zm, dk = self.model(p, self._chg(p))
         cols = [dk * np.exp(p[:, 0:1]), dk * 1j * self.omega * self.xi_scale[rows, None], zm]
         if self.fit_rocking:
             eps = 1e-6
             p2 = p.copy()
             p2[:, 3] += eps
-            c2, h2 = self._ch(p2)
-            cols.append((self.model(p2, c2, h2)[0] - zm) / eps)
+            cols.append((self.model(p2, self._chg(p2))[0] - zm) / eps)
         wf, wg = self.wf[rows], self.wg[rows]
         diff = zm - self.z[rows]
         r = np.concatenate([diff.real * wf, diff.imag * wg], axis=1)
@@ -357,8 +392,8 @@ class _Problem:
         for kind in ("equation", "peak", "sauerbrey", "heavy"):
             best, best_chi2 = np.full((t, self.n_par), np.nan), np.full(t, np.inf)
             for kr in scan:
-                c, h = (self.c, self.h) if kr is None else self._ch(np.full((t, 4), np.log(kr)))
-                kappa, xi, cov = self._start(kind, kr, c, h)
+                chg = self.chg if kr is None else self._chg(np.full((t, 4), np.log(kr)))
+                kappa, xi, cov = self._start(kind, kr, chg)
                 p = np.column_stack(
                     [np.log(kappa), xi, np.log(cov)]
                     + ([] if kr is None else [np.full(t, np.log(kr))])
@@ -374,28 +409,49 @@ class _Problem:
         self.xi_scale = np.where(found[0][:, 1] > 0, found[0][:, 1], 1e-12)
         return [f / self._unit(f) for f in found]
 
-    def _start(self, kind, kr, c, h):
+    def _start(self, kind, kr, chg):
         """κ, ξ, N (T,) of one kind of start (module docstring)."""
         t = self.z.shape[0]
         if kind in ("equation", "peak"):
             fixed = self._peak_kappa(kr) if kind == "peak" else None
-            return _equation_error(self.z, self.wf, self.wg, self.sens, self.omega, c, h, fixed)
-        # The two limits: the particles move with the surface (κ 10⁴ above the comb's
-        # resonance stiffness) or stand still (10⁴ below); ξ from the equation-error start, or
-        # 0, and the coverage that fits best with these (linear least squares in N).
-        _, xi, _ = _equation_error(self.z, self.wf, self.wg, self.sens, self.omega, c, h, None)
-        xi = np.where(np.isfinite(xi), xi, 0.0)
+            return equation_error(self.z, self.wf, self.wg, self.sens, self.omega, chg, fixed)
         m = self.particle.mass
-        kappa = np.full(t, m * self.omega.max() ** 2 * 1e4 if kind == "sauerbrey" else 1.0)
         if kind == "heavy":
-            kappa *= m * self.omega.min() ** 2 * 1e-4
-        k = kappa[:, None] + 1j * self.omega * xi[:, None]
-        g = (1.0 - h) / (c + 1.0 / k) / self.sens  # shift per unit coverage
-        num = np.sum(self.wf**2 * g.real * self.z.real + self.wg**2 * g.imag * self.z.imag, 1)
-        den = np.sum(self.wf**2 * g.real**2 + self.wg**2 * g.imag**2, 1)
+            return self._heavy_start(chg, m * self.omega.min() ** 2 * 1e-4)
+        # The rigid limit: κ 10⁴ above the stiffness of a resonance at the top of the comb, ξ
+        # from the equation-error start (or 0) and the coverage that fits best with these
+        # (linear least squares in N).
+        _, xi, _ = equation_error(self.z, self.wf, self.wg, self.sens, self.omega, chg, None)
+        xi = np.where(np.isfinite(xi), xi, 0.0)
+        kappa = np.full(t, m * self.omega.max() ** 2 * 1e4)
+        unit = np.zeros((t, self.n_par))
+        unit[:, 0], unit[:, 1] = np.log(kappa), xi
+        one = self.model(unit, chg)[0]  # the shifts of a unit coverage
+        num = np.sum(self.wf**2 * one.real * self.z.real + self.wg**2 * one.imag * self.z.imag, 1)
+        den = np.sum(self.wf**2 * one.real**2 + self.wg**2 * one.imag**2, 1)
         with np.errstate(divide="ignore", invalid="ignore"):
             cov = num / den
         return kappa, xi, np.where(cov > 0, cov, np.nan)
+
+    def _heavy_start(self, chg, kappa):
+        """The particles standing still (paper 2, Eq. 1): Nκ and Nξ from z s = (1 - h)² N k by
+        linear least squares, then κ as given (10⁴ below a resonance at the bottom of the
+        comb) and N, ξ from the products."""
+        _, h, _ = chg
+        u = (1.0 - h) ** 2 / self.sens + 0 * self.z
+        cols = [u, 1j * self.omega * u]
+        a = [np.concatenate([col.real * self.wf, col.imag * self.wg], 1) for col in cols]
+        y = np.concatenate([self.z.real * self.wf, self.z.imag * self.wg], 1)
+        m = np.array([[np.sum(ai * aj, 1) for aj in a] for ai in a])  # (2, 2, T)
+        r = np.array([np.sum(ai * y, 1) for ai in a])
+        det = m[0, 0] * m[1, 1] - m[0, 1] * m[1, 0]
+        with np.errstate(divide="ignore", invalid="ignore"):
+            nk = (m[1, 1] * r[0] - m[0, 1] * r[1]) / det
+            nx = (m[0, 0] * r[1] - m[1, 0] * r[0]) / det
+            cov = nk / kappa
+            xi = np.maximum(nx / cov, 0.0)
+        t = self.z.shape[0]
+        return np.full(t, kappa), np.where(np.isfinite(xi), xi, 0.0), np.where(cov > 0, cov, np.nan)
 
     def _unit(self, p):
         unit = np.ones_like(p)
@@ -436,7 +492,7 @@ class _Problem:
         dof = 2 * self.count - npar
         with np.errstate(divide="ignore", invalid="ignore"):
             s2 = np.where(dof > 0, chi2 / dof, np.nan) if estimate else np.ones(t)
-            cov_q = _inverse(hess) * s2[:, None, None]
+            cov_q = stacked_inverse(hess) * s2[:, None, None]
             err_q = np.sqrt(np.diagonal(cov_q, axis1=1, axis2=2))
             corr = cov_q / (err_q[:, :, None] * err_q[:, None, :])
         kappa, xi, cov = np.exp(p[:, 0]), p[:, 1], np.exp(p[:, 2])
@@ -450,6 +506,14 @@ class _Problem:
         else:
             kr = kr_err = np.full(t, np.nan)
         fc, fc_err = self._resonance_with_error(p, cov_q)
+        chg = self._chg(p)
+        zm = self.model(p, chg)[0]
+        # The likelihood-ratio test against the two limits of the model (module docstring)
+        scale = s2 if estimate else np.ones(t)
+        with np.errstate(invalid="ignore", divide="ignore"):
+            lim_s, lim_h = limit_chi2(self.z, self.wf, self.wg, self.sens, self.omega, chg)
+            sauerbrey = (lim_s - chi2) / scale < LIMIT_CHI2
+            inertial = (lim_h - chi2) / scale < LIMIT_CHI2
         # the products N·κ and N·ξ: ln(Nκ) = q0 + q2, ln(Nξ) = ln q1 + q2 (+ const)
         with np.errstate(divide="ignore", invalid="ignore"):
             nk_rel = np.sqrt(cov_q[:, 0, 0] + cov_q[:, 2, 2] + 2 * cov_q[:, 0, 2])
@@ -461,14 +525,6 @@ class _Problem:
         nx_ok = np.isfinite(nx_rel) & (nx_rel <= RELATIVE_ERROR_LIMIT) & (self.count >= 2)
         if reason is not None:
             nk_ok = nx_ok = np.zeros(t, bool)
-        c, h = self._ch(p)
-        zm = self.model(p, c, h)[0]
-        # The likelihood-ratio test against the two limits of the model (module docstring)
-        scale = s2 if estimate else np.ones(t)
-        with np.errstate(invalid="ignore", divide="ignore"):
-            lim_s, lim_h = _limit_chi2(self.z, self.wf, self.wg, self.sens, self.omega, c, h)
-            sauerbrey = (lim_s - chi2) / scale < LIMIT_CHI2
-            inertial = (lim_h - chi2) / scale < LIMIT_CHI2
         names = ("kappa", "xi", "coverage", "kappa_r")[:npar]
         flags, keep = [], np.ones((t, 4), bool)
         measured = self.wf > 0
@@ -550,89 +606,3 @@ class _Problem:
             grad[:, j] = (np.log(self._resonance(p2)) - np.log(fc)) / eps
         var = np.einsum("ri,rij,rj->r", grad, cov_q, grad)
         return fc, fc * np.sqrt(np.maximum(var, 0.0))
-
-
-def _inverse(h):
-    """(JᵀJ)⁻¹ of a stack, inf on the diagonal where it is singular (an unidentified
-    direction) instead of the finite nonsense of a pseudo-inverse."""
-    d = np.sqrt(np.maximum(np.diagonal(h, axis1=1, axis2=2), 1e-300))
-    hn = h / (d[:, :, None] * d[:, None, :])
-    ev = np.linalg.eigvalsh(hn)
-    singular = ~(ev[:, 0] > 1e-14 * ev[:, -1])
-    safe = np.where(singular[:, None, None], np.eye(h.shape[-1]), hn)
-    inv = np.linalg.inv(safe) / (d[:, :, None] * d[:, None, :])
-    return np.where(singular[:, None, None], np.inf, inv)
-
-
-def _equation_error(z, wf, wg, sens, omega, c, h, kappa_fixed=None, sweeps=3):
-    """κ, ξ, N (T,) from the model multiplied out, linear in (κ, ξ, Nκ, Nξ):
-
-        z s c (κ + iωξ) + z s = (1 - h)(Nκ + iω Nξ)    (z s = N(1 - h)/(c + 1/k))
-
-    solved by weighted least squares, reweighted ``sweeps`` times with the noise of each
-    equation, |s(ck + 1)| σ (Sanathanan-Koerner). With ``kappa_fixed`` (T,) κ is held. Exact
-    for noise-free data; a start, not the fit."""
-    zs = z * sens
-    # the variance of one complex equation's noise, the mean of the two observables'
-    sf, sg = 1.0 / np.where(wf > 0, wf, 1.0), 1.0 / np.where(wg > 0, wg, 1.0)
-    sig2 = np.where(wf > 0, 0.5 * (sf**2 + sg**2), 0.0)
-    cols = [zs * c, 1j * omega * zs * c, -(1.0 - h) + 0 * zs, -1j * omega * (1.0 - h) + 0 * zs]
-    rhs = -zs
-    if kappa_fixed is not None:
-        rhs = rhs - cols[0] * kappa_fixed[:, None]
-        cols = cols[1:]
-    a = np.concatenate(
-        [np.stack([col.real for col in cols], -1), np.stack([col.imag for col in cols], -1)], 1
-    )
-    b = np.concatenate([rhs.real, rhs.imag], 1)
-    w = np.where(wf > 0, 1.0 / np.where(sig2 > 0, sig2, 1.0), 0.0)
-    x = None
-    for _ in range(sweeps):
-        ww = np.concatenate([w, w], 1)
-        aw = a * np.sqrt(ww)[:, :, None]
-        bw = b * np.sqrt(ww)
-        d = np.sqrt(np.maximum(np.einsum("rgp,rgp->rp", aw, aw), 1e-300))
-        an = aw / d[:, None, :]
-        m = np.einsum("rgp,rgq->rpq", an, an) + 1e-12 * np.eye(a.shape[-1])
-        rhs_n = np.einsum("rgp,rg->rp", an, bw)[:, :, None]
-        good = np.all(np.isfinite(m), axis=(1, 2)) & np.all(np.isfinite(rhs_n), axis=(1, 2))
-        m = np.where(good[:, None, None], m, np.eye(a.shape[-1]))
-        x = np.linalg.solve(m, np.where(good[:, None, None], rhs_n, np.nan))[:, :, 0] / d
-        kap = kappa_fixed if kappa_fixed is not None else x[:, 0]
-        k = kap[:, None] + 1j * omega * x[:, 1 if kappa_fixed is None else 0, None]
-        # the next weights; a start that overflows here just keeps the last ones
-        with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
-            var = sig2 * np.abs(sens * (c * k + 1.0)) ** 2
-            w_new = np.where(wf > 0, 1.0 / np.where(var > 0, var, 1.0), 0.0)
-        w = np.where(np.isfinite(w_new), w_new, w)
-    if kappa_fixed is not None:
-        x = np.column_stack([kappa_fixed, x])
-    kappa, xi, a_nk = x[:, 0], x[:, 1], x[:, 2]
-    with np.errstate(divide="ignore", invalid="ignore"):
-        cov = a_nk / kappa
-    ok = (kappa > 0) & (cov > 0)
-    return np.where(ok, kappa, np.nan), np.maximum(xi, 0.0), np.where(ok, cov, np.nan)
-
-
-def _limit_chi2(z, wf, wg, sens, omega, c, h):
-    """χ² (T,) of the best fits of the model's two limits, both linear least squares:
-    a rigid contact, z = N (1 - h)/(c s) (N free), and particles standing still,
-    z = (1 - h)(Nκ + iω Nξ)/s (Nκ, Nξ free)."""
-    zr, zi = z.real * wf, z.imag * wg
-
-    def chi2_of(basis):
-        a = np.stack([np.concatenate([b.real * wf, b.imag * wg], 1) for b in basis], -1)
-        y = np.concatenate([zr, zi], 1)
-        d = np.sqrt(np.maximum(np.einsum("rgp,rgp->rp", a, a), 1e-300))
-        an = a / d[:, None, :]
-        m = np.einsum("rgp,rgq->rpq", an, an) + 1e-12 * np.eye(len(basis))
-        good = np.all(np.isfinite(m), axis=(1, 2))
-        m = np.where(good[:, None, None], m, np.eye(len(basis)))
-        x = np.linalg.solve(m, np.einsum("rgp,rg->rp", an, y)[:, :, None])
-        r = y - (an @ x)[:, :, 0]
-        return np.where(good, np.sum(r * r, axis=1), np.inf)
-
-    c_b, h_b = np.broadcast_arrays(c, h, z)[:2]
-    rigid = chi2_of([(1.0 - h_b) / (c_b * sens)])
-    still = chi2_of([(1.0 - h_b) / sens, 1j * omega * (1.0 - h_b) / sens])
-    return rigid, still

@@ -12,32 +12,40 @@ exerts on the surface the force -K_L(ω) u, and
 with N/A in place of n_P/A_eff. K_L, the load stiffness of one particle, is (theory page
 docs/theory/particles.md, where every step is derived)
 
-    K_L = k (1 - h) / (1 + c k),    k = κ + iωξ
+    K_L = (1 - h)² / (c + 1/k) + g,    k = κ + iωξ
 
 where c is the compliance of the free particle at its contact point (c = 1/M_x + R²/M_θ with
-M_x = -mω² + iωZ_t, M_θ = -Iω² + κ_r + iωZ_r; a locked rotation drops the second term) and h
-the displacement of the contact point per surface displacement that the liquid alone imposes
-(zero in vacuum). Limits: κ -> ∞ gives K_L = 1/c, in vacuum -mω² (locked: Sauerbrey with m)
-or -m I/(I + mR²) ω² (free: 2/7 of m for a sphere); m -> ∞ gives K_L = κ + iωξ (paper 2,
-Eq. 1). This form has no cancellation at either limit (K_L = k(1 - s/u) would lose all digits
-for a stiff contact).
+M_x = -mω² + iωZ_t, M_θ = -Iω² + κ_r + iωZ_r; a locked rotation drops the second term), h the
+displacement of the contact point per surface displacement that the liquid alone imposes, and
+g the load that reaches the surface through the liquid (:func:`particle_compliance`; h = g = 0
+in vacuum). Limits: κ -> ∞ gives K_L = 1/c in vacuum, -mω² for a locked rotation (Sauerbrey
+with m) and -m I/(I + mR²) ω² for a free one (2/7 of m for a sphere); m -> ∞ gives
+K_L = κ + iωξ (paper 2, Eq. 1). This form has no cancellation at either limit
+(K_L = k(1 - s/u), s the contact point's displacement, would lose all digits for a stiff
+contact).
 
-In a liquid (:class:`Medium`), the particle feels the force of an oscillating sphere in an
-unbounded viscous fluid (L. D. Landau, E. M. Lifshitz, Fluid Mechanics, 2nd ed., §24, problem 5
-for the force and problem 6 for the torque of rotary oscillations), on its velocity relative to
-the undisturbed shear wave of the surface taken at its centre (z = R):
+In a liquid (:class:`Medium`), the particle feels the force and torque of a sphere oscillating
+in an unbounded viscous fluid (L. D. Landau, E. M. Lifshitz, Fluid Mechanics, 2nd ed., §24: the
+translational oscillations in the text, the rotary ones in its problems), on its velocity
+relative to the undisturbed shear wave of the surface at its centre (z = R; displacement
+w = e^{-qR} and rotation ϑ = -q e^{-qR}/2 per unit surface displacement):
 
     Z_t = 6πηR (1 + qR + q²R²/9),   Z_r = (8π/3) ηR³ (3 + 3qR + q²R²)/(1 + qR),
     q = (1 + i)/δ,   δ = √(2η/(ρ_l ω)).
 
+The reaction, the force and torque the particle exerts on the liquid, reaches the surface with
+the same factors w and ϑ (the area-averaged shear wave is exact for the total force on the wall
+and reciprocal), which keeps the load passive (Im K_L >= 0).
+
 The bare liquid's own load (Kanazawa-Gordon, :func:`kanazawa_gordon`) is not in K_L: shifts are
 against the bare sensor in the same medium. Approximations (stated on the theory page): dilute
 coverage (no particle-particle hydrodynamics, no screening of the surface's own liquid load),
-the wall neglected in the hydrodynamic force, the fluid's force on the particle not traced back
-to the surface. They fail where R ≲ δ: :func:`particle_model_validity` names that case, and the
-model is then not to be trusted (a full hydrodynamic treatment, lattice Boltzmann or finite
-elements, is the tool; A. M. Leshansky, I. Fouxon, B. Y. Rubinstein, arXiv:2311.15880 (2023),
-treat the stiff contact in full).
+the wall neglected in the force on the sphere (LL's unbounded fluid) and the sphere reduced to
+a point force and torque at its centre in the shear wave. They fail where R ≲ δ:
+:func:`particle_model_validity` names that case, and the model is then not to be trusted (a
+full hydrodynamic treatment, lattice Boltzmann or finite elements, is the tool; A. M.
+Leshansky, I. Fouxon, B. Y. Rubinstein, arXiv:2311.15880 (2023), treat the stiff contact in
+full).
 
 References: G. L. Dybwad, J. Appl. Phys. 58, 2789 (1985) (the coupled resonance of a particle on
 a QCM); A. Pomorska et al., Anal. Chem. 82, 2237 (2010) and A. L. J. Olsson et al., Anal. Chem.
@@ -51,11 +59,13 @@ particle papers as cited in issue 28, not re-checked.
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
 
 from ..errors import ContactresInputError
+from ..units import SMALL_LOAD_LIMIT
 from ..validation import nonnegative, positive
 
 __all__ = [
@@ -260,33 +270,44 @@ def _rocking_stiffness(rocking):
 
 
 def _compliance(particle: Particle, omega, kappa_r, medium: Medium | None):
-    """c (compliance of the free particle at its contact point, m/N) and h (the contact point's
-    displacement per surface displacement driven by the liquid alone), for κ_r as given."""
+    """c, h and g of :func:`particle_compliance` for κ_r as given (inf: locked)."""
     m, inertia, r = particle.mass, particle.moment_of_inertia, particle.radius
     zt, zr, wave, spin = _hydro(medium, r, omega)
     iw = 1.0j * omega
+    # the particle's generalised coordinates q = (x, θ): M q = e f_c + a u, with the contact
+    # vector e = (1, -R) (contact point s = x - Rθ) and the liquid's drive a = iω(Z_t w, Z_r ϑ)
     mx = -m * omega**2 + iw * zt
-    cx = 1.0 / mx
-    hx = iw * zt * wave * cx
+    ax, at = iw * zt * wave, iw * zr * spin
     kappa_r = np.asarray(kappa_r, dtype=float)
     locked = np.isinf(kappa_r)
     mt = -inertia * omega**2 + np.where(locked, 0.0, kappa_r) + iw * zr
     with np.errstate(divide="ignore", invalid="ignore"):
-        ct = np.where(locked, 0.0, r * r / mt)
-        # contact point s = x - Rθ: the liquid's torque turns θ by iωZ_r θ_f / M_θ
-        ht = np.where(locked, 0.0, -r * iw * zr * spin / mt)
-    return cx + ct, hx + ht
+        inv_t = np.where(locked, 0.0, 1.0 / mt)  # a locked rotation takes no part
+    c = 1.0 / mx + r * r * inv_t  # eᵀM⁻¹e
+    h = ax / mx - r * at * inv_t  # eᵀM⁻¹a
+    # g = (the liquid's pull on the surface of a particle held still) - aᵀM⁻¹a
+    g = iw * (zt * wave**2 + zr * spin**2) - (ax * ax / mx + at * at * inv_t)
+    return c, h, g
 
 
 def particle_compliance(particle: Particle, frequency, *, rocking="free", medium=None):
-    """The particle as its contact sees it: compliance c and liquid drive h (module docstring).
+    """The particle as its contact sees it: c, h and g of K_L = (1 - h)²/(c + 1/k) + g.
 
-    c (m/N) is the displacement of the free particle's contact point per force applied there,
-    1/M_x + R²/M_θ (M_x = -mω² + iωZ_t, M_θ = -Iω² + κ_r + iωZ_r; locked rotation: 1/M_x);
-    h is the displacement of the contact point per unit surface displacement that the liquid's
-    shear wave imposes on the free particle (0 in vacuum). Any contact k = κ + iωξ then gives
-    K_L = (1 - h)/(c + 1/k) (:func:`particle_stiffness`); a fit that varies κ, ξ and the
-    coverage for a given particle needs c and h only once.
+    With the particle's coordinates q = (x, θ) (centre and rotation), the contact vector
+    e = (1, -R) (the contact point moves by s = eᵀq), the particle's dynamic matrix
+    M = diag(-mω² + iωZ_t, -Iω² + κ_r + iωZ_r) and the liquid's drive per unit surface
+    displacement a = iω(Z_t w, Z_r ϑ) (w = e^{-qR} and ϑ = -q e^{-qR}/2 the shear wave's
+    displacement and rotation at the centre, q = (1 + i)/δ; theory page):
+
+    * c = eᵀM⁻¹e (m/N): the compliance of the free particle at its contact point;
+    * h = eᵀM⁻¹a: the contact point's displacement per surface displacement that the liquid
+      alone imposes;
+    * g = iω(Z_t w² + Z_r ϑ²) - aᵀM⁻¹a (N/m): the load the particle puts on the surface through
+      the liquid, besides its contact (the force of the liquid on the particle reaches the
+      surface with the same factors w, ϑ: reciprocity of the shear wave).
+
+    In vacuum h = g = 0. Any contact k = κ + iωξ then gives K_L (:func:`particle_stiffness`); a
+    fit that varies κ, ξ and the coverage for a given particle needs c, h and g only once.
 
     Parameters
     ----------
@@ -294,7 +315,7 @@ def particle_compliance(particle: Particle, frequency, *, rocking="free", medium
 
     Returns
     -------
-    (c, h): complex arrays of the broadcast shape of frequency and κ_r
+    (c, h, g): complex arrays of the broadcast shape of frequency and κ_r
 
     Examples
     --------
@@ -303,15 +324,15 @@ def particle_compliance(particle: Particle, frequency, *, rocking="free", medium
     >>> import numpy as np
     >>> from contactres.resonators import Particle, particle_compliance
     >>> p = Particle.sphere(1e-6, 2000.0)
-    >>> c, h = particle_compliance(p, 5e6)
-    >>> print(f"{float(-1 / (c.real * (2 * np.pi * 5e6) ** 2) / p.mass):.6f}", abs(complex(h)))
-    0.285714 0.0
+    >>> c, h, g = particle_compliance(p, 5e6)
+    >>> print(f"{float(-1 / (c.real * (2 * np.pi * 5e6) ** 2) / p.mass):.6f}", abs(h), abs(g))
+    0.285714 0.0 0.0
     """
     if medium is not None and not isinstance(medium, Medium):
         raise ContactresInputError(f"medium must be a Medium or None, got {medium!r}")
     f = np.asarray(positive("frequency", frequency, "Hz"), dtype=float)
-    c, h = _compliance(particle, 2.0 * np.pi * f, _rocking_stiffness(rocking), medium)
-    return np.asarray(c, dtype=complex), np.asarray(h, dtype=complex)
+    c, h, g = _compliance(particle, 2.0 * np.pi * f, _rocking_stiffness(rocking), medium)
+    return tuple(np.asarray(x, dtype=complex) for x in (c, h, g))
 
 
 def particle_stiffness(particle: Particle, frequency, kappa, xi, *, rocking="free", medium=None):
@@ -358,12 +379,12 @@ def particle_stiffness(particle: Particle, frequency, kappa, xi, *, rocking="fre
         )
     if medium is not None and not isinstance(medium, Medium):
         raise ContactresInputError(f"medium must be a Medium or None, got {medium!r}")
-    c, h = _compliance(particle, omega, _rocking_stiffness(rocking), medium)
+    c, h, g = _compliance(particle, omega, _rocking_stiffness(rocking), medium)
     k = kap + 1.0j * omega * x
     with np.errstate(divide="ignore", invalid="ignore"):
-        # K_L = k(1 - h)/(1 + ck), written as (1 - h)/(c + 1/k): exact at both limits
-        out = np.where(k == 0, 0.0, (1.0 - h) / (c + 1.0 / np.where(k == 0, 1.0, k)))
-    return out
+        # k(1 - h)²/(1 + ck) written as (1 - h)²/(c + 1/k): exact at both limits
+        out = np.where(k == 0, 0.0, (1.0 - h) ** 2 / (c + 1.0 / np.where(k == 0, 1.0, k)))
+    return out + g
 
 
 def particle_shifts(
@@ -382,8 +403,9 @@ def particle_shifts(
 
     Δf + iΔΓ = (N/A) K_L(ω_n)/(2nπ² Z_q) (paper 2, Eq. 1 with n_P/A_eff -> coverage), at
     ω_n = 2π n f_F. Δf is not divided by n; ΔΓ is the change of the half bandwidth. Signs as in
-    :func:`~contactres.resonators.shifts_from_stiffness` (a spring raises f, a mass lowers it).
-    All arguments broadcast (e.g. overtones (n,) against parameters (T, 1)).
+    :func:`~contactres.resonators.shifts_from_stiffness` (a spring raises f, a mass lowers it),
+    and like it a RuntimeWarning where |Δf|/f exceeds the small-load limit (1e-3). All arguments
+    broadcast (e.g. overtones (n,) against parameters (T, 1)).
 
     Examples
     --------
@@ -405,6 +427,14 @@ def particle_shifts(
     z = positive("zq", zq, "kg m^-2 s^-1")
     k = particle_stiffness(particle, n * f0, kappa, xi, rocking=rocking, medium=medium)
     shift = cov * k / (2.0 * n * np.pi**2 * z)
+    worst = float(np.max(np.abs(shift.real) / (n * f0), initial=0.0))
+    if worst > SMALL_LOAD_LIMIT:
+        warnings.warn(
+            f"|Δf|/f = {worst:.2g} exceeds {SMALL_LOAD_LIMIT:g}: the small-load approximation "
+            "of paper 2, Eq. 1 may not hold",
+            RuntimeWarning,
+            stacklevel=2,
+        )
     return _out(shift.real), _out(shift.imag)
 
 

@@ -1,0 +1,121 @@
+"""Linear-algebra helpers of the particle fit (:mod:`contactres.analysis._particles`).
+
+The closed-form pieces of :func:`~contactres.analysis.fit_particles`, batched over the time
+steps: the equation-error start (the model multiplied out, linear in κ, ξ, Nκ, Nξ), the χ² of
+the model's two limits (a rigid contact; particles standing still), the inverse of the stacked
+normal matrices that marks an unidentified direction, and the noise variance of a series.
+Notation as there: z = Δf + iΔΓ (Hz), s = 2nπ²Z_q, c, h, g of
+:func:`~contactres.resonators.particle_compliance`, weights wf = 1/σ_Δf and wg = 1/σ_ΔΓ (0 where
+an overtone is not measured).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+__all__ = ["equation_error", "limit_chi2", "series_variance", "stacked_inverse"]
+
+
+def series_variance(chi2, dof, conv):
+    """The noise variance of a time series: the median χ²/dof of its converged steps, or 0
+    (every step counts as a poor fit) for fewer than 20 of them."""
+    ok = conv & (dof > 0) & np.isfinite(chi2)
+    if ok.sum() < 20:
+        return 0.0
+    return float(np.median(chi2[ok] / dof[ok]))
+
+
+def stacked_inverse(h):
+    """(JᵀJ)⁻¹ of a stack, inf on the diagonal where it is singular (an unidentified
+    direction) instead of the finite nonsense of a pseudo-inverse."""
+    d = np.sqrt(np.maximum(np.diagonal(h, axis1=1, axis2=2), 1e-300))
+    hn = h / (d[:, :, None] * d[:, None, :])
+    ev = np.linalg.eigvalsh(hn)
+    singular = ~(ev[:, 0] > 1e-14 * ev[:, -1])
+    safe = np.where(singular[:, None, None], np.eye(h.shape[-1]), hn)
+    inv = np.linalg.inv(safe) / (d[:, :, None] * d[:, None, :])
+    return np.where(singular[:, None, None], np.inf, inv)
+
+
+def equation_error(z, wf, wg, sens, omega, chg, kappa_fixed=None, sweeps=4):
+    """κ, ξ, N (T,) from the model multiplied out, linear in (κ, ξ, Nκ, Nξ) once N g is known:
+
+        z s c (κ + iωξ) + (z s - N g) = ((1 - h)² + g c)(Nκ + iω Nξ)
+        (from z s = N[(1 - h)²/(c + 1/k) + g], times (c k + 1))
+
+    solved by weighted least squares ``sweeps`` times, each with N g from the sweep before (0
+    at first; g = 0 in vacuum) and reweighted with the noise of each equation, |s(ck + 1)| σ
+    (Sanathanan-Koerner). N = Nκ/κ. With ``kappa_fixed`` (T,) κ is held. Exact for noise-free
+    data in vacuum, and in a liquid at convergence; a start, not the fit."""
+    c, h, g = chg
+    zs = z * sens
+    # the variance of one complex equation's noise, the mean of the two observables'
+    sf, sg = 1.0 / np.where(wf > 0, wf, 1.0), 1.0 / np.where(wg > 0, wg, 1.0)
+    sig2 = np.where(wf > 0, 0.5 * (sf**2 + sg**2), 0.0)
+    lin = (1.0 - h) ** 2 + g * c + 0 * zs
+    cols = [zs * c, 1j * omega * zs * c, -lin, -1j * omega * lin]
+    if kappa_fixed is not None:
+        cols = cols[1:]
+    a = np.concatenate(
+        [np.stack([col.real for col in cols], -1), np.stack([col.imag for col in cols], -1)], 1
+    )
+    w = np.where(wf > 0, 1.0 / np.where(sig2 > 0, sig2, 1.0), 0.0)
+    n_g = np.zeros(z.shape[0])
+    x = None
+    for _ in range(sweeps):
+        rhs = -(zs - n_g[:, None] * g)
+        if kappa_fixed is not None:
+            rhs = rhs - zs * c * kappa_fixed[:, None]
+        b = np.concatenate([rhs.real, rhs.imag], 1)
+        ww = np.concatenate([w, w], 1)
+        aw = a * np.sqrt(ww)[:, :, None]
+        bw = b * np.sqrt(ww)
+        d = np.sqrt(np.maximum(np.einsum("rgp,rgp->rp", aw, aw), 1e-300))
+        an = aw / d[:, None, :]
+        m = np.einsum("rgp,rgq->rpq", an, an) + 1e-12 * np.eye(a.shape[-1])
+        rhs_n = np.einsum("rgp,rg->rp", an, bw)[:, :, None]
+        good = np.all(np.isfinite(m), axis=(1, 2)) & np.all(np.isfinite(rhs_n), axis=(1, 2))
+        m = np.where(good[:, None, None], m, np.eye(a.shape[-1]))
+        x = np.linalg.solve(m, np.where(good[:, None, None], rhs_n, np.nan))[:, :, 0] / d
+        kap = kappa_fixed if kappa_fixed is not None else x[:, 0]
+        k = kap[:, None] + 1j * omega * x[:, 1 if kappa_fixed is None else 0, None]
+        with np.errstate(over="ignore", invalid="ignore", divide="ignore"):
+            # the next weights and N g; a start that overflows here keeps the last ones
+            var = sig2 * np.abs(sens * (c * k + 1.0)) ** 2
+            w_new = np.where(wf > 0, 1.0 / np.where(var > 0, var, 1.0), 0.0)
+            n_new = x[:, -2] / kap
+        w = np.where(np.isfinite(w_new), w_new, w)
+        n_g = np.where(np.isfinite(n_new) & (n_new > 0), n_new, n_g)
+    if kappa_fixed is not None:
+        x = np.column_stack([kappa_fixed, x])
+    kappa, xi, a_nk = x[:, 0], x[:, 1], x[:, 2]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        cov = a_nk / kappa
+    ok = (kappa > 0) & (cov > 0)
+    return np.where(ok, kappa, np.nan), np.maximum(xi, 0.0), np.where(ok, cov, np.nan)
+
+
+def limit_chi2(z, wf, wg, sens, omega, chg):
+    """χ² (T,) of the best fits of the model's two limits, both linear least squares:
+    a rigid contact, z = N[(1 - h)²/c + g]/s (N free), and particles standing still,
+    z = [(1 - h)²(Nκ + iω Nξ) + N g]/s (Nκ, Nξ, N free; g = 0 in vacuum)."""
+    c, h, g = chg
+    zr, zi = z.real * wf, z.imag * wg
+
+    def chi2_of(basis):
+        a = np.stack([np.concatenate([b.real * wf, b.imag * wg], 1) for b in basis], -1)
+        y = np.concatenate([zr, zi], 1)
+        d = np.sqrt(np.maximum(np.einsum("rgp,rgp->rp", a, a), 1e-300))
+        an = a / d[:, None, :]
+        m = np.einsum("rgp,rgq->rpq", an, an) + 1e-12 * np.eye(len(basis))
+        good = np.all(np.isfinite(m), axis=(1, 2))
+        m = np.where(good[:, None, None], m, np.eye(len(basis)))
+        x = np.linalg.solve(m, np.einsum("rgp,rg->rp", an, y)[:, :, None])
+        r = y - (an @ x)[:, :, 0]
+        return np.where(good, np.sum(r * r, axis=1), np.inf)
+
+    c_b, h_b, g_b = np.broadcast_arrays(c, h, g, z)[:3]
+    one_h2 = (1.0 - h_b) ** 2
+    rigid = chi2_of([(one_h2 / c_b + g_b) / sens])
+    still = chi2_of([one_h2 / sens, 1j * omega * one_h2 / sens, g_b / sens])
+    return rigid, still
