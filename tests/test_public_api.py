@@ -197,6 +197,7 @@ JOBS = [
     "paper1",
     "paper2",
     "qcm_loop",
+    "qcm_particles",
     "qcm_spectra",
     "qcm_stiffness",
     "qcm_sweeps",
@@ -327,6 +328,8 @@ PUBLIC = {
         "NAMED_SURFACES",
         "ResonanceMaps",
         "SHO_FIELDS",
+        "PARTICLE_EXAMPLE_SEED",
+        "ParticleStudy",
         "SweepGroup",
         "SweepStudy",
         "SweepTable",
@@ -346,6 +349,7 @@ PUBLIC = {
         "read_spectra_sweeps",
         "read_sweeps",
         "spectra_from_sweeps",
+        "synthetic_particle_study",
         "synthetic_spectra",
         "synthetic_sweeps",
         "validate_sweeps",
@@ -645,6 +649,13 @@ PUBLIC = {
     "jobs.qcm_loop": [
         *JOB_API,
         "MODELS",
+    ],
+    "jobs.qcm_particles": [
+        *JOB_API,
+        "COLUMN_UNITS",
+        "CONVENTIONS",
+        "EQUATION",
+        "ROCKING",
     ],
     "jobs.qcm_stiffness": [
         *JOB_API,

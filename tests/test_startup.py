@@ -127,6 +127,7 @@ CLI_COMMANDS: list[list[str]] = [
     ["qcm"],
     ["qcm", "analyze"],
     ["qcm", "loop"],
+    ["qcm", "particles"],
     ["qcm", "spectra"],
     ["qcm", "stiffness"],
     ["rum"],

@@ -73,6 +73,14 @@ EXAMPLES: Mapping[str, Example] = MappingProxyType(
                 "--fundamental 4.95e6 --area 2e-5 --n-contacts 3 --out qcmd_stiffness",
             ),
             _example(
+                "example_particles.csv",
+                "QCM-D shifts of 1 µm silica spheres adsorbing in water (synthetic, known "
+                "truth): the tidy table time_s, overtone, df_Hz, dgamma_Hz of overtones 1-13 "
+                "over an hour, the coupled resonance inside the overtone comb",
+                "contactres qcm particles example_particles.csv --particle-radius 5e-7 "
+                "--particle-density 2200 --fundamental 5e6 --medium water --out particles",
+            ),
+            _example(
                 "example_afm.csv",
                 "contact-resonance AFM frequencies of two flexural modes, free and in contact, "
                 "per pixel, with the lever, tip and load",

@@ -244,3 +244,10 @@ def test_paper_tables_columns():
     # paper 1's job is costly (every figure): its one table is ranking_table's.
     ranking = paper1.ranking_table(np.linspace(0.0, 1.0, 3), zeners=(1.0,))
     assert_columns(ranking, paper1.Result.SCHEMAS["ranking"])
+
+
+def test_particles_columns():
+    from contactres.jobs import qcm_particles
+
+    settings = qcm_particles.Settings(5e-7, 2200.0, fundamental=5e6, medium="water")
+    check_result(qcm_particles.run(DATA / "example_particles.csv", settings))

@@ -41,6 +41,7 @@ EXPECTED = ["getting-started.md", "developer/adding.md"] + [
     for name in (
         "qcm-sweeps",
         "spectra",
+        "particles",
         "anisotropic-contact",
         "dynamic-stiffness",
         "cr-afm-rum",

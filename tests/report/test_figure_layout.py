@@ -226,3 +226,19 @@ def test_documentation_figures(path, monkeypatch):
             check_layout(plt.figure(num))
     finally:
         plt.close("all")
+
+
+def test_particle_figures():
+    """The figures of ``qcm particles`` on the bundled example (its first step identifies
+    nothing: drawn without it)."""
+    from contactres.examples import example_path
+    from contactres.jobs import qcm_particles
+    from contactres.report import _particle_figures as draw
+
+    settings = qcm_particles.Settings(5e-7, 2200.0, fundamental=5e6, medium="water")
+    result = qcm_particles.run(example_path("example_particles.csv"), settings)
+    for make in (draw.overtones_figure, draw.plane_figure, draw.time_figure):
+        fig = make(result)
+        check_layout(fig)
+    # κ, ξ and the coverage are positive: no error bar goes below zero
+    assert _lower_error_ends(fig).size and (_lower_error_ends(fig) >= 0).all()

@@ -14,21 +14,13 @@ The results folder is one :class:`contactres.fileio.ResultSet` (whole or not at 
 
 from __future__ import annotations
 
-import math
 from pathlib import Path
 
 import click
 
 from ._app import qcm
-from ._common import MagnitudeType, odd_overtone, step
-
-
-def reader_names() -> tuple[str, ...]:
-    """The names of the export readers, in the order they are tried: those of the registry
-    (``contactres.measurements.readers.exports.EXPORT_READERS``; imported without pandas)."""
-    from ..measurements.readers.exports import EXPORT_READERS
-
-    return tuple(r.name for r in EXPORT_READERS)
+from ._common import MagnitudeType, step
+from ._export_options import conventions, export_options, reader_names
 
 
 def __getattr__(name: str):
@@ -41,69 +33,6 @@ def __getattr__(name: str):
     if name == "READER_NAMES":
         return reader_names()
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
-
-
-class ReaderName(click.ParamType):
-    """The name of an export reader, checked against the registry when given."""
-
-    name = "NAME"
-
-    def convert(self, value, param, ctx):
-        from ..measurements.readers.exports import export_reader
-
-        try:
-            return export_reader(value).name
-        except ValueError as exc:
-            self.fail(str(exc), param, ctx)
-
-
-class ReaderOption(click.Option):
-    """``--reader``, whose help names the export readers of the registry, read when the help is
-    shown (building the command imports no reader)."""
-
-    @property
-    def help(self) -> str:
-        return f"Export format: {', '.join(reader_names())}."
-
-    @help.setter
-    def help(self, value) -> None:
-        """click sets the help when it builds the option; the text is the registry's."""
-
-
-class DissipationScale(click.ParamType):
-    """What one unit of a D column is: a number in (0, 1] (1e-6 for ppm) or ``ppm``."""
-
-    name = "SCALE"
-
-    def convert(self, value, param, ctx):
-        text = str(value).strip().lower()
-        try:
-            scale = 1e-6 if text == "ppm" else float(text)
-        except ValueError:
-            self.fail(f"{value!r} is not a number: use 1e-6 (D in ppm) or 1 (D plain)", param, ctx)
-        if not (math.isfinite(scale) and 0 < scale <= 1):
-            self.fail(
-                f"{value!r} is outside (0, 1]: the scale of D is 1e-6 for ppm or 1 for a plain "
-                "number",
-                param,
-                ctx,
-            )
-        return scale
-
-
-class Baseline(click.ParamType):
-    """``first``, ``as-exported`` or ``window:T0:T1`` (seconds)."""
-
-    name = "BASELINE"
-
-    def convert(self, value, param, ctx):
-        from ..measurements.readers.exports import parse_baseline
-
-        try:
-            parse_baseline(value)
-        except ValueError as exc:
-            self.fail(str(exc), param, ctx)
-        return str(value).strip().lower()
 
 
 @qcm.command("stiffness")
@@ -126,50 +55,7 @@ class Baseline(click.ParamType):
     required=True,
     help="Number of equal contacts n_P on that area, dimensionless.",
 )
-@click.option(
-    "--reader",
-    cls=ReaderOption,
-    type=ReaderName(),
-    show_default="recognised from the header",
-)
-@click.option(
-    "--df-per-overtone/--df-divided-by-n",
-    "df_per_overtone",
-    default=None,
-    help="The file's frequency shifts are Δf_n, Hz, or Δf_n/n, Hz (where its header does not "
-    "say; not for absolute frequencies).",
-)
-@click.option(
-    "--dissipation-scale",
-    type=DissipationScale(),
-    help="What one unit of the file's D column is, dimensionless: 1e-6 (or ppm) for D in "
-    "10^-6, 1 for D as a plain number (where the header does not say).",
-)
-@click.option(
-    "--baseline",
-    type=Baseline(),
-    help="Reference of the shifts: first (first point of each overtone), window:T0:T1 (mean "
-    "over T0 <= t <= T1, s) or as-exported (files of shifts).",
-    show_default="as-exported for shifts; absolute frequencies need one",
-)
-@click.option(
-    "--time-unit",
-    type=click.Choice(["s", "min", "h"]),
-    help="Unit of the file's time column: seconds, minutes or hours (where the header does "
-    "not say).",
-)
-@click.option(
-    "--channel",
-    help="Sensor or channel to read from a multi-sensor export (QSense 1-4, QCM-I A-D).",
-)
-@click.option(
-    "--overtone",
-    type=MagnitudeType("overtone", integer=True),
-    callback=odd_overtone,
-    help="Overtone order n, dimensionless (odd): that of a single-overtone openQCM log, or "
-    "the one to keep.",
-    show_default="all in the file",
-)
+@export_options()
 @click.option(
     "--fundamental",
     type=MagnitudeType("frequency"),
@@ -223,16 +109,10 @@ def stiffness_command(
     from ..report import report_set, write_report
 
     source = Path(export)
-    conventions = {
-        "df_divided_by_n": None if df_per_overtone is None else not df_per_overtone,
-        "dissipation_scale": dissipation_scale,
-        "baseline": baseline,
-        "time_unit": time_unit,
-        "channel": channel,
-        "overtone": overtone,
-        "fundamental": fundamental,
-    }
-    settings = job.Settings(area, n_contacts, reader, conventions, zq)
+    read_with = conventions(
+        df_per_overtone, dissipation_scale, baseline, time_unit, channel, overtone
+    )
+    settings = job.Settings(area, n_contacts, reader, {**read_with, "fundamental": fundamental}, zq)
     progress = lambda text: step("qcm stiffness", text)  # noqa: E731
     # The folder is checked (and locked) before the export is read: an output error comes first.
     with report_set(job.Result, out, inputs=(source,)) as rs:

@@ -23,11 +23,13 @@ used (``from contactres.jobs import dcsf``): this package imports nothing itself
 The jobs: ``contact`` (Hertz contact, normal and tangential stiffness), ``dcsf`` (the DCSF
 curve), ``qcm_loop`` (Δf, ΔΓ against the amplitude of a partial-slip contact), ``afm_invert``
 and ``rum_invert`` (contact resonances -> k*, modulus), ``qcm_stiffness`` (κ + iωξ against time
-from a QCM-D export), ``qcm_spectra`` (admittance spectra -> the sweep table), ``qcm_sweeps``
-(paper 2's analysis of amplitude sweeps), ``crystals`` (the built-in solids and their moduli),
-``maps_synthetic``, ``maps_predict`` and ``maps_fit`` (polycrystal maps; their computations in
-:mod:`contactres.jobs.maps`), ``paper1`` and ``paper2`` (the numbers of the papers' figures)
-and ``demo`` (the main workflows on the bundled data). Shared by them: :mod:`contactres.jobs.maps`
+from a QCM-D export), ``qcm_particles`` (attached particles: κ, ξ, coverage and the coupled
+resonance against time from QCM-D shifts over the overtones), ``qcm_spectra`` (admittance
+spectra -> the sweep table), ``qcm_sweeps`` (paper 2's analysis of amplitude sweeps),
+``crystals`` (the built-in solids and their moduli), ``maps_synthetic``, ``maps_predict`` and
+``maps_fit`` (polycrystal maps; their computations in :mod:`contactres.jobs.maps`), ``paper1``
+and ``paper2`` (the numbers of the papers' figures) and ``demo`` (the main workflows on the
+bundled data). Shared by them: :mod:`contactres.jobs.maps`
 (the map computations) and :mod:`contactres.jobs.readers` (every reader recipe in one registry,
 through which the jobs read EBSD exports and value grids).
 """

@@ -7,7 +7,8 @@ below are those of the private modules beside them: the validated sweep table
 (:func:`read_sweeps`, :class:`SweepTable`), the resonance tables of CR-AFM and RUM
 (:func:`read_resonance_table`), admittance spectra to sweeps (:func:`read_spectra_sweeps`,
 :func:`fit_resonances`), the synthetic data (:func:`synthetic_sweeps`,
-:func:`synthetic_spectra`, :func:`example_study`, :func:`example_afm_map`), the wording of
+:func:`synthetic_spectra`, :func:`example_study`, :func:`example_afm_map`, the particle studies
+of :func:`synthetic_particle_study`), the wording of
 the messages that point at a cell of a table (:func:`at_cell`, :func:`where_rows`) and the
 contact-resonance AFM instrument files: Asylum Research ``.ibw`` images (:func:`read_ibw`,
 :class:`IgorWave`, :func:`parse_note`, :func:`dart_frequency_Hz`), BGlib band-excitation SHO
@@ -43,6 +44,9 @@ _EXPORTS = MappingProxyType(
         "parse_note": "._ibw",
         "read_ibw": "._ibw",
         "at_cell": "._messages",
+        "PARTICLE_EXAMPLE_SEED": "._particle_study",
+        "ParticleStudy": "._particle_study",
+        "synthetic_particle_study": "._particle_study",
         "where_rows": "._messages",
         "read_resonance_table": "._resonances",
         "D26_AT": "._shifts",
@@ -94,6 +98,11 @@ if TYPE_CHECKING:
     from ._messages import (
         at_cell as at_cell,
         where_rows as where_rows,
+    )
+    from ._particle_study import (
+        PARTICLE_EXAMPLE_SEED as PARTICLE_EXAMPLE_SEED,
+        ParticleStudy as ParticleStudy,
+        synthetic_particle_study as synthetic_particle_study,
     )
     from ._resonances import (
         read_resonance_table as read_resonance_table,

@@ -73,8 +73,9 @@ def figure_registry() -> Mapping[type, tuple[tuple[str, Drawing], ...]]:
     Result has figures adds its line here; the drawing functions live in the report package
     (they need matplotlib, which the jobs never import).
     """
-    from ..jobs import afm_map, maps_predict, qcm_stiffness, qcm_sweeps
+    from ..jobs import afm_map, maps_predict, qcm_particles, qcm_stiffness, qcm_sweeps
     from . import _job_figures as draw
+    from . import _particle_figures as particles
     from ._cr_map_figures import cr_histograms_figure, cr_maps_figure
     from .figures import FIGURE_FILES, RADIATION_FIGURE
 
@@ -86,6 +87,11 @@ def figure_registry() -> Mapping[type, tuple[tuple[str, Drawing], ...]]:
                 ("afm_histograms.png", cr_histograms_figure),
             ),
             maps_predict.Result: (("M_map.png", draw.prediction_if_legend),),
+            qcm_particles.Result: (
+                ("particles_overtones.png", particles.overtones_figure),
+                ("particles_plane.png", particles.plane_figure),
+                ("particles_time.png", particles.time_figure),
+            ),
             qcm_stiffness.Result: (("stiffness.png", draw.stiffness_figure),),
             qcm_sweeps.Result: (
                 *zip(FIGURE_FILES, paper2, strict=True),
@@ -98,12 +104,31 @@ def figure_registry() -> Mapping[type, tuple[tuple[str, Drawing], ...]]:
 def html_registry() -> Mapping[type, tuple[str, Page]]:
     """Result type -> its page, as (file name, page function); written for the format ``html``.
 
-    Built on each call, as :func:`figure_registry`.
+    Built on each call, as :func:`figure_registry`. A job without a page of its own registers
+    the generic one (:func:`contactres.report._job_page.job_page`: values, flags, the tables'
+    first rows, the figures).
     """
-    from ..jobs import qcm_sweeps
-    from ._html import HTML_FILE, sweeps_page
+    from ..jobs import afm_map, qcm_particles, qcm_sweeps
+    from ._job_page import JOB_PAGE_FILE, job_page
 
-    return MappingProxyType({qcm_sweeps.Result: (HTML_FILE, sweeps_page)})
+    def generic(result) -> str:
+        # The generic page embeds the figures registered for the Result's type.
+        return job_page(result, figure_registry().get(type(result), ()))
+
+    def sweeps(result) -> str:
+        # Imported when a page is written: the sweep page's tables import the analysis (and
+        # scipy.stats), which every report's list of names (report_names) need not pay.
+        from ._html import sweeps_page
+
+        return sweeps_page(result)
+
+    return MappingProxyType(
+        {
+            afm_map.Result: (JOB_PAGE_FILE, generic),
+            qcm_sweeps.Result: (JOB_PAGE_FILE, sweeps),  # report.html, as _html.HTML_FILE
+            qcm_particles.Result: (JOB_PAGE_FILE, generic),
+        }
+    )
 
 
 def _formats(formats) -> tuple[str, ...]:

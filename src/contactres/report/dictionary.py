@@ -6,7 +6,8 @@ the README's blocks between ``<!-- dictionary:NAME -->`` and ``<!-- /dictionary 
 tables (``python scripts/update_readme.py`` rewrites them; a test fails when they differ).
 
 The outputs of the other commands (the sweep table and ``fits.csv`` of ``qcm spectra``,
-``stiffness.csv`` of ``qcm stiffness``, the columns ``afm invert`` and ``rum invert`` append,
+``stiffness.csv`` of ``qcm stiffness``, the tidy shift table and the two tables of ``qcm
+particles``, the columns ``afm invert`` and ``rum invert`` append,
 the listings of ``contact``, ``dcsf``, ``qcm loop`` and ``crystals``, the CSV of ``figures`` and
 ``demo``) have their schemas in :mod:`contactres.measurements.schema` too, the schemas the jobs
 bind their tables to (:mod:`contactres.jobs`); ``tests/report/test_dictionary.py`` and
@@ -19,7 +20,7 @@ from __future__ import annotations
 
 import re
 
-from ..analysis import DESCRIPTIONS, Flag
+from ..analysis import DESCRIPTIONS, PARTICLE_FLAGS, Flag
 from ..analysis import FLAG_DESCRIPTIONS as MODULUS_FLAG_DESCRIPTIONS
 from ..measurements import FLAGS as SPECTRA_FIT_FLAGS
 from ..measurements.schema import (
@@ -36,7 +37,10 @@ from ..measurements.schema import (
     PAPER1_RANKING,
     PAPER2_LOOPS,
     PAPER2_SHIFTS,
+    PARTICLE_SHIFTS_CSV,
+    PARTICLES_CSV,
     QCM_LOOP_TABLE,
+    QCMD_SHIFTS_TABLE,
     RADIATION_RESULTS,
     RUM_INVERT_RESULTS,
     RUM_TABLE,
@@ -86,6 +90,10 @@ DOCS_ONLY = (
     "spectra-fits",
     "spectra-fit-flags",
     "stiffness-csv",
+    "qcmd-shift-table",
+    "particles-csv",
+    "particle-shifts-csv",
+    "particle-flags",
     "afm-invert",
     "rum-invert",
     "resonance-flags",
@@ -137,6 +145,10 @@ def dictionary_tables() -> dict[str, str]:
         "spectra-fits": SPECTRA_FITS.markdown(),
         "spectra-fit-flags": _flag_table(SPECTRA_FIT_FLAGS.items()),
         "stiffness-csv": STIFFNESS_CSV.markdown(),
+        "qcmd-shift-table": QCMD_SHIFTS_TABLE.markdown(with_required=True),
+        "particles-csv": PARTICLES_CSV.markdown(),
+        "particle-shifts-csv": PARTICLE_SHIFTS_CSV.markdown(),
+        "particle-flags": _flag_table(PARTICLE_FLAGS.items()),
         "afm-invert": AFM_INVERT_RESULTS.markdown(),
         "rum-invert": RUM_INVERT_RESULTS.markdown(),
         "resonance-flags": _flag_table(

@@ -3,7 +3,8 @@
 :data:`BUILT_IN` holds, by kind (:data:`KINDS`): the delimited-text reader of sweep
 tables and of resonance tables (``csv``), the spectra readers (a folder of spectrum files, a tidy
 table: ``SPECTRA_READERS`` of ``_spectra``) and the instrument exports
-(:data:`~.exports.EXPORT_READERS`), and the contact-resonance AFM maps (kind ``afm_map``: an
+(:data:`~.exports.EXPORT_READERS`, and the tidy table of shifts,
+:data:`~.exports.TIDY_READER`), and the contact-resonance AFM maps (kind ``afm_map``: an
 Asylum ``.ibw`` image, a BGlib SHO fit ``.h5``, a NetCDF/Zarr grid; ``AFM_MAP_READERS`` of
 ``_afm``). EBSD maps and value grids are read by recipes of the layers
 that own their formats (:data:`contactres.polycrystal.EBSD_READERS`,
@@ -24,7 +25,7 @@ from . import _delimited
 from ._afm import AFM_MAP_READERS
 from ._recipe import Reader, Readers
 from ._spectra import SPECTRA_READERS
-from .exports import EXPORT_READERS
+from .exports import EXPORT_READERS, TIDY_READER
 
 __all__ = ["BUILT_IN", "BUILT_IN_READERS", "pick_reader"]
 
@@ -36,6 +37,7 @@ BUILT_IN_READERS: tuple[Reader, ...] = (
     *SPECTRA_READERS,
     *EXPORT_READERS,
     *AFM_MAP_READERS,
+    TIDY_READER,
 )
 #: The built-in registry.
 BUILT_IN = Readers(BUILT_IN_READERS)

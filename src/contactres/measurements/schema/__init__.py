@@ -17,7 +17,9 @@ are generated from, or checked against, the schemas here (:data:`SCHEMAS`):
 * the tables of the forward computations and listings (:mod:`.listings`): :data:`CONTACT_TABLE`,
   :data:`DCSF_TABLE`, :data:`QCM_LOOP_TABLE`, :data:`CRYSTAL_TABLE`, :data:`CRYSTALS_LISTING`,
   :data:`EXAMPLES_LISTING`, :data:`PAPER1_RANKING`, :data:`PAPER2_LOOPS`, :data:`PAPER2_TURNING`,
-  :data:`PAPER2_SHIFTS`.
+  :data:`PAPER2_SHIFTS`;
+* the tables of ``qcm particles`` (:mod:`._particles`): :data:`QCMD_SHIFTS_TABLE` (the tidy
+  input), :data:`PARTICLES_CSV` and :data:`PARTICLE_SHIFTS_CSV`.
 
 Every table of every job's Result (:mod:`contactres.jobs`) is bound to one of these.
 
@@ -74,6 +76,7 @@ from ._outputs import (
     SPECTRA_SWEEPS,
     STIFFNESS_CSV,
 )
+from ._particles import PARTICLE_SHIFTS_CSV, PARTICLES_CSV, QCMD_SHIFTS_TABLE
 from ._results import (
     COATING_CONVENTIONS,
     CONVENTIONS,
@@ -111,6 +114,9 @@ __all__ = [
     "PAPER2_LOOPS",
     "PAPER2_SHIFTS",
     "PAPER2_TURNING",
+    "PARTICLES_CSV",
+    "PARTICLE_SHIFTS_CSV",
+    "QCMD_SHIFTS_TABLE",
     "QCM_LOOP_TABLE",
     "RADIATION_RESULTS",
     "RUM_INVERT_RESULTS",
@@ -135,7 +141,13 @@ __all__ = [
 ]
 
 #: The tables contactres reads (their columns carry the rules the readers run).
-INPUTS: tuple[TableSchema, ...] = (SWEEP_TABLE, SPECTRA_TABLE, AFM_TABLE, RUM_TABLE)
+INPUTS: tuple[TableSchema, ...] = (
+    SWEEP_TABLE,
+    SPECTRA_TABLE,
+    AFM_TABLE,
+    RUM_TABLE,
+    QCMD_SHIFTS_TABLE,
+)
 #: The tables contactres writes.
 OUTPUTS: tuple[TableSchema, ...] = (
     SWEEP_RESULTS,
@@ -147,6 +159,8 @@ OUTPUTS: tuple[TableSchema, ...] = (
     SPECTRA_SWEEPS,
     SPECTRA_FITS,
     STIFFNESS_CSV,
+    PARTICLES_CSV,
+    PARTICLE_SHIFTS_CSV,
     AFM_INVERT_RESULTS,
     RUM_INVERT_RESULTS,
     CONTACT_TABLE,

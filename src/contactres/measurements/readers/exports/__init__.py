@@ -10,6 +10,11 @@ shift) and the conventions it was read with. The built-in readers, in the order 
 * ``qcmi``: MicroVacuum QCM-I exports (``_qcmi``);
 * ``openqcm``: openQCM Q-1 and Next data logs (``_openqcm``).
 
+Beside them, :data:`TIDY_READER` (``tidy``, ``_shift_table``) reads the tidy table of shifts a
+user writes from any instrument (``time_s, overtone, df_Hz, dgamma_Hz``,
+:data:`contactres.measurements.schema.QCMD_SHIFTS_TABLE`); :data:`SHIFT_READERS` is it and the
+four instrument readers, the readers of ``contactres qcm particles``.
+
 The modules of the plug-ins, and ``_base`` (the recipe and the table) and ``_tidy`` (the
 conversions) beside them, are private (scipy's rule): import from this package.
 
@@ -33,12 +38,14 @@ from pathlib import Path
 
 from ....errors import ContactresInputError
 from .._recipe import first_detected, read_head
-from . import _awsensors, _openqcm, _qcmi, _qsense
+from . import _awsensors, _openqcm, _qcmi, _qsense, _shift_table
 from ._base import CONVENTION_KEYS, ExportReader, ExportTable, ExportWarning, parse_baseline
 
 __all__ = [
     "CONVENTION_KEYS",
     "EXPORT_READERS",
+    "SHIFT_READERS",
+    "TIDY_READER",
     "ExportReader",
     "ExportTable",
     "ExportWarning",
@@ -55,6 +62,14 @@ EXPORT_READERS: tuple[ExportReader, ...] = (
     _qcmi.READER,
     _openqcm.READER,
 )
+
+#: The tidy table of QCM-D shifts (``time_s, overtone, df_Hz, dgamma_Hz``): its column names
+#: state its conventions (:mod:`._shift_table`).
+TIDY_READER: ExportReader = _shift_table.READER
+
+#: The readers of a file of QCM-D shifts (``contactres qcm particles``): the tidy table first
+#: (recognised by its column names, which no instrument writes), then :data:`EXPORT_READERS`.
+SHIFT_READERS: tuple[ExportReader, ...] = (TIDY_READER, *EXPORT_READERS)
 
 #: Binary files an instrument also writes, which no reader here reads.
 _BINARY_SUFFIXES = (".xlsx", ".xls", ".xlsm", ".qsd", ".h5")
