@@ -12,6 +12,10 @@ from ._app import afm
 from ._common import MagnitudeType, step
 from ._map_options import scheduler_address
 
+# What every map's folder gets: the conventions (json), the figures and the page (the Dataset
+# is written beside them, --map-name).
+REPORT_FORMATS = ("csv", "json", "png", "html")
+
 
 def _region(ctx, param, value):
     """``Y0:Y1,X0:X1`` (pixel rows and columns, end excluded) -> (y0, y1, x0, x1)."""
@@ -42,8 +46,9 @@ def _map_name(ctx, param, value):
     "--out",
     type=click.Path(file_okay=False),
     required=True,
-    help="Output folder: afm_map.json (conventions, summary), afm_maps.png, afm_histograms.png "
-    "and the map Dataset (--map-name); a series of files: one subfolder per file.",
+    help="Output folder: afm_map.json (conventions, summary), afm_maps.png, afm_histograms.png, "
+    "report.html (one self-contained page) and the map Dataset (--map-name); a series of "
+    "files: one subfolder per file.",
 )
 @click.option(
     "--map-name",
@@ -235,7 +240,7 @@ def afm_map(
     several = len(results) > 1
     for path, result in zip(files, results, strict=True):
         folder = Path(out) / Path(path).stem if several else Path(out)
-        write_afm_map(result, folder, map_name=map_name, progress=progress)
+        write_afm_map(result, folder, map_name=map_name, formats=REPORT_FORMATS, progress=progress)
         s, ds = result.summary, result.dataset
         line = f"{Path(path).name}: {s['shape'][0]}x{s['shape'][1]} pixels, "
         line += f"{s['pixels_with_k_star']} with k*"
