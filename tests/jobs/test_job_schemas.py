@@ -66,7 +66,13 @@ def test_the_sweep_analysis_binds_its_own_tables():
     # results folder): no job run needed to see which schemas it gives. The stub's empty
     # tables have the analysis's columns and one more, which the folder's tables leave out.
     from contactres.jobs import qcm_sweeps
-    from contactres.measurements.schema import LOAD_RESULTS, RADIATION_RESULTS, SWEEP_RESULTS
+    from contactres.measurements.schema import (
+        CURVE_RESULTS,
+        JKR_CURVE_RESULTS,
+        LOAD_RESULTS,
+        RADIATION_RESULTS,
+        SWEEP_RESULTS,
+    )
 
     def empty(schema):
         return pd.DataFrame(columns=["extra", *schema.names])
@@ -80,6 +86,15 @@ def test_the_sweep_analysis_binds_its_own_tables():
     with_radiation = SimpleNamespace(**{**vars(stub), "radiation": empty(RADIATION_RESULTS)})
     tables = qcm_sweeps.Result(analysis=with_radiation).tables()
     assert tables["radiation"][1] is RADIATION_RESULTS
+    # The fitted curves (issue 30): tables where the analysis computed them.
+    curves = pd.DataFrame(
+        {"sweep": ["a", "a"], "grid_points": [30, 30], "amplitude_m": [0.0, 1e-8],
+         "df_model_Hz": [1.0, 2.0], "dgamma_model_Hz": [0.1, 0.2]}
+    )  # fmt: skip
+    jkr = empty(JKR_CURVE_RESULTS).drop(columns="extra")
+    every = SimpleNamespace(**{**vars(with_radiation), "curves": curves, "jkr": jkr})
+    tables = qcm_sweeps.Result(analysis=every).tables()
+    assert tables["curves"][1] is CURVE_RESULTS and tables["jkr_curves"][1] is JKR_CURVE_RESULTS
     assert set(qcm_sweeps.Result.table_names()) == set(tables)
     for frame, schema in tables.values():
         assert_columns(frame, schema)

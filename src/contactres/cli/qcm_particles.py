@@ -143,8 +143,9 @@ def particles_command(
 
     The example files: 'contactres examples --copy .' copies them into this folder.
 
-    Example: contactres qcm particles example_particles.csv --particle-radius 5e-7
-    --particle-density 2200 --fundamental 5e6 --medium water --out particles
+    \b
+    Example: contactres qcm particles example_particles.csv --particle-radius 5e-7 \\
+        --particle-density 2200 --fundamental 5e6 --medium water --out particles
     """
     from ..jobs import qcm_particles as job
     from ..report import report_set, write_report

@@ -168,7 +168,9 @@ class Result(JobResult):
         }
         if self.analysis.radiation is not None:
             tables["radiation"] = (radiation_table(self.analysis), RADIATION_RESULTS)
-        curves, jkr = self.analysis.curves, self.analysis.jkr
+        # (getattr: a Results made by hand may carry neither)
+        curves = getattr(self.analysis, "curves", None)
+        jkr = getattr(self.analysis, "jkr", None)
         if curves is not None:
             # The coarser of the grids (the HTML page's, 30 points), for the sweeps with a
             # model: 10^5 sweeps give 3·10^6 rows, not 10^7 (issue 31's large studies).
