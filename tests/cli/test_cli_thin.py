@@ -27,7 +27,9 @@ from contactres.cli import main
 
 CLI_DIR = Path(cli_package.__file__).parent
 #: The library packages a command-line module may import.
-ALLOWED = frozenset({"cli", "jobs", "report", "apps", "units", "fileio", "errors"})
+ALLOWED = frozenset(
+    {"cli", "jobs", "report", "apps", "units", "typed_units", "fileio", "errors"}
+)
 #: (CLI module, library package) -> why: option parsing, not physics.
 OPTION_PARSING: dict[tuple[str, str], str] = {
     ("dcsf.py", "dynamic"): "the --model and --wavenumber choices are the library's names",
@@ -40,8 +42,12 @@ OPTION_PARSING: dict[tuple[str, str], str] = {
     ),
     ("_map_options.py", "materials"): "the material options make the Material of the map",
     ("_map_options.py", "crystals"): "the material options look up a built-in crystal",
-    ("qcm_stiffness.py", "measurements"): (
+    ("_export_options.py", "measurements"): (
         "--reader and --baseline are checked against the export readers' names and syntax"
+    ),
+    ("qcm_particles.py", "resonators"): "--medium is checked against the media the model knows",
+    ("afm_map.py", "analysis"): (
+        "--tip-radius/--force, --punch-radius or --reference make the job's ModulusModel"
     ),
     ("qcm_analyze.py", "analysis"): "the printed summary counts the sweeps flagged for drift",
     ("maps.py", "polycrystal"): (
@@ -78,7 +84,8 @@ def import_problems(tree: ast.Module, filename: str) -> list[str]:
 
 
 def runs_a_job(function: ast.FunctionDef) -> bool:
-    """True when ``function`` imports a job module and calls its ``run``."""
+    """True when ``function`` imports a job module and calls its ``run`` (or ``series``: a job
+    over several files, which runs ``run`` on each)."""
     jobs = set()
     for node in ast.walk(function):
         if isinstance(node, ast.ImportFrom) and node.level >= 1:
@@ -87,7 +94,7 @@ def runs_a_job(function: ast.FunctionDef) -> bool:
     return any(
         isinstance(node, ast.Call)
         and isinstance(node.func, ast.Attribute)
-        and node.func.attr == "run"
+        and node.func.attr in ("run", "series")
         and isinstance(node.func.value, ast.Name)
         and node.func.value.id in jobs
         for node in ast.walk(function)

@@ -26,10 +26,11 @@ from contactres.report.figures import FIGURE_FILES
 from contactres.resonators._qcm import QCM
 
 OPTS = ["--area", "2.5e-5", "--overtone", "3", "--n-contacts", "3", "--bootstrap", "0"]
-CSV_JSON = ("sweeps.csv", "loads.csv", "summary.json")
+# The tables (with the fitted curves, issue 30) and the summary.
+CSV_JSON = ("sweeps.csv", "loads.csv", "curves.csv", "jkr_curves.csv", "summary.json")
 
 # The files of a default report of the example (no radiation table), written out here.
-REPORT = ("sweeps.csv", "loads.csv", "summary.json", *FIGURE_FILES)
+REPORT = (*CSV_JSON, *FIGURE_FILES)
 
 
 def run(*args):

@@ -461,7 +461,7 @@ def coupled_resonance(particle: Particle, kappa, *, rocking="free", medium=None)
     >>> from contactres.resonators import Particle, coupled_resonance
     >>> p = Particle.sphere(1e-6, 2000.0)
     >>> f = coupled_resonance(p, 1000.0)
-    >>> bool(np.isclose(f, np.sqrt(3.5 * 1000.0 / p.mass) / (2 * np.pi)))
+    >>> bool(np.isclose(f, np.sqrt(3.5 * 1000.0 / p.mass) / (2 * np.pi), rtol=1e-12, atol=0))
     True
     """
     kap = np.asarray(kappa, dtype=float)
