@@ -27,9 +27,7 @@ from contactres.cli import main
 
 CLI_DIR = Path(cli_package.__file__).parent
 #: The library packages a command-line module may import.
-ALLOWED = frozenset(
-    {"cli", "jobs", "report", "apps", "units", "typed_units", "fileio", "errors"}
-)
+ALLOWED = frozenset({"cli", "jobs", "report", "apps", "units", "typed_units", "fileio", "errors"})
 #: (CLI module, library package) -> why: option parsing, not physics.
 OPTION_PARSING: dict[tuple[str, str], str] = {
     ("dcsf.py", "dynamic"): "the --model and --wavenumber choices are the library's names",
