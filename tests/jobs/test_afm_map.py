@@ -116,3 +116,20 @@ def test_without_a_free_q_the_result_warns_that_sigma_holds_the_lever_damping(ke
         "note_key": "ThermalQ",
         "used": None,
     }
+
+
+def test_a_free_q_too_low_flags_negative_damping_and_warns(kelvin_voigt):
+    # The map made on a lever of free Q (the note's ThermalQ) and read with a free Q 20 times
+    # lower: the lever alone would damp more than the measured Q shows, σ < 0 on every pixel.
+    data = dart_map(kelvin_voigt, K_STAR)
+    free_q = data.note["ThermalQ"] / 20.0
+    result = job.run(data, job.Settings(free_q=free_q, tip_position=R_TIP))
+    ds = result.dataset
+    assert np.all(np.isnan(ds["sigma_N_s_per_m"].values))
+    assert np.all(np.isnan(ds["tan_delta"].values))
+    assert np.isfinite(ds["k_star_N_per_m"].values).all()
+    assert result.summary["pixels_flagged"] == ds["flags"].size
+    assert result.summary["median_tan_delta"] is None
+    assert "negative_damping" in result.conventions["flags_present"]
+    lines = [w for w in result.warnings if "negative_damping" in w]
+    assert len(lines) == 1 and "--free-q" in lines[0] and f"{ds['flags'].size} pixels" in lines[0]

@@ -264,6 +264,18 @@ def _summary(ds) -> dict:
     return out
 
 
+def _map_flag_warnings(ds) -> list[str]:
+    """One line per map flag (:data:`contactres.analysis.CR_MAP_FLAGS`) that pixels have."""
+    from ..analysis import CR_MAP_FLAGS
+
+    lines = []
+    for bit, (name, text) in CR_MAP_FLAGS.items():
+        n = int(np.count_nonzero(ds["flags"].values & bit))
+        if n:
+            lines.append(f"{n} pixels flagged {name}: {text}")
+    return lines
+
+
 def run(
     inputs: str | os.PathLike | MapInput, settings: Settings, progress: Progress | None = None
 ) -> Result:
@@ -310,6 +322,7 @@ def run(
         )
     if not np.isfinite(ds["k_star_N_per_m"].values).any():
         warnings.append("no pixel gave a contact stiffness: check the lever's constants")
+    warnings += _map_flag_warnings(ds)
     return Result(
         dataset=ds,
         source=data.source,
