@@ -207,3 +207,21 @@ def test_a_series_on_a_dask_cluster_equals_the_serial_run(fixtures, tmp_path):
         clustered = xr.load_dataset(tmp_path / "dask" / name / "afm_map.nc")
         assert np.isfinite(serial["k_star_N_per_m"]).all()
         assert serial.equals(clustered)
+
+
+def test_flagged_damping_and_a_failing_modulus_are_counted_and_warned(fixtures, tmp_path):
+    path = tmp_path / "dart.ibw"
+    fixtures.write_dart_ibw(path, points=8, lines=6)
+    base = ["--free-frequency", F_FREE, "--tip-position", R_TIP, "--out", tmp_path / "o"]
+    # 50 N on a 20 nm tip: no Hertz contact anywhere, M NaN on all 48 pixels.
+    r = _ok(run("afm", "map", path, *base, "--force", 50, "--tip-radius", 2e-8))
+    assert "48 modulus-flagged" in r.output
+    warned = [line for line in r.output.splitlines() if line.startswith("warning: M is NaN")]
+    assert len(warned) == 1 and "48 pixels" in warned[0] and "--force/--tip-radius" in warned[0]
+    record = json.loads((tmp_path / "o" / "afm_map.json").read_text())
+    assert "not_hertzian" in record["conventions"]["flags_present"]
+    # A free Q far below the contact's Q: σ < 0 everywhere, σ and tan δ NaN, one warning.
+    r = _ok(run("afm", "map", path, *base, "--free-q", 1.0))
+    assert "48 flagged" in r.output and "tan δ median" not in r.output
+    warned = [line for line in r.output.splitlines() if "negative_damping" in line]
+    assert len(warned) == 1 and warned[0].startswith("warning: 48 pixels")

@@ -133,3 +133,33 @@ def test_a_free_q_too_low_flags_negative_damping_and_warns(kelvin_voigt):
     assert "negative_damping" in result.conventions["flags_present"]
     lines = [w for w in result.warnings if "negative_damping" in w]
     assert len(lines) == 1 and "--free-q" in lines[0] and f"{ds['flags'].size} pixels" in lines[0]
+
+
+@pytest.mark.parametrize(
+    "model, flag, option",
+    [
+        # 50 N on a 20 nm tip: a contact radius far above the tip's (Hertz needs a << R)
+        (ModulusModel(tip_radius=2e-8, load=50.0), "not_hertzian", "--force/--tip-radius"),
+        # a 1 cm punch: E* = k*/(2a) <= 1.3e4 Pa for k* <= 252 N/m, far below any solid's
+        (ModulusModel(punch_radius=1e-2), "modulus_out_of_range", "--punch-radius"),
+    ],
+)
+def test_a_modulus_that_fails_on_every_pixel_is_counted_and_said(kelvin_voigt, model, flag, option):
+    data = dart_map(kelvin_voigt, K_STAR)
+    result = job.run(data, job.Settings(tip_position=R_TIP, modulus=model))
+    ds = result.dataset
+    assert np.all(np.isnan(ds["M_Pa"].values)) and np.isfinite(ds["k_star_N_per_m"].values).all()
+    assert result.summary["pixels_modulus_flagged"] == ds["M_Pa"].size
+    assert flag in result.conventions["flags_present"]
+    lines = [w for w in result.warnings if w.startswith("M is NaN")]
+    assert len(lines) == 1 and f"on {ds['M_Pa'].size} pixels" in lines[0] and option in lines[0]
+
+
+def test_a_modulus_that_holds_warns_nothing(kelvin_voigt):
+    model = ModulusModel(tip_radius=2e-8, load=5e-8)
+    result = job.run(
+        dart_map(kelvin_voigt, K_STAR), job.Settings(tip_position=R_TIP, modulus=model)
+    )
+    assert result.summary["pixels_modulus_flagged"] == 0
+    assert np.isfinite(result.dataset["M_Pa"].values).all()
+    assert not any("M is NaN" in w for w in result.warnings)

@@ -249,6 +249,8 @@ def afm_map(
         if ref is not None:
             line += f", reference k* {ref:.4g} N/m"
         line += f"; {s['pixels_flagged']} flagged"
+        if s["pixels_modulus_flagged"]:
+            line += f", {s['pixels_modulus_flagged']} modulus-flagged"
         if "dart_flags" in ds:
             line += f", {int(np.count_nonzero(ds['dart_flags'].values))} DART-flagged"
         click.echo(f"{line}; wrote {folder}")

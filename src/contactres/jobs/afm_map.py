@@ -259,6 +259,7 @@ def _summary(ds) -> dict:
     out: dict[str, object] = {"shape": list(ds["k_star_N_per_m"].shape)}
     out["pixels_with_k_star"] = int(np.isfinite(ds["k_star_N_per_m"].values).sum())
     out["pixels_flagged"] = int((ds["flags"].values != 0).sum())
+    out["pixels_modulus_flagged"] = int((ds["modulus_flags"].values != 0).sum())
     for name in ("k_star_N_per_m", "sigma_N_s_per_m", "tan_delta", "E_star_Pa", "M_Pa"):
         out[f"median_{name}"] = median(name)
     return out
@@ -274,6 +275,31 @@ def _map_flag_warnings(ds) -> list[str]:
         if n:
             lines.append(f"{n} pixels flagged {name}: {text}")
     return lines
+
+
+#: The options behind each way to the modulus (for the warning where M is NaN).
+_MODULUS_OPTIONS = {
+    "hertz": "--force/--tip-radius (N, m)",
+    "punch": "--punch-radius (m)",
+    "reference": "--reference/--reference-modulus",
+}
+
+
+def _modulus_warnings(ds, method: str) -> list[str]:
+    """One line when a modulus was asked for and M is NaN on pixels that have k*: how many,
+    the flags' meanings (:data:`contactres.analysis.FLAG_DESCRIPTIONS`) and the options."""
+    from ..analysis import FLAG_DESCRIPTIONS
+
+    if method not in _MODULUS_OPTIONS:
+        return []
+    lacking = np.isfinite(ds["k_star_N_per_m"].values) & ~np.isfinite(ds["M_Pa"].values)
+    n = int(np.count_nonzero(lacking))
+    if not n:
+        return []
+    seen = int(np.bitwise_or.reduce(ds["modulus_flags"].values[lacking], axis=None))
+    texts = [text for bit, text in FLAG_DESCRIPTIONS.items() if seen & int(bit)]
+    why = "; ".join(texts) if texts else "no modulus"
+    return [f"M is NaN on {n} pixels: {why}; check {_MODULUS_OPTIONS[method]} and --tip-modulus"]
 
 
 def run(
@@ -323,6 +349,7 @@ def run(
     if not np.isfinite(ds["k_star_N_per_m"].values).any():
         warnings.append("no pixel gave a contact stiffness: check the lever's constants")
     warnings += _map_flag_warnings(ds)
+    warnings += _modulus_warnings(ds, conventions["modulus"]["method"])
     return Result(
         dataset=ds,
         source=data.source,
