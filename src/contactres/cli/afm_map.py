@@ -99,10 +99,12 @@ def _map_name(ctx, param, value):
 )
 @click.option(
     "--tilt",
-    type=click.FloatRange(-45, 45),
+    type=click.FloatRange(0, 45),
     default=0.0,
     show_default=True,
-    help="Tilt of the lever to the surface, degrees.",
+    help="Tilt φ of the lever, degrees: the angle from the sample's surface to the lever, "
+    "positive with the free end nearer the sample (the only mounting modelled); usual "
+    "mounting 10-12°.",
 )
 @click.option("--tip-radius", type=MagnitudeType("sphere_radius"), help="Hertz: tip radius, m.")
 @click.option("--force", type=MagnitudeType("force"), help="Hertz: static load on the tip, N.")
