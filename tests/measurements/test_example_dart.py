@@ -104,3 +104,14 @@ def test_example_layers_are_the_stated_oscillator():
         np.testing.assert_allclose(p2[mask], phase2, rtol=0, atol=1.2)
         np.testing.assert_allclose(a1[mask], low, rtol=0, atol=12e-12)
         np.testing.assert_allclose(a2[mask], high, rtol=0, atol=12e-12)
+
+
+def test_the_drive_amplitude_comes_back_in_metres():
+    # Asylum's amplitude layers are in m: the reconstructed drive amplitude has their unit and
+    # the script's 20 pm drive (within its 2 pm amplitude noise per pixel, median over 4096).
+    from contactres.jobs import afm_map as job
+
+    result = job.run(example_path("example_dart.ibw"), job.Settings(tip_position=0.95))
+    drive = result.dataset["drive_amplitude"]
+    assert drive.attrs["units"] == "m"
+    assert np.nanmedian(drive.values) == pytest.approx(DRIVE_AMPLITUDE, rel=0.01)

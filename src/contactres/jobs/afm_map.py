@@ -69,6 +69,9 @@ class MapInput:
     q_factor : Q per pixel, or None (DART: reconstructed)
     dart : (A1, A2, phase1, phase2) of a DART image (amplitudes in one unit, phases in degrees
         as stored), or None
+    amplitude_unit : the unit of the amplitudes A1, A2 (and so of the reconstructed drive
+        amplitude): "m" for an Asylum image (its amplitude layers are deflections in m,
+        InvOLS applied by the instrument); "1" when not known
     note : the instrument's settings (an Asylum note), or {}
     pixel_size : (dx, dy) or one square pitch, m; or None
     source : the file read (or a name)
@@ -80,6 +83,7 @@ class MapInput:
     note: dict = field(default_factory=dict)
     pixel_size: float | tuple[float, float] | None = None
     source: str = "map"
+    amplitude_unit: str = "1"
 
 
 @dataclass(frozen=True)
@@ -162,6 +166,7 @@ def read_input(path: str | os.PathLike, readers: Readers | None = None) -> MapIn
         note=dict(read.note),
         pixel_size=read.scale,  # (dx, dy) or None
         source=str(path),
+        amplitude_unit="m",  # Asylum stores its amplitude layers in m
     )
 
 
@@ -229,7 +234,10 @@ def _reconstruct(data: MapInput, s: Settings):
     r = dart_reconstruction(
         fc - width / 2, fc + width / 2, a1, a2, factor * p1, factor * p2, min_sin=s.min_sin
     )
-    extra = {"dart_flags": (r.flags.astype(np.int32), "1"), "drive_amplitude": (r.A_drive, "1")}
+    extra = {
+        "dart_flags": (r.flags.astype(np.int32), "1"),
+        "drive_amplitude": (r.A_drive, data.amplitude_unit),  # the unit of A1, A2
+    }
     conv = {
         "dart": {
             "equations": "damped harmonic oscillator from two drives (Gannepalli et al., "
