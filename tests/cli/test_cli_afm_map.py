@@ -135,6 +135,7 @@ def test_bad_files_and_options_are_one_line(fixtures, tmp_path):
         "not inside",
     )
     one_line_error(run("afm", "map", good, *base, "--reference", "0-3"), "Y0:Y1,X0:X1")
+    one_line_error(run("afm", "map", good, *base, "--phase-sign", "lead"), "--phase-sign")
     # A negative tilt (free end farther from the sample) is not modelled: refused as an option.
     r = run("afm", "map", good, *base, "--tilt", -5)
     assert r.exit_code == 2 and "--tilt" in r.output and "0<=x<=45" in r.output, r.output

@@ -163,3 +163,15 @@ def test_a_modulus_that_holds_warns_nothing(kelvin_voigt):
     assert result.summary["pixels_modulus_flagged"] == 0
     assert np.isfinite(result.dataset["M_Pa"].values).all()
     assert not any("M is NaN" in w for w in result.warnings)
+
+
+def test_phases_of_the_wrong_sign_are_said_to_void_the_reconstruction(kelvin_voigt):
+    # Lag phases read as the lead: the phase falls from f1 to f2, no damped oscillator fits any
+    # pixel; the line says so and names --phase-sign, not "no positive frequency".
+    data = dart_map(kelvin_voigt, K_STAR, sign=1.0)
+    with pytest.raises(ContactresInputError) as info:
+        job.run(data, job.Settings(phase_sign="lead", tip_position=R_TIP))
+    text = str(info.value)
+    assert "no resonance on any pixel" in text and "--phase-sign" in text
+    assert "--frequency-width" in text and "no positive frequency" not in text
+    assert "\n" not in text

@@ -234,6 +234,20 @@ def _reconstruct(data: MapInput, s: Settings):
     r = dart_reconstruction(
         fc - width / 2, fc + width / 2, a1, a2, factor * p1, factor * p2, min_sin=s.min_sin
     )
+    if not np.isfinite(r.f0).any() and np.isfinite(fc).any():
+        # Every tracked pixel voided: the phases read with the wrong sign (the phase then falls
+        # from f1 to f2, which no damped oscillator does) or a wrong drive separation, not an
+        # empty map; say which flags and what to check.
+        counts = [
+            f"{int(np.count_nonzero(r.flags & bit))} {name}"
+            for bit, (name, _) in DART_FLAGS.items()
+            if np.any(r.flags & bit)
+        ]
+        raise ContactresInputError(
+            f"{data.source}: the DART reconstruction gives no resonance on any pixel "
+            f"({', '.join(counts)} of {r.flags.size}; phases read as the {sign} ({s.phase_sign}), "
+            f"drives {width:g} Hz apart): check --phase-sign and --frequency-width"
+        )
     extra = {
         "dart_flags": (r.flags.astype(np.int32), "1"),
         "drive_amplitude": (r.A_drive, data.amplitude_unit),  # the unit of A1, A2
