@@ -136,6 +136,12 @@ def test_bad_files_and_options_are_one_line(fixtures, tmp_path):
     )
     one_line_error(run("afm", "map", good, *base, "--reference", "0-3"), "Y0:Y1,X0:X1")
     one_line_error(run("afm", "map", good, *base, "--phase-sign", "lead"), "--phase-sign")
+    # A lever's constant is checked as a lever's (1e5 N/m is a contact's k*, not a lever's).
+    one_line_error(
+        run("afm", "map", good, *base, "--spring-constant", 1e5),
+        "--spring-constant",
+        "cantilever spring constant",
+    )
     # A negative tilt (free end farther from the sample) is not modelled: refused as an option.
     r = run("afm", "map", good, *base, "--tilt", -5)
     assert r.exit_code == 2 and "--tilt" in r.output and "0<=x<=45" in r.output, r.output

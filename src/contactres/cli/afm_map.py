@@ -60,7 +60,7 @@ def _map_name(ctx, param, value):
 )
 @click.option(
     "--spring-constant",
-    type=MagnitudeType("stiffness"),
+    type=MagnitudeType("lever_stiffness"),
     show_default="the note's SpringConstant",
     help="Lever's spring constant k_c at the free end, N/m (wins over the note's).",
 )
