@@ -135,6 +135,8 @@ def test_bad_files_and_options_are_one_line(fixtures, tmp_path):
         "not inside",
     )
     one_line_error(run("afm", "map", good, *base, "--reference", "0-3"), "Y0:Y1,X0:X1")
+    empty = ["--reference", "5:5,0:3", "--reference-modulus", 3e9]
+    one_line_error(run("afm", "map", good, *base, *empty), "5:5", "is empty")
     one_line_error(run("afm", "map", good, *base, "--phase-sign", "lead"), "--phase-sign")
     # A lever's constant is checked as a lever's (1e5 N/m is a contact's k*, not a lever's).
     one_line_error(

@@ -159,7 +159,8 @@ class ModulusModel:
 
 
 def reference_region(region, shape) -> tuple[slice, slice]:
-    """Slices of a reference region (y0, y1, x0, x1), checked to lie inside a map of ``shape``."""
+    """Slices of a reference region (y0, y1, x0, x1), checked to be non-empty and to lie inside
+    a map of ``shape``."""
     try:
         y0, y1, x0, x1 = (int(v) for v in region)
     except (TypeError, ValueError):
@@ -167,6 +168,11 @@ def reference_region(region, shape) -> tuple[slice, slice]:
             f"the reference region must be (y0, y1, x0, x1) pixel indices, got {region!r}"
         ) from None
     h, w = shape
+    if y1 <= y0 or x1 <= x0:  # the ends are excluded: y0:y0 holds no row
+        raise ContactresInputError(
+            f"the reference region rows {y0}:{y1}, columns {x0}:{x1} is empty: the ends are "
+            "excluded, give Y0 < Y1 and X0 < X1"
+        )
     if not (0 <= y0 < y1 <= h and 0 <= x0 < x1 <= w):
         raise ContactresInputError(
             f"the reference region rows {y0}:{y1}, columns {x0}:{x1} is not inside the "

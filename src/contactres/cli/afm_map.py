@@ -50,7 +50,8 @@ def _map_name(ctx, param, value):
     default="afm_map.nc",
     show_default=True,
     callback=_map_name,
-    help="File name of the map Dataset in the folder: .nc (NetCDF) or .zarr (Zarr store).",
+    help="File name of the map Dataset in the folder: .nc (NetCDF, listed in the folder's "
+    "manifest.json) or .zarr (a Zarr store written beside the report, not in the manifest).",
 )
 @click.option(
     "--frequency-width",
