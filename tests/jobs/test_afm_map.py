@@ -175,3 +175,16 @@ def test_phases_of_the_wrong_sign_are_said_to_void_the_reconstruction(kelvin_voi
     assert "no resonance on any pixel" in text and "--phase-sign" in text
     assert "--frequency-width" in text and "no positive frequency" not in text
     assert "\n" not in text
+
+
+def test_the_maps_figure_says_when_sigma_stands_in_for_a_failed_modulus(kelvin_voigt):
+    pytest.importorskip("matplotlib")
+    from contactres.report._cr_map_figures import cr_histograms_figure, cr_maps_figure
+
+    data = dart_map(kelvin_voigt, K_STAR)
+    failed = ModulusModel(tip_radius=2e-8, load=50.0)  # no Hertz contact on any pixel
+    for model, said in ((failed, True), (None, False)):
+        result = job.run(data, job.Settings(tip_position=R_TIP, modulus=model))
+        for figure in (cr_maps_figure(result), cr_histograms_figure(result)):
+            titles = [ax.get_title() for ax in figure.axes if "contact damping" in ax.get_title()]
+            assert len(titles) == 1 and ("M is NaN" in titles[0]) == said, titles
