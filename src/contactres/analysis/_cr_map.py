@@ -394,7 +394,7 @@ def invert_cr_map(
     inv_bits = sorted({b for v in np.unique(flags) for b in _map_flag_names(v)})
     # The modulus's flags too (by the names of ModulusFlag): a modulus that fails is said.
     inv_bits += sorted(
-        {str(bit.name).lower() for v in np.unique(m_flags) for bit in ModulusFlag(int(v))}
+        {str(f.name).lower() for v in np.unique(m_flags) for f in ModulusFlag if int(v) & f}
     )
     record_all = {
         "model": "Kelvin-Voigt contact: k* + i ω_c σ = k_c κ_c at ω_c = 2πf (1 + i/(2Q))",
