@@ -212,6 +212,7 @@ PUBLIC = {
     "examples": ["EXAMPLES", "Example", "copy_examples", "example_path"],
     "analysis": [
         "AnalysisSettings",
+        "CR_MAP_FLAGS",
         "CR_MAP_UNITS",
         "DART_FLAGS",
         "DESCRIPTIONS",

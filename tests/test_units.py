@@ -31,6 +31,8 @@ TABLE = {
     # a gel ~1e5 Pa ... diamond's M ~1.2 TPa
     "sample_modulus": ([1e5, 3e9, 1.2e12], [5e4, 2e12], "Pa"),
     "stiffness": ([1e-3, 0.1, 4e5, 1e12], [5e-4, 2e12], "N/m"),
+    # a contact-mode lever 0.006 N/m ... CR-AFM levers 1-50 N/m; 1e5 N/m is a contact's k*
+    "lever_stiffness": ([1e-3, 0.006, 3.0, 45.0, 1e3], [5e-4, 2e3, 1e5], "N/m"),
     "friction": ([0.01, 0.8, 50.0], [0.0, 51.0], ""),
     "drag": ([0.0, 1e-3, 1e5], [2e5], "kg/s"),
     # water 1000, Cu 8960, osmium 22590 kg/m³

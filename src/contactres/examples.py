@@ -95,8 +95,10 @@ EXAMPLES: Mapping[str, Example] = MappingProxyType(
                 "example_dart.ibw",
                 "an Asylum Research DART image (Igor .ibw, 64 x 64 pixels over 2 µm, synthetic: "
                 "a polymer film with a round stiffer inclusion, contact resonance 266 and 305 kHz "
-                "on a 3 N/m lever; six layers and the instrument's note)",
-                "contactres afm map example_dart.ibw --out cr-map",
+                "on a 3 N/m lever with its tip at r = L1/L = 0.95, 20 nm Si tip at 50 nN; six "
+                "layers and the instrument's note)",
+                "contactres afm map example_dart.ibw --tip-position 0.95 --tip-radius 2e-8 "
+                "--force 5e-8 --tip-modulus 1.65e11 --out cr-map",
             ),
             _example(
                 "example_cu_map.ang",

@@ -210,6 +210,10 @@ QUANTITIES = MappingProxyType(
             1e5,
             ((1e9, "N/nm", "N/nm"),),
         ),
+        # A cantilever's spring constant k_c (at the free end, 3EI/L³): contact-mode levers of
+        # ~0.01 N/m and CR-AFM levers of 1-50 N/m, with a margin of ten (1e-3 to 1e3 N/m). It
+        # is not a contact stiffness: a value of 1e5 N/m is a contact's k*, not any lever's.
+        "lever_stiffness": Plausible("cantilever spring constant", "N/m", 1e-3, 1e3, 1.0),
         # μ = 0 has no loop (no sliding force); clean metals in vacuum reach μ ~ 5-10, so 50 is
         # beyond any measured friction.
         "friction": Plausible("friction coefficient", "", 0.0, 50.0, 0.5, lo_open=True),

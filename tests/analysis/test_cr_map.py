@@ -14,7 +14,8 @@ import numpy as np
 import pytest
 
 import contactres as cr
-from contactres.analysis import ModulusModel
+from contactres.analysis import CR_MAP_FLAGS, ModulusModel
+from contactres.analysis._cr_map import FLAG_NEGATIVE_DAMPING
 from contactres.errors import ContactresInputError
 
 LEVER = cr.Cantilever((300e3,), 40.0, free_q_factors=(400.0,))  # Hz, N/m
@@ -48,6 +49,27 @@ def test_kstar_sigma_and_loss_tangent_of_a_damped_contact(kelvin_voigt):
     assert ds["k_star_N_per_m"].attrs["units"] == "N/m"
     conv = json.loads(ds.attrs["conventions"])
     assert conv["modulus"]["method"] == "none" and conv["units"]["tan_delta"] == "1"
+
+
+def test_negative_contact_damping_is_flagged_and_gives_no_loss_tangent(kelvin_voigt):
+    # A contact made with tan δ < 0 (σ < 0: the measured Q above what the lever's free Q
+    # allows) keeps its k*, but σ and tan δ are NaN there and the pixel is flagged.
+    k_true = np.full((2, 2), 2000.0)
+    tan_true = np.array([-0.001, 0.03])  # the lever alone: loss 1/400 = 0.0025, Q stays > 0
+    f, q = lever_map(kelvin_voigt, k_true, tan_true)
+    ds = cr.invert_cr_map(f, q, LEVER, tip_position=R_TIP)
+    np.testing.assert_allclose(ds["k_star_N_per_m"], k_true, rtol=1e-8)
+    negative = FLAG_NEGATIVE_DAMPING
+    assert np.all(ds["flags"].values[:, 0] == negative) and np.all(ds["flags"].values[:, 1] == 0)
+    for name in ("sigma_N_s_per_m", "tan_delta", "tan_delta_sample"):
+        assert np.all(np.isnan(ds[name].values[:, 0])), name
+    np.testing.assert_allclose(ds["tan_delta"].values[:, 1], 0.03, rtol=1e-8)
+    conv = json.loads(ds.attrs["conventions"])
+    assert conv["flags_present"] == ["negative_damping"]
+    assert conv["flag_bits"]["flags"][str(negative)] == "negative_damping"
+    assert CR_MAP_FLAGS[negative][0] == "negative_damping"
+    # The bit is the map's own: none of the inversion's.
+    assert cr.resonators.flag_names(negative) == []
 
 
 def test_hertz_and_flat_punch_moduli_with_a_compliant_tip(kelvin_voigt):

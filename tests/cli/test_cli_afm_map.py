@@ -135,6 +135,18 @@ def test_bad_files_and_options_are_one_line(fixtures, tmp_path):
         "not inside",
     )
     one_line_error(run("afm", "map", good, *base, "--reference", "0-3"), "Y0:Y1,X0:X1")
+    empty = ["--reference", "5:5,0:3", "--reference-modulus", 3e9]
+    one_line_error(run("afm", "map", good, *base, *empty), "5:5", "is empty")
+    one_line_error(run("afm", "map", good, *base, "--phase-sign", "lead"), "--phase-sign")
+    # A lever's constant is checked as a lever's (1e5 N/m is a contact's k*, not a lever's).
+    one_line_error(
+        run("afm", "map", good, *base, "--spring-constant", 1e5),
+        "--spring-constant",
+        "cantilever spring constant",
+    )
+    # A negative tilt (free end farther from the sample) is not modelled: refused as an option.
+    r = run("afm", "map", good, *base, "--tilt", -5)
+    assert r.exit_code == 2 and "--tilt" in r.output and "0<=x<=45" in r.output, r.output
     one_line_error(run("afm", "map", good, *base, "--map-name", "maps.h5"), ".nc", ".zarr")
     (tmp_path / "again").mkdir()
     twin = tmp_path / "again" / "good.ibw"
@@ -207,3 +219,21 @@ def test_a_series_on_a_dask_cluster_equals_the_serial_run(fixtures, tmp_path):
         clustered = xr.load_dataset(tmp_path / "dask" / name / "afm_map.nc")
         assert np.isfinite(serial["k_star_N_per_m"]).all()
         assert serial.equals(clustered)
+
+
+def test_flagged_damping_and_a_failing_modulus_are_counted_and_warned(fixtures, tmp_path):
+    path = tmp_path / "dart.ibw"
+    fixtures.write_dart_ibw(path, points=8, lines=6)
+    base = ["--free-frequency", F_FREE, "--tip-position", R_TIP, "--out", tmp_path / "o"]
+    # 50 N on a 20 nm tip: no Hertz contact anywhere, M NaN on all 48 pixels.
+    r = _ok(run("afm", "map", path, *base, "--force", 50, "--tip-radius", 2e-8))
+    assert "48 modulus-flagged" in r.output
+    warned = [line for line in r.output.splitlines() if line.startswith("warning: M is NaN")]
+    assert len(warned) == 1 and "48 pixels" in warned[0] and "--force/--tip-radius" in warned[0]
+    record = json.loads((tmp_path / "o" / "afm_map.json").read_text())
+    assert "not_hertzian" in record["conventions"]["flags_present"]
+    # A free Q far below the contact's Q: σ < 0 everywhere, σ and tan δ NaN, one warning.
+    r = _ok(run("afm", "map", path, *base, "--free-q", 1.0))
+    assert "48 flagged" in r.output and "tan δ median" not in r.output
+    warned = [line for line in r.output.splitlines() if "negative_damping" in line]
+    assert len(warned) == 1 and warned[0].startswith("warning: 48 pixels")

@@ -116,3 +116,75 @@ def test_without_a_free_q_the_result_warns_that_sigma_holds_the_lever_damping(ke
         "note_key": "ThermalQ",
         "used": None,
     }
+
+
+def test_a_free_q_too_low_flags_negative_damping_and_warns(kelvin_voigt):
+    # The map made on a lever of free Q (the note's ThermalQ) and read with a free Q 20 times
+    # lower: the lever alone would damp more than the measured Q shows, σ < 0 on every pixel.
+    data = dart_map(kelvin_voigt, K_STAR)
+    free_q = data.note["ThermalQ"] / 20.0
+    result = job.run(data, job.Settings(free_q=free_q, tip_position=R_TIP))
+    ds = result.dataset
+    assert np.all(np.isnan(ds["sigma_N_s_per_m"].values))
+    assert np.all(np.isnan(ds["tan_delta"].values))
+    assert np.isfinite(ds["k_star_N_per_m"].values).all()
+    assert result.summary["pixels_flagged"] == ds["flags"].size
+    assert result.summary["median_tan_delta"] is None
+    assert "negative_damping" in result.conventions["flags_present"]
+    lines = [w for w in result.warnings if "negative_damping" in w]
+    assert len(lines) == 1 and "--free-q" in lines[0] and f"{ds['flags'].size} pixels" in lines[0]
+
+
+@pytest.mark.parametrize(
+    "model, flag, option",
+    [
+        # 50 N on a 20 nm tip: a contact radius far above the tip's (Hertz needs a << R)
+        (ModulusModel(tip_radius=2e-8, load=50.0), "not_hertzian", "--force/--tip-radius"),
+        # a 1 cm punch: E* = k*/(2a) <= 1.3e4 Pa for k* <= 252 N/m, far below any solid's
+        (ModulusModel(punch_radius=1e-2), "modulus_out_of_range", "--punch-radius"),
+    ],
+)
+def test_a_modulus_that_fails_on_every_pixel_is_counted_and_said(kelvin_voigt, model, flag, option):
+    data = dart_map(kelvin_voigt, K_STAR)
+    result = job.run(data, job.Settings(tip_position=R_TIP, modulus=model))
+    ds = result.dataset
+    assert np.all(np.isnan(ds["M_Pa"].values)) and np.isfinite(ds["k_star_N_per_m"].values).all()
+    assert result.summary["pixels_modulus_flagged"] == ds["M_Pa"].size
+    assert flag in result.conventions["flags_present"]
+    lines = [w for w in result.warnings if w.startswith("M is NaN")]
+    assert len(lines) == 1 and f"on {ds['M_Pa'].size} pixels" in lines[0] and option in lines[0]
+
+
+def test_a_modulus_that_holds_warns_nothing(kelvin_voigt):
+    model = ModulusModel(tip_radius=2e-8, load=5e-8)
+    result = job.run(
+        dart_map(kelvin_voigt, K_STAR), job.Settings(tip_position=R_TIP, modulus=model)
+    )
+    assert result.summary["pixels_modulus_flagged"] == 0
+    assert np.isfinite(result.dataset["M_Pa"].values).all()
+    assert not any("M is NaN" in w for w in result.warnings)
+
+
+def test_phases_of_the_wrong_sign_are_said_to_void_the_reconstruction(kelvin_voigt):
+    # Lag phases read as the lead: the phase falls from f1 to f2, no damped oscillator fits any
+    # pixel; the line says so and names --phase-sign, not "no positive frequency".
+    data = dart_map(kelvin_voigt, K_STAR, sign=1.0)
+    with pytest.raises(ContactresInputError) as info:
+        job.run(data, job.Settings(phase_sign="lead", tip_position=R_TIP))
+    text = str(info.value)
+    assert "no resonance on any pixel" in text and "--phase-sign" in text
+    assert "--frequency-width" in text and "no positive frequency" not in text
+    assert "\n" not in text
+
+
+def test_the_maps_figure_says_when_sigma_stands_in_for_a_failed_modulus(kelvin_voigt):
+    pytest.importorskip("matplotlib")
+    from contactres.report._cr_map_figures import cr_histograms_figure, cr_maps_figure
+
+    data = dart_map(kelvin_voigt, K_STAR)
+    failed = ModulusModel(tip_radius=2e-8, load=50.0)  # no Hertz contact on any pixel
+    for model, said in ((failed, True), (None, False)):
+        result = job.run(data, job.Settings(tip_position=R_TIP, modulus=model))
+        for figure in (cr_maps_figure(result), cr_histograms_figure(result)):
+            titles = [ax.get_title() for ax in figure.axes if "contact damping" in ax.get_title()]
+            assert len(titles) == 1 and ("M is NaN" in titles[0]) == said, titles

@@ -43,8 +43,21 @@ def test_the_script_makes_the_bundled_file(tmp_path):
 
 
 def test_example_is_listed_with_its_command():
+    # The command gives the tip position, tip and load the file was made with (the script's
+    # constants; the default r = 1 put tan δ 19 % off), as afm map's --help example does.
     example = EXAMPLES["example_dart.ibw"]
-    assert example.command == "contactres afm map example_dart.ibw --out cr-map"
+    script = _script()
+    words = example.command.split()
+    assert words[:4] == ["contactres", "afm", "map", "example_dart.ibw"]
+    options = dict(zip(words[4::2], words[5::2], strict=True))
+    assert float(options["--tip-position"]) == script.TIP_POSITION
+    assert float(options["--tip-radius"]) == script.TIP_RADIUS
+    assert float(options["--force"]) == script.LOAD
+    assert float(options["--tip-modulus"]) == script.TIP_MODULUS
+    assert f"r = L1/L = {script.TIP_POSITION}" in example.description
+    from contactres.cli.afm_map import afm_map
+
+    assert example.command in " ".join(afm_map.help.replace("\\", " ").split())
     assert example_path("example_dart.ibw").stat().st_size < 300_000
 
 
@@ -91,3 +104,14 @@ def test_example_layers_are_the_stated_oscillator():
         np.testing.assert_allclose(p2[mask], phase2, rtol=0, atol=1.2)
         np.testing.assert_allclose(a1[mask], low, rtol=0, atol=12e-12)
         np.testing.assert_allclose(a2[mask], high, rtol=0, atol=12e-12)
+
+
+def test_the_drive_amplitude_comes_back_in_metres():
+    # Asylum's amplitude layers are in m: the reconstructed drive amplitude has their unit and
+    # the script's 20 pm drive (within its 2 pm amplitude noise per pixel, median over 4096).
+    from contactres.jobs import afm_map as job
+
+    result = job.run(example_path("example_dart.ibw"), job.Settings(tip_position=0.95))
+    drive = result.dataset["drive_amplitude"]
+    assert drive.attrs["units"] == "m"
+    assert np.nanmedian(drive.values) == pytest.approx(DRIVE_AMPLITUDE, rel=0.01)

@@ -171,9 +171,29 @@ def test_a_hair_below_the_free_frequency_is_no_contact_further_below_is_below_fr
     assert np.array_equal(res.flags[:2], [FLAG_NO_CONTACT] * 2)
     assert res.flags[2] & FLAG_BELOW_FREE and not res.flags[2] & FLAG_NO_CONTACT
     assert not res.kappa[2] >= 0  # negative or NaN: no κ >= 0 explains it
-    # Just above the free frequency the contact is tiny but real: no flag "no contact".
-    above = invert_contact_resonance(LEVER, [[f_free * (1 + 1e-6)]], 0.9, modes=(2,))
-    assert 0 < above.kappa_modes[0, 0] < 1e-3 and not above.flags[0] & FLAG_NO_CONTACT
+    # Above the free frequency by less than the tolerance: no contact too (the band is
+    # symmetric); beyond it the contact is tiny but real: no flag "no contact".
+    f_above = f_free * (1 + np.array([0.99, 3.0]) * FREE_TOLERANCE)
+    above = invert_contact_resonance(LEVER, f_above[:, None], 0.9, modes=(2,))
+    assert above.kappa[0] == 0.0 and above.flags[0] == FLAG_NO_CONTACT
+    assert 0 < above.kappa_modes[1, 0] < 1e-3 and not above.flags[1] & FLAG_NO_CONTACT
+
+
+def test_a_free_frequency_is_no_contact_whatever_its_rounding():
+    # f equal to the free one gives f/f_free = 1 ± 2e-16 as the rounding of the model's free
+    # frequency falls (88 kHz gave 1 + 2e-16, and κ NaN before the band was made symmetric):
+    # every whole-Hz free frequency from 10 to 500 kHz, 88 kHz among them, and each moved by
+    # ±1e-12 (relative), far inside the 1e-6 band, is no contact, κ = 0 (with a Q: σ = 0, on
+    # every tenth of them).
+    base = np.append(np.unique(np.round(np.geomspace(1e4, 5e5, 2000))), 88e3)
+    shifts = np.array([[0.0], [-1e-12], [1e-12]])
+    for q, every in ((None, 1), (200.0, 10)):
+        for f_free in base[::every]:
+            lever = Cantilever((f_free,), 3.0, free_q_factors=None if q is None else (q,))
+            qs = None if q is None else np.full((3, 1), q)
+            res = invert_contact_resonance(lever, f_free * (1.0 + shifts), 0.95, q_factors=qs)
+            assert np.all(res.kappa == 0.0) and np.all(res.flags == FLAG_NO_CONTACT), f_free
+            assert q is None or np.all(res.sigma == 0.0)
 
 
 # --- 3. The tilted lever with a lateral spring ---------------------------------------------

@@ -34,6 +34,7 @@ TYPE_CHECKING = False
 _EXPORTS = MappingProxyType(
     {
         "FIGURE_POINTS": "._curves",
+        "CR_MAP_FLAGS": "._cr_map",
         "CR_MAP_UNITS": "._cr_map",
         "ModulusModel": "._cr_map",
         "invert_cr_map": "._cr_map",
@@ -87,6 +88,7 @@ if TYPE_CHECKING:
         sweep_rows as sweep_rows,
     )
     from ._cr_map import (
+        CR_MAP_FLAGS as CR_MAP_FLAGS,
         CR_MAP_UNITS as CR_MAP_UNITS,
         ModulusModel as ModulusModel,
         invert_cr_map as invert_cr_map,

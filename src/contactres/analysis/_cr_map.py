@@ -40,6 +40,12 @@ Q). Per pixel:
    M = 1/(1/E* − 1/M_tip) with E* = E*′(1 + i tan δ): ``tan_delta_sample`` (larger than tan δ
    by about the factor M′/E*′; equal to it for a rigid tip), where E*′ is known.
 
+Negative damping. σ < 0 (tan δ < 0) is no contact's loss: the measured Q exceeds what the
+lever's own damping (its free Q, removed from σ) allows, a free Q too low or a wrong drive
+separation of DART. Such pixels keep k* but σ, tan δ and ``tan_delta_sample`` are NaN, flagged
+``negative_damping`` (:data:`FLAG_NEGATIVE_DAMPING`, a bit of the map's own above the
+inversion's).
+
 The result is an :mod:`xarray` Dataset (dims y, x; coordinates in m from the pixel size, else
 pixel indices; every variable with a ``units`` attribute; the conventions as attributes and as
 one JSON text, ``conventions``).
@@ -49,6 +55,7 @@ from __future__ import annotations
 
 import json
 from dataclasses import dataclass
+from types import MappingProxyType
 from typing import Any
 
 import numpy as np
@@ -58,7 +65,23 @@ from ..units import QUANTITIES
 from ..validation import positive
 from ._inversion import FLAG_DESCRIPTIONS, ModulusFlag, modulus_from_contact_stiffness
 
-__all__ = ["CR_MAP_UNITS", "ModulusModel", "invert_cr_map", "reference_region"]
+__all__ = ["CR_MAP_FLAGS", "CR_MAP_UNITS", "ModulusModel", "invert_cr_map", "reference_region"]
+
+#: σ < 0 (module notes: negative damping): σ and tan δ are NaN. A bit of ``flags`` of the map
+#: above those of :func:`contactres.invert_contact_resonance` (which end at 2^8), so both live
+#: in one mask.
+FLAG_NEGATIVE_DAMPING = 1 << 16
+
+#: The map's own bits of ``flags``: bit -> (name, what it means).
+CR_MAP_FLAGS = MappingProxyType(
+    {
+        FLAG_NEGATIVE_DAMPING: (
+            "negative_damping",
+            "contact damping < 0 (σ and tan δ NaN): the contact's Q exceeds what the lever's "
+            "free Q allows; check --free-q / --frequency-width",
+        ),
+    }
+)
 
 #: Variables of the Dataset and their units.
 CR_MAP_UNITS = {
@@ -136,7 +159,8 @@ class ModulusModel:
 
 
 def reference_region(region, shape) -> tuple[slice, slice]:
-    """Slices of a reference region (y0, y1, x0, x1), checked to lie inside a map of ``shape``."""
+    """Slices of a reference region (y0, y1, x0, x1), checked to be non-empty and to lie inside
+    a map of ``shape``."""
     try:
         y0, y1, x0, x1 = (int(v) for v in region)
     except (TypeError, ValueError):
@@ -144,6 +168,11 @@ def reference_region(region, shape) -> tuple[slice, slice]:
             f"the reference region must be (y0, y1, x0, x1) pixel indices, got {region!r}"
         ) from None
     h, w = shape
+    if y1 <= y0 or x1 <= x0:  # the ends are excluded: y0:y0 holds no row
+        raise ContactresInputError(
+            f"the reference region rows {y0}:{y1}, columns {x0}:{x1} is empty: the ends are "
+            "excluded, give Y0 < Y1 and X0 < X1"
+        )
     if not (0 <= y0 < y1 <= h and 0 <= x0 < x1 <= w):
         raise ContactresInputError(
             f"the reference region rows {y0}:{y1}, columns {x0}:{x1} is not inside the "
@@ -238,6 +267,15 @@ def _sample_loss_tangent(e_star, tan_delta, tip_modulus):
         return np.where(m.real > 0, m.imag / m.real, np.nan)
 
 
+def _map_flag_names(flags: int) -> list[str]:
+    """Short names of the bits set in one ``flags`` value of a map: the inversion's
+    (:func:`contactres.resonators.flag_names`) and the map's own (:data:`CR_MAP_FLAGS`)."""
+    from ..resonators import flag_names
+
+    own = [name for bit, (name, _) in CR_MAP_FLAGS.items() if int(flags) & bit]
+    return flag_names(int(flags)) + own
+
+
 def _flag_bits(flag_names) -> dict:
     """What each bit of ``flags`` and ``modulus_flags`` means (JSON: bit value as text)."""
     bits = {str(1 << i): flag_names(1 << i) for i in range(31)}
@@ -292,7 +330,7 @@ def invert_cr_map(
         A map that is not 2-D, shapes that differ, a map with no positive frequency, a
         reference region outside the image or without k*, or bad lever constants.
     """
-    from ..resonators import flag_names, invert_contact_resonance
+    from ..resonators import invert_contact_resonance
 
     f = np.array(frequency, dtype=float)
     if f.ndim != 2:
@@ -328,7 +366,10 @@ def invert_cr_map(
         modes=(1,),
     )
     k_star = np.where(np.isfinite(res.k_star), res.k_star, np.nan)
-    sigma = res.sigma
+    # σ < 0 is no loss of a contact (module notes: negative damping): flagged, σ NaN.
+    negative = res.sigma < 0
+    sigma = np.where(negative, np.nan, res.sigma)
+    flags = res.flags | np.where(negative, FLAG_NEGATIVE_DAMPING, 0)
     with np.errstate(all="ignore"):
         # No loss tangent without a contact spring (κ = 0: flagged no_contact by the inversion).
         tan_delta = np.where(k_star > 0, 2.0 * np.pi * f * sigma / k_star, np.nan)
@@ -347,10 +388,14 @@ def invert_cr_map(
         "E_star_Pa": e_star,
         "M_Pa": m_s,
         "contact_radius_m": radius,
-        "flags": res.flags.astype(np.int32),
+        "flags": flags.astype(np.int32),
         "modulus_flags": m_flags.astype(np.int32),
     }
-    inv_bits = sorted({b for v in np.unique(res.flags) for b in flag_names(v)})
+    inv_bits = sorted({b for v in np.unique(flags) for b in _map_flag_names(v)})
+    # The modulus's flags too (by the names of ModulusFlag): a modulus that fails is said.
+    inv_bits += sorted(
+        {str(f.name).lower() for v in np.unique(m_flags) for f in ModulusFlag if int(v) & f}
+    )
     record_all = {
         "model": "Kelvin-Voigt contact: k* + i ω_c σ = k_c κ_c at ω_c = 2πf (1 + i/(2Q))",
         "inversion": res.method,
@@ -367,7 +412,7 @@ def invert_cr_map(
         "its free Q; tan_delta_sample: of M = 1/(1/E* − 1/M_tip)",
         "modulus": record,
         "flags_present": inv_bits,
-        "flag_bits": _flag_bits(flag_names),
+        "flag_bits": _flag_bits(_map_flag_names),
         "units": dict(CR_MAP_UNITS),
         "pixel_size_m": None if pixel_size is None else np.ravel(pixel_size).tolist(),
         **(conventions or {}),

@@ -96,8 +96,8 @@ def afm_invert(
     Euler-Bernoulli lever, k_c the end stiffness (U. Rabe et al., Rev. Sci. Instrum. 67, 3281
     (1996), renormalised by r³). With three modes and r blank, the third picks the crossing
     it confirms; with two, the other crossing is in tip_position_other and kappa_other;
-    mode_spread says how far the modes disagree on κ. A contact resonance at the free one (or
-    at most 1e-6 of f below it) is no contact: κ = 0, flag no-contact. With Q factors the
+    mode_spread says how far the modes disagree on κ. A contact resonance at the free one
+    (within 1e-6 of f either way) is no contact: κ = 0, flag no-contact. With Q factors the
     contact is a spring and a dashpot at the mode's complex frequency. With --crystal (the
     sample, and --surface) paper 1's dynamic correction is applied to the Hertz rows and
     reported (k_static_N_per_m, k_a, dcsf_real, dcsf_imag): every mode is corrected at its

@@ -55,7 +55,8 @@ def _map_name(ctx, param, value):
     default="afm_map.nc",
     show_default=True,
     callback=_map_name,
-    help="File name of the map Dataset in the folder: .nc (NetCDF) or .zarr (Zarr store).",
+    help="File name of the map Dataset in the folder: .nc (NetCDF, listed in the folder's "
+    "manifest.json) or .zarr (a Zarr store written beside the report, not in the manifest).",
 )
 @click.option(
     "--frequency-width",
@@ -65,7 +66,7 @@ def _map_name(ctx, param, value):
 )
 @click.option(
     "--spring-constant",
-    type=MagnitudeType("stiffness"),
+    type=MagnitudeType("lever_stiffness"),
     show_default="the note's SpringConstant",
     help="Lever's spring constant k_c at the free end, N/m (wins over the note's).",
 )
@@ -104,10 +105,12 @@ def _map_name(ctx, param, value):
 )
 @click.option(
     "--tilt",
-    type=click.FloatRange(-45, 45),
+    type=click.FloatRange(0, 45),
     default=0.0,
     show_default=True,
-    help="Tilt of the lever to the surface, degrees.",
+    help="Tilt φ of the lever, degrees: the angle from the sample's surface to the lever, "
+    "positive with the free end nearer the sample (the only mounting modelled); usual "
+    "mounting 10-12°.",
 )
 @click.option("--tip-radius", type=MagnitudeType("sphere_radius"), help="Hertz: tip radius, m.")
 @click.option("--force", type=MagnitudeType("force"), help="Hertz: static load on the tip, N.")
@@ -254,6 +257,8 @@ def afm_map(
         if ref is not None:
             line += f", reference k* {ref:.4g} N/m"
         line += f"; {s['pixels_flagged']} flagged"
+        if s["pixels_modulus_flagged"]:
+            line += f", {s['pixels_modulus_flagged']} modulus-flagged"
         if "dart_flags" in ds:
             line += f", {int(np.count_nonzero(ds['dart_flags'].values))} DART-flagged"
         click.echo(f"{line}; wrote {folder}")

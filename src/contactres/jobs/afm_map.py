@@ -69,6 +69,9 @@ class MapInput:
     q_factor : Q per pixel, or None (DART: reconstructed)
     dart : (A1, A2, phase1, phase2) of a DART image (amplitudes in one unit, phases in degrees
         as stored), or None
+    amplitude_unit : the unit of the amplitudes A1, A2 (and so of the reconstructed drive
+        amplitude): "m" for an Asylum image (its amplitude layers are deflections in m,
+        InvOLS applied by the instrument); "1" when not known
     note : the instrument's settings (an Asylum note), or {}
     pixel_size : (dx, dy) or one square pitch, m; or None
     source : the file read (or a name)
@@ -80,6 +83,7 @@ class MapInput:
     note: dict = field(default_factory=dict)
     pixel_size: float | tuple[float, float] | None = None
     source: str = "map"
+    amplitude_unit: str = "1"
 
 
 @dataclass(frozen=True)
@@ -162,6 +166,7 @@ def read_input(path: str | os.PathLike, readers: Readers | None = None) -> MapIn
         note=dict(read.note),
         pixel_size=read.scale,  # (dx, dy) or None
         source=str(path),
+        amplitude_unit="m",  # Asylum stores its amplitude layers in m
     )
 
 
@@ -229,7 +234,24 @@ def _reconstruct(data: MapInput, s: Settings):
     r = dart_reconstruction(
         fc - width / 2, fc + width / 2, a1, a2, factor * p1, factor * p2, min_sin=s.min_sin
     )
-    extra = {"dart_flags": (r.flags.astype(np.int32), "1"), "drive_amplitude": (r.A_drive, "1")}
+    if not np.isfinite(r.f0).any() and np.isfinite(fc).any():
+        # Every tracked pixel voided: the phases read with the wrong sign (the phase then falls
+        # from f1 to f2, which no damped oscillator does) or a wrong drive separation, not an
+        # empty map; say which flags and what to check.
+        counts = [
+            f"{int(np.count_nonzero(r.flags & bit))} {name}"
+            for bit, (name, _) in DART_FLAGS.items()
+            if np.any(r.flags & bit)
+        ]
+        raise ContactresInputError(
+            f"{data.source}: the DART reconstruction gives no resonance on any pixel "
+            f"({', '.join(counts)} of {r.flags.size}; phases read as the {sign} ({s.phase_sign}), "
+            f"drives {width:g} Hz apart): check --phase-sign and --frequency-width"
+        )
+    extra = {
+        "dart_flags": (r.flags.astype(np.int32), "1"),
+        "drive_amplitude": (r.A_drive, data.amplitude_unit),  # the unit of A1, A2
+    }
     conv = {
         "dart": {
             "equations": "damped harmonic oscillator from two drives (Gannepalli et al., "
@@ -259,9 +281,47 @@ def _summary(ds) -> dict:
     out: dict[str, object] = {"shape": list(ds["k_star_N_per_m"].shape)}
     out["pixels_with_k_star"] = int(np.isfinite(ds["k_star_N_per_m"].values).sum())
     out["pixels_flagged"] = int((ds["flags"].values != 0).sum())
+    out["pixels_modulus_flagged"] = int((ds["modulus_flags"].values != 0).sum())
     for name in ("k_star_N_per_m", "sigma_N_s_per_m", "tan_delta", "E_star_Pa", "M_Pa"):
         out[f"median_{name}"] = median(name)
     return out
+
+
+def _map_flag_warnings(ds) -> list[str]:
+    """One line per map flag (:data:`contactres.analysis.CR_MAP_FLAGS`) that pixels have."""
+    from ..analysis import CR_MAP_FLAGS
+
+    lines = []
+    for bit, (name, text) in CR_MAP_FLAGS.items():
+        n = int(np.count_nonzero(ds["flags"].values & bit))
+        if n:
+            lines.append(f"{n} pixels flagged {name}: {text}")
+    return lines
+
+
+#: The options behind each way to the modulus (for the warning where M is NaN).
+_MODULUS_OPTIONS = {
+    "hertz": "--force/--tip-radius (N, m)",
+    "punch": "--punch-radius (m)",
+    "reference": "--reference/--reference-modulus",
+}
+
+
+def _modulus_warnings(ds, method: str) -> list[str]:
+    """One line when a modulus was asked for and M is NaN on pixels that have k*: how many,
+    the flags' meanings (:data:`contactres.analysis.FLAG_DESCRIPTIONS`) and the options."""
+    from ..analysis import FLAG_DESCRIPTIONS
+
+    if method not in _MODULUS_OPTIONS:
+        return []
+    lacking = np.isfinite(ds["k_star_N_per_m"].values) & ~np.isfinite(ds["M_Pa"].values)
+    n = int(np.count_nonzero(lacking))
+    if not n:
+        return []
+    seen = int(np.bitwise_or.reduce(ds["modulus_flags"].values[lacking], axis=None))
+    texts = [text for bit, text in FLAG_DESCRIPTIONS.items() if seen & int(bit)]
+    why = "; ".join(texts) if texts else "no modulus"
+    return [f"M is NaN on {n} pixels: {why}; check {_MODULUS_OPTIONS[method]} and --tip-modulus"]
 
 
 def run(
@@ -310,6 +370,8 @@ def run(
         )
     if not np.isfinite(ds["k_star_N_per_m"].values).any():
         warnings.append("no pixel gave a contact stiffness: check the lever's constants")
+    warnings += _map_flag_warnings(ds)
+    warnings += _modulus_warnings(ds, conventions["modulus"]["method"])
     return Result(
         dataset=ds,
         source=data.source,

@@ -54,6 +54,15 @@ def _quantities(ds) -> list[str]:
     return [n for n in names if n is not None and np.isfinite(ds[n].values).any()]
 
 
+def _title(ds, name: str) -> str:
+    """The panel's title; σ standing in for a modulus that was asked for but is NaN on every
+    pixel says so (the modulus flags tell why), rather than swapping the panel silently."""
+    title = _SHOWN[name][0]
+    if name == "sigma_N_s_per_m" and ds.attrs.get("modulus_method", "none") != "none":
+        title += " (M is NaN: see modulus_flags)"
+    return title
+
+
 def _pixel_size(ds) -> tuple[float, float] | None:
     """(dx, dy) in m from the coordinates, or None (pixel indices, or a single row/column)."""
     x, y = ds["x"], ds["y"]
@@ -90,7 +99,8 @@ def cr_maps_figure(result):
     step = _pixel_size(ds)
     h, w = ds["k_star_N_per_m"].shape
     for k, name in enumerate(names):
-        title, label, factor = _SHOWN[name]
+        _, label, factor = _SHOWN[name]
+        title = _title(ds, name)
         ax = fig.add_subplot(1, len(names), k + 1)
         values = ds[name].values * factor
         lo, hi = _robust_limits(values)
@@ -150,7 +160,8 @@ def cr_histograms_figure(result):
     FigureCanvasAgg(fig)
     fig.subplots_adjust(left=0.07, right=0.98, bottom=0.17, top=0.83, wspace=0.3)
     for k, name in enumerate(names):
-        title, label, factor = _SHOWN[name]
+        _, label, factor = _SHOWN[name]
+        title = _title(ds, name)
         ax = fig.add_subplot(1, len(names), k + 1)
         v = ds[name].values * factor
         v = v[np.isfinite(v)]

@@ -79,7 +79,7 @@ RESONANCE_FLAGS = {
     ),
     "not-measured": "a frequency is NaN (not measured)",
     "inconsistent-modes": "the modes disagree on κ by more than `--mode-tolerance`",
-    "no-contact": "f at the free frequency or below it by at most 1e-6 of f: κ = 0 (no contact)",
+    "no-contact": "f at the free frequency within 1e-6 of f either way: κ = 0 (no contact)",
 }
 
 #: Tables on the documentation's dictionary page that have no README block.

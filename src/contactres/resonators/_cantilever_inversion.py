@@ -21,10 +21,11 @@ few positive roots (frequency at or above the κ → ∞ limit: κ = NaN).
 
 No contact. A frequency equal to its mode's free one (β = β_n⁰: 1 + cos β cosh β = 0) is
 κ = 0, where the closed form is 0/0 and rounding alone would decide between a tiny κ and
-"below free". Equal, or below by at most :data:`FREE_TOLERANCE` (1e-6 of f, the precision of
-a free resonance), gives κ = 0 exactly with the flag ``no_contact`` (and σ = 0); further below
-stays ``below_free``. Just above the free frequency κ is small and positive, as the model says
-(flagged ``insensitive``).
+"below free" (f/f_free = 1 + 2e-16 from a whole-Hz free frequency is either). Within
+:data:`FREE_TOLERANCE` of it either way, |f/f_free − 1| <= 1e-6 (the precision of a free
+resonance), gives κ = 0 exactly with the flag ``no_contact`` (and σ = 0); further below stays
+``below_free``. Further above, κ is small and positive, as the model says (flagged
+``insensitive``).
 
 Two modes, tip position unknown (D. C. Hurley and J. A. Turner, "Measurement of Poisson's ratio
 with contact-resonance atomic force microscopy", J. Appl. Phys. 102, 033509 (2007), the
@@ -127,7 +128,7 @@ FLAG_SEVERAL_CROSSINGS = 32
 FLAG_NOT_MEASURED = 64
 #: the modes disagree on κ by more than ``mode_tolerance`` (module notes: three modes).
 FLAG_INCONSISTENT_MODES = 128
-#: f at the mode's free frequency, or below it by at most :data:`FREE_TOLERANCE`: κ = 0.
+#: f at the mode's free frequency within :data:`FREE_TOLERANCE` (relative, either way): κ = 0.
 FLAG_NO_CONTACT = 256
 
 _NAMES = (
@@ -148,14 +149,16 @@ _NAMES = (
 #: (κ ≳ 1e3 for mode 1 at r = 1) and, trivially, as κ → 0 (the contact hardly shifts f).
 MIN_SENSITIVITY = 1e-3
 
-#: Relative distance below a mode's free frequency (f_n⁰ = f_ref (β_n⁰/β_ref)², the model's
-#: free lever) within which a contact resonance is the free lever itself: κ = 0, flagged
-#: ``no_contact``, instead of ``below_free`` and a NaN. A free resonance is calibrated to about
-#: 1e-6 of f (a fraction of a Hz at a few hundred kHz, from a thermal spectrum or a sweep) and
-#: drifts by as much; a contact resonance that close to it, or equal to it, is no contact
-#: within that precision (the κ it would give, ~1e-6, is far below the ``insensitive`` line
-#: anyway). Further below, no κ >= 0 explains f: ``below_free`` (a wrong free frequency, a
-#: different mode or drift).
+#: Relative distance from a mode's free frequency (f_n⁰ = f_ref (β_n⁰/β_ref)², the model's
+#: free lever), either way, within which a contact resonance is the free lever itself: κ = 0,
+#: flagged ``no_contact``, instead of ``below_free`` and a NaN (below) or a κ of rounding
+#: (above). A free resonance is calibrated to about 1e-6 of f (a fraction of a Hz at a few
+#: hundred kHz, from a thermal spectrum or a sweep) and drifts by as much either way; a contact
+#: resonance that close to it, or equal to it, is no contact within that precision (the κ it
+#: would give, ~1e-6, is far below the ``insensitive`` line anyway). The band is symmetric
+#: because f/f_free is computed: a frequency equal to the free one comes out 1 ± 2e-16 as the
+#: rounding of the model's f_n⁰ falls. Further below, no κ >= 0 explains f: ``below_free`` (a
+#: wrong free frequency, a different mode or drift).
 FREE_TOLERANCE = 1e-6
 
 #: Flags of a mode that no positive κ reproduces at the tip position (it contradicts r).
@@ -397,8 +400,8 @@ def invert_contact_resonance(
     Returns
     -------
     ContactResonanceResult
-        A frequency at its mode's free one, or below it by at most :data:`FREE_TOLERANCE`,
-        gives κ = 0 flagged ``no_contact``; two modes with several crossings give the largest
+        A frequency at its mode's free one within :data:`FREE_TOLERANCE` (relative, either
+        way) gives κ = 0 flagged ``no_contact``; two modes with several crossings give the largest
         r in [0.5, 1], flagged ``several_crossings``, the next in ``tip_position_other``.
     """
     f = np.asarray(frequencies, dtype=float)
@@ -453,11 +456,12 @@ def invert_contact_resonance(
             )
         kappa_m, flags_m = kappa_on_branch(beta, mode_arr, r, g)
         flags_m = flags_m | _sensitivity_flags(beta, mode_arr, r, g, kappa_m)
-        # At or a hair below the free frequency (FREE_TOLERANCE): no contact, κ = 0 exactly.
+        # At the free frequency within FREE_TOLERANCE either way (the ratio is 1 ± rounding
+        # when f is the free one): no contact, κ = 0 exactly.
         # Compared in real frequencies: the model's free f_n = f_ref (β_n⁰/β_ref)², whatever Q.
         b_ref, w_ref = cantilever.reference(mode_arr)
         free = f / (np.real(w_ref) / (2.0 * np.pi) * (FREE_ROOTS[mode_arr - 1] / b_ref) ** 2)
-        free = measured & (free <= 1.0) & (free >= 1.0 - FREE_TOLERANCE)
+        free = measured & (np.abs(free - 1.0) <= FREE_TOLERANCE)
         kappa_m = np.where(free, 0.0, kappa_m)
         flags_m = np.where(free, FLAG_NO_CONTACT, flags_m)
         flags_m = np.where(measured, flags_m, FLAG_NOT_MEASURED | FLAG_NOT_POSITIVE)
