@@ -90,7 +90,7 @@ __all__ = [
 
 #: Both drives on one side of the resonance (still solved; module notes).
 DART_FLAG_NOT_STRADDLING = 1
-#: |sin(φ2 − φ1)| < min_sin: the phase difference is 0 or π; values NaN.
+#: ``|sin(φ2 − φ1)|`` < min_sin: the phase difference is 0 or π; values NaN.
 DART_FLAG_DEGENERATE_PHASE = 2
 #: No damped oscillator reproduces the data (ω0² ≤ 0, Q ≤ 0, A_d ≤ 0); values NaN.
 DART_FLAG_NOT_PHYSICAL = 4
@@ -161,7 +161,7 @@ def dart_reconstruction(
     A1, A2 : response amplitudes at f1, f2 (any one unit: V, m)
     phase1_rad, phase2_rad : phases of the response at f1, f2, rad, lag positive (a constant
         offset common to both cancels)
-    min_sin : smallest |sin(φ2 − φ1)| solved (default :data:`MIN_SIN_DELTA`)
+    min_sin : smallest ``|sin(φ2 − φ1)|`` solved (default :data:`MIN_SIN_DELTA`)
 
     Returns
     -------

@@ -105,7 +105,7 @@ class Settings:
     phase_sign : str
         "auto", "lag" or "lead" (module notes).
     min_sin : float
-        Smallest |sin(φ2 − φ1)| the reconstruction solves.
+        Smallest ``|sin(φ2 − φ1)|`` the reconstruction solves.
     """
 
     spring_constant: float | None = None

@@ -22,7 +22,7 @@ few positive roots (frequency at or above the κ → ∞ limit: κ = NaN).
 No contact. A frequency equal to its mode's free one (β = β_n⁰: 1 + cos β cosh β = 0) is
 κ = 0, where the closed form is 0/0 and rounding alone would decide between a tiny κ and
 "below free" (f/f_free = 1 + 2e-16 from a whole-Hz free frequency is either). Within
-:data:`FREE_TOLERANCE` of it either way, |f/f_free − 1| <= 1e-6 (the precision of a free
+:data:`FREE_TOLERANCE` of it either way, ``|f/f_free − 1|`` <= 1e-6 (the precision of a free
 resonance), gives κ = 0 exactly with the flag ``no_contact`` (and σ = 0); further below stays
 ``below_free``. Further above, κ is small and positive, as the model says (flagged
 ``insensitive``).

@@ -404,7 +404,7 @@ def particle_shifts(
     Δf + iΔΓ = (N/A) K_L(ω_n)/(2nπ² Z_q) (paper 2, Eq. 1 with n_P/A_eff -> coverage), at
     ω_n = 2π n f_F. Δf is not divided by n; ΔΓ is the change of the half bandwidth. Signs as in
     :func:`~contactres.resonators.shifts_from_stiffness` (a spring raises f, a mass lowers it),
-    and like it a RuntimeWarning where |Δf|/f exceeds the small-load limit (1e-3). All arguments
+    and like it a RuntimeWarning where ``|Δf|``/f exceeds the small-load limit (1e-3). All arguments
     broadcast (e.g. overtones (n,) against parameters (T, 1)).
 
     Examples
