@@ -134,8 +134,12 @@ def test_a_resonance_far_below_the_comb_identifies_only_the_products():
     d, g = _noisy(df, dg, 50, seed=4)
     fit = fit_particles(F0, N, d, g, PS, medium=WATER, sigma_df=NOISE, sigma_dgamma=NOISE)
     for flags in fit.flags:
-        assert {"inertial", "kappa-unresolved", "coverage-unresolved"} <= set(flags)
+        assert {"inertial", "kappa-unresolved", "xi-unresolved", "coverage-unresolved"} <= set(
+            flags
+        )
+    # ξ = Nξ/N carries the unidentified N: it is blanked with κ and N
     assert np.all(np.isnan(fit.kappa)) and np.all(np.isnan(fit.coverage))
+    assert np.all(np.isnan(fit.xi))
     # N·κ is what the data give (paper 2, Eq. 1), within its stated error
     true = 1e11 * kappa
     assert np.all(np.abs(fit.coverage_kappa - true) < 5 * fit.coverage_kappa_err)

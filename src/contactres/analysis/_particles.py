@@ -38,8 +38,8 @@ Identifiability (the rule; names in :data:`PARTICLE_FLAGS`). Per time step:
 1. The two limits of the model are fitted by linear least squares: a rigid contact (κ -> ∞,
    z = N(1 - h)/(c s)) and particles standing still (z = (1 - h)(Nκ + iωNξ)/s). A limit whose
    χ² exceeds the fit's by less than :data:`LIMIT_CHI2` (9, in units of the noise variance) is
-   not rejected: "sauerbrey-like" (κ and ξ unresolved: only the mass N·m) or "inertial" (κ and
-   N unresolved: only N·κ and N·ξ, reported as ``coverage_kappa`` and ``coverage_xi``).
+   not rejected: "sauerbrey-like" (κ and ξ unresolved: only the mass N·m) or "inertial" (κ, ξ
+   and N unresolved: only N·κ and N·ξ, reported as ``coverage_kappa`` and ``coverage_xi``).
 2. Any parameter whose relative standard error exceeds :data:`RELATIVE_ERROR_LIMIT` (0.3), or
    is not finite, is unresolved ("xi-unresolved" is the usual one: a loss at the noise level).
 3. A fit that did not converge, or a particle smaller than the penetration depth in a liquid
@@ -90,7 +90,7 @@ PARTICLE_FLAGS = {
     "sauerbrey-like": "a rigid contact fits as well (the particles move with the surface): "
     "only the mass coverage·m is identified, not κ and ξ",
     "inertial": "particles standing still fit as well (paper 2, Eq. 1): only coverage·κ and "
-    "coverage·ξ are identified, not κ and the coverage apart",
+    "coverage·ξ are identified, not κ, ξ and the coverage apart",
     "outside-comb": "the coupled resonance lies outside the overtone comb",
     "kappa-unresolved": "the contact stiffness κ (and f_coupled) is not identified by the data",
     "xi-unresolved": "the contact drag ξ is not identified by the data (at the noise level)",
@@ -547,7 +547,9 @@ class _Problem:
                 bad[0] = bad[1] = True  # κ and ξ: a rigid contact fits as well
             if inertial[i]:
                 f.append("inertial")
-                bad[0] = bad[2] = True  # κ and N: only their product
+                # κ and N: only their product; ξ too, since ξ = Nξ/N inherits N's
+                # unidentified scale (printed alone it was up to 6x off)
+                bad[0] = bad[1] = bad[2] = True
             if not comb.min() <= fc[i] <= comb.max():
                 f.append("outside-comb")
             if q[i, 1] <= 0.0:
