@@ -146,6 +146,35 @@ def test_a_resonance_far_below_the_comb_identifies_only_the_products():
     assert np.mean(fit.coverage_kappa) == pytest.approx(true, rel=0.02)
 
 
+@pytest.mark.parametrize("stated", [True, False])
+def test_pure_noise_is_no_signal_and_prints_nothing(stated):
+    # shifts that are noise alone (a sensor before adsorption): the empty model fits as well
+    # wherever Δχ² < 9. For 3 parameters Δχ² is χ²(3)-distributed (P(> 9) = 3 %; with the
+    # noise estimated from 11 dof, F(3, 11) > 3 has P = 8 %): 85 % of 300 steps is > 5σ of the
+    # binomial below either expectation
+    rng = np.random.default_rng(2812)
+    d, g = NOISE * rng.standard_normal((2, 300, N.size))
+    sigma = NOISE if stated else None
+    fit = fit_particles(F0, N, d, g, PS, medium=WATER, sigma_df=sigma, sigma_dgamma=sigma)
+    empty = np.array(["no-signal" in f for f in fit.flags])
+    assert empty.mean() > 0.85
+    # a no-signal step prints nothing (no κ, ξ, coverage, f_coupled or product) and names it
+    for flags in (f for f in fit.flags if "no-signal" in f):
+        assert {"kappa-unresolved", "xi-unresolved", "coverage-unresolved"} <= set(flags)
+    for name in ("kappa", "xi", "coverage", "f_coupled", "coverage_kappa", "coverage_xi"):
+        assert np.all(np.isnan(getattr(fit, name)[empty])), name
+
+
+def test_a_signal_well_above_the_noise_is_not_no_signal():
+    # the same rule does not blank a real (if small) response: 1 µm spheres in the comb at a
+    # coverage that shifts Δf by a few hertz
+    kappa = _kappa_for(PS, 30e6, medium=WATER)
+    df, dg = particle_shifts(F0, N, PS, kappa, 1e-7, 2e8, medium=WATER)
+    d, g = _noisy(df, dg, 50, seed=7)
+    fit = fit_particles(F0, N, d, g, PS, medium=WATER, sigma_df=NOISE, sigma_dgamma=NOISE)
+    assert not any("no-signal" in f for f in fit.flags)
+
+
 def test_flags_are_named_in_the_flag_table():
     df, dg = particle_shifts(F0, N, PS, 1e7, 0.0, 1e10)
     fit = fit_particles(F0, N, df, dg, PS, sigma_df=NOISE, sigma_dgamma=NOISE)

@@ -40,6 +40,9 @@ Identifiability (the rule; names in :data:`PARTICLE_FLAGS`). Per time step:
    χ² exceeds the fit's by less than :data:`LIMIT_CHI2` (9, in units of the noise variance) is
    not rejected: "sauerbrey-like" (κ and ξ unresolved: only the mass N·m) or "inertial" (κ, ξ
    and N unresolved: only N·κ and N·ξ, reported as ``coverage_kappa`` and ``coverage_xi``).
+   The empty model (no particles, z = 0, χ²₀ = Σ w²|z|²) is the third limit, by the same
+   rule: if it is not rejected the step is "no-signal" and every value (the products too) is
+   left empty, so that noise before adsorption does not print a κ.
 2. Any parameter whose relative standard error exceeds :data:`RELATIVE_ERROR_LIMIT` (0.3), or
    is not finite, is unresolved ("xi-unresolved" is the usual one: a loss at the noise level).
 3. A fit that did not converge, or a particle smaller than the penetration depth in a liquid
@@ -99,6 +102,8 @@ PARTICLE_FLAGS = {
     "fit-at-bound": "a parameter ended on its bound (ξ = 0)",
     "not-converged": "the least-squares fit did not converge (no value is reported)",
     "too-few-overtones": "fewer than two overtones measured at this time step",
+    "no-signal": "no particles at all (zero shifts) fit as well: the shifts are at the noise "
+    "level and nothing is identified (no value is reported)",
     "particle-smaller-than-delta": "the particle is smaller than the penetration depth of the "
     "liquid: the hydrodynamic model does not hold (lattice Boltzmann is the tool)",
 }
@@ -511,9 +516,12 @@ class _Problem:
         # The likelihood-ratio test against the two limits of the model (module docstring)
         scale = s2 if estimate else np.ones(t)
         with np.errstate(invalid="ignore", divide="ignore"):
-            lim_s, lim_h = limit_chi2(self.z, self.wf, self.wg, self.sens, self.omega, chg)
+            lim_s, lim_h, lim_0 = limit_chi2(self.z, self.wf, self.wg, self.sens, self.omega, chg)
             sauerbrey = (lim_s - chi2) / scale < LIMIT_CHI2
             inertial = (lim_h - chi2) / scale < LIMIT_CHI2
+            # no particles at all (z = 0) fits as well: the shifts are noise (or a drift of the
+            # baseline), and the three parameters fitted to them are nonsense
+            no_signal = (lim_0 - chi2) / scale < LIMIT_CHI2
         # the products N·κ and N·ξ: ln(Nκ) = q0 + q2, ln(Nξ) = ln q1 + q2 (+ const)
         with np.errstate(divide="ignore", invalid="ignore"):
             nk_rel = np.sqrt(cov_q[:, 0, 0] + cov_q[:, 2, 2] + 2 * cov_q[:, 0, 2])
@@ -525,13 +533,21 @@ class _Problem:
         nx_ok = np.isfinite(nx_rel) & (nx_rel <= RELATIVE_ERROR_LIMIT) & (self.count >= 2)
         if reason is not None:
             nk_ok = nx_ok = np.zeros(t, bool)
+        nk_ok, nx_ok = nk_ok & ~no_signal, nx_ok & ~no_signal
         names = ("kappa", "xi", "coverage", "kappa_r")[:npar]
         flags, keep = [], np.ones((t, 4), bool)
+        unresolved = ("kappa-unresolved", "xi-unresolved", "coverage-unresolved")
+        if self.fit_rocking:
+            unresolved += ("rocking-unresolved",)
         measured = self.wf > 0
         for i in range(t):
             f = []
             if self.count[i] < 2:
                 flags.append(("too-few-overtones",))
+                keep[i] = False
+                continue
+            if no_signal[i]:
+                flags.append(("no-signal", *unresolved))
                 keep[i] = False
                 continue
             rel = [
@@ -561,9 +577,6 @@ class _Problem:
             if reason is not None:
                 f.append("particle-smaller-than-delta")
                 bad = [True] * 4
-            unresolved = ("kappa-unresolved", "xi-unresolved", "coverage-unresolved")
-            if self.fit_rocking:
-                unresolved += ("rocking-unresolved",)
             f += [name for name, b in zip(unresolved, bad, strict=False) if b]
             keep[i] = np.logical_not(bad)
             flags.append(tuple(f))
