@@ -202,6 +202,24 @@ def test_particles_smaller_than_the_penetration_depth_in_water_give_a_flag_not_a
     assert np.isnan(fit.kappa[0]) and np.isnan(fit.coverage[0]) and np.isnan(fit.xi[0])
 
 
+def test_too_few_overtones_to_estimate_the_noise_are_refused_or_flagged():
+    kappa = _kappa_for(PS, 30e6, medium=WATER)
+    df, dg = particle_shifts(F0, N, PS, kappa, 1e-7, 2e10, medium=WATER)
+    # two or three overtones leave 1 or 3 dof for 3 parameters: refused without a stated noise
+    for m in (2, 3):
+        with pytest.raises(ContactresInputError, match="state the noise"):
+            fit_particles(F0, N[:m], df[:m], dg[:m], PS, medium=WATER)
+    # ... and fitted with one (the noise-free shifts come back)
+    fit = fit_particles(F0, N[:3], df[:3], dg[:3], PS, medium=WATER, sigma_df=0.1, sigma_dgamma=0.1)
+    assert fit.kappa[0] == pytest.approx(kappa, rel=1e-6)
+    # in a series, a step with three overtones is flagged, the others are fitted
+    d, g = _noisy(df, dg, 25, seed=11)
+    d[0, 3:] = np.nan
+    fit = fit_particles(F0, N, d, g, PS, medium=WATER)
+    assert fit.flags[0] == ("too-few-overtones",) and np.isnan(fit.kappa[0])
+    assert np.all(np.isfinite(fit.kappa[1:]))
+
+
 def test_bad_input_is_one_line():
     df, dg = particle_shifts(F0, N, PS, 100.0, 1e-7, 1e10)
     with pytest.raises(ContactresInputError, match="at least two overtones"):

@@ -217,3 +217,21 @@ def test_an_export_with_its_options_on_the_command_line(tmp_path):
     a = pd.read_csv(tmp_path / "a" / "particles.csv")
     b = pd.read_csv(tmp_path / "b" / "particles.csv")
     pd.testing.assert_frame_equal(a, b, rtol=1e-5)
+
+
+def test_too_few_overtones_for_an_estimated_noise_are_one_line_asking_for_the_noise(tmp_path):
+    # three overtones: 3 dof for 3 parameters, too few to estimate the noise from the residuals
+    study = ParticleStudy(n_steps=3, overtones=(3, 5, 7))
+    shifts, _ = synthetic_particle_study(study, 2)
+    tidy, _ = LAYOUTS["tidy"][0](tmp_path, shifts)
+    common = ("--particle-radius", study.radius, "--particle-density", study.density,
+              "--fundamental", F_F, "--medium", "water", "--report", "none",
+              "--no-figures")  # fmt: skip
+    r = _cli("qcm", "particles", tidy, *common, "--out", tmp_path / "a")
+    assert r.exit_code == 2, r.output
+    lines = r.output.strip().splitlines()
+    assert len(lines) == 1 and "Traceback" not in r.output
+    assert "degrees of freedom" in lines[0] and "--noise" in lines[0]
+    # with the noise stated the same file runs
+    r = _cli("qcm", "particles", tidy, *common, "--noise", "0.1", "--out", tmp_path / "b")
+    assert r.exit_code == 0, r.output

@@ -31,7 +31,9 @@ refining every start everywhere costs several times more.
 Errors. The covariance is (JᵀJ)⁻¹ with the residuals weighted by the stated noise
 (``sigma_df``, ``sigma_dgamma``: errors from the noise model alone, χ² a test of it); without
 a stated noise both observables get one noise level, estimated per time step from the
-residuals (s² = χ²/(2M - p), M measured overtones), and the covariance is scaled by it.
+residuals (s² = χ²/(2M - p), M measured overtones), and the covariance is scaled by it. That
+needs ``MIN_DOF_ESTIMATED`` (4) degrees of freedom: a step with fewer is flagged
+"too-few-overtones", and data with fewer at every step are refused (state the noise).
 
 Identifiability (the rule; names in :data:`PARTICLE_FLAGS`). Per time step:
 
@@ -88,6 +90,11 @@ RELATIVE_ERROR_LIMIT = 0.3
 #: fit's by less than this (in units of the noise variance) is not rejected by the data.
 LIMIT_CHI2 = 9.0
 
+#: With the noise estimated from the residuals, the fewest degrees of freedom (2M - p, M
+#: overtones, p parameters) a step needs: with fewer, s² = χ²/dof scatters so much that the
+#: errors are not calibrated (two overtones, 1 dof: 20 % of the draws beyond 3σ).
+MIN_DOF_ESTIMATED = 4
+
 #: Flag name -> what it means (the names in :attr:`ParticleFit.flags`).
 PARTICLE_FLAGS = {
     "sauerbrey-like": "a rigid contact fits as well (the particles move with the surface): "
@@ -101,7 +108,8 @@ PARTICLE_FLAGS = {
     "rocking-unresolved": "the rotational stiffness κ_r is not identified by the data",
     "fit-at-bound": "a parameter ended on its bound (ξ = 0)",
     "not-converged": "the least-squares fit did not converge (no value is reported)",
-    "too-few-overtones": "fewer than two overtones measured at this time step",
+    "too-few-overtones": "fewer than two overtones measured at this time step (with the noise "
+    "estimated from the residuals: fewer than 4 degrees of freedom, 2 × overtones − parameters)",
     "no-signal": "no particles at all (zero shifts) fit as well: the shifts are at the noise "
     "level and nothing is identified (no value is reported)",
     "particle-smaller-than-delta": "the particle is smaller than the penetration depth of the "
@@ -219,6 +227,13 @@ def fit_particles(
     freq = n * f0
     sens = 2.0 * n * np.pi**2 * zq  # z_n s_n = N K_L
     prob = _Problem(f0, particle, freq, sens, medium, zf, wf, wg, rocking, fit_rocking)
+    if estimate and 2 * prob.count.max() - prob.n_par < MIN_DOF_ESTIMATED:
+        raise ContactresInputError(
+            f"{int(prob.count.max())} overtones leave {2 * int(prob.count.max()) - prob.n_par} "
+            f"degrees of freedom for {prob.n_par} parameters, too few to estimate the noise from "
+            f"the residuals (at least {MIN_DOF_ESTIMATED}): state the noise of Δf_n and ΔΓ_n "
+            "(sigma_df and sigma_dgamma; --noise on the command line)"
+        )
     t = zf.shape[0]
     p_best, chi2, conv = np.zeros((t, prob.n_par)), np.full(t, np.inf), np.zeros(t, bool)
     dof = 2 * prob.count - prob.n_par
@@ -529,8 +544,10 @@ class _Problem:
             nx_rel = np.sqrt(cov_q[:, 1, 1] / q1**2 + cov_q[:, 2, 2] + 2 * cov_q[:, 1, 2] / q1)
             nk, nx = cov * kappa, cov * xi
             nk_err, nx_err = nk * nk_rel, nx * nx_rel
-        nk_ok = np.isfinite(nk_rel) & (nk_rel <= RELATIVE_ERROR_LIMIT) & (self.count >= 2)
-        nx_ok = np.isfinite(nx_rel) & (nx_rel <= RELATIVE_ERROR_LIMIT) & (self.count >= 2)
+        # too few overtones: fewer than two, or too few dof for the estimated noise's errors
+        few = (self.count < 2) | (estimate & (dof < MIN_DOF_ESTIMATED))
+        nk_ok = np.isfinite(nk_rel) & (nk_rel <= RELATIVE_ERROR_LIMIT) & ~few
+        nx_ok = np.isfinite(nx_rel) & (nx_rel <= RELATIVE_ERROR_LIMIT) & ~few
         if reason is not None:
             nk_ok = nx_ok = np.zeros(t, bool)
         nk_ok, nx_ok = nk_ok & ~no_signal, nx_ok & ~no_signal
@@ -542,7 +559,7 @@ class _Problem:
         measured = self.wf > 0
         for i in range(t):
             f = []
-            if self.count[i] < 2:
+            if few[i]:
                 flags.append(("too-few-overtones",))
                 keep[i] = False
                 continue
