@@ -62,6 +62,25 @@ def test_the_rotational_stiffness_is_fitted_where_the_rocking_mode_is_in_the_com
     assert fit.parameters == ("kappa", "xi", "coverage", "kappa_r")
 
 
+def test_an_unresolved_rotational_stiffness_leaves_f_coupled_empty():
+    # spheres free to roll (κ_r = 0) fitted with rocking="fit": κ_r is not identified, and the
+    # lower mode of the fitted κ_r (near rolling: Hz to kHz) is not the data's 30 MHz resonance
+    kappa = _kappa_for(PS, 30e6, medium=WATER)
+    xi = 0.05 * kappa / (2 * np.pi * 30e6)
+    df, dg = particle_shifts(F0, N, PS, kappa, xi, 2e10, medium=WATER)
+    d, g = _noisy(df, dg, 20, seed=9)
+    fit = fit_particles(
+        F0, N, d, g, PS, medium=WATER, rocking="fit", sigma_df=NOISE, sigma_dgamma=NOISE
+    )
+    unresolved = np.array(["rocking-unresolved" in f for f in fit.flags])
+    assert unresolved.sum() >= 15
+    assert np.all(np.isnan(fit.f_coupled[unresolved]))
+    assert np.all(np.isnan(fit.f_coupled_err[unresolved]))
+    assert not any("outside-comb" in f for f, u in zip(fit.flags, unresolved, strict=True) if u)
+    # κ and the coverage are still identified (the translation sets the comb's response)
+    np.testing.assert_allclose(fit.kappa[unresolved], kappa, rtol=0.02)
+
+
 @pytest.mark.parametrize(
     ("particle", "medium", "f_coupled", "coverage"),
     [

@@ -50,11 +50,13 @@ Identifiability (the rule; names in :data:`PARTICLE_FLAGS`). Per time step:
 3. A fit that did not converge, or a particle smaller than the penetration depth in a liquid
    (:func:`~contactres.resonators.particle_model_validity`), leaves every parameter unresolved.
 
-Unresolved values are NaN, with their errors; f_coupled goes with κ. "outside-comb" says that
-the fitted coupled resonance lies outside [n_min f_F, n_max f_F] of the measured overtones
-(information: a resonance just outside the comb can still be resolved). The likelihood-ratio
-test of step 1 matters: far outside the comb the linearised error can look small at a point
-that is many of its σ from the truth, while the limit fits the data as well.
+Unresolved values are NaN, with their errors; f_coupled goes with κ (and with κ_r where that is
+fitted: an unresolved κ_r leaves f_coupled empty and not flagged "outside-comb", since the
+modes of an unidentified κ_r say nothing of where the data's resonance lies). "outside-comb"
+says that the fitted coupled resonance lies outside [n_min f_F, n_max f_F] of the measured
+overtones (information: a resonance just outside the comb can still be resolved). The
+likelihood-ratio test of step 1 matters: far outside the comb the linearised error can look
+small at a point that is many of its σ from the truth, while the limit fits the data as well.
 """
 
 from __future__ import annotations
@@ -105,7 +107,8 @@ PARTICLE_FLAGS = {
     "kappa-unresolved": "the contact stiffness κ (and f_coupled) is not identified by the data",
     "xi-unresolved": "the contact drag ξ is not identified by the data (at the noise level)",
     "coverage-unresolved": "the coverage is not identified by the data",
-    "rocking-unresolved": "the rotational stiffness κ_r is not identified by the data",
+    "rocking-unresolved": "the rotational stiffness κ_r is not identified by the data (nor is "
+    "f_coupled, which it sets)",
     "fit-at-bound": "a parameter ended on its bound (ξ = 0)",
     "not-converged": "the least-squares fit did not converge (no value is reported)",
     "too-few-overtones": "fewer than two overtones measured at this time step (with the noise "
@@ -583,7 +586,10 @@ class _Problem:
                 # κ and N: only their product; ξ too, since ξ = Nξ/N inherits N's
                 # unidentified scale (printed alone it was up to 6x off)
                 bad[0] = bad[1] = bad[2] = True
-            if not comb.min() <= fc[i] <= comb.max():
+            # with κ_r fitted but unresolved, fc is a mode of the unidentified κ_r (near rolling
+            # for κ_r -> 0: Hz to kHz) and says nothing of where the data's resonance lies
+            fc_known = not (self.fit_rocking and bad[3])
+            if fc_known and not comb.min() <= fc[i] <= comb.max():
                 f.append("outside-comb")
             if q[i, 1] <= 0.0:
                 f.append("fit-at-bound")
@@ -601,6 +607,9 @@ class _Problem:
         def shown(value, col):
             return np.where(keep[:, col], value, np.nan)
 
+        # f_coupled goes with κ, and with κ_r where that is fitted (it sets the modes)
+        fc_keep = keep[:, 0] & (keep[:, 3] if self.fit_rocking else True)
+
         return ParticleFit(
             kappa=shown(kappa, 0),
             kappa_err=shown(kappa_err, 0),
@@ -608,8 +617,8 @@ class _Problem:
             xi_err=shown(xi_err, 1),
             coverage=shown(cov, 2),
             coverage_err=shown(cov_err, 2),
-            f_coupled=shown(fc, 0),
-            f_coupled_err=shown(fc_err, 0),
+            f_coupled=np.where(fc_keep, fc, np.nan),
+            f_coupled_err=np.where(fc_keep, fc_err, np.nan),
             kappa_r=shown(kr, 3) if self.fit_rocking else kr,
             kappa_r_err=shown(kr_err, 3) if self.fit_rocking else kr_err,
             coverage_kappa=np.where(nk_ok, nk, np.nan),
