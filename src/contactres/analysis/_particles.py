@@ -38,7 +38,8 @@ needs ``MIN_DOF_ESTIMATED`` (4) degrees of freedom: a step with fewer is flagged
 Identifiability (the rule; names in :data:`PARTICLE_FLAGS`). Per time step:
 
 1. The two limits of the model are fitted by linear least squares: a rigid contact (κ -> ∞,
-   z = N(1 - h)/(c s)) and particles standing still (z = (1 - h)(Nκ + iωNξ)/s). A limit whose
+   z = N[(1 - h)²/c + g]/s, N free) and particles standing still
+   (z = [(1 - h)²(Nκ + iωNξ) + N g]/s, Nκ, Nξ and N free; g = 0 in vacuum). A limit whose
    χ² exceeds the fit's by less than :data:`LIMIT_CHI2` (9, in units of the noise variance) is
    not rejected: "sauerbrey-like" (κ and ξ unresolved: only the mass N·m) or "inertial" (κ, ξ
    and N unresolved: only N·κ and N·ξ, reported as ``coverage_kappa`` and ``coverage_xi``).
