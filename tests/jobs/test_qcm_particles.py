@@ -81,6 +81,30 @@ def test_the_example_recovers_the_truth_within_2_percent(example):
     assert 5e6 < f.min() < f.max() < 65e6 and (np.diff(f) > 0).all()
 
 
+def test_particles_json_holds_the_products_the_fit_quality_and_kappa_r_per_step(example):
+    import json
+
+    _, truth = synthetic_particle_study(ParticleStudy(), PARTICLE_EXAMPLE_SEED)
+    steps = json.loads(json.dumps(example.values(), allow_nan=False))["steps"]
+    assert set(steps) <= set(example.columns)  # every name has its unit
+    assert len(steps["time_s"]) == len(truth)
+    # the products N·κ and N·ξ against the study's truth, within 2 % and 6 of their errors
+    for name, err, field in (
+        ("coverage_kappa_N_per_m3", "coverage_kappa_err_N_per_m3", "kappa_N_per_m"),
+        ("coverage_xi_kg_per_s_m2", "coverage_xi_err_kg_per_s_m2", "xi_kg_per_s"),
+    ):
+        true = (truth["coverage_per_m2"] * truth[field]).to_numpy()[1:]
+        value, error = np.array(steps[name][1:], float), np.array(steps[err][1:], float)
+        assert np.max(np.abs(value / true - 1)) < 0.02, name
+        assert np.all(np.abs(value - true) < 6 * error), name
+    # step 0 has no particles: nothing, the products neither; no rocking stiffness is fitted
+    assert steps["coverage_kappa_N_per_m3"][0] is None
+    assert all(v is None for v in steps["kappa_r_N_m_per_rad"])
+    # the noise is estimated: χ²/dof is its variance, (0.1 Hz)² (the study's); its mean over
+    # 49 steps of 11 dof scatters by √(2/11)/7 = 6 %
+    assert np.mean(steps["chi2_per_dof"][1:]) == pytest.approx(0.01, rel=0.25)
+
+
 def test_the_model_is_the_forward_model_at_the_fitted_values(example):
     from contactres.resonators import WATER, Particle, particle_shifts
 
