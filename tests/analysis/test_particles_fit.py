@@ -62,6 +62,25 @@ def test_the_rotational_stiffness_is_fitted_where_the_rocking_mode_is_in_the_com
     assert fit.parameters == ("kappa", "xi", "coverage", "kappa_r")
 
 
+def test_an_unresolved_rotational_stiffness_leaves_f_coupled_empty():
+    # spheres free to roll (κ_r = 0) fitted with rocking="fit": κ_r is not identified, and the
+    # lower mode of the fitted κ_r (near rolling: Hz to kHz) is not the data's 30 MHz resonance
+    kappa = _kappa_for(PS, 30e6, medium=WATER)
+    xi = 0.05 * kappa / (2 * np.pi * 30e6)
+    df, dg = particle_shifts(F0, N, PS, kappa, xi, 2e10, medium=WATER)
+    d, g = _noisy(df, dg, 20, seed=9)
+    fit = fit_particles(
+        F0, N, d, g, PS, medium=WATER, rocking="fit", sigma_df=NOISE, sigma_dgamma=NOISE
+    )
+    unresolved = np.array(["rocking-unresolved" in f for f in fit.flags])
+    assert unresolved.sum() >= 15
+    assert np.all(np.isnan(fit.f_coupled[unresolved]))
+    assert np.all(np.isnan(fit.f_coupled_err[unresolved]))
+    assert not any("outside-comb" in f for f, u in zip(fit.flags, unresolved, strict=True) if u)
+    # κ and the coverage are still identified (the translation sets the comb's response)
+    np.testing.assert_allclose(fit.kappa[unresolved], kappa, rtol=0.02)
+
+
 @pytest.mark.parametrize(
     ("particle", "medium", "f_coupled", "coverage"),
     [
@@ -134,12 +153,45 @@ def test_a_resonance_far_below_the_comb_identifies_only_the_products():
     d, g = _noisy(df, dg, 50, seed=4)
     fit = fit_particles(F0, N, d, g, PS, medium=WATER, sigma_df=NOISE, sigma_dgamma=NOISE)
     for flags in fit.flags:
-        assert {"inertial", "kappa-unresolved", "coverage-unresolved"} <= set(flags)
+        assert {"inertial", "kappa-unresolved", "xi-unresolved", "coverage-unresolved"} <= set(
+            flags
+        )
+    # ξ = Nξ/N carries the unidentified N: it is blanked with κ and N
     assert np.all(np.isnan(fit.kappa)) and np.all(np.isnan(fit.coverage))
+    assert np.all(np.isnan(fit.xi))
     # N·κ is what the data give (paper 2, Eq. 1), within its stated error
     true = 1e11 * kappa
     assert np.all(np.abs(fit.coverage_kappa - true) < 5 * fit.coverage_kappa_err)
     assert np.mean(fit.coverage_kappa) == pytest.approx(true, rel=0.02)
+
+
+@pytest.mark.parametrize("stated", [True, False])
+def test_pure_noise_is_no_signal_and_prints_nothing(stated):
+    # shifts that are noise alone (a sensor before adsorption): the empty model fits as well
+    # wherever Δχ² < 9. For 3 parameters Δχ² is χ²(3)-distributed (P(> 9) = 3 %; with the
+    # noise estimated from 11 dof, F(3, 11) > 3 has P = 8 %): 85 % of 300 steps is > 5σ of the
+    # binomial below either expectation
+    rng = np.random.default_rng(2812)
+    d, g = NOISE * rng.standard_normal((2, 300, N.size))
+    sigma = NOISE if stated else None
+    fit = fit_particles(F0, N, d, g, PS, medium=WATER, sigma_df=sigma, sigma_dgamma=sigma)
+    empty = np.array(["no-signal" in f for f in fit.flags])
+    assert empty.mean() > 0.85
+    # a no-signal step prints nothing (no κ, ξ, coverage, f_coupled or product) and names it
+    for flags in (f for f in fit.flags if "no-signal" in f):
+        assert {"kappa-unresolved", "xi-unresolved", "coverage-unresolved"} <= set(flags)
+    for name in ("kappa", "xi", "coverage", "f_coupled", "coverage_kappa", "coverage_xi"):
+        assert np.all(np.isnan(getattr(fit, name)[empty])), name
+
+
+def test_a_signal_well_above_the_noise_is_not_no_signal():
+    # the same rule does not blank a real (if small) response: 1 µm spheres in the comb at a
+    # coverage that shifts Δf by a few hertz
+    kappa = _kappa_for(PS, 30e6, medium=WATER)
+    df, dg = particle_shifts(F0, N, PS, kappa, 1e-7, 2e8, medium=WATER)
+    d, g = _noisy(df, dg, 50, seed=7)
+    fit = fit_particles(F0, N, d, g, PS, medium=WATER, sigma_df=NOISE, sigma_dgamma=NOISE)
+    assert not any("no-signal" in f for f in fit.flags)
 
 
 def test_flags_are_named_in_the_flag_table():
@@ -167,6 +219,24 @@ def test_particles_smaller_than_the_penetration_depth_in_water_give_a_flag_not_a
     fit = fit_particles(F0, N, df, dg, small, medium=WATER, sigma_df=NOISE, sigma_dgamma=NOISE)
     assert "particle-smaller-than-delta" in fit.flags[0]
     assert np.isnan(fit.kappa[0]) and np.isnan(fit.coverage[0]) and np.isnan(fit.xi[0])
+
+
+def test_too_few_overtones_to_estimate_the_noise_are_refused_or_flagged():
+    kappa = _kappa_for(PS, 30e6, medium=WATER)
+    df, dg = particle_shifts(F0, N, PS, kappa, 1e-7, 2e10, medium=WATER)
+    # two or three overtones leave 1 or 3 dof for 3 parameters: refused without a stated noise
+    for m in (2, 3):
+        with pytest.raises(ContactresInputError, match="state the noise"):
+            fit_particles(F0, N[:m], df[:m], dg[:m], PS, medium=WATER)
+    # ... and fitted with one (the noise-free shifts come back)
+    fit = fit_particles(F0, N[:3], df[:3], dg[:3], PS, medium=WATER, sigma_df=0.1, sigma_dgamma=0.1)
+    assert fit.kappa[0] == pytest.approx(kappa, rel=1e-6)
+    # in a series, a step with three overtones is flagged, the others are fitted
+    d, g = _noisy(df, dg, 25, seed=11)
+    d[0, 3:] = np.nan
+    fit = fit_particles(F0, N, d, g, PS, medium=WATER)
+    assert fit.flags[0] == ("too-few-overtones",) and np.isnan(fit.kappa[0])
+    assert np.all(np.isfinite(fit.kappa[1:]))
 
 
 def test_bad_input_is_one_line():

@@ -66,8 +66,9 @@ def test_the_example_recovers_the_truth_within_2_percent(example):
     _, truth = synthetic_particle_study(ParticleStudy(), PARTICLE_EXAMPLE_SEED)
     table = example.particles
     np.testing.assert_allclose(table["time_s"], truth["time_s"], rtol=1e-6)
-    # step 0 has no particles: nothing identified, every value empty and the step flagged
-    assert table.iloc[0, 1:8].isna().all() and "sauerbrey-like" in table["flags"].iloc[0]
+    # step 0 has no particles: nothing identified, every value empty and the step flagged as
+    # such (the empty model fits its noise as well)
+    assert table.iloc[0, 1:8].isna().all() and "no-signal" in table["flags"].iloc[0]
     rest = table.iloc[1:]
     assert (rest["flags"] == "").all()  # the coupled resonance inside the comb: all identified
     for value, error in VALUES:
@@ -78,6 +79,30 @@ def test_the_example_recovers_the_truth_within_2_percent(example):
     # the coupled resonance moves through the comb, 5-65 MHz, as the contacts stiffen
     f = rest["f_coupled_Hz"].to_numpy()
     assert 5e6 < f.min() < f.max() < 65e6 and (np.diff(f) > 0).all()
+
+
+def test_particles_json_holds_the_products_the_fit_quality_and_kappa_r_per_step(example):
+    import json
+
+    _, truth = synthetic_particle_study(ParticleStudy(), PARTICLE_EXAMPLE_SEED)
+    steps = json.loads(json.dumps(example.values(), allow_nan=False))["steps"]
+    assert set(steps) <= set(example.columns)  # every name has its unit
+    assert len(steps["time_s"]) == len(truth)
+    # the products N·κ and N·ξ against the study's truth, within 2 % and 6 of their errors
+    for name, err, field in (
+        ("coverage_kappa_N_per_m3", "coverage_kappa_err_N_per_m3", "kappa_N_per_m"),
+        ("coverage_xi_kg_per_s_m2", "coverage_xi_err_kg_per_s_m2", "xi_kg_per_s"),
+    ):
+        true = (truth["coverage_per_m2"] * truth[field]).to_numpy()[1:]
+        value, error = np.array(steps[name][1:], float), np.array(steps[err][1:], float)
+        assert np.max(np.abs(value / true - 1)) < 0.02, name
+        assert np.all(np.abs(value - true) < 6 * error), name
+    # step 0 has no particles: nothing, the products neither; no rocking stiffness is fitted
+    assert steps["coverage_kappa_N_per_m3"][0] is None
+    assert all(v is None for v in steps["kappa_r_N_m_per_rad"])
+    # the noise is estimated: χ²/dof is its variance, (0.1 Hz)² (the study's); its mean over
+    # 49 steps of 11 dof scatters by √(2/11)/7 = 6 %
+    assert np.mean(steps["chi2_per_dof"][1:]) == pytest.approx(0.01, rel=0.25)
 
 
 def test_the_model_is_the_forward_model_at_the_fitted_values(example):
@@ -216,3 +241,21 @@ def test_an_export_with_its_options_on_the_command_line(tmp_path):
     a = pd.read_csv(tmp_path / "a" / "particles.csv")
     b = pd.read_csv(tmp_path / "b" / "particles.csv")
     pd.testing.assert_frame_equal(a, b, rtol=1e-5)
+
+
+def test_too_few_overtones_for_an_estimated_noise_are_one_line_asking_for_the_noise(tmp_path):
+    # three overtones: 3 dof for 3 parameters, too few to estimate the noise from the residuals
+    study = ParticleStudy(n_steps=3, overtones=(3, 5, 7))
+    shifts, _ = synthetic_particle_study(study, 2)
+    tidy, _ = LAYOUTS["tidy"][0](tmp_path, shifts)
+    common = ("--particle-radius", study.radius, "--particle-density", study.density,
+              "--fundamental", F_F, "--medium", "water", "--report", "none",
+              "--no-figures")  # fmt: skip
+    r = _cli("qcm", "particles", tidy, *common, "--out", tmp_path / "a")
+    assert r.exit_code == 2, r.output
+    lines = r.output.strip().splitlines()
+    assert len(lines) == 1 and "Traceback" not in r.output
+    assert "degrees of freedom" in lines[0] and "--noise" in lines[0]
+    # with the noise stated the same file runs
+    r = _cli("qcm", "particles", tidy, *common, "--noise", "0.1", "--out", tmp_path / "b")
+    assert r.exit_code == 0, r.output

@@ -232,6 +232,14 @@ def test_the_command_writes_the_folder(study, tmp_path):
     assert page.count("data:image/png;base64,") == 3 and "sauerbrey-like" in page
 
 
+def test_the_help_names_paper_2s_equation_and_the_radius_unit():
+    r = _cli("qcm", "particles", "--help")
+    assert r.exit_code == 0, r.output
+    text = " ".join(r.output.split())
+    assert "paper 2's Eq. 1" in text and "Eq. 2" not in text
+    assert "5e-7 m for spheres 1 µm across" in text
+
+
 @pytest.mark.parametrize(
     "option, value, words",
     [

@@ -2,8 +2,9 @@
 
 The closed-form pieces of :func:`~contactres.analysis.fit_particles`, batched over the time
 steps: the equation-error start (the model multiplied out, linear in κ, ξ, Nκ, Nξ), the χ² of
-the model's two limits (a rigid contact; particles standing still), the inverse of the stacked
-normal matrices that marks an unidentified direction, and the noise variance of a series.
+the model's two limits (a rigid contact; particles standing still) and of no particles at all,
+the inverse of the stacked normal matrices that marks an unidentified direction, and the noise
+variance of a series.
 Notation as there: z = Δf + iΔΓ (Hz), s = 2nπ²Z_q, c, h, g of
 :func:`~contactres.resonators.particle_compliance`, weights wf = 1/σ_Δf and wg = 1/σ_ΔΓ (0 where
 an overtone is not measured).
@@ -98,7 +99,12 @@ def equation_error(z, wf, wg, sens, omega, chg, kappa_fixed=None, sweeps=4):
 def limit_chi2(z, wf, wg, sens, omega, chg):
     """χ² (T,) of the best fits of the model's two limits, both linear least squares:
     a rigid contact, z = N[(1 - h)²/c + g]/s (N free), and particles standing still,
-    z = [(1 - h)²(Nκ + iω Nξ) + N g]/s (Nκ, Nξ, N free; g = 0 in vacuum)."""
+    z = [(1 - h)²(Nκ + iω Nξ) + N g]/s (Nκ, Nξ, N free; g = 0 in vacuum); and of the empty
+    model (no particles, z = 0): χ²₀ = Σ wf² (Re z)² + wg² (Im z)².
+
+    Returns
+    -------
+    rigid, still, empty : (T,) χ² of the three, in the units of the weights"""
     c, h, g = chg
     zr, zi = z.real * wf, z.imag * wg
 
@@ -118,4 +124,5 @@ def limit_chi2(z, wf, wg, sens, omega, chg):
     one_h2 = (1.0 - h_b) ** 2
     rigid = chi2_of([(one_h2 / c_b + g_b) / sens])
     still = chi2_of([one_h2 / sens, 1j * omega * one_h2 / sens, g_b / sens])
-    return rigid, still
+    empty = np.sum(zr * zr + zi * zi, axis=1)
+    return rigid, still, empty

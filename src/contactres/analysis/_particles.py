@@ -31,25 +31,33 @@ refining every start everywhere costs several times more.
 Errors. The covariance is (JᵀJ)⁻¹ with the residuals weighted by the stated noise
 (``sigma_df``, ``sigma_dgamma``: errors from the noise model alone, χ² a test of it); without
 a stated noise both observables get one noise level, estimated per time step from the
-residuals (s² = χ²/(2M - p), M measured overtones), and the covariance is scaled by it.
+residuals (s² = χ²/(2M - p), M measured overtones), and the covariance is scaled by it. That
+needs ``MIN_DOF_ESTIMATED`` (4) degrees of freedom: a step with fewer is flagged
+"too-few-overtones", and data with fewer at every step are refused (state the noise).
 
 Identifiability (the rule; names in :data:`PARTICLE_FLAGS`). Per time step:
 
 1. The two limits of the model are fitted by linear least squares: a rigid contact (κ -> ∞,
-   z = N(1 - h)/(c s)) and particles standing still (z = (1 - h)(Nκ + iωNξ)/s). A limit whose
+   z = N[(1 - h)²/c + g]/s, N free) and particles standing still
+   (z = [(1 - h)²(Nκ + iωNξ) + N g]/s, Nκ, Nξ and N free; g = 0 in vacuum). A limit whose
    χ² exceeds the fit's by less than :data:`LIMIT_CHI2` (9, in units of the noise variance) is
-   not rejected: "sauerbrey-like" (κ and ξ unresolved: only the mass N·m) or "inertial" (κ and
-   N unresolved: only N·κ and N·ξ, reported as ``coverage_kappa`` and ``coverage_xi``).
+   not rejected: "sauerbrey-like" (κ and ξ unresolved: only the mass N·m) or "inertial" (κ, ξ
+   and N unresolved: only N·κ and N·ξ, reported as ``coverage_kappa`` and ``coverage_xi``).
+   The empty model (no particles, z = 0, χ²₀ = Σ w²|z|²) is the third limit, by the same
+   rule: if it is not rejected the step is "no-signal" and every value (the products too) is
+   left empty, so that noise before adsorption does not print a κ.
 2. Any parameter whose relative standard error exceeds :data:`RELATIVE_ERROR_LIMIT` (0.3), or
    is not finite, is unresolved ("xi-unresolved" is the usual one: a loss at the noise level).
 3. A fit that did not converge, or a particle smaller than the penetration depth in a liquid
    (:func:`~contactres.resonators.particle_model_validity`), leaves every parameter unresolved.
 
-Unresolved values are NaN, with their errors; f_coupled goes with κ. "outside-comb" says that
-the fitted coupled resonance lies outside [n_min f_F, n_max f_F] of the measured overtones
-(information: a resonance just outside the comb can still be resolved). The likelihood-ratio
-test of step 1 matters: far outside the comb the linearised error can look small at a point
-that is many of its σ from the truth, while the limit fits the data as well.
+Unresolved values are NaN, with their errors; f_coupled goes with κ (and with κ_r where that is
+fitted: an unresolved κ_r leaves f_coupled empty and not flagged "outside-comb", since the
+modes of an unidentified κ_r say nothing of where the data's resonance lies). "outside-comb"
+says that the fitted coupled resonance lies outside [n_min f_F, n_max f_F] of the measured
+overtones (information: a resonance just outside the comb can still be resolved). The
+likelihood-ratio test of step 1 matters: far outside the comb the linearised error can look
+small at a point that is many of its σ from the truth, while the limit fits the data as well.
 """
 
 from __future__ import annotations
@@ -85,20 +93,29 @@ RELATIVE_ERROR_LIMIT = 0.3
 #: fit's by less than this (in units of the noise variance) is not rejected by the data.
 LIMIT_CHI2 = 9.0
 
+#: With the noise estimated from the residuals, the fewest degrees of freedom (2M - p, M
+#: overtones, p parameters) a step needs: with fewer, s² = χ²/dof scatters so much that the
+#: errors are not calibrated (two overtones, 1 dof: 20 % of the draws beyond 3σ).
+MIN_DOF_ESTIMATED = 4
+
 #: Flag name -> what it means (the names in :attr:`ParticleFit.flags`).
 PARTICLE_FLAGS = {
     "sauerbrey-like": "a rigid contact fits as well (the particles move with the surface): "
     "only the mass coverage·m is identified, not κ and ξ",
     "inertial": "particles standing still fit as well (paper 2, Eq. 1): only coverage·κ and "
-    "coverage·ξ are identified, not κ and the coverage apart",
+    "coverage·ξ are identified, not κ, ξ and the coverage apart",
     "outside-comb": "the coupled resonance lies outside the overtone comb",
     "kappa-unresolved": "the contact stiffness κ (and f_coupled) is not identified by the data",
     "xi-unresolved": "the contact drag ξ is not identified by the data (at the noise level)",
     "coverage-unresolved": "the coverage is not identified by the data",
-    "rocking-unresolved": "the rotational stiffness κ_r is not identified by the data",
+    "rocking-unresolved": "the rotational stiffness κ_r is not identified by the data (nor is "
+    "f_coupled, which it sets)",
     "fit-at-bound": "a parameter ended on its bound (ξ = 0)",
     "not-converged": "the least-squares fit did not converge (no value is reported)",
-    "too-few-overtones": "fewer than two overtones measured at this time step",
+    "too-few-overtones": "fewer than two overtones measured at this time step (with the noise "
+    "estimated from the residuals: fewer than 4 degrees of freedom, 2 × overtones − parameters)",
+    "no-signal": "no particles at all (zero shifts) fit as well: the shifts are at the noise "
+    "level and nothing is identified (no value is reported)",
     "particle-smaller-than-delta": "the particle is smaller than the penetration depth of the "
     "liquid: the hydrodynamic model does not hold (lattice Boltzmann is the tool)",
 }
@@ -214,6 +231,13 @@ def fit_particles(
     freq = n * f0
     sens = 2.0 * n * np.pi**2 * zq  # z_n s_n = N K_L
     prob = _Problem(f0, particle, freq, sens, medium, zf, wf, wg, rocking, fit_rocking)
+    if estimate and 2 * prob.count.max() - prob.n_par < MIN_DOF_ESTIMATED:
+        raise ContactresInputError(
+            f"{int(prob.count.max())} overtones leave {2 * int(prob.count.max()) - prob.n_par} "
+            f"degrees of freedom for {prob.n_par} parameters, too few to estimate the noise from "
+            f"the residuals (at least {MIN_DOF_ESTIMATED}): state the noise of Δf_n and ΔΓ_n "
+            "(sigma_df and sigma_dgamma; --noise on the command line)"
+        )
     t = zf.shape[0]
     p_best, chi2, conv = np.zeros((t, prob.n_par)), np.full(t, np.inf), np.zeros(t, bool)
     dof = 2 * prob.count - prob.n_par
@@ -511,9 +535,12 @@ class _Problem:
         # The likelihood-ratio test against the two limits of the model (module docstring)
         scale = s2 if estimate else np.ones(t)
         with np.errstate(invalid="ignore", divide="ignore"):
-            lim_s, lim_h = limit_chi2(self.z, self.wf, self.wg, self.sens, self.omega, chg)
+            lim_s, lim_h, lim_0 = limit_chi2(self.z, self.wf, self.wg, self.sens, self.omega, chg)
             sauerbrey = (lim_s - chi2) / scale < LIMIT_CHI2
             inertial = (lim_h - chi2) / scale < LIMIT_CHI2
+            # no particles at all (z = 0) fits as well: the shifts are noise (or a drift of the
+            # baseline), and the three parameters fitted to them are nonsense
+            no_signal = (lim_0 - chi2) / scale < LIMIT_CHI2
         # the products N·κ and N·ξ: ln(Nκ) = q0 + q2, ln(Nξ) = ln q1 + q2 (+ const)
         with np.errstate(divide="ignore", invalid="ignore"):
             nk_rel = np.sqrt(cov_q[:, 0, 0] + cov_q[:, 2, 2] + 2 * cov_q[:, 0, 2])
@@ -521,17 +548,27 @@ class _Problem:
             nx_rel = np.sqrt(cov_q[:, 1, 1] / q1**2 + cov_q[:, 2, 2] + 2 * cov_q[:, 1, 2] / q1)
             nk, nx = cov * kappa, cov * xi
             nk_err, nx_err = nk * nk_rel, nx * nx_rel
-        nk_ok = np.isfinite(nk_rel) & (nk_rel <= RELATIVE_ERROR_LIMIT) & (self.count >= 2)
-        nx_ok = np.isfinite(nx_rel) & (nx_rel <= RELATIVE_ERROR_LIMIT) & (self.count >= 2)
+        # too few overtones: fewer than two, or too few dof for the estimated noise's errors
+        few = (self.count < 2) | (estimate & (dof < MIN_DOF_ESTIMATED))
+        nk_ok = np.isfinite(nk_rel) & (nk_rel <= RELATIVE_ERROR_LIMIT) & ~few
+        nx_ok = np.isfinite(nx_rel) & (nx_rel <= RELATIVE_ERROR_LIMIT) & ~few
         if reason is not None:
             nk_ok = nx_ok = np.zeros(t, bool)
+        nk_ok, nx_ok = nk_ok & ~no_signal, nx_ok & ~no_signal
         names = ("kappa", "xi", "coverage", "kappa_r")[:npar]
         flags, keep = [], np.ones((t, 4), bool)
+        unresolved = ("kappa-unresolved", "xi-unresolved", "coverage-unresolved")
+        if self.fit_rocking:
+            unresolved += ("rocking-unresolved",)
         measured = self.wf > 0
         for i in range(t):
             f = []
-            if self.count[i] < 2:
+            if few[i]:
                 flags.append(("too-few-overtones",))
+                keep[i] = False
+                continue
+            if no_signal[i]:
+                flags.append(("no-signal", *unresolved))
                 keep[i] = False
                 continue
             rel = [
@@ -547,8 +584,13 @@ class _Problem:
                 bad[0] = bad[1] = True  # κ and ξ: a rigid contact fits as well
             if inertial[i]:
                 f.append("inertial")
-                bad[0] = bad[2] = True  # κ and N: only their product
-            if not comb.min() <= fc[i] <= comb.max():
+                # κ and N: only their product; ξ too, since ξ = Nξ/N inherits N's
+                # unidentified scale (printed alone it was up to 6x off)
+                bad[0] = bad[1] = bad[2] = True
+            # with κ_r fitted but unresolved, fc is a mode of the unidentified κ_r (near rolling
+            # for κ_r -> 0: Hz to kHz) and says nothing of where the data's resonance lies
+            fc_known = not (self.fit_rocking and bad[3])
+            if fc_known and not comb.min() <= fc[i] <= comb.max():
                 f.append("outside-comb")
             if q[i, 1] <= 0.0:
                 f.append("fit-at-bound")
@@ -559,15 +601,15 @@ class _Problem:
             if reason is not None:
                 f.append("particle-smaller-than-delta")
                 bad = [True] * 4
-            unresolved = ("kappa-unresolved", "xi-unresolved", "coverage-unresolved")
-            if self.fit_rocking:
-                unresolved += ("rocking-unresolved",)
             f += [name for name, b in zip(unresolved, bad, strict=False) if b]
             keep[i] = np.logical_not(bad)
             flags.append(tuple(f))
 
         def shown(value, col):
             return np.where(keep[:, col], value, np.nan)
+
+        # f_coupled goes with κ, and with κ_r where that is fitted (it sets the modes)
+        fc_keep = keep[:, 0] & (keep[:, 3] if self.fit_rocking else True)
 
         return ParticleFit(
             kappa=shown(kappa, 0),
@@ -576,8 +618,8 @@ class _Problem:
             xi_err=shown(xi_err, 1),
             coverage=shown(cov, 2),
             coverage_err=shown(cov_err, 2),
-            f_coupled=shown(fc, 0),
-            f_coupled_err=shown(fc_err, 0),
+            f_coupled=np.where(fc_keep, fc, np.nan),
+            f_coupled_err=np.where(fc_keep, fc_err, np.nan),
             kappa_r=shown(kr, 3) if self.fit_rocking else kr,
             kappa_r_err=shown(kr_err, 3) if self.fit_rocking else kr_err,
             coverage_kappa=np.where(nk_ok, nk, np.nan),

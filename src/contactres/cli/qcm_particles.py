@@ -53,7 +53,7 @@ class MediumName(click.ParamType):
     "--particle-radius",
     type=MagnitudeType("sphere_radius"),
     required=True,
-    help="Radius R of the particles, m (e.g. 5e-7 for 1 µm spheres).",
+    help="Radius R of the particles, m (e.g. 5e-7 m for spheres 1 µm across).",
 )
 @click.option(
     "--particle-density",
@@ -136,7 +136,7 @@ def particles_command(
     tidy table with the columns time_s, overtone, df_Hz (Δf_n, Hz, not divided by n) and
     dgamma_Hz (ΔΓ_n, Hz, the half-bandwidth shift), shifts against the bare sensor in the same
     medium. Per time step all overtones are fitted with N/A particles on contacts κ + iωξ
-    (paper 2's Eq. 2 with the particle's inertia): a value the data do not identify is left
+    (paper 2's Eq. 1 with the particle's inertia): a value the data do not identify is left
     empty in particles.csv and named in its flags. Prints the medians of the identified values
     and the flags; writes particles.csv, shifts.csv, particles.json, the figures and
     report.html into OUT.

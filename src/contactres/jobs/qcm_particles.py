@@ -91,6 +91,28 @@ COLUMN_UNITS = MappingProxyType(
         "coverage_err_per_m2": "1/m^2 (standard error)",
         "f_coupled_Hz": "Hz",
         "flags": "text (';'-separated)",
+        # the per-step values of particles.json (``steps``), beside particles.csv's columns
+        "coverage_kappa_N_per_m3": "N/m^3 (coverage × κ: what an inertial step identifies)",
+        "coverage_kappa_err_N_per_m3": "N/m^3 (standard error)",
+        "coverage_xi_kg_per_s_m2": "kg/(s m^2) (coverage × ξ)",
+        "coverage_xi_err_kg_per_s_m2": "kg/(s m^2) (standard error)",
+        "chi2_per_dof": "1 with the noise stated (a test of it); Hz^2 without (the noise "
+        "variance estimated from the residuals)",
+        "kappa_r_N_m_per_rad": "N m/rad (the fitted rocking stiffness; --rocking fit only)",
+        "kappa_r_err_N_m_per_rad": "N m/rad (standard error)",
+    }
+)
+
+#: The per-step values of ``particles.json`` (``steps``, after ``time_s``: name -> the fit's
+#: field): what the contract's particles.csv leaves out; units in COLUMN_UNITS.
+_STEP_FIELDS = MappingProxyType(
+    {
+        "coverage_kappa_N_per_m3": "coverage_kappa",
+        "coverage_kappa_err_N_per_m3": "coverage_kappa_err",
+        "coverage_xi_kg_per_s_m2": "coverage_xi",
+        "coverage_xi_err_kg_per_s_m2": "coverage_xi_err",
+        "kappa_r_N_m_per_rad": "kappa_r",
+        "kappa_r_err_N_m_per_rad": "kappa_r_err",
     }
 )
 
@@ -151,8 +173,10 @@ class Result(JobResult):
     (:data:`~contactres.measurements.schema.PARTICLE_SHIFTS_CSV`). The conventions the file was
     read with and those of the shifts, the constants (particle, medium, quartz, noise), the
     equation, the units of the columns, how many steps carry each flag and what each flag means
-    (:data:`contactres.analysis.PARTICLE_FLAGS`); ``source`` the file's
-    name and ``warnings`` what the reader left out and what the user should know."""
+    (:data:`contactres.analysis.PARTICLE_FLAGS`); ``steps``, per time step, what particles.csv
+    leaves out (the products coverage × κ and coverage × ξ with their errors, κ_r and χ²/dof:
+    lists over the steps, null where not identified; units in ``columns``); ``source`` the
+    file's name and ``warnings`` what the reader left out and what the user should know."""
 
     SCHEMAS = MappingProxyType({"particles": PARTICLES_CSV, "shifts": PARTICLE_SHIFTS_CSV})
     NOT_VALUES = ("source", "warnings")
@@ -166,6 +190,7 @@ class Result(JobResult):
     columns: dict
     flag_counts: dict
     flag_meanings: dict
+    steps: dict
     source: str = ""
     warnings: tuple[str, ...] = ()
 
@@ -224,6 +249,7 @@ def run(inputs: str | os.PathLike, settings: Settings, progress: Progress | None
         columns=dict(COLUMN_UNITS),
         flag_counts=counts,
         flag_meanings={name: PARTICLE_FLAGS.get(name, "") for name in counts},
+        steps=_steps(times, fit),
         source=source.name,
         warnings=tuple(lines),
     )
@@ -388,6 +414,20 @@ def _particles_table(times, fit) -> pd.DataFrame:
     columns["f_coupled_Hz"] = _column(fit, "f_coupled", size)
     columns["flags"] = _flag_text(fit.flags, size)
     return pd.DataFrame(columns)[list(PARTICLES_CSV.names)]
+
+
+def _steps(times, fit) -> dict:
+    """``steps`` of particles.json: lists over the time steps (NaN where not identified;
+    JSON null)."""
+    import numpy as np
+
+    size = times.size
+    steps = {"time_s": times}
+    steps.update({name: _column(fit, field, size) for name, field in _STEP_FIELDS.items()})
+    chi2, dof = _column(fit, "chi2", size), _column(fit, "dof", size)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        steps["chi2_per_dof"] = np.where(dof > 0, chi2 / dof, np.nan)
+    return steps
 
 
 def _shifts_table(times, overtones, df, dgamma, fit):
