@@ -86,3 +86,16 @@ def test_figures_are_embedded_and_none_is_skipped():
     assert page.count("data:image/png;base64,") == 1
     assert "<code>a.png</code>" in page and "b.png" not in page
     assert "<h2>Figures</h2>" not in job_page(toy())
+
+
+def test_a_long_list_value_shows_its_head_and_its_length():
+    """A per-step series (issue 28's `steps`, 10^4 time steps) is not written whole into the
+    page: its first LIST_ITEMS values and the count, the rest left to the JSON."""
+    from contactres.report._job_page import LIST_ITEMS
+
+    result = toy()
+    long = Toy(**{**result.__dict__, "constants": {"series": [float(i) for i in range(10_000)]}})
+    page = job_page(long, ())
+    assert "(10000 values; all in the JSON)" in page
+    assert f"{LIST_ITEMS - 1}, " in page and f", {LIST_ITEMS + 1}," not in page
+    assert len(page) < len(job_page(result, ())) + 2_000

@@ -27,12 +27,14 @@ import io
 import math
 from html import escape
 
-__all__ = ["FIRST_ROWS", "JOB_PAGE_FILE", "job_page"]
+__all__ = ["FIRST_ROWS", "JOB_PAGE_FILE", "LIST_ITEMS", "job_page"]
 
 #: The file name of the page in the results folder.
 JOB_PAGE_FILE = "report.html"
 #: How many rows of each table the page shows.
 FIRST_ROWS = 10
+#: Items of a list value shown (the rest is counted and left to the JSON).
+LIST_ITEMS = 20
 
 _CSS = """
 body{font-family:sans-serif;margin:1em 2em;color:#222;max-width:70em}
@@ -58,7 +60,11 @@ def _shown(value) -> str:
     if isinstance(value, float):
         return f"{value:.7g}"
     if isinstance(value, list):
-        return ", ".join(_shown(v) for v in value)
+        # A per-step series (10^4 time steps) would make the page megabytes: its head only,
+        # the whole of it is in the result's JSON.
+        head = ", ".join(_shown(v) for v in value[:LIST_ITEMS])
+        more = len(value) - LIST_ITEMS
+        return head if more <= 0 else f"{head}, … ({len(value)} values; all in the JSON)"
     return str(value)
 
 
