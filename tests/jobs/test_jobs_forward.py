@@ -290,3 +290,25 @@ def test_contacts_within_hertz_validity_get_no_flags_column():
     glass = Material.isotropic(70e9, 0.22, density=2500.0)
     result = contact.run(glass, contact.Settings(radius=np.array([1e-3]), force=np.array([1.0])))
     assert "flags" not in result.table and result.warnings == ()
+
+
+@pytest.mark.parametrize(("ratio", "refused"), [(0.45, False), (0.55, True)])
+def test_maps_predict_refuses_a_tip_load_beyond_hertz_before_reading(tmp_path, ratio, refused):
+    """issue 30: maps predict printed moduli of contacts wider than the tip. On an isotropic
+    solid (M = E/(1 − ν²) in every orientation) the force that puts a/R at ``ratio`` follows
+    from Hertz's a³ = 3FR/(4E*) (Johnson, Ch. 4): above HERTZ_MAX_RATIO the job refuses in one
+    line before it reads the map (a missing file here), below it goes on to read it."""
+    from contactres.jobs import maps_predict
+    from contactres.jobs.maps import TipLoad
+
+    glass = Material.isotropic(70e9, 0.22, density=2500.0)
+    e_star, radius = 70e9 / (1 - 0.22**2), 1e-6
+    force = 4 * e_star * (ratio * radius) ** 3 / (3 * radius)
+    settings = maps_predict.Settings(glass, "cubic", TipLoad(radius, force))
+    missing = tmp_path / "no_such_map.ang"
+    if refused:
+        with pytest.raises(ContactresInputError, match=r"0\.55 times the tip radius"):
+            maps_predict.run(missing, settings)
+    else:
+        with pytest.raises((FileNotFoundError, ContactresInputError), match="no_such_map"):
+            maps_predict.run(missing, settings)

@@ -191,7 +191,9 @@ def maps_predict(
     orientation map (a Zarr map store, or an EBSD export .ang/.ctf; Bunge angles, sample
     z = inward surface normal). Writes MAP's variables plus M_Pa, E_star_Pa,
     contact_radius_m, k_star_N_per_m (and the DCSF with --frequency; M_coated_Pa and
-    k_star_coated_N_per_m with --coating) to OUT atomically.
+    k_star_coated_N_per_m with --coating) to OUT atomically. A tip and force whose Hertz
+    contact on the softest orientation is wider than half the tip radius are refused before
+    any work (most likely a unit slip).
 
     The example files: 'contactres examples --copy .' copies them into this folder.
 
