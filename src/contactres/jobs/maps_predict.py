@@ -222,13 +222,14 @@ def _check_hertz(settings: Settings) -> None:
     """Refuse, before any work, a tip and load whose Hertz contact on the map's softest
     orientation is wider than :data:`contactres.jobs.contact.HERTZ_MAX_RATIO` of the tip
     radius (issue 30: such a map printed moduli of a contact Hertz does not describe; most
-    likely a radius or force in the wrong unit). a = (3FR/(4E*))^(1/3) with E* of the smallest
-    M over :data:`_BOUNDING_NORMALS` in series with the tip."""
+    likely a radius or force in the wrong unit). a is :func:`contactres.hertz`'s with E* of the
+    smallest M over :data:`_BOUNDING_NORMALS` in series with the tip."""
     import math
 
     import numpy as np
 
     from ..errors import ContactresInputError
+    from ..normal import hertz
     from ..polycrystal import indentation_moduli, surface_matrices_from_normals
     from .contact import HERTZ_MAX_RATIO
 
@@ -238,7 +239,7 @@ def _check_hertz(settings: Settings) -> None:
         np.min(indentation_moduli(settings.material, surface_matrices_from_normals(normals)))
     )
     e_star = 1.0 / (1.0 / m_min + (0.0 if math.isinf(tip.tip_modulus) else 1.0 / tip.tip_modulus))
-    ratio = (3.0 * tip.force * tip.radius / (4.0 * e_star)) ** (1.0 / 3.0) / tip.radius
+    ratio = hertz(e_star, tip.radius, tip.force).contact_radius / tip.radius
     if ratio > HERTZ_MAX_RATIO:
         raise ContactresInputError(
             f"--tip-radius {tip.radius:g} m and --force {tip.force:g} N give a Hertz contact "
