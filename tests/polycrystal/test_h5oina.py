@@ -12,6 +12,7 @@ import numpy as np
 import pytest
 
 from contactres.errors import ContactresInputError
+from contactres.jobs.maps import open_map
 from contactres.jobs.readers import ALL_READERS
 from contactres.polycrystal import indexed_pixels, read_ebsd, read_h5oina
 
@@ -90,6 +91,8 @@ def test_the_registry_and_read_ebsd_know_the_format(tmp_path):
     path = _write(tmp_path / "m.h5oina", *_truth())
     assert ALL_READERS.pick(path, "ebsd").name == "h5oina"
     assert np.array_equal(read_ebsd(path).euler, read_h5oina(path).euler)
+    omap, store = open_map(path)  # what maps predict and maps fit open
+    assert store is None and np.array_equal(omap.euler, read_h5oina(path).euler)
 
 
 def test_bad_files_are_input_errors(tmp_path):
