@@ -1,4 +1,4 @@
-"""EBSD text exports as orientation maps: EDAX/TSL ``.ang`` and Oxford HKL ``.ctf`` (square grids).
+"""EBSD text exports as orientation maps, read and written: EDAX/TSL ``.ang``, Oxford HKL ``.ctf``.
 
 Formats, as widely documented (OIM Analysis and Channel 5 exports; the readers of orix,
 kikuchipy, MTEX and DREAM.3D read them this way); the authoritative vendor specifications were
@@ -22,6 +22,18 @@ Not confirmed and not corrected here: the relation of the vendors' Euler referen
 map's x/y axes (OIM and Channel 5 setups differ by rotations about the normal, and hexagonal
 phases in .ctf by a 30° convention about c). The angles are taken as Bunge angles of the
 map's sample frame x = map X, y = map Y, z = ND (:mod:`.orientations`), as written.
+
+Exchange with orix (tests/polycrystal/test_ebsd_orix.py, orix 0.15 as the peer): the angles
+are Bunge angles of the passive orientation g (sample to crystal coordinates), as orix's
+``Rotation.from_euler`` (its default direction "lab2crystal") takes them; orix's
+``Rotation.to_matrix()`` is g and contactres' surface matrix is R = gᵀ (:mod:`.orientations`),
+equal to 1e-12. :func:`write_ang` and :func:`write_ctf` write the phase they are given
+(:class:`~contactres.polycrystal.EbsdPhase`) and the 10 columns of an OIM ``.ang``, so that
+``orix.io.load`` reads both files with the map's orientations (misorientation with the crystal
+symmetry < 1e-6 rad); :func:`read_ang` reads the ``.ang`` orix writes (``orix.io.save``; orix
+rounds the angles to 1e-5 rad). The confidence of each format keeps its own sense: CI (higher
+is better) is never written as MAD (lower is better), nor MAD as CI (the writers' Notes).
+Oxford's HDF5 maps (``.h5oina``) are read by :func:`~contactres.polycrystal.read_h5oina`.
 
 Only regular square grids are read (every point on ``(x0 + j·XSTEP, y0 + i·YSTEP)``, each grid
 position exactly once, in any order): a hexagonal ``.ang`` grid or a ``.ctf`` whose ``JobMode``
