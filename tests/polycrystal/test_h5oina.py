@@ -30,23 +30,25 @@ def _truth(seed: int = 1):
     return euler, phase, mad
 
 
-def _write(path, euler, phase, mad=None, *, positions=True, order=None):
+def _write(path, euler, phase, mad=None, *, positions=True, order=None, columns=False):
+    """``columns``: the (size, 1) and (1, 1) shapes the specification's tables give."""
     order = np.arange(H * W) if order is None else order
     i, j = np.divmod(np.arange(H * W), W)
+    shape = (lambda a: np.asarray(a).reshape(-1, 1)) if columns else np.asarray
     with h5py.File(path, "w") as f:
         f["Format Version"] = "5.0"
         f["Manufacturer"] = "Oxford Instruments"
         data = f.create_group("1/EBSD/Data")
         data["Euler"] = euler[order]
-        data["Phase"] = phase[order]
+        data["Phase"] = shape(phase[order])
         if positions:
-            data["X"] = (j * STEP_X).astype(np.float32)[order]
-            data["Y"] = (i * STEP_Y).astype(np.float32)[order]
+            data["X"] = shape((j * STEP_X).astype(np.float32)[order])
+            data["Y"] = shape((i * STEP_Y).astype(np.float32)[order])
         if mad is not None:
-            data["Mean Angular Deviation"] = mad[order]
+            data["Mean Angular Deviation"] = shape(mad[order])
         head = f.create_group("1/EBSD/Header")
-        head["X Cells"], head["Y Cells"] = np.int32(W), np.int32(H)
-        head["X Step"], head["Y Step"] = np.float32(STEP_X), np.float32(STEP_Y)
+        head["X Cells"], head["Y Cells"] = shape(np.int32(W)), shape(np.int32(H))
+        head["X Step"], head["Y Step"] = shape(np.float32(STEP_X)), shape(np.float32(STEP_Y))
         ni = head.create_group("Phases/1")
         ni["Phase Name"] = "Nickel"
         ni["Lattice Dimensions"] = np.array([3.524, 3.524, 3.524], dtype=np.float32)
@@ -55,9 +57,10 @@ def _write(path, euler, phase, mad=None, *, positions=True, order=None):
     return path
 
 
-def test_a_written_fixture_is_read_as_its_truth(tmp_path):
+@pytest.mark.parametrize("columns", [False, True])
+def test_a_written_fixture_is_read_as_its_truth(tmp_path, columns):
     euler, phase, mad = _truth()
-    m = read_h5oina(_write(tmp_path / "map.h5oina", euler, phase, mad))
+    m = read_h5oina(_write(tmp_path / "map.h5oina", euler, phase, mad, columns=columns))
     assert m.shape == (H, W) and m.source == "map.h5oina"
     assert (m.step_x, m.step_y) == pytest.approx((0.25e-6, 0.5e-6), rel=1e-7)  # float32 steps
     assert np.array_equal(m.euler.reshape(-1, 3), euler.astype(float))  # radians, as stored
