@@ -4,7 +4,9 @@ Cu polycrystal) and ``example_cu_kstar.csv`` (its 'measured' contact-stiffness m
 Run ``python scripts/make_example_map.py`` (seeded: the same files every time). The recipe:
 :func:`contactres.jobs.maps.synthetic_map` with Cu (built-in constants), 64 x 64 pixels of
 1 µm, 16 Voronoi grains with random orientations (seed 7), a rigid tip of R = 20 nm at
-F = 1 µN (Hertz, k* = 2aM), and 1 % Gaussian noise per pixel. The .ang holds no grain labels
+F = 1 µN (Hertz, k* = 2aM), and 1 % Gaussian noise per pixel. The .ang names the phase Cu
+(lattice and space group of :func:`contactres.polycrystal.ebsd_phase`, so that orix reads it)
+and holds no grain labels
 (``contactres maps fit`` reconstructs the grains); the CSV has one line per row y, one value
 per column x, six significant digits.
 """
@@ -17,7 +19,7 @@ import numpy as np
 
 from contactres.jobs.maps import TipLoad, synthetic_map
 from contactres.materials import Material
-from contactres.polycrystal import map_from_dataset, write_ang
+from contactres.polycrystal import ebsd_phase, map_from_dataset, write_ang
 
 SHAPE, GRAINS, SEED, NOISE = (64, 64), 16, 7, 0.01
 TIP = TipLoad(radius=20e-9, force=1e-6)
@@ -29,7 +31,7 @@ def main() -> None:
         Material.crystal("Cu"), "cubic", TIP, shape=SHAPE, n_grains=GRAINS, seed=SEED, noise=NOISE
     )
     omap = map_from_dataset(ds.drop_vars("labels"))
-    ang = write_ang(data / "example_cu_map.ang", omap)
+    ang = write_ang(data / "example_cu_map.ang", omap, ebsd_phase("Cu"))  # Cu's name, lattice
     csv = data / "example_cu_kstar.csv"
     np.savetxt(csv, ds["k_star_N_per_m"].values, fmt="%.6g", delimiter=",")
     for path in (ang, csv):

@@ -33,7 +33,9 @@ def test_an_unknown_suffix_gives_the_ebsd_readers_message(tmp_path):
     with pytest.raises(ContactresInputError) as through:
         open_map(scan)
     assert str(through.value) == str(direct.value)
-    assert str(through.value) == "scan.txt: unknown EBSD export '.txt' (expected .ang or .ctf)"
+    assert str(through.value) == (
+        "scan.txt: unknown EBSD export '.txt' (expected .ang or .ctf or .h5oina)"
+    )
 
 
 def test_an_added_ebsd_recipe_is_used_and_the_registry_is_unchanged(tmp_path):

@@ -160,3 +160,32 @@ def test_angle_beyond_two_turns_and_unknown_suffix(tmp_path):
         read_ang(p)
     with pytest.raises(ValueError, match="unknown EBSD export"):
         read_ebsd(tmp_path / "scan.txt")
+
+
+def test_the_writers_name_the_phase_they_are_given(tmp_path):
+    from contactres.polycrystal import EbsdPhase, ebsd_phase
+
+    m = synthetic_polycrystal((3, 4), n_grains=2, seed=1, pixel_size=1e-6)
+    ang = write_ang(tmp_path / "ni.ang", m, ebsd_phase("Ni")).read_text()
+    assert "# MaterialName Ni\n" in ang and "# Symmetry 43\n" in ang  # 432: cubic, EDAX code
+    assert "# LatticeConstants 3.5240 3.5240 3.5240 90.0000 90.0000 90.0000\n" in ang
+    ctf = write_ctf(tmp_path / "ti.ctf", m, EbsdPhase("Ti", "hexagonal", 2.95, 4.68, 194))
+    assert "2.9500;2.9500;4.6800\t90.0000;90.0000;120.0000\tTi\t9\t194\n" in ctf.read_text()
+    assert "Copper" not in write_ctf(tmp_path / "any.ctf", m).read_text()  # unnamed: "unknown"
+
+
+def test_bad_phases_and_maps_of_several_phases_are_refused(tmp_path):
+    from contactres.polycrystal import EbsdPhase, OrientationMap, ebsd_phase
+
+    with pytest.raises(ValueError, match="needs c"):
+        EbsdPhase("Ti", "hexagonal", 2.95)
+    with pytest.raises(ValueError, match="lattice 'tetragonal'"):
+        EbsdPhase("Sn", "tetragonal", 5.8)
+    with pytest.raises(ValueError, match="no lattice constants known for 'quartz'"):
+        ebsd_phase("quartz")
+    two = OrientationMap(np.zeros((1, 3, 3)), 1e-6, 1e-6, [[1, 2, 0]], [[0.5, 0.5, 0.5]], "CI")
+    for writer in (write_ang, write_ctf):
+        with pytest.raises(ValueError, match="holds phases 0, 1, 2: the writers describe one"):
+            writer(tmp_path / "two.txt", two)
+        with pytest.raises(ValueError, match="phase must be an EbsdPhase"):
+            writer(tmp_path / "one.txt", two, "Ni")

@@ -68,8 +68,8 @@ def pixel_options(f):
             type=click.FloatRange(0.0, 180.0, min_open=True),
             callback=_finite,
             show_default="no limit",
-            help="Largest mean angular deviation MAD of a used .ctf pixel, degrees (phase 0 is "
-            "always left out: not indexed).",
+            help="Largest mean angular deviation MAD of a used .ctf/.h5oina pixel, degrees "
+            "(phase 0 is always left out: not indexed).",
         ),
         click.option(
             "--phase",

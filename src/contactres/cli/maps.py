@@ -188,7 +188,7 @@ def maps_predict(
     fmt,
 ):
     """Predicted indentation modulus M (Pa) and contact stiffness k* (N/m) of every pixel of an
-    orientation map (a Zarr map store, or an EBSD export .ang/.ctf; Bunge angles, sample
+    orientation map (a Zarr map store, or an EBSD export .ang/.ctf/.h5oina; Bunge angles, sample
     z = inward surface normal). Writes MAP's variables plus M_Pa, E_star_Pa,
     contact_radius_m, k_star_N_per_m (and the DCSF with --frequency; M_coated_Pa and
     k_star_coated_N_per_m with --coating) to OUT atomically. A tip and force whose Hertz

@@ -100,9 +100,9 @@ class TipLoad:
 
 def open_map(path: str | os.PathLike, readers: Readers = ALL_READERS):
     """Read a map: a Zarr map store (:func:`~contactres.polycrystal.write_map`) or an EBSD
-    export (.ang, .ctf: the ``ebsd`` recipes of ``readers``, :func:`read_ebsd_file`). Returns
-    (OrientationMap, Dataset or None): the store's Dataset keeps its other variables (a measured
-    map, a prediction)."""
+    export (.ang, .ctf, .h5oina: the ``ebsd`` recipes of ``readers``, :func:`read_ebsd_file`).
+    Returns (OrientationMap, Dataset or None): the store's Dataset keeps its other variables (a
+    measured map, a prediction)."""
     p = Path(path)
     if not p.exists():
         raise FileNotFoundError(f"{str(p)!r}: no such file or map store")

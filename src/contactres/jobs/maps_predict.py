@@ -1,7 +1,7 @@
 """Job ``maps_predict``: an orientation map -> the indentation modulus M, the contact stiffness
 k* (and, at a frequency, paper 1's DCSF) of every pixel.
 
-Inputs: the path of an orientation map (a Zarr map store, or an EBSD export .ang/.ctf; Bunge
+Inputs: the path of an orientation map (a Zarr map store, or an EBSD export .ang/.ctf/.h5oina; Bunge
 angles, sample z = inward surface normal). Settings: the crystal, the tip and load, how M is
 evaluated, the frequency and model of the DCSF, the chunks and the dask scheduler. The map is
 :func:`contactres.jobs.maps.predict_map`.

@@ -9,10 +9,10 @@ triangle (:func:`prepare_normal_table`).
 
 The map container (:class:`OrientationMap`), the chunked per-pixel evaluation
 (:func:`evaluate_map`: numpy, or dask on a cluster: the optional extra ``maps``) and Zarr IO
-(``_maps``); .ang/.ctf exports (:func:`read_ebsd`, ``_ebsd``); seeded Voronoi polycrystals
-(:func:`synthetic_polycrystal`); grains, the predicted contact-stiffness map (bare, and under
-films: :func:`coated_moduli`) and the inverse fits of the elastic constants to a measured map
-(:func:`fit_map`).
+(``_maps``); .ang/.ctf/.h5oina exports (:func:`read_ebsd`, ``_ebsd``, ``_h5oina``, the phases
+they name: ``_ebsd_phases``); seeded Voronoi polycrystals (:func:`synthetic_polycrystal`);
+grains, the predicted contact-stiffness map (bare, and under films: :func:`coated_moduli`) and
+the inverse fits of the elastic constants to a measured map (:func:`fit_map`).
 
 The public names are loaded on first use (PEP 562 module ``__getattr__``); the modules that
 implement them are private (scipy's rule): import from ``contactres.polycrystal``.
@@ -36,6 +36,10 @@ _EXPORTS = MappingProxyType(
         "read_ebsd": "._ebsd",
         "write_ang": "._ebsd",
         "write_ctf": "._ebsd",
+        "CUBIC_LATTICES": "._ebsd_phases",
+        "EbsdPhase": "._ebsd_phases",
+        "ebsd_phase": "._ebsd_phases",
+        "read_h5oina": "._h5oina",
         "folded_normals": "._grains",
         "grain_orientations": "._grains",
         "segment_grains": "._grains",
@@ -104,6 +108,12 @@ if TYPE_CHECKING:
         write_ang as write_ang,
         write_ctf as write_ctf,
     )
+    from ._ebsd_phases import (
+        CUBIC_LATTICES as CUBIC_LATTICES,
+        EbsdPhase as EbsdPhase,
+        ebsd_phase as ebsd_phase,
+    )
+    from ._h5oina import read_h5oina as read_h5oina
     from ._grains import (
         GrainOrientations as GrainOrientations,
         folded_normals as folded_normals,

@@ -1,4 +1,4 @@
-"""EBSD text exports as orientation maps: EDAX/TSL ``.ang`` and Oxford HKL ``.ctf`` (square grids).
+"""EBSD text exports as orientation maps, read and written: EDAX/TSL ``.ang``, Oxford HKL ``.ctf``.
 
 Formats, as widely documented (OIM Analysis and Channel 5 exports; the readers of orix,
 kikuchipy, MTEX and DREAM.3D read them this way); the authoritative vendor specifications were
@@ -23,6 +23,18 @@ map's x/y axes (OIM and Channel 5 setups differ by rotations about the normal, a
 phases in .ctf by a 30° convention about c). The angles are taken as Bunge angles of the
 map's sample frame x = map X, y = map Y, z = ND (:mod:`.orientations`), as written.
 
+Exchange with orix (tests/polycrystal/test_ebsd_orix.py, orix 0.15 as the peer): the angles
+are Bunge angles of the passive orientation g (sample to crystal coordinates), as orix's
+``Rotation.from_euler`` (its default direction "lab2crystal") takes them; orix's
+``Rotation.to_matrix()`` is g and contactres' surface matrix is R = gᵀ (:mod:`.orientations`),
+equal to 1e-12. :func:`write_ang` and :func:`write_ctf` write the phase they are given
+(:class:`~contactres.polycrystal.EbsdPhase`) and the 10 columns of an OIM ``.ang``, so that
+``orix.io.load`` reads both files with the map's orientations (misorientation with the crystal
+symmetry < 1e-6 rad); :func:`read_ang` reads the ``.ang`` orix writes (``orix.io.save``; orix
+rounds the angles to 1e-5 rad). The confidence of each format keeps its own sense: CI (higher
+is better) is never written as MAD (lower is better), nor MAD as CI (the writers' Notes).
+Oxford's HDF5 maps (``.h5oina``) are read by :func:`~contactres.polycrystal.read_h5oina`.
+
 Only regular square grids are read (every point on ``(x0 + j·XSTEP, y0 + i·YSTEP)``, each grid
 position exactly once, in any order): a hexagonal ``.ang`` grid or a ``.ctf`` whose ``JobMode``
 is not ``Grid`` raises ValueError. Bad input raises ValueError naming the file, the data row
@@ -42,6 +54,8 @@ import pandas as pd
 from ..errors import ContactresInputError
 from ..fileio import write_text
 from ..measurements.readers import Reader
+from ._ebsd_phases import UNKNOWN_CUBIC, EbsdPhase
+from ._h5oina import read_h5oina
 from ._maps import OrientationMap, check_map_size
 
 __all__ = ["EBSD_READERS", "read_ang", "read_ctf", "read_ebsd", "write_ang", "write_ctf"]
@@ -301,23 +315,35 @@ def _looks_like_ctf(path: Path, head: str) -> bool:
     return head.lstrip().startswith("Channel Text File")
 
 
+def _looks_like_h5oina(path: Path, head: str) -> bool:
+    """An HDF5 file (its 8-byte signature) named ``.h5oina`` (other HDF5 files are other
+    formats: BGlib's ``.h5``, NetCDF)."""
+    if path.suffix.lower() != ".h5oina" or not path.is_file():
+        return False
+    with path.open("rb") as fh:
+        return fh.read(8) == b"\x89HDF\r\n\x1a\n"
+
+
 #: The EBSD reader recipes (kind ``ebsd``), in the polycrystal layer that owns the formats; the
 #: full registry of every kind is composed above it (``contactres.jobs.readers``).
 EBSD_READERS: tuple[Reader, ...] = (
     Reader("ang", (".ang",), _looks_like_ang, read_ang, "ebsd"),
     Reader("ctf", (".ctf",), _looks_like_ctf, read_ctf, "ebsd"),
+    Reader("h5oina", (".h5oina",), _looks_like_h5oina, read_h5oina, "ebsd"),
 )
 
 
 def read_ebsd(path: str | os.PathLike) -> OrientationMap:
-    """Read an EBSD text export by its suffix: ``.ang`` (:func:`read_ang`) or ``.ctf``
-    (:func:`read_ctf`), the recipes of :data:`EBSD_READERS`."""
+    """Read an EBSD export by its suffix: ``.ang`` (:func:`read_ang`), ``.ctf``
+    (:func:`read_ctf`) or ``.h5oina`` (:func:`~contactres.polycrystal.read_h5oina`), the
+    recipes of :data:`EBSD_READERS`."""
     suffix = Path(path).suffix.lower()
     for reader in EBSD_READERS:
         if suffix in reader.suffixes:
             return reader.load(path)
+    known = " or ".join(s for r in EBSD_READERS for s in r.suffixes)
     raise ContactresInputError(
-        f"{Path(path).name}: unknown EBSD export {suffix!r} (expected .ang or .ctf)"
+        f"{Path(path).name}: unknown EBSD export {suffix!r} (expected {known})"
     )
 
 
@@ -337,45 +363,127 @@ def _points(m: OrientationMap):
     )
 
 
-def write_ang(path: str | os.PathLike, m: OrientationMap) -> Path:
-    """Write a minimal square-grid ``.ang`` file of ``m`` (atomically; for tests and exchange).
+def _not_indexed(m: OrientationMap) -> np.ndarray:
+    """The pixels the map itself marks as not indexed (flat, file order): CI < 0 of an .ang,
+    phase 0 of a .ctf or .h5oina (MAD maps); none for a map of another confidence."""
+    if m.confidence_name == "CI":
+        return m.confidence.ravel() < 0
+    if m.confidence_name.startswith("MAD"):
+        return m.phase.ravel() == 0
+    return np.zeros(m.phase.size, dtype=bool)
 
-    Header: ``# GRID: SqrGrid``, steps in µm and the grid size; rows: φ1 Φ φ2 (rad), x y (µm),
-    IQ (0), CI (``m.confidence``), phase id, with 17 significant digits so that
-    :func:`read_ang` gives the angles back bit for bit.
+
+def _the_phase(
+    m: OrientationMap, off: np.ndarray, phase: EbsdPhase | None
+) -> tuple[int, EbsdPhase]:
+    """The map's one phase id among its indexed pixels (1 if none), and the phase to write."""
+    if phase is not None and not isinstance(phase, EbsdPhase):
+        raise ContactresInputError(
+            f"phase must be an EbsdPhase (e.g. ebsd_phase('Ni')), got {type(phase).__name__}"
+        )
+    ids = np.unique(m.phase.ravel()[~off])
+    if ids.size > 1:
+        raise ContactresInputError(
+            f"{m.source or 'the map'} holds phases {', '.join(str(int(i)) for i in ids)}: the "
+            "writers describe one phase; write each phase's pixels as a map of its own"
+        )
+    return (int(ids[0]) if ids.size else 1), (UNKNOWN_CUBIC if phase is None else phase)
+
+
+def write_ang(path: str | os.PathLike, m: OrientationMap, phase: EbsdPhase | None = None) -> Path:
+    """Write a square-grid ``.ang`` file of ``m`` in the EDAX/TSL layout (atomically).
+
+    Parameters
+    ----------
+    path : str or PathLike
+        The file to write.
+    m : OrientationMap
+        The map; its indexed pixels must be of one phase id.
+    phase : EbsdPhase, optional
+        The phase the header names (``# MaterialName``, ``# Symmetry``, ``# LatticeConstants``),
+        e.g. :func:`~contactres.polycrystal.ebsd_phase` ``("Ni")``; default: a cubic phase named
+        "unknown" with a = 1 Å (a placeholder, not a claim).
+
+    Notes
+    -----
+    Header: the phase block under ``# Phase <id>`` (the map's phase id), ``# GRID: SqrGrid``,
+    steps in µm and the grid size. Rows: the 10 columns of OIM's export, φ1 Φ φ2 (rad, Bunge,
+    the map's sample frame as :mod:`._maps` states it), x y (µm), IQ (0), CI, phase id, detector
+    signal (0), fit (0), with 17 significant digits so that :func:`read_ang` gives the angles
+    back bit for bit. CI is the map's own when it has one (an .ang map); a map without (a .ctf
+    map, whose MAD is a different, lower-is-better quantity, or a synthetic map) is written
+    with CI = −1 on the pixels it marks as not indexed and CI = 1 on the others: no CI is
+    derived from MAD, every indexed pixel passes the default rule of
+    :func:`~contactres.polycrystal.indexed_pixels`. orix (``orix.io.load``) reads these files
+    with the same orientations (tests/polycrystal/test_ebsd_orix.py).
+
+    Raises
+    ------
+    ContactresInputError
+        ``phase`` not an :class:`EbsdPhase`; indexed pixels of several phase ids.
     """
     H, W = m.shape
+    off = _not_indexed(m)
+    pid, ph = _the_phase(m, off, phase)
+    consts = " ".join(f"{v:.4f}" for v in (*ph.lengths, *ph.angles))
     head = [
-        f"# XSTEP: {m.step_x * 1e6!r}", f"# YSTEP: {m.step_y * 1e6!r}", "# GRID: SqrGrid",
+        f"# Phase {pid}", f"# MaterialName {ph.name}", f"# Formula {ph.name}", "# Info",
+        f"# Symmetry {ph.ang_symmetry}", f"# LatticeConstants {consts}", "# NumberFamilies 0",
+        "#", "# GRID: SqrGrid", f"# XSTEP: {m.step_x * 1e6!r}", f"# YSTEP: {m.step_y * 1e6!r}",
         f"# NCOLS_ODD: {W}", f"# NCOLS_EVEN: {W}", f"# NROWS: {H}", "#",
     ]  # fmt: skip
-    x, y, e, phase, conf, zeros = _points(m)
+    x, y, e, ids, conf, zeros = _points(m)
+    ci = conf if m.confidence_name == "CI" else np.where(off, -1.0, 1.0)
     table = pd.DataFrame({
         "phi1": e[:, 0], "Phi": e[:, 1], "phi2": e[:, 2], "x": x, "y": y, "IQ": zeros,
-        "CI": conf, "phase": phase,
+        "CI": ci, "phase": ids, "signal": zeros, "fit": zeros,
     })  # fmt: skip
     rows = table.to_csv(sep=" ", header=False, index=False, float_format="%.17g")
     return write_text(path, "\n".join(head) + "\n" + rows)
 
 
-def write_ctf(path: str | os.PathLike, m: OrientationMap) -> Path:
-    """Write a minimal ``.ctf`` file of ``m`` (atomically; for tests and exchange).
+def write_ctf(path: str | os.PathLike, m: OrientationMap, phase: EbsdPhase | None = None) -> Path:
+    """Write a ``.ctf`` file of ``m`` in the Oxford Channel 5 layout (atomically).
 
-    Angles in degrees (17 significant digits), X, Y in µm, Bands 0, Error 0, MAD =
-    ``m.confidence``, BC 0, BS 0.
+    Parameters
+    ----------
+    path, m, phase
+        As :func:`write_ang`; ``phase`` fills the header's phase line (``a;b;c`` in Å,
+        ``α;β;γ`` in degrees, the name, the Laue group index, the space group number).
+
+    Notes
+    -----
+    Rows: Phase (1; 0 on the pixels the map marks as not indexed), X, Y (µm), Bands (0), Error
+    (0; 3, "no solution", where not indexed), Euler1..3 (Bunge, degrees, 17 significant
+    digits), MAD, BC (0), BS (0). MAD is the map's own when it has one (a .ctf or .h5oina map,
+    degrees); a map without (an .ang map, whose CI is a different, higher-is-better quantity,
+    or a synthetic map) is written with MAD = 0, i.e. "no deviation recorded": no MAD is
+    derived from CI, and the CI rule is carried by the phase 0 of its not-indexed pixels.
+    orix (``orix.io.load``) reads these files with the same orientations.
+
+    Raises
+    ------
+    ContactresInputError
+        ``phase`` not an :class:`EbsdPhase`; indexed pixels of several phase ids.
     """
     H, W = m.shape
+    off = _not_indexed(m)
+    _, ph = _the_phase(m, off, phase)
     head = [
         "Channel Text File", "Prj\tcontactres", "JobMode\tGrid", f"XCells\t{W}",
         f"YCells\t{H}", f"XStep\t{m.step_x * 1e6!r}", f"YStep\t{m.step_y * 1e6!r}",
         "Euler angles refer to Sample Coordinate system (CS0)!\tMag\t0", "Phases\t1",
-        "3.615;3.615;3.615\t90;90;90\tCopper\t11\t225", "\t".join(_CTF_LINE),
+        f"{';'.join(f'{v:.4f}' for v in ph.lengths)}\t{';'.join(f'{v:.4f}' for v in ph.angles)}"
+        f"\t{ph.name}\t{ph.laue_index}\t{int(ph.space_group)}",
+        "\t".join(_CTF_LINE),
     ]  # fmt: skip
-    x, y, e, phase, conf, zeros = _points(m)
+    x, y, e, _, conf, zeros = _points(m)
     d = np.degrees(e)
+    mad = conf if m.confidence_name.startswith("MAD") else np.zeros(conf.shape)
     table = pd.DataFrame({
-        "Phase": phase, "X": x, "Y": y, "Bands": zeros, "Error": zeros, "Euler1": d[:, 0],
-        "Euler2": d[:, 1], "Euler3": d[:, 2], "MAD": conf, "BC": zeros, "BS": zeros,
+        "Phase": np.where(off, 0, 1), "X": x, "Y": y, "Bands": zeros,
+        "Error": np.where(off, 3, 0), "Euler1": d[:, 0], "Euler2": d[:, 1], "Euler3": d[:, 2],
+        "MAD": mad, "BC": zeros, "BS": zeros,
     })  # fmt: skip
     rows = table.to_csv(sep="\t", header=False, index=False, float_format="%.17g")
     return write_text(path, "\n".join(head) + "\n" + rows)

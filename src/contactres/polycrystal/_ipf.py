@@ -13,13 +13,20 @@ hexagonal (6/mmm)
     :meth:`Material.hexagonal` (a1 along x) [2-1-10] = 3 a1 is the azimuth φ = 0 of the triangle
     and [10-10] = 2 a1 + a2 the azimuth φ = 30°.
 
-Construction (the classic corner-weight key of EBSD software such as EDAX/TSL OIM, in the form
-written here): for a direction p in the triangle with corners c_i and great-circle edges e_i
-(e_i opposite c_i, unit inward normal m_i), the weight of corner i is the angular distance of p
-from e_i over that of c_i, ``w_i = arcsin(p · m_i) / arcsin(c_i · m_i)``: 1 at c_i, 0 on the
+Construction: contactres' own *corner-weight key* (named so; it is not the "TSL" key of orix
+and MTEX). For a direction p in the triangle with corners c_i and great-circle edges e_i (e_i
+opposite c_i, unit inward normal m_i), the weight of corner i is the angular distance of p from
+e_i over that of c_i, ``w_i = arcsin(p · m_i) / arcsin(c_i · m_i)``: 1 at c_i, 0 on the
 opposite edge, continuous. The colour is ``w / max(w)``, so the largest channel is 1 (bright
-colours, white where the three weights are equal). MTEX's default key (Nolze and Hielscher
-2016) is a different, HSV-based construction; the corner colours agree.
+colours, white where the three weights are equal).
+
+Other keys: orix's ``IPFColorKeyTSL`` (after MTEX's TSL key; the polar coordinates about the
+triangle's centre of Nolze and Hielscher 2016, section 2.4, mapped through HSL) and MTEX's
+default key are different constructions. The corner colours agree (orix's corners lie within
+0.01 of pure red, green and blue), the edges between them share their hue order, but inside the
+triangle the channels differ by up to about 0.3 (cubic) and 0.5 (hexagonal) against orix 0.15
+(tests/polycrystal/test_ipf_orix.py measures it): an IPF map coloured here is read with the key
+drawn here (:func:`ipf_triangle`), not with orix's or MTEX's key.
 
 :func:`ipf_triangle` gives the triangle for plotting in the stereographic projection from the
 south pole, ``(X, Y) = (u, v)/(1 + w)`` with (u, v, w) a direction in the plotting frame: for
