@@ -30,19 +30,24 @@ refining every start everywhere costs several times more.
 
 Errors. The covariance is (JᵀJ)⁻¹ with the residuals weighted by the stated noise
 (``sigma_df``, ``sigma_dgamma``: errors from the noise model alone, χ² a test of it); without
-a stated noise both observables get one noise level, estimated per time step from the
-residuals (s² = χ²/(2M - p), M measured overtones), and the covariance is scaled by it. That
-needs ``MIN_DOF_ESTIMATED`` (4) degrees of freedom: a step with fewer is flagged
-"too-few-overtones", and data with fewer at every step are refused (state the noise).
+a stated noise both observables get one noise level, estimated from the residuals and pooled
+over the steps of the series (robustly: the median of χ²_i/med(ν_i), ν_i = 2M_i - p, M_i the
+overtones measured at step i; ``_particle_linear.pooled_variance``), and the covariance is
+scaled by it. A series of fewer than 20 steps estimates it per step (s² = χ²/ν), and the limit
+tests below then use F thresholds of the same tail probability (``limit_threshold``): with the
+per-step s² and the plain Δχ² < 9, 1 % of pure-noise steps printed a κ. That needs
+``MIN_DOF_ESTIMATED`` (4) degrees of freedom: a step with fewer is flagged "too-few-overtones",
+and data with fewer at every step are refused (state the noise).
 
 Identifiability (the rule; names in :data:`PARTICLE_FLAGS`). Per time step:
 
 1. The two limits of the model are fitted by linear least squares: a rigid contact (κ -> ∞,
    z = N[(1 - h)²/c + g]/s, N free) and particles standing still
    (z = [(1 - h)²(Nκ + iωNξ) + N g]/s, Nκ, Nξ and N free; g = 0 in vacuum). A limit whose
-   χ² exceeds the fit's by less than :data:`LIMIT_CHI2` (9, in units of the noise variance) is
-   not rejected: "sauerbrey-like" (κ and ξ unresolved: only the mass N·m) or "inertial" (κ, ξ
-   and N unresolved: only N·κ and N·ξ, reported as ``coverage_kappa`` and ``coverage_xi``).
+   χ² exceeds the fit's by less than :data:`LIMIT_CHI2` (9, in units of the noise variance;
+   the F threshold of the same tail probability for a per-step variance) is not rejected:
+   "sauerbrey-like" (κ and ξ unresolved: only the mass N·m) or "inertial" (κ, ξ and N
+   unresolved: only N·κ and N·ξ, reported as ``coverage_kappa`` and ``coverage_xi``).
    The empty model (no particles, z = 0, χ²₀ = Σ w²|z|²) is the third limit, by the same
    rule: if it is not rejected the step is "no-signal" and every value (the products too) is
    left empty, so that noise before adsorption does not print a κ.
@@ -76,7 +81,14 @@ from ..resonators import (
     particle_model_validity,
 )
 from ..validation import positive
-from ._particle_linear import equation_error, limit_chi2, series_variance, stacked_inverse
+from ._particle_linear import (
+    equation_error,
+    limit_chi2,
+    limit_threshold,
+    pooled_variance,
+    series_variance,
+    stacked_inverse,
+)
 
 __all__ = [
     "LIMIT_CHI2",
@@ -514,8 +526,11 @@ class _Problem:
         rows = np.arange(t)
         hess = self.evaluate(q, rows, True)["hessian"]
         dof = 2 * self.count - npar
+        # the noise variance: stated (1), pooled over the series, or (short series) per step
+        pooled = pooled_variance(chi2, dof, conv) if estimate else 1.0
+        per_step = estimate and not np.isfinite(pooled)
         with np.errstate(divide="ignore", invalid="ignore"):
-            s2 = np.where(dof > 0, chi2 / dof, np.nan) if estimate else np.ones(t)
+            s2 = np.where(dof > 0, chi2 / dof, np.nan) if per_step else np.full(t, pooled)
             cov_q = stacked_inverse(hess) * s2[:, None, None]
             err_q = np.sqrt(np.diagonal(cov_q, axis1=1, axis2=2))
             corr = cov_q / (err_q[:, :, None] * err_q[:, None, :])
@@ -532,15 +547,19 @@ class _Problem:
         fc, fc_err = self._resonance_with_error(p, cov_q)
         chg = self._chg(p)
         zm = self.model(p, chg)[0]
+
         # The likelihood-ratio test against the two limits of the model (module docstring)
-        scale = s2 if estimate else np.ones(t)
+        # (the limits drop 2 parameters (rigid: κ, ξ), 1 (standing still: the κ -> 0 edge) and
+        # all (empty); the q of the F thresholds where the noise is estimated per step)
+        def passes(lim, q):
+            return (lim - chi2) / s2 < limit_threshold(LIMIT_CHI2, dof, q, per_step)
+
         with np.errstate(invalid="ignore", divide="ignore"):
             lim_s, lim_h, lim_0 = limit_chi2(self.z, self.wf, self.wg, self.sens, self.omega, chg)
-            sauerbrey = (lim_s - chi2) / scale < LIMIT_CHI2
-            inertial = (lim_h - chi2) / scale < LIMIT_CHI2
+            sauerbrey, inertial = passes(lim_s, 2), passes(lim_h, 1)
             # no particles at all (z = 0) fits as well: the shifts are noise (or a drift of the
             # baseline), and the three parameters fitted to them are nonsense
-            no_signal = (lim_0 - chi2) / scale < LIMIT_CHI2
+            no_signal = passes(lim_0, npar)
         # the products N·κ and N·ξ: ln(Nκ) = q0 + q2, ln(Nξ) = ln q1 + q2 (+ const)
         with np.errstate(divide="ignore", invalid="ignore"):
             nk_rel = np.sqrt(cov_q[:, 0, 0] + cov_q[:, 2, 2] + 2 * cov_q[:, 0, 2])
