@@ -141,6 +141,20 @@ def test_the_errors_match_the_scatter_over_repeated_noise(tmp_path):
         ratio = steps[value].std() / steps[error].median()
         assert 1 / 1.3 < ratio < 1.3, (value, ratio)
         assert abs(steps[value].mean() / truth[value].iloc[-1] - 1) < 0.02, value
+    # the correlations in particles.json against those of the fitted values over the 200
+    # draws (ln κ, ξ, ln N are the fit's parameters; at errors of ~1 % ln is linear): the
+    # correlation of 200 draws scatters by (1 - ρ²)/√200 < 0.07
+    per_step = result.values()["steps"]
+    fitted = {
+        "kappa": np.log(steps["kappa_N_per_m"]),
+        "xi": steps["xi_kg_per_s"],
+        "coverage": np.log(steps["coverage_per_m2"]),
+    }
+    for a, b in (("kappa", "xi"), ("kappa", "coverage"), ("xi", "coverage")):
+        printed = np.asarray(per_step[f"corr_{a}_{b}"][1:], float)
+        assert np.all(np.abs(printed) <= 1.0 + 1e-12)
+        scatter = np.corrcoef(fitted[a], fitted[b])[0, 1]
+        assert np.median(printed) == pytest.approx(scatter, abs=0.15), (a, b)
 
 
 @pytest.mark.parametrize(

@@ -100,6 +100,19 @@ COLUMN_UNITS = MappingProxyType(
         "variance estimated from the residuals)",
         "kappa_r_N_m_per_rad": "N m/rad (the fitted rocking stiffness; --rocking fit only)",
         "kappa_r_err_N_m_per_rad": "N m/rad (standard error)",
+        # the correlations of the fitted parameters (ln κ, ξ, ln N, ln κ_r), per step
+        **{
+            f"corr_{a}_{b}": f"1 (correlation of the fitted {a} and {b}; also where a value "
+            "is unresolved: near ±1 it names the direction the data do not fix)"
+            for a, b in (
+                ("kappa", "xi"),
+                ("kappa", "coverage"),
+                ("xi", "coverage"),
+                ("kappa", "kappa_r"),
+                ("xi", "kappa_r"),
+                ("coverage", "kappa_r"),
+            )
+        },
     }
 )
 
@@ -174,8 +187,9 @@ class Result(JobResult):
     read with and those of the shifts, the constants (particle, medium, quartz, noise), the
     equation, the units of the columns, how many steps carry each flag and what each flag means
     (:data:`contactres.analysis.PARTICLE_FLAGS`); ``steps``, per time step, what particles.csv
-    leaves out (the products coverage × κ and coverage × ξ with their errors, κ_r and χ²/dof:
-    lists over the steps, null where not identified; units in ``columns``); ``source`` the
+    leaves out (the products coverage × κ and coverage × ξ with their errors, κ_r, the
+    correlations of the fitted parameters and χ²/dof: lists over the steps, null where not
+    identified; units in ``columns``); ``source`` the
     file's name and ``warnings`` what the reader left out and what the user should know."""
 
     SCHEMAS = MappingProxyType({"particles": PARTICLES_CSV, "shifts": PARTICLE_SHIFTS_CSV})
@@ -418,12 +432,17 @@ def _particles_table(times, fit) -> pd.DataFrame:
 
 def _steps(times, fit) -> dict:
     """``steps`` of particles.json: lists over the time steps (NaN where not identified;
-    JSON null)."""
+    JSON null), with the correlations of the fitted parameters (``corr_a_b``)."""
     import numpy as np
 
     size = times.size
     steps = {"time_s": times}
     steps.update({name: _column(fit, field, size) for name, field in _STEP_FIELDS.items()})
+    names = tuple(getattr(fit, "parameters", ()))
+    correlation = getattr(fit, "correlation", None)
+    for i, a in enumerate(names):
+        for j, b in enumerate(names[i + 1 :], start=i + 1):
+            steps[f"corr_{a}_{b}"] = np.asarray(correlation, float)[:, i, j]
     chi2, dof = _column(fit, "chi2", size), _column(fit, "dof", size)
     with np.errstate(divide="ignore", invalid="ignore"):
         steps["chi2_per_dof"] = np.where(dof > 0, chi2 / dof, np.nan)
