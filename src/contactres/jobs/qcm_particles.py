@@ -189,7 +189,8 @@ class Result(JobResult):
     (:data:`contactres.analysis.PARTICLE_FLAGS`); ``steps``, per time step, what particles.csv
     leaves out (the products coverage × κ and coverage × ξ with their errors, κ_r, the
     correlations of the fitted parameters and χ²/dof: lists over the steps, null where not
-    identified; units in ``columns``); ``source`` the
+    identified; units in ``columns``); ``model_curves`` the fitted model on a fine grid of
+    continuous n at a few steps (:func:`_model_curves`, for the figure); ``source`` the
     file's name and ``warnings`` what the reader left out and what the user should know."""
 
     SCHEMAS = MappingProxyType({"particles": PARTICLES_CSV, "shifts": PARTICLE_SHIFTS_CSV})
@@ -205,6 +206,7 @@ class Result(JobResult):
     flag_counts: dict
     flag_meanings: dict
     steps: dict
+    model_curves: dict
     source: str = ""
     warnings: tuple[str, ...] = ()
 
@@ -264,6 +266,7 @@ def run(inputs: str | os.PathLike, settings: Settings, progress: Progress | None
         flag_counts=counts,
         flag_meanings={name: PARTICLE_FLAGS.get(name, "") for name in counts},
         steps=_steps(times, fit),
+        model_curves=_model_curves(times, overtones, fit, particle, medium, s, fundamental),
         source=source.name,
         warnings=tuple(lines),
     )
@@ -447,6 +450,37 @@ def _steps(times, fit) -> dict:
     with np.errstate(divide="ignore", invalid="ignore"):
         steps["chi2_per_dof"] = np.where(dof > 0, chi2 / dof, np.nan)
     return steps
+
+
+#: How many time steps carry a model curve (evenly spread over those fitted) and on how many
+#: points of continuous n between the lowest and highest overtone.
+CURVE_STEPS, CURVE_POINTS = 4, 121
+
+
+def _model_curves(times, overtones, fit, particle, medium, s: Settings, fundamental) -> dict:
+    """``model_curves`` of particles.json: the fitted model on a fine grid of continuous n
+    (n f_F the frequency; K_L(ω)/(2nπ² Z_q) is smooth between the odd overtones, where a
+    coupled resonance between two overtones peaks), at up to :data:`CURVE_STEPS` steps spread
+    over the run, for the figure of Δf_n/n and ΔΓ_n/n against n. Drawn from the fitted values
+    also where one is unresolved (the curve is identified when its parts are not)."""
+    import numpy as np
+
+    from ..resonators import particle_stiffness
+
+    raw = np.asarray(getattr(fit, "raw", np.empty((0, 0))), float)
+    fitted = np.flatnonzero(np.all(np.isfinite(raw), axis=1)) if raw.size else np.array([], int)
+    if fitted.size == 0:
+        return {"time_s": [], "overtone": [], "df_model_Hz": [], "dgamma_model_Hz": []}
+    pick = fitted[np.unique(np.round(np.linspace(0, fitted.size - 1, CURVE_STEPS)).astype(int))]
+    n = np.linspace(float(np.min(overtones)), float(np.max(overtones)), CURVE_POINTS)
+    p = raw[pick]
+    rocking = p[:, 3:4] if p.shape[1] > 3 else s.rocking
+    # paper 2's Eq. 1 at continuous n (particle_shifts takes the overtones' integers only)
+    k_l = particle_stiffness(
+        particle, n * fundamental, p[:, 0:1], p[:, 1:2], rocking=rocking, medium=medium
+    )
+    z = p[:, 2:3] * k_l / (2.0 * n * np.pi**2 * s.zq)
+    return {"time_s": times[pick], "overtone": n, "df_model_Hz": z.real, "dgamma_model_Hz": z.imag}
 
 
 def _shifts_table(times, overtones, df, dgamma, fit):
