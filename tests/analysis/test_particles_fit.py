@@ -242,11 +242,31 @@ def test_time_series_with_missing_overtones():
 
 
 def test_particles_smaller_than_the_penetration_depth_in_water_give_a_flag_not_a_number():
-    small = Particle.sphere(80e-9, 1050.0)
+    # 50 nm: smaller than δ = 70 nm in water even at 65 MHz, the top of the comb
+    small = Particle.sphere(50e-9, 1050.0)
     df, dg = particle_shifts(F0, N, small, 1.0, 1e-9, 1e12, medium=WATER)
     fit = fit_particles(F0, N, df, dg, small, medium=WATER, sigma_df=NOISE, sigma_dgamma=NOISE)
     assert "particle-smaller-than-delta" in fit.flags[0]
     assert np.isnan(fit.kappa[0]) and np.isnan(fit.coverage[0]) and np.isnan(fit.xi[0])
+
+
+def test_the_overtones_inside_the_penetration_depth_are_dropped_and_the_rest_fitted():
+    # R = 120 nm in water: δ = √(2η/(ρω)) = 238, 138, 107 nm at n = 1, 3, 5 (f_F = 5 MHz),
+    # below R from n = 5 on: n = 1 and 3 are dropped and 5..13 fitted. The shifts at n = 1, 3
+    # are spoilt on purpose (+50 Hz): a fit that used them would miss.
+    particle = Particle.sphere(0.12e-6, 1050.0)
+    delta = np.sqrt(2 * WATER.viscosity / (WATER.density * 2 * np.pi * F0 * N))
+    assert list(N[delta > 0.12e-6]) == [1, 3]
+    kappa = _kappa_for(particle, 35e6, medium=WATER)
+    xi = 0.02 * kappa / (2 * np.pi * 35e6)
+    df, dg = particle_shifts(F0, N, particle, kappa, xi, 5e10, medium=WATER)
+    df, dg = df + 50.0 * (N < 5), dg + 50.0 * (N < 5)
+    fit = fit_particles(F0, N, df, dg, particle, medium=WATER, sigma_df=NOISE, sigma_dgamma=NOISE)
+    assert fit.flags[0] == ("dropped-overtones-R<delta: 1,3",)
+    assert fit.flags[0][0].split(":")[0] in PARTICLE_FLAGS
+    assert fit.kappa[0] == pytest.approx(kappa, rel=1e-6)
+    assert fit.coverage[0] == pytest.approx(5e10, rel=1e-6)
+    assert fit.dof[0] == 2 * 5 - 3
 
 
 def test_too_few_overtones_to_estimate_the_noise_are_refused_or_flagged():

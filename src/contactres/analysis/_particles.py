@@ -53,8 +53,12 @@ Identifiability (the rule; names in :data:`PARTICLE_FLAGS`). Per time step:
    left empty, so that noise before adsorption does not print a κ.
 2. Any parameter whose relative standard error exceeds :data:`RELATIVE_ERROR_LIMIT` (0.3), or
    is not finite, is unresolved ("xi-unresolved" is the usual one: a loss at the noise level).
-3. A fit that did not converge, or a particle smaller than the penetration depth in a liquid
-   (:func:`~contactres.resonators.particle_model_validity`), leaves every parameter unresolved.
+3. A fit that did not converge leaves every parameter unresolved. In a liquid, the overtones
+   at which the particle is smaller than the penetration depth
+   (:func:`~contactres.resonators.particle_model_validity`; δ is largest at the lowest) are
+   left out of the fit and named in the flag "dropped-overtones-R<delta: 1,3"; where too few
+   remain (fewer than 2, or than 4 degrees of freedom with the noise estimated) none is
+   dropped and every parameter is unresolved ("particle-smaller-than-delta").
 
 Unresolved values are NaN, with their errors; f_coupled goes with κ (and with κ_r where that is
 fitted: an unresolved κ_r leaves f_coupled empty and not flagged "outside-comb", since the
@@ -67,7 +71,7 @@ small at a point that is many of its σ from the truth, while the limit fits the
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -78,9 +82,9 @@ from ..resonators import (
     Particle,
     coupled_resonance,
     particle_compliance,
-    particle_model_validity,
 )
 from ..validation import positive
+from ._particle_input import drop_inside_delta, prepare
 from ._particle_linear import (
     equation_error,
     limit_chi2,
@@ -129,8 +133,15 @@ PARTICLE_FLAGS = {
     "no-signal": "no particles at all (zero shifts) fit as well: the shifts are at the noise "
     "level and nothing is identified (no value is reported)",
     "particle-smaller-than-delta": "the particle is smaller than the penetration depth of the "
-    "liquid: the hydrodynamic model does not hold (lattice Boltzmann is the tool)",
+    "liquid at too many overtones to fit the rest: the hydrodynamic model does not hold "
+    "(lattice Boltzmann is the tool)",
+    "dropped-overtones-R<delta": "the overtones named after the colon were left out of the "
+    "fit: the particle is smaller than the liquid's penetration depth there (δ is largest at "
+    "the lowest overtones); the others are fitted",
 }
+
+#: The name of the flag of the overtones left out (followed by ": 1,3" in a step's flags).
+DROPPED_FLAG = "dropped-overtones-R<delta"
 
 # Scan of κ_r for rocking="fit", in units of I (2π f_F)² (a rocking mode at f_F √(value)).
 _ROCKING_SCAN = np.logspace(-2.0, 4.0, 13)
@@ -235,12 +246,16 @@ def fit_particles(
     >>> fit.flags[0]  # nothing unresolved: the resonance lies within the comb
     ()
     """
-    f0, n, zf, wf, wg, estimate = _prepare(
+    f0, n, zf, wf, wg, estimate = prepare(
         fundamental, overtones, df, dgamma, sigma_df, sigma_dgamma
     )
     zq = positive("zq", zq, "kg m^-2 s^-1")
     fit_rocking = isinstance(rocking, str) and rocking.strip().lower() == "fit"
     freq = n * f0
+    reason, dropped = drop_inside_delta(
+        particle, freq, medium, wf, wg, estimate, fit_rocking, MIN_DOF_ESTIMATED
+    )
+    zf = np.where(wf > 0, zf, 0.0)
     sens = 2.0 * n * np.pi**2 * zq  # z_n s_n = N K_L
     prob = _Problem(f0, particle, freq, sens, medium, zf, wf, wg, rocking, fit_rocking)
     if estimate and 2 * prob.count.max() - prob.n_par < MIN_DOF_ESTIMATED:
@@ -289,54 +304,12 @@ def fit_particles(
             res.chi2[better],
             res.converged[better],
         )
-    reason = particle_model_validity(particle, freq, medium)
-    return prob.result(p_best, chi2, conv, estimate, reason)
-
-
-def _prepare(fundamental, overtones, df, dgamma, sigma_df, sigma_dgamma):
-    """Checked arrays: f_F, n (n,), z = Δf + iΔΓ (T, n) and the weights 1/σ (T, n)."""
-    f0 = positive("fundamental frequency", fundamental, "Hz")
-    try:
-        n = np.asarray(overtones, dtype=float)
-    except (TypeError, ValueError):
-        raise ContactresInputError(f"overtones must be integers >= 1, got {overtones!r}") from None
-    if n.ndim != 1 or n.size < 2:
-        raise ContactresInputError(
-            f"fit_particles needs at least two overtones (a 1-D list), got {overtones!r}"
-        )
-    if np.any(~np.isfinite(n)) or np.any(n < 1) or np.any(n != np.round(n)):
-        raise ContactresInputError(f"overtones must be integers >= 1, got {overtones!r}")
-    d = np.atleast_2d(np.asarray(df, dtype=float))
-    g = np.atleast_2d(np.asarray(dgamma, dtype=float))
-    if d.shape != g.shape or d.shape[-1] != n.size or d.ndim != 2:
-        raise ContactresInputError(
-            f"df and dgamma must both have shape (T, {n.size}) or ({n.size},) for {n.size} "
-            f"overtones, got {np.shape(df)} and {np.shape(dgamma)}"
-        )
-    if np.all(np.isnan(g)):
-        raise ContactresInputError(
-            "the bandwidth shifts dgamma are all missing: the particle fit needs Δf and ΔΓ"
-        )
-    estimate = sigma_df is None and sigma_dgamma is None
-    if (sigma_df is None) != (sigma_dgamma is None):
-        raise ContactresInputError("give both sigma_df and sigma_dgamma, or neither")
-    wf = np.ones(d.shape) if estimate else 1.0 / _sigma("sigma_df", sigma_df, d.shape)
-    wg = np.ones(d.shape) if estimate else 1.0 / _sigma("sigma_dgamma", sigma_dgamma, d.shape)
-    # an overtone counts only with both of its shifts
-    measured = np.isfinite(d) & np.isfinite(g)
-    wf, wg = np.where(measured, wf, 0.0), np.where(measured, wg, 0.0)
-    z = np.where(measured, d + 1j * g, 0.0)
-    return f0, n, z, wf, wg, estimate
-
-
-def _sigma(name, sigma, shape):
-    s = np.asarray(sigma, dtype=float)
-    if np.any(~np.isfinite(s)) or np.any(s <= 0):
-        raise ContactresInputError(f"{name} must be finite and > 0 (Hz), got {sigma!r}")
-    try:
-        return np.broadcast_to(s, shape)
-    except ValueError:
-        raise ContactresInputError(f"{name} of shape {s.shape} does not fit data {shape}") from None
+    fit = prob.result(p_best, chi2, conv, estimate, reason)
+    if dropped.size == 0:
+        return fit
+    # the overtones left out, named on every step (PARTICLE_FLAGS: the name before the colon)
+    note = f"{DROPPED_FLAG}: {','.join(str(int(k)) for k in n[dropped])}"
+    return replace(fit, flags=tuple((note, *f) for f in fit.flags))
 
 
 class _Problem:

@@ -264,7 +264,8 @@ def run(inputs: str | os.PathLike, settings: Settings, progress: Progress | None
         equation=EQUATION,
         columns=dict(COLUMN_UNITS),
         flag_counts=counts,
-        flag_meanings={name: PARTICLE_FLAGS.get(name, "") for name in counts},
+        # a flag with details after a colon ("dropped-overtones-R<delta: 1,3") means its name's
+        flag_meanings={name: PARTICLE_FLAGS.get(name.split(":")[0], "") for name in counts},
         steps=_steps(times, fit),
         model_curves=_model_curves(times, overtones, fit, particle, medium, s, fundamental),
         source=source.name,
@@ -366,7 +367,8 @@ def _depth_check(particle, medium, fundamental: float, overtones, source: Path) 
     shear wave (:func:`contactres.resonators.particle_model_validity`: a smaller particle sits
     inside the liquid's boundary layer, where a lattice-Boltzmann treatment is the tool): a
     one-line error when the model fails at every overtone measured (δ is smallest at the
-    highest), a warning line naming the overtones where it fails."""
+    highest), a warning line naming the overtones where it fails (the fit leaves them out:
+    :func:`contactres.analysis.fit_particles`)."""
     if medium is None:
         return []
     from ..resonators import particle_model_validity
@@ -383,7 +385,8 @@ def _depth_check(particle, medium, fundamental: float, overtones, source: Path) 
         return [
             # δ is largest at the lowest overtone: its reason names the widest gap
             f"overtone(s) {', '.join(map(str, failed))}: the particles are inside the penetration "
-            f"depth of {medium.name} ({reasons[0]}); the model is rough there"
+            f"depth of {medium.name} ({reasons[0]}); left out of the fit where enough overtones "
+            "remain (flag dropped-overtones-R<delta), else nothing is fitted"
         ]
     return []
 
@@ -402,8 +405,13 @@ def _flag_text(flags, size: int) -> list[str]:
     """The fit's flags per step as ``;``-separated text (names, or sequences of names)."""
     import numpy as np
 
+    # one object per step (np.asarray would make a 2-D array of flag tuples of one length)
+    steps = list(flags) if isinstance(flags, list | tuple) else [flags]
+    items = np.empty(len(steps), dtype=object)
+    for i, step in enumerate(steps):
+        items[i] = step
     texts = []
-    for item in np.broadcast_to(np.asarray(flags, dtype=object), (size,)):
+    for item in np.broadcast_to(items, (size,)):
         if item is None or (isinstance(item, float) and math.isnan(item)):
             texts.append("")
         elif isinstance(item, str):
