@@ -19,6 +19,7 @@ __all__ = [
     "limit_chi2",
     "limit_threshold",
     "pooled_variance",
+    "poor_fit",
     "series_variance",
     "stacked_inverse",
 ]
@@ -67,6 +68,25 @@ def limit_threshold(limit, dof, q, per_step):
         return np.full(np.shape(dof), float(limit))
     nu = np.maximum(np.asarray(dof, float), 1.0)
     return q * f_dist.isf(chi2_dist.sf(limit, q), q, nu)
+
+
+#: A step whose χ² (in noise variances) exceeds its χ²(ν) quantile at 1 - this fits badly.
+POOR_FIT_P = 1e-4
+
+
+def poor_fit(chi2, dof, s2, per_step):
+    """(T,) True where the fit's χ²/s² lies beyond the χ²(ν) quantile at 1 - :data:`POOR_FIT_P`:
+    with the noise known (stated, or pooled over a series) a test of the fit. Below the comb
+    the fit can stop far from its minimum (at 30 times the χ² of the truth), where its
+    linearised errors are meaningless: such a step is reported as no value. With the noise
+    estimated per step from the same χ² there is no test (all False)."""
+    from scipy.stats import chi2 as chi2_dist
+
+    if per_step:
+        return np.zeros(np.shape(chi2), bool)
+    nu = np.maximum(np.asarray(dof, float), 1.0)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return ~(chi2 / s2 <= chi2_dist.isf(POOR_FIT_P, nu))
 
 
 def stacked_inverse(h):

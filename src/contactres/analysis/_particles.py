@@ -53,8 +53,10 @@ Identifiability (the rule; names in :data:`PARTICLE_FLAGS`). Per time step:
    left empty, so that noise before adsorption does not print a κ.
 2. Any parameter whose relative standard error exceeds :data:`RELATIVE_ERROR_LIMIT` (0.3), or
    is not finite, is unresolved ("xi-unresolved" is the usual one: a loss at the noise level).
-3. A fit that did not converge leaves every parameter unresolved. In a liquid, the overtones
-   at which the particle is smaller than the penetration depth
+3. A fit that did not converge, or whose χ² is far beyond what the noise allows ("poor-fit";
+   ``_particle_linear.poor_fit``: below the comb the fit can stop at 30 times the χ² of the
+   truth), leaves every parameter unresolved, the products N·κ and N·ξ too. In a liquid, the
+   overtones at which the particle is smaller than the penetration depth
    (:func:`~contactres.resonators.particle_model_validity`; δ is largest at the lowest) are
    left out of the fit and named in the flag "dropped-overtones-R<delta: 1,3"; where too few
    remain (fewer than 2, or than 4 degrees of freedom with the noise estimated) none is
@@ -90,6 +92,7 @@ from ._particle_linear import (
     limit_chi2,
     limit_threshold,
     pooled_variance,
+    poor_fit,
     series_variance,
     stacked_inverse,
 )
@@ -104,6 +107,9 @@ __all__ = [
 
 #: A fitted value whose relative standard error exceeds this is reported as unresolved (NaN).
 RELATIVE_ERROR_LIMIT = 0.3
+
+#: ... and outside the overtone comb, where the fit is far from linear at that scale.
+RELATIVE_ERROR_OUTSIDE = 0.1
 
 #: A limit of the model (rigid contact; particles standing still) whose best χ² exceeds the
 #: fit's by less than this (in units of the noise variance) is not rejected by the data.
@@ -127,6 +133,9 @@ PARTICLE_FLAGS = {
     "rocking-unresolved": "the rotational stiffness κ_r is not identified by the data (nor is "
     "f_coupled, which it sets)",
     "fit-at-bound": "a parameter ended on its bound (ξ = 0)",
+    "poor-fit": "χ² far beyond what the noise allows (P < 1e-4 for a stated noise, or one "
+    "pooled over the series): the fit stopped away from its minimum or the model does not fit "
+    "this step (no value is reported)",
     "not-converged": "the least-squares fit did not converge (no value is reported)",
     "too-few-overtones": "fewer than two overtones measured at this time step (with the noise "
     "estimated from the residuals: fewer than 4 degrees of freedom, 2 × overtones − parameters)",
@@ -546,7 +555,9 @@ class _Problem:
         nx_ok = np.isfinite(nx_rel) & (nx_rel <= RELATIVE_ERROR_LIMIT) & ~few
         if reason is not None:
             nk_ok = nx_ok = np.zeros(t, bool)
-        nk_ok, nx_ok = nk_ok & ~no_signal, nx_ok & ~no_signal
+        # a fit far beyond its χ² (or not converged) gives no value, the products neither
+        poor = poor_fit(chi2, dof, s2, per_step)
+        nk_ok, nx_ok = nk_ok & ~no_signal & conv & ~poor, nx_ok & ~no_signal & conv & ~poor
         names = ("kappa", "xi", "coverage", "kappa_r")[:npar]
         flags, keep = [], np.ones((t, 4), bool)
         unresolved = ("kappa-unresolved", "xi-unresolved", "coverage-unresolved")
@@ -584,11 +595,17 @@ class _Problem:
             fc_known = not (self.fit_rocking and bad[3])
             if fc_known and not comb.min() <= fc[i] <= comb.max():
                 f.append("outside-comb")
+                # outside the comb a linearised error beyond 10 % is that of a curved valley
+                # (2.5x below the comb: κ and N printed 2-4σ off with errors of 20-30 %)
+                bad = [b or not r <= RELATIVE_ERROR_OUTSIDE for b, r in zip(bad, rel, strict=True)]
             if q[i, 1] <= 0.0:
                 f.append("fit-at-bound")
             if not conv[i]:
                 # a fit that stopped in a flat valley: its point is not an estimate
                 f.append("not-converged")
+                bad = [True] * 4
+            if poor[i] and conv[i]:
+                f.append("poor-fit")
                 bad = [True] * 4
             if reason is not None:
                 f.append("particle-smaller-than-delta")
