@@ -313,6 +313,22 @@ def test_too_few_overtones_to_estimate_the_noise_are_refused_or_flagged():
     assert np.all(np.isfinite(fit.kappa[1:]))
 
 
+def test_two_overtones_with_a_stated_noise_have_calibrated_errors():
+    # The review's case (20 % of the draws beyond 3σ with residual-based errors from 1 dof):
+    # with the noise stated the errors come from it alone and match the scatter over 300 draws
+    n = np.array([3, 5])
+    kappa = _kappa_for(PS, 20e6, medium=WATER)
+    xi = 0.05 * kappa / (2 * np.pi * 20e6)
+    df, dg = particle_shifts(F0, n, PS, kappa, xi, 2e10, medium=WATER)
+    d, g = _noisy(df, dg, 300, seed=23)
+    fit = fit_particles(F0, n, d, g, PS, medium=WATER, sigma_df=NOISE, sigma_dgamma=NOISE)
+    for name, true in (("kappa", kappa), ("xi", xi), ("coverage", 2e10)):
+        z = (getattr(fit, name) - true) / getattr(fit, f"{name}_err")
+        assert np.all(np.isfinite(z)), name
+        assert 1 / 1.3 < np.std(z) < 1.3, (name, np.std(z))
+        assert np.mean(np.abs(z) > 3) < 0.02, name
+
+
 def test_bad_input_is_one_line():
     df, dg = particle_shifts(F0, N, PS, 100.0, 1e-7, 1e10)
     with pytest.raises(ContactresInputError, match="at least two overtones"):
