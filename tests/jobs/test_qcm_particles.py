@@ -141,6 +141,20 @@ def test_the_errors_match_the_scatter_over_repeated_noise(tmp_path):
         ratio = steps[value].std() / steps[error].median()
         assert 1 / 1.3 < ratio < 1.3, (value, ratio)
         assert abs(steps[value].mean() / truth[value].iloc[-1] - 1) < 0.02, value
+    # the correlations in particles.json against those of the fitted values over the 200
+    # draws (ln κ, ξ, ln N are the fit's parameters; at errors of ~1 % ln is linear): the
+    # correlation of 200 draws scatters by (1 - ρ²)/√200 < 0.07
+    per_step = result.values()["steps"]
+    fitted = {
+        "kappa": np.log(steps["kappa_N_per_m"]),
+        "xi": steps["xi_kg_per_s"],
+        "coverage": np.log(steps["coverage_per_m2"]),
+    }
+    for a, b in (("kappa", "xi"), ("kappa", "coverage"), ("xi", "coverage")):
+        printed = np.asarray(per_step[f"corr_{a}_{b}"][1:], float)
+        assert np.all(np.abs(printed) <= 1.0 + 1e-12)
+        scatter = np.corrcoef(fitted[a], fitted[b])[0, 1]
+        assert np.median(printed) == pytest.approx(scatter, abs=0.15), (a, b)
 
 
 @pytest.mark.parametrize(
@@ -259,3 +273,27 @@ def test_too_few_overtones_for_an_estimated_noise_are_one_line_asking_for_the_no
     # with the noise stated the same file runs
     r = _cli("qcm", "particles", tidy, *common, "--noise", "0.1", "--out", tmp_path / "b")
     assert r.exit_code == 0, r.output
+
+
+def test_overtones_inside_the_penetration_depth_are_dropped_and_named(tmp_path):
+    """R = 120 nm in water: inside δ at n = 1 and 3 only (238 and 138 nm at 5 and 15 MHz), so
+    those two are left out, named in every step's flags and in a warning line, and κ and the
+    coverage are fitted from n = 5..13."""
+    from contactres.resonators import WATER, Particle, particle_shifts
+
+    n = np.arange(1, 14, 2)
+    particle = Particle.sphere(0.12e-6, 1050.0)
+    df, dg = particle_shifts(F_F, n, particle, 2.0, 1e-9, 5e10, medium=WATER)
+    rows = [(t, k, a, b) for t in (0.0, 1.0) for k, a, b in zip(n, df, dg, strict=True)]
+    table = pd.DataFrame(rows, columns=["time_s", "overtone", "df_Hz", "dgamma_Hz"])
+    table.to_csv(tmp_path / "small.csv", index=False, float_format="%.17g")
+    settings = job.Settings(0.12e-6, 1050.0, fundamental=F_F, medium="water", sigma_df=0.1,
+                            sigma_dgamma=0.1)  # fmt: skip
+    result = job.run(tmp_path / "small.csv", settings)
+    flags = result.particles["flags"]
+    assert flags.str.startswith("dropped-overtones-R<delta: 1,3;").all()
+    assert not flags.str.contains("unresolved").any()
+    np.testing.assert_allclose(result.particles["kappa_N_per_m"], 2.0, rtol=1e-6)
+    np.testing.assert_allclose(result.particles["coverage_per_m2"], 5e10, rtol=1e-6)
+    assert "left out of the fit" in " ".join(result.warnings)
+    assert "penetration depth" in result.flag_meanings["dropped-overtones-R<delta: 1,3"]

@@ -242,3 +242,39 @@ def test_particle_figures():
         check_layout(fig)
     # κ, ξ and the coverage are positive: no error bar goes below zero
     assert _lower_error_ends(fig).size and (_lower_error_ends(fig) >= 0).all()
+
+
+def test_the_particle_model_line_is_drawn_on_a_fine_grid_of_n():
+    """The model line of Δf_n/n against n runs through continuous n, not only the odd
+    overtones, and is the forward model there (a coupled resonance between two overtones
+    peaks between them)."""
+    from contactres.examples import example_path
+    from contactres.jobs import qcm_particles
+    from contactres.report import _particle_figures as draw
+    from contactres.resonators import WATER, Particle, particle_stiffness
+
+    settings = qcm_particles.Settings(5e-7, 2200.0, fundamental=5e6, medium="water")
+    result = qcm_particles.run(example_path("example_particles.csv"), settings)
+    fig = draw.overtones_figure(result)
+    ax_f = fig.axes[0]
+    lines = [ln for ln in ax_f.get_lines() if ln.get_linestyle() == "-" and len(ln.get_xdata()) > 2]
+    assert lines
+    checked = 0
+    for line, t in zip(lines, result.model_curves["time_s"], strict=True):
+        n = np.asarray(line.get_xdata(), float)
+        assert n.size > 50 and np.any(np.abs(n - np.round(n)) > 0.2)
+        # at the odd overtones the line goes through the fitted model of shifts.csv
+        part = result.shifts[result.shifts["time_s"] == t]
+        for order, model in zip(part["overtone"], part["df_model_Hz"], strict=True):
+            np.testing.assert_allclose(np.interp(order, n, line.get_ydata()), model / order,
+                                       rtol=1e-3, atol=1e-3)  # fmt: skip
+        # ... and between them it is the particle load (paper 2, Eq. 1) at the fitted values
+        row = result.particles.set_index("time_s").loc[t]
+        if np.isnan(row["kappa_N_per_m"]):
+            continue  # a step that identifies nothing (step 0, no particles)
+        checked += 1
+        k_l = particle_stiffness(Particle.sphere(5e-7, 2200.0), 5e6 * n, row["kappa_N_per_m"],
+                                 row["xi_kg_per_s"], medium=WATER)  # fmt: skip
+        df = (row["coverage_per_m2"] * k_l / (2 * n * np.pi**2 * 8.8e6)).real
+        np.testing.assert_allclose(line.get_ydata(), df / n, rtol=1e-9, atol=1e-9)
+    assert checked >= 3

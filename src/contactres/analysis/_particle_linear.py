@@ -14,7 +14,18 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["equation_error", "limit_chi2", "series_variance", "stacked_inverse"]
+__all__ = [
+    "equation_error",
+    "limit_chi2",
+    "limit_threshold",
+    "pooled_variance",
+    "poor_fit",
+    "series_variance",
+    "stacked_inverse",
+]
+
+#: The fewest converged steps a series needs for its pooled noise variance.
+MIN_POOLED_STEPS = 20
 
 
 def series_variance(chi2, dof, conv):
@@ -24,6 +35,58 @@ def series_variance(chi2, dof, conv):
     if ok.sum() < 20:
         return 0.0
     return float(np.median(chi2[ok] / dof[ok]))
+
+
+def pooled_variance(chi2, dof, conv):
+    """The noise variance of a time series pooled over its steps, robustly: the median over
+    the converged steps of χ²_i/med(ν_i), med(ν) the median of a χ² variable of ν degrees of
+    freedom (so that it estimates σ² without bias for Gaussian noise, and a minority of steps
+    that the model does not fit, e.g. a jump, does not move it). NaN for fewer than
+    :data:`MIN_POOLED_STEPS` such steps (a single step's χ²/ν then has to do, with the F
+    thresholds of :func:`limit_threshold`)."""
+    from scipy.stats import chi2 as chi2_dist
+
+    ok = conv & (dof > 0) & np.isfinite(chi2)
+    if ok.sum() < MIN_POOLED_STEPS:
+        return np.nan
+    return float(np.median(chi2[ok] / chi2_dist.median(dof[ok])))
+
+
+def limit_threshold(limit, dof, q, per_step):
+    """Δχ² (in noise variances) below which a limit of the model is not rejected.
+
+    With the noise known (stated, or pooled over a series: :func:`pooled_variance`) that is
+    ``limit``, read as a χ²-test of q parameters. With the noise of each step estimated from
+    its own residuals (s² = χ²/ν, ν = ``dof``), Δχ²/(q s²) is F(q, ν)-distributed: the
+    threshold has the same tail probability as ``limit`` for χ²(q), q F⁻¹(P; q, ν) (larger:
+    an estimated s² scatters, and Δχ²/s² < 9 let 8 % of pure-noise steps past the
+    no-signal test at ν = 11 instead of 3 %)."""
+    from scipy.stats import chi2 as chi2_dist
+    from scipy.stats import f as f_dist
+
+    if not per_step:
+        return np.full(np.shape(dof), float(limit))
+    nu = np.maximum(np.asarray(dof, float), 1.0)
+    return q * f_dist.isf(chi2_dist.sf(limit, q), q, nu)
+
+
+#: A step whose χ² (in noise variances) exceeds its χ²(ν) quantile at 1 - this fits badly.
+POOR_FIT_P = 1e-4
+
+
+def poor_fit(chi2, dof, s2, per_step):
+    """(T,) True where the fit's χ²/s² lies beyond the χ²(ν) quantile at 1 - :data:`POOR_FIT_P`:
+    with the noise known (stated, or pooled over a series) a test of the fit. Below the comb
+    the fit can stop far from its minimum (at 30 times the χ² of the truth), where its
+    linearised errors are meaningless: such a step is reported as no value. With the noise
+    estimated per step from the same χ² there is no test (all False)."""
+    from scipy.stats import chi2 as chi2_dist
+
+    if per_step:
+        return np.zeros(np.shape(chi2), bool)
+    nu = np.maximum(np.asarray(dof, float), 1.0)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        return ~(chi2 / s2 <= chi2_dist.isf(POOR_FIT_P, nu))
 
 
 def stacked_inverse(h):

@@ -30,26 +30,37 @@ refining every start everywhere costs several times more.
 
 Errors. The covariance is (JᵀJ)⁻¹ with the residuals weighted by the stated noise
 (``sigma_df``, ``sigma_dgamma``: errors from the noise model alone, χ² a test of it); without
-a stated noise both observables get one noise level, estimated per time step from the
-residuals (s² = χ²/(2M - p), M measured overtones), and the covariance is scaled by it. That
-needs ``MIN_DOF_ESTIMATED`` (4) degrees of freedom: a step with fewer is flagged
-"too-few-overtones", and data with fewer at every step are refused (state the noise).
+a stated noise both observables get one noise level, estimated from the residuals and pooled
+over the steps of the series (robustly: the median of χ²_i/med(ν_i), ν_i = 2M_i - p, M_i the
+overtones measured at step i; ``_particle_linear.pooled_variance``), and the covariance is
+scaled by it. A series of fewer than 20 steps estimates it per step (s² = χ²/ν), and the limit
+tests below then use F thresholds of the same tail probability (``limit_threshold``): with the
+per-step s² and the plain Δχ² < 9, 1 % of pure-noise steps printed a κ. That needs
+``MIN_DOF_ESTIMATED`` (4) degrees of freedom: a step with fewer is flagged "too-few-overtones",
+and data with fewer at every step are refused (state the noise).
 
 Identifiability (the rule; names in :data:`PARTICLE_FLAGS`). Per time step:
 
 1. The two limits of the model are fitted by linear least squares: a rigid contact (κ -> ∞,
    z = N[(1 - h)²/c + g]/s, N free) and particles standing still
    (z = [(1 - h)²(Nκ + iωNξ) + N g]/s, Nκ, Nξ and N free; g = 0 in vacuum). A limit whose
-   χ² exceeds the fit's by less than :data:`LIMIT_CHI2` (9, in units of the noise variance) is
-   not rejected: "sauerbrey-like" (κ and ξ unresolved: only the mass N·m) or "inertial" (κ, ξ
-   and N unresolved: only N·κ and N·ξ, reported as ``coverage_kappa`` and ``coverage_xi``).
+   χ² exceeds the fit's by less than :data:`LIMIT_CHI2` (9, in units of the noise variance;
+   the F threshold of the same tail probability for a per-step variance) is not rejected:
+   "sauerbrey-like" (κ and ξ unresolved: only the mass N·m) or "inertial" (κ, ξ and N
+   unresolved: only N·κ and N·ξ, reported as ``coverage_kappa`` and ``coverage_xi``).
    The empty model (no particles, z = 0, χ²₀ = Σ w²|z|²) is the third limit, by the same
    rule: if it is not rejected the step is "no-signal" and every value (the products too) is
    left empty, so that noise before adsorption does not print a κ.
 2. Any parameter whose relative standard error exceeds :data:`RELATIVE_ERROR_LIMIT` (0.3), or
    is not finite, is unresolved ("xi-unresolved" is the usual one: a loss at the noise level).
-3. A fit that did not converge, or a particle smaller than the penetration depth in a liquid
-   (:func:`~contactres.resonators.particle_model_validity`), leaves every parameter unresolved.
+3. A fit that did not converge, or whose χ² is far beyond what the noise allows ("poor-fit";
+   ``_particle_linear.poor_fit``: below the comb the fit can stop at 30 times the χ² of the
+   truth), leaves every parameter unresolved, the products N·κ and N·ξ too. In a liquid, the
+   overtones at which the particle is smaller than the penetration depth
+   (:func:`~contactres.resonators.particle_model_validity`; δ is largest at the lowest) are
+   left out of the fit and named in the flag "dropped-overtones-R<delta: 1,3"; where too few
+   remain (fewer than 2, or than 4 degrees of freedom with the noise estimated) none is
+   dropped and every parameter is unresolved ("particle-smaller-than-delta").
 
 Unresolved values are NaN, with their errors; f_coupled goes with κ (and with κ_r where that is
 fitted: an unresolved κ_r leaves f_coupled empty and not flagged "outside-comb", since the
@@ -62,7 +73,7 @@ small at a point that is many of its σ from the truth, while the limit fits the
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -73,10 +84,18 @@ from ..resonators import (
     Particle,
     coupled_resonance,
     particle_compliance,
-    particle_model_validity,
 )
 from ..validation import positive
-from ._particle_linear import equation_error, limit_chi2, series_variance, stacked_inverse
+from ._particle_input import drop_inside_delta, prepare
+from ._particle_linear import (
+    equation_error,
+    limit_chi2,
+    limit_threshold,
+    pooled_variance,
+    poor_fit,
+    series_variance,
+    stacked_inverse,
+)
 
 __all__ = [
     "LIMIT_CHI2",
@@ -88,6 +107,9 @@ __all__ = [
 
 #: A fitted value whose relative standard error exceeds this is reported as unresolved (NaN).
 RELATIVE_ERROR_LIMIT = 0.3
+
+#: ... and outside the overtone comb, where the fit is far from linear at that scale.
+RELATIVE_ERROR_OUTSIDE = 0.1
 
 #: A limit of the model (rigid contact; particles standing still) whose best χ² exceeds the
 #: fit's by less than this (in units of the noise variance) is not rejected by the data.
@@ -111,14 +133,24 @@ PARTICLE_FLAGS = {
     "rocking-unresolved": "the rotational stiffness κ_r is not identified by the data (nor is "
     "f_coupled, which it sets)",
     "fit-at-bound": "a parameter ended on its bound (ξ = 0)",
+    "poor-fit": "χ² far beyond what the noise allows (P < 1e-4 for a stated noise, or one "
+    "pooled over the series): the fit stopped away from its minimum or the model does not fit "
+    "this step (no value is reported)",
     "not-converged": "the least-squares fit did not converge (no value is reported)",
     "too-few-overtones": "fewer than two overtones measured at this time step (with the noise "
     "estimated from the residuals: fewer than 4 degrees of freedom, 2 × overtones − parameters)",
     "no-signal": "no particles at all (zero shifts) fit as well: the shifts are at the noise "
     "level and nothing is identified (no value is reported)",
     "particle-smaller-than-delta": "the particle is smaller than the penetration depth of the "
-    "liquid: the hydrodynamic model does not hold (lattice Boltzmann is the tool)",
+    "liquid at too many overtones to fit the rest: the hydrodynamic model does not hold "
+    "(lattice Boltzmann is the tool)",
+    "dropped-overtones-R<delta": "the overtones named after the colon were left out of the "
+    "fit: the particle is smaller than the liquid's penetration depth there (δ is largest at "
+    "the lowest overtones); the others are fitted",
 }
+
+#: The name of the flag of the overtones left out (followed by ": 1,3" in a step's flags).
+DROPPED_FLAG = "dropped-overtones-R<delta"
 
 # Scan of κ_r for rocking="fit", in units of I (2π f_F)² (a rocking mode at f_F √(value)).
 _ROCKING_SCAN = np.logspace(-2.0, 4.0, 13)
@@ -223,12 +255,16 @@ def fit_particles(
     >>> fit.flags[0]  # nothing unresolved: the resonance lies within the comb
     ()
     """
-    f0, n, zf, wf, wg, estimate = _prepare(
+    f0, n, zf, wf, wg, estimate = prepare(
         fundamental, overtones, df, dgamma, sigma_df, sigma_dgamma
     )
     zq = positive("zq", zq, "kg m^-2 s^-1")
     fit_rocking = isinstance(rocking, str) and rocking.strip().lower() == "fit"
     freq = n * f0
+    reason, dropped = drop_inside_delta(
+        particle, freq, medium, wf, wg, estimate, fit_rocking, MIN_DOF_ESTIMATED
+    )
+    zf = np.where(wf > 0, zf, 0.0)
     sens = 2.0 * n * np.pi**2 * zq  # z_n s_n = N K_L
     prob = _Problem(f0, particle, freq, sens, medium, zf, wf, wg, rocking, fit_rocking)
     if estimate and 2 * prob.count.max() - prob.n_par < MIN_DOF_ESTIMATED:
@@ -277,54 +313,12 @@ def fit_particles(
             res.chi2[better],
             res.converged[better],
         )
-    reason = particle_model_validity(particle, freq, medium)
-    return prob.result(p_best, chi2, conv, estimate, reason)
-
-
-def _prepare(fundamental, overtones, df, dgamma, sigma_df, sigma_dgamma):
-    """Checked arrays: f_F, n (n,), z = Δf + iΔΓ (T, n) and the weights 1/σ (T, n)."""
-    f0 = positive("fundamental frequency", fundamental, "Hz")
-    try:
-        n = np.asarray(overtones, dtype=float)
-    except (TypeError, ValueError):
-        raise ContactresInputError(f"overtones must be integers >= 1, got {overtones!r}") from None
-    if n.ndim != 1 or n.size < 2:
-        raise ContactresInputError(
-            f"fit_particles needs at least two overtones (a 1-D list), got {overtones!r}"
-        )
-    if np.any(~np.isfinite(n)) or np.any(n < 1) or np.any(n != np.round(n)):
-        raise ContactresInputError(f"overtones must be integers >= 1, got {overtones!r}")
-    d = np.atleast_2d(np.asarray(df, dtype=float))
-    g = np.atleast_2d(np.asarray(dgamma, dtype=float))
-    if d.shape != g.shape or d.shape[-1] != n.size or d.ndim != 2:
-        raise ContactresInputError(
-            f"df and dgamma must both have shape (T, {n.size}) or ({n.size},) for {n.size} "
-            f"overtones, got {np.shape(df)} and {np.shape(dgamma)}"
-        )
-    if np.all(np.isnan(g)):
-        raise ContactresInputError(
-            "the bandwidth shifts dgamma are all missing: the particle fit needs Δf and ΔΓ"
-        )
-    estimate = sigma_df is None and sigma_dgamma is None
-    if (sigma_df is None) != (sigma_dgamma is None):
-        raise ContactresInputError("give both sigma_df and sigma_dgamma, or neither")
-    wf = np.ones(d.shape) if estimate else 1.0 / _sigma("sigma_df", sigma_df, d.shape)
-    wg = np.ones(d.shape) if estimate else 1.0 / _sigma("sigma_dgamma", sigma_dgamma, d.shape)
-    # an overtone counts only with both of its shifts
-    measured = np.isfinite(d) & np.isfinite(g)
-    wf, wg = np.where(measured, wf, 0.0), np.where(measured, wg, 0.0)
-    z = np.where(measured, d + 1j * g, 0.0)
-    return f0, n, z, wf, wg, estimate
-
-
-def _sigma(name, sigma, shape):
-    s = np.asarray(sigma, dtype=float)
-    if np.any(~np.isfinite(s)) or np.any(s <= 0):
-        raise ContactresInputError(f"{name} must be finite and > 0 (Hz), got {sigma!r}")
-    try:
-        return np.broadcast_to(s, shape)
-    except ValueError:
-        raise ContactresInputError(f"{name} of shape {s.shape} does not fit data {shape}") from None
+    fit = prob.result(p_best, chi2, conv, estimate, reason)
+    if dropped.size == 0:
+        return fit
+    # the overtones left out, named on every step (PARTICLE_FLAGS: the name before the colon)
+    note = f"{DROPPED_FLAG}: {','.join(str(int(k)) for k in n[dropped])}"
+    return replace(fit, flags=tuple((note, *f) for f in fit.flags))
 
 
 class _Problem:
@@ -514,8 +508,11 @@ class _Problem:
         rows = np.arange(t)
         hess = self.evaluate(q, rows, True)["hessian"]
         dof = 2 * self.count - npar
+        # the noise variance: stated (1), pooled over the series, or (short series) per step
+        pooled = pooled_variance(chi2, dof, conv) if estimate else 1.0
+        per_step = estimate and not np.isfinite(pooled)
         with np.errstate(divide="ignore", invalid="ignore"):
-            s2 = np.where(dof > 0, chi2 / dof, np.nan) if estimate else np.ones(t)
+            s2 = np.where(dof > 0, chi2 / dof, np.nan) if per_step else np.full(t, pooled)
             cov_q = stacked_inverse(hess) * s2[:, None, None]
             err_q = np.sqrt(np.diagonal(cov_q, axis1=1, axis2=2))
             corr = cov_q / (err_q[:, :, None] * err_q[:, None, :])
@@ -532,15 +529,19 @@ class _Problem:
         fc, fc_err = self._resonance_with_error(p, cov_q)
         chg = self._chg(p)
         zm = self.model(p, chg)[0]
+
         # The likelihood-ratio test against the two limits of the model (module docstring)
-        scale = s2 if estimate else np.ones(t)
+        # (the limits drop 2 parameters (rigid: κ, ξ), 1 (standing still: the κ -> 0 edge) and
+        # all (empty); the q of the F thresholds where the noise is estimated per step)
+        def passes(lim, q):
+            return (lim - chi2) / s2 < limit_threshold(LIMIT_CHI2, dof, q, per_step)
+
         with np.errstate(invalid="ignore", divide="ignore"):
             lim_s, lim_h, lim_0 = limit_chi2(self.z, self.wf, self.wg, self.sens, self.omega, chg)
-            sauerbrey = (lim_s - chi2) / scale < LIMIT_CHI2
-            inertial = (lim_h - chi2) / scale < LIMIT_CHI2
+            sauerbrey, inertial = passes(lim_s, 2), passes(lim_h, 1)
             # no particles at all (z = 0) fits as well: the shifts are noise (or a drift of the
             # baseline), and the three parameters fitted to them are nonsense
-            no_signal = (lim_0 - chi2) / scale < LIMIT_CHI2
+            no_signal = passes(lim_0, npar)
         # the products N·κ and N·ξ: ln(Nκ) = q0 + q2, ln(Nξ) = ln q1 + q2 (+ const)
         with np.errstate(divide="ignore", invalid="ignore"):
             nk_rel = np.sqrt(cov_q[:, 0, 0] + cov_q[:, 2, 2] + 2 * cov_q[:, 0, 2])
@@ -554,7 +555,9 @@ class _Problem:
         nx_ok = np.isfinite(nx_rel) & (nx_rel <= RELATIVE_ERROR_LIMIT) & ~few
         if reason is not None:
             nk_ok = nx_ok = np.zeros(t, bool)
-        nk_ok, nx_ok = nk_ok & ~no_signal, nx_ok & ~no_signal
+        # a fit far beyond its χ² (or not converged) gives no value, the products neither
+        poor = poor_fit(chi2, dof, s2, per_step)
+        nk_ok, nx_ok = nk_ok & ~no_signal & conv & ~poor, nx_ok & ~no_signal & conv & ~poor
         names = ("kappa", "xi", "coverage", "kappa_r")[:npar]
         flags, keep = [], np.ones((t, 4), bool)
         unresolved = ("kappa-unresolved", "xi-unresolved", "coverage-unresolved")
@@ -592,11 +595,17 @@ class _Problem:
             fc_known = not (self.fit_rocking and bad[3])
             if fc_known and not comb.min() <= fc[i] <= comb.max():
                 f.append("outside-comb")
+                # outside the comb a linearised error beyond 10 % is that of a curved valley
+                # (2.5x below the comb: κ and N printed 2-4σ off with errors of 20-30 %)
+                bad = [b or not r <= RELATIVE_ERROR_OUTSIDE for b, r in zip(bad, rel, strict=True)]
             if q[i, 1] <= 0.0:
                 f.append("fit-at-bound")
             if not conv[i]:
                 # a fit that stopped in a flat valley: its point is not an estimate
                 f.append("not-converged")
+                bad = [True] * 4
+            if poor[i] and conv[i]:
+                f.append("poor-fit")
                 bad = [True] * 4
             if reason is not None:
                 f.append("particle-smaller-than-delta")

@@ -100,6 +100,19 @@ COLUMN_UNITS = MappingProxyType(
         "variance estimated from the residuals)",
         "kappa_r_N_m_per_rad": "N m/rad (the fitted rocking stiffness; --rocking fit only)",
         "kappa_r_err_N_m_per_rad": "N m/rad (standard error)",
+        # the correlations of the fitted parameters (ln κ, ξ, ln N, ln κ_r), per step
+        **{
+            f"corr_{a}_{b}": f"1 (correlation of the fitted {a} and {b}; also where a value "
+            "is unresolved: near ±1 it names the direction the data do not fix)"
+            for a, b in (
+                ("kappa", "xi"),
+                ("kappa", "coverage"),
+                ("xi", "coverage"),
+                ("kappa", "kappa_r"),
+                ("xi", "kappa_r"),
+                ("coverage", "kappa_r"),
+            )
+        },
     }
 )
 
@@ -174,8 +187,10 @@ class Result(JobResult):
     read with and those of the shifts, the constants (particle, medium, quartz, noise), the
     equation, the units of the columns, how many steps carry each flag and what each flag means
     (:data:`contactres.analysis.PARTICLE_FLAGS`); ``steps``, per time step, what particles.csv
-    leaves out (the products coverage × κ and coverage × ξ with their errors, κ_r and χ²/dof:
-    lists over the steps, null where not identified; units in ``columns``); ``source`` the
+    leaves out (the products coverage × κ and coverage × ξ with their errors, κ_r, the
+    correlations of the fitted parameters and χ²/dof: lists over the steps, null where not
+    identified; units in ``columns``); ``model_curves`` the fitted model on a fine grid of
+    continuous n at a few steps (:func:`_model_curves`, for the figure); ``source`` the
     file's name and ``warnings`` what the reader left out and what the user should know."""
 
     SCHEMAS = MappingProxyType({"particles": PARTICLES_CSV, "shifts": PARTICLE_SHIFTS_CSV})
@@ -191,6 +206,7 @@ class Result(JobResult):
     flag_counts: dict
     flag_meanings: dict
     steps: dict
+    model_curves: dict
     source: str = ""
     warnings: tuple[str, ...] = ()
 
@@ -248,8 +264,10 @@ def run(inputs: str | os.PathLike, settings: Settings, progress: Progress | None
         equation=EQUATION,
         columns=dict(COLUMN_UNITS),
         flag_counts=counts,
-        flag_meanings={name: PARTICLE_FLAGS.get(name, "") for name in counts},
+        # a flag with details after a colon ("dropped-overtones-R<delta: 1,3") means its name's
+        flag_meanings={name: PARTICLE_FLAGS.get(name.split(":")[0], "") for name in counts},
         steps=_steps(times, fit),
+        model_curves=_model_curves(times, overtones, fit, particle, medium, s, fundamental),
         source=source.name,
         warnings=tuple(lines),
     )
@@ -349,7 +367,8 @@ def _depth_check(particle, medium, fundamental: float, overtones, source: Path) 
     shear wave (:func:`contactres.resonators.particle_model_validity`: a smaller particle sits
     inside the liquid's boundary layer, where a lattice-Boltzmann treatment is the tool): a
     one-line error when the model fails at every overtone measured (δ is smallest at the
-    highest), a warning line naming the overtones where it fails."""
+    highest), a warning line naming the overtones where it fails (the fit leaves them out:
+    :func:`contactres.analysis.fit_particles`)."""
     if medium is None:
         return []
     from ..resonators import particle_model_validity
@@ -366,7 +385,8 @@ def _depth_check(particle, medium, fundamental: float, overtones, source: Path) 
         return [
             # δ is largest at the lowest overtone: its reason names the widest gap
             f"overtone(s) {', '.join(map(str, failed))}: the particles are inside the penetration "
-            f"depth of {medium.name} ({reasons[0]}); the model is rough there"
+            f"depth of {medium.name} ({reasons[0]}); left out of the fit where enough overtones "
+            "remain (flag dropped-overtones-R<delta), else nothing is fitted"
         ]
     return []
 
@@ -385,8 +405,13 @@ def _flag_text(flags, size: int) -> list[str]:
     """The fit's flags per step as ``;``-separated text (names, or sequences of names)."""
     import numpy as np
 
+    # one object per step (np.asarray would make a 2-D array of flag tuples of one length)
+    steps = list(flags) if isinstance(flags, list | tuple) else [flags]
+    items = np.empty(len(steps), dtype=object)
+    for i, step in enumerate(steps):
+        items[i] = step
     texts = []
-    for item in np.broadcast_to(np.asarray(flags, dtype=object), (size,)):
+    for item in np.broadcast_to(items, (size,)):
         if item is None or (isinstance(item, float) and math.isnan(item)):
             texts.append("")
         elif isinstance(item, str):
@@ -418,16 +443,52 @@ def _particles_table(times, fit) -> pd.DataFrame:
 
 def _steps(times, fit) -> dict:
     """``steps`` of particles.json: lists over the time steps (NaN where not identified;
-    JSON null)."""
+    JSON null), with the correlations of the fitted parameters (``corr_a_b``)."""
     import numpy as np
 
     size = times.size
     steps = {"time_s": times}
     steps.update({name: _column(fit, field, size) for name, field in _STEP_FIELDS.items()})
+    names = tuple(getattr(fit, "parameters", ()))
+    correlation = getattr(fit, "correlation", None)
+    for i, a in enumerate(names):
+        for j, b in enumerate(names[i + 1 :], start=i + 1):
+            steps[f"corr_{a}_{b}"] = np.asarray(correlation, float)[:, i, j]
     chi2, dof = _column(fit, "chi2", size), _column(fit, "dof", size)
     with np.errstate(divide="ignore", invalid="ignore"):
         steps["chi2_per_dof"] = np.where(dof > 0, chi2 / dof, np.nan)
     return steps
+
+
+#: How many time steps carry a model curve (evenly spread over those fitted) and on how many
+#: points of continuous n between the lowest and highest overtone.
+CURVE_STEPS, CURVE_POINTS = 4, 121
+
+
+def _model_curves(times, overtones, fit, particle, medium, s: Settings, fundamental) -> dict:
+    """``model_curves`` of particles.json: the fitted model on a fine grid of continuous n
+    (n f_F the frequency; K_L(ω)/(2nπ² Z_q) is smooth between the odd overtones, where a
+    coupled resonance between two overtones peaks), at up to :data:`CURVE_STEPS` steps spread
+    over the run, for the figure of Δf_n/n and ΔΓ_n/n against n. Drawn from the fitted values
+    also where one is unresolved (the curve is identified when its parts are not)."""
+    import numpy as np
+
+    from ..resonators import particle_stiffness
+
+    raw = np.asarray(getattr(fit, "raw", np.empty((0, 0))), float)
+    fitted = np.flatnonzero(np.all(np.isfinite(raw), axis=1)) if raw.size else np.array([], int)
+    if fitted.size == 0:
+        return {"time_s": [], "overtone": [], "df_model_Hz": [], "dgamma_model_Hz": []}
+    pick = fitted[np.unique(np.round(np.linspace(0, fitted.size - 1, CURVE_STEPS)).astype(int))]
+    n = np.linspace(float(np.min(overtones)), float(np.max(overtones)), CURVE_POINTS)
+    p = raw[pick]
+    rocking = p[:, 3:4] if p.shape[1] > 3 else s.rocking
+    # paper 2's Eq. 1 at continuous n (particle_shifts takes the overtones' integers only)
+    k_l = particle_stiffness(
+        particle, n * fundamental, p[:, 0:1], p[:, 1:2], rocking=rocking, medium=medium
+    )
+    z = p[:, 2:3] * k_l / (2.0 * n * np.pi**2 * s.zq)
+    return {"time_s": times[pick], "overtone": n, "df_model_Hz": z.real, "dgamma_model_Hz": z.imag}
 
 
 def _shifts_table(times, overtones, df, dgamma, fit):

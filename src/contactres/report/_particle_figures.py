@@ -5,8 +5,8 @@ The figures a QCM-D user reads attached particles from (Pomorska et al., Anal. C
 (2010); Olsson et al., Anal. Chem. 84, 4504 (2012)):
 
 * :func:`overtones_figure`: Δf_n/n and ΔΓ_n/n against n at a few time steps, points read and
-  the fitted model's line (a coupled resonance inside the comb: Δf_n/n changes sign and ΔΓ_n/n
-  peaks near it);
+  the fitted model's line on a fine grid of continuous n (the result's ``model_curves``; a
+  coupled resonance inside the comb: Δf_n/n changes sign and ΔΓ_n/n peaks near it);
 * :func:`plane_figure`: ΔΓ_n against −Δf_n, one series per overtone over time (the ratio
   −ΔΓ/Δf a mass cannot have);
 * :func:`time_figure`: κ, ξ, the coverage and f_coupled against time with their standard errors
@@ -62,7 +62,11 @@ def overtones_figure(result):
         return None
     fig = _blank(7.5, 3.6)
     ax_f, ax_g = fig.subplots(1, 2)
-    for k, t in enumerate(_shown_times(shifts)):
+    # the model on a fine grid of continuous n where the result has it (a resonance between
+    # two odd overtones peaks between them), else through the overtones' model points
+    curves = getattr(result, "model_curves", None) or {}
+    curve_times = np.asarray(curves.get("time_s", []), float)
+    for k, t in enumerate(curve_times if curve_times.size else _shown_times(shifts)):
         part = shifts[shifts["time_s"] == t].sort_values("overtone")
         n = part["overtone"].to_numpy(float)
         color = f"C{k % 10}"
@@ -71,6 +75,11 @@ def overtones_figure(result):
             (ax_g, "dgamma_Hz", "dgamma_model_Hz"),
         ):
             ax.plot(n, part[read] / n, "o", color=color, ms=4, label=f"t = {t:.4g} s")
+            if curve_times.size:
+                n_fine = np.asarray(curves["overtone"], float)
+                fitted = np.asarray(curves[model], float)[k]
+                ax.plot(n_fine, fitted / n_fine, "-", color=color, lw=1)
+                continue
             fitted = part[model].to_numpy(float)
             if np.isfinite(fitted).any():
                 ax.plot(n, fitted / n, "-", color=color, lw=1)

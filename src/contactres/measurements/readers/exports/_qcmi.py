@@ -1,4 +1,4 @@
-"""Reader plug-in for MicroVacuum QCM-I exports (tab-separated text).
+"""Reader plug-in for MicroVacuum QCM-I exports (tab- or comma-separated text).
 
 Layout, per channel X = A-D: ``Channel X QCM Time [sec]``, ``Channel X Fundamental Frequency
 [Hz]``, ``Channel X Fundamental Dissipation [ ]``, ``Channel X 3. Overtone [Hz]``,
@@ -7,9 +7,10 @@ Layout, per channel X = A-D: ``Channel X QCM Time [sec]``, ``Channel X Fundament
 of each). **Confirmed** by a sample export, github.com/b-pardi/pyQCM, offset_data/
 "06092023_bare gold in air in 25C_STA.txt" (106 columns, tab-separated, the flow and temperature
 columns repeated per overtone), and by pyQCM-BraTaDio's column map (format_file.py,
-``format_QCMi``): the frequency columns hold the resonance frequencies f_n (4961272 Hz for the
-fundamental there), the dissipation columns D as a plain number ("[ ]"; 1.31e-5 there, equal
-to FWHM/f of the same row).
+``format_QCMi``), and comma-separated by pyQCM's sample_generations/qcmi-bsa-after/
+QSM-I-BSA_1mgpml.csv (879 rows, channel A, n = 1-13, read as it is): the frequency columns
+hold the resonance frequencies f_n (4961272 Hz for the fundamental there), the dissipation
+columns D as a plain number ("[ ]"; 1.31e-5 there, equal to FWHM/f of the same row).
 
 What the header tells: time in seconds, D as a plain number (``dissipation_scale`` 1). Whether
 the frequency columns hold f_n or shifts is told from the values; with f_n a ``baseline`` is

@@ -12,11 +12,14 @@ A. ``Time_k``, ``F_k:n``, ``D_k:n`` (with ``Meas. Temp. Time``, ``Tact``): semic
    asks for ``time_unit``, ``df_divided_by_n`` and ``dissipation_scale`` (and ``fundamental``,
    for ΔΓ = ΔD n f_F / 2).
 B. ``Time_k [s]``, ``fn_k [Hz]``, ``Dn_k [ppm]`` (e.g. ``f3_1 [Hz]``; a QSoft export to a
-   spreadsheet saved as text). **Not confirmed by a sample file**: the names are those used by
-   third-party scripts that read QSoft exports (a public code search for "Time_1 [s]" and
-   "D3_1 [ppm]"). Time in s and D in ppm come from the header; whether the f columns hold f_n
-   or shifts is told from the values (:data:`~._base.ABSOLUTE_FREQUENCY_HZ`); shifts ask for
-   ``df_divided_by_n``, resonance frequencies for a ``baseline``.
+   spreadsheet saved as text). **Confirmed** by an export of four sensors, n = 1-13,
+   github.com/safyre8/QCM-D_data_processing, data/20230703_hex_50nM.txt (``;``-separated,
+   decimal point, 3694 rows of resonance frequencies f_n and absolute D in ppm; read with
+   ``channel=1, baseline="first"``), and by third-party scripts that read QSoft exports (a
+   public code search for "Time_1 [s]" and "D3_1 [ppm]"). Time in s and D in ppm come from
+   the header; whether the f columns hold f_n or shifts is told from the values
+   (:data:`~._base.ABSOLUTE_FREQUENCY_HZ`); shifts ask for ``df_divided_by_n``, resonance
+   frequencies for a ``baseline``.
 C. ``Time``, ``fundamental_freq``, ``3rd_freq``, ..., ``fundamental_dis``, ``3rd_dis``, ...
    (and ``Temp_Time``, ``Temp``): a QSense export as pyQCM-BraTaDio rewrites it
    (github.com/b-pardi/pyQCM, src/format_file.py: its ``freqs`` and ``disps`` names, written
