@@ -592,3 +592,24 @@ def test_a_line_break_inside_a_quoted_cell_is_one_line(tmp_path):
     with pytest.raises(ValueError) as info:
         read_export(path, dissipation_scale=1e-6, fundamental=F_F)
     one_line(info, str(path), "line 3", "quoted cell runs over a line break")
+
+
+def test_an_overtone_without_any_bandwidth_is_left_out_by_name_and_the_rest_is_read(tmp_path):
+    # A real QCM-I export (pyQCM-BraTaDio's raw_data/qcmi_sample.txt) logs the 13th overtone's
+    # frequency but leaves its dissipation and FWHM empty; it used to stop the whole file with
+    # "no point ... in the baseline window nan <= t <= nan".
+    path = qcmi(tmp_path)
+    lines = [line.split("\t") for line in path.read_text().splitlines()]
+    empty = [i for i, name in enumerate(lines[0]) if name.startswith("Channel A 7. ")]
+    empty = [i for i in empty if "Overtone" not in lines[0][i]]  # keep its frequency
+    for row in lines[1:]:
+        for i in empty:
+            row[i] = ""
+    path.write_text("\n".join("\t".join(row) for row in lines) + "\n")
+    with pytest.warns(ExportWarning, match=r"overtone 7 left out: no row holds its time"):
+        table = read_export(path, baseline="first")
+    assert sorted(set(table.data.overtone)) == [1, 3, 5]
+    assert table.conventions["overtones"] == [1, 3, 5]
+    for n in (1, 3, 5):
+        part = table.data[table.data.overtone == n]
+        np.testing.assert_allclose(part.df_Hz, true_df(n), rtol=1e-9, atol=1e-6)

@@ -186,6 +186,15 @@ def _series(raw, path: Path, layout: Layout, traces, t_all, kind: str, scale, im
     for n, fcol, dcol in traces:
         f, d = numbers(raw, fcol, path), numbers(raw, dcol, path)
         keep = np.isfinite(t_all) & np.isfinite(f) & np.isfinite(d)
+        if not keep.any():
+            # A real QCM-I export holds the 13th overtone's frequency but none of its bandwidths:
+            # the overtone is left out by name, the others are read (issue 27: nothing dropped
+            # without a word).
+            notes.append(
+                f"overtone {n} left out: no row holds its time, frequency ({fcol!r}) and "
+                f"dissipation ({dcol!r}) together"
+            )
+            continue
         skipped += int((~keep).sum())
         if (note := rows_left_out(raw, n, keep)) is not None:
             notes.append(note)
@@ -208,7 +217,7 @@ def _series(raw, path: Path, layout: Layout, traces, t_all, kind: str, scale, im
         if kind == "absolute" and (keep & (d < 0)).any():
             fail_at(raw, path, dcol, keep & (d < 0), "is negative: an absolute D or Γ is >= 0")
         series.append((n, fcol, keep, f, d))
-    if not any(s[2].any() for s in series):
+    if not series:
         raise ContactresInputError(f"{path}: no row with time, frequency and dissipation")
     return series, skipped, notes
 
@@ -348,7 +357,7 @@ def convert(
         "reader": reader,
         "layout": layout.description,
         "channel": layout.channel,
-        "overtones": [int(tr[0]) for tr in traces],
+        "overtones": [int(s[0]) for s in series],
         "time_unit_as_read": unit,
         "frequency_as_read": "absolute f_n" if kind == "absolute" else "shift",
         "df_as_read": (
