@@ -62,6 +62,19 @@ def study():
     return loads, [group]
 
 
+def quasi_static_tan(sphere, plate, film, h, radii):
+    """The quasi-static estimate of tan δ_rad on the coated plate: the film as a massless
+    spring (K_f from the static solver: 1/K_f = 1/K_coated − 1/K_bare) in series with the bare
+    plate's and the sphere's dynamic tangential stiffness at F_QCM."""
+    coated = flat_punch_stiffness(LayeredMaterial(plate, [(film, h)]), radii, 0.0, "tangential")
+    naked = flat_punch_stiffness(plate, radii, 0.0, "tangential")
+    spring = 1 / (1 / coated.real - 1 / naked.real)
+    k_plate = tangential_contact_stiffness(plate, radii, F_QCM)
+    k_sphere = tangential_contact_stiffness(sphere, radii, F_QCM)
+    estimate = 1 / (1 / k_plate + 1 / k_sphere + 1 / spring)
+    return estimate.imag / estimate.real
+
+
 def test_a_film_of_the_plates_own_material_gives_the_bare_plate(bodies):
     sphere, plate = bodies
     loads, groups = study()
@@ -101,15 +114,8 @@ def test_a_soft_lossless_film_lowers_the_radiation_loss_tangent(bodies):
     bare = two_body_contact_stiffness(sphere, plate, RADII, F_QCM)
     assert np.all(tan > 0)
     assert np.all(tan < 0.5 * bare.imag / bare.real)
-    # The quasi-static estimate: the film as a massless spring, K_f from the static solver.
-    coated = flat_punch_stiffness(LayeredMaterial(plate, [(film, h)]), RADII, 0.0, "tangential")
-    naked = flat_punch_stiffness(plate, RADII, 0.0, "tangential")
-    spring = 1 / (1 / coated.real - 1 / naked.real)
-    k_plate = tangential_contact_stiffness(plate, RADII, F_QCM)
-    k_sphere = tangential_contact_stiffness(sphere, RADII, F_QCM)
-    estimate = 1 / (1 / k_plate + 1 / k_sphere + 1 / spring)
     # 2 % measured (the film's inertia and the static solver's θ average are left out).
-    np.testing.assert_allclose(tan, estimate.imag / estimate.real, rtol=0.05)
+    np.testing.assert_allclose(tan, quasi_static_tan(sphere, plate, film, h, RADII), rtol=0.05)
 
 
 def test_rows_the_layered_solver_refuses_say_why(bodies):
@@ -145,15 +151,9 @@ def test_a_thin_isotropic_film_on_the_anisotropic_plate_is_computed(bodies):
     )
     assert not out["note"].fillna("").str.startswith("stiffness not computed").any()
     tan = out["tan_delta_rad"].to_numpy(float)
-    coated = flat_punch_stiffness(LayeredMaterial(plate, [(film, h)]), radii, 0.0, "tangential")
-    naked = flat_punch_stiffness(plate, radii, 0.0, "tangential")
-    spring = 1 / (1 / coated.real - 1 / naked.real)
-    k_plate = tangential_contact_stiffness(plate, radii, F_QCM)
-    k_sphere = tangential_contact_stiffness(sphere, radii, F_QCM)
-    estimate = 1 / (1 / k_plate + 1 / k_sphere + 1 / spring)
     # Measured 0.5 % and 0.4 % (the film's inertia and the static solver's θ average are left
     # out of the estimate).
-    np.testing.assert_allclose(tan, estimate.imag / estimate.real, rtol=0.02)
+    np.testing.assert_allclose(tan, quasi_static_tan(sphere, plate, film, h, radii), rtol=0.02)
 
 
 def test_cli_radiation_on_the_coated_example(tmp_path):
