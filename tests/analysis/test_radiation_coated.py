@@ -62,6 +62,19 @@ def study():
     return loads, [group]
 
 
+def quasi_static_tan(sphere, plate, film, h, radii):
+    """The quasi-static estimate of tan δ_rad on the coated plate: the film as a massless
+    spring (K_f from the static solver: 1/K_f = 1/K_coated − 1/K_bare) in series with the bare
+    plate's and the sphere's dynamic tangential stiffness at F_QCM."""
+    coated = flat_punch_stiffness(LayeredMaterial(plate, [(film, h)]), radii, 0.0, "tangential")
+    naked = flat_punch_stiffness(plate, radii, 0.0, "tangential")
+    spring = 1 / (1 / coated.real - 1 / naked.real)
+    k_plate = tangential_contact_stiffness(plate, radii, F_QCM)
+    k_sphere = tangential_contact_stiffness(sphere, radii, F_QCM)
+    estimate = 1 / (1 / k_plate + 1 / k_sphere + 1 / spring)
+    return estimate.imag / estimate.real
+
+
 def test_a_film_of_the_plates_own_material_gives_the_bare_plate(bodies):
     sphere, plate = bodies
     loads, groups = study()
@@ -101,22 +114,17 @@ def test_a_soft_lossless_film_lowers_the_radiation_loss_tangent(bodies):
     bare = two_body_contact_stiffness(sphere, plate, RADII, F_QCM)
     assert np.all(tan > 0)
     assert np.all(tan < 0.5 * bare.imag / bare.real)
-    # The quasi-static estimate: the film as a massless spring, K_f from the static solver.
-    coated = flat_punch_stiffness(LayeredMaterial(plate, [(film, h)]), RADII, 0.0, "tangential")
-    naked = flat_punch_stiffness(plate, RADII, 0.0, "tangential")
-    spring = 1 / (1 / coated.real - 1 / naked.real)
-    k_plate = tangential_contact_stiffness(plate, RADII, F_QCM)
-    k_sphere = tangential_contact_stiffness(sphere, RADII, F_QCM)
-    estimate = 1 / (1 / k_plate + 1 / k_sphere + 1 / spring)
     # 2 % measured (the film's inertia and the static solver's θ average are left out).
-    np.testing.assert_allclose(tan, estimate.imag / estimate.real, rtol=0.05)
+    np.testing.assert_allclose(tan, quasi_static_tan(sphere, plate, film, h, RADII), rtol=0.05)
 
 
 def test_rows_the_layered_solver_refuses_say_why(bodies):
-    """A film thin against the contact radius on the anisotropic plate is beyond the layered
-    tangential punch (ContactresInputError): that row says so, the other is computed."""
+    """An anisotropic film thin against the contact radius on the anisotropic plate is beyond
+    the layered tangential punch (ContactresInputError): that row says so, the other is
+    computed."""
     sphere, plate = bodies
-    film = Material.isotropic(5e9, 0.35, density=1190.0, name="soft")
+    # A soft cubic film (A = 2), its [111] along the normal: not axisymmetric.
+    film = Material.cubic(8e9, 4e9, 4e9, density=1190.0, name="soft cubic").rotated((1, 1, 1))
     loads, groups = study()
     groups[0]["coating"]["loads"][1]["contact_radius_m"] = 15e-6  # a/h = 50 (the other 10)
     out = radiation_loss(
@@ -124,6 +132,28 @@ def test_rows_the_layered_solver_refuses_say_why(bodies):
     )
     assert np.isfinite(out.loc[0, "tan_delta_rad"]) and np.isnan(out.loc[1, "tan_delta_rad"])
     assert out.loc[1, "note"].startswith("stiffness not computed: ")
+
+
+def test_a_thin_isotropic_film_on_the_anisotropic_plate_is_computed(bodies):
+    """An isotropic film at a/h = 50 on quartz-AT (refused until the layered tangential punch
+    left the edge enrichment out for a top film unchanged by rotations about the normal: 23
+    of the 24 loads of the coated example had no radiation share). Against the quasi-static
+    estimate (the film as a massless spring from the static solver, in series with the bare
+    plate's and the sphere's dynamic stiffness), independent of the layered dynamic punch."""
+    sphere, plate = bodies
+    film = Material.isotropic(5e9, 0.35, density=1190.0, name="soft")
+    h = 300e-9
+    loads, groups = study()
+    radii = np.array([3e-6, 15e-6])  # a/h = 10 and 50
+    groups[0]["coating"]["loads"][1]["contact_radius_m"] = float(radii[1])
+    out = radiation_loss(
+        loads, groups, sphere, plate, frequency_Hz=F_QCM, coating=Coating(((film, h),))
+    )
+    assert not out["note"].fillna("").str.startswith("stiffness not computed").any()
+    tan = out["tan_delta_rad"].to_numpy(float)
+    # Measured 0.5 % and 0.4 % (the film's inertia and the static solver's θ average are left
+    # out of the estimate).
+    np.testing.assert_allclose(tan, quasi_static_tan(sphere, plate, film, h, radii), rtol=0.02)
 
 
 def test_cli_radiation_on_the_coated_example(tmp_path):
@@ -153,9 +183,8 @@ def test_cli_radiation_on_the_coated_example(tmp_path):
         np.testing.assert_allclose(
             part["contact_radius_m"], [want[f] for f in part["normal_force_N"]], rtol=1e-9
         )
-    # Every row either has a positive loss tangent or says why not.
+    # Every row has a positive loss tangent (PMMA on quartz-AT at a/h = 30-36: the layered
+    # tangential punch refused all six until the isotropic film's edge was left unenriched).
     tan = table["tan_delta_rad"].to_numpy(float)
-    computed = np.isfinite(tan)
-    assert np.all(tan[computed] > 0)
-    assert table["note"][~computed].str.len().gt(0).all()
+    assert np.all(np.isfinite(tan)) and np.all(tan > 0)
     assert "radiation loss of the contacts" in r.output

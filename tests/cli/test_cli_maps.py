@@ -427,7 +427,7 @@ MORE = [
         {**PRE, "--frequency": "1e3"},
         "--coating",
         "pmma:2.5e-7",
-        ("--coating", "--frequency"),
+        ("--coating", "--frequency", "wave speeds", "dcsf --coating"),
     ),
     ("fit", FIT, "--values", "neg.csv", ("neg.csv", "row 6", "column 2", "-1300")),
     ("fit", FIT, "--values", "shape.csv", ("--values", "shape.csv", "96 rows x 95 columns")),

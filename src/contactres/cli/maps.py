@@ -157,7 +157,9 @@ def maps_synthetic(
     "grain at the pixel's bare Hertz contact radius, each grain's crystal taken as the "
     "isotropic solid with its M and the crystal's Voigt-Reuss-Hill Poisson ratio (< 0.1 % off "
     "the anisotropic grain for films softer than it, up to 0.5 % for much stiffer ones). "
-    "Static only (not with --frequency)."
+    "Static only (not with --frequency: a grain's isotropic equivalent has its M but not "
+    "its wave speeds, on which the DCSF depends; 'contactres dcsf --coating' gives one coated "
+    "contact's DCSF)."
 )
 @pixel_options
 @format_option()

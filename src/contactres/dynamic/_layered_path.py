@@ -40,6 +40,7 @@ __all__ = [
     "bessel_on_nodes",
     "correction_nodes",
     "film_reference",
+    "is_axisymmetric",
     "punch_resolution",
     "stack_at",
     "stack_of",
@@ -113,7 +114,7 @@ def film_reference(m: Material) -> tuple[Material, float]:
     return Material(C=C.real, density=m.density, name=m.name), q
 
 
-def _axisymmetric(mats) -> bool:
+def is_axisymmetric(mats) -> bool:
     """True if every material is unchanged by a rotation about the normal (transversely
     isotropic about z): then g does not depend on θ."""
     for m in mats:
@@ -203,7 +204,7 @@ def stack_at(
             # The shear slowness √(ρ/C44) (k_s = ω × it), the largest bulk slowness along the
             # surface and the symmetry about the normal of one material, s/m.
             slow = math.sqrt((m.density or 0.0) / shear_reference(m))
-            known[key] = (slow, slow * max_slowness(m), _axisymmetric([m]))
+            known[key] = (slow, slow * max_slowness(m), is_axisymmetric([m]))
         props.append(known[key])
     return Stack(
         tensors=[voigt_to_tensor(np.asarray(m.C, dtype=complex)) / c44 for m in mats],

@@ -17,7 +17,10 @@ pixel's bare Hertz contact radius (:func:`contactres.polycrystal.coated_moduli`,
 the approximation: each grain's crystal under the films is the isotropic solid with its M and
 the crystal's Voigt-Reuss-Hill Poisson ratio; < 1e-3 against the anisotropic substrate for
 films softer than the grains, up to 5e-3 for much stiffer ones). The bare variables stay as
-they are; a coated map at a frequency (the DCSF) is not offered.
+they are; a coated map at a frequency (the DCSF) is not offered: the isotropic equivalent of a
+grain has its M but not its wave speeds, on which the DCSF depends, and is checked for the
+static modulus only (``contactres dcsf --coating`` gives the DCSF of one coated contact on a
+crystal face, with the anisotropic face itself under the films).
 
 With ``Settings(legend=True)`` (the default) the result also holds M over the standard
 triangle of surface normals (exact, paper 1's Eqs. 1-4 for each normal, on a grid of
@@ -139,8 +142,10 @@ def run(
     layers = _static_layers(s.coating)
     if layers and s.frequency is not None:
         raise ContactresInputError(
-            "--coating with --frequency: the coated map is static only (dcsf --coating gives "
-            "the DCSF of one coated contact)"
+            "--coating with --frequency: the coated map is static only (its grains are "
+            "isotropic solids of their M, checked for the static modulus only; the DCSF depends "
+            "on their wave speeds, which M does not give): dcsf --coating gives the DCSF of one "
+            "coated contact on a crystal face"
         )
     _check_hertz(s)
     say(progress, f"reading {inputs}")
