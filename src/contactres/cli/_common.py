@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import os
 import sys
 from typing import TYPE_CHECKING
 
@@ -295,6 +296,22 @@ def save_as_option():
         "and a conventions sheet; extra 'excel') or netcdf (results.nc, NetCDF 3; extra "
         "'maps'); repeat the option or give a comma list.",
     )
+
+
+def figure_path(ctx, param, value):
+    """A callback for an option naming one figure file: its suffix must be a figure format
+    (``.png``, ``.svg``, ``.pdf``), checked before any work (matplotlib would fail after it)."""
+    if value is None:
+        return None
+    suffix = os.path.splitext(str(value))[1].lower().lstrip(".")
+    if suffix not in FIGURE_FORMATS:
+        raise click.BadParameter(
+            f"{value!r}: the suffix names the figure format; choose from "
+            f"{', '.join('.' + f for f in FIGURE_FORMATS)}",
+            ctx,
+            param,
+        )
+    return value
 
 
 def figure_format_option():
