@@ -144,6 +144,15 @@ def test_formulas_stay_text_in_the_workbook(tmp_path):
     assert "'=1+1" in notes
 
 
+def test_a_control_character_an_xlsx_cannot_hold_is_replaced_not_fatal(tmp_path):
+    frame = pd.DataFrame({"label": ["bell\x07ring", "tab\tok"], "x_m": [1.0, 2.0]})
+    write_report(Labels(frame, {}), tmp_path / "c", ("csv", "xlsx"))
+    book = openpyxl.load_workbook(tmp_path / "c" / "results.xlsx")
+    cells = [row[0].value for row in book["points"].iter_rows(min_row=2)]
+    assert cells == ["bell\ufffdring", "tab\tok"]
+    assert frame["label"].tolist() == ["bell\x07ring", "tab\tok"]  # the Result is unchanged
+
+
 def test_without_openpyxl_the_workbook_is_one_line_naming_the_extra(tmp_path, monkeypatch):
     found = importlib.util.find_spec
     monkeypatch.setattr(
@@ -155,3 +164,23 @@ def test_without_openpyxl_the_workbook_is_one_line_naming_the_extra(tmp_path, mo
     assert run.exit_code == 2
     assert len(run.output.strip().splitlines()) == 1 and "contactres[excel]" in run.output
     assert not out.exists()  # refused before the export was read
+
+
+def test_the_paper_figures_take_the_figure_formats(tmp_path):
+    out = tmp_path / "p2"
+    run = CliRunner().invoke(
+        main, ["figures", "paper2", "--out", str(out), "--figure-format", "svg,pdf"]
+    )
+    assert run.exit_code == 0, run.output
+    names = sorted(p.name for p in out.iterdir())
+    assert [n for n in names if not n.endswith(".csv")] == [
+        "paper2_fig1d_shifts.pdf",
+        "paper2_fig1d_shifts.svg",
+        "paper2_fig2_loops.pdf",
+        "paper2_fig2_loops.svg",
+    ]
+    for name in names:
+        if name.endswith(".pdf"):
+            assert (out / name).read_bytes()[:5] == b"%PDF-"
+        elif name.endswith(".svg"):
+            assert ET.parse(out / name).getroot().tag.endswith("svg")

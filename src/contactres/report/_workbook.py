@@ -121,11 +121,27 @@ def workbook_bytes(result: JobResult) -> bytes:
     buffer = io.BytesIO()
     with pd.ExcelWriter(buffer, engine="openpyxl") as writer:
         for name, (frame, _schema) in tables.items():
-            neutralised(frame).to_excel(writer, sheet_name=sheets[name], index=False)
-        neutralised(conventions_table(result)).to_excel(
+            _cells(frame).to_excel(writer, sheet_name=sheets[name], index=False)
+        _cells(conventions_table(result)).to_excel(
             writer, sheet_name=CONVENTIONS_SHEET, index=False
         )
     return buffer.getvalue()
+
+
+def _cells(frame):
+    """``frame`` as the workbook's cells: text neutralised as in the CSV, and the control
+    characters an xlsx file cannot hold (all below U+0020 but tab, line feed and carriage
+    return) shown as U+FFFD, the replacement character (openpyxl refuses them). The caller's
+    frame is never changed."""
+    from openpyxl.cell.cell import ILLEGAL_CHARACTERS_RE
+
+    def legal(v):
+        return ILLEGAL_CHARACTERS_RE.sub("\ufffd", v) if isinstance(v, str) else v
+
+    out = neutralised(frame)
+    text = [c for c in out.columns if out[c].dtype.kind == "O" or str(out[c].dtype) == "str"]
+    changed = {c: col for c in text if not (col := out[c].map(legal)).equals(out[c])}
+    return out.assign(**changed) if changed else out
 
 
 def _column_values(series):
