@@ -136,3 +136,17 @@ def _refusing(module: str):
         return real(name, *args, **kwargs)
 
     return importer
+
+
+def test_a_tidy_spectra_table_on_a_sheet_reads_as_its_csv(tmp_path):
+    from contactres.measurements._spectra_table import read_spectra
+
+    table = pd.read_csv(DATA / "example_spectra.csv")
+    first = table[table["spectrum"].isin(table["spectrum"].unique()[:6])]
+    csv = tmp_path / "spectra.csv"
+    first.to_csv(csv, index=False)
+    book = _book(tmp_path / "spectra.xlsx", {"spectra": _rows(csv)})
+    from_csv, from_book = read_spectra(csv), read_spectra(book)
+    pd.testing.assert_frame_equal(from_book.points, from_csv.points)
+    pd.testing.assert_frame_equal(from_book.spectra, from_csv.spectra)
+    assert from_book.source == f"{book}, sheet 'spectra'"

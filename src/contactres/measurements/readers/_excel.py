@@ -1,12 +1,13 @@
 """Reader plug-in for Excel workbooks (``.xlsx``): a tidy table on one sheet.
 
-The tables the delimited-text reader takes (sweep tables, resonance tables) are taken from a
-workbook too. The sheet read is the one named after the kind of table (``sweeps``,
-``resonances``) when the workbook has one, else the first sheet. Its first row that is not
-empty is the header; empty rows are skipped. Every row keeps its Excel number (the header of a
-sheet that starts at the top is row 1), so that an error names the file, the sheet, the row and
-the column as Excel shows them, then the value and the rule, as for a CSV file
-(``attrs["source"]``: ``book.xlsx, sheet 'sweeps'``; ``attrs["line_word"]``: ``row``).
+The tables the delimited-text reader takes (sweep tables, resonance tables, tidy spectra
+tables) are taken from a workbook too. The sheet read is the one named after the kind of table
+(``sweeps``, ``resonances``, ``spectra``) when the workbook has one, else the first sheet. Its
+first row that is not empty is the header; empty rows are skipped. Every row keeps its Excel
+number (the header of a sheet that starts at the top is row 1), so that an error names the
+file, the sheet, the row and the column as Excel shows them, then the value and the rule, as
+for a CSV file (``attrs["source"]``: ``book.xlsx, sheet 'sweeps'``; ``attrs["line_word"]``:
+``row``).
 
 Cells are read as the values Excel stored (``data_only``: a formula gives its last computed
 value, none if the workbook was never opened in a spreadsheet) and turned into the text a CSV
@@ -124,10 +125,11 @@ def load_sheet(path: Path, kind: str) -> pd.DataFrame:
     return raw
 
 
-def loader(kind: str) -> Callable[[Path], pd.DataFrame]:
-    """The ``load`` of a workbook reader of ``kind``: :func:`load_sheet` with that kind."""
+def loader(kind: str) -> Callable[..., pd.DataFrame]:
+    """The ``load`` of a workbook reader of ``kind``: :func:`load_sheet` with that kind (the
+    options a spectra reader is given concern folders of spectra only, as for a CSV table)."""
 
-    def load(path: Path) -> pd.DataFrame:
+    def load(path: Path, **_options) -> pd.DataFrame:
         return load_sheet(Path(path), kind)
 
     return load

@@ -1,9 +1,9 @@
 """The built-in reader recipes of the measurements layer, in one immutable registry.
 
 :data:`BUILT_IN` holds, by kind (:data:`KINDS`): the delimited-text reader of sweep
-tables and of resonance tables (``csv``) and that of the same tables on a sheet of an Excel
-workbook (``xlsx``), the spectra readers (a folder of spectrum files, a tidy
-table: ``SPECTRA_READERS`` of ``_spectra``) and the instrument exports
+tables and of resonance tables (``csv``) and that of the same tables, and of a tidy spectra
+table, on a sheet of an Excel workbook (``xlsx``), the spectra readers (a folder of spectrum
+files, a tidy table: ``SPECTRA_READERS`` of ``_spectra``) and the instrument exports
 (:data:`~.exports.EXPORT_READERS`, and the tidy table of shifts,
 :data:`~.exports.TIDY_READER`), and the contact-resonance AFM maps (kind ``afm_map``: an
 Asylum ``.ibw`` image, a BGlib SHO fit ``.h5``, a NetCDF/Zarr grid; ``AFM_MAP_READERS`` of
@@ -38,6 +38,8 @@ BUILT_IN_READERS: tuple[Reader, ...] = (
     Reader("xlsx", _excel.suffixes, _excel.detect, _excel.loader("sweeps"), "sweeps"),
     Reader("xlsx", _excel.suffixes, _excel.detect, _excel.loader("resonances"), "resonances"),
     *SPECTRA_READERS,
+    # A workbook of spectra rows: tried first for .xlsx, by its suffix, before the tidy table.
+    Reader("xlsx", _excel.suffixes, _excel.detect, _excel.loader("spectra"), "spectra"),
     *EXPORT_READERS,
     *AFM_MAP_READERS,
     TIDY_READER,
