@@ -150,3 +150,19 @@ def test_a_tidy_spectra_table_on_a_sheet_reads_as_its_csv(tmp_path):
     pd.testing.assert_frame_equal(from_book.points, from_csv.points)
     pd.testing.assert_frame_equal(from_book.spectra, from_csv.spectra)
     assert from_book.source == f"{book}, sheet 'spectra'"
+
+
+def test_a_tidy_shift_table_on_a_sheet_reads_as_its_csv(tmp_path):
+    from contactres.measurements.readers.exports import SHIFT_READERS, read_export
+
+    csv = DATA / "example_particles.csv"
+    book = _book(tmp_path / "shifts.xlsx", {"notes": [["x"]], "shifts": _rows(csv)})
+    from_csv = read_export(csv, readers=SHIFT_READERS, fundamental=5e6)
+    from_book = read_export(book, readers=SHIFT_READERS, fundamental=5e6)
+    pd.testing.assert_frame_equal(from_book.data, from_csv.data)
+    assert from_book.conventions["reader"] == "tidy"
+    rows = _rows(csv)
+    rows[3][rows[0].index("overtone")] = 4  # Excel row 4: an even overtone
+    bad = _book(tmp_path / "bad.xlsx", {"shifts": rows})
+    with pytest.raises(ContactresInputError, match=r"bad.xlsx, sheet 'shifts', row 4, column "):
+        read_export(bad, readers=SHIFT_READERS, fundamental=5e6)
