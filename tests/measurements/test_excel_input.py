@@ -166,3 +166,14 @@ def test_a_tidy_shift_table_on_a_sheet_reads_as_its_csv(tmp_path):
     bad = _book(tmp_path / "bad.xlsx", {"shifts": rows})
     with pytest.raises(ContactresInputError, match=r"bad.xlsx, sheet 'shifts', row 4, column "):
         read_export(bad, readers=SHIFT_READERS, fundamental=5e6)
+
+
+def test_qcm_analyze_tells_a_spectra_workbook_from_a_sweeps_workbook(sweeps_csv, tmp_path):
+    from contactres.measurements import is_spectra_input
+
+    spectra = pd.read_csv(DATA / "example_spectra.csv").head(40)
+    csv = tmp_path / "spectra.csv"
+    spectra.to_csv(csv, index=False)
+    assert is_spectra_input(_book(tmp_path / "sp.xlsx", {"spectra": _rows(csv)}))
+    assert not is_spectra_input(_book(tmp_path / "sw.xlsx", {"sweeps": _rows(sweeps_csv)}))
+    assert not is_spectra_input(_book(tmp_path / "empty.xlsx", {"sweeps": [[None]]}))
