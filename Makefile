@@ -15,7 +15,7 @@ install: $(STAMP)
 $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
 	$(PIP) install --upgrade pip
-	$(PIP) install -e '.[test,dev,docs,maps,afm,peers]'
+	$(PIP) install -e '.[test,dev,docs,maps,afm,excel,peers]'
 	touch $(STAMP)
 
 demo: $(STAMP)

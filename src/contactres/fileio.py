@@ -172,17 +172,20 @@ def write_csv(path: str | os.PathLike, frame, **kwargs) -> Path:
     return Path(path)
 
 
-def save_figure(path: str | os.PathLike, fig, dpi: int = 150) -> Path:
-    """Save a matplotlib figure atomically and close it (no pyplot state leaks)."""
+def save_figure(path: str | os.PathLike, fig, dpi: int = 150, *, close: bool = True) -> Path:
+    """Save a matplotlib figure atomically, in the format its suffix names (``.png``, ``.svg``,
+    ``.pdf``; PNG without one), and close it (no pyplot state leaks); ``close=False`` keeps it
+    open to be saved again in another format (the caller's last save closes it; a failed save
+    closes it always)."""
     import matplotlib.pyplot as plt
 
-    target = Path(path)
     try:
-        with _atomic_path(target) as tmp:
-            fig.savefig(tmp, dpi=dpi, format=target.suffix.lstrip(".") or "png")
+        with _atomic_path(path) as tmp:
+            fig.savefig(tmp, dpi=dpi, format=Path(path).suffix.lstrip(".") or "png")
     finally:
-        plt.close(fig)
-    return target
+        if close or sys.exc_info()[0] is not None:
+            plt.close(fig)
+    return Path(path)
 
 
 # --------------------------------------------------------------------------------------------

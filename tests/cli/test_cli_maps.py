@@ -414,6 +414,7 @@ MORE = [
     ("synthetic", SYN, "--out", "nodir/o.zarr", ("nodir",)),
     ("synthetic", SYN_CONST, "--c11", "100e9", ("--c11", "unstable")),  # c11 < c12
     ("predict", PRE, "--out", "notzarr", ("'notzarr'", "not a Zarr store")),
+    ("predict", PRE, "--figure", "m.jpg2", ("--figure", "'m.jpg2'", ".png, .svg, .pdf")),
     ("predict", PRE, "--out", "in.zarr", ("'in.zarr'", "input")),
     ("predict", PRE, "map", "notzarr", ("notzarr", "Zarr")),
     ("predict", PRE, "map", "good.csv", ("good.csv", ".ang")),
@@ -575,3 +576,27 @@ def test_unindexed_pixels_are_left_out_of_predictions_and_fits(tmp_path):
     assert bad.exit_code == 2 and "no indexed pixel of phase 3; its phases are 1" in bad.output
     bad = _predict(ang, tmp_path / "q.zarr", "--min-confidence", 2)
     assert bad.exit_code == 2 and "--min-confidence" in bad.output
+
+
+def test_predict_flags_hertz_approximate_at_a_over_r_0_3(small, tmp_path):
+    """issue 30: between a/R = 0.1 and 0.5 the map is computed but flagged, as ``contact``
+    flags its rows. On an isotropic solid (M = E/(1 − ν²) everywhere) under a rigid tip, the
+    force that puts a/R at 0.3 follows from Hertz's a³ = 3FR/(4M) (Johnson 1985, Eq. 4.22)."""
+    path, _ = small
+    force = 4 * _film_modulus("fused-silica") * (0.3 * R) ** 3 / (3 * R)
+    out = tmp_path / "flagged.zarr"
+    args = ["maps", "predict", path, "--out", out, "--crystal", "fused-silica"]
+    r = _ok(run(*args, "--tip-radius", R, "--force", force, "--format", "json"))
+    warnings = [line for line in r.stderr.splitlines() if "warning" in line]
+    assert len(warnings) == 1
+    assert "a/R = 0.3 > 0.1 on the softest orientation" in warnings[0]
+    assert "Hertz approximate" in warnings[0]
+    flag = warnings[0].removeprefix("contactres: warning: ")
+    assert _json_record(r)["hertz_flag"] == flag
+    assert read_map(out).attrs["hertz_flag"] == flag
+    # A tenth of that force (a/R = 0.14) is still flagged; a thousandth (0.03) is not.
+    for scale, flagged in ((0.1, True), (1e-3, False)):
+        out = tmp_path / f"f{scale}.zarr"
+        r = _ok(run(*args[:4], out, *args[5:], "--tip-radius", R, "--force", force * scale))
+        assert ("Hertz approximate" in r.stderr) is flagged
+        assert ("hertz_flag" in read_map(out).attrs) is flagged

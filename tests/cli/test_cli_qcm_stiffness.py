@@ -195,6 +195,8 @@ BAD = [
     ("--overtone", "4", "aws", ["odd"]),
     ("--fundamental", "4.95", "aws", ["megahertz"]),
     ("--zq", "8.8", "aws", ["megarayl"]),
+    ("--figure-format", "jpg", "aws", ["'jpg' is not a figure format", "png, svg, pdf"]),
+    ("--save-as", "csv", "aws", ["'csv'", "xlsx, netcdf"]),
 ]
 
 

@@ -82,7 +82,16 @@ def test_a_drawing_with_nothing_to_draw_writes_no_file(tmp_path, monkeypatch):
     registry = MappingProxyType({Toy: (("empty.png", lambda result: None),)})
     monkeypatch.setattr(writer_module, "figure_registry", lambda: registry)
     toy = Toy(pd.DataFrame({"x_m": [1.0]}), 1.0, "d")
-    assert report_names(Toy, FORMATS) == ("points.csv", "toy.json", "empty.png")
+    # Every format: the figure in each figure format, the workbook and the NetCDF file.
+    assert report_names(Toy, FORMATS) == (
+        "points.csv",
+        "toy.json",
+        "empty.png",
+        "empty.svg",
+        "empty.pdf",
+        "results.xlsx",
+        "results.nc",
+    )
     written = write_report(toy, tmp_path / "out", ("csv", "png", "html"))  # Toy has no page
     assert [p.name for p in written] == ["points.csv"]
     assert sorted(p.name for p in (tmp_path / "out").iterdir()) == ["manifest.json", "points.csv"]

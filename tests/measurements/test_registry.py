@@ -147,7 +147,8 @@ def test_adding_a_reader_gives_a_new_registry(tmp_path):
     assert mine not in BUILT_IN.readers
     assert grown.pick(path, "sweeps") is mine
     assert pick_reader(path, "sweeps", extra=(mine,)) is mine
-    with pytest.raises(ContactresInputError, match=r"formats known: csv \(.csv/.txt/.tsv\)$"):
+    known = r"formats known: csv \(.csv/.txt/.tsv\), xlsx \(.xlsx\)$"
+    with pytest.raises(ContactresInputError, match=known):
         pick_reader(path, "sweeps")
     with pytest.raises(ContactresInputError, match="already registered"):
         grown.with_reader(mine)

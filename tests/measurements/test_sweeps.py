@@ -251,7 +251,7 @@ def test_reader_plugin(tmp_path):
     t = read_sweeps(path, readers=readers, **CONST).data
     assert len(t) == 18
     np.testing.assert_allclose(t["df_Hz"], good_frame()["df_Hz"])
-    assert [r.name for r in BUILT_IN.of_kind("sweeps")] == ["csv"]
+    assert [r.name for r in BUILT_IN.of_kind("sweeps")] == ["csv", "xlsx"]
 
 
 # ---- issue 11: nothing mixed, nothing lost, every bad input in one short line ---------------

@@ -100,3 +100,16 @@ def test_getting_started_shows_the_command_tree_and_names_every_subcommand():
         if isinstance(command, click.Group):
             for sub in command.commands:
                 assert f"`{sub}`" in text, f"getting started does not name '{name} {sub}'"
+
+
+def test_getting_started_names_every_extra():
+    """Every optional extra of pyproject.toml is named in getting started, as `name` (issue 30,
+    point 6: the page did not know the maps extra)."""
+    import tomllib
+
+    pyproject = tomllib.loads((DOCS.parent / "pyproject.toml").read_text(encoding="utf-8"))
+    extras = pyproject["project"]["optional-dependencies"]
+    text = (DOCS / "getting-started.md").read_text(encoding="utf-8")
+    assert extras, "pyproject.toml lists no extras"
+    missing = [name for name in extras if f"`{name}`" not in text]
+    assert not missing, f"getting started does not name the extra(s) {missing}"

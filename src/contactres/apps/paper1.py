@@ -250,12 +250,16 @@ def write_crystal_dcsf(out, model: str = "exact", curves: dict | None = None) ->
 
 
 def write_paper1_figures(
-    out, progress: Callable[[str], None] | None = None, result: job.Result | None = None
+    out,
+    progress: Callable[[str], None] | None = None,
+    result: job.Result | None = None,
+    figure_formats=("png",),
 ) -> list[Path]:
     """Write Figs. 2-5 of paper 1 (PNG + CSV) into folder ``out``; return the paths.
 
     ``result``: what :func:`contactres.jobs.paper1.run` returned (else it runs here, and
-    ``progress``, optional, is called with the name of each figure before it is computed).
+    ``progress``, optional, is called with the name of each figure before it is computed);
+    ``figure_formats``: each figure is saved in these (``png``, ``svg``, ``pdf``).
     """
     if result is None:
         result = job.run(None, job.Settings(), progress)
@@ -275,5 +279,7 @@ def write_paper1_figures(
     written = []
     for stem, (fig, table) in zip(job.STEMS, drawn, strict=True):
         written.append(write_csv(folder / f"{stem}.csv", table, float_format=CSV_FLOAT_FORMAT))
-        written.append(save_figure(folder / f"{stem}.png", fig))
+        for i, fmt in enumerate(figure_formats):  # drawn once; the last save closes it
+            last = i == len(figure_formats) - 1
+            written.append(save_figure(folder / f"{stem}.{fmt}", fig, close=last))
     return written

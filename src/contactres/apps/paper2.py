@@ -119,11 +119,15 @@ def _draw_shifts(ex: Paper2Example, table):
 
 
 def write_paper2_figures(
-    out, example: Paper2Example | None = None, result: job.Result | None = None
+    out,
+    example: Paper2Example | None = None,
+    result: job.Result | None = None,
+    figure_formats=("png",),
 ) -> list[Path]:
     """Write Fig. 2C-D and Fig. 1D of paper 2 (PNG + CSV) into folder ``out``; return the paths.
 
-    ``result``: what :func:`contactres.jobs.paper2.run` returned (else it runs, for ``example``).
+    ``result``: what :func:`contactres.jobs.paper2.run` returned (else it runs, for ``example``);
+    ``figure_formats``: each figure is saved in these (``png``, ``svg``, ``pdf``).
     """
     if result is None:
         result = job.run(None, job.Settings(example=example))
@@ -138,5 +142,7 @@ def write_paper2_figures(
         ("paper2_fig1d_shifts", _draw_shifts(result.example, result.shifts), result.shifts),
     ):
         written.append(write_csv(folder / f"{stem}.csv", table, float_format=CSV_FLOAT_FORMAT))
-        written.append(save_figure(folder / f"{stem}.png", fig))
+        for i, fmt in enumerate(figure_formats):  # drawn once; the last save closes it
+            last = i == len(figure_formats) - 1
+            written.append(save_figure(folder / f"{stem}.{fmt}", fig, close=last))
     return written

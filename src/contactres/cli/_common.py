@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import os
 import sys
 from typing import TYPE_CHECKING
 
@@ -238,6 +239,93 @@ def format_option(default: str = "plain"):
         default=default,
         show_default=True,
         help="Output format: aligned text, CSV or JSON (records).",
+    )
+
+
+#: The figure formats a command that writes figures offers (those of the report writer,
+#: ``contactres.report.FIGURE_FORMATS``, spelled here: the command line starts without it).
+FIGURE_FORMATS = ("png", "svg", "pdf")
+
+
+#: The one-file exports of a results folder (``contactres.report.FORMATS``): an Excel workbook
+#: and a NetCDF file.
+EXPORT_FORMATS = ("xlsx", "netcdf")
+
+
+def _words(ctx, param, value, known: tuple[str, ...], what: str) -> tuple[str, ...]:
+    """An option's values (repeated and/or comma lists) as a tuple of ``known`` words, each
+    once; a word not in ``known``: one line naming it and the choices."""
+    chosen: list[str] = []
+    for given in value:
+        for word in str(given).split(","):
+            fmt = word.strip().lower().lstrip(".")
+            if fmt not in known:
+                raise click.BadParameter(
+                    f"{word.strip()!r} is not {what}: choose from {', '.join(known)} (repeat "
+                    "the option or give a comma list)",
+                    ctx,
+                    param,
+                )
+            if fmt not in chosen:
+                chosen.append(fmt)
+    return tuple(chosen)
+
+
+def _figure_formats(ctx, param, value) -> tuple[str, ...]:
+    """``--figure-format`` values; PNG when none is given."""
+    return _words(ctx, param, value, FIGURE_FORMATS, "a figure format") or ("png",)
+
+
+def _save_as(ctx, param, value) -> tuple[str, ...]:
+    """``--save-as`` values; none when none is given."""
+    return _words(ctx, param, value, EXPORT_FORMATS, "a format to save the tables as")
+
+
+def save_as_option():
+    """The ``--save-as xlsx|netcdf`` option of the QCM commands that write a results folder: the
+    tables also as one Excel workbook (``results.xlsx``) and/or one NetCDF file
+    (``results.nc``). Not ``--format``, which chooses how the command prints (and
+    ``export`` names an instrument's file in these commands)."""
+    return click.option(
+        "--save-as",
+        "save_as",
+        multiple=True,
+        callback=_save_as,
+        metavar="xlsx|netcdf",
+        help="Also write the tables as one file in OUT: xlsx (results.xlsx, one sheet per table "
+        "and a conventions sheet; extra 'excel') or netcdf (results.nc, NetCDF 3; extra "
+        "'maps'); repeat the option or give a comma list.",
+    )
+
+
+def figure_path(ctx, param, value):
+    """A callback for an option naming one figure file: its suffix must be a figure format
+    (``.png``, ``.svg``, ``.pdf``), checked before any work (matplotlib would fail after it)."""
+    if value is None:
+        return None
+    suffix = os.path.splitext(str(value))[1].lower().lstrip(".")
+    if suffix not in FIGURE_FORMATS:
+        raise click.BadParameter(
+            f"{value!r}: the suffix names the figure format; choose from "
+            f"{', '.join('.' + f for f in FIGURE_FORMATS)}",
+            ctx,
+            param,
+        )
+    return value
+
+
+def figure_format_option():
+    """The ``--figure-format png|svg|pdf`` option of every command that writes figures:
+    repeatable or a comma list (``--figure-format png,svg``); default PNG only."""
+    return click.option(
+        "--figure-format",
+        "figure_formats",
+        multiple=True,
+        callback=_figure_formats,
+        metavar="png|svg|pdf",
+        show_default="png",
+        help="Format of the figure files: png, svg or pdf; repeat the option or give a comma "
+        "list (png,pdf) for several. The HTML page embeds PNG.",
     )
 
 

@@ -9,12 +9,12 @@ import click
 
 from ..errors import ContactresInputError
 from ._app import afm
-from ._common import MagnitudeType, step
+from ._common import MagnitudeType, figure_format_option, step
 from ._map_options import scheduler_address
 
-# What every map's folder gets: the conventions (json), the figures and the page (the Dataset
-# is written beside them, --map-name).
-REPORT_FORMATS = ("csv", "json", "png", "html")
+# What every map's folder gets: the conventions (json), the figures (in the --figure-format
+# formats, between these) and the page (the Dataset is written beside them, --map-name).
+REPORT_FORMATS = ("csv", "json", "html")
 
 
 def _region(ctx, param, value):
@@ -154,6 +154,7 @@ def _map_name(ctx, param, value):
     show_default="this machine",
     help="Dask scheduler address tcp://HOST:PORT: a series of maps on that cluster.",
 )
+@figure_format_option()
 def afm_map(
     files,
     out,
@@ -175,6 +176,7 @@ def afm_map(
     tip_modulus,
     phase_sign,
     scheduler,
+    figure_formats,
 ):
     """Maps of contact stiffness k*, contact damping σ, loss tangent tan δ, E* and the
     indentation modulus M from a contact-resonance map: an Asylum DART image (.ibw: the
@@ -243,7 +245,8 @@ def afm_map(
     several = len(results) > 1
     for path, result in zip(files, results, strict=True):
         folder = Path(out) / Path(path).stem if several else Path(out)
-        write_afm_map(result, folder, map_name=map_name, formats=REPORT_FORMATS, progress=progress)
+        formats = (*REPORT_FORMATS[:2], *figure_formats, *REPORT_FORMATS[2:])
+        write_afm_map(result, folder, map_name=map_name, formats=formats, progress=progress)
         s, ds = result.summary, result.dataset
         line = f"{Path(path).name}: {s['shape'][0]}x{s['shape'][1]} pixels, "
         line += f"{s['pixels_with_k_star']} with k*"

@@ -5,6 +5,7 @@ from __future__ import annotations
 import click
 
 from ._app import figures
+from ._common import figure_format_option
 
 
 @figures.command("paper1")
@@ -15,7 +16,8 @@ from ._app import figures
     show_default=True,
     help="Folder to write the figures into (created if missing).",
 )
-def paper1(out: str) -> None:
+@figure_format_option()
+def paper1(out: str, figure_formats: tuple[str, ...]) -> None:
     """Paper 1: the dynamic contact stiffness factor of a sphere on a cubic (001) face.
 
     Fig. 2 (displacement across the contact), Fig. 3 (the five displacement models at A = 0.5),
@@ -36,5 +38,5 @@ def paper1(out: str) -> None:
 
     progress = lambda step: click.echo(f"  - {step}", err=True)  # noqa: E731
     result = job.run(None, job.Settings(), progress)
-    for path in write_paper1_figures(out, result=result):
+    for path in write_paper1_figures(out, result=result, figure_formats=figure_formats):
         click.echo(str(path))

@@ -5,6 +5,7 @@ from __future__ import annotations
 import click
 
 from ._app import figures
+from ._common import figure_format_option
 
 
 @figures.command("paper2")
@@ -15,7 +16,8 @@ from ._app import figures
     show_default=True,
     help="Folder to write the figures into (created if missing).",
 )
-def paper2(out: str) -> None:
+@figure_format_option()
+def paper2(out: str, figure_formats: tuple[str, ...]) -> None:
     """Paper 2: the loops of Fig. 2C-D and Δf(u0), ΔΓ(u0) of Fig. 1D for both models.
 
     Cattaneo-Mindlin and Savkoor contacts of a glass sphere (R = 1.1 mm) on a 5 MHz QCM
@@ -27,5 +29,7 @@ def paper2(out: str) -> None:
     from ..apps.paper2 import write_paper2_figures
     from ..jobs import paper2 as job
 
-    for path in write_paper2_figures(out, result=job.run(None, job.Settings())):
+    for path in write_paper2_figures(
+        out, result=job.run(None, job.Settings()), figure_formats=figure_formats
+    ):
         click.echo(str(path))

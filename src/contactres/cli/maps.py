@@ -7,7 +7,7 @@ import click
 
 from ..errors import ContactresInputError
 from ._app import maps
-from ._common import MagnitudeType, emit_record, format_option, step
+from ._common import MagnitudeType, emit_record, figure_path, format_option, step
 from ._film import coating_option
 from ._map_options import (
     map_material,
@@ -150,7 +150,9 @@ def maps_synthetic(
 @click.option(
     "--figure",
     type=click.Path(dir_okay=False),
-    help="PNG: M map, IPF-Z map and the M legend over the standard triangle.",
+    callback=figure_path,
+    help="Figure file, PNG, SVG or PDF by its suffix (.png, .svg, .pdf): M map, IPF-Z map and "
+    "the M legend over the standard triangle.",
 )
 @coating_option(
     "Adds M_coated_Pa and k_star_coated_N_per_m: the static punch on the films over each "
@@ -195,7 +197,8 @@ def maps_predict(
     contact_radius_m, k_star_N_per_m (and the DCSF with --frequency; M_coated_Pa and
     k_star_coated_N_per_m with --coating) to OUT atomically. A tip and force whose Hertz
     contact on the softest orientation is wider than half the tip radius are refused before
-    any work (most likely a unit slip).
+    any work (most likely a unit slip); wider than a tenth of it, a warning says Hertz is
+    approximate (recorded as hertz_flag in OUT's attributes and the printed record).
 
     The example files: 'contactres examples --copy .' copies them into this folder.
 
@@ -243,6 +246,8 @@ def maps_predict(
         chunk_progress=progress_callback("M per chunk"),
     )
     ds, info = result.dataset, result.info
+    for line in result.warnings:  # the Hertz flag: one line, also in the store's attributes
+        click.echo(f"contactres: warning: {line}", err=True)
     write_map(out, ds, chunks=(chunks, chunks))
     if figure is not None:
         from ..fileio import save_figure
@@ -261,6 +266,7 @@ def maps_predict(
         "k_star_min_N_per_m": float(np.nanmin(k)),
         "k_star_max_N_per_m": float(np.nanmax(k)),
         "out": str(out),
+        **({"hertz_flag": info["hertz_flag"]} if "hertz_flag" in info else {}),
     }
     if coating:
         Mc, kc = ds["M_coated_Pa"].values, ds["k_star_coated_N_per_m"].values

@@ -19,9 +19,11 @@ from ._common import (
     MaterialType,
     ValueDefault,
     emit,
+    figure_format_option,
     format_option,
     odd_overtone,
     progress_stream,
+    save_as_option,
 )
 
 
@@ -126,7 +128,9 @@ from ._common import (
     "radiation loss is that of the coated plate (the coated fit's contact radii; radiation.csv "
     "names the film in plate_material).",
 )
-@click.option("--no-figures", is_flag=True, help="Skip the PNG figures.")
+@click.option("--no-figures", is_flag=True, help="Skip the figures.")
+@figure_format_option()
+@save_as_option()
 @click.option(
     "--report",
     type=click.Choice(["none", "html"]),
@@ -155,6 +159,8 @@ def analyze_command(
     plate_material,
     coating,
     no_figures,
+    figure_formats,
+    save_as,
     report,
     fmt,
 ):
@@ -211,9 +217,10 @@ def analyze_command(
         coating=tuple(coating) or None,
     )
     job.coating_layers(settings)  # a bad coating: one line before any work
-    formats: tuple[str, ...] = ("csv", "json") if no_figures else ("csv", "json", "png")
+    formats: tuple[str, ...] = ("csv", "json", *(() if no_figures else figure_formats))
     if report == "html":  # the page registered for the job's Result, as its figures are
         formats += ("html",)
+    formats += save_as
     source = Path(sweeps)
     # Every file the run reads: the table and the TOML files its constants may come from.
     inputs = (source, source.with_suffix(".toml"), source.parent / "contactres.toml")

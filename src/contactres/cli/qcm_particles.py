@@ -22,7 +22,14 @@ from pathlib import Path
 import click
 
 from ._app import qcm
-from ._common import MagnitudeType, emit, format_option, step
+from ._common import (
+    MagnitudeType,
+    emit,
+    figure_format_option,
+    format_option,
+    save_as_option,
+    step,
+)
 from ._export_options import conventions, export_options
 
 
@@ -106,7 +113,9 @@ class MediumName(click.ParamType):
     help="html: also report.html in OUT, one self-contained page (conventions, constants, "
     "flags, the tables' first rows, the figures).",
 )
-@click.option("--no-figures", is_flag=True, help="Skip the PNG figures.")
+@click.option("--no-figures", is_flag=True, help="Skip the figures.")
+@figure_format_option()
+@save_as_option()
 @format_option()
 def particles_command(
     data,
@@ -127,6 +136,8 @@ def particles_command(
     zq,
     report,
     no_figures,
+    figure_formats,
+    save_as,
     fmt,
 ):
     """Attached particles from QCM-D shifts over the overtones: contact stiffness κ, damping
@@ -165,8 +176,8 @@ def particles_command(
         sigma_df=noise,
         sigma_dgamma=noise,
     )
-    formats = ("csv", "json", *(() if no_figures else ("png",)))
-    formats += ("html",) if report == "html" else ()
+    formats = ("csv", "json", *(() if no_figures else figure_formats))
+    formats += (*(("html",) if report == "html" else ()), *save_as)
     progress = lambda text: step("qcm particles", text)  # noqa: E731
     # The folder is checked (and locked) before the data are read: an output error comes first.
     with report_set(job.Result, out, formats, inputs=(source,)) as rs:

@@ -19,7 +19,7 @@ from pathlib import Path
 import click
 
 from ._app import qcm
-from ._common import MagnitudeType, step
+from ._common import MagnitudeType, figure_format_option, save_as_option, step
 from ._export_options import conventions, export_options, reader_names
 
 
@@ -70,6 +70,8 @@ def __getattr__(name: str):
     show_default=True,
     help="Acoustic impedance Z_q of AT-cut quartz, kg m^-2 s^-1.",
 )
+@figure_format_option()
+@save_as_option()
 def stiffness_command(
     export,
     out,
@@ -84,6 +86,8 @@ def stiffness_command(
     overtone,
     fundamental,
     zq,
+    figure_formats,
+    save_as,
 ):
     """Contact stiffness κ + iωξ against time from a QCM-D export (paper 2, Eq. 2).
 
@@ -115,9 +119,10 @@ def stiffness_command(
     settings = job.Settings(area, n_contacts, reader, {**read_with, "fundamental": fundamental}, zq)
     progress = lambda text: step("qcm stiffness", text)  # noqa: E731
     # The folder is checked (and locked) before the export is read: an output error comes first.
-    with report_set(job.Result, out, inputs=(source,)) as rs:
+    formats = ("csv", "json", *figure_formats, *save_as)
+    with report_set(job.Result, out, formats, inputs=(source,)) as rs:
         result = job.run(source, settings, progress)
-        written = write_report(result, rs, progress=progress)
+        written = write_report(result, rs, formats, progress=progress)
     for line in result.warnings:
         click.echo(f"contactres: warning: {line}", err=True)
     click.echo(f"{source.name} ({result.conventions['reader']}): κ and ωξ per contact, N/m")

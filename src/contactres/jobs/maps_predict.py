@@ -107,9 +107,10 @@ class Settings:
 class Result(JobResult):
     """``dataset``: the map's variables plus M_Pa, E_star_Pa, contact_radius_m, k_star_N_per_m
     (and the DCSF at a frequency), an :mod:`xarray` Dataset; ``info``: how M was evaluated
-    (method, stated_error, exact_evaluations); ``material`` and ``lattice``: the crystal;
+    (method, stated_error, exact_evaluations; ``hertz_flag`` where the contact is wider than
+    a tenth of the tip radius); ``material`` and ``lattice``: the crystal;
     ``triangle``: M (Pa) over the standard triangle, exact (the legend of the map's figure;
-    None unless ``Settings.legend``)."""
+    None unless ``Settings.legend``); ``warnings``: lines for the user (the Hertz flag)."""
 
     NOT_VALUES = ("dataset", "material", "triangle", "warnings")
 
@@ -118,6 +119,7 @@ class Result(JobResult):
     material: Material
     lattice: str
     triangle: TriangleModuli | None
+    warnings: tuple[str, ...] = ()
 
 
 def run(
@@ -147,7 +149,7 @@ def run(
             "on their wave speeds, which M does not give): dcsf --coating gives the DCSF of one "
             "coated contact on a crystal face"
         )
-    _check_hertz(s)
+    hertz_flag = _check_hertz(s)
     say(progress, f"reading {inputs}")
     omap, _ = open_map(inputs)
     pixels = indexed_pixels(omap, min_confidence=s.min_confidence, max_mad=s.max_mad, phase=s.phase)
@@ -177,8 +179,16 @@ def run(
             lambda n: indentation_moduli(s.material, surface_matrices_from_normals(n)),
             TRIANGLE_GRID,
         )
+    if hertz_flag:  # recorded with the map (its attributes) and in the printed record
+        ds.attrs["hertz_flag"] = hertz_flag
+        info["hertz_flag"] = hertz_flag
     return Result(
-        dataset=ds, info=dict(info), material=s.material, lattice=s.lattice, triangle=triangle
+        dataset=ds,
+        info=dict(info),
+        material=s.material,
+        lattice=s.lattice,
+        triangle=triangle,
+        warnings=(hertz_flag,) if hertz_flag else (),
     )
 
 
@@ -223,12 +233,16 @@ _BOUNDING_NORMALS = (
 )  # fmt: skip
 
 
-def _check_hertz(settings: Settings) -> None:
+def _check_hertz(settings: Settings) -> str:
     """Refuse, before any work, a tip and load whose Hertz contact on the map's softest
     orientation is wider than :data:`contactres.jobs.contact.HERTZ_MAX_RATIO` of the tip
     radius (issue 30: such a map printed moduli of a contact Hertz does not describe; most
     likely a radius or force in the wrong unit). a is :func:`contactres.hertz`'s with E* of the
-    smallest M over :data:`_BOUNDING_NORMALS` in series with the tip."""
+    smallest M over :data:`_BOUNDING_NORMALS` in series with the tip.
+
+    Returns the flag of a contact wider than
+    :data:`~contactres.jobs.contact.HERTZ_APPROXIMATE_RATIO` of the tip radius (Hertz
+    approximate, values kept, as ``contact`` flags its rows), else ""."""
     import math
 
     import numpy as np
@@ -236,7 +250,7 @@ def _check_hertz(settings: Settings) -> None:
     from ..errors import ContactresInputError
     from ..normal import hertz
     from ..polycrystal import indentation_moduli, surface_matrices_from_normals
-    from .contact import HERTZ_MAX_RATIO
+    from .contact import HERTZ_APPROXIMATE_RATIO, HERTZ_MAX_RATIO
 
     tip = settings.tipload
     normals = np.asarray(_BOUNDING_NORMALS, dtype=float)
@@ -251,3 +265,10 @@ def _check_hertz(settings: Settings) -> None:
             f"radius of {ratio:.3g} times the tip radius on the softest orientation (M = "
             f"{m_min:.3g} Pa): beyond Hertz (a/R > {HERTZ_MAX_RATIO:g}); check their units"
         )
+    if ratio > HERTZ_APPROXIMATE_RATIO:
+        return (
+            f"a/R = {ratio:.3g} > {HERTZ_APPROXIMATE_RATIO:g} on the softest orientation (M = "
+            f"{m_min:.3g} Pa): Hertz approximate; the map's values are kept (Hertz takes the "
+            "tip as a paraboloid, for a ≪ R)"
+        )
+    return ""

@@ -10,7 +10,7 @@ import numpy as np
 if TYPE_CHECKING:  # annotations only: the messages need no pandas (the export readers, which
     import pandas as pd  # use them, are imported by the command line's help: no pandas there)
 
-__all__ = ["SHOWN_CHARS", "at_cell", "column_names", "shown_value", "where_rows"]
+__all__ = ["SHOWN_CHARS", "at_cell", "column_names", "line_word", "shown_value", "where_rows"]
 
 #: Longest value shown in a message (a 50 MB label is shown by its first characters).
 SHOWN_CHARS = 60
@@ -36,11 +36,18 @@ def column_names(names) -> str:
 def where_rows(table: pd.DataFrame, source: str, mask: np.ndarray, col: str) -> str:
     """'file, line 6, column 'x'' and, for several bad rows, how many and the first five lines."""
     lines = table["line"].to_numpy()[mask]
-    where = f"{source}, line {lines[0]}, column {col!r}"
+    word = line_word(table)
+    where = f"{source}, {word} {lines[0]}, column {col!r}"
     if len(lines) < 2:
         return where
     shown = ", ".join(str(v) for v in lines[:5]) + (", ..." if len(lines) > 5 else "")
-    return f"{where} ({len(lines)} such rows: lines {shown})"
+    return f"{where} ({len(lines)} such rows: {word}s {shown})"
+
+
+def line_word(table) -> str:
+    """What the numbers of a table's ``line`` column are called: ``line`` (of a text file), or
+    what its reader says in ``attrs["line_word"]`` (``row`` for a sheet of a workbook)."""
+    return str(getattr(table, "attrs", {}).get("line_word", "line"))
 
 
 def at_cell(table: pd.DataFrame, source: str, mask: np.ndarray, col: str) -> str:

@@ -89,4 +89,5 @@ def read_resonance_table(path, schema: TableSchema, *, readers=None) -> pd.DataF
     if p.is_dir():
         raise ContactresInputError(f"{p}: is a directory, expected a table file")
     raw = (BUILT_IN if readers is None else readers).pick(p, "resonances").load(p)
-    return validate_resonance_table(raw, schema, str(p))
+    # A workbook's reader names its sheet too ("book.xlsx, sheet 'resonances'").
+    return validate_resonance_table(raw, schema, str(raw.attrs.get("source", p)))

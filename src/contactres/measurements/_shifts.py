@@ -373,13 +373,23 @@ def sweeps_from_spectra(
 
 
 def is_spectra_input(path) -> bool:
-    """True if ``path`` is a folder (of spectrum files) or a table whose header has the
-    spectra columns ``frequency_Hz`` and ``G_S`` (rather than a sweep table)."""
+    """True if ``path`` is a folder (of spectrum files) or a table (a text file, or a sheet of
+    an ``.xlsx`` workbook) whose header has the spectra columns ``frequency_Hz`` and ``G_S``
+    (rather than a sweep table)."""
     from pathlib import Path
 
     p = Path(path)
     if p.is_dir():
         return True
+    if p.suffix.lower() == ".xlsx" and p.is_file():
+        # A workbook: the header of the sheet the spectra reader would read.
+        from .readers import BUILT_IN
+
+        try:
+            names = set(BUILT_IN.pick(p, "spectra").load(p).columns)
+        except ContactresInputError:
+            return False  # the sweep reader then names what is wrong with the file
+        return {"frequency_Hz", "G_S"} <= names
     try:
         with p.open(encoding="utf-8-sig", errors="replace") as fh:
             for text in fh:

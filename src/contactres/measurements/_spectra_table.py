@@ -243,7 +243,8 @@ def read_spectra(
     raw = registry.pick(p, "spectra").load(
         p, layout=layout, reference_impedance=z0, two_port=two_port
     )
-    table = validate_spectra(raw, str(p))
+    # A workbook's reader names its sheet too ("book.xlsx, sheet 'spectra'").
+    table = validate_spectra(raw, str(raw.attrs.get("source", p)))
     if voltage == "rms":
         spectra = table.spectra.assign(drive_voltage_V=table.spectra["drive_voltage_V"] * 2**0.5)
         table = SpectraTable(table.points, spectra, table.source)

@@ -30,7 +30,7 @@ import pandas as pd
 
 from ..errors import ContactresInputError
 from ..units import ABSOLUTE_FREQUENCY_FRACTION, MIN_SWEEP_POINTS, SMALL_LOAD_LIMIT
-from ._messages import at_cell, column_names, shown_value, where_rows
+from ._messages import at_cell, column_names, line_word, shown_value, where_rows
 from .readers import BUILT_IN, SweepReader, line_ranges
 from .schema import FINITE, SWEEP_TABLE, check_cells, check_value
 
@@ -295,6 +295,8 @@ def read_sweeps(path, *, readers=None, **constants) -> SweepTable:
     toml, toml_path = _toml_constants(p)
     digest = file_sha256(p)
     raw = (BUILT_IN if readers is None else readers).pick(p, "sweeps").load(p)
+    # A workbook's reader names its sheet too ("book.xlsx, sheet 'sweeps'").
+    source = str(raw.attrs.get("source", p))
     # The hash must be of the bytes parsed: a file still being written (or replaced) between
     # the two reads is refused rather than reported under a hash it no longer has.
     if file_sha256(p) != digest:
@@ -303,7 +305,7 @@ def read_sweeps(path, *, readers=None, **constants) -> SweepTable:
         )
     table = validate_sweeps(
         raw,
-        source=str(p),
+        source=source,
         constants=given,
         file_constants=toml,
         file_constants_source=str(toml_path) if toml_path else None,
@@ -348,6 +350,7 @@ def _numeric(raw: pd.DataFrame, col: str, source: str, decimal: str) -> np.ndarr
 def _labels_and_numbers(raw: pd.DataFrame, source: str, decimal: str) -> pd.DataFrame:
     """Sweep ids, label columns (or their defaults), the measured numbers and the ramp."""
     out = pd.DataFrame({"line": raw["line"].to_numpy()})
+    out.attrs["line_word"] = line_word(raw)  # a workbook's rows are named rows, not lines
     out["sweep"] = raw["sweep"].astype(str).str.strip().to_numpy()
     # A missing cell of a table built in memory is empty too (its text would be "nan").
     ids = np.where(raw["sweep"].isna().to_numpy(), "", out["sweep"].to_numpy())
@@ -402,7 +405,7 @@ def _fill_constants(
             out[name] = vals
             for v in np.unique(vals):  # validate distinct values only (cheap)
                 i = int(np.flatnonzero(vals == v)[0])
-                where = f"{source}, line {out['line'].iloc[i]}, column {name!r}"
+                where = f"{source}, {line_word(out)} {out['line'].iloc[i]}, column {name!r}"
                 _check_constant(name, v, where, shown=raw[name].iloc[i])
             if name in constants and np.any(vals != float(constants[name])):
                 warnings.warn(
@@ -469,7 +472,7 @@ def _drop_duplicates(out: pd.DataFrame, source: str) -> pd.DataFrame:
     lines = out["line"].to_numpy()[dup]
     shown = ", ".join(str(n) for n in lines[:5]) + (" ..." if len(lines) > 5 else "")
     warnings.warn(
-        f"{source}: {int(dup.sum())} duplicated row(s) dropped (at line(s) {shown})",
+        f"{source}: {int(dup.sum())} duplicated row(s) dropped (at {line_word(out)}(s) {shown})",
         SweepWarning,
         stacklevel=4,
     )
@@ -485,8 +488,8 @@ def _conflict(table: pd.DataFrame, source: str, by: str, col: str, rule: str) ->
         a, b = rows.iloc[0], rows.loc[rows[col] != rows[col].iloc[0]].iloc[0]
         raise ContactresInputError(
             f"{source}, {by} {shown_value(name)}: conflicting values in column {col!r}: "
-            f"{shown_value(a[col])} (line {a['line']}) and {shown_value(b[col])} "
-            f"(line {b['line']}); {rule}"
+            f"{shown_value(a[col])} ({line_word(table)} {a['line']}) and {shown_value(b[col])} "
+            f"({line_word(table)} {b['line']}); {rule}"
         )
 
 
@@ -559,9 +562,11 @@ def validate_sweeps(
     amplitudes equal, a missing ``ramp`` column, arguments overridden by the file, and shifts
     that break the small-load approximation. Values in messages are cut to 60 characters.
     """
+    word = line_word(raw)
     raw = raw.copy()
     raw.columns = [str(c).strip() for c in raw.columns]
     raw = _columns_in_si(raw, source)
+    raw.attrs["line_word"] = word
     names = pd.Series(raw.columns)
     if names.duplicated().any():
         dups = names[names.duplicated()].unique()

@@ -7,9 +7,14 @@ values; this module writes them the same way for every job, as one
 * ``csv``: each table as ``<table>.csv`` (15 significant digits,
   :data:`contactres.fileio.CSV_FLOAT_FORMAT`);
 * ``json``: the values as ``<NAME>.json`` (``Result.NAME``; UTF-8, one space of indent);
-* ``png``: the figures registered for the Result's type (:func:`figure_registry`);
+* ``png``, ``svg``, ``pdf``: the figures registered for the Result's type
+  (:func:`figure_registry`), each drawn once and saved in every figure format asked for (the
+  registered ``<figure>.png`` with its suffix changed; :data:`FIGURE_FORMATS`);
 * ``html``: the page registered for the Result's type (:func:`html_registry`), one
-  self-contained HTML file.
+  self-contained HTML file (its figures are embedded as PNG, whatever the figure formats);
+* ``xlsx``: the tables and the conventions as one Excel workbook ``results.xlsx``;
+  ``netcdf``: the tables as one NetCDF 3 file ``results.nc``
+  (:mod:`contactres.report._workbook`; extras ``excel`` and ``maps``).
 
 Unless told otherwise a report holds :data:`DEFAULT_FORMATS` (a page is written when asked for).
 
@@ -37,8 +42,16 @@ from types import MappingProxyType
 from typing import TYPE_CHECKING, Any
 
 from ..errors import ContactresInputError
-from ..fileio import CSV_FLOAT_FORMAT, ResultSet, save_figure, write_csv, write_text
+from ..fileio import (
+    CSV_FLOAT_FORMAT,
+    ResultSet,
+    save_figure,
+    write_bytes,
+    write_csv,
+    write_text,
+)
 from ..jobs.contract import JobResult
+from ._workbook import EXPORT_FILES, netcdf_bytes, require, workbook_bytes
 
 if TYPE_CHECKING:
     import os
@@ -47,6 +60,7 @@ if TYPE_CHECKING:
 
 __all__ = [
     "DEFAULT_FORMATS",
+    "FIGURE_FORMATS",
     "FORMATS",
     "figure_registry",
     "html_registry",
@@ -55,8 +69,11 @@ __all__ = [
     "write_report",
 ]
 
-#: What a report can hold: the tables (CSV), the values (JSON), the figures (PNG), the page.
-FORMATS = ("csv", "json", "png", "html")
+#: What a report can hold: the tables (CSV), the values (JSON), the figures (PNG, SVG, PDF),
+#: the page, and the tables as one workbook (xlsx) or one NetCDF file.
+FORMATS = ("csv", "json", "png", "svg", "pdf", "html", "xlsx", "netcdf")
+#: The formats of :data:`FORMATS` that are figure formats (matplotlib's names and suffixes).
+FIGURE_FORMATS = ("png", "svg", "pdf")
 #: What a report holds unless told otherwise.
 DEFAULT_FORMATS = ("csv", "json", "png")
 
@@ -139,6 +156,11 @@ def _formats(formats) -> tuple[str, ...]:
     return chosen
 
 
+def _figure_name(name: str, fmt: str) -> str:
+    """The registered figure ``name`` (``x.png``) as the file of figure format ``fmt``."""
+    return f"{Path(name).stem}.{fmt}"
+
+
 def _job_result(result) -> JobResult:
     """``result`` as a job's Result: the analysis Results of :func:`contactres.analyze` as the
     ``qcm_sweeps`` job's Result that carries them
@@ -165,11 +187,12 @@ def report_names(kind: type[JobResult], formats=DEFAULT_FORMATS) -> tuple[str, .
         names += [f"{name}.csv" for name in kind.table_names()]
     if "json" in formats:
         names.append(f"{kind.NAME}.json")
-    if "png" in formats:
-        names += [name for name, _ in figure_registry().get(kind, ())]
+    for fmt in (f for f in FIGURE_FORMATS if f in formats):
+        names += [_figure_name(name, fmt) for name, _ in figure_registry().get(kind, ())]
     if "html" in formats:
         page = html_registry().get(kind)
         names += [] if page is None else [page[0]]
+    names += [EXPORT_FILES[f] for f in EXPORT_FILES if f in formats]
     return tuple(names)
 
 
@@ -183,8 +206,11 @@ def report_set(
     """The :class:`~contactres.fileio.ResultSet` of a report of a Result of type ``kind`` in
     ``folder``: declared with :func:`report_names` for ``formats``; it owns every file such a
     report can hold in any format, so those an earlier report wrote and this one does not are
-    removed when it is moved into place. ``inputs``: files it must not overwrite."""
+    removed when it is moved into place. ``inputs``: files it must not overwrite.
+    MissingExtraError, before anything is written, when a format needs an extra that is not
+    installed (``xlsx``: ``excel``; ``netcdf``: ``maps``)."""
     names = report_names(kind, formats)
+    require(_formats(formats))
     # The kind of set is the job's name (its module's): a folder of another job's results is
     # refused, never mixed with or removed by this one.
     job = kind.__module__.rsplit(".", 1)[-1]
@@ -229,6 +255,7 @@ def write_report(
     """
     result = _job_result(result)
     formats = _formats(formats)
+    require(formats)
     if isinstance(folder, ResultSet):
         return _write_into(result, folder, formats, progress)
     inputs = result.input_files() if inputs is None else inputs
@@ -246,16 +273,23 @@ def _write_into(result: JobResult, rs: ResultSet, formats, progress) -> list[Pat
         text = json.dumps(result.values(), indent=1, ensure_ascii=False, allow_nan=False)
         write_text(rs.path(f"{result.NAME}.json"), text + "\n")
         names.append(f"{result.NAME}.json")
-    if "png" in formats:
-        for name, draw in figure_registry().get(type(result), ()):
-            if progress is not None:
-                progress(f"figure {name}")
-            figure = draw(result)
-            if figure is not None:  # None: this Result has nothing to draw there
-                save_figure(rs.path(name), figure)
-                names.append(name)
+    figure_formats = [f for f in FIGURE_FORMATS if f in formats]
+    for name, draw in figure_registry().get(type(result), ()) if figure_formats else ():
+        if progress is not None:
+            progress(f"figure {name}")
+        figure = draw(result)
+        if figure is None:  # None: this Result has nothing to draw there
+            continue
+        for i, fmt in enumerate(figure_formats):  # drawn once, saved in each format
+            file = _figure_name(name, fmt)
+            save_figure(rs.path(file), figure, close=i == len(figure_formats) - 1)
+            names.append(file)
     if "html" in formats and (page := html_registry().get(type(result))) is not None:
         name, make = page
         write_text(rs.path(name), make(result))
         names.append(name)
+    for fmt, make_bytes in (("xlsx", workbook_bytes), ("netcdf", netcdf_bytes)):
+        if fmt in formats:
+            write_bytes(rs.path(EXPORT_FILES[fmt]), make_bytes(result))
+            names.append(EXPORT_FILES[fmt])
     return [rs.final(name) for name in names]

@@ -1,8 +1,9 @@
 """The built-in reader recipes of the measurements layer, in one immutable registry.
 
 :data:`BUILT_IN` holds, by kind (:data:`KINDS`): the delimited-text reader of sweep
-tables and of resonance tables (``csv``), the spectra readers (a folder of spectrum files, a tidy
-table: ``SPECTRA_READERS`` of ``_spectra``) and the instrument exports
+tables and of resonance tables (``csv``) and that of the same tables, and of a tidy spectra
+table, on a sheet of an Excel workbook (``xlsx``), the spectra readers (a folder of spectrum
+files, a tidy table: ``SPECTRA_READERS`` of ``_spectra``) and the instrument exports
 (:data:`~.exports.EXPORT_READERS`, and the tidy table of shifts,
 :data:`~.exports.TIDY_READER`), and the contact-resonance AFM maps (kind ``afm_map``: an
 Asylum ``.ibw`` image, a BGlib SHO fit ``.h5``, a NetCDF/Zarr grid; ``AFM_MAP_READERS`` of
@@ -21,7 +22,7 @@ from __future__ import annotations
 from collections.abc import Iterable
 from pathlib import Path
 
-from . import _delimited
+from . import _delimited, _excel
 from ._afm import AFM_MAP_READERS
 from ._recipe import Reader, Readers
 from ._spectra import SPECTRA_READERS
@@ -34,7 +35,11 @@ __all__ = ["BUILT_IN", "BUILT_IN_READERS", "pick_reader"]
 BUILT_IN_READERS: tuple[Reader, ...] = (
     Reader("csv", _delimited.suffixes, _delimited.detect, _delimited.load, "sweeps"),
     Reader("csv", _delimited.suffixes, _delimited.detect, _delimited.load, "resonances"),
+    Reader("xlsx", _excel.suffixes, _excel.detect, _excel.loader("sweeps"), "sweeps"),
+    Reader("xlsx", _excel.suffixes, _excel.detect, _excel.loader("resonances"), "resonances"),
     *SPECTRA_READERS,
+    # A workbook of spectra rows: tried first for .xlsx, by its suffix, before the tidy table.
+    Reader("xlsx", _excel.suffixes, _excel.detect, _excel.loader("spectra"), "spectra"),
     *EXPORT_READERS,
     *AFM_MAP_READERS,
     TIDY_READER,

@@ -88,14 +88,24 @@ def pick_export_reader(path, readers: tuple[ExportReader, ...] = EXPORT_READERS)
     """The reader that recognises ``path`` from its first 4 kB (those whose suffix matches are
     tried first). ValueError naming the file and the known formats if none does."""
     path = Path(path)
-    if path.suffix.lower() in _BINARY_SUFFIXES:
-        raise ContactresInputError(
-            f"{path}: a {path.suffix} file is binary; export the data from the instrument "
-            "software as text (tab, semicolon or comma separated)"
-        )
-    found = first_detected(readers, path, read_head(path))
+    binary = path.suffix.lower() in _BINARY_SUFFIXES
+    # A binary file is tried only by the readers that take its suffix (the tidy shift table
+    # on a sheet of an .xlsx workbook), never by the text readers.
+    tried = tuple(r for r in readers if path.suffix.lower() in r.suffixes) if binary else readers
+    found = first_detected(tried, path, read_head(path)) if tried else None
     if found is not None:
         return found
+    if binary:
+        sheet = (
+            "; a workbook is read as the tidy table time_s, overtone, df_Hz, dgamma_Hz on its "
+            "sheet 'shifts' (else its first)"
+            if tried
+            else ""
+        )
+        raise ContactresInputError(
+            f"{path}: a {path.suffix} file is binary; export the data from the instrument "
+            f"software as text (tab, semicolon or comma separated){sheet}"
+        )
     names = ", ".join(r.name for r in readers)
     raise ContactresInputError(
         f"{path}: no export reader recognises its header (formats known: {names}); name one "

@@ -26,7 +26,9 @@ from ._base import COLUMNS, ExportReader, ExportTable, ExportWarning, check_keys
 __all__ = ["CONVENTIONS", "NAME", "READER", "SUFFIXES", "detect", "load"]
 
 NAME = "tidy"
-SUFFIXES = (".csv", ".txt", ".tsv")
+SUFFIXES = (".csv", ".txt", ".tsv", ".xlsx")
+#: The sheet of a workbook read first (else its first sheet).
+SHEET = "shifts"
 SOURCE = "contactres (the tidy QCM-D shift table: contactres.measurements.schema)"
 CONVENTIONS = MappingProxyType(
     {
@@ -53,8 +55,21 @@ _STATED = MappingProxyType(
 def detect(path: Path, head: str) -> bool:
     """True for a header naming ``time_s``, ``overtone`` and ``df_Hz`` (``dgamma_Hz`` is
     checked by :func:`load`, which names it when it is missing) and no ``sweep`` column (an
-    amplitude-sweep table has its own reader)."""
-    names = set(header_names(head))
+    amplitude-sweep table has its own reader); in an Excel workbook (``.xlsx``), the header of
+    its sheet ``shifts`` (else its first sheet)."""
+    if Path(path).suffix.lower() == ".xlsx":
+        from .. import _excel
+
+        try:
+            names = (
+                set(_excel.load_sheet(Path(path), SHEET).columns)
+                if _excel.detect(Path(path), head)
+                else set()
+            )
+        except ContactresInputError:
+            return False  # not a readable sheet: the other readers are tried, then one line
+    else:
+        names = set(header_names(head))
     return {"time_s", "overtone", "df_Hz"} <= names and "sweep" not in names
 
 
@@ -81,6 +96,7 @@ def load(path, **conventions) -> ExportTable:
 
     from ...schema import QCMD_SHIFTS_TABLE as SCHEMA
     from ...schema import check_cells, rule
+    from .. import _excel
     from .._delimited import line_ranges
     from .._delimited import load as read_table
 
@@ -88,7 +104,9 @@ def load(path, **conventions) -> ExportTable:
     check_keys(path, NAME, conventions)
     given = {k: v for k, v in conventions.items() if v is not None}
     _check_conventions(path, given)
-    raw = read_table(path)
+    workbook = path.suffix.lower() == ".xlsx"
+    raw = _excel.load_sheet(path, SHEET) if workbook else read_table(path)
+    where = str(raw.attrs.get("source", path))  # a workbook's cells: its sheet named too
     absent = [c for c in SCHEMA.required if c not in raw.columns]
     if "dgamma_Hz" in absent:
         raise ContactresInputError(
@@ -113,7 +131,7 @@ def load(path, **conventions) -> ExportTable:
         not_number = ~blank & np.isnan(number) & (text.str.lower() != "nan").to_numpy()
         if not_number.any():
             words = rule("number", lambda v: v.astype(bool), "", " is not a number", shown=False)
-            check_cells(raw, str(path), name, (words,), values=~not_number, given=not_number)
+            check_cells(raw, where, name, (words,), values=~not_number, given=not_number)
         if name != "dgamma_Hz" and blank.any():
             words = rule(
                 "not empty",
@@ -122,8 +140,8 @@ def load(path, **conventions) -> ExportTable:
                 " is empty; every row needs a time, an overtone and a Δf",
                 shown=False,
             )
-            check_cells(raw, str(path), name, (words,), values=~blank, given=blank)
-        SCHEMA.check_cells(raw, str(path), name, values=number, given=~blank)
+            check_cells(raw, where, name, (words,), values=~blank, given=blank)
+        SCHEMA.check_cells(raw, where, name, values=number, given=~blank)
         values[name] = number
     if not np.isfinite(values["dgamma_Hz"]).any():
         raise ContactresInputError(
@@ -138,9 +156,10 @@ def load(path, **conventions) -> ExportTable:
             twice |= (keys == keys[k]).all(axis=1)
         lines = raw["line"].to_numpy()[twice]
         raise ContactresInputError(
-            f"{path}: time {values['time_s'][twice][0]:g} s and overtone "
-            f"{int(values['overtone'][twice][0])} appear more than once (lines "
-            f"{line_ranges(lines)}): one row per time and overtone"
+            f"{where}: time {values['time_s'][twice][0]:g} s and overtone "
+            f"{int(values['overtone'][twice][0])} appear more than once "
+            f"({'rows' if workbook else 'lines'} {line_ranges(lines)}): one row per time and "
+            "overtone"
         )
     data = pd.DataFrame(
         {
