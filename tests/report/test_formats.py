@@ -184,3 +184,19 @@ def test_the_paper_figures_take_the_figure_formats(tmp_path):
             assert (out / name).read_bytes()[:5] == b"%PDF-"
         elif name.endswith(".svg"):
             assert ET.parse(out / name).getroot().tag.endswith("svg")
+
+
+@pytest.mark.parametrize(
+    ("word", "option"), [("xlsx", "--save-as xlsx"), ("nc", "--save-as netcdf")]
+)
+def test_format_xlsx_points_to_save_as_before_any_work(tmp_path, word, option):
+    # The issue spelled the workbook `--format xlsx`; --format chooses what is printed, so the
+    # word is answered with the option that writes the file, and nothing is written.
+    out = tmp_path / "q"
+    run = CliRunner().invoke(
+        main, ["qcm", "analyze", str(EXAMPLE), "--out", str(out), "--format", word]
+    )
+    assert run.exit_code == 2
+    lines = run.output.strip().splitlines()
+    assert len(lines) == 1 and option in lines[0] and "plain, csv, json" in lines[0]
+    assert not out.exists()

@@ -230,12 +230,30 @@ class MaterialType(click.ParamType):
 FORMATS = ("plain", "csv", "json")
 
 
+class _PrintFormat(click.Choice):
+    """``--format``'s choices; a file format asked for here (``--format xlsx``, as a user of
+    spreadsheet tools may type) is pointed to ``--save-as``, which writes it."""
+
+    def convert(self, value, param, ctx):
+        word = str(value).strip().lower().lstrip(".")
+        if word in ("xlsx", "excel", "netcdf", "nc"):
+            self.fail(
+                f"{value!r} is a file format, not a way to print: --save-as "
+                f"{'netcdf' if word in ('netcdf', 'nc') else 'xlsx'} writes the tables into OUT "
+                "as one file (qcm analyze, qcm stiffness, qcm particles); --format chooses how "
+                f"the table is printed ({', '.join(FORMATS)})",
+                param,
+                ctx,
+            )
+        return super().convert(value, param, ctx)
+
+
 def format_option(default: str = "plain"):
     """The ``--format plain|csv|json`` option every printing subcommand takes."""
     return click.option(
         "--format",
         "fmt",
-        type=click.Choice(FORMATS),
+        type=_PrintFormat(FORMATS),
         default=default,
         show_default=True,
         help="Output format: aligned text, CSV or JSON (records).",
