@@ -311,17 +311,3 @@ def test_text_cells_a_spreadsheet_would_run_are_neutralised(tmp_path):
     assert back["label"].tolist() == ["'=1+1", "'+x", "'-y", "'@SUM(A1)", "'\tz", "plain", "a=b"]
     assert back["value"].tolist() == [-1.5] * 7  # numbers stay numbers
     assert frame["label"][0] == "=1+1"  # the caller's table is not changed
-
-
-def test_a_column_of_text_and_numbers_is_neutralised_cell_by_cell(tmp_path):
-    """A column mixing text with numbers or blanks (object dtype) takes the per-cell test; one
-    of text only takes pandas' string method (issue 31): both neutralise the same cells."""
-    import pandas as pd
-
-    from contactres.fileio import neutralised
-
-    mixed = pd.DataFrame({"c": pd.Series(["=a", 2.5, None, "-b", "ok"], dtype=object)})
-    text = pd.DataFrame({"c": ["=a", "2.5", "", "-b", "ok"]})
-    assert neutralised(mixed)["c"].tolist()[::3] == ["'=a", "'-b"]
-    assert neutralised(mixed)["c"].tolist()[1] == 2.5
-    assert neutralised(text)["c"].tolist() == ["'=a", "2.5", "", "'-b", "ok"]

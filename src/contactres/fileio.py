@@ -153,17 +153,10 @@ def neutralised(frame):
     text = [c for c in columns if frame[c].dtype.kind == "O" or str(frame[c].dtype) == "str"]
     if not text:
         return frame
-    from pandas.api.types import infer_dtype
-
     out = None
     for c in text:
         col = frame[c]
-        if infer_dtype(col, skipna=False) == "string":
-            # Every cell is text: pandas' own loop (a 512² map's 14 columns of rounded numbers
-            # took 1.3 s through a Python function per cell; issue 31).
-            risky = col.str.startswith(_FORMULA_START).astype(bool)
-        else:
-            risky = col.map(lambda v: isinstance(v, str) and v.startswith(_FORMULA_START))
+        risky = col.map(lambda v: isinstance(v, str) and v.startswith(_FORMULA_START))
         if risky.any():
             out = frame.copy() if out is None else out
             out[c] = col.where(~risky, "'" + col.astype(str))
