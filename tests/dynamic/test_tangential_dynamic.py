@@ -107,7 +107,7 @@ def na123_doubling():
     return dict(zip(ka.tolist(), base, strict=True)), fine, big_size
 
 
-# One k a per test (the doubled basis is the costly part, ~6 s and 6.5 GB each): K/a of a k a
+# One k a per test (the doubled basis is the costly part, ~6 s and 1 GB each): K/a of a k a
 # alone is that of the same k a in a call with smaller ones to round-off (the far grid of a call
 # only adds panels below T₁ k_s a, where the far field is zero), so this is the check of all
 # three at once. `make test` runs a file on one xdist worker (--dist loadfile): one fine table,

@@ -256,6 +256,10 @@ def phase_of(n: np.ndarray) -> np.ndarray:
     return 1j ** ((np.abs(n)[:, None] - np.abs(n)[None, :]) % 4)
 
 
+# The largest block of far-field products H_a H_b formed at once (bytes): 256 MB.
+_FAR_BLOCK_BYTES = 2**28
+
+
 def _dynamic_part(table: TangentialTable, basis: _Basis, ka: np.ndarray, grid) -> np.ndarray:
     """∫ ds (h − h∞)(s/ka) H_a H_b of every basis pair, (na, nb, nb), without the phase;
     ``grid`` is the far-field grid of the whole call (:func:`~.farfield.far_grid`)."""
@@ -293,11 +297,21 @@ def _dynamic_part(table: TangentialTable, basis: _Basis, ka: np.ndarray, grid) -
     far = far_basis(table, ka, grid)  # basis (na, ns, nf)
     jf = spherical_bessel(basis.p_max, grid.s)  # (p, ns)
     hf = basis.series @ jf  # (nrad, ns)
-    prod_f = hf[iu] * hf[ju]  # (npairs, ns)
     nf = far.basis.shape[-1]
     ns = grid.s.size
-    # (na nf, ns) @ (ns, npairs): one product over the grid for every (k a, Chebyshev term).
-    phi = (np.moveaxis(far.basis, -1, 1).reshape(na * nf, ns) @ prod_f.T).reshape(na, nf, -1)
+    # (na nf, ns) @ (ns, npairs): one product over the grid for every (k a, Chebyshev term),
+    # by blocks of pairs: the products H_a H_b of a doubled basis on the far grid are 3 GB
+    # (32,000 pairs x 13,000 points), and their gathering held two such arrays at once (issue
+    # 31: the convergence test peaked at 6.6 GB). A basis whose products fit one block (every
+    # default size) takes one product, as before, so its results are unchanged to the bit.
+    far_rows = np.moveaxis(far.basis, -1, 1).reshape(na * nf, ns)
+    phi = np.empty((na * nf, iu.size))
+    step = max(1, _FAR_BLOCK_BYTES // (8 * ns))
+    for i0 in range(0, iu.size, step):
+        block = slice(i0, i0 + step)
+        prod_f = hf[iu[block]] * hf[ju[block]]  # (pairs of the block, ns)
+        phi[:, block] = far_rows @ prod_f.T
+    phi = phi.reshape(na, nf, -1)
     coef = table.far_coeffs.reshape(-1, 4, nf)  # (nm, 4, nf)
     for m in np.unique(u_m):
         sel = np.flatnonzero(u_m == m)
