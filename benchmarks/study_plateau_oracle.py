@@ -47,6 +47,17 @@ N_DC = 31  # nodes of d_c over its prior range (uniform prior: the mean over the
 N_MU = 9  # Gauss-Hermite nodes of ln μ where μ is known only to a relative error
 
 
+def _judged_blocks(raw: pd.DataFrame, media):
+    """(configuration, medium, experiment, F_N) and the points of every load block of ``media``
+    without drift whose ramps 2-4 are Cattaneo-Mindlin or plateau loops (those ramps only)."""
+    judged = raw[(raw["ramp"] > 1) & raw["true_model"].isin(["cattaneo-mindlin", "plateau"])]
+    judged = judged[judged["medium"].isin(media)]
+    keys = ["configuration", "medium", "experiment", "normal_force_N"]
+    for key, block in judged.groupby(keys, sort=False):
+        if not block["true_drift"].any():
+            yield key, block
+
+
 def _likelihoods(study, block, g, mu_nodes):
     """ln L of every sweep of ``block`` (rows: sweeps) under CM at each μ node (S, M) and
     under the plateau at each μ node and d_c node (S, M, D): Gaussian, σ of the group."""
@@ -101,12 +112,7 @@ def block_log_odds(study, raw: pd.DataFrame, mu_sd: float, media=("air", "water"
     else:
         x, lnw = np.zeros(1), np.zeros(1)
     rows = []
-    judged = raw[(raw["ramp"] > 1) & raw["true_model"].isin(["cattaneo-mindlin", "plateau"])]
-    judged = judged[judged["medium"].isin(media)]
-    keys = ["configuration", "medium", "experiment", "normal_force_N"]
-    for key, block in judged.groupby(keys, sort=False):
-        if block["true_drift"].any():
-            continue
+    for key, block in _judged_blocks(raw, media):
         mu_nodes = block["true_mu"].iloc[0] * np.exp(mu_sd * x)
         names, l_cm, l_pl = _likelihoods(study, block, groups[(key[0], key[1])], mu_nodes)
         # A sweep alone: marginal over μ (and d_c) of its own likelihood.
@@ -171,12 +177,7 @@ def unknown_stiffness_log_odds(study, raw: pd.DataFrame, mu_sd: float, media=("w
     lnw = np.zeros(N_THETA) if not np.isfinite(mu_sd) else -0.5 * (dln / mu_sd) ** 2
     lnw = lnw - logsumexp(lnw)
     rows = []
-    judged = raw[(raw["ramp"] > 1) & raw["true_model"].isin(["cattaneo-mindlin", "plateau"])]
-    judged = judged[judged["medium"].isin(media)]
-    keys = ["configuration", "medium", "experiment", "normal_force_N"]
-    for key, block in judged.groupby(keys, sort=False):
-        if block["true_drift"].any():
-            continue
+    for key, block in _judged_blocks(raw, media):
         g = groups[(key[0], key[1])]
         u = np.asarray(g.amplitudes, float)
         first = block.iloc[0]
