@@ -17,7 +17,12 @@ from its own points) are fitted by weighted least squares with a power law ln μ
 (at least :data:`MU_PRIOR_MIN_LOADS` of them, weights 1/(relative error)²); the prior of this
 block is its prediction, with the variance of the prediction (scaled by the reduced χ² of the
 fit where that exceeds 1: a law that scatters more than its errors says is a broader prior).
-Leaving the block out keeps the prior independent of the block's own data.
+Leaving the block out keeps the prior independent of the block's own data. The exponent b is a
+property of the interface (configuration and medium), the level a of the mounting: so the
+experiments of one configuration in one medium share b (``group``; each keeps its own a), and
+their other loads all inform the block's prior. In water, where a block's μ has an error of
+10-30 %, a slope from the 3-5 other loads of one experiment is loose; shared over the 4
+experiments of the validation study it no longer adds much to the prior's variance.
 
 The class criterion then uses that prior (:func:`prior_penalty`). The BIC charges each parameter
 ln N, the Laplace approximation of a unit-information prior (Kass & Raftery, J. Am. Stat. Assoc.
@@ -63,7 +68,13 @@ MU_PRIOR_MAX_REL = 1.0
 MU_PRIOR_MIN_LOADS = 3
 
 
-def reference_mu(experiment: np.ndarray, force: np.ndarray, mu: np.ndarray, mu_err: np.ndarray):
+def reference_mu(
+    experiment: np.ndarray,
+    force: np.ndarray,
+    mu: np.ndarray,
+    mu_err: np.ndarray,
+    group: np.ndarray | None = None,
+):
     """The prior of ln μ of every load block from the other blocks of its experiment.
 
     Parameters
@@ -71,16 +82,21 @@ def reference_mu(experiment: np.ndarray, force: np.ndarray, mu: np.ndarray, mu_e
     experiment : (B,) a code of each block's experiment (configuration, medium, mounting)
     force : (B,) normal force F_N of each block, N
     mu, mu_err : (B,) μ of each block and its standard error (NaN: none)
+    group : (B,) a code of each block's configuration and medium, or None. Given, the
+        experiments of one group share the exponent b of the power law, each with its own level
+        a (ln μ = a_e + b ln F_N, weighted least squares over all other blocks of the group);
+        None: every experiment has its own a and b
 
     Returns
     -------
     mean, var : (B,) the prior mean and variance of ln μ (module docstring: the weighted power
-        law ln μ = a + b ln F_N of the experiment's other blocks, its prediction at this F_N and
-        the variance of that prediction, scaled by the reduced χ² where it exceeds 1); NaN
-        where fewer than :data:`MU_PRIOR_MIN_LOADS` other blocks have a μ or their loads do not
-        span two values
+        law of the other blocks, its prediction at this F_N and the variance of that
+        prediction, scaled by the reduced χ² where it exceeds 1); NaN where fewer than
+        :data:`MU_PRIOR_MIN_LOADS` other blocks of the block's experiment have a μ or their
+        loads do not span two values
     """
     experiment = np.asarray(experiment)
+    group = np.asarray(experiment if group is None else group)
     lnF = np.log(np.asarray(force, dtype=float))
     mu = np.asarray(mu, dtype=float)
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -89,18 +105,30 @@ def reference_mu(experiment: np.ndarray, force: np.ndarray, mu: np.ndarray, mu_e
     good = np.isfinite(y) & np.isfinite(rel) & (rel > 0) & np.isfinite(lnF)
     mean = np.full(len(mu), np.nan)
     var = np.full(len(mu), np.nan)
-    for e in np.unique(experiment):
-        members = np.flatnonzero(experiment == e)
+    for g in np.unique(group):
+        members = np.flatnonzero(group == g)
         for i in members:
             o = members[(members != i) & good[members]]
-            if o.size < MU_PRIOR_MIN_LOADS or np.ptp(lnF[o]) <= 0:
+            own = o[experiment[o] == experiment[i]]
+            if own.size < MU_PRIOR_MIN_LOADS or np.ptp(lnF[own]) <= 0:
                 continue
+            # Design: one level per experiment among the others, one shared exponent.
+            levels, col = np.unique(experiment[o], return_inverse=True)
+            X = np.zeros((o.size, levels.size + 1))
+            X[np.arange(o.size), col] = 1.0
+            X[:, -1] = lnF[o]
             w = 1.0 / rel[o] ** 2
-            X = np.column_stack([np.ones(o.size), lnF[o]])
             cov = np.linalg.inv(X.T @ (w[:, None] * X))
             beta = cov @ (X.T @ (w * y[o]))
-            chi2 = float(np.sum(w * (y[o] - X @ beta) ** 2)) / (o.size - 2)
-            x = np.array([1.0, lnF[i]])
+            # The scatter that widens the prior is the block's own experiment's about the law
+            # (its level a and the shared b): a mounting whose other loads scatter (a plateau
+            # among them read with a high μ) must not borrow confidence from the others.
+            mine = experiment[o] == experiment[i]
+            dof = own.size - (1 if levels.size > 1 else 2)
+            chi2 = float(np.sum(w[mine] * (y[o] - X @ beta)[mine] ** 2)) / dof
+            x = np.zeros(levels.size + 1)
+            x[np.searchsorted(levels, experiment[i])] = 1.0
+            x[-1] = lnF[i]
             mean[i] = x @ beta
             var[i] = float(x @ cov @ x) * max(chi2, 1.0)
     return mean, var
@@ -147,7 +175,8 @@ def mu_prior_penalties(
     mu, err, _ = model_averaged_mu(blocks, joint, P)
     mu = np.where(usable, mu, np.nan)
     experiment = blocks.groupby(["configuration", "medium", "experiment"], sort=False).ngroup()
-    mean, var = reference_mu(experiment.to_numpy(), F, mu, err)
+    group = blocks.groupby(["configuration", "medium"], sort=False).ngroup()
+    mean, var = reference_mu(experiment.to_numpy(), F, mu, err, group.to_numpy())
     n = blocks["n_points"].to_numpy(float)
     out = {}
     for key in COULOMB_LOOPS:
