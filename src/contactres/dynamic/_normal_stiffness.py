@@ -61,6 +61,7 @@ import math
 
 import numpy as np
 
+from .._threads import one_blas_thread
 from ..errors import ContactresInputError
 from ..halfspace import shear_reference
 from ..materials import Material, require_material
@@ -278,8 +279,6 @@ def _direct(table, flat, names, rtol, chunk, span=None, refine=0) -> dict[str, n
     smax = float(np.max(pos, initial=0.0))
     grid = far_grid(table, float(np.min(pos))) if pos.size else None
     size = galerkin_size(smax, rtol, refine=refine)
-    # No threadpool_limits: process-wide, it would let threads sharing a table (test_prepared.py)
-    # change each other's last digits; one BLAS thread was no faster (7 models, 41 points).
     far_op = far_operator(table, grid) if approx and grid is not None else None
     plan = galerkin_plan(table, size, grid.s if grid else None) if "exact" in names else None
     for lo in range(0, flat.size, chunk):
@@ -296,6 +295,12 @@ def _direct(table, flat, names, rtol, chunk, span=None, refine=0) -> dict[str, n
     return n_out
 
 
+# One BLAS thread around all the work, table included (contactres._threads): one BLAS thread
+# is no slower and much cheaper. Measured on 2 cores, 41 points of a new material, all seven
+# models: 81 ms of CPU with OpenBLAS's default two threads, 38 ms with one
+# (OPENBLAS_NUM_THREADS=1), no gain in wall time from the second thread (issue 31). Threads
+# sharing a prepared table get the bits of a serial run (tests/dynamic/test_prepared.py).
+@one_blas_thread()
 def dcsf_models(
     m: Material,
     ka,
@@ -324,6 +329,7 @@ def dcsf_models(
     return evaluate_models(table, ksa, names, rtol, chunk=chunk, interpolate=interpolate)
 
 
+@one_blas_thread()  # as dcsf_models (free inside its context)
 def evaluate_models(
     table: KernelTable,
     ksa: np.ndarray,
@@ -504,6 +510,7 @@ def dynamic_contact_stiffness(
     return complex(out) if out.ndim == 0 else out
 
 
+@one_blas_thread()  # as dcsf_models
 def contact_displacement(
     m: Material,
     ka,
@@ -553,6 +560,7 @@ def contact_displacement(
     return out
 
 
+@one_blas_thread()  # as dcsf_models
 def contact_pressure(
     m: Material,
     ka,

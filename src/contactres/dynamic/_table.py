@@ -29,6 +29,7 @@ from dataclasses import dataclass, fields, replace
 import numpy as np
 from scipy import special
 
+from .._threads import one_blas_thread
 from ..errors import ContactresInputError
 from ..halfspace import dynamic_kernel, shear_reference, static_kernel
 from ..materials import Material, require_material, voigt_to_tensor
@@ -326,6 +327,8 @@ def prepare(m: Material, loss: float = 0.0, rtol: float = 1e-6) -> KernelTable:
     return replace(table, rtol=float(rtol))
 
 
+# Batched 3x3 eigenproblems and solves: one BLAS thread (contactres._threads).
+@one_blas_thread()
 def kernel_table(m: Material, loss: float = 0.0, resolution: Resolution | None = None):
     """The :class:`KernelTable` of the undamped material ``m`` (surface frame) with loss Q⁻¹
     for an explicit :class:`Resolution` (default: ``Resolution()``). Not cached."""

@@ -55,6 +55,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import special
 
+from .._threads import one_blas_thread
 from ..errors import ContactresInputError
 from ._farfield import far_basis, far_grid
 from ._tangential_static import CAUCHY_POINTS, CAUCHY_RADIUS, load_derivatives, radial_integrals
@@ -369,6 +370,8 @@ def film_dynamic(table: TangentialTable, basis: _Basis, ka: np.ndarray, grid) ->
     return phase_of(basis.n)[None] * _dynamic_part(table, basis, ka, grid)
 
 
+# Galerkin matrices of a few dozen unknowns, their solves: one BLAS thread (contactres._threads)
+@one_blas_thread()
 def tangential_per_a(
     table: TangentialTable, ksa: np.ndarray, size: TangentialSize | None = None
 ) -> np.ndarray:

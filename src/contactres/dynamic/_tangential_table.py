@@ -21,6 +21,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .._threads import one_blas_thread
 from ..errors import ContactresInputError
 from ..halfspace import scaled_tensor, shear_reference, surface_compliance
 from ..materials import Material, require_material
@@ -147,6 +148,8 @@ def angular_harmonics(values: np.ndarray, max_order: int) -> np.ndarray:
     return (2 * np.pi / n) * np.fft.fft(values, axis=1)[:, (-orders) % n]
 
 
+# 3x3 solves of the in-plane kernel, its Chebyshev fit: one BLAS thread (contactres._threads).
+@one_blas_thread()
 def prepare_tangential(
     m: Material,
     loss: float = 0.0,
