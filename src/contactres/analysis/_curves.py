@@ -158,7 +158,16 @@ def fitted_curves(
         [exact_model(m, lf) for m, lf in zip(sw["model"], sw["limits_from"], strict=True)],
         dtype=object,
     )
-    grid = {n: np.linspace(0.0, u_max, n, axis=-1) for n in grids}  # row i: 0 to u_max[i]
+    # The columns of the result, each grid's rows a (S, n) view: filled in place, no copies.
+    sizes = [S * n for n in grids]
+    amplitude, shifts = np.empty(sum(sizes)), np.full((2, sum(sizes)), np.nan)  # Δf, ΔΓ
+    ends = np.cumsum(sizes)
+    grid, curves = {}, {}
+    for n, end, size in zip(grids, ends, sizes, strict=True):
+        at = slice(end - size, end)
+        grid[n] = amplitude[at].reshape(S, n)
+        grid[n][:] = np.linspace(0.0, u_max, n, axis=-1)  # row i: 0 to u_max[i]
+        curves[n] = (shifts[0, at].reshape(S, n), shifts[1, at].reshape(S, n))
     # Every (grid, model, chunk of sweeps) is one call of the model function.
     tasks: list[tuple[int, str, np.ndarray]] = []
     for n in grids:
@@ -171,7 +180,6 @@ def fitted_curves(
     # sent (a pool), and each result is put in place as it arrives.
     values = (_parameters(sw, fits, rows, k) for _, k, rows in tasks)
     grids_of = (grid[n][rows] for n, _, rows in tasks)
-    curves = {n: (np.full((S, n), np.nan), np.full((S, n), np.nan)) for n in grids}
     with ExitStack() as stack:
         if workers > 1 and len(tasks) > 1:
             pool = stack.enter_context(ProcessPoolExecutor(min(workers, len(tasks))))
@@ -182,19 +190,15 @@ def fitted_curves(
             if fg is None:  # some sweep of the chunk has no curve: find which, one by one
                 fg = _one_by_one(sw, fits, rows, k, grid[n][rows])
             curves[n][0][rows], curves[n][1][rows] = fg
-    parts = [
-        pd.DataFrame(
-            {
-                "sweep": np.repeat(sw["sweep"].to_numpy(dtype=object), n),
-                "grid_points": np.full(S * n, n, dtype=np.int64),
-                "amplitude_m": grid[n].ravel(),
-                "df_model_Hz": curves[n][0].ravel(),
-                "dgamma_model_Hz": curves[n][1].ravel(),
-            }
-        )
-        for n in grids
-    ]
-    return pd.concat(parts, ignore_index=True)
+    ids = sw["sweep"].to_numpy(dtype=object)
+    columns = {
+        "sweep": np.concatenate([np.repeat(ids, n) for n in grids]),
+        "grid_points": np.repeat(np.asarray(grids, dtype=np.int64), sizes),
+        "amplitude_m": amplitude,
+        "df_model_Hz": shifts[0],
+        "dgamma_model_Hz": shifts[1],
+    }
+    return pd.DataFrame(columns, copy=False)
 
 
 def sweep_rows(table: pd.DataFrame) -> dict:
