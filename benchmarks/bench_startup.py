@@ -1,14 +1,21 @@
-"""Benchmark: start-up time of ``import contactres`` and of ``contactres --help``.
+"""Benchmark: start-up time of ``import contactres`` and of ``contactres --help``, and the
+imports of the first real use of the sweep analysis.
 
 Target (issue 10): each under 0.5 s on the 2-core reference machine, because every CLI call and
 every script pays it. Each figure is the best of 5 runs of a fresh interpreter (a subprocess),
 so it includes the interpreter's own start, which is printed too for reference.
+
+The first real use (issue 31): ``import contactres; contactres.analyze`` loads the analysis
+with numpy, pandas and scipy.special; its CPU time (user + system of the fresh interpreter,
+best of 5, the bare interpreter's subtracted) is held against 0.3 s. numpy + pandas +
+scipy.special alone are printed beside it: the floor of any import of the analysis.
 
 Run: ``.venv/bin/python benchmarks/bench_startup.py``.
 """
 
 from __future__ import annotations
 
+import resource
 import subprocess
 import sys
 import time
@@ -18,6 +25,7 @@ from pathlib import Path
 from _verdict import exit_code, target
 
 TARGET_S = 0.5
+FIRST_USE_CPU_S = 0.3
 RUNS = 5
 
 
@@ -28,6 +36,17 @@ def best_of(argv: Sequence[str], runs: int = RUNS) -> float:
         t0 = time.perf_counter()
         subprocess.run(argv, check=True, stdout=subprocess.DEVNULL)
         times.append(time.perf_counter() - t0)
+    return min(times)
+
+
+def best_cpu(argv: Sequence[str], runs: int = RUNS) -> float:
+    """The least CPU time (user + system, s) of ``runs`` runs of ``argv`` (each must exit 0)."""
+    times = []
+    for _ in range(runs):
+        before = resource.getrusage(resource.RUSAGE_CHILDREN)
+        subprocess.run(argv, check=True, stdout=subprocess.DEVNULL)
+        after = resource.getrusage(resource.RUSAGE_CHILDREN)
+        times.append(sum(getattr(after, k) - getattr(before, k) for k in ("ru_utime", "ru_stime")))
     return min(times)
 
 
@@ -48,6 +67,13 @@ def main() -> int:
             "contactres qcm analyze --help", best_of([*cli, "qcm", "analyze", "--help"]), TARGET_S
         ),
     ]
+    bare_cpu = best_cpu([python, "-c", "pass"])
+    floor = best_cpu([python, "-c", "import numpy, pandas, scipy.special"]) - bare_cpu
+    first = best_cpu([python, "-c", "import contactres; contactres.analyze"]) - bare_cpu
+    print(f"  numpy + pandas + scipy.special: {floor:.3f} s CPU (the floor of the next line)")
+    results.append(
+        target("imports of the first use, contactres.analyze (CPU)", first, FIRST_USE_CPU_S)
+    )
     return exit_code(results)
 
 

@@ -151,12 +151,13 @@ def neutralised(frame):
     if columns is None:  # not a table: written as the caller's to_csv writes it
         return frame
     text = [c for c in columns if frame[c].dtype.kind == "O" or str(frame[c].dtype) == "str"]
-    if not text:
-        return frame
-    out = None
+    out = None  # (no text column: frame itself)
     for c in text:
         col = frame[c]
-        risky = col.map(lambda v: isinstance(v, str) and v.startswith(_FORMULA_START))
+        # Each distinct cell looked at once (a curves table repeats 10^5 sweep ids 30 times).
+        risky = col.isin(
+            [v for v in col.unique() if isinstance(v, str) and v.startswith(_FORMULA_START)]
+        )
         if risky.any():
             out = frame.copy() if out is None else out
             out[c] = col.where(~risky, "'" + col.astype(str))

@@ -94,3 +94,35 @@ def test_the_command_loads_no_solver_without_materials(tmp_path):
     assert run.returncode == 0, run.stderr
     assert (tmp_path / "out" / "summary.json").exists()
     assert json.loads(run.stdout.splitlines()[-1]) == []
+
+
+def test_the_first_use_of_analyze_imports_neither_scipy_stats_nor_optimize():
+    """``import contactres; contactres.analyze`` (the first real use, issue 31) leaves out
+    scipy.stats (~0.5 s) and scipy.optimize (~0.15 s): the analysis imports them where used."""
+    code = (
+        "import sys, json, contactres\n"
+        "contactres.analyze\n"
+        "print(json.dumps(sorted(m for m in sys.modules\n"
+        "    if m.startswith(('scipy.stats', 'scipy.optimize')))))\n"
+    )
+    env = dict(os.environ)
+    env["PYTHONPATH"] = os.pathsep.join([*sys.path])
+    run = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, env=env, timeout=600
+    )
+    assert run.returncode == 0, run.stderr
+    assert json.loads(run.stdout.splitlines()[-1]) == []
+
+
+def test_the_student_factor_is_scipy_stats_quantile():
+    """t95_factor (scipy.special.stdtrit) against scipy.stats' Student t quantile, NaN below one
+    degree of freedom."""
+    import numpy as np
+    from scipy import stats
+
+    from contactres.analysis._jkr import t95_factor
+
+    dof = np.array([0.0, 0.5, 1.0, 2.0, 3.0, 7.5, 30.0, 1e6, np.nan])
+    expected = stats.t.ppf(0.975, np.where(dof >= 1, dof, np.nan))
+    np.testing.assert_array_equal(t95_factor(dof), expected)
+    assert float(t95_factor(3.0)) == pytest.approx(3.182446305284263, rel=1e-12)

@@ -74,3 +74,29 @@ def test_the_fitted_curves_are_tables_of_the_results_folder():
         model = np.interp(part["normal_force_N"], group["normal_force_N"], group["df0_model_Hz"])
         spread = 3 * part["df0_Hz_sd"].fillna(0).to_numpy() + 0.05 * np.abs(model)
         assert np.all(np.abs(part["df0_Hz_mean"].to_numpy() - model) <= spread), (config, medium)
+
+
+def test_two_worker_processes_write_the_files_of_one_byte_for_byte(tmp_path):
+    """issue 31: the per-sweep fits, the block choice and the fitted curves in 2 worker
+    processes give the results folder of the serial run, byte for byte (summary.json but for
+    its record of the setting ``workers``; manifest.json, which holds the time of the run and
+    the checksums of the files, left out)."""
+    import json
+
+    from contactres.report import report_set, write_report
+
+    folders = {}
+    for workers in (1, 2):
+        settings = qcm_sweeps.Settings(bootstrap=20, workers=workers)
+        out = tmp_path / f"workers{workers}"
+        with report_set(qcm_sweeps.Result, out, ("csv", "json")) as rs:
+            write_report(qcm_sweeps.run(SWEEPS, settings), rs, ("csv", "json"))
+        folders[workers] = out
+    names = sorted(p.name for p in folders[1].iterdir())
+    assert names == sorted(p.name for p in folders[2].iterdir()) and "curves.csv" in names
+    for name in set(names) - {"manifest.json"}:
+        one, two = ((folders[w] / name).read_bytes() for w in (1, 2))
+        if name == "summary.json":
+            one, two = (json.loads(b) for b in (one, two))
+            assert (one["settings"].pop("workers"), two["settings"].pop("workers")) == (1, 2)
+        assert one == two, name

@@ -49,6 +49,29 @@ def test_reads_comma_csv_and_fills_constants(tmp_path):
     assert path.read_bytes() == before  # input never modified
 
 
+def test_white_space_around_cells_and_dropped_lines_do_not_change_the_table(tmp_path):
+    """Labels and numbers padded with white space (blanks, a tab, no-break spaces U+00A0,
+    which pandas' number parser does not skip) read as the clean table; so does the same file
+    with a comment and a blank line (read line by line) instead of as a whole (issue 31)."""
+    f = good_frame()
+    clean = read_sweeps(write(tmp_path, f, "clean.csv"), **CONST).data
+    padded = f.astype(str)
+    padded["sweep"] = "  " + padded["sweep"] + "\t"
+    padded["medium"] = "\u00a0" + padded["medium"]
+    padded["df_Hz"] = " " + padded["df_Hz"] + "  "
+    padded["dgamma_Hz"] = "\u00a0" + padded["dgamma_Hz"] + "\u00a0"
+    got = read_sweeps(write(tmp_path, padded, "padded.csv"), **CONST).data
+    pd.testing.assert_frame_equal(got, clean, check_exact=True)
+    text = (tmp_path / "clean.csv").read_text().splitlines()
+    dropped = tmp_path / "dropped.csv"
+    dropped.write_text("\n".join([*text[:3], "# a comment", "", *text[3:]]) + "\n")
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", SweepWarning)  # the comment line is said
+        got = read_sweeps(dropped, **CONST).data
+    np.testing.assert_array_equal(got["line"], np.r_[2, 3, 6 : len(clean) + 4])
+    pd.testing.assert_frame_equal(got.drop(columns="line"), clean.drop(columns="line"))
+
+
 def test_semicolon_and_decimal_comma_give_the_same_table(tmp_path):
     f = good_frame()
     a = read_sweeps(write(tmp_path, f, "a.csv"), **CONST).data

@@ -19,6 +19,8 @@ steps.
 from __future__ import annotations
 
 from collections.abc import Mapping
+from concurrent.futures import ProcessPoolExecutor
+from contextlib import ExitStack
 
 import numpy as np
 import pandas as pd
@@ -43,6 +45,10 @@ FIGURE_POINTS = 100
 PAGE_POINTS = 30
 #: The grids of :func:`fitted_curves`, by number of points.
 CURVE_GRIDS = (FIGURE_POINTS, PAGE_POINTS)
+#: Curve points (sweeps x grid points) per call of a model function. An exact loop's
+#: quadrature holds ~24 nodes per point and sub-interval: one call for 10^5 sweeps of 100
+#: points took ~20 GB; chunks of this size keep its temporaries at a few MB.
+CHUNK_POINTS = 2**14
 #: Points of the JKR + Mindlin curve of a group (Fig. 5), from F_N = 0 to 1.05 times the
 #: configuration's largest load.
 JKR_POINTS = 100
@@ -84,32 +90,48 @@ def _values_of(sw: pd.DataFrame, fits: Fits, rows: np.ndarray, key: str) -> tupl
     return table, at
 
 
-def _curves_of(sw: pd.DataFrame, fits: Fits, rows: np.ndarray, key: str, grid: np.ndarray) -> tuple:
-    """Δf, ΔΓ (Hz) of the model ``key`` for the sweeps ``rows`` on ``grid`` (rows, N).
-
-    One call of the model function for all of them (its parameters broadcast along the
-    sweeps); where that fails (a sweep without a usable fit, e.g. NaN parameters that a loop's
-    quadrature refuses) sweep by sweep, NaN for a sweep that fails alone."""
-    model = REGISTRY[key]
+def _parameters(sw: pd.DataFrame, fits: Fits, rows: np.ndarray, key: str) -> dict:
+    """The fitted values of the model ``key`` for the sweeps ``rows``, (rows, 1) each."""
     table, at = _values_of(sw, fits, rows, key)
-    values = {q.key: table[q.column].to_numpy(float)[at][:, None] for q in model.parameters}
+    return {q.key: table[q.column].to_numpy(float)[at][:, None] for q in REGISTRY[key].parameters}
+
+
+def _model_on(key: str, values: dict[str, np.ndarray], grid: np.ndarray) -> tuple | None:
+    """Δf, ΔΓ (Hz) of the model ``key`` with ``values`` ((rows, 1) each) on ``grid`` (rows, N),
+    or None where the model function refuses some sweep of the batch (a picklable call for
+    :func:`fitted_curves`)."""
     try:
-        f, g = model.function(grid, **values)
-        return np.broadcast_to(f, grid.shape), np.broadcast_to(g, grid.shape)
-    except ContactresInputError:  # some sweep of the batch has no curve: find which, one by one
-        f, g = np.full(grid.shape, np.nan), np.full(grid.shape, np.nan)
-        for j, (i, k) in enumerate(zip(rows, at, strict=True)):
-            loop = table.iloc[k] if table is not sw else None
-            try:
-                f[j], g[j] = model_curves(sw.iloc[i], grid[j], loop)
-            except ContactresInputError:  # no curve for this sweep: its points are drawn alone
-                continue
-        return f, g
+        f, g = REGISTRY[key].function(grid, **values)
+    except ContactresInputError:
+        return None
+    return np.broadcast_to(f, grid.shape), np.broadcast_to(g, grid.shape)
 
 
-def fitted_curves(sw: pd.DataFrame, p: Padded, fits: Fits, grids=CURVE_GRIDS) -> pd.DataFrame:
+def _one_by_one(sw: pd.DataFrame, fits: Fits, rows: np.ndarray, key: str, grid: np.ndarray):
+    """Δf, ΔΓ (Hz) of the model ``key`` for the sweeps ``rows`` on ``grid`` (rows, N), sweep
+    by sweep: NaN for a sweep that fails alone (where the batch of :func:`_model_on` failed)."""
+    table, at = _values_of(sw, fits, rows, key)
+    f, g = np.full(grid.shape, np.nan), np.full(grid.shape, np.nan)
+    for j, (i, k) in enumerate(zip(rows, at, strict=True)):
+        loop = table.iloc[k] if table is not sw else None
+        try:
+            f[j], g[j] = model_curves(sw.iloc[i], grid[j], loop)
+        except ContactresInputError:  # no curve for this sweep: its points are drawn alone
+            continue
+    return f, g
+
+
+def fitted_curves(
+    sw: pd.DataFrame, p: Padded, fits: Fits, grids=CURVE_GRIDS, workers: int = 1
+) -> pd.DataFrame:
     """The chosen model of every sweep of ``sw`` on each grid of ``grids`` (see the module
     docstring).
+
+    The model function of each class is called once per chunk of sweeps (at most
+    :data:`CHUNK_POINTS` curve points, its parameters broadcast along the sweeps); where a
+    chunk fails (a sweep without a usable fit, e.g. NaN parameters that a loop's quadrature
+    refuses) its sweeps are evaluated one by one, NaN for a sweep that fails alone. Each curve
+    depends on its own sweep's values only, so chunks and processes do not change it.
 
     Parameters
     ----------
@@ -120,6 +142,7 @@ def fitted_curves(sw: pd.DataFrame, p: Padded, fits: Fits, grids=CURVE_GRIDS) ->
     fits : the fit table of each model (:func:`contactres.analysis._models.fit_tables`,
         ``Results.fits``): the exact loops' values, by sweep
     grids : numbers of grid points (each a grid from 0 to the largest amplitude)
+    workers : processes for the chunks (1: none, in this process)
 
     Returns
     -------
@@ -129,32 +152,53 @@ def fitted_curves(sw: pd.DataFrame, p: Padded, fits: Fits, grids=CURVE_GRIDS) ->
         per grid, sweep after sweep in the order of ``sw``.
     """
     S = len(sw)
-    index = {s: i for i, s in enumerate(p.sweeps)}
-    rows_p = np.array([index[s] for s in sw["sweep"]], dtype=np.intp)
-    u_max = np.array([p.points(i)[0].max() for i in rows_p]) if S else np.zeros(0)
+    rows_p = pd.Index(p.sweeps).get_indexer(sw["sweep"].to_numpy())
+    u_max = p.u_max[rows_p]  # the points of a sweep are in ascending amplitude
     key = np.array(
         [exact_model(m, lf) for m, lf in zip(sw["model"], sw["limits_from"], strict=True)],
         dtype=object,
     )
-    parts = []
+    # The columns of the result, each grid's rows a (S, n) view: filled in place, no copies.
+    sizes = [S * n for n in grids]
+    amplitude, shifts = np.empty(sum(sizes)), np.full((2, sum(sizes)), np.nan)  # Δf, ΔΓ
+    ends = np.cumsum(sizes)
+    grid, curves = {}, {}
+    for n, end, size in zip(grids, ends, sizes, strict=True):
+        at = slice(end - size, end)
+        grid[n] = amplitude[at].reshape(S, n)
+        grid[n][:] = np.linspace(0.0, u_max, n, axis=-1)  # row i: 0 to u_max[i]
+        curves[n] = (shifts[0, at].reshape(S, n), shifts[1, at].reshape(S, n))
+    # Every (grid, model, chunk of sweeps) is one call of the model function.
+    tasks: list[tuple[int, str, np.ndarray]] = []
     for n in grids:
-        grid = np.linspace(0.0, u_max, n, axis=-1)  # (S, n): row i is linspace(0, u_max[i], n)
-        f, g = np.full(grid.shape, np.nan), np.full(grid.shape, np.nan)
         for k in sorted({k for k in key if k is not None}):
             rows = np.flatnonzero(key == k)
-            f[rows], g[rows] = _curves_of(sw, fits, rows, k, grid[rows])
-        parts.append(
-            pd.DataFrame(
-                {
-                    "sweep": np.repeat(sw["sweep"].to_numpy(dtype=object), n),
-                    "grid_points": np.full(S * n, n, dtype=np.int64),
-                    "amplitude_m": grid.ravel(),
-                    "df_model_Hz": f.ravel(),
-                    "dgamma_model_Hz": g.ravel(),
-                }
-            )
-        )
-    return pd.concat(parts, ignore_index=True)
+            size = max(1, CHUNK_POINTS // n)
+            tasks.extend((n, k, chunk) for chunk in np.split(rows, range(size, rows.size, size)))
+    keys = [k for _, k, _ in tasks]
+    # Generators: each chunk's parameters and grid are made when its call comes (serial) or
+    # sent (a pool), and each result is put in place as it arrives.
+    values = (_parameters(sw, fits, rows, k) for _, k, rows in tasks)
+    grids_of = (grid[n][rows] for n, _, rows in tasks)
+    with ExitStack() as stack:
+        if workers > 1 and len(tasks) > 1:
+            pool = stack.enter_context(ProcessPoolExecutor(min(workers, len(tasks))))
+            done = pool.map(_model_on, keys, values, grids_of, chunksize=4)
+        else:
+            done = map(_model_on, keys, values, grids_of)
+        for (n, k, rows), fg in zip(tasks, done, strict=True):
+            if fg is None:  # some sweep of the chunk has no curve: find which, one by one
+                fg = _one_by_one(sw, fits, rows, k, grid[n][rows])
+            curves[n][0][rows], curves[n][1][rows] = fg
+    ids = sw["sweep"].to_numpy(dtype=object)
+    columns = {
+        "sweep": np.concatenate([np.repeat(ids, n) for n in grids]),
+        "grid_points": np.repeat(np.asarray(grids, dtype=np.int64), sizes),
+        "amplitude_m": amplitude,
+        "df_model_Hz": shifts[0],
+        "dgamma_model_Hz": shifts[1],
+    }
+    return pd.DataFrame(columns, copy=False)
 
 
 def sweep_rows(table: pd.DataFrame) -> dict:

@@ -439,7 +439,7 @@ def analyze(
         laws = apply_coating(groups, exp, sw[used], coating, settings.bootstrap, settings.seed, say)
 
     say("the fitted curves of every sweep")
-    curves = fitted_curves(sw, padded, fits)
+    curves = fitted_curves(sw, padded, fits, workers=settings.workers)
     jkr = jkr_curves(groups, loads, laws=laws)
 
     radiation = None

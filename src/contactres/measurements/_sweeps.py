@@ -32,7 +32,7 @@ from ..errors import ContactresInputError
 from ..units import ABSOLUTE_FREQUENCY_FRACTION, MIN_SWEEP_POINTS, SMALL_LOAD_LIMIT
 from ._messages import at_cell, column_names, line_word, shown_value, where_rows
 from .readers import BUILT_IN, SweepReader, line_ranges
-from .schema import FINITE, SWEEP_TABLE, check_cells, check_value
+from .schema import FINITE, SWEEP_TABLE, check_cells, check_value, stripped
 
 if sys.version_info >= (3, 11):
     import tomllib
@@ -331,11 +331,18 @@ def file_sha256(path) -> str | None:
 
 
 def _numeric(raw: pd.DataFrame, col: str, source: str, decimal: str) -> np.ndarray:
-    s = raw[col].astype(str).str.strip()
+    text = raw[col].astype(str)
+    # pandas' parser (C) skips the ASCII white space around a number: a cell it reads as
+    # written reads the same stripped. Only the others (NaN so far: a decimal comma, other
+    # white space, "nan", a word) are stripped and read again, cell by cell in Python.
+    values = pd.to_numeric(text, errors="coerce").to_numpy(dtype=float, copy=True)
+    again = np.flatnonzero(np.isnan(values))
+    s = pd.Series(stripped(text.iloc[again]), dtype=object)
     if decimal == ",":
         s = s.str.replace(",", ".", regex=False)
-    values = pd.to_numeric(s, errors="coerce").to_numpy(dtype=float)
-    bad = np.isnan(values) & ~s.str.lower().isin(["nan"]).to_numpy()
+    values[again] = pd.to_numeric(s, errors="coerce").to_numpy(dtype=float)
+    bad = np.zeros(len(values), bool)
+    bad[again] = np.isnan(values[again]) & ~s.str.lower().isin(["nan"]).to_numpy()
     if bad.any():
         i = int(np.flatnonzero(bad)[0])
         shown = raw[col].iloc[i]
@@ -351,13 +358,13 @@ def _labels_and_numbers(raw: pd.DataFrame, source: str, decimal: str) -> pd.Data
     """Sweep ids, label columns (or their defaults), the measured numbers and the ramp."""
     out = pd.DataFrame({"line": raw["line"].to_numpy()})
     out.attrs["line_word"] = line_word(raw)  # a workbook's rows are named rows, not lines
-    out["sweep"] = raw["sweep"].astype(str).str.strip().to_numpy()
+    out["sweep"] = stripped(raw["sweep"])
     # A missing cell of a table built in memory is empty too (its text would be "nan").
     ids = np.where(raw["sweep"].isna().to_numpy(), "", out["sweep"].to_numpy())
     SWEEP_TABLE.check_cells(out, source, "sweep", ids)
     for col, default in LABEL_DEFAULTS.items():
         if col in raw.columns:
-            out[col] = raw[col].astype(str).str.strip().to_numpy()
+            out[col] = stripped(raw[col])
             SWEEP_TABLE.check_cells(out, source, col)
         else:
             out[col] = default

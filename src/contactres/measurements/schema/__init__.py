@@ -53,6 +53,7 @@ from ._inputs import (
     TRUE_WORDS,
     interval,
     plausible,
+    stripped,
 )
 from ._listings import (
     CONTACT_TABLE,
@@ -138,6 +139,7 @@ __all__ = [
     "interval",
     "plausible",
     "rule",
+    "stripped",
 ]
 
 #: The tables contactres reads (their columns carry the rules the readers run).
