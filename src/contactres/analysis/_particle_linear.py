@@ -16,12 +16,16 @@ import numpy as np
 
 __all__ = [
     "equation_error",
+    "grid_coordinates",
     "limit_chi2",
     "limit_threshold",
     "pooled_variance",
     "poor_fit",
+    "scan_start",
     "series_variance",
     "stacked_inverse",
+    "wide_values",
+    "wider_than_linear",
 ]
 
 #: The fewest converged steps a series needs for its pooled noise variance.
@@ -189,3 +193,78 @@ def limit_chi2(z, wf, wg, sens, omega, chg):
     still = chi2_of([one_h2 / sens, 1j * omega * one_h2 / sens, g_b / sens])
     empty = np.sum(zr * zr + zi * zi, axis=1)
     return rigid, still, empty
+
+
+def scan_start(unit, z, wf, wg, kappas, xis):
+    """The best of a grid of (κ, ξ), the coverage fitted linearly at each (z = N u(κ, ξ) is
+    linear in N: N = Σ w² Re(ū z)/Σ w²|u|² over both observables).
+
+    Parameters
+    ----------
+    unit : callable (κ (T,), ξ (T,)) -> (T, n) shifts of a unit coverage, Hz
+    z, wf, wg : (T, n) shifts (Hz) and weights (module docstring)
+    kappas : (K,) contact stiffnesses, N/m
+    xis : (K, L) the drag coefficients tried with each, kg/s
+
+    Returns
+    -------
+    best : (T, 3) κ, ξ, N of the lowest χ² (NaN where no grid point has N > 0)
+    points, chi2 : (K L, T, 3) and (K L, T) every grid point and its χ² (inf where N <= 0)
+    """
+    t = z.shape[0]
+    points, chi2s = [], []
+    for kap, xi_row in zip(kappas, xis, strict=True):
+        for xi in xi_row:
+            u = unit(np.full(t, kap), np.full(t, xi))
+            num = np.sum(wf**2 * u.real * z.real + wg**2 * u.imag * z.imag, 1)
+            den = np.sum(wf**2 * u.real**2 + wg**2 * u.imag**2, 1)
+            with np.errstate(divide="ignore", invalid="ignore"):
+                cov = num / den
+                r = cov[:, None] * u - z
+                chi2 = np.sum(wf**2 * r.real**2 + wg**2 * r.imag**2, 1)
+            points.append(np.column_stack([np.full(t, kap), np.full(t, xi), cov]))
+            chi2s.append(np.where(cov > 0, chi2, np.inf))
+    points, chi2 = np.array(points), np.array(chi2s)
+    best = np.take_along_axis(points, np.argmin(chi2, axis=0)[None, :, None], 0)[0]
+    return np.where(np.isfinite(chi2.min(axis=0))[:, None], best, np.nan), points, chi2
+
+
+def wider_than_linear(value, error, others, dchi2, near, factor):
+    """(T,) True where a point near the fit lies farther from it in this value than the
+    linearised error allows at that point's Δχ² (by more than ``factor``).
+
+    For a model linear in its parameters the profile of one value is the parabola
+    Δχ² = ((u - û)/σ)², σ the linearised error: a point with Δχ² = D lies at most σ√D from
+    û in that value. A point the fit's search visited (``others`` (S, T), with its ``dchi2``
+    (S, T) in noise variances, considered where ``near`` (S, T)) farther out than
+    ``factor`` × σ √max(D, 1) shows the profile interval (the likelihood-ratio interval; e.g.
+    Press et al., Numerical Recipes, 3rd ed., §15.6.5) wider than ±σ by more than ``factor``
+    at that level: the printed error would understate the scatter. ``value``, ``error`` (T,).
+    """
+    with np.errstate(invalid="ignore"):
+        allowed = factor * error * np.sqrt(np.maximum(dchi2, 1.0))
+        far = np.abs(others - value) > allowed
+    return np.any(near & far & np.isfinite(others), axis=0)
+
+
+def grid_coordinates(points, xi_scale):
+    """(S, T, 3) grid points (κ, ξ, N) in the fit's coordinates (ln κ, ξ/scale, ln N)."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.stack(
+            [np.log(points[..., 0]), points[..., 1] / xi_scale, np.log(points[..., 2])], -1
+        )
+
+
+def wide_values(values, errors, visited, xi_scale, dchi2, near, factor):
+    """:func:`wider_than_linear` for κ, ξ, N, κ_r, N·κ and N·ξ (six (T,) arrays each of
+    ``values`` and ``errors``) over the ``visited`` points (S, T, P) in the fit's
+    coordinates (ln κ, ξ/``xi_scale``, ln N, ln κ_r); κ_r only with P = 4. A list of six
+    (T,) bool."""
+    with np.errstate(invalid="ignore", over="ignore"):
+        kap, xi, cov = np.exp(visited[..., 0]), visited[..., 1] * xi_scale, np.exp(visited[..., 2])
+        kr = np.exp(visited[..., 3]) if visited.shape[-1] > 3 else np.full_like(kap, np.nan)
+        others = (kap, xi, cov, kr, kap * cov, xi * cov)
+    return [
+        wider_than_linear(v, e, o, dchi2, near, factor)
+        for v, e, o in zip(values, errors, others, strict=True)
+    ]
