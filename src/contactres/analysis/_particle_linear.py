@@ -195,36 +195,36 @@ def limit_chi2(z, wf, wg, sens, omega, chg):
     return rigid, still, empty
 
 
-def scan_start(unit, z, wf, wg, kappas, xis):
-    """The best of a grid of (κ, ξ), the coverage fitted linearly at each (z = N u(κ, ξ) is
-    linear in N: N = Σ w² Re(ū z)/Σ w²|u|² over both observables).
+def scan_start(unit, grid, z, wf, wg):
+    """The best of a grid of contacts (κ, ξ), the coverage fitted linearly at each (z = N u is
+    linear in N: N = Σ w² Re(ū z)/Σ w²|u|² over both observables, and the χ² of that optimum
+    Σ w²|z|² - (Σ w² Re(ū z))²/Σ w²|u|²), as matrix products over the grid.
 
     Parameters
     ----------
-    unit : callable (κ (T,), ξ (T,)) -> (T, n) shifts of a unit coverage, Hz
+    unit : (G, n) complex shifts of a unit coverage at each grid point, Hz (the same at every
+        time step: the contact is given)
+    grid : (G, 2) κ (N/m) and ξ (kg/s) of the grid points
     z, wf, wg : (T, n) shifts (Hz) and weights (module docstring)
-    kappas : (K,) contact stiffnesses, N/m
-    xis : (K, L) the drag coefficients tried with each, kg/s
 
     Returns
     -------
     best : (T, 3) κ, ξ, N of the lowest χ² (NaN where no grid point has N > 0)
-    points, chi2 : (K L, T, 3) and (K L, T) every grid point and its χ² (inf where N <= 0)
+    points, chi2 : (G, T, 3) and (G, T) every grid point and its χ² (inf where N <= 0)
     """
-    t = z.shape[0]
-    points, chi2s = [], []
-    for kap, xi_row in zip(kappas, xis, strict=True):
-        for xi in xi_row:
-            u = unit(np.full(t, kap), np.full(t, xi))
-            num = np.sum(wf**2 * u.real * z.real + wg**2 * u.imag * z.imag, 1)
-            den = np.sum(wf**2 * u.real**2 + wg**2 * u.imag**2, 1)
-            with np.errstate(divide="ignore", invalid="ignore"):
-                cov = num / den
-                r = cov[:, None] * u - z
-                chi2 = np.sum(wf**2 * r.real**2 + wg**2 * r.imag**2, 1)
-            points.append(np.column_stack([np.full(t, kap), np.full(t, xi), cov]))
-            chi2s.append(np.where(cov > 0, chi2, np.inf))
-    points, chi2 = np.array(points), np.array(chi2s)
+    a, b = wf**2, wg**2
+    u = np.where(np.isfinite(unit), unit, np.nan)
+    ur, ui = np.nan_to_num(u.real), np.nan_to_num(u.imag)
+    num = (a * z.real) @ ur.T + (b * z.imag) @ ui.T
+    den = a @ (ur**2).T + b @ (ui**2).T
+    with np.errstate(divide="ignore", invalid="ignore"):
+        cov = (num / den).T  # (G, T)
+        chi2 = np.sum(a * z.real**2 + b * z.imag**2, 1) - (num * num / den).T
+    ok = (cov > 0) & np.all(np.isfinite(unit), axis=1)[:, None]
+    chi2 = np.where(ok, np.maximum(chi2, 0.0), np.inf)
+    g, t = chi2.shape
+    points = np.empty((g, t, 3))
+    points[..., 0], points[..., 1], points[..., 2] = grid[:, 0:1], grid[:, 1:2], cov
     best = np.take_along_axis(points, np.argmin(chi2, axis=0)[None, :, None], 0)[0]
     return np.where(np.isfinite(chi2.min(axis=0))[:, None], best, np.nan), points, chi2
 
