@@ -204,13 +204,13 @@ def scan_start(unit, grid, z, wf, wg):
     ----------
     unit : (G, n) complex shifts of a unit coverage at each grid point, Hz (the same at every
         time step: the contact is given)
-    grid : (G, 2) κ (N/m) and ξ (kg/s) of the grid points
+    grid : (G, 2+) κ (N/m) and ξ (kg/s) of the grid points (columns beyond are ignored)
     z, wf, wg : (T, n) shifts (Hz) and weights (module docstring)
 
     Returns
     -------
     best : (T, 3) κ, ξ, N of the lowest χ² (NaN where no grid point has N > 0)
-    points, chi2 : (G, T, 3) and (G, T) every grid point and its χ² (inf where N <= 0)
+    (points, chi2) : (G, T, 3) and (G, T) every grid point and its χ² (inf where N <= 0)
     """
     a, b = wf**2, wg**2
     u = np.where(np.isfinite(unit), unit, np.nan)
@@ -226,7 +226,7 @@ def scan_start(unit, grid, z, wf, wg):
     points = np.empty((g, t, 3))
     points[..., 0], points[..., 1], points[..., 2] = grid[:, 0:1], grid[:, 1:2], cov
     best = np.take_along_axis(points, np.argmin(chi2, axis=0)[None, :, None], 0)[0]
-    return np.where(np.isfinite(chi2.min(axis=0))[:, None], best, np.nan), points, chi2
+    return np.where(np.isfinite(chi2.min(axis=0))[:, None], best, np.nan), (points, chi2)
 
 
 def wider_than_linear(value, error, others, dchi2, near, factor):

@@ -443,14 +443,12 @@ class _Problem:
             f_grid = np.geomspace(self.freq.min() / 10, self.freq.min(), 40)
             kappas = self._peak_kappa(None, f_grid)
             xis = np.outer(kappas / (2 * np.pi * f_grid), [0.0, 0.02, 0.05, 0.1, 0.3])
-            grid = np.column_stack([np.repeat(kappas, xis.shape[1]), xis.ravel()])
+            grid = np.column_stack([np.repeat(kappas, xis.shape[1]), xis.ravel(), 0 * xis.ravel()])
             # (a grid point exactly on a mode, ξ = 0, is infinite: scan_start skips it)
             with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-                p_grid = np.column_stack([np.log(grid[:, 0]), grid[:, 1], np.zeros(len(grid))])
-                unit = self.model(p_grid, chg)[0]
-            best, points, chi2 = scan_start(unit, grid, self.z, self.wf, self.wg)
+                unit = self.model(np.column_stack([np.log(grid[:, 0]), grid[:, 1:]]), chg)[0]
             # the grid's points join those the search visited (fit_particles, result)
-            self.grid = (points, chi2)
+            best, self.grid = scan_start(unit, grid, self.z, self.wf, self.wg)
             return best[:, 0], best[:, 1], best[:, 2]
         if kind == "heavy":
             return self._heavy_start(chg, m * self.omega.min() ** 2 * 1e-4)
