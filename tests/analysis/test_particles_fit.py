@@ -159,10 +159,33 @@ def test_a_resonance_far_below_the_comb_identifies_only_the_products():
     # ξ = Nξ/N carries the unidentified N: it is blanked with κ and N
     assert np.all(np.isnan(fit.kappa)) and np.all(np.isnan(fit.coverage))
     assert np.all(np.isnan(fit.xi))
-    # N·κ is what the data give (paper 2, Eq. 1), within its stated error
+    # N·κ is what the data give (paper 2, Eq. 1), within its stated error; a step where the
+    # search found a second minimum that fits nearly as well farther out than the error allows
+    # leaves it empty and says so (one of the 50 here: Δχ² = 7.5 at 6σ)
     true = 1e11 * kappa
-    assert np.all(np.abs(fit.coverage_kappa - true) < 5 * fit.coverage_kappa_err)
-    assert np.mean(fit.coverage_kappa) == pytest.approx(true, rel=0.02)
+    shown = np.isfinite(fit.coverage_kappa)
+    assert shown.sum() >= 45
+    assert all("wide-interval" in f for f, s in zip(fit.flags, shown, strict=True) if not s)
+    assert np.all(np.abs(fit.coverage_kappa[shown] - true) < 5 * fit.coverage_kappa_err[shown])
+    assert np.mean(fit.coverage_kappa[shown]) == pytest.approx(true, rel=0.02)
+
+
+def test_a_product_with_a_second_minimum_below_the_comb_is_not_printed():
+    # Issue 28's open case: f_coupled 2.5x below the comb in water. The χ² has a second valley
+    # towards the particles standing still (κ 25x lower, N 30x higher) whose N·κ lies ~20 %
+    # (8σ) from the truth's; before, fits stopped there and printed N·κ with 35 % of the draws
+    # beyond 3σ. Now the fit finds the lower minimum (a grid start below the comb), and N·κ is
+    # printed only where no point of nearly the same χ² lies farther than its error allows.
+    kappa = _kappa_for(PS, 2e6, medium=WATER)
+    xi = 0.05 * kappa / (2 * np.pi * 2e6)
+    df, dg = particle_shifts(F0, N, PS, kappa, xi, 2e9, medium=WATER)
+    d, g = _noisy(df, dg, 60, seed=11)
+    fit = fit_particles(F0, N, d, g, PS, medium=WATER, sigma_df=NOISE, sigma_dgamma=NOISE)
+    shown = np.isfinite(fit.coverage_kappa)
+    z = (fit.coverage_kappa[shown] - 2e9 * kappa) / fit.coverage_kappa_err[shown]
+    assert shown.sum() >= 20
+    # 3σ: 0.3 % of normal draws; 10 % allows for the 60 draws (before: 35 %)
+    assert np.mean(np.abs(z) > 3) < 0.1, (shown.sum(), np.round(z, 1))
 
 
 @pytest.mark.parametrize(

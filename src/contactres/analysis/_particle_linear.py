@@ -16,12 +16,16 @@ import numpy as np
 
 __all__ = [
     "equation_error",
+    "grid_coordinates",
     "limit_chi2",
     "limit_threshold",
     "pooled_variance",
     "poor_fit",
+    "scan_start",
     "series_variance",
     "stacked_inverse",
+    "wide_values",
+    "wider_than_linear",
 ]
 
 #: The fewest converged steps a series needs for its pooled noise variance.
@@ -189,3 +193,78 @@ def limit_chi2(z, wf, wg, sens, omega, chg):
     still = chi2_of([one_h2 / sens, 1j * omega * one_h2 / sens, g_b / sens])
     empty = np.sum(zr * zr + zi * zi, axis=1)
     return rigid, still, empty
+
+
+def scan_start(unit, grid, z, wf, wg):
+    """The best of a grid of contacts (κ, ξ), the coverage fitted linearly at each (z = N u is
+    linear in N: N = Σ w² Re(ū z)/Σ w²|u|² over both observables, and the χ² of that optimum
+    Σ w²|z|² - (Σ w² Re(ū z))²/Σ w²|u|²), as matrix products over the grid.
+
+    Parameters
+    ----------
+    unit : (G, n) complex shifts of a unit coverage at each grid point, Hz (the same at every
+        time step: the contact is given)
+    grid : (G, 2+) κ (N/m) and ξ (kg/s) of the grid points (columns beyond are ignored)
+    z, wf, wg : (T, n) shifts (Hz) and weights (module docstring)
+
+    Returns
+    -------
+    best : (T, 3) κ, ξ, N of the lowest χ² (NaN where no grid point has N > 0)
+    (points, chi2) : (G, T, 3) and (G, T) every grid point and its χ² (inf where N <= 0)
+    """
+    a, b = wf**2, wg**2
+    u = np.where(np.isfinite(unit), unit, np.nan)
+    ur, ui = np.nan_to_num(u.real), np.nan_to_num(u.imag)
+    num = (a * z.real) @ ur.T + (b * z.imag) @ ui.T
+    den = a @ (ur**2).T + b @ (ui**2).T
+    with np.errstate(divide="ignore", invalid="ignore"):
+        cov = (num / den).T  # (G, T)
+        chi2 = np.sum(a * z.real**2 + b * z.imag**2, 1) - (num * num / den).T
+    ok = (cov > 0) & np.all(np.isfinite(unit), axis=1)[:, None]
+    chi2 = np.where(ok, np.maximum(chi2, 0.0), np.inf)
+    g, t = chi2.shape
+    points = np.empty((g, t, 3))
+    points[..., 0], points[..., 1], points[..., 2] = grid[:, 0:1], grid[:, 1:2], cov
+    best = np.take_along_axis(points, np.argmin(chi2, axis=0)[None, :, None], 0)[0]
+    return np.where(np.isfinite(chi2.min(axis=0))[:, None], best, np.nan), (points, chi2)
+
+
+def wider_than_linear(value, error, others, dchi2, near, factor):
+    """(T,) True where a point near the fit lies farther from it in this value than the
+    linearised error allows at that point's Δχ² (by more than ``factor``).
+
+    For a model linear in its parameters the profile of one value is the parabola
+    Δχ² = ((u - û)/σ)², σ the linearised error: a point with Δχ² = D lies at most σ√D from
+    û in that value. A point the fit's search visited (``others`` (S, T), with its ``dchi2``
+    (S, T) in noise variances, considered where ``near`` (S, T)) farther out than
+    ``factor`` × σ √max(D, 1) shows the profile interval (the likelihood-ratio interval; e.g.
+    Press et al., Numerical Recipes, 3rd ed., §15.6.5) wider than ±σ by more than ``factor``
+    at that level: the printed error would understate the scatter. ``value``, ``error`` (T,).
+    """
+    with np.errstate(invalid="ignore"):
+        allowed = factor * error * np.sqrt(np.maximum(dchi2, 1.0))
+        far = np.abs(others - value) > allowed
+    return np.any(near & far & np.isfinite(others), axis=0)
+
+
+def grid_coordinates(points, xi_scale):
+    """(S, T, 3) grid points (κ, ξ, N) in the fit's coordinates (ln κ, ξ/scale, ln N)."""
+    with np.errstate(divide="ignore", invalid="ignore"):
+        return np.stack(
+            [np.log(points[..., 0]), points[..., 1] / xi_scale, np.log(points[..., 2])], -1
+        )
+
+
+def wide_values(values, errors, visited, xi_scale, dchi2, near, factor):
+    """:func:`wider_than_linear` for κ, ξ, N, κ_r, N·κ and N·ξ (six (T,) arrays each of
+    ``values`` and ``errors``) over the ``visited`` points (S, T, P) in the fit's
+    coordinates (ln κ, ξ/``xi_scale``, ln N, ln κ_r); κ_r only with P = 4. A list of six
+    (T,) bool."""
+    with np.errstate(invalid="ignore", over="ignore"):
+        kap, xi, cov = np.exp(visited[..., 0]), visited[..., 1] * xi_scale, np.exp(visited[..., 2])
+        kr = np.exp(visited[..., 3]) if visited.shape[-1] > 3 else np.full_like(kap, np.nan)
+        others = (kap, xi, cov, kr, kap * cov, xi * cov)
+    return [
+        wider_than_linear(v, e, o, dchi2, near, factor)
+        for v, e, o in zip(values, errors, others, strict=True)
+    ]

@@ -18,7 +18,11 @@ peak of nΔΓ_n puts the coupled resonance (Im K_L peaks at f_coupled); the Saue
 (κ 10⁴ above the stiffness of a resonance at the top of the comb, the coverage fitted
 linearly); and the heavy-particle limit of paper 2, Eq. 1 (κ 10⁴ below a resonance at the
 bottom, with Nκ and Nξ from the linear fit of that limit). With rocking="fit" each start is the
-best over a scan of κ_r.
+best over a scan of κ_r. Without it, a fifth: the best point of a grid of resonances from 10x
+below the lowest overtone up to it (loss tangents 0-0.3, the coverage fitted linearly at each;
+``_particle_linear.scan_start``): below the comb the χ² has a second valley towards the
+particles standing still, where the other starts stopped 10 noise variances above the minimum
+near the truth (a third of the draws 2.5x below the comb in water, N·κ printed 8σ off).
 Each is refined by the batched Levenberg-Marquardt of
 :func:`contactres.fitting.levenberg_marquardt` in its Gauss-Newton form (all time steps at once:
 no loop over steps) in ln κ, ξ, ln N (ln κ_r), within bounds 10⁸ beyond what the comb can see,
@@ -61,6 +65,14 @@ Identifiability (the rule; names in :data:`PARTICLE_FLAGS`). Per time step:
    left out of the fit and named in the flag "dropped-overtones-R<delta: 1,3"; where too few
    remain (fewer than 2, or than 4 degrees of freedom with the noise estimated) none is
    dropped and every parameter is unresolved ("particle-smaller-than-delta").
+4. Outside the comb a parameter is printed only with a relative error up to 0.1
+   (``RELATIVE_ERROR_OUTSIDE``).
+5. A value (κ, ξ, N, κ_r, N·κ, N·ξ) is unresolved ("wide-interval") where a point the search
+   visited (starts, refined fits, the grid) with Δχ² = D below :data:`LIMIT_CHI2` lies
+   farther from the fit in that value than ``PROFILE_FACTOR`` σ√max(D, 1)
+   (``_particle_linear.wider_than_linear``): for a model linear in its parameters no point can
+   lie beyond σ√D, so the profile-likelihood interval is wider than the printed error says
+   (below the comb: a second minimum whose N·κ lies ~20 % from the first's).
 
 Unresolved values are NaN, with their errors; f_coupled goes with κ (and with κ_r where that is
 fitted: an unresolved κ_r leaves f_coupled empty and not flagged "outside-comb", since the
@@ -86,15 +98,19 @@ from ..resonators import (
     particle_compliance,
 )
 from ..validation import positive
+from ._particle_flags import DROPPED_FLAG, PARTICLE_FLAGS
 from ._particle_input import drop_inside_delta, prepare
 from ._particle_linear import (
     equation_error,
+    grid_coordinates,
     limit_chi2,
     limit_threshold,
     pooled_variance,
     poor_fit,
+    scan_start,
     series_variance,
     stacked_inverse,
+    wide_values,
 )
 
 __all__ = [
@@ -120,43 +136,19 @@ LIMIT_CHI2 = 9.0
 #: errors are not calibrated (two overtones, 1 dof: 20 % of the draws beyond 3σ).
 MIN_DOF_ESTIMATED = 4
 
-#: Flag name -> what it means (the names in :attr:`ParticleFit.flags`).
-PARTICLE_FLAGS = {
-    "sauerbrey-like": "a rigid contact fits as well (the particles move with the surface): "
-    "only the mass coverage·m is identified, not κ and ξ",
-    "inertial": "particles standing still fit as well (paper 2, Eq. 1): only coverage·κ and "
-    "coverage·ξ are identified, not κ, ξ and the coverage apart",
-    "outside-comb": "the coupled resonance lies outside the overtone comb",
-    "kappa-unresolved": "the contact stiffness κ (and f_coupled) is not identified by the data",
-    "xi-unresolved": "the contact drag ξ is not identified by the data (at the noise level)",
-    "coverage-unresolved": "the coverage is not identified by the data",
-    "rocking-unresolved": "the rotational stiffness κ_r is not identified by the data (nor is "
-    "f_coupled, which it sets)",
-    "fit-at-bound": "a parameter ended on its bound (ξ = 0)",
-    "poor-fit": "χ² far beyond what the noise allows (P < 1e-4 for a stated noise, or one "
-    "pooled over the series): the fit stopped away from its minimum or the model does not fit "
-    "this step (no value is reported)",
-    "not-converged": "the least-squares fit did not converge (no value is reported)",
-    "too-few-overtones": "fewer than two overtones measured at this time step (with the noise "
-    "estimated from the residuals: fewer than 4 degrees of freedom, 2 × overtones − parameters)",
-    "no-signal": "no particles at all (zero shifts) fit as well: the shifts are at the noise "
-    "level and nothing is identified (no value is reported)",
-    "particle-smaller-than-delta": "the particle is smaller than the penetration depth of the "
-    "liquid at too many overtones to fit the rest: the hydrodynamic model does not hold "
-    "(lattice Boltzmann is the tool)",
-    "dropped-overtones-R<delta": "the overtones named after the colon were left out of the "
-    "fit: the particle is smaller than the liquid's penetration depth there (δ is largest at "
-    "the lowest overtones); the others are fitted",
-}
+#: A value is printed only where no point the fit visited within the limit test's Δχ² lies
+#: farther from it than this factor times σ√max(Δχ², 1) (issue 28's factor between error
+#: and scatter).
+PROFILE_FACTOR = 1.3
 
-#: The name of the flag of the overtones left out (followed by ": 1,3" in a step's flags).
-DROPPED_FLAG = "dropped-overtones-R<delta"
 
 # Scan of κ_r for rocking="fit", in units of I (2π f_F)² (a rocking mode at f_F √(value)).
 _ROCKING_SCAN = np.logspace(-2.0, 4.0, 13)
 
 
 _LM = LMOptions(max_iter=300, xtol=1e-8, ftol=1e-10, max_step=2.0)
+# the scan start begins in the flat valley below the comb, where the steps are short
+_LM_SCAN = replace(_LM, max_iter=2000)
 
 
 @dataclass(frozen=True)
@@ -277,6 +269,8 @@ def fit_particles(
     t = zf.shape[0]
     p_best, chi2, conv = np.zeros((t, prob.n_par)), np.full(t, np.inf), np.zeros(t, bool)
     dof = 2 * prob.count - prob.n_par
+    # every point the search visits (starts and refined fits), for the interval test of result
+    visited = []
     for i, p0 in enumerate(prob.starts()):
         # A start is refined where it begins below the best fit so far, where that did not
         # converge, or where it fits poorly (χ² above dof + 2√(2 dof) noise variances; the
@@ -284,6 +278,7 @@ def fit_particles(
         # Refining every start everywhere would cost several times more: the limit starts
         # crawl along their flat valleys for nothing where the data have a clear optimum.
         start_chi2 = prob.evaluate(p0, np.arange(t), False)["chi2"]
+        visited.append((p0, start_chi2))
         poor = np.ones(t, bool)
         if i > 0:
             var = 1.0 if not estimate else series_variance(chi2, dof, conv)
@@ -296,6 +291,8 @@ def fit_particles(
                 poor |= ~(f_c <= prob.freq.max())
             if i == 3:
                 poor |= ~(f_c >= prob.freq.min())
+            if i == 4:  # the grid below the comb: a poor fit there only (the rest costs 2.5x)
+                poor &= ~(f_c >= prob.freq.min())
         sel = np.flatnonzero((start_chi2 < chi2) | ~conv | poor)
         if sel.size == 0:
             continue
@@ -304,8 +301,11 @@ def fit_particles(
             p0[sel],
             lo=prob.lo[sel],
             hi=prob.hi[sel],
-            options=_LM,
+            options=_LM if i < 4 else _LM_SCAN,
         )
+        q_ref, chi2_ref = p0.copy(), np.full(t, np.inf)
+        q_ref[sel], chi2_ref[sel] = res.x, res.chi2
+        visited.append((q_ref, chi2_ref))
         better = res.chi2 < chi2[sel]
         take = sel[better]
         p_best[take], chi2[take], conv[take] = (
@@ -313,7 +313,10 @@ def fit_particles(
             res.chi2[better],
             res.converged[better],
         )
-    fit = prob.result(p_best, chi2, conv, estimate, reason)
+    if prob.grid is not None:  # the scan start's grid, in the fit's coordinates
+        visited += zip(grid_coordinates(prob.grid[0], prob.xi_scale), prob.grid[1], strict=True)
+    visited_q, visited_chi2 = (np.array(v) for v in zip(*visited, strict=True))
+    fit = prob.result(p_best, chi2, conv, estimate, reason, (visited_q, visited_chi2))
     if dropped.size == 0:
         return fit
     # the overtones left out, named on every step (PARTICLE_FLAGS: the name before the colon)
@@ -353,6 +356,7 @@ class _Problem:
         self.lo = np.stack(np.broadcast_arrays(*lo[: self.n_par]), axis=-1)
         self.hi = np.stack(np.broadcast_arrays(*hi[: self.n_par]), axis=-1)
         self.xi_scale = np.ones(t)
+        self.grid = None  # the scan start's grid (starts; rocking="fit" has none)
 
     def _chg(self, p):
         """c, h, g of the particle (rows, n) at the κ_r of p (or the given rocking)."""
@@ -407,7 +411,8 @@ class _Problem:
                 _ROCKING_SCAN * self.particle.moment_of_inertia * (2 * np.pi * self.f0) ** 2
             )
         found = []
-        for kind in ("equation", "peak", "sauerbrey", "heavy"):
+        kinds = ("equation", "peak", "sauerbrey", "heavy") + (() if self.fit_rocking else ("scan",))
+        for kind in kinds:
             best, best_chi2 = np.full((t, self.n_par), np.nan), np.full(t, np.inf)
             for kr in scan:
                 chg = self.chg if kr is None else self._chg(np.full((t, 4), np.log(kr)))
@@ -434,6 +439,17 @@ class _Problem:
             fixed = self._peak_kappa(kr) if kind == "peak" else None
             return equation_error(self.z, self.wf, self.wg, self.sens, self.omega, chg, fixed)
         m = self.particle.mass
+        if kind == "scan":
+            f_grid = np.geomspace(self.freq.min() / 10, self.freq.min(), 40)
+            kappas = self._peak_kappa(None, f_grid)
+            xis = np.outer(kappas / (2 * np.pi * f_grid), [0.0, 0.02, 0.05, 0.1, 0.3])
+            grid = np.column_stack([np.repeat(kappas, xis.shape[1]), xis.ravel(), 0 * xis.ravel()])
+            # (a grid point exactly on a mode, ξ = 0, is infinite: scan_start skips it)
+            with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+                unit = self.model(np.column_stack([np.log(grid[:, 0]), grid[:, 1:]]), chg)[0]
+            # the grid's points join those the search visited (fit_particles, result)
+            best, self.grid = scan_start(unit, grid, self.z, self.wf, self.wg)
+            return best[:, 0], best[:, 1], best[:, 2]
         if kind == "heavy":
             return self._heavy_start(chg, m * self.omega.min() ** 2 * 1e-4)
         # The rigid limit: κ 10⁴ above the stiffness of a resonance at the top of the comb, ξ
@@ -484,10 +500,12 @@ class _Problem:
         base = [np.log(kappa), 0.0, np.log(self.n0), np.log(self.kr0)][: self.n_par]
         return np.stack(np.broadcast_arrays(*base), axis=-1)
 
-    def _peak_kappa(self, kr):
-        """κ that puts the coupled resonance (vacuum) at the largest nΔΓ_n of each step."""
-        score = np.where(self.wf > 0, self.z.imag * self.freq, -np.inf)
-        f_peak = self.freq[np.argmax(score, axis=1)]
+    def _peak_kappa(self, kr, f_peak=None):
+        """κ that puts the coupled resonance (vacuum) at the largest nΔΓ_n of each step (or at
+        the given frequencies)."""
+        if f_peak is None:
+            score = np.where(self.wf > 0, self.z.imag * self.freq, -np.inf)
+            f_peak = self.freq[np.argmax(score, axis=1)]
         rocking = self.rocking if kr is None else kr
         f1 = coupled_resonance(self.particle, 1.0, rocking=rocking)
         f1 = f1 if isinstance(rocking, str) else f1[..., 0]
@@ -500,7 +518,7 @@ class _Problem:
         # two modes with a rotational stiffness: the lower (the translation's continuation)
         return f if isinstance(rocking, str) else f[..., 0]
 
-    def result(self, q, chi2, conv, estimate, reason):
+    def result(self, q, chi2, conv, estimate, reason, visited):
         """The :class:`ParticleFit` at the fitted q (rows, P): errors, the rule, flags."""
         t, npar = q.shape
         p = q.copy()
@@ -558,6 +576,24 @@ class _Problem:
         # a fit far beyond its χ² (or not converged) gives no value, the products neither
         poor = poor_fit(chi2, dof, s2, per_step)
         nk_ok, nx_ok = nk_ok & ~no_signal & conv & ~poor, nx_ok & ~no_signal & conv & ~poor
+        # A point the search visited, within the Δχ² of the limit test, farther from the fit
+        # than 1.3σ√Δχ²: the interval the data allow is wider than the linearised error says
+        # (module docstring; below the comb the χ² valley has two minima)
+        vq, vchi2 = visited
+        with np.errstate(invalid="ignore", over="ignore"):
+            dchi2 = (vchi2 - chi2) / s2
+            near = dchi2 < limit_threshold(LIMIT_CHI2, dof, 1, per_step)
+            wide = wide_values(
+                (kappa, xi, cov, kr, nk, nx),
+                (kappa_err, xi_err, cov_err, kr_err, nk_err, nx_err),
+                vq,
+                self.xi_scale,
+                dchi2,
+                near,
+                PROFILE_FACTOR,
+            )
+        widened = (nk_ok & wide[4]) | (nx_ok & wide[5])
+        nk_ok, nx_ok = nk_ok & ~wide[4], nx_ok & ~wide[5]
         names = ("kappa", "xi", "coverage", "kappa_r")[:npar]
         flags, keep = [], np.ones((t, 4), bool)
         unresolved = ("kappa-unresolved", "xi-unresolved", "coverage-unresolved")
@@ -610,6 +646,11 @@ class _Problem:
             if reason is not None:
                 f.append("particle-smaller-than-delta")
                 bad = [True] * 4
+            # the interval test (above), named where it blanks a value the other rules print
+            widened[i] |= any(not b and w[i] for b, w in zip(bad, wide, strict=False))
+            bad = [b or w[i] for b, w in zip(bad, wide, strict=False)]
+            if widened[i]:
+                f.append("wide-interval")
             f += [name for name, b in zip(unresolved, bad, strict=False) if b]
             keep[i] = np.logical_not(bad)
             flags.append(tuple(f))

@@ -1,0 +1,43 @@
+"""The flags of the particle fit (:func:`~contactres.analysis.fit_particles`, issue 28): each
+name a step's ``flags`` can carry, and what it means (the table printed into particles.json)."""
+
+from __future__ import annotations
+
+__all__ = ["DROPPED_FLAG", "PARTICLE_FLAGS"]
+
+#: Flag name -> what it means (the names in :attr:`ParticleFit.flags`).
+PARTICLE_FLAGS = {
+    "sauerbrey-like": "a rigid contact fits as well (the particles move with the surface): "
+    "only the mass coverage·m is identified, not κ and ξ",
+    "inertial": "particles standing still fit as well (paper 2, Eq. 1): only coverage·κ and "
+    "coverage·ξ are identified, not κ, ξ and the coverage apart",
+    "wide-interval": "a value is not printed (κ, ξ, the coverage, κ_r, coverage·κ or "
+    "coverage·ξ; the first four are also named as unresolved): the fit's search found a point "
+    "that fits nearly as well (Δχ² = D below the limit test's 9) farther than 1.3σ√max(D, 1) "
+    "from it, so its error σ understates the interval the data allow (below the comb the χ² "
+    "has two valleys)",
+    "outside-comb": "the coupled resonance lies outside the overtone comb",
+    "kappa-unresolved": "the contact stiffness κ (and f_coupled) is not identified by the data",
+    "xi-unresolved": "the contact drag ξ is not identified by the data (at the noise level)",
+    "coverage-unresolved": "the coverage is not identified by the data",
+    "rocking-unresolved": "the rotational stiffness κ_r is not identified by the data (nor is "
+    "f_coupled, which it sets)",
+    "fit-at-bound": "a parameter ended on its bound (ξ = 0)",
+    "poor-fit": "χ² far beyond what the noise allows (P < 1e-4 for a stated noise, or one "
+    "pooled over the series): the fit stopped away from its minimum or the model does not fit "
+    "this step (no value is reported)",
+    "not-converged": "the least-squares fit did not converge (no value is reported)",
+    "too-few-overtones": "fewer than two overtones measured at this time step (with the noise "
+    "estimated from the residuals: fewer than 4 degrees of freedom, 2 × overtones − parameters)",
+    "no-signal": "no particles at all (zero shifts) fit as well: the shifts are at the noise "
+    "level and nothing is identified (no value is reported)",
+    "particle-smaller-than-delta": "the particle is smaller than the penetration depth of the "
+    "liquid at too many overtones to fit the rest: the hydrodynamic model does not hold "
+    "(lattice Boltzmann is the tool)",
+    "dropped-overtones-R<delta": "the overtones named after the colon were left out of the "
+    "fit: the particle is smaller than the liquid's penetration depth there (δ is largest at "
+    "the lowest overtones); the others are fitted",
+}
+
+#: The name of the flag of the overtones left out (followed by ": 1,3" in a step's flags).
+DROPPED_FLAG = "dropped-overtones-R<delta"
