@@ -16,6 +16,9 @@ $(STAMP): pyproject.toml
 	$(PYTHON) -m venv $(VENV)
 	$(PIP) install --upgrade pip
 	$(PIP) install -e '.[test,dev,docs,maps,afm,excel,peers]'
+	@# orix (a test peer) compiles numba functions into a cache on first import: once here, in
+	@# one process, rather than in a test worker (a minute of CPU) or in two at once.
+	$(BIN)/python -c "import orix.crystal_map, orix.io, orix.plot"
 	touch $(STAMP)
 
 demo: $(STAMP)

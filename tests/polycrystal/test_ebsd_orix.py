@@ -5,6 +5,12 @@ as misorientation angles with the crystal symmetry (orix's ``Orientation.angle_w
 1e-6 rad. The convention is checked against orix, not against contactres: orix's
 ``Rotation.from_euler`` (Bunge, "lab2crystal", passive) gives the orientation matrix g of
 Rowenhorst et al. (2015), and contactres' surface matrix is R = gᵀ (:mod:`.orientations`).
+
+The IPF key against orix's TSL key (orix.plot.DirectionColorKeyTSL) is here too: the same
+corner colours, a different construction inside the triangle. Every test that imports
+orix lives in this one module, so that one pytest-xdist worker (``--dist loadfile``) compiles
+orix's numba functions: two workers compiling them at once into the shared cache crashed a
+fresh CI run (segmentation fault on import).
 """
 
 from __future__ import annotations
@@ -17,6 +23,7 @@ from contactres.polycrystal import (
     OrientationMap,
     ebsd_phase,
     indexed_pixels,
+    ipf_colors,
     random_orientations,
     read_ang,
     read_ctf,
@@ -29,7 +36,9 @@ from contactres.polycrystal._synthetic import synthetic_polycrystal
 orix = pytest.importorskip("orix", reason="orix (the `peers` extra) is the round-trip peer")
 from orix import io  # noqa: E402
 from orix.crystal_map import CrystalMap, Phase, PhaseList  # noqa: E402
+from orix.plot import DirectionColorKeyTSL  # noqa: E402
 from orix.quaternion import Orientation, Rotation, symmetry  # noqa: E402
+from orix.vector import Vector3d  # noqa: E402
 
 TOL = 1e-6  # rad
 POINT_GROUP = {"cubic": symmetry.Oh, "hexagonal": symmetry.D6h}
@@ -155,3 +164,35 @@ def test_orix_reads_the_bundled_example_map():
         xmap, m = io.load(path), read_ang(path)
     assert xmap.shape == m.shape == (64, 64) and xmap.phases[1].name == "Cu"
     assert float(_misorientation(xmap, m, "cubic").max()) < TOL
+
+
+# ------------------------------------------------------------------ the IPF key
+# Corners (red, green, blue) in crystal coordinates: [001], [101], [111]; [0001], [2-1-10] = a1,
+# [10-10] (azimuth 30°).
+CORNERS = {
+    "cubic": (symmetry.Oh, [[0, 0, 1], [1, 0, 1], [1, 1, 1]]),
+    "hexagonal": (symmetry.D6h, [[0, 0, 1], [1, 0, 0], [np.sqrt(3) / 2, 0.5, 0]]),
+}
+
+
+@pytest.mark.parametrize("lattice", sorted(CORNERS))
+def test_the_corner_colours_are_orix_s(lattice):
+    pg, corners = CORNERS[lattice]
+    corners = np.array(corners, dtype=float)
+    theirs = DirectionColorKeyTSL(pg).direction2color(Vector3d(corners))
+    ours = ipf_colors(corners, lattice)
+    assert np.allclose(ours, np.eye(3), rtol=0, atol=1e-12)
+    # orix's own corners are within 0.01 of pure (its sector centre and azimuth correction).
+    assert np.allclose(theirs, ours, rtol=0, atol=0.01)
+
+
+@pytest.mark.parametrize("lattice", sorted(CORNERS))
+def test_the_interior_differs_as_the_docstring_says(lattice):
+    """The bound the module docstring states (0.3 cubic, 0.5 hexagonal, rounded up to 0.35 and
+    0.55 here) holds on a dense sample, and the keys do differ (a claim of equality would fail)."""
+    pg, _ = CORNERS[lattice]
+    v = np.random.default_rng(0).normal(size=(20000, 3))
+    diff = np.abs(
+        DirectionColorKeyTSL(pg).direction2color(Vector3d(v)) - ipf_colors(v, lattice)
+    ).max()
+    assert 0.1 < diff < {"cubic": 0.35, "hexagonal": 0.55}[lattice]

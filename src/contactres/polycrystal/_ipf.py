@@ -25,7 +25,7 @@ triangle's centre of Nolze and Hielscher 2016, section 2.4, mapped through HSL) 
 default key are different constructions. The corner colours agree (orix's corners lie within
 0.01 of pure red, green and blue), the edges between them share their hue order, but inside the
 triangle the channels differ by up to about 0.3 (cubic) and 0.5 (hexagonal) against orix 0.15
-(tests/polycrystal/test_ipf_orix.py measures it): an IPF map coloured here is read with the key
+(tests/polycrystal/test_ebsd_orix.py measures it): an IPF map coloured here is read with the key
 drawn here (:func:`ipf_triangle`), not with orix's or MTEX's key.
 
 :func:`ipf_triangle` gives the triangle for plotting in the stereographic projection from the
