@@ -74,6 +74,7 @@ small at a point that is many of its σ from the truth, while the limit fits the
 from __future__ import annotations
 
 from dataclasses import dataclass, replace
+from typing import Any
 
 import numpy as np
 
@@ -86,7 +87,7 @@ from ..resonators import (
     particle_compliance,
 )
 from ..validation import positive
-from ._particle_input import drop_inside_delta, prepare
+from ._particle_input import drop_inside_delta, noise_check, prepare
 from ._particle_linear import (
     equation_error,
     limit_chi2,
@@ -136,6 +137,9 @@ PARTICLE_FLAGS = {
     "poor-fit": "χ² far beyond what the noise allows (P < 1e-4 for a stated noise, or one "
     "pooled over the series): the fit stopped away from its minimum or the model does not fit "
     "this step (no value is reported)",
+    "model-misfit": "the model's residuals are far larger than the noise of the time series "
+    "(read off its step-to-step differences): the model does not fit (check the rocking "
+    "choice, the particle's radius and density, the medium); no value is reported",
     "not-converged": "the least-squares fit did not converge (no value is reported)",
     "too-few-overtones": "fewer than two overtones measured at this time step (with the noise "
     "estimated from the residuals: fewer than 4 degrees of freedom, 2 × overtones − parameters)",
@@ -183,6 +187,11 @@ class ParticleFit:
         (also where a parameter is unresolved: the curve is identified when its parts are not)
     raw : (T, p) the fitted values before the identifiability rule (κ, ξ, N, κ_r)
     flags : per step, a tuple of names of :data:`PARTICLE_FLAGS`
+    noise_fit : the noise σ̂ (Hz) the residuals imply, one for Δf and ΔΓ
+        (``_particle_linear.model_variance``); NaN with a stated noise
+    noise_series : the noise (Hz) read off the series' step-to-step differences, independently
+        of the model (``_particle_input.difference_noise``); NaN for fewer than 5 steps or with a
+        stated noise. Where σ̂ exceeds it beyond an F quantile every step is "model-misfit"
     """
 
     kappa: np.ndarray
@@ -207,6 +216,8 @@ class ParticleFit:
     dgamma_model: np.ndarray
     raw: np.ndarray
     flags: tuple[tuple[str, ...], ...]
+    noise_fit: float = np.nan
+    noise_series: float = np.nan
 
 
 def fit_particles(
@@ -314,11 +325,29 @@ def fit_particles(
             res.converged[better],
         )
     fit = prob.result(p_best, chi2, conv, estimate, reason)
+    if estimate:
+        # the model's noise against the series' own (read off its step-to-step differences):
+        # the residuals absorb a systematic misfit, so only an independent noise exposes it
+        noise_fit, noise_series, bad = noise_check(chi2, dof, conv, zf, wf > 0)
+        fit = replace(fit, noise_fit=noise_fit, noise_series=noise_series)
+        fit = _misfit(fit, prob.fit_rocking) if bad else fit
     if dropped.size == 0:
         return fit
     # the overtones left out, named on every step (PARTICLE_FLAGS: the name before the colon)
     note = f"{DROPPED_FLAG}: {','.join(str(int(k)) for k in n[dropped])}"
     return replace(fit, flags=tuple((note, *f) for f in fit.flags))
+
+
+def _misfit(fit: ParticleFit, fit_rocking: bool) -> ParticleFit:
+    """The fit with every value left out and every step flagged "model-misfit" (the model
+    curves, χ² and the raw values kept: they show how it misfits)."""
+    nan = np.full(np.shape(fit.kappa), np.nan)
+    unresolved: tuple[str, ...] = ("kappa-unresolved", "xi-unresolved", "coverage-unresolved")
+    unresolved += ("rocking-unresolved",) if fit_rocking else ()
+    values = "kappa coverage xi f_coupled kappa_r coverage_kappa coverage_xi".split()
+    blank: dict[str, Any] = {name: nan for v in values for name in (v, f"{v}_err")}
+    flags = tuple((*f, "model-misfit", *(u for u in unresolved if u not in f)) for f in fit.flags)
+    return replace(fit, flags=flags, **blank)
 
 
 class _Problem:

@@ -22,6 +22,7 @@ from ._common import (
     format_option,
     odd_overtone,
     progress_stream,
+    wrote_line,
 )
 
 
@@ -269,7 +270,7 @@ def analyze_command(
             + (", ".join(f"{k} {v}" for k, v in sorted(models.items())) or "none")
             + f"; drift flagged: {flagged}"
         )
-        click.echo(f"wrote {len(written)} files into {out}/")
+        click.echo(wrote_line(written, out))
 
 
 def coating_lines(results) -> list[str]:
