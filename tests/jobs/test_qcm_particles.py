@@ -297,3 +297,35 @@ def test_overtones_inside_the_penetration_depth_are_dropped_and_named(tmp_path):
     np.testing.assert_allclose(result.particles["coverage_per_m2"], 5e10, rtol=1e-6)
     assert "left out of the fit" in " ".join(result.warnings)
     assert "penetration depth" in result.flag_meanings["dropped-overtones-R<delta: 1,3"]
+
+
+def test_the_noise_and_f_coupleds_error_are_in_particles_json_and_on_the_page(example):
+    """Issue 28's second review: σ̂ and the series' own noise are recorded; f_coupled's error
+    goes with the per-step values; the page opens with the summary and the figures and leaves
+    the per-step lists to the JSON."""
+    from contactres.report._job_page import job_page
+
+    constants = example.constants
+    assert constants["noise_fit_Hz"] == pytest.approx(0.1, rel=0.15)  # the study's noise
+    assert constants["noise_series_Hz"] >= constants["noise_fit_Hz"]  # the signal moves too
+    # f_coupled's error: f ∝ √κ in vacuum, so about half κ's relative error (the medium
+    # bends it a little): within a factor 1.5 of that
+    f, f_err = example.particles["f_coupled_Hz"], np.asarray(example.steps["f_coupled_err_Hz"])
+    ok = np.isfinite(f.to_numpy())
+    rel_k = (example.particles["kappa_err_N_per_m"] / example.particles["kappa_N_per_m"])[ok]
+    ratio = (f_err[ok] / f[ok]) / (0.5 * rel_k)
+    assert ratio.between(1 / 1.5, 1.5).all()
+    page = job_page(example)
+    assert page.index("<h2>Summary</h2>") < page.index("<h2>Values</h2>")
+    assert "values; all in the JSON" not in page and "model_curves</code>" in page
+    assert "49 of 50" in page  # the summary's "identified" column
+
+
+def test_the_wrong_rotation_is_a_misfit_with_one_warning_line(tmp_path):
+    settings = job.Settings(5e-7, 2200.0, fundamental=5e6, medium="water", rocking="locked")
+    result = job.run(example_path("example_particles.csv"), settings)
+    assert result.particles["kappa_N_per_m"].isna().all()
+    assert result.flag_counts["model-misfit"] == len(result.particles)
+    lines = [w for w in result.warnings if "does not fit" in w]
+    assert len(lines) == 1 and "--rocking" in lines[0] and "radius" in lines[0]
+    assert result.constants["noise_fit_Hz"] > 3 * result.constants["noise_series_Hz"]

@@ -228,6 +228,9 @@ def test_the_command_writes_the_folder(study, tmp_path):
         "particles_time.png", "report.html", "shifts.csv",
     ]  # fmt: skip
     assert "6 time steps" in r.output and "flagged time steps (of 6): sauerbrey-like 2" in r.output
+    # the count is that of the files in the folder: the set's seven and its manifest
+    assert "wrote 7 files and manifest.json" in r.output and len(list(out.iterdir())) == 8
+    assert "noise from the residuals σ̂ = " in r.output
     page = (out / "report.html").read_text(encoding="utf-8")
     assert page.count("data:image/png;base64,") == 3 and "sauerbrey-like" in page
 

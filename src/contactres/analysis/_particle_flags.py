@@ -3,6 +3,11 @@ name a step's ``flags`` can carry, and what it means (the table printed into par
 
 from __future__ import annotations
 
+from dataclasses import replace
+from typing import Any
+
+import numpy as np
+
 __all__ = ["DROPPED_FLAG", "PARTICLE_FLAGS"]
 
 #: Flag name -> what it means (the names in :attr:`ParticleFit.flags`).
@@ -26,6 +31,9 @@ PARTICLE_FLAGS = {
     "poor-fit": "χ² far beyond what the noise allows (P < 1e-4 for a stated noise, or one "
     "pooled over the series): the fit stopped away from its minimum or the model does not fit "
     "this step (no value is reported)",
+    "model-misfit": "the model's residuals are far larger than the noise of the time series "
+    "(read off its step-to-step differences): the model does not fit (check the rocking "
+    "choice, the particle's radius and density, the medium); no value is reported",
     "not-converged": "the least-squares fit did not converge (no value is reported)",
     "too-few-overtones": "fewer than two overtones measured at this time step (with the noise "
     "estimated from the residuals: fewer than 4 degrees of freedom, 2 × overtones − parameters)",
@@ -41,3 +49,39 @@ PARTICLE_FLAGS = {
 
 #: The name of the flag of the overtones left out (followed by ": 1,3" in a step's flags).
 DROPPED_FLAG = "dropped-overtones-R<delta"
+
+
+def misfit_fields(flags, shape, fit_rocking: bool) -> dict[str, Any]:
+    """The fields of a fit whose model misfits (:func:`~._particles.fit_particles`): every value
+    and error left out (NaN of ``shape``) and every step's flags gaining "model-misfit" and the
+    unresolved parameters; the model curves, χ² and the raw values stay (they show how it
+    misfits)."""
+    nan = np.full(shape, np.nan)
+    unresolved: tuple[str, ...] = ("kappa-unresolved", "xi-unresolved", "coverage-unresolved")
+    unresolved += ("rocking-unresolved",) if fit_rocking else ()
+    values = "kappa coverage xi f_coupled kappa_r coverage_kappa coverage_xi".split()
+    blank: dict[str, Any] = {name: nan for v in values for name in (v, f"{v}_err")}
+    blank["flags"] = tuple(
+        (*f, "model-misfit", *(u for u in unresolved if u not in f)) for f in flags
+    )
+    return blank
+
+
+def noise_checked(fit, noise_fit, noise_series, bad: bool, fit_rocking: bool):
+    """``fit`` (a :class:`~._particles.ParticleFit`) with the model's noise and the series'
+    own (:func:`~._particle_input.noise_check`) recorded, and left out with every step flagged
+    "model-misfit" where ``bad`` (:func:`misfit_fields`)."""
+    fit = replace(fit, noise_fit=noise_fit, noise_series=noise_series)
+    if not bad:
+        return fit
+    return replace(fit, **misfit_fields(fit.flags, np.shape(fit.kappa), fit_rocking))
+
+
+def dropped_named(fit, overtones):
+    """``fit`` with the overtones left out (R < δ) named on every step, as
+    ``"dropped-overtones-R<delta: 1,3"`` (:data:`PARTICLE_FLAGS`: the name before the colon);
+    unchanged when none was left out."""
+    if len(overtones) == 0:
+        return fit
+    note = f"{DROPPED_FLAG}: {','.join(str(int(k)) for k in overtones)}"
+    return replace(fit, flags=tuple((note, *f) for f in fit.flags))

@@ -9,8 +9,12 @@ import numpy as np
 from ..errors import ContactresInputError
 from ..resonators import particle_model_validity
 from ..validation import positive
+from ._particle_linear import misfit, model_variance
 
-__all__ = ["checked_sigma", "drop_inside_delta", "prepare"]
+__all__ = ["checked_sigma", "difference_noise", "drop_inside_delta", "noise_check", "prepare"]
+
+#: The fewest time steps from which the noise is read off the step-to-step differences.
+MIN_DIFFERENCE_STEPS = 5
 
 
 def prepare(fundamental, overtones, df, dgamma, sigma_df, sigma_dgamma):
@@ -79,3 +83,54 @@ def drop_inside_delta(particle, freq, medium, wf, wg, estimate, fit_rocking, min
     wf[:, bad] = 0.0
     wg[:, bad] = 0.0
     return None, np.flatnonzero(bad)
+
+
+def difference_noise(z, measured):
+    """The noise variance of the shifts read off the time series alone, independently of any
+    model: per overtone and per observable (Δf_n, ΔΓ_n), the robust spread of the first
+    differences between consecutive steps, 1.4826 MAD/√2 (a difference of two independent
+    draws has √2 times their spread; the MAD about the median difference ignores a steady
+    drift and a few jumps), squared and averaged over the series that have at least
+    :data:`MIN_DIFFERENCE_STEPS` - 1 differences.
+
+    It assumes that the shifts change slowly from one step to the next compared with the
+    noise: a fast change of the signal makes it larger (a fit is then less often called a
+    misfit, never more often); noise correlated between neighbouring steps makes it smaller.
+
+    Parameters
+    ----------
+    z : (T, n) complex, Δf_n + iΔΓ_n, Hz
+    measured : (T, n) bool, the points that are fitted
+
+    Returns
+    -------
+    (variance, count) : the mean noise variance, Hz², and the number of differences it rests
+        on; (NaN, 0) for fewer than :data:`MIN_DIFFERENCE_STEPS` steps (a single time point
+        has no such estimate)
+    """
+    if z.shape[0] < MIN_DIFFERENCE_STEPS:
+        return np.nan, 0
+    variances, count = [], 0
+    for part in (z.real, z.imag):
+        diff = np.diff(np.where(measured, part, np.nan), axis=0)
+        for col in diff.T:
+            col = col[np.isfinite(col)]
+            if col.size < MIN_DIFFERENCE_STEPS - 1:
+                continue
+            mad = np.median(np.abs(col - np.median(col)))
+            variances.append((1.4826 * mad) ** 2 / 2.0)
+            count += col.size
+    if not variances:
+        return np.nan, 0
+    return float(np.mean(variances)), count
+
+
+def noise_check(chi2, dof, conv, z, measured):
+    """(σ̂, σ_series, misfit): the noise (Hz) the fit's residuals imply
+    (``_particle_linear.model_variance``), that of the series read off its step-to-step
+    differences (:func:`difference_noise`; NaN with fewer than 5 steps) and whether the model
+    misfits beyond the noise (``_particle_linear.misfit``)."""
+    s2_fit = model_variance(chi2, dof, conv)
+    s2_series, count = difference_noise(z, measured)
+    bad = misfit(s2_fit, s2_series, dof, count)
+    return float(np.sqrt(s2_fit)), float(np.sqrt(s2_series)), bad

@@ -19,6 +19,8 @@ __all__ = [
     "grid_coordinates",
     "limit_chi2",
     "limit_threshold",
+    "misfit",
+    "model_variance",
     "pooled_variance",
     "poor_fit",
     "scan_start",
@@ -91,6 +93,46 @@ def poor_fit(chi2, dof, s2, per_step):
     nu = np.maximum(np.asarray(dof, float), 1.0)
     with np.errstate(invalid="ignore", divide="ignore"):
         return ~(chi2 / s2 <= chi2_dist.isf(POOR_FIT_P, nu))
+
+
+#: The model misfits where its noise variance exceeds the series' own by the F quantile at 1 -
+#: this (:func:`misfit`).
+MISFIT_P = 1e-4
+
+#: The efficiency of the MAD as an estimate of a Gaussian spread: its variance is that of a
+#: standard deviation from this fraction of the values (Huber, Robust Statistics, 1981, §5.5).
+MAD_EFFICIENCY = 0.37
+
+
+def model_variance(chi2, dof, conv):
+    """The noise variance the fit's residuals imply: pooled over the series
+    (:func:`pooled_variance`), or for a short series the median over its converged steps of
+    χ²/ν; NaN where no step has a degree of freedom."""
+    pooled = pooled_variance(chi2, dof, conv)
+    if np.isfinite(pooled):
+        return pooled
+    ok = conv & (dof > 0) & np.isfinite(chi2)
+    return float(np.median(chi2[ok] / dof[ok])) if ok.any() else np.nan
+
+
+def misfit(s2_model, s2_series, dof, count):
+    """True where the model does not fit the data: the noise variance of its residuals,
+    ``s2_model`` (:func:`model_variance`; ν₁ the median degrees of freedom of a step, fewer
+    than the pooled series has, so the test is cautious), exceeds that of the series read off
+    its step-to-step differences, ``s2_series`` (``_particle_input.difference_noise``, from
+    ``count`` differences; ν₂ = count × :data:`MAD_EFFICIENCY`), beyond the quantile of F(ν₁,
+    ν₂) at 1 - :data:`MISFIT_P`. With the noise estimated, the residuals absorb a systematic
+    misfit into s², and the errors grow with it while the values are those of a wrong model:
+    only a noise known independently of the model tells the two apart. False where there is
+    no independent estimate (fewer than 5 steps, or a series of identical values)."""
+    from scipy.stats import f as f_dist
+
+    if not (np.isfinite(s2_model) and np.isfinite(s2_series) and s2_series > 0 and count > 0):
+        return False
+    nu = np.asarray(dof, float)
+    nu1 = max(float(np.median(nu[nu > 0])) if np.any(nu > 0) else 1.0, 1.0)
+    nu2 = max(MAD_EFFICIENCY * count, 1.0)
+    return bool(s2_model / s2_series > f_dist.isf(MISFIT_P, nu1, nu2))
 
 
 def stacked_inverse(h):

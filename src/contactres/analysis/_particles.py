@@ -98,8 +98,8 @@ from ..resonators import (
     particle_compliance,
 )
 from ..validation import positive
-from ._particle_flags import DROPPED_FLAG, PARTICLE_FLAGS
-from ._particle_input import drop_inside_delta, prepare
+from ._particle_flags import PARTICLE_FLAGS, dropped_named, noise_checked
+from ._particle_input import drop_inside_delta, noise_check, prepare
 from ._particle_linear import (
     equation_error,
     grid_coordinates,
@@ -175,6 +175,11 @@ class ParticleFit:
         (also where a parameter is unresolved: the curve is identified when its parts are not)
     raw : (T, p) the fitted values before the identifiability rule (κ, ξ, N, κ_r)
     flags : per step, a tuple of names of :data:`PARTICLE_FLAGS`
+    noise_fit : the noise σ̂ (Hz) the residuals imply, one for Δf and ΔΓ
+        (``_particle_linear.model_variance``); NaN with a stated noise
+    noise_series : the noise (Hz) read off the series' step-to-step differences, independently
+        of the model (``_particle_input.difference_noise``); NaN for fewer than 5 steps or with a
+        stated noise. Where σ̂ exceeds it beyond an F quantile every step is "model-misfit"
     """
 
     kappa: np.ndarray
@@ -199,6 +204,8 @@ class ParticleFit:
     dgamma_model: np.ndarray
     raw: np.ndarray
     flags: tuple[tuple[str, ...], ...]
+    noise_fit: float = np.nan
+    noise_series: float = np.nan
 
 
 def fit_particles(
@@ -308,20 +315,18 @@ def fit_particles(
         visited.append((q_ref, chi2_ref))
         better = res.chi2 < chi2[sel]
         take = sel[better]
-        p_best[take], chi2[take], conv[take] = (
-            res.x[better],
-            res.chi2[better],
-            res.converged[better],
-        )
+        p_best[take], chi2[take] = res.x[better], res.chi2[better]
+        conv[take] = res.converged[better]
     if prob.grid is not None:  # the scan start's grid, in the fit's coordinates
         visited += zip(grid_coordinates(prob.grid[0], prob.xi_scale), prob.grid[1], strict=True)
     visited_q, visited_chi2 = (np.array(v) for v in zip(*visited, strict=True))
     fit = prob.result(p_best, chi2, conv, estimate, reason, (visited_q, visited_chi2))
-    if dropped.size == 0:
-        return fit
-    # the overtones left out, named on every step (PARTICLE_FLAGS: the name before the colon)
-    note = f"{DROPPED_FLAG}: {','.join(str(int(k)) for k in n[dropped])}"
-    return replace(fit, flags=tuple((note, *f) for f in fit.flags))
+    if estimate:
+        # the model's noise against the series' own (read off its step-to-step differences):
+        # the residuals absorb a systematic misfit, so only an independent noise exposes it
+        noise_fit, noise_series, bad = noise_check(chi2, dof, conv, zf, wf > 0)
+        fit = noise_checked(fit, noise_fit, noise_series, bad, prob.fit_rocking)
+    return dropped_named(fit, n[dropped])
 
 
 class _Problem:

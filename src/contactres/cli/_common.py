@@ -407,6 +407,13 @@ def step(command: str, text: str) -> None:
         click.echo(f"contactres {command}: step {text}", err=True)
 
 
+def wrote_line(written, out) -> str:
+    """The closing line of a command that wrote a report set: the files of the set, and the
+    ``manifest.json`` beside them (which lists them with their digests), counted apart so that
+    the number is that of the files in the folder."""
+    return f"wrote {len(written)} files and manifest.json into {out}/"
+
+
 def computed_rounded(result, copied) -> object:
     """``result`` (DataFrame) with its computed float columns as text to 10 significant
     digits (no floating-point noise) and the ``copied`` input columns untouched (the user's

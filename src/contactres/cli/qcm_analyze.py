@@ -24,6 +24,7 @@ from ._common import (
     odd_overtone,
     progress_stream,
     save_as_option,
+    wrote_line,
 )
 
 
@@ -276,7 +277,7 @@ def analyze_command(
             + (", ".join(f"{k} {v}" for k, v in sorted(models.items())) or "none")
             + f"; drift flagged: {flagged}"
         )
-        click.echo(f"wrote {len(written)} files into {out}/")
+        click.echo(wrote_line(written, out))
 
 
 def coating_lines(results) -> list[str]:

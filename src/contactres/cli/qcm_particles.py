@@ -29,6 +29,7 @@ from ._common import (
     format_option,
     save_as_option,
     step,
+    wrote_line,
 )
 from ._export_options import conventions, export_options
 
@@ -192,35 +193,44 @@ def particles_command(
             f"{', '.join(map(str, result.constants['overtones']))}; medians of the identified "
             "values"
         )
-    emit(_summary(result.particles), fmt)
+    emit(result.summary(), fmt)
     if fmt == "plain":
-        click.echo(f"wrote {len(written)} files into {out}/")
+        click.echo(_noise_line(result.constants))
+        inertial = _inertial_line(result)
+        if inertial:
+            click.echo(inertial)
+        click.echo(wrote_line(written, out))
 
 
-def _summary(particles):
-    """One row per quantity: its unit, how many steps identify it, the median and the range of
-    the identified values (NaN where none is)."""
-    import numpy as np
-    import pandas as pd
-
-    rows = []
-    for column, quantity, unit in (
-        ("kappa_N_per_m", "κ", "N/m"),
-        ("xi_kg_per_s", "ξ", "kg/s"),
-        ("coverage_per_m2", "coverage", "1/m^2"),
-        ("f_coupled_Hz", "f_coupled", "Hz"),
-    ):
-        values = particles[column].to_numpy(float)
-        ok = values[np.isfinite(values)]
-        empty = ok.size == 0
-        rows.append(
-            {
-                "quantity": quantity,
-                "unit": unit,
-                "identified": f"{ok.size} of {values.size}",
-                "median": np.nan if empty else float(np.median(ok)),
-                "min": np.nan if empty else float(ok.min()),
-                "max": np.nan if empty else float(ok.max()),
-            }
+def _noise_line(constants) -> str:
+    """The noise of the shifts: stated, or what the fit's residuals imply (σ̂) beside what the
+    series' step-to-step differences give independently of the model."""
+    if constants.get("sigma_df_Hz") is not None:
+        return (
+            f"noise stated: {constants['sigma_df_Hz']:.3g} Hz (χ²/dof in particles.json tests it)"
         )
-    return pd.DataFrame(rows)
+    fit, series = constants.get("noise_fit_Hz"), constants.get("noise_series_Hz")
+    text = "noise from the residuals σ̂ = " + ("n/a" if fit is None else f"{fit:.3g} Hz")
+    if series is None:
+        return (
+            text
+            + "; no estimate from step-to-step differences (too few steps): --noise tests the fit"
+        )
+    return text + f"; from step-to-step differences {series:.3g} Hz"
+
+
+def _inertial_line(result) -> str:
+    """How many steps are inertial (the particles standing still) with coverage × κ
+    identified: their values are in particles.json only (steps), not in the table above."""
+    import numpy as np
+
+    nk = np.asarray(result.steps.get("coverage_kappa_N_per_m3", []), float)
+    inertial = np.array(["inertial" in str(f).split(";") for f in result.particles["flags"]])
+    count = int(np.sum(inertial & np.isfinite(nk))) if nk.size == inertial.size else 0
+    if count == 0:
+        return ""
+    return (
+        f"{count} inertial steps (particles standing still) identify coverage × κ and "
+        "coverage × ξ only: in particles.json (steps: coverage_kappa_N_per_m3, "
+        "coverage_xi_kg_per_s_m2)"
+    )

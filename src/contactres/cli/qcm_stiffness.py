@@ -19,7 +19,7 @@ from pathlib import Path
 import click
 
 from ._app import qcm
-from ._common import MagnitudeType, figure_format_option, save_as_option, step
+from ._common import MagnitudeType, figure_format_option, save_as_option, step, wrote_line
 from ._export_options import conventions, export_options, reader_names
 
 
@@ -131,4 +131,4 @@ def stiffness_command(
             f"  n = {n}: {len(part)} points, median κ = {part['kappa_N_per_m'].median():.6g}, "
             f"median ωξ = {part['omega_xi_N_per_m'].median():.6g}"
         )
-    click.echo(f"wrote {len(written)} files into {out}/")
+    click.echo(wrote_line(written, out))

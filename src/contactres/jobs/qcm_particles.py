@@ -100,6 +100,7 @@ COLUMN_UNITS = MappingProxyType(
         "variance estimated from the residuals)",
         "kappa_r_N_m_per_rad": "N m/rad (the fitted rocking stiffness; --rocking fit only)",
         "kappa_r_err_N_m_per_rad": "N m/rad (standard error)",
+        "f_coupled_err_Hz": "Hz (standard error of f_coupled)",
         # the correlations of the fitted parameters (ln κ, ξ, ln N, ln κ_r), per step
         **{
             f"corr_{a}_{b}": f"1 (correlation of the fitted {a} and {b}; also where a value "
@@ -126,6 +127,7 @@ _STEP_FIELDS = MappingProxyType(
         "coverage_xi_err_kg_per_s_m2": "coverage_xi_err",
         "kappa_r_N_m_per_rad": "kappa_r",
         "kappa_r_err_N_m_per_rad": "kappa_r_err",
+        "f_coupled_err_Hz": "f_coupled_err",
     }
 )
 
@@ -196,6 +198,8 @@ class Result(JobResult):
     SCHEMAS = MappingProxyType({"particles": PARTICLES_CSV, "shifts": PARTICLE_SHIFTS_CSV})
     NOT_VALUES = ("source", "warnings")
     NAME = "particles"
+    #: Values the HTML page leaves to particles.json (lists over the steps, the model's curves)
+    JSON_ONLY = ("steps", "model_curves")
 
     particles: pd.DataFrame
     shifts: pd.DataFrame
@@ -209,6 +213,35 @@ class Result(JobResult):
     model_curves: dict
     source: str = ""
     warnings: tuple[str, ...] = ()
+
+    def summary(self) -> pd.DataFrame:
+        """One row per quantity (κ, ξ, coverage, f_coupled): its unit, how many steps
+        identify it, the median and the range of the identified values (NaN where none is);
+        what the command prints and the report shows first."""
+        import numpy as np
+        import pandas as pd
+
+        rows = []
+        for column, quantity, unit in (
+            ("kappa_N_per_m", "κ", "N/m"),
+            ("xi_kg_per_s", "ξ", "kg/s"),
+            ("coverage_per_m2", "coverage", "1/m^2"),
+            ("f_coupled_Hz", "f_coupled", "Hz"),
+        ):
+            values = self.particles[column].to_numpy(float)
+            ok = values[np.isfinite(values)]
+            empty = ok.size == 0
+            rows.append(
+                {
+                    "quantity": quantity,
+                    "unit": unit,
+                    "identified": f"{ok.size} of {values.size}",
+                    "median": np.nan if empty else float(np.median(ok)),
+                    "min": np.nan if empty else float(ok.min()),
+                    "max": np.nan if empty else float(ok.max()),
+                }
+            )
+        return pd.DataFrame(rows)
 
 
 def run(inputs: str | os.PathLike, settings: Settings, progress: Progress | None = None) -> Result:
@@ -250,6 +283,7 @@ def run(inputs: str | os.PathLike, settings: Settings, progress: Progress | None
     particles = _particles_table(times, fit)
     shifts = _shifts_table(times, overtones, df, dgamma, fit)
     counts = _flag_counts(particles["flags"])
+    lines += _noise_lines(fit, counts)
     if counts:
         shown = ", ".join(f"{name} {k}" for name, k in counts.items())
         lines.append(
@@ -260,7 +294,11 @@ def run(inputs: str | os.PathLike, settings: Settings, progress: Progress | None
         particles=particles,
         shifts=shifts,
         conventions={**dict(table.conventions), **CONVENTIONS, "rocking": ROCKING[s.rocking]},
-        constants=_constants(particle, medium, s, fundamental, np.asarray(overtones)),
+        constants={
+            **_constants(particle, medium, s, fundamental, np.asarray(overtones)),
+            "noise_fit_Hz": _finite(getattr(fit, "noise_fit", math.nan)),
+            "noise_series_Hz": _finite(getattr(fit, "noise_series", math.nan)),
+        },
         equation=EQUATION,
         columns=dict(COLUMN_UNITS),
         flag_counts=counts,
@@ -271,6 +309,25 @@ def run(inputs: str | os.PathLike, settings: Settings, progress: Progress | None
         source=source.name,
         warnings=tuple(lines),
     )
+
+
+def _finite(value: float) -> float | None:
+    """A float, or None (JSON null) where it is NaN."""
+    return float(value) if math.isfinite(value) else None
+
+
+def _noise_lines(fit, counts: dict) -> list[str]:
+    """The warning where the model misfits (the noise its residuals imply against the series'
+    own, :func:`contactres.analysis.fit_particles`)."""
+    lines = []
+    if counts.get("model-misfit"):
+        lines.append(
+            f"the model does not fit: its residuals imply a noise σ̂ = {fit.noise_fit:.3g} Hz "
+            f"where the shifts scatter by {fit.noise_series:.3g} Hz from step to step (assuming "
+            "a slow drift between steps); no value is reported. Likely causes: the rocking "
+            "choice (--rocking), the particle's radius or density, the medium (--medium)"
+        )
+    return lines
 
 
 def _particle(s: Settings):

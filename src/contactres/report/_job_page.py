@@ -6,15 +6,18 @@ it suits any of them. In order:
 
 * the title (the job's name and the input's), the package version;
 * the warnings of the Result (its ``warnings`` lines, where it has them);
+* its summary, where it has a ``summary()`` method (a table: what the command prints);
+* the figures registered for the Result's type (:func:`contactres.report._writer.figure_registry`,
+  passed by :func:`~contactres.report._writer.html_registry`), drawn again and embedded as
+  base64 PNG;
 * the flags: for every table with a ``flags`` column (``;``-separated names), how many rows
   carry each flag;
 * the values (:meth:`~contactres.jobs.contract.JobResult.values`: conventions, constants, the
   equation, ...), a table per mapping and one for the rest;
+  except those the Result names in ``JSON_ONLY`` (per-step lists, model curves: named, left to
+  its JSON);
 * every table: its description, its row count, its columns with their units (from its schema)
-  and its first :data:`FIRST_ROWS` rows;
-* the figures registered for the Result's type (:func:`contactres.report._writer.figure_registry`,
-  passed by :func:`~contactres.report._writer.html_registry`), drawn again and embedded as
-  base64 PNG.
+  and its first :data:`FIRST_ROWS` rows.
 
 The page needs nothing but itself (no network, no external CSS or script); every text from the
 data (labels, file names, values) is HTML-escaped, as on the sweep analysis's page.
@@ -87,7 +90,8 @@ def _leaves(value, path: str):
 
 
 def _values_section(result) -> list[str]:
-    values = result.values()
+    left = tuple(getattr(result, "JSON_ONLY", ()))
+    values = {k: v for k, v in result.values().items() if k not in left}
     plain = [(k, v) for k, v in values.items() if not isinstance(v, dict)]
     parts = ["<h2>Values</h2>"]
     if plain:
@@ -96,7 +100,23 @@ def _values_section(result) -> list[str]:
         if isinstance(value, dict):
             parts.append(f"<h3>{_e(key)}</h3>")
             parts.append(_rows(list(_leaves(value, ""))) if value else "<p>none</p>")
+    if left:
+        name = f"{getattr(result, 'NAME', 'result')}.json"
+        shown = ", ".join(f"<code>{_e(k)}</code>" for k in left)
+        parts.append(f"<p>{shown}: in <code>{_e(name)}</code> (lists too long for a page).</p>")
     return parts
+
+
+def _summary_section(result) -> list[str]:
+    """The Result's ``summary()`` table (what its command prints), where it has one."""
+    summary = getattr(result, "summary", None)
+    if not callable(summary):
+        return []
+    frame = summary()
+    head = "".join(f"<th>{_e(c)}</th>" for c in frame.columns)
+    body = "".join(f"<tr>{_cells(row)}</tr>" for row in frame.itertuples(index=False))
+    table = f"<table><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>"
+    return ["<h2>Summary</h2>", table]
 
 
 def _flags_section(result) -> list[str]:
@@ -130,6 +150,16 @@ def _cell(value) -> str:
     return str(value)
 
 
+def _cells(row) -> str:
+    """The cells of a table row, numbers right-aligned."""
+    return "".join(
+        f'<td class="n">{_e(_cell(v))}</td>'
+        if isinstance(v, int | float) and not isinstance(v, bool)
+        else f"<td>{_e(_cell(v))}</td>"
+        for v in row
+    )
+
+
 def _table_section(name: str, frame, schema) -> list[str]:
     units = {} if schema is None else {c.name: c.unit for c in schema.columns}
     head = "".join(
@@ -138,13 +168,7 @@ def _table_section(name: str, frame, schema) -> list[str]:
     )
     body = []
     for row in frame.head(FIRST_ROWS).itertuples(index=False):
-        cells = "".join(
-            f'<td class="n">{_e(_cell(v))}</td>'
-            if isinstance(v, int | float) and not isinstance(v, bool)
-            else f"<td>{_e(_cell(v))}</td>"
-            for v in row
-        )
-        body.append(f"<tr>{cells}</tr>")
+        body.append(f"<tr>{_cells(row)}</tr>")
     about = "" if schema is None else f"{_e(schema.description)}; "
     shown = min(len(frame), FIRST_ROWS)
     return [
@@ -198,11 +222,12 @@ def job_page(result, figures=()) -> str:
         parts.append("<h2>Warnings</h2><ul>")
         parts += [f"<li>{_e(' '.join(str(line).split()))}</li>" for line in lines]
         parts.append("</ul>")
+    parts += _summary_section(result)
+    parts += _figures_section(result, figures)
     parts += _flags_section(result)
     parts += _values_section(result)
     parts.append("<h2>Tables</h2>")
     for name, (frame, schema) in result.tables().items():
         parts += _table_section(name, frame, schema)
-    parts += _figures_section(result, figures)
     parts.append("</body></html>\n")
     return "\n".join(parts)

@@ -125,8 +125,18 @@ _QUANTITIES = (
     ("kappa_N_per_m", "kappa_err_N_per_m", "κ per particle (N/m)"),
     ("xi_kg_per_s", "xi_err_kg_per_s", "ξ per particle (kg/s)"),
     ("coverage_per_m2", "coverage_err_per_m2", "coverage (1/m²)"),
-    ("f_coupled_Hz", None, "f_coupled (Hz)"),
+    # f_coupled's error is in particles.json (steps), not among the contract's CSV columns
+    ("f_coupled_Hz", "f_coupled_err_Hz", "f_coupled (Hz)"),
 )
+
+
+def _error(result, name, size):
+    """The standard errors of a column of particles.csv, or of particles.json's ``steps``."""
+    if name in result.particles:
+        return result.particles[name].to_numpy(float)
+    steps = getattr(result, "steps", {}) or {}
+    values = np.asarray(steps.get(name, np.full(size, np.nan)), float)
+    return values if values.shape == (size,) else np.full(size, np.nan)
 
 
 def time_figure(result):
@@ -142,8 +152,8 @@ def time_figure(result):
         y = table[value].to_numpy(float)
         ok = np.isfinite(y)
         if ok.any():
-            err = None if error is None else table[error].to_numpy(float)[ok]
-            err = None if err is None else np.where(np.isfinite(err), err, 0.0)
+            err = _error(result, error, len(t))[ok]
+            err = np.where(np.isfinite(err), err, 0.0)
             ax.errorbar(t[ok], y[ok], yerr=err, fmt=".", ms=3, lw=0.8, capsize=1.5)
         else:
             ax.text(0.5, 0.5, "not identified", ha="center", va="center", transform=ax.transAxes)
