@@ -311,3 +311,30 @@ def test_text_cells_a_spreadsheet_would_run_are_neutralised(tmp_path):
     assert back["label"].tolist() == ["'=1+1", "'+x", "'-y", "'@SUM(A1)", "'\tz", "plain", "a=b"]
     assert back["value"].tolist() == [-1.5] * 7  # numbers stay numbers
     assert frame["label"][0] == "=1+1"  # the caller's table is not changed
+
+
+@pytest.mark.parametrize(
+    "cells",
+    [
+        ["=a", "ok", None, float("nan"), 3, -2.5, "-b"],  # text among numbers and gaps
+        [b"=bytes", "=text", "plain"],  # bytes: pandas' string methods refuse the column
+        [1, 2, 3],  # an object column without any text
+    ],
+)
+def test_neutralising_a_whole_column_follows_the_cell_rule(cells):
+    """The column-at-once test of :func:`contactres.fileio.neutralised` (issue 31, point 5)
+    gives what the rule says cell by cell: a string starting with = + - @, tab or CR gets an
+    apostrophe; anything else (numbers, gaps, bytes) is left as it is."""
+    import pandas as pd
+
+    from contactres.fileio import neutralised
+
+    frame = pd.DataFrame({"cell": pd.Series(cells, dtype=object)})
+    expected = [
+        "'" + v if isinstance(v, str) and v[:1] in ("=", "+", "-", "@", "\t", "\r") else v
+        for v in cells
+    ]
+    got = neutralised(frame)["cell"].tolist()
+    assert len(got) == len(expected)
+    for g, e in zip(got, expected, strict=True):
+        assert g is e or g == e or (g != g and e != e)

@@ -79,6 +79,7 @@ LAYERS: tuple[frozenset[str], ...] = (
     frozenset(
         {
             "_lazy",
+            "_csvcells",
             "errors",
             "validation",
             "fileio",

@@ -45,6 +45,7 @@ from collections.abc import Iterable, Iterator
 from contextlib import contextmanager
 from pathlib import Path
 
+from ._csvcells import CSV_FLOAT_FORMAT, neutralised
 from ._version import __version__
 from .errors import ContactresInputError
 
@@ -63,8 +64,6 @@ __all__ = [
     "write_csv",
     "write_text",
 ]
-
-CSV_FLOAT_FORMAT = "%.10g"  #: CSV floats: 10 digits, no noise (0.30000000000000004 -> 0.3)
 
 #: The file of a result set written last: its files, sizes and SHA-256 sums.
 MANIFEST = "manifest.json"
@@ -134,33 +133,6 @@ def write_bytes(path: str | os.PathLike, data: bytes) -> Path:
     with _atomic_path(path) as tmp:
         tmp.write_bytes(data)
     return Path(path)
-
-
-#: First characters with which a spreadsheet reads a cell as a formula (CSV injection, OWASP):
-#: a text cell starting with one of them is written with a leading apostrophe.
-_FORMULA_START = ("=", "+", "-", "@", "\t", "\r")
-
-
-def neutralised(frame):
-    """``frame`` with every text cell that a spreadsheet would run as a formula (it starts with
-    one of ``= + - @``, a tab or a carriage return) prefixed by an apostrophe, which spreadsheets
-    show as text.
-    Numbers are untouched (a negative number is a number, not a formula); only columns of text
-    (object or string dtype) are looked at. Returns ``frame`` itself when nothing needs it."""
-    columns = getattr(frame, "columns", None)
-    if columns is None:  # not a table: written as the caller's to_csv writes it
-        return frame
-    text = [c for c in columns if frame[c].dtype.kind == "O" or str(frame[c].dtype) == "str"]
-    if not text:
-        return frame
-    out = None
-    for c in text:
-        col = frame[c]
-        risky = col.map(lambda v: isinstance(v, str) and v.startswith(_FORMULA_START))
-        if risky.any():
-            out = frame.copy() if out is None else out
-            out[c] = col.where(~risky, "'" + col.astype(str))
-    return frame if out is None else out
 
 
 def write_csv(path: str | os.PathLike, frame, **kwargs) -> Path:
