@@ -45,7 +45,7 @@ from collections.abc import Iterable, Iterator
 from contextlib import contextmanager
 from pathlib import Path
 
-from ._csvcells import CSV_FLOAT_FORMAT, neutralised
+from ._csvcells import CSV_FLOAT_FORMAT, floats_as_text, neutralised
 from ._version import __version__
 from .errors import ContactresInputError
 
@@ -139,8 +139,11 @@ def write_csv(path: str | os.PathLike, frame, **kwargs) -> Path:
     """Write a pandas DataFrame as CSV atomically (no index unless asked); text cells that a
     spreadsheet would run as formulas are neutralised (:func:`neutralised`)."""
     kwargs.setdefault("index", False)
+    table = neutralised(frame)
+    if not {"float_format", "decimal", "quoting"} & kwargs.keys():  # pandas' default text
+        table = floats_as_text(table, kwargs.get("na_rep", ""))
     with _atomic_path(path) as tmp:
-        neutralised(frame).to_csv(tmp, **kwargs)
+        table.to_csv(tmp, **kwargs)
     return Path(path)
 
 
