@@ -80,6 +80,7 @@ LAYERS: tuple[frozenset[str], ...] = (
         {
             "_lazy",
             "_threads",
+            "_csvcells",
             "errors",
             "validation",
             "fileio",

@@ -45,6 +45,7 @@ from collections.abc import Iterable, Iterator
 from contextlib import contextmanager
 from pathlib import Path
 
+from ._csvcells import CSV_FLOAT_FORMAT, floats_as_text, neutralised
 from ._version import __version__
 from .errors import ContactresInputError
 
@@ -63,8 +64,6 @@ __all__ = [
     "write_csv",
     "write_text",
 ]
-
-CSV_FLOAT_FORMAT = "%.10g"  #: CSV floats: 10 digits, no noise (0.30000000000000004 -> 0.3)
 
 #: The file of a result set written last: its files, sizes and SHA-256 sums.
 MANIFEST = "manifest.json"
@@ -136,40 +135,15 @@ def write_bytes(path: str | os.PathLike, data: bytes) -> Path:
     return Path(path)
 
 
-#: First characters with which a spreadsheet reads a cell as a formula (CSV injection, OWASP):
-#: a text cell starting with one of them is written with a leading apostrophe.
-_FORMULA_START = ("=", "+", "-", "@", "\t", "\r")
-
-
-def neutralised(frame):
-    """``frame`` with every text cell that a spreadsheet would run as a formula (it starts with
-    one of ``= + - @``, a tab or a carriage return) prefixed by an apostrophe, which spreadsheets
-    show as text.
-    Numbers are untouched (a negative number is a number, not a formula); only columns of text
-    (object or string dtype) are looked at. Returns ``frame`` itself when nothing needs it."""
-    columns = getattr(frame, "columns", None)
-    if columns is None:  # not a table: written as the caller's to_csv writes it
-        return frame
-    text = [c for c in columns if frame[c].dtype.kind == "O" or str(frame[c].dtype) == "str"]
-    out = None  # (no text column: frame itself)
-    for c in text:
-        col = frame[c]
-        # Each distinct cell looked at once (a curves table repeats 10^5 sweep ids 30 times).
-        risky = col.isin(
-            [v for v in col.unique() if isinstance(v, str) and v.startswith(_FORMULA_START)]
-        )
-        if risky.any():
-            out = frame.copy() if out is None else out
-            out[c] = col.where(~risky, "'" + col.astype(str))
-    return frame if out is None else out
-
-
 def write_csv(path: str | os.PathLike, frame, **kwargs) -> Path:
     """Write a pandas DataFrame as CSV atomically (no index unless asked); text cells that a
     spreadsheet would run as formulas are neutralised (:func:`neutralised`)."""
     kwargs.setdefault("index", False)
+    table = neutralised(frame)
+    if not {"float_format", "decimal", "quoting"} & kwargs.keys():  # pandas' default text
+        table = floats_as_text(table, kwargs.get("na_rep", ""))
     with _atomic_path(path) as tmp:
-        neutralised(frame).to_csv(tmp, **kwargs)
+        table.to_csv(tmp, **kwargs)
     return Path(path)
 
 

@@ -419,7 +419,9 @@ def computed_rounded(result, copied) -> object:
     digits (no floating-point noise) and the ``copied`` input columns untouched (the user's
     values, written back exactly)."""
     out = result.copy()
+    kept = set(copied)
     for col in out.columns:
-        if col not in set(copied) and out[col].dtype.kind == "f":
-            out[col] = [("" if v != v else f"{v:.10g}") for v in out[col].to_numpy()]
+        if col not in kept and out[col].dtype.kind == "f":
+            # Python floats (tolist), not numpy scalars: the same text, formatted ~1.5x faster.
+            out[col] = [("" if v != v else f"{v:.10g}") for v in out[col].to_numpy().tolist()]
     return out

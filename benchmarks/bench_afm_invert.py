@@ -1,0 +1,92 @@
+"""Benchmark: ``contactres afm invert`` of a 512 x 512 map in CSV, end to end, in CPU time.
+
+Target (issue 31, point 5): at most 1 s of CPU for the whole command, as a user runs it: start
+the interpreter, import, read and check the table, invert every pixel (Euler-Bernoulli lever,
+U. Rabe et al., Rev. Sci. Instrum. 67, 3281 (1996); Hertz to the modulus), write the CSV. The
+inversion itself is a small part; the rest is CSV reading and writing and imports.
+
+The map is written first (not timed): two modes per pixel from the forward model
+(:func:`contactres.contact_frequencies`, 64 values of κ = k*/k_c from 1 to 300 at r = 0.95,
+tiled, 1e-6 relative noise), with a tip radius, a load and the tip's modulus. The command runs
+in a subprocess; its CPU time (user + system, of the child, ``resource.getrusage
+(RUSAGE_CHILDREN)``) is the best of 3 runs: on a shared machine the fair measure of the work
+done, where the wall time counts the other jobs too. The wall time is printed for information.
+
+Run: ``.venv/bin/python benchmarks/bench_afm_invert.py`` (exit status 1 if the target is
+missed).
+"""
+
+from __future__ import annotations
+
+import resource
+import subprocess
+import sys
+import tempfile
+import time
+from pathlib import Path
+
+import numpy as np
+from _verdict import exit_code, target
+
+TARGET_S = 1.0
+SIDE = 512
+RUNS = 3
+
+
+def _write_map(path: Path) -> None:
+    import pandas as pd
+
+    from contactres import Cantilever, contact_frequencies
+
+    lever = Cantilever((1.6e5, 1.003e6), 40.0)
+    kappa = np.geomspace(1.0, 300.0, 64)
+    f = contact_frequencies(lever, kappa, 0.95, modes=(1, 2))
+    n = SIDE * SIDE
+    f = np.tile(f, (n // kappa.size, 1))
+    f = f * (1.0 + 1e-6 * np.random.default_rng(3).standard_normal(f.shape))
+    table = {
+        "pixel": np.arange(1, n + 1),
+        "f1_free_Hz": 1.6e5,
+        "f2_free_Hz": 1.003e6,
+        "k_c_N_per_m": 40.0,
+        "tip_position": 0.95,
+        "fc1_Hz": f[:, 0],
+        "fc2_Hz": f[:, 1],
+        "tip_radius_m": 5e-8,
+        "load_N": 1e-6,
+        "M_tip_Pa": 1.65e11,
+    }
+    pd.DataFrame(table).to_csv(path, index=False)
+
+
+def _cpu_of_children() -> float:
+    usage = resource.getrusage(resource.RUSAGE_CHILDREN)
+    return usage.ru_utime + usage.ru_stime
+
+
+def main() -> int:
+    python = sys.executable
+    script = Path(python).with_name("contactres")  # the console script of the environment
+    cli = [str(script)] if script.exists() else [python, "-m", "contactres"]
+    with tempfile.TemporaryDirectory() as tmp:
+        table = Path(tmp) / "map.csv"
+        _write_map(table)
+        argv = [*cli, "afm", "invert", str(table), "--out", str(Path(tmp) / "out.csv")]
+        cpu, wall = [], []
+        for _ in range(RUNS):
+            c0, t0 = _cpu_of_children(), time.perf_counter()
+            subprocess.run(argv, check=True, stdout=subprocess.DEVNULL)
+            wall.append(time.perf_counter() - t0)
+            cpu.append(_cpu_of_children() - c0)
+        rows = SIDE * SIDE
+        print(
+            f"afm invert of a {SIDE} x {SIDE} CSV map ({rows} rows, two modes, Hertz), "
+            f"best of {RUNS} subprocesses: {min(cpu):.2f} s CPU, {min(wall):.2f} s wall "
+            "(information)"
+        )
+        results = [target(f"afm invert {SIDE}x{SIDE} CSV, CPU end to end", min(cpu), TARGET_S)]
+    return exit_code(results)
+
+
+if __name__ == "__main__":
+    sys.exit(main())
