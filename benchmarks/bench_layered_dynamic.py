@@ -18,13 +18,18 @@ target yet).
 Measured (CPU, 2 cores shared by ~9 jobs; one BLAS thread / as shipped): homogeneous 0.021 s /
 0.051 s; 250 nm 0.133 s (6.5x) / 0.42 s (8.2x); 1 µm 0.076 s (3.7x) / 1.35 s (27x); tangential
 homogeneous 0.29 s / 1.16 s, 250 nm 2.2 s (7.5x) / 31 s (27x), 1 µm 0.51 s (1.8x) / 4.1 s
-(3.5x). The target is missed in both. As shipped, the default BLAS threads spin on the
-layered path's many small matrix products (3x3 recursion, Gram products of ~20 functions) while
-the machine is busy: 3-14x the CPU of one thread, where the homogeneous curve pays 2.4-4x.
-Profile of the 250 nm normal curve (cProfile, one thread): the film's Galerkin matrices at
-three basis sizes (10, 13, 18 radial terms) ~20 %, the layer waves and recursion with the node
-assembly (``correction_nodes``) ~45 %, the Bessel functions of the nodes ~10 %, the Gram
-products ~6 %.
+(3.5x). The target is missed in both. After the film's integrals were reused across the
+basis sizes and the real-axis waves interpolated for all points at once (measured in one run,
+before / after, best of 7): one BLAS thread homogeneous 0.020 / 0.021 s, 250 nm 0.133 s (6.6x)
+/ 0.111 s (5.3x), 1 µm 0.076 s (3.8x) / 0.069 s (3.3x); as shipped 250 nm 17x / 5.4x, 1 µm
+2.9x / 3.4x (the as-shipped figures move by 2-3x from run to run on the busy machine).
+As shipped, the default BLAS threads spin on the layered path's many small matrix products (3x3
+recursion, Gram products of ~20 functions) while the machine is busy: 3-14x the CPU of one
+thread, where the homogeneous curve pays 2.4-4x.
+Profile of the 250 nm normal curve before these two changes (cProfile, one thread): the
+film's Galerkin matrices at three basis sizes (10, 13, 18 radial terms) ~20 %, the layer waves
+and recursion with the node assembly (``correction_nodes``) ~45 %, the Bessel functions of the
+nodes ~10 %, the Gram products ~6 %.
 
 Run: ``.venv/bin/python benchmarks/bench_layered_dynamic.py`` (exit status 1 if a target is
 missed; a few minutes on a busy machine).

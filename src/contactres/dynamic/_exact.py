@@ -43,6 +43,7 @@ __all__ = [
     "GalerkinPlan",
     "GalerkinSize",
     "exact_n",
+    "galerkin_integrals",
     "galerkin_matrix",
     "galerkin_plan",
     "galerkin_size",
@@ -258,6 +259,19 @@ def galerkin_matrix(
     ndarray, complex, shape (len(ka), n_basis, n_basis)
         M in the normalisation of N (dimensionless): M c = e₀ gives N_exact = 1/c₀.
     """
+    # Assemble M_ab = sign_ab I[n_a + n_b][p_a, p_b].
+    return plan.sign * galerkin_integrals(table, ka, plan, far)[:, plan.m_index, plan.t_index]
+
+
+def galerkin_integrals(
+    table: KernelTable, ka: np.ndarray, plan: GalerkinPlan, far: FarBasis
+) -> np.ndarray:
+    """I[a, m, t] = ∫₀^∞ ds Ĝ_m(s/k_s a) j_p(s) j_q(s) (dimensionless) at k_s a values ``ka``
+    for the harmonics ``plan.ms`` and the order pairs t = (p, q) of ``plan.pairs``: the
+    entries :func:`galerkin_matrix` assembles M from, shape (len(ka), n_m, n_t), complex.
+    Each pair's column depends on that pair alone (and on ``plan.ms``), so a plan whose
+    ``pairs`` and ``far_products`` are restricted to some pairs gives their columns only.
+    Arguments as in :func:`galerkin_matrix`."""
     assert plan.far_products is not None
     na = ka.size
     orders, (ti, tj) = plan.orders, plan.pairs
@@ -304,5 +318,4 @@ def galerkin_matrix(
     tail_sign = np.where(((orders[ti] - orders[tj]) // 2) % 2 == 0, 1.0, -1.0)
     scale = (table.t1 * ka) ** 2 / (6 * far.s_end**3)
     integral += scale[:, None, None] * (coef @ alt)[None, :, None] * tail_sign[None, None, :]
-    # Assemble M_ab = sign_ab I[n_a + n_b][p_a, p_b].
-    return plan.sign * integral[:, plan.m_index, plan.t_index]
+    return integral

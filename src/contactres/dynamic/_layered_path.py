@@ -282,6 +282,29 @@ class _SharedWaves:
         y = (st.pole * a / s) ** 2
         return self.table.interpolated(chebyshev_matrix(self.table.size, 2 * y - 1))
 
+    def real_all(self, items) -> StackWaves:
+        """:meth:`real` of every (stack, a, s) of ``items``, one after the other: where every
+        stack is dynamic and the table serves, one interpolation for all of them (one
+        barycentric matrix and one batched product per array instead of one per point)."""
+        dynamic = [(st, a, s) for st, a, s in items if st.omega > 0]
+        if self.table is None or not dynamic:
+            return StackWaves.combined([self.real(st, a, s) for st, a, s in items])
+        y = np.concatenate([(st.pole * a / s) ** 2 for st, a, s in dynamic])
+        waves = self.table.interpolated(chebyshev_matrix(self.table.size, 2 * y - 1))
+        if len(dynamic) == len(items):
+            return waves
+        # Static points (f = 0) among them: their waves in their places.
+        ends = np.cumsum([s.size for _, _, s in dynamic])
+        parts, k = [], 0
+        for st, _, s in items:
+            if st.omega == 0:
+                parts.append(self.static_at(s.size))
+            else:
+                lo = ends[k] - s.size
+                parts.append(waves._with([x[..., lo : ends[k], :] for x in waves.arrays()]))
+                k += 1
+        return StackWaves.combined(parts)
+
 
 def _head(shared: _SharedWaves, st: Stack, a: float, res: PunchResolution, s0: float):
     """Nodes, weights and waves of the part before the real panels: the lifted arc (dynamic)
@@ -307,16 +330,15 @@ def _head(shared: _SharedWaves, st: Stack, a: float, res: PunchResolution, s0: f
     return lifted, along, waves_at(st, shared.theta, (st.omega * a / lifted) ** 2)
 
 
-def _delta_g(shared: _SharedWaves, parts) -> list:
-    """Δg at the nodes of every (stack, a, s, waves) of ``parts``, solved together."""
-    waves = StackWaves.combined([w for _, _, _, w in parts])
+def _delta_g(shared: _SharedWaves, parts, waves: StackWaves) -> list:
+    """Δg at the nodes of every (stack, a, s) of ``parts``, solved together, with ``waves``
+    the waves of all their nodes one after the other."""
     n_layers = len(shared.stack.tensors) - 1
     eta_h = [
-        np.concatenate([s / a * st.thicknesses[j] for st, a, s, _ in parts])
-        for j in range(n_layers)
+        np.concatenate([s / a * st.thicknesses[j] for st, a, s in parts]) for j in range(n_layers)
     ]
     values = waves.delta_g(shared.stack, eta_h, shared.shift)
-    return np.split(values, np.cumsum([s.size for _, _, s, _ in parts])[:-1])
+    return np.split(values, np.cumsum([s.size for _, _, s in parts])[:-1])
 
 
 def _chunk_nodes(shared: _SharedWaves, stacks, radii, index, res: PunchResolution, gref) -> dict:
@@ -338,7 +360,8 @@ def _chunk_nodes(shared: _SharedWaves, stacks, radii, index, res: PunchResolutio
         n_edges = math.ceil(math.log(_S_MAX / start) / math.log(res.ratio)) + 1
         edges = start * res.ratio ** np.arange(n_edges + 1, dtype=np.float64)
         plan.append((st, a, h_tot, s0, edges))
-    probes = _delta_g(shared, [(st, a, e, shared.real(st, a, e)) for st, a, _, _, e in plan])
+    at_edges = [(st, a, e) for st, a, _, _, e in plan]
+    probes = _delta_g(shared, at_edges, shared.real_all(at_edges))
     parts, lasts = [], []
     xc = np.cos(np.pi * (np.arange(res.n_cheb) + 0.5) / res.n_cheb)
     for (st, a, h_tot, s0, edges), probe in zip(plan, probes, strict=True):
@@ -359,18 +382,13 @@ def _chunk_nodes(shared: _SharedWaves, stacks, radii, index, res: PunchResolutio
         sc = np.exp(uc).ravel()
         head = _head(shared, st, a, res, s0)
         parts.append((st, a, head, sc))
-    samples = _delta_g(
-        shared,
-        [
-            (
-                st,
-                a,
-                np.concatenate([head[0], sc]),
-                StackWaves.combined([head[2], shared.real(st, a, sc)]),
-            )
-            for st, a, head, sc in parts
-        ],
-    )
+    # Every head first, then every point's real samples (one interpolation for all of them).
+    heads = [(st, a, head[0]) for st, a, head, _ in parts]
+    reals = [(st, a, sc) for st, a, _, sc in parts]
+    waves = StackWaves.combined([head[2] for _, _, head, _ in parts] + [shared.real_all(reals)])
+    pieces = _delta_g(shared, heads + reals, waves)
+    n = len(parts)
+    samples = [np.concatenate(hr) for hr in zip(pieces[:n], pieces[n:], strict=True)]
     out = {}
     rule = gauss_legendre(0.0, 1.0, res.n_panel)
     for k, i in enumerate(index):

@@ -75,6 +75,7 @@ J. Tian, paper 1 (the Galerkin kernel table of the module ``contactres.dynamic._
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 
@@ -85,7 +86,7 @@ from ..materials import Material
 from ..validation import nonnegative, positive
 from ._exact import (
     GalerkinSize,
-    galerkin_matrix,
+    galerkin_integrals,
     galerkin_plan,
     galerkin_size,
     kernel_harmonics,
@@ -105,6 +106,7 @@ from ._layered_tangential import tangential_punch
 from ._normal_stiffness import normalised_wavenumber
 from ._table import KernelTable, prepare
 from ._tangential_table import prepare_tangential
+from ._weights import spherical_bessel
 
 __all__ = [
     "PunchResolution",
@@ -144,21 +146,41 @@ def _assemble(integral, plan) -> np.ndarray:
     return plan.sign * integral[plan.m_index, plan.t_index]
 
 
-def _film_matrices(table: KernelTable, ksa: np.ndarray, size: GalerkinSize, far):
-    """(M_film at k_s a values ``ksa`` (>= 0), (len(ksa), nb, nb); the Galerkin plan), with
-    ``far`` the far-field basis of the positive ``ksa`` (None if there is none; it does not
-    depend on the basis size, so the growing basis of :func:`_punch` computes it once)."""
+def _film_matrices(table: KernelTable, ksa: np.ndarray, size: GalerkinSize, far, known=None):
+    """(M_film at k_s a values ``ksa`` (>= 0), (len(ksa), nb, nb); the Galerkin plan; the
+    film's integrals by order pair for the next call), with ``far`` the far-field basis of the
+    positive ``ksa`` (None if there is none; it does not depend on the basis size, so the
+    growing basis of :func:`_punch` computes it once). ``known``: what the previous call of
+    the growing basis returned last (its pairs' integrals are reused, not recomputed: a pair's
+    integral does not depend on the basis it belongs to, and the harmonics stay the same)."""
     pos = ksa > 0
-    plan = galerkin_plan(table, size, None if far is None else far.s)
+    # The plan without the far grid's products: those of the new pairs only are formed below.
+    plan = galerkin_plan(table, size)
     nb = len(plan.basis)
     out = np.empty((ksa.size, nb, nb), dtype=complex)
     orders, (ti, tj) = plan.orders, plan.pairs
     # Static part of the exact model: Ĝ_m^∞ δ_pq π/(2(2p + 1)) (closed form).
     diag = np.where(ti == tj, np.pi / (2 * (2 * orders[ti] + 1)), 0.0)
     out[~pos] = _assemble(kernel_harmonics(table.ginf, plan.ms)[:, None] * diag[None, :], plan)
-    if far is not None:
-        out[pos] = galerkin_matrix(table, ksa[pos], plan, far)
-    return out, plan
+    if far is None:
+        return out, plan, None
+    # Each pair (p, q) by its orders, p <= q (the pairs of a smaller basis are among these).
+    keys = orders[ti] * (2 * int(orders[-1]) + 2) + orders[tj]
+    integral = np.empty((int(np.sum(pos)), plan.ms.size, keys.size), dtype=complex)
+    new = np.ones(keys.size, dtype=bool)
+    if known is not None and np.array_equal(known[2], plan.ms):
+        old_keys = known[0][0] * (2 * int(orders[-1]) + 2) + known[0][1]
+        by_key = np.argsort(old_keys)
+        at = by_key[np.minimum(np.searchsorted(old_keys[by_key], keys), old_keys.size - 1)]
+        new = old_keys[at] != keys
+        integral[..., ~new] = known[1][..., at[~new]]
+    if np.any(new):
+        js = spherical_bessel(int(orders[-1]), np.asarray(far.s, dtype=float))[orders]
+        products = js[ti[new]] * js[tj[new]]
+        part = replace(plan, pairs=plan.pairs[:, new], far_products=products)
+        integral[..., new] = galerkin_integrals(table, ksa[pos], part, far)
+    out[pos] = plan.sign * integral[:, plan.m_index, plan.t_index]
+    return out, plan, (np.stack([orders[ti], orders[tj]]), integral, plan.ms)
 
 
 def _solve_c0(M: np.ndarray, n_radial: int, plan) -> np.ndarray:
@@ -417,10 +439,11 @@ def _punch(table, film, items, radii, rtol, res) -> np.ndarray:
     nodes = correction_nodes(stacks, radii, theta, res, gref)
     pos = ksa > 0
     far = far_basis(table, ksa[pos]) if np.any(pos) else None
+    known = None
     while True:
         grow = n_radial + 4 if nodes else n_radial
         size = GalerkinSize(grow, 0 if axisymmetric else n_harm)
-        M, plan = _film_matrices(table, ksa, size, far)
+        M, plan, known = _film_matrices(table, ksa, size, far, known)
         orders, (ti, tj) = plan.orders, plan.pairs
         diag = np.where(ti == tj, np.pi / (2 * (2 * orders[ti] + 1)), 0.0)
         jps = bessel_on_nodes(int(orders[-1]), nodes, res, lambda J, o=orders: J[o])
