@@ -357,3 +357,16 @@ def test_floats_written_as_text_match_what_pandas_writes(tmp_path):
         write_csv(tmp_path / "fast.csv", frame, **kwargs)
         frame.to_csv(tmp_path / "pandas.csv", **{"index": False, **kwargs})
         assert (tmp_path / "fast.csv").read_bytes() == (tmp_path / "pandas.csv").read_bytes()
+
+
+def test_a_signed_number_written_as_text_stays_a_number(tmp_path):
+    """afm invert and rum invert write their computed columns as 10-digit text: a negative value
+    ("-0.5") is a number to a spreadsheet and was written as "'-0.5", text that no longer sums."""
+    import pandas as pd
+
+    from contactres.fileio import write_csv
+
+    cells = ["-0.5", "+1e-3", "-12.", "-.5E+2", "-inf", "-2+3", "-1-1", "-", "- 1", "+A1"]
+    write_csv(tmp_path / "t.csv", pd.DataFrame({"x": cells}))
+    back = pd.read_csv(tmp_path / "t.csv", dtype=str, keep_default_na=False)["x"].tolist()
+    assert back == cells[:5] + ["'" + c for c in cells[5:]]

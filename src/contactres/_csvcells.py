@@ -18,6 +18,10 @@ CSV_FLOAT_FORMAT = "%.10g"  #: CSV floats: 10 digits, no noise (0.30000000000000
 #: a text cell starting with one of them is written with a leading apostrophe.
 _FORMULA_START = ("=", "+", "-", "@", "\t", "\r")
 
+#: A signed decimal number and nothing else ("-0.5", "+1e-3", "-inf"): text that a spreadsheet
+#: reads as a number, never as a formula, though it starts with a sign.
+_PLAIN_NUMBER = r"[+-]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?|[+-]?inf"
+
 
 def _risky(col) -> np.ndarray:
     """Boolean mask of the cells of the text column ``col`` (a pandas Series) that are strings
@@ -41,8 +45,9 @@ def neutralised(frame):
     """``frame`` with every text cell that a spreadsheet would run as a formula (it starts with
     one of ``= + - @``, a tab or a carriage return) prefixed by an apostrophe, which spreadsheets
     show as text.
-    Numbers are untouched (a negative number is a number, not a formula); only columns of text
-    (object or string dtype) are looked at. Returns ``frame`` itself when nothing needs it."""
+    Numbers are untouched (a negative number is a number, not a formula), and so is text that is
+    a plain signed number ("-0.5"); only columns of text (object or string dtype) are looked at.
+    Returns ``frame`` itself when nothing needs it."""
     columns = getattr(frame, "columns", None)
     if columns is None:  # not a table: written as the caller's to_csv writes it
         return frame
@@ -52,7 +57,13 @@ def neutralised(frame):
     out = None
     for c in text:
         col = frame[c]
-        risky = _risky(col)
+        risky = _risky(col).copy()  # (a view of pandas memory may be read-only)
+        if risky.any():
+            # A plain number written as text ("-0.5": afm invert rounds its computed columns to
+            # 10 digits as text) is a number to a spreadsheet, not a formula: left as it is.
+            at = np.flatnonzero(risky)
+            plain = col.iloc[at].astype(str).str.fullmatch(_PLAIN_NUMBER).to_numpy(dtype=bool)
+            risky[at[plain]] = False
         if risky.any():
             out = frame.copy() if out is None else out
             out[c] = col.where(~risky, "'" + col.astype(str))
