@@ -7,10 +7,9 @@ as misorientation angles with the crystal symmetry (orix's ``Orientation.angle_w
 Rowenhorst et al. (2015), and contactres' surface matrix is R = gᵀ (:mod:`.orientations`).
 
 The IPF key against orix's TSL key (orix.plot.DirectionColorKeyTSL) is here too: the same
-corner colours, a different construction inside the triangle. Every test that imports
-orix lives in this one module, so that one pytest-xdist worker (``--dist loadfile``) compiles
-orix's numba functions: two workers compiling them at once into the shared cache crashed a
-fresh CI run (segmentation fault on import).
+corner colours, a different construction inside the triangle. Every test that uses
+orix lives in this one module, and imports it only when run (see ``_orix``), so that one
+pytest-xdist worker (``--dist loadfile``) loads orix's numba functions.
 """
 
 from __future__ import annotations
@@ -33,15 +32,28 @@ from contactres.polycrystal import (
 )
 from contactres.polycrystal._synthetic import synthetic_polycrystal
 
-orix = pytest.importorskip("orix", reason="orix (the `peers` extra) is the round-trip peer")
-from orix import io  # noqa: E402
-from orix.crystal_map import CrystalMap, Phase, PhaseList  # noqa: E402
-from orix.plot import DirectionColorKeyTSL  # noqa: E402
-from orix.quaternion import Orientation, Rotation, symmetry  # noqa: E402
-from orix.vector import Vector3d  # noqa: E402
+# orix is imported when this module's tests run, not when pytest collects it: every test worker
+# collects every module, and orix compiles numba functions into a shared cache on its first
+# import (two workers doing so at once crashed a fresh CI run with a segmentation fault).
+io = CrystalMap = Phase = PhaseList = DirectionColorKeyTSL = None
+Orientation = Rotation = symmetry = Vector3d = None
+
+
+@pytest.fixture(scope="module", autouse=True)
+def _orix():
+    """The orix names this module's tests use (skipped with a reason without orix)."""
+    global io, CrystalMap, Phase, PhaseList, DirectionColorKeyTSL
+    global Orientation, Rotation, symmetry, Vector3d
+    pytest.importorskip("orix", reason="orix (the `peers` extra) is the round-trip peer")
+    from orix import io
+    from orix.crystal_map import CrystalMap, Phase, PhaseList
+    from orix.plot import DirectionColorKeyTSL
+    from orix.quaternion import Orientation, Rotation, symmetry
+    from orix.vector import Vector3d
+
 
 TOL = 1e-6  # rad
-POINT_GROUP = {"cubic": symmetry.Oh, "hexagonal": symmetry.D6h}
+POINT_GROUP = {"cubic": "Oh", "hexagonal": "D6h"}  # orix.quaternion.symmetry names
 
 
 def _misorientation(xmap, m: OrientationMap, lattice: str, seed: int = 0) -> np.ndarray:
@@ -53,7 +65,7 @@ def _misorientation(xmap, m: OrientationMap, lattice: str, seed: int = 0) -> np.
     R = m.surface_matrices()[i, j]
     S = symmetry_operators(lattice)
     R = R @ S[np.random.default_rng(seed).integers(len(S), size=len(R))]
-    pg = POINT_GROUP[lattice]
+    pg = getattr(symmetry, POINT_GROUP[lattice])
     ours = Orientation.from_matrix(np.swapaxes(R, -1, -2), symmetry=pg)
     return Orientation(xmap.rotations, symmetry=pg).angle_with(ours)
 
@@ -170,14 +182,15 @@ def test_orix_reads_the_bundled_example_map():
 # Corners (red, green, blue) in crystal coordinates: [001], [101], [111]; [0001], [2-1-10] = a1,
 # [10-10] (azimuth 30°).
 CORNERS = {
-    "cubic": (symmetry.Oh, [[0, 0, 1], [1, 0, 1], [1, 1, 1]]),
-    "hexagonal": (symmetry.D6h, [[0, 0, 1], [1, 0, 0], [np.sqrt(3) / 2, 0.5, 0]]),
+    "cubic": ("Oh", [[0, 0, 1], [1, 0, 1], [1, 1, 1]]),
+    "hexagonal": ("D6h", [[0, 0, 1], [1, 0, 0], [np.sqrt(3) / 2, 0.5, 0]]),
 }
 
 
 @pytest.mark.parametrize("lattice", sorted(CORNERS))
 def test_the_corner_colours_are_orix_s(lattice):
-    pg, corners = CORNERS[lattice]
+    name, corners = CORNERS[lattice]
+    pg = getattr(symmetry, name)
     corners = np.array(corners, dtype=float)
     theirs = DirectionColorKeyTSL(pg).direction2color(Vector3d(corners))
     ours = ipf_colors(corners, lattice)
@@ -190,7 +203,7 @@ def test_the_corner_colours_are_orix_s(lattice):
 def test_the_interior_differs_as_the_docstring_says(lattice):
     """The bound the module docstring states (0.3 cubic, 0.5 hexagonal, rounded up to 0.35 and
     0.55 here) holds on a dense sample, and the keys do differ (a claim of equality would fail)."""
-    pg, _ = CORNERS[lattice]
+    pg = getattr(symmetry, CORNERS[lattice][0])
     v = np.random.default_rng(0).normal(size=(20000, 3))
     diff = np.abs(
         DirectionColorKeyTSL(pg).direction2color(Vector3d(v)) - ipf_colors(v, lattice)
