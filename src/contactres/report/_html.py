@@ -205,7 +205,7 @@ def _plots(results: Results) -> str:
         ("The friction coefficient μ per load (Fig. 8)", figure_friction),
     ):
         buffer = io.BytesIO()
-        draw(results).savefig(buffer, format="png", dpi=90)
+        draw(results).savefig(buffer, format="png", dpi=90, bbox_inches="tight")
         data = base64.b64encode(buffer.getvalue()).decode("ascii")
         parts.append(
             f"<h3>{_e(title)}</h3>"
