@@ -249,3 +249,26 @@ def test_unresolved_load_values_are_marked(example_set):
     page = (example_set / "report.html").read_text(encoding="utf-8")
     assert expected > 0  # the example has such values: the check bites
     assert page.count(UNRESOLVED_MARK) == expected + 1
+
+
+def test_the_left_out_reasons_add_up_and_flags_of_used_sweeps_are_apart(results, page):
+    """Each sweep left out is counted under one reason (its flags, read from sweeps, not from
+    the page's code): the reasons add up to the sweeps left out; flags of used sweeps follow."""
+    sw = results.sweeps
+    used = sw["used"].to_numpy(bool)
+    flags = contactres.analysis.render(sw["flags"].to_numpy())
+    line = re.search(r"<p><b>(\d+) sweeps, (\d+) used; the (\d+) left out for: ([^;.]*)", page)
+    assert line, page[:2000]
+    total, n_used, left = (int(line[i]) for i in (1, 2, 3))
+    assert (total, n_used, left) == (len(sw), int(used.sum()), int((~used).sum()))
+    counts = {m[0].strip(): int(m[1]) for m in re.findall(r"([a-z ]+) (\d+)", line[4])}
+    assert sum(counts.values()) == left
+    first = sum("first-ramp" in f for f in flags[~used])
+    assert counts.get("first ramp") == first > 0
+    on_used = sorted({t for f in flags[used] for t in f.split(";") if t})
+    if on_used:
+        tail = page[line.end() :].split("</b>")[0]
+        assert tail.startswith("; flags on used sweeps: ")
+        assert all(
+            f"{flag} {sum(flag in f.split(';') for f in flags[used])}" in tail for flag in on_used
+        )

@@ -22,7 +22,7 @@ from pathlib import Path
 import numpy as np
 
 from .._version import __version__
-from ..analysis import DESCRIPTIONS, PAGE_POINTS, Flag, Results, render, sweep_rows
+from ..analysis import DESCRIPTIONS, PAGE_POINTS, Flag, Results, has, render, sweep_rows
 from ..fileio import write_text
 from ..jobs.qcm_sweeps import summary
 from ..measurements import CONSTANTS
@@ -172,19 +172,43 @@ def _load_stats(results: Results):
     return pd.DataFrame(rows)
 
 
+#: Why a sweep is left out, in the order a reason is counted: a sweep left out for several of
+#: them is counted under the first (so the reasons add up to the sweeps left out).
+LEAVE_OUT = (
+    (Flag.FEW_POINTS, "too few points"),
+    (Flag.FIRST_RAMP, "first ramp"),
+    (Flag.DRIFT, "drift"),
+)
+
+
 def _counts(results: Results) -> str:
-    """ "384 sweeps, 285 used; left out: 60 with flag X, ..." — every sweep not used is counted
-    under each of its flags (a sweep may have several)."""
+    """ "384 sweeps, 285 used; the 99 left out for: first ramp 96, drift 3; flags on used
+    sweeps: ..." — each sweep left out is counted once, under the first of its reasons in
+    :data:`LEAVE_OUT` ("other" if it has none); the flags of the used sweeps are listed apart
+    (a used sweep may carry several, so those counts need not add up)."""
     sw = results.sweeps
     used = sw["used"].to_numpy(dtype=bool) if len(sw) else np.zeros(0, dtype=bool)
     line = f"{len(sw)} sweeps, {int(used.sum())} used"
     if (~used).any():
+        flags = sw["flags"].to_numpy(dtype=np.int64)[~used]
+        counted = np.zeros(flags.size, dtype=bool)
+        reasons = []
+        for flag, text in LEAVE_OUT:
+            n = int((has(flags, flag) & ~counted).sum())
+            counted |= has(flags, flag)
+            if n:
+                reasons.append(f"{text} {n}")
+        if (~counted).any():
+            reasons.append(f"other {int((~counted).sum())}")
+        line += f"; the {int((~used).sum())} left out for: {', '.join(reasons)}"
+    if used.any():
         counts: dict[str, int] = {}
-        for text in render(sw["flags"].to_numpy()[~used]):
-            for flag in [t for t in text.split(";") if t] or ["no flag"]:
+        for text in render(sw["flags"].to_numpy()[used]):
+            for flag in (t for t in text.split(";") if t):
                 counts[flag] = counts.get(flag, 0) + 1
-        reasons = ", ".join(f"{n} {_e(flag)}" for flag, n in sorted(counts.items()))
-        line += f"; the {int((~used).sum())} left out, by flag: {reasons}"
+        if counts:
+            listed = ", ".join(f"{_e(flag)} {n}" for flag, n in sorted(counts.items()))
+            line += f"; flags on used sweeps: {listed}"
     return f"<p><b>{line}.</b></p>"
 
 
