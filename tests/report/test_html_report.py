@@ -272,3 +272,22 @@ def test_the_left_out_reasons_add_up_and_flags_of_used_sweeps_are_apart(results,
         assert all(
             f"{flag} {sum(flag in f.split(';') for f in flags[used])}" in tail for flag in on_used
         )
+
+
+def test_the_classification_counts_the_models_of_the_used_sweeps_per_medium(results, page):
+    used = results.sweeps[results.sweeps["used"]]
+    section = page.split('id="classification"')[1].split("<h2")[0]
+    rows = re.findall(r"<tr>(.*?)</tr>", section.split("<tbody>")[1])
+    head = re.findall(r"<th>(.*?)</th>", section)
+    assert head[0] == "medium" and head[-1] == "all models"
+    for row in rows:
+        cells = re.findall(r"<td[^>]*>(.*?)</td>", row)
+        part = used[used["medium"] == cells[0]]
+        for model, n in zip(head[1:-1], cells[1:-1], strict=True):
+            assert int(n) == int((part["model"] == model).sum())
+        assert int(cells[-1]) == len(part)
+    assert len(rows) == used["medium"].nunique()
+
+
+def test_the_stiffness_plot_says_it_draws_df0_in_hz(page):
+    assert "<h3>Δf0 (Hz, proportional to the contact stiffness κ) against the normal" in page

@@ -52,6 +52,7 @@ _SECTIONS = (
     ("input", "Input and counts"),
     ("table1", "Table 1: E and γ per configuration and medium"),
     ("plots", "Result plots"),
+    ("classification", "Classification: the model of the used sweeps per medium"),
     ("loads", "Per load"),
     ("radiation", "Radiation loss"),
     ("sweeps", "Sweeps: the model chosen for each"),
@@ -224,7 +225,12 @@ def _plots(results: Results) -> str:
         return "<p>No sweep is used: nothing to plot.</p>"
     parts = []
     for title, draw in (
-        ("κ (Δf0) against the normal force, with the JKR fits (paper 2, Fig. 5)", figure_stiffness),
+        (
+            # What is drawn is Δf0 in Hz (κ = Δf0 / P, Eq. 1 of paper 2), so the title says Δf0.
+            "Δf0 (Hz, proportional to the contact stiffness κ) against the normal force, with "
+            "the JKR fits (paper 2, Fig. 5)",
+            figure_stiffness,
+        ),
         ("ΔΓ0 and the loss tangent against the normal force (Fig. 7)", figure_dissipation),
         ("The friction coefficient μ per load (Fig. 8)", figure_friction),
     ):
@@ -236,6 +242,25 @@ def _plots(results: Results) -> str:
             f'<img class="plot" alt="{_e(title)}" src="data:image/png;base64,{data}">'
         )
     return "".join(parts)
+
+
+def _classification(results: Results) -> str:
+    """How many used sweeps each model was chosen for, per medium (one row per medium, one
+    column per model, a total column)."""
+    import pandas as pd
+
+    sw = results.sweeps
+    if not len(sw) or not sw["used"].any():
+        return "<p>No sweep is used: nothing classified.</p>"
+    used = sw[sw["used"]]
+    table = pd.crosstab(used["medium"], used["model"].fillna(DASH)).sort_index()
+    table["all models"] = table.sum(axis=1)
+    table = table.reset_index()
+    table.columns = [str(c) for c in table.columns]
+    return _table(table, numeric=tuple(table.columns[1:])) + (
+        "<p>Number of used sweeps for which each model was chosen (the sweeps section lists them "
+        "one by one).</p>"
+    )
 
 
 def _constants(results: Results):
@@ -382,6 +407,8 @@ def html_report(results: Results) -> str:
         parts += [f"<p><b>Note:</b> {_e(line)}</p>" for line in withheld_lines(results)]
     parts.append(f'<h2 id="plots">{titles["plots"]}</h2>')
     parts.append(_plots(results))
+    parts.append(f'<h2 id="classification">{titles["classification"]}</h2>')
+    parts.append(_classification(results))
     parts.append(f'<h2 id="loads">{titles["loads"]}</h2>')
     if len(results.loads):
         parts.append(_table(_load_stats(results), numeric=("F_N (mN)",)))
