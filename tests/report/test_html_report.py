@@ -291,3 +291,19 @@ def test_the_classification_counts_the_models_of_the_used_sweeps_per_medium(resu
 
 def test_the_stiffness_plot_says_it_draws_df0_in_hz(page):
     assert "<h3>Δf0 (Hz, proportional to the contact stiffness κ) against the normal" in page
+
+
+def test_the_summary_record_shows_the_groups_in_readers_units(results, page):
+    section = page.split('id="summary"')[1].split("<details>")[0]
+    head = re.findall(r"<th>(.*?)</th>", section)
+    assert head[:4] == ["configuration", "medium", "E (GPa)", "γ (mJ/m²)"]
+    rows = re.findall(r"<tr>(.*?)</tr>", section.split("<tbody>")[1])
+    assert len(rows) == len(results.groups)
+    for row, g in zip(rows, results.groups, strict=True):
+        cells = re.findall(r"<td[^>]*>(.*?)</td>", row)
+        assert cells[:2] == [g["configuration"], g["medium"]]
+        E, dE = (float(x) for x in cells[2].split(" ± "))
+        gamma = float(cells[3].split(" ± ")[0])
+        assert E == pytest.approx(g["E_Pa"] / 1e9, abs=dE / 10)
+        assert gamma == pytest.approx(g["gamma_J_m2"] * 1e3, rel=0.05)
+        assert float(cells[6]) == pytest.approx(g["sphere_radius_m"] * 1e3, rel=1e-3)

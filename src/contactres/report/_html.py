@@ -349,8 +349,42 @@ def _leaves(value, path: str):
         yield path, value
 
 
+def _number(value, scale: float = 1.0) -> str:
+    """A number of ``summary.json`` times ``scale`` to 4 digits (``—`` where missing)."""
+    if value is None or not math.isfinite(float(value)):
+        return DASH
+    return f"{float(value) * scale:.4g}"
+
+
+def _groups_table(results: Results) -> str:
+    """The fit of each group in the units a reader uses: E (GPa) and γ (mJ/m²) with the fit's
+    own errors and the bootstrap's, the sphere, the points fitted and the rms misfit."""
+    import pandas as pd
+
+    rows = [
+        {
+            "configuration": g["configuration"],
+            "medium": g["medium"],
+            "E (GPa)": plus_minus(g["E_Pa"] / 1e9, g["E_err_Pa"] / 1e9),
+            "γ (mJ/m²)": plus_minus(g["gamma_J_m2"] * 1e3, g["gamma_err_J_m2"] * 1e3),
+            "E fit error (GPa)": _number(g.get("E_fit_err_Pa"), 1e-9),
+            "γ fit error (mJ/m²)": _number(g.get("gamma_fit_err_J_m2"), 1e3),
+            "sphere radius (mm)": _number(g.get("sphere_radius_m"), 1e3),
+            "ν": _number(g.get("poisson")),
+            "loads fitted": g.get("n_points_fitted", DASH),
+            "rms misfit (N/m)": _number(g.get("fit_rms_N_per_m")),
+        }
+        for g in results.groups
+    ]
+    if not rows:
+        return "<p>No group is fitted.</p>"
+    frame = pd.DataFrame(rows)
+    return _table(frame, numeric=tuple(frame.columns[2:]))
+
+
 def _summary_section(results: Results) -> str:
-    """Every entry of ``summary.json`` (numbers to 7 digits), one row each, folded."""
+    """The fitted groups as a table in readers' units, then every entry of ``summary.json``
+    (numbers to 7 digits, SI units), one row each, folded."""
     rows = []
     for key, value in _leaves(summary(results), ""):
         if isinstance(value, bool) or value is None or isinstance(value, str):
@@ -360,9 +394,10 @@ def _summary_section(results: Results) -> str:
         rows.append(
             f'<tr data-key="{_e(key)}"><td><code>{_e(key)}</code></td><td>{_e(shown)}</td></tr>'
         )
-    return (
-        "<details><summary>Every entry of <code>summary.json</code> (groups in the order of "
-        "Table 1)</summary><table><thead><tr><th>key</th><th>value</th></tr></thead>"
+    return _groups_table(results) + (
+        "<details><summary>Every entry of <code>summary.json</code> as written, in SI units "
+        "(groups in the order of Table 1)</summary>"
+        "<table><thead><tr><th>key</th><th>value</th></tr></thead>"
         f"<tbody>{''.join(rows)}</tbody></table></details>"
     )
 
