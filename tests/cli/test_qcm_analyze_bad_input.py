@@ -313,3 +313,13 @@ def test_every_constant_option_is_checked_before_reading(tmp_path, base, option,
     r = run(data, "--out", tmp_path / "out", option, value)
     one_line_error(r, *words)
     assert not (tmp_path / "out").exists()
+
+
+def test_a_figure_format_with_no_figures_is_refused_before_any_work(base, tmp_path):
+    data, out = write(tmp_path, base), tmp_path / "out"
+    r = run(data, "--out", out, *OPTS, "--figure-format", "svg", "--no-figures")
+    one_line_error(r, "--figure-format", "--no-figures")
+    assert not out.exists()
+    r = run(data, "--out", out, *OPTS, "--no-figures")  # --no-figures alone still runs
+    assert r.exit_code == 0, r.output
+    assert not list(out.glob("*.png")) and not list(out.glob("*.svg"))

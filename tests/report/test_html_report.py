@@ -249,3 +249,61 @@ def test_unresolved_load_values_are_marked(example_set):
     page = (example_set / "report.html").read_text(encoding="utf-8")
     assert expected > 0  # the example has such values: the check bites
     assert page.count(UNRESOLVED_MARK) == expected + 1
+
+
+def test_the_left_out_reasons_add_up_and_flags_of_used_sweeps_are_apart(results, page):
+    """Each sweep left out is counted under one reason (its flags, read from sweeps, not from
+    the page's code): the reasons add up to the sweeps left out; flags of used sweeps follow."""
+    sw = results.sweeps
+    used = sw["used"].to_numpy(bool)
+    flags = contactres.analysis.render(sw["flags"].to_numpy())
+    line = re.search(r"<p><b>(\d+) sweeps, (\d+) used; the (\d+) left out for: ([^;.]*)", page)
+    assert line, page[:2000]
+    total, n_used, left = (int(line[i]) for i in (1, 2, 3))
+    assert (total, n_used, left) == (len(sw), int(used.sum()), int((~used).sum()))
+    counts = {m[0].strip(): int(m[1]) for m in re.findall(r"([a-z ]+) (\d+)", line[4])}
+    assert sum(counts.values()) == left
+    first = sum("first-ramp" in f for f in flags[~used])
+    assert counts.get("first ramp") == first > 0
+    on_used = sorted({t for f in flags[used] for t in f.split(";") if t})
+    if on_used:
+        tail = page[line.end() :].split("</b>")[0]
+        assert tail.startswith("; flags on used sweeps: ")
+        assert all(
+            f"{flag} {sum(flag in f.split(';') for f in flags[used])}" in tail for flag in on_used
+        )
+
+
+def test_the_classification_counts_the_models_of_the_used_sweeps_per_medium(results, page):
+    used = results.sweeps[results.sweeps["used"]]
+    section = page.split('id="classification"')[1].split("<h2")[0]
+    rows = re.findall(r"<tr>(.*?)</tr>", section.split("<tbody>")[1])
+    head = re.findall(r"<th>(.*?)</th>", section)
+    assert head[0] == "medium" and head[-1] == "all models"
+    for row in rows:
+        cells = re.findall(r"<td[^>]*>(.*?)</td>", row)
+        part = used[used["medium"] == cells[0]]
+        for model, n in zip(head[1:-1], cells[1:-1], strict=True):
+            assert int(n) == int((part["model"] == model).sum())
+        assert int(cells[-1]) == len(part)
+    assert len(rows) == used["medium"].nunique()
+
+
+def test_the_stiffness_plot_says_it_draws_df0_in_hz(page):
+    assert "<h3>Δf0 (Hz, proportional to the contact stiffness κ) against the normal" in page
+
+
+def test_the_summary_record_shows_the_groups_in_readers_units(results, page):
+    section = page.split('id="summary"')[1].split("<details>")[0]
+    head = re.findall(r"<th>(.*?)</th>", section)
+    assert head[:4] == ["configuration", "medium", "E (GPa)", "γ (mJ/m²)"]
+    rows = re.findall(r"<tr>(.*?)</tr>", section.split("<tbody>")[1])
+    assert len(rows) == len(results.groups)
+    for row, g in zip(rows, results.groups, strict=True):
+        cells = re.findall(r"<td[^>]*>(.*?)</td>", row)
+        assert cells[:2] == [g["configuration"], g["medium"]]
+        E, dE = (float(x) for x in cells[2].split(" ± "))
+        gamma = float(cells[3].split(" ± ")[0])
+        assert E == pytest.approx(g["E_Pa"] / 1e9, abs=dE / 10)
+        assert gamma == pytest.approx(g["gamma_J_m2"] * 1e3, rel=0.05)
+        assert float(cells[6]) == pytest.approx(g["sphere_radius_m"] * 1e3, rel=1e-3)

@@ -148,6 +148,7 @@ def test_the_result_plots_and_the_counts_show_in_the_browser(browser, report, tm
     assert match, "the probe did not run: " + unescape(done.stdout[:300])
     images, shown, links, found = int(match[2]), int(match[1]), int(match[4]), int(match[3])
     assert images == 3 and shown == 3 and links >= 9 and found == links
-    assert "κ (Δf0) against the normal force, with the JKR fits" in html
+    assert "Δf0 (Hz, proportional to the contact stiffness κ) against the normal force" in html
+    assert "with the JKR fits" in html
     used = int(sweeps["used"].sum())
     assert f"{len(sweeps)} sweeps, {used} used; the {len(sweeps) - used} left out" in html

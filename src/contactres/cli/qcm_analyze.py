@@ -218,6 +218,12 @@ def analyze_command(
         coating=tuple(coating) or None,
     )
     job.coating_layers(settings)  # a bad coating: one line before any work
+    if no_figures and _given(click.get_current_context(), "figure_formats"):
+        # A format asked for and no figure written would be silently ignored: say so instead.
+        raise click.UsageError(
+            "--figure-format and --no-figures contradict each other: give one of them",
+            click.get_current_context(),
+        )
     formats: tuple[str, ...] = ("csv", "json", *(() if no_figures else figure_formats))
     if report == "html":  # the page registered for the job's Result, as its figures are
         formats += ("html",)
@@ -313,3 +319,14 @@ def _echo(lines) -> None:
     """Each warning line on stderr."""
     for line in lines:
         click.echo(f"contactres: warning: {line}", err=True)
+
+
+def _given(ctx, name: str) -> bool:
+    """Whether the user gave the option ``name`` (on the command line or in the environment),
+    rather than its default."""
+    from click.core import ParameterSource
+
+    return ctx.get_parameter_source(name) in (
+        ParameterSource.COMMANDLINE,
+        ParameterSource.ENVIRONMENT,
+    )

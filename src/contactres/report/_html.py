@@ -22,7 +22,7 @@ from pathlib import Path
 import numpy as np
 
 from .._version import __version__
-from ..analysis import DESCRIPTIONS, PAGE_POINTS, Flag, Results, render, sweep_rows
+from ..analysis import DESCRIPTIONS, PAGE_POINTS, Flag, Results, has, render, sweep_rows
 from ..fileio import write_text
 from ..jobs.qcm_sweeps import summary
 from ..measurements import CONSTANTS
@@ -52,6 +52,7 @@ _SECTIONS = (
     ("input", "Input and counts"),
     ("table1", "Table 1: E and γ per configuration and medium"),
     ("plots", "Result plots"),
+    ("classification", "Classification: the model of the used sweeps per medium"),
     ("loads", "Per load"),
     ("radiation", "Radiation loss"),
     ("sweeps", "Sweeps: the model chosen for each"),
@@ -172,19 +173,43 @@ def _load_stats(results: Results):
     return pd.DataFrame(rows)
 
 
+#: Why a sweep is left out, in the order a reason is counted: a sweep left out for several of
+#: them is counted under the first (so the reasons add up to the sweeps left out).
+LEAVE_OUT = (
+    (Flag.FEW_POINTS, "too few points"),
+    (Flag.FIRST_RAMP, "first ramp"),
+    (Flag.DRIFT, "drift"),
+)
+
+
 def _counts(results: Results) -> str:
-    """ "384 sweeps, 285 used; left out: 60 with flag X, ..." — every sweep not used is counted
-    under each of its flags (a sweep may have several)."""
+    """ "384 sweeps, 285 used; the 99 left out for: first ramp 96, drift 3; flags on used
+    sweeps: ..." — each sweep left out is counted once, under the first of its reasons in
+    :data:`LEAVE_OUT` ("other" if it has none); the flags of the used sweeps are listed apart
+    (a used sweep may carry several, so those counts need not add up)."""
     sw = results.sweeps
     used = sw["used"].to_numpy(dtype=bool) if len(sw) else np.zeros(0, dtype=bool)
     line = f"{len(sw)} sweeps, {int(used.sum())} used"
     if (~used).any():
+        flags = sw["flags"].to_numpy(dtype=np.int64)[~used]
+        counted = np.zeros(flags.size, dtype=bool)
+        reasons = []
+        for flag, text in LEAVE_OUT:
+            n = int((has(flags, flag) & ~counted).sum())
+            counted |= has(flags, flag)
+            if n:
+                reasons.append(f"{text} {n}")
+        if (~counted).any():
+            reasons.append(f"other {int((~counted).sum())}")
+        line += f"; the {int((~used).sum())} left out for: {', '.join(reasons)}"
+    if used.any():
         counts: dict[str, int] = {}
-        for text in render(sw["flags"].to_numpy()[~used]):
-            for flag in [t for t in text.split(";") if t] or ["no flag"]:
+        for text in render(sw["flags"].to_numpy()[used]):
+            for flag in (t for t in text.split(";") if t):
                 counts[flag] = counts.get(flag, 0) + 1
-        reasons = ", ".join(f"{n} {_e(flag)}" for flag, n in sorted(counts.items()))
-        line += f"; the {int((~used).sum())} left out, by flag: {reasons}"
+        if counts:
+            listed = ", ".join(f"{_e(flag)} {n}" for flag, n in sorted(counts.items()))
+            line += f"; flags on used sweeps: {listed}"
     return f"<p><b>{line}.</b></p>"
 
 
@@ -200,18 +225,42 @@ def _plots(results: Results) -> str:
         return "<p>No sweep is used: nothing to plot.</p>"
     parts = []
     for title, draw in (
-        ("κ (Δf0) against the normal force, with the JKR fits (paper 2, Fig. 5)", figure_stiffness),
+        (
+            # What is drawn is Δf0 in Hz (κ = Δf0 / P, Eq. 1 of paper 2), so the title says Δf0.
+            "Δf0 (Hz, proportional to the contact stiffness κ) against the normal force, with "
+            "the JKR fits (paper 2, Fig. 5)",
+            figure_stiffness,
+        ),
         ("ΔΓ0 and the loss tangent against the normal force (Fig. 7)", figure_dissipation),
         ("The friction coefficient μ per load (Fig. 8)", figure_friction),
     ):
         buffer = io.BytesIO()
-        draw(results).savefig(buffer, format="png", dpi=90)
+        draw(results).savefig(buffer, format="png", dpi=90, bbox_inches="tight")
         data = base64.b64encode(buffer.getvalue()).decode("ascii")
         parts.append(
             f"<h3>{_e(title)}</h3>"
             f'<img class="plot" alt="{_e(title)}" src="data:image/png;base64,{data}">'
         )
     return "".join(parts)
+
+
+def _classification(results: Results) -> str:
+    """How many used sweeps each model was chosen for, per medium (one row per medium, one
+    column per model, a total column)."""
+    import pandas as pd
+
+    sw = results.sweeps
+    if not len(sw) or not sw["used"].any():
+        return "<p>No sweep is used: nothing classified.</p>"
+    used = sw[sw["used"]]
+    table = pd.crosstab(used["medium"], used["model"].fillna(DASH)).sort_index()
+    table["all models"] = table.sum(axis=1)
+    table = table.reset_index()
+    table.columns = [str(c) for c in table.columns]
+    return _table(table, numeric=tuple(table.columns[1:])) + (
+        "<p>Number of used sweeps for which each model was chosen (the sweeps section lists them "
+        "one by one).</p>"
+    )
 
 
 def _constants(results: Results):
@@ -300,8 +349,42 @@ def _leaves(value, path: str):
         yield path, value
 
 
+def _number(value, scale: float = 1.0) -> str:
+    """A number of ``summary.json`` times ``scale`` to 4 digits (``—`` where missing)."""
+    if value is None or not math.isfinite(float(value)):
+        return DASH
+    return f"{float(value) * scale:.4g}"
+
+
+def _groups_table(results: Results) -> str:
+    """The fit of each group in the units a reader uses: E (GPa) and γ (mJ/m²) with the fit's
+    own errors and the bootstrap's, the sphere, the points fitted and the rms misfit."""
+    import pandas as pd
+
+    rows = [
+        {
+            "configuration": g["configuration"],
+            "medium": g["medium"],
+            "E (GPa)": plus_minus(g["E_Pa"] / 1e9, g["E_err_Pa"] / 1e9),
+            "γ (mJ/m²)": plus_minus(g["gamma_J_m2"] * 1e3, g["gamma_err_J_m2"] * 1e3),
+            "E fit error (GPa)": _number(g.get("E_fit_err_Pa"), 1e-9),
+            "γ fit error (mJ/m²)": _number(g.get("gamma_fit_err_J_m2"), 1e3),
+            "sphere radius (mm)": _number(g.get("sphere_radius_m"), 1e3),
+            "ν": _number(g.get("poisson")),
+            "loads fitted": g.get("n_points_fitted", DASH),
+            "rms misfit (N/m)": _number(g.get("fit_rms_N_per_m")),
+        }
+        for g in results.groups
+    ]
+    if not rows:
+        return "<p>No group is fitted.</p>"
+    frame = pd.DataFrame(rows)
+    return _table(frame, numeric=tuple(frame.columns[2:]))
+
+
 def _summary_section(results: Results) -> str:
-    """Every entry of ``summary.json`` (numbers to 7 digits), one row each, folded."""
+    """The fitted groups as a table in readers' units, then every entry of ``summary.json``
+    (numbers to 7 digits, SI units), one row each, folded."""
     rows = []
     for key, value in _leaves(summary(results), ""):
         if isinstance(value, bool) or value is None or isinstance(value, str):
@@ -311,9 +394,10 @@ def _summary_section(results: Results) -> str:
         rows.append(
             f'<tr data-key="{_e(key)}"><td><code>{_e(key)}</code></td><td>{_e(shown)}</td></tr>'
         )
-    return (
-        "<details><summary>Every entry of <code>summary.json</code> (groups in the order of "
-        "Table 1)</summary><table><thead><tr><th>key</th><th>value</th></tr></thead>"
+    return _groups_table(results) + (
+        "<details><summary>Every entry of <code>summary.json</code> as written, in SI units "
+        "(groups in the order of Table 1)</summary>"
+        "<table><thead><tr><th>key</th><th>value</th></tr></thead>"
         f"<tbody>{''.join(rows)}</tbody></table></details>"
     )
 
@@ -358,6 +442,8 @@ def html_report(results: Results) -> str:
         parts += [f"<p><b>Note:</b> {_e(line)}</p>" for line in withheld_lines(results)]
     parts.append(f'<h2 id="plots">{titles["plots"]}</h2>')
     parts.append(_plots(results))
+    parts.append(f'<h2 id="classification">{titles["classification"]}</h2>')
+    parts.append(_classification(results))
     parts.append(f'<h2 id="loads">{titles["loads"]}</h2>')
     if len(results.loads):
         parts.append(_table(_load_stats(results), numeric=("F_N (mN)",)))

@@ -186,7 +186,7 @@ def _figures_section(result, figures) -> list[str]:
         if figure is None:
             continue
         buffer = io.BytesIO()
-        figure.savefig(buffer, format="png", dpi=100)
+        figure.savefig(buffer, format="png", dpi=100, bbox_inches="tight")
         data = base64.b64encode(buffer.getvalue()).decode("ascii")
         parts.append(
             f'<figure><img alt="{_e(name)}" src="data:image/png;base64,{data}">'

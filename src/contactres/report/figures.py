@@ -94,6 +94,10 @@ def key_below(fig, extra=(), ncols: int = 3, fontsize=7) -> None:
     The key holds the labelled artists of every axes, each label once (first wins), then the
     ``extra`` (handle, label) pairs (e.g. a proxy line saying what the lines are). Needs the
     constrained layout (``loc="outside ..."``).
+
+    The key must fit the figure's width (a narrow figure, one panel say, would clip it on both
+    sides): it takes fewer columns, down to one, until it fits, and a key of one column still
+    wider than the figure widens the figure to hold it.
     """
     seen: dict[str, object] = {}
     for ax in fig.axes:
@@ -101,14 +105,31 @@ def key_below(fig, extra=(), ncols: int = 3, fontsize=7) -> None:
             seen.setdefault(label, handle)
     for handle, label in extra:
         seen.setdefault(label, handle)
-    if seen:
-        fig.legend(
+    if not seen:
+        return
+    for n in range(min(ncols, len(seen)), 0, -1):
+        legend = fig.legend(
             list(seen.values()),
             list(seen),
             loc="outside lower center",
-            ncols=min(ncols, len(seen)),
+            ncols=n,
             fontsize=fontsize,
         )
+        width = _width_inches(fig, legend)
+        if width is None or width <= 0.98 * fig.get_figwidth():
+            return
+        if n > 1:
+            legend.remove()
+        else:  # one column is still too wide: the figure grows to the key's width (a margin)
+            fig.set_figwidth(width / 0.95)
+
+
+def _width_inches(fig, artist) -> float | None:
+    """The drawn width of ``artist`` in inches (None for a figure without an Agg renderer)."""
+    get_renderer = getattr(fig.canvas, "get_renderer", None)
+    if get_renderer is None:
+        return None
+    return float(artist.get_window_extent(get_renderer()).width / fig.dpi)
 
 
 def _media(results) -> list[str]:
@@ -173,8 +194,10 @@ def figure_sweeps(results) -> Figure:
             f"{_label(medium)}, {_label(row['configuration'])}, "
             f"F_N = {row['normal_force_N'] * 1e3:.3g} mN"
         )
-        ax_f.set_title(f"{title}\nmodel: {row['model']}", fontsize=8)
-        ax_g.set_title(f"exp. {_label(row['experiment'])}", fontsize=8)
+        # Each panel names its load in full: a ΔΓ panel is read on its own too.
+        title += f"\nexp. {_label(row['experiment'])}"
+        ax_f.set_title(f"{title}, model: {row['model']}", fontsize=8)
+        ax_g.set_title(title, fontsize=8)
         for ax, lab in ((ax_f, "Δf (Hz)"), (ax_g, "ΔΓ (Hz)")):
             ax.set_xlabel("amplitude u0 (nm)")
             ax.set_ylabel(lab)
@@ -215,8 +238,21 @@ def _has_data(loads, config, quantity) -> bool:
     return bool(np.isfinite(part[f"{quantity}_mean"].to_numpy(float)).any())
 
 
+def _spread(n_experiments) -> str:
+    """What the error bars of loads measured in ``n_experiments`` experiments (one count per
+    load) are: a single experiment has no spread, so no bar, and the key must not promise one."""
+    n = np.asarray(n_experiments, float)
+    if not np.any(n > 1):
+        return "one experiment: no error bars"
+    if np.all(n > 1):
+        return "mean ± sd over experiments"
+    return "mean ± sd over experiments; no bar where one"
+
+
 def _errorbars(ax, loads, config, quantity, scale=1.0):
-    """Mean ± sd per medium; the lower bar stops at zero (every quantity drawn is >= 0)."""
+    """Mean ± sd per medium; the lower bar stops at zero (every quantity drawn is >= 0).
+
+    The bars are drawn above the markers (a filled marker would hide a short bar)."""
     for j, medium in enumerate(sorted(loads["medium"].unique())):
         part = loads[(loads["configuration"] == config) & (loads["medium"] == medium)]
         if part.empty:
@@ -224,7 +260,7 @@ def _errorbars(ax, loads, config, quantity, scale=1.0):
         mean = part[f"{quantity}_mean"].to_numpy(float) * scale
         sd = np.abs(np.nan_to_num(part[f"{quantity}_sd"].to_numpy(float) * scale))
         lower = np.where(mean > 0, np.minimum(sd, np.abs(mean)), sd)
-        ax.errorbar(
+        markers, caps, bars = ax.errorbar(
             part["normal_force_N"] * 1e3,
             mean,
             yerr=np.vstack([lower, sd]),
@@ -232,12 +268,15 @@ def _errorbars(ax, loads, config, quantity, scale=1.0):
             color=f"C{j}",
             mfc=f"C{j}" if j == 0 else "white",
             capsize=2,
-            label=f"{_label(medium)} (mean ± sd over experiments)",
+            label=f"{_label(medium)} ({_spread(part['n_experiments'])})",
         )
+        for artist in (*caps, *bars):
+            artist.set_zorder(markers.get_zorder() + 0.5)
 
 
 def figure_stiffness(results) -> Figure:
-    """Fig. 5: low-amplitude Δf0 against F_N (mean ± sd over experiments) with the JKR fits."""
+    """Fig. 5: low-amplitude Δf0 against F_N (mean ± sd over experiments, where more than one)
+    with the JKR fits."""
     configs, loads = _by_config(results)
     configs = [c for c in configs if _has_data(loads, c, "df0_Hz")] or configs
     media = sorted(loads["medium"].unique())
@@ -319,7 +358,11 @@ def figure_friction(results) -> Figure:
             ax.set_ylabel("friction coefficient μ (-)")
         axes[-1, c].set_xlabel("normal force per contact F_N (mN)")
         axes[0, c].set_ylim(0.0, _top(loads[f"{q}_mean"], loads[f"{q}_sd"]))
-    fig.suptitle("error bars: ± sd over experiments, cut at 0 and at the top", fontsize=8)
+    spread = _spread(loads["n_experiments"])
+    if spread.startswith("one"):
+        fig.suptitle(spread, fontsize=8)
+    else:
+        fig.suptitle(f"error bars: {spread}, cut at 0 and at the top", fontsize=8)
     key_below(fig, ncols=2)
     return fig
 
