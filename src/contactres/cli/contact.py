@@ -10,7 +10,7 @@ from ._common import RangeType, emit, format_option
 from ._crystal_face import crystal_face, crystal_face_options
 
 
-@main.command()
+@main.command(short_help="Hertz contact of a rigid sphere on a crystal face (paper 1).")
 @crystal_face_options()
 @click.option(
     "--radius",
