@@ -126,6 +126,7 @@ def test_demo_without_the_maps_extra_leaves_the_map_out_in_one_line(tmp_path, mo
     notes = [line for line in r.stderr.splitlines() if "left out" in line]
     # One line for each map: the polycrystal map and the contact-resonance map.
     assert len(notes) == 2 and all("contactres[maps]" in line for line in notes)
+    assert all(len(line) <= 130 for line in notes), notes  # issue 30: was 221 characters
     assert "polycrystal map" in notes[0] and "contact-resonance AFM map" in notes[1]
     assert not (out / "polycrystal").exists() and not (out / "cr-map").exists()
     assert (out / "crystals.csv").is_file() and (out / "coated-contact" / "contact.csv").is_file()

@@ -103,10 +103,7 @@ def require_maps_extra(module: str):
     try:
         return importlib.import_module(module)
     except ImportError as exc:  # pragma: no cover - the test environment has the extra
-        raise MissingExtraError(
-            f"{module} is needed for polycrystal maps on dask/xarray/Zarr; install the optional "
-            f"extra: {_EXTRA}"
-        ) from exc
+        raise MissingExtraError(f"{module} is needed for polycrystal maps: {_EXTRA}") from exc
 
 
 @dataclass(frozen=True, eq=False)
