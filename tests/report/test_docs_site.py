@@ -119,6 +119,7 @@ def test_getting_started_names_the_packages_of_every_users_extra():
     """Each package a user's extra installs is named where getting started describes it (issue
     30: `peers` did not name orix; `.h5oina` needs h5py, now in `maps` too)."""
     import re
+
     import tomllib
 
     pyproject = tomllib.loads((DOCS.parent / "pyproject.toml").read_text(encoding="utf-8"))

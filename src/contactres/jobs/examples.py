@@ -43,8 +43,9 @@ class Settings:
 @dataclass(frozen=True)
 class Result(JobResult):
     """``table``: one row per example: name, size, description, a command that reads it, the
-    optional extras that command needs, and its path (installed, or of the copy) (:data:`contactres.measurements.schema.EXAMPLES_LISTING`);
-    ``copied``: whether the paths are copies."""
+    optional extras that command needs, and its path (installed, or of the copy)
+    (:data:`contactres.measurements.schema.EXAMPLES_LISTING`); ``copied``: whether the paths
+    are copies."""
 
     SCHEMAS = MappingProxyType({"table": EXAMPLES_LISTING})
     NAME = "examples"
