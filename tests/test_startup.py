@@ -298,3 +298,28 @@ def test_the_dcsf_choices_are_the_librarys_names():
 
     assert dcsf.MODEL_CHOICES == MODELS
     assert dcsf.WAVENUMBER_CHOICES == WAVENUMBERS
+
+
+# Every command that reads an input file, with a path that does not exist (and its required
+# options): the check is click's, made while parsing, before any library import.
+MISSING_INPUT: list[list[str]] = [
+    ["qcm", "analyze", "nosuch.csv", "--out", "nosuch-out"],
+    ["qcm", "spectra", "nosuch.csv", "--out", "nosuch.csv.out"],
+    ["qcm", "particles", "nosuch.csv", "--out", "nosuch-out"],
+    ["qcm", "stiffness", "nosuch.csv", "--out", "nosuch-out"],
+    ["afm", "invert", "nosuch.csv", "--out", "nosuch-out.csv"],
+    ["afm", "map", "nosuch.ibw", "--out", "nosuch-out"],
+    ["rum", "invert", "nosuch.csv", "--out", "nosuch-out.csv"],
+    ["maps", "predict", "nosuch.zarr", "--out", "nosuch-out.zarr"],
+    ["maps", "fit", "nosuch.zarr", "--out", "nosuch-out.json"],
+]
+
+
+@pytest.mark.parametrize("args", MISSING_INPUT, ids=lambda a: " ".join(a[:2]))
+def test_a_missing_input_file_is_refused_before_any_heavy_import(args, tmp_path, monkeypatch):
+    """issue 30: ``qcm analyze nosuch.csv`` imported scipy (1.4 s of CPU) before saying so."""
+    monkeypatch.chdir(tmp_path)
+    result = probe(run_cli(args))
+    assert result["exit"] == 2
+    check_light(result)
+    assert not any(tmp_path.iterdir())  # no output folder made either

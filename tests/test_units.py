@@ -24,6 +24,8 @@ TABLE = {
     "displacement": ([0.0, 1e-9, 1e-6], [1.5e-6, 1.0], "m"),
     "sphere_radius": ([1e-9, 20e-9, 100e-6, 1.0], [5e-10, 2.0], "m"),
     "contact_radius": ([1e-10, 5e-6, 1.0], [5e-11, 5.0], "m"),
+    # a TKD map's 2 nm step ... an SEM EBSD map's 0.5 µm ... a 1 mm overview scan
+    "pixel_size": ([1e-10, 2e-9, 0.5e-6, 1e-3, 1e-2], [5e-11, 0.5, -1e-6], "m"),
     "force": ([1e-12, 5e-3, 1e3], [1e-13, 2e3], "N"),
     # soft rubber 1e5 Pa ... Cu C11 168.4 GPa ... diamond C11 1.08 TPa
     "modulus": ([1e5, 168.4e9, 1.08e12, 1e13], [9e4, 165.7, 2e13], "Pa"),
@@ -143,6 +145,9 @@ SLIPS = [
     ("sphere_radius", 1e6, "nanometres (1e6 nm = 0.001 m)"),
     ("contact_radius", 5, "micrometres (5 µm = 5e-6 m)"),
     ("contact_radius", 5000, "nanometres (5000 nm = 5e-6 m)"),
+    ("pixel_size", 0.02, "millimetres (0.02 mm = 2e-5 m)"),
+    ("pixel_size", 0.5, "micrometres (0.5 µm = 5e-7 m)"),
+    ("pixel_size", 200, "nanometres (200 nm = 2e-7 m)"),
     ("force", 5000, "micronewtons (5000 µN = 0.005 N)"),
     ("force", 2e5, "nanonewtons (2e5 nN = 2e-4 N)"),
     ("modulus", 5e4, "megapascals (5e4 MPa = 5e10 Pa)"),

@@ -37,15 +37,19 @@ class Example:
         What the file holds, in one sentence.
     command : str
         A command that reads it, as run from a folder holding a copy of it.
+    extra : str
+        The optional extras that command needs (``pip install 'contactres[EXTRA]'``, comma
+        separated), "" when the base install runs it.
     """
 
     name: str
     description: str
     command: str
+    extra: str = ""
 
 
-def _example(name: str, description: str, command: str) -> tuple[str, Example]:
-    return name, Example(name, description, command)
+def _example(name: str, description: str, command: str, extra: str = "") -> tuple[str, Example]:
+    return name, Example(name, description, command, extra)
 
 
 #: The example inputs, by file name, in the order of the workflows.
@@ -99,12 +103,14 @@ EXAMPLES: Mapping[str, Example] = MappingProxyType(
                 "layers and the instrument's note)",
                 "contactres afm map example_dart.ibw --tip-position 0.95 --tip-radius 2e-8 "
                 "--force 5e-8 --tip-modulus 1.65e11 --out cr-map",
+                "afm,maps",  # igor2 reads the .ibw, xarray holds the maps
             ),
             _example(
                 "example_cu_map.ang",
                 "an EBSD orientation map of polycrystalline copper (64 x 64 pixels, TSL .ang)",
                 "contactres maps predict example_cu_map.ang --crystal Cu --tip-radius 2e-8 "
                 "--force 1e-6 --out cu_predicted.zarr",
+                "maps",  # the Zarr store
             ),
             _example(
                 "example_cu_kstar.csv",

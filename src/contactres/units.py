@@ -180,6 +180,10 @@ QUANTITIES = MappingProxyType(
         # From one interatomic spacing (0.1 nm) to the largest sphere radius: a contact cannot
         # be wider than its sphere.
         "contact_radius": Plausible("contact radius", "m", 1e-10, 1.0, 1e-6, (_UM, _NM)),
+        # The step of an orientation map: ~1 nm (transmission Kikuchi diffraction) to 1 mm
+        # (a coarse overview scan), with a margin of ten: a step typed in µm as a plain number
+        # (0.5 for 0.5 µm) is read as 0.5 m and refused.
+        "pixel_size": Plausible("pixel size", "m", 1e-10, 1e-2, 1e-6, (_MM, _UM, _NM)),
         # 1 pN (an AFM single-asperity contact) to 1 kN (a 100 kg load on one sphere).
         "force": Plausible(
             "normal force per contact",

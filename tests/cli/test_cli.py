@@ -1,6 +1,7 @@
 """Tests of the command line: help, version, exit codes and one-line errors."""
 
 import json
+import re
 import subprocess
 import sys
 
@@ -62,6 +63,7 @@ def test_demo_writes_folder(tmp_path):
     r = run("demo", "--out", str(out))
     assert r.exit_code == 0, r.output
     assert (out / "crystals.csv").is_file()
+    _check_demo_ends_with_the_numbers(r.output, out)
     cr_map = {"afm_map.json", "afm_map.nc", "afm_maps.png", "afm_histograms.png"}
     assert cr_map <= {p.name for p in (out / "cr-map").iterdir()}
     # The coated substrate: paper 2's sphere on 250 nm of PMMA on fused silica. Its contact is
@@ -81,6 +83,37 @@ def test_demo_writes_folder(tmp_path):
     assert (a < hertz(film, 1.1e-3, coated["force_N"]).contact_radius).all()
 
 
+def _check_demo_ends_with_the_numbers(output, out):
+    """The demo's screen (issue 30): the files in one line, then Table 1, μ per load and the
+    modulus map's statistics, last."""
+    lines = output.splitlines()
+    wrote = [line for line in lines if line.startswith("wrote ")]
+    assert len(wrote) == 1 and re.fullmatch(
+        rf"wrote \d+ files into {re.escape(str(out))}/", wrote[0]
+    )
+    assert not any(line.strip().startswith(str(out)) for line in lines)  # no file list
+    assert lines.index(wrote[0]) < lines.index(next(x for x in lines if x.startswith("Table 1")))
+    # μ per load: every load of loads.csv, in its order, with its median μ.
+    loads = pd.read_csv(out / "qcm-analysis" / "loads.csv")
+    start = lines.index("friction coefficient per load (exact-loop fit, median over experiments)")
+    rows = lines[start + 2 : start + 2 + len(loads)]
+    for row, mu in zip(rows, loads["mu_fit_median"], strict=True):
+        assert float(row.split()[3]) == pytest.approx(mu, abs=0.006)  # rounded to the error
+    # Last: the map's M, which for a cubic crystal lies between the (001) and (111) faces'.
+    from contactres import Material, indentation_modulus
+
+    last = lines[-1]
+    m = re.fullmatch(
+        r"polycrystal map: 4096 pixels, M from (\S+) to (\S+) GPa, median (\S+) GPa", last
+    )
+    assert m, last
+    lo, hi, median = (float(x) * 1e9 for x in m.groups())
+    cu = Material.crystal("Cu")
+    m001 = indentation_modulus(cu)
+    m111 = indentation_modulus(cu.rotated((1, 1, 1)))
+    assert m001 * (1 - 1e-3) <= lo <= median <= hi <= m111 * (1 + 1e-3)
+
+
 def test_demo_without_the_maps_extra_leaves_the_map_out_in_one_line(tmp_path, monkeypatch):
     """Installed without the ``maps`` extra (xarray cannot be imported), the demo writes every
     other part and says in one line which step it left out and what to install."""
@@ -93,6 +126,7 @@ def test_demo_without_the_maps_extra_leaves_the_map_out_in_one_line(tmp_path, mo
     notes = [line for line in r.stderr.splitlines() if "left out" in line]
     # One line for each map: the polycrystal map and the contact-resonance map.
     assert len(notes) == 2 and all("contactres[maps]" in line for line in notes)
+    assert all(len(line) <= 130 for line in notes), notes  # issue 30: was 221 characters
     assert "polycrystal map" in notes[0] and "contact-resonance AFM map" in notes[1]
     assert not (out / "polycrystal").exists() and not (out / "cr-map").exists()
     assert (out / "crystals.csv").is_file() and (out / "coated-contact" / "contact.csv").is_file()

@@ -268,6 +268,7 @@ def test_a_contact_wider_than_hertz_allows_is_flagged_not_printed():
         t["flags"].iat[0].endswith("beyond Hertz, no value") and t["contact_radius_m"].isna().all()
     )
     assert "check the sphere radius (m) and the force (N)" in r.stderr
+    assert max(len(line) for line in r.stderr.splitlines()) <= 120  # issue 30: was 205
 
 
 def test_help_states_units_and_shows_defaults_one_way():

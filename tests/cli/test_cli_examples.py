@@ -4,6 +4,7 @@ located and copied, and the commands listed for them run from a folder holding t
 from __future__ import annotations
 
 import shlex
+import sys
 from importlib.resources import files
 
 import pytest
@@ -53,11 +54,35 @@ def test_listing_names_and_paths():
     ]
 
 
-@pytest.mark.parametrize("name", ["example_rum.csv", "example_afm.csv", "example_qcmd.csv"])
+#: The packages of the optional extras (maps, afm, excel): blocked, the base install is left.
+EXTRA_PACKAGES = ("xarray", "zarr", "dask", "distributed", "igor2", "h5py", "openpyxl")
+
+
+def test_the_examples_that_need_an_extra_say_which():
+    """issue 30: the listing marks the commands the base install cannot run."""
+    assert {n: ex.extra for n, ex in EXAMPLES.items() if ex.extra} == {
+        "example_dart.ibw": "afm,maps",  # igor2 reads .ibw, xarray holds the maps
+        "example_cu_map.ang": "maps",  # the Zarr store
+    }
+    lines = [*run("examples").output.splitlines(), ""]
+    for name, ex in EXAMPLES.items():
+        after = lines[lines.index(f"  $ {ex.command}") + 1]
+        marked = after == f"    (needs an optional extra: pip install 'contactres[{ex.extra}]')"
+        assert marked == bool(ex.extra), (name, after)
+
+
+@pytest.mark.parametrize(
+    "name", ["example_rum.csv", "example_afm.csv", "example_qcmd.csv", "example_cu_kstar.csv"]
+)
 def test_the_listed_command_runs_in_the_folder_of_the_copies(name, tmp_path, monkeypatch):
+    """... and without any extra where none is marked."""
+    assert not EXAMPLES[name].extra
     r = run("examples", "--copy", tmp_path, name)
     assert r.exit_code == 0, r.output
     assert f"copied 1 example file(s) into {tmp_path}" in r.output
+    copy_examples(tmp_path, "example_cu_map.ang")  # the map that example_cu_kstar.csv is of
+    for package in EXTRA_PACKAGES:
+        monkeypatch.setitem(sys.modules, package, None)  # import it -> ImportError
     monkeypatch.chdir(tmp_path)
     words = shlex.split(EXAMPLES[name].command)
     assert words[0] == "contactres"

@@ -141,3 +141,24 @@ def test_no_floating_point_noise_in_csv(tmp_path):
     for path in written:
         match = NOISE.search(path.read_text(encoding="utf-8"))
         assert not match, (path.name, match)
+
+
+def _every_command(group=main, path=()):
+    """(words, command) of every command and group, figures included."""
+    for name, command in sorted(group.commands.items()):
+        yield (*path, name), command
+        if isinstance(command, click.Group):
+            yield from _every_command(command, (*path, name))
+
+
+def test_command_listings_are_not_cut_at_an_abbreviation():
+    # click's short help stops at the first ". ": "Paper 2: the loops of Fig." (issue 30, 6).
+    cut = re.compile(r"\b(Figs?|Eqs?|e\.g|i\.e|cf)\.$")
+    for words, command in _every_command():
+        short = command.get_short_help_str(limit=1000)
+        assert not cut.search(short), (" ".join(words), short)
+
+
+def test_figures_group_names_the_figure_formats():
+    r = run("figures", "--help")
+    assert r.exit_code == 0 and "PNG + CSV" not in r.output and "--figure-format" in r.output

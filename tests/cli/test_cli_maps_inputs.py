@@ -48,6 +48,14 @@ def test_synthetic_map_beyond_the_pixel_limit_is_refused_before_allocating(tmp_p
     assert synthetic_polycrystal((30, 30), 4, seed=1, max_pixels=900).euler.shape == (30, 30, 3)
 
 
+@pytest.mark.parametrize("size", ["-1", "0.5"])
+def test_pixel_size_out_of_range_names_the_pixel_size_not_a_contact_radius(tmp_path, size):
+    r = run("maps", "synthetic", "--crystal", "Cu", *TIP, "--pixel-size", size,
+            "--out", tmp_path / "m.zarr")  # fmt: skip
+    line = one_line_error(r, "--pixel-size", "pixel size")
+    assert "contact radius" not in line
+
+
 def test_store_declaring_ten_billion_pixels_is_refused_from_its_metadata(store, tmp_path):
     # A small store whose metadata declares 10^5 x 10^5 pixels (its chunks absent: fill
     # values); main read it chunk by chunk for minutes.

@@ -5,6 +5,8 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from contactres.examples import example_path
+from contactres.polycrystal import OrientationMap
 from contactres.polycrystal._ebsd import read_ang, read_ctf, read_ebsd, write_ang, write_ctf
 from contactres.polycrystal._synthetic import synthetic_polycrystal
 
@@ -189,3 +191,17 @@ def test_bad_phases_and_maps_of_several_phases_are_refused(tmp_path):
             writer(tmp_path / "two.txt", two)
         with pytest.raises(ValueError, match="phase must be an EbsdPhase"):
             writer(tmp_path / "one.txt", two, "Ni")
+
+
+def test_a_map_prints_compactly_and_renders_in_notebooks():
+    """issue 30: repr of the bundled 64 x 64 map was 2,388 characters of raw arrays."""
+    m = read_ebsd(example_path("example_cu_map.ang"))
+    text = repr(m)
+    assert len(text) < 200 and "array(" not in text and "\n" not in text
+    assert "64 x 64 of 1 x 1 µm" in text and "grains: not labelled" in text
+    assert "example_cu_map.ang" in text and "CI:" in text
+    s = synthetic_polycrystal((9, 13), n_grains=4, seed=5, pixel_size=0.5e-6)
+    assert repr(s).startswith("SyntheticPolycrystal(pixels: 9 x 13 of 0.5 x 0.5 µm")
+    assert f"grains: {len(np.unique(s.labels))};" in repr(s) and "array(" not in repr(s)
+    page = OrientationMap(s.euler, 1e-6, 1e-6, s.phase, s.confidence, source="<a & b>")
+    assert "<table>" in page._repr_html_() and "&lt;a &amp; b&gt;" in page._repr_html_()

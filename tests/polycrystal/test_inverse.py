@@ -103,6 +103,9 @@ def test_unidentified_weak_combination_is_flagged_not_printed(grains):
     assert np.isnan(res.c12_c11) and np.isnan(res.c44_c11) and np.isnan(res.weak_combination)
     assert any("not determined" in w for w in res.warnings)
     assert "not determined" in res.summary()
+    # Its note and warning are wrapped for a terminal, every word kept (issue 30, finding 8).
+    assert max(len(line) for line in res.summary().splitlines()) <= 100
+    assert " ".join(res.summary().split()).endswith(" ".join(res.warnings[-1].split()))
 
 
 def test_isotropic_limit_determines_only_the_anisotropy():

@@ -72,6 +72,7 @@ def test_undetermined_combination_gives_nan_ratios_and_a_warning(noise_free):
     text = res.summary()
     assert "not determined" in text and "nan" not in text
     assert text.count("combination ") >= 4
+    assert max(len(line) for line in text.splitlines()) <= 100  # wrapped for a terminal
 
 
 def test_singular_directions_do_not_depend_on_the_noise_draw(grains, noise_free):

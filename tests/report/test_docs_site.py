@@ -113,3 +113,20 @@ def test_getting_started_names_every_extra():
     assert extras, "pyproject.toml lists no extras"
     missing = [name for name in extras if f"`{name}`" not in text]
     assert not missing, f"getting started does not name the extra(s) {missing}"
+
+
+def test_getting_started_names_the_packages_of_every_users_extra():
+    """Each package a user's extra installs is named where getting started describes it (issue
+    30: `peers` did not name orix; `.h5oina` needs h5py, now in `maps` too)."""
+    import re
+
+    import tomllib
+
+    pyproject = tomllib.loads((DOCS.parent / "pyproject.toml").read_text(encoding="utf-8"))
+    extras = pyproject["project"]["optional-dependencies"]
+    text = (DOCS / "getting-started.md").read_text(encoding="utf-8").lower()
+    for extra in ("maps", "afm", "excel", "peers"):
+        for requirement in extras[extra]:
+            package = re.split(r"[\[<>=!~ ]", requirement, maxsplit=1)[0].lower()
+            assert package in text, f"getting started does not name {package} (extra {extra})"
+    assert "`.h5oina`" in text

@@ -425,8 +425,7 @@ def _dataset(values: dict, pixel_size, conventions: dict):
         import xarray as xr
     except ImportError as exc:  # pragma: no cover - the test environment has the extra
         raise MissingExtraError(
-            "xarray is needed for contact-resonance maps; install the optional extra: "
-            "pip install 'contactres[maps]'"
+            "xarray is needed for CR-AFM maps: pip install 'contactres[maps]'"
         ) from exc
     h, w = next(iter(values.values())).shape
     if pixel_size is None:

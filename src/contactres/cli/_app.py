@@ -116,4 +116,4 @@ def maps() -> None:
 
 @main.group()
 def figures() -> None:
-    """Reproduce the figures of the two core papers (PNG + CSV)."""
+    """Reproduce the figures of the two core papers (figures in --figure-format, data as CSV)."""

@@ -10,7 +10,7 @@ from ._common import RangeType, emit, format_option
 from ._crystal_face import crystal_face, crystal_face_options
 
 
-@main.command()
+@main.command(short_help="Hertz contact of a rigid sphere on a crystal face (paper 1).")
 @crystal_face_options()
 @click.option(
     "--radius",
@@ -95,7 +95,7 @@ def contact(radius, force, frequency, tangential, direction, coating, fmt, **fac
     result = job.run(m, settings)
     emit(result.table, fmt)
     for message in result.warnings:
-        click.echo(f"note: {message}", err=True)
+        click.echo(_note(message), err=True)
     if not result.circular and "ellipticity" in result.table:
         row = result.table.iloc[0]
         click.echo(
@@ -122,3 +122,12 @@ def _face_name(face: dict) -> str:
     if crystal is not None and crystal.strip().lower() in AT_CUT_NAMES:
         return "of the AT cut"
     return str(face["surface"])
+
+
+def _note(message: str) -> str:
+    """A note for stderr: one line if it fits 100 columns, else broken after its "; " clauses
+    (the what, then the advice), the continuation indented."""
+    line = f"note: {message}"
+    if len(line) <= 100:
+        return line
+    return line.replace("; ", ";\n  ")

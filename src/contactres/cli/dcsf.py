@@ -21,7 +21,7 @@ WAVENUMBER_CHOICES = ("longitudinal", "shear")
 _CONTACT_OPTIONS = ("radius", "force", "frequency")
 
 
-@main.command("dcsf")
+@main.command("dcsf", short_help="Dynamic contact stiffness factor of a rigid sphere (paper 1).")
 @crystal_face_options(
     c44_help="Cubic elastic constant C44, Pa (not needed with --zener: DCSF depends on ratios).",
     inplane_help="Direction of the surface x axis (the R1/WA direction) in cube axes.",

@@ -26,6 +26,7 @@ def demo(out: str) -> None:
     from ..apps import write_demo
     from ..fileio import ensure_dir
     from ..jobs import demo as job
+    from ..report import friction_table
 
     ensure_dir(out)  # a path that cannot be the folder is refused before the work
     progress = lambda title: click.echo(f"  - {title}", err=True)  # noqa: E731
@@ -33,8 +34,28 @@ def demo(out: str) -> None:
     written = write_demo(result, out)
     for line in result.warnings:
         click.echo(f"contactres demo: {line}", err=True)
-    # The numbers a user came for: the QCM analysis' counts and Table 1 (E and γ per group).
-    click.echo("\n".join(repr(result.sweeps_analysis).splitlines()[:-1]))  # not the Python hint
     click.echo(f"wrote {len(written)} files into {out}/")
-    for p in written:
-        click.echo(f"  {p}")
+    # Then the numbers a user came for, last on the screen: Table 1 (E and γ per group, with
+    # the analysis' counts), μ per load, and the modulus map's statistics when that step ran.
+    click.echo("\nTable 1 (paper 2): E and γ of every configuration and medium")
+    click.echo(_results_lines(result.sweeps_analysis))
+    click.echo("\nfriction coefficient per load (exact-loop fit, median over experiments)")
+    click.echo(friction_table(result.sweeps_analysis).to_string(index=False))
+    if result.map_dataset is not None:
+        click.echo("\n" + _map_line(result.map_dataset["M_Pa"].values))
+
+
+def _results_lines(results) -> str:
+    """The analysis' repr without its last line (the Python hint, not a number)."""
+    return "\n".join(repr(results).splitlines()[:-1])
+
+
+def _map_line(M) -> str:
+    """The predicted modulus map's statistics: pixels, M range and median (GPa)."""
+    import numpy as np
+
+    finite = M[np.isfinite(M)]
+    return (
+        f"polycrystal map: {finite.size} pixels, M from {finite.min() / 1e9:.4g} to "
+        f"{finite.max() / 1e9:.4g} GPa, median {np.median(finite) / 1e9:.4g} GPa"
+    )

@@ -35,7 +35,7 @@ def examples(names: tuple[str, ...], copy_to: str | None, overwrite: bool, fmt: 
     contactres qcm analyze "$(contactres examples example_sweeps.csv)" --out qcm_results).
     With --copy DIR: the files copied into DIR, where the commands listed run as they are
     written. --format csv or json gives the table (name, size_bytes, description, command,
-    path).
+    extra, path).
 
     \b
     Example: contactres examples --copy contactres_examples
@@ -62,6 +62,8 @@ def examples(names: tuple[str, ...], copy_to: str | None, overwrite: bool, fmt: 
             for line in textwrap.wrap(row.description, PLAIN_WIDTH - 2):
                 click.echo(f"  {line}")
             click.echo(f"  $ {row.command}")
+            if row.extra:  # the base install cannot run it: say what to add
+                click.echo(f"    (needs an optional extra: pip install 'contactres[{row.extra}]')")
 
 
 def _size(n: int) -> str:

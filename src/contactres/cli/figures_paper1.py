@@ -1,4 +1,4 @@
-"""CLI: ``contactres figures paper1``: Figs. 2-5 of paper 1 (PNG + CSV)."""
+"""CLI: ``contactres figures paper1``: Figs. 2-5 of paper 1 (figures and CSV)."""
 
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ from ._app import figures
 from ._common import figure_format_option
 
 
-@figures.command("paper1")
+@figures.command("paper1", short_help="Paper 1: Figs. 2-5, the DCSF of a sphere on a half-space.")
 @click.option(
     "--out",
     type=click.Path(file_okay=False),

@@ -1,4 +1,4 @@
-"""CLI: ``contactres figures paper2``: the forward figures of paper 2 (PNG + CSV)."""
+"""CLI: ``contactres figures paper2``: the forward figures of paper 2 (figures and CSV)."""
 
 from __future__ import annotations
 
@@ -8,7 +8,7 @@ from ._app import figures
 from ._common import figure_format_option
 
 
-@figures.command("paper2")
+@figures.command("paper2", short_help="Paper 2: the loops of Fig. 2C-D and the shifts of Fig. 1D.")
 @click.option(
     "--out",
     type=click.Path(file_okay=False),

@@ -54,7 +54,7 @@ from ._map_options import (
 )
 @click.option(
     "--pixel-size",
-    type=MagnitudeType("contact_radius"),
+    type=MagnitudeType("pixel_size"),
     default=1e-6,
     show_default=True,
     help="Pixel pitch, m.",

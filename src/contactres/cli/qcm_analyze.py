@@ -29,7 +29,7 @@ from ._common import (
 
 
 @qcm.command("analyze")
-@click.argument("sweeps", type=click.Path())
+@click.argument("sweeps", type=click.Path(exists=True))
 @click.option(
     "--out",
     type=click.Path(file_okay=False),

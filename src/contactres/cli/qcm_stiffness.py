@@ -35,7 +35,7 @@ def __getattr__(name: str):
     raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
-@qcm.command("stiffness")
+@qcm.command("stiffness", short_help="Contact stiffness κ + iωξ against time from a QCM-D export.")
 @click.argument("export", type=click.Path(exists=True, dir_okay=False))
 @click.option(
     "--out",

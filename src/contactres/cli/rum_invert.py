@@ -12,7 +12,7 @@ from ._film import coating_options, film_summary, parse_film_range
 
 
 @rum.command("invert")
-@click.argument("table", type=click.Path(dir_okay=False))
+@click.argument("table", type=click.Path(exists=True, dir_okay=False))
 @click.option(
     "--out",
     type=click.Path(dir_okay=False),

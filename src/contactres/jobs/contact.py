@@ -255,13 +255,13 @@ def _wide_warnings(table) -> tuple[str, ...]:
         (
             HERTZ_MAX_RATIO,
             np.inf,
-            "beyond Hertz's validity: their values are left empty",
+            "beyond Hertz's validity are left empty",
             "check the sphere radius (m) and the force (N)",
         ),
         (
             HERTZ_APPROXIMATE_RATIO,
             HERTZ_MAX_RATIO,
-            "where Hertz is approximate (flagged)",
+            "where Hertz is approximate are flagged",
             "their values are kept: Hertz takes the sphere as a paraboloid, for a ≪ R",
         ),
     ):
@@ -269,8 +269,8 @@ def _wide_warnings(table) -> tuple[str, ...]:
         if rows.any():
             worst = int(np.nanargmax(np.where(rows, ratio, -np.inf)))
             lines.append(
-                f"{int(rows.sum())} of {rows.size} rows have a contact radius {what} (a/R up to "
-                f"{ratio[worst]:.3g} > {low:g}, at R = {table['radius_m'].iat[worst]:.3g} m, F = "
+                f"{int(rows.sum())} of {rows.size} rows {what} (a/R up to {ratio[worst]:.3g} > "
+                f"{low:g} at R = {table['radius_m'].iat[worst]:.3g} m, F = "
                 f"{table['force_N'].iat[worst]:.3g} N); {advice}"
             )
     return tuple(lines)

@@ -134,6 +134,11 @@ class Result(JobResult):
     warnings: tuple[str, ...] = ()
 
 
+def _topic(step: str) -> str:
+    """A step's topic, its title before the colon: "polycrystal map" (a line stays short)."""
+    return step.split(":")[0]
+
+
 def _sweeps():
     from ..analysis import analyze
     from ..measurements import read_sweeps
@@ -200,7 +205,7 @@ def run(inputs: None = None, settings: Settings | None = None, progress: Progres
         ds, omap, record, triangle = _polycrystal()
     except MissingExtraError as exc:
         ds = omap = record = triangle = None
-        skipped.append(f"step 6 left out ({STEPS[5]}): {exc}")
+        skipped.append(f"step 6 left out ({_topic(STEPS[5])}): {exc}")
     say(progress, STEPS[6])
     coated = _coated_contact()
     say(progress, STEPS[7])
@@ -208,7 +213,7 @@ def run(inputs: None = None, settings: Settings | None = None, progress: Progres
         cr_map = _cr_map()
     except MissingExtraError as exc:
         cr_map = None
-        skipped.append(f"step 8 left out ({STEPS[7]}): {exc}")
+        skipped.append(f"step 8 left out ({_topic(STEPS[7])}): {exc}")
     return Result(
         sweeps_analysis=sweeps_analysis,
         spectra_rows=rows,

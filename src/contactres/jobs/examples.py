@@ -42,9 +42,10 @@ class Settings:
 
 @dataclass(frozen=True)
 class Result(JobResult):
-    """``table``: one row per example: name, size, description, a command that reads it, and its
-    path (installed, or of the copy) (:data:`contactres.measurements.schema.EXAMPLES_LISTING`);
-    ``copied``: whether the paths are copies."""
+    """``table``: one row per example: name, size, description, a command that reads it, the
+    optional extras that command needs, and its path (installed, or of the copy)
+    (:data:`contactres.measurements.schema.EXAMPLES_LISTING`); ``copied``: whether the paths
+    are copies."""
 
     SCHEMAS = MappingProxyType({"table": EXAMPLES_LISTING})
     NAME = "examples"
@@ -73,6 +74,7 @@ def run(inputs: None = None, settings: Settings | None = None, progress: Progres
             "size_bytes": [p.stat().st_size for p in paths],
             "description": [EXAMPLES[n].description for n in names],
             "command": [EXAMPLES[n].command for n in names],
+            "extra": [EXAMPLES[n].extra for n in names],
             "path": [str(p) for p in paths],
         }
     )

@@ -46,7 +46,7 @@ def _h5py():
         import h5py
     except ImportError as exc:  # pragma: no cover - the test environment has the extra
         raise MissingExtraError(
-            "reading .h5oina files needs h5py: pip install 'contactres[afm]'"
+            "reading .h5oina files needs h5py: pip install 'contactres[maps]'"
         ) from exc
     return h5py
 

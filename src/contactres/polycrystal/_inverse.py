@@ -36,6 +36,7 @@ from ._ratio_fit import (
     LOG_STEP,
     RatioParametrisation,
     fit_ratios,
+    summary_text,
 )
 
 __all__ = [
@@ -171,8 +172,7 @@ class CubicInverseResult:
             lines.insert(3, f"  C11 = {self.c11 / 1e9:.4g} ± {self.c11_error / 1e9:.2g} GPa")
         if not self.weak_identified:
             lines.append(CONDITIONAL_NOTE)
-        lines = [x.replace("nan", "not determined") for x in lines] + list(self.warnings)
-        return "\n".join(lines)
+        return summary_text(lines, self.warnings)
 
 
 def _ratio_line(label: str, value: float, error: float) -> str:

@@ -32,7 +32,7 @@ from dataclasses import dataclass
 import numpy as np
 
 from ..materials import Material
-from ._ratio_fit import CONDITIONAL_NOTE, RatioParametrisation, fit_ratios
+from ._ratio_fit import CONDITIONAL_NOTE, RatioParametrisation, fit_ratios, summary_text
 
 __all__ = ["HEXAGONAL", "HexagonalInverseResult", "fit_hexagonal_constants"]
 
@@ -165,8 +165,7 @@ class HexagonalInverseResult:
         lines.append(f"  ratio singular values {s}; chi2/dof = {self.chi2_dof:.3g}")
         if not all(self.identified):
             lines.append(CONDITIONAL_NOTE)
-        lines = [x.replace("nan", "not determined") for x in lines] + list(self.warnings)
-        return "\n".join(lines)
+        return summary_text(lines, self.warnings)
 
 
 def fit_hexagonal_constants(

@@ -103,10 +103,7 @@ def require_maps_extra(module: str):
     try:
         return importlib.import_module(module)
     except ImportError as exc:  # pragma: no cover - the test environment has the extra
-        raise MissingExtraError(
-            f"{module} is needed for polycrystal maps on dask/xarray/Zarr; install the optional "
-            f"extra: {_EXTRA}"
-        ) from exc
+        raise MissingExtraError(f"{module} is needed for polycrystal maps: {_EXTRA}") from exc
 
 
 @dataclass(frozen=True, eq=False)
@@ -169,6 +166,36 @@ class OrientationMap:
         """Per-pixel surface-frame matrices, shape (H, W, 3, 3) (all in memory at once)."""
         e = self.euler
         return surface_matrices_from_euler(e[..., 0], e[..., 1], e[..., 2], degrees=False)
+
+    def _facts(self) -> list[tuple[str, str]]:
+        """(what, value) of the summary: the size, the phases, the grains and the quality; the
+        arrays themselves are never printed (a map of 10^6 pixels would fill the screen)."""
+        H, W = self.shape
+        phases = ", ".join(str(p) for p in np.unique(self.phase))
+        finite = self.confidence[np.isfinite(self.confidence)]
+        quality = f"{finite.min():.3g} to {finite.max():.3g}" if finite.size else "none"
+        grains = "not labelled" if self.labels is None else str(np.unique(self.labels).size)
+        return [
+            ("pixels", f"{H} x {W} of {self.step_x * 1e6:.4g} x {self.step_y * 1e6:.4g} µm"),
+            ("phase ids", phases),
+            ("grains", grains),
+            (self.confidence_name, quality),
+            ("source", self.source or "not given"),
+        ]
+
+    def __repr__(self) -> str:
+        """One line: size, phases, grains, quality, source (the arrays are attributes)."""
+        facts = "; ".join(f"{k}: {v}" for k, v in self._facts())
+        return f"{type(self).__name__}({facts})"
+
+    def _repr_html_(self) -> str:
+        """The summary of :meth:`__repr__` as an HTML table, for notebooks (text escaped)."""
+        import html
+
+        rows = "".join(
+            f"<tr><th>{html.escape(k)}</th><td>{html.escape(v)}</td></tr>" for k, v in self._facts()
+        )
+        return f"<p><b>{type(self).__name__}</b></p><table><tbody>{rows}</tbody></table>"
 
 
 @dataclass(frozen=True, eq=False)

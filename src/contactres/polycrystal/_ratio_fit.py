@@ -47,6 +47,7 @@ __all__ = [
     "RatioFit",
     "RatioParametrisation",
     "fit_ratios",
+    "summary_text",
 ]
 
 # Constants: relative error above which a combination is "not determined"; rtol of M (a weak
@@ -99,6 +100,25 @@ CONDITIONAL_NOTE = (
     "  (errors of the determined combinations hold with the undetermined one fixed at its "
     "fitted value; along it the valley is curved and they can be too small)"
 )
+
+#: Width of a summary's lines (characters): a note or a warning longer than this is wrapped,
+#: its continuation indented, so that a terminal of 100 columns shows it whole.
+SUMMARY_WIDTH = 100
+
+
+def summary_text(lines, warnings) -> str:
+    """A fit's summary: its ``lines`` ("nan" read as "not determined") and its ``warnings``,
+    each wrapped at :data:`SUMMARY_WIDTH` characters with the continuation indented."""
+    import textwrap
+
+    out = []
+    for line in [x.replace("nan", "not determined") for x in lines] + list(warnings):
+        indent = " " * (len(line) - len(line.lstrip()) + 2)
+        wrapped = textwrap.wrap(
+            line, SUMMARY_WIDTH, subsequent_indent=indent, break_on_hyphens=False
+        )
+        out += wrapped or [line]  # an empty line stays
+    return "\n".join(out)
 
 
 @dataclass(frozen=True)

@@ -24,7 +24,7 @@ __all__ = ["SyntheticPolycrystal", "synthetic_polycrystal"]
 _ROWS_PER_QUERY = 256
 
 
-@dataclass(frozen=True, eq=False, kw_only=True)
+@dataclass(frozen=True, eq=False, kw_only=True, repr=False)  # the compact repr of a map
 class SyntheticPolycrystal(OrientationMap):
     """An :class:`~contactres.polycrystal.OrientationMap` with its grains.
 

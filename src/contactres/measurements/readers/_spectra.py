@@ -162,11 +162,9 @@ def _touchstone(
     ports = 2 if path.suffix.lower() == ".s2p" else 1
     if ports == 2 and two_port is None:
         raise ContactresInputError(
-            f"{path}: a two-port Touchstone file: say which S parameter is the crystal's "
-            f"response (two_port, --two-port {' or '.join(TWO_PORT_PARAMETERS)}: "
-            + "; ".join(f"{k} {v}" for k, v in TWO_PORT_PARAMETERS.items())
-            + ")"
-        )
+            f"{path}: a two-port Touchstone file: give the crystal's S parameter with "
+            f"--two-port (two_port=), one of {', '.join(TWO_PORT_PARAMETERS)}"
+        )  # what each one means is in --help: the line stays short
     width = 9 if ports == 2 else 3
     column = 1 if ports == 1 else _TWO_PORT_COLUMNS[str(two_port)]
     options = None

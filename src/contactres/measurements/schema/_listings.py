@@ -231,6 +231,7 @@ EXAMPLES_LISTING = TableSchema(
         ("size_bytes", "bytes", "size of the file"),
         ("description", "text", "what the file holds"),
         ("command", "text", "a command that reads it, run from a folder holding a copy"),
+        ("extra", "text", "the optional extras that command needs, comma separated; empty: none"),
         ("path", "text", "where it is installed, or where it was copied to"),
     ),
 )
