@@ -18,7 +18,7 @@ caller adds a format with ``ALL_READERS.with_reader(...)`` and changes nothing s
 
 >>> from contactres.jobs.readers import ALL_READERS
 >>> [r.name for r in ALL_READERS.of_kind("ebsd")]
-['ang', 'ctf']
+['ang', 'ctf', 'h5oina']
 """
 
 from __future__ import annotations
