@@ -236,7 +236,9 @@ def test_two_port_file_needs_its_parameter_and_skips_noise_data(tmp_path):
     ]
     noise = ["! noise parameters", f"{F[0]:.6f} 1.5 0.3 20 0.2"]
     folder = _folder(tmp_path, {"a.s2p": "\n".join(lines + noise)}, [{"file": "a.s2p"}])
-    with pytest.raises(ValueError, match=r"a\.s2p: a two-port Touchstone file: say which S"):
+    with pytest.raises(
+        ValueError, match=r"a\.s2p: a two-port Touchstone file: give the crystal's S parameter"
+    ):
         read_spectra(folder)
     t = read_spectra(folder, two_port="S11")
     assert t.points["frequency_Hz"].to_numpy() == pytest.approx(F[:3], rel=1e-12)
