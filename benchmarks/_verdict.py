@@ -64,13 +64,6 @@ def best_time(fn, repeat: int = 3, clock: str = "cpu") -> float:
     return min(times)
 
 
-def best_cpu_time(fn, repeat: int = 3) -> float:
-    """Best CPU time (s, :func:`cpu_seconds`: every thread of this process) of ``repeat``
-    runs of ``fn()``; on a shared machine the fair measure of the work done, where the wall
-    time counts the other jobs too."""
-    return best_time(fn, repeat, "cpu")
-
-
 def exit_code(results: list[bool]) -> int:
     """0 when every target was met, 1 otherwise."""
     return 0 if all(results) else 1

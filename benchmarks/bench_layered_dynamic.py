@@ -43,7 +43,7 @@ import subprocess
 import sys
 
 import numpy as np
-from _verdict import best_cpu_time, exit_code, target
+from _verdict import best_time, exit_code, target
 
 from contactres import LayeredMaterial, Material, dcsf, tangential_dcsf
 from contactres.dynamic import layered_punch_stiffness
@@ -65,17 +65,13 @@ def measure() -> dict:
     f = ksa * np.sqrt(np.real(pmma.C[3, 3]) / pmma.density) / (2 * np.pi * a)
     stacks = [LayeredMaterial(quartz, [(pmma, h)]) for h in THICKNESSES]
     out = {
-        "normal_hom": best_cpu_time(
-            lambda: dcsf(pmma, ksa, model="exact", wavenumber="shear"), REPEAT
-        ),
+        "normal_hom": best_time(lambda: dcsf(pmma, ksa, model="exact", wavenumber="shear"), REPEAT),
         "normal": [
-            best_cpu_time(lambda st=st: layered_punch_stiffness(st, a, f), REPEAT) for st in stacks
+            best_time(lambda st=st: layered_punch_stiffness(st, a, f), REPEAT) for st in stacks
         ],
-        "tangential_hom": best_cpu_time(lambda: tangential_dcsf(pmma, ksa), 1),
+        "tangential_hom": best_time(lambda: tangential_dcsf(pmma, ksa), 1),
         "tangential": [
-            best_cpu_time(
-                lambda st=st: layered_punch_stiffness(st, a, f, direction="tangential"), 1
-            )
+            best_time(lambda st=st: layered_punch_stiffness(st, a, f, direction="tangential"), 1)
             for st in stacks
         ],
     }

@@ -16,7 +16,7 @@ import sys
 from collections import Counter
 
 import numpy as np
-from _verdict import best_cpu_time, exit_code, target
+from _verdict import best_time, exit_code, target
 
 from contactres.analysis import fit_particles
 from contactres.resonators import WATER, Particle, coupled_resonance, particle_shifts
@@ -51,7 +51,7 @@ def main() -> int:
     def run():
         return fit_particles(F0, N, df, dg, p, medium=WATER, sigma_df=NOISE, sigma_dgamma=NOISE)
 
-    seconds = best_cpu_time(run, repeat=2)  # CPU time: the wall time counts the other jobs
+    seconds = best_time(run, repeat=2)  # CPU time: the wall time counts the other jobs
     fit = run()
     print(f"{STEPS} time steps x {N.size} overtones, noise {NOISE} Hz, spheres of 1 µm in water")
     for name, true in (("kappa", kappa), ("xi", xi), ("coverage", coverage)):
