@@ -204,8 +204,8 @@ def copy_examples(
         present = [name for name in chosen if (target / name).exists()]
         if present:
             raise ContactresInputError(
-                f"{target}: already holds {', '.join(present)}; nothing copied (overwrite=True, "
-                "on the command line --overwrite, replaces them)"
+                f"{target}: already holds {', '.join(present)}; nothing copied (to replace them: "
+                "--overwrite on the command line, overwrite=True in Python)"
             )
     ensure_dir(target)
     return [write_bytes(target / name, resource.read_bytes()) for name, resource in resources]

@@ -99,19 +99,49 @@ def _check_demo_ends_with_the_numbers(output, out):
     rows = lines[start + 2 : start + 2 + len(loads)]
     for row, mu in zip(rows, loads["mu_fit_median"], strict=True):
         assert float(row.split()[3]) == pytest.approx(mu, abs=0.006)  # rounded to the error
-    # Last: the map's M, which for a cubic crystal lies between the (001) and (111) faces'.
+    # The spectra's chain: its E as the analysis in qcm-spectra/analysis wrote it.
+    import json
+
+    start = lines.index("the same chain from the bundled admittance spectra (qcm-spectra/)")
+    e_line = re.search(r"E = (\S+) ±", lines[start + 2])
+    assert e_line, lines[start : start + 3]
+    summary = json.loads((out / "qcm-spectra" / "analysis" / "summary.json").read_text())
+    (group,) = summary["groups"]
+    assert float(e_line[1]) == pytest.approx(group["E_Pa"] / 1e9, rel=1e-2)
+    # Then the maps: M, which for a cubic crystal lies between the (001) and (111) faces', what
+    # the k* map determines, and the CR-AFM map's medians (as its afm_map.json holds them).
     from contactres import Material, indentation_modulus
 
-    last = lines[-1]
+    poly = next(x for x in lines if x.startswith("polycrystal map:"))
     m = re.fullmatch(
-        r"polycrystal map: 4096 pixels, M from (\S+) to (\S+) GPa, median (\S+) GPa", last
+        r"polycrystal map: 4096 pixels, M from (\S+) to (\S+) GPa, median (\S+) GPa", poly
     )
-    assert m, last
+    assert m, poly
+    fit = next(x for x in lines if x.startswith("constants fitted back"))
+    assert "strong combination" in fit and "M(111)/M(001)" in fit
+    cr_line = lines[-1]
+    k_med = re.search(r"median k\* (\S+) N/m", cr_line)
+    assert cr_line.startswith("CR-AFM map (cr-map/)") and k_med, cr_line
+    afm = json.loads((out / "cr-map" / "afm_map.json").read_text())
+    assert float(k_med[1]) == pytest.approx(_find(afm, "median_k_star_N_per_m"), rel=1e-3)
     lo, hi, median = (float(x) * 1e9 for x in m.groups())
     cu = Material.crystal("Cu")
     m001 = indentation_modulus(cu)
     m111 = indentation_modulus(cu.rotated((1, 1, 1)))
     assert m001 * (1 - 1e-3) <= lo <= median <= hi <= m111 * (1 + 1e-3)
+
+
+def _find(doc, key):
+    """The first value of ``key`` anywhere in a nested JSON document."""
+    if isinstance(doc, dict):
+        if key in doc:
+            return doc[key]
+        found = (_find(v, key) for v in doc.values())
+    elif isinstance(doc, list):
+        found = (_find(v, key) for v in doc)
+    else:
+        return None
+    return next((v for v in found if v is not None), None)
 
 
 def test_demo_without_the_maps_extra_leaves_the_map_out_in_one_line(tmp_path, monkeypatch):

@@ -33,6 +33,31 @@ def test_analyze_reads_spectra_directly(tmp_path):
     assert len(loads) == 6 and (loads["kappa_N_per_m_mean"] > 0).all()
 
 
+def test_the_docs_quote_what_the_spectra_analysis_prints(tmp_path):
+    """README and the spectra guide quote E and γ of the bundled spectra: the numbers must be the
+    ones `qcm analyze` prints (they went stale once when the analysis moved; a text guard, not a
+    check of the physics — the recovery of E and γ is tested in tests/analysis)."""
+    import re
+    from pathlib import Path
+
+    r = run("qcm", "analyze", SPECTRA, "--out", tmp_path / "o", "--no-figures")
+    assert r.exit_code == 0, r.output
+    row = re.search(r"SiO2_1\.2mm\s+air\s+([\d.]+) ± ([\d.]+)\s+([\d.]+) ± ([\d.]+)", r.stdout)
+    assert row is not None, r.stdout
+    e, e_err, g, g_err = (float(x) for x in row.groups())
+    root = Path(__file__).resolve().parents[2]
+    guide = (root / "docs" / "guide" / "spectra.md").read_text(encoding="utf-8")
+    assert f"SiO2_1.2mm air {row[1]} ± {row[2]} {row[3]} ± {row[4]}" in guide
+    readme = (root / "README.md").read_text(encoding="utf-8")
+    quoted = re.search(r"gives E = ([\d.]+) ± ([\d.]+) GPa and γ = (\d+) ± (\d+) mJ/m²", readme)
+    assert quoted is not None
+    # The README rounds (E and its error to 0.1 GPa, γ to 1 mJ/m²): half a unit, and a hair.
+    assert float(quoted[1]) == pytest.approx(e, abs=0.05 + 1e-9)
+    assert float(quoted[2]) == pytest.approx(e_err, abs=0.05 + 1e-9)
+    assert float(quoted[3]) == pytest.approx(g, abs=0.5 + 1e-9)
+    assert float(quoted[4]) == pytest.approx(g_err, abs=0.5 + 1e-9)
+
+
 def test_calibration_replaces_the_formula(tmp_path):
     out = tmp_path / "s.csv"
     r = run("qcm", "spectra", SPECTRA, "--out", out, "--calibration", 2e-9)

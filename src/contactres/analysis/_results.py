@@ -15,6 +15,11 @@ from ..measurements import SweepTable
 __all__ = ["Results"]
 
 
+def _count(n: int, noun: str) -> str:
+    """ "1 experiment", "4 experiments": a count with its noun in the right number."""
+    return f"{n} {noun}" if n == 1 else f"{n} {noun}s"
+
+
 def _pm(value: float, error: float, digits: int = 3) -> str:
     """``value ± error`` to ``digits`` significant digits of the value (NaN: a dash)."""
     if not math.isfinite(value):
@@ -119,7 +124,8 @@ class Results:
                 text = (
                     f"E = {_pm(g['E_Pa'] / 1e9, g['E_err_Pa'] / 1e9)} GPa, "
                     f"γ = {_pm(g['gamma_J_m2'] * 1e3, g['gamma_err_J_m2'] * 1e3)} mJ/m² "
-                    f"({g['n_experiments']} experiments, {g['n_sweeps_used']} sweeps)"
+                    f"({_count(g['n_experiments'], 'experiment')}, "
+                    f"{_count(g['n_sweeps_used'], 'sweep')})"
                 )
             rows.append((str(g["configuration"]), str(g["medium"]), text))
         return rows
@@ -130,7 +136,7 @@ class Results:
         on = f"; fitted on the coated plate ({coating.get('label', '')})" if coating else ""
         return (
             f"{len(self.sweeps)} sweeps ({used} used), {len(self.loads)} loads, "
-            f"{len(self.groups)} configuration/medium groups{on}"
+            f"{_count(len(self.groups), 'configuration/medium group')}{on}"
         )
 
     def __repr__(self) -> str:

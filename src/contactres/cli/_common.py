@@ -375,7 +375,30 @@ def emit(table: pd.DataFrame, fmt: str, stream=None) -> None:
         json.dump(records, out, indent=1, allow_nan=False, default=_json_scalar)
         out.write("\n")
     else:
-        out.write(table.to_string(index=False, float_format=lambda v: f"{v:.6g}") + "\n")
+        text = table.to_string(index=False, float_format=lambda v: f"{v:.6g}")
+        if len(table) == 1 and max(map(len, text.splitlines())) > _WIDE:
+            # One row of many columns reads as a list, one quantity per line (a 350-character
+            # line wraps into noise in a terminal); several rows stay a table.
+            width = max(len(str(c)) for c in table.columns)
+            row = table.iloc[0]
+            lines = [f"{c!s:<{width}}  {_cell_text(row[c])}" for c in table.columns]
+            text = "\n".join(lines)
+        out.write(text + "\n")
+
+
+#: Widest text table printed as a table; one row wider than this is printed as a list.
+_WIDE = 120
+
+
+def _cell_text(value) -> str:
+    """One cell as the text table prints it: floats to 6 significant digits, missing empty."""
+    import math
+
+    if isinstance(value, float):
+        return "" if math.isnan(value) else f"{value:.6g}"
+    if hasattr(value, "dtype") and getattr(value.dtype, "kind", "") == "f":
+        return "" if value != value else f"{float(value):.6g}"
+    return str(value)
 
 
 def emit_record(record: dict, fmt: str, stream=None) -> None:
@@ -411,7 +434,9 @@ def wrote_line(written, out) -> str:
     """The closing line of a command that wrote a report set: the files of the set, and the
     ``manifest.json`` beside them (which lists them with their digests), counted apart so that
     the number is that of the files in the folder."""
-    return f"wrote {len(written)} files and manifest.json into {out}/"
+    # `--out results/` is typed with its slash often: print it once, not "results//".
+    folder = str(out).rstrip("/\\") or str(out)
+    return f"wrote {len(written)} files and manifest.json into {folder}/"
 
 
 def computed_rounded(result, copied) -> object:

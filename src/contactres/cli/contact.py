@@ -99,17 +99,21 @@ def contact(radius, force, frequency, tangential, direction, coating, fmt, **fac
     if not result.circular and "ellipticity" in result.table:
         row = result.table.iloc[0]
         click.echo(
-            f"note: surface {_face_name(face)} has no 3- or 4-fold symmetry: the contact is "
-            f"elliptic (b/a = {row['ellipticity']:.4g}, major axis at "
-            f"{row['orientation_deg']:.4g} deg from x); contact_radius_m is sqrt(ab)",
+            _note(
+                f"surface {_face_name(face)} has no 3- or 4-fold symmetry: the contact is "
+                f"elliptic (b/a = {row['ellipticity']:.4g}, major axis at "
+                f"{row['orientation_deg']:.4g} deg from x); contact_radius_m is sqrt(ab)"
+            ),
             err=True,
         )
     elif not result.circular:  # coated: the axisymmetric (circular) approximation
         click.echo(
-            f"note: surface {_face_name(face)} has no 3- or 4-fold symmetry: the contact is "
-            f"slightly elliptic (relative 2nd harmonic of the compliance "
-            f"{result.noncircularity:.3g}); the circular result on the coating is an "
-            "approximation",
+            _note(
+                f"surface {_face_name(face)} has no 3- or 4-fold symmetry: the contact is "
+                f"slightly elliptic (relative 2nd harmonic of the compliance "
+                f"{result.noncircularity:.3g}); the circular result on the coating is an "
+                "approximation"
+            ),
             err=True,
         )
 

@@ -41,8 +41,14 @@ def demo(out: str) -> None:
     click.echo(_results_lines(result.sweeps_analysis))
     click.echo("\nfriction coefficient per load (exact-loop fit, median over experiments)")
     click.echo(friction_table(result.sweeps_analysis).to_string(index=False))
+    click.echo("\nthe same chain from the bundled admittance spectra (qcm-spectra/)")
+    click.echo(_results_lines(result.spectra_analysis))
     if result.map_dataset is not None:
         click.echo("\n" + _map_line(result.map_dataset["M_Pa"].values))
+    if result.map_fit is not None:
+        click.echo(_fit_line(result.map_fit["flat"]))
+    if result.cr_map is not None:
+        click.echo(_cr_map_line(result.cr_map.summary))
 
 
 def _results_lines(results) -> str:
@@ -59,3 +65,36 @@ def _map_line(M) -> str:
         f"polycrystal map: {finite.size} pixels, M from {finite.min() / 1e9:.4g} to "
         f"{finite.max() / 1e9:.4g} GPa, median {np.median(finite) / 1e9:.4g} GPa"
     )
+
+
+def _fit_line(flat: dict) -> str:
+    """What the bundled k* map determines of Cu's constants: the strong combination of the
+    ratios and M(111)/M(001) (a map of stiffness ratios leaves the weak combination, and so the
+    ratios one by one, undetermined: said, not printed as values)."""
+    line = "constants fitted back from the k* map"
+    if flat.get("strong_identified") and flat.get("strong_combination") is not None:
+        line += (
+            f": strong combination {flat['strong_combination']:.4g} "
+            f"(rel. error {flat['strong_error']:.2g})"
+        )
+    if flat.get("anisotropy_111") is not None:
+        line += (
+            f", M(111)/M(001) = {flat['anisotropy_111']:.4g} ± {flat['anisotropy_111_error']:.2g}"
+        )
+    if not flat.get("weak_identified"):
+        line += (
+            "\n  (C12/C11 and C44/C11 one by one: not determined by this map; polycrystal/fit.json)"
+        )
+    return line
+
+
+def _cr_map_line(summary: dict) -> str:
+    """The CR-AFM map's medians (k*, M, tan δ) and its pixel counts."""
+    line = f"CR-AFM map (cr-map/): {summary['pixels_with_k_star']} pixels with k*"
+    if summary.get("median_k_star_N_per_m") is not None:
+        line += f", median k* {summary['median_k_star_N_per_m']:.4g} N/m"
+    if summary.get("median_M_Pa") is not None:
+        line += f", M {summary['median_M_Pa'] / 1e9:.4g} GPa"
+    if summary.get("median_tan_delta") is not None:
+        line += f", tan δ {summary['median_tan_delta']:.3g}"
+    return line + f"; {summary['pixels_flagged']} flagged"

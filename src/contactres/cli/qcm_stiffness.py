@@ -106,8 +106,8 @@ def stiffness_command(
     A QSense export with Δf/n, D in ppm, time in s, three contacts on 0.2 cm²:
 
     \b
-        contactres qcm stiffness run.txt --df-divided-by-n --dissipation-scale 1e-6
-        --time-unit s --fundamental 4.95e6 --area 2e-5 --n-contacts 3 --out run-stiffness
+        contactres qcm stiffness run.txt --df-divided-by-n --dissipation-scale 1e-6 \\
+            --time-unit s --fundamental 4.95e6 --area 2e-5 --n-contacts 3 --out run-stiffness
     """
     from ..jobs import qcm_stiffness as job
     from ..report import report_set, write_report

@@ -22,10 +22,10 @@ like a ``.ctf`` one (``confidence_name = "MAD (degrees)"``) and
 :func:`~contactres.polycrystal.indexed_pixels` applies the same rules (phase 0 out;
 ``max_mad`` in degrees). Without MAD the confidence is 0 ("no deviation recorded").
 
-h5py comes with the optional extra ``afm`` (``pip install 'contactres[afm]'``); it is imported
-when a file is read. Not read: several slices (particle analyses), line scans, patterns; the
-Euler angles are taken in the map's sample frame as :mod:`._ebsd` states it for the .ctf
-(the specimen orientation CS1 -> CS0 is not applied).
+h5py comes with the optional extras ``maps`` and ``afm`` (``pip install 'contactres[maps]'``);
+it is imported when a file is read. Not read: several slices (particle analyses), line scans,
+patterns; the Euler angles are taken in the map's sample frame as :mod:`._ebsd` states it for
+the .ctf (the specimen orientation CS1 -> CS0 is not applied).
 """
 
 from __future__ import annotations
@@ -95,7 +95,7 @@ def read_h5oina(path: str | os.PathLike, slice_name: str = "1") -> OrientationMa
         Not an HDF5 file; a missing group or dataset; datasets of the wrong size; steps that
         are not positive; points not filling the square grid.
     MissingExtraError
-        h5py is not installed (the extra ``afm``).
+        h5py is not installed (the extras ``maps`` and ``afm``).
     """
     h5py = _h5py()
     path = Path(path)

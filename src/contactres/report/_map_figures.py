@@ -196,7 +196,8 @@ def modulus_map_figure(
     key[cells, :3] = ipf_colors(folded, lattice)
     key[cells, 3] = 1.0
     _triangle_panel(ax_key, tri, key, 6)
-    ax_key.set_title("IPF colour key of (b)", fontsize=8)
+    # The key is contactres' corner-weight key, not the TSL key of OIM or orix: the figure says so.
+    ax_key.set_title("IPF key of (b): corner weights, not TSL", fontsize=8)
 
     name = f" of {_plain(material_name)}" if str(material_name).strip() else ""
     fig.suptitle(f"Indentation modulus map{name} ({lattice})", fontsize=10)
