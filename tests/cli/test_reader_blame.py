@@ -1,0 +1,96 @@
+"""Silent defaults and wrong blame in the table and TOML readers (issue 27, items 6 and 15),
+each reproduced with the input that showed it on the example sweep table or a small table of
+each other kind:
+
+* a misspelt optional column (``poison``) was a note, its value silently replaced by the
+  default: a name that looks like a misspelling of a column the table lacks is refused in one
+  line, for every table the readers check against a schema;
+* one extra field on the first data row made pandas take the first field for an index and shift
+  every column, and the error blamed ``ramp``;
+* a TOML constant beside a column of the same name was neither checked nor compared;
+* a line of ``;`` in a comma file was read as one cell and blamed as an empty one.
+"""
+
+from importlib import resources
+
+import pytest
+from cli_checks import one_line_error, run
+
+from contactres.errors import ContactresInputError
+from contactres.measurements import read_sweeps
+
+
+@pytest.fixture
+def example():
+    """The first 60 lines of the package's example sweep table (header first): 15 columns, the
+    constants among them (sphere_radius_m = 0.0011 m, poisson = 0.17)."""
+    source = resources.files("contactres") / "data" / "example_sweeps.csv"
+    return source.read_text(encoding="utf-8").splitlines()[:60]
+
+
+def _write(path, lines):
+    path.write_text("\n".join(lines) + "\n", encoding="utf-8")
+    return path
+
+
+def _renamed(lines, old, new):
+    header = lines[0].split(",")
+    header[header.index(old)] = new
+    return [",".join(header), *lines[1:]]
+
+
+def _one_line(info, *words):
+    text = str(info.value)
+    assert len(text.splitlines()) == 1, text
+    for w in words:
+        assert w in text, text
+    return text
+
+
+# --------------------------------------------------------------------------------------------
+# One extra field on the first data row
+
+
+def test_an_extra_field_on_the_first_row_names_that_row_not_a_column(tmp_path, example):
+    lines = list(example)
+    lines[1] += ",x"
+    with pytest.raises(ContactresInputError) as info:
+        read_sweeps(_write(tmp_path / "extra.csv", lines))
+    text = _one_line(
+        info, "extra.csv", "line 2 has 16 fields, the header 15", "1 field more than the header"
+    )
+    assert "column" not in text.split("(")[0]  # no column blamed: the row is at fault
+    r = run("qcm", "analyze", tmp_path / "extra.csv", "--out", tmp_path / "out")
+    one_line_error(r, "extra.csv", "line 2 has 16 fields")
+
+
+def test_a_trailing_separator_on_every_row_is_not_read_shifted(tmp_path, example):
+    """Every data row one field longer (a trailing comma): pandas took the sweep ids for an
+    index and read each column one to the left."""
+    lines = [example[0], *(ln + "," for ln in example[1:])]
+    with pytest.raises(ContactresInputError) as info:
+        read_sweeps(_write(tmp_path / "trailing.csv", lines))
+    _one_line(info, "trailing.csv", f"{len(example) - 1} rows have more fields", "header's 15")
+
+
+# --------------------------------------------------------------------------------------------
+# A row with another separator
+
+
+def test_a_semicolon_row_in_a_comma_file_is_named_as_such(tmp_path, example):
+    lines = list(example)
+    lines[5] = lines[5].replace(",", ";")
+    with pytest.raises(ContactresInputError) as info:
+        read_sweeps(_write(tmp_path / "semi.csv", lines))
+    text = _one_line(info, "semi.csv, line 6", "1 field", "has 15", "';' as separator")
+    assert "empty" not in text
+    r = run("qcm", "analyze", tmp_path / "semi.csv", "--out", tmp_path / "out")
+    one_line_error(r, "semi.csv, line 6", "';' as separator")
+
+
+def test_a_comma_row_in_a_semicolon_file_is_named_as_such(tmp_path, example):
+    lines = [ln.replace(",", ";") for ln in example]
+    lines[3] = example[3]
+    with pytest.raises(ContactresInputError) as info:
+        read_sweeps(_write(tmp_path / "semi.csv", lines))
+    _one_line(info, "semi.csv, line 4", "1 field", "has 15", "',' as separator")
