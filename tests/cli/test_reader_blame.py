@@ -11,13 +11,16 @@ each other kind:
 * a line of ``;`` in a comma file was read as one cell and blamed as an empty one.
 """
 
+import warnings
 from importlib import resources
 
+import numpy as np
 import pytest
 from cli_checks import one_line_error, run
 
 from contactres.errors import ContactresInputError
 from contactres.measurements import read_sweeps
+from contactres.measurements._sweeps import SweepWarning
 
 
 @pytest.fixture
@@ -71,6 +74,46 @@ def test_a_trailing_separator_on_every_row_is_not_read_shifted(tmp_path, example
     with pytest.raises(ContactresInputError) as info:
         read_sweeps(_write(tmp_path / "trailing.csv", lines))
     _one_line(info, "trailing.csv", f"{len(example) - 1} rows have more fields", "header's 15")
+
+
+# --------------------------------------------------------------------------------------------
+# A TOML constant beside its column
+
+
+def test_a_toml_constant_beside_its_column_is_checked(tmp_path, example):
+    path = _write(tmp_path / "s.csv", example)
+    path.with_suffix(".toml").write_text("sphere_radius_m = 1.1\n")  # mm in a metre key
+    with pytest.raises(ContactresInputError) as info:
+        read_sweeps(path)
+    _one_line(info, "s.toml", "key 'sphere_radius_m'", "sphere_radius_m = 1.1", "millimetres")
+    r = run("qcm", "analyze", path, "--out", tmp_path / "out")
+    one_line_error(r, "s.toml", "sphere_radius_m = 1.1")
+
+
+def test_a_toml_constant_that_differs_from_its_column_is_said_and_the_column_wins(
+    tmp_path, example
+):
+    path = _write(tmp_path / "s.csv", example)
+    toml = path.with_suffix(".toml")
+    toml.write_text('sphere_radius = "1.2 mm"\n')
+    with pytest.warns(SweepWarning) as caught:
+        table = read_sweeps(path).data
+    said = [str(w.message) for w in caught if "s.toml" in str(w.message)]
+    assert len(said) == 1 and len(said[0].splitlines()) == 1, said
+    for words in ("'1.2 mm'", "column 'sphere_radius_m'", "0.0011", "the column's value is used"):
+        assert words in said[0], said[0]
+    np.testing.assert_array_equal(table["sphere_radius_m"], 1.1e-3)  # as written in the column
+    toml.write_text('sphere_radius = "1.1 mm"\n')  # the same radius: nothing to say
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", SweepWarning)
+        read_sweeps(path)
+
+
+def test_an_argument_beside_its_column_is_checked(tmp_path, example):
+    path = _write(tmp_path / "s.csv", example)
+    with pytest.raises(ContactresInputError) as info:
+        read_sweeps(path, sphere_radius_m=1.1)
+    _one_line(info, "argument sphere_radius_m", "1.1", "millimetres")
 
 
 # --------------------------------------------------------------------------------------------
