@@ -20,7 +20,11 @@ from cli_checks import one_line_error, run
 
 from contactres.errors import ContactresInputError
 from contactres.measurements import read_sweeps
+from contactres.measurements._resonances import read_resonance_table
+from contactres.measurements._spectra_table import read_spectra
 from contactres.measurements._sweeps import SweepWarning
+from contactres.measurements.readers.exports import TIDY_READER
+from contactres.measurements.schema import AFM_TABLE, RUM_TABLE, Column, TableSchema
 
 
 @pytest.fixture
@@ -48,6 +52,104 @@ def _one_line(info, *words):
     for w in words:
         assert w in text, text
     return text
+
+
+# --------------------------------------------------------------------------------------------
+# A misspelt column
+
+
+def test_the_near_miss_rule_on_a_schema_of_its_own():
+    """The rule, on a schema made here: case, blanks, underscores, the unit suffix and a
+    qualifying last word do not count; a different number is another column, not a typo; a name
+    unlike every column stays a note."""
+    schema = TableSchema(
+        "test table",
+        "",
+        (
+            Column("poisson", "-", "ν"),
+            Column("sphere_radius_m", "m", "R"),
+            Column("fc3_Hz", "Hz", "mode 3"),
+        ),
+    )
+    absent = schema.names
+    assert schema.near_miss("poison", absent) == "poisson"
+    assert schema.near_miss("Poisson_ratio", absent) == "poisson"
+    assert schema.near_miss("Sphere Radius", absent) == "sphere_radius_m"
+    assert schema.near_miss("sphere-radius-m", absent) == "sphere_radius_m"
+    assert schema.near_miss("fc3_hz", absent) == "fc3_Hz"
+    assert schema.near_miss("fc4_Hz", absent) is None  # another mode
+    assert schema.near_miss("operator", absent) is None
+    assert schema.near_miss("poison", ("sphere_radius_m",)) is None  # poisson is given
+
+
+@pytest.mark.parametrize(
+    "old, new, meant",
+    [
+        ("poisson", "poison", "'poisson'"),
+        ("poisson", "Poisson_ratio", "'poisson'"),
+        ("sphere_radius_m", "Sphere radius", "'sphere_radius_m'"),
+        ("overtone", "overtones", "'overtone'"),
+        ("ramp", "Ramp", "'ramp'"),
+    ],
+)
+def test_a_misspelt_sweep_column_is_refused_not_defaulted(tmp_path, example, old, new, meant):
+    path = _write(tmp_path / "typo.csv", _renamed(example, old, new))
+    with pytest.raises(ContactresInputError) as info:
+        read_sweeps(path)
+    _one_line(info, "typo.csv", f"column {new!r}", "sweep table", f"did you mean {meant}")
+
+
+def test_a_note_column_and_a_near_name_beside_the_real_column_are_kept(tmp_path, example):
+    """Columns of other names are notes, as before; so is a name near one the table has."""
+    lines = [example[0] + ",operator,poison"] + [ln + ",AB,0.3" for ln in example[1:]]
+    table = read_sweeps(_write(tmp_path / "notes.csv", lines)).data
+    np.testing.assert_array_equal(table["poisson"], 0.17)  # the poisson column, not 'poison'
+
+
+def test_the_cli_refuses_a_misspelt_column_in_one_line(tmp_path, example):
+    path = _write(tmp_path / "typo.csv", _renamed(example, "poisson", "poison"))
+    r = run("qcm", "analyze", path, "--out", tmp_path / "out", "--bootstrap", "0")
+    one_line_error(r, "typo.csv", "'poison'", "did you mean 'poisson'")
+    assert not (tmp_path / "out").exists()
+
+
+def test_a_misspelt_column_of_an_afm_or_rum_table_is_refused(tmp_path):
+    afm = _write(
+        tmp_path / "afm.csv",
+        ["f1_free_Hz,fc1_Hz,tip_radius,load_N", "60000,250000,3e-8,1e-6"],
+    )
+    with pytest.raises(ContactresInputError) as info:
+        read_resonance_table(afm, AFM_TABLE)
+    _one_line(info, "afm.csv", "'tip_radius'", "afm-table", "did you mean 'tip_radius_m'")
+    rum = _write(tmp_path / "rum.csv", ["pixel,f0_Hz,fc_Hz,mass", "1,1e6,1.01e6,1e-3"])
+    with pytest.raises(ContactresInputError) as info:
+        read_resonance_table(rum, RUM_TABLE)
+    _one_line(info, "rum.csv", "'mass'", "did you mean 'mass_kg'")
+
+
+def test_a_misspelt_column_of_a_spectra_table_or_index_is_refused(tmp_path):
+    rows = [f"s1,{f:.1f},1e-3,2e-4,5" for f in np.linspace(4.99e6, 5.01e6, 5)]
+    table = _write(tmp_path / "spectra.csv", ["spectrum,frequency_Hz,G_S,B_S,overtones", *rows])
+    with pytest.raises(ContactresInputError) as info:
+        read_spectra(table)
+    _one_line(info, "spectra.csv", "'overtones'", "spectra table", "did you mean 'overtone'")
+    folder = tmp_path / "folder"
+    folder.mkdir()
+    _write(folder / "a.csv", ["frequency_Hz,G_S,B_S", "4.99e6,1e-3,2e-4", "5e6,2e-3,0"])
+    _write(folder / "index.csv", ["file,reference,drive_voltge_V", "a.csv,true,0.1"])
+    with pytest.raises(ContactresInputError) as info:
+        read_spectra(folder)
+    _one_line(info, "index.csv", "'drive_voltge_V'", "did you mean 'drive_voltage_V'")
+
+
+def test_a_misspelt_column_of_a_qcmd_shift_table_is_refused(tmp_path):
+    path = _write(
+        tmp_path / "shifts.csv",
+        ["time_s,overtone,df_Hz,dgamma", "0,3,-10,1", "0,5,-12,1.5"],
+    )
+    with pytest.raises(ContactresInputError) as info:
+        TIDY_READER.load(path, fundamental=5e6)
+    _one_line(info, "shifts.csv", "'dgamma'", "QCM-D shift table", "did you mean 'dgamma_Hz'")
 
 
 # --------------------------------------------------------------------------------------------

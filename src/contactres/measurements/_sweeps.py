@@ -10,7 +10,8 @@ Constants missing from the table come, in this order, from keyword arguments of
 ``contactres.toml`` in the same folder; keys as the column names) and, for ``fundamental_Hz``
 (5 MHz) and ``poisson`` (0.17, as in paper 2) only, from documented defaults. A value in a row
 overrides the others; an argument or a TOML value beside the column is still checked by the
-column's rules, and a warning says so when it disagrees.
+column's rules, and a warning says so when it disagrees. A column whose name looks like a
+misspelling of one the table lacks (``poison``) is an error, not a note.
 
 Files are read by reader plug-ins (:mod:`contactres.measurements.readers`); every error names the
 file, the line, the column and the value.
@@ -594,11 +595,11 @@ def validate_sweeps(
     empty/non-numeric/NaN/infinite cells, negative amplitudes, amplitudes above 1 µm (nm in a
     metre column), an even overtone, a boolean or too large count, shifts that look like absolute
     frequencies, non-positive normal force, a constant that is missing or differs within one
-    sweep, a sphere radius or Poisson ratio that differs within one configuration. Warnings
-    (:class:`SweepWarning`) for duplicated rows (dropped), sweeps with fewer than 4 points or
-    all amplitudes equal, a missing ``ramp`` column, arguments or TOML values overridden by the
-    file, and shifts that break the small-load approximation. Values in messages are cut to 60
-    characters.
+    sweep, a sphere radius or Poisson ratio that differs within one configuration, a column
+    named like a misspelling of one the table lacks. Warnings (:class:`SweepWarning`) for
+    duplicated rows (dropped), sweeps with fewer than 4 points or all amplitudes equal, a
+    missing ``ramp`` column, arguments or TOML values overridden by the file, and shifts that
+    break the small-load approximation. Values in messages are cut to 60 characters.
     """
     word = line_word(raw)
     raw = raw.copy()
@@ -611,6 +612,8 @@ def validate_sweeps(
         raise ContactresInputError(
             f"{source}: duplicate column name(s) {column_names(dups)}; one name each"
         )
+    # A misspelt column ("poison") would leave its value unused, the default in its place.
+    SWEEP_TABLE.check_names(raw.columns, source)
     if "line" not in raw.columns:
         raw["line"] = np.arange(2, len(raw) + 2)
     decimal = raw.attrs.get("decimal", ".")
