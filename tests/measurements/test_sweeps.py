@@ -88,10 +88,13 @@ def test_constants_from_toml_beside_the_file_and_row_overrides(tmp_path):
     (tmp_path / "sweeps.toml").write_text(
         "area_m2 = 3e-5\nn_contacts = 3\nsphere_radius_m = 6e-4\novertone = 3\n"
     )
-    t = read_sweeps(path).data
+    # the row value wins over the TOML file, and a warning says so (issue 27)
+    with pytest.warns(SweepWarning, match=r"overtone = 3 differs.*column's value is used"):
+        t = read_sweeps(path).data
     assert (t["area_m2"] == 3e-5).all() and (t["sphere_radius_m"] == 6e-4).all()
-    assert (t["overtone"] == 5).all()  # the row value wins over the TOML file
-    t2 = read_sweeps(path, area_m2=1e-5).data  # an argument wins over the TOML file
+    assert (t["overtone"] == 5).all()
+    with pytest.warns(SweepWarning, match="overtone = 3 differs"):
+        t2 = read_sweeps(path, area_m2=1e-5).data  # an argument wins over the TOML file
     assert (t2["area_m2"] == 1e-5).all()
 
 

@@ -6,8 +6,9 @@ given" (a mode that was not measured, a tip position to be solved from two modes
 re-exported here) are the one source of the names, units and rules: the reader runs their rules
 and the README's column tables are generated from them. Columns that
 are not in the schema are carried through to the output unchanged (point labels, pixel
-coordinates), except a name that differs from a schema column only in case (``fc1_hz``): that
-is taken for a typo and refused.
+coordinates), except a name that looks like a misspelling of a schema column the table lacks
+(``fc1_hz``, ``tip_radius``: :meth:`~contactres.measurements.schema.TableSchema.check_names`):
+that is taken for a typo and refused.
 """
 
 from __future__ import annotations
@@ -18,7 +19,7 @@ import numpy as np
 import pandas as pd
 
 from ..errors import ContactresInputError
-from ._messages import at_cell, shown_value, where_rows
+from ._messages import at_cell, where_rows
 from .readers import BUILT_IN
 from .schema import AFM_TABLE, RUM_TABLE, Rule, TableSchema
 
@@ -43,14 +44,7 @@ def validate_resonance_table(raw: pd.DataFrame, schema: TableSchema, source: str
     Returns the table with the schema's columns as floats (NaN where blank or absent), the other
     columns unchanged, and ``line``. Raises ValueError naming file, line, column, value and rule.
     """
-    names = set(schema.names)
-    lower = {n.lower(): n for n in names}
-    for col in raw.columns:
-        if col not in names and col.lower() in lower:
-            raise ContactresInputError(
-                f"{source}: column {shown_value(col)} is not known; did you mean "
-                f"{lower[col.lower()]!r}? (names are case-sensitive: the unit is in the name)"
-            )
+    schema.check_names(raw.columns, source)
     missing = [c for c in schema.required if c not in raw.columns]
     if missing:
         raise ContactresInputError(f"{source}: required column(s) missing: {', '.join(missing)}")

@@ -92,6 +92,7 @@ def validate_spectra(raw: pd.DataFrame, source: str = "<table>") -> SpectraTable
     > 0. Raises ValueError naming the file, line, column and value of the first problem.
     """
     raw = raw.copy()
+    SPECTRA_TABLE.check_names(raw.columns, source, extra=(*CONSTANT_COLUMNS, "file"))
     if "line" not in raw.columns:
         raw["line"] = np.arange(2, len(raw) + 2)
     missing = [c for c in SPECTRA_TABLE.required if c not in raw.columns]

@@ -9,7 +9,9 @@ Constants missing from the table come, in this order, from keyword arguments of
 :func:`read_sweeps` (the CLI options), from a TOML file beside the data (``<stem>.toml``, else
 ``contactres.toml`` in the same folder; keys as the column names) and, for ``fundamental_Hz``
 (5 MHz) and ``poisson`` (0.17, as in paper 2) only, from documented defaults. A value in a row
-overrides the others (a warning says so when an argument disagrees).
+overrides the others; an argument or a TOML value beside the column is still checked by the
+column's rules, and a warning says so when it disagrees. A column whose name looks like a
+misspelling of one the table lacks (``poison``) is an error, not a note.
 
 Files are read by reader plug-ins (:mod:`contactres.measurements.readers`); every error names the
 file, the line, the column and the value.
@@ -414,13 +416,29 @@ def _fill_constants(
                 i = int(np.flatnonzero(vals == v)[0])
                 where = f"{source}, {line_word(out)} {out['line'].iloc[i]}, column {name!r}"
                 _check_constant(name, v, where, shown=raw[name].iloc[i])
-            if name in constants and np.any(vals != float(constants[name])):
-                warnings.warn(
-                    f"{source}: column {name!r} overrides the given {name} = "
-                    f"{shown_value(constants[name])}",
-                    SweepWarning,
-                    stacklevel=4,
-                )
+            # A value the column overrides is still checked by the same rules (a TOML radius
+            # in mm beside a metre column passed unseen, issue 27), and a different value is
+            # said, with which one is used: the row's (the order of the module docstring).
+            if name in constants:
+                v = _check_constant(name, constants[name], f"argument {name}")
+                if _differs(vals, v):
+                    warnings.warn(
+                        f"{source}: column {name!r} overrides the given {name} = "
+                        f"{shown_value(constants[name])}",
+                        SweepWarning,
+                        stacklevel=4,
+                    )
+            if name in file_constants:
+                where = f"{file_constants_source}, key {name!r}"
+                v = _check_constant(name, file_constants[name], where)
+                if _differs(vals, v):
+                    warnings.warn(
+                        f"{where}: {name} = {shown_value(file_constants[name])} differs from "
+                        f"column {name!r} of {source} ({_column_values(vals)}); the column's "
+                        "value is used",
+                        SweepWarning,
+                        stacklevel=4,
+                    )
         elif name in constants:
             out[name] = _check_constant(name, constants[name], f"argument {name}")
             sources[name] = f"argument {name}"
@@ -440,6 +458,19 @@ def _fill_constants(
         )
     out["overtone"] = out["overtone"].astype(int)
     out["n_contacts"] = out["n_contacts"].astype(int)
+
+
+def _differs(vals: np.ndarray, value: float) -> bool:
+    """True if a column's values are not all ``value`` (a relative 1e-9 apart: "1.1 mm"
+    converted to metres need not be the same float as 0.0011 typed)."""
+    return bool(np.any(~np.isclose(vals, value, rtol=1e-9, atol=0.0)))
+
+
+def _column_values(vals: np.ndarray) -> str:
+    """The distinct values of a constant's column for a message: one, or the first and a count."""
+    distinct = np.unique(vals)
+    first = f"{distinct[0]:g}"
+    return first if len(distinct) == 1 else f"{first}, ... {len(distinct)} values"
 
 
 def _check_physics(out: pd.DataFrame, source: str) -> None:
@@ -564,10 +595,11 @@ def validate_sweeps(
     empty/non-numeric/NaN/infinite cells, negative amplitudes, amplitudes above 1 µm (nm in a
     metre column), an even overtone, a boolean or too large count, shifts that look like absolute
     frequencies, non-positive normal force, a constant that is missing or differs within one
-    sweep, a sphere radius or Poisson ratio that differs within one configuration. Warnings
-    (:class:`SweepWarning`) for duplicated rows (dropped), sweeps with fewer than 4 points or all
-    amplitudes equal, a missing ``ramp`` column, arguments overridden by the file, and shifts
-    that break the small-load approximation. Values in messages are cut to 60 characters.
+    sweep, a sphere radius or Poisson ratio that differs within one configuration, a column
+    named like a misspelling of one the table lacks. Warnings (:class:`SweepWarning`) for
+    duplicated rows (dropped), sweeps with fewer than 4 points or all amplitudes equal, a
+    missing ``ramp`` column, arguments or TOML values overridden by the file, and shifts that
+    break the small-load approximation. Values in messages are cut to 60 characters.
     """
     word = line_word(raw)
     raw = raw.copy()
@@ -580,6 +612,8 @@ def validate_sweeps(
         raise ContactresInputError(
             f"{source}: duplicate column name(s) {column_names(dups)}; one name each"
         )
+    # A misspelt column ("poison") would leave its value unused, the default in its place.
+    SWEEP_TABLE.check_names(raw.columns, source)
     if "line" not in raw.columns:
         raw["line"] = np.arange(2, len(raw) + 2)
     decimal = raw.attrs.get("decimal", ".")

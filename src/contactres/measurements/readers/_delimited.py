@@ -12,6 +12,7 @@ from __future__ import annotations
 import csv
 import io
 import re
+from collections.abc import Callable
 from pathlib import Path
 
 import numpy as np
@@ -70,9 +71,10 @@ def _decode(path: Path) -> str:
         ) from None
 
 
-def _check_header(path: Path, number: int, header: str, sep: str) -> None:
-    """Duplicate column names are an error (pandas would rename them, in quadratic time); so is
-    a header the csv module cannot split (a field over its limit of 128 kB: no column name)."""
+def _check_header(path: Path, number: int, header: str, sep: str) -> int:
+    """The number of columns of the header. Duplicate column names are an error (pandas would
+    rename them, in quadratic time); so is a header the csv module cannot split (a field over
+    its limit of 128 kB: no column name)."""
     try:
         names = [n.strip() for n in next(csv.reader([header], delimiter=sep))]
     except csv.Error as exc:
@@ -98,6 +100,7 @@ def _check_header(path: Path, number: int, header: str, sep: str) -> None:
             f"{path}, line {number}: duplicate column name(s) {shown}{more}; every column "
             "needs its own name"
         )
+    return len(names)
 
 
 def load(path: Path) -> pd.DataFrame:
@@ -107,7 +110,9 @@ def load(path: Path) -> pd.DataFrame:
     lines are dropped here, before parsing, so that ``#`` inside a cell stays data and every
     row keeps the number of its line in the file; ``attrs["comment_lines"]`` holds the numbers
     of the comment lines below the header, which the validator reports (a commented-out row is
-    data the user may not mean to drop).
+    data the user may not mean to drop). A row with more fields than the header, the first data
+    row included, is an error naming it; so is a short row whose cells hold another separator
+    (a line of ``;`` in a comma file), which would otherwise read as a row of empty cells.
     """
     body, numbers, comments = _data_lines(_decode(path))
     if not len(numbers):
@@ -116,11 +121,21 @@ def load(path: Path) -> pd.DataFrame:
         )
     head = body.split("\n", 51)[:51]
     sep, decimal = _dialect("\n".join(head))
-    _check_header(path, int(numbers[0]), head[0], sep)
+    width = _check_header(path, int(numbers[0]), head[0], sep)
 
     def kept() -> list[tuple[int, str]]:  # every line parsed, with its number (for errors)
         return list(zip(numbers.tolist(), body.split("\n"), strict=True))
 
+    def unreadable(exc: Exception | None) -> ContactresInputError:
+        return ContactresInputError(
+            f"{path}: not a readable {sep!r}-separated table ({_bad_rows(kept(), sep, exc)})"
+        )
+
+    # A first data row longer than the header would make pandas take its first field for an
+    # index and shift every column one to the left (issue 27: an extra field blamed the wrong
+    # column); later rows longer than the header are pandas' own error, named as this one.
+    if len(head) > 1 and _width(head[1], sep) > width:
+        raise unreadable(None)
     try:
         raw = pd.read_csv(
             io.StringIO(body),
@@ -128,11 +143,10 @@ def load(path: Path) -> pd.DataFrame:
             dtype=str,
             keep_default_na=False,
             skip_blank_lines=False,
+            index_col=False,
         )
     except pd.errors.ParserError as exc:
-        raise ContactresInputError(
-            f"{path}: not a readable {sep!r}-separated table ({_bad_rows(kept(), sep, exc)})"
-        ) from None
+        raise unreadable(exc) from None
     raw.columns = [str(c).strip() for c in raw.columns]
     # A short row leaves NaN in its missing cells: make them empty cells, as written.
     raw = raw.fillna("")
@@ -141,6 +155,7 @@ def load(path: Path) -> pd.DataFrame:
         # Every row would be named by a wrong line, and the label would not be the one written.
         _quoted_break(path, kept())
     raw["line"] = numbers[1:]
+    _other_separator(path, raw, kept, sep, decimal, width)
     raw.attrs["decimal"] = decimal
     # Dropped lines among the data are said, never silent: the validator reports them
     # (line_ranges). Comments above the header are a preamble (an instrument's, or the
@@ -167,19 +182,75 @@ def _data_lines(text: str) -> tuple[str, np.ndarray, list[int]]:
     return "\n".join(ln for _, ln in kept), numbers, comments
 
 
-def _bad_rows(kept: list[tuple[int, str]], sep: str, exc: Exception) -> str:
+def _width(line: str, sep: str) -> int:
+    """The number of fields of one line, as the csv module splits it (0 if it cannot: a field
+    over its limit of 128 kB, which pandas reads or names)."""
+    try:
+        return len(next(csv.reader([line], delimiter=sep), []))
+    except csv.Error:
+        return 0
+
+
+def _other_separator(
+    path: Path,
+    raw: pd.DataFrame,
+    kept: Callable[[], list[tuple[int, str]]],
+    sep: str,
+    decimal: str,
+    width: int,
+) -> None:
+    """One-line error for a short row whose fields hold another separator (a line of ``;`` in
+    a comma file): its cells would read as empty ones and be blamed as such (issue 27).
+
+    Only rows whose cells past the first are all empty are looked at (a vectorised test), and
+    only those are split again, by the csv module, to count their fields."""
+    others = [c for c in (",", ";", "\t") if c != sep and not (c == "," and decimal == ",")]
+    if width < 2 or not others or raw.empty:
+        return
+    # The last cell first (one column: cheap on 10^6 rows), then the few rows left.
+    rows = raw.loc[(raw.iloc[:, width - 1] == "").to_numpy()]
+    first = rows.iloc[:, 0].astype(str)
+    held = np.zeros(len(rows), dtype=bool)
+    for c in others:
+        held |= first.str.contains(c, regex=False).to_numpy()
+    suspect = held & (rows.iloc[:, 1:width] == "").all(axis=1).to_numpy()
+    if not suspect.any():
+        return
+    lines = dict(kept())
+    for number in rows["line"].to_numpy()[suspect]:
+        text = lines[int(number)]
+        fields = _width(text, sep)
+        if not 0 < fields < width:
+            continue
+        used = next(c for c in others if c in text)
+        raise ContactresInputError(
+            f"{path}, line {number}: the row has {fields} field{'s' if fields > 1 else ''} "
+            f"where the {sep!r}-separated header has {width}, and it holds {used!r}: the file "
+            f"may use {used!r} as separator here; separate every row as the header is"
+        )
+
+
+def _bad_rows(kept: list[tuple[int, str]], sep: str, exc: Exception | None) -> str:
     """What pandas could not read, in the lines of the file: every row with more fields than
-    the header (the first five and the count), else pandas' own words."""
+    the header (the first five and the count), else pandas' own words (``exc``; None when the
+    first data row was found longer than the header before pandas read the table)."""
     widths = [len(row) for row in csv.reader((ln for _, ln in kept), delimiter=sep)]
     if len(widths) == len(kept):
         long = [(kept[i][0], w) for i, w in enumerate(widths) if i and w > widths[0]]
         if len(long) == 1:
-            return f"line {long[0][0]} has {long[0][1]} fields, the header {widths[0]}"
+            extra = long[0][1] - widths[0]
+            return (
+                f"line {long[0][0]} has {long[0][1]} fields, the header {widths[0]}: "
+                f"{extra} field{'s' if extra > 1 else ''} more than the header; every row has "
+                "one field per column"
+            )
         if long:
             shown = ", ".join(f"{n} ({w} fields)" for n, w in long[:5])
             more = ", ..." if len(long) > 5 else ""
             head = f"{len(long)} rows have more fields than the header's {widths[0]}"
             return f"{head}: lines {shown}{more}"
+    if exc is None:
+        return f"line {kept[1][0]} has more fields than the header"
     found = _FIELD_COUNT.search(str(exc))
     if found and int(found.group(2)) <= len(kept):
         number = kept[int(found.group(2)) - 1][0]

@@ -313,6 +313,8 @@ def _read_folder(folder: Path, layout, z0: float, two_port: str | None) -> pd.Da
         raise ContactresInputError(
             f"{index_path}: no column 'file' (the spectrum file of each row)"
         )
+    # Only the columns of LABELS are passed on: a misspelt one would be dropped unseen.
+    SPECTRA_TABLE.check_names(index.columns, str(index_path), extra=(*CONSTANT_COLUMNS, "file"))
     parts = []
     home = folder.resolve()
     for _, row in index.iterrows():  # one row per file: the loop is over files, not points

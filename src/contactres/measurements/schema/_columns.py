@@ -12,14 +12,16 @@ words and the check live in one place, and the README's column tables are made f
 
 from __future__ import annotations
 
-from collections.abc import Callable
+import difflib
+import re
+from collections.abc import Callable, Iterable
 from dataclasses import dataclass
 
 import numpy as np
 import pandas as pd
 
 from ...errors import ContactresInputError
-from .._messages import at_cell
+from .._messages import at_cell, shown_value
 
 __all__ = [
     "LEVELS",
@@ -35,6 +37,23 @@ __all__ = [
 #: Levels of a column: one value per point, one per sweep, or a constant of the instrument or
 #: the sample (also one per sweep, and filled from options or a TOML file when absent).
 LEVELS = ("point", "sweep", "constant")
+
+
+#: How alike two column names, ``_folded``, must be (difflib's ratio, 0 to 1) for an unknown
+#: one to be taken for a misspelling of a known one: ``poison`` and ``poisson`` are 0.92 alike,
+#: ``fc4_Hz`` and ``fc3_Hz`` 0.8 (and differ in a number: never a misspelling).
+_NEAR_MISS = 0.85
+
+
+#: Words that end a column's name without changing what it names (``Poisson_ratio``,
+#: ``sweep_id``, ``ramp_number``), folded.
+_QUALIFIERS = ("ratio", "id", "name", "number", "order")
+
+
+def _folded(name: str) -> str:
+    """A column name as compared for a misspelling: lower case, without blanks, underscores,
+    hyphens and dots (``Sphere Radius`` and ``sphere_radius`` fold alike)."""
+    return re.sub(r"[\s_.\-]", "", str(name).lower())
 
 
 @dataclass(frozen=True)
@@ -156,6 +175,72 @@ class TableSchema:
     ) -> None:
         """:func:`check_cells` with the rules of column ``name``."""
         check_cells(table, source, name, self.column(name).rules, values, given)
+
+    def near_miss(self, name: str, absent: Iterable[str]) -> str | None:
+        """The column of ``absent`` (names of this table) that ``name``, a column it does not
+        know, looks like a misspelling of; None if none.
+
+        Names are compared ``_folded`` (case, blanks and underscores do not count), each
+        known name also without its unit suffix (``sphere_radius`` for ``sphere_radius_m``)
+        and ``name`` also without a qualifying last word (``Poisson_ratio``, ``sweep_id``):
+        equal, or at least ``_NEAR_MISS`` alike by difflib's ratio and holding the same
+        numbers (``fc4_Hz`` is a mode of its own, not a typo of ``fc3_Hz``).
+        """
+        key = _folded(name)
+        digits = re.findall(r"\d+", key)
+        # The name without a word that qualifies it (Poisson_ratio, sweep_id) is the same name.
+        plain = {key[: -len(w)] for w in _QUALIFIERS if key.endswith(w) and len(key) - len(w) > 3}
+        best: tuple[float, str] | None = None
+        for known in absent:
+            for form in {_folded(known), _folded(self._bare(known))}:
+                if not form or re.findall(r"\d+", form) != digits:
+                    continue
+                same = form == key or form in plain
+                ratio = 1.0 if same else difflib.SequenceMatcher(None, key, form).ratio()
+                if ratio >= _NEAR_MISS and (best is None or ratio > best[0]):
+                    best = (ratio, known)
+        return None if best is None else best[1]
+
+    def _bare(self, name: str) -> str:
+        """``name`` without the suffix of its unit (``_m``, ``_N_per_m``, ``_m2``), if it has
+        one; a name this table does not know is returned as it is."""
+        try:
+            unit = self.column(name).unit
+        except KeyError:
+            return name
+        suffix = "_" + unit.replace("^", "").replace("/", "_per_")
+        return name[: -len(suffix)] if unit not in ("-", "text") and name.endswith(suffix) else name
+
+    def check_names(self, columns: Iterable[str], source: str, extra: Iterable[str] = ()) -> None:
+        """Raise the one-line error for a column that is not of this table but looks like a
+        misspelling of one the table lacks (``poison`` for ``poisson``): a column not of the
+        table is not used, so the value would silently give way to the default (issue 27).
+
+        Columns of other names stay allowed (notes, pixel coordinates). ``extra``: more names
+        the reader takes (compared as they are written). The ``line`` column of a reader is not
+        a column of the file.
+        """
+        columns = [str(c) for c in columns if str(c) != "line"]
+        known = {*self.names, *extra}
+        absent = [n for n in (*self.names, *extra) if n not in columns]
+        for col in columns:
+            if col in known:
+                continue
+            near = self.near_miss(col, absent)
+            if near is not None:
+                raise ContactresInputError(
+                    f"{source}: column {shown_value(col)} is not a column of the {self.name}; did "
+                    f"you mean {near!r}? (a column of another name is not used: the value "
+                    f"would be left out{self._fallback(near)})"
+                )
+
+    def _fallback(self, name: str) -> str:
+        """What stands in for the absent column ``name``, for the near-miss message."""
+        try:
+            default = self.column(name).default
+        except KeyError:
+            return ""
+        return "" if default is None else f", and {name} taken as its default {_shown(default)}"
 
     def markdown(self, with_required: bool = False) -> str:
         """The table as a Markdown table (the README's column tables are checked against this)."""

@@ -107,6 +107,7 @@ def load(path, **conventions) -> ExportTable:
     workbook = path.suffix.lower() == ".xlsx"
     raw = _excel.load_sheet(path, SHEET) if workbook else read_table(path)
     where = str(raw.attrs.get("source", path))  # a workbook's cells: its sheet named too
+    SCHEMA.check_names(raw.columns, where)  # a misspelt column would be left out unseen
     absent = [c for c in SCHEMA.required if c not in raw.columns]
     if "dgamma_Hz" in absent:
         raise ContactresInputError(
