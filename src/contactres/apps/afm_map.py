@@ -5,7 +5,8 @@ report of the ``afm_map`` job's Result and its map Dataset, into one folder.
 registered for the Result (``afm_maps.png``, ``afm_histograms.png``:
 :func:`contactres.report.figure_registry`) and the Dataset: NetCDF (``NAME.nc``, one file of
 the folder's result set, written whole or not at all) or Zarr (``NAME.zarr``, a store written
-beside the report with :func:`contactres.polycrystal.write_map`, replaced as a whole).
+beside the report with :func:`contactres.polycrystal.write_map`, replaced as a whole, and only
+if contactres wrote it). :func:`check_afm_map_output` makes the checks before the long work.
 """
 
 from __future__ import annotations
@@ -105,6 +106,12 @@ def write_afm_map(
         Of the report (default :data:`contactres.report.DEFAULT_FORMATS`).
     progress : callable, optional
         One line per figure drawn.
+
+    Raises
+    ------
+    contactres.fileio.OutputError
+        As :func:`check_afm_map_output`; a Zarr store that contactres may not replace is
+        refused before the report moves in (issue 27).
     """
     from ..report import write_report
 
