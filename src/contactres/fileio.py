@@ -19,9 +19,12 @@ that belong together is written as one :class:`ResultSet`:
 
 A set owns only the files it can show it wrote: those its kind's earlier manifest lists *and*
 whose size and SHA-256 still match the record. A file someone else wrote or changed since is
-never removed (it may be overwritten only by a file of the same name the new set writes), and
-a folder whose manifest contactres did not write, or that holds another kind of set (``qcm
-stiffness`` results when ``qcm analyze`` writes, say), is refused before anything is computed.
+never removed nor overwritten: a folder where a file of the set's names exists without such a
+record (the user's ``stiffness.csv``, say), whose manifest contactres did not write, or that
+holds another kind of set (``qcm stiffness`` results when ``qcm analyze`` writes, say), is
+refused before anything is computed, in one line naming what is not contactres's
+(:mod:`contactres._ownership`, the rule map stores follow too), and checked again under the
+lock just before the move.
 
 So a kill leaves the earlier set or the new one (plus hidden leftovers the next run removes).
 Where the files go in one by one, the staging folder is first renamed to a committed folder
@@ -46,6 +49,7 @@ from contextlib import contextmanager
 from pathlib import Path
 
 from ._csvcells import CSV_FLOAT_FORMAT, floats_as_text, neutralised
+from ._ownership import refusal, unvouched
 from ._version import __version__
 from .errors import ContactresInputError
 
@@ -447,9 +451,10 @@ class ResultSet:
     holding only such files (and its manifest) is replaced as a whole.
 
     Raises :class:`OutputError` on entering: see :func:`check_output`; the folder holds a
-    manifest contactres did not write or one of another kind of set; or another run holds the
-    lock. Where the folder's parent cannot be written but the folder itself can, the lock file and
-    the staging folder live inside the folder (hidden) and the files are moved in one by one.
+    manifest contactres did not write or one of another kind of set, or a file of ``names``
+    that its manifest does not prove contactres wrote; or another run holds the lock. Where
+    the folder's parent cannot be written but the folder itself can, the lock file and the
+    staging folder live inside the folder (hidden) and the files are moved in one by one.
     """
 
     def __init__(
@@ -490,11 +495,18 @@ class ResultSet:
             self._workspace = self.folder if inside else parent
             self._take_lock()
             self._clean_leftovers()
+            self._refuse_unvouched(self._vouched())
             self._staging = self._new_dir("tmp")
         except BaseException:
             self._release(aborted=True)
             raise
         return self
+
+    def check(self) -> None:
+        """Make the checks of entering the with-block and leave, writing nothing: for a caller
+        that opens the set only once its long work is done (OutputError as on entering)."""
+        self.__enter__()
+        self._release(aborted=True)
 
     @property
     def _work(self) -> Path:
@@ -562,6 +574,18 @@ class ResultSet:
                 _roll_forward(p, self.folder)
             shutil.rmtree(p, ignore_errors=True)
 
+    def _vouched(self) -> set[str]:
+        """The files of the folder the earlier set's manifest proves contactres wrote."""
+        earlier = _manifest_owner(self.folder, self.given, self.kind, self.owned)
+        return _verified_names(self.folder, earlier) if self.folder.exists() else set()
+
+    def _refuse_unvouched(self, vouched: set[str]) -> None:
+        """OutputError naming the files of the set that exist in the folder and that no
+        manifest proves contactres wrote: they are never overwritten (issue 27)."""
+        foreign = unvouched(self.folder, self.names, vouched)
+        if foreign:
+            raise OutputError(refusal("output folder", self.given, foreign))
+
     # -- writing --------------------------------------------------------------------------
 
     def path(self, name: str) -> Path:
@@ -619,6 +643,7 @@ class ResultSet:
         # Checked again under the lock, just before the move: what the earlier set wrote now.
         earlier = _manifest_owner(self.folder, self.given, self.kind, self.owned)
         self._earlier = _verified_names(self.folder, earlier) if self.folder.exists() else set()
+        self._refuse_unvouched(self._earlier)  # a file of the set's names put there meanwhile
         if self._replaceable():
             if not self.folder.exists():
                 try:

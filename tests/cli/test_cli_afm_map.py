@@ -237,3 +237,30 @@ def test_flagged_damping_and_a_failing_modulus_are_counted_and_warned(fixtures, 
     assert "48 flagged" in r.output and "tan δ median" not in r.output
     warned = [line for line in r.output.splitlines() if "negative_damping" in line]
     assert len(warned) == 1 and warned[0].startswith("warning: 48 pixels")
+
+
+def test_files_contactres_did_not_write_are_refused_before_the_work(
+    fixtures, tmp_path, monkeypatch
+):
+    """Issue 27: an afm_map.json of the user's in --out, or a Zarr store another program wrote
+    at --map-name, is refused in one line before the map is computed; nothing changes."""
+    from contactres.jobs import afm_map
+
+    path = tmp_path / "dart.ibw"
+    fixtures.write_dart_ibw(path, points=8, lines=6)
+    out = tmp_path / "o"
+    out.mkdir()
+    (out / "afm_map.json").write_text("my notes")
+
+    def never(*args, **kwargs):
+        raise AssertionError("the work started before the folder was checked")
+
+    monkeypatch.setattr(afm_map, "series", never)
+    base = ["--free-frequency", F_FREE, "--tip-position", R_TIP, "--out", out]
+    one_line_error(run("afm", "map", path, *base), "(afm_map.json)", "did not write")
+    (out / "afm_map.json").unlink()
+    xr.Dataset({"t": ("x", np.arange(3.0))}).to_zarr(out / "m.zarr", consolidated=False)
+    before = sorted(str(p.relative_to(out)) for p in out.rglob("*"))
+    r = run("afm", "map", path, *base, "--map-name", "m.zarr")
+    one_line_error(r, "m.zarr", "did not write")
+    assert sorted(str(p.relative_to(out)) for p in out.rglob("*")) == before

@@ -332,6 +332,31 @@ def test_output_replaces_atomically_and_inputs_are_untouched(small, tmp_path):
     assert _digest(store) == before
 
 
+def test_a_rerun_replaces_only_a_store_contactres_wrote_with_nothing_added(tmp_path):
+    """Issue 27: a rerun of maps synthetic / maps predict into an existing store replaced it
+    whole, deleting a notes.txt or another array inside it, or another program's store."""
+    xr = pytest.importorskip("xarray")
+    tiny = ["--shape", "8x8", "--grains", 2, "--crystal", "Cu", *TIP]
+    store = tmp_path / "s.zarr"
+    _ok(run("maps", "synthetic", *tiny, "--out", store))
+    _ok(run("maps", "synthetic", *tiny, "--seed", 3, "--out", store))  # its own: replaced
+    (store / "notes.txt").write_text("my notes")
+    xr.Dataset({"mine": ("x", np.arange(3.0))}).to_zarr(store / "grp", consolidated=False)
+    _ok(run("maps", "synthetic", *tiny, "--out", tmp_path / "in.zarr"))
+    before = _digest(store)
+    for r in (
+        run("maps", "synthetic", *tiny, "--out", store),
+        _predict(tmp_path / "in.zarr", store),
+    ):
+        one_line_error(r, "'" + str(store) + "'", "did not write", "(grp, notes.txt)")
+        assert _digest(store) == before
+    theirs = tmp_path / "theirs.zarr"
+    xr.Dataset({"t": ("x", np.arange(3.0))}).to_zarr(theirs, consolidated=False)
+    before = _digest(theirs)
+    one_line_error(run("maps", "synthetic", *tiny, "--out", theirs), "theirs.zarr", "did not write")
+    assert _digest(theirs) == before
+
+
 # ---------------------------------------------------------------------------------- bad input
 
 SYN = {"--out": "o.zarr", "--crystal": "Cu", "--tip-radius": "2e-8", "--force": "1e-6",

@@ -252,3 +252,25 @@ def test_an_overtone_left_out_is_said_on_the_console(tmp_path):
     warned = [ln for ln in r.stderr.splitlines() if ln.startswith("contactres: warning:")]
     assert any("overtone 5 not read" in ln and "Delta_F/n_n=5_(Hz)" in ln for ln in warned), warned
     assert "n = 5" not in r.stdout and "n = 7" in r.stdout
+
+
+def test_a_stiffness_csv_contactres_did_not_write_is_not_overwritten(tmp_path, monkeypatch):
+    """Issue 27: a stiffness.csv of the user's in --out (no manifest vouches for it) was
+    overwritten. Refused in one line naming it, before the export is read; nothing changes."""
+    from contactres.jobs import qcm_stiffness
+
+    export = awsensors_file(tmp_path)
+    out = tmp_path / "out"
+    out.mkdir()
+    (out / "stiffness.csv").write_bytes(b"time,kappa\n0,1\n")
+    (out / "raw.dat").write_bytes(b"x\n")
+
+    def never(*args, **kwargs):
+        raise AssertionError("the work started before the folder was checked")
+
+    monkeypatch.setattr(qcm_stiffness, "run", never)
+    r = run("qcm", "stiffness", export, *AWS_ARGS, "--out", out)
+    one_line_error(r, "'" + str(out) + "'", "(stiffness.csv)", "did not write")
+    assert sorted(p.name for p in out.iterdir()) == ["raw.dat", "stiffness.csv"]
+    assert (out / "stiffness.csv").read_bytes() == b"time,kappa\n0,1\n"
+    assert (out / "raw.dat").read_bytes() == b"x\n"

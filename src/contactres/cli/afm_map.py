@@ -204,7 +204,7 @@ def afm_map(
     import numpy as np
 
     from ..analysis import ModulusModel
-    from ..apps.afm_map import write_afm_map
+    from ..apps.afm_map import check_afm_map_output, write_afm_map
     from ..jobs import afm_map as job
 
     modulus = ModulusModel(
@@ -241,11 +241,12 @@ def afm_map(
     def progress(text):
         step("afm map", text)
 
+    folders = [Path(out) / Path(f).stem for f in files] if len(files) > 1 else [Path(out)]
+    formats = (*REPORT_FORMATS[:2], *figure_formats, *REPORT_FORMATS[2:])
+    for path, folder in zip(files, folders, strict=True):  # all checked before the work
+        check_afm_map_output(folder, map_name=map_name, formats=formats, inputs=(path,))
     results = job.series(list(files), settings, scheduler=scheduler, progress=progress)
-    several = len(results) > 1
-    for path, result in zip(files, results, strict=True):
-        folder = Path(out) / Path(path).stem if several else Path(out)
-        formats = (*REPORT_FORMATS[:2], *figure_formats, *REPORT_FORMATS[2:])
+    for path, folder, result in zip(files, folders, results, strict=True):
         write_afm_map(result, folder, map_name=map_name, formats=formats, progress=progress)
         s, ds = result.summary, result.dataset
         line = f"{Path(path).name}: {s['shape'][0]}x{s['shape'][1]} pixels, "

@@ -42,6 +42,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .._ownership import STORE_MARKER, refusal, sign_store, unproven_store_entries
 from ..errors import ContactresInputError, MissingExtraError
 from ..fileio import OutputError, check_output_file, replace_folder
 from ..materials import Material
@@ -465,12 +466,23 @@ def _is_zarr_store(path: Path) -> bool:
     return path.is_dir() and any((path / n).exists() for n in ("zarr.json", ".zgroup", ".zattrs"))
 
 
+def _refuse_unproven(target: Path) -> None:
+    """OutputError (one line, naming them) if the store at ``target`` holds anything contactres
+    cannot show it wrote (:func:`contactres._ownership.unproven_store_entries`): only a store of
+    contactres's own, with nothing added, is replaced."""
+    if _is_zarr_store(target):
+        foreign = unproven_store_entries(target)
+        if foreign:
+            raise OutputError(refusal("output store", target, foreign))
+
+
 def check_map_output(path: str | os.PathLike, inputs=()) -> Path:
     """Check, writing nothing, that a map store may be written at ``path`` (before long work).
 
     Raises :class:`~contactres.fileio.OutputError` (one line) when the folder of ``path`` is
     missing or not writable, ``path`` is one of ``inputs``, or ``path`` exists and is not a
-    Zarr store (:func:`write_map` overwrites only a store).
+    Zarr store contactres wrote, with nothing added since (:func:`write_map` replaces only
+    such a store: :mod:`contactres._ownership`); the refusal names what is not contactres's.
     """
     target = Path(path)
     if target.exists() and not _is_zarr_store(target):
@@ -479,6 +491,7 @@ def check_map_output(path: str | os.PathLike, inputs=()) -> Path:
         for given in inputs:
             if Path(given).resolve() == target.resolve():
                 raise OutputError(f"output {str(target)!r} is also an input")
+        _refuse_unproven(target)
         check_output_file(target.parent / f".{target.name}.check", inputs)
         return target
     return check_output_file(target, inputs)
@@ -492,12 +505,16 @@ def write_map(path: str | os.PathLike, dataset, *, chunks: tuple[int, int] = (25
     aside first (:func:`contactres.fileio.replace_folder`), and removed after: a kill never
     leaves a half-written store at ``path``. Every
     (y, x) variable is chunked ``chunks`` = (rows, columns) (``euler`` with its 3 angles in one
-    chunk).
+    chunk). The complete store is signed before it moves in: its root attributes get
+    contactres's marker (:data:`contactres._ownership.STORE_MARKER`, the digest of its keys),
+    by which a rerun knows the store at ``path`` as its own (issue 27).
 
     Raises
     ------
     ValueError
-        If ``path`` exists and is not a Zarr store (nothing else is overwritten).
+        If ``path`` exists and is not a Zarr store, or is a store that contactres did not
+        write or that holds files added since (an OutputError naming them, checked again just
+        before the swap): nothing else is overwritten.
     """
     require_maps_extra("zarr")
     if isinstance(dataset, OrientationMap):
@@ -508,6 +525,7 @@ def write_map(path: str | os.PathLike, dataset, *, chunks: tuple[int, int] = (25
         raise ContactresInputError(
             f"{str(target)!r} exists and is not a Zarr store: not overwritten"
         )
+    _refuse_unproven(target)
     stage = target.parent / f".{target.name}.{secrets.token_hex(6)}.tmp"
     encoding = {}
     for name, var in dataset.data_vars.items():
@@ -521,7 +539,9 @@ def write_map(path: str | os.PathLike, dataset, *, chunks: tuple[int, int] = (25
             # writes it by default all the same, and older readers ignore it.
             warnings.filterwarnings("ignore", message="Consolidated metadata is currently not")
             dataset.to_zarr(stage, mode="w-", encoding=encoding, consolidated=True)
+        sign_store(stage)
         if target.exists():
+            _refuse_unproven(target)  # again, just before the swap: written to meanwhile?
             aside = target.parent / f".{target.name}.{secrets.token_hex(6)}.old"
             shutil.rmtree(replace_folder(stage, target, aside), ignore_errors=True)
         else:
@@ -575,5 +595,6 @@ def read_map(path: str | os.PathLike, *, max_pixels: int = MAX_MAP_PIXELS):
     check_map_size(
         (ds.sizes.get("y", 0), ds.sizes.get("x", 0)), f"map store {str(target)!r}", max_pixels
     )
+    ds.attrs.pop(STORE_MARKER, None)  # the store's, not the map's: never copied on
     ds.encoding["source"] = str(target)
     return ds
