@@ -244,6 +244,23 @@ def test_below_the_comb_a_printed_value_has_an_error_that_matches_its_scatter(f_
         assert abs(np.mean(z)) < 0.5, (name, np.mean(z))
 
 
+@pytest.mark.parametrize(("loss", "overdamped"), [(0.5, False), (2.0, True)])
+def test_a_contact_damped_beyond_its_stiffness_is_noted_overdamped(loss, overdamped):
+    # loss tangent ωξ/κ at f_coupled = 20 MHz (in the comb)
+    kappa = _kappa_for(PS, 20e6, medium=WATER)
+    xi = loss * kappa / (2 * np.pi * 20e6)
+    df, dg = particle_shifts(F0, N, PS, kappa, xi, 2e10, medium=WATER)
+    # what the note says: above 1 the bandwidth shift has no peak within the comb (it rises
+    # to the last overtone), below it peaks inside
+    assert (np.argmax(dg) == N.size - 1) == overdamped
+    d, g = _noisy(df, dg, 20, seed=9)
+    fit = fit_particles(F0, N, d, g, PS, medium=WATER, sigma_df=NOISE, sigma_dgamma=NOISE)
+    assert all(("overdamped" in f) == overdamped for f in fit.flags)
+    # a note, not a verdict: κ, ξ, the coverage and f_coupled are printed
+    for name in ("kappa", "xi", "coverage", "f_coupled"):
+        assert np.all(np.isfinite(getattr(fit, name))), name
+
+
 @pytest.mark.parametrize("stated", [True, False])
 def test_pure_noise_is_no_signal_and_prints_nothing(stated):
     # shifts that are noise alone (a sensor before adsorption): the empty model fits as well

@@ -84,7 +84,10 @@ Unresolved values are NaN, with their errors; f_coupled goes with κ (and with �
 fitted: an unresolved κ_r leaves f_coupled empty and not flagged "outside-comb", since the
 modes of an unidentified κ_r say nothing of where the data's resonance lies). "outside-comb"
 says that the fitted coupled resonance lies outside [n_min f_F, n_max f_F] of the measured
-overtones (information: a resonance just outside the comb can still be resolved). The
+overtones (information: a resonance just outside the comb can still be resolved);
+"overdamped", a note that blanks nothing, that the loss tangent ωξ/κ at f_coupled exceeds 1
+(quality factor below 1: ΔΓ_n shows no peak at the resonance, f_coupled is that of the
+undamped contact). The
 likelihood-ratio test of step 1 matters: far outside the comb the linearised error can look
 small at a point that is many of its σ from the truth, while the limit fits the data as well.
 """
@@ -660,6 +663,9 @@ class _Problem:
             bad = [b or w[i] for b, w in zip(bad, wide, strict=False)]
             if widened[i]:
                 f.append("wide-interval")
+            # a note, no value blanked: the loss tangent ωξ/κ at f_coupled above 1 (Q < 1)
+            if fc_known and not (bad[0] or bad[1]) and 2 * np.pi * fc[i] * xi[i] > kappa[i]:
+                f.append("overdamped")
             f += [name for name, b in zip(unresolved, bad, strict=False) if b]
             keep[i] = np.logical_not(bad)
             flags.append(tuple(f))
