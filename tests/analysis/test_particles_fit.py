@@ -411,3 +411,38 @@ def test_bad_input_is_one_line():
         fit_particles(F0, N, df, dg, PS, sigma_df=-1.0, sigma_dgamma=0.1)
     with pytest.raises(ContactresInputError, match="both"):
         fit_particles(F0, N, df, dg, PS, sigma_df=0.1)
+
+
+def test_the_valley_profile_moves_a_fit_from_the_shallower_to_the_deeper_minimum():
+    # A toy problem in the fit's coordinates (q0 = ln κ, q1 = ξ, q2 = ln N) with residuals
+    # q0² - 1, 0.3 (q0 - 1), q1 - 2, q2 - 3: along q0 a minimum at q0 = 1 with χ² = 0 and a
+    # shallower one near q0 = -1 (χ² ≈ 0.36). From the shallower, the profile (q0 held at
+    # q0 + ln s, q1, q2 fitted) reaches the basin of the deeper, and the refined fit is its
+    # exact minimum (1, 2, 3).
+    from contactres.analysis._particle_profile import valley_profile
+    from contactres.fitting import LMOptions
+
+    def evaluate(q, rows, jacobian):
+        r = np.stack([q[:, 0] ** 2 - 1, 0.3 * (q[:, 0] - 1), q[:, 1] - 2, q[:, 2] - 3], 1)
+        jac = np.zeros((q.shape[0], 4, 3))
+        jac[:, 0, 0], jac[:, 1, 0], jac[:, 2, 1], jac[:, 3, 2] = 2 * q[:, 0], 0.3, 1.0, 1.0
+        jt = jac.transpose(0, 2, 1)
+        return {
+            "chi2": np.sum(r * r, 1),
+            "gradient": (jt @ r[:, :, None])[..., 0],
+            "hessian": jt @ jac,
+        }
+
+    # two steps: one in the shallower minimum's basin (profiled), one at the deeper (not)
+    q = np.array([[-1.0, 2.0, 3.0], [1.0, 2.0, 3.0]])
+    chi2 = evaluate(q, None, False)["chi2"]
+    lo, hi = np.full((2, 3), -10.0), np.full((2, 3), 10.0)
+    options = LMOptions(max_iter=300, xtol=1e-12, ftol=1e-14)
+    q2, chi2_2, conv, visited = valley_profile(
+        evaluate, q, chi2, np.ones(2, bool), np.array([0]), lo, hi, options
+    )
+    np.testing.assert_allclose(q2[0], [1.0, 2.0, 3.0], atol=1e-6)
+    assert chi2_2[0] < 1e-10 and conv[0]
+    # the step not profiled is left alone, and only the profiled step has visited points
+    np.testing.assert_array_equal(q2[1], q[1])
+    assert all(np.isinf(c[1]) and np.isfinite(c[0]) for _, c in visited)

@@ -14,7 +14,8 @@ there in a quarter of the draws at a coverage of 3e11 m⁻², with N·κ printed
 (ξ̂ s, N̂/s), which keeps N·κ and N·ξ. That is the profile likelihood in κ (Press et al.,
 Numerical Recipes, 3rd ed., §15.6.5): its lowest point, refined with κ free, replaces the fit
 where it fits better, and all its points join those the interval test of the fit's ``result``
-reads (a point of Δχ² = D farther than 1.3σ√D from the fit in a value blanks that value).
+reads (a point of Δχ² = D farther than 1.3σ√max(D, 1) from the fit in a value blanks that
+value).
 """
 
 from __future__ import annotations
