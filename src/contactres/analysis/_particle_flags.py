@@ -22,6 +22,10 @@ PARTICLE_FLAGS = {
     "from it, so its error σ understates the interval the data allow (below the comb the χ² "
     "has two valleys)",
     "outside-comb": "the coupled resonance lies outside the overtone comb",
+    "overdamped": "a note (every value is printed): the contact's loss tangent ωξ/κ exceeds 1 "
+    "at the coupled resonance, whose quality factor is then below 1 (its width exceeds its "
+    "frequency): ΔΓ_n shows no peak there, and f_coupled (the resonance without damping) "
+    "marks no feature of the shifts",
     "kappa-unresolved": "the contact stiffness κ (and f_coupled) is not identified by the data",
     "xi-unresolved": "the contact drag ξ is not identified by the data (at the noise level)",
     "coverage-unresolved": "the coverage is not identified by the data",

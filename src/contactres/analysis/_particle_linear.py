@@ -1,10 +1,10 @@
 """Linear-algebra helpers of the particle fit (:mod:`contactres.analysis._particles`).
 
 The closed-form pieces of :func:`~contactres.analysis.fit_particles`, batched over the time
-steps: the equation-error start (the model multiplied out, linear in κ, ξ, Nκ, Nξ), the χ² of
-the model's two limits (a rigid contact; particles standing still) and of no particles at all,
-the inverse of the stacked normal matrices that marks an unidentified direction, and the noise
-variance of a series.
+steps: the equation-error start (the model multiplied out, linear in κ, ξ, Nκ, Nξ), the start
+in the limit of particles standing still, the χ² of the model's two limits (a rigid contact;
+particles standing still) and of no particles at all, the inverse of the stacked normal
+matrices that marks an unidentified direction, and the noise variance of a series.
 Notation as there: z = Δf + iΔΓ (Hz), s = 2nπ²Z_q, c, h, g of
 :func:`~contactres.resonators.particle_compliance`, weights wf = 1/σ_Δf and wg = 1/σ_ΔΓ (0 where
 an overtone is not measured).
@@ -17,6 +17,7 @@ import numpy as np
 __all__ = [
     "equation_error",
     "grid_coordinates",
+    "heavy_start",
     "limit_chi2",
     "limit_threshold",
     "misfit",
@@ -203,6 +204,32 @@ def equation_error(z, wf, wg, sens, omega, chg, kappa_fixed=None, sweeps=4):
         cov = a_nk / kappa
     ok = (kappa > 0) & (cov > 0)
     return np.where(ok, kappa, np.nan), np.maximum(xi, 0.0), np.where(ok, cov, np.nan)
+
+
+def heavy_start(z, wf, wg, sens, omega, h, kappa):
+    """A start in the limit of particles standing still (paper 2, Eq. 1): N·κ and N·ξ from
+    z s = (1 - h)² (Nκ + iω Nξ) by weighted linear least squares (2 × 2 normal equations per
+    step), then κ as given (a scalar, N/m), N = Nκ/κ and ξ = Nξ/N.
+
+    Returns
+    -------
+    kappa, xi, cov : (T,) κ (N/m), ξ (kg/s, 0 where not finite or negative), N (per m², NaN
+        where not positive)
+    """
+    u = (1.0 - h) ** 2 / sens + 0 * z
+    cols = [u, 1j * omega * u]
+    a = [np.concatenate([col.real * wf, col.imag * wg], 1) for col in cols]
+    y = np.concatenate([z.real * wf, z.imag * wg], 1)
+    m = np.array([[np.sum(ai * aj, 1) for aj in a] for ai in a])  # (2, 2, T)
+    r = np.array([np.sum(ai * y, 1) for ai in a])
+    det = m[0, 0] * m[1, 1] - m[0, 1] * m[1, 0]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        nk = (m[1, 1] * r[0] - m[0, 1] * r[1]) / det
+        nx = (m[0, 0] * r[1] - m[1, 0] * r[0]) / det
+        cov = nk / kappa
+        xi = np.maximum(nx / cov, 0.0)
+    t = z.shape[0]
+    return np.full(t, kappa), np.where(np.isfinite(xi), xi, 0.0), np.where(cov > 0, cov, np.nan)
 
 
 def limit_chi2(z, wf, wg, sens, omega, chg):
