@@ -198,10 +198,22 @@ def test_fig5_shades_the_band_the_analysis_computed(results):
     )
     assert "JKR fit, 95 % band" in key(fig)
     # Without the fit's covariance: curves, no band, and the key names the groups.
-    bare = replace(results, jkr=jkr.assign(df0_model_lo_Hz=np.nan, df0_model_hi_Hz=np.nan))
+    no_band = dict.fromkeys(
+        ("kappa_lo_N_per_m", "kappa_hi_N_per_m", "df0_model_lo_Hz", "df0_model_hi_Hz"), np.nan
+    )
+    bare = replace(results, jkr=jkr.assign(**no_band))
     fig = figure_stiffness(bare)
     assert bands(fig) == [] and "JKR fit, 95 % band" not in key(fig)
     assert sum("without a band" in text for text in key(fig)) == len(fitted)
+    # A withheld fit: no curve, no band, and the key says why; the page says so in words.
+    withheld = [{**g, "E_Pa": np.nan, "checks": ["fit-at-bound"]} for g in results.groups]
+    fig = figure_stiffness(replace(results, groups=withheld))
+    assert bands(fig) == []
+    assert sum("no JKR fit (fit-at-bound)" in text for text in key(fig)) == len(withheld)
+    from contactres.report._html import html_report
+
+    assert html_report(bare).count("no band (") == len(fitted)
+    assert html_report(results).count("no band (") == 0
 
 
 def test_fig5_draws_the_jkr_curve_the_analysis_computed(results):
