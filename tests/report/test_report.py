@@ -164,6 +164,58 @@ def test_table1(results):
     assert np.all(t1["E_GPa"].between(60, 90))
 
 
+def test_fig5_shades_the_band_the_analysis_computed(results):
+    """Issue 30: each JKR curve is drawn with its 95 % band from Results.jkr (the shaded
+    area spans df0_model_lo_Hz to df0_model_hi_Hz, not a band of the figure's own), the key
+    says "JKR fit, 95 % band"; a group whose fit has no covariance gets its curve, no band,
+    and the key says so."""
+    from dataclasses import replace
+
+    from contactres.report.figures import figure_stiffness
+
+    def bands(fig):
+        found = []
+        for ax in fig.axes:
+            for poly in ax.collections:
+                if type(poly).__name__ in ("PolyCollection", "FillBetweenPolyCollection"):
+                    y = np.concatenate([p.vertices[:, 1] for p in poly.get_paths()])
+                    found.append((float(np.nanmin(y)), float(np.nanmax(y))))
+        return found
+
+    def key(fig):
+        return [t.get_text() for legend in fig.legends for t in legend.get_texts()]
+
+    fig = figure_stiffness(results)
+    jkr = results.jkr
+    fitted = [g for g in results.groups if np.isfinite(g["E_Pa"])]
+    assert len(bands(fig)) == len(fitted) > 0
+    per_group = jkr.groupby(["configuration", "medium"])
+    assert sorted(lo for lo, _ in bands(fig)) == pytest.approx(
+        sorted(per_group["df0_model_lo_Hz"].min()), rel=1e-12
+    )
+    assert sorted(hi for _, hi in bands(fig)) == pytest.approx(
+        sorted(per_group["df0_model_hi_Hz"].max()), rel=1e-12
+    )
+    assert "JKR fit, 95 % band" in key(fig)
+    # Without the fit's covariance: curves, no band, and the key names the groups.
+    no_band = dict.fromkeys(
+        ("kappa_lo_N_per_m", "kappa_hi_N_per_m", "df0_model_lo_Hz", "df0_model_hi_Hz"), np.nan
+    )
+    bare = replace(results, jkr=jkr.assign(**no_band))
+    fig = figure_stiffness(bare)
+    assert bands(fig) == [] and "JKR fit, 95 % band" not in key(fig)
+    assert sum("without a band" in text for text in key(fig)) == len(fitted)
+    # A withheld fit: no curve, no band, and the key says why; the page says so in words.
+    withheld = [{**g, "E_Pa": np.nan, "checks": ["fit-at-bound"]} for g in results.groups]
+    fig = figure_stiffness(replace(results, groups=withheld))
+    assert bands(fig) == []
+    assert sum("no JKR fit (fit-at-bound)" in text for text in key(fig)) == len(withheld)
+    from contactres.report._html import html_report
+
+    assert html_report(bare).count("no band (") == len(fitted)
+    assert html_report(results).count("no band (") == 0
+
+
 def test_fig5_draws_the_jkr_curve_the_analysis_computed(results):
     """Issue 25: the report draws curves the analysis computed (Results.jkr) and evaluates no
     model; the curve itself is paper 2's Eqs. 6-10 with the fitted E and γ (kappa_jkr_mindlin,
@@ -195,3 +247,37 @@ def test_fig5_draws_the_jkr_curve_the_analysis_computed(results):
     assert half > 0
     for a, b in zip(lines[:half], lines[half:], strict=True):
         np.testing.assert_allclose(b, 2 * np.asarray(a), rtol=1e-12)
+
+
+def test_the_classification_figure_stacks_the_models_of_the_used_sweeps(results):
+    """Issue 30: one panel per (configuration, medium), one bar per load; the bars of a model
+    sum to its count of used sweeps in that panel (counted here from Results.sweeps), every
+    model in one colour in all panels, and the key names each model drawn once."""
+    from contactres.report.figures import figure_classification
+
+    fig = figure_classification(results)
+    used = results.sweeps[results.sweeps["used"]]
+    groups = used.groupby(["configuration", "medium"])
+    panels = [ax for ax in fig.axes if ax.get_visible()]
+    assert len(panels) == groups.ngroups
+    colours: dict = {}
+    for ax, ((config, medium), part) in zip(panels, groups, strict=True):
+        assert ax.get_title() == f"{config}, {medium}"
+        assert len(ax.get_xticks()) == part["normal_force_N"].nunique()
+        drawn: dict = {}
+        for bars in ax.containers:
+            label = bars.get_label()
+            drawn[label] = drawn.get(label, 0) + sum(b.get_height() for b in bars)
+            colours.setdefault(label, set()).add(tuple(bars[0].get_facecolor()))
+        assert drawn == part["model"].value_counts().to_dict()
+    assert all(len(c) == 1 for c in colours.values())
+    key = [t.get_text() for legend in fig.legends for t in legend.get_texts()]
+    assert sorted(key) == sorted(used["model"].unique())
+
+
+def test_no_classification_figure_without_used_sweeps(results):
+    from dataclasses import replace
+
+    from contactres.report.figures import figure_classification
+
+    assert figure_classification(replace(results, sweeps=results.sweeps.assign(used=False))) is None

@@ -125,9 +125,10 @@ def test_a_console_error_is_caught(browser, tmp_path):
 
 
 def test_the_result_plots_and_the_counts_show_in_the_browser(browser, report, tmp_path):
-    """issue 30: the page shows κ(F_N) with the JKR fits (and Figs. 7, 8) as images the browser
-    decodes (natural width > 0), a table of contents whose links all lead to a section, and
-    the line of sweeps used and left out, equal to sweeps.csv's counts."""
+    """issue 30: the page shows κ(F_N) with the JKR fits and their bands (and Figs. 7, 8, and
+    the classification's figure) as images the browser decodes (natural width > 0), a table of
+    contents whose links all lead to a section, and the line of sweeps used and left out, equal
+    to sweeps.csv's counts."""
     sweeps = pd.read_csv(report / "sweeps.csv")
     probe = (
         "<script>window.addEventListener('load',function(){"
@@ -147,8 +148,10 @@ def test_the_result_plots_and_the_counts_show_in_the_browser(browser, report, tm
     match = re.search(r'data-probe="(\d+)/(\d+)/(\d+)/(\d+)"', done.stdout)
     assert match, "the probe did not run: " + unescape(done.stdout[:300])
     images, shown, links, found = int(match[2]), int(match[1]), int(match[4]), int(match[3])
-    assert images == 3 and shown == 3 and links >= 9 and found == links
+    # Figs. 5, 7, 8 and the classification's figure (the model classes per group and load)
+    assert images == 4 and shown == 4 and links >= 9 and found == links
     assert "Δf0 (Hz, proportional to the contact stiffness κ) against the normal force" in html
-    assert "with the JKR fits" in html
+    assert "with the JKR fits and their 95 % bands" in html
+    assert 'alt="The model class of the used sweeps per configuration, medium and load"' in html
     used = int(sweeps["used"].sum())
     assert f"{len(sweeps)} sweeps, {used} used; the {len(sweeps) - used} left out" in html

@@ -27,12 +27,14 @@ import pandas as pd
 
 from ..errors import ContactresInputError
 from ._amplitude import Padded
+from ._jkr import t95_factor
 from ._models import EXACT_LOOPS, REGISTRY, exact_model, model_curves
 
 __all__ = [
     "CURVE_GRIDS",
     "FIGURE_POINTS",
     "PAGE_POINTS",
+    "band_half_width",
     "fitted_curves",
     "jkr_curves",
     "sweep_points",
@@ -207,13 +209,77 @@ def sweep_rows(table: pd.DataFrame) -> dict:
     return table.groupby("sweep", sort=False).indices
 
 
+def band_half_width(kappa_of, values, covariance, factor: float, lower=None) -> np.ndarray:
+    """Half-width of the pointwise band of a fitted curve, by linear propagation of the
+    covariance of its parameters (the delta method): ``factor`` x sqrt(diag(J Σ Jᵀ)).
+
+    J is the Jacobian of the curve with respect to the parameters, by central differences
+    (one-sided where a parameter sits within a step of its lower bound, e.g. γ = 0), a step of
+    10⁻³ standard errors: far below the scale on which the curve bends over the parameters'
+    spread (the linearisation's own error), far above the rounding of the curve.
+
+    Parameters
+    ----------
+    kappa_of : (values...) -> array, the curve at the parameters ``values`` (every point of
+        the curve at once)
+    values : the fitted parameters, length p
+    covariance : (p, p), their covariance (units of the parameters squared)
+    factor : the multiple of the standard deviation the band spans on each side (1.96 for 95 %
+        of a normal law; the group's Student-t factor ``t95`` for errors from few repeats)
+    lower : lower bounds of the parameters (default: none)
+
+    Returns
+    -------
+    ndarray
+        The half-width at every point of the curve (its units; NaN where the curve is NaN).
+    """
+    theta = np.asarray(values, dtype=float)
+    cov = np.asarray(covariance, dtype=float)
+    low = np.full(theta.size, -np.inf) if lower is None else np.asarray(lower, dtype=float)
+    h = 1e-3 * np.sqrt(np.diag(cov))
+    centre = np.asarray(kappa_of(*theta), dtype=float)
+    columns = []
+    for i in range(theta.size):
+        up, down = theta.copy(), theta.copy()
+        up[i] += h[i]
+        if theta[i] - h[i] >= low[i]:
+            down[i] -= h[i]
+            columns.append((np.asarray(kappa_of(*up)) - np.asarray(kappa_of(*down))) / (2 * h[i]))
+        else:  # within a step of the bound: the curve is not defined below it
+            columns.append((np.asarray(kappa_of(*up)) - centre) / h[i])
+    J = np.stack(columns, axis=-1)  # (points, p)
+    variance = np.einsum("ni,ij,nj->n", J, cov, J)
+    return factor * np.sqrt(np.maximum(variance, 0.0))
+
+
+def _fit_covariance(g) -> np.ndarray | None:
+    """The covariance of (E, γ) of the JKR fit of a group record (Pa², Pa J/m², (J/m²)²): its
+    standard errors ``E_fit_err_Pa``, ``gamma_fit_err_J_m2`` with its correlation
+    ``E_gamma_fit_corr``; None where one is missing (the fit does not identify E and γ)."""
+    sd = np.array([g.get("E_fit_err_Pa", np.nan), g.get("gamma_fit_err_J_m2", np.nan)], float)
+    rho = float(g.get("E_gamma_fit_corr", np.nan))
+    if not (np.isfinite(sd).all() and np.isfinite(rho) and (sd > 0).all()):
+        return None
+    return np.outer(sd, sd) * np.array([[1.0, rho], [rho, 1.0]])
+
+
 def jkr_curves(groups, loads: pd.DataFrame, n: int = JKR_POINTS, laws=None) -> pd.DataFrame:
-    """The fitted JKR + Mindlin curve κ(F_N) of every group with an E, on the grid Fig. 5 draws.
+    """The fitted JKR + Mindlin curve κ(F_N) of every group with an E, on the grid Fig. 5 draws,
+    with its 95 % pointwise band.
+
+    The band is the linear propagation (:func:`band_half_width`) of the covariance of the fit
+    (``E_fit_err_Pa``, ``gamma_fit_err_J_m2``, ``E_gamma_fit_corr``: ``inv(JᵀJ)·RSS/(N - 2)``
+    of :func:`contactres.fitting.fit`), t(0.975; N - 2) standard deviations on each side (N the
+    points fitted, Student's t as the variance comes from the residuals). It is the band of the
+    curve fitted to these points taken as independent, not of the spread between remounted
+    samples that the errors of Table 1 hold (their E-γ correlation differs: the bootstrap of
+    the experiments gives no covariance); empty (NaN) where the fit has no covariance.
 
     Parameters
     ----------
     groups : the group records of the analysis (``configuration``, ``medium``, ``E_Pa``,
-        ``gamma_J_m2``, ``sphere_radius_m``, ``poisson``, ``P_Hz_per_N_per_m``)
+        ``gamma_J_m2``, ``sphere_radius_m``, ``poisson``, ``P_Hz_per_N_per_m``; for the band
+        ``E_fit_err_Pa``, ``gamma_fit_err_J_m2``, ``E_gamma_fit_corr``, ``n_points_fitted``)
     loads : the per-load table (``configuration``, ``normal_force_N``): the grid of a group
         runs from 0 to 1.05 times the largest load of its configuration (every medium)
     n : points per curve
@@ -225,8 +291,9 @@ def jkr_curves(groups, loads: pd.DataFrame, n: int = JKR_POINTS, laws=None) -> p
     -------
     DataFrame
         ``configuration``, ``medium``, ``normal_force_N`` (N), ``kappa_N_per_m`` (N/m, paper 2,
-        Eqs. 6-10 with the fitted E and γ) and ``df0_model_Hz`` (= P κ, Hz, paper 2, Eq. 1);
-        no rows for a group whose E is withheld.
+        Eqs. 6-10 with the fitted E and γ), ``kappa_lo_N_per_m``, ``kappa_hi_N_per_m`` (N/m,
+        the band), ``df0_model_Hz`` (= P κ, Hz, paper 2, Eq. 1), ``df0_model_lo_Hz``,
+        ``df0_model_hi_Hz`` (Hz, the band times P); no rows for a group whose E is withheld.
     """
     from ..tangential import kappa_jkr_mindlin
 
@@ -237,11 +304,22 @@ def jkr_curves(groups, loads: pd.DataFrame, n: int = JKR_POINTS, laws=None) -> p
         part = loads[loads["configuration"] == g["configuration"]]
         F = np.linspace(0.0, part["normal_force_N"].max() * 1.05, n)
         law = (laws or {}).get((g["configuration"], g["medium"]))
-        if law is None:
-            k = kappa_jkr_mindlin(F, g["E_Pa"], g["gamma_J_m2"], g["sphere_radius_m"], g["poisson"])
-        else:
-            a, out = law.contact_radius(F, g["E_Pa"], g["gamma_J_m2"], g["sphere_radius_m"])
-            k = np.where(out, np.nan, law.tangential(g["E_Pa"], a))
+        R, nu = g["sphere_radius_m"], g["poisson"]
+
+        def kappa_of(E, gamma, F=F, law=law, R=R, nu=nu):
+            if law is None:
+                return kappa_jkr_mindlin(F, E, gamma, R, nu)
+            a, out = law.contact_radius(F, E, gamma, R)
+            return np.where(out, np.nan, law.tangential(E, a))
+
+        k = kappa_of(g["E_Pa"], g["gamma_J_m2"])
+        half = np.full(F.shape, np.nan)  # no band where the fit has no covariance
+        cov = _fit_covariance(g)
+        t = float(t95_factor(g.get("n_points_fitted", 0) - 2))
+        if cov is not None and np.isfinite(t):
+            values = (g["E_Pa"], g["gamma_J_m2"])
+            half = band_half_width(kappa_of, values, cov, t, lower=(0.0, 0.0))
+        P = g["P_Hz_per_N_per_m"]
         frames.append(
             pd.DataFrame(
                 {
@@ -249,9 +327,17 @@ def jkr_curves(groups, loads: pd.DataFrame, n: int = JKR_POINTS, laws=None) -> p
                     "medium": g["medium"],
                     "normal_force_N": F,
                     "kappa_N_per_m": k,
-                    "df0_model_Hz": g["P_Hz_per_N_per_m"] * k,
+                    "kappa_lo_N_per_m": k - half,
+                    "kappa_hi_N_per_m": k + half,
+                    "df0_model_Hz": P * k,
+                    # |P|: the band's ends in order whatever the sign convention of P
+                    "df0_model_lo_Hz": P * k - abs(P) * half,
+                    "df0_model_hi_Hz": P * k + abs(P) * half,
                 }
             )
         )
-    columns = ["configuration", "medium", "normal_force_N", "kappa_N_per_m", "df0_model_Hz"]
+    columns = [
+        "configuration", "medium", "normal_force_N", "kappa_N_per_m", "kappa_lo_N_per_m",
+        "kappa_hi_N_per_m", "df0_model_Hz", "df0_model_lo_Hz", "df0_model_hi_Hz",
+    ]  # fmt: skip
     return pd.concat(frames, ignore_index=True) if frames else pd.DataFrame(columns=columns)

@@ -30,6 +30,7 @@ __all__ = [
     "bootstrap_jkr",
     "bootstrap_jkr_sweeps",
     "error_dof",
+    "fit_correlation",
     "fit_group",
     "fit_jkr_mindlin",
     "t95_factor",
@@ -213,6 +214,21 @@ def _checks(res: FitResult, model=None) -> list[tuple[Check, str]]:
     return found
 
 
+def fit_correlation(res: FitResult) -> float:
+    """The correlation coefficient of E and γ in the fit's covariance (``inv(JᵀJ)·RSS/(N -
+    p)``, :func:`contactres.fitting.fit`): with the standard errors ``E_fit_err_Pa`` and
+    ``gamma_fit_err_J_m2`` it gives the whole covariance, which the band of the fitted curve
+    needs (:func:`contactres.analysis._curves.jkr_curves`). NaN where the covariance is not
+    finite or a variance is not positive (the fit does not identify E and γ)."""
+    i, j = res.free.index("E"), res.free.index("gamma")
+    cov = np.asarray(res.covariance, dtype=float)
+    if cov.shape != (len(res.free),) * 2 or not np.isfinite(cov[np.ix_((i, j), (i, j))]).all():
+        return float("nan")
+    if not (cov[i, i] > 0 and cov[j, j] > 0):
+        return float("nan")
+    return float(cov[i, j] / np.sqrt(cov[i, i] * cov[j, j]))
+
+
 def _joined(*texts: str) -> str:
     return "; ".join(t for t in texts if t)
 
@@ -270,6 +286,7 @@ def fit_group(
         "error_method": "",
         "E_fit_err_Pa": np.nan,
         "gamma_fit_err_J_m2": np.nan,
+        "E_gamma_fit_corr": np.nan,
         "E_bootstrap_sd_Pa": np.nan,
         "gamma_bootstrap_sd_J_m2": np.nan,
         "sphere_radius_m": R,
@@ -303,6 +320,7 @@ def fit_group(
         gamma_J_m2=res.values["gamma"],
         E_fit_err_Pa=res.errors["E"],
         gamma_fit_err_J_m2=res.errors["gamma"],
+        E_gamma_fit_corr=fit_correlation(res),
     )
     n_exp = pts["experiment"].nunique()
     if bootstrap > 0 and n_exp >= 3:

@@ -5,12 +5,13 @@ sweep is drawn as inline SVG (points and the chosen model's curve, Δf and ΔΓ 
 result plots are embedded PNG (data: URIs). It holds a table of contents, the input file's name
 and SHA-256, the package version, how many sweeps were used and why the others were left out,
 Table 1 (E and γ per configuration and medium, as printed by ``qcm analyze``), the result plots
-(κ against F_N with the JKR fits, the dissipation and loss tangent, μ per load: paper 2's Figs.
-5, 7 and 8), the statistics per load (a value whose spread is as large as itself is marked: the
-data do not resolve it), every sweep with its model and flags (filtered by configuration,
-medium, load and flag with a few lines of inline JavaScript), every entry of ``summary.json``
-(folded), the flags in words, the conventions and constants, and the radiation loss where the
-analysis has it. Every label of the data is HTML-escaped.
+(κ against F_N with the JKR fits and their 95 % bands, the dissipation and loss tangent, μ per
+load: paper 2's Figs. 5, 7 and 8), the classification of the used sweeps (a figure of the model
+classes per group and load, and a table), the statistics per load (a value whose spread is as
+large as itself is marked: the data do not resolve it), every sweep with its model and flags
+(filtered by configuration, medium, load and flag with a few lines of inline JavaScript), every
+entry of ``summary.json`` (folded), the flags in words, the conventions and constants, and the
+radiation loss where the analysis has it. Every label of the data is HTML-escaped.
 """
 
 from __future__ import annotations
@@ -215,10 +216,7 @@ def _counts(results: Results) -> str:
 
 def _plots(results: Results) -> str:
     """Paper 2's Figs. 5, 7 and 8 of the analysis as embedded PNG (nothing when no sweep is
-    used: nothing to draw)."""
-    import base64
-    import io
-
+    used: nothing to draw); below Fig. 5 what its bands are and which groups have none."""
     from .figures import figure_dissipation, figure_friction, figure_stiffness
 
     if not len(results.sweeps) or not results.sweeps["used"].any():
@@ -228,39 +226,74 @@ def _plots(results: Results) -> str:
         (
             # What is drawn is Δf0 in Hz (κ = Δf0 / P, Eq. 1 of paper 2), so the title says Δf0.
             "Δf0 (Hz, proportional to the contact stiffness κ) against the normal force, with "
-            "the JKR fits (paper 2, Fig. 5)",
+            "the JKR fits and their 95 % bands (paper 2, Fig. 5)",
             figure_stiffness,
         ),
         ("ΔΓ0 and the loss tangent against the normal force (Fig. 7)", figure_dissipation),
         ("The friction coefficient μ per load (Fig. 8)", figure_friction),
     ):
-        buffer = io.BytesIO()
-        draw(results).savefig(buffer, format="png", dpi=90, bbox_inches="tight")
-        data = base64.b64encode(buffer.getvalue()).decode("ascii")
-        parts.append(
-            f"<h3>{_e(title)}</h3>"
-            f'<img class="plot" alt="{_e(title)}" src="data:image/png;base64,{data}">'
-        )
+        parts.append(f"<h3>{_e(title)}</h3>{_png(draw(results), title)}")
+        if draw is figure_stiffness:
+            parts += [f"<p>{_e(line)}</p>" for line in _band_lines(results)]
     return "".join(parts)
 
 
+def _png(figure, alt: str) -> str:
+    """A matplotlib figure as an embedded PNG image (90 dpi: the page's scale)."""
+    import base64
+    import io
+
+    buffer = io.BytesIO()
+    figure.savefig(buffer, format="png", dpi=90, bbox_inches="tight")
+    data = base64.b64encode(buffer.getvalue()).decode("ascii")
+    return f'<img class="plot" alt="{_e(alt)}" src="data:image/png;base64,{data}">'
+
+
+def _band_lines(results: Results) -> list[str]:
+    """What the bands of the JKR fits are, and which groups have none (and why)."""
+    jkr = results.jkr
+    lines = [
+        "Shaded: the 95 % pointwise band of each JKR fit (linear propagation of the fit's "
+        "covariance of E and γ; jkr_curves.csv holds it). It is the band of the curve fitted "
+        "to these points; the errors of Table 1 include the spread between experiments."
+    ]
+    for g in results.groups:
+        where = f"{g['configuration']}, {g['medium']}"
+        if not np.isfinite(g["E_Pa"]):
+            lines.append(f"{where}: no JKR fit, so no curve and no band (see Table 1's note).")
+            continue
+        if jkr is None or "kappa_lo_N_per_m" not in jkr:
+            continue
+        mine = (jkr["configuration"] == g["configuration"]) & (jkr["medium"] == g["medium"])
+        if not np.isfinite(jkr.loc[mine, "kappa_lo_N_per_m"].to_numpy(float)).any():
+            lines.append(f"{where}: no band (the fit's covariance of E and γ is not identified).")
+    return lines
+
+
 def _classification(results: Results) -> str:
-    """How many used sweeps each model was chosen for, per medium (one row per medium, one
+    """The model class of the used sweeps per group and load as a figure (stacked bars), then
+    how many used sweeps each model was chosen for, per medium (one row per medium, one
     column per model, a total column)."""
     import pandas as pd
+
+    from .figures import figure_classification
 
     sw = results.sweeps
     if not len(sw) or not sw["used"].any():
         return "<p>No sweep is used: nothing classified.</p>"
+    figure = figure_classification(results)
+    alt = "The model class of the used sweeps per configuration, medium and load"
+    plot = "" if figure is None else f"<h3>{_e(alt)}</h3>{_png(figure, alt)}"
     used = sw[sw["used"]]
     table = pd.crosstab(used["medium"], used["model"].fillna(DASH)).sort_index()
     table["all models"] = table.sum(axis=1)
     table = table.reset_index()
     table.columns = [str(c) for c in table.columns]
-    return _table(table, numeric=tuple(table.columns[1:])) + (
+    note = (
         "<p>Number of used sweeps for which each model was chosen (the sweeps section lists them "
         "one by one).</p>"
     )
+    return plot + _table(table, numeric=tuple(table.columns[1:])) + note
 
 
 def _constants(results: Results):

@@ -1,4 +1,5 @@
-"""Figures of the sweep analysis (paper 2, Figs. 4, 5, 7, 8) as PNG, and the radiation loss.
+"""Figures of the sweep analysis (paper 2, Figs. 4, 5, 7, 8) as PNG, the radiation loss, and
+the classification of the used sweeps (the HTML report's).
 
 Object API only (:class:`matplotlib.figure.Figure`, Agg canvas): nothing touches pyplot's state,
 and every figure is saved atomically and closed by :func:`contactres.fileio.save_figure`.
@@ -32,6 +33,7 @@ __all__ = [
     "LABEL_CHARS",
     "NO_SWEEP_USED",
     "RADIATION_FIGURE",
+    "figure_classification",
     "figure_dissipation",
     "figure_friction",
     "figure_radiation",
@@ -276,36 +278,61 @@ def _errorbars(ax, loads, config, quantity, scale=1.0):
 
 def figure_stiffness(results) -> Figure:
     """Fig. 5: low-amplitude Δf0 against F_N (mean ± sd over experiments, where more than one)
-    with the JKR fits."""
+    with the JKR fits and their 95 % bands (shaded; ``Results.jkr``).
+
+    A group whose fit is withheld, or whose fit has no band (its covariance is not
+    identified), is named in the key with the reason."""
+    from matplotlib.lines import Line2D
+    from matplotlib.patches import Patch
+
     configs, loads = _by_config(results)
     configs = [c for c in configs if _has_data(loads, c, "df0_Hz")] or configs
     media = sorted(loads["medium"].unique())
     fig, axes = _figure(1, len(configs), height=3.2, sharey=True)
+    banded, notes = False, []
     for c, config in enumerate(configs):
         ax = axes[0, c]
         _errorbars(ax, loads, config, "df0_Hz")
         for g in sorted(results.groups, key=lambda g: g["medium"]):
-            if g["configuration"] != config or not np.isfinite(g["E_Pa"]):
+            if g["configuration"] != config:
+                continue
+            where = f"{_label(config)}, {_label(g['medium'])}"
+            if not np.isfinite(g["E_Pa"]):
+                notes.append(f"{where}: no JKR fit ({', '.join(g.get('checks') or ['withheld'])})")
                 continue
             # The curve the analysis computed with the fit (Results.jkr): drawn, not evaluated.
             curve = results.jkr[
                 (results.jkr["configuration"] == config) & (results.jkr["medium"] == g["medium"])
             ]
+            colour = f"C{media.index(g['medium'])}"
+            F = curve["normal_force_N"].to_numpy() * 1e3
             ax.plot(
-                curve["normal_force_N"].to_numpy() * 1e3,
+                F,
                 curve["df0_model_Hz"].to_numpy(),
                 ":",
-                color=f"C{media.index(g['medium'])}",
+                color=colour,
                 label=(
-                    f"JKR-Mindlin fit, {_label(config)}, {_label(g['medium'])}: "
+                    f"JKR-Mindlin fit, {where}: "
                     f"E = {g['E_Pa'] / 1e9:.3g} GPa, γ = {g['gamma_J_m2'] * 1e3:.3g} mJ/m²"
                 ),
             )
+            lo, hi = (
+                curve[col].to_numpy(float) if col in curve else np.full(len(curve), np.nan)
+                for col in ("df0_model_lo_Hz", "df0_model_hi_Hz")
+            )
+            if np.isfinite(lo).any():
+                ax.fill_between(F, lo, hi, color=colour, alpha=0.2, lw=0)
+                banded = True
+            else:
+                notes.append(f"{where}: JKR fit without a band (its covariance is not identified)")
         ax.set_title(_label(config), fontsize=9)
         ax.set_xlabel("normal force per contact F_N (mN)")
         ax.set_ylabel("Δf0 (Hz)")
     _from_zero(fig)
-    key_below(fig, ncols=2, fontsize=6)
+    extra: list[tuple[object, str]] = [(Line2D([], [], ls="none"), note) for note in notes]
+    if banded:
+        extra.insert(0, (Patch(color="0.5", alpha=0.3, lw=0), "JKR fit, 95 % band"))
+    key_below(fig, extra, ncols=2, fontsize=6)
     return fig
 
 
@@ -408,6 +435,72 @@ def figure_radiation(results) -> Figure:
         fontsize=9,
     )
     fig.legend(list(key.values()), list(key), loc="outside lower center", ncols=2, fontsize=7)
+    return fig
+
+
+#: Panels in a row of :func:`figure_classification`, and the size of each (inches).
+_PANELS_PER_ROW = 3
+_PANEL_INCHES = (2.6, 1.9)
+#: The class of a used sweep without a model in :func:`figure_classification`.
+_NO_MODEL = "no model"
+
+
+def _classes(results, present) -> list[str]:
+    """The model classes to draw: those the analysis counts per group (its order), then any
+    other present in the data (sorted), then :data:`_NO_MODEL` where it occurs."""
+    counted = [m for g in results.groups for m in g.get("models", {})]
+    order = list(dict.fromkeys(counted))
+    order += sorted(set(present) - set(order) - {_NO_MODEL})
+    return order + ([_NO_MODEL] if _NO_MODEL in present else [])
+
+
+def figure_classification(results) -> Figure | None:
+    """The classification of the used sweeps (the HTML report, issue 30): per group
+    (configuration, medium) one panel, per load one bar stacked by the model class chosen for
+    its used sweeps; None when no sweep is used (nothing classified).
+
+    The classes are in the order the analysis counts them (a group's ``models`` record), a
+    used sweep without a model (too few points to fit, say) as "no model" (grey), each class in
+    the same colour in every panel: the default cycle of the other figures from its third
+    colour on (its first two mark the media there; a model class is not a medium). At most
+    three panels a row, 2.6 x 1.9 inches each, so that the figure fits the page's content
+    column (~8 inches at the page's 90 dpi) without shrinking.
+    """
+    sw = results.sweeps
+    if not len(sw) or not sw["used"].any():
+        return None
+    used = sw[sw["used"].to_numpy(dtype=bool)]
+    model = used["model"].where(used["model"].astype(str).str.len() > 0).fillna(_NO_MODEL)
+    counts = pd.crosstab(
+        [used["configuration"], used["medium"], used["normal_force_N"]], model.rename("model")
+    )
+    classes = _classes(results, counts.columns)
+    counts = counts.reindex(columns=classes, fill_value=0)
+    groups = list(dict.fromkeys((c, m) for c, m, _ in counts.index))
+    ncols = min(_PANELS_PER_ROW, len(groups))
+    nrows = -(-len(groups) // ncols)
+    w, h = _PANEL_INCHES
+    fig = _blank(w * ncols, h * nrows + 0.6)
+    axes = np.atleast_1d(fig.subplots(nrows, ncols, squeeze=False, sharey=True)).ravel()
+    colour = {m: ("0.6" if m == _NO_MODEL else f"C{(j + 2) % 10}") for j, m in enumerate(classes)}
+    for ax, (config, medium) in zip(axes, groups, strict=False):
+        part = counts.xs((config, medium), level=(0, 1))
+        x = np.arange(len(part))
+        bottom = np.zeros(len(part))
+        for m in classes:
+            n = part[m].to_numpy(float)
+            if n.any():
+                ax.bar(x, n, bottom=bottom, width=0.8, color=colour[m], label=m)
+            bottom += n
+        ax.set_xticks(x, [f"{f * 1e3:.3g}" for f in part.index], fontsize=7)
+        ax.tick_params(axis="y", labelsize=7)
+        ax.set_title(f"{_label(config)}, {_label(medium)}", fontsize=8)
+        ax.set_xlabel("F_N (mN)", fontsize=7)
+    for ax in axes[len(groups) :]:  # the empty places of the last row
+        ax.set_visible(False)
+    for r in range(nrows):
+        axes[r * ncols].set_ylabel("used sweeps", fontsize=7)
+    key_below(fig, ncols=len(classes), fontsize=7)
     return fig
 
 

@@ -294,7 +294,17 @@ JKR_CURVE_RESULTS = TableSchema(
                 "N/m",
                 "κ of the fitted E and γ (paper 2, Eqs. 6-10; coated plate: the coated law)",
             ),
+            (
+                "kappa_lo_N_per_m",
+                "N/m",
+                "lower end of κ's 95 % pointwise band: linear propagation of the fit's "
+                "covariance of E and γ (E_fit_err_Pa, gamma_fit_err_J_m2, E_gamma_fit_corr), "
+                "t(0.975; points - 2) wide (empty: the fit has no covariance)",
+            ),
+            ("kappa_hi_N_per_m", "N/m", "upper end of κ's 95 % pointwise band (as kappa_lo)"),
             ("df0_model_Hz", "Hz", "Δf0 = P κ (paper 2, Eq. 1)"),
+            ("df0_model_lo_Hz", "Hz", "lower end of Δf0's 95 % band: P times κ's band"),
+            ("df0_model_hi_Hz", "Hz", "upper end of Δf0's 95 % band: P times κ's band"),
         )
     ),
 )

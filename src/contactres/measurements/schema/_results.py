@@ -274,6 +274,12 @@ GROUP_RESULTS = TableSchema(
         ),
         Column("E_fit_err_Pa", "Pa", "standard error of E from the fit's Jacobian alone"),
         Column("gamma_fit_err_J_m2", "J/m^2", "standard error of γ from the fit's Jacobian alone"),
+        Column(
+            "E_gamma_fit_corr",
+            "-",
+            "correlation of E and γ in the fit's covariance (with E_fit_err_Pa and "
+            "gamma_fit_err_J_m2 the whole covariance; the band of jkr_curves.csv uses it)",
+        ),
         Column("E_bootstrap_sd_Pa", "Pa", "sd of E over bootstrap resamples of the experiments"),
         Column(
             "gamma_bootstrap_sd_J_m2",
