@@ -10,7 +10,9 @@ Issue 30: "installed = cloned". This script (run by ``.ci/run`` after the test s
    examples --copy .``, the ``Example:`` command of every subcommand's ``--help`` verbatim
    (the demo included: a step that needs an extra must say so in one line and be left out; a
    command that needs one altogether must say which, in one line),
-   and the README's first Python lines (those that run on the bundled data).
+   and then the README: every shell command and Python block in document order (the
+   Python blocks in one namespace), as a user pastes them (all but `make demo`/`make test`,
+   which need the repository, and a command that needs the user's own dask cluster).
 
 Every command must exit 0 and print no traceback; the script prints one line per command with
 its time and exits 1 at the first failure, with the command's output. Usage::
@@ -25,6 +27,7 @@ import json
 import os
 import re
 import shlex
+import shutil
 import subprocess
 import sys
 import tempfile
@@ -62,6 +65,61 @@ _EXAMPLE = re.compile(r"^\s*Example: (contactres .*?)(?:\n\s*\n|\Z)", re.M | re.
 
 # The one line of a command that needs an optional extra (contactres.errors.MissingExtraError).
 _NEEDS_EXTRA = re.compile(r"^contactres: error: .* pip install 'contactres\[[a-z,]+\]'$")
+
+
+# Runs the README's blocks in the installed environment (python run_readme.py README.md):
+# ```python blocks are executed in one namespace; ```sh / ```bash blocks command by command
+# (a trailing " \" joins lines; `cd DIR` moves the folder of the commands that follow; a block
+# that says "in a folder holding the examples" runs in examples/, where the first shell block
+# copied them). A command may fail only with the one line of a missing optional extra; a
+# command that needs a dask cluster of the user's (--scheduler tcp://...) is not run.
+_README_RUNNER = r"""
+import os, re, subprocess, sys
+from pathlib import Path
+
+NEEDS_EXTRA = re.compile(r"^contactres: error: .* pip install 'contactres\[[a-z,]+\]'$")
+text = Path(sys.argv[1]).read_text(encoding="utf-8")
+home = Path.cwd()
+namespace = {"__name__": "__readme__"}
+for lang, code in re.findall(r"^```(\w*)\n(.*?)^```", text, re.S | re.M)[1:]:
+    if lang == "python":
+        print("python block:", code.splitlines()[0][:90], flush=True)
+        try:
+            exec(compile(code, "<README block>", "exec"), namespace)
+        except Exception as exc:
+            from contactres.errors import MissingExtraError
+            if not isinstance(exc, MissingExtraError):
+                raise
+            print("  needs an extra, said so:", exc, flush=True)
+        continue
+    if lang not in ("sh", "bash"):
+        continue
+    cwd = home / "examples" if "in a folder holding the examples" in code else home
+    missing = None
+    for command in code.replace("\\\n", " ").splitlines():
+        command = command.split("#", 1)[0].strip()
+        if not command or "--scheduler tcp://" in command:
+            continue
+        if missing is not None:  # the block's later commands build on what that one makes
+            print(f"  left out (the block needs {missing}): {command[:80]}", flush=True)
+            continue
+        for part in command.split("&&"):
+            part = part.strip()
+            if part.startswith("cd "):
+                cwd = (cwd / part[3:].strip()).resolve()
+                continue
+            print(f"  {part[:100]}", flush=True)
+            done = subprocess.run(part, shell=True, cwd=cwd, capture_output=True, text=True)
+            said = done.stderr.strip().splitlines()
+            if done.returncode != 0 and len(said) == 1 and NEEDS_EXTRA.match(said[0]):
+                print("  needs an extra, said in one line:", said[0], flush=True)
+                missing = said[0].rsplit("pip install ", 1)[-1]
+                break
+            if done.returncode != 0 or "Traceback" in done.stdout + done.stderr:
+                print(done.stdout[-3000:], done.stderr[-3000:], sep="\n", file=sys.stderr)
+                raise SystemExit(f"README command failed: {part}")
+print("README: every block ran", flush=True)
+"""
 
 
 def _run(
@@ -124,25 +182,14 @@ def main() -> None:
         if words == ["qcm", "analyze"]:
             line += ["--bootstrap", "0"]  # the example's analysis, faster; the same files
         _run(line, work, env, extra_ok=True)
-    readme = (ROOT / "README.md").read_text(encoding="utf-8")
-    first = re.search(r"```python\n(.*?)```", readme, re.S)
-    if first is not None:
-        (work / "readme_first.py").write_text(first.group(1), encoding="utf-8")
-        _run([str(python), "readme_first.py"], work, env)
-    # The README's shell lines that start from the examples (the block with 'contactres examples
-    # --copy'), up to the 'cd ..' that ends the bundled-data part (the lines after it name a
-    # user's own sweeps.csv), through the shell, in a folder of their own.
-    blocks = re.findall(r"```sh\n(.*?)```", readme, re.S)
-    shell = next((b for b in blocks if "contactres examples --copy" in b), None)
-    if shell is not None:
-        lines = []
-        for line in shell.splitlines():
-            lines.append(line.split("#", 1)[0].strip())
-            if line.strip().startswith("cd .."):
-                break
-        readme_dir = work / "readme"
-        readme_dir.mkdir(exist_ok=True)
-        _run(["bash", "-euc", " && ".join(x for x in lines if x)], readme_dir, env)
+    # The README, every block in document order, as a user pastes them (its first block, `make
+    # demo` / `make test`, needs the repository; the layout tree is no code): Python blocks in
+    # one namespace, shell commands one by one, in a folder of their own (_README_RUNNER).
+    readme_dir = work / "readme"
+    readme_dir.mkdir(exist_ok=True)
+    (readme_dir / "run_readme.py").write_text(_README_RUNNER, encoding="utf-8")
+    shutil.copyfile(ROOT / "README.md", readme_dir / "README.md")
+    _run([str(python), "run_readme.py", "README.md"], readme_dir, env, timeout=1800)
     print(f"check_installed: OK ({len(commands)} commands) in {base}")
 
 

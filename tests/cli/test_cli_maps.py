@@ -8,6 +8,7 @@ import math
 import os
 import re
 import shutil
+from importlib.resources import files
 from pathlib import Path
 
 import numpy as np
@@ -625,3 +626,24 @@ def test_predict_flags_hertz_approximate_at_a_over_r_0_3(small, tmp_path):
         r = _ok(run(*args[:4], out, *args[5:], "--tip-radius", R, "--force", force * scale))
         assert ("Hertz approximate" in r.stderr) is flagged
         assert ("hertz_flag" in read_map(out).attrs) is flagged
+
+
+@pytest.mark.parametrize(
+    ("command", "out", "wanted"),
+    [("synthetic", "o.csv", "name it with .zarr"), ("fit", "o.csv", "name it with .json")],
+)
+def test_an_output_named_for_another_format_is_refused(tmp_path, monkeypatch, command, out, wanted):
+    """Issue 30's review: `maps predict/synthetic --out o.csv` wrote a Zarr folder named o.csv
+    and `maps fit --out o.csv` JSON into a .csv; each is now refused in one line, nothing made."""
+    monkeypatch.chdir(tmp_path)
+    if command == "synthetic":
+        args = ["maps", "synthetic", "--crystal", "Cu", "--tip-radius", "2e-8", "--force", "5e-8"]
+        args += ["--shape", "8x8", "--grains", "3", "--out", out]
+    else:
+        ang = files("contactres") / "data" / "example_cu_map.ang"
+        kstar = files("contactres") / "data" / "example_cu_kstar.csv"
+        args = ["maps", "fit", str(ang), "--values", str(kstar), "--out", out]
+    r = run(*args)
+    assert r.exit_code == 2 and wanted in r.stderr, r.output
+    assert len(r.stderr.strip().splitlines()) == 1
+    assert not (tmp_path / out).exists()

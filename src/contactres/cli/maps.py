@@ -383,11 +383,19 @@ def maps_fit(
     Example: contactres maps fit example_cu_map.ang --values \\
         example_cu_kstar.csv --out cu_fit.json
     """
+    import os
+
     from ..fileio import check_output_file, write_text
     from ..jobs import maps_fit as job
     from ..jobs.maps import TipLoad
 
     check_output_file(out, inputs=[map_path] + ([values_path] if values_path else []))
+    suffix = os.path.splitext(out)[1]
+    if suffix.lower() not in ("", ".json"):  # the fit is written as JSON only
+        raise click.BadParameter(
+            f"{out!r}: the fit is written as JSON, not {suffix}; name it with .json",
+            param_hint="'--out'",
+        )
     if (tip_radius is None) != (force is None):
         raise click.UsageError("give --tip-radius and --force together (or neither)")
     settings = job.Settings(

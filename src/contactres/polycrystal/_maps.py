@@ -485,6 +485,13 @@ def check_map_output(path: str | os.PathLike, inputs=()) -> Path:
     such a store: :mod:`contactres._ownership`); the refusal names what is not contactres's.
     """
     target = Path(path)
+    if target.suffix and target.suffix.lower() != ".zarr":
+        # A store named like another format's file (o.csv, o.nc) would be a folder under a
+        # file's name: most likely the output meant for another command or option.
+        raise OutputError(
+            f"output {str(target)!r}: a map store is a Zarr folder, not a {target.suffix} file; "
+            f"name it with .zarr (e.g. {target.with_suffix('.zarr').name!r})"
+        )
     if target.exists() and not _is_zarr_store(target):
         raise OutputError(f"output {str(target)!r} exists and is not a Zarr store: not overwritten")
     if target.is_dir():  # an earlier store: check the folder above it and the inputs only
