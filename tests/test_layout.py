@@ -81,6 +81,7 @@ LAYERS: tuple[frozenset[str], ...] = (
             "_lazy",
             "_threads",
             "_csvcells",
+            "_summary",
             "errors",
             "validation",
             "fileio",

@@ -28,6 +28,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from .._summary import Summarised, table_size
 from ..errors import ContactresInputError
 from ..units import ABSOLUTE_FREQUENCY_FRACTION, MIN_SWEEP_POINTS, SMALL_LOAD_LIMIT
 from ._messages import at_cell, column_names, line_word, shown_value, where_rows
@@ -80,8 +81,9 @@ class SweepWarning(UserWarning):
     """The data are usable but something is odd (the message says what and where)."""
 
 
-@dataclass(frozen=True)
-class SweepTable:
+# repr=False: the summary (Summarised, _facts) replaces the printout of the whole table.
+@dataclass(frozen=True, repr=False)
+class SweepTable(Summarised):
     """A validated sweep table: what :func:`contactres.analyze` takes.
 
     Attributes
@@ -108,6 +110,14 @@ class SweepTable:
 
     def __len__(self) -> int:
         return len(self.data)
+
+    def _facts(self) -> list[tuple[str, str]]:
+        """The source, the numbers of sweeps and points, the columns and the file's hash."""
+        facts = [("", repr(self.source)), ("sweeps", str(self.data["sweep"].nunique()))]
+        facts.append(("points", table_size(self.data)))
+        if self.source_sha256:
+            facts.append(("sha256", self.source_sha256[:12] + "…"))
+        return facts
 
     def with_constants(self, **values) -> SweepTable:
         """The same points with the constants ``values`` (keys of :data:`CONSTANTS`) in every
