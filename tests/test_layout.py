@@ -82,6 +82,7 @@ LAYERS: tuple[frozenset[str], ...] = (
             "_threads",
             "_csvcells",
             "_ownership",
+            "_summary",
             "errors",
             "validation",
             "fileio",

@@ -18,6 +18,7 @@ from dataclasses import asdict, dataclass
 from importlib import resources
 from typing import TYPE_CHECKING
 
+from ._summary import Summarised, clipped, number
 from .errors import ContactresInputError
 
 if TYPE_CHECKING:
@@ -44,8 +45,9 @@ _CONSTANT_COLUMNS = (
 )
 
 
-@dataclass(frozen=True)
-class CrystalRecord:
+# repr=False: the summary (Summarised, _facts) gives the constants in GPa and clips the source.
+@dataclass(frozen=True, repr=False)
+class CrystalRecord(Summarised):
     """One row of the built-in tables, in SI units.
 
     Attributes
@@ -72,6 +74,18 @@ class CrystalRecord:
     c33: float | None = None
     E: float | None = None
     nu: float | None = None
+
+    def _facts(self) -> list[tuple[str, str]]:
+        """Name, symmetry, the constants in GPa (E and ν of an isotropic row), ρ, the source."""
+        facts = [("", repr(self.name)), ("", self.symmetry)]
+        if self.E is not None and self.nu is not None:
+            facts += [("E", number(self.E, "GPa", 1e9)), ("ν", number(self.nu))]
+        else:
+            names = ["c11", "c12", "c13", "c14", "c33", "c44"]
+            shown = [(n, getattr(self, n)) for n in names if getattr(self, n) is not None]
+            facts += [(n.upper(), number(v, "GPa", 1e9)) for n, v in shown]
+        facts.append(("ρ", number(self.density, "kg/m³")))
+        return [*facts, ("source", clipped(self.source, 60))]
 
 
 def _rows(filename: str) -> list[dict[str, str]]:

@@ -19,14 +19,17 @@ from importlib.resources import files
 from pathlib import Path
 from types import MappingProxyType
 
+from ._summary import Summarised, clipped
 from .errors import ContactresInputError
 from .fileio import ensure_dir, write_bytes
 
 __all__ = ["EXAMPLES", "Example", "copy_examples", "example_path"]
 
 
-@dataclass(frozen=True)
-class Example:
+# repr=False: the summary (Summarised, _facts) clips the description and leaves out the
+# command (an attribute).
+@dataclass(frozen=True, repr=False)
+class Example(Summarised):
     """One example file.
 
     Attributes
@@ -46,6 +49,11 @@ class Example:
     description: str
     command: str
     extra: str = ""
+
+    def _facts(self) -> list[tuple[str, str]]:
+        """The file's name, its description (clipped) and the extras its command needs."""
+        facts = [("", repr(self.name)), ("", clipped(self.description))]
+        return [*facts, ("extra", self.extra)] if self.extra else facts
 
 
 def _example(name: str, description: str, command: str, extra: str = "") -> tuple[str, Example]:

@@ -31,6 +31,8 @@ from typing import Any
 
 import numpy as np
 
+from ._summary import Summarised, clipped, number, plus_minus
+from ._summary import values as value_range
 from .errors import ContactresInputError
 
 __all__ = [
@@ -70,8 +72,10 @@ class Parameter:
     scale: float = 1.0
 
 
-@dataclass(frozen=True)
-class Model:
+# repr=False: the summary (Summarised, _facts) names the parameters instead of printing each
+# Parameter in full.
+@dataclass(frozen=True, repr=False)
+class Model(Summarised):
     """A fitted model: ``function(x, **params) -> prediction`` plus its metadata."""
 
     key: str
@@ -83,6 +87,17 @@ class Model:
     unit: str
     source: str
     function: Callable[..., Any]
+
+    def _facts(self) -> list[tuple[str, str]]:
+        """Key and meaning, the parameters with their units, the axes and the source."""
+        names = ", ".join(f"{p.key} ({p.unit or '1'})" for p in self.parameters)
+        return [
+            ("", repr(self.key)),
+            ("", self.display),
+            ("parameters", names),
+            ("fits", f"{self.observable} ({self.unit}) against {self.x} ({self.x_unit})"),
+            ("source", clipped(self.source, 60)),
+        ]
 
 
 class ModelRegistry(Mapping[str, Model]):
@@ -112,8 +127,10 @@ class ModelRegistry(Mapping[str, Model]):
         return len(self._models)
 
 
-@dataclass(frozen=True)
-class FitResult:
+# repr=False: the summary (Summarised, _facts) replaces the numpy reprs of the covariance and
+# the residuals.
+@dataclass(frozen=True, repr=False)
+class FitResult(Summarised):
     """Fitted values, standard errors and covariance (free parameters only), and fit quality."""
 
     model: str
@@ -126,6 +143,14 @@ class FitResult:
     success: bool
     message: str = ""
     residuals: np.ndarray = field(default_factory=lambda: np.zeros(0))
+
+    def _facts(self) -> list[tuple[str, str]]:
+        """The model, each value (± its error when free; the first eight), the residual sum."""
+        shown = list(self.values)[:8]
+        facts = [("", self.model)]
+        facts += [(k, plus_minus(self.values[k], self.errors.get(k, np.nan))) for k in shown]
+        facts += [("rss", number(self.rss)), ("points", str(self.n_points))]
+        return [*facts, ("success", "yes" if self.success else f"no ({self.message})")]
 
 
 def fit(
@@ -286,8 +311,9 @@ class LMOptions:
             )
 
 
-@dataclass(frozen=True)
-class LeastSquaresResult:
+# repr=False: the summary (Summarised, _facts) replaces the numpy reprs of every problem.
+@dataclass(frozen=True, repr=False)
+class LeastSquaresResult(Summarised):
     """Outcome of :func:`levenberg_marquardt` for a batch of R problems of P parameters.
 
     Attributes
@@ -307,6 +333,16 @@ class LeastSquaresResult:
     n_iter: np.ndarray
     n_accepted: np.ndarray
     last_step: np.ndarray
+
+    def _facts(self) -> list[tuple[str, str]]:
+        """Problems and parameters, how many converged, χ² and the steps tried."""
+        R, P = np.shape(self.x)
+        return [
+            ("problems", f"{R} of {P} parameters"),
+            ("converged", f"{int(np.count_nonzero(self.converged))} of {R}"),
+            ("χ²", value_range(self.chi2)),
+            ("steps", value_range(self.n_iter)),
+        ]
 
     def message(self, i: int = 0) -> str:
         """Why problem ``i`` stopped, in words."""

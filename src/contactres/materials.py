@@ -18,6 +18,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ._summary import Summarised, number
 from .crystals import crystal_record
 from .errors import ContactresInputError
 from .validation import nonnegative, positive
@@ -146,8 +147,9 @@ def _poisson(nu, name: str = "nu") -> float:
     return v
 
 
-@dataclass(frozen=True, eq=False)
-class Material:
+# repr=False: the summary (Summarised, _facts) replaces a numpy repr of the 6x6 stiffness.
+@dataclass(frozen=True, eq=False, repr=False)
+class Material(Summarised):
     """A linear elastic solid: 6x6 Voigt stiffness ``C`` (Pa) and optional density (kg/m^3).
 
     Use the constructors (:meth:`isotropic`, :meth:`cubic`, :meth:`cubic_from_ratios`,
@@ -440,6 +442,31 @@ class Material:
             )
         mu, lam = c44, c12
         return mu * (3 * lam + 2 * mu) / (lam + mu), lam / (2 * (lam + mu))
+
+    def _facts(self) -> list[tuple[str, str]]:
+        """Name, symmetry of the current frame, the independent constants (GPa, real parts),
+        the loss Im C11/Re C11 if any, the density and whether the frame is rotated."""
+        C = np.asarray(self.C)
+        facts = [("", repr(self.name) if self.name else "unnamed")]
+        try:
+            c11, c12, c44 = self._cubic_constants()
+            kind = "isotropic" if abs(c11 - c12 - 2 * c44) <= 1e-9 * c11 else "cubic"
+            shown = [(1, 1), (1, 2), (4, 4)]
+        except ContactresInputError:
+            kind = "anisotropic"
+            shown = [(1, 1), (1, 2), (1, 3), (3, 3), (4, 4), (6, 6)]
+        facts.append(("", kind))
+        facts += [(f"C{i}{j}", number(C[i - 1, j - 1].real, "GPa", 1e9)) for i, j in shown]
+        if kind == "isotropic":
+            E, nu = self.isotropic_constants
+            facts += [("E", number(E, "GPa", 1e9)), ("ν", number(nu))]
+        if self.is_lossy:
+            facts.append(("loss Im/Re C11", number(C[0, 0].imag / C[0, 0].real)))
+        if self.density is not None:
+            facts.append(("ρ", number(self.density, "kg/m³")))
+        if not np.allclose(self.frame, np.eye(3)):
+            facts.append(("frame", "rotated (C in the surface frame)"))
+        return facts
 
     def energy_density(self, strain) -> np.ndarray:
         """Elastic energy density 0.5 e·C·e (J/m^3) of Voigt strains ``e`` (..., 6)."""

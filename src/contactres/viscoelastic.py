@@ -31,6 +31,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from ._summary import Summarised, values
 from .errors import ContactresInputError
 from .materials import (
     Material,
@@ -256,8 +257,9 @@ class PowerLaw:
         return mag * np.exp(1j * self.phase)
 
 
-@dataclass(frozen=True, eq=False)
-class ModulusTable:
+# repr=False: the summary (Summarised, _facts) replaces the numpy repr of the three columns.
+@dataclass(frozen=True, eq=False, repr=False)
+class ModulusTable(Summarised):
     """A measured modulus: storage M'(f) and loss M''(f) at frequencies f, interpolated.
 
     Between two nodes the storage and the loss are each interpolated linearly in
@@ -296,6 +298,15 @@ class ModulusTable:
             raise ContactresInputError("table frequencies must be strictly increasing")
         for name, v in (("frequency", f), ("storage", s), ("loss", q)):
             object.__setattr__(self, name, _read_only(v))
+
+    def _facts(self) -> list[tuple[str, str]]:
+        """The nodes: their number and the ranges of f (Hz), M' and M'' (GPa)."""
+        return [
+            ("nodes", str(self.frequency.size)),
+            ("f", values(self.frequency, "Hz")),
+            ("M'", values(self.storage, "GPa", 1e9)),
+            ("M''", values(self.loss, "GPa", 1e9)),
+        ]
 
     @property
     def reference_frequency(self) -> float:
@@ -365,8 +376,9 @@ _SHEAR = _read_only(
 
 
 # ----------------------------------------------------------------------------- the material
-@dataclass(frozen=True, eq=False)
-class ViscoelasticMaterial:
+# repr=False: the summary (Summarised, _facts) replaces the numpy repr of the 6x6 matrices.
+@dataclass(frozen=True, eq=False, repr=False)
+class ViscoelasticMaterial(Summarised):
     """A linear viscoelastic solid: C*(f) = Σ_k M_k*(f) B_k, with modulus laws M_k* and
     constant 6x6 Voigt matrices B_k (the structure of the stiffness).
 
@@ -406,6 +418,16 @@ class ViscoelasticMaterial:
         if self.density is not None:
             object.__setattr__(self, "density", positive("density", self.density, "kg/m^3"))
         object.__setattr__(self, "frame", _read_only(np.asarray(self.frame, dtype=float)))
+
+    def _facts(self) -> list[tuple[str, str]]:
+        """Name, the modulus laws (by kind), the density and whether the frame is rotated."""
+        facts = [("", repr(self.name) if self.name else "unnamed")]
+        facts.append(("laws", ", ".join(type(law).__name__ for law, _ in self.terms)))
+        if self.density is not None:
+            facts.append(("ρ", f"{self.density:.4g} kg/m³"))
+        if not np.allclose(self.frame, np.eye(3)):
+            facts.append(("frame", "rotated (the matrices in the surface frame)"))
+        return facts
 
     # ----------------------------------------------------------------------- constructors
     @classmethod

@@ -75,6 +75,8 @@ from types import MappingProxyType
 
 import numpy as np
 
+from .._summary import Summarised, flagged, values
+
 __all__ = [
     "DART_FLAGS",
     "DART_FLAG_DEGENERATE_PHASE",
@@ -129,8 +131,9 @@ def dart_flag_names(flags: int) -> list[str]:
     return [name for bit, (name, _) in DART_FLAGS.items() if int(flags) & bit]
 
 
-@dataclass(frozen=True)
-class DartReconstruction:
+# repr=False: the summary (Summarised, _facts) replaces the numpy reprs of the maps.
+@dataclass(frozen=True, repr=False)
+class DartReconstruction(Summarised):
     """The oscillator per pixel (arrays of the broadcast input shape).
 
     Attributes
@@ -148,6 +151,15 @@ class DartReconstruction:
     A_drive: np.ndarray
     phase_offset: np.ndarray
     flags: np.ndarray
+
+    def _facts(self) -> list[tuple[str, str]]:
+        """f0 (kHz), Q, the drive amplitude (unit of A1, A2) and the flagged pixels."""
+        return [
+            ("f0", values(self.f0, "kHz", 1e3)),
+            ("Q", values(self.Q)),
+            ("A_drive", values(self.A_drive)),
+            ("flagged", flagged(self.flags)),
+        ]
 
 
 def dart_reconstruction(

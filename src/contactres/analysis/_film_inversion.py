@@ -56,6 +56,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .._summary import Summarised, number, values
 from ..errors import ContactresInputError
 from ..layered import LayeredMaterial
 from ..materials import Material, require_material
@@ -79,8 +80,9 @@ _ROOT_TOL = 1e-14
 _ROOT_ITERATIONS = 100
 
 
-@dataclass(frozen=True)
-class FilmModulusResult:
+# repr=False: the summary (Summarised, _facts) replaces the numpy reprs of the maps.
+@dataclass(frozen=True, repr=False)
+class FilmModulusResult(Summarised):
     """The film's modulus from contact stiffness, per pixel (arrays of the broadcast shape).
 
     Attributes
@@ -106,6 +108,17 @@ class FilmModulusResult:
     film_range: tuple[float, float]
     reference_modulus: float
     interpolation_error: float
+
+    def _facts(self) -> list[tuple[str, str]]:
+        """M_film and M_homogeneous (GPa), the verdicts counted, the search range (GPa)."""
+        kinds, counts = np.unique(np.asarray(self.verdict, dtype=str), return_counts=True)
+        lo, hi = self.film_range
+        return [
+            ("M_film", values(self.M_film, "GPa", 1e9)),
+            ("M_homogeneous", values(self.M_homogeneous, "GPa", 1e9)),
+            ("verdicts", ", ".join(f"{k} {n}" for k, n in zip(kinds, counts, strict=True))),
+            ("range", f"{number(lo, '', 1e9)} to {number(hi, 'GPa', 1e9)}"),
+        ]
 
 
 def _range(film_range, reference: float) -> tuple[float, float]:

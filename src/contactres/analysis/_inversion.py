@@ -59,6 +59,7 @@ from types import MappingProxyType
 
 import numpy as np
 
+from .._summary import Summarised, flagged, number, values
 from ..dynamic import dcsf, normalised_wavenumber, prepare, wave_modulus
 from ..errors import ContactresInputError
 from ..materials import Material, require_material
@@ -128,8 +129,9 @@ DYNAMIC_RTOL = 1e-13
 DCSF_GRID = 48
 
 
-@dataclass(frozen=True)
-class ModulusResult:
+# repr=False: the summary (Summarised, _facts) replaces the numpy reprs of the maps.
+@dataclass(frozen=True, repr=False)
+class ModulusResult(Summarised):
     """Moduli from contact stiffness, per pixel (arrays of the broadcast input shape).
 
     Attributes
@@ -159,6 +161,17 @@ class ModulusResult:
     method: str
     exponent: float | np.ndarray
     tip_modulus: float
+
+    def _facts(self) -> list[tuple[str, str]]:
+        """The method, E* and M (GPa), a (nm), the flagged pixels and the tip modulus."""
+        return [
+            ("", self.method),
+            ("E*", values(self.E_star, "GPa", 1e9)),
+            ("M", values(self.M_sample, "GPa", 1e9)),
+            ("a", values(self.contact_radius, "nm", 1e-9)),
+            ("flagged", flagged(self.flags)),
+            ("M_tip", number(self.tip_modulus, "GPa", 1e9)),
+        ]
 
 
 def surface_material(spec, name: str) -> Material:

@@ -123,6 +123,7 @@ from ._particle_linear import (
     wide_values,
 )
 from ._particle_profile import valley_profile
+from ._particle_summary import FitSummary
 
 __all__ = [
     "LIMIT_CHI2",
@@ -162,8 +163,9 @@ _LM = LMOptions(max_iter=300, xtol=1e-8, ftol=1e-10, max_step=2.0)
 _LM_SCAN = replace(_LM, max_iter=2000)
 
 
-@dataclass(frozen=True)
-class ParticleFit:
+# repr=False: the summary (FitSummary) replaces the numpy reprs of every series.
+@dataclass(frozen=True, repr=False)
+class ParticleFit(FitSummary):
     """Result of :func:`fit_particles`: arrays over the T time steps (NaN where unresolved).
 
     Attributes

@@ -255,11 +255,12 @@ def write_paper1_figures(
     result: job.Result | None = None,
     figure_formats=("png",),
 ) -> list[Path]:
-    """Write Figs. 2-5 of paper 1 (PNG + CSV) into folder ``out``; return the paths.
+    """Write Figs. 2-5 of paper 1 into folder ``out``; return the paths.
 
+    Each figure is written in every format of ``figure_formats`` (PNG only by default; ``png``,
+    ``svg``, ``pdf``: the CLI's ``--figure-format``), and its data as CSV beside it.
     ``result``: what :func:`contactres.jobs.paper1.run` returned (else it runs here, and
-    ``progress``, optional, is called with the name of each figure before it is computed);
-    ``figure_formats``: each figure is saved in these (``png``, ``svg``, ``pdf``).
+    ``progress``, optional, is called with the name of each figure before it is computed).
     """
     if result is None:
         result = job.run(None, job.Settings(), progress)

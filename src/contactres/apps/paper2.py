@@ -124,10 +124,12 @@ def write_paper2_figures(
     result: job.Result | None = None,
     figure_formats=("png",),
 ) -> list[Path]:
-    """Write Fig. 2C-D and Fig. 1D of paper 2 (PNG + CSV) into folder ``out``; return the paths.
+    """Write Fig. 2C-D and Fig. 1D of paper 2 into folder ``out``; return the paths.
 
-    ``result``: what :func:`contactres.jobs.paper2.run` returned (else it runs, for ``example``);
-    ``figure_formats``: each figure is saved in these (``png``, ``svg``, ``pdf``).
+    Each figure is written in every format of ``figure_formats`` (PNG only by default; ``png``,
+    ``svg``, ``pdf``: the CLI's ``--figure-format``), and its data as CSV beside it.
+    ``result``: what :func:`contactres.jobs.paper2.run` returned (else it runs, for
+    ``example``).
     """
     if result is None:
         result = job.run(None, job.Settings(example=example))

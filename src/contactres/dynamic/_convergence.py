@@ -30,6 +30,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from .._summary import Summarised, values
 from ..errors import ContactresInputError
 from ._models import ALL_MODELS
 from ._normal_stiffness import check_model, evaluate_models, shear_ka, table_for
@@ -49,8 +50,9 @@ __all__ = ["MAX_REFINE", "CheckedDCSF", "checked_dcsf_models"]
 MAX_REFINE = 2
 
 
-@dataclass(frozen=True)
-class CheckedDCSF:
+# repr=False: the summary (Summarised, _facts) replaces the numpy reprs of every model.
+@dataclass(frozen=True, repr=False)
+class CheckedDCSF(Summarised):
     """DCSF values with their accuracy estimated at run time (module docstring).
 
     Attributes
@@ -68,6 +70,16 @@ class CheckedDCSF:
     converged: Mapping[str, np.ndarray]
     level: Mapping[str, np.ndarray]
     rtol: float
+
+    def _facts(self) -> list[tuple[str, str]]:
+        """Per model (the first six) the range of Re DCSF, then how many values converged."""
+        names = list(self.values)
+        facts = [(k, values(self.values[k])) for k in names[:6]]
+        if len(names) > 6:
+            facts.append(("more models", ", ".join(names[6:])))
+        done = sum(int(np.count_nonzero(v)) for v in self.converged.values())
+        total = sum(np.size(v) for v in self.converged.values())
+        return [*facts, ("converged", f"{done} of {total} (rtol {self.rtol:g})")]
 
 
 def checked_dcsf_models(

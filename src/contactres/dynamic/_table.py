@@ -25,10 +25,12 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass, fields, replace
+from typing import Any
 
 import numpy as np
 from scipy import special
 
+from .._summary import Summarised, number
 from .._threads import one_blas_thread
 from ..errors import ContactresInputError
 from ..halfspace import dynamic_kernel, shear_reference, static_kernel
@@ -215,9 +217,10 @@ def handover(kappa, t1: float):
 
 
 # ----------------------------------------------------------------------------------- the table
-class ReadOnlyArrays:
+class ReadOnlyArrays(Summarised):
     """Base of the prepared tables (frozen dataclasses of arrays): their arrays are made
-    read-only, and stay so through pickling (a table goes to dask workers)."""
+    read-only, and stay so through pickling (a table goes to dask workers); they print as a
+    summary (declare them with ``repr=False``: a numpy repr of every node is no use)."""
 
     def __post_init__(self) -> None:
         for f in fields(self):  # type: ignore[arg-type]
@@ -229,8 +232,16 @@ class ReadOnlyArrays:
         # Unpickling goes through __init__, so the arrays come back read-only.
         return (type(self), tuple(getattr(self, f.name) for f in fields(self)))
 
+    def _facts(self) -> list[tuple[str, str]]:
+        """What the table was prepared for (C11, C33, C44 in GPa, Q⁻¹, rtol) and its size."""
+        t: Any = self  # a KernelTable or a TangentialTable: both have these fields
+        C = np.real(t.constants)
+        facts = [(f"C{i}{i}", number(C[i - 1, i - 1], "GPa", 1e9)) for i in (1, 3, 4)]
+        facts += [("Q⁻¹", number(t.loss)), ("rtol", str(t.rtol))]
+        return [*facts, ("near-field nodes", str(np.size(t.near_kappa)))]
 
-@dataclass(frozen=True, eq=False)
+
+@dataclass(frozen=True, eq=False, repr=False)
 class KernelTable(ReadOnlyArrays):
     """g(κ, θ) − g∞(θ) of one material and loss on the nodes every frequency and model reuse.
 

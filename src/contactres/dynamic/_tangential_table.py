@@ -74,7 +74,7 @@ def max_harmonics(m: Material, rtol: float) -> int:
     return HARMONIC_STEPS[-1]
 
 
-@dataclass(frozen=True, eq=False)
+@dataclass(frozen=True, eq=False, repr=False)
 class TangentialTable(ReadOnlyArrays):
     """The in-plane dynamic kernel of one material and loss on the nodes every k a reuses.
 

@@ -19,6 +19,7 @@ from typing import Any, Protocol
 
 import numpy as np
 
+from .._summary import Summarised
 from ..errors import ContactresInputError
 from ..materials import Material
 
@@ -104,8 +105,9 @@ def _length(h: float) -> str:
     return f"{h:.4g} m"
 
 
-@dataclass(frozen=True, eq=False)
-class LayeredMaterial:
+# repr=False: the summary (Summarised, _facts) replaces the materials' stiffness matrices.
+@dataclass(frozen=True, eq=False, repr=False)
+class LayeredMaterial(Summarised):
     """Bonded layers on a half-space substrate, top layer first.
 
     ``LayeredMaterial(substrate, layers=[(film, thickness_m), ...])``. Interfaces are welded
@@ -193,6 +195,17 @@ class LayeredMaterial:
     def is_frequency_dependent(self) -> bool:
         """True if any material is not a plain :class:`~contactres.Material`."""
         return not all(isinstance(m, Material) for m in self.materials)
+
+    def _facts(self) -> list[tuple[str, str]]:
+        """The stack's name (layers and thicknesses), the number of layers, whether it is lossy
+        or frequency-dependent (the materials themselves print with ``.materials``)."""
+        facts = [("", repr(self.name)), ("layers", str(len(self.layers)))]
+        if self.layers:
+            facts.append(("total thickness", _length(float(np.sum(self.thicknesses)))))
+        facts.append(("lossy", "yes" if self.is_lossy else "no"))
+        if self.is_frequency_dependent:
+            facts.append(("frequency-dependent", "yes"))
+        return facts
 
     # ----------------------------------------------------------------------------- operations
     def at(self, frequency: float) -> LayeredMaterial:

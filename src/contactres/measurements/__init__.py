@@ -61,7 +61,7 @@ _EXPORTS = MappingProxyType(
         "read_sweeps": "._sweeps",
         "validate_sweeps": "._sweeps",
         "SweepTable": "._sweeps",
-        "SweepWarning": "._sweeps",
+        "SweepWarning": "._sweep_checks",
         "synthetic_sweeps": "._synthetic",
         "SweepGroup": "._synthetic",
         "SweepStudy": "._synthetic",
@@ -121,10 +121,10 @@ if TYPE_CHECKING:
         example_study as example_study,
         validation_study as validation_study,
     )
+    from ._sweep_checks import SweepWarning as SweepWarning
     from ._sweeps import (
         CONSTANTS as CONSTANTS,
         SweepTable as SweepTable,
-        SweepWarning as SweepWarning,
         read_sweeps as read_sweeps,
         validate_sweeps as validate_sweeps,
     )

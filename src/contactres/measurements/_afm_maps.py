@@ -32,6 +32,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .._summary import Summarised, values
 from ..errors import ContactresInputError, MissingExtraError
 from ._ibw import IgorWave
 
@@ -57,8 +58,9 @@ SHO_FIELDS = {
 _LENGTHS = {"m": 1.0, "mm": 1e-3, "um": 1e-6, "µm": 1e-6, "μm": 1e-6, "nm": 1e-9}
 
 
-@dataclass(frozen=True, eq=False)
-class ResonanceMaps:
+# repr=False: the summary (Summarised, _facts) replaces the numpy repr of the maps.
+@dataclass(frozen=True, eq=False, repr=False)
+class ResonanceMaps(Summarised):
     """Contact-resonance frequency and Q per pixel, with what else the file gives.
 
     Attributes
@@ -90,6 +92,18 @@ class ResonanceMaps:
     phase_rad: np.ndarray | None = None
     r2: np.ndarray | None = None
     steps: int = 1
+
+    def _facts(self) -> list[tuple[str, str]]:
+        """The maps' shape, the ranges of f (kHz) and Q, the pixel size, steps and source."""
+        facts = [("f", values(self.frequency_Hz, "kHz", 1e3)), ("Q", values(self.q_factor))]
+        if self.pixel_size is not None:
+            dx, dy = self.pixel_size
+            facts.append(("pixel", f"{dx * 1e9:.4g} x {dy * 1e9:.4g} nm"))
+        extra = [n for n in ("amplitude", "phase_rad", "r2") if getattr(self, n) is not None]
+        facts += [("also", ", ".join(extra))] if extra else []
+        facts += [("steps", str(self.steps))] if self.steps != 1 else []
+        facts.append(("source", self.source))
+        return facts
 
 
 def check_frequency_map(frequency, source: str) -> np.ndarray:

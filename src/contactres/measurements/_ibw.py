@@ -34,6 +34,7 @@ from pathlib import Path
 
 import numpy as np
 
+from .._summary import Summarised, values
 from ..errors import ContactresInputError, MissingExtraError
 
 __all__ = ["IgorWave", "parse_note", "read_ibw"]
@@ -92,8 +93,9 @@ def parse_note(text: str) -> dict[str, float | str]:
     return note
 
 
-@dataclass(frozen=True, eq=False)
-class IgorWave:
+# repr=False: the summary (Summarised, _facts) replaces the numpy repr of the data.
+@dataclass(frozen=True, eq=False, repr=False)
+class IgorWave(Summarised):
     """An Igor binary wave: its data, the names of its layers and its note.
 
     Attributes
@@ -128,6 +130,16 @@ class IgorWave:
     name: str
     scale: tuple[float, float] | None
     source: str
+
+    def _facts(self) -> list[tuple[str, str]]:
+        """Name, data shape and range, the layers' labels, the pixel size and the file."""
+        labels = ", ".join(self.labels[:6]) + (", …" if len(self.labels) > 6 else "")
+        facts = [("", repr(self.name)), ("data", values(self.data))]
+        facts.append(("layers", labels or "no labels"))
+        if self.scale is not None:
+            facts.append(("pixel", f"{self.scale[0] * 1e9:.4g} x {self.scale[1] * 1e9:.4g} nm"))
+        facts.append(("source", self.source))
+        return facts
 
     def layer_index(self, name: str) -> int:
         """The position of the layer called ``name`` in :attr:`labels`.

@@ -30,9 +30,17 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from .._summary import Summarised, table_size
 from ..errors import ContactresInputError
-from ..units import ABSOLUTE_FREQUENCY_FRACTION, MIN_SWEEP_POINTS, SMALL_LOAD_LIMIT
+from ..units import ABSOLUTE_FREQUENCY_FRACTION, SMALL_LOAD_LIMIT
 from ._messages import at_cell, column_names, line_word, shown_value, where_rows
+from ._sweep_checks import (
+    SweepWarning,
+    check_dissipation_sign,
+    check_per_sweep,
+    drop_duplicates,
+    warn_sweeps,
+)
 from .readers import BUILT_IN, SweepReader, line_ranges
 from .schema import FINITE, SWEEP_TABLE, check_cells, check_value, stripped
 
@@ -78,12 +86,9 @@ VALIDATED_COLUMNS = (
 )  # fmt: skip
 
 
-class SweepWarning(UserWarning):
-    """The data are usable but something is odd (the message says what and where)."""
-
-
-@dataclass(frozen=True)
-class SweepTable:
+# repr=False: the summary (Summarised, _facts) replaces the printout of the whole table.
+@dataclass(frozen=True, repr=False)
+class SweepTable(Summarised):
     """A validated sweep table: what :func:`contactres.analyze` takes.
 
     Attributes
@@ -110,6 +115,14 @@ class SweepTable:
 
     def __len__(self) -> int:
         return len(self.data)
+
+    def _facts(self) -> list[tuple[str, str]]:
+        """The source, the numbers of sweeps and points, the columns and the file's hash."""
+        facts = [("", repr(self.source)), ("sweeps", str(self.data["sweep"].nunique()))]
+        facts.append(("points", table_size(self.data)))
+        if self.source_sha256:
+            facts.append(("sha256", self.source_sha256[:12] + "…"))
+        return facts
 
     def with_constants(self, **values) -> SweepTable:
         """The same points with the constants ``values`` (keys of :data:`CONSTANTS`) in every
@@ -502,84 +515,6 @@ def _check_physics(out: pd.DataFrame, source: str) -> None:
             )
 
 
-def _drop_duplicates(out: pd.DataFrame, source: str) -> pd.DataFrame:
-    data_only = [c for c in out.columns if c != "line"]
-    dup = out.duplicated(subset=data_only, keep="first").to_numpy()
-    if not dup.any():
-        return out
-    lines = out["line"].to_numpy()[dup]
-    shown = ", ".join(str(n) for n in lines[:5]) + (" ..." if len(lines) > 5 else "")
-    warnings.warn(
-        f"{source}: {int(dup.sum())} duplicated row(s) dropped (at {line_word(out)}(s) {shown})",
-        SweepWarning,
-        stacklevel=4,
-    )
-    return out.loc[~dup].reset_index(drop=True)
-
-
-def _conflict(table: pd.DataFrame, source: str, by: str, col: str, rule: str) -> None:
-    """Error naming two rows if ``col`` takes more than one value within a group of ``by``."""
-    counts = table.groupby(by, sort=False)[col].nunique()
-    if (counts > 1).any():
-        name = counts.index[counts.to_numpy() > 1][0]
-        rows = table[table[by] == name]
-        a, b = rows.iloc[0], rows.loc[rows[col] != rows[col].iloc[0]].iloc[0]
-        raise ContactresInputError(
-            f"{source}, {by} {shown_value(name)}: conflicting values in column {col!r}: "
-            f"{shown_value(a[col])} ({line_word(table)} {a['line']}) and {shown_value(b[col])} "
-            f"({line_word(table)} {b['line']}); {rule}"
-        )
-
-
-def _check_per_sweep(table: pd.DataFrame, source: str) -> None:
-    """Columns that describe a whole sweep take one value within it; the sphere and the
-    material (``sphere_radius_m``, ``poisson``) one value within a configuration, whose sweeps
-    the JKR fit (paper 2, Eqs. 7-10) takes together."""
-    for col in PER_SWEEP_COLUMNS:
-        _conflict(table, source, "sweep", col, f"one sweep has one {col}")
-    for col in ("sphere_radius_m", "poisson"):
-        _conflict(table, source, "configuration", col, "one configuration has one sphere")
-
-
-def _check_dissipation_sign(table: pd.DataFrame, source: str) -> None:
-    """A contact adds dissipation: ΔΓ (the half-bandwidth shift) of a sweep is positive. Most
-    sweeps with a negative median ΔΓ is a sign slip (an export giving −ΔΓ; it moved E by 25 %,
-    issue 27): an error. A few such sweeps are named in a warning (noise on a tiny ΔΓ, or a
-    reference taken in contact)."""
-    median = table.groupby("sweep", sort=False)["dgamma_Hz"].median()
-    negative = median < 0
-    if not negative.any():
-        return
-    names = [shown_value(n) for n in median.index[negative.to_numpy()]]
-    shown = ", ".join(names[:5]) + (f" ... ({len(names)} in all)" if len(names) > 5 else "")
-    if negative.sum() * 2 > len(median):
-        raise ContactresInputError(
-            f"{source}: dgamma_Hz is negative in {int(negative.sum())} of {len(median)} sweeps "
-            f"(median {median.median():.4g} Hz); ΔΓ, the shift of the half-bandwidth, grows "
-            "with the contact's dissipation: check its sign (an export may give −ΔΓ)"
-        )
-    warnings.warn(
-        f"{source}: sweep(s) {shown} have a negative median dgamma_Hz (a contact adds "
-        "dissipation: check the reference of ΔΓ)",
-        SweepWarning,
-        stacklevel=3,
-    )
-
-
-def _warn_sweeps(table: pd.DataFrame, source: str) -> None:
-    """Warn by name of sweeps with too few points, and of sweeps whose amplitudes are all equal
-    (all zero, say): a line through a single amplitude has no slope."""
-    amp = table.groupby("sweep", sort=False)["amplitude_m"]
-    few = f"have fewer than {MIN_SWEEP_POINTS} points and will not be used"
-    flat = "have all amplitudes equal: no slope and no friction coefficient can come from them"
-    for bad, what in ((amp.size() < MIN_SWEEP_POINTS, few), (amp.max() == amp.min(), flat)):
-        names = [shown_value(n) for n in bad.index[bad.to_numpy()]]
-        if names:
-            more = f" ... ({len(names)} in all)" if len(names) > 5 else ""
-            message = f"{source}: sweep(s) {', '.join(names[:5])}{more} {what}"
-            warnings.warn(message, SweepWarning, stacklevel=3)
-
-
 def validate_sweeps(
     raw: pd.DataFrame,
     source: str = "<table>",
@@ -641,8 +576,8 @@ def validate_sweeps(
     given, in_file = dict(constants or {}), dict(file_constants or {})
     _fill_constants(out, raw, source, decimal, given, in_file, file_constants_source)
     _check_physics(out, source)
-    out = _drop_duplicates(out, source)
-    _check_per_sweep(out, source)
-    _check_dissipation_sign(out, source)
-    _warn_sweeps(out, source)
+    out = drop_duplicates(out, source)
+    check_per_sweep(out, source, PER_SWEEP_COLUMNS)
+    check_dissipation_sign(out, source)
+    warn_sweeps(out, source)
     return SweepTable(out[list(VALIDATED_COLUMNS)].reset_index(drop=True), source)

@@ -27,6 +27,7 @@ from dataclasses import dataclass, field
 import numpy as np
 import pandas as pd
 
+from .._summary import Summarised, number, values
 from ..errors import ContactresInputError
 from ..normal import effective_modulus, jkr_contact_radius
 from ..resonators import QCM, shifts_from_loop, shifts_from_stiffness
@@ -64,8 +65,9 @@ SCATTERED = ("E", "gamma", "mu")
 _COLUMNS = (*VALIDATED_COLUMNS[: VALIDATED_COLUMNS.index("dgamma_Hz") + 1], "sphere_radius_m")
 
 
-@dataclass(frozen=True)
-class SweepGroup:
+# repr=False: the summary (Summarised, _facts) replaces the list of every amplitude.
+@dataclass(frozen=True, repr=False)
+class SweepGroup(Summarised):
     """One sample configuration in one medium: the sphere, its material, ramp and noise.
 
     Parameters
@@ -105,6 +107,18 @@ class SweepGroup:
         nonnegative("omega_xi", self.omega_xi, "N/m")
         nonnegative("noise", self.noise, "Hz")
 
+    def _facts(self) -> list[tuple[str, str]]:
+        """Configuration and medium, R (mm), E (GPa), γ (mJ/m²), the ramp (nm), ωξ, noise."""
+        return [
+            ("", f"{self.configuration}/{self.medium}"),
+            ("R", number(self.radius, "mm", 1e-3)),
+            ("E", number(self.E, "GPa", 1e9)),
+            ("γ", number(self.gamma, "mJ/m²", 1e-3)),
+            ("amplitudes", values(np.array(self.amplitudes), "nm", 1e-9)),
+            ("ωξ", number(self.omega_xi, "N/m")),
+            ("noise", number(self.noise, "Hz")),
+        ]
+
 
 @dataclass(frozen=True)
 class Drift:
@@ -121,8 +135,9 @@ class Drift:
     rate: float
 
 
-@dataclass(frozen=True)
-class SweepStudy:
+# repr=False: the summary (Summarised, _facts) replaces the printout of every group.
+@dataclass(frozen=True, repr=False)
+class SweepStudy(Summarised):
     """Parameters of a synthetic study of QCM amplitude sweeps (paper 2's experiment).
 
     For every group, every experiment 1 ... ``n_experiments``, every normal force and every
@@ -180,6 +195,19 @@ class SweepStudy:
     random_plateau_range: tuple[float, float] = (0.25, 0.4)
     savkoor_experiments: tuple[tuple[str, str, int], ...] = ()
     drifts: tuple[Drift, ...] = ()
+
+    def _facts(self) -> list[tuple[str, str]]:
+        """The groups by name, the loads (mN), experiments, ramps, the model and μ."""
+        names = [f"{g.configuration}/{g.medium}" for g in self.groups]
+        shown = ", ".join(names[:3]) + (", …" if len(names) > 3 else "")
+        return [
+            ("groups", f"{len(names)} ({shown})"),
+            ("F_N", values(np.array(self.normal_forces), "mN", 1e-3)),
+            ("experiments", str(self.n_experiments)),
+            ("ramps", str(len(self.ramps))),
+            ("model", self.model),
+            ("μ", number(self.mu)),
+        ]
 
     def __post_init__(self):
         object.__setattr__(self, "groups", tuple(self.groups))

@@ -53,10 +53,12 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .._summary import Summarised, number
 from ..errors import ContactresInputError
 from ..halfspace import static_kernel
 from ..materials import Material, require_material
 from ..validation import nonnegative, positive
+from ._isotropic import contact_facts
 
 __all__ = [
     "AnisotropicContact",
@@ -493,8 +495,9 @@ def contact_ellipse(
     )
 
 
-@dataclass(frozen=True)
-class AnisotropicContact:
+# repr=False: the summary (Summarised, _facts) replaces numpy reprs of array fields.
+@dataclass(frozen=True, repr=False)
+class AnisotropicContact(Summarised):
     """Static Hertz contact of a rigid (or elastic) sphere on an anisotropic half-space: an
     ellipse (module docstring; paper 1, Eqs. 1-4, on a circular face).
 
@@ -538,6 +541,12 @@ class AnisotropicContact:
     circular: bool
     noncircularity: float
     model: str = "anisotropic-hertz"
+
+    def _facts(self) -> list[tuple[str, str]]:
+        """As :class:`Contact`'s, with M (GPa) and b/a."""
+        facts = contact_facts(self)
+        facts += [("M", number(self.indentation_modulus, "GPa", 1e9))]
+        return [*facts, ("b/a", "1 (circular)" if self.circular else number(self.ellipticity))]
 
 
 def _out(x):

@@ -26,6 +26,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .._summary import Summarised, values
 from ..errors import ContactresInputError
 from ..validation import nonnegative as _nonnegative
 from ..validation import positive as _positive
@@ -46,8 +47,9 @@ __all__ = [
 ]
 
 
-@dataclass(frozen=True)
-class Contact:
+# repr=False: the summary (Summarised, _facts) replaces numpy reprs of array fields.
+@dataclass(frozen=True, repr=False)
+class Contact(Summarised):
     """State of a normal sphere-on-flat contact (SI units; fields may be numpy arrays).
 
     Attributes
@@ -69,6 +71,22 @@ class Contact:
     stiffness: np.ndarray | float
     force: np.ndarray | float
     model: str = "hertz"
+
+    def _facts(self) -> list[tuple[str, str]]:
+        return contact_facts(self)
+
+
+def contact_facts(c) -> list[tuple[str, str]]:
+    """The summary of a contact (this module's, the anisotropic and the layered one): the
+    model, F (µN), a and δ (nm), p0 (GPa) and k (N/m), each a value or a range."""
+    return [
+        ("", c.model),
+        ("F", values(c.force, "µN", 1e-6)),
+        ("a", values(c.contact_radius, "nm", 1e-9)),
+        ("δ", values(c.depth, "nm", 1e-9)),
+        ("p0", values(c.peak_pressure, "GPa", 1e9)),
+        ("k", values(c.stiffness, "N/m")),
+    ]
 
 
 # The fast paths below (issue 31: a scalar call cost ~100 µs of numpy overhead, 100x the peers';

@@ -47,6 +47,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from .._summary import Summarised, values
 from ..errors import ContactresInputError
 from ..layered import LayeredMaterial, surface_green
 from ..materials import Material, require_material
@@ -55,6 +56,7 @@ from ..validation import nonnegative, positive
 from ._anisotropic import THETA_RTOL, isotropic_constants, pair_integrals
 from ._anisotropic import sphere_contact as homogeneous_sphere_contact
 from ._axisymmetric import DEFAULT_TOL, RadialKernel, punch_and_sphere
+from ._isotropic import contact_facts
 
 __all__ = [
     "LayeredContact",
@@ -294,8 +296,9 @@ def indentation_modulus_at(material, contact_radius, *, tol: float = DEFAULT_TOL
     return _shaped(np.real(sol.punch_stiffness) / (2 * a), a.shape)
 
 
-@dataclass(frozen=True)
-class LayeredContact:
+# repr=False: the summary (Summarised, _facts) replaces numpy reprs of array fields.
+@dataclass(frozen=True, repr=False)
+class LayeredContact(Summarised):
     """Frictionless contact of a rigid sphere on a layered half-space (axisymmetric solution).
 
     Field names as :class:`~contactres.normal.AnisotropicContact` where they mean
@@ -321,6 +324,10 @@ class LayeredContact:
     force: np.ndarray | float
     indentation_modulus: np.ndarray | float
     model: str = "layered-axisymmetric"
+
+    def _facts(self) -> list[tuple[str, str]]:
+        """As :class:`~contactres.normal.Contact`'s, with M(a) (GPa)."""
+        return [*contact_facts(self), ("M", values(self.indentation_modulus, "GPa", 1e9))]
 
 
 # Force solve: Illinois (modified regula falsi) on ln a, to this relative change of F.

@@ -29,6 +29,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .._summary import Summarised, number, values
 from ..errors import ContactresInputError
 from ..layered import LayeredMaterial
 from ..materials import Material
@@ -66,8 +67,9 @@ def hill_poisson_ratio(material: Material) -> float:
     return float((3 * k - 2 * g) / (2 * (3 * k + g)))
 
 
-@dataclass(frozen=True)
-class CoatedModuli:
+# repr=False: the summary (Summarised, _facts) replaces the numpy reprs of the maps.
+@dataclass(frozen=True, repr=False)
+class CoatedModuli(Summarised):
     """The coated moduli of a map (:func:`coated_moduli`).
 
     Attributes
@@ -86,6 +88,16 @@ class CoatedModuli:
     poisson: float
     error: float
     evaluations: int
+
+    def _facts(self) -> list[tuple[str, str]]:
+        """M_c (GPa), a (nm), k* (N/m), ν_H and the interpolation error."""
+        return [
+            ("M_c", values(self.moduli, "GPa", 1e9)),
+            ("a", values(self.contact_radius, "nm", 1e-9)),
+            ("k*", values(self.stiffness, "N/m")),
+            ("ν_H", number(self.poisson)),
+            ("error", f"{self.error:.2g}"),
+        ]
 
 
 def _lobatto(n: int) -> np.ndarray:

@@ -45,6 +45,7 @@ import numpy as np
 from scipy.sparse import csr_array
 from scipy.sparse.csgraph import connected_components
 
+from .._summary import Summarised, values
 from ..errors import ContactresInputError
 from ._maps import OrientationMap
 from ._normal_table import reduce_normals, surface_matrices_from_normals, zone_bounds
@@ -55,8 +56,9 @@ __all__ = ["GrainOrientations", "folded_normals", "grain_orientations", "segment
 PIXELS_PER_BLOCK = 1 << 20
 
 
-@dataclass(frozen=True, eq=False)
-class GrainOrientations:
+# repr=False: the summary (Summarised, _facts) replaces the numpy reprs of the matrices.
+@dataclass(frozen=True, eq=False, repr=False)
+class GrainOrientations(Summarised):
     """Per-grain orientation from the mean folded surface normal (:func:`grain_orientations`).
 
     Attributes
@@ -79,6 +81,15 @@ class GrainOrientations:
     max_spread_deg: np.ndarray
     rms_spread_deg: np.ndarray
     pixels: np.ndarray
+
+    def _facts(self) -> list[tuple[str, str]]:
+        """Grains, pixels per grain and the spreads, degrees."""
+        return [
+            ("grains", str(len(self.pixels))),
+            ("pixels per grain", values(self.pixels)),
+            ("max spread", values(self.max_spread_deg, "°")),
+            ("rms spread", values(self.rms_spread_deg, "°")),
+        ]
 
 
 def _source(orientations) -> tuple[OrientationMap | np.ndarray, int, int]:

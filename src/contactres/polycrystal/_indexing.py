@@ -25,6 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .._summary import Summarised
 from ..errors import ContactresInputError
 from ._maps import OrientationMap
 
@@ -34,8 +35,9 @@ __all__ = ["MIN_CI", "IndexedPixels", "indexed_pixels"]
 MIN_CI = 0.1
 
 
-@dataclass(frozen=True)
-class IndexedPixels:
+# repr=False: the summary (Summarised, _facts) replaces the numpy repr of the mask.
+@dataclass(frozen=True, repr=False)
+class IndexedPixels(Summarised):
     """The pixels of a map that are used, and why the others are not.
 
     Attributes
@@ -65,6 +67,11 @@ class IndexedPixels:
     def left_out(self) -> int:
         """Pixels not used, all reasons together."""
         return int(self.mask.size - np.count_nonzero(self.mask))
+
+    def _facts(self) -> list[tuple[str, str]]:
+        """The map's size, the pixels used and :meth:`summary`."""
+        used = int(np.count_nonzero(self.mask))
+        return [("pixels", f"{used} of {self.mask.size} used"), ("", self.summary())]
 
     def summary(self) -> str:
         """One line: how many pixels are used and why the others are not."""

@@ -25,6 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .._summary import Summarised
 from ..errors import ContactresInputError
 from ..materials import Material
 from ._inverse_hexagonal import HexagonalInverseResult, fit_hexagonal_constants
@@ -35,6 +36,7 @@ from ._ratio_fit import (
     IDENTIFIABILITY_RTOL,
     LOG_STEP,
     RatioParametrisation,
+    fit_facts,
     fit_ratios,
     summary_text,
 )
@@ -67,8 +69,10 @@ CUBIC = RatioParametrisation(
 )
 
 
-@dataclass(frozen=True)
-class CubicInverseResult:
+# repr=False: the summary (Summarised, _facts) replaces ~40 fields and their arrays; the
+# full text is summary().
+@dataclass(frozen=True, repr=False)
+class CubicInverseResult(Summarised):
     """Cubic elastic constants fitted to per-grain contact data, with their identifiability.
 
     Values that are not determined (relative error above :data:`IDENTIFIABILITY_RTOL`, or a
@@ -147,6 +151,14 @@ class CubicInverseResult:
     success: bool
     message: str
     n_evaluations: int
+
+    def _facts(self) -> list[tuple[str, str]]:
+        """Grains, the two ratios ± errors, C11 where determined, χ²/dof, warnings."""
+        ratios = [
+            ("C12/C11", self.c12_c11, self.c12_c11_error),
+            ("C44/C11", self.c44_c11, self.c44_c11_error),
+        ]
+        return fit_facts(self, ratios)
 
     def summary(self) -> str:
         """Plain-text report; quantities that are not determined are not printed as results."""

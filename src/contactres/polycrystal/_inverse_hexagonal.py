@@ -31,8 +31,15 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .._summary import Summarised
 from ..materials import Material
-from ._ratio_fit import CONDITIONAL_NOTE, RatioParametrisation, fit_ratios, summary_text
+from ._ratio_fit import (
+    CONDITIONAL_NOTE,
+    RatioParametrisation,
+    fit_facts,
+    fit_ratios,
+    summary_text,
+)
 
 __all__ = ["HEXAGONAL", "HexagonalInverseResult", "fit_hexagonal_constants"]
 
@@ -61,8 +68,10 @@ HEXAGONAL = RatioParametrisation(
 )
 
 
-@dataclass(frozen=True)
-class HexagonalInverseResult:
+# repr=False: the summary (Summarised, _facts) replaces ~40 fields and their arrays; the
+# full text is summary().
+@dataclass(frozen=True, repr=False)
+class HexagonalInverseResult(Summarised):
     """Hexagonal elastic constants fitted to per-grain contact data, with their identifiability.
 
     Values that are not determined (relative error above ``IDENTIFIABILITY_RTOL``, or a
@@ -136,6 +145,14 @@ class HexagonalInverseResult:
     success: bool
     message: str
     n_evaluations: int
+
+    def _facts(self) -> list[tuple[str, str]]:
+        """Grains, how many combinations of the ratios are determined, the four ratios ± errors
+        (each only when all are determined), C11 where determined, χ²/dof, warnings."""
+        names = [n.replace("_", "/").upper() for n in self.ratio_names]
+        facts = fit_facts(self, list(zip(names, self.ratios, self.ratio_errors, strict=True)))
+        determined = f"{self.n_identified} of {len(self.identified)}"
+        return [*facts[:1], ("combinations determined", determined), *facts[1:]]
 
     def summary(self) -> str:
         """Plain-text report; quantities that are not determined are not printed as results."""

@@ -47,6 +47,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .._summary import Summarised, values
 from ..errors import ContactresInputError
 from ._normal_table import reduce_normals, zone_bounds
 
@@ -138,8 +139,9 @@ def _from_plane(X: np.ndarray, Y: np.ndarray, lattice: str) -> np.ndarray:
     return np.stack([v, u, w] if lattice == "cubic" else [u, v, w], axis=-1)
 
 
-@dataclass(frozen=True, eq=False)
-class IPFTriangle:
+# repr=False: the summary (Summarised, _facts) replaces the numpy reprs of the grid.
+@dataclass(frozen=True, eq=False, repr=False)
+class IPFTriangle(Summarised):
     """The standard triangle in the stereographic projection, for plotting (:func:`ipf_triangle`).
 
     Attributes
@@ -173,6 +175,15 @@ class IPFTriangle:
     corners: np.ndarray
     corner_xy: np.ndarray
     corner_labels: tuple[str, str, str]
+
+    def _facts(self) -> list[tuple[str, str]]:
+        """The lattice, the corners' labels and the grid."""
+        n_in = int(np.count_nonzero(self.inside))
+        return [
+            ("", self.lattice),
+            ("corners", ", ".join(self.corner_labels)),
+            ("grid", f"{self.x.shape[0]} x {self.x.shape[1]} ({n_in} points inside)"),
+        ]
 
     @property
     def points(self) -> np.ndarray:
@@ -259,8 +270,9 @@ def _dilated(mask: np.ndarray) -> np.ndarray:
     return out
 
 
-@dataclass(frozen=True)
-class TriangleModuli:
+# repr=False: the summary (Summarised, _facts) replaces the numpy reprs of the grid.
+@dataclass(frozen=True, repr=False)
+class TriangleModuli(Summarised):
     """A modulus over the grid of the standard triangle: the legend of a modulus map.
 
     Attributes
@@ -281,6 +293,14 @@ class TriangleModuli:
     cells: np.ndarray
     normals: np.ndarray
     moduli: np.ndarray
+
+    def _facts(self) -> list[tuple[str, str]]:
+        """The lattice, the grid and the modulus over the triangle itself, GPa."""
+        return [
+            ("", self.triangle.lattice),
+            ("grid", f"{self.moduli.shape[0]} x {self.moduli.shape[1]}"),
+            ("M", values(self.moduli[self.triangle.inside], "GPa", 1e9)),
+        ]
 
     @property
     def inside_range(self) -> tuple[float, float]:

@@ -44,6 +44,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.interpolate import RectBivariateSpline, make_interp_spline
 
+from .._summary import Summarised, values
 from ..dynamic import dcsf_models, prepare
 from ..errors import ContactresInputError
 from ..materials import Material, require_material
@@ -255,8 +256,9 @@ def _refine(
     return theta, phi, nodes, tuple(errors), len(known)
 
 
-@dataclass(frozen=True, eq=False)
-class NormalTable:
+# repr=False: the summary (Summarised, _facts) replaces the numpy reprs of the grids.
+@dataclass(frozen=True, eq=False, repr=False)
+class NormalTable(Summarised):
     """M (and optionally the DCSF) tabulated over the fundamental triangle of normals.
 
     Built by :func:`prepare_normal_table`; evaluate with :meth:`modulus` and :meth:`dcsf`.
@@ -311,6 +313,18 @@ class NormalTable:
     dcsf_evaluations: int = 0
     model: str = "exact"
     loss: float = 0.0
+
+    def _facts(self) -> list[tuple[str, str]]:
+        """The crystal, the lattice, M over the grid (GPa) and its error; the DCSF's k a."""
+        facts = [
+            ("", repr(self.material.name) if self.material.name else "unnamed"),
+            ("", self.lattice),
+            ("M", values(self.moduli, "GPa", 1e9)),
+            ("grid", f"{len(self.theta)} x {len(self.phi)} (error {self.error:.2g})"),
+        ]
+        if self.ka is not None:
+            facts.append(("DCSF k a", f"{values(self.ka)} ({self.model}, Q⁻¹ {self.loss:g})"))
+        return facts
 
     def modulus(self, orientations=None, *, normals=None) -> np.ndarray:
         """Interpolated indentation modulus M, Pa, shape (...).

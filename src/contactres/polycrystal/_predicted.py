@@ -41,6 +41,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .._summary import Summarised, values
 from ..errors import ContactresInputError
 from ..materials import Material, voigt_to_tensor
 from ._normal_table import NormalTable
@@ -55,13 +56,22 @@ __all__ = [
 ]
 
 
-@dataclass(frozen=True, eq=False)
-class ContactMap:
+# repr=False: the summary (Summarised, _facts) replaces the numpy reprs of the maps.
+@dataclass(frozen=True, eq=False, repr=False)
+class ContactMap(Summarised):
     """Static Hertz contact per pixel: E* (Pa), contact radius a (m), stiffness k* (N/m)."""
 
     effective_modulus: np.ndarray
     contact_radius: np.ndarray
     stiffness: np.ndarray
+
+    def _facts(self) -> list[tuple[str, str]]:
+        """E* (GPa), a (nm) and k* (N/m) over the map."""
+        return [
+            ("E*", values(self.effective_modulus, "GPa", 1e9)),
+            ("a", values(self.contact_radius, "nm", 1e-9)),
+            ("k*", values(self.stiffness, "N/m")),
+        ]
 
 
 @dataclass(frozen=True, eq=False)

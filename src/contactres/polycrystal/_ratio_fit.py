@@ -35,6 +35,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .._summary import number, plus_minus
 from ..errors import ContactresInputError
 from ..fitting import LMOptions, levenberg_marquardt
 from ..materials import Material
@@ -104,6 +105,17 @@ CONDITIONAL_NOTE = (
 #: Width of a summary's lines (characters): a note or a warning longer than this is wrapped,
 #: its continuation indented, so that a terminal of 100 columns shows it whole.
 SUMMARY_WIDTH = 100
+
+
+def fit_facts(result, ratios) -> list[tuple[str, str]]:
+    """The summary of a cubic or hexagonal fit (its ``repr``): the quantity and grains, the
+    ``ratios`` given as (name, value, error), C11 (GPa) where determined, χ²/dof, warnings."""
+    facts = [("", f"{result.quantity} map, {result.n_grains} grains")]
+    facts += [(name, plus_minus(v, e)) for name, v, e in ratios]
+    if np.isfinite(result.c11):
+        facts.append(("C11", plus_minus(result.c11, result.c11_error, "GPa", 1e9)))
+    facts.append(("χ²/dof", number(result.chi2_dof)))
+    return [*facts, ("warnings", str(len(result.warnings)))]
 
 
 def summary_text(lines, warnings) -> str:

@@ -81,6 +81,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from .._summary import Summarised, flagged, values
 from ..errors import ContactresInputError
 from ._cantilever import (
     FREE_ROOTS,
@@ -188,8 +189,9 @@ def flag_names(flags: int) -> list[str]:
     return [name for bit, name in _NAMES if int(flags) & bit]
 
 
-@dataclass(frozen=True)
-class ContactResonanceResult:
+# repr=False: the summary (Summarised, _facts) replaces the numpy reprs of the maps.
+@dataclass(frozen=True, repr=False)
+class ContactResonanceResult(Summarised):
     """Result of :func:`invert_contact_resonance`; arrays have the pixel shape (...) unless noted.
 
     Attributes
@@ -232,6 +234,19 @@ class ContactResonanceResult:
     method: str
     tip_position_other: np.ndarray
     kappa_other: np.ndarray
+
+    def _facts(self) -> list[tuple[str, str]]:
+        """The method and modes, κ, k* (N/m), r, σ (N s/m, with Q) and the flagged pixels."""
+        facts = [
+            ("", self.method),
+            ("modes", ", ".join(str(m) for m in self.modes)),
+            ("κ", values(self.kappa)),
+            ("k*", values(self.k_star, "N/m")),
+            ("r", values(self.tip_position)),
+        ]
+        if np.any(np.isfinite(self.sigma)):
+            facts.append(("σ", values(self.sigma, "N s/m")))
+        return [*facts, ("flagged", flagged(self.flags))]
 
 
 def _roots(beta, r, g):

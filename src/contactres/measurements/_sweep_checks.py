@@ -1,0 +1,108 @@
+"""The rules a validated sweep table obeys beyond one cell: no duplicated rows, one value per
+sweep (or per configuration) of the columns that describe it, the sign of ΔΓ, enough points
+with more than one amplitude per sweep — each broken rule is one error line or one
+:class:`SweepWarning` naming the rows (paper 2's analysis takes the table as these rules
+leave it)."""
+
+from __future__ import annotations
+
+import warnings
+
+import pandas as pd
+
+from ..errors import ContactresInputError
+from ..units import MIN_SWEEP_POINTS
+from ._messages import line_word, shown_value
+
+__all__ = [
+    "SweepWarning",
+    "check_dissipation_sign",
+    "check_per_sweep",
+    "conflict",
+    "drop_duplicates",
+    "warn_sweeps",
+]
+
+
+class SweepWarning(UserWarning):
+    """The data are usable but something is odd (the message says what and where)."""
+
+
+def drop_duplicates(out: pd.DataFrame, source: str) -> pd.DataFrame:
+    """The table without rows that repeat another row (all but the line number), named in one
+    warning."""
+    data_only = [c for c in out.columns if c != "line"]
+    dup = out.duplicated(subset=data_only, keep="first").to_numpy()
+    if not dup.any():
+        return out
+    lines = out["line"].to_numpy()[dup]
+    shown = ", ".join(str(n) for n in lines[:5]) + (" ..." if len(lines) > 5 else "")
+    warnings.warn(
+        f"{source}: {int(dup.sum())} duplicated row(s) dropped (at {line_word(out)}(s) {shown})",
+        SweepWarning,
+        stacklevel=4,
+    )
+    return out.loc[~dup].reset_index(drop=True)
+
+
+def conflict(table: pd.DataFrame, source: str, by: str, col: str, rule: str) -> None:
+    """Error naming two rows if ``col`` takes more than one value within a group of ``by``."""
+    counts = table.groupby(by, sort=False)[col].nunique()
+    if (counts > 1).any():
+        name = counts.index[counts.to_numpy() > 1][0]
+        rows = table[table[by] == name]
+        a, b = rows.iloc[0], rows.loc[rows[col] != rows[col].iloc[0]].iloc[0]
+        raise ContactresInputError(
+            f"{source}, {by} {shown_value(name)}: conflicting values in column {col!r}: "
+            f"{shown_value(a[col])} ({line_word(table)} {a['line']}) and {shown_value(b[col])} "
+            f"({line_word(table)} {b['line']}); {rule}"
+        )
+
+
+def check_per_sweep(table: pd.DataFrame, source: str, per_sweep: tuple[str, ...]) -> None:
+    """Columns that describe a whole sweep take one value within it; the sphere and the
+    material (``sphere_radius_m``, ``poisson``) one value within a configuration, whose sweeps
+    the JKR fit (paper 2, Eqs. 7-10) takes together."""
+    for col in per_sweep:
+        conflict(table, source, "sweep", col, f"one sweep has one {col}")
+    for col in ("sphere_radius_m", "poisson"):
+        conflict(table, source, "configuration", col, "one configuration has one sphere")
+
+
+def check_dissipation_sign(table: pd.DataFrame, source: str) -> None:
+    """A contact adds dissipation: ΔΓ (the half-bandwidth shift) of a sweep is positive. Most
+    sweeps with a negative median ΔΓ is a sign slip (an export giving −ΔΓ; it moved E by 25 %,
+    issue 27): an error. A few such sweeps are named in a warning (noise on a tiny ΔΓ, or a
+    reference taken in contact)."""
+    median = table.groupby("sweep", sort=False)["dgamma_Hz"].median()
+    negative = median < 0
+    if not negative.any():
+        return
+    names = [shown_value(n) for n in median.index[negative.to_numpy()]]
+    shown = ", ".join(names[:5]) + (f" ... ({len(names)} in all)" if len(names) > 5 else "")
+    if negative.sum() * 2 > len(median):
+        raise ContactresInputError(
+            f"{source}: dgamma_Hz is negative in {int(negative.sum())} of {len(median)} sweeps "
+            f"(median {median.median():.4g} Hz); ΔΓ, the shift of the half-bandwidth, grows "
+            "with the contact's dissipation: check its sign (an export may give −ΔΓ)"
+        )
+    warnings.warn(
+        f"{source}: sweep(s) {shown} have a negative median dgamma_Hz (a contact adds "
+        "dissipation: check the reference of ΔΓ)",
+        SweepWarning,
+        stacklevel=3,
+    )
+
+
+def warn_sweeps(table: pd.DataFrame, source: str) -> None:
+    """Warn by name of sweeps with too few points, and of sweeps whose amplitudes are all equal
+    (all zero, say): a line through a single amplitude has no slope."""
+    amp = table.groupby("sweep", sort=False)["amplitude_m"]
+    few = f"have fewer than {MIN_SWEEP_POINTS} points and will not be used"
+    flat = "have all amplitudes equal: no slope and no friction coefficient can come from them"
+    for bad, what in ((amp.size() < MIN_SWEEP_POINTS, few), (amp.max() == amp.min(), flat)):
+        names = [shown_value(n) for n in bad.index[bad.to_numpy()]]
+        if names:
+            more = f" ... ({len(names)} in all)" if len(names) > 5 else ""
+            message = f"{source}: sweep(s) {', '.join(names[:5])}{more} {what}"
+            warnings.warn(message, SweepWarning, stacklevel=3)
