@@ -6,11 +6,14 @@ written against earlier versions that catches ``ValueError`` keeps working. The 
 prints it as one line naming the input and the rule, and exits with status 2; any other
 exception (numpy's ``LinAlgError``, pandas' ``MergeError``, a ``KeyError`` ...) is a fault of
 contactres and is reported as an internal error, with a request to report it.
+
+A value that contactres computed but could not bring to the accuracy it was asked for is not an
+error: it is returned, and :class:`AccuracyWarning` says which value, and the accuracy reached.
 """
 
 from __future__ import annotations
 
-__all__ = ["ContactresInputError", "MissingExtraError"]
+__all__ = ["AccuracyWarning", "ContactresInputError", "MissingExtraError"]
 
 
 class ContactresInputError(ValueError):
@@ -29,4 +32,19 @@ class MissingExtraError(ImportError):
 
     Neither the user's input nor a fault of contactres: the command line prints it as one line
     (exit 2) saying what to install.
+    """
+
+
+class AccuracyWarning(UserWarning):
+    """A computed value misses the accuracy it was asked for (``rtol``); the message names the
+    input (material, arguments) and the estimated accuracy reached.
+
+    Raised as a warning, not an error: the value returned is the best one found. Turn it into an
+    error with ``warnings.simplefilter("error", AccuracyWarning)``.
+
+    Examples
+    --------
+    >>> from contactres.errors import AccuracyWarning
+    >>> issubclass(AccuracyWarning, UserWarning)
+    True
     """

@@ -124,11 +124,14 @@ def _table(s, seed, edit):
     return validate_sweeps(edit(raw), constants=CONST)
 
 
-def test_ramp_labels_out_of_file_order_are_named_and_not_trusted():
+def test_ramp_labels_out_of_time_order_are_named_and_not_trusted():
+    # The times say which sweep came first (the file's order does not: issue 27; without
+    # times the labels are the order, tests/analysis/test_ramp_order.py).
     s = study(n_experiments=2)
     e1 = s.normal_forces[2]
 
-    def swap(raw):  # in load F2 of e1, the sweeps in file order carry the labels 3, 1, 2, 4
+    def swap(raw):  # in load F2 of e1, the sweeps in time order carry the labels 3, 1, 2, 4
+        raw = raw.assign(time_s=np.arange(len(raw), dtype=float))  # measured in file order
         block = (raw["experiment"] == "e1") & (raw["normal_force_N"] == e1)
         relabel = {1: 3, 2: 1, 3: 2, 4: 4}
         raw.loc[block, "ramp"] = raw.loc[block, "ramp"].map(relabel)
@@ -143,7 +146,7 @@ def test_ramp_labels_out_of_file_order_are_named_and_not_trusted():
     first = has(sw["flags"], Flag.FIRST_RAMP)
     assert list(sw.loc[block & first, "ramp"]) == [3]
     assert len(res.messages) == 1
-    assert "ramps in file order are 3, 1, 2, 4" in res.messages[0] and "'e1'" in res.messages[0]
+    assert "ramps in time order are 3, 1, 2, 4" in res.messages[0] and "'e1'" in res.messages[0]
 
 
 def test_missing_ramp_and_contradicted_direction_are_named():

@@ -1,5 +1,5 @@
 """Tests of contactres.dynamic._convergence: the DCSF's accuracy checked at run time (issue 27,
-point 7).
+point 7), and the public functions that check it outside the validated range (cause 3).
 
 References: the exact model on a kernel table with every resolution doubled and a Galerkin basis
 of twice the terms and harmonics and more (the convergence references of test_dynamic_exact.py,
@@ -7,13 +7,23 @@ far finer than the run-time check's levels), and the plain ``dcsf_models`` for t
 need no refinement.
 """
 
+import warnings
+
 import numpy as np
 import pytest
 
-from contactres import Material
-from contactres.dynamic import checked_dcsf_models, dcsf_models, shear_wavenumber_ratio
-from contactres.dynamic._exact import GalerkinSize, exact_n
+from contactres import Material, sphere_contact
+from contactres.dynamic import (
+    checked_dcsf_models,
+    dcsf,
+    dcsf_models,
+    dynamic_contact_stiffness,
+    shear_wavenumber_ratio,
+)
+from contactres.dynamic._convergence import in_validated_range
+from contactres.dynamic._exact import GalerkinSize, exact_n, galerkin_size
 from contactres.dynamic._table import kernel_table, resolution_for
+from contactres.errors import AccuracyWarning
 
 
 def _reference(m, kla, size: GalerkinSize):
@@ -71,3 +81,87 @@ def test_a_value_still_missing_rtol_is_marked_not_converged():
 def test_max_refine_must_be_positive():
     with pytest.raises(ValueError, match="max_refine"):
         checked_dcsf_models(Material.crystal("Cu"), 1.0, "exact", max_refine=0)
+
+
+# ---- the public dcsf keeps its promise outside the validated range (issue 27, cause 3) --------
+
+
+def test_dcsf_meets_its_rtol_on_cu_at_ka_10():
+    # main returned 3.824 + 15.94i (25 % off) at rtol 1e-4 without a word.
+    cu = Material.crystal("Cu")
+    ref = _reference(cu, 10.0, GalerkinSize(26, 6))
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", AccuracyWarning)  # met, so nothing to flag
+        value = dcsf(cu, 10.0, rtol=1e-4)
+    assert abs(value - ref) <= 1e-4 * abs(ref), (value, ref)
+
+
+@pytest.fixture(scope="module")
+def strong():
+    """A = 0.05, nu = 0.45 (outside the measured range) and its reference DCSF at k_l a = 2."""
+    m = Material.cubic_from_ratios(0.05, 0.45)
+    return m, _reference(m, 2.0, GalerkinSize(24, 6))
+
+
+@pytest.mark.parametrize("rtol", [1e-3, 1e-4, 1e-6])
+def test_dcsf_meets_its_rtol_at_strong_anisotropy(strong, rtol):
+    # k_l a = 2: main was 45 % off at rtol 1e-3 and 1e-4, 0.54 % at 1e-6, without a word.
+    m, ref = strong
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        value = dcsf(m, 2.0, rtol=rtol)
+    flagged = any(issubclass(w.category, AccuracyWarning) for w in caught)
+    assert flagged or abs(value - ref) <= rtol * abs(ref), (rtol, value, ref)
+
+
+def test_dcsf_flags_a_value_that_still_misses_rtol():
+    # rtol 1e-7 at k_l a = 10 on Cu: two refinements leave ~6e-7 between the last two levels.
+    cu = Material.crystal("Cu")
+    with pytest.warns(AccuracyWarning) as caught:
+        value = dcsf(cu, 10.0, rtol=1e-7)
+    text = str(caught[0].message)
+    assert "Cu" in text and "k_l a = 10" in text and "rtol = 1e-07" in text
+    assert "estimated relative error up to" in text
+    checked = checked_dcsf_models(cu, 10.0, "exact", rtol=1e-7)
+    assert not bool(checked.converged["exact"])
+    assert value == complex(checked.values["exact"])  # the finest value, not the coarse one
+
+
+def test_dynamic_contact_stiffness_is_checked_as_dcsf():
+    # The same check guards the route through the physical contact (k_s a from R, F, f).
+    cu = Material.crystal("Cu")
+    contact = sphere_contact(cu, 1e-3, 1.0)
+    a = float(contact.contact_radius)
+    f = 10.0 / (2 * np.pi * a * np.sqrt(cu.density / cu.C[2, 2]))  # k_l a = 10
+    k = dynamic_contact_stiffness(cu, 1e-3, 1.0, f, rtol=1e-4)
+    ref = _reference(cu, 10.0, GalerkinSize(26, 6)) * float(contact.stiffness)
+    assert abs(k - ref) <= 1e-4 * abs(ref), (k, ref)
+
+
+def test_inside_the_validated_range_dcsf_is_unchanged():
+    # The plain evaluation, bit for bit, and no check: every face of Cu up to k_l a = 2.
+    face = Material.crystal("Cu").rotated((1, 2, 3))
+    ka = np.linspace(0.0, 2.0, 5)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", AccuracyWarning)
+        got = dcsf(face, ka)
+    table = kernel_table(face, 0.0, resolution_for(1e-6))
+    ksa = ka * shear_wavenumber_ratio(face)
+    plain = table.n_static / exact_n(table, ksa, galerkin_size(float(ksa.max()), 1e-6))
+    assert np.allclose(got, plain, rtol=1e-12, atol=0)
+
+
+@pytest.mark.parametrize(
+    ("m", "kla", "inside"),
+    [
+        (Material.crystal("Cu").rotated((1, 2, 3)), 2.0, True),  # judged in its crystal frame
+        (Material.isotropic(70e9, 0.3), 1.0, True),
+        (Material.crystal("Cu"), 2.5, False),  # k_l a beyond 2
+        (Material.crystal("Li"), 1.0, False),  # nu = 0.458 > 0.45
+        (Material.cubic_from_ratios(0.1, 0.25), 1.0, False),  # A < 0.2
+        (Material.crystal("quartz"), 1.0, False),  # trigonal: nothing was measured
+    ],
+)
+def test_the_validated_range(m, kla, inside):
+    ksa = np.array([kla * shear_wavenumber_ratio(m)])
+    assert in_validated_range(m, ksa) is inside

@@ -379,6 +379,38 @@ def test_frequencies_divided_by_n_are_caught(tmp_path):
     one_line(info, "not n f_F", "Frequency_")
 
 
+@pytest.mark.parametrize(("unit", "factor"), [("MHz", 1e6), ("kHz", 1e3)])
+@pytest.mark.parametrize(
+    "given", [{}, dict(df_divided_by_n=False, fundamental=F_F, baseline="as-exported")]
+)
+def test_resonance_frequencies_in_mhz_are_no_shifts(tmp_path, unit, factor, given):
+    """f_n typed in MHz (14.85 for n f_F = 3 x 4.95 MHz) sit below the absolute threshold and
+    passed for shifts of a few Hz (issue 27: κ of 5e4 N/m from a QSense export): refused, in
+    one line, whatever the options say about shifts."""
+    path = qsense_b(tmp_path)
+    lines = path.read_text().splitlines()
+    rows = []
+    for line in lines[1:]:
+        cells = line.split("\t")
+        for j in range(1, len(cells), 2):  # the f columns, after the time
+            cells[j] = repr(float(cells[j]) / factor)
+        rows.append("\t".join(cells))
+    path.write_text("\n".join([lines[0], *rows]) + "\n")
+    with pytest.raises(ValueError) as info:
+        read_export(path, **given)
+    f0 = f"3 x {F_F / factor:g} {unit}"  # n f_F in the file's unit
+    one_line(info, "'f3_1 [Hz]'", f"absolute resonance frequency in {unit}", f0, "in Hz")
+
+
+def test_small_positive_shifts_are_still_shifts(tmp_path):
+    """Shifts of one sign that start at 0 are shifts, however near n x a few they end."""
+    path = awsensors(tmp_path)
+    text = path.read_text().replace(",-", ",")  # Δf/n > 0: a film that left the crystal
+    path.write_text(text)
+    table = read_export(path, dissipation_scale=1e-6, fundamental=F_F)
+    assert table.conventions["frequency_as_read"] == "shift"
+
+
 def test_shifts_and_resonance_frequencies_mixed(tmp_path):
     path = awsensors(tmp_path)
     lines = path.read_text().splitlines()

@@ -192,11 +192,15 @@ def pad_sweeps(table: pd.DataFrame) -> Padded:
     order = np.lexsort((u, codes))
     counts = np.bincount(codes, minlength=len(names))
     start = np.concatenate([[0], np.cumsum(counts)[:-1]])
-    # Direction from the file order of the amplitudes: up, down, or mixed.
-    same = codes[1:] == codes[:-1]
-    step = np.diff(u)
-    rises = np.bincount(codes[1:][same & (step > 0)], minlength=len(names)) > 0
-    falls = np.bincount(codes[1:][same & (step < 0)], minlength=len(names)) > 0
+    # Direction from the order of the amplitudes in time (where every point has a time), else
+    # in the file: up, down, or mixed.
+    time = table["time_s"].to_numpy(float) if "time_s" in table else np.full(u.shape, np.nan)
+    timed = np.isfinite(time).all()
+    seq = np.lexsort((time, codes)) if timed else np.argsort(codes, kind="stable")
+    same = codes[seq][1:] == codes[seq][:-1]
+    step = np.diff(u[seq])
+    rises = np.bincount(codes[seq][1:][same & (step > 0)], minlength=len(names)) > 0
+    falls = np.bincount(codes[seq][1:][same & (step < 0)], minlength=len(names)) > 0
     direction = np.where(rises & falls, "mixed", np.where(falls, "down", "up"))
     df = table["df_Hz"].to_numpy(float)[order]
     dg = table["dgamma_Hz"].to_numpy(float)[order]

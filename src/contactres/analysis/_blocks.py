@@ -223,7 +223,11 @@ def choose_blocks(
         return empty, per_sweep, sw, fields, {}
     B = code.max() + 1
     member = code >= 0
+    # The sweeps of a block in ramp order (then by name), not in the file's: their points at one
+    # amplitude keep that order in the joint fit, so shuffled rows give the same fit (issue 27).
     rows = np.flatnonzero(member)
+    names = pd.factorize(sw["sweep"].astype(str), sort=True)[0]
+    rows = rows[np.lexsort((names[rows], sw["ramp"].to_numpy()[rows], code[rows]))]
     u, df, dg = p.points(rows)
     points = pd.DataFrame(
         {"sweep": np.repeat(code[rows], p.n[rows]), "amplitude_m": u, "df_Hz": df, "dgamma_Hz": dg}

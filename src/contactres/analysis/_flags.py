@@ -63,8 +63,9 @@ DESCRIPTIONS: dict[Flag, str] = {
         "noise (F test): the baseline moved"
     ),
     Flag.RAMP_ORDER: (
-        "the ramp labels of this load disagree with the file order or the amplitudes (see the "
-        "messages); the first sweep in the file is taken as the running-in ramp"
+        "the ramp labels of this load disagree with the times (time_s) or the amplitudes, or "
+        "repeat a number or skip one (see the messages); the first sweep measured (by time; "
+        "by name among repeated labels) is taken as the running-in ramp"
     ),
     Flag.FLAT_AMPLITUDE: (
         "all amplitudes of the sweep are equal: no slope, so no μ from it (its Δf0 and ΔΓ0 are "

@@ -104,7 +104,8 @@ def bootstrap_jkr(
     """
     F = pts["normal_force_N"].to_numpy(float)
     kappa = pts["kappa_N_per_m"].to_numpy(float)
-    codes, names = pd.factorize(pts["experiment"])
+    # Experiments numbered by name: the resamples do not depend on the order of the rows.
+    codes, names = pd.factorize(pts["experiment"], sort=True)
     rng = np.random.default_rng(seed)
     pick = rng.integers(0, len(names), size=(n_resamples, len(names)))
     counts = (pick[:, :, None] == np.arange(len(names))[None, None, :]).sum(axis=1)
@@ -131,12 +132,19 @@ def bootstrap_jkr_sweeps(
     """
     F = sweeps["normal_force_N"].to_numpy(float)
     kappa = sweeps["kappa_N_per_m"].to_numpy(float)
-    load, _ = pd.factorize(sweeps["normal_force_N"])
+    # Loads by force and sweeps by name: the resamples do not depend on the order of the rows.
+    load, _ = pd.factorize(sweeps["normal_force_N"], sort=True)
+    name = (
+        pd.factorize(sweeps["sweep"].astype(str), sort=True)[0]
+        if "sweep" in sweeps
+        else np.arange(F.size)
+    )
     rng = np.random.default_rng(seed)
     W = np.zeros(n_resamples * F.size)
     offset = (np.arange(n_resamples) * F.size)[:, None]
     for ell in range(load.max() + 1):  # a handful of loads
         members = np.flatnonzero(load == ell)
+        members = members[np.argsort(name[members], kind="stable")]
         pick = members[rng.integers(0, members.size, size=(n_resamples, members.size))]
         W += np.bincount((offset + pick).ravel(), minlength=W.size) / members.size
     weights = W.reshape(n_resamples, F.size)

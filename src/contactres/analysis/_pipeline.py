@@ -37,9 +37,11 @@
    noise, and their μ_fit reads low with an error (linearised, from the Jacobian) that is too
    small: in simulations of that recipe it reads 40-65 % low, in some sweeps by 3-7 times its
    error (the air recipe, 0.3 Hz noise and u0 <= 10 nm: unbiased, z standard deviation 1.2).
-4. **Flags**: ``first-ramp`` (the first ramp of a load in the file set aside as running-in unless
-   ``keep_first_ramp``), ``ramp-order`` (ramp labels that disagree with the file order or the
-   amplitudes, :mod:`contactres.analysis._ramps`),
+4. **Flags**: ``first-ramp`` (the first ramp of a load, by its label checked against the times,
+   or without labels the first sweep of the load in time or file order, set aside as running-in
+   unless ``keep_first_ramp``; never by where the rows stand when the table labels its ramps),
+   ``ramp-order`` (ramp labels that disagree with the times or the amplitudes, or repeat or skip
+   a number, :mod:`contactres.analysis._ramps`),
    ``few-points`` (< 4 points: not used), ``drift`` (the used ramps of one load of one experiment
    are offset from each other beyond noise: F test of per-ramp offsets on a common quadratic,
    false-alarm probability ``drift_p``),
@@ -276,7 +278,14 @@ def analyze(
     # A sweep at one amplitude has no slope (the straight line is degenerate): say so.
     flat = padded.u_max == padded.u_min
     first_line = data.groupby("sweep", sort=False)["line"].min().reindex(info["sweep"]).to_numpy()
-    ramps = check_ramps(info, first_line, padded.direction)
+    # The order of the ramps comes from the times where the table has them (not the file).
+    timed = bool(data["time_s"].notna().all())
+    first_time = (
+        data.groupby("sweep", sort=False)["time_s"].min().reindex(info["sweep"]).to_numpy()
+        if timed
+        else None
+    )
+    ramps = check_ramps(info, first_line, padded.direction, first_time)
     running = ramps.first  # the running-in sweep of each load, as measured
     first = running & (not settings.keep_first_ramp)
     used = ~few & ~first

@@ -1,12 +1,21 @@
 """The ramps of one load, checked against the data rather than trusted as labelled.
 
 Paper 2 ramps the amplitude up and down several times at every load; the first ramp is the
-running-in one. The ``ramp`` labels of a table are checked against the order of the rows in the
-file (the order of measurement) and the amplitudes themselves: labels out of file order, missing
-or repeated ramp numbers, and sweeps labelled "up" or "down" whose amplitudes run the other way
-are reported by name, and the running-in ramp is the first sweep of the load in the file, not
-the one labelled 1 when the two disagree. A load whose ramps start after 1 (the running-in ramp
-left out of the table) has no running-in sweep.
+running-in one. Which sweep came first is read from an explicit ordering, never from where a
+row stands in the file (issue 27: shuffling the rows of a table must not change its results):
+
+* with a ``time_s`` column (in every row) the ramps of a load are ordered by the time of their
+  first point, and the ``ramp`` labels are checked against that order: labels out of time order,
+  missing or repeated ramp numbers, and sweeps labelled "up" or "down" whose amplitudes run the
+  other way in time are reported by name, and the running-in ramp is the first sweep measured,
+  not the one labelled 1 when the two disagree;
+* without times the ``ramp`` labels are the order (the schema: "order of the ramps of one
+  load"), checked for missing and repeated numbers (repeated labels are ordered by sweep name);
+* without ``ramp`` labels (ramp 0) the ramps are inferred: the sweeps of each load in time
+  order, else in the order of the file (the only order there is), the first one running-in.
+
+A load whose ramps start after 1 (the running-in ramp left out of the table) has no running-in
+sweep.
 """
 
 from __future__ import annotations
@@ -31,8 +40,8 @@ class RampCheck:
     Attributes
     ----------
     first
-        The running-in sweep of each load (first in file order; labelled 1 when the labels
-        agree with the file).
+        The running-in sweep of each load (the first measured: labelled 1 when the labels agree
+        with the times; module docstring).
     suspect
         Sweeps of loads whose labels disagree with the data.
     messages
@@ -44,28 +53,47 @@ class RampCheck:
     messages: tuple[str, ...]
 
 
-def check_ramps(info: pd.DataFrame, first_line: np.ndarray, direction: np.ndarray) -> RampCheck:
+def check_ramps(
+    info: pd.DataFrame,
+    first_line: np.ndarray,
+    direction: np.ndarray,
+    first_time: np.ndarray | None = None,
+) -> RampCheck:
     """Check the ramp labels of every load of every experiment against the data.
 
     ``info``: one row per sweep with ``sweep``, ``ramp`` and the columns of
     :data:`~contactres.analysis._drift.LOAD_OF_EXPERIMENT`; ``first_line``: the line of each
     sweep's first row in the file; ``direction``: ``up``, ``down`` or ``mixed`` from the order of
-    its amplitudes in the file. A table without ramp labels (ramp 0) is not checked.
+    its amplitudes (in time where the table has times, else in the file); ``first_time``: the
+    time of each sweep's first point (s), or None for a table without times. The order of the
+    ramps: module docstring.
     """
     n = len(info)
     ramp = info["ramp"].to_numpy()
     first = ramp == 1
     suspect = np.zeros(n, bool)
     messages: list[str] = []
-    if not (ramp > 0).any():
-        return RampCheck(first, suspect, ())
-    # Every load at once: sweeps sorted by load, then by their first line in the file.
-    load = info.groupby(LOAD_OF_EXPERIMENT, sort=False).ngroup().to_numpy()
-    order = np.lexsort((first_line, load))
+    labelled = bool((ramp > 0).any())
+    timed = first_time is not None
+    # The order of measurement: time, else the labels, else (no labels) the file.
+    if timed:
+        position, word = np.asarray(first_time, dtype=float), "time order"
+    elif labelled:
+        position, word = ramp.astype(float), "label order"
+    else:
+        position, word = np.asarray(first_line, dtype=float), "file order"
+    # Every load at once (numbered in sorted order: no file order), sweeps sorted by position;
+    # ties (repeated labels) by sweep name, then line.
+    load = info.groupby(LOAD_OF_EXPERIMENT, sort=True).ngroup().to_numpy()
+    by_name = pd.factorize(info["sweep"].astype(str), sort=True)[0]
+    order = np.lexsort((first_line, by_name, position, load))
     lo, lab = load[order], ramp[order]
-    start = np.r_[True, lo[1:] != lo[:-1]]  # first sweep of each load in the file
+    start = np.r_[True, lo[1:] != lo[:-1]]  # first sweep of each load measured
+    if not labelled:  # inferred ramps: the first sweep of each load is the running-in one
+        first[order[start]] = True
+        return RampCheck(first, suspect, ())
     same = ~start
-    # Labels that do not rise in file order.
+    # Labels that do not rise in the order of measurement.
     disorder = np.zeros(load.max() + 1, bool)
     disorder[lo[1:][same[1:] & (np.diff(lab) <= 0)]] = True
     # A gap after a load's first ramp means a ramp was lost (a load may start after ramp 1).
@@ -93,16 +121,17 @@ def check_ramps(info: pd.DataFrame, first_line: np.ndarray, direction: np.ndarra
         labels = ramp[rows]
         problems = []
         if disorder[g]:
-            problems.append(f"ramps in file order are {', '.join(str(r) for r in labels)}")
+            problems.append(f"ramps in {word} are {', '.join(str(r) for r in labels)}")
             sweep = info["sweep"].iloc[rows[0]]
-            problems.append(f"ramp 1 taken as sweep {sweep!r}, the first in the file")
+            first_of = "the first measured" if timed else "the first by name"
+            problems.append(f"ramp 1 taken as sweep {sweep!r}, {first_of}")
         if gaps[g]:
             missing = sorted(
                 set(range(int(labels.min()), int(labels.max()) + 1)) - set(labels.tolist())
             )
             problems.append(f"ramp(s) {', '.join(map(str, missing))} missing")
         messages.append(f"{where}: {'; '.join(problems)}")
-    # Up/down in a sweep's name against the order of its amplitudes in the file.
+    # Up/down in a sweep's name against the order of its amplitudes (in time, else the file).
     names = info["sweep"].astype(str).str.lower()
     says_up = names.str.contains(_WORD_UP).to_numpy()
     says_down = names.str.contains(_WORD_DOWN).to_numpy()
@@ -110,9 +139,9 @@ def check_ramps(info: pd.DataFrame, first_line: np.ndarray, direction: np.ndarra
     direction = np.asarray(direction)
     wrong = (label != "") & np.isin(direction, ["up", "down"]) & (label != direction)
     suspect |= wrong
-    for i in np.flatnonzero(wrong):
+    for i in np.flatnonzero(wrong)[np.argsort(by_name[wrong], kind="stable")]:
         messages.append(
             f"sweep {info['sweep'].iloc[i]!r} is labelled {str(label[i])!r} but its amplitudes "
-            f"run {direction[i]} in the file"
+            f"run {direction[i]} in {'time' if timed else 'the file'}"
         )
     return RampCheck(first, suspect, tuple(messages))

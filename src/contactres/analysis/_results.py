@@ -62,7 +62,7 @@ class Results:
         ``grid_points``, ``amplitude_m``, ``df_model_Hz``, ``dgamma_model_Hz``
         (:func:`contactres.analysis._curves.fitted_curves`)
     messages : what the analysis found odd in the input, one line each (e.g. ramp labels that
-        disagree with the file order)
+        disagree with the times)
     blocks : one row per load block judged jointly (:mod:`contactres.analysis._blocks`)
     block_fits : every model's joint fit of every load block, like ``fits`` with ``block`` in
         place of ``sweep`` (the Coulomb loops' with ``bic_shared``, their shared criterion)

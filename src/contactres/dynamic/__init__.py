@@ -43,9 +43,9 @@ _EXPORTS = MappingProxyType(
         "prepare": "._table",
         "contact_displacement": "._normal_stiffness",
         "contact_pressure": "._normal_stiffness",
-        "dcsf": "._normal_stiffness",
-        "dcsf_models": "._normal_stiffness",
-        "dynamic_contact_stiffness": "._normal_stiffness",
+        "dcsf": "._dcsf",
+        "dcsf_models": "._dcsf",
+        "dynamic_contact_stiffness": "._dcsf",
         "flat_punch_stiffness": "._layered_punch",
         "layered_dcsf": "._layered_punch",
         "layered_punch_stiffness": "._layered_punch",
@@ -73,6 +73,11 @@ if TYPE_CHECKING:
         CheckedDCSF as CheckedDCSF,
         checked_dcsf_models as checked_dcsf_models,
     )
+    from ._dcsf import (
+        dcsf as dcsf,
+        dcsf_models as dcsf_models,
+        dynamic_contact_stiffness as dynamic_contact_stiffness,
+    )
     from ._layered_punch import (
         flat_punch_stiffness as flat_punch_stiffness,
         layered_dcsf as layered_dcsf,
@@ -86,9 +91,6 @@ if TYPE_CHECKING:
     from ._normal_stiffness import (
         contact_displacement as contact_displacement,
         contact_pressure as contact_pressure,
-        dcsf as dcsf,
-        dcsf_models as dcsf_models,
-        dynamic_contact_stiffness as dynamic_contact_stiffness,
         normalised_wavenumber as normalised_wavenumber,
         shear_wavenumber_ratio as shear_wavenumber_ratio,
         wave_modulus as wave_modulus,

@@ -19,11 +19,21 @@ converged DCSF is 0.666 + 19.78i, and at A = 0.05, ν = 0.45, k_l a = 2 the defa
 
 Where level 0 meets rtol (everywhere in the validated range) the value is exactly the one of
 :func:`~contactres.dynamic.dcsf_models`; the check costs one refined evaluation (a table of
-twice the resolution). Nothing is cached.
+twice the resolution: 5-20 times the ordinary evaluation). Nothing is cached.
+
+The public :func:`~contactres.dynamic.dcsf`, :func:`~contactres.dynamic.dcsf_models` and
+:func:`~contactres.dynamic.dynamic_contact_stiffness` therefore check only outside the validated
+range (:func:`in_validated_range`: a cubic or isotropic solid, judged in its crystal frame, with
+A = 0.2-10 and ν <= 0.45, at k_l a <= 2), where nothing promises that level 0 meets rtol: there
+they return the checked values (:func:`checked_values`) and an
+:class:`~contactres.errors.AccuracyWarning` for values that still miss rtol after
+:data:`MAX_REFINE` refinements, naming the material, the k a and the accuracy reached. Inside
+the range they are unchanged (no check, no cost).
 """
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 from types import MappingProxyType
 from typing import TYPE_CHECKING
@@ -31,9 +41,16 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from .._summary import Summarised, values
-from ..errors import ContactresInputError
+from ..errors import AccuracyWarning, ContactresInputError
 from ._models import ALL_MODELS
-from ._normal_stiffness import check_model, evaluate_models, shear_ka, table_for
+from ._normal_stiffness import (
+    CHUNK,
+    check_model,
+    evaluate_models,
+    shear_ka,
+    shear_wavenumber_ratio,
+    table_for,
+)
 from ._table import kernel_table, resolution_for
 
 if TYPE_CHECKING:
@@ -42,12 +59,29 @@ if TYPE_CHECKING:
     from ..materials import Material
     from ._table import KernelTable
 
-__all__ = ["MAX_REFINE", "CheckedDCSF", "checked_dcsf_models"]
+__all__ = [
+    "MAX_REFINE",
+    "VALIDATED_KLA",
+    "VALIDATED_POISSON",
+    "VALIDATED_ZENER",
+    "CheckedDCSF",
+    "checked_dcsf_models",
+    "checked_values",
+    "in_validated_range",
+]
 
 #: Default number of refinements tried (each doubles every resolution of the kernel table):
 #: two reach the converged value on Cu(001) at k_l a = 10 from rtol = 1e-4, and at A = 0.05,
 #: ν = 0.45 from the default; a third would cost ~8 times the second.
 MAX_REFINE = 2
+
+#: The range where the resolutions were measured to meet rtol (the convergence tests of
+#: tests/dynamic/test_dynamic_exact.py): k_l a at most VALIDATED_KLA, a cubic (or isotropic)
+#: solid with Zener ratio A within VALIDATED_ZENER and cubic ν = C12/(C11 + C12) at most
+#: VALIDATED_POISSON. Outside it the public functions check each value (module docstring).
+VALIDATED_KLA = 2.0
+VALIDATED_ZENER = (0.2, 10.0)
+VALIDATED_POISSON = 0.45
 
 
 # repr=False: the summary (Summarised, _facts) replaces the numpy reprs of every model.
@@ -113,8 +147,27 @@ def checked_dcsf_models(
         raise ContactresInputError(f"max_refine must be a positive integer, got {max_refine!r}")
     ksa = shear_ka(m, ka, wavenumber)
     table = table_for(m, ksa, loss, rtol, prepared)
+    return checked_values(m, table, ksa, names, loss, rtol, max_refine=max_refine)
+
+
+def checked_values(
+    m: Material,
+    table: KernelTable,
+    ksa: np.ndarray,
+    names: list[str],
+    loss: float,
+    rtol: float,
+    *,
+    max_refine: int = MAX_REFINE,
+    chunk: int = CHUNK,
+    interpolate: bool | None = None,
+) -> CheckedDCSF:
+    """The work of :func:`checked_dcsf_models` after its checks: the checked model names
+    ``names`` at the k_s a values ``ksa`` (array), level 0 on ``table`` (the kernel table of
+    ``m``, ``loss``, ``rtol``); ``chunk`` and ``interpolate`` as in
+    :func:`contactres.dynamic.dcsf` (for every level)."""
     uniq, inverse = np.unique(ksa.ravel(), return_inverse=True)
-    current = evaluate_models(table, uniq, names, rtol)
+    current = evaluate_models(table, uniq, names, rtol, chunk=chunk, interpolate=interpolate)
     values = {k: v.copy() for k, v in current.items()}
     error = {k: np.full(uniq.shape, np.inf) for k in names}
     level = {k: np.zeros(uniq.shape, dtype=int) for k in names}
@@ -126,7 +179,9 @@ def checked_dcsf_models(
             break
         resolution = resolution.doubled()
         fine_table = kernel_table(m, loss, resolution)
-        fine = evaluate_models(fine_table, uniq[todo], names, rtol, refine=refine)
+        fine = evaluate_models(
+            fine_table, uniq[todo], names, rtol, chunk=chunk, interpolate=interpolate, refine=refine
+        )
         for k in names:
             idx = np.flatnonzero(todo)
             coarse = current[k][idx]
@@ -163,3 +218,65 @@ def _relative(fine: np.ndarray, coarse: np.ndarray) -> np.ndarray:
     scale = np.abs(fine)
     with np.errstate(divide="ignore", invalid="ignore"):
         return np.where(diff == 0, 0.0, diff / scale)
+
+
+def in_validated_range(m: Material, ksa: np.ndarray) -> bool:
+    """Whether every k_s a of ``ksa`` on ``m`` lies where the resolutions were measured to meet
+    rtol (:data:`VALIDATED_KLA`, :data:`VALIDATED_ZENER`, :data:`VALIDATED_POISSON`).
+
+    The solid is judged in its crystal frame (``m.frame`` undone), so every face of a cubic
+    crystal counts as that crystal; a solid that is neither cubic nor isotropic there (trigonal
+    quartz, a stiffness given in a rotated frame) is outside: nothing was measured for it.
+    """
+    if ksa.size and float(np.max(ksa)) > VALIDATED_KLA * shear_wavenumber_ratio(m) * (1 + 1e-12):
+        return False
+    ratios = _cubic_ratios(m)
+    if ratios is None:
+        return False
+    zener, poisson = ratios
+    lo, hi = VALIDATED_ZENER
+    return lo <= zener <= hi and poisson <= VALIDATED_POISSON
+
+
+def _cubic_ratios(m: Material) -> tuple[float, float] | None:
+    """(A, ν) of ``m`` turned back to its crystal frame, or None if it is not cubic there."""
+    # The rows of m.frame are the current axes in crystal coordinates: the crystal axes in the
+    # current frame are its columns, and turning to them undoes every rotation made so far.
+    axes = np.asarray(m.frame, dtype=float)
+    crystal = m.rotated(normal=axes[:, 2], inplane=axes[:, 0])
+    try:
+        return crystal.zener_ratio, crystal.cubic_poisson
+    except ContactresInputError:  # not cubic in its crystal frame
+        return None
+
+
+def warn_unconverged(m: Material, checked: CheckedDCSF, ka: np.ndarray, wavenumber: str) -> None:
+    """An :class:`~contactres.errors.AccuracyWarning` if some values of ``checked`` (at the
+    k a values ``ka``, in the convention ``wavenumber``) still miss their rtol."""
+    ka = np.asarray(ka, dtype=float)
+    for name, ok in checked.converged.items():
+        if np.all(ok):
+            continue
+        bad = ~np.broadcast_to(ok, ka.shape)
+        err = np.broadcast_to(checked.error[name], ka.shape)[bad]
+        where = ka[bad]
+        lo, hi = float(np.min(where)), float(np.max(where))
+        span = f"{lo:.4g}" if lo == hi else f"{lo:.4g}-{hi:.4g}"
+        label = "k_l a" if wavenumber == "longitudinal" else "k_s a"
+        warnings.warn(
+            f"DCSF ({name} model) of {_describe(m)} at {label} = {span} misses rtol = "
+            f"{checked.rtol:g} after {MAX_REFINE} refinements: estimated relative error up to "
+            f"{float(np.max(err)):.2g} (outside the validated range k_l a <= {VALIDATED_KLA:g}, "
+            f"A = {VALIDATED_ZENER[0]:g}-{VALIDATED_ZENER[1]:g}, nu <= {VALIDATED_POISSON:g})",
+            AccuracyWarning,
+            stacklevel=4,
+        )
+
+
+def _describe(m: Material) -> str:
+    """The material of a message: its name, else its cubic ratios, else 'the material'."""
+    ratios = _cubic_ratios(m)
+    text = f"A = {ratios[0]:.4g}, nu = {ratios[1]:.4g}" if ratios else ""
+    if m.name:
+        return f"{m.name} ({text})" if text else str(m.name)
+    return f"the cubic solid {text}" if text else "the material (not cubic)"

@@ -76,15 +76,13 @@ from ._table import KernelTable, prepare
 
 __all__ = [
     "ALL_MODELS",
+    "CHUNK",
     "INTERPOLATE_ABOVE",
     "MODELS",
     "WAVENUMBERS",
     "check_model",
     "contact_displacement",
     "contact_pressure",
-    "dcsf",
-    "dcsf_models",
-    "dynamic_contact_stiffness",
     "evaluate_models",
     "model_n",
     "normalised_wavenumber",
@@ -97,7 +95,7 @@ __all__ = [
 # Largest k_s a × (largest slowness) accepted: the contour's weights grow like e^{0.3 x this}.
 _KA_MAX = 60.0
 # k a values evaluated together: ~0.6 MB of far-field basis each, ~40 MB at 64, for any call size.
-_CHUNK = 64
+CHUNK = 64
 #: Above this many distinct k a values a call interpolates (``interpolate=None``): the direct
 #: cost is ~0.7 ms per value, a Chebyshev curve 33-129 direct values whatever the call's size.
 INTERPOLATE_ABOVE = 128
@@ -295,40 +293,6 @@ def _direct(table, flat, names, rtol, chunk, span=None, refine=0) -> dict[str, n
     return n_out
 
 
-# One BLAS thread around all the work, table included (contactres._threads): one BLAS thread
-# is no slower and much cheaper. Measured on 2 cores, 41 points of a new material, all seven
-# models: 81 ms of CPU with OpenBLAS's default two threads, 38 ms with one
-# (OPENBLAS_NUM_THREADS=1), no gain in wall time from the second thread (issue 31). Threads
-# sharing a prepared table get the bits of a serial run (tests/dynamic/test_prepared.py).
-@one_blas_thread()
-def dcsf_models(
-    m: Material,
-    ka,
-    models=ALL_MODELS,
-    loss: float = 0.0,
-    wavenumber: str = "longitudinal",
-    rtol: float = 1e-6,
-    prepared: KernelTable | None = None,
-    *,
-    chunk: int = _CHUNK,
-    interpolate: bool | None = None,
-) -> dict[str, np.ndarray]:
-    """DCSF = K_da/K_sa of several displacement models at once (they share all the work).
-
-    Parameters and returns as :func:`dcsf`, with ``models`` a sequence of model names; returns
-    ``{model: complex array shaped like ka}``. ``chunk`` and ``interpolate`` (keyword only) as
-    in :func:`dcsf`.
-    """
-    names = [check_model(x) for x in ([models] if isinstance(models, str) else models)]
-    if not (isinstance(chunk, int | np.integer) and chunk >= 1):
-        raise ContactresInputError(f"chunk must be a positive integer, got {chunk!r}")
-    if interpolate not in (None, True, False):
-        raise ContactresInputError(f"interpolate must be None, True or False, got {interpolate!r}")
-    ksa = shear_ka(m, ka, wavenumber)
-    table = table_for(m, ksa, loss, rtol, prepared)
-    return evaluate_models(table, ksa, names, rtol, chunk=chunk, interpolate=interpolate)
-
-
 @one_blas_thread()  # as dcsf_models (free inside its context)
 def evaluate_models(
     table: KernelTable,
@@ -336,7 +300,7 @@ def evaluate_models(
     names: list[str],
     rtol: float,
     *,
-    chunk: int = _CHUNK,
+    chunk: int = CHUNK,
     interpolate: bool | None = None,
     refine: int = 0,
 ) -> dict[str, np.ndarray]:
@@ -369,145 +333,6 @@ def evaluate_models(
     else:
         out = _direct(table, uniq, names, rtol, chunk, refine=refine)
     return {k: (table.n_static / v)[inverse].reshape(ksa.shape) for k, v in out.items()}
-
-
-def dcsf(
-    m: Material,
-    ka,
-    model: str = "exact",
-    loss: float = 0.0,
-    wavenumber: str = "longitudinal",
-    rtol: float = 1e-6,
-    prepared: KernelTable | None = None,
-    *,
-    chunk: int = _CHUNK,
-    interpolate: bool | None = None,
-):
-    """Dynamic-contact-stiffness factor DCSF = K_da/K_sa (paper 1, Eq. 29), complex.
-
-    Parameters
-    ----------
-    m : Material
-        Undamped elastic constants in the surface frame (z = inward normal; for a crystal face
-        use ``Material.crystal("Cu").rotated((0, 0, 1))``). Density is not needed.
-    ka : float or array
-        Normalised wave number k a >= 0 (a: contact radius), in the convention ``wavenumber``.
-    model : str
-        Displacement condition: "exact" (default): the rigid flat punch (uniform displacement;
-        Galerkin, see :mod:`contactres.dynamic._exact`), the reference the others approximate; or
-        "R0", "R1", "SA", "WA", "TP" (paper 1, Eqs. 24-28), "WA2D". Of these, R0 has negative
-        damping near k_l a = 1.6-2 and R1, SA, WA, TP depend on the in-plane x axis (module
-        docstring; :func:`model_n`).
-    loss : float
-        Q⁻¹ in C (1 + i Q⁻¹), in [0, 1). Default 0: the lossless solid (only radiation damping); the
-        paper's figures use 0.02.
-    wavenumber : str
-        "longitudinal": k = ω√(ρ/C33) (the paper's k_l a, default) or "shear": k = ω√(ρ/C44).
-    rtol : float
-        Target relative accuracy (default 1e-6; met for k_l a <= 2 and A in [0.2, 10], see the
-        convergence tests). rtol >= 1e-4 selects a coarser, faster resolution.
-    prepared : KernelTable, optional
-        The kernel table from :func:`prepare` for this material, ``loss`` and ``rtol`` (a
-        ValueError if it was prepared for others); built for this call when not given.
-    chunk : int
-        Keyword only: k a values evaluated together (default 64; memory ~0.6 MB per value, not
-        growing with the size of ``ka``); the result does not depend on it (to ~1e-15).
-    interpolate : bool or None
-        Keyword only. True: evaluate directly at 33-257 Chebyshev points of [min, max] of ``ka`` and
-        interpolate 1/DCSF (smooth; the DCSF of SA and R1 can have poles), refining until the
-        interpolation error, measured at the next refinement's points, is below rtol/10 of the
-        largest ``|1/DCSF|`` on the curve (if 257 points do not reach it, every value is evaluated
-        directly). False: every distinct value directly. None (default): interpolate above
-        :data:`INTERPOLATE_ABOVE` distinct values, so a curve or map of any size costs about as much
-        as ~100 points.
-
-    Returns
-    -------
-    complex or ndarray of complex
-        K_da/K_sa, K_sa the static stiffness of the undamped constants (DCSF(0) = 1 + i Q⁻¹).
-        Real part: stiffness; imaginary part: radiation (and material) damping.
-
-    Raises
-    ------
-    ValueError
-        For bad arguments, and for a nearly incompressible solid (stiffness contrast beyond
-        :data:`~contactres.dynamic.MAX_STIFFNESS_CONTRAST`, isotropic ν > 0.4999), where
-        the stated accuracy cannot be met.
-
-    Examples
-    --------
-    >>> d = dcsf(Material.isotropic(70e9, 1 / 3, density=2500.0), 0.5, wavenumber="shear")
-    >>> bool(abs(d - (0.9689 + 0.5j * 0.7931)) < 1e-4)  # rigid disk, (k, c) at a0 = 0.5
-    True
-    """
-    key = check_model(model)
-    out = dcsf_models(
-        m,
-        ka,
-        (key,),
-        loss=loss,
-        wavenumber=wavenumber,
-        rtol=rtol,
-        prepared=prepared,
-        chunk=chunk,
-        interpolate=interpolate,
-    )[key]
-    return complex(out) if out.ndim == 0 else out
-
-
-def dynamic_contact_stiffness(
-    m: Material,
-    radius,
-    force,
-    frequency,
-    model: str = "exact",
-    loss: float = 0.0,
-    rtol: float = 1e-6,
-    prepared: KernelTable | None = None,
-):
-    """Dynamic contact stiffness K_da = K_sa × DCSF of a rigid sphere on ``m``, N/m (complex).
-
-    Parameters
-    ----------
-    m : Material
-        Undamped constants in the surface frame, with ``density`` (kg/m^3).
-    radius : float or array
-        Sphere radius R, m.
-    force : float or array
-        Static normal force F, N (a from anisotropic Hertz, :func:`contactres.sphere_contact`).
-    frequency : float or array
-        Oscillation frequency f, Hz (ω = 2πf). ``radius``, ``force`` and ``frequency`` broadcast.
-    model, loss, rtol, prepared
-        As in :func:`dcsf` (defaults: the exact model, a lossless solid).
-
-    Returns
-    -------
-    complex or ndarray of complex
-        K_da in N/m; its real part is the contact stiffness, ω⁻¹ Im K_da the damping (N s/m).
-
-    Examples
-    --------
-    >>> from contactres import sphere_contact
-    >>> si = Material.crystal("Si")  # (001); R = 50 nm, F = 1 µN, f = 1 MHz: k a ≈ 1e-5
-    >>> k = dynamic_contact_stiffness(si, 50e-9, 1e-6, 1e6)
-    >>> bool(abs(k.real / sphere_contact(si, 50e-9, 1e-6).stiffness - 1) < 1e-9), k.imag > 0
-    (True, True)
-    """
-    from ..normal import sphere_contact
-
-    density = require_material(m).density
-    if density is None:
-        raise ContactresInputError("dynamic_contact_stiffness needs the material density (kg/m^3)")
-    f = np.asarray(nonnegative("frequency", frequency, "Hz"))
-    contact = sphere_contact(m, radius, force)
-    a = np.asarray(contact.contact_radius, dtype=float)
-    ksa = normalised_wavenumber(f, a, m.density, shear_reference(m))
-    ksa, k_sa = np.broadcast_arrays(ksa, np.asarray(contact.stiffness, dtype=float))
-    out = k_sa * dcsf(
-        m, ksa, model=model, loss=loss, wavenumber="shear", rtol=rtol, prepared=prepared
-    )
-    out = np.asarray(out)
-    return complex(out) if out.ndim == 0 else out
 
 
 @one_blas_thread()  # as dcsf_models

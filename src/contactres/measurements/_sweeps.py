@@ -398,9 +398,12 @@ def _labels_and_numbers(raw: pd.DataFrame, source: str, decimal: str) -> pd.Data
         out["ramp"] = out["ramp"].to_numpy().astype(int)
     else:
         out["ramp"] = 0
+        # The analysis orders by time only where every point has one (as this line says).
+        timed = given and not blank.any()
         warnings.warn(
-            f"{source}: no 'ramp' column, so the running-in ramp cannot be identified; all "
-            "sweeps are used (ramp reported as 0)",
+            f"{source}: no 'ramp' column: the ramps of each load are inferred as its sweeps "
+            f"in the order of {'their times' if timed else 'the file'}, the first one taken as "
+            "running-in (ramp reported as 0)",
             SweepWarning,
             stacklevel=3,
         )

@@ -11,7 +11,8 @@ Conversions (paper 2, Eqs. 1-2: Γ is the half width at half maximum, D = 2Γ/f)
 
 Checks on the way, each a one-line error naming file, line, column, value and rule: a frequency
 cell on the wrong side of :data:`~._base.ABSOLUTE_FREQUENCY_HZ` (shifts and resonance
-frequencies mixed), ``|D|`` x scale >= :data:`MAX_DISSIPATION` (a mis-scaled D), a negative
+frequencies mixed), "shifts" that are resonance frequencies typed in kHz or MHz (n f_F in a QCM's
+range, nearly constant), ``|D|`` x scale >= :data:`MAX_DISSIPATION` (a mis-scaled D), a negative
 absolute D, absolute f_n/n that differ between overtones by more than
 :data:`FUNDAMENTAL_TOLERANCE` (columns divided by n, or misnumbered), a fundamental given that
 disagrees with the file, a baseline window without points.
@@ -46,7 +47,13 @@ from ._base import (
 if TYPE_CHECKING:  # pandas is imported where a table is made (see .base: the help needs none)
     import pandas as pd
 
-__all__ = ["FUNDAMENTAL_TOLERANCE", "MAX_DISSIPATION", "MAX_PLAIN_D_SHIFT", "convert"]
+__all__ = [
+    "FUNDAMENTAL_TOLERANCE",
+    "MAX_DISSIPATION",
+    "MAX_PLAIN_D_SHIFT",
+    "QCM_FUNDAMENTAL_RANGE_HZ",
+    "convert",
+]
 
 #: ``|D|`` x scale at or above this is no dissipation factor (a Q of 10): a mis-scaled column.
 MAX_DISSIPATION = 0.1
@@ -105,7 +112,52 @@ def _frequency_kind(raw, path: Path, traces, stated: str | None) -> str:
         raise ContactresInputError(
             f"{path}: no frequency value in the file ({traces[0][1]!r} and others)"
         )
+    if kind == "shift":
+        _refuse_scaled_absolute(raw, path, traces)
     return kind
+
+
+#: Fundamentals of a QCM (Hz), for telling resonance frequencies in kHz or MHz from shifts.
+QCM_FUNDAMENTAL_RANGE_HZ = (1e6, 1e8)
+#: Largest relative spread of a column of resonance frequencies over a measurement (a film's
+#: few kHz on 15 MHz are 3e-4); a column of shifts spreads by its own size.
+_ABSOLUTE_SPREAD = 1e-3
+
+
+def _refuse_scaled_absolute(raw, path: Path, traces) -> None:
+    """A one-line error if the "shifts" are resonance frequencies f_n typed in kHz or MHz.
+
+    Such cells sit below :data:`~._base.ABSOLUTE_FREQUENCY_HZ` and would pass for shifts of a
+    few Hz (issue 27: a QSense export in MHz gave κ of 5e4 N/m). They are told by all of: two
+    or more overtones whose values divided by n (f_n/n = f_F) agree to
+    :data:`FUNDAMENTAL_TOLERANCE` and, in kHz or MHz, lie in :data:`QCM_FUNDAMENTAL_RANGE_HZ`;
+    positive values; each column spread by less than 1e-3 of its size (shifts start near 0).
+    """
+    per_n = []
+    for n, fcol, _ in traces:
+        f = numbers(raw, fcol, path)
+        f = f[np.isfinite(f)]
+        if f.size == 0 or not (f > 0).all():
+            return
+        mid = float(np.median(f))
+        if (f.max() - f.min()) > _ABSOLUTE_SPREAD * mid:
+            return
+        per_n.append((n, fcol, mid))
+    if len(per_n) < 2:
+        return  # one overtone: nothing to compare, the values may be shifts
+    f0 = float(np.median([mid / n for n, _, mid in per_n]))
+    if any(abs(mid / n / f0 - 1) > FUNDAMENTAL_TOLERANCE for n, _, mid in per_n):
+        return
+    lo, hi = QCM_FUNDAMENTAL_RANGE_HZ
+    for unit, factor in (("MHz", 1e6), ("kHz", 1e3)):
+        if lo <= f0 * factor <= hi:
+            n, fcol, mid = per_n[0]
+            raise ContactresInputError(
+                f"{path}, column {fcol!r}: {mid:.6g} looks like an absolute resonance frequency "
+                f"in {unit} (n f_F = {n} x {f0:.6g} {unit}), not a shift: give the frequency "
+                "columns in Hz (they are then read as f_n, with a baseline: --baseline first or "
+                "window:T0:T1), or subtract the baseline to give shifts"
+            )
 
 
 def _choices(

@@ -1,0 +1,219 @@
+"""The public DCSF: :func:`dcsf`, :func:`dcsf_models` and :func:`dynamic_contact_stiffness`.
+
+The physics and the numerics are those of :mod:`contactres.dynamic._normal_stiffness` (paper 1,
+Eqs. 5-29: the displacement models, the exact rigid punch, the kernel table). These functions
+add the promise of accuracy: inside the range where the resolutions were measured to meet
+``rtol`` (:func:`~contactres.dynamic._convergence.in_validated_range`) they are that module's
+evaluation, unchanged; outside it each value is checked at run time against a refined
+evaluation and refined where it misses rtol (:mod:`contactres.dynamic._convergence`), and a
+value that still misses it comes with an :class:`~contactres.errors.AccuracyWarning` (issue 27).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from .._threads import one_blas_thread
+from ..errors import ContactresInputError
+from ..halfspace import shear_reference
+from ..materials import Material, require_material
+from ..validation import nonnegative
+from ._convergence import checked_values, in_validated_range, warn_unconverged
+from ._models import ALL_MODELS
+from ._normal_stiffness import (
+    CHUNK,
+    check_model,
+    evaluate_models,
+    normalised_wavenumber,
+    shear_ka,
+    table_for,
+)
+from ._table import KernelTable
+
+__all__ = ["dcsf", "dcsf_models", "dynamic_contact_stiffness"]
+
+
+# One BLAS thread around all the work, table included (contactres._threads): one BLAS thread
+# is no slower and much cheaper. Measured on 2 cores, 41 points of a new material, all seven
+# models: 81 ms of CPU with OpenBLAS's default two threads, 38 ms with one
+# (OPENBLAS_NUM_THREADS=1), no gain in wall time from the second thread (issue 31). Threads
+# sharing a prepared table get the bits of a serial run (tests/dynamic/test_prepared.py).
+@one_blas_thread()
+def dcsf_models(
+    m: Material,
+    ka,
+    models=ALL_MODELS,
+    loss: float = 0.0,
+    wavenumber: str = "longitudinal",
+    rtol: float = 1e-6,
+    prepared: KernelTable | None = None,
+    *,
+    chunk: int = CHUNK,
+    interpolate: bool | None = None,
+) -> dict[str, np.ndarray]:
+    """DCSF = K_da/K_sa of several displacement models at once (they share all the work).
+
+    Parameters and returns as :func:`dcsf`, with ``models`` a sequence of model names; returns
+    ``{model: complex array shaped like ka}``. ``chunk`` and ``interpolate`` (keyword only) as
+    in :func:`dcsf`; so is the check of the accuracy outside the validated range (an
+    :class:`~contactres.errors.AccuracyWarning` where rtol is missed).
+    """
+    names = [check_model(x) for x in ([models] if isinstance(models, str) else models)]
+    if not (isinstance(chunk, int | np.integer) and chunk >= 1):
+        raise ContactresInputError(f"chunk must be a positive integer, got {chunk!r}")
+    if interpolate not in (None, True, False):
+        raise ContactresInputError(f"interpolate must be None, True or False, got {interpolate!r}")
+    ksa = shear_ka(m, ka, wavenumber)
+    table = table_for(m, ksa, loss, rtol, prepared)
+    # Inside the validated range the resolution meets rtol (the convergence tests); outside it
+    # nothing promises that, so each value is checked against a refined one (issue 27).
+    if in_validated_range(m, ksa):
+        return evaluate_models(table, ksa, names, rtol, chunk=chunk, interpolate=interpolate)
+    out = checked_values(m, table, ksa, names, loss, rtol, chunk=chunk, interpolate=interpolate)
+    warn_unconverged(m, out, np.broadcast_to(ka, ksa.shape), wavenumber)
+    return {k: np.asarray(v) for k, v in out.values.items()}
+
+
+def dcsf(
+    m: Material,
+    ka,
+    model: str = "exact",
+    loss: float = 0.0,
+    wavenumber: str = "longitudinal",
+    rtol: float = 1e-6,
+    prepared: KernelTable | None = None,
+    *,
+    chunk: int = CHUNK,
+    interpolate: bool | None = None,
+):
+    """Dynamic-contact-stiffness factor DCSF = K_da/K_sa (paper 1, Eq. 29), complex.
+
+    Parameters
+    ----------
+    m : Material
+        Undamped elastic constants in the surface frame (z = inward normal; for a crystal face
+        use ``Material.crystal("Cu").rotated((0, 0, 1))``). Density is not needed.
+    ka : float or array
+        Normalised wave number k a >= 0 (a: contact radius), in the convention ``wavenumber``.
+    model : str
+        Displacement condition: "exact" (default): the rigid flat punch (uniform displacement;
+        Galerkin, see :mod:`contactres.dynamic._exact`), the reference the others approximate; or
+        "R0", "R1", "SA", "WA", "TP" (paper 1, Eqs. 24-28), "WA2D". Of these, R0 has negative
+        damping near k_l a = 1.6-2 and R1, SA, WA, TP depend on the in-plane x axis (module
+        docstring; :func:`model_n`).
+    loss : float
+        Q⁻¹ in C (1 + i Q⁻¹), in [0, 1). Default 0: the lossless solid (only radiation damping); the
+        paper's figures use 0.02.
+    wavenumber : str
+        "longitudinal": k = ω√(ρ/C33) (the paper's k_l a, default) or "shear": k = ω√(ρ/C44).
+    rtol : float
+        Target relative accuracy (default 1e-6; met for k_l a <= 2, A in [0.2, 10] and
+        ν <= 0.45, see the convergence tests). rtol >= 1e-4 selects a coarser, faster
+        resolution. Outside that range (k_l a > 2, or a solid that is not cubic or isotropic in
+        its crystal frame or has A or ν beyond it) each value is checked at run time against a
+        refined evaluation and refined where it misses rtol (up to two doublings of every
+        resolution, :func:`checked_dcsf_models`; 5-20 times the cost); a value that still misses
+        it is returned with an :class:`~contactres.errors.AccuracyWarning` naming the material,
+        the k a and the accuracy reached.
+    prepared : KernelTable, optional
+        The kernel table from :func:`prepare` for this material, ``loss`` and ``rtol`` (a
+        ValueError if it was prepared for others); built for this call when not given.
+    chunk : int
+        Keyword only: k a values evaluated together (default 64; memory ~0.6 MB per value, not
+        growing with the size of ``ka``); the result does not depend on it (to ~1e-15).
+    interpolate : bool or None
+        Keyword only. True: evaluate directly at 33-257 Chebyshev points of [min, max] of ``ka`` and
+        interpolate 1/DCSF (smooth; the DCSF of SA and R1 can have poles), refining until the
+        interpolation error, measured at the next refinement's points, is below rtol/10 of the
+        largest ``|1/DCSF|`` on the curve (if 257 points do not reach it, every value is evaluated
+        directly). False: every distinct value directly. None (default): interpolate above
+        :data:`INTERPOLATE_ABOVE` distinct values, so a curve or map of any size costs about as much
+        as ~100 points.
+
+    Returns
+    -------
+    complex or ndarray of complex
+        K_da/K_sa, K_sa the static stiffness of the undamped constants (DCSF(0) = 1 + i Q⁻¹).
+        Real part: stiffness; imaginary part: radiation (and material) damping.
+
+    Raises
+    ------
+    ValueError
+        For bad arguments, and for a nearly incompressible solid (stiffness contrast beyond
+        :data:`~contactres.dynamic.MAX_STIFFNESS_CONTRAST`, isotropic ν > 0.4999), where
+        the stated accuracy cannot be met.
+
+    Examples
+    --------
+    >>> d = dcsf(Material.isotropic(70e9, 1 / 3, density=2500.0), 0.5, wavenumber="shear")
+    >>> bool(abs(d - (0.9689 + 0.5j * 0.7931)) < 1e-4)  # rigid disk, (k, c) at a0 = 0.5
+    True
+    """
+    key = check_model(model)
+    out = dcsf_models(
+        m,
+        ka,
+        (key,),
+        loss=loss,
+        wavenumber=wavenumber,
+        rtol=rtol,
+        prepared=prepared,
+        chunk=chunk,
+        interpolate=interpolate,
+    )[key]
+    return complex(out) if out.ndim == 0 else out
+
+
+def dynamic_contact_stiffness(
+    m: Material,
+    radius,
+    force,
+    frequency,
+    model: str = "exact",
+    loss: float = 0.0,
+    rtol: float = 1e-6,
+    prepared: KernelTable | None = None,
+):
+    """Dynamic contact stiffness K_da = K_sa × DCSF of a rigid sphere on ``m``, N/m (complex).
+
+    Parameters
+    ----------
+    m : Material
+        Undamped constants in the surface frame, with ``density`` (kg/m^3).
+    radius : float or array
+        Sphere radius R, m.
+    force : float or array
+        Static normal force F, N (a from anisotropic Hertz, :func:`contactres.sphere_contact`).
+    frequency : float or array
+        Oscillation frequency f, Hz (ω = 2πf). ``radius``, ``force`` and ``frequency`` broadcast.
+    model, loss, rtol, prepared
+        As in :func:`dcsf` (defaults: the exact model, a lossless solid).
+
+    Returns
+    -------
+    complex or ndarray of complex
+        K_da in N/m; its real part is the contact stiffness, ω⁻¹ Im K_da the damping (N s/m).
+
+    Examples
+    --------
+    >>> from contactres import sphere_contact
+    >>> si = Material.crystal("Si")  # (001); R = 50 nm, F = 1 µN, f = 1 MHz: k a ≈ 1e-5
+    >>> k = dynamic_contact_stiffness(si, 50e-9, 1e-6, 1e6)
+    >>> bool(abs(k.real / sphere_contact(si, 50e-9, 1e-6).stiffness - 1) < 1e-9), k.imag > 0
+    (True, True)
+    """
+    from ..normal import sphere_contact
+
+    density = require_material(m).density
+    if density is None:
+        raise ContactresInputError("dynamic_contact_stiffness needs the material density (kg/m^3)")
+    f = np.asarray(nonnegative("frequency", frequency, "Hz"))
+    contact = sphere_contact(m, radius, force)
+    a = np.asarray(contact.contact_radius, dtype=float)
+    ksa = normalised_wavenumber(f, a, m.density, shear_reference(m))
+    ksa, k_sa = np.broadcast_arrays(ksa, np.asarray(contact.stiffness, dtype=float))
+    out = k_sa * dcsf(
+        m, ksa, model=model, loss=loss, wavenumber="shear", rtol=rtol, prepared=prepared
+    )
+    out = np.asarray(out)
+    return complex(out) if out.ndim == 0 else out
