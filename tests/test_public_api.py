@@ -449,6 +449,7 @@ PUBLIC = {
         "write_map",
     ],
     "apps": [
+        "check_demo_output",
         "write_demo",
     ],
     "resonators": [

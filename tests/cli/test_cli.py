@@ -8,7 +8,7 @@ import sys
 import numpy as np
 import pandas as pd
 import pytest
-from cli_checks import run
+from cli_checks import one_line_error, run
 
 from contactres import __version__
 from contactres.cli._common import parse_range
@@ -58,10 +58,30 @@ def test_crystals_formats():
     assert "RbI" in run("crystals").output
 
 
-def test_demo_writes_folder(tmp_path):
+def test_demo_writes_folder(tmp_path, monkeypatch):
+    from contactres.jobs import demo
+
+    computed = []
+    compute = demo.run
+
+    def once(*args, **kwargs):  # the rerun below writes the first run's result again
+        if not computed:
+            computed.append(compute(*args, **kwargs))
+        return computed[0]
+
+    monkeypatch.setattr(demo, "run", once)
     out = tmp_path / "demo"
     r = run("demo", "--out", str(out))
     assert r.exit_code == 0, r.output
+    # Issue 27: every folder the demo writes holds its manifest, which lists each of its files;
+    # a rerun into the folder replaces them (the manifests vouch for them) and nothing else.
+    files = sorted(p.relative_to(out) for p in out.rglob("*") if p.is_file())
+    for folder in {f.parent for f in files}:
+        listed = json.loads((out / folder / "manifest.json").read_text())["files"]
+        written = [f.name for f in files if f.parent == folder and f.name != "manifest.json"]
+        assert sorted(listed) == sorted(written), folder
+    assert run("demo", "--out", str(out)).exit_code == 0
+    assert sorted(p.relative_to(out) for p in out.rglob("*") if p.is_file()) == files
     assert (out / "crystals.csv").is_file()
     _check_demo_ends_with_the_numbers(r.output, out)
     cr_map = {"afm_map.json", "afm_map.nc", "afm_maps.png", "afm_histograms.png"}
@@ -160,6 +180,34 @@ def test_demo_without_the_maps_extra_leaves_the_map_out_in_one_line(tmp_path, mo
     assert "polycrystal map" in notes[0] and "contact-resonance AFM map" in notes[1]
     assert not (out / "polycrystal").exists() and not (out / "cr-map").exists()
     assert (out / "crystals.csv").is_file() and (out / "coated-contact" / "contact.csv").is_file()
+
+
+@pytest.mark.parametrize(
+    "name",
+    [
+        "crystals.csv",
+        "coated-contact/contact.csv",
+        "paper2-forward/paper2_fig2_loops.png",
+        "qcm-spectra/analysis/loads.csv",
+        "cr-map/afm_map.json",
+    ],
+)
+def test_demo_never_overwrites_a_file_of_the_users(tmp_path, monkeypatch, name):
+    """Issue 27: the demo overwrote a file of the user's under one of its names. Refused in one
+    line naming it, before the work; the file is unchanged and nothing else is written."""
+    from contactres.jobs import demo
+
+    def never(*args, **kwargs):
+        raise AssertionError("the work started before the folder was checked")
+
+    monkeypatch.setattr(demo, "run", never)
+    out = tmp_path / "demo"
+    mine = out / name
+    mine.parent.mkdir(parents=True)
+    mine.write_bytes(b"my own file\n")
+    one_line_error(run("demo", "--out", str(out)), f"({mine.name})", "did not write")
+    assert [p for p in tmp_path.rglob("*") if p.is_file()] == [mine]
+    assert mine.read_bytes() == b"my own file\n"
 
 
 def test_demo_onto_a_file_is_an_error(tmp_path):

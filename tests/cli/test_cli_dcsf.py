@@ -6,7 +6,7 @@ import json
 import numpy as np
 import pandas as pd
 import pytest
-from cli_checks import run
+from cli_checks import one_line_error, run
 
 from contactres import Material, dcsf
 
@@ -149,6 +149,41 @@ def test_figures_paper1_writes_png_and_csv(tmp_path, monkeypatch):
     assert "exact (rigid punch)" in set(pd.read_csv(tmp_path / "paper1_fig3_models.csv").curve)
     for stem, label in (("fig4_anisotropy", "A = 2 exact"), ("fig5_poisson", "ν = 0.25 exact")):
         assert label in set(pd.read_csv(tmp_path / f"paper1_{stem}.csv").curve), stem
+
+
+def test_figures_paper1_keeps_a_file_of_the_users_and_reruns(tmp_path, monkeypatch):
+    """Issue 27: a CSV of the user's under one of the figures' names is refused in one line
+    before the work (byte for byte unchanged); once it is gone, a rerun into the folder the
+    command wrote replaces its own files and keeps the user's other files."""
+    import contactres.jobs.paper1 as job
+
+    monkeypatch.setattr(job, "KLA", np.linspace(0, 2, 5))
+    monkeypatch.setattr(job, "DISPLACEMENT_KLA", (0.5,))
+    monkeypatch.setattr(job, "ZENERS", (0.5, 2.0))
+    out = tmp_path / "fig"
+    out.mkdir()
+    mine = b"kla,my_measurement\n0.5,1.25\n"
+    (out / "paper1_fig3_models.csv").write_bytes(mine)
+    (out / "notes.txt").write_bytes(b"keep\n")
+    real_run = job.run
+
+    def never(*args, **kwargs):
+        raise AssertionError("the work started before the folder was checked")
+
+    monkeypatch.setattr(job, "run", never)
+    r = run("figures", "paper1", "--out", str(out))
+    one_line_error(r, "(paper1_fig3_models.csv)", "did not write")
+    assert sorted(p.name for p in out.iterdir()) == ["notes.txt", "paper1_fig3_models.csv"]
+    assert (out / "paper1_fig3_models.csv").read_bytes() == mine
+    (out / "paper1_fig3_models.csv").unlink()
+    monkeypatch.setattr(job, "run", real_run)
+    for _ in range(2):  # the second run replaces the files the first one wrote
+        r = run("figures", "paper1", "--out", str(out))
+        assert r.exit_code == 0, r.output
+    files = json.loads((out / "manifest.json").read_text())["files"]
+    stems = ("fig2_displacement", "fig3_models", "fig4_anisotropy", "fig5_poisson", "model_ranking")
+    assert sorted(files) == sorted(f"paper1_{s}.{x}" for s in stems for x in ("csv", "png"))
+    assert (out / "notes.txt").read_bytes() == b"keep\n"
 
 
 def test_dcsf_exact_model():

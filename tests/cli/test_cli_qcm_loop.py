@@ -207,3 +207,35 @@ def test_figures_paper2(tmp_path):
     assert {"u0_m", "df_cm_Hz", "dgamma_cm_Hz", "df_savkoor_Hz", "dgamma_savkoor_Hz"} <= set(
         t.columns
     )
+
+
+def test_figures_paper2_reruns_into_its_folder_and_keeps_a_file_of_the_users(tmp_path, monkeypatch):
+    """Issue 27: a rerun replaces the files its manifest vouches for (an SVG rerun removes the
+    PNGs); a file of the user's under one of the names is refused in one line before the work,
+    byte for byte unchanged, with the folder's other files."""
+    from contactres.jobs import paper2
+
+    out = tmp_path / "fig"
+    assert run("figures", "paper2", "--out", str(out)).exit_code == 0
+    assert "paper2_fig2_loops.png" in json.loads((out / "manifest.json").read_text())["files"]
+    r = run("figures", "paper2", "--out", str(out), "--figure-format", "svg")
+    assert r.exit_code == 0, r.output
+    assert sorted(p.name for p in out.iterdir()) == [
+        "manifest.json",
+        "paper2_fig1d_shifts.csv",
+        "paper2_fig1d_shifts.svg",
+        "paper2_fig2_loops.csv",
+        "paper2_fig2_loops.svg",
+    ]
+    mine = b"<svg>my own drawing</svg>"
+    (out / "paper2_fig2_loops.svg").write_bytes(mine)
+    before = {p.name: p.read_bytes() for p in out.iterdir()}
+
+    def never(*args, **kwargs):
+        raise AssertionError("the work started before the folder was checked")
+
+    monkeypatch.setattr(paper2, "run", never)
+    r = run("figures", "paper2", "--out", str(out), "--figure-format", "svg")
+    one_line_error(r, "(paper2_fig2_loops.svg)", "did not write")
+    assert {p.name: p.read_bytes() for p in out.iterdir()} == before
+    assert (out / "paper2_fig2_loops.svg").read_bytes() == mine

@@ -2,7 +2,8 @@
 
 The parts are computed by the ``demo`` job (:mod:`contactres.jobs.demo`); each part has a
 writer here, ``write(result, out: Path) -> list[Path]``, which writes its files into ``out``
-(atomically, via :mod:`contactres.fileio`) and returns the paths it wrote. The writers run in
+(each folder as one :class:`contactres.fileio.ResultSet`, with its ``manifest.json``) and
+returns the paths it wrote. The writers run in
 the order of :data:`DEMO_WRITERS` (the order of the job's ``STEPS``).
 """
 
@@ -11,33 +12,55 @@ from __future__ import annotations
 from collections.abc import Callable
 from pathlib import Path
 
-from ..fileio import CSV_FLOAT_FORMAT, ensure_dir, write_csv
+from ..fileio import CSV_FLOAT_FORMAT, ResultSet, write_csv
 from ..jobs import demo as job
 
-__all__ = ["DEMO_WRITERS", "run_demo", "write_demo"]
+__all__ = ["DEMO_WRITERS", "check_demo_output", "run_demo", "write_demo"]
+
+
+def _tables_set(folder: Path, names: tuple[str, ...], kind: str) -> ResultSet:
+    """The result set of the demo's own files in ``folder`` (its subfolders are other sets)."""
+    return ResultSet(folder, names=names, kind=kind)
+
+
+def _crystals_set(out: Path) -> ResultSet:
+    return _tables_set(out, ("crystals.csv",), "demo")
+
+
+def _spectra_set(out: Path) -> ResultSet:
+    return _tables_set(out / "qcm-spectra", ("sweeps.csv", "fits.csv"), "demo_spectra")
+
+
+def _polycrystal_set(out: Path) -> ResultSet:
+    return _tables_set(out / "polycrystal", ("M_map.png", "fit.json"), "demo_polycrystal")
+
+
+def _coated_set(out: Path) -> ResultSet:
+    return _tables_set(out / "coated-contact", ("contact.csv",), "demo_coated_contact")
 
 
 def _write_crystals(result: job.Result, out: Path) -> list[Path]:
-    return [write_csv(out / "crystals.csv", result.crystals, float_format=CSV_FLOAT_FORMAT)]
+    with _crystals_set(out) as rs:
+        write_csv(rs.path("crystals.csv"), result.crystals, float_format=CSV_FLOAT_FORMAT)
+    return [rs.final("crystals.csv")]
 
 
 def _write_qcm_analysis(result: job.Result, out: Path) -> list[Path]:
     """Paper 2's analysis of the bundled sweeps (scripts/make_example_data.py): qcm-analysis/."""
     from ..report import write_report
 
-    return write_report(result.sweeps_analysis, ensure_dir(out / "qcm-analysis"))
+    return write_report(result.sweeps_analysis, out / "qcm-analysis")
 
 
 def _write_qcm_spectra(result: job.Result, out: Path) -> list[Path]:
     """From the instrument: qcm-spectra/ (sweeps.csv, fits.csv and the results)."""
     from ..report import write_report
 
-    folder = ensure_dir(out / "qcm-spectra")
-    written = [
-        write_csv(folder / "sweeps.csv", result.spectra_rows, float_format=CSV_FLOAT_FORMAT),
-        write_csv(folder / "fits.csv", result.spectra_fits, float_format=CSV_FLOAT_FORMAT),
-    ]
-    return written + write_report(result.spectra_analysis, ensure_dir(folder / "analysis"))
+    with _spectra_set(out) as rs:
+        write_csv(rs.path("sweeps.csv"), result.spectra_rows, float_format=CSV_FLOAT_FORMAT)
+        write_csv(rs.path("fits.csv"), result.spectra_fits, float_format=CSV_FLOAT_FORMAT)
+    written = [rs.final("sweeps.csv"), rs.final("fits.csv")]
+    return written + write_report(result.spectra_analysis, out / "qcm-spectra" / "analysis")
 
 
 def _write_paper2_forward(result: job.Result, out: Path) -> list[Path]:
@@ -71,7 +94,6 @@ def _write_polycrystal(result: job.Result, out: Path) -> list[Path]:
         or result.map_triangle is None
     ):
         return []  # the step was left out (the job says why in its warnings)
-    folder = ensure_dir(out / "polycrystal")
     fig = modulus_map_figure(
         result.map_dataset["M_Pa"].values,
         folded_normals(omap, "cubic"),
@@ -80,17 +102,17 @@ def _write_polycrystal(result: job.Result, out: Path) -> list[Path]:
         pixel_size=omap.step_x,
         material_name="Cu",
     )
-    return [
-        save_figure(folder / "M_map.png", fig),
-        write_text(folder / "fit.json", result.map_fit["json"]),
-    ]
+    with _polycrystal_set(out) as rs:
+        save_figure(rs.path("M_map.png"), fig)
+        write_text(rs.path("fit.json"), result.map_fit["json"])
+    return [rs.final("M_map.png"), rs.final("fit.json")]
 
 
 def _write_coated_contact(result: job.Result, out: Path) -> list[Path]:
     """A sphere on a coated substrate (the ``contact`` job's table): coated-contact/contact.csv."""
-    folder = ensure_dir(out / "coated-contact")
-    table = result.coated_contact
-    return [write_csv(folder / "contact.csv", table, float_format=CSV_FLOAT_FORMAT)]
+    with _coated_set(out) as rs:
+        write_csv(rs.path("contact.csv"), result.coated_contact, float_format=CSV_FLOAT_FORMAT)
+    return [rs.final("contact.csv")]
 
 
 def _write_cr_map(result: job.Result, out: Path) -> list[Path]:
@@ -115,9 +137,46 @@ DEMO_WRITERS: tuple[Callable[[job.Result, Path], list[Path]], ...] = (
 )
 
 
+def check_demo_output(out: str | Path) -> None:
+    """Check, writing nothing, that :func:`write_demo` may write into folder ``out`` (before
+    the work): every result set of its parts, the ``cr-map`` folder's included.
+
+    Raises
+    ------
+    contactres.fileio.OutputError
+        One line naming the folder and the reason, among them a file under one of the demo's
+        names that no manifest shows contactres wrote (issue 27); nothing was changed.
+    """
+    from ..jobs import qcm_sweeps
+    from ..report import report_set
+    from .afm_map import check_afm_map_output
+    from .paper1 import crystal_dcsf_set
+    from .paper2 import paper2_set
+
+    folder = Path(out)
+    for rs in (
+        _crystals_set(folder),  # first: a path that cannot be the folder is named as given
+        report_set(qcm_sweeps.Result, folder / "qcm-analysis"),
+        _spectra_set(folder),
+        report_set(qcm_sweeps.Result, folder / "qcm-spectra" / "analysis"),
+        paper2_set(folder / "paper2-forward"),
+        crystal_dcsf_set(folder / "paper1-dcsf", job.CRYSTAL_DCSF_MODEL),
+        _polycrystal_set(folder),
+        _coated_set(folder),
+    ):
+        rs.check()
+    check_afm_map_output(folder / "cr-map")
+
+
 def write_demo(result: job.Result, out: str | Path) -> list[Path]:
-    """Write every part of the demo's ``result`` into folder ``out``; return the files."""
-    folder = ensure_dir(out)
+    """Write every part of the demo's ``result`` into folder ``out``; return the files.
+
+    Each folder of the demo (``out`` itself, ``qcm-analysis``, ``qcm-spectra`` and its
+    ``analysis``, ``paper2-forward``, ``paper1-dcsf``, ``polycrystal``, ``coated-contact``,
+    ``cr-map``) is one :class:`contactres.fileio.ResultSet` with its ``manifest.json``: a rerun
+    replaces only what contactres wrote; :func:`check_demo_output` makes the checks first.
+    """
+    folder = Path(out)
     written: list[Path] = []
     for write in DEMO_WRITERS:
         written.extend(write(result, folder))
@@ -126,5 +185,5 @@ def write_demo(result: job.Result, out: str | Path) -> list[Path]:
 
 def run_demo(out: str | Path, progress: Callable[[str], None] | None = None) -> list[Path]:
     """Run the demo job and write its results into folder ``out``; return the files written."""
-    ensure_dir(out)  # a path that cannot be the folder is refused before the work
+    check_demo_output(out)  # refused before the work: a path that cannot be the folder, ...
     return write_demo(job.run(None, job.Settings(), progress), out)

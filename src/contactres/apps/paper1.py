@@ -1,7 +1,9 @@
 """The figures of paper 1 (dynamic contact stiffness of a sphere on a cubic crystal, Figs. 2-5).
 
 Abscissa: the longitudinal wave number k_l a = ω a √(ρ/C11) of the (001) face, as in the paper;
-damping Q⁻¹ = 0.02. Every figure is written as PNG together with the CSV of the plotted numbers:
+damping Q⁻¹ = 0.02. Every figure is written as PNG together with the CSV of the plotted numbers,
+the folder as one result set (:func:`paper1_set`, with its ``manifest.json``: a rerun replaces
+only what contactres wrote):
 
 * Fig. 2: ``|u_z(r̄)|``/``|u_z(0)|`` across the contact (along [100]) for several k_l a,
   A = 0.5, ν = 0.25;
@@ -22,14 +24,16 @@ import pandas as pd
 from matplotlib.figure import Figure
 from matplotlib.ticker import NullLocator
 
-from ..fileio import CSV_FLOAT_FORMAT, ensure_dir, save_figure, write_csv
+from ..fileio import ResultSet
 from ..jobs import paper1 as job
 from ..jobs.paper1 import KLA, LOSS, PAPER_MODELS
 from ..materials import Material
 from ..report.figures import key_below
+from ._sets import figures_set, write_figures
 
 __all__ = [
     "PAPER_MODELS",
+    "crystal_dcsf_set",
     "crystals_figure",
     "dcsf_curves_figure",
     "displacement_figure",
@@ -37,6 +41,7 @@ __all__ = [
     "fig4_anisotropy",
     "fig5_poisson",
     "model_ranking",
+    "paper1_set",
     "write_crystal_dcsf",
     "write_paper1_figures",
 ]
@@ -228,14 +233,24 @@ def _coincident_labels(table: pd.DataFrame, names) -> dict[str, str]:
     return labels
 
 
+def crystal_dcsf_set(out, model: str = "exact") -> ResultSet:
+    """The :class:`~contactres.fileio.ResultSet` of :func:`write_crystal_dcsf` in folder
+    ``out``: ``crystals_dcsf_MODEL.csv`` and ``.png``, with the folder's ``manifest.json``."""
+    return figures_set(out, [f"crystals_dcsf_{model}"], ("png",), kind="crystal_dcsf")
+
+
 def write_crystal_dcsf(out, model: str = "exact", curves: dict | None = None) -> list[Path]:
     """The demo step of paper 1: :func:`crystals_figure` as PNG + CSV in folder ``out``.
 
     With the model the README recommends, the exact rigid punch (the paper's figure uses WA).
-    ``curves``: :func:`contactres.jobs.paper1.crystal_curves` of that model, when computed
-    already.
+    ``out``: the folder (written as :func:`crystal_dcsf_set`; a file there under one of the
+    names that contactres cannot show it wrote is refused, nothing is changed), or that set
+    opened by the caller. ``curves``: :func:`contactres.jobs.paper1.crystal_curves` of that
+    model, when computed already.
     """
-    folder = ensure_dir(out)
+    if not isinstance(out, ResultSet):
+        with crystal_dcsf_set(out, model) as rs:
+            return write_crystal_dcsf(rs, model, curves)
     if curves is None:
         fig, table = crystals_figure(model=model)
     else:
@@ -243,10 +258,15 @@ def write_crystal_dcsf(out, model: str = "exact", curves: dict | None = None) ->
         from ..jobs import paper1 as job
 
         fig, table = _crystal_dcsf_figure(curves, job.KLA, model)
-    return [
-        write_csv(folder / f"crystals_dcsf_{model}.csv", table, float_format=CSV_FLOAT_FORMAT),
-        save_figure(folder / f"crystals_dcsf_{model}.png", fig),
-    ]
+    return write_figures(out, [(f"crystals_dcsf_{model}", fig, table)], ("png",))
+
+
+def paper1_set(out, figure_formats=("png",)) -> ResultSet:
+    """The :class:`~contactres.fileio.ResultSet` of :func:`write_paper1_figures` in folder
+    ``out`` (``figure_formats`` as there): open it, or :meth:`~contactres.fileio.ResultSet.check`
+    it, before the work, so that a file of the user's under one of the names is refused first
+    (issue 27)."""
+    return figures_set(out, job.STEMS, figure_formats, kind="paper1")
 
 
 def write_paper1_figures(
@@ -257,14 +277,20 @@ def write_paper1_figures(
 ) -> list[Path]:
     """Write Figs. 2-5 of paper 1 into folder ``out``; return the paths.
 
-    Each figure is written in every format of ``figure_formats`` (PNG only by default; ``png``,
-    ``svg``, ``pdf``: the CLI's ``--figure-format``), and its data as CSV beside it.
-    ``result``: what :func:`contactres.jobs.paper1.run` returned (else it runs here, and
-    ``progress``, optional, is called with the name of each figure before it is computed).
+    ``out``: the folder (written as :func:`paper1_set`: with a ``manifest.json``; a file there
+    under one of the names that contactres cannot show it wrote is refused,
+    :class:`contactres.fileio.OutputError`, before the work, and nothing is changed), or that
+    set opened by the caller. Each figure is written in every format of ``figure_formats``
+    (PNG only by default; ``png``, ``svg``, ``pdf``: the CLI's ``--figure-format``), and its
+    data as CSV beside it. ``result``: what :func:`contactres.jobs.paper1.run` returned (else it
+    runs here, and ``progress``, optional, is called with the name of each figure before it is
+    computed).
     """
+    if not isinstance(out, ResultSet):
+        with paper1_set(out, figure_formats) as rs:
+            return write_paper1_figures(rs, progress, result, figure_formats)
     if result is None:
         result = job.run(None, job.Settings(), progress)
-    folder = ensure_dir(out)
     kla = result.kla
     fig4_title = f"Fig. 4: WA model (thin: exact), ν = {0.25:g}, Q⁻¹ = {LOSS:g}"
     fig5_title = f"Fig. 5: WA model (thin: exact), A = {2.0:g}, Q⁻¹ = {LOSS:g}"
@@ -277,10 +303,5 @@ def write_paper1_figures(
         dcsf_curves_figure(result.fig5[0], kla, fig5_title, exact=result.fig5[1]),
         (_draw_ranking(result.ranking, result.zeners), result.ranking),
     )
-    written = []
-    for stem, (fig, table) in zip(job.STEMS, drawn, strict=True):
-        written.append(write_csv(folder / f"{stem}.csv", table, float_format=CSV_FLOAT_FORMAT))
-        for i, fmt in enumerate(figure_formats):  # drawn once; the last save closes it
-            last = i == len(figure_formats) - 1
-            written.append(save_figure(folder / f"{stem}.{fmt}", fig, close=last))
-    return written
+    stems = zip(job.STEMS, drawn, strict=True)
+    return write_figures(out, [(stem, fig, table) for stem, (fig, table) in stems], figure_formats)

@@ -3,7 +3,9 @@
 The parameters are those of the paper's experiment (glass spheres, R = 1.1 mm, ν = 0.17, a
 tripod on a 5 MHz crystal, 3rd overtone) with a round E = 70 GPa, μ = 1 and a loss tangent
 ωξ/κ = 0.1; the Savkoor traction is chosen so that both models slide at the same force μF_N.
-Every figure is written as PNG together with the CSV of the plotted numbers.
+Every figure is written as PNG together with the CSV of the plotted numbers, the folder as one
+result set (:func:`paper2_set`, with its ``manifest.json``: a rerun replaces only what
+contactres wrote).
 """
 
 from __future__ import annotations
@@ -12,12 +14,19 @@ from pathlib import Path
 
 from matplotlib.figure import Figure
 
-from ..fileio import CSV_FLOAT_FORMAT, ensure_dir, save_figure, write_csv
+from ..fileio import ResultSet
 from ..jobs import paper2 as job
 from ..jobs.paper2 import Paper2Example
 from ..report.figures import key_below
+from ._sets import figures_set, write_figures
 
-__all__ = ["Paper2Example", "loops_figure", "shifts_figure", "write_paper2_figures"]
+__all__ = [
+    "Paper2Example",
+    "loops_figure",
+    "paper2_set",
+    "shifts_figure",
+    "write_paper2_figures",
+]
 
 
 def loops_figure(example: Paper2Example | None = None, amplitudes=(10e-9, 20e-9)):
@@ -118,6 +127,18 @@ def _draw_shifts(ex: Paper2Example, table):
     return fig
 
 
+# The figures write_paper2_figures writes, each as STEM.csv and STEM.png (or the formats asked).
+_STEMS = ("paper2_fig2_loops", "paper2_fig1d_shifts")
+
+
+def paper2_set(out, figure_formats=("png",)) -> ResultSet:
+    """The :class:`~contactres.fileio.ResultSet` of :func:`write_paper2_figures` in folder
+    ``out`` (``figure_formats`` as there): open it, or :meth:`~contactres.fileio.ResultSet.check`
+    it, before the work, so that a file of the user's under one of the names is refused first
+    (issue 27)."""
+    return figures_set(out, _STEMS, figure_formats, kind="paper2")
+
+
 def write_paper2_figures(
     out,
     example: Paper2Example | None = None,
@@ -126,25 +147,21 @@ def write_paper2_figures(
 ) -> list[Path]:
     """Write Fig. 2C-D and Fig. 1D of paper 2 into folder ``out``; return the paths.
 
-    Each figure is written in every format of ``figure_formats`` (PNG only by default; ``png``,
-    ``svg``, ``pdf``: the CLI's ``--figure-format``), and its data as CSV beside it.
+    ``out``: the folder (written as :func:`paper2_set`: with a ``manifest.json``; a file there
+    under one of the names that contactres cannot show it wrote is refused,
+    :class:`contactres.fileio.OutputError`, and nothing is changed), or that set opened by the
+    caller. Each figure is written in every format of ``figure_formats`` (PNG only by default;
+    ``png``, ``svg``, ``pdf``: the CLI's ``--figure-format``), and its data as CSV beside it.
     ``result``: what :func:`contactres.jobs.paper2.run` returned (else it runs, for
     ``example``).
     """
+    if not isinstance(out, ResultSet):
+        with paper2_set(out, figure_formats) as rs:
+            return write_paper2_figures(rs, example, result, figure_formats)
     if result is None:
         result = job.run(None, job.Settings(example=example))
-    folder = ensure_dir(out)
-    written = []
-    for stem, fig, table in (
-        (
-            "paper2_fig2_loops",
-            _draw_loops(result.example, result.loops, result.turning),
-            result.loops,
-        ),
-        ("paper2_fig1d_shifts", _draw_shifts(result.example, result.shifts), result.shifts),
-    ):
-        written.append(write_csv(folder / f"{stem}.csv", table, float_format=CSV_FLOAT_FORMAT))
-        for i, fmt in enumerate(figure_formats):  # drawn once; the last save closes it
-            last = i == len(figure_formats) - 1
-            written.append(save_figure(folder / f"{stem}.{fmt}", fig, close=last))
-    return written
+    drawn = (
+        (_STEMS[0], _draw_loops(result.example, result.loops, result.turning), result.loops),
+        (_STEMS[1], _draw_shifts(result.example, result.shifts), result.shifts),
+    )
+    return write_figures(out, drawn, figure_formats)

@@ -23,12 +23,13 @@ def demo(out: str) -> None:
     \b
     Example: contactres demo --out contactres-demo
     """
-    from ..apps import write_demo
-    from ..fileio import ensure_dir
+    from ..apps import check_demo_output, write_demo
     from ..jobs import demo as job
     from ..report import friction_table
 
-    ensure_dir(out)  # a path that cannot be the folder is refused before the work
+    # Refused before the work: a path that cannot be the folder, a file of the user's under one
+    # of the demo's names (issue 27: never overwritten); nothing is changed then.
+    check_demo_output(out)
     progress = lambda title: click.echo(f"  - {title}", err=True)  # noqa: E731
     result = job.run(None, job.Settings(), progress)
     written = write_demo(result, out)

@@ -33,10 +33,14 @@ def paper1(out: str, figure_formats: tuple[str, ...]) -> None:
     \b
     Example: contactres figures paper1 --out paper1_figures
     """
-    from ..apps.paper1 import write_paper1_figures
+    from ..apps.paper1 import paper1_set, write_paper1_figures
     from ..jobs import paper1 as job
 
     progress = lambda step: click.echo(f"  - {step}", err=True)  # noqa: E731
-    result = job.run(None, job.Settings(), progress)
-    for path in write_paper1_figures(out, result=result, figure_formats=figure_formats):
+    # The folder is checked (and locked) before the work: a file of the user's under one of the
+    # names is refused first, and nothing is changed (issue 27).
+    with paper1_set(out, figure_formats) as rs:
+        result = job.run(None, job.Settings(), progress)
+        written = write_paper1_figures(rs, result=result, figure_formats=figure_formats)
+    for path in written:
         click.echo(str(path))

@@ -26,10 +26,13 @@ def paper2(out: str, figure_formats: tuple[str, ...]) -> None:
     \b
     Example: contactres figures paper2 --out paper2_figures
     """
-    from ..apps.paper2 import write_paper2_figures
+    from ..apps.paper2 import paper2_set, write_paper2_figures
     from ..jobs import paper2 as job
 
-    for path in write_paper2_figures(
-        out, result=job.run(None, job.Settings()), figure_formats=figure_formats
-    ):
+    # The folder is checked (and locked) before the work: a file of the user's under one of the
+    # names is refused first, and nothing is changed (issue 27).
+    with paper2_set(out, figure_formats) as rs:
+        result = job.run(None, job.Settings())
+        written = write_paper2_figures(rs, result=result, figure_formats=figure_formats)
+    for path in written:
         click.echo(str(path))
