@@ -346,7 +346,7 @@ def test_bad_layers_one_clear_line(layers, match):
 def test_thickness_text_picks_the_unit():
     from contactres.layered import thickness_text
 
-    cases = [(2.5e-7, "250 nm"), (1.5e-6, "1.5 µm"), (2e-3, "2 mm"), (1.0, "1 m")]
+    cases = [(2.5e-7, "250 nm"), (1e-6, "1 µm"), (1.5e-6, "1.5 µm"), (1e-3, "1 mm"), (1.0, "1 m")]
     for h, want in [*cases, (5e-10, "0.5 nm")]:
         assert thickness_text(h) == want
     assert LayeredMaterial(cr.Material.isotropic(70e9, 0.2, name="Si"), [(PMMA, 1.0)]).name == (

@@ -148,12 +148,14 @@ def thickness_text(h: float) -> str:
 
     Examples
     --------
-    >>> thickness_text(250e-9), thickness_text(1.5e-6), thickness_text(1.0)
-    ('250 nm', '1.5 µm', '1 m')
+    >>> thickness_text(250e-9), thickness_text(1e-6), thickness_text(1e-3), thickness_text(1.0)
+    ('250 nm', '1 µm', '1 mm', '1 m')
     """
     for unit, scale in (("nm", 1e-9), ("µm", 1e-6), ("mm", 1e-3)):
-        if h < 1000 * scale:
-            return f"{h / scale:.4g} {unit}"
+        # The next unit once the digits printed reach 1000 (1e-6 m is 999.99... nm: "1 µm").
+        text = f"{h / scale:.4g}"
+        if float(text) < 1000:
+            return f"{text} {unit}"
     return f"{h:.4g} m"
 
 
