@@ -23,6 +23,22 @@ basis sizes and the real-axis waves interpolated for all points at once (measure
 before / after, best of 7): one BLAS thread homogeneous 0.020 / 0.021 s, 250 nm 0.133 s (6.6x)
 / 0.111 s (5.3x), 1 µm 0.076 s (3.8x) / 0.069 s (3.3x); as shipped 250 nm 17x / 5.4x, 1 µm
 2.9x / 3.4x (the as-shipped figures move by 2-3x from run to run on the busy machine).
+Issue 26's third pass (the waves interpolated in one real product and only those no symmetry
+fixes, only H_33 formed, a grown basis's correction integrals reused by order pair, the edges
+of a decayed film not probed; results moved by <= 3e-15), in one run, main / this tree, best
+of 3, on a machine at load ~14 on 2 cores: one BLAS thread homogeneous 0.022 / 0.022 s,
+250 nm 0.113 s (5.2x) / 0.111 s (5.0x), 1 µm 0.065 s (2.9x) / 0.070 s (3.1x); as shipped
+250 nm 18.9x / 14.0x, 1 µm 9.2x / 8.8x: within the scatter of such a machine. Instructions
+executed per curve (valgrind's cachegrind, one thread: steady where CPU time is not),
+homogeneous 98 M; 250 nm 700 M (7.2x) -> 609 M (6.3x); 1 µm 444 M (4.5x) -> 367 M (3.8x).
+Why the thin film costs more: its pressure basis grows to 22 radial terms (10 -> 13 -> 18 + 4;
+the 1 µm film stops at the first, 14), and the film's Galerkin pairs, the Gram products and
+the Bessel functions of the nodes grow with it; its real-axis nodes run to η h = 5, s ≈ 250
+(~850 per point against ~330). The number of arc and Chebyshev samples, where the layer
+recursion runs, is nearly the same for both. Profile of the 250 nm curve after the pass
+(one thread): layer recursion ~17 %, interpolation of the waves ~9 %, node assembly ~9 %,
+direct waves on the arcs and the table ~10 %, film Galerkin matrices ~19 %, Bessel functions
+of the nodes ~10 %, Gram products ~8 %, film table and far field ~8 %.
 As shipped, the default BLAS threads spin on the layered path's many small matrix products (3x3
 recursion, Gram products of ~20 functions) while the machine is busy: 3-14x the CPU of one
 thread, where the homogeneous curve pays 2.4-4x.

@@ -300,14 +300,18 @@ PUBLIC = {
         "transpose",
     ],
     "layered": [
+        "MAX_THICKNESS_M",
         "FrequencyDependentMaterial",
         "LayeredMaterial",
+        "checked_thickness",
+        "compliance_factors",
         "impedance_recursion",
         "layer_waves",
         "material_at",
         "stack_compliance",
         "substrate_impedance",
         "surface_green",
+        "thickness_text",
     ],
     "materials": [
         "AT_CUT_ANGLE",

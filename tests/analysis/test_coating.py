@@ -191,7 +191,7 @@ def test_a_film_thinning_away_gives_the_uncoated_fit():
     [
         ((FILM, 0.0), "thickness"),
         ((FILM, -1e-9), "thickness"),
-        ((FILM, 2e-3), "thickness"),
+        ((FILM, 2.0), r"AnalysisSettings\(coating=\.\.\.\), layer 1\) 2.0 m is above 1 m"),
         ("pmma:250e-9", "pairs"),
         ((1.0, 250e-9), "pair"),
     ],
@@ -200,6 +200,21 @@ def test_bad_coatings_are_refused_in_one_line(coating, match):
     with pytest.raises(ContactresInputError, match=match) as err:
         AnalysisSettings(coating=coating)
     assert "\n" not in str(err.value)
+
+
+def test_the_analysis_takes_films_up_to_the_one_thickness_limit():
+    """The analysis's limit is that of every layered input (contactres.layered.MAX_THICKNESS_M,
+    as LayeredMaterial and ``--coating``): a 2 mm film is taken, 1 m + 1 mm is not, and its
+    thickness is printed in mm."""
+    from contactres.layered import MAX_THICKNESS_M
+
+    coating = AnalysisSettings(coating=(FILM, 2e-3)).coating
+    assert coating.thickness == 2e-3
+    assert coating.label.endswith(" 2 mm")
+    with pytest.raises(ContactresInputError, match="is above 1 m"):
+        AnalysisSettings(coating=(FILM, MAX_THICKNESS_M + 1e-3))
+    with pytest.raises(ContactresInputError, match="is above 1 m"):
+        cr.LayeredMaterial(cr.Material.isotropic(70e9, 0.17), [(FILM, MAX_THICKNESS_M + 1e-3)])
 
 
 def test_the_radiation_step_is_accepted_on_a_coated_plate():

@@ -422,6 +422,18 @@ def test_contact_two_coatings_top_first():
     assert 0 < row["film_share"] < 1
 
 
+def test_contact_prints_each_thickness_in_a_unit_that_reads():
+    """A film at the one limit (1 m) and one of 1.5 µm print as such, not as "1e+09 nm"; just
+    above the limit is one line naming the option and the limit."""
+    r = run("contact", "--crystal", "fused-silica", "--radius", 1.1e-3, "--force", 1e-3,
+            "--coating", "pmma:1", "--coating", "fused-silica:1.5e-6",
+            "--format", "json")  # fmt: skip
+    assert _json(r)[0]["coating"] == "PMMA 1 m on fused-silica 1.5 µm"
+    r = run("contact", "--crystal", "fused-silica", "--radius", 1.1e-3, "--force", 1e-3,
+            "--coating", "pmma:1.01")  # fmt: skip
+    one_line_error(r, "--coating pmma:1.01", "above 1 m")
+
+
 @pytest.mark.parametrize(
     "coating, words",
     [

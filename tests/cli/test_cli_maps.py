@@ -220,7 +220,7 @@ def test_predict_under_a_thick_film_gives_the_films_modulus_everywhere(small, tm
     np.testing.assert_allclose(M, _film_modulus("fused-silica"), rtol=1e-5)
     for name in ("M_Pa", "contact_radius_m", "k_star_N_per_m"):
         np.testing.assert_array_equal(ds[name].values, ref[name].values)
-    assert rec["coating"] == "fused-silica 1e+06 nm"
+    assert rec["coating"] == "fused-silica 1 mm"
     assert rec["M_coated_max_Pa"] == pytest.approx(np.nanmax(M))
     assert float(rec["M_coated_stated_error"]) <= 1e-6
 

@@ -61,7 +61,7 @@ def test_a_coated_run_prints_and_records_the_coating(sweeps, tmp_path):
         ("unobtainium:250e-9", ["unknown coating material", "pmma"]),
         ("pmma:0", ["thickness"]),
         ("pmma:-1e-9", ["thickness"]),
-        ("pmma:2e-3", ["thickness", "0.001"]),
+        ("pmma:2", ["--coating pmma:2", "thickness", "above 1 m"]),
         ("pmma250e-9", ["MATERIAL:THICKNESS"]),
     ],
 )

@@ -121,3 +121,15 @@ def test_chebyshev_matrix_interpolates_polynomials_exactly():
     x = np.array([-1.0, -0.3, xc[2], 0.77, 1.0])
     got = chebyshev_matrix(n, x) @ np.polynomial.polynomial.polyval(xc, coef)
     np.testing.assert_allclose(got, np.polynomial.polynomial.polyval(x, coef), rtol=1e-13)
+
+
+@pytest.mark.parametrize("eta_h", [0.5, np.inf])
+def test_the_probes_beyond_the_decay_of_the_film_change_nothing(monkeypatch, eta_h):
+    """The edges beyond η h₁ = 50 under a film that is its own reference are probed only where
+    Δg has not decayed yet: probing every edge (η h₁ = ∞) or stopping at 0.5 (where Δg has not
+    decayed, so the rest is probed after all) gives the same punch (measured: < 1e-15)."""
+    stack = LayeredMaterial(QUARTZ, [(PMMA, 0.05 * A)])
+    f = np.array([0.0, 2e6, 3e7])
+    want = layered_punch_stiffness(stack, A, f)
+    monkeypatch.setattr(_layered_path, "_PROBE_ETA_H", eta_h)
+    np.testing.assert_allclose(layered_punch_stiffness(stack, A, f), want, rtol=1e-13)

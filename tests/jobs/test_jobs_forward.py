@@ -138,7 +138,7 @@ def test_coating_of_the_substrate_itself_gives_the_bare_numbers(frequency, tange
     assert (bare["ellipticity"] == 1).all() and (bare["semi_major_m"] == bare["semi_minor_m"]).all()
     for col in bare.columns.drop(ellipse):
         np.testing.assert_allclose(coated[col], bare[col], rtol=1e-8, atol=0, err_msg=col)
-    assert (coated["coating"] == "fused-silica 1000 nm").all()
+    assert (coated["coating"] == "fused-silica 1 µm").all()
     assert np.isnan(coated["film_share"][0])  # no contact at F = 0
     np.testing.assert_allclose(coated["film_share"][1:], 0.0, atol=1e-8)
 

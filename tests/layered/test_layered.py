@@ -126,6 +126,27 @@ def test_against_a_global_boundary_value_solution(case, frequency):
             assert rel(H, reference_compliance(mats, hs, eta, theta, frequency)) < 1e-9
 
 
+@pytest.mark.parametrize("case", [0, 3, 4])
+def test_compliance_factors_against_the_boundary_value_solution(case):
+    """H = P Q⁻¹ of compliance_factors (the top layer's step without its two inverses) equals
+    the global boundary-value solution (one, two layers; isotropic and Si (111); lossy)."""
+    from contactres.layered import compliance_factors, layer_waves, substrate_impedance
+
+    mats, hs = CASES[case]
+    c44 = float(np.real(mats[-1].C[3, 3]))
+    frequency, theta = 15e6, np.array([0.0, 0.7, 2.2])
+    for eta in (4e6, 1e7):
+        s = [(m.density or 0.0) * (2 * np.pi * frequency) ** 2 / (c44 * eta**2) for m in mats]
+        sv = [np.full(theta.size, v, dtype=complex) for v in s]
+        tensors = [voigt_to_tensor(np.asarray(m.C, dtype=complex)) / c44 for m in mats]
+        layers = [layer_waves(c, theta, v) for c, v in zip(tensors[:-1], sv, strict=False)]
+        eta_h = [np.full(theta.size, eta * h, dtype=complex) for h in hs]
+        P, Q = compliance_factors(layers, eta_h, substrate_impedance(tensors[-1], theta, sv[-1]))
+        for k, th in enumerate(theta):
+            H = P[..., k] @ np.linalg.inv(Q[..., k])
+            assert rel(H, reference_compliance(mats, hs, eta, th, frequency)) < 1e-9
+
+
 @pytest.mark.parametrize("frequency", [15e6, 300e6])
 def test_complex_wavenumber_of_a_lossless_stack_against_the_boundary_value_solution(frequency):
     # Im η > 0: the decaying rule of the substrate (Re λ < 0 of N, i.e. Im p > 0) in both codes,
@@ -320,6 +341,44 @@ def test_bad_layers_one_clear_line(layers, match):
     with pytest.raises(ContactresInputError, match=match) as err:
         LayeredMaterial(QUARTZ, layers)
     assert "\n" not in str(err.value)
+
+
+def test_thickness_text_picks_the_unit():
+    from contactres.layered import thickness_text
+
+    cases = [(2.5e-7, "250 nm"), (1e-6, "1 µm"), (1.5e-6, "1.5 µm"), (1e-3, "1 mm"), (1.0, "1 m")]
+    for h, want in [*cases, (5e-10, "0.5 nm")]:
+        assert thickness_text(h) == want
+    assert LayeredMaterial(cr.Material.isotropic(70e9, 0.2, name="Si"), [(PMMA, 1.0)]).name == (
+        f"{PMMA.name or 'film'} 1 m on Si"
+    )
+
+
+def test_one_thickness_rule_for_every_layered_input():
+    """LayeredMaterial, ``--coating`` (jobs.contact.parse_coating) and the analysis's coating
+    take the same thicknesses: up to MAX_THICKNESS_M (1 m) inclusive, nothing above."""
+    from contactres.analysis._coating import as_coating
+    from contactres.jobs.contact import parse_coating
+    from contactres.layered import MAX_THICKNESS_M, checked_thickness
+
+    assert MAX_THICKNESS_M == 1.0
+    sub = cr.Material.isotropic(70e9, 0.2)
+    ok, bad = MAX_THICKNESS_M, MAX_THICKNESS_M * (1 + 1e-9)
+    assert checked_thickness(ok, "x") == ok
+    assert LayeredMaterial(sub, [(PMMA, ok)]).thicknesses[0] == ok
+    assert parse_coating([f"pmma:{ok!r}"])[0][1] == ok
+    assert as_coating((PMMA, ok)).thickness == ok
+    for make in (
+        lambda: checked_thickness(bad, "x thickness"),
+        lambda: LayeredMaterial(sub, [(PMMA, bad)]),
+        lambda: parse_coating([f"pmma:{bad!r}"]),
+        lambda: as_coating((PMMA, bad), "--coating"),
+    ):
+        with pytest.raises(ContactresInputError, match=r"is above 1 m") as err:
+            make()
+        assert "\n" not in str(err.value)
+    with pytest.raises(ContactresInputError, match=r"^coating thickness \(--coating, layer 1\)"):
+        as_coating((PMMA, bad), "--coating")
 
 
 def test_bad_materials_and_arguments():

@@ -72,7 +72,7 @@ from scipy.interpolate import CubicSpline, PPoly
 
 from ..errors import ContactresInputError
 from ..fitting import FitResult, Model, Parameter, fit
-from ..layered import LayeredMaterial
+from ..layered import LayeredMaterial, checked_thickness, thickness_text
 from ..materials import Material
 from ..normal import jkr_contact_radius, sphere_contact_at, static_punch_stiffness
 from ..numerics import illinois_step
@@ -81,7 +81,6 @@ from ..units import POISSON_OPEN_RANGE
 from ._jkr import LoadLaw, fit_group
 
 __all__ = [
-    "MAX_COATING_THICKNESS_M",
     "STATIC_FREQUENCY_HZ",
     "CoatedLaw",
     "Coating",
@@ -93,8 +92,6 @@ __all__ = [
     "resampled_coated",
 ]
 
-#: The thickest film the analysis takes, m (a thicker "film" is a typing slip: nm or µm).
-MAX_COATING_THICKNESS_M = 1e-3
 #: The frequency at which a frequency-dependent film's storage constants stand for its static
 #: ones, Hz (the normal load is static).
 STATIC_FREQUENCY_HZ = 1.0
@@ -131,9 +128,10 @@ class Coating:
 
     @property
     def label(self) -> str:
-        """E.g. ``"PMMA 250 nm"`` (layers top first, joined by "on")."""
+        """E.g. ``"PMMA 250 nm"`` (layers top first, joined by "on"; each thickness in the
+        unit that reads best, :func:`contactres.layered.thickness_text`)."""
         return " on ".join(
-            f"{getattr(m, 'name', None) or 'film'} {h * 1e9:.4g} nm" for m, h in self.layers
+            f"{getattr(m, 'name', None) or 'film'} {thickness_text(h)}" for m, h in self.layers
         )
 
     @property
@@ -152,38 +150,43 @@ class Coating:
         }
 
 
-def as_coating(value) -> Coating | None:
+def as_coating(value, option: str = "coating") -> Coating | None:
     """The :class:`Coating` of ``value``: None, a Coating, one (material, thickness_m) pair or
     a sequence of them (top first).
+
+    Parameters
+    ----------
+    value : None, Coating, pair or sequence of pairs
+        The film(s), thicknesses in m.
+    option : str
+        The option or argument the value came from, named by the error line (e.g.
+        ``"--coating"`` for a command's, ``"AnalysisSettings(coating=...)"``).
 
     Raises
     ------
     ContactresInputError
-        One line: a text (names are read by the command line,
+        One line naming ``option``: a text (names are read by the command line,
         :func:`contactres.jobs.contact.parse_coating`), something not a material, or a
-        thickness that is not in (0, 1 mm].
+        thickness outside (0, :data:`contactres.layered.MAX_THICKNESS_M`] (the one rule of
+        every layered input, :func:`contactres.layered.checked_thickness`).
     """
     if value is None or isinstance(value, Coating):
         return value
     if isinstance(value, str):
         raise ContactresInputError(
-            f"coating {value!r}: give (material, thickness_m) pairs, e.g. (contactres.pmma(), "
-            "250e-9); contactres.jobs.contact.parse_coating('pmma:250e-9') makes them from text"
+            f"coating ({option}) {value!r}: give (material, thickness_m) pairs, e.g. "
+            "(contactres.pmma(), 250e-9); contactres.jobs.contact.parse_coating('pmma:250e-9') "
+            "makes them from text"
         )
     pairs = [value] if _is_pair(value) else list(value) if isinstance(value, Sequence) else None
     if not pairs or not all(_is_pair(p) for p in pairs):
         raise ContactresInputError(
-            f"coating must be a (material, thickness_m) pair or a sequence of them, got {value!r}"
+            f"coating ({option}) must be a (material, thickness_m) pair or a sequence of them, "
+            f"got {value!r}"
         )
     layers = []
-    for m, h in pairs:
-        h = float(h)
-        if not (math.isfinite(h) and 0 < h <= MAX_COATING_THICKNESS_M):
-            raise ContactresInputError(
-                f"coating thickness {h!r} m must be > 0 and <= {MAX_COATING_THICKNESS_M:g} m "
-                "(give metres: 250 nm = 250e-9)"
-            )
-        layers.append((m, h))
+    for j, (m, h) in enumerate(pairs, start=1):
+        layers.append((m, checked_thickness(h, f"coating thickness ({option}, layer {j})")))
     return Coating(tuple(layers))
 
 

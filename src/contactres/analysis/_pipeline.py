@@ -141,7 +141,7 @@ class AnalysisSettings:
         ``(contactres.pmma(), 250e-9)``; from text, ``"pmma:250e-9"``, with
         :func:`contactres.jobs.contact.parse_coating`): E and γ are then fitted with the coated
         plate's contact mechanics (step 9), E the Young's modulus of the sphere and of the
-        plate's substrate. Thickness in (0, 1 mm]. With the radiation materials, the radiation
+        plate's substrate. Thickness in (0, 1 m]. With the radiation materials, the radiation
         loss is that of the coated plate (step 8).
     """
 
@@ -188,7 +188,9 @@ class AnalysisSettings:
             # Imported here: an analysis without a coating loads no layered solver.
             from ._coating import as_coating
 
-            object.__setattr__(self, "coating", as_coating(self.coating))
+            object.__setattr__(
+                self, "coating", as_coating(self.coating, "AnalysisSettings(coating=...)")
+            )
 
 
 def _sensitivity(info: pd.DataFrame, zq: float) -> np.ndarray:

@@ -346,7 +346,7 @@ def radiation_loss(
     if coating is not None:
         from ._coating import as_coating
 
-        coating = as_coating(coating)
+        coating = as_coating(coating, "radiation_loss(coating=...)")
     n = len(loads)
     f = np.broadcast_to(np.asarray(frequency_Hz, dtype=float), (n,)).copy()
     a, note = _radii(loads, groups) if coating is None else _coated_radii(loads, groups)

@@ -120,7 +120,7 @@ from ._common import (
     "--coating",
     multiple=True,
     metavar="MATERIAL:THICKNESS",
-    help="A film on the plate, thickness in m (at most 1e-3; e.g. pmma:250e-9); repeat for "
+    help="A film on the plate, thickness in m (at most 1; e.g. pmma:250e-9); repeat for "
     "more layers, top first. MATERIAL: pmma (its 1 Hz storage modulus for the normal load, its "
     "modulus at the overtone frequency for κ) or an isotropic solid of `contactres crystals` "
     "(fused-silica, soda-lime-glass, Si3N4). E and γ are then fitted with the coated plate's "

@@ -50,6 +50,9 @@ __all__ = [
 # T = _POLE_FACTOR × ω × (largest bulk slowness): beyond every pole and branch point (the same
 # margin as the far-field start T₁ of the kernel table).
 _POLE_FACTOR = 1.75
+# η h₁ (top film) beyond which the edges of a film that is its own reference are probed only
+# where Δg has not decayed yet (:func:`_probes`).
+_PROBE_ETA_H = 50.0
 # Largest η a of the correction's nodes: a film thinner than ~a/1e5 is out of reach (the nodes
 # resolve the oscillation of j_p j_q, ~3 per unit of s).
 _S_MAX = 1e6
@@ -206,9 +209,17 @@ def stack_at(
             slow = math.sqrt((m.density or 0.0) / shear_reference(m))
             known[key] = (slow, slow * max_slowness(m), is_axisymmetric([m]))
         props.append(known[key])
+
+    def tensor(m, factor=1.0):
+        # The tensor / C44_f of one material, formed once over the frequencies.
+        key = ("tensor", np.asarray(m.C).tobytes(), factor, c44)
+        if key not in known:
+            known[key] = voigt_to_tensor(np.asarray(m.C, dtype=complex)) * factor / c44
+        return known[key]
+
     return Stack(
-        tensors=[voigt_to_tensor(np.asarray(m.C, dtype=complex)) / c44 for m in mats],
-        reference=voigt_to_tensor(np.asarray(film.C, dtype=complex)) * (1 + 1j * q) / c44,
+        tensors=[tensor(m) for m in mats],
+        reference=tensor(film, 1 + 1j * q),
         sigma=[(m.density or 0.0) / c44 for m in mats],
         omega=omega,
         thicknesses=np.asarray(thicknesses, dtype=float),
@@ -351,7 +362,8 @@ def _chunk_nodes(shared: _SharedWaves, stacks, radii, index, res: PunchResolutio
         s0 = 0.1 * min(1.0, a / h_tot) if h_tot > 0 else 0.1
         # The geometric panels start at the end of the arc, where Δg varies on the scale S₁
         # (one panel [S₁, s₀] would not resolve it at small k a); in statics after a first
-        # panel [0, s₀]. Their edges e_k = start × ratio^k up to _S_MAX are probed together:
+        # panel [0, s₀]. Their edges e_k = start × ratio^k up to _S_MAX are probed together
+        # (past η h₁ = 50 only where Δg has not decayed, :func:`_probes`):
         # the last panel ends past every edge where what lies beyond (~|Δg(e)|/e, as
         # j_p j_q <= 1/s²) is still above 1e-3 rtol of |g|; Δg of layers decays like e^{−2ηh}
         # (η h > 5 first), that of a film with unequal losses like 1/s² (s > 20 first, for the
@@ -360,8 +372,7 @@ def _chunk_nodes(shared: _SharedWaves, stacks, radii, index, res: PunchResolutio
         n_edges = math.ceil(math.log(_S_MAX / start) / math.log(res.ratio)) + 1
         edges = start * res.ratio ** np.arange(n_edges + 1, dtype=np.float64)
         plan.append((st, a, h_tot, s0, edges))
-    at_edges = [(st, a, e) for st, a, _, _, e in plan]
-    probes = _delta_g(shared, at_edges, shared.real_all(at_edges))
+    probes = _probes(shared, plan, res.decay * gref)
     parts, lasts = [], []
     xc = np.cos(np.pi * (np.arange(res.n_cheb) + 0.5) / res.n_cheb)
     for (st, a, h_tot, s0, edges), probe in zip(plan, probes, strict=True):
@@ -395,6 +406,39 @@ def _chunk_nodes(shared: _SharedWaves, stacks, radii, index, res: PunchResolutio
         edges, last, values = plan[k][4], lasts[k], samples[k]
         out[i] = _assemble_nodes(res, rule, edges, last, parts[k][2], values, shared.shift)
     return out
+
+
+def _probes(shared: _SharedWaves, plan, threshold: float) -> list:
+    """Δg at the edges of every point of ``plan`` [(stack, a, h_tot, s₀, edges), ...].
+
+    Under a film that is its own reference, Δg decays like e^{−2 α η h₁} (h₁ the film's
+    thickness, α the slowest decay rate of its partial waves) once past the poles: the edges
+    beyond η h₁ = :data:`_PROBE_ETA_H` are probed only for the points whose last edge before
+    it is not yet 1e-12 below the decay threshold (``threshold`` = decay × ``|g|``, what
+    ``|Δg|``/s is compared with); the others' are zero (far below round-off of the result)."""
+    stack = shared.stack
+    own = len(stack.tensors) > 1 and np.array_equal(stack.reference, stack.tensors[0])
+    n_probe = [
+        max(1, int(np.sum(e * st.thicknesses[0] / a <= _PROBE_ETA_H))) if own else e.size
+        for st, a, _, _, e in plan
+    ]
+    first = [(st, a, e[:n]) for (st, a, _, _, e), n in zip(plan, n_probe, strict=True)]
+    out = _delta_g(shared, first, shared.real_all(first))
+    rest = [
+        k
+        for k, ((*_, e), n, value) in enumerate(zip(plan, n_probe, out, strict=True))
+        if n < e.size and not np.max(np.abs(value[n - 1])) / e[n - 1] < 1e-12 * threshold
+    ]
+    if rest:
+        more = [(plan[k][0], plan[k][1], plan[k][4][n_probe[k] :]) for k in rest]
+        for k, value in zip(rest, _delta_g(shared, more, shared.real_all(more)), strict=True):
+            out[k] = np.concatenate([out[k], value])
+    probes = []
+    for (*_, e), value in zip(plan, out, strict=True):
+        full = np.zeros((e.size, *value.shape[1:]), dtype=value.dtype)
+        full[: value.shape[0]] = value
+        probes.append(full)
+    return probes
 
 
 def grid_width(res: PunchResolution) -> float:
@@ -510,17 +554,20 @@ def bessel_on_nodes(p_max: int, nodes: dict, res: PunchResolution, transform) ->
     }
 
 
-def weighted_gram(parts, v: np.ndarray) -> np.ndarray:
+def weighted_gram(parts, v: np.ndarray, cols=None) -> np.ndarray:
     """Σ_n J_an v_kn J_bn (K, R, R) over a point's nodes, from its two parts (own, grid) of J
     (:func:`bessel_on_nodes`) and K rows of weights ``v`` (K, n) on all its nodes (own
-    first): one batched matrix product per part."""
+    first): one batched matrix product per part. ``cols``: only the columns b in ``cols``
+    (K, R, len(cols)) (the rows of a basis grown by a few orders: the others are known)."""
     own, grid = parts
+    right_own = own if cols is None else own[cols]
+    right_grid = grid if cols is None else grid[cols]
     n, k = own.shape[1], v.shape[0]
-    out = (own[None] * v[:, None, :n]) @ own.T
+    out = (own[None] * v[:, None, :n]) @ right_own.T
     # The grid's J is real: the real and imaginary parts of v as 2K real products (half the
     # arithmetic of complex ones).
     both = np.concatenate([v.real[:, n:], v.imag[:, n:]])
-    g = (grid[None] * both[:, None, :]) @ grid.T
+    g = (grid[None] * both[:, None, :]) @ right_grid.T
     return out + (g[:k] + 1j * g[k:])
 
 

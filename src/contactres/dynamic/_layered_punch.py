@@ -54,7 +54,10 @@ if the film depends on frequency). The substrate and lower layers may have any c
 
 Size of the pressure basis: the default of the exact model at the largest k_s a of any material
 of the stack, grown until four more radial terms move N by less than rtol/10 (a thin film on a
-much stiffer or softer substrate concentrates the pressure near the edge and needs more).
+much stiffer or softer substrate concentrates the pressure near the edge and needs more). A
+grown basis reuses the integrals of the order pairs it had (the film's and the correction's:
+an integral over a pair does not depend on the basis it belongs to), so each pair is
+integrated once.
 
 Accuracy (tests/dynamic/test_layered_punch.py, measured): homogeneous isotropic against the
 Fredholm disk 1e-8-2.6e-8 (k_s a = 0.3-2); a lossy stack (Q⁻¹ = 1e-3, PMMA h = 0.2a on quartz)
@@ -120,18 +123,54 @@ __all__ = [
 _MAX_RADIAL = 48
 
 
-def _correction_integrals(jp, w, dg_harm, plan, s_end, end_harm) -> np.ndarray:
-    """∫ Δg_m j_p j_q ds, (n_m, n_t), from j_p at the nodes (``jp``: the plan's orders, own and
-    grid parts of ``_layered_path.bessel_on_nodes``), the
-    weights and the harmonics Δg_m (n_m, len(s)),
-    with the tail beyond ``s_end``: Δg ~ Δg(S) S²/s² (its 1/s² decay) and j_p j_q ->
-    (−1)^{(p−q)/2}/(2s²) on average, so the tail is Δg_m(S) (−1)^{(p−q)/2}/(6S)."""
-    orders, (ti, tj) = plan.orders, plan.pairs
-    sign = np.where(((orders[ti] - orders[tj]) // 2) % 2 == 0, 1.0, -1.0)
-    out = end_harm[:, None] * sign[None, :] / (6 * s_end)
-    # Every harmonic and order pair at once: J diag(w Δg_m) Jᵀ (one batched matrix product).
-    out += weighted_gram(jp, w[None, :] * dg_harm)[:, ti, tj]
+def _correction_integrals(jp, w, dg_harm, s_end, end_harm, pairs, known=None) -> np.ndarray:
+    """∫ Δg_m j_p j_q ds (n_m, n_t) from j_p at the nodes (``jp``: the plan's orders, own and
+    grid parts of ``_layered_path.bessel_on_nodes``), the weights and the harmonics Δg_m
+    (n_m, len(s)), with the tail beyond ``s_end``: Δg ~ Δg(S) S²/s² (its 1/s² decay) and
+    j_p j_q -> (−1)^{(p−q)/2}/(2s²) on average, so the tail is Δg_m(S) (−1)^{(p−q)/2}/(6S).
+
+    ``pairs``: :func:`_new_pairs` of the plan; ``known``: what this call returned for the
+    previous (smaller) basis on the same nodes, whose pairs' integrals are reused."""
+    new, at, a, cols, pos, sign = pairs
+    out = np.empty((dg_harm.shape[0], new.size), dtype=complex)
+    if known is not None:
+        out[:, ~new] = known[:, at]
+    # Every harmonic and new column at once: J diag(w Δg_m) J[cols]ᵀ (one batched product).
+    gram = weighted_gram(jp, w[None, :] * dg_harm, cols)
+    out[:, new] = end_harm[:, None] * sign[None, :] / (6 * s_end)
+    out[:, new] += gram[:, a, pos]
     return out
+
+
+def _new_pairs(plan, previous):
+    """Which order pairs of ``plan`` the basis ``previous`` (its plan, or None) lacked, and how
+    to form them: (new (n_t,) bool, index in ``previous``'s pairs of the others, then for the
+    new ones the row order index, the columns to form (indices into the plan's orders), each
+    one's column among them, and the tail's sign (−1)^{(p−q)/2}). A pair's integral does not
+    depend on the basis it belongs to; the Gram matrix is symmetric in p and q, so a new pair
+    is read from the column of one of its new orders."""
+    orders, (ti, tj) = plan.orders, plan.pairs
+    keys = orders[ti] * _PAIR_KEY + orders[tj]
+    new = np.ones(keys.size, dtype=bool)
+    at = np.zeros(0, dtype=int)
+    fresh = np.ones(orders.size, dtype=bool)
+    if previous is not None and np.array_equal(previous.ms, plan.ms):
+        po, (pi, pj) = previous.orders, previous.pairs
+        old_keys = po[pi] * _PAIR_KEY + po[pj]
+        by_key = np.argsort(old_keys)
+        where = by_key[np.minimum(np.searchsorted(old_keys[by_key], keys), old_keys.size - 1)]
+        new = old_keys[where] != keys
+        at = where[~new]
+        fresh = ~np.isin(orders, po)
+    a, b = ti[new], tj[new]
+    col = np.where(fresh[b], b, a)
+    cols = np.unique(col)
+    sign = np.where(((orders[a] - orders[b]) // 2) % 2 == 0, 1.0, -1.0)
+    return new, at, a + b - col, cols, np.searchsorted(cols, col), sign
+
+
+# Keys of order pairs (p, q): p × _PAIR_KEY + q (orders stay far below it).
+_PAIR_KEY = 4096
 
 
 def _harmonics_of(values, plan, axisymmetric: bool) -> np.ndarray:
@@ -440,6 +479,9 @@ def _punch(table, film, items, radii, rtol, res) -> np.ndarray:
     pos = ksa > 0
     far = far_basis(table, ksa[pos]) if np.any(pos) else None
     known = None
+    # Each point's correction integrals and their plan, reused by the grown basis.
+    reuse: dict = {}
+    previous = None
     while True:
         grow = n_radial + 4 if nodes else n_radial
         size = GalerkinSize(grow, 0 if axisymmetric else n_harm)
@@ -447,11 +489,16 @@ def _punch(table, film, items, radii, rtol, res) -> np.ndarray:
         orders, (ti, tj) = plan.orders, plan.pairs
         diag = np.where(ti == tj, np.pi / (2 * (2 * orders[ti] + 1)), 0.0)
         jps = bessel_on_nodes(int(orders[-1]), nodes, res, lambda J, o=orders: J[o])
+        pairs = _new_pairs(plan, previous)
+        reused = previous is not None and np.array_equal(previous.ms, plan.ms)
         for i, v in nodes.items():
             shift = _harmonics_of(v.shift[None, :], plan, axisymmetric)
             harm = _harmonics_of(v.delta_g, plan, axisymmetric)
             end_h = _harmonics_of(v.end[None, :], plan, axisymmetric)[:, 0]
-            integral = _correction_integrals(jps[i], v.weights, harm, plan, v.s_end, end_h)
+            integral = _correction_integrals(
+                jps[i], v.weights, harm, v.s_end, end_h, pairs, reuse[i] if reused else None
+            )
+            reuse[i] = integral
             # The static difference of film and reference: closed form, as in the exact model.
             M[i] += _assemble(integral + shift[:, 0][:, None] * diag[None, :], plan)
         c_big = _solve_c0(M, grow, plan)
@@ -461,4 +508,5 @@ def _punch(table, film, items, radii, rtol, res) -> np.ndarray:
         if np.max(np.abs(c_big / c_small - 1)) < rtol / 10 or grow >= _MAX_RADIAL:
             break
         n_radial = min(_MAX_RADIAL - 4, math.ceil(1.5 * n_radial))
+        previous = plan
     return 4 * np.pi**2 * radii * c44 * c_big

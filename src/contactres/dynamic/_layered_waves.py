@@ -15,23 +15,28 @@ only the layer exponentials exp(η h A) and the recursion over them do. So:
   point or the Rayleigh pole of one material) beyond y = 1.75²/1.1² ≈ 2.5, so
   :data:`_N_TABLE` points give round-off (checked at construction against direct solutions at
   points between the nodes; a stack where they differ by more than :data:`_TABLE_TOL` is
-  solved directly, as without a table);
+  solved directly, as without a table). The interpolation is one real matrix product for
+  every entry of every array, and it forms only what the others do not fix (a mirror-plane
+  layer's D_u and A_u are sign changes of D_d and A_d; a film with one loss tangent is its
+  own reference);
 - on the lifted arc s = S₁ (τ + 0.3 i sin πτ), S₁ = T a, x = 1/(p₁ (τ + 0.3 i sin πτ))²
   does not depend on the frequency either (wherever the lift is 0.3 S₁, i.e. S₁ <= 10/3), so
   one set of arc solutions serves all those frequencies;
 - in statics (ω = 0) x = 0 at every η: one solution per direction.
 
-The recursion (:func:`contactres.layered.impedance_recursion`) then runs once over the nodes of
-all frequencies together. Results equal the direct solution of every node to the table's
-accuracy (measured: < 1e-13 relative on PMMA over quartz, isotropic and cubic (111) films).
+The recursion (:func:`contactres.layered.compliance_factors`) then runs once over the nodes of
+all frequencies together, and only H_33 (or the in-plane block) of the stack's and the
+reference's compliance is formed from it. Results equal the direct solution of every node to
+the table's accuracy (measured: < 1e-13 relative on PMMA over quartz, isotropic and cubic (111)
+films).
 """
 
 from __future__ import annotations
 
 import numpy as np
 
-from ..halfspace import inv3
-from ..layered import impedance_recursion, layer_waves, substrate_impedance
+from ..halfspace import inv3, mm
+from ..layered import compliance_factors, layer_waves, substrate_impedance
 
 __all__ = ["StackWaves", "arc_fraction", "chebyshev_matrix", "waves_at"]
 
@@ -69,14 +74,16 @@ def chebyshev_matrix(n: int, x: np.ndarray) -> np.ndarray:
 class StackWaves:
     """The layer waves, substrate and reference impedances of one stack on a set of nodes ×
     directions: ``layers`` [(waves (4, 3, 3, n, nθ), mirror)], ``substrate`` and ``reference``
-    (3, 3, n, nθ). Built by :func:`waves_at` or by interpolation (:meth:`combined`)."""
+    (3, 3, n, nθ). Built by :func:`waves_at` or by interpolation (:meth:`combined`).
+    ``own_reference``: the reference is the top layer's D_d (a film with one loss tangent)."""
 
-    __slots__ = ("layers", "reference", "substrate")
+    __slots__ = ("layers", "own_reference", "reference", "substrate")
 
-    def __init__(self, layers, substrate, reference):
+    def __init__(self, layers, substrate, reference, own_reference: bool = False):
         self.layers = layers
         self.substrate = substrate
         self.reference = reference
+        self.own_reference = own_reference
 
     @property
     def size(self) -> int:
@@ -87,16 +94,49 @@ class StackWaves:
 
     def _with(self, arrays) -> StackWaves:
         layers = [(a, m) for a, (_, m) in zip(arrays, self.layers, strict=False)]
-        return StackWaves(layers, arrays[-2], arrays[-1])
+        return StackWaves(layers, arrays[-2], arrays[-1], self.own_reference)
 
     def interpolated(self, B: np.ndarray) -> StackWaves:
         """The waves at the nodes whose Chebyshev row vectors are ``B`` (m, n)."""
-        out = []
-        for a in self.arrays():
-            # (m, n) @ (K, n, nθ) -> (K, m, nθ): one batched matrix product per array.
-            flat = a.reshape(-1, *a.shape[-2:])
-            out.append(np.matmul(B, flat).reshape((*a.shape[:-2], B.shape[0], a.shape[-1])))
-        return self._with(out)
+        m, n = B.shape
+        # Only what the others do not fix: D_d and A_d of a mirror-plane layer (D_u = −M D_d M,
+        # A_u = M A_d M, M = diag(1, 1, −1): the interpolation commutes with these sign
+        # changes, so they are exact), and no reference that is the top layer's D_d.
+        arrays = [w[0::2] if mirror else w for w, mirror in self.layers] + [self.substrate]
+        if not self.own_reference:
+            arrays.append(self.reference)
+        # Every entry of every array as one row of a (K, n) complex matrix, its real and
+        # imaginary parts stacked: one real (2K, n) @ (n, m) product for all of them (a batched
+        # complex product per array is ~50 matrix-vector products of B), each entry's values
+        # at the nodes contiguous, as the recursion reads them.
+        rows = [np.swapaxes(a, -1, -2).reshape(-1, n) for a in arrays]
+        both = np.concatenate([r.real for r in rows] + [r.imag for r in rows])
+        prod = both @ B.T
+        k = prod.shape[0] // 2
+        out, start = [], 0
+        for a, r in zip(arrays, rows, strict=True):
+            # The result's parts written in place (no complex temporary, no copy).
+            part = np.empty((*a.shape[:-2], a.shape[-1], m), dtype=complex)
+            flat = part.reshape(r.shape[0], m)
+            flat.real = prod[start : start + r.shape[0]]
+            flat.imag = prod[k + start : k + start + r.shape[0]]
+            out.append(np.swapaxes(part, -1, -2))
+            start += r.shape[0]
+        layers = []
+        for (_, mirror), w in zip(self.layers, out, strict=False):
+            if mirror:
+                full = np.empty((4, *w.shape[1:]), dtype=complex)
+                full[0::2] = w
+                full[3] = w[1]
+                np.negative(w[0], out=full[1])
+                full[1, :2, 2] *= -1
+                full[1, 2, :2] *= -1
+                full[3, :2, 2] *= -1
+                full[3, 2, :2] *= -1
+                w = full
+            layers.append((w, mirror))
+        reference = layers[0][0][0] if self.own_reference else out[-1]
+        return StackWaves(layers, out[len(self.layers)], reference, self.own_reference)
 
     def repeated(self, counts) -> StackWaves:
         """Node j taken ``counts[j]`` times (a single static node broadcast to many)."""
@@ -121,13 +161,35 @@ class StackWaves:
 
         layers = [(flat(w), m) for w, m in self.layers]
         eh = [np.repeat(np.asarray(e, dtype=complex), nth) for e in eta_h]
+        # H = P Q⁻¹ (compliance_factors; P = I without layers) and H_ref = reference⁻¹: only
+        # the entries the kernel needs (H_33, or the in-plane block).
         with np.errstate(all="ignore"):
-            H = inv3(impedance_recursion(layers, eh, flat(self.substrate)))
-            H_ref = inv3(flat(self.reference))
-        H, H_ref = (np.moveaxis(x, (0, 1), (-2, -1)).reshape(n, nth, 3, 3) for x in (H, H_ref))
-        if stack.inplane:
-            return H_ref[..., :2, :2] - H[..., :2, :2] - shift[None]
-        return H_ref[..., 2, 2] - H[..., 2, 2] - shift[None]
+            if layers:
+                P, Q = compliance_factors(layers, eh, flat(self.substrate))
+            else:
+                P, Q = None, flat(self.substrate)
+            ref = flat(self.reference)
+            if stack.inplane:
+                Qi = inv3(Q)
+                H = Qi if P is None else mm(P, Qi)
+                out = inv3(ref)[:2, :2] - H[:2, :2]
+                return np.moveaxis(out, (0, 1), (-2, -1)).reshape(n, nth, 2, 2) - shift[None]
+            col = _inverse_column(Q)
+            h33 = col[2] if P is None else P[2, 0] * col[0] + P[2, 1] * col[1] + P[2, 2] * col[2]
+            out = _inverse_column(ref)[2] - h33
+        return out.reshape(n, nth) - shift[None]
+
+
+def _inverse_column(a: np.ndarray) -> list:
+    """The third column of the inverse of every stacked 3x3 matrix a (3, 3, N), by the
+    adjugate formula of :func:`contactres.halfspace.inv3` (the same arithmetic)."""
+    (a00, a01, a02), (a10, a11, a12), (a20, a21, a22) = a
+    r = 1.0 / (
+        a00 * (a11 * a22 - a12 * a21)
+        + a01 * (a12 * a20 - a10 * a22)
+        + a02 * (a10 * a21 - a11 * a20)
+    )
+    return [(a01 * a12 - a02 * a11) * r, (a02 * a10 - a00 * a12) * r, (a00 * a11 - a01 * a10) * r]
 
 
 def waves_at(stack, theta: np.ndarray, x) -> StackWaves:
@@ -153,7 +215,8 @@ def waves_at(stack, theta: np.ndarray, x) -> StackWaves:
         reference = layers[0][0][0]
     else:
         reference = shaped(substrate_impedance(stack.reference, th, sv[0]))
-    return StackWaves(layers, substrate, reference)
+    own = bool(layers) and np.array_equal(stack.reference, stack.tensors[0])
+    return StackWaves(layers, substrate, reference, own)
 
 
 def slowness_table(stack, theta: np.ndarray) -> StackWaves | None:

@@ -43,7 +43,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ..errors import ContactresInputError
-from ..layered import LayeredMaterial
+from ..layered import LayeredMaterial, checked_thickness, thickness_text
 from ..materials import Material, require_material
 from ..measurements.schema import CONTACT_TABLE
 from ..validation import nonnegative
@@ -85,9 +85,6 @@ HERTZ_APPROXIMATE_RATIO = 0.1
 #: answer; most likely a radius or a force typed in the wrong unit (issue 30: R = 20 nm and F =
 #: 1 N gave a/R = 24 and p0 = 2 TPa).
 HERTZ_MAX_RATIO = 0.5
-# Thicker than this is not a film (as contactres.LayeredMaterial); larger values are most
-# likely thicknesses typed in nm or µm.
-_MAX_THICKNESS_M = 1.0
 
 
 @dataclass(frozen=True)
@@ -336,22 +333,16 @@ def _coating_material(name: str):
 
 
 def _thickness(text, spec) -> float:
-    """A layer's thickness in m from ``text`` (a number or its text), checked."""
+    """A layer's thickness in m from ``text`` (a number or its text), checked by the one rule
+    of contactres (:func:`contactres.layered.checked_thickness`)."""
     try:
         h = float(text)
     except (TypeError, ValueError):
-        h = math.nan
-    if not (math.isfinite(h) and h > 0):
         raise ContactresInputError(
             f"coating thickness (--coating {spec}) must be a positive finite number in m, "
             f"got {text!r}"
-        )
-    if h > _MAX_THICKNESS_M:
-        raise ContactresInputError(
-            f"coating thickness (--coating {spec}) {h:g} m is above {_MAX_THICKNESS_M:g} m: "
-            "looks like nm/µm? give metres (250 nm = 250e-9)"
-        )
-    return h
+        ) from None
+    return checked_thickness(h, f"coating thickness (--coating {spec})")
 
 
 def parse_coating(
@@ -382,8 +373,8 @@ def parse_coating(
     ------
     ContactresInputError
         One line naming ``--coating``: an unknown material (the known ones listed), a missing
-        colon, a thickness that is not a positive finite number of metres or is above 1 m, too
-        many layers.
+        colon, a thickness that is not a positive finite number of metres or is above
+        :data:`contactres.layered.MAX_THICKNESS_M` (1 m), too many layers.
 
     Examples
     --------
@@ -451,9 +442,10 @@ def _static(m) -> Material:
 
 
 def _coating_label(stack: LayeredMaterial) -> str:
-    """E.g. ``"PMMA 250 nm"``; layers top first, joined by "on" (thicknesses in nm)."""
+    """E.g. ``"PMMA 250 nm"``, ``"PMMA 1.5 µm on fused-silica 2 mm"``; layers top first,
+    joined by "on" (each thickness in the unit that reads best: nm, µm, mm or m)."""
     return " on ".join(
-        f"{getattr(m, 'name', None) or 'film'} {h * 1e9:.4g} nm" for m, h in stack.layers
+        f"{getattr(m, 'name', None) or 'film'} {thickness_text(h)}" for m, h in stack.layers
     )
 
 

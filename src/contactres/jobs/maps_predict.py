@@ -202,12 +202,13 @@ def _static_layers(coating) -> tuple:
 
 def _add_coated(ds, info: dict, s: Settings, layers) -> None:
     """M_coated_Pa and k_star_coated_N_per_m of every pixel, with their attributes."""
+    from ..layered import thickness_text
     from ..polycrystal import coated_moduli
 
     t = s.tipload
     rtol = min(max(s.rtol, 1e-9), 1e-6)
     c = coated_moduli(s.material, layers, ds["M_Pa"].values, t.tip, t.radius, t.force, rtol)
-    label = " on ".join(f"{m.name or 'film'} {h * 1e9:.4g} nm" for m, h in layers)
+    label = " on ".join(f"{m.name or 'film'} {thickness_text(h)}" for m, h in layers)
     dims = ("y", "x")
     ds["M_coated_Pa"] = (
         dims,

@@ -86,7 +86,7 @@ class Settings:
         :func:`contactres.analysis.material_by_name`) for the radiation loss.
     coating : str, sequence of str, or None
         The film(s) on the plate, ``"MATERIAL:THICKNESS"`` (m) each, top first
-        (:func:`contactres.jobs.contact.parse_coating`; thickness at most 1 mm): E and γ fitted
+        (:func:`contactres.jobs.contact.parse_coating`; thickness at most 1 m): E and γ fitted
         on the coated plate (:mod:`contactres.analysis._coating`). With the materials, the radiation
         loss on the coated plate.
     """
@@ -317,7 +317,7 @@ def stages(reading: Reading, settings: Settings) -> int:
 
 def coating_layers(settings: Settings):
     """The checked layers of ``settings.coating`` ((material, thickness_m) pairs, top first), or
-    None: names by :func:`contactres.jobs.contact.parse_coating`, thickness (0, 1 mm] and the
+    None: names by :func:`contactres.jobs.contact.parse_coating`, thickness (0, 1 m] and the
     materials by :class:`contactres.analysis.AnalysisSettings`.
     Raises ContactresInputError (one line)."""
     if not settings.coating:

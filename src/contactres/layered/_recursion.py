@@ -71,6 +71,7 @@ from ._expm import expm3
 from ._stack import LayeredMaterial, material_at
 
 __all__ = [
+    "compliance_factors",
     "impedance_recursion",
     "layer_waves",
     "stack_compliance",
@@ -153,15 +154,22 @@ def substrate_impedance(c, th, s) -> np.ndarray:
     return inv3(_halfspace(c, th, s))
 
 
-def _layer_impedance(waves, mirror: bool, eta_h, Y):
-    """Impedance at the top of one layer (its :func:`layer_waves`, thickness ηh) over Y."""
+def _layer_factors(waves, mirror: bool, eta_h, Y):
+    """(I + T, D_d + D_u T) of one layer (its :func:`layer_waves`, thickness ηh) over Y: the
+    impedance at its top is their quotient (module docstring)."""
     D_d, D_u, A_d, A_u = waves
     X_d = expm3(eta_h * A_d)
     X_u = _flip(X_d) if mirror else expm3(eta_h * A_u)
     rho = mm(inv3(D_u - Y), Y - D_d)
     T = mm(X_u, mm(rho, X_d))
     eye = np.eye(3)[..., None]
-    return mm(D_d + mm(D_u, T), inv3(eye + T))
+    return eye + T, D_d + mm(D_u, T)
+
+
+def _layer_impedance(waves, mirror: bool, eta_h, Y):
+    """Impedance at the top of one layer (its :func:`layer_waves`, thickness ηh) over Y."""
+    P, Q = _layer_factors(waves, mirror, eta_h, Y)
+    return mm(Q, inv3(P))
 
 
 def impedance_recursion(layers, eta_h, Y) -> np.ndarray:
@@ -186,6 +194,31 @@ def impedance_recursion(layers, eta_h, Y) -> np.ndarray:
         for (waves, mirror), eh in zip(reversed(layers), reversed(eta_h), strict=True):
             Y = _layer_impedance(waves, mirror, eh, Y)
     return Y
+
+
+def compliance_factors(layers, eta_h, Y):
+    """The stack's surface compliance as a quotient H = Y_top⁻¹ = P Q⁻¹ of two factors.
+
+    With the top layer's I + T and D_d + D_u T (module docstring), Y_top = Q P⁻¹, so
+    H = P Q⁻¹: one 3x3 inverse fewer than inverting :func:`impedance_recursion`, and a caller
+    that needs a few entries of H (the normal entry H_33: row 3 of P and column 3 of Q⁻¹)
+    forms only those.
+
+    Parameters
+    ----------
+    layers, eta_h, Y
+        As in :func:`impedance_recursion` (at least one layer).
+
+    Returns
+    -------
+    (P, Q) : (ndarray, ndarray), complex, each shape (3, 3, N)
+        H = P Q⁻¹ (dimensionless); non-finite where the stack is singular.
+    """
+    if not layers:
+        raise ContactresInputError("compliance_factors needs at least one layer")
+    with np.errstate(all="ignore"):
+        below = impedance_recursion(layers[1:], eta_h[1:], Y)
+        return _layer_factors(*layers[0], eta_h[0], below)
 
 
 def stack_compliance(tensors, s, eta_h, theta) -> np.ndarray:

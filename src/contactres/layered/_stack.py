@@ -23,9 +23,20 @@ from .._summary import Summarised
 from ..errors import ContactresInputError
 from ..materials import Material
 
-__all__ = ["FrequencyDependentMaterial", "LayeredMaterial", "material_at"]
+__all__ = [
+    "MAX_THICKNESS_M",
+    "FrequencyDependentMaterial",
+    "LayeredMaterial",
+    "checked_thickness",
+    "material_at",
+    "thickness_text",
+]
 
-# A film thicker than this is not a film: the substrate under it cannot be seen by any contact.
+#: The thickest layer any part of contactres takes, m: :class:`LayeredMaterial`, the command
+#: line's ``--coating`` and the analysis's coating all check against this one limit
+#: (:func:`checked_thickness`). A layer thicker than this is not a film (no contact, whose
+#: radius is at most a few mm, sees through it: use its material as the substrate), and most
+#: likely a thickness typed in nm or µm.
 MAX_THICKNESS_M = 1.0
 
 
@@ -79,29 +90,73 @@ def _check_material(m, what: str):
     )
 
 
-def _check_thickness(h, j: int, n: int) -> float:
-    where = f"layer {j}" + (" (top)" if j == 1 and n > 1 else "")
+def checked_thickness(value, where: str) -> float:
+    """A layer's thickness in m, checked against the one rule of contactres: a finite number,
+    > 0 and at most :data:`MAX_THICKNESS_M`.
+
+    Parameters
+    ----------
+    value : float
+        The thickness, m.
+    where : str
+        What the value is, naming where it came from (the start of the error line), e.g.
+        ``"layer 2 thickness"`` or ``"coating thickness (--coating pmma:2)"``.
+
+    Returns
+    -------
+    float
+        The thickness, m.
+
+    Raises
+    ------
+    ContactresInputError
+        One line starting with ``where``: not a number, not finite or <= 0, or above
+        :data:`MAX_THICKNESS_M`.
+
+    Examples
+    --------
+    >>> checked_thickness(250e-9, "layer 1 thickness")
+    2.5e-07
+    """
     try:
-        t = float(h)
+        t = float(value)
     except (TypeError, ValueError):
         raise ContactresInputError(
-            f"{where} thickness must be a number in m, got {type(h).__name__}"
+            f"{where} must be a number in m, got {type(value).__name__}"
         ) from None
     if not (math.isfinite(t) and t > 0):
-        raise ContactresInputError(f"{where} thickness must be finite and > 0 m, got {h!r} m")
+        raise ContactresInputError(
+            f"{where} must be finite and > 0 m, got {value!r} m (a positive finite number of "
+            "metres: 250 nm = 250e-9)"
+        )
     if t > MAX_THICKNESS_M:
         raise ContactresInputError(
-            f"{where} thickness {t!r} m is above {MAX_THICKNESS_M:g} m, thicker than any "
-            "meaningful film: use that material as the substrate instead"
+            f"{where} {t!r} m is above {MAX_THICKNESS_M:g} m, thicker than any meaningful film: "
+            "a value in nm/µm? give metres (250 nm = 250e-9); or use that material as the "
+            "substrate instead"
         )
     return t
 
 
-def _length(h: float) -> str:
-    """A thickness in the unit that reads best: 250 nm, 1.5 µm, 2 mm."""
+def _check_thickness(h, j: int, n: int) -> float:
+    where = f"layer {j}" + (" (top)" if j == 1 and n > 1 else "")
+    return checked_thickness(h, f"{where} thickness")
+
+
+def thickness_text(h: float) -> str:
+    """A thickness (m) in the unit that reads best: ``"250 nm"``, ``"1.5 µm"``, ``"2 mm"``,
+    ``"1 m"`` (four significant digits).
+
+    Examples
+    --------
+    >>> thickness_text(250e-9), thickness_text(1e-6), thickness_text(1e-3), thickness_text(1.0)
+    ('250 nm', '1 µm', '1 mm', '1 m')
+    """
     for unit, scale in (("nm", 1e-9), ("µm", 1e-6), ("mm", 1e-3)):
-        if h < 1000 * scale:
-            return f"{h / scale:.4g} {unit}"
+        # The next unit once the digits printed reach 1000 (1e-6 m is 999.99... nm: "1 µm").
+        text = f"{h / scale:.4g}"
+        if float(text) < 1000:
+            return f"{text} {unit}"
     return f"{h:.4g} m"
 
 
@@ -182,7 +237,9 @@ class LayeredMaterial(Summarised):
     @property
     def name(self) -> str:
         """E.g. ``"PMMA 250 nm on quartz"`` (layers top first, joined by "on")."""
-        parts = [f"{getattr(m, 'name', None) or 'film'} {_length(h)}" for m, h in self.layers]
+        parts = [
+            f"{getattr(m, 'name', None) or 'film'} {thickness_text(h)}" for m, h in self.layers
+        ]
         return " on ".join([*parts, getattr(self.substrate, "name", None) or "substrate"])
 
     @property
