@@ -258,7 +258,7 @@ class LayeredMaterial(Summarised):
         or frequency-dependent (the materials themselves print with ``.materials``)."""
         facts = [("", repr(self.name)), ("layers", str(len(self.layers)))]
         if self.layers:
-            facts.append(("total thickness", _length(float(np.sum(self.thicknesses)))))
+            facts.append(("total thickness", thickness_text(float(np.sum(self.thicknesses)))))
         facts.append(("lossy", "yes" if self.is_lossy else "no"))
         if self.is_frequency_dependent:
             facts.append(("frequency-dependent", "yes"))
