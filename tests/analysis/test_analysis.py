@@ -122,7 +122,7 @@ def test_vectorised_bootstrap_equals_refitting_each_resample():
     pts = res.experiments
     main = fit_jkr_mindlin(pts["normal_force_N"], pts["kappa_N_per_m"], R, NU)
     B, seed = 40, 3
-    E_sd, g_sd = bootstrap_jkr(pts, R, NU, main, B, seed)
+    E_sd, g_sd, _ = bootstrap_jkr(pts, R, NU, main, B, seed)
     # Second algorithm: the same resamples, each refitted with least_squares.
     codes, names = pd.factorize(pts["experiment"])
     pick = np.random.default_rng(seed).integers(0, len(names), size=(B, len(names)))
