@@ -117,12 +117,14 @@ def test_jkr_fit_recovers_hertz_closed_form():
 
 
 def test_vectorised_bootstrap_equals_refitting_each_resample():
+    """The sds of E and γ over the resamples, and their correlation (E_gamma_corr, the band
+    of Fig. 5), are those of the same resamples refitted one by one."""
     table = make_table(e_scatter=0.03, noise=0.2, n_exp=5)
     res = analyze(table, settings=FAST)
     pts = res.experiments
     main = fit_jkr_mindlin(pts["normal_force_N"], pts["kappa_N_per_m"], R, NU)
     B, seed = 40, 3
-    E_sd, g_sd = bootstrap_jkr(pts, R, NU, main, B, seed)
+    E_sd, g_sd, rho = bootstrap_jkr(pts, R, NU, main, B, seed)
     # Second algorithm: the same resamples, each refitted with least_squares.
     codes, names = pd.factorize(pts["experiment"])
     pick = np.random.default_rng(seed).integers(0, len(names), size=(B, len(names)))
@@ -134,6 +136,7 @@ def test_vectorised_bootstrap_equals_refitting_each_resample():
     fits = np.array(fits)
     assert E_sd == pytest.approx(fits[:, 0].std(ddof=1), rel=0.02)
     assert g_sd == pytest.approx(fits[:, 1].std(ddof=1), rel=0.02, abs=1e-5)
+    assert rho == pytest.approx(np.corrcoef(fits.T)[0, 1], abs=0.02)
 
 
 def test_fit_errors_match_closed_form_linear_regression():

@@ -27,7 +27,6 @@ import pandas as pd
 
 from ..errors import ContactresInputError
 from ._amplitude import Padded
-from ._jkr import t95_factor
 from ._models import EXACT_LOOPS, REGISTRY, exact_model, model_curves
 
 __all__ = [
@@ -252,12 +251,14 @@ def band_half_width(kappa_of, values, covariance, factor: float, lower=None) -> 
     return factor * np.sqrt(np.maximum(variance, 0.0))
 
 
-def _fit_covariance(g) -> np.ndarray | None:
-    """The covariance of (E, γ) of the JKR fit of a group record (Pa², Pa J/m², (J/m²)²): its
-    standard errors ``E_fit_err_Pa``, ``gamma_fit_err_J_m2`` with its correlation
-    ``E_gamma_fit_corr``; None where one is missing (the fit does not identify E and γ)."""
-    sd = np.array([g.get("E_fit_err_Pa", np.nan), g.get("gamma_fit_err_J_m2", np.nan)], float)
-    rho = float(g.get("E_gamma_fit_corr", np.nan))
+def _table_covariance(g) -> np.ndarray | None:
+    """The covariance of (E, γ) that Table 1's errors give for a group record (Pa², Pa J/m²,
+    (J/m²)²): diag(E_err, γ_err) · C · diag(E_err, γ_err) with ``E_err_Pa``,
+    ``gamma_err_J_m2`` and C the correlation ``E_gamma_corr`` that goes with them (the
+    bootstrap's where a bootstrap gives the errors, else the fit's); None where one is missing
+    or an error is not positive (no covariance to propagate)."""
+    sd = np.array([g.get("E_err_Pa", np.nan), g.get("gamma_err_J_m2", np.nan)], float)
+    rho = float(g.get("E_gamma_corr", np.nan))
     if not (np.isfinite(sd).all() and np.isfinite(rho) and (sd > 0).all()):
         return None
     return np.outer(sd, sd) * np.array([[1.0, rho], [rho, 1.0]])
@@ -267,19 +268,21 @@ def jkr_curves(groups, loads: pd.DataFrame, n: int = JKR_POINTS, laws=None) -> p
     """The fitted JKR + Mindlin curve κ(F_N) of every group with an E, on the grid Fig. 5 draws,
     with its 95 % pointwise band.
 
-    The band is the linear propagation (:func:`band_half_width`) of the covariance of the fit
-    (``E_fit_err_Pa``, ``gamma_fit_err_J_m2``, ``E_gamma_fit_corr``: ``inv(JᵀJ)·RSS/(N - 2)``
-    of :func:`contactres.fitting.fit`), t(0.975; N - 2) standard deviations on each side (N the
-    points fitted, Student's t as the variance comes from the residuals). It is the band of the
-    curve fitted to these points taken as independent, not of the spread between remounted
-    samples that the errors of Table 1 hold (their E-γ correlation differs: the bootstrap of
-    the experiments gives no covariance); empty (NaN) where the fit has no covariance.
+    The band is the linear propagation (:func:`band_half_width`) of the covariance of E and γ
+    that Table 1 prints: its errors ``E_err_Pa``, ``gamma_err_J_m2`` (the spread between
+    experiments where a bootstrap over them gives the errors, ``error_method``) with their
+    correlation ``E_gamma_corr`` (over the same bootstrap's resamples, else the fit's,
+    ``inv(JᵀJ)·RSS/(N - 2)`` of :func:`contactres.fitting.fit`), ``t95`` standard deviations
+    on each side: the Student-t factor of Table 1's 95 % interval (t(0.975; experiments - 1)
+    for a bootstrap over experiments, t(0.975; N - 2) for the fit's errors, N the points
+    fitted). So the band at a load holds the curves that Table 1's E ± t95 err, γ ± t95 err
+    allow, correlated as they are; empty (NaN) where there is no such covariance or factor.
 
     Parameters
     ----------
     groups : the group records of the analysis (``configuration``, ``medium``, ``E_Pa``,
         ``gamma_J_m2``, ``sphere_radius_m``, ``poisson``, ``P_Hz_per_N_per_m``; for the band
-        ``E_fit_err_Pa``, ``gamma_fit_err_J_m2``, ``E_gamma_fit_corr``, ``n_points_fitted``)
+        ``E_err_Pa``, ``gamma_err_J_m2``, ``E_gamma_corr``, ``t95``)
     loads : the per-load table (``configuration``, ``normal_force_N``): the grid of a group
         runs from 0 to 1.05 times the largest load of its configuration (every medium)
     n : points per curve
@@ -313,9 +316,9 @@ def jkr_curves(groups, loads: pd.DataFrame, n: int = JKR_POINTS, laws=None) -> p
             return np.where(out, np.nan, law.tangential(E, a))
 
         k = kappa_of(g["E_Pa"], g["gamma_J_m2"])
-        half = np.full(F.shape, np.nan)  # no band where the fit has no covariance
-        cov = _fit_covariance(g)
-        t = float(t95_factor(g.get("n_points_fitted", 0) - 2))
+        half = np.full(F.shape, np.nan)  # no band where Table 1's errors give no covariance
+        cov = _table_covariance(g)
+        t = float(g.get("t95", np.nan))
         if cov is not None and np.isfinite(t):
             values = (g["E_Pa"], g["gamma_J_m2"])
             half = band_half_width(kappa_of, values, cov, t, lower=(0.0, 0.0))

@@ -95,7 +95,8 @@ def bootstrap_jkr(
     seed: int,
     resampled: Callable | None = None,
 ):
-    """Standard deviations of E and γ over ``n_resamples`` resamples of the experiments.
+    """Standard deviations of E and γ over ``n_resamples`` resamples of the experiments, and
+    the correlation coefficient of E and γ over them: (sd E (Pa), sd γ (J/m²), corr).
 
     ``pts``: one row per (experiment, load) with ``normal_force_N``, ``kappa_N_per_m`` and
     ``experiment``; the experiments are drawn with replacement (each keeps all its loads), and
@@ -110,7 +111,7 @@ def bootstrap_jkr(
     pick = rng.integers(0, len(names), size=(n_resamples, len(names)))
     counts = (pick[:, :, None] == np.arange(len(names))[None, None, :]).sum(axis=1)
     E, gam = (resampled or _resampled_fits)(F, kappa, counts[:, codes].astype(float), R, nu, res)
-    return float(np.std(E, ddof=1)), float(np.std(gam, ddof=1))
+    return _spread(E, gam)
 
 
 def bootstrap_jkr_sweeps(
@@ -122,7 +123,8 @@ def bootstrap_jkr_sweeps(
     seed: int,
     resampled: Callable | None = None,
 ):
-    """Standard deviations of E and γ over resamples of the repeated sweeps of each load.
+    """Standard deviations of E and γ over resamples of the repeated sweeps of each load, and
+    their correlation coefficient over them: (sd E (Pa), sd γ (J/m²), corr).
 
     For one experiment: ``sweeps`` has one row per used sweep (``normal_force_N``,
     ``kappa_N_per_m``); within every load the sweeps are drawn with replacement, each load keeps
@@ -149,7 +151,16 @@ def bootstrap_jkr_sweeps(
         W += np.bincount((offset + pick).ravel(), minlength=W.size) / members.size
     weights = W.reshape(n_resamples, F.size)
     E, gam = (resampled or _resampled_fits)(F, kappa, weights, R, nu, res)
-    return float(np.std(E, ddof=1)), float(np.std(gam, ddof=1))
+    return _spread(E, gam)
+
+
+def _spread(E: np.ndarray, gam: np.ndarray) -> tuple[float, float, float]:
+    """Standard deviations of the replicates E (Pa) and γ (J/m²) and their correlation
+    coefficient (NaN where a replicate set does not vary, e.g. γ = 0 in every resample)."""
+    sd_E, sd_g = float(np.std(E, ddof=1)), float(np.std(gam, ddof=1))
+    if not (sd_E > 0 and sd_g > 0):
+        return sd_E, sd_g, float("nan")
+    return sd_E, sd_g, float(np.corrcoef(E, gam)[0, 1])
 
 
 @dataclass(frozen=True)
@@ -260,8 +271,11 @@ def fit_group(
     resamples of the experiments (3 or more experiments); half the difference of the fits of the
     two experiments (2); over resamples of the repeated sweeps of each load (1 experiment:
     within-experiment errors, labelled so); the Jacobian of the fit (``E_fit_err_Pa``, always
-    given) only when none of these is possible. E and γ are withheld (NaN, ``checks`` and
-    ``note`` say why) when the fit is not plausible (:class:`Check`).
+    given) only when none of these is possible. ``E_gamma_corr`` is the correlation of E and γ
+    that goes with these errors: over the resamples where a bootstrap gives them, else the
+    fit's (``E_gamma_fit_corr``); with them it is the covariance that the band of the fitted
+    curve propagates (:func:`contactres.analysis._curves.jkr_curves`). E and γ are withheld
+    (NaN, ``checks`` and ``note`` say why) when the fit is not plausible (:class:`Check`).
     """
     config, medium = key
     radii = exp["sphere_radius_m"].unique()
@@ -295,6 +309,7 @@ def fit_group(
         "E_fit_err_Pa": np.nan,
         "gamma_fit_err_J_m2": np.nan,
         "E_gamma_fit_corr": np.nan,
+        "E_gamma_corr": np.nan,
         "E_bootstrap_sd_Pa": np.nan,
         "gamma_bootstrap_sd_J_m2": np.nan,
         "sphere_radius_m": R,
@@ -329,11 +344,14 @@ def fit_group(
         E_fit_err_Pa=res.errors["E"],
         gamma_fit_err_J_m2=res.errors["gamma"],
         E_gamma_fit_corr=fit_correlation(res),
+        # The correlation that goes with Table 1's errors: the fit's, unless a bootstrap
+        # gives those errors (then its resamples' own, set below).
+        E_gamma_corr=fit_correlation(res),
     )
     n_exp = pts["experiment"].nunique()
     if bootstrap > 0 and n_exp >= 3:
-        E_sd, g_sd = bootstrap_jkr(pts, R, nu, res, int(bootstrap), seed, law.resampled)
-        out.update(E_bootstrap_sd_Pa=E_sd, gamma_bootstrap_sd_J_m2=g_sd)
+        E_sd, g_sd, rho = bootstrap_jkr(pts, R, nu, res, int(bootstrap), seed, law.resampled)
+        out.update(E_bootstrap_sd_Pa=E_sd, gamma_bootstrap_sd_J_m2=g_sd, E_gamma_corr=rho)
         # The bootstrap variance of a mean of n is (n - 1)/n of the unbiased one: with a few
         # experiments that bias matters (n = 4: 13 % in the error), so it is undone.
         small = np.sqrt(n_exp / (n_exp - 1))
@@ -358,8 +376,10 @@ def fit_group(
         and sweeps is not None
         and sweeps.groupby("normal_force_N").size().min() >= 2
     ):
-        E_sd, g_sd = bootstrap_jkr_sweeps(sweeps, R, nu, res, int(bootstrap), seed, law.resampled)
-        out.update(E_err_Pa=E_sd, gamma_err_J_m2=g_sd)
+        E_sd, g_sd, rho = bootstrap_jkr_sweeps(
+            sweeps, R, nu, res, int(bootstrap), seed, law.resampled
+        )
+        out.update(E_err_Pa=E_sd, gamma_err_J_m2=g_sd, E_gamma_corr=rho)
         out["error_method"] = (
             f"within one experiment: bootstrap over its repeated sweeps ({int(bootstrap)} "
             "resamples; remounting the sample is not included)"

@@ -253,9 +253,10 @@ def _band_lines(results: Results) -> list[str]:
     """What the bands of the JKR fits are, and which groups have none (and why)."""
     jkr = results.jkr
     lines = [
-        "Shaded: the 95 % pointwise band of each JKR fit (linear propagation of the fit's "
-        "covariance of E and γ; jkr_curves.csv holds it). It is the band of the curve fitted "
-        "to these points; the errors of Table 1 include the spread between experiments."
+        "Shaded: the 95 % pointwise band of each JKR fit: the errors of E and γ that Table 1 "
+        "prints (the spread between experiments where a bootstrap gives them), with their "
+        "correlation (E_gamma_corr in summary.json), propagated linearly, t95 of Table 1 wide; "
+        "jkr_curves.csv holds it."
     ]
     for g in results.groups:
         where = f"{g['configuration']}, {g['medium']}"
@@ -266,7 +267,7 @@ def _band_lines(results: Results) -> list[str]:
             continue
         mine = (jkr["configuration"] == g["configuration"]) & (jkr["medium"] == g["medium"])
         if not np.isfinite(jkr.loc[mine, "kappa_lo_N_per_m"].to_numpy(float)).any():
-            lines.append(f"{where}: no band (the fit's covariance of E and γ is not identified).")
+            lines.append(f"{where}: no band (Table 1's errors of E and γ give no covariance).")
     return lines
 
 

@@ -280,8 +280,8 @@ def figure_stiffness(results) -> Figure:
     """Fig. 5: low-amplitude Δf0 against F_N (mean ± sd over experiments, where more than one)
     with the JKR fits and their 95 % bands (shaded; ``Results.jkr``).
 
-    A group whose fit is withheld, or whose fit has no band (its covariance is not
-    identified), is named in the key with the reason."""
+    A group whose fit is withheld, or whose fit has no band (Table 1's errors of E and γ give
+    no covariance), is named in the key with the reason."""
     from matplotlib.lines import Line2D
     from matplotlib.patches import Patch
 
@@ -324,7 +324,7 @@ def figure_stiffness(results) -> Figure:
                 ax.fill_between(F, lo, hi, color=colour, alpha=0.2, lw=0)
                 banded = True
             else:
-                notes.append(f"{where}: JKR fit without a band (its covariance is not identified)")
+                notes.append(f"{where}: JKR fit without a band (its errors give no covariance)")
         ax.set_title(_label(config), fontsize=9)
         ax.set_xlabel("normal force per contact F_N (mN)")
         ax.set_ylabel("Δf0 (Hz)")

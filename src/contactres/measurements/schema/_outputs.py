@@ -297,9 +297,10 @@ JKR_CURVE_RESULTS = TableSchema(
             (
                 "kappa_lo_N_per_m",
                 "N/m",
-                "lower end of κ's 95 % pointwise band: linear propagation of the fit's "
-                "covariance of E and γ (E_fit_err_Pa, gamma_fit_err_J_m2, E_gamma_fit_corr), "
-                "t(0.975; points - 2) wide (empty: the fit has no covariance)",
+                "lower end of κ's 95 % pointwise band: linear propagation of the covariance of "
+                "Table 1's errors of E and γ (E_err_Pa, gamma_err_J_m2 with E_gamma_corr: the "
+                "bootstrap's correlation where a bootstrap gives the errors, else the fit's), "
+                "t95 wide (empty: no covariance)",
             ),
             ("kappa_hi_N_per_m", "N/m", "upper end of κ's 95 % pointwise band (as kappa_lo)"),
             ("df0_model_Hz", "Hz", "Δf0 = P κ (paper 2, Eq. 1)"),

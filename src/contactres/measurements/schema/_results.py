@@ -278,7 +278,14 @@ GROUP_RESULTS = TableSchema(
             "E_gamma_fit_corr",
             "-",
             "correlation of E and γ in the fit's covariance (with E_fit_err_Pa and "
-            "gamma_fit_err_J_m2 the whole covariance; the band of jkr_curves.csv uses it)",
+            "gamma_fit_err_J_m2 the whole covariance of the fit)",
+        ),
+        Column(
+            "E_gamma_corr",
+            "-",
+            "correlation of E and γ that goes with E_err_Pa and gamma_err_J_m2: over the "
+            "bootstrap's resamples where error_method is a bootstrap, else the fit's "
+            "(E_gamma_fit_corr); the band of jkr_curves.csv propagates the three",
         ),
         Column("E_bootstrap_sd_Pa", "Pa", "sd of E over bootstrap resamples of the experiments"),
         Column(
