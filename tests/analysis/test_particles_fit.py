@@ -357,6 +357,13 @@ def test_a_signal_well_above_the_noise_is_not_no_signal():
     assert not any("no-signal" in f for f in fit.flags)
 
 
+def test_two_overtones_with_the_noise_estimated_are_refused_in_one_line():
+    # 2 overtones, 3 parameters: one degree of freedom (singular), too few for the noise
+    df, dg = particle_shifts(F0, N[:2], PS, 1e7, 0.0, 1e10)
+    with pytest.raises(ContactresInputError, match="2 overtones leave 1 degree of freedom for 3"):
+        fit_particles(F0, N[:2], df, dg, PS)
+
+
 def test_flags_are_named_in_the_flag_table():
     df, dg = particle_shifts(F0, N, PS, 1e7, 0.0, 1e10)
     fit = fit_particles(F0, N, df, dg, PS, sigma_df=NOISE, sigma_dgamma=NOISE)

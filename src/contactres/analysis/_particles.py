@@ -282,10 +282,11 @@ def fit_particles(
     zf = np.where(wf > 0, zf, 0.0)
     sens = 2.0 * n * np.pi**2 * zq  # z_n s_n = N K_L
     prob = _Problem(f0, particle, freq, sens, medium, zf, wf, wg, rocking, fit_rocking)
-    if estimate and 2 * prob.count.max() - prob.n_par < MIN_DOF_ESTIMATED:
+    left = 2 * int(prob.count.max()) - prob.n_par  # degrees of freedom at the best step
+    if estimate and left < MIN_DOF_ESTIMATED:
         raise ContactresInputError(
-            f"{int(prob.count.max())} overtones leave {2 * int(prob.count.max()) - prob.n_par} "
-            f"degrees of freedom for {prob.n_par} parameters, too few to estimate the noise from "
+            f"{int(prob.count.max())} overtones leave {left} degree{'s' * (left != 1)} of "
+            f"freedom for {prob.n_par} parameters, too few to estimate the noise from "
             f"the residuals (at least {MIN_DOF_ESTIMATED}): state the noise of Δf_n and ΔΓ_n "
             "(sigma_df and sigma_dgamma; --noise on the command line)"
         )
