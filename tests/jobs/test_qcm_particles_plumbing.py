@@ -189,8 +189,11 @@ def test_particles_inside_the_penetration_depth_of_a_liquid(study, tmp_path):
     # δ = √(2η/(ρω)) of water: 238 nm/√n on a 5 MHz crystal, 66 nm at n = 13: a radius of
     # 50 nm is inside it at every overtone
     s = job.Settings(particle_radius=5e-8, particle_density=2200.0, fundamental=F_F)
-    with pytest.raises(ContactresInputError, match="smaller than the penetration depth"):
+    with pytest.raises(ContactresInputError, match="smaller than the penetration depth") as err:
         job.run(path, job.Settings(**{**vars(s), "medium": "water"}))
+    # one clause (the review: the reason's own sentence repeated it), with R and δ in it
+    text = str(err.value)
+    assert text.count("penetration depth") == 1 and "R = 50 nm" in text and "δ = " in text
     job.run(path, job.Settings(**{**vars(s), "medium": "air"}))  # a gas: no such check
     # 120 nm: inside δ at n = 1 and 3 only (137 nm, then 106 nm at n = 5), a warning naming them
     s = job.Settings(particle_radius=1.2e-7, particle_density=2200.0, fundamental=F_F)
@@ -241,6 +244,7 @@ def test_the_help_names_paper_2s_equation_and_the_radius_unit():
     text = " ".join(r.output.split())
     assert "paper 2's Eq. 1" in text and "Eq. 2" not in text
     assert "5e-7 m for spheres 1 µm across" in text
+    assert "N particles per area A" in text and "N/A particles" not in text
 
 
 @pytest.mark.parametrize(
@@ -261,6 +265,26 @@ def test_bad_options_are_one_line_errors(study, tmp_path, option, value, words):
     options = {**base, option: value}
     r = _cli("qcm", "particles", path, *[x for kv in options.items() for x in kv])
     _one_line_error(r, *words)
+
+
+@pytest.mark.parametrize(
+    "options, option",
+    [
+        (["--df-divided-by-n"], "--df-divided-by-n"),
+        (["--time-unit", "min"], "--time-unit"),
+        (["--baseline", "first"], "--baseline"),
+        (["--channel", "3"], "--channel"),
+        (["--dissipation-scale", "1e-6"], "--dissipation-scale"),
+    ],
+)
+def test_conventions_a_tidy_table_states_are_refused_naming_the_option(
+    study, tmp_path, options, option
+):
+    # the review: the error named the API's keyword (time_unit='min') to a command-line user
+    path, _ = LAYOUTS["tidy"][0](tmp_path, study[0])
+    r = _cli("qcm", "particles", path, "--particle-radius", STUDY.radius, "--particle-density",
+             STUDY.density, "--fundamental", F_F, "--out", tmp_path / "out", *options)  # fmt: skip
+    _one_line_error(r, f"({option} on the command line)", "does not apply to a tidy shift table")
 
 
 @pytest.mark.parametrize(

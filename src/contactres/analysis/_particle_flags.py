@@ -41,8 +41,10 @@ PARTICLE_FLAGS = {
     "not-converged": "the least-squares fit did not converge (no value is reported)",
     "too-few-overtones": "fewer than two overtones measured at this time step (with the noise "
     "estimated from the residuals: fewer than 4 degrees of freedom, 2 × overtones − parameters)",
-    "no-signal": "no particles at all (zero shifts) fit as well: the shifts are at the noise "
-    "level and nothing is identified (no value is reported)",
+    "no-signal": "no particles at all (zero shifts) fit as well: the fit gains less over "
+    "them than pure noise reaches in one step in 10⁴ (a Δχ² threshold of about 25 for seven "
+    "overtones, growing with their number); the shifts are at the noise level and nothing is "
+    "identified (no value is reported)",
     "particle-smaller-than-delta": "the particle is smaller than the penetration depth of the "
     "liquid at too many overtones to fit the rest: the hydrodynamic model does not hold "
     "(lattice Boltzmann is the tool)",

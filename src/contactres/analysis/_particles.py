@@ -58,9 +58,13 @@ Identifiability (the rule; names in :data:`PARTICLE_FLAGS`). Per time step:
    the F threshold of the same tail probability for a per-step variance) is not rejected:
    "sauerbrey-like" (κ and ξ unresolved: only the mass N·m) or "inertial" (κ, ξ and N
    unresolved: only N·κ and N·ξ, reported as ``coverage_kappa`` and ``coverage_xi``).
-   The empty model (no particles, z = 0, χ²₀ = Σ w²|z|²) is the third limit, by the same
-   rule: if it is not rejected the step is "no-signal" and every value (the products too) is
-   left empty, so that noise before adsorption does not print a κ.
+   The empty model (no particles, z = 0, χ²₀ = Σ w²|z|²) is the third limit, with a threshold
+   of its own (``_particle_linear.no_signal_threshold``): the fit may put its resonance on any
+   of the M overtones, so χ²₀ - χ² is not χ²(3) under pure noise; each overtone counts as a
+   trial and the test lets pure noise through at most once in 10⁴ steps (25.2 for M = 7; the
+   plain 9 let 4 % through and printed κ in 0.2-1 % of pure-noise steps). If it is not
+   rejected the step is "no-signal" and every value (the products too) is left empty, so
+   that noise before adsorption does not print a κ.
 2. Any parameter whose relative standard error exceeds :data:`RELATIVE_ERROR_LIMIT` (0.3), or
    is not finite, is unresolved ("xi-unresolved" is the usual one: a loss at the noise level).
 3. A fit that did not converge, or whose χ² is far beyond what the noise allows ("poor-fit";
@@ -115,6 +119,7 @@ from ._particle_linear import (
     heavy_start,
     limit_chi2,
     limit_threshold,
+    no_signal_threshold,
     pooled_variance,
     poor_fit,
     scan_start,
@@ -279,10 +284,11 @@ def fit_particles(
     zf = np.where(wf > 0, zf, 0.0)
     sens = 2.0 * n * np.pi**2 * zq  # z_n s_n = N K_L
     prob = _Problem(f0, particle, freq, sens, medium, zf, wf, wg, rocking, fit_rocking)
-    if estimate and 2 * prob.count.max() - prob.n_par < MIN_DOF_ESTIMATED:
+    left = 2 * int(prob.count.max()) - prob.n_par  # degrees of freedom at the best step
+    if estimate and left < MIN_DOF_ESTIMATED:
         raise ContactresInputError(
-            f"{int(prob.count.max())} overtones leave {2 * int(prob.count.max()) - prob.n_par} "
-            f"degrees of freedom for {prob.n_par} parameters, too few to estimate the noise from "
+            f"{int(prob.count.max())} overtones leave {left} degree{'s' * (left != 1)} of "
+            f"freedom for {prob.n_par} parameters, too few to estimate the noise from "
             f"the residuals (at least {MIN_DOF_ESTIMATED}): state the noise of Δf_n and ΔΓ_n "
             "(sigma_df and sigma_dgamma; --noise on the command line)"
         )
@@ -451,7 +457,9 @@ class _Problem:
                     + ([] if kr is None else [np.full(t, np.log(kr))])
                 )
                 p = np.clip(np.where(np.isfinite(p), p, self._fallback()), self.lo, self.hi)
-                chi2 = self.evaluate(p / self._unit(p), np.arange(t), False)["chi2"]
+                # a start exactly on an overtone's resonance (ξ = 0) divides by zero: χ² = inf
+                with np.errstate(divide="ignore", invalid="ignore"):
+                    chi2 = self.evaluate(p / self._unit(p), np.arange(t), False)["chi2"]
                 take = chi2 < best_chi2
                 best = np.where(take[:, None], p, best)
                 best_chi2 = np.where(take, chi2, best_chi2)
@@ -565,15 +573,14 @@ class _Problem:
         # The likelihood-ratio test against the two limits of the model (module docstring)
         # (the limits drop 2 parameters (rigid: κ, ξ), 1 (standing still: the κ -> 0 edge) and
         # all (empty); the q of the F thresholds where the noise is estimated per step)
-        def passes(lim, q):
-            return (lim - chi2) / s2 < limit_threshold(LIMIT_CHI2, dof, q, per_step)
-
         with np.errstate(invalid="ignore", divide="ignore"):
             lim_s, lim_h, lim_0 = limit_chi2(self.z, self.wf, self.wg, self.sens, self.omega, chg)
-            sauerbrey, inertial = passes(lim_s, 2), passes(lim_h, 1)
+            sauerbrey = (lim_s - chi2) / s2 < limit_threshold(LIMIT_CHI2, dof, 2, per_step)
+            inertial = (lim_h - chi2) / s2 < limit_threshold(LIMIT_CHI2, dof, 1, per_step)
             # no particles at all (z = 0) fits as well: the shifts are noise (or a drift of the
-            # baseline), and the three parameters fitted to them are nonsense
-            no_signal = passes(lim_0, npar)
+            # baseline), and the three parameters fitted to them are nonsense; the fit's
+            # resonance may sit on any overtone, so the threshold grows with their number
+            no_signal = (lim_0 - chi2) / s2 < no_signal_threshold(self.count, dof, npar, per_step)
         # the products N·κ and N·ξ: ln(Nκ) = q0 + q2, ln(Nξ) = ln q1 + q2 (+ const)
         with np.errstate(divide="ignore", invalid="ignore"):
             nk_rel = np.sqrt(cov_q[:, 0, 0] + cov_q[:, 2, 2] + 2 * cov_q[:, 0, 2])

@@ -2,10 +2,10 @@
 
 Attached particles (colloids, bacteria, vesicles, cells) against time from QCM-D shifts over the
 overtones (issue 28): per time step the shifts Δf_n and ΔΓ_n of all overtones are fitted with the
-load of N/A particles, each on its contact κ + iωξ (the particle and its contact a resonator of
-their own), in paper 2's small-load relation. DATA is an instrument export (QSense, AWSensors,
-QCM-I, openQCM; the options of ``qcm stiffness`` say what the file does not) or the tidy table
-``time_s, overtone, df_Hz, dgamma_Hz``.
+load of N particles per area A, each on its contact κ + iωξ (the particle and its contact a
+resonator of their own), in paper 2's small-load relation. DATA is an instrument export (QSense,
+AWSensors, QCM-I, openQCM; the options of ``qcm stiffness`` say what the file does not) or the tidy
+table ``time_s, overtone, df_Hz, dgamma_Hz``.
 
 The results folder is one :class:`contactres.fileio.ResultSet` (whole or not at all):
 ``particles.csv`` (κ, ξ, coverage, f_coupled with errors per time step; an empty cell is a value
@@ -147,7 +147,7 @@ def particles_command(
     DATA is the text export of a QCM-D instrument (QSense, AWSensors, QCM-I, openQCM) or a
     tidy table with the columns time_s, overtone, df_Hz (Δf_n, Hz, not divided by n) and
     dgamma_Hz (ΔΓ_n, Hz, the half-bandwidth shift), shifts against the bare sensor in the same
-    medium. Per time step all overtones are fitted with N/A particles on contacts κ + iωξ
+    medium. Per time step all overtones are fitted with N particles per area A on contacts κ + iωξ
     (paper 2's Eq. 1 with the particle's inertia): a value the data do not identify is left
     empty in particles.csv and named in its flags. Prints the medians of the identified values
     and the flags; writes particles.csv, shifts.csv, particles.json, the figures and

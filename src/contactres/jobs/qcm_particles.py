@@ -9,8 +9,8 @@ density of a sphere, or its mass and moment of inertia), the rocking of the part
 contact, the medium, the fundamental, how to read the file and the noise of the shifts.
 
 Per time step the shifts of all overtones are fitted together
-(:func:`contactres.analysis.fit_particles`) with the load of N/A particles on their contacts in
-paper 2's small-load relation, Δf_n + iΔΓ_n = (N/A) K_L(ω_n)/(2nπ² Z_q), ω_n = 2π n f_F
+(:func:`contactres.analysis.fit_particles`) with the load of N particles per area A on their
+contacts in paper 2's small-load relation, Δf_n + iΔΓ_n = (N/A) K_L(ω_n)/(2nπ² Z_q), ω_n = 2π n f_F
 (:func:`contactres.resonators.particle_shifts`): the contact stiffness κ, its damping ξ, the
 coverage N/A and the coupled-resonance frequency, with standard errors. A value the data do not
 identify is NaN (an empty cell of ``particles.csv``) and named in the step's ``flags``.
@@ -428,15 +428,20 @@ def _depth_check(particle, medium, fundamental: float, overtones, source: Path) 
     :func:`contactres.analysis.fit_particles`)."""
     if medium is None:
         return []
-    from ..resonators import particle_model_validity
+    from ..resonators import particle_model_validity, penetration_depth
 
     reasons = [particle_model_validity(particle, fundamental * n, medium) for n in overtones]
     failed = [int(n) for n, why in zip(overtones, reasons, strict=True) if why is not None]
     if len(failed) == len(reasons):
+        # one clause: the numbers at the highest overtone (the smallest δ), not the reason's
+        # own sentence, which repeats "smaller than the penetration depth"
+        f = fundamental * failed[-1]
         raise ContactresInputError(
-            f"{source}: particles of radius {particle.radius:.3g} m are smaller than the "
-            f"penetration depth of {medium.name} at every overtone measured, up to n = "
-            f"{failed[-1]} ({reasons[-1]})"
+            f"{source}: particles of radius R = {particle.radius * 1e9:.3g} nm are smaller than "
+            f"the penetration depth of {medium.name} at every overtone measured, even at n = "
+            f"{failed[-1]} (δ = {penetration_depth(medium, f) * 1e9:.3g} nm at "
+            f"{f / 1e6:.3g} MHz): the hydrodynamic model needs R > δ (lattice Boltzmann is the "
+            "tool there)"
         )
     if failed:
         return [

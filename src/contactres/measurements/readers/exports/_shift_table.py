@@ -73,6 +73,14 @@ def detect(path: Path, head: str) -> bool:
     return {"time_s", "overtone", "df_Hz"} <= names and "sweep" not in names
 
 
+def _option(key: str, value) -> str:
+    """The command-line option that passes ``key`` (the API's keyword) as ``value``: the flag
+    pair ``--df-per-overtone/--df-divided-by-n`` sets ``df_divided_by_n``."""
+    if key == "df_divided_by_n":
+        return "--df-divided-by-n" if value else "--df-per-overtone"
+    return "--" + key.replace("_", "-")
+
+
 def _check_conventions(path: Path, given: dict) -> None:
     for key, (agrees, why) in _STATED.items():
         value = given.get(key)
@@ -81,8 +89,8 @@ def _check_conventions(path: Path, given: dict) -> None:
         if key == "baseline" and str(value).strip().lower() == agrees:
             continue
         raise ContactresInputError(
-            f"{path}: {key}={value!r} does not apply to a tidy shift table: {why} (its column "
-            "names state the conventions)"
+            f"{path}: {key}={value!r} ({_option(key, value)} on the command line) does not "
+            f"apply to a tidy shift table: {why} (its column names state the conventions)"
         )
 
 
