@@ -23,6 +23,12 @@ TABLE = {
     "amplitude": ([0.0, 1e-9, 20e-9, 1e-6], [2e-6, 20.0], "m"),
     "displacement": ([0.0, 1e-9, 1e-6], [1.5e-6, 1.0], "m"),
     "sphere_radius": ([1e-9, 20e-9, 100e-6, 1.0], [5e-10, 2.0], "m"),
+    # paper 2's 1.1 mm sphere ... a 5 cm ball; 0.6 and 1 are radii in mm typed as m (issue 30)
+    "qcm_sphere_radius": ([1e-9, 20e-6, 1.1e-3, 0.05], [5e-10, 0.06, 0.6, 1.0], "m"),
+    # a 20 nm vesicle ... a 100 µm cell; 0.5 is a radius in µm typed as m (issue 30)
+    "particle_radius": ([1e-9, 20e-9, 5e-7, 100e-6, 5e-3], [5e-10, 0.01, 0.5], "m"),
+    # a 2 nm sharp tip ... a 25 µm colloidal probe; 20 is a radius in nm typed as m
+    "tip_radius": ([1e-9, 2e-9, 5e-8, 25e-6, 1e-3], [5e-10, 2e-3, 20.0], "m"),
     "contact_radius": ([1e-10, 5e-6, 1.0], [5e-11, 5.0], "m"),
     # a TKD map's 2 nm step ... an SEM EBSD map's 0.5 µm ... a 1 mm overview scan
     "pixel_size": ([1e-10, 2e-9, 0.5e-6, 1e-3, 1e-2], [5e-11, 0.5, -1e-6], "m"),
@@ -143,6 +149,14 @@ SLIPS = [
     ("sphere_radius", 2, "millimetres (2 mm = 0.002 m)"),
     ("sphere_radius", 100, "micrometres (100 µm = 1e-4 m)"),
     ("sphere_radius", 1e6, "nanometres (1e6 nm = 0.001 m)"),
+    ("qcm_sphere_radius", 0.6, "millimetres (0.6 mm = 6e-4 m)"),
+    ("qcm_sphere_radius", 1, "millimetres (1 mm = 0.001 m)"),
+    ("qcm_sphere_radius", 500, "micrometres (500 µm = 5e-4 m)"),
+    ("qcm_sphere_radius", 1e6, "nanometres (1e6 nm = 0.001 m)"),
+    ("particle_radius", 0.5, "micrometres (0.5 µm = 5e-7 m)"),
+    ("particle_radius", 500, "nanometres (500 nm = 5e-7 m)"),
+    ("tip_radius", 0.05, "micrometres (0.05 µm = 5e-8 m)"),
+    ("tip_radius", 20, "nanometres (20 nm = 2e-8 m)"),
     ("contact_radius", 5, "micrometres (5 µm = 5e-6 m)"),
     ("contact_radius", 5000, "nanometres (5000 nm = 5e-6 m)"),
     ("pixel_size", 0.02, "millimetres (0.02 mm = 2e-5 m)"),

@@ -174,9 +174,24 @@ QUANTITIES = MappingProxyType(
         "displacement": Plausible(
             "tangential displacement", "m", 0.0, MAX_AMPLITUDE_M, 1e-9, (_MM, _UM, _NM)
         ),
-        # From the sharpest AFM tips (a few nm; below 1 nm there is no continuum sphere) to a
-        # 1 m sphere, beyond any indenter or particle on a resonator.
+        # A sphere pressed on a sample in a forward model (contact, dcsf, rum invert): from the
+        # sharpest AFM tips (a few nm; below 1 nm there is no continuum sphere) to a 1 m sphere,
+        # beyond any indenter.
         "sphere_radius": Plausible("sphere radius", "m", 1e-9, 1.0, 1e-4, (_MM, _UM, _NM)),
+        # The sphere of a QCM contact experiment (paper 2: R = 1.1 mm): a sphere wider than a
+        # few cm cannot sit on a 14-25 mm crystal, so 5 cm is the top (issue 30: R = 0.6, a
+        # radius in mm typed as m, passed and gave E = 1.9 GPa for glass).
+        "qcm_sphere_radius": Plausible(
+            "sphere radius on the resonator", "m", 1e-9, 5e-2, 1e-3, (_MM, _UM, _NM)
+        ),
+        # A particle on a QCM-D crystal: colloids, vesicles, cells, ~10 nm to ~100 µm, with a
+        # margin of ten below and fifty above (5 mm); mm spheres are `qcm analyze`'s route.
+        # A radius in mm typed as m would already lie inside for any particle below 5 mm,
+        # so only µm and nm are slips.
+        "particle_radius": Plausible("particle radius", "m", 1e-9, 5e-3, 1e-6, (_UM, _NM)),
+        # An AFM tip: sharp tips of a few nm to colloidal probes of ~50 µm, with a margin of
+        # twenty (1 mm). As for particles, a tip in mm typed as m is never the nearest slip.
+        "tip_radius": Plausible("tip radius", "m", 1e-9, 1e-3, 3e-8, (_UM, _NM)),
         # From one interatomic spacing (0.1 nm) to the largest sphere radius: a contact cannot
         # be wider than its sphere.
         "contact_radius": Plausible("contact radius", "m", 1e-10, 1.0, 1e-6, (_UM, _NM)),

@@ -136,7 +136,7 @@ _SWEEP_CONSTANT = {
     for name, unit, quantity in (
         ("fundamental_Hz", "Hz", "frequency"),
         ("area_m2", "m^2", "area"),
-        ("sphere_radius_m", "m", "sphere_radius"),
+        ("sphere_radius_m", "m", "qcm_sphere_radius"),
     )
 }
 
@@ -472,7 +472,7 @@ AFM_TABLE = TableSchema(
             "tilt of the lever from the sample's surface, > 0 with the free end nearer it",
             interval("deg", 0.0, 60.0),
         ),
-        _col("tip_radius_m", "m", "tip radius R (Hertz)", plausible("sphere_radius")),
+        _col("tip_radius_m", "m", "tip radius R (Hertz)", plausible("tip_radius")),
         _col("load_N", "N", "normal load P (Hertz)", plausible("force")),
         _col("M_tip_Pa", "Pa", "indentation modulus of the tip", plausible("modulus")),
         _col(
