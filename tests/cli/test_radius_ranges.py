@@ -72,8 +72,10 @@ def test_a_particle_radius_in_um_is_refused_by_the_option_and_the_job():
 
 
 def test_a_tip_radius_in_nm_is_refused_in_the_afm_table(tmp_path):
+    # The table's tip_radius_m keeps the sphere's range (up to 1 m): it also holds the sphere
+    # of a RUM-like contact (R = 1 cm in test_cli_resonances). 50 "m" is refused all the same.
     frame = pd.read_csv(example_path("example_afm.csv"), comment="#")
     path = tmp_path / "afm.csv"
     frame.assign(tip_radius_m=50.0).to_csv(path, index=False)
     r = run("afm", "invert", path, "--out", tmp_path / "out")
-    assert r.exit_code == 2 and "nanometres" in r.output, r.output
+    assert r.exit_code == 2 and "tip_radius_m" in r.output and "looks like" in r.output, r.output

@@ -472,7 +472,7 @@ AFM_TABLE = TableSchema(
             "tilt of the lever from the sample's surface, > 0 with the free end nearer it",
             interval("deg", 0.0, 60.0),
         ),
-        _col("tip_radius_m", "m", "tip radius R (Hertz)", plausible("tip_radius")),
+        _col("tip_radius_m", "m", "tip radius R (Hertz)", plausible("sphere_radius")),
         _col("load_N", "N", "normal load P (Hertz)", plausible("force")),
         _col("M_tip_Pa", "Pa", "indentation modulus of the tip", plausible("modulus")),
         _col(
