@@ -48,6 +48,11 @@ TABLE = {
     "frequency": ([1e3, 5e6, 1e10], [5.0, 2e10], "Hz"),
     # a 1 inch QCM electrode, ~0.2-1 cm²
     "area": ([1e-8, 2e-5, 1e-4, 1e-2], [5e-9, 0.5], "m^2"),
+    # AT-cut quartz d26 = 3.1 pm/V; 3.3 is a value in pm/V typed as m/V
+    "piezo_constant": ([1e-13, 3.1e-12, 1e-10], [5e-14, 3.3, 0.0], "m/V"),
+    "amplitude_calibration": ([1e-13, 2e-9, 1e-5], [5e-14, 2.0, 0.0], "m/V"),
+    # 50 Ω and 75 Ω
+    "reference_impedance": ([1e-3, 50.0, 75.0, 1e6], [5e-4, 2e6, -5.0], "ohm"),
     # AT-cut quartz 8.8e6 kg m^-2 s^-1
     "impedance": ([1e5, 8.8e6, 1e9], [8.8, 2e9], "kg m^-2 s^-1"),
     "zener": ([0.01, 0.5, 3.2, 100.0], [0.0, 1e-3, 1e3], ""),
@@ -176,6 +181,7 @@ SLIPS = [
     ("area", 0.5, "square centimetres (0.5 cm^2 = 5e-5 m^2)"),
     ("area", 20, "square millimetres (20 mm^2 = 2e-5 m^2)"),
     ("area", 1e7, "square micrometres (1e7 µm^2 = 1e-5 m^2)"),
+    ("piezo_constant", 3.1, "pm/V (3.1 pm/V = 3.1e-12 m/V)"),
     ("impedance", 8800, "kilorayl (8800 kRayl = 8.8e6 kg m^-2 s^-1)"),
     ("impedance", 8.8, "megarayl (8.8 MRayl = 8.8e6 kg m^-2 s^-1)"),
 ]

@@ -268,6 +268,16 @@ QUANTITIES = MappingProxyType(
                 (1e-12, "µm^2", "square micrometres"),
             ),
         ),
+        # The piezoelectric strain constant d26 of AT-cut quartz, 3.1 pm/V (Johannsmann et al.
+        # 2021), with a margin of thirty either side; it is quoted in pm/V: the typical slip.
+        "piezo_constant": Plausible(
+            "piezoelectric constant d26", "m/V", 1e-13, 1e-10, 3.1e-12, ((1e-12, "pm/V", "pm/V"),)
+        ),
+        # An amplitude per drive volt measured on a QCM: from d26-like 0.1 pm/V to 10 µm/V, far
+        # beyond any crystal's (u0 = 4 d26 Q U/(nπ)² reaches ~10 nm/V at Q = 1e5).
+        "amplitude_calibration": Plausible("amplitude calibration u0/U", "m/V", 1e-13, 1e-5, 1e-9),
+        # The reference impedance Z0 of an S11 measurement: 50 Ω (or 75 Ω), with a wide margin.
+        "reference_impedance": Plausible("reference impedance Z0", "ohm", 1e-3, 1e6, 50.0),
         # Acoustic impedance of a resonator's material: soft polymers (~1e6, /10) to tungsten
         # (~1e8, x10); AT-cut quartz has 8.8e6 kg m^-2 s^-1 = 8.8 MRayl.
         "impedance": Plausible(

@@ -336,15 +336,20 @@ def _coating_material(name: str):
 
 
 def _thickness(text, spec) -> float:
-    """A layer's thickness in m from ``text`` (a number or its text), checked."""
+    """A layer's thickness in m from ``text`` (a number, its text, or a number with its unit,
+    ``250nm``, converted with pint as every option's), checked."""
     try:
         h = float(text)
     except (TypeError, ValueError):
         h = math.nan
+        from ..typed_units import has_unit, to_si
+
+        if isinstance(text, str) and has_unit(text):
+            h = to_si(text, "m", f"coating thickness (--coating {spec})")
     if not (math.isfinite(h) and h > 0):
         raise ContactresInputError(
-            f"coating thickness (--coating {spec}) must be a positive finite number in m, "
-            f"got {text!r}"
+            f"coating thickness (--coating {spec}) must be a positive finite number in m (or "
+            f"with its unit, e.g. 250nm), got {text!r}"
         )
     if h > _MAX_THICKNESS_M:
         raise ContactresInputError(
