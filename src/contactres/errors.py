@@ -10,7 +10,7 @@ contactres and is reported as an internal error, with a request to report it.
 
 from __future__ import annotations
 
-__all__ = ["ContactresInputError", "MissingExtraError"]
+__all__ = ["ContactresInputError", "ContactresWarning", "MissingExtraError"]
 
 
 class ContactresInputError(ValueError):
@@ -29,4 +29,13 @@ class MissingExtraError(ImportError):
 
     Neither the user's input nor a fault of contactres: the command line prints it as one line
     (exit 2) saying what to install.
+    """
+
+
+class ContactresWarning(UserWarning):
+    """A result given with a reservation: computed from valid input, but outside the range
+    where its theory holds (a Hertz contact wider than a tenth of its sphere, a/R > 0.1).
+
+    The message names the quantity and the rule. To turn such results into errors:
+    ``warnings.simplefilter("error", ContactresWarning)``.
     """

@@ -23,6 +23,8 @@ from .errors import ContactresInputError
 
 __all__ = [
     "ABSOLUTE_FREQUENCY_FRACTION",
+    "HERTZ_APPROXIMATE_RATIO",
+    "HERTZ_MAX_RATIO",
     "JUNCTION_SIGMAS",
     "LINEAR_ONSET_X",
     "MAX_AMPLITUDE_M",
@@ -43,6 +45,20 @@ SMALL_LOAD_LIMIT = 1e-3
 #: Largest plausible QCM oscillation amplitude, m. Contact-resonance ramps reach tens of nm; 1 µm
 #: would wreck the resonator, so a larger value means the column holds nanometres, not metres.
 MAX_AMPLITUDE_M = 1e-6
+
+#: Contact radius over sphere radius, a/R, above which a contact is flagged as approximate:
+#: Hertz's theory (and the anisotropic and layered contacts built on it) takes the sphere as a
+#: paraboloid on a half-space in small strain, good for a ≪ R (K. L. Johnson, *Contact
+#: Mechanics*, Cambridge University Press (1985), §4.2: a/R ≲ 0.1). Its values are kept (at
+#: a/R = 0.24, a CR-AFM tip's usual contact, the paraboloid's gap at the contact edge is 1.5 %
+#: below the sphere's) and flagged.
+HERTZ_APPROXIMATE_RATIO = 0.1
+
+#: a/R above which a contact gets no values: the paraboloid's gap at the edge is 7 % below the
+#: sphere's at a/R = 0.5 (and the depth a²/R a quarter of the radius), no longer a small-contact
+#: answer; most likely a radius or a force typed in the wrong unit (issue 30: R = 20 nm and F =
+#: 1 N gave a/R = 24 and p0 = 2 TPa).
+HERTZ_MAX_RATIO = 0.5
 
 #: A shift above this fraction of the fundamental is an absolute frequency, not a shift.
 ABSOLUTE_FREQUENCY_FRACTION = 0.1
