@@ -582,6 +582,8 @@ PUBLIC = {
     ],
     "units": [
         "ABSOLUTE_FREQUENCY_FRACTION",
+        "HERTZ_APPROXIMATE_RATIO",
+        "HERTZ_MAX_RATIO",
         "JUNCTION_SIGMAS",
         "LINEAR_ONSET_X",
         "MAX_AMPLITUDE_M",

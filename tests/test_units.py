@@ -23,6 +23,12 @@ TABLE = {
     "amplitude": ([0.0, 1e-9, 20e-9, 1e-6], [2e-6, 20.0], "m"),
     "displacement": ([0.0, 1e-9, 1e-6], [1.5e-6, 1.0], "m"),
     "sphere_radius": ([1e-9, 20e-9, 100e-6, 1.0], [5e-10, 2.0], "m"),
+    # paper 2's 1.1 mm sphere ... a 5 cm ball; 0.6 and 1 are radii in mm typed as m (issue 30)
+    "qcm_sphere_radius": ([1e-9, 20e-6, 1.1e-3, 0.05], [5e-10, 0.06, 0.6, 1.0], "m"),
+    # a 20 nm vesicle ... a 100 µm cell; 0.5 is a radius in µm typed as m (issue 30)
+    "particle_radius": ([1e-9, 20e-9, 5e-7, 100e-6, 5e-3], [5e-10, 0.01, 0.5], "m"),
+    # a 2 nm sharp tip ... a 25 µm colloidal probe; 20 is a radius in nm typed as m
+    "tip_radius": ([1e-9, 2e-9, 5e-8, 25e-6, 1e-3], [5e-10, 2e-3, 20.0], "m"),
     "contact_radius": ([1e-10, 5e-6, 1.0], [5e-11, 5.0], "m"),
     # a TKD map's 2 nm step ... an SEM EBSD map's 0.5 µm ... a 1 mm overview scan
     "pixel_size": ([1e-10, 2e-9, 0.5e-6, 1e-3, 1e-2], [5e-11, 0.5, -1e-6], "m"),
@@ -42,6 +48,11 @@ TABLE = {
     "frequency": ([1e3, 5e6, 1e10], [5.0, 2e10], "Hz"),
     # a 1 inch QCM electrode, ~0.2-1 cm²
     "area": ([1e-8, 2e-5, 1e-4, 1e-2], [5e-9, 0.5], "m^2"),
+    # AT-cut quartz d26 = 3.1 pm/V; 3.3 is a value in pm/V typed as m/V
+    "piezo_constant": ([1e-13, 3.1e-12, 1e-10], [5e-14, 3.3, 0.0], "m/V"),
+    "amplitude_calibration": ([1e-13, 2e-9, 1e-5], [5e-14, 2.0, 0.0], "m/V"),
+    # 50 Ω and 75 Ω
+    "reference_impedance": ([1e-3, 50.0, 75.0, 1e6], [5e-4, 2e6, -5.0], "ohm"),
     # AT-cut quartz 8.8e6 kg m^-2 s^-1
     "impedance": ([1e5, 8.8e6, 1e9], [8.8, 2e9], "kg m^-2 s^-1"),
     "zener": ([0.01, 0.5, 3.2, 100.0], [0.0, 1e-3, 1e3], ""),
@@ -143,6 +154,14 @@ SLIPS = [
     ("sphere_radius", 2, "millimetres (2 mm = 0.002 m)"),
     ("sphere_radius", 100, "micrometres (100 µm = 1e-4 m)"),
     ("sphere_radius", 1e6, "nanometres (1e6 nm = 0.001 m)"),
+    ("qcm_sphere_radius", 0.6, "millimetres (0.6 mm = 6e-4 m)"),
+    ("qcm_sphere_radius", 1, "millimetres (1 mm = 0.001 m)"),
+    ("qcm_sphere_radius", 500, "micrometres (500 µm = 5e-4 m)"),
+    ("qcm_sphere_radius", 1e6, "nanometres (1e6 nm = 0.001 m)"),
+    ("particle_radius", 0.5, "micrometres (0.5 µm = 5e-7 m)"),
+    ("particle_radius", 500, "nanometres (500 nm = 5e-7 m)"),
+    ("tip_radius", 0.05, "micrometres (0.05 µm = 5e-8 m)"),
+    ("tip_radius", 20, "nanometres (20 nm = 2e-8 m)"),
     ("contact_radius", 5, "micrometres (5 µm = 5e-6 m)"),
     ("contact_radius", 5000, "nanometres (5000 nm = 5e-6 m)"),
     ("pixel_size", 0.02, "millimetres (0.02 mm = 2e-5 m)"),
@@ -162,6 +181,7 @@ SLIPS = [
     ("area", 0.5, "square centimetres (0.5 cm^2 = 5e-5 m^2)"),
     ("area", 20, "square millimetres (20 mm^2 = 2e-5 m^2)"),
     ("area", 1e7, "square micrometres (1e7 µm^2 = 1e-5 m^2)"),
+    ("piezo_constant", 3.1, "pm/V (3.1 pm/V = 3.1e-12 m/V)"),
     ("impedance", 8800, "kilorayl (8800 kRayl = 8.8e6 kg m^-2 s^-1)"),
     ("impedance", 8.8, "megarayl (8.8 MRayl = 8.8e6 kg m^-2 s^-1)"),
 ]

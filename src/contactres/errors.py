@@ -13,7 +13,7 @@ error: it is returned, and :class:`AccuracyWarning` says which value, and the ac
 
 from __future__ import annotations
 
-__all__ = ["AccuracyWarning", "ContactresInputError", "MissingExtraError"]
+__all__ = ["AccuracyWarning", "ContactresInputError", "ContactresWarning", "MissingExtraError"]
 
 
 class ContactresInputError(ValueError):
@@ -47,4 +47,13 @@ class AccuracyWarning(UserWarning):
     >>> from contactres.errors import AccuracyWarning
     >>> issubclass(AccuracyWarning, UserWarning)
     True
+    """
+
+
+class ContactresWarning(UserWarning):
+    """A result given with a reservation: computed from valid input, but outside the range
+    where its theory holds (a Hertz contact wider than a tenth of its sphere, a/R > 0.1).
+
+    The message names the quantity and the rule. To turn such results into errors:
+    ``warnings.simplefilter("error", ContactresWarning)``.
     """

@@ -23,6 +23,8 @@ from .errors import ContactresInputError
 
 __all__ = [
     "ABSOLUTE_FREQUENCY_FRACTION",
+    "HERTZ_APPROXIMATE_RATIO",
+    "HERTZ_MAX_RATIO",
     "JUNCTION_SIGMAS",
     "LINEAR_ONSET_X",
     "MAX_AMPLITUDE_M",
@@ -43,6 +45,20 @@ SMALL_LOAD_LIMIT = 1e-3
 #: Largest plausible QCM oscillation amplitude, m. Contact-resonance ramps reach tens of nm; 1 µm
 #: would wreck the resonator, so a larger value means the column holds nanometres, not metres.
 MAX_AMPLITUDE_M = 1e-6
+
+#: Contact radius over sphere radius, a/R, above which a contact is flagged as approximate:
+#: Hertz's theory (and the anisotropic and layered contacts built on it) takes the sphere as a
+#: paraboloid on a half-space in small strain, good for a ≪ R (K. L. Johnson, *Contact
+#: Mechanics*, Cambridge University Press (1985), §4.2: a/R ≲ 0.1). Its values are kept (at
+#: a/R = 0.24, a CR-AFM tip's usual contact, the paraboloid's gap at the contact edge is 1.5 %
+#: below the sphere's) and flagged.
+HERTZ_APPROXIMATE_RATIO = 0.1
+
+#: a/R above which a contact gets no values: the paraboloid's gap at the edge is 7 % below the
+#: sphere's at a/R = 0.5 (and the depth a²/R a quarter of the radius), no longer a small-contact
+#: answer; most likely a radius or a force typed in the wrong unit (issue 30: R = 20 nm and F =
+#: 1 N gave a/R = 24 and p0 = 2 TPa).
+HERTZ_MAX_RATIO = 0.5
 
 #: A shift above this fraction of the fundamental is an absolute frequency, not a shift.
 ABSOLUTE_FREQUENCY_FRACTION = 0.1
@@ -174,9 +190,24 @@ QUANTITIES = MappingProxyType(
         "displacement": Plausible(
             "tangential displacement", "m", 0.0, MAX_AMPLITUDE_M, 1e-9, (_MM, _UM, _NM)
         ),
-        # From the sharpest AFM tips (a few nm; below 1 nm there is no continuum sphere) to a
-        # 1 m sphere, beyond any indenter or particle on a resonator.
+        # A sphere pressed on a sample in a forward model (contact, dcsf, rum invert): from the
+        # sharpest AFM tips (a few nm; below 1 nm there is no continuum sphere) to a 1 m sphere,
+        # beyond any indenter.
         "sphere_radius": Plausible("sphere radius", "m", 1e-9, 1.0, 1e-4, (_MM, _UM, _NM)),
+        # The sphere of a QCM contact experiment (paper 2: R = 1.1 mm): a sphere wider than a
+        # few cm cannot sit on a 14-25 mm crystal, so 5 cm is the top (issue 30: R = 0.6, a
+        # radius in mm typed as m, passed and gave E = 1.9 GPa for glass).
+        "qcm_sphere_radius": Plausible(
+            "sphere radius on the resonator", "m", 1e-9, 5e-2, 1e-3, (_MM, _UM, _NM)
+        ),
+        # A particle on a QCM-D crystal: colloids, vesicles, cells, ~10 nm to ~100 µm, with a
+        # margin of ten below and fifty above (5 mm); mm spheres are `qcm analyze`'s route.
+        # A radius in mm typed as m would already lie inside for any particle below 5 mm,
+        # so only µm and nm are slips.
+        "particle_radius": Plausible("particle radius", "m", 1e-9, 5e-3, 1e-6, (_UM, _NM)),
+        # An AFM tip: sharp tips of a few nm to colloidal probes of ~50 µm, with a margin of
+        # twenty (1 mm). As for particles, a tip in mm typed as m is never the nearest slip.
+        "tip_radius": Plausible("tip radius", "m", 1e-9, 1e-3, 3e-8, (_UM, _NM)),
         # From one interatomic spacing (0.1 nm) to the largest sphere radius: a contact cannot
         # be wider than its sphere.
         "contact_radius": Plausible("contact radius", "m", 1e-10, 1.0, 1e-6, (_UM, _NM)),
@@ -253,6 +284,16 @@ QUANTITIES = MappingProxyType(
                 (1e-12, "µm^2", "square micrometres"),
             ),
         ),
+        # The piezoelectric strain constant d26 of AT-cut quartz, 3.1 pm/V (Johannsmann et al.
+        # 2021), with a margin of thirty either side; it is quoted in pm/V: the typical slip.
+        "piezo_constant": Plausible(
+            "piezoelectric constant d26", "m/V", 1e-13, 1e-10, 3.1e-12, ((1e-12, "pm/V", "pm/V"),)
+        ),
+        # An amplitude per drive volt measured on a QCM: from d26-like 0.1 pm/V to 10 µm/V, far
+        # beyond any crystal's (u0 = 4 d26 Q U/(nπ)² reaches ~10 nm/V at Q = 1e5).
+        "amplitude_calibration": Plausible("amplitude calibration u0/U", "m/V", 1e-13, 1e-5, 1e-9),
+        # The reference impedance Z0 of an S11 measurement: 50 Ω (or 75 Ω), with a wide margin.
+        "reference_impedance": Plausible("reference impedance Z0", "ohm", 1e-3, 1e6, 50.0),
         # Acoustic impedance of a resonator's material: soft polymers (~1e6, /10) to tungsten
         # (~1e8, x10); AT-cut quartz has 8.8e6 kg m^-2 s^-1 = 8.8 MRayl.
         "impedance": Plausible(

@@ -250,7 +250,7 @@ def test_the_help_names_paper_2s_equation_and_the_radius_unit():
 @pytest.mark.parametrize(
     "option, value, words",
     [
-        ("--particle-radius", "5", ["--particle-radius", "sphere radius"]),
+        ("--particle-radius", "5", ["--particle-radius", "particle radius", "micrometres"]),
         ("--particle-radius", "0", ["--particle-radius"]),
         ("--particle-density", "-2200", ["--particle-density"]),
         ("--particle-density", "2.2", ["--particle-density", "g/cm^3"]),

@@ -121,12 +121,27 @@ def test_the_qcm_analysis_workbook_and_netcdf_hold_every_table(tmp_path):
     assert run.exit_code == 0, run.output
     sheets = pd.read_excel(out / "results.xlsx", sheet_name=None)
     tables = ["sweeps", "loads", "curves", "jkr_curves"]
-    assert list(sheets) == [*tables, "conventions"]
+    # Table 1 too (issue 30, second review M2): the numbers a reader opens the file for.
+    assert list(sheets) == [*tables, "table1", "conventions"]
+    groups = json.loads((out / "summary.json").read_text(encoding="utf-8"))["groups"]
     with xr.open_dataset(out / "results.nc", engine="scipy") as ds:
         for name in tables:
             csv = pd.read_csv(out / f"{name}.csv")
             _same_as_csv(csv, sheets[name])
             _same_as_csv(csv, pd.DataFrame({c: ds[f"{name}.{c}"].values for c in csv.columns}))
+        table1 = sheets["table1"]
+        assert list(table1.columns[:6]) == [
+            "configuration", "medium", "E_Pa", "E_err_Pa", "gamma_J_m2", "gamma_err_J_m2"
+        ]  # fmt: skip
+        assert {"checks", "note", "t95"} <= set(table1.columns)
+        assert ds["table1.E_Pa"].dims == ("group",) and ds.sizes["group"] == len(groups)
+        assert ds["table1.E_Pa"].attrs["units"] == "Pa"
+        assert ds["table1.gamma_err_J_m2"].attrs["units"] == "J/m^2"
+        for key in ("E_Pa", "E_err_Pa", "gamma_J_m2", "gamma_err_J_m2"):
+            expected = [g[key] for g in groups]
+            np.testing.assert_allclose(table1[key], expected, rtol=1e-12)
+            np.testing.assert_allclose(ds[f"table1.{key}"].values, expected, rtol=1e-12)
+        assert list(ds["table1.configuration"].values) == [g["configuration"] for g in groups]
 
 
 def test_formulas_stay_text_in_the_workbook(tmp_path):

@@ -89,7 +89,10 @@ def test_schema_of_the_three_outputs(results, tmp_path):
     expected = [*keys, "errors_from", "dof", "t95"]
     for q in LOAD_QUANTITIES:
         expected += [f"{q}_{stat}" for stat in ("mean", "sd", "sem", "median", "median_err")]
+    # flags last (issue 30: mu-withheld where the group's E and γ were withheld for a unit slip)
+    expected.append("flags")
     assert list(loads.columns) == expected
+    assert loads["flags"].isna().all()  # no load of this study is flagged: empty cells
     assert (loads["errors_from"] == "experiments").all()
     assert len(loads) == 6 and (loads["n_experiments"] == 3).all()
     # 3 experiments: 2 degrees of freedom, t(0.975, 2) = 4.303 (Student's table)

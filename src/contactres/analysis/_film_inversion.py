@@ -157,7 +157,7 @@ def _curves(substrate, film, film_modulus, thickness, log_s, R, P, M_tip):
             cols = M_tip == m
             tip = None if math.isinf(m) else Material.isotropic(m, 0.0, name="tip")
             try:
-                c = sphere_contact(stack, R[cols], P[cols], indenter=tip)
+                c = sphere_contact(stack, R[cols], P[cols], indenter=tip, check_validity=False)
             except ContactresInputError as err:  # a/h beyond the layered solver
                 raise ContactresInputError(
                     f"film modulus {math.exp(ls) * film_modulus:.3g} Pa of the search range: "

@@ -13,13 +13,27 @@ import pandas as pd
 from ..measurements.schema import LOAD_QUANTITIES
 from ._jkr import t95_factor
 
-__all__ = ["GROUP_KEYS", "LOAD_KEYS", "QUANTITIES", "per_experiment", "per_load"]
+__all__ = [
+    "GROUP_KEYS",
+    "LOAD_KEYS",
+    "MU_WITHHELD",
+    "QUANTITIES",
+    "per_experiment",
+    "per_load",
+    "withhold_mu",
+]
 
 #: The quantities averaged per load (columns of the sweep results).
 QUANTITIES = tuple(name for name, _, _ in LOAD_QUANTITIES)
 #: One group of the JKR fit, one load of a group.
 GROUP_KEYS = ["configuration", "medium"]
 LOAD_KEYS = ["configuration", "medium", "normal_force_N"]
+#: The flag of a load whose μ is withheld with its group's E and γ (:func:`withhold_mu`).
+MU_WITHHELD = "mu-withheld"
+# The checks of a group's JKR fit that name an input μ scales with as well: κ, and with it μ,
+# is proportional to area_m2 and n_contacts (paper 2, Eqs. 3 and 12), and μ is a force ratio
+# (normal_force_N). A fit at a bound or too few loads say nothing about those inputs.
+_MU_CHECKS = ("E-out-of-range", "gamma-out-of-range")
 
 
 def _used(sw: pd.DataFrame) -> pd.DataFrame:
@@ -79,3 +93,26 @@ def per_load(exp: pd.DataFrame, sw: pd.DataFrame) -> pd.DataFrame:
         out[f"{q}_median"] = np.where(single, used[q].median().reindex(out.index), g[q].median())
         out[f"{q}_median_err"] = 1.2533 * out[f"{q}_sem"]
     return out.reset_index()
+
+
+def withhold_mu(loads: pd.DataFrame, groups: list[dict]) -> pd.DataFrame:
+    """``loads`` with the μ of every load of a group whose E and γ were withheld for a unit
+    slip (its checks ``E-out-of-range`` or ``gamma-out-of-range``) set to NaN, and a ``flags``
+    column: :data:`MU_WITHHELD` on those loads, empty on the others.
+
+    The inputs those checks name (area_m2, n_contacts, normal_force_N) scale μ too: an area in
+    mm² typed as m² gave E = 1e4 GPa, withheld, and μ = 44 per load, printed (issue 30).
+    """
+    out = loads.copy()
+    flags = np.full(len(out), "", dtype=object)
+    mu = [c for c in out.columns if c.startswith("mu_")]
+    for g in groups:
+        if not any(c in _MU_CHECKS for c in g.get("checks", ())):
+            continue
+        rows = (out["configuration"] == g["configuration"]).to_numpy() & (
+            out["medium"] == g["medium"]
+        ).to_numpy()
+        out.loc[rows, mu] = np.nan
+        flags[rows] = MU_WITHHELD
+    out["flags"] = flags
+    return out

@@ -93,7 +93,7 @@ from ._drift import LOAD_OF_EXPERIMENT, drifting_sweeps, remove_linear_drift
 from ._flags import Flag
 from ._friction import block_friction, loop_friction, slope_friction
 from ._jkr import fit_group
-from ._loads import GROUP_KEYS, per_experiment, per_load
+from ._loads import GROUP_KEYS, per_experiment, per_load, withhold_mu
 from ._loops import X_MAX, loop_tables
 from ._models import AMPLITUDE_MODELS, fit_tables
 from ._ramps import check_ramps
@@ -448,6 +448,9 @@ def analyze(
 
         assert isinstance(coating, Coating)
         laws = apply_coating(groups, exp, sw[used], coating, settings.bootstrap, settings.seed, say)
+
+    # After the coating's refit, which may change a group's checks.
+    loads = withhold_mu(loads, groups)
 
     say("the fitted curves of every sweep")
     curves = fitted_curves(sw, padded, fits, workers=settings.workers)

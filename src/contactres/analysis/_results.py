@@ -28,6 +28,20 @@ def _pm(value: float, error: float, digits: int = 3) -> str:
     return f"{text} ± {error:.2g}" if math.isfinite(error) else text
 
 
+class Table1(pd.DataFrame):
+    """Table 1 as a plain :class:`pandas.DataFrame` that prints every column.
+
+    At pandas' default width of 80 characters a wide frame hides its middle columns behind
+    "...", here E and γ themselves (issue 30). Printed, this one wraps its columns onto
+    further lines instead; everything derived from it (a selection, ``.copy()``) is a plain
+    DataFrame again.
+    """
+
+    def __repr__(self) -> str:
+        with pd.option_context("display.max_columns", None, "display.expand_frame_repr", True):
+            return super().__repr__()
+
+
 # repr=False: the dataclass repr would print every table in full (~10,000 characters); the
 # class gives a summary of its own (__repr__, _repr_html_ for notebooks).
 @dataclass(frozen=True, repr=False)
@@ -107,12 +121,13 @@ class Results:
                     "gamma_err_mJ_m2": g["gamma_err_J_m2"] * 1e3,
                     "n_exp": g["n_experiments"],
                     "n_sweeps": g["n_sweeps_used"],
-                    "errors": g.get("error_method", ""),
                     "t95": g.get("t95", np.nan),
                     "note": g.get("note", ""),
+                    # Last: the longest text (~60 characters), after the numbers.
+                    "errors": g.get("error_method", ""),
                 }
             )
-        return pd.DataFrame(rows)
+        return Table1(rows)
 
     def _group_rows(self) -> list[tuple[str, str, str]]:
         """(configuration, medium, the fitted E and γ or why they are withheld) per group."""

@@ -20,7 +20,8 @@ def coating_option(what: str):
         "--coating",
         multiple=True,
         metavar="MATERIAL:THICKNESS",
-        help="A film on the sample, thickness in m (e.g. pmma:250e-9); repeat for more layers, "
+        help="A film on the sample, thickness in m or with its unit (e.g. pmma:250e-9 or "
+        "pmma:250nm); repeat for more layers, "
         "top first. MATERIAL: pmma (its 1 Hz storage modulus) or an isotropic solid of "
         f"`contactres crystals` (fused-silica, soda-lime-glass, Si3N4). {what}",
     )
@@ -36,7 +37,8 @@ def coating_options():
                     "--coating",
                     multiple=True,
                     metavar="MATERIAL:THICKNESS",
-                    help="One film on the sample, thickness in m (e.g. pmma:250e-9): adds the "
+                    help="One film on the sample, thickness in m or with its unit (e.g. "
+                    "pmma:250e-9 or pmma:250nm): adds the "
                     "film's modulus M_film_Pa (needs --substrate). MATERIAL as in 'contactres "
                     "contact --coating' (pmma: its 1 Hz storage constants give the Poisson "
                     "ratio); its modulus is the unknown.",

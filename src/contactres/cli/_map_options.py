@@ -131,7 +131,7 @@ def tip_options(required: bool):
             [
                 click.option(
                     "--tip-radius",
-                    type=MagnitudeType("sphere_radius"),
+                    type=MagnitudeType("tip_radius"),
                     required=required,
                     help="Radius R of the spherical tip, m.",
                 ),

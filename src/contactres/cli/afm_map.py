@@ -112,7 +112,7 @@ def _map_name(ctx, param, value):
     "positive with the free end nearer the sample (the only mounting modelled); usual "
     "mounting 10-12°.",
 )
-@click.option("--tip-radius", type=MagnitudeType("sphere_radius"), help="Hertz: tip radius, m.")
+@click.option("--tip-radius", type=MagnitudeType("tip_radius"), help="Hertz: tip radius, m.")
 @click.option("--force", type=MagnitudeType("force"), help="Hertz: static load on the tip, N.")
 @click.option(
     "--punch-radius", type=MagnitudeType("contact_radius"), help="Flat punch: its radius, m."

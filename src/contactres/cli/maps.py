@@ -345,7 +345,7 @@ def maps_predict(
 )
 @click.option(
     "--tip-radius",
-    type=MagnitudeType("sphere_radius"),
+    type=MagnitudeType("tip_radius"),
     help="Tip radius R, m (with --force: fixes the calibration of a k* map).",
 )
 @click.option("--force", type=MagnitudeType("force"), help="Static normal force F, N.")

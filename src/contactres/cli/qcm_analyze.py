@@ -62,7 +62,9 @@ from ._common import (
     cls=ValueDefault,
     help="Poisson ratio ν (dimensionless) fixed in the JKR fit.",
 )
-@click.option("--sphere-radius", type=MagnitudeType("sphere_radius"), help="Sphere radius R (m).")
+@click.option(
+    "--sphere-radius", type=MagnitudeType("qcm_sphere_radius"), help="Sphere radius R (m)."
+)
 @click.option(
     "--keep-first-ramp",
     is_flag=True,

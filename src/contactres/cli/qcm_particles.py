@@ -59,7 +59,7 @@ class MediumName(click.ParamType):
 )
 @click.option(
     "--particle-radius",
-    type=MagnitudeType("sphere_radius"),
+    type=MagnitudeType("particle_radius"),
     required=True,
     help="Radius R of the particles, m (e.g. 5e-7 m for spheres 1 µm across).",
 )

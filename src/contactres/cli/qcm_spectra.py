@@ -2,32 +2,12 @@
 
 from __future__ import annotations
 
-import math
-
 import click
 
 from ._app import qcm
-from ._common import emit_record, format_option, step
+from ._common import MagnitudeType, emit_record, format_option, step
 
 _LAYOUTS = ("G/B", "Y-RI", "S11-RI", "Y-MA")
-
-
-def _positive(name: str, low: float, high: float, unit: str):
-    """A float option checked against its plausible range [low, high] (one-line error)."""
-
-    def check(ctx, param, value):
-        if value is None:
-            return None
-        if not (math.isfinite(value) and low <= value <= high):
-            raise click.BadParameter(
-                f"{value!r} is outside the plausible range [{low:g}, {high:g}] {unit} of the "
-                f"{name}",
-                ctx,
-                param,
-            )
-        return value
-
-    return check
 
 
 @qcm.command("spectra")
@@ -57,11 +37,11 @@ def _positive(name: str, low: float, high: float, unit: str):
 )
 @click.option(
     "--reference-impedance",
-    type=float,
+    type=MagnitudeType("reference_impedance"),
     default=50.0,
     show_default=True,
-    callback=_positive("reference impedance", 1e-3, 1e6, "Ω"),
-    help="Reference impedance Z0 of S11 in delimited files, Ω (Touchstone files give theirs).",
+    help="Reference impedance Z0 of S11 in delimited files, Ω (Touchstone files give theirs; "
+    "a number in Ω or with its unit, e.g. 75ohm).",
 )
 @click.option(
     "--two-port",
@@ -79,19 +59,19 @@ def _positive(name: str, low: float, high: float, unit: str):
 )
 @click.option(
     "--d26",
-    type=float,
+    type=MagnitudeType("piezo_constant"),
     default=None,
-    callback=_positive("piezoelectric constant d26", 1e-13, 1e-10, "m/V"),
     show_default="3.1e-12, AT-cut, Johannsmann et al. 2021",
-    help="Piezoelectric strain constant of the quartz, m/V. The amplitude is "
+    help="Piezoelectric strain constant of the quartz, m/V (or with its unit: 3.1pm/V). The "
+    "amplitude is "
     "u0 = 4 d26 Q U/(nπ)², Q = f_r/(2Γ).",
 )
 @click.option(
     "--calibration",
-    type=float,
+    type=MagnitudeType("amplitude_calibration"),
     default=None,
-    callback=_positive("amplitude calibration u0/U", 1e-13, 1e-5, "m/V"),
-    help="Amplitude per drive volt measured on your instrument, m/V: u0 = this × U "
+    help="Amplitude per drive volt measured on your instrument, m/V (or with its unit: "
+    "2nm/V): u0 = this × U "
     "(replaces the d26 formula).",
 )
 @format_option()

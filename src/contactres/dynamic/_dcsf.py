@@ -208,7 +208,8 @@ def dynamic_contact_stiffness(
     if density is None:
         raise ContactresInputError("dynamic_contact_stiffness needs the material density (kg/m^3)")
     f = np.asarray(nonnegative("frequency", frequency, "Hz"))
-    contact = sphere_contact(m, radius, force)
+    # As before the a/R check of sphere_contact (issue 30): its callers flag a/R themselves.
+    contact = sphere_contact(m, radius, force, check_validity=False)
     a = np.asarray(contact.contact_radius, dtype=float)
     ksa = normalised_wavenumber(f, a, m.density, shear_reference(m))
     ksa, k_sa = np.broadcast_arrays(ksa, np.asarray(contact.stiffness, dtype=float))

@@ -46,6 +46,7 @@ from ..errors import ContactresInputError
 from ..layered import LayeredMaterial, checked_thickness, thickness_text
 from ..materials import Material, require_material
 from ..measurements.schema import CONTACT_TABLE
+from ..units import HERTZ_APPROXIMATE_RATIO, HERTZ_MAX_RATIO
 from ..validation import nonnegative
 from .contract import JobResult, Progress, say
 
@@ -73,18 +74,8 @@ __all__ = [
 STATIC_FREQUENCY_HZ = 1.0
 # More layers than this is a typing slip, not a coating anyone measures.
 MAX_COATING_LAYERS = 10
-#: Contact radius over sphere radius, a/R, above which a contact is flagged as approximate:
-#: Hertz's theory (and the anisotropic and layered contacts built on it) takes the sphere as a
-#: paraboloid on a half-space in small strain, good for a ≪ R (K. L. Johnson, *Contact
-#: Mechanics*, Cambridge University Press (1985), §4.2: a/R ≲ 0.1). Its values are kept (at
-#: a/R = 0.24, a CR-AFM tip's usual contact, the paraboloid's gap at the contact edge is 1.5 %
-#: below the sphere's) and the row's ``flags`` say so.
-HERTZ_APPROXIMATE_RATIO = 0.1
-#: a/R above which a contact gets no values: the paraboloid's gap at the edge is 7 % below the
-#: sphere's at a/R = 0.5 (and the depth a²/R a quarter of the radius), no longer a small-contact
-#: answer; most likely a radius or a force typed in the wrong unit (issue 30: R = 20 nm and F =
-#: 1 N gave a/R = 24 and p0 = 2 TPa).
-HERTZ_MAX_RATIO = 0.5
+# The a/R rule of Hertz's validity (HERTZ_APPROXIMATE_RATIO, HERTZ_MAX_RATIO) is
+# contactres.units': the library's sphere_contact and hertz apply the same one.
 
 
 @dataclass(frozen=True)
@@ -172,7 +163,8 @@ def run(
     if stack is not None:
         return _run_coated(stack, R, F, f, s, progress)
     say(progress, "static contact")
-    c = sphere_contact(require_material(m), R, F)  # homogeneous only: no layered stack here
+    # The job flags a/R itself (flags column, empty rows): no warning from the library.
+    c = sphere_contact(require_material(m), R, F, check_validity=False)  # homogeneous only
     wide = _too_wide(c.contact_radius, R)
     # A contact beyond Hertz's validity gets no dynamic stiffness either (its k_s a may lie
     # far outside every solver's range): it is computed as no contact, then left empty.
@@ -333,15 +325,22 @@ def _coating_material(name: str):
 
 
 def _thickness(text, spec) -> float:
-    """A layer's thickness in m from ``text`` (a number or its text), checked by the one rule
-    of contactres (:func:`contactres.layered.checked_thickness`)."""
+    """A layer's thickness in m from ``text`` (a number, its text, or a number with its unit,
+    ``250nm``, converted with pint as every option's), checked by the one rule of contactres
+    (:func:`contactres.layered.checked_thickness`)."""
     try:
         h = float(text)
     except (TypeError, ValueError):
+        h = math.nan
+        from ..typed_units import has_unit, to_si
+
+        if isinstance(text, str) and has_unit(text):
+            h = to_si(text, "m", f"coating thickness (--coating {spec})")
+    if not (math.isfinite(h) and h > 0):
         raise ContactresInputError(
-            f"coating thickness (--coating {spec}) must be a positive finite number in m, "
-            f"got {text!r}"
-        ) from None
+            f"coating thickness (--coating {spec}) must be a positive finite number in m (or "
+            f"with its unit, e.g. 250nm), got {text!r}"
+        )
     return checked_thickness(h, f"coating thickness (--coating {spec})")
 
 
@@ -461,8 +460,8 @@ def _run_coated(stack: LayeredMaterial, R, F, f, s: Settings, progress) -> Resul
         _static(stack.substrate), tuple((_static(m), h) for m, h in stack.layers)
     )
     say(progress, "static contact, bare and coated")
-    bare = sphere_contact(static.substrate, R, F)
-    c = sphere_contact(static, R, F)
+    bare = sphere_contact(static.substrate, R, F, check_validity=False)  # a/R: flagged by run
+    c = sphere_contact(static, R, F, check_validity=False)
     k, k_bare = np.asarray(c.stiffness, dtype=float), np.asarray(bare.stiffness, dtype=float)
     # No contact (F = 0): no share (NaN, printed empty), not a division warning.
     share = np.full(k.shape, np.nan)

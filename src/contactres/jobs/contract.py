@@ -90,6 +90,12 @@ class JobResult:
             {name: (getattr(self, name), schema) for name, schema in self.SCHEMAS.items()}
         )
 
+    def summary_tables(self) -> Mapping[str, tuple[pd.DataFrame, TableSchema | None]]:
+        """Tables that summarise :meth:`values` (Table 1 of a QCM analysis), for the formats
+        that hold a whole result in one file (``xlsx``, ``netcdf``); a results folder has them
+        in its JSON record. None by default."""
+        return MappingProxyType({})
+
     def values(self) -> dict[str, Any]:
         """The fields that are neither tables nor :attr:`NOT_VALUES`, as JSON-able data
         (:func:`json_value`), in declaration order."""

@@ -231,7 +231,8 @@ def _contact_points(m, s: Settings):
     # run calls this only when all three are given
     assert s.radius is not None and s.force is not None and s.frequency is not None
     R, F, f = _broadcast_contacts(s)
-    c = sphere_contact(require_material(m), R, F)  # homogeneous only: no layered stack here
+    # The job flags a/R itself, as contact does: no warning from the library.
+    c = sphere_contact(require_material(m), R, F, check_validity=False)  # homogeneous only
     a = np.asarray(c.contact_radius, dtype=float)
     ka = normalised_wavenumber(f, a, m.density, wave_modulus(m, s.wavenumber))
     extra = {

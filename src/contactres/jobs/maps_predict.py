@@ -259,7 +259,7 @@ def _check_hertz(settings: Settings) -> str:
         np.min(indentation_moduli(settings.material, surface_matrices_from_normals(normals)))
     )
     e_star = 1.0 / (1.0 / m_min + (0.0 if math.isinf(tip.tip_modulus) else 1.0 / tip.tip_modulus))
-    ratio = hertz(e_star, tip.radius, tip.force).contact_radius / tip.radius
+    ratio = hertz(e_star, tip.radius, tip.force, check_validity=False).contact_radius / tip.radius
     if ratio > HERTZ_MAX_RATIO:
         raise ContactresInputError(
             f"--tip-radius {tip.radius:g} m and --force {tip.force:g} N give a Hertz contact "

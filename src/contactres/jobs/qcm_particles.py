@@ -27,6 +27,7 @@ from typing import TYPE_CHECKING
 
 from ..errors import ContactresInputError
 from ..measurements.schema import PARTICLE_SHIFTS_CSV, PARTICLES_CSV
+from ..units import check_magnitude
 from .contract import JobResult, Progress, say
 
 if TYPE_CHECKING:
@@ -337,6 +338,9 @@ def _particle(s: Settings):
     r = s.particle_radius
     if not (isinstance(r, int | float) and math.isfinite(r) and r > 0):
         raise ContactresInputError(f"particle radius {r!r} m must be a finite number > 0")
+    # The same plausible range as --particle-radius, for a caller of the API (issue 30: a
+    # radius in µm typed as m ran and ended in model-misfit flags).
+    check_magnitude("particle_radius", r, "particle radius")
     if s.particle_mass is not None or s.moment_of_inertia is not None:
         if s.particle_density is not None:
             raise ContactresInputError(

@@ -187,6 +187,11 @@ class Result(JobResult):
             )
         return MappingProxyType(tables)
 
+    def summary_tables(self):
+        """``table1``: Table 1 of paper 2, one row per (configuration, medium) fitted
+        (its ``_table1_table``), for the workbook and the NetCDF file."""
+        return MappingProxyType({"table1": (_table1_table(self.analysis), GROUP_RESULTS)})
+
     def values(self) -> dict:
         """The ``summary.json`` record (:func:`summary`)."""
         return summary(self.analysis)
@@ -217,6 +222,29 @@ def sweeps_table(results: Results) -> pd.DataFrame:
     table = _finite_or_nan(results.sweeps[list(SWEEP_RESULTS.names)])
     table["flags"] = render(table["flags"].to_numpy())
     return table
+
+
+#: The columns of Table 1 in the one-file formats: the group, E and γ with their errors, the
+#: counts, and why a value is withheld (``checks``, ``note``); SI units, named in the headers.
+_TABLE1_COLUMNS = (
+    "configuration", "medium", "E_Pa", "E_err_Pa", "gamma_J_m2", "gamma_err_J_m2", "t95",
+    "n_experiments", "n_sweeps_used", "error_method", "checks", "note",
+)  # fmt: skip
+
+
+def _table1_table(results: Results) -> pd.DataFrame:
+    """Table 1 of paper 2 as a table: one row per group, the ``_TABLE1_COLUMNS`` of its
+    ``summary.json`` record (``checks`` ';'-separated; E and γ NaN where withheld)."""
+    import pandas as pd
+
+    rows = [
+        {
+            c: ";".join(g.get(c) or ()) if c == "checks" else g.get(c, float("nan"))
+            for c in _TABLE1_COLUMNS
+        }
+        for g in results.groups
+    ]
+    return _finite_or_nan(pd.DataFrame(rows, columns=list(_TABLE1_COLUMNS)))
 
 
 def loads_table(results: Results) -> pd.DataFrame:

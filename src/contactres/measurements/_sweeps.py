@@ -155,7 +155,9 @@ def _toml_constants(path: Path) -> tuple[dict, Path | None]:
             if unknown:
                 raise ContactresInputError(
                     f"{candidate}: unknown key(s) {column_names(unknown)}; "
-                    f"allowed: {list(CONSTANTS)}"
+                    f"allowed: {list(CONSTANTS)}, each also with its value's unit "
+                    '(sphere_radius = "1.1 mm") or another unit in its name '
+                    "(sphere_radius_mm = 1.1)"
                 )
             return data, candidate
     return {}, None
@@ -173,12 +175,36 @@ def _bare_name(name: str) -> str:
     return name[: -len(suffix)] if _si_unit(unit) and name.endswith(suffix) else name
 
 
+def _toml_key_with_unit(key: str, value, bare: dict, path: Path) -> tuple[str, object]:
+    """A TOML key named with another unit than the constant's (``sphere_radius_mm = 1.1``, as
+    the column ``sphere_radius_mm``) as the constant's own key and its value in SI; any other
+    key as it is."""
+    if key in CONSTANTS or key in bare:
+        return key, value
+    for short, name in bare.items():
+        if not key.startswith(short + "_"):
+            continue
+        from ..typed_units import column_unit_factor
+
+        factor = column_unit_factor(key[len(short) + 1 :], _si_unit(SWEEP_TABLE.column(name).unit))
+        if factor is None:
+            continue
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise ContactresInputError(
+                f"{path}: {key} = {shown_value(value)}: a key named with its unit takes a plain "
+                f'number (or write {short} = "1.1 mm", the value with its unit)'
+            )
+        return name, value * factor
+    return key, value
+
+
 def _toml_keys_in_si(data: dict, path: Path) -> dict:
     """A TOML file's keys with a constant's bare name (``sphere_radius = "1.1 mm"``: the value
     carries its unit) renamed to the constant (``sphere_radius_m``); both given is an error."""
     bare = {_bare_name(name): name for name in CONSTANTS if _bare_name(name) != name}
     out = {}
     for key, value in data.items():
+        key, value = _toml_key_with_unit(key, value, bare, path)
         name = bare.get(key, key)
         if name in out or (name != key and name in data):
             raise ContactresInputError(

@@ -28,8 +28,10 @@ import numpy as np
 
 from .._summary import Summarised, values
 from ..errors import ContactresInputError
+from ..units import HERTZ_APPROXIMATE_RATIO
 from ..validation import nonnegative as _nonnegative
 from ..validation import positive as _positive
+from ._validity import checked
 
 __all__ = [
     "Contact",
@@ -355,11 +357,19 @@ def effective_shear_modulus(G1, nu1, G2=None, nu2=None):
     return _out(1.0 / ((2.0 - nu1) / (4.0 * G1) + (2.0 - nu2) / (4.0 * G2)))
 
 
-def hertz(E_star, radius, force) -> Contact:
+def hertz(E_star, radius, force, *, check_validity: bool = True) -> Contact:
     """Hertz contact of a sphere (radius R) on a flat under normal force F >= 0.
 
     a³ = 3FR/(4E*), δ = a²/R, p_centre = 3F/(2πa²), k = dF/dδ = 2E*a (Johnson, Ch. 4; paper 2,
     Eq. 9 with γ = 0). ``E_star`` in Pa (:func:`effective_modulus`), ``radius`` m, ``force`` N.
+
+    Hertz's theory holds for a contact small against its sphere (a/R ≲ 0.1, Johnson §4.2), as
+    the command line's ``contact`` checks: where a/R > 0.1 a
+    :class:`contactres.errors.ContactresWarning` names a/R (values kept, "Hertz approximate");
+    where a/R > 0.5 the contact has no value: contact radius, depth, pressures and stiffness
+    are NaN (the force is kept), with the same warning ("beyond Hertz", most likely a radius or
+    force in the wrong unit). ``check_validity=False`` leaves the check out (a caller that flags
+    a/R itself).
 
     Examples
     --------
@@ -379,8 +389,12 @@ def hertz(E_star, radius, force) -> Contact:
     if type(E_star) in _PLAIN and type(radius) in _PLAIN and type(force) in _PLAIN:
         c = _scalar_jkr(E_star, radius, force, 0.0, "hertz")
         if c is not None:
-            return c
-    return jkr(E_star, radius, force, 0.0, _model="hertz")
+            # One multiplication and a compare on the fast path (issue 31's scalar timing).
+            if c.contact_radius <= HERTZ_APPROXIMATE_RATIO * radius or not check_validity:
+                return c
+            return checked(c, radius, "hertz")
+    c = jkr(E_star, radius, force, 0.0, _model="hertz")
+    return checked(c, radius, "hertz") if check_validity else c
 
 
 def jkr_pull_off_force(radius, gamma):

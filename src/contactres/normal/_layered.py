@@ -57,6 +57,7 @@ from ._anisotropic import THETA_RTOL, isotropic_constants, pair_integrals
 from ._anisotropic import sphere_contact as homogeneous_sphere_contact
 from ._axisymmetric import DEFAULT_TOL, RadialKernel, punch_and_sphere
 from ._isotropic import contact_facts
+from ._validity import checked
 
 __all__ = [
     "LayeredContact",
@@ -461,6 +462,7 @@ def sphere_contact(
     *,
     tol: float = DEFAULT_TOL,
     indenter: Material | None = None,
+    check_validity: bool = True,
 ):
     """Frictionless contact of a rigid (or elastic) sphere on a homogeneous or layered half-space.
 
@@ -493,6 +495,13 @@ def sphere_contact(
         for two homogeneous bodies whose contact is not circular (a face without a 3- or 4-fold
         axis) the elliptic :class:`~contactres.normal.AnisotropicContact` with both compliances
         (the sphere's frame: the plate's turned by π about x).
+    check_validity : bool
+        Check Hertz's small-contact limit, as the command line's ``contact`` does (default):
+        where a/R > 0.1 a :class:`contactres.errors.ContactresWarning` names a/R (values
+        kept); where a/R > 0.5 the contact has no value: its radius, semi-axes, depth,
+        pressures and stiffness (a layered contact's M(a) too) are NaN, with the same warning
+        (most likely a radius or a force in the wrong unit). False: no check (a caller that
+        flags a/R itself).
 
     Returns
     -------
@@ -512,6 +521,12 @@ def sphere_contact(
     >>> print(f"a = {c.contact_radius * 1e6:.3f} um, K = {c.stiffness / 1e3:.1f} kN/m")
     a = 1.015 um, K = 27.0 kN/m
     """
+    c = _sphere_contact(material, radius, force, rtol, tol, indenter)
+    return checked(c, radius, "sphere_contact") if check_validity else c
+
+
+def _sphere_contact(material, radius, force, rtol, tol, indenter):
+    """:func:`sphere_contact` without the check of a/R."""
     if indenter is None and not isinstance(material, LayeredMaterial):
         return homogeneous_sphere_contact(material, radius, force, rtol)
     stack = material.at(0.0) if isinstance(material, LayeredMaterial) else _stack(material)

@@ -70,14 +70,19 @@ def withheld_lines(results: Results) -> list[str]:
 def friction_table(results: Results) -> pd.DataFrame:
     """μ per load (exact-loop fit): median over experiments ± its error, and the counts."""
     loads = results.loads
+    # A load of a group whose E and γ were withheld for an input μ scales with too says so
+    # (loads.csv: flags mu-withheld), rather than a dash that reads as "no sliding".
+    withheld = loads.get("flags", pd.Series("", index=loads.index)).astype(str) == "mu-withheld"
     return pd.DataFrame(
         {
             "configuration": loads["configuration"],
             "medium": loads["medium"],
             "F_N (mN)": [f"{f * 1e3:.4g}" for f in loads["normal_force_N"]],
             "μ (loop fit)": [
-                plus_minus(m, e, 2)
-                for m, e in zip(loads["mu_fit_median"], loads["mu_fit_median_err"], strict=True)
+                "withheld (see E, γ)" if w else plus_minus(m, e, 2)
+                for m, e, w in zip(
+                    loads["mu_fit_median"], loads["mu_fit_median_err"], withheld, strict=True
+                )
             ],
             "experiments": loads["n_experiments"],
             "sweeps": loads["n_sweeps"],

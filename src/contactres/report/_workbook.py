@@ -6,13 +6,16 @@ prefer one file:
 * :func:`workbook_bytes`: an Office Open XML workbook (written by pandas with openpyxl, the
   ``excel`` extra), one sheet per table under the table's name, the cells as the CSV has them
   (text cells a spreadsheet would run as formulas prefixed by an apostrophe, as
-  :func:`contactres.fileio.neutralised` does for the CSV, so that they stay text), and a last
-  sheet ``conventions``: the Result's conventions and settings as (name, value) rows;
+  :func:`contactres.fileio.neutralised` does for the CSV, so that they stay text), then one
+  sheet per summary table of the Result (``summary_tables``: a QCM analysis' ``table1``, E and
+  γ with their errors per fitted group), and a last sheet ``conventions``: the Result's
+  conventions and settings as (name, value) rows;
 * :func:`netcdf_bytes`: a NetCDF 3 file (64-bit offset format, written by xarray with scipy's
   NetCDF writer: no netCDF4 library is needed; the ``maps`` extra brings xarray), one variable
-  ``<table>.<column>`` per column along the dimension ``<table>_row``, with the column's unit
-  (``units``) and meaning (``long_name``) from its schema, and the Result's values as JSON text in
-  the global attribute ``values_json`` (``conventions_json``: its conventions alone).
+  ``<table>.<column>`` per column along the dimension ``<table>_row`` (Table 1's along
+  ``group``: ``table1.E_Pa``, ...), with the column's unit (``units``) and meaning
+  (``long_name``) from its schema, and the Result's values as JSON text in the global attribute
+  ``values_json`` (``conventions_json``: its conventions alone).
 
 Both return the bytes of the file, which the caller writes atomically into its result set.
 A missing extra raises :class:`contactres.errors.MissingExtraError` (:func:`require`), checked
@@ -122,10 +125,22 @@ def workbook_bytes(result: JobResult) -> bytes:
     with pd.ExcelWriter(buffer, engine="openpyxl") as writer:
         for name, (frame, _schema) in tables.items():
             _cells(frame).to_excel(writer, sheet_name=sheets[name], index=False)
+        # The summary tables (a QCM analysis' Table 1) before the conventions: the numbers a
+        # reader opens the workbook for (issue 30: the sheets held no E or γ).
+        summary = _summary_tables(result)
+        names = _sheet_names([*tables, *summary])
+        for name, (frame, _schema) in summary.items():
+            _cells(frame).to_excel(writer, sheet_name=names[name], index=False)
         _cells(conventions_table(result)).to_excel(
             writer, sheet_name=CONVENTIONS_SHEET, index=False
         )
     return buffer.getvalue()
+
+
+def _summary_tables(result: JobResult):
+    """The Result's summary tables (``summary_tables``; none for a Result without them)."""
+    method = getattr(result, "summary_tables", None)
+    return {} if method is None else dict(method())
 
 
 def _cells(frame):
@@ -164,8 +179,11 @@ def results_dataset(result: JobResult):
     from .._version import __version__
 
     variables = {}
-    for name, (frame, schema) in result.tables().items():
+    summary = _summary_tables(result)
+    for name, (frame, schema) in {**result.tables(), **summary}.items():
         known = {} if schema is None else {c.name: c for c in schema.columns}
+        # A summary table's rows are the fitted groups (Table 1): the dimension ``group``.
+        dim = "group" if name == "table1" else f"{name}_row"
         for column in frame.columns:
             attrs = {}
             if column in known:
@@ -174,7 +192,7 @@ def results_dataset(result: JobResult):
                 if unit not in ("text", ""):
                     attrs["units"] = "1" if unit == "-" else unit
             variables[f"{name}.{column}"] = xr.Variable(
-                (f"{name}_row",), _column_values(frame[column]), attrs
+                (dim,), _column_values(frame[column]), attrs
             )
     values = result.values()
     attrs = {

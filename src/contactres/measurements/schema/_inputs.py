@@ -136,7 +136,7 @@ _SWEEP_CONSTANT = {
     for name, unit, quantity in (
         ("fundamental_Hz", "Hz", "frequency"),
         ("area_m2", "m^2", "area"),
-        ("sphere_radius_m", "m", "sphere_radius"),
+        ("sphere_radius_m", "m", "qcm_sphere_radius"),
     )
 }
 

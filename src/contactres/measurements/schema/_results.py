@@ -228,6 +228,14 @@ LOAD_RESULTS = TableSchema(
                 ("median_err", "1.2533 x the standard error: error of the median"),
             )
         ),
+        # Last: the columns before it kept their places when it was added (issue 30).
+        Column(
+            "flags",
+            "text",
+            "mu-withheld: the μ columns are empty because the group's E and γ were withheld "
+            "for an input μ scales with too (area_m2, n_contacts, normal_force_N)",
+            level="sweep",
+        ),
     ),
 )
 
