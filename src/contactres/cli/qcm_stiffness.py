@@ -128,7 +128,7 @@ def stiffness_command(
     click.echo(f"{source.name} ({result.conventions['reader']}): κ and ωξ per contact, N/m")
     for n, part in result.stiffness.groupby("overtone"):
         click.echo(
-            f"  n = {n}: {len(part)} points, median κ = {part['kappa_N_per_m'].median():.6g}, "
-            f"median ωξ = {part['omega_xi_N_per_m'].median():.6g}"
+            f"  n = {n}: {len(part)} points, median κ = {part['kappa_N_per_m'].median():.6g} N/m, "
+            f"median ωξ = {part['omega_xi_N_per_m'].median():.6g} N/m"
         )
     click.echo(wrote_line(written, out))
