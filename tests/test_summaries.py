@@ -65,7 +65,10 @@ def _particle_fit():
 
 def _film_result():
     film = cr.Material.isotropic(6e9 * (1 - 0.35**2), 0.35, name="film")
-    k = normal.sphere_contact(cr.LayeredMaterial(SILICA, [(film, 20e-9)]), 20e-9, 1e-6).stiffness
+    # A 20 nm tip at 1 µN: a/R ≈ 0.66, beyond the API's Hertz rule; the forward k* is taken as
+    # the film inversion takes it, without that check (it flags a/R itself).
+    stack = cr.LayeredMaterial(SILICA, [(film, 20e-9)])
+    k = normal.sphere_contact(stack, 20e-9, 1e-6, check_validity=False).stiffness
     guess = cr.Material.isotropic(3e9, 0.35, name="film")
     return analysis.film_modulus_from_contact_stiffness(
         k, substrate=SILICA, film=guess, thickness=20e-9, tip_radius=20e-9, load=1e-6
@@ -186,7 +189,9 @@ BUILDERS = {
     "Contact": lambda: normal.hertz(100e9, 50e-9, np.array([1e-6, 2e-6])),
     "ContactEllipse": lambda: normal.contact_ellipse(CU.rotated((1, 1, 0))),
     "ContactIntegrals": lambda: normal.contact_integrals(CU),
-    "LayeredContact": lambda: normal.sphere_contact(_film(), 20e-9, np.array([1e-6, 2e-6])),
+    "LayeredContact": lambda: normal.sphere_contact(
+        _film(), 20e-9, np.array([1e-6, 2e-6]), check_validity=False
+    ),
     "CoatedModuli": lambda: polycrystal.coated_moduli(
         SILICA, [(SILICA, 15e-9)], np.full(3, 72e9 / (1 - 0.17**2)), None, 20e-9, 1e-6
     ),

@@ -188,7 +188,10 @@ def test_the_paper_figures_take_the_figure_formats(tmp_path):
     )
     assert run.exit_code == 0, run.output
     names = sorted(p.name for p in out.iterdir())
-    assert [n for n in names if not n.endswith(".csv")] == [
+    # Beside the figures and their CSVs, the result set's manifest (issue 27: a rerun replaces
+    # only what it lists).
+    assert "manifest.json" in names
+    assert [n for n in names if not n.endswith(".csv") and n != "manifest.json"] == [
         "paper2_fig1d_shifts.pdf",
         "paper2_fig1d_shifts.svg",
         "paper2_fig2_loops.pdf",
