@@ -410,6 +410,11 @@ KEY_NUMBERS = [
     ("NormalTable", "M", lambda t: _ends(t.moduli, 1e9)),
     ("CubicInverseResult", "C12/C11", lambda r: [r.c12_c11, r.c12_c11_error]),
     ("CubicInverseResult", "C44/C11", lambda r: [r.c44_c11, r.c44_c11_error]),
+    (
+        "CubicInverseResult",
+        "strong combination",
+        lambda r: [r.strong_combination, r.strong_combination * r.strong_error],
+    ),
     # (a modulus map fixes 3 of the 4 combinations of Zn's ratios: the ratios are NaN, and
     # shown as "not determined", test_undetermined_values_are_said_so)
     ("HexagonalInverseResult", "combinations determined", lambda r: [r.n_identified, 4]),

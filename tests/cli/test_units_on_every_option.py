@@ -93,3 +93,22 @@ def test_a_toml_key_with_its_unit_is_checked_and_the_unknown_key_names_the_forms
     assert 'sphere_radius = "1.1 mm"' in str(info.value) and "sphere_radius_mm = 1.1" in str(
         info.value
     )
+
+
+@pytest.mark.parametrize("typed", ["30deg", "30 deg", "0.5235987755982988rad"])
+def test_a_direction_with_its_unit_equals_the_direction_in_degrees(typed):
+    """`contact --direction` took only a number of degrees ('30deg' was "not a valid float",
+    issue 30's last review); an angle with its unit is converted, 30 degrees = π/6 rad."""
+    args = ["contact", "--crystal", "quartz-AT", "--radius", "5e-3", "--force", "1e-3"]
+    args += ["--tangential", "--frequency", "15e6", "--format", "csv"]
+    plain, with_unit = run(*args, "--direction", "30"), run(*args, "--direction", typed)
+    assert plain.exit_code == 0 and with_unit.exit_code == 0, with_unit.output
+    a, b = (pd.read_csv(pd.io.common.StringIO(r.stdout)) for r in (plain, with_unit))
+    pd.testing.assert_frame_equal(a, b, rtol=1e-12)
+
+
+@pytest.mark.parametrize(("typed", "said"), [("30m", "another kind"), ("abc", "not an angle")])
+def test_a_direction_of_another_kind_is_refused_in_one_line(typed, said):
+    args = ["contact", "--crystal", "Cu", "--radius", "1e-3", "--force", "1", "--tangential"]
+    r = run(*args, "--direction", typed)
+    assert r.exit_code == 2 and said in one_line_error(r), r.output

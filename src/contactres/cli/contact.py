@@ -10,6 +10,24 @@ from ._common import RangeType, emit, format_option
 from ._crystal_face import crystal_face, crystal_face_options
 
 
+def _degrees(ctx, param, value) -> float:
+    """``--direction`` as typed: a number in degrees, or an angle with its unit (``30deg``,
+    ``0.52rad``), converted with pint as every option's unit (issue 30)."""
+    try:
+        return float(value)
+    except (TypeError, ValueError):
+        pass
+    from ..errors import ContactresInputError
+    from ..typed_units import has_unit, to_si
+
+    if isinstance(value, str) and has_unit(value):
+        try:
+            return to_si(value, "deg", "--direction")
+        except ContactresInputError as exc:
+            raise click.BadParameter(str(exc)) from None
+    raise click.BadParameter(f"{value!r} is not an angle (degrees, or with its unit: 30deg)")
+
+
 @main.command(short_help="Hertz contact of a rigid sphere on a crystal face (paper 1).")
 @crystal_face_options()
 @click.option(
@@ -41,10 +59,11 @@ from ._crystal_face import crystal_face, crystal_face_options
 )
 @click.option(
     "--direction",
-    type=float,
-    default=0.0,
+    default="0",
     show_default=True,
-    help="Direction of the tangential motion, degrees from the surface x axis (--inplane).",
+    callback=_degrees,
+    help="Direction of the tangential motion from the surface x axis (--inplane): degrees, "
+    "or with its unit (30deg, 0.52rad).",
 )
 @click.option(
     "--coating",

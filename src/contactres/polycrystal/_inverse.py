@@ -25,7 +25,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from .._summary import Summarised
+from .._summary import Summarised, plus_minus
 from ..errors import ContactresInputError
 from ..materials import Material
 from ._inverse_hexagonal import HexagonalInverseResult, fit_hexagonal_constants
@@ -153,12 +153,17 @@ class CubicInverseResult(Summarised):
     n_evaluations: int
 
     def _facts(self) -> list[tuple[str, str]]:
-        """Grains, the two ratios ± errors, C11 where determined, χ²/dof, warnings."""
+        """Grains, the two ratios ± errors, the strong combination (determined even where the
+        ratios one by one are not), C11 where determined, χ²/dof, warnings."""
         ratios = [
             ("C12/C11", self.c12_c11, self.c12_c11_error),
             ("C44/C11", self.c44_c11, self.c44_c11_error),
         ]
-        return fit_facts(self, ratios)
+        facts = fit_facts(self, ratios)
+        if self.strong_identified:
+            value = self.strong_combination
+            facts.insert(3, ("strong combination", plus_minus(value, value * self.strong_error)))
+        return facts
 
     def summary(self) -> str:
         """Plain-text report; quantities that are not determined are not printed as results."""
