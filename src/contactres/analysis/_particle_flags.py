@@ -91,3 +91,10 @@ def dropped_named(fit, overtones):
         return fit
     note = f"{DROPPED_FLAG}: {','.join(str(int(k)) for k in overtones)}"
     return replace(fit, flags=tuple((note, *f) for f in fit.flags))
+
+
+def outside_cut(bad, rel, limits):
+    """Rule 4 of :func:`~._particles.fit_particles` outside the comb: ``bad`` (κ, ξ, N, κ_r)
+    with each value whose relative error ``rel`` exceeds its entry of ``limits`` (or is not
+    finite) added."""
+    return [b or not r <= lim for b, r, lim in zip(bad, rel, limits, strict=True)]
