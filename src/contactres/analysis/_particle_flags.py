@@ -16,11 +16,11 @@ PARTICLE_FLAGS = {
     "only the mass coverage·m is identified, not κ and ξ",
     "inertial": "particles standing still fit as well (paper 2, Eq. 1): only coverage·κ and "
     "coverage·ξ are identified, not κ, ξ and the coverage apart",
-    "wide-interval": "a value is not printed (κ, ξ, the coverage, κ_r, coverage·κ or "
-    "coverage·ξ; the first four are also named as unresolved): the fit's search found a point "
-    "that fits nearly as well (Δχ² = D below the limit test's 9) farther than 1.3σ√max(D, 1) "
-    "from it, so its error σ understates the interval the data allow (below the comb the χ² "
-    "has two valleys)",
+    "wide-interval": "a value is not printed (κ, ξ, the coverage or κ_r, also named as "
+    "unresolved): the fit's search found a point that fits nearly as well (Δχ² = D below the "
+    "limit test's 9) farther than 1.3σ√max(D, 1) from it, so its error σ understates the "
+    "interval the data allow (below the comb the χ² has two valleys); coverage·κ and "
+    "coverage·ξ are printed there with their errors widened to hold such points",
     "outside-comb": "the coupled resonance lies outside the overtone comb",
     "overdamped": "a note (every value is printed): the contact's loss tangent ωξ/κ exceeds 1 "
     "at the coupled resonance, whose quality factor is then below 1 (its width exceeds its "
@@ -91,3 +91,10 @@ def dropped_named(fit, overtones):
         return fit
     note = f"{DROPPED_FLAG}: {','.join(str(int(k)) for k in overtones)}"
     return replace(fit, flags=tuple((note, *f) for f in fit.flags))
+
+
+def outside_cut(bad, rel, limits):
+    """Rule 4 of :func:`~._particles.fit_particles` outside the comb: ``bad`` (κ, ξ, N, κ_r)
+    with each value whose relative error ``rel`` exceeds its entry of ``limits`` (or is not
+    finite) added."""
+    return [b or not r <= lim for b, r, lim in zip(bad, rel, limits, strict=True)]

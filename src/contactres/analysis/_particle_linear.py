@@ -371,13 +371,28 @@ def grid_coordinates(points, xi_scale):
 def wide_values(values, errors, visited, xi_scale, dchi2, near, factor):
     """:func:`wider_than_linear` for κ, ξ, N, κ_r, N·κ and N·ξ (six (T,) arrays each of
     ``values`` and ``errors``) over the ``visited`` points (S, T, P) in the fit's
-    coordinates (ln κ, ξ/``xi_scale``, ln N, ln κ_r); κ_r only with P = 4. A list of six
-    (T,) bool."""
+    coordinates (ln κ, ξ/``xi_scale``, ln N, ln κ_r); κ_r only with P = 4.
+
+    Returns
+    -------
+    wide : list of six (T,) bool
+    widened : tuple of six (T,) errors, each at least the distance of every near point
+        from the fit in that value over √max(D, 1): the half-width of the profile interval at
+        Δχ² = 1 that a model linear in its parameters would need to hold those points (N·κ and
+        N·ξ are printed with it: blanking them by rule 5 selected the draws)
+    """
     with np.errstate(invalid="ignore", over="ignore"):
         kap, xi, cov = np.exp(visited[..., 0]), visited[..., 1] * xi_scale, np.exp(visited[..., 2])
         kr = np.exp(visited[..., 3]) if visited.shape[-1] > 3 else np.full_like(kap, np.nan)
         others = (kap, xi, cov, kr, kap * cov, xi * cov)
-    return [
+        scale = np.sqrt(np.maximum(dchi2, 1.0))
+        use = near & np.isfinite(dchi2)
+        widened = tuple(
+            np.fmax(e, np.max(np.where(use & np.isfinite(o), np.abs(o - v) / scale, 0.0), axis=0))
+            for v, e, o in zip(values, errors, others, strict=True)
+        )
+    wide = [
         wider_than_linear(v, e, o, dchi2, near, factor)
         for v, e, o in zip(values, errors, others, strict=True)
     ]
+    return wide, widened
