@@ -183,3 +183,36 @@ def test_water_plateau_mu_intervals_cover_the_truth(water_studies):
         total += len(b)
     assert total >= 30
     assert inside / total >= 0.9
+
+
+def test_reference_matches_a_least_squares_fit_of_the_others_for_uneven_experiments():
+    # Experiments of 1 to 7 loads in two groups, some blocks without μ: the prior of each
+    # block against numpy's weighted lstsq of ln μ = a_e + b ln F_N on the other blocks of its
+    # group (its design written out), its prediction variance from the normal matrix, scaled
+    # by the reduced χ² of the block's own experiment where that exceeds 1.
+    rng = np.random.default_rng(8)
+    sizes = [1, 4, 7, 3, 5, 5, 2, 6]
+    e = np.repeat(np.arange(len(sizes)), sizes)
+    g = e % 2
+    F = rng.uniform(1e-3, 1e-2, e.size)
+    mu = 0.6 * F**-0.1 * np.exp(rng.normal(0.0, 0.1, e.size))
+    rel = rng.uniform(0.02, 0.3, e.size)
+    mu[[3, 9]] = np.nan
+    mean, var = reference_mu(e, F, mu, rel * mu, group=g)
+    good = np.isfinite(mu)
+    for i in range(e.size):
+        o = np.flatnonzero((g == g[i]) & good & (np.arange(e.size) != i))
+        own = o[e[o] == e[i]]
+        if own.size < MU_PRIOR_MIN_LOADS:
+            assert np.isnan(mean[i]) and np.isnan(var[i])
+            continue
+        levels = np.unique(e[o])
+        X = np.column_stack([(e[o][:, None] == levels).astype(float), np.log(F[o])])
+        sw = 1.0 / rel[o]
+        beta, *_ = np.linalg.lstsq(X * sw[:, None], np.log(mu[o]) * sw, rcond=None)
+        x = np.append((levels == e[i]).astype(float), np.log(F[i]))
+        r = ((np.log(mu[o]) - X @ beta) * sw)[e[o] == e[i]]
+        chi2 = np.sum(r**2) / (own.size - (1 if levels.size > 1 else 2))
+        cov = np.linalg.inv((X * sw[:, None]).T @ (X * sw[:, None]))
+        assert mean[i] == pytest.approx(x @ beta, abs=1e-12)
+        assert var[i] == pytest.approx((x @ cov @ x) * max(chi2, 1.0), rel=1e-9)

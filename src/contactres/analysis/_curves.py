@@ -78,22 +78,31 @@ def sweep_points(p: Padded) -> pd.DataFrame:
     )
 
 
-def _values_of(sw: pd.DataFrame, fits: Fits, rows: np.ndarray, key: str) -> tuple:
-    """The table that holds the fitted values of the model ``key`` for the sweeps ``rows`` of
-    ``sw`` (the sweep results for a closed form; for an exact loop its fit table ``fits[key]``)
-    and the positions of those sweeps in it."""
+def _lookup(sw: pd.DataFrame, fits: Fits, key: str) -> tuple[pd.DataFrame, np.ndarray]:
+    """The table that holds the fitted values of the model ``key`` (the sweep results for a
+    closed form; for an exact loop its fit table ``fits[key]``) and the position in it of every
+    sweep of ``sw`` (-1: none). Found once per model: looking the sweeps up chunk by chunk hashed
+    the whole fit table for every chunk (quadratic in the number of sweeps)."""
     if key not in EXACT_LOOPS:
-        return sw, rows
+        return sw, np.arange(len(sw))
     table = fits[key]
-    at = pd.Index(table["sweep"]).get_indexer(sw["sweep"].to_numpy()[rows])
+    return table, pd.Index(table["sweep"]).get_indexer(sw["sweep"].to_numpy())
+
+
+def _values_of(found: tuple[pd.DataFrame, np.ndarray], rows: np.ndarray, key: str) -> tuple:
+    """The table of :func:`_lookup` (``found``) and the positions in it of the sweeps
+    ``rows``."""
+    table, at = found
+    at = at[rows]
     if (at < 0).any():  # the analysis fits every loop to every sweep: a caller's mistake
         raise KeyError(f"sweeps without a row in the {key} fit table")
     return table, at
 
 
-def _parameters(sw: pd.DataFrame, fits: Fits, rows: np.ndarray, key: str) -> dict:
-    """The fitted values of the model ``key`` for the sweeps ``rows``, (rows, 1) each."""
-    table, at = _values_of(sw, fits, rows, key)
+def _parameters(found: tuple[pd.DataFrame, np.ndarray], rows: np.ndarray, key: str) -> dict:
+    """The fitted values of the model ``key`` for the sweeps ``rows`` (``found``: its
+    :func:`_lookup`), (rows, 1) each."""
+    table, at = _values_of(found, rows, key)
     return {q.key: table[q.column].to_numpy(float)[at][:, None] for q in REGISTRY[key].parameters}
 
 
@@ -108,10 +117,11 @@ def _model_on(key: str, values: dict[str, np.ndarray], grid: np.ndarray) -> tupl
     return np.broadcast_to(f, grid.shape), np.broadcast_to(g, grid.shape)
 
 
-def _one_by_one(sw: pd.DataFrame, fits: Fits, rows: np.ndarray, key: str, grid: np.ndarray):
+def _one_by_one(sw: pd.DataFrame, found, rows: np.ndarray, key: str, grid: np.ndarray):
     """Δf, ΔΓ (Hz) of the model ``key`` for the sweeps ``rows`` on ``grid`` (rows, N), sweep
-    by sweep: NaN for a sweep that fails alone (where the batch of :func:`_model_on` failed)."""
-    table, at = _values_of(sw, fits, rows, key)
+    by sweep (``found``: its :func:`_lookup`): NaN for a sweep that fails alone (where the batch
+    of :func:`_model_on` failed)."""
+    table, at = _values_of(found, rows, key)
     f, g = np.full(grid.shape, np.nan), np.full(grid.shape, np.nan)
     for j, (i, k) in enumerate(zip(rows, at, strict=True)):
         loop = table.iloc[k] if table is not sw else None
@@ -177,9 +187,10 @@ def fitted_curves(
             size = max(1, CHUNK_POINTS // n)
             tasks.extend((n, k, chunk) for chunk in np.split(rows, range(size, rows.size, size)))
     keys = [k for _, k, _ in tasks]
+    found = {k: _lookup(sw, fits, k) for k in set(keys)}
     # Generators: each chunk's parameters and grid are made when its call comes (serial) or
     # sent (a pool), and each result is put in place as it arrives.
-    values = (_parameters(sw, fits, rows, k) for _, k, rows in tasks)
+    values = (_parameters(found[k], rows, k) for _, k, rows in tasks)
     grids_of = (grid[n][rows] for n, _, rows in tasks)
     with ExitStack() as stack:
         if workers > 1 and len(tasks) > 1:
@@ -189,7 +200,7 @@ def fitted_curves(
             done = map(_model_on, keys, values, grids_of)
         for (n, k, rows), fg in zip(tasks, done, strict=True):
             if fg is None:  # some sweep of the chunk has no curve: find which, one by one
-                fg = _one_by_one(sw, fits, rows, k, grid[n][rows])
+                fg = _one_by_one(sw, found[k], rows, k, grid[n][rows])
             curves[n][0][rows], curves[n][1][rows] = fg
     ids = sw["sweep"].to_numpy(dtype=object)
     columns = {

@@ -94,6 +94,18 @@ def reference_mu(
         prediction, scaled by the reduced χ² where it exceeds 1); NaN where fewer than
         :data:`MU_PRIOR_MIN_LOADS` other blocks of the block's experiment have a μ or their
         loads do not span two values
+
+    Notes
+    -----
+    The least-squares fit with one level per experiment and a shared exponent is solved in
+    closed form rather than by inverting its normal matrix (one inversion per block, of the size
+    of the group's experiments, made this step cubic in the size of the table). Given b, each
+    level is its experiment's weighted mean, a_e = ȳ_e - b x̄_e (x = ln F_N, y = ln μ); so
+    b = Σ_e p_e / Σ_e q_e with q_e = Σ w (x - x̄_e)² and p_e = Σ w (x - x̄_e)(y - ȳ_e) over the
+    experiment's blocks, and the prediction at x of experiment e has the variance
+    1/Σ_e w + (x - x̄_e)²/Σ_e q_e (the inverse of the normal matrix, written out). Leaving a
+    block out changes the sums of its own experiment only: those are taken afresh over the
+    others (a few loads), those of the group's other experiments once.
     """
     experiment = np.asarray(experiment)
     group = np.asarray(experiment if group is None else group)
@@ -105,33 +117,76 @@ def reference_mu(
     good = np.isfinite(y) & np.isfinite(rel) & (rel > 0) & np.isfinite(lnF)
     mean = np.full(len(mu), np.nan)
     var = np.full(len(mu), np.nan)
-    for g in np.unique(group):
-        members = np.flatnonzero(group == g)
-        for i in members:
-            o = members[(members != i) & good[members]]
-            own = o[experiment[o] == experiment[i]]
-            if own.size < MU_PRIOR_MIN_LOADS or np.ptp(lnF[own]) <= 0:
-                continue
-            # Design: one level per experiment among the others, one shared exponent.
-            levels, col = np.unique(experiment[o], return_inverse=True)
-            X = np.zeros((o.size, levels.size + 1))
-            X[np.arange(o.size), col] = 1.0
-            X[:, -1] = lnF[o]
-            w = 1.0 / rel[o] ** 2
-            cov = np.linalg.inv(X.T @ (w[:, None] * X))
-            beta = cov @ (X.T @ (w * y[o]))
+    if not good.any():
+        return mean, var
+    # Every experiment of every group (the same experiment code in two groups is two).
+    g_code = np.unique(group, return_inverse=True)[1].ravel()
+    e_code = np.unique(experiment, return_inverse=True)[1].ravel()
+    pair, exp = np.unique(np.stack([g_code, e_code]), axis=1, return_inverse=True)
+    exp = exp.ravel()
+    w = np.where(good, 1.0 / np.where(good, rel, 1.0) ** 2, 0.0)
+    x = np.where(good, lnF, 0.0)
+    yv = np.where(good, y, 0.0)
+    # Each experiment's sums over all its blocks with a μ, then those of the others of its group.
+    E = pair.shape[1]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        S = np.bincount(exp, w, E)
+        xbar = np.bincount(exp, w * x, E) / S
+        ybar = np.bincount(exp, w * yv, E) / S
+    dx = np.where(good, x - xbar[exp], 0.0)
+    dy = np.where(good, yv - ybar[exp], 0.0)
+    q_others = _others_in_group(np.bincount(exp, w * dx * dx, E), pair[0])
+    p_others = _others_in_group(np.bincount(exp, w * dx * dy, E), pair[0])
+    n_others = _others_in_group(np.bincount(exp, good, E).astype(float), pair[0])
+    # The blocks of the experiments with n blocks, as a (k, n) table of block indices.
+    order = np.argsort(exp, kind="stable")
+    count = np.bincount(exp, minlength=E)
+    start = np.concatenate([[0], np.cumsum(count)[:-1]])
+    for n in np.unique(count):
+        exps = np.flatnonzero(count == n)
+        idx = order[start[exps][:, None] + np.arange(n)]  # (k, n)
+        # (k, n, n): for block j of each experiment, the others of its experiment with a μ.
+        mask = ~np.eye(n, dtype=bool) & good[idx][:, None, :]
+        ww = np.where(mask, w[idx][:, None, :], 0.0)
+        xx = np.broadcast_to(lnF[idx][:, None, :], mask.shape)
+        yy = np.broadcast_to(y[idx][:, None, :], mask.shape)
+        own = mask.sum(axis=2)
+        span = np.where(mask, xx, -np.inf).max(axis=2) - np.where(mask, xx, np.inf).min(axis=2)
+        ok = (own >= MU_PRIOR_MIN_LOADS) & (span > 0)
+        if not ok.any():
+            continue
+        with np.errstate(divide="ignore", invalid="ignore"):
+            Sj = ww.sum(axis=2)
+            xj = (ww * np.where(mask, xx, 0.0)).sum(axis=2) / Sj
+            yj = (ww * np.where(mask, yy, 0.0)).sum(axis=2) / Sj
+            ddx = np.where(mask, xx - xj[..., None], 0.0)
+            ddy = np.where(mask, yy - yj[..., None], 0.0)
+            Q = q_others[exps][:, None] + (ww * ddx * ddx).sum(axis=2)
+            b = (p_others[exps][:, None] + (ww * ddx * ddy).sum(axis=2)) / Q
             # The scatter that widens the prior is the block's own experiment's about the law
             # (its level a and the shared b): a mounting whose other loads scatter (a plateau
             # among them read with a high μ) must not borrow confidence from the others.
-            mine = experiment[o] == experiment[i]
-            dof = own.size - (1 if levels.size > 1 else 2)
-            chi2 = float(np.sum(w[mine] * (y[o] - X @ beta)[mine] ** 2)) / dof
-            x = np.zeros(levels.size + 1)
-            x[np.searchsorted(levels, experiment[i])] = 1.0
-            x[-1] = lnF[i]
-            mean[i] = x @ beta
-            var[i] = float(x @ cov @ x) * max(chi2, 1.0)
+            dof = own - np.where(n_others[exps][:, None] > 0, 1, 2)
+            chi2 = (ww * (ddy - b[..., None] * ddx) ** 2).sum(axis=2) / dof
+            at = lnF[idx] - xj
+            m = yj + b * at
+            v = (1.0 / Sj + at**2 / Q) * np.maximum(chi2, 1.0)
+        mean[idx[ok]] = m[ok]
+        var[idx[ok]] = v[ok]
     return mean, var
+
+
+def _others_in_group(values: np.ndarray, group: np.ndarray) -> np.ndarray:
+    """The sum of ``values`` over the other experiments of each one's group (summed ahead and
+    behind it, not as the group's total less its own: no cancellation when one dominates)."""
+    out = np.zeros_like(values)
+    for g in np.unique(group):
+        at = np.flatnonzero(group == g)
+        v = values[at]
+        ahead = np.concatenate([[0.0], np.cumsum(v)[:-1]])
+        behind = np.concatenate([np.cumsum(v[::-1])[:-1][::-1], [0.0]])
+        out[at] = ahead + behind
+    return out
 
 
 def prior_penalty(mu, mu_err, mean, var, n_points) -> np.ndarray:
