@@ -22,8 +22,10 @@ from contactres.dynamic._exact import exact_n, galerkin_plan, galerkin_size
 from contactres.dynamic._farfield import far_basis, low_rank
 from contactres.dynamic._quadrature import _n_theta_near, near_theta_integrals
 from contactres.dynamic._weights import (
+    bessel_even_sum,
     bessel_orders,
     spherical_bessel,
+    wa_harmonic_sum,
     wa_harmonic_weights,
     wa_harmonic_weights_complex,
     wa_line_weight,
@@ -113,6 +115,40 @@ def test_complex_wa_harmonics_are_the_fourier_coefficients_of_the_line_weight():
     k = np.arange(31)
     ref = (coef[:, k] * np.where(k % 2 == 0, 1.0, -1.0)).T
     np.testing.assert_allclose(wa_harmonic_weights_complex(z, 30), ref, rtol=0, atol=1e-13)
+
+
+def test_bessel_even_sum_against_amos():
+    """Σ_m J_2m(z) c_m summed during Miller's pass against scipy's jv (AMOS) order by order,
+    on the near-field contour's kind of arguments (complex, small to ~20, and real)."""
+    rng = np.random.default_rng(7)
+    z = np.concatenate(
+        [
+            rng.uniform(1e-3, 20, (3, 40)) + 1j * rng.uniform(0, 3, (3, 40)),
+            rng.uniform(1e-3, 20, (1, 40)) + 0j,
+        ]
+    )
+    c = rng.normal(size=(24, 40)) + 1j * rng.normal(size=(24, 40))
+    ref = sum(special.jv(2 * m, z) * c[m] for m in range(24))
+    scale = np.sum(np.abs(c), axis=0)
+    assert np.all(np.abs(bessel_even_sum(z, c) - ref) <= 1e-14 * scale)
+    real = z[-1].real
+    got = bessel_even_sum(real, c[:, 0].real)
+    ref = sum(special.jv(2 * m, real) * c[m, 0].real for m in range(24))
+    np.testing.assert_allclose(got, ref, rtol=0, atol=1e-14 * np.sum(np.abs(c[:, 0].real)))
+
+
+def test_wa_harmonic_sum_against_the_fourier_coefficients_of_the_line_weight():
+    """Σ_k W_2k(z) c_k with the sums turned (one pass over the orders) against the W_2k as the
+    Fourier coefficients of the line weight W(z cos θ) (an FFT on a fine θ grid)."""
+    z = np.array([3 + 0.4j, 9 + 1.5j, 12 + 0.5j, 0.01 + 1e-3j, 17.0 + 0j])
+    n_t = 512
+    theta = np.pi * np.arange(n_t) / n_t
+    coef = np.fft.fft(wa_line_weight(np.multiply.outer(z, np.cos(theta))), axis=-1) / n_t
+    k = np.arange(25)
+    weights = (coef[:, k] * np.where(k % 2 == 0, 1.0, -1.0)).T  # (25, n_z)
+    c = np.random.default_rng(3).normal(size=(25, z.size)) * (0.7 ** k[:, None])
+    ref = np.sum(weights * c, axis=0)
+    np.testing.assert_allclose(wa_harmonic_sum(z, c), ref, rtol=0, atol=1e-13)
 
 
 def test_spherical_bessel_upward_recurrence_at_large_real_arguments():

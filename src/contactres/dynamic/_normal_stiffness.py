@@ -278,7 +278,10 @@ def _direct(table, flat, names, rtol, chunk, span=None, refine=0) -> dict[str, n
     grid = far_grid(table, float(np.min(pos))) if pos.size else None
     size = galerkin_size(smax, rtol, refine=refine)
     far_op = far_operator(table, grid) if approx and grid is not None else None
-    plan = galerkin_plan(table, size, grid.s if grid else None) if "exact" in names else None
+    plan = None
+    if "exact" in names:
+        tail = {"far_ds": grid.ds, "ka_max": smax} if grid else {}
+        plan = galerkin_plan(table, size, grid.s if grid else None, **tail)
     for lo in range(0, flat.size, chunk):
         part = flat[lo : lo + chunk]
         p = part[part > 0]
