@@ -36,6 +36,7 @@ from scipy import special
 
 from ..errors import ContactresInputError
 from ._farfield import FarBasis, far_basis, low_rank
+from ._fartail import FarTail, tail_coefficients
 from ._table import KernelTable
 from ._weights import spherical_bessel
 
@@ -131,12 +132,9 @@ class GalerkinPlan:
     m_index, t_index : (nb, nb) where M_ab reads its harmonic (into ``ms``) and its pair
     sign : (nb, nb) (−1)^{(n_a + n_b)/2}
     far_products : (n_t, n_s) j_p(s) j_q(s) on the far-field grid (None without a grid)
-    far_split : index of the first grid node of the far tail (None: no tail, the whole grid
-        is summed node by node), the nodes s >= S = ``far_split_s`` >= 2 T₁ × the largest k_s a
-        of the call, where the far basis is T_f(2w − 1) w ds alone (no hand-over, w <= 1/4)
-    far_split_s : S, the first node of the tail
-    far_moments : (n_fit + 1, n_t) Σ_{s >= S} T_j(2u − 1) j_p(s) j_q(s) ds, u = (S/s)², the
-        moments of the tail (None without a tail)
+    far_tail : the tail of the far-field grid (:mod:`contactres.dynamic._fartail`), summed by
+        its moments (None: the whole grid is summed node by node)
+    far_moments : (n_fit + 1, n_t) the tail's moments of the products j_p j_q (or None)
     """
 
     basis: list
@@ -147,18 +145,17 @@ class GalerkinPlan:
     t_index: np.ndarray
     sign: np.ndarray
     far_products: np.ndarray | None
-    far_split: int | None = None
-    far_split_s: float = 0.0
+    far_tail: FarTail | None = None
     far_moments: np.ndarray | None = None
 
 
 def galerkin_plan(
-    table: KernelTable, size: GalerkinSize, far_s=None, *, far_ds=None, ka_max=None
+    table: KernelTable, size: GalerkinSize, far_s=None, *, tail: FarTail | None = None
 ) -> GalerkinPlan:
     """The :class:`GalerkinPlan` of ``size`` on ``table``; with the far-field nodes ``far_s``
     (those of :func:`contactres.dynamic._farfield.far_grid`) also the Bessel products there,
-    and with their weights ``far_ds`` and the largest k_s a of the call ``ka_max`` also the
-    moments of the far tail (:func:`galerkin_integrals`)."""
+    and with the tail of that grid (:func:`contactres.dynamic._fartail.far_tail`) also their
+    moments on it (:func:`galerkin_integrals`)."""
     basis = _basis(table, size)
     n_of = np.array([b[0] for b in basis])
     p_of = np.array([abs(b[0]) + 2 * b[1] for b in basis])
@@ -175,9 +172,9 @@ def galerkin_plan(
     if far_s is not None:
         js = spherical_bessel(int(orders[-1]), np.asarray(far_s, dtype=float))[orders]
         products = js[pairs[0]] * js[pairs[1]]
-    tail: dict = {}
-    if products is not None and far_ds is not None and ka_max is not None:
-        tail = _tail_moments(table, np.asarray(far_s, float), np.asarray(far_ds), products, ka_max)
+    moments = None
+    if products is not None and tail is not None:
+        moments = tail.moments(products)  # (n_fit + 1, n_t)
     return GalerkinPlan(
         basis=basis,
         orders=orders,
@@ -187,21 +184,9 @@ def galerkin_plan(
         t_index=t_index.reshape(len(basis), len(basis)),
         sign=np.where(((n_of[:, None] + n_of[None, :]) // 2) % 2 == 0, 1.0, -1.0),
         far_products=products,
-        **tail,
+        far_tail=tail if moments is not None else None,
+        far_moments=moments,
     )
-
-
-def _tail_moments(table: KernelTable, s: np.ndarray, ds: np.ndarray, products, ka_max: float):
-    """The far tail of a plan (:class:`GalerkinPlan`): its first node and the moments of the
-    pair products there, or nothing if the grid ends before 2 T₁ ``ka_max``."""
-    split = int(np.searchsorted(s, 2 * table.t1 * float(ka_max), side="left"))
-    if split >= s.size:
-        return {}
-    first = float(s[split])
-    u = (first / s[split:]) ** 2
-    cheb = np.polynomial.chebyshev.chebvander(2 * u - 1, table.far_coeffs.shape[1])
-    moments = (cheb * ds[split:, None]).T @ products[:, split:].T
-    return {"far_split": split, "far_split_s": first, "far_moments": moments}
 
 
 def exact_n(
@@ -339,13 +324,17 @@ def galerkin_integrals(
     k = right.shape[0]
     cheb = np.moveaxis(far.basis, -1, 0)  # (nf, na, ns), contiguous (see far_basis)
     # Beyond 2 T₁ k_s a (the plan's tail) the basis is a polynomial in w = (T₁ ka/s)²: summed
-    # against the tail's moments, not node by node (_far_tail).
-    tail = plan.far_moments is not None and 2 * table.t1 * float(np.max(ka)) <= plan.far_split_s
-    head = int(plan.far_split) if tail and plan.far_split is not None else cheb.shape[-1]
+    # against the tail's moments, not node by node (contactres.dynamic._fartail). A basis
+    # built on the head of the grid alone needs them.
+    tail = plan.far_tail
+    head = cheb.shape[-1] if tail is None else tail.split
+    if cheb.shape[-1] not in (head, plan.far_products.shape[-1]):
+        raise ValueError("the far-field basis was built on another grid")  # internal misuse
     proj = np.tensordot(right, cheb[..., :head], axes=(1, 0)).reshape(k * na, head)
     phi = (proj @ plan.far_products[:, :head].T).reshape(k, na, -1)
-    if tail:
-        phi += _far_tail(table, ka, right, plan)
+    if tail is not None and plan.far_moments is not None:
+        coeffs = right @ tail_coefficients(table, ka, tail)  # (na, k, n_fit + 1)
+        phi += np.swapaxes(coeffs @ plan.far_moments, 0, 1)  # (k, na, n_t)
     mixed = np.tensordot(left, phi, axes=(1, 0))  # (2 n_m, na, n_t)
     far_part = mixed[: plan.ms.size] + 1j * mixed[plan.ms.size :]  # (n_m, na, n_t)
     integral += far_part.transpose(1, 0, 2)
@@ -355,29 +344,6 @@ def galerkin_integrals(
     scale = (table.t1 * ka) ** 2 / (6 * far.s_end**3)
     integral += scale[:, None, None] * (coef @ alt)[None, :, None] * tail_sign[None, None, :]
     return integral
-
-
-def _far_tail(table: KernelTable, ka: np.ndarray, right: np.ndarray, plan: GalerkinPlan):
-    """Σ_{s >= S} Σ_f right[k, f] T_f(2w − 1) w ds j_p j_q at the k_s a values ``ka``, shape
-    (k, na, n_t): the far integrals of :func:`galerkin_integrals` on the plan's tail.
-
-    There w = (T₁ ka/s)² = β u with β = (T₁ ka/S)² <= 1/4 and u = (S/s)² in (0, 1], so
-    T_f(2w − 1) w is a polynomial of degree f + 1 <= n_fit in u: interpolated exactly at
-    n_fit + 1 Chebyshev nodes of u and summed against the plan's moments
-    Σ T_j(2u − 1) j_p j_q ds. The same integral as node by node (the interpolation of a
-    polynomial is exact), at O(n_fit² na) instead of O(n_fit na ns) work (issue 31: the tail is
-    ~85 % of the far grid of a curve up to k_l a = 2).
-    """
-    nf = right.shape[1]
-    n = nf + 1
-    x = np.cos(np.pi * (np.arange(n) + 0.5) / n)  # Chebyshev nodes of 2u − 1
-    w = (table.t1 * ka[:, None] / plan.far_split_s) ** 2 * (0.5 * (x + 1))[None, :]  # (na, n)
-    values = np.polynomial.chebyshev.chebvander(2 * w - 1, nf - 1) * w[..., None]  # (na, n, nf)
-    to_coeffs = (2.0 / n) * np.polynomial.chebyshev.chebvander(x, nf)  # (n, nf + 1)
-    to_coeffs[:, 0] *= 0.5
-    coeffs = right @ (np.swapaxes(values, 1, 2) @ to_coeffs)  # (na, k, nf + 1)
-    assert plan.far_moments is not None  # the caller's test
-    return np.swapaxes(coeffs @ plan.far_moments, 0, 1)  # (k, na, n_t)
 
 
 def _pair_products(left: np.ndarray, right: np.ndarray, ti: np.ndarray, tj: np.ndarray):

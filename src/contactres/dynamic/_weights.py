@@ -270,12 +270,15 @@ def wa_harmonic_sum(z: np.ndarray, coeffs: np.ndarray) -> np.ndarray:
     x = 0.5 * np.asarray(z)
     c = np.asarray(coeffs)
     k_max = c.shape[0] - 1
-    p_max = _wa_orders(k_max, x)
+    # The orders whose terms reach round-off (_wa_orders) and no more: unlike the weights
+    # one by one, the sum needs no order p above them for its rows k <= K (F_p stops at p).
+    p_max = _wa_orders(0, x)
     j = spherical_bessel(p_max, x)
     # F_p = (−1)^p G_min(p, K), G_k = Σ_{i <= k} (−1)^i c_i; times 2p + 1.
     p = np.arange(p_max + 1)
     sign = np.where(p % 2 == 0, 1.0, -1.0)
-    g = np.cumsum(sign[: k_max + 1].reshape(-1, *([1] * (c.ndim - 1))) * c, axis=0)
+    k_max = min(k_max, p_max)  # W_{2k}, k > p_max, are below round-off: no order p reaches k
+    g = np.cumsum(sign[: k_max + 1].reshape(-1, *([1] * (c.ndim - 1))) * c[: k_max + 1], axis=0)
     f = g[np.minimum(p, k_max)] * (sign * (2 * p + 1)).reshape(-1, *([1] * (c.ndim - 1)))
     j *= j
     return np.einsum("p...k,pk->...k", j, f.reshape(p_max + 1, -1))
@@ -382,10 +385,23 @@ def bessel_even_sum(z: np.ndarray, coeffs: np.ndarray) -> np.ndarray:
     """
     z = np.asarray(z)
     c = np.asarray(coeffs)
-    k_max = c.shape[0] - 1
     zmax = float(np.max(np.abs(z), initial=0.0))
     # The start of bessel_orders for n_max = 2K (its truncation error, even).
-    top = 2 * math.ceil(max(2 * k_max + 12, 1.3 * zmax + 30) / 2)
+    top = 2 * math.ceil(max(2 * (c.shape[0] - 1) + 12, 1.3 * zmax + 30) / 2)
+    # A denominator of the continued fraction that rounds to zero (J_{n−1}(z) = 0 to the last
+    # bit) makes the pass non-finite: only then is it run again with the guard of
+    # bessel_orders, which costs a quarter of the pass on every order.
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        out = _even_sum_pass(z, c, top, guard=False)
+    if np.all(np.isfinite(out)):
+        return out
+    return _even_sum_pass(z, c, top, guard=True)
+
+
+def _even_sum_pass(z: np.ndarray, c: np.ndarray, top: int, guard: bool) -> np.ndarray:
+    """The downward pass of :func:`bessel_even_sum` from the order ``top`` (``guard``: keep a
+    denominator that rounds to zero finite, as :func:`bessel_orders` does)."""
+    k_max = c.shape[0] - 1
     dtype = np.result_type(z, float)
     ratio = np.zeros(z.shape, dtype=dtype)  # r_{n+1}, then r_n
     above = np.zeros(z.shape, dtype=dtype)  # r_{n+1} while r_n is made
@@ -397,8 +413,8 @@ def bessel_even_sum(z: np.ndarray, coeffs: np.ndarray) -> np.ndarray:
         ratio, above = above, ratio
         np.multiply(z, above, out=den)
         np.subtract(2 * n, den, out=den)
-        # As in bessel_orders: a denominator that rounds to zero keeps r_n finite.
-        den[den == 0] = 2 * n * np.finfo(float).eps
+        if guard:  # as in bessel_orders: a denominator that rounds to zero keeps r_n finite
+            den[den == 0] = 2 * n * np.finfo(float).eps
         np.divide(z, den, out=ratio)
         if n % 2 == 1:  # n = 2k + 1: A_{2k} and V_{2k} from r_{2k+1} r_{2k+2}
             np.multiply(ratio, above, out=pair)
