@@ -19,11 +19,19 @@ from scipy import integrate, special
 from contactres import Material
 from contactres.dynamic import prepare
 from contactres.dynamic._exact import exact_n, galerkin_plan, galerkin_size
-from contactres.dynamic._farfield import far_basis, low_rank
-from contactres.dynamic._quadrature import _n_theta_near, near_theta_integrals
+from contactres.dynamic._farfield import far_basis, far_grid, low_rank
+from contactres.dynamic._fartail import far_tail, head_grid
+from contactres.dynamic._quadrature import (
+    _n_theta_near,
+    far_operator,
+    functionals,
+    near_theta_integrals,
+)
 from contactres.dynamic._weights import (
+    bessel_even_sum,
     bessel_orders,
     spherical_bessel,
+    wa_harmonic_sum,
     wa_harmonic_weights,
     wa_harmonic_weights_complex,
     wa_line_weight,
@@ -115,6 +123,40 @@ def test_complex_wa_harmonics_are_the_fourier_coefficients_of_the_line_weight():
     np.testing.assert_allclose(wa_harmonic_weights_complex(z, 30), ref, rtol=0, atol=1e-13)
 
 
+def test_bessel_even_sum_against_amos():
+    """Σ_m J_2m(z) c_m summed during Miller's pass against scipy's jv (AMOS) order by order,
+    on the near-field contour's kind of arguments (complex, small to ~20, and real)."""
+    rng = np.random.default_rng(7)
+    z = np.concatenate(
+        [
+            rng.uniform(1e-3, 20, (3, 40)) + 1j * rng.uniform(0, 3, (3, 40)),
+            rng.uniform(1e-3, 20, (1, 40)) + 0j,
+        ]
+    )
+    c = rng.normal(size=(24, 40)) + 1j * rng.normal(size=(24, 40))
+    ref = sum(special.jv(2 * m, z) * c[m] for m in range(24))
+    scale = np.sum(np.abs(c), axis=0)
+    assert np.all(np.abs(bessel_even_sum(z, c) - ref) <= 1e-14 * scale)
+    real = z[-1].real
+    got = bessel_even_sum(real, c[:, 0].real)
+    ref = sum(special.jv(2 * m, real) * c[m, 0].real for m in range(24))
+    np.testing.assert_allclose(got, ref, rtol=0, atol=1e-14 * np.sum(np.abs(c[:, 0].real)))
+
+
+def test_wa_harmonic_sum_against_the_fourier_coefficients_of_the_line_weight():
+    """Σ_k W_2k(z) c_k with the sums turned (one pass over the orders) against the W_2k as the
+    Fourier coefficients of the line weight W(z cos θ) (an FFT on a fine θ grid)."""
+    z = np.array([3 + 0.4j, 9 + 1.5j, 12 + 0.5j, 0.01 + 1e-3j, 17.0 + 0j])
+    n_t = 512
+    theta = np.pi * np.arange(n_t) / n_t
+    coef = np.fft.fft(wa_line_weight(np.multiply.outer(z, np.cos(theta))), axis=-1) / n_t
+    k = np.arange(25)
+    weights = (coef[:, k] * np.where(k % 2 == 0, 1.0, -1.0)).T  # (25, n_z)
+    c = np.random.default_rng(3).normal(size=(25, z.size)) * (0.7 ** k[:, None])
+    ref = np.sum(weights * c, axis=0)
+    np.testing.assert_allclose(wa_harmonic_sum(z, c), ref, rtol=0, atol=1e-13)
+
+
 def test_spherical_bessel_upward_recurrence_at_large_real_arguments():
     """Real z beyond every order take the upward recurrence: against AMOS up to z = 700 (which
     itself scatters by ~2e-14 of the largest |j_p| there, hence the absolute bound)."""
@@ -148,3 +190,26 @@ def test_exact_far_field_on_the_reduced_basis_equals_the_full_one(table, monkeyp
     monkeypatch.setattr(exact, "low_rank", lambda m: (m, np.eye(m.shape[1])))
     full = exact_n(table, ka, size, far=fb, plan=plan)
     np.testing.assert_allclose(reduced, full, rtol=1e-13)
+
+
+def test_far_tail_by_moments_equals_the_node_by_node_sum(table):
+    """The far field beyond 2 T₁ × the largest k a summed by the moments of its polynomial
+    basis (contactres.dynamic._fartail), with the basis built on the head of the grid alone,
+    against the same integrals summed node by node on the whole grid: the six functionals
+    and N_exact agree to round-off."""
+    ka = np.array([0.05, 0.4, 1.5, 3.0])
+    grid = far_grid(table, float(ka.min()))
+    tail = far_tail(table, grid, float(ka.max()))
+    assert tail is not None and 0 < tail.split < grid.s.size // 2  # most of the grid
+    op = far_operator(table, grid)
+    full = functionals(table, ka, far=far_basis(table, ka, grid), far_op=op)
+    head = far_basis(table, ka, head_grid(grid, tail))
+    by_moments = functionals(table, ka, far=head, far_op=op, tail=tail)
+    for name in full:
+        np.testing.assert_allclose(by_moments[name], full[name], rtol=1e-13)
+    size = galerkin_size(float(ka.max()))
+    node_by_node = exact_n(table, ka, size, far=far_basis(table, ka, grid))
+    plan = galerkin_plan(table, size, grid.s, tail=tail)
+    np.testing.assert_allclose(
+        exact_n(table, ka, size, far=head, plan=plan), node_by_node, rtol=1e-13
+    )

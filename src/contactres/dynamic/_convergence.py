@@ -243,7 +243,10 @@ def _cubic_ratios(m: Material) -> tuple[float, float] | None:
     # The rows of m.frame are the current axes in crystal coordinates: the crystal axes in the
     # current frame are its columns, and turning to them undoes every rotation made so far.
     axes = np.asarray(m.frame, dtype=float)
-    crystal = m.rotated(normal=axes[:, 2], inplane=axes[:, 0])
+    # A solid never rotated is in its crystal frame already: the rotation by the identity
+    # (~1.5 ms, a tenth of a five-model curve, issue 31) would give its constants back.
+    unturned = np.array_equal(axes, np.eye(3))
+    crystal = m if unturned else m.rotated(normal=axes[:, 2], inplane=axes[:, 0])
     try:
         return crystal.zener_ratio, crystal.cubic_poisson
     except ContactresInputError:  # not cubic in its crystal frame

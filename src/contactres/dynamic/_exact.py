@@ -36,6 +36,7 @@ from scipy import special
 
 from ..errors import ContactresInputError
 from ._farfield import FarBasis, far_basis, low_rank
+from ._fartail import FarTail, tail_coefficients
 from ._table import KernelTable
 from ._weights import spherical_bessel
 
@@ -131,6 +132,9 @@ class GalerkinPlan:
     m_index, t_index : (nb, nb) where M_ab reads its harmonic (into ``ms``) and its pair
     sign : (nb, nb) (−1)^{(n_a + n_b)/2}
     far_products : (n_t, n_s) j_p(s) j_q(s) on the far-field grid (None without a grid)
+    far_tail : the tail of the far-field grid (:mod:`contactres.dynamic._fartail`), summed by
+        its moments (None: the whole grid is summed node by node)
+    far_moments : (n_fit + 1, n_t) the tail's moments of the products j_p j_q (or None)
     """
 
     basis: list
@@ -141,11 +145,17 @@ class GalerkinPlan:
     t_index: np.ndarray
     sign: np.ndarray
     far_products: np.ndarray | None
+    far_tail: FarTail | None = None
+    far_moments: np.ndarray | None = None
 
 
-def galerkin_plan(table: KernelTable, size: GalerkinSize, far_s=None) -> GalerkinPlan:
+def galerkin_plan(
+    table: KernelTable, size: GalerkinSize, far_s=None, *, tail: FarTail | None = None
+) -> GalerkinPlan:
     """The :class:`GalerkinPlan` of ``size`` on ``table``; with the far-field nodes ``far_s``
-    (those of :func:`contactres.dynamic._farfield.far_grid`) also the Bessel products there."""
+    (those of :func:`contactres.dynamic._farfield.far_grid`) also the Bessel products there,
+    and with the tail of that grid (:func:`contactres.dynamic._fartail.far_tail`) also their
+    moments on it (:func:`galerkin_integrals`)."""
     basis = _basis(table, size)
     n_of = np.array([b[0] for b in basis])
     p_of = np.array([abs(b[0]) + 2 * b[1] for b in basis])
@@ -162,6 +172,9 @@ def galerkin_plan(table: KernelTable, size: GalerkinSize, far_s=None) -> Galerki
     if far_s is not None:
         js = spherical_bessel(int(orders[-1]), np.asarray(far_s, dtype=float))[orders]
         products = js[pairs[0]] * js[pairs[1]]
+    moments = None
+    if products is not None and tail is not None:
+        moments = tail.moments(products)  # (n_fit + 1, n_t)
     return GalerkinPlan(
         basis=basis,
         orders=orders,
@@ -171,6 +184,8 @@ def galerkin_plan(table: KernelTable, size: GalerkinSize, far_s=None) -> Galerki
         t_index=t_index.reshape(len(basis), len(basis)),
         sign=np.where(((n_of[:, None] + n_of[None, :]) // 2) % 2 == 0, 1.0, -1.0),
         far_products=products,
+        far_tail=tail if moments is not None else None,
+        far_moments=moments,
     )
 
 
@@ -290,7 +305,7 @@ def galerkin_integrals(
     # shared with other work, every threaded call can wait a scheduler tick).
     jp = np.moveaxis(spherical_bessel(int(orders[-1]), s)[orders], 0, 1)  # (na, n_p, nk)
     wk = table.near_weight[None, :] * ka[:, None]
-    prod = (jp * wk[:, None, :])[:, ti] * jp[:, tj]  # (na, n_t, nk)
+    prod = _pair_products(jp * wk[:, None, :], jp, ti, tj)  # (na, n_t, nk)
     near = (prod.reshape(-1, prod.shape[-1]) @ near_h.T).reshape(na, ti.size, -1)
     integral += near.transpose(0, 2, 1)  # (na, n_m, n_t)
     # Far field: Chebyshev series in w = (T1 ka/s)² of each harmonic, against j_p j_q.
@@ -308,8 +323,18 @@ def galerkin_integrals(
     left, right = low_rank(np.concatenate([coef.real, coef.imag]))  # (2 n_m, k), (k, nf)
     k = right.shape[0]
     cheb = np.moveaxis(far.basis, -1, 0)  # (nf, na, ns), contiguous (see far_basis)
-    proj = (right @ cheb.reshape(nf, -1)).reshape(k * na, -1)
-    phi = (proj @ plan.far_products.T).reshape(k, na, -1)
+    # Beyond 2 T₁ k_s a (the plan's tail) the basis is a polynomial in w = (T₁ ka/s)²: summed
+    # against the tail's moments, not node by node (contactres.dynamic._fartail). A basis
+    # built on the head of the grid alone needs them.
+    tail = plan.far_tail
+    head = cheb.shape[-1] if tail is None else tail.split
+    if cheb.shape[-1] not in (head, plan.far_products.shape[-1]):
+        raise ValueError("the far-field basis was built on another grid")  # internal misuse
+    proj = np.tensordot(right, cheb[..., :head], axes=(1, 0)).reshape(k * na, head)
+    phi = (proj @ plan.far_products[:, :head].T).reshape(k, na, -1)
+    if tail is not None and plan.far_moments is not None:
+        coeffs = right @ tail_coefficients(table, ka, tail)  # (na, k, n_fit + 1)
+        phi += np.swapaxes(coeffs @ plan.far_moments, 0, 1)  # (k, na, n_t)
     mixed = np.tensordot(left, phi, axes=(1, 0))  # (2 n_m, na, n_t)
     far_part = mixed[: plan.ms.size] + 1j * mixed[plan.ms.size :]  # (n_m, na, n_t)
     integral += far_part.transpose(1, 0, 2)
@@ -319,3 +344,31 @@ def galerkin_integrals(
     scale = (table.t1 * ka) ** 2 / (6 * far.s_end**3)
     integral += scale[:, None, None] * (coef @ alt)[None, :, None] * tail_sign[None, None, :]
     return integral
+
+
+def _pair_products(left: np.ndarray, right: np.ndarray, ti: np.ndarray, tj: np.ndarray):
+    """``left[:, ti] * right[:, tj]``, (na, n_t, nk), written pair block by pair block.
+
+    The pairs of a plan come sorted by their first order, each first order with a run of
+    second orders (all of them above it in the full plan): one product of a row of ``left``
+    with a slice of ``right`` per first order, straight into the result, instead of two
+    gathered copies of the (na, n_t, nk) array and their product (~3x less memory traffic,
+    the largest array of the exact model; issue 31). The same products, to the bit.
+    """
+    order = np.argsort(ti, kind="stable")
+    ti_s, tj_s = ti[order], tj[order]
+    out = np.empty((left.shape[0], ti.size, left.shape[-1]), dtype=np.result_type(left, right))
+    starts = np.searchsorted(ti_s, np.arange(left.shape[1] + 1))
+    for p in range(left.shape[1]):
+        lo, hi = int(starts[p]), int(starts[p + 1])
+        if hi == lo:
+            continue
+        q = tj_s[lo:hi]
+        run = q[-1] - q[0] == hi - lo - 1 and bool(np.all(np.diff(q) == 1))
+        cols = right[:, int(q[0]) : int(q[-1]) + 1] if run else right[:, q]
+        np.multiply(left[:, p, None, :], cols, out=out[:, lo:hi])
+    if np.array_equal(order, np.arange(ti.size)):
+        return out
+    back = np.empty_like(order)
+    back[order] = np.arange(order.size)
+    return out[:, back]

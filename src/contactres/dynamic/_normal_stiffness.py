@@ -68,6 +68,7 @@ from ..materials import Material, require_material
 from ..validation import nonnegative
 from ._exact import exact_n, galerkin_plan, galerkin_size, pressure_basis
 from ._farfield import far_basis, far_grid
+from ._fartail import far_tail, head_grid
 from ._interpolation import MAX_INTERVALS as LARGEST
 from ._interpolation import chebyshev_values
 from ._models import ALL_MODELS, MODELS, WAVENUMBERS
@@ -278,13 +279,18 @@ def _direct(table, flat, names, rtol, chunk, span=None, refine=0) -> dict[str, n
     grid = far_grid(table, float(np.min(pos))) if pos.size else None
     size = galerkin_size(smax, rtol, refine=refine)
     far_op = far_operator(table, grid) if approx and grid is not None else None
-    plan = galerkin_plan(table, size, grid.s if grid else None) if "exact" in names else None
+    # Beyond 2 T₁ × the largest k a the far basis is summed by moments (._fartail): the chunks
+    # build it on the head of the grid alone.
+    tail = far_tail(table, grid, smax) if grid is not None else None
+    plan = None
+    if "exact" in names:
+        plan = galerkin_plan(table, size, grid.s if grid else None, tail=tail)
     for lo in range(0, flat.size, chunk):
         part = flat[lo : lo + chunk]
         p = part[part > 0]
-        far = far_basis(table, p, grid) if p.size else None
+        far = far_basis(table, p, head_grid(grid, tail)) if p.size and grid else None
         if approx:
-            f = functionals(table, part, far=far, smax=smax, far_op=far_op)
+            f = functionals(table, part, far=far, smax=smax, far_op=far_op, tail=tail)
             for name in approx:
                 n_out[name][lo : lo + chunk] = model_n(f, name)
         if plan is not None:

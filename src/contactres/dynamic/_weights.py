@@ -14,10 +14,12 @@ from scipy import special
 
 __all__ = [
     "bessel_even",
+    "bessel_even_sum",
     "bessel_orders",
     "j1_over_s",
     "sinc",
     "spherical_bessel",
+    "wa_harmonic_sum",
     "wa_harmonic_weights",
     "wa_harmonic_weights_complex",
     "wa_line_weight",
@@ -241,11 +243,57 @@ def wa_harmonic_weights_complex(z: np.ndarray, k_max: int) -> np.ndarray:
     return _wa_from_spherical(k_max, 0.5 * np.asarray(z))
 
 
-def _wa_from_spherical(k_max: int, x: np.ndarray) -> np.ndarray:
-    """W_{2k}(2x) = Σ_{p >= k} (−1)^{p−k} (2p + 1) j_p(x)², k = 0..k_max (x nonzero)."""
+def wa_harmonic_sum(z: np.ndarray, coeffs: np.ndarray) -> np.ndarray:
+    """Σ_k W_{2k}(z) c_k, the WA weights of :func:`wa_harmonic_weights_complex` summed against
+    coefficients c_k, without the weights themselves (paper 1, Eq. 27; the near field of
+    :func:`contactres.dynamic._quadrature.near_theta_integrals`).
+
+    With W_{2k}(2x) = Σ_{p >= k} (−1)^{p−k} (2p + 1) j_p(x)², the order of the sums turns:
+    Σ_k W_{2k} c_k = Σ_p (2p + 1) j_p(x)² F_p, F_p = Σ_{k <= min(p, K)} (−1)^{p−k} c_k. The
+    F_p are partial sums of the coefficients alone (no z), so the work per argument is one
+    product and sum over the orders p, not the suffix sums of every W_{2k} (issue 31: a third
+    of the near field of the five-model curve). Absolute round-off ~1e-16 × Σ_k ``|c_k|``,
+    as for the weights summed one by one.
+
+    Parameters
+    ----------
+    z : ndarray
+        Nonzero complex (or real) arguments, shape (..., n); ``|Im z|`` moderate (<~10).
+    coeffs : ndarray
+        c_k, k = 0..K, shape (K + 1, n) (one set per last index of ``z``) or (K + 1,).
+
+    Returns
+    -------
+    ndarray
+        Σ_k W_{2k}(z) c_k, shaped like ``z``.
+    """
+    x = 0.5 * np.asarray(z)
+    c = np.asarray(coeffs)
+    k_max = c.shape[0] - 1
+    # The orders whose terms reach round-off (_wa_orders) and no more: unlike the weights
+    # one by one, the sum needs no order p above them for its rows k <= K (F_p stops at p).
+    p_max = _wa_orders(0, x)
+    j = spherical_bessel(p_max, x)
+    # F_p = (−1)^p G_min(p, K), G_k = Σ_{i <= k} (−1)^i c_i; times 2p + 1.
+    p = np.arange(p_max + 1)
+    sign = np.where(p % 2 == 0, 1.0, -1.0)
+    k_max = min(k_max, p_max)  # W_{2k}, k > p_max, are below round-off: no order p reaches k
+    g = np.cumsum(sign[: k_max + 1].reshape(-1, *([1] * (c.ndim - 1))) * c[: k_max + 1], axis=0)
+    f = g[np.minimum(p, k_max)] * (sign * (2 * p + 1)).reshape(-1, *([1] * (c.ndim - 1)))
+    j *= j
+    return np.einsum("p...k,pk->...k", j, f.reshape(p_max + 1, -1))
+
+
+def _wa_orders(k_max: int, x: np.ndarray) -> int:
+    """Highest order p of the spherical Bessel sums of the W_{2k}(2x), k <= k_max."""
     xmax = float(np.max(np.abs(x), initial=0.0))
     # Beyond p ~ 1.3|x| the terms fall by (|x|/2p)² < 0.15 per order: 20 more leave < 1e-16.
-    p_max = int(max(k_max, math.ceil(1.3 * xmax)) + 20)
+    return int(max(k_max, math.ceil(1.3 * xmax)) + 20)
+
+
+def _wa_from_spherical(k_max: int, x: np.ndarray) -> np.ndarray:
+    """W_{2k}(2x) = Σ_{p >= k} (−1)^{p−k} (2p + 1) j_p(x)², k = 0..k_max (x nonzero)."""
+    p_max = _wa_orders(k_max, x)
     j = spherical_bessel(p_max, x)
     p = np.arange(p_max + 1).reshape(-1, *([1] * x.ndim))
     signed = j * j
@@ -308,6 +356,77 @@ def bessel_orders(n_max: int, z: np.ndarray) -> np.ndarray:
     if n_max:
         out[1:] = q[1 : n_max + 1] * (z / denom)
     return out
+
+
+def bessel_even_sum(z: np.ndarray, coeffs: np.ndarray) -> np.ndarray:
+    """Σ_m J_{2m}(z) c_m, m = 0..K, of nonzero real or complex z, without the J_{2m} themselves
+    (the near field of :func:`contactres.dynamic._quadrature.near_theta_integrals`).
+
+    Miller's method as in :func:`bessel_orders` (the same continued fraction, started at the
+    same order, so the same ratios r_n = J_n/J_{n−1}), with the sums that need the products
+    Q_n = r₂ ⋯ r_n taken by Horner's rule during the downward pass, from the small terms up:
+    Σ_{k >= 1} Q_{2k} = r₂ A₂, A_{2k} = 1 + r_{2k+1} r_{2k+2} A_{2k+2}, and likewise
+    Σ_{m >= 1} c_m Q_{2m} = r₂ V₂, V_{2m} = c_m + r_{2m+1} r_{2m+2} V_{2m+2}. Then
+    J₀ = d/D, J_n = z Q_n/D (d = 2 − z r₂, D = d + 2z r₂ A₂), so the sum is
+    (c₀ d + z r₂ V₂)/D. No array over the orders is kept (issue 31: half the cost of the
+    orders of :func:`bessel_orders` and of the product with c).
+
+    Parameters
+    ----------
+    z : ndarray
+        Nonzero arguments (dimensionless), real or complex, shape (..., n).
+    coeffs : ndarray
+        c_m, m = 0..K, shape (K + 1, n) (one set per last index of ``z``) or (K + 1,).
+
+    Returns
+    -------
+    ndarray
+        Σ_m J_{2m}(z) c_m, shaped like ``z`` (complex if z or c is).
+    """
+    z = np.asarray(z)
+    c = np.asarray(coeffs)
+    zmax = float(np.max(np.abs(z), initial=0.0))
+    # The start of bessel_orders for n_max = 2K (its truncation error, even).
+    top = 2 * math.ceil(max(2 * (c.shape[0] - 1) + 12, 1.3 * zmax + 30) / 2)
+    # A denominator of the continued fraction that rounds to zero (J_{n−1}(z) = 0 to the last
+    # bit) makes the pass non-finite: only then is it run again with the guard of
+    # bessel_orders, which costs a quarter of the pass on every order.
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        out = _even_sum_pass(z, c, top, guard=False)
+    if np.all(np.isfinite(out)):
+        return out
+    return _even_sum_pass(z, c, top, guard=True)
+
+
+def _even_sum_pass(z: np.ndarray, c: np.ndarray, top: int, guard: bool) -> np.ndarray:
+    """The downward pass of :func:`bessel_even_sum` from the order ``top`` (``guard``: keep a
+    denominator that rounds to zero finite, as :func:`bessel_orders` does)."""
+    k_max = c.shape[0] - 1
+    dtype = np.result_type(z, float)
+    ratio = np.zeros(z.shape, dtype=dtype)  # r_{n+1}, then r_n
+    above = np.zeros(z.shape, dtype=dtype)  # r_{n+1} while r_n is made
+    den = np.empty(z.shape, dtype=dtype)
+    pair = np.empty(z.shape, dtype=dtype)
+    acc_a = np.ones(z.shape, dtype=np.result_type(dtype))  # A_top = 1
+    acc_v = np.zeros(z.shape, dtype=np.result_type(dtype, c))  # V beyond K: 0
+    for n in range(top, 1, -1):
+        ratio, above = above, ratio
+        np.multiply(z, above, out=den)
+        np.subtract(2 * n, den, out=den)
+        if guard:  # as in bessel_orders: a denominator that rounds to zero keeps r_n finite
+            den[den == 0] = 2 * n * np.finfo(float).eps
+        np.divide(z, den, out=ratio)
+        if n % 2 == 1:  # n = 2k + 1: A_{2k} and V_{2k} from r_{2k+1} r_{2k+2}
+            np.multiply(ratio, above, out=pair)
+            acc_a *= pair
+            acc_a += 1
+            k = n // 2
+            if k <= k_max:
+                acc_v *= pair
+                acc_v += c[k]
+    d = 2 - z * ratio  # ratio = r₂
+    total = d + 2 * z * ratio * acc_a
+    return (c[0] * d + z * ratio * acc_v) / total
 
 
 def spherical_bessel(p_max: int, z: np.ndarray) -> np.ndarray:
