@@ -144,17 +144,3 @@ def test_rules_in_words_match_their_checks():
                                                                           False]  # fmt: skip
     ramp = SWEEP_TABLE.column("ramp").rules[-1]
     assert list(ramp.accepts(np.array([0.0, 1.0, 1.5, 7.0]))) == [False, True, False, True]
-
-
-def test_the_afm_tip_radius_is_a_tip_radius():
-    """The AFM table's tip radius takes the tip's range (1 nm to 1 mm, colloidal probes
-    included), not any sphere's: a 50 nm tip given as 5e-2 (read 1e6 times too large) gave
-    M = 0.04 GPa without a word (issue 27's closing campaign)."""
-    raw = load(DATA / "example_afm.csv")
-    validate_resonance_table(raw, AFM_TABLE, "x.csv")
-    for good in ("2e-9", "5e-8", "2e-5"):  # a sharp tip, the example's, a colloidal probe
-        raw.loc[0, "tip_radius_m"] = good
-        validate_resonance_table(raw, AFM_TABLE, "x.csv")
-    raw.loc[0, "tip_radius_m"] = "5e-2"
-    with pytest.raises(ContactresInputError, match=r"line 2, column 'tip_radius_m'.*tip radius"):
-        validate_resonance_table(raw, AFM_TABLE, "x.csv")

@@ -472,9 +472,7 @@ AFM_TABLE = TableSchema(
             "tilt of the lever from the sample's surface, > 0 with the free end nearer it",
             interval("deg", 0.0, 60.0),
         ),
-        # an AFM tip, not any sphere: 5 cm (a radius of 50 nm typed in nm and read as µm, x1e6)
-        # passed the sphere's [1e-9, 1] m and gave M = 0.04 GPa (issue 27's closing campaign)
-        _col("tip_radius_m", "m", "tip radius R (Hertz)", plausible("tip_radius")),
+        _col("tip_radius_m", "m", "tip radius R (Hertz)", plausible("sphere_radius")),
         _col("load_N", "N", "normal load P (Hertz)", plausible("force")),
         _col("M_tip_Pa", "Pa", "indentation modulus of the tip", plausible("modulus")),
         _col(
