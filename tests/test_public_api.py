@@ -567,6 +567,7 @@ PUBLIC = {
     "jobs.maps": [
         "METHODS",
         "TipLoad",
+        "check_tip_load",
         "fit_measured_map",
         "fit_record",
         "open_map",

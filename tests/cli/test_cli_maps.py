@@ -95,6 +95,22 @@ def test_synthetic_store_is_hertz_per_grain_with_the_stated_noise(small):
     assert dev.std() == pytest.approx(NOISE, rel=0.05)
 
 
+def test_synthetic_flags_an_approximate_hertz_contact_as_predict_does(tmp_path):
+    """a/R between a tenth and a half of the tip radius: the map is made, with predict's
+    warning on stderr and in the store's attributes (a by hand: (3FR/4M)^(1/3) on the softest
+    orientation of Cu, M(001) = 1.34e11 Pa: 4.8e-9 m on a 20 nm tip, 0.24)."""
+    store = tmp_path / "s.zarr"
+    m001 = indentation_modulus(CU)
+    a = (3 * 1e-6 * 2e-8 / (4 * m001)) ** (1 / 3)
+    r = _ok(run("maps", "synthetic", "--crystal", "Cu", "--tip-radius", "2e-8", "--force", "1e-6",
+                "--shape", "8x8", "--grains", "2", "--out", store))  # fmt: skip
+    assert f"a/R = {a / 2e-8:.3g} > 0.1" in r.stderr and "warning" in r.stderr
+    assert f"a/R = {a / 2e-8:.3g}" in read_map(store).attrs["hertz_flag"]
+    r = _ok(run("maps", "synthetic", "--crystal", "Cu", "--tip-radius", "2e-8", "--force", "1e-8",
+                "--shape", "8x8", "--grains", "2", "--out", tmp_path / "t.zarr"))  # fmt: skip
+    assert r.stderr == ""
+
+
 # ----------------------------------------------------------------------------------- predict
 
 
@@ -388,6 +404,9 @@ BAD = [
     ("synthetic", SYN, "--density", "8.96", ("--density", "8.96", "g/cm^3")),
     ("synthetic", SYN, "--tip-radius", "20", None),
     ("synthetic", SYN, "--force", "-1", None),
+    # 1 N on a 20 nm tip: a/R = 24 on Cu, beyond Hertz; the map was made without a word
+    # (issue 27's closing campaign), as maps predict refuses it
+    ("synthetic", SYN, "--force", "1", ("--force 1 N", "24.1 times the tip radius", "units")),
     ("synthetic", SYN, "--tip-modulus", "1.14e3", ("--tip-modulus", "1.14e3", "gigapascals")),
     ("synthetic", SYN, "--shape", "0x5", None),
     ("synthetic", SYN, "--grains", "0", None),
@@ -602,6 +621,23 @@ def test_unindexed_pixels_are_left_out_of_predictions_and_fits(tmp_path):
     assert bad.exit_code == 2 and "no indexed pixel of phase 3; its phases are 1" in bad.output
     bad = _predict(ang, tmp_path / "q.zarr", "--min-confidence", 2)
     assert bad.exit_code == 2 and "--min-confidence" in bad.output
+
+
+def test_pixels_without_a_measured_value_are_named(tmp_path):
+    """Issue 27's closing campaign: an indexed pixel whose measured value is NaN or empty was
+    left out of the fit with only the count of pixels used changing (4095 of 4096); it is
+    named with the indexing rule and counted in pixels_left_out."""
+    ang, kstar = contactres.example_path("example_cu_map.ang"), "example_cu_kstar.csv"
+    k = np.loadtxt(contactres.example_path(kstar), delimiter=",")
+    holes = [(5, 3), (17, 40), (63, 63)]
+    for i, j in holes:
+        k[i, j] = np.nan
+    values = tmp_path / "k.csv"
+    np.savetxt(values, k, delimiter=",")
+    r = _ok(run("maps", "fit", ang, "--values", values, "--out", tmp_path / "f.json"))
+    assert "3 of 4096 pixels left out: 3 without a measured value (NaN or empty)" in r.stdout
+    doc = json.loads((tmp_path / "f.json").read_text())
+    assert doc["pixels_left_out"] == 3 and doc["pixels"] == 4096 - 3
 
 
 def test_predict_flags_hertz_approximate_at_a_over_r_0_3(small, tmp_path):

@@ -53,6 +53,20 @@ def test_afm_invert_recovers_stiffness_and_modulus(afm_table, tmp_path):
     assert (out["normalisation"] == "global").all()
 
 
+def test_afm_invert_counts_the_rows_without_a_modulus(afm_table, tmp_path):
+    """A row with k* but a blank tip radius has no modulus: the summary says in how many rows
+    the median is taken, not only the output's blank cell (issue 27's closing campaign)."""
+    path, _ = afm_table
+    frame = pd.read_csv(path)
+    frame.loc[1, "tip_radius_m"] = np.nan
+    frame.to_csv(path, index=False)
+    r = _run("afm", "invert", str(path), "--out", str(tmp_path / "out.csv"))
+    assert r.exit_code == 0, r.output
+    assert "3 rows, 3 with k*" in r.stdout and "GPa in 2 of the 3 rows with k*" in r.stdout
+    out = pd.read_csv(tmp_path / "out.csv")
+    assert np.isnan(out["M_sample_Pa"][1]) and np.isfinite(out["M_sample_Pa"][[0, 2]]).all()
+
+
 def test_afm_invert_refuses_bad_input_in_one_line(afm_table, tmp_path):
     path, _ = afm_table
     frame = pd.read_csv(path)

@@ -402,6 +402,31 @@ def test_resonance_frequencies_in_mhz_are_no_shifts(tmp_path, unit, factor, give
     one_line(info, "'f3_1 [Hz]'", f"absolute resonance frequency in {unit}", f0, "in Hz")
 
 
+@pytest.mark.parametrize(
+    "maker, column, sep, given",
+    [
+        (qsense_b, "f5_1 [Hz]", "\t", dict(baseline="first")),
+        (openqcm_multi, "Frequency_1", ",", dict(baseline="first", dissipation_scale=1e-6)),
+    ],
+)
+@pytest.mark.parametrize("factor", [1e293, 10.0, 0.1], ids=["1e300", "extra-digit", "lost-digit"])
+def test_a_resonance_frequency_far_from_its_overtone_is_refused(tmp_path, maker, column, sep,
+                                                                given, factor):  # fmt: skip
+    """One absolute f_n cell far from n f_F (a corrupted cell, an extra or a lost digit) became
+    a shift of its own size without a word (issue 27's closing campaign: Δf = 1e300 Hz); it
+    is refused, naming line and column. Line 4 is the third row, not the baseline's."""
+    path = maker(tmp_path)
+    lines = path.read_text().splitlines()
+    j = lines[0].split(sep).index(column)
+    cells = lines[3].split(sep)
+    cells[j] = repr(float(cells[j]) * factor)
+    lines[3] = sep.join(cells)
+    path.write_text("\n".join(lines) + "\n")
+    with pytest.raises(ValueError) as info:
+        read_export(path, **given)
+    one_line(info, "line 4", repr(column), "no resonance frequency of overtone")
+
+
 def test_small_positive_shifts_are_still_shifts(tmp_path):
     """Shifts of one sign that start at 0 are shifts, however near n x a few they end."""
     path = awsensors(tmp_path)

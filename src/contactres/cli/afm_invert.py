@@ -165,6 +165,10 @@ def afm_invert(
     M = result["M_sample_Pa"].to_numpy(float)
     if np.isfinite(M).any():
         line += f", M_sample median {np.nanmedian(M) / 1e9:.4g} GPa"
+        # Rows with k* but no modulus (a blank tip radius or load) are counted here, not only
+        # left blank in OUT (issue 27's closing campaign).
+        if (with_m := int(np.isfinite(M).sum())) < int(good.sum()):
+            line += f" in {with_m} of the {int(good.sum())} rows with k*"
     if sample is not None and np.isfinite(result["k_a"]).any():
         change = np.nanmax(np.abs(result["k_static_N_per_m"] / result["k_star_N_per_m"] - 1.0))
         line += (

@@ -93,13 +93,16 @@ def maps_synthetic(
     material, lattice = map_material(crystal, c11, c12, c13, c33, c44, density)
     tipload = TipLoad(tip_radius, force, math.inf if tip_modulus is None else tip_modulus)
     settings = job.Settings(material, lattice, tipload, shape, grains, seed, noise, pixel_size)
-    ds = job.run(None, settings, progress=lambda text: step("maps synthetic", text)).dataset
+    result = job.run(None, settings, progress=lambda text: step("maps synthetic", text))
+    ds = result.dataset
     write_map(out, ds)
     k = ds["k_star_N_per_m"].values
     click.echo(
         f"{shape[0]}x{shape[1]} map, {grains} grains, noise {noise:g}: k* from "
         f"{k.min():.4g} to {k.max():.4g} N/m; wrote {out}"
     )
+    for line in result.warnings:  # the Hertz flag: one line, also in the store's attributes
+        click.echo(f"contactres: warning: {line}", err=True)
 
 
 @maps.command("predict")

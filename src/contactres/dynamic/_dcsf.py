@@ -7,14 +7,19 @@ add the promise of accuracy: inside the range where the resolutions were measure
 evaluation, unchanged; outside it each value is checked at run time against a refined
 evaluation and refined where it misses rtol (:mod:`contactres.dynamic._convergence`), and a
 value that still misses it comes with an :class:`~contactres.errors.AccuracyWarning` (issue 27).
+A value with negative damping (Im DCSF < 0 beyond rtol: no passive contact has it; R0, SA and TP
+reach it at high k a) comes with a :class:`~contactres.errors.ContactresWarning` naming the
+models and the k a (issue 27, point 7: flagged at run time, not only in the docstrings).
 """
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 
 from .._threads import one_blas_thread
-from ..errors import ContactresInputError
+from ..errors import ContactresInputError, ContactresWarning
 from ..halfspace import shear_reference
 from ..materials import Material, require_material
 from ..validation import nonnegative
@@ -68,10 +73,41 @@ def dcsf_models(
     # Inside the validated range the resolution meets rtol (the convergence tests); outside it
     # nothing promises that, so each value is checked against a refined one (issue 27).
     if in_validated_range(m, ksa):
-        return evaluate_models(table, ksa, names, rtol, chunk=chunk, interpolate=interpolate)
-    out = checked_values(m, table, ksa, names, loss, rtol, chunk=chunk, interpolate=interpolate)
-    warn_unconverged(m, out, np.broadcast_to(ka, ksa.shape), wavenumber)
-    return {k: np.asarray(v) for k, v in out.values.items()}
+        values = evaluate_models(table, ksa, names, rtol, chunk=chunk, interpolate=interpolate)
+    else:
+        out = checked_values(m, table, ksa, names, loss, rtol, chunk=chunk, interpolate=interpolate)
+        warn_unconverged(m, out, np.broadcast_to(ka, ksa.shape), wavenumber)
+        values = {k: np.asarray(v) for k, v in out.values.items()}
+    _warn_negative_damping(values, np.broadcast_to(ka, ksa.shape), wavenumber, rtol)
+    return values
+
+
+def _warn_negative_damping(values: dict, ka: np.ndarray, wavenumber: str, rtol: float) -> None:
+    """A :class:`~contactres.errors.ContactresWarning` naming the models and the k a where the
+    DCSF has negative damping, Im DCSF < -rtol ``|DCSF|``: the radiated power of a passive
+    contact is positive (paper 1, Sec. 2.3), so such a value is the displacement condition's
+    failure (R0 near k_l a = 1.6-2, SA near its pole), not the contact's. The same rule flags the
+    rows of the ``dcsf`` job (``negative-damping``)."""
+    ka = np.asarray(ka, dtype=float)
+    bad = {}
+    for name, v in values.items():
+        v = np.broadcast_to(np.asarray(v), ka.shape)
+        negative = v.imag < -rtol * np.abs(v)
+        if np.any(negative):
+            bad[name] = ka[negative]
+    if not bad:
+        return
+    where = np.concatenate(list(bad.values()))
+    lo, hi = float(np.min(where)), float(np.max(where))
+    span = f"{lo:.4g}" if lo == hi else f"{lo:.4g}-{hi:.4g}"
+    label = "k_l a" if wavenumber == "longitudinal" else "k_s a"
+    warnings.warn(
+        f"DCSF of model(s) {', '.join(bad)}: negative damping (Im DCSF < 0) at {label} = {span}:"
+        " no passive contact has it, the displacement condition fails there; use the exact "
+        "model",
+        ContactresWarning,
+        stacklevel=4,
+    )
 
 
 def dcsf(

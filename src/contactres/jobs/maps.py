@@ -59,6 +59,7 @@ if TYPE_CHECKING:
 __all__ = [
     "METHODS",
     "TipLoad",
+    "check_tip_load",
     "fit_measured_map",
     "fit_record",
     "open_map",
@@ -434,3 +435,52 @@ def fit_record(result, **context) -> dict:
     # converge or is at a bound says so in every format (issue 27).
     flat["warnings"] = "; ".join(doc.get("warnings") or ())
     return {"json": json.dumps(doc, indent=1, allow_nan=False) + "\n", "flat": flat}
+
+
+# Surface normals whose M bounds a crystal's from below: the cube axes, face and body diagonals
+# (the extremes of a cubic crystal's M) and the c axis and basal directions of a hexagonal one.
+_BOUNDING_NORMALS = (
+    (0, 0, 1), (1, 0, 0), (0, 1, 0), (1, 1, 0), (1, 0, 1), (0, 1, 1), (1, 1, 1),
+)  # fmt: skip
+
+
+def check_tip_load(material: Material, tip: TipLoad) -> str:
+    """Refuse, before any work, a tip and load whose Hertz contact on the map's softest
+    orientation is wider than :data:`contactres.jobs.contact.HERTZ_MAX_RATIO` of the tip
+    radius (issue 30: such a map printed moduli of a contact Hertz does not describe; most
+    likely a radius or force in the wrong unit). a is :func:`contactres.hertz`'s with E* of the
+    smallest M over the cube axes, face and body diagonals in series with the tip. The jobs
+    ``maps_predict`` and ``maps_synthetic`` call it before their work (issue 27's closing
+    campaign: ``maps synthetic`` made a map of 1 N on a 20 nm tip, a/R = 24, without a word).
+
+    Parameters
+    ----------
+    material : Material
+        The crystal, in its cube (or crystal) axes.
+    tip : TipLoad
+        Tip radius (m), force (N) and tip modulus (Pa; inf: rigid).
+
+    Returns the flag of a contact wider than
+    :data:`~contactres.jobs.contact.HERTZ_APPROXIMATE_RATIO` of the tip radius (Hertz
+    approximate, values kept, as ``contact`` flags its rows), else ""."""
+    from ..normal import hertz
+    from ..polycrystal import surface_matrices_from_normals
+    from .contact import HERTZ_APPROXIMATE_RATIO, HERTZ_MAX_RATIO
+
+    normals = np.asarray(_BOUNDING_NORMALS, dtype=float)
+    m_min = float(np.min(indentation_moduli(material, surface_matrices_from_normals(normals))))
+    e_star = 1.0 / (1.0 / m_min + (0.0 if math.isinf(tip.tip_modulus) else 1.0 / tip.tip_modulus))
+    ratio = hertz(e_star, tip.radius, tip.force, check_validity=False).contact_radius / tip.radius
+    if ratio > HERTZ_MAX_RATIO:
+        raise ContactresInputError(
+            f"--tip-radius {tip.radius:g} m and --force {tip.force:g} N give a Hertz contact "
+            f"radius of {ratio:.3g} times the tip radius on the softest orientation (M = "
+            f"{m_min:.3g} Pa): beyond Hertz (a/R > {HERTZ_MAX_RATIO:g}); check their units"
+        )
+    if ratio > HERTZ_APPROXIMATE_RATIO:
+        return (
+            f"a/R = {ratio:.3g} > {HERTZ_APPROXIMATE_RATIO:g} on the softest orientation (M = "
+            f"{m_min:.3g} Pa): Hertz approximate; the map's values are kept (Hertz takes the "
+            "tip as a paraboloid, for a ≪ R)"
+        )
+    return ""

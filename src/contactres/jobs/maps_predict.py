@@ -136,7 +136,7 @@ def run(
         surface_matrices_from_normals,
         triangle_moduli,
     )
-    from .maps import open_map, predict_map
+    from .maps import check_tip_load, open_map, predict_map
 
     s = settings
     if s.frequency is not None and s.material.density is None:
@@ -149,7 +149,7 @@ def run(
             "on their wave speeds, which M does not give): dcsf --coating gives the DCSF of one "
             "coated contact on a crystal face"
         )
-    hertz_flag = _check_hertz(s)
+    hertz_flag = check_tip_load(s.material, s.tipload)
     say(progress, f"reading {inputs}")
     omap, _ = open_map(inputs)
     pixels = indexed_pixels(omap, min_confidence=s.min_confidence, max_mad=s.max_mad, phase=s.phase)
@@ -225,51 +225,3 @@ def _add_coated(ds, info: dict, s: Settings, layers) -> None:
         M_coated_stated_error=f"{c.error:.2g}",
     )
     info.update(coating=label, coated_error=f"{c.error:.2g}", coated_evaluations=c.evaluations)
-
-
-# Surface normals whose M bounds a crystal's from below: the cube axes, face and body diagonals
-# (the extremes of a cubic crystal's M) and the c axis and basal directions of a hexagonal one.
-_BOUNDING_NORMALS = (
-    (0, 0, 1), (1, 0, 0), (0, 1, 0), (1, 1, 0), (1, 0, 1), (0, 1, 1), (1, 1, 1),
-)  # fmt: skip
-
-
-def _check_hertz(settings: Settings) -> str:
-    """Refuse, before any work, a tip and load whose Hertz contact on the map's softest
-    orientation is wider than :data:`contactres.jobs.contact.HERTZ_MAX_RATIO` of the tip
-    radius (issue 30: such a map printed moduli of a contact Hertz does not describe; most
-    likely a radius or force in the wrong unit). a is :func:`contactres.hertz`'s with E* of the
-    smallest M over :data:`_BOUNDING_NORMALS` in series with the tip.
-
-    Returns the flag of a contact wider than
-    :data:`~contactres.jobs.contact.HERTZ_APPROXIMATE_RATIO` of the tip radius (Hertz
-    approximate, values kept, as ``contact`` flags its rows), else ""."""
-    import math
-
-    import numpy as np
-
-    from ..errors import ContactresInputError
-    from ..normal import hertz
-    from ..polycrystal import indentation_moduli, surface_matrices_from_normals
-    from .contact import HERTZ_APPROXIMATE_RATIO, HERTZ_MAX_RATIO
-
-    tip = settings.tipload
-    normals = np.asarray(_BOUNDING_NORMALS, dtype=float)
-    m_min = float(
-        np.min(indentation_moduli(settings.material, surface_matrices_from_normals(normals)))
-    )
-    e_star = 1.0 / (1.0 / m_min + (0.0 if math.isinf(tip.tip_modulus) else 1.0 / tip.tip_modulus))
-    ratio = hertz(e_star, tip.radius, tip.force, check_validity=False).contact_radius / tip.radius
-    if ratio > HERTZ_MAX_RATIO:
-        raise ContactresInputError(
-            f"--tip-radius {tip.radius:g} m and --force {tip.force:g} N give a Hertz contact "
-            f"radius of {ratio:.3g} times the tip radius on the softest orientation (M = "
-            f"{m_min:.3g} Pa): beyond Hertz (a/R > {HERTZ_MAX_RATIO:g}); check their units"
-        )
-    if ratio > HERTZ_APPROXIMATE_RATIO:
-        return (
-            f"a/R = {ratio:.3g} > {HERTZ_APPROXIMATE_RATIO:g} on the softest orientation (M = "
-            f"{m_min:.3g} Pa): Hertz approximate; the map's values are kept (Hertz takes the "
-            "tip as a paraboloid, for a ≪ R)"
-        )
-    return ""

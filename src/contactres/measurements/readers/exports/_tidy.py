@@ -14,7 +14,8 @@ cell on the wrong side of :data:`~._base.ABSOLUTE_FREQUENCY_HZ` (shifts and reso
 frequencies mixed), "shifts" that are resonance frequencies typed in kHz or MHz (n f_F in a QCM's
 range, nearly constant), ``|D|`` x scale >= :data:`MAX_DISSIPATION` (a mis-scaled D), a negative
 absolute D, absolute f_n/n that differ between overtones by more than
-:data:`FUNDAMENTAL_TOLERANCE` (columns divided by n, or misnumbered), a fundamental given that
+:data:`FUNDAMENTAL_TOLERANCE` (columns divided by n, or misnumbered), an absolute f_n cell whose
+f_n/n is that far from the file's f_F (a corrupted or mistyped cell), a fundamental given that
 disagrees with the file, a baseline window without points.
 """
 
@@ -275,7 +276,7 @@ def _series(raw, path: Path, layout: Layout, traces, t_all, kind: str, scale, im
 
 
 def _fundamental(
-    path: Path, reader: str, given, kind, baseline: tuple[str, float, float], t_all, series
+    raw, path: Path, reader: str, given, kind, baseline: tuple[str, float, float], t_all, series
 ):
     """f_F and where it came from: given (checked against absolute f_n/n) or from the file."""
     fundamental = given.get("fundamental")
@@ -303,6 +304,18 @@ def _fundamental(
                 f"the other overtones' {median:.6g} Hz by more than {FUNDAMENTAL_TOLERANCE:.0%}: "
                 "the columns are not n f_F (divided by n, or misnumbered)"
             )
+    # Every cell, not only the baseline's: a resonance that moved by 5 % of n f_F (250 kHz on a
+    # 5 MHz quartz, thousands of times a contact's or a film's shift) is a corrupted or mistyped
+    # cell, and it became a shift of that size without a word (issue 27's closing campaign: a
+    # cell of 1e300 Hz gave Δf = 1e300 Hz).
+    for n, fcol, keep, f, _ in series:
+        off = keep & (np.abs(f / (n * median) - 1) > FUNDAMENTAL_TOLERANCE)
+        if off.any():
+            rule = (
+                f"is no resonance frequency of overtone {n}: f_{n}/{n} is more than "
+                f"{FUNDAMENTAL_TOLERANCE:.0%} from the file's f_F = {median:.6g} Hz"
+            )
+            fail_at(raw, path, fcol, off, rule)
     if fundamental is None:
         return median, "from the file: median of f_n/n at the baseline"
     if abs(median / fundamental - 1) > FUNDAMENTAL_TOLERANCE:
@@ -381,7 +394,7 @@ def convert(
         notes.append(order)
     for note in notes:
         warnings.warn(f"{path}: {note}", ExportWarning, stacklevel=3)
-    fundamental, fsource = _fundamental(path, reader, given, kind, baseline, t_all, series)
+    fundamental, fsource = _fundamental(raw, path, reader, given, kind, baseline, t_all, series)
     bkind, t0, t1 = baseline
     frames, refs_f, refs_g = [], {}, {}
     for n, fcol, keep, f, d in series:
