@@ -124,3 +124,21 @@ def test_numbers_with_white_space_read_as_written_and_text_is_named(tmp_path):
         with pytest.raises(ContactresInputError, match=r"line 4, column 'fc2_Hz'") as info:
             read_resonance_table(tmp_path / "bad.csv", AFM_TABLE)
         assert cell in str(info.value)
+
+
+def test_the_flags_of_the_lever_and_of_the_modulus_are_joined_per_row(tmp_path):
+    """The flags column joins the lever's flags and the modulus' flags of each row with ';'
+    (joined once per distinct pair of masks): a row with both, rows with either, a clean row."""
+    frame, _ = _map(4)
+    frame.loc[[1, 3], "fc2_Hz"] *= 1.03  # the modes disagree on κ: inconsistent-modes
+    frame.loc[[2, 3], "load_N"] = 1e-12  # E* = √(k*³/6RP) beyond the 165 GPa tip: tip-limit
+    frame.to_csv(tmp_path / "map.csv", index=False)
+    r = _run("afm", "invert", str(tmp_path / "map.csv"), "--out", str(tmp_path / "o.csv"))
+    assert r.exit_code == 0, r.output
+    flags = pd.read_csv(tmp_path / "o.csv", keep_default_na=False)["flags"].tolist()
+    assert flags == [
+        "",
+        "inconsistent-modes",
+        "tip-limit",
+        "inconsistent-modes;tip-limit",
+    ]

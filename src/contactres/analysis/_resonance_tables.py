@@ -60,6 +60,19 @@ def _flag_text(codes: np.ndarray, names) -> np.ndarray:
     return text[inverse.reshape(-1)]
 
 
+def _joined_flags(codes, modulus_codes) -> np.ndarray:
+    """The flags of the lever (``flag_names``) and of the modulus of every row as one
+    ';'-joined text, joined once per distinct pair of masks rather than per row (a 512² map
+    has a few pairs in 262,144 rows: the join per row was ~0.15 s of its inversion)."""
+    pairs = np.stack([np.asarray(codes, dtype=int), np.asarray(modulus_codes, dtype=int)], -1)
+    uniq, inverse = np.unique(pairs.reshape(-1, 2), axis=0, return_inverse=True)
+    lever = _flag_text(uniq[:, 0], flag_names)
+    modulus = _flag_text(uniq[:, 1], _modulus_names)
+    text = [";".join(t for t in pair if t) for pair in zip(lever, modulus, strict=True)]
+    joined = np.array(text, dtype=object)
+    return joined[inverse.reshape(-1)]
+
+
 def _modulus_names(code: int) -> list[str]:
     return [f.name.lower() for f in ModulusFlag if f.name and int(code) & f]
 
@@ -380,7 +393,6 @@ def invert_afm_table(
             out[name] = dyn[name]
         corrected = np.isfinite(dyn["k_static"]) & (out["modulus_method"] != "")
         out.loc[corrected, "modulus_method"] = out.loc[corrected, "modulus_method"] + " + dynamic"
-    text = [_flag_text(flags, flag_names), _flag_text(mod["modulus_flags"], _modulus_names)]
-    out["flags"] = [";".join(t for t in pair if t) for pair in zip(*text, strict=True)]
+    out["flags"] = _joined_flags(flags, mod["modulus_flags"])
     out["normalisation"] = normalisation
     return out
