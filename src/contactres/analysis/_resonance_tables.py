@@ -15,7 +15,6 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-from ..dynamic import prepare
 from ..errors import ContactresInputError
 from ..measurements import at_cell, where_rows
 from ..resonators import (
@@ -159,6 +158,8 @@ def _dynamic(col, k_modes, fc, rows, sample, loss) -> dict:
     i, j = np.nonzero(rows[:, None] & np.isfinite(k_modes) & (k_modes > 0))
     if i.size == 0:
         return out
+    from ..dynamic import prepare  # here: a static inversion never loads scipy.special
+
     surface = surface_material(sample, "sample")
     res = modulus_from_contact_stiffness(
         k_modes[i, j],
