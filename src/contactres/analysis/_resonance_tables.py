@@ -335,10 +335,14 @@ def invert_afm_table(
             tilt=np.nan_to_num(first["tilt_deg"]),
         )
         r = r_in[rows] if first["r_given"] else None
-        qs = q[rows] if np.isfinite(q[rows]).any() else None
+        # The modes up to the last one given in the group: a map of two modes is not inverted
+        # a third time on a column of NaN (a third of its inversion; issue 31, point 5).
+        given = np.flatnonzero(~np.isnan(fc[rows]).all(axis=0))
+        used = int(given[-1]) + 1 if given.size else len(_MODES)
+        qs = q[rows, :used] if np.isfinite(q[rows, :used]).any() else None
         inv = invert_contact_resonance(
             lever,
-            fc[rows],
+            fc[rows, :used],
             tip_position=r,
             q_factors=qs,
             mode_tolerance=mode_tolerance,
@@ -350,7 +354,7 @@ def invert_afm_table(
         res["mode_spread"][rows] = inv.mode_spread
         res["tip_position_other"][rows] = inv.tip_position_other
         res["kappa_other"][rows] = inv.kappa_other
-        k_modes[rows] = np.where(inv.averaged_modes, inv.kappa_modes, np.nan)
+        k_modes[rows, :used] = np.where(inv.averaged_modes, inv.kappa_modes, np.nan)
         flags[rows] = inv.flags
         solved = np.isfinite(inv.tip_position)  # two modes without a crossing: no reference
         for j in (0, 1):
