@@ -63,10 +63,12 @@ def _joined_flags(codes, modulus_codes) -> np.ndarray:
     """The flags of the lever (``flag_names``) and of the modulus of every row as one
     ';'-joined text, joined once per distinct pair of masks rather than per row (a 512² map
     has a few pairs in 262,144 rows: the join per row was ~0.15 s of its inversion)."""
-    pairs = np.stack([np.asarray(codes, dtype=int), np.asarray(modulus_codes, dtype=int)], -1)
-    uniq, inverse = np.unique(pairs.reshape(-1, 2), axis=0, return_inverse=True)
-    lever = _flag_text(uniq[:, 0], flag_names)
-    modulus = _flag_text(uniq[:, 1], _modulus_names)
+    a = np.asarray(codes, dtype=np.int64).reshape(-1)
+    b = np.asarray(modulus_codes, dtype=np.int64).reshape(-1)
+    width = int(b.max(initial=0)) + 1  # one integer per pair of masks (>= 0): a sort of ints,
+    uniq, inverse = np.unique(a * width + b, return_inverse=True)  # not of rows (~10x slower)
+    lever = _flag_text(uniq // width, flag_names)
+    modulus = _flag_text(uniq % width, _modulus_names)
     text = [";".join(t for t in pair if t) for pair in zip(lever, modulus, strict=True)]
     joined = np.array(text, dtype=object)
     return joined[inverse.reshape(-1)]
