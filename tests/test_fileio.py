@@ -370,3 +370,76 @@ def test_a_signed_number_written_as_text_stays_a_number(tmp_path):
     write_csv(tmp_path / "t.csv", pd.DataFrame({"x": cells}))
     back = pd.read_csv(tmp_path / "t.csv", dtype=str, keep_default_na=False)["x"].tolist()
     assert back == cells[:5] + ["'" + c for c in cells[5:]]
+
+
+def _mixed_frame():
+    """Columns of every kind the joined writer covers: floats (gaps, signs, extremes), integers,
+    booleans, text with commas and quotes, object text with gaps, pandas' string dtype, and a
+    header that needs quotes."""
+    import numpy as np
+
+    values = [0.1, np.nan, -0.0, 1e16, 5e-324, -np.inf, 123456789.123, 7.0]
+    frame = pd.DataFrame(
+        {
+            "x": values,
+            "n": np.arange(8, dtype=np.int64) - 3,
+            "ok": [True, False] * 4,
+            'a "quoted", name': ['he said "hi"', "a,b", "plain", "", "x", "y", "z", "w"],
+            "gaps": pd.Series(["a", None, "b", np.nan, "c", "d", "e", "f"], dtype=object),
+            "s": pd.Series(["u", "v", None, "w", "x", "y", "z", "q"], dtype="string"),
+        }
+    )
+    frame.insert(1, "y", values[::-1])
+    return frame
+
+
+@pytest.mark.parametrize("na_rep", ["", "NA"])
+def test_the_joined_csv_is_the_text_pandas_writes(tmp_path, monkeypatch, na_rep):
+    """write_csv joins the text of a table with pandas' default options itself (issue 31,
+    point 5): the bytes are those of pandas' own writer, and pandas' writer is not called."""
+    frame = _mixed_frame()
+    frame.to_csv(tmp_path / "pandas.csv", index=False, na_rep=na_rep)
+
+    def refuse(*args, **kwargs):
+        raise AssertionError("pandas' writer was called")
+
+    with monkeypatch.context() as m:
+        m.setattr(pd.DataFrame, "to_csv", refuse)
+        write_csv(tmp_path / "joined.csv", frame, na_rep=na_rep)
+    assert (tmp_path / "joined.csv").read_bytes() == (tmp_path / "pandas.csv").read_bytes()
+
+
+@pytest.mark.parametrize(
+    "frame",
+    [
+        pd.DataFrame({"a": [1.5], "b": ["line\nbreak"]}),  # a line break inside a cell
+        pd.DataFrame({"a": [1.5, float("nan")]}),  # one column: pandas quotes an empty field
+        pd.DataFrame({"a": [], "b": []}),  # no rows
+        pd.DataFrame({"a": [1.5], "when": [pd.Timestamp("2026-01-01")]}),  # dates
+        pd.DataFrame({"a": [1.5, 2.5], "mixed": pd.Series([1, "x"], dtype=object)}),
+    ],
+)
+def test_tables_the_joined_writer_leaves_to_pandas_are_written_as_pandas_writes(tmp_path, frame):
+    frame.to_csv(tmp_path / "pandas.csv", index=False)
+    write_csv(tmp_path / "ours.csv", frame)
+    assert (tmp_path / "ours.csv").read_bytes() == (tmp_path / "pandas.csv").read_bytes()
+
+
+def test_write_npz_keeps_doubles_and_text(tmp_path):
+    """The archive holds every column under its name: floats bit for bit, integers, text
+    (a gap as an empty string); numpy reads it without pickles."""
+    import numpy as np
+
+    from contactres.fileio import write_npz
+
+    rng = np.random.default_rng(11)
+    x = rng.integers(0, 2**63, 1000, dtype=np.uint64).view(np.float64)
+    frame = pd.DataFrame(
+        {"file": x, "allow_pickle": np.arange(1000), "t": ["a", None] * 500}
+    )  # (numpy.savez's own keywords as column names)
+    write_npz(tmp_path / "t.npz", frame)
+    with np.load(tmp_path / "t.npz", allow_pickle=False) as archive:
+        assert archive.files == ["file", "allow_pickle", "t"]
+        assert archive["file"].view(np.uint64).tolist() == x.view(np.uint64).tolist()
+        assert archive["allow_pickle"].tolist() == list(range(1000))
+        assert archive["t"].tolist() == ["a", ""] * 500

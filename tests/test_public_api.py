@@ -551,6 +551,7 @@ PUBLIC = {
         "save_figure",
         "write_bytes",
         "write_csv",
+        "write_npz",
         "write_text",
     ],
     "fitting": [

@@ -323,3 +323,20 @@ def test_a_missing_input_file_is_refused_before_any_heavy_import(args, tmp_path,
     assert result["exit"] == 2
     check_light(result)
     assert not any(tmp_path.iterdir())  # no output folder made either
+
+
+def test_a_static_afm_invert_imports_neither_scipy_nor_matplotlib(tmp_path, monkeypatch):
+    """issue 31, point 5: ``afm invert`` of a table without ``--crystal`` needs numpy and pandas
+    only; scipy came in through the dynamic correction's imports (scipy.special with the kernel
+    tables, scipy.interpolate and scipy.optimize with the DCSF curve: ~0.5 s of CPU)."""
+    monkeypatch.chdir(tmp_path)
+    (tmp_path / "t.csv").write_text(
+        "f1_free_Hz,k_c_N_per_m,tip_position,fc1_Hz,tip_radius_m,load_N,M_tip_Pa\n"
+        "160000,40,0.95,250000,5e-08,1e-06,1.65e11\n"
+    )
+    result = probe(
+        run_cli(["afm", "invert", "t.csv", "--out", "o.csv"]), watched=("scipy", "matplotlib")
+    )
+    assert result["exit"] == 0
+    check_light(result)
+    assert (tmp_path / "o.csv").read_text().count("\n") == 2

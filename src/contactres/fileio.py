@@ -48,7 +48,7 @@ from collections.abc import Iterable, Iterator
 from contextlib import contextmanager
 from pathlib import Path
 
-from ._csvcells import CSV_FLOAT_FORMAT, floats_as_text, neutralised
+from ._csvcells import CSV_FLOAT_FORMAT, csv_to, neutralised, npz_bytes
 from ._ownership import refusal, unvouched
 from ._version import __version__
 from .errors import ContactresInputError
@@ -66,6 +66,7 @@ __all__ = [
     "save_figure",
     "write_bytes",
     "write_csv",
+    "write_npz",
     "write_text",
 ]
 
@@ -141,14 +142,20 @@ def write_bytes(path: str | os.PathLike, data: bytes) -> Path:
 
 def write_csv(path: str | os.PathLike, frame, **kwargs) -> Path:
     """Write a pandas DataFrame as CSV atomically (no index unless asked); text cells that a
-    spreadsheet would run as formulas are neutralised (:func:`neutralised`)."""
-    kwargs.setdefault("index", False)
-    table = neutralised(frame)
-    if not {"float_format", "decimal", "quoting"} & kwargs.keys():  # pandas' default text
-        table = floats_as_text(table, kwargs.get("na_rep", ""))
+    spreadsheet would run as formulas are neutralised (:func:`neutralised`). With pandas'
+    default options the text is joined without pandas' writer: the same bytes, ~10x faster
+    (``contactres._csvcells.csv_to``)."""
     with _atomic_path(path) as tmp:
-        table.to_csv(tmp, **kwargs)
+        csv_to(tmp, frame, {"index": False, **kwargs})
     return Path(path)
+
+
+def write_npz(path: str | os.PathLike, frame) -> Path:
+    """Write a pandas DataFrame atomically as a numpy archive (``.npz``, uncompressed): one
+    array per column under its name, numbers as they are (float64 doubles: exact), text as
+    unicode arrays (a gap is an empty string). Read back by the ``npz`` reader of
+    :mod:`contactres.measurements.readers`, or by ``numpy.load(path, allow_pickle=False)``."""
+    return write_bytes(path, npz_bytes(frame))
 
 
 def save_figure(path: str | os.PathLike, fig, dpi: int = 150, *, close: bool = True) -> Path:

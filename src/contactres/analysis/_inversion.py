@@ -60,7 +60,6 @@ from types import MappingProxyType
 import numpy as np
 
 from .._summary import Summarised, flagged, number, values
-from ..dynamic import dcsf, normalised_wavenumber, prepare, wave_modulus
 from ..errors import ContactresInputError
 from ..materials import Material, require_material
 from ..normal import indentation_modulus
@@ -215,6 +214,8 @@ def dcsf_values(m: Material, ka, *, loss: float = 0.0, grid: int = DCSF_GRID, pr
     (``interpolate=True`` of :func:`contactres.dynamic.dcsf`). ``prepared``: the kernel table
     of ``m`` and ``loss`` (rtol 1e-6), built here when not given.
     """
+    from ..dynamic import dcsf, prepare  # here, not at the top: see modulus_from_contact_stiffness
+
     ka = np.asarray(nonnegative("ka (normalised wave number k_l a)", ka), dtype=float)
     table = prepare(m, loss) if prepared is None else prepared
     many = np.unique(ka).size > grid
@@ -366,6 +367,11 @@ def modulus_from_contact_stiffness(
 
     k_l = None
     if frequency is not None and sample is not None:
+        # The dynamic package is imported where the dynamic correction is made: its kernel
+        # tables load scipy.special (~0.15 s of CPU), which a static inversion (afm invert of a
+        # map without --crystal) never needs (issue 31, point 5).
+        from ..dynamic import normalised_wavenumber, wave_modulus
+
         surface = surface_material(sample, "sample")
         f = np.asarray(positive("frequency", frequency, "Hz"))
         arrays.append(f)
@@ -391,6 +397,8 @@ def modulus_from_contact_stiffness(
         n_it = int(iterations)
         if n_it < 1:
             raise ContactresInputError(f"iterations must be >= 1, got {iterations!r}")
+        from ..dynamic import prepare
+
         table = prepare(surface, loss) if prepared is None else prepared
         for _ in range(n_it):
             ka = k_l * K / (2.0 * e_star(K))

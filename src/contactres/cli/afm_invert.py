@@ -17,7 +17,9 @@ from ._film import coating_options, film_summary, parse_film_range
     "--out",
     type=click.Path(dir_okay=False),
     required=True,
-    help="Output CSV: the input columns plus kappa, k_star_N_per_m, tip_position_used, "
+    help="Output table, CSV (computed columns to 10 significant digits) or, named .npz, a "
+    "numpy archive (one array per column, exact doubles; the fast way for maps): the input "
+    "columns plus kappa, k_star_N_per_m, tip_position_used, "
     "sigma_N_s_per_m, mode_spread, tip_position_other, kappa_other, E_star_Pa, M_sample_Pa, "
     "contact_radius_m, modulus_method, flags, normalisation (and k_static_N_per_m, k_a, "
     "dcsf_real, dcsf_imag with --crystal; coating, M_film_Pa, film_contact_radius_m, "
@@ -103,6 +105,8 @@ def afm_invert(
     reported (k_static_N_per_m, k_a, dcsf_real, dcsf_imag): every mode is corrected at its
     own frequency, K_static = k*/Re DCSF (J. Tian, Am. J. Eng. Appl. Sci. 3, 56 (2010),
     Eq. 29, exact model). Writes OUT atomically; prints a summary.
+    TABLE may also be a numpy archive (.npz, one array per column, as --out x.npz writes it):
+    a map read and written in binary skips the CSV's text, most of the time of a large map.
 
     With --coating MATERIAL:THICKNESS and --substrate NAME (its face: --surface, --inplane)
     every Hertz row's k* is also turned into the film's indentation modulus M_film_Pa with the
@@ -119,7 +123,7 @@ def afm_invert(
     """
     import numpy as np
 
-    from ..fileio import check_output_file, write_csv
+    from ..fileio import check_output_file, write_csv, write_npz
     from ..jobs import afm_invert as job
 
     check_output_file(out, inputs=[table])
@@ -152,7 +156,10 @@ def afm_invert(
     )
     done = job.run(table, settings, progress=lambda text: step("afm invert", text))
     result = done.table
-    write_csv(out, computed_rounded(result, done.input_columns))
+    if str(out).lower().endswith(".npz"):
+        write_npz(out, result)
+    else:
+        write_csv(out, computed_rounded(result, done.input_columns))
     if fmt != "plain":
         emit(result, fmt)
         return

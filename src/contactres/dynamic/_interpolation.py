@@ -22,7 +22,6 @@ from __future__ import annotations
 from collections.abc import Callable
 
 import numpy as np
-from scipy.interpolate import BarycentricInterpolator
 
 __all__ = ["FIRST_INTERVALS", "MAX_INTERVALS", "chebyshev_values"]
 
@@ -68,6 +67,10 @@ def chebyshev_values(
     ``tol``, or when [min, max] is too narrow for distinct nodes (relative width <= 1e-9): the
     caller then evaluates directly.
     """
+    # Imported here: scipy.interpolate pulls in scipy.optimize and scipy.linalg (~0.3 s), which
+    # every importer of contactres.dynamic (afm invert's Hertz rows) paid without a curve.
+    from scipy.interpolate import BarycentricInterpolator
+
     lo, hi = float(np.min(x)), float(np.max(x))
     if not hi - lo > 1e-9 * max(abs(lo), abs(hi)):  # nodes would coincide to round-off
         return None

@@ -22,7 +22,7 @@ from __future__ import annotations
 from collections.abc import Iterable
 from pathlib import Path
 
-from . import _delimited, _excel
+from . import _delimited, _excel, _npz
 from ._afm import AFM_MAP_READERS
 from ._recipe import Reader, Readers
 from ._spectra import SPECTRA_READERS
@@ -37,6 +37,7 @@ BUILT_IN_READERS: tuple[Reader, ...] = (
     Reader("csv", _delimited.suffixes, _delimited.detect, _delimited.load, "resonances"),
     Reader("xlsx", _excel.suffixes, _excel.detect, _excel.loader("sweeps"), "sweeps"),
     Reader("xlsx", _excel.suffixes, _excel.detect, _excel.loader("resonances"), "resonances"),
+    Reader("npz", _npz.suffixes, _npz.detect, _npz.load, "resonances"),
     *SPECTRA_READERS,
     # A workbook of spectra rows: tried first for .xlsx, by its suffix, before the tidy table.
     Reader("xlsx", _excel.suffixes, _excel.detect, _excel.loader("spectra"), "spectra"),
