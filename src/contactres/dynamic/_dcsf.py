@@ -11,10 +11,12 @@ value that still misses it comes with an :class:`~contactres.errors.AccuracyWarn
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 
 from .._threads import one_blas_thread
-from ..errors import ContactresInputError
+from ..errors import ContactresInputError, ContactresWarning
 from ..halfspace import shear_reference
 from ..materials import Material, require_material
 from ..validation import nonnegative
@@ -50,13 +52,17 @@ def dcsf_models(
     *,
     chunk: int = CHUNK,
     interpolate: bool | None = None,
+    warn_negative: bool = True,
 ) -> dict[str, np.ndarray]:
     """DCSF = K_da/K_sa of several displacement models at once (they share all the work).
 
     Parameters and returns as :func:`dcsf`, with ``models`` a sequence of model names; returns
     ``{model: complex array shaped like ka}``. ``chunk`` and ``interpolate`` (keyword only) as
     in :func:`dcsf`; so is the check of the accuracy outside the validated range (an
-    :class:`~contactres.errors.AccuracyWarning` where rtol is missed).
+    :class:`~contactres.errors.AccuracyWarning` where rtol is missed) and the
+    :class:`~contactres.errors.ContactresWarning` where a model has negative damping
+    (``warn_negative``, keyword only: False for a caller that shows it on purpose, as paper 1's
+    figures do).
     """
     names = [check_model(x) for x in ([models] if isinstance(models, str) else models)]
     if not (isinstance(chunk, int | np.integer) and chunk >= 1):
@@ -68,10 +74,37 @@ def dcsf_models(
     # Inside the validated range the resolution meets rtol (the convergence tests); outside it
     # nothing promises that, so each value is checked against a refined one (issue 27).
     if in_validated_range(m, ksa):
-        return evaluate_models(table, ksa, names, rtol, chunk=chunk, interpolate=interpolate)
-    out = checked_values(m, table, ksa, names, loss, rtol, chunk=chunk, interpolate=interpolate)
-    warn_unconverged(m, out, np.broadcast_to(ka, ksa.shape), wavenumber)
-    return {k: np.asarray(v) for k, v in out.values.items()}
+        values = evaluate_models(table, ksa, names, rtol, chunk=chunk, interpolate=interpolate)
+    else:
+        out = checked_values(m, table, ksa, names, loss, rtol, chunk=chunk, interpolate=interpolate)
+        warn_unconverged(m, out, np.broadcast_to(ka, ksa.shape), wavenumber)
+        values = {k: np.asarray(v) for k, v in out.values.items()}
+    if warn_negative:
+        _warn_negative_damping(values, np.broadcast_to(ka, ksa.shape), wavenumber, rtol)
+    return values
+
+
+def _warn_negative_damping(values: dict, ka: np.ndarray, wavenumber: str, rtol: float) -> None:
+    """A :class:`~contactres.errors.ContactresWarning` per model whose DCSF ``values`` (at the
+    k a values ``ka``) have negative damping, Im DCSF < 0 beyond the accuracy rtol: no passive
+    contact has it. The approximate displacement conditions reach it at high k a (R0 near
+    k_l a = 1.6-2, SA and WA beyond; paper 1, Figs. 3-5); the exact punch does not."""
+    label = "k_l a" if wavenumber == "longitudinal" else "k_s a"
+    for name, v in values.items():
+        v = np.asarray(v)
+        negative = v.imag < -max(rtol, 1e-12) * np.abs(v)
+        if not np.any(negative):
+            continue
+        where = np.broadcast_to(ka, v.shape)[negative]
+        lo, hi = float(np.min(where)), float(np.max(where))
+        span = f"{lo:.4g}" if lo == hi else f"{lo:.4g}-{hi:.4g}"
+        warnings.warn(
+            f"DCSF ({name} model) has negative damping, Im DCSF < 0, at {label} = {span} "
+            f"({int(np.count_nonzero(negative))} value(s)): no passive contact has it, the "
+            "displacement condition fails there; use the exact model",
+            ContactresWarning,
+            stacklevel=4,
+        )
 
 
 def dcsf(
