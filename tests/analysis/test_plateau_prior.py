@@ -9,13 +9,11 @@ and one without plateaus whose Cattaneo-Mindlin blocks it leaves alone.
 
 from __future__ import annotations
 
-from dataclasses import replace
-
 import numpy as np
 import pytest
 from scipy import integrate, stats
 
-from contactres.analysis import AnalysisSettings, _plateau_prior, analyze
+from contactres.analysis import _plateau_prior
 from contactres.analysis._mu_prior import prior_penalty
 from contactres.analysis._plateau_prior import (
     PLATEAU_PRIOR_EVIDENCE,
@@ -24,7 +22,6 @@ from contactres.analysis._plateau_prior import (
     plateau_prior,
     reference_plateau,
 )
-from contactres.measurements import synthetic_sweeps, validate_sweeps, validation_study
 
 
 def test_reference_is_the_mean_and_widened_variance_of_the_other_clear_plateaus():
@@ -110,38 +107,22 @@ def test_joint_penalty_falls_back_to_the_one_prior_there_is():
     assert both == pytest.approx(one_mu + one_r, rel=1e-12)
 
 
-def _water(seed: int, plateau: float):
-    """Paper 2's water configurations (validation_study) with a share ``plateau`` of loads with
-    a stick plateau, no drift and no Savkoor experiment: the analysed sweeps with the truth."""
-    base = validation_study(4)
-    study = replace(
-        base,
-        groups=tuple(g for g in base.groups if g.medium == "water"),
-        random_plateau=plateau,
-        drifts=(),
-        savkoor_experiments=(),
-    )
-    raw = synthetic_sweeps(study, seed, truth=True)
-    truth_cols = [c for c in raw.columns if c.startswith("true_")]
-    table = validate_sweeps(
-        raw.drop(columns=truth_cols), constants=dict(overtone=3, area_m2=2.5e-5, n_contacts=3)
-    )
-    res = analyze(table, settings=AnalysisSettings(bootstrap=0))
-    truth = raw.drop_duplicates("sweep")[["sweep", *truth_cols]]
-    sw = res.sweeps.merge(truth, on="sweep", validate="one_to_one")
-    return sw[sw["ramp"] > 1]
-
-
 def _right(parts, model: str) -> tuple[int, int]:
     """Sweeps of true ``model`` classified ``model``, and all sweeps of true ``model``."""
     right = sum(int(((p["true_model"] == model) & (p["model"] == model)).sum()) for p in parts)
     return right, sum(int((p["true_model"] == model).sum()) for p in parts)
 
 
-def test_more_water_plateaus_are_classified_right():
+def _judged(water_study, seed: int, plateau: float):
+    """Ramps 2-4 of the analysed sweeps of the water study (with the truth)."""
+    sw = water_study(seed, plateau)[1]
+    return sw[sw["ramp"] > 1]
+
+
+def test_more_water_plateaus_are_classified_right(water_study):
     # Six seeds pooled, 30 % of the loads with a plateau: 264 of 399 plateau sweeps of ramps 2-4
     # right (66 %; 246, 62 %, before the plateau prior), Cattaneo-Mindlin 867 of 897 (864 before).
-    parts = [_water(seed, 0.3) for seed in range(6)]
+    parts = [_judged(water_study, seed, 0.3) for seed in range(6)]
     right, total = _right(parts, "plateau")
     assert total > 300
     assert right / total > 0.64
@@ -150,12 +131,14 @@ def test_more_water_plateaus_are_classified_right():
 
 
 @pytest.mark.parametrize(("plateau", "seeds"), [(0.6, (0, 1)), (0.0, (0,))])
-def test_the_prior_does_not_make_cattaneo_mindlin_blocks_plateaus(plateau, seeds, monkeypatch):
+def test_the_prior_does_not_make_cattaneo_mindlin_blocks_plateaus(
+    plateau, seeds, monkeypatch, water_study
+):
     # A sample where most loads plateau (a strong prior: many clear plateaus) and one without
     # plateaus: its Cattaneo-Mindlin blocks come out as they do without the plateau prior.
-    with_prior = [_water(seed, plateau) for seed in seeds]
+    with_prior = [_judged(water_study, seed, plateau) for seed in seeds]
     monkeypatch.setattr(_plateau_prior, "PLATEAU_PRIOR_MIN_BLOCKS", 10**9)
-    without = [_water(seed, plateau) for seed in seeds]
+    without = [_judged(water_study, seed, plateau) for seed in seeds]
     cm_with, total = _right(with_prior, "cattaneo-mindlin")
     cm_without, _ = _right(without, "cattaneo-mindlin")
     assert total > 100
