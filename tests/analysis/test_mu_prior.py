@@ -8,20 +8,16 @@ classified right and their μ intervals.
 
 from __future__ import annotations
 
-from dataclasses import replace
-
 import numpy as np
 import pytest
 from scipy import integrate, optimize, stats
 
-from contactres.analysis import AnalysisSettings, analyze
 from contactres.analysis._mu_prior import (
     MU_PRIOR_MAX_REL,
     MU_PRIOR_MIN_LOADS,
     prior_penalty,
     reference_mu,
 )
-from contactres.measurements import synthetic_sweeps, validate_sweeps, validation_study
 
 
 def test_reference_is_the_power_law_of_the_other_loads_and_its_prediction_error():
@@ -126,30 +122,9 @@ def test_no_penalty_without_a_prior_or_a_resolved_mu():
     assert prior_penalty(1.0, 0.99 * MU_PRIOR_MAX_REL, 0.0, 0.01, 30) != 0.0
 
 
-def _water_study(seed):
-    """Paper 2's water configurations (validation_study), 30 % of loads with a plateau, no drift
-    and no Savkoor experiment: sweeps with the truth, and the analysis."""
-    base = validation_study(4)
-    study = replace(
-        base,
-        groups=tuple(g for g in base.groups if g.medium == "water"),
-        random_plateau=0.3,
-        drifts=(),
-        savkoor_experiments=(),
-    )
-    raw = synthetic_sweeps(study, seed, truth=True)
-    truth_cols = [c for c in raw.columns if c.startswith("true_")]
-    table = validate_sweeps(
-        raw.drop(columns=truth_cols), constants=dict(overtone=3, area_m2=2.5e-5, n_contacts=3)
-    )
-    res = analyze(table, settings=AnalysisSettings(bootstrap=0))
-    truth = raw.drop_duplicates("sweep")[["sweep", *truth_cols]]
-    return res, res.sweeps.merge(truth, on="sweep", validate="one_to_one")
-
-
 @pytest.fixture(scope="module")
-def water_studies():
-    return [_water_study(seed) for seed in (0, 1)]
+def water_studies(water_study):
+    return [water_study(seed) for seed in (0, 1)]
 
 
 def test_water_plateaus_are_classified_right(water_studies):

@@ -165,27 +165,3 @@ def test_inside_the_validated_range_dcsf_is_unchanged():
 def test_the_validated_range(m, kla, inside):
     ksa = np.array([kla * shear_wavenumber_ratio(m)])
     assert in_validated_range(m, ksa) is inside
-
-
-def test_negative_damping_is_flagged_at_run_time():
-    """Issue 27, point 7: R0's and SA's negative damping (Im DCSF < 0: no passive contact has
-    it) comes with a ContactresWarning from the API too, naming the models and the k a where
-    the returned values have it; the exact model, whose damping is positive, warns of nothing."""
-    from contactres.errors import ContactresWarning
-
-    cu = Material.crystal("Cu")
-    kla = np.linspace(0.1, 4.0, 40)
-    with pytest.warns(ContactresWarning, match="negative damping") as caught:
-        out = dcsf_models(cu, kla, ("R0", "SA", "exact"))
-    text = str(caught[0].message)
-    for name in ("R0", "SA"):
-        assert np.any(out[name].imag < 0), name  # the case has what the warning names
-        assert name in text
-    negative = kla[(out["R0"].imag < 0) | (out["SA"].imag < 0)]
-    assert f"k_l a = {negative.min():.4g}-{negative.max():.4g}" in text
-    assert "exact" not in text.split(":")[0]
-    with pytest.warns(ContactresWarning, match=r"model\(s\) R0: negative damping"):
-        dcsf(cu, kla, "R0")
-    with warnings.catch_warnings():
-        warnings.simplefilter("error")
-        assert np.all(dcsf(cu, kla, "exact").imag > 0)

@@ -22,9 +22,10 @@ class; its own parameters come from its own fit of that class. The friction law 
 Cattaneo-Mindlin or plateau; or Savkoor's constant traction) is first decided per experiment
 over all its loads (:func:`_friction_law`; ``pool_experiment``). With it, the shared criteria of the
 Cattaneo-Mindlin and the plateau loop weigh their μ against the friction of the experiment's
-other loads (:mod:`contactres.analysis._mu_prior`). Where the block is ``shared``,
-the joint fit's parameters (μ, the Savkoor sliding force, d_c) are the block's values that the
-per-load statistics use.
+other loads (:mod:`contactres.analysis._mu_prior`), and the plateau's critical displacement
+against the analysis's clear plateaus, both at once (:mod:`contactres.analysis._plateau_prior`).
+Where the block is ``shared``, the joint fit's parameters (μ, the Savkoor sliding force, d_c)
+are the block's values that the per-load statistics use.
 """
 
 from __future__ import annotations
@@ -46,9 +47,11 @@ from ._classify import (
     source_valid,
 )
 from ._drift import LOAD_OF_EXPERIMENT
+from ._friction import loop_table_force
 from ._loops import LoopTables
 from ._models import AMPLITUDE_MODELS, fit_tables
-from ._mu_prior import mu_prior_penalties
+from ._mu_prior import mu_prior_penalties, mu_prior_reference
+from ._plateau_prior import joint_prior_penalty, plateau_prior
 
 __all__ = ["BLOCK_COLUMNS", "PLATEAU_CONTENDER", "block_codes", "choose_blocks"]
 
@@ -108,11 +111,13 @@ def _criteria(bf, fields, n_r, code, n, R, exact_loop: bool) -> np.ndarray:
     return np.stack(out)
 
 
-def _mu_prior(sw, code, member, B, blocks, fits, crit, family) -> np.ndarray:
-    """(8, B): what the prior on μ from the experiment's other loads
+def _mu_prior(sw, code, member, B, blocks, fits, crit, family):
+    """What the prior on μ from the experiment's other loads
     (:func:`~contactres.analysis._mu_prior.mu_prior_penalties`) adds to the shared criterion of
     the Cattaneo-Mindlin and the plateau loop of every block (``crit``: the 2 x 4 criteria
-    without it; blocks of a Savkoor experiment, ``family``, neither give nor get a prior)."""
+    without it; blocks of a Savkoor experiment, ``family``, neither give nor get a prior): the
+    (8, B) penalties, the prior (mean, var) of ln μ and the blocks' sensitivities P, Hz per
+    N/m."""
     P = (
         pd.Series(sw["P_Hz_per_N_per_m"].to_numpy()[member], index=code[member])
         .groupby(level=0)
@@ -126,11 +131,57 @@ def _mu_prior(sw, code, member, B, blocks, fits, crit, family) -> np.ndarray:
     }
     joint = {key: fits[key].assign(bic_shared=crit[i]) for key, i in rows.items()}
     usable = np.ones(B, bool) if family is None else family != "savkoor"
-    pen = mu_prior_penalties(blocks, joint, P, usable)
+    reference = mu_prior_reference(blocks, joint, P, usable)
+    pen = mu_prior_penalties(blocks, joint, P, *reference)
     out = np.zeros_like(crit)
     for key, i in rows.items():
         out[i] = pen[key]
-    return out
+    return out, reference, P
+
+
+def _plateau_reference(crit, plateau_fit: pd.DataFrame, u_max) -> tuple[np.ndarray, ...]:
+    """The prior (mean, var) of ln(d_c/u_max) of every block's plateau
+    (:func:`~contactres.analysis._plateau_prior.plateau_prior`; NaN: none) from the 2 x 4
+    criteria so far ``crit`` and the joint plateau fits ``plateau_fit`` (``u_max`` the blocks'
+    largest amplitudes, m)."""
+    i = 2 * AMPLITUDE_MODELS.index("plateau")
+    with np.errstate(invalid="ignore"):
+        evidence = np.delete(crit, [i, i + 1], axis=0).min(axis=0) - crit[i]
+    d_c = plateau_fit["critical_displacement"].to_numpy(float)
+    d_c_err = plateau_fit["critical_displacement_err"].to_numpy(float)
+    return plateau_prior(d_c, d_c_err, u_max, evidence)
+
+
+def _plateau_penalty(crit, plateau_fit: pd.DataFrame, u_max, blocks, mu_prior, P) -> np.ndarray:
+    """(B,): what the priors on μ (``mu_prior``: mean and variance of ln μ, from
+    :func:`_mu_prior`; ``P`` the blocks' sensitivities) and on the plateau amplitude
+    (:func:`~contactres.analysis._plateau_prior.plateau_prior`, from the other blocks' clear
+    plateaus by the criteria so far ``crit``) change together in the shared criterion of the
+    plateau loop of every block (:func:`~contactres.analysis._plateau_prior.
+    joint_prior_penalty`; ``plateau_fit`` the blocks' joint plateau fits, ``u_max`` their
+    largest amplitudes, m, ``blocks`` with ``normal_force_N`` and ``n_points``)."""
+    ratio_prior = _plateau_reference(crit, plateau_fit, u_max)
+    d_c = plateau_fit["critical_displacement"].to_numpy(float)
+    d_c_err = plateau_fit["critical_displacement_err"].to_numpy(float)
+    F = blocks["normal_force_N"].to_numpy(float)
+    force, force_err, ok = loop_table_force(plateau_fit, P)
+    df0 = plateau_fit["df0"].to_numpy(float)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        # ln μ = ln Δf0 - ln θ - ln(P F_N): its covariance with d_c, then with ln d_c.
+        cov = plateau_fit["cov_df0_critical_displacement"].to_numpy(float) / df0
+        cov -= plateau_fit["cov_ln_inverse_slip_scale_critical_displacement"].to_numpy(float)
+        cov /= d_c
+    mu_prior = tuple(np.where(ok, m, np.nan) for m in mu_prior)
+    return joint_prior_penalty(
+        force / F,
+        force_err / F,
+        mu_prior,
+        d_c / u_max,
+        d_c_err / u_max,
+        ratio_prior,
+        cov,
+        blocks["n_points"].to_numpy(float),
+    )
 
 
 def block_codes(info: pd.DataFrame, joint: np.ndarray) -> np.ndarray:
@@ -248,6 +299,7 @@ def choose_blocks(
     classes = np.repeat(np.asarray(AMPLITUDE_MODELS), 2)
     keys = sw.loc[member, LOAD_OF_EXPERIMENT].assign(block=code[member])
     blocks = keys.drop_duplicates("block").sort_values("block").reset_index(drop=True)
+    blocks_n = blocks.assign(n_points=n)
     crit = _criteria(bf, fields, n_r, code, n, R, exact_loop)
     family = _friction_law(crit, classes, blocks, delta_bic) if pool_experiment else None
 
@@ -265,7 +317,15 @@ def choose_blocks(
     # Cattaneo-Mindlin with a larger μ. The same for the contenders below and the choice.
     prior = np.zeros_like(crit)
     if exact_loop and pool_experiment and "P_Hz_per_N_per_m" in sw.columns:
-        prior = _mu_prior(sw, code, member, B, blocks.assign(n_points=n), fits, crit, family)
+        prior, mu_ref, P = _mu_prior(sw, code, member, B, blocks_n, fits, crit, family)
+        # With it, the plateau amplitudes of the analysis's clear plateaus as a prior on each
+        # block's (contactres.analysis._plateau_prior), both priors on the shared plateau fit
+        # at once: the BIC's ln N for d_c is what keeps a plateau of noisy data from beating
+        # Cattaneo-Mindlin or elastic, and the fit trades μ against d_c.
+        i = 2 * AMPLITUDE_MODELS.index("plateau")
+        u_max = bs["u_max_m"].to_numpy(float)[order]
+        pl = fits["plateau-loop"]
+        prior[i] = _plateau_penalty(crit + prior, pl, u_max, blocks_n, mu_ref, P)
     crit = crit + prior
     if exact_loop:
         # The per-ramp plateau needs the plateau loop of each ramp: fitted where the block's

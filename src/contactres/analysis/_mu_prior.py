@@ -53,6 +53,7 @@ __all__ = [
     "MU_PRIOR_MAX_REL",
     "MU_PRIOR_MIN_LOADS",
     "mu_prior_penalties",
+    "mu_prior_reference",
     "prior_penalty",
     "reference_mu",
 ]
@@ -206,15 +207,16 @@ def prior_penalty(mu, mu_err, mean, var, n_points) -> np.ndarray:
     return np.where(ok, pen, 0.0)
 
 
-def mu_prior_penalties(
+def mu_prior_reference(
     blocks: pd.DataFrame, joint: Mapping[str, pd.DataFrame], P: np.ndarray, usable: np.ndarray
-) -> dict[str, np.ndarray]:
-    """:func:`prior_penalty` of the joint fit of each Coulomb loop of every load block.
+) -> tuple[np.ndarray, np.ndarray]:
+    """The prior of ln μ of every load block (:func:`reference_mu`) from the model-averaged μ
+    of the other blocks.
 
     Parameters
     ----------
     blocks : one row per block, with ``configuration``, ``medium``, ``experiment``,
-        ``normal_force_N``, ``n_points``
+        ``normal_force_N``
     joint : the joint fit table of each loop of :data:`~contactres.analysis._friction.
         COULOMB_LOOPS` (one row per block) with ``bic_shared``, its shared criterion without
         the prior (the weights of the model-averaged μ of the other blocks)
@@ -224,7 +226,7 @@ def mu_prior_penalties(
 
     Returns
     -------
-    The penalty of each loop of COULOMB_LOOPS (key -> (B,) array; 0 where there is no prior).
+    mean, var : (B,) of ln μ (NaN where there is none, and for the blocks not ``usable``)
     """
     F = blocks["normal_force_N"].to_numpy(float)
     mu, err, _ = model_averaged_mu(blocks, joint, P)
@@ -232,10 +234,23 @@ def mu_prior_penalties(
     experiment = blocks.groupby(["configuration", "medium", "experiment"], sort=False).ngroup()
     group = blocks.groupby(["configuration", "medium"], sort=False).ngroup()
     mean, var = reference_mu(experiment.to_numpy(), F, mu, err, group.to_numpy())
+    return np.where(usable, mean, np.nan), np.where(usable, var, np.nan)
+
+
+def mu_prior_penalties(
+    blocks: pd.DataFrame, joint: Mapping[str, pd.DataFrame], P: np.ndarray, mean, var
+) -> dict[str, np.ndarray]:
+    """:func:`prior_penalty` of the joint fit of each Coulomb loop of every load block.
+
+    ``blocks``, ``joint`` and ``P`` as for :func:`mu_prior_reference` (``blocks`` with
+    ``n_points`` too), ``mean``, ``var`` its prior of ln μ. Returns the penalty of each loop of
+    COULOMB_LOOPS (key -> (B,) array; 0 where there is no prior).
+    """
+    F = blocks["normal_force_N"].to_numpy(float)
     n = blocks["n_points"].to_numpy(float)
     out = {}
     for key in COULOMB_LOOPS:
         force, ferr, ok = loop_table_force(joint[key], P)
         pen = prior_penalty(force / F, ferr / F, mean, var, n)
-        out[key] = np.where(ok & usable, pen, 0.0)
+        out[key] = np.where(ok, pen, 0.0)
     return out

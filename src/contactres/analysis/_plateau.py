@@ -65,6 +65,8 @@ PLATEAU_LOOP_COLUMNS = (
     "x_max",
     "d_c_m",
     "d_c_err_m",
+    "cov_df0_d_c",
+    "cov_lntheta_d_c",
     "rss_df",
     "rss_dgamma",
 )
@@ -232,7 +234,8 @@ def fit_plateau_loops(
     -------
     DataFrame with the columns of :func:`fit_cm_loops` (``theta_per_m`` = κ/(μF_N), ``x_max``
     = θ·max(u0); ``edge`` "high" if the excess beyond d_c reaches gross sliding beyond
-    x = X_MAX, "low" if no slip is resolved) plus ``d_c_m`` and ``d_c_err_m``.
+    x = X_MAX, "low" if no slip is resolved) plus ``d_c_m``, ``d_c_err_m`` and the covariances
+    of d_c with Δf0 and ln θ, ``cov_df0_d_c`` (Hz m) and ``cov_lntheta_d_c`` (m).
     """
     u_c = np.asarray(u_c, dtype=float)
     rule = gauss_legendre_unit(SMALL_X_NODES)  # made once for the hundreds of model calls
@@ -324,6 +327,10 @@ def fit_plateau_loops(
             **loop_fit_fields(A, fit["B"], theta, cov, umax),
             "d_c_m": d_c,
             "d_c_err_m": np.sqrt(cov[:, 3, 3]),
+            # d_c's covariances with Δf0 and ln θ: the joint error of μ and d_c, which the fit
+            # trades against each other (a later onset of slip: a larger μ or a wider plateau).
+            "cov_df0_d_c": cov[:, 0, 3],
+            "cov_lntheta_d_c": cov[:, 2, 3],
             "edge": edge,
             "rss_df": fit["rss_f"],
             "rss_dgamma": fit["rss_g"],

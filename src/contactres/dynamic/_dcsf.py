@@ -7,9 +7,9 @@ add the promise of accuracy: inside the range where the resolutions were measure
 evaluation, unchanged; outside it each value is checked at run time against a refined
 evaluation and refined where it misses rtol (:mod:`contactres.dynamic._convergence`), and a
 value that still misses it comes with an :class:`~contactres.errors.AccuracyWarning` (issue 27).
-A value with negative damping (Im DCSF < 0 beyond rtol: no passive contact has it; R0, SA and TP
-reach it at high k a) comes with a :class:`~contactres.errors.ContactresWarning` naming the
-models and the k a (issue 27, point 7: flagged at run time, not only in the docstrings).
+A value with negative damping (Im DCSF < 0 beyond rtol: no passive contact has it; R0, SA, WA and
+TP reach it at high k a) comes with a :class:`~contactres.errors.ContactresWarning` per model,
+naming the k a (issue 27, point 7: flagged at run time, not only in the docstrings).
 """
 
 from __future__ import annotations
@@ -55,13 +55,17 @@ def dcsf_models(
     *,
     chunk: int = CHUNK,
     interpolate: bool | None = None,
+    warn_negative: bool = True,
 ) -> dict[str, np.ndarray]:
     """DCSF = K_da/K_sa of several displacement models at once (they share all the work).
 
     Parameters and returns as :func:`dcsf`, with ``models`` a sequence of model names; returns
     ``{model: complex array shaped like ka}``. ``chunk`` and ``interpolate`` (keyword only) as
     in :func:`dcsf`; so is the check of the accuracy outside the validated range (an
-    :class:`~contactres.errors.AccuracyWarning` where rtol is missed).
+    :class:`~contactres.errors.AccuracyWarning` where rtol is missed) and the
+    :class:`~contactres.errors.ContactresWarning` where a model has negative damping
+    (``warn_negative``, keyword only: False for a caller that shows it on purpose, as paper 1's
+    figures do).
     """
     names = [check_model(x) for x in ([models] if isinstance(models, str) else models)]
     if not (isinstance(chunk, int | np.integer) and chunk >= 1):
@@ -78,36 +82,32 @@ def dcsf_models(
         out = checked_values(m, table, ksa, names, loss, rtol, chunk=chunk, interpolate=interpolate)
         warn_unconverged(m, out, np.broadcast_to(ka, ksa.shape), wavenumber)
         values = {k: np.asarray(v) for k, v in out.values.items()}
-    _warn_negative_damping(values, np.broadcast_to(ka, ksa.shape), wavenumber, rtol)
+    if warn_negative:
+        _warn_negative_damping(values, np.broadcast_to(ka, ksa.shape), wavenumber, rtol)
     return values
 
 
 def _warn_negative_damping(values: dict, ka: np.ndarray, wavenumber: str, rtol: float) -> None:
-    """A :class:`~contactres.errors.ContactresWarning` naming the models and the k a where the
-    DCSF has negative damping, Im DCSF < -rtol ``|DCSF|``: the radiated power of a passive
-    contact is positive (paper 1, Sec. 2.3), so such a value is the displacement condition's
-    failure (R0 near k_l a = 1.6-2, SA near its pole), not the contact's. The same rule flags the
-    rows of the ``dcsf`` job (``negative-damping``)."""
-    ka = np.asarray(ka, dtype=float)
-    bad = {}
-    for name, v in values.items():
-        v = np.broadcast_to(np.asarray(v), ka.shape)
-        negative = v.imag < -rtol * np.abs(v)
-        if np.any(negative):
-            bad[name] = ka[negative]
-    if not bad:
-        return
-    where = np.concatenate(list(bad.values()))
-    lo, hi = float(np.min(where)), float(np.max(where))
-    span = f"{lo:.4g}" if lo == hi else f"{lo:.4g}-{hi:.4g}"
+    """A :class:`~contactres.errors.ContactresWarning` per model whose DCSF ``values`` (at the
+    k a values ``ka``) have negative damping, Im DCSF < 0 beyond the accuracy rtol: no passive
+    contact has it. The approximate displacement conditions reach it at high k a (R0 near
+    k_l a = 1.6-2, SA and WA beyond; paper 1, Figs. 3-5); the exact punch does not."""
     label = "k_l a" if wavenumber == "longitudinal" else "k_s a"
-    warnings.warn(
-        f"DCSF of model(s) {', '.join(bad)}: negative damping (Im DCSF < 0) at {label} = {span}:"
-        " no passive contact has it, the displacement condition fails there; use the exact "
-        "model",
-        ContactresWarning,
-        stacklevel=4,
-    )
+    for name, v in values.items():
+        v = np.asarray(v)
+        negative = v.imag < -max(rtol, 1e-12) * np.abs(v)
+        if not np.any(negative):
+            continue
+        where = np.broadcast_to(ka, v.shape)[negative]
+        lo, hi = float(np.min(where)), float(np.max(where))
+        span = f"{lo:.4g}" if lo == hi else f"{lo:.4g}-{hi:.4g}"
+        warnings.warn(
+            f"DCSF ({name} model) has negative damping, Im DCSF < 0, at {label} = {span} "
+            f"({int(np.count_nonzero(negative))} value(s)): no passive contact has it, the "
+            "displacement condition fails there; use the exact model",
+            ContactresWarning,
+            stacklevel=4,
+        )
 
 
 def dcsf(

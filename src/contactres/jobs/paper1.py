@@ -11,16 +11,13 @@ figures are drawn by :mod:`contactres.apps.paper1`.
 
 from __future__ import annotations
 
-import warnings
-from contextlib import contextmanager
 from dataclasses import dataclass
 from types import MappingProxyType
 
 import numpy as np
 import pandas as pd
 
-from ..dynamic import contact_displacement, dcsf, dcsf_models
-from ..errors import ContactresWarning
+from ..dynamic import contact_displacement, dcsf_models
 from ..materials import Material
 from ..measurements.schema import PAPER1_RANKING
 from .contract import JobResult, Progress, say
@@ -58,17 +55,6 @@ ZENERS = (0.25, 0.5, 1.0, 2.0, 4.0)
 POISSONS = (0.1, 0.2, 0.25, 0.3, 0.4)
 
 
-@contextmanager
-def _approximations_as_drawn():
-    """The paper's displacement models as the paper draws them: their negative damping (R0 and
-    SA near k_l a = 1.6-2, TP at A = 0.25) is what Fig. 3 and the ranking show, so the
-    run-time warning of :func:`~contactres.dynamic.dcsf_models` about it is not repeated here
-    (the ``dcsf`` command and the API flag it)."""
-    with warnings.catch_warnings():
-        warnings.filterwarnings("ignore", "DCSF of model.*negative damping", ContactresWarning)
-        yield
-
-
 def cubic(A: float, nu: float) -> Material:
     """The cubic solid of Zener ratio A and Poisson ratio ν (C44 = 1: the DCSF needs ratios)."""
     return Material.cubic_from_ratios(zener=A, poisson=nu)
@@ -76,8 +62,7 @@ def cubic(A: float, nu: float) -> Material:
 
 def fig3_curves(kla=KLA, A: float = 0.5, nu: float = 0.25) -> dict[str, np.ndarray]:
     """Fig. 3: DCSF of the five displacement models and of the exact punch at A, ν."""
-    with _approximations_as_drawn():
-        out = dcsf_models(cubic(A, nu), kla, (*PAPER_MODELS, "exact"), loss=LOSS)
+    out = dcsf_models(cubic(A, nu), kla, (*PAPER_MODELS, "exact"), loss=LOSS, warn_negative=False)
     curves = {f"{name} model": out[name] for name in PAPER_MODELS}
     curves["exact (rigid punch)"] = out["exact"]
     return curves
@@ -86,7 +71,10 @@ def fig3_curves(kla=KLA, A: float = 0.5, nu: float = 0.25) -> dict[str, np.ndarr
 def wa_with_exact(cases: dict[str, Material], kla):
     """WA curves of labelled materials and each one's exact rigid-punch curve (Figs. 4, 5):
     (curves, exact), dicts label -> DCSF."""
-    res = {label: dcsf_models(m, kla, ("WA", "exact"), loss=LOSS) for label, m in cases.items()}
+    res = {
+        label: dcsf_models(m, kla, ("WA", "exact"), loss=LOSS, warn_negative=False)
+        for label, m in cases.items()
+    }
     return {label: r["WA"] for label, r in res.items()}, {
         label: r["exact"] for label, r in res.items()
     }
@@ -109,7 +97,8 @@ def crystal_curves(names=("RbI", "KCl", "W", "Cu", "Li"), kla=KLA, model: str = 
     curves = {}
     for name in names:
         m = Material.crystal(name)
-        curves[f"{name} (A = {m.zener_ratio:.2f})"] = dcsf(m, kla, model, loss=LOSS)
+        curve = dcsf_models(m, kla, (model,), loss=LOSS, warn_negative=False)[model]
+        curves[f"{name} (A = {m.zener_ratio:.2f})"] = curve
     return curves
 
 
@@ -121,8 +110,7 @@ def ranking_table(kla=KLA, zeners=ZENERS, nu: float = 0.25) -> pd.DataFrame:
     names = (*PAPER_MODELS, "WA2D")
     rows = []
     for A in zeners:
-        with _approximations_as_drawn():
-            out = dcsf_models(cubic(A, nu), kla, (*names, "exact"), loss=LOSS)
+        out = dcsf_models(cubic(A, nu), kla, (*names, "exact"), loss=LOSS, warn_negative=False)
         ex = out["exact"]
         errs = {n: np.abs(out[n] / ex - 1) for n in names}
         e1 = {n: float(np.max(e[kla <= 1 + 1e-12])) for n, e in errs.items()}

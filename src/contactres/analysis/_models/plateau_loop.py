@@ -105,5 +105,11 @@ FIT = SweepFit(
     "pl",
     True,
     fit,
-    {**LOOP_TABLE, "d_c_m": "critical_displacement", "d_c_err_m": "critical_displacement_err"},
+    {
+        **LOOP_TABLE,
+        "d_c_m": "critical_displacement",
+        "d_c_err_m": "critical_displacement_err",
+        "cov_df0_d_c": "cov_df0_critical_displacement",
+        "cov_lntheta_d_c": "cov_ln_inverse_slip_scale_critical_displacement",
+    },
 )
