@@ -85,6 +85,7 @@ from dataclasses import replace
 
 import numpy as np
 
+from .._threads import one_blas_thread
 from ..errors import ContactresInputError
 from ..halfspace import shear_reference
 from ..layered import LayeredMaterial
@@ -257,6 +258,10 @@ def _solve_c0(M: np.ndarray, n_radial: int, plan) -> np.ndarray:
     return np.linalg.solve(sub, np.broadcast_to(e0, sub.shape[:-1])[..., None])[..., 0, 0]
 
 
+# One BLAS thread, as the homogeneous curve (dcsf_models): the correction's many small products
+# (3x3 recursion, Gram products of ~20 functions) gain nothing from a second thread, which only
+# spins (3-14x the CPU of one thread on a busy machine, benchmarks/bench_layered_dynamic.py).
+@one_blas_thread()
 def layered_punch_stiffness(
     material,
     radius,
