@@ -27,9 +27,9 @@ only the layer exponentials exp(η h A) and the recursion over them do. So:
 The recursion (:func:`contactres.layered.compliance_factors`) then runs once over the nodes of
 all frequencies together, and only H_33 (or the in-plane block) of the stack's and the
 reference's compliance is formed from it; the exponentials of isotropic layers take their
-closed form there (two roots: the same to ~1e-15, at a fraction of the general one's cost). Results equal the direct solution of every node to
-the table's accuracy (measured: < 1e-13 relative on PMMA over quartz, isotropic and cubic (111)
-films).
+closed form there (two roots: the same to ~1e-15, at a fraction of the general one's cost).
+Results equal the direct solution of every node to the table's accuracy (measured: < 1e-13
+relative on PMMA over quartz, isotropic and cubic (111) films).
 """
 
 from __future__ import annotations
