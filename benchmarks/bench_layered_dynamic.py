@@ -31,17 +31,37 @@ of 3, on a machine at load ~14 on 2 cores: one BLAS thread homogeneous 0.022 / 0
 250 nm 18.9x / 14.0x, 1 µm 9.2x / 8.8x: within the scatter of such a machine. Instructions
 executed per curve (valgrind's cachegrind, one thread: steady where CPU time is not),
 homogeneous 98 M; 250 nm 700 M (7.2x) -> 609 M (6.3x); 1 µm 444 M (4.5x) -> 367 M (3.8x).
-Why the thin film costs more: its pressure basis grows to 22 radial terms (10 -> 13 -> 18 + 4;
-the 1 µm film stops at the first, 14), and the film's Galerkin pairs, the Gram products and
+Why the thin film costs more: its pressure basis grows to 18 radial terms (10 -> 13 -> 18;
+the 1 µm film stops at the first, 10), and the film's Galerkin pairs, the Gram products and
 the Bessel functions of the nodes grow with it; its real-axis nodes run to η h = 5, s ≈ 250
 (~850 per point against ~330). The number of arc and Chebyshev samples, where the layer
 recursion runs, is nearly the same for both. Profile of the 250 nm curve after the pass
 (one thread): layer recursion ~17 %, interpolation of the waves ~9 %, node assembly ~9 %,
 direct waves on the arcs and the table ~10 %, film Galerkin matrices ~19 %, Bessel functions
 of the nodes ~10 %, Gram products ~8 %, film table and far field ~8 %.
-As shipped, the default BLAS threads spin on the layered path's many small matrix products (3x3
+As shipped, the default BLAS threads spun on the layered path's many small matrix products (3x3
 recursion, Gram products of ~20 functions) while the machine is busy: 3-14x the CPU of one
-thread, where the homogeneous curve pays 2.4-4x.
+thread, where the homogeneous curve, run with one BLAS thread, pays no more.
+Issue 26's fourth pass: an isotropic layer's exponential in closed form from its two roots
+(no Taylor polynomial and squarings), the Bessel functions of the nodes and of the film's
+near and far nodes computed for the grown basis once instead of once per size, and the
+layered punch run with one BLAS thread as the homogeneous curve is; results moved by
+<= 2.7e-15 (normal curves), <= 1.7e-15 (tangential). In one run, main / this tree, machine at
+load ~30 on 2 cores: one BLAS thread (best of 7) homogeneous 0.020 / 0.021 s, 250 nm 0.113 s
+(5.6x) / 0.078 s (3.8x), 1 µm 0.065 s (3.2x) / 0.047 s (2.3x); as shipped (best of 5)
+homogeneous 0.021 / 0.022 s, 250 nm 14.2x / 3.7x, 1 µm 7.2x / 2.2x. Instructions per curve
+(cachegrind, one thread): homogeneous 100 M; 250 nm 608 M (6.1x) -> 464 M (4.6x); 1 µm
+366 M (3.7x) -> 301 M (3.0x). The 1 µm target is met; 250 nm is not. Its floor: the film's
+exact Galerkin at its final basis (18 radial terms, table and far field included) alone costs
+102 M, as much as the homogeneous curve, so the correction of the stack (~360 M, ~8.8 M per
+point) would have to fall below ~200 M (~4.9 M per point). Split of the 250 nm curve after
+the pass (CPU, one thread): the correction's nodes ~46 % (node assembly ~11 %, layer
+recursion ~7 %, interpolation of the waves ~8 %, direct waves on the arcs ~5 %, the slowness
+table, arc and probes the rest), the film's Galerkin matrices at three sizes ~21 %, the
+correction's Gram products ~9 %, film table and far field ~11 %, Bessel functions of the
+nodes ~4 %. What is left is spread over many parts, each paid per point on its ~850 nodes;
+reaching 3x needs fewer nodes (a quadrature error estimate on the thin film's decayed tail)
+or the correction of all points in one batch instead of point by point.
 Profile of the 250 nm normal curve before these two changes (cProfile, one thread): the
 film's Galerkin matrices at three basis sizes (10, 13, 18 radial terms) ~20 %, the layer waves
 and recursion with the node assembly (``correction_nodes``) ~45 %, the Bessel functions of the

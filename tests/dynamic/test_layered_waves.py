@@ -64,10 +64,13 @@ def test_slowness_table_gives_the_direct_solution_at_any_frequency(material, the
         waves = table.interpolated(chebyshev_matrix(table.size, 2 * y - 1))
         eta_h = [eta * h for h in st.thicknesses]
         got = waves.delta_g(st, eta_h, shift)
+        # With the directions: the isotropic layers' exponentials in closed form.
+        closed = waves.delta_g(st, eta_h, shift, theta)
         H, H_ref = _direct(st, eta, theta)
         want = H_ref[..., 2, 2] - H[..., 2, 2] - shift[None]
         scale = np.max(np.abs(H_ref[..., 2, 2]))
         assert np.max(np.abs(got - want)) < 1e-12 * scale
+        assert np.max(np.abs(closed - want)) < 1e-12 * scale
 
 
 def test_waves_at_complex_slowness_give_the_direct_solution():
@@ -81,13 +84,16 @@ def test_waves_at_complex_slowness_give_the_direct_solution():
         z = _layered_waves.arc_fraction(tau)
         eta = st.pole * z
         waves = waves_at(st, theta, 1 / (st.pole_slowness * z) ** 2)
-        got = waves.delta_g(st, [eta * h for h in st.thicknesses], st.static_shift(theta))
+        eta_h = [eta * h for h in st.thicknesses]
+        got = waves.delta_g(st, eta_h, st.static_shift(theta))
+        closed = waves.delta_g(st, eta_h, st.static_shift(theta), theta)
         e = eta[:, None]
         s = [sig * st.omega**2 / e**2 for sig in st.sigma]
         H = stack_compliance(st.tensors, s, [e * h for h in st.thicknesses], np.zeros((7, 1)))
         H_ref = stack_compliance([st.reference], s[:1], [], np.zeros((7, 1)))
         want = H_ref[..., 2, 2] - H[..., 2, 2] - st.static_shift(theta)[None]
         assert np.max(np.abs(got - want)) < 1e-12 * np.max(np.abs(H_ref[..., 2, 2]))
+        assert np.max(np.abs(closed - want)) < 1e-12 * np.max(np.abs(H_ref[..., 2, 2]))
 
 
 def test_a_refused_table_solves_every_node_directly(monkeypatch):

@@ -18,7 +18,7 @@ import contactres as cr
 from contactres.errors import ContactresInputError
 from contactres.halfspace import surface_compliance
 from contactres.layered import LayeredMaterial, stack_compliance, surface_green
-from contactres.layered._expm import expm3
+from contactres.layered._expm import expm3, expm_isotropic
 from contactres.materials import voigt_to_tensor
 
 QUARTZ = cr.Material.isotropic(72e9, 0.17, density=2650.0, name="quartz")
@@ -141,10 +141,15 @@ def test_compliance_factors_against_the_boundary_value_solution(case):
         tensors = [voigt_to_tensor(np.asarray(m.C, dtype=complex)) / c44 for m in mats]
         layers = [layer_waves(c, theta, v) for c, v in zip(tensors[:-1], sv, strict=False)]
         eta_h = [np.full(theta.size, eta * h, dtype=complex) for h in hs]
-        P, Q = compliance_factors(layers, eta_h, substrate_impedance(tensors[-1], theta, sv[-1]))
+        Y = substrate_impedance(tensors[-1], theta, sv[-1])
+        P, Q = compliance_factors(layers, eta_h, Y)
+        # The isotropic layers' exponentials in closed form (Si (111) keeps the general one).
+        iso = [theta if m.name in ("PMMA", "quartz") else None for m in mats[:-1]]
+        P_iso, Q_iso = compliance_factors(layers, eta_h, Y, iso)
         for k, th in enumerate(theta):
-            H = P[..., k] @ np.linalg.inv(Q[..., k])
-            assert rel(H, reference_compliance(mats, hs, eta, th, frequency)) < 1e-9
+            want = reference_compliance(mats, hs, eta, th, frequency)
+            assert rel(P[..., k] @ np.linalg.inv(Q[..., k]), want) < 1e-9
+            assert rel(P_iso[..., k] @ np.linalg.inv(Q_iso[..., k]), want) < 1e-9
 
 
 @pytest.mark.parametrize("frequency", [15e6, 300e6])
@@ -250,6 +255,27 @@ def test_expm3_of_a_defective_matrix():
     N = t * np.eye(3, k=1)
     ref = np.exp(t * lam) * (np.eye(3) + N + N @ N / 2)
     assert np.max(np.abs(expm3(J[..., None])[..., 0] - ref)) < 1e-14 * np.max(np.abs(ref))
+
+
+@pytest.mark.parametrize("m", [PMMA, QUARTZ.with_loss(0.02)])
+def test_expm_isotropic_against_scipy(m):
+    """The closed form of an isotropic layer's exponential (two roots: P and the SV/SH pair)
+    equals scipy's expm of the same exponent matrix: static (the defective double root),
+    propagating-free and lossy, complex slowness and η h, small and large η h, any direction."""
+    from contactres.layered import layer_waves
+
+    c44 = float(np.real(m.C[3, 3]))
+    c = voigt_to_tensor(np.asarray(m.C, dtype=complex)) / c44
+    s = np.array([0.0, 1e-9, 0.1, 0.5, 0.2 - 0.3j, 3.0 - 1.0j, 0.97, 0.5, 0.1])
+    theta = np.array([0.0, 0.3, 1.2, 2.5, 0.0, 0.7, 0.1, 4.0, 5.5])
+    t = np.array([0.3, 2.0, 5.0, 1.0 + 0.5j, 50.0, 0.1 + 0.02j, 3.0, 1e-8, 0.7 - 0.2j])
+    waves, mirror = layer_waves(c, theta, s.astype(complex))
+    assert mirror
+    A = waves[2]
+    got = expm_isotropic(A, t, theta)
+    for k in range(t.size):
+        ref = scipy.linalg.expm(t[k] * A[..., k])
+        assert np.max(np.abs(got[..., k] - ref)) < 1e-13 * np.max(np.abs(ref))
 
 
 # --- the stack object -------------------------------------------------------------------------

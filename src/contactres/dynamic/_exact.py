@@ -49,6 +49,7 @@ __all__ = [
     "galerkin_plan",
     "galerkin_size",
     "kernel_harmonics",
+    "near_bessel",
     "pressure_basis",
 ]
 
@@ -278,15 +279,25 @@ def galerkin_matrix(
     return plan.sign * galerkin_integrals(table, ka, plan, far)[:, plan.m_index, plan.t_index]
 
 
+def near_bessel(table: KernelTable, ka: np.ndarray, p_max: int) -> np.ndarray:
+    """j_p(s), p = 0..p_max, at the near-field nodes s = ka × ``table.near_kappa`` of the k_s a
+    values ``ka``, shape (p_max + 1, len(ka), nk), complex: the ``near_j`` of
+    :func:`galerkin_integrals`."""
+    return spherical_bessel(int(p_max), ka[:, None] * table.near_kappa[None, :])
+
+
 def galerkin_integrals(
-    table: KernelTable, ka: np.ndarray, plan: GalerkinPlan, far: FarBasis
+    table: KernelTable, ka: np.ndarray, plan: GalerkinPlan, far: FarBasis, near_j=None
 ) -> np.ndarray:
     """I[a, m, t] = ∫₀^∞ ds Ĝ_m(s/k_s a) j_p(s) j_q(s) (dimensionless) at k_s a values ``ka``
     for the harmonics ``plan.ms`` and the order pairs t = (p, q) of ``plan.pairs``: the
     entries :func:`galerkin_matrix` assembles M from, shape (len(ka), n_m, n_t), complex.
     Each pair's column depends on that pair alone (and on ``plan.ms``), so a plan whose
     ``pairs`` and ``far_products`` are restricted to some pairs gives their columns only.
-    Arguments as in :func:`galerkin_matrix`."""
+    Arguments as in :func:`galerkin_matrix`; ``near_j``, optional: j_p at the near nodes
+    s = ka × ``table.near_kappa`` for p = 0 to at least the plan's highest order, shape
+    (p_max + 1, len(ka), nk) (:func:`near_bessel`), for a caller that grows its basis and
+    computes them once."""
     assert plan.far_products is not None
     na = ka.size
     orders, (ti, tj) = plan.orders, plan.pairs
@@ -303,7 +314,9 @@ def galerkin_integrals(
     # Pair products laid out (na, n_t, nk), so that the sum over the near nodes k is one
     # complex product with no transposed copy: one BLAS call, not one per k a (on 2 cores
     # shared with other work, every threaded call can wait a scheduler tick).
-    jp = np.moveaxis(spherical_bessel(int(orders[-1]), s)[orders], 0, 1)  # (na, n_p, nk)
+    if near_j is None:
+        near_j = spherical_bessel(int(orders[-1]), s)
+    jp = np.moveaxis(near_j[orders], 0, 1)  # (na, n_p, nk)
     wk = table.near_weight[None, :] * ka[:, None]
     prod = _pair_products(jp * wk[:, None, :], jp, ti, tj)  # (na, n_t, nk)
     near = (prod.reshape(-1, prod.shape[-1]) @ near_h.T).reshape(na, ti.size, -1)

@@ -348,7 +348,7 @@ def _delta_g(shared: _SharedWaves, parts, waves: StackWaves) -> list:
     eta_h = [
         np.concatenate([s / a * st.thicknesses[j] for st, a, s in parts]) for j in range(n_layers)
     ]
-    values = waves.delta_g(shared.stack, eta_h, shared.shift)
+    values = waves.delta_g(shared.stack, eta_h, shared.shift, shared.theta)
     return np.split(values, np.cumsum([s.size for _, _, s in parts])[:-1])
 
 

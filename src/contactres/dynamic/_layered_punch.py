@@ -57,7 +57,10 @@ of the stack, grown until four more radial terms move N by less than rtol/10 (a 
 much stiffer or softer substrate concentrates the pressure near the edge and needs more). A
 grown basis reuses the integrals of the order pairs it had (the film's and the correction's:
 an integral over a pair does not depend on the basis it belongs to), so each pair is
-integrated once.
+integrated once; the Bessel functions of the nodes (the correction's and the film's near and
+far nodes) are computed for the orders of a basis grown further, not once per size: at first
+two growths ahead if the layers are thinner than a/10 (where the basis usually grows twice),
+else for the first basis; once it has grown, one growth ahead.
 
 Accuracy (tests/dynamic/test_layered_punch.py, measured): homogeneous isotropic against the
 Fredholm disk 1e-8-2.6e-8 (k_s a = 0.3-2); a lossy stack (Q⁻¹ = 1e-3, PMMA h = 0.2a on quartz)
@@ -82,6 +85,7 @@ from dataclasses import replace
 
 import numpy as np
 
+from .._threads import one_blas_thread
 from ..errors import ContactresInputError
 from ..halfspace import shear_reference
 from ..layered import LayeredMaterial
@@ -93,6 +97,7 @@ from ._exact import (
     galerkin_plan,
     galerkin_size,
     kernel_harmonics,
+    near_bessel,
 )
 from ._farfield import far_basis
 from ._layered_path import (
@@ -173,6 +178,16 @@ def _new_pairs(plan, previous):
 _PAIR_KEY = 4096
 
 
+def _order_rows(orders: np.ndarray):
+    """Index of the rows p = ``orders`` of an array of rows p = 0, 1, ...: a slice (a view, no
+    copy) where the orders are evenly spaced, as they are (0, 2, 4, ... on an axisymmetric
+    stack; 0, 1, 2, ... otherwise), else the orders themselves."""
+    step = int(orders[1] - orders[0]) if orders.size > 1 else 1
+    if step > 0 and np.array_equal(orders, orders[0] + step * np.arange(orders.size)):
+        return slice(int(orders[0]), int(orders[-1]) + 1, step)
+    return orders
+
+
 def _harmonics_of(values, plan, axisymmetric: bool) -> np.ndarray:
     """Ĝ_m = ∫₀^{2π} Δg e^{imθ} dθ (n_m, len(values)) of rows sampled on the table's θ nodes,
     or at one θ for an axisymmetric stack (then only m = 0)."""
@@ -185,13 +200,18 @@ def _assemble(integral, plan) -> np.ndarray:
     return plan.sign * integral[plan.m_index, plan.t_index]
 
 
-def _film_matrices(table: KernelTable, ksa: np.ndarray, size: GalerkinSize, far, known=None):
+def _film_matrices(
+    table: KernelTable, ksa: np.ndarray, size: GalerkinSize, far, known=None, extra: int = 0
+):
     """(M_film at k_s a values ``ksa`` (>= 0), (len(ksa), nb, nb); the Galerkin plan; the
     film's integrals by order pair for the next call), with ``far`` the far-field basis of the
     positive ``ksa`` (None if there is none; it does not depend on the basis size, so the
     growing basis of :func:`_punch` computes it once). ``known``: what the previous call of
     the growing basis returned last (its pairs' integrals are reused, not recomputed: a pair's
-    integral does not depend on the basis it belongs to, and the harmonics stay the same)."""
+    integral does not depend on the basis it belongs to, and the harmonics stay the same; so
+    are its Bessel functions at the near and far nodes where they reach the orders needed).
+    ``extra``: where they must be computed, for ``extra`` radial terms more than ``size``
+    (two orders each: the orders a grown basis may need, computed once, not once per size)."""
     pos = ksa > 0
     # The plan without the far grid's products: those of the new pairs only are formed below.
     plan = galerkin_plan(table, size)
@@ -207,19 +227,26 @@ def _film_matrices(table: KernelTable, ksa: np.ndarray, size: GalerkinSize, far,
     keys = orders[ti] * (2 * int(orders[-1]) + 2) + orders[tj]
     integral = np.empty((int(np.sum(pos)), plan.ms.size, keys.size), dtype=complex)
     new = np.ones(keys.size, dtype=bool)
+    bessel = None
     if known is not None and np.array_equal(known[2], plan.ms):
         old_keys = known[0][0] * (2 * int(orders[-1]) + 2) + known[0][1]
         by_key = np.argsort(old_keys)
         at = by_key[np.minimum(np.searchsorted(old_keys[by_key], keys), old_keys.size - 1)]
         new = old_keys[at] != keys
         integral[..., ~new] = known[1][..., at[~new]]
+        bessel = known[3]
+    if bessel is None or bessel[0].shape[0] <= orders[-1]:
+        # j_p at the far grid and the near nodes, up to the orders a grown basis may need.
+        p_max = int(orders[-1]) + 2 * extra
+        far_j = spherical_bessel(p_max, np.asarray(far.s, dtype=float))
+        bessel = (far_j, near_bessel(table, ksa[pos], p_max))
     if np.any(new):
-        js = spherical_bessel(int(orders[-1]), np.asarray(far.s, dtype=float))[orders]
+        js = bessel[0][orders]
         products = js[ti[new]] * js[tj[new]]
         part = replace(plan, pairs=plan.pairs[:, new], far_products=products)
-        integral[..., new] = galerkin_integrals(table, ksa[pos], part, far)
+        integral[..., new] = galerkin_integrals(table, ksa[pos], part, far, bessel[1])
     out[pos] = plan.sign * integral[:, plan.m_index, plan.t_index]
-    return out, plan, (np.stack([orders[ti], orders[tj]]), integral, plan.ms)
+    return out, plan, (np.stack([orders[ti], orders[tj]]), integral, plan.ms, bessel)
 
 
 def _solve_c0(M: np.ndarray, n_radial: int, plan) -> np.ndarray:
@@ -231,6 +258,10 @@ def _solve_c0(M: np.ndarray, n_radial: int, plan) -> np.ndarray:
     return np.linalg.solve(sub, np.broadcast_to(e0, sub.shape[:-1])[..., None])[..., 0, 0]
 
 
+# One BLAS thread, as the homogeneous curve (dcsf_models): the correction's many small products
+# (3x3 recursion, Gram products of ~20 functions) gain nothing from a second thread, which only
+# spins (3-14x the CPU of one thread on a busy machine, benchmarks/bench_layered_dynamic.py).
+@one_blas_thread()
 def layered_punch_stiffness(
     material,
     radius,
@@ -479,24 +510,49 @@ def _punch(table, film, items, radii, rtol, res) -> np.ndarray:
     pos = ksa > 0
     far = far_basis(table, ksa[pos]) if np.any(pos) else None
     known = None
-    # Each point's correction integrals and their plan, reused by the grown basis.
+    # Each point's correction integrals and their plan, reused by the grown basis; its
+    # harmonics of Δg (the same for every size: the harmonics m do not change).
     reuse: dict = {}
+    harmonics: dict = {}
     previous = None
+    bessel: dict = {}  # j_p at every point's nodes, p = 0..p_have
+    p_have = -1
+    thin = any(np.sum(stacks[i].thicknesses) < 0.1 * radii[i] for i in nodes)
     while True:
         grow = n_radial + 4 if nodes else n_radial
         size = GalerkinSize(grow, 0 if axisymmetric else n_harm)
-        M, plan, known = _film_matrices(table, ksa, size, far, known)
+        # The Bessel functions of the nodes and of the film's integrals are computed for the
+        # orders of a basis grown further (p = |n| + 2k: two more per radial term), not once
+        # per size: two growths ahead at first where a layer thinner than a/10 is likely to
+        # grow the basis twice (250 nm PMMA on quartz at a = 5 µm: 10 -> 13 -> 18 terms), one
+        # once it has grown; a thicker stack, which rarely grows, pays for no extra order.
+        # (Only the cost depends on this guess: the results do not.)
+        growths = 0
+        if nodes:
+            growths = 1 if previous is not None else 2 if thin else 0
+        ahead = n_radial
+        for _ in range(growths):
+            ahead = min(_MAX_RADIAL - 4, math.ceil(1.5 * ahead))
+        M, plan, known = _film_matrices(table, ksa, size, far, known, ahead - n_radial)
         orders, (ti, tj) = plan.orders, plan.pairs
         diag = np.where(ti == tj, np.pi / (2 * (2 * orders[ti] + 1)), 0.0)
-        jps = bessel_on_nodes(int(orders[-1]), nodes, res, lambda J, o=orders: J[o])
+        if nodes and p_have < orders[-1]:
+            p_have = int(orders[-1]) + 2 * (ahead - n_radial)
+            bessel = bessel_on_nodes(p_have, nodes, res, lambda J: J)
+        pick = _order_rows(orders)
         pairs = _new_pairs(plan, previous)
         reused = previous is not None and np.array_equal(previous.ms, plan.ms)
         for i, v in nodes.items():
-            shift = _harmonics_of(v.shift[None, :], plan, axisymmetric)
-            harm = _harmonics_of(v.delta_g, plan, axisymmetric)
-            end_h = _harmonics_of(v.end[None, :], plan, axisymmetric)[:, 0]
+            if not reused:
+                harmonics[i] = (
+                    _harmonics_of(v.shift[None, :], plan, axisymmetric),
+                    _harmonics_of(v.delta_g, plan, axisymmetric),
+                    _harmonics_of(v.end[None, :], plan, axisymmetric)[:, 0],
+                )
+            shift, harm, end_h = harmonics[i]
+            jp = (bessel[i][0][pick], bessel[i][1][pick])
             integral = _correction_integrals(
-                jps[i], v.weights, harm, v.s_end, end_h, pairs, reuse[i] if reused else None
+                jp, v.weights, harm, v.s_end, end_h, pairs, reuse[i] if reused else None
             )
             reuse[i] = integral
             # The static difference of film and reference: closed form, as in the exact model.

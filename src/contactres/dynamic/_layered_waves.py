@@ -26,9 +26,10 @@ only the layer exponentials exp(η h A) and the recursion over them do. So:
 
 The recursion (:func:`contactres.layered.compliance_factors`) then runs once over the nodes of
 all frequencies together, and only H_33 (or the in-plane block) of the stack's and the
-reference's compliance is formed from it. Results equal the direct solution of every node to
-the table's accuracy (measured: < 1e-13 relative on PMMA over quartz, isotropic and cubic (111)
-films).
+reference's compliance is formed from it; the exponentials of isotropic layers take their
+closed form there (two roots: the same to ~1e-15, at a fraction of the general one's cost).
+Results equal the direct solution of every node to the table's accuracy (measured: < 1e-13
+relative on PMMA over quartz, isotropic and cubic (111) films).
 """
 
 from __future__ import annotations
@@ -151,9 +152,11 @@ class StackWaves:
         ]
         return parts[0]._with(arrays)
 
-    def delta_g(self, stack, eta_h, shift) -> np.ndarray:
+    def delta_g(self, stack, eta_h, shift, theta=None) -> np.ndarray:
         """Δg = g_ref − g_stack − shift (n, nθ) (+ (2, 2) in-plane) at these nodes, with
-        ``eta_h`` (n_layers, n) the layers' η h_j (complex on the arc)."""
+        ``eta_h`` (n_layers, n) the layers' η h_j (complex on the arc); ``theta`` (nθ,), the
+        directions, lets an isotropic layer's exponential take its closed form (without it,
+        the general one: the same to ~1e-15)."""
         n, nth = self.substrate.shape[2:]
 
         def flat(a):
@@ -161,11 +164,17 @@ class StackWaves:
 
         layers = [(flat(w), m) for w, m in self.layers]
         eh = [np.repeat(np.asarray(e, dtype=complex), nth) for e in eta_h]
+        # An isotropic layer's exponential in closed form (its two roots; the direction of
+        # every point tells its SH wave apart): the same to ~1e-15 at a fraction of the cost.
+        closed: list[np.ndarray | None] = [None] * len(layers)
+        if theta is not None:
+            th = np.tile(np.asarray(theta, dtype=float), n)
+            closed = [th if _is_isotropic(c) else None for c in stack.tensors[: len(layers)]]
         # H = P Q⁻¹ (compliance_factors; P = I without layers) and H_ref = reference⁻¹: only
         # the entries the kernel needs (H_33, or the in-plane block).
         with np.errstate(all="ignore"):
             if layers:
-                P, Q = compliance_factors(layers, eh, flat(self.substrate))
+                P, Q = compliance_factors(layers, eh, flat(self.substrate), closed)
             else:
                 P, Q = None, flat(self.substrate)
             ref = flat(self.reference)
@@ -178,6 +187,17 @@ class StackWaves:
             h33 = col[2] if P is None else P[2, 0] * col[0] + P[2, 1] * col[1] + P[2, 2] * col[2]
             out = _inverse_column(ref)[2] - h33
         return out.reshape(n, nth) - shift[None]
+
+
+def _is_isotropic(c: np.ndarray) -> bool:
+    """True if the tensor c (3, 3, 3, 3) is isotropic, c_ijkl = λ δ_ij δ_kl + μ (δ_ik δ_jl +
+    δ_il δ_jk) to the round-off of a rotated tensor (complex moduli allowed)."""
+    d = np.eye(3)
+    lam, mu = c[0, 0, 1, 1], c[0, 1, 0, 1]
+    iso = lam * np.einsum("ij,kl->ijkl", d, d) + mu * (
+        np.einsum("ik,jl->ijkl", d, d) + np.einsum("il,jk->ijkl", d, d)
+    )
+    return bool(np.max(np.abs(c - iso)) <= 1e-14 * np.max(np.abs(c)))
 
 
 def _inverse_column(a: np.ndarray) -> list:

@@ -56,6 +56,10 @@ Cost (``benchmarks/bench_layered.py``): per layer and point, a mirror-plane film
 cubic (001), ...) costs one half-space evaluation and one 3x3 exponential, any other film two
 of each, plus a few 3x3 products and inverses; one film on a substrate takes ~1.0-1.8x the time
 of the two homogeneous half-spaces together (~10-17 µs per (η, θ) point on an unloaded core).
+A caller that knows a layer to be isotropic (and the directions θ) may have its exponential
+formed in closed form (``isotropic`` of :func:`impedance_recursion` and
+:func:`compliance_factors`; :mod:`._expm`): a few elementwise operations instead of the Taylor
+polynomial and its squarings, the same to ~1e-15 (the layered punch does so).
 """
 
 from __future__ import annotations
@@ -67,7 +71,7 @@ import numpy as np
 from ..errors import ContactresInputError
 from ..halfspace import inv3, mm, shear_reference, surface_compliance, transpose
 from ..materials import Material, voigt_to_tensor
-from ._expm import expm3
+from ._expm import expm3, expm_isotropic
 from ._stack import LayeredMaterial, material_at
 
 __all__ = [
@@ -154,11 +158,12 @@ def substrate_impedance(c, th, s) -> np.ndarray:
     return inv3(_halfspace(c, th, s))
 
 
-def _layer_factors(waves, mirror: bool, eta_h, Y):
+def _layer_factors(waves, mirror: bool, eta_h, Y, theta=None):
     """(I + T, D_d + D_u T) of one layer (its :func:`layer_waves`, thickness ηh) over Y: the
-    impedance at its top is their quotient (module docstring)."""
+    impedance at its top is their quotient (module docstring). ``theta``: the directions of an
+    isotropic layer (its exponential then in closed form, :func:`._expm.expm_isotropic`)."""
     D_d, D_u, A_d, A_u = waves
-    X_d = expm3(eta_h * A_d)
+    X_d = expm3(eta_h * A_d) if theta is None else expm_isotropic(A_d, eta_h, theta)
     X_u = _flip(X_d) if mirror else expm3(eta_h * A_u)
     rho = mm(inv3(D_u - Y), Y - D_d)
     T = mm(X_u, mm(rho, X_d))
@@ -166,13 +171,13 @@ def _layer_factors(waves, mirror: bool, eta_h, Y):
     return eye + T, D_d + mm(D_u, T)
 
 
-def _layer_impedance(waves, mirror: bool, eta_h, Y):
+def _layer_impedance(waves, mirror: bool, eta_h, Y, theta=None):
     """Impedance at the top of one layer (its :func:`layer_waves`, thickness ηh) over Y."""
-    P, Q = _layer_factors(waves, mirror, eta_h, Y)
+    P, Q = _layer_factors(waves, mirror, eta_h, Y, theta)
     return mm(Q, inv3(P))
 
 
-def impedance_recursion(layers, eta_h, Y) -> np.ndarray:
+def impedance_recursion(layers, eta_h, Y, isotropic=None) -> np.ndarray:
     """Surface impedance Y_top (3, 3, N) of layers over a substrate of impedance Y.
 
     Parameters
@@ -183,6 +188,11 @@ def impedance_recursion(layers, eta_h, Y) -> np.ndarray:
         η h_j of every layer (complex on a lifted path).
     Y : ndarray, shape (3, 3, N)
         :func:`substrate_impedance`.
+    isotropic : sequence of (None or ndarray, shape (N,)), optional
+        Per layer, for a layer the caller knows to be isotropic, the direction θ (rad) of
+        every point: its exponential exp(ηh A_d) is then formed in closed form (two roots,
+        :func:`._expm.expm_isotropic`: a few elementwise operations instead of a scaled Taylor
+        polynomial and its squarings; equal to ~1e-15); None (default) for the general one.
 
     Returns
     -------
@@ -190,13 +200,16 @@ def impedance_recursion(layers, eta_h, Y) -> np.ndarray:
         Y_top (module docstring); the stack's compliance is H = Y_top⁻¹. Non-finite where the
         stack is singular (no error here: :func:`stack_compliance` raises).
     """
+    closed = [None] * len(layers) if isotropic is None else list(isotropic)
     with np.errstate(all="ignore"):
-        for (waves, mirror), eh in zip(reversed(layers), reversed(eta_h), strict=True):
-            Y = _layer_impedance(waves, mirror, eh, Y)
+        for (waves, mirror), eh, th in zip(
+            reversed(layers), reversed(eta_h), reversed(closed), strict=True
+        ):
+            Y = _layer_impedance(waves, mirror, eh, Y, th)
     return Y
 
 
-def compliance_factors(layers, eta_h, Y):
+def compliance_factors(layers, eta_h, Y, isotropic=None):
     """The stack's surface compliance as a quotient H = Y_top⁻¹ = P Q⁻¹ of two factors.
 
     With the top layer's I + T and D_d + D_u T (module docstring), Y_top = Q P⁻¹, so
@@ -206,7 +219,7 @@ def compliance_factors(layers, eta_h, Y):
 
     Parameters
     ----------
-    layers, eta_h, Y
+    layers, eta_h, Y, isotropic
         As in :func:`impedance_recursion` (at least one layer).
 
     Returns
@@ -217,8 +230,9 @@ def compliance_factors(layers, eta_h, Y):
     if not layers:
         raise ContactresInputError("compliance_factors needs at least one layer")
     with np.errstate(all="ignore"):
-        below = impedance_recursion(layers[1:], eta_h[1:], Y)
-        return _layer_factors(*layers[0], eta_h[0], below)
+        closed = [None] * len(layers) if isotropic is None else list(isotropic)
+        below = impedance_recursion(layers[1:], eta_h[1:], Y, closed[1:])
+        return _layer_factors(*layers[0], eta_h[0], below, closed[0])
 
 
 def stack_compliance(tensors, s, eta_h, theta) -> np.ndarray:
