@@ -164,24 +164,6 @@ def _find(doc, key):
     return next((v for v in found if v is not None), None)
 
 
-def test_demo_without_the_maps_extra_leaves_the_map_out_in_one_line(tmp_path, monkeypatch):
-    """Installed without the ``maps`` extra (xarray cannot be imported), the demo writes every
-    other part and says in one line which step it left out and what to install."""
-    import sys
-
-    monkeypatch.setitem(sys.modules, "xarray", None)  # import xarray -> ImportError
-    out = tmp_path / "demo"
-    r = run("demo", "--out", str(out))
-    assert r.exit_code == 0, r.output
-    notes = [line for line in r.stderr.splitlines() if "left out" in line]
-    # One line for each map: the polycrystal map and the contact-resonance map.
-    assert len(notes) == 2 and all("contactres[maps]" in line for line in notes)
-    assert all(len(line) <= 130 for line in notes), notes  # issue 30: was 221 characters
-    assert "polycrystal map" in notes[0] and "contact-resonance AFM map" in notes[1]
-    assert not (out / "polycrystal").exists() and not (out / "cr-map").exists()
-    assert (out / "crystals.csv").is_file() and (out / "coated-contact" / "contact.csv").is_file()
-
-
 @pytest.mark.parametrize(
     "name",
     [

@@ -315,9 +315,10 @@ def evaluate_map(
     from Zarr, rechunked, so each worker reads its own chunks), ``map_blocks`` applies the
     shared block function, and the blocks' futures are gathered as they complete. dask's
     worker processes run with ``MALLOC_TRIM_THRESHOLD_=65536`` by default, which makes
-    :class:`ExactModulus` ~1.6x slower per pixel (large temporaries); set
-    ``distributed.nanny.pre-spawn-environ`` without it (``benchmarks/bench_polycrystal_dask.py``
-    does).
+    :class:`ExactModulus` ~2.7x slower per pixel than the serial path (its large temporaries are
+    mapped and unmapped at every call); start the workers with ``MALLOC_TRIM_THRESHOLD_`` and
+    ``MALLOC_MMAP_THRESHOLD_`` both raised in ``distributed.nanny.pre-spawn-environ``, as the
+    guide's "On a dask cluster" and ``benchmarks/bench_polycrystal_dask.py`` do.
     """
     cy, cx = _check_chunks(chunks)
     if client is not None and scheduler is not None:
