@@ -25,6 +25,10 @@ normal problem (:mod:`contactres.dynamic._table`): a complex contour above the b
 and the Rayleigh pole (so loss -> 0⁺ is exact), the hand-over segment, and the far field as a
 Chebyshev series in w = (T₁/κ)² per angular harmonic, integrated against products of the
 transforms on the far-field grid (:mod:`contactres.dynamic._farfield`), plus its closed-form tail.
+Those products are formed as H_a H_b = Σ S_ap S_bq j_p j_q from the products of the spherical
+Bessel functions (fewer than the radial pairs), and beyond the hand-over of the largest k a
+the Chebyshev terms are polynomials in w, integrated as moments shared by every k a
+(:func:`_far_rows`).
 
 The transforms of the λ-derivative functions are used in the dynamic remainder through their
 expansion in the polynomial ones (Neumann series H^{(d)} = Σ_q A_q j_{``|n|+2q``}, with A_q from the
@@ -32,10 +36,18 @@ same closed-form integrals, orthogonality of the j_p), truncated at Q terms; the
 for ``|s|`` below about ``|n| + 2Q``, and the remainder's weight ~(k_s a/s)² makes the truncation
 error fall like Q^{-3.5} × the small enrichment coefficients (measured in the tests against 2Q).
 
-The solve is done in the eigenbasis of the static matrix (Hermitian, positive definite up to
-the nearly dependent directions of the enriched basis, which carry no energy and are dropped
-below 1e-14 of the largest eigenvalue), so that the dynamic matrix I + V'ᴴ ΔM V' is well
+The phases are D M' D* with D = diag(i^{``|n|``}), and D B = B (only n = 0 carries force), so
+Bᵀ M⁻¹ B = Bᵀ M'⁻¹ B: the solve needs no phases. The static matrix M0 (Hermitian, positive
+definite up to the nearly dependent directions of the enriched basis, which carry no energy)
+is scaled to a unit diagonal, diag(M0)^{-1/2} M0 diag(M0)^{-1/2}; when none of its eigenvalues is
+below 1e-14 of the largest (every default basis: its condition number is ~3e5), M is solved
+directly in that scaling. Otherwise (a doubled basis) the solve is done in the eigenbasis of
+the static matrix without those directions, so that the dynamic matrix I + V'ᴴ ΔM V' is well
 conditioned.
+
+On a face that is a mirror plane of the crystal (cubic (001), isotropic) the kernel has no odd
+angular harmonics (:func:`odd_free`): the functions of odd n then decouple from those of even
+n, which carry the force, and only the latter are kept (:meth:`_Basis.even_part`).
 
 Accuracy (rtol = 1e-6 default, k_s a <= 2; tests): against the independent isotropic reference
 (tests/dynamic/tangential_isotropic_reference.py) and against every discretisation doubled.
@@ -57,7 +69,7 @@ from scipy import special
 
 from .._threads import one_blas_thread
 from ..errors import ContactresInputError
-from ._farfield import far_basis, far_grid
+from ._farfield import FarGrid, far_basis, far_grid
 from ._tangential_static import CAUCHY_POINTS, CAUCHY_RADIUS, load_derivatives, radial_integrals
 from ._tangential_table import TangentialTable, prepare_tangential
 from ._weights import spherical_bessel
@@ -161,6 +173,48 @@ class _Basis:
         """The static matrix of the undamped kernel, in the normalisation of M."""
         return self.static_of(self.ginf0)
 
+    def even_part(self) -> _Basis:
+        """The functions of even harmonic n (with their radial functions): those that carry
+        force (n = 0) and, under a kernel without odd harmonics (:func:`odd_free`), all that
+        couple to them: the others decouple exactly."""
+        keep = self.n % 2 == 0
+        live = self.rad_n % 2 == 0
+        renumber = np.cumsum(live) - 1
+        return _Basis(
+            self.alpha[keep],
+            self.n[keep],
+            renumber[self.radial[keep]],
+            self.rad_n[live],
+            self.rad_p[live],
+            self.rad_d[live],
+            self.series[live],
+            self.p_max,
+            self.load[keep],
+            self.form[np.ix_(keep, keep)],
+            self.max_order,
+            self.ginf0,
+        )
+
+
+# Odd kernel harmonics at most this fraction of the largest count as zero (odd_free): on a
+# mirror-plane face they are round-off, ~1e-16 of it.
+_ODD_TOL = 1e-13
+
+
+def odd_free(table: TangentialTable) -> bool:
+    """Whether the in-plane kernel of ``table`` has no odd angular harmonics (static part,
+    near-field values and far-field coefficients alike). Ĝ(θ + π) = Ĝ(θ)ᵀ, so the odd
+    harmonics are those of its antisymmetric part, which vanishes when the surface is a mirror
+    plane of the crystal (cubic (001) and (011), isotropic) but not in general (cubic (111),
+    AT-cut quartz: a few % of the symmetric part)."""
+    order = np.arange(-table.max_order, table.max_order + 1)
+    odd = order % 2 == 1
+    far = table.far_coeffs.reshape(order.size, 4, -1)
+    return all(
+        np.max(np.abs(a[odd])) <= _ODD_TOL * np.max(np.abs(a))
+        for a in (table.ginf0, table.near_values.swapaxes(0, 1), far)
+    )
+
 
 def _series_integrals(pa: np.ndarray, pb: np.ndarray, n_log: int) -> np.ndarray:
     """∂^d_λ R(p_a, λ; p_b, 0) at λ = 0, d = 0..n_log (R of
@@ -257,76 +311,171 @@ def phase_of(n: np.ndarray) -> np.ndarray:
     return 1j ** ((np.abs(n)[:, None] - np.abs(n)[None, :]) % 4)
 
 
-# The largest block of far-field products H_a H_b formed at once (bytes): 256 MB.
-_FAR_BLOCK_BYTES = 2**28
+# The largest block of far-field products j_p j_q formed at once (bytes): 1 MB. Small blocks
+# keep memory bounded and are faster: a fresh array of many MB costs as much in page faults as
+# the products in it (measured: the far-field integrals of Cu(123) in 7 ms instead of 14).
+_FAR_BLOCK_BYTES = 2**20
+
+
+def _far_rows(table: TangentialTable, ka: np.ndarray, grid):
+    """The far-field rows of a call, split where the kernel's w-polynomials take over.
+
+    ∫ ds T_f(2w − 1) w (1 − χ(s/ka)) X(s), w = (T₁ ka/s)², for every (k a, Chebyshev term f) is
+    needed for X = every product j_p j_q. Beyond S = 2T₁ max(ka) the hand-over χ is 0 for every
+    k a of the call, and T_f(2w − 1) w = Σ_k A_fk w^k (k = 1..f + 1, the shifted Chebyshev
+    polynomial's coefficients), w = λ v with λ = (T₁ ka/S)² <= 1/4 and v = (S/s)² <= 1: there
+    the integral is Σ_k A_fk λ^k ∫ v^k X ds, nf moments of X over the grid instead of na nf
+    rows. (The monomial form loses ~3 of the 16 digits in cancellation: the coefficients grow
+    like 4^f, its terms are <= 4^f 4^{-k}.)
+
+    Returns ``(low, cut, moments, mix)``: ``low`` (na nf, cut) the rows on the grid nodes below
+    S, ``moments`` (nf, ns − cut) the weights v^k ds on the others, ``mix`` (na nf, nf) the
+    A_fk λ^k that combine the moments.
+    """
+    top = 2 * table.t1 * float(np.max(ka))
+    cut = int(np.searchsorted(grid.s, top))
+    below = FarGrid(grid.s[:cut], grid.ds[:cut], grid.s_end)
+    far = far_basis(table, ka, below).basis  # (na, cut, nf)
+    na, nf = far.shape[0], far.shape[2]
+    low = np.moveaxis(far, -1, 1).reshape(na * nf, cut)
+    v = (top / grid.s[cut:]) ** 2
+    k = np.arange(1, nf + 1)
+    moments = v[None, :] ** k[:, None] * grid.ds[None, cut:]  # (nf, ns − cut)
+    # A_fk: T_f(2w − 1) w in powers of w.
+    shifted = np.zeros((nf, nf))
+    for f in range(nf):
+        poly = np.polynomial.Chebyshev.basis(f, domain=[0, 1]).convert(
+            kind=np.polynomial.Polynomial
+        )
+        shifted[f, : f + 1] = poly.coef
+    lam = (table.t1 * ka / top) ** 2
+    mix = (shifted[None, :, :] * lam[:, None, None] ** k[None, None, :]).reshape(na * nf, nf)
+    return low, cut, moments, mix
+
+
+def _far_gram(basis: _Basis, rows, grid) -> np.ndarray:
+    """∫ ds row(s) H_a(s) H_b(s) on the far grid for every row of ``rows`` (those of
+    :func:`_far_rows`) and radial pair, (n_rows, nrad, nrad): the integrals of the products
+    j_p j_q of the spherical Bessel functions, then H_a H_b = Σ S_ap S_bq j_p j_q (S =
+    ``basis.series``). There are fewer orders p than radial functions (30 against 66 at ``|n|``
+    <= 8), so this forms a third of the products H_a H_b over the grid and multiplies a third as
+    many by the rows."""
+    low, cut, moments, mix = rows
+    ns = grid.s.size
+    # The orders some radial function uses (only the even ones in an even_part basis).
+    live = np.flatnonzero(np.any(basis.series != 0, axis=0))
+    jf = spherical_bessel(basis.p_max, grid.s)[live]  # (live orders, ns)
+    nl = live.size
+    gram = np.empty((low.shape[0], nl, nl))
+    # By blocks of orders p, with every q >= p: the products of a doubled basis on a doubled
+    # grid are 0.6 GB (issue 31: the convergence test once peaked at 6.6 GB).
+    most = max(nl, _FAR_BLOCK_BYTES // (8 * ns))
+    p0 = 0
+    while p0 < nl:
+        p1, count = p0, 0
+        while p1 < nl and (p1 == p0 or count + nl - p1 <= most):
+            count, p1 = count + nl - p1, p1 + 1
+        prod = np.empty((count, ns))  # j_p j_q, p0 <= p < p1, q >= p
+        at = 0
+        for p in range(p0, p1):
+            np.multiply(jf[p], jf[p:], out=prod[at : at + nl - p])
+            at += nl - p
+        part = low @ prod[:, :cut].T + mix @ (moments @ prod[:, cut:].T)
+        at = 0
+        for p in range(p0, p1):
+            gram[:, p, p:] = part[:, at : at + nl - p]
+            gram[:, p:, p] = part[:, at : at + nl - p]
+            at += nl - p
+        p0 = p1
+    series = basis.series[:, live]
+    return series @ gram @ series.T
+
+
+def _layout(basis: _Basis) -> tuple[np.ndarray, int]:
+    """The harmonics n of the basis (sorted) and the radial functions per harmonic, checking
+    the order basis_of and even_part give: α, then n, then the radial functions of ``|n|``,
+    numbered in the order of ``|n|``."""
+    harmonics = np.unique(basis.n)
+    per_n = basis.n.size // (2 * harmonics.size)
+    magnitudes = np.unique(np.abs(harmonics))
+    j = np.arange(per_n)
+    alpha, n, radial = (
+        np.repeat(np.arange(2), harmonics.size * per_n),
+        np.tile(np.repeat(harmonics, per_n), 2),
+        np.tile((np.searchsorted(magnitudes, np.abs(harmonics))[:, None] * per_n + j).ravel(), 2),
+    )
+    if not (
+        np.array_equal(basis.alpha, alpha)
+        and np.array_equal(basis.n, n)
+        and np.array_equal(basis.radial, radial)
+    ):
+        raise RuntimeError("a basis not in the order of basis_of")
+    return harmonics, per_n
 
 
 def _dynamic_part(table: TangentialTable, basis: _Basis, ka: np.ndarray, grid) -> np.ndarray:
     """∫ ds (h − h∞)(s/ka) H_a H_b of every basis pair, (na, nb, nb), without the phase;
-    ``grid`` is the far-field grid of the whole call (:func:`~.farfield.far_grid`)."""
+    ``grid`` is the far-field grid of the whole call (:func:`~.farfield.far_grid`).
+
+    An entry is the integral of the kernel harmonic m = n_b − n_a, component (α_a, β_b), against
+    the product of two radial functions. They are computed by blocks of one (``|n_a|``,
+    ``|n_b|``), ``|n_a|`` <= ``|n_b|``: every radial pair of the block with its harmonics
+    m = ±``|n_a|`` ± ``|n_b|`` and the four components, each once, then written to the entries of
+    every sign of n_a and n_b, and transposed to those of (``|n_b|``, ``|n_a|``).
+    """
     na = ka.size
-    nrad = basis.series.shape[0]
-    iu, ju = np.triu_indices(nrad)
-    # Per distinct (radial pair, harmonic m): which entries read it.
-    nb = basis.n.size
-    pair_of = np.empty((nrad, nrad), dtype=int)
-    pair_of[iu, ju] = np.arange(iu.size)
-    pair_of[ju, iu] = np.arange(iu.size)
-    ra, rb = basis.radial[:, None], basis.radial[None, :]
-    entry_pair = np.broadcast_to(pair_of[ra, rb], (nb, nb))
-    entry_m = basis.n[None, :] - basis.n[:, None] + table.max_order
-    entry_c = 2 * basis.alpha[:, None] + basis.alpha[None, :]
-    key = (entry_pair * (2 * table.max_order + 1) + entry_m).ravel()
-    uniq, inverse = np.unique(key, return_inverse=True)
-    u_pair, u_m = uniq // (2 * table.max_order + 1), uniq % (2 * table.max_order + 1)
-    out = np.zeros((na, uniq.size, 4), dtype=complex)
+    harmonics, per_n = _layout(basis)
+    nn = harmonics.size
+    out = np.empty((na, 2, nn, per_n, 2, nn, per_n), dtype=complex)
     # Near field: s = ka κ on the contour and the hand-over segment.
     s = ka[:, None] * table.near_kappa[None, :]  # (na, nk)
     jp = spherical_bessel(basis.p_max, s)  # (p, na, nk)
-    h = np.tensordot(basis.series, jp, axes=(1, 0))  # (nrad, na, nk)
+    h = np.tensordot(basis.series, jp, axes=(1, 0)).transpose(1, 0, 2)  # (na, nrad, nk)
     wk = table.near_weight[None, :] * ka[:, None]
-    nv = table.near_values.reshape(table.near_kappa.size, -1, 4)  # (nk, nm, 4)
-    hw = h * wk[None]
     nk = wk.shape[1]
-    for m in np.unique(u_m):
-        sel = np.flatnonzero(u_m == m)
-        pr = u_pair[sel]
-        prod = hw[iu[pr]] * h[ju[pr]]  # (n_sel, na, nk)
-        part = (prod.reshape(-1, nk) @ nv[:, m]).reshape(sel.size, na, 4)
-        out[:, sel] += part.transpose(1, 0, 2)
-    # Far field: Chebyshev series of each harmonic against the products on the far grid.
-    far = far_basis(table, ka, grid)  # basis (na, ns, nf)
-    jf = spherical_bessel(basis.p_max, grid.s)  # (p, ns)
-    hf = basis.series @ jf  # (nrad, ns)
-    nf = far.basis.shape[-1]
-    ns = grid.s.size
-    # (na nf, ns) @ (ns, npairs): one product over the grid for every (k a, Chebyshev term),
-    # by blocks of pairs: the products H_a H_b of a doubled basis on the far grid are 3 GB
-    # (32,000 pairs x 13,000 points), and their gathering held two such arrays at once (issue
-    # 31: the convergence test peaked at 6.6 GB). A basis whose products fit one block (every
-    # default size) takes one product, as before, so its results are unchanged to the bit.
-    far_rows = np.moveaxis(far.basis, -1, 1).reshape(na * nf, ns)
-    phi = np.empty((na * nf, iu.size))
-    step = max(1, _FAR_BLOCK_BYTES // (8 * ns))
-    for i0 in range(0, iu.size, step):
-        block = slice(i0, i0 + step)
-        prod_f = hf[iu[block]] * hf[ju[block]]  # (pairs of the block, ns)
-        phi[:, block] = far_rows @ prod_f.T
-    phi = phi.reshape(na, nf, -1)
+    nv = table.near_values.reshape(nk, -1, 4)  # (nk, nm, 4)
+    hw = h * wk[:, None, :]
+    # Far field: Chebyshev series of each harmonic against the products on the far grid, one
+    # product over the grid for every (k a, Chebyshev term).
+    nf = table.far_coeffs.shape[1]
+    phi = _far_gram(basis, _far_rows(table, ka, grid), grid)
+    phi = phi.reshape(na, nf, *basis.series.shape[:1] * 2)
     coef = table.far_coeffs.reshape(-1, 4, nf)  # (nm, 4, nf)
-    for m in np.unique(u_m):
-        sel = np.flatnonzero(u_m == m)
-        out[:, sel] += np.matmul(coef[m], phi[:, :, u_pair[sel]]).transpose(0, 2, 1)
     # Beyond the grid: h − h∞ -> w C₁, H_a H_b -> (α_a α_b + β_a β_b)/(2 s²) on average.
     p = np.arange(basis.p_max + 1)
     amp_s = basis.series @ np.cos(p * np.pi / 2)
     amp_c = basis.series @ -np.sin(p * np.pi / 2)
-    avg = amp_s[iu] * amp_s[ju] + amp_c[iu] * amp_c[ju]  # (npairs,)
+    avg = np.outer(amp_s, amp_s) + np.outer(amp_c, amp_c)
     c1 = coef @ np.where(np.arange(nf) % 2 == 0, 1.0, -1.0)  # (nm, 4)
     scale = (table.t1 * ka) ** 2 / (6 * grid.s_end**3)
-    out += scale[:, None, None] * (avg[u_pair][:, None] * c1[u_m])[None]
-    full = out[:, inverse, entry_c.ravel()]  # (na, nb*nb)
-    return full.reshape(na, nb, nb)
+    magnitudes = np.unique(np.abs(harmonics))
+    for ia, n_a in enumerate(magnitudes):
+        ra = slice(ia * per_n, (ia + 1) * per_n)
+        for ib in range(ia, magnitudes.size):
+            n_b = magnitudes[ib]
+            rb = slice(ib * per_n, (ib + 1) * per_n)
+            ms = np.unique([n_a + n_b, n_a - n_b, n_b - n_a, -n_a - n_b])
+            cols = ms + table.max_order
+            prod = hw[:, ra, None, :] * h[:, None, rb, :]  # (na, per_n, per_n, nk)
+            near = prod.reshape(-1, nk) @ nv[:, cols].reshape(nk, -1)
+            # (na, m, component, j_a, j_b)
+            part = np.matmul(coef[cols].reshape(-1, nf), phi[:, :, ra, rb].reshape(na, nf, -1))
+            part += near.reshape(na, per_n * per_n, -1).transpose(0, 2, 1)
+            part = part.reshape(na, ms.size, 2, 2, per_n, per_n)
+            tail = scale[:, None, None, None] * c1[cols].reshape(1, -1, 2, 2)
+            part += tail[..., None, None] * avg[ra, rb]
+            for sa in {-n_a, n_a}:
+                for sb in {-n_b, n_b}:
+                    i, j = np.searchsorted(harmonics, [sa, sb])
+                    # Rows of harmonic sa, columns sb: m = sb − sa.
+                    block = part[:, np.searchsorted(ms, sb - sa)]  # (na, α, β, j_a, j_b)
+                    out[:, :, i, :, :, j, :] = block.transpose(0, 1, 3, 2, 4)
+                    if n_a != n_b:
+                        # Rows of harmonic sb, columns sa: m = sa − sb, the pair transposed.
+                        block = part[:, np.searchsorted(ms, sa - sb)]
+                        out[:, :, j, :, :, i, :] = block.transpose(0, 1, 4, 2, 3)
+    nb = basis.n.size
+    return out.reshape(na, nb, nb)
 
 
 @dataclass(frozen=True, eq=False)
@@ -399,11 +548,25 @@ def tangential_per_a(
         # A table prepared for fewer harmonics than this basis: a fault of the caller.
         raise RuntimeError("the basis needs more kernel harmonics than the table holds")
     out = np.empty((ksa.size, 2, 2), dtype=complex)
-    # Static eigenbasis (undamped, Hermitian): well-conditioned coordinates for every k a.
     b0 = basis_of(table, size)
-    frame = eigen_frame(phase_of(b0.n) * b0.static, b0.load)
+    if odd_free(table):
+        b0 = b0.even_part()
+    # The static matrix without the phases (module docstring), Hermitian, scaled to a unit
+    # diagonal; the loads in the same scaling.
+    m0 = 0.5 * (b0.static + b0.static.conj().T)
+    d = 1.0 / np.sqrt(np.real(np.diagonal(m0)))
+    m0 = d[:, None] * m0 * d[None, :]
+    loads = d[:, None] * b0.load
+    w = np.linalg.eigvalsh(m0)
+    frame = None
+    if w[0] > _EIG_CUTOFF * w[-1]:
+        static = (loads.T @ np.linalg.solve(m0, loads)).real
+    else:
+        # Nearly dependent directions: the static eigenbasis without them.
+        frame = eigen_frame(phase_of(b0.n) * b0.static, b0.load)
+        static = frame.static
     f = 1 + 1j * table.loss
-    k_static = 4 * np.pi**2 * table.c44 * frame.static  # undamped, symmetric
+    k_static = 4 * np.pi**2 * table.c44 * 0.5 * (static + static.T)  # undamped, symmetric
     zero = ksa == 0
     out[zero] = k_static * f
     pos = ~zero
@@ -418,8 +581,19 @@ def tangential_per_a(
         res = np.empty((ka.size, 2, 2), dtype=complex)
         # Chunks of k a values: memory stays bounded (~30 MB) whatever the call's size.
         for lo in range(0, ka.size, _CHUNK):
-            dyn = film_dynamic(table, b0, ka[lo : lo + _CHUNK], grid)
-            res[lo : lo + _CHUNK] = frame_solve(frame, table.loss, dyn)
+            chunk = ka[lo : lo + _CHUNK]
+            if frame is None:
+                # In place: a fresh array of this size costs as much in page faults as the
+                # arithmetic on it.
+                dyn = _dynamic_part(table, b0, chunk, grid)
+                dyn *= d[None, :, None]
+                dyn *= d[None, None, :]
+                dyn += m0 / f
+                sol = np.linalg.solve(dyn, np.broadcast_to(loads, (chunk.size, *loads.shape)))
+                res[lo : lo + _CHUNK] = loads.T @ sol
+            else:
+                dyn = film_dynamic(table, b0, chunk, grid)
+                res[lo : lo + _CHUNK] = frame_solve(frame, table.loss, dyn)
         out[pos] = 4 * np.pi**2 * table.c44 * res
         if np.any(small):
             scale = (ksa[small] / KSA_SMALL)[:, None, None]
