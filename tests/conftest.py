@@ -1,5 +1,7 @@
 """Test configuration: a fast, deterministic hypothesis profile for `make test`."""
 
+from dataclasses import replace
+
 import pytest
 from hypothesis import HealthCheck, settings
 
@@ -44,6 +46,38 @@ def kelvin_voigt_resonance(lever, k_star, tan_delta, tip_position):
 def kelvin_voigt():
     """:func:`kelvin_voigt_resonance`, for the tests of contact-resonance maps."""
     return kelvin_voigt_resonance
+
+
+def water_study_analysis(seed: int, plateau: float = 0.3):
+    """Paper 2's water configurations (validation_study) with a share ``plateau`` of loads with
+    a stick plateau, no drift and no Savkoor experiment: the analysis, and its sweeps with the
+    truth."""
+    from contactres.analysis import AnalysisSettings, analyze
+    from contactres.measurements import synthetic_sweeps, validate_sweeps, validation_study
+
+    base = validation_study(4)
+    study = replace(
+        base,
+        groups=tuple(g for g in base.groups if g.medium == "water"),
+        random_plateau=plateau,
+        drifts=(),
+        savkoor_experiments=(),
+    )
+    raw = synthetic_sweeps(study, seed, truth=True)
+    truth_cols = [c for c in raw.columns if c.startswith("true_")]
+    table = validate_sweeps(
+        raw.drop(columns=truth_cols), constants=dict(overtone=3, area_m2=2.5e-5, n_contacts=3)
+    )
+    res = analyze(table, settings=AnalysisSettings(bootstrap=0))
+    truth = raw.drop_duplicates("sweep")[["sweep", *truth_cols]]
+    return res, res.sweeps.merge(truth, on="sweep", validate="one_to_one")
+
+
+@pytest.fixture(scope="session")
+def water_study():
+    """``water_study(seed, plateau=0.3) -> (results, sweeps with the truth)``: paper 2's water
+    configurations with a share ``plateau`` of plateau loads (issue 27, point 11)."""
+    return water_study_analysis
 
 
 def pytest_sessionfinish(session, exitstatus):
