@@ -45,6 +45,12 @@ AFM_GROUP_COLUMNS = (
 _MODES = (1, 2, 3)
 #: The Hertz and reference inputs of the modulus step (floats; NaN where blank).
 _MODULUS_INPUTS = ("tip_radius_m", "load_N", "M_tip_Pa", "hardness_Pa", "M_ref_Pa", "M_ref2_Pa")
+#: The largest fc/f0 a RUM row may have. A contact spring at the tip raises the first mode of a
+#: real oscillator at most to its pinned-tip (k* -> ∞) limit: 1.5 f0 for a rod free at the far
+#: end, (3.9266/1.8751)² = 4.39 f0 for a cantilever (the stiffest raise of the resonators a RUM
+#: or CR-AFM uses). The lumped model (f/f0)² = 1 + k*/K_eff has no limit of its own, so it takes
+#: this one: a larger ratio is a unit slip between f0_Hz and fc_Hz (kHz against Hz), not a contact.
+_MAX_RUM_RAISE = 4.39
 
 
 def _given_columns(table: pd.DataFrame) -> pd.DataFrame:
@@ -90,7 +96,9 @@ def invert_rum_table(table: pd.DataFrame, source: str = "table") -> pd.DataFrame
     Lumped rows: (f/f0)² = 1 + k*/K_eff; rod rows (mass m): k* = (EA/L)(kL) tan(kL) of a rod
     free at one end with the contact spring at the other, EA/L = 4 m f0² (mode 1; see
     :class:`~contactres.resonators.RUMOscillator`). Raises ValueError naming the line for a
-    contact resonance below f0 (a spring cannot lower it) or at/above the rod's clamped limit.
+    contact resonance below f0 (a spring cannot lower it), above 4.39 f0 (the pinned limit of a
+    cantilever, the largest raise of a real oscillator's first mode: a unit slip) or at/above the
+    rod's clamped limit.
     The rows are grouped by their calibration (one oscillator per group; a file rarely holds
     more than a few), each group converted at once.
     """
@@ -102,6 +110,13 @@ def invert_rum_table(table: pd.DataFrame, source: str = "table") -> pd.DataFrame
         raise ContactresInputError(
             f"{at_cell(table, source, below, 'fc_Hz')}: the contact resonance is below the free "
             "resonance f0_Hz of its row; a contact spring can only raise it (check the columns)"
+        )
+    far = fc > _MAX_RUM_RAISE * f0
+    if far.any():
+        raise ContactresInputError(
+            f"{at_cell(table, source, far, 'fc_Hz')}: more than {_MAX_RUM_RAISE:g} times the free "
+            "resonance f0_Hz of its row, the most a contact spring can raise the first mode of a "
+            "rod (1.5x) or cantilever (4.39x); check that f0_Hz and fc_Hz are both in Hz"
         )
     calib = np.where(lumped, table["K_eff_N_per_m"], table["mass_kg"]).astype(float)
     k_star = np.full(len(table), np.nan)
