@@ -341,3 +341,22 @@ def test_afm_reference_at_the_free_frequency_calibrates_nothing(afm_table, tmp_p
     assert r.exit_code == 0, r.output
     assert np.isnan(out.loc[0, "M_sample_Pa"]) and out.loc[0, "modulus_method"] != "reference"
     assert np.isfinite(out["M_sample_Pa"][1:]).all()
+
+
+def test_afm_tip_radius_above_a_millimetre_is_flagged_and_warned(afm_table, tmp_path):
+    """tip_radius_m = 5e-2 (50 nm typed as cm) is no CR-AFM tip (1 nm-1 µm): the row keeps its
+    values, but its flags say large-tip and one warning line names the file, line, column and
+    value; the rows with a 50 nm tip are unchanged (a mm sphere stays a valid input, see the
+    dynamic-correction test above)."""
+    path, _ = afm_table
+    frame = pd.read_csv(path)
+    _, plain = _invert(frame, tmp_path)
+    slipped = frame.assign(tip_radius_m=[50e-9, 5e-2, 50e-9])
+    r, out = _invert(slipped, tmp_path)
+    assert r.exit_code == 0, r.output
+    assert out["flags"][1] == "large-tip" and out["flags"][[0, 2]].isna().all()
+    np.testing.assert_allclose(out["M_sample_Pa"][[0, 2]], plain["M_sample_Pa"][[0, 2]])
+    warned = [line for line in r.output.splitlines() if line.startswith("warning:")]
+    assert len(warned) == 1
+    assert "t.csv, line 3, column 'tip_radius_m': value 0.05" in warned[0]
+    assert "check the unit" in warned[0]

@@ -12,11 +12,13 @@ crossing of two modes, a mode without sensitivity) keep empty results and say wh
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 import pandas as pd
 
 from ..dynamic import prepare
-from ..errors import ContactresInputError
+from ..errors import ContactresInputError, ContactresWarning
 from ..measurements import at_cell, where_rows
 from ..resonators import (
     FREE_TOLERANCE,
@@ -51,6 +53,10 @@ _MODULUS_INPUTS = ("tip_radius_m", "load_N", "M_tip_Pa", "hardness_Pa", "M_ref_P
 #: or CR-AFM uses). The lumped model (f/f0)² = 1 + k*/K_eff has no limit of its own, so it takes
 #: this one: a larger ratio is a unit slip between f0_Hz and fc_Hz (kHz against Hz), not a contact.
 _MAX_RUM_RAISE = 4.39
+#: Tip radius (m) above which a CR-AFM row is flagged ``large-tip``, with a warning: a CR-AFM tip
+#: is 1 nm-1 µm, so 5e-2 is most likely nm or µm typed as m (M comes out 1e4 times too small).
+#: Not an error: a sphere of mm size (a RUM-like contact, paper 1) is a valid input.
+LARGE_TIP_M = 1e-3
 
 
 def _given_columns(table: pd.DataFrame) -> pd.DataFrame:
@@ -271,6 +277,10 @@ def invert_afm_table(
     (dynamic) κ; the correction then changes each mode's κ by its own factor. The reference
     rows are not corrected: sample and reference are measured at nearly the same frequency and
     contact size, so their corrections cancel to second order in k_l a.
+
+    A tip radius above :data:`LARGE_TIP_M` (1 mm) is kept but flagged ``large-tip`` with a
+    :class:`~contactres.errors.ContactresWarning` naming the first such cell: a CR-AFM tip is
+    1 nm-1 µm, a larger value is most often a unit slip, while a mm sphere is a valid contact.
     """
     fc = table[[f"fc{n}_Hz" for n in _MODES]].to_numpy(float)
     none = np.isnan(fc).all(axis=1)
@@ -396,6 +406,16 @@ def invert_afm_table(
         corrected = np.isfinite(dyn["k_static"]) & (out["modulus_method"] != "")
         out.loc[corrected, "modulus_method"] = out.loc[corrected, "modulus_method"] + " + dynamic"
     text = [_flag_text(flags, flag_names), _flag_text(mod["modulus_flags"], _modulus_names)]
-    out["flags"] = [";".join(t for t in pair if t) for pair in zip(*text, strict=True)]
+    large = np.nan_to_num(col["tip_radius_m"]) > LARGE_TIP_M  # issue 27: no silent unit slip
+    text.append(np.where(large, "large-tip", ""))
+    if large.any():
+        warnings.warn(
+            f"{at_cell(table, source, large, 'tip_radius_m')} m: above 1 mm in "
+            f"{int(large.sum())} row(s), flagged large-tip; check the unit (a CR-AFM tip is "
+            "1 nm-1 µm; a sphere of mm size is accepted)",
+            ContactresWarning,
+            stacklevel=2,
+        )
+    out["flags"] = [";".join(t for t in row if t) for row in zip(*text, strict=True)]
     out["normalisation"] = normalisation
     return out

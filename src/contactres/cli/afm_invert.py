@@ -153,6 +153,8 @@ def afm_invert(
     done = job.run(table, settings, progress=lambda text: step("afm invert", text))
     result = done.table
     write_csv(out, computed_rounded(result, done.input_columns))
+    for message in done.warnings:  # e.g. a tip radius above 1 mm: one line, not a refusal
+        click.echo(f"warning: {message}", err=True)
     if fmt != "plain":
         emit(result, fmt)
         return
