@@ -637,6 +637,7 @@ PUBLIC = {
     "jobs.maps_predict": [
         *JOB_API,
         "TRIANGLE_GRID",
+        "check_phase_name",
     ],
     "jobs.paper1": [
         *JOB_API,

@@ -437,6 +437,8 @@ BAD = [
     ("predict", PRE, "--max-mad", "0", ("--max-mad",)),
     ("predict", PRE, "--phase", "3", ("phase 3",)),
     ("predict", PRE, "--coating", "unobtainium:1e-8", ("--coating", "unobtainium")),
+    # a flag takes no value: the word after it is refused as an extra argument
+    ("predict", PRE, "--ignore-phase-name", "maybe", ("unexpected extra argument", "maybe")),
     ("fit", FIT, "map", "nosuch.zarr", ("MAP", "nosuch.zarr")),
     ("fit", FIT, "--out", "nodir/f.json", ("nodir",)),
     ("fit", FIT, "--values", "badcell.csv", ("badcell.csv", "row 3", "column 5", "1.3e3x")),

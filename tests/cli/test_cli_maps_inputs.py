@@ -120,3 +120,55 @@ def test_ebsd_points_spanning_a_huge_grid_are_refused_before_allocating(tmp_path
     path.write_text(head + "\n".join(rows) + "\n")
     with pytest.raises(ContactresInputError, match=r"far\.ang: the points span a grid of"):
         read_ebsd(path)
+
+
+# ---- the EBSD export's phase name against the crystal given (issue 27) -----------------------
+
+
+@pytest.fixture(scope="module")
+def small_map():
+    return synthetic_polycrystal((8, 8), 3, seed=2)
+
+
+@pytest.mark.parametrize("suffix", [".ang", ".ctf"])
+def test_a_map_named_as_another_crystal_is_refused_unless_overridden(small_map, tmp_path, suffix):
+    from contactres.polycrystal import ebsd_phase, write_ang, write_ctf
+
+    write = write_ang if suffix == ".ang" else write_ctf
+    path = write(tmp_path / f"li{suffix}", small_map, ebsd_phase("Li"))
+    out = tmp_path / "o.zarr"
+    r = run("maps", "predict", path, "--crystal", "Cu", *TIP, "--out", out)
+    line = one_line_error(r, f"li{suffix}", "'Li'", "Cu", "--crystal", "--ignore-phase-name")
+    assert "phase 1" in line and not out.exists()
+    r = run("maps", "predict", path, "--crystal", "Cu", *TIP, "--out", out, "--ignore-phase-name")
+    assert r.exit_code == 0, r.output
+    soft = ["--tip-radius", 2e-8, "--force", 1e-8]  # Li is soft: a Hertz contact at 10 nN
+    r = run("maps", "predict", path, "--crystal", "li", *soft, "--out", tmp_path / "li.zarr")
+    assert r.exit_code == 0, r.output  # the name is compared case-insensitively
+
+
+@pytest.mark.parametrize(
+    ("name", "crystal", "refused"),
+    [
+        ("Copper", "Cu", False),
+        ("COPPER", "Cu", False),
+        ("Iron (Alpha)", "Fe", False),
+        ("Nickel", "Cu", True),
+        ("lithium", "Cu", True),
+        ("Phase 1", "Cu", False),  # names no built-in crystal: nothing to compare
+        ("Brass", "Cu", False),
+    ],
+)
+def test_phase_names_compare_as_symbol_or_common_name(small_map, tmp_path, name, crystal, refused):
+    from dataclasses import replace
+
+    from contactres.jobs.maps_predict import check_phase_name
+    from contactres.materials import Material
+    from contactres.polycrystal import ebsd_phase, write_ang
+
+    path = write_ang(tmp_path / "m.ang", small_map, replace(ebsd_phase("Cu"), name=name))
+    if refused:
+        with pytest.raises(ContactresInputError, match="--ignore-phase-name"):
+            check_phase_name(path, Material.crystal(crystal))
+    else:
+        check_phase_name(path, Material.crystal(crystal))

@@ -113,6 +113,30 @@ def test_rum_invert_lumped_closed_form(tmp_path):
     assert r.exit_code != 0 and "K_eff_N_per_m" in r.output
 
 
+@pytest.mark.parametrize(
+    "row",
+    [
+        "1,1000,1.01e6,1e5",  # f0 in kHz written as Hz
+        "1,1e6,1.01e9,1e5",  # fc 1000 times too large (kHz figures read as MHz)
+    ],
+)
+def test_rum_contact_resonance_far_above_the_free_one_is_a_unit_slip(tmp_path, row):
+    """A contact spring raises the first mode at most to its pinned limit (1.5 f0 for a rod,
+    4.39 f0 for a cantilever); fc ~ 1000 f0 is f0 and fc in different units, an error naming
+    the file, line, column and value rather than k* = 1e11 N/m."""
+    path = tmp_path / "rum.csv"
+    path.write_text(f"pixel,f0_Hz,fc_Hz,K_eff_N_per_m\n{row}\n")
+    r = _run("rum", "invert", str(path), "--out", str(tmp_path / "o.csv"))
+    assert r.exit_code != 0 and not (tmp_path / "o.csv").exists()
+    assert "rum.csv, line 2, column 'fc_Hz': value" in r.output and "4.39" in r.output
+    # the largest raise a cantilever allows is accepted: k* = 1e5 (4.3² - 1) N/m
+    path.write_text("pixel,f0_Hz,fc_Hz,K_eff_N_per_m\n1,1e6,4.3e6,1e5\n")
+    r = _run("rum", "invert", str(path), "--out", str(tmp_path / "o.csv"))
+    assert r.exit_code == 0, r.output
+    out = pd.read_csv(tmp_path / "o.csv")
+    np.testing.assert_allclose(out["k_star_N_per_m"], [1e5 * (4.3**2 - 1)], rtol=1e-9)
+
+
 def test_afm_contact_below_the_free_lever_and_load_in_the_wrong_unit(afm_table, tmp_path):
     path, _ = afm_table
     frame = pd.read_csv(path)
@@ -317,3 +341,22 @@ def test_afm_reference_at_the_free_frequency_calibrates_nothing(afm_table, tmp_p
     assert r.exit_code == 0, r.output
     assert np.isnan(out.loc[0, "M_sample_Pa"]) and out.loc[0, "modulus_method"] != "reference"
     assert np.isfinite(out["M_sample_Pa"][1:]).all()
+
+
+def test_afm_tip_radius_above_a_millimetre_is_flagged_and_warned(afm_table, tmp_path):
+    """tip_radius_m = 5e-2 (50 nm typed as cm) is no CR-AFM tip (1 nm-1 µm): the row keeps its
+    values, but its flags say large-tip and one warning line names the file, line, column and
+    value; the rows with a 50 nm tip are unchanged (a mm sphere stays a valid input, see the
+    dynamic-correction test above)."""
+    path, _ = afm_table
+    frame = pd.read_csv(path)
+    _, plain = _invert(frame, tmp_path)
+    slipped = frame.assign(tip_radius_m=[50e-9, 5e-2, 50e-9])
+    r, out = _invert(slipped, tmp_path)
+    assert r.exit_code == 0, r.output
+    assert out["flags"][1] == "large-tip" and out["flags"][[0, 2]].isna().all()
+    np.testing.assert_allclose(out["M_sample_Pa"][[0, 2]], plain["M_sample_Pa"][[0, 2]])
+    warned = [line for line in r.output.splitlines() if line.startswith("warning:")]
+    assert len(warned) == 1
+    assert "t.csv, line 3, column 'tip_radius_m': value 0.05" in warned[0]
+    assert "check the unit" in warned[0]

@@ -16,6 +16,7 @@ from contactres.report.dictionary import (
     RUM_INVERT_RESULTS,
     SPECTRA_FITS,
     STIFFNESS_CSV,
+    TABLE_FLAGS,
     dictionary_tables,
     update_blocks,
 )
@@ -89,7 +90,8 @@ def test_resonance_flags_are_the_code():
     assert list(RESONANCE_FLAGS) == names
     table = dictionary_tables()["resonance-flags"]
     listed = [line.split("`")[1] for line in table.splitlines()[2:]]
-    assert listed == names + [f.name.lower().replace("_", "-") for f in ModulusFlag]
+    modulus = [f.name.lower().replace("_", "-") for f in ModulusFlag]
+    assert listed == names + modulus + list(TABLE_FLAGS)
 
 
 def test_invert_outputs_append_exactly_the_listed_columns():

@@ -12,10 +12,12 @@ crossing of two modes, a mode without sensitivity) keep empty results and say wh
 
 from __future__ import annotations
 
+import warnings
+
 import numpy as np
 import pandas as pd
 
-from ..errors import ContactresInputError
+from ..errors import ContactresInputError, ContactresWarning
 from ..measurements import at_cell, where_rows
 from ..resonators import (
     FREE_TOLERANCE,
@@ -44,6 +46,16 @@ AFM_GROUP_COLUMNS = (
 _MODES = (1, 2, 3)
 #: The Hertz and reference inputs of the modulus step (floats; NaN where blank).
 _MODULUS_INPUTS = ("tip_radius_m", "load_N", "M_tip_Pa", "hardness_Pa", "M_ref_Pa", "M_ref2_Pa")
+#: The largest fc/f0 a RUM row may have. A contact spring at the tip raises the first mode of a
+#: real oscillator at most to its pinned-tip (k* -> ∞) limit: 1.5 f0 for a rod free at the far
+#: end, (3.9266/1.8751)² = 4.39 f0 for a cantilever (the stiffest raise of the resonators a RUM
+#: or CR-AFM uses). The lumped model (f/f0)² = 1 + k*/K_eff has no limit of its own, so it takes
+#: this one: a larger ratio is a unit slip between f0_Hz and fc_Hz (kHz against Hz), not a contact.
+_MAX_RUM_RAISE = 4.39
+#: Tip radius (m) above which a CR-AFM row is flagged ``large-tip``, with a warning: a CR-AFM tip
+#: is 1 nm-1 µm, so 5e-2 is most likely nm or µm typed as m (M comes out 1e4 times too small).
+#: Not an error: a sphere of mm size (a RUM-like contact, paper 1) is a valid input.
+LARGE_TIP_M = 1e-3
 
 
 def _given_columns(table: pd.DataFrame) -> pd.DataFrame:
@@ -104,7 +116,9 @@ def invert_rum_table(table: pd.DataFrame, source: str = "table") -> pd.DataFrame
     Lumped rows: (f/f0)² = 1 + k*/K_eff; rod rows (mass m): k* = (EA/L)(kL) tan(kL) of a rod
     free at one end with the contact spring at the other, EA/L = 4 m f0² (mode 1; see
     :class:`~contactres.resonators.RUMOscillator`). Raises ValueError naming the line for a
-    contact resonance below f0 (a spring cannot lower it) or at/above the rod's clamped limit.
+    contact resonance below f0 (a spring cannot lower it), above 4.39 f0 (the pinned limit of a
+    cantilever, the largest raise of a real oscillator's first mode: a unit slip) or at/above the
+    rod's clamped limit.
     The rows are grouped by their calibration (one oscillator per group; a file rarely holds
     more than a few), each group converted at once.
     """
@@ -116,6 +130,13 @@ def invert_rum_table(table: pd.DataFrame, source: str = "table") -> pd.DataFrame
         raise ContactresInputError(
             f"{at_cell(table, source, below, 'fc_Hz')}: the contact resonance is below the free "
             "resonance f0_Hz of its row; a contact spring can only raise it (check the columns)"
+        )
+    far = fc > _MAX_RUM_RAISE * f0
+    if far.any():
+        raise ContactresInputError(
+            f"{at_cell(table, source, far, 'fc_Hz')}: more than {_MAX_RUM_RAISE:g} times the free "
+            "resonance f0_Hz of its row, the most a contact spring can raise the first mode of a "
+            "rod (1.5x) or cantilever (4.39x); check that f0_Hz and fc_Hz are both in Hz"
         )
     calib = np.where(lumped, table["K_eff_N_per_m"], table["mass_kg"]).astype(float)
     k_star = np.full(len(table), np.nan)
@@ -272,6 +293,10 @@ def invert_afm_table(
     (dynamic) κ; the correction then changes each mode's κ by its own factor. The reference
     rows are not corrected: sample and reference are measured at nearly the same frequency and
     contact size, so their corrections cancel to second order in k_l a.
+
+    A tip radius above :data:`LARGE_TIP_M` (1 mm) is kept but flagged ``large-tip`` with a
+    :class:`~contactres.errors.ContactresWarning` naming the first such cell: a CR-AFM tip is
+    1 nm-1 µm, a larger value is most often a unit slip, while a mm sphere is a valid contact.
     """
     fc = table[[f"fc{n}_Hz" for n in _MODES]].to_numpy(float)
     none = np.isnan(fc).all(axis=1)
@@ -400,6 +425,17 @@ def invert_afm_table(
             out[name] = dyn[name]
         corrected = np.isfinite(dyn["k_static"]) & (out["modulus_method"] != "")
         out.loc[corrected, "modulus_method"] = out.loc[corrected, "modulus_method"] + " + dynamic"
-    out["flags"] = _joined_flags(flags, mod["modulus_flags"])
+    flags_text = _joined_flags(flags, mod["modulus_flags"])
+    large = np.nan_to_num(col["tip_radius_m"]) > LARGE_TIP_M  # issue 27: no silent unit slip
+    if large.any():
+        flags_text[large] = [f"{t};large-tip" if t else "large-tip" for t in flags_text[large]]
+        warnings.warn(
+            f"{at_cell(table, source, large, 'tip_radius_m')} m: above 1 mm in "
+            f"{int(large.sum())} row(s), flagged large-tip; check the unit (a CR-AFM tip is "
+            "1 nm-1 µm; a sphere of mm size is accepted)",
+            ContactresWarning,
+            stacklevel=2,
+        )
+    out["flags"] = flags_text
     out["normalisation"] = normalisation
     return out

@@ -160,6 +160,8 @@ def afm_invert(
         write_npz(out, result)
     else:
         write_csv(out, computed_rounded(result, done.input_columns))
+    for message in done.warnings:  # e.g. a tip radius above 1 mm: one line, not a refusal
+        click.echo(f"warning: {message}", err=True)
     if fmt != "plain":
         emit(result, fmt)
         return

@@ -167,6 +167,13 @@ def maps_synthetic(
     "contact's DCSF)."
 )
 @pixel_options
+@click.option(
+    "--ignore-phase-name",
+    is_flag=True,
+    help="Predict the map as the crystal given even where the .ang/.ctf header names its phase "
+    "as another built-in crystal (symbol or common name, case-insensitive; without this option "
+    "that is an error).",
+)
 @format_option()
 def maps_predict(
     map_path,
@@ -191,6 +198,7 @@ def maps_predict(
     min_confidence,
     max_mad,
     phase,
+    ignore_phase_name,
     coating,
     fmt,
 ):
@@ -241,6 +249,7 @@ def maps_predict(
         phase=phase,
         legend=figure is not None,
         coating=tuple(coating),
+        ignore_phase_name=ignore_phase_name,
     )
     result = job.run(
         map_path,

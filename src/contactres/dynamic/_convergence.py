@@ -9,7 +9,7 @@ converged DCSF is 0.666 + 19.78i, and at A = 0.05, ν = 0.45, k_l a = 2 the defa
 
 * level 0 is the ordinary evaluation (the value :func:`~contactres.dynamic.dcsf_models` gives);
 * level L evaluates again on a kernel table whose every resolution is doubled L times
-  (:meth:`~contactres.dynamic._table.Resolution.doubled`) with 4 L more radial terms and 2 L more
+  (:meth:`~contactres.dynamic._table.Resolution.doubled`) with 4 L more radial terms and 3 L more
   angular harmonics in the exact model's Galerkin basis;
 * a value of level L is accepted when level L + 1 differs from it by at most rtol (relative):
   the estimated error of the accepted value is that difference, measured, not assumed. Values

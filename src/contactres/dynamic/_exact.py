@@ -83,13 +83,18 @@ def galerkin_size(
     ``pressure=True`` sizes the basis for the pressure field itself (:func:`contact_pressure
     <contactres.dynamic.contact_pressure>`), which converges only linearly:
     two radial terms and one harmonic more.
-    ``refine`` = L > 0 adds 4 L radial terms and 2 L harmonics: the refined evaluations of the
-    run-time convergence check (:mod:`contactres.dynamic._convergence`).
+    ``refine`` = L > 0 adds 4 L radial terms and 3 L harmonics: the refined evaluations of the
+    run-time convergence check (:mod:`contactres.dynamic._convergence`). Three, not two: the
+    check must add a harmonic the face couples, and on a six-fold (111) face (step 2) those are
+    the multiples of 6; with 2 L the first refinement went from ``|n|`` <= 6 to 10, coupled
+    nothing new, agreed with the default to 1e-9 and passed a value 3.7e-5 off at k_l a = 5
+    (issue 27). With 3 L every level adds one coupled harmonic on (001), (111) and the two-fold
+    faces alike.
     """
     extra = 2 if rtol <= 1e-8 else (0 if rtol < 1e-4 else -2)
     extra += 4 * refine
     more = 2 if pressure else 0
-    harmonics = (4 if rtol <= 1e-8 else 3) + 2 * refine
+    harmonics = (4 if rtol <= 1e-8 else 3) + 3 * refine
     return GalerkinSize(
         n_radial=max(2, math.ceil(0.6 * ksa_max) + 4 + extra + more), n_harmonics=harmonics
     )

@@ -19,6 +19,7 @@ range and the thresholds are recorded in the result (``coating``).
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass
 from pathlib import Path
 from types import MappingProxyType
@@ -26,7 +27,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..errors import ContactresInputError
+from ..errors import ContactresInputError, ContactresWarning
 from ..measurements.schema import AFM_INVERT_RESULTS
 from .contract import JobResult, Progress, say
 
@@ -84,13 +85,16 @@ class Result(JobResult):
     (:data:`contactres.measurements.schema.AFM_INVERT_RESULTS`, which lists the computed
     ones only). ``coating``: with a coating, its label, the substrate, the film's thickness
     (m), its material's modulus, the search range (Pa), the thresholds and the estimated
-    interpolation error (:func:`add_film_columns`); None without."""
+    interpolation error (:func:`add_film_columns`); None without. ``warnings``: the
+    :class:`~contactres.errors.ContactresWarning` s of the inversion, one line each (a tip
+    radius above 1 mm: check its unit)."""
 
     SCHEMAS = MappingProxyType({"table": AFM_INVERT_RESULTS})
 
     table: pd.DataFrame
     input_columns: tuple[str, ...]
     coating: dict | None = None
+    warnings: tuple[str, ...] = ()
 
 
 def run(inputs: str | os.PathLike, settings: Settings, progress: Progress | None = None) -> Result:
@@ -109,14 +113,22 @@ def run(inputs: str | os.PathLike, settings: Settings, progress: Progress | None
     say(progress, f"reading {Path(inputs).name}")
     checked = read_resonance_table(inputs, AFM_TABLE)
     say(progress, f"inverting {len(checked)} rows")
-    table = invert_afm_table(
-        checked,
-        str(Path(inputs)),
-        normalisation=s.normalisation,
-        sample=s.sample,
-        loss=s.loss,
-        mode_tolerance=s.mode_tolerance,
-    )
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", ContactresWarning)  # the user's notes, returned below
+        table = invert_afm_table(
+            checked,
+            str(Path(inputs)),
+            normalisation=s.normalisation,
+            sample=s.sample,
+            loss=s.loss,
+            mode_tolerance=s.mode_tolerance,
+        )
+    notes = []
+    for w in caught:
+        if not issubclass(w.category, ContactresWarning):  # anything else goes on as it came
+            warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
+        elif (text := " ".join(str(w.message).split())) not in notes:
+            notes.append(text)
     coating = None
     if film is not None:
         say(progress, "film modulus on the coated substrate")
@@ -129,7 +141,12 @@ def run(inputs: str | os.PathLike, settings: Settings, progress: Progress | None
             film,
             s,
         )
-    return Result(table=table, input_columns=tuple(checked.columns), coating=coating)
+    return Result(
+        table=table,
+        input_columns=tuple(checked.columns),
+        coating=coating,
+        warnings=tuple(notes),
+    )
 
 
 def coated_film(coating, substrate) -> tuple | None:

@@ -31,10 +31,13 @@ command line asks for it only with ``--figure``.
 
 from __future__ import annotations
 
+import re
 from collections.abc import Callable
 from dataclasses import dataclass
+from pathlib import Path
 from typing import TYPE_CHECKING
 
+from ..errors import ContactresInputError
 from .contract import JobResult, Progress, say
 
 if TYPE_CHECKING:
@@ -44,7 +47,7 @@ if TYPE_CHECKING:
     from ..polycrystal import TriangleModuli
     from .maps import TipLoad
 
-__all__ = ["TRIANGLE_GRID", "Result", "Settings", "run"]
+__all__ = ["TRIANGLE_GRID", "Result", "Settings", "check_phase_name", "run"]
 
 #: Grid points per axis of the standard triangle on which M is evaluated for the figure's legend.
 TRIANGLE_GRID = 81
@@ -85,6 +88,9 @@ class Settings:
         :func:`contactres.jobs.contact.parse_coating`; a viscoelastic film takes its 1 Hz
         storage constants): adds M_coated_Pa and k_star_coated_N_per_m (module docstring).
         Empty: the bare map only.
+    ignore_phase_name : bool
+        Predict the map as ``material`` even where the EBSD export names its phase as another
+        built-in crystal (:func:`check_phase_name`; default False: that is an error).
     """
 
     material: Material
@@ -101,6 +107,7 @@ class Settings:
     phase: int | None = None
     legend: bool = True
     coating: tuple = ()
+    ignore_phase_name: bool = False
 
 
 @dataclass(frozen=True)
@@ -129,7 +136,6 @@ def run(
     chunk_progress: Callable[[int, int], None] | None = None,
 ) -> Result:
     """The predicted map of the orientations ``inputs`` (see the module docstring)."""
-    from ..errors import ContactresInputError
     from ..polycrystal import (
         indentation_moduli,
         indexed_pixels,
@@ -150,6 +156,8 @@ def run(
             "coated contact on a crystal face"
         )
     hertz_flag = check_tip_load(s.material, s.tipload)
+    if not s.ignore_phase_name:
+        check_phase_name(inputs, s.material, s.phase)
     say(progress, f"reading {inputs}")
     omap, _ = open_map(inputs)
     pixels = indexed_pixels(omap, min_confidence=s.min_confidence, max_mad=s.max_mad, phase=s.phase)
@@ -225,3 +233,86 @@ def _add_coated(ds, info: dict, s: Settings, layers) -> None:
         M_coated_stated_error=f"{c.error:.2g}",
     )
     info.update(coating=label, coated_error=f"{c.error:.2g}", coated_evaluations=c.evaluations)
+
+
+#: Common names of the built-in cubic crystals (``crystals.csv``), lower case, as EBSD exports
+#: name their phases (EDAX writes e.g. "Copper", "Iron (Alpha)", "Nickel"; others the symbol).
+_COMMON_NAMES = {
+    "cu": ("copper",), "al": ("aluminium", "aluminum"), "ni": ("nickel",), "au": ("gold",),
+    "ag": ("silver",), "fe": ("iron",), "w": ("tungsten", "wolfram"), "si": ("silicon",),
+    "ge": ("germanium",), "pb": ("lead",), "li": ("lithium",), "na": ("sodium",),
+    "nacl": ("halite", "sodium chloride"), "kcl": ("sylvite", "potassium chloride"),
+    "rbbr": ("rubidium bromide",), "rbi": ("rubidium iodide",), "gaas": ("gallium arsenide",),
+    "diamond": ("diamond",),
+}  # fmt: skip
+
+
+def _crystal_of(name: str) -> str | None:
+    """The built-in crystal (lower-case symbol) a phase or material name names: its first word
+    is the symbol, or it starts with a common name (case-insensitive); None if it names none."""
+    words = re.findall(r"[a-z0-9]+", name.lower())
+    if not words:
+        return None
+    text = " ".join(words)
+    for symbol, common in _COMMON_NAMES.items():
+        if words[0] == symbol or any(text == c or text.startswith(c + " ") for c in common):
+            return symbol
+    return None
+
+
+def _header_phases(path: Path) -> dict[int, str]:
+    """Phase id -> name of an .ang (``# Phase n``, ``# MaterialName``) or .ctf header (the
+    lines after ``Phases n``: a;b;c, angles, name, ...); {} for another file."""
+    suffix = path.suffix.lower()
+    if suffix not in (".ang", ".ctf") or not path.is_file():
+        return {}
+    names: dict[int, str] = {}
+    with path.open(encoding="utf-8", errors="replace") as f:
+        if suffix == ".ang":
+            pid = 1
+            for line in f:
+                if not line.startswith("#"):
+                    break  # the header ends where the data begin
+                field = line[1:].split(None, 1)
+                if len(field) == 2 and field[0] == "Phase" and field[1].strip().isdigit():
+                    pid = int(field[1])
+                elif len(field) == 2 and field[0] == "MaterialName":
+                    names[pid] = field[1].strip()
+            return names
+        count = None
+        for line in f:
+            cells = line.rstrip("\r\n").split("\t")
+            if count is None:
+                if cells[0] == "Phases" and len(cells) > 1 and cells[1].strip().isdigit():
+                    count = int(cells[1])
+                continue
+            if len(names) >= count or len(cells) < 3:
+                break
+            names[len(names) + 1] = cells[2].strip()
+    return names
+
+
+def check_phase_name(path, material, phase: int | None = None) -> None:
+    """Refuse an EBSD export (.ang or .ctf) whose phase is named as another built-in crystal
+    than ``material`` (issue 27: a Li map run with ``--crystal Cu`` was predicted as Cu).
+
+    The phase checked is ``phase`` if given, else every phase of the header. Names are compared
+    case-insensitively as an element symbol or a common name (:data:`_COMMON_NAMES`: "Cu",
+    "copper", "Iron (Alpha)"); a name that names no built-in crystal ("Phase 1", "Brass") or a
+    material given by its constants passes, as does any map that is not an .ang or .ctf file.
+    The error names both and the option that overrides it (``--ignore-phase-name``).
+    """
+    given = _crystal_of(str(getattr(material, "name", None) or ""))
+    if given is None:
+        return
+    path = Path(path)
+    for pid, name in _header_phases(path).items():
+        if phase is not None and pid != phase:
+            continue
+        found = _crystal_of(name)
+        if found is not None and found != given:
+            raise ContactresInputError(
+                f"{path.name}: phase {pid} is named {name!r} but the crystal given (--crystal) "
+                f"is {material.name}: give the crystal the map was indexed as, or pass "
+                f"--ignore-phase-name to predict it as {material.name} anyway"
+            )

@@ -60,6 +60,7 @@ __all__ = [
     "RUM_INVERT_RESULTS",
     "SPECTRA_FITS",
     "STIFFNESS_CSV",
+    "TABLE_FLAGS",
     "dictionary_tables",
     "flags_markdown",
     "update_blocks",
@@ -80,6 +81,15 @@ RESONANCE_FLAGS = {
     "not-measured": "a frequency is NaN (not measured)",
     "inconsistent-modes": "the modes disagree on κ by more than `--mode-tolerance`",
     "no-contact": "f at the free frequency within 1e-6 of f either way: κ = 0 (no contact)",
+}
+
+#: Flags of the resonance tables' rows set from their input alone (after the inversion's and
+#: the modulus step's): ``invert_afm_table`` in contactres.analysis.
+TABLE_FLAGS = {
+    "large-tip": (
+        "tip_radius_m above 1 mm: check the unit (a CR-AFM tip is 1 nm-1 µm; a sphere of mm "
+        "size is accepted, its values kept)"
+    ),
 }
 
 #: Tables on the documentation's dictionary page that have no README block.
@@ -158,6 +168,7 @@ def dictionary_tables() -> dict[str, str]:
                     (str(f.name).lower().replace("_", "-"), t)
                     for f, t in MODULUS_FLAG_DESCRIPTIONS.items()
                 ),
+                *TABLE_FLAGS.items(),
             ]
         ),
         "contact-listing": CONTACT_TABLE.markdown(),
