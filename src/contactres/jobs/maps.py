@@ -460,9 +460,13 @@ def check_tip_load(material: Material, tip: TipLoad) -> str:
     tip : TipLoad
         Tip radius (m), force (N) and tip modulus (Pa; inf: rigid).
 
-    Returns the flag of a contact wider than
-    :data:`~contactres.jobs.contact.HERTZ_APPROXIMATE_RATIO` of the tip radius (Hertz
-    approximate, values kept, as ``contact`` flags its rows), else ""."""
+    Returns
+    -------
+    str
+        The flag of a contact wider than
+        :data:`~contactres.jobs.contact.HERTZ_APPROXIMATE_RATIO` of the tip radius (Hertz
+        approximate, values kept, as ``contact`` flags its rows), else "".
+    """
     from ..normal import hertz
     from ..polycrystal import surface_matrices_from_normals
     from .contact import HERTZ_APPROXIMATE_RATIO, HERTZ_MAX_RATIO
