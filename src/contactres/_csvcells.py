@@ -18,7 +18,7 @@ __all__ = [
     "csv_to",
     "floats_as_text",
     "neutralised",
-    "npz_bytes",
+    "npz_to",
 ]
 
 CSV_FLOAT_FORMAT = "%.10g"  #: CSV floats: 10 digits, no noise (0.30000000000000004 -> 0.3)
@@ -194,15 +194,15 @@ def csv_to(path, frame, options: dict) -> None:
     table.to_csv(path, **options)
 
 
-def npz_bytes(frame) -> bytes:
-    """The numpy archive (``.npz``, the layout of ``numpy.savez``, uncompressed) of a pandas
-    DataFrame: one array per column under its name; numbers as they are (float64: exact),
-    anything else as unicode text (a gap an empty string). No pickles: ``numpy.load(...,
-    allow_pickle=False)`` reads it. Column names must be distinct.
+def npz_to(path, frame) -> None:
+    """Write the numpy archive (``.npz``, the layout of ``numpy.savez``, uncompressed) of a
+    pandas DataFrame to the file ``path``: one array per column under its name; numbers as they
+    are (float64: exact), anything else as unicode text (a gap an empty string). No pickles:
+    ``numpy.load(..., allow_pickle=False)`` reads it. Column names must be distinct.
 
     Written here rather than by ``numpy.savez``: its own keywords (``file``, ``allow_pickle``)
-    would clash with columns of those names."""
-    import io
+    would clash with columns of those names. Each array goes straight into the file: a map's
+    archive (70 MB for 512² pixels) is not first assembled in memory and copied."""
     import zipfile
 
     from .errors import ContactresInputError
@@ -210,14 +210,12 @@ def npz_bytes(frame) -> bytes:
     names = [str(c) for c in frame.columns]
     if len(set(names)) != len(names):
         raise ContactresInputError(f"a numpy archive needs distinct column names, got {names}")
-    buffer = io.BytesIO()
-    with zipfile.ZipFile(buffer, "w", zipfile.ZIP_STORED) as zf:
+    with open(path, "wb") as fh, zipfile.ZipFile(fh, "w", zipfile.ZIP_STORED) as zf:
         for i, name in enumerate(names):
             col = frame.iloc[:, i]
             if col.dtype.kind in "fiub":
                 values = col.to_numpy()
             else:  # text (labels, flags)
                 values = col.fillna("").astype(str).to_numpy(dtype=str)
-            with zf.open(f"{name}.npy", "w", force_zip64=True) as fh:
-                np.lib.format.write_array(fh, values, allow_pickle=False)
-    return buffer.getvalue()
+            with zf.open(f"{name}.npy", "w", force_zip64=True) as member:
+                np.lib.format.write_array(member, values, allow_pickle=False)

@@ -29,8 +29,6 @@ import os
 from collections.abc import Iterable, Sequence
 from pathlib import Path
 
-from ._version import __version__
-
 __all__ = [
     "STORE_MARKER",
     "refusal",
@@ -39,6 +37,7 @@ __all__ = [
     "store_marker",
     "unproven_store_entries",
     "unvouched",
+    "writer_version",
 ]
 
 #: The root attribute of a map store that contactres wrote (a JSON string: see the module).
@@ -46,6 +45,15 @@ STORE_MARKER = "contactres_store"
 
 _GENERATOR = "contactres"
 _SHOWN = 3  # foreign names a refusal lists before "…"
+
+
+def writer_version() -> str:
+    """The installed version of contactres, for the records the writers keep (read at the
+    first record: importlib.metadata costs ~40 ms of start-up, which a command that keeps no
+    record, ``afm invert`` say, need not pay)."""
+    from ._version import __version__
+
+    return __version__
 
 
 def refusal(what: str, given: str | os.PathLike, foreign: Sequence[str]) -> str:
@@ -124,9 +132,10 @@ def sign_store(store: Path) -> None:
     staging copy, before it is moved into place.
     """
     keys = store_keys(store)
+
     record = {
         "generator": _GENERATOR,
-        "version": __version__,
+        "version": writer_version(),
         "keys": len(keys),
         "keys_sha256": _keys_digest(keys),
         "entries": sorted({k.split("/")[0] for k in keys}),

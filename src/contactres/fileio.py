@@ -48,9 +48,8 @@ from collections.abc import Iterable, Iterator
 from contextlib import contextmanager
 from pathlib import Path
 
-from ._csvcells import CSV_FLOAT_FORMAT, csv_to, neutralised, npz_bytes
-from ._ownership import refusal, unvouched
-from ._version import __version__
+from ._csvcells import CSV_FLOAT_FORMAT, csv_to, neutralised, npz_to
+from ._ownership import refusal, unvouched, writer_version
 from .errors import ContactresInputError
 
 __all__ = [
@@ -155,7 +154,9 @@ def write_npz(path: str | os.PathLike, frame) -> Path:
     array per column under its name, numbers as they are (float64 doubles: exact), text as
     unicode arrays (a gap is an empty string). Read back by the ``npz`` reader of
     :mod:`contactres.measurements.readers`, or by ``numpy.load(path, allow_pickle=False)``."""
-    return write_bytes(path, npz_bytes(frame))
+    with _atomic_path(path) as tmp:
+        npz_to(tmp, frame)
+    return Path(path)
 
 
 def save_figure(path: str | os.PathLike, fig, dpi: int = 150, *, close: bool = True) -> Path:
@@ -640,9 +641,10 @@ class ResultSet:
         staging = self._staging
         assert staging is not None, "made on entering, kept until the commit"
         staged = sorted(p.name for p in staging.iterdir() if not p.name.startswith("."))
+
         record = {
             "generator": _GENERATOR,
-            "version": __version__,
+            "version": writer_version(),
             "kind": self.kind,
             "files": {name: _digest(staging / name) for name in staged},
         }

@@ -4,14 +4,16 @@ Anchors, each independent of the code under test: the homogeneous isotropic disk
 Fredholm solution (test_rigid_disk_isotropic.py, Luco & Westmann's equation solved afresh);
 Boussinesq's static punch 2aE*; the limits h -> 0 (substrate) and h -> ∞ (film); passivity;
 and a second route for a lossy layered case: the Galerkin matrix integrated here on the real
-wavenumber axis by scipy's adaptive quad_vec from the public surface_green.
+wavenumber axis by an adaptive Gauss-Legendre rule (adaptive_quadrature.py) from the public
+surface_green.
 """
 
 from __future__ import annotations
 
 import numpy as np
 import pytest
-from scipy import integrate, special
+from adaptive_quadrature import adaptive_gauss
+from scipy import special
 from test_rigid_disk_isotropic import fredholm_disk
 
 from contactres import LayeredMaterial, Material, dcsf, surface_green, viscoelastic
@@ -124,8 +126,9 @@ def _real_axis_reference(stack, film, a, f, n_radial):
     C44_f = Re C44 of the isotropic film (constants at f, complex allowed); split as
     g∞ + (g − g∞) with g∞ = C44_f (1 − ν*)/G* (Boussinesq, ν* = C12/(C11 + C12), G* = C44
     complex) and ∫ j_p² = π/(2(2p+1));
-    the rest by quad_vec on [0, S_c] (breakpoints at the peaks of ``|g|`` found on a fine grid)
-    and on [S_c, 400] (the tail beyond ~ (k a)²/S³ < 1e-7). K = 4π² a C44_f (M⁻¹)₀₀.
+    the rest by adaptive_gauss (every panel's nodes in one call of surface_green) on [0, S_c]
+    (breakpoints at the peaks of ``|g|`` found on a fine grid) and on [S_c, 400] (the tail
+    beyond ~ (k a)²/S³ < 1e-7). K = 4π² a C44_f (M⁻¹)₀₀.
     """
     c44 = np.real(film.C[3, 3])
     nu = film.C[0, 1] / (film.C[0, 0] + film.C[0, 1])
@@ -133,18 +136,18 @@ def _real_axis_reference(stack, film, a, f, n_radial):
     p = 2 * np.arange(n_radial)
     iu, ju = np.triu_indices(n_radial)
 
-    def integrand(s):
+    def integrand(s):  # s: 1-D; shape (upper entries, s.size)
         g = -c44 * (s / a) * surface_green(stack, s / a, 0.0, f)[..., 2, 2]
-        j = special.spherical_jn(p, s)
+        j = special.spherical_jn(p[:, None], s)
         return (g - g_inf) * (j[iu] * j[ju])
 
     s_c = 2.5 * 2 * np.pi * f * np.sqrt(film.density / c44) * a  # beyond the slowest wave
     grid = np.linspace(1e-6, s_c, 20001)
     mag = np.abs(-c44 * (grid / a) * surface_green(stack, grid / a, 0.0, f)[..., 2, 2])
     peaks = grid[1:-1][(mag[1:-1] > mag[:-2]) & (mag[1:-1] > mag[2:])]
-    opts = dict(epsabs=1e-12, epsrel=1e-11, limit=20000)
-    part1, _ = integrate.quad_vec(integrand, 0.0, s_c, points=list(peaks), **opts)
-    part2, _ = integrate.quad_vec(integrand, s_c, 400.0, **opts)
+    opts = dict(epsabs=1e-12, epsrel=1e-11)
+    part1, _ = adaptive_gauss(integrand, 0.0, s_c, points=peaks, **opts)
+    part2, _ = adaptive_gauss(integrand, s_c, 400.0, **opts)
     upper = part1 + part2 + np.where(iu == ju, g_inf * np.pi / (2 * (2 * p[iu] + 1)), 0)
     M = np.zeros((n_radial, n_radial), dtype=complex)
     M[iu, ju] = upper

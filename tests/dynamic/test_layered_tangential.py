@@ -5,15 +5,17 @@ Anchors, each independent of the code under test: the homogeneous exact tangenti
 reference); Mindlin's static 8Ga/(2 − ν) and the static layered tangential punch of
 contactres.normal (an axisymmetric Galerkin of its own); the limits h -> 0 (substrate) and
 h -> ∞ (film); passivity; and a second route for lossy layered cases: the Galerkin matrix of
-the x-translation integrated here on the real wavenumber axis by scipy's adaptive quad_vec,
-from the public surface_green, with the traction written as A(r) e_x + B(r) (cos 2φ, sin 2φ).
+the x-translation integrated here on the real wavenumber axis by an adaptive Gauss-Legendre
+rule (adaptive_quadrature.py), from the public surface_green, with the traction written as
+A(r) e_x + B(r) (cos 2φ, sin 2φ).
 """
 
 from __future__ import annotations
 
 import numpy as np
 import pytest
-from scipy import integrate, special
+from adaptive_quadrature import adaptive_gauss
+from scipy import special
 
 from contactres import (
     LayeredMaterial,
@@ -129,8 +131,9 @@ def _real_axis_reference(stack, film, a, f, n_radial):
     π(h_L + h_T) and ∫ e_xᵀ h v = π(h_L − h_T), v = (cos 2θ, sin 2θ). M_ij = ∫ ds R_i R_j Θ_ij,
     K = 4π² a C44_f (M⁻¹)₀₀. Static part h∞ (Cerruti: C44_f (δ − ν* n n)/G*, complex G* = C44
     and ν* = C12/(C11 + C12) of the film) in closed form (∫ j_p j_q = δ_pq π/(2(2p + 1)) for
-    even p − q); the rest by quad_vec on [0, S_c] (breakpoints at the peaks of ``|h|``) and
-    [S_c, 400] (beyond, the remainder ~ (k a)²/S³ < 1e-7).
+    even p − q); the rest by adaptive_gauss (every panel's nodes in one call of surface_green)
+    on [0, S_c] (breakpoints at the peaks of ``|h|``) and [S_c, 400] (beyond, the remainder
+    ~ (k a)²/S³ < 1e-7).
     """
     c44 = np.real(film.C[3, 3])
     nu = film.C[0, 1] / (film.C[0, 0] + film.C[0, 1])
@@ -143,18 +146,19 @@ def _real_axis_reference(stack, film, a, f, n_radial):
     def theta_forms(hl, ht):
         return np.where(same, np.pi * (hl + ht), np.pi * (hl - ht))
 
-    def integrand(s):
-        g = -c44 * (s / a) * surface_green(stack, s / a, 0.0, f)
-        j = special.spherical_jn(p, s)
-        return (theta_forms(g[0, 0] - hl_inf, g[1, 1] - ht_inf)) * j[iu] * j[ju]
+    def integrand(s):  # s: 1-D; shape (upper entries, s.size)
+        g = -c44 * (s / a)[:, None, None] * surface_green(stack, s / a, 0.0, f)
+        j = special.spherical_jn(p[:, None], s)
+        hl, ht = g[..., 0, 0] - hl_inf, g[..., 1, 1] - ht_inf
+        return np.where(same[:, None], np.pi * (hl + ht), np.pi * (hl - ht)) * j[iu] * j[ju]
 
     s_c = 2.5 * 2 * np.pi * f * np.sqrt(film.density / c44) * a  # beyond the slowest wave
     grid = np.linspace(1e-6, s_c, 20001)
     mag = np.abs(-c44 * (grid / a) * surface_green(stack, grid / a, 0.0, f)[..., 0, 0])
     peaks = grid[1:-1][(mag[1:-1] > mag[:-2]) & (mag[1:-1] > mag[2:])]
-    opts = dict(epsabs=1e-12, epsrel=1e-11, limit=20000)
-    part1, _ = integrate.quad_vec(integrand, 0.0, s_c, points=list(peaks), **opts)
-    part2, _ = integrate.quad_vec(integrand, s_c, 400.0, **opts)
+    opts = dict(epsabs=1e-12, epsrel=1e-11)
+    part1, _ = adaptive_gauss(integrand, 0.0, s_c, points=peaks, **opts)
+    part2, _ = adaptive_gauss(integrand, s_c, 400.0, **opts)
     static = np.where(p[iu] == p[ju], np.pi / (2 * (2 * p[iu] + 1)), 0.0)
     upper = part1 + part2 + theta_forms(hl_inf, ht_inf) * static
     M = np.zeros((p.size, p.size), dtype=complex)

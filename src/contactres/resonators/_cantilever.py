@@ -237,6 +237,15 @@ def _trig(x):
     return 0.5 * (e + ie), -0.5j * (e - ie), 0.5 * (h + ih), 0.5 * (h - ih)
 
 
+def _cos_cosh(x):
+    """(cos x, cosh x) of :func:`_trig`, the same numbers, without the sines that
+    :func:`normal_kappa` does not use of β (2 of its 12 transcendental functions a pixel)."""
+    if not np.iscomplexobj(x):
+        return np.cos(x), np.cosh(x)
+    e, h = np.exp(1j * x), np.exp(x)
+    return 0.5 * (e + 1.0 / e), 0.5 * (h + 1.0 / h)
+
+
 def normal_kappa(beta, tip_position) -> np.ndarray:
     """κ = k*/k_c (k_c = 3EI/L³) of a normal tip spring that makes β a root (closed form).
 
@@ -250,7 +259,7 @@ def normal_kappa(beta, tip_position) -> np.ndarray:
     cq, sq, chq, shq = _trig(q)
     d = (sq * chq - cq * shq) * (1.0 - cp * chp) - (sp * chp - cp * shp) * (1.0 + cq * chq)
     with np.errstate(divide="ignore", invalid="ignore"):
-        cb, _, chb, _ = _trig(b)
+        cb, chb = _cos_cosh(b)
         return 2.0 * b**3 * (1.0 + cb * chb) / (3.0 * d)
 
 
