@@ -164,15 +164,16 @@ def _plateau_reference(crit, plateau_fit: pd.DataFrame, u_max) -> tuple[np.ndarr
     return plateau_prior(d_c, d_c_err, u_max, evidence)
 
 
-def _plateau_penalty(crit, plateau_fit: pd.DataFrame, u_max, blocks, mu_prior, P) -> np.ndarray:
+def _plateau_penalty(
+    ratio_prior, plateau_fit: pd.DataFrame, u_max, blocks, mu_prior, P
+) -> np.ndarray:
     """(B,): what the priors on μ (``mu_prior``: mean and variance of ln μ, from
     :func:`_mu_prior`; ``P`` the blocks' sensitivities) and on the plateau amplitude
-    (:func:`~contactres.analysis._plateau_prior.plateau_prior`, from the other blocks' clear
-    plateaus by the criteria so far ``crit``) change together in the shared criterion of the
+    (``ratio_prior``: mean and variance of ln(d_c/u_max) from :func:`_plateau_reference`)
+    change together in the shared criterion of the
     plateau loop of every block (:func:`~contactres.analysis._plateau_prior.
     joint_prior_penalty`; ``plateau_fit`` the blocks' joint plateau fits, ``u_max`` their
     largest amplitudes, m, ``blocks`` with ``normal_force_N`` and ``n_points``)."""
-    ratio_prior = _plateau_reference(crit, plateau_fit, u_max)
     d_c = plateau_fit["critical_displacement"].to_numpy(float)
     d_c_err = plateau_fit["critical_displacement_err"].to_numpy(float)
     F = blocks["normal_force_N"].to_numpy(float)
@@ -337,15 +338,19 @@ def choose_blocks(
         i = 2 * AMPLITUDE_MODELS.index("plateau")
         u_max = bs["u_max_m"].to_numpy(float)[order]
         pl = fits["plateau-loop"]
-        prior[i] = _plateau_penalty(crit + prior, pl, u_max, blocks_n, mu_ref, P)
-        # Where the amplitude prior exists, the plateau's evidence against Cattaneo-Mindlin
-        # integrated over d_c (contactres.analysis._plateau_evidence) replaces that penalty.
+        # The amplitude prior from the clear plateaus by the criteria with the μ prior only.
         ratio_ref = _plateau_reference(crit + prior, pl, u_max)
+        prior[i] = _plateau_penalty(ratio_ref, pl, u_max, blocks_n, mu_ref, P)
+        # Where the amplitude prior exists and that leaves the plateau undecided, its evidence
+        # against Cattaneo-Mindlin integrated over d_c (contactres.analysis._plateau_evidence)
+        # replaces that penalty.
         j = 2 * AMPLITUDE_MODELS.index("cattaneo-mindlin")
         sigma = np.sqrt(source_rss(bf, "cm") / n)
         with np.errstate(divide="ignore", invalid="ignore"):
             to_mu = 1.0 / (P * blocks_n["normal_force_N"].to_numpy(float))
-        close = np.delete(crit + prior, [i, i + 1], axis=0).min(axis=0) + PLATEAU_UNDECIDED
+        best_other = np.delete(crit + prior, [i, i + 1], axis=0).min(axis=0)
+        with np.errstate(invalid="ignore"):
+            undecided = np.abs(crit[i] + prior[i] - best_other) < PLATEAU_UNDECIDED
         two_ln_b, mu_pl, mu_pl_err = plateau_log_evidence(
             bp.u[order],
             bp.df[order],
@@ -355,7 +360,7 @@ def choose_blocks(
             mu_ref,
             ratio_ref,
             to_mu,
-            np.abs(crit[i] + prior[i] - close + PLATEAU_UNDECIDED) < PLATEAU_UNDECIDED,
+            undecided,
         )
         use = ~np.isnan(two_ln_b) & np.isfinite(crit[j] + prior[j]) & np.isfinite(crit[i])
         with np.errstate(invalid="ignore"):
