@@ -128,9 +128,10 @@ def water_studies(water_study):
 
 
 def test_water_plateaus_are_classified_right(water_studies):
-    # Seeds 0 and 1 pooled: 70 % of the plateau sweeps of ramps 2-4 right (41 % before the
-    # prior, issue 27; 66 % before the experiments of a group shared its exponent),
-    # Cattaneo-Mindlin ones 94 % (92 % before the prior, 95 % before the shared exponent).
+    # Seeds 0 and 1 pooled: 91 % of the plateau sweeps of ramps 2-4 right (75 % with the
+    # priors at the plateau fit's optimum, 41 % before the μ prior, issue 27; 66 % before the
+    # experiments of a group shared its exponent), Cattaneo-Mindlin ones 92 % (95 % at the
+    # optimum, 92 % before the prior): 30 % of the loads plateau here, twice the paper's share.
     right = {"plateau": [0, 0], "cattaneo-mindlin": [0, 0]}
     for _, sw in water_studies:
         judged = sw[sw["ramp"] > 1]
@@ -139,8 +140,8 @@ def test_water_plateaus_are_classified_right(water_studies):
             count[0] += int((part["model"] == model).sum())
             count[1] += len(part)
     assert right["plateau"][1] > 100  # enough plateau sweeps for a rate
-    assert right["plateau"][0] / right["plateau"][1] > 0.68
-    assert right["cattaneo-mindlin"][0] / right["cattaneo-mindlin"][1] > 0.93
+    assert right["plateau"][0] / right["plateau"][1] > 0.88
+    assert right["cattaneo-mindlin"][0] / right["cattaneo-mindlin"][1] > 0.91
 
 
 def test_water_plateau_mu_intervals_cover_the_truth(water_studies):

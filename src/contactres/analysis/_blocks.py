@@ -24,8 +24,13 @@ over all its loads (:func:`_friction_law`; ``pool_experiment``). With it, the sh
 Cattaneo-Mindlin and the plateau loop weigh their μ against the friction of the experiment's
 other loads (:mod:`contactres.analysis._mu_prior`), and the plateau's critical displacement
 against the analysis's clear plateaus, both at once (:mod:`contactres.analysis._plateau_prior`).
-Where the block is ``shared``, the joint fit's parameters (μ, the Savkoor sliding force, d_c)
-are the block's values that the per-load statistics use.
+Where that leaves the plateau within :data:`PLATEAU_UNDECIDED` of the best other candidate, its
+shared criterion is instead the Cattaneo-Mindlin loop's minus 2 ln B, B the Bayes factor of the
+plateau integrated over d_c and the slip scale with both priors
+(:mod:`contactres.analysis._plateau_evidence`): in noisy data the plateau fit often ends on a
+bound of d_c, where the priors at its optimum say nothing. Where the block is ``shared``, the
+joint fit's parameters (μ, the Savkoor sliding force, d_c) are the block's values that the
+per-load statistics use.
 """
 
 from __future__ import annotations
@@ -51,6 +56,7 @@ from ._friction import loop_table_force
 from ._loops import LoopTables
 from ._models import AMPLITUDE_MODELS, fit_tables
 from ._mu_prior import mu_prior_penalties, mu_prior_reference
+from ._plateau_evidence import plateau_log_evidence
 from ._plateau_prior import joint_prior_penalty, plateau_prior
 
 __all__ = ["BLOCK_COLUMNS", "PLATEAU_CONTENDER", "block_codes", "choose_blocks"]
@@ -88,6 +94,12 @@ _JOINT_PLATEAU = {"d_c_m": "critical_displacement", "d_c_err_m": "critical_displ
 #: plateau loop fitted to each of its ramps too (for the per-ramp candidate and the ramps' own
 #: parameters); one unit of BIC more than the default ``delta_bic``.
 PLATEAU_CONTENDER = 3.0
+
+#: A block whose shared plateau criterion at its fit's optimum (the priors by Laplace) is within
+#: this of the best of its other candidates, either way, has the plateau's evidence integrated
+#: over d_c instead (contactres.analysis._plateau_evidence): "very strong" evidence on the
+#: Kass-Raftery scale (2 ln B > 10) is a choice that the integration does not change.
+PLATEAU_UNDECIDED = 10.0
 
 
 def _criteria(bf, fields, n_r, code, n, R, exact_loop: bool) -> np.ndarray:
@@ -152,15 +164,16 @@ def _plateau_reference(crit, plateau_fit: pd.DataFrame, u_max) -> tuple[np.ndarr
     return plateau_prior(d_c, d_c_err, u_max, evidence)
 
 
-def _plateau_penalty(crit, plateau_fit: pd.DataFrame, u_max, blocks, mu_prior, P) -> np.ndarray:
+def _plateau_penalty(
+    ratio_prior, plateau_fit: pd.DataFrame, u_max, blocks, mu_prior, P
+) -> np.ndarray:
     """(B,): what the priors on μ (``mu_prior``: mean and variance of ln μ, from
     :func:`_mu_prior`; ``P`` the blocks' sensitivities) and on the plateau amplitude
-    (:func:`~contactres.analysis._plateau_prior.plateau_prior`, from the other blocks' clear
-    plateaus by the criteria so far ``crit``) change together in the shared criterion of the
+    (``ratio_prior``: mean and variance of ln(d_c/u_max) from :func:`_plateau_reference`)
+    change together in the shared criterion of the
     plateau loop of every block (:func:`~contactres.analysis._plateau_prior.
     joint_prior_penalty`; ``plateau_fit`` the blocks' joint plateau fits, ``u_max`` their
     largest amplitudes, m, ``blocks`` with ``normal_force_N`` and ``n_points``)."""
-    ratio_prior = _plateau_reference(crit, plateau_fit, u_max)
     d_c = plateau_fit["critical_displacement"].to_numpy(float)
     d_c_err = plateau_fit["critical_displacement_err"].to_numpy(float)
     F = blocks["normal_force_N"].to_numpy(float)
@@ -325,7 +338,38 @@ def choose_blocks(
         i = 2 * AMPLITUDE_MODELS.index("plateau")
         u_max = bs["u_max_m"].to_numpy(float)[order]
         pl = fits["plateau-loop"]
-        prior[i] = _plateau_penalty(crit + prior, pl, u_max, blocks_n, mu_ref, P)
+        # The amplitude prior from the clear plateaus by the criteria with the μ prior only.
+        ratio_ref = _plateau_reference(crit + prior, pl, u_max)
+        prior[i] = _plateau_penalty(ratio_ref, pl, u_max, blocks_n, mu_ref, P)
+        # Where the amplitude prior exists and that leaves the plateau undecided, its evidence
+        # against Cattaneo-Mindlin integrated over d_c (contactres.analysis._plateau_evidence)
+        # replaces that penalty.
+        j = 2 * AMPLITUDE_MODELS.index("cattaneo-mindlin")
+        sigma = np.sqrt(source_rss(bf, "cm") / n)
+        with np.errstate(divide="ignore", invalid="ignore"):
+            to_mu = 1.0 / (P * blocks_n["normal_force_N"].to_numpy(float))
+        best_other = np.delete(crit + prior, [i, i + 1], axis=0).min(axis=0)
+        with np.errstate(invalid="ignore"):
+            undecided = np.abs(crit[i] + prior[i] - best_other) < PLATEAU_UNDECIDED
+        two_ln_b, mu_pl, mu_pl_err = plateau_log_evidence(
+            bp.u[order],
+            bp.df[order],
+            bp.dg[order],
+            bp.w[order],
+            sigma,
+            mu_ref,
+            ratio_ref,
+            to_mu,
+            undecided,
+        )
+        use = ~np.isnan(two_ln_b) & np.isfinite(crit[j] + prior[j]) & np.isfinite(crit[i])
+        with np.errstate(invalid="ignore"):
+            prior[i] = np.where(use, crit[j] + prior[j] - two_ln_b - crit[i], prior[i])
+        marginal = use & np.isfinite(mu_pl) & (mu_pl_err > 0)
+        fits["plateau-loop"] = pl.assign(
+            mu_marginal=np.where(marginal, mu_pl, np.nan),
+            mu_marginal_err=np.where(marginal, mu_pl_err, np.nan),
+        )
     crit = crit + prior
     if exact_loop:
         # The per-ramp plateau needs the plateau loop of each ramp: fitted where the block's

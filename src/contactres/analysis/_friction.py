@@ -209,8 +209,17 @@ def _joint_mu(table: pd.DataFrame | None, F: np.ndarray, P: np.ndarray):
         return nan, nan, np.full(len(F), np.inf)
     force, err, ok = loop_table_force(table, P)
     bic = table["bic_shared"].to_numpy(float)
-    ok &= np.isfinite(force) & np.isfinite(err) & np.isfinite(bic)
-    return np.where(ok, force / F, nan), np.where(ok, err / F, nan), np.where(ok, bic, np.inf)
+    mu, mu_err = force / F, err / F
+    if "mu_marginal" in table.columns:
+        # The plateau loop's μ with d_c integrated over its prior, where the block has one
+        # (contactres.analysis._plateau_evidence): the fit's own μ holds d_c at its optimum.
+        marginal = table["mu_marginal"].to_numpy(float)
+        use = np.isfinite(marginal)
+        ok |= use
+        mu = np.where(use, marginal, mu)
+        mu_err = np.where(use, table["mu_marginal_err"].to_numpy(float), mu_err)
+    ok &= np.isfinite(mu) & np.isfinite(mu_err) & np.isfinite(bic)
+    return np.where(ok, mu, nan), np.where(ok, mu_err, nan), np.where(ok, bic, np.inf)
 
 
 def model_averaged_mu(
@@ -226,7 +235,11 @@ def model_averaged_mu(
     Σ w_m [σ_m² + (μ_m - μ̄)²] (Buckland, Burnham & Augustin, Biometrics 53, 603 (1997), Eq. 3;
     Burnham & Anderson, *Model Selection and Multimodel Inference*, 2nd ed., Springer 2002,
     Sec. 4.3): the spread between the models enters the error rather than being hidden by the
-    choice. A decisive choice (ΔBIC ≳ 10) leaves the winner's μ and error unchanged.
+    choice. A decisive choice (ΔBIC ≳ 10) leaves the winner's μ and error unchanged. Where the
+    plateau loop's table has ``mu_marginal`` (the blocks whose plateau evidence was integrated
+    over d_c, :mod:`contactres.analysis._plateau_evidence`), that μ and ``mu_marginal_err``
+    stand for the plateau loop's: its error includes what d_c leaves open, which the fit's error
+    at its optimum (often on a bound of d_c) does not.
 
     ``joint``: the fit table of each loop of :data:`COULOMB_LOOPS` (one row per row of
     ``blocks``, with ``bic_shared``; :func:`contactres.analysis._blocks.choose_blocks`).

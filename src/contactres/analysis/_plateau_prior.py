@@ -36,6 +36,12 @@ the validation study 12 of 557 Cattaneo-Mindlin blocks in water, 6 before). Wher
 :data:`PLATEAU_PRIOR_MIN_BLOCKS` other plateaus are clear (a sample without plateaus, or with
 one or two), nothing changes. Only the class choice and the weights of the model-averaged μ
 use the prior; d_c and μ of every block are still those its own points give.
+
+Where the criterion with this penalty leaves a block's plateau undecided (within
+``PLATEAU_UNDECIDED`` of its best other candidate, :mod:`contactres.analysis._blocks`), the
+same prior enters the plateau's evidence integrated over d_c instead
+(:mod:`contactres.analysis._plateau_evidence`): the fit of such a block often ends on a bound of
+d_c, where nothing expands about it.
 """
 
 from __future__ import annotations
