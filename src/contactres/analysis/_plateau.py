@@ -137,7 +137,11 @@ def _elliptic_integrals(x, c):
     r2, r3 = np.minimum(x, e), np.maximum(x, e)
     m = r2 / r3
     # I_k = ∫_c^r2 dᵏ dd/√Q with d = r2 sin²θ; K from K(1 - m) keeps its precision as x nears e.
-    K = np.where(m < 0.5, special.ellipk(m), special.ellipkm1(np.maximum(1.0 - m, 1e-300)))
+    # (each point by one of the two: the other's value would be discarded)
+    K = np.empty_like(m)
+    low = m < 0.5
+    K[low] = special.ellipk(m[low])
+    K[~low] = special.ellipkm1(np.maximum(1.0 - m[~low], 1e-300))
     phi = np.arcsin(np.sqrt(np.minimum(c / r2, 1.0)))
     kf = K - special.ellipkinc(phi, m)
     ef = special.ellipe(m) - special.ellipeinc(phi, m)
