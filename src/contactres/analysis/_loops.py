@@ -56,15 +56,18 @@ __all__ = [
     "X_MAX",
     "LoopTable",
     "LoopTables",
+    "TableInterpolant",
     "cm_loop_shape",
     "cm_loop_table",
     "fit_cm_loops",
+    "interpolate_table",
     "loop_fit_fields",
     "loop_tables",
     "plateau_loop_shape",
     "savkoor_loop_shape",
     "savkoor_loop_table",
     "solve_projected",
+    "table_interpolant",
 ]
 
 # Table of the exact CM loop in x = κu0/(μF_N): full sliding starts at x = 3/2; beyond X_MAX the
@@ -165,16 +168,17 @@ def savkoor_loop_shape(x) -> tuple[np.ndarray, np.ndarray]:
     return np.real(k), np.imag(k)
 
 
-#: The table lookup of the loop fits (:func:`_interpolant`) sorts amplitudes into buckets
+#: The table lookup of the loop fits (:func:`table_interpolant`) sorts amplitudes into buckets
 #: 2**-LOOKUP_BITS wide in x (a power of two: the bucket of x is exact) and steps through at most
-#: LOOKUP_STEPS table points in each; the few buckets crowded around full sliding are searched.
-LOOKUP_BITS = 9
-LOOKUP_STEPS = 3
+#: LOOKUP_STEPS table points in each; the few buckets crowded around full sliding (~0.4 %) are
+#: searched. Narrower buckets cost nothing more (61,441 of them for the tables' 0 <= x <= 30).
+LOOKUP_BITS = 11
+LOOKUP_STEPS = 1
 
 
 @dataclass(frozen=True)
-class _Interpolant:
-    """A loop table (:class:`LoopTable`) prepared for :func:`_interpolate`: the bucket index of
+class TableInterpolant:
+    """A loop table (:class:`LoopTable`) prepared for :func:`interpolate_table`: the bucket index of
     its abscissae and the slopes of its columns between table points, each column's slope
     formed as :func:`numpy.interp` forms it (so that the values agree bit for bit)."""
 
@@ -185,8 +189,8 @@ class _Interpolant:
     slopes: dict[str, np.ndarray]  # slopes of g1, g2, d1, d2, and of g1, g2 as a pair ("c1", "c2")
 
 
-def _interpolant(table: LoopTable) -> _Interpolant:
-    """Prepare ``table`` for :func:`_interpolate` (~1 ms; once per fit of a block of sweeps)."""
+def table_interpolant(table: LoopTable) -> TableInterpolant:
+    """Prepare ``table`` for :func:`interpolate_table` (~1 ms: once per block of sweeps)."""
     x = table.x
     edges = np.arange(int(np.ceil(x[-1] * 2.0**LOOKUP_BITS)) + 2) * 2.0**-LOOKUP_BITS
     first = np.searchsorted(x, edges, side="right") - 1
@@ -202,25 +206,41 @@ def _interpolant(table: LoopTable) -> _Interpolant:
     slopes |= {"c1": np.diff(table.g1) * inv, "c2": np.diff(table.g2) * inv}
     # The last point has slope 0: x at or beyond it takes the last value, as numpy.interp's.
     slopes = {k: np.append(v, 0.0) for k, v in slopes.items()}
-    return _Interpolant(table, first[:-1], ahead, count > LOOKUP_STEPS, slopes)
+    return TableInterpolant(table, first[:-1], ahead, count > LOOKUP_STEPS, slopes)
 
 
-def _interpolate(ip: _Interpolant, x, columns) -> list[np.ndarray]:
-    """The ``columns`` of the table of ``ip`` interpolated linearly at ``x`` >= 0, the same
-    numbers as :func:`numpy.interp` (``"c1"``, ``"c2"``: g1, g2 as one complex interpolation
-    makes them) at a third of its cost: numpy.interp bisects the table for every point, this
-    takes the bucket of each point and steps through the few table points in it."""
+def interpolate_table(ip: TableInterpolant, x, columns) -> list[np.ndarray]:
+    """Columns of a loop table interpolated linearly, the same numbers as :func:`numpy.interp`.
+
+    numpy.interp bisects the table for every point; this takes the bucket of each point (a
+    multiplication by a power of two) and steps through the table point in it, or searches the
+    few crowded buckets: a third of the cost, and the slope of each interval formed as numpy
+    (2.x) forms it, so that the values agree bit for bit (tests/analysis/test_scale.py).
+
+    Parameters
+    ----------
+    ip : the table prepared by :func:`table_interpolant`
+    x : array of abscissae (x = κu0/(μF_N) for the Cattaneo-Mindlin table), >= 0; below 0
+        the first value, beyond the table's end the last (numpy.interp's ends)
+    columns : names of the columns: ``"g1"``, ``"g2"``, ``"d1"``, ``"d2"`` of
+        :class:`LoopTable`, or ``"c1"``, ``"c2"`` for g1 and g2 as one complex numpy.interp of
+        ``g1 + 1j g2`` gives them (its slopes are differences times 1/Δx, not over Δx)
+
+    Returns
+    -------
+    list of arrays shaped as ``x``, one per column
+    """
     x_tab = ip.table.x
-    t = np.where(x >= 0, x, 0.0) * 2.0**LOOKUP_BITS
-    b = np.minimum(t, ip.first.size - 1).astype(np.intp)
+    x = np.clip(x, x_tab[0], x_tab[-1])  # the ends: the first and the last value
+    # fmax: a NaN amplitude (no NaN in validated sweeps) takes bucket 0 and gives NaN below.
+    b = np.fmax(x * 2.0**LOOKUP_BITS, 0.0).astype(np.intp)
     j = ip.first[b]
     for nxt in ip.ahead:
         j += nxt[b] <= x
     search = ip.crowded[b]
     if search.any():
         j[search] = np.searchsorted(x_tab, x[search], side="right") - 1
-    j = np.clip(j, 0, x_tab.size - 1)
-    d = np.clip(x, x_tab[0], x_tab[-1]) - x_tab[j]
+    d = x - x_tab[j]
     values = {"c1": "g1", "c2": "g2"}
     return [ip.slopes[c][j] * d + getattr(ip.table, values.get(c, c))[j] for c in columns]
 
@@ -277,7 +297,7 @@ def fit_cm_loops(
     # 49 (then 17) trial θ per sweep: chunks of sweeps keep those arrays at a few MB.
     step = max(1, CHUNK_CELLS // (49 * max(u.shape[1], 1)))
     chunks = (slice(i, i + step) for i in range(0, max(u.shape[0], 1), step))
-    ip = _interpolant(table)
+    ip = table_interpolant(table)
     parts = [
         _fit_cm_chunk(u[s], df[s], dg[s], w[s], sigma_df[s], sigma_dg[s], ip, rounds)
         for s in chunks
@@ -287,7 +307,7 @@ def fit_cm_loops(
 
 def _fit_cm_chunk(u, df, dg, w, sigma_df, sigma_dg, ip, rounds) -> dict[str, np.ndarray]:
     """:func:`fit_cm_loops` on one chunk of sweeps (a dict of its columns; ``ip`` the loop
-    table prepared by :func:`_interpolant`)."""
+    table prepared by :func:`table_interpolant`)."""
     S = u.shape[0]
     umax = np.maximum(np.max(np.where(w > 0, u, 0.0), axis=1), 1e-300)
     floor_f = 1e-6 * np.maximum(np.abs(df).max(axis=1), 1e-12)
@@ -299,7 +319,7 @@ def _fit_cm_chunk(u, df, dg, w, sigma_df, sigma_dg, ip, rounds) -> dict[str, np.
         theta = 10.0**lx / umax[:, None]
         xu = theta[..., None] * u[:, None, :]
         # Both shapes from one lookup, as one complex numpy.interp of the table made them.
-        g1, g2 = _interpolate(ip, xu, ("c1", "c2"))
+        g1, g2 = interpolate_table(ip, xu, ("c1", "c2"))
         args = (df[:, None, :], dg[:, None, :], w[:, None, :], wf[:, None], wg[:, None])
         return solve_projected(g1, g2, *args)[2]
 
@@ -332,7 +352,7 @@ def _fit_cm_chunk(u, df, dg, w, sigma_df, sigma_dg, ip, rounds) -> dict[str, np.
 
     theta = 10.0**centre / umax
     xu = theta[:, None] * u
-    g1, g2, d1, d2 = _interpolate(ip, xu, ("g1", "g2", "d1", "d2"))
+    g1, g2, d1, d2 = interpolate_table(ip, xu, ("g1", "g2", "d1", "d2"))
     A, B, chi2, rss_f, rss_g = solve_projected(g1, g2, df, dg, w, wf, wg)
     # Jacobian of the weighted residuals in (A, B, ln θ).
     d1 = d1 * xu
