@@ -25,9 +25,12 @@ from contactres.analysis._loops import (
     X_MAX,
     cm_loop_table,
     fit_cm_loops,
+    interpolate_table,
     loop_tables,
     plateau_loop_shape,
+    savkoor_loop_table,
     solve_projected,
+    table_interpolant,
 )
 from contactres.analysis._models import fit_tables
 from contactres.analysis._plateau import fit_plateau_loops, plateau_loop_slopes
@@ -291,3 +294,33 @@ def test_plateau_fit_of_sweeps_without_plateau_stays_in_its_bounds():
     assert np.all(fit["d_c_m"] >= 0.0)
     assert np.all(fit["d_c_m"] <= b.u[np.arange(len(b.n)), b.n - PLATEAU_MIN_SLOPE])
     assert np.all(np.log(fit["x_max"] / X_MAX) <= 1e-9)
+
+
+@pytest.mark.parametrize("make", [cm_loop_table, savkoor_loop_table])
+def test_table_lookup_is_numpy_interp_bit_for_bit(make):
+    """The bucketed lookup of the loop fits against numpy.interp's bisection: the same numbers,
+    real and as the complex pair of the θ-grid search, at random amplitudes, densely around
+    full sliding (where the table is refined and buckets are crowded), on the table points,
+    just below them, between them, at and beyond its end, and on arrays shorter than the table
+    (where numpy.interp forms each slope per point)."""
+    table = make()
+    x_tab = table.x
+    rng = np.random.default_rng(5)
+    x = np.concatenate(
+        [
+            rng.random(20000) * 1.2 * X_MAX,
+            1.5 + rng.normal(0.0, 1e-3, 5000),
+            1.0 + rng.normal(0.0, 1e-5, 5000),
+            x_tab,
+            np.nextafter(x_tab[1:], 0.0),
+            0.5 * (x_tab[1:] + x_tab[:-1]),
+            [X_MAX, np.nextafter(X_MAX, np.inf), 2 * X_MAX, np.inf],
+        ]
+    )
+    ip = table_interpolant(table)
+    for part in (x, x[:100]):
+        pair = np.interp(part, x_tab, table.g1 + 1j * table.g2)
+        c1, c2, *real = interpolate_table(ip, part, ("c1", "c2", "g1", "g2", "d1", "d2"))
+        assert np.array_equal(c1, pair.real) and np.array_equal(c2, pair.imag)
+        for got, name in zip(real, ("g1", "g2", "d1", "d2"), strict=True):
+            assert np.array_equal(got, np.interp(part, x_tab, getattr(table, name))), name

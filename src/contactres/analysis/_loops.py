@@ -56,15 +56,18 @@ __all__ = [
     "X_MAX",
     "LoopTable",
     "LoopTables",
+    "TableInterpolant",
     "cm_loop_shape",
     "cm_loop_table",
     "fit_cm_loops",
+    "interpolate_table",
     "loop_fit_fields",
     "loop_tables",
     "plateau_loop_shape",
     "savkoor_loop_shape",
     "savkoor_loop_table",
     "solve_projected",
+    "table_interpolant",
 ]
 
 # Table of the exact CM loop in x = κu0/(μF_N): full sliding starts at x = 3/2; beyond X_MAX the
@@ -165,21 +168,110 @@ def savkoor_loop_shape(x) -> tuple[np.ndarray, np.ndarray]:
     return np.real(k), np.imag(k)
 
 
+#: The table lookup of the loop fits (:func:`table_interpolant`) sorts amplitudes into buckets
+#: 2**-LOOKUP_BITS wide in x (a power of two: the bucket of x is exact) and steps through at most
+#: LOOKUP_STEPS table points in each; the few buckets crowded around full sliding (~0.4 %) are
+#: searched. Narrower buckets cost nothing more (61,441 of them for the tables' 0 <= x <= 30).
+LOOKUP_BITS = 11
+LOOKUP_STEPS = 1
+
+
+@dataclass(frozen=True)
+class TableInterpolant:
+    """A loop table (:class:`LoopTable`) prepared for :func:`interpolate_table`: the bucket index of
+    its abscissae and the slopes of its columns between table points, each column's slope
+    formed as :func:`numpy.interp` forms it (so that the values agree bit for bit)."""
+
+    table: LoopTable
+    first: np.ndarray  # last table point <= the start of each bucket
+    ahead: tuple[np.ndarray, ...]  # the next LOOKUP_STEPS points of each bucket (inf: none)
+    crowded: np.ndarray  # buckets of more table points than that
+    slopes: dict[str, np.ndarray]  # slopes of g1, g2, d1, d2, and of g1, g2 as a pair ("c1", "c2")
+
+
+def table_interpolant(table: LoopTable) -> TableInterpolant:
+    """Prepare ``table`` for :func:`interpolate_table` (~1 ms: once per block of sweeps)."""
+    x = table.x
+    edges = np.arange(int(np.ceil(x[-1] * 2.0**LOOKUP_BITS)) + 2) * 2.0**-LOOKUP_BITS
+    first = np.searchsorted(x, edges, side="right") - 1
+    count = np.diff(first)
+    beyond = np.append(x, np.inf)
+    ahead = tuple(
+        np.where(k <= count, beyond[np.minimum(first[:-1] + k, x.size)], np.inf)
+        for k in range(1, LOOKUP_STEPS + 1)
+    )
+    dx = x[1:] - x[:-1]
+    inv = 1.0 / dx  # numpy.interp of complex values: differences times 1/dx; of real ones: / dx
+    slopes = {k: np.diff(getattr(table, k)) / dx for k in ("g1", "g2", "d1", "d2")}
+    slopes |= {"c1": np.diff(table.g1) * inv, "c2": np.diff(table.g2) * inv}
+    # The last point has slope 0: x at or beyond it takes the last value, as numpy.interp's.
+    slopes = {k: np.append(v, 0.0) for k, v in slopes.items()}
+    return TableInterpolant(table, first[:-1], ahead, count > LOOKUP_STEPS, slopes)
+
+
+def interpolate_table(ip: TableInterpolant, x, columns) -> list[np.ndarray]:
+    """Columns of a loop table interpolated linearly, the same numbers as :func:`numpy.interp`.
+
+    numpy.interp bisects the table for every point; this takes the bucket of each point (a
+    multiplication by a power of two) and steps through the table point in it, or searches the
+    few crowded buckets: a third of the cost, and the slope of each interval formed as numpy
+    (2.x) forms it, so that the values agree bit for bit (tests/analysis/test_scale.py).
+
+    Parameters
+    ----------
+    ip : the table prepared by :func:`table_interpolant`
+    x : array of abscissae (x = κu0/(μF_N) for the Cattaneo-Mindlin table), >= 0; below 0
+        the first value, beyond the table's end the last (numpy.interp's ends)
+    columns : names of the columns: ``"g1"``, ``"g2"``, ``"d1"``, ``"d2"`` of
+        :class:`LoopTable`, or ``"c1"``, ``"c2"`` for g1 and g2 as one complex numpy.interp of
+        ``g1 + 1j g2`` gives them (its slopes are differences times 1/Δx, not over Δx)
+
+    Returns
+    -------
+    list of arrays shaped as ``x``, one per column
+    """
+    x_tab = ip.table.x
+    x = np.clip(x, x_tab[0], x_tab[-1])  # the ends: the first and the last value
+    # fmax: a NaN amplitude (no NaN in validated sweeps) takes bucket 0 and gives NaN below.
+    b = np.fmax(x * 2.0**LOOKUP_BITS, 0.0).astype(np.intp)
+    j = ip.first[b]
+    for nxt in ip.ahead:
+        j += nxt[b] <= x
+    search = ip.crowded[b]
+    if search.any():
+        j[search] = np.searchsorted(x_tab, x[search], side="right") - 1
+    d = x - x_tab[j]
+    values = {"c1": "g1", "c2": "g2"}
+    return [ip.slopes[c][j] * d + getattr(ip.table, values.get(c, c))[j] for c in columns]
+
+
 def solve_projected(g1, g2, df, dg, w, wf, wg):
-    """Closed-form Pκ (A) and Pωξ (B) for fixed θ, and χ². Arrays (..., M); wf, wg (...)."""
+    """Closed-form Pκ (A) and Pωξ (B) for fixed θ, and χ². Arrays (..., M); wf, wg (...).
+
+    The weighted sums are those of the plain formulas, bit for bit: each product with ``w`` is
+    formed once and reused, and skipped where every weight is 1 (a block of sweeps of one
+    length, the usual case: 1.0 * a is a), which saves a third of the arithmetic of the
+    θ-grid search and of every step of the plateau loop's iteration.
+    """
+    ones = bool(np.all(w == 1.0))
+
+    def weighted(a):  # w * a, the same numbers
+        return a if ones else w * a
+
     n = w.sum(-1)
-    g2m = (w * g2).sum(-1) / n
-    dgm = (w * dg).sum(-1) / n
+    g2m = weighted(g2).sum(-1) / n
+    dgm = weighted(dg).sum(-1) / n
     g2c = g2 - g2m[..., None]
     dgc = dg - dgm[..., None]
-    num = wf * (w * g1 * df).sum(-1) + wg * (w * g2c * dgc).sum(-1)
-    den = wf * (w * g1 * g1).sum(-1) + wg * (w * g2c * g2c).sum(-1)
+    wg1, wg2c = weighted(g1), weighted(g2c)
+    num = wf * (wg1 * df).sum(-1) + wg * (wg2c * dgc).sum(-1)
+    den = wf * (wg1 * g1).sum(-1) + wg * (wg2c * g2c).sum(-1)
     A = num / den
     B = dgm - A * g2m
     rf = df - A[..., None] * g1
     rg = dg - B[..., None] - A[..., None] * g2
-    rss_f = (w * rf**2).sum(-1)
-    rss_g = (w * rg**2).sum(-1)
+    rss_f = weighted(rf * rf).sum(-1)
+    rss_g = weighted(rg * rg).sum(-1)
     return A, B, wf * rss_f + wg * rss_g, rss_f, rss_g
 
 
@@ -205,16 +297,17 @@ def fit_cm_loops(
     # 49 (then 17) trial θ per sweep: chunks of sweeps keep those arrays at a few MB.
     step = max(1, CHUNK_CELLS // (49 * max(u.shape[1], 1)))
     chunks = (slice(i, i + step) for i in range(0, max(u.shape[0], 1), step))
+    ip = table_interpolant(table)
     parts = [
-        _fit_cm_chunk(u[s], df[s], dg[s], w[s], sigma_df[s], sigma_dg[s], table, rounds)
+        _fit_cm_chunk(u[s], df[s], dg[s], w[s], sigma_df[s], sigma_dg[s], ip, rounds)
         for s in chunks
     ]
     return pd.DataFrame({c: np.concatenate([q[c] for q in parts]) for c in parts[0]})
 
 
-def _fit_cm_chunk(u, df, dg, w, sigma_df, sigma_dg, table, rounds) -> dict[str, np.ndarray]:
-    """:func:`fit_cm_loops` on one chunk of sweeps (a dict of its columns)."""
-    x_tab, g1_tab, g2_tab, d1_tab, d2_tab = table.x, table.g1, table.g2, table.d1, table.d2
+def _fit_cm_chunk(u, df, dg, w, sigma_df, sigma_dg, ip, rounds) -> dict[str, np.ndarray]:
+    """:func:`fit_cm_loops` on one chunk of sweeps (a dict of its columns; ``ip`` the loop
+    table prepared by :func:`table_interpolant`)."""
     S = u.shape[0]
     umax = np.maximum(np.max(np.where(w > 0, u, 0.0), axis=1), 1e-300)
     floor_f = 1e-6 * np.maximum(np.abs(df).max(axis=1), 1e-12)
@@ -222,14 +315,13 @@ def _fit_cm_chunk(u, df, dg, w, sigma_df, sigma_dg, table, rounds) -> dict[str, 
     wf = 1.0 / np.maximum(sigma_df, floor_f) ** 2
     wg = 1.0 / np.maximum(sigma_dg, floor_g) ** 2
 
-    g_tab = g1_tab + 1j * g2_tab  # one interpolation (one search in x_tab) for both shapes
-
     def chi2_at(lx):  # lx: (S, K) log10 of x_max
         theta = 10.0**lx / umax[:, None]
         xu = theta[..., None] * u[:, None, :]
-        g = np.interp(xu, x_tab, g_tab)
+        # Both shapes from one lookup, as one complex numpy.interp of the table made them.
+        g1, g2 = interpolate_table(ip, xu, ("c1", "c2"))
         args = (df[:, None, :], dg[:, None, :], w[:, None, :], wf[:, None], wg[:, None])
-        return solve_projected(g.real, g.imag, *args)[2]
+        return solve_projected(g1, g2, *args)[2]
 
     lo, hi = -2.5, np.log10(X_MAX)
     grid = np.broadcast_to(np.linspace(lo, hi, 49), (S, 49))
@@ -237,31 +329,34 @@ def _fit_cm_chunk(u, df, dg, w, sigma_df, sigma_dg, table, rounds) -> dict[str, 
     k = np.argmin(chi, axis=1)
     edge = np.where(k == 0, "low", np.where(k == grid.shape[1] - 1, "high", ""))
     step = grid[0, 1] - grid[0, 0]
-    centre = grid[np.arange(S), k]
     rows = np.arange(S)
+    centre, best = grid[rows, k], chi[rows, k]
+    # Each round's middle trial is the best point so far (centre + 0): its χ², known, is put
+    # in its place instead of evaluated again (the same number: the sums run row by row).
     for _ in range(rounds):
-        local = np.clip(centre[:, None] + np.linspace(-step, step, 9)[None, :], lo, hi)
-        chi = chi2_at(local)
+        around = np.delete(np.linspace(-step, step, 9), 4)  # the middle one is 0 exactly
+        local = np.clip(centre[:, None] + around[None, :], lo, hi)
+        chi = np.insert(chi2_at(local), 4, best, axis=1)
         j = np.argmin(chi, axis=1)
-        centre = local[rows, j]
+        centre = np.insert(local, 4, centre, axis=1)[rows, j]
+        best = chi[rows, j]
         step = step / 4.0
     # The vertex of the parabola through the best point and its neighbours (χ² is smooth in
     # log θ near its minimum): the resolution of 4 rounds (step/256) improved to ~1e-6.
     h = step
-    three = np.clip(centre[:, None] + np.array([-h, 0.0, h])[None, :], lo, hi)
-    c0, c1, c2 = chi2_at(three).T
+    c0, c2 = chi2_at(np.clip(centre[:, None] + np.array([-h, h])[None, :], lo, hi)).T
+    c1 = best
     curv = c0 - 2.0 * c1 + c2
     shift = np.where(curv > 0, 0.5 * (c0 - c2) / np.where(curv > 0, curv, 1.0), 0.0)
     centre = np.clip(centre + np.clip(shift, -1.0, 1.0) * h, lo, hi)
 
     theta = 10.0**centre / umax
     xu = theta[:, None] * u
-    g1 = np.interp(xu, x_tab, g1_tab)
-    g2 = np.interp(xu, x_tab, g2_tab)
+    g1, g2, d1, d2 = interpolate_table(ip, xu, ("g1", "g2", "d1", "d2"))
     A, B, chi2, rss_f, rss_g = solve_projected(g1, g2, df, dg, w, wf, wg)
     # Jacobian of the weighted residuals in (A, B, ln θ).
-    d1 = np.interp(xu, x_tab, d1_tab) * xu
-    d2 = np.interp(xu, x_tab, d2_tab) * xu
+    d1 = d1 * xu
+    d2 = d2 * xu
     sf, sg = np.sqrt(wf)[:, None], np.sqrt(wg)[:, None]
     zeros = np.zeros_like(u)
     Jf = np.stack([-sf * g1, zeros, -sf * A[:, None] * d1], axis=-1) * w[..., None]

@@ -137,7 +137,11 @@ def _elliptic_integrals(x, c):
     r2, r3 = np.minimum(x, e), np.maximum(x, e)
     m = r2 / r3
     # I_k = ∫_c^r2 dᵏ dd/√Q with d = r2 sin²θ; K from K(1 - m) keeps its precision as x nears e.
-    K = np.where(m < 0.5, special.ellipk(m), special.ellipkm1(np.maximum(1.0 - m, 1e-300)))
+    # (each point by one of the two: the other's value would be discarded)
+    K = np.empty_like(m)
+    low = m < 0.5
+    K[low] = special.ellipk(m[low])
+    K[~low] = special.ellipkm1(np.maximum(1.0 - m[~low], 1e-300))
     phi = np.arcsin(np.sqrt(np.minimum(c / r2, 1.0)))
     kf = K - special.ellipkinc(phi, m)
     ef = special.ellipe(m) - special.ellipeinc(phi, m)
@@ -272,13 +276,34 @@ def fit_plateau_loops(
                 p, data[0][i], um[i], *(a[i] for a in data[1:]), wf[i], wg[i], rule
             )
 
+        # Each row's latest evaluation and where it was made: the fit at the solution is the
+        # last accepted step's, so only rows whose last step was refused are evaluated again
+        # (a row's numbers do not depend on the rows evaluated with it).
+        at = np.full(np.shape(starts), np.nan)
+        kept: dict[str, np.ndarray] = {}
+
+        def keep(fit, i):
+            for key, v in fit.items():
+                for j, a in enumerate(v) if key == "slopes" else [(None, v)]:
+                    name = key if j is None else f"{key}{j}"
+                    if name not in kept:
+                        kept[name] = np.empty((len(at), *np.shape(a)[1:]), dtype=np.result_type(a))
+                    kept[name][i] = a
+
         def evaluate(p, i, jacobian):  # the Gauss-Newton form, always complete
             fit = model(p, i)
+            at[i] = p
+            keep(fit, i)
             return {"chi2": fit["chi2"], "gradient": fit["grad"], "hessian": fit["hess"]}
 
         options = replace(PLATEAU_LM, xtol=tol, x_abs=1e-10 * tol, ftol=tol)
         p = levenberg_marquardt(evaluate, starts, np.tile(lo, (k, 1)), np.tile(hi, (k, 1)), options)
-        return p.x, model(p.x, np.arange(len(p.x)))
+        again = np.flatnonzero(np.any(at != p.x, axis=1))
+        if again.size:
+            keep(model(p.x[again], again), again)
+        fit = {key: v for key, v in kept.items() if not key.startswith("slopes")}
+        fit["slopes"] = tuple(kept[f"slopes{j}"] for j in range(6))
+        return p.x, fit
 
     # Pass 1, weighted by the noise of the hinge fit; started at the hinge and at the amplitude
     # below it (the hinge sits at or above d_c), θ from the loop fitted to the excess; the
