@@ -252,8 +252,14 @@ def wa_harmonic_sum(z: np.ndarray, coeffs: np.ndarray) -> np.ndarray:
     Σ_k W_{2k} c_k = Σ_p (2p + 1) j_p(x)² F_p, F_p = Σ_{k <= min(p, K)} (−1)^{p−k} c_k. The
     F_p are partial sums of the coefficients alone (no z), so the work per argument is one
     product and sum over the orders p, not the suffix sums of every W_{2k} (issue 31: a third
-    of the near field of the five-model curve). Absolute round-off ~1e-16 × Σ_k ``|c_k|``,
-    as for the weights summed one by one.
+    of the near field of the five-model curve). The sum over p is taken by Horner's rule during
+    the downward pass of the continued fraction of :func:`spherical_bessel` (the same ratios
+    r_p = j_p/j_{p−1}, from the same start): with f_p = (2p + 1) F_p,
+    Σ_{p >= 1} f_p j_p² = j₁² U₁, U_p = f_p + r_{p+1}² U_{p+1}, so the sum is j₀² (f₀ + r₁² U₁)
+    anchored on j₀, or j₀² f₀ + j₁² U₁ on j₁ (the larger of the two, as
+    :func:`spherical_bessel` anchors). No array over the orders is made (issue 31: those
+    arrays, fresh memory on every call, cost more than the arithmetic). Absolute round-off
+    ~1e-16 × Σ_k ``|c_k|``, as for the weights summed one by one.
 
     Parameters
     ----------
@@ -273,15 +279,52 @@ def wa_harmonic_sum(z: np.ndarray, coeffs: np.ndarray) -> np.ndarray:
     # The orders whose terms reach round-off (_wa_orders) and no more: unlike the weights
     # one by one, the sum needs no order p above them for its rows k <= K (F_p stops at p).
     p_max = _wa_orders(0, x)
-    j = spherical_bessel(p_max, x)
-    # F_p = (−1)^p G_min(p, K), G_k = Σ_{i <= k} (−1)^i c_i; times 2p + 1.
+    # f_p = (2p + 1) F_p = (2p + 1) (−1)^p G_min(p, K), G_k = Σ_{i <= k} (−1)^i c_i.
     p = np.arange(p_max + 1)
     sign = np.where(p % 2 == 0, 1.0, -1.0)
     k_max = min(k_max, p_max)  # W_{2k}, k > p_max, are below round-off: no order p reaches k
     g = np.cumsum(sign[: k_max + 1].reshape(-1, *([1] * (c.ndim - 1))) * c[: k_max + 1], axis=0)
     f = g[np.minimum(p, k_max)] * (sign * (2 * p + 1)).reshape(-1, *([1] * (c.ndim - 1)))
-    j *= j
-    return np.einsum("p...k,pk->...k", j, f.reshape(p_max + 1, -1))
+    zmax = float(np.max(np.abs(x), initial=0.0))
+    # The start of spherical_bessel's continued fraction (its truncation error).
+    top = int(max(p_max, 1.3 * zmax) + 30)
+    # A denominator that rounds to zero (j_{p−1}(x) = 0 to the last bit) makes the pass
+    # non-finite: only then is it run again with a guard that keeps the ratio finite.
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        out = _wa_sum_pass(x, f, top, guard=False)
+    if np.all(np.isfinite(out)):
+        return out
+    return _wa_sum_pass(x, f, top, guard=True)
+
+
+def _wa_sum_pass(x: np.ndarray, f: np.ndarray, top: int, guard: bool) -> np.ndarray:
+    """Σ_p f_p j_p(x)², p = 0..len(f) − 1, by Horner's rule in the downward pass of the ratios
+    r_p = j_p/j_{p−1} from the order ``top`` (:func:`wa_harmonic_sum`; ``guard``: keep a
+    denominator that rounds to zero finite)."""
+    p_max = f.shape[0] - 1
+    dtype = np.result_type(x, float)
+    ratio = np.zeros(x.shape, dtype=dtype)  # r_{p+1}, then r_p
+    above = np.zeros(x.shape, dtype=dtype)  # r_{p+1} while r_p is made
+    den = np.empty(x.shape, dtype=dtype)
+    square = np.empty(x.shape, dtype=dtype)
+    acc = np.zeros(x.shape, dtype=np.result_type(dtype, f))  # U_{p+1}, then U_p
+    for p in range(top, 0, -1):
+        ratio, above = above, ratio
+        np.multiply(x, above, out=den)
+        np.subtract(2 * p + 1, den, out=den)
+        if guard:
+            den[den == 0] = (2 * p + 1) * np.finfo(float).eps
+        np.divide(x, den, out=ratio)
+        if p <= p_max:  # U_p = f_p + r_{p+1}² U_{p+1} (U_{p_max} = f_{p_max})
+            np.multiply(above, above, out=square)
+            acc *= square
+            acc += f[p]
+    j0 = np.sin(x) / x
+    j1 = (j0 - np.cos(x)) / x
+    # Anchor on j₀ where it is the larger of the two, on j₁ elsewhere (ratio = r₁).
+    use0 = np.abs(j0) >= np.abs(j1)
+    j1 = np.where(use0, j0 * ratio, j1)
+    return j0 * j0 * f[0] + j1 * j1 * acc
 
 
 def _wa_orders(k_max: int, x: np.ndarray) -> int:
