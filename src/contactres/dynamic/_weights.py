@@ -285,18 +285,35 @@ def wa_harmonic_sum(z: np.ndarray, coeffs: np.ndarray) -> np.ndarray:
     k_max = min(k_max, p_max)  # W_{2k}, k > p_max, are below round-off: no order p reaches k
     g = np.cumsum(sign[: k_max + 1].reshape(-1, *([1] * (c.ndim - 1))) * c[: k_max + 1], axis=0)
     f = g[np.minimum(p, k_max)] * (sign * (2 * p + 1)).reshape(-1, *([1] * (c.ndim - 1)))
-    # Start of the continued fraction: its truncation error falls like (|x|/2N)^(2(N − p)),
-    # and the orders that carry the sum, p <= 1.3|x| + 5, lie 20 below p_max: at N = p_max + 5
-    # it is below (1/2.6)^50 ~ 1e-21 there. (Starting 25 orders higher, at
-    # spherical_bessel's N, changes no bit of the sum for |z| <= 120.)
-    top = p_max + 5
-    # A denominator that rounds to zero (j_{p−1}(x) = 0 to the last bit) makes the pass
-    # non-finite: only then is it run again with a guard that keeps the ratio finite.
+    # Start of the continued fraction at N = p_max + 5: its truncation error falls like
+    # (|x|/2N)^(2(N − p)), and the orders that carry the sum, p <= 1.3|x| + 5, lie 20 below
+    # p_max: below (1/2.6)^50 ~ 1e-21 there. (Starting 25 orders higher, at spherical_bessel's
+    # N, changes no bit of the sum for |z| <= 120.)
+    return _finite_pass(_wa_sum_pass, x, f, p_max + 5)
+
+
+def _next_ratio(z, above, out, den, order: int, guard: bool) -> None:
+    """``out`` = z/(order − z ``above``): one step down the continued fraction of the ratios of
+    Bessel functions (order 2n for J_n/J_{n−1}, 2p + 1 for j_p/j_{p−1}), in place (``den``: a
+    work array); ``guard``: a denominator that rounds to zero becomes its rounding error, as in
+    :func:`bessel_orders`, so that the ratio stays finite."""
+    np.multiply(z, above, out=den)
+    np.subtract(order, den, out=den)
+    if guard:
+        den[den == 0] = order * np.finfo(float).eps
+    np.divide(z, den, out=out)
+
+
+def _finite_pass(run, *args):
+    """``run(*args, guard=False)``, a downward pass of a continued fraction; a denominator that
+    rounds to zero (the function below it is 0 to the last bit) makes it non-finite: only then
+    is it run again with ``guard=True``, which keeps that ratio finite (the guard costs a
+    quarter of the pass on every order)."""
     with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        out = _wa_sum_pass(x, f, top, guard=False)
+        out = run(*args, guard=False)
     if np.all(np.isfinite(out)):
         return out
-    return _wa_sum_pass(x, f, top, guard=True)
+    return run(*args, guard=True)
 
 
 def _wa_sum_pass(x: np.ndarray, f: np.ndarray, top: int, guard: bool) -> np.ndarray:
@@ -304,19 +321,12 @@ def _wa_sum_pass(x: np.ndarray, f: np.ndarray, top: int, guard: bool) -> np.ndar
     r_p = j_p/j_{p−1} from the order ``top`` (:func:`wa_harmonic_sum`; ``guard``: keep a
     denominator that rounds to zero finite)."""
     p_max = f.shape[0] - 1
-    dtype = np.result_type(x, float)
-    ratio = np.zeros(x.shape, dtype=dtype)  # r_{p+1}, then r_p
-    above = np.zeros(x.shape, dtype=dtype)  # r_{p+1} while r_p is made
-    den = np.empty(x.shape, dtype=dtype)
-    square = np.empty(x.shape, dtype=dtype)
-    acc = np.zeros(x.shape, dtype=np.result_type(dtype, f))  # U_{p+1}, then U_p
+    # r_{p+1} then r_p, r_{p+1} while r_p is made, and two work arrays.
+    ratio, above, den, square = np.zeros((4, *x.shape), dtype=np.result_type(x, float))
+    acc = np.zeros(x.shape, dtype=np.result_type(x, float, f))  # U_{p+1}, then U_p
     for p in range(top, 0, -1):
         ratio, above = above, ratio
-        np.multiply(x, above, out=den)
-        np.subtract(2 * p + 1, den, out=den)
-        if guard:
-            den[den == 0] = (2 * p + 1) * np.finfo(float).eps
-        np.divide(x, den, out=ratio)
+        _next_ratio(x, above, ratio, den, 2 * p + 1, guard)  # r_p = x/(2p + 1 − x r_{p+1})
         if p <= p_max:  # U_p = f_p + r_{p+1}² U_{p+1} (U_{p_max} = f_{p_max})
             np.multiply(above, above, out=square)
             acc *= square
@@ -433,14 +443,8 @@ def bessel_even_sum(z: np.ndarray, coeffs: np.ndarray) -> np.ndarray:
     zmax = float(np.max(np.abs(z), initial=0.0))
     # The start of bessel_orders for n_max = 2K (its truncation error, even).
     top = 2 * math.ceil(max(2 * (c.shape[0] - 1) + 12, 1.3 * zmax + 30) / 2)
-    # A denominator of the continued fraction that rounds to zero (J_{n−1}(z) = 0 to the last
-    # bit) makes the pass non-finite: only then is it run again with the guard of
-    # bessel_orders, which costs a quarter of the pass on every order.
-    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        out = _even_sum_pass(z, c, top, guard=False)
-    if np.all(np.isfinite(out)):
-        return out
-    return _even_sum_pass(z, c, top, guard=True)
+    # Rerun with the guard of bessel_orders only where J_{n−1}(z) rounds to 0 (_finite_pass).
+    return _finite_pass(_even_sum_pass, z, c, top)
 
 
 def _even_sum_pass(z: np.ndarray, c: np.ndarray, top: int, guard: bool) -> np.ndarray:
@@ -456,11 +460,7 @@ def _even_sum_pass(z: np.ndarray, c: np.ndarray, top: int, guard: bool) -> np.nd
     acc_v = np.zeros(z.shape, dtype=np.result_type(dtype, c))  # V beyond K: 0
     for n in range(top, 1, -1):
         ratio, above = above, ratio
-        np.multiply(z, above, out=den)
-        np.subtract(2 * n, den, out=den)
-        if guard:  # as in bessel_orders: a denominator that rounds to zero keeps r_n finite
-            den[den == 0] = 2 * n * np.finfo(float).eps
-        np.divide(z, den, out=ratio)
+        _next_ratio(z, above, ratio, den, 2 * n, guard)  # r_n = z/(2n − z r_{n+1})
         if n % 2 == 1:  # n = 2k + 1: A_{2k} and V_{2k} from r_{2k+1} r_{2k+2}
             np.multiply(ratio, above, out=pair)
             acc_a *= pair
