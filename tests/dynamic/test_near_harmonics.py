@@ -24,6 +24,7 @@ from contactres.dynamic._fartail import far_tail, head_grid
 from contactres.dynamic._quadrature import (
     _n_theta_near,
     far_operator,
+    far_operator_and_moments,
     functionals,
     near_theta_integrals,
 )
@@ -194,9 +195,10 @@ def test_exact_far_field_on_the_reduced_basis_equals_the_full_one(table, monkeyp
 
 def test_far_tail_by_moments_equals_the_node_by_node_sum(table):
     """The far field beyond 2 T₁ × the largest k a summed by the moments of its polynomial
-    basis (contactres.dynamic._fartail), with the basis built on the head of the grid alone,
-    against the same integrals summed node by node on the whole grid: the six functionals
-    and N_exact agree to round-off."""
+    basis (contactres.dynamic._fartail), with the basis built on the head of the grid alone
+    (and the operator of the functionals too, with the moments of its weights), against the
+    same integrals summed node by node on the whole grid: the six functionals and N_exact agree
+    to round-off."""
     ka = np.array([0.05, 0.4, 1.5, 3.0])
     grid = far_grid(table, float(ka.min()))
     tail = far_tail(table, grid, float(ka.max()))
@@ -205,8 +207,12 @@ def test_far_tail_by_moments_equals_the_node_by_node_sum(table):
     full = functionals(table, ka, far=far_basis(table, ka, grid), far_op=op)
     head = far_basis(table, ka, head_grid(grid, tail))
     by_moments = functionals(table, ka, far=head, far_op=op, tail=tail)
+    # The operator on the head alone with the moments of the weights over the tail.
+    op_head, moments = far_operator_and_moments(table, grid, tail)
+    split = functionals(table, ka, far=head, far_op=op_head, tail=tail, far_moments=moments)
     for name in full:
         np.testing.assert_allclose(by_moments[name], full[name], rtol=1e-13)
+        np.testing.assert_allclose(split[name], full[name], rtol=1e-13)
     size = galerkin_size(float(ka.max()))
     node_by_node = exact_n(table, ka, size, far=far_basis(table, ka, grid))
     plan = galerkin_plan(table, size, grid.s, tail=tail)

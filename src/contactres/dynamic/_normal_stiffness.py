@@ -72,7 +72,7 @@ from ._fartail import far_tail, head_grid
 from ._interpolation import MAX_INTERVALS as LARGEST
 from ._interpolation import chebyshev_values
 from ._models import ALL_MODELS, MODELS, WAVENUMBERS
-from ._quadrature import far_operator, functionals, point_values
+from ._quadrature import far_operator, far_operator_and_moments, functionals, point_values
 from ._table import KernelTable, prepare
 
 __all__ = [
@@ -278,10 +278,15 @@ def _direct(table, flat, names, rtol, chunk, span=None, refine=0) -> dict[str, n
     smax = float(np.max(pos, initial=0.0))
     grid = far_grid(table, float(np.min(pos))) if pos.size else None
     size = galerkin_size(smax, rtol, refine=refine)
-    far_op = far_operator(table, grid) if approx and grid is not None else None
     # Beyond 2 T₁ × the largest k a the far basis is summed by moments (._fartail): the chunks
     # build it on the head of the grid alone.
     tail = far_tail(table, grid, smax) if grid is not None else None
+    far_op = far_moments = None
+    if approx and grid is not None:
+        if tail is None:
+            far_op = far_operator(table, grid)
+        else:
+            far_op, far_moments = far_operator_and_moments(table, grid, tail)
     plan = None
     if "exact" in names:
         plan = galerkin_plan(table, size, grid.s if grid else None, tail=tail)
@@ -290,7 +295,9 @@ def _direct(table, flat, names, rtol, chunk, span=None, refine=0) -> dict[str, n
         p = part[part > 0]
         far = far_basis(table, p, head_grid(grid, tail)) if p.size and grid else None
         if approx:
-            f = functionals(table, part, far=far, smax=smax, far_op=far_op, tail=tail)
+            f = functionals(
+                table, part, far=far, smax=smax, far_op=far_op, tail=tail, far_moments=far_moments
+            )
             for name in approx:
                 n_out[name][lo : lo + chunk] = model_n(f, name)
         if plan is not None:

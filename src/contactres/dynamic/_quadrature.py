@@ -40,7 +40,14 @@ from ._fartail import FarTail, tail_coefficients
 from ._table import KernelTable
 from ._weights import bessel_even, bessel_even_sum, j1_over_s, sinc, wa_harmonic_sum
 
-__all__ = ["FUNCTIONALS", "far_operator", "functionals", "near_theta_integrals", "point_values"]
+__all__ = [
+    "FUNCTIONALS",
+    "far_operator",
+    "far_operator_and_moments",
+    "functionals",
+    "near_theta_integrals",
+    "point_values",
+]
 
 
 # ----------------------------------------------------------------------------------- functionals
@@ -125,16 +132,43 @@ def far_operator(table: KernelTable, grid: FarGrid) -> np.ndarray:
     """The far-field weights of the six functionals on ``grid``, contracted with the table's
     Chebyshev coefficients: (n_fit, ns, 12) real, [..., :6] the real and [..., 6:] the imaginary
     part of Σ_m c_{mf} weight_j[m, s] (built once per call, shared by its chunks)."""
-    # The weights of e^{±2imθ} are the same: add the coefficients of ±m first (half the
-    # weights to build and half the product).
+    return _contracted(table, _far_weights_by_order(table, grid))
+
+
+def far_operator_and_moments(
+    table: KernelTable, grid: FarGrid, tail: FarTail
+) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`far_operator` on the head of ``grid`` (the nodes before ``tail``), (n_fit,
+    tail.split, 12), and the moments of the rest over the tail, Σ_s T_j(2u − 1) ds × the
+    operator at s, (n_fit, n_fit + 1, 12) (:mod:`contactres.dynamic._fartail`): the moments of
+    the weights are taken first, so that the contraction with the coefficients runs over the
+    head's nodes and the n_fit + 1 moments instead of the whole grid (~85 % of it the tail on a
+    curve up to k_l a = 2; issue 31). The same sums as :func:`far_operator` followed by the
+    moments, to round-off."""
+    weights = _far_weights_by_order(table, grid)  # (6, n_o, ns)
+    split = tail.split
+    moments = weights[..., split:] @ tail.chebyshev  # (6, n_o, n_fit + 1)
+    both = _contracted(table, np.concatenate([weights[..., :split], moments], axis=-1))
+    return both[:, :split], both[:, split:]
+
+
+def _far_weights_by_order(table: KernelTable, grid: FarGrid) -> np.ndarray:
+    """:func:`~contactres.dynamic._farfield.far_weights` on ``grid`` for the distinct orders
+    ``2|m|`` of the table's far harmonics (the weights of e^{±2imθ} are the same): (6, n_o, ns)."""
+    return far_weights(table, grid.s, np.unique(2 * np.abs(table.far_harmonics)))
+
+
+def _contracted(table: KernelTable, weights: np.ndarray) -> np.ndarray:
+    """Σ_m c_{mf} weight_j[m, ...] of the weights by order (6, n_o, n), as (n_fit, n, 12) real:
+    [..., :6] its real and [..., 6:] its imaginary part."""
+    # The coefficients of ±m added first (half the weights to build and half the product).
     orders, which = np.unique(2 * np.abs(table.far_harmonics), return_inverse=True)
-    weights = far_weights(table, grid.s, orders)  # (6, n_o, ns) real
     fold = (which[:, None] == np.arange(orders.size)[None, :]).astype(float)  # (n_m, n_o)
     c = table.far_coeffs.T @ fold  # (nf, n_o) complex
     # Real products (the weights are real): [Re c @ w_j, Im c @ w_j] for the six functionals j.
-    v = np.matmul(np.concatenate([c.real, c.imag])[None], weights)  # (6, 2 nf, ns)
+    v = np.matmul(np.concatenate([c.real, c.imag])[None], weights)  # (6, 2 nf, n)
     nf = c.shape[0]
-    return np.concatenate([v[:, :nf], v[:, nf:]]).transpose(1, 2, 0)  # (nf, ns, 12)
+    return np.concatenate([v[:, :nf], v[:, nf:]]).transpose(1, 2, 0)  # (nf, n, 12)
 
 
 def functionals(
@@ -145,6 +179,7 @@ def functionals(
     smax: float | None = None,
     far_op: np.ndarray | None = None,
     tail: FarTail | None = None,
+    far_moments: np.ndarray | None = None,
 ) -> dict:
     """N of the six functionals of the displacement at k_s a values ``ksa`` (paper 1, Eq. 22).
 
@@ -170,6 +205,10 @@ def functionals(
     tail : FarTail, optional
         With ``far_op``: the tail of its grid (:func:`contactres.dynamic._fartail.far_tail`),
         summed by its moments; ``far`` is then built on the head of the grid alone.
+    far_moments : ndarray, optional
+        With ``tail``: the moments of the operator over it, when ``far_op`` covers the head of
+        the grid alone (both from :func:`far_operator_and_moments`); taken from the whole
+        grid's ``far_op`` otherwise.
 
     Returns
     -------
@@ -217,7 +256,9 @@ def functionals(
         # Σ_s T_j(2u − 1) ds v[f, s, c].
         if head != tail.split:
             raise ValueError("the far-field basis was built on another grid")  # internal misuse
-        moments = np.matmul(tail.chebyshev.T, far_op[:, tail.split :])  # (nf, n_fit + 1, 12)
+        moments = far_moments
+        if moments is None:
+            moments = np.matmul(tail.chebyshev.T, far_op[:, tail.split :])  # (nf, n_fit + 1, 12)
         coef = tail_coefficients(table, ka, tail)  # (na, nf, n_fit + 1)
         parts += coef.reshape(ka.size, -1) @ moments.reshape(-1, 12)
     elif head != far_op.shape[1]:

@@ -33,7 +33,13 @@ from scipy import special
 from .._summary import Summarised, number
 from .._threads import one_blas_thread
 from ..errors import ContactresInputError
-from ..halfspace import dynamic_kernel, shear_reference, static_kernel
+from ..halfspace import (
+    dynamic_kernel,
+    scaled_tensor,
+    shear_reference,
+    stacked_normal_compliance,
+    static_kernel,
+)
 from ..materials import Material, require_material, voigt_to_tensor
 from ..numerics import gauss_legendre
 
@@ -356,6 +362,22 @@ def _elastic_kernel(m: Material, kappa, theta, loss: float):
     return dynamic_kernel(m, k, theta) / f
 
 
+def _elastic_and_static(m: Material, kappa: np.ndarray, theta: np.ndarray, loss: float, static):
+    """:func:`_elastic_kernel` on κ × θ (``kappa`` (nk,), ``theta`` (nθ,)) and the undamped static
+    kernel g∞₀ = C44 Ĝ at the directions ``static``, in one evaluation of the surface compliance
+    (the static kernel is its limit 1/κ² = 0): one pass of the batched doubling instead of two,
+    whose fixed cost is that of a few hundred points (issue 31). The same values as
+    :func:`~contactres.halfspace.dynamic_kernel` and :func:`~contactres.halfspace.static_kernel`
+    (to the last bit or two: C44 Ĝ is not divided by C44 and multiplied back)."""
+    f = 1 + 1j * loss
+    inverse_square = 1.0 / (np.asarray(kappa, dtype=complex) * np.sqrt(f)) ** 2
+    shape = (kappa.size, theta.size)
+    th = np.concatenate([np.broadcast_to(theta[None, :], shape).ravel(), static])
+    s = np.concatenate([np.broadcast_to(inverse_square[:, None], shape).ravel(), 0 * static])
+    h = stacked_normal_compliance(scaled_tensor(m)[None], th[None], s[None])[0]
+    return -h[: th.size - static.size].reshape(shape) / f, -h[th.size - static.size :].real
+
+
 def max_slowness(m: Material) -> float:
     """Largest slowness of bulk waves travelling along the surface, in units of 1/c_s."""
     c = voigt_to_tensor(np.asarray(m.C).real) / shear_reference(m)
@@ -396,10 +418,11 @@ def _theta_base(nth: int, symmetry) -> np.ndarray:
     return base
 
 
-def _theta_values(m, kappa, q, static_fn, nth, symmetry, old=None):
+def _theta_values(m, kappa, q, static_fn, nth, symmetry, old=None, elastic=None):
     """(g − g∞ on κ × (θ_j = πj/nth), the undamped static kernel g∞₀ on the θ_j): reuses ``old``
     (the pair at nth/2) and the symmetry. g∞ = g∞₀/(1 + iQ⁻¹); ``static_fn(j, nth)`` gives g∞₀
-    at the θ_j."""
+    at the θ_j. ``elastic``: :func:`_elastic_kernel` at the nodes this call evaluates (the
+    distinct θ_j of the symmetry, none of ``old``), when the caller has it already."""
     base = _theta_base(nth, symmetry)
     need = np.unique(base)
     values = np.empty((kappa.size, nth), dtype=complex)
@@ -411,9 +434,9 @@ def _theta_values(m, kappa, q, static_fn, nth, symmetry, old=None):
         need = need[need % 2 == 1]
     theta = np.pi * need / nth
     static[need] = static_fn(need, nth)
-    values[:, need] = _elastic_kernel(m, kappa[:, None], theta[None, :], q) - static[need] / (
-        1 + 1j * q
-    )
+    if elastic is None:
+        elastic = _elastic_kernel(m, kappa[:, None], theta[None, :], q)
+    values[:, need] = elastic - static[need] / (1 + 1j * q)
     return values[:, base], static[base]
 
 
@@ -443,12 +466,17 @@ def _build_table(m: Material, q: float, res: Resolution) -> KernelTable:
     kappa = np.concatenate([near_kappa, t1 / np.sqrt(w)])
 
     symmetry = _symmetry(m)
-    # The static kernel of the first three doublings in one call: its cost is mostly per call.
+    # The static kernel of the first three doublings, in the same call as the dynamic kernel
+    # of the first θ grid: the cost of each call is mostly per call.
     fine = min(_N_THETA_MAX, 8 * res.n_theta)
     fine_base = _theta_base(fine, symmetry)
     fine_need = np.unique(fine_base)
+    first = np.unique(_theta_base(res.n_theta, symmetry))
+    elastic, static_need = _elastic_and_static(
+        m, kappa, np.pi * first / res.n_theta, q, np.pi * fine_need / fine
+    )
     static_fine = np.empty(fine)
-    static_fine[fine_need] = c44 * static_kernel(m, np.pi * fine_need / fine)
+    static_fine[fine_need] = static_need
     static_fine = static_fine[fine_base]
 
     def static_fn(j, nth):
@@ -461,7 +489,9 @@ def _build_table(m: Material, q: float, res: Resolution) -> KernelTable:
     while True:
         # The static kernel comes along on the same θ nodes (and symmetry), so that it is not
         # evaluated again on every node at the end.
-        both = _theta_values(m, kappa, q, static_fn, nth, symmetry, both)
+        both = _theta_values(
+            m, kappa, q, static_fn, nth, symmetry, both, elastic if both is None else None
+        )
         values = both[0]
         harm = np.abs(np.fft.fft(values, axis=1))
         tail = np.max(harm[:, nth // 4 : nth - nth // 4 + 1])

@@ -252,8 +252,14 @@ def wa_harmonic_sum(z: np.ndarray, coeffs: np.ndarray) -> np.ndarray:
     Σ_k W_{2k} c_k = Σ_p (2p + 1) j_p(x)² F_p, F_p = Σ_{k <= min(p, K)} (−1)^{p−k} c_k. The
     F_p are partial sums of the coefficients alone (no z), so the work per argument is one
     product and sum over the orders p, not the suffix sums of every W_{2k} (issue 31: a third
-    of the near field of the five-model curve). Absolute round-off ~1e-16 × Σ_k ``|c_k|``,
-    as for the weights summed one by one.
+    of the near field of the five-model curve). The sum over p is taken by Horner's rule during
+    the downward pass of the continued fraction of :func:`spherical_bessel` (the same ratios
+    r_p = j_p/j_{p−1}, from the same start): with f_p = (2p + 1) F_p,
+    Σ_{p >= 1} f_p j_p² = j₁² U₁, U_p = f_p + r_{p+1}² U_{p+1}, so the sum is j₀² (f₀ + r₁² U₁)
+    anchored on j₀, or j₀² f₀ + j₁² U₁ on j₁ (the larger of the two, as
+    :func:`spherical_bessel` anchors). No array over the orders is made (issue 31: those
+    arrays, fresh memory on every call, cost more than the arithmetic). Absolute round-off
+    ~1e-16 × Σ_k ``|c_k|``, as for the weights summed one by one.
 
     Parameters
     ----------
@@ -273,15 +279,64 @@ def wa_harmonic_sum(z: np.ndarray, coeffs: np.ndarray) -> np.ndarray:
     # The orders whose terms reach round-off (_wa_orders) and no more: unlike the weights
     # one by one, the sum needs no order p above them for its rows k <= K (F_p stops at p).
     p_max = _wa_orders(0, x)
-    j = spherical_bessel(p_max, x)
-    # F_p = (−1)^p G_min(p, K), G_k = Σ_{i <= k} (−1)^i c_i; times 2p + 1.
+    # f_p = (2p + 1) F_p = (2p + 1) (−1)^p G_min(p, K), G_k = Σ_{i <= k} (−1)^i c_i.
     p = np.arange(p_max + 1)
     sign = np.where(p % 2 == 0, 1.0, -1.0)
     k_max = min(k_max, p_max)  # W_{2k}, k > p_max, are below round-off: no order p reaches k
     g = np.cumsum(sign[: k_max + 1].reshape(-1, *([1] * (c.ndim - 1))) * c[: k_max + 1], axis=0)
     f = g[np.minimum(p, k_max)] * (sign * (2 * p + 1)).reshape(-1, *([1] * (c.ndim - 1)))
-    j *= j
-    return np.einsum("p...k,pk->...k", j, f.reshape(p_max + 1, -1))
+    # Start of the continued fraction at N = p_max + 5: its truncation error falls like
+    # (|x|/2N)^(2(N − p)), and the orders that carry the sum, p <= 1.3|x| + 5, lie 20 below
+    # p_max: below (1/2.6)^50 ~ 1e-21 there. (Starting 25 orders higher, at spherical_bessel's
+    # N, changes no bit of the sum for |z| <= 120.)
+    return _finite_pass(_wa_sum_pass, x, f, p_max + 5)
+
+
+def _next_ratio(z, above, out, den, order: int, guard: bool) -> None:
+    """``out`` = z/(order − z ``above``): one step down the continued fraction of the ratios of
+    Bessel functions (order 2n for J_n/J_{n−1}, 2p + 1 for j_p/j_{p−1}), in place (``den``: a
+    work array); ``guard``: a denominator that rounds to zero becomes its rounding error, as in
+    :func:`bessel_orders`, so that the ratio stays finite."""
+    np.multiply(z, above, out=den)
+    np.subtract(order, den, out=den)
+    if guard:
+        den[den == 0] = order * np.finfo(float).eps
+    np.divide(z, den, out=out)
+
+
+def _finite_pass(run, *args):
+    """``run(*args, guard=False)``, a downward pass of a continued fraction; a denominator that
+    rounds to zero (the function below it is 0 to the last bit) makes it non-finite: only then
+    is it run again with ``guard=True``, which keeps that ratio finite (the guard costs a
+    quarter of the pass on every order)."""
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        out = run(*args, guard=False)
+    if np.all(np.isfinite(out)):
+        return out
+    return run(*args, guard=True)
+
+
+def _wa_sum_pass(x: np.ndarray, f: np.ndarray, top: int, guard: bool) -> np.ndarray:
+    """Σ_p f_p j_p(x)², p = 0..len(f) − 1, by Horner's rule in the downward pass of the ratios
+    r_p = j_p/j_{p−1} from the order ``top`` (:func:`wa_harmonic_sum`; ``guard``: keep a
+    denominator that rounds to zero finite)."""
+    p_max = f.shape[0] - 1
+    # r_{p+1} then r_p, r_{p+1} while r_p is made, and two work arrays.
+    ratio, above, den, square = np.zeros((4, *x.shape), dtype=np.result_type(x, float))
+    acc = np.zeros(x.shape, dtype=np.result_type(x, float, f))  # U_{p+1}, then U_p
+    for p in range(top, 0, -1):
+        ratio, above = above, ratio
+        _next_ratio(x, above, ratio, den, 2 * p + 1, guard)  # r_p = x/(2p + 1 − x r_{p+1})
+        if p <= p_max:  # U_p = f_p + r_{p+1}² U_{p+1} (U_{p_max} = f_{p_max})
+            np.multiply(above, above, out=square)
+            acc *= square
+            acc += f[p]
+    j0 = np.sin(x) / x
+    j1 = (j0 - np.cos(x)) / x
+    # Anchor on j₀ where it is the larger of the two, on j₁ elsewhere (ratio = r₁).
+    use0 = np.abs(j0) >= np.abs(j1)
+    j1 = np.where(use0, j0 * ratio, j1)
+    return j0 * j0 * f[0] + j1 * j1 * acc
 
 
 def _wa_orders(k_max: int, x: np.ndarray) -> int:
@@ -388,14 +443,8 @@ def bessel_even_sum(z: np.ndarray, coeffs: np.ndarray) -> np.ndarray:
     zmax = float(np.max(np.abs(z), initial=0.0))
     # The start of bessel_orders for n_max = 2K (its truncation error, even).
     top = 2 * math.ceil(max(2 * (c.shape[0] - 1) + 12, 1.3 * zmax + 30) / 2)
-    # A denominator of the continued fraction that rounds to zero (J_{n−1}(z) = 0 to the last
-    # bit) makes the pass non-finite: only then is it run again with the guard of
-    # bessel_orders, which costs a quarter of the pass on every order.
-    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
-        out = _even_sum_pass(z, c, top, guard=False)
-    if np.all(np.isfinite(out)):
-        return out
-    return _even_sum_pass(z, c, top, guard=True)
+    # Rerun with the guard of bessel_orders only where J_{n−1}(z) rounds to 0 (_finite_pass).
+    return _finite_pass(_even_sum_pass, z, c, top)
 
 
 def _even_sum_pass(z: np.ndarray, c: np.ndarray, top: int, guard: bool) -> np.ndarray:
@@ -411,11 +460,7 @@ def _even_sum_pass(z: np.ndarray, c: np.ndarray, top: int, guard: bool) -> np.nd
     acc_v = np.zeros(z.shape, dtype=np.result_type(dtype, c))  # V beyond K: 0
     for n in range(top, 1, -1):
         ratio, above = above, ratio
-        np.multiply(z, above, out=den)
-        np.subtract(2 * n, den, out=den)
-        if guard:  # as in bessel_orders: a denominator that rounds to zero keeps r_n finite
-            den[den == 0] = 2 * n * np.finfo(float).eps
-        np.divide(z, den, out=ratio)
+        _next_ratio(z, above, ratio, den, 2 * n, guard)  # r_n = z/(2n − z r_{n+1})
         if n % 2 == 1:  # n = 2k + 1: A_{2k} and V_{2k} from r_{2k+1} r_{2k+2}
             np.multiply(ratio, above, out=pair)
             acc_a *= pair
