@@ -260,8 +260,6 @@ def correction_nodes(stacks, radii, theta: np.ndarray, res: PunchResolution, gre
 # point (sets the number of points per chunk).
 _NODE_BUDGET = 40000
 _NODES_PER_POINT = 250
-# Nodes whose Δg is interpolated together (:func:`_assemble_nodes`).
-_BLOCK = 4096
 
 
 class _SharedWaves:
@@ -479,17 +477,16 @@ def _on_panels(rule, lo: np.ndarray, hi: np.ndarray):
 
 
 def _assemble_nodes(res: PunchResolution, rule, points, shift) -> list:
-    """The nodes of every point of ``points`` [(edges, last, head, values), ...]
+    """The nodes of every point of ``points`` [(edges, last, stop, head, values), ...]
     (:class:`CorrectionNodes`): the head's; the geometric panels' own below 2L; a panel to the
     next edge of the shared grid k L (:func:`grid_width`); the grid's panels up to the first
-    grid edge S at or beyond ``edges[last]``. Δg at the real nodes is interpolated from the
-    Chebyshev samples (in ln s) of the geometric panel holding them, for every point at once
-    (one barycentric matrix and one product for all of them)."""
+    grid edge S at or beyond ``stop`` (<= ``edges[last]``). Δg at the real nodes is
+    interpolated from the Chebyshev samples (in ln s) of the geometric panel holding them."""
     width = grid_width(res)
-    layout, xs, rows = [], [], []
-    offset = 0
+    out = []
     for edges, last, stop, head, values in points:
         n_head = head[0].size
+        cheb = values[n_head:].reshape(last + 1, res.n_cheb, -1)
         u = np.log(edges[: last + 2])
         # Below 2L the geometric panels are narrower than the grid's (Δg varies on the scale
         # of the arc's end S₁ there): each gets its own sub-panels, per_unit nodes per unit of
@@ -516,28 +513,11 @@ def _assemble_nodes(res: PunchResolution, rule, points, shift) -> list:
         n_own = n_head + (lo.size - (k1 - k0)) * res.n_panel
         where = np.append(t, width * k1)
         panel = np.clip(np.searchsorted(edges[: last + 2], where) - 1, 0, last)
-        xs.append((2 * np.log(where) - u[panel] - u[panel + 1]) / (u[panel + 1] - u[panel]))
-        rows.append(offset + panel)
-        offset += last + 1
-        layout.append((head, values, t, wt, n_own, k0, k1, where.size))
-    # Every point's Chebyshev samples as rows of panels (one per geometric panel), and every
-    # real node's interpolation from the row of its panel.
-    samples = np.concatenate(
-        [v[h[0].size :].reshape(-1, res.n_cheb, *v.shape[1:]) for h, v, *_ in layout]
-    )
-    x, row = np.concatenate(xs), np.concatenate(rows)
-    g_all = np.empty((x.size, *samples.shape[2:]), dtype=complex)
-    # In blocks of a few thousand nodes: the temporaries stay in the cache (one product over
-    # all ~40000 nodes of 41 points is slower than these blocks, as its arrays are not).
-    for b0 in range(0, x.size, _BLOCK):
-        block = slice(b0, b0 + _BLOCK)
-        B = chebyshev_matrix(res.n_cheb, x[block])
-        g_all[block] = np.einsum("nc,nc...->n...", B, samples[row[block]])
-    out = []
-    for (head, values, t, wt, n_own, k0, k1, _), g in zip(
-        layout, np.split(g_all, np.cumsum([x[-1] for x in layout])[:-1]), strict=True
-    ):
-        n_head = head[0].size
+        x = (2 * np.log(where) - u[panel] - u[panel + 1]) / (u[panel + 1] - u[panel])
+        # One point at a time: its arrays stay small (one product over the ~30000 nodes of
+        # 41 points allocates and faults in fresh pages, and costs more CPU than it saves).
+        B = chebyshev_matrix(res.n_cheb, x)
+        g = np.einsum("nc,nc...->n...", B, cheb[panel]).reshape(where.size, *values.shape[1:])
         out.append(
             CorrectionNodes(
                 s=np.concatenate([head[0], t.astype(complex)]),
