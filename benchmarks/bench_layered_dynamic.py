@@ -67,6 +67,35 @@ film's Galerkin matrices at three basis sizes (10, 13, 18 radial terms) ~20 %, t
 and recursion with the node assembly (``correction_nodes``) ~45 %, the Bessel functions of the
 nodes ~10 %, the Gram products ~6 %.
 
+Issue 26's fifth pass: the normal punch's correction integrals of all the points at once (one
+batched product on the points' own nodes, one real product of every point's weights with the
+order pairs' products j_p j_q on the shared grid, instead of a Gram product per point and basis
+size), the nodes ended where ``|Δg|``/s crosses its decay level, interpolated between the two
+probed panel edges around it instead of at the next edge (17 % fewer nodes on 250 nm, 12 % on
+1 µm), and the arc's lift allowed up to 1.5 (the two points above k_s a = 1.9 now share the
+arc's layer solutions instead of solving their own); results moved by <= 1.1e-10 (normal
+curves) and <= 5.3e-10 (tangential). Instructions per curve (cachegrind, one thread), main /
+this tree: homogeneous 87 M; 250 nm 456 M (5.2x) -> 369 M (4.2x); 1 µm 302 M (3.5x) -> 266 M (3.1x).
+CPU with one BLAS thread, in one run, main / this tree alternating four times (best of 10 each,
+machine at load ~17 on 2 cores): homogeneous 16.3-18.1 ms; 250 nm 69-84 ms (3.8x-4.7x) /
+68-73 ms (3.9x-4.1x); 1 µm 45-49 ms (2.5x-2.8x) / 40-43 ms (2.3x-2.4x). The 250 nm target is
+still missed. Interpolating Δg onto the nodes of all 41 points in one product (tried, not
+kept) cut instructions further but cost CPU: its arrays of ~30000 nodes are fresh pages each
+time (page faults: 4750 per 1 µm curve instead of 2200, the homogeneous curve 2200), and the
+1 µm curve ran slower than on main. Split of the 250 nm curve after the pass (CPU, one
+thread, ~85 ms at this load): the correction's nodes ~45 % (layer recursion on ~9500 samples
+and arc nodes ~12 %, interpolation of the waves ~8 %, interpolation of Δg onto the ~31000 nodes
+~10 %, slowness table, arc and static shift ~9 %, probes ~3 %), the film's Galerkin matrices at
+three sizes ~20 %, Bessel functions of the nodes ~7 %, film table and far field ~7 %, the
+correction integrals ~6 %. Floor: the film's exact Galerkin at its final basis (18 radial
+terms) alone costs about what the homogeneous curve does (~100 M instructions, fourth pass), so
+3x needs the correction below ~160 M (~4 M per point) where it now takes ~265 M (~6.5 M per
+point), most of it per sample of Δg (~170 per point: 12 Chebyshev samples on each of ~14
+geometric panels, the decay e^{-2ηh} to ηh ~ 10 needs them) and per node (~760 per point, 3 per
+unit of s for the oscillation of j_p j_q up to s ~ 210). Starting the basis at its final size
+(tried, not kept) saved nothing: 384 M instead of 376 M, as the Bessel functions are then
+computed for a larger basis ahead.
+
 Run: ``.venv/bin/python benchmarks/bench_layered_dynamic.py`` (exit status 1 if a target is
 missed; a few minutes on a busy machine).
 """

@@ -107,7 +107,7 @@ def test_passive(stack):
 
 @pytest.mark.parametrize("film_over_a", [0.02, 0.2])
 def test_default_resolution_converges(film_over_a):
-    """Twice the nodes of the correction (measured: < 3e-11) and rtol = 1e-9 (a larger basis
+    """Twice the nodes of the correction (measured: < 1e-10) and rtol = 1e-9 (a larger basis
     and a finer film table; measured: < 3e-9) move the default result less than its rtol."""
     stack = LayeredMaterial(QUARTZ, [(PMMA, film_over_a * A)])
     f = _freq(PMMA, np.array([0.5, 1.5]))

@@ -37,6 +37,7 @@ __all__ = [
     "CorrectionNodes",
     "PunchResolution",
     "Stack",
+    "bessel_on_grid",
     "bessel_on_nodes",
     "correction_nodes",
     "film_reference",
@@ -56,6 +57,8 @@ _PROBE_ETA_H = 50.0
 # Largest η a of the correction's nodes: a film thinner than ~a/1e5 is out of reach (the nodes
 # resolve the oscillation of j_p j_q, ~3 per unit of s).
 _S_MAX = 1e6
+# Largest lift of the arc (in s = η a): j_p j_q grow like e^{2 Im s} on it.
+_MAX_LIFT = 1.5
 
 
 @dataclass(frozen=True)
@@ -324,7 +327,7 @@ def _head(shared: _SharedWaves, st: Stack, a: float, res: PunchResolution, s0: f
     if s1 == 0:
         t, wt = gauss_legendre(0.0, s0, res.n_start)
         return t.astype(complex), wt.astype(complex), shared.static_at(t.size)
-    lift = min(ARC_LIFT * s1, 1.0)
+    lift = min(ARC_LIFT * s1, _MAX_LIFT)
     if lift == ARC_LIFT * s1:
         # The arc of every frequency with this lift is one arc in the slowness (shared waves).
         tau = shared.tau
@@ -373,11 +376,13 @@ def _chunk_nodes(shared: _SharedWaves, stacks, radii, index, res: PunchResolutio
         edges = start * res.ratio ** np.arange(n_edges + 1, dtype=np.float64)
         plan.append((st, a, h_tot, s0, edges))
     probes = _probes(shared, plan, res.decay * gref)
-    parts, lasts = [], []
+    parts, lasts, stops = [], [], []
     xc = np.cos(np.pi * (np.arange(res.n_cheb) + 0.5) / res.n_cheb)
+    threshold = res.decay * gref
     for (st, a, h_tot, s0, edges), probe in zip(plan, probes, strict=True):
-        big = np.abs(probe).reshape(edges.size, -1).max(axis=1) / edges >= res.decay * gref
-        big |= (edges <= 20) | ((h_tot > 0) & (edges * h_tot / a <= 5))
+        rest = np.abs(probe).reshape(edges.size, -1).max(axis=1) / edges
+        forced = (edges <= 20) | ((h_tot > 0) & (edges * h_tot / a <= 5))
+        big = forced | (rest >= threshold)
         last = int(np.flatnonzero(big)[-1]) + 1 if np.any(big) else 1
         if last > edges.size - 2:
             raise ContactresInputError(
@@ -386,6 +391,7 @@ def _chunk_nodes(shared: _SharedWaves, stacks, radii, index, res: PunchResolutio
                 "is out of reach"
             )
         lasts.append(last)
+        stops.append(_stop(edges, rest, forced, last, threshold))
         # Δg at Chebyshev points in ln s per panel, after the arc (or first panel), one panel
         # beyond edges[last] (the nodes end at the next grid edge, < 1.5 edges[last]).
         u = np.log(edges[: last + 2])
@@ -400,12 +406,27 @@ def _chunk_nodes(shared: _SharedWaves, stacks, radii, index, res: PunchResolutio
     pieces = _delta_g(shared, heads + reals, waves)
     n = len(parts)
     samples = [np.concatenate(hr) for hr in zip(pieces[:n], pieces[n:], strict=True)]
-    out = {}
     rule = gauss_legendre(0.0, 1.0, res.n_panel)
-    for k, i in enumerate(index):
-        edges, last, values = plan[k][4], lasts[k], samples[k]
-        out[i] = _assemble_nodes(res, rule, edges, last, parts[k][2], values, shared.shift)
-    return out
+    points = [(plan[k][4], lasts[k], stops[k], parts[k][2], samples[k]) for k in range(n)]
+    return dict(zip(index, _assemble_nodes(res, rule, points, shared.shift), strict=True))
+
+
+def _stop(edges, rest, forced, last: int, threshold: float) -> float:
+    """Where the nodes may end, between ``edges[last − 1]`` (the last edge where what lies
+    beyond, ``rest`` = ``|Δg|``/s, is at or above ``threshold``) and ``edges[last]`` (the first
+    below it): where ln ``rest``, interpolated linearly in s between the two (exact for the
+    e^{−2ηh} decay of Δg under layers, up to the slowly varying 1/s), reaches the threshold;
+    ``edges[last]`` where the last edge above it was only kept by ``forced`` (s <= 20,
+    η h <= 5), or where the decay is not resolved (``rest`` zero at ``edges[last]``)."""
+    if last < 1 or forced[last - 1]:
+        return float(edges[last])
+    r0, r1 = float(rest[last - 1]), float(rest[last])
+    if not (r0 >= threshold > r1 > 0):
+        return float(edges[last])
+    return float(
+        edges[last - 1]
+        + (edges[last] - edges[last - 1]) * math.log(r0 / threshold) / math.log(r0 / r1)
+    )
 
 
 def _probes(shared: _SharedWaves, plan, threshold: float) -> list:
@@ -455,53 +476,61 @@ def _on_panels(rule, lo: np.ndarray, hi: np.ndarray):
     return (lo[:, None] + d * x[None, :]).ravel(), (d * w[None, :]).ravel()
 
 
-def _assemble_nodes(res: PunchResolution, rule, edges, last: int, head, values, shift):
-    """The nodes of one point (:class:`CorrectionNodes`): the head's; the geometric panels'
-    own below 2L; a panel to the next edge of the shared grid k L (:func:`grid_width`); the
-    grid's panels up to the first grid edge S at or beyond ``edges[last]``. Δg at the real nodes is
+def _assemble_nodes(res: PunchResolution, rule, points, shift) -> list:
+    """The nodes of every point of ``points`` [(edges, last, stop, head, values), ...]
+    (:class:`CorrectionNodes`): the head's; the geometric panels' own below 2L; a panel to the
+    next edge of the shared grid k L (:func:`grid_width`); the grid's panels up to the first
+    grid edge S at or beyond ``stop`` (<= ``edges[last]``). Δg at the real nodes is
     interpolated from the Chebyshev samples (in ln s) of the geometric panel holding them."""
-    n_head = head[0].size
-    cheb = values[n_head:].reshape(last + 1, res.n_cheb, -1)
-    u = np.log(edges[: last + 2])
     width = grid_width(res)
-    # Below 2L the geometric panels are narrower than the grid's (Δg varies on the scale of
-    # the arc's end S₁ there): each gets its own sub-panels, per_unit nodes per unit of s on
-    # average; from the first edge beyond 2L one panel to the next grid edge, then the grid.
-    own = int(np.searchsorted(edges[: last + 1], 2 * width))
-    width_j = np.diff(edges[: own + 1])
-    n_sub = np.maximum(1, np.ceil(res.per_unit * width_j / res.n_panel)).astype(int)
-    j = np.repeat(np.arange(own), n_sub)
-    k = np.arange(j.size) - np.repeat(np.cumsum(n_sub) - n_sub, n_sub)
-    k0 = math.ceil(edges[own] / width)
-    k1 = max(k0, math.ceil(edges[last] / width))
-    lo = np.concatenate(
-        [edges[j] + width_j[j] * k / n_sub[j], [edges[own]], width * np.arange(k0, k1)]
-    )
-    hi = np.concatenate(
-        [
-            edges[j] + width_j[j] * (k + 1) / n_sub[j],
-            [width * k0],
-            width * np.arange(k0 + 1, k1 + 1),
-        ]
-    )
-    t, wt = _on_panels(rule, lo, hi)
-    n_own = n_head + (lo.size - (k1 - k0)) * res.n_panel
-    end = np.array([width * k1])
-    where = np.concatenate([t, end])
-    panel = np.clip(np.searchsorted(edges[: last + 2], where) - 1, 0, last)
-    x = (2 * np.log(where) - u[panel] - u[panel + 1]) / (u[panel + 1] - u[panel])
-    B = chebyshev_matrix(res.n_cheb, x)
-    g = np.einsum("nc,nc...->n...", B, cheb[panel]).reshape(where.size, *values.shape[1:])
-    return CorrectionNodes(
-        s=np.concatenate([head[0], t.astype(complex)]),
-        weights=np.concatenate([head[1], wt.astype(complex)]),
-        delta_g=np.concatenate([values[:n_head], g[:-1]]),
-        s_end=float(end[0]),
-        end=g[-1],
-        shift=shift,
-        n_own=n_own,
-        grid_from=k0 * res.n_panel,
-    )
+    out = []
+    for edges, last, stop, head, values in points:
+        n_head = head[0].size
+        cheb = values[n_head:].reshape(last + 1, res.n_cheb, -1)
+        u = np.log(edges[: last + 2])
+        # Below 2L the geometric panels are narrower than the grid's (Δg varies on the scale
+        # of the arc's end S₁ there): each gets its own sub-panels, per_unit nodes per unit of
+        # s on average; from the first edge beyond 2L one panel to the next grid edge, then
+        # the grid.
+        own = int(np.searchsorted(edges[: last + 1], 2 * width))
+        width_j = np.diff(edges[: own + 1])
+        n_sub = np.maximum(1, np.ceil(res.per_unit * width_j / res.n_panel)).astype(int)
+        j = np.repeat(np.arange(own), n_sub)
+        k = np.arange(j.size) - np.repeat(np.cumsum(n_sub) - n_sub, n_sub)
+        k0 = math.ceil(edges[own] / width)
+        k1 = max(k0, math.ceil(stop / width))
+        lo = np.concatenate(
+            [edges[j] + width_j[j] * k / n_sub[j], [edges[own]], width * np.arange(k0, k1)]
+        )
+        hi = np.concatenate(
+            [
+                edges[j] + width_j[j] * (k + 1) / n_sub[j],
+                [width * k0],
+                width * np.arange(k0 + 1, k1 + 1),
+            ]
+        )
+        t, wt = _on_panels(rule, lo, hi)
+        n_own = n_head + (lo.size - (k1 - k0)) * res.n_panel
+        where = np.append(t, width * k1)
+        panel = np.clip(np.searchsorted(edges[: last + 2], where) - 1, 0, last)
+        x = (2 * np.log(where) - u[panel] - u[panel + 1]) / (u[panel + 1] - u[panel])
+        # One point at a time: its arrays stay small (one product over the ~30000 nodes of
+        # 41 points allocates and faults in fresh pages, and costs more CPU than it saves).
+        B = chebyshev_matrix(res.n_cheb, x)
+        g = np.einsum("nc,nc...->n...", B, cheb[panel]).reshape(where.size, *values.shape[1:])
+        out.append(
+            CorrectionNodes(
+                s=np.concatenate([head[0], t.astype(complex)]),
+                weights=np.concatenate([head[1], wt.astype(complex)]),
+                delta_g=np.concatenate([values[:n_head], g[:-1]]),
+                s_end=float(width * k1),
+                end=g[-1],
+                shift=shift,
+                n_own=n_own,
+                grid_from=k0 * res.n_panel,
+            )
+        )
+    return out
 
 
 @dataclass(frozen=True, eq=False)
@@ -537,6 +566,17 @@ def bessel_on_nodes(p_max: int, nodes: dict, res: PunchResolution, transform) ->
     T maps J (p_max + 1, n) to the rows the caller needs (R, n), column by column."""
     if not nodes:
         return {}
+    grid, own = bessel_on_grid(p_max, nodes, res, transform)
+    return {
+        i: (o, grid[:, v.grid_from : v.grid_from + v.s.size - v.n_own])
+        for (i, v), o in zip(nodes.items(), own, strict=True)
+    }
+
+
+def bessel_on_grid(p_max: int, nodes: dict, res: PunchResolution, transform=None):
+    """(T(J) on the whole shared grid (R, n_grid), real; [T(J) on each point's own nodes, in
+    the order of ``nodes``]), J = j_p(s), p = 0..p_max (:func:`bessel_on_nodes`, whose grid
+    parts are the columns ``grid_from`` onwards of the first; ``transform`` None: J itself)."""
     top = max(v.grid_from + v.s.size - v.n_own for v in nodes.values())
     n_pan = math.ceil(top / res.n_panel)
     edges = grid_width(res) * np.arange(n_pan + 1, dtype=np.float64)
@@ -544,14 +584,12 @@ def bessel_on_nodes(p_max: int, nodes: dict, res: PunchResolution, transform) ->
     # Real nodes, real j_p: the grid's part of every Gram product runs in real arithmetic.
     from ._weights import spherical_bessel
 
-    grid = transform(spherical_bessel(p_max, t))
+    T = transform or (lambda J: J)
+    grid = T(spherical_bessel(p_max, t))
     # Every point's own nodes in one call (the recurrences run over orders: one pass for all).
-    own = transform(_bessel(p_max, np.concatenate([v.s[: v.n_own] for v in nodes.values()])))
+    own = T(_bessel(p_max, np.concatenate([v.s[: v.n_own] for v in nodes.values()])))
     cut = np.cumsum([v.n_own for v in nodes.values()])[:-1]
-    return {
-        i: (o, grid[:, v.grid_from : v.grid_from + v.s.size - v.n_own])
-        for (i, v), o in zip(nodes.items(), np.split(own, cut, axis=1), strict=True)
-    }
+    return grid, np.split(own, cut, axis=1)
 
 
 def weighted_gram(parts, v: np.ndarray, cols=None) -> np.ndarray:

@@ -28,21 +28,27 @@ beyond the last node S (j_p j_q -> (−1)^{(p−q)/2}/(2s²) on average).
 
 The path of the ΔM integral (lossless: the limit of loss -> 0⁺). Δg is analytic in the upper
 half η plane; on the real axis of a lossless stack it has the poles of the guided modes (and the
-film's Rayleigh pole, in both terms) and the branch points of the substrate, all at
-η <= T = 1.75 ω × (largest bulk slowness of any material). The path is the arc
-s(t) = t + i H sin(π t/S₁) on 0 <= t <= S₁ = T a (Gauss-Legendre panels no wider than H),
-lifted by H = min(0.3 S₁, 1): the products j_p j_q grow like e^{2 Im s}, so the lift stays O(1)
-in s (O(1/a) in η). Beyond S₁, on the real axis, Δg has no singularity and varies only on the
-scales 1/h and the wave numbers (not on the period π of j_p j_q): on geometric panels of ratio
-1.5 it is sampled at Chebyshev points (in ln s) and interpolated onto Gauss-Legendre nodes dense
-enough for the oscillation of j_p j_q (below s = 2L each panel's own; beyond, the panels of
-width L = 16/3 of one grid k L shared by every point, whose Bessel functions are computed once
-per call); the nodes stop at the first grid edge beyond η h = 5 and s = 20 where
-``|Δg|``/s (what the rest can add) falls below 1e-3 rtol of the film's ``|g|``. A lossy
-stack is passed on the same path (its singularities lie below the real axis). In statics
-(f = 0) the real axis from 0 is used. The layer solutions behind Δg depend on (η, ω) only
-through the slowness η/ω: on the real axis they come from one table in the slowness per stack
-(interpolated to round-off) and on the arc from one set of solutions, for every frequency
+film's Rayleigh pole, in both terms) and the branch points of the substrate, all at η <= T =
+1.75 ω × (largest bulk slowness of any material). The path is the arc s(t) = t + i H sin(π t/S₁)
+on 0 <= t <= S₁ = T a (Gauss-Legendre panels no wider than H), lifted by H = min(0.3 S₁, 1.5):
+the products j_p j_q grow like e^{2 Im s}, so the lift stays O(1) in s (O(1/a) in η); up to S₁ =
+5 (k_s a up to ~2.6 on PMMA over quartz) the arc is one arc in the slowness, whose layer
+solutions every frequency shares. Beyond S₁, on the real axis, Δg has no singularity and varies
+only on the scales 1/h and the wave numbers (not on the period π of j_p j_q): on geometric
+panels of ratio 1.5 it is sampled at Chebyshev points (in ln s) and interpolated onto
+Gauss-Legendre nodes dense enough for the oscillation of j_p j_q (below s = 2L each panel's own;
+beyond, the panels of width L = 16/3 of one grid k L shared by every point, whose Bessel
+functions are computed once per call); the nodes stop at the first grid edge beyond η h = 5 and
+s = 20 where ``|Δg|``/s (what the rest can add) falls below 1e-3 rtol of the film's ``|g|``:
+``|Δg|`` is probed at the panel edges, and between the last edge above that level and the first
+below it the crossing is placed where ln(``|Δg|``/s), taken linear in s between the two (exact
+for the e^{−2ηh} decay under layers but for the slow 1/s), reaches it. The correction integrals
+of all the points are formed together (one batched product on the points' own nodes, one real
+product of every point's weights with the pairs' products j_p j_q on the shared grid). A lossy
+stack is passed on the same path (its singularities lie below the real axis). In statics (f = 0)
+the real axis from 0 is used. The layer solutions behind Δg depend on (η, ω) only through the
+slowness η/ω: on the real axis they come from one table in the slowness per stack (interpolated
+to round-off) and on the arc from one set of solutions, for every frequency
 (``contactres.dynamic._layered_waves``); the nodes of all frequencies are solved together.
 Caveat: a lossless stack with a backward-wave guided mode
 (group and phase velocity opposite, possible for a stiff film on a soft substrate) would have
@@ -65,7 +71,7 @@ else for the first basis; once it has grown, one growth ahead.
 Accuracy (tests/dynamic/test_layered_punch.py, measured): homogeneous isotropic against the
 Fredholm disk 1e-8-2.6e-8 (k_s a = 0.3-2); a lossy stack (Q⁻¹ = 1e-3, PMMA h = 0.2a on quartz)
 against an adaptive real-axis quadrature 4.4e-9, the viscoelastic PMMA film (unequal losses)
-9.9e-9; doubling every node of the correction moves K by < 3e-11, rtol = 1e-9 (larger basis and
+9.9e-9; doubling every node of the correction moves K by < 1e-10, rtol = 1e-9 (larger basis and
 table) by < 3e-9. Films thinner than ~a/100 need many radial terms (the pressure's edge layer
 of width h): the basis grows to at most 48 terms per harmonic, checked as above at h = 0.01 a.
 
@@ -102,13 +108,12 @@ from ._exact import (
 from ._farfield import far_basis
 from ._layered_path import (
     PunchResolution,
-    bessel_on_nodes,
+    bessel_on_grid,
     correction_nodes,
     film_reference,
     punch_resolution,
     stack_at,
     stack_of,
-    weighted_gram,
 )
 from ._layered_tangential import tangential_punch
 from ._normal_stiffness import normalised_wavenumber
@@ -128,23 +133,65 @@ __all__ = [
 _MAX_RADIAL = 48
 
 
-def _correction_integrals(jp, w, dg_harm, s_end, end_harm, pairs, known=None) -> np.ndarray:
-    """∫ Δg_m j_p j_q ds (n_m, n_t) from j_p at the nodes (``jp``: the plan's orders, own and
-    grid parts of ``_layered_path.bessel_on_nodes``), the weights and the harmonics Δg_m
-    (n_m, len(s)), with the tail beyond ``s_end``: Δg ~ Δg(S) S²/s² (its 1/s² decay) and
-    j_p j_q -> (−1)^{(p−q)/2}/(2s²) on average, so the tail is Δg_m(S) (−1)^{(p−q)/2}/(6S).
+def _correction_integrals(bessel, values, orders, pairs, known=None) -> np.ndarray:
+    """∫ Δg_m j_p j_q ds (n_pts, n_m, n_t) of every point with a correction, with the tail
+    beyond each one's last node S: Δg ~ Δg(S) S²/s² (its 1/s² decay) and j_p j_q ->
+    (−1)^{(p−q)/2}/(2s²) on average, so the tail is Δg_m(S) (−1)^{(p−q)/2}/(6S).
 
-    ``pairs``: :func:`_new_pairs` of the plan; ``known``: what this call returned for the
-    previous (smaller) basis on the same nodes, whose pairs' integrals are reused."""
+    ``bessel``: :func:`_padded_bessel` (j_p on the points' own nodes and on the shared grid);
+    ``values``: :func:`_point_values` (the weights times Δg_m on the same nodes, the tails);
+    ``orders``: the plan's orders; ``pairs``: :func:`_new_pairs` of the plan; ``known``: what
+    this call returned for the previous (smaller) basis, whose pairs' integrals are reused."""
     new, at, a, cols, pos, sign = pairs
-    out = np.empty((dg_harm.shape[0], new.size), dtype=complex)
+    own_j, grid_jt = bessel
+    own_v, grid_v, end, s_end = values
+    n_pts, n_m = own_v.shape[:2]
+    out = np.empty((n_pts, n_m, new.size), dtype=complex)
     if known is not None:
-        out[:, ~new] = known[:, at]
-    # Every harmonic and new column at once: J diag(w Δg_m) J[cols]ᵀ (one batched product).
-    gram = weighted_gram(jp, w[None, :] * dg_harm, cols)
-    out[:, new] = end_harm[:, None] * sign[None, :] / (6 * s_end)
-    out[:, new] += gram[:, a, pos]
+        out[..., ~new] = known[..., at]
+    # The points' own nodes (the arc and the panels below 2L): J diag(w Δg_m) J[cols]ᵀ, one
+    # batched product over the points and harmonics, then the new pairs read from it.
+    rows = own_j[:, _order_rows(orders)]
+    gram = (rows[:, None] * own_v[:, :, None, :]) @ np.swapaxes(rows[:, cols], -1, -2)[:, None]
+    fresh = gram[..., a, pos]
+    # The shared grid's nodes, real J: Σ_n (w Δg_m)_n j_p j_q as one real product of every
+    # point's and harmonic's values (real and imaginary parts) with the new pairs' products.
+    products = grid_jt[:, orders[a]] * grid_jt[:, orders[cols[pos]]]
+    both = (grid_v @ products).reshape(2, n_pts, n_m, -1)
+    fresh += both[0] + 1j * both[1]
+    fresh += end[:, :, None] * sign / (6 * s_end[:, None, None])
+    out[..., new] = fresh
     return out
+
+
+def _padded_bessel(p_max: int, nodes: dict, res) -> tuple:
+    """(j_p, p = 0..``p_max``, on every point's own nodes, zero beyond them (n_pts, p_max + 1,
+    most own nodes); j_p on the shared grid, transposed (n_grid, p_max + 1), real), the
+    points in the order of ``nodes``."""
+    grid, own = bessel_on_grid(p_max, nodes, res)
+    out = np.zeros((len(own), p_max + 1, max(o.shape[1] for o in own)), dtype=complex)
+    for k, o in enumerate(own):
+        out[k, :, : o.shape[1]] = o
+    return out, np.ascontiguousarray(grid.T)
+
+
+def _point_values(nodes: dict, harmonics: list, n_grid: int) -> tuple:
+    """(w Δg_m on every point's own nodes (n_pts, n_m, most own nodes), complex; on the shared
+    grid, real and imaginary parts stacked (2 n_pts n_m, n_grid); Δg_m(S) (n_pts, n_m); S
+    (n_pts,)), zero beyond each point's nodes, from each point's harmonics (of the static
+    shift, of Δg (n_m, len(s)), of Δg(S)), the points in the order of ``nodes``."""
+    n_m = harmonics[0][1].shape[0]
+    n_own = max(v.n_own for v in nodes.values())
+    own = np.zeros((len(nodes), n_m, n_own), dtype=complex)
+    grid = np.zeros((len(nodes), n_m, n_grid), dtype=complex)
+    for k, (v, (_, harm, _)) in enumerate(zip(nodes.values(), harmonics, strict=True)):
+        wg = v.weights[None, :] * harm
+        own[k, :, : v.n_own] = wg[:, : v.n_own]
+        grid[k, :, v.grid_from : v.grid_from + v.s.size - v.n_own] = wg[:, v.n_own :]
+    flat = grid.reshape(-1, n_grid)
+    end = np.array([h[2] for h in harmonics])
+    s_end = np.array([v.s_end for v in nodes.values()])
+    return own, np.concatenate([flat.real, flat.imag]), end, s_end
 
 
 def _new_pairs(plan, previous):
@@ -510,12 +557,14 @@ def _punch(table, film, items, radii, rtol, res) -> np.ndarray:
     pos = ksa > 0
     far = far_basis(table, ksa[pos]) if np.any(pos) else None
     known = None
-    # Each point's correction integrals and their plan, reused by the grown basis; its
+    index = np.array(list(nodes), dtype=int)
+    # The correction integrals of every point by order pair, reused by the grown basis; the
     # harmonics of Δg (the same for every size: the harmonics m do not change).
-    reuse: dict = {}
-    harmonics: dict = {}
+    reuse = None
+    harmonics: list = []
+    values = None
     previous = None
-    bessel: dict = {}  # j_p at every point's nodes, p = 0..p_have
+    bessel = None  # j_p at the nodes, p = 0..p_have (_padded_bessel)
     p_have = -1
     thin = any(np.sum(stacks[i].thicknesses) < 0.1 * radii[i] for i in nodes)
     while True:
@@ -536,27 +585,28 @@ def _punch(table, film, items, radii, rtol, res) -> np.ndarray:
         M, plan, known = _film_matrices(table, ksa, size, far, known, ahead - n_radial)
         orders, (ti, tj) = plan.orders, plan.pairs
         diag = np.where(ti == tj, np.pi / (2 * (2 * orders[ti] + 1)), 0.0)
-        if nodes and p_have < orders[-1]:
-            p_have = int(orders[-1]) + 2 * (ahead - n_radial)
-            bessel = bessel_on_nodes(p_have, nodes, res, lambda J: J)
-        pick = _order_rows(orders)
-        pairs = _new_pairs(plan, previous)
-        reused = previous is not None and np.array_equal(previous.ms, plan.ms)
-        for i, v in nodes.items():
+        if nodes:
+            if p_have < orders[-1]:
+                p_have = int(orders[-1]) + 2 * (ahead - n_radial)
+                bessel = _padded_bessel(p_have, nodes, res)
+            assert bessel is not None  # computed at the first size
+            reused = previous is not None and np.array_equal(previous.ms, plan.ms)
             if not reused:
-                harmonics[i] = (
-                    _harmonics_of(v.shift[None, :], plan, axisymmetric),
-                    _harmonics_of(v.delta_g, plan, axisymmetric),
-                    _harmonics_of(v.end[None, :], plan, axisymmetric)[:, 0],
-                )
-            shift, harm, end_h = harmonics[i]
-            jp = (bessel[i][0][pick], bessel[i][1][pick])
-            integral = _correction_integrals(
-                jp, v.weights, harm, v.s_end, end_h, pairs, reuse[i] if reused else None
-            )
-            reuse[i] = integral
+                harmonics = [
+                    (
+                        _harmonics_of(v.shift[None, :], plan, axisymmetric)[:, 0],
+                        _harmonics_of(v.delta_g, plan, axisymmetric),
+                        _harmonics_of(v.end[None, :], plan, axisymmetric)[:, 0],
+                    )
+                    for v in nodes.values()
+                ]
+                values = _point_values(nodes, harmonics, bessel[1].shape[0])
+            pairs = _new_pairs(plan, previous)
+            reuse = _correction_integrals(bessel, values, orders, pairs, reuse if reused else None)
             # The static difference of film and reference: closed form, as in the exact model.
-            M[i] += _assemble(integral + shift[:, 0][:, None] * diag[None, :], plan)
+            shift = np.array([h[0] for h in harmonics])
+            total = reuse + shift[:, :, None] * diag
+            M[index] += plan.sign * total[:, plan.m_index, plan.t_index]
         c_big = _solve_c0(M, grow, plan)
         if not nodes:
             break

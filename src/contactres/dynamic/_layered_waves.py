@@ -20,7 +20,7 @@ only the layer exponentials exp(η h A) and the recursion over them do. So:
   layer's D_u and A_u are sign changes of D_d and A_d; a film with one loss tangent is its
   own reference);
 - on the lifted arc s = S₁ (τ + 0.3 i sin πτ), S₁ = T a, x = 1/(p₁ (τ + 0.3 i sin πτ))²
-  does not depend on the frequency either (wherever the lift is 0.3 S₁, i.e. S₁ <= 10/3), so
+  does not depend on the frequency either (wherever the lift is 0.3 S₁, i.e. S₁ <= 5), so
   one set of arc solutions serves all those frequencies;
 - in statics (ω = 0) x = 0 at every η: one solution per direction.
 
@@ -45,7 +45,8 @@ __all__ = ["StackWaves", "arc_fraction", "chebyshev_matrix", "waves_at"]
 # between table and direct solutions (at points between the nodes) that lets the table serve.
 _N_TABLE = 28
 _TABLE_TOL = 1e-12
-# The arc's lift over its length S₁ (where the lift is below 1) and its panels.
+# The arc's lift over its length S₁ (where the lift is below its cap: _layered_path) and its
+# panels.
 ARC_LIFT = 0.3
 ARC_PANELS = 4
 
@@ -63,12 +64,15 @@ def chebyshev_matrix(n: int, x: np.ndarray) -> np.ndarray:
     j = np.arange(n)
     w = (-1.0) ** j * np.sin((2 * j + 1) * np.pi / (2 * n))
     d = x[:, None] - xc[None, :]
-    exact = d == 0
-    d[exact] = 1.0
-    c = w[None, :] / d
-    out = c / np.sum(c, axis=1)[:, None]
-    hit = np.any(exact, axis=1)
-    out[hit] = exact[hit].astype(float)
+    # A node on a sample point makes its row's sum infinite: only those rows (rare) are
+    # replaced by the sample's unit row, not every entry tested.
+    with np.errstate(divide="ignore", invalid="ignore"):
+        c = w[None, :] / d
+        total = np.sum(c, axis=1)
+        out = c / total[:, None]
+    hit = ~np.isfinite(total)
+    if np.any(hit):
+        out[hit] = (d[hit] == 0).astype(float)
     return out
 
 
