@@ -461,3 +461,22 @@ def test_a_sphere_radius_in_millimetres_is_refused_wherever_it_comes_from(tmp_pa
     f.to_csv(tmp_path / "sweeps.csv", index=False)
     with pytest.raises(ValueError, match=r"looks like millimetres \(1\.1 mm = 0\.0011 m\)"):
         read_sweeps(tmp_path / "sweeps.csv", **constants)
+
+
+def test_a_column_varies_within_a_group_where_pandas_counts_two_values():
+    """check_per_sweep tests each column in numpy against the group codes found once (issue 31,
+    point 3: pandas' nunique hashed the sweep ids again for every column); it finds a conflict
+    exactly where ``groupby(...).nunique()`` counts more than one value (missing cells aside,
+    0.0 and -0.0 one value), on random tables of floats and of text."""
+    from contactres.measurements._sweep_checks import _varies
+
+    rng = np.random.default_rng(5)
+    for trial in range(300):
+        n = int(rng.integers(1, 40))
+        by = pd.Series(rng.choice(["a", "b", "c", None], n), dtype=object)
+        floats = rng.choice([0.0, -0.0, 1.5, np.nan], n) if trial % 3 else np.full(n, 2.0)
+        texts = pd.Series(rng.choice(["x", "y", None], n), dtype=object)
+        for cells in (pd.Series(floats), texts):
+            frame = pd.DataFrame({"by": by, "col": cells})
+            expected = bool((frame.groupby("by", sort=False)["col"].nunique() > 1).any())
+            assert _varies(pd.factorize(by)[0], cells) == expected, (frame, trial)
