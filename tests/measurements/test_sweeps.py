@@ -480,3 +480,26 @@ def test_a_column_varies_within_a_group_where_pandas_counts_two_values():
             frame = pd.DataFrame({"by": by, "col": cells})
             expected = bool((frame.groupby("by", sort=False)["col"].nunique() > 1).any())
             assert _varies(pd.factorize(by)[0], cells) == expected, (frame, trial)
+
+
+def test_a_column_of_few_values_is_read_as_a_column_of_many(tmp_path):
+    """A column of few distinct cells (a load, the ramps, a constant) is read one distinct text
+    at a time (issue 31, point 3): the numbers are those written (the same when one value is
+    written in several ways), and a bad cell far down is named by its own line."""
+    f = good_frame(n_sweeps=200, n_points=6)  # 1,200 rows: more than the sample of 1,000
+    f["normal_force_N"] = np.where(np.arange(len(f)) // 6 % 2, 2e-3, 3e-3)  # per sweep
+    f["fundamental_Hz"] = 5e6
+    path = write(tmp_path, f, "few.csv")
+    t = read_sweeps(path, **{k: v for k, v in CONST.items() if k != "fundamental_Hz"}).data
+    np.testing.assert_array_equal(t["normal_force_N"], f["normal_force_N"])
+    assert (t["fundamental_Hz"] == 5e6).all()
+    many = f.astype({"normal_force_N": object})
+    # the same loads written each in several ways ("0.002", "2.0e-3", " 0.0020 ")
+    forms = ("{:.3f}", "{:.1e}", " {:.4f} ", "{:g}")
+    many["normal_force_N"] = [forms[i % 4].format(v) for i, v in enumerate(f["normal_force_N"])]
+    t2 = read_sweeps(write(tmp_path, many, "many.csv"), **CONST).data
+    np.testing.assert_array_equal(t2["normal_force_N"], f["normal_force_N"])
+    bad = f.astype({"normal_force_N": object})
+    bad.loc[1100, "normal_force_N"] = "2e-3x"
+    with pytest.raises(ValueError, match=r"line 1102, column 'normal_force_N'.*'2e-3x' is not"):
+        read_sweeps(write(tmp_path, bad, "bad.csv"), **CONST)
