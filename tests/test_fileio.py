@@ -472,16 +472,16 @@ def test_the_joined_csv_with_a_float_format_is_the_text_pandas_writes(
 def test_a_table_is_joined_chunk_by_chunk_and_left_to_pandas_where_a_later_chunk_needs_it(
     tmp_path, monkeypatch
 ):
-    """The joined writer holds the text of CHUNK_ROWS rows at a time (10^5 sweeps' curve table
-    held ~0.9 GB of text at once): lines across chunk boundaries are pandas' own; a chunk that
-    it does not cover (here a mixed cell after the first chunk) hands the whole table to
-    pandas, which writes the file anew."""
+    """The joined writer holds the text of the rows of CHUNK_CELLS cells at a time (10^5
+    sweeps' curve table held ~0.9 GB of text at once): lines across chunk boundaries are
+    pandas' own; a chunk that it does not cover (here a mixed cell after the first chunk) hands
+    the whole table to pandas, which writes the file anew."""
     import numpy as np
 
     from contactres import _csvcells
     from contactres.fileio import write_csv
 
-    monkeypatch.setattr(_csvcells, "CHUNK_ROWS", 7)
+    monkeypatch.setattr(_csvcells, "CHUNK_CELLS", 14)  # 7 rows of 2 cells
     n = 40
     frame = pd.DataFrame(
         {"x": np.linspace(-1.0, 1.0, n), "s": pd.Series([f"s{i}" for i in range(n)], dtype=object)}

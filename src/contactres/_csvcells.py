@@ -15,7 +15,7 @@ from collections.abc import Iterator
 import numpy as np
 
 __all__ = [
-    "CHUNK_ROWS",
+    "CHUNK_CELLS",
     "CSV_FLOAT_FORMAT",
     "csv_chunks",
     "csv_text",
@@ -117,10 +117,11 @@ class _NotJoined(Exception):
     """A table (or a chunk of it) that :func:`csv_chunks` does not cover: pandas writes it."""
 
 
-#: Rows whose text :func:`csv_chunks` joins at a time: the text of a chunk is held, never that
-#: of a whole table (a Python string per cell: 10^5 sweeps' curve table, 3·10^6 rows of five
-#: cells, held ~0.9 GB of text at once).
-CHUNK_ROWS = 2**16
+#: Cells whose text :func:`csv_chunks` joins at a time (as many rows as hold this many): the
+#: text of a chunk is held, never that of a whole table (a Python string per cell: 10^5
+#: sweeps' curve table, 3·10^6 rows of five cells, held ~0.9 GB of text at once), and a wide
+#: table's chunk is no larger than a narrow one's (~20 MB of text).
+CHUNK_CELLS = 2**18
 
 
 def _field_texts(col, na_rep: str, float_format: str | None = None) -> list[str]:
@@ -177,10 +178,11 @@ def csv_chunks(
 ) -> Iterator[str]:
     """The CSV text of ``frame`` as ``frame.to_csv(index=False, na_rep=na_rep,
     lineterminator=lineterminator, float_format=float_format)`` writes it, in pieces: the
-    header line, then the lines of ``rows`` rows at a time (default :data:`CHUNK_ROWS`; each
-    line ended by ``lineterminator``). Raises _NotJoined, before or between pieces, for a
-    table it does not cover (no rows, one column, column names that are not text, a column of
-    dates or mixed objects, a line break in a cell): write those with pandas.
+    header line, then the lines of ``rows`` rows at a time (default: the rows of
+    :data:`CHUNK_CELLS` cells; each line ended by ``lineterminator``). Raises _NotJoined,
+    before or between pieces, for a table it does not cover (no rows, one column, column
+    names that are not text, a column of dates or mixed objects, a line break in a cell):
+    write those with pandas.
 
     Why: pandas 3 writes a column of text through its csv writer at ~0.3 µs a cell, and a
     formatted float at ~2 µs; joining the cells here costs a tenth of that (issue 31, point 5:
@@ -194,7 +196,7 @@ def csv_chunks(
         '"' + c.replace('"', '""') + '"' if any(q in c for q in _QUOTED) else c for c in columns
     ]
     yield ",".join(header) + lineterminator
-    step = CHUNK_ROWS if rows is None else rows
+    step = max(1, CHUNK_CELLS // len(columns)) if rows is None else rows
     for start in range(0, len(frame), step):
         part = frame.iloc[start : start + step]
         # by position: column names need not be unique
