@@ -503,3 +503,19 @@ def test_a_column_of_few_values_is_read_as_a_column_of_many(tmp_path):
     bad.loc[1100, "normal_force_N"] = "2e-3x"
     with pytest.raises(ValueError, match=r"line 1102, column 'normal_force_N'.*'2e-3x' is not"):
         read_sweeps(write(tmp_path, bad, "bad.csv"), **CONST)
+
+
+def test_a_repeated_point_with_another_time_is_no_duplicated_row(tmp_path):
+    """Duplicated rows are looked for among the rows whose point (sweep, amplitude, shifts)
+    repeats (issue 31, point 3): a point measured again at another time is a row of its own,
+    kept, and a row repeated in every column is dropped as before."""
+    f = good_frame()
+    f["time_s"] = np.arange(len(f), dtype=float)
+    again = f.iloc[[3]].assign(time_s=100.0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", SweepWarning)  # no duplicated row to warn of
+        t = read_sweeps(write(tmp_path, pd.concat([f, again], ignore_index=True)), **CONST)
+    assert len(t.data) == 19
+    with pytest.warns(SweepWarning, match=r"1 duplicated row.*line\(s\) 21"):
+        t = read_sweeps(write(tmp_path, pd.concat([f, again, again], ignore_index=True)), **CONST)
+    assert len(t.data) == 19

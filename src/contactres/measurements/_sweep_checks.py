@@ -33,6 +33,11 @@ def drop_duplicates(out: pd.DataFrame, source: str) -> pd.DataFrame:
     """The table without rows that repeat another row (all but the line number), named in one
     warning."""
     data_only = [c for c in out.columns if c != "line"]
+    # A repeated row repeats its point (sweep, amplitude and shifts): where no point repeats,
+    # no row does, found without hashing the other dozen columns (10^6 rows, issue 31).
+    point = [c for c in ("sweep", "amplitude_m", "df_Hz", "dgamma_Hz") if c in data_only]
+    if point and not out.duplicated(subset=point).any():
+        return out
     dup = out.duplicated(subset=data_only, keep="first").to_numpy()
     if not dup.any():
         return out
