@@ -443,3 +443,54 @@ def test_write_npz_keeps_doubles_and_text(tmp_path):
         assert archive["file"].view(np.uint64).tolist() == x.view(np.uint64).tolist()
         assert archive["allow_pickle"].tolist() == list(range(1000))
         assert archive["t"].tolist() == ["a", ""] * 500
+
+
+@pytest.mark.parametrize("float_format", ["%.10g", "%.3e", "%.15g"])
+def test_the_joined_csv_with_a_float_format_is_the_text_pandas_writes(
+    tmp_path, monkeypatch, float_format
+):
+    """A float format (the reports' CSV_FLOAT_FORMAT) keeps the joined writer (issue 31, point
+    3: pandas formats a float cell at ~2 µs): every double, gaps and signs included, is written
+    as pandas' own writer writes it with that format."""
+    import numpy as np
+
+    from contactres.fileio import write_csv
+
+    rng = np.random.default_rng(3)
+    bits = rng.integers(0, 2**63, 3000, dtype=np.uint64).view(np.float64)
+    special = [np.nan, np.inf, -np.inf, -0.0, 0.0, 1e16, 1e15, 5e-324, 0.1, -2.5, 1e-5]
+    values = np.concatenate([bits, special, -bits[:50]])
+    frame = pd.DataFrame({"a": values, "n": np.arange(values.size), "label": "x,y"})
+    for na_rep in ("", "NA"):
+        frame.to_csv(tmp_path / "pandas.csv", index=False, na_rep=na_rep, float_format=float_format)
+        with monkeypatch.context() as m:
+            m.setattr(pd.DataFrame, "to_csv", lambda *a, **k: pytest.fail("pandas was called"))
+            write_csv(tmp_path / "joined.csv", frame, na_rep=na_rep, float_format=float_format)
+        assert (tmp_path / "joined.csv").read_bytes() == (tmp_path / "pandas.csv").read_bytes()
+
+
+def test_a_table_is_joined_chunk_by_chunk_and_left_to_pandas_where_a_later_chunk_needs_it(
+    tmp_path, monkeypatch
+):
+    """The joined writer holds the text of the rows of CHUNK_CELLS cells at a time (10^5
+    sweeps' curve table held ~0.9 GB of text at once): lines across chunk boundaries are
+    pandas' own; a chunk that it does not cover (here a mixed cell after the first chunk) hands
+    the whole table to pandas, which writes the file anew."""
+    import numpy as np
+
+    from contactres import _csvcells
+    from contactres.fileio import write_csv
+
+    monkeypatch.setattr(_csvcells, "CHUNK_CELLS", 14)  # 7 rows of 2 cells
+    n = 40
+    frame = pd.DataFrame(
+        {"x": np.linspace(-1.0, 1.0, n), "s": pd.Series([f"s{i}" for i in range(n)], dtype=object)}
+    )
+    assert len(list(_csvcells.csv_chunks(frame))) == 1 + 6  # the header, then 6 chunks
+    frame.to_csv(tmp_path / "pandas.csv", index=False, float_format="%.10g")
+    write_csv(tmp_path / "joined.csv", frame, float_format="%.10g")
+    assert (tmp_path / "joined.csv").read_bytes() == (tmp_path / "pandas.csv").read_bytes()
+    frame.loc[30, "s"] = 5  # a number among text: pandas' writer, for the whole file
+    frame.to_csv(tmp_path / "pandas.csv", index=False, float_format="%.10g")
+    write_csv(tmp_path / "mixed.csv", frame, float_format="%.10g")
+    assert (tmp_path / "mixed.csv").read_bytes() == (tmp_path / "pandas.csv").read_bytes()

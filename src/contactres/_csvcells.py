@@ -10,10 +10,14 @@ callers import them.
 
 from __future__ import annotations
 
+from collections.abc import Iterator
+
 import numpy as np
 
 __all__ = [
+    "CHUNK_CELLS",
     "CSV_FLOAT_FORMAT",
+    "csv_chunks",
     "csv_text",
     "csv_to",
     "floats_as_text",
@@ -109,16 +113,36 @@ def floats_as_text(frame, na_rep: str = ""):
 _QUOTED = (",", '"', "\r", "\n")
 
 
-def _field_texts(col, na_rep: str) -> list[str] | None:
+class _NotJoined(Exception):
+    """A table (or a chunk of it) that :func:`csv_chunks` does not cover: pandas writes it."""
+
+
+#: Cells whose text :func:`csv_chunks` joins at a time (as many rows as hold this many): the
+#: text of a chunk is held, never that of a whole table (a Python string per cell: 10^5
+#: sweeps' curve table, 3·10^6 rows of five cells, held ~0.9 GB of text at once), and a wide
+#: table's chunk is no larger than a narrow one's (~20 MB of text).
+CHUNK_CELLS = 2**18
+
+
+def _field_texts(col, na_rep: str, float_format: str | None = None) -> list[str]:
     """The cells of one column (a pandas Series) as the text ``to_csv`` writes for them, quoted
-    where the csv module quotes; None for a column of another kind (dates, categories, mixed
-    objects): the caller then leaves the table to pandas."""
+    where the csv module quotes. Raises _NotJoined for a column of another kind (dates,
+    categories, mixed objects, a line break in a cell): the caller then leaves the table to
+    pandas.
+
+    A float64 cell is ``float_format % value`` where a format is given (what pandas'
+    ``to_csv(float_format=...)`` writes for it, cell by cell), else its ``repr`` (the shortest
+    text that reads back as the same double, pandas' text without a format); NaN is
+    ``na_rep`` either way."""
     from pandas.api.types import infer_dtype
 
     values = col.to_numpy()
-    if values.dtype == np.float64:  # repr: the shortest text that reads back as the same double
-        text = [repr(v) for v in values.tolist()]
-        if na_rep != "nan":
+    if values.dtype == np.float64:
+        if float_format is None:
+            text = [repr(v) for v in values.tolist()]
+        else:
+            text = [float_format % v for v in values.tolist()]
+        if na_rep != "nan" or float_format is not None:
             for i in np.flatnonzero(np.isnan(values)).tolist():
                 text[i] = na_rep
         return text
@@ -127,17 +151,17 @@ def _field_texts(col, na_rep: str) -> list[str] | None:
     if values.dtype.kind == "b":
         return ["True" if v else "False" for v in values.tolist()]
     if values.dtype.kind not in "OU" and str(col.dtype) != "str":
-        return None
+        raise _NotJoined
     kind = infer_dtype(col, skipna=True)
     if kind not in ("string", "empty"):
-        return None
+        raise _NotJoined
     gap = col.isna().to_numpy(dtype=bool)
     text = col.to_numpy(dtype=object).tolist()
     for i in np.flatnonzero(gap).tolist():
         text[i] = na_rep
     joined = "\x00".join(text)  # one scan in C for the characters that need quotes
     if "\r" in joined or "\n" in joined:
-        return None  # a line break in a cell: pandas' writer keeps it as it is, to the byte
+        raise _NotJoined  # a line break in a cell: pandas' writer keeps it as it is, to the byte
     if any(c in joined for c in _QUOTED):
         text = [
             '"' + v.replace('"', '""') + '"' if any(c in v for c in _QUOTED) else v for v in text
@@ -145,50 +169,78 @@ def _field_texts(col, na_rep: str) -> list[str] | None:
     return text
 
 
-def csv_text(frame, na_rep: str = "", lineterminator: str = "\n") -> str | None:
+def csv_chunks(
+    frame,
+    na_rep: str = "",
+    lineterminator: str = "\n",
+    float_format: str | None = None,
+    rows: int | None = None,
+) -> Iterator[str]:
     """The CSV text of ``frame`` as ``frame.to_csv(index=False, na_rep=na_rep,
-    lineterminator=lineterminator)`` writes it (header, then one line per row, each ended by
-    ``lineterminator``), or None for a table it does not cover (no rows, one column, a column
-    of dates or mixed objects, a line break in a cell, column names that are not text): write
-    those with pandas.
+    lineterminator=lineterminator, float_format=float_format)`` writes it, in pieces: the
+    header line, then the lines of ``rows`` rows at a time (default: the rows of
+    :data:`CHUNK_CELLS` cells; each line ended by ``lineterminator``). Raises _NotJoined,
+    before or between pieces, for a table it does not cover (no rows, one column, column
+    names that are not text, a column of dates or mixed objects, a line break in a cell):
+    write those with pandas.
 
-    Why: pandas 3 writes a column of text through its csv writer at ~0.3 µs a cell; joining
-    the cells here costs a tenth of that (issue 31, point 5: ``afm invert`` of a 512² map
-    writes 5.5 million cells). Floats are written as their ``repr`` (exact: they read back as
-    the same doubles), as pandas writes them without ``float_format``."""
+    Why: pandas 3 writes a column of text through its csv writer at ~0.3 µs a cell, and a
+    formatted float at ~2 µs; joining the cells here costs a tenth of that (issue 31, point 5:
+    ``afm invert`` of a 512² map writes 5.5 million cells; point 3: ``qcm analyze`` of 10^5
+    sweeps writes ~15 million). In pieces, so that the text of a large table is never held
+    whole."""
     columns = list(getattr(frame, "columns", ()))
     if len(columns) < 2 or len(frame) == 0 or not all(isinstance(c, str) for c in columns):
-        return None  # (not a table; one column: the csv module quotes an empty field there)
+        raise _NotJoined  # (not a table; one column: the csv module quotes an empty field there)
     header = [
         '"' + c.replace('"', '""') + '"' if any(q in c for q in _QUOTED) else c for c in columns
     ]
-    fields = []
-    for i in range(len(columns)):  # by position: column names need not be unique
-        text = _field_texts(frame.iloc[:, i], na_rep)
-        if text is None:
-            return None
-        fields.append(text)
-    rows = map(",".join, zip(*fields, strict=True))
-    return lineterminator.join([",".join(header), *rows, ""])
+    yield ",".join(header) + lineterminator
+    step = max(1, CHUNK_CELLS // len(columns)) if rows is None else rows
+    for start in range(0, len(frame), step):
+        part = frame.iloc[start : start + step]
+        # by position: column names need not be unique
+        fields = [_field_texts(part.iloc[:, i], na_rep, float_format) for i in range(len(columns))]
+        yield lineterminator.join([*map(",".join, zip(*fields, strict=True)), ""])
+
+
+def csv_text(
+    frame, na_rep: str = "", lineterminator: str = "\n", float_format: str | None = None
+) -> str | None:
+    """The CSV text of ``frame`` as ``frame.to_csv(index=False, na_rep=na_rep,
+    lineterminator=lineterminator, float_format=float_format)`` writes it, whole
+    (:func:`csv_chunks` joined), or None for a table that :func:`csv_chunks` does not cover:
+    write those with pandas."""
+    try:
+        return "".join(csv_chunks(frame, na_rep, lineterminator, float_format))
+    except _NotJoined:
+        return None
 
 
 def csv_to(path, frame, options: dict) -> None:
     """Write ``frame`` to ``path`` as ``frame.to_csv(path, **options)`` would, with its
-    formula-like text neutralised (:func:`neutralised`). With pandas' default options
-    (``index=False``, at most ``na_rep``) the text is :func:`csv_text`'s, the same bytes as
-    pandas' (lines ended by ``os.linesep``, its default); a table it does not cover goes to
-    ``to_csv``, its floats turned to text first when no option formats them
+    formula-like text neutralised (:func:`neutralised`). With ``index=False`` and at most the
+    options ``na_rep`` and ``float_format`` (a %-format string) the text is
+    :func:`csv_chunks`', the same bytes as pandas' (lines ended by ``os.linesep``, its
+    default), written chunk by chunk; a table it does not cover goes to ``to_csv`` (which then
+    writes the file anew), its floats turned to text first when no option formats them
     (:func:`floats_as_text`: pandas 3 writes text faster than floats)."""
     import os
 
     table = neutralised(frame)
     na_rep = options.get("na_rep", "")
-    if options.keys() <= {"index", "na_rep"} and not options.get("index", True):
-        text = csv_text(table, na_rep, os.linesep)
-        if text is not None:
+    float_format = options.get("float_format")
+    joined = options.keys() <= {"index", "na_rep", "float_format"} and not options.get(
+        "index", True
+    )
+    if joined and (float_format is None or isinstance(float_format, str)):
+        try:
             with open(path, "w", encoding="utf-8", newline="") as fh:
-                fh.write(text)
+                for piece in csv_chunks(table, na_rep, os.linesep, float_format):
+                    fh.write(piece)
             return
+        except _NotJoined:
+            pass
     if not {"float_format", "decimal", "quoting"} & options.keys():  # pandas' default text
         table = floats_as_text(table, na_rep)
     table.to_csv(path, **options)

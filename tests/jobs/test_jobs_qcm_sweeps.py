@@ -100,3 +100,37 @@ def test_two_worker_processes_write_the_files_of_one_byte_for_byte(tmp_path):
             one, two = (json.loads(b) for b in (one, two))
             assert (one["settings"].pop("workers"), two["settings"].pop("workers")) == (1, 2)
         assert one == two, name
+
+
+def test_without_figures_the_curves_are_those_of_the_page_grid_alone(tmp_path):
+    """issue 31, point 3: a run that draws no figure computes the fitted curves on the 30-point
+    grid of curves.csv and of the page only (Fig. 4's 100-point grid was 77 % of their cost):
+    the files it writes are those of a run with figures, byte for byte; its Results hold that
+    one grid; drawing Fig. 4 from them says why it cannot."""
+    from contactres.analysis import FIGURE_POINTS, PAGE_POINTS
+    from contactres.report import report_set, write_report
+    from contactres.report.figures import figure_sweeps
+
+    runs = {}
+    for figures in (True, False):
+        settings = qcm_sweeps.Settings(bootstrap=0, figures=figures)
+        result = qcm_sweeps.run(SWEEPS, settings)
+        out = tmp_path / f"figures{figures}"
+        with report_set(qcm_sweeps.Result, out, ("csv", "json", "html")) as rs:
+            write_report(result, rs, ("csv", "json", "html"))
+        runs[figures] = result, out
+    (full, with_figures), (page, without) = runs[True], runs[False]
+    assert sorted(full.analysis.curves["grid_points"].unique()) == [PAGE_POINTS, FIGURE_POINTS]
+    assert set(page.analysis.curves["grid_points"]) == {PAGE_POINTS}
+    names = sorted(p.name for p in with_figures.iterdir())
+    assert names == sorted(p.name for p in without.iterdir()) and "curves.csv" in names
+    for name in set(names) - {"manifest.json"}:
+        assert (with_figures / name).read_bytes() == (without / name).read_bytes(), name
+    with pytest.raises(ContactresInputError, match="grid"):
+        figure_sweeps(page.analysis)
+
+
+@pytest.mark.parametrize("grids", [(), (30, 30), (1,), (30.5,)])
+def test_curve_grids_are_distinct_numbers_of_points(grids):
+    with pytest.raises(ContactresInputError, match="curve_grids"):
+        analyze(read_sweeps(SWEEPS), settings=AnalysisSettings(bootstrap=0), curve_grids=grids)

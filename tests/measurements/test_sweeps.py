@@ -461,3 +461,61 @@ def test_a_sphere_radius_in_millimetres_is_refused_wherever_it_comes_from(tmp_pa
     f.to_csv(tmp_path / "sweeps.csv", index=False)
     with pytest.raises(ValueError, match=r"looks like millimetres \(1\.1 mm = 0\.0011 m\)"):
         read_sweeps(tmp_path / "sweeps.csv", **constants)
+
+
+def test_a_column_varies_within_a_group_where_pandas_counts_two_values():
+    """check_per_sweep tests each column in numpy against the group codes found once (issue 31,
+    point 3: pandas' nunique hashed the sweep ids again for every column); it finds a conflict
+    exactly where ``groupby(...).nunique()`` counts more than one value (missing cells aside,
+    0.0 and -0.0 one value), on random tables of floats and of text."""
+    from contactres.measurements._sweep_checks import _varies
+
+    rng = np.random.default_rng(5)
+    for trial in range(300):
+        n = int(rng.integers(1, 40))
+        by = pd.Series(rng.choice(["a", "b", "c", None], n), dtype=object)
+        floats = rng.choice([0.0, -0.0, 1.5, np.nan], n) if trial % 3 else np.full(n, 2.0)
+        texts = pd.Series(rng.choice(["x", "y", None], n), dtype=object)
+        for cells in (pd.Series(floats), texts):
+            frame = pd.DataFrame({"by": by, "col": cells})
+            expected = bool((frame.groupby("by", sort=False)["col"].nunique() > 1).any())
+            assert _varies(pd.factorize(by)[0], cells) == expected, (frame, trial)
+
+
+def test_a_column_of_few_values_is_read_as_a_column_of_many(tmp_path):
+    """A column of few distinct cells (a load, the ramps, a constant) is read one distinct text
+    at a time (issue 31, point 3): the numbers are those written (the same when one value is
+    written in several ways), and a bad cell far down is named by its own line."""
+    f = good_frame(n_sweeps=200, n_points=6)  # 1,200 rows: more than the sample of 1,000
+    f["normal_force_N"] = np.where(np.arange(len(f)) // 6 % 2, 2e-3, 3e-3)  # per sweep
+    f["fundamental_Hz"] = 5e6
+    path = write(tmp_path, f, "few.csv")
+    t = read_sweeps(path, **{k: v for k, v in CONST.items() if k != "fundamental_Hz"}).data
+    np.testing.assert_array_equal(t["normal_force_N"], f["normal_force_N"])
+    assert (t["fundamental_Hz"] == 5e6).all()
+    many = f.astype({"normal_force_N": object})
+    # the same loads written each in several ways ("0.002", "2.0e-3", " 0.0020 ")
+    forms = ("{:.3f}", "{:.1e}", " {:.4f} ", "{:g}")
+    many["normal_force_N"] = [forms[i % 4].format(v) for i, v in enumerate(f["normal_force_N"])]
+    t2 = read_sweeps(write(tmp_path, many, "many.csv"), **CONST).data
+    np.testing.assert_array_equal(t2["normal_force_N"], f["normal_force_N"])
+    bad = f.astype({"normal_force_N": object})
+    bad.loc[1100, "normal_force_N"] = "2e-3x"
+    with pytest.raises(ValueError, match=r"line 1102, column 'normal_force_N'.*'2e-3x' is not"):
+        read_sweeps(write(tmp_path, bad, "bad.csv"), **CONST)
+
+
+def test_a_repeated_point_with_another_time_is_no_duplicated_row(tmp_path):
+    """Duplicated rows are looked for among the rows whose point (sweep, amplitude, shifts)
+    repeats (issue 31, point 3): a point measured again at another time is a row of its own,
+    kept, and a row repeated in every column is dropped as before."""
+    f = good_frame()
+    f["time_s"] = np.arange(len(f), dtype=float)
+    again = f.iloc[[3]].assign(time_s=100.0)
+    with warnings.catch_warnings():
+        warnings.simplefilter("error", SweepWarning)  # no duplicated row to warn of
+        t = read_sweeps(write(tmp_path, pd.concat([f, again], ignore_index=True)), **CONST)
+    assert len(t.data) == 19
+    with pytest.warns(SweepWarning, match=r"1 duplicated row.*line\(s\) 21"):
+        t = read_sweeps(write(tmp_path, pd.concat([f, again, again], ignore_index=True)), **CONST)
+    assert len(t.data) == 19

@@ -88,7 +88,7 @@ from ..units import JUNCTION_SIGMAS, LINEAR_ONSET_X, MAX_MU, MIN_SWEEP_POINTS, S
 from ._amplitude import pad_sweeps
 from ._blocks import block_codes, choose_blocks
 from ._classify import apply_models, fit_sweeps
-from ._curves import fitted_curves, jkr_curves, sweep_points
+from ._curves import CURVE_GRIDS, fitted_curves, jkr_curves, sweep_points
 from ._drift import LOAD_OF_EXPERIMENT, drifting_sweeps, remove_linear_drift
 from ._flags import Flag
 from ._friction import block_friction, loop_friction, slope_friction
@@ -247,6 +247,7 @@ def analyze(
     *,
     settings: AnalysisSettings | None = None,
     progress: Callable[[str], None] | None = None,
+    curve_grids: tuple[int, ...] = CURVE_GRIDS,
 ) -> Results:
     """Analyse a validated sweep table; see the module docstring.
 
@@ -258,6 +259,13 @@ def analyze(
         changes them)
     settings : :class:`AnalysisSettings` (defaults if None)
     progress : optional callback called with the name of each step as it starts
+    curve_grids : the grids (numbers of points, each >= 2) on which ``Results.curves`` holds
+        every sweep's model: by default Fig. 4's
+        (:data:`~contactres.analysis.FIGURE_POINTS`) and the page's and ``curves.csv``'s
+        (:data:`~contactres.analysis.PAGE_POINTS`). Not an analysis setting (no result depends on
+        it, and ``summary.json`` does not record it): a caller that draws no figure asks for
+        ``(PAGE_POINTS,)`` alone, 30 of the 130 points per sweep (issue 31, point 3: at 10^5
+        sweeps the figure grid cost ~18 s of CPU and 0.4 GB for a figure that draws a few).
 
     Returns
     -------
@@ -269,6 +277,15 @@ def analyze(
             "contactres.validate_sweeps(frame, constants={...}) first"
         )
     settings = settings or AnalysisSettings()
+    grids = tuple(curve_grids)
+    if (
+        not grids
+        or len(set(grids)) != len(grids)
+        or not all(isinstance(n, int | np.integer) and n >= 2 for n in grids)
+    ):
+        raise ContactresInputError(
+            f"curve_grids must be distinct whole numbers of points >= 2, got {curve_grids!r}"
+        )
     say = progress or (lambda step: None)
     data = table.data
 
@@ -453,7 +470,7 @@ def analyze(
     loads = withhold_mu(loads, groups)
 
     say("the fitted curves of every sweep")
-    curves = fitted_curves(sw, padded, fits, workers=settings.workers)
+    curves = fitted_curves(sw, padded, fits, grids, workers=settings.workers)
     jkr = jkr_curves(groups, loads, laws=laws)
 
     radiation = None

@@ -72,8 +72,9 @@ class Results:
     points : one row per point as the analysis fitted it (after any drift correction):
         ``sweep``, ``amplitude_m``, ``df_Hz``, ``dgamma_Hz``
         (:func:`contactres.analysis._curves.sweep_points`)
-    curves : the model chosen for each sweep on the grids the report draws: ``sweep``,
-        ``grid_points``, ``amplitude_m``, ``df_model_Hz``, ``dgamma_model_Hz``
+    curves : the model chosen for each sweep on the grids the report draws (those of
+        :func:`contactres.analyze`'s ``curve_grids``: by default Fig. 4's and the page's):
+        ``sweep``, ``grid_points``, ``amplitude_m``, ``df_model_Hz``, ``dgamma_model_Hz``
         (:func:`contactres.analysis._curves.fitted_curves`)
     messages : what the analysis found odd in the input, one line each (e.g. ramp labels that
         disagree with the times)

@@ -218,6 +218,7 @@ def analyze_command(
         sphere_material=sphere_material,
         plate_material=plate_material,
         coating=tuple(coating) or None,
+        figures=not no_figures,
     )
     job.coating_layers(settings)  # a bad coating: one line before any work
     if no_figures and _given(click.get_current_context(), "figure_formats"):

@@ -89,6 +89,11 @@ class Settings:
         (:func:`contactres.jobs.contact.parse_coating`; thickness at most 1 m): E and γ fitted
         on the coated plate (:mod:`contactres.analysis._coating`). With the materials, the radiation
         loss on the coated plate.
+    figures : bool
+        Whether figures are drawn from the Result (Fig. 4 draws the fitted curves on its own
+        100-point grid); False: the curves are computed on the 30-point grid of ``curves.csv``
+        and of the page only (:func:`contactres.analysis.analyze`'s ``curve_grids``), the
+        same tables for 30 of the 130 points per sweep.
     """
 
     area_m2: float | None = None
@@ -106,6 +111,7 @@ class Settings:
     sphere_material: str | None = None
     plate_material: str | None = None
     coating: str | tuple[str, ...] | None = None
+    figures: bool = True
 
     def constants(self) -> dict:
         """The constants, as :func:`contactres.read_sweeps` takes them."""
@@ -172,14 +178,7 @@ class Result(JobResult):
         curves = getattr(self.analysis, "curves", None)
         jkr = getattr(self.analysis, "jkr", None)
         if curves is not None:
-            # The coarser of the grids (the HTML page's, 30 points), for the sweeps with a
-            # model: 10^5 sweeps give 3·10^6 rows, not 10^7 (issue 31's large studies).
-            coarse = curves[curves["grid_points"] == curves["grid_points"].min()]
-            coarse = coarse[coarse.groupby("sweep")["df_model_Hz"].transform("count") > 0]
-            tables["curves"] = (
-                _finite_or_nan(coarse[list(CURVE_RESULTS.names)].reset_index(drop=True)),
-                CURVE_RESULTS,
-            )
+            tables["curves"] = (_curves_table(curves), CURVE_RESULTS)
         if jkr is not None:
             tables["jkr_curves"] = (
                 _finite_or_nan(jkr[list(JKR_CURVE_RESULTS.names)]),
@@ -205,14 +204,35 @@ class Result(JobResult):
 
 def _finite_or_nan(table: pd.DataFrame) -> pd.DataFrame:
     """``table`` with ±inf as NaN (an empty cell in CSV): an infinite error or ratio is 'not
-    applicable', as NaN is, and the README promises empty cells for both."""
+    applicable', as NaN is, and the README promises empty cells for both. A column without an
+    infinity is shared with ``table``, not copied (pandas copies on write): 10^5 sweeps'
+    curve table is 3·10^6 rows."""
     import numpy as np
 
-    out = table.copy()
+    out = table.copy(deep=False)
     for col in out.select_dtypes(include="floating").columns:
         values = out[col].to_numpy()
-        out[col] = np.where(np.isinf(values), np.nan, values)
+        infinite = np.isinf(values)
+        if infinite.any():
+            out[col] = np.where(infinite, np.nan, values)
     return out
+
+
+def _curves_table(curves: pd.DataFrame) -> pd.DataFrame:
+    """The ``curves.csv`` table: the rows of the coarsest grid of ``curves`` (the HTML page's,
+    30 points) of the sweeps with a model (a Δf somewhere on the grid), the columns of
+    ``CURVE_RESULTS``; 10^5 sweeps give 3·10^6 rows, not 10^7 (issue 31's large studies).
+    Selected in one step, and the sweeps looked up only where some have no model: the table is
+    the largest the analysis writes."""
+    names = list(CURVE_RESULTS.names)
+    grid = curves["grid_points"]
+    coarse = (grid == grid.min()).to_numpy()
+    part = curves[names] if coarse.all() else curves.loc[coarse, names]
+    model = part["df_model_Hz"].notna()
+    if not model.all():
+        model = model.groupby(part["sweep"], sort=False).transform("any")
+        part = part[model.to_numpy(dtype=bool)]
+    return _finite_or_nan(part.reset_index(drop=True))
 
 
 def sweeps_table(results: Results) -> pd.DataFrame:
@@ -366,7 +386,7 @@ def run(
     inputs: str | os.PathLike | Reading, settings: Settings, progress: Progress | None = None
 ) -> Result:
     """Analyse the sweeps of ``inputs`` (a path, or what :func:`read` returned)."""
-    from ..analysis import AnalysisSettings, analyze
+    from ..analysis import FIGURE_POINTS, PAGE_POINTS, AnalysisSettings, analyze
     from ..errors import ContactresInputError
 
     s = settings
@@ -393,5 +413,6 @@ def run(
     )
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        results = analyze(reading.table, settings=chosen, progress=progress)
+        grids = (FIGURE_POINTS, PAGE_POINTS) if s.figures else (PAGE_POINTS,)
+        results = analyze(reading.table, settings=chosen, progress=progress, curve_grids=grids)
     return Result(analysis=results, reading=reading, warnings=warning_lines(caught))

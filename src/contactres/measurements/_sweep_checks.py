@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import warnings
 
+import numpy as np
 import pandas as pd
 
 from ..errors import ContactresInputError
@@ -32,6 +33,11 @@ def drop_duplicates(out: pd.DataFrame, source: str) -> pd.DataFrame:
     """The table without rows that repeat another row (all but the line number), named in one
     warning."""
     data_only = [c for c in out.columns if c != "line"]
+    # A repeated row repeats its point (sweep, amplitude and shifts): where no point repeats,
+    # no row does, found without hashing the other dozen columns (10^6 rows, issue 31).
+    point = [c for c in ("sweep", "amplitude_m", "df_Hz", "dgamma_Hz") if c in data_only]
+    if point and not out.duplicated(subset=point).any():
+        return out
     dup = out.duplicated(subset=data_only, keep="first").to_numpy()
     if not dup.any():
         return out
@@ -63,10 +69,39 @@ def check_per_sweep(table: pd.DataFrame, source: str, per_sweep: tuple[str, ...]
     """Columns that describe a whole sweep take one value within it; the sphere and the
     material (``sphere_radius_m``, ``poisson``) one value within a configuration, whose sweeps
     the JKR fit (paper 2, Eqs. 7-10) takes together."""
-    for col in per_sweep:
-        conflict(table, source, "sweep", col, f"one sweep has one {col}")
-    for col in ("sphere_radius_m", "poisson"):
-        conflict(table, source, "configuration", col, "one configuration has one sphere")
+    checks = [("sweep", col, f"one sweep has one {col}") for col in per_sweep]
+    checks += [("configuration", col, "one configuration has one sphere") for col in _SPHERE]
+    # Each grouping factorised once, each column tested in numpy: pandas' nunique per column
+    # factorised the sweep ids again for every column (13 hashings of 10^6 strings). A column
+    # that varies within a group is named by :func:`conflict`, as before.
+    groups = {by: pd.factorize(table[by])[0] for by in ("sweep", "configuration")}
+    for by, col, rule in checks:
+        if _varies(groups[by], table[col]):
+            conflict(table, source, by, col, rule)
+
+
+#: The columns of the sphere and its material, one value per configuration.
+_SPHERE = ("sphere_radius_m", "poisson")
+
+
+def _varies(group: np.ndarray, cells: pd.Series) -> bool:
+    """Whether ``cells`` take more than one value (missing cells aside, as ``nunique`` counts)
+    within some group, ``group`` the group code of each row (-1: in none). One value of each
+    group is kept (whichever a repeated index assigns last: any of them will do), and a group
+    varies where some cell differs from it: O(n), no sort, no hashing of floats."""
+    values = cells.to_numpy()
+    if values.dtype.kind == "f":
+        present = ~np.isnan(values)
+    else:  # text and the rest: equal cells share a code (-1: missing)
+        values = pd.factorize(cells)[0]
+        present = values >= 0
+    present &= group >= 0
+    g, v = group[present], values[present]
+    if not g.size:
+        return False
+    kept = np.empty(int(g.max()) + 1, dtype=v.dtype)
+    kept[g] = v
+    return bool((v != kept[g]).any())
 
 
 def check_dissipation_sign(table: pd.DataFrame, source: str) -> None:

@@ -371,8 +371,13 @@ def file_sha256(path) -> str | None:
 # Validation
 
 
-def _numeric(raw: pd.DataFrame, col: str, source: str, decimal: str) -> np.ndarray:
-    text = raw[col].astype(str)
+#: A column whose first this many cells hold at most a tenth as many distinct texts (a
+#: constant, a load, a ramp) is read one distinct text at a time.
+_SAMPLE = 1000
+
+
+def _numbers(text: pd.Series, decimal: str) -> tuple[np.ndarray, np.ndarray]:
+    """The numbers of the text cells ``text`` (NaN where none) and where a cell is not one."""
     # pandas' parser (C) skips the ASCII white space around a number: a cell it reads as
     # written reads the same stripped. Only the others (NaN so far: a decimal comma, other
     # white space, "nan", a word) are stripped and read again, cell by cell in Python.
@@ -384,6 +389,18 @@ def _numeric(raw: pd.DataFrame, col: str, source: str, decimal: str) -> np.ndarr
     values[again] = pd.to_numeric(s, errors="coerce").to_numpy(dtype=float)
     bad = np.zeros(len(values), bool)
     bad[again] = np.isnan(values[again]) & ~s.str.lower().isin(["nan"]).to_numpy()
+    return values, bad
+
+
+def _numeric(raw: pd.DataFrame, col: str, source: str, decimal: str) -> np.ndarray:
+    text = raw[col].astype(str)
+    if text.iloc[:_SAMPLE].nunique() * 10 <= min(len(text), _SAMPLE):
+        # Few distinct cells: each text read once (the same parser, so the same number), the
+        # rows given theirs by a hash table in C (issue 31: 10^6 rows of a constant).
+        codes, distinct = pd.factorize(text, use_na_sentinel=False)
+        values, bad = (a[codes] for a in _numbers(pd.Series(distinct, dtype=object), decimal))
+    else:
+        values, bad = _numbers(text, decimal)
     if bad.any():
         i = int(np.flatnonzero(bad)[0])
         shown = raw[col].iloc[i]

@@ -22,6 +22,7 @@ import numpy as np
 import pandas as pd
 
 from ..analysis import FIGURE_POINTS, sweep_rows
+from ..errors import ContactresInputError
 from ..fileio import save_figure
 from ..measurements import SweepWarning
 
@@ -167,6 +168,12 @@ def figure_sweeps(results) -> Figure:
     sw = results.sweeps
     points = sweep_rows(results.points)
     curves = results.curves[results.curves["grid_points"] == FIGURE_POINTS]
+    if curves.empty and len(results.curves):
+        # analyze(curve_grids=...) left out the figure's grid: nothing of it to draw.
+        raise ContactresInputError(
+            f"these results hold the fitted curves without Fig. 4's {FIGURE_POINTS}-point grid: "
+            "analyse with curve_grids including it (the default) to draw the figures"
+        )
     curve = sweep_rows(curves)
     ramps = sorted(sw.loc[sw["used"], "ramp"].unique())
     picks = [(m, sel) for m in _media(results) for sel in _pick_examples(sw, m)]
