@@ -196,6 +196,21 @@ def test_import_contactres_imports_nothing_of_the_library():
     assert result["routes"] == {}
 
 
+def test_touching_analyze_imports_no_heavy_library():
+    """The first real use of the analysis, ``contactres.analyze`` and its settings, loads
+    neither pandas nor scipy (nor numpy): the steps and their libraries come with the first call
+    (issue 31). The name is still the function itself, not a stand-in."""
+    code = (
+        "import contactres\n"
+        "f = contactres.analyze\n"
+        "contactres.AnalysisSettings(bootstrap=0)\n"
+        "print(f.__module__, f.__name__)\n"
+    )
+    result = probe(code, watched=(*HEAVY, "numpy"))
+    check_light(result)
+    assert result["stdout"].split() == ["contactres.analysis._pipeline", "analyze"]
+
+
 @pytest.mark.parametrize("args", CLI_COMMANDS, ids=lambda a: " ".join(a) or "(root)")
 def test_cli_help_imports_no_heavy_library(args):
     result = probe(run_cli([*args, "--help"]))

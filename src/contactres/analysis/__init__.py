@@ -59,7 +59,7 @@ _EXPORTS = MappingProxyType(
         "fit_jkr_mindlin": "._jkr",
         "REGISTRY": "._models",
         "analyze": "._pipeline",
-        "AnalysisSettings": "._pipeline",
+        "AnalysisSettings": "._settings",
         "material_by_name": "._radiation",
         "radiation_for": "._radiation",
         "radiation_loss": "._radiation",
@@ -131,7 +131,6 @@ if TYPE_CHECKING:
         fit_particles as fit_particles,
     )
     from ._pipeline import (
-        AnalysisSettings as AnalysisSettings,
         analyze as analyze,
     )
     from ._radiation import (
@@ -143,6 +142,9 @@ if TYPE_CHECKING:
     from ._resonance_tables import (
         invert_afm_table as invert_afm_table,
         invert_rum_table as invert_rum_table,
+    )
+    from ._settings import (
+        AnalysisSettings as AnalysisSettings,
     )
     from ._results import (
         Results as Results,

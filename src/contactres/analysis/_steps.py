@@ -1,0 +1,342 @@
+"""The steps of :func:`contactres.analysis.analyze` (paper 2), run on the first call.
+
+:mod:`contactres.analysis._pipeline` documents the steps and holds the public function and its
+settings; this module does the work, and imports the modules of every step (and with them
+pandas and scipy) at the top, so that only a call of :func:`~contactres.analysis.analyze`
+loads them.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import asdict, replace
+
+import numpy as np
+import pandas as pd
+
+from .._version import __version__
+from ..errors import ContactresInputError
+from ..measurements import SweepTable
+from ..measurements.schema import SWEEP_TABLE
+from ..resonators import QCM
+from ..tangential import effective_shear_modulus, shear_modulus
+from ..units import JUNCTION_SIGMAS, LINEAR_ONSET_X, MAX_MU, MIN_SWEEP_POINTS, SMALL_LOAD_LIMIT
+from ._amplitude import pad_sweeps
+from ._blocks import block_codes, choose_blocks
+from ._classify import apply_models, fit_sweeps
+from ._curves import CURVE_GRIDS, fitted_curves, jkr_curves, sweep_points
+from ._drift import LOAD_OF_EXPERIMENT, drifting_sweeps, remove_linear_drift
+from ._flags import Flag
+from ._friction import block_friction, loop_friction, slope_friction
+from ._jkr import fit_group
+from ._loads import GROUP_KEYS, per_experiment, per_load, withhold_mu
+from ._loops import X_MAX, loop_tables
+from ._models import AMPLITUDE_MODELS, fit_tables
+from ._ramps import check_ramps
+from ._results import Results
+from ._running_in import running_in
+from ._settings import AnalysisSettings
+
+__all__ = ["run"]
+
+#: Columns that describe a whole sweep, carried from the sweep table into the results.
+INFO_COLUMNS = SWEEP_TABLE.where(level="sweep") + SWEEP_TABLE.where(level="constant")
+
+
+def _sensitivity(info: pd.DataFrame, zq: float) -> np.ndarray:
+    """P = n_P/(2nπ²A_eff Z_q) of every sweep, Hz per N/m (paper 2, Eq. 1)."""
+    keys = ["fundamental_Hz", "overtone", "area_m2", "n_contacts"]
+    P = np.empty(len(info))
+    # pandas-stubs type these keys Hashable: grouped by a list of columns, each is a tuple
+    for key, idx in info.groupby(keys, sort=False).indices.items():
+        q = QCM(fundamental=key[0], overtone=int(key[1]), area=key[2], zq=zq)  # type: ignore[index]
+        P[idx] = q.sensitivity(int(key[3]))  # type: ignore[index]
+    return P
+
+
+def _whole_loads(sw: pd.DataFrame, mask: np.ndarray) -> np.ndarray:
+    """``mask`` spread to every sweep of a load of an experiment where any sweep has it."""
+    keys = sw[LOAD_OF_EXPERIMENT]
+    hit = keys[mask].drop_duplicates()
+    return (
+        keys.merge(hit.assign(_hit=True), how="left", on=LOAD_OF_EXPERIMENT)["_hit"]
+        .eq(True)
+        .to_numpy()
+    )
+
+
+def _savkoor_traction(sw: pd.DataFrame, member: np.ndarray, group: dict) -> None:
+    """τ0 = F_s/(πa²) of the Savkoor sweeps of one group, in place (``tau0_Pa``, with error).
+
+    The contact radius a = κ/(2G*) (paper 2, below Eq. 6) needs G*, i.e. the group's E from
+    the JKR fit (Eqs. 7-8 with ν): where E is withheld, τ0 is not given. The error combines
+    those of F_s, κ and E (independent; relative: F_s + 2 κ + 2 E).
+    """
+    rows = member & (sw["model"] == "savkoor").to_numpy()
+    E, E_err = group["E_Pa"], group["E_err_Pa"]
+    if not rows.any() or not np.isfinite(E):
+        return
+    G_star = effective_shear_modulus(shear_modulus(E, group["poisson"]), group["poisson"])
+    kappa = sw.loc[rows, "kappa_N_per_m"].to_numpy(float)
+    kappa_err = sw.loc[rows, "df0_err_Hz"].to_numpy(float) / sw.loc[rows, "P_Hz_per_N_per_m"]
+    F, F_err = (sw.loc[rows, c].to_numpy(float) for c in ("sliding_force_N", "sliding_force_err_N"))
+    with np.errstate(divide="ignore", invalid="ignore"):
+        a = kappa / (2.0 * G_star)
+        tau = F / (np.pi * a**2)
+        rel = np.sqrt((F_err / F) ** 2 + 4 * (kappa_err / kappa) ** 2 + 4 * (E_err / E) ** 2)
+    sw.loc[rows, "tau0_Pa"] = np.where(a > 0, tau, np.nan)
+    sw.loc[rows, "tau0_err_Pa"] = np.where(a > 0, np.abs(tau) * rel, np.nan)
+
+
+def _flag(mask: np.ndarray, flag: Flag) -> np.ndarray:
+    return np.where(mask, int(flag), 0).astype(np.int64)
+
+
+def run(
+    table: SweepTable,
+    settings: AnalysisSettings,
+    say: Callable[[str], None],
+    curve_grids: tuple[int, ...] | None = None,
+) -> Results:
+    """:func:`contactres.analysis.analyze` of ``table`` with ``settings``, telling ``say``
+    the name of each step as it starts, the fitted curves on ``curve_grids`` (None: both
+    grids; see :mod:`contactres.analysis._pipeline`)."""
+    if not isinstance(table, SweepTable):
+        raise TypeError(
+            f"analyze takes a SweepTable, got {type(table).__name__}; pass a raw table through "
+            "contactres.validate_sweeps(frame, constants={...}) first"
+        )
+    grids = CURVE_GRIDS if curve_grids is None else tuple(curve_grids)
+    if (
+        not grids
+        or len(set(grids)) != len(grids)
+        or not all(isinstance(n, int | np.integer) and n >= 2 for n in grids)
+    ):
+        raise ContactresInputError(
+            f"curve_grids must be distinct whole numbers of points >= 2, got {curve_grids!r}"
+        )
+    data = table.data
+
+    padded = pad_sweeps(data)
+    info = data.drop_duplicates("sweep", keep="first")[list(INFO_COLUMNS)].reset_index(drop=True)
+    # The labels first: which sweeps are used, and which load blocks they form, decide where
+    # the (costly) exact plateau loop is fitted to single sweeps.
+    few = padded.n < MIN_SWEEP_POINTS
+    # A sweep at one amplitude has no slope (the straight line is degenerate): say so.
+    flat = padded.u_max == padded.u_min
+    first_line = data.groupby("sweep", sort=False)["line"].min().reindex(info["sweep"]).to_numpy()
+    # The order of the ramps comes from the times where the table has them (not the file).
+    timed = bool(data["time_s"].notna().all())
+    first_time = (
+        data.groupby("sweep", sort=False)["time_s"].min().reindex(info["sweep"]).to_numpy()
+        if timed
+        else None
+    )
+    ramps = check_ramps(info, first_line, padded.direction, first_time)
+    running = ramps.first  # the running-in sweep of each load, as measured
+    first = running & (not settings.keep_first_ramp)
+    used = ~few & ~first
+    # Drift is tested on the ramps after the first: ramp 1's running-in offset is not drift.
+    tested = ~few & ~running
+    drift = drifting_sweeps(info, padded, tested, settings.drift_p)
+    # A drifting load loses all its sweeps (its ramp 1 too, when ramp 1 is used).
+    drift = _whole_loads(info, drift) & ~few
+    removed = np.zeros(len(info), bool)
+    drift_removed = pd.DataFrame(columns=[*LOAD_OF_EXPERIMENT, "drift_df_Hz_per_s"])
+    messages = list(ramps.messages)
+    if settings.remove_drift and drift.any():
+        if data["time_s"].isna().any():
+            messages.append(
+                "drift: the table has no time_s column (or not in every row), so the drifting "
+                "loads are left out instead of corrected"
+            )
+        else:
+            # The drift is estimated on the ramps it was found in, removed from the whole load,
+            # and the load tested again: corrected loads are used (flag drift-removed).
+            est = info[drift & tested].groupby(LOAD_OF_EXPERIMENT, sort=True)["sweep"]
+            loads = est.agg(list).rename("sweeps").reset_index()
+            data, drift_removed = remove_linear_drift(data, loads)
+            padded = pad_sweeps(data)
+            again = _whole_loads(info, drifting_sweeps(info, padded, tested, settings.drift_p))
+            again = again & ~few
+            removed, drift = drift & ~again, again
+    if not settings.keep_drift:
+        used &= ~drift
+
+    say("fitting the amplitude models of every sweep")
+    tables = loop_tables() if settings.exact_loop else None
+    alone = block_codes(info, used) < 0  # the sweeps judged alone get every model now
+    sw, fields = fit_sweeps(
+        padded, settings.delta_bic, settings.exact_loop, tables, settings.workers, plateau=alone
+    )
+    sw = info.merge(sw, on="sweep", how="right", validate="one_to_one")
+    P = _sensitivity(sw, settings.zq)
+    sw["P_Hz_per_N_per_m"] = P
+    sw["used"] = used
+
+    say("choosing the model of every load block")
+    blocks, decided, sw, fields, block_fits = choose_blocks(
+        padded,
+        sw,
+        fields,
+        used,
+        settings.delta_bic,
+        settings.exact_loop,
+        tables,
+        settings.workers,
+        pool_experiment=settings.pool_experiments,
+    )
+    sw = apply_models(sw, fields, decided["model"].to_numpy(), settings.exact_loop)
+    # Every model's fit of every sweep, final: the steps below read them.
+    fits = fit_tables(sw["sweep"].to_numpy(), fields)
+    for col in ("block", "runner_up", "delta_bic", "decided_by"):
+        sw[col] = decided[col].to_numpy()
+    for col in ("df_slope_Hz_per_m", "dgamma_slope_Hz_per_m"):
+        sw.loc[flat, [col, col.replace("_Hz_per_m", "_err_Hz_per_m")]] = np.nan
+    rises = (
+        sw["df_slope_Hz_per_m"].to_numpy()
+        > JUNCTION_SIGMAS * sw["df_slope_err_Hz_per_m"].to_numpy()
+    )
+    rises &= sw["model"].to_numpy() != "elastic"
+    f_res = sw["fundamental_Hz"].to_numpy() * sw["overtone"].to_numpy()
+    big = np.abs(sw["df0_Hz"].to_numpy()) > SMALL_LOAD_LIMIT * f_res
+    flags = (
+        _flag(first, Flag.FIRST_RAMP)
+        | _flag(few, Flag.FEW_POINTS)
+        | _flag(rises, Flag.JUNCTION_GROWTH)
+        | _flag(big, Flag.SMALL_LOAD)
+        | _flag((sw["model"] == "plateau").to_numpy(), Flag.PLATEAU_SLOPE)
+        | _flag(ramps.suspect, Flag.RAMP_ORDER)
+        | _flag(flat, Flag.FLAT_AMPLITUDE)
+        | _flag(drift, Flag.DRIFT)
+        | _flag(removed, Flag.DRIFT_REMOVED)
+    )
+
+    say("contact stiffness and friction")
+    sw["kappa_N_per_m"] = sw["df0_Hz"] / P
+    sw["omega_xi_N_per_m"] = sw["dgamma0_Hz"] / P
+    with np.errstate(divide="ignore", invalid="ignore"):
+        sw["loss_tangent"] = sw["dgamma0_Hz"] / sw["df0_Hz"]
+    slopes = slope_friction(sw, P)
+    sw["mu_df"] = np.where(rises, np.nan, slopes.mu_df)
+    sw["mu_df_err"] = np.where(rises, np.nan, slopes.mu_df_err)
+    sw["mu_dgamma"] = slopes.mu_dgamma
+    sw["mu_dgamma_err"] = slopes.mu_dgamma_err
+    sw["mu_block"] = np.nan
+    sw["mu_block_err"] = np.nan
+    if settings.exact_loop:
+        say("friction from the exact loops")
+        loops = loop_friction(sw, fits, P)
+        sw["mu_fit"] = loops.mu_fit
+        sw["mu_fit_err"] = loops.mu_fit_err
+        sw["x_max"] = loops.x_max
+        sw["sliding_force_N"] = loops.sliding_force
+        sw["sliding_force_err_N"] = loops.sliding_force_err
+        flags |= _flag(loops.gross_sliding, Flag.GROSS_SLIDING)
+        cm = (sw["model"] == "cattaneo-mindlin").to_numpy()
+        flags |= _flag(cm & (loops.x_max > LINEAR_ONSET_X), Flag.BEYOND_ONSET)
+        blocks = block_friction(blocks, block_fits, sw)
+        member = sw["block"].to_numpy() >= 0
+        for col in ("mu_block", "mu_block_err"):
+            values = blocks[col.replace("_block", "")].to_numpy(float)
+            sw.loc[member, col] = np.asarray(values)[sw["block"].to_numpy()[member]]
+    else:
+        for col in ("mu_fit", "mu_fit_err", "x_max", "sliding_force_N", "sliding_force_err_N"):
+            sw[col] = np.nan
+    # A μ beyond any friction coefficient by more than twice its error is a wrong input, not a
+    # result: withheld and flagged. A noisy estimate (μ = 12 ± 60 from a flat ΔΓ slope in
+    # water) is kept: censoring it would bias the statistics per load.
+    for col in ("mu_df", "mu_dgamma", "mu_fit", "mu_block"):
+        mu, err = sw[col].to_numpy(float), sw[f"{col}_err"].to_numpy(float)
+        absurd = (mu > MAX_MU) & ~(mu - 2 * np.nan_to_num(err, nan=0.0) <= MAX_MU)
+        if absurd.any():
+            sw.loc[absurd, [col, f"{col}_err"]] = np.nan
+            flags |= _flag(absurd, Flag.MU_OUT_OF_RANGE)
+    sw["flags"] = flags
+
+    sw["tau0_Pa"] = np.nan
+    sw["tau0_err_Pa"] = np.nan
+
+    say("statistics per load")
+    exp = per_experiment(sw)
+    loads = per_load(exp, sw)
+
+    groups = []
+    for key, part in exp.groupby(GROUP_KEYS, sort=True):
+        say(f"JKR fit: {key[0]}, {key[1]}")
+        member = (sw["configuration"] == key[0]).to_numpy() & (sw["medium"] == key[1]).to_numpy()
+        in_group = used & member
+        g = fit_group(part, key, settings.bootstrap, settings.seed, sw[in_group])
+        g["n_experiments"] = int(part["experiment"].nunique())
+        g["n_sweeps_used"] = int(in_group.sum())
+        models = sw.loc[in_group, "model"]
+        g["models"] = {m: int((models == m).sum()) for m in AMPLITUDE_MODELS}
+        g["P_Hz_per_N_per_m"] = float(part["P_Hz_per_N_per_m"].mean())
+        later = member & ~few & ~running & ~drift
+        g["running_in"] = running_in(sw[member], running[member], later[member])
+        drifting = sw[member & drift].drop_duplicates(["experiment", "normal_force_N"])
+        g["drifting_loads"] = [
+            {"experiment": e, "normal_force_N": f}
+            for e, f in zip(drifting["experiment"], drifting["normal_force_N"], strict=True)
+        ]
+        mine = (drift_removed["configuration"] == key[0]) & (drift_removed["medium"] == key[1])
+        g["drift_removed"] = (
+            drift_removed[mine].drop(columns=["configuration", "medium"]).to_dict(orient="records")
+        )
+        groups.append(g)
+        _savkoor_traction(sw, member, g)
+
+    laws = None
+    coating = settings.coating  # a Coating: __post_init__ made it one
+    if coating is not None:
+        from ._coating import Coating, apply_coating
+
+        assert isinstance(coating, Coating)
+        laws = apply_coating(groups, exp, sw[used], coating, settings.bootstrap, settings.seed, say)
+
+    # After the coating's refit, which may change a group's checks.
+    loads = withhold_mu(loads, groups)
+
+    say("the fitted curves of every sweep")
+    curves = fitted_curves(sw, padded, fits, grids, workers=settings.workers)
+    jkr = jkr_curves(groups, loads, laws=laws)
+
+    radiation = None
+    if settings.sphere_material is not None and settings.plate_material is not None:
+        say("radiation loss of the contacts")
+        from ._radiation import load_frequencies, radiation_loss
+
+        radiation = radiation_loss(
+            loads,
+            groups,
+            settings.sphere_material,
+            settings.plate_material,
+            frequency_Hz=load_frequencies(sw, loads),
+            experiments=exp,
+            coating=coating,
+        )
+
+    record = asdict(replace(settings, coating=None))
+    # The coating's record (names and thicknesses), and none at all without one.
+    del record["coating"]
+    if coating is not None:
+        record["coating"] = coating.record()
+    record["x_max_table"] = X_MAX
+    # The user's sweep table holds the named columns; each fit's fields are in its own table.
+    return Results(
+        sweeps=sw,
+        fits=fits,
+        loads=loads,
+        experiments=exp,
+        groups=groups,
+        settings=record,
+        version=__version__,
+        table=table,
+        points=sweep_points(padded),
+        curves=curves,
+        blocks=blocks,
+        block_fits=block_fits,
+        messages=tuple(messages),
+        radiation=radiation,
+        jkr=jkr,
+    )
