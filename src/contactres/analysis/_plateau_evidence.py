@@ -45,6 +45,12 @@ Result. Validation study, ten seeds: water plateau sweeps right 78.5 % → 94.6 
 100, 92, 83, 100, 100, 88, 100, 100, 100 %), water Cattaneo-Mindlin 97.5 % → 98.0 %, air
 plateau 97.1 % → 98.0 %, air Cattaneo-Mindlin 98.5 % → 99.1 %; μ of the true water plateau
 blocks inside ±1.96 printed errors 92.9 % → 94.6 %.
+
+Cost. The nodes of all undecided blocks are evaluated together, in chunks of blocks with one
+number of points (numpy on large arrays, no padding weights in the projected solve), the
+slopes at each block's distinct amplitudes only (its three ramps repeat them) and without
+their derivatives: about 5.7 ms of CPU per block on a full validation study (97 blocks),
+against 11 ms block by block, with the same numbers bit for bit.
 """
 
 from __future__ import annotations
