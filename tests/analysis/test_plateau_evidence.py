@@ -121,3 +121,40 @@ def test_a_plateau_at_the_prior_is_one_and_its_mu_covers_the_truth():
         two_ln_b, mu, err = _evidence(*_block(seed, 0.3, 0.6), 0.6, prior)
         assert two_ln_b > 2
         assert abs(mu - 40.0 / (1.2 / 2e-9)) < 2 * err
+
+
+def test_blocks_evaluated_together_equal_each_alone():
+    # All blocks' nodes are evaluated in a few batches, each block's slopes at its distinct
+    # amplitudes: blocks of other lengths, blocks of one length with 11 and 33 distinct
+    # amplitudes (padded to a common number), a prior on μ for one of them and one without an
+    # amplitude prior (NaN out) give each block what it gives alone.
+    blocks = [_block(1, 0.0), _block(2, 0.3), _block(3, 0.3), _block(4, 0.0)]
+    blocks[1] = tuple(a[:-5] for a in blocks[1])  # a shorter block (its last points dropped)
+    uu = blocks[2][0] * (1.0 + 1e-3 * np.arange(33) / 33)  # every amplitude distinct, ascending
+    blocks[2] = (uu, *blocks[2][1:])
+    M = max(b[0].size for b in blocks)
+    u, df, dg, w = np.zeros((4, 4, M))
+    for k, (uu, ff, gg) in enumerate(blocks):
+        u[k, : uu.size], df[k, : uu.size], dg[k, : uu.size], w[k, : uu.size] = uu, ff, gg, 1.0
+    sigma = np.full((2, 4), 0.6)
+    mu = (
+        np.array([np.nan, np.log(40.0 / 0.6e9), np.nan, np.nan]),
+        np.array([np.nan, 0.04] + 2 * [np.nan]),
+    )
+    ratio = (np.array(3 * [np.log(0.3)] + [np.nan]), np.array(3 * [0.01] + [np.nan]))
+    to_mu = np.ones(4)
+    both = plateau_log_evidence(u, df, dg, w, sigma, mu, ratio, to_mu)
+    assert np.isfinite(both[0, :3]).all() and np.isnan(both[:, 3]).all()
+    for k in range(4):
+        n = int(w[k].sum())
+        alone = plateau_log_evidence(
+            u[k : k + 1, :n],
+            df[k : k + 1, :n],
+            dg[k : k + 1, :n],
+            w[k : k + 1, :n],
+            sigma[:, k : k + 1],
+            tuple(a[k : k + 1] for a in mu),
+            tuple(a[k : k + 1] for a in ratio),
+            to_mu[k : k + 1],
+        )
+        np.testing.assert_array_equal(both[:, k], alone[:, 0])

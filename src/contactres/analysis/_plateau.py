@@ -72,7 +72,7 @@ PLATEAU_LOOP_COLUMNS = (
 )
 
 
-def plateau_loop_slopes(x, c, rule=None) -> tuple[np.ndarray, ...]:
+def plateau_loop_slopes(x, c, rule=None, derivatives: bool = True) -> tuple[np.ndarray, ...]:
     """:func:`contactres.analysis._loops.plateau_loop_shape` in closed form, with derivatives.
 
     Returns G′ = K′/κ, G″ = (K″ - ωξ)/κ and ∂G′/∂x, ∂G′/∂c, ∂G″/∂x, ∂G″/∂c at x = κu0/(μF_N),
@@ -92,39 +92,46 @@ def plateau_loop_slopes(x, c, rule=None) -> tuple[np.ndarray, ...]:
     ``rule``: the 16-point rule ``gauss_legendre_unit(16)`` (made here if None; pass it when
     calling many times, as the fit does). Agrees with that quadrature to ~2e-11 (its own
     accuracy; tests/analysis/test_scale.py), at ~1 µs per point for all six arrays, several
-    times less than the quadrature of G′, G″ alone.
+    times less than the quadrature of G′, G″ alone. ``derivatives=False``: G′ and G″ alone,
+    the same numbers bit for bit, at about two thirds of the cost (the nodes of
+    :mod:`contactres.analysis._plateau_evidence`, which need no gradient).
     """
     x, c = np.broadcast_arrays(np.asarray(x, dtype=float), np.asarray(c, dtype=float))
     rule = gauss_legendre_unit(SMALL_X_NODES) if rule is None else rule
-    out = [np.ones(x.shape)] + [np.zeros(x.shape) for _ in range(5)]
+    out = [np.ones(x.shape)] + [np.zeros(x.shape) for _ in range(5 if derivatives else 1)]
     slip = x > c  # below d_c the contact sticks: G′ = 1, G″ = 0, and so do their derivatives
     if slip.any():
-        for o, v in zip(out, _slipping(x[slip], c[slip], rule), strict=True):
+        for o, v in zip(out, _slipping(x[slip], c[slip], rule, derivatives), strict=True):
             o[slip] = v
     return tuple(out)
 
 
-def _slipping(x, c, rule) -> tuple[np.ndarray, ...]:
+def _slipping(x, c, rule, derivatives=True) -> tuple[np.ndarray, ...]:
     """:func:`plateau_loop_slopes` where x > c (1-d arrays)."""
     y, e = x - c, c + 1.5
     J, Jx, Jc = np.empty_like(x), np.empty_like(x), np.empty_like(x)
     small = x < 0.1 * e  # m = x/e < 0.1
-    J[small], Jx[small], Jc[small] = _small_x_integrals(x[small], c[small], rule)
+    # Without derivatives the small-x rule gives J alone: Jx, Jc stay unset there, unused.
+    parts = _small_x_integrals(x[small], c[small], rule, derivatives)
+    for a, v in zip((J, Jx, Jc), parts, strict=False):
+        a[small] = v
     J[~small], Jx[~small], Jc[~small] = _elliptic_integrals(x[~small], c[~small])
     half = 2.0 * np.arcsin(np.sqrt(c / x))  # d = c at φ = half
     rcy = np.sqrt(c * y)
     H = x**2 / 8.0 * half - 0.25 * rcy * (y - c) + np.sqrt(2.0 / 3.0) * J
-    Hx = 0.5 * (0.5 * x * half - rcy) + Jx / np.sqrt(6.0)
-    Hc = Jc / np.sqrt(6.0)
     # Loss part: s(y) = ∫₀^y (1 - √(1 - 2t/3)) dt and W(y), with 1 - r = (2y/3)/(1 + r).
     inside = y < 1.5
     r = np.sqrt(np.maximum(1.0 - y / 1.5, 0.0))
     q = np.where(inside, (y / 1.5) / (1.0 + r), 1.0)
     s_y = np.where(inside, q * q * (0.5 + r), y - 1.0)
     W = np.where(inside, 0.3 * q**3 * (r * r + 3.0 * r + 1.0), y - 1.2)
-    dW = np.where(inside, 1.0 - r**3 - y * r, 1.0)
     k1, k2 = 8.0 / (np.pi * x**2), 4.0 / (np.pi * x**2)
     g1, g2 = k1 * H, k2 * (c * s_y + W)
+    if not derivatives:
+        return g1, g2
+    Hx = 0.5 * (0.5 * x * half - rcy) + Jx / np.sqrt(6.0)
+    Hc = Jc / np.sqrt(6.0)
+    dW = np.where(inside, 1.0 - r**3 - y * r, 1.0)
     dg1 = (k1 * Hx - 2.0 * g1 / x, k1 * Hc)
     dg2 = (k2 * (c * q + dW) - 2.0 * g2 / x, k2 * (s_y - c * q - dW))
     return g1, g2, *dg1, *dg2
@@ -156,7 +163,7 @@ def _elliptic_integrals(x, c):
     return J - 2.0 * a1 * sq3 * ef, e * I1 - I2, x * I1 - I2
 
 
-def _small_x_integrals(x, c, rule):
+def _small_x_integrals(x, c, rule, derivatives=True):
     """J, ∫d(e - d)/√Q, ∫d(x - d)/√Q of :func:`plateau_loop_slopes` for x < e/10, by
     Gauss-Legendre in φ (d = x(1 - cos φ)/2 from d = c to x: √(d(x - d)) = x sin φ/2)."""
     t, wt = rule
@@ -168,6 +175,8 @@ def _small_x_integrals(x, c, rule):
     f = np.sqrt(1.0 - (d - c[:, None]) / 1.5)  # √((e - d)/(3/2))
     x2 = 0.25 * x[:, None] ** 2 * sin * sin * dphi  # √(d(x - d)) dd
     J = np.sqrt(1.5) * (x2 * f).sum(-1)
+    if not derivatives:
+        return (J,)
     Jx = np.sqrt(1.5) * (f * 0.5 * x[:, None] * (1.0 - cos) * dphi).sum(-1)  # √(d/(x - d)) dd
     Jc = (x2 / f).sum(-1) / np.sqrt(1.5)
     return J, Jx, Jc

@@ -45,6 +45,12 @@ Result. Validation study, ten seeds: water plateau sweeps right 78.5 % → 94.6 
 100, 92, 83, 100, 100, 88, 100, 100, 100 %), water Cattaneo-Mindlin 97.5 % → 98.0 %, air
 plateau 97.1 % → 98.0 %, air Cattaneo-Mindlin 98.5 % → 99.1 %; μ of the true water plateau
 blocks inside ±1.96 printed errors 92.9 % → 94.6 %.
+
+Cost. The nodes of all undecided blocks are evaluated together, in chunks of blocks with one
+number of points (numpy on large arrays, no padding weights in the projected solve), the
+slopes at each block's distinct amplitudes only (its three ramps repeat them) and without
+their derivatives: about 5.7 ms of CPU per block on a full validation study (97 blocks),
+against 11 ms block by block, with the same numbers bit for bit.
 """
 
 from __future__ import annotations
@@ -53,7 +59,7 @@ import numpy as np
 
 from ..numerics import gauss_legendre_unit
 from ._amplitude import PLATEAU_MIN_SLOPE
-from ._loops import X_MAX, solve_projected
+from ._loops import CHUNK_CELLS, X_MAX, solve_projected
 from ._mu_prior import MU_PRIOR_MAX_REL
 from ._plateau import SMALL_X_NODES, plateau_loop_slopes
 
@@ -68,43 +74,52 @@ __all__ = ["EVIDENCE_NODES", "plateau_log_evidence"]
 EVIDENCE_NODES = (12, 32, 25)
 
 
-def _integrand(u, df, dg, umax, dl, y, wf, wg, mu_prior, to_mu, rule):
+def _integrand(pts, dl, y, rule):
     """ln L + ln π (as :func:`plateau_log_evidence`, up to a common constant), ln L alone and
-    ln μ at the nodes (K, Y) of d_c/u_max ``dl`` (K, 1) and ``y`` (K, Y) of one block."""
+    ln μ at the nodes (R, Y) of d_c/u_max ``dl`` (R, 1) and ``y`` (R, Y), each row R one block's
+    (``pts``: :func:`_rows`).
+
+    The slopes depend on a point only through its amplitude, and a block's sweeps repeat the
+    same amplitudes (three ramps: a third of its points distinct), so they are evaluated at the
+    block's distinct amplitudes and gathered to its points: the same numbers at a third of the
+    cost, which is that of the slopes."""
+    lev, idx, df, dg, w, umax, wf, wg, mean, var, to_mu = pts
     theta = np.exp(y) / (umax * (1.0 - dl))
-    x = theta[..., None] * u
+    x = theta[..., None] * lev
     c = np.broadcast_to((theta * dl * umax)[..., None], x.shape)
-    g1, g2 = plateau_loop_slopes(x, c, rule)[:2]
-    w = np.ones_like(u)
+    g1, g2 = (
+        np.take_along_axis(g, idx, axis=-1)
+        for g in plateau_loop_slopes(x, c, rule, derivatives=False)
+    )
     A, _, _, rss_f, rss_g = solve_projected(g1, g2, df, dg, w, wf, wg)
-    n = float(u.size)
+    n = w.sum(-1)
     with np.errstate(divide="ignore", invalid="ignore"):
         lnL = -0.5 * n * (np.log(rss_f) + np.log(rss_g))
         mu = A * to_mu / theta
-        mean, var = mu_prior
-        lnpi = np.zeros_like(lnL)
-        if np.isfinite(mean) and np.isfinite(var) and var > 0:
-            lnpi = -0.5 * (np.log(mu) - mean) ** 2 / var - 0.5 * np.log(2 * np.pi * var)
+        # A block without a prior on μ: flat in y, the same in both models.
+        has = np.isfinite(mean) & np.isfinite(var) & (var > 0)
+        lnpi = np.where(
+            has, -0.5 * (np.log(mu) - mean) ** 2 / var - 0.5 * np.log(2 * np.pi * var), 0.0
+        )
         ok = np.isfinite(lnL) & (A > 0) & np.isfinite(lnpi)
         ln_mu = np.where(ok, np.log(np.where(ok, mu, 1.0)), 0.0)
     return np.where(ok, lnL + lnpi, -np.inf), np.where(ok, lnL, -np.inf), ln_mu
 
 
-def _over_y(u, df, dg, umax, dl, wf, wg, mu_prior, to_mu, rule):
+def _over_y(pts, dl, rule):
     """ln ∫ L π dy, ln ∫ L dy and the first two moments of ln μ under L, at each d_c/u_max ``dl``
-    (K,) of one block (``u``, ``df``, ``dg``: its points, (M,))."""
+    (R,) of its row's block (``pts``: :func:`_rows`)."""
     _, ny, nf = EVIDENCE_NODES
     K = len(dl)
     dl = dl[:, None]
     coarse = np.linspace(np.log(10.0**-2.5), np.log(X_MAX), ny)
     h = coarse[1] - coarse[0]
-    args = (u, df, dg, umax, dl)
-    first = _integrand(*args, np.broadcast_to(coarse, (K, ny)), wf, wg, mu_prior, to_mu, rule)
+    first = _integrand(pts, dl, np.broadcast_to(coarse, (K, ny)), rule)
     peak = coarse[np.argmax(first[0], axis=1)]
     fine = peak[:, None] + np.linspace(-h, h, nf)[None, :]
     fine = np.clip(fine, coarse[0], coarse[-1])
     parts = [(np.broadcast_to(coarse, (K, ny)), first)]
-    parts.append((fine, _integrand(*args, fine, wf, wg, mu_prior, to_mu, rule)))
+    parts.append((fine, _integrand(pts, dl, fine, rule)))
     y = np.concatenate([yy for yy, _ in parts], axis=1)
     order = np.argsort(y, axis=1, kind="stable")
     y = np.take_along_axis(y, order, axis=1)
@@ -156,17 +171,15 @@ def plateau_log_evidence(
     B = u.shape[0]
     out = np.full((3, B), np.nan)
     m2, v2 = (np.asarray(a, dtype=float) for a in ratio_prior)
-    m1, v1 = (np.asarray(a, dtype=float) for a in mu_prior)
     sig = np.asarray(sigma, dtype=float)
-    rule = gauss_legendre_unit(SMALL_X_NODES)
     nz = EVIDENCE_NODES[0]
     todo = np.isfinite(m2) & np.isfinite(v2) & (v2 > 0)
     todo &= np.ones(B, bool) if rows is None else np.asarray(rows, bool)
+    jobs = []  # (block, its nodes in z)
     for b in np.flatnonzero(todo):
         data = w[b] > 0
-        ub, fb, gb = u[b][data], df[b][data], dg[b][data]
-        umax = ub.max()
-        levels = np.unique(ub)
+        umax = u[b][data].max()
+        levels = np.unique(u[b][data])
         if levels.size < PLATEAU_MIN_SLOPE + 1 or not (sig[:, b] > 0).all():
             continue
         # The widest plateau that leaves PLATEAU_MIN_SLOPE distinct amplitudes above it.
@@ -177,21 +190,66 @@ def plateau_log_evidence(
         if z.size < 2:
             out[0, b] = -np.inf
             continue
-        wf, wg = 1.0 / sig[0, b] ** 2, 1.0 / sig[1, b] ** 2
-        common = (ub, fb, gb, umax)
-        rest = (wf, wg, (m1[b], v1[b]), to_mu[b], rule)
-        lp, ll, mu1, mu2 = _over_y(*common, np.exp(z), *rest)
-        l0 = _over_y(*common, np.zeros(1), *rest)[0][0]
-        prior = -0.5 * (z - m2[b]) ** 2 / v2[b] - 0.5 * np.log(2 * np.pi * v2[b])
-        t, q = lp + prior, ll + prior
-        top, topq = t.max(), q.max()
-        if not (np.isfinite(top) and np.isfinite(l0) and np.isfinite(topq)):
-            continue
-        dz = z[1] - z[0]
-        out[0, b] = 2.0 * (np.log(np.exp(t - top).sum() * dz) + top - l0)
-        wq = np.exp(q - topq)
-        mean = (wq * mu1).sum() / wq.sum()
-        sd = np.sqrt(max((wq * mu2).sum() / wq.sum() - mean**2, 0.0))
-        if sd <= MU_PRIOR_MAX_REL:  # else μ is not resolved: the fit's own stays
-            out[1, b], out[2, b] = np.exp(mean), np.exp(mean) * sd
+        jobs.append((b, z))
+    # All blocks' nodes in a few calls (numpy on large arrays), chunks of them keeping those
+    # arrays at a few MB; each block's rows: its nodes in z, then d_c = 0. Blocks of one number
+    # of points go together: without padding the projected solve skips its weights.
+    step = max(1, CHUNK_CELLS // ((nz + 1) * EVIDENCE_NODES[1] * max(u.shape[1], 1)))
+    rule = gauss_legendre_unit(SMALL_X_NODES)
+    same: dict[int, list] = {}
+    for job in jobs:
+        same.setdefault(int((w[job[0]] > 0).sum()), []).append(job)
+    for group in same.values():
+        for i in range(0, len(group), step):
+            chunk = group[i : i + step]
+            own = np.concatenate([np.full(z.size + 1, k) for k, (_, z) in enumerate(chunk)])
+            dl = np.concatenate([np.append(np.exp(z), 0.0) for _, z in chunk])
+            pts = _rows(u, df, dg, w, sig, mu_prior, to_mu, [b for b, _ in chunk])
+            lp, ll, mu1, mu2 = _over_y(tuple(a[own] for a in pts), dl, rule)
+            for k, (b, z) in enumerate(chunk):
+                at = np.flatnonzero(own == k)
+                _combine(out[:, b], z, lp[at], ll[at], mu1[at], mu2[at], m2[b], v2[b])
     return out
+
+
+def _rows(u, df, dg, w, sig, mu_prior, to_mu, blocks):
+    """The points of ``blocks`` as :func:`_integrand` takes them, one row (1, ...) a block:
+    its distinct amplitudes (padded with u_max), each point's index among them, Δf, ΔΓ and
+    weights (padding 0), u_max, the weights 1/σ² of Δf and ΔΓ, the prior on ln μ and to_mu."""
+    lev, idx = [], []
+    for b in blocks:
+        levels, inv = np.unique(u[b][w[b] > 0], return_inverse=True)
+        lev.append(levels)
+        idx.append(inv)
+    L, M = max(v.size for v in lev), max(v.size for v in idx)
+    nb = len(blocks)
+    levs, ids = np.empty((nb, 1, L)), np.zeros((nb, 1, M), int)
+    pts = np.zeros((3, nb, 1, M))
+    for k, b in enumerate(blocks):
+        data = w[b] > 0
+        levs[k, 0] = np.pad(lev[k], (0, L - lev[k].size), mode="edge")
+        ids[k, 0, : idx[k].size] = idx[k]
+        for row, v in zip(pts[:, k, 0], (df[b][data], dg[b][data], 1.0), strict=True):
+            row[: idx[k].size] = v
+    col = [levs[:, 0, -1:], 1.0 / sig[0, blocks, None] ** 2, 1.0 / sig[1, blocks, None] ** 2]
+    col += [np.asarray(a, dtype=float)[blocks, None] for a in (*mu_prior, to_mu)]
+    return levs, ids, *pts, *col
+
+
+def _combine(out, z, lp, ll, mu1, mu2, mean, var):
+    """2 ln B and μ of one block (``out``, (3,)) from its rows of :func:`_over_y`: those at the
+    nodes ``z`` of ln(d_c/u_max), then d_c = 0; ``mean``, ``var``: the prior on z."""
+    l0 = lp[-1]
+    lp, ll, mu1, mu2 = lp[:-1], ll[:-1], mu1[:-1], mu2[:-1]
+    prior = -0.5 * (z - mean) ** 2 / var - 0.5 * np.log(2 * np.pi * var)
+    t, q = lp + prior, ll + prior
+    top, topq = t.max(), q.max()
+    if not (np.isfinite(top) and np.isfinite(l0) and np.isfinite(topq)):
+        return
+    dz = z[1] - z[0]
+    out[0] = 2.0 * (np.log(np.exp(t - top).sum() * dz) + top - l0)
+    wq = np.exp(q - topq)
+    m = (wq * mu1).sum() / wq.sum()
+    sd = np.sqrt(max((wq * mu2).sum() / wq.sum() - m**2, 0.0))
+    if sd <= MU_PRIOR_MAX_REL:  # else μ is not resolved: the fit's own stays
+        out[1], out[2] = np.exp(m), np.exp(m) * sd
