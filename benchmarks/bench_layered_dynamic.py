@@ -96,6 +96,34 @@ unit of s for the oscillation of j_p j_q up to s ~ 210). Starting the basis at i
 (tried, not kept) saved nothing: 384 M instead of 376 M, as the Bessel functions are then
 computed for a larger basis ahead.
 
+Issue 26's sixth pass, page faults: about a fifth of the layered curve's CPU was minor page
+faults (~6200 per 250 nm curve and ~6000 per 1 µm curve, 2160 for the homogeneous one; the
+same curve with glibc's heap never trimmed, ``MALLOC_TRIM_THRESHOLD_`` and
+``MALLOC_MMAP_THRESHOLD_`` set high: ~50 ms instead of ~65 ms, no fault). strace shows no
+mmap in the steady state: the heap grows by ~17 MB during a call and is trimmed at its end, so
+every call takes its pages back one fault at a time; what counts is the call's peak memory.
+The real samples of Δg are now solved in groups of points of at most 2048 nodes (one
+interpolation of the waves and one layer recursion per group instead of ~10000 nodes at once),
+each point's own-node Gram product is formed alone (no zero-padded (points × harmonics ×
+orders × nodes) array), and the continued fraction of the spherical Bessel functions keeps its
+ratios in the result's rows (no second array of its size); results moved by <= 5.3e-15
+(normal curves), 0 (tangential). Instructions per curve (cachegrind, one thread), main / this
+tree: homogeneous 87.9 / 87.9 M; 250 nm 371 M (4.2x) -> 387 M (4.4x); 1 µm 268 M (3.0x) ->
+281 M (3.2x): the groups cost a few more numpy calls. CPU, in one run, main / this tree
+alternating four times, best of 9 each, one BLAS thread: homogeneous 15.1-15.3 / 15.2-15.4 ms;
+250 nm 67-70 ms (4.4x-4.6x, ~6200 faults) / 57-64 ms (3.7x-4.2x, 3300-4200 faults); 1 µm
+51-54 ms (3.4x-3.5x, ~6000 faults) / 36-44 ms (2.3x-2.9x, 0-2400 faults); as shipped (best of
+7, three times) homogeneous 14.2-15.7 / 14.1-14.7 ms, 250 nm 64-69 ms (4.3x-4.6x) / 55-58 ms
+(3.8x-4.0x). The fault count of a call depends on the heap's state (glibc's trim threshold
+follows the largest block it has unmapped): main's curves also run in a "good" state now and
+then (250 nm 55 ms with ~3200 faults, 1 µm 36 ms with none), this tree's more often. Tried,
+not kept: the exact model's near-field pair products formed for a few k a at a time (1 MiB
+blocks): the layered curves' faults fell a little further, but the homogeneous curve's rose
+(2160 -> 2600-3400) and its instructions by 4 %. The 250 nm target is still missed: without
+any fault the curve costs ~50 ms (~3.3x), so 3x needs the instructions cut by another ~12 %,
+i.e. the correction's ~170 Δg samples and ~760 nodes per point (an error estimate on the
+decayed tail, not done here).
+
 Run: ``.venv/bin/python benchmarks/bench_layered_dynamic.py`` (exit status 1 if a target is
 missed; a few minutes on a busy machine).
 """

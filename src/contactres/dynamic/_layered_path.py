@@ -59,6 +59,8 @@ _PROBE_ETA_H = 50.0
 _S_MAX = 1e6
 # Largest lift of the arc (in s = η a): j_p j_q grow like e^{2 Im s} on it.
 _MAX_LIFT = 1.5
+# Real samples of Δg solved together (see _chunk_nodes: small groups reuse the heap's pages).
+_GROUP_NODES = 2048
 
 
 @dataclass(frozen=True)
@@ -399,11 +401,21 @@ def _chunk_nodes(shared: _SharedWaves, stacks, radii, index, res: PunchResolutio
         sc = np.exp(uc).ravel()
         head = _head(shared, st, a, res, s0)
         parts.append((st, a, head, sc))
-    # Every head first, then every point's real samples (one interpolation for all of them).
+    # Every head first, then every point's real samples, in groups of points of at most
+    # ~_GROUP_NODES nodes (one interpolation per group): a group's interpolated waves and the
+    # recursion's temporaries stay small enough to be reused from the heap, where those of all
+    # ~10000 samples at once were fresh pages on every call (their page faults cost about a
+    # tenth of the 250 nm curve); the values are the same node by node.
     heads = [(st, a, head[0]) for st, a, head, _ in parts]
     reals = [(st, a, sc) for st, a, _, sc in parts]
-    waves = StackWaves.combined([head[2] for _, _, head, _ in parts] + [shared.real_all(reals)])
-    pieces = _delta_g(shared, heads + reals, waves)
+    pieces = _delta_g(shared, heads, StackWaves.combined([head[2] for _, _, head, _ in parts]))
+    group: list = []
+    for k, item in enumerate(reals):
+        group.append(item)
+        size = sum(s.size for _, _, s in group)
+        if k + 1 == len(reals) or size + reals[k + 1][2].size > _GROUP_NODES:
+            pieces += _delta_g(shared, group, shared.real_all(group))
+            group = []
     n = len(parts)
     samples = [np.concatenate(hr) for hr in zip(pieces[:n], pieces[n:], strict=True)]
     rule = gauss_legendre(0.0, 1.0, res.n_panel)

@@ -138,7 +138,7 @@ def _correction_integrals(bessel, values, orders, pairs, known=None) -> np.ndarr
     beyond each one's last node S: Δg ~ Δg(S) S²/s² (its 1/s² decay) and j_p j_q ->
     (−1)^{(p−q)/2}/(2s²) on average, so the tail is Δg_m(S) (−1)^{(p−q)/2}/(6S).
 
-    ``bessel``: :func:`_padded_bessel` (j_p on the points' own nodes and on the shared grid);
+    ``bessel``: :func:`_nodes_bessel` (j_p on the points' own nodes and on the shared grid);
     ``values``: :func:`_point_values` (the weights times Δg_m on the same nodes, the tails);
     ``orders``: the plan's orders; ``pairs``: :func:`_new_pairs` of the plan; ``known``: what
     this call returned for the previous (smaller) basis, whose pairs' integrals are reused."""
@@ -150,10 +150,14 @@ def _correction_integrals(bessel, values, orders, pairs, known=None) -> np.ndarr
     if known is not None:
         out[..., ~new] = known[..., at]
     # The points' own nodes (the arc and the panels below 2L): J diag(w Δg_m) J[cols]ᵀ, one
-    # batched product over the points and harmonics, then the new pairs read from it.
-    rows = own_j[:, _order_rows(orders)]
-    gram = (rows[:, None] * own_v[:, :, None, :]) @ np.swapaxes(rows[:, cols], -1, -2)[:, None]
-    fresh = gram[..., a, pos]
+    # product per point batched over its harmonics, then the new pairs read from it (point by
+    # point: no (points × harmonics × orders × nodes) temporary, fresh pages on every call).
+    fresh = np.empty((n_pts, n_m, a.size), dtype=complex)
+    at_rows = _order_rows(orders)
+    for k, j in enumerate(own_j):
+        rows = j[at_rows]
+        gram = (rows * own_v[k, :, None, : rows.shape[-1]]) @ rows[cols].T
+        fresh[k] = gram[:, a, pos]
     # The shared grid's nodes, real J: Σ_n (w Δg_m)_n j_p j_q as one real product of every
     # point's and harmonic's values (real and imaginary parts) with the new pairs' products.
     products = grid_jt[:, orders[a]] * grid_jt[:, orders[cols[pos]]]
@@ -164,15 +168,12 @@ def _correction_integrals(bessel, values, orders, pairs, known=None) -> np.ndarr
     return out
 
 
-def _padded_bessel(p_max: int, nodes: dict, res) -> tuple:
-    """(j_p, p = 0..``p_max``, on every point's own nodes, zero beyond them (n_pts, p_max + 1,
-    most own nodes); j_p on the shared grid, transposed (n_grid, p_max + 1), real), the
-    points in the order of ``nodes``."""
+def _nodes_bessel(p_max: int, nodes: dict, res) -> tuple:
+    """([j_p, p = 0..``p_max``, on each point's own nodes (p_max + 1, its own nodes)], the
+    points in the order of ``nodes``; j_p on the shared grid, transposed (n_grid, p_max + 1),
+    real)."""
     grid, own = bessel_on_grid(p_max, nodes, res)
-    out = np.zeros((len(own), p_max + 1, max(o.shape[1] for o in own)), dtype=complex)
-    for k, o in enumerate(own):
-        out[k, :, : o.shape[1]] = o
-    return out, np.ascontiguousarray(grid.T)
+    return list(own), np.ascontiguousarray(grid.T)
 
 
 def _point_values(nodes: dict, harmonics: list, n_grid: int) -> tuple:
@@ -564,7 +565,7 @@ def _punch(table, film, items, radii, rtol, res) -> np.ndarray:
     harmonics: list = []
     values = None
     previous = None
-    bessel = None  # j_p at the nodes, p = 0..p_have (_padded_bessel)
+    bessel = None  # j_p at the nodes, p = 0..p_have (_nodes_bessel)
     p_have = -1
     thin = any(np.sum(stacks[i].thicknesses) < 0.1 * radii[i] for i in nodes)
     while True:
@@ -588,7 +589,7 @@ def _punch(table, film, items, radii, rtol, res) -> np.ndarray:
         if nodes:
             if p_have < orders[-1]:
                 p_have = int(orders[-1]) + 2 * (ahead - n_radial)
-                bessel = _padded_bessel(p_have, nodes, res)
+                bessel = _nodes_bessel(p_have, nodes, res)
             assert bessel is not None  # computed at the first size
             reused = previous is not None and np.array_equal(previous.ms, plan.ms)
             if not reused:

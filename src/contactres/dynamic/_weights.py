@@ -533,18 +533,22 @@ def spherical_bessel(p_max: int, z: np.ndarray) -> np.ndarray:
     top = int(max(p_max, 1.3 * zmax) + 30)
     ratio = np.zeros_like(sub[0])
     den = np.empty_like(ratio)
-    ratios = np.empty_like(sub)  # ratios[p] = j_p / j_{p-1}, p >= 1
+    # The ratios j_p / j_{p-1} kept in the rows p >= 2 of the result itself (each row then
+    # turned into j_p in place, upwards), j_1 / j_0 apart: no second array of the result's
+    # size, fresh pages on every call.
+    ratio1 = np.empty_like(ratio)
     for p in range(top, 0, -1):
         # In place: this loop over ~100 orders is most of the cost for complex z.
         np.multiply(zl, ratio, out=den)
         np.subtract(2 * p + 1, den, out=den)
-        ratio = ratios[p] if p <= p_max else ratio
+        if p <= p_max:
+            ratio = sub[p] if p >= 2 else ratio1
         np.divide(zl, den, out=ratio)
     # Anchor on j₀ where it is the larger of the two, on j₁ elsewhere.
     use0 = np.abs(sub[0]) >= np.abs(sub[1])
-    sub[1] = np.where(use0, sub[0] * ratios[1], sub[1])
+    sub[1] = np.where(use0, sub[0] * ratio1, sub[1])
     for p in range(2, p_max + 1):
-        np.multiply(sub[p - 1], ratios[p], out=sub[p])
+        np.multiply(sub[p - 1], sub[p], out=sub[p])
     if not every:
         flat[:, low] = sub
     return out
