@@ -311,6 +311,27 @@ def test_model_averaged_mu_is_the_mean_and_spread_of_the_weighted_mixture():
     assert err[0] == pytest.approx(draws.std(), rel=2e-3)
 
 
+def test_the_marginal_mu_stands_for_the_plateau_fits_where_that_resolves_mu():
+    # The plateau loop's μ with d_c integrated out (mu_marginal, _plateau_evidence) replaces the
+    # fit's μ and error where the block has one; the fit's own verdict that μ is not resolved
+    # (at the edge of the loop table, or Δf0 <= 0) still stands: no μ from the plateau then.
+    from contactres.analysis._friction import model_averaged_mu
+
+    b = _two_loop_blocks(1.2, 0.1, 0.8, 0.1, bic_cm=np.inf, bic_pl=10.0)
+    b[1]["plateau-loop"]["mu_marginal"] = [0.9]
+    b[1]["plateau-loop"]["mu_marginal_err"] = [0.3]
+    mu, err, w = model_averaged_mu(*b, np.ones(1))
+    assert (mu[0], err[0], w[0]) == pytest.approx((0.9, 0.3, 1.0))
+    b[1]["plateau-loop"]["mu_marginal"] = [np.nan]  # none: the fit's own
+    assert model_averaged_mu(*b, np.ones(1))[0][0] == pytest.approx(0.8)
+    for col, value in (("edge", "high"), ("df0", -10.0)):
+        bad = _two_loop_blocks(1.2, 0.1, 0.8, 0.1, bic_cm=np.inf, bic_pl=10.0)
+        bad[1]["plateau-loop"]["mu_marginal"] = [0.9]
+        bad[1]["plateau-loop"]["mu_marginal_err"] = [0.3]
+        bad[1]["plateau-loop"].loc[0, col] = value
+        assert np.isnan(model_averaged_mu(*bad, np.ones(1))).all()
+
+
 def test_a_loop_without_a_fit_gets_no_weight():
     from contactres.analysis._friction import model_averaged_mu
 

@@ -213,9 +213,10 @@ def _joint_mu(table: pd.DataFrame | None, F: np.ndarray, P: np.ndarray):
     if "mu_marginal" in table.columns:
         # The plateau loop's μ with d_c integrated over its prior, where the block has one
         # (contactres.analysis._plateau_evidence): the fit's own μ holds d_c at its optimum.
+        # Only where the fit itself resolves μ (its "not resolved" verdict, e.g. at the edge of
+        # the loop table, stands).
         marginal = table["mu_marginal"].to_numpy(float)
         use = np.isfinite(marginal)
-        ok |= use
         mu = np.where(use, marginal, mu)
         mu_err = np.where(use, table["mu_marginal_err"].to_numpy(float), mu_err)
     ok &= np.isfinite(mu) & np.isfinite(mu_err) & np.isfinite(bic)
