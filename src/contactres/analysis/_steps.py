@@ -8,7 +8,7 @@ loads them.
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import asdict, replace
 
 import numpy as np
@@ -96,7 +96,7 @@ def run(
     table: SweepTable,
     settings: AnalysisSettings,
     say: Callable[[str], None],
-    curve_grids: tuple[int, ...] | None = None,
+    curve_grids: Sequence[int] | None = None,
 ) -> Results:
     """:func:`contactres.analysis.analyze` of ``table`` with ``settings``, telling ``say``
     the name of each step as it starts, the fitted curves on ``curve_grids`` (None: both
@@ -106,15 +106,20 @@ def run(
             f"analyze takes a SweepTable, got {type(table).__name__}; pass a raw table through "
             "contactres.validate_sweeps(frame, constants={...}) first"
         )
-    grids = CURVE_GRIDS if curve_grids is None else tuple(curve_grids)
+    # A tuple or list of whole numbers first: tuple(30) or set() of nested lists would raise a
+    # bare TypeError, which the CLI shows as an internal error.
+    grids = CURVE_GRIDS if curve_grids is None else curve_grids
     if (
-        not grids
+        not isinstance(grids, tuple | list)
+        or not grids
+        or not all(isinstance(n, int | np.integer) and not isinstance(n, bool) for n in grids)
         or len(set(grids)) != len(grids)
-        or not all(isinstance(n, int | np.integer) and n >= 2 for n in grids)
+        or not all(n >= 2 for n in grids)
     ):
         raise ContactresInputError(
             f"curve_grids must be distinct whole numbers of points >= 2, got {curve_grids!r}"
         )
+    grids = tuple(grids)
     data = table.data
 
     padded = pad_sweeps(data)
