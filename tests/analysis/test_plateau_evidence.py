@@ -237,3 +237,23 @@ def test_an_unresolved_mu_is_left_to_the_fit(monkeypatch):
     monkeypatch.setattr(pe, "MU_MARGINAL_MAX_EDGE", 1.0)
     _, mu, err = _evidence(*blocks[0], 3.0, prior)
     assert 0.5 < err / mu < 1.0
+
+
+def test_a_mu_piled_up_at_the_fitters_bound_is_left_to_the_fit(monkeypatch):
+    # F4: a loop that slips far beyond the loop table (x_max = θ u_max = 100 > X_MAX = 30) has its
+    # likelihood rising to the end of the y grid: the moments of ln μ there are the grid's
+    # (sd < 0.5, but μ 3-4 times the truth), so no marginal μ; without the edge rule there is one.
+    import contactres.analysis._plateau_evidence as pe
+
+    rng = np.random.default_rng(2)
+    umax, x_max = 2e-9, 100.0
+    u = np.sort(np.tile(np.linspace(0.1, 1.0, 11) * umax, 3))
+    g1, g2 = plateau_loop_shape(x_max / umax * u, x_max * 0.3)
+    df = 40.0 * g1 + 0.6 * rng.standard_normal(u.size)
+    dg = 5.0 + 40.0 * g2 + 0.6 * rng.standard_normal(u.size)
+    prior = (np.log(0.3), 0.1**2)
+    two_ln_b, mu, _ = _evidence(u, df, dg, 0.6, prior)
+    assert np.isfinite(two_ln_b) and np.isnan(mu)
+    monkeypatch.setattr(pe, "MU_MARGINAL_MAX_EDGE", 1.0)
+    _, mu, err = _evidence(u, df, dg, 0.6, prior)
+    assert err / mu < 0.5 and mu > 2 * 40.0 / (x_max / umax)
