@@ -39,7 +39,7 @@ model-averaged μ of the block (:func:`contactres.analysis._friction.model_avera
 Accuracy. The nodes (:data:`EVIDENCE_NODES`) are refined around the peaks of the integrands in
 z and in y, and a block whose posterior in z or in y spans fewer than :data:`MIN_SPAN_NODES`
 nodes keeps the criterion with the priors at the fit's optimum (NaN here). On the water blocks
-of the seeded study 2 ln B is within 0.33 of its value on a far finer grid, μ within 1.4 % and
+of the seeded study 2 ln B is within 0.33 of its value on a far finer grid, μ within 1.6 % and
 its error within 6 % (``tests/analysis/test_plateau_evidence.py``).
 
 Limits. The marginal μ's weights over d_c are the pooled amplitude prior's times the block's
@@ -71,7 +71,7 @@ number of points (numpy on large arrays, no padding weights in the projected sol
 slopes at each block's distinct amplitudes only (its three ramps repeat them) and without
 their derivatives: about 5.7 ms of CPU per block on a full validation study (97 blocks) with
 the 12 uniform nodes in z, against 11 ms block by block, with the same numbers bit for bit; the
-refinement in z and in y (:data:`EVIDENCE_NODES`) makes it about 1.6 times that.
+refinement in z and in y (:data:`EVIDENCE_NODES`) makes it about 1.8 times that.
 """
 
 from __future__ import annotations
@@ -85,17 +85,17 @@ from ._plateau import SMALL_X_NODES, plateau_loop_slopes
 
 __all__ = ["EVIDENCE_NODES", "plateau_log_evidence"]
 
-#: Nodes of the rules: in z = ln(d_c/u_max), 12 uniform over [m - 4s, min(m + 4s, hi)] (m, s:
-#: the prior's mean and width; hi: the widest plateau the sweep can show), then 5 more (a
-#: third of a step apart) across the two coarse steps around the largest integrand of 2 ln B
-#: and, where it lies elsewhere, around that of μ's posterior; in y = ln θ(u_max - d_c), 32
-#: uniform from 10^-2.5 to :data:`~contactres.analysis._loops.X_MAX` (the fitter's bounds; 0.3
-#: apart) and 25 across the two coarse steps around the largest integrand L π (0.025 apart),
-#: 25 more around that of L alone where it lies elsewhere (μ's moments use L alone); all
-#: summed by the trapezoidal rule. Accuracy on the water blocks of the seeded study (seeds 0-2,
-#: 169 undecided blocks) against 81 uniform nodes in z and 256 + 201 in y: 2 ln B within 0.33,
-#: μ within 1.4 %, its error within 6 %; the 12 uniform nodes in z alone, which sum the prior
-#: to ~1e-4, left 2 ln B off by up to 2.1 (a likelihood narrower than the prior).
+#: Nodes of the rules: in z = ln(d_c/u_max), 12 uniform over [m - 4s, min(m + 4s, hi)] (m, s: the
+#: prior's mean and width; hi: the widest plateau the sweep can show), then 5 more (a third of a
+#: step apart) across the two coarse steps around the largest integrand of 2 ln B and, where it lies
+#: more than a step away, around that of μ's posterior; in y = ln θ(u_max - d_c), 32 uniform from
+#: 10^-2.5 to :data:`~contactres.analysis._loops.X_MAX` (the fitter's bounds; 0.3 apart) and 25
+#: across the two coarse steps around the largest integrand L π (0.025 apart), 25 more around that
+#: of L alone where it lies elsewhere (μ's moments use L alone); all summed by the trapezoidal rule.
+#: Accuracy on the water blocks of the seeded study (seeds 0-2, 169 undecided blocks) against 81
+#: uniform nodes in z and 256 + 201 in y: 2 ln B within 0.33, μ within 1.6 %, its error within 6 %;
+#: the 12 uniform nodes in z alone, which sum the prior to ~1e-4, left 2 ln B off by up to 2.1 (a
+#: likelihood narrower than the prior).
 EVIDENCE_NODES = (12, 5, 32, 25)
 
 #: A posterior counts as resolved by the nodes where at least this many of them carry a tenth
@@ -268,9 +268,11 @@ def plateau_log_evidence(
     for (b, z), (lp, ll, *_) in zip(jobs, coarse, strict=True):
         prior = -0.5 * (z - m2[b]) ** 2 / v2[b]
         dz = z[1] - z[0]
-        peaks = {int(np.argmax(lp[:-1] + prior)), int(np.argmax(ll[:-1] + prior))}
+        peaks = [int(np.argmax(lp[:-1] + prior)), int(np.argmax(ll[:-1] + prior))]
+        if abs(peaks[1] - peaks[0]) <= 1:  # μ's peak within the fine span of the evidence's
+            peaks = peaks[:1]
         step = np.linspace(-dz, dz, nzf + 2)[1:-1]
-        zf = np.concatenate([z[p] + step for p in sorted(peaks)])
+        zf = np.concatenate([z[p] + step for p in peaks])
         fine_jobs.append((b, np.clip(zf, z[0], z[-1])))
     fine = _evaluate(args, fine_jobs, zero=False) if nzf else [(np.empty(0),) * 6] * len(jobs)
     for (b, z), (_, zf), c, f in zip(jobs, fine_jobs, coarse, fine, strict=True):
