@@ -311,6 +311,27 @@ def test_model_averaged_mu_is_the_mean_and_spread_of_the_weighted_mixture():
     assert err[0] == pytest.approx(draws.std(), rel=2e-3)
 
 
+def test_the_marginal_mu_stands_for_the_plateau_fits_where_that_resolves_mu():
+    # The plateau loop's μ with d_c integrated out (mu_marginal, _plateau_evidence) replaces the
+    # fit's μ and error where the block has one; the fit's own verdict that μ is not resolved
+    # (at the edge of the loop table, or Δf0 <= 0) still stands: no μ from the plateau then.
+    from contactres.analysis._friction import model_averaged_mu
+
+    b = _two_loop_blocks(1.2, 0.1, 0.8, 0.1, bic_cm=np.inf, bic_pl=10.0)
+    b[1]["plateau-loop"]["mu_marginal"] = [0.9]
+    b[1]["plateau-loop"]["mu_marginal_err"] = [0.3]
+    mu, err, w = model_averaged_mu(*b, np.ones(1))
+    assert (mu[0], err[0], w[0]) == pytest.approx((0.9, 0.3, 1.0))
+    b[1]["plateau-loop"]["mu_marginal"] = [np.nan]  # none: the fit's own
+    assert model_averaged_mu(*b, np.ones(1))[0][0] == pytest.approx(0.8)
+    for col, value in (("edge", "high"), ("df0", -10.0)):
+        bad = _two_loop_blocks(1.2, 0.1, 0.8, 0.1, bic_cm=np.inf, bic_pl=10.0)
+        bad[1]["plateau-loop"]["mu_marginal"] = [0.9]
+        bad[1]["plateau-loop"]["mu_marginal_err"] = [0.3]
+        bad[1]["plateau-loop"].loc[0, col] = value
+        assert np.isnan(model_averaged_mu(*bad, np.ones(1))).all()
+
+
 def test_a_loop_without_a_fit_gets_no_weight():
     from contactres.analysis._friction import model_averaged_mu
 
@@ -321,3 +342,22 @@ def test_a_loop_without_a_fit_gets_no_weight():
     b[1]["plateau-loop"].loc[0, "bic_shared"] = 11.0
     mu, err, w = model_averaged_mu(*b, np.ones(1))
     assert (mu[0], err[0], w[0]) == pytest.approx((0.8, 0.1, 1.0))
+
+
+def test_a_marginal_mu_beyond_max_mu_is_judged_in_ln_mu():
+    # A marginal μ has a log-normal error (err = μ s, s the sd of ln μ): 30 ± 20 (s = 2/3) has
+    # its 2.3 % quantile at 30 e^-4/3 = 7.9 < MAX_MU = 10 (kept), 60 ± 40 at 15.8 (beyond MAX_MU
+    # by more than two errors in ln μ: withheld), though μ - 2 err < 0 for both, so the normal
+    # bound (kept for a μ without the marginal) could never fire at s >= 0.5.
+    from scipy.stats import lognorm
+
+    from contactres.analysis._friction import mu_out_of_range
+    from contactres.units import MAX_MU
+
+    mu = np.array([30.0, 60.0, 60.0, 5.0, np.nan])
+    err = np.array([20.0, 40.0, 40.0, 10.0, 1.0])
+    lognormal = np.array([True, True, False, True, True])
+    low = lognorm.ppf(0.02275, s=err / mu, scale=mu)  # exp(ln μ - 2 s)
+    expect = (mu > MAX_MU) & np.where(lognormal, low > MAX_MU, mu - 2 * err > MAX_MU)
+    assert expect.tolist() == [False, True, False, False, False]
+    np.testing.assert_array_equal(mu_out_of_range(mu, err, lognormal), expect)

@@ -130,7 +130,7 @@ def test_without_figures_the_curves_are_those_of_the_page_grid_alone(tmp_path):
         figure_sweeps(page.analysis)
 
 
-@pytest.mark.parametrize("grids", [(), (30, 30), (1,), (30.5,)])
+@pytest.mark.parametrize("grids", [(), (30, 30), (1,), (30.5,), 30, [[30, 60]], (True, 30)])
 def test_curve_grids_are_distinct_numbers_of_points(grids):
     with pytest.raises(ContactresInputError, match="curve_grids"):
         analyze(read_sweeps(SWEEPS), settings=AnalysisSettings(bootstrap=0), curve_grids=grids)

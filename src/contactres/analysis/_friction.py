@@ -21,6 +21,7 @@ import numpy as np
 import pandas as pd
 
 from ..resonators import mu_from_slopes
+from ..units import MAX_MU
 
 __all__ = [
     "COULOMB_LOOPS",
@@ -33,6 +34,7 @@ __all__ = [
     "loop_friction",
     "loop_table_force",
     "model_averaged_mu",
+    "mu_out_of_range",
     "slip_sweeps",
     "slope_friction",
 ]
@@ -213,13 +215,30 @@ def _joint_mu(table: pd.DataFrame | None, F: np.ndarray, P: np.ndarray):
     if "mu_marginal" in table.columns:
         # The plateau loop's μ with d_c integrated over its prior, where the block has one
         # (contactres.analysis._plateau_evidence): the fit's own μ holds d_c at its optimum.
+        # Only where the fit itself resolves μ (its "not resolved" verdict, e.g. at the edge of
+        # the loop table, stands).
         marginal = table["mu_marginal"].to_numpy(float)
         use = np.isfinite(marginal)
-        ok |= use
         mu = np.where(use, marginal, mu)
         mu_err = np.where(use, table["mu_marginal_err"].to_numpy(float), mu_err)
     ok &= np.isfinite(mu) & np.isfinite(mu_err) & np.isfinite(bic)
     return np.where(ok, mu, nan), np.where(ok, mu_err, nan), np.where(ok, bic, np.inf)
+
+
+def mu_out_of_range(mu, err, lognormal):
+    """Where μ lies above :data:`contactres.units.MAX_MU` by more than twice its error.
+
+    Normal errors: μ - 2 err > MAX_MU. Where ``lognormal`` (the block's μ includes the plateau
+    loop's μ with d_c integrated out, :mod:`contactres.analysis._plateau_evidence`, whose
+    error is μ times the posterior standard deviation s of ln μ) the bound is taken in ln μ,
+    exp(ln μ - 2 s) = μ exp(-2 err/μ) > MAX_MU: with s ≥ 0.5 the normal bound μ - 2 err ≤ 0
+    could never exceed MAX_MU. A missing error counts as 0. All arrays; returns a boolean
+    array.
+    """
+    mu, err = np.asarray(mu, dtype=float), np.nan_to_num(np.asarray(err, dtype=float), nan=0.0)
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
+        low = np.where(lognormal, mu * np.exp(-2.0 * err / mu), mu - 2.0 * err)
+    return (mu > MAX_MU) & (low > MAX_MU)
 
 
 def model_averaged_mu(

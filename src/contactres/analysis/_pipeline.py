@@ -80,7 +80,7 @@ from ._settings import AnalysisSettings
 # importing them would load pandas with the sweep table.
 TYPE_CHECKING = False
 if TYPE_CHECKING:
-    from collections.abc import Callable
+    from collections.abc import Callable, Sequence
 
     from ..measurements import SweepTable
     from ._results import Results
@@ -93,7 +93,7 @@ def analyze(
     *,
     settings: AnalysisSettings | None = None,
     progress: Callable[[str], None] | None = None,
-    curve_grids: tuple[int, ...] | None = None,
+    curve_grids: Sequence[int] | None = None,
 ) -> Results:
     """Analyse a validated sweep table; see the module docstring.
 

@@ -27,13 +27,29 @@ and Pωξ solved in closed form at every node (:func:`contactres.analysis._loops
 solve_projected`): the same parameters in both models, whose Occam factors cancel to the
 order kept. The plateau's criterion is then the Cattaneo-Mindlin loop's minus 2 ln B, on the
 scale of the BIC, so that the nesting margin ``delta_bic`` still keeps Cattaneo-Mindlin unless
-the plateau has positive evidence. Amplitudes whose plateau leaves fewer than
+the plateau has positive evidence (2 ln B > 2 on the scale of Kass & Raftery, J. Am. Stat.
+Assoc. 90, 773 (1995), Sec. 3.2). Amplitudes whose plateau leaves fewer than
 :data:`~contactres.analysis._amplitude.PLATEAU_MIN_SLOPE` distinct amplitudes above it carry
 no likelihood (the prior mass there counts against the plateau: a plateau the sweep cannot
 show is no evidence for one). The same nodes give the plateau loop's μ with d_c integrated out
 (the posterior of ln μ under the likelihood and the amplitude prior alone): its error includes
 what the plateau's width leaves open, which the fit's error at its optimum does not; the
 model-averaged μ of the block (:func:`contactres.analysis._friction.model_averaged_mu`) uses it.
+
+Accuracy. The nodes (:data:`EVIDENCE_NODES`) are refined around the peaks of the integrands in
+z and in y, and a block whose posterior in z or in y spans fewer than :data:`MIN_SPAN_NODES`
+nodes keeps the criterion with the priors at the fit's optimum (NaN here). On the water blocks
+of the seeded study 2 ln B is within 0.33 of its value on a far finer grid, μ within 1.6 % and
+its error within 6 % (``tests/analysis/test_plateau_evidence.py``).
+
+Limits. The marginal μ's weights over d_c are the pooled amplitude prior's times the block's
+likelihood: where the likelihood is flat in d_c (the case this module is for) they are the
+prior's, so a block whose plateau differs from the analysis's other plateaus gets a μ centred
+where the prior puts d_c, with an error that does not cover its own (a plateau at 0.15 u_max
+under a prior at 0.4: none of 20 blocks covered); and a plateau much narrower than the
+others' (0.10 u_max) is voted down by the same prior. The prior is the best knowledge of d_c
+the analysis has, but only as good as the assumption that a study's plateaus are alike
+(docs/validation.md).
 
 Where. Only blocks whose criterion with the priors at the optimum leaves the plateau within
 ``PLATEAU_UNDECIDED`` of the best other candidate, either way
@@ -44,13 +60,18 @@ fit's own optimum than by nodes spread over the prior.
 Result. Validation study, ten seeds: water plateau sweeps right 78.5 % → 94.6 % (per seed 91,
 100, 92, 83, 100, 100, 88, 100, 100, 100 %), water Cattaneo-Mindlin 97.5 % → 98.0 %, air
 plateau 97.1 % → 98.0 %, air Cattaneo-Mindlin 98.5 % → 99.1 %; μ of the true water plateau
-blocks inside ±1.96 printed errors 92.9 % → 94.6 %.
+blocks inside ±1.96 printed errors 92.9 % → 94.6 %. With the refined nodes and the stricter
+use of the marginal μ (sd of ln μ at most 0.5; issue 27, point 11, review): water plateau 94.6 %,
+water Cattaneo-Mindlin 97.8 %, air as before; μ of the water plateau blocks inside ±1.96 errors
+92.4 % (2 of 92 blocks fewer: where the marginal μ is not resolved the fit's own μ stands, whose
+error at its optimum is too small).
 
 Cost. The nodes of all undecided blocks are evaluated together, in chunks of blocks with one
 number of points (numpy on large arrays, no padding weights in the projected solve), the
 slopes at each block's distinct amplitudes only (its three ramps repeat them) and without
-their derivatives: about 5.7 ms of CPU per block on a full validation study (97 blocks),
-against 11 ms block by block, with the same numbers bit for bit.
+their derivatives: about 5.7 ms of CPU per block on a full validation study (97 blocks) with
+the 12 uniform nodes in z, against 11 ms block by block, with the same numbers bit for bit; the
+refinement in z and in y (:data:`EVIDENCE_NODES`) makes it about 1.8 times that.
 """
 
 from __future__ import annotations
@@ -60,18 +81,36 @@ import numpy as np
 from ..numerics import gauss_legendre_unit
 from ._amplitude import PLATEAU_MIN_SLOPE
 from ._loops import CHUNK_CELLS, X_MAX, solve_projected
-from ._mu_prior import MU_PRIOR_MAX_REL
 from ._plateau import SMALL_X_NODES, plateau_loop_slopes
 
 __all__ = ["EVIDENCE_NODES", "plateau_log_evidence"]
 
-#: Nodes of the rules: in z = ln(d_c/u_max), 12 uniform over ±4 prior widths (0.73 of a width
-#: apart; a normal density summed so is exact to ~1e-4); in y = ln θ(u_max - d_c), 32 uniform
-#: from 10^-2.5 to :data:`~contactres.analysis._loops.X_MAX` (the fitter's bounds; 0.3 apart)
-#: and 25 across the two coarse steps around the largest integrand (0.025 apart), summed
-#: together by the trapezoidal rule: the fine nodes resolve a μ known to 2 %, the coarse ones
-#: the tails of a μ known to 20 % or worse.
-EVIDENCE_NODES = (12, 32, 25)
+#: Nodes of the rules: in z = ln(d_c/u_max), 12 uniform over [m - 4s, min(m + 4s, hi)] (m, s: the
+#: prior's mean and width; hi: the widest plateau the sweep can show), then 5 more (a third of a
+#: step apart) across the two coarse steps around the largest integrand of 2 ln B and, where it lies
+#: more than a step away, around that of μ's posterior; in y = ln θ(u_max - d_c), 32 uniform from
+#: 10^-2.5 to :data:`~contactres.analysis._loops.X_MAX` (the fitter's bounds; 0.3 apart) and 25
+#: across the two coarse steps around the largest integrand L π (0.025 apart), 25 more around that
+#: of L alone where it lies elsewhere (μ's moments use L alone); all summed by the trapezoidal rule.
+#: Accuracy on the water blocks of the seeded study (seeds 0-2, 169 undecided blocks) against 81
+#: uniform nodes in z and 256 + 201 in y: 2 ln B within 0.33, μ within 1.6 %, its error within 6 %;
+#: the 12 uniform nodes in z alone, which sum the prior to ~1e-4, left 2 ln B off by up to 2.1 (a
+#: likelihood narrower than the prior).
+EVIDENCE_NODES = (12, 5, 32, 25)
+
+#: A posterior counts as resolved by the nodes where at least this many of them carry a tenth
+#: of its largest value or more (±2.15 widths of a normal density: a node spacing of at most
+#: 2.15 widths, at which the trapezoidal rule integrates a normal density to 3 %, 0.06 in
+#: 2 ln B); else the block keeps the criterion with the priors at the fit's optimum.
+MIN_SPAN_NODES = 3
+
+#: The marginal μ stands for the plateau loop's only where the posterior standard deviation
+#: of ln μ is at most this (a relative error of about 50 %; beyond it the moments depend on
+#: where the y grid ends) and at most this share of the posterior lies in the first or last
+#: coarse y cell (two cells of 31 hold 6.5 % of a flat posterior: more is a posterior piled up
+#: against the fitter's bounds).
+MU_MARGINAL_MAX_SD = 0.5
+MU_MARGINAL_MAX_EDGE = 0.1
 
 
 def _integrand(pts, dl, y, rule):
@@ -106,20 +145,43 @@ def _integrand(pts, dl, y, rule):
     return np.where(ok, lnL + lnpi, -np.inf), np.where(ok, lnL, -np.inf), ln_mu
 
 
+def _span(e):
+    """How many nodes of each row of ``e`` (a density over its nodes, its largest 1) carry a
+    tenth of the largest or more (:data:`MIN_SPAN_NODES`)."""
+    return (e >= 0.1).sum(axis=-1)
+
+
 def _over_y(pts, dl, rule):
-    """ln ∫ L π dy, ln ∫ L dy and the first two moments of ln μ under L, at each d_c/u_max ``dl``
-    (R,) of its row's block (``pts``: :func:`_rows`)."""
-    _, ny, nf = EVIDENCE_NODES
+    """ln ∫ L π dy, ln ∫ L dy, the first two moments of ln μ under L, the share of L's mass in
+    the first and last coarse cells and the nodes both posteriors span (:func:`_span`), at each
+    d_c/u_max ``dl`` (R,) of its row's block (``pts``: :func:`_rows`)."""
+    _, _, ny, nf = EVIDENCE_NODES
     K = len(dl)
     dl = dl[:, None]
     coarse = np.linspace(np.log(10.0**-2.5), np.log(X_MAX), ny)
     h = coarse[1] - coarse[0]
     first = _integrand(pts, dl, np.broadcast_to(coarse, (K, ny)), rule)
-    peak = coarse[np.argmax(first[0], axis=1)]
-    fine = peak[:, None] + np.linspace(-h, h, nf)[None, :]
-    fine = np.clip(fine, coarse[0], coarse[-1])
+    step = np.linspace(-h, h, nf)[None, :]
     parts = [(np.broadcast_to(coarse, (K, ny)), first)]
-    parts.append((fine, _integrand(pts, dl, fine, rule)))
+    # Fine nodes around the peak of L π (the evidence) and, where it lies elsewhere, around
+    # that of L (μ's moments): else μ would follow its prior through the nodes.
+    at_p, at_l = np.argmax(first[0], axis=1), np.argmax(first[1], axis=1)
+    for k, at in enumerate((at_p, at_l)):
+        fine = np.clip(coarse[at][:, None] + step, coarse[0], coarse[-1])
+        rows = np.ones(K, bool) if k == 0 else at_l != at_p
+        vals = [v.copy() for v in parts[1][1]] if k else None
+        if rows.any():
+            sub = tuple(a[rows] for a in pts)
+            got = _integrand(sub, dl[rows], fine[rows], rule)
+            if vals is None:
+                vals = list(got)
+            else:
+                for v, g in zip(vals, got, strict=True):
+                    v[rows] = g
+                fine = np.where(rows[:, None], fine, parts[1][0])
+        elif vals is None:
+            vals = [np.empty((K, nf))] * 3
+        parts.append((fine, tuple(vals)))
     y = np.concatenate([yy for yy, _ in parts], axis=1)
     order = np.argsort(y, axis=1, kind="stable")
     y = np.take_along_axis(y, order, axis=1)
@@ -136,10 +198,13 @@ def _over_y(pts, dl, rule):
         log_p = np.log(np.trapezoid(ep, y, axis=1)) + top_p[:, 0]
         zl = np.trapezoid(el, y, axis=1)
         log_l = np.log(zl) + top_l[:, 0]
+    cell = 0.5 * (el[:, 1:] + el[:, :-1]) * np.diff(y, axis=1)
+    edge = (y[:, 1:] <= coarse[1]) | (y[:, :-1] >= coarse[-2])
     with np.errstate(invalid="ignore", divide="ignore"):
         m1 = np.trapezoid(el * mu, y, axis=1) / zl
         m2 = np.trapezoid(el * mu**2, y, axis=1) / zl
-    return log_p, log_l, m1, m2
+        share = (cell * edge).sum(axis=1) / zl
+    return log_p, log_l, m1, m2, share, np.minimum(_span(ep), _span(el))
 
 
 def plateau_log_evidence(
@@ -160,19 +225,22 @@ def plateau_log_evidence(
 
     Returns
     -------
-    (3, B): 2 ln B (positive: the data favour the plateau; -inf where the prior puts no
-    plateau the sweep can show), and μ under the plateau loop with d_c marginalised over its
-    prior, exp of the posterior mean of ln μ, with its error μ times the posterior standard
-    deviation of ln μ (without the prior on μ: the block's μ stays its own points'); NaN where
-    there is no amplitude prior, μ also where that deviation exceeds
-    :data:`~contactres.analysis._mu_prior.MU_PRIOR_MAX_REL` (μ not resolved)
+    (3, B): 2 ln B (positive: the data favour the plateau), and μ under the plateau loop with
+    d_c marginalised, exp of the posterior mean of ln μ, with its error μ times the posterior
+    standard deviation of ln μ. That posterior is the likelihood's in y times the pooled
+    amplitude prior in z (not the prior on μ): its weights over d_c are the prior's, not the
+    block's own points' alone, so a block whose plateau lies far from the others' gets a μ and
+    an error from where the prior puts d_c (module docstring, Limits). NaN where there is no
+    amplitude prior, where the prior puts no plateau the sweep can show (the fit's criterion
+    stays) and where the nodes do not resolve a posterior (:data:`MIN_SPAN_NODES`); μ also
+    where it is not resolved (:data:`MU_MARGINAL_MAX_SD`, :data:`MU_MARGINAL_MAX_EDGE`)
     """
     u, df, dg, w = (np.asarray(a, dtype=float) for a in (u, df, dg, w))
     B = u.shape[0]
     out = np.full((3, B), np.nan)
     m2, v2 = (np.asarray(a, dtype=float) for a in ratio_prior)
     sig = np.asarray(sigma, dtype=float)
-    nz = EVIDENCE_NODES[0]
+    nz, nzf = EVIDENCE_NODES[:2]
     todo = np.isfinite(m2) & np.isfinite(v2) & (v2 > 0)
     todo &= np.ones(B, bool) if rows is None else np.asarray(rows, bool)
     jobs = []  # (block, its nodes in z)
@@ -182,34 +250,66 @@ def plateau_log_evidence(
         levels = np.unique(u[b][data])
         if levels.size < PLATEAU_MIN_SLOPE + 1 or not (sig[:, b] > 0).all():
             continue
-        # The widest plateau that leaves PLATEAU_MIN_SLOPE distinct amplitudes above it.
+        # The widest plateau that leaves PLATEAU_MIN_SLOPE distinct amplitudes above it: the
+        # nodes end there (beyond it the prior's mass counts against the plateau). Where the
+        # prior puts (almost) no plateau below it there is nothing to integrate: NaN.
         hi = np.log(levels[-PLATEAU_MIN_SLOPE] / umax)
         s = np.sqrt(v2[b])
-        z = np.linspace(m2[b] - 4 * s, m2[b] + 4 * s, nz)
-        z = z[z <= hi]
-        if z.size < 2:
-            out[0, b] = -np.inf
+        if hi <= m2[b] - 4 * s:
             continue
-        jobs.append((b, z))
-    # All blocks' nodes in a few calls (numpy on large arrays), chunks of them keeping those
-    # arrays at a few MB; each block's rows: its nodes in z, then d_c = 0. Blocks of one number
-    # of points go together: without padding the projected solve skips its weights.
-    step = max(1, CHUNK_CELLS // ((nz + 1) * EVIDENCE_NODES[1] * max(u.shape[1], 1)))
+        jobs.append((b, np.linspace(m2[b] - 4 * s, min(m2[b] + 4 * s, hi), nz)))
     rule = gauss_legendre_unit(SMALL_X_NODES)
+    args = (u, df, dg, w, sig, mu_prior, to_mu, rule)
+    coarse = _evaluate(args, jobs, zero=True)
+    # Fine nodes in z across the two coarse steps around the peak of the integrand of 2 ln B
+    # and around that of μ's posterior (where it lies elsewhere): 12 nodes over the prior
+    # resolve the prior, not a likelihood narrower than it.
+    fine_jobs = []
+    for (b, z), (lp, ll, *_) in zip(jobs, coarse, strict=True):
+        prior = -0.5 * (z - m2[b]) ** 2 / v2[b]
+        dz = z[1] - z[0]
+        peaks = [int(np.argmax(lp[:-1] + prior)), int(np.argmax(ll[:-1] + prior))]
+        if abs(peaks[1] - peaks[0]) <= 1:  # μ's peak within the fine span of the evidence's
+            peaks = peaks[:1]
+        step = np.linspace(-dz, dz, nzf + 2)[1:-1]
+        zf = np.concatenate([z[p] + step for p in peaks])
+        fine_jobs.append((b, np.clip(zf, z[0], z[-1])))
+    fine = _evaluate(args, fine_jobs, zero=False) if nzf else [(np.empty(0),) * 6] * len(jobs)
+    for (b, z), (_, zf), c, f in zip(jobs, fine_jobs, coarse, fine, strict=True):
+        zz = np.concatenate([z, zf])
+        order = np.argsort(zz, kind="stable")
+        vals = [np.concatenate([cv[:-1], fv])[order] for cv, fv in zip(c, f, strict=True)]
+        _combine(out[:, b], zz[order], c[0][-1], vals, m2[b], v2[b])
+    return out
+
+
+def _evaluate(args, jobs, zero):
+    """:func:`_over_y` at the nodes ``z`` of every job (block, z), and at d_c = 0 after them if
+    ``zero``: per job, a tuple of its rows' arrays.
+
+    All blocks' nodes in a few calls (numpy on large arrays), chunks of them keeping those
+    arrays at a few MB. Blocks of one number of points go together: without padding the
+    projected solve skips its weights."""
+    u, df, dg, w, sig, mu_prior, to_mu, rule = args
+    res: dict[int, tuple] = {}
+    if not jobs:
+        return []
+    nrow = max(z.size for _, z in jobs) + zero
+    ny = EVIDENCE_NODES[2]
+    step = max(1, CHUNK_CELLS // (nrow * ny * max(u.shape[1], 1)))
     same: dict[int, list] = {}
-    for job in jobs:
-        same.setdefault(int((w[job[0]] > 0).sum()), []).append(job)
+    for k, job in enumerate(jobs):
+        same.setdefault(int((w[job[0]] > 0).sum()), []).append((k, *job))
     for group in same.values():
         for i in range(0, len(group), step):
             chunk = group[i : i + step]
-            own = np.concatenate([np.full(z.size + 1, k) for k, (_, z) in enumerate(chunk)])
-            dl = np.concatenate([np.append(np.exp(z), 0.0) for _, z in chunk])
-            pts = _rows(u, df, dg, w, sig, mu_prior, to_mu, [b for b, _ in chunk])
-            lp, ll, mu1, mu2 = _over_y(tuple(a[own] for a in pts), dl, rule)
-            for k, (b, z) in enumerate(chunk):
-                at = np.flatnonzero(own == k)
-                _combine(out[:, b], z, lp[at], ll[at], mu1[at], mu2[at], m2[b], v2[b])
-    return out
+            own = np.concatenate([np.full(z.size + zero, j) for j, (_, _, z) in enumerate(chunk)])
+            ends = [np.append(np.exp(z), 0.0) if zero else np.exp(z) for _, _, z in chunk]
+            pts = _rows(u, df, dg, w, sig, mu_prior, to_mu, [b for _, b, _ in chunk])
+            got = _over_y(tuple(a[own] for a in pts), np.concatenate(ends), rule)
+            for j, (k, _, _) in enumerate(chunk):
+                res[k] = tuple(v[own == j] for v in got)
+    return [res[k] for k in range(len(jobs))]
 
 
 def _rows(u, df, dg, w, sig, mu_prior, to_mu, blocks):
@@ -236,20 +336,25 @@ def _rows(u, df, dg, w, sig, mu_prior, to_mu, blocks):
     return levs, ids, *pts, *col
 
 
-def _combine(out, z, lp, ll, mu1, mu2, mean, var):
-    """2 ln B and μ of one block (``out``, (3,)) from its rows of :func:`_over_y`: those at the
-    nodes ``z`` of ln(d_c/u_max), then d_c = 0; ``mean``, ``var``: the prior on z."""
-    l0 = lp[-1]
-    lp, ll, mu1, mu2 = lp[:-1], ll[:-1], mu1[:-1], mu2[:-1]
+def _combine(out, z, l0, rows, mean, var):
+    """2 ln B and μ of one block (``out``, (3,)) from its ``rows`` of :func:`_over_y` at the
+    nodes ``z`` of ln(d_c/u_max), ascending, and ``l0``, ln ∫ L π dy at d_c = 0; ``mean``, ``var``:
+    the prior on z. Left NaN where a posterior spans fewer than :data:`MIN_SPAN_NODES` nodes in
+    z or, where it carries weight, in y: then the nodes do not resolve it."""
+    lp, ll, mu1, mu2, share, span = rows
     prior = -0.5 * (z - mean) ** 2 / var - 0.5 * np.log(2 * np.pi * var)
     t, q = lp + prior, ll + prior
     top, topq = t.max(), q.max()
     if not (np.isfinite(top) and np.isfinite(l0) and np.isfinite(topq)):
         return
-    dz = z[1] - z[0]
-    out[0] = 2.0 * (np.log(np.exp(t - top).sum() * dz) + top - l0)
-    wq = np.exp(q - topq)
-    m = (wq * mu1).sum() / wq.sum()
-    sd = np.sqrt(max((wq * mu2).sum() / wq.sum() - m**2, 0.0))
-    if sd <= MU_PRIOR_MAX_REL:  # else μ is not resolved: the fit's own stays
+    wt, wq = np.exp(t - top), np.exp(q - topq)
+    carry = (wt >= 0.1) | (wq >= 0.1)
+    if min(_span(wt), _span(wq), span[carry].min()) < MIN_SPAN_NODES:
+        return
+    out[0] = 2.0 * (np.log(np.trapezoid(wt, z)) + top - l0)
+    norm = np.trapezoid(wq, z)
+    m = np.trapezoid(wq * mu1, z) / norm
+    sd = np.sqrt(max(np.trapezoid(wq * mu2, z) / norm - m**2, 0.0))
+    edge = np.trapezoid(wq * share, z) / norm
+    if sd <= MU_MARGINAL_MAX_SD and edge <= MU_MARGINAL_MAX_EDGE:  # else the fit's own μ stays
         out[1], out[2] = np.exp(m), np.exp(m) * sd

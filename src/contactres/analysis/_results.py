@@ -80,7 +80,12 @@ class Results:
         disagree with the times)
     blocks : one row per load block judged jointly (:mod:`contactres.analysis._blocks`)
     block_fits : every model's joint fit of every load block, like ``fits`` with ``block`` in
-        place of ``sweep`` (the Coulomb loops' with ``bic_shared``, their shared criterion)
+        place of ``sweep`` (the Coulomb loops' with ``bic_shared``, their shared criterion);
+        the plateau loop's also with ``mu_marginal`` and ``mu_marginal_err``: its μ with d_c
+        integrated over the plateau prior (:mod:`contactres.analysis._plateau_evidence`),
+        NaN but where the plateau was undecided and that μ is resolved; where given they
+        replace the loop fit's μ in the block's model-averaged μ
+        (:func:`contactres.analysis._friction.model_averaged_mu`)
     radiation : one row per load: the radiation loss of the contact against the measured one
         (:func:`contactres.analysis.radiation_loss`; None: no materials were given)
     jkr : the fitted JKR + Mindlin curve κ(F_N) of every group on the grid Fig. 5 draws

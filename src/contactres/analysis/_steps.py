@@ -8,7 +8,7 @@ loads them.
 
 from __future__ import annotations
 
-from collections.abc import Callable
+from collections.abc import Callable, Sequence
 from dataclasses import asdict, replace
 
 import numpy as np
@@ -20,14 +20,14 @@ from ..measurements import SweepTable
 from ..measurements.schema import SWEEP_TABLE
 from ..resonators import QCM
 from ..tangential import effective_shear_modulus, shear_modulus
-from ..units import JUNCTION_SIGMAS, LINEAR_ONSET_X, MAX_MU, MIN_SWEEP_POINTS, SMALL_LOAD_LIMIT
+from ..units import JUNCTION_SIGMAS, LINEAR_ONSET_X, MIN_SWEEP_POINTS, SMALL_LOAD_LIMIT
 from ._amplitude import pad_sweeps
 from ._blocks import block_codes, choose_blocks
 from ._classify import apply_models, fit_sweeps
 from ._curves import CURVE_GRIDS, fitted_curves, jkr_curves, sweep_points
 from ._drift import LOAD_OF_EXPERIMENT, drifting_sweeps, remove_linear_drift
 from ._flags import Flag
-from ._friction import block_friction, loop_friction, slope_friction
+from ._friction import block_friction, loop_friction, mu_out_of_range, slope_friction
 from ._jkr import fit_group
 from ._loads import GROUP_KEYS, per_experiment, per_load, withhold_mu
 from ._loops import X_MAX, loop_tables
@@ -96,7 +96,7 @@ def run(
     table: SweepTable,
     settings: AnalysisSettings,
     say: Callable[[str], None],
-    curve_grids: tuple[int, ...] | None = None,
+    curve_grids: Sequence[int] | None = None,
 ) -> Results:
     """:func:`contactres.analysis.analyze` of ``table`` with ``settings``, telling ``say``
     the name of each step as it starts, the fitted curves on ``curve_grids`` (None: both
@@ -106,15 +106,20 @@ def run(
             f"analyze takes a SweepTable, got {type(table).__name__}; pass a raw table through "
             "contactres.validate_sweeps(frame, constants={...}) first"
         )
-    grids = CURVE_GRIDS if curve_grids is None else tuple(curve_grids)
+    # A tuple or list of whole numbers first: tuple(30) or set() of nested lists would raise a
+    # bare TypeError, which the CLI shows as an internal error.
+    grids = CURVE_GRIDS if curve_grids is None else curve_grids
     if (
-        not grids
+        not isinstance(grids, tuple | list)
+        or not grids
+        or not all(isinstance(n, int | np.integer) and not isinstance(n, bool) for n in grids)
         or len(set(grids)) != len(grids)
-        or not all(isinstance(n, int | np.integer) and n >= 2 for n in grids)
+        or not all(n >= 2 for n in grids)
     ):
         raise ContactresInputError(
             f"curve_grids must be distinct whole numbers of points >= 2, got {curve_grids!r}"
         )
+    grids = tuple(grids)
     data = table.data
 
     padded = pad_sweeps(data)
@@ -246,9 +251,16 @@ def run(
     # A μ beyond any friction coefficient by more than twice its error is a wrong input, not a
     # result: withheld and flagged. A noisy estimate (μ = 12 ± 60 from a flat ΔΓ slope in
     # water) is kept: censoring it would bias the statistics per load.
+    # A block's μ from the plateau loop's marginal μ has a log-normal error (its bound in ln μ).
+    lognormal = np.zeros(len(sw), bool)
+    pl = block_fits.get("plateau-loop")
+    if settings.exact_loop and pl is not None and "mu_marginal" in pl.columns:
+        member = sw["block"].to_numpy() >= 0
+        marginal = np.isfinite(pl["mu_marginal"].to_numpy(float))
+        lognormal[member] = marginal[sw["block"].to_numpy()[member]]
     for col in ("mu_df", "mu_dgamma", "mu_fit", "mu_block"):
         mu, err = sw[col].to_numpy(float), sw[f"{col}_err"].to_numpy(float)
-        absurd = (mu > MAX_MU) & ~(mu - 2 * np.nan_to_num(err, nan=0.0) <= MAX_MU)
+        absurd = mu_out_of_range(mu, err, lognormal & (col == "mu_block"))
         if absurd.any():
             sw.loc[absurd, [col, f"{col}_err"]] = np.nan
             flags |= _flag(absurd, Flag.MU_OUT_OF_RANGE)
