@@ -344,6 +344,24 @@ def test_a_loop_without_a_fit_gets_no_weight():
     assert (mu[0], err[0], w[0]) == pytest.approx((0.8, 0.1, 1.0))
 
 
+def test_a_loop_that_does_not_resolve_mu_leaves_the_average():
+    # A plateau fit on its bound d_c = 0 gave μ = 1.05 with an error of 1100: averaged in with
+    # its weight of 1.6 % (8.3 units of BIC behind CM), the block's error was 139, a hundred times
+    # μ (the demo's SiO2_2.2mm/air/e2/F1 before). An error above MU_PRIOR_MAX_REL times μ is no
+    # μ at all: the block keeps the loop that resolves it, and has none where neither does.
+    from contactres.analysis._friction import MU_PRIOR_MAX_REL, model_averaged_mu
+
+    b = _two_loop_blocks(1.05, 0.003, 1.05, 1100.0, bic_cm=0.0, bic_pl=8.3)
+    mu, err, w = model_averaged_mu(*b, np.ones(1))
+    assert (mu[0], err[0], w[0]) == pytest.approx((1.05, 0.003, 0.0))
+    # Just resolved (error 0.99 μ): it stays in, with the weights of the mixture.
+    b = _two_loop_blocks(1.05, 0.003, 1.0, 0.99 * MU_PRIOR_MAX_REL, bic_cm=0.0, bic_pl=8.3)
+    w_pl = np.exp(-4.15) / (1 + np.exp(-4.15))
+    assert model_averaged_mu(*b, np.ones(1))[2][0] == pytest.approx(w_pl, rel=1e-12)
+    b = _two_loop_blocks(1.05, 2.0, 1.0, 1100.0, bic_cm=0.0, bic_pl=8.3)
+    assert np.isnan(model_averaged_mu(*b, np.ones(1))).all()
+
+
 def test_a_marginal_mu_beyond_max_mu_is_judged_in_ln_mu():
     # A marginal μ has a log-normal error (err = μ s, s the sd of ln μ): 30 ± 20 (s = 2/3) has
     # its 2.3 % quantile at 30 e^-4/3 = 7.9 < MAX_MU = 10 (kept), 60 ± 40 at 15.8 (beyond MAX_MU

@@ -26,6 +26,7 @@ from ..units import MAX_MU
 __all__ = [
     "COULOMB_LOOPS",
     "LOOP_OF_CLASS",
+    "MU_PRIOR_MAX_REL",
     "LoopFriction",
     "SlopeFriction",
     "block_friction",
@@ -199,6 +200,13 @@ def loop_friction(
     return out
 
 
+#: Largest relative error of a loop's μ that counts as resolved: beyond it the fit does not
+#: resolve μ (a plateau loop whose d_c sits on its bound 0 has a degenerate Jacobian and errors
+#: of hundreds of per cent). Such a μ leaves the model average (:func:`model_averaged_mu`), and
+#: the μ prior is not weighed against it (the prior would waive the parameter's ln N for nothing
+#: the data show, so such a fit keeps its BIC; :mod:`contactres.analysis._mu_prior`).
+MU_PRIOR_MAX_REL = 1.0
+
 #: The two Coulomb loops whose joint fits of a block are averaged (keys of the block fits).
 COULOMB_LOOPS = ("cattaneo-mindlin-loop", "plateau-loop")
 
@@ -222,6 +230,12 @@ def _joint_mu(table: pd.DataFrame | None, F: np.ndarray, P: np.ndarray):
         mu = np.where(use, marginal, mu)
         mu_err = np.where(use, table["mu_marginal_err"].to_numpy(float), mu_err)
     ok &= np.isfinite(mu) & np.isfinite(mu_err) & np.isfinite(bic)
+    # A μ whose error exceeds MU_PRIOR_MAX_REL times itself is not resolved by the block's points
+    # (the plateau loop's fit at a bound of d_c gave errors of 100x μ): averaged in with even a
+    # small weight it made the block's error absurd (μ = 1.05 ± 139 in the demo), so it leaves
+    # the average to the loop that resolves μ, and the block has no μ where neither does.
+    with np.errstate(invalid="ignore"):
+        ok &= mu_err <= MU_PRIOR_MAX_REL * np.abs(mu)
     return np.where(ok, mu, nan), np.where(ok, mu_err, nan), np.where(ok, bic, np.inf)
 
 

@@ -47,7 +47,7 @@ from collections.abc import Mapping
 import numpy as np
 import pandas as pd
 
-from ._friction import COULOMB_LOOPS, loop_table_force, model_averaged_mu
+from ._friction import COULOMB_LOOPS, MU_PRIOR_MAX_REL, loop_table_force, model_averaged_mu
 
 __all__ = [
     "MU_PRIOR_MAX_REL",
@@ -57,12 +57,6 @@ __all__ = [
     "prior_penalty",
     "reference_mu",
 ]
-
-#: Largest relative error of a loop's μ that the prior is weighed against. Beyond it the fit
-#: does not resolve μ (a plateau loop whose d_c sits on its bound 0 has a degenerate Jacobian and
-#: errors of hundreds of per cent): there the prior would waive the parameter's ln N for nothing
-#: the data show, so such a fit keeps its BIC.
-MU_PRIOR_MAX_REL = 1.0
 
 #: Other load blocks of the experiment with a resolved μ that a prior needs: the power law has
 #: two parameters, and a third point is the least that shows its scatter.
