@@ -169,22 +169,20 @@ def _over_y(pts, dl, rule):
     # Fine nodes around the peak of L π (the evidence) and, where it lies elsewhere, around
     # that of L (μ's moments): else μ would follow its prior through the nodes.
     at_p, at_l = np.argmax(first[0], axis=1), np.argmax(first[1], axis=1)
-    for k, at in enumerate((at_p, at_l)):
-        fine = np.clip(coarse[at][:, None] + step, coarse[0], coarse[-1])
-        rows = np.ones(K, bool) if k == 0 else at_l != at_p
-        vals = [v.copy() for v in parts[1][1]] if k else None
-        if rows.any():
-            sub = tuple(a[rows] for a in pts)
-            got = _integrand(sub, dl[rows], fine[rows], rule)
-            if vals is None:
-                vals = list(got)
-            else:
-                for v, g in zip(vals, got, strict=True):
-                    v[rows] = g
-                fine = np.where(rows[:, None], fine, parts[1][0])
-        elif vals is None:
-            vals = [np.empty((K, nf))] * 3
-        parts.append((fine, tuple(vals)))
+    fine_p = np.clip(coarse[at_p][:, None] + step, coarse[0], coarse[-1])
+    got = _integrand(pts, dl, fine_p, rule) if K else (np.empty((0, nf)),) * 3
+    parts.append((fine_p, got))
+    # Rows whose two peaks coincide repeat the first fine nodes (a zero-width trapezoid).
+    moved = at_l != at_p
+    fine_l = np.where(
+        moved[:, None], np.clip(coarse[at_l][:, None] + step, coarse[0], coarse[-1]), fine_p
+    )
+    vals = [v.copy() for v in got]
+    if moved.any():
+        sub = tuple(a[moved] for a in pts)
+        for v, g in zip(vals, _integrand(sub, dl[moved], fine_l[moved], rule), strict=True):
+            v[moved] = g
+    parts.append((fine_l, tuple(vals)))
     y = np.concatenate([yy for yy, _ in parts], axis=1)
     order = np.argsort(y, axis=1, kind="stable")
     y = np.take_along_axis(y, order, axis=1)
