@@ -256,7 +256,9 @@ def _text_array(values: np.ndarray) -> np.ndarray:
     _, first, inverse = np.unique(ids, return_index=True, return_inverse=True)
     distinct = values[first]
     missing = np.array([v is None or v != v for v in distinct], dtype=bool)  # None, NaN
-    return np.where(missing, "", distinct).astype(str)[inverse.reshape(-1)]
+    # np.asarray(..., dtype=str) as pandas' to_numpy(dtype=str) (not astype: a column of only
+    # empty cells is '<U2' there, '<U1' by astype)
+    return np.asarray(np.where(missing, "", distinct), dtype=str)[inverse.reshape(-1)]
 
 
 def npz_to(path, frame) -> None:

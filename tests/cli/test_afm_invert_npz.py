@@ -244,14 +244,16 @@ def test_an_array_table_holds_columns_of_one_length():
 
 def test_text_of_numpy_columns_is_written_as_pandas_writes_it(tmp_path):
     """The archive of numpy columns holds the text pandas' ``fillna("").astype(str)`` gives:
-    None and NaN empty, numbers as their text, one width for the column."""
+    None and NaN empty, numbers as their text, one width for the column (a column of empty
+    cells, the flags of a table without one, included)."""
     from contactres.measurements import ArrayTable
 
     cells = np.array(["hertz", None, np.nan, 3, "", "hertz + dynamic"], dtype=object)
-    write_npz(tmp_path / "a.npz", pd.DataFrame({"m": cells, "x": np.arange(6.0)}))
-    write_npz(tmp_path / "b.npz", ArrayTable({"m": cells, "x": np.arange(6.0)}))
+    columns = {"m": cells, "x": np.arange(6.0), "e": np.array([""] * 6, dtype=object)}
+    write_npz(tmp_path / "a.npz", pd.DataFrame(columns))
+    write_npz(tmp_path / "b.npz", ArrayTable(columns))
     with np.load(tmp_path / "a.npz") as a, np.load(tmp_path / "b.npz") as b:
-        assert a["m"].dtype == b["m"].dtype == np.dtype("<U15")
+        assert a["m"].dtype == b["m"].dtype == np.dtype("<U15") and a["e"].dtype == b["e"].dtype
         assert a["m"].tolist() == b["m"].tolist() == ["hertz", "", "", "3", "", "hertz + dynamic"]
     assert (tmp_path / "a.npz").read_bytes() == (tmp_path / "b.npz").read_bytes()
 
