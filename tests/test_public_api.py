@@ -324,6 +324,7 @@ PUBLIC = {
         "voigt_to_tensor",
     ],
     "measurements": [
+        "ArrayTable",
         "CONSTANTS",
         "D26_AT",
         "EXAMPLE_SEED",

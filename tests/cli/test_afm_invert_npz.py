@@ -142,3 +142,134 @@ def test_the_flags_of_the_lever_and_of_the_modulus_are_joined_per_row(tmp_path):
         "tip-limit",
         "inconsistent-modes;tip-limit",
     ]
+
+
+def _mixed(n=24):
+    """A table of several levers and geometries (the rows are inverted group by group): two
+    free frequencies, a lateral ratio with a tip height in some rows, the tip position given
+    in some rows and solved from the two modes in others, Q factors in some cells, a reference
+    sample in some rows, a label; the map of :func:`_map` underneath."""
+    frame, _ = _map(n)
+    i = np.arange(n)
+    lever = Cantilever((150e3, 940e3), 40.0)
+    f = contact_frequencies(lever, np.geomspace(5.0, 50.0, n), 0.9, modes=(1, 2))
+    other = i % 3 == 1
+    frame.loc[other, "f1_free_Hz"] = 150e3
+    frame.loc[other, "f2_free_Hz"] = 940e3
+    frame.loc[other, "fc1_Hz"] = f[other, 0]
+    frame.loc[other, "fc2_Hz"] = f[other, 1]
+    frame["lateral_ratio"] = np.where(i % 4 == 0, 0.8, np.nan)
+    frame["tip_height_over_L"] = np.where(i % 4 == 0, 0.05, np.nan)
+    frame["tip_position"] = np.where(i % 5 == 2, np.nan, frame["tip_position"])
+    frame["Q1"] = np.where(i % 2 == 0, 300.0, np.nan)
+    frame["fc1_ref_Hz"] = np.where(i % 6 == 3, frame["fc1_Hz"] * 1.01, np.nan)
+    frame["M_ref_Pa"] = np.where(i % 6 == 3, 60e9, np.nan)
+    frame.loc[i % 6 == 3, ["tip_radius_m", "load_N"]] = np.nan  # the reference method there
+    return frame
+
+
+@pytest.mark.parametrize("crystal", [None, "Si"])
+def test_numpy_columns_give_the_dataframe_results_bit_for_bit(tmp_path, crystal):
+    """issue 31, point 5: an archive inverted as numpy columns (no pandas) gives every column
+    of the DataFrame path, to the bit, on a table of several lever groups (each group inverted
+    at once), references, Q factors; with --crystal, the dynamic correction to 1e-12 (its kernel
+    tables differ in the last bits from one run to the next, on either path)."""
+    from contactres.jobs import afm_invert as job
+    from contactres.materials import Material
+
+    write_npz(tmp_path / "mixed.npz", _mixed())
+    sample = None if crystal is None else Material.crystal(crystal).rotated((0, 0, 1))
+    frame = job.run(tmp_path / "mixed.npz", job.Settings(sample=sample)).table
+    arrays = job.run(tmp_path / "mixed.npz", job.Settings(sample=sample, arrays=True)).table
+    assert not isinstance(arrays, pd.DataFrame) and list(arrays.columns) == list(frame.columns)
+    assert len(set(frame["flags"])) > 1 and frame["modulus_method"].nunique() > 1
+    for name in frame.columns:
+        want, got = frame[name].to_numpy(), arrays[name]
+        if want.dtype.kind == "f" and crystal is None:
+            assert got.dtype == want.dtype and np.array_equal(got, want, equal_nan=True), name
+        elif want.dtype.kind == "f":
+            assert got.dtype == want.dtype, name
+            np.testing.assert_allclose(got, want, rtol=1e-12, atol=0, equal_nan=True)
+        else:
+            assert [str(v) for v in got] == [str(v) for v in want], name
+    if crystal is not None:
+        return
+    write_npz(tmp_path / "a.npz", frame)
+    write_npz(tmp_path / "b.npz", arrays)
+    assert (tmp_path / "a.npz").read_bytes() == (tmp_path / "b.npz").read_bytes()
+
+
+def test_an_archive_read_as_numpy_columns_names_its_bad_cells_as_the_dataframe_does(tmp_path):
+    frame, _ = _map(5)
+    frame["fc1_Hz"] = frame["fc1_Hz"].astype(object)
+    frame.loc[3, "fc1_Hz"] = "12 kHz"  # text where a number belongs
+    np.savez(tmp_path / "text.npz", **{c: frame[c].to_numpy(dtype=str) for c in frame})
+    frame, _ = _map(5)
+    frame.loc[2, "k_c_N_per_m"] = -1.0  # a rule of the schema
+    write_npz(tmp_path / "rule.npz", frame)
+    for name in ("text.npz", "rule.npz"):
+        messages = []
+        for arrays in (False, True):
+            with pytest.raises(ContactresInputError) as info:
+                read_resonance_table(tmp_path / name, AFM_TABLE, arrays=arrays)
+            messages.append(str(info.value))
+        assert messages[0] == messages[1] and "row " in messages[0], messages
+
+
+def test_an_array_table_holds_columns_of_one_length():
+    from contactres.measurements import ArrayTable
+
+    t = ArrayTable({"a": [1.0, 2.0, 3.0], "b": np.array(["x", "y", "z"], dtype=object)})
+    t["c"] = "global"  # one value: every row, as text objects
+    t["d"] = np.nan
+    assert len(t) == 3 and t.columns == ["a", "b", "c", "d"]
+    assert t["c"].dtype == object and list(t["c"]) == ["global"] * 3 and np.isnan(t["d"]).all()
+    with pytest.raises(ContactresInputError, match="3 rows"):
+        t["e"] = [1.0, 2.0]
+    with pytest.raises(ContactresInputError, match="one dimension"):
+        t["e"] = np.ones((3, 2))
+    part = t[["b", "a"]]
+    assert part.columns == ["b", "a"] and part["a"] is t["a"]
+    deep, shallow = t.copy(), t.copy(deep=False)
+    assert deep["a"] is not t["a"] and np.array_equal(deep["a"], t["a"])
+    assert shallow["a"] is t["a"]
+    shallow["a"] = [7.0, 8.0, 9.0]  # a new column in the copy: the table keeps its own
+    assert list(t["a"]) == [1.0, 2.0, 3.0]
+    t.attrs["line_word"] = "row"
+    frame = t.to_frame()
+    assert frame.attrs["line_word"] == "row" and list(frame.columns) == t.columns
+    back = ArrayTable.from_frame(frame)
+    assert back.columns == t.columns and np.array_equal(back["a"], t["a"])
+
+
+def test_text_of_numpy_columns_is_written_as_pandas_writes_it(tmp_path):
+    """The archive of numpy columns holds the text pandas' ``fillna("").astype(str)`` gives:
+    None and NaN empty, numbers as their text, one width for the column (a column of empty
+    cells, the flags of a table without one, included)."""
+    from contactres.measurements import ArrayTable
+
+    cells = np.array(["hertz", None, np.nan, 3, "", "hertz + dynamic"], dtype=object)
+    columns = {"m": cells, "x": np.arange(6.0), "e": np.array([""] * 6, dtype=object)}
+    write_npz(tmp_path / "a.npz", pd.DataFrame(columns))
+    write_npz(tmp_path / "b.npz", ArrayTable(columns))
+    with np.load(tmp_path / "a.npz") as a, np.load(tmp_path / "b.npz") as b:
+        assert a["m"].dtype == b["m"].dtype == np.dtype("<U15") and a["e"].dtype == b["e"].dtype
+        assert a["m"].tolist() == b["m"].tolist() == ["hertz", "", "", "3", "", "hertz + dynamic"]
+    assert (tmp_path / "a.npz").read_bytes() == (tmp_path / "b.npz").read_bytes()
+
+
+def test_rows_are_grouped_as_pandas_groups_them():
+    """The lever groups of the inversion are pandas' ``groupby(sort=False, dropna=False)``
+    groups (NaN a value of its own, -0.0 equal to 0.0), in the order of their first row."""
+    from contactres.analysis._resonance_tables import _row_groups
+
+    rng = np.random.default_rng(7)
+    values = np.array([0.0, -0.0, np.nan, 1.5, 2.0])
+    for trial in range(60):
+        n, m = int(rng.integers(1, 40)), int(rng.integers(1, 4))
+        high = 1 if trial % 4 == 0 else len(values)  # every fourth table: one group
+        keys = [values[rng.integers(0, high, n)] for _ in range(m)]
+        frame = pd.DataFrame({f"c{j}": k for j, k in enumerate(keys)})
+        want = frame.groupby(list(frame.columns), sort=False, dropna=False).indices.values()
+        got = _row_groups(keys)
+        assert [r.tolist() for r in got] == [r.tolist() for r in want]

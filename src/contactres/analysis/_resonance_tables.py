@@ -3,7 +3,10 @@
 The orchestration behind ``contactres rum invert`` and ``contactres afm invert``: the checked
 tables of :mod:`contactres.measurements` go through the oscillator models of
 :mod:`contactres.resonators` and the modulus step of :mod:`contactres.analysis._inversion`;
-the output keeps every input column and appends the results. Rows that the physics rejects
+the output keeps every input column and appends the results. A table is a
+:class:`pandas.DataFrame` or, read from a numpy archive, a
+:class:`~contactres.measurements.ArrayTable` (numpy columns: a map inverted without pandas,
+issue 31); the output is of the input's kind. Rows that the physics rejects
 (a contact resonance below the free one by more than
 :data:`~contactres.resonators.FREE_TOLERANCE`) are errors naming the line; a CR-AFM resonance at
 the free one is no contact (κ = 0, flag ``no-contact``); rows that only cannot be inverted (no
@@ -13,9 +16,9 @@ crossing of two modes, a mode without sensitivity) keep empty results and say wh
 from __future__ import annotations
 
 import warnings
+from typing import TYPE_CHECKING
 
 import numpy as np
-import pandas as pd
 
 from ..errors import ContactresInputError, ContactresWarning
 from ..measurements import at_cell, where_rows
@@ -28,6 +31,11 @@ from ..resonators import (
     invert_contact_resonance,
 )
 from ._inversion import ModulusFlag, modulus_from_contact_stiffness, surface_material
+
+if TYPE_CHECKING:
+    import pandas as pd
+
+    from ..measurements import ArrayTable
 
 __all__ = ["AFM_GROUP_COLUMNS", "invert_afm_table", "invert_rum_table"]
 
@@ -58,9 +66,44 @@ _MAX_RUM_RAISE = 4.39
 LARGE_TIP_M = 1e-3
 
 
-def _given_columns(table: pd.DataFrame) -> pd.DataFrame:
-    """The columns of the table as the file gave them (not the schema's absent ones)."""
-    return table[table.attrs.get("given", [c for c in table.columns if c != "line"])].copy()
+def _given_columns(table):
+    """The columns of the table as the file gave them (not the schema's absent ones): copied
+    from a DataFrame, the same arrays from an ArrayTable (its columns are not written to)."""
+    from ..measurements import ArrayTable
+
+    given = table[table.attrs.get("given", [c for c in table.columns if c != "line"])]
+    return given.copy(deep=not isinstance(given, ArrayTable))
+
+
+def _floats(table, name: str) -> np.ndarray:
+    """A column of a DataFrame or an ArrayTable as float64 numbers."""
+    return np.asarray(table[name], dtype=float)
+
+
+def _matrix(table, names) -> np.ndarray:
+    """The columns ``names`` as a (rows, columns) float64 array."""
+    return np.column_stack([_floats(table, c) for c in names])
+
+
+def _uniform(column: np.ndarray) -> bool:
+    """True if every value of a float column equals the first (NaN: every value NaN)."""
+    first = column[0]
+    return bool(np.isnan(column).all() if np.isnan(first) else (column == first).all())
+
+
+def _row_groups(keys: list[np.ndarray]) -> list[np.ndarray]:
+    """The row numbers of each distinct row of the float columns ``keys``, groups in the order
+    of their first row, rows ascending: pandas' ``groupby(sort=False, dropna=False).indices``
+    (NaN equal to NaN, -0.0 to 0.0), by a sort of numbers."""
+    if all(_uniform(column) for column in keys):  # one lever and one geometry: a map
+        return [np.arange(len(keys[0]))]
+    table = np.column_stack(keys)
+    table = np.where(np.isnan(table), np.nan, table + 0.0)  # one NaN and one zero, bit for bit
+    rows = np.ascontiguousarray(table).view(np.dtype((np.void, table.itemsize * table.shape[1])))
+    _, first, inverse = np.unique(rows.ravel(), return_index=True, return_inverse=True)
+    label = np.argsort(np.argsort(first))[inverse.reshape(-1)]  # groups by their first row
+    order = np.argsort(label, kind="stable")
+    return np.split(order, np.cumsum(np.bincount(label))[:-1])
 
 
 def _flag_text(codes: np.ndarray, names) -> np.ndarray:
@@ -122,6 +165,8 @@ def invert_rum_table(table: pd.DataFrame, source: str = "table") -> pd.DataFrame
     The rows are grouped by their calibration (one oscillator per group; a file rarely holds
     more than a few), each group converted at once.
     """
+    import pandas as pd
+
     lumped = _lumped_rows(table, source)
     f0 = table["f0_Hz"].to_numpy(float)
     fc = table["fc_Hz"].to_numpy(float)
@@ -223,11 +268,13 @@ def _modulus(col: dict, k_star: np.ndarray, have_kc: np.ndarray, ref, ref2) -> d
         (two, dict(one_ref, reference2_k_star=ref2, reference2_modulus=col["M_ref2_Pa"])),
     )
     tip, hardness = col["M_tip_Pa"], col["hardness_Pa"]
+    positive, no_tip, no_load = np.isfinite(k_star) & (k_star > 0), np.isnan(tip), np.isnan(load)
     for rows, kwargs in methods:
+        if not (rows := rows & positive).any():
+            continue
         for rigid in (True, False):
             for loaded in (True, False):  # a reference method uses the load where given
-                ok = rows & np.isfinite(k_star) & (k_star > 0) & (np.isnan(tip) == rigid)
-                ok &= np.isnan(load) != loaded
+                ok = rows & (no_tip == rigid) & (no_load != loaded)
                 if not ok.any():
                     continue
                 H = hardness[ok] if loaded and not np.isnan(hardness[ok]).all() else None
@@ -246,13 +293,13 @@ def _modulus(col: dict, k_star: np.ndarray, have_kc: np.ndarray, ref, ref2) -> d
     return out
 
 
-def _check_free_q(table: pd.DataFrame, source: str) -> None:
+def _check_free_q(table, source: str) -> None:
     """A free Q for every free frequency given, or none (the lever's damping is per mode)."""
+    given = {n: ~np.isnan(_floats(table, f"Q{n}_free")) for n in _MODES}
+    other = given[1] | given[2] | given[3]  # a column at a time: not a reduction across a row
     for n in _MODES:
-        f = table[f"f{n}_free_Hz"].notna().to_numpy()
-        q = table[f"Q{n}_free"].notna().to_numpy()
-        other = table[[f"Q{m}_free" for m in _MODES]].notna().any(axis=1).to_numpy()
-        bad = f & ~q & other
+        f = ~np.isnan(_floats(table, f"f{n}_free_Hz"))
+        bad = f & ~given[n] & other
         if bad.any():
             raise ContactresInputError(
                 f"{where_rows(table, source, bad, f'Q{n}_free')}: is empty while another free "
@@ -261,14 +308,14 @@ def _check_free_q(table: pd.DataFrame, source: str) -> None:
 
 
 def invert_afm_table(
-    table: pd.DataFrame,
+    table: pd.DataFrame | ArrayTable,
     source: str = "table",
     normalisation: str = "global",
     *,
     sample=None,
     loss: float = 0.0,
     mode_tolerance: float = MODE_TOLERANCE,
-) -> pd.DataFrame:
+) -> pd.DataFrame | ArrayTable:
     """κ, k*, r, σ and (where the inputs allow) E* and M_sample of every row of a checked CR-AFM
     table (:data:`~contactres.measurements.schema.AFM_TABLE`).
 
@@ -298,8 +345,8 @@ def invert_afm_table(
     :class:`~contactres.errors.ContactresWarning` naming the first such cell: a CR-AFM tip is
     1 nm-1 µm, a larger value is most often a unit slip, while a mm sphere is a valid contact.
     """
-    fc = table[[f"fc{n}_Hz" for n in _MODES]].to_numpy(float)
-    none = np.isnan(fc).all(axis=1)
+    fc = _matrix(table, [f"fc{n}_Hz" for n in _MODES])
+    none = np.isnan(fc[:, 0]) & np.isnan(fc[:, 1]) & np.isnan(fc[:, 2])
     if none.any():
         raise ContactresInputError(
             f"{where_rows(table, source, none, 'fc1_Hz')}: no contact resonance in this row "
@@ -307,7 +354,7 @@ def invert_afm_table(
         )
     for n in _MODES:  # a contact spring only raises a mode: below the free lever is impossible
         # (at the free frequency or a hair below it, FREE_TOLERANCE: no contact, κ = 0)
-        free_n = table[f"f{n}_free_Hz"].to_numpy(float)
+        free_n = _floats(table, f"f{n}_free_Hz")
         below = fc[:, n - 1] < free_n * (1.0 - FREE_TOLERANCE)
         if below.any():
             raise ContactresInputError(
@@ -317,17 +364,17 @@ def invert_afm_table(
     _check_free_q(table, source)
     if normalisation == "modewise":  # each mode measured needs its own free frequency
         for n in _MODES:
-            lacking = ~np.isnan(fc[:, n - 1]) & table[f"f{n}_free_Hz"].isna().to_numpy()
+            lacking = ~np.isnan(fc[:, n - 1]) & np.isnan(_floats(table, f"f{n}_free_Hz"))
             if lacking.any():
                 raise ContactresInputError(
                     f"{where_rows(table, source, lacking, f'f{n}_free_Hz')}: is empty while "
                     f"fc{n}_Hz is given; modewise normalisation needs the free frequency of "
                     "every mode used (or use --normalisation global)"
                 )
-    q = table[[f"Q{n}" for n in _MODES]].to_numpy(float)
-    f_ref = table[["fc1_ref_Hz", "fc1_ref2_Hz"]].to_numpy(float)
-    r_in = table["tip_position"].to_numpy(float)
-    k_c = table["k_c_N_per_m"].to_numpy(float)
+    q = _matrix(table, [f"Q{n}" for n in _MODES])
+    f_ref = _matrix(table, ["fc1_ref_Hz", "fc1_ref2_Hz"])
+    r_in = _floats(table, "tip_position")
+    k_c = _floats(table, "k_c_N_per_m")
     have_kc = ~np.isnan(k_c)
     n = len(table)
     res = {
@@ -344,45 +391,48 @@ def invert_afm_table(
     flags = np.zeros(n, dtype=int)
     k_modes = np.full((n, len(_MODES)), np.nan)  # κ of each mode averaged into κ (else NaN)
     refs = np.full((n, 2), np.nan)  # κ on the reference samples (k* = κ k_c; ratios need κ)
-    keys = [*AFM_GROUP_COLUMNS, "r_given"]
-    groups = table[list(AFM_GROUP_COLUMNS)].assign(r_given=~np.isnan(r_in))
-    for rows in groups.groupby(keys, sort=False, dropna=False).indices.values():
-        first = groups.iloc[rows[0]]
-        free = _leading(first[["f1_free_Hz", "f2_free_Hz", "f3_free_Hz"]].to_numpy(float))
+    # AFM_GROUP_COLUMNS (free f1-f3, free Q1-Q3, lateral ratio, tip height, tilt), r given
+    keys = [*(_floats(table, c) for c in AFM_GROUP_COLUMNS), (~np.isnan(r_in)).astype(float)]
+    for rows in _row_groups(keys):
+        first = np.array([column[rows[0]] for column in keys])
+        free = _leading(first[0:3])
         assert free is not None  # f1_free_Hz is a required column: never empty
         lever = Cantilever(
             free,
             1.0,  # κ = k*/k_c is what the frequencies give; k* = κ k_c below, where k_c is known
             normalisation=normalisation,
-            free_q_factors=_leading(first[["Q1_free", "Q2_free", "Q3_free"]].to_numpy(float)),
+            free_q_factors=_leading(first[3:6]),
         )
         geometry = dict(
-            lateral_ratio=np.nan_to_num(first["lateral_ratio"]),
-            tip_height=np.nan_to_num(first["tip_height_over_L"]),
-            tilt=np.nan_to_num(first["tilt_deg"]),
+            lateral_ratio=np.nan_to_num(first[6]),
+            tip_height=np.nan_to_num(first[7]),
+            tilt=np.nan_to_num(first[8]),
         )
-        r = r_in[rows] if first["r_given"] else None
+        # The results of a group of every row (a map) go in by a slice, not row by row.
+        at = slice(None) if len(rows) == n else rows
+        r = r_in[rows] if first[9] else None
         # The modes up to the last one given in the group: a map of two modes is not inverted
         # a third time on a column of NaN (a third of its inversion; issue 31, point 5).
-        given = np.flatnonzero(~np.isnan(fc[rows]).all(axis=0))
-        used = int(given[-1]) + 1 if given.size else len(_MODES)
+        f_group = fc[rows]
+        given = [j for j in range(len(_MODES)) if not np.isnan(f_group[:, j]).all()]
+        used = given[-1] + 1 if given else len(_MODES)
         qs = q[rows, :used] if np.isfinite(q[rows, :used]).any() else None
         inv = invert_contact_resonance(
             lever,
-            fc[rows, :used],
+            f_group[:, :used].copy(),  # contiguous, as before (numpy's loops by layout)
             tip_position=r,
             q_factors=qs,
             mode_tolerance=mode_tolerance,
             **geometry,
         )
-        res["kappa"][rows] = inv.kappa
-        res["tip_position_used"][rows] = inv.tip_position
-        res["sigma_N_s_per_m"][rows] = inv.sigma * np.where(have_kc[rows], k_c[rows], np.nan)
-        res["mode_spread"][rows] = inv.mode_spread
-        res["tip_position_other"][rows] = inv.tip_position_other
-        res["kappa_other"][rows] = inv.kappa_other
-        k_modes[rows, :used] = np.where(inv.averaged_modes, inv.kappa_modes, np.nan)
-        flags[rows] = inv.flags
+        res["kappa"][at] = inv.kappa
+        res["tip_position_used"][at] = inv.tip_position
+        res["sigma_N_s_per_m"][at] = inv.sigma * np.where(have_kc[at], k_c[at], np.nan)
+        res["mode_spread"][at] = inv.mode_spread
+        res["tip_position_other"][at] = inv.tip_position_other
+        res["kappa_other"][at] = inv.kappa_other
+        k_modes[at, :used] = np.where(inv.averaged_modes, inv.kappa_modes, np.nan)
+        flags[at] = inv.flags
         solved = np.isfinite(inv.tip_position)  # two modes without a crossing: no reference
         for j in (0, 1):
             take = solved & ~np.isnan(f_ref[rows, j])
@@ -396,7 +446,7 @@ def invert_afm_table(
                 refs[rows[take], j] = np.where(back.kappa > 0, back.kappa, np.nan)
     k_star = res["kappa"] * k_c
     # Without k_c, k* is unknown, but the reference method needs only ratios of k*: it runs on κ.
-    col = {c: table[c].to_numpy(float) for c in _MODULUS_INPUTS}
+    col = {c: _floats(table, c) for c in _MODULUS_INPUTS}
     scale = np.where(have_kc, k_c, 1.0)
     k_used = np.where(have_kc, k_star, res["kappa"])
     if sample is not None:
@@ -416,6 +466,10 @@ def invert_afm_table(
     out["mode_spread"] = res["mode_spread"]
     out["tip_position_other"] = res["tip_position_other"]
     out["kappa_other"] = res["kappa_other"]
+    if sample is not None:
+        method = mod["modulus_method"]
+        corrected = np.isfinite(dyn["k_static"]) & (method != "")
+        method[corrected] = method[corrected] + " + dynamic"
     names = ["E_star_Pa", "M_sample_Pa", "contact_radius_m", "modulus_method"]
     for name in names:
         out[name] = mod[name]
@@ -423,8 +477,6 @@ def invert_afm_table(
         out["k_static_N_per_m"] = dyn["k_static"]
         for name in ("k_a", "dcsf_real", "dcsf_imag"):
             out[name] = dyn[name]
-        corrected = np.isfinite(dyn["k_static"]) & (out["modulus_method"] != "")
-        out.loc[corrected, "modulus_method"] = out.loc[corrected, "modulus_method"] + " + dynamic"
     flags_text = _joined_flags(flags, mod["modulus_flags"])
     large = np.nan_to_num(col["tip_radius_m"]) > LARGE_TIP_M  # issue 27: no silent unit slip
     if large.any():

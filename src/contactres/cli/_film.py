@@ -99,7 +99,7 @@ def film_summary(table, coating: dict) -> str:
 
     verdicts = table["film_verdict"]
     counts = ", ".join(f"{int((verdicts == v).sum())} {v}" for v in sorted(set(verdicts) - {""}))
-    M = table["M_film_Pa"].to_numpy(float)
+    M = np.asarray(table["M_film_Pa"], dtype=float)  # a DataFrame's column or numpy's
     line = f"film {coating['label']} on {coating['substrate']}: {counts or 'no row with k*'}"
     if np.isfinite(M).any():
         line += f"; M_film median {np.nanmedian(M) / 1e9:.4g} GPa"

@@ -127,6 +127,7 @@ def afm_invert(
     from ..jobs import afm_invert as job
 
     check_output_file(out, inputs=[table])
+    binary = str(out).lower().endswith(".npz")
     sample = base = None
     if crystal is not None and substrate is not None:
         raise ContactresInputError(
@@ -153,10 +154,11 @@ def afm_invert(
         substrate=base,
         film_range=parse_film_range(film_range),
         min_film_weight=min_film_weight,
+        arrays=binary and fmt == "plain",  # numpy columns from file to file: no pandas
     )
     done = job.run(table, settings, progress=lambda text: step("afm invert", text))
     result = done.table
-    if str(out).lower().endswith(".npz"):
+    if binary:
         write_npz(out, result)
     else:
         write_csv(out, computed_rounded(result, done.input_columns))
@@ -165,13 +167,13 @@ def afm_invert(
     if fmt != "plain":
         emit(result, fmt)
         return
-    k = result["k_star_N_per_m"].to_numpy(float)
+    k = np.asarray(result["k_star_N_per_m"], dtype=float)
     good = np.isfinite(k)
     flagged = int((result["flags"] != "").sum())
     line = f"{len(result)} rows, {int(good.sum())} with k*"
     if good.any():
         line += f" ({np.min(k[good]):.4g} to {np.max(k[good]):.4g} N/m)"
-    M = result["M_sample_Pa"].to_numpy(float)
+    M = np.asarray(result["M_sample_Pa"], dtype=float)
     if np.isfinite(M).any():
         line += f", M_sample median {np.nanmedian(M) / 1e9:.4g} GPa"
         # Rows with k* but no modulus (a blank tip radius or load) are counted here, not only

@@ -5,7 +5,8 @@ its columns and rules) and :mod:`contactres.measurements.readers` (the reader re
 registry; the instrument exports in :mod:`contactres.measurements.readers.exports`). The names
 below are those of the private modules beside them: the validated sweep table
 (:func:`read_sweeps`, :class:`SweepTable`), the resonance tables of CR-AFM and RUM
-(:func:`read_resonance_table`), admittance spectra to sweeps (:func:`read_spectra_sweeps`,
+(:func:`read_resonance_table`; a numpy archive's held as numpy columns by
+:class:`ArrayTable`), admittance spectra to sweeps (:func:`read_spectra_sweeps`,
 :func:`fit_resonances`), the synthetic data (:func:`synthetic_sweeps`,
 :func:`synthetic_spectra`, :func:`example_study`, :func:`example_afm_map`, the particle studies
 of :func:`synthetic_particle_study`), the wording of
@@ -39,6 +40,7 @@ _EXPORTS = MappingProxyType(
         "check_frequency_map": "._afm_maps",
         "dart_frequency_Hz": "._afm_maps",
         "read_be_sho": "._afm_maps",
+        "ArrayTable": "._array_table",
         "read_resonance_grid": "._afm_maps",
         "IgorWave": "._ibw",
         "parse_note": "._ibw",
@@ -90,6 +92,7 @@ if TYPE_CHECKING:
         read_be_sho as read_be_sho,
         read_resonance_grid as read_resonance_grid,
     )
+    from ._array_table import ArrayTable as ArrayTable
     from ._ibw import (
         IgorWave as IgorWave,
         parse_note as parse_note,

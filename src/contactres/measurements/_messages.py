@@ -10,6 +10,8 @@ import numpy as np
 if TYPE_CHECKING:  # annotations only: the messages need no pandas (the export readers, which
     import pandas as pd  # use them, are imported by the command line's help: no pandas there)
 
+    from ._array_table import ArrayTable
+
 __all__ = ["SHOWN_CHARS", "at_cell", "column_names", "line_word", "shown_value", "where_rows"]
 
 #: Longest value shown in a message (a 50 MB label is shown by its first characters).
@@ -33,9 +35,9 @@ def column_names(names) -> str:
     return f"[{shown}{f', ... ({len(names)} in all)' if len(names) > 10 else ''}]"
 
 
-def where_rows(table: pd.DataFrame, source: str, mask: np.ndarray, col: str) -> str:
+def where_rows(table: pd.DataFrame | ArrayTable, source: str, mask: np.ndarray, col: str) -> str:
     """'file, line 6, column 'x'' and, for several bad rows, how many and the first five lines."""
-    lines = table["line"].to_numpy()[mask]
+    lines = np.asarray(table["line"])[mask]
     word = line_word(table)
     where = f"{source}, {word} {lines[0]}, column {col!r}"
     if len(lines) < 2:
@@ -50,7 +52,9 @@ def line_word(table) -> str:
     return str(getattr(table, "attrs", {}).get("line_word", "line"))
 
 
-def at_cell(table: pd.DataFrame, source: str, mask: np.ndarray, col: str) -> str:
+def at_cell(table: pd.DataFrame | ArrayTable, source: str, mask: np.ndarray, col: str) -> str:
     """:func:`where_rows` and the first bad value as the user wrote it."""
     i = int(np.flatnonzero(mask)[0])
-    return f"{where_rows(table, source, mask, col)}: value {shown_value(table[col].iloc[i])}"
+    cells = table[col]  # a DataFrame's column, or an ArrayTable's array
+    value = cells.iloc[i] if hasattr(cells, "iloc") else cells[i]
+    return f"{where_rows(table, source, mask, col)}: value {shown_value(value)}"

@@ -14,19 +14,23 @@ that is taken for a typo and refused.
 from __future__ import annotations
 
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
-import pandas as pd
 
 from ..errors import ContactresInputError
+from ._array_table import ArrayTable
 from ._messages import at_cell, where_rows
 from .readers import BUILT_IN
 from .schema import AFM_TABLE, RUM_TABLE, Rule, TableSchema
 
+if TYPE_CHECKING:
+    import pandas as pd
+
 __all__ = ["AFM_TABLE", "RUM_TABLE", "Rule", "read_resonance_table", "validate_resonance_table"]
 
 
-def _numbers(raw: pd.DataFrame, col: str, source: str, decimal: str) -> np.ndarray:
+def _numbers(raw: pd.DataFrame | ArrayTable, col: str, source: str, decimal: str) -> np.ndarray:
     """The cells of ``col`` as floats; blank cells are NaN (not given), text is an error.
 
     The column is parsed whole by pandas' ``to_numeric``, which skips ASCII white space around
@@ -35,12 +39,23 @@ def _numbers(raw: pd.DataFrame, col: str, source: str, decimal: str) -> np.ndarr
     31: stripping every cell first cost ~40 % of the reading). A column of numbers (a binary
     table's) is taken as it is."""
     if raw[col].dtype.kind in "fiu":  # a binary table's numbers (.npz): NaN is not given
-        values = raw[col].to_numpy(dtype=float, copy=True)
+        # An archive's arrays are this reading's own: taken as they are, where a DataFrame's
+        # column is copied (a 512² map's copies were a tenth of its reading).
+        values = (
+            np.asarray(raw[col], dtype=float)
+            if isinstance(raw, ArrayTable)
+            else np.array(raw[col], dtype=float)
+        )
         if np.isinf(values).any():
             bad = np.isinf(values)
             raise ContactresInputError(f"{at_cell(raw, source, bad, col)} is not a finite number")
         return values
-    s = raw[col].astype(str)
+    import pandas as pd  # text to read (a CSV's cells, an archive's text column)
+
+    cells = raw[col]
+    if isinstance(raw, ArrayTable):  # an archive's text column, where numbers are expected
+        cells = pd.Series(cells, dtype=object)
+    s = cells.astype(str)
     if decimal == ",":
         s = s.str.replace(",", ".", regex=False)
     values = pd.to_numeric(s, errors="coerce").to_numpy(dtype=float, copy=True)
@@ -56,11 +71,13 @@ def _numbers(raw: pd.DataFrame, col: str, source: str, decimal: str) -> np.ndarr
     return values
 
 
-def validate_resonance_table(raw: pd.DataFrame, schema: TableSchema, source: str) -> pd.DataFrame:
+def validate_resonance_table(raw, schema: TableSchema, source: str):
     """Check a raw table (string cells, a ``line`` column) against ``schema``.
 
     Returns the table with the schema's columns as floats (NaN where blank or absent), the other
-    columns unchanged, and ``line``. Raises ValueError naming file, line, column, value and rule.
+    columns unchanged, and ``line``, of the raw table's type (a DataFrame, or the
+    :class:`~contactres.measurements.ArrayTable` of a numpy archive). Raises ValueError naming
+    file, line, column, value and rule.
     """
     schema.check_names(raw.columns, source)
     missing = [c for c in schema.required if c not in raw.columns]
@@ -69,7 +86,7 @@ def validate_resonance_table(raw: pd.DataFrame, schema: TableSchema, source: str
     if len(raw) == 0:
         raise ContactresInputError(f"{source}: no data rows after the header")
     decimal = raw.attrs.get("decimal", ".")
-    out = raw.copy()
+    out = raw.copy(deep=not isinstance(raw, ArrayTable))  # the archive's arrays: not copied
     # The columns as given (the output keeps these, not the schema's absent ones).
     out.attrs["given"] = [c for c in raw.columns if c != "line"]
     for c in schema.columns:
@@ -87,13 +104,16 @@ def validate_resonance_table(raw: pd.DataFrame, schema: TableSchema, source: str
     return out
 
 
-def read_resonance_table(path, schema: TableSchema, *, readers=None) -> pd.DataFrame:
+def read_resonance_table(path, schema: TableSchema, *, readers=None, arrays: bool = False):
     """Read and check a table of resonances (:data:`AFM_TABLE` or :data:`RUM_TABLE`).
 
-    The file (CSV: comma, semicolon or tab separated) is never modified; ``readers`` is the
-    registry its reader is picked from (kind ``resonances``; default
-    :data:`~contactres.measurements.readers.BUILT_IN`). See
-    :func:`validate_resonance_table` for what is returned and checked.
+    The file (CSV: comma, semicolon or tab separated; a numpy archive, ``.npz``) is never
+    modified; ``readers`` is the registry its reader is picked from (kind ``resonances``;
+    default :data:`~contactres.measurements.readers.BUILT_IN`). See
+    :func:`validate_resonance_table` for what is returned and checked: a
+    :class:`pandas.DataFrame`, or with ``arrays`` an
+    :class:`~contactres.measurements.ArrayTable` (numpy columns: a numpy archive is then read
+    and checked without pandas, issue 31).
     """
     p = Path(path)
     if not p.exists():
@@ -102,4 +122,8 @@ def read_resonance_table(path, schema: TableSchema, *, readers=None) -> pd.DataF
         raise ContactresInputError(f"{p}: is a directory, expected a table file")
     raw = (BUILT_IN if readers is None else readers).pick(p, "resonances").load(p)
     # A workbook's reader names its sheet too ("book.xlsx, sheet 'resonances'").
+    if arrays and not isinstance(raw, ArrayTable):
+        raw = ArrayTable.from_frame(raw)
+    elif not arrays and isinstance(raw, ArrayTable):  # a reader's numpy columns, as a DataFrame
+        raw = raw.to_frame()
     return validate_resonance_table(raw, schema, str(raw.attrs.get("source", p)))

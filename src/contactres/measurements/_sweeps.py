@@ -44,11 +44,6 @@ from ._sweep_checks import (
 from .readers import BUILT_IN, SweepReader, line_ranges
 from .schema import FINITE, SWEEP_TABLE, check_cells, check_value, stripped
 
-if sys.version_info >= (3, 11):
-    import tomllib
-else:  # pragma: no cover - Python 3.10
-    import tomli as tomllib
-
 __all__ = [
     "CONSTANTS",
     "OPTIONAL_COLUMNS",
@@ -142,6 +137,13 @@ class SweepTable(Summarised):
 def _toml_constants(path: Path) -> tuple[dict, Path | None]:
     for candidate in (path.with_suffix(".toml"), path.parent / "contactres.toml"):
         if candidate.is_file():
+            # imported here: a table without a TOML beside it (the first call of the analysis,
+            # issue 31, point 3) needs no TOML parser
+            if sys.version_info >= (3, 11):
+                import tomllib
+            else:  # pragma: no cover - Python 3.10
+                import tomli as tomllib
+
             try:
                 data = tomllib.loads(candidate.read_bytes().decode("utf-8"))
             except UnicodeDecodeError as exc:

@@ -14,11 +14,14 @@ import io
 import re
 from collections.abc import Callable
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
-import pandas as pd
 
 from ...errors import ContactresInputError
+
+if TYPE_CHECKING:  # annotations: pandas is imported where a table is read (a numpy archive's
+    import pandas as pd  # reader shares this package and needs none, issue 31)
 
 __all__ = ["detect", "load", "suffixes"]
 
@@ -114,6 +117,8 @@ def load(path: Path) -> pd.DataFrame:
     row included, is an error naming it; so is a short row whose cells hold another separator
     (a line of ``;`` in a comma file), which would otherwise read as a row of empty cells.
     """
+    import pandas as pd
+
     body, numbers, comments = _data_lines(_decode(path))
     if not len(numbers):
         raise ContactresInputError(

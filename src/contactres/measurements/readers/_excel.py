@@ -21,10 +21,12 @@ from __future__ import annotations
 import datetime as dt
 from collections.abc import Callable
 from pathlib import Path
-
-import pandas as pd
+from typing import TYPE_CHECKING
 
 from ...errors import ContactresInputError, MissingExtraError
+
+if TYPE_CHECKING:  # annotations: pandas is imported where a table is read (a numpy archive's
+    import pandas as pd  # reader shares this package and needs none, issue 31)
 
 __all__ = ["detect", "loader", "suffixes"]
 
@@ -90,6 +92,8 @@ def _check_header(where: str, number: int, names: list[str]) -> None:
 def load_sheet(path: Path, kind: str) -> pd.DataFrame:
     """The table of a workbook's sheet as string cells with a ``line`` column (Excel's row
     numbers); the sheet named ``kind`` if there is one, else the first."""
+    import pandas as pd
+
     book = _workbook(path)
     try:
         sheet = book[kind] if kind in book.sheetnames else book.worksheets[0]

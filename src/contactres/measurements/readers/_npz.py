@@ -15,9 +15,9 @@ import zipfile
 from pathlib import Path
 
 import numpy as np
-import pandas as pd
 
 from ...errors import ContactresInputError
+from .._array_table import ArrayTable
 
 __all__ = ["detect", "load", "suffixes"]
 
@@ -36,11 +36,14 @@ def detect(path: Path, head: str) -> bool:
         return fh.read(4) in _ZIP
 
 
-def load(path: Path) -> pd.DataFrame:
+def load(path: Path) -> ArrayTable:
     """The table of the archive: one column per array (numbers as floats or integers, text as
     Python strings), a ``line`` column numbering the rows from 1 (``attrs["line_word"]`` is
-    ``row``). One-line error for an archive that cannot be read, holds pickled objects, or
-    whose arrays are not one-dimensional of one length."""
+    ``row``), as numpy columns (:class:`~contactres.measurements.ArrayTable`: a binary table
+    read and written again needs no pandas; its
+    :meth:`~contactres.measurements.ArrayTable.to_frame` gives the DataFrame). One-line error
+    for an archive that cannot be read, holds pickled objects, or whose arrays are not
+    one-dimensional of one length."""
     try:
         with np.load(path, allow_pickle=False) as archive:
             columns = {name: archive[name] for name in archive.files}
@@ -65,7 +68,7 @@ def load(path: Path) -> pd.DataFrame:
             )
     # Text as Python strings (object), as the CSV reader gives it: a unicode array would be as
     # wide as its longest cell.
-    table = pd.DataFrame(
+    table = ArrayTable(
         {name: (a.astype(object) if a.dtype.kind == "U" else a) for name, a in columns.items()}
     )
     table["line"] = np.arange(1, n[0] + 1)

@@ -23,15 +23,18 @@ from __future__ import annotations
 import math
 import re
 from pathlib import Path
+from typing import TYPE_CHECKING
 
 import numpy as np
-import pandas as pd
 
 from ...errors import ContactresInputError
 from .._messages import column_names, shown_value
 from ..schema import NUMBER_TEXT, SPECTRA_TABLE, check_cells
 from . import _delimited
 from ._recipe import Reader
+
+if TYPE_CHECKING:  # annotations: pandas is imported where a table is read (a numpy archive's
+    import pandas as pd  # reader shares this package and needs none, issue 31)
 
 __all__ = [
     "CONSTANT_COLUMNS",
@@ -66,6 +69,8 @@ def cells_as_numbers(raw: pd.DataFrame, col: str, source: str, decimal: str = ".
     """The cells of ``col`` as numbers (decimal comma where ``decimal`` is ","); blank or NaN
     cells are NaN; any other cell that is not a number is a one-line error (:data:`~contactres
     .measurements.schema.NUMBER_TEXT`)."""
+    import pandas as pd
+
     s = raw[col].astype(str).str.strip()
     if decimal == ",":
         s = s.str.replace(",", ".", regex=False)
@@ -302,6 +307,8 @@ def _delimited_spectrum(path: Path, layout: str | None, z0: float):
 
 
 def _read_folder(folder: Path, layout, z0: float, two_port: str | None) -> pd.DataFrame:
+    import pandas as pd
+
     index_path = folder / "index.csv"
     if not index_path.exists():
         raise ContactresInputError(

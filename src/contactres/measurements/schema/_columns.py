@@ -16,12 +16,17 @@ import difflib
 import re
 from collections.abc import Callable, Iterable
 from dataclasses import dataclass
+from typing import TYPE_CHECKING
 
 import numpy as np
-import pandas as pd
 
 from ...errors import ContactresInputError
 from .._messages import at_cell, shown_value
+
+if TYPE_CHECKING:
+    import pandas as pd
+
+    from .._array_table import ArrayTable
 
 __all__ = [
     "LEVELS",
@@ -171,7 +176,7 @@ class TableSchema:
         )
 
     def check_cells(
-        self, table: pd.DataFrame, source: str, name: str, values=None, given=None
+        self, table: pd.DataFrame | ArrayTable, source: str, name: str, values=None, given=None
     ) -> None:
         """:func:`check_cells` with the rules of column ``name``."""
         check_cells(table, source, name, self.column(name).rules, values, given)
@@ -280,12 +285,14 @@ def broken_rule(rules, values, given=None) -> tuple[Rule, np.ndarray] | None:
     return None
 
 
-def check_cells(table: pd.DataFrame, source: str, name: str, rules, values=None, given=None):
+def check_cells(
+    table: pd.DataFrame | ArrayTable, source: str, name: str, rules, values=None, given=None
+):
     """Raise the one-line error for the first cell of column ``name`` that breaks a rule.
 
     Parameters
     ----------
-    table : DataFrame
+    table : DataFrame or ArrayTable
         The rows as read, with their ``line`` numbers; the value shown is ``table[name]`` as
         written there.
     source : str
@@ -304,7 +311,7 @@ def check_cells(table: pd.DataFrame, source: str, name: str, rules, values=None,
     ContactresInputError
         ``<file>, line <n>, column '<name>'[ (<k> such rows: lines ...)]: value <v><message>``.
     """
-    values = table[name].to_numpy() if values is None else np.asarray(values)
+    values = np.asarray(table[name]) if values is None else np.asarray(values)
     found = broken_rule(rules, values, given)
     if found is not None:
         r, bad = found

@@ -16,7 +16,6 @@ from __future__ import annotations
 from dataclasses import replace
 
 import numpy as np
-import pandas as pd
 
 from ...units import MAX_AMPLITUDE_M, POISSON_OPEN_RANGE, QUANTITIES, unit_slip
 from ._columns import Column, Rule, TableSchema, rule
@@ -49,6 +48,8 @@ def stripped(cells) -> np.ndarray:
     cell is missing), with each distinct cell stripped once. A sweep table of 10^6 rows holds
     10^5 sweep ids and a few labels: Python's strip per cell was 16 % of ``qcm analyze``
     (issue 31); factorising the cells is a hash table in C."""
+    import pandas as pd  # here: the numeric rules of a binary table need no pandas
+
     text = (cells if isinstance(cells, pd.Series) else pd.Series(cells, dtype=object)).astype(str)
     codes, uniques = pd.factorize(text, use_na_sentinel=False)
     return pd.Series(uniques).str.strip().to_numpy(dtype=object)[codes]
@@ -61,6 +62,8 @@ def _filled(v: np.ndarray) -> np.ndarray:
 
 def _number_text(v: np.ndarray) -> np.ndarray:
     """Cells (stripped, decimal point) that read as a number, or are blank or NaN."""
+    import pandas as pd
+
     s = pd.Series(v, dtype=object).astype(str)
     number = pd.to_numeric(s, errors="coerce").notna()
     return (number | (s == "") | (s.str.lower() == "nan")).to_numpy()
@@ -90,7 +93,12 @@ FALSE_WORDS = frozenset({"false", "0", "no", "n", "f", ""})
 
 
 def _one_of(words):
-    return lambda v: pd.Series(v, dtype=object).astype(str).str.strip().str.lower().isin(words)
+    def accepts(v):
+        import pandas as pd
+
+        return pd.Series(v, dtype=object).astype(str).str.strip().str.lower().isin(words)
+
+    return accepts
 
 
 def _positive(message: str) -> Rule:
