@@ -56,14 +56,23 @@ def test_series_equals_adaptive_quadrature(seed):
 
 
 def test_each_tier_sums_enough_terms():
-    # The rest after K terms, at most |b_{K+1}| q^{K+1}/(1 - q) π/2 (module docstring), at the
-    # tier's largest m; and the tiers cover (0, SERIES_MAX_M) in order.
+    # The rest after K terms, at most |b_{K+1}| B(3/2, (K + 2)/2) q^{K+1}/(1 - q) (module
+    # docstring), at the tier's largest m; and the tiers cover (0, SERIES_MAX_M) in order.
     bounds = [m for m, _ in SERIES_TIERS]
     assert bounds == sorted(bounds) and bounds[-1] == SERIES_MAX_M
     for m, terms in SERIES_TIERS:
         q = m / (2.0 - m)
-        rest = abs(special.binom(0.5, terms + 1)) * q ** (terms + 1) / (1.0 - q) * np.pi / 2
-        assert rest < 1e-17
+        most = abs(special.binom(0.5, terms + 1)) * special.beta(1.5, (terms + 2) / 2)
+        assert most * q ** (terms + 1) / (1.0 - q) < 1e-17
+
+
+def test_the_bound_of_each_term():
+    # |T_k| <= B(3/2, (k + 1)/2), the integral over all of (0, π), by quadrature at φ_c = 0
+    # (where it is reached for even k) and φ_c = 1.
+    for k in (0, 1, 2, 7, 30):
+        for lo in (0.0, 1.0):
+            t, _ = integrate.quad(lambda p, k=k: np.sin(p) ** 2 * np.cos(p) ** k, lo, np.pi)
+            assert abs(t) <= special.beta(1.5, (k + 1) / 2) * (1 + 1e-12)
 
 
 def test_outside_the_domain_is_nan():

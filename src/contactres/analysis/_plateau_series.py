@@ -26,8 +26,9 @@ sin φ_c cos φ_c/2, T_1 = -sin³φ_c/3 and, from d/dφ (sin³φ cosᵏ⁻¹φ) 
 
 a recursion whose factor (k - 1)/(k + 2) < 1 damps rounding errors (forward-stable). Here
 sin φ_c = 2√(ρ(1 - ρ)) and cos φ_c = 1 - 2ρ: no trigonometric function per point. As
-|T_k| <= π/2 and |b_k| falls with k, the terms beyond the K-th sum to at most
-|b_{K+1}| q^{K+1}/(1 - q) · π/2 of (r²/4)√A.
+|T_k| <= ∫_0^π sin²φ |cos φ|ᵏ dφ = B(3/2, (k + 1)/2) (Euler's beta function) and both it and
+|b_k| fall with k, the terms beyond the K-th sum to at most
+|b_{K+1}| B(3/2, (K + 2)/2) q^{K+1}/(1 - q) of (r²/4)√A.
 """
 
 from __future__ import annotations
@@ -37,13 +38,13 @@ import numpy as np
 __all__ = ["SERIES_MAX_M", "SERIES_TIERS", "slip_integral_series"]
 
 #: The terms (k = 0..K) summed where m = min(x, e)/max(x, e) is below each bound: the fewest
-#: for which the rest of the series, at most |b_{K+1}| q^{K+1}/(1 - q) · π/2 of (r²/4)√A (the
-#: scale of J and of the loop's G′ alike), stays below 1e-17 at the tier's largest q = m/(2 - m)
+#: for which the rest of the series (module docstring) stays below 1e-17 of (r²/4)√A (the
+#: scale of J and of the loop's G′ alike) at the tier's largest q = m/(2 - m)
 #: (tests/analysis/test_plateau_series.py checks the bound): under the rounding of the sum. A
 #: point's terms follow from its own m alone, so that its J does not depend on the points
 #: evaluated with it. Each term costs ~8 instructions per point against ~3000 for the elliptic
 #: form, which the series thus beats up to K ~ 350 (m ~ 0.95); the tiers stop at 0.9.
-SERIES_TIERS = ((0.1, 11), (0.5, 30), (0.8, 80), (0.9, 161))
+SERIES_TIERS = ((0.1, 10), (0.5, 26), (0.8, 67), (0.9, 129))
 
 #: The series' domain: m below this.
 SERIES_MAX_M = SERIES_TIERS[-1][0]
