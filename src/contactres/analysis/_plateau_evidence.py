@@ -74,11 +74,12 @@ number of distinct amplitudes (numpy on large arrays), the slopes and the projec
 each block's distinct amplitudes only, weighted by their numbers of points (its three ramps
 repeat them; :func:`_integrand`), the slopes without their derivatives and with G′'s integral
 by its power series (:mod:`contactres.analysis._plateau_series`) instead of a Gauss rule or
-elliptic integrals: on the bundled example's analysis (244 undecided blocks) 0.95 s of CPU
-against 2.4 s with the slopes at every point by the fit's own forms (14.3 → 5.4 × 10⁹
-instructions), with the same numbers to rounding (2 ln B within 1.3e-10, μ and its error
-within 3e-12 relative, on that example and on eight copies of it with fresh noise). Before
-the nodes were evaluated together, block by block, it cost about twice that.
+elliptic integrals: on the bundled example's analysis (244 undecided blocks) 5.1 × 10⁹
+instructions against 14.3 × 10⁹ with the slopes at every point by the fit's own forms (CPU,
+side by side on the loaded reference machine: 1.3 s against 3.1 s; on eight copies of the
+example with fresh noise, 10,752 sweeps, 6.0 s against 16.6 s), with the same numbers to
+rounding (2 ln B within 1.4e-10, μ and its error within 3e-12 relative, on both tables).
+Before the nodes were evaluated together, block by block, it cost about twice the former.
 """
 
 from __future__ import annotations
