@@ -34,6 +34,7 @@ from ..fitting import LMOptions, levenberg_marquardt, solve_stacked
 from ..numerics import gauss_legendre_unit
 from ._amplitude import PLATEAU_MIN_SLOPE
 from ._loops import X_MAX, LoopTable, fit_cm_loops, loop_fit_fields, solve_projected
+from ._plateau_series import slip_integral_series
 
 __all__ = ["PLATEAU_LOOP_COLUMNS", "fit_plateau_loops", "plateau_loop_slopes"]
 
@@ -92,9 +93,12 @@ def plateau_loop_slopes(x, c, rule=None, derivatives: bool = True) -> tuple[np.n
     ``rule``: the 16-point rule ``gauss_legendre_unit(16)`` (made here if None; pass it when
     calling many times, as the fit does). Agrees with that quadrature to ~2e-11 (its own
     accuracy; tests/analysis/test_scale.py), at ~1 µs per point for all six arrays, several
-    times less than the quadrature of G′, G″ alone. ``derivatives=False``: G′ and G″ alone,
-    the same numbers bit for bit, at about two thirds of the cost (the nodes of
-    :mod:`contactres.analysis._plateau_evidence`, which need no gradient).
+    times less than the quadrature of G′, G″ alone. ``derivatives=False``: G′ and G″ alone
+    (the nodes of :mod:`contactres.analysis._plateau_evidence`, which need no gradient), at
+    a fraction of the cost: the second integral by its power series wherever m < 0.9
+    (:func:`contactres.analysis._plateau_series.slip_integral_series`), the same numbers to
+    rounding (within ~1e-13 of G′ with derivatives, whose elliptic form loses that much to
+    cancellation at 0.1 < m; the series is the more accurate).
     """
     x, c = np.broadcast_arrays(np.asarray(x, dtype=float), np.asarray(c, dtype=float))
     rule = gauss_legendre_unit(SMALL_X_NODES) if rule is None else rule
@@ -110,11 +114,13 @@ def _slipping(x, c, rule, derivatives=True) -> tuple[np.ndarray, ...]:
     """:func:`plateau_loop_slopes` where x > c (1-d arrays)."""
     y, e = x - c, c + 1.5
     J, Jx, Jc = np.empty_like(x), np.empty_like(x), np.empty_like(x)
-    small = x < 0.1 * e  # m = x/e < 0.1
-    # Without derivatives the small-x rule gives J alone: Jx, Jc stay unset there, unused.
-    parts = _small_x_integrals(x[small], c[small], rule, derivatives)
-    for a, v in zip((J, Jx, Jc), parts, strict=False):
-        a[small] = v
+    if derivatives:
+        small = x < 0.1 * e  # m = x/e < 0.1
+        for a, v in zip((J, Jx, Jc), _small_x_integrals(x[small], c[small], rule), strict=True):
+            a[small] = v
+    else:  # J alone (Jx, Jc unused): its series where it converges fast (NaN elsewhere)
+        J = slip_integral_series(x, c)
+        small = ~np.isnan(J)
     J[~small], Jx[~small], Jc[~small] = _elliptic_integrals(x[~small], c[~small])
     half = 2.0 * np.arcsin(np.sqrt(c / x))  # d = c at φ = half
     rcy = np.sqrt(c * y)
@@ -163,7 +169,7 @@ def _elliptic_integrals(x, c):
     return J - 2.0 * a1 * sq3 * ef, e * I1 - I2, x * I1 - I2
 
 
-def _small_x_integrals(x, c, rule, derivatives=True):
+def _small_x_integrals(x, c, rule):
     """J, ∫d(e - d)/√Q, ∫d(x - d)/√Q of :func:`plateau_loop_slopes` for x < e/10, by
     Gauss-Legendre in φ (d = x(1 - cos φ)/2 from d = c to x: √(d(x - d)) = x sin φ/2)."""
     t, wt = rule
@@ -175,8 +181,6 @@ def _small_x_integrals(x, c, rule, derivatives=True):
     f = np.sqrt(1.0 - (d - c[:, None]) / 1.5)  # √((e - d)/(3/2))
     x2 = 0.25 * x[:, None] ** 2 * sin * sin * dphi  # √(d(x - d)) dd
     J = np.sqrt(1.5) * (x2 * f).sum(-1)
-    if not derivatives:
-        return (J,)
     Jx = np.sqrt(1.5) * (f * 0.5 * x[:, None] * (1.0 - cos) * dphi).sum(-1)  # √(d/(x - d)) dd
     Jc = (x2 / f).sum(-1) / np.sqrt(1.5)
     return J, Jx, Jc
