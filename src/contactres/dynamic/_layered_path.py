@@ -59,6 +59,9 @@ _PROBE_ETA_H = 50.0
 _S_MAX = 1e6
 # Largest lift of the arc (in s = η a): j_p j_q grow like e^{2 Im s} on it.
 _MAX_LIFT = 1.5
+# s below which the geometric real panels keep their own nodes (Δg varies on the scale of the
+# arc's end S₁ <= 5 there), beyond which the shared grid's panels serve.
+_OWN_END = 32 / 3
 # Real samples of Δg solved together (see _chunk_nodes: small groups reuse the heap's pages).
 _GROUP_NODES = 2048
 
@@ -72,7 +75,8 @@ class PunchResolution:
     n_panel : Gauss-Legendre nodes per panel of the lifted arc (panels no wider than the lift)
     n_cheb : Chebyshev samples of Δg per real-axis panel (in ln s)
     ratio : ratio of the geometric real-axis panels
-    per_unit : Gauss-Legendre nodes per unit of s on the real axis (j_p j_q has period π)
+    per_unit : Gauss-Legendre nodes per unit of s on the shared real grid (j_p j_q has period
+        π; n_panel nodes on a panel of width n_panel/per_unit, :func:`grid_width`)
     n_start : nodes of the first real panel [0, s₀] (statics)
     decay : the panels stop when ``|Δg|`` falls below decay × ``|g_film|`` (and η h > 5)
     """
@@ -80,7 +84,7 @@ class PunchResolution:
     n_panel: int = 16
     n_cheb: int = 12
     ratio: float = 1.5
-    per_unit: float = 3.0
+    per_unit: float = 1.5
     n_start: int = 16
     decay: float = 1e-9
 
@@ -102,7 +106,7 @@ def punch_resolution(rtol: float) -> PunchResolution:
     :meth:`PunchResolution.doubled`)."""
     base = PunchResolution(decay=1e-3 * rtol)
     if rtol <= 1e-8:
-        return replace(base, n_panel=24, n_cheb=16, per_unit=4.0)
+        return replace(base, n_panel=24, n_cheb=16, per_unit=2.0)
     return base
 
 
@@ -476,7 +480,14 @@ def _probes(shared: _SharedWaves, plan, threshold: float) -> list:
 
 def grid_width(res: PunchResolution) -> float:
     """L: the width of the real-axis panels of n_panel nodes (per_unit nodes per unit of s)
-    on the grid k L shared by every point (their Bessel functions are computed once)."""
+    on the grid k L shared by every point (their Bessel functions are computed once).
+
+    Gauss's error on such a panel of half-width w = L/2 for the oscillation e^{2is} of
+    j_p j_q is at most (64/15) w e^{w(ρ − 1/ρ)} ρ^{−2n}/(ρ² − 1) for any ρ > 1 (the
+    integrand's bound on the Bernstein ellipse ρ): with n = 16 nodes and w = 16/3 (1.5 per
+    unit of s, the default) ~3e-12 of the panel's largest ``|Δg j_p j_q|`` at ρ = 5.8; with
+    n = 24 and 2 per unit (rtol <= 1e-8) ~1e-22. Δg varies more slowly there (its scales
+    are h and the wave numbers: :data:`_OWN_END`)."""
     return res.n_panel / res.per_unit
 
 
@@ -490,7 +501,8 @@ def _on_panels(rule, lo: np.ndarray, hi: np.ndarray):
 
 def _assemble_nodes(res: PunchResolution, rule, points, shift) -> list:
     """The nodes of every point of ``points`` [(edges, last, stop, head, values), ...]
-    (:class:`CorrectionNodes`): the head's; the geometric panels' own below 2L; a panel to the
+    (:class:`CorrectionNodes`): the head's; the geometric panels' own below
+    :data:`_OWN_END`; a panel to the
     next edge of the shared grid k L (:func:`grid_width`); the grid's panels up to the first
     grid edge S at or beyond ``stop`` (<= ``edges[last]``). Δg at the real nodes is
     interpolated from the Chebyshev samples (in ln s) of the geometric panel holding them."""
@@ -500,11 +512,11 @@ def _assemble_nodes(res: PunchResolution, rule, points, shift) -> list:
         n_head = head[0].size
         cheb = values[n_head:].reshape(last + 1, res.n_cheb, -1)
         u = np.log(edges[: last + 2])
-        # Below 2L the geometric panels are narrower than the grid's (Δg varies on the scale
-        # of the arc's end S₁ there): each gets its own sub-panels, per_unit nodes per unit of
-        # s on average; from the first edge beyond 2L one panel to the next grid edge, then
-        # the grid.
-        own = int(np.searchsorted(edges[: last + 1], 2 * width))
+        # Below _OWN_END the geometric panels are narrower than the grid's (Δg varies on the
+        # scale of the arc's end S₁ there): each gets its own sub-panels, per_unit nodes per
+        # unit of s on average; from the first edge beyond _OWN_END one panel to the next
+        # grid edge, then the grid.
+        own = int(np.searchsorted(edges[: last + 1], _OWN_END))
         width_j = np.diff(edges[: own + 1])
         n_sub = np.maximum(1, np.ceil(res.per_unit * width_j / res.n_panel)).astype(int)
         j = np.repeat(np.arange(own), n_sub)

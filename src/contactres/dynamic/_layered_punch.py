@@ -36,9 +36,10 @@ the products j_p j_q grow like e^{2 Im s}, so the lift stays O(1) in s (O(1/a) i
 solutions every frequency shares. Beyond S₁, on the real axis, Δg has no singularity and varies
 only on the scales 1/h and the wave numbers (not on the period π of j_p j_q): on geometric
 panels of ratio 1.5 it is sampled at Chebyshev points (in ln s) and interpolated onto
-Gauss-Legendre nodes dense enough for the oscillation of j_p j_q (below s = 2L each panel's own;
-beyond, the panels of width L = 16/3 of one grid k L shared by every point, whose Bessel
-functions are computed once per call); the nodes stop at the first grid edge beyond η h = 5 and
+Gauss-Legendre nodes dense enough for the oscillation of j_p j_q (below s = 32/3 each panel's
+own; beyond, the panels of width L = 32/3 of one grid k L shared by every point, 16 nodes each,
+whose Bessel functions are computed once per call; Gauss's error bound for e^{2is} on such a
+panel is ~3e-12 of its largest value); the nodes stop at the first grid edge beyond η h = 5 and
 s = 20 where ``|Δg|``/s (what the rest can add) falls below 1e-3 rtol of the film's ``|g|``:
 ``|Δg|`` is probed at the panel edges, and between the last edge above that level and the first
 below it the crossing is placed where ln(``|Δg|``/s), taken linear in s between the two (exact
@@ -149,7 +150,7 @@ def _correction_integrals(bessel, values, orders, pairs, known=None) -> np.ndarr
     out = np.empty((n_pts, n_m, new.size), dtype=complex)
     if known is not None:
         out[..., ~new] = known[..., at]
-    # The points' own nodes (the arc and the panels below 2L): J diag(w Δg_m) J[cols]ᵀ, one
+    # The points' own nodes (the arc and the panels below s = 32/3): J diag(w Δg_m) J[cols]ᵀ, one
     # product per point batched over its harmonics, then the new pairs read from it (point by
     # point: no (points × harmonics × orders × nodes) temporary, fresh pages on every call).
     fresh = np.empty((n_pts, n_m, a.size), dtype=complex)
