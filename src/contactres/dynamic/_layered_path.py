@@ -197,7 +197,6 @@ def stack_at(
     block of the compliance (tangential punch) instead of H_33. ``known``: a dict the caller
     keeps over its frequencies, where each material's symmetry and slowness are kept once
     found (the same materials at every frequency need them once)."""
-    c44 = shear_reference(film)
     omega = 2 * math.pi * frequency
     if omega > 0:
         missing = [j for j, m in enumerate(mats) if m.density is None]
@@ -209,6 +208,20 @@ def stack_at(
                 f"({mats[j].name or 'unnamed'}) has none"
             )
     known = {} if known is None else known
+    # What does not depend on the frequency, found once for the materials (by their constants).
+    members = tuple((np.asarray(m.C).tobytes(), m.density) for m in mats)
+    film_c, hs = np.asarray(film.C).tobytes(), np.asarray(thicknesses).tobytes()
+    key = ("stack", inplane, q, film_c, hs, members)
+    if key not in known:
+        known[key] = _frequency_free(mats, thicknesses, film, q, inplane, known)
+    fixed, slow_max = known[key]
+    return replace(fixed, omega=omega, k_max=omega * slow_max)
+
+
+def _frequency_free(mats, thicknesses, film: Material, q: float, inplane: bool, known: dict):
+    """(the :class:`Stack` of :func:`stack_at` at ω = 0, the largest shear slowness √(ρ/C44)
+    of its materials (k_max = ω × it), s/m)."""
+    c44 = shear_reference(film)
     props = []
     for m in mats:
         key = (np.asarray(m.C).tobytes(), m.density)
@@ -226,17 +239,18 @@ def stack_at(
             known[key] = voigt_to_tensor(np.asarray(m.C, dtype=complex)) * factor / c44
         return known[key]
 
-    return Stack(
+    stack = Stack(
         tensors=[tensor(m) for m in mats],
         reference=tensor(film, 1 + 1j * q),
         sigma=[(m.density or 0.0) / c44 for m in mats],
-        omega=omega,
+        omega=0.0,
         thicknesses=np.asarray(thicknesses, dtype=float),
         pole_slowness=_POLE_FACTOR * max(p[1] for p in props),
-        k_max=omega * max(p[0] for p in props),
+        k_max=0.0,
         axisymmetric=all(p[2] for p in props),
         inplane=inplane,
     )
+    return stack, max(p[0] for p in props)
 
 
 def correction_nodes(stacks, radii, theta: np.ndarray, res: PunchResolution, gref) -> dict:
@@ -387,7 +401,7 @@ def _chunk_nodes(shared: _SharedWaves, stacks, radii, index, res: PunchResolutio
     threshold = res.decay * gref
     for (st, a, h_tot, s0, edges), probe in zip(plan, probes, strict=True):
         rest = np.abs(probe).reshape(edges.size, -1).max(axis=1) / edges
-        forced = (edges <= 20) | ((h_tot > 0) & (edges * h_tot / a <= 5))
+        forced = _forced(edges, h_tot, a)
         big = forced | (rest >= threshold)
         last = int(np.flatnonzero(big)[-1]) + 1 if np.any(big) else 1
         if last > edges.size - 2:
@@ -459,23 +473,35 @@ def _probes(shared: _SharedWaves, plan, threshold: float) -> list:
         max(1, int(np.sum(e * st.thicknesses[0] / a <= _PROBE_ETA_H))) if own else e.size
         for st, a, _, _, e in plan
     ]
-    first = [(st, a, e[:n]) for (st, a, _, _, e), n in zip(plan, n_probe, strict=True)]
+    # The leading edges kept by _forced are not probed (their values decide nothing), but
+    # for the last one probed.
+    skip = [
+        min(int(np.sum(_forced(e, h, a))), n - 1)
+        for (_, a, h, _, e), n in zip(plan, n_probe, strict=True)
+    ]
+    first = [(st, a, e[k:n]) for (st, a, _, _, e), k, n in zip(plan, skip, n_probe, strict=True)]
     out = _delta_g(shared, first, shared.real_all(first))
     rest = [
         k
         for k, ((*_, e), n, value) in enumerate(zip(plan, n_probe, out, strict=True))
-        if n < e.size and not np.max(np.abs(value[n - 1])) / e[n - 1] < 1e-12 * threshold
+        if n < e.size and not np.max(np.abs(value[-1])) / e[n - 1] < 1e-12 * threshold
     ]
     if rest:
         more = [(plan[k][0], plan[k][1], plan[k][4][n_probe[k] :]) for k in rest]
         for k, value in zip(rest, _delta_g(shared, more, shared.real_all(more)), strict=True):
             out[k] = np.concatenate([out[k], value])
     probes = []
-    for (*_, e), value in zip(plan, out, strict=True):
+    for (*_, e), k, value in zip(plan, skip, out, strict=True):
         full = np.zeros((e.size, *value.shape[1:]), dtype=value.dtype)
-        full[: value.shape[0]] = value
+        full[k : k + value.shape[0]] = value
         probes.append(full)
     return probes
+
+
+def _forced(edges: np.ndarray, h_tot: float, a: float) -> np.ndarray:
+    """The edges the nodes reach whatever ``|Δg|``: s <= 20 (the tail formula's start) and
+    η h <= 5 (the e^{−2ηh} decay of Δg under layers has not begun); a prefix of ``edges``."""
+    return (edges <= 20) | ((h_tot > 0) & (edges * h_tot / a <= 5))
 
 
 def grid_width(res: PunchResolution) -> float:

@@ -394,10 +394,10 @@ def layered_punch_stiffness(
     # matrices of a group come from one call, the correction is per point.
     groups: dict = {}
     known: dict = {}  # each material's slowness and symmetry, found once over the frequencies
+    fixed = _fixed_stack(material)
     for freq in np.unique(flat_f):
         sel = np.flatnonzero(flat_f == freq)
-        mats, hs = stack_of(material, float(freq))
-        film, q = film_reference(mats[0])
+        (mats, hs), (film, q) = fixed or _stack_and_film(material, float(freq))
         key = (np.asarray(film.C).tobytes(), q)
         if key not in groups:
             groups[key] = ((film, q), [])
@@ -412,6 +412,21 @@ def layered_punch_stiffness(
         else:
             flat_out[index] = _punch(prepare(film, q, r), film, items, flat_a[index], r, res)
     return complex(out) if out.ndim == 0 else out
+
+
+def _stack_and_film(material, frequency: float):
+    """((materials, thicknesses) of the stack at ``frequency``, (film reference, Q⁻¹))."""
+    mats, hs = stack_of(material, frequency)
+    return (mats, hs), film_reference(mats[0])
+
+
+def _fixed_stack(material):
+    """:func:`_stack_and_film` of a material or stack none of whose materials depends on the
+    frequency (the same at every frequency: formed once), else None."""
+    members = material.materials if isinstance(material, LayeredMaterial) else (material,)
+    if all(isinstance(m, Material) for m in members):
+        return _stack_and_film(material, 0.0)
+    return None
 
 
 def _storage(material):
