@@ -206,7 +206,8 @@ def layer_waves(c, th, s) -> tuple[np.ndarray, bool]:
         D_d, D_u (module docstring) and A_d, A_u with X_d = exp(ηh A_d), X_u = exp(ηh A_u);
         ``mirror`` if z -> −z is a symmetry of the layer (then A_u = M A_d M and X_u = M X_d M,
         M = diag(1, 1, −1)). Each depends on (η, ω) only through s, so a table in s serves
-        every frequency (``contactres.dynamic._layered_path``).
+        every frequency (``contactres.dynamic._layered_path``). An isotropic layer's come in
+        closed form (:func:`_isotropic_impedance`), any other's from the Stroh solution.
     """
     moduli = _isotropic_moduli(c)
     if moduli is not None:
@@ -239,7 +240,8 @@ def layer_waves(c, th, s) -> tuple[np.ndarray, bool]:
 
 def substrate_impedance(c, th, s) -> np.ndarray:
     """Y = H⁻¹ (3, 3, N) of the substrate half-space (tensor c, inertia s) at ``th``: what
-    :func:`impedance_recursion` starts from (depends on (η, ω) only through s)."""
+    :func:`impedance_recursion` starts from (depends on (η, ω) only through s; in closed form
+    for an isotropic substrate, :func:`_isotropic_impedance`)."""
     return _impedance(c, th, s)
 
 
