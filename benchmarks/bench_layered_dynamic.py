@@ -124,6 +124,37 @@ any fault the curve costs ~50 ms (~3.3x), so 3x needs the instructions cut by an
 i.e. the correction's ~170 Δg samples and ~760 nodes per point (an error estimate on the
 decayed tail, not done here).
 
+Issue 26's seventh pass: an isotropic layer's and substrate's impedance D and exponent A in
+closed form from the P and S decay rates (the general Stroh eigen-solution cost ~4.3 ms of the
+250 nm curve for its ~100 slowness-table, arc and static solutions; now ~1 ms), the shared real
+grid at 1.5 Gauss-Legendre nodes per unit of s instead of 3 (16 nodes on panels of 32/3: Gauss's
+error bound for the oscillation e^{2is} of j_p j_q is ~3e-12 of the panel's largest value; the
+points' own geometric panels still end at s = 32/3; ~460 nodes per point instead of ~760), no
+probes at the edges every point's nodes reach anyway, and the stack's frequency-free parts
+formed once; results moved by <= 5.3e-11 (normal curves), <= 2.0e-10 (tangential). Instructions
+per curve (cachegrind, one thread), main / this tree: homogeneous 83 / 82 M; 250 nm 382 M
+(4.6x) -> 332 M (4.0x); 1 µm 276 M (3.3x) -> 250 M (3.0x). CPU with one BLAS thread, main /
+this tree alternating three times, best of 9 each (machine at load ~9-12 on 2 cores, the
+homogeneous curve itself scattering 17-26 ms): best over the rounds homogeneous 17.0 / 17.7 ms,
+250 nm 64.6 ms (3.8x) / 60.2 ms (3.4x), 1 µm 40.9 ms (2.4x) / 37.8 ms (2.1x); as shipped (best of
+7, twice) 250 nm 3.6x-3.9x / 3.5x-3.9x. The 250 nm target is still missed. Tried, not kept: Δg
+tabulated once per stack in (η h₁, y = (p₁ω/η)²) (16 × 132 samples instead of ~170 per point):
+the 2D interpolation onto each point's samples (16 x 12 terms each) cost as much as the
+recursion it replaced, and moved results by 5e-9. Where the 250 nm
+curve's CPU goes now (one thread, ~60 ms at this load): the film's exact Galerkin at three
+basis sizes (10, 13, 18 radial terms) ~16 ms, its table and far field ~6 ms, the correction's
+Δg samples (layer recursion on ~10000 arc, real and probe samples, with the waves' interpolation)
+~10 ms, interpolation of Δg onto the nodes ~6 ms, Bessel functions of the nodes ~4 ms (~1 ms of
+it the continued fraction on the ~2600 complex arc nodes), the correction integrals ~3 ms, the
+shared waves ~2 ms, the per-frequency set-up ~2 ms. Floor: the basis grows to 18 terms because
+four more terms move N by 1.6-2.0e-6 at 13 (> rtol/10), though N at 13 is already within
+1.4e-8 of N at 18; the film's part alone (~22 ms, ~100 M instructions) is ~1.3x the homogeneous
+curve, so 3x leaves the correction ~1.7x (~28 ms, ~145 M), where it takes ~38 ms (~230 M):
+its cost is spread over many steps paid per point (41 points x ~230 samples, ~460 nodes), none
+above ~15 % of the curve. Next: the arc's Δg interpolated across the points in S₁ h/a (the
+waves there are one set: ~1000 recursions instead of ~2600), and the Chebyshev samples per
+panel chosen from their tail coefficients.
+
 Run: ``.venv/bin/python benchmarks/bench_layered_dynamic.py`` (exit status 1 if a target is
 missed; a few minutes on a busy machine).
 """

@@ -52,9 +52,12 @@ A = 1 equals the isotropic film to 1e-15 and A = 1 ± 1e-6 moves it by 7.6e-7; a
 stack is the film's half-space to 7e-16 (no overflow at η h = 1e3). The exponentials add
 < 1e-19 of truncation (:mod:`._expm`).
 
-Cost (``benchmarks/bench_layered.py``): per layer and point, a mirror-plane film (isotropic,
-cubic (001), ...) costs one half-space evaluation and one 3x3 exponential, any other film two
-of each, plus a few 3x3 products and inverses; one film on a substrate takes ~1.0-1.8x the time
+Cost (``benchmarks/bench_layered.py``): per layer and point, an isotropic film (and an
+isotropic substrate) costs no half-space evaluation (its impedance D_d and exponent A_d in
+closed form from the P and S decay rates, :func:`_isotropic_impedance`: the same as the general
+Stroh solution to ~1e-15, tested), another mirror-plane film (cubic (001), ...) one half-space
+evaluation and one 3x3 exponential, any other film two of each, plus a few 3x3 products and
+inverses; one film on a substrate takes ~1.0-1.8x the time
 of the two homogeneous half-spaces together (~10-17 µs per (η, θ) point on an unloaded core).
 A caller that knows a layer to be isotropic (and the directions θ) may have its exponential
 formed in closed form (``isotropic`` of :func:`impedance_recursion` and
@@ -95,6 +98,82 @@ def _halfspace(c, th, s) -> np.ndarray:
     return np.moveaxis(surface_compliance(c, th, s), (-2, -1), (0, 1))
 
 
+def _impedance(c, th, s) -> np.ndarray:
+    """D = H⁻¹ (3, 3, N) of the half-space of tensor c: in closed form for an isotropic solid
+    (:func:`_isotropic_impedance`), else the inverse of the general compliance."""
+    moduli = _isotropic_moduli(c)
+    if moduli is None:
+        return inv3(_halfspace(c, th, s))
+    return _isotropic_impedance(moduli[0], moduli[1], np.asarray(th, dtype=float), s)
+
+
+def _isotropic_moduli(c: np.ndarray) -> tuple[complex, complex] | None:
+    """(c11, c44) of the tensor c if it is isotropic, c_ijkl = λ δ_ij δ_kl + μ (δ_ik δ_jl +
+    δ_il δ_jk) to the round-off of a rotated tensor (complex moduli allowed); else None."""
+    d = np.eye(3)
+    lam, mu = c[0, 0, 1, 1], c[0, 1, 0, 1]
+    iso = lam * np.einsum("ij,kl->ijkl", d, d) + mu * (
+        np.einsum("ik,jl->ijkl", d, d) + np.einsum("il,jk->ijkl", d, d)
+    )
+    if np.max(np.abs(c - iso)) > 1e-14 * np.max(np.abs(c)):
+        return None
+    return complex(lam + 2 * mu), complex(mu)
+
+
+def _isotropic_impedance(c11, c44, th: np.ndarray, s, exponent: bool = False):
+    """D = H⁻¹ (3, 3, N) of an isotropic half-space (moduli c11 = λ + 2μ, c44 = μ over the
+    reference C44; inertia s = ρω²/(C44_ref η²)) at the directions ``th``, in closed form;
+    ``exponent``: (D, A_d), with A_d the exponent of its decaying field, u(z) = exp(ηz A_d) u(0)
+    (:func:`layer_waves`).
+
+    With the decay rates α = √(1 − s/c11) (P) and β = √(1 − s/c44) (S) (Re >= 0; a lossless
+    solid beyond a cutoff, s real above c11 or c44: the outgoing root, i√(s/c − 1)), the
+    potentials of the decaying P-SV field, u = M diag(e^{−αηz}, e^{−βηz}) (amplitudes) with
+    M = [[i, β], [−α, i]] in the frame (ξ/η, its normal in the surface, z), give the sagittal
+    blocks D = N M⁻¹ (N the tractions of the two waves) and A_d = M diag(−α, −β) M⁻¹:
+
+        D_xx = −α K,  D_zz = −β K,  D_xz = −D_zx = i (2 c44 − K),
+        A_xx = −α K/c44,  A_zz = −β K/c11,  A_xz, A_zx = −i (β, α) (c11 − c44) K/(c11 c44 (α + β)),
+        K = (1 + αβ) c11 c44 / (c11 + c44 − s)
+
+    (the rationalised forms of s α/(αβ − 1) and their kin: no 0/0 in statics), and the SH
+    entries D_yy = −β c44, A_yy = −β; turned to the surface axes by θ. The general Stroh
+    solution (:func:`contactres.halfspace.surface_compliance`) gives the same D to round-off
+    (tests)."""
+    s = np.broadcast_to(np.asarray(s, dtype=complex), th.shape)
+    alpha = _decay_root(1 - s / c11, s, c11)
+    beta = _decay_root(1 - s / c44, s, c44)
+    k = (1 + alpha * beta) * c11 * c44 / (c11 + c44 - s)
+    d = _turned(th, -alpha * k, -beta * c44, -beta * k, 1j * (2 * c44 - k), -1j * (2 * c44 - k))
+    if not exponent:
+        return d
+    off = (c11 - c44) * k / (c11 * c44 * (alpha + beta))
+    a = _turned(th, -alpha * k / c44, -beta, -beta * k / c11, -1j * beta * off, -1j * alpha * off)
+    return d, a
+
+
+def _turned(th, xx, yy, zz, xz, zx) -> np.ndarray:
+    """The (3, 3, N) matrix with the entries ``xx`` ... in the frame (wave vector, its normal
+    in the surface, z) turned to the surface axes by the direction θ (no xy, yz coupling)."""
+    cos, sin = np.cos(th), np.sin(th)
+    out = np.empty((3, 3, th.size), dtype=complex)
+    out[0, 0] = cos**2 * xx + sin**2 * yy
+    out[1, 1] = sin**2 * xx + cos**2 * yy
+    out[0, 1] = out[1, 0] = cos * sin * (xx - yy)
+    out[0, 2], out[1, 2] = cos * xz, sin * xz
+    out[2, 0], out[2, 1] = cos * zx, sin * zx
+    out[2, 2] = zz
+    return out
+
+
+def _decay_root(v: np.ndarray, s: np.ndarray, c: complex) -> np.ndarray:
+    """√v with Re >= 0 (decaying); where v is real and negative (a lossless solid beyond its
+    cutoff, s real above c) the outgoing root +i√(−v) (limiting absorption, e^{iωt})."""
+    root = np.sqrt(v)
+    beyond = (s.imag == 0) & (c.imag == 0) & (v.real < 0)
+    return np.where(beyond, 1j * np.sqrt(np.maximum(-v.real, 0.0)), root)
+
+
 def _is_mirror(c: np.ndarray) -> bool:
     """True if z -> −z is a symmetry of the solid: every c_ijkl with an odd number of z indices
     vanishes (to the round-off of a rotated tensor), as in the half-space code."""
@@ -127,8 +206,15 @@ def layer_waves(c, th, s) -> tuple[np.ndarray, bool]:
         D_d, D_u (module docstring) and A_d, A_u with X_d = exp(ηh A_d), X_u = exp(ηh A_u);
         ``mirror`` if z -> −z is a symmetry of the layer (then A_u = M A_d M and X_u = M X_d M,
         M = diag(1, 1, −1)). Each depends on (η, ω) only through s, so a table in s serves
-        every frequency (``contactres.dynamic._layered_path``).
+        every frequency (``contactres.dynamic._layered_path``). An isotropic layer's come in
+        closed form (:func:`_isotropic_impedance`), any other's from the Stroh solution.
     """
+    moduli = _isotropic_moduli(c)
+    if moduli is not None:
+        # An isotropic solid (mirror-plane): D_d and A_d in closed form, no eigen-solution.
+        th = np.asarray(th, dtype=float)
+        D_d, A_d = _isotropic_impedance(moduli[0], moduli[1], th, s, exponent=True)
+        return np.stack([D_d, -_flip(D_d), A_d, _flip(A_d)]), True
     n = th.size
     R, W = _rw_blocks(c, th)
     Wi = inv3(np.broadcast_to(W, R.shape).copy())
@@ -154,8 +240,9 @@ def layer_waves(c, th, s) -> tuple[np.ndarray, bool]:
 
 def substrate_impedance(c, th, s) -> np.ndarray:
     """Y = H⁻¹ (3, 3, N) of the substrate half-space (tensor c, inertia s) at ``th``: what
-    :func:`impedance_recursion` starts from (depends on (η, ω) only through s)."""
-    return inv3(_halfspace(c, th, s))
+    :func:`impedance_recursion` starts from (depends on (η, ω) only through s; in closed form
+    for an isotropic substrate, :func:`_isotropic_impedance`)."""
+    return _impedance(c, th, s)
 
 
 def _layer_factors(waves, mirror: bool, eta_h, Y, theta=None):
