@@ -28,9 +28,11 @@ demo: $(STAMP)
 # module fixtures are computed once, as in a serial run, and the memory-heavy tests of a file never
 # run side by side. One BLAS thread per worker: more only oversubscribe the cores and spin
 # (measured under load: the quartz static-limit test in tests/dynamic takes 4 s of CPU with one
-# thread, 16-22 s with two).
+# thread, 16-22 s with two). Bytecode is cached even where PYTHONDONTWRITEBYTECODE is set: without
+# it each worker rewrote the asserts of every test file on each run (7 s of CPU each) and every
+# command the tests start in a subprocess compiled the package again.
 test: $(STAMP)
-	OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MKL_NUM_THREADS=1 \
+	PYTHONDONTWRITEBYTECODE= OMP_NUM_THREADS=1 OPENBLAS_NUM_THREADS=1 MKL_NUM_THREADS=1 \
 		$(BIN)/python -m pytest -q -n auto --dist loadfile
 
 # Every benchmarks/bench_*.py, even after a failure; ends with a one-line verdict and fails if

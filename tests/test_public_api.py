@@ -927,6 +927,19 @@ reveal_type(contactres.__version__)
 """
 
 
+# A user's configuration that leaves the third-party libraries out of the check (their names
+# become ``Any``): mypy then reads contactres and the standard library only, ~3 s of CPU instead
+# of ~13 s for the stubs of scipy, pandas and numpy (1800 modules instead of 290). The names of
+# contactres are resolved exactly as without it (the lazy ``__getattr__`` still gives ``Any``).
+USER_CONFIG = """
+[mypy]
+follow_imports_for_stubs = True
+
+[mypy-numpy.*,scipy.*,pandas.*,matplotlib.*,dask.*,distributed.*,xarray.*,zarr.*,click.*]
+follow_imports = skip
+"""
+
+
 def test_mypy_sees_the_real_objects_in_a_users_file(tmp_path, monkeypatch):
     """A user's mypy reveals signatures, not ``Any`` (the lazy ``__getattr__`` returns ``Any``).
 
@@ -935,7 +948,8 @@ def test_mypy_sees_the_real_objects_in_a_users_file(tmp_path, monkeypatch):
     """
     mypy_api = pytest.importorskip("mypy.api", reason="mypy is not installed (the dev extra)")
     (tmp_path / "user.py").write_text(USER_FILE, encoding="utf-8")
-    monkeypatch.chdir(tmp_path)  # no project configuration: a user's plain mypy
+    (tmp_path / "mypy.ini").write_text(USER_CONFIG, encoding="utf-8")
+    monkeypatch.chdir(tmp_path)  # not the project's configuration: a user's own
     stdout, stderr, status = mypy_api.run(
         ["--cache-dir", str(tmp_path / "cache"), "--no-error-summary", "user.py"]
     )

@@ -11,6 +11,14 @@ from contactres.measurements.schema import LOAD_RESULTS, SWEEP_RESULTS
 SWEEPS = "src/contactres/data/example_sweeps.csv"
 
 
+@pytest.fixture(scope="module")
+def job_result():
+    """The job on the bundled example with the bootstrap off (figures on, as by default):
+    computed once for the tests that only read it."""
+    settings = qcm_sweeps.Settings(bootstrap=0)
+    return qcm_sweeps.run(qcm_sweeps.read(SWEEPS, settings), settings)
+
+
 def test_the_job_is_the_library_analysis_within_its_stages():
     settings = qcm_sweeps.Settings(bootstrap=0)
     reading = qcm_sweeps.read(SWEEPS, settings)
@@ -40,7 +48,7 @@ def test_crystals_job_moduli_of_an_isotropic_solid_are_e_over_one_minus_nu2():
         assert iso[face] == pytest.approx(expected, rel=1e-6)
 
 
-def test_the_fitted_curves_are_tables_of_the_results_folder():
+def test_the_fitted_curves_are_tables_of_the_results_folder(job_result):
     """issue 30: no fitted curve was in any file. curves.csv holds the chosen model of each
     sweep on the page's grid (the curve the report draws), jkr_curves.csv the κ(F_N) of each
     group. Checked against the data, not only the code: the Δf curve at the sweep's smallest
@@ -50,8 +58,7 @@ def test_the_fitted_curves_are_tables_of_the_results_folder():
 
     from contactres.measurements.schema import CURVE_RESULTS, JKR_CURVE_RESULTS
 
-    settings = qcm_sweeps.Settings(bootstrap=0)
-    result = qcm_sweeps.run(qcm_sweeps.read(SWEEPS, settings), settings)
+    result = job_result
     tables = result.tables()
     curves, schema = tables["curves"]
     assert schema is CURVE_RESULTS and list(curves.columns) == list(CURVE_RESULTS.names)
@@ -102,7 +109,7 @@ def test_two_worker_processes_write_the_files_of_one_byte_for_byte(tmp_path):
         assert one == two, name
 
 
-def test_without_figures_the_curves_are_those_of_the_page_grid_alone(tmp_path):
+def test_without_figures_the_curves_are_those_of_the_page_grid_alone(job_result, tmp_path):
     """issue 31, point 3: a run that draws no figure computes the fitted curves on the 30-point
     grid of curves.csv and of the page only (Fig. 4's 100-point grid was 77 % of their cost):
     the files it writes are those of a run with figures, byte for byte; its Results hold that
@@ -112,9 +119,10 @@ def test_without_figures_the_curves_are_those_of_the_page_grid_alone(tmp_path):
     from contactres.report.figures import figure_sweeps
 
     runs = {}
+    assert qcm_sweeps.Settings(bootstrap=0).figures  # job_result is the run with figures
     for figures in (True, False):
         settings = qcm_sweeps.Settings(bootstrap=0, figures=figures)
-        result = qcm_sweeps.run(SWEEPS, settings)
+        result = job_result if figures else qcm_sweeps.run(SWEEPS, settings)
         out = tmp_path / f"figures{figures}"
         with report_set(qcm_sweeps.Result, out, ("csv", "json", "html")) as rs:
             write_report(result, rs, ("csv", "json", "html"))

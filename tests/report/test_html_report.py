@@ -2,6 +2,7 @@
 
 import json
 import re
+import shutil
 import warnings
 from html.parser import HTMLParser
 from pathlib import Path
@@ -174,15 +175,16 @@ def run(*args):
     return CliRunner().invoke(main, ["qcm", "analyze", *map(str, args)])
 
 
-def test_the_cli_writes_report_html_into_the_set(tmp_path):
-    out = tmp_path / "o"
-    r = run(EXAMPLE, "--out", out, "--bootstrap", "0", "--no-figures", "--report", "html")
-    assert r.exit_code == 0, r.output
-    manifest = json.loads((out / MANIFEST).read_text())
+def test_the_cli_writes_report_html_into_the_set(example_set, tmp_path):
+    # example_set is the set `qcm analyze --report html --bootstrap 0 --no-figures` wrote
+    manifest = json.loads((example_set / MANIFEST).read_text())
     assert "report.html" in manifest["files"]
-    assert parse((out / "report.html").read_text(encoding="utf-8")).errors == []
-    assert not [p for p in tmp_path.iterdir() if p.name.startswith(".")]
-    # a later run without --report drops the page of the earlier set
+    assert parse((example_set / "report.html").read_text(encoding="utf-8")).errors == []
+    assert not [p for p in example_set.parent.iterdir() if p.name.startswith(".")]
+    # a later run without --report drops the page of the earlier set (a copy of it: the
+    # session's set is read by other tests)
+    out = tmp_path / "o"
+    shutil.copytree(example_set, out)
     r = run(EXAMPLE, "--out", out, "--bootstrap", "0", "--no-figures")
     assert r.exit_code == 0, r.output
     assert not (out / "report.html").exists()
