@@ -30,6 +30,31 @@ def test_chebyshev_values_gives_up_on_a_kink():
     assert chebyshev_values(lambda t: {"k": np.abs(t - 0.3) + 0j}, x, 1e-8, largest=64) is None
 
 
+def test_chebyshev_weights_are_exact_for_a_polynomial_of_the_grid_degree():
+    # The barycentric formula with the closed-form Lobatto weights reproduces any polynomial of
+    # degree n on n + 1 nodes to round-off (Berrut and Trefethen 2004, Sec. 5); a wrong weight
+    # (sign or the halved ends) breaks it at every point between the nodes.
+    poly = np.polynomial.Polynomial(np.random.default_rng(5).standard_normal(17))
+    x = np.linspace(-0.4, 1.3, 301)
+    found = chebyshev_values(lambda t: {"p": poly(t) + 0j}, x, 1e-8, first=16, largest=32)
+    assert found is not None
+    assert np.allclose(found[0]["p"], poly(x), rtol=0, atol=1e-11 * np.max(np.abs(poly(x))))
+
+
+def test_chebyshev_values_are_the_same_bits_every_call():
+    # scipy's BarycentricInterpolator forms its weights as products in a random order (its rng:
+    # numpy's global random state by default, seeded from the OS and moved on by every draw), so
+    # afm invert --crystal of a map differed in the last bits from run to run. The same
+    # abscissae must give the same bits every time.
+    x = np.random.default_rng(11).uniform(0.0, 2.0, 5000)
+
+    def f(t):
+        return {"g": np.exp(3j * t) / (1.0 + t**2)}
+
+    runs = [chebyshev_values(f, x, 1e-12)[0]["g"] for _ in range(3)]
+    assert all(np.array_equal(runs[0], run) for run in runs[1:])
+
+
 @pytest.fixture(scope="module")
 def cu001():
     m = Material.crystal("Cu").rotated((0, 0, 1))
@@ -85,3 +110,13 @@ def test_small_calls_are_direct_and_bad_options_refused(cu001):
     assert np.array_equal(grid, np.repeat(direct, 5))
     with pytest.raises(ValueError, match="interpolate"):
         dcsf(m, ka, prepared=table, interpolate="yes")
+
+
+def test_an_interpolated_curve_is_the_same_bits_every_run(cu001):
+    # The path of afm invert --crystal on a map (many distinct k a: interpolated 1/DCSF).
+    m, table = cu001
+    ka = np.random.default_rng(13).uniform(0.0, 1e-3, 2000)
+    runs = [
+        dcsf_models(m, ka, ("exact",), prepared=table, interpolate=True)["exact"] for _ in range(3)
+    ]
+    assert all(np.array_equal(runs[0], run) for run in runs[1:])

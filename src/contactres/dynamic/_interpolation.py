@@ -14,7 +14,12 @@ points. The error of the n-interval interpolant is measured at the n new points 
 in angle, where it is largest) against the direct values there; the refinement stops once it is
 below ``tol`` × ``max|f|`` (then the 2n-interval interpolant, which is used, is far more accurate
 still). The values are evaluated by the barycentric formula (scipy's
-:class:`~scipy.interpolate.BarycentricInterpolator`, stable for these nodes).
+:class:`~scipy.interpolate.BarycentricInterpolator`, stable for these nodes) with the closed-form
+weights of the Chebyshev–Lobatto points, w_j = (−1)^j, halved at both ends (J.-P. Berrut and
+L. N. Trefethen, SIAM Rev. 46, 501 (2004), Eq. 5.4). They are given, not left to scipy: scipy
+computes the weights as products in a random order (its ``rng``, unseeded by default), so the
+interpolated values differed in the last bits from run to run; the same k a values now give the
+same bits every run.
 """
 
 from __future__ import annotations
@@ -37,6 +42,16 @@ def _nodes(lo: float, hi: float, n: int) -> np.ndarray:
     """The n + 1 Chebyshev–Lobatto points on [lo, hi], ascending."""
     t = -np.cos(np.pi * np.arange(n + 1) / n)
     return 0.5 * (lo + hi) + 0.5 * (hi - lo) * t
+
+
+def _lobatto_weights(n: int) -> np.ndarray:
+    """Barycentric weights of the n + 1 Chebyshev–Lobatto points, (−1)^j halved at both ends
+    (Berrut and Trefethen 2004, Eq. 5.4): exact, where the products over the nodes carry
+    round-off. The common factor of the weights (here the sign of the ascending order) cancels
+    in the barycentric formula of the second kind."""
+    w = np.where(np.arange(n + 1) % 2 == 0, 1.0, -1.0)
+    w[[0, -1]] *= 0.5
+    return w
 
 
 def chebyshev_values(
@@ -83,7 +98,7 @@ def chebyshev_values(
         new_values = evaluate(new)
         error = 0.0
         for name, v in values.items():
-            guess = BarycentricInterpolator(nodes, v)(new)
+            guess = BarycentricInterpolator(nodes, v, wi=_lobatto_weights(n))(new)
             scale = max(np.max(np.abs(v)), np.max(np.abs(new_values[name])))
             error = max(error, float(np.max(np.abs(guess - new_values[name]))) / scale)
         merged = {}
@@ -93,6 +108,7 @@ def chebyshev_values(
             merged[name] = both
         nodes, values, n = fine, merged, 2 * n
         if error <= tol:
-            out = {name: BarycentricInterpolator(nodes, v)(x) for name, v in values.items()}
+            w = _lobatto_weights(n)
+            out = {name: BarycentricInterpolator(nodes, v, wi=w)(x) for name, v in values.items()}
             return out, error
     return None
