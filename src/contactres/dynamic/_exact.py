@@ -29,7 +29,7 @@ weighted average is the one-term Galerkin (variational) estimate.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from scipy import special
@@ -141,6 +141,8 @@ class GalerkinPlan:
     far_tail : the tail of the far-field grid (:mod:`contactres.dynamic._fartail`), summed by
         its moments (None: the whole grid is summed node by node)
     far_moments : (n_fit + 1, n_t) the tail's moments of the products j_p j_q (or None)
+    mirror : the Galerkin system reduced by the mirror symmetry of the face (None: the face
+        has none, or the plan was made without its table's values)
     """
 
     basis: list
@@ -153,6 +155,59 @@ class GalerkinPlan:
     far_products: np.ndarray | None
     far_tail: FarTail | None = None
     far_moments: np.ndarray | None = None
+    mirror: MirrorPlan | None = None
+
+
+@dataclass(frozen=True, eq=False)
+class MirrorPlan:
+    """The Galerkin system on a face with a mirror plane y -> −y (g(−θ) = g(θ), so that
+    Ĝ_{−m} = Ĝ_m): M is then invariant under n -> −n, and so is the solution of M c = e₀,
+    c_{−n,k} = c_{n,k}. The unknowns c_{n,k}, n >= 0, solve the reduced system
+    Σ_{n' >= 0, k'} (M_{(n,k),(n',k')} + [n' > 0] M_{(n,k),(−n',k')}) c_{n',k'} = δ_{(n,k),(0,0)}
+    (the rows n < 0 repeat those of −n): 28 unknowns instead of 49 at rtol 1e-6 on a cubic
+    (001) face, and only the harmonics m >= 0 of the kernel (issue 31). The same N_exact as the
+    full system to round-off.
+
+    Attributes
+    ----------
+    ms : (n_h,) the harmonics ``|n_a ± n_b|`` >= 0 the reduced matrix reads
+    m_index : (2, nr, nr) where its two terms read their harmonic (into ``ms``)
+    t_index : (nr, nr) where both read their pair (into the plan's pairs)
+    sign : (2, nr, nr) (−1)^{(n_a + n_b)/2} of each term, 0 for the second where n' = 0
+    expand : (nb,) the reduced unknown of each basis function (n, k): that of (``|n|``, k)
+    """
+
+    ms: np.ndarray
+    m_index: np.ndarray
+    t_index: np.ndarray
+    sign: np.ndarray
+    expand: np.ndarray
+
+
+def _mirror_plan(table: KernelTable, basis: list, t_index: np.ndarray) -> MirrorPlan | None:
+    """The :class:`MirrorPlan` of ``basis`` when ``table`` has the mirror symmetry g(−θ) = g(θ)
+    (its θ nodes πj/nθ: columns j and nθ − j equal, as the table builds them, to the bit);
+    None otherwise."""
+    v = table.near_values
+    if not (
+        np.array_equal(v[:, 1:], v[:, :0:-1]) and np.array_equal(table.ginf[1:], table.ginf[:0:-1])
+    ):
+        return None
+    n_of = np.array([b[0] for b in basis])
+    k_of = np.array([b[1] for b in basis])
+    rows = np.flatnonzero(n_of >= 0)
+    n, nt = n_of[rows], n_of[rows][None, :]
+    plus, minus = n[:, None] + nt, np.abs(n[:, None] - nt)
+    ms = np.unique(np.concatenate([plus.ravel(), minus.ravel()]))
+    sign = np.where((plus // 2) % 2 == 0, 1.0, -1.0)
+    where = {(int(a), int(b)): i for i, (a, b) in enumerate(zip(n, k_of[rows], strict=True))}
+    return MirrorPlan(
+        ms=ms,
+        m_index=np.stack([np.searchsorted(ms, plus), np.searchsorted(ms, minus)]),
+        t_index=t_index[np.ix_(rows, rows)],
+        sign=np.stack([sign, np.where(nt > 0, sign, 0.0)]),
+        expand=np.array([where[(abs(int(a)), int(b))] for a, b in zip(n_of, k_of, strict=True)]),
+    )
 
 
 def galerkin_plan(
@@ -181,17 +236,19 @@ def galerkin_plan(
     moments = None
     if products is not None and tail is not None:
         moments = tail.moments(products)  # (n_fit + 1, n_t)
+    t_index = t_index.reshape(len(basis), len(basis))
     return GalerkinPlan(
         basis=basis,
         orders=orders,
         pairs=pairs,
         ms=ms,
         m_index=np.searchsorted(ms, n_of[:, None] + n_of[None, :]),
-        t_index=t_index.reshape(len(basis), len(basis)),
+        t_index=t_index,
         sign=np.where(((n_of[:, None] + n_of[None, :]) // 2) % 2 == 0, 1.0, -1.0),
         far_products=products,
         far_tail=tail if moments is not None else None,
         far_moments=moments,
+        mirror=_mirror_plan(table, basis, t_index),
     )
 
 
@@ -247,8 +304,18 @@ def exact_n(
     if na:
         # far: built above for these k a; its grid is the plan's (the caller's contract)
         assert far is not None
-        M = galerkin_matrix(table, ka, plan, far)
-        c = np.linalg.solve(M, np.broadcast_to(e0, (na, nb))[..., None])[..., 0]
+        mirror = plan.mirror
+        if mirror is None:
+            M = galerkin_matrix(table, ka, plan, far)
+        else:  # the reduced system of the mirror symmetry (MirrorPlan), expanded after
+            half = galerkin_integrals(table, ka, replace(plan, ms=mirror.ms), far)
+            M = mirror.sign[0] * half[:, mirror.m_index[0], mirror.t_index]
+            M += mirror.sign[1] * half[:, mirror.m_index[1], mirror.t_index]
+        rhs = np.zeros(M.shape[-1])
+        rhs[0] = 1.0
+        c = np.linalg.solve(M, np.broadcast_to(rhs, M.shape[:-1])[..., None])[..., 0]
+        if mirror is not None:
+            c = c[:, mirror.expand]
         out_n[pos] = 1 / c[:, 0]
         coeffs[pos] = c
     static = np.pi**2 * np.mean(table.ginf)
@@ -315,16 +382,11 @@ def galerkin_integrals(
     ).copy()
     # Near field: contour + hand-over segment, harmonics of the tabulated g − g∞.
     near_h = kernel_harmonics(table.near_values, plan.ms)  # (n_m, nk)
-    s = ka[:, None] * table.near_kappa[None, :]  # (na, nk)
-    # Pair products laid out (na, n_t, nk), so that the sum over the near nodes k is one
-    # complex product with no transposed copy: one BLAS call, not one per k a (on 2 cores
-    # shared with other work, every threaded call can wait a scheduler tick).
     if near_j is None:
-        near_j = spherical_bessel(int(orders[-1]), s)
+        near_j = near_bessel(table, ka, int(orders[-1]))
     jp = np.moveaxis(near_j[orders], 0, 1)  # (na, n_p, nk)
     wk = table.near_weight[None, :] * ka[:, None]
-    prod = _pair_products(jp * wk[:, None, :], jp, ti, tj)  # (na, n_t, nk)
-    near = (prod.reshape(-1, prod.shape[-1]) @ near_h.T).reshape(na, ti.size, -1)
+    near = _near_pair_sums(jp * wk[:, None, :], jp, ti, tj, near_h.T)  # (na, n_t, n_m)
     integral += near.transpose(0, 2, 1)  # (na, n_m, n_t)
     # Far field: Chebyshev series in w = (T1 ka/s)² of each harmonic, against j_p j_q.
     nf = far.basis.shape[-1]
@@ -364,18 +426,24 @@ def galerkin_integrals(
     return integral
 
 
-def _pair_products(left: np.ndarray, right: np.ndarray, ti: np.ndarray, tj: np.ndarray):
-    """``left[:, ti] * right[:, tj]``, (na, n_t, nk), written pair block by pair block.
+def _near_pair_sums(
+    left: np.ndarray, right: np.ndarray, ti: np.ndarray, tj: np.ndarray, h: np.ndarray
+) -> np.ndarray:
+    """Σ_k ``left[:, ti, k] * right[:, tj, k] * h[k, :]``, (na, n_t, n_m): the near-field sums
+    of the pair products against the kernel harmonics, one first order at a time.
 
     The pairs of a plan come sorted by their first order, each first order with a run of
-    second orders (all of them above it in the full plan): one product of a row of ``left``
-    with a slice of ``right`` per first order, straight into the result, instead of two
-    gathered copies of the (na, n_t, nk) array and their product (~3x less memory traffic,
-    the largest array of the exact model; issue 31). The same products, to the bit.
+    second orders: per first order p, the products of its row of ``left`` with the run of
+    ``right`` (na, run, nk) and their product with ``h``, one BLAS call each, straight into
+    the result. The whole (na, n_t, nk) array of products is never made: it was the largest
+    array of the exact model (4.7 MB at 40 k a values, rtol 1e-6; issue 31). The same sums as
+    the product of that array with ``h`` (to round-off: the BLAS call is split by first
+    order).
     """
+    na, nk = left.shape[0], left.shape[-1]
+    out = np.empty((na, ti.size, h.shape[-1]), dtype=np.result_type(left, right, h))
     order = np.argsort(ti, kind="stable")
     ti_s, tj_s = ti[order], tj[order]
-    out = np.empty((left.shape[0], ti.size, left.shape[-1]), dtype=np.result_type(left, right))
     starts = np.searchsorted(ti_s, np.arange(left.shape[1] + 1))
     for p in range(left.shape[1]):
         lo, hi = int(starts[p]), int(starts[p + 1])
@@ -384,9 +452,10 @@ def _pair_products(left: np.ndarray, right: np.ndarray, ti: np.ndarray, tj: np.n
         q = tj_s[lo:hi]
         run = q[-1] - q[0] == hi - lo - 1 and bool(np.all(np.diff(q) == 1))
         cols = right[:, int(q[0]) : int(q[-1]) + 1] if run else right[:, q]
-        np.multiply(left[:, p, None, :], cols, out=out[:, lo:hi])
-    if np.array_equal(order, np.arange(ti.size)):
-        return out
-    back = np.empty_like(order)
-    back[order] = np.arange(order.size)
-    return out[:, back]
+        prod = left[:, p, None, :] * cols  # (na, run, nk)
+        sums = (prod.reshape(-1, nk) @ h).reshape(na, hi - lo, -1)
+        if np.array_equal(order[lo:hi], np.arange(lo, hi)):
+            out[:, lo:hi] = sums
+        else:
+            out[:, order[lo:hi]] = sums
+    return out
