@@ -257,3 +257,60 @@ def test_a_mu_piled_up_at_the_fitters_bound_is_left_to_the_fit(monkeypatch):
     monkeypatch.setattr(pe, "MU_MARGINAL_MAX_EDGE", 1.0)
     _, mu, err = _evidence(u, df, dg, 0.6, prior)
     assert err / mu < 0.5 and mu > 2 * 40.0 / (x_max / umax)
+
+
+def test_the_evidence_over_worker_processes_equals_the_serial_one(water_study, monkeypatch):
+    # Issue 31, point 3: the undecided blocks of a seeded study split over 2 worker processes
+    # (the per-worker threshold lowered so that this small study splits) give every block
+    # bit for bit what the serial call gives, NaN where the serial call leaves NaN.
+    import contactres.analysis._blocks as blocks
+
+    calls, chunks = [], []
+
+    def spy(*args):
+        calls.append(args)
+        return plateau_log_evidence(*args)
+
+    def run(fn, workers, first, *rest):
+        chunks.append([len(a) for a in first])
+        return run_pool(fn, workers, first, *rest)
+
+    run_pool = blocks.run_in_workers
+    monkeypatch.setattr(blocks, "plateau_log_evidence", spy)
+    water_study(1, 0.3)
+    args = calls[-1]
+    rows = np.flatnonzero(args[-1])
+    assert rows.size >= 20 and rows.size < len(args[-1])  # some blocks are left out (NaN)
+    serial = plateau_log_evidence(*args)
+    monkeypatch.setattr(blocks, "plateau_log_evidence", plateau_log_evidence)  # picklable
+    monkeypatch.setattr(blocks, "run_in_workers", run)
+    monkeypatch.setattr(blocks, "EVIDENCE_ROWS_PER_WORKER", 5)
+    two = blocks._evidence(2, *args)
+    assert chunks == [[(rows.size + 1) // 2, rows.size // 2]]  # two interleaved halves
+    assert np.isfinite(serial[0]).sum() >= 10
+    assert np.array_equal(two, serial, equal_nan=True)
+
+
+def test_few_undecided_blocks_stay_in_this_process(monkeypatch):
+    # Below EVIDENCE_ROWS_PER_WORKER blocks a worker no pool starts (a small study with
+    # workers > 1 pays nothing for it), and the result is the serial call's.
+    import contactres.analysis._blocks as blocks
+
+    def no_pool(*args):
+        raise AssertionError("a pool started")
+
+    monkeypatch.setattr(blocks, "run_in_workers", no_pool)
+    u, df, dg = _block(1, 0.3)
+    n = 2 * blocks.EVIDENCE_ROWS_PER_WORKER - 1
+    args = (
+        np.tile(u, (n, 1)),
+        np.tile(df, (n, 1)),
+        np.tile(dg, (n, 1)),
+        np.ones((n, u.size)),
+        np.full((2, n), 0.6),
+        (np.full(n, np.nan), np.full(n, np.nan)),
+        (np.full(n, np.log(0.3)), np.full(n, 0.01)),
+        np.ones(n),
+        np.arange(n) % 40 == 0,  # a few of them, as in a small study
+    )
+    assert np.array_equal(blocks._evidence(2, *args), plateau_log_evidence(*args), equal_nan=True)

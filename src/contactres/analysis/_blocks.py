@@ -48,6 +48,7 @@ from ._classify import (
     fit_sweeps,
     n_parameters,
     prefer,
+    run_in_workers,
     source_rss,
     source_valid,
 )
@@ -228,6 +229,63 @@ def _friction_law(crit, classes, blocks: pd.DataFrame, delta_bic: float) -> np.n
     return np.where(total > delta_bic, "savkoor", np.where(total < -delta_bic, "coulomb", ""))
 
 
+#: Undecided blocks per worker process below which the plateau's evidence stays in this
+#: process: at ~4 ms of CPU a block (the example's blocks, one core) 200 blocks are ~0.8 s,
+#: well above the pool's start-up (~0.1-0.3 s), so a small study with ``workers`` > 1 loses
+#: nothing and a 10^4-sweep one (~2,000 undecided blocks) uses every worker.
+EVIDENCE_ROWS_PER_WORKER = 200
+
+
+def _evidence(workers: int, u, df, dg, w, sigma, mu_prior, ratio_prior, to_mu, rows):
+    """:func:`~contactres.analysis._plateau_evidence.plateau_log_evidence` of the blocks
+    ``rows``, in up to ``workers`` processes (:func:`run_in_workers`) where they are many.
+
+    Each block's evidence depends on its own row alone (the nodes' batches only group the
+    rows' arithmetic), so the blocks split into chunks with the serial call's result bit for
+    bit: chunk k holds the k-th, (k + n)-th, ... of the blocks ``rows`` (a fixed split,
+    whatever the timing; interleaved so that each chunk gets a like mix of blocks), only its
+    rows are sent to its worker, and its (3, b) result is put back at them.
+
+    Parameters
+    ----------
+    workers : processes at most; n = min(``workers``, number of ``rows`` //
+        :data:`EVIDENCE_ROWS_PER_WORKER`) chunks, in this process if n <= 1
+    u, df, dg, w, sigma, mu_prior, ratio_prior, to_mu, rows : as for
+        :func:`~contactres.analysis._plateau_evidence.plateau_log_evidence` (``rows`` a (B,)
+        mask)
+
+    Returns
+    -------
+    (3, B): 2 ln B, μ and its error as the serial call gives them (NaN outside ``rows``)
+    """
+    todo = np.flatnonzero(rows)
+    n = min(workers, todo.size // EVIDENCE_ROWS_PER_WORKER)
+    if n <= 1:
+        return plateau_log_evidence(u, df, dg, w, sigma, mu_prior, ratio_prior, to_mu, rows)
+    chunks = [todo[k::n] for k in range(n)]
+    sigma = np.asarray(sigma, dtype=float)
+    mu_prior, ratio_prior = (
+        tuple(np.asarray(a, dtype=float) for a in pair) for pair in (mu_prior, ratio_prior)
+    )
+    to_mu = np.asarray(to_mu, dtype=float)
+    parts = run_in_workers(
+        plateau_log_evidence,
+        workers,
+        [u[c] for c in chunks],
+        [df[c] for c in chunks],
+        [dg[c] for c in chunks],
+        [w[c] for c in chunks],
+        [sigma[:, c] for c in chunks],
+        [tuple(a[c] for a in mu_prior) for c in chunks],
+        [tuple(a[c] for a in ratio_prior) for c in chunks],
+        [to_mu[c] for c in chunks],
+    )
+    out = np.full((3, len(rows)), np.nan)
+    for c, part in zip(chunks, parts, strict=True):
+        out[:, c] = part
+    return out
+
+
 def choose_blocks(
     p: Padded,
     sw: pd.DataFrame,
@@ -250,7 +308,8 @@ def choose_blocks(
     fields : the fields of the per-sweep fits, by source (from the same call), in the order
         of ``sw``
     joint : which sweeps enter their block (the used ones); blocks of one sweep are left alone
-    delta_bic, exact_loop, tables, workers : as for :func:`fit_sweeps`
+    delta_bic, exact_loop, tables, workers : as for :func:`fit_sweeps`; the workers also
+        integrate the plateau's evidence where many blocks need it (:func:`_evidence`)
     pool_experiment : decide the friction law (Coulomb or Savkoor) once per experiment
         (:func:`_friction_law`)
 
@@ -351,7 +410,8 @@ def choose_blocks(
         best_other = np.delete(crit + prior, [i, i + 1], axis=0).min(axis=0)
         with np.errstate(invalid="ignore"):
             undecided = np.abs(crit[i] + prior[i] - best_other) < PLATEAU_UNDECIDED
-        two_ln_b, mu_pl, mu_pl_err = plateau_log_evidence(
+        two_ln_b, mu_pl, mu_pl_err = _evidence(
+            workers,
             bp.u[order],
             bp.df[order],
             bp.dg[order],

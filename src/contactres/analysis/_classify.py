@@ -56,6 +56,7 @@ __all__ = [
     "fit_sweeps",
     "n_parameters",
     "prefer",
+    "run_in_workers",
     "source_rss",
     "source_valid",
 ]
@@ -105,12 +106,14 @@ def _fit_block(
 
 def _plateaus_of_rows(b: Block, found, u_c, rss, theta, table: LoopTable) -> dict[str, np.ndarray]:
     """The plateau loop (:func:`~contactres.analysis._models.plateau_loop.fit_plateaus`) of
-    every sweep of ``b`` (a picklable call for :func:`_run`)."""
+    every sweep of ``b`` (a picklable call for :func:`run_in_workers`)."""
     return fit_plateaus(b, found, u_c, rss, theta, table, np.ones(len(b.n), bool))
 
 
-def _run(fn, workers: int, first: list, *rest) -> list:
-    """``[fn(a, *r) for a, *r in zip(first, *rest)]``, in ``workers`` processes if > 1."""
+def run_in_workers(fn, workers: int, first: list, *rest) -> list:
+    """``[fn(a, *r) for a, *r in zip(first, *rest)]``, in ``workers`` processes if > 1 (the
+    loop fits here, the plateau's evidence in :mod:`contactres.analysis._blocks`): the results
+    in the order of ``first``, whichever process finishes first."""
     if workers > 1 and len(first) > 1:
         with ProcessPoolExecutor(min(workers, len(first))) as pool:
             return list(pool.map(fn, first, *rest))
@@ -139,7 +142,7 @@ def _fit_blocks(
     groups = p.blocks()  # <= BLOCK_POINTS points each: the fits' temporaries stay at a few MB
     blocks = [p.block(rows) for rows in groups]
     masks = [plateau[rows] for rows in groups]
-    parts = _run(_fit_block, workers, blocks, repeat(exact_loop), repeat(tables), masks)
+    parts = run_in_workers(_fit_block, workers, blocks, repeat(exact_loop), repeat(tables), masks)
     for rows, (top, done) in zip(groups, parts, strict=True):
         _put(u_max, {"u_max": top}, rows, S)
         for source, part in done.items():
@@ -363,7 +366,7 @@ def add_plateau_fits(
     hinge, line = ({c: t[c].to_numpy() for c in t} for t in (fields["hinge"], fields["line"]))
     found, u_c, rss = plateau_start(hinge, line)
     theta = fields["cm"]["theta_per_m"].to_numpy(float)
-    parts = _run(
+    parts = run_in_workers(
         _plateaus_of_rows,
         workers,
         [p.block(g) for g in groups],
