@@ -101,7 +101,10 @@ from ._common import (
     "--workers",
     type=click.IntRange(min=1),
     show_default="all cores from 10,000 sweeps on, else 1",
-    help="Processes for the fits, dimensionless.",
+    help=(
+        "Processes for the loop fits and the plateau's evidence, dimensionless (results identical"
+        " to one process)."
+    ),
 )
 @click.option(
     "--sphere-material",
