@@ -155,6 +155,29 @@ above ~15 % of the curve. Next: the arc's Δg interpolated across the points in 
 waves there are one set: ~1000 recursions instead of ~2600), and the Chebyshev samples per
 panel chosen from their tail coefficients.
 
+Issue 26's eighth pass, the basis's stopping rule (measured, nothing changed): c₀ of every point of
+a 250 nm, 100 nm and 50 nm film (PMMA on quartz, a = 5 µm, k_s a <= 2) at 4-48 radial terms,
+against 48. 250 nm: the error of 10, 13 and 18 terms is 4.8e-7, 1.4e-8 and 3.7e-11; the change the
+rule tests (four terms fewer, which estimates the error of the smaller basis, not of the returned
+one) 9.2e-6, 2.0e-6 and 8.2e-9. The series converges in steps (13 terms no better than 12; 100 nm:
+10 and 11 barely better than 9; 50 nm: 14 and 15 barely better than 13), so a shorter or
+extrapolated estimate misses: two terms fewer instead of four would stop 250 nm at 13 (change
+5.0e-8 < rtol/10, its result moved by 1.4e-8), but the returned error reaches 1.4x such a change on
+250 nm (at 14 terms), 7.4x on 100 nm and 14x on 50 nm (at 15 terms, 1.8e-6 where the change is
+1.3e-7: with such a ratio a rule at rtol/10 could pass values off by more than rtol); a geometric
+(Aitken) estimate of the returned error from the last two four-term changes, d₂²/(d₁ − d₂), is 12x
+above it at 13 terms (1.7e-7: still above rtol/10) but 6-12x below it at 15, 16 and 21. With four
+terms the returned error stayed <= 0.14x (250 nm), 0.64x (100 nm) and 2.1x (50 nm) the change, so
+the rule's rtol/10 kept it below rtol/4 on these films: the rule stays. What the two-term rule
+would have saved (not kept): instructions per curve (cachegrind, one thread, a second call)
+homogeneous 80 M, 250 nm 346 M (4.3x) -> 311 M (3.9x); CPU with one BLAS thread, main / that rule,
+three rounds of best of 9: 250 nm 50-54 / 44-48 ms, homogeneous 12-16 ms: still above 3x. The DCSF
+(K/K at k_s a = 0) instead of K would not stop either (four-term change 7.2e-7 at 13). Page faults,
+re-measured (main, one BLAS thread, best of 9, machine at load ~4): homogeneous 13.8 ms (~2150
+faults per curve), 250 nm 49.5 ms (3.6x; 2300-3700 faults); with glibc's heap never trimmed (no
+faults) 8.3 ms and 45.5 ms (5.5x): the faults are now a larger share of the homogeneous curve
+(~40 %) than of the layered one (~8 %).
+
 Run: ``.venv/bin/python benchmarks/bench_layered_dynamic.py`` (exit status 1 if a target is
 missed; a few minutes on a busy machine).
 """
