@@ -95,7 +95,7 @@ def plateau_loop_slopes(x, c, rule=None, derivatives: bool = True) -> tuple[np.n
     accuracy; tests/analysis/test_scale.py), at ~1 µs per point for all six arrays, several
     times less than the quadrature of G′, G″ alone. ``derivatives=False``: G′ and G″ alone
     (the nodes of :mod:`contactres.analysis._plateau_evidence`, which need no gradient), at
-    a fraction of the cost: the second integral by its power series wherever m < 29/32
+    a fraction of the cost: the second integral by its power series wherever m < 7/8
     (:func:`contactres.analysis._plateau_series.slip_integral_series`), the same numbers to
     rounding (within ~1e-13 of G′ with derivatives, whose elliptic form loses that much to
     cancellation at 0.1 < m; the series is the more accurate).
