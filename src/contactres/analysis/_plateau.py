@@ -143,16 +143,17 @@ def _slipping_values(x, c) -> tuple[np.ndarray, np.ndarray]:
     """G′ and G″ of :func:`_slipping` alone (``derivatives=False``): the same formulas, J by
     its series where it converges fast (the elliptic form elsewhere), each intermediate formed
     once and updated in place (a third fewer passes over the points)."""
-    J = slip_integral_series(x, c)
+    half = np.sqrt(c / x)
+    np.arcsin(half, out=half)
+    half *= 2.0  # d = c at φ = half, the series' φ_c where x <= e (one arcsin for both)
+    J = slip_integral_series(x, c, half)
     far = np.isnan(J)
     if far.any():
         J[far] = _elliptic_integrals(x[far], c[far])[0]
     y = x - c
     x2 = x * x
     # H = x²/8 · 2 arcsin √(c/x) - (1/4) √(cy) (y - c) + √(2/3) J, as in _slipping.
-    H = np.sqrt(c / x)
-    np.arcsin(H, out=H)
-    H *= 2.0
+    H = half
     H *= x2
     H /= 8.0
     t = c * y

@@ -63,7 +63,7 @@ SERIES_TIERS = tuple(((j + 1) / SERIES_CELLS, k) for j, k in enumerate(SERIES_TE
 SERIES_MAX_M = SERIES_TIERS[-1][0]
 
 
-def slip_integral_series(x, c) -> np.ndarray:
+def slip_integral_series(x, c, phi=None) -> np.ndarray:
     """J = ∫_c^b √(d(x - d)(e - d)) dd, e = c + 3/2, b = min(x, e), by its power series
     (module docstring).
 
@@ -71,6 +71,8 @@ def slip_integral_series(x, c) -> np.ndarray:
     ----------
     x, c : 1-d arrays, the loop's dimensionless amplitude κu0/(μF_N) and plateau κd_c/(μF_N),
         with c < b and min(x, e) < :data:`SERIES_MAX_M` · max(x, e) (the series' domain)
+    phi : 2 arcsin √(c/x) at each point, if the caller has it (the plateau's slopes need it
+        too): the angle φ_c of the points with x <= e (computed here if None, and where x > e)
 
     Returns
     -------
@@ -87,25 +89,33 @@ def slip_integral_series(x, c) -> np.ndarray:
     # of small integers), each tier a slice of them.
     # (fmin: a NaN m goes outside, as m >= SERIES_MAX_M does)
     tier = np.fmin(m * SERIES_CELLS, len(SERIES_TIERS)).astype(np.int8)
+    # φ_c = 2 arcsin √(c/r): the caller's 2 arcsin √(c/x) where r = x, the same numbers.
+    far = x > e
+    if phi is None or far.all():
+        phi = 2.0 * np.arcsin(np.sqrt(c / r))
+    elif far.any():
+        phi = np.array(phi, dtype=float)
+        phi[far] = 2.0 * np.arcsin(np.sqrt(c[far] / r[far]))
     order = np.argsort(tier, kind="stable")
     ends = np.cumsum(np.bincount(tier, minlength=len(SERIES_TIERS) + 1))
-    r, a, c = r[order], a[order], c[order]
+    r, a, c, phi = r[order], a[order], c[order], phi[order]
     out = np.full(x.shape, np.nan)
     for (_, terms), lo, hi in zip(SERIES_TIERS, [0, *ends], ends, strict=False):
         if hi > lo:
-            out[order[lo:hi]] = _series(r[lo:hi], a[lo:hi], c[lo:hi], terms)
+            out[order[lo:hi]] = _series(r[lo:hi], a[lo:hi], c[lo:hi], phi[lo:hi], terms)
     return out
 
 
-def _series(r, a, c, terms):
-    """(r²/4) √A Σ_{k <= terms} b_k q^k T_k (module docstring) at r, A = ``a`` and c."""
+def _series(r, a, c, phi, terms):
+    """(r²/4) √A Σ_{k <= terms} b_k q^k T_k (module docstring) at r, A = ``a``, c and φ_c =
+    ``phi``."""
     rho = c / r
     q = 0.5 * r / a
     sin = 2.0 * np.sqrt(rho * (1.0 - rho))
     cos = 1.0 - 2.0 * rho
     # V_k = b_k q^k T_k, summed as it goes; p = q^k sin³φ_c cosᵏ⁻¹φ_c.
-    p = sin**3 * q
-    older, old = 0.5 * (np.pi - 2.0 * np.arcsin(np.sqrt(rho))) + 0.5 * sin * cos, p * (-0.5 / 3.0)
+    p = sin * sin * sin * q  # not sin**3: a call of pow per point
+    older, old = 0.5 * (np.pi - phi) + 0.5 * sin * cos, p * (-0.5 / 3.0)
     total = older + old
     qq, qc = q * q, q * cos
     b = [1.0, 0.5]
