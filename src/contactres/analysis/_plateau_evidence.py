@@ -80,13 +80,13 @@ side by side on the loaded reference machine: 1.3 s against 3.1 s; on eight copi
 example with fresh noise, 10,752 sweeps, 6.0 s against 16.6 s), with the same numbers to
 rounding (2 ln B within 1.4e-10, μ and its error within 3e-12 relative, on both tables).
 Before the nodes were evaluated together, block by block, it cost about twice the former.
-Since (issue 31, point 3, second round) G′ and G″ are formed in place, the series' terms are
-counted in cells of m 1/16 wide found by truncation rather than a binary search, and each
-block's distinct amplitudes are found once: on the example's evidence (69 undecided blocks, 52
-with a finite 2 ln B) 0.23 s of CPU against 0.25 s, on the seeded study's of
-``tests/analysis/test_plateau_evidence.py`` (seeds 0-2, 168 blocks) 0.50 s against 0.59 s
-(best of three, side by side, loaded machine), the same numbers on the example and within
-4e-14 relative on the study.
+Since (issue 31, point 3, second round) G′ and G″ are formed in place, 2 arcsin √(c/x) once
+for G′ and the series, the series' terms counted in cells of m 1/16 wide found by truncation
+rather than a binary search, and each block's distinct amplitudes found once: on the example's
+evidence (69 undecided blocks, 52 with a finite 2 ln B) 0.23-0.25 s of CPU against 0.26-0.28 s,
+on the seeded study's of ``tests/analysis/test_plateau_evidence.py`` (seeds 0-2, 168 blocks)
+0.52-0.59 s against 0.60-0.68 s (best of three, side by side, loaded machine); 2 ln B, μ and
+its error within 6e-15 relative on the example, 4e-14 on the study.
 A block's result depends on its own row alone, so the caller deals the undecided blocks out to
 the analysis's worker processes where they are many (``contactres.analysis._blocks``,
 ``_evidence``: 1,975 blocks of the 10,752 sweeps in two halves of ~2.3 s of CPU each).
