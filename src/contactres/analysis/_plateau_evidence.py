@@ -74,19 +74,21 @@ number of distinct amplitudes (numpy on large arrays), the slopes and the projec
 each block's distinct amplitudes only, weighted by their numbers of points (its three ramps
 repeat them; :func:`_integrand`), the slopes without their derivatives and with G′'s integral
 by its power series (:mod:`contactres.analysis._plateau_series`) instead of a Gauss rule or
-elliptic integrals: on the bundled example's analysis (244 undecided blocks) 5.1 × 10⁹
+elliptic integrals: on the analysis of the 1,344-sweep study of
+:func:`contactres.measurements.example_study` (14 experiments, 244 undecided blocks) 5.1 × 10⁹
 instructions against 14.3 × 10⁹ with the slopes at every point by the fit's own forms (CPU,
-side by side on the loaded reference machine: 1.3 s against 3.1 s; on eight copies of the
-example with fresh noise, 10,752 sweeps, 6.0 s against 16.6 s), with the same numbers to
+side by side on the loaded reference machine: 1.3 s against 3.1 s; on eight copies of that
+study with fresh noise, 10,752 sweeps, 6.0 s against 16.6 s), with the same numbers to
 rounding (2 ln B within 1.4e-10, μ and its error within 3e-12 relative, on both tables).
 Before the nodes were evaluated together, block by block, it cost about twice the former.
 Since (issue 31, point 3, second round) G′ and G″ are formed in place, 2 arcsin √(c/x) once
 for G′ and the series, the series' terms counted in cells of m 1/16 wide found by truncation
-rather than a binary search, and each block's distinct amplitudes found once: on the example's
-evidence (69 undecided blocks, 52 with a finite 2 ln B) 0.23-0.25 s of CPU against 0.26-0.28 s,
-on the seeded study's of ``tests/analysis/test_plateau_evidence.py`` (seeds 0-2, 168 blocks)
-0.52-0.59 s against 0.60-0.68 s (best of three, side by side, loaded machine); 2 ln B, μ and
-its error within 6e-15 relative on the example, 4e-14 on the study.
+rather than a binary search, and each block's distinct amplitudes found once: on the evidence
+of the bundled ``example_sweeps.csv`` (384 sweeps, 69 undecided blocks, 52 with a finite
+2 ln B) 0.23-0.25 s of CPU against 0.26-0.28 s, on the seeded study's of
+``tests/analysis/test_plateau_evidence.py`` (seeds 0-2, 168 blocks) 0.52-0.59 s against
+0.60-0.68 s (best of three, side by side, loaded machine); 2 ln B, μ and its error within
+6e-15 relative on the example, 4e-14 on the study.
 A block's result depends on its own row alone, so the caller deals the undecided blocks out to
 the analysis's worker processes where they are many (``contactres.analysis._blocks``,
 ``_evidence``: 1,975 blocks of the 10,752 sweeps in two halves of ~2.3 s of CPU each).
