@@ -92,7 +92,17 @@ def test_every_table1_number_of_the_summary_is_on_the_page(results, page):
     assert hashlib.sha256(EXAMPLE.read_bytes()).hexdigest() in page
 
 
-def test_the_checksum_is_the_one_taken_when_the_table_was_read(results, tmp_path):
+@pytest.fixture
+def no_png(monkeypatch):
+    """Pages whose figures are left out of the HTML (the figures are still drawn): encoding
+    them is 80 % of a page's cost and nothing the test that takes this looks at (their
+    embedding is checked on the full page by test_the_page_parses_and_has_one_row_per_sweep)."""
+    from contactres.report import _html
+
+    monkeypatch.setattr(_html, "_png", lambda figure, alt: "")
+
+
+def test_the_checksum_is_the_one_taken_when_the_table_was_read(results, tmp_path, no_png):
     import dataclasses
     import hashlib
 
@@ -156,7 +166,7 @@ def test_the_page_is_self_contained_and_small(page):
     assert len(page.encode()) < 2_000_000
 
 
-def test_labels_are_escaped(results):
+def test_labels_are_escaped(results, no_png):
     sweeps = results.sweeps.assign(configuration="<script>alert(1)</script>")
     odd = type(results)(**{**results.__dict__, "sweeps": sweeps})
     text = html_report(odd)
