@@ -141,8 +141,9 @@ def test_a_file_that_changes_while_it_is_read_is_refused(tmp_path):
         contactres.read_sweeps(copy, readers=BUILT_IN.with_reader(growing))
 
 
-def test_the_report_draws_the_curves_of_the_analysis_without_a_model(results, monkeypatch):
+def test_the_report_draws_the_curves_of_the_analysis_without_a_model(results, monkeypatch, no_png):
     # Every loop shape refuses to be evaluated: the page and Fig. 4 draw from Results.curves.
+    # (no_png: the page's figures are still drawn, only their encoding is left out.)
     from contactres.analysis._models import cm_loop, plateau_loop, savkoor_loop
     from contactres.report.figures import figure_sweeps
 
