@@ -122,8 +122,14 @@ def test_anisotropic_second_way_and_bounds(quartz_at):
 
 @pytest.mark.parametrize("face", [(0, 0, 1), (1, 1, 1)])
 def test_three_and_four_fold_faces_isotropic(face):
+    # A fixed basis whose span is invariant under in-plane rotation (as in
+    # test_rotating_inplane_axis_rotates_tensor) keeps the face's symmetry to round-off, so 12
+    # harmonics test it as sharply as the default's adaptive basis (the same solve on larger
+    # bases, checked against fixed ones in test_convergence_by_doubling) at about a tenth of
+    # the CPU: a wrongly turned kernel or an asymmetric harmonic set breaks the isotropy at
+    # every basis size (measured: K_xx/K_yy − 1 <= 4e-15 at (12, 4), as with the default).
     m = Material.crystal("Cu").rotated(face)
-    K = tangential_stiffness_static(m, A, tensor=True)
+    K = tangential_stiffness_static(m, A, tensor=True, terms=(12, 4))
     assert K[0, 0] == pytest.approx(K[1, 1], rel=1e-10)
     assert abs(K[0, 1]) < 1e-12 * K[0, 0]
     assert np.array_equal(K, K.T)

@@ -92,7 +92,17 @@ def test_every_table1_number_of_the_summary_is_on_the_page(results, page):
     assert hashlib.sha256(EXAMPLE.read_bytes()).hexdigest() in page
 
 
-def test_the_checksum_is_the_one_taken_when_the_table_was_read(results, tmp_path):
+@pytest.fixture
+def no_png(monkeypatch):
+    """Pages whose figures are left out of the HTML (the figures are still drawn): encoding
+    them is 80 % of a page's cost and nothing the test that takes this looks at (their
+    embedding is checked on the full page by test_the_page_parses_and_has_one_row_per_sweep)."""
+    from contactres.report import _html
+
+    monkeypatch.setattr(_html, "_png", lambda figure, alt: "")
+
+
+def test_the_checksum_is_the_one_taken_when_the_table_was_read(results, tmp_path, no_png):
     import dataclasses
     import hashlib
 
@@ -131,8 +141,9 @@ def test_a_file_that_changes_while_it_is_read_is_refused(tmp_path):
         contactres.read_sweeps(copy, readers=BUILT_IN.with_reader(growing))
 
 
-def test_the_report_draws_the_curves_of_the_analysis_without_a_model(results, monkeypatch):
+def test_the_report_draws_the_curves_of_the_analysis_without_a_model(results, monkeypatch, no_png):
     # Every loop shape refuses to be evaluated: the page and Fig. 4 draw from Results.curves.
+    # (no_png: the page's figures are still drawn, only their encoding is left out.)
     from contactres.analysis._models import cm_loop, plateau_loop, savkoor_loop
     from contactres.report.figures import figure_sweeps
 
@@ -156,7 +167,7 @@ def test_the_page_is_self_contained_and_small(page):
     assert len(page.encode()) < 2_000_000
 
 
-def test_labels_are_escaped(results):
+def test_labels_are_escaped(results, no_png):
     sweeps = results.sweeps.assign(configuration="<script>alert(1)</script>")
     odd = type(results)(**{**results.__dict__, "sweeps": sweeps})
     text = html_report(odd)
@@ -165,9 +176,19 @@ def test_labels_are_escaped(results):
     assert parse(text).errors == []
 
 
-def test_write_html_is_atomic_and_leaves_no_temporary(results, tmp_path):
+def test_write_html_is_atomic_and_leaves_no_temporary(results, page, tmp_path, monkeypatch):
+    # The page of these results is the module's fixture: the renderer hands it over instead of
+    # drawing its figures again (3 s), so what is tested is the writing, and that it writes
+    # exactly html_report's page of the results it was given.
+    from contactres.report import _html
+
+    def rendered(given):
+        assert given is results
+        return page
+
+    monkeypatch.setattr(_html, "html_report", rendered)
     path = write_html(results, tmp_path / "report.html")
-    assert path.read_text(encoding="utf-8").startswith("<!DOCTYPE html>")
+    assert path.read_text(encoding="utf-8") == page and page.startswith("<!DOCTYPE html>")
     assert [p.name for p in tmp_path.iterdir()] == ["report.html"]
 
 
