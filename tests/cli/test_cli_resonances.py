@@ -83,6 +83,24 @@ def test_afm_invert_refuses_bad_input_in_one_line(afm_table, tmp_path):
     assert r.exit_code == 2
 
 
+def test_afm_and_rum_name_the_stiffness_a_column_holds(afm_table, tmp_path):
+    # The lever's spring constant and the oscillator's stiffness are checked with the contact
+    # stiffness's range; the message names what the column holds, not "the contact stiffness".
+    path, _ = afm_table
+    frame = pd.read_csv(path)
+    frame.loc[0, "k_c_N_per_m"] = -40.0
+    bad = tmp_path / "bad.csv"
+    frame.to_csv(bad, index=False)
+    r = _run("afm", "invert", str(bad), "--out", str(tmp_path / "o.csv"))
+    assert r.exit_code != 0 and "column 'k_c_N_per_m'" in r.output
+    assert "the spring constant of the lever lies in" in r.output
+    assert "contact stiffness" not in r.output
+    rum = tmp_path / "rum.csv"
+    rum.write_text("pixel,f0_Hz,fc_Hz,K_eff_N_per_m\n1,1e6,1.01e6,-1e5\n")
+    r = _run("rum", "invert", str(rum), "--out", str(tmp_path / "r.csv"))
+    assert r.exit_code != 0 and "the effective stiffness of the oscillator lies in" in r.output
+
+
 def test_afm_modulus_beyond_diamond_is_withheld(afm_table, tmp_path):
     path, _ = afm_table
     frame = pd.read_csv(path)

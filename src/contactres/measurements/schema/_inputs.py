@@ -119,10 +119,13 @@ _COUNT = rule(
 # The sweep table
 
 
-def plausible(quantity: str) -> Rule:
+def plausible(quantity: str, name: str | None = None) -> Rule:
     """The rule "a plausible value of ``quantity``" (:data:`contactres.units.QUANTITIES`), its
-    error naming the unit slip the value looks like (nm typed for m, ...)."""
-    text = QUANTITIES[quantity].describe()
+    error naming the unit slip the value looks like (nm typed for m, ...). ``name`` replaces the
+    quantity's name in the message where a column holds another quantity of the same range
+    (a lever's spring constant checked with the contact stiffness's range)."""
+    plain = QUANTITIES[quantity]
+    text = (plain if name is None else replace(plain, name=name)).describe()
 
     def hint(value) -> str:
         slip = unit_slip(quantity, value)
@@ -462,7 +465,9 @@ AFM_TABLE = TableSchema(
             "k_c_N_per_m",
             "N/m",
             "static spring constant at the free end, 3EI/L³",
-            plausible("stiffness"),
+            # The contact stiffness's wide range, not a lever's (<= 1e3 N/m): a RUM-like probe
+            # of 1e6 N/m goes through this table too.
+            plausible("stiffness", "spring constant of the lever"),
         ),
         _col(
             "tip_position",
@@ -503,7 +508,12 @@ RUM_TABLE = TableSchema(
     (
         _col("f0_Hz", "Hz", "free resonance of the oscillator", _FREQ, required=True),
         _col("fc_Hz", "Hz", "contact resonance", _FREQ, required=True),
-        _col("K_eff_N_per_m", "N/m", "effective stiffness (lumped model)", plausible("stiffness")),
+        _col(
+            "K_eff_N_per_m",
+            "N/m",
+            "effective stiffness (lumped model)",
+            plausible("stiffness", "effective stiffness of the oscillator"),
+        ),
         _col("mass_kg", "kg", "mass of the rod (rod model)", interval("kg", 0.0, lo_open=True)),
     ),
 )
