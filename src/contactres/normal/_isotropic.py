@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -124,15 +125,8 @@ _cbrt = getattr(math, "cbrt", _cbrt_pow)
 
 
 class _Draft(Summarised):
-    """A mutable twin of :class:`Contact` (the same instance layout), for :func:`_new_contact`."""
-
-    contact_radius: np.ndarray | float
-    depth: np.ndarray | float
-    mean_pressure: np.ndarray | float
-    peak_pressure: np.ndarray | float
-    stiffness: np.ndarray | float
-    force: np.ndarray | float
-    model: str
+    """A mutable twin of :class:`Contact` (the same instance layout), for :func:`_new_contact`
+    (a draft is typed ``Any`` there: its fields are Contact's)."""
 
 
 def _new_contact(a, depth, mean_p, centre, stiffness, force, model) -> Contact:
@@ -145,7 +139,7 @@ def _new_contact(a, depth, mean_p, centre, stiffness, force, model) -> Contact:
     ``Contact(...)`` builds (equal, frozen, same fields, same ``__dict__``), in a third of the
     time. :func:`hertz` repeats these lines in place: a call is a fifth of its time.
     """
-    c = _Draft()
+    c: Any = _Draft()
     c.contact_radius = a
     c.depth = depth
     c.mean_pressure = mean_p
@@ -153,8 +147,8 @@ def _new_contact(a, depth, mean_p, centre, stiffness, force, model) -> Contact:
     c.stiffness = stiffness
     c.force = force
     c.model = model
-    c.__class__ = Contact  # type: ignore[assignment]
-    return c  # type: ignore[return-value]
+    c.__class__ = Contact
+    return c
 
 
 def _floats(*xs) -> tuple[float, ...] | None:
@@ -378,7 +372,7 @@ def hertz(E_star, radius, force, *, check_validity: bool = True) -> Contact:
             if a <= HERTZ_APPROXIMATE_RATIO * radius or not check_validity:
                 a2 = a * a
                 k = 2.0 * E_star * a
-                new = _Draft()  # as _new_contact
+                new: Any = _Draft()  # as _new_contact
                 new.contact_radius = a
                 new.depth = a2 / radius
                 new.mean_pressure = force / (_PI * a2)
@@ -386,8 +380,8 @@ def hertz(E_star, radius, force, *, check_validity: bool = True) -> Contact:
                 new.stiffness = k
                 new.force = force
                 new.model = "hertz"
-                new.__class__ = Contact  # type: ignore[assignment]
-                return new  # type: ignore[return-value]
+                new.__class__ = Contact
+                return new
     else:
         floats = _floats(E_star, radius, force)
         if floats is not None:  # ints, numpy floats: jkr's fast path below
