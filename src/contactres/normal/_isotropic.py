@@ -23,6 +23,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 
@@ -92,129 +93,72 @@ def contact_facts(c) -> list[tuple[str, str]]:
 
 
 # The fast paths below (issue 31: a scalar call cost ~100 µs of numpy overhead, 100x the peers';
-# an array call made a dozen temporaries) repeat the general path's formulas operation by
-# operation, so their results are the same to the last bit (tests/normal/test_isotropic_fast.py).
-# Scalars: plain Python numbers only. Arrays: a float array of forces with scalar E*, R and γ.
-# Anything else, and any input that fails a check, takes the general path, which raises the
-# usual error.
+# an array call made a dozen temporaries). Scalars: plain Python floats (ints and numpy floats are
+# converted first), in the closed forms of the functions' docstrings, each input checked by a
+# float comparison; their results agree with the general path's to a few ulp (to a few ulp of
+# the larger term where a JKR quantity is a difference), not to the last bit: the cube root is
+# math.cbrt, not numpy's (tests/normal/test_isotropic_fast.py). Arrays: a float array of forces
+# with scalar E*, R and γ, the general path's operations in place, to the last bit. Anything
+# else, and any input that fails a check, takes the general path, which raises the usual error.
 _PLAIN = frozenset((float, int, np.float64))
 _INF = math.inf
 _PI = math.pi
 _sqrt = math.sqrt
-# numpy's cbrt, not math.cbrt: the two round differently in the last bit.
-_np_cbrt = np.cbrt
-_object_new = object.__new__
-_object_setattr = object.__setattr__
+
+
+def _cbrt_pow(x: float) -> float:
+    """Cube root of a float for Python 3.10, which has no :func:`math.cbrt`.
+
+    ``x ** (1/3)`` is off by up to a few ulp (1/3 is not a float: the error grows with
+    ``|ln x|``); one Newton step y − (y − x/y²)/3 brings it within about one ulp of the true
+    root (tests/normal/test_isotropic_fast.py checks both against a 40-digit reference). The
+    fast paths call it with 0 < x < inf only; other values take numpy's cube root.
+    """
+    if not 0.0 < x < _INF:
+        return float(np.cbrt(x))
+    y = x ** (1.0 / 3.0)
+    return y - (y - x / (y * y)) / 3.0
+
+
+# math.cbrt (Python >= 3.11) costs a third of numpy's cube root of a Python float.
+_cbrt = getattr(math, "cbrt", _cbrt_pow)
+
+
+class _Draft(Summarised):
+    """A mutable twin of :class:`Contact` (the same instance layout), for :func:`_new_contact`
+    (a draft is typed ``Any`` there: its fields are Contact's)."""
 
 
 def _new_contact(a, depth, mean_p, centre, stiffness, force, model) -> Contact:
     """A :class:`Contact`, built without the frozen dataclass's ``__init__``.
 
     That ``__init__`` sets the seven fields one by one through ``object.__setattr__`` and costs
-    more than the arithmetic of a scalar contact; the instance built here is the same (equal,
-    frozen, same fields). The fields go straight into the new instance's ``__dict__`` (reading
-    ``__dict__`` is allowed on a frozen instance; only attribute assignment is blocked): a quarter
-    cheaper than building a dict and assigning it as ``__dict__``.
+    more than the arithmetic of a scalar contact. Here the fields are set on a :class:`_Draft`
+    (plain attribute stores, the interpreter's fastest) whose class is then made
+    :class:`Contact` (allowed between classes of the same layout): the same instance as
+    ``Contact(...)`` builds (equal, frozen, same fields, same ``__dict__``), in a third of the
+    time. :func:`hertz` repeats these lines in place: a call is a fifth of its time.
     """
-    c = _object_new(Contact)
-    fields = c.__dict__
-    fields["contact_radius"] = a
-    fields["depth"] = depth
-    fields["mean_pressure"] = mean_p
-    fields["peak_pressure"] = centre
-    fields["stiffness"] = stiffness
-    fields["force"] = force
-    fields["model"] = model
+    c: Any = _Draft()
+    c.contact_radius = a
+    c.depth = depth
+    c.mean_pressure = mean_p
+    c.peak_pressure = centre
+    c.stiffness = stiffness
+    c.force = force
+    c.model = model
+    c.__class__ = Contact
     return c
 
 
-def _scalar_hertz(E_star, R, F, model) -> Contact | None:
-    """:func:`hertz` (F > 0) for Python numbers, or None (another type, an input fails a check,
-    F <= 0, or a float exception where numpy would give inf or nan): the caller then takes the
-    general path.
-
-    The operations of :func:`jkr_contact_radius` and :func:`_jkr_state` with γ = 0, in the same
-    order; the adhesive terms are exact zeros there and are left out (F + 0 + 0 = F for F > 0,
-    x − 0 = x). Python floats, the common case, skip the conversions.
-    """
-    if type(E_star) is not float or type(R) is not float or type(F) is not float:
-        if not (type(E_star) in _PLAIN and type(R) in _PLAIN and type(F) in _PLAIN):
-            return None
-        E_star, R, F = float(E_star), float(R), float(F)
-    if not (0.0 < E_star < _INF and 0.0 < R < _INF and 0.0 < F < _INF):
+def _floats(*xs) -> tuple[float, ...] | None:
+    """``xs`` as Python floats when each is an int, a float or a numpy float (and one is not a
+    Python float), else None."""
+    if all(type(x) is float for x in xs) or not all(type(x) in _PLAIN for x in xs):
         return None
     try:
-        a = float(_np_cbrt(3.0 * R / (4.0 * E_star) * F))
-        a2 = a * a  # the general path squares a 0-d array here (np.square: a * a)
-        stiffness = 4.0 * E_star * a2 / R / (2.0 * a / R)
-    except ZeroDivisionError:  # a underflowed to 0: numpy's 0/0 (nan), which np.where drops
-        return None
-    centre = 2.0 * E_star * a / (_PI * R)
-    return _new_contact(a, a2 / R, F / (_PI * a2), centre, stiffness, F, model)
-
-
-def _scalar_jkr(E_star, R, F, gamma, model) -> Contact | None:
-    """:func:`jkr` for Python numbers, or None (another type, an input fails a check, a zero-area
-    contact, or a float exception where numpy would give inf or nan): the caller then takes the
-    general path.
-
-    The operations of :func:`jkr_contact_radius` and :func:`_jkr_state` in the same order; γ = 0
-    is Hertz (:func:`_scalar_hertz`).
-    """
-    if type(gamma) is not float:
-        if type(gamma) not in _PLAIN:
-            return None
-        gamma = float(gamma)
-    if gamma == 0.0:
-        return _scalar_hertz(E_star, R, F, model)
-    if type(E_star) is not float or type(R) is not float or type(F) is not float:
-        if not (type(E_star) in _PLAIN and type(R) in _PLAIN and type(F) in _PLAIN):
-            return None
-        E_star, R, F = float(E_star), float(R), float(F)
-    if not (0.0 < E_star < _INF and 0.0 < R < _INF and 0.0 < gamma < _INF and -_INF < F < _INF):
-        return None
-    try:
-        b = 6.0 * _PI * gamma * R
-        disc = 12.0 * _PI * gamma * R * F + b**2
-        if not disc >= 0.0:
-            return None
-        a = float(_np_cbrt(3.0 * R / (4.0 * E_star) * (F + b + _sqrt(disc))))
-        if not a > 0.0:
-            return None
-        a2 = a * a
-        depth = a2 / R - _sqrt(4.0 * _PI * gamma * a / E_star)
-        dF_da = 4.0 * E_star * a2 / R - 6.0 * _sqrt(_PI * gamma * E_star * a)
-        dd_da = 2.0 * a / R - _sqrt(_PI * gamma / (E_star * a))
-        centre = 2.0 * E_star * a / (_PI * R) - _sqrt(4.0 * gamma * E_star / (_PI * a))
-        return _new_contact(a, depth, F / (_PI * a2), centre, dF_da / dd_da, F, model)
-    except (ZeroDivisionError, OverflowError, ValueError):
-        return None
-
-
-def _scalar_dmt(E_star, R, F, gamma) -> Contact | None:
-    """:func:`dmt` for Python numbers, or None (as :func:`_scalar_jkr`); the same operations."""
-    if type(E_star) is not float or type(R) is not float or type(F) is not float:
-        if not (type(E_star) in _PLAIN and type(R) in _PLAIN and type(F) in _PLAIN):
-            return None
-        E_star, R, F = float(E_star), float(R), float(F)
-    if type(gamma) is not float:
-        if type(gamma) not in _PLAIN:
-            return None
-        gamma = float(gamma)
-    if not (0.0 < E_star < _INF and 0.0 < R < _INF and 0.0 <= gamma < _INF and -_INF < F < _INF):
-        return None
-    try:
-        load = F + 4.0 * _PI * gamma * R
-        if not load > 0.0:
-            return None  # below pull-off (an error) or at it (the zero-area branch)
-        a = float(_np_cbrt(3.0 * R * load / (4.0 * E_star)))
-        if not a > 0.0:
-            return None
-        # a**2, not a * a: the general path squares a numpy scalar here, which rounds as pow.
-        a2 = a**2
-        centre = 3.0 * load / (2.0 * _PI * a2)
-        return _new_contact(a, a2 / R, F / (_PI * a2), centre, 2.0 * E_star * a, F, "dmt")
-    except (ZeroDivisionError, OverflowError, ValueError):
+        return tuple(float(x) for x in xs)
+    except OverflowError:  # an int beyond the floats: the general path says so
         return None
 
 
@@ -417,12 +361,31 @@ def hertz(E_star, radius, force, *, check_validity: bool = True) -> Contact:
     >>> bool(np.isclose(c.depth, c.contact_radius**2 / 5e-6, atol=0))
     True
     """
-    c = _scalar_hertz(E_star, radius, force, "hertz")  # None unless Python numbers
-    if c is not None:
-        # One multiplication and a compare on the fast path (issue 31's scalar timing).
-        if c.contact_radius <= HERTZ_APPROXIMATE_RATIO * radius or not check_validity:
-            return c
-        return checked(c, radius, "hertz")
+    if type(E_star) is float and type(radius) is float and type(force) is float:
+        # The fast path (see above), inline: a call costs a fifth of it. x in (0, inf) with R,
+        # F > 0 holds only for finite inputs and E* > 0 (an infinite E* gives x = 0 or NaN, an
+        # infinite R or F x = inf or NaN; NaN fails every comparison); F = 0, x out of range
+        # (an overflow or underflow of valid inputs) and a/R > 0.1 take the general path.
+        x = 0.75 * force * radius / E_star
+        if 0.0 < force and 0.0 < radius and 0.0 < x < _INF:
+            a = _cbrt(x)
+            if a <= HERTZ_APPROXIMATE_RATIO * radius or not check_validity:
+                a2 = a * a
+                k = 2.0 * E_star * a
+                new: Any = _Draft()  # as _new_contact
+                new.contact_radius = a
+                new.depth = a2 / radius
+                new.mean_pressure = force / (_PI * a2)
+                new.peak_pressure = k / (_PI * radius)  # = 3F/(2πa²)
+                new.stiffness = k
+                new.force = force
+                new.model = "hertz"
+                new.__class__ = Contact
+                return new
+    else:
+        floats = _floats(E_star, radius, force)
+        if floats is not None:  # ints, numpy floats: jkr's fast path below
+            E_star, radius, force = floats
     c = jkr(E_star, radius, force, 0.0, _model="hertz")
     return checked(c, radius, "hertz") if check_validity else c
 
@@ -456,12 +419,12 @@ def jkr_contact_radius(E_star, radius, force, gamma):
         and (0.0 < E_star < _INF and 0.0 < radius < _INF)
         and (0.0 <= gamma < _INF and -_INF < force < _INF)
     ):
-        # Python floats: the same operations without numpy's per-call overhead (see above).
+        # Python numbers: jkr's fast path's operations (see above), the same contact radius.
         E, R, F, g = float(E_star), float(radius), float(force), float(gamma)
         b = 6.0 * _PI * g * R
-        disc = 12.0 * _PI * g * R * F + b**2
+        disc = b * b + 2.0 * b * F
         if disc >= 0.0 and not (g == 0.0 and F < 0.0):
-            return float(_np_cbrt(3.0 * R / (4.0 * E) * (F + b + _sqrt(disc))))
+            return _cbrt(0.75 * R / E * (F + b + _sqrt(disc)))
     E_star = _positive("E_star", E_star)
     R = _positive("radius", radius)
     gamma = _nonnegative("gamma", gamma)
@@ -537,9 +500,34 @@ def jkr(E_star, radius, force, gamma, *, _model: str = "jkr") -> Contact:
     ...                 hertz(E_star, 5e-6, 1e-3).contact_radius, atol=0))
     True
     """
-    c = _scalar_jkr(E_star, radius, force, gamma, _model)  # None unless Python numbers
-    if c is not None:
-        return c
+    E, R, F = E_star, radius, force
+    if type(E) is float and type(R) is float and type(F) is float and type(gamma) is float:
+        # The fast path (see above). Checks as in hertz (an infinite γ gives b = inf); the
+        # discriminant b² + 2bF = 12πγRF + (6πγR)² >= 0 is F >= -3πγR (F = NaN fails), and
+        # a > 0 rules out F <= 0 without adhesion, an error or the zero-area point.
+        b = 6.0 * _PI * gamma * R
+        disc = b * b + 2.0 * b * F
+        if 0.0 < E and 0.0 < R and 0.0 <= gamma and disc >= 0.0:
+            x = 0.75 * R / E * (F + b + _sqrt(disc))
+            if 0.0 < x < _INF:
+                a = _cbrt(x)
+                # One square root: q = √(πγa/E*) gives √(4πγa/E*) = 2q, √(πγE*a) = E*q,
+                # √(πγ/(E*a)) = q/a and √(4γE*/(πa)) = 2E*q/(πa); u = a²/R.
+                u = a * a / R
+                q = _sqrt(_PI * gamma * a / E)
+                try:
+                    # dF/dδ = (dF/da)/(dδ/da) = 2E*(2u - 3q) / ((2u - q)/a)
+                    k = 2.0 * E * a * (2.0 * u - 3.0 * q) / (2.0 * u - q)
+                    return _new_contact(
+                        a, u - 2.0 * q, F / (_PI * a * a), 2.0 * E / _PI * (a / R - q / a),
+                        k, F, _model,
+                    )  # fmt: skip
+                except ZeroDivisionError:  # u = q = 0 (a²/R underflowed, γ = 0): numpy's nan
+                    pass
+    else:
+        floats = _floats(E_star, radius, force, gamma)
+        if floats is not None:
+            return jkr(*floats, _model=_model)
     E_star = _positive("E_star", E_star)
     R = _positive("radius", radius)
     gamma = _nonnegative("gamma", gamma)
@@ -617,9 +605,22 @@ def dmt(E_star, radius, force, gamma) -> Contact:
     >>> bool(np.isclose(c.contact_radius, a_hertz, atol=0))
     True
     """
-    c = _scalar_dmt(E_star, radius, force, gamma)  # None unless Python numbers
-    if c is not None:
-        return c
+    E, R, F = E_star, radius, force
+    if type(E) is float and type(R) is float and type(F) is float and type(gamma) is float:
+        # The fast path (see above): x in (0, inf) with E*, R > 0 and γ >= 0 holds only for
+        # finite inputs (as in hertz) and a load above the pull-off force.
+        load = F + 4.0 * _PI * gamma * R
+        x = 0.75 * load * R / E
+        if 0.0 < E and 0.0 < R and 0.0 <= gamma and 0.0 < x < _INF:
+            a = _cbrt(x)
+            a2 = a * a
+            return _new_contact(
+                a, a2 / R, F / (_PI * a2), 1.5 * load / (_PI * a2), 2.0 * E * a, F, "dmt"
+            )
+    else:
+        floats = _floats(E_star, radius, force, gamma)
+        if floats is not None:
+            return dmt(*floats)
     E_star = _positive("E_star", E_star)
     R = _positive("radius", radius)
     gamma = _nonnegative("gamma", gamma)
