@@ -306,12 +306,13 @@ class _SharedWaves:
         self.static = waves_at(st, theta, [0.0]) if len(dynamic) < len(stacks) else None
         edges = np.linspace(0.0, 1.0, ARC_PANELS + 1)
         tau, wt = gauss_legendre(edges[:-1, None], edges[1:, None], res.n_panel)
-        self.tau, self.w_tau = tau.ravel(), wt.ravel()
+        # The shared arc's nodes z(τ) and weights z'(τ) dτ (s = S₁ z, ds = S₁ z' dτ).
+        self.z = arc_fraction(tau.ravel())
+        self.dz = (wt * (1 + 1j * ARC_LIFT * np.pi * np.cos(np.pi * tau))).ravel()
         self.arc = None
         if dynamic:
             # x = ω²/η² on the arc s = S₁ z(τ): 1/(p₁ z)², the same at every frequency.
-            z = arc_fraction(self.tau)
-            self.arc = waves_at(st, theta, 1 / (st.pole_slowness * z) ** 2)
+            self.arc = waves_at(st, theta, 1 / (st.pole_slowness * self.z) ** 2)
 
     def static_at(self, n: int) -> StackWaves:
         """The static waves (x = 0) on ``n`` nodes (statics: the same at every η)."""
@@ -361,9 +362,7 @@ def _head(shared: _SharedWaves, st: Stack, a: float, res: PunchResolution, s0: f
     lift = min(ARC_LIFT * s1, _MAX_LIFT)
     if lift == ARC_LIFT * s1:
         # The arc of every frequency with this lift is one arc in the slowness (shared waves).
-        tau = shared.tau
-        nodes = s1 * arc_fraction(tau)
-        weights = s1 * shared.w_tau * (1 + 1j * ARC_LIFT * np.pi * np.cos(np.pi * tau))
+        nodes, weights = s1 * shared.z, s1 * shared.dz
         return nodes, weights, shared.arc
     n_pan = max(ARC_PANELS, math.ceil(s1 / lift))
     edges = np.linspace(0.0, s1, n_pan + 1, dtype=np.float64)
