@@ -63,13 +63,18 @@ def arc_fraction(tau: np.ndarray) -> np.ndarray:
     return tau + 1j * ARC_LIFT * np.sin(np.pi * tau)
 
 
+def _barycentric(n: int) -> tuple[np.ndarray, np.ndarray]:
+    """The n Chebyshev points of the first kind cos(π (j + 1/2)/n) and their barycentric
+    weights (−1)^j sin(π (2j + 1)/(2n)) (Berrut and Trefethen, SIAM Rev. 46, 501 (2004))."""
+    j = np.arange(n)
+    return np.cos(np.pi * (j + 0.5) / n), (-1.0) ** j * np.sin((2 * j + 1) * np.pi / (2 * n))
+
+
 def chebyshev_matrix(n: int, x: np.ndarray) -> np.ndarray:
     """B (len(x), n): values at ``x`` (in [−1, 1]) of the polynomial through n samples at the
     Chebyshev points of the first kind cos(π (j + 1/2)/n), j = 0..n−1 (barycentric formula,
     exact at the points)."""
-    xc = np.cos(np.pi * (np.arange(n) + 0.5) / n)
-    j = np.arange(n)
-    w = (-1.0) ** j * np.sin((2 * j + 1) * np.pi / (2 * n))
+    xc, w = _barycentric(n)
     d = x[:, None] - xc[None, :]
     # A node on a sample point makes its row's sum infinite: only those rows (rare) are
     # replaced by the sample's unit row, not every entry tested. In place, and one division
@@ -91,10 +96,7 @@ def chebyshev_values(x: np.ndarray, samples: np.ndarray) -> np.ndarray:
     w_j/(x − x_j); exact at the points). The values of :func:`chebyshev_matrix` applied row by
     row, without forming the normalised matrix (one division per node instead of one per
     entry; the same to round-off)."""
-    n = samples.shape[1]
-    xc = np.cos(np.pi * (np.arange(n) + 0.5) / n)
-    j = np.arange(n)
-    w = (-1.0) ** j * np.sin((2 * j + 1) * np.pi / (2 * n))
+    xc, w = _barycentric(samples.shape[1])
     d = x[:, None] - xc[None, :]
     with np.errstate(divide="ignore", invalid="ignore"):
         c = w[None, :] / d
