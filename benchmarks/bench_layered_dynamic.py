@@ -178,6 +178,35 @@ faults per curve), 250 nm 49.5 ms (3.6x; 2300-3700 faults); with glibc's heap ne
 faults) 8.3 ms and 45.5 ms (5.5x): the faults are now a larger share of the homogeneous curve
 (~40 %) than of the layered one (~8 %).
 
+Issue 26's ninth pass: a film that is its own reference has no static shift (zero: its two static
+solutions, ~2.5 ms of the curve, skipped), an isotropic material's slowest bulk wave (the shear
+wave) and axial symmetry come in closed form (the direction search and rotation test cost ~0.6 ms
+per material), Δg is interpolated onto the nodes by the barycentric sums without the normalised
+matrix, and the shared arc's nodes and weights are formed once per stack; results moved by
+<= 4.7e-15 (normal curves), <= 3.4e-15 (tangential). Instructions per curve (cachegrind, one
+thread; calls 3-4 less calls 1-2 of one process, over two: the first call's count scatters by
+~100 M, later calls' by ~2 M), main / this tree: homogeneous 76 / 74 M; 250 nm 340 M (4.5x) ->
+326 M (4.3x); 1 µm 253 M (3.3x) -> 237 M (3.1x). CPU with one BLAS thread, main / this tree
+alternating three times, best of 9 each (machine at load ~9 on 2 cores: the homogeneous curve
+itself scattered 13-18 ms): 250 nm 58-61 / 54-59 ms (3.3x-4.4x / 3.2x-4.2x), 1 µm 35-37 / 34-35
+ms (2.0x-2.5x / 2.0x-2.7x): the change is within this scatter. The 250 nm target is still missed.
+Measured, not kept: fewer Gauss nodes on the points' own geometric panels below s = 32/3 (8
+instead of 16) moved the 250 nm curve by 4e-9 and a 50 nm one by 1e-8 against the doubled
+resolution (8e-11 and 9e-11 with 16): j_p j_q ~ s^{p+q} up to p + q = 68 there needs them; 8 or
+6 Chebyshev samples of Δg per panel instead of 12 moved the 250 nm and 1 µm curves by 4e-9-6e-9
+or 3e-7-5e-7. Floor, re-measured (CPU,
+one thread, this tree, ~59 ms at this load): the film's part (table 5 ms, far field 4 ms, exact
+Galerkin at 10, 13 and 18 radial terms 13 ms, solves 1 ms) ~23 ms, ~1.5x the homogeneous curve;
+the correction ~36 ms (nodes 23 ms: layer recursion on ~9700 samples (2576 arc, 6924 real, 236
+probes) 8 ms, interpolation of the waves 3 ms, of Δg onto the ~16000 nodes 6 ms, probes and panel
+set-up the rest; Bessel functions of the nodes 5 ms; correction integrals 3 ms; the rest per
+point set-up). 3x needs the correction at ~1.5x the homogeneous curve, i.e. ~35 % less, where no
+step is above ~13 % of the curve and the node counts are set by error bounds (Gauss on the
+Bessel products, Chebyshev on Δg near the branch points: both measured above). What is left is
+numpy's per-call cost over 41 points (~40 calls per point in the node assembly alone) and
+copying (memcpy ~18 % of the curve's instructions): the assembly and the interpolations batched
+over the points in groups (as the real samples are) is the next step.
+
 Run: ``.venv/bin/python benchmarks/bench_layered_dynamic.py`` (exit status 1 if a target is
 missed; a few minutes on a busy machine).
 """

@@ -15,7 +15,12 @@ from contactres import LayeredMaterial, Material
 from contactres.dynamic import _layered_path, _layered_waves
 from contactres.dynamic._layered_path import film_reference, stack_at, stack_of
 from contactres.dynamic._layered_punch import layered_punch_stiffness
-from contactres.dynamic._layered_waves import chebyshev_matrix, slowness_table, waves_at
+from contactres.dynamic._layered_waves import (
+    chebyshev_matrix,
+    chebyshev_values,
+    slowness_table,
+    waves_at,
+)
 from contactres.layered import stack_compliance
 
 QUARTZ = Material.isotropic(72e9, 0.17, density=2650.0, name="quartz")
@@ -127,6 +132,21 @@ def test_chebyshev_matrix_interpolates_polynomials_exactly():
     x = np.array([-1.0, -0.3, xc[2], 0.77, 1.0])
     got = chebyshev_matrix(n, x) @ np.polynomial.polynomial.polyval(xc, coef)
     np.testing.assert_allclose(got, np.polynomial.polynomial.polyval(x, coef), rtol=1e-13)
+
+
+def test_chebyshev_values_interpolate_each_nodes_own_polynomial():
+    """Each node's value is that of the polynomial through its own row of samples (degree
+    n − 1, complex, with a trailing axis), a node on a sample point included."""
+    n = 7
+    xc = np.cos(np.pi * (np.arange(n) + 0.5) / n)
+    x = np.array([-1.0, -0.41, xc[4], 0.2, 1.0])
+    coef = np.arange(1.0, 2 * n * x.size + 1).reshape(x.size, 2, n) * (1 - 0.5j)
+    poly = np.polynomial.polynomial.polyval
+    # Node k's samples (n, 2) and value (2,) of the polynomials coef[k, r] (r = 0, 1).
+    samples = np.stack([[[poly(v, c) for c in ck] for v in xc] for ck in coef])
+    got = chebyshev_values(x, samples)
+    want = np.array([[poly(v, c) for c in ck] for v, ck in zip(x, coef, strict=True)])
+    np.testing.assert_allclose(got, want, rtol=1e-13)
 
 
 @pytest.mark.parametrize("eta_h", [0.5, np.inf])

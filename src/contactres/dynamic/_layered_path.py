@@ -28,6 +28,8 @@ from ._layered_waves import (
     StackWaves,
     arc_fraction,
     chebyshev_matrix,
+    chebyshev_values,
+    is_isotropic,
     slowness_table,
     waves_at,
 )
@@ -180,6 +182,9 @@ class Stack:
 
     def static_shift(self, theta: np.ndarray) -> np.ndarray:
         """g∞_film − g∞_ref (θ): the static kernels of the film and of its reference."""
+        if np.array_equal(self.reference, self.tensors[0]):
+            # A film that is its own reference: zero (the two ~1 ms static solutions skipped).
+            return np.zeros(theta.shape + ((2, 2) if self.inplane else ()), dtype=complex)
         return self._block([self.reference], theta) - self._block(self.tensors[:1], theta)
 
 
@@ -229,7 +234,13 @@ def _frequency_free(mats, thicknesses, film: Material, q: float, inplane: bool, 
             # The shear slowness √(ρ/C44) (k_s = ω × it), the largest bulk slowness along the
             # surface and the symmetry about the normal of one material, s/m.
             slow = math.sqrt((m.density or 0.0) / shear_reference(m))
-            known[key] = (slow, slow * max_slowness(m), is_axisymmetric([m]))
+            C = np.asarray(m.C)
+            if is_isotropic(voigt_to_tensor(C.real)) and C[0, 0].real >= C[3, 3].real:
+                # Isotropic: the shear wave is the slowest bulk wave in every direction and
+                # the material is axisymmetric (the general search and test cost ~0.6 ms).
+                known[key] = (slow, slow, True)
+            else:
+                known[key] = (slow, slow * max_slowness(m), is_axisymmetric([m]))
         props.append(known[key])
 
     def tensor(m, factor=1.0):
@@ -295,12 +306,13 @@ class _SharedWaves:
         self.static = waves_at(st, theta, [0.0]) if len(dynamic) < len(stacks) else None
         edges = np.linspace(0.0, 1.0, ARC_PANELS + 1)
         tau, wt = gauss_legendre(edges[:-1, None], edges[1:, None], res.n_panel)
-        self.tau, self.w_tau = tau.ravel(), wt.ravel()
+        # The shared arc's nodes z(τ) and weights z'(τ) dτ (s = S₁ z, ds = S₁ z' dτ).
+        self.z = arc_fraction(tau.ravel())
+        self.dz = (wt * (1 + 1j * ARC_LIFT * np.pi * np.cos(np.pi * tau))).ravel()
         self.arc = None
         if dynamic:
             # x = ω²/η² on the arc s = S₁ z(τ): 1/(p₁ z)², the same at every frequency.
-            z = arc_fraction(self.tau)
-            self.arc = waves_at(st, theta, 1 / (st.pole_slowness * z) ** 2)
+            self.arc = waves_at(st, theta, 1 / (st.pole_slowness * self.z) ** 2)
 
     def static_at(self, n: int) -> StackWaves:
         """The static waves (x = 0) on ``n`` nodes (statics: the same at every η)."""
@@ -350,9 +362,7 @@ def _head(shared: _SharedWaves, st: Stack, a: float, res: PunchResolution, s0: f
     lift = min(ARC_LIFT * s1, _MAX_LIFT)
     if lift == ARC_LIFT * s1:
         # The arc of every frequency with this lift is one arc in the slowness (shared waves).
-        tau = shared.tau
-        nodes = s1 * arc_fraction(tau)
-        weights = s1 * shared.w_tau * (1 + 1j * ARC_LIFT * np.pi * np.cos(np.pi * tau))
+        nodes, weights = s1 * shared.z, s1 * shared.dz
         return nodes, weights, shared.arc
     n_pan = max(ARC_PANELS, math.ceil(s1 / lift))
     edges = np.linspace(0.0, s1, n_pan + 1, dtype=np.float64)
@@ -566,8 +576,7 @@ def _assemble_nodes(res: PunchResolution, rule, points, shift) -> list:
         x = (2 * np.log(where) - u[panel] - u[panel + 1]) / (u[panel + 1] - u[panel])
         # One point at a time: its arrays stay small (one product over the ~30000 nodes of
         # 41 points allocates and faults in fresh pages, and costs more CPU than it saves).
-        B = chebyshev_matrix(res.n_cheb, x)
-        g = np.einsum("nc,nc...->n...", B, cheb[panel]).reshape(where.size, *values.shape[1:])
+        g = chebyshev_values(x, cheb[panel]).reshape(where.size, *values.shape[1:])
         out.append(
             CorrectionNodes(
                 s=np.concatenate([head[0], t.astype(complex)]),

@@ -39,7 +39,14 @@ import numpy as np
 from ..halfspace import inv3, mm
 from ..layered import compliance_factors, layer_waves, substrate_impedance
 
-__all__ = ["StackWaves", "arc_fraction", "chebyshev_matrix", "waves_at"]
+__all__ = [
+    "StackWaves",
+    "arc_fraction",
+    "chebyshev_matrix",
+    "chebyshev_values",
+    "is_isotropic",
+    "waves_at",
+]
 
 # Chebyshev points of the slowness table on y ∈ [0, 1], and the largest relative difference
 # between table and direct solutions (at points between the nodes) that lets the table serve.
@@ -56,23 +63,50 @@ def arc_fraction(tau: np.ndarray) -> np.ndarray:
     return tau + 1j * ARC_LIFT * np.sin(np.pi * tau)
 
 
+def _barycentric(n: int) -> tuple[np.ndarray, np.ndarray]:
+    """The n Chebyshev points of the first kind cos(π (j + 1/2)/n) and their barycentric
+    weights (−1)^j sin(π (2j + 1)/(2n)) (Berrut and Trefethen, SIAM Rev. 46, 501 (2004))."""
+    j = np.arange(n)
+    return np.cos(np.pi * (j + 0.5) / n), (-1.0) ** j * np.sin((2 * j + 1) * np.pi / (2 * n))
+
+
 def chebyshev_matrix(n: int, x: np.ndarray) -> np.ndarray:
     """B (len(x), n): values at ``x`` (in [−1, 1]) of the polynomial through n samples at the
     Chebyshev points of the first kind cos(π (j + 1/2)/n), j = 0..n−1 (barycentric formula,
     exact at the points)."""
-    xc = np.cos(np.pi * (np.arange(n) + 0.5) / n)
-    j = np.arange(n)
-    w = (-1.0) ** j * np.sin((2 * j + 1) * np.pi / (2 * n))
+    xc, w = _barycentric(n)
     d = x[:, None] - xc[None, :]
     # A node on a sample point makes its row's sum infinite: only those rows (rare) are
-    # replaced by the sample's unit row, not every entry tested.
+    # replaced by the sample's unit row, not every entry tested. In place, and one division
+    # per row (the table's matrix has ~10000 rows of 28 per call).
     with np.errstate(divide="ignore", invalid="ignore"):
-        c = w[None, :] / d
-        total = np.sum(c, axis=1)
-        out = c / total[:, None]
+        out = np.divide(w[None, :], d)
+        total = np.sum(out, axis=1)
+        out *= (1 / total)[:, None]
     hit = ~np.isfinite(total)
     if np.any(hit):
         out[hit] = (d[hit] == 0).astype(float)
+    return out
+
+
+def chebyshev_values(x: np.ndarray, samples: np.ndarray) -> np.ndarray:
+    """Values at ``x`` (m,) (in [−1, 1]) of the polynomials through the rows of ``samples``
+    (m, n, ...), node k's own row: row k's n samples at the Chebyshev points of the first kind
+    cos(π (j + 1/2)/n) (the second barycentric formula, Σ_j c_j f_j / Σ_j c_j with c_j =
+    w_j/(x − x_j); exact at the points). The values of :func:`chebyshev_matrix` applied row by
+    row, without forming the normalised matrix (one division per node instead of one per
+    entry; the same to round-off)."""
+    xc, w = _barycentric(samples.shape[1])
+    d = x[:, None] - xc[None, :]
+    with np.errstate(divide="ignore", invalid="ignore"):
+        c = w[None, :] / d
+        total = np.sum(c, axis=1)
+        out = np.einsum("mn,mn...->m...", c, samples)
+        out /= total.reshape(-1, *([1] * (out.ndim - 1)))
+    # A node on a sample point (rare): that sample itself.
+    hit = ~np.isfinite(total)
+    if np.any(hit):
+        out[hit] = samples[hit, np.argmax(d[hit] == 0, axis=1)]
     return out
 
 
@@ -173,7 +207,7 @@ class StackWaves:
         closed: list[np.ndarray | None] = [None] * len(layers)
         if theta is not None:
             th = np.tile(np.asarray(theta, dtype=float), n)
-            closed = [th if _is_isotropic(c) else None for c in stack.tensors[: len(layers)]]
+            closed = [th if is_isotropic(c) else None for c in stack.tensors[: len(layers)]]
         # H = P Q⁻¹ (compliance_factors; P = I without layers) and H_ref = reference⁻¹: only
         # the entries the kernel needs (H_33, or the in-plane block).
         with np.errstate(all="ignore"):
@@ -193,7 +227,7 @@ class StackWaves:
         return out.reshape(n, nth) - shift[None]
 
 
-def _is_isotropic(c: np.ndarray) -> bool:
+def is_isotropic(c: np.ndarray) -> bool:
     """True if the tensor c (3, 3, 3, 3) is isotropic, c_ijkl = λ δ_ij δ_kl + μ (δ_ik δ_jl +
     δ_il δ_jk) to the round-off of a rotated tensor (complex moduli allowed)."""
     d = np.eye(3)
