@@ -96,7 +96,7 @@ def test_the_closed_form_loop_shape_is_the_quadrature_of_the_loop(c):
     # nodes (~1e-14): x from 0 to 30 past the stick length c, dense around full sliding
     # (x - c = 3/2), at small x (c = 0) and small excess x - c down to 1e-8 of x, and below c.
     from contactres import CattaneoMindlinLoop, PlateauLoop, loop_stiffness
-    from contactres.analysis._models.cm_loop import loop_shape
+    from contactres.analysis._models.cm_loop import cm_shape, loop_shape
 
     side = np.geomspace(1e-9, 0.5, 41)
     y = np.unique(np.concatenate([[0.0, 1e-12, 1e-5, 1e-3], np.linspace(0.0, 30.0, 601),
@@ -110,6 +110,13 @@ def test_the_closed_form_loop_shape_is_the_quadrature_of_the_loop(c):
     g1, g2 = loop_shape(x, c)
     np.testing.assert_allclose(g1, reference.real, rtol=0, atol=1e-12)
     np.testing.assert_allclose(g2, reference.imag, rtol=0, atol=1e-12)
+    if c == 0.0:  # the plain loop's own series, and both sides of its bounds m = 7/8
+        bounds = np.array([1.3125, 1.5 * 8.0 / 7.0])[:, None] + np.linspace(-1e-3, 1e-3, 21)
+        x = np.concatenate([x, bounds.ravel()])
+        reference = loop_stiffness(loop, x, nodes=48)
+        g1, g2 = cm_shape(x)
+        np.testing.assert_allclose(g1, reference.real, rtol=0, atol=1e-12)
+        np.testing.assert_allclose(g2, reference.imag, rtol=0, atol=1e-12)
     # Closer to the onset of slip, 2 arcsin √(c/x) near π (the closed form's) loses digits:
     # K′/κ is then 1 within ~1e-9 (1 - K′/κ ~ (x - c)^{5/2}), still held to 1e-9.
     x = c * (1.0 + np.array([1e-15, 1e-12, 1e-10]))
@@ -119,16 +126,19 @@ def test_the_closed_form_loop_shape_is_the_quadrature_of_the_loop(c):
 def test_the_closed_form_loop_shape_has_the_small_amplitude_limits():
     # Mindlin's limits at small x: 1 - K′/κ = x/6 and (K″ - ωξ)/κ = 2x/(9π) to first order
     # (paper 2, Eqs. 4-6 with F = 1 - (1 - 2d/3)^{3/2}); x = 0 and below 1e-100: exactly 1, 0.
-    from contactres.analysis._models.cm_loop import loop_shape
+    from contactres.analysis._models.cm_loop import cm_shape, loop_shape
 
     x = np.array([1e-300, 1e-30, 1e-12, 1e-8])
-    g1, g2 = loop_shape(x)
-    np.testing.assert_allclose(1.0 - g1, x / 6.0, rtol=1e-6, atol=3e-16)
-    np.testing.assert_allclose(g2[1:], 2.0 * x[1:] / (9.0 * np.pi), rtol=1e-7)
-    assert loop_shape(0.0) == (1.0, 0.0) and loop_shape(1e-300)[1] == 0.0
-    for bad in (np.nan, -1e-9, np.inf):
-        with pytest.raises(ContactresInputError):
-            loop_shape(np.array([0.1, bad]))
+    for shape in (loop_shape, cm_shape):
+        g1, g2 = shape(x)
+        np.testing.assert_allclose(1.0 - g1, x / 6.0, rtol=1e-6, atol=3e-16)
+        np.testing.assert_allclose(g2[1:], 2.0 * x[1:] / (9.0 * np.pi), rtol=1e-7)
+        assert shape(0.0) == (1.0, 0.0) and shape(1e-300)[1] == 0.0
+        for bad in (np.nan, -1e-9, np.inf):
+            with pytest.raises(ContactresInputError):
+                shape(np.array([0.1, bad]))
+    g1, g2 = cm_shape(np.array([[0.0, 0.1], [2.0, 1e-200]]))  # the shape of x
+    assert g1.shape == g2.shape == (2, 2) and g1[0, 0] == g1[1, 1] == 1.0
 
 
 def test_savkoor_closed_form_shape_is_the_quadrature_of_the_loop():

@@ -41,7 +41,7 @@ from .._loops import fit_cm_loops
 from .base import LOOP_TABLE, SweepFit, loop_parameters
 from .cm_loop import TINY_X, line_noise
 
-__all__ = ["FIT", "MODEL", "SAVKOOR_CELLS", "SAVKOOR_TERMS", "savkoor_shape"]
+__all__ = ["BAND_CHUNK", "FIT", "MODEL", "SAVKOOR_CELLS", "SAVKOOR_TERMS", "savkoor_shape"]
 
 #: The series' tiers: ρ = max(q, p) in cells 1/SAVKOOR_CELLS wide, a point's tier
 #: floor(SAVKOOR_CELLS ρ) (exact: a power of two). Beyond the last cell (q >= 7/8, i.e.
@@ -53,6 +53,10 @@ SAVKOOR_CELLS = 16
 #: below 1e-17 (Σ_{k>K} M_k T_k, M_k the coefficients of (2 - √(1 - ρt))², which bound |γ_k|,
 #: at the cell's largest ρ; tests/analysis/test_curves.py checks the bound).
 SAVKOOR_TERMS = (10, 14, 18, 22, 26, 30, 34, 42, 48, 60, 74, 94, 128, 192)
+
+#: Points per call of the quadrature near full sliding: its temporaries (~48 nodes per point
+#: and sub-interval) stay at a few MB.
+BAND_CHUNK = 2**13
 
 
 def _savkoor_series(q, p, terms):
@@ -105,9 +109,11 @@ def savkoor_shape(x) -> tuple[np.ndarray, np.ndarray]:
         if at.size:
             total[at] = _savkoor_series(q[at], p[at], terms)
     first = 2.0 * r * r / (np.pi * xs * xs) * np.sqrt(a * b) * total
-    near = tier >= len(SAVKOOR_TERMS)
-    if near.any():  # twice the quadrature's default nodes: 1e-9 there is ~1e-11, this ~1e-14
-        first[near] = loop_stiffness(loop, xs[near], 2 * DEFAULT_NODES).real
+    # Twice the quadrature's default nodes (its 1e-9 is ~1e-11 there, this ~1e-14), by chunks.
+    near = np.flatnonzero(tier >= len(SAVKOOR_TERMS))
+    for at in np.split(near, range(BAND_CHUNK, near.size, BAND_CHUNK)):
+        if at.size:
+            first[at] = loop_stiffness(loop, xs[at], 2 * DEFAULT_NODES).real
     g1[slip] = first
     area = loop.area(xs)
     g2[slip] = np.asarray(area, dtype=float) / (np.pi * xs * xs)
