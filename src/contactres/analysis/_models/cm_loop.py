@@ -74,7 +74,7 @@ def loop_shape(x, c=0.0) -> tuple[np.ndarray, np.ndarray]:
 
 def cm_shape(x) -> tuple[np.ndarray, np.ndarray]:
     """K′/κ and (K″ - ωξ)/κ of the Cattaneo-Mindlin loop at x = κu0/(μF_N): :func:`loop_shape`
-    at c = 0, at ~1/5 of its cost.
+    at c = 0, at about half its cost.
 
     At c = 0 the series of the slip integral J (:mod:`contactres.analysis._plateau_series`,
     m = min(x, 3/2)/max(x, 3/2) < 7/8, the same terms per tier of m) has no odd terms and its
