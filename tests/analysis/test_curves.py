@@ -10,6 +10,7 @@ import pytest
 import contactres
 from contactres.analysis._curves import CURVE_GRIDS, sweep_rows
 from contactres.analysis._models import REGISTRY, model_curves
+from contactres.errors import ContactresInputError
 
 LOOPS = {
     "cm-loop": "cattaneo-mindlin-loop",
@@ -86,3 +87,99 @@ def test_a_sweep_without_a_usable_fit_gets_no_curve_and_the_others_keep_theirs(r
     assert broken.sum() == 5
     assert curves.loc[broken, ["df_model_Hz", "dgamma_model_Hz"]].isna().all().all()
     assert np.isfinite(curves.loc[~broken, ["df_model_Hz", "dgamma_model_Hz"]]).all().all()
+
+
+@pytest.mark.parametrize("c", [0.0, 1e-6, 0.3, 2.0, 10.0, 30.0])
+def test_the_closed_form_loop_shape_is_the_quadrature_of_the_loop(c):
+    # The curves' loop shapes (closed form: elliptic integrals or their series) against the
+    # Masing quadrature of the public loop, an independent algorithm, with twice its default
+    # nodes (~1e-14): x from 0 to 30 past the stick length c, dense around full sliding
+    # (x - c = 3/2), at small x (c = 0) and small excess x - c down to 1e-8 of x, and below c.
+    from contactres import CattaneoMindlinLoop, PlateauLoop, loop_stiffness
+    from contactres.analysis._models.cm_loop import cm_shape, loop_shape
+
+    side = np.geomspace(1e-9, 0.5, 41)
+    y = np.unique(np.concatenate([[0.0, 1e-12, 1e-5, 1e-3], np.linspace(0.0, 30.0, 601),
+                                  1.5 + side, 1.5 - side]))  # fmt: skip
+    y = y[(y == 0.0) | (y >= 1e-8 * c)]  # the excess that is resolved to 1e-12 (see below)
+    onset = c * np.geomspace(1e-8, 1e-2, 13)
+    x = np.concatenate([c * np.array([0.0, 0.5, 1.0 - 1e-9]), c + y, c + onset])
+    inner = CattaneoMindlinLoop(kappa=1.0, mu=1.0, normal_force=1.0)
+    loop = inner if c == 0.0 else PlateauLoop(inner, c)
+    reference = loop_stiffness(loop, x, nodes=48)
+    g1, g2 = loop_shape(x, c)
+    np.testing.assert_allclose(g1, reference.real, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(g2, reference.imag, rtol=0, atol=1e-12)
+    if c == 0.0:  # the plain loop's own series, and both sides of its bounds m = 7/8
+        bounds = np.array([1.3125, 1.5 * 8.0 / 7.0])[:, None] + np.linspace(-1e-3, 1e-3, 21)
+        x = np.concatenate([x, bounds.ravel()])
+        reference = loop_stiffness(loop, x, nodes=48)
+        g1, g2 = cm_shape(x)
+        np.testing.assert_allclose(g1, reference.real, rtol=0, atol=1e-12)
+        np.testing.assert_allclose(g2, reference.imag, rtol=0, atol=1e-12)
+    # Closer to the onset of slip, 2 arcsin √(c/x) near π (the closed form's) loses digits:
+    # K′/κ is then 1 within ~1e-9 (1 - K′/κ ~ (x - c)^{5/2}), still held to 1e-9.
+    x = c * (1.0 + np.array([1e-15, 1e-12, 1e-10]))
+    np.testing.assert_allclose(loop_shape(x, c)[0], 1.0, rtol=0, atol=1e-9)
+
+
+def test_the_closed_form_loop_shape_has_the_small_amplitude_limits():
+    # Mindlin's limits at small x: 1 - K′/κ = x/6 and (K″ - ωξ)/κ = 2x/(9π) to first order
+    # (paper 2, Eqs. 4-6 with F = 1 - (1 - 2d/3)^{3/2}); x = 0 and below 1e-100: exactly 1, 0.
+    from contactres.analysis._models.cm_loop import cm_shape, loop_shape
+
+    x = np.array([1e-300, 1e-30, 1e-12, 1e-8])
+    for shape in (loop_shape, cm_shape):
+        g1, g2 = shape(x)
+        np.testing.assert_allclose(1.0 - g1, x / 6.0, rtol=1e-6, atol=3e-16)
+        np.testing.assert_allclose(g2[1:], 2.0 * x[1:] / (9.0 * np.pi), rtol=1e-7)
+        assert shape(0.0) == (1.0, 0.0) and shape(1e-300)[1] == 0.0
+        for bad in (np.nan, -1e-9, np.inf):
+            with pytest.raises(ContactresInputError):
+                shape(np.array([0.1, bad]))
+    g1, g2 = cm_shape(np.array([[0.0, 0.1], [2.0, 1e-200]]))  # the shape of x
+    assert g1.shape == g2.shape == (2, 2) and g1[0, 0] == g1[1, 1] == 1.0
+
+
+def test_savkoor_closed_form_shape_is_the_quadrature_of_the_loop():
+    # The curves' Savkoor shapes (power series, the loop's area; the quadrature in a band
+    # around full sliding) against the Masing quadrature of the public loop with four times
+    # its default nodes: x from 0 to 30, dense around full sliding at x = 1 (both sides of the
+    # series' bounds 0.933 and 1.071) and at small x.
+    from contactres import SavkoorLoop, loop_stiffness
+    from contactres.analysis._models.savkoor_loop import savkoor_shape
+
+    side = np.geomspace(1e-10, 0.5, 61)
+    bounds = np.array([14.0 / 15.0, 15.0 / 14.0])[:, None] + np.linspace(-1e-3, 1e-3, 21)
+    x = np.unique(np.concatenate([[0.0, 1e-30, 1e-12, 1e-8, 1e-5, 1e-3],
+                                  np.linspace(0.0, 30.0, 1201), 1.0 + side, 1.0 - side,
+                                  bounds.ravel()]))  # fmt: skip
+    reference = loop_stiffness(SavkoorLoop(kappa=1.0, tau=1.0, a=0.5), x, nodes=96)
+    g1, g2 = savkoor_shape(x)
+    np.testing.assert_allclose(g1, reference.real, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(g2, reference.imag, rtol=0, atol=1e-12)
+    # Small x: K′/κ = 1 - (5/32)x², (K″ - ωξ)/κ = x²/(3π) (paper 2, Eq. 15); the shape of x.
+    g1, g2 = savkoor_shape(np.array([[1e-300, 1e-4], [1e-3, 0.0]]))
+    assert g1.shape == (2, 2) and g1[0, 0] == g1[1, 1] == 1.0 and g2[0, 0] == g2[1, 1] == 0.0
+    np.testing.assert_allclose(1.0 - g1[0, 1], 5e-8 / 32, rtol=1e-6)
+    np.testing.assert_allclose(g2[1, 0], 1e-6 / (3 * np.pi), rtol=1e-5)
+    for bad in (np.nan, -1e-9, np.inf):
+        with pytest.raises(ContactresInputError):
+            savkoor_shape(np.array([0.1, bad]))
+
+
+def test_savkoor_series_terms_bound_the_rest_of_the_series():
+    # Each cell's last index K: the rest Σ_{k>K} M_k T_k < 1e-17 at the cell's largest ρ, M_k the
+    # coefficients of (2 - √(1 - ρt))² (|binom(1/2, i)| ρ^i convolved with itself) and
+    # T_k = ∫₀^π sin²φ cosᵏφ dφ (0 for odd k), here by Euler's beta function.
+    from scipy.special import beta, binom
+
+    from contactres.analysis._models.savkoor_loop import SAVKOOR_CELLS, SAVKOOR_TERMS
+
+    k = np.arange(4000)
+    t = np.where(k % 2 == 0, beta(1.5, (k + 1) / 2.0), 0.0)
+    for cell, last in enumerate(SAVKOOR_TERMS, start=1):
+        a = np.abs(binom(0.5, k)) * (cell / SAVKOOR_CELLS) ** k
+        m = np.convolve(a, a)[: k.size]
+        assert (m * t)[last + 1 :].sum() < 1e-17
+        assert (m * t)[last - 1 :].sum() >= 1e-17  # the fewest (K even: K - 1 adds nothing)

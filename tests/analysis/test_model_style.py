@@ -136,7 +136,7 @@ def test_closed_form_fits_equal_the_generic_least_squares_fit(fitted, key):
 
 def test_exact_loop_fit_equals_the_generic_fit_of_the_registered_loop(fitted):
     # Variable projection on the tabulated loop (fit_sweeps) vs scipy least_squares on the
-    # registered function, which integrates the loop exactly (no table): same minimum.
+    # registered function, which evaluates the loop exactly (no table): same minimum.
     padded, sw, fits = fitted
     model = REGISTRY["cattaneo-mindlin-loop"]
     loop = fits[model.key]

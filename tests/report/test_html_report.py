@@ -151,9 +151,10 @@ def test_the_report_draws_the_curves_of_the_analysis_without_a_model(results, mo
         raise AssertionError("the report evaluated a loop model")
 
     for module, name in (
-        (cm_loop, "cm_loop_shape"),
-        (savkoor_loop, "savkoor_loop_shape"),
-        (plateau_loop, "plateau_loop_shape"),
+        (cm_loop, "cm_shape"),
+        (cm_loop, "loop_shape"),
+        (savkoor_loop, "savkoor_shape"),
+        (plateau_loop, "loop_shape"),
     ):
         monkeypatch.setattr(module, name, refuse)
     page = html_report(results)

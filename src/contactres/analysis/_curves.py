@@ -3,17 +3,21 @@
 The figures (paper 2, Fig. 4) and the HTML page draw each sweep's points with the curve of the
 model chosen for it. Both are computed here, once, by the analysis, and carried by the results
 (:attr:`contactres.analysis.Results.points`, :attr:`~contactres.analysis._results.
-Results.curves`), so that the report draws numbers and never evaluates a model (the exact loops
-are quadratures) or reads the analysis' internal arrays.
+Results.curves`), so that the report draws numbers and never evaluates a model or reads the
+analysis' internal arrays.
 
 The curve of a sweep is the registered model function (:mod:`contactres.analysis._models`) of
 its class, evaluated with its fitted values; a sweep whose limits come from an exact loop (the
 Cattaneo-Mindlin, Savkoor or plateau loop, paper 2, Eqs. 4-6 and 13-14) is drawn as that loop
 (:func:`~contactres.analysis._models.model_curves`, the same function per sweep), with the
 values of that loop's fit table (``Results.fits``); a closed form with the named columns of
-the sweep results. The grid runs from u0 = 0 to the sweep's largest amplitude in
-:data:`FIGURE_POINTS` (Fig. 4) and :data:`PAGE_POINTS` (the inline SVG of the page) equal
-steps.
+the sweep results. The exact loops are evaluated in closed form or by power series
+(:func:`contactres.analysis._models.cm_loop.cm_shape`, :func:`~contactres.analysis._models.
+cm_loop.loop_shape`, :func:`~contactres.analysis._models.savkoor_loop.savkoor_shape`, within
+~1e-12 of the quadrature of :func:`contactres.loop_stiffness`): ~0.1-0.2 µs per curve point,
+not ~2 µs. The grid
+runs from u0 = 0 to the sweep's largest amplitude in :data:`FIGURE_POINTS` (Fig. 4) and
+:data:`PAGE_POINTS` (the inline SVG of the page) equal steps.
 """
 
 from __future__ import annotations
@@ -46,10 +50,12 @@ FIGURE_POINTS = 100
 PAGE_POINTS = 30
 #: The grids of :func:`fitted_curves`, by number of points.
 CURVE_GRIDS = (FIGURE_POINTS, PAGE_POINTS)
-#: Curve points (sweeps x grid points) per call of a model function. An exact loop's
-#: quadrature holds ~24 nodes per point and sub-interval: one call for 10^5 sweeps of 100
-#: points took ~20 GB; chunks of this size keep its temporaries at a few MB.
-CHUNK_POINTS = 2**14
+#: Curve points (sweeps x grid points) per call of a model function. The exact loops' closed
+#: forms hold some ten arrays of the chunk's size (a few MB at this size; the quadrature of
+#: Savkoor's loop near full sliding, ~48 nodes per point and sub-interval, goes by smaller
+#: chunks of its own, :data:`~contactres.analysis._models.savkoor_loop.BAND_CHUNK`). Chunks
+#: 4x smaller cost a third more CPU time in calls on smaller arrays (10^4 sweeps).
+CHUNK_POINTS = 2**16
 #: Points of the JKR + Mindlin curve of a group (Fig. 5), from F_N = 0 to 1.05 times the
 #: configuration's largest load.
 JKR_POINTS = 100
@@ -140,7 +146,7 @@ def fitted_curves(
 
     The model function of each class is called once per chunk of sweeps (at most
     :data:`CHUNK_POINTS` curve points, its parameters broadcast along the sweeps); where a
-    chunk fails (a sweep without a usable fit, e.g. NaN parameters that a loop's quadrature
+    chunk fails (a sweep without a usable fit, e.g. NaN parameters that a loop's shape
     refuses) its sweeps are evaluated one by one, NaN for a sweep that fails alone. Each curve
     depends on its own sweep's values only, so chunks and processes do not change it.
 

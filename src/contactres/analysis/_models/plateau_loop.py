@@ -2,7 +2,9 @@
 a dashpot (paper 2, Eqs. 4-6 with Masing's rule, Fig. 4C, D, and Eq. 12).
 
 Linear up to the critical displacement d_c, then the Cattaneo-Mindlin loop in the excess
-(:class:`contactres.PlateauLoop`, :func:`contactres.analysis._loops.plateau_loop_shape`).
+(:class:`contactres.PlateauLoop`, :func:`contactres.analysis._loops.plateau_loop_shape`; the
+model function evaluates it in closed form, :func:`~contactres.analysis._models.cm_loop.
+loop_shape`).
 Fitted by :func:`contactres.analysis._plateau.fit_plateau_loops` (the batched
 Levenberg-Marquardt solver), started from the hinge (``hinge``) and from the Cattaneo-Mindlin
 loop (``cm``), both fitted before it.
@@ -14,9 +16,9 @@ import numpy as np
 
 from ...fitting import Model, Parameter
 from .._amplitude import PLATEAU_MIN_FLAT, PLATEAU_MIN_SLOPE
-from .._loops import plateau_loop_shape
 from .._plateau import PLATEAU_LOOP_COLUMNS, fit_plateau_loops
 from .base import LOOP_TABLE, SweepFit, loop_parameters
+from .cm_loop import loop_shape
 
 __all__ = ["FIT", "MODEL", "fit_plateaus", "plateau_start"]
 
@@ -24,7 +26,7 @@ __all__ = ["FIT", "MODEL", "fit_plateaus", "plateau_start"]
 def plateau_loop(u, df0, dgamma0, inverse_slip_scale, critical_displacement):
     """Δf, ΔΓ (Hz) at the amplitudes ``u`` (m) of the loop behind a plateau of width d_c."""
     theta = np.asarray(inverse_slip_scale)
-    g1, g2 = plateau_loop_shape(theta * np.asarray(u), theta * critical_displacement)
+    g1, g2 = loop_shape(theta * np.asarray(u), theta * critical_displacement)
     return df0 * g1, dgamma0 + df0 * g2
 
 
