@@ -198,9 +198,12 @@ def wa_harmonic_weights(s: np.ndarray, n_max: int) -> np.ndarray:
         W_{2k}(s) = Σ_{p >= k} (−1)^{p−k} (2p + 1) j_p(s/2)²,
 
     from J_{n−1} + J_{n+1} = (2n/x) J_n and ∫₀¹ J_{2k−1}(s r)/√(1 − r²) dr = (π/2) J_{k−½}(s/2)²
-    (W_{2k} + W_{2k−2} = (2k − 1) j_{k−1}(s/2)², summed downwards where the W_n are small, with
-    W₀ = Σ (−1)^p (2p + 1) j_p(s/2)² = sin s/s). Unlike an FFT of the line weight over θ, no
-    θ grid has to resolve W(s cos θ), and no harmonic aliases onto another.
+    (W_{2k} + W_{2k−2} = (2k − 1) j_{k−1}(s/2)², with W₀ = Σ (−1)^p (2p + 1) j_p(s/2)² = sin s/s).
+    For these real s they are summed upwards from W₀ = sin s/s by that relation
+    (:func:`_wa_upward`: the orders below n_max/2 alone; accurate to round-off of the largest
+    W, absolutely); the complex ones of :func:`wa_harmonic_weights_complex`, from the top.
+    Unlike an FFT of the line weight over θ, no θ grid has to resolve W(s cos θ), and no
+    harmonic aliases onto another.
 
     Parameters
     ----------
@@ -215,13 +218,37 @@ def wa_harmonic_weights(s: np.ndarray, n_max: int) -> np.ndarray:
         Shape (n_max/2 + 1, s.size): row j holds W_{2j}(s).
     """
     s = np.asarray(s, dtype=float)
+    k_max = n_max // 2
     if s.size == 0:
-        return np.zeros((n_max // 2 + 1, 0))
+        return np.zeros((k_max + 1, 0))
     # j_p(0) = δ_p0: the sum then gives W₀(0) = 1 and W_n(0) = 0 without dividing by s.
     x = np.where(s > 0, 0.5 * s, 1.0)
-    out = _wa_from_spherical(n_max // 2, x)
+    out = _wa_upward(k_max, x)
     out[:, s <= 0] = 0.0
     out[0, s <= 0] = 1.0
+    return out
+
+
+def _wa_upward(k_max: int, x: np.ndarray) -> np.ndarray:
+    """W_{2k}(2x), k = 0..k_max, of real x > 0, upwards from W₀(2x) = sin 2x/2x by
+    W_{2k} = (2k − 1) j_{k−1}(x)² − W_{2k−2} (:func:`wa_harmonic_weights`), i.e.
+    W_{2k} = (−1)^k [W₀ + Σ_{i <= k} (−1)^i (2i − 1) j_{i−1}²].
+
+    It needs the orders p < k_max alone, where the sum from the top (:func:`_wa_from_spherical`)
+    needs them up to 1.3 x + 20 and a continued fraction from 30 above (~110 orders at s = 120,
+    where the far field stops it; issue 31). The sum only adds, so no error is amplified: it is
+    accurate to round-off of the largest term, ~5e-16 absolute against the sum from the top for
+    k_max = 4-46, x = 1e-4-62 (measured), where the W are at most 1. A W_{2k} far below that,
+    at x << k, has that absolute error, not a relative one: the far field, its only user, sums
+    the weights against the kernel's coefficients, where only absolute errors count.
+    """
+    j = spherical_bessel(max(k_max - 1, 0), x)[:k_max]  # j_0 .. j_{k_max − 1}
+    i = np.arange(1, k_max + 1)[:, None]
+    out = np.empty((k_max + 1, x.size))
+    out[0] = np.sin(2 * x) / (2 * x)
+    np.cumsum(np.where(i % 2 == 0, 1.0, -1.0) * (2 * i - 1) * (j * j), axis=0, out=out[1:])
+    out[1:] += out[0]
+    out *= np.where(np.arange(k_max + 1) % 2 == 0, 1.0, -1.0)[:, None]
     return out
 
 
