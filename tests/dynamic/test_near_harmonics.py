@@ -219,3 +219,35 @@ def test_far_tail_by_moments_equals_the_node_by_node_sum(table):
     np.testing.assert_allclose(
         exact_n(table, ka, size, far=head, plan=plan), node_by_node, rtol=1e-13
     )
+
+
+def test_far_products_formed_by_blocks_of_pairs_are_those_of_all_pairs_at_once(table, monkeypatch):
+    """galerkin_plan forms the far-field products j_p j_q and their tail moments a few pairs at
+    a time (issue 31: all at once was a 0.96 GB temporary). Against the products of every pair
+    written out here from spherical_bessel and the tail's moments of all of them in one call,
+    with blocks of 7 pairs (many blocks, a short last one) and with one block: the products the
+    same to the bit (those of the head, the tail being read by its moments), the moments to
+    round-off of their sums (a BLAS product of 7 rows may group a sum otherwise)."""
+    import contactres.dynamic._exact as exact
+
+    ka = np.array([0.4, 3.0])
+    grid = far_grid(table, float(ka.min()))
+    tail = far_tail(table, grid, float(ka.max()))
+    assert tail is not None
+    size = galerkin_size(float(ka.max()))
+    monkeypatch.setattr(exact, "_PRODUCT_BLOCK", 7 * grid.s.size)
+    blocks = galerkin_plan(table, size, grid.s, tail=tail)
+    assert blocks.pairs.shape[1] % 7 != 0 and blocks.pairs.shape[1] > 14
+    monkeypatch.setattr(exact, "_PRODUCT_BLOCK", blocks.pairs.shape[1] * grid.s.size)
+    whole = galerkin_plan(table, size, grid.s, tail=tail)
+    js = spherical_bessel(int(blocks.orders[-1]), grid.s)[blocks.orders]
+    products = js[blocks.pairs[0]] * js[blocks.pairs[1]]
+    moments = tail.moments(products)
+    # The round-off scale of each moment: the sum of its terms' magnitudes.
+    terms = (np.abs(products[:, tail.split :]) @ np.abs(tail.chebyshev)).T
+    for plan in (blocks, whole):
+        assert np.array_equal(plan.far_products, products[:, : tail.split])
+        assert plan.far_moments is not None
+        assert np.all(np.abs(plan.far_moments - moments) <= 1e-14 * terms)
+    no_tail = galerkin_plan(table, size, grid.s)
+    assert no_tail.far_moments is None and np.array_equal(no_tail.far_products, products)

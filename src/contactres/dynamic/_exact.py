@@ -137,7 +137,9 @@ class GalerkinPlan:
     ms : (n_m,) the angular orders n_a + n_b of the kernel harmonics Ĝ_m
     m_index, t_index : (nb, nb) where M_ab reads its harmonic (into ``ms``) and its pair
     sign : (nb, nb) (−1)^{(n_a + n_b)/2}
-    far_products : (n_t, n_s) j_p(s) j_q(s) on the far-field grid (None without a grid)
+    far_products : (n_t, n_s) j_p(s) j_q(s) on the far-field grid (None without a grid); with a
+        ``far_tail``, on the nodes before it alone (n_s = its ``split``: the tail is read by
+        moments)
     far_tail : the tail of the far-field grid (:mod:`contactres.dynamic._fartail`), summed by
         its moments (None: the whole grid is summed node by node)
     far_moments : (n_fit + 1, n_t) the tail's moments of the products j_p j_q (or None)
@@ -210,13 +212,42 @@ def _mirror_plan(table: KernelTable, basis: list, t_index: np.ndarray) -> Mirror
     )
 
 
+# Elements (8 bytes each) of the products j_p j_q formed at once on the far-field grid: ~32 MB.
+# All pairs at once on the finest grids of the run-time convergence check (1176 pairs x 102400
+# nodes) made a 0.96 GB temporary, the largest allocation of the test suite (issue 31).
+_PRODUCT_BLOCK = 1 << 22
+
+
+def _far_products(js: np.ndarray, pairs: np.ndarray, tail: FarTail | None):
+    """The products j_p j_q of the order ``pairs`` on the far-field grid (``js``: j_p of the
+    plan's orders there, (n_p, n_s)) and, with its ``tail``, their moments on the tail: the
+    (n_t, n_s) products without a tail, those of the head alone and the (n_fit + 1, n_t)
+    moments with one (:func:`galerkin_integrals` reads no more). Formed a few pairs at a time,
+    without the (n_t, n_s) temporary (issue 31): each pair's row and its moments depend on that
+    pair alone, so the products are those of all pairs at once to the bit, and the moments to
+    round-off (the BLAS product of a block may group its sums otherwise than that of all pairs:
+    a few units in the last place)."""
+    n_t, n_s = pairs.shape[1], js.shape[1]
+    head = n_s if tail is None else tail.split
+    products = np.empty((n_t, head))
+    moments = None if tail is None else np.empty((tail.chebyshev.shape[1], n_t))
+    step = max(1, _PRODUCT_BLOCK // max(n_s, 1))
+    for lo in range(0, n_t, step):
+        block = js[pairs[0, lo : lo + step]] * js[pairs[1, lo : lo + step]]
+        products[lo : lo + step] = block[:, :head]
+        if moments is not None and tail is not None:
+            moments[:, lo : lo + step] = tail.moments(block)
+    return products, moments
+
+
 def galerkin_plan(
     table: KernelTable, size: GalerkinSize, far_s=None, *, tail: FarTail | None = None
 ) -> GalerkinPlan:
     """The :class:`GalerkinPlan` of ``size`` on ``table``; with the far-field nodes ``far_s``
     (those of :func:`contactres.dynamic._farfield.far_grid`) also the Bessel products there,
     and with the tail of that grid (:func:`contactres.dynamic._fartail.far_tail`) also their
-    moments on it (:func:`galerkin_integrals`)."""
+    moments on it, the products then on the nodes before it alone (:func:`galerkin_integrals`
+    reads the tail by its moments)."""
     basis = _basis(table, size)
     n_of = np.array([b[0] for b in basis])
     p_of = np.array([abs(b[0]) + 2 * b[1] for b in basis])
@@ -229,13 +260,10 @@ def galerkin_plan(
     key = lo * orders.size + hi
     used, t_index = np.unique(key, return_inverse=True)
     pairs = np.stack([used // orders.size, used % orders.size])
-    products = None
+    products = moments = None
     if far_s is not None:
         js = spherical_bessel(int(orders[-1]), np.asarray(far_s, dtype=float))[orders]
-        products = js[pairs[0]] * js[pairs[1]]
-    moments = None
-    if products is not None and tail is not None:
-        moments = tail.moments(products)  # (n_fit + 1, n_t)
+        products, moments = _far_products(js, pairs, tail)
     t_index = t_index.reshape(len(basis), len(basis))
     return GalerkinPlan(
         basis=basis,
