@@ -176,32 +176,56 @@ def _span(e):
 def _over_y(pts, dl, rule):
     """ln ∫ L π dy, ln ∫ L dy, the first two moments of ln μ under L, the share of L's mass in
     the first and last coarse cells and the nodes both posteriors span (:func:`_span`), at each
-    d_c/u_max ``dl`` (R,) of its row's block (``pts``: :func:`_rows`)."""
+    d_c/u_max ``dl`` (R,) of its row's block (``pts``: :func:`_rows`).
+
+    A node of the rule (:data:`EVIDENCE_NODES`) that another node stands for is not evaluated
+    again: the middle and the ends of a fine span (they fall on coarse nodes), all of L's fine
+    span where its peak is L π's, and its half towards L π's peak where the two are one coarse
+    step apart (it falls on L π's other half). A pair differs by rounding in y at most (the
+    trapezoid gives it a cell of zero or rounding width), and :func:`_span` still counts each
+    node the rule places, so that the same nodes resolve a posterior: the same numbers to
+    rounding for 12 % fewer evaluations (on the 10,752 sweeps of issue 31's study)."""
     _, _, ny, nf = EVIDENCE_NODES
     K = len(dl)
     dl = dl[:, None]
     coarse = np.linspace(np.log(10.0**-2.5), np.log(X_MAX), ny)
     h = coarse[1] - coarse[0]
     first = _integrand(pts, dl, np.broadcast_to(coarse, (K, ny)), rule)
-    step = np.linspace(-h, h, nf)[None, :]
-    parts = [(np.broadcast_to(coarse, (K, ny)), first)]
+    # The fine offsets -h to h: those at multiples of h (``on``: -1, 0, 1 coarse steps) fall on
+    # coarse nodes; ``lower`` and ``upper``: the others below and above the middle (odd nf).
+    j = np.arange(nf)
+    on = (2 * j) % max(nf - 1, 1) == 0
+    mid = (nf - 1) // 2 if nf % 2 else -1  # an even nf has no middle node (nor shared halves)
+    lower, upper = np.flatnonzero(j[~on] < mid), np.flatnonzero(j[~on] > mid)
+    step = np.linspace(-h, h, nf)[~on]
     # Fine nodes around the peak of L π (the evidence) and, where it lies elsewhere, around
     # that of L (μ's moments): else μ would follow its prior through the nodes.
     at_p, at_l = np.argmax(first[0], axis=1), np.argmax(first[1], axis=1)
     fine_p = np.clip(coarse[at_p][:, None] + step, coarse[0], coarse[-1])
-    got = _integrand(pts, dl, fine_p, rule) if K else (np.empty((0, nf)),) * 3
-    parts.append((fine_p, got))
-    # Rows whose two peaks coincide repeat the first fine nodes (a zero-width trapezoid).
-    moved = at_l != at_p
-    fine_l = np.where(
-        moved[:, None], np.clip(coarse[at_l][:, None] + step, coarse[0], coarse[-1]), fine_p
-    )
+    got = _integrand(pts, dl, fine_p, rule) if K else (np.empty((0, step.size)),) * 3
+    fine_l = np.clip(coarse[at_l][:, None] + step, coarse[0], coarse[-1])
     vals = [v.copy() for v in got]
-    if moved.any():
-        sub = tuple(a[moved] for a in pts)
-        for v, g in zip(vals, _integrand(sub, dl[moved], fine_l[moved], rule), strict=True):
-            v[moved] = g
-    parts.append((fine_l, tuple(vals)))
+    side = at_l - at_p
+    shared = [(side == 0, slice(None), slice(None))]
+    if mid > 0:  # one step up: L's lower half is L π's upper half; one step down the reverse
+        shared += [(side == 1, lower, upper), (side == -1, upper, lower)]
+    for rows, mine, theirs in shared:
+        r = np.flatnonzero(rows)[:, None]
+        fine_l[r, mine] = fine_p[r, theirs]
+        for v, g in zip(vals, got, strict=True):
+            v[r, mine] = g[r, theirs]
+    # The rest of L's nodes: all of them two steps apart or more, the other half one apart.
+    far = np.flatnonzero(np.abs(side) >= 2)
+    todo = [(far[:, None], np.arange(step.size)[None, :])]
+    if mid > 0:
+        for sign, mine in ((1, upper), (-1, lower)):
+            todo.append((np.flatnonzero(side == sign)[:, None], mine[None, :]))
+    for r, c in todo:
+        if r.size:
+            sub = tuple(a[r[:, 0]] for a in pts)
+            for v, g in zip(vals, _integrand(sub, dl[r[:, 0]], fine_l[r, c], rule), strict=True):
+                v[r, c] = g
+    parts = [(np.broadcast_to(coarse, (K, ny)), first), (fine_p, got), (fine_l, tuple(vals))]
     y = np.concatenate([yy for yy, _ in parts], axis=1)
     order = np.argsort(y, axis=1, kind="stable")
     y = np.take_along_axis(y, order, axis=1)
@@ -224,7 +248,18 @@ def _over_y(pts, dl, rule):
         m1 = np.trapezoid(el * mu, y, axis=1) / zl
         m2 = np.trapezoid(el * mu**2, y, axis=1) / zl
         share = (cell * edge).sum(axis=1) / zl
-    return log_p, log_l, m1, m2, share, np.minimum(_span(ep), _span(el))
+    # The nodes on coarse nodes count as the rule places them: -1, 0, 1 steps from each peak.
+    steps = (2 * j[on]) // max(nf - 1, 1) - 1
+    spans = []
+    for e_all, v, top in ((ep, first[0], top_p), (el, first[1], top_l)):
+        with np.errstate(invalid="ignore"):
+            e = np.nan_to_num(np.exp(v - top))
+        count = _span(e_all)
+        for at in (at_p, at_l):
+            at_on = np.clip(at[:, None] + steps, 0, ny - 1)
+            count = count + _span(np.take_along_axis(e, at_on, axis=1))
+        spans.append(count)
+    return log_p, log_l, m1, m2, share, np.minimum(*spans)
 
 
 def plateau_log_evidence(
@@ -296,7 +331,24 @@ def plateau_log_evidence(
         step = np.linspace(-dz, dz, nzf + 2)[1:-1]
         zf = np.concatenate([z[p] + step for p in peaks])
         fine_jobs.append((b, np.clip(zf, z[0], z[-1])))
-    fine = _evaluate(args, fine_jobs, zero=False) if nzf else [(np.empty(0),) * 6] * len(jobs)
+    # A fine node clipped onto the end of the coarse nodes (a peak at an end) is that coarse
+    # node, whose row is evaluated already (a block's row depends on its d_c alone): taken
+    # from there, bit for bit (a tenth of all rows on issue 31's study of 10,752 sweeps).
+    at = [np.flatnonzero(zf == z[0]) for _, zf in fine_jobs]
+    at_end = [np.flatnonzero(zf == z[-1]) for _, zf in fine_jobs]
+    new_jobs = [
+        (b, np.delete(zf, np.union1d(i, k)))
+        for (b, zf), i, k in zip(fine_jobs, at, at_end, strict=True)
+    ]
+    fine = _evaluate(args, new_jobs, zero=False) if nzf else [(np.empty(0),) * 6] * len(jobs)
+    for k, ((_, z), (_, zf), c) in enumerate(zip(jobs, fine_jobs, coarse, strict=True)):
+        if nzf:
+            keep = np.ones(zf.size, bool)
+            keep[at[k]] = keep[at_end[k]] = False
+            f = [np.empty(zf.size, dtype=cv.dtype) for cv in c]
+            for fv, cv, nv in zip(f, c, fine[k], strict=True):
+                fv[keep], fv[at[k]], fv[at_end[k]] = nv, cv[0], cv[z.size - 1]
+            fine[k] = tuple(f)
     for (b, z), (_, zf), c, f in zip(jobs, fine_jobs, coarse, fine, strict=True):
         zz = np.concatenate([z, zf])
         order = np.argsort(zz, kind="stable")
@@ -319,7 +371,7 @@ def _evaluate(args, jobs, zero):
     same: dict[int, list] = {}
     for k, job in enumerate(jobs):
         same.setdefault(per_block[job[0]][0].size, []).append((k, *job))
-    nrow = max(z.size for _, z in jobs) + zero
+    nrow = max(1, max(z.size for _, z in jobs) + zero)
     step = max(1, CHUNK_CELLS // (nrow * EVIDENCE_NODES[2] * max(same)))
     for group in same.values():
         for i in range(0, len(group), step):
