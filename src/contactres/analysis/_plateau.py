@@ -166,17 +166,25 @@ def _slipping_values(x, c) -> tuple[np.ndarray, np.ndarray]:
     k2 = np.pi * x2
     np.divide(4.0, k2, out=k2)
     # Loss part as in _slipping: s(y) and W(y) inside y < 3/2, y - 1 and y - 1.2 beyond.
+    # The inside formulas at min(y, 3/2) everywhere (no NaN beyond), then one choice: a third
+    # of the selections (~3.5 ns a point each) with the same numbers on both sides.
     inside = y < 1.5
-    r = np.maximum(1.0 - y / 1.5, 0.0)
+    q = np.minimum(y, 1.5)
+    q /= 1.5
+    r = 1.0 - q
     np.sqrt(r, out=r)
-    q = np.where(inside, (y / 1.5) / (1.0 + r), 1.0)
-    qq = q * q
-    g2 = np.where(inside, qq * (0.5 + r), y - 1.0)
+    q /= 1.0 + r
+    g2 = q * q
+    g2 *= 0.5 + r
     g2 *= c
     w = q**3  # not qq * q: G″ is the fit's bit for bit
     w *= 0.3
     w *= r * r + 3.0 * r + 1.0
-    g2 += np.where(inside, w, y - 1.2)
+    g2 += w
+    beyond = y - 1.0
+    beyond *= c
+    beyond += y - 1.2
+    g2 = np.where(inside, g2, beyond)
     g2 *= k2
     H *= 2.0 * k2
     return H, g2
