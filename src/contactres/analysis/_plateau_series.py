@@ -82,24 +82,28 @@ def slip_integral_series(x, c, phi=None) -> np.ndarray:
     x, c = np.asarray(x, dtype=float), np.asarray(c, dtype=float)
     e = c + 1.5
     # The integrand is symmetric in x and e (module docstring): r = min(x, e), A.
-    r, a = np.minimum(x, e), np.maximum(x, e)
-    m = r / a
-    a -= 0.5 * r
+    m = np.minimum(x, e) / np.maximum(x, e)
     # Each point's tier (len(SERIES_TIERS): outside), the points sorted by tier (a radix sort
-    # of small integers), each tier a slice of them.
+    # of small integers), each tier a slice of them; only the points inside the domain are
+    # gathered, and only x, c and φ_c of them (r and A are cheaper formed again than gathered).
     # (fmin: a NaN m goes outside, as m >= SERIES_MAX_M does)
     tier = np.fmin(m * SERIES_CELLS, len(SERIES_TIERS)).astype(np.int8)
+    order = np.argsort(tier, kind="stable")
+    ends = np.cumsum(np.bincount(tier, minlength=len(SERIES_TIERS) + 1))
+    order = order[: ends[len(SERIES_TIERS) - 1]]
+    x, c = x[order], c[order]
+    e = c + 1.5
+    r, a = np.minimum(x, e), np.maximum(x, e)
+    a -= 0.5 * r
     # φ_c = 2 arcsin √(c/r): the caller's 2 arcsin √(c/x) where r = x, the same numbers.
     far = x > e
     if phi is None or far.all():
         phi = 2.0 * np.arcsin(np.sqrt(c / r))
-    elif far.any():
-        phi = np.array(phi, dtype=float)
-        phi[far] = 2.0 * np.arcsin(np.sqrt(c[far] / r[far]))
-    order = np.argsort(tier, kind="stable")
-    ends = np.cumsum(np.bincount(tier, minlength=len(SERIES_TIERS) + 1))
-    r, a, c, phi = r[order], a[order], c[order], phi[order]
-    out = np.full(x.shape, np.nan)
+    else:
+        phi = np.asarray(phi, dtype=float)[order]
+        if far.any():
+            phi[far] = 2.0 * np.arcsin(np.sqrt(c[far] / r[far]))
+    out = np.full(m.shape, np.nan)
     for (_, terms), lo, hi in zip(SERIES_TIERS, [0, *ends], ends, strict=False):
         if hi > lo:
             out[order[lo:hi]] = _series(r[lo:hi], a[lo:hi], c[lo:hi], phi[lo:hi], terms)
