@@ -90,18 +90,20 @@ def plateau_loop_slopes(x, c, rule=None, derivatives: bool = True) -> tuple[np.n
       integrals are instead summed by a 16-point Gauss-Legendre rule in φ, d = x(1 - cos φ)/2,
       whose integrand is then smooth.
 
-    ``rule``: the 16-point rule ``gauss_legendre_unit(16)`` (made here if None; pass it when
-    calling many times, as the fit does). Agrees with that quadrature to ~2e-11 (its own
-    accuracy; tests/analysis/test_scale.py), at ~1 µs per point for all six arrays, several
-    times less than the quadrature of G′, G″ alone. ``derivatives=False``: G′ and G″ alone
-    (the nodes of :mod:`contactres.analysis._plateau_evidence`, which need no gradient), at
-    a fraction of the cost: the second integral by its power series wherever m < 7/8
+    ``rule``: the 16-point rule ``gauss_legendre_unit(16)`` (made here if None and
+    ``derivatives``; pass it when calling many times, as the fit does). Agrees with that
+    quadrature to ~2e-11 (its own accuracy; tests/analysis/test_scale.py), at ~1 µs per point
+    for all six arrays, several times less than the quadrature of G′, G″ alone.
+    ``derivatives=False``: G′ and G″ alone (the nodes of
+    :mod:`contactres.analysis._plateau_evidence`, which need no gradient), at a fraction of the
+    cost: the second integral by its power series wherever m < 7/8
     (:func:`contactres.analysis._plateau_series.slip_integral_series`), the same numbers to
     rounding (within ~1e-13 of G′ with derivatives, whose elliptic form loses that much to
     cancellation at 0.1 < m; the series is the more accurate).
     """
     x, c = np.broadcast_arrays(np.asarray(x, dtype=float), np.asarray(c, dtype=float))
-    rule = gauss_legendre_unit(SMALL_X_NODES) if rule is None else rule
+    if rule is None and derivatives:  # the values alone need no rule (~0.2 ms to make)
+        rule = gauss_legendre_unit(SMALL_X_NODES)
     out = [np.ones(x.shape)] + [np.zeros(x.shape) for _ in range(5 if derivatives else 1)]
     slip = x > c  # below d_c the contact sticks: G′ = 1, G″ = 0, and so do their derivatives
     if slip.any():
