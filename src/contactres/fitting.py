@@ -414,19 +414,23 @@ def levenberg_marquardt(evaluate, p0, lo=-np.inf, hi=np.inf, options: LMOptions 
         idx = np.flatnonzero(status == _RUNNING)
         loc = {k: v[idx] for k, v in cur.items()}
         q, c2, g = p[idx], loc["chi2"], loc["gradient"]
-        held = ((q <= lo[idx]) & (g > 0)) | ((q >= hi[idx]) & (g < 0))
+        lo_i, hi_i = lo[idx], hi[idx]
+        held = ((q <= lo_i) & (g > 0)) | ((q >= hi_i) & (g < 0))
         v, solve = _damped_steps(loc, held, lam[idx], o.damping)
         if np.isfinite(o.max_step):
             big = np.maximum(np.max(np.abs(v), axis=1), 1e-300)
             v *= np.minimum(1.0, o.max_step / big)[:, None]
-        trial = np.clip(q + v, lo[idx], hi[idx])
+        trial = np.clip(q + v, lo_i, hi_i)
         ok = np.ones(idx.size, bool)
         if o.geodesic is not None:
-            trial, ok = _accelerated(evaluate, idx, q, v, loc, solve, (lo[idx], hi[idx]), o)
+            trial, ok = _accelerated(evaluate, idx, q, v, loc, solve, (lo_i, hi_i), o)
         step = trial - q
         new = None
         chi2_t = np.full(idx.size, np.inf)
-        if ok.any():
+        if ok.all():  # (the usual case: no copies of the rows)
+            new = _local_model(evaluate(q + step, idx, False))
+            chi2_t = new["chi2"]
+        elif ok.any():
             new = _local_model(evaluate(q[ok] + step[ok], idx[ok], False))
             chi2_t[ok] = new["chi2"]
         gain = c2 - chi2_t
@@ -460,8 +464,9 @@ def levenberg_marquardt(evaluate, p0, lo=-np.inf, hi=np.inf, options: LMOptions 
         tol_f = o.ftol * np.maximum(cur["chi2"][idx], o.chi2_floor)
         small_gain = better & (gain <= tol_f)
         if o.judge_failed:
-            # (a failed evaluation, NaN, predicts and gains nothing; an inadmissible one: -inf)
-            small_gain |= (np.abs(np.nan_to_num(gain)) <= tol_f) & (pred <= tol_f)
+            # (a failed evaluation, NaN, predicts and gains nothing: "not above" holds for it;
+            # an inadmissible one, -inf, gains more than any finite tolerance)
+            small_gain |= ~(np.abs(gain) > tol_f) & (pred <= tol_f)
         else:
             small_step &= better
         exhausted = lam[idx] > o.lam_max
@@ -469,11 +474,11 @@ def levenberg_marquardt(evaluate, p0, lo=-np.inf, hi=np.inf, options: LMOptions 
             exhausted |= n_rej[idx] >= o.max_reject
         out = n_iter[idx] >= o.max_iter
         out_acc = (n_acc[idx] >= o.max_accepted) if o.max_accepted is not None else False
-        status[idx] = np.select(
-            [small_step, small_gain, exhausted, out_acc, out],
-            [_STEP, _CHI2, _EXHAUSTED, _MAX_ACCEPTED, _MAX_ITER],
-            _RUNNING,
-        )
+        # (the first test that holds wins: nested from the last, cheaper than np.select)
+        code = np.where(out, _MAX_ITER, _RUNNING)
+        for test, value in ((out_acc, _MAX_ACCEPTED), (exhausted, _EXHAUSTED)):
+            code = np.where(test, value, code)
+        status[idx] = np.where(small_step, _STEP, np.where(small_gain, _CHI2, code))
         # The Jacobian form: residuals and Jacobian at the new point, where the problem goes on.
         go_on = acc[status[acc] == _RUNNING]
         if "jacobian" in cur and go_on.size:
@@ -524,8 +529,10 @@ def _damped_steps(loc, held, lam, damping: str):
         else:
             Hs = H + (lam * np.linalg.eigvalsh(H)[:, -1])[:, None, None] * eye
         # A held parameter: its row and column decoupled, its gradient zero, so its step is 0.
-        Hs = np.where(held[:, :, None] | held[:, None, :], eye * diag[:, :, None], Hs)
-        return -solve_stacked(Hs, np.where(held, 0.0, g)[:, :, None])[:, :, 0], None
+        if held.any():
+            Hs = np.where(held[:, :, None] | held[:, None, :], eye * diag[:, :, None], Hs)
+            g = np.where(held, 0.0, g)
+        return -solve_stacked(Hs, g[:, :, None])[:, :, 0], None
     # The Jacobian form, problem by problem (an SVD each; ~20 µs, far below an evaluation).
     factors = []
     for J, keep_out, lam_i in zip(loc["jacobian"], held, lam, strict=True):

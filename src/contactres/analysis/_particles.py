@@ -436,14 +436,15 @@ class _Problem:
         wf, wg = self.wf[rows], self.wg[rows]
         diff = zm - self.z[rows]
         r = np.concatenate([diff.real * wf, diff.imag * wg], axis=1)
-        jac = np.empty((r.shape[0], r.shape[1], len(cols)))
-        half = diff.shape[1]
-        for j, col in enumerate(cols):
-            jac[:, :half, j] = col.real * wf
-            jac[:, half:, j] = col.imag * wg
+        col = np.stack(cols, axis=-1)  # (rows, n, P): dz/dq
+        jac = np.concatenate([col.real * wf[:, :, None], col.imag * wg[:, :, None]], axis=1)
         chi2 = np.sum(r * r, axis=1)
-        chi2 = np.where(np.isfinite(chi2), chi2, np.inf)
-        r, jac = np.nan_to_num(r), np.nan_to_num(jac)
+        finite = np.isfinite(chi2)
+        # (a finite χ² has finite residuals: the scrub is needed only where one is not)
+        if not finite.all():
+            chi2, r = np.where(finite, chi2, np.inf), np.nan_to_num(r)
+        if not np.isfinite(jac).all():
+            jac = np.nan_to_num(jac)
         jt = jac.transpose(0, 2, 1)
         return {"chi2": chi2, "gradient": (jt @ r[:, :, None])[:, :, 0], "hessian": jt @ jac}
 
