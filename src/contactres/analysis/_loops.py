@@ -77,9 +77,6 @@ N_TABLE = 12001
 
 #: Trial points (sweeps x trial values x points) of one chunk of the loop fits (~2 MB arrays).
 CHUNK_CELLS = 1 << 18
-#: The same for the θ search of :func:`fit_cm_loops`: its arrays of ~0.5 MB stay in the cache
-#: between the ~20 passes of one trial round (~20 % less CPU than at CHUNK_CELLS, measured).
-SEARCH_CELLS = 1 << 16
 
 
 @dataclass(frozen=True)
@@ -182,7 +179,7 @@ def savkoor_loop_shape(x) -> tuple[np.ndarray, np.ndarray]:
 #: searched. Narrower buckets cost nothing more (61,441 of them for the tables' 0 <= x <= 30).
 LOOKUP_BITS = 11
 LOOKUP_STEPS = 1
-_CROWDED = -(2**40)
+_CROWDED = -(2**30)
 
 
 @dataclass(frozen=True)
@@ -218,7 +215,7 @@ def table_interpolant(table: LoopTable) -> TableInterpolant:
     pair = np.stack([x, slopes["c1"], table.g1, slopes["c2"], table.g2])
     # Buckets of more table points than LOOKUP_STEPS are marked by a negative first point, far
     # enough below 0 that the steps cannot lift it: one gather tells both.
-    first = np.where(count > LOOKUP_STEPS, _CROWDED, first[:-1])
+    first = np.where(count > LOOKUP_STEPS, _CROWDED, first[:-1]).astype(np.int32)
     return TableInterpolant(table, first, ahead, slopes, pair)
 
 
@@ -382,7 +379,7 @@ def fit_cm_loops(
     """
     table = table if table is not None else cm_loop_table()
     # 49 (then 17) trial θ per sweep: chunks of sweeps keep those arrays at a few MB.
-    step = max(1, SEARCH_CELLS // (49 * max(u.shape[1], 1)))
+    step = max(1, CHUNK_CELLS // (49 * max(u.shape[1], 1)))
     chunks = (slice(i, i + step) for i in range(0, max(u.shape[0], 1), step))
     ip = table_interpolant(table)
     parts = [
