@@ -5,7 +5,9 @@ through x = κu0/(μF_N) (paper 2, Eq. 4-6). Both functions are tabulated once f
 forward model (:func:`contactres.shifts_from_loop` on a :class:`contactres.CattaneoMindlinLoop`)
 and the fit Δf = Pκ g′(θu0), ΔΓ = P[ωξ + κ g″(θu0)] with θ = κ/(μF_N) is solved by variable
 projection: for fixed θ, Pκ and Pωξ follow in closed form; θ is found by a zooming grid search
-(relative resolution < 1e-3), independently for every sweep. Errors come from the Jacobian in
+(relative resolution < 1e-3), independently for every sweep. The search's rounds take χ² in its
+residual-free form C - num²/den, exact χ² only where a trial can be the least (the same trials
+and numbers as χ² at every trial; :func:`_least_chi2`). Errors come from the Jacobian in
 (Pκ, Pωξ, ln θ), scaled by the residual variance. Points are weighted by the noise level of
 each channel taken from the straight-line fit.
 
