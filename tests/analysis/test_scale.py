@@ -23,6 +23,7 @@ from contactres.analysis._amplitude import (
 from contactres.analysis._classify import fit_sweeps
 from contactres.analysis._loops import (
     X_MAX,
+    _interpolate_pair,
     cm_loop_table,
     fit_cm_loops,
     interpolate_table,
@@ -304,10 +305,10 @@ def test_plateau_fit_of_sweeps_without_plateau_stays_in_its_bounds():
 @pytest.mark.parametrize("make", [cm_loop_table, savkoor_loop_table])
 def test_table_lookup_is_numpy_interp_bit_for_bit(make):
     """The bucketed lookup of the loop fits against numpy.interp's bisection: the same numbers,
-    real and as the complex pair of the θ-grid search, at random amplitudes, densely around
-    full sliding (where the table is refined and buckets are crowded), on the table points,
-    just below them, between them, at and beyond its end, and on arrays shorter than the table
-    (where numpy.interp forms each slope per point)."""
+    real and as the complex pair of the θ search (both of its forms), at random amplitudes,
+    densely around full sliding (where the table is refined and buckets are crowded), on the
+    table points, just below them, between them, at and beyond its end, and on arrays shorter
+    than the table (where numpy.interp forms each slope per point)."""
     table = make()
     x_tab = table.x
     rng = np.random.default_rng(5)
@@ -327,5 +328,7 @@ def test_table_lookup_is_numpy_interp_bit_for_bit(make):
         pair = np.interp(part, x_tab, table.g1 + 1j * table.g2)
         c1, c2, *real = interpolate_table(ip, part, ("c1", "c2", "g1", "g2", "d1", "d2"))
         assert np.array_equal(c1, pair.real) and np.array_equal(c2, pair.imag)
+        p1, p2 = _interpolate_pair(ip, part)  # the θ search's one-gather form of the pair
+        assert np.array_equal(p1, pair.real) and np.array_equal(p2, pair.imag)
         for got, name in zip(real, ("g1", "g2", "d1", "d2"), strict=True):
             assert np.array_equal(got, np.interp(part, x_tab, getattr(table, name))), name

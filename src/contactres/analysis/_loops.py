@@ -5,7 +5,9 @@ through x = κu0/(μF_N) (paper 2, Eq. 4-6). Both functions are tabulated once f
 forward model (:func:`contactres.shifts_from_loop` on a :class:`contactres.CattaneoMindlinLoop`)
 and the fit Δf = Pκ g′(θu0), ΔΓ = P[ωξ + κ g″(θu0)] with θ = κ/(μF_N) is solved by variable
 projection: for fixed θ, Pκ and Pωξ follow in closed form; θ is found by a zooming grid search
-(relative resolution < 1e-3), independently for every sweep. Errors come from the Jacobian in
+(relative resolution < 1e-3), independently for every sweep. The search's rounds take χ² in its
+residual-free form C - num²/den, exact χ² only where a trial can be the least (the same trials
+and numbers as χ² at every trial; :func:`_least_chi2`). Errors come from the Jacobian in
 (Pκ, Pωξ, ln θ), scaled by the residual variance. Points are weighted by the noise level of
 each channel taken from the straight-line fit.
 
@@ -179,6 +181,7 @@ def savkoor_loop_shape(x) -> tuple[np.ndarray, np.ndarray]:
 #: searched. Narrower buckets cost nothing more (61,441 of them for the tables' 0 <= x <= 30).
 LOOKUP_BITS = 11
 LOOKUP_STEPS = 1
+_CROWDED = -(2**30)
 
 
 @dataclass(frozen=True)
@@ -188,10 +191,10 @@ class TableInterpolant:
     formed as :func:`numpy.interp` forms it (so that the values agree bit for bit)."""
 
     table: LoopTable
-    first: np.ndarray  # last table point <= the start of each bucket
+    first: np.ndarray  # last table point <= the start of each bucket; < 0: a crowded bucket
     ahead: tuple[np.ndarray, ...]  # the next LOOKUP_STEPS points of each bucket (inf: none)
-    crowded: np.ndarray  # buckets of more table points than that
     slopes: dict[str, np.ndarray]  # slopes of g1, g2, d1, d2, and of g1, g2 as a pair ("c1", "c2")
+    pair: np.ndarray  # (5, N): x, slope "c1", g1, slope "c2", g2 of the points (one gather)
 
 
 def table_interpolant(table: LoopTable) -> TableInterpolant:
@@ -211,7 +214,11 @@ def table_interpolant(table: LoopTable) -> TableInterpolant:
     slopes |= {"c1": np.diff(table.g1) * inv, "c2": np.diff(table.g2) * inv}
     # The last point has slope 0: x at or beyond it takes the last value, as numpy.interp's.
     slopes = {k: np.append(v, 0.0) for k, v in slopes.items()}
-    return TableInterpolant(table, first[:-1], ahead, count > LOOKUP_STEPS, slopes)
+    pair = np.stack([x, slopes["c1"], table.g1, slopes["c2"], table.g2])
+    # Buckets of more table points than LOOKUP_STEPS are marked by a negative first point, far
+    # enough below 0 that the steps cannot lift it: one gather tells both.
+    first = np.where(count > LOOKUP_STEPS, _CROWDED, first[:-1]).astype(np.int32)
+    return TableInterpolant(table, first, ahead, slopes, pair)
 
 
 def interpolate_table(ip: TableInterpolant, x, columns) -> list[np.ndarray]:
@@ -235,19 +242,39 @@ def interpolate_table(ip: TableInterpolant, x, columns) -> list[np.ndarray]:
     -------
     list of arrays shaped as ``x``, one per column
     """
+    x, j = _table_index(ip, x)
+    d = x - ip.table.x[j]
+    values = {"c1": "g1", "c2": "g2"}
+    return [ip.slopes[c][j] * d + getattr(ip.table, values.get(c, c))[j] for c in columns]
+
+
+def _table_index(ip: TableInterpolant, x) -> tuple[np.ndarray, np.ndarray]:
+    """``x`` clipped to the table and the index of the last table point <= it (for
+    :func:`interpolate_table`)."""
     x_tab = ip.table.x
     x = np.clip(x, x_tab[0], x_tab[-1])  # the ends: the first and the last value
     # fmax: a NaN amplitude (no NaN in validated sweeps) takes bucket 0 and gives NaN below.
     b = np.fmax(x * 2.0**LOOKUP_BITS, 0.0).astype(np.intp)
-    j = ip.first[b]
+    j = ip.first.take(b)  # take: the same gather as indexing, without its checks of b's kind
     for nxt in ip.ahead:
-        j += nxt[b] <= x
-    search = ip.crowded[b]
-    if search.any():
+        j += nxt.take(b) <= x
+    if j.size and j.min() < 0:  # crowded buckets: searched
+        search = j < 0
         j[search] = np.searchsorted(x_tab, x[search], side="right") - 1
-    d = x - x_tab[j]
-    values = {"c1": "g1", "c2": "g2"}
-    return [ip.slopes[c][j] * d + getattr(ip.table, values.get(c, c))[j] for c in columns]
+    return x, j
+
+
+def _interpolate_pair(ip: TableInterpolant, x) -> tuple[np.ndarray, np.ndarray]:
+    """``interpolate_table(ip, x, ("c1", "c2"))``, the same numbers, from one gather of the
+    five table columns they need instead of five gathers (the θ search's lookups)."""
+    x, j = _table_index(ip, x)
+    x_j, s1, g1, s2, g2 = np.take(ip.pair, j, axis=1)  # five contiguous gathers in one call
+    d = x - x_j
+    s1 *= d  # in place: the same numbers as s1 * d + g1
+    s1 += g1
+    s2 *= d
+    s2 += g2
+    return s1, s2
 
 
 def solve_projected(g1, g2, df, dg, w, wf, wg):
@@ -278,6 +305,60 @@ def solve_projected(g1, g2, df, dg, w, wf, wg):
     rss_f = weighted(rf * rf).sum(-1)
     rss_g = weighted(rg * rg).sum(-1)
     return A, B, wf * rss_f + wg * rss_g, rss_f, rss_g
+
+
+def _least_chi2(g1, g2, df, dg, w, wf, wg) -> np.ndarray:
+    """:func:`solve_projected`'s χ², bit for bit, at the trials that can hold the least χ² of
+    their sweep; +inf at the others.
+
+    The θ search needs of each round only the position of the least χ² and its value. With A
+    and B projected out, χ² = C - num²/den (C = wf Σw Δf² + wg Σw (ΔΓ - mean)², num and den as
+    in :func:`solve_projected`), without the residuals, and summed over the points as planes
+    (the points on the first axis: one vectorised addition per point, where a sum along the
+    last axis pays numpy's per-row overhead on rows of ~10 points): about a third of the cost.
+    The two forms differ by rounding only, a few (M + 3)·ε·C at most (Higham's bound for sums
+    of M terms; every term is at most ~C, since num² <= den·C); a trial more than
+    (M + 4)·2^-40·C (~10³ times that bound) above the least short-cut value cannot be the
+    least, so only the trials within it, one or two a sweep, are evaluated as
+    :func:`solve_projected` evaluates them. numpy.argmin over the result then finds the trial
+    that it finds over solve_projected's χ² at every trial (ties: the first).
+
+    Parameters
+    ----------
+    g1, g2 : (M, S, K) K′/κ and (K″ - ωξ)/κ of the loop at the M points of S sweeps, each at
+        K trial θ (points first)
+    df, dg : (S, M) the shifts, Hz
+    w : (S, M) weights (0 for padding)
+    wf, wg : (S,) weights of the two channels, Hz⁻²
+
+    Returns
+    -------
+    (S, K) χ² (dimensionless): solve_projected's where it can be its row's least, +inf elsewhere
+    """
+    ones = bool(np.all(w == 1.0))
+    wt = w.T[:, :, None]
+
+    def weighted(a):  # w * a, skipped where every weight is 1
+        return a if ones else wt * a
+
+    n = w.sum(-1)
+    dgc = dg - ((w * dg).sum(-1) / n)[:, None]
+    c = wf * (w * df * df).sum(-1) + wg * (w * dgc * dgc).sum(-1)
+    g2c = g2 - weighted(g2).sum(axis=0) / n[:, None]
+    wg1, wg2c = weighted(g1), weighted(g2c)
+    wf2, wg2 = wf[:, None], wg[:, None]
+    num = wf2 * (wg1 * df.T[:, :, None]).sum(axis=0) + wg2 * (wg2c * dgc.T[:, :, None]).sum(axis=0)
+    den = wf2 * (wg1 * g1).sum(axis=0) + wg2 * (wg2c * g2c).sum(axis=0)
+    short = c[:, None] - num * num / den
+    tol = (w.shape[-1] + 4) * 2.0**-40 * c
+    sure = np.isfinite(short).all(axis=1) & np.isfinite(c)  # else every trial of the row
+    near = (short <= (np.min(short, axis=1) + tol)[:, None]) | ~sure[:, None]
+    r, k = np.nonzero(near)
+    # Rows of points again, contiguous: solve_projected's sums then run as they run in a block.
+    a1, a2 = (np.ascontiguousarray(g[:, r, k].T) for g in (g1, g2))
+    chi = np.full(short.shape, np.inf)
+    chi[r, k] = solve_projected(a1, a2, df[r], dg[r], w[r], wf[r], wg[r])[2]
+    return chi
 
 
 def fit_cm_loops(
@@ -320,17 +401,20 @@ def _fit_cm_chunk(u, df, dg, w, sigma_df, sigma_dg, ip, rounds) -> dict[str, np.
     wf = 1.0 / np.maximum(sigma_df, floor_f) ** 2
     wg = 1.0 / np.maximum(sigma_dg, floor_g) ** 2
 
-    def chi2_at(lx):  # lx: (S, K) log10 of x_max
+    def chi2_at(lx, least=False):  # lx: (S, K) log10 of x_max
         theta = 10.0**lx / umax[:, None]
+        if least:  # only the least χ² of each row matters (its position, its value)
+            g1, g2 = _interpolate_pair(ip, u.T[:, :, None] * theta)  # points first
+            return _least_chi2(g1, g2, df, dg, w, wf, wg)
         xu = theta[..., None] * u[:, None, :]
         # Both shapes from one lookup, as one complex numpy.interp of the table made them.
-        g1, g2 = interpolate_table(ip, xu, ("c1", "c2"))
+        g1, g2 = _interpolate_pair(ip, xu)
         args = (df[:, None, :], dg[:, None, :], w[:, None, :], wf[:, None], wg[:, None])
         return solve_projected(g1, g2, *args)[2]
 
     lo, hi = -2.5, np.log10(X_MAX)
     grid = np.broadcast_to(np.linspace(lo, hi, 49), (S, 49))
-    chi = chi2_at(grid)
+    chi = chi2_at(grid, least=True)
     k = np.argmin(chi, axis=1)
     edge = np.where(k == 0, "low", np.where(k == grid.shape[1] - 1, "high", ""))
     step = grid[0, 1] - grid[0, 0]
@@ -341,9 +425,9 @@ def _fit_cm_chunk(u, df, dg, w, sigma_df, sigma_dg, ip, rounds) -> dict[str, np.
     for _ in range(rounds):
         around = np.delete(np.linspace(-step, step, 9), 4)  # the middle one is 0 exactly
         local = np.clip(centre[:, None] + around[None, :], lo, hi)
-        chi = np.insert(chi2_at(local), 4, best, axis=1)
+        chi = _with_middle(chi2_at(local, least=True), best)
         j = np.argmin(chi, axis=1)
-        centre = np.insert(local, 4, centre, axis=1)[rows, j]
+        centre = _with_middle(local, centre)[rows, j]
         best = chi[rows, j]
         step = step / 4.0
     # The vertex of the parabola through the best point and its neighbours (χ² is smooth in
@@ -375,6 +459,12 @@ def _fit_cm_chunk(u, df, dg, w, sigma_df, sigma_dg, ip, rounds) -> dict[str, np.
         "rss_df": rss_f,
         "rss_dgamma": rss_g,
     }
+
+
+def _with_middle(a, m):
+    """(S, 8) ``a`` with the column ``m`` (S,) put in the middle: (S, 9) (as numpy.insert at 4,
+    without its overhead per call)."""
+    return np.concatenate([a[:, :4], m[:, None], a[:, 4:]], axis=1)
 
 
 def loop_fit_fields(A, B, theta, cov, umax) -> dict:

@@ -1,0 +1,105 @@
+"""The θ search of the exact-loop fits (:func:`contactres.analysis._loops.fit_cm_loops`): its
+short cut (χ² without the residuals, exact χ² only where a trial can be the least) against the
+plain search that evaluates :func:`contactres.analysis._loops.solve_projected` at every trial."""
+
+import numpy as np
+import pytest
+
+from contactres.analysis._loops import (
+    X_MAX,
+    _least_chi2,
+    cm_loop_table,
+    fit_cm_loops,
+    interpolate_table,
+    savkoor_loop_table,
+    solve_projected,
+    table_interpolant,
+)
+
+TABLES = {"cm": cm_loop_table(), "savkoor": savkoor_loop_table()}
+
+
+def _sweeps(table, S=60, M=11, pad=True, seed=3):
+    """S sweeps of M amplitudes (the last ones padded in every third row if ``pad``) whose
+    shifts follow the loop of ``table`` at random θ, with noise, and a few without any slip."""
+    rng = np.random.default_rng(seed)
+    u = np.sort(rng.uniform(0.2e-9, 10e-9, (S, M)), axis=1)
+    w = np.ones((S, M))
+    if pad:
+        w[::3, M - 3 :] = 0.0
+    x_max = 10.0 ** rng.uniform(-3.0, 1.6, S)  # from no resolved slip to gross sliding
+    theta = x_max / np.max(np.where(w > 0, u, 0.0), axis=1)
+    g1, g2 = interpolate_table(table_interpolant(table), theta[:, None] * u, ("g1", "g2"))
+    df = -200.0 * g1 + rng.normal(0.0, 0.05, (S, M))
+    dg = 3.0 + 200.0 * g2 + rng.normal(0.0, 0.05, (S, M))
+    sigma = np.full(S, 0.05)
+    return u, df * w, dg * w, w, sigma
+
+
+def _plain_search(u, df, dg, w, sigma, table, rounds=4):
+    """θ of the search of fit_cm_loops with solve_projected's χ² at every trial (the search as
+    it was before its short cut): the zooming grid, then the parabola's vertex."""
+    ip = table_interpolant(table)
+    umax = np.max(np.where(w > 0, u, 0.0), axis=1)
+    wf = 1.0 / np.maximum(sigma, 1e-6 * np.abs(df).max(axis=1)) ** 2
+    wg = 1.0 / np.maximum(sigma, 1e-6 * np.abs(dg).max(axis=1)) ** 2
+
+    def chi2(lx):
+        xu = (10.0**lx / umax[:, None])[..., None] * u[:, None, :]
+        g1, g2 = interpolate_table(ip, xu, ("c1", "c2"))
+        a = (df[:, None], dg[:, None], w[:, None], wf[:, None], wg[:, None])
+        return solve_projected(g1, g2, *a)[2]
+
+    lo, hi = -2.5, np.log10(X_MAX)
+    grid = np.linspace(lo, hi, 49)
+    chi = chi2(np.broadcast_to(grid, (u.shape[0], 49)))
+    rows = np.arange(u.shape[0])
+    k = np.argmin(chi, axis=1)
+    centre, step = grid[k], grid[1] - grid[0]
+    for _ in range(rounds):
+        local = np.clip(centre[:, None] + np.linspace(-step, step, 9)[None, :], lo, hi)
+        chi = chi2(local)
+        k = np.argmin(chi, axis=1)
+        centre, best, step = local[rows, k], chi[rows, k], step / 4.0
+    c0, c2 = chi2(np.clip(centre[:, None] + np.array([-step, step])[None, :], lo, hi)).T
+    curv = c0 - 2.0 * best + c2
+    shift = np.where(curv > 0, 0.5 * (c0 - c2) / np.where(curv > 0, curv, 1.0), 0.0)
+    return 10.0 ** np.clip(centre + np.clip(shift, -1.0, 1.0) * step, lo, hi) / umax
+
+
+@pytest.mark.parametrize("name", ["cm", "savkoor"])
+@pytest.mark.parametrize("pad", [False, True])
+def test_least_chi2_is_solve_projected_where_it_matters(name, pad):
+    """At trials of every θ from no slip to gross sliding, repeated (ties: the first wins): the
+    least χ² of each sweep sits where solve_projected's least sits, with its value bit for bit,
+    and every value given is solve_projected's."""
+    table = TABLES[name]
+    u, df, dg, w, sigma = _sweeps(table, pad=pad)
+    S = u.shape[0]
+    wf, wg = 1.0 / sigma**2, 1.0 / sigma**2
+    lx = np.linspace(-2.5, np.log10(X_MAX), 25)
+    lx = np.broadcast_to(np.concatenate([lx, lx[::-1]]), (S, 50))  # each trial twice
+    theta = 10.0**lx / u.max(axis=1)[:, None]
+    ip = table_interpolant(table)
+    g1, g2 = interpolate_table(ip, theta[..., None] * u[:, None, :], ("c1", "c2"))
+    a = (df[:, None], dg[:, None], w[:, None], wf[:, None], wg[:, None])
+    full = solve_projected(g1, g2, *a)[2]
+    got = _least_chi2(np.moveaxis(g1, 2, 0), np.moveaxis(g2, 2, 0), df, dg, w, wf, wg)
+    rows = np.arange(S)
+    assert np.array_equal(np.argmin(got, axis=1), np.argmin(full, axis=1))
+    assert np.array_equal(got.min(axis=1), full[rows, np.argmin(full, axis=1)])
+    given = np.isfinite(got)
+    assert np.array_equal(got[given], full[given])
+    assert given.sum() < 0.2 * got.size  # the short cut spares most trials the exact χ²
+
+
+@pytest.mark.parametrize("name", ["cm", "savkoor"])
+def test_fit_lands_where_the_plain_search_lands(name):
+    """fit_cm_loops' θ is the plain search's, bit for bit, for sweeps with and without padding,
+    in chunks of the search or not, from no resolved slip to gross sliding."""
+    table = TABLES[name]
+    for S in (5, 300):  # 300 sweeps of 11 points: more than one chunk of the search
+        u, df, dg, w, sigma = _sweeps(table, S=S, seed=S)
+        fit = fit_cm_loops(u, df, dg, w, sigma, sigma, table)
+        plain = _plain_search(u, df, dg, w, sigma, table)
+        assert np.array_equal(fit["theta_per_m"].to_numpy(), plain)
