@@ -375,6 +375,8 @@ def test_plateau_loop_fit_recovers_mu_within_its_errors(dc_fraction):
     # The slopes above a plateau do not give μ (no linear onset): NaN and flagged, not biased.
     assert pl["mu_df"].isna().all() and pl["mu_dgamma"].isna().all()
     assert has(pl["flags"], Flag.PLATEAU_SLOPE).all()
+    # Every plateau here is resolved (finite errors above), none on the d_c = 0 bound.
+    assert not has(pl["flags"], Flag.PLATEAU_AT_BOUND).any()
     # ... and the statistics per load skip them (NaN), while μ_fit is averaged.
     assert res.loads["mu_df_mean"].isna().all() and res.loads["mu_dgamma_mean"].isna().all()
     assert np.all(np.abs(res.loads["mu_fit_mean"] - 1.0) < 0.02)

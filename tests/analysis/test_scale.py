@@ -34,7 +34,11 @@ from contactres.analysis._loops import (
     table_interpolant,
 )
 from contactres.analysis._models import fit_tables
-from contactres.analysis._plateau import fit_plateau_loops, plateau_loop_slopes
+from contactres.analysis._plateau import (
+    PLATEAU_D_C_BOUND,
+    fit_plateau_loops,
+    plateau_loop_slopes,
+)
 from contactres.measurements._sweeps import validate_sweeps
 from contactres.measurements._synthetic import SweepGroup, SweepStudy, synthetic_sweeps
 from contactres.resonators._qcm import QCM
@@ -290,13 +294,16 @@ def test_batched_plateau_fit_equals_least_squares_per_sweep():
     assert (fit["edge"] == "").all() and np.all(np.isfinite(fit["df0_err_Hz"]))
 
 
-def test_plateau_fit_of_sweeps_without_plateau_stays_in_its_bounds():
-    data = _table(_study(model="cattaneo-mindlin", n_exp=2, noise=0.1))
-    p = pad_sweeps(data)
+def _cm_sweeps(n_exp):
+    """Padded Cattaneo-Mindlin sweeps (no plateau), their hinges' u_c and noise levels."""
+    p = pad_sweeps(_table(_study(model="cattaneo-mindlin", n_exp=n_exp, noise=0.1)))
     b = p.block(np.arange(len(p.n)))
-    hinge = fit_hinge(b)
-    sig = np.full(len(p.n), 0.1)
-    fit = fit_plateau_loops(b.u, b.df, b.dg, b.w, sig, sig, hinge.u_c, cm_loop_table())
+    return b, fit_hinge(b).u_c, np.full(len(p.n), 0.1)
+
+
+def test_plateau_fit_of_sweeps_without_plateau_stays_in_its_bounds():
+    b, u_c, sig = _cm_sweeps(2)
+    fit = fit_plateau_loops(b.u, b.df, b.dg, b.w, sig, sig, u_c, cm_loop_table())
     assert np.all(fit["d_c_m"] >= 0.0)
     assert np.all(fit["d_c_m"] <= b.u[np.arange(len(b.n)), b.n - PLATEAU_MIN_SLOPE])
     assert np.all(np.log(fit["x_max"] / X_MAX) <= 1e-9)
@@ -332,3 +339,27 @@ def test_table_lookup_is_numpy_interp_bit_for_bit(make):
         assert np.array_equal(p1, pair.real) and np.array_equal(p2, pair.imag)
         for got, name in zip(real, ("g1", "g2", "d1", "d2"), strict=True):
             assert np.array_equal(got, np.interp(part, x_tab, getattr(table, name))), name
+
+
+def test_plateau_fit_at_its_bound_is_the_constrained_fit_and_reproducible():
+    # Cattaneo-Mindlin sweeps: many plateau fits end with d_c on its bound 0 (or a rounding error
+    # off it). Those are refitted with d_c held at 0: d_c's error is not a number, and the other
+    # errors (those of the constrained fit) do not depend on which side of the bound a 1e-15
+    # change of the data leaves pass 2 (before: ln θ's error 0.05 or 5e3).
+    b, u_c, sig = _cm_sweeps(4)
+    table = cm_loop_table()
+    fit = fit_plateau_loops(b.u, b.df, b.dg, b.w, sig, sig, u_c, table)
+    rng = np.random.default_rng(7)
+    df, dg = (a * (1.0 + 1e-15 * rng.standard_normal(a.shape)) for a in (b.df, b.dg))
+    again = fit_plateau_loops(b.u, df, dg, b.w, sig, sig, u_c, table)
+    bound = (fit["d_c_m"] < PLATEAU_D_C_BOUND * b.u.max(axis=1)).to_numpy()
+    assert bound.sum() >= 4
+    assert np.all(fit["d_c_m"][bound] == 0.0) and np.all(np.isnan(fit["d_c_err_m"][bound]))
+    assert np.all(np.isfinite(fit["d_c_err_m"][~bound]))
+    columns = ("df0_Hz", "df0_err_Hz", "dgamma0_err_Hz", "theta_per_m", "lntheta_err")
+    for c in columns:
+        np.testing.assert_allclose(again[c], fit[c], rtol=1e-6, err_msg=c)
+    # At d_c = 0 the plateau loop is the Cattaneo-Mindlin loop: ln θ's error is that of a fit of
+    # (Pκ, Pωξ, ln θ) alone, resolved (below 1) wherever the loop bends within the sweep.
+    bends = bound & (fit["x_max"] > 0.3).to_numpy()
+    assert bends.any() and np.all(fit["lntheta_err"][bends] < 1.0)

@@ -13,6 +13,7 @@ import numpy as np
 
 from ..units import JUNCTION_SIGMAS, LINEAR_ONSET_X, MAX_MU, MIN_SWEEP_POINTS, SMALL_LOAD_LIMIT
 from ._loops import X_MAX
+from ._plateau import PLATEAU_D_C_BOUND
 
 __all__ = ["DESCRIPTIONS", "Flag", "has", "render"]
 
@@ -32,6 +33,7 @@ class Flag(enum.IntFlag):
     BEYOND_ONSET = enum.auto()
     DRIFT_REMOVED = enum.auto()
     MU_OUT_OF_RANGE = enum.auto()
+    PLATEAU_AT_BOUND = enum.auto()
 
     @property
     def text(self) -> str:
@@ -84,6 +86,13 @@ DESCRIPTIONS: dict[Flag, str] = {
     Flag.DRIFT_REMOVED: (
         "this load drifted; a drift linear in time (column time_s) was removed from its points "
         "and it passed the drift test again (--remove-drift; the rates are in summary.json)"
+    ),
+    Flag.PLATEAU_AT_BOUND: (
+        "a plateau sweep whose own exact plateau-loop fit puts the critical displacement on its "
+        f"bound 0 (below {PLATEAU_D_C_BOUND:g} of its largest amplitude): the sweep does not "
+        "resolve its plateau (plateau_amplitude_m 0, its error empty); its errors of Δf0, ΔΓ0 "
+        "and mu_fit are those of that fit with the critical displacement held at 0 "
+        "(Cattaneo-Mindlin)"
     ),
 }
 

@@ -18,8 +18,10 @@ It replaces a :func:`scipy.optimize.least_squares` fit per sweep on the quadratu
 tolerances; tests/analysis/test_scale.py compares the two): on the bundled example the
 parameters agree within 1e-3 of their standard errors, at ~1/100 of the cost per sweep. The
 errors differ where d_c sits on its bound 0: there the d_c column of the Jacobian is (to
-rounding) a combination of the others, which exact derivatives show (pinv drops that direction)
-and the finite differences of the old fit blurred into errors of ~10⁴ Hz.
+rounding) a combination of the others, which the finite differences of the old fit blurred
+into errors of ~10⁴ Hz. A fit that ends there (within :data:`PLATEAU_D_C_BOUND`) is the
+Cattaneo-Mindlin fit: refitted with d_c held at 0, its errors those of (Pκ, Pωξ, ln θ) alone,
+d_c 0 with no error (NaN).
 """
 
 from __future__ import annotations
@@ -53,6 +55,21 @@ SMALL_X_NODES = 16
 #: of their standard errors (tests/analysis/test_scale.py); 1e-10 and 200 steps cost 2.3x the
 #: time for nothing a model choice or an error bar can see.
 PLATEAU_LM = LMOptions(damping="marquardt", update="nielsen", lam0=1e-3, lam_max=1e14, max_iter=60)
+
+#: d_c/u_max below which a fit's d_c counts as on its bound 0 (the house rule: a fit at its
+#: bound is flagged, an unidentified parameter not printed as a result). The fit is then a
+#: Cattaneo-Mindlin fit: refitted with d_c held at 0, its errors those of that constrained fit,
+#: d_c reported as 0 with a NaN error and NaN covariances. Why: as d_c -> 0 the d_c column of
+#: the Jacobian becomes a combination of the others, so a fit ending on the bound or a rounding
+#: error off it (4e-16 m) got errors of ln θ 0.05 or 5e3 (pinv dropping the degenerate
+#: direction or keeping it), and μ flipped between resolved and not in the experiment's μ prior
+#: and the model choice (delta_bic moved by 1e-3 relative for a 1e-15 change of the shapes).
+#: Why 1e-3: far above the rounding, and a plateau too short to matter: at fixed θ, d_c = 1e-3
+#: u_max moves G′ and G″ by 2e-3 of their range over the sweep where x_max <= 1 (3 % at the
+#: gross-sliding end X_MAX), before Pκ and θ take up part of it. On the bundled example the
+#: 34 fits it moves off d_c > 0 end at d_c/u_max <= 1.4e-4, d_c <= 1.2e-5 of its own error,
+#: and the refit raises their RSS by <= 6e-6 relative.
+PLATEAU_D_C_BOUND = 1e-3
 
 #: Numeric columns of :func:`fit_plateau_loops` (besides ``edge``).
 PLATEAU_LOOP_COLUMNS = (
@@ -301,7 +318,9 @@ def fit_plateau_loops(
     DataFrame with the columns of :func:`fit_cm_loops` (``theta_per_m`` = κ/(μF_N), ``x_max``
     = θ·max(u0); ``edge`` "high" if the excess beyond d_c reaches gross sliding beyond
     x = X_MAX, "low" if no slip is resolved) plus ``d_c_m``, ``d_c_err_m`` and the covariances
-    of d_c with Δf0 and ln θ, ``cov_df0_d_c`` (Hz m) and ``cov_lntheta_d_c`` (m).
+    of d_c with Δf0 and ln θ, ``cov_df0_d_c`` (Hz m) and ``cov_lntheta_d_c`` (m). A fit on the
+    bound (d_c/u_max < :data:`PLATEAU_D_C_BOUND`): ``d_c_m`` 0, its error and covariances NaN,
+    the other errors those of the fit with d_c held at 0.
     """
     u_c = np.asarray(u_c, dtype=float)
     rule = gauss_legendre_unit(SMALL_X_NODES)  # made once for the hundreds of model calls
@@ -327,7 +346,7 @@ def fit_plateau_loops(
     else:
         y0 = np.asarray(theta_start, dtype=float) * np.maximum(umax - u_c, 0.0)
 
-    def run(starts, sig_f, sig_g, of, tol):  # start i of the sweep of[i]
+    def run(starts, sig_f, sig_g, of, tol, top=hi):  # start i of the sweep of[i]
         wf = (1.0 / np.maximum(sig_f, floor_f) ** 2)[of]
         wg = (1.0 / np.maximum(sig_g, floor_g) ** 2)[of]
         data = [a[of] for a in (u, df, dg, w)]
@@ -359,7 +378,7 @@ def fit_plateau_loops(
             return {"chi2": fit["chi2"], "gradient": fit["grad"], "hessian": fit["hess"]}
 
         options = replace(PLATEAU_LM, xtol=tol, x_abs=1e-10 * tol, ftol=tol)
-        p = levenberg_marquardt(evaluate, starts, lo[of], hi[of], options)
+        p = levenberg_marquardt(evaluate, starts, lo[of], top[of], options)
         again = np.flatnonzero(np.any(at != p.x, axis=1))
         if again.size:
             keep(model(p.x[again], again), again)
@@ -390,7 +409,19 @@ def fit_plateau_loops(
     dof = np.maximum(n - 2, 1)
     sig = [np.sqrt(fit1[k][take] / dof) for k in ("rss_f", "rss_g")]
     p2, fit = run(x1, sig[0], sig[1], rows, 1e-7)
+    # A d_c on its bound (PLATEAU_D_C_BOUND): the Cattaneo-Mindlin fit, d_c fixed at 0 (its upper
+    # bound set to 0 too) and ln θ(u_max) fitted again from where pass 2 ended.
+    bound = np.flatnonzero(p2[:, 1] < PLATEAU_D_C_BOUND)
+    if bound.size:
+        start = np.column_stack([p2[bound, 0], np.zeros(bound.size)])
+        fixed = np.column_stack([hi[:, 0], np.zeros(S)])
+        pb, fitb = run(start, sig[0], sig[1], bound, 1e-7, fixed)
+        p2[bound] = pb
+        for key, v in fitb.items():
+            for a, b in zip(fit[key], v, strict=True) if key == "slopes" else [(fit[key], v)]:
+                a[bound] = b
     ly, dl = p2[:, 0], p2[:, 1]
+    at_zero = dl == 0.0  # the refitted rows, and any row pass 2 left exactly there
     A, theta, d_c = fit["A"], fit["theta"], dl * umax
     # Jacobian of the weighted residuals in (A, B, ln θ, d_c) at fixed d_c and θ respectively.
     g1, g2, g1x, g1c, g2x, g2c = fit["slopes"]
@@ -407,6 +438,9 @@ def fit_plateau_loops(
         [-g2, -one, a * (g2x * x + g2c * c), a * g2c * theta[:, None]], axis=-1
     )
     J = np.concatenate([Jf, Jg], axis=1)  # (S, 2M, 4)
+    # d_c held at 0: no d_c column (pinv of the then block-diagonal JᵀJ is the inverse of the
+    # (Pκ, Pωξ, ln θ) block, the constrained fit's covariance, and zero for d_c).
+    J[at_zero, :, 3] = 0.0
     # Columns scaled to unit norm first: d_c in m makes JᵀJ too ill-scaled for pinv's cutoff.
     norm = np.linalg.norm(J, axis=1)
     norm = np.where(norm > 0, norm, 1.0)
@@ -418,11 +452,12 @@ def fit_plateau_loops(
         {
             **loop_fit_fields(A, fit["B"], theta, cov, umax),
             "d_c_m": d_c,
-            "d_c_err_m": np.sqrt(cov[:, 3, 3]),
+            # d_c at its bound 0: no error the data give (NaN), nor covariances.
+            "d_c_err_m": np.where(at_zero, np.nan, np.sqrt(cov[:, 3, 3])),
             # d_c's covariances with Δf0 and ln θ: the joint error of μ and d_c, which the fit
             # trades against each other (a later onset of slip: a larger μ or a wider plateau).
-            "cov_df0_d_c": cov[:, 0, 3],
-            "cov_lntheta_d_c": cov[:, 2, 3],
+            "cov_df0_d_c": np.where(at_zero, np.nan, cov[:, 0, 3]),
+            "cov_lntheta_d_c": np.where(at_zero, np.nan, cov[:, 2, 3]),
             "edge": edge,
             "rss_df": fit["rss_f"],
             "rss_dgamma": fit["rss_g"],

@@ -29,7 +29,7 @@ joint covariance of μ and d_c (:func:`joint_prior_penalty`): the fit trades one
 other, and two separate terms would waive the same freedom twice.
 
 What it does not do. A Cattaneo-Mindlin block's plateau fit puts d_c near 0 (a few per cent of
-u_max, or on its bound with an unresolved error), several prior widths below the clear
+u_max, or on its bound: 0, with no error), several prior widths below the clear
 plateaus' (a misfit larger than the ln N it replaces), or leaves d_c unresolved (relative error
 above 1: the block keeps its BIC); so the prior rarely turns such a block into a plateau (on
 the validation study 12 of 557 Cattaneo-Mindlin blocks in water, 6 before). Where fewer than

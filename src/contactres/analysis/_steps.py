@@ -240,6 +240,9 @@ def run(
         flags |= _flag(loops.gross_sliding, Flag.GROSS_SLIDING)
         cm = (sw["model"] == "cattaneo-mindlin").to_numpy()
         flags |= _flag(cm & (loops.x_max > LINEAR_ONSET_X), Flag.BEYOND_ONSET)
+        # A plateau sweep whose own loop fit ends on d_c = 0 (reported 0 with a NaN error).
+        at_bound = (sw["model"] == "plateau") & (sw["plateau_amplitude_m"] == 0.0)
+        flags |= _flag(at_bound.to_numpy(), Flag.PLATEAU_AT_BOUND)
         blocks = block_friction(blocks, block_fits, sw)
         member = sw["block"].to_numpy() >= 0
         for col in ("mu_block", "mu_block_err"):
