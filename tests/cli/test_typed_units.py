@@ -120,9 +120,12 @@ def test_columns_named_with_their_unit_are_read_in_si(tmp_path):
         typed[col] = typed[col] * factor
     typed_path = tmp_path / "typed.csv"
     typed.to_csv(typed_path, index=False)
-    # The converted cells differ from the SI ones in their last digits: equal to the fit's
-    # convergence, not to the bit.
-    pd.testing.assert_frame_equal(_table1(typed_path), _table1(si_path), rtol=1e-7)
+    # The converted cells differ from the SI ones in their last digits: equal to the fits'
+    # convergence, not to the bit. The plateau fits that end at d_c = 0 are refitted with d_c
+    # held there, to the LM's tolerance; μ of their blocks moves by ~1e-9 and E's error (a
+    # Jacobian error of the JKR fit over those μ) by up to 2.5e-7 (measured). A unit slip
+    # would move everything by 1e3 or more.
+    pd.testing.assert_frame_equal(_table1(typed_path), _table1(si_path), rtol=1e-6)
 
 
 def test_a_column_in_two_units_is_refused(tmp_path):
