@@ -1,9 +1,11 @@
 """The QCM sweep-analysis job through its Python API: the same analysis as the library's
 ``analyze``, its stages counted ahead, its tables bound to their schemas."""
 
+import numpy as np
 import pytest
 
 from contactres import AnalysisSettings, analyze, read_sweeps
+from contactres.analysis import Flag, has
 from contactres.errors import ContactresInputError
 from contactres.jobs import crystals, qcm_sweeps
 from contactres.measurements.schema import LOAD_RESULTS, SWEEP_RESULTS
@@ -142,3 +144,19 @@ def test_without_figures_the_curves_are_those_of_the_page_grid_alone(job_result,
 def test_curve_grids_are_distinct_numbers_of_points(grids):
     with pytest.raises(ContactresInputError, match="curve_grids"):
         analyze(read_sweeps(SWEEPS), settings=AnalysisSettings(bootstrap=0), curve_grids=grids)
+
+
+def test_a_plateau_sweep_on_its_bound_is_flagged_and_prints_no_plateau_amplitude(job_result):
+    # The bundled example has plateau sweeps (by their block's evidence) whose own loop fit ends
+    # on d_c = 0: a value at its bound is flagged, not printed, and so is its error; every other
+    # plateau sweep prints a positive plateau amplitude with a finite error.
+    sw = job_result.analysis.sweeps
+    plateau = sw[sw["model"] == "plateau"]
+    bound = has(plateau["flags"], Flag.PLATEAU_AT_BOUND)
+    assert 0 < bound.sum() < len(plateau)
+    assert plateau.loc[bound, ["plateau_amplitude_m", "plateau_amplitude_err_m"]].isna().all().all()
+    rest = plateau[~bound]
+    assert np.all(rest["plateau_amplitude_m"] > 0) and np.all(
+        np.isfinite(rest["plateau_amplitude_err_m"])
+    )
+    assert not has(sw.loc[sw["model"] != "plateau", "flags"], Flag.PLATEAU_AT_BOUND).any()

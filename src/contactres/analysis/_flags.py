@@ -90,7 +90,8 @@ DESCRIPTIONS: dict[Flag, str] = {
     Flag.PLATEAU_AT_BOUND: (
         "a plateau sweep whose own exact plateau-loop fit puts the critical displacement on its "
         f"bound 0 (below {PLATEAU_D_C_BOUND:g} of its largest amplitude): the sweep does not "
-        "resolve its plateau (plateau_amplitude_m 0, its error empty); its errors of Δf0, ΔΓ0 "
+        "resolve its plateau (plateau_amplitude_m and its error empty; its block's other sweeps "
+        "made it a plateau: check this sweep's smallest amplitudes); its errors of Δf0, ΔΓ0 "
         "and mu_fit are those of that fit with the critical displacement held at 0 "
         "(Cattaneo-Mindlin)"
     ),

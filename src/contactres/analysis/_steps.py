@@ -240,9 +240,11 @@ def run(
         flags |= _flag(loops.gross_sliding, Flag.GROSS_SLIDING)
         cm = (sw["model"] == "cattaneo-mindlin").to_numpy()
         flags |= _flag(cm & (loops.x_max > LINEAR_ONSET_X), Flag.BEYOND_ONSET)
-        # A plateau sweep whose own loop fit ends on d_c = 0 (reported 0 with a NaN error).
+        # A plateau sweep whose own loop fit ends on d_c = 0: a value at its bound, which the
+        # sweep does not resolve, is flagged and not printed (its error is NaN already).
         at_bound = (sw["model"] == "plateau") & (sw["plateau_amplitude_m"] == 0.0)
         flags |= _flag(at_bound.to_numpy(), Flag.PLATEAU_AT_BOUND)
+        sw.loc[at_bound, "plateau_amplitude_m"] = np.nan
         blocks = block_friction(blocks, block_fits, sw)
         member = sw["block"].to_numpy() >= 0
         for col in ("mu_block", "mu_block_err"):
