@@ -469,6 +469,27 @@ def test_the_joined_csv_with_a_float_format_is_the_text_pandas_writes(
         assert (tmp_path / "joined.csv").read_bytes() == (tmp_path / "pandas.csv").read_bytes()
 
 
+@pytest.mark.parametrize("float_format", [None, "%.10g", "%.3e"])
+def test_a_column_of_few_values_is_written_as_pandas_writes_it(tmp_path, monkeypatch, float_format):
+    """A float column that repeats a few values (a curve table's amplitude grid, a gap per
+    sweep) has each value's text made once: the bytes are still pandas' own, -0.0 apart from
+    0.0, gaps, infinities and a NaN of another bit pattern included."""
+    import numpy as np
+
+    from contactres.fileio import write_csv
+
+    odd_nan = np.array([0x7FF8000000000001], dtype=np.uint64).view(np.float64)[0]
+    few = np.array([-0.0, 0.0, np.nan, odd_nan, np.inf, -np.inf, 0.1, 1e-10, 3.3e-10, -2.5])
+    rng = np.random.default_rng(5)
+    values = few[rng.integers(0, few.size, 5000)]
+    frame = pd.DataFrame({"grid": values, "other": rng.normal(size=values.size)})
+    frame.to_csv(tmp_path / "pandas.csv", index=False, na_rep="NA", float_format=float_format)
+    with monkeypatch.context() as m:
+        m.setattr(pd.DataFrame, "to_csv", lambda *a, **k: pytest.fail("pandas was called"))
+        write_csv(tmp_path / "joined.csv", frame, na_rep="NA", float_format=float_format)
+    assert (tmp_path / "joined.csv").read_bytes() == (tmp_path / "pandas.csv").read_bytes()
+
+
 def test_a_table_is_joined_chunk_by_chunk_and_left_to_pandas_where_a_later_chunk_needs_it(
     tmp_path, monkeypatch
 ):
