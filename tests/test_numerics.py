@@ -1,4 +1,5 @@
-"""Tests of contactres.numerics: the Gauss-Legendre rules on [0, 1] and on panels [a, b]."""
+"""Tests of contactres.numerics: the Gauss-Legendre rules on [0, 1] and on panels [a, b], the
+Chebyshev-Lobatto barycentric weights."""
 
 import math
 
@@ -6,7 +7,7 @@ import numpy as np
 import pytest
 from scipy.special import eval_legendre
 
-from contactres.numerics import gauss_legendre, gauss_legendre_unit
+from contactres.numerics import gauss_legendre, gauss_legendre_unit, lobatto_weights
 
 
 @pytest.mark.parametrize("n", [1, 2, 5, 24, 48])
@@ -114,3 +115,15 @@ def test_illinois_step_finds_cube_roots_elementwise_where_regula_falsi_stalls():
 
     np.testing.assert_allclose(run(14, True), np.cbrt(c), rtol=1e-14)
     assert np.max(np.abs(run(14, False) / np.cbrt(c) - 1)) > 1e-3
+
+
+@pytest.mark.parametrize("n_points", [2, 3, 8, 17])
+def test_lobatto_weights_are_the_product_weights_up_to_a_common_factor(n_points):
+    # The barycentric weights by their definition, 1/∏_{k≠j}(x_j − x_k) at the Lobatto points
+    # (Berrut and Trefethen 2004, Eq. 3.2), scaled to the first: the closed form's ratios.
+    x = np.cos(np.pi * np.arange(n_points) / (n_points - 1))
+    diff = x[:, None] - x[None, :]
+    np.fill_diagonal(diff, 1.0)
+    direct = 1.0 / np.prod(diff, axis=1)
+    w = lobatto_weights(n_points)
+    np.testing.assert_allclose(w / w[0], direct / direct[0], rtol=1e-12, atol=0)

@@ -306,6 +306,7 @@ PUBLIC = {
         "checked_thickness",
         "compliance_factors",
         "impedance_recursion",
+        "isotropic_moduli",
         "layer_waves",
         "material_at",
         "stack_compliance",
@@ -582,6 +583,7 @@ PUBLIC = {
         "gauss_legendre",
         "gauss_legendre_unit",
         "illinois_step",
+        "lobatto_weights",
     ],
     "units": [
         "ABSOLUTE_FREQUENCY_FRACTION",

@@ -102,7 +102,7 @@ def floats_as_text(frame, na_rep: str = ""):
     out = frame.copy()
     for i in floats:  # by position: column names need not be unique
         values = frame.iloc[:, i].to_numpy()
-        text = np.array([repr(v) for v in values.tolist()], dtype=object)
+        text = np.array(_float_texts(values, None), dtype=object)
         text[np.isnan(values)] = na_rep
         out.isetitem(i, text)
     return out

@@ -11,7 +11,36 @@ from scipy import special
 
 from .errors import ContactresInputError
 
-__all__ = ["IllinoisBracket", "gauss_legendre", "gauss_legendre_unit", "illinois_step"]
+__all__ = [
+    "IllinoisBracket",
+    "gauss_legendre",
+    "gauss_legendre_unit",
+    "illinois_step",
+    "lobatto_weights",
+]
+
+
+def lobatto_weights(n_points: int) -> np.ndarray:
+    """Barycentric weights of the ``n_points`` Chebyshev–Lobatto points cos(πj/(n_points − 1)).
+
+    (−1)^j, halved at both ends (Berrut and Trefethen 2004, SIAM Rev. 46, 501, Eq. 5.4): exact,
+    where weights formed as products over the nodes carry round-off (and scipy's
+    ``BarycentricInterpolator`` forms them in a random order). A common factor of the weights
+    (e.g. the sign of nodes taken in ascending order) cancels in the barycentric formula of the
+    second kind.
+
+    Parameters
+    ----------
+    n_points : number of points, >= 2
+
+    Returns
+    -------
+    ndarray of shape (n_points,)
+        1, −1, 1, ... with the first and last halved.
+    """
+    w = np.where(np.arange(n_points) % 2 == 0, 1.0, -1.0)
+    w[[0, -1]] *= 0.5
+    return w
 
 
 def gauss_legendre_unit(n: int) -> tuple[np.ndarray, np.ndarray]:

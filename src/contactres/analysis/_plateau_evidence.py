@@ -107,10 +107,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..numerics import gauss_legendre_unit
 from ._amplitude import PLATEAU_MIN_SLOPE
 from ._loops import CHUNK_CELLS, X_MAX
-from ._plateau import SMALL_X_NODES, plateau_loop_slopes
+from ._plateau import plateau_loop_slopes
 
 __all__ = ["EVIDENCE_NODES", "plateau_log_evidence"]
 
@@ -142,7 +141,7 @@ MU_MARGINAL_MAX_SD = 0.5
 MU_MARGINAL_MAX_EDGE = 0.1
 
 
-def _integrand(pts, dl, y, rule):
+def _integrand(pts, dl, y):
     """ln L + ln π (as :func:`plateau_log_evidence`, up to a common constant), ln L alone and
     ln μ at the nodes (R, Y) of d_c/u_max ``dl`` (R, 1) and ``y`` (R, Y), each row R one block's
     (``pts``: :func:`_rows`).
@@ -158,7 +157,7 @@ def _integrand(pts, dl, y, rule):
     theta = np.exp(y) / (umax * (1.0 - dl))
     x = theta[..., None] * lev
     c = np.broadcast_to((theta * dl * umax)[..., None], x.shape)
-    g1, g2 = plateau_loop_slopes(x, c, rule, derivatives=False)
+    g1, g2 = plateau_loop_slopes(x, c, derivatives=False)
     A, rss_f, rss_g = _solve_levels(g1, g2, pts)
     rss_f += scatter_f
     rss_g += scatter_g
@@ -212,7 +211,7 @@ def _span(e):
     return (e >= 0.1).sum(axis=-1)
 
 
-def _over_y(pts, dl, rule):
+def _over_y(pts, dl):
     """ln ∫ L π dy, ln ∫ L dy, the first two moments of ln μ under L, the share of L's mass in
     the first and last coarse cells and the nodes both posteriors span (:func:`_span`), at each
     d_c/u_max ``dl`` (R,) of its row's block (``pts``: :func:`_rows`).
@@ -229,7 +228,7 @@ def _over_y(pts, dl, rule):
     dl = dl[:, None]
     coarse = np.linspace(np.log(10.0**-2.5), np.log(X_MAX), ny)
     h = coarse[1] - coarse[0]
-    first = _integrand(pts, dl, np.broadcast_to(coarse, (K, ny)), rule)
+    first = _integrand(pts, dl, np.broadcast_to(coarse, (K, ny)))
     # The fine offsets -h to h: those at multiples of h (``on``: -1, 0, 1 coarse steps) fall on
     # coarse nodes; ``lower`` and ``upper``: the others below and above the middle (odd nf).
     j = np.arange(nf)
@@ -241,7 +240,7 @@ def _over_y(pts, dl, rule):
     # that of L (μ's moments): else μ would follow its prior through the nodes.
     at_p, at_l = np.argmax(first[0], axis=1), np.argmax(first[1], axis=1)
     fine_p = np.clip(coarse[at_p][:, None] + step, coarse[0], coarse[-1])
-    got = _integrand(pts, dl, fine_p, rule) if K else (np.empty((0, step.size)),) * 3
+    got = _integrand(pts, dl, fine_p) if K else (np.empty((0, step.size)),) * 3
     fine_l = np.clip(coarse[at_l][:, None] + step, coarse[0], coarse[-1])
     vals = [v.copy() for v in got]
     side = at_l - at_p
@@ -262,7 +261,7 @@ def _over_y(pts, dl, rule):
     for r, c in todo:
         if r.size:
             sub = tuple(a[r[:, 0]] for a in pts)
-            for v, g in zip(vals, _integrand(sub, dl[r[:, 0]], fine_l[r, c], rule), strict=True):
+            for v, g in zip(vals, _integrand(sub, dl[r[:, 0]], fine_l[r, c]), strict=True):
                 v[r, c] = g
     parts = [(np.broadcast_to(coarse, (K, ny)), first), (fine_p, got), (fine_l, tuple(vals))]
     y = np.concatenate([yy for yy, _ in parts], axis=1)
@@ -354,8 +353,7 @@ def plateau_log_evidence(
         if hi <= m2[b] - 4 * s:
             continue
         jobs.append((b, np.linspace(m2[b] - 4 * s, min(m2[b] + 4 * s, hi), nz)))
-    rule = gauss_legendre_unit(SMALL_X_NODES)
-    args = (per_block, sig, mu_prior, to_mu, rule)
+    args = (per_block, sig, mu_prior, to_mu)
     coarse = _evaluate(args, jobs, zero=True)
     # Fine nodes in z across the two coarse steps around the peak of the integrand of 2 ln B
     # and around that of μ's posterior (where it lies elsewhere): 12 nodes over the prior
@@ -403,7 +401,7 @@ def _evaluate(args, jobs, zero):
     All blocks' nodes in a few calls (numpy on large arrays), chunks of them keeping those
     arrays at a few MB. Blocks of one number of distinct amplitudes go together: no slopes at
     padding."""
-    per_block, sig, mu_prior, to_mu, rule = args
+    per_block, sig, mu_prior, to_mu = args
     res: dict[int, tuple] = {}
     if not jobs:
         return []
@@ -418,7 +416,7 @@ def _evaluate(args, jobs, zero):
             own = np.concatenate([np.full(z.size + zero, j) for j, (_, _, z) in enumerate(chunk)])
             ends = [np.append(np.exp(z), 0.0) if zero else np.exp(z) for _, _, z in chunk]
             pts = _rows(per_block, sig, mu_prior, to_mu, [b for _, b, _ in chunk])
-            got = _over_y(tuple(a[own] for a in pts), np.concatenate(ends), rule)
+            got = _over_y(tuple(a[own] for a in pts), np.concatenate(ends))
             for j, (k, _, _) in enumerate(chunk):
                 res[k] = tuple(v[own == j] for v in got)
     return [res[k] for k in range(len(jobs))]

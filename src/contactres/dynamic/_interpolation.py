@@ -28,6 +28,8 @@ from collections.abc import Callable
 
 import numpy as np
 
+from ..numerics import lobatto_weights
+
 __all__ = ["FIRST_INTERVALS", "MAX_INTERVALS", "chebyshev_values"]
 
 #: Intervals of the first Chebyshev–Lobatto grid (17 nodes). Measured on Cu(001), k_l a in
@@ -42,16 +44,6 @@ def _nodes(lo: float, hi: float, n: int) -> np.ndarray:
     """The n + 1 Chebyshev–Lobatto points on [lo, hi], ascending."""
     t = -np.cos(np.pi * np.arange(n + 1) / n)
     return 0.5 * (lo + hi) + 0.5 * (hi - lo) * t
-
-
-def _lobatto_weights(n: int) -> np.ndarray:
-    """Barycentric weights of the n + 1 Chebyshev–Lobatto points, (−1)^j halved at both ends
-    (Berrut and Trefethen 2004, Eq. 5.4): exact, where the products over the nodes carry
-    round-off. The common factor of the weights (here the sign of the ascending order) cancels
-    in the barycentric formula of the second kind."""
-    w = np.where(np.arange(n + 1) % 2 == 0, 1.0, -1.0)
-    w[[0, -1]] *= 0.5
-    return w
 
 
 def chebyshev_values(
@@ -98,7 +90,7 @@ def chebyshev_values(
         new_values = evaluate(new)
         error = 0.0
         for name, v in values.items():
-            guess = BarycentricInterpolator(nodes, v, wi=_lobatto_weights(n))(new)
+            guess = BarycentricInterpolator(nodes, v, wi=lobatto_weights(n + 1))(new)
             scale = max(np.max(np.abs(v)), np.max(np.abs(new_values[name])))
             error = max(error, float(np.max(np.abs(guess - new_values[name]))) / scale)
         merged = {}
@@ -108,7 +100,7 @@ def chebyshev_values(
             merged[name] = both
         nodes, values, n = fine, merged, 2 * n
         if error <= tol:
-            w = _lobatto_weights(n)
+            w = lobatto_weights(n + 1)
             out = {name: BarycentricInterpolator(nodes, v, wi=w)(x) for name, v in values.items()}
             return out, error
     return None

@@ -37,7 +37,7 @@ from __future__ import annotations
 import numpy as np
 
 from ..halfspace import inv3, mm
-from ..layered import compliance_factors, layer_waves, substrate_impedance
+from ..layered import compliance_factors, isotropic_moduli, layer_waves, substrate_impedance
 
 __all__ = [
     "StackWaves",
@@ -229,13 +229,9 @@ class StackWaves:
 
 def is_isotropic(c: np.ndarray) -> bool:
     """True if the tensor c (3, 3, 3, 3) is isotropic, c_ijkl = λ δ_ij δ_kl + μ (δ_ik δ_jl +
-    δ_il δ_jk) to the round-off of a rotated tensor (complex moduli allowed)."""
-    d = np.eye(3)
-    lam, mu = c[0, 0, 1, 1], c[0, 1, 0, 1]
-    iso = lam * np.einsum("ij,kl->ijkl", d, d) + mu * (
-        np.einsum("ik,jl->ijkl", d, d) + np.einsum("il,jk->ijkl", d, d)
-    )
-    return bool(np.max(np.abs(c - iso)) <= 1e-14 * np.max(np.abs(c)))
+    δ_il δ_jk) to the round-off of a rotated tensor (complex moduli allowed;
+    :func:`contactres.layered.isotropic_moduli`)."""
+    return isotropic_moduli(c) is not None
 
 
 def _inverse_column(a: np.ndarray) -> list:

@@ -25,6 +25,7 @@ from __future__ import annotations
 from ._recursion import (
     compliance_factors,
     impedance_recursion,
+    isotropic_moduli,
     layer_waves,
     stack_compliance,
     substrate_impedance,
@@ -46,6 +47,7 @@ __all__ = [
     "checked_thickness",
     "compliance_factors",
     "impedance_recursion",
+    "isotropic_moduli",
     "layer_waves",
     "material_at",
     "stack_compliance",

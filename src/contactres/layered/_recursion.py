@@ -80,6 +80,7 @@ from ._stack import LayeredMaterial, material_at
 __all__ = [
     "compliance_factors",
     "impedance_recursion",
+    "isotropic_moduli",
     "layer_waves",
     "stack_compliance",
     "substrate_impedance",
@@ -101,15 +102,27 @@ def _halfspace(c, th, s) -> np.ndarray:
 def _impedance(c, th, s) -> np.ndarray:
     """D = H⁻¹ (3, 3, N) of the half-space of tensor c: in closed form for an isotropic solid
     (:func:`_isotropic_impedance`), else the inverse of the general compliance."""
-    moduli = _isotropic_moduli(c)
+    moduli = isotropic_moduli(c)
     if moduli is None:
         return inv3(_halfspace(c, th, s))
     return _isotropic_impedance(moduli[0], moduli[1], np.asarray(th, dtype=float), s)
 
 
-def _isotropic_moduli(c: np.ndarray) -> tuple[complex, complex] | None:
+def isotropic_moduli(c: np.ndarray) -> tuple[complex, complex] | None:
     """(c11, c44) of the tensor c if it is isotropic, c_ijkl = λ δ_ij δ_kl + μ (δ_ik δ_jl +
-    δ_il δ_jk) to the round-off of a rotated tensor (complex moduli allowed); else None."""
+    δ_il δ_jk) to the round-off of a rotated tensor (complex moduli allowed); else None.
+
+    Parameters
+    ----------
+    c : (3, 3, 3, 3) elastic tensor (any unit; Pa for a material's), real or complex
+
+    Returns
+    -------
+    tuple of two complex or None
+        c11 = λ + 2μ and c44 = μ in the unit of ``c`` where every component of ``c`` is
+        within 1e-14 of its largest of the isotropic tensor with λ = c_1122, μ = c_1212 (the
+        closed-form paths for isotropic layers and substrates use them); None otherwise.
+    """
     d = np.eye(3)
     lam, mu = c[0, 0, 1, 1], c[0, 1, 0, 1]
     iso = lam * np.einsum("ij,kl->ijkl", d, d) + mu * (
@@ -209,7 +222,7 @@ def layer_waves(c, th, s) -> tuple[np.ndarray, bool]:
         every frequency (``contactres.dynamic._layered_path``). An isotropic layer's come in
         closed form (:func:`_isotropic_impedance`), any other's from the Stroh solution.
     """
-    moduli = _isotropic_moduli(c)
+    moduli = isotropic_moduli(c)
     if moduli is not None:
         # An isotropic solid (mirror-plane): D_d and A_d in closed form, no eigen-solution.
         th = np.asarray(th, dtype=float)

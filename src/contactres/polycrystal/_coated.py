@@ -34,6 +34,7 @@ from ..errors import ContactresInputError
 from ..layered import LayeredMaterial
 from ..materials import Material
 from ..normal import indentation_modulus_at
+from ..numerics import lobatto_weights
 from ._predicted import contact_stiffness_map
 
 __all__ = ["CoatedModuli", "coated_moduli", "hill_poisson_ratio"]
@@ -107,8 +108,7 @@ def _lobatto(n: int) -> np.ndarray:
 def _barycentric(x_nodes: np.ndarray, values: np.ndarray, x: np.ndarray) -> np.ndarray:
     """The polynomial through ``values`` at the Lobatto points ``x_nodes`` (on [−1, 1]), at x."""
     n = x_nodes.size
-    w = (-1.0) ** np.arange(n)
-    w[[0, -1]] *= 0.5
+    w = lobatto_weights(n)
     d = x[:, None] - x_nodes[None, :]
     exact = d == 0
     d[exact] = 1.0
