@@ -31,7 +31,8 @@ def lobatto_weights(n_points: int) -> np.ndarray:
 
     Parameters
     ----------
-    n_points : number of points, >= 2
+    n_points : int
+        How many Lobatto points, >= 2.
 
     Returns
     -------
