@@ -160,6 +160,49 @@ def test_blocks_evaluated_together_equal_each_alone():
         np.testing.assert_array_equal(both[:, k], alone[:, 0])
 
 
+def test_blocks_on_one_grid_share_their_slopes_and_equal_each_alone(monkeypatch):
+    # Blocks measured on one grid of amplitudes under one amplitude prior have the same nodes
+    # (x, c), so their slopes are evaluated once for all of them: each block still gets, bit
+    # for bit, what it gets alone (other noise, other d_c, another μ prior), and the slopes
+    # are evaluated at fewer points than for the blocks one by one (their coarse rows alone,
+    # 13 of each block's ~20, are the same four times over).
+    from contactres.analysis import _plateau_evidence
+
+    points = []
+    slopes = _plateau_evidence.plateau_loop_slopes
+
+    def spy(x, c, **kw):
+        points.append(np.size(x))
+        return slopes(x, c, **kw)
+
+    monkeypatch.setattr(_plateau_evidence, "plateau_loop_slopes", spy)
+    blocks = [_block(5, 0.0), _block(6, 0.3), _block(7, 0.3, 1.5), _block(8, 0.2)]
+    u, df, dg = (np.stack([b[k] for b in blocks]) for k in range(3))
+    w = np.ones_like(u)
+    sigma = np.array([[0.6, 0.6, 1.5, 0.6], [0.6, 0.6, 1.5, 0.6]])
+    mu = (np.array([np.nan, np.log(40.0 / 0.6e9), np.nan, np.nan]), np.array([np.nan, 0.04, 1, 1]))
+    ratio = (np.full(4, np.log(0.3)), np.full(4, 0.1))
+    to_mu = np.ones(4)
+    both = plateau_log_evidence(u, df, dg, w, sigma, mu, ratio, to_mu)
+    together = sum(points)
+    assert np.isfinite(both[0]).all()
+    points.clear()
+    for k in range(4):
+        one = slice(k, k + 1)
+        alone = plateau_log_evidence(
+            u[one],
+            df[one],
+            dg[one],
+            w[one],
+            sigma[:, one],
+            tuple(a[one] for a in mu),
+            tuple(a[one] for a in ratio),
+            to_mu[one],
+        )
+        np.testing.assert_array_equal(both[:, k], alone[:, 0])
+    assert together < 0.7 * sum(points)  # 0.59 with the sharing, 1 without
+
+
 def test_the_default_nodes_converge_on_real_study_blocks(water_study, monkeypatch):
     # Issue 27, point 11 (F1): on undecided water blocks of a seeded study the default nodes give
     # 2 ln B within 0.5 of a grid about seven times finer in z (81 uniform nodes, no refinement)
