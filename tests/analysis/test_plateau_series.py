@@ -8,8 +8,9 @@ import numpy as np
 import pytest
 from scipy import integrate, special
 
-from contactres.analysis._plateau import plateau_loop_slopes
+from contactres.analysis._plateau import SMALL_X_BLOCK, plateau_loop_slopes
 from contactres.analysis._plateau_series import (
+    SERIES_BLOCK,
     SERIES_MAX_M,
     SERIES_TIERS,
     slip_integral_series,
@@ -96,3 +97,27 @@ def test_the_callers_angle_gives_the_same_numbers():
     assert (x > c + 1.5).any() and (x < c + 1.5).any()
     phi = 2.0 * np.arcsin(np.sqrt(c / x))
     np.testing.assert_array_equal(slip_integral_series(x, c, phi), slip_integral_series(x, c))
+
+
+def test_blocks_do_not_mix_points():
+    # The series (SERIES_BLOCK points a call) and the small-x Gauss rule (SMALL_X_BLOCK) work
+    # in blocks: over several blocks, each point's numbers are those it gets evaluated alone
+    # (in calls of 1000 points), and points in the last block still equal the quadrature.
+    rng = np.random.default_rng(5)
+    n = 2 * SERIES_BLOCK + 777
+    c = rng.uniform(0.0, 1.0, n)
+    x = c + rng.uniform(1e-3, 1.0, n)  # m < 1/2 (a few tiers, each over several blocks)
+    got = slip_integral_series(x, c)
+    alone = np.concatenate(
+        [slip_integral_series(x[i : i + 1000], c[i : i + 1000]) for i in range(0, n, 1000)]
+    )
+    np.testing.assert_array_equal(got, alone)
+    for i in range(n - 5, n):
+        assert abs(got[i] - _quadpack(x[i], c[i])) < 1e-14 * x[i] ** 2
+    k = 3 * SMALL_X_BLOCK + 5
+    cs = rng.uniform(0.0, 0.05, k)
+    xs = cs + rng.uniform(1e-3, 0.09, k)  # x < (c + 3/2)/10: the Gauss rule
+    slopes = plateau_loop_slopes(xs, cs)
+    parts = [plateau_loop_slopes(xs[i : i + 100], cs[i : i + 100]) for i in range(0, k, 100)]
+    for j, a in enumerate(slopes):
+        np.testing.assert_array_equal(a, np.concatenate([p[j] for p in parts]))

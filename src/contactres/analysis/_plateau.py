@@ -43,6 +43,14 @@ __all__ = ["PLATEAU_LOOP_COLUMNS", "fit_plateau_loops", "plateau_loop_slopes"]
 #: Nodes of the Gauss-Legendre rule of the small-x integrals of :func:`plateau_loop_slopes`.
 SMALL_X_NODES = 16
 
+#: Points per block of the arithmetic of G′ and G″ from J without derivatives: its ~6 arrays
+#: stay in the core's cache (the evidence's calls hold up to ~2·10⁵ points); elementwise, so
+#: the same numbers in any block.
+VALUES_BLOCK = 8192
+
+#: Points per block of the small-x integrals (their arrays: 1024 x 16 doubles, 128 kB each).
+SMALL_X_BLOCK = 1024
+
 #: The Levenberg-Marquardt iteration of the fit (:func:`contactres.fitting.levenberg_marquardt`
 #: on the Gauss-Newton form of the projected χ², tolerances set per pass): Marquardt's scaling
 #: and Nielsen's update of the damping from the ratio of the actual to the predicted decrease
@@ -161,14 +169,27 @@ def _slipping(x, c, rule, derivatives=True) -> tuple[np.ndarray, ...]:
 def _slipping_values(x, c) -> tuple[np.ndarray, np.ndarray]:
     """G′ and G″ of :func:`_slipping` alone (``derivatives=False``): the same formulas, J by
     its series where it converges fast (the elliptic form elsewhere), each intermediate formed
-    once and updated in place (a third fewer passes over the points)."""
+    once and updated in place (a third fewer passes over the points), in blocks of
+    :data:`VALUES_BLOCK` points once J is known."""
     half = np.sqrt(c / x)
     np.arcsin(half, out=half)
     half *= 2.0  # d = c at φ = half, the series' φ_c where x <= e (one arcsin for both)
     J = slip_integral_series(x, c, half)
     far = np.isnan(J)
     if far.any():
-        J[far] = _elliptic_integrals(x[far], c[far])[0]
+        J[far] = _elliptic_integrals(x[far], c[far], derivatives=False)[0]
+    if x.size <= VALUES_BLOCK:
+        return _values_from(x, c, half, J)
+    g1, g2 = np.empty_like(x), np.empty_like(x)
+    for start in range(0, x.size, VALUES_BLOCK):
+        block = slice(start, start + VALUES_BLOCK)
+        g1[block], g2[block] = _values_from(x[block], c[block], half[block], J[block])
+    return g1, g2
+
+
+def _values_from(x, c, half, J) -> tuple[np.ndarray, np.ndarray]:
+    """G′ and G″ of :func:`_slipping_values` from 2 arcsin √(c/x) (``half``) and J at the
+    points (both overwritten)."""
     y = x - c
     x2 = x * x
     # H = x²/8 · 2 arcsin √(c/x) - (1/4) √(cy) (y - c) + √(2/3) J, as in _slipping.
@@ -209,9 +230,10 @@ def _slipping_values(x, c) -> tuple[np.ndarray, np.ndarray]:
     return H, g2
 
 
-def _elliptic_integrals(x, c):
+def _elliptic_integrals(x, c, derivatives: bool = True) -> tuple[np.ndarray, ...]:
     """J = ∫_c^b √Q, ∫d(e - d)/√Q and ∫d(x - d)/√Q (Q = d(x - d)(e - d), b = min(x, e)) of
-    :func:`plateau_loop_slopes`, from Legendre's incomplete elliptic integrals F and E."""
+    :func:`plateau_loop_slopes`, from Legendre's incomplete elliptic integrals F and E (J
+    alone if not ``derivatives``)."""
     e = c + 1.5
     r2, r3 = np.minimum(x, e), np.maximum(x, e)
     m = r2 / r3
@@ -227,27 +249,44 @@ def _elliptic_integrals(x, c):
     sq3 = np.sqrt(r3)
     S, P = x + e, x * e
     qc = np.sqrt(1.5 * c * (x - c))  # √Q at d = c
-    I1 = 2.0 * sq3 * (kf - ef)
-    I2 = (2.0 * S * I1 - P * (2.0 / sq3) * kf - 2.0 * qc) / 3.0
     # ∫√Q = [(2d/5 - 2S/15)√Q] + ∫(SP/15 + (2P/5 - 2S²/15) d)/√Q: d/dd of the bracket is √Q.
     a1 = 0.4 * P - 2.0 * S**2 / 15.0
     J = (2.0 * S / 15.0 - 0.4 * c) * qc + (2.0 / 15.0) * sq3 * kf * (r3 - r2) * (r2 - 2 * r3)
-    return J - 2.0 * a1 * sq3 * ef, e * I1 - I2, x * I1 - I2
+    J = J - 2.0 * a1 * sq3 * ef
+    if not derivatives:
+        return (J,)
+    I1 = 2.0 * sq3 * (kf - ef)
+    I2 = (2.0 * S * I1 - P * (2.0 / sq3) * kf - 2.0 * qc) / 3.0
+    return J, e * I1 - I2, x * I1 - I2
 
 
 def _small_x_integrals(x, c, rule):
     """J, ∫d(e - d)/√Q, ∫d(x - d)/√Q of :func:`plateau_loop_slopes` for x < e/10, by
-    Gauss-Legendre in φ (d = x(1 - cos φ)/2 from d = c to x: √(d(x - d)) = x sin φ/2)."""
+    Gauss-Legendre in φ (d = x(1 - cos φ)/2 from d = c to x: √(d(x - d)) = x sin φ/2).
+
+    In blocks of :data:`SMALL_X_BLOCK` points: the (points, nodes) arrays of a block stay in
+    the core's cache (of the fit's calls, the largest made ~13 MB arrays). Each point's sums
+    are its own row's, the same numbers in any block."""
+    out = np.empty((3, x.size))
+    for start in range(0, x.size, SMALL_X_BLOCK):
+        block = slice(start, start + SMALL_X_BLOCK)
+        out[:, block] = _small_x_block(x[block], c[block], rule)
+    return out[0], out[1], out[2]
+
+
+def _small_x_block(x, c, rule) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """:func:`_small_x_integrals` at one block of points."""
     t, wt = rule
     lo = 2.0 * np.arcsin(np.sqrt(c / x))
     ph = lo[:, None] + (np.pi - lo)[:, None] * t
     dphi = (np.pi - lo)[:, None] * wt
     cos, sin = np.cos(ph), np.sin(ph)
-    d = 0.5 * x[:, None] * (1.0 - cos)
+    one_cos = np.subtract(1.0, cos, out=cos)  # 1 - cos φ (both uses below)
+    d = 0.5 * x[:, None] * one_cos
     f = np.sqrt(1.0 - (d - c[:, None]) / 1.5)  # √((e - d)/(3/2))
     x2 = 0.25 * x[:, None] ** 2 * sin * sin * dphi  # √(d(x - d)) dd
     J = np.sqrt(1.5) * (x2 * f).sum(-1)
-    Jx = np.sqrt(1.5) * (f * 0.5 * x[:, None] * (1.0 - cos) * dphi).sum(-1)  # √(d/(x - d)) dd
+    Jx = np.sqrt(1.5) * (f * 0.5 * x[:, None] * one_cos * dphi).sum(-1)  # √(d/(x - d)) dd
     Jc = (x2 / f).sum(-1) / np.sqrt(1.5)
     return J, Jx, Jc
 

@@ -56,6 +56,12 @@ SERIES_CELLS = 16
 #: to rounding (the series over uniform m in (0, 7/8) costs a third less CPU in these cells).
 SERIES_TERMS = (9, 11, 13, 15, 17, 20, 23, 26, 30, 36, 43, 54, 71, 104)
 
+#: Points per call of the series' loop over its terms: its ~7 arrays of that many doubles stay
+#: in the core's 2 MB cache, and the calls' own cost stays small (~20 µs a block at 20 terms,
+#: against ~1 ms of arithmetic). The same numbers as one call over all of a tier's points (each
+#: point's terms are its own), at half the CPU of the 10⁵-point tiers of the evidence.
+SERIES_BLOCK = 32768
+
 #: (largest m, terms) of each cell, m ascending.
 SERIES_TIERS = tuple(((j + 1) / SERIES_CELLS, k) for j, k in enumerate(SERIES_TERMS))
 
@@ -103,10 +109,15 @@ def slip_integral_series(x, c, phi=None) -> np.ndarray:
         phi = np.asarray(phi, dtype=float)[order]
         if far.any():
             phi[far] = 2.0 * np.arcsin(np.sqrt(c[far] / r[far]))
-    out = np.full(m.shape, np.nan)
+    got = np.empty(order.size)
     for (_, terms), lo, hi in zip(SERIES_TIERS, [0, *ends], ends, strict=False):
-        if hi > lo:
-            out[order[lo:hi]] = _series(r[lo:hi], a[lo:hi], c[lo:hi], phi[lo:hi], terms)
+        # In blocks of SERIES_BLOCK points (the last one shorter): each term's passes then stay
+        # in the core's cache.
+        for start in range(lo, hi, SERIES_BLOCK):
+            block = slice(start, min(start + SERIES_BLOCK, hi))
+            got[block] = _series(r[block], a[block], c[block], phi[block], terms)
+    out = np.full(m.shape, np.nan)
+    out[order] = got
     return out
 
 
@@ -122,16 +133,27 @@ def _series(r, a, c, phi, terms):
     older, old = 0.5 * (np.pi - phi) + 0.5 * sin * cos, p * (-0.5 / 3.0)
     total = older + old
     qq, qc = q * q, q * cos
-    b = [1.0, 0.5]
     tmp = np.empty_like(p)
     # In place (V_k in the buffer of V_{k-2}, which it no longer needs): the same arithmetic
     # without a new array per operation.
-    for k in range(2, terms + 1):
-        b.append(b[-1] * (1.5 - k) / k)
+    for to_older, to_p in _FACTORS[: terms - 1]:
         p *= qc
         older *= qq
-        older *= b[k] / b[k - 2] * (k - 1) / (k + 2)
-        older -= np.multiply(p, b[k] / (k + 2), out=tmp)
+        older *= to_older
+        older -= np.multiply(p, to_p, out=tmp)
         total += older
         older, old = old, older
     return 0.25 * r * r * np.sqrt(a) * total
+
+
+def _factors(terms: int) -> tuple[tuple[float, float], ...]:
+    """(b_k (k - 1)/(b_{k-2} (k + 2)), b_k/(k + 2)) for k = 2..``terms``: the constant factors
+    of the recursion V_k = b_k q^k T_k (module docstring), b_k = binom(1/2, k)."""
+    b = [1.0, 0.5]
+    for k in range(2, terms + 1):
+        b.append(b[-1] * (1.5 - k) / k)
+    return tuple((b[k] / b[k - 2] * (k - 1) / (k + 2), b[k] / (k + 2)) for k in range(2, terms + 1))
+
+
+#: The factors of :func:`_series` up to the most terms a tier sums (constants of the series).
+_FACTORS = _factors(max(SERIES_TERMS))
