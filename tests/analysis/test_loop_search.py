@@ -8,6 +8,7 @@ import pytest
 from contactres.analysis._loops import (
     X_MAX,
     _least_chi2,
+    _search_pair,
     cm_loop_table,
     fit_cm_loops,
     interpolate_table,
@@ -103,3 +104,25 @@ def test_fit_lands_where_the_plain_search_lands(name):
         fit = fit_cm_loops(u, df, dg, w, sigma, sigma, table)
         plain = _plain_search(u, df, dg, w, sigma, table)
         assert np.array_equal(fit["theta_per_m"].to_numpy(), plain)
+
+
+@pytest.mark.parametrize("name", ["cm", "savkoor"])
+def test_search_lookup_is_numpy_interp_bit_for_bit(name):
+    """The θ search's lookup at x = θu (no clip: buckets beyond the table taken as its last)
+    against numpy.interp of the complex pair, the θ search's own numbers: at amplitudes of 0,
+    of padding beyond the largest weighted one (x past the table's end), around full sliding
+    (crowded buckets), and with a θ so large that x·2^LOOKUP_BITS leaves the integers (the
+    general lookup)."""
+    table = TABLES[name]
+    rng = np.random.default_rng(11)
+    u = np.sort(rng.uniform(0.0, 10e-9, (40, 9)), axis=1)
+    u[:, 0] = 0.0
+    theta = 10.0 ** rng.uniform(7.0, 10.5, (40, 12))  # x up to ~300 > X_MAX
+    slip = 1.5 if name == "cm" else 1.0
+    theta[:, 0] = slip * (1.0 + rng.normal(0.0, 1e-4, 40)) / u[:, 4]  # around full sliding
+    for th in (theta, np.full((40, 2), 1e300)):
+        g1, g2 = _search_pair(table_interpolant(table), u, th)
+        x = th[None, :, :] * u.T[:, :, None]
+        pair = np.interp(x, table.x, table.g1 + 1j * table.g2)
+        assert g1.shape == x.shape and g1.flags.c_contiguous
+        assert np.array_equal(g1, pair.real) and np.array_equal(g2, pair.imag)

@@ -217,7 +217,7 @@ def table_interpolant(table: LoopTable) -> TableInterpolant:
     pair = np.stack([x, slopes["c1"], table.g1, slopes["c2"], table.g2])
     # Buckets of more table points than LOOKUP_STEPS are marked by a negative first point, far
     # enough below 0 that the steps cannot lift it: one gather tells both.
-    first = np.where(count > LOOKUP_STEPS, _CROWDED, first[:-1]).astype(np.int32)
+    first = np.where(count > LOOKUP_STEPS, _CROWDED, first[:-1]).astype(np.intp)
     return TableInterpolant(table, first, ahead, slopes, pair)
 
 
@@ -253,28 +253,63 @@ def _table_index(ip: TableInterpolant, x) -> tuple[np.ndarray, np.ndarray]:
     :func:`interpolate_table`)."""
     x_tab = ip.table.x
     x = np.clip(x, x_tab[0], x_tab[-1])  # the ends: the first and the last value
+    b = x * 2.0**LOOKUP_BITS
     # fmax: a NaN amplitude (no NaN in validated sweeps) takes bucket 0 and gives NaN below.
-    b = np.fmax(x * 2.0**LOOKUP_BITS, 0.0).astype(np.intp)
+    b = np.fmax(b, 0.0, out=b).astype(np.intp)
     j = ip.first.take(b)  # take: the same gather as indexing, without its checks of b's kind
     for nxt in ip.ahead:
         j += nxt.take(b) <= x
-    if j.size and j.min() < 0:  # crowded buckets: searched
-        search = j < 0
-        j[search] = np.searchsorted(x_tab, x[search], side="right") - 1
+    if j.size and j.min() < 0:  # crowded buckets (~1 % of the lookups): searched
+        search = np.flatnonzero(j < 0)
+        j.flat[search] = np.searchsorted(x_tab, x.flat[search], side="right") - 1
     return x, j
 
 
 def _interpolate_pair(ip: TableInterpolant, x) -> tuple[np.ndarray, np.ndarray]:
-    """``interpolate_table(ip, x, ("c1", "c2"))``, the same numbers, from one gather of the
-    five table columns they need instead of five gathers (the θ search's lookups)."""
+    """``interpolate_table(ip, x, ("c1", "c2"))``, the same numbers, from the table's five
+    columns gathered at one index (the θ search's lookups), with fewer temporaries."""
     x, j = _table_index(ip, x)
-    x_j, s1, g1, s2, g2 = np.take(ip.pair, j, axis=1)  # five contiguous gathers in one call
-    d = x - x_j
-    s1 *= d  # in place: the same numbers as s1 * d + g1
-    s1 += g1
-    s2 *= d
-    s2 += g2
-    return s1, s2
+    return _pair_at(ip, x, j)
+
+
+def _pair_at(ip: TableInterpolant, x: np.ndarray, j: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """g1, g2 (as the complex numpy.interp forms them) at ``x`` in the interval ``j`` of the
+    table; ``x`` is overwritten. Where j is the last point, x may lie beyond it: its slope 0
+    then gives the last value, as the clipped x would (0·d = 0 for any finite d)."""
+    x_j, s1, g1, s2, g2 = ip.pair  # rows of a C-ordered array: each contiguous
+    d = np.subtract(x, x_j.take(j), out=x)
+    v1 = s1.take(j)
+    v1 *= d  # in place: the same numbers as s1 * d + g1
+    v1 += g1.take(j)
+    v2 = s2.take(j)
+    v2 *= d
+    v2 += g2.take(j)
+    return v1, v2
+
+
+def _search_pair(ip: TableInterpolant, u: np.ndarray, theta: np.ndarray):
+    """:func:`_interpolate_pair` at x = θu of the points ``u`` (S, M) >= 0 at the trials
+    ``theta`` (S, K): the same numbers, as (M, S, K) arrays (points first, in that order in
+    memory, as :func:`_least_chi2` sums them), with fewer passes over the trials.
+
+    x is finite and >= 0 here, so neither x nor its bucket needs the clip to the table: a
+    bucket beyond the last is taken as the last (``take(mode="clip")``), whose table point
+    is the table's end, and x beyond the end gives the last value there (:func:`_pair_at`).
+    The bucket is truncated to an integer in one pass, where x·2^LOOKUP_BITS < 2^52 (bounded
+    by max u · max θ; otherwise the general lookup).
+    """
+    x = np.multiply(u.T[:, :, None], theta, out=np.empty((u.shape[1], *theta.shape)))
+    bound = np.max(u, initial=0.0) * np.max(theta, initial=0.0)
+    if not (bound < 2.0 ** (50 - LOOKUP_BITS) and np.min(u, initial=0.0) >= 0.0):
+        return _interpolate_pair(ip, x)
+    b = np.multiply(x, 2.0**LOOKUP_BITS, out=np.empty(x.shape, np.intp), casting="unsafe")
+    j = ip.first.take(b, mode="clip")
+    for nxt in ip.ahead:
+        j += nxt.take(b, mode="clip") <= x
+    if j.size and j.min() < 0:  # crowded buckets (~1 % of the lookups): searched
+        search = np.flatnonzero(j < 0)
+        j.flat[search] = np.searchsorted(ip.table.x, x.flat[search], side="right") - 1
+    return _pair_at(ip, x, j)
 
 
 def solve_projected(g1, g2, df, dg, w, wf, wg):
@@ -313,11 +348,12 @@ def _least_chi2(g1, g2, df, dg, w, wf, wg) -> np.ndarray:
 
     The θ search needs of each round only the position of the least χ² and its value. With A
     and B projected out, χ² = C - num²/den (C = wf Σw Δf² + wg Σw (ΔΓ - mean)², num and den as
-    in :func:`solve_projected`), without the residuals, and summed over the points as planes
-    (the points on the first axis: one vectorised addition per point, where a sum along the
-    last axis pays numpy's per-row overhead on rows of ~10 points): about a third of the cost.
-    The two forms differ by rounding only, a few (M + 3)·ε·C at most (Higham's bound for sums
-    of M terms; every term is at most ~C, since num² <= den·C); a trial more than
+    in :func:`solve_projected`), without the residuals; the points on the first axis, its sums
+    over points weighted by data are a matrix-vector product per sweep (BLAS), those of
+    squares one einsum (where a sum along the last axis pays numpy's per-row overhead on rows
+    of ~10 points): about a fifth of solve_projected's cost. The two forms differ by rounding
+    only, a few (M + 3)·ε·C at most (Higham's bound for sums of M terms in any order; every
+    term is at most ~C, since num² <= den·C); a trial more than
     (M + 4)·2^-40·C (~10³ times that bound) above the least short-cut value cannot be the
     least, so only the trials within it, one or two a sweep, are evaluated as
     :func:`solve_projected` evaluates them. numpy.argmin over the result then finds the trial
@@ -336,19 +372,23 @@ def _least_chi2(g1, g2, df, dg, w, wf, wg) -> np.ndarray:
     (S, K) χ² (dimensionless): solve_projected's where it can be its row's least, +inf elsewhere
     """
     ones = bool(np.all(w == 1.0))
-    wt = w.T[:, :, None]
-
-    def weighted(a):  # w * a, skipped where every weight is 1
-        return a if ones else wt * a
-
     n = w.sum(-1)
     dgc = dg - ((w * dg).sum(-1) / n)[:, None]
     c = wf * (w * df * df).sum(-1) + wg * (w * dgc * dgc).sum(-1)
-    g2c = g2 - weighted(g2).sum(axis=0) / n[:, None]
-    wg1, wg2c = weighted(g1), weighted(g2c)
+    # The sums over the points weighted by a vector of each sweep: matrix-vector products,
+    # one per sweep (BLAS); the sums of squares by einsum (products and sum in one pass).
+
+    def dot(v, g):  # Σ_m v[s, m] g[m, s, k]: (S, K)
+        return np.matmul(v[:, None, :], g.transpose(1, 0, 2))[:, 0]
+
+    g2c = g2 - (dot(w, g2) / n[:, None])[None]
     wf2, wg2 = wf[:, None], wg[:, None]
-    num = wf2 * (wg1 * df.T[:, :, None]).sum(axis=0) + wg2 * (wg2c * dgc.T[:, :, None]).sum(axis=0)
-    den = wf2 * (wg1 * g1).sum(axis=0) + wg2 * (wg2c * g2c).sum(axis=0)
+    num = wf2 * dot(w * df, g1) + wg2 * dot(w * dgc, g2c)
+    if ones:
+        ss1, ss2 = np.einsum("msk,msk->sk", g1, g1), np.einsum("msk,msk->sk", g2c, g2c)
+    else:
+        ss1, ss2 = dot(w, g1 * g1), dot(w, g2c * g2c)
+    den = wf2 * ss1 + wg2 * ss2
     short = c[:, None] - num * num / den
     tol = (w.shape[-1] + 4) * 2.0**-40 * c
     sure = np.isfinite(short).all(axis=1) & np.isfinite(c)  # else every trial of the row
@@ -404,7 +444,7 @@ def _fit_cm_chunk(u, df, dg, w, sigma_df, sigma_dg, ip, rounds) -> dict[str, np.
     def chi2_at(lx, least=False):  # lx: (S, K) log10 of x_max
         theta = 10.0**lx / umax[:, None]
         if least:  # only the least χ² of each row matters (its position, its value)
-            g1, g2 = _interpolate_pair(ip, u.T[:, :, None] * theta)  # points first
+            g1, g2 = _search_pair(ip, u, theta)  # points first
             return _least_chi2(g1, g2, df, dg, w, wf, wg)
         xu = theta[..., None] * u[:, None, :]
         # Both shapes from one lookup, as one complex numpy.interp of the table made them.
