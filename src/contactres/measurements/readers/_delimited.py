@@ -12,7 +12,8 @@ from __future__ import annotations
 import csv
 import io
 import re
-from collections.abc import Callable
+import warnings
+from collections.abc import Callable, Collection
 from pathlib import Path
 from typing import TYPE_CHECKING
 
@@ -74,10 +75,10 @@ def _decode(path: Path) -> str:
         ) from None
 
 
-def _check_header(path: Path, number: int, header: str, sep: str) -> int:
-    """The number of columns of the header. Duplicate column names are an error (pandas would
-    rename them, in quadratic time); so is a header the csv module cannot split (a field over
-    its limit of 128 kB: no column name)."""
+def _check_header(path: Path, number: int, header: str, sep: str) -> list[str]:
+    """The column names of the header (stripped). Duplicate column names are an error (pandas
+    would rename them, in quadratic time); so is a header the csv module cannot split (a field
+    over its limit of 128 kB: no column name)."""
     try:
         names = [n.strip() for n in next(csv.reader([header], delimiter=sep))]
     except csv.Error as exc:
@@ -103,11 +104,15 @@ def _check_header(path: Path, number: int, header: str, sep: str) -> int:
             f"{path}, line {number}: duplicate column name(s) {shown}{more}; every column "
             "needs its own name"
         )
-    return len(names)
+    return names
 
 
-def load(path: Path) -> pd.DataFrame:
+def load(path: Path, number_columns: Collection[str] = ()) -> pd.DataFrame:
     """Raw string table with a ``line`` column (line number in the file, header = line 1).
+
+    ``number_columns``: columns that may come as float64 instead, each cell the number its
+    text gives (:func:`_parsed`; a table with a decimal point), named in
+    ``attrs["number_columns"]``; the others are text.
 
     ``attrs["decimal"]`` records the decimal mark for the validator. Comment lines and blank
     lines are dropped here, before parsing, so that ``#`` inside a cell stays data and every
@@ -126,7 +131,8 @@ def load(path: Path) -> pd.DataFrame:
         )
     head = body.split("\n", 51)[:51]
     sep, decimal = _dialect("\n".join(head))
-    width = _check_header(path, int(numbers[0]), head[0], sep)
+    names = _check_header(path, int(numbers[0]), head[0], sep)
+    width = len(names)
     # Parsed as UTF-8 bytes: a StringIO holds its text at 4 bytes a character (issue 31,
     # point 3: 0.6 GB for the 148 MB table of 10^5 sweeps, most of the reading's peak); the
     # text itself is let go, and made again from the bytes only to name a bad line.
@@ -147,20 +153,15 @@ def load(path: Path) -> pd.DataFrame:
     if len(head) > 1 and _width(head[1], sep) > width:
         raise unreadable(None)
     try:
-        raw = pd.read_csv(
-            io.BytesIO(data),
-            encoding="utf-8",
-            sep=sep,
-            dtype=str,
-            keep_default_na=False,
-            skip_blank_lines=False,
-            index_col=False,
-        )
+        raw = _parsed(data, sep, names, number_columns if decimal == "." else ())
     except pd.errors.ParserError as exc:
         raise unreadable(exc) from None
     raw.columns = [str(c).strip() for c in raw.columns]
-    # A short row leaves NaN in its missing cells: make them empty cells, as written.
-    raw = raw.fillna("")
+    # A short row may leave NaN in its missing cells (pandas 3 gives empty ones): make them
+    # empty cells, as written. Its last cell is one of them, so that column alone is looked
+    # at first (one column, not every cell of 10^6 rows: issue 31).
+    if raw.iloc[:, -1].isna().any():
+        raw = raw.fillna("")
     if len(numbers) - 1 != len(raw):
         # pandas joined lines: a quoted cell ran over a line break (a CR or LF inside quotes).
         # Every row would be named by a wrong line, and the label would not be the one written.
@@ -173,6 +174,55 @@ def load(path: Path) -> pd.DataFrame:
     # conventions qcm spectra writes), not rows.
     raw.attrs["comment_lines"] = tuple(n for n in comments if n > numbers[0])
     return raw
+
+
+def _parsed(data: bytes, sep: str, names: list[str], numbers: Collection[str]) -> pd.DataFrame:
+    """The table of the UTF-8 bytes ``data`` (header ``names``, separator ``sep``, decimal
+    point): text cells, the columns of ``numbers`` as float64 where each reads as the same
+    doubles as its text does (``attrs["number_columns"]`` names them), else all as text.
+
+    Why: 10^6 rows of text cells are 10^6 Python strings a column, each parsed to a number
+    again by the validator; pandas' parser reads a number column in C (issue 31: reading was
+    the largest part of ``qcm analyze`` beyond the fits). Its converter is the one
+    ``pandas.to_numeric`` applies to the text, with three exceptions, which send the table to
+    the text path: a number with a leading ``+`` (to_numeric rounds those differently: 5.4e32
+    from "+5.4E+32" one unit in the last place off; the file's bytes then hold a ``+`` not
+    after ``e``/``E``), ``-0`` in a column of whole numbers (to_numeric makes it the integer 0,
+    +0.0) and whole numbers from 2**53 on (converted from a 64-bit integer); NaN and infinities
+    (the validator names their cells, from the text) and any cell that is no number (pandas'
+    ValueError) too. tests/measurements/test_delimited_numbers.py compares both on 10^5 cells
+    of many forms."""
+    import pandas as pd
+
+    options = {"encoding": "utf-8", "sep": sep, "keep_default_na": False,
+               "skip_blank_lines": False, "index_col": False}  # fmt: skip
+    typed = [i for i, name in enumerate(names) if name in numbers]
+    signs = b"+" in data and data.count(b"+") != data.count(b"e+") + data.count(b"E+")
+    if typed and not signs:
+        dtype = {i: (np.float64 if i in typed else str) for i in range(len(names))}
+        try:
+            with warnings.catch_warnings():
+                # A warning of the parser (a row it shortens) is the text path's to give.
+                warnings.simplefilter("error")
+                raw = pd.read_csv(io.BytesIO(data), dtype=dtype, **options)  # type: ignore[call-overload]
+        except Exception:  # a cell that is no number, a table pandas refuses: the text path's
+            raw = None
+        if (
+            raw is not None
+            and raw.shape[1] == len(names)
+            and all(_as_written(raw.iloc[:, i].to_numpy()) for i in typed)
+        ):
+            raw.attrs["number_columns"] = tuple(names[i] for i in typed)
+            return raw
+    return pd.read_csv(io.BytesIO(data), dtype=str, **options)  # type: ignore[call-overload]
+
+
+def _as_written(values: np.ndarray) -> bool:
+    """Whether a column that pandas' parser read as float64 holds what the validator reads
+    from its text (:func:`_parsed`): finite, no -0.0, no whole number from 2**53 on."""
+    if values.dtype != np.float64 or not np.isfinite(values).all():
+        return False
+    return not ((np.signbit(values) & (values == 0)).any() or (np.abs(values) >= 2.0**53).any())
 
 
 def _data_lines(text: str) -> tuple[str, np.ndarray, list[int]]:

@@ -28,7 +28,10 @@ __all__ = ["KINDS", "Reader", "Readers", "first_detected", "read_head"]
 #: The kinds of input, and what ``load`` of a reader of that kind returns.
 KINDS = MappingProxyType(
     {
-        "sweeps": "load(path) -> DataFrame: a sweep table as string cells and a `line` column",
+        "sweeps": (
+            "load(path) -> DataFrame: a sweep table as string cells and a `line` column (float64 "
+            "columns named in attrs['number_columns'] are numbers read from their text)"
+        ),
         "spectra": (
             "load(path, *, layout=None, reference_impedance=50.0, two_port=None) -> DataFrame: "
             "tidy spectra "

@@ -20,6 +20,7 @@ function that reads (``read_sweeps(path, readers=...)``), or pass ``extra=(my_re
 from __future__ import annotations
 
 from collections.abc import Iterable
+from functools import partial
 from pathlib import Path
 
 from . import _delimited, _excel, _npz
@@ -30,10 +31,21 @@ from .exports import EXPORT_READERS, TIDY_READER
 
 __all__ = ["BUILT_IN", "BUILT_IN_READERS", "pick_reader"]
 
+#: The measured columns of a sweep table, which the delimited reader gives as numbers where
+#: they read as the validator reads their text (10^6 rows each: issue 31); the constants and
+#: the ramp stay text, each distinct text read (and, if wrong, named as written) once.
+SWEEP_NUMBERS = ("amplitude_m", "df_Hz", "dgamma_Hz", "normal_force_N", "time_s")
+
 #: The built-in recipes, in the order they are tried within each kind (after those whose
 #: suffix matches).
 BUILT_IN_READERS: tuple[Reader, ...] = (
-    Reader("csv", _delimited.suffixes, _delimited.detect, _delimited.load, "sweeps"),
+    Reader(
+        "csv",
+        _delimited.suffixes,
+        _delimited.detect,
+        partial(_delimited.load, number_columns=SWEEP_NUMBERS),
+        "sweeps",
+    ),
     Reader("csv", _delimited.suffixes, _delimited.detect, _delimited.load, "resonances"),
     Reader("xlsx", _excel.suffixes, _excel.detect, _excel.loader("sweeps"), "sweeps"),
     Reader("xlsx", _excel.suffixes, _excel.detect, _excel.loader("resonances"), "resonances"),
