@@ -98,8 +98,9 @@ def contact_facts(c) -> list[tuple[str, str]]:
 # float comparison; their results agree with the general path's to a few ulp (to a few ulp of
 # the larger term where a JKR quantity is a difference), not to the last bit: the cube root is
 # math.cbrt, not numpy's (tests/normal/test_isotropic_fast.py). Arrays: a float array of forces
-# with scalar E*, R and γ, the general path's operations in place, to the last bit. Anything
-# else, and any input that fails a check, takes the general path, which raises the usual error.
+# with scalar E*, R and γ, in place in one block; its fields are the general path's to the last
+# bit (both call _jkr_fields, in the scalar path's forms). Anything else, and any input that
+# fails a check, takes the general path, which raises the usual error.
 _PLAIN = frozenset((float, int, np.float64))
 _INF = math.inf
 _PI = math.pi
@@ -183,8 +184,8 @@ def _fields(F: np.ndarray) -> np.ndarray:
 
 def _array_jkr(E_star: float, R: float, F: np.ndarray, gamma: float, model) -> Contact | None:
     """:func:`jkr` for an array of forces F (float, ndim >= 1) and float E*, R, γ (checked), or
-    None when F fails a check. The general path's operations, in place where it made
-    temporaries; with γ = 0 the adhesive terms (exact zeros) are left out."""
+    None when F fails a check. The contact radius by the general path's operations (the same
+    bits as :func:`jkr_contact_radius`), in place; the other fields by :func:`_jkr_fields`."""
     lo, hi = F.min(), F.max()
     if not (-_INF < lo and hi < _INF) or (gamma == 0.0 and lo < 0.0):
         return None
@@ -194,41 +195,60 @@ def _array_jkr(E_star: float, R: float, F: np.ndarray, gamma: float, model) -> C
     if gamma != 0.0:
         disc = np.multiply(12.0 * _PI * gamma * R, F, out=depth)  # depth's row as scratch
         disc += b**2
-        if disc.min() < -1e-12 * max(b**2, 1e-300):
+        lowest = disc.min()
+        if lowest < -1e-12 * max(b**2, 1e-300):
             return None
-        np.maximum(disc, 0.0, out=disc)
+        if lowest < 0.0:  # rounding at the pull-off force (a no-op elsewhere: skipped)
+            np.maximum(disc, 0.0, out=disc)
         a += np.sqrt(disc, out=disc)
     else:
         a += 0.0  # sqrt(disc) = 0 (kept: it turns -0.0 into 0.0, as the general path does)
     a *= 3.0 * R / (4.0 * E_star)
     np.cbrt(a, out=a)
-    a2 = np.square(a, out=mean_p)  # mean_p's row holds a² until the end
-    with np.errstate(divide="ignore", invalid="ignore"):
-        np.divide(a2, R, out=depth)
-        np.multiply(4.0 * E_star, a2, out=stiffness)
-        stiffness /= R
-        dd_da, t = np.empty((2, *F.shape))  # scratch, one allocation (see _fields)
-        np.multiply(2.0, a, out=dd_da)
-        dd_da /= R
-        np.multiply(2.0 * E_star, a, out=centre)
-        centre /= _PI * R
-        if gamma != 0.0:
-            np.multiply(4.0 * _PI * gamma, a, out=t)
-            t /= E_star
-            depth -= np.sqrt(t, out=t)
-            np.multiply(_PI * gamma * E_star, a, out=t)
-            stiffness -= np.multiply(6.0, np.sqrt(t, out=t), out=t)
-            np.multiply(E_star, a, out=t)
-            np.divide(_PI * gamma, t, out=t)
-            dd_da -= np.sqrt(t, out=t)
-            np.multiply(_PI, a, out=t)
-            np.divide(4.0 * gamma * E_star, t, out=t)
-            centre -= np.sqrt(t, out=t)
-        stiffness /= dd_da
-        np.multiply(_PI, a2, out=mean_p)
+    _jkr_fields(E_star, R, gamma, a, F, (depth, mean_p, centre, stiffness), gamma != 0.0)
+    return _new_contact(a, depth, mean_p, centre, stiffness, np.broadcast_to(F, a.shape), model)
+
+
+def _jkr_fields(E, R, gamma, a: np.ndarray, F, rows, adhesive: bool) -> None:
+    """Fill ``rows`` = (depth, mean pressure, centre pressure, stiffness) of JKR contacts of
+    radius ``a`` under forces ``F`` (E*, R, γ floats or arrays of a's shape), in place.
+
+    The closed forms of :func:`jkr` with one square root, q = √(πγa/E*), as its scalar path
+    writes them: δ = u − 2q with u = a²/R, k = dF/dδ = 2E*a (2u − 3q)/(2u − q) (the ratio of
+    dF/da = 2E*(2u − 3q) and dδ/da = (2u − q)/a), p(0) = (2E*/π)(a/R − q/a) and F/(πa²); the
+    four square roots of the textbook forms are q times E*, 1/a and 2. Without adhesion (q = 0)
+    the terms in q are left out. Where a = 0 (no area) the pressures and the stiffness are 0.
+    The array path and the general path both call it: their fields agree to the last bit.
+    """
+    depth, mean_p, centre, stiffness = rows
+    inv_r = 1.0 / R
+    # In place where it can be (x op= y reads two rows and writes one it has just read: a
+    # third less memory traffic than np.op(y, z, out=x), which bounds these loops).
+    with np.errstate(divide="ignore", invalid="ignore"):  # a = 0: zeroed below
+        np.square(a, out=depth)
+        depth *= inv_r  # u = a²/R
+        if adhesive:
+            q = np.multiply(a, _PI * gamma / E, out=mean_p)  # mean_p's row holds q a while
+            np.sqrt(q, out=q)
+            w = np.multiply(depth, 2.0, out=centre)  # centre's row holds 2u − q a while
+            w -= q
+            np.multiply(q, -2.0, out=stiffness)
+            depth += stiffness  # u − 2q
+            stiffness += w  # 2u − 3q
+            stiffness /= w
+            stiffness *= a
+            stiffness *= 2.0 * E
+            q /= a
+            np.multiply(a, inv_r, out=centre)
+            centre -= q  # a/R − q/a
+            centre *= 2.0 * E / _PI
+        else:
+            np.multiply(a, 2.0 * E, out=stiffness)
+            np.multiply(stiffness, inv_r / _PI, out=centre)
+        np.square(a, out=mean_p)
+        mean_p *= _PI
         np.divide(F, mean_p, out=mean_p)
     _zero_where_no_area(a, stiffness, mean_p, centre)
-    return _new_contact(a, depth, mean_p, centre, stiffness, np.broadcast_to(F, a.shape), model)
 
 
 def _array_dmt(E_star: float, R: float, F: np.ndarray, gamma: float) -> Contact | None:
@@ -443,29 +463,17 @@ def jkr_contact_radius(E_star, radius, force, gamma):
     return _out(np.cbrt(3.0 * R / (4.0 * E_star) * (F + b + np.sqrt(np.maximum(disc, 0.0)))))
 
 
-def _jkr_state(E_star, R, gamma, a, model):
-    F = 4.0 * E_star * a**3 / (3.0 * R) - 4.0 * np.sqrt(np.pi * gamma * E_star * a**3)
-    depth = a**2 / R - np.sqrt(4.0 * np.pi * gamma * a / E_star)
-    dF_da = 4.0 * E_star * a**2 / R - 6.0 * np.sqrt(np.pi * gamma * E_star * a)
-    with np.errstate(divide="ignore", invalid="ignore"):  # a = 0: the np.where branches
-        dd_da = 2.0 * a / R - np.sqrt(np.pi * gamma / (E_star * a))
-        stiffness = np.where(a > 0, dF_da / dd_da, 0.0)
-        mean_p = np.where(a > 0, F / (np.pi * a**2), 0.0)
-        # Hertzian part minus the flat-punch (adhesive) part, at r = 0 (Johnson Eq. 5.130).
-        centre = np.where(
-            a > 0,
-            2.0 * E_star * a / (np.pi * R) - np.sqrt(4.0 * gamma * E_star / (np.pi * a)),
-            0.0,
-        )
-    return Contact(
-        contact_radius=_out(a),
-        depth=_out(depth),
-        mean_pressure=_out(mean_p),
-        peak_pressure=_out(centre),
-        stiffness=_out(stiffness),
-        force=_out(F),
-        model=model,
-    )
+def _jkr_state(E_star, R, gamma, a, model, force=None) -> Contact:
+    """The :class:`Contact` of JKR contacts of radius ``a`` (E*, R, γ and a broadcast arrays)
+    under ``force``, or, without it, the force F = 4E*a³/(3R) − 4√(πγE*a³) of that radius."""
+    if force is None:
+        force = 4.0 * E_star * a**3 / (3.0 * R) - 4.0 * np.sqrt(np.pi * gamma * E_star * a**3)
+    F = np.broadcast_to(np.asarray(force, dtype=float), a.shape)
+    block = np.empty((4, *a.shape))
+    rows = tuple(block[i, ...] for i in range(4))  # views, 0-d arrays for a 0-d a
+    _jkr_fields(E_star, R, gamma, a, F, rows, bool(np.any(gamma != 0.0)))
+    depth, mean_p, centre, stiffness = (_out(x) for x in rows)
+    return Contact(_out(a), depth, mean_p, centre, stiffness, _out(F), model)
 
 
 def jkr(E_star, radius, force, gamma, *, _model: str = "jkr") -> Contact:
@@ -538,14 +546,8 @@ def jkr(E_star, radius, force, gamma, *, _model: str = "jkr") -> Contact:
             return c
     a = np.asarray(jkr_contact_radius(E_star, R, force, gamma), dtype=float)
     E_star, R, gamma, a = np.broadcast_arrays(E_star, R, gamma, a)
-    c = _jkr_state(E_star, R, gamma, a, _model)
-    # Report the requested force itself, not its round trip through a.
-    F = np.broadcast_to(np.asarray(force, dtype=float), a.shape)
-    with np.errstate(divide="ignore", invalid="ignore"):
-        mean_p = np.where(a > 0, F / (np.pi * a**2), 0.0)
-    return Contact(
-        c.contact_radius, c.depth, _out(mean_p), c.peak_pressure, c.stiffness, _out(F), _model
-    )
+    # The requested force itself, not its round trip through a.
+    return _jkr_state(E_star, R, gamma, a, _model, force)
 
 
 def jkr_from_depth(E_star, radius, depth, gamma) -> Contact:
