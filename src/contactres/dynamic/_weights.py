@@ -16,7 +16,9 @@ __all__ = [
     "bessel_even",
     "bessel_even_sum",
     "bessel_orders",
+    "by_real_columns",
     "j1_over_s",
+    "real_columns",
     "sinc",
     "spherical_bessel",
     "wa_harmonic_sum",
@@ -93,6 +95,38 @@ def _series_terms(zmax: float) -> int:
     peak = int(np.argmax(mags))
     below = np.flatnonzero(mags[peak:] < 1e-17 * mags[peak])
     return _W_SERIES.size if below.size == 0 else peak + int(below[0]) + 1
+
+
+def real_columns(z: np.ndarray) -> int:
+    """Where the trailing columns (last axis) of ``z`` whose imaginary parts are all exactly 0
+    begin: ``z.shape[-1]`` if the last column has a nonzero one, 0 if all are real.
+
+    The near field's nodes are the complex contour followed by the real hand-over segment
+    [T₁, 2T₁] (:func:`~contactres.dynamic._table.wavenumber_nodes`), 32 of the 80 at the
+    default resolution: the Bessel sums there run in real arithmetic (a real division costs a
+    fraction of numpy's complex one, which is most of a continued fraction's work; issue 31).
+    """
+    z = np.asarray(z)
+    if not np.iscomplexobj(z):
+        return 0
+    rows = tuple(range(z.ndim - 1))
+    complex_columns = np.flatnonzero(np.any(z.imag != 0, axis=rows))
+    return int(complex_columns[-1]) + 1 if complex_columns.size else 0
+
+
+def by_real_columns(fn, z: np.ndarray, coeffs: np.ndarray) -> np.ndarray:
+    """``fn(z, coeffs)`` of a per-column sum over orders (:func:`bessel_even_sum`,
+    :func:`wa_harmonic_sum`: ``z`` (..., n), ``coeffs`` (K + 1, n)), with the trailing real
+    columns of ``z`` (:func:`real_columns`) passed as real arguments: the same sum there, in
+    real arithmetic (to round-off; each part starts its continued fraction from its own
+    largest ``|z|``, both far enough above for the truncation to stay below 1e-20)."""
+    split = real_columns(z)
+    if split in (0, z.shape[-1]):
+        return fn(z, coeffs)
+    out = np.empty(z.shape, dtype=np.result_type(z, coeffs))
+    out[..., :split] = fn(z[..., :split], coeffs[..., :split])
+    out[..., split:] = fn(np.ascontiguousarray(z[..., split:].real), coeffs[..., split:])
+    return out
 
 
 def wa_line_weight(z):
