@@ -234,8 +234,8 @@ def functionals(
     top = float(np.max(ka)) if smax is None else float(smax)
     c1, cw, mean0 = near_theta_integrals(table, s, top * float(np.max(np.abs(table.near_kappa))))
     wk = table.near_weight[None, :] * ka[:, None]  # ka dκ χ
-    flat = sinc(s)
-    hertz = j1_over_s(s)
+    flat = by_real_columns(sinc, s)  # the real segment in real arithmetic (round-off)
+    hertz = by_real_columns(j1_over_s, s)
     wf, wh = wk * flat, wk * hertz  # each product once (the same bits as formed in each sum)
     near = [
         wf @ mean0,

@@ -63,10 +63,11 @@ def j1_over_s(s):
     s = np.asarray(s)
     small = np.abs(s) < 0.3
     z = np.where(small, 1.0, s)
-    full = (np.sin(z) - z * np.cos(z)) / z**3
-    s2 = s * s
-    series = 1 / 3 - s2 / 30 + s2**2 / 840 - s2**3 / 45360 + s2**4 / 3991680
-    return np.where(small, series, full)
+    out = np.asarray((np.sin(z) - z * np.cos(z)) / z**3)
+    if np.any(small):  # the series only where it is used (its powers cost more than the rest)
+        s2 = s[small] * s[small]
+        out[small] = 1 / 3 - s2 / 30 + s2**2 / 840 - s2**3 / 45360 + s2**4 / 3991680
+    return out
 
 
 # Gauss-Laguerre rule for ∫₀^∞ e^{-u} √(1 + u²/z²) du = (π/2)(H₁ − Y₁)(z) (|z| >= 8).
@@ -114,18 +115,21 @@ def real_columns(z: np.ndarray) -> int:
     return int(complex_columns[-1]) + 1 if complex_columns.size else 0
 
 
-def by_real_columns(fn, z: np.ndarray, coeffs: np.ndarray) -> np.ndarray:
-    """``fn(z, coeffs)`` of a per-column sum over orders (:func:`bessel_even_sum`,
-    :func:`wa_harmonic_sum`: ``z`` (..., n), ``coeffs`` (K + 1, n)), with the trailing real
-    columns of ``z`` (:func:`real_columns`) passed as real arguments: the same sum there, in
-    real arithmetic (to round-off; each part starts its continued fraction from its own
-    largest ``|z|``, both far enough above for the truncation to stay below 1e-20)."""
+def by_real_columns(fn, z: np.ndarray, *per_column: np.ndarray) -> np.ndarray:
+    """``fn(z, *per_column)`` of a function of ``z`` (..., n) column by column (elementwise, as
+    :func:`sinc`, or a per-column sum over orders, as :func:`bessel_even_sum` and
+    :func:`wa_harmonic_sum` with their coefficients (K + 1, n) in ``per_column``), with the
+    trailing real columns of ``z`` (:func:`real_columns`) passed as real arguments: the same
+    values there, in real arithmetic (to round-off; a continued fraction of each part starts
+    from its own largest ``|z|``, both far enough above for the truncation to stay below
+    1e-20). Complex, shaped like ``z``."""
     split = real_columns(z)
     if split in (0, z.shape[-1]):
-        return fn(z, coeffs)
-    out = np.empty(z.shape, dtype=np.result_type(z, coeffs))
-    out[..., :split] = fn(z[..., :split], coeffs[..., :split])
-    out[..., split:] = fn(np.ascontiguousarray(z[..., split:].real), coeffs[..., split:])
+        return fn(z, *per_column)
+    out = np.empty(z.shape, dtype=np.result_type(z, *per_column))
+    out[..., :split] = fn(z[..., :split], *(c[..., :split] for c in per_column))
+    real = np.ascontiguousarray(z[..., split:].real)
+    out[..., split:] = fn(real, *(c[..., split:] for c in per_column))
     return out
 
 
