@@ -18,7 +18,7 @@ from scipy import integrate, special
 
 from contactres import Material
 from contactres.dynamic import prepare
-from contactres.dynamic._exact import exact_n, galerkin_plan, galerkin_size
+from contactres.dynamic._exact import exact_n, galerkin_plan, galerkin_size, near_bessel
 from contactres.dynamic._farfield import far_basis, far_grid, low_rank
 from contactres.dynamic._fartail import far_tail, head_grid
 from contactres.dynamic._quadrature import (
@@ -31,6 +31,8 @@ from contactres.dynamic._quadrature import (
 from contactres.dynamic._weights import (
     bessel_even_sum,
     bessel_orders,
+    by_real_columns,
+    real_columns,
     spherical_bessel,
     wa_harmonic_sum,
     wa_harmonic_weights,
@@ -251,3 +253,36 @@ def test_far_products_formed_by_blocks_of_pairs_are_those_of_all_pairs_at_once(t
         assert np.all(np.abs(plan.far_moments - moments) <= 1e-14 * terms)
     no_tail = galerkin_plan(table, size, grid.s)
     assert no_tail.far_moments is None and np.array_equal(no_tail.far_products, products)
+
+
+def test_real_columns_finds_the_trailing_real_segment():
+    z = np.array([[1 + 1j, 2 + 0j, 3 + 0j], [4 + 0j, 5 + 0j, 6 + 0j]])
+    assert real_columns(z) == 1  # column 0 has a nonzero imaginary part, 1 and 2 do not
+    assert real_columns(z.real) == 0
+    assert real_columns(np.array([1.0 + 0j, 2 + 1e-300j])) == 2
+
+
+def test_sums_split_at_the_real_columns_against_amos(table):
+    """The near field's sums with its real hand-over segment in real arithmetic: against
+    scipy's jv (AMOS) term by term, and against the same sums with every column complex."""
+    ka = np.array([0.05, 0.9, 4.0])
+    s = ka[:, None] * table.near_kappa[None, :]
+    assert 0 < real_columns(s) < s.shape[1]  # the contour, then the real segment
+    c = np.random.default_rng(11).normal(size=(20, s.shape[1])) * (1 + 0.5j)
+    ref = sum(special.jv(2 * m, s) * c[m] for m in range(20))
+    scale = np.sum(np.abs(c), axis=0)
+    got = by_real_columns(bessel_even_sum, s, c)
+    assert np.all(np.abs(got - ref) <= 1e-14 * scale)
+    split = by_real_columns(wa_harmonic_sum, s, c)
+    assert np.all(np.abs(split - wa_harmonic_sum(s, c)) <= 1e-14 * scale)
+
+
+def test_near_bessel_against_scipy_spherical_jn(table):
+    """j_p at the near nodes, the real segment in real arithmetic, against scipy's spherical_jn
+    (AMOS; the bound of the test of spherical_bessel: AMOS itself scatters near the zeros)."""
+    ka = np.array([0.05, 1.3, 4.9])
+    got = near_bessel(table, ka, 24)
+    s = ka[:, None] * table.near_kappa[None, :]
+    for p in (0, 1, 7, 24):
+        ref = special.spherical_jn(p, s)
+        assert np.all(np.abs(got[p] - ref) <= 1e-12 * np.abs(ref) + 1e-13 * np.max(np.abs(ref)))

@@ -38,7 +38,7 @@ from ..errors import ContactresInputError
 from ._farfield import FarBasis, far_basis, low_rank
 from ._fartail import FarTail, tail_coefficients
 from ._table import KernelTable
-from ._weights import spherical_bessel
+from ._weights import real_columns, spherical_bessel
 
 __all__ = [
     "GalerkinPlan",
@@ -337,8 +337,14 @@ def exact_n(
             M = galerkin_matrix(table, ka, plan, far)
         else:  # the reduced system of the mirror symmetry (MirrorPlan), expanded after
             half = galerkin_integrals(table, ka, replace(plan, ms=mirror.ms), far)
-            M = mirror.sign[0] * half[:, mirror.m_index[0], mirror.t_index]
-            M += mirror.sign[1] * half[:, mirror.m_index[1], mirror.t_index]
+            # The signs ±1 and 0 by reading from [half, −half, 0] (exact, as the products
+            # were; a broadcast real x complex product is buffered and cast, issue 31).
+            n_h = mirror.ms.size
+            signed = np.concatenate([half, -half, np.zeros_like(half[:, :1])], axis=1)
+            at = np.where(mirror.sign > 0, mirror.m_index, mirror.m_index + n_h)
+            at[mirror.sign == 0] = 2 * n_h
+            M = signed[:, at[0], mirror.t_index]
+            M += signed[:, at[1], mirror.t_index]
         rhs = np.zeros(M.shape[-1])
         rhs[0] = 1.0
         c = np.linalg.solve(M, np.broadcast_to(rhs, M.shape[:-1])[..., None])[..., 0]
@@ -382,8 +388,16 @@ def galerkin_matrix(
 def near_bessel(table: KernelTable, ka: np.ndarray, p_max: int) -> np.ndarray:
     """j_p(s), p = 0..p_max, at the near-field nodes s = ka × ``table.near_kappa`` of the k_s a
     values ``ka``, shape (p_max + 1, len(ka), nk), complex: the ``near_j`` of
-    :func:`galerkin_integrals`."""
-    return spherical_bessel(int(p_max), ka[:, None] * table.near_kappa[None, :])
+    :func:`galerkin_integrals`. The nodes of the real hand-over segment in real arithmetic
+    (:func:`~contactres.dynamic._weights.real_columns`; the same values to round-off)."""
+    s = ka[:, None] * table.near_kappa[None, :]
+    split = real_columns(s)
+    if split in (0, s.shape[-1]):
+        return spherical_bessel(int(p_max), s)
+    out = np.empty((int(p_max) + 1, *s.shape), dtype=complex)
+    out[..., :split] = spherical_bessel(int(p_max), s[:, :split])
+    out[..., split:] = spherical_bessel(int(p_max), np.ascontiguousarray(s[:, split:].real))
+    return out
 
 
 def galerkin_integrals(
@@ -412,10 +426,15 @@ def galerkin_integrals(
     near_h = kernel_harmonics(table.near_values, plan.ms)  # (n_m, nk)
     if near_j is None:
         near_j = near_bessel(table, ka, int(orders[-1]))
-    jp = np.moveaxis(near_j[orders], 0, 1)  # (na, n_p, nk)
+    jp = near_j[orders]  # (n_p, na, nk)
     wk = table.near_weight[None, :] * ka[:, None]
-    near = _near_pair_sums(jp * wk[:, None, :], jp, ti, tj, near_h.T)  # (na, n_t, n_m)
-    integral += near.transpose(0, 2, 1)  # (na, n_m, n_t)
+    # Order by order, not jp * wk[None]: numpy copies the operands of a broadcast product
+    # into buffers, which cost 3x the product itself (issue 31).
+    weighted = np.empty_like(jp, dtype=np.result_type(jp, wk))
+    for i in range(orders.size):
+        np.multiply(jp[i], wk, out=weighted[i])
+    near = _near_pair_sums(weighted, jp, ti, tj, near_h.T)  # (n_t, na, n_m)
+    integral += near.transpose(1, 2, 0)  # (na, n_m, n_t)
     # Far field: Chebyshev series in w = (T1 ka/s)² of each harmonic, against j_p j_q.
     nf = far.basis.shape[-1]
     harm = {int(j): i for i, j in enumerate(table.far_harmonics)}
@@ -457,33 +476,43 @@ def galerkin_integrals(
 def _near_pair_sums(
     left: np.ndarray, right: np.ndarray, ti: np.ndarray, tj: np.ndarray, h: np.ndarray
 ) -> np.ndarray:
-    """Σ_k ``left[:, ti, k] * right[:, tj, k] * h[k, :]``, (na, n_t, n_m): the near-field sums
-    of the pair products against the kernel harmonics, one first order at a time.
+    """Σ_k ``left[ti, :, k] * right[tj, :, k] * h[k, :]``, (n_t, na, n_m): the near-field sums
+    of the pair products against the kernel harmonics, one first order at a time (``left``
+    and ``right`` indexed (order, k a, node), as the Bessel functions come).
 
     The pairs of a plan come sorted by their first order, each first order with a run of
     second orders: per first order p, the products of its row of ``left`` with the run of
-    ``right`` (na, run, nk) and their product with ``h``, one BLAS call each, straight into
-    the result. The whole (na, n_t, nk) array of products is never made: it was the largest
-    array of the exact model (4.7 MB at 40 k a values, rtol 1e-6; issue 31). The same sums as
-    the product of that array with ``h`` (to round-off: the BLAS call is split by first
-    order).
+    ``right`` (run, na, nk) and their product with ``h``, one BLAS call each, straight into
+    the result. The whole (n_t, na, nk) array of products is never made: it was the largest
+    array of the exact model (4.7 MB at 40 k a values, rtol 1e-6; issue 31). The products
+    of every first order go to one work array, in the order of the Bessel functions (a run
+    of second orders is a contiguous block of ``right``, its products contiguous rows for
+    the BLAS call, with no copy; one product per pair, since numpy buffers the operands of a
+    broadcast product, at 3x the cost), and the sums go straight into the result: a fresh
+    (na, run, nk) product and its reordered copy per first order made the heap's top grow
+    and shrink, ~400 fresh pages of memory per curve. The same sums as the product of the
+    whole array with ``h`` (to round-off: the BLAS call is split by first order).
     """
-    na, nk = left.shape[0], left.shape[-1]
-    out = np.empty((na, ti.size, h.shape[-1]), dtype=np.result_type(left, right, h))
+    n_p, na, nk = left.shape
+    out = np.empty((ti.size, na, h.shape[-1]), dtype=np.result_type(left, right, h))
     order = np.argsort(ti, kind="stable")
     ti_s, tj_s = ti[order], tj[order]
-    starts = np.searchsorted(ti_s, np.arange(left.shape[1] + 1))
-    for p in range(left.shape[1]):
+    starts = np.searchsorted(ti_s, np.arange(n_p + 1))
+    longest = int(np.max(np.diff(starts), initial=0))
+    work = np.empty(longest * na * nk, dtype=np.result_type(left, right))
+    for p in range(n_p):
         lo, hi = int(starts[p]), int(starts[p + 1])
         if hi == lo:
             continue
         q = tj_s[lo:hi]
         run = q[-1] - q[0] == hi - lo - 1 and bool(np.all(np.diff(q) == 1))
-        cols = right[:, int(q[0]) : int(q[-1]) + 1] if run else right[:, q]
-        prod = left[:, p, None, :] * cols  # (na, run, nk)
-        sums = (prod.reshape(-1, nk) @ h).reshape(na, hi - lo, -1)
+        cols = right[int(q[0]) : int(q[-1]) + 1] if run else right[q]
+        prod = work[: (hi - lo) * na * nk].reshape(hi - lo, na, nk)
+        for i in range(hi - lo):  # one product per pair: a broadcast one is buffered, 3x slower
+            np.multiply(left[p], cols[i], out=prod[i])
+        rows = prod.reshape(-1, nk)
         if np.array_equal(order[lo:hi], np.arange(lo, hi)):
-            out[:, lo:hi] = sums
+            np.matmul(rows, h, out=out[lo:hi].reshape(-1, h.shape[-1]))
         else:
-            out[:, order[lo:hi]] = sums
+            out[order[lo:hi]] = (rows @ h).reshape(hi - lo, na, -1)
     return out

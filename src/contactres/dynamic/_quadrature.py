@@ -38,7 +38,14 @@ from ._farfield import (
 )
 from ._fartail import FarTail, tail_coefficients
 from ._table import KernelTable
-from ._weights import bessel_even, bessel_even_sum, j1_over_s, sinc, wa_harmonic_sum
+from ._weights import (
+    bessel_even,
+    bessel_even_sum,
+    by_real_columns,
+    j1_over_s,
+    sinc,
+    wa_harmonic_sum,
+)
 
 __all__ = [
     "FUNCTIONALS",
@@ -119,8 +126,8 @@ def near_theta_integrals(table: KernelTable, s: np.ndarray, smax: float):
     folded[1:] += h[:, n - m[1:]].T
     folded *= (2 * np.pi) * np.where(m % 2 == 0, 1.0, -1.0)[:, None]
     # Summed against the folded harmonics as the weights are made (no (keep, na, nk) arrays).
-    c1 = bessel_even_sum(s, folded)
-    cw = wa_harmonic_sum(s, folded)
+    c1 = by_real_columns(bessel_even_sum, s, folded)
+    cw = by_real_columns(wa_harmonic_sum, s, folded)
     return c1, cw, 2 * np.pi * h[:, 0]
 
 
@@ -227,15 +234,16 @@ def functionals(
     top = float(np.max(ka)) if smax is None else float(smax)
     c1, cw, mean0 = near_theta_integrals(table, s, top * float(np.max(np.abs(table.near_kappa))))
     wk = table.near_weight[None, :] * ka[:, None]  # ka dκ χ
-    flat = sinc(s)
-    hertz = j1_over_s(s)
+    flat = by_real_columns(sinc, s)  # the real segment in real arithmetic (round-off)
+    hertz = by_real_columns(j1_over_s, s)
+    wf, wh = wk * flat, wk * hertz  # each product once (the same bits as formed in each sum)
     near = [
-        (wk * flat) @ mean0,
-        np.sum(wk * flat * c1, axis=1),
-        np.sum(wk * flat * cw, axis=1),
+        wf @ mean0,
+        np.sum(wf * c1, axis=1),
+        np.sum(wf * cw, axis=1),
         (wk * flat**2) @ mean0,
-        (wk * hertz) @ mean0,
-        np.sum(wk * hertz * c1, axis=1),
+        wh @ mean0,
+        np.sum(wh * c1, axis=1),
     ]
 
     # Far field: Chebyshev series in w = (T1 ka/s)² against the harmonic weights on the grid.

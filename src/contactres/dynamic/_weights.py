@@ -16,7 +16,9 @@ __all__ = [
     "bessel_even",
     "bessel_even_sum",
     "bessel_orders",
+    "by_real_columns",
     "j1_over_s",
+    "real_columns",
     "sinc",
     "spherical_bessel",
     "wa_harmonic_sum",
@@ -61,10 +63,11 @@ def j1_over_s(s):
     s = np.asarray(s)
     small = np.abs(s) < 0.3
     z = np.where(small, 1.0, s)
-    full = (np.sin(z) - z * np.cos(z)) / z**3
-    s2 = s * s
-    series = 1 / 3 - s2 / 30 + s2**2 / 840 - s2**3 / 45360 + s2**4 / 3991680
-    return np.where(small, series, full)
+    out = np.asarray((np.sin(z) - z * np.cos(z)) / z**3)
+    if np.any(small):  # the series only where it is used (its powers cost more than the rest)
+        s2 = s[small] * s[small]
+        out[small] = 1 / 3 - s2 / 30 + s2**2 / 840 - s2**3 / 45360 + s2**4 / 3991680
+    return out
 
 
 # Gauss-Laguerre rule for ∫₀^∞ e^{-u} √(1 + u²/z²) du = (π/2)(H₁ − Y₁)(z) (|z| >= 8).
@@ -93,6 +96,41 @@ def _series_terms(zmax: float) -> int:
     peak = int(np.argmax(mags))
     below = np.flatnonzero(mags[peak:] < 1e-17 * mags[peak])
     return _W_SERIES.size if below.size == 0 else peak + int(below[0]) + 1
+
+
+def real_columns(z: np.ndarray) -> int:
+    """Where the trailing columns (last axis) of ``z`` whose imaginary parts are all exactly 0
+    begin: ``z.shape[-1]`` if the last column has a nonzero one, 0 if all are real.
+
+    The near field's nodes are the complex contour followed by the real hand-over segment
+    [T₁, 2T₁] (:func:`~contactres.dynamic._table.wavenumber_nodes`), 32 of the 80 at the
+    default resolution: the Bessel sums there run in real arithmetic (a real division costs a
+    fraction of numpy's complex one, which is most of a continued fraction's work; issue 31).
+    """
+    z = np.asarray(z)
+    if not np.iscomplexobj(z):
+        return 0
+    rows = tuple(range(z.ndim - 1))
+    complex_columns = np.flatnonzero(np.any(z.imag != 0, axis=rows))
+    return int(complex_columns[-1]) + 1 if complex_columns.size else 0
+
+
+def by_real_columns(fn, z: np.ndarray, *per_column: np.ndarray) -> np.ndarray:
+    """``fn(z, *per_column)`` of a function of ``z`` (..., n) column by column (elementwise, as
+    :func:`sinc`, or a per-column sum over orders, as :func:`bessel_even_sum` and
+    :func:`wa_harmonic_sum` with their coefficients (K + 1, n) in ``per_column``), with the
+    trailing real columns of ``z`` (:func:`real_columns`) passed as real arguments: the same
+    values there, in real arithmetic (to round-off; a continued fraction of each part starts
+    from its own largest ``|z|``, both far enough above for the truncation to stay below
+    1e-20). Complex, shaped like ``z``."""
+    split = real_columns(z)
+    if split in (0, z.shape[-1]):
+        return fn(z, *per_column)
+    out = np.empty(z.shape, dtype=np.result_type(z, *per_column))
+    out[..., :split] = fn(z[..., :split], *(c[..., :split] for c in per_column))
+    real = np.ascontiguousarray(z[..., split:].real)
+    out[..., split:] = fn(real, *(c[..., split:] for c in per_column))
+    return out
 
 
 def wa_line_weight(z):
