@@ -107,15 +107,8 @@ from ._exact import (
     near_bessel,
 )
 from ._farfield import far_basis
-from ._layered_path import (
-    PunchResolution,
-    bessel_on_grid,
-    correction_nodes,
-    film_reference,
-    punch_resolution,
-    stack_at,
-    stack_of,
-)
+from ._layered_nodes import PunchResolution, bessel_on_grid, punch_resolution
+from ._layered_path import correction_nodes, film_reference, stack_at, stack_of
 from ._layered_tangential import tangential_punch
 from ._normal_stiffness import normalised_wavenumber
 from ._table import KernelTable, prepare
