@@ -203,3 +203,29 @@ def test_a_film_beyond_the_nodes_reach_is_refused():
     stack = LayeredMaterial(QUARTZ, [(PMMA, 1e-7 * A)])
     with pytest.raises(ContactresInputError, match="out of reach"):
         layered_punch_stiffness(stack, A, 1e6)
+
+
+def test_panel_waves_are_each_points_own_interpolation():
+    """The waves at the real samples of the geometric panels, interpolated once for points of
+    every frequency (y = (S₁/s)² is the same sequence at each), equal each point's waves
+    interpolated at its own samples s (``real_all``) to round-off, on a film over a substrate
+    and under a second layer."""
+    res = _layered_nodes.PunchResolution()
+    xc = np.cos(np.pi * (np.arange(res.n_cheb) + 0.5) / res.n_cheb)
+    u = np.arange(9) * np.log(res.ratio)
+    uc = (0.5 * (u[:-1, None] + u[1:, None]) + 0.5 * (u[1:, None] - u[:-1, None]) * xc).ravel()
+    for stack in (
+        LayeredMaterial(QUARTZ, [(PMMA, 0.05 * A)]),
+        LayeredMaterial(QUARTZ, [(PMMA, 0.05 * A), (CU111, 0.1 * A)]),
+    ):
+        stacks = [_stack(stack, f) for f in (1e6, 2e7, 9e7)]
+        theta = np.linspace(0.0, np.pi, 4, endpoint=False)
+        shared = _layered_path._SharedWaves(stacks[0], theta, res, stacks)
+        counts = [96, 24, 60]
+        items = [
+            (st, A, st.pole * A * np.exp(uc[:n])) for st, n in zip(stacks, counts, strict=True)
+        ]
+        got = shared.panel_waves(counts, res.ratio, res.n_cheb).arrays()
+        want = shared.real_all(items).arrays()
+        for g, w in zip(got, want, strict=True):
+            assert np.max(np.abs(g - w)) <= 1e-13 * np.max(np.abs(w))

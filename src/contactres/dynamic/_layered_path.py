@@ -249,6 +249,8 @@ class _SharedWaves:
         self.theta = theta
         self.shift = st.static_shift(theta)
         self.stack = st
+        # Which layers are isotropic (their exponentials in closed form), tested once.
+        self.isotropic = [is_isotropic(c) for c in st.tensors[:-1]]
         dynamic = [x for x in stacks if x.omega > 0]
         self.table = slowness_table(st, theta) if dynamic else None
         self.static = waves_at(st, theta, [0.0]) if len(dynamic) < len(stacks) else None
@@ -261,6 +263,27 @@ class _SharedWaves:
         if dynamic:
             # x = ω²/η² on the arc s = S₁ z(τ): 1/(p₁ z)², the same at every frequency.
             self.arc = waves_at(st, theta, 1 / (st.pole_slowness * self.z) ** 2)
+        self._panels: StackWaves | None = None  # panel_waves' samples (grown on demand)
+
+    def panel_waves(self, counts, ratio: float, n_cheb: int) -> StackWaves:
+        """The waves at the real samples of dynamic points whose geometric panels start at
+        their arc's end S₁ (ratio ``ratio``, ``n_cheb`` Chebyshev samples in ln s per panel),
+        point k's first ``counts[k]`` samples one after the other. There y = (S₁/s)² =
+        e^{−2 (u − ln S₁)} is the same at every point (the panels are one geometric sequence in
+        s/S₁), so the waves are interpolated from the table once, at the samples of the
+        longest, and each point's are its first ones (equal to their own interpolation to
+        round-off: y differs only by the rounding of s)."""
+        assert self.table is not None  # the caller checks that the table serves
+        n = int(np.max(counts))
+        if self._panels is None or self._panels.size < n:
+            n_pan = -(-n // n_cheb)
+            xc = np.cos(np.pi * (np.arange(n_cheb) + 0.5) / n_cheb)
+            u = np.arange(n_pan + 1) * np.log(ratio)
+            uc = 0.5 * (u[:-1, None] + u[1:, None]) + 0.5 * (u[1:, None] - u[:-1, None]) * xc
+            y = np.exp(-2 * uc).ravel()
+            self._panels = self.table.interpolated(chebyshev_matrix(self.table.size, 2 * y - 1))
+        at = concatenated_ranges(np.asarray(counts))
+        return self._panels._with([w[..., at, :] for w in self._panels.arrays()])
 
     def static_at(self, n: int) -> StackWaves:
         """The static waves (x = 0) on ``n`` nodes (statics: the same at every η)."""
@@ -329,7 +352,7 @@ def _delta_g(shared: _SharedWaves, parts, waves: StackWaves) -> list:
     eta_h = [
         np.concatenate([s / a * st.thicknesses[j] for st, a, s in parts]) for j in range(n_layers)
     ]
-    values = waves.delta_g(shared.stack, eta_h, shared.shift, shared.theta)
+    values = waves.delta_g(shared.stack, eta_h, shared.shift, shared.theta, shared.isotropic)
     return np.split(values, np.cumsum([s.size for _, _, s in parts])[:-1])
 
 
@@ -404,7 +427,11 @@ def _chunk_nodes(shared: _SharedWaves, stacks, radii, index, res: PunchResolutio
         group.append(item)
         size = sum(s.size for _, _, s in group)
         if k + 1 == len(reals) or size + reals[k + 1][2].size > _GROUP_NODES:
-            pieces += _delta_g(shared, group, shared.real_all(group))
+            if shared.table is not None and all(st.omega > 0 for st, _, _ in group):
+                waves = shared.panel_waves([s.size for _, _, s in group], res.ratio, res.n_cheb)
+            else:
+                waves = shared.real_all(group)
+            pieces += _delta_g(shared, group, waves)
             group = []
     n = len(parts)
     samples = [np.concatenate(hr) for hr in zip(pieces[:n], pieces[n:], strict=True)]

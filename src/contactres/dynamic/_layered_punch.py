@@ -238,6 +238,21 @@ def _harmonics_of(values, plan, axisymmetric: bool) -> np.ndarray:
     return kernel_harmonics(values, plan.ms)
 
 
+def _point_harmonics(nodes: dict, plan, axisymmetric: bool) -> list:
+    """[(Ĝ_m of the static shift (n_m,), of Δg (n_m, len(s)), of Δg(S) (n_m,)), ...] of every
+    point of ``nodes`` (:func:`_harmonics_of`), from one transform of all their rows (each row
+    is transformed alone: the same values as point by point)."""
+    points = list(nodes.values())
+    sizes = np.array([v.delta_g.shape[0] for v in points])
+    rows = [v.delta_g for v in points] + [np.stack([v.end for v in points])]
+    h = _harmonics_of(
+        np.concatenate([*rows, np.stack([v.shift for v in points])]), plan, axisymmetric
+    )
+    total, n = int(np.sum(sizes)), len(points)
+    harm = np.split(h[:, :total], np.cumsum(sizes)[:-1], axis=1)
+    return [(h[:, total + n + k], harm[k], h[:, total + k]) for k in range(n)]
+
+
 def _assemble(integral, plan) -> np.ndarray:
     return plan.sign * integral[plan.m_index, plan.t_index]
 
@@ -602,14 +617,7 @@ def _punch(table, film, items, radii, rtol, res) -> np.ndarray:
             assert bessel is not None  # computed at the first size
             reused = previous is not None and np.array_equal(previous.ms, plan.ms)
             if not reused:
-                harmonics = [
-                    (
-                        _harmonics_of(v.shift[None, :], plan, axisymmetric)[:, 0],
-                        _harmonics_of(v.delta_g, plan, axisymmetric),
-                        _harmonics_of(v.end[None, :], plan, axisymmetric)[:, 0],
-                    )
-                    for v in nodes.values()
-                ]
+                harmonics = _point_harmonics(nodes, plan, axisymmetric)
                 values = _point_values(nodes, harmonics, bessel[1].shape[0])
             pairs = _new_pairs(plan, previous)
             reuse = _correction_integrals(bessel, values, orders, pairs, reuse if reused else None)
