@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from contactres import LayeredMaterial, Material
-from contactres.dynamic import _layered_path, _layered_waves
+from contactres.dynamic import _layered_nodes, _layered_path, _layered_waves
 from contactres.dynamic._layered_path import film_reference, stack_at, stack_of
 from contactres.dynamic._layered_punch import layered_punch_stiffness
 from contactres.dynamic._layered_waves import (
@@ -21,6 +21,7 @@ from contactres.dynamic._layered_waves import (
     slowness_table,
     waves_at,
 )
+from contactres.errors import ContactresInputError
 from contactres.layered import stack_compliance
 
 QUARTZ = Material.isotropic(72e9, 0.17, density=2650.0, name="quartz")
@@ -124,6 +125,41 @@ def test_many_frequencies_at_once_equal_one_at_a_time(monkeypatch):
     np.testing.assert_allclose(layered_punch_stiffness(stack, A, f), together, rtol=1e-13)
 
 
+def test_nodes_assembled_in_groups_equal_one_point_at_a_time(monkeypatch):
+    """The real nodes of several points are assembled together (one panel search and one
+    interpolation of Δg per group); a group of one point (``_GROUP_NODES`` = 1) gives the same
+    punch to the bit, statics, a second layer and the tangential punch included."""
+    stack = LayeredMaterial(QUARTZ, [(PMMA, 0.05 * A), (CU111, 0.1 * A)])
+    f = np.array([0.0, 1e6, 2e7, 5e7, 9e7])
+    normal = layered_punch_stiffness(stack, A, f)
+    tangential = layered_punch_stiffness(stack, A, f[1:], direction="tangential")
+    monkeypatch.setattr(_layered_nodes, "_GROUP_NODES", 1)
+    assert np.array_equal(layered_punch_stiffness(stack, A, f), normal)
+    again = layered_punch_stiffness(stack, A, f[1:], direction="tangential")
+    assert np.array_equal(again, tangential)
+
+
+def test_panel_search_is_searchsorted_of_each_run():
+    """The panel of each value in its own run of edges (geometric or not) is numpy's
+    searchsorted of that run, less one, clipped to the run's panels; values on an edge, below
+    the first and beyond the last included."""
+    rng = np.random.default_rng(7)
+    runs = [1.3 * 1.5 ** np.arange(9), np.cumsum(rng.uniform(0.1, 2.0, 6)), np.array([0.5, 4.0])]
+    values, want, lo, hi = [], [], [], []
+    first = np.cumsum([r.size for r in runs]) - [r.size for r in runs]
+    for r, f0 in zip(runs, first, strict=True):
+        v = np.concatenate([rng.uniform(0.5 * r[0], 1.5 * r[-1], 40), r, [r[0] / 3, 3 * r[-1]]])
+        values.append(v)
+        want.append(f0 + np.clip(np.searchsorted(r, v) - 1, 0, r.size - 2))
+        lo.append(np.full(v.size, f0))
+        hi.append(np.full(v.size, f0 + r.size - 2))
+    edges, v = np.concatenate(runs), np.concatenate(values)
+    got = _layered_nodes.panel_search(
+        v, np.log(v), edges, np.log(edges), *map(np.concatenate, (lo, hi))
+    )
+    np.testing.assert_array_equal(got, np.concatenate(want))
+
+
 def test_chebyshev_matrix_interpolates_polynomials_exactly():
     """The barycentric rows reproduce a polynomial of degree n − 1 from its n samples."""
     n = 9
@@ -159,3 +195,37 @@ def test_the_probes_beyond_the_decay_of_the_film_change_nothing(monkeypatch, eta
     want = layered_punch_stiffness(stack, A, f)
     monkeypatch.setattr(_layered_path, "_PROBE_ETA_H", eta_h)
     np.testing.assert_allclose(layered_punch_stiffness(stack, A, f), want, rtol=1e-13)
+
+
+def test_a_film_beyond_the_nodes_reach_is_refused():
+    """A film so thin (h/a = 1e-7) that Δg has not decayed by η a = 1e6 is refused with the
+    reason, not integrated on a truncated path."""
+    stack = LayeredMaterial(QUARTZ, [(PMMA, 1e-7 * A)])
+    with pytest.raises(ContactresInputError, match="out of reach"):
+        layered_punch_stiffness(stack, A, 1e6)
+
+
+def test_panel_waves_are_each_points_own_interpolation():
+    """The waves at the real samples of the geometric panels, interpolated once for points of
+    every frequency (y = (S₁/s)² is the same sequence at each), equal each point's waves
+    interpolated at its own samples s (``real_all``) to round-off, on a film over a substrate
+    and under a second layer."""
+    res = _layered_nodes.PunchResolution()
+    xc = np.cos(np.pi * (np.arange(res.n_cheb) + 0.5) / res.n_cheb)
+    u = np.arange(9) * np.log(res.ratio)
+    uc = (0.5 * (u[:-1, None] + u[1:, None]) + 0.5 * (u[1:, None] - u[:-1, None]) * xc).ravel()
+    for stack in (
+        LayeredMaterial(QUARTZ, [(PMMA, 0.05 * A)]),
+        LayeredMaterial(QUARTZ, [(PMMA, 0.05 * A), (CU111, 0.1 * A)]),
+    ):
+        stacks = [_stack(stack, f) for f in (1e6, 2e7, 9e7)]
+        theta = np.linspace(0.0, np.pi, 4, endpoint=False)
+        shared = _layered_path._SharedWaves(stacks[0], theta, res, stacks)
+        counts = [96, 24, 60]
+        items = [
+            (st, A, st.pole * A * np.exp(uc[:n])) for st, n in zip(stacks, counts, strict=True)
+        ]
+        got = shared.panel_waves(counts, res.ratio, res.n_cheb).arrays()
+        want = shared.real_all(items).arrays()
+        for g, w in zip(got, want, strict=True):
+            assert np.max(np.abs(g - w)) <= 1e-13 * np.max(np.abs(w))

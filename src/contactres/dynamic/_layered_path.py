@@ -5,9 +5,10 @@ surface kernel and the film's (H_33 for the normal punch, the in-plane block H_�
 tangential one), and the nodes on which that difference is integrated against the products of
 the transforms of the Galerkin basis (:func:`correction_nodes`): the arc lifted above the poles
 of the guided modes and the branch points, then geometric real-axis panels with Chebyshev
-samples in ln s, until the difference has decayed. The method and its measured accuracy are
-described in the modules ``contactres.dynamic._layered_punch`` (normal) and
-``contactres.dynamic._layered_tangential`` (tangential).
+samples in ln s, until the difference has decayed (the Gauss nodes on those panels and the
+interpolation of Δg onto them: ``contactres.dynamic._layered_nodes``). The method and its
+measured accuracy are described in the modules ``contactres.dynamic._layered_punch`` (normal)
+and ``contactres.dynamic._layered_tangential`` (tangential).
 """
 
 from __future__ import annotations
@@ -22,13 +23,13 @@ from ..halfspace import shear_reference
 from ..layered import LayeredMaterial, material_at, stack_compliance
 from ..materials import Material, voigt_to_tensor
 from ..numerics import gauss_legendre
+from ._layered_nodes import PunchResolution, assemble_nodes, concatenated_ranges
 from ._layered_waves import (
     ARC_LIFT,
     ARC_PANELS,
     StackWaves,
     arc_fraction,
     chebyshev_matrix,
-    chebyshev_values,
     is_isotropic,
     slowness_table,
     waves_at,
@@ -36,18 +37,12 @@ from ._layered_waves import (
 from ._table import max_slowness
 
 __all__ = [
-    "CorrectionNodes",
-    "PunchResolution",
     "Stack",
-    "bessel_on_grid",
-    "bessel_on_nodes",
     "correction_nodes",
     "film_reference",
     "is_axisymmetric",
-    "punch_resolution",
     "stack_at",
     "stack_of",
-    "weighted_gram",
 ]
 
 # T = _POLE_FACTOR × ω × (largest bulk slowness): beyond every pole and branch point (the same
@@ -61,55 +56,8 @@ _PROBE_ETA_H = 50.0
 _S_MAX = 1e6
 # Largest lift of the arc (in s = η a): j_p j_q grow like e^{2 Im s} on it.
 _MAX_LIFT = 1.5
-# s below which the geometric real panels keep their own nodes (Δg varies on the scale of the
-# arc's end S₁ <= 5 there), beyond which the shared grid's panels serve.
-_OWN_END = 32 / 3
 # Real samples of Δg solved together (see _chunk_nodes: small groups reuse the heap's pages).
 _GROUP_NODES = 2048
-
-
-@dataclass(frozen=True)
-class PunchResolution:
-    """Discretisation of the ΔM integral; :meth:`doubled` refines every part.
-
-    Attributes
-    ----------
-    n_panel : Gauss-Legendre nodes per panel of the lifted arc (panels no wider than the lift)
-    n_cheb : Chebyshev samples of Δg per real-axis panel (in ln s)
-    ratio : ratio of the geometric real-axis panels
-    per_unit : Gauss-Legendre nodes per unit of s on the shared real grid (j_p j_q has period
-        π; n_panel nodes on a panel of width n_panel/per_unit, :func:`grid_width`)
-    n_start : nodes of the first real panel [0, s₀] (statics)
-    decay : the panels stop when ``|Δg|`` falls below decay × ``|g_film|`` (and η h > 5)
-    """
-
-    n_panel: int = 16
-    n_cheb: int = 12
-    ratio: float = 1.5
-    per_unit: float = 1.5
-    n_start: int = 16
-    decay: float = 1e-9
-
-    def doubled(self) -> PunchResolution:
-        """Twice the nodes everywhere, panels of the square-root ratio, decay 1e-2 lower."""
-        return replace(
-            self,
-            n_panel=2 * self.n_panel,
-            n_cheb=2 * self.n_cheb,
-            ratio=math.sqrt(self.ratio),
-            per_unit=2 * self.per_unit,
-            n_start=2 * self.n_start,
-            decay=self.decay * 1e-2,
-        )
-
-
-def punch_resolution(rtol: float) -> PunchResolution:
-    """The :class:`PunchResolution` for relative accuracy ``rtol`` (checked in the tests against
-    :meth:`PunchResolution.doubled`)."""
-    base = PunchResolution(decay=1e-3 * rtol)
-    if rtol <= 1e-8:
-        return replace(base, n_panel=24, n_cheb=16, per_unit=2.0)
-    return base
 
 
 def film_reference(m: Material) -> tuple[Material, float]:
@@ -301,6 +249,8 @@ class _SharedWaves:
         self.theta = theta
         self.shift = st.static_shift(theta)
         self.stack = st
+        # Which layers are isotropic (their exponentials in closed form), tested once.
+        self.isotropic = [is_isotropic(c) for c in st.tensors[:-1]]
         dynamic = [x for x in stacks if x.omega > 0]
         self.table = slowness_table(st, theta) if dynamic else None
         self.static = waves_at(st, theta, [0.0]) if len(dynamic) < len(stacks) else None
@@ -313,6 +263,27 @@ class _SharedWaves:
         if dynamic:
             # x = ω²/η² on the arc s = S₁ z(τ): 1/(p₁ z)², the same at every frequency.
             self.arc = waves_at(st, theta, 1 / (st.pole_slowness * self.z) ** 2)
+        self._panels: StackWaves | None = None  # panel_waves' samples (grown on demand)
+
+    def panel_waves(self, counts, ratio: float, n_cheb: int) -> StackWaves:
+        """The waves at the real samples of dynamic points whose geometric panels start at
+        their arc's end S₁ (ratio ``ratio``, ``n_cheb`` Chebyshev samples in ln s per panel),
+        point k's first ``counts[k]`` samples one after the other. There y = (S₁/s)² =
+        e^{−2 (u − ln S₁)} is the same at every point (the panels are one geometric sequence in
+        s/S₁), so the waves are interpolated from the table once, at the samples of the
+        longest, and each point's are its first ones (equal to their own interpolation to
+        round-off: y differs only by the rounding of s)."""
+        assert self.table is not None  # the caller checks that the table serves
+        n = int(np.max(counts))
+        if self._panels is None or self._panels.size < n:
+            n_pan = -(-n // n_cheb)
+            xc = np.cos(np.pi * (np.arange(n_cheb) + 0.5) / n_cheb)
+            u = np.arange(n_pan + 1) * np.log(ratio)
+            uc = 0.5 * (u[:-1, None] + u[1:, None]) + 0.5 * (u[1:, None] - u[:-1, None]) * xc
+            y = np.exp(-2 * uc).ravel()
+            self._panels = self.table.interpolated(chebyshev_matrix(self.table.size, 2 * y - 1))
+        at = concatenated_ranges(np.asarray(counts))
+        return self._panels._with([w[..., at, :] for w in self._panels.arrays()])
 
     def static_at(self, n: int) -> StackWaves:
         """The static waves (x = 0) on ``n`` nodes (statics: the same at every η)."""
@@ -381,7 +352,7 @@ def _delta_g(shared: _SharedWaves, parts, waves: StackWaves) -> list:
     eta_h = [
         np.concatenate([s / a * st.thicknesses[j] for st, a, s in parts]) for j in range(n_layers)
     ]
-    values = waves.delta_g(shared.stack, eta_h, shared.shift, shared.theta)
+    values = waves.delta_g(shared.stack, eta_h, shared.shift, shared.theta, shared.isotropic)
     return np.split(values, np.cumsum([s.size for _, _, s in parts])[:-1])
 
 
@@ -406,29 +377,43 @@ def _chunk_nodes(shared: _SharedWaves, stacks, radii, index, res: PunchResolutio
         edges = start * res.ratio ** np.arange(n_edges + 1, dtype=np.float64)
         plan.append((st, a, h_tot, s0, edges))
     probes = _probes(shared, plan, res.decay * gref)
-    parts, lasts, stops = [], [], []
-    xc = np.cos(np.pi * (np.arange(res.n_cheb) + 0.5) / res.n_cheb)
     threshold = res.decay * gref
-    for (st, a, h_tot, s0, edges), probe in zip(plan, probes, strict=True):
-        rest = np.abs(probe).reshape(edges.size, -1).max(axis=1) / edges
-        forced = _forced(edges, h_tot, a)
-        big = forced | (rest >= threshold)
-        last = int(np.flatnonzero(big)[-1]) + 1 if np.any(big) else 1
-        if last > edges.size - 2:
+    # Every point's edges (and what lies beyond each, rest = |Δg|/e) one after the other, point
+    # k's from row first[k]: where the panels stop, for all the points at once.
+    sizes = np.array([p[4].size for p in plan])
+    first = np.cumsum(sizes) - sizes
+    edges = np.concatenate([p[4] for p in plan])
+    probe = np.concatenate(probes)
+    rest = np.abs(probe).reshape(edges.size, -1).max(axis=1) / edges
+    thick, radius = (np.repeat([p[i] for p in plan], sizes) for i in (2, 1))
+    forced = _forced(edges, thick, radius)
+    big = forced | (rest >= threshold)
+    # last: one past the last edge kept (at or above the threshold, or forced), 1 if none.
+    kept = np.where(big, concatenated_ranges(sizes) + 1, 0)
+    lasts = np.maximum(np.maximum.reduceat(kept, first), 1)
+    for (_, a, h, _, e), last in zip(plan, lasts, strict=True):
+        if last > e.size - 2:
             raise ContactresInputError(
                 f"the layered correction did not decay by η a = {_S_MAX:.3g}: a film "
-                f"{h_tot:.3g} m thin under a punch of radius {a:.3g} m (h/a = {h_tot / a:.2g}) "
+                f"{h:.3g} m thin under a punch of radius {a:.3g} m (h/a = {h / a:.2g}) "
                 "is out of reach"
             )
-        lasts.append(last)
-        stops.append(_stop(edges, rest, forced, last, threshold))
-        # Δg at Chebyshev points in ln s per panel, after the arc (or first panel), one panel
-        # beyond edges[last] (the nodes end at the next grid edge, < 1.5 edges[last]).
-        u = np.log(edges[: last + 2])
-        uc = 0.5 * (u[:-1, None] + u[1:, None]) + 0.5 * (u[1:, None] - u[:-1, None]) * xc[None, :]
-        sc = np.exp(uc).ravel()
-        head = _head(shared, st, a, res, s0)
-        parts.append((st, a, head, sc))
+    stops = [
+        _stop(edges[k : k + n], rest[k : k + n], forced[k : k + n], int(last), threshold)
+        for k, n, last in zip(first, sizes, lasts, strict=True)
+    ]
+    # Δg at Chebyshev points in ln s per panel, after the arc (or first panel), one panel
+    # beyond edges[last] (the nodes end at the next grid edge, < 1.5 edges[last]).
+    xc = np.cos(np.pi * (np.arange(res.n_cheb) + 0.5) / res.n_cheb)
+    lo = np.repeat(first, lasts + 1) + concatenated_ranges(lasts + 1)
+    u0, u1 = np.log(edges[lo])[:, None], np.log(edges[lo + 1])[:, None]
+    sc = np.exp(0.5 * (u0 + u1) + 0.5 * (u1 - u0) * xc[None, :]).ravel()
+    parts = [
+        (st, a, _head(shared, st, a, res, s0), s)
+        for (st, a, _, s0, _), s in zip(
+            plan, np.split(sc, np.cumsum((lasts + 1) * res.n_cheb)[:-1]), strict=True
+        )
+    ]
     # Every head first, then every point's real samples, in groups of points of at most
     # ~_GROUP_NODES nodes (one interpolation per group): a group's interpolated waves and the
     # recursion's temporaries stay small enough to be reused from the heap, where those of all
@@ -442,13 +427,17 @@ def _chunk_nodes(shared: _SharedWaves, stacks, radii, index, res: PunchResolutio
         group.append(item)
         size = sum(s.size for _, _, s in group)
         if k + 1 == len(reals) or size + reals[k + 1][2].size > _GROUP_NODES:
-            pieces += _delta_g(shared, group, shared.real_all(group))
+            if shared.table is not None and all(st.omega > 0 for st, _, _ in group):
+                waves = shared.panel_waves([s.size for _, _, s in group], res.ratio, res.n_cheb)
+            else:
+                waves = shared.real_all(group)
+            pieces += _delta_g(shared, group, waves)
             group = []
     n = len(parts)
     samples = [np.concatenate(hr) for hr in zip(pieces[:n], pieces[n:], strict=True)]
     rule = gauss_legendre(0.0, 1.0, res.n_panel)
-    points = [(plan[k][4], lasts[k], stops[k], parts[k][2], samples[k]) for k in range(n)]
-    return dict(zip(index, _assemble_nodes(res, rule, points, shared.shift), strict=True))
+    points = [(plan[k][4], int(lasts[k]), stops[k], parts[k][2], samples[k]) for k in range(n)]
+    return dict(zip(index, assemble_nodes(res, rule, points, shared.shift), strict=True))
 
 
 def _stop(edges, rest, forced, last: int, threshold: float) -> float:
@@ -508,177 +497,11 @@ def _probes(shared: _SharedWaves, plan, threshold: float) -> list:
     return probes
 
 
-def _forced(edges: np.ndarray, h_tot: float, a: float) -> np.ndarray:
+def _forced(edges: np.ndarray, h_tot, a) -> np.ndarray:
     """The edges the nodes reach whatever ``|Δg|``: s <= 20 (the tail formula's start) and
-    η h <= 5 (the e^{−2ηh} decay of Δg under layers has not begun); a prefix of ``edges``."""
+    η h <= 5 (the e^{−2ηh} decay of Δg under layers has not begun); a prefix of ``edges``
+    (``h_tot``, ``a``: the total thickness and the radius, m, floats or one per edge)."""
     return (edges <= 20) | ((h_tot > 0) & (edges * h_tot / a <= 5))
-
-
-def grid_width(res: PunchResolution) -> float:
-    """L: the width of the real-axis panels of n_panel nodes (per_unit nodes per unit of s)
-    on the grid k L shared by every point (their Bessel functions are computed once).
-
-    Gauss's error on such a panel of half-width w = L/2 for the oscillation e^{2is} of
-    j_p j_q is at most (64/15) w e^{w(ρ − 1/ρ)} ρ^{−2n}/(ρ² − 1) for any ρ > 1 (the
-    integrand's bound on the Bernstein ellipse ρ): with n = 16 nodes and w = 16/3 (1.5 per
-    unit of s, the default) ~3e-12 of the panel's largest ``|Δg j_p j_q|`` at ρ = 5.8; with
-    n = 24 and 2 per unit (rtol <= 1e-8) ~1e-22. Δg varies more slowly there (its scales
-    are h and the wave numbers: :data:`_OWN_END`)."""
-    return res.n_panel / res.per_unit
-
-
-def _on_panels(rule, lo: np.ndarray, hi: np.ndarray):
-    """Nodes and weights (flat) of the unit Gauss-Legendre ``rule`` (x, w on [0, 1]) mapped
-    onto the panels [lo_k, hi_k]."""
-    x, w = rule
-    d = (hi - lo)[:, None]
-    return (lo[:, None] + d * x[None, :]).ravel(), (d * w[None, :]).ravel()
-
-
-def _assemble_nodes(res: PunchResolution, rule, points, shift) -> list:
-    """The nodes of every point of ``points`` [(edges, last, stop, head, values), ...]
-    (:class:`CorrectionNodes`): the head's; the geometric panels' own below
-    :data:`_OWN_END`; a panel to the
-    next edge of the shared grid k L (:func:`grid_width`); the grid's panels up to the first
-    grid edge S at or beyond ``stop`` (<= ``edges[last]``). Δg at the real nodes is
-    interpolated from the Chebyshev samples (in ln s) of the geometric panel holding them."""
-    width = grid_width(res)
-    out = []
-    for edges, last, stop, head, values in points:
-        n_head = head[0].size
-        cheb = values[n_head:].reshape(last + 1, res.n_cheb, -1)
-        u = np.log(edges[: last + 2])
-        # Below _OWN_END the geometric panels are narrower than the grid's (Δg varies on the
-        # scale of the arc's end S₁ there): each gets its own sub-panels, per_unit nodes per
-        # unit of s on average; from the first edge beyond _OWN_END one panel to the next
-        # grid edge, then the grid.
-        own = int(np.searchsorted(edges[: last + 1], _OWN_END))
-        width_j = np.diff(edges[: own + 1])
-        n_sub = np.maximum(1, np.ceil(res.per_unit * width_j / res.n_panel)).astype(int)
-        j = np.repeat(np.arange(own), n_sub)
-        k = np.arange(j.size) - np.repeat(np.cumsum(n_sub) - n_sub, n_sub)
-        k0 = math.ceil(edges[own] / width)
-        k1 = max(k0, math.ceil(stop / width))
-        lo = np.concatenate(
-            [edges[j] + width_j[j] * k / n_sub[j], [edges[own]], width * np.arange(k0, k1)]
-        )
-        hi = np.concatenate(
-            [
-                edges[j] + width_j[j] * (k + 1) / n_sub[j],
-                [width * k0],
-                width * np.arange(k0 + 1, k1 + 1),
-            ]
-        )
-        t, wt = _on_panels(rule, lo, hi)
-        n_own = n_head + (lo.size - (k1 - k0)) * res.n_panel
-        where = np.append(t, width * k1)
-        panel = np.clip(np.searchsorted(edges[: last + 2], where) - 1, 0, last)
-        x = (2 * np.log(where) - u[panel] - u[panel + 1]) / (u[panel + 1] - u[panel])
-        # One point at a time: its arrays stay small (one product over the ~30000 nodes of
-        # 41 points allocates and faults in fresh pages, and costs more CPU than it saves).
-        g = chebyshev_values(x, cheb[panel]).reshape(where.size, *values.shape[1:])
-        out.append(
-            CorrectionNodes(
-                s=np.concatenate([head[0], t.astype(complex)]),
-                weights=np.concatenate([head[1], wt.astype(complex)]),
-                delta_g=np.concatenate([values[:n_head], g[:-1]]),
-                s_end=float(width * k1),
-                end=g[-1],
-                shift=shift,
-                n_own=n_own,
-                grid_from=k0 * res.n_panel,
-            )
-        )
-    return out
-
-
-@dataclass(frozen=True, eq=False)
-class CorrectionNodes:
-    """The nodes of one point's ΔM integral (:func:`correction_nodes`).
-
-    Attributes
-    ----------
-    s, weights : complex nodes s = η a and weights ds
-    delta_g : Δg(s/a, θ), (len(s), nθ) (+ (2, 2) in-plane)
-    s_end : S, the end of the nodes (the tail beyond it is in closed form)
-    end : Δg(S/a, θ)
-    shift : g∞_film − g∞_ref (θ), the static difference of film and reference
-    n_own : the first ``n_own`` nodes are this point's own; the rest are the nodes
-        ``grid_from`` onwards of the shared real grid (:func:`bessel_on_nodes`)
-    grid_from : index of the first shared grid node
-    """
-
-    s: np.ndarray
-    weights: np.ndarray
-    delta_g: np.ndarray
-    s_end: float
-    end: np.ndarray
-    shift: np.ndarray
-    n_own: int
-    grid_from: int
-
-
-def bessel_on_nodes(p_max: int, nodes: dict, res: PunchResolution, transform) -> dict:
-    """T(J) of J = j_p(s), p = 0..p_max ((p_max + 1, n) complex), on the nodes of every point
-    of ``nodes`` (index -> :class:`CorrectionNodes`): index -> (T(J) on the point's own nodes,
-    T(J) on its shared grid nodes (a view)). J of the shared grid is computed once; ``transform``
-    T maps J (p_max + 1, n) to the rows the caller needs (R, n), column by column."""
-    if not nodes:
-        return {}
-    grid, own = bessel_on_grid(p_max, nodes, res, transform)
-    return {
-        i: (o, grid[:, v.grid_from : v.grid_from + v.s.size - v.n_own])
-        for (i, v), o in zip(nodes.items(), own, strict=True)
-    }
-
-
-def bessel_on_grid(p_max: int, nodes: dict, res: PunchResolution, transform=None):
-    """(T(J) on the whole shared grid (R, n_grid), real; [T(J) on each point's own nodes, in
-    the order of ``nodes``]), J = j_p(s), p = 0..p_max (:func:`bessel_on_nodes`, whose grid
-    parts are the columns ``grid_from`` onwards of the first; ``transform`` None: J itself)."""
-    top = max(v.grid_from + v.s.size - v.n_own for v in nodes.values())
-    n_pan = math.ceil(top / res.n_panel)
-    edges = grid_width(res) * np.arange(n_pan + 1, dtype=np.float64)
-    t, _ = _on_panels(gauss_legendre(0.0, 1.0, res.n_panel), edges[:-1], edges[1:])
-    # Real nodes, real j_p: the grid's part of every Gram product runs in real arithmetic.
-    from ._weights import spherical_bessel
-
-    T = transform or (lambda J: J)
-    grid = T(spherical_bessel(p_max, t))
-    # Every point's own nodes in one call (the recurrences run over orders: one pass for all).
-    own = T(_bessel(p_max, np.concatenate([v.s[: v.n_own] for v in nodes.values()])))
-    cut = np.cumsum([v.n_own for v in nodes.values()])[:-1]
-    return grid, np.split(own, cut, axis=1)
-
-
-def weighted_gram(parts, v: np.ndarray, cols=None) -> np.ndarray:
-    """Σ_n J_an v_kn J_bn (K, R, R) over a point's nodes, from its two parts (own, grid) of J
-    (:func:`bessel_on_nodes`) and K rows of weights ``v`` (K, n) on all its nodes (own
-    first): one batched matrix product per part. ``cols``: only the columns b in ``cols``
-    (K, R, len(cols)) (the rows of a basis grown by a few orders: the others are known)."""
-    own, grid = parts
-    right_own = own if cols is None else own[cols]
-    right_grid = grid if cols is None else grid[cols]
-    n, k = own.shape[1], v.shape[0]
-    out = (own[None] * v[:, None, :n]) @ right_own.T
-    # The grid's J is real: the real and imaginary parts of v as 2K real products (half the
-    # arithmetic of complex ones).
-    both = np.concatenate([v.real[:, n:], v.imag[:, n:]])
-    g = (grid[None] * both[:, None, :]) @ right_grid.T
-    return out + (g[:k] + 1j * g[k:])
-
-
-def _bessel(p_max: int, s: np.ndarray) -> np.ndarray:
-    """j_p(s), p = 0..p_max, (p_max + 1, len(s)) complex, on nodes ``s``."""
-    from ._weights import spherical_bessel
-
-    out = np.empty((p_max + 1, s.size), dtype=complex)
-    # Real nodes apart: their Bessel functions come from the cheap upward recurrence (the
-    # continued fraction of complex arguments would start above 1.3 max|s| for every node).
-    real = s.imag == 0
-    out[:, real] = spherical_bessel(p_max, s[real].real)
-    out[:, ~real] = spherical_bessel(p_max, s[~real])
-    return out
 
 
 def stack_of(material, frequency: float):

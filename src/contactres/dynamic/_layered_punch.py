@@ -107,15 +107,8 @@ from ._exact import (
     near_bessel,
 )
 from ._farfield import far_basis
-from ._layered_path import (
-    PunchResolution,
-    bessel_on_grid,
-    correction_nodes,
-    film_reference,
-    punch_resolution,
-    stack_at,
-    stack_of,
-)
+from ._layered_nodes import PunchResolution, bessel_on_grid, punch_resolution
+from ._layered_path import correction_nodes, film_reference, stack_at, stack_of
 from ._layered_tangential import tangential_punch
 from ._normal_stiffness import normalised_wavenumber
 from ._table import KernelTable, prepare
@@ -243,6 +236,21 @@ def _harmonics_of(values, plan, axisymmetric: bool) -> np.ndarray:
     if axisymmetric:
         return np.where(plan.ms == 0, 2 * np.pi, 0.0)[:, None] * values[:, 0][None, :]
     return kernel_harmonics(values, plan.ms)
+
+
+def _point_harmonics(nodes: dict, plan, axisymmetric: bool) -> list:
+    """[(Ĝ_m of the static shift (n_m,), of Δg (n_m, len(s)), of Δg(S) (n_m,)), ...] of every
+    point of ``nodes`` (:func:`_harmonics_of`), from one transform of all their rows (each row
+    is transformed alone: the same values as point by point)."""
+    points = list(nodes.values())
+    sizes = np.array([v.delta_g.shape[0] for v in points])
+    rows = [v.delta_g for v in points] + [np.stack([v.end for v in points])]
+    h = _harmonics_of(
+        np.concatenate([*rows, np.stack([v.shift for v in points])]), plan, axisymmetric
+    )
+    total, n = int(np.sum(sizes)), len(points)
+    harm = np.split(h[:, :total], np.cumsum(sizes)[:-1], axis=1)
+    return [(h[:, total + n + k], harm[k], h[:, total + k]) for k in range(n)]
 
 
 def _assemble(integral, plan) -> np.ndarray:
@@ -609,14 +617,7 @@ def _punch(table, film, items, radii, rtol, res) -> np.ndarray:
             assert bessel is not None  # computed at the first size
             reused = previous is not None and np.array_equal(previous.ms, plan.ms)
             if not reused:
-                harmonics = [
-                    (
-                        _harmonics_of(v.shift[None, :], plan, axisymmetric)[:, 0],
-                        _harmonics_of(v.delta_g, plan, axisymmetric),
-                        _harmonics_of(v.end[None, :], plan, axisymmetric)[:, 0],
-                    )
-                    for v in nodes.values()
-                ]
+                harmonics = _point_harmonics(nodes, plan, axisymmetric)
                 values = _point_values(nodes, harmonics, bessel[1].shape[0])
             pairs = _new_pairs(plan, previous)
             reuse = _correction_integrals(bessel, values, orders, pairs, reuse if reused else None)

@@ -89,13 +89,8 @@ import numpy as np
 
 from ..errors import ContactresInputError
 from ._farfield import far_grid
-from ._layered_path import (
-    PunchResolution,
-    bessel_on_nodes,
-    correction_nodes,
-    is_axisymmetric,
-    weighted_gram,
-)
+from ._layered_nodes import PunchResolution, bessel_on_nodes, weighted_gram
+from ._layered_path import correction_nodes, is_axisymmetric
 from ._normal_stiffness import normalised_wavenumber
 from ._tangential_galerkin import (
     KSA_MAX,
@@ -152,9 +147,9 @@ def _point_harmonics(nodes, big_m: int, axisymmetric: bool):
 
 
 def _correction(basis, nodes, jp, harmonics) -> np.ndarray:
-    """ΔM (nb, nb), phases included, from one point's nodes (``_layered_path.CorrectionNodes``:
+    """ΔM (nb, nb), phases included, from one point's nodes (``_layered_nodes.CorrectionNodes``:
     s, ds, Δh, the end S with Δh(S), and the static shift h∞_film − h∞_ref) and the transforms
-    H_a there (``jp``: own and grid parts of ``_layered_path.bessel_on_nodes``), with the
+    H_a there (``jp``: own and grid parts of ``_layered_nodes.bessel_on_nodes``), with the
     harmonics of :func:`_point_harmonics` up to ``basis.max_order``."""
     w, s_end = nodes.weights, nodes.s_end
     big_m = basis.max_order

@@ -190,11 +190,12 @@ class StackWaves:
         ]
         return parts[0]._with(arrays)
 
-    def delta_g(self, stack, eta_h, shift, theta=None) -> np.ndarray:
+    def delta_g(self, stack, eta_h, shift, theta=None, isotropic=None) -> np.ndarray:
         """Δg = g_ref − g_stack − shift (n, nθ) (+ (2, 2) in-plane) at these nodes, with
         ``eta_h`` (n_layers, n) the layers' η h_j (complex on the arc); ``theta`` (nθ,), the
         directions, lets an isotropic layer's exponential take its closed form (without it,
-        the general one: the same to ~1e-15)."""
+        the general one: the same to ~1e-15); ``isotropic``: which layers are isotropic (one
+        bool per layer, found by the caller once for many calls; None: tested here)."""
         n, nth = self.substrate.shape[2:]
 
         def flat(a):
@@ -207,7 +208,9 @@ class StackWaves:
         closed: list[np.ndarray | None] = [None] * len(layers)
         if theta is not None:
             th = np.tile(np.asarray(theta, dtype=float), n)
-            closed = [th if is_isotropic(c) else None for c in stack.tensors[: len(layers)]]
+            if isotropic is None:
+                isotropic = [is_isotropic(c) for c in stack.tensors[: len(layers)]]
+            closed = [th if iso else None for iso in isotropic]
         # H = P Q⁻¹ (compliance_factors; P = I without layers) and H_ref = reference⁻¹: only
         # the entries the kernel needs (H_33, or the in-plane block).
         with np.errstate(all="ignore"):
