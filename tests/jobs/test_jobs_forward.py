@@ -252,14 +252,15 @@ def test_a_stiffer_film_has_a_negative_share():
 
 
 @pytest.mark.parametrize(
-    ("coating", "ratios"), [((), (0.09, 0.11, 0.6)), (("pmma:250e-9",), (0.01, 0.2, 2.0))]
+    ("coating", "ratios"), [((), (0.09, 0.11, 0.6)), (("pmma:250e-9",), (0.05, 0.2, 2.0))]
 )
 def test_contacts_wider_than_hertz_allows_are_flagged(coating, ratios):
     """a/R above HERTZ_APPROXIMATE_RATIO is flagged with its values kept; above
     HERTZ_MAX_RATIO the values are left empty (issue 30: R = 20 nm, F = 1 N printed a/R = 24
     and p0 = 2 TPa). The radii are placed with Hertz's own a³ = 3FR/(4E*) on isotropic glass
     (Johnson, Ch. 4), R² = 3F/(4E* (a/R)³) at F = 1 N; on a 250 nm PMMA film (softer: a wider
-    contact) bare ratios well inside, near and far outside the limits."""
+    contact) bare ratios well inside, near and far outside the limits (inside: 0.05, a/R = 0.056
+    on the film; not 0.01, whose 34 µm contact, 140 times the film, took 6 s of CPU)."""
     glass = Material.isotropic(70e9, 0.22, density=2500.0)
     e_star = 70e9 / (1 - 0.22**2)
     ratios = np.asarray(ratios)
