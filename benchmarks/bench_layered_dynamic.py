@@ -207,6 +207,27 @@ numpy's per-call cost over 41 points (~40 calls per point in the node assembly a
 copying (memcpy ~18 % of the curve's instructions): the assembly and the interpolations batched
 over the points in groups (as the real samples are) is the next step.
 
+Issue 26's tenth pass, the per-point steps batched: the correction's real nodes assembled for
+groups of points at once (every point's panels in one vectorised pass, then one mapping of the
+Gauss rule, one panel search and one interpolation of Δg per group of <= 4096 nodes, instead of
+~40 numpy calls per point; the node assembly moved to ``contactres.dynamic._layered_nodes``),
+where each point's panels stop found for all the points at once, the layer waves at the real
+Chebyshev samples of every dynamic point interpolated from the slowness table once (y = (S₁/s)²
+is one sequence at every frequency: ~250 samples instead of ~7000; each point takes its first
+ones), the harmonics of Δg of all the points in one transform, and the layers' isotropy tested
+once per call instead of once per recursion; results moved by <= 2.1e-15 (normal curves: the
+waves' y differs from each point's own by the rounding of s; tangential alike). Instructions
+per curve (callgrind, one thread, the second call of a process less its first; the machine, at
+load ~20 on 2 cores, left no time for more), main / this tree: homogeneous 75.6 M (calls 3-4
+less calls 1-2); 250 nm 329.3 M (4.36x) -> 310.3 M (4.10x, -5.8 %); the 1 µm curve was not
+measured. CPU time on that machine scattered by +-20 % from run to run and told nothing finer
+(page faults per 250 nm curve 2200-3300 on main, 2150-2700 here). The 250 nm target is still
+missed. What is left per point: the layer recursion on its ~230 samples (the arc's ~64 are one
+set of waves, but η h differs per point), the Bessel products on its ~460 nodes, and the film's
+Galerkin matrices at three basis sizes. Next: Δg on the shared arc interpolated across the
+points in β = p₁ ω h (η h = β z on the arc; β <= ~0.2 for 250 nm at k_s a <= 2, so a few
+Chebyshev points in β could replace ~2600 recursions), checked against direct solutions.
+
 Run: ``.venv/bin/python benchmarks/bench_layered_dynamic.py`` (exit status 1 if a target is
 missed; a few minutes on a busy machine).
 """
