@@ -247,12 +247,13 @@ def scan(src: Path, package: str) -> dict[str, Module]:
         if is_package:
             parts = parts[:-1]
         text = path.read_text(encoding="utf-8")
+        tree = ast.parse(text, filename=str(path))
         modules[".".join(parts)] = Module(
             name=".".join(parts),
             path=path,
             is_package=is_package,
-            tree=ast.parse(text, filename=str(path)),
-            n_lines=code_lines(text),
+            tree=tree,
+            n_lines=code_lines(text, tree),
         )
     return modules
 
@@ -278,7 +279,9 @@ def _imports(tree: ast.Module) -> Iterable[tuple[ast.Import | ast.ImportFrom, st
                     yield from visit(ast.Module(body=[stmt], type_ignores=[]), inner)
                 for stmt in child.orelse:
                     yield from visit(ast.Module(body=[stmt], type_ignores=[]), where)
-            else:
+            elif isinstance(child, ast.stmt | ast.excepthandler | ast.match_case):
+                # An import is a statement, and only these hold statements: expressions
+                # (lambdas included), arguments and the like are not entered (most of the tree).
                 yield from visit(child, where)
 
     yield from visit(tree, "top level")
@@ -639,12 +642,13 @@ def private_attributes(modules: Mapping[str, Module], package: str, root: Path) 
     return lines
 
 
-def code_lines(text: str) -> int:
+def code_lines(text: str, tree: ast.Module | None = None) -> int:
     """Lines that hold code: not blank, not only a comment, not part of a docstring.
 
     A docstring is any statement that is a bare string (module, class and function docstrings,
     and attribute docstrings below an assignment). Tokens are read with :mod:`tokenize`, so a
-    ``#`` inside a string is not taken for a comment.
+    ``#`` inside a string is not taken for a comment. ``tree``: the text's parse, where the
+    caller has it already.
     """
     skip = {
         tokenize.COMMENT,
@@ -659,7 +663,7 @@ def code_lines(text: str) -> int:
     for tok in tokenize.generate_tokens(io.StringIO(text).readline):
         if tok.type not in skip:
             lines.update(range(tok.start[0], tok.end[0] + 1))
-    for node in ast.walk(ast.parse(text)):
+    for node in ast.walk(ast.parse(text) if tree is None else tree):
         if (
             isinstance(node, ast.Expr)
             and isinstance(node.value, ast.Constant)
