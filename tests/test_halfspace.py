@@ -19,6 +19,7 @@ from contactres.halfspace import (
     dynamic_kernel,
     has_mirror_plane,
     isotropic_dynamic_kernel,
+    mm,
     shear_reference,
     static_kernel,
 )
@@ -430,3 +431,21 @@ def test_closed_form_rejects_bad_input():
         isotropic_dynamic_kernel(1.0, 1.0)
     with pytest.raises(ValueError, match="loss"):
         isotropic_dynamic_kernel(1.0, 3.0, loss=-0.1)
+
+
+def test_stacked_product_matches_einsum_for_views_and_mixed_types():
+    """mm of (3, 3, N) stacks, with and without out/tmp, equals np.einsum's matrix product,
+    also for a real factor times a complex one, a transposed view and a broadcast stack (the
+    operand layouts the compliance code passes it)."""
+    rng = np.random.default_rng(31)
+    n = 37
+    a = rng.standard_normal((3, 3, n)) + 1j * rng.standard_normal((3, 3, n))
+    b = rng.standard_normal((3, 3, n)) + 1j * rng.standard_normal((3, 3, n))
+    w = np.broadcast_to(rng.standard_normal((3, 3, 1)), (3, 3, n))
+    pairs = [(a, b), (a.transpose(1, 0, 2), b), (w, b), (b.real, a)]
+    for x, y in pairs:
+        ref = np.einsum("ikn,kjn->ijn", x, y)
+        np.testing.assert_allclose(mm(x, y), ref, rtol=1e-14, atol=1e-14)
+        out, tmp = np.empty_like(a), np.empty_like(a)
+        assert mm(x, y, out=out, tmp=tmp) is out
+        np.testing.assert_allclose(out, ref, rtol=1e-14, atol=1e-14)
