@@ -357,3 +357,28 @@ def test_few_undecided_blocks_stay_in_this_process(monkeypatch):
         np.arange(n) % 40 == 0,  # a few of them, as in a small study
     )
     assert np.array_equal(blocks._evidence(2, *args), plateau_log_evidence(*args), equal_nan=True)
+
+
+def test_blocks_under_different_priors_equal_each_alone():
+    # Blocks under different d_c priors have different nodes in z: a fine node clipped onto its
+    # own block's coarse end must be recognised against that block's ends, not another's (it
+    # was read from unwritten memory, NaN, when blocks of other priors came after it). Twelve
+    # seeded draws of four blocks, priors from d_c = 0.02 to 0.6 u_max, some narrow enough for
+    # the peak to sit at an end of the nodes.
+    rng = np.random.default_rng(7)
+    for _ in range(12):
+        ratios = rng.choice([0.0, 0.1, 0.3, 0.5], size=4)
+        blocks = [_block(int(rng.integers(1 << 30)), r) for r in ratios]
+        u, df, dg = (np.array(a) for a in zip(*blocks, strict=True))
+        w = np.ones_like(u)
+        sigma = np.full((2, 4), 0.6)
+        mu = (np.full(4, np.nan), np.full(4, np.nan))
+        ratio = (np.log(rng.uniform(0.02, 0.6, 4)), rng.choice([0.0025, 0.01, 0.25], size=4))
+        both = plateau_log_evidence(u, df, dg, w, sigma, mu, ratio, np.ones(4))
+        for k in range(4):
+            one = slice(k, k + 1)
+            alone = plateau_log_evidence(
+                u[one], df[one], dg[one], w[one], sigma[:, one],
+                tuple(a[one] for a in mu), tuple(a[one] for a in ratio), np.ones(1),
+            )  # fmt: skip
+            np.testing.assert_array_equal(both[:, k], alone[:, 0])

@@ -404,9 +404,11 @@ def plateau_log_evidence(
     # A fine node clipped onto the end of the coarse nodes (a peak at an end) is that coarse
     # node, whose row is evaluated already (a block's row depends on its d_c alone): taken
     # from there, bit for bit (a tenth of all rows on issue 31's study of 10,752 sweeps).
-    at = [np.flatnonzero(zf == z[0]) for _, zf in fine_jobs]
-    at_end = [np.flatnonzero(zf == z[-1]) for _, zf in fine_jobs]
-    keeps = [(zf != z[0]) & (zf != z[-1]) for (_, z), (_, zf) in zip(jobs, fine_jobs, strict=True)]
+    # Each job against its own coarse ends: the three index sets must agree node for node.
+    ends = [(zf == z[0], zf == z[-1]) for (_, z), (_, zf) in zip(jobs, fine_jobs, strict=True)]
+    at = [np.flatnonzero(lo) for lo, _ in ends]
+    at_end = [np.flatnonzero(hi) for _, hi in ends]
+    keeps = [~(lo | hi) for lo, hi in ends]
     new_jobs = [(b, zf[keep]) for (b, zf), keep in zip(fine_jobs, keeps, strict=True)]
     fine = _evaluate(args, new_jobs, zero=False) if nzf else [(np.empty(0),) * 6] * len(jobs)
     for k, ((_, z), (_, zf), c) in enumerate(zip(jobs, fine_jobs, coarse, strict=True)):
