@@ -593,6 +593,7 @@ PUBLIC = {
         "LINEAR_ONSET_X",
         "MAX_AMPLITUDE_M",
         "MAX_MU",
+        "MIN_AMPLITUDE_M",
         "MIN_SWEEP_POINTS",
         "POISSON_OPEN_RANGE",
         "Plausible",

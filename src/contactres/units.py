@@ -29,6 +29,7 @@ __all__ = [
     "LINEAR_ONSET_X",
     "MAX_AMPLITUDE_M",
     "MAX_MU",
+    "MIN_AMPLITUDE_M",
     "MIN_SWEEP_POINTS",
     "POISSON_OPEN_RANGE",
     "QUANTITIES",
@@ -45,6 +46,11 @@ SMALL_LOAD_LIMIT = 1e-3
 #: Largest plausible QCM oscillation amplitude, m. Contact-resonance ramps reach tens of nm; 1 µm
 #: would wreck the resonator, so a larger value means the column holds nanometres, not metres.
 MAX_AMPLITUDE_M = 1e-6
+
+#: Smallest plausible non-zero QCM oscillation amplitude, m: 0.1 pm lies below what any QCM
+#: resolves (amplitude ramps start at tens of pm), so a smaller value means metres typed in a
+#: column of nanometres (5e-10 "nm" is 5e-19 m), not a measurement.
+MIN_AMPLITUDE_M = 1e-13
 
 #: Contact radius over sphere radius, a/R, above which a contact is flagged as approximate:
 #: Hertz's theory (and the anisotropic and layered contacts built on it) takes the sphere as a

@@ -172,6 +172,18 @@ def test_amplitudes_in_nanometres(tmp_path):
         read_sweeps(write(tmp_path, f), **CONST)
 
 
+def test_metres_in_a_nanometre_column(tmp_path):
+    # The reverse slip: metre values under a column that says nm become ~1e-19 m, far below
+    # any QCM's resolution; an amplitude of exactly 0 (the low-amplitude limit) stays valid.
+    f = good_frame().rename(columns={"amplitude_m": "amplitude_nm"})
+    f.loc[0, "amplitude_nm"] = 0.0
+    with pytest.raises(ValueError, match=r"column 'amplitude_n?m'.*metres in a nanometre column"):
+        read_sweeps(write(tmp_path, f), **CONST)
+    ok = good_frame()
+    ok.loc[0, "amplitude_m"] = 0.0
+    assert read_sweeps(write(tmp_path, ok, "ok.csv"), **CONST).data["amplitude_m"].min() == 0.0
+
+
 def test_even_overtone_argument_and_column(tmp_path):
     path = write(tmp_path, good_frame())
     with pytest.raises(ValueError, match=r"overtone = 4.*odd"):

@@ -17,7 +17,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from ...units import MAX_AMPLITUDE_M, POISSON_OPEN_RANGE, QUANTITIES, unit_slip
+from ...units import MAX_AMPLITUDE_M, MIN_AMPLITUDE_M, POISSON_OPEN_RANGE, QUANTITIES, unit_slip
 from ._columns import Column, Rule, TableSchema, rule
 
 __all__ = [
@@ -179,6 +179,13 @@ SWEEP_TABLE = TableSchema(
                     lambda v: v >= 0,
                     ">= 0",
                     " is negative; amplitudes must be >= 0 m",
+                ),
+                rule(
+                    "0 or at least 0.1 pm",
+                    lambda v: (v == 0) | (v >= MIN_AMPLITUDE_M),
+                    f"0 or >= {MIN_AMPLITUDE_M:g}",
+                    f" is below {MIN_AMPLITUDE_M:g} m (and not 0): it looks like metres in a "
+                    "nanometre column (write nm values in amplitude_nm, metres in amplitude_m)",
                 ),
                 rule(
                     "at most 1 µm",
