@@ -48,20 +48,15 @@ def _loaded(materials: dict) -> dict:
     return json.loads(run.stdout.splitlines()[-1])
 
 
-@pytest.mark.parametrize(
-    ("materials", "radiation"),
-    [({}, False), ({"sphere_material": "glass", "plate_material": "quartz-AT"}, True)],
-    ids=["no-materials", "radiation-control"],
-)
-def test_the_dynamic_solver_is_loaded_only_for_the_radiation_loss(materials, radiation):
-    loaded = _loaded(materials)
-    assert loaded["radiation"] is radiation
-    if radiation:
-        assert "contactres.dynamic._tangential_stiffness" in loaded["dynamic"]
-        assert "contactres.halfspace._compliance" in loaded["halfspace"]
-    else:
-        assert loaded["dynamic"] == []
-        assert loaded["halfspace"] == []
+def test_the_dynamic_solver_is_loaded_for_the_radiation_loss():
+    # The control: with both materials the solver is loaded (and seen loaded from the fresh
+    # interpreter). Without them none is: test_the_command_loads_no_solver_without_materials
+    # below, whose command reads, analyses and writes the example through the same read_sweeps,
+    # analyze and write_report (and the bootstrap and the page besides).
+    loaded = _loaded({"sphere_material": "glass", "plate_material": "quartz-AT"})
+    assert loaded["radiation"] is True
+    assert "contactres.dynamic._tangential_stiffness" in loaded["dynamic"]
+    assert "contactres.halfspace._compliance" in loaded["halfspace"]
 
 
 def test_the_command_loads_no_solver_without_materials(tmp_path):

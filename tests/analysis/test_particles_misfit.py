@@ -35,7 +35,10 @@ def _kappa_for(particle, f_coupled, medium=None):
     for _ in range(200):
         mid = 0.5 * (lo + hi)
         f = np.min(coupled_resonance(particle, np.exp(mid), medium=medium))
-        lo, hi = (mid, hi) if f < f_coupled else (lo, mid)
+        step = (mid, hi) if f < f_coupled else (lo, mid)
+        if step == (lo, hi):  # the bracket no longer moves (~55 steps): it never will again
+            break
+        lo, hi = step
     return float(np.exp(0.5 * (lo + hi)))
 
 

@@ -33,10 +33,30 @@ def _reference(m, kla, size: GalerkinSize):
     return complex((fine.n_static / exact_n(fine, ksa, size))[0])
 
 
-def test_cu_at_ka_10_meets_the_rtol_it_was_asked_for():
-    # main printed 3.824 + 15.94i at rtol 1e-4: the coarse grid is 20 % off at k_l a = 10.
+@pytest.fixture(scope="module")
+def cu_at_10():
+    """Cu(001) and its reference DCSF at k_l a = 10 (read by three tests)."""
     cu = Material.crystal("Cu")
-    ref = _reference(cu, 10.0, GalerkinSize(26, 6))
+    return cu, _reference(cu, 10.0, GalerkinSize(26, 6))
+
+
+@pytest.fixture(scope="module")
+def strong():
+    """A = 0.05, nu = 0.45 (outside the measured range) and its reference DCSF at k_l a = 2."""
+    m = Material.cubic_from_ratios(0.05, 0.45)
+    return m, _reference(m, 2.0, GalerkinSize(24, 6))
+
+
+@pytest.fixture(scope="module")
+def cu_111_at_5():
+    """Cu(111) and its reference DCSF at k_l a = 5, with |n| <= 16 (n = ±12 in it)."""
+    cu111 = Material.crystal("Cu").rotated((1, 1, 1))
+    return cu111, _reference(cu111, 5.0, GalerkinSize(34, 8))
+
+
+def test_cu_at_ka_10_meets_the_rtol_it_was_asked_for(cu_at_10):
+    # main printed 3.824 + 15.94i at rtol 1e-4: the coarse grid is 20 % off at k_l a = 10.
+    cu, ref = cu_at_10
     for rtol in (1e-4, 1e-6):
         got = checked_dcsf_models(cu, 10.0, "exact", rtol=rtol)
         value = complex(got.values["exact"])
@@ -46,22 +66,20 @@ def test_cu_at_ka_10_meets_the_rtol_it_was_asked_for():
 
 
 @pytest.mark.parametrize("rtol", [1e-6, 1e-7])
-def test_cu_111_at_ka_5_meets_its_rtol(rtol):
+def test_cu_111_at_ka_5_meets_its_rtol(cu_111_at_5, rtol):
     # The (111) face couples only the harmonics n = 0, ±6, ±12, ...: a refinement from |n| <= 6
     # to 10 added none, agreed with level 0 to 1e-9 and passed 0.621606 + 12.32168i, 3.7e-5 off
     # (37 rtol), as converged. The reference has |n| <= 16 (n = ±12 in it).
-    cu111 = Material.crystal("Cu").rotated((1, 1, 1))
-    ref = _reference(cu111, 5.0, GalerkinSize(34, 8))
+    cu111, ref = cu_111_at_5
     got = checked_dcsf_models(cu111, 5.0, "exact", rtol=rtol)
     value = complex(got.values["exact"])
     assert abs(value - ref) <= rtol * abs(ref), (value, ref)
     assert bool(got.converged["exact"]) and int(got.level["exact"]) >= 1
 
 
-def test_strong_anisotropy_at_the_default_rtol():
+def test_strong_anisotropy_at_the_default_rtol(strong):
     # A = 0.05, nu = 0.45 (outside the measured range): main was 1.4 % off at k_l a = 2.
-    m = Material.cubic_from_ratios(0.05, 0.45)
-    ref = _reference(m, 2.0, GalerkinSize(24, 6))
+    m, ref = strong
     got = checked_dcsf_models(m, 2.0, "exact")
     value = complex(got.values["exact"])
     assert abs(value - ref) <= 1e-6 * abs(ref), (value, ref)
@@ -99,21 +117,13 @@ def test_max_refine_must_be_positive():
 # ---- the public dcsf keeps its promise outside the validated range (issue 27, cause 3) --------
 
 
-def test_dcsf_meets_its_rtol_on_cu_at_ka_10():
+def test_dcsf_meets_its_rtol_on_cu_at_ka_10(cu_at_10):
     # main returned 3.824 + 15.94i (25 % off) at rtol 1e-4 without a word.
-    cu = Material.crystal("Cu")
-    ref = _reference(cu, 10.0, GalerkinSize(26, 6))
+    cu, ref = cu_at_10
     with warnings.catch_warnings():
         warnings.simplefilter("error", AccuracyWarning)  # met, so nothing to flag
         value = dcsf(cu, 10.0, rtol=1e-4)
     assert abs(value - ref) <= 1e-4 * abs(ref), (value, ref)
-
-
-@pytest.fixture(scope="module")
-def strong():
-    """A = 0.05, nu = 0.45 (outside the measured range) and its reference DCSF at k_l a = 2."""
-    m = Material.cubic_from_ratios(0.05, 0.45)
-    return m, _reference(m, 2.0, GalerkinSize(24, 6))
 
 
 @pytest.mark.parametrize("rtol", [1e-3, 1e-4, 1e-6])
@@ -142,14 +152,14 @@ def test_dcsf_flags_a_value_that_still_misses_rtol():
     assert value == complex(checked.values["exact"])  # the finest value, not the coarse one
 
 
-def test_dynamic_contact_stiffness_is_checked_as_dcsf():
+def test_dynamic_contact_stiffness_is_checked_as_dcsf(cu_at_10):
     # The same check guards the route through the physical contact (k_s a from R, F, f).
-    cu = Material.crystal("Cu")
+    cu, dcsf_ref = cu_at_10
     contact = sphere_contact(cu, 1e-3, 1.0)
     a = float(contact.contact_radius)
     f = 10.0 / (2 * np.pi * a * np.sqrt(cu.density / cu.C[2, 2]))  # k_l a = 10
     k = dynamic_contact_stiffness(cu, 1e-3, 1.0, f, rtol=1e-4)
-    ref = _reference(cu, 10.0, GalerkinSize(26, 6)) * float(contact.stiffness)
+    ref = dcsf_ref * float(contact.stiffness)
     assert abs(k - ref) <= 1e-4 * abs(ref), (k, ref)
 
 

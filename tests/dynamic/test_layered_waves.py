@@ -128,14 +128,29 @@ def test_many_frequencies_at_once_equal_one_at_a_time(monkeypatch):
 def test_nodes_assembled_in_groups_equal_one_point_at_a_time(monkeypatch):
     """The real nodes of several points are assembled together (one panel search and one
     interpolation of Δg per group); a group of one point (``_GROUP_NODES`` = 1) gives the same
-    punch to the bit, statics, a second layer and the tangential punch included."""
+    punch to the bit, statics, a second layer and the tangential punch included. The
+    tangential punch of a stack with an anisotropic film assembles each frequency's points on
+    their own (nothing to group), so its case has two isotropic films."""
     stack = LayeredMaterial(QUARTZ, [(PMMA, 0.05 * A), (CU111, 0.1 * A)])
+    cu = Material.isotropic(130e9, 0.34, density=8960.0, name="Cu isotropic")
+    films = LayeredMaterial(QUARTZ, [(PMMA, 0.05 * A), (cu, 0.1 * A)])
     f = np.array([0.0, 1e6, 2e7, 5e7, 9e7])
+    assemble = _layered_path.assemble_nodes
+    points: list[int] = []
+
+    def counted(res, rule, pts, shift):
+        points.append(len(pts))
+        return assemble(res, rule, pts, shift)
+
+    monkeypatch.setattr(_layered_path, "assemble_nodes", counted)
     normal = layered_punch_stiffness(stack, A, f)
-    tangential = layered_punch_stiffness(stack, A, f[1:], direction="tangential")
+    assert max(points) > 1  # several points to a call: the grouping is exercised
+    points.clear()
+    tangential = layered_punch_stiffness(films, A, f[1:], direction="tangential")
+    assert max(points) > 1
     monkeypatch.setattr(_layered_nodes, "_GROUP_NODES", 1)
     assert np.array_equal(layered_punch_stiffness(stack, A, f), normal)
-    again = layered_punch_stiffness(stack, A, f[1:], direction="tangential")
+    again = layered_punch_stiffness(films, A, f[1:], direction="tangential")
     assert np.array_equal(again, tangential)
 
 

@@ -13,7 +13,7 @@ from contactres.errors import ContactresInputError
 from contactres.jobs import qcm_stiffness, qcm_sweeps
 from contactres.jobs.contract import JobResult
 from contactres.report import _writer as writer_module
-from contactres.report import html_report, write_report
+from contactres.report import write_report
 from contactres.report._writer import FORMATS, figure_registry, html_registry, report_names
 
 EXPORT = "src/contactres/data/example_qcmd.csv"
@@ -97,8 +97,20 @@ def test_a_drawing_with_nothing_to_draw_writes_no_file(tmp_path, monkeypatch):
     assert sorted(p.name for p in (tmp_path / "out").iterdir()) == ["manifest.json", "points.csv"]
 
 
-def test_the_sweep_analysis_is_reported_through_the_registries(tmp_path):
+def test_the_sweep_analysis_is_reported_through_the_registries(tmp_path, monkeypatch):
+    from contactres.report import _html
+
     result = qcm_sweeps.run(SWEEPS, qcm_sweeps.Settings(bootstrap=0))
+    # The page's own content is tests/report's (test_html_report); here the registry's route
+    # to it: html_report of this analysis, for the job as for the library (a stand-in page,
+    # which spares the page's figures drawn three times).
+    seen = []
+
+    def page_of(given):
+        seen.append(given)
+        return f"<!DOCTYPE html><p>{len(given.groups)} groups, {len(given.sweeps)} sweeps</p>\n"
+
+    monkeypatch.setattr(_html, "html_report", page_of)
     figures = [name for name, _ in figure_registry()[qcm_sweeps.Result]]
     assert figures[-1] == "radiation_loss.png" and len(figures) == 5
     assert html_registry()[qcm_sweeps.Result][0] == "report.html"
@@ -127,7 +139,8 @@ def test_the_sweep_analysis_is_reported_through_the_registries(tmp_path):
     for name in names:
         assert (tmp_path / "job" / name).read_bytes() == (tmp_path / "library" / name).read_bytes()
     page = (tmp_path / "job" / "report.html").read_text(encoding="utf-8")
-    assert page == html_report(result.analysis)
+    assert page == _html.html_report(result.analysis)
+    assert len(seen) == 3 and all(given is result.analysis for given in seen)
     summary = json.loads((tmp_path / "job" / "summary.json").read_text(encoding="utf-8"))
     assert len(summary["groups"]) == len(result.analysis.groups) and "radiation" not in summary
     swept = pd.read_csv(tmp_path / "job" / "sweeps.csv")
