@@ -32,3 +32,14 @@ def invoke(command, base, option, value):
 def option_names(command) -> set[str]:
     """The options of a click command, but --help."""
     return {p.opts[0] for p in command.params if p.opts[0] != "--help"}
+
+
+#: The example files whose listed command (``contactres examples``) test_cli_examples.py runs
+#: from a folder of the copies without the optional extras; test_cli_help.py does not run a
+#: help's example that is one of these command lines again.
+LISTED_COMMANDS_RUN = (
+    "example_rum.csv",
+    "example_afm.csv",
+    "example_qcmd.csv",
+    "example_cu_kstar.csv",
+)

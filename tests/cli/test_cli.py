@@ -58,18 +58,40 @@ def test_crystals_formats():
     assert "RbI" in run("crystals").output
 
 
-def test_demo_writes_folder(tmp_path, monkeypatch):
+@pytest.fixture(scope="module")
+def demo_results():
+    """The demo job's Result installed without the ``maps`` extra, then with it: computed once
+    for the demo's tests here (the demo is one of the suite's costliest runs).
+
+    Without the extra, :func:`contactres.jobs.demo.run` runs in full with ``import xarray``
+    failing. With it, ``run`` runs again, its two map steps for real; the parts the first run
+    computed and that do not use the extra (the analyses, paper 1's curves, the coated
+    contact) are handed back to it, as recomputing them gives the same numbers.
+    """
+    from contactres.jobs import demo, paper1
+
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setitem(sys.modules, "xarray", None)  # import xarray -> ImportError
+        bare = demo.run()
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(demo, "_sweeps", lambda: bare.sweeps_analysis)
+        spectra = (bare.spectra_rows, bare.spectra_fits, bare.spectra_analysis)
+        mp.setattr(demo, "_spectra", lambda: spectra)
+        mp.setattr(paper1, "crystal_curves", lambda model: bare.crystal_dcsf)
+        mp.setattr(demo, "_coated_contact", lambda: bare.coated_contact)
+        full = demo.run()
+    return bare, full
+
+
+def _demo_returns(monkeypatch, result):
+    """``contactres demo`` (in this process) computes ``result`` and writes it."""
     from contactres.jobs import demo
 
-    computed = []
-    compute = demo.run
+    monkeypatch.setattr(demo, "run", lambda *args, **kwargs: result)
 
-    def once(*args, **kwargs):  # the rerun below writes the first run's result again
-        if not computed:
-            computed.append(compute(*args, **kwargs))
-        return computed[0]
 
-    monkeypatch.setattr(demo, "run", once)
+def test_demo_writes_folder(tmp_path, monkeypatch, demo_results):
+    _demo_returns(monkeypatch, demo_results[1])  # the rerun below writes the same Result again
     out = tmp_path / "demo"
     r = run("demo", "--out", str(out))
     assert r.exit_code == 0, r.output
@@ -242,3 +264,39 @@ def test_csv_output_has_no_float_noise_and_keeps_15_digits():
     lines = out.getvalue().split()
     assert lines[1] == "0.3"  # not 0.30000000000000004
     assert abs(float(lines[2]) - value) <= 5e-15 * value  # half a unit in the 15th digit
+
+
+def test_demo_without_the_maps_extra_leaves_the_map_out_in_one_line(
+    tmp_path, monkeypatch, demo_results
+):
+    """Installed without the ``maps`` extra (xarray cannot be imported), the demo writes every
+    other part and says in one line which step it left out and what to install."""
+    bare, _ = demo_results
+    assert bare.map_dataset is None and bare.map_triangle is None and bare.cr_map is None
+    monkeypatch.setitem(sys.modules, "xarray", None)  # the writers too run without it
+    _demo_returns(monkeypatch, bare)
+    out = tmp_path / "demo"
+    r = run("demo", "--out", str(out))
+    assert r.exit_code == 0, r.output
+    notes = [line for line in r.stderr.splitlines() if "left out" in line]
+    # One line for each map: the polycrystal map and the contact-resonance map.
+    assert len(notes) == 2 and all("contactres[maps]" in line for line in notes)
+    assert all(len(line) <= 130 for line in notes), notes  # issue 30: was 221 characters
+    assert "polycrystal map" in notes[0] and "contact-resonance AFM map" in notes[1]
+    assert not (out / "polycrystal").exists() and not (out / "cr-map").exists()
+    assert (out / "crystals.csv").is_file() and (out / "coated-contact" / "contact.csv").is_file()
+
+
+def test_the_demo_carries_the_legend_of_its_map(demo_results):
+    """The legend of the demo's map figure: Cu's M over the standard triangle, as M computed at
+    the triangle's normals here."""
+    from contactres import Material
+    from contactres.polycrystal import indentation_moduli, surface_matrices_from_normals
+
+    triangle = demo_results[1].map_triangle
+    ok = triangle.cells
+    exact = indentation_moduli(
+        Material.crystal("Cu"), surface_matrices_from_normals(triangle.normals)
+    )
+    np.testing.assert_allclose(triangle.moduli[ok], exact, rtol=1e-12)
+    assert triangle.moduli.shape == (81, 81) and triangle.triangle.lattice == "cubic"

@@ -8,7 +8,7 @@ import sys
 from importlib.resources import files
 
 import pytest
-from cli_checks import one_line_error, run
+from cli_checks import LISTED_COMMANDS_RUN, one_line_error, run
 
 from contactres.examples import EXAMPLES, copy_examples, example_path
 
@@ -71,9 +71,7 @@ def test_the_examples_that_need_an_extra_say_which():
         assert marked == bool(ex.extra), (name, after)
 
 
-@pytest.mark.parametrize(
-    "name", ["example_rum.csv", "example_afm.csv", "example_qcmd.csv", "example_cu_kstar.csv"]
-)
+@pytest.mark.parametrize("name", LISTED_COMMANDS_RUN)
 def test_the_listed_command_runs_in_the_folder_of_the_copies(name, tmp_path, monkeypatch):
     """... and without any extra where none is marked."""
     assert not EXAMPLES[name].extra

@@ -26,22 +26,18 @@ def test_bundled_spectra_to_sweeps_and_fits(tmp_path):
     assert (files("contactres") / "data" / "example_spectra.csv").read_bytes() == before
 
 
-def test_analyze_reads_spectra_directly(tmp_path):
-    r = run("qcm", "analyze", SPECTRA, "--out", tmp_path / "o", "--no-figures", "--bootstrap", 0)
-    assert r.exit_code == 0, r.output
-    loads = pd.read_csv(tmp_path / "o" / "loads.csv")
-    assert len(loads) == 6 and (loads["kappa_N_per_m_mean"] > 0).all()
-
-
-def test_the_docs_quote_what_the_spectra_analysis_prints(tmp_path):
-    """README and the spectra guide quote E and γ of the bundled spectra: the numbers must be the
-    ones `qcm analyze` prints (they went stale once when the analysis moved; a text guard, not a
-    check of the physics — the recovery of E and γ is tested in tests/analysis)."""
+def test_analyze_reads_spectra_directly_and_the_docs_quote_what_it_prints(tmp_path):
+    """`qcm analyze` reads the bundled spectra directly. README and the spectra guide quote E and
+    γ of them: the numbers must be the ones `qcm analyze` prints (they went stale once when the
+    analysis moved; a text guard, not a check of the physics — the recovery of E and γ is
+    tested in tests/analysis)."""
     import re
     from pathlib import Path
 
     r = run("qcm", "analyze", SPECTRA, "--out", tmp_path / "o", "--no-figures")
     assert r.exit_code == 0, r.output
+    loads = pd.read_csv(tmp_path / "o" / "loads.csv")
+    assert len(loads) == 6 and (loads["kappa_N_per_m_mean"] > 0).all()
     row = re.search(r"SiO2_1\.2mm\s+air\s+([\d.]+) ± ([\d.]+)\s+([\d.]+) ± ([\d.]+)", r.stdout)
     assert row is not None, r.stdout
     e, e_err, g, g_err = (float(x) for x in row.groups())

@@ -18,13 +18,29 @@ from contactres.examples import example_path
 SPECTRA = str(files("contactres") / "data" / "example_spectra.csv")
 
 
+@pytest.fixture(scope="module")
+def si_table():
+    """The CSV table a command prints for a command line in SI (``run``'s arguments), read;
+    each line is run once for every case that compares a typed value with it."""
+    tables: dict[tuple[str, ...], pd.DataFrame] = {}
+
+    def table(*args: str) -> pd.DataFrame:
+        if args not in tables:
+            r = run(*args)
+            assert r.exit_code == 0, r.output
+            tables[args] = pd.read_csv(pd.io.common.StringIO(r.stdout))
+        return tables[args].copy()
+
+    return table
+
+
 @pytest.mark.parametrize("typed", ["pmma:250nm", "pmma:250 nm", "pmma:0.25µm"])
-def test_a_coating_thickness_with_its_unit_equals_the_thickness_in_m(typed):
+def test_a_coating_thickness_with_its_unit_equals_the_thickness_in_m(typed, si_table):
     args = ["contact", "--crystal", "fused-silica", "--radius", "1.1e-3", "--force", "1e-3"]
-    si = run(*args, "--coating", "pmma:250e-9", "--format", "csv")
+    a = si_table(*args, "--coating", "pmma:250e-9", "--format", "csv")
     with_unit = run(*args, "--coating", typed, "--format", "csv")
-    assert si.exit_code == 0 and with_unit.exit_code == 0, with_unit.output
-    a, b = (pd.read_csv(pd.io.common.StringIO(r.stdout)) for r in (si, with_unit))
+    assert with_unit.exit_code == 0, with_unit.output
+    b = pd.read_csv(pd.io.common.StringIO(with_unit.stdout))
     pd.testing.assert_frame_equal(a, b, rtol=1e-12)
     assert (b["coating"] == "PMMA 250 nm").all()
 
@@ -96,14 +112,15 @@ def test_a_toml_key_with_its_unit_is_checked_and_the_unknown_key_names_the_forms
 
 
 @pytest.mark.parametrize("typed", ["30deg", "30 deg", "0.5235987755982988rad"])
-def test_a_direction_with_its_unit_equals_the_direction_in_degrees(typed):
+def test_a_direction_with_its_unit_equals_the_direction_in_degrees(typed, si_table):
     """`contact --direction` took only a number of degrees ('30deg' was "not a valid float",
     issue 30's last review); an angle with its unit is converted, 30 degrees = π/6 rad."""
     args = ["contact", "--crystal", "quartz-AT", "--radius", "5e-3", "--force", "1e-3"]
     args += ["--tangential", "--frequency", "15e6", "--format", "csv"]
-    plain, with_unit = run(*args, "--direction", "30"), run(*args, "--direction", typed)
-    assert plain.exit_code == 0 and with_unit.exit_code == 0, with_unit.output
-    a, b = (pd.read_csv(pd.io.common.StringIO(r.stdout)) for r in (plain, with_unit))
+    a = si_table(*args, "--direction", "30")  # the plain number: degrees
+    with_unit = run(*args, "--direction", typed)
+    assert with_unit.exit_code == 0, with_unit.output
+    b = pd.read_csv(pd.io.common.StringIO(with_unit.stdout))
     pd.testing.assert_frame_equal(a, b, rtol=1e-12)
 
 

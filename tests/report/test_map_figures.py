@@ -236,12 +236,3 @@ def triangle_moduli_of_cu():
     from contactres.polycrystal import triangle_moduli
 
     return triangle_moduli("cubic", exact(CU), TRIANGLE_GRID)
-
-
-def test_the_demo_carries_the_legend_of_its_map():
-    from contactres.jobs import demo
-
-    *_, triangle = demo._polycrystal()
-    ok = triangle.cells
-    np.testing.assert_allclose(triangle.moduli[ok], exact(CU)(triangle.normals), rtol=1e-12)
-    assert triangle.moduli.shape == (81, 81) and triangle.triangle.lattice == "cubic"
