@@ -38,6 +38,7 @@ import numpy as np
 
 from ..halfspace import inv3, mm
 from ..layered import compliance_factors, isotropic_moduli, layer_waves, substrate_impedance
+from ._layered_sagittal import sagittal_h33, sagittal_reference
 
 __all__ = [
     "StackWaves",
@@ -211,6 +212,22 @@ class StackWaves:
             if isotropic is None:
                 isotropic = [is_isotropic(c) for c in stack.tensors[: len(layers)]]
             closed = [th if iso else None for iso in isotropic]
+        if (
+            closed
+            and all(c is not None for c in closed)
+            and all(m for _, m in layers)
+            and not stack.inplane
+            and stack.axisymmetric
+            and nth == 1
+            and theta is not None
+            and theta[0] == 0
+        ):
+            # Isotropic mirror-plane layers of an axisymmetric stack at θ = 0: H_33 from the
+            # recursion on the sagittal {x, z} block (2x2 instead of 3x3; the same to
+            # round-off).
+            h33 = sagittal_h33([w for w, _ in layers], eh, flat(self.substrate))
+            out = sagittal_reference(flat(self.reference)) - h33
+            return out.reshape(n, nth) - shift[None]
         # H = P Q⁻¹ (compliance_factors; P = I without layers) and H_ref = reference⁻¹: only
         # the entries the kernel needs (H_33, or the in-plane block).
         with np.errstate(all="ignore"):
