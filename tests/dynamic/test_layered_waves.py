@@ -172,7 +172,8 @@ def test_chebyshev_matrix_interpolates_polynomials_exactly():
 
 def test_chebyshev_values_interpolate_each_nodes_own_polynomial():
     """Each node's value is that of the polynomial through its own row of samples (degree
-    n − 1, complex, with a trailing axis), a node on a sample point included."""
+    n − 1, complex, with a trailing axis), a node on a sample point and the ends included, and
+    with rows shared by several nodes."""
     n = 7
     xc = np.cos(np.pi * (np.arange(n) + 0.5) / n)
     x = np.array([-1.0, -0.41, xc[4], 0.2, 1.0])
@@ -183,6 +184,11 @@ def test_chebyshev_values_interpolate_each_nodes_own_polynomial():
     got = chebyshev_values(x, samples)
     want = np.array([[poly(v, c) for c in ck] for v, ck in zip(x, coef, strict=True)])
     np.testing.assert_allclose(got, want, rtol=1e-13)
+    # Rows shared by several nodes (``rows``): node k reads row rows[k].
+    rows = np.array([4, 0, 4, 2, 1, 3, 0])
+    xs = np.linspace(-1.0, 1.0, rows.size)
+    want = np.array([[poly(v, c) for c in coef[r]] for v, r in zip(xs, rows, strict=True)])
+    np.testing.assert_allclose(chebyshev_values(xs, samples, rows), want, rtol=1e-13)
 
 
 @pytest.mark.parametrize("eta_h", [0.5, np.inf])
