@@ -228,6 +228,23 @@ Galerkin matrices at three basis sizes. Next: Δg on the shared arc interpolated
 points in β = p₁ ω h (η h = β z on the arc; β <= ~0.2 for 250 nm at k_s a <= 2, so a few
 Chebyshev points in β could replace ~2600 recursions), checked against direct solutions.
 
+Issue 26's eleventh pass: Δg on the shared arc fitted in T = p₁ω (η h = T h z there, the
+radius cancels: ``contactres.dynamic._layered_arc``; 13 Lobatto solutions instead of 40 for
+250 nm, 25 for 1 µm, refused for a 5 µm film; accepted when the last two Chebyshev coefficients
+are below 1e-12 of the largest ``|Δg|``), H_33 of an axisymmetric stack of isotropic layers from
+the recursion on the 2x2 sagittal block instead of the 3x3 one
+(``contactres.dynamic._layered_sagittal``), and Δg interpolated onto the nodes from each
+panel's Chebyshev coefficients (no division per node and sample); results moved by <= 4.8e-15.
+Instructions per curve (callgrind, one thread, the second call of a process less its first),
+main / this tree: 250 nm 274.6 M -> 249.7 M (-9.1 %: the fit in T 1.1-1.9 M, the sagittal
+recursion 20.9 M, the coefficients 3.0 M); 1 µm 196.6 M -> 180.7 M (-8.1 %); against the
+homogeneous exact curve's 70.6 M (unchanged code) 3.89x -> 3.54x and 2.79x -> 2.56x. The
+250 nm target is still missed. The arc's ~2600 recursions were only ~1 % of the curve's
+instructions (numpy's per-call cost on 41 points × 64 nodes is small), so the fit in T, though
+it replaces two thirds of them, saves little; what remains is spread as before (film Galerkin
+at three basis sizes, node assembly, Bessel functions and Gram products of ~460 nodes per
+point).
+
 Run: ``.venv/bin/python benchmarks/bench_layered_dynamic.py`` (exit status 1 if a target is
 missed; a few minutes on a busy machine).
 """

@@ -22,7 +22,7 @@ from contactres.dynamic._layered_waves import (
     waves_at,
 )
 from contactres.errors import ContactresInputError
-from contactres.layered import stack_compliance
+from contactres.layered import compliance_factors, stack_compliance
 
 QUARTZ = Material.isotropic(72e9, 0.17, density=2650.0, name="quartz")
 PMMA = Material.isotropic(5e9, 0.35, density=1190.0, name="PMMA")
@@ -187,7 +187,8 @@ def test_chebyshev_matrix_interpolates_polynomials_exactly():
 
 def test_chebyshev_values_interpolate_each_nodes_own_polynomial():
     """Each node's value is that of the polynomial through its own row of samples (degree
-    n − 1, complex, with a trailing axis), a node on a sample point included."""
+    n − 1, complex, with a trailing axis), a node on a sample point and the ends included, and
+    with rows shared by several nodes."""
     n = 7
     xc = np.cos(np.pi * (np.arange(n) + 0.5) / n)
     x = np.array([-1.0, -0.41, xc[4], 0.2, 1.0])
@@ -198,6 +199,11 @@ def test_chebyshev_values_interpolate_each_nodes_own_polynomial():
     got = chebyshev_values(x, samples)
     want = np.array([[poly(v, c) for c in ck] for v, ck in zip(x, coef, strict=True)])
     np.testing.assert_allclose(got, want, rtol=1e-13)
+    # Rows shared by several nodes (``rows``): node k reads row rows[k].
+    rows = np.array([4, 0, 4, 2, 1, 3, 0])
+    xs = np.linspace(-1.0, 1.0, rows.size)
+    want = np.array([[poly(v, c) for c in coef[r]] for v, r in zip(xs, rows, strict=True)])
+    np.testing.assert_allclose(chebyshev_values(xs, samples, rows), want, rtol=1e-13)
 
 
 @pytest.mark.parametrize("eta_h", [0.5, np.inf])
@@ -244,3 +250,58 @@ def test_panel_waves_are_each_points_own_interpolation():
         want = shared.real_all(items).arrays()
         for g, w in zip(got, want, strict=True):
             assert np.max(np.abs(g - w)) <= 1e-13 * np.max(np.abs(w))
+
+
+@pytest.mark.parametrize(
+    "material",
+    [
+        LayeredMaterial(QUARTZ, [(PMMA, 0.05 * A)]),
+        LayeredMaterial(PMMA, [(QUARTZ.with_loss(1e-3), 0.3 * A), (PMMA, 0.1 * A)]),
+    ],
+    ids=["film", "two-lossy-layers"],
+)
+def test_the_sagittal_recursion_is_the_three_by_three_one(monkeypatch, material):
+    """Isotropic layers of an axisymmetric stack at θ = 0: H_33 from the 2x2 recursion on the
+    sagittal block equals the 3x3 recursion (compliance_factors with the same closed-form
+    exponentials, H = P Q⁻¹ by numpy) to round-off on the real axis, on the lifted arc and in
+    statics; the layer recursion of stack_compliance (general exponentials) agrees to 1e-12;
+    off θ = 0 the 3x3 recursion serves."""
+    theta = np.zeros(1)
+    for f in (0.0, 3e6, 4e7):
+        st = _stack(material, f)
+        if f > 0:
+            eta = st.pole * np.concatenate(
+                [[1.0, 1.9, 7.0, 60.0], _layered_waves.arc_fraction(np.linspace(0.05, 0.95, 5))]
+            )
+        else:
+            eta = np.array([0.3, 2.0, 11.0]) / A
+        waves = waves_at(st, theta, st.omega**2 / eta**2)
+        eta_h = [eta * h for h in st.thicknesses]
+        shift = st.static_shift(theta)
+        sagittal = waves.delta_g(st, eta_h, shift, theta)
+        # The 3x3 recursion with the same closed-form exponentials, H = P Q⁻¹ by numpy.
+        layers = [(w.reshape(4, 3, 3, -1), m) for w, m in waves.layers]
+        eh = [np.asarray(x, dtype=complex) for x in eta_h]
+        zeros = [np.zeros(eta.size)] * len(layers)
+        P, Q = compliance_factors(layers, eh, waves.substrate.reshape(3, 3, -1), zeros)
+        H3 = np.moveaxis(P, -1, 0) @ np.linalg.inv(np.moveaxis(Q, -1, 0))
+        ref = np.linalg.inv(np.moveaxis(waves.reference.reshape(3, 3, -1), -1, 0))
+        general = (ref[:, 2, 2] - H3[:, 2, 2])[:, None] - shift[None]
+        e = eta[:, None]
+        s = [sig * st.omega**2 / e**2 for sig in st.sigma]
+        th = np.zeros(e.shape)
+        H = stack_compliance(st.tensors, s, [e * h for h in st.thicknesses], th)
+        H_ref = stack_compliance([st.reference], s[:1], [], th)
+        scale = np.max(np.abs(H_ref[..., 2, 2]))
+        # Round-off of the largest |Δg| (~14 under quartz layers; measured: < 6e-15).
+        assert np.max(np.abs(sagittal - general)) < 1e-13 * np.max(np.abs(general))
+        want = H_ref[..., 2, 2] - H[..., 2, 2] - shift[None]
+        assert np.max(np.abs(sagittal - want)) < 1e-12 * scale
+    # A direction off θ = 0 keeps the 3x3 recursion.
+    monkeypatch.setattr(_layered_waves, "sagittal_h33", _sagittal_refused)
+    off = waves.delta_g(st, eta_h, shift, theta + 0.3)
+    assert np.all(np.isfinite(off))
+
+
+def _sagittal_refused(*args):
+    raise AssertionError("the sagittal recursion must not serve off θ = 0")

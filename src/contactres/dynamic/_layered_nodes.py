@@ -210,7 +210,7 @@ def _assemble_group(res: PunchResolution, rule, group, shift) -> list:
         [p[0][4][p[0][3][0].size :].reshape(p[0][1] + 1, res.n_cheb, -1) for p in group]
     )
     tail = group[0][0][4].shape[1:]
-    g = chebyshev_values(x, cheb[panel - first[pid] + first_panel[pid]])
+    g = chebyshev_values(x, cheb, panel - first[pid] + first_panel[pid])
     g = g.reshape(where.size, *tail)
     n_real = t.size
     # Each point's head and real nodes, one after the other, in one array per field (views).

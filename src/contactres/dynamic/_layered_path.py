@@ -23,6 +23,7 @@ from ..halfspace import shear_reference
 from ..layered import LayeredMaterial, material_at, stack_compliance
 from ..materials import Material, voigt_to_tensor
 from ..numerics import gauss_legendre
+from ._layered_arc import ParameterFit, fit_in_parameter
 from ._layered_nodes import PunchResolution, assemble_nodes, concatenated_ranges
 from ._layered_waves import (
     ARC_LIFT,
@@ -229,6 +230,7 @@ def correction_nodes(stacks, radii, theta: np.ndarray, res: PunchResolution, gre
     per_chunk = max(1, _NODE_BUDGET // (_NODES_PER_POINT * theta.size))
     for members in groups.values():
         shared = _SharedWaves(stacks[members[0]], theta, res, [stacks[i] for i in members])
+        shared.fit_arc([stacks[i] for i in members], [float(radii[i]) for i in members])
         for k in range(0, len(members), per_chunk):
             chunk = members[k : k + per_chunk]
             out.update(_chunk_nodes(shared, [stacks[i] for i in chunk], radii, chunk, res, gref))
@@ -264,6 +266,23 @@ class _SharedWaves:
             # x = ω²/η² on the arc s = S₁ z(τ): 1/(p₁ z)², the same at every frequency.
             self.arc = waves_at(st, theta, 1 / (st.pole_slowness * self.z) ** 2)
         self._panels: StackWaves | None = None  # panel_waves' samples (grown on demand)
+        self.arc_fit: ParameterFit | None = None  # Δg on the shared arc in T (fit_arc)
+
+    def fit_arc(self, stacks, radii) -> None:
+        """Δg on the shared arc as a polynomial in T = p₁ ω over the points of ``stacks``
+        (radii ``radii``, m) whose head is that arc (``contactres.dynamic._layered_arc``:
+        none where it would not meet its bound with fewer solutions than points)."""
+        poles = np.array([st.pole for st, a in zip(stacks, radii, strict=True) if _shared(st, a)])
+        if self.arc is not None and poles.size > 1:
+            lo, hi = float(np.min(poles)), float(np.max(poles))
+            self.arc_fit = fit_in_parameter(self._arc_delta_g, lo, hi, poles.size)
+
+    def _arc_delta_g(self, poles: np.ndarray) -> np.ndarray:
+        """Δg (len(poles), arc nodes, nθ) on the shared arc at T = ``poles``: η h_j = (s/a) h_j
+        = T h_j z, so a radius of 1 with s = T z gives it."""
+        assert self.arc is not None  # fit_arc checks it
+        parts = [(self.stack, 1.0, t * self.z) for t in poles]
+        return np.array(_delta_g(self, parts, StackWaves.combined([self.arc] * poles.size)))
 
     def panel_waves(self, counts, ratio: float, n_cheb: int) -> StackWaves:
         """The waves at the real samples of dynamic points whose geometric panels start at
@@ -330,11 +349,11 @@ def _head(shared: _SharedWaves, st: Stack, a: float, res: PunchResolution, s0: f
     if s1 == 0:
         t, wt = gauss_legendre(0.0, s0, res.n_start)
         return t.astype(complex), wt.astype(complex), shared.static_at(t.size)
-    lift = min(ARC_LIFT * s1, _MAX_LIFT)
-    if lift == ARC_LIFT * s1:
+    if _shared(st, a):
         # The arc of every frequency with this lift is one arc in the slowness (shared waves).
         nodes, weights = s1 * shared.z, s1 * shared.dz
         return nodes, weights, shared.arc
+    lift = _MAX_LIFT
     n_pan = max(ARC_PANELS, math.ceil(s1 / lift))
     edges = np.linspace(0.0, s1, n_pan + 1, dtype=np.float64)
     t, wt = gauss_legendre(edges[:-1, None], edges[1:, None], res.n_panel)
@@ -343,6 +362,32 @@ def _head(shared: _SharedWaves, st: Stack, a: float, res: PunchResolution, s0: f
     lifted = t + 1j * lift * np.sin(arg)
     along = wt * (1 + 1j * lift * np.pi / s1 * np.cos(arg))
     return lifted, along, waves_at(st, shared.theta, (st.omega * a / lifted) ** 2)
+
+
+def _shared(st: Stack, a: float) -> bool:
+    """True if the dynamic point (``st``, radius ``a``) has the shared arc as its head: its lift
+    0.3 S₁ is below the cap (S₁ = T a <= 5)."""
+    s1 = st.pole * a
+    return s1 > 0 and min(ARC_LIFT * s1, _MAX_LIFT) == ARC_LIFT * s1
+
+
+def _head_delta_g(shared: _SharedWaves, heads) -> list:
+    """Δg at the head nodes of every (stack, a, (s, ds, waves)) of ``heads``: on the shared arc
+    from its fit in T where there is one, the others solved together."""
+    fit = shared.arc_fit
+    on = [fit is not None and head[2] is shared.arc for _, _, head in heads]
+    out: list = [None] * len(heads)
+    rest = [k for k, o in enumerate(on) if not o]
+    if rest:
+        parts = [(heads[k][0], heads[k][1], heads[k][2][0]) for k in rest]
+        waves = StackWaves.combined([heads[k][2][2] for k in rest])
+        for k, v in zip(rest, _delta_g(shared, parts, waves), strict=True):
+            out[k] = v
+    fitted = [k for k, o in enumerate(on) if o]
+    if fit is not None and fitted:
+        for k, v in zip(fitted, fit(np.array([heads[k][0].pole for k in fitted])), strict=True):
+            out[k] = v
+    return out
 
 
 def _delta_g(shared: _SharedWaves, parts, waves: StackWaves) -> list:
@@ -419,9 +464,8 @@ def _chunk_nodes(shared: _SharedWaves, stacks, radii, index, res: PunchResolutio
     # recursion's temporaries stay small enough to be reused from the heap, where those of all
     # ~10000 samples at once were fresh pages on every call (their page faults cost about a
     # tenth of the 250 nm curve); the values are the same node by node.
-    heads = [(st, a, head[0]) for st, a, head, _ in parts]
     reals = [(st, a, sc) for st, a, _, sc in parts]
-    pieces = _delta_g(shared, heads, StackWaves.combined([head[2] for _, _, head, _ in parts]))
+    pieces = _head_delta_g(shared, [(st, a, head) for st, a, head, _ in parts])
     group: list = []
     for k, item in enumerate(reals):
         group.append(item)

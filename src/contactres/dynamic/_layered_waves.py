@@ -38,6 +38,7 @@ import numpy as np
 
 from ..halfspace import inv3, mm
 from ..layered import compliance_factors, isotropic_moduli, layer_waves, substrate_impedance
+from ._layered_sagittal import sagittal_h33, sagittal_reference
 
 __all__ = [
     "StackWaves",
@@ -89,25 +90,33 @@ def chebyshev_matrix(n: int, x: np.ndarray) -> np.ndarray:
     return out
 
 
-def chebyshev_values(x: np.ndarray, samples: np.ndarray) -> np.ndarray:
+def chebyshev_values(x: np.ndarray, samples: np.ndarray, rows=None) -> np.ndarray:
     """Values at ``x`` (m,) (in [−1, 1]) of the polynomials through the rows of ``samples``
-    (m, n, ...), node k's own row: row k's n samples at the Chebyshev points of the first kind
-    cos(π (j + 1/2)/n) (the second barycentric formula, Σ_j c_j f_j / Σ_j c_j with c_j =
-    w_j/(x − x_j); exact at the points). The values of :func:`chebyshev_matrix` applied row by
-    row, without forming the normalised matrix (one division per node instead of one per
-    entry; the same to round-off)."""
-    xc, w = _barycentric(samples.shape[1])
-    d = x[:, None] - xc[None, :]
-    with np.errstate(divide="ignore", invalid="ignore"):
-        c = w[None, :] / d
-        total = np.sum(c, axis=1)
-        out = np.einsum("mn,mn...->m...", c, samples)
-        out /= total.reshape(-1, *([1] * (out.ndim - 1)))
-    # A node on a sample point (rare): that sample itself.
-    hit = ~np.isfinite(total)
-    if np.any(hit):
-        out[hit] = samples[hit, np.argmax(d[hit] == 0, axis=1)]
-    return out
+    (P, n, ...), node k's own row ``rows[k]`` (None: row k, P = m): each row's n samples at
+    the Chebyshev points of the first kind cos(π (j + 1/2)/n).
+
+    Each row's Chebyshev coefficients a_i = (2/n) Σ_j f_j cos(π i (j + 1/2)/n) (a_0 halved;
+    the discrete cosine transform of type II, L. N. Trefethen, *Approximation Theory and
+    Approximation Practice*, SIAM 2013, Ch. 3) are formed once per row, and every node sums
+    Σ_i a_i T_i(x) with T_i(x) from the three-term recurrence: n products per node where the
+    barycentric formula divides n times (the same polynomial, to round-off; |T_i| <= 1 on
+    [−1, 1], so the sum is as well conditioned as the coefficients)."""
+    n = samples.shape[1]
+    i = np.arange(n)
+    dct = (2.0 / n) * np.cos(np.pi * np.outer(i, i + 0.5) / n)
+    dct[0] *= 0.5
+    coef = np.einsum("ij,pj...->pi...", dct, samples)
+    if rows is not None:
+        coef = coef[rows]
+    T = np.empty((n, x.size))
+    T[0] = 1.0
+    if n > 1:
+        T[1] = x
+    two_x = 2 * x
+    for k in range(2, n):
+        np.multiply(two_x, T[k - 1], out=T[k])
+        T[k] -= T[k - 2]
+    return np.einsum("nm,mn...->m...", T, coef)
 
 
 class StackWaves:
@@ -211,6 +220,22 @@ class StackWaves:
             if isotropic is None:
                 isotropic = [is_isotropic(c) for c in stack.tensors[: len(layers)]]
             closed = [th if iso else None for iso in isotropic]
+        if (
+            closed
+            and all(c is not None for c in closed)
+            and all(m for _, m in layers)
+            and not stack.inplane
+            and stack.axisymmetric
+            and nth == 1
+            and theta is not None
+            and theta[0] == 0
+        ):
+            # Isotropic mirror-plane layers of an axisymmetric stack at θ = 0: H_33 from the
+            # recursion on the sagittal {x, z} block (2x2 instead of 3x3; the same to
+            # round-off).
+            h33 = sagittal_h33([w for w, _ in layers], eh, flat(self.substrate))
+            out = sagittal_reference(flat(self.reference)) - h33
+            return out.reshape(n, nth) - shift[None]
         # H = P Q⁻¹ (compliance_factors; P = I without layers) and H_ref = reference⁻¹: only
         # the entries the kernel needs (H_33, or the in-plane block).
         with np.errstate(all="ignore"):
