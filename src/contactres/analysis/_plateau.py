@@ -30,11 +30,11 @@ from dataclasses import replace
 
 import numpy as np
 import pandas as pd
-from scipy import special
 
 from ..fitting import LMOptions, levenberg_marquardt, solve_stacked
 from ..numerics import gauss_legendre_unit
 from ._amplitude import PLATEAU_MIN_SLOPE
+from ._carlson import legendre_tails
 from ._loops import X_MAX, LoopTable, fit_cm_loops, loop_fit_fields, solve_projected
 from ._plateau_series import slip_integral_series
 
@@ -237,15 +237,15 @@ def _elliptic_integrals(x, c, derivatives: bool = True) -> tuple[np.ndarray, ...
     e = c + 1.5
     r2, r3 = np.minimum(x, e), np.maximum(x, e)
     m = r2 / r3
-    # I_k = ∫_c^r2 dᵏ dd/√Q with d = r2 sin²θ; K from K(1 - m) keeps its precision as x nears e.
-    # (each point by one of the two: the other's value would be discarded)
-    K = np.empty_like(m)
-    low = m < 0.5
-    K[low] = special.ellipk(m[low])
-    K[~low] = special.ellipkm1(np.maximum(1.0 - m[~low], 1e-300))
-    phi = np.arcsin(np.sqrt(np.minimum(c / r2, 1.0)))
-    kf = K - special.ellipkinc(phi, m)
-    ef = special.ellipe(m) - special.ellipeinc(phi, m)
+    # I_k = ∫_c^r2 dᵏ dd/√Q with d = r2 sin²θ, from θ = φ (sin²φ = c/r2) to π/2: the tails
+    # K - F(φ|m) and E - E(φ|m) by Carlson's R_F and R_D (:mod:`._carlson`), with no
+    # difference of the complete and incomplete integrals (which lost their digits as φ nears
+    # π/2). m' = 1 - m, held above 1e-150 where x = e (m = 1, a log singularity: the tails'
+    # weights vanish there; above 1e-150 the arguments' products stay normal numbers).
+    rho = np.minimum(c / r2, 1.0)
+    m1 = np.maximum((r3 - r2) / r3, 1e-150)
+    # cos²φ = (r2 - c)/r2 without the cancellation of 1 - sin²φ as c nears r2.
+    kf, ef = legendre_tails(rho, (r2 - c) / r2, m, m1)
     sq3 = np.sqrt(r3)
     S, P = x + e, x * e
     qc = np.sqrt(1.5 * c * (x - c))  # √Q at d = c
