@@ -232,8 +232,13 @@ def _far_products(js: np.ndarray, pairs: np.ndarray, tail: FarTail | None):
     products = np.empty((n_t, head))
     moments = None if tail is None else np.empty((tail.chebyshev.shape[1], n_t))
     step = max(1, _PRODUCT_BLOCK // max(n_s, 1))
+    work = np.empty((min(step, n_t), n_s))
     for lo in range(0, n_t, step):
-        block = js[pairs[0, lo : lo + step]] * js[pairs[1, lo : lo + step]]
+        block = work[: min(step, n_t - lo)]
+        # Pair by pair into the work array: indexing js by the pairs copied both factors of
+        # every pair first (two (pairs x nodes) gathers, the exact model's largest copies).
+        for i, (p, q) in enumerate(pairs[:, lo : lo + step].T.tolist()):
+            np.multiply(js[p], js[q], out=block[i])
         products[lo : lo + step] = block[:, :head]
         if moments is not None and tail is not None:
             moments[:, lo : lo + step] = tail.moments(block)
