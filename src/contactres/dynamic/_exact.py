@@ -232,8 +232,13 @@ def _far_products(js: np.ndarray, pairs: np.ndarray, tail: FarTail | None):
     products = np.empty((n_t, head))
     moments = None if tail is None else np.empty((tail.chebyshev.shape[1], n_t))
     step = max(1, _PRODUCT_BLOCK // max(n_s, 1))
+    work = np.empty((min(step, n_t), n_s))
     for lo in range(0, n_t, step):
-        block = js[pairs[0, lo : lo + step]] * js[pairs[1, lo : lo + step]]
+        block = work[: min(step, n_t - lo)]
+        # Pair by pair into the work array: indexing js by the pairs copied both factors of
+        # every pair first (two (pairs x nodes) gathers, the exact model's largest copies).
+        for i, (p, q) in enumerate(pairs[:, lo : lo + step].T.tolist()):
+            np.multiply(js[p], js[q], out=block[i])
         products[lo : lo + step] = block[:, :head]
         if moments is not None and tail is not None:
             moments[:, lo : lo + step] = tail.moments(block)
@@ -426,7 +431,7 @@ def galerkin_integrals(
     near_h = kernel_harmonics(table.near_values, plan.ms)  # (n_m, nk)
     if near_j is None:
         near_j = near_bessel(table, ka, int(orders[-1]))
-    jp = near_j[orders]  # (n_p, na, nk)
+    jp = _rows(near_j, orders)  # (n_p, na, nk)
     wk = table.near_weight[None, :] * ka[:, None]
     # Order by order, not jp * wk[None]: numpy copies the operands of a broadcast product
     # into buffers, which cost 3x the product itself (issue 31).
@@ -471,6 +476,18 @@ def galerkin_integrals(
     scale = (table.t1 * ka) ** 2 / (6 * far.s_end**3)
     integral += scale[:, None, None] * (coef @ alt)[None, :, None] * tail_sign[None, None, :]
     return integral
+
+
+def _rows(a: np.ndarray, index: np.ndarray) -> np.ndarray:
+    """``a[index]`` of sorted row indices: a view when they are evenly spaced (the Hankel
+    orders p = ``|n|`` + 2k of a basis are 0, 2, 4, ... or 0, 1, 2, ...), so that the rows are
+    not copied (~0.8 MB of near-field Bessel functions per curve at rtol 1e-6); a copy
+    otherwise. The same values either way."""
+    if index.size > 1:
+        step = int(index[1] - index[0])
+        if step > 0 and np.array_equal(index, index[0] + step * np.arange(index.size)):
+            return a[int(index[0]) : int(index[-1]) + 1 : step]
+    return a[index]
 
 
 def _near_pair_sums(

@@ -207,10 +207,18 @@ def stacked_normal_compliance(c: np.ndarray, theta, s=0.0) -> np.ndarray:
         for i in range(0, pts.size, _CHUNK):
             p = pts[i : i + _CHUNK]
             n1, n2 = np.cos(th[p]), np.sin(th[p])
-            a = np.ascontiguousarray(np.moveaxis(pieces[p // k], 0, -1))
+            solid = p // k  # ascending
+            if solid[0] == solid[-1]:
+                # One solid (a kernel table's whole chunk): its pieces broadcast against the
+                # directions instead of being gathered and transposed point by point (two
+                # copies of 54 values per point); the same products.
+                a = pieces[solid[0]][..., None]
+            else:
+                a = np.ascontiguousarray(np.moveaxis(pieces[solid], 0, -1))
             Q = a[0] * n1**2 + a[1] * (n1 * n2) + a[2] * n2**2
             R = a[3] * n1 + a[4] * n2
-            H[p] = _pencil_compliance(Q, R, a[5], th[p], sv[p], group, True, lossless)
+            W = np.broadcast_to(a[5], Q.shape)
+            H[p] = _pencil_compliance(Q, R, W, th[p], sv[p], group, True, lossless)
     return H.reshape(m, k)
 
 

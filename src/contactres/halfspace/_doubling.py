@@ -195,8 +195,8 @@ def _cyclic_reduction_mirror(A0, a1, may_stall):
         np.add(v11, v21, out=nxt[3])
         np.add(v12, v22, out=nxt[4])
         np.add(w1, w2, out=nxt[5])
-        nxt[6:10] = st[6:10] - 2.0 * upd[:4]
-        nxt[10:16] = st[10:16] - upd
+        np.subtract(st[6:10], 2.0 * upd[:4], out=nxt[6:10])
+        np.subtract(st[10:16], upd, out=nxt[10:16])
         st, out = nxt, st
         # Quadratic convergence: after an update of relative size τ the rest is ~τ².
         ma = np.abs(upd).max(axis=0)

@@ -38,9 +38,14 @@ def mm(a: np.ndarray, b: np.ndarray, out=None, tmp=None) -> np.ndarray:
         out = np.empty(
             a.shape[:2] + np.broadcast_shapes(a.shape[2:], b.shape[2:]), dtype=np.result_type(a, b)
         )
+        # Each sum formed in its row of ``out`` (the same operations in the same order), not
+        # in a temporary copied there afterwards.
         for i in range(3):
             for j in range(3):
-                out[i, j] = a[i, 0] * b[0, j] + a[i, 1] * b[1, j] + a[i, 2] * b[2, j]
+                o = out[i, j]
+                np.multiply(a[i, 0], b[0, j], out=o)
+                o += a[i, 1] * b[1, j]
+                o += a[i, 2] * b[2, j]
         return out
     for i in range(3):
         for j in range(3):
@@ -78,15 +83,16 @@ def inv3(a: np.ndarray, out=None) -> np.ndarray:
     r = 1.0 / (a00 * c00 + a01 * c01 + a02 * c02)
     if out is None:
         out = np.empty_like(a)
-    out[0, 0] = c00 * r
-    out[1, 0] = c01 * r
-    out[2, 0] = c02 * r
-    out[0, 1] = (a02 * a21 - a01 * a22) * r
-    out[1, 1] = (a00 * a22 - a02 * a20) * r
-    out[2, 1] = (a01 * a20 - a00 * a21) * r
-    out[0, 2] = (a01 * a12 - a02 * a11) * r
-    out[1, 2] = (a02 * a10 - a00 * a12) * r
-    out[2, 2] = (a00 * a11 - a01 * a10) * r
+    # Products written straight into ``out`` (no temporary copied there afterwards).
+    np.multiply(c00, r, out=out[0, 0])
+    np.multiply(c01, r, out=out[1, 0])
+    np.multiply(c02, r, out=out[2, 0])
+    np.multiply(a02 * a21 - a01 * a22, r, out=out[0, 1])
+    np.multiply(a00 * a22 - a02 * a20, r, out=out[1, 1])
+    np.multiply(a01 * a20 - a00 * a21, r, out=out[2, 1])
+    np.multiply(a01 * a12 - a02 * a11, r, out=out[0, 2])
+    np.multiply(a02 * a10 - a00 * a12, r, out=out[1, 2])
+    np.multiply(a00 * a11 - a01 * a10, r, out=out[2, 2])
     return out
 
 
