@@ -33,6 +33,7 @@ import pandas as pd
 from .._summary import Summarised, table_size
 from ..errors import ContactresInputError
 from ..units import ABSOLUTE_FREQUENCY_FRACTION, SMALL_LOAD_LIMIT
+from ._cell_text import stripped_distinct
 from ._messages import at_cell, column_named, column_names, line_word, shown_value, where_rows
 from ._sweep_checks import (
     SweepWarning,
@@ -429,8 +430,7 @@ def _labels(
     Each distinct text is stripped and checked once (the rules are element-wise): 10^6 rows
     hold 10^5 sweep ids and a few labels, and the check stripped every cell again (issue 31).
     A broken rule is named by the check of every cell, as before."""
-    codes, uniques = pd.factorize(raw[col].astype(str), use_na_sentinel=False)
-    distinct = pd.Series(uniques).str.strip().to_numpy(dtype=object)
+    codes, distinct = stripped_distinct(raw[col])
     out[col] = distinct[codes]
     rules = SWEEP_TABLE.column(col).rules
     if missing is not None and missing.any():
