@@ -185,8 +185,8 @@ BUILDERS = {
     "SweepGroup": lambda: measurements.example_study().groups[0],
     "SweepStudy": measurements.example_study,
     "SweepTable": _sweep_table,
-    "AnisotropicContact": lambda: normal.sphere_contact(CU.rotated((1, 1, 0)), 50e-9, 1e-6),
-    "Contact": lambda: normal.hertz(100e9, 50e-9, np.array([1e-6, 2e-6])),
+    "AnisotropicContact": lambda: normal.sphere_contact(CU.rotated((1, 1, 0)), 50e-9, 0.2e-6),
+    "Contact": lambda: normal.hertz(100e9, 50e-9, np.array([0.1e-6, 0.2e-6])),  # a/R < 0.1
     "ContactEllipse": lambda: normal.contact_ellipse(CU.rotated((1, 1, 0))),
     "ContactIntegrals": lambda: normal.contact_integrals(CU),
     "LayeredContact": lambda: normal.sphere_contact(

@@ -21,7 +21,9 @@ def afm_table(tmp_path):
     lever = Cantilever((160e3, 1003e3), 40.0)
     P = np.array([1e-6, 2e-6, 4e-6])
     E_star = 1 / (1 / 50e9 + 1 / 165e9)
-    c = hertz(E_star, 50e-9, P)
+    # a/R = 0.2-0.3, beyond Hertz's a/R <= 0.1: the table is made with Hertz's relation all the
+    # same (the inversion reads k* with it; its range is not this file's matter)
+    c = hertz(E_star, 50e-9, P, check_validity=False)
     k_star = 2 * c.contact_radius * E_star  # Johnson, Eq. 4.22 differentiated: dF/dδ = 2aE*
     f = contact_frequencies(lever, k_star / 40.0, 0.95, modes=(1, 2))
     frame = pd.DataFrame(
@@ -186,7 +188,7 @@ def test_afm_reference_sample_gives_the_hertz_modulus(afm_table, tmp_path):
     lever = Cantilever((160e3, 1003e3), 40.0)
     E_ref = 1 / (1 / 100e9 + 1 / 165e9)
     P = frame["load_N"].to_numpy()
-    k_ref = 2 * hertz(E_ref, 50e-9, P).contact_radius * E_ref
+    k_ref = 2 * hertz(E_ref, 50e-9, P, check_validity=False).contact_radius * E_ref  # as above
     frame["fc1_ref_Hz"] = contact_frequencies(lever, k_ref / 40.0, 0.95, modes=(1,))[:, 0]
     frame["M_ref_Pa"] = 100e9
     frame["hardness_Pa"] = [np.nan, 1e13, np.nan]  # checked where given, with the load

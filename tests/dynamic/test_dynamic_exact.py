@@ -106,8 +106,9 @@ def test_exact_continuity_through_isotropy_and_isotropic_harmonics_vanish():
 def test_lossless_limit_of_every_model_including_exact():
     m = _cubic(0.5)
     kl = np.array([0.8, 1.7])
-    d0 = dcsf_models(m, kl, ALL_MODELS, loss=0.0)
-    dq = dcsf_models(m, kl, ALL_MODELS, loss=1e-5)
+    # R0's negative damping at k_l a = 1.7 is not this test's matter (test_negative_damping_warning)
+    d0 = dcsf_models(m, kl, ALL_MODELS, loss=0.0, warn_negative=False)
+    dq = dcsf_models(m, kl, ALL_MODELS, loss=1e-5, warn_negative=False)
     for name in ALL_MODELS:
         assert np.all(np.isfinite(d0[name])), name
         np.testing.assert_allclose(dq[name], d0[name], rtol=3e-4, err_msg=name)

@@ -44,7 +44,9 @@ def test_truth_is_the_cu_faces_and_hertz(example):
     m_tip = float(np.real(cr.indentation_modulus(cr.Material.crystal("Si").rotated((0, 0, 1)))))
     assert table["M_tip_Pa"].to_numpy() == pytest.approx(m_tip, rel=1e-12)
     e_star = 1 / (1 / m_tip + 1 / truth["M_sample_Pa"])
-    c = cr.hertz(e_star.to_numpy(), lever.tip_radius, lever.load)
+    # The example's tip and load give a/R = 0.16, beyond Hertz's a/R <= 0.1: its truth is made
+    # with Hertz's relation all the same, and that relation is what is checked here.
+    c = cr.hertz(e_star.to_numpy(), lever.tip_radius, lever.load, check_validity=False)
     k_star = 2 * c.contact_radius * e_star  # dF/dδ of Hertz (Johnson 1985, Eq. 4.22)
     assert truth["k_star_N_per_m"].to_numpy() == pytest.approx(k_star.to_numpy(), rel=1e-12)
     assert truth["kappa"].to_numpy() == pytest.approx(k_star.to_numpy() / 40.0, rel=1e-12)

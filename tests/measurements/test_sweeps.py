@@ -184,6 +184,38 @@ def test_metres_in_a_nanometre_column(tmp_path):
     assert read_sweeps(write(tmp_path, ok, "ok.csv"), **CONST).data["amplitude_m"].min() == 0.0
 
 
+@pytest.mark.parametrize(
+    ("column", "si", "factor", "bad", "said"),
+    [
+        ("amplitude_nm", "amplitude_m", 1e9, "abc", "value 'abc' is not a number"),
+        ("amplitude_nm", "amplitude_m", 1e9, "", "is empty"),
+        ("amplitude_nm", "amplitude_m", 1e9, "-5", "value -5e-09 is negative"),  # -5 nm in m
+        ("normal_force_mN", "normal_force_N", 1e3, "0", "value 0.0 is not positive"),
+        ("sphere_radius_mm", "sphere_radius_m", 1e3, "-2", "sphere_radius_m = '-0.002' must be"),
+    ],
+)
+def test_a_bad_cell_is_named_by_the_column_as_the_file_names_it(
+    tmp_path, column, si, factor, bad, said
+):
+    """A column read in the unit of its name (amplitude_nm) and converted to SI: a bad cell is
+    told under the file's name, with word that the numbers shown are SI (the SI name alone
+    named a column the file does not have)."""
+    f = good_frame().assign(sphere_radius_m=1.1e-3)
+    f = f.assign(**{si: f[si] * factor}).rename(columns={si: column}).astype(str)
+    f.loc[4, column] = bad
+    with pytest.raises(ValueError) as info:
+        read_sweeps(write(tmp_path, f), **{k: v for k, v in CONST.items() if k != si})
+    assert f"line 6, column '{column}' (read in SI as {si}): {said}" in str(info.value)
+
+
+def test_a_conflict_is_named_by_the_column_as_the_file_names_it(tmp_path):
+    f = good_frame().rename(columns={"normal_force_N": "normal_force_mN"})
+    f["normal_force_mN"] = 2.0
+    f.loc[3, "normal_force_mN"] = 3.0
+    with pytest.raises(ValueError, match=r"conflicting values in column 'normal_force_mN' \(read"):
+        read_sweeps(write(tmp_path, f), **CONST)
+
+
 def test_even_overtone_argument_and_column(tmp_path):
     path = write(tmp_path, good_frame())
     with pytest.raises(ValueError, match=r"overtone = 4.*odd"):

@@ -12,7 +12,15 @@ if TYPE_CHECKING:  # annotations only: the messages need no pandas (the export r
 
     from ._array_table import ArrayTable
 
-__all__ = ["SHOWN_CHARS", "at_cell", "column_names", "line_word", "shown_value", "where_rows"]
+__all__ = [
+    "SHOWN_CHARS",
+    "at_cell",
+    "column_named",
+    "column_names",
+    "line_word",
+    "shown_value",
+    "where_rows",
+]
 
 #: Longest value shown in a message (a 50 MB label is shown by its first characters).
 SHOWN_CHARS = 60
@@ -39,11 +47,21 @@ def where_rows(table: pd.DataFrame | ArrayTable, source: str, mask: np.ndarray, 
     """'file, line 6, column 'x'' and, for several bad rows, how many and the first five lines."""
     lines = np.asarray(table["line"])[mask]
     word = line_word(table)
-    where = f"{source}, {word} {lines[0]}, column {col!r}"
+    where = f"{source}, {word} {lines[0]}, column {column_named(table, col)}"
     if len(lines) < 2:
         return where
     shown = ", ".join(str(v) for v in lines[:5]) + (", ..." if len(lines) > 5 else "")
     return f"{where} ({len(lines)} such rows: {word}s {shown})"
+
+
+def column_named(table, col: str) -> str:
+    """Column ``col`` of ``table`` for a message, as the user's file names it: ``'col'``; or,
+    for a column the reader converted to SI from the unit of its name (``attrs["written_as"]``
+    maps the SI name to the file's: ``amplitude_nm`` read as ``amplitude_m``),
+    ``'amplitude_nm' (read in SI as amplitude_m)``: the file's name, and word that the numbers
+    of the message are the SI ones (a number the user wrote is shown converted)."""
+    written = getattr(table, "attrs", {}).get("written_as", {}).get(col)
+    return repr(col) if written is None else f"{written!r} (read in SI as {col})"
 
 
 def line_word(table) -> str:

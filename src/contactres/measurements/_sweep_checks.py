@@ -13,7 +13,7 @@ import pandas as pd
 
 from ..errors import ContactresInputError
 from ..units import MIN_SWEEP_POINTS
-from ._messages import line_word, shown_value
+from ._messages import column_named, line_word, shown_value
 
 __all__ = [
     "SweepWarning",
@@ -59,7 +59,8 @@ def conflict(table: pd.DataFrame, source: str, by: str, col: str, rule: str) -> 
         rows = table[table[by] == name]
         a, b = rows.iloc[0], rows.loc[rows[col] != rows[col].iloc[0]].iloc[0]
         raise ContactresInputError(
-            f"{source}, {by} {shown_value(name)}: conflicting values in column {col!r}: "
+            f"{source}, {by} {shown_value(name)}: conflicting values in column "
+            f"{column_named(table, col)}: "
             f"{shown_value(a[col])} ({line_word(table)} {a['line']}) and {shown_value(b[col])} "
             f"({line_word(table)} {b['line']}); {rule}"
         )

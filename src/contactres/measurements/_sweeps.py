@@ -33,7 +33,8 @@ import pandas as pd
 from .._summary import Summarised, table_size
 from ..errors import ContactresInputError
 from ..units import ABSOLUTE_FREQUENCY_FRACTION, SMALL_LOAD_LIMIT
-from ._messages import at_cell, column_names, line_word, shown_value, where_rows
+from ._cell_text import stripped_distinct
+from ._messages import at_cell, column_named, column_names, line_word, shown_value, where_rows
 from ._sweep_checks import (
     SweepWarning,
     check_dissipation_sign,
@@ -282,7 +283,7 @@ def _columns_in_si(raw: pd.DataFrame, source: str) -> pd.DataFrame:
         out[col] = text.where(numbers.isna(), scaled.str.replace(".", decimal, regex=False))
     out = out.rename(columns={c: t for c, (t, _) in renames.items()})
     out.attrs = dict(raw.attrs)
-    out.attrs["converted_columns"] = {c: t for c, (t, _) in renames.items()}
+    out.attrs["written_as"] = {t: c for c, (t, _) in renames.items()}  # for the messages
     return out
 
 
@@ -429,8 +430,7 @@ def _labels(
     Each distinct text is stripped and checked once (the rules are element-wise): 10^6 rows
     hold 10^5 sweep ids and a few labels, and the check stripped every cell again (issue 31).
     A broken rule is named by the check of every cell, as before."""
-    codes, uniques = pd.factorize(raw[col].astype(str), use_na_sentinel=False)
-    distinct = pd.Series(uniques).str.strip().to_numpy(dtype=object)
+    codes, distinct = stripped_distinct(raw[col])
     out[col] = distinct[codes]
     rules = SWEEP_TABLE.column(col).rules
     if missing is not None and missing.any():
@@ -443,6 +443,7 @@ def _labels_and_numbers(raw: pd.DataFrame, source: str, decimal: str) -> pd.Data
     """Sweep ids, label columns (or their defaults), the measured numbers and the ramp."""
     out = pd.DataFrame({"line": raw["line"].to_numpy()})
     out.attrs["line_word"] = line_word(raw)  # a workbook's rows are named rows, not lines
+    out.attrs["written_as"] = raw.attrs.get("written_as", {})  # amplitude_nm: amplitude_m
     # A missing cell of a table built in memory is empty too (its text would be "nan").
     missing = raw["sweep"].isna().to_numpy()
     _labels(out, raw, source, "sweep", missing)
@@ -502,7 +503,8 @@ def _fill_constants(
             out[name] = vals
             for v in np.unique(vals):  # validate distinct values only (cheap)
                 i = int(np.flatnonzero(vals == v)[0])
-                where = f"{source}, {line_word(out)} {out['line'].iloc[i]}, column {name!r}"
+                where = f"{source}, {line_word(out)} {out['line'].iloc[i]}, column "
+                where += column_named(out, name)
                 _check_constant(name, v, where, shown=raw[name].iloc[i])
             # A value the column overrides is still checked by the same rules (a TOML radius
             # in mm beside a metre column passed unseen, issue 27), and a different value is
@@ -511,7 +513,7 @@ def _fill_constants(
                 v = _check_constant(name, constants[name], f"argument {name}")
                 if _differs(vals, v):
                     warnings.warn(
-                        f"{source}: column {name!r} overrides the given {name} = "
+                        f"{source}: column {column_named(out, name)} overrides the given {name} = "
                         f"{shown_value(constants[name])}",
                         SweepWarning,
                         stacklevel=4,
@@ -522,8 +524,8 @@ def _fill_constants(
                 if _differs(vals, v):
                     warnings.warn(
                         f"{where}: {name} = {shown_value(file_constants[name])} differs from "
-                        f"column {name!r} of {source} ({_column_values(vals)}); the column's "
-                        "value is used",
+                        f"column {column_named(out, name)} of {source} ({_column_values(vals)}); "
+                        "the column's value is used",
                         SweepWarning,
                         stacklevel=4,
                     )
@@ -635,7 +637,8 @@ def validate_sweeps(
             SweepWarning,
             stacklevel=3,
         )
-    data_cols = [c for c in raw.columns if c != "line"]
+    # The names as the file spells them (amplitude_nm, not amplitude_m), for the messages
+    data_cols = [raw.attrs.get("written_as", {}).get(c, c) for c in raw.columns if c != "line"]
     if len(raw) == 0:
         raise ContactresInputError(
             f"{source}: header only, no data rows; columns: {column_names(data_cols)}"

@@ -18,6 +18,7 @@ from dataclasses import replace
 import numpy as np
 
 from ...units import MAX_AMPLITUDE_M, MIN_AMPLITUDE_M, POISSON_OPEN_RANGE, QUANTITIES, unit_slip
+from .._cell_text import stripped_distinct
 from ._columns import Column, Rule, TableSchema, rule
 
 __all__ = [
@@ -48,11 +49,8 @@ def stripped(cells) -> np.ndarray:
     cell is missing), with each distinct cell stripped once. A sweep table of 10^6 rows holds
     10^5 sweep ids and a few labels: Python's strip per cell was 16 % of ``qcm analyze``
     (issue 31); factorising the cells is a hash table in C."""
-    import pandas as pd  # here: the numeric rules of a binary table need no pandas
-
-    text = (cells if isinstance(cells, pd.Series) else pd.Series(cells, dtype=object)).astype(str)
-    codes, uniques = pd.factorize(text, use_na_sentinel=False)
-    return pd.Series(uniques).str.strip().to_numpy(dtype=object)[codes]
+    codes, distinct = stripped_distinct(cells)
+    return distinct[codes]
 
 
 def _filled(v: np.ndarray) -> np.ndarray:
