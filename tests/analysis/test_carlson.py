@@ -88,3 +88,25 @@ def test_legendre_tails_equal_quadrature():
     e_sp = special.ellipe(m) - special.ellipeinc(phi, m)
     np.testing.assert_allclose(kf[wide], k_sp[wide], rtol=1e-13)
     np.testing.assert_allclose(ef[wide], e_sp[wide], rtol=1e-13)
+
+
+def test_outside_the_domain_is_nan_and_the_rest_unchanged():
+    """A NaN or infinite argument, a negative one, x = y = 0 or z <= 0 gives NaN (as scipy
+    does) and returns: without the check the duplication never converges there (NaN never
+    passes its test) and the call did not end. The valid points keep their own numbers."""
+    x = np.array([1.0, np.nan, np.inf, 1.0, 0.0, -1.0, 1.0, 2.0])
+    y = np.array([2.0, 1.0, 1.0, 1.0, 0.0, 1.0, 1.0, 3.0])
+    z = np.array([3.0, 1.0, 1.0, np.inf, 1.0, 1.0, 0.0, 4.0])
+    rf, rd = carlson_rf_rd(x, y, z)
+    bad = np.array([False, True, True, True, True, True, True, False])
+    assert np.isnan(rf[bad]).all() and np.isnan(rd[bad]).all()
+    alone_f, alone_d = carlson_rf_rd(x[~bad], y[~bad], z[~bad])
+    assert np.array_equal(rf[~bad], alone_f) and np.array_equal(rd[~bad], alone_d)
+    np.testing.assert_allclose(rf[~bad], special.elliprf(x[~bad], y[~bad], z[~bad]), rtol=2e-15)
+    # Through the plateau loop's closed form: an infinite x gives NaN, as before the tails
+    # came from this module (scipy's integrals), not a call that never ends.
+    from contactres.analysis._plateau import plateau_loop_slopes
+
+    with np.errstate(invalid="ignore"):  # inf/inf on the way, as before
+        slopes = plateau_loop_slopes(np.array([np.inf]), np.array([1.0]))
+    assert all(np.isnan(v).all() for v in slopes)

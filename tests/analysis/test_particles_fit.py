@@ -293,12 +293,12 @@ def test_pure_noise_prints_kappa_at_most_at_the_stated_rate(medium, stated):
     # The noise estimated in water is also the review's case of each step's own s² = χ²/11 in
     # the no-signal test: 8-15 of 1000 pure-noise steps printed a κ (an F test at 8 % instead of
     # 3 %); with the variance pooled over the series the rate is that of a stated noise.
-    # Power (Poisson, "none or one" passes): in vacuum the old rate (>= 11 of 2000) gives 5.5
-    # expected in 1000 steps, passing with P = 2.7 %; in water (4 of 2000) 3000 steps are
-    # needed (6 expected, P = 1.7 %; with 1000 it would pass in 41 % of seeds).
+    # Power (Poisson, "none or one" passes): in vacuum the old rate (>= 11 of 2000) gives 11
+    # expected in 2000 steps, passing with P = 2e-4 (with 1000 steps, 2.7 %); in water (4 of
+    # 2000) 3000 steps are needed (6 expected, P = 1.7 %; with 1000 it would pass in 41 %).
     from contactres.analysis._particle_linear import NO_SIGNAL_RATE
 
-    draws = 1000 if medium is None else 3000
+    draws = 2000 if medium is None else 3000
     rng = np.random.default_rng(2828 + 2 * stated + (medium is None))
     d, g = NOISE * rng.standard_normal((2, draws, N.size))
     sigma = NOISE if stated else None

@@ -84,10 +84,23 @@ def demo_results():
 
 
 def _demo_returns(monkeypatch, result):
-    """``contactres demo`` (in this process) computes ``result`` and writes it."""
-    from contactres.jobs import demo
+    """``contactres demo`` (in this process) computes ``result`` and writes it. The stand-in
+    takes the command's arguments as the real ``run`` does (a changed signature fails here)
+    and reports the real run's steps through the command's progress callback."""
+    import inspect
 
-    monkeypatch.setattr(demo, "run", lambda *args, **kwargs: result)
+    from contactres.jobs import demo
+    from contactres.jobs.contract import say
+
+    real = inspect.signature(demo.run)
+
+    def stand_in(*args, **kwargs):
+        bound = real.bind(*args, **kwargs)
+        for step in demo.STEPS:
+            say(bound.arguments.get("progress"), step)
+        return result
+
+    monkeypatch.setattr(demo, "run", stand_in)
 
 
 def test_demo_writes_folder(tmp_path, monkeypatch, demo_results):

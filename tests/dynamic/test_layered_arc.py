@@ -120,3 +120,19 @@ def test_the_punch_with_the_fit_equals_the_punch_without(monkeypatch):
     direct = layered_punch_stiffness(material, A, FREQ)
     assert np.max(np.abs(fitted - direct)) < 1e-12 * np.max(np.abs(direct))
     assert not np.array_equal(fitted, direct)  # the fit did serve
+
+
+def test_a_nan_sample_is_refused_not_spread():
+    """A solution that is NaN at one Lobatto point must refuse the fit (the points are then
+    solved directly), not pass the bound: NaN compares false with it, and the interpolant
+    would put NaN at every point, where the direct solutions are finite."""
+    lo, hi = 1.0, 2.0
+    bad = lo + (hi - lo) * (lobatto_points(12)[5] + 1) / 2
+
+    def solve(t):
+        v = np.exp(t)[:, None] * np.array([1.0, 1j])
+        v[t == bad] = np.nan
+        return v
+
+    assert fit_in_parameter(solve, lo, hi, 100) is None
+    assert fit_in_parameter(lambda t: np.exp(t)[:, None] + 0j, lo, hi, 100) is not None

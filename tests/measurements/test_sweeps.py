@@ -168,8 +168,15 @@ def test_negative_amplitude(tmp_path):
 def test_amplitudes_in_nanometres(tmp_path):
     f = good_frame()
     f["amplitude_m"] *= 1e9
-    with pytest.raises(ValueError, match=r"column 'amplitude_m'.*nanometres"):
+    with pytest.raises(ValueError, match=r"column 'amplitude_m'.*above 1e-06 m.*amplitude_nm"):
         read_sweeps(write(tmp_path, f), **CONST)
+    # The same slip in an amplitude_nm column (nm values x 1e9) names that column, and the
+    # hint does not say "nanometres in a metre column", which would be wrong advice there.
+    f = good_frame().rename(columns={"amplitude_m": "amplitude_nm"})
+    f["amplitude_nm"] *= 1e18
+    with pytest.raises(ValueError, match=r"column 'amplitude_nm'.*above 1e-06 m") as caught:
+        read_sweeps(write(tmp_path, f, "nm.csv"), **CONST)
+    assert "metre column" not in str(caught.value)
 
 
 def test_metres_in_a_nanometre_column(tmp_path):
@@ -177,7 +184,7 @@ def test_metres_in_a_nanometre_column(tmp_path):
     # any QCM's resolution; an amplitude of exactly 0 (the low-amplitude limit) stays valid.
     f = good_frame().rename(columns={"amplitude_m": "amplitude_nm"})
     f.loc[0, "amplitude_nm"] = 0.0
-    with pytest.raises(ValueError, match=r"column 'amplitude_n?m'.*metres in a nanometre column"):
+    with pytest.raises(ValueError, match=r"column 'amplitude_nm'.*below 1e-13 m.*column's unit"):
         read_sweeps(write(tmp_path, f), **CONST)
     ok = good_frame()
     ok.loc[0, "amplitude_m"] = 0.0

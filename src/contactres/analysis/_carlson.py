@@ -33,8 +33,17 @@ evaluated with it.
 from __future__ import annotations
 
 import numpy as np
+from numpy.typing import ArrayLike
 
-__all__ = ["BLOCK", "CHECK_EVERY", "DEVIATION", "MIN_STEPS", "carlson_rf_rd", "legendre_tails"]
+__all__ = [
+    "BLOCK",
+    "CHECK_EVERY",
+    "DEVIATION",
+    "MAX_STEPS",
+    "MIN_STEPS",
+    "carlson_rf_rd",
+    "legendre_tails",
+]
 
 #: Points per block of the duplication (its ~8 arrays, 32 kB each, stay in the core's cache).
 BLOCK = 4096
@@ -54,8 +63,15 @@ MIN_STEPS = 6
 #: Steps between the later checks of the points not yet converged at :data:`MIN_STEPS`.
 CHECK_EVERY = 2
 
+#: Steps after which a point still not converged gets NaN. Each step divides the differences
+#: of the arguments by exactly 4 while their mean tends to R_F⁻² > 0, so a point of the
+#: domain needs ~log₄(spread/(DEVIATION R_F⁻²)) steps: 13 at (1e-300, 1e-300, 1), under 40 at
+#: any finite arguments of the domain. The cap only keeps a point outside it from stepping
+#: for ever.
+MAX_STEPS = 100
 
-def carlson_rf_rd(x, y, z) -> tuple[np.ndarray, np.ndarray]:
+
+def carlson_rf_rd(x: ArrayLike, y: ArrayLike, z: ArrayLike) -> tuple[np.ndarray, np.ndarray]:
     """R_F(x, y, z) and R_D(x, y, z) at each point (Carlson 1995; module docstring).
 
     Parameters
@@ -65,20 +81,30 @@ def carlson_rf_rd(x, y, z) -> tuple[np.ndarray, np.ndarray]:
 
     Returns
     -------
-    R_F, R_D at each point, to a few units of rounding relative.
+    R_F, R_D at each point, to a few units of rounding relative; NaN at a point outside the
+    domain (a NaN or infinite argument, a negative one, x = y = 0 or z <= 0), as scipy's
+    ``elliprf``/``elliprd`` give there.
 
     In blocks of :data:`BLOCK` points (the step's ~8 arrays stay in the core's cache); each
     point's steps are its own, the same numbers in any block.
     """
     x, y, z = (np.asarray(a, dtype=float) for a in (x, y, z))
-    rf, rd = np.empty_like(x), np.empty_like(x)
+    rf, rd = np.full_like(x, np.nan), np.full_like(x, np.nan)
+    inside = np.isfinite(x) & np.isfinite(y) & np.isfinite(z)
+    inside &= (x >= 0.0) & (y >= 0.0) & (x + y > 0.0) & (z > 0.0)
+    if not inside.all():  # the duplication would never converge there
+        good = np.flatnonzero(inside)
+        rf[good], rd[good] = carlson_rf_rd(x[good], y[good], z[good])
+        return rf, rd
     for start in range(0, x.size, BLOCK):
         block = slice(start, start + BLOCK)
         rf[block], rd[block] = _duplicate(x[block], y[block], z[block])
     return rf, rd
 
 
-def legendre_tails(sin2, cos2, m, m1) -> tuple[np.ndarray, np.ndarray]:
+def legendre_tails(
+    sin2: np.ndarray, cos2: np.ndarray, m: np.ndarray, m1: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
     """K(m) - F(φ|m) and E(m) - E(φ|m), the integrals of (1 - m sin²θ)^∓½ from φ to π/2.
 
     Parameters
@@ -96,15 +122,16 @@ def legendre_tails(sin2, cos2, m, m1) -> tuple[np.ndarray, np.ndarray]:
     return s * rf, m1 * s * (rf + (m * cos2 / 3.0) * rd)
 
 
-def _duplicate(x, y, z) -> tuple[np.ndarray, np.ndarray]:
-    """:func:`carlson_rf_rd` at one block of points."""
+def _duplicate(x: np.ndarray, y: np.ndarray, z: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`carlson_rf_rd` at one block of points of its domain (NaN where a point has not
+    converged after :data:`MAX_STEPS` steps)."""
     x, y, z = x.copy(), y.copy(), z.copy()
     rf, rd = np.empty_like(x), np.empty_like(x)
     tail = np.zeros_like(x)  # Σ 4⁻ⁿ/(√zₙ(zₙ + λₙ)) of R_D
     scale = 1.0  # 4⁻ⁿ, the same for every point still stepping
     active = np.arange(x.size)
     steps = 0
-    while active.size:
+    while active.size and steps < MAX_STEPS:
         sx, sy, sz = np.sqrt(x), np.sqrt(y), np.sqrt(z)
         lam = sx * sy
         sx += sy
@@ -140,10 +167,13 @@ def _duplicate(x, y, z) -> tuple[np.ndarray, np.ndarray]:
         left = ~done
         active = active[left]
         x, y, z, tail = x[left], y[left], z[left], tail[left]
+    rf[active] = rd[active] = np.nan
     return rf, rd
 
 
-def _series(x, y, z, mean_f) -> tuple[np.ndarray, np.ndarray]:
+def _series(
+    x: np.ndarray, y: np.ndarray, z: np.ndarray, mean_f: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
     """R_F and R_D (the latter without its duplication sum and factor 4⁻ⁿ) from the Taylor
     series at arguments close to their means (Carlson 1995, Eqs. 2.3 and 2.18)."""
     # R_F: X + Y + Z = 0, E2 = XY - Z², E3 = XYZ.

@@ -6,13 +6,15 @@ nodes per block, and their cost was that of the integral J below: a 16-point Gau
 rule (16 cosines, sines and square roots per point, ~530 ns) where m = x/e < 0.1, Legendre's
 incomplete elliptic integrals (~350 ns, scipy's, when this series was written) elsewhere. The
 series here costs ~70 ns per point wherever m = min(x, e)/max(x, e) < 1/2 (80 % of the
-evidence's slipping points) and is as accurate as the rule, more so than the elliptic form as
-it then was, which lost ~1e-13 of x² to cancellation at 0.1 < m < 1/2 and more at x >> e
+evidence's slipping points) and is as accurate as the rule, more so than the elliptic form,
+which loses ~1e-13 of x² to cancellation at 0.1 < m < 1/2 and more at x >> e
 (``tests/analysis/test_plateau_series.py`` checks all three against adaptive quadrature).
 The elliptic form now takes its two tails from Carlson's R_F and R_D
-(:mod:`contactres.analysis._carlson`: no subtraction of large numbers, ~1200 instructions per
-point instead of ~3000), so the cut-off between the two below was chosen against the older,
-dearer form and may no longer be the cheapest.
+(:mod:`contactres.analysis._carlson`: the tails themselves without cancellation, ~1200
+instructions a point with the rest of the closed form against ~2400 through scipy's
+integrals; the closed form's combination of the tails still loses the digits above), so the
+cut-off between the two below was chosen against the older, dearer form and may no longer be
+the cheapest.
 
 How. J = ∫_c^b √(d(x - d)(e - d)) dd, b = min(x, e), e = c + 3/2 (paper 2, Eqs. 4-6: the
 integral of :func:`~contactres.analysis._plateau.plateau_loop_slopes`), is symmetric in x and
@@ -54,9 +56,10 @@ SERIES_CELLS = 16
 #: of the loop's G′ alike) at the cell's largest q = m/(2 - m)
 #: (tests/analysis/test_plateau_series.py checks the bound): under the rounding of the sum. A
 #: point's terms follow from its own m alone, so that its J does not depend on the points
-#: evaluated with it. Each term costs ~8 instructions per point against ~3000 for the elliptic
-#: form of scipy's incomplete integrals, which the series thus beat up to K ~ 350 (m ~ 0.95);
-#: against the ~1200 of the Carlson form used since, the break-even is nearer K ~ 150. Four
+#: evaluated with it. Each term costs ~8 instructions per point against ~2400-3000 for the
+#: elliptic form through scipy's incomplete integrals, which the series thus beat up to
+#: K ~ 300 (m ~ 0.95); against the ~1200 of the Carlson form used since, the break-even is
+#: nearer K ~ 150. Four
 #: tiers (m below 0.1, 0.5, 0.8, 0.9: 10, 26, 67, 129 terms) summed more terms at most
 #: points, with the same numbers to rounding (the series over uniform m in (0, 7/8) costs a
 #: third less CPU in these cells).

@@ -35,11 +35,11 @@ from ..numerics import lobatto_weights
 
 __all__ = ["ARC_TOL", "ParameterFit", "chebyshev_coefficients", "fit_in_parameter"]
 
-# The interpolation error bound (the last two Chebyshev coefficients) relative to the largest
-# |Δg| sampled: 100 times below the smallest rtol the punch accepts (1e-10), so the curve moves
-# by round-off only.
+#: The interpolation error bound (the last two Chebyshev coefficients) relative to the largest
+#: |Δg| sampled: 100 times below the smallest rtol the punch accepts (1e-10), so the curve moves
+#: by round-off only.
 ARC_TOL = 1e-12
-# The degrees tried (Lobatto points nest: the second reuses every solution of the first).
+#: The degrees tried (Lobatto points nest: the second reuses every solution of the first).
 DEGREES = (12, 24)
 
 
@@ -119,6 +119,8 @@ def fit_in_parameter(
             values[~new] = have
         c = chebyshev_coefficients(values)
         scale = float(np.max(np.abs(values)))
+        if not np.isfinite(scale):  # a NaN sample would pass every bound and spread to all
+            return None
         estimate = float(np.max(np.abs(c[-2:]))) / scale if scale > 0 else 0.0
         if estimate <= tol:
             return ParameterFit(lo, hi, values)

@@ -50,7 +50,13 @@ stack is passed on the same path (its singularities lie below the real axis). In
 the real axis from 0 is used. The layer solutions behind Δg depend on (η, ω) only through the
 slowness η/ω: on the real axis they come from one table in the slowness per stack (interpolated
 to round-off) and on the arc from one set of solutions, for every frequency
-(``contactres.dynamic._layered_waves``); the nodes of all frequencies are solved together.
+(``contactres.dynamic._layered_waves``); the nodes of all frequencies are solved together. On
+the shared arc the stack's correction depends on the point only through T = p₁ω (the layers'
+η h_j = T h_j z(τ)), so it is solved at 13 or 25 Chebyshev-Lobatto points in T and
+interpolated to the curve's points when the last Chebyshev coefficients are below 1e-12 of
+its largest value, else solved at every point (``contactres.dynamic._layered_arc``); and H_33
+of an axisymmetric stack of isotropic layers comes from the recursion on the sagittal 2x2
+block, where SH motion decouples (``contactres.dynamic._layered_sagittal``).
 Caveat: a lossless stack with a backward-wave guided mode
 (group and phase velocity opposite, possible for a stiff film on a soft substrate) would have
 that pole's limiting-absorption side reversed; the passivity tests cover both stiff-on-soft and

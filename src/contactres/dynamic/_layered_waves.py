@@ -25,9 +25,13 @@ only the layer exponentials exp(η h A) and the recursion over them do. So:
 - in statics (ω = 0) x = 0 at every η: one solution per direction.
 
 The recursion (:func:`contactres.layered.compliance_factors`) then runs once over the nodes of
-all frequencies together, and only H_33 (or the in-plane block) of the stack's and the
-reference's compliance is formed from it; the exponentials of isotropic layers take their
-closed form there (two roots: the same to ~1e-15, at a fraction of the general one's cost).
+all frequencies together (on the shared arc only at the Chebyshev points in T = p₁ω of
+``contactres.dynamic._layered_arc`` where its fit is accepted; for the normal kernel of an
+axisymmetric stack of isotropic layers on the sagittal 2x2 block of
+``contactres.dynamic._layered_sagittal``), and only H_33 (or the in-plane block) of the
+stack's and the reference's compliance is formed from it; the exponentials of isotropic
+layers take their closed form there (two roots: the same to ~1e-15, at a fraction of the
+general one's cost).
 Results equal the direct solution of every node to the table's accuracy (measured: < 1e-13
 relative on PMMA over quartz, isotropic and cubic (111) films).
 """
@@ -90,7 +94,9 @@ def chebyshev_matrix(n: int, x: np.ndarray) -> np.ndarray:
     return out
 
 
-def chebyshev_values(x: np.ndarray, samples: np.ndarray, rows=None) -> np.ndarray:
+def chebyshev_values(
+    x: np.ndarray, samples: np.ndarray, rows: np.ndarray | None = None
+) -> np.ndarray:
     """Values at ``x`` (m,) (in [−1, 1]) of the polynomials through the rows of ``samples``
     (P, n, ...), node k's own row ``rows[k]`` (None: row k, P = m): each row's n samples at
     the Chebyshev points of the first kind cos(π (j + 1/2)/n).

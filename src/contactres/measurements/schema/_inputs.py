@@ -182,15 +182,16 @@ SWEEP_TABLE = TableSchema(
                     "0 or at least 0.1 pm",
                     lambda v: (v == 0) | (v >= MIN_AMPLITUDE_M),
                     f"0 or >= {MIN_AMPLITUDE_M:g}",
-                    f" is below {MIN_AMPLITUDE_M:g} m (and not 0): it looks like metres in a "
-                    "nanometre column (write nm values in amplitude_nm, metres in amplitude_m)",
+                    f" is below {MIN_AMPLITUDE_M:g} m (and not 0), less than any QCM resolves: "
+                    "check the column's unit (nm values go in amplitude_nm, metres in "
+                    "amplitude_m)",
                 ),
                 rule(
                     "at most 1 µm",
                     lambda v: v <= MAX_AMPLITUDE_M,
                     f"<= {MAX_AMPLITUDE_M:g}",
-                    f" is above {MAX_AMPLITUDE_M:g} m: it looks like nanometres in a metre "
-                    "column (multiply nm by 1e-9)",
+                    f" is above {MAX_AMPLITUDE_M:g} m, more than any QCM amplitude: check the "
+                    "column's unit (nm values go in amplitude_nm, metres in amplitude_m)",
                 ),
             ),
         ),
