@@ -83,6 +83,7 @@ LAYERS: tuple[frozenset[str], ...] = (
             "_csvcells",
             "_ownership",
             "_summary",
+            "_png",
             "errors",
             "validation",
             "fileio",

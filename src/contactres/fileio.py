@@ -164,14 +164,14 @@ def save_figure(path: str | os.PathLike, fig, dpi: int = 150, *, close: bool = T
     ``.pdf``; PNG without one), and close it (no pyplot state leaks); ``close=False`` keeps it
     open to be saved again in another format (the caller's last save closes it; a failed save
     closes it always)."""
-    import matplotlib.pyplot as plt
+    from ._png import close_figure, print_figure  # PNG drawn once, not twice as by savefig
 
     try:
         with _atomic_path(path) as tmp:
-            fig.savefig(tmp, dpi=dpi, format=Path(path).suffix.lstrip(".") or "png")
+            print_figure(fig, tmp, dpi, Path(path).suffix.lstrip(".") or "png")
     finally:
         if close or sys.exc_info()[0] is not None:
-            plt.close(fig)
+            close_figure(fig)
     return Path(path)
 
 

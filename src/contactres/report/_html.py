@@ -243,8 +243,10 @@ def _png(figure, alt: str) -> str:
     import base64
     import io
 
+    from .._png import print_png
+
     buffer = io.BytesIO()
-    figure.savefig(buffer, format="png", dpi=90, bbox_inches="tight")
+    print_png(figure, buffer, 90, tight=True)  # savefig(..., bbox_inches="tight"), one draw
     data = base64.b64encode(buffer.getvalue()).decode("ascii")
     return f'<img class="plot" alt="{_e(alt)}" src="data:image/png;base64,{data}">'
 

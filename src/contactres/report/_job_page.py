@@ -180,13 +180,15 @@ def _table_section(name: str, frame, schema) -> list[str]:
 
 
 def _figures_section(result, figures) -> list[str]:
+    from .._png import print_png  # matplotlib: imported when a page has figures
+
     parts = []
     for name, draw in figures:
         figure = draw(result)
         if figure is None:
             continue
         buffer = io.BytesIO()
-        figure.savefig(buffer, format="png", dpi=100, bbox_inches="tight")
+        print_png(figure, buffer, 100, tight=True)  # savefig(..., bbox_inches="tight"), one draw
         data = base64.b64encode(buffer.getvalue()).decode("ascii")
         parts.append(
             f'<figure><img alt="{_e(name)}" src="data:image/png;base64,{data}">'
