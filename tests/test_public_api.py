@@ -313,6 +313,7 @@ PUBLIC = {
         "substrate_impedance",
         "surface_green",
         "thickness_text",
+        "two_root_expm",
     ],
     "materials": [
         "AT_CUT_ANGLE",

@@ -465,3 +465,34 @@ def test_bad_materials_and_arguments():
         surface_green(
             LayeredMaterial(QUARTZ, [(cr.Material.isotropic(5e9, 0.3), 1e-7)]), 1e6, 0, 1e6
         )
+
+
+def test_two_root_expm_is_scipys_expm_for_matrices_of_two_roots():
+    """exp(t a) from the two roots equals scipy's scaling-and-squaring expm (an independent
+    algorithm) for 2x2 and 3x3 stacks with two distinct roots (one of them double, as an
+    isotropic layer's P and SV/SH), complex t included, and Hermite's form where the roots
+    meet: a Jordan block [[λ, 1], [0, λ]] gives e^{tλ} [[1, t], [0, 1]]."""
+    from scipy.linalg import expm
+
+    from contactres.layered import two_root_expm
+
+    rng = np.random.default_rng(20)
+    N = 12
+    for n in (2, 3):
+        v = rng.standard_normal((N, n, n)) + 1j * rng.standard_normal((N, n, n))
+        lam_l = -rng.uniform(0.5, 3.0, N) + 0.3j * rng.standard_normal(N)
+        lam_t = -rng.uniform(0.5, 3.0, N) + 0.3j * rng.standard_normal(N)
+        roots = np.stack([lam_l] + [lam_t] * (n - 1), axis=1)
+        mats = v @ (roots[:, :, None] * np.linalg.inv(v))  # (N, n, n), eigenvalues roots
+        t = rng.uniform(0.1, 2.0, N) * np.exp(0.4j * rng.standard_normal(N))
+        got = two_root_expm(np.moveaxis(mats, 0, -1), lam_l, lam_t, t)
+        want = np.stack([expm(t[k] * mats[k]) for k in range(N)], axis=-1)
+        np.testing.assert_allclose(got, want, rtol=0, atol=1e-10 * np.abs(want).max())
+    lam = np.array([-1.0 + 0.5j, -2.0])
+    t = np.array([0.7, 1.3 - 0.2j])
+    jordan = np.zeros((2, 2, 2), complex)
+    jordan[0, 0] = jordan[1, 1] = lam
+    jordan[0, 1] = 1.0
+    got = two_root_expm(jordan, lam, lam, t)
+    want = np.exp(t * lam) * np.array([[np.ones(2), t], [np.zeros(2), np.ones(2)]])
+    np.testing.assert_allclose(got, want, rtol=1e-14, atol=0)

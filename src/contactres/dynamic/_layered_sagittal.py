@@ -24,6 +24,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..layered import two_root_expm
+
 __all__ = ["sagittal_h33", "sagittal_reference"]
 
 
@@ -54,19 +56,7 @@ def _expm(a: np.ndarray, lam_t: np.ndarray, t: np.ndarray) -> np.ndarray:
     """exp(t a) of the sagittal block a (2, 2, N) of an isotropic layer's A_d with the SV (and
     SH) root ``lam_t``: e^{t b} [I + t φ₁((c − b) t) (a − b I)], b the root of the slower
     decay, φ₁(z) = (e^z − 1)/z (module docstring)."""
-    lam_l = a[0, 0] + a[1, 1] - lam_t
-    slow_l = (t * lam_l).real > (t * lam_t).real
-    base = np.where(slow_l, lam_l, lam_t)
-    z = (lam_l + lam_t - 2 * base) * t
-    zero = z == 0
-    with np.errstate(all="ignore"):
-        phi = np.where(zero, 1.0, np.expm1(z) / np.where(zero, 1.0, z))
-    scale = np.exp(t * base)
-    out = (scale * t * phi) * a
-    diag = scale * (1 - t * phi * base)
-    out[0, 0] += diag
-    out[1, 1] += diag
-    return out
+    return two_root_expm(a, a[0, 0] + a[1, 1] - lam_t, lam_t, t)
 
 
 def _block(a: np.ndarray) -> np.ndarray:

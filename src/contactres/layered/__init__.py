@@ -22,6 +22,7 @@ Accuracy: see ``_recursion`` (and :func:`surface_green`).
 
 from __future__ import annotations
 
+from ._expm import two_root_expm
 from ._recursion import (
     compliance_factors,
     impedance_recursion,
@@ -54,4 +55,5 @@ __all__ = [
     "substrate_impedance",
     "surface_green",
     "thickness_text",
+    "two_root_expm",
 ]

@@ -30,7 +30,7 @@ import numpy as np
 
 from ..halfspace import mm
 
-__all__ = ["expm3", "expm_isotropic"]
+__all__ = ["expm3", "expm_isotropic", "two_root_expm"]
 
 # Infinity-norm bound of the scaled matrix; the Taylor coefficients 1/j!, j = 0..16, of the
 # degree that reaches round-off there.
@@ -120,6 +120,32 @@ def expm_isotropic(a: np.ndarray, t: np.ndarray, theta: np.ndarray) -> np.ndarra
     c, s = np.cos(theta), np.sin(theta)
     lam_t = s * s * a[0, 0] - s * c * (a[0, 1] + a[1, 0]) + c * c * a[1, 1]
     lam_l = a[0, 0] + a[1, 1] + a[2, 2] - 2 * lam_t
+    return two_root_expm(a, lam_l, lam_t, t)
+
+
+def two_root_expm(a: np.ndarray, lam_l: np.ndarray, lam_t: np.ndarray, t: np.ndarray) -> np.ndarray:
+    """exp(t a) of stacked square matrices a (n, n, N) whose minimal polynomial is
+    (x − λ_L)(x − λ_T) (or (x − λ)² where the roots meet), from the two roots alone:
+    e^{t b} [I + t φ₁((c − b) t) (a − b I)], b the root of the slower decay (larger Re t λ),
+    c the other, φ₁(z) = (e^z − 1)/z by ``expm1`` (Sylvester's formula, Hermite's where the
+    roots meet; :func:`expm_isotropic` and the module docstring).
+
+    Parameters
+    ----------
+    a : ndarray, complex, shape (n, n, N)
+        The exponent matrices (dimensionless): an isotropic layer's A_d (n = 3), or its
+        sagittal block (n = 2: P and SV); for any matrix of another structure the result is
+        wrong.
+    lam_l, lam_t : ndarray, shape (N,)
+        The two roots of each matrix.
+    t : ndarray, shape (N,)
+        The factor of the exponent (η h, complex on a lifted path).
+
+    Returns
+    -------
+    ndarray, complex, shape (n, n, N)
+        exp(t a).
+    """
     slow_l = (t * lam_l).real > (t * lam_t).real
     base = np.where(slow_l, lam_l, lam_t)
     z = (lam_l + lam_t - 2 * base) * t
@@ -130,6 +156,6 @@ def expm_isotropic(a: np.ndarray, t: np.ndarray, theta: np.ndarray) -> np.ndarra
     out = (scale * t * phi) * a
     # exp(t b) (1 − t φ₁ b) on the diagonal.
     diag = scale * (1 - t * phi * base)
-    for i in range(3):
+    for i in range(a.shape[0]):
         out[i, i] += diag
     return out
