@@ -43,7 +43,13 @@ thicker than it. Verdicts:
   the same k* (Hertz on the film alone, ``M_homogeneous``: K. L. Johnson, Contact Mechanics,
   Cambridge University Press 1985, Eqs. 4.22-4.23, E* = √(k*³/(6RP)), tip compliance removed):
   the coating made no difference, M_f is given and equals that;
-* ``film``: M_f identified with the layered contact.
+* ``film``: M_f identified with the layered contact;
+* ``beyond-hertz``: the contact radius at the solution exceeds half the tip radius
+  (a/R > :data:`~contactres.units.HERTZ_MAX_RATIO`): the layered contact, like Hertz's, takes
+  the tip as a paraboloid in small strain (Johnson 1985, §4.2: a/R ≲ 0.1), so M_f is not
+  given (NaN), as :func:`contactres.sphere_contact` gives no value there. Between
+  a/R = 0.1 and 0.5 M_f is given with one :class:`~contactres.errors.ContactresWarning`
+  ("Hertz approximate"); ``check_validity=False`` skips both.
 
 Moduli are indentation moduli (Pa): isotropic M = E/(1 − ν²). Static contact: k* is the static
 contact stiffness (a dynamic correction, if any, applied before).
@@ -52,15 +58,17 @@ contact stiffness (a dynamic correction, if any, applied before).
 from __future__ import annotations
 
 import math
+import warnings
 from dataclasses import dataclass
 
 import numpy as np
 
 from .._summary import Summarised, number, values
-from ..errors import ContactresInputError
+from ..errors import ContactresInputError, ContactresWarning
 from ..layered import LayeredMaterial
 from ..materials import Material, require_material
 from ..numerics import illinois_step
+from ..units import HERTZ_APPROXIMATE_RATIO, HERTZ_MAX_RATIO
 from ..validation import positive
 
 __all__ = [
@@ -72,7 +80,7 @@ __all__ = [
 ]
 
 #: The verdicts of :func:`film_modulus_from_contact_stiffness`, one per pixel.
-FILM_VERDICTS = ("film", "too-thick", "too-thin", "below-range", "above-range")
+FILM_VERDICTS = ("film", "too-thick", "too-thin", "below-range", "above-range", "beyond-hertz")
 #: Default search range of the film's modulus, as factors of the named film's own modulus.
 RANGE_FACTOR = 10.0
 # Root find on the Chebyshev curve: Illinois on x in [-1, 1], to this residual of ln k*.
@@ -203,6 +211,7 @@ def film_modulus_from_contact_stiffness(
     min_film_weight: float = 0.1,
     thick_tolerance: float = 0.01,
     nodes: int = 17,
+    check_validity: bool = True,
 ) -> FilmModulusResult:
     """The indentation modulus of a film on a known substrate from the contact stiffness k*.
 
@@ -231,6 +240,9 @@ def film_modulus_from_contact_stiffness(
         ``too-thick``, dimensionless.
     nodes : int
         Chebyshev points of the forward curve (module docstring for its accuracy).
+    check_validity : bool
+        Check Hertz's small-contact limit at the solution (module docstring: verdict
+        ``beyond-hertz`` and no M_f beyond a/R = 0.5, a warning above 0.1); False skips it.
 
     Returns
     -------
@@ -244,18 +256,18 @@ def film_modulus_from_contact_stiffness(
 
     Examples
     --------
-    A 20 nm film on fused silica measured with a 20 nm tip at 1 µN: the forward contact at
+    A 20 nm film on fused silica measured with a 100 nm tip at 50 nN: the forward contact at
     M_f = 6 GPa, inverted with a film of the same Poisson's ratio at another modulus.
 
     >>> from contactres import LayeredMaterial, Material, sphere_contact
     >>> from contactres.analysis import film_modulus_from_contact_stiffness
     >>> silica = Material.isotropic(72e9, 0.17, name="silica")
     >>> film = Material.isotropic(6e9 * (1 - 0.35**2), 0.35, name="film")  # M = 6 GPa
-    >>> stack = LayeredMaterial(silica, [(film, 20e-9)])  # a/R ≈ 0.66: checked by the inversion
-    >>> k = sphere_contact(stack, 20e-9, 1e-6, check_validity=False).stiffness
+    >>> stack = LayeredMaterial(silica, [(film, 20e-9)])
+    >>> k = sphere_contact(stack, 100e-9, 50e-9).stiffness  # a/R = 0.085: Hertz's range
     >>> guess = Material.isotropic(3e9, 0.35, name="film")
     >>> r = film_modulus_from_contact_stiffness(
-    ...     k, substrate=silica, film=guess, thickness=20e-9, tip_radius=20e-9, load=1e-6)
+    ...     k, substrate=silica, film=guess, thickness=20e-9, tip_radius=100e-9, load=50e-9)
     >>> print(f"M_film = {float(r.M_film) / 1e9:.6f} GPa ({r.verdict[()]})")
     M_film = 6.000000 GPa (film)
     """
@@ -326,6 +338,8 @@ def film_modulus_from_contact_stiffness(
     verdict[thin] = "too-thin"
     verdict[below], verdict[above] = "below-range", "above-range"
     M_f = np.where(inside & ~thin, M_f, np.nan)
+    if check_validity:
+        M_f = _hertz_limit(a / R, inside, verdict, M_f)
 
     def out(v):
         return np.asarray(v).reshape(shape)
@@ -340,6 +354,35 @@ def film_modulus_from_contact_stiffness(
         reference_modulus=M_ref,
         interpolation_error=error,
     )
+
+
+def _hertz_limit(ratio, inside, verdict, M_f) -> np.ndarray:
+    """M_f without the pixels whose contact is beyond Hertz (a/R > HERTZ_MAX_RATIO: verdict
+    ``beyond-hertz``, set in ``verdict`` in place), after one ContactresWarning where some
+    a/R > HERTZ_APPROXIMATE_RATIO (the rule of :mod:`contactres.normal._validity`)."""
+    over = inside & (ratio > HERTZ_APPROXIMATE_RATIO)
+    if not over.any():
+        return M_f
+    beyond = inside & (ratio > HERTZ_MAX_RATIO)
+
+    def count(mask):
+        return f" ({int(mask.sum())} of {ratio.size} pixels)" if ratio.size > 1 else ""
+
+    if beyond.any():
+        verdict[beyond] = "beyond-hertz"
+        message = (
+            f"film_modulus_from_contact_stiffness: a/R = {float(np.max(ratio[beyond])):.3g} > "
+            f"{HERTZ_MAX_RATIO:g}{count(beyond)}: beyond Hertz, no film modulus (verdict "
+            "beyond-hertz); check the tip radius (m) and the load (N)"
+        )
+    else:
+        message = (
+            f"film_modulus_from_contact_stiffness: a/R = {float(np.max(ratio[over])):.3g} > "
+            f"{HERTZ_APPROXIMATE_RATIO:g}{count(over)}: Hertz approximate (the contact takes "
+            "the tip as a paraboloid, for a ≪ R); values kept"
+        )
+    warnings.warn(message, ContactresWarning, stacklevel=3)
+    return np.where(beyond, np.nan, M_f)
 
 
 def film_columns(

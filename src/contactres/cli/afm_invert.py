@@ -191,3 +191,5 @@ def afm_invert(
     click.echo(f"{line}; {flagged} flagged ({normalisation} normalisation); wrote {out}")
     if done.coating is not None:
         click.echo(film_summary(result, done.coating))
+        for message in done.coating.get("notes", ()):  # Hertz's a/R limit: one line each
+            click.echo(f"warning: {message}", err=True)

@@ -93,7 +93,8 @@ class Result(JobResult):
     ones only; an :class:`~contactres.measurements.ArrayTable` with ``Settings.arrays``).
     ``coating``: with a coating, its label, the substrate, the film's thickness
     (m), its material's modulus, the search range (Pa), the thresholds and the estimated
-    interpolation error (:func:`add_film_columns`); None without. ``warnings``: the
+    interpolation error (:func:`add_film_columns`), and ``notes``, the film inversion's
+    warnings one line each (a contact beyond Hertz's a/R limit); None without. ``warnings``: the
     :class:`~contactres.errors.ContactresWarning` s of the inversion, one line each (a tip
     radius above 1 mm: check its unit)."""
 
@@ -192,7 +193,9 @@ def coated_film(coating, substrate) -> tuple | None:
 def add_film_columns(table, k_star, tip_radius, load, tip_modulus, film, s) -> dict:
     """Append the film columns to ``table`` (in place; k* (N/m), tip radius (m), load (N), tip
     modulus (Pa, NaN: rigid) per row or one value) and return the ``coating`` record; ``film``
-    from :func:`coated_film`, ``s`` the settings (film_range, min_film_weight)."""
+    from :func:`coated_film`, ``s`` the settings (film_range, min_film_weight). The film
+    inversion's ContactresWarnings (Hertz's a/R limit) are the record's ``notes``, one line
+    each, for the command to print."""
     from ..analysis import film_columns
 
     material, h, label, substrate = film
@@ -201,14 +204,22 @@ def add_film_columns(table, k_star, tip_radius, load, tip_modulus, film, s) -> d
         np.broadcast_to(np.asarray(x, dtype=float), (n,))
         for x in (k_star, tip_radius, load, tip_modulus)
     )
-    cols, res = film_columns(
-        *arrays,
-        substrate=substrate,
-        film=material,
-        thickness=h,
-        film_range=s.film_range,
-        min_film_weight=s.min_film_weight,
-    )
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always", ContactresWarning)  # the user's notes, in the record
+        cols, res = film_columns(
+            *arrays,
+            substrate=substrate,
+            film=material,
+            thickness=h,
+            film_range=s.film_range,
+            min_film_weight=s.min_film_weight,
+        )
+    notes: list[str] = []
+    for w in caught:
+        if not issubclass(w.category, ContactresWarning):  # anything else goes on as it came
+            warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
+        elif (text := " ".join(str(w.message).split())) not in notes:
+            notes.append(text)
     table["coating"] = label
     for name, values in cols.items():
         table[name] = values
@@ -220,4 +231,5 @@ def add_film_columns(table, k_star, tip_radius, load, tip_modulus, film, s) -> d
         "film_range_Pa": None if res is None else list(res.film_range),
         "min_film_weight": s.min_film_weight,
         "interpolation_error": None if res is None else res.interpolation_error,
+        "notes": tuple(notes),
     }

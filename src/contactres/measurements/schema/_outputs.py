@@ -144,7 +144,7 @@ _FILM_COLUMNS = (
         "M_film_Pa",
         "Pa",
         "indentation modulus of the film from k* on the coated substrate (with `--coating`; "
-        "empty where film_verdict is too-thin, below-range or above-range)",
+        "empty where film_verdict is too-thin, below-range, above-range or beyond-hertz)",
     ),
     Column(
         "film_contact_radius_m",
@@ -162,8 +162,8 @@ _FILM_COLUMNS = (
         "text",
         "film (resolved), too-thick (= the homogeneous inversion of the film within 1 %), "
         "too-thin (film_weight below the threshold: not identified), below-range or "
-        "above-range (outside the search range); empty: no k*, tip radius or load "
-        "(with `--coating`)",
+        "above-range (outside the search range), beyond-hertz (contact radius above half the "
+        "tip radius: no modulus); empty: no k*, tip radius or load (with `--coating`)",
     ),
 )
 
