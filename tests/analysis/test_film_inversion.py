@@ -30,21 +30,30 @@ def _k(M, h, R, P, tip=None):
     return np.asarray(c.stiffness, dtype=float)
 
 
+def _numerics(k, h, R, P, **options):
+    """The inversion of k* (N/m) under a film of thickness ``h`` (m) on SILICA, from GUESS, tip
+    radius R (m) and load P (N), without Hertz's a/R check: these tests check the inversion's
+    numerics at the forward model's contacts, up to a/R ~ 1 (:func:`_k`); the a/R limit has
+    its own test (test_hertz_limit_at_the_solution_flags_and_empties)."""
+    return film_modulus_from_contact_stiffness(
+        k,
+        substrate=SILICA,
+        film=GUESS,
+        thickness=h,
+        tip_radius=R,
+        load=P,
+        check_validity=False,
+        **options,
+    )
+
+
 def test_round_trip_through_the_forward_layered_contact():
     """Film moduli 0.5-25 GPa under 20 nm, two tips and loads in one map: M_film back to 1e-6."""
     M = np.array([0.5e9, 2e9, 6e9, 25e9])
     R = np.array([20e-9, 50e-9])[:, None]
     P = np.array([1e-6, 5e-6])[:, None]
     k = np.stack([_k(m, 20e-9, R[i, 0], P[i, 0]) for i in range(2) for m in M]).reshape(2, 4)
-    r = film_modulus_from_contact_stiffness(
-        k,
-        substrate=SILICA,
-        film=GUESS,
-        thickness=20e-9,
-        tip_radius=R,
-        load=P,
-        check_validity=False,  # the numerics here; Hertz's a/R limit: its own test
-    )
+    r = _numerics(k, 20e-9, R, P)
     np.testing.assert_allclose(r.M_film, np.broadcast_to(M, (2, 4)), rtol=1e-6)
     assert set(r.verdict.ravel()) == {"film"}
     assert np.all((r.film_weight > 0.1) & (r.film_weight < 1.0))
@@ -59,26 +68,14 @@ def test_round_trip_with_an_elastic_tip():
     tip_M = 165e9
     tip = Material.isotropic(tip_M, 0.0, name="tip")  # M = E for ν = 0
     k = _k(8e9, 30e-9, 30e-9, 2e-6, tip=tip)
-    r = film_modulus_from_contact_stiffness(
-        k, substrate=SILICA, film=GUESS, thickness=30e-9, tip_radius=30e-9, load=2e-6,
-        tip_modulus=tip_M,
-        check_validity=False,  # the numerics here; Hertz's a/R limit: its own test
-    )  # fmt: skip
+    r = _numerics(k, 30e-9, 30e-9, 2e-6, tip_modulus=tip_M)
     assert float(r.M_film) == pytest.approx(8e9, rel=1e-6)
 
 
 def test_weight_is_the_films_share_of_the_sensitivity():
     """w = (3/2) ∂ln k*/∂ln M_f (rigid tip), checked by a central difference of the forward."""
     M, h, R, P = 5e9, 20e-9, 20e-9, 1e-6
-    r = film_modulus_from_contact_stiffness(
-        _k(M, h, R, P),
-        substrate=SILICA,
-        film=GUESS,
-        thickness=h,
-        tip_radius=R,
-        load=P,
-        check_validity=False,  # the numerics here; Hertz's a/R limit: its own test
-    )
+    r = _numerics(_k(M, h, R, P), h, R, P)
     step = 1e-3
     slope = (np.log(_k(M * (1 + step), h, R, P)) - np.log(_k(M / (1 + step), h, R, P))) / (
         2 * np.log1p(step)
@@ -91,15 +88,7 @@ def test_thick_film_is_the_homogeneous_hertz_inversion():
     alone (E* = √(k*³/(6RP)), Johnson Eqs. 4.22-4.23) and = the film's modulus."""
     M, R, P = 4e9, 20e-9, 1e-6
     k = _k(M, 1e-4, R, P)
-    r = film_modulus_from_contact_stiffness(
-        k,
-        substrate=SILICA,
-        film=GUESS,
-        thickness=1e-4,
-        tip_radius=R,
-        load=P,
-        check_validity=False,  # the numerics here; Hertz's a/R limit: its own test
-    )
+    r = _numerics(k, 1e-4, R, P)
     assert r.verdict[()] == "too-thick"
     hertz = np.sqrt(k**3 / (6 * R * P))
     # The substrate still shows at O(a/h) (a/h = 1.6e-4): M_film is the film's to 1e-6, Hertz's
@@ -115,11 +104,7 @@ def test_thin_film_is_flagged_and_not_given():
     no film modulus. (A soft film shows at much smaller h/a: its weight grows with
     M_substrate/M_f.)"""
     M, h, R, P = 60e9, 2e-9, 50e-9, 5e-6
-    r = film_modulus_from_contact_stiffness(
-        _k(M, h, R, P), substrate=SILICA, film=GUESS, thickness=h, tip_radius=R, load=P,
-        film_range=(20e9, 100e9),
-        check_validity=False,  # the numerics here; Hertz's a/R limit: its own test
-    )  # fmt: skip
+    r = _numerics(_k(M, h, R, P), h, R, P, film_range=(20e9, 100e9))
     assert r.verdict[()] == "too-thin"
     assert float(r.film_weight) < 0.1
     assert np.isnan(r.M_film)
@@ -138,11 +123,7 @@ def test_a_range_beyond_the_layered_solver_is_one_line():
 def test_outside_the_search_range_is_flagged():
     M, h, R, P = 4e9, 20e-9, 20e-9, 1e-6
     k = np.array([_k(0.5e9, h, R, P), _k(M, h, R, P), _k(60e9, h, R, P)])
-    r = film_modulus_from_contact_stiffness(
-        k, substrate=SILICA, film=GUESS, thickness=h, tip_radius=R, load=P,
-        film_range=(1e9, 30e9),
-        check_validity=False,  # the numerics here; Hertz's a/R limit: its own test
-    )  # fmt: skip
+    r = _numerics(k, h, R, P, film_range=(1e9, 30e9))
     assert list(r.verdict) == ["below-range", "film", "above-range"]
     assert np.isnan(r.M_film[[0, 2]]).all()
     assert r.M_film[1] == pytest.approx(M, rel=1e-6)
@@ -187,16 +168,7 @@ def test_a_map_costs_one_curve_per_distinct_contact(monkeypatch):
     k = np.stack([_k(m, h, R, P) for m in M])
     pixels = np.resize(k, 2000)
     monkeypatch.setattr(normal, "sphere_contact", counted)
-    r = film_modulus_from_contact_stiffness(
-        pixels,
-        substrate=SILICA,
-        film=GUESS,
-        thickness=h,
-        tip_radius=R,
-        load=P,
-        nodes=17,
-        check_validity=False,  # the numerics here; Hertz's a/R limit: its own test
-    )
+    r = _numerics(pixels, h, R, P, nodes=17)
     assert calls == [1] * 17
     np.testing.assert_allclose(r.M_film, np.resize(M, 2000), rtol=1e-6)
 
