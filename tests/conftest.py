@@ -93,6 +93,29 @@ def water_study():
     return water_study_analysis
 
 
+@pytest.fixture(scope="session")
+def example_analysis():
+    """``example_analysis(**settings) -> Results``: the analysis of the bundled
+    example_sweeps.csv without bootstrap (``AnalysisSettings(bootstrap=0, **settings)``).
+
+    Several test files read the same analysis (~1.5 s of CPU each); it is computed once per
+    test process and settings. Each call returns a deep copy, so a test that changes the
+    Results it was given changes no other test's."""
+    import copy
+
+    from contactres import AnalysisSettings, analyze, example_path, read_sweeps
+
+    done = {}
+
+    def results(**settings):
+        chosen = AnalysisSettings(bootstrap=0, **settings)
+        if chosen not in done:
+            done[chosen] = analyze(read_sweeps(example_path("example_sweeps.csv")), settings=chosen)
+        return copy.deepcopy(done[chosen])
+
+    return results
+
+
 def pytest_sessionfinish(session, exitstatus):
     """A run in which no test ran fails. Test workers that crash while collecting (a native
     library's segmentation fault on import) left a fresh CI run with "no tests ran" and, as CI

@@ -1,13 +1,9 @@
 """The points and fitted curves the analysis hands to the report (``Results.points``,
 ``Results.curves``), against the input table and the registered model of each sweep."""
 
-import warnings
-from importlib.resources import files
-
 import numpy as np
 import pytest
 
-import contactres
 from contactres.analysis._curves import CURVE_GRIDS, sweep_rows
 from contactres.analysis._models import REGISTRY, model_curves
 from contactres.errors import ContactresInputError
@@ -20,11 +16,8 @@ LOOPS = {
 
 
 @pytest.fixture(scope="module")
-def results():
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        table = contactres.read_sweeps(files("contactres") / "data" / "example_sweeps.csv")
-        return contactres.analyze(table, settings=contactres.AnalysisSettings(bootstrap=0))
+def results(example_analysis):
+    return example_analysis()
 
 
 def test_the_points_are_the_input_points_of_each_sweep(results):

@@ -2,13 +2,9 @@
 fit table in the results (``Results.fits``), keyed by its parameters' keys; the sweep table keeps
 the named columns only."""
 
-import warnings
-from importlib.resources import files
-
 import numpy as np
 import pytest
 
-import contactres
 from contactres.analysis._models import MODULES, REGISTRY, SWEEP_FITS
 from contactres.measurements.schema import SWEEP_RESULTS
 
@@ -16,12 +12,8 @@ PREFIXES = ("el_", "line_", "parabola_", "hinge_", "cm_", "sv_", "pl_")
 
 
 @pytest.fixture(scope="module", params=[True, False], ids=["exact-loops", "closed-forms"])
-def results(request):
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        table = contactres.read_sweeps(files("contactres") / "data" / "example_sweeps.csv")
-        settings = contactres.AnalysisSettings(bootstrap=0, exact_loop=request.param)
-        return contactres.analyze(table, settings=settings)
+def results(request, example_analysis):
+    return example_analysis(exact_loop=request.param)
 
 
 def test_one_module_per_model_and_one_registry_line_each():

@@ -200,14 +200,12 @@ def test_blocks_on_one_grid_share_their_slopes_and_equal_each_alone(monkeypatch)
     assert together < 0.7 * sum(points)  # 0.59 with the sharing, 1 without
 
 
-def test_the_default_nodes_converge_on_real_study_blocks(water_study, monkeypatch):
-    # Issue 27, point 11 (F1): on undecided water blocks of a seeded study the default nodes give
-    # 2 ln B within 0.5 of a grid about seven times finer in z (81 uniform nodes, no refinement)
-    # and y (256 + 201): a quarter of the unit that decides (2, Kass & Raftery's "positive");
-    # μ within 2 % and its error within 10 %, a tenth of that error, whose own uncertainty
-    # with ~30 points per block is ~13 % (1/sqrt(2n)).
+@pytest.fixture(scope="module")
+def study_evidence_call(water_study):
+    """The arguments of the analysis's last call of plateau_log_evidence (its undecided blocks)
+    on the water study of seed 1 with 30 % plateau loads: the study analysed once for the two
+    tests that take real blocks from it."""
     import contactres.analysis._blocks as blocks
-    import contactres.analysis._plateau_evidence as pe
 
     calls = []
 
@@ -215,9 +213,21 @@ def test_the_default_nodes_converge_on_real_study_blocks(water_study, monkeypatc
         calls.append(args)
         return plateau_log_evidence(*args)
 
-    monkeypatch.setattr(blocks, "plateau_log_evidence", spy)
-    water_study(1, 0.3)
-    *args, rows = calls[-1]
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(blocks, "plateau_log_evidence", spy)
+        water_study(1, 0.3)
+    return calls[-1]
+
+
+def test_the_default_nodes_converge_on_real_study_blocks(study_evidence_call, monkeypatch):
+    # Issue 27, point 11 (F1): on undecided water blocks of a seeded study the default nodes give
+    # 2 ln B within 0.5 of a grid about seven times finer in z (81 uniform nodes, no refinement)
+    # and y (256 + 201): a quarter of the unit that decides (2, Kass & Raftery's "positive");
+    # μ within 2 % and its error within 10 %, a tenth of that error, whose own uncertainty
+    # with ~30 points per block is ~13 % (1/sqrt(2n)).
+    import contactres.analysis._plateau_evidence as pe
+
+    *args, rows = study_evidence_call
     rows = np.flatnonzero(rows)[::4]  # a quarter of the undecided blocks, to keep it quick
     sel = np.zeros(len(args[0]), bool)
     sel[rows] = True
@@ -299,30 +309,23 @@ def test_a_mu_piled_up_at_the_fitters_bound_is_left_to_the_fit(monkeypatch):
     assert err / mu < 0.5 and mu > 2 * 40.0 / (x_max / umax)
 
 
-def test_the_evidence_over_worker_processes_equals_the_serial_one(water_study, monkeypatch):
+def test_the_evidence_over_worker_processes_equals_the_serial_one(study_evidence_call, monkeypatch):
     # Issue 31, point 3: the undecided blocks of a seeded study split over 2 worker processes
     # (the per-worker threshold lowered so that this small study splits) give every block
     # bit for bit what the serial call gives, NaN where the serial call leaves NaN.
     import contactres.analysis._blocks as blocks
 
-    calls, chunks = [], []
-
-    def spy(*args):
-        calls.append(args)
-        return plateau_log_evidence(*args)
+    chunks = []
 
     def run(fn, workers, first, *rest):
         chunks.append([len(a) for a in first])
         return run_pool(fn, workers, first, *rest)
 
     run_pool = blocks.run_in_workers
-    monkeypatch.setattr(blocks, "plateau_log_evidence", spy)
-    water_study(1, 0.3)
-    args = calls[-1]
+    args = study_evidence_call
     rows = np.flatnonzero(args[-1])
     assert rows.size >= 20 and rows.size < len(args[-1])  # some blocks are left out (NaN)
     serial = plateau_log_evidence(*args)
-    monkeypatch.setattr(blocks, "plateau_log_evidence", plateau_log_evidence)  # picklable
     monkeypatch.setattr(blocks, "run_in_workers", run)
     monkeypatch.setattr(blocks, "EVIDENCE_ROWS_PER_WORKER", 5)
     two = blocks._evidence(2, *args)

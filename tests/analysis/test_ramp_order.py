@@ -34,6 +34,12 @@ def _analyze(frame: pd.DataFrame, tmp_path, name: str, **kw):
     return analyze(table, settings=SETTINGS, **kw), notes
 
 
+@pytest.fixture(scope="module")
+def base(example, tmp_path_factory):
+    """The analysis of ``example`` as the file holds it: the reference of three tests below."""
+    return _analyze(example, tmp_path_factory.mktemp("base"), "base.csv")[0]
+
+
 def _same_results(a, b):
     keys = ["configuration", "medium", "normal_force_N"]
     la = a.loads.sort_values(keys).reset_index(drop=True)
@@ -46,10 +52,9 @@ def _same_results(a, b):
         assert ga[key] == pytest.approx(gb[key], rel=1e-9, abs=0), key
 
 
-def test_a_permutation_of_the_rows_changes_nothing(example, tmp_path):
+def test_a_permutation_of_the_rows_changes_nothing(example, base, tmp_path):
     # main took the first sweep of each load in the file as running-in, whatever its ramp
     # label: shuffled rows tested the real ramp 1 for drift and lost loads (E withheld).
-    base, _ = _analyze(example, tmp_path, "base.csv")
     shuffled = example.sample(frac=1.0, random_state=np.random.default_rng(7))
     perm, notes = _analyze(shuffled, tmp_path, "perm.csv")
     assert np.isfinite(base.groups[0]["E_Pa"])
@@ -60,19 +65,17 @@ def test_a_permutation_of_the_rows_changes_nothing(example, tmp_path):
     assert not has(sw["flags"], Flag.RAMP_ORDER).any()
 
 
-def test_reordered_sweeps_keep_their_labelled_running_in_ramp(example, tmp_path):
+def test_reordered_sweeps_keep_their_labelled_running_in_ramp(example, base, tmp_path):
     # Whole sweeps in reverse order (rows within each sweep kept): ramp 4 first in the file.
     order = example.groupby("sweep", sort=False).ngroup()
     reverse = example.assign(_k=-order).sort_values("_k", kind="stable").drop(columns="_k")
-    base, _ = _analyze(example, tmp_path, "base.csv")
     rev, _ = _analyze(reverse, tmp_path, "reverse.csv")
     _same_results(base, rev)
 
 
-def test_without_a_ramp_column_the_stated_inference_is_what_is_done(example, tmp_path):
+def test_without_a_ramp_column_the_stated_inference_is_what_is_done(example, base, tmp_path):
     # main said "all sweeps are used" and then drift-flagged every load (0 used): the
     # running-in ramp, offset from the others, entered the drift test.
-    base, _ = _analyze(example, tmp_path, "base.csv")
     res, notes = _analyze(example.drop(columns="ramp"), tmp_path, "noramp.csv")
     assert len(notes) == 1
     assert "ramps of each load are inferred as its sweeps in the order of the file" in notes[0]

@@ -14,23 +14,28 @@ SWEEPS = "src/contactres/data/example_sweeps.csv"
 
 
 @pytest.fixture(scope="module")
-def job_result():
-    """The job on the bundled example with the bootstrap off (figures on, as by default):
-    computed once for the tests that only read it."""
-    settings = qcm_sweeps.Settings(bootstrap=0)
-    return qcm_sweeps.run(qcm_sweeps.read(SWEEPS, settings), settings)
-
-
-def test_the_job_is_the_library_analysis_within_its_stages():
+def job_run():
+    """The job on the bundled example with the bootstrap off (figures on, as by default), its
+    reading and the progress calls it made: computed once for the tests that only read it."""
     settings = qcm_sweeps.Settings(bootstrap=0)
     reading = qcm_sweeps.read(SWEEPS, settings)
-    calls = []
-    result = qcm_sweeps.run(reading, settings, progress=calls.append)
+    calls: list[str] = []
+    return qcm_sweeps.run(reading, settings, progress=calls.append), reading, calls
+
+
+@pytest.fixture(scope="module")
+def job_result(job_run):
+    return job_run[0]
+
+
+def test_the_job_is_the_library_analysis_within_its_stages(job_run, example_analysis):
+    settings = qcm_sweeps.Settings(bootstrap=0)
+    result, reading, calls = job_run
     # The bar's length covers every call of the analysis, and the writing after it.
     assert len(calls) < qcm_sweeps.stages(reading, settings)
     groups = {c for c in calls if c.startswith("JKR fit")}
     assert len(groups) == reading.table.data.groupby(["configuration", "medium"]).ngroups
-    direct = analyze(read_sweeps(SWEEPS), settings=AnalysisSettings(bootstrap=0))
+    direct = example_analysis()  # analyze(read_sweeps(SWEEPS), AnalysisSettings(bootstrap=0))
     assert result.analysis.table1().equals(direct.table1())
     tables = result.tables()
     assert tables["sweeps"][1] is SWEEP_RESULTS and tables["loads"][1] is LOAD_RESULTS

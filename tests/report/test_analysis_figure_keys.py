@@ -26,8 +26,8 @@ def _analyze(keep=None):
 
 
 @pytest.fixture(scope="module")
-def results():
-    return _analyze()
+def results(example_analysis):
+    return example_analysis(sphere_material="glass", plate_material="quartz-AT")  # _analyze()
 
 
 @pytest.fixture(scope="module")

@@ -12,7 +12,6 @@ each script as the plot directive does (:data:`SLOW_SCRIPTS` excepted).
 
 import runpy
 import sys
-from importlib.resources import as_file, files
 from pathlib import Path
 
 import matplotlib.pyplot as plt
@@ -22,8 +21,6 @@ from matplotlib.backends.backend_agg import FigureCanvasAgg
 from matplotlib.collections import Collection, LineCollection
 from matplotlib.lines import Line2D
 
-import contactres
-from contactres.analysis import AnalysisSettings
 from contactres.apps import paper1, paper2
 from contactres.report import figures
 
@@ -31,11 +28,8 @@ KLA = np.linspace(0.0, 2.0, 11)
 
 
 @pytest.fixture(scope="module")
-def results():
-    with as_file(files("contactres") / "data" / "example_sweeps.csv") as path:
-        table = contactres.read_sweeps(path)
-    settings = AnalysisSettings(bootstrap=0, sphere_material="glass", plate_material="quartz-AT")
-    return contactres.analyze(table, settings=settings)
+def results(example_analysis):
+    return example_analysis(sphere_material="glass", plate_material="quartz-AT")
 
 
 def _line_points(line: Line2D) -> np.ndarray:
@@ -228,15 +222,23 @@ def test_documentation_figures(path, monkeypatch):
         plt.close("all")
 
 
-def test_particle_figures():
-    """The figures of ``qcm particles`` on the bundled example (its first step identifies
-    nothing: drawn without it)."""
+@pytest.fixture(scope="module")
+def particles():
+    """``qcm particles`` on the bundled example (5e-7 m spheres of 2200 kg/m³ in water): the
+    job's Result, computed once for the two tests that draw it."""
     from contactres.examples import example_path
     from contactres.jobs import qcm_particles
-    from contactres.report import _particle_figures as draw
 
     settings = qcm_particles.Settings(5e-7, 2200.0, fundamental=5e6, medium="water")
-    result = qcm_particles.run(example_path("example_particles.csv"), settings)
+    return qcm_particles.run(example_path("example_particles.csv"), settings)
+
+
+def test_particle_figures(particles):
+    """The figures of ``qcm particles`` on the bundled example (its first step identifies
+    nothing: drawn without it)."""
+    from contactres.report import _particle_figures as draw
+
+    result = particles
     for make in (draw.overtones_figure, draw.plane_figure, draw.time_figure):
         fig = make(result)
         check_layout(fig)
@@ -244,17 +246,14 @@ def test_particle_figures():
     assert _lower_error_ends(fig).size and (_lower_error_ends(fig) >= 0).all()
 
 
-def test_the_particle_model_line_is_drawn_on_a_fine_grid_of_n():
+def test_the_particle_model_line_is_drawn_on_a_fine_grid_of_n(particles):
     """The model line of Δf_n/n against n runs through continuous n, not only the odd
     overtones, and is the forward model there (a coupled resonance between two overtones
     peaks between them)."""
-    from contactres.examples import example_path
-    from contactres.jobs import qcm_particles
     from contactres.report import _particle_figures as draw
     from contactres.resonators import WATER, Particle, particle_stiffness
 
-    settings = qcm_particles.Settings(5e-7, 2200.0, fundamental=5e6, medium="water")
-    result = qcm_particles.run(example_path("example_particles.csv"), settings)
+    result = particles  # its settings: spheres of radius 5e-7 m, 2200 kg/m³, 5 MHz, in water
     fig = draw.overtones_figure(result)
     ax_f = fig.axes[0]
     lines = [ln for ln in ax_f.get_lines() if ln.get_linestyle() == "-" and len(ln.get_xdata()) > 2]

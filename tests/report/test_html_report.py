@@ -3,7 +3,6 @@
 import json
 import re
 import shutil
-import warnings
 from html.parser import HTMLParser
 from pathlib import Path
 
@@ -18,15 +17,11 @@ from contactres.report import html_report, summary, write_html
 from contactres.report._console import plus_minus
 
 EXAMPLE = Path(contactres.__file__).parent / "data" / "example_sweeps.csv"
-SETTINGS = {"bootstrap": 0}
 
 
 @pytest.fixture(scope="module")
-def results():
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore")
-        table = contactres.read_sweeps(EXAMPLE)
-        return contactres.analyze(table, settings=contactres.AnalysisSettings(**SETTINGS))
+def results(example_analysis):
+    return example_analysis()  # of EXAMPLE, without bootstrap
 
 
 @pytest.fixture(scope="module")
