@@ -40,9 +40,7 @@ import errno
 import hashlib
 import json
 import os
-import secrets
 import shutil
-import socket
 import sys
 from collections.abc import Iterable, Iterator
 from contextlib import contextmanager
@@ -93,7 +91,9 @@ def _create_beside(target: Path) -> Path:
     owner-only mode of ``tempfile.mkstemp`` would leak into the result).
     """
     for _ in range(100):
-        tmp = target.parent / f".{target.name}.{secrets.token_hex(6)}.tmp"
+        # os.urandom(6).hex() is secrets.token_hex(6) without importing secrets (random,
+        # base64, hmac: ~10 ms of a one-file command such as afm invert to .npz)
+        tmp = target.parent / f".{target.name}.{os.urandom(6).hex()}.tmp"
         try:
             fd = os.open(tmp, os.O_CREAT | os.O_EXCL | os.O_WRONLY, 0o666)
         except FileExistsError:
@@ -530,6 +530,8 @@ class ResultSet:
         return f".{self.folder.name}.contactres"
 
     def _take_lock(self) -> None:
+        import socket  # here: most commands never need it
+
         lock = self._work / f"{self._prefix()}.lock"
         for _ in range(2):
             try:
@@ -553,7 +555,7 @@ class ResultSet:
 
     def _new_dir(self, kind: str) -> Path:
         for _ in range(100):
-            p = self._work / f"{self._prefix()}-{secrets.token_hex(6)}.{kind}"
+            p = self._work / f"{self._prefix()}-{os.urandom(6).hex()}.{kind}"
             try:
                 p.mkdir()  # umask default, as a plain mkdir of the target would give
             except FileExistsError:
@@ -664,7 +666,7 @@ class ResultSet:
                     return
             else:
                 os.chmod(staging, self.folder.stat().st_mode & 0o7777)
-                old = self._work / f"{self._prefix()}-{secrets.token_hex(6)}.old"
+                old = self._work / f"{self._prefix()}-{os.urandom(6).hex()}.old"
                 # self._staging now holds the earlier set: removed on release
                 self._staging = replace_folder(staging, self.folder, old)
                 return

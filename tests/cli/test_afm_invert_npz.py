@@ -258,6 +258,23 @@ def test_text_of_numpy_columns_is_written_as_pandas_writes_it(tmp_path):
     assert (tmp_path / "a.npz").read_bytes() == (tmp_path / "b.npz").read_bytes()
 
 
+@pytest.mark.parametrize("pool", [["global"], ["", "hertz"], ["a", "bb", "", "c;d"], list("abcde")])
+def test_columns_of_a_few_texts_are_written_as_pandas_writes_them(tmp_path, pool):
+    """Columns of up to four distinct texts (compared as text, a pass each) and of more (one
+    text per distinct object), each text held by many equal objects: pandas' archive, byte for
+    byte; with a None or a number among them, too."""
+    from contactres.measurements import ArrayTable
+
+    rng = np.random.default_rng(5)
+    cells = np.array(["".join(list(pool[i])) for i in rng.integers(len(pool), size=300)], object)
+    other = cells.copy()
+    other[[7, 100]] = [None, 2.5]
+    columns = {"t": cells, "u": other}
+    write_npz(tmp_path / "a.npz", pd.DataFrame(columns))
+    write_npz(tmp_path / "b.npz", ArrayTable(columns))
+    assert (tmp_path / "a.npz").read_bytes() == (tmp_path / "b.npz").read_bytes()
+
+
 def test_rows_are_grouped_as_pandas_groups_them():
     """The lever groups of the inversion are pandas' ``groupby(sort=False, dropna=False)``
     groups (NaN a value of its own, -0.0 equal to 0.0), in the order of their first row."""

@@ -212,6 +212,19 @@ def test_array_path_equals_the_general_path(gamma):
         assert _identical(cr.hertz(E, R, F), cr.hertz(np.array([E]), R, F))
 
 
+@pytest.mark.parametrize("gamma", [0.05, 0.0])
+def test_array_path_in_chunks_equals_the_general_path(gamma):
+    # Forces over three chunks of the array path and a part of one (CHUNK), in a 2-d shape and
+    # as a strided view (copied before the chunks), the pull-off force among them: every field
+    # is the general path's (whole rows at once) to the last bit.
+    E, R = 62.65e9, 5e-6
+    n = 3 * _isotropic.CHUNK + 17
+    F = np.random.default_rng(2).uniform(-3 * np.pi * gamma * R, 1e-3, 2 * n)
+    F[5] = -3 * np.pi * gamma * R
+    for force in (F[:n], F.reshape(2, n), F[::2]):
+        assert _identical(cr.jkr(E, R, force, gamma), cr.jkr(np.array([E]), R, force, gamma))
+
+
 _BAD = [
     # (function, arguments as Python floats, which argument carries the array on the
     # general path: one whose value the message does not show)

@@ -15,6 +15,7 @@ from contactres.resonators._cantilever import (
     contact_frequencies,
     determinant_coefficients,
     normal_kappa,
+    normal_log_slope,
     tip_coefficients,
 )
 
@@ -64,6 +65,41 @@ def test_closed_form_reproduces_determinant_roots():
     slope = (normal_kappa(beta * (1 + 1e-7), rr) - normal_kappa(beta * (1 - 1e-7), rr)) / 2e-7
     assert np.max(np.abs((k_cf - kappa[..., None]) / slope)) < 1e-9
     assert np.max(np.abs(k_cf / kappa[..., None] - 1.0)) < 1e-8
+
+
+def _kappa_plain(beta, r):
+    """κ of the closed form written with numpy's own cos, sin, cosh, sinh (real or complex),
+    independent of the module's exponential forms: the reference for the derivative below."""
+    p, q = beta * r, beta * (1.0 - r)
+    d = (np.sin(q) * np.cosh(q) - np.cos(q) * np.sinh(q)) * (1.0 - np.cos(p) * np.cosh(p)) - (
+        np.sin(p) * np.cosh(p) - np.cos(p) * np.sinh(p)
+    ) * (1.0 + np.cos(q) * np.cosh(q))
+    return 2.0 * beta**3 * (1.0 + np.cos(beta) * np.cosh(beta)) / (3.0 * d)
+
+
+def test_log_slope_is_the_derivative_of_the_closed_form():
+    # Real β: the complex-step derivative of the plain formula, β Im κ(β + ih)/(h κ), free of
+    # cancellation (exact to rounding); modes 1-3 and tips from mid-lever to the end.
+    beta = np.linspace(1.0, 10.1, 401)[:, None]
+    r = np.linspace(0.3, 1.0, 15)[None, :]
+    k = _kappa_plain(beta, r)
+    h = 1e-30
+    reference = beta * np.imag(_kappa_plain(beta + 1j * h, r)) / (h * k)
+    slope = normal_log_slope(beta, r)
+    use = (np.abs(k) > 1e-3) & (np.abs(k) < 1e4)  # away from κ = 0 and the poles (L → ∞)
+    assert use.sum() > 4000
+    assert np.max(np.abs(slope[use] / reference[use] - 1.0)) < 1e-9
+    # Complex β (a mode's Q of 50): a fourth-order central difference along β, step 1e-5 β.
+    bq = beta * np.sqrt(1.0 + 1j / 50.0)
+    e = 1e-5
+    diff = (
+        8.0 * (_kappa_plain(bq * (1 + e), r) - _kappa_plain(bq * (1 - e), r))
+        - (_kappa_plain(bq * (1 + 2 * e), r) - _kappa_plain(bq * (1 - 2 * e), r))
+    ) / (12.0 * e)
+    kq = _kappa_plain(bq, r)
+    use = (np.abs(kq) > 1e-1) & (np.abs(kq) < 1e3)
+    assert use.sum() > 3000
+    assert np.max(np.abs(normal_log_slope(bq, r)[use] / (diff[use] / kq[use]) - 1.0)) < 1e-6
 
 
 def det8(beta, kappa, r, g):

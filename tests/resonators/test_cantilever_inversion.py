@@ -14,6 +14,7 @@ from contactres.resonators._cantilever_inversion import (
     FLAG_NOT_MEASURED,
     FLAG_NOT_POSITIVE,
     FLAG_SEVERAL_CROSSINGS,
+    MIN_SENSITIVITY,
     flag_names,
     invert_contact_resonance,
 )
@@ -111,6 +112,29 @@ def test_node_of_mode_is_insensitive():
     f = contact_frequencies(GLOBAL, 3.0, r, modes=(2,))
     res = invert_contact_resonance(GLOBAL, f, r, modes=(2,))
     assert res.flags[0] & FLAG_INSENSITIVE and res.flags[1] == 0
+
+
+def test_insensitive_flag_where_the_sensitivity_is_below_the_line():
+    # s = d ln f / d ln κ = 2κ/(β dκ/dβ) written here from the forward model alone: a relative
+    # step of 1e-4 in κ and the two resonances it gives (no inverse involved). Pixels across
+    # modes 1-3, tips from 0.5 to 1 and κ from 1e-5 to 1e5 (saturation, nodes, the free lever);
+    # the flag must be set exactly where s < MIN_SENSITIVITY, away from the line itself.
+    rng = np.random.default_rng(11)
+    kappa = 10.0 ** rng.uniform(-5.0, 5.0, 3000)
+    r = rng.uniform(0.5, 1.0, 3000)
+    f = contact_frequencies(GLOBAL, kappa, r)
+    up = contact_frequencies(GLOBAL, kappa * (1 + 1e-4), r)
+    down = contact_frequencies(GLOBAL, kappa * (1 - 1e-4), r)
+    s = np.log(up / down) / np.log((1 + 1e-4) / (1 - 1e-4))
+    for damped in (False, True):
+        # a Q of 1e8: the closed form at a complex β, the same contact (the damping is nil)
+        q = np.full(f.shape, 1e8) if damped else None
+        res = invert_contact_resonance(GLOBAL, f, r, q_factors=q)
+        clear = np.isfinite(res.kappa_modes) & (np.abs(s / MIN_SENSITIVITY - 1.0) > 1e-2)
+        clear &= res.flags_modes != FLAG_NO_CONTACT  # κ < 1e-6-ish: the free lever, κ = 0
+        assert clear.sum() > 6000 and (s[clear] < MIN_SENSITIVITY).sum() > 500
+        weak = (res.flags_modes & FLAG_INSENSITIVE) != 0
+        assert np.array_equal(weak[clear], s[clear] < MIN_SENSITIVITY)
 
 
 def test_shapes_broadcast_over_pixels():

@@ -89,6 +89,7 @@ from ._cantilever import (
     beta_from_frequency,
     determinant_coefficients,
     normal_kappa,
+    normal_log_slope,
     tip_coefficients,
 )
 
@@ -249,12 +250,17 @@ class ContactResonanceResult(Summarised):
         return [*facts, ("flagged", flagged(self.flags))]
 
 
+def _closed_form(g) -> bool:
+    """Whether the tip springs (g_yy, g_yθ, g_θθ) are a normal spring only: κ in closed form."""
+    return not (np.any(g[1]) or np.any(g[2]))
+
+
 def _roots(beta, r, g):
-    """The (up to two) roots κ of det M(β, ·) = 0; the second is NaN where det M is linear."""
+    """The (up to two) roots κ of det M(β, ·) = 0; the second is NaN where det M is linear,
+    None for a normal spring only (one root, the closed form: no array of NaN to select from)."""
     g_yy, g_yt, g_tt = g
-    if not (np.any(g_yt) or np.any(g_tt)):
-        k = normal_kappa(beta, r) / g_yy  # closed form; the tilt leaves k* cos²φ
-        return k, np.full_like(k, np.nan)
+    if _closed_form(g):
+        return normal_kappa(beta, r) / g_yy, None  # closed form; the tilt leaves k* cos²φ
     a, b, c = determinant_coefficients(beta, r, g)
     quad = (g_yy * g_tt - g_yt**2) > 0  # det of the tip stiffness: α η² (module notes)
     a = np.where(quad, a, 0.0)
@@ -286,6 +292,14 @@ def kappa_on_branch(beta, mode, tip_position, g):
     k1, k2 = _roots(beta, tip_position, g)
     n0 = np.searchsorted(FREE_ROOTS, np.real(beta))  # free modes below β (N₀)
     j = n0 - np.asarray(mode)
+    if k2 is None:  # one root: the selection below with k2 = NaN, in a third of the passes
+        re = np.real(k1)
+        kappa = np.where(np.where(j < 0, re <= 0, (j == 0) & (re > 0)), k1, np.nan)
+        flags = np.where(j < 0, FLAG_BELOW_FREE, 0) | np.where(
+            (j >= 1) | ((j == 0) & ~(re > 0)), FLAG_ABOVE_PINNED, 0
+        )
+        ok = np.isfinite(kappa) & (np.real(kappa) > 0)
+        return kappa, flags | np.where(ok, 0, FLAG_NOT_POSITIVE)
     p1, p2 = np.real(k1) > 0, np.real(k2) > 0
     first_small = ~p2 | (p1 & (np.real(k1) <= np.real(k2)))
     small = np.where(p1 & first_small, k1, np.where(p2, k2, np.nan))
@@ -303,7 +317,17 @@ def kappa_on_branch(beta, mode, tip_position, g):
 
 
 def _sensitivity_flags(beta, mode, r, g, kappa):
-    """FLAG_INSENSITIVE where s = d ln f / d ln κ = 2κ/(β dκ/dβ) < MIN_SENSITIVITY."""
+    """FLAG_INSENSITIVE where s = d ln f / d ln κ = 2κ/(β dκ/dβ) < MIN_SENSITIVITY.
+
+    ``kappa`` is κ on mode ``mode``'s branch (NaN off it). A normal spring only: β dκ/dβ =
+    κ L from the closed form's derivative (:func:`normal_log_slope`, one evaluation); with
+    lateral springs a central difference of κ on the branch (two more roots of det M).
+    """
+    if _closed_form(g):  # L of κ/g_yy is L of κ: the tilt's constant factor drops out
+        slope = np.real(kappa * normal_log_slope(beta, r))  # β dκ/dβ; NaN off the branch
+        s = 2.0 * np.real(kappa) / slope
+        weak = ~(np.abs(s) >= MIN_SENSITIVITY)  # NaN (at κ = 0 or ∞) counts as weak
+        return np.where(weak & np.isfinite(kappa), FLAG_INSENSITIVE, 0)
     eps = 1e-6  # central difference: truncation ~eps², rounding ~1e-16/eps, both far below 1e-3
     k_hi, _ = kappa_on_branch(beta * (1.0 + eps), mode, r, g)
     k_lo, _ = kappa_on_branch(beta * (1.0 - eps), mode, r, g)
@@ -519,7 +543,7 @@ def invert_contact_resonance(
             sigma = np.full(kappa.shape, np.nan)
         else:
             sigma = _mean_where(sigma_m, usable if tip_position is not None else used)
-    normal = "closed form" if not (np.any(g[1]) or np.any(g[2])) else "4x4 determinant"
+    normal = "closed form" if _closed_form(g) else "4x4 determinant"
     if q is not None:
         method += "; with Q: Kelvin-Voigt contact, k* = k_c(Re κ + Im κ/(2Q)), σ = k_c Im κ/ω"
     return ContactResonanceResult(
