@@ -35,8 +35,10 @@ transformed by FFT (harmonics up to 2 N_h).
 Basis. On an axisymmetric stack the kernel couples t_± = t_x ± i t_y of harmonic n only to
 harmonics n and n ± 2 of the other, so the sectors of one total angular number decouple; the
 x-translation lives in two of them (t_+ of harmonics 0 and −2, t_− of 0 and 2), and the traction
-harmonics are kept to ``|n|`` <= 2 (the others decouple exactly; the solution is
-t = A(r) e_x + B(r) (cos 2φ, sin 2φ)). Its film's static in-plane kernel has no odd imaginary part:
+harmonics are kept to n = 0, ±2 (the others, n = ±1 among them, decouple exactly; the solution
+is t = A(r) e_x + B(r) (cos 2φ, sin 2φ)). Every radial function is then one j_p, so the Gram
+products of the correction run on the distinct orders p, and a grown basis reuses those of the
+orders it had. Its film's static in-plane kernel has no odd imaginary part:
 the edge singularity is the square root of the polynomial basis, and the logarithmic enrichment
 of the homogeneous module (needed for the oscillatory singularity of faces that are not mirror
 planes) is left out. On a stack that is not axisymmetric all the harmonics are kept; the
