@@ -70,6 +70,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from scipy.interpolate import CubicSpline, PPoly
 
+from .._threads import one_blas_thread
 from ..errors import ContactresInputError
 from ..fitting import FitResult, Model, Parameter, fit
 from ..layered import LayeredMaterial, checked_thickness, thickness_text
@@ -277,48 +278,82 @@ class CoatedLaw:
                     w[..., j] *= (t - x[m]) / (x[j] - x[m])
         return w
 
-    def _interpolant(self, E):
+    def _interpolant(self, E, columns: slice = slice(None), slope: bool = True):
         """a -> (q, dq/d ln a), each a.shape + (4,), at Young's modulus E (an array broadcast
-        against a, or one value: then the spline of that E alone, a fifth of the work)."""
+        against a, or one value: then the spline of that E alone, a fifth of the work);
+        ``columns``: only these of the four (the others are not evaluated; q[..., columns] of
+        the whole has the same values); ``slope``: False leaves dq None."""
         E = np.asarray(E, dtype=float)
+        coef = self.spline.c[..., columns]
         if E.size and np.all(E == E.flat[0]):
-            c = np.einsum("j,abjk->abk", self._weights(E.flat[0]), self.spline.c)
+            c = np.einsum("j,abjk->abk", self._weights(E.flat[0]), coef)
             one = PPoly(c, self.spline.x)
-            slope = one.derivative()
-            return lambda a: (one(np.log(a)), slope(np.log(a)))
+            deriv = one.derivative() if slope else None
+
+            def single(a, at=None):
+                x = np.log(a)
+                return one(x), None if deriv is None else deriv(x)
+
+            return single
         w = self._weights(E)[..., None]
-        return lambda a: (
-            (w * self.spline(np.log(a))).sum(axis=-2),
-            (w * self.spline(np.log(a), 1)).sum(axis=-2),
-        )
+        part = PPoly(coef, self.spline.x)
+
+        def values(a, at=None):
+            # ``at``: a at the entries ``at`` of E only (the others' weights left out).
+            wa = w if at is None else w[at]
+            x = np.log(a)
+            return (
+                (wa * part(x)).sum(axis=-2),
+                (wa * part(x, 1)).sum(axis=-2) if slope else None,
+            )
+
+        return values
 
     def normal(self, E, a, interp=None):
         """(C, −dC/da, P'R/a³): the pair's punch compliance (m/N), its derivative (1/N) and
         the non-adhesive force factor (Pa) at contact radius a, Young's modulus E
-        (``interp``: :meth:`_interpolant` of E, if already made)."""
+        (``interp``: :meth:`normal_interpolant` of E, if already made)."""
         E, a = np.broadcast_arrays(np.asarray(E, float), np.asarray(a, float))
-        h, nu = self.coating.thickness, self.poisson
-        e_star = E / (2 * (1 - nu**2))
-        q, dq = (interp or self._interpolant(E))(a)
-        C = 1 / (2 * a * e_star) + q[..., 0] * h / a**2
+        q, minus_dC, force = self._normal_terms(E, a, interp)
+        C = 1 / (2 * a * self._e_star(E)) + q[..., 0] * self.coating.thickness / a**2
+        return C, minus_dC, force
+
+    def _e_star(self, E):
+        return E / (2 * (1 - self.poisson**2))
+
+    def _normal_terms(self, E, a, interp=None):
+        """(q, −dC/da, P'R/a³) at E and a (broadcast already): :meth:`normal` without C."""
+        h = self.coating.thickness
+        e_star = self._e_star(E)
+        q, dq = (interp or self.normal_interpolant(E))(a)
         minus_dC = 1 / (2 * a**2 * e_star) + (2 * q[..., 0] - dq[..., 0]) * h / a**3
         force = 1 / (3 / (4 * e_star) + q[..., 1] * h / a)
-        return C, minus_dC, force
+        return q, minus_dC, force
+
+    def normal_interpolant(self, E):
+        """:meth:`_interpolant` of q_n and q_f (the normal contact's two columns) at E."""
+        return self._interpolant(E, slice(0, 2))
 
     def force(self, E, gamma, a, R, interp=None):
         """P(a) of the adhesive contact, N (module docstring)."""
-        _, minus_dC, factor = self.normal(E, a, interp)
+        E, a = np.broadcast_arrays(np.asarray(E, float), np.asarray(a, float))
+        _, minus_dC, factor = self._normal_terms(E, a, interp)
         return factor * a**3 / R - np.sqrt(8 * np.pi * gamma * a / minus_dC)
 
     def contact_radius(self, F, E, gamma, R):
         """a(F) on the stable branch, m, and a mask of the radii clamped to the table."""
-        F, E, gamma, R = np.broadcast_arrays(*(np.asarray(v, float) for v in (F, E, gamma, R)))
+        arrays = np.broadcast_arrays(*(np.asarray(v, float) for v in (F, E, gamma, R)))
+        shape = arrays[0].shape
+        F, E, gamma, R = (np.ravel(v) for v in arrays)
         lo = np.full(F.shape, self.log_a[0])
         hi = np.full(F.shape, self.log_a[-1])
-        interp = self._interpolant(E)  # E is fixed while a is sought
+        interp = self.normal_interpolant(E)  # E is fixed while a is sought
 
-        def f(x):
-            return self.force(E, gamma, np.exp(x), R, interp) - F
+        def f(x, at=slice(None)):
+            # At the entries ``at`` only: each entry's arithmetic is that of the whole.
+            return (
+                self.force(E[at], gamma[at], np.exp(x[at]), R[at], lambda a: interp(a, at)) - F[at]
+            )
 
         f_lo, f_hi = f(lo), f(hi)
         below, above = f_lo > 0, f_hi < 0
@@ -331,10 +366,13 @@ class CoatedLaw:
                 break
             x_new = (lo * f_hi - hi * f_lo) / (f_hi - f_lo)
             x = np.where(todo, x_new, x)
-            fx = np.where(todo, f(x), 0.0)
+            # The force only where the root is still sought (most converge in a few steps).
+            at = np.flatnonzero(todo)
+            fx = np.zeros(F.shape)
+            fx[at] = f(x, at)
             todo &= np.abs(fx) > _FORCE_RTOL * scale
             lo, hi, f_lo, f_hi, side = illinois_step(x, fx, (lo, hi, f_lo, f_hi, side))
-        return np.exp(x), below | above
+        return np.exp(x).reshape(shape), (below | above).reshape(shape)
 
     def tangential(self, E, a):
         """κ at contact radius a, N/m: sphere and coated plate sharing the traction, storage
@@ -342,8 +380,8 @@ class CoatedLaw:
         E, a = np.broadcast_arrays(np.asarray(E, float), np.asarray(a, float))
         h, nu = self.coating.thickness, self.poisson
         g = E / (2 * (1 + nu))
-        q, _ = self._interpolant(E)(a)
-        C_t = 2 * (2 - nu) / (8 * g * a) + (q[..., 2] + 1j * q[..., 3]) * h / a**2
+        q, _ = self._interpolant(E, slice(2, 4), slope=False)(a)
+        C_t = 2 * (2 - nu) / (8 * g * a) + (q[..., 0] + 1j * q[..., 1]) * h / a**2
         return np.real(1 / C_t)
 
     def kappa(self, force, E, gamma, radius, poisson=None):
@@ -580,6 +618,10 @@ def _frequency(sweeps) -> float:
     return float(f[0])
 
 
+# The layered solutions of the table (3x3 recursions, Galerkin matrices of a few dozen unknowns)
+# and the fits' small products: one BLAS thread (contactres._threads; several spun on a busy
+# machine: 15 s of CPU instead of 4.5 s for the bundled example)
+@one_blas_thread()
 def apply_coating(groups, exp, sweeps, coating: Coating, bootstrap: int, seed: int, say=None):
     """Refit every group's κ(F_N) on the coated plate, in place; returns {key: CoatedLaw}.
 

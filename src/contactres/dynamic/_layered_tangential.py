@@ -35,8 +35,10 @@ transformed by FFT (harmonics up to 2 N_h).
 Basis. On an axisymmetric stack the kernel couples t_± = t_x ± i t_y of harmonic n only to
 harmonics n and n ± 2 of the other, so the sectors of one total angular number decouple; the
 x-translation lives in two of them (t_+ of harmonics 0 and −2, t_− of 0 and 2), and the traction
-harmonics are kept to ``|n|`` <= 2 (the others decouple exactly; the solution is
-t = A(r) e_x + B(r) (cos 2φ, sin 2φ)). Its film's static in-plane kernel has no odd imaginary part:
+harmonics are kept to n = 0, ±2 (the others, n = ±1 among them, decouple exactly; the solution
+is t = A(r) e_x + B(r) (cos 2φ, sin 2φ)). Every radial function is then one j_p, so the Gram
+products of the correction run on the distinct orders p, and a grown basis reuses those of the
+orders it had. Its film's static in-plane kernel has no odd imaginary part:
 the edge singularity is the square root of the polynomial basis, and the logarithmic enrichment
 of the homogeneous module (needed for the oscillatory singularity of faces that are not mirror
 planes) is left out. On a stack that is not axisymmetric all the harmonics are kept; the
@@ -83,7 +85,7 @@ homogeneous isotropic horizontal footing, welded; not reproduced here, whose con
 from __future__ import annotations
 
 import math
-from dataclasses import replace
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -114,27 +116,43 @@ _MAX_RADIAL = 32
 _MAX_SERIES = 120
 # Directions sampled for the harmonics of a stack that is not axisymmetric.
 _N_THETA = 128
-# Directions of the rotated samples of an axisymmetric stack (exact for m = 0, ±2).
-_N_ROTATED = 8
 
 
-def _rotated(values: np.ndarray) -> np.ndarray:
-    """h(θ_j) = R(θ_j) h(0) R(θ_j)ᵀ on _N_ROTATED directions from ``values`` (n, 1, 2, 2)."""
-    th = 2 * np.pi * np.arange(_N_ROTATED) / _N_ROTATED
-    c, s = np.cos(th), np.sin(th)
-    R = np.stack([np.stack([c, -s], -1), np.stack([s, c], -1)], -2)  # (nθ, 2, 2)
-    return np.einsum("tij,njk,tlk->ntil", R, values[:, 0], R)
+def _rotation_harmonics(values: np.ndarray, max_order: int) -> np.ndarray:
+    """The harmonics (n, 2 max_order + 1, 2, 2) of h(θ) = R(θ) h(0) R(θ)ᵀ (an axisymmetric
+    stack) from h(0) = [[a, b], [e, d]] = ``values[:, 0]``, in closed form: with
+    R = [[cos θ, −sin θ], [sin θ, cos θ]],
+
+        h_xx, h_yy = (a + d)/2 ± ((a − d)/2 cos 2θ − (b + e)/2 sin 2θ),
+        h_xy, h_yx = ±(b − e)/2 + (b + e)/2 cos 2θ + (a − d)/2 sin 2θ,
+
+    and ∫₀^{2π} e^{imθ} dθ = 2π δ_m0, ∫ cos 2θ e^{imθ} dθ = π, ∫ sin 2θ e^{imθ} dθ = ±iπ at
+    m = ±2: only m = 0, ±2 (what sampling 8 rotated directions and their FFT gave, to
+    round-off)."""
+    h0 = values[:, 0]
+    a, b, e, d = h0[:, 0, 0], h0[:, 0, 1], h0[:, 1, 0], h0[:, 1, 1]
+    harm = np.zeros((h0.shape[0], 2 * max_order + 1, 2, 2), dtype=complex)
+    mid = max_order
+    harm[:, mid, 0, 0] = harm[:, mid, 1, 1] = np.pi * (a + d)
+    harm[:, mid, 0, 1] = np.pi * (b - e)
+    harm[:, mid, 1, 0] = np.pi * (e - b)
+    if max_order >= 2:
+        diff, mixed = 0.5 * np.pi * (a - d), 0.5 * np.pi * (b + e)
+        for sign in (1, -1):
+            m = mid + 2 * sign
+            harm[:, m, 0, 0] = diff - sign * 1j * mixed
+            harm[:, m, 1, 1] = -harm[:, m, 0, 0]
+            harm[:, m, 0, 1] = harm[:, m, 1, 0] = mixed + sign * 1j * diff
+    return harm
 
 
 def _kernel_harmonics(values: np.ndarray, max_order: int, axisymmetric: bool) -> np.ndarray:
     """Δh_{αβ, m} (n, 2 max_order + 1, 2, 2) of samples ``values`` (n, nθ, 2, 2): on the
-    _N_THETA directions, or at θ = 0 only for an axisymmetric stack (then m = 0, ±2)."""
+    _N_THETA directions, or at θ = 0 only for an axisymmetric stack (then m = 0, ±2:
+    :func:`_rotation_harmonics`)."""
     if not axisymmetric:
         return angular_harmonics(values, max_order)
-    harm = angular_harmonics(_rotated(values), max_order)
-    orders = np.arange(-max_order, max_order + 1)
-    harm[:, ~np.isin(orders, (-2, 0, 2))] = 0.0
-    return harm
+    return _rotation_harmonics(values, max_order)
 
 
 def _point_harmonics(nodes, big_m: int, axisymmetric: bool):
@@ -146,37 +164,133 @@ def _point_harmonics(nodes, big_m: int, axisymmetric: bool):
     return harm.reshape(nodes.weights.size, -1, 4), end_h.reshape(-1, 4), shift_h
 
 
-def _correction(basis, nodes, jp, harmonics) -> np.ndarray:
-    """ΔM (nb, nb), phases included, from one point's nodes (``_layered_nodes.CorrectionNodes``:
-    s, ds, Δh, the end S with Δh(S), and the static shift h∞_film − h∞_ref) and the transforms
-    H_a there (``jp``: own and grid parts of ``_layered_nodes.bessel_on_nodes``), with the
-    harmonics of :func:`_point_harmonics` up to ``basis.max_order``."""
+@dataclass(frozen=True, eq=False)
+class _Plan:
+    """What the correction of every point needs of one basis (:func:`_plan`).
+
+    Attributes
+    ----------
+    orders : the orders p of the rows of the Gram products (None: the rows are the radial
+        functions' transforms ``series @ J``, enriched ones among them)
+    series : (n_rows, p_max + 1) each row's transform as coefficients on the j_p
+    row_a, row_b : (nb, nb) the rows of the pair (a, b)'s radial functions
+    entry_m, entry_c : (nb, nb) the kernel harmonic (offset by max_order) and the component
+        (2 α_a + β_b) of every entry
+    phase : (nb, nb) i^{|n_a| − |n_b|}
+    """
+
+    orders: np.ndarray | None
+    series: np.ndarray
+    row_a: np.ndarray
+    row_b: np.ndarray
+    entry_m: np.ndarray
+    entry_c: np.ndarray
+    phase: np.ndarray
+    m_values: np.ndarray
+    gathers: dict
+
+    def gather(self, ms: list) -> tuple:
+        """(entries, index into the (harmonic, component, row, row) integrals) of the entries
+        whose harmonic is among ``ms``; formed once per set of harmonics (every point of an
+        axisymmetric stack has the same)."""
+        key = tuple(int(m) for m in ms)
+        if key not in self.gathers:
+            which = np.full(int(self.m_values.max()) + 1, -1)
+            which[list(key)] = np.arange(len(key))
+            k = which[self.entry_m]
+            at = np.flatnonzero(k >= 0)
+            a, b = np.divmod(at, self.entry_m.shape[1])
+            index = (k[a, b], self.entry_c[a, b], self.row_a[a, b], self.row_b[a, b])
+            self.gathers[key] = ((a, b), index)
+        return self.gathers[key]
+
+    def rows(self, J: np.ndarray) -> np.ndarray:
+        """The rows of the Gram products from J = j_p(s), p = 0..p_max, column by column."""
+        return self.series @ J if self.orders is None else J[self.orders]
+
+
+def _plan(basis) -> _Plan:
+    """The :class:`_Plan` of ``basis``. A basis without enriched functions (every radial
+    function one j_p: an axisymmetric stack's) has its Gram products formed on its distinct
+    orders (n_rad + 1 of them for the harmonics 0 and ±2 instead of 2 n_rad functions, which
+    share all but two orders: the products cost a quarter)."""
+    if np.all(basis.rad_d == 0):
+        orders, row = np.unique(basis.rad_p, return_inverse=True)
+        series = np.eye(basis.p_max + 1)[orders]
+    else:
+        orders, row, series = None, np.arange(basis.series.shape[0]), basis.series
+    r = row[basis.radial]
+    row_a, row_b = np.broadcast_arrays(r[:, None], r[None, :])
+    return _Plan(
+        orders=orders,
+        series=series,
+        row_a=row_a,
+        row_b=row_b,
+        entry_m=basis.max_order + basis.n[None, :] - basis.n[:, None],
+        entry_c=2 * basis.alpha[:, None] + basis.alpha[None, :],
+        phase=phase_of(basis.n),
+        m_values=np.unique(basis.max_order + basis.n[None, :] - basis.n[:, None]),
+        gathers={},
+    )
+
+
+def _correction(basis, plan: _Plan, nodes, jp, harmonics, known=None):
+    """(ΔM (nb, nb), phases included; the Gram integrals for the next call) from one point's
+    nodes (``_layered_nodes.CorrectionNodes``: s, ds, Δh, the end S with Δh(S), and the static
+    shift h∞_film − h∞_ref) and the transforms H_a there (``jp``: own and grid parts of
+    ``_layered_nodes.bessel_on_nodes`` of the plan's rows, :meth:`_Plan.rows`), with the
+    harmonics of :func:`_point_harmonics` up to ``basis.max_order``. ``known``: what this
+    returned for the point's previous (smaller) basis: the integrals of the order pairs it had
+    are taken from it (an integral over a pair of orders does not depend on the basis), only
+    the new orders' columns are formed."""
     w, s_end = nodes.weights, nodes.s_end
-    big_m = basis.max_order
     harm, end_h, shift_h = harmonics
-    H = jp  # H_a(s) = Σ_p series_ap j_p(s), (n_rad, len(s)), own and grid parts
+    H = jp  # the rows: H_a(s) = Σ_p series_ap j_p(s), own and grid parts
     # Beyond S: H_a H_b -> (α_a α_b + β_a β_b)/(2 s²) on average (j_p ~ sin(s − pπ/2)/s).
     p = np.arange(basis.p_max + 1)
-    amp_s, amp_c = basis.series @ np.cos(p * np.pi / 2), basis.series @ -np.sin(p * np.pi / 2)
+    amp_s, amp_c = plan.series @ np.cos(p * np.pi / 2), plan.series @ -np.sin(p * np.pi / 2)
     avg = (np.outer(amp_s, amp_s) + np.outer(amp_c, amp_c)) / (6 * s_end)
-    entry_m = big_m + basis.n[None, :] - basis.n[:, None]
-    entry_c = 2 * basis.alpha[:, None] + basis.alpha[None, :]
-    ra, rb = np.broadcast_arrays(basis.radial[:, None], basis.radial[None, :])
-    out = basis.static_of(shift_h).astype(complex)
-    ms = [m for m in np.unique(entry_m) if np.any(harm[:, m]) or np.any(end_h[m])]
+    # A film that is its own reference has no static shift (zero: no static matrix to form).
+    out = (
+        basis.static_of(shift_h).astype(complex)
+        if np.any(shift_h)
+        else np.zeros(plan.phase.shape, dtype=complex)
+    )
+    ms = [m for m in plan.m_values if np.any(harm[:, m]) or np.any(end_h[m])]
     if not ms:
-        return phase_of(basis.n) * out
-    # ∫ Δh_{m,c} H_a H_b ds for every harmonic, component and radial pair (one batched matrix
-    # product) and the tail.
+        return plan.phase * out, None
+    # ∫ Δh_{m,c} H_a H_b ds for every harmonic, component and pair of rows (one batched matrix
+    # product, or the new orders' columns of it) and the tail.
     weights = w[None, :] * harm[:, ms].reshape(w.size, -1).T  # (len(ms) × 4, len(s))
-    parts = weighted_gram(H, weights).reshape(len(ms), 4, *avg.shape)
-    parts += end_h[ms][:, :, None, None] * avg
-    for k, m in enumerate(ms):
-        at = entry_m == m
-        for c in range(4):
-            sel = at & (entry_c == c)
-            out[sel] += parts[k, c][ra[sel], rb[sel]]
-    return phase_of(basis.n) * out
+    gram = _grown_gram(plan, H, weights, ms, known)
+    parts = gram.reshape(len(ms), 4, *avg.shape) + end_h[ms][:, :, None, None] * avg
+    # Every entry takes its harmonic's and component's integral over its rows (one gather).
+    at, index = plan.gather(ms)
+    out[at] += parts[index]
+    return plan.phase * out, (plan.orders, ms, gram)
+
+
+def _grown_gram(plan: _Plan, H, weights: np.ndarray, ms: list, known) -> np.ndarray:
+    """Σ_n H_a w_kn H_b (K, R, R) of the plan's rows (:func:`_layered_nodes.weighted_gram`),
+    with the pairs of orders that ``known`` (orders, harmonics, Gram of the previous basis)
+    had taken from it: only the columns of the new orders are formed, and their rows by
+    symmetry (the products are symmetric in a and b)."""
+    if known is None or plan.orders is None or known[0] is None or list(known[1]) != list(ms):
+        return weighted_gram(H, weights)
+    old_orders, _, old = known
+    pos = np.minimum(np.searchsorted(old_orders, plan.orders), old_orders.size - 1)
+    had = old_orders[pos] == plan.orders
+    if not np.any(had):
+        return weighted_gram(H, weights)
+    new = np.flatnonzero(~had)
+    rows = np.flatnonzero(had)
+    out = np.empty((weights.shape[0], plan.orders.size, plan.orders.size), dtype=complex)
+    out[:, rows[:, None], rows[None, :]] = old[:, pos[had][:, None], pos[had][None, :]]
+    if new.size:
+        cols = weighted_gram(H, weights, new)  # (K, R, len(new))
+        out[:, :, new] = cols
+        out[:, new, :] = np.swapaxes(cols, 1, 2)
+    return out
 
 
 def _sub_basis(basis, n_radial: int) -> np.ndarray:
@@ -254,21 +368,30 @@ def tangential_punch(
     grid = far_grid(table, float(np.min(ka))) if np.any(pos) else None
     n_radial = size.n_radial
     harmonics: dict = {}
+    grams: dict = {}
     while True:
         grow = n_radial + 4 if nodes else n_radial
         basis = basis_of(table, replace(size, n_radial=grow, n_series=max(size.n_series, grow)))
+        if axisymmetric:
+            # The kernel of an axisymmetric stack has only the harmonics m = 0, ±2 (and its
+            # film's table none that is odd): the functions of odd n decouple exactly from
+            # those of even n, which carry the force (two fifths of the basis, a third of the
+            # radial functions fewer).
+            basis = basis.even_part()
         nb = basis.n.size
         M = np.zeros((ksa.size, nb, nb), dtype=complex)
         if np.any(pos):
             scale = (ksa[pos] / ka)[:, None, None]
             M[pos] = film_dynamic(table, basis, ka, grid) * scale
-        jps = bessel_on_nodes(basis.p_max, nodes, res, lambda J, b=basis: b.series @ J)
+        plan = _plan(basis)
+        jps = bessel_on_nodes(basis.p_max, nodes, res, plan.rows)
         for i, values in nodes.items():
             # The harmonics of Δh depend on the basis only through its largest order.
             key = (i, basis.max_order)
             if key not in harmonics:
                 harmonics[key] = _point_harmonics(values, basis.max_order, axisymmetric)
-            M[i] += _correction(basis, values, jps[i], harmonics[key])
+            delta, grams[i] = _correction(basis, plan, values, jps[i], harmonics[key], grams.get(i))
+            M[i] += delta
         k_big = _solve(basis, table.loss, M, np.ones(nb, dtype=bool))
         if not nodes:
             break

@@ -285,6 +285,14 @@ def _solve_one(g_inf, a, eta, weight, dg, n: int) -> tuple[complex, complex, com
     return (2 * np.pi * a * A[0], depth, 2 * np.pi * c[0], _centre_values(n) @ c)
 
 
+def _real_gram(left: np.ndarray, w: np.ndarray, right: np.ndarray) -> np.ndarray:
+    """Σ_i left_pi w_i right_qi for real ``left`` and ``right``: real products only (a complex
+    ``w`` as its real and imaginary parts)."""
+    if not np.iscomplexobj(w):
+        return (left * w) @ right.T
+    return (left * w.real) @ right.T + 1j * ((left * w.imag) @ right.T)
+
+
 def _solve_tangential(kernel, a, eta, weight, dgd, n: int) -> tuple[complex, float, float, float]:
     """(K, nan, nan, nan): the tangential punch with the coupled traction (module docstring)."""
     k = np.arange(n)
@@ -303,9 +311,13 @@ def _solve_tangential(kernel, a, eta, weight, dgd, n: int) -> tuple[complex, flo
         jf, jg = jb[:n], jb[1:]
         wg = a * weight * dgd[0] / g_inf
         wd = a * weight * dgd[1] / g_inf
-        mat[:n, :n] += (jf * wg) @ jf.T
-        mat[n:, n:] += (jg * wg) @ jg.T
-        mat[:n, n:] -= (jf * wd) @ jg.T
+        # f_k and g_l run on j_0..j_2n with one order shifted: both g blocks are parts of one
+        # Gram product of all n + 1 orders. A complex weight (a lossy film) as two real
+        # products (the j_p are real): a third of the arithmetic of three complex products.
+        gram = _real_gram(jb, wg, jb)
+        mat[:n, :n] += gram[:n, :n]
+        mat[n:, n:] += gram[1:, 1:]
+        mat[:n, n:] -= _real_gram(jf, wd, jg)
     mat[n:, :n] = mat[:n, n:].T
     e0 = np.zeros(2 * n, dtype=dtype)
     e0[0] = 1.0
