@@ -73,7 +73,9 @@ an integral over a pair does not depend on the basis it belongs to), so each pai
 integrated once; the Bessel functions of the nodes (the correction's and the film's near and
 far nodes) are computed for the orders of a basis grown further, not once per size: at first
 two growths ahead if the layers are thinner than a/10 (where the basis usually grows twice),
-else for the first basis; once it has grown, one growth ahead.
+else for the first basis; once it has grown, one growth ahead. Where the layers are thinner
+than a/10 the matrix itself is formed at first for the basis two growths ahead, and the
+checks of the three sizes solve its sub-blocks (the smaller bases' matrices, entry for entry).
 
 Accuracy (tests/dynamic/test_layered_punch.py, measured): homogeneous isotropic against the
 Fredholm disk 1e-8-2.6e-8 (k_s a = 0.3-2); a lossy stack (Q⁻¹ = 1e-3, PMMA h = 0.2a on quartz)
@@ -599,26 +601,35 @@ def _punch(table, film, items, radii, rtol, res) -> np.ndarray:
     p_have = -1
     thin = any(np.sum(stacks[i].thicknesses) < 0.1 * radii[i] for i in nodes)
     while True:
-        grow = n_radial + 4 if nodes else n_radial
-        size = GalerkinSize(grow, 0 if axisymmetric else n_harm)
         # The Bessel functions of the nodes and of the film's integrals are computed for the
         # orders of a basis grown further (p = |n| + 2k: two more per radial term), not once
         # per size: two growths ahead at first where a layer thinner than a/10 is likely to
         # grow the basis twice (250 nm PMMA on quartz at a = 5 µm: 10 -> 13 -> 18 terms), one
         # once it has grown; a thicker stack, which rarely grows, pays for no extra order.
-        # (Only the cost depends on this guess: the results do not.)
+        # At first, where it is likely to grow twice, the matrix itself is formed for the
+        # basis two growths ahead: the matrices of the smaller bases are its sub-blocks (an
+        # entry depends on its pair of orders and harmonic alone), so each size's check reads
+        # its sub-block and the per-call work of the film's and the correction's integrals
+        # is done once instead of three times.
+        # (Only the cost depends on this guess: the results do not, but for round-off.)
         growths = 0
         if nodes:
             growths = 1 if previous is not None else 2 if thin else 0
         ahead = n_radial
+        checks = [n_radial]
         for _ in range(growths):
             ahead = min(_MAX_RADIAL - 4, math.ceil(1.5 * ahead))
-        M, plan, known = _film_matrices(table, ksa, size, far, known, ahead - n_radial)
+            checks.append(ahead)
+        if previous is not None or not thin:
+            checks = checks[:1]
+        grow = checks[-1] + 4 if nodes else n_radial
+        size = GalerkinSize(grow, 0 if axisymmetric else n_harm)
+        M, plan, known = _film_matrices(table, ksa, size, far, known, ahead - checks[-1])
         orders, (ti, tj) = plan.orders, plan.pairs
         diag = np.where(ti == tj, np.pi / (2 * (2 * orders[ti] + 1)), 0.0)
         if nodes:
             if p_have < orders[-1]:
-                p_have = int(orders[-1]) + 2 * (ahead - n_radial)
+                p_have = int(orders[-1]) + 2 * (ahead - checks[-1])
                 bessel = _nodes_bessel(p_have, nodes, res)
             assert bessel is not None  # computed at the first size
             reused = previous is not None and np.array_equal(previous.ms, plan.ms)
@@ -631,11 +642,18 @@ def _punch(table, film, items, radii, rtol, res) -> np.ndarray:
             shift = np.array([h[0] for h in harmonics])
             total = reuse + shift[:, :, None] * diag
             M[index] += plan.sign * total[:, plan.m_index, plan.t_index]
-        c_big = _solve_c0(M, grow, plan)
         if not nodes:
+            c_big = _solve_c0(M, grow, plan)
             break
-        c_small = _solve_c0(M, n_radial, plan)
-        if np.max(np.abs(c_big / c_small - 1)) < rtol / 10 or grow >= _MAX_RADIAL:
+        done = False
+        for n_radial in checks:
+            # The check of the basis of n_radial + 4 terms against n_radial (a sub-block).
+            c_big = _solve_c0(M, n_radial + 4, plan)
+            c_small = _solve_c0(M, n_radial, plan)
+            done = np.max(np.abs(c_big / c_small - 1)) < rtol / 10 or n_radial + 4 >= _MAX_RADIAL
+            if done:
+                break
+        if done:
             break
         n_radial = min(_MAX_RADIAL - 4, math.ceil(1.5 * n_radial))
         previous = plan
