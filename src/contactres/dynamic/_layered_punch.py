@@ -14,7 +14,9 @@ the Galerkin matrix is split as
     M = M_film + ΔM,   ΔM_ab = (−1)^{(n_a+n_b)/2} ∫₀^∞ ds Δg_{n_a+n_b}(s/a) j_{p_a}(s) j_{p_b}(s),
 
 where M_film is the matrix of the film as a homogeneous half-space at k_s a (its prepared
-kernel table, contour and far field: ``contactres.dynamic._exact.galerkin_matrix``) and
+kernel table, contour and far field: ``contactres.dynamic._exact.galerkin_matrix``; as on the
+homogeneous curve, the far grid beyond 2 T₁ × the largest k_s a is summed by its moments,
+``contactres.dynamic._fartail``) and
 Δg = g_stack − g_film. The difference is the response of what lies under the film: it decays
 like e^{−2ηh} once η h ≫ 1 (h the total thickness of the layers), so its integral has a finite
 end and needs neither the far field nor a static split.
@@ -114,7 +116,8 @@ from ._exact import (
     kernel_harmonics,
     near_bessel,
 )
-from ._farfield import far_basis
+from ._farfield import far_basis, far_grid
+from ._fartail import far_tail, head_grid
 from ._layered_nodes import PunchResolution, bessel_on_grid, punch_resolution
 from ._layered_path import correction_nodes, film_reference, stack_at, stack_of
 from ._layered_tangential import tangential_punch
@@ -269,9 +272,10 @@ def _film_matrices(
     table: KernelTable, ksa: np.ndarray, size: GalerkinSize, far, known=None, extra: int = 0
 ):
     """(M_film at k_s a values ``ksa`` (>= 0), (len(ksa), nb, nb); the Galerkin plan; the
-    film's integrals by order pair for the next call), with ``far`` the far-field basis of the
-    positive ``ksa`` (None if there is none; it does not depend on the basis size, so the
-    growing basis of :func:`_punch` computes it once). ``known``: what the previous call of
+    film's integrals by order pair for the next call), with ``far`` (the far-field basis of the
+    positive ``ksa`` on the head of its grid, the whole grid's nodes, its tail or None; None if
+    there is no positive k_s a; it does not depend on the basis size, so the growing basis of
+    :func:`_punch` computes it once). ``known``: what the previous call of
     the growing basis returned last (its pairs' integrals are reused, not recomputed: a pair's
     integral does not depend on the basis it belongs to, and the harmonics stay the same; so
     are its Bessel functions at the near and far nodes where they reach the orders needed).
@@ -303,13 +307,19 @@ def _film_matrices(
     if bessel is None or bessel[0].shape[0] <= orders[-1]:
         # j_p at the far grid and the near nodes, up to the orders a grown basis may need.
         p_max = int(orders[-1]) + 2 * extra
-        far_j = spherical_bessel(p_max, np.asarray(far.s, dtype=float))
+        far_j = spherical_bessel(p_max, np.asarray(far[1], dtype=float))
         bessel = (far_j, near_bessel(table, ksa[pos], p_max))
     if np.any(new):
         js = bessel[0][orders]
         products = js[ti[new]] * js[tj[new]]
+        basis, _, tail = far
         part = replace(plan, pairs=plan.pairs[:, new], far_products=products)
-        integral[..., new] = galerkin_integrals(table, ksa[pos], part, far, bessel[1])
+        if tail is not None:
+            # The products on the head, their moments on the tail (as galerkin_plan's).
+            moments = tail.moments(products)
+            head = products[:, : tail.split]
+            part = replace(part, far_products=head, far_tail=tail, far_moments=moments)
+        integral[..., new] = galerkin_integrals(table, ksa[pos], part, basis, bessel[1])
     out[pos] = plan.sign * integral[:, plan.m_index, plan.t_index]
     return out, plan, (np.stack([orders[ti], orders[tj]]), integral, plan.ms, bessel)
 
@@ -588,7 +598,13 @@ def _punch(table, film, items, radii, rtol, res) -> np.ndarray:
     gref = float(np.max(np.abs(table.ginf)))
     nodes = correction_nodes(stacks, radii, theta, res, gref)
     pos = ksa > 0
-    far = far_basis(table, ksa[pos]) if np.any(pos) else None
+    far = None
+    if np.any(pos):
+        # As the homogeneous curve: beyond 2 T₁ × the largest k_s a the far basis is summed by
+        # its moments (contactres.dynamic._fartail), built on the head of the grid alone.
+        grid = far_grid(table, float(np.min(ksa[pos])))
+        tail = far_tail(table, grid, float(np.max(ksa[pos])))
+        far = (far_basis(table, ksa[pos], head_grid(grid, tail)), grid.s, tail)
     known = None
     index = np.array(list(nodes), dtype=int)
     # The correction integrals of every point by order pair, reused by the grown basis; the
