@@ -310,8 +310,12 @@ def _film_matrices(
         far_j = spherical_bessel(p_max, np.asarray(far[1], dtype=float))
         bessel = (far_j, near_bessel(table, ksa[pos], p_max))
     if np.any(new):
-        js = bessel[0][orders]
-        products = js[ti[new]] * js[tj[new]]
+        # Pair by pair into one array: indexing the rows by the pairs copied both factors
+        # of every pair first (two (pairs x nodes) gathers, as the exact model's products).
+        far_j = bessel[0]
+        products = np.empty((int(np.sum(new)), far_j.shape[1]))
+        for i, (p, q) in enumerate(np.stack([orders[ti[new]], orders[tj[new]]], 1).tolist()):
+            np.multiply(far_j[p], far_j[q], out=products[i])
         basis, _, tail = far
         part = replace(plan, pairs=plan.pairs[:, new], far_products=products)
         if tail is not None:
@@ -327,7 +331,9 @@ def _film_matrices(
 def _solve_c0(M: np.ndarray, n_radial: int, plan) -> np.ndarray:
     """c₀ of M c = e₀ on the sub-basis of the first ``n_radial`` radial terms per harmonic."""
     keep = np.array([k < n_radial for _, k in plan.basis])
-    sub = M[:, keep][:, :, keep]
+    n_keep = int(np.sum(keep))
+    # A prefix (one harmonic, as on an axisymmetric stack): a view, not two gathered copies.
+    sub = M[:, :n_keep, :n_keep] if np.all(keep[:n_keep]) else M[:, keep][:, :, keep]
     e0 = np.zeros(sub.shape[-1])
     e0[0] = 1.0
     return np.linalg.solve(sub, np.broadcast_to(e0, sub.shape[:-1])[..., None])[..., 0, 0]
