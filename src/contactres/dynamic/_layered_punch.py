@@ -14,7 +14,9 @@ the Galerkin matrix is split as
     M = M_film + ΔM,   ΔM_ab = (−1)^{(n_a+n_b)/2} ∫₀^∞ ds Δg_{n_a+n_b}(s/a) j_{p_a}(s) j_{p_b}(s),
 
 where M_film is the matrix of the film as a homogeneous half-space at k_s a (its prepared
-kernel table, contour and far field: ``contactres.dynamic._exact.galerkin_matrix``) and
+kernel table, contour and far field: ``contactres.dynamic._exact.galerkin_matrix``; as on the
+homogeneous curve, the far grid beyond 2 T₁ × the largest k_s a is summed by its moments,
+``contactres.dynamic._fartail``) and
 Δg = g_stack − g_film. The difference is the response of what lies under the film: it decays
 like e^{−2ηh} once η h ≫ 1 (h the total thickness of the layers), so its integral has a finite
 end and needs neither the far field nor a static split.
@@ -73,7 +75,9 @@ an integral over a pair does not depend on the basis it belongs to), so each pai
 integrated once; the Bessel functions of the nodes (the correction's and the film's near and
 far nodes) are computed for the orders of a basis grown further, not once per size: at first
 two growths ahead if the layers are thinner than a/10 (where the basis usually grows twice),
-else for the first basis; once it has grown, one growth ahead.
+else for the first basis; once it has grown, one growth ahead. Where the layers are thinner
+than a/10 the matrix itself is formed at first for the basis two growths ahead, and the
+checks of the three sizes solve its sub-blocks (the smaller bases' matrices, entry for entry).
 
 Accuracy (tests/dynamic/test_layered_punch.py, measured): homogeneous isotropic against the
 Fredholm disk 1e-8-2.6e-8 (k_s a = 0.3-2); a lossy stack (Q⁻¹ = 1e-3, PMMA h = 0.2a on quartz)
@@ -112,7 +116,8 @@ from ._exact import (
     kernel_harmonics,
     near_bessel,
 )
-from ._farfield import far_basis
+from ._farfield import far_basis, far_grid
+from ._fartail import far_tail, head_grid
 from ._layered_nodes import PunchResolution, bessel_on_grid, punch_resolution
 from ._layered_path import correction_nodes, film_reference, stack_at, stack_of
 from ._layered_tangential import tangential_punch
@@ -267,9 +272,10 @@ def _film_matrices(
     table: KernelTable, ksa: np.ndarray, size: GalerkinSize, far, known=None, extra: int = 0
 ):
     """(M_film at k_s a values ``ksa`` (>= 0), (len(ksa), nb, nb); the Galerkin plan; the
-    film's integrals by order pair for the next call), with ``far`` the far-field basis of the
-    positive ``ksa`` (None if there is none; it does not depend on the basis size, so the
-    growing basis of :func:`_punch` computes it once). ``known``: what the previous call of
+    film's integrals by order pair for the next call), with ``far`` (the far-field basis of the
+    positive ``ksa`` on the head of its grid, the whole grid's nodes, its tail or None; None if
+    there is no positive k_s a; it does not depend on the basis size, so the growing basis of
+    :func:`_punch` computes it once). ``known``: what the previous call of
     the growing basis returned last (its pairs' integrals are reused, not recomputed: a pair's
     integral does not depend on the basis it belongs to, and the harmonics stay the same; so
     are its Bessel functions at the near and far nodes where they reach the orders needed).
@@ -301,13 +307,23 @@ def _film_matrices(
     if bessel is None or bessel[0].shape[0] <= orders[-1]:
         # j_p at the far grid and the near nodes, up to the orders a grown basis may need.
         p_max = int(orders[-1]) + 2 * extra
-        far_j = spherical_bessel(p_max, np.asarray(far.s, dtype=float))
+        far_j = spherical_bessel(p_max, np.asarray(far[1], dtype=float))
         bessel = (far_j, near_bessel(table, ksa[pos], p_max))
     if np.any(new):
-        js = bessel[0][orders]
-        products = js[ti[new]] * js[tj[new]]
+        # Pair by pair into one array: indexing the rows by the pairs copied both factors
+        # of every pair first (two (pairs x nodes) gathers, as the exact model's products).
+        far_j = bessel[0]
+        products = np.empty((int(np.sum(new)), far_j.shape[1]))
+        for i, (p, q) in enumerate(np.stack([orders[ti[new]], orders[tj[new]]], 1).tolist()):
+            np.multiply(far_j[p], far_j[q], out=products[i])
+        basis, _, tail = far
         part = replace(plan, pairs=plan.pairs[:, new], far_products=products)
-        integral[..., new] = galerkin_integrals(table, ksa[pos], part, far, bessel[1])
+        if tail is not None:
+            # The products on the head, their moments on the tail (as galerkin_plan's).
+            moments = tail.moments(products)
+            head = products[:, : tail.split]
+            part = replace(part, far_products=head, far_tail=tail, far_moments=moments)
+        integral[..., new] = galerkin_integrals(table, ksa[pos], part, basis, bessel[1])
     out[pos] = plan.sign * integral[:, plan.m_index, plan.t_index]
     return out, plan, (np.stack([orders[ti], orders[tj]]), integral, plan.ms, bessel)
 
@@ -315,7 +331,9 @@ def _film_matrices(
 def _solve_c0(M: np.ndarray, n_radial: int, plan) -> np.ndarray:
     """c₀ of M c = e₀ on the sub-basis of the first ``n_radial`` radial terms per harmonic."""
     keep = np.array([k < n_radial for _, k in plan.basis])
-    sub = M[:, keep][:, :, keep]
+    n_keep = int(np.sum(keep))
+    # A prefix (one harmonic, as on an axisymmetric stack): a view, not two gathered copies.
+    sub = M[:, :n_keep, :n_keep] if np.all(keep[:n_keep]) else M[:, keep][:, :, keep]
     e0 = np.zeros(sub.shape[-1])
     e0[0] = 1.0
     return np.linalg.solve(sub, np.broadcast_to(e0, sub.shape[:-1])[..., None])[..., 0, 0]
@@ -586,7 +604,13 @@ def _punch(table, film, items, radii, rtol, res) -> np.ndarray:
     gref = float(np.max(np.abs(table.ginf)))
     nodes = correction_nodes(stacks, radii, theta, res, gref)
     pos = ksa > 0
-    far = far_basis(table, ksa[pos]) if np.any(pos) else None
+    far = None
+    if np.any(pos):
+        # As the homogeneous curve: beyond 2 T₁ × the largest k_s a the far basis is summed by
+        # its moments (contactres.dynamic._fartail), built on the head of the grid alone.
+        grid = far_grid(table, float(np.min(ksa[pos])))
+        tail = far_tail(table, grid, float(np.max(ksa[pos])))
+        far = (far_basis(table, ksa[pos], head_grid(grid, tail)), grid.s, tail)
     known = None
     index = np.array(list(nodes), dtype=int)
     # The correction integrals of every point by order pair, reused by the grown basis; the
@@ -599,26 +623,35 @@ def _punch(table, film, items, radii, rtol, res) -> np.ndarray:
     p_have = -1
     thin = any(np.sum(stacks[i].thicknesses) < 0.1 * radii[i] for i in nodes)
     while True:
-        grow = n_radial + 4 if nodes else n_radial
-        size = GalerkinSize(grow, 0 if axisymmetric else n_harm)
         # The Bessel functions of the nodes and of the film's integrals are computed for the
         # orders of a basis grown further (p = |n| + 2k: two more per radial term), not once
         # per size: two growths ahead at first where a layer thinner than a/10 is likely to
         # grow the basis twice (250 nm PMMA on quartz at a = 5 µm: 10 -> 13 -> 18 terms), one
         # once it has grown; a thicker stack, which rarely grows, pays for no extra order.
-        # (Only the cost depends on this guess: the results do not.)
+        # At first, where it is likely to grow twice, the matrix itself is formed for the
+        # basis two growths ahead: the matrices of the smaller bases are its sub-blocks (an
+        # entry depends on its pair of orders and harmonic alone), so each size's check reads
+        # its sub-block and the per-call work of the film's and the correction's integrals
+        # is done once instead of three times.
+        # (Only the cost depends on this guess: the results do not, but for round-off.)
         growths = 0
         if nodes:
             growths = 1 if previous is not None else 2 if thin else 0
         ahead = n_radial
+        checks = [n_radial]
         for _ in range(growths):
             ahead = min(_MAX_RADIAL - 4, math.ceil(1.5 * ahead))
-        M, plan, known = _film_matrices(table, ksa, size, far, known, ahead - n_radial)
+            checks.append(ahead)
+        if previous is not None or not thin:
+            checks = checks[:1]
+        grow = checks[-1] + 4 if nodes else n_radial
+        size = GalerkinSize(grow, 0 if axisymmetric else n_harm)
+        M, plan, known = _film_matrices(table, ksa, size, far, known, ahead - checks[-1])
         orders, (ti, tj) = plan.orders, plan.pairs
         diag = np.where(ti == tj, np.pi / (2 * (2 * orders[ti] + 1)), 0.0)
         if nodes:
             if p_have < orders[-1]:
-                p_have = int(orders[-1]) + 2 * (ahead - n_radial)
+                p_have = int(orders[-1]) + 2 * (ahead - checks[-1])
                 bessel = _nodes_bessel(p_have, nodes, res)
             assert bessel is not None  # computed at the first size
             reused = previous is not None and np.array_equal(previous.ms, plan.ms)
@@ -631,11 +664,18 @@ def _punch(table, film, items, radii, rtol, res) -> np.ndarray:
             shift = np.array([h[0] for h in harmonics])
             total = reuse + shift[:, :, None] * diag
             M[index] += plan.sign * total[:, plan.m_index, plan.t_index]
-        c_big = _solve_c0(M, grow, plan)
         if not nodes:
+            c_big = _solve_c0(M, grow, plan)
             break
-        c_small = _solve_c0(M, n_radial, plan)
-        if np.max(np.abs(c_big / c_small - 1)) < rtol / 10 or grow >= _MAX_RADIAL:
+        done = False
+        for n_radial in checks:
+            # The check of the basis of n_radial + 4 terms against n_radial (a sub-block).
+            c_big = _solve_c0(M, n_radial + 4, plan)
+            c_small = _solve_c0(M, n_radial, plan)
+            done = np.max(np.abs(c_big / c_small - 1)) < rtol / 10 or n_radial + 4 >= _MAX_RADIAL
+            if done:
+                break
+        if done:
             break
         n_radial = min(_MAX_RADIAL - 4, math.ceil(1.5 * n_radial))
         previous = plan
