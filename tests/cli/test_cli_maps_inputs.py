@@ -67,6 +67,12 @@ def test_store_declaring_ten_billion_pixels_is_refused_from_its_metadata(store, 
             100_000 if d in ("x", "y") else n for d, n in zip(dims, info["shape"], strict=True)
         ]
         meta.write_text(json.dumps(info))
+    # Coordinates that cannot be read: refused before reading them, from the metadata alone
+    # (an index built first, as xarray does by default, would end in "not readable" here).
+    chunks = [f for c in ("x", "y") for f in (path / c / "c").rglob("*") if f.is_file()]
+    assert len(chunks) >= 2
+    for chunk in chunks:
+        chunk.write_bytes(b"not a chunk")
     assert sum(f.stat().st_size for f in path.rglob("*") if f.is_file()) < 200_000
     with pytest.raises(ContactresInputError, match=r"100000 x 100000 = 1e\+10 pixels"):
         read_map(path)
@@ -81,6 +87,7 @@ def test_store_declaring_ten_billion_pixels_is_refused_from_its_metadata(store, 
         ("broken-json", ("not readable",)),
         ("truncated-chunk", ("'euler'", "cannot be read")),
         ("truncated-values", ("'k_star_N_per_m'", "cannot be read")),
+        ("truncated-coordinate", ("not readable",)),  # read by xarray's index on opening
     ],
 )
 def test_half_written_store_is_one_line_naming_the_store(store, tmp_path, damage, words):
@@ -93,7 +100,8 @@ def test_half_written_store_is_one_line_naming_the_store(store, tmp_path, damage
     elif damage == "broken-json":
         (euler / "zarr.json").write_text("{\n")
     else:
-        variable = euler if damage == "truncated-chunk" else path / "k_star_N_per_m"
+        damaged = {"truncated-chunk": "euler", "truncated-values": "k_star_N_per_m"}
+        variable = path / damaged.get(damage, "x")
         chunk = next(f for f in (variable / "c").rglob("*") if f.is_file())
         chunk.write_bytes(chunk.read_bytes()[:40])
     r = run("maps", "fit", path, "--out", tmp_path / "fit.json")

@@ -2,7 +2,9 @@
 
 A map has many pixels per grain; the reduction must leave every value as it was: the M of an
 orientation repeated in a large stack equals, to the bit, its M evaluated alone, and matrices
-that differ in any bit are kept apart.
+that differ in any bit are kept apart. Likewise several materials evaluated in one stack
+(stacked_indentation_moduli, the central differences of the ratio fits) give, row by row, the
+bits of each material evaluated alone.
 """
 
 from __future__ import annotations
@@ -11,6 +13,7 @@ import numpy as np
 
 from contactres import Material
 from contactres.polycrystal import indentation_moduli, surface_matrices_from_euler
+from contactres.polycrystal._moduli import stacked_indentation_moduli
 
 
 def _orientations(n: int, seed: int) -> np.ndarray:
@@ -48,3 +51,34 @@ def test_lossy_and_empty_stacks():
     assert np.iscomplexobj(got)
     assert np.array_equal(got, indentation_moduli(lossy, R)[[0, 1, 0, 2, 1]])
     assert indentation_moduli(Material.crystal("Cu"), np.zeros((0, 3, 3))).shape == (0,)
+
+
+def test_several_materials_in_one_stack_equal_each_alone():
+    # Cubic (Cu, a unit crystal as the ratio fits build, and one 0.1 % away) and trigonal
+    # (sapphire: 6 independent constants) materials, over repeated orientations.
+    R = _orientations(30, seed=12)[np.random.default_rng(13).integers(0, 30, 120)]
+    mats = [
+        Material.crystal("Cu"),
+        Material.cubic(1.0, 0.72, 0.5),
+        Material.cubic(1.0, 0.72 * np.exp(1e-3), 0.5),
+        Material.crystal("sapphire"),
+    ]
+    got = stacked_indentation_moduli(mats, R, rtol=1e-12)
+    assert got.shape == (4, 120) and got.dtype == float
+    for row, m in zip(got, mats, strict=True):
+        assert np.array_equal(row, indentation_moduli(m, R, rtol=1e-12))
+    assert stacked_indentation_moduli(mats, np.zeros((0, 3, 3))).shape == (4, 0)
+
+
+def test_lossy_or_isotropic_materials_in_a_stack_equal_each_alone():
+    cu = Material.crystal("Cu")
+    R = _orientations(5, seed=14)
+    for mats in (
+        [cu.with_loss(0.01), cu.with_loss(0.02)],
+        [cu, Material.isotropic(70e9, 0.22)],
+        [cu],
+    ):
+        got = stacked_indentation_moduli(mats, R)
+        assert got.shape == (len(mats), 5)
+        for row, m in zip(got, mats, strict=True):
+            assert np.array_equal(row, indentation_moduli(m, R))

@@ -39,6 +39,8 @@ import warnings
 from collections.abc import Callable
 from dataclasses import dataclass
 from pathlib import Path
+from types import ModuleType
+from typing import Any
 
 import numpy as np
 
@@ -582,27 +584,39 @@ def read_map(path: str | os.PathLike, *, max_pixels: int = MAX_MAP_PIXELS):
     target = Path(path)
     if not _is_zarr_store(target):
         raise FileNotFoundError(f"no Zarr map store at {str(target)!r}")
-    try:
-        with warnings.catch_warnings():
-            # A folder left without its metadata by a half-written store: the check of the
-            # map's variables below names it, in one line.
-            warnings.filterwarnings("ignore", message=".*not recognized as a component")
-            ds = xr.open_zarr(target, consolidated=False)
-    except (OSError, KeyError, ValueError, TypeError) as exc:
-        # Broken JSON metadata (ValueError), a group without its arrays (KeyError), ...
-        raise ContactresInputError(
-            f"map store {str(target)!r}: not readable ({type(exc).__name__}: "
-            f"{' '.join(str(exc).split())[:200]}): a half-written or damaged store"
-        ) from None
-    missing = [name for name in _MAP_VARIABLES if name not in ds]
+    # First without the x/y coordinates, whose default indexes xarray reads into memory chunk by
+    # chunk: for a store declaring 10^10 pixels that is thousands of (absent) chunks and
+    # seconds before its size could be refused. The sizes come from the arrays' metadata (no
+    # dask arrays: nothing of the probe is read).
+    probe = _open_store(xr, target, drop_variables=("x", "y"), chunks=None)
+    missing = [name for name in _MAP_VARIABLES if name not in probe]
     if missing:
         raise ContactresInputError(
             f"map store {str(target)!r}: variable(s) {', '.join(map(repr, missing))} missing "
             "(a half-written store, or not a map): write it again"
         )
     check_map_size(
-        (ds.sizes.get("y", 0), ds.sizes.get("x", 0)), f"map store {str(target)!r}", max_pixels
+        (probe.sizes.get("y", 0), probe.sizes.get("x", 0)), f"map store {str(target)!r}", max_pixels
     )
+    ds = _open_store(xr, target)
     ds.attrs.pop(STORE_MARKER, None)  # the store's, not the map's: never copied on
     ds.encoding["source"] = str(target)
     return ds
+
+
+def _open_store(xr: ModuleType, target: Path, **options: object) -> Any:
+    """``xarray.open_zarr(target, **options)`` (lazy, dask-chunked), or a one-line
+    ContactresInputError naming the store when its metadata or coordinates cannot be read."""
+    try:
+        with warnings.catch_warnings():
+            # A folder left without its metadata by a half-written store: the check of the
+            # map's variables in read_map names it, in one line.
+            warnings.filterwarnings("ignore", message=".*not recognized as a component")
+            return xr.open_zarr(target, consolidated=False, **options)
+    except (OSError, KeyError, RuntimeError, ValueError, TypeError) as exc:
+        # Broken JSON metadata (ValueError), a group without its arrays (KeyError), a truncated
+        # chunk of a coordinate read for its index (codec errors are RuntimeErrors), ...
+        raise ContactresInputError(
+            f"map store {str(target)!r}: not readable ({type(exc).__name__}: "
+            f"{' '.join(str(exc).split())[:200]}): a half-written or damaged store"
+        ) from None

@@ -17,6 +17,8 @@ a Vibrating Rigid Indenter", American Journal of Engineering and Applied Science
 
 from __future__ import annotations
 
+from collections.abc import Sequence
+
 import numpy as np
 
 from ..errors import ContactresInputError
@@ -29,7 +31,7 @@ from ..normal import (
     stiffness_contrast,
 )
 
-__all__ = ["indentation_moduli"]
+__all__ = ["indentation_moduli", "stacked_indentation_moduli"]
 
 # The θ rule of contact_integrals: 16 points on [0, π) to start, doubled up to 2^15.
 _N_START = 16
@@ -111,6 +113,58 @@ def indentation_moduli(
     [134.  151.6]
     """
     m = require_material(material)
+    rtol, R = _checked(rtol, surface_matrices)
+    dtype = complex if m.is_lossy else float
+    iso = isotropic_constants(m)
+    if iso is not None:
+        # Ĝ = C11/(2 C44 (C11 − C44)) in every direction: M = 4π/(2π Ĝ).
+        c11, c44 = iso
+        M = 4 * c44 * (c11 - c44) / c11
+        return np.full(R.shape[0], M if m.is_lossy else np.real(M), dtype=dtype)
+    # A map has many pixels per grain, all of one orientation: each distinct matrix (to the
+    # bit) is evaluated once (issue 31: a 512² map of grains took 34 s). An orientation's M
+    # does not depend on the others evaluated with it (every step is per orientation), so the
+    # values are those of the full stack to the bit. The distinct matrices keep the order of
+    # their first pixel, so an error names the first pixel at fault, as without the reduction.
+    first, inverse = _distinct(R)
+    unique = R[first]
+    out = np.empty(unique.shape[0], dtype=dtype)
+    for i in range(0, unique.shape[0], _ORIENTATION_CHUNK):
+        sl = slice(i, i + _ORIENTATION_CHUNK)
+        out[sl] = _moduli([m], unique[sl], rtol, index=first[sl])
+    return out[inverse]
+
+
+def stacked_indentation_moduli(
+    materials: Sequence[Material], surface_matrices, rtol: float = THETA_RTOL
+) -> np.ndarray:
+    """M (Pa) of several materials for the same orientations: shape (len(materials), N).
+
+    Row j equals :func:`indentation_moduli` of ``materials[j]`` to the bit: every
+    (material, orientation) pair is its own row of one stacked evaluation, and no step mixes
+    rows. One evaluation instead of one per material: the cost of a small stack is mostly
+    per call (the θ doublings), so the 2k + 1 materials of a central-difference Jacobian
+    (:mod:`contactres.polycrystal._ratio_fit`) cost about one call. Lossy or isotropic
+    materials (closed form) are evaluated one by one. Parameters and errors as
+    :func:`indentation_moduli`.
+    """
+    ms = [require_material(m) for m in materials]
+    if len(ms) < 2 or any(m.is_lossy or isotropic_constants(m) is not None for m in ms):
+        return np.stack([indentation_moduli(m, surface_matrices, rtol) for m in ms])
+    rtol, R = _checked(rtol, surface_matrices)
+    first, inverse = _distinct(R)
+    unique = R[first]
+    out = np.empty((len(ms), unique.shape[0]))
+    step = max(1, _ORIENTATION_CHUNK // len(ms))
+    for i in range(0, unique.shape[0], step):
+        sl = slice(i, i + step)
+        out[:, sl] = _moduli(ms, unique[sl], rtol, index=first[sl]).reshape(len(ms), -1)
+    return out[:, inverse]
+
+
+def _checked(rtol, surface_matrices) -> tuple[float, np.ndarray]:
+    """``rtol`` as a float and the surface matrices as an (N, 3, 3) array, checked as
+    :func:`indentation_moduli` documents."""
     rtol = float(rtol)
     if not (1e-15 <= rtol <= 1e-2):
         raise ContactresInputError(f"rtol must lie in [1e-15, 1e-2], got {rtol!r}")
@@ -125,26 +179,7 @@ def indentation_moduli(
         raise ContactresInputError(
             f"surface_matrices[{bad}] is not orthogonal (|R R^T - I| = {dev[bad]:.3g})"
         )
-    dtype = complex if m.is_lossy else float
-    iso = isotropic_constants(m)
-    if iso is not None:
-        # Ĝ = C11/(2 C44 (C11 − C44)) in every direction: M = 4π/(2π Ĝ).
-        c11, c44 = iso
-        M = 4 * c44 * (c11 - c44) / c11
-        return np.full(R.shape[0], M if m.is_lossy else np.real(M), dtype=dtype)
-    c = voigt_to_tensor(np.asarray(m.C, dtype=dtype))
-    # A map has many pixels per grain, all of one orientation: each distinct matrix (to the
-    # bit) is evaluated once (issue 31: a 512² map of grains took 34 s). An orientation's M
-    # does not depend on the others evaluated with it (every step is per orientation), so the
-    # values are those of the full stack to the bit. The distinct matrices keep the order of
-    # their first pixel, so an error names the first pixel at fault, as without the reduction.
-    first, inverse = _distinct(R)
-    unique = R[first]
-    out = np.empty(unique.shape[0], dtype=dtype)
-    for i in range(0, unique.shape[0], _ORIENTATION_CHUNK):
-        sl = slice(i, i + _ORIENTATION_CHUNK)
-        out[sl] = _moduli(m, c, unique[sl], rtol, index=first[sl])
-    return out[inverse]
+    return rtol, R
 
 
 def _distinct(R: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
@@ -176,19 +211,21 @@ def _rotated(R: np.ndarray, c: np.ndarray) -> np.ndarray:
     return np.einsum("nia,njkla->nijkl", R, t)
 
 
-def _moduli(
-    m: Material, c: np.ndarray, R: np.ndarray, rtol: float, index: np.ndarray
-) -> np.ndarray:
-    """M of one chunk of orientations ``R`` (n, 3, 3); ``index``: the index of each in the
-    caller's stack (named in an error)."""
-    cs = _rotated(R, c)
+def _moduli(ms: list[Material], R: np.ndarray, rtol: float, index: np.ndarray) -> np.ndarray:
+    """M of one chunk of orientations ``R`` (n, 3, 3) for each material of ``ms`` (all lossy
+    or all lossless, none isotropic), material-major: shape (len(ms) n,); ``index``: the index
+    of each orientation in the caller's stack (named in an error)."""
+    lossy = ms[0].is_lossy
+    dtype = complex if lossy else float
+    # Each material rotated as alone (the same einsum calls, the same bits), then stacked.
+    cs = np.concatenate([_rotated(R, voigt_to_tensor(np.asarray(m.C, dtype=dtype))) for m in ms])
+    index = np.tile(index, len(ms))
     # Reference C44 of each sample frame (Voigt C'44 = c'_yzyz), as in shear_reference.
     c44 = np.real(cs[:, 1, 2, 1, 2])
     if not np.all(c44 > 0):
         bad = int(np.flatnonzero(~(c44 > 0))[0])
         raise ContactresInputError(f"surface-frame C44 must be positive, got {c44[bad]!r} Pa")
     cs = cs / c44[:, None, None, None, None]
-    lossy = m.is_lossy
 
     def sums(idx, theta):
         g = -stacked_normal_compliance(cs[idx], theta) / c44[idx, None]
@@ -197,9 +234,9 @@ def _moduli(
         return np.stack([g.sum(axis=1), (g * np.cos(theta) ** 2).sum(axis=1)], axis=1)
 
     n = _N_START
-    active = np.arange(R.shape[0])
+    active = np.arange(cs.shape[0])
     total = sums(active, np.pi * np.arange(n) / n)
-    I0 = np.empty(R.shape[0], dtype=total.dtype)
+    I0 = np.empty(cs.shape[0], dtype=total.dtype)
     while active.size:
         new = total + sums(active, np.pi * (np.arange(n) + 0.5) / n)
         I_old = 2 * np.pi / n * total
@@ -210,7 +247,7 @@ def _moduli(
         I0[active[conv]] = I_new[conv, 0]
         if n >= _N_MAX and not np.all(conv):
             j = int(np.flatnonzero(~conv)[0])
-            contrast = stiffness_contrast(m)
+            contrast = stiffness_contrast(ms[active[j] // R.shape[0]])
             if contrast > 1e3:
                 reason = (
                     f"the solid is nearly incompressible (stiffness contrast {contrast:.4g}, "

@@ -39,7 +39,7 @@ from .._summary import number, plus_minus
 from ..errors import ContactresInputError
 from ..fitting import LMOptions, levenberg_marquardt
 from ..materials import Material
-from ._moduli import indentation_moduli
+from ._moduli import stacked_indentation_moduli
 
 __all__ = [
     "CONDITIONAL_NOTE",
@@ -305,13 +305,17 @@ def fit_ratios(
         ln_c = theta[0] if free_c else ln_c0
         return ln_c, (theta[n_scale - 1] if fit_c11 else ln_c11_fixed), theta[n_scale:]
 
-    def unit_moduli(lr, orient):
-        return indentation_moduli(param.unit_material(np.exp(lr)), orient, rtol=MODULUS_RTOL)
-
     def log_model(theta, orient, jacobian: bool = True):
         """ln value and d ln value/d theta (None unless ``jacobian``) for ``orient``."""
         ln_c, ln_c11, lr = split(theta)
-        M = np.exp(ln_c11) * unit_moduli(lr, orient)
+        # The unit crystal at lr, then (with the Jacobian) at lr ± LOG_STEP along each ratio:
+        # one stacked evaluation, each row the bits of its own indentation_moduli call.
+        steps = [np.zeros(k)] + (
+            [s * LOG_STEP * np.eye(k)[j] for j in range(k) for s in (1, -1)] if jacobian else []
+        )
+        units = [param.unit_material(np.exp(lr + step)) for step in steps]
+        m = stacked_indentation_moduli(units, orient, rtol=MODULUS_RTOL)
+        M = np.exp(ln_c11) * m[0]
         frac = 1.0 if rigid else mt / (M + mt)  # E*/M
         ln_value = ln_c + p * np.log(M * frac)
         if not jacobian:
@@ -320,8 +324,7 @@ def fit_ratios(
             [p * frac * np.ones_like(M)] if fit_c11 else []
         )
         for j in range(k):
-            step = LOG_STEP * np.eye(k)[j]
-            d = np.log(unit_moduli(lr + step, orient) / unit_moduli(lr - step, orient))
+            d = np.log(m[1 + 2 * j] / m[2 + 2 * j])
             cols.append(p * frac * d / (2 * LOG_STEP))
         return ln_value, np.column_stack(cols)
 
