@@ -4,7 +4,8 @@
 import numpy as np
 import pytest
 
-from contactres.analysis._curves import CURVE_GRIDS, sweep_rows
+from contactres.analysis._amplitude import Padded
+from contactres.analysis._curves import CURVE_GRIDS, sweep_points, sweep_rows
 from contactres.analysis._models import REGISTRY, model_curves
 from contactres.errors import ContactresInputError
 
@@ -33,6 +34,27 @@ def test_the_points_are_the_input_points_of_each_sweep(results):
         for mine, given in (("amplitude_m", "amplitude_m"), ("df_Hz", "df_Hz"),
                             ("dgamma_Hz", "dgamma_Hz")):  # fmt: skip
             np.testing.assert_array_equal(got[mine].to_numpy(), part[given].to_numpy())
+
+
+def test_points_of_sweeps_not_back_to_back_are_gathered_in_sweep_order():
+    # A Padded whose sweeps do not lie back to back in its flat arrays (sweep b's points stored
+    # before a's): the points are each sweep's own, in the order of its sweeps, not the arrays
+    # as stored (written out here by hand).
+    u = np.array([4.0, 5.0, 1.0, 2.0, 3.0])
+    p = Padded(
+        sweeps=np.array(["a", "b"], dtype=object),
+        n=np.array([3, 2]),
+        direction=np.array(["up", "up"]),
+        start=np.array([2, 0]),
+        points_u=u,
+        points_df=10.0 * u,
+        points_dg=100.0 * u,
+    )
+    points = sweep_points(p)
+    assert list(points["sweep"]) == ["a", "a", "a", "b", "b"]
+    np.testing.assert_array_equal(points["amplitude_m"], [1.0, 2.0, 3.0, 4.0, 5.0])
+    np.testing.assert_array_equal(points["df_Hz"], [10.0, 20.0, 30.0, 40.0, 50.0])
+    np.testing.assert_array_equal(points["dgamma_Hz"], [100.0, 200.0, 300.0, 400.0, 500.0])
 
 
 def test_every_sweep_has_its_model_on_each_grid(results):
