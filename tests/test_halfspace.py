@@ -449,3 +449,32 @@ def test_stacked_product_matches_einsum_for_views_and_mixed_types():
         out, tmp = np.empty_like(a), np.empty_like(a)
         assert mm(x, y, out=out, tmp=tmp) is out
         np.testing.assert_allclose(out, ref, rtol=1e-14, atol=1e-14)
+
+
+@pytest.mark.parametrize("face", [(0, 0, 1), (1, 1, 1)])
+def test_doubling_batched_retirement_changes_no_bit(monkeypatch, face):
+    # The doubling loops drop finished points from their work arrays in batches (a finished
+    # point may iterate on unused for a step or two); dropping every point in the step it
+    # finishes (the plain algorithm, forced here) must give the same kernel bit for bit: lossy,
+    # and lossless with propagating points that are given up after _STALL_ITER steps.
+    from contactres.halfspace import _doubling as doubling
+
+    m = CU.rotated(face)
+    k = np.geomspace(0.05, 20, 25)[:, None]
+    th = np.linspace(0, np.pi, 11)[None, :] + 0.05
+    cases = [(m.with_loss(0.02), k), (m, k), (m, k * (1 + 0.1j))]
+    batched = [dynamic_kernel(mm_, kk, th) for mm_, kk in cases]
+    waited = []
+    plain = doubling._retire
+
+    def spy(waited_steps, finished, active):
+        waited.append(waited_steps)
+        return plain(waited_steps, finished, active)
+
+    monkeypatch.setattr(doubling, "_retire", spy)
+    for (mm_, kk), g in zip(cases, batched, strict=True):
+        assert np.array_equal(dynamic_kernel(mm_, kk, th), g)
+    assert max(waited) >= 1  # the batching was exercised
+    monkeypatch.setattr(doubling, "_retire", lambda waited_steps, finished, active: True)
+    for (mm_, kk), g in zip(cases, batched, strict=True):
+        assert np.array_equal(dynamic_kernel(mm_, kk, th), g)
