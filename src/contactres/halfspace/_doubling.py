@@ -98,7 +98,7 @@ class _Finish:
         return keep
 
 
-def decaying_solvent(Q, R, W, s, beta, may_stall=None, mirror=False):
+def decaying_solvent(Q, R, W, s, beta, may_stall=None, mirror=False, dual=False):
     """Möbius image of the decaying solvent of the balanced Christoffel pencil (paper 1,
     Eqs. 10-12).
 
@@ -117,6 +117,9 @@ def decaying_solvent(Q, R, W, s, beta, may_stall=None, mirror=False):
         convergence after ``_STALL_ITER`` steps they are given up (roots on the unit circle).
     mirror : bool
         The surface is a mirror plane of the solid: take the block-structured step.
+    dual : bool
+        Also return the solvent of the direction θ + π (R -> −R), from the same iterates
+        (general step only; a point then stops when both have converged).
 
     Returns
     -------
@@ -126,6 +129,9 @@ def decaying_solvent(Q, R, W, s, beta, may_stall=None, mirror=False):
         Converged points (G is meaningless elsewhere).
     resid : ndarray, shape (N,)
         Relative residual (backward error) of G; inf where it is not finite.
+    G2, resid2 : ndarray
+        With ``dual`` (not ``mirror``): the same for θ + π, the pencil with A0 and A2
+        swapped (converged where ``done``).
     """
     Qs = Q.astype(complex)
     Qs[[0, 1, 2], [0, 1, 2]] -= s
@@ -136,15 +142,26 @@ def decaying_solvent(Q, R, W, s, beta, may_stall=None, mirror=False):
     a2 = Qs - bW - ibK
     if mirror:
         A1h, done = _cyclic_reduction_mirror(A0, a1, may_stall)
+        A1h2 = None
     else:
-        A1h, done = _cyclic_reduction(A0, a1, a2, may_stall)
+        A1h, A1h2, done = _cyclic_reduction(A0, a1, a2, may_stall, dual)
+    G, resid = _solvent(A1h, A0, a1, a2)
+    if A1h2 is None:
+        return G, done, resid
+    # The reversed pencil is that of the direction θ + π (R -> −R swaps A0 and A2).
+    G2, resid2 = _solvent(A1h2, a2, a1, A0)
+    return G, done, resid, G2, resid2
+
+
+def _solvent(A1h, A0, a1, a2):
+    """The minimal solvent G = −Â1⁻¹ A0 of A0 + A1 G + A2 G² = 0 and its relative residual
+    (backward error; inf where it is not finite)."""
     G = -mm(inv3(A1h), A0)
-    # Backward error of the solvent: the relative residual of A0 + A1 G + A2 G² = 0.
     res = A0 + mm(a1, G) + mm(a2, mm(G, G))
     g = maxabs(G)
     resid = maxabs(res) / (maxabs(A0) + maxabs(a1) * g + maxabs(a2) * g**2)
     resid[~np.isfinite(resid)] = np.inf
-    return G, done, resid
+    return G, resid
 
 
 class _Slots:
@@ -164,23 +181,28 @@ class _Slots:
         return self.buf[i, : self.rows * m].reshape(*self.shape, m)
 
 
-def _cyclic_reduction(A0, a1, a2, may_stall):
-    """Cyclic reduction for the general pencil: the limit Â1 (3, 3, N) and a converged flag."""
+def _cyclic_reduction(A0, a1, a2, may_stall, dual=False):
+    """Cyclic reduction for the general pencil: the limit Â1 (3, 3, N) and a converged flag;
+    with ``dual`` also the limit Â1' of the reversed pencil A2 + A1 w + A0 w² (its iterates
+    are those of A0, A1, A2 with A0 and A2 swapped: Â1' accumulates A0 K A2 where Â1 takes
+    A2 K A0), a point then stopping when both updates are small."""
     A1h = a1.copy()
+    A1h2 = a1.copy() if dual else None
     n = A0.shape[-1]
-    # Slots 0-4 hold A0, A1, A2, Â1 and one free stack; ``at`` says which is which (the free
-    # one takes each new A0, A2 and each gathered stack, and the old one is freed).
-    pool = _Slots(5, (3, 3), n)
-    for i, x in enumerate((A0, a1, a2, a1)):
+    # Slots hold A0, A1, A2, Â1 (and Â1') and one free stack; ``at`` says which is which
+    # (the free one takes each new A0, A2 and each gathered stack, and the old one is freed).
+    start = (A0, a1, a2, a1, a1) if dual else (A0, a1, a2, a1)
+    pool = _Slots(len(start) + 1, (3, 3), n)
+    for i, x in enumerate(start):
         pool.view(i, n)[...] = x
-    at = [0, 1, 2, 3]
-    free = 4
+    at = list(range(len(start)))
+    free = len(start)
     work = _Slots(5, (3, 3), n)
     mag = _Slots(1, (3, 3), n, dtype=float)
     pts = _Finish(n, may_stall)
     for it in range(_CR_MAXITER):
         m = pts.active.size
-        a0, a1, a2, a1h = (pool.view(i, m) for i in at)
+        a0, a1, a2, a1h, *rest = (pool.view(i, m) for i in at)
         k, ka0, ka2, a0ka2, tmp = (work.view(i, m) for i in range(5))
         re = mag.view(0, m)
         inv3(a1, out=k)
@@ -202,9 +224,14 @@ def _cyclic_reduction(A0, a1, a2, may_stall):
         # Quadratic convergence: after an update of relative size τ the rest is ~τ².
         upd = np.abs(a0ka2, out=re).max(axis=(0, 1))
         scale = np.abs(a1h, out=re).max(axis=(0, 1))
+        if A1h2 is not None:
+            rest[0] -= a0ka2
+            np.minimum(scale, np.abs(rest[0], out=re).max(axis=(0, 1)), out=scale)
         new = pts.newly_converged(it, upd, scale)
         if np.any(new):
             A1h[:, :, pts.active[new]] = a1h[:, :, new]
+            if A1h2 is not None:
+                A1h2[:, :, pts.active[new]] = rest[0][:, :, new]
         keep = pts.keep(it)
         if keep is not None:
             for j, i in enumerate(at):
@@ -212,7 +239,7 @@ def _cyclic_reduction(A0, a1, a2, may_stall):
                 at[j], free = free, i
         if pts.active.size == 0:
             break
-    return A1h, pts.done
+    return A1h, A1h2, pts.done
 
 
 def _cyclic_reduction_mirror(A0, a1, may_stall):
