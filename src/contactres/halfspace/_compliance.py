@@ -362,7 +362,7 @@ def _solvent_compliance(G, Q, R, W, s3, beta, th, sv, propagating, normal_only):
     # Z = iβ (I + G)(I − G)⁻¹, so Rᵀ + W Z = [Rᵀ (I − G) + iβ W (I + G)] (I − G)⁻¹.
     M = mm(transpose(R), eye - G) + 1j * beta * mm(W, eye + G)
     if normal_only:
-        H = -1j * np.sum((eye - G)[2] * inv3(M)[:, 2], axis=0)
+        H = -1j * np.sum((eye - G)[2] * _inverse_last_column(M), axis=0)
     else:
         H = -1j * mm(eye - G, inv3(M))
     if np.any(propagating):
@@ -372,6 +372,20 @@ def _solvent_compliance(G, Q, R, W, s3, beta, th, sv, propagating, normal_only):
         )
         H[..., i] = Hp[2, 2] if normal_only else Hp
     return H
+
+
+def _inverse_last_column(a: np.ndarray) -> np.ndarray:
+    """Last column (3, N) of the inverse of stacked 3x3 matrices (3, 3, N): the entries of
+    :func:`.stacked.inv3` (the same formulas, so the same values) without the other six."""
+    (a00, a01, a02), (a10, a11, a12), (a20, a21, a22) = a
+    r = 1.0 / (
+        a00 * (a11 * a22 - a12 * a21)
+        + a01 * (a12 * a20 - a10 * a22)
+        + a02 * (a10 * a21 - a11 * a20)
+    )
+    return np.array(
+        [(a01 * a12 - a02 * a11) * r, (a02 * a10 - a00 * a12) * r, (a00 * a11 - a01 * a10) * r]
+    )
 
 
 def _blocks(c: np.ndarray, theta: np.ndarray):

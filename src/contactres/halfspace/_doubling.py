@@ -58,13 +58,15 @@ def _retire(waited: int, finished: int, active: int) -> bool:
 class _Finish:
     """Which points of a doubling loop are still iterated, and when finished ones leave.
 
-    Converged points are recorded at once but dropped from the work arrays only in batches
-    (:func:`_retire`): a few points converge in every step, and gathering the stacks each time
-    cost about a fifth of a step. A recorded point iterates on unused for a step or two; its
-    arithmetic is elementwise, so the others' values do not change.
+    Converged points are recorded at once but, if ``batched``, dropped from the work arrays
+    only in batches (:func:`_retire`): a few points converge in every step, and gathering the
+    general step's four stacks each time cost about a fifth of a step. A recorded point
+    iterates on unused for a step or two; its arithmetic is elementwise, so the others' values
+    do not change.
     """
 
-    def __init__(self, n: int, may_stall) -> None:
+    def __init__(self, n: int, may_stall, batched: bool = True) -> None:
+        self.batched = batched  # else finished points leave in the step they finish
         self.active = np.arange(n)  # original index of every work column
         self.done = np.zeros(n, dtype=bool)  # converged (by original index)
         self.may_stall = may_stall
@@ -89,7 +91,9 @@ class _Finish:
         """Work columns to keep if the recorded ones leave now (then they are gone), else
         None."""
         m = self.active.size
-        if self.since < 0 or not _retire(it - self.since, int(np.count_nonzero(self.fin)), m):
+        if self.since < 0:
+            return None
+        if self.batched and not _retire(it - self.since, int(np.count_nonzero(self.fin)), m):
             return None
         keep = np.flatnonzero(~self.fin)
         self.active = self.active[keep]
@@ -264,7 +268,9 @@ def _cyclic_reduction_mirror(A0, a1, may_stall):
     st[10:14] = st[6:10]
     st[14:16] = 0.0
     h = st[10:16].copy()
-    pts = _Finish(n, may_stall)
+    # Its 16 rows are gathered in one call, cheaper than the steps a finished point would
+    # iterate on: no batching.
+    pts = _Finish(n, may_stall, batched=False)
     for it in range(_CR_MAXITER):
         m = pts.active.size
         st = pool.view(cur, m)
