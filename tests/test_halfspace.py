@@ -449,3 +449,79 @@ def test_stacked_product_matches_einsum_for_views_and_mixed_types():
         out, tmp = np.empty_like(a), np.empty_like(a)
         assert mm(x, y, out=out, tmp=tmp) is out
         np.testing.assert_allclose(out, ref, rtol=1e-14, atol=1e-14)
+
+
+@pytest.mark.parametrize("face", [(0, 0, 1), (1, 1, 1)])
+def test_doubling_batched_retirement_changes_no_bit(monkeypatch, face):
+    # The doubling loops drop finished points from their work arrays in batches (a finished
+    # point may iterate on unused for a step or two); dropping every point in the step it
+    # finishes (the plain algorithm, forced here) must give the same kernel bit for bit: lossy,
+    # and lossless with propagating points that are given up after _STALL_ITER steps.
+    from contactres.halfspace import _doubling as doubling
+
+    m = CU.rotated(face)
+    k = np.geomspace(0.05, 20, 25)[:, None]
+    th = np.linspace(0, np.pi, 11)[None, :] + 0.05
+    cases = [(m.with_loss(0.02), k), (m, k), (m, k * (1 + 0.1j))]
+    batched = [dynamic_kernel(mm_, kk, th) for mm_, kk in cases]
+    waited = []
+    plain = doubling._retire
+
+    def spy(waited_steps, finished, active):
+        waited.append(waited_steps)
+        return plain(waited_steps, finished, active)
+
+    monkeypatch.setattr(doubling, "_retire", spy)
+    for (mm_, kk), g in zip(cases, batched, strict=True):
+        assert np.array_equal(dynamic_kernel(mm_, kk, th), g)
+    # The general step batches (exercised here); the mirror-plane step drops at once.
+    assert max(waited, default=0) >= 1 if face == (1, 1, 1) else not waited
+    monkeypatch.setattr(doubling, "_retire", lambda waited_steps, finished, active: True)
+    for (mm_, kk), g in zip(cases, batched, strict=True):
+        assert np.array_equal(dynamic_kernel(mm_, kk, th), g)
+
+
+def test_surface_compliance_pair_gives_both_directions():
+    # θ + π from the reversed pencil of the same cyclic reduction: the 6x6 Stroh eigen-solution
+    # at θ + π (brute force) and the separate evaluation there agree with it; θ itself is the
+    # plain evaluation bit for bit; a mirror-plane face gives M H M, M = diag(1, 1, −1).
+    from contactres.halfspace import scaled_tensor, surface_compliance, surface_compliance_pair
+
+    th = np.linspace(0.0, 2 * np.pi, 9)[None, :] + 0.05
+    kappa = np.array([0.3, 0.8, 1.05, 2.0, 7.0])
+    si111 = Material.crystal("Si").rotated((1, 1, 1))
+    cases = [(_triclinic(loss=0.02), kappa), (si111.with_loss(0.01), kappa)]
+    cases += [
+        (si111, np.array([0.5, 0.9, 3.0]) * (1 + 0.05j)),
+        (si111, np.array([0.5, 0.9, 1.5, 3.0])),
+    ]
+    for m, k in cases:
+        assert not has_mirror_plane(m)
+        c, s = scaled_tensor(m), 1.0 / k[:, None] ** 2
+        H, H_pi = surface_compliance_pair(c, th, s)
+        assert np.array_equal(H, surface_compliance(c, th, s))
+        sep = surface_compliance(c, th + np.pi, s)
+        scale = np.max(np.abs(sep), axis=(-2, -1), keepdims=True)
+        assert np.max(np.abs(H_pi - sep) / scale) < 1e-10
+        if m.is_lossy:
+            for i, j in [(0, 0), (1, 3), (2, 5), (4, 8)]:
+                ref = -_stroh_eig_kernel(m.C, k[i], th[0, j] + np.pi)
+                assert abs(H_pi[i, j, 2, 2] - ref) < 1e-10 * abs(ref)
+    c = scaled_tensor(CU.rotated((0, 1, 1)).with_loss(0.02))
+    H, H_pi = surface_compliance_pair(c, th, 1.0 / kappa[:, None] ** 2)
+    flip = np.array([1.0, 1.0, -1.0])
+    np.testing.assert_array_equal(H_pi, H * flip[:, None] * flip[None, :])
+
+
+def test_inverse_last_column_is_that_of_inv3():
+    # The normal compliance needs one column of (Rᵀ(I − G) + iβW(I + G))⁻¹; the shortcut uses
+    # inv3's formulas, so the same values bit for bit (and the inverse's, to round-off).
+    from contactres.halfspace import _compliance as compliance
+    from contactres.halfspace import inv3
+
+    rng = np.random.default_rng(7)
+    a = rng.normal(size=(3, 3, 50)) + 1j * rng.normal(size=(3, 3, 50))
+    col = compliance._inverse_last_column(a)
+    assert np.array_equal(col, inv3(a)[:, 2])
+    ref = np.linalg.inv(np.moveaxis(a, -1, 0))[:, :, 2].T
+    assert np.max(np.abs(col - ref)) < 1e-12 * np.max(np.abs(ref))

@@ -297,6 +297,7 @@ PUBLIC = {
         "stacked_normal_compliance",
         "static_kernel",
         "surface_compliance",
+        "surface_compliance_pair",
         "transpose",
     ],
     "layered": [

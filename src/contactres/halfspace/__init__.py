@@ -56,6 +56,7 @@ from ._compliance import (
     shear_reference,
     stacked_normal_compliance,
     surface_compliance,
+    surface_compliance_pair,
 )
 from ._isotropic import isotropic_dynamic_kernel
 from ._kernels import dynamic_kernel, static_kernel
@@ -75,5 +76,6 @@ __all__ = [
     "stacked_normal_compliance",
     "static_kernel",
     "surface_compliance",
+    "surface_compliance_pair",
     "transpose",
 ]

@@ -35,6 +35,7 @@ __all__ = [
     "shear_reference",
     "stacked_normal_compliance",
     "surface_compliance",
+    "surface_compliance_pair",
 ]
 
 # Relative residual of the solvent above which another Möbius parameter β is tried, and the
@@ -140,6 +141,39 @@ def surface_compliance(c: np.ndarray, theta, s) -> np.ndarray:
     return np.ascontiguousarray(np.moveaxis(H, (0, 1), (-2, -1)))
 
 
+def surface_compliance_pair(c: np.ndarray, theta, s) -> tuple[np.ndarray, np.ndarray]:
+    """:func:`surface_compliance` at the directions θ and θ + π from one cyclic reduction.
+
+    The pencil at θ + π is that at θ with R -> −R, i.e. with the outer coefficients of the
+    doubling swapped; its decaying solvent is the reversed pencil's minimal solvent, built from
+    the same iterates (:func:`._doubling.decaying_solvent` with ``dual``): a layer's downward
+    and upward waves (:func:`contactres.layered.layer_waves`) at about the cost of one
+    direction. H(θ + π) equals ``surface_compliance(c, theta + pi, s)`` to round-off (tested),
+    though not bit for bit (θ + π is not rounded, and the products are formed in the other
+    order).
+
+    Parameters
+    ----------
+    c : ndarray, shape (3, 3, 3, 3)
+        Stiffness tensor in the surface frame divided by the reference C44 (complex allowed).
+    theta : array_like
+        Direction of the surface wave vector, rad.
+    s : array_like
+        ρω²/(C44 η²) = 1/κ² (0 in statics; complex allowed).
+
+    Returns
+    -------
+    (H, H_pi) : tuple of ndarray
+        H at θ and at θ + π, each shaped ``broadcast(theta, s).shape + (3, 3)`` (paper 1,
+        Eqs. 12, 19).
+    """
+    H, H_pi = (
+        np.ascontiguousarray(np.moveaxis(h, (0, 1), (-2, -1)))
+        for h in _compliance(c, theta, s, normal_only=False, pair=True)
+    )
+    return H, H_pi
+
+
 def normal_compliance(c: np.ndarray, theta, s) -> np.ndarray:
     """Normal-normal entry H_33 of the dimensionless surface compliance.
 
@@ -222,35 +256,51 @@ def stacked_normal_compliance(c: np.ndarray, theta, s=0.0) -> np.ndarray:
     return H.reshape(m, k)
 
 
-def _compliance(c: np.ndarray, theta, s, normal_only: bool) -> np.ndarray:
-    """H as (3, 3, *shape), or only H_33 (shape) if ``normal_only``."""
+def _compliance(c: np.ndarray, theta, s, normal_only: bool, pair: bool = False):
+    """H as (3, 3, *shape), or only H_33 (shape) if ``normal_only``; with ``pair`` a (2, ...)
+    array: H at θ and at θ + π."""
     theta, s = np.broadcast_arrays(np.asarray(theta, dtype=float), np.asarray(s, dtype=complex))
     shape = theta.shape
     th = theta.ravel()
     sv = s.ravel()
     mirror = _has_mirror(c)
-    H = np.empty((th.size,) if normal_only else (3, 3, th.size), dtype=complex)
+    H = np.empty(
+        ((2,) if pair else ()) + ((th.size,) if normal_only else (3, 3, th.size)), dtype=complex
+    )
     # Work in cache-sized chunks: the algorithm is elementwise and memory-bound.
     for i in range(0, th.size, _CHUNK):
         sl = slice(i, i + _CHUNK)
-        H[..., sl] = _compliance_chunk(c, th[sl], sv[sl], mirror, normal_only)
+        H[..., sl] = _compliance_chunk(c, th[sl], sv[sl], mirror, normal_only, pair)
     return H.reshape(H.shape[:-1] + shape)
 
 
-def _compliance_chunk(c, th, sv, mirror: bool, normal_only: bool) -> np.ndarray:
+def _compliance_chunk(c, th, sv, mirror: bool, normal_only: bool, pair: bool = False):
     """H (3, 3, N), or H_33 (N), for flat arrays of directions ``th`` and inertia terms ``sv``;
-    ``mirror``: the solid has the mirror plane z -> −z (:func:`has_mirror_plane`)."""
+    ``mirror``: the solid has the mirror plane z -> −z (:func:`has_mirror_plane`); ``pair``:
+    H at θ and θ + π stacked (2, ...)."""
     Q, R, W = _blocks(c, th)
     lossless = not np.iscomplexobj(c) or not np.any(c.imag)
-    return _pencil_compliance(Q, R, W, th, sv, mirror, normal_only, lossless)
+    if not pair:
+        return _pencil_compliance(Q, R, W, th, sv, mirror, normal_only, lossless)
+    if mirror:
+        # z -> −z maps the pencil at θ + π onto that at θ: H(θ + π) = M H(θ) M, M = diag(1, 1, −1).
+        H = _pencil_compliance(Q, R, W, th, sv, mirror, normal_only, lossless)
+        Hpi = H.copy()
+        if not normal_only:
+            Hpi[:2, 2] *= -1
+            Hpi[2, :2] *= -1
+        return np.stack([H, Hpi])
+    return np.stack(_pencil_compliance(Q, R, W, th, sv, mirror, normal_only, lossless, True))
 
 
-def _pencil_compliance(Q, R, W, th, sv, mirror, normal_only, lossless):
-    """H (3, 3, N), or H_33 (N), of the pencil blocks Q, R, W (3, 3, N) of flat points."""
+def _pencil_compliance(Q, R, W, th, sv, mirror, normal_only, lossless, pair=False):
+    """H (3, 3, N), or H_33 (N), of the pencil blocks Q, R, W (3, 3, N) of flat points; with
+    ``pair`` (not ``mirror``) the tuple (H, H at θ + π), the pencil with R -> −R."""
     # Balance the pencil by the congruence D (.) D, D = diag(W)^(-1/2): W gets a unit diagonal.
     # Then Z = D Z~ D^-1, the identity in Q − sI becomes D², and H = D H~ D.
     d = 1.0 / np.sqrt(np.real(np.diagonal(W, axis1=0, axis2=1).T))
     DD = d[:, None] * d[None, :]
+    given = Q, R, W
     Q, R, W = Q * DD, R * DD, W * DD
     # Scale of the vertical wave numbers: |p| ~ 1 in statics, ~ sqrt(|s|) at high frequency.
     beta = np.sqrt(1.0 + np.abs(sv))
@@ -259,7 +309,13 @@ def _pencil_compliance(Q, R, W, th, sv, mirror, normal_only, lossless):
     # (propagating partial waves): no decaying/growing split, so the doubling cannot converge.
     # Those points take the eigen-decomposition with the limiting-absorption choice below.
     real_s = (sv.imag == 0) if lossless else np.zeros(sv.shape, dtype=bool)
-    G, ok, resid = decaying_solvent(Q, R, W, s3, beta, may_stall=real_s, mirror=mirror)
+    if pair:
+        G, ok, resid, Gpi, resid_pi = decaying_solvent(
+            Q, R, W, s3, beta, may_stall=real_s, dual=True
+        )
+        ok_pi, beta_pi = ok & (resid_pi <= _RESID_TOL), beta.copy()
+    else:
+        G, ok, resid = decaying_solvent(Q, R, W, s3, beta, may_stall=real_s, mirror=mirror)
     propagating = ~ok & real_s
     # Cyclic reduction loses accuracy (or breaks down) where the squared Möbius images of a
     # decaying and a growing root nearly coincide; another β moves those points elsewhere.
@@ -282,12 +338,31 @@ def _pencil_compliance(Q, R, W, th, sv, mirror, normal_only, lossless):
             "no decaying/growing split of the partial waves at theta="
             f"{th[bad]:.6g} rad, 1/kappa^2={sv[bad]:.6g} (cyclic reduction did not converge)"
         )
+    H = _solvent_compliance(G, Q, R, W, s3, beta, th, sv, propagating, normal_only)
+    if not pair:
+        return H * DD[2, 2] if normal_only else H * DD
+    Hpi = _solvent_compliance(Gpi, Q, -R, W, s3, beta_pi, th, sv, propagating, normal_only)
+    H, Hpi = (H * DD[2, 2], Hpi * DD[2, 2]) if normal_only else (H * DD, Hpi * DD)
+    # Points whose θ + π solvent is not accurate enough take the separate evaluation (with its
+    # own retries of β): rare.
+    j = np.flatnonzero(~ok_pi & ~propagating)
+    if j.size:
+        Qj, Rj, Wj = (x[..., j] for x in given)
+        Hpi[..., j] = _pencil_compliance(
+            Qj, -Rj, Wj, th[j] + np.pi, sv[j], False, normal_only, lossless
+        )
+    return H, Hpi
+
+
+def _solvent_compliance(G, Q, R, W, s3, beta, th, sv, propagating, normal_only):
+    """H (balanced) from the Möbius image G of the decaying solvent; the eigen-decomposition
+    of :mod:`._outgoing` at the ``propagating`` points."""
     G[..., propagating] = 0.0
     eye = np.eye(3)[..., None]
     # Z = iβ (I + G)(I − G)⁻¹, so Rᵀ + W Z = [Rᵀ (I − G) + iβ W (I + G)] (I − G)⁻¹.
     M = mm(transpose(R), eye - G) + 1j * beta * mm(W, eye + G)
     if normal_only:
-        H = -1j * np.sum((eye - G)[2] * inv3(M)[:, 2], axis=0)
+        H = -1j * np.sum((eye - G)[2] * _inverse_last_column(M), axis=0)
     else:
         H = -1j * mm(eye - G, inv3(M))
     if np.any(propagating):
@@ -296,7 +371,21 @@ def _pencil_compliance(Q, R, W, th, sv, mirror, normal_only, lossless):
             Q[..., i].real, R[..., i].real, W[..., i].real, s3[:, i].real, th[i], sv[i]
         )
         H[..., i] = Hp[2, 2] if normal_only else Hp
-    return H * DD[2, 2] if normal_only else H * DD
+    return H
+
+
+def _inverse_last_column(a: np.ndarray) -> np.ndarray:
+    """Last column (3, N) of the inverse of stacked 3x3 matrices (3, 3, N): the entries of
+    :func:`.stacked.inv3` (the same formulas, so the same values) without the other six."""
+    (a00, a01, a02), (a10, a11, a12), (a20, a21, a22) = a
+    r = 1.0 / (
+        a00 * (a11 * a22 - a12 * a21)
+        + a01 * (a12 * a20 - a10 * a22)
+        + a02 * (a10 * a21 - a11 * a20)
+    )
+    return np.array(
+        [(a01 * a12 - a02 * a11) * r, (a02 * a10 - a00 * a12) * r, (a00 * a11 - a01 * a10) * r]
+    )
 
 
 def _blocks(c: np.ndarray, theta: np.ndarray):

@@ -42,9 +42,67 @@ _CR_MAXITER = 40
 # (nearly) real vertical wave numbers; it goes to the eigen-decomposition instead.
 _STALL_ITER = 12
 _STALL_TOL = 1e-3
+# Recorded (converged or given-up) points leave the work arrays once the oldest of them has
+# waited this many steps, or once they are this fraction of the active points.
+_RETIRE_WAIT = 2
+_RETIRE_SHARE = 0.25
 
 
-def decaying_solvent(Q, R, W, s, beta, may_stall=None, mirror=False):
+def _retire(waited: int, finished: int, active: int) -> bool:
+    """Whether to drop the recorded points from the work arrays now: all of them are finished,
+    the oldest has iterated ``_RETIRE_WAIT`` steps past its result (its iterates only shrink,
+    towards underflow), or they are ``_RETIRE_SHARE`` of the ``active`` points."""
+    return finished == active or waited >= _RETIRE_WAIT or finished >= _RETIRE_SHARE * active
+
+
+class _Finish:
+    """Which points of a doubling loop are still iterated, and when finished ones leave.
+
+    Converged points are recorded at once but, if ``batched``, dropped from the work arrays
+    only in batches (:func:`_retire`): a few points converge in every step, and gathering the
+    general step's four stacks each time cost about a fifth of a step. A recorded point
+    iterates on unused for a step or two; its arithmetic is elementwise, so the others' values
+    do not change.
+    """
+
+    def __init__(self, n: int, may_stall, batched: bool = True) -> None:
+        self.batched = batched  # else finished points leave in the step they finish
+        self.active = np.arange(n)  # original index of every work column
+        self.done = np.zeros(n, dtype=bool)  # converged (by original index)
+        self.may_stall = may_stall
+        self.fin = np.zeros(n, dtype=bool)  # recorded (by work column)
+        self.since = -1  # step of the oldest recorded point still in the work arrays
+
+    def newly_converged(self, it: int, upd, scale) -> np.ndarray:
+        """Work columns that converge in step ``it`` (update ``upd`` against ``scale``)."""
+        new = (upd <= _CR_TOL * scale) & np.isfinite(scale) & ~self.fin  # NaN: not converged
+        if np.any(new):
+            self.done[self.active[new]] = True
+            self.fin |= new
+            self.since = it if self.since < 0 else self.since
+        if self.may_stall is not None and it + 1 == _STALL_ITER:
+            stall = self.may_stall[self.active] & ~(upd <= _STALL_TOL * scale) & ~self.fin
+            if np.any(stall):  # given up: they leave now
+                self.fin |= stall
+                self.since = it - _RETIRE_WAIT
+        return new
+
+    def keep(self, it: int) -> np.ndarray | None:
+        """Work columns to keep if the recorded ones leave now (then they are gone), else
+        None."""
+        m = self.active.size
+        if self.since < 0:
+            return None
+        if self.batched and not _retire(it - self.since, int(np.count_nonzero(self.fin)), m):
+            return None
+        keep = np.flatnonzero(~self.fin)
+        self.active = self.active[keep]
+        self.fin = np.zeros(keep.size, dtype=bool)
+        self.since = -1
+        return keep
+
+
+def decaying_solvent(Q, R, W, s, beta, may_stall=None, mirror=False, dual=False):
     """Möbius image of the decaying solvent of the balanced Christoffel pencil (paper 1,
     Eqs. 10-12).
 
@@ -63,6 +121,9 @@ def decaying_solvent(Q, R, W, s, beta, may_stall=None, mirror=False):
         convergence after ``_STALL_ITER`` steps they are given up (roots on the unit circle).
     mirror : bool
         The surface is a mirror plane of the solid: take the block-structured step.
+    dual : bool
+        Also return the solvent of the direction θ + π (R -> −R), from the same iterates
+        (general step only; a point then stops when both have converged).
 
     Returns
     -------
@@ -72,6 +133,9 @@ def decaying_solvent(Q, R, W, s, beta, may_stall=None, mirror=False):
         Converged points (G is meaningless elsewhere).
     resid : ndarray, shape (N,)
         Relative residual (backward error) of G; inf where it is not finite.
+    G2, resid2 : ndarray
+        With ``dual`` (not ``mirror``): the same for θ + π, the pencil with A0 and A2
+        swapped (converged where ``done``).
     """
     Qs = Q.astype(complex)
     Qs[[0, 1, 2], [0, 1, 2]] -= s
@@ -82,29 +146,69 @@ def decaying_solvent(Q, R, W, s, beta, may_stall=None, mirror=False):
     a2 = Qs - bW - ibK
     if mirror:
         A1h, done = _cyclic_reduction_mirror(A0, a1, may_stall)
+        A1h2 = None
     else:
-        A1h, done = _cyclic_reduction(A0, a1, a2, may_stall)
+        A1h, A1h2, done = _cyclic_reduction(A0, a1, a2, may_stall, dual)
+    G, resid = _solvent(A1h, A0, a1, a2)
+    if A1h2 is None:
+        return G, done, resid
+    # The reversed pencil is that of the direction θ + π (R -> −R swaps A0 and A2).
+    G2, resid2 = _solvent(A1h2, a2, a1, A0)
+    return G, done, resid, G2, resid2
+
+
+def _solvent(A1h, A0, a1, a2):
+    """The minimal solvent G = −Â1⁻¹ A0 of A0 + A1 G + A2 G² = 0 and its relative residual
+    (backward error; inf where it is not finite)."""
     G = -mm(inv3(A1h), A0)
-    # Backward error of the solvent: the relative residual of A0 + A1 G + A2 G² = 0.
     res = A0 + mm(a1, G) + mm(a2, mm(G, G))
     g = maxabs(G)
     resid = maxabs(res) / (maxabs(A0) + maxabs(a1) * g + maxabs(a2) * g**2)
     resid[~np.isfinite(resid)] = np.inf
-    return G, done, resid
+    return G, resid
 
 
-def _cyclic_reduction(A0, a1, a2, may_stall):
-    """Cyclic reduction for the general pencil: the limit Â1 (3, 3, N) and a converged flag."""
+class _Slots:
+    """Work buffers for the doubling loops, each holding ``rows`` values for up to n points.
+
+    :meth:`view` gives slot i's first m points as a C-contiguous (*shape, m) array, so that
+    dropping finished points (m shrinks) needs no fresh arrays: a new (3, 3, N) stack in every
+    step cost more than its arithmetic (the heap grew and shrank, and every new page faulted).
+    """
+
+    def __init__(self, slots: int, shape: tuple[int, ...], n: int, dtype=complex) -> None:
+        self.shape = shape
+        self.rows = int(np.prod(shape))
+        self.buf = np.empty((slots, self.rows * n), dtype=dtype)
+
+    def view(self, i: int, m: int) -> np.ndarray:
+        return self.buf[i, : self.rows * m].reshape(*self.shape, m)
+
+
+def _cyclic_reduction(A0, a1, a2, may_stall, dual=False):
+    """Cyclic reduction for the general pencil: the limit Â1 (3, 3, N) and a converged flag;
+    with ``dual`` also the limit Â1' of the reversed pencil A2 + A1 w + A0 w² (its iterates
+    are those of A0, A1, A2 with A0 and A2 swapped: Â1' accumulates A0 K A2 where Â1 takes
+    A2 K A0), a point then stopping when both updates are small."""
     A1h = a1.copy()
+    A1h2 = a1.copy() if dual else None
     n = A0.shape[-1]
-    # Work arrays, reused in place: fresh (3, 3, N) temporaries in every step cost more than
-    # the arithmetic (allocation and cache misses).
-    a0, a1, a2, a1h = A0.copy(), a1.copy(), a2.copy(), A1h.copy()
-    k, ka0, ka2, a0ka2, nxt, tmp = (np.empty_like(A0) for _ in range(6))
-    re = np.empty(A0.shape, dtype=float)
-    done = np.zeros(n, dtype=bool)
-    active = np.arange(n)
+    # Slots hold A0, A1, A2, Â1 (and Â1') and one free stack; ``at`` says which is which
+    # (the free one takes each new A0, A2 and each gathered stack, and the old one is freed).
+    start = (A0, a1, a2, a1, a1) if dual else (A0, a1, a2, a1)
+    pool = _Slots(len(start) + 1, (3, 3), n)
+    for i, x in enumerate(start):
+        pool.view(i, n)[...] = x
+    at = list(range(len(start)))
+    free = len(start)
+    work = _Slots(5, (3, 3), n)
+    mag = _Slots(1, (3, 3), n, dtype=float)
+    pts = _Finish(n, may_stall)
     for it in range(_CR_MAXITER):
+        m = pts.active.size
+        a0, a1, a2, a1h, *rest = (pool.view(i, m) for i in at)
+        k, ka0, ka2, a0ka2, tmp = (work.view(i, m) for i in range(5))
+        re = mag.view(0, m)
         inv3(a1, out=k)
         mm(k, a0, out=ka0, tmp=tmp)
         mm(k, a2, out=ka2, tmp=tmp)
@@ -117,26 +221,29 @@ def _cyclic_reduction(A0, a1, a2, may_stall):
         a1 -= a2ka0
         # (−A0 K A0 and −A2 K A2 by the recursion; both signs are dropped, as they cancel in
         # every later update: A0 and A2 enter them in pairs.)
-        a0, nxt = mm(a0, ka0, out=nxt, tmp=tmp), a0
-        a2, nxt = mm(a2, ka2, out=nxt, tmp=tmp), a2
+        mm(a0, ka0, out=pool.view(free, m), tmp=tmp)
+        at[0], free = free, at[0]
+        mm(a2, ka2, out=pool.view(free, m), tmp=tmp)
+        at[2], free = free, at[2]
         # Quadratic convergence: after an update of relative size τ the rest is ~τ².
         upd = np.abs(a0ka2, out=re).max(axis=(0, 1))
         scale = np.abs(a1h, out=re).max(axis=(0, 1))
-        conv = (upd <= _CR_TOL * scale) & np.isfinite(scale)  # NaN: not converged
-        drop = conv.copy()
-        if may_stall is not None and it + 1 == _STALL_ITER:
-            drop |= may_stall[active] & ~(upd <= _STALL_TOL * scale)
-        if np.any(drop):
-            A1h[:, :, active[conv]] = a1h[:, :, conv]
-            done[active[conv]] = True
-            keep = ~drop
-            active = active[keep]
-            a0, a1, a2, a1h = a0[:, :, keep], a1[:, :, keep], a2[:, :, keep], a1h[:, :, keep]
-            k, ka0, ka2, a0ka2, nxt, tmp = (np.empty_like(a0) for _ in range(6))
-            re = np.empty(a0.shape, dtype=float)
-        if active.size == 0:
+        if A1h2 is not None:
+            rest[0] -= a0ka2
+            np.minimum(scale, np.abs(rest[0], out=re).max(axis=(0, 1)), out=scale)
+        new = pts.newly_converged(it, upd, scale)
+        if np.any(new):
+            A1h[:, :, pts.active[new]] = a1h[:, :, new]
+            if A1h2 is not None:
+                A1h2[:, :, pts.active[new]] = rest[0][:, :, new]
+        keep = pts.keep(it)
+        if keep is not None:
+            for j, i in enumerate(at):
+                np.take(pool.view(i, m), keep, axis=-1, out=pool.view(free, keep.size), mode="clip")
+                at[j], free = free, i
+        if pts.active.size == 0:
             break
-    return A1h, done
+    return A1h, A1h2, pts.done
 
 
 def _cyclic_reduction_mirror(A0, a1, may_stall):
@@ -152,17 +259,21 @@ def _cyclic_reduction_mirror(A0, a1, may_stall):
     n = A0.shape[-1]
     # Rows: p11 p12 p22 q1 q2 r | s11 s12 s22 t | h11 h12 h22 h33 h13 h23 (Â1, upper triangle;
     # its (3, α) entries are −(α, 3)).
-    st = np.empty((16, n), dtype=complex)
+    pool = _Slots(2, (16,), n)  # the iterate and the next one (see _cyclic_reduction)
+    cur = 0
+    st = pool.view(cur, n)
     st[0], st[1], st[2] = A0[0, 0], A0[0, 1], A0[1, 1]
     st[3], st[4], st[5] = A0[0, 2], A0[1, 2], A0[2, 2]
     st[6], st[7], st[8], st[9] = a1[0, 0], a1[0, 1], a1[1, 1], a1[2, 2]
     st[10:14] = st[6:10]
     st[14:16] = 0.0
-    out = np.empty((16, n), dtype=complex)
     h = st[10:16].copy()
-    done = np.zeros(n, dtype=bool)
-    active = np.arange(n)
+    # Its 16 rows are gathered in one call, cheaper than the steps a finished point would
+    # iterate on: no batching.
+    pts = _Finish(n, may_stall, batched=False)
     for it in range(_CR_MAXITER):
+        m = pts.active.size
+        st = pool.view(cur, m)
         p11, p12, p22, q1, q2, r, s11, s12, s22, t = st[:10]
         ide = 1.0 / (s11 * s22 - s12 * s12)
         t11, t12, t22 = s22 * ide, -s12 * ide, s11 * ide
@@ -180,7 +291,7 @@ def _cyclic_reduction_mirror(A0, a1, may_stall):
         v11, v12 = pt11 * q1 + pt12 * q2, pt21 * q1 + pt22 * q2
         v21, v22 = ur * q1, ur * q2
         w1, w2 = q1 * tq1 + q2 * tq2, ur * r
-        upd = np.empty((6, active.size), dtype=complex)
+        upd = np.empty((6, m), dtype=complex)
         # A2 K A0 = (A0 K A2)ᵀ: blocks P T P − u q qᵀ, ±(P T q − u r q), u r² − qᵀ T q.
         np.subtract(e11, f11, out=upd[0])
         np.subtract(e12, f12, out=upd[1])
@@ -188,7 +299,8 @@ def _cyclic_reduction_mirror(A0, a1, may_stall):
         np.subtract(w2, w1, out=upd[3])
         np.subtract(v11, v21, out=upd[4])
         np.subtract(v12, v22, out=upd[5])
-        nxt = out[:, : active.size]
+        cur = 1 - cur
+        nxt = pool.view(cur, m)
         np.add(e11, f11, out=nxt[0])
         np.add(e12, f12, out=nxt[1])
         np.add(e22, f22, out=nxt[2])
@@ -197,24 +309,19 @@ def _cyclic_reduction_mirror(A0, a1, may_stall):
         np.add(w1, w2, out=nxt[5])
         np.subtract(st[6:10], 2.0 * upd[:4], out=nxt[6:10])
         np.subtract(st[10:16], upd, out=nxt[10:16])
-        st, out = nxt, st
+        st = nxt
         # Quadratic convergence: after an update of relative size τ the rest is ~τ².
         ma = np.abs(upd).max(axis=0)
         scale = np.abs(st[10:16]).max(axis=0)
-        conv = (ma <= _CR_TOL * scale) & np.isfinite(scale)  # NaN: not converged
-        drop = conv.copy()
-        if may_stall is not None and it + 1 == _STALL_ITER:
-            drop |= may_stall[active] & ~(ma <= _STALL_TOL * scale)
-        if np.any(drop):
-            fin = active[conv]
-            h[:, fin] = st[10:16, conv]
-            done[fin] = True
-            keep = ~drop
-            active = active[keep]
-            st = np.ascontiguousarray(st[:, keep])
-            out = np.empty_like(st)
-        if active.size == 0:
+        new = pts.newly_converged(it, ma, scale)
+        if np.any(new):
+            h[:, pts.active[new]] = st[10:16, new]
+        keep = pts.keep(it)
+        if keep is not None:
+            np.take(st, keep, axis=-1, out=pool.view(1 - cur, keep.size), mode="clip")
+            cur = 1 - cur
+        if pts.active.size == 0:
             break
     h11, h12, h22, h33, h13, h23 = h
     A1h = np.array([[h11, h12, h13], [h12, h22, h23], [-h13, -h23, h33]])
-    return A1h, done
+    return A1h, pts.done

@@ -73,7 +73,14 @@ import math
 import numpy as np
 
 from ..errors import ContactresInputError
-from ..halfspace import inv3, mm, shear_reference, surface_compliance, transpose
+from ..halfspace import (
+    inv3,
+    mm,
+    shear_reference,
+    surface_compliance,
+    surface_compliance_pair,
+    transpose,
+)
 from ..materials import Material, voigt_to_tensor
 from ._expm import expm3, expm_isotropic
 from ._stack import LayeredMaterial, material_at
@@ -229,7 +236,6 @@ def layer_waves(c, th, s) -> tuple[np.ndarray, bool]:
         th = np.asarray(th, dtype=float)
         D_d, A_d = _isotropic_impedance(moduli[0], moduli[1], th, s, exponent=True)
         return np.stack([D_d, -_flip(D_d), A_d, _flip(A_d)]), True
-    n = th.size
     R, W = _rw_blocks(c, th)
     Wi = inv3(np.broadcast_to(W, R.shape).copy())
     Rt = transpose(R)
@@ -243,9 +249,10 @@ def layer_waves(c, th, s) -> tuple[np.ndarray, bool]:
         A_d = 1j * mm(Wi, -1j * D_d - Rt)
         A_u = _flip(A_d)
     else:
-        both = _halfspace(c, np.concatenate([th, th + np.pi]), np.concatenate([s, s]))
-        D_d = inv3(np.ascontiguousarray(both[..., :n]))
-        H_pi_inv = inv3(np.ascontiguousarray(both[..., n:]))
+        # Both directions from one cyclic reduction (the pencil at θ + π is the reversed one).
+        H, H_pi = surface_compliance_pair(c, th, s)
+        D_d = inv3(np.ascontiguousarray(np.moveaxis(H, (-2, -1), (0, 1))))
+        H_pi_inv = inv3(np.ascontiguousarray(np.moveaxis(H_pi, (-2, -1), (0, 1))))
         # Z = W⁻¹(−i D − Rᵀ) at θ, and at θ + π (where R -> −R): the decaying solvents.
         A_d = 1j * mm(Wi, -1j * D_d - Rt)
         A_u = 1j * mm(Wi, -1j * H_pi_inv + Rt)
