@@ -137,6 +137,18 @@ def test_insensitive_flag_where_the_sensitivity_is_below_the_line():
         assert np.array_equal(weak[clear], s[clear] < MIN_SENSITIVITY)
 
 
+def test_a_damped_mode_at_its_free_root_is_flagged_and_left_out():
+    # A pixel of the forward model at k* = 0.277 N/m (κ = 0.0277 at r = 0.718) with 1e-4
+    # frequency noise and measured Q's (a reviewer's probe of 20 000 such pixels): mode 2's
+    # Re β lands 5.4e-7 above its free root, where its κ is the damping's alone (κ ≈ 5.5 + 27i).
+    # It must be flagged and left out of k*; a closed-form slope alone missed it (k* = 31 N/m).
+    f = np.array([[100500.38836404978, 626609.2891110958, 1754939.2675117375]])
+    q = np.array([[238.40215019817356, 22.02922002056324, 155.1198631084366]])
+    res = invert_contact_resonance(GLOBAL, f, 0.718390828771496, q_factors=q)
+    assert res.flags_modes[0, 1] & FLAG_INSENSITIVE
+    assert abs(res.k_star[0] / 0.277 - 1.0) < 0.03
+
+
 def test_shapes_broadcast_over_pixels():
     f = contact_frequencies(GLOBAL, np.full((3, 4), 20.0), 0.9, modes=(1,))
     res = invert_contact_resonance(GLOBAL, f, np.full((3, 4), 0.9))

@@ -316,19 +316,33 @@ def kappa_on_branch(beta, mode, tip_position, g):
     return kappa, flags | np.where(ok, 0, FLAG_NOT_POSITIVE)
 
 
+#: Relative step of the central difference in β, and the relative half-width of the band about
+#: a free root in which a mode is flagged insensitive whatever its slope.
+_EDGE = 1e-6
+
+
 def _sensitivity_flags(beta, mode, r, g, kappa):
     """FLAG_INSENSITIVE where s = d ln f / d ln κ = 2κ/(β dκ/dβ) < MIN_SENSITIVITY.
 
     ``kappa`` is κ on mode ``mode``'s branch (NaN off it). A normal spring only: β dκ/dβ =
     κ L from the closed form's derivative (:func:`normal_log_slope`, one evaluation); with
-    lateral springs a central difference of κ on the branch (two more roots of det M).
+    lateral springs a central difference of κ on the branch (two more roots of det M). Either
+    way a mode with Re β within a relative ``_EDGE`` of a free root is flagged.
     """
     if _closed_form(g):  # L of κ/g_yy is L of κ: the tilt's constant factor drops out
         slope = np.real(kappa * normal_log_slope(beta, r))  # β dκ/dβ; NaN off the branch
         s = 2.0 * np.real(kappa) / slope
         weak = ~(np.abs(s) >= MIN_SENSITIVITY)  # NaN (at κ = 0 or ∞) counts as weak
-        return np.where(weak & np.isfinite(kappa), FLAG_INSENSITIVE, 0)
-    eps = 1e-6  # central difference: truncation ~eps², rounding ~1e-16/eps, both far below 1e-3
+        # A damped mode whose Re β sits within a relative 1e-6 of a free root carries no κ:
+        # what is left of κ there is the damping's (a pixel of k* = 0.28 N/m read 31 N/m from
+        # such a mode at Q = 22). The central difference flags it because a neighbour leaves
+        # the branch; the closed-form slope does not see that edge, so it is flagged here.
+        n0 = np.searchsorted(FREE_ROOTS, np.real(beta))
+        edge = (np.searchsorted(FREE_ROOTS, np.real(beta * (1.0 + _EDGE))) != n0) | (
+            np.searchsorted(FREE_ROOTS, np.real(beta * (1.0 - _EDGE))) != n0
+        )
+        return np.where((weak | edge) & np.isfinite(kappa), FLAG_INSENSITIVE, 0)
+    eps = _EDGE  # central difference: truncation ~eps², rounding ~1e-16/eps, both far below 1e-3
     k_hi, _ = kappa_on_branch(beta * (1.0 + eps), mode, r, g)
     k_lo, _ = kappa_on_branch(beta * (1.0 - eps), mode, r, g)
     slope = np.real(k_hi - k_lo) / (2.0 * eps)  # β dκ/dβ
