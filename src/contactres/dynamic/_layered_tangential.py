@@ -177,6 +177,10 @@ class _Plan:
     entry_m, entry_c : (nb, nb) the kernel harmonic (offset by max_order) and the component
         (2 α_a + β_b) of every entry
     phase : (nb, nb) i^{|n_a| − |n_b|}
+    m_values : the distinct kernel harmonics (offset by max_order) that the entries use
+    gathers : the index arrays that scatter the products of a set of live harmonics onto the
+        entries, made on first use for that set and kept here (with the plan, which lives as
+        long as its basis: not a module-level cache)
     """
 
     orders: np.ndarray | None
@@ -234,7 +238,9 @@ def _plan(basis) -> _Plan:
     )
 
 
-def _correction(basis, plan: _Plan, nodes, jp, harmonics, known=None):
+def _correction(
+    basis, plan: _Plan, nodes, jp, harmonics, known=None
+) -> tuple[np.ndarray, tuple | None]:
     """(ΔM (nb, nb), phases included; the Gram integrals for the next call) from one point's
     nodes (``_layered_nodes.CorrectionNodes``: s, ds, Δh, the end S with Δh(S), and the static
     shift h∞_film − h∞_ref) and the transforms H_a there (``jp``: own and grid parts of
