@@ -261,3 +261,23 @@ def test_tiny_wavenumbers_tend_to_the_static_limit(quartz):
     d = tangential_dcsf(quartz, ka)
     assert np.max(np.abs(d.real - 1)) < 1e-8
     assert np.max(np.abs(d.imag / ka / (d[0].imag / ka[0]) - 1)) < 1e-6
+
+
+def test_shifted_chebyshev_rows_are_the_polynomials_t_f_of_2w_minus_1():
+    # Row f, column k: the coefficient of w^k in T_f(2w − 1); against numpy's conversion of
+    # the Chebyshev basis on the domain [0, 1] (exact integers) and against cos(f arccos(2w − 1)).
+    from numpy.polynomial import Chebyshev, polynomial
+
+    from contactres.dynamic import _tangential_galerkin as galerkin
+
+    nf = 12
+    rows = galerkin._shifted_chebyshev(nf)
+    for f in range(nf):
+        numpy_row = Chebyshev.basis(f, domain=[0.0, 1.0]).convert(kind=polynomial.Polynomial).coef
+        assert np.array_equal(rows[f, : f + 1], numpy_row) and not np.any(rows[f, f + 1 :])
+    w = np.linspace(0.0, 1.0, 41)
+    values = rows @ w[None, :] ** np.arange(nf)[:, None]
+    exact = np.cos(np.arange(nf)[:, None] * np.arccos(2.0 * w - 1.0))
+    # the monomial form cancels: its rounding is ~1e-16 of the sum of |coefficients| (4e6 at f = 11)
+    bound = 1e-15 * np.abs(rows).sum(axis=1)[:, None]
+    assert np.all(np.abs(values - exact) < bound)
