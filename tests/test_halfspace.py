@@ -525,3 +525,35 @@ def test_inverse_last_column_is_that_of_inv3():
     assert np.array_equal(col, inv3(a)[:, 2])
     ref = np.linalg.inv(np.moveaxis(a, -1, 0))[:, :, 2].T
     assert np.max(np.abs(col - ref)) < 1e-12 * np.max(np.abs(ref))
+
+
+def test_surface_compliance_pair_falls_back_where_the_reversed_solvent_is_not_accurate(
+    monkeypatch,
+):
+    # With the residual bound at 0 no θ + π solvent of the shared iterates is accepted: every
+    # such point must take the separate evaluation, and give what it gives.
+    from contactres.halfspace import (
+        _compliance,
+        scaled_tensor,
+        surface_compliance,
+        surface_compliance_pair,
+    )
+
+    c = scaled_tensor(Material.crystal("Si").rotated((1, 1, 1)).with_loss(0.01))
+    th = np.linspace(0.0, 2 * np.pi, 7)[None, :] + 0.05
+    s = 1.0 / np.array([0.3, 0.8, 2.0])[:, None] ** 2
+    calls = []
+    separate = _compliance._pencil_compliance
+
+    def spy(*args, **kwargs):
+        calls.append(len(args) > 8 and args[8])
+        return separate(*args, **kwargs)
+
+    monkeypatch.setattr(_compliance, "_RESID_TOL", 0.0)
+    monkeypatch.setattr(_compliance, "_pencil_compliance", spy)
+    _, H_pi = surface_compliance_pair(c, th, s)
+    assert calls.count(False) >= 1  # the separate evaluation ran
+    monkeypatch.undo()
+    sep = surface_compliance(c, th + np.pi, s)
+    scale = np.max(np.abs(sep), axis=(-2, -1), keepdims=True)
+    assert np.max(np.abs(H_pi - sep) / scale) < 1e-12

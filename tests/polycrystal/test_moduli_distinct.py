@@ -68,6 +68,7 @@ def test_several_materials_in_one_stack_equal_each_alone():
     for row, m in zip(got, mats, strict=True):
         assert np.array_equal(row, indentation_moduli(m, R, rtol=1e-12))
     assert stacked_indentation_moduli(mats, np.zeros((0, 3, 3))).shape == (4, 0)
+    assert stacked_indentation_moduli([], R).shape == (0, 120)
 
 
 def test_lossy_or_isotropic_materials_in_a_stack_equal_each_alone():

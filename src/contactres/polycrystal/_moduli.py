@@ -145,10 +145,13 @@ def stacked_indentation_moduli(
     rows. One evaluation instead of one per material: the cost of a small stack is mostly
     per call (the θ doublings), so the 2k + 1 materials of a central-difference Jacobian
     (:mod:`contactres.polycrystal._ratio_fit`) cost about one call. Lossy or isotropic
-    materials (closed form) are evaluated one by one. Parameters and errors as
-    :func:`indentation_moduli`.
+    materials (closed form) are evaluated one by one; one lossy material among them makes
+    every row complex, as its own M is. Parameters and errors as :func:`indentation_moduli`;
+    no materials give an empty (0, N) array.
     """
     ms = [require_material(m) for m in materials]
+    if not ms:
+        return np.empty((0, _checked(rtol, surface_matrices)[1].shape[0]))
     if len(ms) < 2 or any(m.is_lossy or isotropic_constants(m) is not None for m in ms):
         return np.stack([indentation_moduli(m, surface_matrices, rtol) for m in ms])
     rtol, R = _checked(rtol, surface_matrices)
