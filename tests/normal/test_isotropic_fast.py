@@ -321,3 +321,17 @@ def test_array_path_agrees_with_the_textbook_forms(gamma):
         for name, values in expected.items():
             got = float(getattr(c, name)[i])
             assert _close(got, values[i], scales.get(name)), (name, force, got, values[i])
+
+
+def test_no_forces_give_empty_fields_of_their_shape():
+    # An empty array of forces is a valid array (numpy's elementwise rule): every field empty,
+    # of the forces' shape, for each model (hertz and jkr raised numpy's reduction error).
+    for shape in ((0,), (0, 3)):
+        F = np.zeros(shape)
+        for c in (
+            cr.hertz(70e9, 1e-6, F),
+            cr.jkr(70e9, 1e-6, F, 0.05),
+            cr.dmt(70e9, 1e-6, F, 0.05),
+        ):
+            for field in (c.contact_radius, c.depth, c.mean_pressure, c.stiffness, c.force):
+                assert np.shape(field) == shape

@@ -165,7 +165,7 @@ def _floats(*xs) -> tuple[float, ...] | None:
 
 def _zero_where_no_area(a: np.ndarray, *fields: np.ndarray) -> None:
     """Set ``fields`` to 0 where a > 0 fails (the general path's ``np.where(a > 0, x, 0)``)."""
-    if not a.min() > 0.0:
+    if not a.min(initial=np.inf) > 0.0:  # no forces (an empty array): nothing to zero
         none = ~(a > 0.0)
         for x in fields:
             x[none] = 0.0
