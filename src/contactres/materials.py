@@ -529,7 +529,16 @@ def require_material(m, *, lossless: bool = False) -> Material:
     """``m`` itself after checking that it is a :class:`Material` (and, with ``lossless``, that
     its constants are real); a ValueError naming what was passed otherwise."""
     if not isinstance(m, Material):
-        raise ContactresInputError(f"m must be a contactres.Material, got {type(m).__name__}")
+        hint = ""
+        if hasattr(m, "at"):
+            # A LayeredMaterial or a viscoelastic solid (issue 26): the functions of k a alone
+            # (dcsf, tangential_dcsf, ...) have no meaning for it; say which ones take it.
+            hint = (
+                " (a layered or frequency-dependent solid: its DCSF and dynamic stiffness depend"
+                " on the frequency and the radius, not on k a alone; contactres.dynamic."
+                "layered_dcsf and contactres.flat_punch_stiffness take it)"
+            )
+        raise ContactresInputError(f"m must be a contactres.Material, got {type(m).__name__}{hint}")
     if lossless and m.is_lossy:
         raise ContactresInputError(
             "pass the undamped material (real constants) and set the damping with loss= "

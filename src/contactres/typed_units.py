@@ -94,6 +94,13 @@ def to_si(text: str, unit: str, what: str) -> float:
         ) from None
     target = ureg.Quantity(1.0, unit) if unit else ureg.Quantity(1.0)
     if quantity.dimensionality != target.dimensionality:
+        if not f"{quantity.units:~P}":
+            # No unit at all: an expression pint evaluated ("2:3", "1/2"), not a plain number
+            # (has_unit sent it here); "is in , a quantity of another kind" would say nothing.
+            raise ContactresInputError(
+                f"{what} {shown!r} is not a number with a unit (e.g. 1.1 mm); give the value "
+                f"in {_units_in_words(unit)} or with its unit"
+            )
         raise ContactresInputError(
             f"{what} {shown!r} is in {quantity.units:~P}, a quantity of another kind than "
             f"{_units_in_words(unit)}"

@@ -97,6 +97,9 @@ def test_rum_invert_coated_round_trip_thick_and_out_of_range(tmp_path):
     assert r.exit_code == 0, r.output
     t = pd.read_csv(out)
     assert t["film_verdict"][0] == "too-thick"
+    # Labelled as contact's coating is (nm, µm, mm or m), not "1e+05 nm".
+    assert (t["coating"] == "PMMA 100 µm").all()
+    assert "film PMMA 100 µm on fused-silica: " in r.output
     assert t["M_film_Pa"][0] == pytest.approx(np.sqrt(k[0] ** 3 / (6 * R * P)), rel=1e-2)
 
 

@@ -49,6 +49,9 @@ def test_plain_numbers_are_not_units(text):
         ("1.1 mmm", "m", "unknown unit"),
         ("1,1 mm", "m", "decimal point"),
         ("3 mm", "", "plain number"),
+        # expressions pint reads as unitless numbers: no empty unit in the message
+        ("250e-9:3", "m", r"'250e-9:3' is not a number with a unit \(e.g. 1.1 mm\); give the"),
+        ("1/2", "m", "is not a number with a unit"),
     ],
 )
 def test_a_wrong_unit_is_one_line(text, unit, words):

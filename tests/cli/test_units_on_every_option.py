@@ -51,6 +51,15 @@ def test_a_coating_thickness_in_another_kind_of_unit_is_one_line():
     one_line_error(r, "--coating pmma:250mN", "another kind")
 
 
+def test_a_coating_with_a_second_colon_is_one_clear_line():
+    """pint reads '250e-9:3' as a number without a unit: the line says so (it used to read
+    "is in , a quantity of another kind than m")."""
+    r = run("contact", "--crystal", "Cu", "--radius", "1e-6", "--force", "1e-6",
+            "--coating", "pmma:250e-9:3")  # fmt: skip
+    one_line_error(r, "--coating pmma:250e-9:3", "is not a number with a unit")
+    assert "is in ," not in r.stderr
+
+
 @pytest.mark.parametrize(
     ("option", "si", "typed"),
     [

@@ -206,6 +206,18 @@ def test_layered_dcsf_is_paper_1s_exact_dcsf_on_a_homogeneous_solid():
         layered_dcsf(stack, A, 15e6)
 
 
+def test_the_curves_of_k_a_alone_refuse_a_layered_or_viscoelastic_solid_naming_the_route():
+    """Issue 26, point 3: a DCSF of a viscoelastic or layered solid is a function of the
+    frequency, not of k a alone; the k a functions say so and name the functions that take it."""
+    from contactres import dcsf, tangential_dcsf
+
+    for m in (viscoelastic.pmma(), LayeredMaterial(QUARTZ, [(PMMA, 0.2 * A)])):
+        for curve in (dcsf, tangential_dcsf):
+            with pytest.raises(ContactresInputError, match="not on k a alone") as info:
+                curve(m, 0.5)
+            assert "layered_dcsf" in str(info.value) and "\n" not in str(info.value)
+
+
 def test_bad_input():
     with pytest.raises(ContactresInputError, match="direction"):
         layered_punch_stiffness(QUARTZ, A, 1e6, direction="sideways")

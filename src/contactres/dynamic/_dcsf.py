@@ -128,7 +128,10 @@ def dcsf(
     ----------
     m : Material
         Undamped elastic constants in the surface frame (z = inward normal; for a crystal face
-        use ``Material.crystal("Cu").rotated((0, 0, 1))``). Density is not needed.
+        use ``Material.crystal("Cu").rotated((0, 0, 1))``). Density is not needed. A layered
+        or viscoelastic solid has no DCSF of k a alone (the film thickness and the frequency
+        dependence of the moduli set their own scales): :func:`contactres.dynamic.layered_dcsf`,
+        of the radius and the frequency.
     ka : float or array
         Normalised wave number k a >= 0 (a: contact radius), in the convention ``wavenumber``.
     model : str

@@ -95,6 +95,9 @@ def tangential_dcsf(
     ----------
     material : Material
         Undamped constants in the surface frame (z = inward normal), Pa; density not needed.
+        A layered or viscoelastic solid: :func:`contactres.dynamic.layered_dcsf` with
+        ``direction="tangential"``, a function of the radius and the frequency, not of k a
+        alone.
     ka : float or array
         Normalised wave number k a >= 0 (a: contact radius) in the convention ``wavenumber``.
     direction : float

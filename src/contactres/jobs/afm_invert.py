@@ -168,7 +168,7 @@ def coated_film(coating, substrate) -> tuple | None:
                 "the substrate (--substrate) is the solid under a coating: give --coating too"
             )
         return None
-    from ..layered import material_at  # here: a homogeneous sample needs none of these
+    from ..layered import material_at, thickness_text  # a homogeneous sample needs none
     from ..materials import Material, require_material
     from .contact import STATIC_FREQUENCY_HZ, parse_coating
 
@@ -183,7 +183,7 @@ def coated_film(coating, substrate) -> tuple | None:
         )
     substrate = require_material(substrate)
     ((material, h),) = layers
-    label = f"{getattr(material, 'name', None) or 'film'} {h * 1e9:.4g} nm"  # as contact's
+    label = f"{getattr(material, 'name', None) or 'film'} {thickness_text(h)}"  # as contact's
     if not isinstance(material, Material):  # viscoelastic: its storage constants, as contact's
         at = material_at(material, STATIC_FREQUENCY_HZ)
         material = Material(C=np.real(at.C), density=at.density, name=at.name, frame=at.frame)
