@@ -245,6 +245,24 @@ it replaces two thirds of them, saves little; what remains is spread as before (
 at three basis sizes, node assembly, Bessel functions and Gram products of ~460 nodes per
 point).
 
+Issue 26's twelfth pass: the spherical Bessel functions' continued fraction started at its
+truncation bound (~1e-20) where every argument lies below p_max − 1 (order 42 instead of 64 on
+the arc nodes; the same values to the bit), the correction nodes' real and complex Bessel
+functions put back run by run instead of by a column mask, a static point's real samples a
+group apart (a group holding it interpolated its dynamic points' waves afresh instead of
+slicing the shared panels'), the edge probes' waves interpolated once in y = ratio^(−2i), and a
+point's rows of the shared waves joined slice by slice (a gather by index put the nodes
+outermost, and the recursion ran on strided vectors); results moved by <= 1.7e-15 (normal
+and tangential curves), the homogeneous DCSF bit-identical. Instructions per curve
+(callgrind, one thread, the second call of a process less its first), main / this tree:
+homogeneous 65.4 M -> 64.3 M; 250 nm 215.1 M (3.29x) -> 194.5 M (3.02x, -9.5 %); 1 µm
+172.0 M (2.63x) -> 157.4 M (2.45x, -8.5 %). CPU with one BLAS thread, main / this tree
+alternating three times, best of 30 each (machine at load ~22 on 2 cores): homogeneous
+12.0-12.7 / 12.6-12.8 ms, 250 nm 40.8-41.1 ms (3.2x-3.4x) / 37.7-39.2 ms (2.95x-3.1x), 1 µm
+28.2-28.8 / 26.4-27.6 ms. The layered punch already runs under one BLAS thread (fourth
+pass): as shipped and one-thread lines agree within the machine's scatter. The 250 nm target
+(~185 M, 2.75x, for a CPU ratio clearly below 3x) is still missed by ~10 M.
+
 Run: ``.venv/bin/python benchmarks/bench_layered_dynamic.py`` (exit status 1 if a target is
 missed; a few minutes on a busy machine).
 """

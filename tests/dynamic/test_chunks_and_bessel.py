@@ -71,6 +71,22 @@ def test_spherical_bessel_recurrence_matches_scipy_half_integer_bessel(z):
         assert np.all(np.abs(got[p] - ref) <= bound), p
 
 
+@pytest.mark.parametrize("p_max", [3, 12, 34, 46])
+@pytest.mark.parametrize("imag", [0.0, 0.5, 3.0])
+def test_spherical_bessel_short_start_below_the_turning_point_matches_scipy(p_max, imag):
+    """Every argument below p_max − 1 (the own nodes and arc of the layered punch, the near
+    field of the exact model): the continued fraction then starts a few orders above p_max
+    (its truncation bound, not max(p_max, 1.3|z|) + 30); the highest orders, the first its
+    truncation would spoil, and arguments up to the bound's edge, against √(π/2z) J_{p+1/2}."""
+    x = np.linspace(0.05, 1.0, 97) * (p_max - 1.01)
+    z = x + 1j * imag * np.linspace(-1.0, 1.0, x.size) if imag else x
+    got = spherical_bessel(p_max, z)
+    for p in range(p_max + 1):
+        ref = np.sqrt(np.pi / (2 * z)) * special.jv(p + 0.5, z)
+        bound = 1e-13 * np.abs(ref) + 1e-14 * np.max(np.abs(ref))
+        assert np.all(np.abs(got[p] - ref) <= bound), p
+
+
 def test_truncated_struve_series_equals_the_full_series():
     """The series is cut where its terms fall below 1e-17 of the largest: the full 60 terms,
     summed here directly, agree to their round-off (~1e-16 x the largest term, ~1e2 at

@@ -343,9 +343,20 @@ def _bessel(p_max: int, s: np.ndarray) -> np.ndarray:
     from ._weights import spherical_bessel
 
     out = np.empty((p_max + 1, s.size), dtype=complex)
+    if s.size == 0:
+        return out
     # Real nodes apart: their Bessel functions come from the cheap upward recurrence (the
     # continued fraction of complex arguments would start above 1.3 max|s| for every node).
     real = s.imag == 0
-    out[:, real] = spherical_bessel(p_max, s[real].real)
-    out[:, ~real] = spherical_bessel(p_max, s[~real])
+    parts = (spherical_bessel(p_max, s[~real]), spherical_bessel(p_max, s[real].real))
+    # Put back run by run (each point's nodes are a run of complex arc nodes, then one of
+    # real ones): a slice per run, where a column mask over (p_max + 1) rows cost as much as
+    # the functions of the real nodes.
+    ends = np.append(np.flatnonzero(real[1:] != real[:-1]) + 1, s.size)
+    starts = np.append(0, ends[:-1])
+    taken = [0, 0]
+    for lo, hi in zip(starts.tolist(), ends.tolist(), strict=True):
+        kind = int(real[lo])
+        out[:, lo:hi] = parts[kind][:, taken[kind] : taken[kind] + hi - lo]
+        taken[kind] += hi - lo
     return out

@@ -301,8 +301,30 @@ class _SharedWaves:
             uc = 0.5 * (u[:-1, None] + u[1:, None]) + 0.5 * (u[1:, None] - u[:-1, None]) * xc
             y = np.exp(-2 * uc).ravel()
             self._panels = self.table.interpolated(chebyshev_matrix(self.table.size, 2 * y - 1))
-        at = concatenated_ranges(np.asarray(counts))
-        return self._panels._with([w[..., at, :] for w in self._panels.arrays()])
+        return _rows_of(self._panels, [(0, int(c)) for c in counts])
+
+    def edge_waves(self, items, ranges, ratio: float) -> StackWaves:
+        """:meth:`real_all` of the panel edges of ``items`` [(stack, a, edges[lo:hi]), ...],
+        ``ranges`` [(lo, hi), ...]. A dynamic point's edges e_i = S₁ ratio^i have y = (S₁/e_i)²
+        = ratio^(−2i), the same at every point (as :meth:`panel_waves`' samples): the waves
+        are interpolated once, at the i of the longest, and each point takes its own rows
+        (equal to their own interpolation to round-off: y differs by the rounding of e_i); a
+        static point takes the static waves."""
+        dynamic = [st.omega > 0 for st, _, _ in items]
+        if self.table is None or not any(dynamic):
+            return self.real_all(items)
+        n = max(hi for (_, hi), d in zip(ranges, dynamic, strict=True) if d)
+        y = ratio ** (-2.0 * np.arange(n))
+        waves = self.table.interpolated(chebyshev_matrix(self.table.size, 2 * y - 1))
+        if all(dynamic):
+            return _rows_of(waves, ranges)
+        assert self.static is not None  # built whenever a stack of the set is static
+        # The static waves at row n, repeated for each static point.
+        waves = StackWaves.combined([waves, self.static])
+        rows = [
+            (lo, hi) if d else (n, lo - hi) for (lo, hi), d in zip(ranges, dynamic, strict=True)
+        ]
+        return _rows_of(waves, rows)
 
     def static_at(self, n: int) -> StackWaves:
         """The static waves (x = 0) on ``n`` nodes (statics: the same at every η)."""
@@ -340,6 +362,22 @@ class _SharedWaves:
                 parts.append(waves._with([x[..., lo : ends[k], :] for x in waves.arrays()]))
                 k += 1
         return StackWaves.combined(parts)
+
+
+def _rows_of(waves: StackWaves, ranges) -> StackWaves:
+    """The rows lo..hi − 1 of ``waves`` for each (lo, hi) of ``ranges``, one after the other
+    ((lo, −k): row lo k times), joined slice by slice: each entry's values at the nodes stay
+    contiguous, as the recursion reads them (a gather by an index array along the node axis
+    put the nodes outermost: the recursion's ~100 products then ran over strided vectors)."""
+
+    def piece(w, lo: int, hi: int):
+        if hi >= 0:
+            return w[..., lo:hi, :]
+        return np.broadcast_to(w[..., lo : lo + 1, :], (*w.shape[:-2], -hi, w.shape[-1]))
+
+    return waves._with(
+        [np.concatenate([piece(w, lo, hi) for lo, hi in ranges], axis=-2) for w in waves.arrays()]
+    )
 
 
 def _head(shared: _SharedWaves, st: Stack, a: float, res: PunchResolution, s0: float):
@@ -421,7 +459,7 @@ def _chunk_nodes(shared: _SharedWaves, stacks, radii, index, res: PunchResolutio
         n_edges = math.ceil(math.log(_S_MAX / start) / math.log(res.ratio)) + 1
         edges = start * res.ratio ** np.arange(n_edges + 1, dtype=np.float64)
         plan.append((st, a, h_tot, s0, edges))
-    probes = _probes(shared, plan, res.decay * gref)
+    probes = _probes(shared, plan, res.decay * gref, res.ratio)
     threshold = res.decay * gref
     # Every point's edges (and what lies beyond each, rest = |Δg|/e) one after the other, point
     # k's from row first[k]: where the panels stop, for all the points at once.
@@ -463,14 +501,21 @@ def _chunk_nodes(shared: _SharedWaves, stacks, radii, index, res: PunchResolutio
     # ~_GROUP_NODES nodes (one interpolation per group): a group's interpolated waves and the
     # recursion's temporaries stay small enough to be reused from the heap, where those of all
     # ~10000 samples at once were fresh pages on every call (their page faults cost about a
-    # tenth of the 250 nm curve); the values are the same node by node.
+    # tenth of the 250 nm curve); the values are the same node by node. A static point
+    # (f = 0) is a group apart: a group of dynamic points alone takes its waves from the
+    # shared panels' (one slice), where one static point among them made the whole group's
+    # waves interpolated afresh (~4 % of the 250 nm curve).
     reals = [(st, a, sc) for st, a, _, sc in parts]
     pieces = _head_delta_g(shared, [(st, a, head) for st, a, head, _ in parts])
     group: list = []
     for k, item in enumerate(reals):
         group.append(item)
         size = sum(s.size for _, _, s in group)
-        if k + 1 == len(reals) or size + reals[k + 1][2].size > _GROUP_NODES:
+        if (
+            k + 1 == len(reals)
+            or size + reals[k + 1][2].size > _GROUP_NODES
+            or (item[0].omega > 0) != (reals[k + 1][0].omega > 0)
+        ):
             if shared.table is not None and all(st.omega > 0 for st, _, _ in group):
                 waves = shared.panel_waves([s.size for _, _, s in group], res.ratio, res.n_cheb)
             else:
@@ -502,14 +547,15 @@ def _stop(edges, rest, forced, last: int, threshold: float) -> float:
     )
 
 
-def _probes(shared: _SharedWaves, plan, threshold: float) -> list:
+def _probes(shared: _SharedWaves, plan, threshold: float, ratio: float) -> list:
     """Δg at the edges of every point of ``plan`` [(stack, a, h_tot, s₀, edges), ...].
 
     Under a film that is its own reference, Δg decays like e^{−2 α η h₁} (h₁ the film's
     thickness, α the slowest decay rate of its partial waves) once past the poles: the edges
     beyond η h₁ = :data:`_PROBE_ETA_H` are probed only for the points whose last edge before
     it is not yet 1e-12 below the decay threshold (``threshold`` = decay × ``|g|``, what
-    ``|Δg|``/s is compared with); the others' are zero (far below round-off of the result)."""
+    ``|Δg|``/s is compared with); the others' are zero (far below round-off of the result).
+    ``ratio``: that of the edges (e_i = S₁ ratio^i for a dynamic point)."""
     stack = shared.stack
     own = len(stack.tensors) > 1 and np.array_equal(stack.reference, stack.tensors[0])
     n_probe = [
@@ -523,7 +569,8 @@ def _probes(shared: _SharedWaves, plan, threshold: float) -> list:
         for (_, a, h, _, e), n in zip(plan, n_probe, strict=True)
     ]
     first = [(st, a, e[k:n]) for (st, a, _, _, e), k, n in zip(plan, skip, n_probe, strict=True)]
-    out = _delta_g(shared, first, shared.real_all(first))
+    ranges = list(zip(skip, n_probe, strict=True))
+    out = _delta_g(shared, first, shared.edge_waves(first, ranges, ratio))
     rest = [
         k
         for k, ((*_, e), n, value) in enumerate(zip(plan, n_probe, out, strict=True))
@@ -531,7 +578,9 @@ def _probes(shared: _SharedWaves, plan, threshold: float) -> list:
     ]
     if rest:
         more = [(plan[k][0], plan[k][1], plan[k][4][n_probe[k] :]) for k in rest]
-        for k, value in zip(rest, _delta_g(shared, more, shared.real_all(more)), strict=True):
+        ranges = [(n_probe[k], plan[k][4].size) for k in rest]
+        waves = shared.edge_waves(more, ranges, ratio)
+        for k, value in zip(rest, _delta_g(shared, more, waves), strict=True):
             out[k] = np.concatenate([out[k], value])
     probes = []
     for (*_, e), k, value in zip(plan, skip, out, strict=True):
