@@ -712,6 +712,8 @@ def cache_uses(modules: Mapping[str, Module], root: Path) -> list[str]:
     lines = []
     for m in modules.values():
         aliases = _stdlib_aliases(m.tree, frozenset({"functools"}))
+        if not aliases:  # no name of functools in the module: nothing to resolve to it
+            continue
         for node in ast.walk(m.tree):
             if not isinstance(node, ast.Name | ast.Attribute):
                 continue

@@ -1,4 +1,7 @@
-"""Polycrystal maps: synthetic maps, chunked evaluation (serial == dask bit for bit), Zarr IO."""
+"""Polycrystal maps: synthetic maps, chunked evaluation (serial == dask bit for bit), Zarr IO.
+
+The same bits from worker processes (the function and blocks pickled, uneven chunks): in
+test_moduli_bits.py, on distinct orientations."""
 
 from __future__ import annotations
 
@@ -229,18 +232,3 @@ def test_the_package_does_not_import_dask_xarray_or_zarr():
     )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "[]"
-
-
-def test_worker_processes_give_the_same_bits(cu_map):
-    # The functions and blocks pickled to 2 separate worker processes: still bit for bit.
-    distributed = pytest.importorskip("distributed")
-    f = ExactModulus(Material.crystal("Cu"))
-    small = cu_map.euler[:9, :11]
-    serial = evaluate_map(f, small, chunks=(4, 6))
-    with (
-        distributed.LocalCluster(
-            n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0"
-        ) as cluster,
-        distributed.Client(cluster) as c,
-    ):
-        assert np.array_equal(serial, evaluate_map(f, small, chunks=(4, 6), client=c))
