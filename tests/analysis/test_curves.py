@@ -2,11 +2,12 @@
 ``Results.curves``), against the input table and the registered model of each sweep."""
 
 import numpy as np
+import pandas as pd
 import pytest
 
 from contactres.analysis._amplitude import Padded
-from contactres.analysis._curves import CURVE_GRIDS, sweep_points, sweep_rows
-from contactres.analysis._models import REGISTRY, model_curves
+from contactres.analysis._curves import CURVE_GRIDS, model_keys, sweep_points, sweep_rows
+from contactres.analysis._models import REGISTRY, exact_model, model_curves
 from contactres.errors import ContactresInputError
 
 LOOPS = {
@@ -198,3 +199,24 @@ def test_savkoor_series_terms_bound_the_rest_of_the_series():
         m = np.convolve(a, a)[: k.size]
         assert (m * t)[last + 1 :].sum() < 1e-17
         assert (m * t)[last - 1 :].sum() >= 1e-17  # the fewest (K even: K - 1 adds nothing)
+
+
+@pytest.mark.parametrize("dtype", [object, "str"])
+def test_model_keys_are_exact_model_of_each_sweep(dtype):
+    # Once per distinct (model, limits_from) pair, then spread over the sweeps: the same key as
+    # exact_model sweep by sweep, gaps (None, NaN) and unknown names included.
+    rng = np.random.default_rng(7)
+    models = np.array(
+        ["elastic", "cattaneo-mindlin", "savkoor", "plateau", None, np.nan, "bogus"], dtype=object
+    )
+    sources = np.array(
+        ["mean", "cm-loop", "savkoor-loop", "plateau-loop", "line", None, np.nan], dtype=object
+    )
+    model = pd.Series(models[rng.integers(0, len(models), 3000)], dtype=object).astype(dtype)
+    limits = pd.Series(sources[rng.integers(0, len(sources), 3000)], dtype=object).astype(dtype)
+    want = [exact_model(m, lf) for m, lf in zip(model, limits, strict=True)]
+    got = model_keys(model, limits)
+    assert got.dtype == object
+    assert got.tolist() == want
+    assert len(set(want) - {None}) >= 4  # every kind of key was met
+    assert model_keys(model.iloc[:0], limits.iloc[:0]).tolist() == []

@@ -136,6 +136,29 @@ def test_a_file_that_changes_while_it_is_read_is_refused(tmp_path):
         contactres.read_sweeps(copy, readers=BUILT_IN.with_reader(growing))
 
 
+def test_the_csv_reader_hashes_the_bytes_it_parses_and_the_file_is_read_once(tmp_path, monkeypatch):
+    """The delimited-text reader's checksum (attrs["sha256"]) is that of the file's bytes, its
+    byte order mark included; read_sweeps takes it without reading the file again (issue 31:
+    the 148 MB table of 10^5 sweeps was read three times)."""
+    import hashlib
+
+    from contactres.measurements import _checksum
+    from contactres.measurements.readers import BUILT_IN
+
+    data = b"\xef\xbb\xbf" + EXAMPLE.read_bytes()
+    copy = tmp_path / "bom.csv"
+    copy.write_bytes(data)
+    csv = next(r for r in BUILT_IN.readers if r.kind == "sweeps" and ".csv" in r.suffixes)
+    assert csv.load(copy).attrs["sha256"] == hashlib.sha256(data).hexdigest()
+
+    def no_second_pass(path):
+        raise AssertionError(f"{path} hashed again")
+
+    monkeypatch.setattr(_checksum, "file_sha256", no_second_pass)
+    table = contactres.read_sweeps(copy)
+    assert table.source_sha256 == hashlib.sha256(data).hexdigest()
+
+
 def test_the_report_draws_the_curves_of_the_analysis_without_a_model(results, monkeypatch, no_png):
     # Every loop shape refuses to be evaluated: the page and Fig. 4 draw from Results.curves.
     # (no_png: the page's figures are still drawn, only their encoding is left out.)

@@ -40,6 +40,7 @@ __all__ = [
     "band_half_width",
     "fitted_curves",
     "jkr_curves",
+    "model_keys",
     "sweep_points",
     "sweep_rows",
 ]
@@ -146,6 +147,22 @@ def _one_by_one(sw: pd.DataFrame, found, rows: np.ndarray, key: str, grid: np.nd
     return f, g
 
 
+def model_keys(model: pd.Series, limits_from: pd.Series) -> np.ndarray:
+    """:func:`~contactres.analysis._models.exact_model` of every sweep (object array, None
+    where a sweep has none), called once per distinct (``model``, ``limits_from``) pair.
+
+    Why: a sweep table holds a handful of pairs over 10^5 sweeps, and a Python call per sweep
+    cost ~1 s of ``qcm analyze`` there (issue 31, point 3). Gaps (None, NaN) are one value
+    to the factorisation, as they are to exact_model (no model: None; no source: the class)."""
+    m_codes, m_values = pd.factorize(model, use_na_sentinel=False)
+    l_codes, l_values = pd.factorize(limits_from, use_na_sentinel=False)
+    width = max(1, len(l_values))
+    distinct, inverse = np.unique(m_codes.astype(np.int64) * width + l_codes, return_inverse=True)
+    keys = np.empty(len(distinct), dtype=object)
+    keys[:] = [exact_model(m_values[c // width], l_values[c % width]) for c in distinct.tolist()]
+    return keys[inverse.reshape(-1)]
+
+
 def fitted_curves(
     sw: pd.DataFrame, p: Padded, fits: Fits, grids=CURVE_GRIDS, workers: int = 1
 ) -> pd.DataFrame:
@@ -179,10 +196,7 @@ def fitted_curves(
     S = len(sw)
     rows_p = pd.Index(p.sweeps).get_indexer(sw["sweep"].to_numpy())
     u_max = p.u_max[rows_p]  # the points of a sweep are in ascending amplitude
-    key = np.array(
-        [exact_model(m, lf) for m, lf in zip(sw["model"], sw["limits_from"], strict=True)],
-        dtype=object,
-    )
+    key = model_keys(sw["model"], sw["limits_from"])
     # The columns of the result, each grid's rows a (S, n) view: filled in place, no copies.
     sizes = [S * n for n in grids]
     amplitude, shifts = np.empty(sum(sizes)), np.full((2, sum(sizes)), np.nan)  # Δf, ΔΓ
@@ -196,7 +210,7 @@ def fitted_curves(
     # Every (grid, model, chunk of sweeps) is one call of the model function.
     tasks: list[tuple[int, str, np.ndarray]] = []
     for n in grids:
-        for k in sorted({k for k in key if k is not None}):
+        for k in sorted({k for k in set(key.tolist()) if k is not None}):
             rows = np.flatnonzero(key == k)
             size = max(1, CHUNK_POINTS // n)
             tasks.extend((n, k, chunk) for chunk in np.split(rows, range(size, rows.size, size)))

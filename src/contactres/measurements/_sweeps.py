@@ -20,7 +20,6 @@ file, the line, the column and the value.
 from __future__ import annotations
 
 import datetime
-import hashlib
 import math
 import sys
 import warnings
@@ -34,6 +33,7 @@ from .._summary import Summarised, table_size
 from ..errors import ContactresInputError
 from ..units import ABSOLUTE_FREQUENCY_FRACTION, SMALL_LOAD_LIMIT
 from ._cell_text import stripped_distinct
+from ._checksum import file_sha256, hashed_load
 from ._messages import at_cell, column_named, column_names, line_word, shown_value, where_rows
 from ._sweep_checks import (
     SweepWarning,
@@ -337,16 +337,10 @@ def read_sweeps(path, *, readers=None, **constants) -> SweepTable:
         raise ContactresInputError(f"unknown constant(s) {unknown}; allowed: {list(CONSTANTS)}")
     given = {k: v for k, v in constants.items() if v is not None}
     toml, toml_path = _toml_constants(p)
-    digest = file_sha256(p)
-    raw = (BUILT_IN if readers is None else readers).pick(p, "sweeps").load(p)
+    reader = (BUILT_IN if readers is None else readers).pick(p, "sweeps")
+    raw, digest = hashed_load(reader, p, BUILT_IN)  # the hash of the bytes parsed
     # A workbook's reader names its sheet too ("book.xlsx, sheet 'sweeps'").
     source = str(raw.attrs.get("source", p))
-    # The hash must be of the bytes parsed: a file still being written (or replaced) between
-    # the two reads is refused rather than reported under a hash it no longer has.
-    if file_sha256(p) != digest:
-        raise ContactresInputError(
-            f"{p}: the file changed while it was read; read it again once it is complete"
-        )
     table = validate_sweeps(
         raw,
         source=source,
@@ -355,19 +349,6 @@ def read_sweeps(path, *, readers=None, **constants) -> SweepTable:
         file_constants_source=str(toml_path) if toml_path else None,
     )
     return replace(table, source_sha256=digest)
-
-
-def file_sha256(path) -> str | None:
-    """SHA-256 (hex) of the bytes of the file ``path``, read in blocks of 1 MiB; None for a
-    folder (an input read from several files has no one checksum)."""
-    p = Path(path)
-    if not p.is_file():
-        return None
-    h = hashlib.sha256()
-    with p.open("rb") as fh:
-        for block in iter(lambda: fh.read(1 << 20), b""):
-            h.update(block)
-    return h.hexdigest()
 
 
 # --------------------------------------------------------------------------------------------

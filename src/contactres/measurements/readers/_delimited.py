@@ -10,6 +10,7 @@ UTF-8 text (a byte order mark is skipped). Comments: a line whose first non-blan
 from __future__ import annotations
 
 import csv
+import hashlib
 import io
 import re
 import warnings
@@ -60,12 +61,13 @@ def _shown(name: str, limit: int = 60) -> str:
     return repr(text)
 
 
-def _decode(path: Path) -> str:
-    """The file as text: UTF-8, a byte order mark skipped (one-line error naming the byte)."""
+def _decode(path: Path) -> tuple[str, str]:
+    """The file as text: UTF-8, a byte order mark skipped (one-line error naming the byte),
+    and the SHA-256 (hex) of its bytes, those very bytes: the file is read once."""
     data = path.read_bytes()
     bom = len(b"\xef\xbb\xbf") if data.startswith(b"\xef\xbb\xbf") else 0
     try:
-        return data[bom:].decode("utf-8")
+        return data[bom:].decode("utf-8"), hashlib.sha256(data).hexdigest()
     except UnicodeDecodeError as exc:
         at = bom + exc.start
         line = data.count(b"\n", 0, at) + 1
@@ -114,6 +116,8 @@ def load(path: Path, number_columns: Collection[str] = ()) -> pd.DataFrame:
     text gives (:func:`_parsed`; a table with a decimal point), named in
     ``attrs["number_columns"]``; the others are text.
 
+    ``attrs["sha256"]`` is the SHA-256 (hex) of the bytes parsed, read once with them (the
+    sweep reader's checksum of its input, :func:`contactres.measurements.read_sweeps`).
     ``attrs["decimal"]`` records the decimal mark for the validator. Comment lines and blank
     lines are dropped here, before parsing, so that ``#`` inside a cell stays data and every
     row keeps the number of its line in the file; ``attrs["comment_lines"]`` holds the numbers
@@ -124,7 +128,9 @@ def load(path: Path, number_columns: Collection[str] = ()) -> pd.DataFrame:
     """
     import pandas as pd
 
-    body, numbers, comments = _data_lines(_decode(path))
+    text, digest = _decode(path)
+    body, numbers, comments = _data_lines(text)
+    del text
     if not len(numbers):
         raise ContactresInputError(
             f"{path}: the file is empty (expected a header line and data rows)"
@@ -173,6 +179,7 @@ def load(path: Path, number_columns: Collection[str] = ()) -> pd.DataFrame:
     # (line_ranges). Comments above the header are a preamble (an instrument's, or the
     # conventions qcm spectra writes), not rows.
     raw.attrs["comment_lines"] = tuple(n for n in comments if n > numbers[0])
+    raw.attrs["sha256"] = digest
     return raw
 
 
