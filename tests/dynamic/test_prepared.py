@@ -32,6 +32,7 @@ from contactres.dynamic import (
 from contactres.dynamic._farfield import far_basis, tail_sine
 from contactres.dynamic._table import kernel_table
 from contactres.dynamic._weights import j1_over_s
+from contactres.halfspace import dynamic_kernel, shear_reference, static_kernel
 
 KLA = np.linspace(0.0, 2.0, 9)
 
@@ -189,3 +190,25 @@ def test_hertz_transform_is_spherical_bessel_over_s_across_the_series_switch():
     coef = (-1.0) ** k / (special.factorial2(2 * k + 3) * special.factorial2(2 * k))
     ref = np.array([np.sum(coef * zz ** (2 * k)) for zz in z])
     np.testing.assert_allclose(j1_over_s(z), ref, rtol=1e-12)
+
+
+@pytest.mark.parametrize(
+    ("zener", "poisson", "rtol", "n_theta"),
+    [(0.5, 0.25, 1e-6, 64), (0.2, 0.45, 1e-6, 128), (0.5, 0.25, 1e-4, 32), (0.4, 0.25, 1e-4, 64)],
+)
+def test_table_holds_the_kernels_of_halfspace_on_every_theta_grid(zener, poisson, rtol, n_theta):
+    """g − g∞ and g∞ of the table against dynamic_kernel and static_kernel at its nodes, on
+    the first θ grid and on the nodes each doubling adds (n_theta: the grid the table stops
+    at, measured when the test was written; the point is that some tables double)."""
+    m = Material.cubic_from_ratios(zener, poisson)
+    q = 0.02
+    t = prepare(m, q, rtol)
+    assert t.theta.size == n_theta
+    f = 1 + 1j * q
+    ginf = shear_reference(m) * static_kernel(m, t.theta) / f
+    np.testing.assert_allclose(t.ginf, ginf, rtol=1e-13, atol=0)
+    # g of the lossy solid C(1 + iQ⁻¹) is g(κ√(1 + iQ⁻¹))/(1 + iQ⁻¹) of the elastic one.
+    k = np.asarray(t.near_kappa)[:, None] * np.sqrt(f)
+    g = dynamic_kernel(m, k, t.theta[None, :]) / f - ginf[None, :]
+    scale = np.max(np.abs(g))
+    np.testing.assert_allclose(t.near_values, g, rtol=0, atol=1e-13 * scale)
