@@ -29,7 +29,7 @@ from contactres.dynamic import (
     dynamic_contact_stiffness,
     prepare,
 )
-from contactres.dynamic._farfield import far_basis, tail_sine
+from contactres.dynamic._farfield import far_basis, far_weights, tail_sine
 from contactres.dynamic._table import kernel_table
 from contactres.dynamic._weights import j1_over_s
 from contactres.halfspace import dynamic_kernel, shear_reference, static_kernel
@@ -212,3 +212,35 @@ def test_table_holds_the_kernels_of_halfspace_on_every_theta_grid(zener, poisson
     g = dynamic_kernel(m, k, t.theta[None, :]) / f - ginf[None, :]
     scale = np.max(np.abs(g))
     np.testing.assert_allclose(t.near_values, g, rtol=0, atol=1e-13 * scale)
+
+
+def test_far_weights_against_scipy_bessel_functions_and_quadrature(table):
+    """The far-field weights of every functional against scipy's J_n, sin s/s, j₁(s)/s and
+    the WA weight W_n(s) = ∫₀¹ J_n(s r) r/√(1 − r²) dr by quadrature (r = sin φ)."""
+    s = np.array([0.05, 0.7, 3.0, 9.5, 31.0, 64.0, 119.0, 150.0])
+    orders = [0, 2, 4, 8, 12]
+    w = far_weights(table, s, orders)
+    assert w.shape == (6, len(orders), s.size)
+    flat = np.sinc(s / np.pi)
+    hertz = special.spherical_jn(1, s) / s
+    for i, n in enumerate(orders):
+        sign = 2 * np.pi * (1 if n % 4 == 0 else -1)  # 2π iⁿ
+        jn = special.jv(n, s)
+
+        def wa(x, n=n):
+            def integrand(p):
+                return special.jv(n, x * math.sin(p)) * math.sin(p)
+
+            return integrate.quad(integrand, 0.0, math.pi / 2, limit=400, epsabs=1e-14)[0]
+
+        # The WA weights of n > 0 stop at s = 120 (their share is ~1e-3; far_weights).
+        wn = np.array([wa(x) if (n == 0 or x <= 120) else 0.0 for x in s])
+        np.testing.assert_allclose(w[1, i], sign * flat * jn, rtol=1e-12, atol=1e-15)
+        np.testing.assert_allclose(w[2, i], sign * flat * wn, rtol=1e-9, atol=1e-13)
+        np.testing.assert_allclose(w[5, i], sign * hertz * jn, rtol=1e-12, atol=1e-15)
+        if n == 0:
+            np.testing.assert_allclose(w[0, i], 2 * np.pi * flat, rtol=1e-14)
+            np.testing.assert_allclose(w[3, i], 2 * np.pi * flat**2, rtol=1e-14)
+            np.testing.assert_allclose(w[4, i], 2 * np.pi * hertz, rtol=1e-13)
+        else:
+            assert not np.any(w[[0, 3, 4], i])
