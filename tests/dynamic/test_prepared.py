@@ -29,9 +29,10 @@ from contactres.dynamic import (
     dynamic_contact_stiffness,
     prepare,
 )
-from contactres.dynamic._farfield import far_basis, tail_sine
+from contactres.dynamic._farfield import far_basis, far_weights, tail_sine
 from contactres.dynamic._table import kernel_table
 from contactres.dynamic._weights import j1_over_s
+from contactres.halfspace import dynamic_kernel, shear_reference, static_kernel
 
 KLA = np.linspace(0.0, 2.0, 9)
 
@@ -189,3 +190,57 @@ def test_hertz_transform_is_spherical_bessel_over_s_across_the_series_switch():
     coef = (-1.0) ** k / (special.factorial2(2 * k + 3) * special.factorial2(2 * k))
     ref = np.array([np.sum(coef * zz ** (2 * k)) for zz in z])
     np.testing.assert_allclose(j1_over_s(z), ref, rtol=1e-12)
+
+
+@pytest.mark.parametrize(
+    ("zener", "poisson", "rtol", "n_theta"),
+    [(0.5, 0.25, 1e-6, 64), (0.2, 0.45, 1e-6, 128), (0.5, 0.25, 1e-4, 32), (0.4, 0.25, 1e-4, 64)],
+)
+def test_table_holds_the_kernels_of_halfspace_on_every_theta_grid(zener, poisson, rtol, n_theta):
+    """g − g∞ and g∞ of the table against dynamic_kernel and static_kernel at its nodes, on
+    the first θ grid and on the nodes each doubling adds (n_theta: the grid the table stops
+    at, measured when the test was written; the point is that some tables double)."""
+    m = Material.cubic_from_ratios(zener, poisson)
+    q = 0.02
+    t = prepare(m, q, rtol)
+    assert t.theta.size == n_theta
+    f = 1 + 1j * q
+    ginf = shear_reference(m) * static_kernel(m, t.theta) / f
+    np.testing.assert_allclose(t.ginf, ginf, rtol=1e-13, atol=0)
+    # g of the lossy solid C(1 + iQ⁻¹) is g(κ√(1 + iQ⁻¹))/(1 + iQ⁻¹) of the elastic one.
+    k = np.asarray(t.near_kappa)[:, None] * np.sqrt(f)
+    g = dynamic_kernel(m, k, t.theta[None, :]) / f - ginf[None, :]
+    scale = np.max(np.abs(g))
+    np.testing.assert_allclose(t.near_values, g, rtol=0, atol=1e-13 * scale)
+
+
+def test_far_weights_against_scipy_bessel_functions_and_quadrature(table):
+    """The far-field weights of every functional against scipy's J_n, sin s/s, j₁(s)/s and
+    the WA weight W_n(s) = ∫₀¹ J_n(s r) r/√(1 − r²) dr by quadrature (r = sin φ)."""
+    s = np.array([0.05, 0.7, 3.0, 9.5, 31.0, 64.0, 119.0, 150.0])
+    orders = [0, 2, 4, 8, 12]
+    w = far_weights(table, s, orders)
+    assert w.shape == (6, len(orders), s.size)
+    flat = np.sinc(s / np.pi)
+    hertz = special.spherical_jn(1, s) / s
+    for i, n in enumerate(orders):
+        sign = 2 * np.pi * (1 if n % 4 == 0 else -1)  # 2π iⁿ
+        jn = special.jv(n, s)
+
+        def wa(x, n=n):
+            def integrand(p):
+                return special.jv(n, x * math.sin(p)) * math.sin(p)
+
+            return integrate.quad(integrand, 0.0, math.pi / 2, limit=400, epsabs=1e-14)[0]
+
+        # The WA weights of n > 0 stop at s = 120 (their share is ~1e-3; far_weights).
+        wn = np.array([wa(x) if (n == 0 or x <= 120) else 0.0 for x in s])
+        np.testing.assert_allclose(w[1, i], sign * flat * jn, rtol=1e-12, atol=1e-15)
+        np.testing.assert_allclose(w[2, i], sign * flat * wn, rtol=1e-9, atol=1e-13)
+        np.testing.assert_allclose(w[5, i], sign * hertz * jn, rtol=1e-12, atol=1e-15)
+        if n == 0:
+            np.testing.assert_allclose(w[0, i], 2 * np.pi * flat, rtol=1e-14)
+            np.testing.assert_allclose(w[3, i], 2 * np.pi * flat**2, rtol=1e-14)
+            np.testing.assert_allclose(w[4, i], 2 * np.pi * hertz, rtol=1e-13)
+        else:
+            assert not np.any(w[[0, 3, 4], i])

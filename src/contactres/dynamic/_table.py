@@ -34,11 +34,9 @@ from .._summary import Summarised, number
 from .._threads import one_blas_thread
 from ..errors import ContactresInputError
 from ..halfspace import (
-    dynamic_kernel,
     scaled_tensor,
     shear_reference,
     stacked_normal_compliance,
-    static_kernel,
 )
 from ..materials import Material, require_material, voigt_to_tensor
 from ..numerics import gauss_legendre
@@ -355,20 +353,16 @@ def kernel_table(m: Material, loss: float = 0.0, resolution: Resolution | None =
     return _build_table(m, q, resolution or Resolution())
 
 
-def _elastic_kernel(m: Material, kappa, theta, loss: float):
-    """g of the lossy solid C(1 + iQ⁻¹) from the elastic one: g(κ√(1 + iQ⁻¹))/(1 + iQ⁻¹)."""
-    f = 1 + 1j * loss
-    k = np.asarray(kappa, dtype=complex) * np.sqrt(f)
-    return dynamic_kernel(m, k, theta) / f
-
-
 def _elastic_and_static(m: Material, kappa: np.ndarray, theta: np.ndarray, loss: float, static):
-    """:func:`_elastic_kernel` on κ × θ (``kappa`` (nk,), ``theta`` (nθ,)) and the undamped static
-    kernel g∞₀ = C44 Ĝ at the directions ``static``, in one evaluation of the surface compliance
-    (the static kernel is its limit 1/κ² = 0): one pass of the batched doubling instead of two,
-    whose fixed cost is that of a few hundred points (issue 31). The same values as
-    :func:`~contactres.halfspace.dynamic_kernel` and :func:`~contactres.halfspace.static_kernel`
-    (to the last bit or two: C44 Ĝ is not divided by C44 and multiplied back)."""
+    """g of the lossy solid C(1 + iQ⁻¹) on κ × θ (``kappa`` (nk,), ``theta`` (nθ,)), from the
+    elastic one, g(κ√(1 + iQ⁻¹))/(1 + iQ⁻¹), and the undamped static kernel g∞₀ = C44 Ĝ at the
+    directions ``static``, in one evaluation of the surface compliance (the static kernel is its
+    limit 1/κ² = 0): one pass of the batched doubling instead of two, whose fixed cost is that
+    of a few hundred points (issue 31). Every point is evaluated on its own, so a value does
+    not depend on the others of the call. The same values as
+    :func:`~contactres.halfspace.dynamic_kernel` (the same operations) and
+    :func:`~contactres.halfspace.static_kernel` (to the last bit or two: C44 Ĝ is not divided by
+    C44 and multiplied back)."""
     f = 1 + 1j * loss
     inverse_square = 1.0 / (np.asarray(kappa, dtype=complex) * np.sqrt(f)) ** 2
     shape = (kappa.size, theta.size)
@@ -418,11 +412,12 @@ def _theta_base(nth: int, symmetry) -> np.ndarray:
     return base
 
 
-def _theta_values(m, kappa, q, static_fn, nth, symmetry, old=None, elastic=None):
+def _theta_values(m, kappa, q, nth, symmetry, old=None):
     """(g − g∞ on κ × (θ_j = πj/nth), the undamped static kernel g∞₀ on the θ_j): reuses ``old``
-    (the pair at nth/2) and the symmetry. g∞ = g∞₀/(1 + iQ⁻¹); ``static_fn(j, nth)`` gives g∞₀
-    at the θ_j. ``elastic``: :func:`_elastic_kernel` at the nodes this call evaluates (the
-    distinct θ_j of the symmetry, none of ``old``), when the caller has it already."""
+    (the pair at nth/2) and the symmetry. g∞ = g∞₀/(1 + iQ⁻¹). The nodes not in ``old`` (the
+    distinct θ_j of the symmetry) get both kernels from one evaluation
+    (:func:`_elastic_and_static`): the static kernel only where the table needs it, so a table
+    that stops at its first θ grid evaluates no static kernel on the grids it never reaches."""
     base = _theta_base(nth, symmetry)
     need = np.unique(base)
     values = np.empty((kappa.size, nth), dtype=complex)
@@ -433,9 +428,7 @@ def _theta_values(m, kappa, q, static_fn, nth, symmetry, old=None, elastic=None)
         static[have] = old[1][have // 2]
         need = need[need % 2 == 1]
     theta = np.pi * need / nth
-    static[need] = static_fn(need, nth)
-    if elastic is None:
-        elastic = _elastic_kernel(m, kappa[:, None], theta[None, :], q)
+    elastic, static[need] = _elastic_and_static(m, kappa, theta, q, theta)
     values[:, need] = elastic - static[need] / (1 + 1j * q)
     return values[:, base], static[base]
 
@@ -458,7 +451,6 @@ def wavenumber_nodes(m: Material, res: Resolution):
 
 
 def _build_table(m: Material, q: float, res: Resolution) -> KernelTable:
-    c44 = shear_reference(m)
     t1, near_kappa, near_weight, x = wavenumber_nodes(m, res)
     # Far field: (g − g∞)/w as a Chebyshev series in x = 2w − 1, w = (T1/κ)² in (0, 1).
     nf = res.n_fit
@@ -466,32 +458,10 @@ def _build_table(m: Material, q: float, res: Resolution) -> KernelTable:
     kappa = np.concatenate([near_kappa, t1 / np.sqrt(w)])
 
     symmetry = _symmetry(m)
-    # The static kernel of the first three doublings, in the same call as the dynamic kernel
-    # of the first θ grid: the cost of each call is mostly per call.
-    fine = min(_N_THETA_MAX, 8 * res.n_theta)
-    fine_base = _theta_base(fine, symmetry)
-    fine_need = np.unique(fine_base)
-    first = np.unique(_theta_base(res.n_theta, symmetry))
-    elastic, static_need = _elastic_and_static(
-        m, kappa, np.pi * first / res.n_theta, q, np.pi * fine_need / fine
-    )
-    static_fine = np.empty(fine)
-    static_fine[fine_need] = static_need
-    static_fine = static_fine[fine_base]
-
-    def static_fn(j, nth):
-        if fine % nth == 0:
-            return static_fine[j * (fine // nth)]
-        return c44 * static_kernel(m, np.pi * j / nth)
-
     nth = res.n_theta
     both = None
     while True:
-        # The static kernel comes along on the same θ nodes (and symmetry), so that it is not
-        # evaluated again on every node at the end.
-        both = _theta_values(
-            m, kappa, q, static_fn, nth, symmetry, both, elastic if both is None else None
-        )
+        both = _theta_values(m, kappa, q, nth, symmetry, both)
         values = both[0]
         harm = np.abs(np.fft.fft(values, axis=1))
         tail = np.max(harm[:, nth // 4 : nth - nth // 4 + 1])
