@@ -329,3 +329,34 @@ def test_pmma_reproduces_its_published_anchors():
     with pytest.raises(ContactresInputError, match="no static limit"):
         p.static()
     assert ViscoelasticMaterial.pmma().at(1e6).C == pytest.approx(p.at(1e6).C, rel=0)
+
+
+def test_a_static_contact_on_pmma_names_its_storage_solid_and_that_solid_works():
+    """The power law has no static limit, so sphere_contact and indentation_modulus_at refuse a
+    stack with pmma(); the one-line refusal names the way out, storage(f): the real part of
+    the constants at f (checked against at(f) and, for the homogeneous solid, Hertz with the
+    E* of those constants written out here)."""
+    quartz = cr.Material.isotropic(72e9, 0.17, density=2650.0)
+    stack = cr.LayeredMaterial(quartz, [(cr.pmma(), 250e-9)])
+    for call in (
+        lambda m: cr.sphere_contact(m, 1e-3, 1e-3),
+        lambda m: cr.indentation_modulus_at(m, 1e-6),
+        lambda m: cr.sphere_contact(m.layers[0][0].at(1.0), 1e-3, 1e-3),
+    ):
+        with pytest.raises(ContactresInputError, match="storage") as info:
+            call(stack)
+        assert "\n" not in str(info.value)
+    with pytest.raises(ContactresInputError, match=r"storage\(f_Hz\)"):
+        cr.sphere_contact(cr.pmma(), 1e-3, 1e-3)
+    solid = cr.pmma().storage(1.0)
+    assert not solid.is_lossy and solid.density == 1190.0
+    assert np.array_equal(solid.C, cr.pmma().at(1.0).C.real)
+    g, lam = solid.C[3, 3], solid.C[0, 1]
+    nu = lam / (2 * (lam + g))
+    e_star = 2 * g * (1 + nu) / (1 - nu**2)
+    got = cr.sphere_contact(solid, 1e-3, 1e-3)
+    want = cr.hertz(e_star, 1e-3, 1e-3)
+    assert got.contact_radius == pytest.approx(want.contact_radius, rel=1e-12)
+    # The way out for the stack: its film as the storage solid.
+    coated = cr.sphere_contact(cr.LayeredMaterial(quartz, [(solid, 250e-9)]), 1e-3, 1e-3)
+    assert want.contact_radius > coated.contact_radius > 0

@@ -536,7 +536,8 @@ def require_material(m, *, lossless: bool = False) -> Material:
             hint = (
                 " (a layered or frequency-dependent solid: its DCSF and dynamic stiffness depend"
                 " on the frequency and the radius, not on k a alone; contactres.dynamic."
-                "layered_dcsf and contactres.flat_punch_stiffness take it)"
+                "layered_dcsf and contactres.flat_punch_stiffness take it; the elastic solid"
+                " of a viscoelastic one at a frequency: material.storage(f_Hz))"
             )
         raise ContactresInputError(f"m must be a contactres.Material, got {type(m).__name__}{hint}")
     if lossless and m.is_lossy:

@@ -520,13 +520,44 @@ class ViscoelasticMaterial(Summarised):
         if f.ndim:
             raise ContactresInputError("at(frequency) takes one frequency (Hz), not an array")
         for law, _ in self.terms:
-            storage = float(np.real(law(f)))
+            try:
+                storage = float(np.real(law(f)))
+            except ContactresInputError:
+                if f != 0:
+                    raise
+                storage = 0.0  # a law without a static limit: the way out is said below
             if not storage > 0:
+                # The static callers (sphere_contact, indentation_modulus_at, a stack at
+                # 0 Hz) land here: name the elastic solid they can take instead.
+                where = "no static limit, " if f == 0 else ""
                 raise ContactresInputError(
-                    f"{type(law).__name__} has storage modulus {storage:.4g} Pa at {float(f):g} "
-                    "Hz: no solid there (the static limit of a fluid?)"
+                    f"{self.name or 'this viscoelastic solid'} has {where}no solid at "
+                    f"{float(f):g} Hz ({type(law).__name__}: storage modulus {storage:.4g} Pa); "
+                    "a static contact takes the elastic solid of its storage constants at the "
+                    "loading frequency, "
+                    "material.storage(f_Hz), e.g. viscoelastic.pmma().storage(1.0), also as a "
+                    "layer of a LayeredMaterial"
                 )
         return Material(C=self.stiffness(f), density=self.density, name=self.name, frame=self.frame)
+
+    def storage(self, frequency: float) -> Material:
+        """The elastic :class:`contactres.Material` of the storage constants Re C*(f) (Pa) at
+        one frequency f (Hz), density, name and frame kept.
+
+        The quasi-elastic approximation of a static contact (``sphere_contact``,
+        ``indentation_modulus_at``) loaded on a time scale of about 1/f: the loss and the load
+        history are dropped. For a law with no static limit (:class:`PowerLaw`, the built-in
+        :func:`pmma`) it is the way to such a contact; at f = 0 it is ``static()``'s real part.
+
+        Examples
+        --------
+        >>> from contactres import viscoelastic
+        >>> m = viscoelastic.pmma().storage(1.0)
+        >>> m.is_lossy
+        False
+        """
+        m = self.at(frequency)
+        return Material(C=np.real(m.C), density=m.density, name=m.name, frame=m.frame)
 
     def static(self) -> Material:
         """``at(0)``: the relaxed solid (where the laws have one)."""

@@ -76,6 +76,12 @@ def quasi_static_tan(sphere, plate, film, h, radii):
 
 
 def test_a_film_of_the_plates_own_material_gives_the_bare_plate(bodies):
+    """Issue 26, point 5 asks 1e-10; asserted 1e-9 of each column's largest |value|, against
+    the bare two-body stiffness at rtol 1e-9. The coated route runs at its own fixed rtol of
+    1e-4 (a share needs no more; radiation_loss takes no rtol), so its residual error, not the
+    film, sets the bound: measured 3.6e-10 (imaginary part), 2.2e-10 (tan δ_rad and share),
+    1.4e-10 (real part), 8.5e-11 (static). The softening K'/K₀ − 1 is a difference of nearly
+    equal numbers; it is checked as K'/K₀ (measured 5.4e-11)."""
     sphere, plate = bodies
     loads, groups = study()
     out = radiation_loss(
@@ -83,14 +89,20 @@ def test_a_film_of_the_plates_own_material_gives_the_bare_plate(bodies):
     )
     assert tuple(out.columns) == RADIATION_RESULTS.names
     np.testing.assert_allclose(out["contact_radius_m"], RADII, rtol=0)
-    K = two_body_contact_stiffness(sphere, plate, RADII, F_QCM)
-    K0 = two_body_contact_stiffness(sphere, plate, RADII, 0.0).real
-    np.testing.assert_allclose(out["stiffness_real_N_per_m"], K.real, rtol=1e-6)
-    np.testing.assert_allclose(out["stiffness_imag_N_per_m"], K.imag, rtol=1e-6)
-    np.testing.assert_allclose(out["stiffness_static_N_per_m"], K0, rtol=1e-6)
-    np.testing.assert_allclose(out["tan_delta_rad"], K.imag / K.real, rtol=1e-6)
-    np.testing.assert_allclose(out["radiation_share"], K.imag / K.real / 0.2, rtol=1e-6)
-    np.testing.assert_allclose(out["dynamic_softening"], K.real / K0 - 1, rtol=1e-5)
+    K = two_body_contact_stiffness(sphere, plate, RADII, F_QCM, rtol=1e-9)
+    K0 = two_body_contact_stiffness(sphere, plate, RADII, 0.0, rtol=1e-9).real
+    expected = {
+        "stiffness_real_N_per_m": K.real,
+        "stiffness_imag_N_per_m": K.imag,
+        "stiffness_static_N_per_m": K0,
+        "tan_delta_rad": K.imag / K.real,
+        "radiation_share": K.imag / K.real / 0.2,
+    }
+    for column, ref in expected.items():
+        err = np.max(np.abs(out[column].to_numpy(float) - ref))
+        assert err < 1e-9 * np.max(np.abs(ref)), column
+    softening = out["dynamic_softening"].to_numpy(float) + 1
+    assert np.max(np.abs(softening - K.real / K0)) < 1e-9 * np.max(K.real / K0)
     assert set(out["plate_material"]) == {"quartz-AT coated with quartz-AT 250 nm"}
     # No refit of E on a coated plate: said, not guessed.
     assert out["E_static_corrected_Pa"].isna().all()

@@ -50,14 +50,18 @@ def test_static_homogeneous_is_boussinesq():
 
 @pytest.mark.parametrize("ksa", [0.3, 1.0, 2.0])
 def test_homogeneous_and_film_equal_to_substrate_match_the_fredholm_disk(ksa):
-    """Fredholm solution of Luco & Westmann's equation (accurate to < 1e-7, its own tests);
-    measured here: < 1e-7."""
+    """Fredholm solution of Luco & Westmann's equation (accurate to < 1e-7, its own tests;
+    measured here: < 1e-7); and a film of the substrate's own material reproduces the
+    homogeneous punch to 1e-10 (issue 26, point 5; measured: 0 at every rtol tried, 1e-6 to
+    1e-10: the film's reflection is zero and its correction vanishes)."""
     e, nu = _e_star(QUARTZ)
     f = _freq(QUARTZ, ksa)
     ref = fredholm_disk(ksa, nu) * 2 * A * e
     same = LayeredMaterial(QUARTZ, [(QUARTZ, 0.4 * A)])
     for m in (QUARTZ, same):
         assert abs(layered_punch_stiffness(m, A, f) / ref - 1) < 1e-6
+    k_hom = layered_punch_stiffness(QUARTZ, A, f, rtol=1e-10)
+    assert abs(layered_punch_stiffness(same, A, f, rtol=1e-10) / k_hom - 1) < 1e-10
 
 
 def test_frequency_to_zero_reaches_the_static_punch():
@@ -194,13 +198,20 @@ def test_cubic_film_near_isotropy_equals_the_isotropic_film():
 
 def test_layered_dcsf_is_paper_1s_exact_dcsf_on_a_homogeneous_solid():
     """Against contactres.dcsf (model "exact"), lossless and with Q⁻¹ = 0.02 (then DCSF(0) =
-    1 + iQ⁻¹: K_st of the undamped constants)."""
+    1 + iQ⁻¹: K_st of the undamped constants), on the homogeneous solid and on a film of its
+    own material."""
     ksa = np.array([0.0, 0.5, 1.5])
     for q in (0.0, 0.02):
         m = QUARTZ.with_loss(q) if q else QUARTZ
         got = layered_dcsf(m, A, _freq(QUARTZ, ksa))
         ref = dcsf(QUARTZ, ksa, model="exact", loss=q, wavenumber="shear")
         np.testing.assert_allclose(got, ref, rtol=1e-6, atol=0)
+        # Film = substrate (issue 26, point 5): 1e-10 of the largest |DCSF|, both routes at
+        # rtol 1e-10 (measured: 1.3e-15).
+        tight = dcsf(QUARTZ, ksa, model="exact", loss=q, wavenumber="shear", rtol=1e-10)
+        same = LayeredMaterial(m, [(m, 0.4 * A)])
+        film = layered_dcsf(same, A, _freq(QUARTZ, ksa), rtol=1e-10)
+        assert np.max(np.abs(film - tight)) < 1e-10 * np.max(np.abs(tight))
     stack = LayeredMaterial(QUARTZ, [(viscoelastic.pmma(), 0.05 * A)])
     with pytest.raises(ContactresInputError, match="static limit"):
         layered_dcsf(stack, A, 15e6)

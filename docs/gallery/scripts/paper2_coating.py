@@ -39,7 +39,7 @@ quartz = cr.at_cut_quartz()  # x = the crystal X axis, the shear direction
 silica = cr.Material.isotropic(E_SPHERE, NU, density=2200.0, name="SiO2")
 sphere = cr.Material.isotropic(E_SPHERE, NU, name="glass")
 pmma = cr.pmma()
-pmma_relaxed = cr.Material.from_voigt(pmma.at(1.0).C.real, density=pmma.density, name="PMMA")
+pmma_relaxed = pmma.storage(1.0)  # the elastic solid of its 1 Hz storage constants
 pmma_15 = pmma.at(FREQUENCY)
 g_15 = float(np.real(pmma_15.C[3, 3]))
 

@@ -69,10 +69,11 @@ def _degrees(ctx, param, value) -> float:
     "--coating",
     multiple=True,
     metavar="MATERIAL:THICKNESS",
-    help="A film on the face, thickness in m (e.g. pmma:250e-9); repeat for more layers, top "
-    "first. MATERIAL: pmma (viscoelastic: static columns use its 1 Hz storage modulus, dynamic "
-    "ones its modulus at --frequency) or an isotropic solid of `contactres crystals` "
-    "(fused-silica, soda-lime-glass, Si3N4). Adds the columns coating and film_share.",
+    help="A film on the face, thickness in m or with its unit (e.g. pmma:250e-9 or pmma:250nm); "
+    "repeat for more layers, top first. MATERIAL: pmma (viscoelastic: static columns use its "
+    "1 Hz storage modulus, dynamic ones its modulus at --frequency) or an isotropic solid of "
+    "`contactres crystals` (fused-silica, soda-lime-glass, Si3N4). Adds the columns coating "
+    "and film_share.",
 )
 @format_option()
 def contact(radius, force, frequency, tangential, direction, coating, fmt, **face):

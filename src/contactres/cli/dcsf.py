@@ -87,10 +87,10 @@ _CONTACT_OPTIONS = ("radius", "force", "frequency")
     "--coating",
     multiple=True,
     metavar="MATERIAL:THICKNESS",
-    help="A film on the face, thickness in m (e.g. pmma:250e-9); repeat for more layers, top "
-    "first (as 'contactres contact --coating'). The DCSF is then that of the layered punch, "
-    "a function of f and a separately (not of k a alone): needs --radius, --force and "
-    "--frequency; model exact, no --loss (a pmma film carries its own).",
+    help="A film on the face, thickness in m or with its unit (e.g. pmma:250e-9 or pmma:250nm); "
+    "repeat for more layers, top first (as 'contactres contact --coating'). The DCSF is then "
+    "that of the layered punch, a function of f and a separately (not of k a alone): needs "
+    "--radius, --force and --frequency; model exact, no --loss (a pmma film carries its own).",
 )
 @format_option()
 @click.pass_context

@@ -125,14 +125,14 @@ from ._common import (
     "--coating",
     multiple=True,
     metavar="MATERIAL:THICKNESS",
-    help="A film on the plate, thickness in m (at most 1; e.g. pmma:250e-9); repeat for "
-    "more layers, top first. MATERIAL: pmma (its 1 Hz storage modulus for the normal load, its "
-    "modulus at the overtone frequency for κ) or an isotropic solid of `contactres crystals` "
-    "(fused-silica, soda-lime-glass, Si3N4). E and γ are then fitted with the coated plate's "
-    "contact mechanics (E: sphere and substrate); summary.json gets each group's uncoated fit "
-    "and the film's share of κ per load. With --sphere-material/--plate-material the "
-    "radiation loss is that of the coated plate (the coated fit's contact radii; radiation.csv "
-    "names the film in plate_material).",
+    help="A film on the plate, thickness in m or with its unit (at most 1; e.g. pmma:250e-9 or "
+    "pmma:250nm); repeat for more layers, top first. MATERIAL: pmma (its 1 Hz storage modulus"
+    " for the normal load, its modulus at the overtone frequency for κ) or an isotropic solid"
+    " of `contactres crystals` (fused-silica, soda-lime-glass, Si3N4). E and γ are then "
+    "fitted with the coated plate's contact mechanics (E: sphere and substrate); summary.json"
+    " gets each group's uncoated fit and the film's share of κ per load. With "
+    "--sphere-material/--plate-material the radiation loss is that of the coated plate (the "
+    "coated fit's contact radii; radiation.csv names the film in plate_material).",
 )
 @click.option("--no-figures", is_flag=True, help="Skip the figures.")
 @figure_format_option()

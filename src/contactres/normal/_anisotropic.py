@@ -438,7 +438,8 @@ def contact_ellipse(
     if m.is_lossy:
         raise ContactresInputError(
             "contact_ellipse needs real (undamped) constants: the static contact of a lossy "
-            "material is that of its elastic part (drop with_loss)"
+            "material is that of its elastic part (drop with_loss; of a viscoelastic solid: "
+            ".storage(f_Hz))"
         )
     rtol = float(rtol)
     if not (1e-15 <= rtol <= 1e-2):
@@ -624,7 +625,8 @@ def sphere_contact(
     if m.is_lossy:
         raise ContactresInputError(
             "sphere_contact needs real (undamped) constants: the static contact of a lossy "
-            "material is that of its elastic part (drop with_loss)"
+            "material is that of its elastic part (drop with_loss; of a viscoelastic solid: "
+            ".storage(f_Hz))"
         )
     R = np.asarray(positive("radius", radius, "m"))
     F = np.asarray(nonnegative("force", force, "N"))

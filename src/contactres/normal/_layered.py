@@ -290,7 +290,8 @@ def indentation_modulus_at(material, contact_radius, *, tol: float = DEFAULT_TOL
     stack = _stack(material)
     if stack.is_lossy:
         raise ContactresInputError(
-            "indentation_modulus_at needs real (undamped) constants (drop with_loss)"
+            "indentation_modulus_at needs real (undamped) constants (drop with_loss; of a "
+            "viscoelastic solid: .storage(f_Hz))"
         )
     a = _radii("contact_radius", contact_radius)
     sol = punch_and_sphere(radial_kernel(stack), a, tol=tol)
@@ -429,7 +430,8 @@ def sphere_contact_at(
     stack = material.at(0.0) if isinstance(material, LayeredMaterial) else _stack(material)
     if stack.is_lossy:
         raise ContactresInputError(
-            "sphere_contact_at needs real (undamped) constants (drop with_loss)"
+            "sphere_contact_at needs real (undamped) constants (drop with_loss; of a "
+            "viscoelastic solid: .storage(f_Hz))"
         )
     R = np.asarray(positive("radius", radius, "m"), dtype=float)
     a = _radii("contact_radius", contact_radius)
@@ -543,7 +545,8 @@ def _sphere_contact(material, radius, force, rtol, tol, indenter):
     if stack.is_lossy:
         raise ContactresInputError(
             "sphere_contact needs real (undamped) constants: the static contact of a lossy "
-            "material is that of its elastic part (drop with_loss)"
+            "material is that of its elastic part (drop with_loss; of a viscoelastic solid: "
+            ".storage(f_Hz))"
         )
     R = np.asarray(positive("radius", radius, "m"), dtype=float)
     F = np.asarray(nonnegative("force", force, "N"), dtype=float)
