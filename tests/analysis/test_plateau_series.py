@@ -8,12 +8,13 @@ import numpy as np
 import pytest
 from scipy import integrate, special
 
-from contactres.analysis._plateau import SMALL_X_BLOCK, plateau_loop_slopes
+from contactres.analysis._plateau import plateau_loop_slopes
 from contactres.analysis._plateau_series import (
     SERIES_BLOCK,
     SERIES_MAX_M,
     SERIES_TIERS,
     slip_integral_series,
+    slip_integrals_series,
 )
 
 
@@ -32,6 +33,27 @@ def _quadpack(x, c):
         limit=200,
     )
     return value
+
+
+def _quadpack_derivatives(x, c):
+    """∫_c^b d(e - d)/√Q dd and ∫_c^b d(x - d)/√Q dd, Q = d(x - d)(e - d): 1/√(b - d) as
+    QAWS's weight."""
+    e = c + 1.5
+    b, far = min(x, e), max(x, e)
+    out = []
+    for top in (e, x):
+        value, _ = integrate.quad(
+            lambda d, top=top: d * (top - d) / np.sqrt(d * (far - d)),
+            c,
+            b,
+            weight="alg",
+            wvar=(0.0, -0.5),
+            epsabs=0.0,
+            epsrel=1e-13,
+            limit=200,
+        )
+        out.append(value)
+    return out
 
 
 def _points(seed, n=300):
@@ -56,6 +78,37 @@ def test_series_equals_adaptive_quadrature(seed):
     assert np.max(np.abs(slip_integral_series(x, c) - ref) / scale) < 1e-14
 
 
+@pytest.mark.parametrize("seed", [0, 1])
+def test_derivative_integrals_equal_adaptive_quadrature(seed):
+    # J's series with its derivatives' integrals (the fit's path): J the same bits as alone,
+    # the two others against QAWS on the integrals as written, on both sides of e, c = 0 and
+    # c near x (Euler's relation gives one of them: checked here too).
+    x, c = _points(seed)
+    e = c + 1.5
+    J, jx, jc = slip_integrals_series(x, c)
+    np.testing.assert_array_equal(J, slip_integral_series(x, c))
+    scale = np.minimum(x, e) * np.sqrt(np.maximum(x, e))  # their scale: r √A
+    ref = np.array([_quadpack_derivatives(a, b) for a, b in zip(x, c, strict=True)])
+    assert np.max(np.abs(jx - ref[:, 0]) / scale) < 1e-13
+    assert np.max(np.abs(jc - ref[:, 1]) / scale) < 1e-13
+
+
+def test_derivative_series_in_groups_of_cells():
+    # Only the cells of the groups are summed: m = 0.2 (cell 3) with groups ending at 4, not at
+    # 3; a group sums its last cell's terms, within rounding of each cell alone.
+    x, c = np.array([0.3, 0.3]), np.array([0.0, 0.0])
+    assert all(np.isfinite(v).all() for v in slip_integrals_series(x, c, groups=(2, 4)))
+    assert all(np.isnan(v).all() for v in slip_integrals_series(x, c, groups=(3,)))
+    x, c = _points(4)
+    e = c + 1.5
+    inside = np.minimum(x, e) < 0.5 * np.maximum(x, e)
+    r_a = np.minimum(x, e) * np.sqrt(np.maximum(x, e))  # r √A: the derivatives' scale, J's / r
+    grouped, alone = slip_integrals_series(x, c, groups=(4, 8)), slip_integrals_series(x, c)
+    for g, a, scale in zip(grouped, alone, (r_a * np.minimum(x, e), r_a, r_a), strict=True):
+        assert np.all(np.isnan(g[~inside])) and inside.sum() > 50
+        assert np.max(np.abs(g[inside] - a[inside]) / scale[inside]) < 1e-15
+
+
 def test_each_tier_sums_enough_terms():
     # The rest after K terms, at most |b_{K+1}| B(3/2, (K + 2)/2) q^{K+1}/(1 - q) (module
     # docstring), at the tier's largest m; and the tiers cover (0, SERIES_MAX_M) in order.
@@ -65,6 +118,11 @@ def test_each_tier_sums_enough_terms():
         q = m / (2.0 - m)
         most = abs(special.binom(0.5, terms + 1)) * special.beta(1.5, (terms + 2) / 2)
         assert most * q ** (terms + 1) / (1.0 - q) < 1e-17
+        # The derivatives' series: |c_k| = (2k - 1)|b_k| (k >= 1), each term larger, the rest
+        # at most 2K + 1 times J's (|c_k| B(...) falls with k as |b_k| B(...) does).
+        most_c = abs(special.binom(-0.5, terms + 1)) * special.beta(1.5, (terms + 2) / 2)
+        assert most_c == pytest.approx((2 * terms + 1) * most, rel=1e-12)
+        assert most_c * q ** (terms + 1) / (1.0 - q) < 2.5e-15
 
 
 def test_the_bound_of_each_term():
@@ -82,8 +140,8 @@ def test_outside_the_domain_is_nan():
 
 
 def test_slopes_without_derivatives_agree_with_the_fits():
-    # The evidence's path (derivatives=False) against the fit's (Gauss rule and elliptic
-    # integrals) and against the quadrature of the loop shape's integral in d.
+    # The evidence's path (derivatives=False) against the fit's (the series with derivatives
+    # in its groups of cells, the elliptic integrals beyond).
     x, c = _points(2)
     h1, h2 = plateau_loop_slopes(x, c, derivatives=False)
     g1, g2, *_ = plateau_loop_slopes(x, c)
@@ -100,9 +158,9 @@ def test_the_callers_angle_gives_the_same_numbers():
 
 
 def test_blocks_do_not_mix_points():
-    # The series (SERIES_BLOCK points a call) and the small-x Gauss rule (SMALL_X_BLOCK) work
-    # in blocks: over several blocks, each point's numbers are those it gets evaluated alone
-    # (in calls of 1000 points), and points in the last block still equal the quadrature.
+    # The series (SERIES_BLOCK points a call, with or without the derivatives' integrals)
+    # works in blocks: over several blocks, each point's numbers are those it gets evaluated
+    # alone (in calls of 1000 points), and points in the last block still equal the quadrature.
     rng = np.random.default_rng(5)
     n = 2 * SERIES_BLOCK + 777
     c = rng.uniform(0.0, 1.0, n)
@@ -114,10 +172,7 @@ def test_blocks_do_not_mix_points():
     np.testing.assert_array_equal(got, alone)
     for i in range(n - 5, n):
         assert abs(got[i] - _quadpack(x[i], c[i])) < 1e-14 * x[i] ** 2
-    k = 3 * SMALL_X_BLOCK + 5
-    cs = rng.uniform(0.0, 0.05, k)
-    xs = cs + rng.uniform(1e-3, 0.09, k)  # x < (c + 3/2)/10: the Gauss rule
-    slopes = plateau_loop_slopes(xs, cs)
-    parts = [plateau_loop_slopes(xs[i : i + 100], cs[i : i + 100]) for i in range(0, k, 100)]
+    slopes = plateau_loop_slopes(x, c)
+    parts = [plateau_loop_slopes(x[i : i + 1000], c[i : i + 1000]) for i in range(0, n, 1000)]
     for j, a in enumerate(slopes):
         np.testing.assert_array_equal(a, np.concatenate([p[j] for p in parts]))

@@ -35,10 +35,12 @@ from contactres.analysis._loops import (
 )
 from contactres.analysis._models import fit_tables
 from contactres.analysis._plateau import (
+    FIT_SERIES_GROUPS,
     PLATEAU_D_C_BOUND,
     fit_plateau_loops,
     plateau_loop_slopes,
 )
+from contactres.analysis._plateau_series import SERIES_CELLS
 from contactres.measurements._sweeps import validate_sweeps
 from contactres.measurements._synthetic import SweepGroup, SweepStudy, synthetic_sweeps
 from contactres.resonators._qcm import QCM
@@ -188,7 +190,7 @@ def test_workers_give_the_same_table():
 
 
 def test_plateau_slopes_equal_the_quadrature():
-    # Near and far from full sliding (x = c + 3/2), small x (the Gauss-Legendre branch), c = 0
+    # Near and far from full sliding (x = c + 3/2), small x (the series branch), c = 0
     # (the Cattaneo-Mindlin loop) and below d_c (stick).
     cs = np.array([0.0, 1e-3, 0.05, 0.3, 1.0, 4.0, 20.0])
     ys = np.concatenate([np.geomspace(1e-6, 40.0, 60), 1.5 + np.array([-1e-6, 0.0, 1e-6])])
@@ -206,12 +208,14 @@ def test_plateau_slopes_equal_the_quadrature():
 
 def test_plateau_slopes_are_the_derivatives():
     # Richardson-extrapolated central differences, away from the kinks at x = c and x = c + 3/2
-    # and from the switch between the two evaluations (x/(c + 3/2) = 0.1).
+    # and from the switch between the two evaluations (m = min(x, e)/max(x, e) =
+    # FIT_SERIES_GROUPS[-1]/SERIES_CELLS: the series below, the elliptic form above).
     rng = np.random.default_rng(4)
     c = rng.uniform(0.02, 3.0, 400)
     x = c + rng.uniform(0.02, 6.0, 400)
     e = c + 1.5
-    keep = (np.abs(x - e) > 0.05) & (np.abs(np.minimum(x, e) / np.maximum(x, e) - 0.1) > 0.01)
+    switch = FIT_SERIES_GROUPS[-1] / SERIES_CELLS
+    keep = (np.abs(x - e) > 0.05) & (np.abs(np.minimum(x, e) / np.maximum(x, e) - switch) > 0.01)
     x, c = x[keep], c[keep]
     small = rng.uniform(0.0, 0.01, 50)
     x, c = np.concatenate([x, small + rng.uniform(0.02, 0.1, 50)]), np.concatenate([c, small])

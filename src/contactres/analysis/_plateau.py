@@ -6,12 +6,13 @@ slips as Cattaneo-Mindlin in the excess. The fit Δf = Pκ G′(θu0, θd_c), Δ
 G″(θu0, θd_c)] (θ = κ/(μF_N)) solves Pκ and Pωξ in closed form for given (θ, d_c) (variable
 projection, :func:`contactres.analysis._loops.solve_projected`) and (ln θ, d_c) by a
 Levenberg-Marquardt iteration run for all sweeps at once, on the shapes and their derivatives
-in closed form (:func:`plateau_loop_slopes`, elliptic integrals). It starts from the hinge
-position and from the amplitude below it (the better of the two), θ from the Cattaneo-Mindlin
-loop fitted to the amplitudes in excess of the hinge. Pass 1 weights the points by the noise of
-the hinge fit, pass 2 by that of pass 1's own residuals. Errors come from the Jacobian in (Pκ,
-Pωξ, ln θ, d_c), scaled by the residual variance. The low-amplitude limits of such a sweep, and
-its ``plateau_amplitude_m``, then come from this fit (``limits_from`` = ``plateau-loop``).
+in closed form (:func:`plateau_loop_slopes`: power series, elliptic integrals). It starts from
+the hinge position and from the amplitude below it (the better of the two), θ from the
+Cattaneo-Mindlin loop fitted to the amplitudes in excess of the hinge. Pass 1 weights the
+points by the noise of the hinge fit, pass 2 by that of pass 1's own residuals. Errors come
+from the Jacobian in (Pκ, Pωξ, ln θ, d_c), scaled by the residual variance. The low-amplitude
+limits of such a sweep, and its ``plateau_amplitude_m``, then come from this fit
+(``limits_from`` = ``plateau-loop``).
 
 It replaces a :func:`scipy.optimize.least_squares` fit per sweep on the quadrature of
 :func:`contactres.analysis._loops.plateau_loop_shape` (same starts, passes, bounds and
@@ -32,24 +33,34 @@ import numpy as np
 import pandas as pd
 
 from ..fitting import LMOptions, levenberg_marquardt, solve_stacked
-from ..numerics import gauss_legendre_unit
 from ._amplitude import PLATEAU_MIN_SLOPE
 from ._carlson import legendre_tails
 from ._loops import X_MAX, LoopTable, fit_cm_loops, loop_fit_fields, solve_projected
-from ._plateau_series import slip_integral_series
+from ._plateau_series import slip_integral_series, slip_integrals_series
 
-__all__ = ["PLATEAU_LOOP_COLUMNS", "fit_plateau_loops", "plateau_loop_slopes"]
+__all__ = [
+    "FIT_SERIES_GROUPS",
+    "PLATEAU_LOOP_COLUMNS",
+    "fit_plateau_loops",
+    "plateau_loop_slopes",
+]
 
-#: Nodes of the Gauss-Legendre rule of the small-x integrals of :func:`plateau_loop_slopes`.
-SMALL_X_NODES = 16
+#: Groups of cells of m = min(x, e)/max(x, e) (1/16 wide, :data:`~contactres.analysis.
+#: _plateau_series.SERIES_TIERS`) in which :func:`plateau_loop_slopes` with derivatives sums
+#: the series of J and of its derivatives' integrals (:func:`~contactres.analysis.
+#: _plateau_series.slip_integrals_series`): m < 1/4 with 15 terms, m < 1/2 with 26 (89 % of
+#: the fit's points on the 10^4 sweeps of issue 31); the elliptic form beyond. Why: the fit
+#: evaluates a few thousand points a call, so that numpy's per-call cost of a cell's terms
+#: outweighs the terms a coarser group sums in vain: on the slopes of those fits' calls
+#: (6.4·10⁵ points) one cell a group up to 11/16 took 0.28 s of CPU, these two groups
+#: 0.20 s, the 16-point Gauss-Legendre rule (m < 0.1) and the elliptic form they replace
+#: 0.38 s (best of seven, loaded machine).
+FIT_SERIES_GROUPS = (4, 8)
 
 #: Points per block of the arithmetic of G′ and G″ from J without derivatives: its ~6 arrays
 #: stay in the core's cache (the evidence's calls hold up to ~2·10⁵ points); elementwise, so
 #: the same numbers in any block.
 VALUES_BLOCK = 8192
-
-#: Points per block of the small-x integrals (their arrays: 1024 x 16 doubles, 128 kB each).
-SMALL_X_BLOCK = 1024
 
 #: The Levenberg-Marquardt iteration of the fit (:func:`contactres.fitting.levenberg_marquardt`
 #: on the Gauss-Newton form of the projected χ², tolerances set per pass): Marquardt's scaling
@@ -98,7 +109,7 @@ PLATEAU_LOOP_COLUMNS = (
 )
 
 
-def plateau_loop_slopes(x, c, rule=None, derivatives: bool = True) -> tuple[np.ndarray, ...]:
+def plateau_loop_slopes(x, c, derivatives: bool = True) -> tuple[np.ndarray, ...]:
     """:func:`contactres.analysis._loops.plateau_loop_shape` in closed form, with derivatives.
 
     Returns G′ = K′/κ, G″ = (K″ - ωξ)/κ and ∂G′/∂x, ∂G′/∂c, ∂G″/∂x, ∂G″/∂c at x = κu0/(μF_N),
@@ -111,43 +122,41 @@ def plateau_loop_slopes(x, c, rule=None, derivatives: bool = True) -> tuple[np.n
     * G′ = 8/(πx²) [∫₀^c √(d(x - d)) dd + √(2/3) ∫_c^b √(d(x - d)(e - d)) dd], b = min(x, e):
       the second integral and those of the derivatives reduce to ∫ dᵏ/√(d(x - d)(e - d)),
       k = 0, 1, 2, i.e. to Legendre's incomplete elliptic integrals F and E of parameter
-      m = b/max(x, e). For m < 0.1 (small x, where their combination cancels) the three
-      integrals are instead summed by a 16-point Gauss-Legendre rule in φ, d = x(1 - cos φ)/2,
-      whose integrand is then smooth.
+      m = b/max(x, e). Where m < 1/2 (:data:`FIT_SERIES_GROUPS`; small x, where the elliptic
+      combination cancels, among them) the three integrals are instead summed as power series
+      (:func:`contactres.analysis._plateau_series.slip_integrals_series`).
 
-    ``rule``: the 16-point rule ``gauss_legendre_unit(16)`` (made here if None and
-    ``derivatives``; pass it when calling many times, as the fit does). Agrees with that
-    quadrature to ~2e-11 (its own accuracy; tests/analysis/test_scale.py), at ~1 µs per point
-    for all six arrays, several times less than the quadrature of G′, G″ alone.
+    Agrees with the quadrature of :func:`~contactres.analysis._loops.plateau_loop_shape` to
+    ~2e-11 (that quadrature's own accuracy; tests/analysis/test_scale.py), at ~0.3-0.5 µs per
+    point for all six arrays, several times less than the quadrature of G′, G″ alone.
     ``derivatives=False``: G′ and G″ alone (the nodes of
     :mod:`contactres.analysis._plateau_evidence`, which need no gradient), at a fraction of the
     cost: the second integral by its power series wherever m < 7/8
     (:func:`contactres.analysis._plateau_series.slip_integral_series`), the same numbers to
-    rounding (within ~1e-13 of G′ with derivatives, whose elliptic form loses that much to
-    cancellation at 0.1 < m; the series is the more accurate).
+    rounding (within ~1e-13 of G′ with derivatives, whose elliptic form, at m >= 1/2, loses
+    that much to cancellation; the series is the more accurate).
     """
     x, c = np.broadcast_arrays(np.asarray(x, dtype=float), np.asarray(c, dtype=float))
-    if rule is None and derivatives:  # the values alone need no rule (~0.2 ms to make)
-        rule = gauss_legendre_unit(SMALL_X_NODES)
     out = [np.ones(x.shape)] + [np.zeros(x.shape) for _ in range(5 if derivatives else 1)]
     slip = x > c  # below d_c the contact sticks: G′ = 1, G″ = 0, and so do their derivatives
     if slip.any():
-        for o, v in zip(out, _slipping(x[slip], c[slip], rule, derivatives), strict=True):
+        for o, v in zip(out, _slipping(x[slip], c[slip], derivatives), strict=True):
             o[slip] = v
     return tuple(out)
 
 
-def _slipping(x, c, rule, derivatives=True) -> tuple[np.ndarray, ...]:
+def _slipping(x, c, derivatives=True) -> tuple[np.ndarray, ...]:
     """:func:`plateau_loop_slopes` where x > c (1-d arrays)."""
     if not derivatives:
         return _slipping_values(x, c)
-    y, e = x - c, c + 1.5
-    J, Jx, Jc = np.empty_like(x), np.empty_like(x), np.empty_like(x)
-    small = x < 0.1 * e  # m = x/e < 0.1
-    for a, v in zip((J, Jx, Jc), _small_x_integrals(x[small], c[small], rule), strict=True):
-        a[small] = v
-    J[~small], Jx[~small], Jc[~small] = _elliptic_integrals(x[~small], c[~small])
+    y = x - c
     half = 2.0 * np.arcsin(np.sqrt(c / x))  # d = c at φ = half
+    # J and its derivatives' integrals by their series where it is the cheaper (m below
+    # FIT_SERIES_GROUPS[-1]/16), by the elliptic integrals beyond.
+    J, Jx, Jc = slip_integrals_series(x, c, half, FIT_SERIES_GROUPS)
+    far = np.isnan(J)
+    if far.any():
+        J[far], Jx[far], Jc[far] = _elliptic_integrals(x[far], c[far])
     rcy = np.sqrt(c * y)
     H = x**2 / 8.0 * half - 0.25 * rcy * (y - c) + np.sqrt(2.0 / 3.0) * J
     # Loss part: s(y) = ∫₀^y (1 - √(1 - 2t/3)) dt and W(y), with 1 - r = (2y/3)/(1 + r).
@@ -260,38 +269,7 @@ def _elliptic_integrals(x, c, derivatives: bool = True) -> tuple[np.ndarray, ...
     return J, e * I1 - I2, x * I1 - I2
 
 
-def _small_x_integrals(x, c, rule):
-    """J, ∫d(e - d)/√Q, ∫d(x - d)/√Q of :func:`plateau_loop_slopes` for x < e/10, by
-    Gauss-Legendre in φ (d = x(1 - cos φ)/2 from d = c to x: √(d(x - d)) = x sin φ/2).
-
-    In blocks of :data:`SMALL_X_BLOCK` points: the (points, nodes) arrays of a block stay in
-    the core's cache (of the fit's calls, the largest made ~13 MB arrays). Each point's sums
-    are its own row's, the same numbers in any block."""
-    out = np.empty((3, x.size))
-    for start in range(0, x.size, SMALL_X_BLOCK):
-        block = slice(start, start + SMALL_X_BLOCK)
-        out[:, block] = _small_x_block(x[block], c[block], rule)
-    return out[0], out[1], out[2]
-
-
-def _small_x_block(x, c, rule) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
-    """:func:`_small_x_integrals` at one block of points."""
-    t, wt = rule
-    lo = 2.0 * np.arcsin(np.sqrt(c / x))
-    ph = lo[:, None] + (np.pi - lo)[:, None] * t
-    dphi = (np.pi - lo)[:, None] * wt
-    cos, sin = np.cos(ph), np.sin(ph)
-    one_cos = np.subtract(1.0, cos, out=cos)  # 1 - cos φ (both uses below)
-    d = 0.5 * x[:, None] * one_cos
-    f = np.sqrt(1.0 - (d - c[:, None]) / 1.5)  # √((e - d)/(3/2))
-    x2 = 0.25 * x[:, None] ** 2 * sin * sin * dphi  # √(d(x - d)) dd
-    J = np.sqrt(1.5) * (x2 * f).sum(-1)
-    Jx = np.sqrt(1.5) * (f * 0.5 * x[:, None] * one_cos * dphi).sum(-1)  # √(d/(x - d)) dd
-    Jc = (x2 / f).sum(-1) / np.sqrt(1.5)
-    return J, Jx, Jc
-
-
-def _plateau_model(p, u, umax, df, dg, w, wf, wg, rule) -> dict[str, np.ndarray]:
+def _plateau_model(p, u, umax, df, dg, w, wf, wg) -> dict[str, np.ndarray]:
     """Projected fit of the plateau loop at p = (ln θ(u_max - d_c), d_c/u_max), rows (R, 2):
     Pκ, Pωξ, χ², the RSS of the channels, the gradient of χ²/2 in p and its Gauss-Newton
     Hessian (Kaufman's variable projection: exact gradient, Jacobian projected off Pκ, Pωξ)."""
@@ -300,7 +278,7 @@ def _plateau_model(p, u, umax, df, dg, w, wf, wg, rule) -> dict[str, np.ndarray]
     theta = ey / (umax * (1.0 - dl))  # θ(u_max - d_c) = e^ly
     c = (theta * dl * umax)[:, None]
     x = theta[:, None] * u
-    g1, g2, g1x, g1c, g2x, g2c = plateau_loop_slopes(x, c, rule)
+    g1, g2, g1x, g1c, g2x, g2c = plateau_loop_slopes(x, c)
     A, B, chi2, rss_f, rss_g = solve_projected(g1, g2, df, dg, w, wf, wg)
     sf, sg = np.sqrt(wf)[:, None] * w, np.sqrt(wg)[:, None] * w
     dx = x / (1.0 - dl)[:, None]  # ∂x/∂(d_c/u_max); ∂x/∂ln(...) = x
@@ -362,7 +340,6 @@ def fit_plateau_loops(
     the other errors those of the fit with d_c held at 0.
     """
     u_c = np.asarray(u_c, dtype=float)
-    rule = gauss_legendre_unit(SMALL_X_NODES)  # made once for the hundreds of model calls
     S = u.shape[0]
     rows = np.arange(S)
     n = w.sum(axis=1)
@@ -392,9 +369,7 @@ def fit_plateau_loops(
         um = umax[of]
 
         def model(p, i):
-            return _plateau_model(
-                p, data[0][i], um[i], *(a[i] for a in data[1:]), wf[i], wg[i], rule
-            )
+            return _plateau_model(p, data[0][i], um[i], *(a[i] for a in data[1:]), wf[i], wg[i])
 
         # Each row's latest evaluation and where it was made: the fit at the solution is the
         # last accepted step's, so only rows whose last step was refused are evaluated again

@@ -41,7 +41,15 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["SERIES_CELLS", "SERIES_MAX_M", "SERIES_TERMS", "SERIES_TIERS", "slip_integral_series"]
+__all__ = [
+    "ALL_CELLS",
+    "SERIES_CELLS",
+    "SERIES_MAX_M",
+    "SERIES_TERMS",
+    "SERIES_TIERS",
+    "slip_integral_series",
+    "slip_integrals_series",
+]
 
 #: The series' tiers: m = min(x, e)/max(x, e) in cells 1/16 wide, a point's tier the cell
 #: floor(16 m) (exact: 16 m is m with another exponent, so that no point near a bound goes
@@ -77,6 +85,9 @@ SERIES_TIERS = tuple(((j + 1) / SERIES_CELLS, k) for j, k in enumerate(SERIES_TE
 #: The series' domain: m below this.
 SERIES_MAX_M = SERIES_TIERS[-1][0]
 
+#: Each cell of :data:`SERIES_TIERS` a group of its own (:func:`slip_integrals_series`).
+ALL_CELLS = tuple(range(1, len(SERIES_TIERS) + 1))
+
 
 def slip_integral_series(x, c, phi=None) -> np.ndarray:
     """J = ∫_c^b √(d(x - d)(e - d)) dd, e = c + 3/2, b = min(x, e), by its power series
@@ -94,6 +105,50 @@ def slip_integral_series(x, c, phi=None) -> np.ndarray:
     J, dimensionless (the integral of :func:`contactres.analysis._plateau.plateau_loop_slopes`;
     NaN outside the domain)
     """
+    return _by_tiers(x, c, phi, ALL_CELLS, False)[0]
+
+
+def slip_integrals_series(x, c, phi=None, groups=ALL_CELLS) -> tuple[np.ndarray, ...]:
+    """J of :func:`slip_integral_series` (the same numbers, bit for bit) with the two integrals
+    of its derivatives, ∫ d(e - d)/√Q dd and ∫ d(x - d)/√Q dd (Q = d(x - d)(e - d), from c to
+    b), by the same series.
+
+    Why. The plateau fit needs G′'s derivatives in x and c at every point of every
+    Levenberg-Marquardt step (:func:`contactres.analysis._plateau.plateau_loop_slopes`): by a
+    16-point Gauss-Legendre rule (m < 0.1) and Carlson's R_F, R_D, ~400-900 ns a point; this
+    costs two more passes a term than J alone.
+
+    How. With d = r(1 - cos φ)/2 as for J, the integral with √ of the larger end (max(x, e) - d
+    = A(1 + q cos φ)) in the denominator is (r²/4)/√A ∫ sin²φ (1 + q cos φ)^(-1/2) dφ =
+    (r²/4)/√A Σ c_k q^k T_k, c_k = binom(-1/2, k) = -(2k - 1) b_k (k >= 1): the terms of J's
+    series times -(2k - 1), summed alongside (the rest after K terms is at most 2K + 1 times
+    J's, below ~2e-15 of its scale in the last tier). That is ∫ d(x - d)/√Q where x <= e and
+    ∫ d(e - d)/√Q where x > e; the other follows from Euler's relation for J(x, c, e),
+    homogeneous of degree 5/2 in the three, whose partial derivatives are half the two
+    integrals (in x and e) and -√Q(c) (in c, the lower end): x ∫d(e - d)/√Q + e ∫d(x - d)/√Q
+    = 5J + 2c√Q(c), √Q(c) = √(3c(x - c)/2). The terms on the right are positive and the
+    subtraction loses no more than a few units of rounding of 5J (x ∫d(e - d)/√Q and
+    e ∫d(x - d)/√Q are each at least ~J).
+
+    Parameters
+    ----------
+    x, c, phi : as :func:`slip_integral_series`
+    groups : ascending ends (exclusive) of groups of cells of :data:`SERIES_TIERS`: the points
+        of each group sum the terms of its last cell (the most it needs), in one pass over
+        them (fewer, longer numpy calls where the points are few); NaN beyond the last group's
+        end (m below ``groups[-1]``/:data:`SERIES_CELLS` only). Default: each cell alone, as
+        :func:`slip_integral_series`, whose J this then is bit for bit
+
+    Returns
+    -------
+    J, ∫ d(e - d)/√Q dd and ∫ d(x - d)/√Q dd, dimensionless (NaN outside the domain)
+    """
+    return _by_tiers(x, c, phi, tuple(groups), True)
+
+
+def _by_tiers(x, c, phi, groups: tuple[int, ...], derivatives: bool) -> tuple[np.ndarray, ...]:
+    """The series of :func:`slip_integral_series` (with the integrals of
+    :func:`slip_integrals_series` if ``derivatives``) in the ``groups`` of cells."""
     x, c = np.asarray(x, dtype=float), np.asarray(c, dtype=float)
     e = c + 1.5
     # The integrand is symmetric in x and e (module docstring): r = min(x, e), A.
@@ -105,7 +160,7 @@ def slip_integral_series(x, c, phi=None) -> np.ndarray:
     tier = np.fmin(m * SERIES_CELLS, len(SERIES_TIERS)).astype(np.int8)
     order = np.argsort(tier, kind="stable")
     ends = np.cumsum(np.bincount(tier, minlength=len(SERIES_TIERS) + 1))
-    order = order[: ends[len(SERIES_TIERS) - 1]]
+    order = order[: ends[groups[-1] - 1]]
     x, c = x[order], c[order]
     e = c + 1.5
     r, a = np.minimum(x, e), np.maximum(x, e)
@@ -118,21 +173,31 @@ def slip_integral_series(x, c, phi=None) -> np.ndarray:
         phi = np.asarray(phi, dtype=float)[order]
         if far.any():
             phi[far] = 2.0 * np.arcsin(np.sqrt(c[far] / r[far]))
-    got = np.empty(order.size)
-    for (_, terms), lo, hi in zip(SERIES_TIERS, [0, *ends], ends, strict=False):
+    got = np.empty((1 + derivatives, order.size))
+    for first, last in zip((0, *groups[:-1]), groups, strict=True):
+        lo, hi, terms = (0, *ends)[first], ends[last - 1], SERIES_TIERS[last - 1][1]
         # In blocks of SERIES_BLOCK points (the last one shorter): each term's passes then stay
         # in the core's cache.
         for start in range(lo, hi, SERIES_BLOCK):
             block = slice(start, min(start + SERIES_BLOCK, hi))
-            got[block] = _series(r[block], a[block], c[block], phi[block], terms)
-    out = np.full(m.shape, np.nan)
-    out[order] = got
-    return out
+            got[:, block] = _series(r[block], a[block], c[block], phi[block], terms, derivatives)
+    out = np.full((1 + 2 * derivatives, m.size), np.nan)
+    out[0, order] = got[0]
+    if derivatives:
+        # Euler's relation (slip_integrals_series): the summed one is that of the larger end.
+        J, summed = got
+        rest = 5.0 * J + 2.0 * c * np.sqrt(1.5 * c * (x - c))
+        rest -= np.where(far, x, e) * summed
+        rest /= np.where(far, e, x)
+        out[1, order] = np.where(far, summed, rest)
+        out[2, order] = np.where(far, rest, summed)
+    return tuple(out)
 
 
-def _series(r, a, c, phi, terms):
+def _series(r, a, c, phi, terms, derivatives=False):
     """(r²/4) √A Σ_{k <= terms} b_k q^k T_k (module docstring) at r, A = ``a``, c and φ_c =
-    ``phi``."""
+    ``phi`` (and, if ``derivatives``, (r²/4)/√A Σ c_k q^k T_k of
+    :func:`slip_integrals_series`)."""
     rho = c / r
     q = 0.5 * r / a
     sin = 2.0 * np.sqrt(rho * (1.0 - rho))
@@ -141,18 +206,26 @@ def _series(r, a, c, phi, terms):
     p = sin * sin * sin * q  # not sin**3: a call of pow per point
     older, old = 0.5 * (np.pi - phi) + 0.5 * sin * cos, p * (-0.5 / 3.0)
     total = older + old
+    # c_k/b_k = -(2k - 1) for k >= 1 (slip_integrals_series): V_0 - V_1 so far.
+    other = older - old if derivatives else None
     qq, qc = q * q, q * cos
     tmp = np.empty_like(p)
     # In place (V_k in the buffer of V_{k-2}, which it no longer needs): the same arithmetic
     # without a new array per operation.
-    for to_older, to_p in _FACTORS[: terms - 1]:
+    for k, (to_older, to_p) in enumerate(_FACTORS[: terms - 1], start=2):
         p *= qc
         older *= qq
         older *= to_older
         older -= np.multiply(p, to_p, out=tmp)
         total += older
+        if other is not None:
+            other -= np.multiply(older, 2 * k - 1, out=tmp)
         older, old = old, older
-    return 0.25 * r * r * np.sqrt(a) * total
+    scale = 0.25 * r * r
+    if other is None:
+        return scale * np.sqrt(a) * total
+    root = np.sqrt(a)
+    return scale * root * total, scale * other / root
 
 
 def _factors(terms: int) -> tuple[tuple[float, float], ...]:
