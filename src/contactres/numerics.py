@@ -100,8 +100,8 @@ def gauss_legendre(a, b, n: int) -> tuple[np.ndarray, np.ndarray]:
 
     Notes
     -----
-    :func:`gauss_legendre_unit` keeps numpy's construction: the QCM model and the plateau fit
-    were validated on those nodes, which differ from scipy's in the last bits (<= ~5e-15).
+    :func:`gauss_legendre_unit` keeps numpy's construction: the QCM model was validated on
+    those nodes, which differ from scipy's in the last bits (<= ~5e-15).
     """
     n_int = int(n)
     if n_int != n or n_int < 1:
