@@ -360,3 +360,26 @@ def test_a_static_contact_on_pmma_names_its_storage_solid_and_that_solid_works()
     # The way out for the stack: its film as the storage solid.
     coated = cr.sphere_contact(cr.LayeredMaterial(quartz, [(solid, 250e-9)]), 1e-3, 1e-3)
     assert want.contact_radius > coated.contact_radius > 0
+
+
+def test_a_tables_static_refusal_keeps_the_tables_reason_and_pandas_gets_no_hint():
+    """Review R22a: at(0) of a table not reaching 0 Hz says the table's own range (no storage
+    modulus was computed, so none is quoted), then the way out; require_material's hint about
+    frequency-dependent solids is for those only, not for a pandas object (its ``at``
+    accessor)."""
+    import pandas as pd
+
+    from contactres.materials import require_material
+
+    table = ModulusTable([10.0, 100.0, 1000.0], [1e9, 1.2e9, 1.5e9], [1e8] * 3)
+    solid = ViscoelasticMaterial.isotropic(table, poisson=0.35, density=1190.0, name="tabled")
+    with pytest.raises(ContactresInputError) as info:
+        solid.at(0.0)
+    text = str(info.value)
+    assert "range 10 to 1000 Hz" in text and "storage(f_Hz)" in text
+    assert "Pa)" not in text and "\n" not in text
+    with pytest.raises(ContactresInputError) as info:
+        require_material(pd.DataFrame({"a": [1.0]}))
+    assert str(info.value) == "m must be a contactres.Material, got DataFrame"
+    with pytest.raises(ContactresInputError, match="layered_dcsf"):
+        require_material(solid)

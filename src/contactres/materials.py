@@ -530,9 +530,10 @@ def require_material(m, *, lossless: bool = False) -> Material:
     its constants are real); a ValueError naming what was passed otherwise."""
     if not isinstance(m, Material):
         hint = ""
-        if hasattr(m, "at"):
+        if isinstance(m, Summarised) and callable(getattr(m, "at", None)):
             # A LayeredMaterial or a viscoelastic solid (issue 26): the functions of k a alone
             # (dcsf, tangential_dcsf, ...) have no meaning for it; say which ones take it.
+            # Summarised first: pandas objects have an ``at`` accessor too.
             hint = (
                 " (a layered or frequency-dependent solid: its DCSF and dynamic stiffness depend"
                 " on the frequency and the radius, not on k a alone; contactres.dynamic."

@@ -519,13 +519,20 @@ class ViscoelasticMaterial(Summarised):
         f = _frequency(frequency)
         if f.ndim:
             raise ContactresInputError("at(frequency) takes one frequency (Hz), not an array")
+        way_out = (
+            "a static contact takes the elastic solid of its storage constants at the "
+            "loading frequency, material.storage(f_Hz), e.g. viscoelastic.pmma().storage(1.0), "
+            "also as a layer of a LayeredMaterial"
+        )
         for law, _ in self.terms:
             try:
                 storage = float(np.real(law(f)))
-            except ContactresInputError:
+            except ContactresInputError as exc:
                 if f != 0:
                     raise
-                storage = 0.0  # a law without a static limit: the way out is said below
+                # The law's own reason (no static limit, a table not reaching 0 Hz) stays
+                # first: no storage modulus was computed, so none is quoted.
+                raise ContactresInputError(f"{exc}; {way_out}") from exc
             if not storage > 0:
                 # The static callers (sphere_contact, indentation_modulus_at, a stack at
                 # 0 Hz) land here: name the elastic solid they can take instead.
@@ -533,10 +540,7 @@ class ViscoelasticMaterial(Summarised):
                 raise ContactresInputError(
                     f"{self.name or 'this viscoelastic solid'} has {where}no solid at "
                     f"{float(f):g} Hz ({type(law).__name__}: storage modulus {storage:.4g} Pa); "
-                    "a static contact takes the elastic solid of its storage constants at the "
-                    "loading frequency, "
-                    "material.storage(f_Hz), e.g. viscoelastic.pmma().storage(1.0), also as a "
-                    "layer of a LayeredMaterial"
+                    f"{way_out}"
                 )
         return Material(C=self.stiffness(f), density=self.density, name=self.name, frame=self.frame)
 

@@ -305,3 +305,32 @@ def test_the_sagittal_recursion_is_the_three_by_three_one(monkeypatch, material)
 
 def _sagittal_refused(*args):
     raise AssertionError("the sagittal recursion must not serve off θ = 0")
+
+
+@pytest.mark.parametrize(
+    "static_at", [None, 0, 1, 3], ids=["all-dynamic", "first", "middle", "last"]
+)
+def test_edge_waves_are_each_points_own_interpolation(static_at):
+    """The waves at the panel edges e_i = S₁ ratio^i, interpolated once for every dynamic point
+    (y = ratio^(−2i) at each) and cut into each point's rows lo..hi − 1, equal each point's own
+    interpolation (``real_all``) to round-off; a static point (f = 0) among them, first, in the
+    middle or last, takes the static waves in its place (review R22a)."""
+    res = _layered_nodes.PunchResolution()
+    stack = LayeredMaterial(QUARTZ, [(PMMA, 0.05 * A)])
+    freqs = [1e6, 2e7, 9e7, 4e7]
+    if static_at is not None:
+        freqs[static_at] = 0.0
+    stacks = [_stack(stack, f) for f in freqs]
+    theta = np.linspace(0.0, np.pi, 4, endpoint=False)
+    shared = _layered_path._SharedWaves(stacks[0], theta, res, stacks)
+    ranges = [(0, 7), (2, 9), (0, 3), (4, 12)]
+    scale = [st.pole if st.omega > 0 else 1.0 for st in stacks]
+    items = [
+        (st, A, p * A * res.ratio ** np.arange(lo, hi, dtype=float))
+        for st, p, (lo, hi) in zip(stacks, scale, ranges, strict=True)
+    ]
+    got = shared.edge_waves(items, ranges, res.ratio).arrays()
+    want = shared.real_all(items).arrays()
+    for g, w in zip(got, want, strict=True):
+        assert g.shape == w.shape
+        assert np.max(np.abs(g - w)) <= 1e-13 * np.max(np.abs(w))

@@ -303,7 +303,7 @@ class _SharedWaves:
             self._panels = self.table.interpolated(chebyshev_matrix(self.table.size, 2 * y - 1))
         return _rows_of(self._panels, [(0, int(c)) for c in counts])
 
-    def edge_waves(self, items, ranges, ratio: float) -> StackWaves:
+    def edge_waves(self, items: list, ranges: list[tuple[int, int]], ratio: float) -> StackWaves:
         """:meth:`real_all` of the panel edges of ``items`` [(stack, a, edges[lo:hi]), ...],
         ``ranges`` [(lo, hi), ...]. A dynamic point's edges e_i = S₁ ratio^i have y = (S₁/e_i)²
         = ratio^(−2i), the same at every point (as :meth:`panel_waves`' samples): the waves
@@ -364,13 +364,13 @@ class _SharedWaves:
         return StackWaves.combined(parts)
 
 
-def _rows_of(waves: StackWaves, ranges) -> StackWaves:
+def _rows_of(waves: StackWaves, ranges: list[tuple[int, int]]) -> StackWaves:
     """The rows lo..hi − 1 of ``waves`` for each (lo, hi) of ``ranges``, one after the other
     ((lo, −k): row lo k times), joined slice by slice: each entry's values at the nodes stay
     contiguous, as the recursion reads them (a gather by an index array along the node axis
     put the nodes outermost: the recursion's ~100 products then ran over strided vectors)."""
 
-    def piece(w, lo: int, hi: int):
+    def piece(w: np.ndarray, lo: int, hi: int) -> np.ndarray:
         if hi >= 0:
             return w[..., lo:hi, :]
         return np.broadcast_to(w[..., lo : lo + 1, :], (*w.shape[:-2], -hi, w.shape[-1]))

@@ -443,9 +443,10 @@ def read_spectra_sweeps(
         (:func:`sweeps_from_spectra`), the resonance fits (one row per spectrum) and one line
         per spectrum left out.
     """
+    from ._checksum import file_sha256
     from ._spectra import fit_resonances
     from ._spectra_table import read_spectra
-    from ._sweeps import file_sha256, validate_sweeps
+    from ._sweeps import validate_sweeps
 
     digest = file_sha256(path)  # of the file as read (None for a folder of spectra)
     table = read_spectra(
