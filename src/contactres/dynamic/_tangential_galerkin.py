@@ -65,12 +65,11 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import special
 
 from .._threads import one_blas_thread
 from ..errors import ContactresInputError
 from ._farfield import FarGrid, far_basis, far_grid
-from ._tangential_static import CAUCHY_POINTS, CAUCHY_RADIUS, load_derivatives, radial_integrals
+from ._tangential_static import load_derivatives, radial_integrals
 from ._tangential_table import TangentialTable, prepare_tangential
 from ._weights import spherical_bessel
 
@@ -216,33 +215,6 @@ def odd_free(table: TangentialTable) -> bool:
     )
 
 
-def _series_integrals(pa: np.ndarray, pb: np.ndarray, n_log: int) -> np.ndarray:
-    """∂^d_λ R(p_a, λ; p_b, 0) at λ = 0, d = 0..n_log (R of
-    :func:`contactres.dynamic._tangential_static.radial_integrals`, its second function at
-    λ = 0), shape (n_log + 1, *broadcast(pa, pb).shape); Cauchy's formula in λ on the same
-    circle as there."""
-    nc, rho = CAUCHY_POINTS, CAUCHY_RADIUS
-    z = rho * np.exp(2j * np.pi * np.arange(nc) / nc)
-    pa = np.asarray(pa, dtype=float)[None]
-    pb = np.asarray(pb, dtype=float)[None]
-    lam = z.reshape((nc,) + (1,) * (pa.ndim - 1))
-    L = 1 + lam
-    ratio = np.exp(special.gammaln((pa + pb + 1) / 2) - special.loggamma((pa + pb + 3) / 2 + lam))
-    values = (
-        (np.pi / 2)
-        * special.gamma(L)
-        * 2.0 ** (-L)
-        * ratio
-        * special.rgamma((pb - pa) / 2 + 1)
-        * special.rgamma((pa - pb) / 2 + 1 + lam)
-    )
-    d = np.arange(n_log + 1)
-    w = np.exp(-2j * np.pi * np.outer(d, np.arange(nc)) / nc) / nc  # (n_log + 1, nc)
-    coef = np.tensordot(w, values, axes=(1, 0))
-    scale = special.factorial(d) / rho**d
-    return (coef * scale.reshape((-1,) + (1,) * (coef.ndim - 1))).real
-
-
 def basis_of(table: TangentialTable, size: TangentialSize) -> _Basis:
     """The Galerkin basis ``size`` on the harmonics of ``table`` (index bookkeeping, transforms
     as series of j_p, loads and the radial integrals of the static matrix)."""
@@ -261,15 +233,17 @@ def basis_of(table: TangentialTable, size: TangentialSize) -> _Basis:
     rad_d = np.array([r[2] for r in rad])
     rad_p = rad_n + 2 * rad_k
     p_max = nh + 2 * (nq - 1)
-    R = radial_integrals(int(rad_p.max()), nlog)  # [d_a, d_b, p_a, p_b]
+    # [d_a, d_b, p_a, p_b]: the static matrix's and (d_b = 0) the Neumann series' integrals.
+    R = radial_integrals(max(p_max, int(rad_p.max())), nlog)
     series = np.zeros((len(rad), p_max + 1))
     poly = rad_d == 0
     series[np.flatnonzero(poly), rad_p[poly]] = 1.0
     enr = np.flatnonzero(~poly)
     pq = rad_n[enr][:, None] + 2 * np.arange(nq)[None, :]  # (n_enr, nq)
-    # A_q = ∫ H^{(d)} j_{p_q} ds / ∫ j_{p_q}² ds (orthogonality of the j_p of one parity).
-    deriv = _series_integrals(rad_p[enr][:, None], pq, nlog)  # (nlog + 1, n_enr, nq)
-    series[enr[:, None], pq] = 2 * (2 * pq + 1) / np.pi * deriv[rad_d[enr], np.arange(enr.size)]
+    # A_q = ∫ H^{(d)} j_{p_q} ds / ∫ j_{p_q}² ds (orthogonality of the j_p of one parity), the
+    # numerator ∂^d_λ R(p, λ; p_q, 0) at λ = 0.
+    deriv = R[rad_d[enr][:, None], 0, rad_p[enr][:, None], pq]  # (n_enr, nq)
+    series[enr[:, None], pq] = 2 * (2 * pq + 1) / np.pi * deriv
     # The basis: component α, harmonic n, radial id of (|n|, k, d).
     per_n = len(kd)
     alphas, harmonics, radials = [], [], []
