@@ -421,7 +421,10 @@ def _dynamic_part(table: TangentialTable, basis: _Basis, ka: np.ndarray, grid) -
     wk = table.near_weight[None, :] * ka[:, None]
     nk = wk.shape[1]
     nv = table.near_values.reshape(nk, -1, 4)  # (nk, nm, 4)
-    hw = h * wk[:, None, :]
+    # Real factors of complex products as complex numbers x + 0i, here and below (avg): numpy
+    # would cast them through its iterator buffers, element by element of the broadcast, at
+    # several times the cost of the products (which are the same, to the bit).
+    hw = h * wk.astype(complex)[:, None, :]
     # Far field: Chebyshev series of each harmonic against the products on the far grid, one
     # product over the grid for every (k a, Chebyshev term).
     nf = table.far_coeffs.shape[1]
@@ -442,7 +445,7 @@ def _dynamic_part(table: TangentialTable, basis: _Basis, ka: np.ndarray, grid) -
     p = np.arange(basis.p_max + 1)
     amp_s = basis.series @ np.cos(p * np.pi / 2)
     amp_c = basis.series @ -np.sin(p * np.pi / 2)
-    avg = np.outer(amp_s, amp_s) + np.outer(amp_c, amp_c)
+    avg = (np.outer(amp_s, amp_s) + np.outer(amp_c, amp_c)).astype(complex)
     c1 = coef @ np.where(np.arange(nf) % 2 == 0, 1.0, -1.0)  # (nm, 4)
     scale = (table.t1 * ka) ** 2 / (6 * grid.s_end**3)
     magnitudes = np.unique(np.abs(harmonics)).tolist()
@@ -578,7 +581,8 @@ def tangential_per_a(
         b0 = b0.even_part()
     # The static matrix without the phases (module docstring), Hermitian, scaled to a unit
     # diagonal; the loads in the same scaling.
-    m0 = 0.5 * (b0.static + b0.static.conj().T)
+    m0 = b0.static
+    m0 = 0.5 * (m0 + m0.conj().T)
     d = 1.0 / np.sqrt(np.real(np.diagonal(m0)))
     m0 = d[:, None] * m0 * d[None, :]
     loads = d[:, None] * b0.load
