@@ -281,3 +281,32 @@ def test_shifted_chebyshev_rows_are_the_polynomials_t_f_of_2w_minus_1():
     # the monomial form cancels: its rounding is ~1e-16 of the sum of |coefficients| (4e6 at f = 11)
     bound = 1e-15 * np.abs(rows).sum(axis=1)[:, None]
     assert np.all(np.abs(values - exact) < bound)
+
+
+def test_direct_solve_check_is_the_eigenvalue_criterion(monkeypatch):
+    # _keeps_every_direction (a shifted Cholesky first) against the criterion it replaces, the
+    # eigenvalues of the scaled static matrix: λ_min > 1e-14 λ_max. Hermitian, unit diagonal,
+    # spectra from well conditioned to numerically singular (seeded).
+    from contactres.dynamic import _tangential_galerkin as galerkin
+
+    rng = np.random.default_rng(31)
+    n = 60
+    q, _ = np.linalg.qr(rng.standard_normal((n, n)) + 1j * rng.standard_normal((n, n)))
+    eigvalsh = np.linalg.eigvalsh
+    for ratio in (1e-2, 1e-6, 1e-9, 1e-17, 1e-20):
+        a = (q * np.geomspace(ratio, 1.0, n)) @ q.conj().T
+        d = 1.0 / np.sqrt(np.real(np.diagonal(a)))
+        a = d[:, None] * a * d[None, :]
+        a = 0.5 * (a + a.conj().T)
+        w = eigvalsh(a)
+        expected = bool(w[0] > 1e-14 * w[-1])
+        assert expected == (ratio > 1e-14)
+        if ratio >= 1e-6:
+            # well conditioned: decided without the eigenvalues
+
+            def refuse(*args, **kwargs):
+                raise AssertionError("eigenvalues computed")
+
+            monkeypatch.setattr(np.linalg, "eigvalsh", refuse)
+        assert galerkin._keeps_every_direction(a) == expected
+        monkeypatch.setattr(np.linalg, "eigvalsh", eigvalsh)

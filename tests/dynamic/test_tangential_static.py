@@ -2,12 +2,15 @@
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pytest
-from scipy import integrate
+from scipy import integrate, special
 
 from contactres.dynamic._tangential_static import (
     inplane_kernel,
+    radial_integrals,
     tangential_stiffness_static,
 )
 from contactres.materials import Material, at_cut_quartz
@@ -204,3 +207,37 @@ def test_bad_input():
         tangential_stiffness_static(m, 1.0, terms=(2, 0))
     with pytest.raises(ValueError, match="undamped"):
         tangential_stiffness_static(m.with_loss(0.01), 1.0)
+
+
+def test_radial_integrals_closed_form_and_two_variable_rule():
+    # R(p_a, λ_a; p_b, λ_b) and its λ-derivatives: at λ = 0 the closed form of the module
+    # docstring; the derivatives against Cauchy's formula in both variables at once, written
+    # here from Weber-Schafheitlin (radial_integrals multiplies one-variable Taylor series).
+    p_max, n_log = 20, 2
+    R = radial_integrals(p_max, n_log)
+    p = np.arange(p_max + 1)
+    pa, pb = p[:, None], p[None, :]
+    diff = pa - pb
+    with np.errstate(divide="ignore", invalid="ignore"):
+        odd = (-1.0) ** ((diff - 1) // 2) / (diff * (pa + pb + 1))
+    closed = np.where(diff == 0, np.pi / (2 * (2 * pa + 1)), np.where(diff % 2 == 1, odd, 0.0))
+    assert np.max(np.abs(R[0, 0] - closed)) < 1e-14
+    nc, rho = 32, 0.2
+    z = rho * np.exp(2j * np.pi * np.arange(nc) / nc)
+    la, lb = z[:, None, None, None], z[None, :, None, None]
+    L = 1 + la + lb
+    F = (
+        (np.pi / 2)
+        * special.gamma(L)
+        * special.gamma((pa + pb + 1) / 2)
+        * 2.0 ** (-L)
+        * special.rgamma((pb - pa) / 2 + 1 + lb)
+        * special.rgamma((pa + pb + 3) / 2 + la + lb)
+        * special.rgamma((pa - pb) / 2 + 1 + la)
+    )
+    for u in range(n_log + 1):
+        for v in range(n_log + 1):
+            weight = np.exp(-2j * np.pi * (u * np.arange(nc)[:, None] + v * np.arange(nc)) / nc)
+            coef = np.tensordot(weight, F, axes=([0, 1], [0, 1])) / (nc * nc * rho ** (u + v))
+            expected = (math.factorial(u) * math.factorial(v) * coef).real
+            assert np.max(np.abs(R[u, v] - expected)) < 5e-14 * np.max(np.abs(expected))

@@ -65,12 +65,11 @@ import math
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import special
 
 from .._threads import one_blas_thread
 from ..errors import ContactresInputError
 from ._farfield import FarGrid, far_basis, far_grid
-from ._tangential_static import CAUCHY_POINTS, CAUCHY_RADIUS, load_derivatives, radial_integrals
+from ._tangential_static import load_derivatives, radial_integrals
 from ._tangential_table import TangentialTable, prepare_tangential
 from ._weights import spherical_bessel
 
@@ -216,33 +215,6 @@ def odd_free(table: TangentialTable) -> bool:
     )
 
 
-def _series_integrals(pa: np.ndarray, pb: np.ndarray, n_log: int) -> np.ndarray:
-    """∂^d_λ R(p_a, λ; p_b, 0) at λ = 0, d = 0..n_log (R of
-    :func:`contactres.dynamic._tangential_static.radial_integrals`, its second function at
-    λ = 0), shape (n_log + 1, *broadcast(pa, pb).shape); Cauchy's formula in λ on the same
-    circle as there."""
-    nc, rho = CAUCHY_POINTS, CAUCHY_RADIUS
-    z = rho * np.exp(2j * np.pi * np.arange(nc) / nc)
-    pa = np.asarray(pa, dtype=float)[None]
-    pb = np.asarray(pb, dtype=float)[None]
-    lam = z.reshape((nc,) + (1,) * (pa.ndim - 1))
-    L = 1 + lam
-    ratio = np.exp(special.gammaln((pa + pb + 1) / 2) - special.loggamma((pa + pb + 3) / 2 + lam))
-    values = (
-        (np.pi / 2)
-        * special.gamma(L)
-        * 2.0 ** (-L)
-        * ratio
-        * special.rgamma((pb - pa) / 2 + 1)
-        * special.rgamma((pa - pb) / 2 + 1 + lam)
-    )
-    d = np.arange(n_log + 1)
-    w = np.exp(-2j * np.pi * np.outer(d, np.arange(nc)) / nc) / nc  # (n_log + 1, nc)
-    coef = np.tensordot(w, values, axes=(1, 0))
-    scale = special.factorial(d) / rho**d
-    return (coef * scale.reshape((-1,) + (1,) * (coef.ndim - 1))).real
-
-
 def basis_of(table: TangentialTable, size: TangentialSize) -> _Basis:
     """The Galerkin basis ``size`` on the harmonics of ``table`` (index bookkeeping, transforms
     as series of j_p, loads and the radial integrals of the static matrix)."""
@@ -261,15 +233,17 @@ def basis_of(table: TangentialTable, size: TangentialSize) -> _Basis:
     rad_d = np.array([r[2] for r in rad])
     rad_p = rad_n + 2 * rad_k
     p_max = nh + 2 * (nq - 1)
-    R = radial_integrals(int(rad_p.max()), nlog)  # [d_a, d_b, p_a, p_b]
+    # [d_a, d_b, p_a, p_b]: the static matrix's and (d_b = 0) the Neumann series' integrals.
+    R = radial_integrals(max(p_max, int(rad_p.max())), nlog)
     series = np.zeros((len(rad), p_max + 1))
     poly = rad_d == 0
     series[np.flatnonzero(poly), rad_p[poly]] = 1.0
     enr = np.flatnonzero(~poly)
     pq = rad_n[enr][:, None] + 2 * np.arange(nq)[None, :]  # (n_enr, nq)
-    # A_q = ∫ H^{(d)} j_{p_q} ds / ∫ j_{p_q}² ds (orthogonality of the j_p of one parity).
-    deriv = _series_integrals(rad_p[enr][:, None], pq, nlog)  # (nlog + 1, n_enr, nq)
-    series[enr[:, None], pq] = 2 * (2 * pq + 1) / np.pi * deriv[rad_d[enr], np.arange(enr.size)]
+    # A_q = ∫ H^{(d)} j_{p_q} ds / ∫ j_{p_q}² ds (orthogonality of the j_p of one parity), the
+    # numerator ∂^d_λ R(p, λ; p_q, 0) at λ = 0.
+    deriv = R[rad_d[enr][:, None], 0, rad_p[enr][:, None], pq]  # (n_enr, nq)
+    series[enr[:, None], pq] = 2 * (2 * pq + 1) / np.pi * deriv
     # The basis: component α, harmonic n, radial id of (|n|, k, d).
     per_n = len(kd)
     alphas, harmonics, radials = [], [], []
@@ -447,7 +421,10 @@ def _dynamic_part(table: TangentialTable, basis: _Basis, ka: np.ndarray, grid) -
     wk = table.near_weight[None, :] * ka[:, None]
     nk = wk.shape[1]
     nv = table.near_values.reshape(nk, -1, 4)  # (nk, nm, 4)
-    hw = h * wk[:, None, :]
+    # Real factors of complex products as complex numbers x + 0i, here and below (avg): numpy
+    # would cast them through its iterator buffers, element by element of the broadcast, at
+    # several times the cost of the products (which are the same, to the bit).
+    hw = h * wk.astype(complex)[:, None, :]
     # Far field: Chebyshev series of each harmonic against the products on the far grid, one
     # product over the grid for every (k a, Chebyshev term).
     nf = table.far_coeffs.shape[1]
@@ -468,7 +445,7 @@ def _dynamic_part(table: TangentialTable, basis: _Basis, ka: np.ndarray, grid) -
     p = np.arange(basis.p_max + 1)
     amp_s = basis.series @ np.cos(p * np.pi / 2)
     amp_c = basis.series @ -np.sin(p * np.pi / 2)
-    avg = np.outer(amp_s, amp_s) + np.outer(amp_c, amp_c)
+    avg = (np.outer(amp_s, amp_s) + np.outer(amp_c, amp_c)).astype(complex)
     c1 = coef @ np.where(np.arange(nf) % 2 == 0, 1.0, -1.0)  # (nm, 4)
     scale = (table.t1 * ka) ** 2 / (6 * grid.s_end**3)
     magnitudes = np.unique(np.abs(harmonics)).tolist()
@@ -538,6 +515,32 @@ def frame_solve(frame: Frame, loss: float, dynamic: np.ndarray) -> np.ndarray:
     return frame.load.conj().T @ sol
 
 
+def _keeps_every_direction(m0: np.ndarray) -> bool:
+    """Whether the smallest eigenvalue of ``m0`` (Hermitian, unit diagonal) exceeds
+    _EIG_CUTOFF times its largest: the test that the direct solve needs no eigenbasis.
+
+    First without the eigenvalues: if the Cholesky factorisation of m0 − τI succeeds, with
+    τ = c ‖m0‖_∞ >= c λ_max, then m0 − τI + ΔA is positive definite for a backward error
+    ‖ΔA‖₂ <= n γ_{n+1} ‖m0 − τI‖₂/(1 − n γ_{n+1}) (N. J. Higham, *Accuracy and Stability of
+    Numerical Algorithms*, 2nd ed., SIAM 2002, Thm 10.3, with ‖|Rᴴ||R|‖₂ <= n ‖Rᴴ R‖₂), so
+    λ_min > (c − 2 n γ_{n+1}) λ_max; c = _EIG_CUTOFF + 8 n γ_{n+1} (a factor 4 more for the
+    larger rounding constants of complex arithmetic, Higham §3.6) proves the test. A default
+    basis (λ_min ~3e-6 λ_max, c ~4e-11 at n = 204) passes it at a fraction of the cost of the
+    eigenvalues (a third of the instructions of the direct solve's setup went to them);
+    otherwise the eigenvalues decide, as before.
+    """
+    n = m0.shape[0]
+    unit = np.finfo(float).eps / 2
+    gamma = (n + 1) * unit / (1 - (n + 1) * unit)
+    tau = (_EIG_CUTOFF + 8 * n * gamma) * float(np.max(np.sum(np.abs(m0), axis=1)))
+    try:
+        np.linalg.cholesky(m0 - tau * np.eye(n))
+        return True
+    except np.linalg.LinAlgError:
+        w = np.linalg.eigvalsh(m0)
+        return bool(w[0] > _EIG_CUTOFF * w[-1])
+
+
 def film_dynamic(table: TangentialTable, basis: _Basis, ka: np.ndarray, grid) -> np.ndarray:
     """The dynamic remainder of the table's half-space, phases included, (len(ka), nb, nb) at
     k_s a values ``ka`` (> 0); ``grid``: :func:`~.farfield.far_grid` of the whole call."""
@@ -578,13 +581,13 @@ def tangential_per_a(
         b0 = b0.even_part()
     # The static matrix without the phases (module docstring), Hermitian, scaled to a unit
     # diagonal; the loads in the same scaling.
-    m0 = 0.5 * (b0.static + b0.static.conj().T)
+    m0 = b0.static
+    m0 = 0.5 * (m0 + m0.conj().T)
     d = 1.0 / np.sqrt(np.real(np.diagonal(m0)))
     m0 = d[:, None] * m0 * d[None, :]
     loads = d[:, None] * b0.load
-    w = np.linalg.eigvalsh(m0)
     frame = None
-    if w[0] > _EIG_CUTOFF * w[-1]:
+    if _keeps_every_direction(m0):
         static = (loads.T @ np.linalg.solve(m0, loads)).real
     else:
         # Nearly dependent directions: the static eigenbasis without them.
@@ -604,6 +607,10 @@ def tangential_per_a(
         ka = np.where(small, KSA_SMALL, ksa)[pos]
         grid = far_grid(table, float(np.min(ka)))
         res = np.empty((ka.size, 2, 2), dtype=complex)
+        # The scaling as complex numbers d + 0i: a complex array times a real one casts the
+        # latter through numpy's iterator buffers, element by element of the broadcast (half of
+        # the scaling's cost); the products are the same complex ones, to the bit.
+        dc = d.astype(complex)
         # Chunks of k a values: memory stays bounded (~30 MB) whatever the call's size.
         for lo in range(0, ka.size, _CHUNK):
             chunk = ka[lo : lo + _CHUNK]
@@ -611,8 +618,8 @@ def tangential_per_a(
                 # In place: a fresh array of this size costs as much in page faults as the
                 # arithmetic on it.
                 dyn = _dynamic_part(table, b0, chunk, grid)
-                dyn *= d[None, :, None]
-                dyn *= d[None, None, :]
+                dyn *= dc[None, :, None]
+                dyn *= dc[None, None, :]
                 dyn += m0 / f
                 sol = np.linalg.solve(dyn, np.broadcast_to(loads, (chunk.size, *loads.shape)))
                 res[lo : lo + _CHUNK] = loads.T @ sol
