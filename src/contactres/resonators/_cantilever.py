@@ -297,11 +297,16 @@ def _rows(beta, r, g):
     of y = C(cos + cosh)(βs) + D(sin + sinh)(βs), s = 1 − ξ (free end satisfied). Row k holds the
     k-th ξ-derivative divided by β^k, so the entries stay O(e^β) at every order.
     """
-    g_yy, g_yt, g_tt = g
     b = np.asarray(beta)
     p, q = b * r, b * (1.0 - r)
-    cp, sp, chp, shp = _trig(p)
-    cq, sq, chq, shq = _trig(q)
+    return _assemble_rows(b, g, _trig(p), _trig(q))
+
+
+def _assemble_rows(b, g, trig_p, trig_q):
+    """:func:`_rows` from (cos, sin, cosh, sinh) of p = βr and of q = β(1 − r)."""
+    g_yy, g_yt, g_tt = g
+    cp, sp, chp, shp = trig_p
+    cq, sq, chq, shq = trig_q
     left = (  # y, y′/β, y″/β², y‴/β³ of the two clamped-end functions
         (cp - chp, sp - shp),
         (-sp - shp, cp - chp),
@@ -391,6 +396,29 @@ def determinant_coefficients(beta, tip_position, g):
     return a, b, _laplace(minors, rows0[2], rows0[3])
 
 
+def _expanded_determinant(beta, kappa, r, g):
+    """det M(β, κ) by the Laplace expansion of :func:`_laplace` on the rows of :func:`_matrix`.
+
+    The same rows (κ folded into the moment and shear rows as in :func:`_matrix`), elementwise
+    products instead of stacked matrices and LU: ~10x cheaper per entry on the bracketing grid
+    of :func:`contact_frequencies`, where only the sign is used (it agrees with
+    ``np.linalg.det`` away from the roots; the tests compare the two).
+    """
+    b = np.asarray(beta)
+    p, q = b * r, b * (1.0 - r)
+    cp, sp, chp, shp = _trig(p)
+    # cos q, sin q by angle addition from those of β (one per grid point, not per pixel):
+    # half the sines and cosines, each the dearest function here; a few ulps off, only the
+    # sign of the determinant is used
+    cb, sb = np.cos(b), np.sin(b)
+    trig_q = (cb * cp + sb * sp, sb * cp - cb * sp, np.cosh(q), np.sinh(q))
+    rows0, s3, s4 = _assemble_rows(b, g, (cp, sp, chp, shp), trig_q)
+    k = np.asarray(kappa)
+    x = tuple(u + k * v for u, v in zip(rows0[2], s3, strict=True))
+    y = tuple(u + k * v for u, v in zip(rows0[3], s4, strict=True))
+    return _laplace(_top_minors(rows0[:2]), x, y)
+
+
 def characteristic_determinant(
     beta, kappa, tip_position, lateral_ratio=0.0, tip_height=0.0, tilt=0.0
 ) -> np.ndarray:
@@ -433,6 +461,38 @@ def _bisect_roots(fun, lo, hi, iterations=60):
         f_lo = np.where(left, f_mid, f_lo)
         hi = np.where(left, hi, mid)
     return 0.5 * (lo + hi)
+
+
+def _grid_brackets(grid, n_max, kappa, r, g):
+    """Left ends on ``grid`` of the cells holding the first ``n_max`` sign changes of det M in
+    β, shape (pixels, n_max), NaN where fewer; κ, r and g hold one row per pixel.
+
+    Pixels are taken in chunks (a (pixels x grid) table of ~5e4 determinants stays in cache; a
+    loop over chunks, not over pixels). The grid above β⁰_{n_max+1} + 1/2 is evaluated only
+    for the pixels with fewer than n_max changes below it: the n-th root of a normal spring
+    lies below β⁰_{n+1}, so most pixels stop there. The brackets are those of the whole grid:
+    a pixel's later cells cannot change its first n_max changes.
+    """
+    lo = np.full((kappa.shape[0], n_max), np.nan)
+    split = int(np.searchsorted(grid, FREE_ROOTS[n_max] + 0.5))
+    chunk = max(1, 50_000 // grid.size)
+    for start in range(0, kappa.shape[0], chunk):
+        rows = slice(start, start + chunk)
+        k, rr, gg = kappa[rows], r[rows], tuple(x[rows] for x in g)
+        head = np.sign(_expanded_determinant(grid[None, : split + 1], k, rr, gg))
+        s = np.repeat(head[:, -1:], grid.size, axis=1)  # no further change unless evaluated
+        s[:, : split + 1] = head
+        more = np.sum(head[:, :-1] * head[:, 1:] <= 0, axis=1) < n_max
+        if np.any(more):
+            rest = grid[None, split + 1 :]
+            gm = tuple(x[more] for x in gg)
+            s[more, split + 1 :] = np.sign(_expanded_determinant(rest, k[more], rr[more], gm))
+        count = np.cumsum(s[:, :-1] * s[:, 1:] <= 0, axis=1)
+        for m in range(n_max):
+            hit = count == m + 1
+            idx = np.argmax(hit, axis=1)
+            lo[rows, m] = np.where(hit.any(axis=1), grid[idx], np.nan)
+    return lo
 
 
 #: Step of the β grid on which contact_frequencies brackets the roots; two modes closer than
@@ -501,20 +561,7 @@ def contact_frequencies(
         gg = tuple(x[rows] for x in g_f)
         return np.linalg.det(_matrix(b, k[rows], r_f[rows], gg))
 
-    # Brackets: the first n_max sign changes of det along the grid, pixel by pixel (chunks keep
-    # the (pixels x grid) table near 2e5 determinants; a loop over chunks, not over pixels).
-    n = kap_c.shape[0]
-    lo = np.full((n, n_max), np.nan)
-    chunk = max(1, 200_000 // grid.size)
-    for start in range(0, n, chunk):
-        rows = slice(start, start + chunk)
-        s = np.sign(det(grid[None, :], rows=rows))
-        change = s[:, :-1] * s[:, 1:] <= 0
-        count = np.cumsum(change, axis=1)
-        for m in range(n_max):
-            hit = count == m + 1
-            idx = np.argmax(hit, axis=1)
-            lo[rows, m] = np.where(hit.any(axis=1), grid[idx], np.nan)
+    lo = _grid_brackets(grid, n_max, kap_c.real, r_f, g_f)
     good = np.isfinite(lo)
     lo_g = np.where(good, lo, 1.0)
     beta = _bisect_roots(lambda b: det(b), lo_g, lo_g + BETA_STEP)
