@@ -468,25 +468,35 @@ def _grid_brackets(grid, n_max, kappa, r, g):
     β, shape (pixels, n_max), NaN where fewer; κ, r and g hold one row per pixel.
 
     Pixels are taken in chunks (a (pixels x grid) table of ~5e4 determinants stays in cache; a
-    loop over chunks, not over pixels). The grid above β⁰_{n_max+1} + 1/2 is evaluated only
-    for the pixels with fewer than n_max changes below it: the n-th root of a normal spring
-    lies below β⁰_{n+1}, so most pixels stop there. The brackets are those of the whole grid:
-    a pixel's later cells cannot change its first n_max changes.
+    loop over chunks, not over pixels). The grid is evaluated in three blocks, each only for
+    the pixels with fewer than n_max changes so far: up to midway between β⁰_{n_max} and
+    β⁰_{n_max+1} (soft contacts stop there), up to β⁰_{n_max+1} + 1/2 (the n-th root of a
+    normal spring lies below β⁰_{n+1}), and the rest (lateral springs). The brackets are those
+    of the whole grid: a pixel's later cells cannot change its first n_max changes.
     """
     lo = np.full((kappa.shape[0], n_max), np.nan)
-    split = int(np.searchsorted(grid, FREE_ROOTS[n_max] + 0.5))
+    # block ends: midway between β⁰_{n_max} and β⁰_{n_max+1}, then β⁰_{n_max+1} + 1/2, the end
+    ends = np.searchsorted(
+        grid, [FREE_ROOTS[n_max - 1 : n_max + 1].mean(), FREE_ROOTS[n_max] + 0.5]
+    )
     chunk = max(1, 50_000 // grid.size)
     for start in range(0, kappa.shape[0], chunk):
         rows = slice(start, start + chunk)
         k, rr, gg = kappa[rows], r[rows], tuple(x[rows] for x in g)
-        head = np.sign(_expanded_determinant(grid[None, : split + 1], k, rr, gg))
-        s = np.repeat(head[:, -1:], grid.size, axis=1)  # no further change unless evaluated
-        s[:, : split + 1] = head
-        more = np.sum(head[:, :-1] * head[:, 1:] <= 0, axis=1) < n_max
-        if np.any(more):
-            rest = grid[None, split + 1 :]
-            gm = tuple(x[more] for x in gg)
-            s[more, split + 1 :] = np.sign(_expanded_determinant(rest, k[more], rr[more], gm))
+        s = np.empty((k.shape[0], grid.size))
+        todo = np.ones(k.shape[0], dtype=bool)
+        begin = 0
+        for end in (*ends.tolist(), grid.size - 1):
+            cols = slice(begin, end + 1)
+            gm = tuple(x[todo] for x in gg)
+            s[todo, cols] = np.sign(_expanded_determinant(grid[None, cols], k[todo], rr[todo], gm))
+            if begin:  # no further change where not evaluated: pixels done keep their last sign
+                s[~todo, cols] = s[~todo, begin - 1 : begin]
+            todo &= np.sum(s[:, :end] * s[:, 1 : end + 1] <= 0, axis=1) < n_max
+            begin = end + 1
+            if not todo.any():
+                s[:, begin:] = s[:, begin - 1 : begin]
+                break
         count = np.cumsum(s[:, :-1] * s[:, 1:] <= 0, axis=1)
         for m in range(n_max):
             hit = count == m + 1
