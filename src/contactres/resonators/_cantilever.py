@@ -297,11 +297,16 @@ def _rows(beta, r, g):
     of y = C(cos + cosh)(βs) + D(sin + sinh)(βs), s = 1 − ξ (free end satisfied). Row k holds the
     k-th ξ-derivative divided by β^k, so the entries stay O(e^β) at every order.
     """
-    g_yy, g_yt, g_tt = g
     b = np.asarray(beta)
     p, q = b * r, b * (1.0 - r)
-    cp, sp, chp, shp = _trig(p)
-    cq, sq, chq, shq = _trig(q)
+    return _assemble_rows(b, g, _trig(p), _trig(q))
+
+
+def _assemble_rows(b, g, trig_p, trig_q):
+    """:func:`_rows` from (cos, sin, cosh, sinh) of p = βr and of q = β(1 − r)."""
+    g_yy, g_yt, g_tt = g
+    cp, sp, chp, shp = trig_p
+    cq, sq, chq, shq = trig_q
     left = (  # y, y′/β, y″/β², y‴/β³ of the two clamped-end functions
         (cp - chp, sp - shp),
         (-sp - shp, cp - chp),
@@ -391,6 +396,29 @@ def determinant_coefficients(beta, tip_position, g):
     return a, b, _laplace(minors, rows0[2], rows0[3])
 
 
+def _expanded_determinant(beta, kappa, r, g):
+    """det M(β, κ) by the Laplace expansion of :func:`_laplace` on the rows of :func:`_matrix`.
+
+    The same rows (κ folded into the moment and shear rows as in :func:`_matrix`), elementwise
+    products instead of stacked matrices and LU: ~10x cheaper per entry on the bracketing grid
+    of :func:`contact_frequencies`, where only the sign is used (it agrees with
+    ``np.linalg.det`` away from the roots; the tests compare the two).
+    """
+    b = np.asarray(beta)
+    p, q = b * r, b * (1.0 - r)
+    cp, sp, chp, shp = _trig(p)
+    # cos q, sin q by angle addition from those of β (one per grid point, not per pixel):
+    # half the sines and cosines, each the dearest function here; a few ulps off, only the
+    # sign of the determinant is used
+    cb, sb = np.cos(b), np.sin(b)
+    trig_q = (cb * cp + sb * sp, sb * cp - cb * sp, np.cosh(q), np.sinh(q))
+    rows0, s3, s4 = _assemble_rows(b, g, (cp, sp, chp, shp), trig_q)
+    k = np.asarray(kappa)
+    x = tuple(u + k * v for u, v in zip(rows0[2], s3, strict=True))
+    y = tuple(u + k * v for u, v in zip(rows0[3], s4, strict=True))
+    return _laplace(_top_minors(rows0[:2]), x, y)
+
+
 def characteristic_determinant(
     beta, kappa, tip_position, lateral_ratio=0.0, tip_height=0.0, tilt=0.0
 ) -> np.ndarray:
@@ -423,16 +451,65 @@ def determinant_from_coefficients(beta, kappa, tip_position, g) -> np.ndarray:
 
 
 def _bisect_roots(fun, lo, hi, iterations=60):
-    """Vectorised bisection of fun (elementwise) on brackets [lo, hi] with a sign change."""
+    """Vectorised bisection of fun (elementwise) on brackets [lo, hi] with a sign change.
+
+    Stops early once a halving leaves every bracket as it was (each at adjacent floats, ~47
+    halvings of a 0.01-wide bracket): the state is then fixed, so the remaining halvings would
+    repeat the same evaluation and the result equals that of all ``iterations``.
+    """
     f_lo = fun(lo)
     for _ in range(iterations):  # 60 halvings of a 0.01-wide bracket reach the last bit of β
         mid = 0.5 * (lo + hi)
         f_mid = fun(mid)
         left = np.sign(f_mid) == np.sign(f_lo)
-        lo = np.where(left, mid, lo)
-        f_lo = np.where(left, f_mid, f_lo)
-        hi = np.where(left, hi, mid)
+        new_lo, new_hi = np.where(left, mid, lo), np.where(left, hi, mid)
+        f_lo = np.where(left, f_mid, f_lo)  # unchanged where lo is: fun(lo) again
+        if np.array_equal(new_lo, lo) and np.array_equal(new_hi, hi):
+            break
+        lo, hi = new_lo, new_hi
     return 0.5 * (lo + hi)
+
+
+def _grid_brackets(grid, n_max, kappa, r, g):
+    """Left ends on ``grid`` of the cells holding the first ``n_max`` sign changes of det M in
+    β, shape (pixels, n_max), NaN where fewer; κ, r and g hold one row per pixel.
+
+    Pixels are taken in chunks (a (pixels x grid) table of ~5e4 determinants stays in cache; a
+    loop over chunks, not over pixels). The grid is evaluated in three blocks, each only for
+    the pixels with fewer than n_max changes so far: up to midway between β⁰_{n_max} and
+    β⁰_{n_max+1} (soft contacts stop there), up to β⁰_{n_max+1} + 1/2 (the n-th root of a
+    normal spring lies below β⁰_{n+1}), and the rest (lateral springs). The brackets are those
+    of the whole grid: a pixel's later cells cannot change its first n_max changes.
+    """
+    lo = np.full((kappa.shape[0], n_max), np.nan)
+    # block ends: midway between β⁰_{n_max} and β⁰_{n_max+1}, then β⁰_{n_max+1} + 1/2, the end
+    ends = np.searchsorted(
+        grid, [FREE_ROOTS[n_max - 1 : n_max + 1].mean(), FREE_ROOTS[n_max] + 0.5]
+    )
+    chunk = max(1, 50_000 // grid.size)
+    for start in range(0, kappa.shape[0], chunk):
+        rows = slice(start, start + chunk)
+        k, rr, gg = kappa[rows], r[rows], tuple(x[rows] for x in g)
+        s = np.empty((k.shape[0], grid.size))
+        todo = np.ones(k.shape[0], dtype=bool)
+        begin = 0
+        for end in (*ends.tolist(), grid.size - 1):
+            cols = slice(begin, end + 1)
+            gm = tuple(x[todo] for x in gg)
+            s[todo, cols] = np.sign(_expanded_determinant(grid[None, cols], k[todo], rr[todo], gm))
+            if begin:  # no further change where not evaluated: pixels done keep their last sign
+                s[~todo, cols] = s[~todo, begin - 1 : begin]
+            todo &= np.sum(s[:, :end] * s[:, 1 : end + 1] <= 0, axis=1) < n_max
+            begin = end + 1
+            if not todo.any():
+                s[:, begin:] = s[:, begin - 1 : begin]
+                break
+        count = np.cumsum(s[:, :-1] * s[:, 1:] <= 0, axis=1)
+        for m in range(n_max):
+            hit = count == m + 1
+            idx = np.argmax(hit, axis=1)
+            lo[rows, m] = np.where(hit.any(axis=1), grid[idx], np.nan)
+    return lo
 
 
 #: Step of the β grid on which contact_frequencies brackets the roots; two modes closer than
@@ -501,20 +578,7 @@ def contact_frequencies(
         gg = tuple(x[rows] for x in g_f)
         return np.linalg.det(_matrix(b, k[rows], r_f[rows], gg))
 
-    # Brackets: the first n_max sign changes of det along the grid, pixel by pixel (chunks keep
-    # the (pixels x grid) table near 2e5 determinants; a loop over chunks, not over pixels).
-    n = kap_c.shape[0]
-    lo = np.full((n, n_max), np.nan)
-    chunk = max(1, 200_000 // grid.size)
-    for start in range(0, n, chunk):
-        rows = slice(start, start + chunk)
-        s = np.sign(det(grid[None, :], rows=rows))
-        change = s[:, :-1] * s[:, 1:] <= 0
-        count = np.cumsum(change, axis=1)
-        for m in range(n_max):
-            hit = count == m + 1
-            idx = np.argmax(hit, axis=1)
-            lo[rows, m] = np.where(hit.any(axis=1), grid[idx], np.nan)
+    lo = _grid_brackets(grid, n_max, kap_c.real, r_f, g_f)
     good = np.isfinite(lo)
     lo_g = np.where(good, lo, 1.0)
     beta = _bisect_roots(lambda b: det(b), lo_g, lo_g + BETA_STEP)
