@@ -382,3 +382,31 @@ def test_blocks_under_different_priors_equal_each_alone():
                 tuple(a[one] for a in mu), tuple(a[one] for a in ratio), np.ones(1),
             )  # fmt: skip
             np.testing.assert_array_equal(both[:, k], alone[:, 0])
+
+
+def test_a_fit_exact_to_rounding_keeps_its_node():
+    """Review R22b: data equal to the model at one node of y (no scatter). The expanded square
+    of the projected solve then comes out at rounding level, and could come out negative: that
+    node's ln L was -inf, the best node lost. Held at its rounding floor it stays the largest
+    ln L of the row, and finite."""
+    from contactres.analysis import _plateau_evidence as ev
+    from contactres.analysis._plateau import plateau_loop_slopes
+
+    n_amp, n_y = 11, 5
+    umax = 2e-9
+    lev = np.linspace(0.1, 1.0, n_amp) * umax
+    dl = np.array([[0.3]])
+    y = np.linspace(-0.5, 0.5, n_y)[None]
+    theta = np.exp(y) / (umax * (1 - dl))
+    x = theta[..., None] * lev
+    c = np.broadcast_to((theta * dl * umax)[..., None], x.shape)
+    g1, g2 = plateau_loop_slopes(x, c, derivatives=False)
+    df, dg = 40.0 * g1[0, 2], 5.0 + 40.0 * g2[0, 2]
+    n_lev = np.full((1, 1, n_amp), 3.0)
+    one, none = np.array([[1.0]]), np.array([[np.nan]])
+    zero = np.zeros((1, 1))
+    pts = (lev[None, None], n_lev, df[None, None], dg[None, None], zero, zero,
+           np.array([[umax]]), one, one, none, none, one)  # fmt: skip
+    _, lnl, _ = ev._integrand(pts, dl, y)
+    assert np.all(np.isfinite(lnl[0]))
+    assert np.argmax(lnl[0]) == 2

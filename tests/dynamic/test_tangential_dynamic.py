@@ -293,7 +293,8 @@ def test_direct_solve_check_is_the_eigenvalue_criterion(monkeypatch):
     n = 60
     q, _ = np.linalg.qr(rng.standard_normal((n, n)) + 1j * rng.standard_normal((n, n)))
     eigvalsh = np.linalg.eigvalsh
-    for ratio in (1e-2, 1e-6, 1e-9, 1e-17, 1e-20):
+    # 1e-12: the Cholesky shift refuses it, the eigenvalues accept it (the fallback path)
+    for ratio in (1e-2, 1e-6, 1e-9, 1e-12, 1e-17, 1e-20):
         a = (q * np.geomspace(ratio, 1.0, n)) @ q.conj().T
         d = 1.0 / np.sqrt(np.real(np.diagonal(a)))
         a = d[:, None] * a * d[None, :]

@@ -233,3 +233,34 @@ def test_roots_match_brentq_on_the_lu_determinant_pixel_by_pixel():
         idx = np.flatnonzero(np.sign(d[:-1]) != np.sign(d[1:]))[:3]
         ref = [brentq(det, scan[i], scan[i + 1], xtol=1e-15, rtol=1e-15) for i in idx]
         assert np.allclose(beta, ref, rtol=1e-12, atol=0.0), (k, rr, lat, eta, tilt)
+
+
+def test_a_root_on_a_grid_point_is_found_once_and_in_place():
+    """Review R22b: springs whose mode-1 root lies exactly on (or a few ulps off) a point of the
+    bracketing grid. The scan's expanded determinant and the bisection's LU may disagree on that
+    point's sign, and an exact zero there used to count as two sign changes: β₁ landed a whole
+    grid step (0.01) off, or mode 2 came back as a copy of mode 1. The roots are checked against
+    the springs' own construction (normal_kappa(β, r) puts the root at β)."""
+    lever = Cantilever((13e3,), 0.2)
+    grid = np.arange(0.5, FREE_ROOTS[3] + 0.5, 0.01)  # contact_frequencies' grid for modes 1, 2
+    beta = grid[(grid > 1.90) & (grid < 2.6)][:, None] + np.array([0, 1, 2])[None, :] * np.spacing(
+        grid[(grid > 1.90) & (grid < 2.6)][:, None]
+    )
+    r = np.linspace(0.6, 1.0, 5)
+    b, rr = np.broadcast_arrays(beta[..., None], r)
+    kappa = normal_kappa(b, rr)
+    ok = np.isfinite(kappa) & (kappa > 0)
+    got = beta_from_frequency(
+        lever, contact_frequencies(lever, kappa[ok], rr[ok], modes=(1, 2)), np.array([1, 2])
+    )
+    assert ok.sum() > 300
+    np.testing.assert_allclose(got[:, 0], b[ok], rtol=0, atol=1e-9)
+    assert np.all(got[:, 1] > got[:, 0] + 1.0)
+    # The same pixels in one call and one at a time (chunks mixing finished and unfinished
+    # pixels of the scan's blocks give each pixel its own brackets).
+    some = np.flatnonzero(ok.ravel())[::9]
+    one_by_one = [
+        contact_frequencies(lever, kappa.ravel()[i], rr.ravel()[i], modes=(1, 2)) for i in some
+    ]
+    together = contact_frequencies(lever, kappa.ravel()[some], rr.ravel()[some], modes=(1, 2))
+    assert np.array_equal(np.array(one_by_one), together)

@@ -255,6 +255,12 @@ def _solve_levels(slopes, squares, inv, pts):
     A = (wf * s_f + wg * s_g) / (wf * s_ff + wg * s_gg)
     rss_f = C_f - A * (2.0 * s_f - A * s_ff)
     rss_g = C_g - A * (2.0 * s_g - A * s_gg)
+    # Below its rounding, (L + 3)·ε·C, the expanded square says nothing; a fit exact to that
+    # level would come out negative (ln L -inf, the node lost): hold such an RSS at the floor,
+    # its best estimate (review R22b). Rows with noise above rounding are untouched.
+    floor = (w.shape[-1] + 3) * np.finfo(float).eps
+    rss_f = np.maximum(rss_f, floor * C_f)
+    rss_g = np.maximum(rss_g, floor * C_g)
     return A, rss_f, rss_g
 
 

@@ -402,7 +402,8 @@ def _expanded_determinant(beta, kappa, r, g):
     The same rows (κ folded into the moment and shear rows as in :func:`_matrix`), elementwise
     products instead of stacked matrices and LU: ~10x cheaper per entry on the bracketing grid
     of :func:`contact_frequencies`, where only the sign is used (it agrees with
-    ``np.linalg.det`` away from the roots; the tests compare the two).
+    ``np.linalg.det`` away from the roots; within a few ulps of one the two may disagree, and
+    :func:`contact_frequencies` widens such a bracket before bisecting with LU).
     """
     b = np.asarray(beta)
     p, q = b * r, b * (1.0 - r)
@@ -496,7 +497,16 @@ def _grid_brackets(grid, n_max, kappa, r, g):
         for end in (*ends.tolist(), grid.size - 1):
             cols = slice(begin, end + 1)
             gm = tuple(x[todo] for x in gg)
-            s[todo, cols] = np.sign(_expanded_determinant(grid[None, cols], k[todo], rr[todo], gm))
+            block = np.sign(_expanded_determinant(grid[None, cols], k[todo], rr[todo], gm))
+            if (block == 0).any():
+                # A determinant exactly 0 at a grid point (a root on it) takes the sign to its
+                # left, so that root counts once, not twice (review R22b)
+                left = s[todo, begin - 1] if begin else np.ones(block.shape[0])
+                ext = np.concatenate([left[:, None], block], axis=1)
+                at = np.where(ext != 0, np.arange(ext.shape[1]), 0)
+                np.maximum.accumulate(at, axis=1, out=at)
+                block = np.take_along_axis(ext, at, axis=1)[:, 1:]
+            s[todo, cols] = block
             if begin:  # no further change where not evaluated: pixels done keep their last sign
                 s[~todo, cols] = s[~todo, begin - 1 : begin]
             todo &= np.sum(s[:, :end] * s[:, 1 : end + 1] <= 0, axis=1) < n_max
@@ -581,7 +591,17 @@ def contact_frequencies(
     lo = _grid_brackets(grid, n_max, kap_c.real, r_f, g_f)
     good = np.isfinite(lo)
     lo_g = np.where(good, lo, 1.0)
-    beta = _bisect_roots(lambda b: det(b), lo_g, lo_g + BETA_STEP)
+    hi_g = lo_g + BETA_STEP
+    # The scan's signs come from the expanded determinant, the bisection's from LU: for a root
+    # within a few ulps of a grid point the two may disagree on that point's sign, and the cell
+    # then holds no LU sign change. Such a bracket takes a cell more on each side, where LU
+    # changes sign (review R22b: otherwise β lands a whole step, 0.01, off).
+    same = np.sign(det(lo_g)) == np.sign(det(hi_g))
+    beta = _bisect_roots(
+        lambda b: det(b),
+        np.where(same, lo_g - BETA_STEP, lo_g),
+        np.where(same, hi_g + BETA_STEP, hi_g),
+    )
     if np.iscomplexobj(kap) and np.any(kap_c.imag != 0):
         beta = beta.astype(complex)
         steps = 8  # continuation in Im κ keeps each Newton start inside its basin
