@@ -2,7 +2,10 @@
 
 Why. The evidence of the plateau (:mod:`contactres.analysis._plateau_evidence`) evaluates the
 loop's slopes G′, G″ (:func:`contactres.analysis._plateau.plateau_loop_slopes`) at some 10⁴
-nodes per block, and their cost was that of the integral J below: a 16-point Gauss-Legendre
+nodes per block, and the plateau fit (:func:`contactres.analysis._plateau.fit_plateau_loops`)
+evaluates them with their derivatives at every Levenberg-Marquardt step, whose integrals of
+J's derivatives :func:`slip_integrals_series` sums from the same series.
+Their cost was that of the integral J below: a 16-point Gauss-Legendre
 rule (16 cosines, sines and square roots per point, ~530 ns) where m = x/e < 0.1, Legendre's
 incomplete elliptic integrals (~350 ns, scipy's, when this series was written) elsewhere. The
 series here costs ~70 ns per point wherever m = min(x, e)/max(x, e) < 1/2 (80 % of the
