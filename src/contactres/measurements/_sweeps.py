@@ -33,7 +33,7 @@ from .._summary import Summarised, table_size
 from ..errors import ContactresInputError
 from ..units import ABSOLUTE_FREQUENCY_FRACTION, SMALL_LOAD_LIMIT
 from ._cell_text import stripped_distinct
-from ._checksum import file_sha256, hashed_load
+from ._checksum import hashed_load
 from ._messages import at_cell, column_named, column_names, line_word, shown_value, where_rows
 from ._sweep_checks import (
     SweepWarning,
@@ -52,7 +52,6 @@ __all__ = [
     "SweepReader",
     "SweepTable",
     "SweepWarning",
-    "file_sha256",
     "read_sweeps",
     "validate_sweeps",
 ]

@@ -451,14 +451,14 @@ def determinant_from_coefficients(beta, kappa, tip_position, g) -> np.ndarray:
     return np.linalg.det(_matrix(beta, kappa, np.asarray(tip_position), g))
 
 
-def _bisect_roots(fun, lo, hi, iterations=60):
-    """Vectorised bisection of fun (elementwise) on brackets [lo, hi] with a sign change.
+def _bisect_roots(fun, lo, hi, f_lo, iterations=60):
+    """Vectorised bisection of fun (elementwise) on brackets [lo, hi] with a sign change,
+    ``f_lo`` = fun(lo) (the caller has it already).
 
     Stops early once a halving leaves every bracket as it was (each at adjacent floats, ~47
     halvings of a 0.01-wide bracket): the state is then fixed, so the remaining halvings would
     repeat the same evaluation and the result equals that of all ``iterations``.
     """
-    f_lo = fun(lo)
     for _ in range(iterations):  # 60 halvings of a 0.01-wide bracket reach the last bit of β
         mid = 0.5 * (lo + hi)
         f_mid = fun(mid)
@@ -596,12 +596,12 @@ def contact_frequencies(
     # within a few ulps of a grid point the two may disagree on that point's sign, and the cell
     # then holds no LU sign change. Such a bracket takes a cell more on each side, where LU
     # changes sign (review R22b: otherwise β lands a whole step, 0.01, off).
-    same = np.sign(det(lo_g)) == np.sign(det(hi_g))
-    beta = _bisect_roots(
-        lambda b: det(b),
-        np.where(same, lo_g - BETA_STEP, lo_g),
-        np.where(same, hi_g + BETA_STEP, hi_g),
-    )
+    f_lo = det(lo_g)
+    same = np.sign(f_lo) == np.sign(det(hi_g))
+    if same.any():
+        lo_g, hi_g = np.where(same, lo_g - BETA_STEP, lo_g), np.where(same, hi_g + BETA_STEP, hi_g)
+        f_lo = det(lo_g)
+    beta = _bisect_roots(det, lo_g, hi_g, f_lo)
     if np.iscomplexobj(kap) and np.any(kap_c.imag != 0):
         beta = beta.astype(complex)
         steps = 8  # continuation in Im κ keeps each Newton start inside its basin
