@@ -139,6 +139,59 @@ def test_vectorised_bootstrap_equals_refitting_each_resample():
     assert rho == pytest.approx(np.corrcoef(fits.T)[0, 1], abs=0.02)
 
 
+def test_bootstrap_draws_and_grid_are_those_of_the_direct_computation():
+    """The resample counts (one bincount) are those of comparing every draw with every
+    experiment, and the grid estimator with h(F, γ) evaluated at the distinct loads gives, bit for
+    bit, what it gives evaluated at every point (issue 31, point 3: both were the cost at 10^5
+    sweeps); the rows shuffled and experiments of unequal loads, so that the spreading matters."""
+    from contactres.analysis._jkr import _resampled_fits
+
+    rng = np.random.default_rng(5)
+    loads = np.array([1e-3, 2e-3, 4e-3, 8e-3, 12e-3])
+    rows = []
+    for e in range(7):
+        mine = loads[rng.permutation(loads.size)[: 3 + e % 3]]  # 3-5 loads each
+        kappa = kappa_jkr_mindlin(mine, 70e9, 0.1, R, NU) * (1 + 0.03 * rng.standard_normal())
+        rows += [(f"e{e}", f, k) for f, k in zip(mine, kappa, strict=True)]
+    pts = pd.DataFrame(rows, columns=["experiment", "normal_force_N", "kappa_N_per_m"])
+    pts = pts.sample(frac=1.0, random_state=1).reset_index(drop=True)
+    F, kappa = pts["normal_force_N"].to_numpy(), pts["kappa_N_per_m"].to_numpy()
+    main = fit_jkr_mindlin(F, kappa, R, NU)
+    seen = []
+
+    def spy(F, kappa, W, R, nu, res):
+        seen.append(W)
+        return _resampled_fits(F, kappa, W, R, nu, res)
+
+    B, seed = 50, 4
+    got = bootstrap_jkr(pts, R, NU, main, B, seed, spy)
+    # The draws compared with every experiment (names sorted), spread to the experiments' rows.
+    codes, names = pd.factorize(pts["experiment"], sort=True)
+    pick = np.random.default_rng(seed).integers(0, len(names), size=(B, len(names)))
+    counts = (pick[:, :, None] == np.arange(len(names))[None, None, :]).sum(axis=1)
+    W = counts[:, codes].astype(float)
+    assert np.array_equal(seen[0], W)
+    # The grid estimator with h at every point (the columns of the fit's grid as it builds it).
+    g_hat, g_err = main.values["gamma"], np.nan_to_num(main.errors["gamma"])
+    top = max(4.0 * g_hat + 8.0 * g_err, 1e-3)
+    grid = np.linspace(0.0, top, 1201)
+    h = kappa_jkr_mindlin(F[:, None], 1.0, grid[None, :], R, NU)
+    skh, shh = W @ (kappa[:, None] * h), W @ (h * h)
+    rss = (W @ (kappa * kappa))[:, None] - skh**2 / shh
+    j = np.clip(np.argmin(rss, axis=1), 1, grid.size - 2)
+    b = np.arange(B)
+    r0, r1, r2 = rss[b, j - 1], rss[b, j], rss[b, j + 1]
+    denom = r0 - 2 * r1 + r2
+    shift = np.where(denom > 0, 0.5 * (r0 - r2) / np.where(denom > 0, denom, 1.0), 0.0)
+    gam = np.clip(grid[j] + np.clip(shift, -1, 1) * (grid[1] - grid[0]), 0.0, top)
+    E = (skh[b, j] / shh[b, j]) ** 1.5
+    assert np.array_equal(_resampled_fits(F, kappa, W, R, NU, main)[0], E)
+    assert np.array_equal(_resampled_fits(F, kappa, W, R, NU, main)[1], gam)
+    assert np.unique(gam).size > B // 2  # the resamples differ: the check is not vacuous
+    rho = np.corrcoef(E, gam)[0, 1]
+    assert got == (np.std(E, ddof=1), np.std(gam, ddof=1), rho)
+
+
 def test_fit_errors_match_closed_form_linear_regression():
     rng = np.random.default_rng(0)
     x = np.linspace(0, 1, 30)

@@ -48,7 +48,6 @@ from ._classify import (
     fit_sweeps,
     n_parameters,
     prefer,
-    run_in_workers,
     source_rss,
     source_valid,
 )
@@ -59,6 +58,7 @@ from ._models import AMPLITUDE_MODELS, fit_tables
 from ._mu_prior import mu_prior_penalties, mu_prior_reference
 from ._plateau_evidence import plateau_log_evidence
 from ._plateau_prior import joint_prior_penalty, plateau_prior
+from ._workers import WorkerPool, run_in_workers
 
 __all__ = ["BLOCK_COLUMNS", "PLATEAU_CONTENDER", "block_codes", "choose_blocks"]
 
@@ -231,12 +231,13 @@ def _friction_law(crit, classes, blocks: pd.DataFrame, delta_bic: float) -> np.n
 
 #: Undecided blocks per worker process below which the plateau's evidence stays in this
 #: process: at ~4 ms of CPU a block (the example's blocks, one core) 200 blocks are ~0.8 s,
-#: well above the pool's start-up (~0.1-0.3 s), so a small study with ``workers`` > 1 loses
-#: nothing and a 10^4-sweep one (~2,000 undecided blocks) uses every worker.
+#: well above the pool's start-up (~0.1-0.3 s, where no stage before has started it) and the
+#: sending of the blocks' points, so a small study with ``workers`` > 1 loses nothing and a
+#: 10^4-sweep one (~2,000 undecided blocks) uses every worker.
 EVIDENCE_ROWS_PER_WORKER = 200
 
 
-def _evidence(workers: int, u, df, dg, w, sigma, mu_prior, ratio_prior, to_mu, rows):
+def _evidence(workers: int | WorkerPool, u, df, dg, w, sigma, mu_prior, ratio_prior, to_mu, rows):
     """:func:`~contactres.analysis._plateau_evidence.plateau_log_evidence` of the blocks
     ``rows``, in up to ``workers`` processes (:func:`run_in_workers`) where they are many.
 
@@ -248,8 +249,9 @@ def _evidence(workers: int, u, df, dg, w, sigma, mu_prior, ratio_prior, to_mu, r
 
     Parameters
     ----------
-    workers : processes at most; n = min(``workers``, number of ``rows`` //
-        :data:`EVIDENCE_ROWS_PER_WORKER`) chunks, in this process if n <= 1
+    workers : processes at most (or a :class:`~contactres.analysis._workers.WorkerPool` of
+        them); n = min(processes, number of ``rows`` // :data:`EVIDENCE_ROWS_PER_WORKER`)
+        chunks, in this process if n <= 1
     u, df, dg, w, sigma, mu_prior, ratio_prior, to_mu, rows : as for
         :func:`~contactres.analysis._plateau_evidence.plateau_log_evidence` (``rows`` a (B,)
         mask)
@@ -259,7 +261,8 @@ def _evidence(workers: int, u, df, dg, w, sigma, mu_prior, ratio_prior, to_mu, r
     (3, B): 2 ln B, μ and its error as the serial call gives them (NaN outside ``rows``)
     """
     todo = np.flatnonzero(rows)
-    n = min(workers, todo.size // EVIDENCE_ROWS_PER_WORKER)
+    processes = workers.processes if isinstance(workers, WorkerPool) else workers
+    n = min(processes, todo.size // EVIDENCE_ROWS_PER_WORKER)
     if n <= 1:
         return plateau_log_evidence(u, df, dg, w, sigma, mu_prior, ratio_prior, to_mu, rows)
     chunks = [todo[k::n] for k in range(n)]
@@ -294,7 +297,7 @@ def choose_blocks(
     delta_bic: float,
     exact_loop: bool,
     tables: LoopTables | None,
-    workers: int = 1,
+    workers: int | WorkerPool = 1,
     pool_experiment: bool = True,
 ) -> tuple[pd.DataFrame, pd.DataFrame, pd.DataFrame, FieldTables, dict[str, pd.DataFrame]]:
     """Choose the class of every load block of the sweeps ``joint`` (see the module docstring).
@@ -309,7 +312,8 @@ def choose_blocks(
         of ``sw``
     joint : which sweeps enter their block (the used ones); blocks of one sweep are left alone
     delta_bic, exact_loop, tables, workers : as for :func:`fit_sweeps`; the workers also
-        integrate the plateau's evidence where many blocks need it (:func:`_evidence`)
+        integrate the plateau's evidence where many blocks need it (:func:`_evidence`); a
+        number of processes opens one pool for the three stages that use it
     pool_experiment : decide the friction law (Coulomb or Savkoor) once per experiment
         (:func:`_friction_law`)
 
@@ -329,6 +333,10 @@ def choose_blocks(
         per row of ``blocks``); the Coulomb loops' with ``bic_shared``, their shared criterion
         ({} where there is no block)
     """
+    if not isinstance(workers, WorkerPool):
+        with WorkerPool(workers) as pool:
+            args = (p, sw, fields, joint, delta_bic, exact_loop, tables, pool, pool_experiment)
+            return choose_blocks(*args)
     S = len(sw)
     per_sweep = pd.DataFrame(
         {

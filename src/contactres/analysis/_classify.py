@@ -31,7 +31,6 @@ then makes the same choice for the ramps of one load block together.
 
 from __future__ import annotations
 
-from concurrent.futures import ProcessPoolExecutor
 from itertools import repeat
 
 import numpy as np
@@ -42,6 +41,7 @@ from ._loops import LoopTable, LoopTables, loop_tables
 from ._models import AMPLITUDE_MODELS, N_PARAMETERS, SWEEP_FITS
 from ._models.base import LoopInputs
 from ._models.plateau_loop import fit_plateaus, plateau_start
+from ._workers import WorkerPool, run_in_workers
 
 __all__ = [
     "CLASS_SOURCES",
@@ -56,7 +56,6 @@ __all__ = [
     "fit_sweeps",
     "n_parameters",
     "prefer",
-    "run_in_workers",
     "source_rss",
     "source_valid",
 ]
@@ -110,17 +109,6 @@ def _plateaus_of_rows(b: Block, found, u_c, rss, theta, table: LoopTable) -> dic
     return fit_plateaus(b, found, u_c, rss, theta, table, np.ones(len(b.n), bool))
 
 
-def run_in_workers(fn, workers: int, first: list, *rest) -> list:
-    """``[fn(a, *r) for a, *r in zip(first, *rest)]``, in ``workers`` processes if > 1 (the
-    loop fits here, the plateau's evidence in :mod:`contactres.analysis._blocks`): the results
-    in the order of ``first``, whichever process finishes first."""
-    if workers > 1 and len(first) > 1:
-        with ProcessPoolExecutor(min(workers, len(first))) as pool:
-            return list(pool.map(fn, first, *rest))
-    # strict=False: ``rest`` may hold endless itertools.repeat()s; ``first`` sets the length.
-    return [fn(*args) for args in zip(first, *rest, strict=False)]
-
-
 def _put(out: dict[str, np.ndarray], part: dict[str, np.ndarray], rows, S: int) -> None:
     """Write the arrays of ``part`` (sweep as last axis) at the sweeps ``rows`` of ``out``
     (``S`` sweeps), making each array of ``out`` on first sight."""
@@ -132,7 +120,11 @@ def _put(out: dict[str, np.ndarray], part: dict[str, np.ndarray], rows, S: int) 
 
 
 def _fit_blocks(
-    p: Padded, exact_loop: bool, tables: LoopTables | None, workers: int, plateau: np.ndarray
+    p: Padded,
+    exact_loop: bool,
+    tables: LoopTables | None,
+    workers: int | WorkerPool,
+    plateau: np.ndarray,
 ) -> tuple[np.ndarray, FieldTables]:
     """:func:`_fit_block` on every block of ``p``, put together in the order of the sweeps:
     the largest amplitude of each sweep and the field tables of every fit."""
@@ -274,7 +266,7 @@ def fit_sweeps(
     delta_bic: float = 2.0,
     exact_loop: bool = True,
     tables: LoopTables | None = None,
-    workers: int = 1,
+    workers: int | WorkerPool = 1,
     plateau: np.ndarray | None = None,
 ) -> tuple[pd.DataFrame, FieldTables]:
     """Fit every amplitude model to every sweep and choose one (see the module docstring).
@@ -287,10 +279,12 @@ def fit_sweeps(
         forms)
     tables : the Cattaneo-Mindlin and Savkoor loop tables
         (:func:`contactres.analysis._loops.loop_tables`; built here if None and ``exact_loop``)
-    workers : processes for the fits of the blocks of sweeps (1: none, in this process). More
-        than one pays from ~10^4 sweeps on (both cores of a 2-core machine: ~1.8x faster at
-        10^5 sweeps); it starts a process pool, so a script calling it must be importable
-        (``if __name__ == "__main__":``) where processes are spawned (Windows, macOS).
+    workers : processes for the fits of the blocks of sweeps (1: none, in this process), or
+        the analysis's :class:`~contactres.analysis._workers.WorkerPool` (its processes, left
+        running). More than one pays from ~10^4 sweeps on (both cores of a 2-core machine:
+        ~1.8x faster at 10^5 sweeps); it starts a process pool, so a script calling it must be
+        importable (``if __name__ == "__main__":``) where processes are spawned (Windows,
+        macOS).
     plateau : (S,) which sweeps get the exact plateau loop (default all); the others have no
         ``plateau`` class until :func:`add_plateau_fits` adds it
 
@@ -351,7 +345,7 @@ def add_plateau_fits(
     rows: np.ndarray,
     delta_bic: float,
     tables: LoopTables,
-    workers: int = 1,
+    workers: int | WorkerPool = 1,
 ) -> tuple[pd.DataFrame, FieldTables]:
     """Fit the exact plateau loop to the sweeps ``rows`` of ``sw`` (from
     :func:`fit_sweeps` with ``exact_loop``, in the order of ``p``; its fits ``fields``) that do

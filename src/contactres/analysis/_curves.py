@@ -23,8 +23,6 @@ runs from u0 = 0 to the sweep's largest amplitude in :data:`FIGURE_POINTS` (Fig.
 from __future__ import annotations
 
 from collections.abc import Mapping
-from concurrent.futures import ProcessPoolExecutor
-from contextlib import ExitStack
 
 import numpy as np
 import pandas as pd
@@ -32,6 +30,7 @@ import pandas as pd
 from ..errors import ContactresInputError
 from ._amplitude import Padded
 from ._models import EXACT_LOOPS, REGISTRY, exact_model, model_curves
+from ._workers import WorkerPool, lent_pool
 
 __all__ = [
     "CURVE_GRIDS",
@@ -164,7 +163,11 @@ def model_keys(model: pd.Series, limits_from: pd.Series) -> np.ndarray:
 
 
 def fitted_curves(
-    sw: pd.DataFrame, p: Padded, fits: Fits, grids=CURVE_GRIDS, workers: int = 1
+    sw: pd.DataFrame,
+    p: Padded,
+    fits: Fits,
+    grids=CURVE_GRIDS,
+    workers: int | WorkerPool = 1,
 ) -> pd.DataFrame:
     """The chosen model of every sweep of ``sw`` on each grid of ``grids`` (see the module
     docstring).
@@ -184,7 +187,8 @@ def fitted_curves(
     fits : the fit table of each model (:func:`contactres.analysis._models.fit_tables`,
         ``Results.fits``): the exact loops' values, by sweep
     grids : numbers of grid points (each a grid from 0 to the largest amplitude)
-    workers : processes for the chunks (1: none, in this process)
+    workers : processes for the chunks (1: none, in this process), or the analysis's
+        :class:`~contactres.analysis._workers.WorkerPool`
 
     Returns
     -------
@@ -220,12 +224,8 @@ def fitted_curves(
     # sent (a pool), and each result is put in place as it arrives.
     values = (_parameters(found[k], rows, k) for _, k, rows in tasks)
     grids_of = (grid[n][rows] for n, _, rows in tasks)
-    with ExitStack() as stack:
-        if workers > 1 and len(tasks) > 1:
-            pool = stack.enter_context(ProcessPoolExecutor(min(workers, len(tasks))))
-            done = pool.map(_model_on, keys, values, grids_of, chunksize=4)
-        else:
-            done = map(_model_on, keys, values, grids_of)
+    with lent_pool(workers) as pool:
+        done = pool.imap(_model_on, len(tasks), keys, values, grids_of, chunksize=4)
         for (n, k, rows), fg in zip(tasks, done, strict=True):
             if fg is None:  # some sweep of the chunk has no curve: find which, one by one
                 fg = _one_by_one(sw, found[k], rows, k, grid[n][rows])

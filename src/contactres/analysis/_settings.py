@@ -35,9 +35,11 @@ class AnalysisSettings:
     exact_loop : fit the exact Cattaneo-Mindlin loop (μ_fit), behind a stick plateau for
         ``plateau`` sweeps
     zq : shear-wave impedance of the quartz, kg m⁻² s⁻¹
-    workers : processes for the per-sweep and per-block fits and the plateau's evidence (1:
-        none; more pay from ~10^4 sweeps on; a script that passes more must be importable where
-        processes are spawned, see :func:`contactres.analysis._classify.fit_sweeps`)
+    workers : processes for the per-sweep and per-block fits, the plateau's evidence, the
+        fitted curves and the groups' JKR fits, started once for the whole analysis
+        (:mod:`contactres.analysis._workers`; 1: none; more pay from ~10^4 sweeps on; a script
+        that passes more must be importable where processes are spawned, see
+        :func:`contactres.analysis._classify.fit_sweeps`)
     sphere_material, plate_material : str or None
         Names of the two bodies for the radiation loss of the contact
         (:func:`contactres.analysis.material_by_name`: a built-in solid, e.g.

@@ -10,6 +10,7 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 from dataclasses import asdict, replace
+from itertools import repeat
 
 import numpy as np
 import pandas as pd
@@ -36,11 +37,16 @@ from ._ramps import check_ramps
 from ._results import Results
 from ._running_in import running_in
 from ._settings import AnalysisSettings
+from ._workers import WorkerPool
 
 __all__ = ["run"]
 
 #: Columns that describe a whole sweep, carried from the sweep table into the results.
 INFO_COLUMNS = SWEEP_TABLE.where(level="sweep") + SWEEP_TABLE.where(level="constant")
+#: What :func:`~contactres.analysis._jkr.fit_group` reads of a group's points and of its used
+#: sweeps: only these go to the worker processes.
+JKR_POINT_COLUMNS = ["experiment", "normal_force_N", "kappa_N_per_m", "sphere_radius_m", "poisson"]
+JKR_SWEEP_COLUMNS = ["sweep", "normal_force_N", "kappa_N_per_m"]
 
 
 def _sensitivity(info: pd.DataFrame, zq: float) -> np.ndarray:
@@ -119,7 +125,20 @@ def run(
         raise ContactresInputError(
             f"curve_grids must be distinct whole numbers of points >= 2, got {curve_grids!r}"
         )
-    grids = tuple(grids)
+    # One pool of worker processes for every stage (started by the first that has tasks for
+    # it), shut down however the analysis ends.
+    with WorkerPool(settings.workers) as pool:
+        return _run(table, settings, say, tuple(grids), pool)
+
+
+def _run(
+    table: SweepTable,
+    settings: AnalysisSettings,
+    say: Callable[[str], None],
+    grids: tuple[int, ...],
+    pool: WorkerPool,
+) -> Results:
+    """The steps of :func:`run` (its arguments checked), their worker processes ``pool``."""
     data = table.data
 
     padded = pad_sweeps(data)
@@ -172,7 +191,7 @@ def run(
     tables = loop_tables() if settings.exact_loop else None
     alone = block_codes(info, used) < 0  # the sweeps judged alone get every model now
     sw, fields = fit_sweeps(
-        padded, settings.delta_bic, settings.exact_loop, tables, settings.workers, plateau=alone
+        padded, settings.delta_bic, settings.exact_loop, tables, pool, plateau=alone
     )
     sw = info.merge(sw, on="sweep", how="right", validate="one_to_one")
     P = _sensitivity(sw, settings.zq)
@@ -188,7 +207,7 @@ def run(
         settings.delta_bic,
         settings.exact_loop,
         tables,
-        settings.workers,
+        pool,
         pool_experiment=settings.pool_experiments,
     )
     sw = apply_models(sw, fields, decided["model"].to_numpy(), settings.exact_loop)
@@ -279,11 +298,26 @@ def run(
     loads = per_load(exp, sw)
 
     groups = []
-    for key, part in exp.groupby(GROUP_KEYS, sort=True):
+    grouped = list(exp.groupby(GROUP_KEYS, sort=True))
+    members = [
+        (sw["configuration"] == key[0]).to_numpy() & (sw["medium"] == key[1]).to_numpy()
+        for key, _ in grouped
+    ]
+    # The groups' JKR fits (at scale their bootstraps are the cost) in the worker processes,
+    # each from its own group's points alone; taken in order, each after its step is said.
+    jkr_fits = pool.imap(
+        fit_group,
+        len(grouped),
+        [part[JKR_POINT_COLUMNS] for _, part in grouped],
+        [key for key, _ in grouped],
+        repeat(settings.bootstrap),
+        repeat(settings.seed),
+        [sw.loc[used & member, JKR_SWEEP_COLUMNS] for member in members],
+    )
+    for (key, part), member in zip(grouped, members, strict=True):
         say(f"JKR fit: {key[0]}, {key[1]}")
-        member = (sw["configuration"] == key[0]).to_numpy() & (sw["medium"] == key[1]).to_numpy()
         in_group = used & member
-        g = fit_group(part, key, settings.bootstrap, settings.seed, sw[in_group])
+        g = next(jkr_fits)
         g["n_experiments"] = int(part["experiment"].nunique())
         g["n_sweeps_used"] = int(in_group.sum())
         models = sw.loc[in_group, "model"]
@@ -315,7 +349,7 @@ def run(
     loads = withhold_mu(loads, groups)
 
     say("the fitted curves of every sweep")
-    curves = fitted_curves(sw, padded, fits, grids, workers=settings.workers)
+    curves = fitted_curves(sw, padded, fits, grids, workers=pool)
     jkr = jkr_curves(groups, loads, laws=laws)
 
     radiation = None

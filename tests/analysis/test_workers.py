@@ -1,0 +1,106 @@
+"""One pool of worker processes per analysis (issue 31, point 3): started once, lent to every
+stage, shut down at the end or on an error; the results are the serial path's."""
+
+from concurrent.futures import ProcessPoolExecutor
+from typing import ClassVar
+
+import numpy as np
+import pandas as pd
+import pytest
+
+import contactres.analysis._workers as workers_module
+from contactres.analysis import AnalysisSettings, analyze
+from contactres.analysis._workers import WorkerPool, lent_pool, run_in_workers
+from contactres.measurements._sweeps import validate_sweeps
+from contactres.measurements._synthetic import SweepGroup, SweepStudy, synthetic_sweeps
+from contactres.resonators._qcm import QCM
+
+Q = QCM(fundamental=5e6, overtone=3, area=2.5e-5)
+
+
+class CountingPool(ProcessPoolExecutor):
+    """A ProcessPoolExecutor that records itself, its calls of map and its shutdowns."""
+
+    made: ClassVar[list["CountingPool"]] = []
+
+    def __init__(self, *args, **kwargs):
+        super().__init__(*args, **kwargs)
+        self.maps = 0
+        self.shutdowns: list[bool] = []
+        CountingPool.made.append(self)
+
+    def map(self, *args, **kwargs):
+        self.maps += 1
+        return super().map(*args, **kwargs)
+
+    def shutdown(self, wait=True, *, cancel_futures=False):
+        self.shutdowns.append(cancel_futures)
+        super().shutdown(wait=wait, cancel_futures=cancel_futures)
+
+
+@pytest.fixture
+def counting(monkeypatch):
+    CountingPool.made = []
+    monkeypatch.setattr(workers_module, "ProcessPoolExecutor", CountingPool)
+    return CountingPool.made
+
+
+@pytest.fixture(scope="module")
+def study():
+    """Two groups (sweeps of 13 and of 9 points: two blocks of sweeps) of 3 experiments."""
+    u = tuple(np.linspace(0.5e-9, 8e-9, 13))
+    P = Q.sensitivity(3)
+    frames = []
+    for i, (name, points) in enumerate((("g", 13), ("h", 9))):
+        group = SweepGroup(name, "air", 1.1e-3, 70e9, 0.1, u[:points], 5.0 / P, 0.2)
+        s = SweepStudy(
+            groups=(group,), normal_forces=(2e-3, 4e-3, 6e-3), n_experiments=3, qcm=Q, mu=1.5
+        )
+        frames.append(synthetic_sweeps(s, 7 + i, constants=True))
+    return validate_sweeps(pd.concat(frames, ignore_index=True))
+
+
+def test_one_pool_serves_every_stage_and_gives_the_serial_results(study, counting):
+    serial = analyze(study, settings=AnalysisSettings(bootstrap=30))
+    assert counting == []  # workers=1: no process at all
+    two = analyze(study, settings=AnalysisSettings(bootstrap=30, workers=2))
+    # One executor for the whole analysis, used by several stages (per-sweep fits, curves,
+    # JKR fits, ...), shut down once at the end, normally.
+    (pool,) = counting
+    assert pool.maps >= 3 and pool.shutdowns == [False]
+    pd.testing.assert_frame_equal(serial.sweeps, two.sweeps)
+    pd.testing.assert_frame_equal(serial.curves, two.curves)
+    pd.testing.assert_frame_equal(serial.blocks, two.blocks)
+    assert len(serial.groups) == 2 and serial.groups[0]["error_method"].startswith("bootstrap")
+    for one, other in zip(serial.groups, two.groups, strict=True):
+        assert one.keys() == other.keys()
+        for key, value in one.items():
+            assert value == other[key] or (value != value and other[key] != other[key]), key
+
+
+@pytest.mark.parametrize("error", [KeyboardInterrupt, RuntimeError])
+def test_the_pool_is_shut_down_on_an_error_or_an_interrupt(study, counting, error):
+    # Ctrl-C (or an error) while the JKR fits are under way in the workers: the exception goes
+    # through, and the pool is shut down with the tasks not yet started cancelled.
+    def say(step):
+        if step.startswith("JKR fit"):
+            raise error("stop")
+
+    with pytest.raises(error):
+        analyze(study, settings=AnalysisSettings(bootstrap=30, workers=2), progress=say)
+    (pool,) = counting
+    assert pool.maps >= 1 and pool.shutdowns == [True]
+
+
+def test_a_pool_starts_only_for_two_or_more_tasks(counting):
+    with WorkerPool(2) as pool:
+        assert run_in_workers(abs, pool, [-3]) == [3]  # one task: in this process
+        assert counting == []
+        assert run_in_workers(divmod, pool, [7, 9], [2, 4]) == [(3, 1), (2, 1)]
+        with lent_pool(pool) as lent:  # a lent pool is the same, and stays open after
+            assert lent is pool
+        assert run_in_workers(pow, pool, [2, 3], [3, 2]) == [8, 9]
+    # Both calls went to the one executor, shut down when the pool's block ended.
+    (executor,) = counting
+    assert executor.maps == 2 and executor.shutdowns == [False]
+    assert run_in_workers(abs, 1, [-1, -2]) == [1, 2] and len(counting) == 1
