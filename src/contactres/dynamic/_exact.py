@@ -348,8 +348,12 @@ def exact_n(
             signed = np.concatenate([half, -half, np.zeros_like(half[:, :1])], axis=1)
             at = np.where(mirror.sign > 0, mirror.m_index, mirror.m_index + n_h)
             at[mirror.sign == 0] = 2 * n_h
-            M = signed[:, at[0], mirror.t_index]
-            M += signed[:, at[1], mirror.t_index]
+            # Both terms by one flat index each into the rows of ``signed`` (np.take: the
+            # same gather as signed[:, at[i], t_index], without the two-array indexing).
+            flat = signed.reshape(ka.size, -1)
+            where = at * half.shape[-1] + mirror.t_index
+            M = np.take(flat, where[0], axis=1)
+            M += np.take(flat, where[1], axis=1)
         rhs = np.zeros(M.shape[-1])
         rhs[0] = 1.0
         c = np.linalg.solve(M, np.broadcast_to(rhs, M.shape[:-1])[..., None])[..., 0]
@@ -423,10 +427,7 @@ def galerkin_integrals(
     # I[a, m, t]: ∫ ds Ĝ_m(s/ka) j_p j_q for the harmonics m and pairs t = (p, q).
     # Static part: Ĝ_m^∞ δ_pq π/(2(2p + 1)).
     diag = np.where(ti == tj, np.pi / (2 * (2 * orders[ti] + 1)), 0.0)
-    integral = np.broadcast_to(
-        kernel_harmonics(table.ginf, plan.ms)[:, None] * diag[None, :],
-        (na, plan.ms.size, ti.size),
-    ).copy()
+    static = kernel_harmonics(table.ginf, plan.ms)[:, None] * diag[None, :]  # (n_m, n_t)
     # Near field: contour + hand-over segment, harmonics of the tabulated g − g∞.
     near_h = kernel_harmonics(table.near_values, plan.ms)  # (n_m, nk)
     if near_j is None:
@@ -439,7 +440,9 @@ def galerkin_integrals(
     for i in range(orders.size):
         np.multiply(jp[i], wk, out=weighted[i])
     near = _near_pair_sums(weighted, jp, ti, tj, near_h.T)  # (n_t, na, n_m)
-    integral += near.transpose(1, 2, 0)  # (na, n_m, n_t)
+    # The static part plus the near field, made in one pass (the same sums as a copy of the
+    # static part and the near field added to it).
+    integral = np.add(static[None], near.transpose(1, 2, 0))  # (na, n_m, n_t)
     # Far field: Chebyshev series in w = (T1 ka/s)² of each harmonic, against j_p j_q.
     nf = far.basis.shape[-1]
     harm = {int(j): i for i, j in enumerate(table.far_harmonics)}
@@ -468,8 +471,10 @@ def galerkin_integrals(
         coeffs = right @ tail_coefficients(table, ka, tail)  # (na, k, n_fit + 1)
         phi += np.swapaxes(coeffs @ plan.far_moments, 0, 1)  # (k, na, n_t)
     mixed = np.tensordot(left, phi, axes=(1, 0))  # (2 n_m, na, n_t)
-    far_part = mixed[: plan.ms.size] + 1j * mixed[plan.ms.size :]  # (n_m, na, n_t)
-    integral += far_part.transpose(1, 0, 2)
+    # Its real and imaginary parts added to those of the integral (a complex sum is the sums
+    # of its parts: the same values as adding mixed[:n_m] + 1j mixed[n_m:], without forming it).
+    integral.real += mixed[: plan.ms.size].transpose(1, 0, 2)
+    integral.imag += mixed[plan.ms.size :].transpose(1, 0, 2)
     # Beyond the grid: j_p j_q -> (−1)^{(p−q)/2}/(2 s²) on average, g − g∞ -> w C₁.
     alt = np.where(np.arange(nf) % 2 == 0, 1.0, -1.0)
     tail_sign = np.where(((orders[ti] - orders[tj]) // 2) % 2 == 0, 1.0, -1.0)
