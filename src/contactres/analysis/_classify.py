@@ -31,7 +31,6 @@ then makes the same choice for the ramps of one load block together.
 
 from __future__ import annotations
 
-from concurrent.futures import ProcessPoolExecutor
 from itertools import repeat
 
 import numpy as np
@@ -115,6 +114,9 @@ def run_in_workers(fn, workers: int, first: list, *rest) -> list:
     loop fits here, the plateau's evidence in :mod:`contactres.analysis._blocks`): the results
     in the order of ``first``, whichever process finishes first."""
     if workers > 1 and len(first) > 1:
+        # Imported here: the process pool (multiprocessing, ~20 modules) serves only workers > 1.
+        from concurrent.futures import ProcessPoolExecutor
+
         with ProcessPoolExecutor(min(workers, len(first))) as pool:
             return list(pool.map(fn, first, *rest))
     # strict=False: ``rest`` may hold endless itertools.repeat()s; ``first`` sets the length.

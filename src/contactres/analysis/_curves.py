@@ -23,7 +23,6 @@ runs from u0 = 0 to the sweep's largest amplitude in :data:`FIGURE_POINTS` (Fig.
 from __future__ import annotations
 
 from collections.abc import Mapping
-from concurrent.futures import ProcessPoolExecutor
 from contextlib import ExitStack
 
 import numpy as np
@@ -222,6 +221,9 @@ def fitted_curves(
     grids_of = (grid[n][rows] for n, _, rows in tasks)
     with ExitStack() as stack:
         if workers > 1 and len(tasks) > 1:
+            # Imported here: the process pool (multiprocessing) serves only workers > 1.
+            from concurrent.futures import ProcessPoolExecutor
+
             pool = stack.enter_context(ProcessPoolExecutor(min(workers, len(tasks))))
             done = pool.map(_model_on, keys, values, grids_of, chunksize=4)
         else:
