@@ -53,8 +53,11 @@ PROBE = textwrap.dedent(
 
     class Watcher:
         def find_spec(self, fullname, path=None, target=None):
-            top = fullname.partition(".")[0]
-            if top in watched and top not in routes:
+            # A watched name is a package (all its modules) or a module of one ("scipy.optimize").
+            parts = fullname.split(".")
+            names = (".".join(parts[:i]) for i in range(1, len(parts) + 1))
+            top = next((n for n in names if n in watched), None)
+            if top is not None and top not in routes:
                 routes[top] = [
                     f"{f.filename.replace(chr(92), '/').split('/src/')[-1]}:{f.lineno}"
                     for f in traceback.extract_stack()[:-1]
@@ -209,6 +212,78 @@ def test_touching_analyze_imports_no_heavy_library():
     result = probe(code, watched=(*HEAVY, "numpy"))
     check_light(result)
     assert result["stdout"].split() == ["contactres.analysis._pipeline", "analyze"]
+
+
+# The first call of the analysis, as benchmarks/bench_startup.py times it: it imports the steps
+# and their libraries, then refuses None before any work.
+FIRST_CALL = (
+    "import sys\n"
+    "import contactres\n"
+    "try:\n"
+    "    contactres.analyze(None)\n"
+    "except TypeError:\n"
+    "    print('contactres.analysis._steps' in sys.modules)\n"
+)
+
+
+def test_probe_sees_a_module_of_a_package():
+    """A watched dotted name is reported (the pins below rely on it), and only its own modules:
+    numpy's import (which imports numpy.linalg) does not count as numpy.f2py's."""
+    result = probe("import numpy", watched=("numpy.linalg", "numpy.f2py"))
+    assert set(result["routes"]) == {"numpy.linalg"}
+    result = probe("import numpy.f2py", watched=("numpy.linalg", "numpy.f2py"))
+    assert set(result["routes"]) == {"numpy.linalg", "numpy.f2py"}
+
+
+def test_the_first_call_of_analyze_imports_only_what_every_analysis_needs():
+    """issue 31: the first call imports the steps of every analysis (numpy, pandas and
+    scipy.special: the drift test's F distribution, the JKR fit's t quantile) and nothing that
+    only some runs use: no figures (matplotlib), no scipy.optimize (the JKR fit imports it when
+    it fits), stats, integrate, interpolate, linalg, sparse or spatial, no process pool (workers
+    > 1), no HTML escaping (a notebook's view), none of the file readers (read_sweeps), the
+    report, the coated plate, the radiation or the particles. numpy.testing is not pinned:
+    scipy.special's array-API layer imports it."""
+    watched = (
+        "matplotlib",
+        *(f"scipy.{m}" for m in ("optimize", "stats", "integrate", "interpolate", "linalg")),
+        *(f"scipy.{m}" for m in ("sparse", "spatial")),
+        "concurrent.futures.process",
+        "multiprocessing",
+        "html",
+        "contactres.measurements.readers",
+        "contactres.report",
+        "contactres.analysis._coating",
+        "contactres.analysis._radiation",
+        "contactres.analysis._particles",
+    )
+    result = probe(FIRST_CALL, watched=watched)
+    assert result["stdout"] == "True\n"  # the steps were imported: the pin is not vacuous
+    check_light(result)
+    result = probe(FIRST_CALL, watched=("pandas", "scipy.special"))
+    assert set(result["routes"]) == {"pandas", "scipy.special"}
+
+
+def test_a_static_contact_imports_no_scipy(tmp_path, monkeypatch):
+    """issue 31: the Hertz contact on a bare face needs numpy and pandas only; scipy.special
+    came in with the Gauss-Legendre rule of contactres.numerics and the coated solve's
+    gammaln, both imported with sphere_contact (~0.2 s of CPU)."""
+    monkeypatch.chdir(tmp_path)
+    args = ["contact", "--crystal", "Cu", "--radius", "1e-3", "--force", "1"]
+    result = probe(run_cli(args), watched=("scipy", "matplotlib"))
+    assert result["exit"] == 0 and "contact_radius_m" in result["stdout"]
+    check_light(result)
+
+
+def test_the_readers_registry_of_the_jobs_imports_no_scipy():
+    """issue 31: the registry of every reader (an AFM map job picks its file's reader from it)
+    holds the EBSD readers, whose orientations need scipy's Rotation only when a map is read
+    (scipy.spatial with scipy.sparse and scipy.linalg, ~0.25 s of CPU)."""
+    code = (
+        "from contactres.jobs.readers import ALL_READERS\nprint(len(ALL_READERS.of_kind('ebsd')))"
+    )
+    result = probe(code, watched=("scipy", "matplotlib"))
+    assert result["stdout"] == "3\n"
+    check_light(result)
 
 
 @pytest.mark.parametrize("args", CLI_COMMANDS, ids=lambda a: " ".join(a) or "(root)")

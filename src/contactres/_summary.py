@@ -15,7 +15,6 @@ that light modules (:mod:`contactres.crystals`) can use it.
 
 from __future__ import annotations
 
-import html
 import math
 from collections.abc import Sequence
 
@@ -165,6 +164,9 @@ def summary_html(name: str, facts: Sequence[tuple[str, str]]) -> str:
     >>> summary_html("T", [("", "Cu"), ("a", "<b>&")])
     '<p><b>T</b> Cu</p><table><tbody><tr><th>a</th><td>&lt;b&gt;&amp;</td></tr></tbody></table>'
     """
+    # Imported here: only a notebook asks for HTML (html.entities is a table of ~2,000 names).
+    import html
+
     head = ", ".join(html.escape(v) for k, v in facts if not k)
     rows = "".join(
         f"<tr><th>{html.escape(k)}</th><td>{html.escape(v)}</td></tr>" for k, v in facts if k

@@ -7,7 +7,6 @@ it (as a constant of its module or an argument it passes on); nothing here remem
 from __future__ import annotations
 
 import numpy as np
-from scipy import special
 
 from .errors import ContactresInputError
 
@@ -108,6 +107,10 @@ def gauss_legendre(a, b, n: int) -> tuple[np.ndarray, np.ndarray]:
         raise ContactresInputError(
             f"n (number of Gauss-Legendre nodes) must be an integer >= 1, got {n!r}"
         )
+    # Imported here: the root finder and gauss_legendre_unit of this module need no scipy, and
+    # a command that uses only those (a static contact) need not import scipy.special (~0.2 s).
+    from scipy import special
+
     x, w = special.roots_legendre(n_int)
     a = np.asarray(a)
     b = np.asarray(b)

@@ -1,6 +1,7 @@
 """One pool of worker processes per analysis (issue 31, point 3): started once, lent to every
 stage, shut down at the end or on an error; the results are the serial path's."""
 
+import concurrent.futures
 from concurrent.futures import ProcessPoolExecutor
 from typing import ClassVar
 
@@ -8,7 +9,6 @@ import numpy as np
 import pandas as pd
 import pytest
 
-import contactres.analysis._workers as workers_module
 from contactres.analysis import AnalysisSettings, analyze
 from contactres.analysis._workers import WorkerPool, lent_pool, run_in_workers
 from contactres.measurements._sweeps import validate_sweeps
@@ -41,7 +41,10 @@ class CountingPool(ProcessPoolExecutor):
 @pytest.fixture
 def counting(monkeypatch):
     CountingPool.made = []
-    monkeypatch.setattr(workers_module, "ProcessPoolExecutor", CountingPool)
+    # The pool module imports ProcessPoolExecutor where it starts the processes (deferred: the
+    # first call of the analysis does not pay for multiprocessing), so the name is patched
+    # where that import reads it.
+    monkeypatch.setattr(concurrent.futures, "ProcessPoolExecutor", CountingPool)
     return CountingPool.made
 
 

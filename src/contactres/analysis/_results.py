@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import html
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field
@@ -172,6 +171,9 @@ class Results:
 
     def _repr_html_(self) -> str:
         """The summary of :meth:`__repr__` as HTML, for notebooks (every label escaped)."""
+        # Imported here: only a notebook asks for HTML (html.entities is a table of ~2,000 names).
+        import html
+
         rows = "".join(
             f"<tr><td>{html.escape(c)}</td><td>{html.escape(m)}</td><td>{html.escape(t)}</td></tr>"
             for c, m, t in self._group_rows()

@@ -13,9 +13,12 @@ results are those of the serial path, bit for bit, whichever process runs which 
 from __future__ import annotations
 
 from collections.abc import Callable, Iterable, Iterator
-from concurrent.futures import Executor, ProcessPoolExecutor
 from contextlib import contextmanager
 from types import TracebackType
+from typing import TYPE_CHECKING
+
+if TYPE_CHECKING:
+    from concurrent.futures import Executor
 
 __all__ = ["WorkerPool", "lent_pool", "run_in_workers"]
 
@@ -46,6 +49,10 @@ class WorkerPool:
         if not self.parallel(tasks):
             return map(fn, *iterables)
         if self._executor is None:
+            # Imported here: the process pool (multiprocessing, ~20 modules) serves only
+            # workers > 1, and the first call of the analysis should not pay for it.
+            from concurrent.futures import ProcessPoolExecutor
+
             self._executor = ProcessPoolExecutor(self.processes)
         return self._executor.map(fn, *iterables, chunksize=chunksize)
 

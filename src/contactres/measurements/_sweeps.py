@@ -42,14 +42,12 @@ from ._sweep_checks import (
     drop_duplicates,
     warn_sweeps,
 )
-from .readers import BUILT_IN, SweepReader, line_ranges
 from .schema import FINITE, SWEEP_TABLE, broken_rule, check_cells, check_value, stripped
 
 __all__ = [
     "CONSTANTS",
     "OPTIONAL_COLUMNS",
     "REQUIRED_COLUMNS",
-    "SweepReader",
     "SweepTable",
     "SweepWarning",
     "read_sweeps",
@@ -336,6 +334,10 @@ def read_sweeps(path, *, readers=None, **constants) -> SweepTable:
         raise ContactresInputError(f"unknown constant(s) {unknown}; allowed: {list(CONSTANTS)}")
     given = {k: v for k, v in constants.items() if v is not None}
     toml, toml_path = _toml_constants(p)
+    # Imported here: the registry imports every reader (the instrument exports, the AFM files),
+    # which a table validated in memory, e.g. by the analysis, never uses (issue 31).
+    from .readers import BUILT_IN
+
     reader = (BUILT_IN if readers is None else readers).pick(p, "sweeps")
     raw, digest = hashed_load(reader, p, BUILT_IN)  # the hash of the bytes parsed
     # A workbook's reader names its sheet too ("book.xlsx, sheet 'sweeps'").
@@ -611,6 +613,9 @@ def validate_sweeps(
     decimal = raw.attrs.get("decimal", ".")
     comments = raw.attrs.get("comment_lines", ())
     if comments:
+        # Imported here: the readers' package serves read_sweeps, not a table validated in memory.
+        from .readers import line_ranges
+
         warnings.warn(
             f"{source}: {len(comments)} comment line(s) skipped (first character '#'): "
             f"line(s) {line_ranges(comments)}",

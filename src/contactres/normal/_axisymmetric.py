@@ -71,7 +71,6 @@ from collections.abc import Callable
 from dataclasses import dataclass
 
 import numpy as np
-from scipy import special
 
 from ..errors import ContactresInputError
 from ..numerics import gauss_legendre
@@ -260,6 +259,10 @@ def even_spherical_bessel(n: int, s: np.ndarray) -> np.ndarray:
 
 
 def _centre_values(n: int) -> np.ndarray:
+    # Imported here: contactres.normal.sphere_contact imports this module also for a bare face,
+    # which needs no scipy; only the coated solve reaches these values.
+    from scipy import special
+
     k = np.arange(n)
     return math.sqrt(math.pi) * np.exp(special.gammaln(k + 1) - special.gammaln(k + 0.5))
 

@@ -46,9 +46,12 @@ from __future__ import annotations
 import warnings
 
 import numpy as np
-from scipy.spatial.transform import Rotation
 
 from ..errors import ContactresInputError
+
+TYPE_CHECKING = False
+if TYPE_CHECKING:
+    from scipy.spatial.transform import Rotation
 
 __all__ = [
     "LATTICES",
@@ -61,6 +64,16 @@ __all__ = [
     "surface_matrix_from_miller",
     "symmetry_operators",
 ]
+
+
+def _rotation() -> type[Rotation]:
+    """scipy's :class:`~scipy.spatial.transform.Rotation`, imported on first use: it brings
+    scipy.sparse and scipy.linalg (~0.25 s of CPU), and this module comes with every EBSD reader,
+    which the readers' registry of a job loads also for files that are no EBSD map (issue 31)."""
+    from scipy.spatial.transform import Rotation
+
+    return Rotation
+
 
 # Lattice name -> scipy's name of its proper point group (z = the main axis).
 LATTICES: dict[str, str] = {"cubic": "O", "hexagonal": "D6"}
@@ -146,7 +159,7 @@ def surface_matrices_from_euler(phi1, Phi, phi2, *, degrees: bool) -> np.ndarray
     shape = a[0].shape
     stacked = np.stack([x.ravel() for x in a], axis=-1)
     # Intrinsic z-x'-z'' (scipy 'ZXZ') active rotation Rz(φ1) Rx(Φ) Rz(φ2) = (Z(φ2) X(Φ) Z(φ1))ᵀ.
-    return Rotation.from_euler("ZXZ", stacked).as_matrix().reshape(*shape, 3, 3)
+    return _rotation().from_euler("ZXZ", stacked).as_matrix().reshape(*shape, 3, 3)
 
 
 def euler_from_surface_matrices(R, *, degrees: bool) -> np.ndarray:
@@ -171,7 +184,7 @@ def euler_from_surface_matrices(R, *, degrees: bool) -> np.ndarray:
         return np.zeros((*shape, 3))
     with warnings.catch_warnings():  # Φ = 0 (e.g. the cube orientation) is a normal input
         warnings.filterwarnings("ignore", message="Gimbal lock", category=UserWarning)
-        e = Rotation.from_matrix(flat).as_euler("ZXZ")
+        e = _rotation().from_matrix(flat).as_euler("ZXZ")
     e[:, [0, 2]] = np.mod(e[:, [0, 2]], 2 * np.pi)
     e[np.isclose(e, 2 * np.pi, rtol=0, atol=1e-12)] = 0.0
     e = e.reshape(*shape, 3)
@@ -217,7 +230,7 @@ def surface_matrices_from_quaternions(q, scalar_first: bool = True) -> np.ndarra
     if not flat.size:
         return np.zeros((*shape, 3, 3))
     # The Hamilton active matrix of the P = -1 quaternion of g is gᵀ = R.
-    return Rotation.from_quat(flat, scalar_first=scalar_first).as_matrix().reshape(*shape, 3, 3)
+    return _rotation().from_quat(flat, scalar_first=scalar_first).as_matrix().reshape(*shape, 3, 3)
 
 
 def quaternions_from_surface_matrices(R, scalar_first: bool = True) -> np.ndarray:
@@ -231,7 +244,7 @@ def quaternions_from_surface_matrices(R, scalar_first: bool = True) -> np.ndarra
     flat, shape = _rotations(R)
     if not flat.size:
         return np.zeros((*shape, 4))
-    q = Rotation.from_matrix(flat).as_quat(canonical=True, scalar_first=scalar_first)
+    q = _rotation().from_matrix(flat).as_quat(canonical=True, scalar_first=scalar_first)
     return q.reshape(*shape, 4)
 
 
@@ -316,7 +329,7 @@ def symmetry_operators(lattice: str) -> np.ndarray:
         raise ContactresInputError(f"lattice must be one of {sorted(LATTICES)}, got {lattice!r}")
     # scipy-stubs list the group names as Literal[..., "Dn", ...]: n stands for 2, 3, ..., so
     # "D6" is valid (scipy's documentation), and no Literal admits it.
-    S = Rotation.create_group(LATTICES[lattice]).as_matrix()  # type: ignore[arg-type]
+    S = _rotation().create_group(LATTICES[lattice]).as_matrix()  # type: ignore[arg-type]
     for exact in (0.0, 1.0, -1.0):  # clean round-off so that the cubic operators are exact
         S[np.isclose(S, exact, rtol=0, atol=1e-12)] = exact
     first = int(np.argmax(np.trace(S, axis1=1, axis2=2)))  # the identity, trace 3
@@ -387,4 +400,4 @@ def random_orientations(n: int, seed: int | np.random.Generator | None = None) -
         raise ContactresInputError(f"n must be a non-negative integer, got {n!r}")
     if n == 0:
         return np.zeros((0, 3, 3))
-    return Rotation.random(int(n), rng=np.random.default_rng(seed)).as_matrix().reshape(-1, 3, 3)
+    return _rotation().random(int(n), rng=np.random.default_rng(seed)).as_matrix().reshape(-1, 3, 3)
