@@ -278,13 +278,19 @@ class CoatedLaw:
                     w[..., j] *= (t - x[m]) / (x[j] - x[m])
         return w
 
-    def _interpolant(self, E, columns: slice = slice(None), slope: bool = True):
+    def _interpolant(
+        self, E, columns: slice = slice(None), slope: bool = True, by_value: bool = False
+    ):
         """a -> (q, dq/d ln a), each a.shape + (4,), at Young's modulus E (an array broadcast
         against a, or one value: then the spline of that E alone, a fifth of the work);
         ``columns``: only these of the four (the others are not evaluated; q[..., columns] of
-        the whole has the same values); ``slope``: False leaves dq None."""
+        the whole has the same values); ``slope``: False leaves dq None; ``by_value``: E takes
+        a few values (a grid): each value's spline as one value's alone, all evaluated at once
+        (the same numbers as one call per value, without a call per value)."""
         E = np.asarray(E, dtype=float)
         coef = self.spline.c[..., columns]
+        if by_value:
+            return self._by_value(E, coef, slope)
         if E.size and np.all(E == E.flat[0]):
             c = np.einsum("j,abjk->abk", self._weights(E.flat[0]), coef)
             one = PPoly(c, self.spline.x)
@@ -309,6 +315,34 @@ class CoatedLaw:
 
         return values
 
+    def _by_value(self, E: np.ndarray, coef: np.ndarray, slope: bool):
+        """:meth:`_interpolant` with ``by_value``: the splines of the distinct values of E side
+        by side in one piecewise polynomial (each made as for that value alone: the same
+        coefficients), evaluated at every a and each entry's own taken. The splines of the
+        other values cost little against a call each (a grid of 15 E: 15 x 2 columns)."""
+        levels, index = np.unique(E, return_inverse=True)
+        cols = coef.shape[-1]
+        c = np.concatenate(
+            [np.einsum("j,abjk->abk", self._weights(v), coef) for v in levels], axis=-1
+        )
+        one = PPoly(c, self.spline.x)
+        deriv = one.derivative() if slope else None
+
+        def pick(poly, x, rows):
+            flat = np.ravel(x)
+            out = poly(flat).reshape(flat.size, levels.size, cols)
+            return out[np.arange(flat.size), np.ravel(rows)].reshape(*np.shape(x), cols)
+
+        rows_all = index.reshape(E.shape)
+
+        def values(a, at=None):
+            # ``at``: a at the entries ``at`` of E only (as :meth:`_interpolant`'s).
+            rows = rows_all if at is None else rows_all[at]
+            x = np.log(a)
+            return pick(one, x, rows), None if deriv is None else pick(deriv, x, rows)
+
+        return values
+
     def normal(self, E, a, interp=None):
         """(C, −dC/da, P'R/a³): the pair's punch compliance (m/N), its derivative (1/N) and
         the non-adhesive force factor (Pa) at contact radius a, Young's modulus E
@@ -330,9 +364,9 @@ class CoatedLaw:
         force = 1 / (3 / (4 * e_star) + q[..., 1] * h / a)
         return q, minus_dC, force
 
-    def normal_interpolant(self, E):
+    def normal_interpolant(self, E, by_value: bool = False):
         """:meth:`_interpolant` of q_n and q_f (the normal contact's two columns) at E."""
-        return self._interpolant(E, slice(0, 2))
+        return self._interpolant(E, slice(0, 2), by_value=by_value)
 
     def force(self, E, gamma, a, R, interp=None):
         """P(a) of the adhesive contact, N (module docstring)."""
@@ -340,14 +374,15 @@ class CoatedLaw:
         _, minus_dC, factor = self._normal_terms(E, a, interp)
         return factor * a**3 / R - np.sqrt(8 * np.pi * gamma * a / minus_dC)
 
-    def contact_radius(self, F, E, gamma, R):
-        """a(F) on the stable branch, m, and a mask of the radii clamped to the table."""
+    def contact_radius(self, F, E, gamma, R, by_value: bool = False):
+        """a(F) on the stable branch, m, and a mask of the radii clamped to the table
+        (``by_value``: E takes a few values, :meth:`_interpolant`)."""
         arrays = np.broadcast_arrays(*(np.asarray(v, float) for v in (F, E, gamma, R)))
         shape = arrays[0].shape
         F, E, gamma, R = (np.ravel(v) for v in arrays)
         lo = np.full(F.shape, self.log_a[0])
         hi = np.full(F.shape, self.log_a[-1])
-        interp = self.normal_interpolant(E)  # E is fixed while a is sought
+        interp = self.normal_interpolant(E, by_value)  # E is fixed while a is sought
 
         def f(x, at=slice(None)):
             # At the entries ``at`` only: each entry's arithmetic is that of the whole.
@@ -374,13 +409,13 @@ class CoatedLaw:
             lo, hi, f_lo, f_hi, side = illinois_step(x, fx, (lo, hi, f_lo, f_hi, side))
         return np.exp(x).reshape(shape), (below | above).reshape(shape)
 
-    def tangential(self, E, a):
+    def tangential(self, E, a, by_value: bool = False):
         """κ at contact radius a, N/m: sphere and coated plate sharing the traction, storage
-        part."""
+        part (``by_value``: E takes a few values, :meth:`_interpolant`)."""
         E, a = np.broadcast_arrays(np.asarray(E, float), np.asarray(a, float))
         h, nu = self.coating.thickness, self.poisson
         g = E / (2 * (1 + nu))
-        q, _ = self._interpolant(E, slice(2, 4), slope=False)(a)
+        q, _ = self._interpolant(E, slice(2, 4), slope=False, by_value=by_value)(a)
         C_t = 2 * (2 - nu) / (8 * g * a) + (q[..., 0] + 1j * q[..., 1]) * h / a**2
         return np.real(1 / C_t)
 
@@ -388,6 +423,13 @@ class CoatedLaw:
         """κ(F_N), N/m (``poisson`` is the table's; accepted for the model's signature)."""
         a, _ = self.contact_radius(force, E, gamma, radius)
         return self.tangential(E, a)
+
+    def kappa_grid(self, force, E, gamma, radius):
+        """:meth:`kappa` where E takes a few values (a grid; broadcast against the others):
+        the numbers of one call per value, in one call."""
+        arrays = np.broadcast_arrays(*(np.asarray(v, float) for v in (force, E, gamma, radius)))
+        a, _ = self.contact_radius(*arrays, by_value=True)
+        return self.tangential(arrays[1], a, by_value=True)
 
     def model(self, gamma_max: float) -> Model:
         """The fitted model: E bounded by the table, γ by ``gamma_max``."""
@@ -504,8 +546,8 @@ def resampled_coated(law: CoatedLaw, F, kappa, W, R: float, res: FitResult, gamm
             max(E_hat - span_E, law.bounds[0]), min(E_hat + span_E, law.bounds[1]), _GRID
         )
         g_grid = np.linspace(max(g_hat - span_g, 0.0), min(g_hat + span_g, gamma_max), _GRID)
-        # (L, nE, nγ), one E at a time (each E's spline made once: CoatedLaw._interpolant)
-        m = np.stack([law.kappa(forces[:, None], E, g_grid[None, :], R) for E in e_grid], 1)
+        # (L, nE, nγ) in one call (each E's spline made once: CoatedLaw._interpolant)
+        m = law.kappa_grid(forces[:, None, None], e_grid[None, :, None], g_grid[None, None, :], R)
         m = m.reshape(forces.size, -1)
         rss = -2 * S @ m + N @ (m * m)  # Σ w κ² left out: the same for every grid point
         rss = rss.reshape(-1, e_grid.size, g_grid.size)
@@ -538,9 +580,16 @@ def _gauss_newton(law, forces, S, N, E, gam, R, gamma_max, steps: int = _GN_STEP
     lo, hi = law.bounds
     for _ in range(steps):
         dE, dg = 1e-6 * E, np.maximum(1e-6 * gam, 1e-9)
-        m0 = law.kappa(forces[None, :], E[:, None], gam[:, None], R)
-        JE = (law.kappa(forces[None, :], (E + dE)[:, None], gam[:, None], R) - m0) / dE[:, None]
-        Jg = (law.kappa(forces[None, :], E[:, None], (gam + dg)[:, None], R) - m0) / dg[:, None]
+        # The model at (E, γ), (E + dE, γ) and (E, γ + dγ) in one call (each entry's numbers
+        # are those of its own call: one loop of the contact-radius solve instead of three).
+        m0, mE, mg = law.kappa(
+            forces[None, None, :],
+            np.stack([E, E + dE, E])[..., None],
+            np.stack([gam, gam, gam + dg])[..., None],
+            R,
+        )
+        JE = (mE - m0) / dE[:, None]
+        Jg = (mg - m0) / dg[:, None]
         r = m0 - mean
         a11, a12, a22 = (N * JE * JE).sum(1), (N * JE * Jg).sum(1), (N * Jg * Jg).sum(1)
         b1, b2 = (N * JE * r).sum(1), (N * Jg * r).sum(1)
