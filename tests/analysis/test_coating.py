@@ -19,8 +19,8 @@ from contactres.analysis._coating import (
     as_coating,
     build_law,
     fit_coated,
-    resampled_coated,
 )
+from contactres.analysis._coating_bootstrap import resampled_coated
 from contactres.analysis._jkr import fit_jkr_mindlin
 from contactres.errors import ContactresInputError
 from contactres.normal import sphere_contact, static_punch_stiffness
