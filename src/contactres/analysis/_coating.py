@@ -56,9 +56,12 @@ of contact radii and a few Young's moduli (:func:`build_law`) and interpolated: 
 in ln a (the derivative dC/da from it) and a Lagrange polynomial in ln E. They are nearly
 independent of E for a thin film (a film's compression h/(πa²M_f) does not involve the
 substrate), so five Chebyshev nodes in E suffice; the measured interpolation error is stated
-in :func:`build_law` (tested). The E range of the table is the fit's bound (a fit there is flagged
-``fit-at-bound``); a contact radius outside the table is clamped to it while the fit searches,
-and a fit that needs one at a measured load is withheld (``fit-at-bound``, with a note).
+in :func:`build_law` (tested). The layered solutions at the five E share their quadrature
+nodes (set by the film, not by E), so the Galerkin's basis transforms there are computed once
+per radius and direction (``transforms=``). The E range of the table is the fit's bound (a
+fit there is flagged ``fit-at-bound``); a contact radius outside the table is clamped to it
+while the fit searches, and a fit that needs one at a measured load is withheld
+(``fit-at-bound``, with a note).
 """
 
 from __future__ import annotations
