@@ -8,10 +8,13 @@ fits and their bootstrap. Both runs are timed as CPU time of this process (the f
 a shared machine; the wall time is printed too), each after one untimed run of the same call
 (imports and first-call costs out). The target is the uncoated time times 2.
 
-Measured (2-core machine shared with other jobs, ``OPENBLAS_NUM_THREADS=1``): 1.9-2.1 s
-against 0.6-0.8 s, 2.7-3x: the target is missed (the table ~0.7 s, the bootstrap ~0.4 s). With
-the default BLAS threads on the busy machine the layered solutions' small matrix products spin:
-7.2 s against 0.9 s.
+Measured (2-core machine shared with ~8 other jobs, ``OPENBLAS_NUM_THREADS=1``, three runs
+alternated with the code before the table shared its basis transforms over E): 1.82-1.95 s
+against 0.88-0.98 s, 1.97-2.20x (before: 1.94-2.33 s, 1.94-2.66x): at the target, not steadily
+under it on the loaded machine. The coating's own work (min of repeated runs in one process):
+the table 0.40-0.46 s (0.63-0.66 s before), the coated fits and their bootstrap 0.43-0.56 s
+(0.56-0.63 s). With the default BLAS threads on a busy machine the layered solutions' small
+matrix products spin: 7.2 s against 0.9 s.
 
 Run: ``OPENBLAS_NUM_THREADS=1 .venv/bin/python benchmarks/bench_analyze_coating.py`` (exit
 status 1 if missed).

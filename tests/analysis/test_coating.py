@@ -19,8 +19,8 @@ from contactres.analysis._coating import (
     as_coating,
     build_law,
     fit_coated,
-    resampled_coated,
 )
+from contactres.analysis._coating_bootstrap import resampled_coated
 from contactres.analysis._jkr import fit_jkr_mindlin
 from contactres.errors import ContactresInputError
 from contactres.normal import sphere_contact, static_punch_stiffness
@@ -122,6 +122,22 @@ def test_kappa_from_an_independent_route_gives_back_E_and_gamma(synthetic):
     E_b, g_b = resampled_coated(s["law"], s["F"], s["kappa"], W, R, res, 1e3)
     np.testing.assert_allclose(E_b, res.values["E"], rtol=1e-4)
     np.testing.assert_allclose(g_b, res.values["gamma"], rtol=1e-2, atol=1e-4)
+
+
+def test_the_grid_of_the_bootstrap_is_the_model_at_each_grid_point(synthetic):
+    # kappa_grid (all E of a grid in one contact-radius solve) against the model called at
+    # each E alone: the same numbers (each entry's arithmetic is that of its own call).
+    law = synthetic["law"]
+    E = np.array([45e9, 80e9, 80e9 * (1 + 1e-6), 300e9])
+    gamma = np.array([0.0, 0.03, 0.06])
+    grid = law.kappa_grid(FORCES[:, None, None], E[None, :, None], gamma[None, None, :], R)
+    each = np.stack([law.kappa(FORCES[:, None], e, gamma[None, :], R) for e in E], axis=1)
+    assert np.array_equal(grid, each)
+    # The Gauss-Newton steps' form: rows of per-resample E stacked, against a call per row.
+    rows = np.stack([E, E * (1 + 1e-6), E[::-1]])
+    many = law.kappa(FORCES[None, None, :], rows[..., None], 0.05, R)
+    ones = np.stack([law.kappa(FORCES[None, :], row[:, None], 0.05, R) for row in rows])
+    assert np.array_equal(many, ones)
 
 
 def test_the_bootstrap_estimator_is_the_least_squares_fit(synthetic):

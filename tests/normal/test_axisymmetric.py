@@ -89,3 +89,27 @@ def test_bad_radius_and_too_thin_layer():
         punch_and_sphere(ker, [1.0, -1.0])
     with pytest.raises(ContactresInputError, match="times the thinnest layer"):
         punch_and_sphere(ker, 1e4)
+
+
+def test_a_shared_store_of_transforms_changes_no_number():
+    # Kernels on the same nodes (same lengths and cut-off) share the transforms; a kernel with
+    # other nodes (a smaller excess: fewer panels; another length) is recomputed, not served
+    # the stored ones; the tangential problem (one order more) keeps its own. Every number as
+    # without the store.
+    h = 0.25e-6
+    a = np.array([0.8e-6, 3e-6, 9e-6])
+    coupled = RadialKernel(
+        g_inf=2.0,
+        excess=lambda eta: np.stack([0.5 * np.exp(-2 * eta * h), 0.1 * np.exp(-2 * eta * h)]),
+        lengths=(h, h),
+        coupling_inf=-0.3,
+    )
+    kernels = [exp_kernel(1.0, 0.5, h), exp_kernel(1.0, -0.3, h), exp_kernel(1.0, 1e-4, h)]
+    kernels.append(exp_kernel(1.0, 0.5, 2 * h))
+    store: dict = {}
+    for kernel in [*kernels, coupled, kernels[0]]:
+        alone = punch_and_sphere(kernel, a, tol=1e-6)
+        shared = punch_and_sphere(kernel, a, tol=1e-6, transforms=store)
+        for field in ("punch_stiffness", "depth_factor", "force_factor", "peak_factor"):
+            assert np.array_equal(getattr(alone, field), getattr(shared, field), equal_nan=True)
+    assert len(store) >= 2 * a.size  # normal and tangential orders at every radius

@@ -56,9 +56,12 @@ of contact radii and a few Young's moduli (:func:`build_law`) and interpolated: 
 in ln a (the derivative dC/da from it) and a Lagrange polynomial in ln E. They are nearly
 independent of E for a thin film (a film's compression h/(πa²M_f) does not involve the
 substrate), so five Chebyshev nodes in E suffice; the measured interpolation error is stated
-in :func:`build_law` (tested). The E range of the table is the fit's bound (a fit there is flagged
-``fit-at-bound``); a contact radius outside the table is clamped to it while the fit searches,
-and a fit that needs one at a measured load is withheld (``fit-at-bound``, with a note).
+in :func:`build_law` (tested). The layered solutions at the five E share their quadrature
+nodes (set by the film, not by E), so the Galerkin's basis transforms there are computed once
+per radius and direction (``transforms=``). The E range of the table is the fit's bound (a
+fit there is flagged ``fit-at-bound``); a contact radius outside the table is clamped to it
+while the fit searches, and a fit that needs one at a measured load is withheld
+(``fit-at-bound``, with a note).
 """
 
 from __future__ import annotations
@@ -72,13 +75,14 @@ from scipy.interpolate import CubicSpline, PPoly
 
 from .._threads import one_blas_thread
 from ..errors import ContactresInputError
-from ..fitting import FitResult, Model, Parameter, fit
+from ..fitting import Model, Parameter, fit
 from ..layered import LayeredMaterial, checked_thickness, thickness_text
 from ..materials import Material
 from ..normal import jkr_contact_radius, sphere_contact_at, static_punch_stiffness
 from ..numerics import illinois_step
 from ..tangential import kappa_jkr_mindlin
 from ..units import POISSON_OPEN_RANGE
+from ._coating_bootstrap import resampled_coated
 from ._jkr import LoadLaw, fit_group
 
 __all__ = [
@@ -90,7 +94,6 @@ __all__ = [
     "build_law",
     "fit_coated",
     "load_law",
-    "resampled_coated",
 ]
 
 #: The frequency at which a frequency-dependent film's storage constants stand for its static
@@ -108,10 +111,6 @@ _A_WINDOW = (0.7, 1.5)
 _N_E = 5
 # γ bound of the coated fit, J/m² (as paper 2's model: the checks flag γ above 10 J/m²).
 _GAMMA_MAX = 1e3
-# The bootstrap's estimator (resampled_coated): a grid of _GRID x _GRID points in (E, γ), then
-# Gauss-Newton steps (the grid only finds the basin).
-_GRID = 15
-_GN_STEPS = 2
 # Iterations of the contact-radius solve (Illinois on ln a) and its tolerance (relative in F).
 _MAX_ITER = 80
 _FORCE_RTOL = 1e-9
@@ -220,17 +219,31 @@ def _solids(E: float, nu: float, coating: Coating, frequency: float):
     return body, static, dynamic
 
 
-def _corrections(E: float, nu: float, coating: Coating, frequency: float, a: np.ndarray):
+def _corrections(
+    E: float,
+    nu: float,
+    coating: Coating,
+    frequency: float,
+    a: np.ndarray,
+    transforms: dict | None = None,
+):
     """(q_n, q_f, Re q_t, Im q_t) at one E and the radii ``a`` (module docstring), shape
-    (a.size, 4), 1/Pa."""
+    (a.size, 4), 1/Pa. ``transforms``: the store of the layered solutions' basis transforms
+    at the radii ``a`` (:func:`~contactres.normal.static_punch_stiffness`), shared by the
+    table's E (the quadrature nodes depend on the film, not on E: the transforms are
+    computed once per radius and direction, not once per E)."""
     sphere, static, dynamic = _solids(E, nu, coating, frequency)
     h = coating.thickness
     e_star = E / (2 * (1 - nu**2))
     g = E / (2 * (1 + nu))
-    normal = sphere_contact_at(static, 1.0, a, tol=_TABLE_TOL, indenter=sphere)
+    normal = sphere_contact_at(
+        static, 1.0, a, tol=_TABLE_TOL, indenter=sphere, transforms=transforms
+    )
     q_n = (1 / np.asarray(normal.stiffness) - 1 / (2 * a * e_star)) * a**2 / h
     q_f = (a**3 / np.asarray(normal.force) - 3 / (4 * e_star)) * a / h
-    pair = static_punch_stiffness(dynamic, a, "tangential", tol=_TABLE_TOL, indenter=sphere)
+    pair = static_punch_stiffness(
+        dynamic, a, "tangential", tol=_TABLE_TOL, indenter=sphere, transforms=transforms
+    )
     q_t = (1 / np.asarray(pair) - 2 * (2 - nu) / (8 * g * a)) * a**2 / h
     return np.stack([q_n, q_f, q_t.real, q_t.imag], axis=-1)
 
@@ -278,13 +291,19 @@ class CoatedLaw:
                     w[..., j] *= (t - x[m]) / (x[j] - x[m])
         return w
 
-    def _interpolant(self, E, columns: slice = slice(None), slope: bool = True):
+    def _interpolant(
+        self, E, columns: slice = slice(None), slope: bool = True, by_value: bool = False
+    ):
         """a -> (q, dq/d ln a), each a.shape + (4,), at Young's modulus E (an array broadcast
         against a, or one value: then the spline of that E alone, a fifth of the work);
         ``columns``: only these of the four (the others are not evaluated; q[..., columns] of
-        the whole has the same values); ``slope``: False leaves dq None."""
+        the whole has the same values); ``slope``: False leaves dq None; ``by_value``: E takes
+        a few values (a grid): each value's spline as one value's alone, all evaluated at once
+        (the same numbers as one call per value, without a call per value)."""
         E = np.asarray(E, dtype=float)
         coef = self.spline.c[..., columns]
+        if by_value:
+            return self._by_value(E, coef, slope)
         if E.size and np.all(E == E.flat[0]):
             c = np.einsum("j,abjk->abk", self._weights(E.flat[0]), coef)
             one = PPoly(c, self.spline.x)
@@ -309,6 +328,34 @@ class CoatedLaw:
 
         return values
 
+    def _by_value(self, E: np.ndarray, coef: np.ndarray, slope: bool):
+        """:meth:`_interpolant` with ``by_value``: the splines of the distinct values of E side
+        by side in one piecewise polynomial (each made as for that value alone: the same
+        coefficients), evaluated at every a and each entry's own taken. The splines of the
+        other values cost little against a call each (a grid of 15 E: 15 x 2 columns)."""
+        levels, index = np.unique(E, return_inverse=True)
+        cols = coef.shape[-1]
+        c = np.concatenate(
+            [np.einsum("j,abjk->abk", self._weights(v), coef) for v in levels], axis=-1
+        )
+        one = PPoly(c, self.spline.x)
+        deriv = one.derivative() if slope else None
+
+        def pick(poly, x, rows):
+            flat = np.ravel(x)
+            out = poly(flat).reshape(flat.size, levels.size, cols)
+            return out[np.arange(flat.size), np.ravel(rows)].reshape(*np.shape(x), cols)
+
+        rows_all = index.reshape(E.shape)
+
+        def values(a, at=None):
+            # ``at``: a at the entries ``at`` of E only (as :meth:`_interpolant`'s).
+            rows = rows_all if at is None else rows_all[at]
+            x = np.log(a)
+            return pick(one, x, rows), None if deriv is None else pick(deriv, x, rows)
+
+        return values
+
     def normal(self, E, a, interp=None):
         """(C, −dC/da, P'R/a³): the pair's punch compliance (m/N), its derivative (1/N) and
         the non-adhesive force factor (Pa) at contact radius a, Young's modulus E
@@ -330,9 +377,9 @@ class CoatedLaw:
         force = 1 / (3 / (4 * e_star) + q[..., 1] * h / a)
         return q, minus_dC, force
 
-    def normal_interpolant(self, E):
+    def normal_interpolant(self, E, by_value: bool = False):
         """:meth:`_interpolant` of q_n and q_f (the normal contact's two columns) at E."""
-        return self._interpolant(E, slice(0, 2))
+        return self._interpolant(E, slice(0, 2), by_value=by_value)
 
     def force(self, E, gamma, a, R, interp=None):
         """P(a) of the adhesive contact, N (module docstring)."""
@@ -340,14 +387,15 @@ class CoatedLaw:
         _, minus_dC, factor = self._normal_terms(E, a, interp)
         return factor * a**3 / R - np.sqrt(8 * np.pi * gamma * a / minus_dC)
 
-    def contact_radius(self, F, E, gamma, R):
-        """a(F) on the stable branch, m, and a mask of the radii clamped to the table."""
+    def contact_radius(self, F, E, gamma, R, by_value: bool = False):
+        """a(F) on the stable branch, m, and a mask of the radii clamped to the table
+        (``by_value``: E takes a few values, :meth:`_interpolant`)."""
         arrays = np.broadcast_arrays(*(np.asarray(v, float) for v in (F, E, gamma, R)))
         shape = arrays[0].shape
         F, E, gamma, R = (np.ravel(v) for v in arrays)
         lo = np.full(F.shape, self.log_a[0])
         hi = np.full(F.shape, self.log_a[-1])
-        interp = self.normal_interpolant(E)  # E is fixed while a is sought
+        interp = self.normal_interpolant(E, by_value)  # E is fixed while a is sought
 
         def f(x, at=slice(None)):
             # At the entries ``at`` only: each entry's arithmetic is that of the whole.
@@ -374,13 +422,13 @@ class CoatedLaw:
             lo, hi, f_lo, f_hi, side = illinois_step(x, fx, (lo, hi, f_lo, f_hi, side))
         return np.exp(x).reshape(shape), (below | above).reshape(shape)
 
-    def tangential(self, E, a):
+    def tangential(self, E, a, by_value: bool = False):
         """κ at contact radius a, N/m: sphere and coated plate sharing the traction, storage
-        part."""
+        part (``by_value``: E takes a few values, :meth:`_interpolant`)."""
         E, a = np.broadcast_arrays(np.asarray(E, float), np.asarray(a, float))
         h, nu = self.coating.thickness, self.poisson
         g = E / (2 * (1 + nu))
-        q, _ = self._interpolant(E, slice(2, 4), slope=False)(a)
+        q, _ = self._interpolant(E, slice(2, 4), slope=False, by_value=by_value)(a)
         C_t = 2 * (2 - nu) / (8 * g * a) + (q[..., 0] + 1j * q[..., 1]) * h / a**2
         return np.real(1 / C_t)
 
@@ -388,6 +436,13 @@ class CoatedLaw:
         """κ(F_N), N/m (``poisson`` is the table's; accepted for the model's signature)."""
         a, _ = self.contact_radius(force, E, gamma, radius)
         return self.tangential(E, a)
+
+    def kappa_grid(self, force, E, gamma, radius):
+        """:meth:`kappa` where E takes a few values (a grid; broadcast against the others):
+        the numbers of one call per value, in one call."""
+        arrays = np.broadcast_arrays(*(np.asarray(v, float) for v in (force, E, gamma, radius)))
+        a, _ = self.contact_radius(*arrays, by_value=True)
+        return self.tangential(arrays[1], a, by_value=True)
 
     def model(self, gamma_max: float) -> Model:
         """The fitted model: E bounded by the table, γ by ``gamma_max``."""
@@ -457,8 +512,9 @@ def build_law(
     x0, x1 = (math.log(float(v)) for v in E_range)
     cheb = np.cos((2 * np.arange(n_E) + 1) * np.pi / (2 * n_E))[::-1]
     E_nodes = np.exp(0.5 * (x0 + x1) + 0.5 * (x1 - x0) * cheb)
+    store: dict = {}  # the basis transforms, shared by every E (_corrections)
     values = np.stack(
-        [_corrections(float(E), poisson, coating, frequency, a) for E in E_nodes], axis=1
+        [_corrections(float(E), poisson, coating, frequency, a, store) for E in E_nodes], axis=1
     )
     E_bounds = (float(E_range[0]), float(E_range[1]))
     return CoatedLaw(
@@ -475,124 +531,6 @@ def fit_coated(law: CoatedLaw, force, kappa, radius: float, start: dict, gamma_m
         start={"E": float(np.clip(start["E"], *law.bounds)), "gamma": float(start["gamma"])},
         fixed={"radius": float(radius), "poisson": law.poisson},
     )
-
-
-def resampled_coated(law: CoatedLaw, F, kappa, W, R: float, res: FitResult, gamma_max: float):
-    """E and γ of the coated fit for every row of weights ``W`` (B, points), all at once.
-
-    The same estimator as :func:`fit_coated` (least squares of the same model), by grid: the
-    model is evaluated at the distinct forces on a 15 x 15 grid of (E, γ) around the fit, the
-    weighted residual sum of squares of every resample is formed from its weighted sums per
-    force, and its minimum refined by the quadratic through the 3 x 3 values around it, then by
-    Gauss-Newton steps on the model itself (:func:`_gauss_newton`), so that the estimate is the
-    least-squares fit, not the grid's. The grid spans ±8 fit errors (at least ±5 % in E) and
-    widens (up to 3 times) while a resample's minimum is on its edge.
-    """
-    F, kappa = np.asarray(F, float), np.asarray(kappa, float)
-    forces, which = np.unique(F, return_inverse=True)
-    onehot = (which[:, None] == np.arange(forces.size)[None, :]).astype(float)
-    S = W @ (onehot * kappa[:, None])  # (B, L): Σ w κ per force
-    N = W @ onehot  # (B, L): Σ w per force
-    E_hat, g_hat = res.values["E"], res.values["gamma"]
-    E_err = np.nan_to_num(res.errors["E"], nan=0.0)
-    g_err = np.nan_to_num(res.errors["gamma"], nan=0.0)
-    span_E = max(8 * E_err, 0.05 * E_hat)
-    span_g = max(8 * g_err, 0.05 * g_hat, 1e-3)
-    rows = np.arange(W.shape[0])
-    for _ in range(4):
-        e_grid = np.linspace(
-            max(E_hat - span_E, law.bounds[0]), min(E_hat + span_E, law.bounds[1]), _GRID
-        )
-        g_grid = np.linspace(max(g_hat - span_g, 0.0), min(g_hat + span_g, gamma_max), _GRID)
-        # (L, nE, nγ), one E at a time (each E's spline made once: CoatedLaw._interpolant)
-        m = np.stack([law.kappa(forces[:, None], E, g_grid[None, :], R) for E in e_grid], 1)
-        m = m.reshape(forces.size, -1)
-        rss = -2 * S @ m + N @ (m * m)  # Σ w κ² left out: the same for every grid point
-        rss = rss.reshape(-1, e_grid.size, g_grid.size)
-        flat = np.argmin(rss.reshape(rss.shape[0], -1), axis=1)
-        i, j = np.unravel_index(flat, (e_grid.size, g_grid.size))
-        last_E, last_g = e_grid.size - 1, g_grid.size - 1
-        inner_E, inner_g = (i > 0) & (i < last_E), (j > 0) & (j < last_g)
-        # An edge of the grid that is not a bound of the fit: widen the grid.
-        edge_E = ((i == 0) & (e_grid[0] > law.bounds[0])) | (
-            (i == last_E) & (e_grid[-1] < law.bounds[1])
-        )
-        edge_g = ((j == 0) & (g_grid[0] > 0.0)) | ((j == last_g) & (g_grid[-1] < gamma_max))
-        if not (edge_E.any() or edge_g.any()):
-            break
-        span_E, span_g = 2 * span_E, 2 * span_g
-    step = np.array([e_grid[1] - e_grid[0], g_grid[1] - g_grid[0]])
-    shift = _vertex(rss, rows, i, j, inner_E, inner_g)
-    E = e_grid[i] + shift[:, 0] * step[0]
-    gam = np.maximum(g_grid[j] + shift[:, 1] * step[1], 0.0)
-    return _gauss_newton(law, forces, S, N, E, gam, R, gamma_max)
-
-
-def _gauss_newton(law, forces, S, N, E, gam, R, gamma_max, steps: int = _GN_STEPS):
-    """Gauss-Newton steps from (E, γ) on every resample's Σ_l N_l (m_l − S_l/N_l)² (the
-    weighted residual sum of squares up to a constant), the model's derivatives by forward
-    differences; γ held at its bound 0 where a step would cross it (E alone then), E kept in
-    the table. From the grid's vertex, two steps reach the least-squares fit (to 2e-4 in E,
-    tested)."""
-    mean = S / np.where(N > 0, N, 1.0)
-    lo, hi = law.bounds
-    for _ in range(steps):
-        dE, dg = 1e-6 * E, np.maximum(1e-6 * gam, 1e-9)
-        m0 = law.kappa(forces[None, :], E[:, None], gam[:, None], R)
-        JE = (law.kappa(forces[None, :], (E + dE)[:, None], gam[:, None], R) - m0) / dE[:, None]
-        Jg = (law.kappa(forces[None, :], E[:, None], (gam + dg)[:, None], R) - m0) / dg[:, None]
-        r = m0 - mean
-        a11, a12, a22 = (N * JE * JE).sum(1), (N * JE * Jg).sum(1), (N * Jg * Jg).sum(1)
-        b1, b2 = (N * JE * r).sum(1), (N * Jg * r).sum(1)
-        det = a11 * a22 - a12**2
-        ok = det > 0
-        safe = np.where(ok, det, 1.0)
-        sE = np.where(ok, (a22 * b1 - a12 * b2) / safe, 0.0)
-        sg = np.where(ok, (a11 * b2 - a12 * b1) / safe, 0.0)
-        pinned = gam - sg < 0  # the bound γ = 0: E alone
-        sE = np.where(pinned, b1 / np.where(a11 > 0, a11, 1.0), sE)
-        sg = np.where(pinned, gam, sg)
-        E = np.clip(E - sE, lo, hi)
-        gam = np.clip(gam - sg, 0.0, gamma_max)
-    return E, gam
-
-
-def _vertex(rss, rows, i, j, inner_E, inner_g) -> np.ndarray:
-    """The vertex of the quadratic through the 3 x 3 grid values around each minimum (i, j), in
-    grid steps, shape (B, 2): both directions at once, since E and γ are correlated (a vertex
-    in E at the grid's γ would carry the γ step's error into E); one direction where the other
-    is at an edge (a bound: γ = 0), none where the quadratic has no minimum."""
-    ic = np.clip(i, 1, rss.shape[1] - 2)
-    jc = np.clip(j, 1, rss.shape[2] - 2)
-
-    def r(di, dj):
-        return rss[rows, ic + di, jc + dj]
-
-    # Central differences of the quadratic at the (clipped) centre.
-    gx, gy = (r(1, 0) - r(-1, 0)) / 2, (r(0, 1) - r(0, -1)) / 2
-    hxx, hyy = r(1, 0) - 2 * r(0, 0) + r(-1, 0), r(0, 1) - 2 * r(0, 0) + r(0, -1)
-    hxy = (r(1, 1) - r(1, -1) - r(-1, 1) + r(-1, -1)) / 4
-    det = hxx * hyy - hxy**2
-    both = inner_E & inner_g & (hxx > 0) & (det > 0)
-    safe = np.where(both, det, 1.0)
-    dx = np.where(both, -(hyy * gx - hxy * gy) / safe, 0.0)
-    dy = np.where(both, -(hxx * gy - hxy * gx) / safe, 0.0)
-    # At the edge of one direction, the other alone (the value on the grid's row/column).
-    only_E = inner_E & ~inner_g
-    only_g = inner_g & ~inner_E
-    along_E = [rss[rows, ic + d, j] for d in (-1, 0, 1)]
-    along_g = [rss[rows, i, jc + d] for d in (-1, 0, 1)]
-    dx = np.where(only_E, _parabola(*along_E), dx)
-    dy = np.where(only_g, _parabola(*along_g), dy)
-    return np.clip(np.stack([dx, dy], axis=1), -1.0, 1.0)
-
-
-def _parabola(r0, r1, r2):
-    """The vertex of the parabola through three equally spaced values, in steps from the
-    middle (clipped to ±1; 0 where the values are not convex)."""
-    denom = r0 - 2 * r1 + r2
-    shift = np.where(denom > 0, 0.5 * (r0 - r2) / np.where(denom > 0, denom, 1.0), 0.0)
-    return np.clip(shift, -1.0, 1.0)
 
 
 def load_law(law: CoatedLaw, start: dict) -> LoadLaw:

@@ -267,13 +267,29 @@ def _centre_values(n: int) -> np.ndarray:
     return math.sqrt(math.pi) * np.exp(special.gammaln(k + 1) - special.gammaln(k + 0.5))
 
 
-def _solve_one(g_inf, a, eta, weight, dg, n: int) -> tuple[complex, complex, complex, complex]:
-    """(K, δR/a², FR/a³, p(0)R/a) at one radius ``a`` with ``n`` basis functions."""
+def _transforms(store: dict | None, n: int, a: float, eta: np.ndarray) -> np.ndarray:
+    """j_{2k}(ηa), k < n (:func:`even_spherical_bessel`), from ``store`` if it holds them for
+    these n, a and η (another kernel on the same nodes), else computed (and kept there)."""
+    if store is None:
+        return even_spherical_bessel(n, a * eta)
+    kept = store.get((n, a))
+    if kept is not None and np.array_equal(kept[0], eta):
+        return kept[1]
+    jb = even_spherical_bessel(n, a * eta)
+    store[(n, a)] = (eta, jb)
+    return jb
+
+
+def _solve_one(
+    g_inf, a, eta, weight, dg, n: int, store: dict | None = None
+) -> tuple[complex, complex, complex, complex]:
+    """(K, δR/a², FR/a³, p(0)R/a) at one radius ``a`` with ``n`` basis functions (``store``:
+    :func:`_transforms`)."""
     k = np.arange(n)
     # Dimensionless matrix M/g∞: diagonal (closed form) + a ∫ (Δg/g∞) j_{2j}(ηa) j_{2k}(ηa) dη.
     mat = np.diag(np.pi / (2 * (4 * k + 1))).astype(np.result_type(dg, float))
     if eta.size:
-        jb = even_spherical_bessel(n, a * eta)
+        jb = _transforms(store, n, a, eta)
         mat += (jb * (a * weight * dg / g_inf)) @ jb.T
     rhs = np.zeros((n, 2), dtype=mat.dtype)
     rhs[0, 0] = 1.0  # uniform displacement: ∫₀¹ r̄ f_j dr̄ = δ_j0
@@ -296,8 +312,11 @@ def _real_gram(left: np.ndarray, w: np.ndarray, right: np.ndarray) -> np.ndarray
     return (left * w.real) @ right.T + 1j * ((left * w.imag) @ right.T)
 
 
-def _solve_tangential(kernel, a, eta, weight, dgd, n: int) -> tuple[complex, float, float, float]:
-    """(K, nan, nan, nan): the tangential punch with the coupled traction (module docstring)."""
+def _solve_tangential(
+    kernel, a, eta, weight, dgd, n: int, store: dict | None = None
+) -> tuple[complex, float, float, float]:
+    """(K, nan, nan, nan): the tangential punch with the coupled traction (module docstring;
+    ``store``: :func:`_transforms`)."""
     k = np.arange(n)
     g_inf, d_inf = kernel.g_inf, kernel.coupling_inf
     dtype = np.result_type(dgd, g_inf, d_inf, float)
@@ -310,7 +329,7 @@ def _solve_tangential(kernel, a, eta, weight, dgd, n: int) -> tuple[complex, flo
     cross[k[1:], k[:-1]] = np.pi / (2 * (4 * k[1:] + 1))
     mat[:n, n:] = -(d_inf / g_inf) * cross
     if eta.size:
-        jb = even_spherical_bessel(n + 1, a * eta)  # j_0, j_2, ..., j_{2n}
+        jb = _transforms(store, n + 1, a, eta)  # j_0, j_2, ..., j_{2n}
         jf, jg = jb[:n], jb[1:]
         wg = a * weight * dgd[0] / g_inf
         wd = a * weight * dgd[1] / g_inf
@@ -334,6 +353,7 @@ def punch_and_sphere(
     tol: float = DEFAULT_TOL,
     n_basis: int | None = None,
     nodes: dict | None = None,
+    transforms: dict | None = None,
 ) -> AxisymmetricSolution:
     """Flat-punch stiffness and the frictionless sphere at contact radii ``a`` (module docstring).
 
@@ -353,6 +373,11 @@ def punch_and_sphere(
         (the force solve of a sphere calls this repeatedly): radii in (2^(b−1), 2^b] m share the
         nodes built for 2^b (:func:`quadrature_nodes`) and the kernel values there, kept under
         the key b, and the kernel's breakpoints under "cuts"; filled here.
+    transforms : dict, optional
+        The caller's store of the basis transforms j_{2k}(ηa) at the quadrature nodes, for
+        calls on other kernels at the same radii (a table of several moduli, normal and
+        tangential: their nodes coincide where their breakpoints do); used where the nodes
+        are the same (compared), filled here: the same numbers as without it.
 
     Returns
     -------
@@ -390,10 +415,11 @@ def punch_and_sphere(
         eta, weight, dg = empty if kernel.excess is None else store[b]
         for i in np.flatnonzero(buckets == b):
             n = basis_size(kernel, float(flat[i])) if n_basis is None else int(n_basis)
+            ai = float(flat[i])
             if not coupled:
-                out[:, i] = _solve_one(kernel.g_inf, float(flat[i]), eta, weight, dg, n)
+                out[:, i] = _solve_one(kernel.g_inf, ai, eta, weight, dg, n, transforms)
             else:
-                out[:, i] = _solve_tangential(kernel, float(flat[i]), eta, weight, dg, n)
+                out[:, i] = _solve_tangential(kernel, ai, eta, weight, dg, n, transforms)
             used_basis = max(used_basis, n)
         used_nodes = max(used_nodes, int(eta.size))
     shape = a.shape

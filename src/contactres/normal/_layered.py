@@ -188,6 +188,7 @@ def static_punch_stiffness(
     *,
     tol: float = DEFAULT_TOL,
     indenter: Material | None = None,
+    transforms: dict | None = None,
 ):
     """Static stiffness of a rigid flat circular punch on a homogeneous or layered half-space.
 
@@ -217,6 +218,11 @@ def static_punch_stiffness(
         tangential g∞ and d∞: module docstring) — not the two punch stiffnesses in series,
         which is an upper bound (two separately optimal tractions). Homogeneous pair:
         2a/(1/E*₁ + 1/E*₂) and 8a/((2 − ν₁)/G₁ + (2 − ν₂)/G₂) (Mindlin).
+    transforms : dict, optional
+        A store shared by calls at the same radii on solids with the same layer thicknesses
+        (e.g. a table over the substrate's modulus, normal and tangential): the Galerkin's basis
+        transforms at the quadrature nodes are kept there and reused where the nodes coincide.
+        The same numbers as without it; start with an empty dict.
 
     Returns
     -------
@@ -250,7 +256,7 @@ def static_punch_stiffness(
         if coupling is not None and other.coupling_inf is not None:  # tangential
             coupling = coupling + other.coupling_inf
         kernel = replace(kernel, g_inf=kernel.g_inf + other.g_inf, coupling_inf=coupling)
-    sol = punch_and_sphere(kernel, a, tol=tol)
+    sol = punch_and_sphere(kernel, a, tol=tol, transforms=transforms)
     return _shaped(np.asarray(sol.punch_stiffness, dtype=complex), a.shape)
 
 
@@ -384,7 +390,13 @@ def _pair_kernel(stack: LayeredMaterial, indenter) -> RadialKernel:
 
 
 def sphere_contact_at(
-    material, radius, contact_radius, *, tol: float = DEFAULT_TOL, indenter: Material | None = None
+    material,
+    radius,
+    contact_radius,
+    *,
+    tol: float = DEFAULT_TOL,
+    indenter: Material | None = None,
+    transforms: dict | None = None,
 ) -> LayeredContact:
     """The frictionless sphere contact of :func:`sphere_contact` at given contact radii.
 
@@ -406,6 +418,9 @@ def sphere_contact_at(
         Truncation of the kernel integral (:mod:`contactres.normal._axisymmetric`).
     indenter : Material, optional
         The sphere's own material (default rigid), as in :func:`sphere_contact`.
+    transforms : dict, optional
+        A store shared by calls at the same contact radii, as in
+        :func:`static_punch_stiffness` (the same numbers as without it).
 
     Returns
     -------
@@ -442,7 +457,7 @@ def sphere_contact_at(
             f"radius (shape {R.shape}) and contact_radius (shape {a.shape}) do not broadcast"
         ) from None
     Rb, ab = np.broadcast_to(R, shape).ravel(), np.broadcast_to(a, shape).ravel()
-    sol = punch_and_sphere(_pair_kernel(stack, indenter), ab, tol=tol)
+    sol = punch_and_sphere(_pair_kernel(stack, indenter), ab, tol=tol, transforms=transforms)
     stiff = np.real(sol.punch_stiffness)
     force = sol.force_factor * ab**3 / Rb
     return LayeredContact(
