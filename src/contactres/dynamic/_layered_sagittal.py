@@ -30,25 +30,46 @@ __all__ = ["sagittal_h33", "sagittal_reference"]
 
 
 def _mm(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """Products of stacked 2x2 matrices (2, 2, N), entry by entry on contiguous vectors."""
+    """Products of stacked 2x2 matrices (2, 2, N), entry by entry on contiguous vectors (each
+    entry's two products written in place: no temporary per entry)."""
     out = np.empty(a.shape[:2] + np.broadcast_shapes(a.shape[2:], b.shape[2:]), dtype=complex)
+    tmp = np.empty(out.shape[2:], dtype=complex)
     for i in range(2):
         for j in range(2):
-            out[i, j] = a[i, 0] * b[0, j] + a[i, 1] * b[1, j]
+            np.multiply(a[i, 0], b[0, j], out=out[i, j])
+            np.multiply(a[i, 1], b[1, j], out=tmp)
+            out[i, j] += tmp
+    return out
+
+
+def _flipped_mm(x: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """(M x M) b of stacked 2x2 matrices (2, 2, N), M = diag(1, −1): the products of
+    :func:`_mm` with x's off-diagonal entries negated, as differences (the same numbers:
+    (−p) q = −(p q) and r + (−s) = r − s exactly), without forming M x M."""
+    out = np.empty(b.shape, dtype=complex)
+    tmp = np.empty(b.shape[2:], dtype=complex)
+    for j in range(2):
+        np.multiply(x[0, 0], b[0, j], out=out[0, j])
+        np.multiply(x[0, 1], b[1, j], out=tmp)
+        out[0, j] -= tmp
+        np.multiply(x[1, 1], b[1, j], out=out[1, j])
+        np.multiply(x[1, 0], b[0, j], out=tmp)
+        out[1, j] -= tmp
     return out
 
 
 def _inv(a: np.ndarray) -> np.ndarray:
     """Inverses of stacked 2x2 matrices (2, 2, N) (adjugate over the determinant)."""
-    r = 1.0 / (a[0, 0] * a[1, 1] - a[0, 1] * a[1, 0])
-    return np.stack([np.stack([a[1, 1] * r, -a[0, 1] * r]), np.stack([-a[1, 0] * r, a[0, 0] * r])])
-
-
-def _flip(a: np.ndarray) -> np.ndarray:
-    """M a M, M = diag(1, −1): the off-diagonal entries negated."""
-    out = a.copy()
-    out[0, 1] *= -1
-    out[1, 0] *= -1
+    r = np.multiply(a[0, 0], a[1, 1])
+    r -= a[0, 1] * a[1, 0]
+    np.divide(1.0, r, out=r)
+    out = np.empty(a.shape, dtype=complex)
+    np.multiply(a[1, 1], r, out=out[0, 0])
+    np.multiply(a[0, 1], r, out=out[0, 1])
+    np.negative(out[0, 1], out=out[0, 1])
+    np.multiply(a[1, 0], r, out=out[1, 0])
+    np.negative(out[1, 0], out=out[1, 0])
+    np.multiply(a[0, 0], r, out=out[1, 1])
     return out
 
 
@@ -70,11 +91,13 @@ def _factors(waves: np.ndarray, eta_h: np.ndarray, Y: np.ndarray):
     D_d, D_u, A_d = _block(waves[0]), _block(waves[1]), _block(waves[2])
     X_d = _expm(A_d, waves[2, 1, 1], eta_h)
     rho = _mm(_inv(D_u - Y), Y - D_d)
-    T = _mm(_flip(X_d), _mm(rho, X_d))
-    P = T.copy()
-    P[0, 0] += 1
-    P[1, 1] += 1
-    return P, D_d + _mm(D_u, T)
+    T = _flipped_mm(X_d, _mm(rho, X_d))
+    Q = _mm(D_u, T)
+    Q += D_d
+    # P = I + T in place (T is not needed after Q).
+    T[0, 0] += 1
+    T[1, 1] += 1
+    return T, Q
 
 
 def sagittal_h33(layers: list, eta_h: list, substrate: np.ndarray) -> np.ndarray:
