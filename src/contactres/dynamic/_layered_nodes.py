@@ -27,11 +27,14 @@ __all__ = [
     "bessel_on_grid",
     "bessel_on_nodes",
     "concatenated_ranges",
+    "grid_bessel",
     "grid_width",
     "own_bessel",
     "own_rows",
     "panel_search",
     "punch_resolution",
+    "rule_on",
+    "unit_rule",
     "weighted_gram",
 ]
 
@@ -95,6 +98,22 @@ def grid_width(res: PunchResolution) -> float:
     n = 24 and 2 per unit (rtol <= 1e-8) ~1e-22. Δg varies more slowly there (its scales
     are h and the wave numbers: :data:`_OWN_END`)."""
     return res.n_panel / res.per_unit
+
+
+def unit_rule(n: int) -> tuple[np.ndarray, np.ndarray]:
+    """The n-point Gauss-Legendre rule on [−1, 1] (nodes, weights) of
+    :func:`contactres.numerics.gauss_legendre`, for :func:`rule_on` to map: the nodes of the
+    correction take it once per call instead of once per use (each costs a few hundred µs)."""
+    return gauss_legendre(-1.0, 1.0, n)
+
+
+def rule_on(rule: tuple, a, b) -> tuple[np.ndarray, np.ndarray]:
+    """The :func:`unit_rule` ``rule`` on [a, b] (broadcast as in
+    :func:`contactres.numerics.gauss_legendre`, by the same arithmetic: the same numbers)."""
+    x, w = rule
+    a = np.asarray(a)
+    b = np.asarray(b)
+    return 0.5 * (b - a) * x + 0.5 * (b + a), 0.5 * (b - a) * w
 
 
 def _on_panels(rule, lo: np.ndarray, hi: np.ndarray):
@@ -316,13 +335,15 @@ def bessel_on_grid(p_max: int, nodes: dict, res: PunchResolution, transform=None
     return grid, np.split(own, cut, axis=1)
 
 
-def grid_bessel(p_max: int, nodes: dict, res: PunchResolution) -> np.ndarray:
+def grid_bessel(p_max: int, nodes: dict, res: PunchResolution, rule=None) -> np.ndarray:
     """J = j_p(s), p = 0..p_max, on the whole shared grid of the points ``nodes`` (index ->
-    :class:`CorrectionNodes`), (p_max + 1, n_grid), real (:func:`bessel_on_grid`'s grid)."""
+    :class:`CorrectionNodes`), (p_max + 1, n_grid), real (:func:`bessel_on_grid`'s grid);
+    ``rule``: :func:`unit_rule` of ``res.n_panel`` where the caller has it."""
     top = max(v.grid_from + v.s.size - v.n_own for v in nodes.values())
     n_pan = math.ceil(top / res.n_panel)
     edges = grid_width(res) * np.arange(n_pan + 1, dtype=np.float64)
-    t, _ = _on_panels(gauss_legendre(0.0, 1.0, res.n_panel), edges[:-1], edges[1:])
+    unit = rule_on(rule, 0.0, 1.0) if rule is not None else gauss_legendre(0.0, 1.0, res.n_panel)
+    t, _ = _on_panels(unit, edges[:-1], edges[1:])
     # Real nodes, real j_p: the grid's part of every Gram product runs in real arithmetic.
     from ._weights import spherical_bessel
 
