@@ -10,6 +10,8 @@ surface_green.
 
 from __future__ import annotations
 
+from types import SimpleNamespace
+
 import numpy as np
 import pytest
 from adaptive_quadrature import adaptive_gauss
@@ -17,6 +19,7 @@ from scipy import special
 from test_rigid_disk_isotropic import fredholm_disk
 
 from contactres import LayeredMaterial, Material, dcsf, surface_green, viscoelastic
+from contactres.dynamic._layered_nodes import own_bessel, own_rows
 from contactres.dynamic._layered_punch import (
     layered_dcsf,
     layered_punch_stiffness,
@@ -236,3 +239,33 @@ def test_bad_input():
         layered_punch_stiffness(LayeredMaterial(Material.isotropic(1e9, 0.3), [(PMMA, A)]), A, 1e6)
     with pytest.raises(ContactresInputError):
         layered_punch_stiffness(QUARTZ, -1.0)
+
+
+@pytest.mark.parametrize("rows", [slice(0, 13, 2), np.array([3, 1, 12, 4])])
+def test_own_bessel_rows_are_scipys_on_each_points_nodes(rows):
+    # Points whose own nodes mix complex and real runs in every order (and one of a single
+    # node), each followed by a grid node that is not its own: the rows gathered from the two
+    # parts must be j_p at that point's own nodes, in order (a misplaced run is off by O(1),
+    # far above round-off).
+    rng = np.random.default_rng(7)
+
+    def run(n, real):
+        x = rng.uniform(0.05, 20.0, n)
+        return x if real else x + 1j * rng.uniform(-1.0, 1.0, n)
+
+    points = [
+        np.concatenate([run(9, False), run(5, True)]),
+        run(6, True),
+        run(7, False),
+        np.concatenate([run(3, True), run(4, False), run(2, True)]),
+        run(1, False),
+    ]
+    nodes = {i: SimpleNamespace(s=np.append(s, 99.0), n_own=s.size) for i, s in enumerate(points)}
+    parts, runs = own_bessel(12, nodes)
+    orders = np.arange(13)[rows]
+    for s, point_runs in zip(points, runs, strict=True):
+        expected = special.spherical_jn(orders[:, None], s.astype(complex)[None, :])
+        got = own_rows(parts, point_runs, rows)
+        assert got.shape == expected.shape
+        # |j_p(z)| <= e^{|Im z|} <= e: round-off relative to that bound.
+        np.testing.assert_allclose(got, expected, rtol=0, atol=1e-13 * np.e)

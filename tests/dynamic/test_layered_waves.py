@@ -334,3 +334,60 @@ def test_edge_waves_are_each_points_own_interpolation(static_at):
     for g, w in zip(got, want, strict=True):
         assert g.shape == w.shape
         assert np.max(np.abs(g - w)) <= 1e-13 * np.max(np.abs(w))
+
+
+@pytest.mark.parametrize(
+    "material",
+    [
+        LayeredMaterial(QUARTZ, [(PMMA, 0.05 * A)]),
+        LayeredMaterial(PMMA, [(QUARTZ.with_loss(1e-3), 0.3 * A), (PMMA, 0.1 * A)]),
+    ],
+    ids=["film-own-reference", "two-lossy-layers"],
+)
+def test_the_sagittal_form_gives_the_direct_solution(material):
+    """The sagittal form of the waves (the {x, z} rows alone, kept by the normal punch's sets
+    of isotropic layers at θ = 0): Δg solved directly, interpolated from the slowness table,
+    joined and sliced, equals stack_compliance's at every node (to 1e-12 of the largest
+    ``|H_ref|``, as the 3x3 recursion's test above), and the 3x3 arrays' own Δg to the bit
+    where no interpolation is involved (the same arithmetic on the same numbers; a misplaced
+    row or sign is off by O(1))."""
+    theta = np.zeros(1)
+    res = _layered_nodes.PunchResolution()
+    for f in (0.0, 3e6, 4e7):
+        st = _stack(material, f)
+        shift = st.static_shift(theta)
+        shared = _layered_path._SharedWaves(st, theta, res, [st])
+        assert shared.sagittal
+        if f > 0:
+            eta = st.pole * np.array([1.0, 1.3, 1.9, 7.0, 60.0])
+        else:
+            eta = np.array([0.3, 2.0, 11.0]) / A
+        eta_h = [eta * h for h in st.thicknesses]
+        full = waves_at(st, theta, st.omega**2 / eta**2)
+        red = full.sagittal_form()
+        assert red.sagittal and red.size == eta.size
+        got = red.delta_g(st, eta_h, shift, theta)
+        assert np.array_equal(got, full.delta_g(st, eta_h, shift, theta))
+        H, H_ref = _direct(st, eta, theta)
+        want = H_ref[..., 2, 2] - H[..., 2, 2] - shift[None]
+        scale = np.max(np.abs(H_ref[..., 2, 2]))
+        assert np.max(np.abs(got - want)) < 1e-12 * scale
+        if f == 0:
+            continue
+        # From the table, in the set's form (as _SharedWaves keeps it), joined with the
+        # direct ones and sliced back out: the same values node by node.
+        assert shared.table is not None and shared.table.sagittal
+        y = (st.pole / eta) ** 2
+        inter = shared.table.interpolated(chebyshev_matrix(shared.table.size, 2 * y - 1))
+        both = _layered_waves.StackWaves.combined([red, inter, red])
+        n = eta.size
+        values = both.delta_g(st, [np.tile(e, 3) for e in eta_h], shift, theta)
+        assert np.array_equal(values[:n], got) and np.array_equal(values[2 * n :], got)
+        assert np.max(np.abs(values[n : 2 * n] - want)) < 1e-12 * scale
+        middle = both._with([w[..., n : 2 * n, :] for w in both.arrays()])
+        assert np.array_equal(middle.delta_g(st, eta_h, shift, theta), values[n : 2 * n])
+    # Off θ = 0, and for the in-plane kernel, the sets keep the 3x3 arrays.
+    st = _stack(material, 3e6)
+    assert not _layered_path._SharedWaves(st, np.full(1, 0.4), res, [st]).sagittal
+    st = _stack(material, 3e6, inplane=True)
+    assert not _layered_path._SharedWaves(st, theta, res, [st]).sagittal

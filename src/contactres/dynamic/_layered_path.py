@@ -24,7 +24,13 @@ from ..layered import LayeredMaterial, material_at, stack_compliance
 from ..materials import Material, voigt_to_tensor
 from ..numerics import gauss_legendre
 from ._layered_arc import ParameterFit, fit_in_parameter
-from ._layered_nodes import PunchResolution, assemble_nodes, concatenated_ranges
+from ._layered_nodes import (
+    PunchResolution,
+    assemble_nodes,
+    concatenated_ranges,
+    rule_on,
+    unit_rule,
+)
 from ._layered_waves import (
     ARC_LIFT,
     ARC_PANELS,
@@ -213,7 +219,9 @@ def _frequency_free(mats, thicknesses, film: Material, q: float, inplane: bool, 
     return stack, max(p[0] for p in props)
 
 
-def correction_nodes(stacks, radii, theta: np.ndarray, res: PunchResolution, gref) -> dict:
+def correction_nodes(
+    stacks, radii, theta: np.ndarray, res: PunchResolution, gref, rule=None
+) -> dict:
     """The ΔM integral's nodes of every stack that needs a correction: index i of ``stacks``
     (with radius ``radii[i]``) -> (s (complex), ds, Δg(s/a, θ) (len(s), len(theta)) (+ (2, 2)
     in-plane), the end S of the nodes, Δg(S/a, θ) there (for the tail beyond S), the static
@@ -221,7 +229,9 @@ def correction_nodes(stacks, radii, theta: np.ndarray, res: PunchResolution, gre
 
     The stacks of one material set (one per frequency) share their layer waves on the
     slowness (``contactres.dynamic._layered_waves``) and are solved together, in chunks of
-    at most ~_NODE_BUDGET nodes × directions."""
+    at most ~_NODE_BUDGET nodes × directions. ``rule``: the caller's
+    :func:`~contactres.dynamic._layered_nodes.unit_rule` of ``res.n_panel`` (None: made here)."""
+    rule = rule if rule is not None else unit_rule(res.n_panel)
     groups: dict = {}
     for i, st in enumerate(stacks):
         if st.needs_correction:
@@ -229,7 +239,7 @@ def correction_nodes(stacks, radii, theta: np.ndarray, res: PunchResolution, gre
     out: dict = {}
     per_chunk = max(1, _NODE_BUDGET // (_NODES_PER_POINT * theta.size))
     for members in groups.values():
-        shared = _SharedWaves(stacks[members[0]], theta, res, [stacks[i] for i in members])
+        shared = _SharedWaves(stacks[members[0]], theta, res, [stacks[i] for i in members], rule)
         shared.fit_arc([stacks[i] for i in members], [float(radii[i]) for i in members])
         for k in range(0, len(members), per_chunk):
             chunk = members[k : k + per_chunk]
@@ -247,26 +257,50 @@ class _SharedWaves:
     """What the stacks of one material set share: the static shift, the slowness table of the
     real axis, the waves on the arc of lift 0.3 S₁ and the static waves."""
 
-    def __init__(self, st: Stack, theta, res: PunchResolution, stacks):
+    def __init__(self, st: Stack, theta, res: PunchResolution, stacks, rule=None):
         self.theta = theta
+        # The Gauss-Legendre rule of res.n_panel on [−1, 1], mapped onto every panel.
+        self.rule = rule if rule is not None else unit_rule(res.n_panel)
         self.shift = st.static_shift(theta)
         self.stack = st
         # Which layers are isotropic (their exponentials in closed form), tested once.
         self.isotropic = [is_isotropic(c) for c in st.tensors[:-1]]
         dynamic = [x for x in stacks if x.omega > 0]
-        self.table = slowness_table(st, theta) if dynamic else None
-        self.static = waves_at(st, theta, [0.0]) if len(dynamic) < len(stacks) else None
+        # The normal kernel of an axisymmetric stack of isotropic layers at θ = 0 reads the
+        # sagittal blocks alone (StackWaves.delta_g): every set of waves below is kept in the
+        # sagittal form, so that its interpolations and copies move those rows only.
+        self.sagittal = (
+            bool(self.isotropic)
+            and all(self.isotropic)
+            and not st.inplane
+            and st.axisymmetric
+            and theta.size == 1
+            and theta[0] == 0
+        )
+        table = slowness_table(st, theta) if dynamic else None
+        self.table = self._form(table) if table is not None else None
+        self.static = self.solved(st, [0.0]) if len(dynamic) < len(stacks) else None
         edges = np.linspace(0.0, 1.0, ARC_PANELS + 1)
-        tau, wt = gauss_legendre(edges[:-1, None], edges[1:, None], res.n_panel)
+        tau, wt = rule_on(self.rule, edges[:-1, None], edges[1:, None])
         # The shared arc's nodes z(τ) and weights z'(τ) dτ (s = S₁ z, ds = S₁ z' dτ).
         self.z = arc_fraction(tau.ravel())
         self.dz = (wt * (1 + 1j * ARC_LIFT * np.pi * np.cos(np.pi * tau))).ravel()
         self.arc = None
         if dynamic:
             # x = ω²/η² on the arc s = S₁ z(τ): 1/(p₁ z)², the same at every frequency.
-            self.arc = waves_at(st, theta, 1 / (st.pole_slowness * self.z) ** 2)
+            self.arc = self.solved(st, 1 / (st.pole_slowness * self.z) ** 2)
         self._panels: StackWaves | None = None  # panel_waves' samples (grown on demand)
         self.arc_fit: ParameterFit | None = None  # Δg on the shared arc in T (fit_arc)
+
+    def _form(self, waves: StackWaves) -> StackWaves:
+        """``waves`` in the set's form: the sagittal one (``self.sagittal``; isotropic layers
+        are mirror planes), else as they are."""
+        return waves.sagittal_form() if self.sagittal else waves
+
+    def solved(self, st: Stack, x) -> StackWaves:
+        """The waves of ``st`` solved directly at x = ω²/η² (:func:`waves_at`), in the set's
+        form (:meth:`_form`)."""
+        return self._form(waves_at(st, self.theta, x))
 
     def fit_arc(self, stacks, radii) -> None:
         """Δg on the shared arc as a polynomial in T = p₁ ω over the points of ``stacks``
@@ -336,7 +370,7 @@ class _SharedWaves:
         if st.omega == 0:
             return self.static_at(s.size)
         if self.table is None:
-            return waves_at(st, self.theta, (st.omega * a / s) ** 2)
+            return self.solved(st, (st.omega * a / s) ** 2)
         y = (st.pole * a / s) ** 2
         return self.table.interpolated(chebyshev_matrix(self.table.size, 2 * y - 1))
 
@@ -385,7 +419,10 @@ def _head(shared: _SharedWaves, st: Stack, a: float, res: PunchResolution, s0: f
     or the first real panel [0, s₀] (statics)."""
     s1 = st.pole * a
     if s1 == 0:
-        t, wt = gauss_legendre(0.0, s0, res.n_start)
+        if res.n_start == res.n_panel:
+            t, wt = rule_on(shared.rule, 0.0, s0)
+        else:
+            t, wt = gauss_legendre(0.0, s0, res.n_start)
         return t.astype(complex), wt.astype(complex), shared.static_at(t.size)
     if _shared(st, a):
         # The arc of every frequency with this lift is one arc in the slowness (shared waves).
@@ -394,12 +431,12 @@ def _head(shared: _SharedWaves, st: Stack, a: float, res: PunchResolution, s0: f
     lift = _MAX_LIFT
     n_pan = max(ARC_PANELS, math.ceil(s1 / lift))
     edges = np.linspace(0.0, s1, n_pan + 1, dtype=np.float64)
-    t, wt = gauss_legendre(edges[:-1, None], edges[1:, None], res.n_panel)
+    t, wt = rule_on(shared.rule, edges[:-1, None], edges[1:, None])
     t, wt = t.ravel(), wt.ravel()
     arg = np.pi * t / s1
     lifted = t + 1j * lift * np.sin(arg)
     along = wt * (1 + 1j * lift * np.pi / s1 * np.cos(arg))
-    return lifted, along, waves_at(st, shared.theta, (st.omega * a / lifted) ** 2)
+    return lifted, along, shared.solved(st, (st.omega * a / lifted) ** 2)
 
 
 def _shared(st: Stack, a: float) -> bool:
@@ -524,7 +561,7 @@ def _chunk_nodes(shared: _SharedWaves, stacks, radii, index, res: PunchResolutio
             group = []
     n = len(parts)
     samples = [np.concatenate(hr) for hr in zip(pieces[:n], pieces[n:], strict=True)]
-    rule = gauss_legendre(0.0, 1.0, res.n_panel)
+    rule = rule_on(shared.rule, 0.0, 1.0)
     points = [(plan[k][4], int(lasts[k]), stops[k], parts[k][2], samples[k]) for k in range(n)]
     return dict(zip(index, assemble_nodes(res, rule, points, shared.shift), strict=True))
 

@@ -118,7 +118,14 @@ from ._exact import (
 )
 from ._farfield import far_basis, far_grid
 from ._fartail import far_tail, head_grid
-from ._layered_nodes import PunchResolution, bessel_on_grid, punch_resolution
+from ._layered_nodes import (
+    PunchResolution,
+    grid_bessel,
+    own_bessel,
+    own_rows,
+    punch_resolution,
+    unit_rule,
+)
 from ._layered_path import correction_nodes, film_reference, stack_at, stack_of
 from ._layered_tangential import tangential_punch
 from ._normal_stiffness import normalised_wavenumber
@@ -159,8 +166,12 @@ def _correction_integrals(bessel, values, orders, pairs, known=None) -> np.ndarr
     # point: no (points × harmonics × orders × nodes) temporary, fresh pages on every call).
     fresh = np.empty((n_pts, n_m, a.size), dtype=complex)
     at_rows = _order_rows(orders)
-    for k, j in enumerate(own_j):
-        rows = j[at_rows]
+    # Each point's rows gathered from the parts of its complex and real nodes (a copy, where
+    # a slice of one (orders x all own nodes) array was a view: that array was ~1/3 of the
+    # peak of memory, faulted in afresh on every call).
+    parts, runs = own_j
+    for k, point_runs in enumerate(runs):
+        rows = own_rows(parts, point_runs, at_rows)
         gram = (rows * own_v[k, :, None, : rows.shape[-1]]) @ rows[cols].T
         fresh[k] = gram[:, a, pos]
     # The shared grid's nodes, real J: Σ_n (w Δg_m)_n j_p j_q as one real product of every
@@ -173,12 +184,12 @@ def _correction_integrals(bessel, values, orders, pairs, known=None) -> np.ndarr
     return out
 
 
-def _nodes_bessel(p_max: int, nodes: dict, res) -> tuple:
-    """([j_p, p = 0..``p_max``, on each point's own nodes (p_max + 1, its own nodes)], the
-    points in the order of ``nodes``; j_p on the shared grid, transposed (n_grid, p_max + 1),
-    real)."""
-    grid, own = bessel_on_grid(p_max, nodes, res)
-    return list(own), np.ascontiguousarray(grid.T)
+def _nodes_bessel(p_max: int, nodes: dict, res, rule) -> tuple:
+    """(j_p, p = 0..``p_max``, on the points' own nodes (:func:`own_bessel`: the parts of the
+    complex and the real nodes, each point's runs); j_p on the shared grid, transposed
+    (n_grid, p_max + 1), real). ``rule``: :func:`unit_rule` of ``res.n_panel``."""
+    grid = grid_bessel(p_max, nodes, res, rule)
+    return own_bessel(p_max, nodes), np.ascontiguousarray(grid.T)
 
 
 def _point_values(nodes: dict, harmonics: list, n_grid: int) -> tuple:
@@ -602,7 +613,9 @@ def _punch(table, film, items, radii, rtol, res) -> np.ndarray:
     axisymmetric = all(st.axisymmetric for st in stacks)
     theta = np.zeros(1) if axisymmetric else np.asarray(table.theta)
     gref = float(np.max(np.abs(table.ginf)))
-    nodes = correction_nodes(stacks, radii, theta, res, gref)
+    # One Gauss-Legendre rule for every use of it (roots_legendre costs ~0.2 ms a call).
+    rule = unit_rule(res.n_panel)
+    nodes = correction_nodes(stacks, radii, theta, res, gref, rule)
     pos = ksa > 0
     far = None
     if np.any(pos):
@@ -652,7 +665,7 @@ def _punch(table, film, items, radii, rtol, res) -> np.ndarray:
         if nodes:
             if p_have < orders[-1]:
                 p_have = int(orders[-1]) + 2 * (ahead - checks[-1])
-                bessel = _nodes_bessel(p_have, nodes, res)
+                bessel = _nodes_bessel(p_have, nodes, res, rule)
             assert bessel is not None  # computed at the first size
             reused = previous is not None and np.array_equal(previous.ms, plan.ms)
             if not reused:

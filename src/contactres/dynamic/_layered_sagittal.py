@@ -26,29 +26,55 @@ import numpy as np
 
 from ..layered import two_root_expm
 
-__all__ = ["sagittal_h33", "sagittal_reference"]
+__all__ = [
+    "sagittal_h33",
+    "sagittal_h33_blocks",
+    "sagittal_reference",
+    "sagittal_reference_block",
+]
 
 
 def _mm(a: np.ndarray, b: np.ndarray) -> np.ndarray:
-    """Products of stacked 2x2 matrices (2, 2, N), entry by entry on contiguous vectors."""
+    """Products of stacked 2x2 matrices (2, 2, N), entry by entry on contiguous vectors (each
+    entry's two products written in place: no temporary per entry)."""
     out = np.empty(a.shape[:2] + np.broadcast_shapes(a.shape[2:], b.shape[2:]), dtype=complex)
+    tmp = np.empty(out.shape[2:], dtype=complex)
     for i in range(2):
         for j in range(2):
-            out[i, j] = a[i, 0] * b[0, j] + a[i, 1] * b[1, j]
+            np.multiply(a[i, 0], b[0, j], out=out[i, j])
+            np.multiply(a[i, 1], b[1, j], out=tmp)
+            out[i, j] += tmp
+    return out
+
+
+def _flipped_mm(x: np.ndarray, b: np.ndarray) -> np.ndarray:
+    """(M x M) b of stacked 2x2 matrices (2, 2, N), M = diag(1, −1): the products of
+    :func:`_mm` with x's off-diagonal entries negated, as differences (the same numbers:
+    (−p) q = −(p q) and r + (−s) = r − s exactly), without forming M x M."""
+    out = np.empty(b.shape, dtype=complex)
+    tmp = np.empty(b.shape[2:], dtype=complex)
+    for j in range(2):
+        np.multiply(x[0, 0], b[0, j], out=out[0, j])
+        np.multiply(x[0, 1], b[1, j], out=tmp)
+        out[0, j] -= tmp
+        np.multiply(x[1, 1], b[1, j], out=out[1, j])
+        np.multiply(x[1, 0], b[0, j], out=tmp)
+        out[1, j] -= tmp
     return out
 
 
 def _inv(a: np.ndarray) -> np.ndarray:
     """Inverses of stacked 2x2 matrices (2, 2, N) (adjugate over the determinant)."""
-    r = 1.0 / (a[0, 0] * a[1, 1] - a[0, 1] * a[1, 0])
-    return np.stack([np.stack([a[1, 1] * r, -a[0, 1] * r]), np.stack([-a[1, 0] * r, a[0, 0] * r])])
-
-
-def _flip(a: np.ndarray) -> np.ndarray:
-    """M a M, M = diag(1, −1): the off-diagonal entries negated."""
-    out = a.copy()
-    out[0, 1] *= -1
-    out[1, 0] *= -1
+    r = np.multiply(a[0, 0], a[1, 1])
+    r -= a[0, 1] * a[1, 0]
+    np.divide(1.0, r, out=r)
+    out = np.empty(a.shape, dtype=complex)
+    np.multiply(a[1, 1], r, out=out[0, 0])
+    np.multiply(a[0, 1], r, out=out[0, 1])
+    np.negative(out[0, 1], out=out[0, 1])
+    np.multiply(a[1, 0], r, out=out[1, 0])
+    np.negative(out[1, 0], out=out[1, 0])
+    np.multiply(a[0, 0], r, out=out[1, 1])
     return out
 
 
@@ -64,17 +90,20 @@ def _block(a: np.ndarray) -> np.ndarray:
     return a[0::2, 0::2]
 
 
-def _factors(waves: np.ndarray, eta_h: np.ndarray, Y: np.ndarray):
-    """(I + T, D_d + D_u T) of one isotropic mirror-plane layer (its waves (4, 3, 3, N)) over
-    the block impedance Y (2, 2, N): T = X_u ρ X_d, ρ = (D_u − Y)⁻¹ (Y − D_d)."""
-    D_d, D_u, A_d = _block(waves[0]), _block(waves[1]), _block(waves[2])
-    X_d = _expm(A_d, waves[2, 1, 1], eta_h)
+def _factors(layer: tuple, eta_h: np.ndarray, Y: np.ndarray):
+    """(I + T, D_d + D_u T) of one isotropic mirror-plane layer (``layer``: the {x, z} blocks
+    (2, 2, N) of its D_d, D_u and A_d and its SH root A_yy (N,)) over the block impedance Y
+    (2, 2, N): T = X_u ρ X_d, ρ = (D_u − Y)⁻¹ (Y − D_d)."""
+    D_d, D_u, A_d, lam_t = layer
+    X_d = _expm(A_d, lam_t, eta_h)
     rho = _mm(_inv(D_u - Y), Y - D_d)
-    T = _mm(_flip(X_d), _mm(rho, X_d))
-    P = T.copy()
-    P[0, 0] += 1
-    P[1, 1] += 1
-    return P, D_d + _mm(D_u, T)
+    T = _flipped_mm(X_d, _mm(rho, X_d))
+    Q = _mm(D_u, T)
+    Q += D_d
+    # P = I + T in place (T is not needed after Q).
+    T[0, 0] += 1
+    T[1, 1] += 1
+    return T, Q
 
 
 def sagittal_h33(layers: list, eta_h: list, substrate: np.ndarray) -> np.ndarray:
@@ -82,10 +111,17 @@ def sagittal_h33(layers: list, eta_h: list, substrate: np.ndarray) -> np.ndarray
     first; ``eta_h``: their η h, (N,) each) over ``substrate`` (its impedance Y (3, 3, N)),
     at θ = 0 of an axisymmetric stack, from the recursion on the {x, z} block (module
     docstring); non-finite where the stack is singular."""
-    Y = _block(substrate)
+    blocks = [(_block(w[0]), _block(w[1]), _block(w[2]), w[2, 1, 1]) for w in layers]
+    return sagittal_h33_blocks(blocks, eta_h, _block(substrate))
+
+
+def sagittal_h33_blocks(layers: list, eta_h: list, Y: np.ndarray) -> np.ndarray:
+    """:func:`sagittal_h33` from the blocks alone: ``layers`` [(D_d, D_u, A_d, A_yy)], top
+    first, the {x, z} blocks (2, 2, N) of each layer's impedances and exponent and its SH root
+    (N,); ``Y`` (2, 2, N) the substrate's block (the same arithmetic, so the same numbers)."""
     with np.errstate(all="ignore"):
-        for waves, eh in zip(layers[:0:-1], eta_h[:0:-1], strict=True):
-            P, Q = _factors(waves, eh, Y)
+        for layer, eh in zip(layers[:0:-1], eta_h[:0:-1], strict=True):
+            P, Q = _factors(layer, eh, Y)
             Y = _mm(Q, _inv(P))
         P, Q = _factors(layers[0], eta_h[0], Y)
         # (P Q⁻¹)_zz: row z of P times column z of Q⁻¹ = (−Q_xz, Q_xx)/det Q.
@@ -96,6 +132,10 @@ def sagittal_h33(layers: list, eta_h: list, substrate: np.ndarray) -> np.ndarray
 def sagittal_reference(reference: np.ndarray) -> np.ndarray:
     """(R⁻¹)_zz (N,) of the reference half-space's impedance R (3, 3, N) at θ = 0 of an
     axisymmetric stack: its {x, z} block's R_xx/det."""
-    R = _block(reference)
+    return sagittal_reference_block(_block(reference))
+
+
+def sagittal_reference_block(R: np.ndarray) -> np.ndarray:
+    """:func:`sagittal_reference` from R's {x, z} block (2, 2, N) alone."""
     with np.errstate(all="ignore"):
         return R[0, 0] / (R[0, 0] * R[1, 1] - R[0, 1] * R[1, 0])

@@ -42,7 +42,12 @@ import numpy as np
 
 from ..halfspace import inv3, mm
 from ..layered import compliance_factors, isotropic_moduli, layer_waves, substrate_impedance
-from ._layered_sagittal import sagittal_h33, sagittal_reference
+from ._layered_sagittal import (
+    sagittal_h33,
+    sagittal_h33_blocks,
+    sagittal_reference,
+    sagittal_reference_block,
+)
 
 __all__ = [
     "StackWaves",
@@ -125,30 +130,72 @@ def chebyshev_values(
     return np.einsum("nm,mn...->m...", T, coef)
 
 
+# The rows of a layer's waves in the sagittal form (StackWaves.sagittal_form): the {x, z}
+# blocks of D_d (0-3), D_u (4-7) and A_d (8-11), row-major, and A_d's SH entry A_yy (12). An
+# interpolation forms D_d, A_d and A_yy (D_u is a sign change of D_d in a mirror-plane layer).
+_SAGITTAL_ROWS = 13
+
+
+def _block(a: np.ndarray) -> np.ndarray:
+    """The {x, z} block (2, 2, ...) of stacked 3x3 matrices (3, 3, ...) (a view)."""
+    return a[0::2, 0::2]
+
+
 class StackWaves:
     """The layer waves, substrate and reference impedances of one stack on a set of nodes ×
     directions: ``layers`` [(waves (4, 3, 3, n, nθ), mirror)], ``substrate`` and ``reference``
     (3, 3, n, nθ). Built by :func:`waves_at` or by interpolation (:meth:`combined`).
-    ``own_reference``: the reference is the top layer's D_d (a film with one loss tangent)."""
+    ``own_reference``: the reference is the top layer's D_d (a film with one loss tangent).
+    ``sagittal``: the sagittal form (:meth:`sagittal_form`): only what the normal kernel of an
+    axisymmetric stack of isotropic mirror-plane layers at θ = 0 reads, each layer's
+    (13, n, 1) rows and the substrate's and reference's {x, z} blocks (2, 2, n, 1)."""
 
-    __slots__ = ("layers", "own_reference", "reference", "substrate")
+    __slots__ = ("layers", "own_reference", "reference", "sagittal", "substrate")
 
-    def __init__(self, layers, substrate, reference, own_reference: bool = False):
+    def __init__(
+        self, layers, substrate, reference, own_reference: bool = False, sagittal: bool = False
+    ):
         self.layers = layers
         self.substrate = substrate
         self.reference = reference
         self.own_reference = own_reference
+        self.sagittal = sagittal
 
     @property
     def size(self) -> int:
         return self.substrate.shape[2]
 
     def arrays(self) -> list:
-        return [w for w, _ in self.layers] + [self.substrate, self.reference]
+        """The arrays that hold the waves (a reference that is the top layer's D_d is not one
+        of them: it is rebuilt as a view, not copied with them)."""
+        out = [w for w, _ in self.layers] + [self.substrate]
+        return out if self.own_reference else [*out, self.reference]
 
     def _with(self, arrays) -> StackWaves:
-        layers = [(a, m) for a, (_, m) in zip(arrays, self.layers, strict=False)]
-        return StackWaves(layers, arrays[-2], arrays[-1], self.own_reference)
+        n = len(self.layers)
+        layers = [(a, m) for a, (_, m) in zip(arrays[:n], self.layers, strict=True)]
+        reference = _top_d(layers, self.sagittal) if self.own_reference else arrays[n + 1]
+        return StackWaves(layers, arrays[n], reference, self.own_reference, self.sagittal)
+
+    def sagittal_form(self) -> StackWaves:
+        """These waves in the sagittal form (class docstring): the rows the recursion of
+        ``contactres.dynamic._layered_sagittal`` reads, copied out of the 3x3 arrays (the same
+        numbers), so that interpolating, joining and slicing them moves ~17 rows per node
+        instead of ~54."""
+        layers = []
+        for w, mirror in self.layers:
+            red = np.empty((_SAGITTAL_ROWS, *w.shape[-2:]), dtype=complex)
+            for k in range(3):
+                red[4 * k : 4 * k + 4] = _block(w[k]).reshape(4, *w.shape[-2:])
+            red[12] = w[2, 1, 1]
+            layers.append((red, mirror))
+        substrate = np.ascontiguousarray(_block(self.substrate))
+        reference = (
+            _top_d(layers, True)
+            if self.own_reference
+            else np.ascontiguousarray(_block(self.reference))
+        )
+        return StackWaves(layers, substrate, reference, self.own_reference, True)
 
     def interpolated(self, B: np.ndarray) -> StackWaves:
         """The waves at the nodes whose Chebyshev row vectors are ``B`` (m, n)."""
@@ -156,9 +203,11 @@ class StackWaves:
         # Only what the others do not fix: D_d and A_d of a mirror-plane layer (D_u = −M D_d M,
         # A_u = M A_d M, M = diag(1, 1, −1): the interpolation commutes with these sign
         # changes, so they are exact), and no reference that is the top layer's D_d.
-        arrays = [w[0::2] if mirror else w for w, mirror in self.layers] + [self.substrate]
-        if not self.own_reference:
-            arrays.append(self.reference)
+        if self.sagittal:
+            arrays = [np.concatenate([w[0:4], w[8:13]]) for w, _ in self.layers]
+        else:
+            arrays = [w[0::2] if mirror else w for w, mirror in self.layers]
+        arrays = [*arrays, *self.arrays()[len(self.layers) :]]
         # Every entry of every array as one row of a (K, n) complex matrix, its real and
         # imaginary parts stacked: one real (2K, n) @ (n, m) product for all of them (a batched
         # complex product per array is ~50 matrix-vector products of B), each entry's values
@@ -178,7 +227,9 @@ class StackWaves:
             start += r.shape[0]
         layers = []
         for (_, mirror), w in zip(self.layers, out, strict=False):
-            if mirror:
+            if self.sagittal:
+                w = _sagittal_mirror(w)
+            elif mirror:
                 full = np.empty((4, *w.shape[1:]), dtype=complex)
                 full[0::2] = w
                 full[3] = w[1]
@@ -189,8 +240,9 @@ class StackWaves:
                 full[3, 2, :2] *= -1
                 w = full
             layers.append((w, mirror))
-        reference = layers[0][0][0] if self.own_reference else out[-1]
-        return StackWaves(layers, out[len(self.layers)], reference, self.own_reference)
+        n_l = len(self.layers)
+        reference = _top_d(layers, self.sagittal) if self.own_reference else out[n_l + 1]
+        return StackWaves(layers, out[n_l], reference, self.own_reference, self.sagittal)
 
     def repeated(self, counts) -> StackWaves:
         """Node j taken ``counts[j]`` times (a single static node broadcast to many)."""
@@ -218,6 +270,20 @@ class StackWaves:
 
         layers = [(flat(w), m) for w, m in self.layers]
         eh = [np.repeat(np.asarray(e, dtype=complex), nth) for e in eta_h]
+        if self.sagittal:
+            # The sagittal form: the recursion on the blocks it holds (as below).
+            blocks = [
+                (
+                    w[0:4].reshape(2, 2, -1),
+                    w[4:8].reshape(2, 2, -1),
+                    w[8:12].reshape(2, 2, -1),
+                    w[12],
+                )
+                for w, _ in layers
+            ]
+            h33 = sagittal_h33_blocks(blocks, eh, flat(self.substrate))
+            out = sagittal_reference_block(flat(self.reference)) - h33
+            return out.reshape(n, nth) - shift[None]
         # An isotropic layer's exponential in closed form (its two roots; the direction of
         # every point tells its SH wave apart): the same to ~1e-15 at a fraction of the cost.
         closed: list[np.ndarray | None] = [None] * len(layers)
@@ -259,6 +325,26 @@ class StackWaves:
             h33 = col[2] if P is None else P[2, 0] * col[0] + P[2, 1] * col[1] + P[2, 2] * col[2]
             out = _inverse_column(ref)[2] - h33
         return out.reshape(n, nth) - shift[None]
+
+
+def _top_d(layers: list, sagittal: bool) -> np.ndarray:
+    """The top layer's D_d (a view): (3, 3, n, nθ), or its {x, z} block (2, 2, n, 1) in the
+    sagittal form."""
+    w = layers[0][0]
+    return w[0:4].reshape(2, 2, *w.shape[1:]) if sagittal else w[0]
+
+
+def _sagittal_mirror(w: np.ndarray) -> np.ndarray:
+    """A mirror-plane layer's sagittal rows (13, m, 1) from the interpolated D_d, A_d and A_yy
+    (9, m, 1): D_u's block by the sign changes that form a mirror layer's D_u = −M D_d M in
+    :meth:`StackWaves.interpolated` (the same operations on the same entries, so the same
+    numbers: the diagonal negated, the off-diagonal negated twice)."""
+    red = np.empty((_SAGITTAL_ROWS, *w.shape[1:]), dtype=complex)
+    red[0:4] = w[0:4]
+    red[8:13] = w[4:9]
+    np.negative(w[0:4], out=red[4:8])
+    red[5:7] *= -1
+    return red
 
 
 def is_isotropic(c: np.ndarray) -> bool:
