@@ -4,13 +4,15 @@ import json
 import re
 import subprocess
 import sys
+from contextlib import nullcontext
+from pathlib import Path
 
 import numpy as np
 import pandas as pd
 import pytest
 from cli_checks import one_line_error, run
 
-from contactres import __version__
+from contactres import __version__, _png
 from contactres.cli._common import parse_range
 
 
@@ -115,8 +117,15 @@ def test_demo_writes_folder(tmp_path, monkeypatch, demo_results):
         listed = json.loads((out / folder / "manifest.json").read_text())["files"]
         written = [f.name for f in files if f.parent == folder and f.name != "manifest.json"]
         assert sorted(listed) == sorted(written), folder
+    # The rerun is about which files are written (each of the first run's, replaced under its
+    # manifest, and no other), not their pixels: the first run drew every figure, so the rerun
+    # writes a stand-in into each figure's file (drawing them again was a fifth of the test).
+    # That each figure's file now holds the stand-in shows the rerun replaced it.
+    monkeypatch.setattr(_png, "print_figure", _figure_stand_in)
     assert run("demo", "--out", str(out)).exit_code == 0
     assert sorted(p.relative_to(out) for p in out.rglob("*") if p.is_file()) == files
+    figures = [f for f in files if f.suffix == ".png"]
+    assert figures and all((out / f).read_bytes() == STAND_IN for f in figures)
     assert (out / "crystals.csv").is_file()
     _check_demo_ends_with_the_numbers(r.output, out)
     cr_map = {"afm_map.json", "afm_map.nc", "afm_maps.png", "afm_histograms.png"}
@@ -136,6 +145,15 @@ def test_demo_writes_folder(tmp_path, monkeypatch, demo_results):
     a = coated["contact_radius_m"]
     assert (a > hertz(silica, 1.1e-3, coated["force_N"]).contact_radius).all()
     assert (a < hertz(film, 1.1e-3, coated["force_N"]).contact_radius).all()
+
+
+STAND_IN = b"not drawn\n"
+
+
+def _figure_stand_in(fig, target, dpi, fmt):
+    """In place of :func:`contactres._png.print_figure`: writes :data:`STAND_IN`, draws nothing."""
+    with open(target, "wb") if isinstance(target, (str, Path)) else nullcontext(target) as f:
+        f.write(STAND_IN)
 
 
 def _check_demo_ends_with_the_numbers(output, out):
@@ -288,6 +306,8 @@ def test_demo_without_the_maps_extra_leaves_the_map_out_in_one_line(
     assert bare.map_dataset is None and bare.map_triangle is None and bare.cr_map is None
     monkeypatch.setitem(sys.modules, "xarray", None)  # the writers too run without it
     _demo_returns(monkeypatch, bare)
+    # which files and lines, not pixels: every figure is drawn by test_demo_writes_folder
+    monkeypatch.setattr(_png, "print_figure", _figure_stand_in)
     out = tmp_path / "demo"
     r = run("demo", "--out", str(out))
     assert r.exit_code == 0, r.output

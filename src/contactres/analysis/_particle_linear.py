@@ -28,12 +28,27 @@ __all__ = [
     "scan_start",
     "series_variance",
     "stacked_inverse",
+    "weighted_parts",
     "wide_values",
     "wider_than_linear",
 ]
 
 #: The fewest converged steps a series needs for its pooled noise variance.
 MIN_POOLED_STEPS = 20
+
+
+def weighted_parts(parts: list[np.ndarray], wf: np.ndarray, wg: np.ndarray) -> np.ndarray:
+    """The weighted real and imaginary parts of K arrays z_k (rows, n) side by side, as the
+    fit's residuals (K = 1) or Jacobian: (rows, 2n, K) with Re z_k wf in [:, :n, k] and
+    Im z_k wg in [:, n:, k], each product written into its place (no stacked and concatenated
+    copies: the fit evaluates this once per Levenberg-Marquardt step, hundreds of times for a
+    series of pure noise)."""
+    m, n = parts[0].shape
+    out = np.empty((m, 2 * n, len(parts)))
+    for k, z in enumerate(parts):  # (the K parameters, not the data)
+        np.multiply(z.real, wf, out=out[:, :n, k])
+        np.multiply(z.imag, wg, out=out[:, n:, k])
+    return out
 
 
 def series_variance(chi2, dof, conv):

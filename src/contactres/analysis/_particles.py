@@ -135,6 +135,7 @@ from ._particle_linear import (
     scan_start,
     series_variance,
     stacked_inverse,
+    weighted_parts,
     wide_values,
 )
 from ._particle_profile import valley_profile
@@ -435,9 +436,8 @@ class _Problem:
             cols.append((self.model(p2, self._chg(p2))[0] - zm) / eps)
         wf, wg = self.wf[rows], self.wg[rows]
         diff = zm - self.z[rows]
-        r = np.concatenate([diff.real * wf, diff.imag * wg], axis=1)
-        col = np.stack(cols, axis=-1)  # (rows, n, P): dz/dq
-        jac = np.concatenate([col.real * wf[:, :, None], col.imag * wg[:, :, None]], axis=1)
+        r = weighted_parts([diff], wf, wg)[:, :, 0]  # real parts, then imaginary
+        jac = weighted_parts(cols, wf, wg)  # (rows, 2n, P): dr/dq
         chi2 = np.sum(r * r, axis=1)
         finite = np.isfinite(chi2)
         # (a finite χ² has finite residuals: the scrub is needed only where one is not)
