@@ -48,6 +48,9 @@ conditioned.
 On a face that is a mirror plane of the crystal (cubic (001), isotropic) the kernel has no odd
 angular harmonics (:func:`odd_free`): the functions of odd n then decouple from those of even
 n, which carry the force, and only the latter are kept (:meth:`_Basis.even_part`).
+On every face, reciprocity (h(θ + π) = h(θ)ᵀ) makes each kernel harmonic symmetric (even m) or
+antisymmetric (odd m) in its two in-plane indices: the dynamic part integrates 3 or 1
+components per harmonic instead of 4 (:func:`_by_parity`).
 
 Accuracy (rtol = 1e-6 default, k_s a <= 2; tests): against the independent isotropic reference
 (tests/dynamic/tangential_isotropic_reference.py) and against every discretisation doubled.
@@ -400,9 +403,45 @@ def _layout(basis: _Basis) -> tuple[np.ndarray, int]:
     return harmonics, per_n
 
 
-def _dynamic_part(table: TangentialTable, basis: _Basis, ka: np.ndarray, grid) -> np.ndarray:
+def _by_parity(g: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The independent components of kernel harmonics ``g`` (..., 4: xx, xy, yx, yy) for even
+    and odd m, ((..., 3), (..., 1)).
+
+    h(θ + π) = h(θ)ᵀ (reciprocity, :mod:`~._tangential_table`) makes Ĝ_{αβ,m} =
+    (−1)^m Ĝ_{βα,m}: symmetric for even m (xx, xy = yx, yy), antisymmetric for odd m (xx =
+    yy = 0, yx = −xy). The table holds this to round-off (its FFT); the mean of the two
+    off-diagonal entries keeps the part that is not round-off. A block of the Galerkin matrix
+    then integrates 3 or 1 components per harmonic instead of 4 (half the near-field products
+    of a basis without symmetry)."""
+    even = np.stack((g[..., 0], 0.5 * (g[..., 1] + g[..., 2]), g[..., 3]), axis=-1)
+    odd = 0.5 * (g[..., 1:2] - g[..., 2:3])
+    return even, odd
+
+
+def _even_full(part: np.ndarray) -> np.ndarray:
+    """(na, m, 4, j_a, j_b) xx, xy, yx, yy from the even-m components (na, m, 3, j_a, j_b)."""
+    return part[:, :, [0, 1, 1, 2]]
+
+
+def _odd_full(part: np.ndarray) -> np.ndarray:
+    """(na, m, 4, j_a, j_b) xx, xy, yx, yy from the odd-m component (na, m, 1, j_a, j_b)."""
+    full = np.zeros((*part.shape[:2], 4, *part.shape[3:]), dtype=part.dtype)
+    full[:, :, 1] = part[:, :, 0]
+    np.negative(part[:, :, 0], out=full[:, :, 2])
+    return full
+
+
+def _dynamic_part(
+    table: TangentialTable,
+    basis: _Basis,
+    ka: np.ndarray,
+    grid,
+    scale: np.ndarray | None = None,
+) -> np.ndarray:
     """∫ ds (h − h∞)(s/ka) H_a H_b of every basis pair, (na, nb, nb), without the phase;
-    ``grid`` is the far-field grid of the whole call (:func:`~.farfield.far_grid`).
+    ``grid`` is the far-field grid of the whole call (:func:`~.farfield.far_grid`). With
+    ``scale`` (nb, real, the same for n and −n), entry (a, b) is multiplied by scale_a scale_b
+    (block by block, before the entries are copied to every sign of n_a and n_b).
 
     An entry is the integral of the kernel harmonic m = n_b − n_a, component (α_a, β_b), against
     the product of two radial functions. They are computed by blocks of one (``|n_a|``,
@@ -447,9 +486,19 @@ def _dynamic_part(table: TangentialTable, basis: _Basis, ka: np.ndarray, grid) -
     amp_c = basis.series @ -np.sin(p * np.pi / 2)
     avg = (np.outer(amp_s, amp_s) + np.outer(amp_c, amp_c)).astype(complex)
     c1 = coef @ np.where(np.arange(nf) % 2 == 0, 1.0, -1.0)  # (nm, 4)
-    scale = (table.t1 * ka) ** 2 / (6 * grid.s_end**3)
+    # Each kernel quantity by the parity of m: (near values (nk, nm, c), far coefficients
+    # (nm, c, nf), their tail sums (nm, c)) with c = 3 independent components for even m, 1 for
+    # odd m (_by_parity); the four m of a block share the parity of |n_a| + |n_b|.
+    near_e, near_o = _by_parity(nv)
+    coef_e, coef_o = (np.moveaxis(g, -1, 1) for g in _by_parity(coef.swapaxes(1, 2)))
+    c1_e, c1_o = _by_parity(c1)
+    parity = ((near_e, coef_e, c1_e, _even_full), (near_o, coef_o, c1_o, _odd_full))
+    tail_scale = (table.t1 * ka) ** 2 / (6 * grid.s_end**3)
     magnitudes = np.unique(np.abs(harmonics)).tolist()
     index = {n: i for i, n in enumerate(harmonics.tolist())}  # harmonic -> its position
+    if scale is not None:
+        # (α, |n|, radial function), as complex x + 0i (see hw above).
+        by_mag = scale.reshape(2, nn, per_n)[:, [index[n] for n in magnitudes]].astype(complex)
     for ia, n_a in enumerate(magnitudes):
         ra = slice(ia * per_n, (ia + 1) * per_n)
         for ib in range(ia, len(magnitudes)):
@@ -458,13 +507,20 @@ def _dynamic_part(table: TangentialTable, basis: _Basis, ka: np.ndarray, grid) -
             ms = np.array(sorted({n_a + n_b, n_a - n_b, n_b - n_a, -n_a - n_b}))
             cols = ms + table.max_order
             prod = hw[:, ra, None, :] * h[:, None, rb, :]  # (na, per_n, per_n, nk)
-            near = prod.reshape(-1, nk) @ nv[:, cols].reshape(nk, -1)
-            # (na, m, component, j_a, j_b)
-            part = np.matmul(coef[cols].reshape(-1, nf), phi[ia, ib])
+            near_p, coef_p, c1_p, full = parity[(n_a + n_b) % 2]
+            nc = c1_p.shape[-1]
+            near = prod.reshape(-1, nk) @ near_p[:, cols].reshape(nk, -1)
+            # (na, m, independent component, j_a, j_b)
+            part = np.matmul(coef_p[cols].reshape(-1, nf), phi[ia, ib])
             part += near.reshape(na, per_n * per_n, -1).transpose(0, 2, 1)
-            part = part.reshape(na, ms.size, 2, 2, per_n, per_n)
-            tail = scale[:, None, None, None] * c1[cols].reshape(1, -1, 2, 2)
+            part = part.reshape(na, ms.size, nc, per_n, per_n)
+            tail = tail_scale[:, None, None] * c1_p[cols].reshape(1, -1, nc)
             part += tail[..., None, None] * avg[ra, rb]
+            # (na, m, α, β, j_a, j_b): the 2x2 components from the independent ones.
+            part = full(part).reshape(na, ms.size, 2, 2, per_n, per_n)
+            if scale is not None:
+                # Once per block, not once per entry of the matrix (up to 8 per block).
+                part *= by_mag[:, ia, None, :, None] * by_mag[None, :, ib, None, :]
             at_m = {m: c for c, m in enumerate(ms.tolist())}
             for sa in {-n_a, n_a}:
                 for sb in {-n_b, n_b}:
@@ -607,19 +663,13 @@ def tangential_per_a(
         ka = np.where(small, KSA_SMALL, ksa)[pos]
         grid = far_grid(table, float(np.min(ka)))
         res = np.empty((ka.size, 2, 2), dtype=complex)
-        # The scaling as complex numbers d + 0i: a complex array times a real one casts the
-        # latter through numpy's iterator buffers, element by element of the broadcast (half of
-        # the scaling's cost); the products are the same complex ones, to the bit.
-        dc = d.astype(complex)
         # Chunks of k a values: memory stays bounded (~30 MB) whatever the call's size.
         for lo in range(0, ka.size, _CHUNK):
             chunk = ka[lo : lo + _CHUNK]
             if frame is None:
-                # In place: a fresh array of this size costs as much in page faults as the
-                # arithmetic on it.
-                dyn = _dynamic_part(table, b0, chunk, grid)
-                dyn *= dc[None, :, None]
-                dyn *= dc[None, None, :]
+                # Scaled by d as it is formed; the static part added in place (a fresh array
+                # of this size costs as much in page faults as the arithmetic on it).
+                dyn = _dynamic_part(table, b0, chunk, grid, d)
                 dyn += m0 / f
                 sol = np.linalg.solve(dyn, np.broadcast_to(loads, (chunk.size, *loads.shape)))
                 res[lo : lo + _CHUNK] = loads.T @ sol
