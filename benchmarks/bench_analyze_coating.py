@@ -14,7 +14,7 @@ against 0.88-0.98 s, 1.97-2.20x (before: 1.94-2.33 s, 1.94-2.66x): at the target
 under it on the loaded machine. The coating's own work (min of repeated runs in one process):
 the table 0.40-0.46 s (0.63-0.66 s before), the coated fits and their bootstrap 0.43-0.56 s
 (0.56-0.63 s). The coating step sets one BLAS thread itself (``one_blas_thread``), so the
-default BLAS threads cost the same: 1.89 s as shipped against 1.65 s with
+default BLAS threads cost about the same (no spinning): 1.89 s as shipped against 1.65 s with
 ``OPENBLAS_NUM_THREADS=1``, back to back on the loaded machine (before that context, the small
 matrix products spun: 7.2 s).
 

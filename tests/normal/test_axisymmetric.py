@@ -15,6 +15,7 @@ import pytest
 from fredholm_reference import fredholm
 from scipy.special import spherical_jn
 
+import contactres.normal._axisymmetric as axisymmetric
 from contactres.errors import ContactresInputError
 from contactres.normal._axisymmetric import (
     RadialKernel,
@@ -91,7 +92,7 @@ def test_bad_radius_and_too_thin_layer():
         punch_and_sphere(ker, 1e4)
 
 
-def test_a_shared_store_of_transforms_changes_no_number():
+def test_a_shared_store_of_transforms_changes_no_number(monkeypatch):
     # Kernels on the same nodes (same lengths and cut-off) share the transforms; a kernel with
     # other nodes (a smaller excess: fewer panels; another length) is recomputed, not served
     # the stored ones; the tangential problem (one order more) keeps its own. Every number as
@@ -113,3 +114,14 @@ def test_a_shared_store_of_transforms_changes_no_number():
         for field in ("punch_stiffness", "depth_factor", "force_factor", "peak_factor"):
             assert np.array_equal(getattr(alone, field), getattr(shared, field), equal_nan=True)
     assert len(store) >= 2 * a.size  # normal and tangential orders at every radius
+    # The store is used, not only filled: a kernel on stored nodes computes no transform again.
+    calls = []
+    monkeypatch.setattr(
+        axisymmetric,
+        "even_spherical_bessel",
+        lambda *args, f=axisymmetric.even_spherical_bessel: calls.append(1) or f(*args),
+    )
+    punch_and_sphere(kernels[1], a, tol=1e-6, transforms=store)
+    assert not calls
+    punch_and_sphere(kernels[1], a, tol=1e-6)
+    assert calls

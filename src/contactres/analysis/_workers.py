@@ -5,9 +5,11 @@ blocks' joint fits, the plateau loops of contending ramps, the plateau's evidenc
 curves and the JKR fits of the groups in worker processes (issue 31, point 3). Each stage once
 opened a process pool of its own (five per analysis, each forking, then sending its
 arguments); :class:`WorkerPool` is opened by the analysis and passed down explicitly, and its
-processes start on the first stage that has two or more tasks for them (a small study with
-``workers`` > 1 never starts them). Every task depends on its own arguments alone, so the
-results are those of the serial path, bit for bit, whichever process runs which task.
+processes start on the first stage that has two or more tasks for them (a study whose every
+stage has a single task never starts them; once started, all ``workers`` processes run until
+the analysis ends, however few tasks the later stages hold). Every task depends on its own
+arguments alone, so the results are those of the serial path, bit for bit, whichever process
+runs which task.
 """
 
 from __future__ import annotations

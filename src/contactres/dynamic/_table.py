@@ -459,8 +459,9 @@ def _segment_from_series(res: Resolution, t1: float, near_kappa: np.ndarray, x: 
 
     The segment lies inside the far field's range (w in [1/4, 1]), where g is smooth and the
     series converges as fast as it does for the far field (its n_fit terms are what the far
-    field is accurate with). Measured (A = 0.2-10, ν up to 0.45, Cu(111) and (123), Q⁻¹ = 0
-    and 0.02): its values are within 6e-11 (rtol 1e-6) and 5e-9 (rtol 1e-4) of the largest
+    field is accurate with). Measured (A = 0.2-10, ν up to 0.49, Cu(111) and (123), Q⁻¹ = 0
+    and 0.02): its values are within 1.1e-10 (rtol 1e-6) and 8.1e-9 (rtol 1e-4; the largest
+    both at ν = 0.49, Q⁻¹ = 0, found in review) of the largest
     ``|g − g∞|`` of the kernel's, and the DCSF of every model moves by at most 7e-11 and 3e-9,
     far below the 1e-10-9e-7 and 1e-7-2e-4 it moves when every resolution is doubled
     (tests/dynamic/test_prepared.py; issue 31). The half-space kernel, the table's largest
