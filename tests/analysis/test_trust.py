@@ -2,6 +2,7 @@
 withheld with the input to check, drifting loads left out, running-in measured (issue 11)."""
 
 import numpy as np
+import pandas as pd
 import pytest
 
 from contactres.analysis import AnalysisSettings, analyze
@@ -39,8 +40,21 @@ def run(s, seed, settings=FAST, **const):
 def test_printed_errors_match_the_scatter_of_repeated_studies():
     # Each experiment has its own E and γ (3 % scatter): the error of E must come from the
     # spread between experiments, not from the points as if independent.
+    # The 16 studies are analysed in one call, each as its own configuration (its sweeps and
+    # experiments renamed apart): every group's fit and bootstrap are those of its study analysed
+    # alone (bit for bit, checked on the 16 seeds), and the call's fixed work is done once, not 16
+    # times (9.3 s of CPU as 16 calls, 2.2 s as one).
     s = study()
-    groups = [run(s, seed).groups[0] for seed in range(16)]
+    frames = []
+    for seed in range(16):
+        raw = synthetic_sweeps(s, seed, constants=False)
+        for col in ("configuration", "experiment", "sweep"):
+            raw[col] = raw[col].astype(str) + f"-s{seed:02d}"
+        frames.append(raw)
+    table = validate_sweeps(pd.concat(frames, ignore_index=True), constants=CONST)
+    res = analyze(table, settings=FAST)
+    groups = sorted(res.groups, key=lambda g: g["configuration"])
+    assert [g["configuration"] for g in groups] == [f"glass-s{seed:02d}" for seed in range(16)]
     E = np.array([g["E_Pa"] for g in groups])
     gamma = np.array([g["gamma_J_m2"] for g in groups])
     E_err = np.array([g["E_err_Pa"] for g in groups])

@@ -167,11 +167,15 @@ def test_reported_errors_cover_the_true_ratios_over_ten_noise_draws(grains, fits
     # test, not two independent ones. For a Gaussian error ``|z|`` has mean sqrt(2/π) = 0.80 and
     # standard deviation sqrt(1 − 2/π) = 0.60, so the mean of ten has a standard deviation of 0.19:
     # 0.4 < mean < 1.3 is a > 2σ band either side, and it catches reported σ too small by 1.6x or
-    # too large by 2x. Eight more fits take ~5 s.
+    # too large by 2x. The eight more fits start from the fit of draw 0 (an estimate from other
+    # data, not the truth): they converge in half the iterations from GUESS (~1.1 s of CPU each
+    # instead of ~1.6 s), and where a fit ends is its data's minimum, not its start (the fits from
+    # GUESS, the fixture's, guard the descent from afar).
     R, k = grains
     z = []
+    start = {"c12_c11": fits[0][0].c12_c11, "c44_c11": fits[0][0].c44_c11}
     more = (
-        fit_cubic_constants(R, *noisy_means(k, 66_667, seed), guess=GUESS) for seed in range(2, 10)
+        fit_cubic_constants(R, *noisy_means(k, 66_667, seed), guess=start) for seed in range(2, 10)
     )
     for res in [*fits[0], *more]:
         assert res.weak_identified
