@@ -154,3 +154,56 @@ def test_options_are_checked():
 
     with pytest.raises(ValueError, match="geodesic"):
         levenberg_marquardt(gauss_newton, [1.0], options=GEODESIC)
+
+
+def rosenbrock_gauss_newton(a, calls):
+    """evaluate() of Rosenbrock's residuals (:func:`rosenbrock`) in the Gauss-Newton form, row
+    by row in closed form (no sum over rows); χ² is infinite (inadmissible) for x > 3. Counts
+    the evaluations of each row in ``calls``."""
+
+    def evaluate(p, rows, want):
+        np.add.at(calls, rows, 1)
+        x, y, ai = p[:, 0], p[:, 1], a[rows]
+        r0, r1 = 10.0 * (y - x * x), ai - x
+        j00 = -20.0 * x  # J = [[j00, 10], [-1, 0]]
+        chi2 = np.where(x > 3.0, np.inf, r0 * r0 + r1 * r1)
+        grad = np.stack([j00 * r0 - r1, 10.0 * r0], axis=1)
+        hess = np.stack([[j00 * j00 + 1.0, 10.0 * j00], [10.0 * j00, np.full_like(x, 100.0)]])
+        return {"chi2": chi2, "gradient": grad, "hessian": hess.transpose(2, 0, 1)}
+
+    return evaluate
+
+
+@pytest.mark.parametrize("options", [MARQUARDT, replace(LEVENBERG, max_iter=300)])
+def test_gauss_newton_batch_is_its_members_alone_bit_for_bit(options):
+    # members that stop at different steps (the running rows are gathered as others stop), one
+    # held on a bound, one starting at its minimum, one starting inadmissible
+    a = np.array([1.0, 0.5, -0.7, 2.0, 1.0, 1.5, 0.3])
+    starts = np.array(
+        [[-1.2, 1.0], [0.0, 0.0], [2.0, -1.0], [1.9, 3.9], [1.0, 1.0], [3.5, 0.0], [-2.0, 4.0]]
+    )
+    lo = np.full((7, 2), -np.inf)
+    hi = np.full((7, 2), np.inf)
+    hi[1, 0] = 0.4  # the minimum (0.5, 0.25) lies beyond: x ends on its bound
+    calls = np.zeros(len(a), int)
+    batch = levenberg_marquardt(rosenbrock_gauss_newton(a, calls), starts, lo, hi, options)
+    assert len(set(batch.n_iter)) > 3  # the members stopped at many different steps
+    assert batch.message(5) == "the starting point is outside the admissible region"
+    assert batch.x[1, 0] == 0.4
+    for i in range(len(a)):
+        alone_calls = np.zeros(len(a), int)
+        ev = rosenbrock_gauss_newton(a, alone_calls)
+        alone = levenberg_marquardt(  # (it sees row index i, as in the batch)
+            lambda p, rows, want, ev=ev, i=i: ev(p, np.full(len(rows), i), want),
+            starts[i],
+            lo[i],
+            hi[i],
+            options,
+        )
+        # a stopped member is evaluated no more: as often in the batch as alone
+        assert calls[i] == alone_calls[i] == alone_calls.sum()
+        for name in ("x", "chi2", "converged", "status", "n_iter", "n_accepted", "last_step"):
+            got, want = getattr(batch, name)[i], getattr(alone, name)[0]
+            assert np.asarray(got).tobytes() == np.asarray(want).tobytes(), (i, name)
+    good = [0, 2, 3, 4]  # unbounded and admissible: at the minimum (a, a²)
+    np.testing.assert_allclose(batch.x[good], np.c_[a[good], a[good] ** 2], rtol=0, atol=1e-6)

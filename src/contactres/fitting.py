@@ -376,6 +376,8 @@ def levenberg_marquardt(evaluate, p0, lo=-np.inf, hi=np.inf, options: LMOptions 
           JᵀJ (n, P, P), for a problem that has them in a better form than J (variable
           projection), always (whatever ``jacobian`` says).
 
+        It must neither change ``p`` nor keep it (the solver goes on with that array).
+
         A non-finite χ² (or a row of residuals that is not finite) marks p outside the
         admissible region (e.g. a stiffness that is not positive definite): such a step fails
         like one that raises χ², so the damping grows until the step stays inside. No penalty
@@ -399,69 +401,92 @@ def levenberg_marquardt(evaluate, p0, lo=-np.inf, hi=np.inf, options: LMOptions 
     it. In the Gauss-Newton form they are solved directly (Cramer's rule for P = 2).
     """
     o = options
-    p = np.array(p0, dtype=float, ndmin=2)
-    lo = np.broadcast_to(np.asarray(lo, dtype=float), p.shape)
-    hi = np.broadcast_to(np.asarray(hi, dtype=float), p.shape)
-    n_rows = p.shape[0]
-    cur = _local_model(evaluate(p, np.arange(n_rows), True))
+    x = np.array(p0, dtype=float, ndmin=2)
+    lo = np.broadcast_to(np.asarray(lo, dtype=float), x.shape)
+    hi = np.broadcast_to(np.asarray(hi, dtype=float), x.shape)
+    n_rows = x.shape[0]
+    cur = _local_model(evaluate(x, np.arange(n_rows), True))
     if o.geodesic is not None and "hessian" in cur:
         raise ContactresInputError("the geodesic acceleration needs the Jacobian form")
-    lam, nu = np.full(n_rows, float(o.lam0)), np.full(n_rows, 2.0)
-    n_iter, n_acc, n_rej = (np.zeros(n_rows, int) for _ in range(3))
-    last = np.zeros(n_rows)
-    status = np.where(np.isfinite(cur["chi2"]), _RUNNING, _OUTSIDE)
-    while np.any(status == _RUNNING):
-        idx = np.flatnonzero(status == _RUNNING)
-        loc = {k: v[idx] for k, v in cur.items()}
-        q, c2, g = p[idx], loc["chi2"], loc["gradient"]
-        lo_i, hi_i = lo[idx], hi[idx]
+    # The results of every problem, written when it stops ...
+    chi2, status = cur["chi2"], np.where(np.isfinite(cur["chi2"]), _RUNNING, _OUTSIDE)
+    n_iter, n_acc, last = np.zeros(n_rows, int), np.zeros(n_rows, int), np.zeros(n_rows)
+    # ... and the state of the running ones, compacted when some stop (a gather then, not one
+    # of every array at every step); each row's arithmetic is the same whatever rows run with it.
+    rows = np.flatnonzero(status == _RUNNING)
+    model = {k: v[rows] for k, v in cur.items()}
+    state = {
+        "p": x[rows],
+        "lo": lo[rows],
+        "hi": hi[rows],
+        "lam": np.full(rows.size, float(o.lam0)),
+        "nu": np.full(rows.size, 2.0),
+        "n_iter": n_iter[rows],
+        "n_acc": n_acc[rows],
+        "n_rej": np.zeros(rows.size, int),
+        "last": last[rows],
+    }
+    while rows.size:
+        q, lo_i, hi_i, lam = state["p"], state["lo"], state["hi"], state["lam"]
+        c2, g = model["chi2"], model["gradient"]
         held = ((q <= lo_i) & (g > 0)) | ((q >= hi_i) & (g < 0))
-        v, solve = _damped_steps(loc, held, lam[idx], o.damping)
+        v, solve = _damped_steps(model, held, lam, o.damping)
         if np.isfinite(o.max_step):
             big = np.maximum(np.max(np.abs(v), axis=1), 1e-300)
             v *= np.minimum(1.0, o.max_step / big)[:, None]
-        trial = np.clip(q + v, lo_i, hi_i)
-        ok = np.ones(idx.size, bool)
-        if o.geodesic is not None:
-            trial, ok = _accelerated(evaluate, idx, q, v, loc, solve, (lo_i, hi_i), o)
+        ok = None  # (None: every trial stands, the usual case)
+        if o.geodesic is None:
+            trial = np.clip(q + v, lo_i, hi_i)
+        else:
+            trial, ok = _accelerated(evaluate, rows, q, v, model, solve, (lo_i, hi_i), o)
         step = trial - q
+        moved = q + step
         new = None
-        chi2_t = np.full(idx.size, np.inf)
-        if ok.all():  # (the usual case: no copies of the rows)
-            new = _local_model(evaluate(q + step, idx, False))
+        if ok is None or ok.all():
+            new = _local_model(evaluate(moved, rows, False))
             chi2_t = new["chi2"]
-        elif ok.any():
-            new = _local_model(evaluate(q[ok] + step[ok], idx[ok], False))
-            chi2_t[ok] = new["chi2"]
+        else:
+            chi2_t = np.full(rows.size, np.inf)
+            if ok.any():
+                new = _local_model(evaluate(moved[ok], rows[ok], False))
+                chi2_t[ok] = new["chi2"]
         gain = c2 - chi2_t
-        pred = -2.0 * np.einsum("ri,ri->r", g, step) - _quadratic(loc, step)
+        pred = -2.0 * np.einsum("ri,ri->r", g, step) - _quadratic(model, step)
         # A step that does not raise χ² is accepted (a tie then ends the iteration: its decrease
         # is below any ftol); NaN (a failed evaluation) and -inf (inadmissible) are failures.
         better = gain >= 0
-        n_iter[idx] += 1
-        acc = idx[better]
-        p[acc] += step[better]
-        last[acc] = np.max(np.abs(step[better]), axis=1, initial=0.0)
-        cur["chi2"][acc] = chi2_t[better]
-        if new is not None and "jacobian" not in cur:  # the Gauss-Newton form comes complete
-            sub = better[ok]
+        # (of the step from the old point, before the accepted rows move)
+        size = np.abs(step)
+        small_step = np.all(size <= o.xtol * np.abs(q) + o.x_abs, axis=1)
+        every = better.all()
+        if every:
+            state["p"] = moved
+            model["chi2"] = chi2_t
+        else:
+            q[better] = moved[better]
+            c2[better] = chi2_t[better]
+        state["last"] = np.where(better, np.max(size, axis=1, initial=0.0), state["last"])
+        if new is not None and "jacobian" not in model:  # the Gauss-Newton form comes complete
             for key in ("gradient", "hessian"):
-                cur[key][acc] = new[key][sub]
+                if every:
+                    model[key] = new[key]
+                else:
+                    model[key][better] = new[key][better if ok is None else better[ok]]
         # Damping: down after a success, up after a failure.
+        nu = state["nu"]
         if o.update == "nielsen":
             rho = np.where(pred > 0, gain / np.where(pred > 0, pred, 1.0), 0.5)
             shrink = np.maximum(1.0 / 3.0, 1.0 - (2.0 * rho - 1.0) ** 3)
-            lam[idx] = np.where(
-                better, np.maximum(lam[idx] * shrink, o.lam_min), lam[idx] * nu[idx]
-            )
-            nu[idx] = np.where(better, 2.0, 2.0 * nu[idx])
+            lam = np.where(better, np.maximum(lam * shrink, o.lam_min), lam * nu)
+            state["nu"] = np.where(better, 2.0, 2.0 * nu)
         else:
-            lam[idx] = np.where(better, np.maximum(lam[idx] / 10.0, o.lam_min), lam[idx] * 10.0)
-        n_acc[idx] += better
-        n_rej[idx] = np.where(better, 0, n_rej[idx] + 1)
+            lam = np.where(better, np.maximum(lam / 10.0, o.lam_min), lam * 10.0)
+        state["lam"] = lam
+        state["n_iter"] = n_it = state["n_iter"] + 1
+        state["n_acc"] = n_ac = state["n_acc"] + better
+        state["n_rej"] = n_rej = np.where(better, 0, state["n_rej"] + 1)
         # Stopping, in order of precedence: converged, damping exhausted, out of steps.
-        small_step = np.all(np.abs(step) <= o.xtol * np.abs(q) + o.x_abs, axis=1)
-        tol_f = o.ftol * np.maximum(cur["chi2"][idx], o.chi2_floor)
+        tol_f = o.ftol * np.maximum(model["chi2"], o.chi2_floor)
         small_gain = better & (gain <= tol_f)
         if o.judge_failed:
             # (a failed evaluation, NaN, predicts and gains nothing: "not above" holds for it;
@@ -469,25 +494,34 @@ def levenberg_marquardt(evaluate, p0, lo=-np.inf, hi=np.inf, options: LMOptions 
             small_gain |= ~(np.abs(gain) > tol_f) & (pred <= tol_f)
         else:
             small_step &= better
-        exhausted = lam[idx] > o.lam_max
+        exhausted = lam > o.lam_max
         if o.max_reject is not None:
-            exhausted |= n_rej[idx] >= o.max_reject
-        out = n_iter[idx] >= o.max_iter
-        out_acc = (n_acc[idx] >= o.max_accepted) if o.max_accepted is not None else False
+            exhausted |= n_rej >= o.max_reject
+        out = n_it >= o.max_iter
         # (the first test that holds wins: nested from the last, cheaper than np.select)
         code = np.where(out, _MAX_ITER, _RUNNING)
-        for test, value in ((out_acc, _MAX_ACCEPTED), (exhausted, _EXHAUSTED)):
-            code = np.where(test, value, code)
-        status[idx] = np.where(small_step, _STEP, np.where(small_gain, _CHI2, code))
+        if o.max_accepted is not None:
+            code = np.where(n_ac >= o.max_accepted, _MAX_ACCEPTED, code)
+        code = np.where(exhausted, _EXHAUSTED, code)
+        code = np.where(small_step, _STEP, np.where(small_gain, _CHI2, code))
+        going = code == _RUNNING
         # The Jacobian form: residuals and Jacobian at the new point, where the problem goes on.
-        go_on = acc[status[acc] == _RUNNING]
-        if "jacobian" in cur and go_on.size:
-            fresh = _local_model(evaluate(p[go_on], go_on, True))
+        go_on = better & going
+        if "jacobian" in model and go_on.any():
+            fresh = _local_model(evaluate(state["p"][go_on], rows[go_on], True))
             for key in ("residuals", "jacobian", "gradient"):  # χ² is that of the trial
-                cur[key][go_on] = fresh[key]
+                model[key][go_on] = fresh[key]
+        if not going.all():
+            done, ended = rows[~going], ~going
+            x[done], chi2[done], status[done] = state["p"][ended], model["chi2"][ended], code[ended]
+            n_iter[done], n_acc[done] = state["n_iter"][ended], state["n_acc"][ended]
+            last[done] = state["last"][ended]
+            rows = rows[going]
+            model = {k: a[going] for k, a in model.items()}
+            state = {k: a[going] for k, a in state.items()}
     return LeastSquaresResult(
-        x=p,
-        chi2=cur["chi2"],
+        x=x,
+        chi2=chi2,
         converged=(status == _STEP) | (status == _CHI2),
         status=status,
         n_iter=n_iter,
