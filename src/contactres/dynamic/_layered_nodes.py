@@ -3,11 +3,15 @@
 The discretisation of the integral (:class:`PunchResolution`); the real-axis nodes of each
 point (:func:`assemble_nodes`): the geometric panels' own Gauss-Legendre nodes below s = 32/3,
 then the panels of one grid k L shared by every point (:func:`grid_width`), Δg interpolated onto
-them from its Chebyshev samples in ln s; and j_p(s) on those nodes (the shared grid's once per
-call: :func:`bessel_on_grid`, :func:`bessel_on_nodes`) with the weighted Gram products of the
-tangential punch (:func:`weighted_gram`). The path that leads to these nodes (the lifted arc,
-the panels' edges and where they stop) is the module ``contactres.dynamic._layered_path``;
-the method and its measured accuracy are described in ``contactres.dynamic._layered_punch``.
+them from its Chebyshev samples in ln s, every panel on one Gauss-Legendre rule made once per
+call (:func:`unit_rule`, mapped by :func:`rule_on`); and j_p(s) on those nodes: the shared
+grid's once per call (:func:`grid_bessel` for the normal punch, :func:`bessel_on_grid` and
+:func:`bessel_on_nodes` for the tangential one), the points' own nodes as their real and complex
+parts with each point's rows gathered from them (:func:`own_bessel`, :func:`own_rows`), and the
+weighted Gram products of the tangential punch (:func:`weighted_gram`). The path that leads to
+these nodes (the lifted arc, the panels' edges and where they stop) is the module
+``contactres.dynamic._layered_path``; the method and its measured accuracy are described in
+``contactres.dynamic._layered_punch``.
 """
 
 from __future__ import annotations
