@@ -97,7 +97,8 @@ _EIG_CUTOFF = 1e-14
 # k a values evaluated together (memory ~1 MB per value at the default basis).
 _CHUNK = 32
 #: Largest k_s a accepted: the range of the convergence tests (at 5: 1.5e-8 from the radial
-#: terms); beyond it the default basis is not checked.
+#: terms; the harmonic cut-off grows with the curve's k_s a, tests/dynamic/
+#: test_tangential_harmonics at 2 and 5); beyond it the default basis is not checked.
 KSA_MAX = 5.0
 #: Below this k_s a the dynamic part is taken as linear in k_s a (see tangential_per_a).
 KSA_SMALL = 1e-6
@@ -128,7 +129,8 @@ class TangentialSize:
 
 def tangential_size(ksa_max: float, rtol: float = 1e-6, n_harmonics: int = 6) -> TangentialSize:
     """Default basis reaching ``rtol`` up to k_s a = ksa_max with traction harmonics
-    ``|n|`` <= ``n_harmonics`` (the table's, :func:`~.tangential_table.max_harmonics`).
+    ``|n|`` <= ``n_harmonics`` (the curve's, :func:`~.tangential_table.max_harmonics` of the
+    same ksa_max; the radial terms below are measured with the harmonics converged).
 
     Measured against ``|n|`` <= 16, 10 radial terms, ln and ln² enrichment and 32 series terms
     (AT-cut quartz, Cu(111), Cu(123), isotropic ν = 0.3; k_s a <= 5): ceil(0.6 k_s a) + 2
@@ -617,7 +619,9 @@ def tangential_per_a(
     ksa : ndarray
         k_s a values (dimensionless, >= 0).
     size : TangentialSize, optional
-        The basis; default :func:`tangential_size` of max(ksa) and the table's rtol.
+        The basis; default :func:`tangential_size` of max(ksa) and the table's rtol, with the
+        harmonics max(ksa) needs (``table.harmonics_for``: the table must be prepared with
+        ``ksa_max`` >= max(ksa) when that exceeds 2).
     """
     ksa = np.asarray(ksa, dtype=float).ravel()
     top = float(np.max(ksa, initial=0.0))
@@ -627,7 +631,8 @@ def tangential_per_a(
             f"checked (k_s a <= {KSA_MAX:g}, k_s = ω√(ρ/C44)): check the frequency and the "
             "contact radius (units?)"
         )
-    size = size or tangential_size(top, table.rtol, table.n_harmonics)
+    # The harmonic cut-off of this curve's largest k_s a (the same as the table's up to 2).
+    size = size or tangential_size(top, table.rtol, table.harmonics_for(top))
     if 2 * size.n_harmonics > table.max_order:
         # A table prepared for fewer harmonics than this basis: a fault of the caller.
         raise RuntimeError("the basis needs more kernel harmonics than the table holds")

@@ -11,7 +11,8 @@ carried away by shear, longitudinal and Rayleigh waves, and material loss).
   the in-plane block of the dynamic surface Green's function of
   :mod:`contactres.halfspace`; K(ω)/K₀ = k_t(a₀) + i a₀ c_t(a₀), a₀ = k_s a (isotropic
   c_t(0) = 0.617, 0.598, 0.580 at ν = 0.17, 0.25, 1/3); accuracy 1e-6 up to k_s a = 2
-  (k_s a <= 5 accepted).
+  (k_s a <= 5 accepted: there the harmonic cut-off, which grows with the curve's largest
+  k_s a, and the radial terms are checked).
 * Two bodies (a sphere on a plate, the QCM contact of paper 2): the compliances add,
   K⁻¹ = K_sphere⁻¹ + K_plate⁻¹ (:func:`two_body_contact_stiffness`).
 
@@ -38,7 +39,7 @@ from ..materials import Material, require_material
 from ..validation import nonnegative, positive
 from ._normal_stiffness import normalised_wavenumber, shear_ka
 from ._table import check_loss
-from ._tangential_galerkin import TangentialTable, prepare_tangential, tangential_per_a
+from ._tangential_galerkin import KSA_MAX, TangentialTable, prepare_tangential, tangential_per_a
 
 __all__ = [
     "tangential_contact_stiffness",
@@ -64,7 +65,9 @@ def _unit(direction) -> np.ndarray:
 def _per_a(m: Material, ksa: np.ndarray, loss: float, rtol: float, prepared) -> np.ndarray:
     """K/a (Pa, complex, ksa.shape + (2, 2)) of the lossy material at k_s a values ``ksa``."""
     if prepared is None:
-        table = prepare_tangential(m, loss, rtol)
+        # A table for this curve's k_s a (KSA_MAX at most: beyond it tangential_per_a refuses).
+        top = float(np.max(ksa, initial=0.0))
+        table = prepare_tangential(m, loss, rtol, ksa_max=min(top, KSA_MAX))
     elif isinstance(prepared, TangentialTable):
         table = prepared.check_for(m, loss, rtol)
     else:
@@ -112,11 +115,12 @@ def tangential_dcsf(
         Return the 2x2 matrix K(ka) K₀⁻¹ (K₀ the static tensor of the undamped constants)
         instead of K_ψ(ka)/K_ψ0.
     rtol : float
-        Target relative accuracy (default 1e-6, met for k_s a <= 2; see
+        Target relative accuracy (default 1e-6; see
         :mod:`contactres.dynamic._tangential_galerkin`).
     prepared : TangentialTable, optional
         :func:`~contactres.dynamic.prepare_tangential` of this material,
-        ``loss`` and ``rtol`` (most of the cost of a curve); built for this call otherwise.
+        ``loss`` and ``rtol`` (most of the cost of a curve), with ``ksa_max`` >= the largest
+        k_s a asked when that exceeds 2; built for this call otherwise.
 
     Returns
     -------

@@ -39,8 +39,11 @@ __all__ = [
     "HARMONIC_STEPS",
     "TangentialTable",
     "angular_harmonics",
+    "harmonic_cutoff",
+    "kernel_tail",
     "max_harmonics",
     "prepare_tangential",
+    "tail_factor",
 ]
 
 # θ grid on [0, 2π): first size, largest size, and the accuracy of the harmonics (relative to the
@@ -58,28 +61,62 @@ HARMONIC_STEPS = (6, 8, 10, 12, 16, 20, 24)
 # and without loss, rtol 1e-4 to 1e-8) the truncation error is 0.38x-3.7e5x of it (median 10x),
 # below 1x at |n| <= 10 on (111)-like faces (up to 0.053 tail²). The cut-off it picks has still
 # left <= 0.71 of rtol/3 on each (the steps are coarse; tests/dynamic/test_tangential_harmonics).
-# Not so at k_s a = 5, where the error grows steeply with k_s a (KCl(123), rtol 1e-6: |n| <= 6
-# leaves 2.6e-6; 1.7e-9 at k_s a = 2). No kernel-only estimate bounding it with a 1.5x margin
-# lets Cu(123) keep |n| <= 6 at rtol 1e-6 (its error 1.3e-7; such estimates >= 2.3e-6).
+# No kernel-only estimate bounding it with a 1.5x margin lets Cu(123) keep |n| <= 6 at rtol 1e-6
+# (its error 1.3e-7; such estimates >= 2.3e-6).
 _TAIL_FACTOR = 0.02
+# Beyond k_s a = 2 the error grows steeply with k_s a (the disk then samples the dynamic kernel
+# near κ ~ 1, whose angular structure is sharper than the static one's), so the factor grows:
+# F(x) = 0.02 × 10^(1.7 x − 0.18 x²), x = k_s a − 2 (F = 0.66, 9.6, 60 at k_s a = 3, 4, 5).
+# Measured ratio error/tail² (the 92 (111), (123) and random-face cases of the survey, |n| 6-20
+# against 24, errors above 3e-11): at most 0.051, 0.32, 1.5, 5.4, 13, 29 at k_s a = 2.5, 3,
+# 3.5, 4, 4.5, 5 (the cubic solids A = 7.58, ν = 0.11 and A = 8.97, ν = 0.17 on random faces);
+# F is 1.8x-2.5x these (0.046 at k_s a = 2, where 0.02 stays: the steps are coarse).
+_GROWTH = (1.7, -0.18)
+_KSA_STATIC = 2.0
 
 
-def max_harmonics(m: Material, rtol: float) -> int:
-    """Largest traction harmonic ``|n|`` of the Galerkin basis for ``m`` at accuracy ``rtol``: the
-    first of :data:`HARMONIC_STEPS` whose kernel tail t (the largest static in-plane kernel
-    harmonic beyond it, relative to the axisymmetric one) has 0.02 t² <= rtol/3; measured error
-    at ``|n|`` <= 6 / 8 / 10: Cu(123) 1.3e-7 / 3.9e-9 / 7.6e-10, Na(123) 1.3e-6 / 6.8e-8 / 2.8e-8,
-    Li(111) 6.2e-7 / 6.2e-7 / 4.2e-8 (t = 5.4e-3, 1.6e-2, 8.0e-3 at ``|n|`` <= 6)."""
+def tail_factor(ksa_max: float) -> float:
+    """F(k_s a) of the harmonic cut-off's estimate F tail² (see _GROWTH): 0.02 up to k_s a = 2,
+    growing to 60 at k_s a = 5 (measured truncation error / tail² at most 29 there)."""
+    x = float(ksa_max) - _KSA_STATIC
+    if not x > 0:
+        return _TAIL_FACTOR
+    return _TAIL_FACTOR * 10.0 ** (_GROWTH[0] * x + _GROWTH[1] * x * x)
+
+
+def kernel_tail(m: Material) -> np.ndarray:
+    """t_k (k = 0..25): the largest static in-plane kernel harmonic of order ``|m|`` = k of
+    ``m``, relative to the axisymmetric one (dimensionless)."""
     from ._tangential_static import inplane_kernel_harmonics
 
     top = HARMONIC_STEPS[-1] + 1
     h = np.abs(inplane_kernel_harmonics(m, top)).max(axis=(1, 2))
     mid = h.size // 2
-    mag = np.maximum(h[mid:], h[mid::-1]) / h[mid]
+    return np.maximum(h[mid:], h[mid::-1]) / h[mid]
+
+
+def harmonic_cutoff(tail: np.ndarray, rtol: float, ksa_max: float = _KSA_STATIC) -> int:
+    """The first of :data:`HARMONIC_STEPS` whose kernel tail t (largest of ``tail`` beyond it,
+    :func:`kernel_tail`) has F t² <= rtol/3, F = :func:`tail_factor` of ``ksa_max`` (the
+    largest k_s a of the curve); nondecreasing in ``ksa_max``."""
+    factor = tail_factor(ksa_max)
     for n in HARMONIC_STEPS:
-        if _TAIL_FACTOR * np.max(mag[n + 1 :]) ** 2 <= rtol / 3:
+        if factor * np.max(tail[n + 1 :]) ** 2 <= rtol / 3:
             return n
     return HARMONIC_STEPS[-1]
+
+
+def max_harmonics(m: Material, rtol: float, ksa_max: float = _KSA_STATIC) -> int:
+    """Largest traction harmonic ``|n|`` of the Galerkin basis for ``m`` at accuracy ``rtol`` up
+    to k_s a = ``ksa_max``: the first of :data:`HARMONIC_STEPS` whose kernel tail t (the largest
+    static in-plane kernel harmonic beyond it, relative to the axisymmetric one) has
+    F t² <= rtol/3, F = 0.02 up to k_s a = 2, growing to 60 at k_s a = 5 (:func:`tail_factor`).
+    Measured error at ``|n|`` <= 6 / 8 / 10, k_s a = 2: Cu(123) 1.3e-7 / 3.9e-9 / 7.6e-10,
+    Na(123) 1.3e-6 / 6.8e-8 / 2.8e-8, Li(111) 6.2e-7 / 6.2e-7 / 4.2e-8 (t = 5.4e-3, 1.6e-2,
+    8.0e-3 at ``|n|`` <= 6); at k_s a = 5, rtol 1e-6 (the cut-off at 2 in brackets): KCl(123)
+    [6] 2.6e-6, Pb(111) [6] 2.2e-6, a cubic solid A = 7.58, ν = 0.11 [8] 8.2e-5 /
+    ``|n|`` <= 12: 4.6e-7 / 16: 6.0e-10."""
+    return harmonic_cutoff(kernel_tail(m), rtol, ksa_max)
 
 
 @dataclass(frozen=True, eq=False, repr=False)
@@ -96,7 +133,10 @@ class TangentialTable(ReadOnlyArrays):
     resolution : the discretisation (that of the normal kernel table at this rtol)
     c44 : the reference stiffness C44, Pa
     t1 : start of the far field, units of k_s
-    n_harmonics : largest traction harmonic ``|n|`` of the Galerkin basis (:func:`max_harmonics`)
+    ksa_max : the largest k_s a its harmonics serve (:meth:`harmonics_for`)
+    tail : (26,) the static kernel harmonics relative to the axisymmetric one (:func:`kernel_tail`)
+    n_harmonics : largest traction harmonic ``|n|`` of the Galerkin basis up to k_s a = ksa_max
+        (:func:`max_harmonics`)
     max_order : kernel harmonics m = −max_order..max_order are held (>= 2 n_harmonics)
     ginf : (2M+1, 2, 2) harmonics of the lossy static kernel h∞ = C44 Ĝ∞/(1 + iQ⁻¹)
     ginf0 : (2M+1, 2, 2) the same of the undamped constants
@@ -111,6 +151,8 @@ class TangentialTable(ReadOnlyArrays):
     resolution: Resolution
     c44: float
     t1: float
+    ksa_max: float
+    tail: np.ndarray
     n_harmonics: int
     max_order: int
     ginf: np.ndarray
@@ -137,6 +179,18 @@ class TangentialTable(ReadOnlyArrays):
                 + ": pass the same material, loss and rtol, or prepare_tangential again"
             )
         return self
+
+    def harmonics_for(self, ksa_max: float) -> int:
+        """The basis's largest harmonic ``|n|`` for a curve up to k_s a = ``ksa_max``
+        (:func:`harmonic_cutoff`); a ContactresInputError beyond the table's ksa_max, whose
+        kernel harmonics would not suffice."""
+        if ksa_max > self.ksa_max:
+            raise ContactresInputError(
+                f"the prepared tangential table serves k_s a <= {self.ksa_max:g}, not "
+                f"{ksa_max:.6g}: prepare_tangential(..., ksa_max={ksa_max:.6g}) (the harmonic "
+                "cut-off grows with k_s a)"
+            )
+        return min(harmonic_cutoff(self.tail, self.rtol, ksa_max), self.n_harmonics)
 
 
 def _inplane(c: np.ndarray, kappa: np.ndarray, theta: np.ndarray) -> np.ndarray:
@@ -208,11 +262,14 @@ def prepare_tangential(
     loss: float = 0.0,
     rtol: float = 1e-6,
     *,
+    ksa_max: float = 2.0,
     resolution: Resolution | None = None,
     max_order: int | None = None,
 ) -> TangentialTable:
     """The in-plane kernel table of ``m`` (surface frame, undamped constants, Pa) with loss Q⁻¹
-    at accuracy ``rtol`` (in [1e-10, 1)), to pass as ``prepared=``; ``resolution`` overrides
+    at accuracy ``rtol`` (in [1e-10, 1)) for curves up to k_s a = ``ksa_max`` (default 2; the
+    harmonic cut-off grows beyond it, :func:`max_harmonics`; at most
+    :data:`~contactres.dynamic.KSA_MAX`), to pass as ``prepared=``; ``resolution`` overrides
     the discretisation and ``max_order`` the highest kernel harmonic held (default
     2 × :func:`max_harmonics`, the basis's own need; convergence tests). Immutable,
     picklable; nothing is cached."""
@@ -220,7 +277,9 @@ def prepare_tangential(
     q = check_loss(loss)
     check_contrast(m)
     res = resolution or resolution_for(rtol)
-    n_harmonics = max_harmonics(m, rtol)
+    ksa_top = max(float(ksa_max), _KSA_STATIC)
+    tail = kernel_tail(m)
+    n_harmonics = harmonic_cutoff(tail, rtol, ksa_top)
     max_order = int(max_order or 2 * n_harmonics)
     c44 = shear_reference(m)
     c = scaled_tensor(m).real.astype(complex)
@@ -260,6 +319,8 @@ def prepare_tangential(
         resolution=res,
         c44=c44,
         t1=t1,
+        ksa_max=ksa_top,
+        tail=tail,
         n_harmonics=n_harmonics,
         max_order=max_order,
         ginf=ginf0 / f,
