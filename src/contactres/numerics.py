@@ -77,7 +77,7 @@ def gauss_legendre_unit(n: int) -> tuple[np.ndarray, np.ndarray]:
     return x01, w01
 
 
-def gauss_legendre(a, b, n: int) -> tuple[np.ndarray, np.ndarray]:
+def gauss_legendre(a, b, n: int, *, rule: tuple | None = None) -> tuple[np.ndarray, np.ndarray]:
     """Nodes and weights of the n-point Gauss-Legendre rule on [a, b] (or on many panels).
 
     ``a`` and ``b`` broadcast against each other and against the node axis, which comes last:
@@ -90,6 +90,10 @@ def gauss_legendre(a, b, n: int) -> tuple[np.ndarray, np.ndarray]:
     ----------
     a, b : float or array_like, the ends of the interval(s) (any unit; the weights carry it)
     n : number of nodes, >= 1
+    rule : (x, w), optional
+        The n-point rule on [-1, 1] (``gauss_legendre(-1.0, 1.0, n)``), computed once by a
+        caller that maps it onto many intervals: mapped by the same arithmetic, so the same
+        numbers as without it, without the root finding each call costs.
 
     Returns
     -------
@@ -107,11 +111,13 @@ def gauss_legendre(a, b, n: int) -> tuple[np.ndarray, np.ndarray]:
         raise ContactresInputError(
             f"n (number of Gauss-Legendre nodes) must be an integer >= 1, got {n!r}"
         )
-    # Imported here: the root finder and gauss_legendre_unit of this module need no scipy, and
-    # a command that uses only those (a static contact) need not import scipy.special (~0.2 s).
-    from scipy import special
+    if rule is None:
+        # Imported here: the root finder and gauss_legendre_unit of this module need no scipy,
+        # and a command that uses only those (a static contact) need not import scipy.special.
+        from scipy import special
 
-    x, w = special.roots_legendre(n_int)
+        rule = special.roots_legendre(n_int)
+    x, w = rule
     a = np.asarray(a)
     b = np.asarray(b)
     return 0.5 * (b - a) * x + 0.5 * (b + a), 0.5 * (b - a) * w

@@ -252,12 +252,17 @@ def test_panel_waves_are_each_points_own_interpolation():
             assert np.max(np.abs(g - w)) <= 1e-13 * np.max(np.abs(w))
 
 
+# Stacks of isotropic layers the sagittal recursion serves: a film (its own reference) and two
+# lossy layers.
+SAGITTAL_STACKS = [
+    LayeredMaterial(QUARTZ, [(PMMA, 0.05 * A)]),
+    LayeredMaterial(PMMA, [(QUARTZ.with_loss(1e-3), 0.3 * A), (PMMA, 0.1 * A)]),
+]
+
+
 @pytest.mark.parametrize(
     "material",
-    [
-        LayeredMaterial(QUARTZ, [(PMMA, 0.05 * A)]),
-        LayeredMaterial(PMMA, [(QUARTZ.with_loss(1e-3), 0.3 * A), (PMMA, 0.1 * A)]),
-    ],
+    SAGITTAL_STACKS,
     ids=["film", "two-lossy-layers"],
 )
 def test_the_sagittal_recursion_is_the_three_by_three_one(monkeypatch, material):
@@ -338,10 +343,7 @@ def test_edge_waves_are_each_points_own_interpolation(static_at):
 
 @pytest.mark.parametrize(
     "material",
-    [
-        LayeredMaterial(QUARTZ, [(PMMA, 0.05 * A)]),
-        LayeredMaterial(PMMA, [(QUARTZ.with_loss(1e-3), 0.3 * A), (PMMA, 0.1 * A)]),
-    ],
+    SAGITTAL_STACKS,
     ids=["film-own-reference", "two-lossy-layers"],
 )
 def test_the_sagittal_form_gives_the_direct_solution(material):

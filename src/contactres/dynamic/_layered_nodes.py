@@ -114,10 +114,7 @@ def unit_rule(n: int) -> tuple[np.ndarray, np.ndarray]:
 def rule_on(rule: tuple, a, b) -> tuple[np.ndarray, np.ndarray]:
     """The :func:`unit_rule` ``rule`` on [a, b] (broadcast as in
     :func:`contactres.numerics.gauss_legendre`, by the same arithmetic: the same numbers)."""
-    x, w = rule
-    a = np.asarray(a)
-    b = np.asarray(b)
-    return 0.5 * (b - a) * x + 0.5 * (b + a), 0.5 * (b - a) * w
+    return gauss_legendre(a, b, len(rule[0]), rule=rule)
 
 
 def _on_panels(rule, lo: np.ndarray, hi: np.ndarray):
