@@ -5,12 +5,12 @@ plain search that evaluates :func:`contactres.analysis._loops.solve_projected` a
 import numpy as np
 import pytest
 
+from contactres.analysis._amplitude import row_sets
 from contactres.analysis._loops import (
     GROUP_LOOP,
     X_MAX,
     _least_chi2,
     _search_pair,
-    _sets,
     _shared_chi2,
     cm_loop_table,
     fit_cm_loops,
@@ -129,7 +129,7 @@ def test_shared_lookups_are_solve_projected_where_it_matters(name, programmes):
     S = u.shape[0]
     wf, wg = 1.0 / sigma**2, 1.0 / sigma**2
     umax = np.max(np.where(w > 0, u, 0.0), axis=1)
-    amplitudes = _sets(np.concatenate([u, w], axis=1).view(np.int64))[1]
+    amplitudes = row_sets(np.concatenate([u, w], axis=1).view(np.int64))[1]
     assert (amplitudes.max() + 1 <= GROUP_LOOP) == (programmes == 3)
     rng = np.random.default_rng(programmes)
     centre = np.round(rng.uniform(-2.0, 1.0, S), 1)  # 31 centres: sweeps share some

@@ -55,6 +55,7 @@ from ..resonators import (
     shifts_from_stiffness,
 )
 from ..tangential import CattaneoMindlinLoop, MasingLoop, SavkoorLoop
+from ._amplitude import row_sets
 
 __all__ = [
     "N_TABLE",
@@ -434,18 +435,6 @@ def _exact_near(short, c, g1, g2, column, df, dg, w, wf, wg) -> np.ndarray:
 GROUP_LOOP = 8
 
 
-def _sets(key) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
-    """The sets of rows of ``key`` (S, C) (integers) that agree in every column: the first row
-    of each set, the set of each row, the rows sorted by set and where each set ends in them."""
-    order = np.lexsort(key.T[::-1])
-    k = key[order]
-    new = np.ones(order.size, dtype=bool)
-    new[1:] = (k[1:] != k[:-1]).any(axis=1)
-    group = np.empty(order.size, dtype=np.intp)
-    group[order] = np.cumsum(new) - 1
-    return order[new], group, order, np.append(np.flatnonzero(new), order.size)
-
-
 def _shared_chi2(ip, u, df, dg, w, wf, wg, umax, lx, key) -> np.ndarray:
     """:func:`_least_chi2` at the trials x_max = 10^lx (``lx`` (S, K)): the same numbers, the
     table looked up once per set of sweeps with the same amplitudes and trials, the sweeps
@@ -459,7 +448,7 @@ def _shared_chi2(ip, u, df, dg, w, wf, wg, umax, lx, key) -> np.ndarray:
     (M, K) with the data of its sweeps (BLAS; any order of the sums is within the short cut's
     tolerance), otherwise those of :func:`_least_chi2` on the shapes gathered per sweep.
     """
-    first, group, order, ends = _sets(key)
+    first, group, order, ends = row_sets(key)
     if 2 * first.size > u.shape[0]:  # mostly distinct: a lookup per sweep
         g1, g2 = _search_pair(ip, u, 10.0**lx / umax[:, None])
         return _least_chi2(g1, g2, df, dg, w, wf, wg)
@@ -505,7 +494,7 @@ def fit_cm_loops(
     S = u.shape[0]
     # Sweeps measured at the same amplitudes (bit for bit) share the lookups of the trials that
     # they share (_shared_chi2): sorted by amplitude set, so that a set shares its chunk.
-    _, amplitudes, order, _ = _sets(np.concatenate([u, w], axis=1).view(np.int64))
+    _, amplitudes, order, _ = row_sets(np.concatenate([u, w], axis=1).view(np.int64))
     # 49 trial θ per sweep on the grid, 8 in a round: chunks of sweeps keep those arrays at a
     # few MB. Where amplitudes are shared, the grid is looked up per set: rounds are the most.
     trials = 9 if 2 * (amplitudes.max(initial=-1) + 1) <= S else 49
