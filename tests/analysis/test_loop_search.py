@@ -5,6 +5,7 @@ plain search that evaluates :func:`contactres.analysis._loops.solve_projected` a
 import numpy as np
 import pytest
 
+from contactres.analysis import _loops as loops
 from contactres.analysis._amplitude import row_sets
 from contactres.analysis._loops import (
     GROUP_LOOP,
@@ -115,6 +116,20 @@ def test_fit_lands_where_the_plain_search_lands(name, programmes):
         fit = fit_cm_loops(u, df, dg, w, sigma, sigma, table)
         plain = _plain_search(u, df, dg, w, sigma, table)
         assert np.array_equal(fit["theta_per_m"].to_numpy(), plain)
+
+
+@pytest.mark.parametrize("name", ["cm", "savkoor"])
+def test_small_chunks_of_mixed_sweeps_land_where_the_plain_search_lands(name, monkeypatch):
+    """200 sweeps of one amplitude programme and 100 of their own, in chunks sized for a round's
+    trials (60 sweeps): the chunks of mostly distinct sweeps take the grid by parts (11 sweeps),
+    and θ is the plain search's, bit for bit, in the sweeps' own order."""
+    table = TABLES[name]
+    one = _sweeps(table, S=200, seed=5, programmes=1)
+    own = _sweeps(table, S=100, seed=6)
+    u, df, dg, w, sigma = (np.concatenate(p) for p in zip(one, own, strict=True))
+    monkeypatch.setattr(loops, "CHUNK_CELLS", 9 * 11 * 60)
+    fit = fit_cm_loops(u, df, dg, w, sigma, sigma, table)
+    assert np.array_equal(fit["theta_per_m"].to_numpy(), _plain_search(u, df, dg, w, sigma, table))
 
 
 @pytest.mark.parametrize("name", ["cm", "savkoor"])

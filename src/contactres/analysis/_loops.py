@@ -449,9 +449,16 @@ def _shared_chi2(ip, u, df, dg, w, wf, wg, umax, lx, key) -> np.ndarray:
     tolerance), otherwise those of :func:`_least_chi2` on the shapes gathered per sweep.
     """
     first, group, order, ends = row_sets(key)
-    if 2 * first.size > u.shape[0]:  # mostly distinct: a lookup per sweep
-        g1, g2 = _search_pair(ip, u, 10.0**lx / umax[:, None])
-        return _least_chi2(g1, g2, df, dg, w, wf, wg)
+    S, M = u.shape
+    if 2 * first.size > S:  # mostly distinct: a lookup per sweep
+        # By parts of CHUNK_CELLS trial points (a chunk sized for a round's trials may hold
+        # mostly distinct sweeps on the grid): each sweep's numbers are its own alone.
+        step = max(1, CHUNK_CELLS // (lx.shape[1] * max(M, 1)))
+        parts = []
+        for s in (slice(i, i + step) for i in range(0, S, step)):
+            g1, g2 = _search_pair(ip, u[s], 10.0 ** lx[s] / umax[s, None])
+            parts.append(_least_chi2(g1, g2, df[s], dg[s], w[s], wf[s], wg[s]))
+        return np.concatenate(parts) if parts else np.empty(lx.shape)
     # θ of the set's first sweep: that of every sweep of the set, bit for bit.
     g1, g2 = _search_pair(ip, u[first], 10.0 ** lx[first] / umax[first][:, None])
     n, dgc, c = _data_sums(df, dg, w, wf, wg)
