@@ -5,10 +5,14 @@ plain search that evaluates :func:`contactres.analysis._loops.solve_projected` a
 import numpy as np
 import pytest
 
+from contactres.analysis import _loops as loops
+from contactres.analysis._amplitude import row_sets
 from contactres.analysis._loops import (
+    GROUP_LOOP,
     X_MAX,
     _least_chi2,
     _search_pair,
+    _shared_chi2,
     cm_loop_table,
     fit_cm_loops,
     interpolate_table,
@@ -20,11 +24,14 @@ from contactres.analysis._loops import (
 TABLES = {"cm": cm_loop_table(), "savkoor": savkoor_loop_table()}
 
 
-def _sweeps(table, S=60, M=11, pad=True, seed=3):
+def _sweeps(table, S=60, M=11, pad=True, seed=3, programmes=None):
     """S sweeps of M amplitudes (the last ones padded in every third row if ``pad``) whose
-    shifts follow the loop of ``table`` at random θ, with noise, and a few without any slip."""
+    shifts follow the loop of ``table`` at random θ, with noise, and a few without any slip;
+    measured at one of ``programmes`` sets of amplitudes each (None: every sweep its own)."""
     rng = np.random.default_rng(seed)
     u = np.sort(rng.uniform(0.2e-9, 10e-9, (S, M)), axis=1)
+    if programmes is not None:
+        u = u[rng.integers(0, min(programmes, S), S)]
     w = np.ones((S, M))
     if pad:
         w[::3, M - 3 :] = 0.0
@@ -95,15 +102,70 @@ def test_least_chi2_is_solve_projected_where_it_matters(name, pad):
 
 
 @pytest.mark.parametrize("name", ["cm", "savkoor"])
-def test_fit_lands_where_the_plain_search_lands(name):
+@pytest.mark.parametrize("programmes", [None, 2, 40])
+def test_fit_lands_where_the_plain_search_lands(name, programmes):
     """fit_cm_loops' θ is the plain search's, bit for bit, for sweeps with and without padding,
-    in chunks of the search or not, from no resolved slip to gross sliding."""
+    in chunks of the search or not, from no resolved slip to gross sliding; each sweep at its
+    own amplitudes, or sweeps of a few amplitude programmes sharing their lookups (the sums by
+    set, or per sweep on gathered shapes), sorted by programme and back."""
     table = TABLES[name]
-    for S in (5, 300):  # 300 sweeps of 11 points: more than one chunk of the search
-        u, df, dg, w, sigma = _sweeps(table, S=S, seed=S)
+    for S in (5, 300, 3000):  # sweeps of 11 points: one chunk of the search, or several
+        if S == 3000 and programmes is None:
+            continue  # several chunks of distinct amplitudes: 300 has them
+        u, df, dg, w, sigma = _sweeps(table, S=S, seed=S, programmes=programmes)
         fit = fit_cm_loops(u, df, dg, w, sigma, sigma, table)
         plain = _plain_search(u, df, dg, w, sigma, table)
         assert np.array_equal(fit["theta_per_m"].to_numpy(), plain)
+
+
+@pytest.mark.parametrize("name", ["cm", "savkoor"])
+def test_small_chunks_of_mixed_sweeps_land_where_the_plain_search_lands(name, monkeypatch):
+    """200 sweeps of one amplitude programme and 100 of their own, in chunks sized for a round's
+    trials (60 sweeps): the chunks of mostly distinct sweeps take the grid by parts (11 sweeps),
+    and θ is the plain search's, bit for bit, in the sweeps' own order."""
+    table = TABLES[name]
+    one = _sweeps(table, S=200, seed=5, programmes=1)
+    own = _sweeps(table, S=100, seed=6)
+    u, df, dg, w, sigma = (np.concatenate(p) for p in zip(one, own, strict=True))
+    monkeypatch.setattr(loops, "CHUNK_CELLS", 9 * 11 * 60)
+    fit = fit_cm_loops(u, df, dg, w, sigma, sigma, table)
+    assert np.array_equal(fit["theta_per_m"].to_numpy(), _plain_search(u, df, dg, w, sigma, table))
+
+
+@pytest.mark.parametrize("name", ["cm", "savkoor"])
+@pytest.mark.parametrize("programmes", [3, 2 * GROUP_LOOP, 120])
+def test_shared_lookups_are_solve_projected_where_it_matters(name, programmes):
+    """The short cut with lookups shared by the sweeps of one amplitude programme (few sets:
+    sums by set; more: per sweep on gathered shapes; most sweeps distinct: a lookup per sweep),
+    on the θ grid and at trials centred per sweep: the least χ² of each sweep where
+    solve_projected's least sits, with its value, and every value given solve_projected's."""
+    table = TABLES[name]
+    u, df, dg, w, sigma = _sweeps(table, S=240, programmes=programmes, seed=programmes)
+    S = u.shape[0]
+    wf, wg = 1.0 / sigma**2, 1.0 / sigma**2
+    umax = np.max(np.where(w > 0, u, 0.0), axis=1)
+    amplitudes = row_sets(np.concatenate([u, w], axis=1).view(np.int64))[1]
+    assert (amplitudes.max() + 1 <= GROUP_LOOP) == (programmes == 3)
+    rng = np.random.default_rng(programmes)
+    centre = np.round(rng.uniform(-2.0, 1.0, S), 1)  # 31 centres: sweeps share some
+    grid = np.linspace(-2.5, np.log10(X_MAX), 49)
+    for lx, key in (
+        (np.broadcast_to(grid, (S, 49)), amplitudes[:, None]),
+        (
+            centre[:, None] + np.linspace(-0.3, 0.3, 8),
+            np.stack([amplitudes, centre.view(np.int64)], 1),
+        ),
+    ):
+        got = _shared_chi2(table_interpolant(table), u, df, dg, w, wf, wg, umax, lx, key)
+        xu = (10.0**lx / umax[:, None])[..., None] * u[:, None, :]
+        g1, g2 = interpolate_table(table_interpolant(table), xu, ("c1", "c2"))
+        a = (df[:, None], dg[:, None], w[:, None], wf[:, None], wg[:, None])
+        full = solve_projected(g1, g2, *a)[2]
+        best = np.argmin(full, axis=1)
+        assert np.array_equal(np.argmin(got, axis=1), best)
+        assert np.array_equal(got.min(axis=1), full[np.arange(S), best])
+        given = np.isfinite(got)
+        assert np.array_equal(got[given], full[given])
 
 
 @pytest.mark.parametrize("name", ["cm", "savkoor"])

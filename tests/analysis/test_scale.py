@@ -126,14 +126,24 @@ def test_one_long_sweep_pads_only_its_own_block():
 
 
 @pytest.mark.parametrize("seed", [0, 1, 2])
-def test_hinge_from_suffix_sums_equals_fitting_every_candidate(seed):
+@pytest.mark.parametrize("programmes", [None, 4])
+def test_hinge_from_suffix_sums_equals_fitting_every_candidate(seed, programmes):
     # Ragged sweeps (3-15 points) with repeated amplitudes, a plateau and noise; the suffix-sum
-    # search must pick the same hinge as a fit of every candidate, bit for bit.
+    # search must pick the same hinge as a fit of every candidate, bit for bit. Each sweep at
+    # its own amplitudes, or at one of a few amplitude programmes (what depends on the
+    # amplitudes alone then computed once per programme).
     rng = np.random.default_rng(seed)
     data = []
+    shared = [
+        np.sort(np.round(rng.uniform(0.5, 10.0, rng.integers(3, 16)), 1 + 5 * (i % 2))) * 1e-9
+        for i in range(programmes or 0)
+    ]
     for s in range(60):
         n = rng.integers(3, 16)
         u = np.sort(np.round(rng.uniform(0.5, 10.0, n), 1 if s % 3 == 0 else 6)) * 1e-9
+        if programmes:
+            u = shared[s % programmes]
+            n = u.size
         knee = rng.uniform(0.2, 0.6) * u.max()
         slope = rng.uniform(-5e9, 5e9, 2)
         for k in range(n):

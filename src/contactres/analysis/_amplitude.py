@@ -34,6 +34,7 @@ __all__ = [
     "fit_hinge",
     "fit_line",
     "pad_sweeps",
+    "row_sets",
 ]
 
 # Plateau search: points on the plateau / on the slope, and the sub-steps between amplitudes.
@@ -273,6 +274,18 @@ class HingeFit:
     found: np.ndarray  # (S,) bool: False if no u_c leaves enough points on both sides
 
 
+def row_sets(key) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
+    """The sets of rows of ``key`` (S, C) (integers) that agree in every column: the first row
+    of each set, the set of each row, the rows sorted by set and where each set ends in them."""
+    order = np.lexsort(key.T[::-1])
+    k = key[order]
+    new = np.ones(order.size, dtype=bool)
+    new[1:] = (k[1:] != k[:-1]).any(axis=1)
+    group = np.empty(order.size, dtype=np.intp)
+    group[order] = np.cumsum(new) - 1
+    return order[new], group, order, np.append(np.flatnonzero(new), order.size)
+
+
 def _suffix(a: np.ndarray) -> np.ndarray:
     """Σ_{i >= k} a_i along the last axis for k = 0 ... M (the last one 0)."""
     s = np.cumsum(a[..., ::-1], axis=-1)[..., ::-1]
@@ -283,23 +296,11 @@ def _hinge_crit(rss) -> np.ndarray:
     return np.log(np.maximum(rss[0], 1e-30)) + np.log(np.maximum(rss[1], 1e-30))
 
 
-def fit_hinge(b: Block) -> HingeFit:
-    """Hinge Δf = Δf0 + s_f max(u0 - u_c, 0) (likewise ΔΓ) of every sweep, u_c on a grid.
-
-    u_c is searched at the data amplitudes and at :data:`PLATEAU_SUBSTEPS` between them, with at
-    least :data:`PLATEAU_MIN_FLAT` points on the plateau and :data:`PLATEAU_MIN_SLOPE` on the
-    slope; the best u_c minimises ln RSS_f + ln RSS_Γ. (For a contact that sticks below a
-    critical displacement d_c, the shifts leave the plateau smoothly, so the hinge lies at or up
-    to ~2 amplitude steps above d_c.)
-
-    Cost O(points x substeps): the sums over the points above every candidate (Σw, Σwv, Σwv²,
-    Σw(y - ȳ), Σwv(y - ȳ), v = u0 - max u0 to keep them well conditioned) are suffix sums over
-    the sorted amplitudes, and give every candidate's RSS in closed form. These only rank the
-    candidates: the best :data:`HINGE_RECHECK` of each sweep are refitted with the direct sums
-    of :func:`fit_line` (the same arithmetic as a fit of every candidate), which pick the hinge.
-    """
-    u, w, n = b.u, b.w, b.n
-    Y = np.stack([b.df, b.dg])
+def _hinge_candidates(u, w, n) -> tuple[np.ndarray, ...]:
+    """The candidate u_c of every sweep (S, M·T) and what of their fits depends on the
+    amplitudes alone (:func:`fit_hinge`): the first point above each, whether it leaves enough
+    points on both sides, u_c - max u0, and the determinant D of the line's normal equations
+    and whether it is safely positive."""
     S, M = u.shape
     t = np.asarray(PLATEAU_SUBSTEPS)
     u_next = np.concatenate([u[:, 1:], u[:, -1:]], axis=1)
@@ -316,20 +317,53 @@ def fit_hinge(b: Block) -> HingeFit:
     valid = (n_flat >= PLATEAU_MIN_FLAT) & (n[:, None, None] - n_flat >= PLATEAU_MIN_SLOPE)
     valid &= gap | (t[None, None, :] == 0)
 
-    # Suffix sums at k (above u_c), with v = u - max(u) and ȳ the mean of each channel.
+    # Suffix sums at k (above u_c), with v = u - max(u).
     top = u[np.arange(S), n - 1][:, None]
     v = (u - top) * w
-    yc = (Y - ((w * Y).sum(-1) / n)[..., None]) * w
     kk = k.reshape(S, -1)
     A0, A1, A2 = (np.take_along_axis(_suffix(q), kk, axis=-1) for q in (w, v, v * (u - top)))
-    kk2 = np.broadcast_to(kk, (2, *kk.shape))
-    B0, B1 = (np.take_along_axis(_suffix(q), kk2, axis=-1) for q in (yc, yc * (u - top)))
     ucv = uc.reshape(S, -1) - top
     Sx = A1 - ucv * A0
     Sxx = A2 - 2.0 * ucv * A1 + ucv * ucv * A0
     S0 = n[:, None].astype(float)
     D = S0 * Sxx - Sx**2
     ok = D > 1e-300 * np.maximum(Sxx * S0, 1e-300)
+    return uc.reshape(S, -1), kk, valid.reshape(S, -1), ucv, D, ok
+
+
+def fit_hinge(b: Block) -> HingeFit:
+    """Hinge Δf = Δf0 + s_f max(u0 - u_c, 0) (likewise ΔΓ) of every sweep, u_c on a grid.
+
+    u_c is searched at the data amplitudes and at :data:`PLATEAU_SUBSTEPS` between them, with at
+    least :data:`PLATEAU_MIN_FLAT` points on the plateau and :data:`PLATEAU_MIN_SLOPE` on the
+    slope; the best u_c minimises ln RSS_f + ln RSS_Γ. (For a contact that sticks below a
+    critical displacement d_c, the shifts leave the plateau smoothly, so the hinge lies at or up
+    to ~2 amplitude steps above d_c.)
+
+    Cost O(points x substeps): the sums over the points above every candidate (Σw, Σwv, Σwv²,
+    Σw(y - ȳ), Σwv(y - ȳ), v = u0 - max u0 to keep them well conditioned) are suffix sums over
+    the sorted amplitudes, and give every candidate's RSS in closed form. These only rank the
+    candidates: the best :data:`HINGE_RECHECK` of each sweep are refitted with the direct sums
+    of :func:`fit_line` (the same arithmetic as a fit of every candidate), which pick the hinge.
+    What depends on the amplitudes alone (the candidates, the sums of w, v, v², the normal
+    equations' determinant) is formed once per set of sweeps measured at the same amplitudes
+    (bit for bit, :func:`row_sets`): the same numbers.
+    """
+    u, w, n = b.u, b.w, b.n
+    Y = np.stack([b.df, b.dg])
+    S = u.shape[0]
+    # What depends on the amplitudes alone, once per set of sweeps measured at the same ones.
+    first, group, _, _ = row_sets(np.concatenate([u, w, n[:, None]], axis=1).view(np.int64))
+    if 2 * first.size > S:  # mostly distinct amplitudes
+        uc, kk, valid, ucv, D, ok = _hinge_candidates(u, w, n)
+    else:
+        sets = _hinge_candidates(u[first], w[first], n[first])
+        uc, kk, valid, ucv, D, ok = (a[group] for a in sets)
+    top = u[np.arange(S), n - 1][:, None]
+    yc = (Y - ((w * Y).sum(-1) / n)[..., None]) * w
+    kk2 = np.broadcast_to(kk, (2, *kk.shape))
+    B0, B1 = (np.take_along_axis(_suffix(q), kk2, axis=-1) for q in (yc, yc * (u - top)))
+    S0 = n[:, None].astype(float)
     Sxy = B1 - ucv * B0
     Syy = (yc * yc).sum(-1)[..., None]
     rss = np.where(ok, Syy - Sxy**2 * S0 / np.where(ok, D, 1.0), Syy)

@@ -7,7 +7,10 @@ and the fit Δf = Pκ g′(θu0), ΔΓ = P[ωξ + κ g″(θu0)] with θ = κ/(�
 projection: for fixed θ, Pκ and Pωξ follow in closed form; θ is found by a zooming grid search
 (relative resolution < 1e-3), independently for every sweep. The search's rounds take χ² in its
 residual-free form C - num²/den, exact χ² only where a trial can be the least (the same trials
-and numbers as χ² at every trial; :func:`_least_chi2`). Errors come from the Jacobian in
+and numbers as χ² at every trial; :func:`_least_chi2`). Sweeps measured at the same amplitudes
+(one amplitude programme: bit for bit the same u) look the table up once for the trials that
+they share, the grid and a round's trials where they share its centre, and sum over their
+points by matrix products (:func:`_shared_chi2`: the same numbers). Errors come from the Jacobian in
 (Pκ, Pωξ, ln θ), scaled by the residual variance. Points are weighted by the noise level of
 each channel taken from the straight-line fit.
 
@@ -52,6 +55,7 @@ from ..resonators import (
     shifts_from_stiffness,
 )
 from ..tangential import CattaneoMindlinLoop, MasingLoop, SavkoorLoop
+from ._amplitude import row_sets
 
 __all__ = [
     "N_TABLE",
@@ -361,8 +365,9 @@ def _least_chi2(g1, g2, df, dg, w, wf, wg) -> np.ndarray:
     any order; every term is at most ~C, since num² <= den·C); a trial more than
     (M + 4)·2^-40·C (~10³ times that bound) above the least short-cut value cannot be the
     least, so only the trials within it, one or two a sweep, are evaluated as
-    :func:`solve_projected` evaluates them. numpy.argmin over the result then finds the trial
-    that it finds over solve_projected's χ² at every trial (ties: the first).
+    :func:`solve_projected` evaluates them (:func:`_exact_near`). numpy.argmin over the result
+    then finds the trial that it finds over solve_projected's χ² at every trial (ties: the
+    first).
 
     Parameters
     ----------
@@ -377,35 +382,101 @@ def _least_chi2(g1, g2, df, dg, w, wf, wg) -> np.ndarray:
     (S, K) χ² (dimensionless): solve_projected's where it can be its row's least, +inf elsewhere
     """
     ones = bool(np.all(w == 1.0))
-    n = w.sum(-1)
-    dgc = dg - ((w * dg).sum(-1) / n)[:, None]
-    c = wf * (w * df * df).sum(-1) + wg * (w * dgc * dgc).sum(-1)
+    n, dgc, c = _data_sums(df, dg, w, wf, wg)
     # The sums over the points weighted by a vector of each sweep: matrix-vector products,
     # one per sweep (BLAS); the sums of squares row of points after row (no per-row overhead).
 
-    def dot(v, g):  # Σ_m v[s, m] g[m, s, k]: (S, K)
-        return np.matmul(v[:, None, :], g.transpose(1, 0, 2))[:, 0]
-
-    g2c = g2 - (dot(w, g2) / n[:, None])[None]
+    g2c = g2 - (_dot(w, g2) / n[:, None])[None]
     wf2, wg2 = wf[:, None], wg[:, None]
-    num = wf2 * dot(w * df, g1) + wg2 * dot(w * dgc, g2c)
+    num = wf2 * _dot(w * df, g1) + wg2 * _dot(w * dgc, g2c)
     if ones:
         # Squares, then their sum over the points (the first axis: added row after row, the
         # order einsum("msk,msk->sk") adds them in): the same numbers at ~1/2 of its instructions.
         ss1, ss2 = (g1 * g1).sum(axis=0), (g2c * g2c).sum(axis=0)
     else:
-        ss1, ss2 = dot(w, g1 * g1), dot(w, g2c * g2c)
+        ss1, ss2 = _dot(w, g1 * g1), _dot(w, g2c * g2c)
     den = wf2 * ss1 + wg2 * ss2
-    short = c[:, None] - num * num / den
+    return _exact_near(c[:, None] - num * num / den, c, g1, g2, None, df, dg, w, wf, wg)
+
+
+def _dot(v, g) -> np.ndarray:
+    """Σ_m v[s, m] g[m, s, k]: (S, K), a matrix-vector product per sweep (BLAS)."""
+    return np.matmul(v[:, None, :], g.transpose(1, 0, 2))[:, 0]
+
+
+def _data_sums(df, dg, w, wf, wg) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Σw, ΔΓ about its weighted mean, and C = wf Σw Δf² + wg Σw (ΔΓ - mean)² of every sweep
+    (the parts of :func:`_least_chi2`'s short cut that do not depend on θ)."""
+    n = w.sum(-1)
+    dgc = dg - ((w * dg).sum(-1) / n)[:, None]
+    return n, dgc, wf * (w * df * df).sum(-1) + wg * (w * dgc * dgc).sum(-1)
+
+
+def _exact_near(short, c, g1, g2, column, df, dg, w, wf, wg) -> np.ndarray:
+    """(S, K): :func:`solve_projected`'s χ² at the trials whose short-cut χ² ``short`` lies
+    within (M + 4)·2^-40·C of their row's least (every trial of a row with a non-finite one),
+    +inf elsewhere (:func:`_least_chi2`). The shapes of sweep s are ``g1[:, column[s]]``
+    (``column`` None: ``g1[:, s]``)."""
     tol = (w.shape[-1] + 4) * 2.0**-40 * c
     sure = np.isfinite(short).all(axis=1) & np.isfinite(c)  # else every trial of the row
     near = (short <= (np.min(short, axis=1) + tol)[:, None]) | ~sure[:, None]
     r, k = np.nonzero(near)
+    col = r if column is None else column[r]
     # Rows of points again, contiguous: solve_projected's sums then run as they run in a block.
-    a1, a2 = (np.ascontiguousarray(g[:, r, k].T) for g in (g1, g2))
+    a1, a2 = (np.ascontiguousarray(g[:, col, k].T) for g in (g1, g2))
     chi = np.full(short.shape, np.inf)
     chi[r, k] = solve_projected(a1, a2, df[r], dg[r], w[r], wf[r], wg[r])[2]
     return chi
+
+
+#: The short cut's sums run trial set by trial set (two matrix products each) for at most this
+#: many distinct sets of trials in a chunk; beyond it on their shapes gathered per sweep (the
+#: loop would cost more than it saves).
+GROUP_LOOP = 8
+
+
+def _shared_chi2(ip, u, df, dg, w, wf, wg, umax, lx, key) -> np.ndarray:
+    """:func:`_least_chi2` at the trials x_max = 10^lx (``lx`` (S, K)): the same numbers, the
+    table looked up once per set of sweeps with the same amplitudes and trials, the sweeps
+    whose rows of ``key`` (S, C) (integers) agree (:func:`_fit_cm_chunk`: the amplitudes'
+    set and the trials' centre, bit for bit).
+
+    Sweeps of one amplitude programme (loads, ramps, repeats) have the same u (and u_max): on
+    the θ grid, and in the zoom rounds where they share their best trial so far, they have the
+    same θ = 10^lx/u_max and x = θu at every trial, so the same shapes g1, g2: one lookup. For
+    few such sets the short cut's sums over the points are matrix products of a set's shapes
+    (M, K) with the data of its sweeps (BLAS; any order of the sums is within the short cut's
+    tolerance), otherwise those of :func:`_least_chi2` on the shapes gathered per sweep.
+    """
+    first, group, order, ends = row_sets(key)
+    S, M = u.shape
+    if 2 * first.size > S:  # mostly distinct: a lookup per sweep
+        # By parts of CHUNK_CELLS trial points (a chunk sized for a round's trials may hold
+        # mostly distinct sweeps on the grid): each sweep's numbers are its own alone.
+        step = max(1, CHUNK_CELLS // (lx.shape[1] * max(M, 1)))
+        parts = []
+        for s in (slice(i, i + step) for i in range(0, S, step)):
+            g1, g2 = _search_pair(ip, u[s], 10.0 ** lx[s] / umax[s, None])
+            parts.append(_least_chi2(g1, g2, df[s], dg[s], w[s], wf[s], wg[s]))
+        return np.concatenate(parts) if parts else np.empty(lx.shape)
+    # θ of the set's first sweep: that of every sweep of the set, bit for bit.
+    g1, g2 = _search_pair(ip, u[first], 10.0 ** lx[first] / umax[first][:, None])
+    n, dgc, c = _data_sums(df, dg, w, wf, wg)
+    # The sums over the points of each set's shapes alone: once per set.
+    g2c = g2 - (_dot(w[first], g2) / n[first][:, None])[None]
+    ss = _dot(w[first], g1 * g1), _dot(w[first], g2c * g2c)
+    wdf, wdg = w * df, w * dgc
+    if first.size > GROUP_LOOP:  # the sums with the data: per sweep, on gathered shapes
+        n1, n2 = _dot(wdf, g1[:, group]), _dot(wdg, g2c[:, group])
+    else:  # per set: two matrix products
+        n1, n2 = np.empty((2, *lx.shape))
+        for i in range(first.size):
+            rows = order[ends[i] : ends[i + 1]]
+            n1[rows], n2[rows] = wdf[rows] @ g1[:, i], wdg[rows] @ g2c[:, i]
+    wf2, wg2 = wf[:, None], wg[:, None]
+    num = wf2 * n1 + wg2 * n2
+    den = wf2 * ss[0][group] + wg2 * ss[1][group]
+    return _exact_near(c[:, None] - num * num / den, c, g1, g2, group, df, dg, w, wf, wg)
 
 
 def fit_cm_loops(
@@ -427,20 +498,31 @@ def fit_cm_loops(
     is resolved, "high" if the best fit is gross sliding beyond the table, "" otherwise).
     """
     table = table if table is not None else cm_loop_table()
-    # 49 (then 17) trial θ per sweep: chunks of sweeps keep those arrays at a few MB.
-    step = max(1, CHUNK_CELLS // (49 * max(u.shape[1], 1)))
-    chunks = (slice(i, i + step) for i in range(0, max(u.shape[0], 1), step))
+    S = u.shape[0]
+    # Sweeps measured at the same amplitudes (bit for bit) share the lookups of the trials that
+    # they share (_shared_chi2): sorted by amplitude set, so that a set shares its chunk.
+    _, amplitudes, order, _ = row_sets(np.concatenate([u, w], axis=1).view(np.int64))
+    # 49 trial θ per sweep on the grid, 8 in a round: chunks of sweeps keep those arrays at a
+    # few MB. Where amplitudes are shared, the grid is looked up per set: rounds are the most.
+    trials = 9 if 2 * (amplitudes.max(initial=-1) + 1) <= S else 49
+    step = max(1, CHUNK_CELLS // (trials * max(u.shape[1], 1)))
     ip = table_interpolant(table)
-    parts = [
-        _fit_cm_chunk(u[s], df[s], dg[s], w[s], sigma_df[s], sigma_dg[s], ip, rounds)
-        for s in chunks
-    ]
-    return pd.DataFrame({c: np.concatenate([q[c] for q in parts]) for c in parts[0]})
+    parts = []
+    for i in range(0, max(S, 1), step):
+        s = order[i : i + step]
+        data = (u[s], df[s], dg[s], w[s], sigma_df[s], sigma_dg[s])
+        parts.append(_fit_cm_chunk(*data, ip, rounds, amplitudes[s]))
+    back = np.empty_like(order)
+    back[order] = np.arange(S)
+    return pd.DataFrame({c: np.concatenate([q[c] for q in parts])[back] for c in parts[0]})
 
 
-def _fit_cm_chunk(u, df, dg, w, sigma_df, sigma_dg, ip, rounds) -> dict[str, np.ndarray]:
+def _fit_cm_chunk(
+    u, df, dg, w, sigma_df, sigma_dg, ip, rounds, amplitudes
+) -> dict[str, np.ndarray]:
     """:func:`fit_cm_loops` on one chunk of sweeps (a dict of its columns; ``ip`` the loop
-    table prepared by :func:`table_interpolant`)."""
+    table prepared by :func:`table_interpolant`, ``amplitudes`` (S,) the set of each sweep:
+    equal where u and w are equal bit for bit)."""
     S = u.shape[0]
     umax = np.maximum(np.max(np.where(w > 0, u, 0.0), axis=1), 1e-300)
     floor_f = 1e-6 * np.maximum(np.abs(df).max(axis=1), 1e-12)
@@ -448,12 +530,13 @@ def _fit_cm_chunk(u, df, dg, w, sigma_df, sigma_dg, ip, rounds) -> dict[str, np.
     wf = 1.0 / np.maximum(sigma_df, floor_f) ** 2
     wg = 1.0 / np.maximum(sigma_dg, floor_g) ** 2
 
-    def chi2_at(lx, least=False):  # lx: (S, K) log10 of x_max
-        theta = 10.0**lx / umax[:, None]
+    # Sweeps of one amplitude set share their lookups where they share their trials: on the
+    # grid, and in a round where they share its centre.
+    def chi2_at(lx, least=False, centre=None):  # lx: (S, K) log10 of x_max
         if least:  # only the least χ² of each row matters (its position, its value)
-            g1, g2 = _search_pair(ip, u, theta)  # points first
-            return _least_chi2(g1, g2, df, dg, w, wf, wg)
-        xu = theta[..., None] * u[:, None, :]
+            key = amplitudes[:, None] if centre is None else np.stack([amplitudes, centre], 1)
+            return _shared_chi2(ip, u, df, dg, w, wf, wg, umax, lx, key)
+        xu = (10.0**lx / umax[:, None])[..., None] * u[:, None, :]
         # Both shapes from one lookup, as one complex numpy.interp of the table made them.
         g1, g2 = _interpolate_pair(ip, xu)
         args = (df[:, None, :], dg[:, None, :], w[:, None, :], wf[:, None], wg[:, None])
@@ -472,7 +555,7 @@ def _fit_cm_chunk(u, df, dg, w, sigma_df, sigma_dg, ip, rounds) -> dict[str, np.
     for _ in range(rounds):
         around = np.delete(np.linspace(-step, step, 9), 4)  # the middle one is 0 exactly
         local = np.clip(centre[:, None] + around[None, :], lo, hi)
-        chi = _with_middle(chi2_at(local, least=True), best)
+        chi = _with_middle(chi2_at(local, True, centre.view(np.int64)), best)
         j = np.argmin(chi, axis=1)
         centre = _with_middle(local, centre)[rows, j]
         best = chi[rows, j]
