@@ -219,6 +219,34 @@ def study_evidence_call(water_study):
     return calls[-1]
 
 
+def test_no_row_of_nodes_has_its_slopes_evaluated_twice(monkeypatch):
+    # One block a chunk (the chunks' cells shrunk), so that blocks on one grid under one prior
+    # meet in no chunk: their rows of nodes (x, c) are still evaluated once in the whole call
+    # (the call's store of slopes), and each block gets what it gets in one chunk with the
+    # others, bit for bit.
+    from contactres.analysis import _plateau_evidence
+
+    blocks = [_block(5, 0.0), _block(6, 0.3), _block(7, 0.3, 1.5), _block(8, 0.2)]
+    u, df, dg = (np.stack([b[k] for b in blocks]) for k in range(3))
+    args = (u, df, dg, np.ones_like(u), np.full((2, 4), 0.6), (np.full(4, np.nan),) * 2,
+            (np.full(4, np.log(0.3)), np.full(4, 0.1)), np.ones(4))  # fmt: skip
+    together = plateau_log_evidence(*args)
+    rows = []
+    slopes = _plateau_evidence.plateau_loop_slopes
+
+    def spy(x, c, **kw):
+        rows.extend(np.concatenate([x, c], axis=-1).reshape(x.shape[0], -1).tolist())
+        return slopes(x, c, **kw)
+
+    monkeypatch.setattr(_plateau_evidence, "plateau_loop_slopes", spy)
+    monkeypatch.setattr(_plateau_evidence, "EVIDENCE_CHUNK_CELLS", 1)
+    apart = plateau_log_evidence(*args)
+    np.testing.assert_array_equal(apart, together)
+    assert np.isfinite(apart[0]).all()
+    # Chunk by chunk the 12 coarse rows in z of the blocks on one grid came four times over.
+    assert len({tuple(r) for r in rows}) == len(rows)
+
+
 def test_the_default_nodes_converge_on_real_study_blocks(study_evidence_call, monkeypatch):
     # Issue 27, point 11 (F1): on undecided water blocks of a seeded study the default nodes give
     # 2 ln B within 0.5 of a grid about seven times finer in z (81 uniform nodes, no refinement)

@@ -159,7 +159,7 @@ MU_MARGINAL_MAX_EDGE = 0.1
 EVIDENCE_CHUNK_CELLS = 4 * CHUNK_CELLS
 
 
-def _integrand(pts, dl, y):
+def _integrand(pts, dl, y, store=None):
     """ln L + ln π (as :func:`plateau_log_evidence`, up to a common constant), ln L alone and
     ln μ at the nodes (R, Y) of d_c/u_max ``dl`` (R, 1) and ``y`` (R, Y), each row R one block's
     (``pts``: :func:`_rows`).
@@ -173,7 +173,8 @@ def _integrand(pts, dl, y):
     numbers to rounding at a third of the cost of the points."""
     lev, n_lev, _, _, scatter_f, scatter_g, umax, _, _, mean, var, to_mu = pts
     theta = np.exp(y) / (umax * (1.0 - dl))
-    A, rss_f, rss_g = _solve_levels(*_slopes(theta, np.broadcast_to(dl, umax.shape), lev), pts)
+    slopes = _slopes(theta, np.broadcast_to(dl, umax.shape), lev, {} if store is None else store)
+    A, rss_f, rss_g = _solve_levels(*slopes, pts)
     rss_f += scatter_f
     rss_g += scatter_g
     n = n_lev.sum(-1)
@@ -190,7 +191,7 @@ def _integrand(pts, dl, y):
     return np.where(ok, lnL + lnpi, -np.inf), np.where(ok, lnL, -np.inf), ln_mu
 
 
-def _slopes(theta, dl, lev):
+def _slopes(theta, dl, lev, store):
     """G′ and G″ (R, Y, L) at x = θ·u and c = θ·d_c (d_c = ``dl`` · u_max) of each row's
     ``theta`` (R, Y), ``dl`` (R, 1) and amplitudes ``lev`` (R, 1, L), each distinct row once.
 
@@ -201,17 +202,32 @@ def _slopes(theta, dl, lev):
     arithmetic) are found by sorting them and evaluated once: on the 10^4 sweeps of issue 31
     (two grids of amplitudes, five priors) 3,019 rows of 87,738: the slopes there 0.6 s of CPU
     instead of 7.1 s (under cProfile, sort included). Where every block has a grid of its own
-    the sort and the copies cost ~5 % of the evidence."""
+    the sort and the copies cost ~5 % of the evidence.
+    A row's G′, G″ and their squares are kept in ``store`` (a dict made by
+    :func:`plateau_log_evidence` for its call, keyed by the row's number of nodes and bytes)
+    and taken from there in any later chunk or pass that has the same row: on those sweeps
+    861 distinct rows in all instead of 2,987 evaluated chunk by chunk (issue 31, point 3,
+    sixth round; every result the same bit for bit)."""
     umax = lev[:, 0, -1:]
     key = np.ascontiguousarray(np.concatenate([theta, dl, lev[:, 0]], axis=1))
     rows = key.view(np.dtype((np.void, key.itemsize * key.shape[1])))[:, 0]
     _, first, inv = np.unique(rows, return_index=True, return_inverse=True)
-    t = theta[first]
-    x = t[..., None] * lev[first]
-    c = np.broadcast_to((t * dl[first] * umax[first])[..., None], x.shape)
-    g1, g2 = plateau_loop_slopes(x, c, derivatives=False)
-    # G′, G″ and their squares of the distinct rows, side by side in y: (D, 2Y, L) each.
-    return np.concatenate([g1, g2], axis=1), np.concatenate([g1 * g1, g2 * g2], axis=1), inv
+    # Keyed by the row's shape too: rows of other numbers of nodes and amplitudes may have
+    # the same length.
+    keys = [(theta.shape[1], k.tobytes()) for k in rows[first]]
+    new = np.array([k not in store for k in keys], dtype=bool)
+    if new.any():
+        f = first[new]
+        t = theta[f]
+        x = t[..., None] * lev[f]
+        c = np.broadcast_to((t * dl[f] * umax[f])[..., None], x.shape)
+        g1, g2 = plateau_loop_slopes(x, c, derivatives=False)
+        # G′, G″ and their squares of each new row, side by side in y: (2Y, L) each.
+        both = np.concatenate([g1, g2], axis=1)
+        sq = both * both
+        for k, b, q in zip((k for k, n in zip(keys, new, strict=True) if n), both, sq, strict=True):
+            store[k] = (b, q)
+    return np.stack([store[k][0] for k in keys]), np.stack([store[k][1] for k in keys]), inv
 
 
 def _solve_levels(slopes, squares, inv, pts):
@@ -270,7 +286,7 @@ def _span(e):
     return (e >= 0.1).sum(axis=-1)
 
 
-def _over_y(pts, dl):
+def _over_y(pts, dl, store):
     """ln ∫ L π dy, ln ∫ L dy, the first two moments of ln μ under L, the share of L's mass in
     the first and last coarse cells and the nodes both posteriors span (:func:`_span`), at each
     d_c/u_max ``dl`` (R,) of its row's block (``pts``: :func:`_rows`).
@@ -287,7 +303,7 @@ def _over_y(pts, dl):
     dl = dl[:, None]
     coarse = np.linspace(np.log(10.0**-2.5), np.log(X_MAX), ny)
     h = coarse[1] - coarse[0]
-    first = _integrand(pts, dl, np.broadcast_to(coarse, (K, ny)))
+    first = _integrand(pts, dl, np.broadcast_to(coarse, (K, ny)), store)
     # The fine offsets -h to h: those at multiples of h (``on``: -1, 0, 1 coarse steps) fall on
     # coarse nodes; ``lower`` and ``upper``: the others below and above the middle (odd nf).
     j = np.arange(nf)
@@ -299,7 +315,7 @@ def _over_y(pts, dl):
     # that of L (μ's moments): else μ would follow its prior through the nodes.
     at_p, at_l = np.argmax(first[0], axis=1), np.argmax(first[1], axis=1)
     fine_p = np.clip(coarse[at_p][:, None] + step, coarse[0], coarse[-1])
-    got = _integrand(pts, dl, fine_p) if K else (np.empty((0, step.size)),) * 3
+    got = _integrand(pts, dl, fine_p, store) if K else (np.empty((0, step.size)),) * 3
     fine_l = np.clip(coarse[at_l][:, None] + step, coarse[0], coarse[-1])
     vals = [v.copy() for v in got]
     side = at_l - at_p
@@ -320,7 +336,7 @@ def _over_y(pts, dl):
     for r, c in todo:
         if r.size:
             sub = tuple(a[r[:, 0]] for a in pts)
-            for v, g in zip(vals, _integrand(sub, dl[r[:, 0]], fine_l[r, c]), strict=True):
+            for v, g in zip(vals, _integrand(sub, dl[r[:, 0]], fine_l[r, c], store), strict=True):
                 v[r, c] = g
     parts = [(np.broadcast_to(coarse, (K, ny)), first), (fine_p, got), (fine_l, tuple(vals))]
     y = np.concatenate([yy for yy, _ in parts], axis=1)
@@ -413,7 +429,8 @@ def plateau_log_evidence(
             continue
         jobs.append((b, np.linspace(m2[b] - 4 * s, min(m2[b] + 4 * s, hi), nz)))
     args = (per_block, sig, mu_prior, to_mu)
-    coarse = _evaluate(args, jobs, zero=True)
+    store: dict = {}  # the slopes of each distinct row of nodes, for all calls (:func:`_slopes`)
+    coarse = _evaluate(args, jobs, zero=True, store=store)
     # Fine nodes in z across the two coarse steps around the peak of the integrand of 2 ln B
     # and around that of μ's posterior (where it lies elsewhere): 12 nodes over the prior
     # resolve the prior, not a likelihood narrower than it.
@@ -436,7 +453,11 @@ def plateau_log_evidence(
     at_end = [np.flatnonzero(hi) for _, hi in ends]
     keeps = [~(lo | hi) for lo, hi in ends]
     new_jobs = [(b, zf[keep]) for (b, zf), keep in zip(fine_jobs, keeps, strict=True)]
-    fine = _evaluate(args, new_jobs, zero=False) if nzf else [(np.empty(0),) * 6] * len(jobs)
+    fine = (
+        _evaluate(args, new_jobs, zero=False, store=store)
+        if nzf
+        else [(np.empty(0),) * 6] * len(jobs)
+    )
     for k, ((_, z), (_, zf), c) in enumerate(zip(jobs, fine_jobs, coarse, strict=True)):
         if nzf:
             keep = keeps[k]
@@ -452,7 +473,7 @@ def plateau_log_evidence(
     return out
 
 
-def _evaluate(args, jobs, zero):
+def _evaluate(args, jobs, zero, store):
     """:func:`_over_y` at the nodes ``z`` of every job (block, z), and at d_c = 0 after them if
     ``zero``: per job, a tuple of its rows' arrays.
 
@@ -480,7 +501,7 @@ def _evaluate(args, jobs, zero):
             own = np.repeat(np.arange(len(chunk)), sizes)
             ends = [np.append(np.exp(z), 0.0) if zero else np.exp(z) for _, _, z in chunk]
             pts = _rows(per_block, sig, mu_prior, to_mu, [b for _, b, _ in chunk])
-            got = _over_y(tuple(a[own] for a in pts), np.concatenate(ends))
+            got = _over_y(tuple(a[own] for a in pts), np.concatenate(ends), store)
             cut = np.cumsum([0, *sizes]).tolist()  # each block's rows, in order (``own``)
             for j, (k, _, _) in enumerate(chunk):
                 res[k] = tuple(v[cut[j] : cut[j + 1]] for v in got)
