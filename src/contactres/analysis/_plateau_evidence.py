@@ -411,66 +411,73 @@ def plateau_log_evidence(
     nz, nzf = EVIDENCE_NODES[:2]
     todo = np.isfinite(m2) & np.isfinite(v2) & (v2 > 0)
     todo &= np.ones(B, bool) if rows is None else np.asarray(rows, bool)
-    jobs = []  # (block, its nodes in z)
-    per_block = {}  # each block's distinct amplitudes and its points there (:func:`_levels`)
-    for b in np.flatnonzero(todo):
-        data = w[b] > 0
-        umax = u[b][data].max()
-        per_block[b] = _levels(u[b][data], df[b][data], dg[b][data])
-        levels = per_block[b][0]
-        if levels.size < PLATEAU_MIN_SLOPE + 1 or not (sig[:, b] > 0).all():
-            continue
-        # The widest plateau that leaves PLATEAU_MIN_SLOPE distinct amplitudes above it: the
-        # nodes end there (beyond it the prior's mass counts against the plateau). Where the
-        # prior puts (almost) no plateau below it there is nothing to integrate: NaN.
-        hi = np.log(levels[-PLATEAU_MIN_SLOPE] / umax)
-        s = np.sqrt(v2[b])
-        if hi <= m2[b] - 4 * s:
-            continue
-        jobs.append((b, np.linspace(m2[b] - 4 * s, min(m2[b] + 4 * s, hi), nz)))
+    todo &= (sig > 0).all(axis=0)
+    # Each block's distinct amplitudes and its points there (:func:`_levels`).
+    jb = np.flatnonzero(todo)
+    per_block = _levels(u, df, dg, w, jb)
+    jb = jb[np.array([per_block[b][0].size > PLATEAU_MIN_SLOPE for b in jb], dtype=bool)]
+    # The widest plateau that leaves PLATEAU_MIN_SLOPE distinct amplitudes above it: the nodes
+    # end there (beyond it the prior's mass counts against the plateau). Where the prior puts
+    # (almost) no plateau below it there is nothing to integrate: NaN.
+    hi = np.array([np.log(per_block[b][0][-PLATEAU_MIN_SLOPE] / per_block[b][0][-1]) for b in jb])
+    s = np.sqrt(v2[jb])
+    lo = m2[jb] - 4 * s
+    keep = hi > lo
+    jb, hi, s, lo = jb[keep], hi[keep], s[keep], lo[keep]
+    J = jb.size
+    Z = np.linspace(lo, np.minimum(m2[jb] + 4 * s, hi), nz, axis=1).reshape(J, nz)
     args = (per_block, sig, mu_prior, to_mu)
     store: dict = {}  # the slopes of each distinct row of nodes, for all calls (:func:`_slopes`)
-    coarse = _evaluate(args, jobs, zero=True, store=store)
+    coarse = _stack(_evaluate(args, list(zip(jb.tolist(), Z, strict=True)), True, store), J, nz + 1)
     # Fine nodes in z across the two coarse steps around the peak of the integrand of 2 ln B
     # and around that of μ's posterior (where it lies elsewhere): 12 nodes over the prior
     # resolve the prior, not a likelihood narrower than it.
-    fine_jobs = []
-    for (b, z), (lp, ll, *_) in zip(jobs, coarse, strict=True):
-        prior = -0.5 * (z - m2[b]) ** 2 / v2[b]
-        dz = z[1] - z[0]
-        peaks = [int(np.argmax(lp[:-1] + prior)), int(np.argmax(ll[:-1] + prior))]
-        if abs(peaks[1] - peaks[0]) <= 1:  # μ's peak within the fine span of the evidence's
-            peaks = peaks[:1]
-        step = np.linspace(-dz, dz, nzf + 2)[1:-1]
-        zf = np.concatenate([z[p] + step for p in peaks])
-        fine_jobs.append((b, np.clip(zf, z[0], z[-1])))
+    prior = -0.5 * (Z - m2[jb, None]) ** 2 / v2[jb, None]
+    peaks = [np.argmax(v[:, :-1] + prior, axis=1) for v in coarse[:2]]
+    two = np.abs(peaks[1] - peaks[0]) > 1  # μ's peak outside the fine span of the evidence's
+    dz = Z[:, 1] - Z[:, 0]
+    step = np.linspace(-dz, dz, nzf + 2, axis=1).reshape(J, nzf + 2)[:, 1:-1]
+    at = np.arange(J)
+    zf = np.clip(
+        np.concatenate([Z[at, p][:, None] + step for p in peaks], axis=1), Z[:, :1], Z[:, -1:]
+    )
     # A fine node clipped onto the end of the coarse nodes (a peak at an end) is that coarse
     # node, whose row is evaluated already (a block's row depends on its d_c alone): taken
     # from there, bit for bit (a tenth of all rows on issue 31's study of 10,752 sweeps).
-    # Each job against its own coarse ends: the three index sets must agree node for node.
-    ends = [(zf == z[0], zf == z[-1]) for (_, z), (_, zf) in zip(jobs, fine_jobs, strict=True)]
-    at = [np.flatnonzero(lo) for lo, _ in ends]
-    at_end = [np.flatnonzero(hi) for _, hi in ends]
-    keeps = [~(lo | hi) for lo, hi in ends]
-    new_jobs = [(b, zf[keep]) for (b, zf), keep in zip(fine_jobs, keeps, strict=True)]
-    fine = (
-        _evaluate(args, new_jobs, zero=False, store=store)
-        if nzf
-        else [(np.empty(0),) * 6] * len(jobs)
-    )
-    for k, ((_, z), (_, zf), c) in enumerate(zip(jobs, fine_jobs, coarse, strict=True)):
-        if nzf:
-            keep = keeps[k]
-            f = [np.empty(zf.size, dtype=cv.dtype) for cv in c]
-            for fv, cv, nv in zip(f, c, fine[k], strict=True):
-                fv[keep], fv[at[k]], fv[at_end[k]] = nv, cv[0], cv[z.size - 1]
-            fine[k] = tuple(f)
-    for (b, z), (_, zf), c, f in zip(jobs, fine_jobs, coarse, fine, strict=True):
-        zz = np.concatenate([z, zf])
-        order = np.argsort(zz, kind="stable")
-        vals = [np.concatenate([cv[:-1], fv])[order] for cv, fv in zip(c, f, strict=True)]
-        _combine(out[:, b], zz[order], c[0][-1], vals, m2[b], v2[b])
+    used = np.arange(2 * nzf) < np.where(two, 2 * nzf, nzf)[:, None]
+    at_lo, at_hi = zf == Z[:, :1], zf == Z[:, -1:]
+    new = used & ~(at_lo | at_hi)
+    fine_jobs = [(b, zz[k]) for b, zz, k in zip(jb.tolist(), zf, new, strict=True)]
+    fine = _evaluate(args, fine_jobs, False, store) if nzf and J else []
+    f = []
+    for k, c in enumerate(coarse):
+        v = np.zeros((J, 2 * nzf), dtype=c.dtype)
+        if fine:
+            v[new] = np.concatenate([got[k] for got in fine])
+        v[at_lo & used] = np.broadcast_to(c[:, :1], v.shape)[at_lo & used]
+        v[at_hi & used] = np.broadcast_to(c[:, nz - 1 : nz], v.shape)[at_hi & used]
+        f.append(v)
+    # Blocks of one number of fine nodes together: each row as the block's alone.
+    for n_f in sorted({nzf, 2 * nzf}):
+        g = np.flatnonzero(used.sum(axis=1) == n_f)
+        if not g.size:
+            continue
+        zz = np.concatenate([Z[g], zf[g, :n_f]], axis=1)
+        order = np.argsort(zz, axis=1, kind="stable")
+        vals = [
+            np.take_along_axis(np.concatenate([c[g, :-1], v[g, :n_f]], axis=1), order, axis=1)
+            for c, v in zip(coarse, f, strict=True)
+        ]
+        zz = np.take_along_axis(zz, order, axis=1)
+        out[:, jb[g]] = _combine(zz, coarse[0][g, -1], vals, m2[jb[g]], v2[jb[g]])
     return out
+
+
+def _stack(rows, J, n):
+    """The rows of :func:`_evaluate` (a tuple of arrays (n,) each per job) as arrays (J, n)."""
+    if not J:
+        return [np.empty((0, n))] * 5 + [np.empty((0, n), dtype=int)]
+    return [np.stack(v) for v in zip(*rows, strict=True)]
 
 
 def _evaluate(args, jobs, zero, store):
@@ -508,17 +515,48 @@ def _evaluate(args, jobs, zero, store):
     return [res[k] for k in range(len(jobs))]
 
 
-def _levels(u, df, dg):
-    """A block's distinct amplitudes of its points ``u`` (ascending), the number of points at
-    each, the means of Δf ``df`` and ΔΓ ``dg`` there and the scatter Σ (v - v̄)² of each
-    channel's points about them: once per block, for both of :func:`_evaluate`'s calls."""
-    levels, inv, count = np.unique(u, return_inverse=True, return_counts=True)
+def _levels(u, df, dg, w, blocks):
+    """Each block's distinct amplitudes of its points (``u``, ``w`` > 0; ``blocks``: which rows),
+    the number of points at each, the means of Δf ``df`` and ΔΓ ``dg`` there and the scatter
+    Σ (v - v̄)² of each channel's points about them: a dict of tuples by block, once per call.
+
+    All blocks at once, with each block's numbers as from its points alone, bit for bit: the
+    sums at each amplitude by one :func:`numpy.bincount` over all blocks' points in their
+    order (each bin summed in the order of its points, as for a block alone), the scatter
+    summed row by row over blocks of one number of points (a row's sum as its own)."""
+    data = w[blocks] > 0
+    n = data.sum(axis=1)
+    uu = np.where(data, u[blocks], np.inf)  # padding last
+    order = np.argsort(uu, axis=1, kind="stable")
+    su = np.take_along_axis(uu, order, axis=1)
+    first = np.arange(u.shape[1]) < n[:, None]
+    first[:, 1:] &= su[:, 1:] != su[:, :-1]
+    n_lev = first.sum(axis=1)
+    # Each point's amplitude, numbered across all blocks.
+    index = np.empty(data.shape, dtype=np.intp)
+    shift = np.concatenate([[0], np.cumsum(n_lev)[:-1]])[:, None]
+    np.put_along_axis(index, order, np.cumsum(first, axis=1) - 1 + shift, axis=1)
+    index = index[data]
+    count = np.bincount(index, minlength=n_lev.sum())
     means, scatter = [], []
     for v in (df, dg):
-        mean = np.bincount(inv, weights=v, minlength=levels.size) / count
+        vv = v[blocks][data]
+        mean = np.bincount(index, weights=vv, minlength=count.size) / count
         means.append(mean)
-        scatter.append(np.sum((v - mean[inv]) ** 2))
-    return levels, count, *means, *scatter
+        sq = (vv - mean[index]) ** 2
+        total = np.empty(blocks.size)
+        ends = np.cumsum(n)
+        for m in np.unique(n):
+            rows = np.flatnonzero(n == m)
+            at = (ends[rows] - m)[:, None] + np.arange(m)
+            total[rows] = sq[at].sum(axis=1)
+        scatter.append(total)
+    cut = np.cumsum(n_lev)[:-1]
+    parts = [np.split(a, cut) for a in (su[first], count, *means)]
+    return {
+        b: (*(p[k] for p in parts), scatter[0][k], scatter[1][k])
+        for k, b in enumerate(blocks.tolist())
+    }
 
 
 def _rows(per_block, sig, mu_prior, to_mu, blocks):
@@ -544,25 +582,34 @@ def _rows(per_block, sig, mu_prior, to_mu, blocks):
     return levs, *per, *scatter, *col
 
 
-def _combine(out, z, l0, rows, mean, var):
-    """2 ln B and μ of one block (``out``, (3,)) from its ``rows`` of :func:`_over_y` at the
-    nodes ``z`` of ln(d_c/u_max), ascending, and ``l0``, ln ∫ L π dy at d_c = 0; ``mean``, ``var``:
-    the prior on z. Left NaN where a posterior spans fewer than :data:`MIN_SPAN_NODES` nodes in
-    z or, where it carries weight, in y: then the nodes do not resolve it."""
+def _combine(z, l0, rows, mean, var):
+    """2 ln B and μ (3, J) of J blocks from their ``rows`` of :func:`_over_y` (J, N) each at
+    the nodes ``z`` (J, N) of ln(d_c/u_max), ascending in each row, and ``l0`` (J,),
+    ln ∫ L π dy at d_c = 0; ``mean``, ``var`` (J,): the prior on z. Left NaN where a posterior
+    spans fewer than :data:`MIN_SPAN_NODES` nodes in z or, where it carries weight, in y: then
+    the nodes do not resolve it. Each row as the block's alone (the sums along rows)."""
+    out = np.full((3, z.shape[0]), np.nan)
     lp, ll, mu1, mu2, share, span = rows
+    mean, var = mean[:, None], var[:, None]
     prior = -0.5 * (z - mean) ** 2 / var - 0.5 * np.log(2 * np.pi * var)
     t, q = lp + prior, ll + prior
-    top, topq = t.max(), q.max()
-    if not (np.isfinite(top) and np.isfinite(l0) and np.isfinite(topq)):
-        return
-    wt, wq = np.exp(t - top), np.exp(q - topq)
+    top, topq = t.max(axis=1, keepdims=True), q.max(axis=1, keepdims=True)
+    ok = (np.isfinite(top) & np.isfinite(l0[:, None]) & np.isfinite(topq))[:, 0]
+    with np.errstate(invalid="ignore"):
+        wt, wq = np.exp(t - top), np.exp(q - topq)
     carry = (wt >= 0.1) | (wq >= 0.1)
-    if min(_span(wt), _span(wq), span[carry].min()) < MIN_SPAN_NODES:
-        return
-    out[0] = 2.0 * (np.log(np.trapezoid(wt, z)) + top - l0)
-    norm = np.trapezoid(wq, z)
-    m = np.trapezoid(wq * mu1, z) / norm
-    sd = np.sqrt(max(np.trapezoid(wq * mu2, z) / norm - m**2, 0.0))
-    edge = np.trapezoid(wq * share, z) / norm
-    if sd <= MU_MARGINAL_MAX_SD and edge <= MU_MARGINAL_MAX_EDGE:  # else the fit's own μ stays
-        out[1], out[2] = np.exp(m), np.exp(m) * sd
+    resolved = np.minimum(_span(wt), _span(wq))
+    resolved = np.minimum(resolved, np.where(carry, span, np.iinfo(span.dtype).max).min(axis=1))
+    ok &= resolved >= MIN_SPAN_NODES
+    with np.errstate(invalid="ignore", divide="ignore"):
+        two_ln_b = 2.0 * (np.log(np.trapezoid(wt, z, axis=1)) + top[:, 0] - l0)
+        norm = np.trapezoid(wq, z, axis=1)
+        m = np.trapezoid(wq * mu1, z, axis=1) / norm
+        sd = np.sqrt(np.maximum(np.trapezoid(wq * mu2, z, axis=1) / norm - m**2, 0.0))
+        edge = np.trapezoid(wq * share, z, axis=1) / norm
+    out[0] = np.where(ok, two_ln_b, np.nan)
+    # Else the fit's own μ stays.
+    mu_ok = ok & (sd <= MU_MARGINAL_MAX_SD) & (edge <= MU_MARGINAL_MAX_EDGE)
+    out[1] = np.where(mu_ok, np.exp(m), np.nan)
+    out[2] = np.where(mu_ok, np.exp(m) * sd, np.nan)
+    return out
