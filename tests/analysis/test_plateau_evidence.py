@@ -157,6 +157,29 @@ def test_blocks_evaluated_together_equal_each_alone():
         np.testing.assert_array_equal(both[:, k], alone[:, 0])
 
 
+def test_padding_between_the_points_is_ignored():
+    # The blocks' distinct amplitudes, their numbers of points, means and scatter are found
+    # for all blocks at once (_levels): points of weight 0 anywhere in a row, with any values,
+    # change nothing, bit for bit, against the rows without them.
+    blocks = [_block(1, 0.3), _block(2, 0.0), _block(3, 0.2)]
+    u, df, dg = (np.stack([b[k] for b in blocks]) for k in range(3))
+    rng = np.random.default_rng(7)
+    M = u.shape[1] + 6
+    pad = np.zeros((3, M), bool)
+    for k in range(3):
+        pad[k, rng.choice(M, 6, replace=False)] = True
+    U, F, G, W = np.zeros((4, 3, M))
+    for A, a in ((U, u), (F, df), (G, dg)):
+        A[~pad] = a.ravel()
+        A[pad] = rng.uniform(0.0, 3e-9, pad.sum())  # junk where the weight is 0
+    W[~pad] = 1.0
+    rest = (np.full((2, 3), 0.6), (np.full(3, np.nan),) * 2,
+            (np.full(3, np.log(0.3)), np.full(3, 0.1)), np.ones(3))  # fmt: skip
+    compact = plateau_log_evidence(u, df, dg, np.ones_like(u), *rest)
+    assert np.isfinite(compact[0]).all()
+    np.testing.assert_array_equal(plateau_log_evidence(U, F, G, W, *rest), compact)
+
+
 def test_blocks_on_one_grid_share_their_slopes_and_equal_each_alone(monkeypatch):
     # Blocks measured on one grid of amplitudes under one amplitude prior have the same nodes
     # (x, c), so their slopes are evaluated once for all of them: each block still gets, bit
@@ -217,6 +240,34 @@ def study_evidence_call(water_study):
         mp.setattr(blocks, "plateau_log_evidence", spy)
         water_study(1, 0.3)
     return calls[-1]
+
+
+def test_no_row_of_nodes_has_its_slopes_evaluated_twice(monkeypatch):
+    # One block a chunk (the chunks' cells shrunk), so that blocks on one grid under one prior
+    # meet in no chunk: their rows of nodes (x, c) are still evaluated once in the whole call
+    # (the call's store of slopes), and each block gets what it gets in one chunk with the
+    # others, bit for bit.
+    from contactres.analysis import _plateau_evidence
+
+    blocks = [_block(5, 0.0), _block(6, 0.3), _block(7, 0.3, 1.5), _block(8, 0.2)]
+    u, df, dg = (np.stack([b[k] for b in blocks]) for k in range(3))
+    args = (u, df, dg, np.ones_like(u), np.full((2, 4), 0.6), (np.full(4, np.nan),) * 2,
+            (np.full(4, np.log(0.3)), np.full(4, 0.1)), np.ones(4))  # fmt: skip
+    together = plateau_log_evidence(*args)
+    rows = []
+    slopes = _plateau_evidence.plateau_loop_slopes
+
+    def spy(x, c, **kw):
+        rows.extend(np.concatenate([x, c], axis=-1).reshape(x.shape[0], -1).tolist())
+        return slopes(x, c, **kw)
+
+    monkeypatch.setattr(_plateau_evidence, "plateau_loop_slopes", spy)
+    monkeypatch.setattr(_plateau_evidence, "EVIDENCE_CHUNK_CELLS", 1)
+    apart = plateau_log_evidence(*args)
+    np.testing.assert_array_equal(apart, together)
+    assert np.isfinite(apart[0]).all()
+    # Chunk by chunk the 12 coarse rows in z of the blocks on one grid came four times over.
+    assert len({tuple(r) for r in rows}) == len(rows)
 
 
 def test_the_default_nodes_converge_on_real_study_blocks(study_evidence_call, monkeypatch):
