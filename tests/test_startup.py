@@ -262,6 +262,29 @@ def test_the_first_call_of_analyze_imports_only_what_every_analysis_needs():
     assert set(result["routes"]) == {"pandas"}
 
 
+# The README's first analysis: the bundled example read and analysed (bootstrap and all).
+FIRST_ANALYSIS = (
+    "from importlib.resources import files\n"
+    "import contactres as cr\n"
+    "table = cr.read_sweeps(str(files('contactres.data').joinpath('example_sweeps.csv')))\n"
+    "res = cr.analyze(table)\n"
+    "print(len(res.table1()))\n"
+)
+
+
+def test_a_real_first_analysis_imports_neither_scipy_special_nor_optimize():
+    """issue 31, point 3: a real first analysis (the README's snippet on the bundled example:
+    drift tests, JKR fits with their bootstrap, Table 1) pays neither scipy.special (0.2-0.4 s
+    of CPU: its array-API layer brings numpy.testing) nor scipy.optimize (with scipy.linalg,
+    sparse, spatial, fft and constants, ~0.3 s more). The distribution functions are in
+    contactres.analysis._distributions and the fits use the package's Levenberg-Marquardt."""
+    pulled = ("linalg", "sparse", "spatial", "fft", "constants", "stats")
+    watched = ("scipy.special", "scipy.optimize", *(f"scipy.{m}" for m in pulled))
+    result = probe(FIRST_ANALYSIS, watched=(*watched, "numpy.testing"))
+    assert result["stdout"] == "4\n"  # Table 1 of the example's four groups: the pin has run
+    check_light(result)
+
+
 def test_a_static_contact_imports_no_scipy(tmp_path, monkeypatch):
     """issue 31: the Hertz contact on a bare face needs numpy and pandas only; scipy.special
     came in with the Gauss-Legendre rule of contactres.numerics and the coated solve's
