@@ -226,3 +226,21 @@ def test_kappa_jkr_mindlin_at_pull_off_and_at_zero_load(gamma):
 def test_bad_input_raises(call):
     with pytest.raises(ValueError):
         call()
+
+
+def test_the_series_coefficients_of_one_minus_a_square_root_are_exact():
+    """c_k of 1 - √(1 - z) = Σ c_k z^k are -(-1)^k binom(1/2, k) (the binomial series): each
+    of the module's 24 (a product recurrence, no scipy.special) is the double nearest the exact
+    fraction; their sum at z = 1/2 is 1 - √(1/2) up to the tail, < c_24 z^24 / (1 - z)."""
+    from fractions import Fraction
+
+    import contactres.tangential as tangential
+
+    exact, c = [], Fraction(1, 2)
+    for k in range(1, 25):
+        exact.append(c)
+        c *= Fraction(2 * k - 1, 2 * (k + 1))  # binom(1/2, k+1)/binom(1/2, k) = (1/2 - k)/(k+1)
+    assert [float(e) for e in exact] == list(tangential._C)
+    z = 0.5
+    tail = float(exact[-1]) * z**24 / (1 - z)
+    assert 0 <= (1 - np.sqrt(1 - z)) - np.sum(tangential._C * z ** np.arange(1, 25)) < tail

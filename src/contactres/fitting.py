@@ -8,10 +8,13 @@ immutable mapping of models by key, built explicitly by the package that defines
 sweep analysis: :data:`contactres.analysis.REGISTRY`); a test walks it and holds every
 parameter to a closed table of names, units and columns.
 
-:func:`fit` wraps :func:`scipy.optimize.least_squares`: a pure function of (model, data,
-settings). Standard errors come from the Jacobian, ``cov = inv(JᵀJ) · RSS/(N - p)`` (residual
-variance from the fit itself), so they hold when the points scatter more than their nominal
-errors. The result holds the fitted values and their errors, never the starting values.
+:func:`fit` is a pure function of (model, data, settings), solved by the package's own
+:func:`levenberg_marquardt` (Marquardt's damping, bounds by projection, forward-difference
+Jacobian; until issue 31 it wrapped :func:`scipy.optimize.least_squares`, whose import was
+most of a first analysis's). Standard errors come from the Jacobian, ``cov = inv(JᵀJ) ·
+RSS/(N - p)`` (residual variance from the fit itself), so they hold when the points scatter
+more than their nominal errors. The result holds the fitted values and their errors, never the
+starting values.
 
 :func:`levenberg_marquardt` minimises χ² of many independent problems at once (a leading batch
 axis; one problem is a batch of one), each with its own damping and stopping, with box bounds
@@ -194,7 +197,6 @@ def fit(
     scale = np.array([p.scale for p in free])
     lo = np.array([bounds.get(p.key, p.bounds)[0] for p in free]) / scale
     hi = np.array([bounds.get(p.key, p.bounds)[1] for p in free]) / scale
-    # least_squares (trf) moves a start on a bound strictly inside by itself.
     x0 = np.clip(np.array([start[p.key] for p in free]) / scale, lo, hi)
 
     def params(z):
@@ -206,22 +208,28 @@ def fit(
         # ravel: a model of several observables (e.g. Δf and ΔΓ) returns one row per observable
         return np.ravel((np.asarray(model.function(x, **params(z))) - y) * w)
 
-    # Imported here: scipy.optimize costs ~0.15 s, which a run that fits nothing need not pay.
-    from scipy.optimize import least_squares
-
-    sol = least_squares(
-        residuals, x0, bounds=(lo, hi), method="trf", x_scale="jac", ftol=1e-12, xtol=1e-12
+    # The package's own Levenberg-Marquardt (below), not scipy.optimize.least_squares: the
+    # import of scipy.optimize (with scipy.linalg, sparse and spatial, ~0.3 s of CPU) would be
+    # most of what a first analysis pays. Marquardt's damping λ diag(JᵀJ) is invariant to the
+    # units of the parameters, as least_squares' x_scale="jac" is; bounds by projection.
+    sol = levenberg_marquardt(
+        lambda z, rows, jacobian: _fit_evaluation(residuals, z, jacobian, (lo, hi)),
+        x0,
+        lo,
+        hi,
+        _FIT_OPTIONS,
     )
-    r = sol.fun
+    z_hat = sol.x[0]
+    r = residuals(z_hat)
     rss = float(r @ r)
     n, p = y.size, len(free)
     cov = np.full((p, p), np.nan)
     if n > p:
-        jac = np.asarray(sol.jac)  # dense: neither jac_sparsity nor tr_solver="lsmr" is used
+        jac = _forward_jacobian(residuals, z_hat, r, (lo, hi))
         jtj = jac.T @ jac
         if np.linalg.matrix_rank(jtj) == p:
             cov = np.linalg.inv(jtj) * (rss / (n - p)) * np.outer(scale, scale)
-    values = params(sol.x)
+    values = params(z_hat)
     errors = {k: np.nan for k in fixed}
     errors.update({q.key: float(np.sqrt(cov[i, i])) for i, q in enumerate(free)})
     return FitResult(
@@ -232,10 +240,37 @@ def fit(
         free=tuple(q.key for q in free),
         rss=rss,
         n_points=n,
-        success=bool(sol.success),
-        message=str(sol.message),
+        success=bool(sol.converged[0]),
+        message=sol.message(0),
         residuals=r,
     )
+
+
+def _forward_jacobian(residuals, z, r, bounds) -> np.ndarray:
+    """The Jacobian dr/dz (G, P) of ``residuals`` at ``z`` by forward differences, r = the
+    residuals there: steps h = √ε max(1, |z|) (ε the double precision), turned backwards where
+    a forward step would leave the ``bounds`` (lo, hi), the rule of scipy's least_squares for
+    its default ("2-point") Jacobian, so that the standard errors of :func:`fit` stay those it
+    gave."""
+    lo, hi = bounds
+    h = np.sqrt(np.finfo(float).eps) * np.where(z >= 0, 1.0, -1.0) * np.maximum(1.0, np.abs(z))
+    h = np.where((z + h > hi) | (z + h < lo), -h, h)
+    cols = []
+    for i in range(z.size):  # one evaluation per parameter (two or three)
+        zi = z.copy()
+        zi[i] = z[i] + h[i]
+        cols.append((residuals(zi) - r) / (zi[i] - z[i]))  # the step as rounded
+    return np.stack(cols, axis=-1)
+
+
+def _fit_evaluation(residuals, z, jacobian: bool, bounds) -> dict[str, np.ndarray]:
+    """One evaluation of :func:`fit`'s problem for :func:`levenberg_marquardt` (a batch of
+    one): the residuals at z (1, P) and, when asked, their forward-difference Jacobian."""
+    r = residuals(z[0])
+    out = {"residuals": r[None]}
+    if jacobian:
+        out["jacobian"] = _forward_jacobian(residuals, z[0], r, bounds)[None]
+    return out
 
 
 # ------------------------------------------------------------------ Levenberg-Marquardt, batched
@@ -309,6 +344,11 @@ class LMOptions:
             raise ContactresInputError(
                 f"update must be 'nielsen' or 'tenfold', got {self.update!r}"
             )
+
+
+#: The settings of :func:`fit`: the tolerances of its former scipy least_squares call
+#: (ftol = xtol = 1e-12) and room for the steps they take.
+_FIT_OPTIONS = LMOptions(xtol=1e-12, ftol=1e-12, max_iter=500)
 
 
 # repr=False: the summary (Summarised, _facts) replaces the numpy reprs of every problem.

@@ -27,7 +27,6 @@ from dataclasses import dataclass
 from typing import Protocol
 
 import numpy as np
-from scipy.special import binom
 
 from .errors import ContactresInputError
 from .normal import (
@@ -54,10 +53,13 @@ __all__ = [
     "with_dashpot",
 ]
 
-# Series coefficients c_k of 1 - √(1 - z) = Σ_{k>=1} c_k z^k (all positive).
+# Series coefficients c_k of 1 - √(1 - z) = Σ_{k>=1} c_k z^k (all positive): c_k =
+# -(-1)^k binom(1/2, k), i.e. c_1 = 1/2 and c_{k+1} = c_k (k - 1/2)/(k + 1) (the binomial
+# series, A&S 3.6.9). The product recurrence rounds each c_k correctly (checked against exact
+# fractions in tests/test_tangential.py) and spares the import of scipy.special.
 _NSERIES = 24
-_C = np.array([-binom(0.5, k) * (-1.0) ** k for k in range(1, _NSERIES + 1)])
 _K = np.arange(1, _NSERIES + 1, dtype=float)
+_C = np.cumprod(np.concatenate([[0.5], (_K[:-1] - 0.5) / (_K[:-1] + 1.0)]))
 # Below this amplitude ratio the loop area comes from its series (the closed form cancels).
 _SERIES_BELOW = 0.1
 

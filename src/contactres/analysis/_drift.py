@@ -11,9 +11,9 @@ from __future__ import annotations
 
 import numpy as np
 import pandas as pd
-from scipy.special import fdtrc
 
 from ._amplitude import Padded
+from ._distributions import f_upper_tail
 
 __all__ = ["LOAD_OF_EXPERIMENT", "drifting_sweeps", "remove_linear_drift"]
 
@@ -82,7 +82,7 @@ def drifting_sweeps(sw: pd.DataFrame, padded: Padded, used: np.ndarray, p: float
         tiny = 1e-12 * total + 1e-300  # rounding of the sums: a perfect fit
         with np.errstate(divide="ignore", invalid="ignore"):
             fstat = ((rss0 - rss1) / np.maximum(d1, 1)) / (rss1 / np.maximum(d2, 1))
-            pval = fdtrc(np.maximum(d1, 1), np.maximum(d2, 1), fstat)
+            pval = f_upper_tail(np.maximum(d1, 1), np.maximum(d2, 1), fstat)
         pval = np.where(rss1 <= tiny, np.where(rss0 > tiny, 0.0, 1.0), pval)
         drifting |= testable & (pval < p / 2)
     flag[idx] = drifting[load]

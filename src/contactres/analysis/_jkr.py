@@ -14,11 +14,11 @@ from dataclasses import dataclass
 
 import numpy as np
 import pandas as pd
-from scipy import special
 
 from ..errors import ContactresInputError
 from ..fitting import FitResult, fit
 from ..tangential import kappa_jkr_mindlin
+from ._distributions import student_t_quantile
 from ._models import REGISTRY
 
 __all__ = [
@@ -424,7 +424,6 @@ def t95_factor(dof):
     """The Student-t factor of a two-sided 95 % interval for ``dof`` degrees of freedom (array
     or scalar; NaN below 1): t(0.975; 1) = 12.706, t(0.975; 3) = 3.182, → 1.960."""
     dof = np.asarray(dof, dtype=float)
-    # The inverse of Student's t distribution function, scipy.special.stdtrit (what
-    # scipy.stats.t.ppf evaluates, without the ~0.5 s import of scipy.stats).
-    with np.errstate(invalid="ignore"):
-        return special.stdtrit(np.where(dof >= 1, dof, np.nan), 0.975)
+    # The inverse of Student's t distribution function (what scipy.stats.t.ppf evaluates),
+    # in numpy alone: a first analysis does not pay the import of scipy.special.
+    return student_t_quantile(0.975, np.where(dof >= 1, dof, np.nan))
