@@ -15,7 +15,14 @@ import pytest
 from contactres.errors import ContactresInputError
 from contactres.jobs.readers import ALL_READERS, GRID_READER
 from contactres.measurements import schema
-from contactres.measurements.readers import BUILT_IN, KINDS, Reader, Readers, pick_reader
+from contactres.measurements.readers import (
+    BUILT_IN,
+    KINDS,
+    RESONANCE_READERS,
+    Reader,
+    Readers,
+    pick_reader,
+)
 from contactres.measurements.schema import (
     INPUTS,
     SCHEMAS,
@@ -116,6 +123,16 @@ def test_every_reader_recipe_is_complete(registry):
         assert re.fullmatch(r"[a-z0-9-]+", r.name)
         assert all(re.fullmatch(r"\.[a-z0-9]+", s) for s in r.suffixes)
         assert callable(r.detect) and callable(r.load)
+
+
+def test_the_resonance_readers_are_the_built_in_ones_of_their_kind():
+    # read_resonance_table picks from RESONANCE_READERS by default: the very recipes of
+    # BUILT_IN of kind "resonances", in the order BUILT_IN tries them, and no other.
+    assert RESONANCE_READERS.readers == BUILT_IN.of_kind("resonances")
+    assert all(
+        a is b for a, b in zip(RESONANCE_READERS, BUILT_IN.of_kind("resonances"), strict=True)
+    )
+    assert {r.kind for r in RESONANCE_READERS} == {"resonances"}
 
 
 def test_every_kind_has_a_reader():

@@ -16,6 +16,7 @@ from contactres.resonators._cantilever import (
     determinant_coefficients,
     normal_kappa,
     normal_log_slope,
+    normal_trig,
     tip_coefficients,
 )
 
@@ -100,6 +101,22 @@ def test_log_slope_is_the_derivative_of_the_closed_form():
     use = (np.abs(kq) > 1e-1) & (np.abs(kq) < 1e3)
     assert use.sum() > 3000
     assert np.max(np.abs(normal_log_slope(bq, r)[use] / (diff[use] / kq[use]) - 1.0)) < 1e-6
+
+
+def test_shared_functions_give_the_same_numbers():
+    # The inversion evaluates the 12 functions of β and r once (normal_trig) for κ and for
+    # its slope: both must be the numbers each computes alone, bit for bit, for a real β and
+    # for a damped (complex) one; and κ is still the plain formula's.
+    beta = np.linspace(1.0, 10.1, 401)[:, None]
+    r = np.linspace(0.3, 1.0, 15)[None, :]
+    for b in (beta, beta * np.sqrt(1.0 + 1j / 50.0)):
+        trig = normal_trig(b, r)
+        k = normal_kappa(b, r, trig)
+        assert np.array_equal(k, normal_kappa(b, r), equal_nan=True)
+        assert np.array_equal(normal_log_slope(b, r, trig), normal_log_slope(b, r), equal_nan=True)
+        plain = _kappa_plain(b, r)
+        use = np.abs(plain) < 1e4  # away from the poles
+        assert np.allclose(k[use], plain[use], rtol=1e-9, atol=1e-9)
 
 
 def det8(beta, kappa, r, g):

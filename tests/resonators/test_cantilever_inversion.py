@@ -224,3 +224,37 @@ def test_a_third_mode_above_its_pinned_limit_contradicts_the_crossing():
     assert np.array_equal(res.flags_modes[0, :2], [0, 0])  # the crossing itself is sound
     assert res.flags_modes[0, 2] & FLAG_ABOVE_PINNED
     assert res.flags[0] & FLAG_INCONSISTENT_MODES and np.isinf(res.mode_spread[0])
+
+
+@pytest.mark.parametrize("q", [None, 80.0])
+def test_mean_spread_and_flags_over_the_modes_are_numpys_reductions(q):
+    # κ, σ, the spread and the flags of a pixel are reductions over its modes; the inversion
+    # runs them a mode at a time: the numbers must be those of numpy's reductions over the
+    # last axis, bit for bit (three modes, cells not measured, one mode off, no contact).
+    rng = np.random.default_rng(11)
+    f = contact_frequencies(GLOBAL, np.geomspace(0.05, 5e3, 400), 0.9)
+    f = f * (1.0 + 1e-3 * rng.standard_normal(f.shape))  # modes that disagree (flagged)
+    f[rng.random(f.shape) < 0.2] = np.nan
+    f[:40, 0] = GLOBAL.free_frequencies[0]  # no contact: κ = 0, a value
+    qs = None if q is None else np.full(f.shape, q)
+    res = invert_contact_resonance(GLOBAL, f, 0.9, q_factors=qs, mode_tolerance=1e-4)
+    use = res.averaged_modes
+    n = use.sum(axis=-1)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        mean = np.where(use, res.kappa_modes, 0.0).sum(axis=-1) / np.maximum(n, 1)
+        sigma = np.where(use, res.sigma_modes, 0.0).sum(axis=-1) / np.maximum(n, 1)
+    assert np.array_equal(res.kappa, np.where(n > 0, mean, np.nan), equal_nan=True)
+    if q is not None:
+        assert np.array_equal(res.sigma, np.where(n > 0, sigma, np.nan), equal_nan=True)
+    check = use & (n > 1)[:, None]
+    hi = np.maximum(np.max(np.where(check, res.kappa_modes, -np.inf), axis=-1), res.kappa)
+    lo = np.minimum(np.min(np.where(check, res.kappa_modes, np.inf), axis=-1), res.kappa)
+    with np.errstate(invalid="ignore"):
+        spread = np.where(check.any(axis=-1), (hi - lo) / res.kappa, np.nan)
+    assert np.array_equal(res.mode_spread, spread, equal_nan=True)
+    assert (res.mode_spread > 1e-4).any() and (n > 1).any() and (n == 0).any()
+    measured = ~np.isnan(f)
+    joined = np.bitwise_or.reduce(np.where(measured, res.flags_modes, 0), axis=-1)
+    joined[~measured.any(axis=-1)] = FLAG_NOT_MEASURED | FLAG_NOT_POSITIVE
+    joined |= np.where(spread > 1e-4, FLAG_INCONSISTENT_MODES, 0)
+    assert np.array_equal(res.flags, joined)

@@ -56,15 +56,17 @@ import enum
 import math
 from dataclasses import dataclass
 from types import MappingProxyType
+from typing import TYPE_CHECKING
 
 import numpy as np
 
 from .._summary import Summarised, flagged, number, values
 from ..errors import ContactresInputError
-from ..materials import Material, require_material
-from ..normal import indentation_modulus
 from ..units import QUANTITIES
 from ..validation import nonnegative, positive
+
+if TYPE_CHECKING:
+    from ..materials import Material
 
 __all__ = [
     "FLAG_DESCRIPTIONS",
@@ -175,6 +177,11 @@ class ModulusResult(Summarised):
 
 def surface_material(spec, name: str) -> Material:
     """A Material in its surface frame from a Material or a (Material, (h, k, l)) pair."""
+    # Imported here, as in modulus_of and longitudinal_velocity: a table of numbers (a CR-AFM
+    # map, moduli in Pa) is inverted without the materials, crystals and half-space kernels
+    # (~1 % of an afm invert of a 512² map).
+    from ..materials import Material
+
     if isinstance(spec, tuple) and len(spec) == 2 and isinstance(spec[0], Material):
         return spec[0].rotated(spec[1])
     if isinstance(spec, Material):
@@ -192,12 +199,17 @@ def modulus_of(spec, name: str = "modulus"):
     an isotropic material)."""
     if isinstance(spec, (int, float, np.floating, np.integer, np.ndarray)):
         return positive(name, spec, "Pa")
+    from ..materials import require_material
+    from ..normal import indentation_modulus
+
     m = require_material(surface_material(spec, name), lossless=True)
     return float(np.real(indentation_modulus(m)))
 
 
 def longitudinal_velocity(m: Material) -> float:
     """c_l = √(Re C33/ρ) of a material in its surface frame, m/s (needs the density)."""
+    from ..materials import require_material
+
     m = require_material(m)
     if m.density is None:
         raise ContactresInputError(

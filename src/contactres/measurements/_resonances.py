@@ -21,7 +21,7 @@ import numpy as np
 from ..errors import ContactresInputError
 from ._array_table import ArrayTable
 from ._messages import at_cell, where_rows
-from .readers import BUILT_IN
+from .readers import RESONANCE_READERS
 from .schema import AFM_TABLE, RUM_TABLE, Rule, TableSchema
 
 if TYPE_CHECKING:
@@ -109,7 +109,8 @@ def read_resonance_table(path, schema: TableSchema, *, readers=None, arrays: boo
 
     The file (CSV: comma, semicolon or tab separated; a numpy archive, ``.npz``) is never
     modified; ``readers`` is the registry its reader is picked from (kind ``resonances``;
-    default :data:`~contactres.measurements.readers.BUILT_IN`). See
+    default :data:`~contactres.measurements.readers.RESONANCE_READERS`, the readers of this
+    kind of :data:`~contactres.measurements.readers.BUILT_IN`, without importing the others). See
     :func:`validate_resonance_table` for what is returned and checked: a
     :class:`pandas.DataFrame`, or with ``arrays`` an
     :class:`~contactres.measurements.ArrayTable` (numpy columns: a numpy archive is then read
@@ -120,7 +121,7 @@ def read_resonance_table(path, schema: TableSchema, *, readers=None, arrays: boo
         raise FileNotFoundError(f"{p}: no such file")
     if p.is_dir():
         raise ContactresInputError(f"{p}: is a directory, expected a table file")
-    raw = (BUILT_IN if readers is None else readers).pick(p, "resonances").load(p)
+    raw = (RESONANCE_READERS if readers is None else readers).pick(p, "resonances").load(p)
     # A workbook's reader names its sheet too ("book.xlsx, sheet 'resonances'").
     if arrays and not isinstance(raw, ArrayTable):
         raw = ArrayTable.from_frame(raw)

@@ -71,6 +71,7 @@ __all__ = [
     "frequency_from_beta",
     "normal_kappa",
     "normal_log_slope",
+    "normal_trig",
     "tip_coefficients",
 ]
 
@@ -247,24 +248,39 @@ def _cos_cosh(x):
     return 0.5 * (e + 1.0 / e), 0.5 * (h + 1.0 / h)
 
 
-def normal_kappa(beta, tip_position) -> np.ndarray:
+def normal_trig(beta, tip_position) -> tuple:
+    """(cos, sin, cosh, sinh) of p = βr, of q = β(1 − r) and of β (three tuples of arrays): the
+    12 transcendental functions a pixel that :func:`normal_kappa` (10 of them) and
+    :func:`normal_log_slope` (all 12) evaluate, for a caller that needs both at one β and r
+    (the inversion's κ and its sensitivity): passed to them as ``trig``, they are evaluated
+    once instead of twice, and both give the same numbers as without it, bit for bit."""
+    b = np.asarray(beta)
+    r = np.asarray(tip_position)
+    return _trig(b * r), _trig(b * (1.0 - r)), _trig(b)
+
+
+def normal_kappa(beta, tip_position, trig: tuple | None = None) -> np.ndarray:
     """κ = k*/k_c (k_c = 3EI/L³) of a normal tip spring that makes β a root (closed form).
 
     κ = 2β³(1 + cos β cosh β) / (3D), D as in the module notes: Rabe et al., Rev. Sci. Instrum.
     67, 3281 (1996), rewritten for the end stiffness. Real or complex β; vectorised. Not
     validated (an inner routine of the inversion: check ``tip_position`` in (0, 1] yourself).
+    ``trig``: :func:`normal_trig` of the same β and r, when the caller has it.
     """
     b = np.asarray(beta)
-    p, q = b * np.asarray(tip_position), b * (1.0 - np.asarray(tip_position))
-    cp, sp, chp, shp = _trig(p)
-    cq, sq, chq, shq = _trig(q)
+    if trig is None:
+        r = np.asarray(tip_position)
+        (cp, sp, chp, shp), (cq, sq, chq, shq) = _trig(b * r), _trig(b * (1.0 - r))
+    else:
+        (cp, sp, chp, shp), (cq, sq, chq, shq), (cb, _, chb, _) = trig
     d = (sq * chq - cq * shq) * (1.0 - cp * chp) - (sp * chp - cp * shp) * (1.0 + cq * chq)
     with np.errstate(divide="ignore", invalid="ignore"):
-        cb, chb = _cos_cosh(b)
+        if trig is None:
+            cb, chb = _cos_cosh(b)  # the sines of β are not used here
         return 2.0 * b**3 * (1.0 + cb * chb) / (3.0 * d)
 
 
-def normal_log_slope(beta, tip_position) -> np.ndarray:
+def normal_log_slope(beta, tip_position, trig: tuple | None = None) -> np.ndarray:
     """L = d ln κ / d ln β = β κ′(β)/κ of :func:`normal_kappa`, differentiated by hand.
 
     With κ = 2β³N/(3D), N = 1 + cos β cosh β and D = AB − CE (A = sin q cosh q − cos q sinh q,
@@ -275,14 +291,13 @@ def normal_log_slope(beta, tip_position) -> np.ndarray:
     complex derivative along β); vectorised; inf or NaN where N or D vanish (κ = 0 or ∞).
     One evaluation (12 transcendental functions a pixel) instead of the two of a central
     difference of κ (20), for the inversion's sensitivity flag. Not validated (an inner
-    routine).
+    routine). ``trig``: :func:`normal_trig` of the same β and r, when the caller has it.
     """
     b = np.asarray(beta)
     r = np.asarray(tip_position)
-    p, q = b * r, b * (1.0 - r)
-    cp, sp, chp, shp = _trig(p)
-    cq, sq, chq, shq = _trig(q)
-    cb, sb, chb, shb = _trig(b)
+    (cp, sp, chp, shp), (cq, sq, chq, shq), (cb, sb, chb, shb) = (
+        normal_trig(b, r) if trig is None else trig
+    )
     a_, b_ = sq * chq - cq * shq, 1.0 - cp * chp
     c_, e_ = sp * chp - cp * shp, 1.0 + cq * chq
     d_b = a_ * c_ + 2.0 * ((1.0 - r) * sq * shq * b_ - r * sp * shp * e_)

@@ -90,6 +90,7 @@ from ._cantilever import (
     determinant_coefficients,
     normal_kappa,
     normal_log_slope,
+    normal_trig,
     tip_coefficients,
 )
 
@@ -255,12 +256,13 @@ def _closed_form(g) -> bool:
     return not (np.any(g[1]) or np.any(g[2]))
 
 
-def _roots(beta, r, g):
+def _roots(beta, r, g, trig=None):
     """The (up to two) roots κ of det M(β, ·) = 0; the second is NaN where det M is linear,
-    None for a normal spring only (one root, the closed form: no array of NaN to select from)."""
+    None for a normal spring only (one root, the closed form: no array of NaN to select from;
+    ``trig``: its :func:`~contactres.resonators._cantilever.normal_trig`, if the caller has it)."""
     g_yy, g_yt, g_tt = g
     if _closed_form(g):
-        return normal_kappa(beta, r) / g_yy, None  # closed form; the tilt leaves k* cos²φ
+        return normal_kappa(beta, r, trig) / g_yy, None  # closed form; the tilt leaves k* cos²φ
     a, b, c = determinant_coefficients(beta, r, g)
     quad = (g_yy * g_tt - g_yt**2) > 0  # det of the tip stiffness: α η² (module notes)
     a = np.where(quad, a, 0.0)
@@ -274,7 +276,7 @@ def _roots(beta, r, g):
     return k1, k2
 
 
-def kappa_on_branch(beta, mode, tip_position, g):
+def kappa_on_branch(beta, mode, tip_position, g, trig=None):
     """κ of mode ``mode`` (1-based) at wavenumber β, and its flags (module notes: branch).
 
     Parameters
@@ -283,13 +285,15 @@ def kappa_on_branch(beta, mode, tip_position, g):
     mode : int array, 1-based
     tip_position : r (not validated here; may exceed 1 slightly in the two-mode scan)
     g : (g_yy, g_yθ, g_θθ) of :func:`~contactres.resonators._cantilever.tip_coefficients`
+    trig : :func:`~contactres.resonators._cantilever.normal_trig` of β and tip_position, or
+        None (a normal spring only: the closed form then takes its functions from it)
 
     Returns
     -------
     (kappa, flags) : κ (dtype of β), int flags (FLAG_NOT_POSITIVE, FLAG_BELOW_FREE,
         FLAG_ABOVE_PINNED; FLAG_INSENSITIVE is added by the caller)
     """
-    k1, k2 = _roots(beta, tip_position, g)
+    k1, k2 = _roots(beta, tip_position, g, trig)
     n0 = np.searchsorted(FREE_ROOTS, np.real(beta))  # free modes below β (N₀)
     j = n0 - np.asarray(mode)
     if k2 is None:  # one root: the selection below with k2 = NaN, in a third of the passes
@@ -321,16 +325,17 @@ def kappa_on_branch(beta, mode, tip_position, g):
 _EDGE = 1e-6
 
 
-def _sensitivity_flags(beta, mode, r, g, kappa):
+def _sensitivity_flags(beta, mode, r, g, kappa, trig=None):
     """FLAG_INSENSITIVE where s = d ln f / d ln κ = 2κ/(β dκ/dβ) < MIN_SENSITIVITY.
 
     ``kappa`` is κ on mode ``mode``'s branch (NaN off it). A normal spring only: β dκ/dβ =
     κ L from the closed form's derivative (:func:`normal_log_slope`, one evaluation); with
     lateral springs a central difference of κ on the branch (two more roots of det M). Either
-    way a mode with Re β within a relative ``_EDGE`` of a free root is flagged.
+    way a mode with Re β within a relative ``_EDGE`` of a free root is flagged. ``trig``: as
+    for :func:`kappa_on_branch` (the closed form's functions, shared with κ's).
     """
     if _closed_form(g):  # L of κ/g_yy is L of κ: the tilt's constant factor drops out
-        slope = np.real(kappa * normal_log_slope(beta, r))  # β dκ/dβ; NaN off the branch
+        slope = np.real(kappa * normal_log_slope(beta, r, trig))  # β dκ/dβ; NaN off the branch
         s = 2.0 * np.real(kappa) / slope
         weak = ~(np.abs(s) >= MIN_SENSITIVITY)  # NaN (at κ = 0 or ∞) counts as weak
         # A damped mode whose Re β sits within a relative 1e-6 of a free root carries no κ:
@@ -351,9 +356,30 @@ def _sensitivity_flags(beta, mode, r, g, kappa):
     return np.where(weak & np.isfinite(kappa), FLAG_INSENSITIVE, 0)
 
 
-def _mean_where(values, use, axis=-1):
-    n = use.sum(axis=axis)
-    total = np.where(use, values, 0.0).sum(axis=axis)
+def _sum_modes(a):
+    """``a.sum(axis=-1)`` over the few modes (the last axis; bools: counts), a column at a
+    time: numpy's reduction adds the columns in order onto a zero, so these are its numbers
+    bit for bit, without its buffered iteration over rows of two or three elements (the
+    inversion's reductions over the modes were ~7 % of an afm invert of a 512² map)."""
+    total = np.zeros(a.shape[:-1], dtype=int if a.dtype == bool else a.dtype)
+    for j in range(a.shape[-1]):  # a loop over the modes (<= 8), not over pixels
+        total += a[..., j]
+    return total
+
+
+def _reduce_modes(ufunc, a):
+    """``ufunc.reduce(a, axis=-1)`` over the modes, a column at a time in their order (as
+    :func:`_sum_modes`), for ``np.maximum``, ``np.minimum`` (NaN-free input: numpy's reduction
+    returns any NaN as +NaN), ``np.bitwise_or`` and ``np.logical_or``."""
+    out = a[..., 0].copy()
+    for j in range(1, a.shape[-1]):
+        ufunc(out, a[..., j], out=out)
+    return out
+
+
+def _mean_where(values, use):
+    n = _sum_modes(use)
+    total = _sum_modes(np.where(use, values, 0.0))
     return np.where(n > 0, total / np.maximum(n, 1), np.nan)
 
 
@@ -507,8 +533,12 @@ def invert_contact_resonance(
                 "(Hurley & Turner 2007): the largest crossing r in [0.5, 1] (that further "
                 "modes confirm, where measured)"
             )
-        kappa_m, flags_m = kappa_on_branch(beta, mode_arr, r, g)
-        flags_m = flags_m | _sensitivity_flags(beta, mode_arr, r, g, kappa_m)
+        # A normal spring only: κ's closed form and its slope share their 12 transcendental
+        # functions a pixel (evaluated once: a fifth of a map's inversion; the same numbers).
+        trig = normal_trig(beta, r) if _closed_form(g) else None
+        kappa_m, flags_m = kappa_on_branch(beta, mode_arr, r, g, trig)
+        flags_m = flags_m | _sensitivity_flags(beta, mode_arr, r, g, kappa_m, trig)
+        del trig  # 12 arrays of the pixels' size
         # At the free frequency within FREE_TOLERANCE either way (the ratio is 1 ± rounding
         # when f is the free one): no contact, κ = 0 exactly.
         # Compared in real frequencies: the model's free f_n = f_ref (β_n⁰/β_ref)², whatever Q.
@@ -531,8 +561,8 @@ def invert_contact_resonance(
             used = _first_two(np.broadcast_to(measured, kappa_m.shape))[1]
             kappa = _mean_where(spring_m, used)
             averaged = used
-        flags = np.bitwise_or.reduce(np.where(used, flags_m, 0), axis=-1)
-        none = ~np.any(used, axis=-1)
+        flags = _reduce_modes(np.bitwise_or, np.where(used, flags_m, 0))
+        none = ~_reduce_modes(np.logical_or, used)
         flags = np.where(none, FLAG_NOT_MEASURED | FLAG_NOT_POSITIVE, flags)
         # The modes that check κ: the usable ones beyond the crossing's two (r solved), or all
         # usable ones when there are at least two (r given).
@@ -542,16 +572,17 @@ def invert_contact_resonance(
         if tip_position is None:
             check = (usable & ~used) | wrong
         else:
-            check = usable & (usable.sum(-1) > 1)[..., None]
-        k_chk = np.where(wrong, np.inf, spring_m)
-        hi = np.maximum(np.max(np.where(check, k_chk, -np.inf), axis=-1), kappa)
-        lo = np.minimum(np.min(np.where(check, k_chk, np.inf), axis=-1), kappa)
-        spread = np.where(check.any(axis=-1) & np.isfinite(kappa), (hi - lo) / kappa, np.nan)
+            check = usable & (_sum_modes(usable) > 1)[..., None]
+        k_chk = np.where(wrong, np.inf, spring_m)  # NaN-free where checked: usable is κ finite
+        hi = np.maximum(_reduce_modes(np.maximum, np.where(check, k_chk, -np.inf)), kappa)
+        lo = np.minimum(_reduce_modes(np.minimum, np.where(check, k_chk, np.inf)), kappa)
+        checked = _reduce_modes(np.logical_or, check)
+        spread = np.where(checked & np.isfinite(kappa), (hi - lo) / kappa, np.nan)
         flags = flags | np.where(spread > mode_tolerance, FLAG_INCONSISTENT_MODES, 0)
         if tip_position is None:
             flags = flags | np.where(n_win == 0, FLAG_NO_CROSSING, 0)
             flags = flags | np.where(n_win > 1, FLAG_SEVERAL_CROSSINGS, 0)
-            flags = flags | np.where(measured.sum(-1) < 2, FLAG_NOT_MEASURED, 0)
+            flags = flags | np.where(_sum_modes(measured) < 2, FLAG_NOT_MEASURED, 0)
         if sigma_m is None:
             sigma_m = np.full(kappa_m.shape, np.nan)
             sigma = np.full(kappa.shape, np.nan)

@@ -6,6 +6,8 @@ A reader is an immutable recipe (:class:`Reader`: name, suffixes, ``detect``, ``
 the reader of a file: those whose suffix matches are tried first, then the others. To add a
 reader, build a new registry (``BUILT_IN.with_reader(my_reader)``) and pass it to the function
 that reads, or pass ``extra=(my_reader,)`` to :func:`pick_reader`: nothing shared changes.
+:data:`RESONANCE_READERS` holds the built-in readers of resonance tables alone (the same
+objects), for a reading that needs no other reader imported.
 
 The formats: delimited text (``_delimited``, sweep and resonance tables), spectra
 (``_spectra``), instrument exports (:mod:`.exports`) and contact-resonance AFM maps (``_afm``:
@@ -29,6 +31,7 @@ from ._recipe import KINDS, Reader, Readers
 if TYPE_CHECKING:
     from ._delimited import line_ranges
     from ._registry import BUILT_IN, BUILT_IN_READERS, pick_reader
+    from ._resonance_readers import RESONANCE_READERS
     from ._spectra import (
         CONSTANT_COLUMNS,
         LABELS,
@@ -45,6 +48,7 @@ _LAZY = {
     "BUILT_IN": "_registry",
     "BUILT_IN_READERS": "_registry",
     "pick_reader": "_registry",
+    "RESONANCE_READERS": "_resonance_readers",
     "CONSTANT_COLUMNS": "_spectra",
     "LABELS": "_spectra",
     "NUMERIC_LABELS": "_spectra",
@@ -61,6 +65,7 @@ __all__ = [
     "KINDS",
     "LABELS",
     "NUMERIC_LABELS",
+    "RESONANCE_READERS",
     "SPECTRUM_LAYOUTS",
     "TWO_PORT_PARAMETERS",
     "Reader",

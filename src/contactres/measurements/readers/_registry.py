@@ -23,9 +23,10 @@ from collections.abc import Iterable
 from functools import partial
 from pathlib import Path
 
-from . import _delimited, _excel, _npz
+from . import _delimited, _excel
 from ._afm import AFM_MAP_READERS
 from ._recipe import Reader, Readers
+from ._resonance_readers import RESONANCE_READERS
 from ._spectra import SPECTRA_READERS
 from .exports import EXPORT_READERS, TIDY_READER
 
@@ -46,10 +47,9 @@ BUILT_IN_READERS: tuple[Reader, ...] = (
         partial(_delimited.load, number_columns=SWEEP_NUMBERS),
         "sweeps",
     ),
-    Reader("csv", _delimited.suffixes, _delimited.detect, _delimited.load, "resonances"),
+    RESONANCE_READERS.named("csv", "resonances"),
     Reader("xlsx", _excel.suffixes, _excel.detect, _excel.loader("sweeps"), "sweeps"),
-    Reader("xlsx", _excel.suffixes, _excel.detect, _excel.loader("resonances"), "resonances"),
-    Reader("npz", _npz.suffixes, _npz.detect, _npz.load, "resonances"),
+    *RESONANCE_READERS.of_kind("resonances")[1:],  # xlsx, npz: the tables of resonances
     *SPECTRA_READERS,
     # A workbook of spectra rows: tried first for .xlsx, by its suffix, before the tidy table.
     Reader("xlsx", _excel.suffixes, _excel.detect, _excel.loader("spectra"), "spectra"),
