@@ -58,6 +58,32 @@ def test_points_of_sweeps_not_back_to_back_are_gathered_in_sweep_order():
     np.testing.assert_array_equal(points["dgamma_Hz"], [100.0, 200.0, 300.0, 400.0, 500.0])
 
 
+@pytest.mark.parametrize("ids", [["a", "b"], [7, 3]])
+def test_the_sweep_labels_are_the_column_pandas_makes_of_them(ids):
+    # The points' sweep column is given its dtype from the distinct ids (not inferred from the
+    # long column): the column pandas infers from the object array of the ids written out row
+    # by row (str for text, object for other ids).
+    u = np.array([1.0, 2.0, 3.0, 4.0, 5.0])
+    p = Padded(
+        sweeps=np.array(ids, dtype=object),
+        n=np.array([3, 2]),
+        direction=np.array(["up", "up"]),
+        start=np.array([0, 3]),
+        points_u=u,
+        points_df=u,
+        points_dg=u,
+    )
+    written = pd.DataFrame({"sweep": np.array([ids[0]] * 3 + [ids[1]] * 2, dtype=object)})
+    pd.testing.assert_series_equal(sweep_points(p)["sweep"], written["sweep"])
+
+
+def test_the_curves_sweep_labels_are_each_sweep_once_per_grid_point(results):
+    # Labels filled grid by grid in one array: the column pandas makes of them written out.
+    ids = results.sweeps["sweep"].to_numpy(dtype=object)
+    written = pd.DataFrame({"sweep": np.concatenate([np.repeat(ids, n) for n in CURVE_GRIDS])})
+    pd.testing.assert_series_equal(results.curves["sweep"], written["sweep"])
+
+
 def test_every_sweep_has_its_model_on_each_grid(results):
     # Each curve is the registered function of the sweep's exact loop (every sweep of the
     # example takes its limits from one), evaluated sweep by sweep with the values of that

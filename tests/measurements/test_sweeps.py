@@ -570,3 +570,37 @@ def test_a_repeated_point_with_another_time_is_no_duplicated_row(tmp_path):
     with pytest.warns(SweepWarning, match=r"1 duplicated row.*line\(s\) 21"):
         t = read_sweeps(write(tmp_path, pd.concat([f, again, again], ignore_index=True)), **CONST)
     assert len(t.data) == 19
+
+
+def test_numbers_given_as_numbers_are_those_their_text_gives():
+    """Float64 and integer columns of a table built in memory are taken as they are, not
+    written as text and read back (issue 31, point 3): the validated table is the one the same
+    table gives with every number column written as text (the reading of a file), on floats
+    of every magnitude and 17 digits; a float32 column is read from its text as before (its
+    shortest text is another float64), and a NaN is named as it was."""
+    rng = np.random.default_rng(7)
+    f = good_frame(n_sweeps=40, n_points=6)
+    scale = 10.0 ** rng.uniform(-3, 3, len(f))
+    f["df_Hz"] = -np.abs(rng.normal(0.0, 1.0, len(f))) * scale
+    f["dgamma_Hz"] = np.abs(rng.normal(0.0, 1.0, len(f))) * scale
+    f["amplitude_m"] = rng.uniform(1e-10, 1e-8, len(f))
+    f["ramp"] = np.asarray(f["ramp"], dtype=np.int64)
+    numbers = [c for c in f.columns if f[c].dtype == np.float64 or f[c].dtype.kind in "iu"]
+    assert {"df_Hz", "amplitude_m", "normal_force_N", "ramp"} <= set(numbers)
+    text = f.copy()
+    for c in numbers:
+        text[c] = f[c].map(repr).astype(object)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", SweepWarning)
+        given = validate_sweeps(f, constants=CONST).data
+        read = validate_sweeps(text, constants=CONST).data
+    pd.testing.assert_frame_equal(given, read)
+    as32 = f.assign(normal_force_N=f["normal_force_N"].astype(np.float32))
+    expected = as32["normal_force_N"].astype(str).astype(float).to_numpy()
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", SweepWarning)
+        got = validate_sweeps(as32, constants=CONST).data["normal_force_N"].to_numpy()
+    np.testing.assert_array_equal(got, expected)
+    broken = f.assign(df_Hz=f["df_Hz"].where(np.arange(len(f)) != 7))
+    with pytest.raises(ValueError, match="df_Hz"):
+        validate_sweeps(broken, constants=CONST)

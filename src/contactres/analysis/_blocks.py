@@ -361,9 +361,11 @@ def choose_blocks(
     rows = rows[np.lexsort((names[rows], sw["ramp"].to_numpy()[rows], code[rows]))]
     u, df, dg = p.points(rows)
     points = pd.DataFrame(
-        {"sweep": np.repeat(code[rows], p.n[rows]), "amplitude_m": u, "df_Hz": df, "dgamma_Hz": dg}
+        {"sweep": np.repeat(code[rows], p.n[rows]), "amplitude_m": u, "df_Hz": df, "dgamma_Hz": dg},
+        copy=False,  # read once, by pad_sweeps, and dropped: no copies of the points
     )
     bp = pad_sweeps(points)
+    del u, df, dg, points  # bp holds them sorted: not kept through the block fits
     bs, bf = fit_sweeps(bp, delta_bic, exact_loop, tables, workers)
     # The blocks in order of their code (the padding keeps their order of first appearance).
     order = np.argsort(bs["sweep"].to_numpy(int))

@@ -41,7 +41,7 @@ from ._loops import LoopTable, LoopTables, loop_tables
 from ._models import AMPLITUDE_MODELS, N_PARAMETERS, SWEEP_FITS
 from ._models.base import LoopInputs
 from ._models.plateau_loop import fit_plateaus, plateau_start
-from ._workers import WorkerPool, run_in_workers
+from ._workers import WorkerPool, lent_pool, run_in_workers
 
 __all__ = [
     "CLASS_SOURCES",
@@ -132,13 +132,20 @@ def _fit_blocks(
     u_max: dict[str, np.ndarray] = {}
     fields: dict[str, dict[str, np.ndarray]] = {}
     groups = p.blocks()  # <= BLOCK_POINTS points each: the fits' temporaries stay at a few MB
-    blocks = [p.block(rows) for rows in groups]
-    masks = [plateau[rows] for rows in groups]
-    parts = run_in_workers(_fit_block, workers, blocks, repeat(exact_loop), repeat(tables), masks)
-    for rows, (top, done) in zip(groups, parts, strict=True):
-        _put(u_max, {"u_max": top}, rows, S)
-        for source, part in done.items():
-            _put(fields.setdefault(source, {}), part, rows, S)
+    # Each block padded when its fit comes (in this process; a pool takes them all at once),
+    # and its fields put in place as they come, then dropped: a list of every block's results
+    # held a second copy of all the fields until the last had come (~0.1 GB at 10^5 sweeps,
+    # issue 31, point 3).
+    blocks = (p.block(rows) for rows in groups)
+    masks = (plateau[rows] for rows in groups)
+    with lent_pool(workers) as pool:
+        parts = pool.imap(
+            _fit_block, len(groups), blocks, repeat(exact_loop), repeat(tables), masks
+        )
+        for rows, (top, done) in zip(groups, parts, strict=True):
+            _put(u_max, {"u_max": top}, rows, S)
+            for source, part in done.items():
+                _put(fields.setdefault(source, {}), part, rows, S)
     return u_max["u_max"], {source: pd.DataFrame(f) for source, f in fields.items()}
 
 
@@ -227,13 +234,16 @@ def apply_models(
     hinge_fit, line_fit = fields["hinge"], fields["line"]
     model = np.asarray(model, dtype=object)
     sources = CLASS_SOURCES[exact_loop]
-    src = np.array([sources[m] for m in model], dtype=object)
+    # Looked up once per distinct class (a hash table in C), not once per sweep in Python.
+    codes, classes = pd.factorize(model)
+    distinct = np.array([sources[m] for m in classes], dtype=object)
+    src = distinct[codes]
     is_pl = model == "plateau"
     for name in ("df", "dgamma"):
         a = np.full(len(sw), np.nan)
         err = np.full(len(sw), np.nan)
-        for s in set(src):
-            rows = src == s
+        for c, s in enumerate(distinct):
+            rows = codes == c
             a[rows] = fields[s][f"{name}0_Hz"].to_numpy(float)[rows]
             err[rows] = fields[s][f"{name}0_err_Hz"].to_numpy(float)[rows]
         sw[f"{name}0_Hz"] = a
@@ -257,7 +267,9 @@ def apply_models(
     sw["plateau_amplitude_m"] = np.where(is_pl, d_c, np.nan)
     sw["plateau_amplitude_err_m"] = np.where(is_pl, d_c_err, np.nan)
     sw["model"] = model.astype(str)
-    sw["limits_from"] = np.array([LIMITS_FROM[s] for s in src], dtype=object).astype(str)
+    sw["limits_from"] = np.array([LIMITS_FROM[s] for s in distinct], dtype=object)[codes].astype(
+        str
+    )
     return sw
 
 

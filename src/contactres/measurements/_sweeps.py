@@ -377,10 +377,20 @@ def _numbers(text: pd.Series, decimal: str) -> tuple[np.ndarray, np.ndarray]:
     return values, bad
 
 
+def _given_as_numbers(cells: pd.Series) -> bool:
+    """Whether ``cells`` hold numbers already (float64 or integers, as a table built in memory
+    has them): each is the number its text would give (Python writes a float64 as the shortest
+    text that reads back to it; an integer exactly), so it is taken as it is. Float32 is not
+    (its shortest text reads back as another float64), nor are booleans (not numbers here)."""
+    dtype = cells.dtype
+    return isinstance(dtype, np.dtype) and (dtype == np.float64 or dtype.kind in "iu")
+
+
 def _numeric(raw: pd.DataFrame, col: str, source: str, decimal: str) -> np.ndarray:
-    if col in raw.attrs.get("number_columns", ()):
-        # Read as numbers by the reader: finite, each the number its text gives (the same
-        # converter as below; readers/_delimited._parsed), no text to read again.
+    if col in raw.attrs.get("number_columns", ()) or _given_as_numbers(raw[col]):
+        # Read as numbers by the reader (finite, each the number its text gives: the same
+        # converter as below; readers/_delimited._parsed) or given as numbers: no text to read
+        # again (writing 10^6 numbers as text to read them back cost ~7 s, issue 31).
         values = raw[col].to_numpy(dtype=float, copy=True)
         check_cells(raw, source, col, (FINITE,), values)
         return values
