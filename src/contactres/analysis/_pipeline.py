@@ -2,7 +2,7 @@
 
 :func:`analyze` is a pure function of (sweep table, settings) and returns a
 :class:`contactres.analysis.Results`; :mod:`contactres.analysis._steps` runs the steps, imported
-by the first call (with pandas and scipy), so that the name alone costs no more than the package.
+by the first call (with pandas), so that the name alone costs no more than the package.
 Its steps:
 
 1. **Per sweep** (:mod:`contactres.analysis._classify`, all sweeps at once): every amplitude

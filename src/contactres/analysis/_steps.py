@@ -2,8 +2,9 @@
 
 :mod:`contactres.analysis._pipeline` documents the steps and holds the public function and its
 settings; this module does the work, and imports the modules of every step (and with them
-pandas and scipy) at the top, so that only a call of :func:`~contactres.analysis.analyze`
-loads them.
+pandas) at the top, so that only a call of :func:`~contactres.analysis.analyze` loads them.
+A plain analysis imports no scipy (its distribution functions and fits are the package's own);
+the paths that need scipy, such as a coating, import it where they use it.
 """
 
 from __future__ import annotations
