@@ -420,17 +420,61 @@ def _by_parity(g: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return even, odd
 
 
-def _even_full(part: np.ndarray) -> np.ndarray:
-    """(na, m, 4, j_a, j_b) xx, xy, yx, yy from the even-m components (na, m, 3, j_a, j_b)."""
-    return part[:, :, [0, 1, 1, 2]]
+# The 2x2 components (xx, xy, yx, yy) of a block from its independent ones (_by_parity): for
+# even m the components taken and their signs, for odd m likewise (xx = yy = 0, yx = −xy).
+_FULL = ((np.array([0, 1, 1, 2]), np.ones(4)), (np.zeros(4, dtype=int), np.array([0, 1, -1, 0])))
 
 
-def _odd_full(part: np.ndarray) -> np.ndarray:
-    """(na, m, 4, j_a, j_b) xx, xy, yx, yy from the odd-m component (na, m, 1, j_a, j_b)."""
-    full = np.zeros((*part.shape[:2], 4, *part.shape[3:]), dtype=part.dtype)
-    full[:, :, 1] = part[:, :, 0]
-    np.negative(part[:, :, 0], out=full[:, :, 2])
-    return full
+def _block_sizes(magnitudes: list[int], per_n: int) -> tuple[dict, dict, int]:
+    """The harmonics m = ±``|n_a|`` ± ``|n_b|`` of every block (``|n_a|`` <= ``|n_b|``, indices
+    into ``magnitudes``) and its offset in the packed entries (radial pair, m, α, β), and
+    their total count."""
+    ms, offset, total = {}, {}, 0
+    for ia, n_a in enumerate(magnitudes):
+        for ib in range(ia, len(magnitudes)):
+            n_b = magnitudes[ib]
+            ms[ia, ib] = sorted({n_a + n_b, n_a - n_b, n_b - n_a, -n_a - n_b})
+            offset[ia, ib] = total
+            total += per_n * per_n * len(ms[ia, ib]) * 4
+    return ms, offset, total
+
+
+def _placement(harmonics: np.ndarray, per_n: int, magnitudes: list[int], ms, offset):
+    """Where each entry of the matrix (nb, nb) is in the packed entries of the blocks.
+
+    Entry (α, n_r, j_r; β, n_c, j_c) is in the block of (``|n_r|``, ``|n_c|``) in increasing
+    order, harmonic m = n_c − n_r, components (α, β), radial pair (j_r, j_c) in the same
+    order as the magnitudes (the product H_a H_b is the same for both orders). Formed per pair
+    of harmonics, then broadcast over the components and radial functions."""
+    nn = harmonics.size
+    order = int(max(magnitudes))
+    # Per block (|n_a| <= |n_b|, indices into magnitudes): its offset, 4 × its count of m, and
+    # the slot of each m.
+    first = np.zeros((len(magnitudes),) * 2, dtype=np.intp)
+    stride = np.zeros_like(first)
+    slot = np.zeros((*first.shape, 4 * order + 1), dtype=np.intp)
+    for (ia, ib), m_list in ms.items():
+        first[ia, ib] = offset[ia, ib]
+        stride[ia, ib] = 4 * len(m_list)
+        slot[ia, ib, np.array(m_list) + 2 * order] = np.arange(len(m_list))
+    mag = np.searchsorted(magnitudes, np.abs(harmonics))
+    ia = np.minimum(mag[:, None], mag[None, :])
+    ib = np.maximum(mag[:, None], mag[None, :])
+    m = slot[ia, ib, harmonics[None, :] - harmonics[:, None] + 2 * order]
+    base = first[ia, ib] + 4 * m  # (n_r, n_c)
+    stride = stride[ia, ib]
+    j = np.arange(per_n)
+    swap = (mag[:, None] > mag[None, :])[:, None, :, None]  # (n_r, ., n_c, .)
+    pair = np.where(
+        swap,
+        j[None, None, None, :] * per_n + j[None, :, None, None],
+        j[None, :, None, None] * per_n + j[None, None, None, :],
+    )
+    where = base[:, None, :, None] + stride[:, None, :, None] * pair  # (n_r, j_r, n_c, j_c)
+    comp = 2 * np.arange(2)[:, None] + np.arange(2)[None, :]  # 2α + β
+    # (α, n_r j_r, β, n_c j_c)
+    where = where.reshape(1, nn * per_n, 1, nn * per_n) + comp.reshape(2, 1, 2, 1)
+    return where.reshape(2 * nn * per_n, 2 * nn * per_n)
 
 
 def _dynamic_part(
@@ -448,39 +492,32 @@ def _dynamic_part(
     An entry is the integral of the kernel harmonic m = n_b − n_a, component (α_a, β_b), against
     the product of two radial functions. They are computed by blocks of one (``|n_a|``,
     ``|n_b|``), ``|n_a|`` <= ``|n_b|``: every radial pair of the block with its harmonics
-    m = ±``|n_a|`` ± ``|n_b|`` and the four components, each once, then written to the entries of
-    every sign of n_a and n_b, and transposed to those of (``|n_b|``, ``|n_a|``).
+    m = ±``|n_a|`` ± ``|n_b|`` and the four components, each once, packed side by side; the
+    matrix is then gathered from them in one step (every sign of n_a and n_b, and the pairs of
+    (``|n_b|``, ``|n_a|``), transposed).
     """
     na = ka.size
     harmonics, per_n = _layout(basis)
     nn = harmonics.size
-    out = np.empty((na, 2, nn, per_n, 2, nn, per_n), dtype=complex)
     # Near field: s = ka κ on the contour and the hand-over segment.
     s = ka[:, None] * table.near_kappa[None, :]  # (na, nk)
     jp = spherical_bessel(basis.p_max, s)  # (p, na, nk)
-    h = np.tensordot(basis.series, jp, axes=(1, 0)).transpose(1, 0, 2)  # (na, nrad, nk)
+    h = np.tensordot(basis.series, jp, axes=(1, 0))  # (nrad, na, nk)
     wk = table.near_weight[None, :] * ka[:, None]
     nk = wk.shape[1]
     nv = table.near_values.reshape(nk, -1, 4)  # (nk, nm, 4)
     # Real factors of complex products as complex numbers x + 0i, here and below (avg): numpy
     # would cast them through its iterator buffers, element by element of the broadcast, at
     # several times the cost of the products (which are the same, to the bit).
-    hw = h * wk.astype(complex)[:, None, :]
+    hw = h * wk.astype(complex)[None, :, :]
     # Far field: Chebyshev series of each harmonic against the products on the far grid, one
     # product over the grid for every (k a, Chebyshev term).
     nf = table.far_coeffs.shape[1]
-    phi = _far_gram(basis, _far_rows(table, ka, grid), grid)
+    phi = _far_gram(basis, _far_rows(table, ka, grid), grid)  # (na nf, nrad, nrad)
     nrad = basis.series.shape[0]
-    # Complex once, with the radial pairs of each (|n_a|, |n_b|) block contiguous: a matmul of
-    # complex by real rows casts through numpy's buffers, pair by pair, at several times the
-    # cost of the products (the same values reach the same complex products).
-    nmag = nrad // per_n
-    phi = (
-        phi.reshape(na, nf, nmag, per_n, nmag, per_n)
-        .transpose(2, 4, 0, 1, 3, 5)
-        .astype(complex)
-        .reshape(nmag, nmag, na, nf, per_n * per_n)
-    )
+    # Real, radial pairs first: a block's (j_a, j_b, k a, f) is then a stack of matrices
+    # (j_b, k a merged) that the real Chebyshev coefficients multiply without a copy.
+    phi = np.ascontiguousarray(phi.reshape(na * nf, nrad * nrad).T).reshape(nrad, nrad, na, nf)
     coef = table.far_coeffs.reshape(-1, 4, nf)  # (nm, 4, nf)
     # Beyond the grid: h − h∞ -> w C₁, H_a H_b -> (α_a α_b + β_a β_b)/(2 s²) on average.
     p = np.arange(basis.p_max + 1)
@@ -494,48 +531,61 @@ def _dynamic_part(
     near_e, near_o = _by_parity(nv)
     coef_e, coef_o = (np.moveaxis(g, -1, 1) for g in _by_parity(coef.swapaxes(1, 2)))
     c1_e, c1_o = _by_parity(c1)
-    parity = ((near_e, coef_e, c1_e, _even_full), (near_o, coef_o, c1_o, _odd_full))
+    parity = ((near_e, coef_e, c1_e), (near_o, coef_o, c1_o))
     tail_scale = (table.t1 * ka) ** 2 / (6 * grid.s_end**3)
     magnitudes = np.unique(np.abs(harmonics)).tolist()
     index = {n: i for i, n in enumerate(harmonics.tolist())}  # harmonic -> its position
+    # (α, |n|, radial function), as complex x + 0i (see hw above).
+    by_mag = np.ones((2, len(magnitudes), per_n), dtype=complex)
     if scale is not None:
-        # (α, |n|, radial function), as complex x + 0i (see hw above).
         by_mag = scale.reshape(2, nn, per_n)[:, [index[n] for n in magnitudes]].astype(complex)
-    for ia, n_a in enumerate(magnitudes):
+    ms_of, offset, total = _block_sizes(magnitudes, per_n)
+    packed = np.empty((na, total), dtype=complex)
+    # Work arrays of the largest block, reused by every block: fresh arrays of ~1 MB per block
+    # cost more in page faults than the products in them. Per radial pair and k a: the
+    # products over the near nodes, the block's near and far parts (<= 4 m × 3 components
+    # each) and its 2x2 components (<= 4 m × 4).
+    pairs = per_n * per_n * na
+    work = np.empty(pairs * (nk + 2 * 12 + 16), dtype=complex)
+    prod = work[: pairs * nk].reshape(per_n, per_n, na, nk)
+    spare = work[pairs * nk :]
+    for (ia, ib), ms in ms_of.items():
         ra = slice(ia * per_n, (ia + 1) * per_n)
-        for ib in range(ia, len(magnitudes)):
-            n_b = magnitudes[ib]
-            rb = slice(ib * per_n, (ib + 1) * per_n)
-            ms = np.array(sorted({n_a + n_b, n_a - n_b, n_b - n_a, -n_a - n_b}))
-            cols = ms + table.max_order
-            prod = hw[:, ra, None, :] * h[:, None, rb, :]  # (na, per_n, per_n, nk)
-            near_p, coef_p, c1_p, full = parity[(n_a + n_b) % 2]
-            nc = c1_p.shape[-1]
-            near = prod.reshape(-1, nk) @ near_p[:, cols].reshape(nk, -1)
-            # (na, m, independent component, j_a, j_b)
-            part = np.matmul(coef_p[cols].reshape(-1, nf), phi[ia, ib])
-            part += near.reshape(na, per_n * per_n, -1).transpose(0, 2, 1)
-            part = part.reshape(na, ms.size, nc, per_n, per_n)
-            tail = tail_scale[:, None, None] * c1_p[cols].reshape(1, -1, nc)
-            part += tail[..., None, None] * avg[ra, rb]
-            # (na, m, α, β, j_a, j_b): the 2x2 components from the independent ones.
-            part = full(part).reshape(na, ms.size, 2, 2, per_n, per_n)
-            if scale is not None:
-                # Once per block, not once per entry of the matrix (up to 8 per block).
-                part *= by_mag[:, ia, None, :, None] * by_mag[None, :, ib, None, :]
-            at_m = {m: c for c, m in enumerate(ms.tolist())}
-            for sa in {-n_a, n_a}:
-                for sb in {-n_b, n_b}:
-                    i, j = index[sa], index[sb]
-                    # Rows of harmonic sa, columns sb: m = sb − sa.
-                    block = part[:, at_m[sb - sa]]  # (na, α, β, j_a, j_b)
-                    out[:, :, i, :, :, j, :] = block.transpose(0, 1, 3, 2, 4)
-                    if n_a != n_b:
-                        # Rows of harmonic sb, columns sa: m = sa − sb, the pair transposed.
-                        block = part[:, at_m[sa - sb]]
-                        out[:, :, j, :, :, i, :] = block.transpose(0, 1, 4, 2, 3)
-    nb = basis.n.size
-    return out.reshape(na, nb, nb)
+        rb = slice(ib * per_n, (ib + 1) * per_n)
+        cols = np.array(ms) + table.max_order
+        odd = (magnitudes[ia] + magnitudes[ib]) % 2
+        near_p, coef_p, c1_p = parity[odd]
+        nc = c1_p.shape[-1]
+        width = len(ms) * nc
+        # (j_a, j_b, k a, m, independent component)
+        np.multiply(hw[ra, None], h[None, rb], out=prod)
+        part = spare[: pairs * width].reshape(pairs, width)
+        np.matmul(prod.reshape(pairs, nk), near_p[:, cols].reshape(nk, width), out=part)
+        # The far field in real arithmetic, real and imaginary parts of the coefficients
+        # side by side (a complex view of the result).
+        real_coef = np.ascontiguousarray(coef_p[cols].reshape(width, nf).T).view(float)
+        far = spare[pairs * width : 2 * pairs * width]
+        far_real = far.view(float).reshape(per_n, per_n * na, 2 * width)
+        np.matmul(phi[ra, rb].reshape(per_n, per_n * na, nf), real_coef, out=far_real)
+        part += far.reshape(pairs, width)
+        tail = tail_scale[:, None] * c1_p[cols].reshape(1, width)  # (na, m c)
+        np.multiply(
+            avg[ra, rb, None, None], tail[None, None], out=far.reshape(per_n, per_n, na, width)
+        )
+        part += far.reshape(pairs, width)
+        # The 2x2 components, scaled, into the packed entries (k a, j_a, j_b, m, α, β).
+        take, sign = _FULL[odd]
+        factor = by_mag[:, ia, None, :, None] * by_mag[None, :, ib, None, :]  # (α, β, j_a, j_b)
+        factor = factor.transpose(2, 3, 0, 1).reshape(per_n, per_n, 1, 1, 4) * sign
+        size = per_n * per_n * len(ms) * 4
+        dest = packed[:, offset[ia, ib] : offset[ia, ib] + size]
+        dest = dest.reshape(na, per_n, per_n, len(ms), 4).transpose(1, 2, 0, 3, 4)
+        full = spare[2 * pairs * width : 2 * pairs * width + pairs * len(ms) * 4]
+        full = full.reshape(per_n, per_n, na, len(ms), 4)
+        np.take(part.reshape(per_n, per_n, na, len(ms), nc), take, axis=-1, out=full)
+        np.multiply(full, factor, out=dest)
+    where = _placement(harmonics, per_n, magnitudes, ms_of, offset)
+    return np.take(packed, where, axis=1)
 
 
 @dataclass(frozen=True, eq=False)
