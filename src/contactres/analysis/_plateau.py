@@ -23,6 +23,18 @@ rounding) a combination of the others, which the finite differences of the old f
 into errors of ~10⁴ Hz. A fit that ends there (within :data:`PLATEAU_D_C_BOUND`) is the
 Cattaneo-Mindlin fit: refitted with d_c held at 0, its errors those of (Pκ, Pωξ, ln θ) alone,
 d_c 0 with no error (NaN).
+
+Two savings leave the iteration as it was. The Levenberg-Marquardt solver reads a step's
+gradient and Hessian only where it accepts the step (its χ² not above the row's current one),
+so they are formed there alone (a quarter of the steps are refused), and each row keeps the fit
+of its last accepted step, the fit at the solution, with no evaluation again: both bit for bit.
+The rows of a block fitted jointly repeat each amplitude once per ramp: their points are pooled
+into one per amplitude (:func:`pool_repeats`, a third of the points of the three-ramp blocks of
+issue 31), the same χ² to rounding. On the 10^4 sweeps of issue 31 (bench_scale.large_table
+with COPIES = 8) that moves the pooled blocks' parameters by at most 4.5e-6 of their standard
+errors (bound: 1e-3), their errors and covariances by 1.3e-4 relative, ΔBIC by 4.2e-6, no
+model choice or flag; tests/analysis/test_plateau_fit.py checks the bound against the fit
+point by point.
 """
 
 from __future__ import annotations
@@ -269,18 +281,105 @@ def _elliptic_integrals(x, c, derivatives: bool = True) -> tuple[np.ndarray, ...
     return J, e * I1 - I2, x * I1 - I2
 
 
-def _plateau_model(p, u, umax, df, dg, w, wf, wg) -> dict[str, np.ndarray]:
+def pool_repeats(u, df, dg, w) -> tuple[np.ndarray, ...] | None:
+    """The points of padded sweeps that repeat an amplitude pooled into one point per amplitude.
+
+    Why: the ramps of a block fitted jointly repeat each amplitude (amplitudes ascending, the
+    copies side by side), and the loop is a function of the amplitude: Σ w (Δf - model)² over
+    an amplitude's copies is W (mean Δf - model)² + Σ w (Δf - mean Δf)² (W = Σ w, the weighted
+    mean), so the fit evaluates the loop once per amplitude. The χ², its gradient and Hessian
+    (with √W the factor of the weighted residuals) and the errors are those of the points one
+    by one to rounding; the iteration may then stop a step apart, within its tolerance (the
+    bound and the measured change: module docstring).
+
+    Parameters
+    ----------
+    u, df, dg, w : (S, M) amplitudes (m), shifts (Hz) and weights (0 for padding)
+
+    Returns
+    -------
+    None if no amplitude repeats; else (u, Δf, ΔΓ, W, √W), (S, M′) with M′ the most distinct
+    amplitudes of a row (the means of the shifts, the padding at the row's largest amplitude
+    with weight 0), and the within-amplitude sums of squares Σ w (Δf - mean)², Σ w (ΔΓ -
+    mean)² (S,), Hz².
+    """
+    data = w > 0
+    same = np.pad((u[:, 1:] == u[:, :-1]) & data[:, 1:] & data[:, :-1], ((0, 0), (1, 0)))
+    if not same.any():
+        return None
+    new = data & ~same  # the first copy of each amplitude
+    width = int(new.sum(axis=1).max())
+    # Each point's pooled position (row-major): its row's count of amplitudes up to it.
+    at = np.arange(u.shape[0])[:, None] * width + np.cumsum(new, axis=1) - 1
+    flat = at[data]
+
+    def pooled(a):
+        return np.bincount(flat, a[data], minlength=u.shape[0] * width).reshape(-1, width)
+
+    weight = pooled(w)
+    held = weight > 0
+    safe = np.where(held, weight, 1.0)
+    mean_f, mean_g = pooled(w * df) / safe, pooled(w * dg) / safe
+    amp = np.repeat(np.max(np.where(data, u, 0.0), axis=1, keepdims=True), width, axis=1)
+    amp[held] = u[new]
+    at = np.where(data, at, 0)
+    within = [
+        np.where(data, w * (a - m.reshape(-1)[at]) ** 2, 0.0).sum(axis=1)
+        for a, m in ((df, mean_f), (dg, mean_g))
+    ]
+    return amp, mean_f, mean_g, weight, np.sqrt(weight), *within
+
+
+def _plateau_model(p, u, umax, df, dg, w, rw, wf, wg, within=None, current=None) -> dict:
     """Projected fit of the plateau loop at p = (ln θ(u_max - d_c), d_c/u_max), rows (R, 2):
     Pκ, Pωξ, χ², the RSS of the channels, the gradient of χ²/2 in p and its Gauss-Newton
-    Hessian (Kaufman's variable projection: exact gradient, Jacobian projected off Pκ, Pωξ)."""
+    Hessian (Kaufman's variable projection: exact gradient, Jacobian projected off Pκ, Pωξ).
+    ``rw``: the factor of the weighted residuals, w where w is 0 or 1, √w for the points of
+    :func:`pool_repeats`, whose sums of squares within their amplitudes, ``within`` (Δf's,
+    ΔΓ's), join the RSS. ``current``: (R,) the χ² of the rows' current points, or None. Given,
+    the gradient and Hessian are formed only at the rows whose χ² does not exceed it
+    (``"accepted"``, the rows :func:`~contactres.fitting.levenberg_marquardt` accepts: it
+    reads those of the others nowhere; zero there), a quarter of the steps of the fit being
+    refused."""
     ly, dl = p[:, 0], p[:, 1]
     ey = np.exp(ly)
     theta = ey / (umax * (1.0 - dl))  # θ(u_max - d_c) = e^ly
     c = (theta * dl * umax)[:, None]
     x = theta[:, None] * u
-    g1, g2, g1x, g1c, g2x, g2c = plateau_loop_slopes(x, c)
-    A, B, chi2, rss_f, rss_g = solve_projected(g1, g2, df, dg, w, wf, wg)
-    sf, sg = np.sqrt(wf)[:, None] * w, np.sqrt(wg)[:, None] * w
+    slopes = plateau_loop_slopes(x, c)
+    A, B, chi2, rss_f, rss_g = solve_projected(slopes[0], slopes[1], df, dg, w, wf, wg)
+    if within is not None:
+        rss_f, rss_g = rss_f + within[0], rss_g + within[1]
+        chi2 = wf * rss_f + wg * rss_g
+    fit = {"A": A, "B": B, "chi2": chi2, "rss_f": rss_f, "rss_g": rss_g}
+    fit.update(theta=theta, x=x, c=c, slopes=slopes)
+    accepted: slice | np.ndarray = slice(None)
+    if current is not None:
+        # (χ² <= current: the solver's test gain = current - χ² >= 0, NaN failing both)
+        better = np.flatnonzero(chi2 <= current)
+        if better.size < chi2.size:
+            accepted = better
+    fit["accepted"] = accepted
+    if isinstance(accepted, slice):
+        fit["grad"], fit["hess"] = _descent(
+            ey, dl, x, c, A, B, slopes, np.sqrt(wf)[:, None] * rw, np.sqrt(wg)[:, None] * rw, df, dg
+        )
+        return fit
+    fit["grad"], fit["hess"] = np.zeros((chi2.size, 2)), np.zeros((chi2.size, 2, 2))
+    if accepted.size:
+        k = accepted
+        sf, sg = np.sqrt(wf[k])[:, None] * rw[k], np.sqrt(wg[k])[:, None] * rw[k]
+        grad, hess = _descent(
+            ey[k], dl[k], x[k], c[k], A[k], B[k], [s[k] for s in slopes], sf, sg, df[k], dg[k]
+        )
+        fit["grad"][k], fit["hess"][k] = grad, hess
+    return fit
+
+
+def _descent(ey, dl, x, c, A, B, slopes, sf, sg, df, dg) -> tuple[np.ndarray, np.ndarray]:
+    """The gradient of χ²/2 in p and its Gauss-Newton Hessian of :func:`_plateau_model`, from
+    its shapes, Pκ (A) and Pωξ (B) at the rows' points (sf, sg: √(channel weight)·w)."""
+    g1, g2, g1x, g1c, g2x, g2c = slopes
     dx = x / (1.0 - dl)[:, None]  # ∂x/∂(d_c/u_max); ∂x/∂ln(...) = x
     dc = (ey / (1.0 - dl) ** 2)[:, None]
     # Weighted columns of the linear part (Pκ, Pωξ) and of ∂(model)/∂p, channels side by side.
@@ -300,20 +399,7 @@ def _plateau_model(p, u, umax, df, dg, w, wf, wg) -> dict[str, np.ndarray]:
     hess = np.einsum("rim,rjm->rij", D, D) - np.einsum(
         "rki,rkj->rij", pd_, solve_stacked(gram, pd_)
     )
-    grad = -np.einsum("rim,rm->ri", D, r)
-    return {
-        "A": A,
-        "B": B,
-        "chi2": chi2,
-        "rss_f": rss_f,
-        "rss_g": rss_g,
-        "grad": grad,
-        "hess": hess,
-        "theta": theta,
-        "x": x,
-        "c": c,
-        "slopes": (g1, g2, g1x, g1c, g2x, g2c),
-    }
+    return -np.einsum("rim,rm->ri", D, r), hess
 
 
 def fit_plateau_loops(
@@ -362,38 +448,49 @@ def fit_plateau_loops(
     else:
         y0 = np.asarray(theta_start, dtype=float) * np.maximum(umax - u_c, 0.0)
 
+    # The points the fit sees: one per amplitude where amplitudes repeat (pool_repeats; the
+    # weights 0 or 1, whose square roots are themselves).
+    pooled = pool_repeats(u, df, dg, w) if np.all((w == 0) | (w == 1)) else None
+    points = (u, df, dg, w, w, None, None) if pooled is None else pooled
+
     def run(starts, sig_f, sig_g, of, tol, top=hi):  # start i of the sweep of[i]
         wf = (1.0 / np.maximum(sig_f, floor_f) ** 2)[of]
         wg = (1.0 / np.maximum(sig_g, floor_g) ** 2)[of]
-        data = [a[of] for a in (u, df, dg, w)]
+        data = [a[of] for a in points[:5]]
+        within = None if points[5] is None else [a[of] for a in points[5:]]
         um = umax[of]
 
-        def model(p, i):
-            return _plateau_model(p, data[0][i], um[i], *(a[i] for a in data[1:]), wf[i], wg[i])
+        def model(p, i, current=None):
+            part = None if within is None else [a[i] for a in within]
+            return _plateau_model(
+                p, data[0][i], um[i], *(a[i] for a in data[1:]), wf[i], wg[i], part, current
+            )
 
-        # Each row's latest evaluation and where it was made: the fit at the solution is the
-        # last accepted step's, so only rows whose last step was refused are evaluated again
-        # (a row's numbers do not depend on the rows evaluated with it).
+        # Each row's fit at its latest accepted point (the solver's current one: χ² not above
+        # the kept one) and where that is: the fit at the solution, with no evaluation again (a
+        # row's numbers do not depend on the rows evaluated with it).
         at = np.full(np.shape(starts), np.nan)
         kept: dict[str, np.ndarray] = {}
 
-        def keep(fit, i):
+        def keep(fit, i, k=slice(None)):  # the rows i[k] of the evaluation fit
             for key, v in fit.items():
+                if key in ("accepted", "grad", "hess"):  # (the solver holds these)
+                    continue
                 for j, a in enumerate(v) if key == "slopes" else [(None, v)]:
                     name = key if j is None else f"{key}{j}"
                     if name not in kept:
                         kept[name] = np.empty((len(at), *np.shape(a)[1:]), dtype=np.result_type(a))
-                    kept[name][i] = a
+                    kept[name][i[k]] = a[k]
 
-        def evaluate(p, i, jacobian):  # the Gauss-Newton form, always complete
-            fit = model(p, i)
-            at[i] = p
-            keep(fit, i)
+        def evaluate(p, i, jacobian):  # the Gauss-Newton form, complete where accepted
+            fit = model(p, i, kept["chi2"][i] if kept else None)
+            at[i[fit["accepted"]]] = p[fit["accepted"]]
+            keep(fit, i, fit["accepted"])
             return {"chi2": fit["chi2"], "gradient": fit["grad"], "hessian": fit["hess"]}
 
         options = replace(PLATEAU_LM, xtol=tol, x_abs=1e-10 * tol, ftol=tol)
         p = levenberg_marquardt(evaluate, starts, lo[of], top[of], options)
-        again = np.flatnonzero(np.any(at != p.x, axis=1))
+        again = np.flatnonzero(np.any(at != p.x, axis=1))  # (none: a guard)
         if again.size:
             keep(model(p.x[again], again), again)
         fit = {key: v for key, v in kept.items() if not key.startswith("slopes")}
@@ -442,7 +539,7 @@ def fit_plateau_loops(
     x, c = fit["x"], fit["c"]
     wf = 1.0 / np.maximum(sig[0], floor_f) ** 2
     wg = 1.0 / np.maximum(sig[1], floor_g) ** 2
-    sf, sg = np.sqrt(wf)[:, None] * w, np.sqrt(wg)[:, None] * w
+    sf, sg = np.sqrt(wf)[:, None] * points[4], np.sqrt(wg)[:, None] * points[4]
     a = -A[:, None]
     zero, one = np.zeros_like(g1), np.ones_like(g1)
     Jf = sf[..., None] * np.stack(

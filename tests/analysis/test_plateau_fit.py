@@ -1,0 +1,110 @@
+"""The plateau-loop fit's savings (contactres.analysis._plateau): the gradient and Hessian formed
+at accepted steps only (bit for bit), the repeated amplitudes of a block pooled (to rounding)."""
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from contactres.analysis import _plateau
+from contactres.analysis._amplitude import fit_hinge, pad_sweeps
+from contactres.analysis._loops import cm_loop_table
+from contactres.analysis._plateau import fit_plateau_loops, pool_repeats
+from contactres.measurements._sweeps import validate_sweeps
+from contactres.measurements._synthetic import SweepGroup, SweepStudy, synthetic_sweeps
+from contactres.resonators._qcm import QCM
+
+Q = QCM(fundamental=5e6, overtone=3, area=2.5e-5)
+
+
+def _sweeps(model, n_exp=6, seed=3):
+    """Padded sweeps of one amplitude grid (13 points), their hinges' u_c and noise levels."""
+    u = tuple(np.linspace(0.5e-9, 8e-9, 13))
+    group = SweepGroup("g", "air", 1.1e-3, 70e9, 0.1, u, 5.0 / Q.sensitivity(3), 0.1)
+    study = SweepStudy(
+        groups=(group,),
+        normal_forces=(3e-3, 6e-3),
+        n_experiments=n_exp,
+        ramps=(2, 3),
+        qcm=Q,
+        model=model,
+        mu=1.5,
+        plateau_fraction=0.4,
+    )
+    table = synthetic_sweeps(study, seed, constants=True)
+    p = pad_sweeps(validate_sweeps(pd.DataFrame(table)).data)
+    b = p.block(np.arange(len(p.n)))
+    hinge = fit_hinge(b)
+    sig = np.sqrt(hinge.line.rss / np.maximum(b.n - 3, 1))
+    return b, hinge.u_c, sig
+
+
+def _blocks(b, u_c, sig):
+    """Three sweeps at a time as one row of a block fitted jointly: each amplitude three times,
+    side by side (the layout of the blocks of issue 31), a fourth of the rows with a point
+    dropped (a block's ramps may differ in length)."""
+    k = 3 * (len(b.n) // 3)
+    u, df, dg, w = (
+        np.stack([a[i:k:3] for i in range(3)], axis=-1).reshape(k // 3, -1)
+        for a in (b.u, b.df, b.dg, b.w)
+    )
+    w[::4, 4] = 0.0
+    start = [a[:k:3] for a in (u_c, sig[0], sig[1])]
+    return u, df, dg, w, *start
+
+
+def test_pooled_amplitudes_hold_the_sums_of_squares():
+    # Against the sums over the points one by one, for an arbitrary loop per amplitude.
+    rng = np.random.default_rng(11)
+    u = np.repeat(np.sort(rng.random((6, 5)), axis=1), 3, axis=1)
+    df, dg = rng.normal(size=u.shape), rng.normal(size=u.shape)
+    w = np.ones(u.shape)
+    w[0, 7] = w[1, -2:] = 0.0
+    amp, mf, mg, weight, root, within_f, within_g = pool_repeats(u, df, dg, w)
+    assert np.allclose(root**2, weight) and np.array_equal(weight.sum(axis=1), w.sum(axis=1))
+    model = np.sin(7.0 * amp)  # any function of the amplitude
+    direct = (w * (df - np.sin(7.0 * u)) ** 2).sum(axis=1)
+    np.testing.assert_allclose((weight * (mf - model) ** 2).sum(axis=1) + within_f, direct)
+    direct = (w * (dg - np.sin(7.0 * u)) ** 2).sum(axis=1)
+    np.testing.assert_allclose((weight * (mg - model) ** 2).sum(axis=1) + within_g, direct)
+    assert pool_repeats(u[:, ::3], df[:, ::3], dg[:, ::3], w[:, ::3]) is None
+
+
+@pytest.mark.parametrize("model", ["plateau", "cattaneo-mindlin"])
+def test_pooled_block_fit_is_the_fit_point_by_point(model, monkeypatch):
+    # The bound of the module docstring: each parameter within 1e-3 of its standard error of the
+    # fit over the points one by one (pool_repeats off), errors within 1e-3 relative, the same
+    # edges and the same fits on the bound d_c = 0.
+    u, df, dg, w, u_c, sf, sg = _blocks(*_sweeps(model))
+    table = cm_loop_table()
+    fit = fit_plateau_loops(u, df, dg, w, sf, sg, u_c, table)
+    monkeypatch.setattr(_plateau, "pool_repeats", lambda *a: None)
+    ref = fit_plateau_loops(u, df, dg, w, sf, sg, u_c, table)
+    assert np.array_equal(fit["edge"], ref["edge"])
+    assert np.array_equal(np.isnan(fit["d_c_err_m"]), np.isnan(ref["d_c_err_m"]))
+    for col, err in (("df0_Hz", "df0_err_Hz"), ("dgamma0_Hz", "dgamma0_err_Hz")):
+        assert np.all(np.abs(fit[col] - ref[col]) <= 1e-3 * ref[err]), col
+    lnt = np.abs(np.log(fit["theta_per_m"] / ref["theta_per_m"]))
+    assert np.all(lnt <= 1e-3 * ref["lntheta_err"])
+    free = np.isfinite(ref["d_c_err_m"])
+    assert np.all(np.abs(fit["d_c_m"] - ref["d_c_m"])[free] <= 1e-3 * ref["d_c_err_m"][free])
+    assert np.all(fit["d_c_m"][~free] == 0.0)
+    for col in ("df0_err_Hz", "dgamma0_err_Hz", "lntheta_err", "d_c_err_m", "rss_df"):
+        np.testing.assert_allclose(fit[col], ref[col], rtol=1e-3, err_msg=col)
+
+
+def test_gradient_at_refused_steps_is_never_read(monkeypatch):
+    # The fit forms the gradient and Hessian only where the solver will accept the step: the same
+    # numbers, bit for bit, as with them formed at every step (a wrong guess of the solver's
+    # test would hand it the zeros of a refused row).
+    model = _plateau._plateau_model
+
+    def always(*a):  # the gradient and Hessian at every step, as before
+        return model(*a[:-1], None)
+
+    for b, u_c, sig in (_sweeps("plateau"), _sweeps("cattaneo-mindlin", seed=4)):
+        args = (b.u, b.df, b.dg, b.w, sig[0], sig[1], u_c, cm_loop_table())
+        fit = fit_plateau_loops(*args)
+        with monkeypatch.context() as m:
+            m.setattr(_plateau, "_plateau_model", always)
+            full = fit_plateau_loops(*args)
+        pd.testing.assert_frame_equal(fit, full, check_exact=True)
