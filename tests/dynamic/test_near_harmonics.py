@@ -160,6 +160,42 @@ def test_wa_harmonic_sum_against_the_fourier_coefficients_of_the_line_weight():
     np.testing.assert_allclose(wa_harmonic_sum(z, c), ref, rtol=0, atol=1e-13)
 
 
+@pytest.mark.parametrize("zmax", [21.0, 60.0])
+def test_near_sums_with_the_margins_of_the_near_field(zmax):
+    """The continued fractions started 20 and 10 orders above the arguments, as the near field
+    does (:mod:`contactres.dynamic._quadrature`), against scipy's jv (AMOS) and the Fourier
+    coefficients of the line weight, on the near field's kind of arguments: complex with
+    Im <= 3 (the contour) and real (the hand-over segment), up to 21 (k_l a = 2) and 60 (the
+    checked range beyond it); independent references, so that a margin too short shows (15
+    and 7 orders fail these bounds)."""
+    rng = np.random.default_rng(11)
+    z = np.concatenate(
+        [
+            rng.uniform(1e-3, zmax / 2, (2, 30)) + 1j * rng.uniform(0, 3, (2, 30)),
+            rng.uniform(1e-3, zmax, (2, 30)) + 0j,
+        ]
+    )
+    n_c = int(0.6 * zmax) + 10
+    c = rng.normal(size=(n_c, 30)) + 1j * rng.normal(size=(n_c, 30))
+    ref = sum(special.jv(2 * m, z) * c[m] for m in range(n_c))
+    scale = np.sum(np.abs(c), axis=0)
+    assert np.all(np.abs(bessel_even_sum(z, c, margin=20) - ref) <= 1e-14 * scale)
+    real = z[2:].real
+    ref = sum(special.jv(2 * m, real) * c[m].real for m in range(n_c))
+    got = bessel_even_sum(real, c.real, margin=20)
+    assert np.all(np.abs(got - ref) <= 1e-14 * np.sum(np.abs(c.real), axis=0))
+    w = np.concatenate([z[0, :6], z[3, :6]])
+    n_t = 1024
+    theta = np.pi * np.arange(n_t) / n_t
+    coef = np.fft.fft(wa_line_weight(np.multiply.outer(w, np.cos(theta))), axis=-1) / n_t
+    k = np.arange(n_c)
+    weights = (coef[:, k] * np.where(k % 2 == 0, 1.0, -1.0)).T
+    cw = np.random.default_rng(5).normal(size=(n_c, w.size)) * (0.9 ** k[:, None])
+    np.testing.assert_allclose(
+        wa_harmonic_sum(w, cw, margin=10), np.sum(weights * cw, axis=0), rtol=0, atol=3e-14
+    )
+
+
 def test_spherical_bessel_upward_recurrence_at_large_real_arguments():
     """Real z beyond every order take the upward recurrence: against AMOS up to z = 700 (which
     itself scatters by ~2e-14 of the largest |j_p| there, hence the absolute bound)."""

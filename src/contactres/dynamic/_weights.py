@@ -308,7 +308,7 @@ def wa_harmonic_weights_complex(z: np.ndarray, k_max: int) -> np.ndarray:
     return _wa_from_spherical(k_max, 0.5 * np.asarray(z))
 
 
-def wa_harmonic_sum(z: np.ndarray, coeffs: np.ndarray) -> np.ndarray:
+def wa_harmonic_sum(z: np.ndarray, coeffs: np.ndarray, *, margin: int = 20) -> np.ndarray:
     """Σ_k W_{2k}(z) c_k, the WA weights of :func:`wa_harmonic_weights_complex` summed against
     coefficients c_k, without the weights themselves (paper 1, Eq. 27; the near field of
     :func:`contactres.dynamic._quadrature.near_theta_integrals`).
@@ -332,6 +332,11 @@ def wa_harmonic_sum(z: np.ndarray, coeffs: np.ndarray) -> np.ndarray:
         Nonzero complex (or real) arguments, shape (..., n); ``|Im z|`` moderate (<~10).
     coeffs : ndarray
         c_k, k = 0..K, shape (K + 1, n) (one set per last index of ``z``) or (K + 1,).
+    margin : int
+        Keyword only: the orders summed reach ``margin`` beyond 1.3 max ``|z/2|`` (default 20,
+        with a wide margin; 10, as the near field of
+        :func:`~contactres.dynamic._quadrature.near_theta_integrals` takes, leaves the same
+        round-off, tests/dynamic/test_near_harmonics.py).
 
     Returns
     -------
@@ -343,7 +348,7 @@ def wa_harmonic_sum(z: np.ndarray, coeffs: np.ndarray) -> np.ndarray:
     k_max = c.shape[0] - 1
     # The orders whose terms reach round-off (_wa_orders) and no more: unlike the weights
     # one by one, the sum needs no order p above them for its rows k <= K (F_p stops at p).
-    p_max = _wa_orders(0, x)
+    p_max = _wa_orders(0, x, margin)
     # f_p = (2p + 1) F_p = (2p + 1) (−1)^p G_min(p, K), G_k = Σ_{i <= k} (−1)^i c_i.
     p = np.arange(p_max + 1)
     sign = np.where(p % 2 == 0, 1.0, -1.0)
@@ -404,11 +409,12 @@ def _wa_sum_pass(x: np.ndarray, f: np.ndarray, top: int, guard: bool) -> np.ndar
     return j0 * j0 * f[0] + j1 * j1 * acc
 
 
-def _wa_orders(k_max: int, x: np.ndarray) -> int:
-    """Highest order p of the spherical Bessel sums of the W_{2k}(2x), k <= k_max."""
+def _wa_orders(k_max: int, x: np.ndarray, margin: int = 20) -> int:
+    """Highest order p of the spherical Bessel sums of the W_{2k}(2x), k <= k_max, ``margin``
+    orders beyond 1.3 max ``|x|``."""
     xmax = float(np.max(np.abs(x), initial=0.0))
     # Beyond p ~ 1.3|x| the terms fall by (|x|/2p)² < 0.15 per order: 20 more leave < 1e-16.
-    return int(max(k_max, math.ceil(1.3 * xmax)) + 20)
+    return int(max(k_max, math.ceil(1.3 * xmax)) + margin)
 
 
 def _wa_from_spherical(k_max: int, x: np.ndarray) -> np.ndarray:
@@ -478,7 +484,7 @@ def bessel_orders(n_max: int, z: np.ndarray) -> np.ndarray:
     return out
 
 
-def bessel_even_sum(z: np.ndarray, coeffs: np.ndarray) -> np.ndarray:
+def bessel_even_sum(z: np.ndarray, coeffs: np.ndarray, *, margin: int = 30) -> np.ndarray:
     """Σ_m J_{2m}(z) c_m, m = 0..K, of nonzero real or complex z, without the J_{2m} themselves
     (the near field of :func:`contactres.dynamic._quadrature.near_theta_integrals`).
 
@@ -497,6 +503,11 @@ def bessel_even_sum(z: np.ndarray, coeffs: np.ndarray) -> np.ndarray:
         Nonzero arguments (dimensionless), real or complex, shape (..., n).
     coeffs : ndarray
         c_m, m = 0..K, shape (K + 1, n) (one set per last index of ``z``) or (K + 1,).
+    margin : int
+        Keyword only: the continued fraction starts ``margin`` orders above 1.3 max ``|z|``,
+        and never below 2K + 12 (default 30: truncation ~1e-20; 20, as the near field of
+        :func:`~contactres.dynamic._quadrature.near_theta_integrals` takes, leaves the same
+        round-off, tests/dynamic/test_near_harmonics.py).
 
     Returns
     -------
@@ -507,7 +518,7 @@ def bessel_even_sum(z: np.ndarray, coeffs: np.ndarray) -> np.ndarray:
     c = np.asarray(coeffs)
     zmax = float(np.max(np.abs(z), initial=0.0))
     # The start of bessel_orders for n_max = 2K (its truncation error, even).
-    top = 2 * math.ceil(max(2 * (c.shape[0] - 1) + 12, 1.3 * zmax + 30) / 2)
+    top = 2 * math.ceil(max(2 * (c.shape[0] - 1) + 12, 1.3 * zmax + margin) / 2)
     # Rerun with the guard of bessel_orders only where J_{n−1}(z) rounds to 0 (_finite_pass).
     return _finite_pass(_even_sum_pass, z, c, top)
 
