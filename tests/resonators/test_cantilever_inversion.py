@@ -226,6 +226,24 @@ def test_a_third_mode_above_its_pinned_limit_contradicts_the_crossing():
     assert res.flags[0] & FLAG_INCONSISTENT_MODES and np.isinf(res.mode_spread[0])
 
 
+def test_the_mean_over_eight_modes_is_numpys_pairwise_sum():
+    # From 8 terms numpy's sum runs by pairs (eight partial sums), not in order: the inversion's
+    # mean over 8 averaged modes must still be numpy's, bit for bit (review R24a: 266 of 2,000
+    # pixels differed in their last bits when the modes were added in order).
+    lever = Cantilever((1.0e5,), 10.0)
+    modes = tuple(range(1, 9))
+    rng = np.random.default_rng(3)
+    f = contact_frequencies(lever, np.geomspace(0.05, 5e3, 2000), 0.9, modes=modes)
+    f = f * (1.0 + 1e-4 * rng.standard_normal(f.shape))
+    res = invert_contact_resonance(lever, f, 0.9, modes=modes, mode_tolerance=1.0)
+    use = res.averaged_modes
+    n = use.sum(axis=-1)
+    assert n.max() == 8
+    with np.errstate(invalid="ignore", divide="ignore"):
+        mean = np.where(use, res.kappa_modes, 0.0).sum(axis=-1) / np.maximum(n, 1)
+    assert np.array_equal(res.kappa, np.where(n > 0, mean, np.nan), equal_nan=True)
+
+
 @pytest.mark.parametrize("q", [None, 80.0])
 def test_mean_spread_and_flags_over_the_modes_are_numpys_reductions(q):
     # κ, σ, the spread and the flags of a pixel are reductions over its modes; the inversion

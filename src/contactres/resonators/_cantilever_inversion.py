@@ -360,7 +360,10 @@ def _sum_modes(a):
     """``a.sum(axis=-1)`` over the few modes (the last axis; bools: counts), a column at a
     time: numpy's reduction adds the columns in order onto a zero, so these are its numbers
     bit for bit, without its buffered iteration over rows of two or three elements (the
-    inversion's reductions over the modes were ~7 % of an afm invert of a 512² map)."""
+    inversion's reductions over the modes were ~7 % of an afm invert of a 512² map).
+    From 8 modes on, numpy sums by pairs (eight partial sums), so its own reduction is used."""
+    if a.shape[-1] >= 8:
+        return a.sum(axis=-1)
     total = np.zeros(a.shape[:-1], dtype=int if a.dtype == bool else a.dtype)
     for j in range(a.shape[-1]):  # a loop over the modes (<= 8), not over pixels
         total += a[..., j]
