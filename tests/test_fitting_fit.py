@@ -16,6 +16,7 @@ import pytest
 from scipy.optimize import least_squares
 
 from contactres.analysis import REGISTRY
+from contactres.errors import ContactresInputError
 from contactres.fitting import Model, Parameter, fit
 from contactres.tangential import kappa_jkr_mindlin
 
@@ -86,8 +87,8 @@ def test_a_fit_on_its_lower_bound_is_least_squares():
     assert abs(ours.errors["E"] - errors["E"]) <= 1e-3 * errors["E"]
 
 
-def test_a_linear_fit_is_lstsq():
-    line = Model(
+def _line() -> Model:
+    return Model(
         "line",
         "a line",
         (
@@ -101,6 +102,10 @@ def test_a_linear_fit_is_lstsq():
         "test",
         lambda x, slope, offset: slope * x + offset,
     )
+
+
+def test_a_linear_fit_is_lstsq():
+    line = _line()
     rng = np.random.default_rng(5)
     x = np.linspace(0, 3, 40)
     y = 2.5 * x - 7 + 0.1 * rng.standard_normal(40)
@@ -112,3 +117,15 @@ def test_a_linear_fit_is_lstsq():
     assert np.allclose(
         [ours.errors["slope"], ours.errors["offset"]], np.sqrt(np.diag(cov)), rtol=1e-6
     )
+
+
+@pytest.mark.parametrize("bad", [np.nan, np.inf])
+def test_a_point_that_is_not_finite_is_refused_in_one_line(bad):
+    # least_squares refused residuals that are not finite at the start; without that check the
+    # own solver's SVD failed with numpy's LinAlgError (review R24a).
+    x = np.linspace(0, 3, 10)
+    y = 2.0 * x
+    y[4] = bad
+    with pytest.raises(ContactresInputError, match="not finite") as err:
+        fit(_line(), x, y, start={"slope": 1.0, "offset": 0.0})
+    assert "\n" not in str(err.value)

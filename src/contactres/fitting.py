@@ -208,6 +208,12 @@ def fit(
         # ravel: a model of several observables (e.g. Δf and ΔΓ) returns one row per observable
         return np.ravel((np.asarray(model.function(x, **params(z))) - y) * w)
 
+    if not np.all(np.isfinite(residuals(x0))):
+        # As least_squares refused it: a NaN or inf would otherwise surface as a failed SVD.
+        raise ContactresInputError(
+            f"model {model.key!r}: the residuals at the start are not finite "
+            "(check x, y and sigma for NaN or inf, and the start values)"
+        )
     # The package's own Levenberg-Marquardt (below), not scipy.optimize.least_squares: the
     # import of scipy.optimize (with scipy.linalg, sparse and spatial, ~0.3 s of CPU) would be
     # most of what a first analysis pays. Marquardt's damping λ diag(JᵀJ) is invariant to the
