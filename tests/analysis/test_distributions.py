@@ -22,6 +22,8 @@ import pytest
 from scipy import special
 
 from contactres.analysis._distributions import (
+    DOF_MAX,
+    T_MAX,
     f_upper_tail,
     incomplete_beta,
     log_beta,
@@ -119,7 +121,7 @@ def test_the_t_quantile_is_scipys_stdtrit(p):
 
 def test_t95_is_the_tables():
     """Student's table (two-sided 95 %): 12.706, 4.303, 3.182, ..., 1.960 at infinity."""
-    t = student_t_quantile(0.975, [1, 2, 3, 10, 30, 1e12])
+    t = student_t_quantile(0.975, [1, 2, 3, 10, 30, DOF_MAX])
     assert np.allclose(t, [12.7062047, 4.3026527, 3.1824463, 2.2281389, 2.0422725, 1.9599640])
 
 
@@ -156,3 +158,21 @@ def test_the_t_quantile_converges_in_a_few_newton_steps():
     q = 10 ** rng.uniform(-150, np.log10(0.4999), dof.size)
     assert not np.isnan(student_t_quantile(q, dof, max_iter=40)).any()
     assert np.isnan(student_t_quantile(q, dof, max_iter=3)).mean() > 0.3
+
+
+def test_the_t_quantile_is_nan_outside_its_stated_range():
+    """Beyond DOF_MAX degrees of freedom or |t| = T_MAX the tail's rounding or its continued
+    fraction no longer give the stated accuracy: NaN, not a wrong number (review R24a: 1e20
+    degrees of freedom gave 1.1e5 for 1.96; dof = 1 at p = 1e-300 gave 6e161 for 3e299)."""
+    assert np.isnan(student_t_quantile(0.975, [1.01 * DOF_MAX, 1e20, 1e100, np.inf])).all()
+    assert _rel(student_t_quantile(0.975, DOF_MAX), special.stdtrit(DOF_MAX, 0.975)) < 2e-16 * (
+        DOF_MAX
+    )
+    # dof = 1 and 2 down to p = 1e-300: the closed forms where |t| <= T_MAX, NaN beyond.
+    q = 10 ** np.linspace(-300, -100, 300)
+    for dof, exact in ((1.0, -1 / np.tan(np.pi * q)), (2.0, -1 / np.sqrt(2 * q * (1 - q)))):
+        got = student_t_quantile(q, dof)
+        inside = np.abs(exact) <= T_MAX
+        assert inside.any() and (dof == 2.0 or (~inside).any())  # dof 2: |t| <= 7.1e149
+        assert np.max(_rel(got[inside], exact[inside])) < 1e-13
+        assert np.isnan(got[~inside]).all()

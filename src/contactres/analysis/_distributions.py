@@ -21,7 +21,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["f_upper_tail", "incomplete_beta", "log_beta", "student_t_quantile"]
+__all__ = ["DOF_MAX", "T_MAX", "f_upper_tail", "incomplete_beta", "log_beta", "student_t_quantile"]
 
 #: Below this argument log Γ is shifted up before Stirling's series (its truncation after the
 #: z^-13 term is below 1e-17 relative from here on).
@@ -42,6 +42,9 @@ _TINY = 1e-300  # the modified Lentz method's stand-in for a zero denominator
 _EPS = np.finfo(float).eps
 _STEP_TOL = 1e-14  # Newton's last step in log t (student_t_quantile) ...
 _BRACKET_TOL = 1e-12  # ... or the width of its bracket about the root, for ν <= 1e4
+#: The largest |t| and degrees of freedom :func:`student_t_quantile` answers (NaN beyond).
+T_MAX = 1e150
+DOF_MAX = 1e9
 
 
 def _stirling_correction(z: np.ndarray) -> np.ndarray:
@@ -201,8 +204,11 @@ def student_t_quantile(p, dof, max_iter: int = 100) -> np.ndarray:
     """The quantile t_p of Student's t distribution with ``dof`` degrees of freedom (> 0, any
     real), what ``scipy.special.stdtrit(dof, p)`` returns, to a relative 2e-12 for dof <=
     1e4 (2e-16 dof beyond: the rounding of the tail, see :func:`incomplete_beta`) and for
-    |t| <= 1e150 (a tail down to 1e-150 at dof = 1, 1e-300 from dof = 2); NaN outside 0 < p < 1
-    or where the iteration did not converge in ``max_iter`` steps (<= 40 over that range).
+    |t| <= 1e150 (a tail down to 1e-150 at dof = 1, 1e-300 from dof = 2); NaN outside 0 < p < 1,
+    above :data:`DOF_MAX` = 1e9 degrees of freedom or |t| > :data:`T_MAX` = 1e150 (where that
+    accuracy no longer holds), or where the iteration did not converge in ``max_iter`` steps
+    (<= 40 over that range). Within 1e-10 of p = 1/2 the relative error follows the problem's
+    own conditioning (~1e-16/|p - 1/2|: t is ~|p - 1/2| there), as scipy's does.
 
     The upper tail q = min(p, 1 - p) is solved for t >= 0 by Newton's method on log P(T > t)
     in s = log t (the tail falls as a power of t, so the function is nearly straight there),
@@ -212,7 +218,7 @@ def student_t_quantile(p, dof, max_iter: int = 100) -> np.ndarray:
     p, dof = np.broadcast_arrays(np.asarray(p, dtype=float), np.asarray(dof, dtype=float))
     shape = p.shape
     p, dof = p.ravel(), dof.ravel()
-    ok = (p > 0) & (p < 1) & (dof > 0)
+    ok = (p > 0) & (p < 1) & (dof > 0) & (dof <= DOF_MAX)
     q = np.where(ok, np.minimum(p, 1.0 - p), 0.25)
     nu = np.where(ok, dof, 1.0)
     log_b = log_beta(0.5 * nu, 0.5)
@@ -258,5 +264,9 @@ def student_t_quantile(p, dof, max_iter: int = 100) -> np.ndarray:
             if done.all():
                 break
     t = np.where(q >= 0.5, 0.0, np.exp(s))
-    t = np.where(done & ok, t, np.nan)
+    # NaN rather than a wrong number outside the stated range: beyond |t| = 1e150 the tail's
+    # continued fraction no longer resolves t (dof <= 2 at p ~ 1e-300 landed near 1e161 where
+    # t is 3e299), and above DOF_MAX (in ``ok``) its rounding (2e-16 ν) would pass 2e-7
+    # (ν = 1e20 gave 1e5 for 1.96).
+    t = np.where(done & ok & (t <= T_MAX), t, np.nan)
     return np.where(p < 0.5, -t, t).reshape(shape)
