@@ -786,6 +786,33 @@ def test_subpackage_names_are_pinned(name):
     assert not missing, f"contactres.{name}: pinned public names that do not resolve: {missing}"
 
 
+# The reader registry, a public subpackage of contactres.measurements (docs/api.md).
+READERS = [
+    "BUILT_IN",
+    "BUILT_IN_READERS",
+    "CONSTANT_COLUMNS",
+    "KINDS",
+    "LABELS",
+    "NUMERIC_LABELS",
+    "RESONANCE_READERS",
+    "Reader",
+    "Readers",
+    "SPECTRUM_LAYOUTS",
+    "SweepReader",
+    "TWO_PORT_PARAMETERS",
+    "cells_as_numbers",
+    "line_ranges",
+    "pick_reader",
+]
+
+
+def test_the_reader_registrys_names_are_pinned():
+    module = importlib.import_module("contactres.measurements.readers")
+    assert sorted(module.__all__) == READERS
+    missing = [n for n in READERS if not hasattr(module, n)]
+    assert not missing, f"contactres.measurements.readers: names that do not resolve: {missing}"
+
+
 def test_job_modules_are_pinned():
     import contactres.jobs as jobs
 
