@@ -120,12 +120,19 @@ alternated, machine at a load of ~15 on two cores; in instructions, callgrind, o
 of its undecided blocks, where fewer rows are shared, 0.64 × 10^9 against 0.77 × 10^9), every
 output of ``analyze`` the same bit for bit (354 columns of 21 tables) and the bundled example's
 files the same byte for byte.
+Since review R24a the store keeps a row only while a later row of its pass may read it
+(:class:`SlopeStore`: it kept every row of the call, 2.3 GB on 10^4 sweeps whose amplitudes
+differ by 1e-6 from sweep to sweep, where no row is shared) and a chunk's new rows are bounded
+(:data:`EVIDENCE_FRESH_CELLS`): there peak RSS of the evidence 152 MB against 2.6 GB, the
+shared case's chunks and store reads unchanged, every result the same bit for bit.
 A block's result depends on its own row alone, so the caller deals the undecided blocks out to
 the analysis's worker processes where they are many (``contactres.analysis._blocks``,
 ``_evidence``: 1,975 blocks of the 10,752 sweeps in two halves of ~2.3 s of CPU each).
 """
 
 from __future__ import annotations
+
+import itertools
 
 import numpy as np
 
@@ -163,13 +170,79 @@ MU_MARGINAL_MAX_SD = 0.5
 MU_MARGINAL_MAX_EDGE = 0.1
 
 #: Nodes x amplitudes of one chunk of :func:`_evaluate`: sixteen times the loop fits' chunk.
-#: The arrays of a chunk are (nodes,) per row, the slopes (nodes x amplitudes) only of its
-#: distinct rows not met before (:func:`_slopes`' store), so a chunk's arrays stay at a few MB
-#: (~70 MB more at the peak than with four times, on the 10^4 sweeps of issue 31) while the
-#: per-chunk costs (the sort of its rows, a product per distinct row) are paid for ~800 blocks
-#: at once: there ~20 % less CPU than with four times (noisy machine, best of two, 0.8-1.2 s
-#: against 1.1-1.4 s), the same numbers bit for bit (a row's arithmetic is its own).
+#: The per-chunk costs (the sort of its rows, a product per distinct row) are paid for ~800
+#: blocks at once where blocks share their rows of nodes (one grid of amplitudes, one prior):
+#: on the 10^4 sweeps of issue 31 ~20 % less CPU than with four times (noisy machine, best of
+#: two, 0.8-1.2 s against 1.1-1.4 s), the same numbers bit for bit (a row's arithmetic is its
+#: own). The largest arrays are the slopes (nodes x amplitudes, a dozen in
+#: :func:`~contactres.analysis._plateau.plateau_loop_slopes`), formed only for the rows not read
+#: from the store (:func:`_slopes`, :class:`SlopeStore`) and bounded by
+#: :data:`EVIDENCE_FRESH_CELLS`: peak RSS of a process running the evidence of those sweeps,
+#: ~120 MB above what it holds before (~195 MB in all), the same as with the store unbounded.
 EVIDENCE_CHUNK_CELLS = 16 * CHUNK_CELLS
+
+#: Nodes x amplitudes of the rows of one chunk whose groups (d_c/u_max and amplitudes,
+#: :class:`SlopeStore`) the pass has not met before: their slopes are evaluated there. Where
+#: blocks share no row (each sweep's amplitudes its own) this, not :data:`EVIDENCE_CHUNK_CELLS`,
+#: cuts the chunks: on the 10^4 sweeps of issue 31 with amplitudes jittered by 1e-6 per sweep,
+#: peak RSS of the evidence 152 MB (76 MB before), 218 MB at four times the loop fits' chunk
+#: (chunks of a041d07's size: 207 MB there), 2.6 GB with the store keeping every row.
+EVIDENCE_FRESH_CELLS = 2 * CHUNK_CELLS
+
+
+class SlopeStore:
+    """The slopes of the rows of nodes that a call of :func:`plateau_log_evidence` reads again
+    (:func:`_slopes`), and only those.
+
+    Why. A row's slopes are read again only by a row of another job (block, d_c/u_max) of the
+    same d_c/u_max and amplitudes (its key holds both; a job's own rows are distinct): its
+    *group*. Before a pass :func:`_evaluate` counts each group's rows over the pass and notes
+    the last chunk of each group with two or more (:meth:`plan`); a row is kept only in such a
+    group, and dropped after that group's last chunk (:meth:`done`). Blocks with amplitudes of
+    their own (measured, not programmed) share no group, so nothing is kept: on 10^4 sweeps
+    with amplitudes jittered by 1e-6 the store held 2.3 GB when it kept every row of the call
+    (review R24a). Where blocks share a grid and a prior, only groups open across a chunk's
+    end, and the current chunk's shared rows, are held. Reuse across the two passes (a fine
+    node in z bit for bit on another prior's coarse one) is not planned for: such a row is
+    evaluated again, with the same bits (a row's arithmetic is its own)."""
+
+    def __init__(self) -> None:
+        self.rows: dict[tuple[int, bytes], tuple[np.ndarray, np.ndarray]] = {}
+        self.groups: dict[bytes, list[tuple[int, bytes]]] = {}  # row keys held, by group
+        self.last: dict[bytes, int] = {}  # a shared group's last chunk in the pass
+        self.drops: dict[int, list[bytes]] = {}  # the groups that end at each chunk
+
+    def __len__(self) -> int:
+        return len(self.rows)
+
+    def plan(self, groups: list[tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]]) -> None:
+        """Note the groups of a pass: per number L of amplitudes, the distinct groups (the bytes
+        of d_c/u_max and the amplitudes, :func:`_void_rows`), each row of nodes' group and the
+        numbers of rows of each (:func:`numpy.unique`'s inverse and counts), and the chunk that
+        evaluates each row."""
+        self.last, self.drops = {}, {}
+        for group, inv, count, at in groups:
+            last = np.zeros(count.size, dtype=int)
+            np.maximum.at(last, inv, at)
+            for i in np.flatnonzero(count >= 2).tolist():
+                k, end = group[i].tobytes(), int(last[i])
+                self.last[k] = end
+                self.drops.setdefault(end, []).append(k)
+
+    def keep(self, key: tuple[int, bytes], value: tuple[np.ndarray, np.ndarray]) -> None:
+        """Hold a row's slopes (``key``: :func:`_slopes`') if another row of its group is to
+        come in the pass (its group: the key's bytes after its ``key[0]`` values of θ)."""
+        group = key[1][8 * key[0] :]
+        if group in self.last:
+            self.rows[key] = value
+            self.groups.setdefault(group, []).append(key)
+
+    def done(self, chunk: int) -> None:
+        """Drop the rows of the groups whose last chunk in the pass was ``chunk``."""
+        for group in self.drops.pop(chunk, []):
+            del self.last[group]
+            for key in self.groups.pop(group, []):
+                del self.rows[key]
 
 
 def _integrand(pts, dl, y, store=None):
@@ -186,7 +259,9 @@ def _integrand(pts, dl, y, store=None):
     numbers to rounding at a third of the cost of the points."""
     lev, n_lev, _, _, scatter_f, scatter_g, umax, _, _, mean, var, to_mu = pts
     theta = np.exp(y) / (umax * (1.0 - dl))
-    slopes = _slopes(theta, np.broadcast_to(dl, umax.shape), lev, {} if store is None else store)
+    slopes = _slopes(
+        theta, np.broadcast_to(dl, umax.shape), lev, SlopeStore() if store is None else store
+    )
     A, rss_f, rss_g = _solve_levels(*slopes, pts)
     rss_f += scatter_f
     rss_g += scatter_g
@@ -215,19 +290,20 @@ def _slopes(theta, dl, lev, store):
     (two grids of amplitudes, five priors) 3,019 rows of 87,738: the slopes there 0.6 s of CPU
     instead of 7.1 s (under cProfile, sort included). Where every block has a grid of its own
     the sort and the copies cost ~5 % of the evidence.
-    A row's G′, G″ and their squares are kept in ``store`` (a dict made by
+    A row's G′, G″ and their squares are kept in ``store`` (a :class:`SlopeStore` made by
     :func:`plateau_log_evidence` for its call, keyed by the row's number of nodes and bytes)
-    and taken from there in any later chunk or pass that has the same row: on those sweeps
-    861 distinct rows in all instead of 2,987 evaluated chunk by chunk (issue 31, point 3,
-    sixth round; every result the same bit for bit)."""
+    and taken from there in any later chunk that has the same row: on those sweeps 861
+    distinct rows in all instead of 2,987 evaluated chunk by chunk (issue 31, point 3, sixth
+    round; every result the same bit for bit). Kept only where a later row of the pass may
+    read it, until its group's last chunk (review R24a)."""
     umax = lev[:, 0, -1:]
-    key = np.ascontiguousarray(np.concatenate([theta, dl, lev[:, 0]], axis=1))
-    rows = key.view(np.dtype((np.void, key.itemsize * key.shape[1])))[:, 0]
+    rows = _void_rows(np.concatenate([theta, dl, lev[:, 0]], axis=1))
     _, first, inv = np.unique(rows, return_index=True, return_inverse=True)
     # Keyed by the row's shape too: rows of other numbers of nodes and amplitudes may have
     # the same length.
     keys = [(theta.shape[1], k.tobytes()) for k in rows[first]]
-    new = np.array([k not in store for k in keys], dtype=bool)
+    got = [store.rows.get(k) for k in keys]
+    new = np.array([g is None for g in got], dtype=bool)
     if new.any():
         f = first[new]
         t = theta[f]
@@ -237,9 +313,19 @@ def _slopes(theta, dl, lev, store):
         # G′, G″ and their squares of each new row, side by side in y: (2Y, L) each.
         both = np.concatenate([g1, g2], axis=1)
         sq = both * both
-        for k, b, q in zip((k for k, n in zip(keys, new, strict=True) if n), both, sq, strict=True):
-            store[k] = (b, q)
-    return np.stack([store[k][0] for k in keys]), np.stack([store[k][1] for k in keys]), inv
+        at = np.flatnonzero(new).tolist()
+        for i, b, q in zip(at, both, sq, strict=True):
+            got[i] = (b, q)
+            store.keep(keys[i], got[i])
+        if new.all():  # in the order of ``keys``: no copy
+            return both, sq, inv
+    return np.stack([g[0] for g in got]), np.stack([g[1] for g in got]), inv
+
+
+def _void_rows(a):
+    """The rows of a 2-d array as single items of its bytes (to sort, count and key them)."""
+    a = np.ascontiguousarray(a)
+    return a.view(np.dtype((np.void, a.itemsize * a.shape[1])))[:, 0]
 
 
 def _solve_levels(slopes, squares, inv, pts):
@@ -265,7 +351,9 @@ def _solve_levels(slopes, squares, inv, pts):
     (:data:`EVIDENCE_NODES`: 0.33 in 2 ln B). On the 10^4 sweeps of issue 31 (1,975 undecided
     blocks, 1,402 with a finite 2 ln B) 2 ln B moved by <= 4e-9 against the residuals squared
     at every amplitude, μ and its error by <= 1.2e-10 relative. Each row's products have one
-    shape, so its numbers do not depend on the rows evaluated with it."""
+    shape, so its numbers do not depend on the rows evaluated with it; where no row shares its
+    slopes (each sweep's amplitudes its own) the same products are taken for all rows in one
+    stacked call (not a Python loop over ~10^5 rows; on 10^4 such sweeps the same bits)."""
     _, n_lev, df, dg, _, _, _, wf, wg = pts[:9]
     w = n_lev[:, 0]  # (R, L)
     n = w.sum(-1, keepdims=True)  # (R, 1)
@@ -281,6 +369,10 @@ def _solve_levels(slopes, squares, inv, pts):
     W = np.stack([w, wdf, wdgc], axis=1)  # (R, 3, L)
     lin, sq = np.empty((w.shape[0], 3, Y2)), np.empty((w.shape[0], Y2))
     order = np.argsort(inv, kind="stable")
+    if D == w.shape[0]:  # no row shares its slopes: the products of all rows in one call each
+        lin[order] = W[order] @ slopes.transpose(0, 2, 1)
+        sq[order] = (squares @ w[order][..., None])[..., 0]
+        D = 0
     cut = np.searchsorted(inv[order], np.arange(D + 1)).tolist()
     for d in range(D):
         rows = order[cut[d] : cut[d + 1]]
@@ -461,7 +553,7 @@ def plateau_log_evidence(
     J = jb.size
     Z = np.linspace(lo, np.minimum(m2[jb] + 4 * s, hi), nz, axis=1).reshape(J, nz)
     args = (per_block, sig, mu_prior, to_mu)
-    store: dict = {}  # the slopes of each distinct row of nodes, for all calls (:func:`_slopes`)
+    store = SlopeStore()  # the slopes of rows of nodes read again, for both passes
     coarse = _stack(_evaluate(args, list(zip(jb.tolist(), Z, strict=True)), True, store), J, nz + 1)
     # Fine nodes in z across the two coarse steps around the peak of the integrand of 2 ln B
     # and around that of μ's posterior (where it lies elsewhere): 12 nodes over the prior
@@ -520,8 +612,8 @@ def _evaluate(args, jobs, zero, store):
     """:func:`_over_y` at the nodes ``z`` of every job (block, z), and at d_c = 0 after them if
     ``zero``: per job, a tuple of its rows' arrays.
 
-    All blocks' nodes in a few calls (numpy on large arrays), chunks of them keeping those
-    arrays at a few MB (:data:`EVIDENCE_CHUNK_CELLS`). Blocks of one number of distinct
+    All blocks' nodes in a few calls (numpy on large arrays), in chunks of them
+    (:data:`EVIDENCE_CHUNK_CELLS`, :data:`EVIDENCE_FRESH_CELLS`). Blocks of one number of distinct
     amplitudes go together: no slopes at padding; within those, blocks of one grid of
     amplitudes and one set of nodes in z follow each other, so that they share a chunk and
     with it their slopes (:func:`_slopes`)."""
@@ -534,20 +626,50 @@ def _evaluate(args, jobs, zero, store):
         same.setdefault(per_block[job[0]][0].size, []).append((k, *job))
     nrow = max(1, max(z.size for _, z in jobs) + zero)
     step = max(1, EVIDENCE_CHUNK_CELLS // (nrow * EVIDENCE_NODES[2] * max(same)))
+    cap = EVIDENCE_FRESH_CELLS // (EVIDENCE_NODES[2] * max(same))
+    chunks, ends, plan = [], [], []
     for group in same.values():
         # Blocks of one grid of amplitudes and one set of nodes in z next to each other: in one
         # chunk their rows share their slopes (:func:`_slopes`).
         group.sort(key=lambda job: (per_block[job[1]][0].tobytes(), job[2].tobytes()))
-        for i in range(0, len(group), step):
-            chunk = group[i : i + step]
-            sizes = [z.size + zero for _, _, z in chunk]
-            own = np.repeat(np.arange(len(chunk)), sizes)
-            ends = [np.append(np.exp(z), 0.0) if zero else np.exp(z) for _, _, z in chunk]
-            pts = _rows(per_block, sig, mu_prior, to_mu, [b for _, b, _ in chunk])
-            got = _over_y(tuple(a[own] for a in pts), np.concatenate(ends), store)
-            cut = np.cumsum([0, *sizes]).tolist()  # each block's rows, in order (``own``)
-            for j, (k, _, _) in enumerate(chunk):
-                res[k] = tuple(v[cut[j] : cut[j + 1]] for v in got)
+        dl = [np.append(np.exp(z), 0.0) if zero else np.exp(z) for _, _, z in group]
+        sizes = [d.size for d in dl]
+        # Each row's group (d_c/u_max, amplitudes; :class:`SlopeStore`) and whether it is the
+        # first of its group in the pass: its slopes are evaluated, the others' may be read.
+        lev = np.repeat(np.stack([per_block[b][0] for _, b, _ in group]), sizes, axis=0)
+        key = _void_rows(np.c_[np.concatenate(dl), lev])
+        _, first, inv, count = np.unique(
+            key, return_index=True, return_inverse=True, return_counts=True
+        )
+        fresh = np.zeros(key.shape[0], dtype=int)
+        fresh[first] = 1
+        fresh = np.add.reduceat(fresh, np.cumsum([0, *sizes[:-1]])).tolist()
+        # At most ``step`` blocks a chunk, and at most ``cap`` rows of groups met first
+        # (:data:`EVIDENCE_CHUNK_CELLS`, :data:`EVIDENCE_FRESH_CELLS`).
+        cuts, blocks, new = [0], 0, 0
+        for j, n in enumerate(fresh):
+            if blocks and (blocks == step or new + n > cap):
+                cuts.append(j)
+                blocks, new = 0, 0
+            blocks, new = blocks + 1, new + n
+        cuts.append(len(group))
+        at = len(chunks) + np.repeat(np.arange(len(cuts) - 1), np.diff(cuts))
+        plan.append((key[first], inv, count, np.repeat(at, sizes)))
+        for a, b in itertools.pairwise(cuts):
+            chunks.append(group[a:b])
+            ends.append(dl[a:b])
+    # The store keeps what a later row of the pass reads again (:class:`SlopeStore`).
+    store.plan(plan)
+    del plan, key, lev, inv  # the keys of the whole pass: not held through it
+    for i, (chunk, dl) in enumerate(zip(chunks, ends, strict=True)):
+        sizes = [d.size for d in dl]
+        own = np.repeat(np.arange(len(chunk)), sizes)
+        pts = _rows(per_block, sig, mu_prior, to_mu, [b for _, b, _ in chunk])
+        got = _over_y(tuple(a[own] for a in pts), np.concatenate(dl), store)
+        store.done(i)
+        cut = np.cumsum([0, *sizes]).tolist()  # each block's rows, in order (``own``)
+        for j, (k, _, _) in enumerate(chunk):
+            res[k] = tuple(v[cut[j] : cut[j + 1]] for v in got)
     return [res[k] for k in range(len(jobs))]
 
 
