@@ -88,8 +88,18 @@ def test_pooled_block_fit_is_the_fit_point_by_point(model, monkeypatch):
     free = np.isfinite(ref["d_c_err_m"])
     assert np.all(np.abs(fit["d_c_m"] - ref["d_c_m"])[free] <= 1e-3 * ref["d_c_err_m"][free])
     assert np.all(fit["d_c_m"][~free] == 0.0)
-    for col in ("df0_err_Hz", "dgamma0_err_Hz", "lntheta_err", "d_c_err_m", "rss_df"):
+    for col in ("df0_err_Hz", "dgamma0_err_Hz", "lntheta_err", "d_c_err_m", "rss_df", "rss_dgamma"):
         np.testing.assert_allclose(fit[col], ref[col], rtol=1e-3, err_msg=col)
+    # The covariances, against the product of the two errors (a covariance may be ~0).
+    for col, a, b in (
+        ("cov_df0_lntheta", "df0_err_Hz", "lntheta_err"),
+        ("cov_df0_d_c", "df0_err_Hz", "d_c_err_m"),
+        ("cov_lntheta_d_c", "lntheta_err", "d_c_err_m"),
+    ):
+        both = np.isfinite(ref[col])
+        assert np.array_equal(both, np.isfinite(fit[col])), col
+        gap = np.abs(fit[col] - ref[col])[both]
+        assert np.all(gap <= 1e-3 * (ref[a] * ref[b])[both]), col
 
 
 def test_gradient_at_refused_steps_is_never_read(monkeypatch):

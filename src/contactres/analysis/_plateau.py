@@ -55,6 +55,7 @@ __all__ = [
     "PLATEAU_LOOP_COLUMNS",
     "fit_plateau_loops",
     "plateau_loop_slopes",
+    "pool_repeats",
 ]
 
 #: Groups of cells of m = min(x, e)/max(x, e) (1/16 wide, :data:`~contactres.analysis.
@@ -378,7 +379,8 @@ def _plateau_model(p, u, umax, df, dg, w, rw, wf, wg, within=None, current=None)
 
 def _descent(ey, dl, x, c, A, B, slopes, sf, sg, df, dg) -> tuple[np.ndarray, np.ndarray]:
     """The gradient of χ²/2 in p and its Gauss-Newton Hessian of :func:`_plateau_model`, from
-    its shapes, Pκ (A) and Pωξ (B) at the rows' points (sf, sg: √(channel weight)·w)."""
+    its shapes, Pκ (A) and Pωξ (B) at the rows' points (sf, sg: √(channel weight) times the
+    rows' residual factors ``rw``: w, or √W of a pooled amplitude)."""
     g1, g2, g1x, g1c, g2x, g2c = slopes
     dx = x / (1.0 - dl)[:, None]  # ∂x/∂(d_c/u_max); ∂x/∂ln(...) = x
     dc = (ey / (1.0 - dl) ** 2)[:, None]

@@ -185,8 +185,9 @@ EVIDENCE_CHUNK_CELLS = 16 * CHUNK_CELLS
 #: :class:`SlopeStore`) the pass has not met before: their slopes are evaluated there. Where
 #: blocks share no row (each sweep's amplitudes its own) this, not :data:`EVIDENCE_CHUNK_CELLS`,
 #: cuts the chunks: on the 10^4 sweeps of issue 31 with amplitudes jittered by 1e-6 per sweep,
-#: peak RSS of the evidence 152 MB (76 MB before), 218 MB at four times the loop fits' chunk
-#: (chunks of a041d07's size: 207 MB there), 2.6 GB with the store keeping every row.
+#: peak RSS of the evidence 152 MB (the process held 76 MB before the call), 218 MB at four
+#: times the loop fits' chunk (chunks of a041d07's size: 207 MB there), 2.6 GB with the store
+#: keeping every row.
 EVIDENCE_FRESH_CELLS = 2 * CHUNK_CELLS
 
 
@@ -234,7 +235,8 @@ class SlopeStore:
         come in the pass (its group: the key's bytes after its ``key[0]`` values of θ)."""
         group = key[1][8 * key[0] :]
         if group in self.last:
-            self.rows[key] = value
+            # Copies: a view would keep its chunk's whole slope arrays alive (review R24b).
+            self.rows[key] = (value[0].copy(), value[1].copy())
             self.groups.setdefault(group, []).append(key)
 
     def done(self, chunk: int) -> None:

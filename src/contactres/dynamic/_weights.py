@@ -121,8 +121,9 @@ def by_real_columns(fn, z: np.ndarray, *per_column: np.ndarray) -> np.ndarray:
     :func:`wa_harmonic_sum` with their coefficients (K + 1, n) in ``per_column``), with the
     trailing real columns of ``z`` (:func:`real_columns`) passed as real arguments: the same
     values there, in real arithmetic (to round-off; a continued fraction of each part starts
-    from its own largest ``|z|``, both far enough above for the truncation to stay below
-    1e-20). Complex, shaped like ``z``."""
+    from its own largest ``|z|``, with the margin the caller gives: at the defaults the
+    truncation stays below 1e-20; at the near field's 20/10, within ~3e-14 of Σ|c|). Complex,
+    shaped like ``z``."""
     split = real_columns(z)
     if split in (0, z.shape[-1]):
         return fn(z, *per_column)
