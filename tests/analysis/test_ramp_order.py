@@ -2,6 +2,7 @@
 causes 4 and 9): a permutation of the rows gives the same loads, E and γ; without a ``ramp``
 column the ramps are inferred in one stated way, and the result agrees with what is said."""
 
+import re
 import warnings
 from importlib.resources import as_file, files
 
@@ -11,6 +12,7 @@ import pytest
 
 from contactres.analysis import AnalysisSettings, analyze
 from contactres.analysis._flags import Flag, has
+from contactres.analysis._ramps import check_ramps
 from contactres.measurements._sweeps import SweepWarning, read_sweeps
 
 SETTINGS = AnalysisSettings(bootstrap=50)
@@ -102,3 +104,40 @@ def test_times_order_the_ramps_and_the_points(example, tmp_path):
     assert list(perm.sweeps.sort_values("sweep")["direction"]) == list(
         base.sweeps.sort_values("sweep")["direction"]
     )
+
+
+def test_up_and_down_in_names_are_whole_words_as_the_plain_search_finds_them():
+    # check_ramps searches the look-around pattern only in names holding "up"/"down" at all:
+    # the verdict must be that of the pattern searched in every name (written here with re).
+    names = [
+        "s-up", "S_UP_2", "setup", "upward", "pushup/down", "Down", "downhill", "r1 down",
+        "ramp-up-labelled", "x", "u p", "UP", "cup-down", "lookup-2", "DOWN-up", "sweep_7",
+    ]  # fmt: skip
+    n = len(names)
+    info = pd.DataFrame(
+        {
+            "sweep": names,
+            "experiment": "e1",
+            "configuration": "c",
+            "medium": "air",
+            "normal_force_N": 1e-3,
+            "ramp": np.arange(1, n + 1),
+        }
+    )
+    rng = np.random.default_rng(3)
+    direction = rng.choice(np.array(["up", "down", "mixed"], dtype=object), n)
+    got = check_ramps(info, np.arange(n), direction)
+    up = [re.search(r"(?<![a-z])up(?![a-z])", s.lower()) is not None for s in names]
+    down = [re.search(r"(?<![a-z])down(?![a-z])", s.lower()) is not None for s in names]
+    label = [
+        "up" if u and not d else "down" if d and not u else ""
+        for u, d in zip(up, down, strict=True)
+    ]
+    wrong = [
+        bool(lab) and dr in ("up", "down") and lab != dr
+        for lab, dr in zip(label, direction, strict=True)
+    ]
+    assert got.suspect.tolist() == wrong
+    said = sorted(m.split("'")[1] for m in got.messages if "is labelled" in m)
+    assert said == sorted(s for s, w in zip(names, wrong, strict=True) if w)
+    assert any(wrong) and not all(wrong)
