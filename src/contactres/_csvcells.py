@@ -350,6 +350,8 @@ def _few_texts(values: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
                 return None
             distinct = np.empty(len(order), dtype=object)
             distinct[:] = order
+            if len(order) == len(objects):  # each object a text of its own: codes as they are
+                return distinct, codes
             return distinct, np.array([order.index(v) for v in objects])[codes]
     texts: list[str] = []
     codes = np.zeros(values.size, dtype=np.intp)
