@@ -308,11 +308,51 @@ def csv_to(path, frame, options: dict) -> None:
     table.to_csv(path, **options)
 
 
+def _few_objects(values: np.ndarray, most: int) -> tuple[list[int], np.ndarray] | None:
+    """(first row of each distinct object, the index of each row's object) of a contiguous
+    object array holding at most ``most`` distinct objects (by identity), else None.
+
+    The cells are compared as the object pointers the array holds (``np.frombuffer`` of its
+    memory: the same pointer is the same object), a comparison of integers in C, where ``==``
+    of the cells calls the objects' own comparison a row (~100 instructions each)."""
+    if not values.size or not values.flags.c_contiguous:
+        return None
+    try:
+        pointers = np.frombuffer(values, dtype=np.intp)
+    except (TypeError, ValueError, BufferError):  # a numpy that keeps them to itself
+        return None
+    firsts: list[int] = []
+    codes = np.zeros(values.size, dtype=np.intp)
+    left = np.ones(values.size, dtype=bool)
+    while len(firsts) < most:
+        firsts.append(int(left.argmax()))
+        same = pointers == pointers[firsts[-1]]
+        codes[same] = len(firsts) - 1
+        left &= ~same
+        if not left.any():
+            return firsts, codes
+    return None
+
+
 def _few_texts(values: np.ndarray) -> tuple[np.ndarray, np.ndarray] | None:
     """(distinct texts as an object array, the index of each row's) of an object array whose
-    cells are at most four distinct strings, else None. One comparison of the whole
-    column a text, in C (``==`` of equal strings: the same text whichever object holds it),
-    instead of one Python call a row: a map's flags, methods and normalisation."""
+    cells are at most four distinct strings, else None. A map's flags, methods and
+    normalisation are a few string objects repeated: their rows are grouped by object
+    (:func:`_few_objects`) and objects of equal text merged. Otherwise one comparison of the
+    whole column a text, in C (``==`` of equal strings: the same text whichever object holds
+    it), instead of one Python call a row."""
+    if (few := _few_objects(values, 8)) is not None:
+        firsts, codes = few
+        objects = [values[i] for i in firsts]
+        if all(type(v) is str for v in objects):
+            order = list(dict.fromkeys(objects))  # texts by their first row (dict: by value)
+            if len(order) > 4:
+                return None
+            distinct = np.empty(len(order), dtype=object)
+            distinct[:] = order
+            if len(order) == len(objects):  # each object a text of its own: codes as they are
+                return distinct, codes
+            return distinct, np.array([order.index(v) for v in objects])[codes]
     texts: list[str] = []
     codes = np.zeros(values.size, dtype=np.intp)
     left = np.ones(values.size, dtype=bool)

@@ -216,6 +216,22 @@ def test_an_archive_read_as_numpy_columns_names_its_bad_cells_as_the_dataframe_d
         assert messages[0] == messages[1] and "row " in messages[0], messages
 
 
+def test_absent_columns_of_numpy_columns_are_nan_and_cannot_be_changed(tmp_path):
+    """The schema's columns an archive lacks are NaN in the checked numpy columns, one array
+    shared by all of them: read-only, so that no change to one reaches the others."""
+    frame, _ = _map(5)
+    write_npz(tmp_path / "map.npz", frame)
+    checked = read_resonance_table(tmp_path / "map.npz", AFM_TABLE, arrays=True)
+    absent = [c.name for c in AFM_TABLE.columns if c.name not in frame.columns]
+    assert len(absent) > 1
+    for name in absent:
+        assert checked[name].shape == (5,) and np.isnan(checked[name]).all()
+        with pytest.raises(ValueError, match="read-only"):
+            checked[name][0] = 1.0
+    assert np.isnan(checked[absent[-1]]).all()
+    checked["fc1_Hz"][0] = 1.0  # a column of the file is the reading's own
+
+
 def test_an_array_table_holds_columns_of_one_length():
     from contactres.measurements import ArrayTable
 
@@ -262,14 +278,29 @@ def test_text_of_numpy_columns_is_written_as_pandas_writes_it(tmp_path):
 def test_columns_of_a_few_texts_are_written_as_pandas_writes_them(tmp_path, pool):
     """Columns of up to four distinct texts (compared as text, a pass each) and of more (one
     text per distinct object), each text held by many equal objects: pandas' archive, byte for
-    byte; with a None or a number among them, too."""
+    byte; with a None or a number among them, too. Also as a map's columns are built, a few
+    objects repeated (grouped by object), with equal texts in other objects among them, a text
+    that is equal to a str but not one, and a column that is a strided view."""
     from contactres.measurements import ArrayTable
 
     rng = np.random.default_rng(5)
-    cells = np.array(["".join(list(pool[i])) for i in rng.integers(len(pool), size=300)], object)
+    picks = rng.integers(len(pool), size=300)
+    cells = np.array(["".join(list(pool[i])) for i in picks], object)
     other = cells.copy()
     other[[7, 100]] = [None, 2.5]
-    columns = {"t": cells, "u": other}
+    repeated = np.array(pool, dtype=object)[picks]
+    mixed = repeated.copy()
+    mixed[::7] = cells[::7]
+    typed = repeated.copy()
+    typed[[3, 50]] = np.str_(pool[0])
+    columns = {
+        "t": cells,
+        "u": other,
+        "v": repeated,
+        "w": mixed,
+        "x": typed,
+        "y": np.repeat(repeated, 2)[::2],
+    }
     write_npz(tmp_path / "a.npz", pd.DataFrame(columns))
     write_npz(tmp_path / "b.npz", ArrayTable(columns))
     assert (tmp_path / "a.npz").read_bytes() == (tmp_path / "b.npz").read_bytes()

@@ -276,3 +276,26 @@ def test_mean_spread_and_flags_over_the_modes_are_numpys_reductions(q):
     joined[~measured.any(axis=-1)] = FLAG_NOT_MEASURED | FLAG_NOT_POSITIVE
     joined |= np.where(spread > 1e-4, FLAG_INCONSISTENT_MODES, 0)
     assert np.array_equal(res.flags, joined)
+
+
+def test_the_interval_test_of_the_sensitivity_flags_is_numpys_search():
+    """The edge band about a free root compares a point with the two roots about the interval
+    of its neighbour; numpy's binary search (``searchsorted``, NaN above every root) is the
+    second algorithm, on points at, just beside and between the roots, at 0, ±inf and NaN."""
+    from contactres.resonators import _cantilever_inversion as inversion
+
+    rng = np.random.default_rng(8)
+    at = np.concatenate([FREE_ROOTS, np.nextafter(FREE_ROOTS, 0), np.nextafter(FREE_ROOTS, 99)])
+    points = np.concatenate(
+        [at, rng.uniform(-2, FREE_ROOTS[-1] + 5, 300), [0.0, -0.0, np.inf, -np.inf, np.nan]]
+    )
+    b, x = (a.ravel() for a in np.meshgrid(points, points))
+    n0 = np.searchsorted(FREE_ROOTS, b)
+    expected = np.searchsorted(FREE_ROOTS, x) != n0
+    assert 0 < expected.sum() < expected.size
+    np.testing.assert_array_equal(inversion._left_interval(n0, x), expected)
+    hi, lo = b * (1.0 + 1e-6), b * (1.0 - 1e-6)  # the flags' own use: the band about b
+    np.testing.assert_array_equal(
+        inversion._left_interval(n0, hi, lo),
+        (np.searchsorted(FREE_ROOTS, hi) != n0) | (np.searchsorted(FREE_ROOTS, lo) != n0),
+    )

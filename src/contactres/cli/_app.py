@@ -2,8 +2,10 @@
 
 from __future__ import annotations
 
+import importlib
 import os
 import sys
+from collections.abc import Iterator, Mapping, MutableMapping
 
 import click
 
@@ -30,6 +32,57 @@ def _one_line(text) -> str:
     if len(line) > MAX_MESSAGE_CHARS:
         line = line[: MAX_MESSAGE_CHARS - 1] + "…"
     return line
+
+
+class LazyCommands(MutableMapping[str, click.Command]):
+    """The commands of a group by name (click's ``Group.commands``), each registered by the
+    module of :mod:`contactres.cli` that defines it when that module is first imported.
+
+    A command looked up by name (click's ``get_command``: the command to run, or whose help is
+    asked) imports its own module only; listing the commands (a group's help, iterating,
+    ``len``) imports every module first, so a listing is always the whole group. The start of
+    a command thus skips the imports of the other commands' modules (issue 31, point 5: ~5 %
+    of the instructions of ``afm invert`` of a 512² map).
+
+    Parameters
+    ----------
+    modules : mapping of str to str
+        Command name -> module of :mod:`contactres.cli` (without the package) that registers
+        it on this group; several commands may share a module.
+    """
+
+    def __init__(self, modules: Mapping[str, str]):
+        self._modules = dict(modules)  # names whose module is not imported yet
+        self._known: dict[str, click.Command] = {}
+
+    def _import(self, module: str) -> None:
+        # Importing the module runs its decorators: they register its commands via __setitem__.
+        importlib.import_module(f"{__package__}.{module}")
+        self._modules = {n: m for n, m in self._modules.items() if m != module}
+
+    def _import_all(self) -> None:
+        while self._modules:
+            self._import(next(iter(self._modules.values())))
+
+    def __getitem__(self, name: str) -> click.Command:
+        if name not in self._known and name in self._modules:
+            self._import(self._modules[name])
+        return self._known[name]
+
+    def __setitem__(self, name: str, command: click.Command) -> None:
+        self._known[name] = command
+
+    def __delitem__(self, name: str) -> None:
+        self[name]  # its module imported first: a later import would register it again
+        del self._known[name]
+
+    def __iter__(self) -> Iterator[str]:
+        self._import_all()
+        return iter(self._known)
+
+    def __len__(self) -> int:
+        self._import_all()
+        return len(self._known)
 
 
 class App(click.Group):
@@ -81,7 +134,36 @@ class App(click.Group):
         sys.exit(rv if isinstance(rv, int) else 0)
 
 
-@click.group(cls=App, context_settings={"help_option_names": ["-h", "--help"]})
+#: Where each command is defined: group ("" the top level) -> command -> module of
+#: contactres.cli that registers it (:class:`LazyCommands` imports it when it is needed).
+#: tests/cli/test_cli_lazy.py checks this against the modules and what they register.
+COMMAND_MODULES: Mapping[str, Mapping[str, str]] = {
+    "": {
+        "contact": "contact",
+        "crystals": "crystals",
+        "dcsf": "dcsf",
+        "demo": "demo",
+        "examples": "examples",
+    },
+    "qcm": {
+        "analyze": "qcm_analyze",
+        "loop": "qcm_loop",
+        "particles": "qcm_particles",
+        "spectra": "qcm_spectra",
+        "stiffness": "qcm_stiffness",
+    },
+    "afm": {"invert": "afm_invert", "map": "afm_map"},
+    "rum": {"invert": "rum_invert"},
+    "maps": {"synthetic": "maps", "predict": "maps", "fit": "maps"},
+    "figures": {"paper1": "figures_paper1", "paper2": "figures_paper2"},
+}
+
+
+@click.group(
+    cls=App,
+    commands=LazyCommands(COMMAND_MODULES[""]),
+    context_settings={"help_option_names": ["-h", "--help"]},
+)
 # package_name: click reads the installed version only when --version is given, so that
 # neither the library nor importlib.metadata is imported to build the command tree.
 @click.version_option(None, "--version", "-V", package_name="contactres", prog_name="contactres")
@@ -94,26 +176,26 @@ def main() -> None:
     """
 
 
-@main.group()
+@main.group(commands=LazyCommands(COMMAND_MODULES["qcm"]))
 def qcm() -> None:
     """Quartz crystal microbalance: contact loops and amplitude-sweep analysis (paper 2)."""
 
 
-@main.group()
+@main.group(commands=LazyCommands(COMMAND_MODULES["afm"]))
 def afm() -> None:
     """Contact-resonance AFM: resonances of the coupled lever -> contact stiffness -> modulus."""
 
 
-@main.group()
+@main.group(commands=LazyCommands(COMMAND_MODULES["rum"]))
 def rum() -> None:
     """Resonance ultrasound microscope: contact resonance -> contact stiffness."""
 
 
-@main.group()
+@main.group(commands=LazyCommands(COMMAND_MODULES["maps"]))
 def maps() -> None:
     """Polycrystal maps: EBSD orientations -> M and k* per pixel, and back to the constants."""
 
 
-@main.group()
+@main.group(commands=LazyCommands(COMMAND_MODULES["figures"]))
 def figures() -> None:
     """Reproduce the figures of the two core papers (figures in --figure-format, data as CSV)."""
