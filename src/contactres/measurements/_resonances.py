@@ -76,8 +76,7 @@ def validate_resonance_table(raw, schema: TableSchema, source: str):
 
     Returns the table with the schema's columns as floats (NaN where blank or absent), the other
     columns unchanged, and ``line``, of the raw table's type (a DataFrame, or the
-    :class:`~contactres.measurements.ArrayTable` of a numpy archive, whose absent columns
-    share one read-only array of NaN). Raises ValueError naming
+    :class:`~contactres.measurements.ArrayTable` of a numpy archive). Raises ValueError naming
     file, line, column, value and rule.
     """
     schema.check_names(raw.columns, source)
@@ -90,16 +89,12 @@ def validate_resonance_table(raw, schema: TableSchema, source: str):
     out = raw.copy(deep=not isinstance(raw, ArrayTable))  # the archive's arrays: not copied
     # The columns as given (the output keeps these, not the schema's absent ones).
     out.attrs["given"] = [c for c in raw.columns if c != "line"]
-    blank: float | np.ndarray = np.nan  # a DataFrame fills an absent column itself
-    if isinstance(out, ArrayTable):
-        # Every absent column of numpy columns is one array of NaN, read-only so that none is
-        # changed through another (a map's ~15 absent columns were ~1 % of its instructions).
-        shared = np.full(len(raw), np.nan)
-        shared.flags.writeable = False
-        blank = shared
     for c in schema.columns:
         if c.name not in raw.columns:
-            out[c.name] = blank
+            # Each absent column its own writable array, as a DataFrame's is: a caller may fill
+            # one in place (one array shared read-only by all saved ~1 % of a map's
+            # instructions, not worth a column that refuses a write).
+            out[c.name] = np.full(len(raw), np.nan) if isinstance(out, ArrayTable) else np.nan
             continue
         v = _numbers(raw, c.name, source, decimal)
         given = ~np.isnan(v)
