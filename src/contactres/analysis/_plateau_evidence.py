@@ -133,9 +133,12 @@ looked up where no group of the pass is shared (:func:`_slopes`), the per-block 
 gathered once and not sliced block by block (:func:`_evaluate`, :func:`_levels`): on the 10^4
 sweeps of issue 31, one thread, best of three in three rounds alternated with main on a
 machine at a load of 12-15 on two cores, the evidence 0.69-0.77 s of CPU against 0.82-0.89 s
-(instructions, callgrind, a quarter of its blocks, before the integer key: -2 %; the gain is
-in memory traffic), with amplitudes jittered by 1e-6 per sweep 14.5 s against 16.9 s; every
-output the same bit for bit on both tables and on the bundled example.
+(instructions, callgrind, a quarter of its blocks: 1.33 × 10^9 against 1.44 × 10^9; most of
+the gain is in memory traffic, which callgrind does not count), with amplitudes jittered by
+1e-6 per sweep 14.9-16.3 s against 16.0-17.2 s (two rounds alternated; there the slopes of
+:mod:`contactres.analysis._plateau` take most of it; 3.31 × 10^9 instructions against
+3.37 × 10^9 on a sixteenth of the blocks); every output the same bit for bit on both tables
+and on the bundled example, the evidence's peak RSS on the jittered table 152 MB (151 MB).
 A block's result depends on its own row alone, so the caller deals the undecided blocks out to
 the analysis's worker processes where they are many (``contactres.analysis._blocks``,
 ``_evidence``: 1,975 blocks of the 10,752 sweeps in two halves of ~2.3 s of CPU each).
