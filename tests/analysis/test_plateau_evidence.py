@@ -356,6 +356,23 @@ def test_the_default_nodes_converge_on_real_study_blocks(study_evidence_call, mo
     np.testing.assert_allclose(base[2, mu], fine[2, mu], rtol=0.1)
 
 
+def test_the_node_steps_in_blocks_of_rows_give_each_row_its_own_numbers(
+    study_evidence_call, monkeypatch
+):
+    # The projected solve's ratios, the logarithms and the sums over y run in blocks of rows
+    # (NODE_BLOCK_CELLS, for the cache): one row a block, and all rows of a chunk in one
+    # block (as before the blocks), give the same numbers bit for bit on real study blocks,
+    # with the prior on μ and the refined nodes.
+    import contactres.analysis._plateau_evidence as pe
+
+    *args, rows = study_evidence_call
+    default = plateau_log_evidence(*args, rows)
+    assert np.isfinite(default[0]).sum() >= 20 and np.isfinite(default[1]).sum() >= 5
+    for cells in (1, 1 << 40):
+        monkeypatch.setattr(pe, "NODE_BLOCK_CELLS", cells)
+        np.testing.assert_array_equal(plateau_log_evidence(*args, rows), default)
+
+
 def test_the_nodes_end_at_the_widest_plateau_the_sweep_shows():
     # F6: a prior centred beyond the widest plateau that leaves PLATEAU_MIN_SLOPE amplitudes
     # above it (0.8 u_max here) still integrates over the part below it (a finite, negative
@@ -523,3 +540,27 @@ def test_a_fit_exact_to_rounding_keeps_its_node():
     _, lnl, _ = ev._integrand(pts, dl, y)
     assert np.all(np.isfinite(lnl[0]))
     assert np.argmax(lnl[0]) == 2
+
+
+def test_rows_of_the_same_bytes_are_found_as_by_a_sort_of_the_bytes():
+    # The slopes' distinct rows of nodes (found by an integer of their bits) are the sets of
+    # rows numpy.unique finds by their bytes: duplicated rows, rows one ulp apart in one
+    # column (whose sums of doubles round to the same), -0.0 against 0.0.
+    from contactres.analysis._plateau_evidence import _distinct_rows
+
+    rng = np.random.default_rng(3)
+    base = rng.random((40, 23))
+    near = base[:10].copy()
+    at = (np.arange(10), rng.integers(0, 23, 10))
+    near[at] = np.nextafter(near[at], 2.0)
+    signed = np.zeros((2, 23))
+    signed[1, 5] = -0.0
+    rows = np.concatenate([base, base[::3], near, signed, base[:7]])
+    rows = rows[rng.permutation(rows.shape[0])]
+    first, inv = _distinct_rows(rows)
+    _, ref_first, ref_inv = np.unique(
+        rows.view(np.dtype((np.void, 8 * 23)))[:, 0], return_index=True, return_inverse=True
+    )
+    assert first.size == ref_first.size
+    # The same partition of the rows: each row's first is the reference's first.
+    np.testing.assert_array_equal(first[inv], ref_first[ref_inv])
