@@ -620,7 +620,7 @@ def _normal_matrix(g1, g2, e1, e2, A, w, wf, wg) -> np.ndarray:
 
 
 #: :func:`_inverse_3x3` inverts in closed form where the determinant of JᵀJ scaled to a unit
-#: diagonal is at least this (condition number <= 27/det: ~3e7), by numpy.linalg.pinv elsewhere.
+#: diagonal is at least this (condition number <= 6.75/det: ~7e6), by numpy.linalg.pinv elsewhere.
 INVERSE_MIN_DET = 1e-6
 
 
@@ -630,13 +630,15 @@ def _inverse_3x3(m: np.ndarray) -> np.ndarray:
 
     Each matrix is scaled to a unit diagonal, D⁻¹mD⁻¹ with D = √diag(m), and inverted by its
     adjugate over its determinant det, then scaled back. The scaled matrix's eigenvalues sum
-    to 3, so its condition number is at most 27/det: where det >= :data:`INVERSE_MIN_DET`,
-    the inverse is within ~6ε·27/det (~2e-9 relative at that bound; ~1e-15 at the loop fits'
-    det > 0.07 of the 10^4-sweep benchmark) of the exact one, as accurate as pinv's SVD of the
-    unscaled matrix (whose error grows with the unscaled condition number). The other
-    matrices (near-singular, a zero or non-finite diagonal) take pinv itself, as before:
-    its cut of tiny singular values is kept where it matters
-    (tests/analysis/test_loop_search.py checks both against exact rational arithmetic).
+    to 3, so that its condition number is at most 3·(3/2)²/det = 6.75/det, and the closed
+    form's error, of order ε times that, is bounded by 20ε·6.75/det of the scaled inverse's
+    largest entry where det >= :data:`INVERSE_MIN_DET` (tests/analysis/test_loop_search.py
+    checks it against exact rational arithmetic). The loop fits' JᵀJ have det >= 0.24 on the
+    10^4-sweep benchmark: there the errors agree with pinv's to 8e-14 relative, pinv of the
+    unscaled matrix (condition number up to ~1e6) being the less accurate of the two. The
+    other matrices (near-singular, a zero or non-finite diagonal) take pinv itself, as
+    before: its cut of tiny singular values is kept where it matters (a NaN raises as
+    pinv's SVD does).
     """
     d = np.sqrt(np.diagonal(m, axis1=1, axis2=2))
     with np.errstate(divide="ignore", invalid="ignore"):
