@@ -94,17 +94,21 @@ def cm_shape(x) -> tuple[np.ndarray, np.ndarray]:
     if not (np.isfinite(x).all() and (x >= 0).all()):
         raise ContactresInputError("the loop's shape needs finite x >= 0")
     shape, x = x.shape, x.ravel()
-    g1, g2 = np.ones(x.shape), np.zeros(x.shape)
-    slip = np.flatnonzero(x >= TINY_X)  # below: the limit x = 0, as in loop_shape
-    xs = x[slip]
-    r, big = np.minimum(xs, 1.5), np.maximum(xs, 1.5)
+    # Every point through the same arithmetic, elementwise (the numbers of each point its own),
+    # and those below TINY_X set to the limit x = 0 at the end, as in loop_shape: no gather of
+    # the others and no scatter back (a curve's grid starts at x = 0).
+    r, big = np.minimum(x, 1.5), np.maximum(x, 1.5)
     a = big - 0.5 * r
     qq = 0.5 * r / a
     qq *= qq
     tier = np.fmin(r / big * SERIES_CELLS, len(SERIES_TIERS)).astype(np.int8)
-    total = np.empty(xs.shape)
+    total = np.empty(x.shape)
+    # The points by tier: one stable sort of the small integers (numpy's radix sort), so that
+    # each tier is a slice of it, not a pass over every point.
+    order = np.argsort(tier, kind="stable")
+    starts = np.concatenate([[0], np.cumsum(np.bincount(tier, minlength=len(SERIES_TIERS)))])
     for j, (_, terms) in enumerate(SERIES_TIERS):
-        at = np.flatnonzero(tier == j)
+        at = order[starts[j] : starts[j + 1]]
         if at.size:
             q2, coefficients = qq[at], EVEN_COEFFICIENTS[: terms // 2 + 1]
             part = np.full(at.shape, coefficients[-1])
@@ -112,18 +116,23 @@ def cm_shape(x) -> tuple[np.ndarray, np.ndarray]:
                 part *= q2
                 part += value
             total[at] = part
-    x2 = xs * xs
-    first = (2.0 * np.sqrt(2.0 / 3.0) / np.pi) * r * r * np.sqrt(a) * total / x2
-    near = np.flatnonzero(tier >= len(SERIES_TIERS))
+    x2 = x * x
+    with np.errstate(divide="ignore", invalid="ignore"):  # x below TINY_X: replaced below
+        g1 = (2.0 * np.sqrt(2.0 / 3.0) / np.pi) * r * r * np.sqrt(a) * total / x2
+    near = order[starts[len(SERIES_TIERS)] :]  # m >= 7/8: beyond the series' cells
     if near.size:
-        first[near] = loop_shape(xs[near])[0]
-    g1[slip] = first
-    # W(x) as in plateau_loop_slopes (c = 0): 1 - √(1 - 2x/3) = (2x/3)/(1 + √(1 - 2x/3)).
-    inside = xs < 1.5
-    root = np.sqrt(np.maximum(1.0 - xs / 1.5, 0.0))
-    v = np.where(inside, (xs / 1.5) / (1.0 + root), 1.0)
-    w = np.where(inside, 0.3 * v**3 * (root * root + 3.0 * root + 1.0), xs - 1.2)
-    g2[slip] = 4.0 * w / (np.pi * x2)
+        g1[near] = loop_shape(x[near])[0]
+    # W(x) as in plateau_loop_slopes (c = 0): 1 - √(1 - 2x/3) = (2x/3)/(1 + √(1 - 2x/3));
+    # beyond full sliding (x >= 3/2) W = x - 6/5.
+    root = np.sqrt(np.maximum(1.0 - x / 1.5, 0.0))
+    v = (x / 1.5) / (1.0 + root)
+    w = 0.3 * v**3 * (root * root + 3.0 * root + 1.0)
+    np.copyto(w, x - 1.2, where=x >= 1.5)
+    with np.errstate(divide="ignore", invalid="ignore"):
+        g2 = 4.0 * w / (np.pi * x2)
+    tiny = x < TINY_X
+    np.copyto(g1, 1.0, where=tiny)
+    np.copyto(g2, 0.0, where=tiny)
     return g1.reshape(shape), g2.reshape(shape)
 
 
