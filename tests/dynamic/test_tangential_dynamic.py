@@ -264,6 +264,23 @@ def test_tiny_wavenumbers_tend_to_the_static_limit(quartz):
     assert np.max(np.abs(d.imag / ka / (d[0].imag / ka[0]) - 1)) < 1e-6
 
 
+def test_radial_gram_is_the_series_on_both_sides(cu123):
+    # _to_radial (the far field's gram on the orders p, q mapped to the radial pairs, the row
+    # index last): against S G Sᵀ by einsum, on the series of a default basis (polynomial and
+    # enriched functions) and a seeded random G.
+    from contactres.dynamic import _tangential_galerkin as galerkin
+
+    table = prepare_tangential(cu123)
+    basis = galerkin.basis_of(table, tangential_size(2.0, n_harmonics=4))
+    series = basis.series[:, np.flatnonzero(np.any(basis.series != 0, axis=0))]
+    assert 0 < np.sum(np.count_nonzero(series, axis=1) > 1) < series.shape[0]
+    nl = series.shape[1]
+    gram = np.random.default_rng(7).normal(size=(nl, nl, 5))
+    ref = np.einsum("ap,bq,pqn->abn", series, series, gram)
+    out = galerkin._to_radial(series, gram)
+    assert np.max(np.abs(out - ref)) <= 1e-13 * np.max(np.abs(ref))
+
+
 def test_shifted_chebyshev_rows_are_the_polynomials_t_f_of_2w_minus_1():
     # Row f, column k: the coefficient of w^k in T_f(2w − 1); against numpy's conversion of
     # the Chebyshev basis on the domain [0, 1] (exact integers) and against cos(f arccos(2w − 1)).
