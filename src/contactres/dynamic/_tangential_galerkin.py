@@ -24,7 +24,9 @@ every basis function; only the dynamic remainder (~κ⁻²) is integrated, on th
 normal problem (:mod:`contactres.dynamic._table`): a complex contour above the branch points
 and the Rayleigh pole (so loss -> 0⁺ is exact), the hand-over segment, and the far field as a
 Chebyshev series in w = (T₁/κ)² per angular harmonic, integrated against products of the
-transforms on the far-field grid (:mod:`contactres.dynamic._farfield`), plus its closed-form tail.
+transforms on the far-field grid (:mod:`contactres.dynamic._farfield`), plus its closed-form tail;
+the hand-over segment, where the table holds that series too, goes with it in real arithmetic
+(its nodes as further rows of each Chebyshev term, :func:`_segment_rows`).
 Those products are formed as H_a H_b = Σ S_ap S_bq j_p j_q from the products of the spherical
 Bessel functions (fewer than the radial pairs), and beyond the hand-over of the largest k a
 the Chebyshev terms are polynomials in w, integrated as moments shared by every k a
@@ -345,13 +347,30 @@ def _far_rows(table: TangentialTable, ka: np.ndarray, grid):
     return low, cut, moments, mix
 
 
-def _far_gram(basis: _Basis, rows, grid) -> np.ndarray:
+def _segment_rows(table: TangentialTable, ka: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """The hand-over segment's nodes as rows of the far field's Chebyshev terms: s = k a κ
+    (na, n_seg) at its real nodes κ in [T₁, 2T₁], and the weights k a dκ χ(κ) w T_f(2w − 1)
+    (na, nf, n_seg), w = (T₁/κ)². The table's values there are the series
+    (:func:`~._tangential_table.segment_from_series`), so the segment's integrals are the far
+    field's coefficients times these rows' (real) integrals, as the far field's are."""
+    nc = table.resolution.n_contour
+    kappa = table.near_kappa[nc:].real
+    w = (table.t1 / kappa) ** 2
+    nf = table.far_coeffs.shape[1]
+    weight = np.polynomial.chebyshev.chebvander(2 * w - 1, nf - 1).T * (
+        w * table.near_weight[nc:].real
+    )
+    return ka[:, None] * kappa[None, :], ka[:, None, None] * weight[None]
+
+
+def _far_gram(basis: _Basis, rows, grid, segment) -> np.ndarray:
     """∫ ds row(s) H_a(s) H_b(s) on the far grid for every row of ``rows`` (those of
-    :func:`_far_rows`) and radial pair, (n_rows, nrad, nrad): the integrals of the products
+    :func:`_far_rows`) and radial pair, plus the same sums over the hand-over segment's nodes
+    of ``segment`` (:func:`_segment_rows`), (nrad, nrad, n_rows): the integrals of the products
     j_p j_q of the spherical Bessel functions, then H_a H_b = Σ S_ap S_bq j_p j_q (S =
-    ``basis.series``). There are fewer orders p than radial functions (30 against 66 at ``|n|``
-    <= 8), so this forms a third of the products H_a H_b over the grid and multiplies a third as
-    many by the rows."""
+    ``basis.series``, :func:`_to_radial`). There are fewer orders p than radial functions (30
+    against 66 at ``|n|`` <= 8), so this forms a third of the products H_a H_b over the grid and
+    multiplies a third as many by the rows."""
     low, cut, moments, mix = rows
     ns = grid.s.size
     # The orders some radial function uses (only the even ones in an even_part basis).
@@ -379,8 +398,22 @@ def _far_gram(basis: _Basis, rows, grid) -> np.ndarray:
             gram[:, p:, p] = part[:, at : at + nl - p]
             at += nl - p
         p0 = p1
-    series = basis.series[:, live]
-    return series @ gram @ series.T
+    # The segment: per k a, its (nf, n_seg) rows against j_p j_q at its own nodes s = k a κ.
+    s, weight = segment
+    js = np.moveaxis(spherical_bessel(basis.p_max, s)[live], 0, 1)  # (na, nl, n_seg)
+    part = (js[:, None, :, :] * weight[:, :, None, :]) @ np.swapaxes(js, 1, 2)[:, None]
+    gram += part.reshape(gram.shape)
+    return _to_radial(basis.series[:, live], np.moveaxis(gram, 0, -1))
+
+
+def _to_radial(series: np.ndarray, gram: np.ndarray) -> np.ndarray:
+    """Σ_pq S_ap S_bq G_pq (nrad, nrad, n) of ``gram`` G (nl, nl, n) on the orders and
+    ``series`` S (nrad, nl): two products with S, each over every row at once (G's rows first,
+    so that neither needs a transposed copy: a third of the time of S G Sᵀ per row and its
+    transpose)."""
+    nrad, nl, n = series.shape[0], series.shape[1], gram.shape[-1]
+    half = series @ np.ascontiguousarray(gram).reshape(nl, nl * n)  # Σ_p S_ap G_pq
+    return series @ half.reshape(nrad, nl, n)
 
 
 def _layout(basis: _Basis) -> tuple[np.ndarray, int]:
@@ -499,13 +532,14 @@ def _dynamic_part(
     na = ka.size
     harmonics, per_n = _layout(basis)
     nn = harmonics.size
-    # Near field: s = ka κ on the contour and the hand-over segment.
-    s = ka[:, None] * table.near_kappa[None, :]  # (na, nk)
+    # Near field: s = ka κ on the contour; the hand-over segment, where the table holds the
+    # far field's series, goes with the far field (_far_gram).
+    nk = table.resolution.n_contour
+    s = ka[:, None] * table.near_kappa[None, :nk]  # (na, nk)
     jp = spherical_bessel(basis.p_max, s)  # (p, na, nk)
     h = np.tensordot(basis.series, jp, axes=(1, 0))  # (nrad, na, nk)
-    wk = table.near_weight[None, :] * ka[:, None]
-    nk = wk.shape[1]
-    nv = table.near_values.reshape(nk, -1, 4)  # (nk, nm, 4)
+    wk = table.near_weight[None, :nk] * ka[:, None]
+    nv = table.near_values[:nk].reshape(nk, -1, 4)  # (nk, nm, 4)
     # Real factors of complex products as complex numbers x + 0i, here and below (avg): numpy
     # would cast them through its iterator buffers, element by element of the broadcast, at
     # several times the cost of the products (which are the same, to the bit).
@@ -513,11 +547,11 @@ def _dynamic_part(
     # Far field: Chebyshev series of each harmonic against the products on the far grid, one
     # product over the grid for every (k a, Chebyshev term).
     nf = table.far_coeffs.shape[1]
-    phi = _far_gram(basis, _far_rows(table, ka, grid), grid)  # (na nf, nrad, nrad)
-    nrad = basis.series.shape[0]
     # Real, radial pairs first: a block's (j_a, j_b, k a, f) is then a stack of matrices
     # (j_b, k a merged) that the real Chebyshev coefficients multiply without a copy.
-    phi = np.ascontiguousarray(phi.reshape(na * nf, nrad * nrad).T).reshape(nrad, nrad, na, nf)
+    phi = _far_gram(basis, _far_rows(table, ka, grid), grid, _segment_rows(table, ka))
+    nrad = basis.series.shape[0]
+    phi = phi.reshape(nrad, nrad, na, nf)
     coef = table.far_coeffs.reshape(-1, 4, nf)  # (nm, 4, nf)
     # Beyond the grid: h − h∞ -> w C₁, H_a H_b -> (α_a α_b + β_a β_b)/(2 s²) on average.
     p = np.arange(basis.p_max + 1)
