@@ -305,6 +305,13 @@ def fit_ratios(
         ln_c = theta[0] if free_c else ln_c0
         return ln_c, (theta[n_scale - 1] if fit_c11 else ln_c11_fixed), theta[n_scale:]
 
+    # m of the grains R per unit crystal of the previous evaluation, by the bits of its ratios:
+    # the iteration asks for a trial's point again for its Jacobian and for the last point
+    # again for the covariance (a fifth of the moduli of a fit; no repeat comes from further
+    # back). A row is the same bits alone as in any stack (stacked_indentation_moduli), so a
+    # kept row is the row the call would compute.
+    last: dict[bytes, np.ndarray] = {}
+
     def log_model(theta, orient, jacobian: bool = True):
         """ln value and d ln value/d theta (None unless ``jacobian``) for ``orient``."""
         ln_c, ln_c11, lr = split(theta)
@@ -313,8 +320,18 @@ def fit_ratios(
         steps = [np.zeros(k)] + (
             [s * LOG_STEP * np.eye(k)[j] for j in range(k) for s in (1, -1)] if jacobian else []
         )
-        units = [param.unit_material(np.exp(lr + step)) for step in steps]
-        m = stacked_indentation_moduli(units, orient, rtol=MODULUS_RTOL)
+        ratios = [np.exp(lr + step) for step in steps]
+        keys = [r.tobytes() for r in ratios]
+        rows = dict(last) if orient is R else {}  # (the reference face of assemble is not R)
+        new = [i for i, key in enumerate(keys) if key not in rows]
+        if new:
+            units = [param.unit_material(ratios[i]) for i in new]
+            fresh = stacked_indentation_moduli(units, orient, rtol=MODULUS_RTOL)
+            rows.update((keys[i], row) for i, row in zip(new, fresh, strict=True))
+        m = np.stack([rows[key] for key in keys])
+        if orient is R:
+            last.clear()
+            last.update(zip(keys, m, strict=True))
         M = np.exp(ln_c11) * m[0]
         frac = 1.0 if rigid else mt / (M + mt)  # E*/M
         ln_value = ln_c + p * np.log(M * frac)
