@@ -223,3 +223,18 @@ def test_one_loop_sums_each_group_its_own_terms(groups):
         np.testing.assert_array_equal(got[0][at], J)
         # the summed integral is ∫d(x - d)/√Q where x <= e, ∫d(e - d)/√Q where x > e
         np.testing.assert_array_equal(np.where(far[at], got[1][at], got[2][at]), summed)
+
+
+@pytest.mark.parametrize("derivatives", [True, False])
+def test_slopes_of_slipping_points_do_not_depend_on_sticking_ones(derivatives):
+    # Where every point slips the slopes skip the gather and scatter of the slipping points:
+    # the same numbers, bit for bit, as those points among sticking ones (x <= c: G′ = 1 and
+    # the rest 0, exactly), on both sides of e and in 2-d (rows sharing c).
+    rng = np.random.default_rng(9)
+    c = rng.uniform(0.0, 1.0, (40, 1))
+    x = c + rng.uniform(1e-3, 3.0, (40, 12))
+    alone = plateau_loop_slopes(x, c, derivatives)
+    mixed = plateau_loop_slopes(np.concatenate([x, 0.5 * c], axis=1), c, derivatives)
+    for a, b, stuck in zip(alone, mixed, (1.0, 0.0, 0.0, 0.0, 0.0, 0.0), strict=False):
+        np.testing.assert_array_equal(a, b[:, :12])
+        assert np.all(b[:, 12] == stuck)
