@@ -176,3 +176,65 @@ def test_blocks_do_not_mix_points():
     parts = [plateau_loop_slopes(x[i : i + 1000], c[i : i + 1000]) for i in range(0, n, 1000)]
     for j, a in enumerate(slopes):
         np.testing.assert_array_equal(a, np.concatenate([p[j] for p in parts]))
+
+
+def _series_alone(x, c, terms):
+    """J and the larger end's derivative integral (module docstring's recursion, V_k = b_k q^k
+    T_k), each point summing exactly ``terms`` terms: the sum written out per term."""
+    e = c + 1.5
+    r, big = np.minimum(x, e), np.maximum(x, e)
+    a = big - 0.5 * r
+    rho, q = c / r, 0.5 * r / a
+    sin, cos = 2.0 * np.sqrt(rho * (1.0 - rho)), 1.0 - 2.0 * rho
+    phi = 2.0 * np.arcsin(np.sqrt(c / r))
+    b = [1.0, 0.5]
+    for k in range(2, terms + 1):
+        b.append(b[-1] * (1.5 - k) / k)
+    p = sin * sin * sin * q
+    v = [0.5 * (np.pi - phi) + 0.5 * sin * cos, p * (-0.5 / 3.0)]
+    total, other = v[0] + v[1], v[0] - v[1]
+    for k in range(2, terms + 1):
+        p = p * (q * cos)
+        v.append(v[k - 2] * (q * q) * (b[k] / b[k - 2] * (k - 1) / (k + 2)) - p * (b[k] / (k + 2)))
+        total = total + v[k]
+        other = other - v[k] * (2 * k - 1)
+    scale = 0.25 * r * r
+    return scale * np.sqrt(a) * total, scale * other / np.sqrt(a)
+
+
+@pytest.mark.parametrize("groups", [(4, 8), (2, 5, 6), tuple(range(1, len(SERIES_TIERS) + 1))])
+def test_one_loop_sums_each_group_its_own_terms(groups):
+    # The groups' points share one loop over the terms (the points still summing a prefix of
+    # them): each point's J and integrals are, bit for bit, those of its group's terms summed
+    # for it alone, with points of every group mixed in one call and across blocks.
+    rng = np.random.default_rng(11)
+    n = SERIES_BLOCK + 3000
+    c = rng.uniform(0.0, 2.0, n) * (rng.random(n) < 0.8)
+    x = c + rng.uniform(1e-4, 4.0, n)
+    got = slip_integrals_series(x, c, groups=groups)
+    e = c + 1.5
+    cell = np.floor(16.0 * np.minimum(x, e) / np.maximum(x, e))
+    assert np.all(np.isnan(got[0][cell >= groups[-1]]))
+    far = x > e
+    for first, last in zip((0, *groups[:-1]), groups, strict=True):
+        at = np.flatnonzero((cell >= first) & (cell < last))
+        assert at.size > 100
+        J, summed = _series_alone(x[at], c[at], SERIES_TIERS[last - 1][1])
+        np.testing.assert_array_equal(got[0][at], J)
+        # the summed integral is ∫d(x - d)/√Q where x <= e, ∫d(e - d)/√Q where x > e
+        np.testing.assert_array_equal(np.where(far[at], got[1][at], got[2][at]), summed)
+
+
+@pytest.mark.parametrize("derivatives", [True, False])
+def test_slopes_of_slipping_points_do_not_depend_on_sticking_ones(derivatives):
+    # Where every point slips the slopes skip the gather and scatter of the slipping points:
+    # the same numbers, bit for bit, as those points among sticking ones (x <= c: G′ = 1 and
+    # the rest 0, exactly), on both sides of e and in 2-d (rows sharing c).
+    rng = np.random.default_rng(9)
+    c = rng.uniform(0.0, 1.0, (40, 1))
+    x = c + rng.uniform(1e-3, 3.0, (40, 12))
+    alone = plateau_loop_slopes(x, c, derivatives)
+    mixed = plateau_loop_slopes(np.concatenate([x, 0.5 * c], axis=1), c, derivatives)
+    for a, b, stuck in zip(alone, mixed, (1.0, 0.0, 0.0, 0.0, 0.0, 0.0), strict=False):
+        np.testing.assert_array_equal(a, b[:, :12])
+        assert np.all(b[:, 12] == stuck)

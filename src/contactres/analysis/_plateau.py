@@ -150,11 +150,16 @@ def plateau_loop_slopes(x, c, derivatives: bool = True) -> tuple[np.ndarray, ...
     that much to cancellation; the series is the more accurate).
     """
     x, c = np.broadcast_arrays(np.asarray(x, dtype=float), np.asarray(c, dtype=float))
-    out = [np.ones(x.shape)] + [np.zeros(x.shape) for _ in range(5 if derivatives else 1)]
     slip = x > c  # below d_c the contact sticks: G′ = 1, G″ = 0, and so do their derivatives
-    if slip.any():
-        for o, v in zip(out, _slipping(x[slip], c[slip], derivatives), strict=True):
-            o[slip] = v
+    if slip.all():  # (no gather and scatter: the same numbers, each point's its own)
+        return tuple(v.reshape(x.shape) for v in _slipping(x.ravel(), c.ravel(), derivatives))
+    out = [np.ones(x.shape)] + [np.zeros(x.shape) for _ in range(5 if derivatives else 1)]
+    at = np.flatnonzero(slip)  # (found once for the 2 gathers and 2-6 scatters)
+    if at.size:
+        flat = [o.reshape(-1) for o in out]
+        got = _slipping(x.reshape(-1)[at], c.reshape(-1)[at], derivatives)
+        for o, v in zip(flat, got, strict=True):
+            o[at] = v
     return tuple(out)
 
 
@@ -167,8 +172,8 @@ def _slipping(x, c, derivatives=True) -> tuple[np.ndarray, ...]:
     # J and its derivatives' integrals by their series where it is the cheaper (m below
     # FIT_SERIES_GROUPS[-1]/16), by the elliptic integrals beyond.
     J, Jx, Jc = slip_integrals_series(x, c, half, FIT_SERIES_GROUPS)
-    far = np.isnan(J)
-    if far.any():
+    far = np.flatnonzero(np.isnan(J))  # (found once for the 2 gathers and 3 scatters)
+    if far.size:
         J[far], Jx[far], Jc[far] = _elliptic_integrals(x[far], c[far])
     rcy = np.sqrt(c * y)
     H = x**2 / 8.0 * half - 0.25 * rcy * (y - c) + np.sqrt(2.0 / 3.0) * J
