@@ -295,9 +295,17 @@ def main() -> int:
 
 if __name__ == "__main__":
     if len(sys.argv) > 1:  # the stages of main(), each in a fresh process
-        if sys.argv[1] == "build":
-            build(sys.argv[2], Path(sys.argv[3]))
+        stage, args = sys.argv[1], sys.argv[2:]
+        if stage == "build" and len(args) == 2:
+            build(args[0], Path(args[1]))
+        elif stage == "measure" and len(args) == 1:
+            print(json.dumps(measure(args[0])))
+        elif stage == "end-to-end" and not args:
+            print(json.dumps(end_to_end()))
         else:
-            print(json.dumps(end_to_end() if sys.argv[1] == "end-to-end" else measure(sys.argv[2])))
+            sys.exit(
+                "usage: bench_scale.py [build NAME PATH | measure PATH | end-to-end] "
+                f"(got {' '.join(sys.argv[1:])!r})"
+            )
         sys.exit(0)
     sys.exit(main())

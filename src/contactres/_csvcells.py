@@ -321,6 +321,7 @@ def _few_objects(values: np.ndarray, most: int) -> tuple[list[int], np.ndarray] 
         pointers = np.frombuffer(values, dtype=np.intp)
     except (TypeError, ValueError, BufferError):  # a numpy that keeps them to itself
         return None
+    pointers.flags.writeable = False  # a write through this view would corrupt the objects' refs
     firsts: list[int] = []
     codes = np.zeros(values.size, dtype=np.intp)
     left = np.ones(values.size, dtype=bool)

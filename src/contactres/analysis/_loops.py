@@ -625,12 +625,16 @@ INVERSE_MIN_DET = 1e-6
 
 
 def _inverse_3x3(m: np.ndarray) -> np.ndarray:
-    """The inverses of symmetric positive semi-definite 3x3 matrices ``m`` (S, 3, 3), as
-    numpy.linalg.pinv gives them (its SVD per matrix cost ~10x this), to rounding.
+    """The inverses of symmetric positive semi-definite 3x3 matrices ``m`` (S, 3, 3): as
+    numpy.linalg.pinv gives them (its SVD per matrix cost ~10x this), to rounding, where pinv
+    is accurate; the true inverse where pinv's cut of small singular values, made on the
+    unscaled matrix, would act (a diagonal spanning ~1e15 or more: pinv is then wrong by O(1),
+    the scaled closed form is not).
 
     Each matrix is scaled to a unit diagonal, D⁻¹mD⁻¹ with D = √diag(m), and inverted by its
     adjugate over its determinant det, then scaled back. The scaled matrix's eigenvalues sum
-    to 3, so that its condition number is at most 3·(3/2)²/det = 6.75/det, and the closed
+    to 3, so that its condition number is at most 3·(3/2)²/det = 6.75/det (a safe bound: the
+    largest eigenvalue squared times the middle one is at most 4, so 4/det holds), and the closed
     form's error, of order ε times that, is bounded by 20ε·6.75/det of the scaled inverse's
     largest entry where det >= :data:`INVERSE_MIN_DET` (tests/analysis/test_loop_search.py
     checks it against exact rational arithmetic). The loop fits' JᵀJ have det >= 0.24 on the
@@ -645,13 +649,15 @@ def _inverse_3x3(m: np.ndarray) -> np.ndarray:
         c = m / (d[:, :, None] * d[:, None, :])
     a, b, e = c[:, 0, 1], c[:, 0, 2], c[:, 1, 2]
     # Cofactors of [[1, a, b], [a, 1, e], [b, e, 1]] (the diagonal is 1 up to rounding: kept).
-    c00 = c[:, 1, 1] * c[:, 2, 2] - e * e
-    c01 = b * e - a * c[:, 2, 2]
-    c02 = a * e - b * c[:, 1, 1]
-    c11 = c[:, 0, 0] * c[:, 2, 2] - b * b
-    c12 = a * b - c[:, 0, 0] * e
-    c22 = c[:, 0, 0] * c[:, 1, 1] - a * a
-    det = c[:, 0, 0] * c00 + a * c01 + b * c02
+    # A non-finite matrix gives NaN here without a warning: it takes pinv below, as before.
+    with np.errstate(invalid="ignore", over="ignore"):
+        c00 = c[:, 1, 1] * c[:, 2, 2] - e * e
+        c01 = b * e - a * c[:, 2, 2]
+        c02 = a * e - b * c[:, 1, 1]
+        c11 = c[:, 0, 0] * c[:, 2, 2] - b * b
+        c12 = a * b - c[:, 0, 0] * e
+        c22 = c[:, 0, 0] * c[:, 1, 1] - a * a
+        det = c[:, 0, 0] * c00 + a * c01 + b * c02
     good = det >= INVERSE_MIN_DET  # False for NaN
     adj = np.stack([c00, c01, c02, c01, c11, c12, c02, c12, c22], axis=1).reshape(-1, 3, 3)
     with np.errstate(divide="ignore", invalid="ignore"):

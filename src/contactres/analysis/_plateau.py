@@ -62,12 +62,17 @@ __all__ = [
 #: _plateau_series.SERIES_TIERS`) in which :func:`plateau_loop_slopes` with derivatives sums
 #: the series of J and of its derivatives' integrals (:func:`~contactres.analysis.
 #: _plateau_series.slip_integrals_series`): m < 1/4 with 15 terms, m < 1/2 with 26 (89 % of
-#: the fit's points on the 10^4 sweeps of issue 31); the elliptic form beyond. Why: the fit
+#: the fit's points on the 10^4 sweeps of issue 31); the elliptic form beyond. Why, when
+#: measured (each group of cells then summed its terms in a loop of its own): the fit
 #: evaluates a few thousand points a call, so that numpy's per-call cost of a cell's terms
-#: outweighs the terms a coarser group sums in vain: on the slopes of those fits' calls
+#: outweighed the terms a coarser group sums in vain: on the slopes of those fits' calls
 #: (6.4·10⁵ points) one cell a group up to 11/16 took 0.28 s of CPU, these two groups
 #: 0.20 s, the 16-point Gauss-Legendre rule (m < 0.1) and the elliptic form they replace
-#: 0.38 s (best of seven, loaded machine).
+#: 0.38 s (best of seven, loaded machine). Since the groups share one loop over the terms
+#: (:func:`~contactres.analysis._plateau_series.slip_integrals_series`) a group costs no
+#: calls of its own, so that finer groups may now pay (a review's quick timing: one cell a
+#: group up to 8/16 cost 0.396 ms against 0.388 ms at 3,000 points and 4.49 ms against
+#: 4.71 ms at 35,000; J within 3.4e-16): not changed, as it moves the sums' last bits.
 FIT_SERIES_GROUPS = (4, 8)
 
 #: Points per block of the arithmetic of G′ and G″ from J without derivatives: its ~6 arrays

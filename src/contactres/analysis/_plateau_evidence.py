@@ -139,6 +139,8 @@ the gain is in memory traffic, which callgrind does not count), with amplitudes 
 :mod:`contactres.analysis._plateau` take most of it; 3.31 × 10^9 instructions against
 3.37 × 10^9 on a sixteenth of the blocks); every output the same bit for bit on both tables
 and on the bundled example, the evidence's peak RSS on the jittered table 152 MB (151 MB).
+(The sums over the amplitudes that the rounds above credit to :func:`_solve_levels` are
+formed by :func:`_level_sums` since this round.)
 A block's result depends on its own row alone, so the caller deals the undecided blocks out to
 the analysis's worker processes where they are many (``contactres.analysis._blocks``,
 ``_evidence``: 1,975 blocks of the 10,752 sweeps in two halves of ~2.3 s of CPU each).
@@ -616,7 +618,8 @@ def _over_y_rows(parts, at_p, at_l, coarse):
     el[~np.isfinite(top_l[:, 0])] = 0.0
     dy = np.diff(y, axis=1)
     # L's cells: the terms of its trapezoidal sum, also its mass in the edge cells (the same
-    # numbers as 0.5 (el_i + el_i+1) dy but in the subnormal range: halving is exact).
+    # numbers as 0.5 (el_i + el_i+1) dy, halving being exact, but for the last bit in the
+    # subnormal range, ~1e-308 of zl).
     cell = _cells(el, dy)
     edge = (y[:, 1:] <= coarse[1]) | (y[:, :-1] >= coarse[-2])
     with np.errstate(invalid="ignore", divide="ignore"):

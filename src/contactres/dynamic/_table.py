@@ -380,8 +380,9 @@ def max_slowness(m: Material) -> float:
     th = np.linspace(0.0, np.pi, 181)
     # The Christoffel matrices Γ_ik = Σ_j n_j Σ_l c_ijkl n_l of the in-plane directions
     # n = (cos θ, sin θ, 0), from the four in-plane (j, l) blocks: an einsum over all of j, l
-    # cost half the slowness (~0.1 ms, ~1 % of a five-model curve; issue 31). The same sums in
-    # the same order as that einsum (each j's sum over l first), so the same bits.
+    # cost half the slowness (~0.1 ms, ~1 % of a seven-model curve; issue 31). The same sums
+    # in the same order as numpy 2.4's einsum took them (each j's sum over l first; checked),
+    # so the same bits as before.
     n = (np.cos(th)[:, None, None], np.sin(th)[:, None, None])
     gamma = [
         (c[None, :, j, :, 0] * n[j]) * n[0] + (c[None, :, j, :, 1] * n[j]) * n[1] for j in (0, 1)

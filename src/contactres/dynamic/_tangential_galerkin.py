@@ -528,6 +528,13 @@ def _dynamic_part(
     m = ±``|n_a|`` ± ``|n_b|`` and the four components, each once, packed side by side; the
     matrix is then gathered from them in one step (every sign of n_a and n_b, and the pairs of
     (``|n_b|``, ``|n_a|``), transposed).
+
+    The table's values past its contour nodes (the hand-over segment, ``near_values[n_contour:]``)
+    are not read: that segment is integrated from the far field's series, which is what
+    :func:`~contactres.dynamic._tangential_table.prepare_tangential` stores there
+    (:func:`~contactres.dynamic._tangential_table.segment_from_series`, within its stated bound
+    of the kernel). A table whose segment held other values would be integrated as if it held
+    the series.
     """
     na = ka.size
     harmonics, per_n = _layout(basis)
