@@ -184,6 +184,8 @@ def test_a_grid_of_some_sweeps_holds_their_curves_whatever_the_chunks(results, m
          every[every["grid_points"] == 11]]
     )  # fmt: skip
     pd.testing.assert_frame_equal(part.reset_index(drop=True), want.reset_index(drop=True))
+    with pytest.raises(ValueError, match="one boolean per sweep"):
+        _curves.fitted_curves(sw, padded, fits, grids=(7,), held={7: some[1:]})
 
 
 def test_a_sweep_without_a_usable_fit_gets_no_curve_and_the_others_keep_theirs(results):

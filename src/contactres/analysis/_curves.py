@@ -221,6 +221,8 @@ def fitted_curves(
     """
     S = len(sw)
     held = held or {}
+    if any(np.shape(mask) != (S,) for mask in held.values()):
+        raise ValueError(f"held: one boolean per sweep ({S}) for each grid named")
     # The positions in sw of each grid's sweeps (ascending: the order of sw).
     where = {n: np.flatnonzero(held[n]) if n in held else np.arange(S) for n in grids}
     rows_p = pd.Index(p.sweeps).get_indexer(sw["sweep"].to_numpy())
