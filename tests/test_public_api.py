@@ -235,6 +235,7 @@ PUBLIC = {
         "dart_flag_names",
         "dart_reconstruct",
         "dart_reconstruction",
+        "figure_examples",
         "film_columns",
         "film_modulus_from_contact_stiffness",
         "fit_jkr_mindlin",

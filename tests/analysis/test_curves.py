@@ -6,7 +6,14 @@ import pandas as pd
 import pytest
 
 from contactres.analysis._amplitude import Padded
-from contactres.analysis._curves import CURVE_GRIDS, model_keys, sweep_points, sweep_rows
+from contactres.analysis._curves import (
+    CURVE_GRIDS,
+    FIGURE_POINTS,
+    PAGE_POINTS,
+    model_keys,
+    sweep_points,
+    sweep_rows,
+)
 from contactres.analysis._models import REGISTRY, exact_model, model_curves
 from contactres.errors import ContactresInputError
 
@@ -77,17 +84,34 @@ def test_the_sweep_labels_are_the_column_pandas_makes_of_them(ids):
     pd.testing.assert_series_equal(sweep_points(p)["sweep"], written["sweep"])
 
 
+def _drawn(sw: pd.DataFrame) -> list:
+    """The sweeps Fig. 4 draws, read off figure_examples' loads, in the order of ``sw``."""
+    from contactres.analysis import figure_examples
+
+    drawn = {s for _, sel in figure_examples(sw) for s in sel["sweep"]}
+    return [s for s in sw["sweep"] if s in drawn]
+
+
 def test_the_curves_sweep_labels_are_each_sweep_once_per_grid_point(results):
-    # Labels filled grid by grid in one array: the column pandas makes of them written out.
+    # Labels filled grid by grid in one array: the column pandas makes of them written out;
+    # by default Fig. 4's grid first, for the sweeps it draws, then the page's for every sweep.
     ids = results.sweeps["sweep"].to_numpy(dtype=object)
-    written = pd.DataFrame({"sweep": np.concatenate([np.repeat(ids, n) for n in CURVE_GRIDS])})
+    drawn = np.asarray(_drawn(results.sweeps), dtype=object)
+    assert 0 < len(drawn) < len(ids)
+    labels = np.concatenate([np.repeat(drawn, FIGURE_POINTS), np.repeat(ids, PAGE_POINTS)])
+    written = pd.DataFrame({"sweep": labels})
     pd.testing.assert_series_equal(results.curves["sweep"], written["sweep"])
+    grids = np.repeat(
+        [FIGURE_POINTS, PAGE_POINTS], [len(drawn) * FIGURE_POINTS, len(ids) * PAGE_POINTS]
+    )
+    np.testing.assert_array_equal(results.curves["grid_points"], grids)
 
 
 def test_every_sweep_has_its_model_on_each_grid(results):
     # Each curve is the registered function of the sweep's exact loop (every sweep of the
     # example takes its limits from one), evaluated sweep by sweep with the values of that
     # model's fit table (keyed by the parameters' keys); the analysis batches the sweeps.
+    # Every sweep on the page's grid, the sweeps Fig. 4 draws on its grid.
     sw, curves = results.sweeps, results.curves
     assert sorted(curves["grid_points"].unique()) == sorted(CURVE_GRIDS)
     assert set(sw["limits_from"]) <= set(LOOPS)
@@ -95,8 +119,10 @@ def test_every_sweep_has_its_model_on_each_grid(results):
     for n in CURVE_GRIDS:
         part = curves[curves["grid_points"] == n]
         rows = sweep_rows(part)
-        assert list(rows) == list(sw["sweep"])
-        for i in range(0, len(sw), 9):
+        assert list(rows) == (_drawn(sw) if n == FIGURE_POINTS else list(sw["sweep"]))
+        # Every sweep Fig. 4 draws, every ninth sweep on the page's grid.
+        held = [i for i in range(len(sw)) if sw["sweep"].iloc[i] in rows]
+        for i in held if n == FIGURE_POINTS else held[::9]:
             sweep, key = sw["sweep"].iloc[i], LOOPS[sw["limits_from"].iloc[i]]
             got = part.iloc[rows[sweep]]
             grid = np.linspace(0.0, u_max[sweep], n)
@@ -107,6 +133,59 @@ def test_every_sweep_has_its_model_on_each_grid(results):
             f, g = model.function(grid, **{p.key: table[p.key].iloc[i] for p in model.parameters})
             np.testing.assert_allclose(got["df_model_Hz"], f, rtol=1e-12, atol=0)
             np.testing.assert_allclose(got["dgamma_model_Hz"], g, rtol=1e-12, atol=1e-12)
+
+
+def test_by_default_figure_rows_are_those_of_an_analysis_with_every_sweep_on_both_grids(results):
+    # The default (curve_grids=None) against an analysis that evaluates every sweep on both
+    # grids (an explicit tuple): the page's rows the same, and Fig. 4's rows exactly the
+    # explicit run's rows of the sweeps that figure draws (their curves do not depend on the
+    # other sweeps evaluated with them).
+    from contactres import AnalysisSettings, analyze
+
+    both = analyze(
+        results.table,
+        settings=AnalysisSettings(bootstrap=0),
+        curve_grids=(FIGURE_POINTS, PAGE_POINTS),
+    ).curves
+    ids = set(both["sweep"])
+    assert list(sweep_rows(both[both["grid_points"] == FIGURE_POINTS])) == list(
+        results.sweeps["sweep"]
+    )
+    mine = results.curves
+    for n in (FIGURE_POINTS, PAGE_POINTS):
+        want = both[both["grid_points"] == n]
+        if n == FIGURE_POINTS:
+            drawn = _drawn(results.sweeps)
+            assert 0 < len(drawn) < len(ids)
+            want = want[want["sweep"].isin(drawn)]
+        got = mine[mine["grid_points"] == n]
+        pd.testing.assert_frame_equal(got.reset_index(drop=True), want.reset_index(drop=True))
+
+
+def test_a_grid_of_some_sweeps_holds_their_curves_whatever_the_chunks(results, monkeypatch):
+    # Each curve depends on its own sweep only: a grid that holds a random third of the sweeps
+    # (seeded), evaluated in chunks of a few sweeps, holds exactly the rows of those sweeps in
+    # a run of every sweep in the default chunks; a grid not named in held keeps every sweep;
+    # a grid that holds none has no rows.
+    from contactres.analysis import _curves
+    from contactres.analysis._amplitude import pad_sweeps
+
+    sw, fits = results.sweeps, results.fits
+    padded = pad_sweeps(results.table.data)  # the example has no drift removed
+    every = _curves.fitted_curves(sw, padded, fits, grids=(7, 11))
+    some = np.random.default_rng(31).random(len(sw)) < 1 / 3
+    assert 3 < some.sum() < len(sw) - 3
+    monkeypatch.setattr(_curves, "CHUNK_POINTS", 40)  # chunks of 5 sweeps on the 7-point grid
+    held = {7: some, 3: np.zeros(len(sw), bool)}
+    part = _curves.fitted_curves(sw, padded, fits, grids=(7, 3, 11), held=held)
+    chosen = set(sw["sweep"][some])
+    want = pd.concat(
+        [every[(every["grid_points"] == 7) & every["sweep"].isin(chosen)],
+         every[every["grid_points"] == 11]]
+    )  # fmt: skip
+    pd.testing.assert_frame_equal(part.reset_index(drop=True), want.reset_index(drop=True))
+    with pytest.raises(ValueError, match="one boolean per sweep"):
+        _curves.fitted_curves(sw, padded, fits, grids=(7,), held={7: some[1:]})
 
 
 def test_a_sweep_without_a_usable_fit_gets_no_curve_and_the_others_keep_theirs(results):

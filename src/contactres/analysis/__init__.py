@@ -7,7 +7,8 @@ batched fitters (``_models``, :data:`REGISTRY`), the model choice (``_classify``
 (``_friction``), drift (``_drift``), statistics per load (``_loads``), the JKR + Mindlin fit
 (``_jkr``, :func:`fit_jkr_mindlin`), the radiation loss of the contacts (``_radiation``,
 :func:`radiation_for`, :func:`radiation_loss`), the flags (``_flags``, :class:`Flag`), the
-points and fitted curves the report draws (``_curves``) and the results (``_results``). Beside
+points and fitted curves the report draws (``_curves``), the loads Fig. 4 draws (``_examples``,
+:func:`figure_examples`) and the results (``_results``). Beside
 them, the inversion of contact resonances to a modulus (:func:`modulus_from_contact_stiffness`,
 :func:`invert_afm_table`, :func:`invert_rum_table`) and to the modulus of a film on a known
 substrate (``_film_inversion``, :func:`film_modulus_from_contact_stiffness`). And the fit of
@@ -43,6 +44,7 @@ _EXPORTS = MappingProxyType(
         "dart_flag_names": "._dart",
         "dart_reconstruct": "._dart",
         "dart_reconstruction": "._dart",
+        "figure_examples": "._examples",
         "PAGE_POINTS": "._curves",
         "sweep_rows": "._curves",
         "DESCRIPTIONS": "._flags",
@@ -99,6 +101,9 @@ if TYPE_CHECKING:
         dart_flag_names as dart_flag_names,
         dart_reconstruct as dart_reconstruct,
         dart_reconstruction as dart_reconstruction,
+    )
+    from ._examples import (
+        figure_examples as figure_examples,
     )
     from ._flags import (
         DESCRIPTIONS as DESCRIPTIONS,

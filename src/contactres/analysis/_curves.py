@@ -17,7 +17,10 @@ cm_loop.loop_shape`, :func:`~contactres.analysis._models.savkoor_loop.savkoor_sh
 ~1e-12 of the quadrature of :func:`contactres.loop_stiffness`): ~0.1-0.2 µs per curve point,
 not ~2 µs. The grid
 runs from u0 = 0 to the sweep's largest amplitude in :data:`FIGURE_POINTS` (Fig. 4) and
-:data:`PAGE_POINTS` (the inline SVG of the page) equal steps.
+:data:`PAGE_POINTS` (the inline SVG of the page and ``curves.csv``) equal steps. A grid may
+hold a subset of the sweeps: by default (:func:`contactres.analyze`'s ``curve_grids=None``)
+Fig. 4's holds only the sweeps that figure draws (:mod:`contactres.analysis._examples`), the
+page's every sweep.
 """
 
 from __future__ import annotations
@@ -181,15 +184,17 @@ def fitted_curves(
     fits: Fits,
     grids=CURVE_GRIDS,
     workers: int | WorkerPool = 1,
+    held: Mapping[int, np.ndarray] | None = None,
 ) -> pd.DataFrame:
-    """The chosen model of every sweep of ``sw`` on each grid of ``grids`` (see the module
-    docstring).
+    """The chosen model of the sweeps of ``sw`` on each grid of ``grids`` (see the module
+    docstring): every sweep, or on a grid named in ``held`` the sweeps it holds.
 
     The model function of each class is called once per chunk of sweeps (at most
     :data:`CHUNK_POINTS` curve points, its parameters broadcast along the sweeps); where a
     chunk fails (a sweep without a usable fit, e.g. NaN parameters that a loop's shape
     refuses) its sweeps are evaluated one by one, NaN for a sweep that fails alone. Each curve
-    depends on its own sweep's values only, so chunks and processes do not change it.
+    depends on its own sweep's values only, so chunks, processes and the other sweeps a grid
+    holds do not change it.
 
     Parameters
     ----------
@@ -202,52 +207,64 @@ def fitted_curves(
     grids : numbers of grid points (each a grid from 0 to the largest amplitude)
     workers : processes for the chunks (1: none, in this process), or the analysis's
         :class:`~contactres.analysis._workers.WorkerPool`
+    held : by number of grid points, which sweeps of ``sw`` that grid holds (a boolean per
+        row of ``sw``, e.g. those Fig. 4 draws,
+        :func:`contactres.analysis._examples.drawn_in_figure`); a grid not named holds every
+        sweep (None: each grid every sweep)
 
     Returns
     -------
     DataFrame
         ``sweep``, ``grid_points`` (the grid's number of points), ``amplitude_m`` (m),
         ``df_model_Hz``, ``dgamma_model_Hz`` (Hz; NaN where the sweep has no usable fit):
-        per grid, sweep after sweep in the order of ``sw``.
+        per grid (in the order of ``grids``), sweep after sweep in the order of ``sw``.
     """
     S = len(sw)
+    held = held or {}
+    if any(np.shape(mask) != (S,) for mask in held.values()):
+        raise ValueError(f"held: one boolean per sweep ({S}) for each grid named")
+    # The positions in sw of each grid's sweeps (ascending: the order of sw).
+    where = {n: np.flatnonzero(held[n]) if n in held else np.arange(S) for n in grids}
     rows_p = pd.Index(p.sweeps).get_indexer(sw["sweep"].to_numpy())
     u_max = p.u_max[rows_p]  # the points of a sweep are in ascending amplitude
     key = model_keys(sw["model"], sw["limits_from"])
-    # The columns of the result, each grid's rows a (S, n) view: filled in place, no copies.
-    sizes = [S * n for n in grids]
+    # The columns of the result, each grid's rows a (sweeps, n) view: filled in place, no copies.
+    sizes = [where[n].size * n for n in grids]
     amplitude, shifts = np.empty(sum(sizes)), np.full((2, sum(sizes)), np.nan)  # Δf, ΔΓ
     ends = np.cumsum(sizes)
     grid, curves = {}, {}
     for n, end, size in zip(grids, ends, sizes, strict=True):
-        at = slice(end - size, end)
-        grid[n] = amplitude[at].reshape(S, n)
-        grid[n][:] = np.linspace(0.0, u_max, n, axis=-1)  # row i: 0 to u_max[i]
-        curves[n] = (shifts[0, at].reshape(S, n), shifts[1, at].reshape(S, n))
-    # Every (grid, model, chunk of sweeps) is one call of the model function.
-    tasks: list[tuple[int, str, np.ndarray]] = []
+        at, shape = slice(end - size, end), (where[n].size, n)
+        grid[n] = amplitude[at].reshape(shape)
+        grid[n][:] = np.linspace(0.0, u_max[where[n]], n, axis=-1)  # row i: 0 to its u_max
+        curves[n] = (shifts[0, at].reshape(shape), shifts[1, at].reshape(shape))
+    # Every (grid, model, chunk of sweeps) is one call of the model function: its sweeps by
+    # position in sw (for their values) and in the grid's rows (for their grid and curves).
+    tasks: list[tuple[int, str, np.ndarray, np.ndarray]] = []
     for n in grids:
-        for k in sorted({k for k in set(key.tolist()) if k is not None}):
-            rows = np.flatnonzero(key == k)
+        mine = key[where[n]]
+        for k in sorted({k for k in set(mine.tolist()) if k is not None}):
+            local = np.flatnonzero(mine == k)
             size = max(1, CHUNK_POINTS // n)
-            tasks.extend((n, k, chunk) for chunk in np.split(rows, range(size, rows.size, size)))
-    keys = [k for _, k, _ in tasks]
+            for chunk in np.split(local, range(size, local.size, size)):
+                tasks.append((n, k, where[n][chunk], chunk))
+    keys = [k for _, k, _, _ in tasks]
     found = {k: _lookup(sw, fits, k) for k in set(keys)}
     # Generators: each chunk's parameters and grid are made when its call comes (serial) or
     # sent (a pool), and each result is put in place as it arrives.
-    values = (_parameters(found[k], rows, k) for _, k, rows in tasks)
-    grids_of = (grid[n][rows] for n, _, rows in tasks)
+    values = (_parameters(found[k], rows, k) for _, k, rows, _ in tasks)
+    grids_of = (grid[n][local] for n, _, _, local in tasks)
     with lent_pool(workers) as pool:
         done = pool.imap(_model_on, len(tasks), keys, values, grids_of, chunksize=4)
-        for (n, k, rows), fg in zip(tasks, done, strict=True):
+        for (n, k, rows, local), fg in zip(tasks, done, strict=True):
             if fg is None:  # some sweep of the chunk has no curve: find which, one by one
-                fg = _one_by_one(sw, found[k], rows, k, grid[n][rows])
-            curves[n][0][rows], curves[n][1][rows] = fg
-    # Each grid's labels a (S, n) view of one array, filled in place (no per-grid copies).
+                fg = _one_by_one(sw, found[k], rows, k, grid[n][local])
+            curves[n][0][local], curves[n][1][local] = fg
+    # Each grid's labels a (sweeps, n) view of one array, filled in place (no per-grid copies).
     ids = sw["sweep"].to_numpy(dtype=object)
     labels = np.empty(sum(sizes), dtype=object)
     for n, end, size in zip(grids, ends, sizes, strict=True):
-        labels[end - size : end].reshape(S, n)[:] = ids[:, None]
+        labels[end - size : end].reshape(where[n].size, n)[:] = ids[where[n], None]
     columns = {
         "sweep": _label_column(ids, labels),
         "grid_points": np.repeat(np.asarray(grids, dtype=np.int64), sizes),

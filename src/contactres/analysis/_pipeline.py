@@ -106,12 +106,16 @@ def analyze(
     settings : :class:`AnalysisSettings` (defaults if None)
     progress : optional callback called with the name of each step as it starts
     curve_grids : the grids (numbers of points, each >= 2) on which ``Results.curves`` holds
-        every sweep's model; None (default): Fig. 4's
-        (:data:`~contactres.analysis.FIGURE_POINTS`) and the page's and ``curves.csv``'s
-        (:data:`~contactres.analysis.PAGE_POINTS`). Not an analysis setting (no result depends on
-        it, and ``summary.json`` does not record it): a caller that draws no figure asks for
-        ``(PAGE_POINTS,)`` alone, 30 of the 130 points per sweep (issue 31, point 3: at 10^5
-        sweeps the figure grid cost ~18 s of CPU and 0.4 GB for a figure that draws a few).
+        every sweep's model; None (default): the page's and ``curves.csv``'s
+        (:data:`~contactres.analysis.PAGE_POINTS`) for every sweep, and Fig. 4's
+        (:data:`~contactres.analysis.FIGURE_POINTS`) for the sweeps that figure draws
+        (:func:`~contactres.analysis.figure_examples`) only, their rows first. A tuple: every
+        sweep on each grid it names, in its order. Not an analysis setting (no result depends
+        on it, and ``summary.json`` does not record it): a caller that draws no figure asks
+        for ``(PAGE_POINTS,)`` alone, one that wants Fig. 4's grid for every sweep
+        ``(FIGURE_POINTS, PAGE_POINTS)`` (issue 31, point 3: at 10^5 sweeps that grid for
+        every sweep held 10 of the 13 million curve rows, ~0.45 GB of the analysis' peak
+        and ~10 s of CPU, for a figure that draws a few dozen sweeps).
 
     Returns
     -------

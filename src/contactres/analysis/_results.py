@@ -72,7 +72,8 @@ class Results:
         ``sweep``, ``amplitude_m``, ``df_Hz``, ``dgamma_Hz``
         (:func:`contactres.analysis._curves.sweep_points`)
     curves : the model chosen for each sweep on the grids the report draws (those of
-        :func:`contactres.analyze`'s ``curve_grids``: by default Fig. 4's and the page's):
+        :func:`contactres.analyze`'s ``curve_grids``: by default the page's for every sweep
+        and Fig. 4's for the sweeps it draws, :func:`contactres.analysis.figure_examples`):
         ``sweep``, ``grid_points``, ``amplitude_m``, ``df_model_Hz``, ``dgamma_model_Hz``
         (:func:`contactres.analysis._curves.fitted_curves`)
     messages : what the analysis found odd in the input, one line each (e.g. ramp labels that

@@ -26,8 +26,9 @@ from ..units import JUNCTION_SIGMAS, LINEAR_ONSET_X, MIN_SWEEP_POINTS, SMALL_LOA
 from ._amplitude import pad_sweeps
 from ._blocks import block_codes, choose_blocks
 from ._classify import apply_models, fit_sweeps
-from ._curves import CURVE_GRIDS, fitted_curves, jkr_curves, sweep_points
+from ._curves import CURVE_GRIDS, FIGURE_POINTS, fitted_curves, jkr_curves, sweep_points
 from ._drift import LOAD_OF_EXPERIMENT, drifting_sweeps, remove_linear_drift
+from ._examples import drawn_in_figure
 from ._flags import Flag
 from ._friction import block_friction, loop_friction, mu_out_of_range, slope_friction
 from ._jkr import fit_group
@@ -107,8 +108,9 @@ def run(
     curve_grids: Sequence[int] | None = None,
 ) -> Results:
     """:func:`contactres.analysis.analyze` of ``table`` with ``settings``, telling ``say``
-    the name of each step as it starts, the fitted curves on ``curve_grids`` (None: both
-    grids; see :mod:`contactres.analysis._pipeline`)."""
+    the name of each step as it starts, the fitted curves of every sweep on each grid of
+    ``curve_grids`` (None: the page's grid, and Fig. 4's for the sweeps it draws; see
+    :mod:`contactres.analysis._pipeline`)."""
     if not isinstance(table, SweepTable):
         raise TypeError(
             f"analyze takes a SweepTable, got {type(table).__name__}; pass a raw table through "
@@ -130,7 +132,7 @@ def run(
     # One pool of worker processes for every stage (started by the first that has tasks for
     # it), shut down however the analysis ends.
     with WorkerPool(settings.workers) as pool:
-        return _run(table, settings, say, tuple(grids), pool)
+        return _run(table, settings, say, tuple(grids), pool, curve_grids is None)
 
 
 def _run(
@@ -139,8 +141,10 @@ def _run(
     say: Callable[[str], None],
     grids: tuple[int, ...],
     pool: WorkerPool,
+    figure_only: bool = False,
 ) -> Results:
-    """The steps of :func:`run` (its arguments checked), their worker processes ``pool``."""
+    """The steps of :func:`run` (its arguments checked), their worker processes ``pool``;
+    ``figure_only``: Fig. 4's grid holds only the sweeps that figure draws."""
     data = table.data
 
     padded = pad_sweeps(data)
@@ -352,7 +356,10 @@ def _run(
     loads = withhold_mu(loads, groups)
 
     say("the fitted curves of every sweep")
-    curves = fitted_curves(sw, padded, fits, grids, workers=pool)
+    # Fig. 4's sweeps are picked from sw as Results.sweeps holds it (the same frame, final
+    # here), so the figure finds its grid for each sweep it draws.
+    held = {FIGURE_POINTS: drawn_in_figure(sw)} if figure_only else None
+    curves = fitted_curves(sw, padded, fits, grids, workers=pool, held=held)
     jkr = jkr_curves(groups, loads, laws=laws)
 
     radiation = None

@@ -90,10 +90,11 @@ class Settings:
         on the coated plate (:mod:`contactres.analysis._coating`). With the materials, the radiation
         loss on the coated plate.
     figures : bool
-        Whether figures are drawn from the Result (Fig. 4 draws the fitted curves on its own
-        100-point grid); False: the curves are computed on the 30-point grid of ``curves.csv``
+        Whether figures are drawn from the Result (Fig. 4 draws the fitted curves of the
+        sweeps it shows on its own 100-point grid, which the analysis then computes for
+        those sweeps); False: the curves are computed on the 30-point grid of ``curves.csv``
         and of the page only (:func:`contactres.analysis.analyze`'s ``curve_grids``), the
-        same tables for 30 of the 130 points per sweep.
+        same tables.
     """
 
     area_m2: float | None = None
@@ -386,7 +387,7 @@ def run(
     inputs: str | os.PathLike | Reading, settings: Settings, progress: Progress | None = None
 ) -> Result:
     """Analyse the sweeps of ``inputs`` (a path, or what :func:`read` returned)."""
-    from ..analysis import FIGURE_POINTS, PAGE_POINTS, AnalysisSettings, analyze
+    from ..analysis import PAGE_POINTS, AnalysisSettings, analyze
     from ..errors import ContactresInputError
 
     s = settings
@@ -413,6 +414,7 @@ def run(
     )
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        grids = (FIGURE_POINTS, PAGE_POINTS) if s.figures else (PAGE_POINTS,)
+        # None: the page's grid for every sweep and Fig. 4's for the sweeps it draws.
+        grids = None if s.figures else (PAGE_POINTS,)
         results = analyze(reading.table, settings=chosen, progress=progress, curve_grids=grids)
     return Result(analysis=results, reading=reading, warnings=warning_lines(caught))

@@ -21,7 +21,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 import pandas as pd
 
-from ..analysis import FIGURE_POINTS, sweep_rows
+from ..analysis import FIGURE_POINTS, figure_examples, sweep_rows
 from ..errors import ContactresInputError
 from ..fileio import save_figure
 from ..measurements import SweepWarning
@@ -135,48 +135,32 @@ def _width_inches(fig, artist) -> float | None:
     return float(artist.get_window_extent(get_renderer()).width / fig.dpi)
 
 
-def _media(results) -> list[str]:
-    return sorted(results.sweeps["medium"].unique())
-
-
-def _pick_examples(sw: pd.DataFrame, medium: str) -> list[pd.DataFrame]:
-    """The used sweeps of one typical (Cattaneo-Mindlin) load and of one other-shaped load
-    (any used load when the medium has neither)."""
-    part = sw[(sw["medium"] == medium) & sw["used"]]
-    keys = ["experiment", "configuration", "normal_force_N"]
-    picks = []
-    cm = part[part["model"] == "cattaneo-mindlin"]
-    if len(cm):
-        picks.append(part.merge(cm.iloc[[0]][keys], on=keys))
-    other = part[part["model"].isin(["plateau", "savkoor"])]
-    if len(other):
-        picks.append(part.merge(other.iloc[[0]][keys], on=keys))
-    if not picks and len(part):
-        picks.append(part.merge(part.iloc[[0]][keys], on=keys))
-    return picks
-
-
 def figure_sweeps(results) -> Figure:
     """Fig. 4: Δf and ΔΓ against u0 for a typical load and an unusual one, per medium.
 
     Points: the used ramps of one load of one experiment (one marker and colour per ramp);
     lines: the model chosen for each sweep, in the colour of its ramp. Only the loads that
     exist are drawn (two pairs of panels per row, no empty panel); the key is below the panels.
+    The loads are :func:`contactres.analysis.figure_examples`' (the analysis computes the
+    curves on Fig. 4's grid for their sweeps); results whose curves lack that grid for a
+    sweep drawn raise :class:`~contactres.errors.ContactresInputError`.
     """
     from matplotlib.lines import Line2D
 
     sw = results.sweeps
     points = sweep_rows(results.points)
     curves = results.curves[results.curves["grid_points"] == FIGURE_POINTS]
-    if curves.empty and len(results.curves):
-        # analyze(curve_grids=...) left out the figure's grid: nothing of it to draw.
-        raise ContactresInputError(
-            f"these results hold the fitted curves without Fig. 4's {FIGURE_POINTS}-point grid: "
-            "analyse with curve_grids including it (the default) to draw the figures"
-        )
     curve = sweep_rows(curves)
+    picks = figure_examples(sw)
+    drawn = [s for _, sel in picks for s in sel["sweep"]]
+    if not all(s in curve for s in drawn):
+        # analyze(curve_grids=...) left out the figure's grid (or these sweeps on it).
+        raise ContactresInputError(
+            f"these results hold the fitted curves without Fig. 4's {FIGURE_POINTS}-point grid "
+            "for the sweeps it draws: analyse with curve_grids=None (the default) or including "
+            "it to draw the figures"
+        )
     ramps = sorted(sw.loc[sw["used"], "ramp"].unique())
-    picks = [(m, sel) for m in _media(results) for sel in _pick_examples(sw, m)]
     per_row = 2 if len(picks) > 1 else 1
     nrows = -(-len(picks) // per_row)
     fig = _blank(3.2 * 2 * per_row, 2.6 * nrows + 0.5)
