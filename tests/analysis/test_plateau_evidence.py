@@ -542,12 +542,22 @@ def test_a_fit_exact_to_rounding_keeps_its_node():
     assert np.argmax(lnl[0]) == 2
 
 
-def test_rows_of_the_same_bytes_are_found_as_by_a_sort_of_the_bytes():
+def test_rows_of_the_same_bytes_are_found_as_by_a_sort_of_the_bytes(monkeypatch):
     # The slopes' distinct rows of nodes (found by an integer of their bits) are the sets of
     # rows numpy.unique finds by their bytes: duplicated rows, rows one ulp apart in one
-    # column (whose sums of doubles round to the same), -0.0 against 0.0.
+    # column (whose sums of doubles round to the same), -0.0 against 0.0, and two rows of
+    # other bytes with the same integer (the sort of the bytes decides: its fallback).
+    from contactres.analysis import _plateau_evidence as ev
     from contactres.analysis._plateau_evidence import _distinct_rows
 
+    sorts = []
+
+    def void_rows(a):
+        sorts.append(a.shape)
+        return real_void_rows(a)
+
+    real_void_rows = ev._void_rows
+    monkeypatch.setattr(ev, "_void_rows", void_rows)
     rng = np.random.default_rng(3)
     base = rng.random((40, 23))
     near = base[:10].copy()
@@ -555,9 +565,22 @@ def test_rows_of_the_same_bytes_are_found_as_by_a_sort_of_the_bytes():
     near[at] = np.nextafter(near[at], 2.0)
     signed = np.zeros((2, 23))
     signed[1, 5] = -0.0
-    rows = np.concatenate([base, base[::3], near, signed, base[:7]])
+    # The integer is sum_j bits_j * odd_j mod 2^64 with odd_0 = 1, odd_1 = K | 1: column 1's
+    # bits minus 1 and column 0's plus K | 1 keep it. Checked here as the function computes it;
+    # the fallback having run is checked below by its call of _void_rows.
+    k = np.uint64(0x5851F42D4C957F2D | 1)
+    pair = base[11:13].copy()
+    pair[1] = pair[0]
+    bits = pair.view(np.uint64)
+    bits[1, 1] -= np.uint64(1)
+    bits[1, 0] += k
+    odd = (np.arange(23, dtype=np.uint64) * k) | np.uint64(1)
+    hashes = (bits * odd).sum(axis=1)
+    assert hashes[0] == hashes[1] and (bits[0] != bits[1]).any()
+    rows = np.concatenate([base, base[::3], near, signed, base[:7], pair[1:]])
     rows = rows[rng.permutation(rows.shape[0])]
     first, inv = _distinct_rows(rows)
+    assert sorts == [rows.shape]  # the fallback ran
     _, ref_first, ref_inv = np.unique(
         rows.view(np.dtype((np.void, 8 * 23)))[:, 0], return_index=True, return_inverse=True
     )

@@ -202,6 +202,20 @@ def _series_alone(x, c, terms):
     return scale * np.sqrt(a) * total, scale * other / np.sqrt(a)
 
 
+@pytest.mark.parametrize(
+    "groups",
+    [(), (8, 4), (4, 4, 8), (0, 4), (-1, 4), (4, len(SERIES_TIERS) + 1), (4.0, 8), (4, 8.5)],
+)
+def test_groups_that_would_give_wrong_numbers_are_refused(groups):
+    # Unsorted, repeated, empty groups, groups outside the cells or not integers: a
+    # ValueError naming them, not silently wrong sums.
+    x, c = np.array([0.3, 0.5]), np.array([0.0, 0.0])  # cells 3 and 5
+    with pytest.raises(ValueError, match=r"^groups must be strictly ascending integers"):
+        slip_integrals_series(x, c, groups=groups)
+    # integers of numpy are integers
+    assert all(np.isfinite(v).all() for v in slip_integrals_series(x, c, groups=np.array([4, 8])))
+
+
 @pytest.mark.parametrize("groups", [(4, 8), (2, 5, 6), tuple(range(1, len(SERIES_TIERS) + 1))])
 def test_one_loop_sums_each_group_its_own_terms(groups):
     # The groups' points share one loop over the terms (the points still summing a prefix of

@@ -42,7 +42,11 @@ sin φ_c = 2√(ρ(1 - ρ)) and cos φ_c = 1 - 2ρ: no trigonometric function pe
 
 from __future__ import annotations
 
+from numbers import Integral
+
 import numpy as np
+
+from ..errors import ContactresInputError
 
 __all__ = [
     "ALL_CELLS",
@@ -154,8 +158,25 @@ def slip_integrals_series(x, c, phi=None, groups=ALL_CELLS) -> tuple[np.ndarray,
     Returns
     -------
     J, ∫ d(e - d)/√Q dd and ∫ d(x - d)/√Q dd, dimensionless (NaN outside the domain)
+
+    Raises
+    ------
+    ContactresInputError
+        (a ValueError) Unless ``groups`` are integers, strictly ascending, within
+        1..len(:data:`SERIES_TIERS`): other groups would give wrong numbers silently.
     """
-    return _by_tiers(x, c, phi, tuple(groups), True)
+    groups = tuple(groups)
+    # ~2 µs a call (a fit calls it once a step, on all its points): cheap against the series.
+    if not (
+        groups
+        and all(isinstance(g, Integral) for g in groups)
+        and all(lo < hi for lo, hi in zip((0, *groups), groups, strict=False))
+        and groups[-1] <= len(SERIES_TIERS)
+    ):
+        raise ContactresInputError(
+            f"groups must be strictly ascending integers in 1..{len(SERIES_TIERS)}, got {groups!r}"
+        )
+    return _by_tiers(x, c, phi, groups, True)
 
 
 def _by_tiers(x, c, phi, groups: tuple[int, ...], derivatives: bool) -> tuple[np.ndarray, ...]:

@@ -316,7 +316,8 @@ def fit_ratios(
         """ln value and d ln value/d theta (None unless ``jacobian``) for ``orient``."""
         ln_c, ln_c11, lr = split(theta)
         # The unit crystal at lr, then (with the Jacobian) at lr ± LOG_STEP along each ratio:
-        # one stacked evaluation, each row the bits of its own indentation_moduli call.
+        # the rows kept from the previous evaluation, the others from one stacked evaluation
+        # (each row the bits of its own indentation_moduli call either way).
         steps = [np.zeros(k)] + (
             [s * LOG_STEP * np.eye(k)[j] for j in range(k) for s in (1, -1)] if jacobian else []
         )
