@@ -159,7 +159,9 @@ def test_by_default_figure_rows_are_those_of_an_analysis_with_every_sweep_on_bot
             assert 0 < len(drawn) < len(ids)
             want = want[want["sweep"].isin(drawn)]
         got = mine[mine["grid_points"] == n]
-        pd.testing.assert_frame_equal(got.reset_index(drop=True), want.reset_index(drop=True))
+        pd.testing.assert_frame_equal(
+            got.reset_index(drop=True), want.reset_index(drop=True), check_exact=True
+        )
 
 
 def test_a_grid_of_some_sweeps_holds_their_curves_whatever_the_chunks(results, monkeypatch):
@@ -183,7 +185,9 @@ def test_a_grid_of_some_sweeps_holds_their_curves_whatever_the_chunks(results, m
         [every[(every["grid_points"] == 7) & every["sweep"].isin(chosen)],
          every[every["grid_points"] == 11]]
     )  # fmt: skip
-    pd.testing.assert_frame_equal(part.reset_index(drop=True), want.reset_index(drop=True))
+    pd.testing.assert_frame_equal(
+        part.reset_index(drop=True), want.reset_index(drop=True), check_exact=True
+    )
     with pytest.raises(ValueError, match="one boolean per sweep"):
         _curves.fitted_curves(sw, padded, fits, grids=(7,), held={7: some[1:]})
 

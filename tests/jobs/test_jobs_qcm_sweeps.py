@@ -118,7 +118,8 @@ def test_two_worker_processes_write_the_files_of_one_byte_for_byte(tmp_path):
 
 def test_without_figures_the_curves_are_those_of_the_page_grid_alone(job_result, tmp_path):
     """issue 31, point 3: a run that draws no figure computes the fitted curves on the 30-point
-    grid of curves.csv and of the page only (Fig. 4's 100-point grid was 77 % of their cost):
+    grid of curves.csv and of the page only (Fig. 4's 100-point grid was 77 % of their cost
+    when every sweep was on it):
     the files it writes are those of a run with figures, byte for byte; its Results hold that
     one grid; drawing Fig. 4 from them says why it cannot."""
     from contactres.analysis import FIGURE_POINTS, PAGE_POINTS

@@ -36,6 +36,7 @@ def _study() -> pd.DataFrame:
         ("n1", "argon", "A", 1.0, True, CM),
         ("n2", "argon", "A", 1.0, True, PLATEAU),
         ("n3", "argon", "A", 4.0, True, CM),
+        ("a8", "air", "A", 2.0, True, CM),  # the load of a2, a3 but on the single sphere
     ]
     sweep, medium, experiment, force, used, model = zip(*rows, strict=True)
     return pd.DataFrame(
@@ -43,7 +44,7 @@ def _study() -> pd.DataFrame:
             "sweep": sweep,
             "medium": medium,
             "experiment": experiment,
-            "configuration": "tripod",
+            "configuration": ["single" if s == "a8" else "tripod" for s in sweep],
             "normal_force_N": np.array(force) * 1e-3,
             "used": used,
             "model": model,
@@ -53,7 +54,8 @@ def _study() -> pd.DataFrame:
 
 def test_figure_examples_are_the_loads_picked_by_hand():
     # Media in sorted order. air: the first used Cattaneo-Mindlin sweep is a3 (a1 is not
-    # used), its load (A, 2 mN) holds the used a2, a3 (a4 is not used); the first used plateau
+    # used), its load (A, tripod, 2 mN) holds the used a2, a3 (a4 is not used; a8 is of the
+    # same experiment and force but of the other configuration); the first used plateau
     # or Savkoor sweep is a5, load (B, 2 mN): a5, a6 (a7 is another load). argon: both kinds
     # first in load (A, 1 mN): drawn twice. oil: nothing used, nothing drawn. water: neither
     # kind, its first used load (A, 1 mN): w1.

@@ -3,7 +3,7 @@ an unusual one.
 
 Fig. 4 of paper 2 shows Δf and ΔΓ against the amplitude u0 for a few loads only: per medium,
 one load whose sweeps follow the Cattaneo-Mindlin loop (the typical shape) and one whose sweeps
-end in a plateau or follow Savkoor's loop (the unusual shapes, paper 2, Eqs. 13-14). The
+end in a plateau or follow Savkoor's loop (paper 2, Eqs. 13-14): the unusual shapes. The
 choice is made here, in the analysis, so that the figure
 (:func:`contactres.report.figures.figure_sweeps`) and the fitted curves on its grid
 (:func:`contactres.analysis._curves.fitted_curves`, :data:`~contactres.analysis.FIGURE_POINTS`

@@ -106,7 +106,7 @@ def analyze(
     settings : :class:`AnalysisSettings` (defaults if None)
     progress : optional callback called with the name of each step as it starts
     curve_grids : the grids (numbers of points, each >= 2) on which ``Results.curves`` holds
-        every sweep's model; None (default): the page's and ``curves.csv``'s
+        the sweeps' models; None (default): the page's and ``curves.csv``'s
         (:data:`~contactres.analysis.PAGE_POINTS`) for every sweep, and Fig. 4's
         (:data:`~contactres.analysis.FIGURE_POINTS`) for the sweeps that figure draws
         (:func:`~contactres.analysis.figure_examples`) only, their rows first. A tuple: every
