@@ -91,10 +91,8 @@ def validate_resonance_table(raw, schema: TableSchema, source: str):
     out.attrs["given"] = [c for c in raw.columns if c != "line"]
     for c in schema.columns:
         if c.name not in raw.columns:
-            # Each absent column its own writable array, as a DataFrame's is: a caller may fill
-            # one in place (one array shared read-only by all saved ~1 % of a map's
-            # instructions, not worth a column that refuses a write).
-            out[c.name] = np.full(len(raw), np.nan) if isinstance(out, ArrayTable) else np.nan
+            # One value: each table makes it a writable column of its own (ArrayTable too).
+            out[c.name] = np.nan
             continue
         v = _numbers(raw, c.name, source, decimal)
         given = ~np.isnan(v)
