@@ -75,7 +75,7 @@ from .._threads import one_blas_thread
 from ..errors import ContactresInputError
 from ._farfield import FarGrid, far_basis, far_grid
 from ._tangential_static import load_derivatives, radial_integrals
-from ._tangential_table import TangentialTable, prepare_tangential
+from ._tangential_table import KSA_MAX, TangentialTable, prepare_tangential
 from ._weights import spherical_bessel
 
 __all__ = [
@@ -98,10 +98,6 @@ __all__ = [
 _EIG_CUTOFF = 1e-14
 # k a values evaluated together (memory ~1 MB per value at the default basis).
 _CHUNK = 32
-#: Largest k_s a accepted: the range of the convergence tests (at 5: 1.5e-8 from the radial
-#: terms; the harmonic cut-off grows with the curve's k_s a, tests/dynamic/
-#: test_tangential_harmonics at 2 and 5); beyond it the default basis is not checked.
-KSA_MAX = 5.0
 #: Below this k_s a the dynamic part is taken as linear in k_s a (see tangential_per_a).
 KSA_SMALL = 1e-6
 

@@ -38,6 +38,7 @@ from ._table import (
 
 __all__ = [
     "HARMONIC_STEPS",
+    "KSA_MAX",
     "TangentialTable",
     "angular_harmonics",
     "harmonic_cutoff",
@@ -75,6 +76,10 @@ _TAIL_FACTOR = 0.02
 # F is 1.8x-2.5x these (0.046 at k_s a = 2, where 0.02 stays: the steps are coarse).
 _GROWTH = (1.7, -0.18)
 _KSA_STATIC = 2.0
+#: Largest k_s a accepted: the range of the convergence tests (at 5: 1.5e-8 from the radial
+#: terms; the harmonic cut-off grows with the curve's k_s a, tests/dynamic/
+#: test_tangential_harmonics at 2 and 5); beyond it the default basis is not checked.
+KSA_MAX = 5.0
 
 
 def tail_factor(ksa_max: float) -> float:
@@ -282,6 +287,26 @@ def segment_from_series(t1: float, kappa: np.ndarray, coeffs: np.ndarray) -> np.
 
 # 3x3 solves of the in-plane kernel, its Chebyshev fit: one BLAS thread (contactres._threads).
 @one_blas_thread()
+def _checked_ksa_max(ksa_max) -> float:
+    """``ksa_max`` of :func:`prepare_tangential` as a float in [0, :data:`KSA_MAX`], or a
+    one-line :class:`~contactres.errors.ContactresInputError`: a NaN or a value beyond the
+    checked range used to pass silently (a NaN then compared false everywhere, and a table for
+    k_s a = 50 claimed harmonics no convergence test covers)."""
+    try:
+        value = float(ksa_max)
+    except (TypeError, ValueError):
+        raise ContactresInputError(
+            f"ksa_max must be a number (the largest k_s a of the curves), got {ksa_max!r}"
+        ) from None
+    if not 0.0 <= value <= KSA_MAX:
+        raise ContactresInputError(
+            f"ksa_max = {value!r} is outside [0, {KSA_MAX:g}], the range where the dynamic "
+            "tangential stiffness is checked (k_s = ω√(ρ/C44)): check the frequency and the "
+            "contact radius (units?)"
+        )
+    return value
+
+
 def prepare_tangential(
     m: Material,
     loss: float = 0.0,
@@ -302,7 +327,7 @@ def prepare_tangential(
     q = check_loss(loss)
     check_contrast(m)
     res = resolution or resolution_for(rtol)
-    ksa_top = max(float(ksa_max), _KSA_STATIC)
+    ksa_top = max(_checked_ksa_max(ksa_max), _KSA_STATIC)
     tail = kernel_tail(m)
     n_harmonics = harmonic_cutoff(tail, rtol, ksa_top)
     max_order = int(max_order or 2 * n_harmonics)
