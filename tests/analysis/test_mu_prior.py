@@ -123,8 +123,8 @@ def test_no_penalty_without_a_prior_or_a_resolved_mu():
 
 
 @pytest.fixture(scope="module")
-def water_studies(water_study):
-    return [water_study(seed) for seed in (0, 1)]
+def water_studies(shared_water_study):
+    return [shared_water_study(seed) for seed in (0, 1)]
 
 
 def test_water_plateaus_are_classified_right(water_studies):

@@ -73,11 +73,11 @@ def test_evidence_is_the_integral_of_the_likelihood_over_the_prior(seed, dc_rati
     assert out[0, 0] == pytest.approx(_reference(u, df, dg, sigma, prior, y), abs=0.2)
 
 
-def test_water_plateaus_are_classified_right_with_the_integrated_evidence(water_study):
+def test_water_plateaus_are_classified_right_with_the_integrated_evidence(shared_water_study):
     # One seed, 30 % of the loads with a plateau: 69 of 78 plateau sweeps of ramps 2-4 right
     # (48 with the priors applied at the fit's optimum, where d_c often ended on its bound 0),
     # every Cattaneo-Mindlin sweep still right (138).
-    sw = water_study(2, 0.3)[1]
+    sw = shared_water_study(2, 0.3)[1]
     sw = sw[sw["ramp"] > 1]
     for model, share in (("plateau", 0.8), ("cattaneo-mindlin", 0.97)):
         truth = sw["true_model"] == model

@@ -119,13 +119,13 @@ def _judged(water_study, seed: int, plateau: float):
     return sw[sw["ramp"] > 1]
 
 
-def test_more_water_plateaus_are_classified_right(water_study):
+def test_more_water_plateaus_are_classified_right(shared_water_study):
     # Six seeds pooled, 30 % of the loads with a plateau: 351 of 399 plateau sweeps of ramps 2-4
     # right (88 %; 264 with the priors at the fit's optimum, 246 before the plateau prior),
     # Cattaneo-Mindlin 855 of 897 (867 at the optimum, 864 before): with twice the paper's
     # share of plateaus, 29 more plateau blocks right for 4 more Cattaneo-Mindlin blocks read
     # as plateaus (at the paper's share, benchmarks/study_qcm_trust.py, both improve).
-    parts = [_judged(water_study, seed, 0.3) for seed in range(6)]
+    parts = [_judged(shared_water_study, seed, 0.3) for seed in range(6)]
     right, total = _right(parts, "plateau")
     assert total > 300
     assert right / total > 0.85
