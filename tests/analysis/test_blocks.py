@@ -6,7 +6,7 @@ import pytest
 
 from contactres.analysis import AnalysisSettings, analyze
 from contactres.analysis._amplitude import pad_sweeps
-from contactres.analysis._classify import NESTED, fit_sweeps, prefer
+from contactres.analysis._classify import NESTED, add_plateau_fits, fit_sweeps, prefer
 from contactres.analysis._loops import (
     cm_loop_shape,
     loop_tables,
@@ -171,6 +171,26 @@ def _mixed_study(seed):
         savkoor_experiments=(("glass", "air", 2),),
     )
     return synthetic_sweeps(study, seed, truth=True)
+
+
+def test_plateau_fits_added_later_choose_as_if_fitted_with_the_others():
+    # add_plateau_fits chooses again only the sweeps it fits: the result must be that of one
+    # fit_sweeps call that fitted the plateau loop to every sweep (the second path here).
+    p = pad_sweeps(_mixed_study(5))
+    tables = loop_tables()
+    at_once, _ = fit_sweeps(p, tables=tables)
+    later = np.arange(len(p.n)) % 3 != 0  # two in three sweeps without the plateau at first
+    first, fields = fit_sweeps(p, tables=tables, plateau=~later)
+    # The choice does change for some of them (else the test would not test the re-choice).
+    assert (first["model"] != at_once["model"]).any()
+    sw, _ = add_plateau_fits(p, first, fields, np.flatnonzero(later), 2.0, tables)
+    assert list(sw.columns) == list(at_once.columns)
+    for col in sw.columns:
+        if sw[col].dtype.kind == "f":
+            np.testing.assert_allclose(sw[col], at_once[col], rtol=1e-12, atol=0, err_msg=col)
+        else:
+            assert (sw[col].to_numpy() == at_once[col].to_numpy()).all(), col
+            assert sw[col].dtype == at_once[col].dtype, col
 
 
 @pytest.mark.parametrize("pool", [True, False])

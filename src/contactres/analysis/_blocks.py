@@ -45,7 +45,7 @@ from ._classify import (
     SOURCE_MODEL,
     FieldTables,
     add_plateau_fits,
-    fit_sweeps,
+    fit_models,
     n_parameters,
     prefer,
     source_rss,
@@ -299,6 +299,7 @@ def choose_blocks(
     tables: LoopTables | None,
     workers: int | WorkerPool = 1,
     pool_experiment: bool = True,
+    code: np.ndarray | None = None,
 ) -> tuple[pd.DataFrame, pd.DataFrame, pd.DataFrame, FieldTables, dict[str, pd.DataFrame]]:
     """Choose the class of every load block of the sweeps ``joint`` (see the module docstring).
 
@@ -311,11 +312,14 @@ def choose_blocks(
     fields : the fields of the per-sweep fits, by source (from the same call), in the order
         of ``sw``
     joint : which sweeps enter their block (the used ones); blocks of one sweep are left alone
-    delta_bic, exact_loop, tables, workers : as for :func:`fit_sweeps`; the workers also
+    delta_bic, exact_loop, tables, workers : as for
+        :func:`~contactres.analysis._classify.fit_sweeps`; the workers also
         integrate the plateau's evidence where many blocks need it (:func:`_evidence`); a
         number of processes opens one pool for the three stages that use it
     pool_experiment : decide the friction law (Coulomb or Savkoor) once per experiment
         (:func:`_friction_law`)
+    code : :func:`block_codes` of ``sw`` and ``joint`` where the caller has them (None: found
+        here)
 
     Returns
     -------
@@ -336,7 +340,7 @@ def choose_blocks(
     if not isinstance(workers, WorkerPool):
         with WorkerPool(workers) as pool:
             args = (p, sw, fields, joint, delta_bic, exact_loop, tables, pool, pool_experiment)
-            return choose_blocks(*args)
+            return choose_blocks(*args, code=code)
     S = len(sw)
     per_sweep = pd.DataFrame(
         {
@@ -348,7 +352,7 @@ def choose_blocks(
             "decided_by": np.full(S, "sweep", dtype=object),
         }
     )
-    code = block_codes(sw, joint)
+    code = block_codes(sw, joint) if code is None else code
     if code.max() < 0:
         empty = pd.DataFrame(columns=[*LOAD_OF_EXPERIMENT, *BLOCK_COLUMNS])
         return empty, per_sweep, sw, fields, {}
@@ -366,12 +370,15 @@ def choose_blocks(
     )
     bp = pad_sweeps(points)
     del u, df, dg, points  # bp holds them sorted: not kept through the block fits
-    bs, bf = fit_sweeps(bp, delta_bic, exact_loop, tables, workers)
+    # Every model's joint fit of every block; their classes are chosen below, by the block
+    # criteria (fit_sweeps would choose each block's class as a sweep's, for nothing).
+    bu_max, bf = fit_models(bp, exact_loop, tables, workers)
     # The blocks in order of their code (the padding keeps their order of first appearance).
-    order = np.argsort(bs["sweep"].to_numpy(int))
+    codes = np.asarray(bp.sweeps).astype(int)
+    order = np.argsort(codes)
     bf = {src: table.iloc[order].reset_index(drop=True) for src, table in bf.items()}
     # Every model's joint fit of every block (its fit table, one row per block in order).
-    block = bs["sweep"].to_numpy()[order]
+    block = codes[order]
     fits = {key: t.rename(columns={"sweep": "block"}) for key, t in fit_tables(block, bf).items()}
 
     # The 2 x 4 criteria of every block: (shared, per ramp) for each class.
@@ -405,7 +412,7 @@ def choose_blocks(
         # at once: the BIC's ln N for d_c is what keeps a plateau of noisy data from beating
         # Cattaneo-Mindlin or elastic, and the fit trades μ against d_c.
         i = 2 * AMPLITUDE_MODELS.index("plateau")
-        u_max = bs["u_max_m"].to_numpy(float)[order]
+        u_max = bu_max[order]
         pl = fits["plateau-loop"]
         # The amplitude prior from the clear plateaus by the criteria with the μ prior only.
         ratio_ref = _plateau_reference(crit + prior, pl, u_max)

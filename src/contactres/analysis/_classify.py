@@ -53,6 +53,7 @@ __all__ = [
     "apply_models",
     "choose",
     "class_criteria",
+    "fit_models",
     "fit_sweeps",
     "n_parameters",
     "prefer",
@@ -119,16 +120,24 @@ def _put(out: dict[str, np.ndarray], part: dict[str, np.ndarray], rows, S: int) 
         out[key][..., rows] = v
 
 
-def _fit_blocks(
+def fit_models(
     p: Padded,
-    exact_loop: bool,
-    tables: LoopTables | None,
-    workers: int | WorkerPool,
-    plateau: np.ndarray,
+    exact_loop: bool = True,
+    tables: LoopTables | None = None,
+    workers: int | WorkerPool = 1,
+    plateau: np.ndarray | None = None,
 ) -> tuple[np.ndarray, FieldTables]:
-    """:func:`_fit_block` on every block of ``p``, put together in the order of the sweeps:
-    the largest amplitude of each sweep and the field tables of every fit."""
+    """Every amplitude model fitted to every sweep of ``p``, without the choice of a class:
+    the largest amplitude of each sweep (m) and the field tables of every fit, in the order of
+    the sweeps (arguments as for :func:`fit_sweeps`).
+
+    What :func:`contactres.analysis._blocks.choose_blocks` needs of the joint fits of the load
+    blocks: it chooses their classes by criteria of its own, so the per-sweep choice that
+    :func:`fit_sweeps` adds would be made and dropped."""
+    if exact_loop and tables is None:
+        tables = loop_tables()
     S = len(p.n)
+    plateau = np.ones(S, bool) if plateau is None else np.asarray(plateau, bool)
     u_max: dict[str, np.ndarray] = {}
     fields: dict[str, dict[str, np.ndarray]] = {}
     groups = p.blocks()  # <= BLOCK_POINTS points each: the fits' temporaries stay at a few MB
@@ -237,8 +246,13 @@ def apply_models(
     # Looked up once per distinct class (a hash table in C), not once per sweep in Python.
     codes, classes = pd.factorize(model)
     distinct = np.array([sources[m] for m in classes], dtype=object)
-    src = distinct[codes]
+    # Whether each sweep's limits come from the hinge or the straight line (by class, then
+    # spread by code: no comparison of 10^5 strings per channel).
+    from_hinge = np.array([s == "hinge" for s in distinct], dtype=bool)[codes]
+    from_line = np.array([s == "line" for s in distinct], dtype=bool)[codes]
     is_pl = model == "plateau"
+    # Slope of the linear part: the hinge slope for a plateau, the straight line otherwise.
+    hinge = is_pl & hinge_fit["found"].to_numpy(bool)
     for name in ("df", "dgamma"):
         a = np.full(len(sw), np.nan)
         err = np.full(len(sw), np.nan)
@@ -248,15 +262,12 @@ def apply_models(
             err[rows] = fields[s][f"{name}0_err_Hz"].to_numpy(float)[rows]
         sw[f"{name}0_Hz"] = a
         sw[f"{name}0_err_Hz"] = err
-        # Slope of the linear part: the hinge slope for a plateau, the straight line otherwise.
-        hinge = is_pl & hinge_fit["found"].to_numpy(bool)
-        slope_src = np.where(hinge, "hinge", "line")
         for col, key in (("_slope_Hz_per_m", "_b"), ("_slope_err_Hz_per_m", "_b_err")):
             sw[f"{name}{col}"] = np.where(
                 hinge, hinge_fit[f"{name}{key}"].to_numpy(float), line_fit[f"{name}{key}"]
             )
         # The covariance of Δf0 and the slope is known where both come from the same fit.
-        same = src == slope_src
+        same = np.where(hinge, from_hinge, from_line)
         cov = np.where(hinge, hinge_fit[f"{name}_cov_ab"], line_fit[f"{name}_cov_ab"])
         sw[f"{name}0_slope_cov"] = np.where(same, cov, 0.0)
     if exact_loop:
@@ -318,10 +329,7 @@ def fit_sweeps(
         them (:func:`contactres.analysis._models.fit_tables` gives them the registry's names).
     """
     n = p.n.astype(float)
-    if exact_loop and tables is None:
-        tables = loop_tables()
-    plateau = np.ones(len(p.n), bool) if plateau is None else np.asarray(plateau, bool)
-    u_max, fields = _fit_blocks(p, exact_loop, tables, workers, plateau)
+    u_max, fields = fit_models(p, exact_loop, tables, workers, plateau)
     sw = pd.DataFrame(
         {"sweep": p.sweeps, "n_points": p.n, "direction": p.direction, "u_max_m": u_max}
     )
@@ -389,4 +397,12 @@ def add_plateau_fits(
             values[g] = v
             pl[key] = values
     fields = {**fields, "pl": pl}
-    return _choose_each(sw, fields, delta_bic, True), fields
+    # Only the sweeps refitted can choose otherwise (each sweep's choice is its own fits'):
+    # chosen again alone, their rows written into the frame; the others' are as they were.
+    mine = {src: table.iloc[rows].reset_index(drop=True) for src, table in fields.items()}
+    again = _choose_each(sw.iloc[rows].reset_index(drop=True), mine, delta_bic, True)
+    for col in again.columns:
+        values = sw[col].to_numpy(copy=True)
+        values[rows] = again[col].to_numpy()
+        sw[col] = values
+    return sw, fields
