@@ -1,11 +1,11 @@
 """Tests of contactres.dynamic: the five displacement models and the DCSF (paper 1, Eqs. 21-29).
 
 Independent checks: the static limit, Weber-Schafheitlin integrals by scipy quadrature, the
-isotropic case against 1-D Hankel integrals of Lamb's kernel computed with scipy.integrate.quad on
-the real axis (a different path, rule and tail treatment), continuity through A = 1, the cubic
-symmetry of a crystal rotated in plane, convergence under doubling of every resolution, and the
-qualitative statements of paper 1 (Figs. 3-5).
-"""
+isotropic case against 1-D Hankel integrals of Lamb's kernel computed with scipy.integrate.quad
+(and Gauss-Legendre where smooth) on the real axis (a different path, rule and tail
+treatment), continuity through A = 1, the cubic symmetry of a crystal rotated in plane,
+convergence under doubling of every resolution, and the qualitative statements of paper 1
+(Figs. 3-5)."""
 
 import functools
 import math
@@ -137,9 +137,25 @@ def _lamb(kappa):
     return isotropic_dynamic_kernel(kappa, C11, Q) - G_INF
 
 
+@functools.lru_cache(maxsize=2)
+def _far_nodes(panel):
+    """Nodes κ, weights and g − g∞ at the nodes of composite Gauss-Legendre (16 nodes on each
+    panel of length ``panel``) over 4 <= κ <= 3000, where the kernel is smooth (beyond every
+    branch point and pole): the same for every weight and k_s a."""
+    x, w = np.polynomial.legendre.leggauss(16)
+    edges = np.linspace(4.0, 3000.0, round(2996 / panel) + 1)
+    half = np.diff(edges)[:, None] / 2
+    k = (edges[:-1, None] + half * (x + 1)).ravel()
+    return k, (half * w).ravel(), _lamb(k)
+
+
 def _hankel_reference(ksa, weight, lamb=_lamb):
-    """2π ∫₀^∞ ds (g − g∞)(s/ksa) weight(s) + static, by scipy.integrate.quad on the real κ axis
-    with breakpoints at the branch points and the Rayleigh pole (an independent algorithm).
+    """2π ∫₀^∞ ds (g − g∞)(s/ksa) weight(s) + static on the real κ axis (an independent
+    algorithm): up to κ = 4 by scipy.integrate.quad with breakpoints at the branch points and
+    the Rayleigh pole; from 4 to 3000, where the integrand is smooth and oscillates with period
+    2π/ksa, by composite Gauss-Legendre on panels of 1/4 (a fixed rule: vectorised, where quad
+    took ~2.6e5 calls of one point each), checked against panels of 1/2 to 1e-14 (measured: the
+    two agree to 2e-17 and differ from quad at epsabs 1e-13 by <= 1.4e-12).
     ``lamb`` is g − g∞ of κ (default :func:`_lamb`; the same function remembering its values
     when called for several weights)."""
     kr = 1.0876638735805375  # Rayleigh slowness for ν = 1/4: root of (2 − x)² = 4√(1 − x/3)√(1 − x)
@@ -150,10 +166,12 @@ def _hankel_reference(ksa, weight, lamb=_lamb):
         def f(k, part=part):
             return part(lamb(k)) * weight(k * ksa) * ksa
 
-        near = integrate.quad(f, 0, 4, points=pts, limit=400, epsabs=1e-13, epsrel=1e-12)[0]
-        far = integrate.quad(f, 4, 3000, limit=4000, epsabs=1e-13)[0]
-        total += unit * (near + far)
-    return total, G_INF
+        total += (
+            unit * integrate.quad(f, 0, 4, points=pts, limit=400, epsabs=1e-13, epsrel=1e-12)[0]
+        )
+    coarse, fine = (w @ (g * weight(k * ksa)) * ksa for k, w, g in map(_far_nodes, (0.5, 0.25)))
+    assert abs(fine - coarse) < 1e-14
+    return total + fine, G_INF
 
 
 def test_isotropic_rayleigh_slowness_constant():

@@ -82,8 +82,10 @@ def _wavenumber_rule(a0, n):
     return wavenumber_rule(a0, n, 80.0, 32.0 / n, max(8, n // 4))
 
 
-def _kernel_l(u, a0, nu, n):
-    """L(u) = ∫₀^∞ [H(η/a₀) − 1] cos(ηu) dη for u >= 0 (module docstring)."""
+def _kernel_l_pair(y, x, a0, nu, n):
+    """½[L(y + x) + L(|y − x|)] for the σ nodes ``y`` (N, M) of each collocation point ``x``
+    (N,), where L(u) = ∫₀^∞ [H(η/a₀) − 1] cos(ηu) dη for u >= 0 (module docstring). The
+    η quadrature of the pair in one cosine table: ½[cos η(y + x) + cos η(y − x)] = cos ηy cos ηx."""
     h2, h4 = _tail_coefficients(nu)
     b = 1.0 + a0
     a2 = h2 * a0**2
@@ -91,13 +93,15 @@ def _kernel_l(u, a0, nu, n):
     eta, deta = _wavenumber_rule(a0, n)
     q = eta * eta + b * b
     rem = (_lamb_h(eta / a0, nu) - 1 - a2 / q - a4 / q**2) * deta
-    u = np.asarray(u, dtype=float)
-    out = np.empty(u.shape, dtype=complex)
-    flat_u, flat_out = u.ravel(), out.reshape(-1)
-    for i in range(0, flat_u.size, 1024):  # chunks keep the cos matrix small
-        flat_out[i : i + 1024] = np.cos(np.outer(flat_u[i : i + 1024], eta)) @ rem
-    e = np.exp(-b * u)
-    return out + a2 * np.pi * e / (2 * b) + a4 * np.pi * (1 + b * u) * e / (4 * b**3)
+    out = np.empty(y.shape, dtype=complex)
+    for i in range(y.shape[0]):  # a row per collocation point keeps the cos matrix small
+        out[i] = np.cos(np.outer(y[i], eta)) @ (np.cos(eta * x[i]) * rem)
+
+    def closed_form(u):  # the subtracted a₂/q + a₄/q² terms, integrated analytically
+        e = np.exp(-b * u)
+        return a2 * np.pi * e / (2 * b) + a4 * np.pi * (1 + b * u) * e / (4 * b**3)
+
+    return out + 0.5 * (closed_form(y + x[:, None]) + closed_form(np.abs(y - x[:, None])))
 
 
 def fredholm_disk(a0, nu, n_nodes=16, n_wave=32):
@@ -111,9 +115,7 @@ def fredholm_disk(a0, nu, n_nodes=16, n_wave=32):
     ]
     y = np.array([p[0] for p in pieces])  # (N, 2m) σ nodes for each collocation τ_i = x_i
     wy = np.array([p[1] for p in pieces])
-    tau = np.broadcast_to(x[:, None], y.shape)
-    lv = _kernel_l(np.concatenate([(y + tau).ravel(), np.abs(y - tau).ravel()]), a0, nu, n_wave)
-    kern = 0.5 * (lv[: y.size] + lv[y.size :]).reshape(y.shape) * wy
+    kern = _kernel_l_pair(y, x, a0, nu, n_wave) * wy
     interp = interpolate.BarycentricInterpolator(x, np.eye(n_nodes))(y.ravel())
     interp = interp.reshape(*y.shape, n_nodes)
     a = np.eye(n_nodes) + (2 / np.pi) * np.einsum("iy,iyj->ij", kern, interp)

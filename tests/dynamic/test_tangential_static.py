@@ -6,7 +6,7 @@ import math
 
 import numpy as np
 import pytest
-from scipy import integrate, special
+from scipy import special
 
 from contactres.dynamic._tangential_static import (
     inplane_kernel,
@@ -76,13 +76,23 @@ def test_kernel_hermitian_and_odd_part():
 
 
 def _kernel_harmonics(m: Material, nh: int) -> np.ndarray:
-    """Ĝ_m (m = -2 nh..2 nh, 2 x 2 each) by adaptive quadrature in θ."""
+    """Ĝ_m (m = -2 nh..2 nh, 2 x 2 each) by composite Gauss-Legendre in θ (not the module's
+    FFT): 24 nodes on each of 32 equal panels, every node in one call of the kernel, checked
+    against 16 panels to 1e-14 (the kernel is smooth in θ: 16 panels already agree with
+    scipy's adaptive quad_vec at epsrel 1e-14 to 8e-16, measured on AT-cut quartz, nh = 8)."""
     orders = np.arange(-2 * nh, 2 * nh + 1)
+    x, w = np.polynomial.legendre.leggauss(24)
 
-    def f(t):
-        return (inplane_kernel(m, t)[None] * np.exp(1j * orders * t)[:, None, None]).ravel()
+    def rule(panels: int) -> np.ndarray:
+        edges = np.linspace(0.0, 2 * np.pi, panels + 1)
+        half = np.diff(edges)[:, None] / 2
+        t = (edges[:-1, None] + half * (x + 1)).ravel()
+        weight = (half * w).ravel()[:, None] * np.exp(1j * t[:, None] * orders)
+        return np.einsum("jm,jab->mab", weight, inplane_kernel(m, t))
 
-    return integrate.quad_vec(f, 0, 2 * np.pi, epsabs=0, epsrel=1e-14)[0].reshape(-1, 2, 2)
+    coarse, fine = rule(16), rule(32)
+    assert np.max(np.abs(fine - coarse)) < 1e-14 * np.max(np.abs(fine))
+    return fine
 
 
 def _plain_galerkin(harm: np.ndarray, nh: int, nr: int) -> np.ndarray:
@@ -119,7 +129,7 @@ def test_anisotropic_second_way_and_bounds(quartz_at):
     richardson = np.diag(K32) + (np.diag(K32) - np.diag(K16)) / 3
     assert np.allclose(richardson, d, rtol=1e-9, atol=0)
     # One term (Mindlin's traction shape): a lower bound, by quadrature of Re Ĝ here.
-    G0 = integrate.quad_vec(lambda t: inplane_kernel(m, t).real, 0, 2 * np.pi, epsrel=1e-13)[0]
+    G0 = harm[2 * nh].real  # the harmonic m = 0: ∫₀^{2π} Ĝ(θ) dθ
     K1 = 8 * np.pi * A * np.linalg.inv(G0)
     assert np.allclose(
         tangential_stiffness_static(m, A, tensor=True, one_term=True), K1, rtol=1e-11

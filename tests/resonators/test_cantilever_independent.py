@@ -89,7 +89,7 @@ def exp_frequencies(kappa, r, stiffness, n=3):
     FE nodes). For real β the determinant is real: the exponential basis is the trigonometric
     and hyperbolic one times a constant matrix of real determinant."""
     grid = np.arange(0.5, 12.0, 0.01)
-    d = np.array([det_exp(b, kappa, r, stiffness).real for b in grid])
+    d = det_exp(grid, kappa, r, stiffness).real  # the whole grid in one stacked det
     idx = np.nonzero(np.sign(d[:-1]) != np.sign(d[1:]))[0][:n]
     fun = lambda b: det_exp(b, kappa, r, stiffness).real  # noqa: E731
     beta = np.array([brentq(fun, grid[i], grid[i + 1], xtol=1e-14) for i in idx])
@@ -100,20 +100,22 @@ def det_exp(beta, kappa, r, stiffness):
     """det of the 8 x 8 system in the basis e^{λξ}, λ = ±β, ±iβ, on [0, r] and [r, 1]:
     clamped at 0, free at 1, y and y′ continuous at r, and the jumps of the moment and shear
     from the tip springs: y″(r⁺) − y″(r⁻) = 3κ (G_wθ y + G_θθ y′) and
-    y‴(r⁺) − y‴(r⁻) = −3κ (G_ww y + G_wθ y′) (ξ-derivatives, L = 1, k_c = 3EI)."""
+    y‴(r⁺) − y‴(r⁻) = −3κ (G_ww y + G_wθ y′) (ξ-derivatives, L = 1, k_c = 3EI).
+    ``beta`` may be an array: one determinant per β (the scan of a grid in one call)."""
+    beta = np.asarray(beta)[..., None]
     lam = np.array([1.0, -1.0, 1j, -1j]) * beta
-    zero = np.zeros(4)
+    zero = np.zeros_like(lam)
 
     def d(x, k, side):  # k-th ξ-derivative of the basis at x, divided by β^k
         v = (lam / beta) ** k * np.exp(lam * x)
-        return np.concatenate([v, zero] if side == 0 else [zero, v])
+        return np.concatenate([v, zero] if side == 0 else [zero, v], axis=-1)
 
     (g_ww, g_wt), (_, g_tt) = stiffness
     y, slope = d(r, 0, 0), beta * d(r, 1, 0)
     rows = [d(0, 0, 0), d(0, 1, 0), d(1, 2, 1), d(1, 3, 1), d(r, 0, 1) - y, d(r, 1, 1) - d(r, 1, 0)]
     rows.append(d(r, 2, 1) - d(r, 2, 0) - 3 * kappa * (g_wt * y + g_tt * slope) / beta**2)
     rows.append(d(r, 3, 1) - d(r, 3, 0) + 3 * kappa * (g_ww * y + g_wt * slope) / beta**3)
-    return np.linalg.det(np.array(rows))
+    return np.linalg.det(np.stack(rows, axis=-2))
 
 
 def damped(k_star, sigma, r, stiffness, mode, free_q=None):
@@ -124,7 +126,7 @@ def damped(k_star, sigma, r, stiffness, mode, free_q=None):
     w_ref = 2 * np.pi * F1 * (1 + (0.5j / free_q if free_q else 0.0))
     kappa0 = k_star / K_C
     grid = np.arange(0.5, 12.0, 0.01)
-    d = np.array([det_exp(b, kappa0, r, stiffness).real for b in grid])
+    d = det_exp(grid, kappa0, r, stiffness).real
     i = np.nonzero(np.sign(d[:-1]) != np.sign(d[1:]))[0][mode - 1]
     b0 = brentq(lambda b: det_exp(b, kappa0, r, stiffness).real, grid[i], grid[i + 1])
 

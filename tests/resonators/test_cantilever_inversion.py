@@ -229,11 +229,12 @@ def test_a_third_mode_above_its_pinned_limit_contradicts_the_crossing():
 def test_the_mean_over_eight_modes_is_numpys_pairwise_sum():
     # From 8 terms numpy's sum runs by pairs (eight partial sums), not in order: the inversion's
     # mean over 8 averaged modes must still be numpy's, bit for bit (review R24a: 266 of 2,000
-    # pixels differed in their last bits when the modes were added in order).
+    # pixels differed in their last bits when the modes were added in order). 500 pixels
+    # suffice: with the 8 modes added in order, 77 of them differ (measured).
     lever = Cantilever((1.0e5,), 10.0)
     modes = tuple(range(1, 9))
     rng = np.random.default_rng(3)
-    f = contact_frequencies(lever, np.geomspace(0.05, 5e3, 2000), 0.9, modes=modes)
+    f = contact_frequencies(lever, np.geomspace(0.05, 5e3, 500), 0.9, modes=modes)
     f = f * (1.0 + 1e-4 * rng.standard_normal(f.shape))
     res = invert_contact_resonance(lever, f, 0.9, modes=modes, mode_tolerance=1.0)
     use = res.averaged_modes
