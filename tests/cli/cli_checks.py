@@ -10,6 +10,28 @@ def run(*args):
     return CliRunner().invoke(main, [str(a) for a in args])
 
 
+#: What a figure's PNG holds in a test that does not draw it (:func:`figures_not_drawn`).
+STAND_IN = b"not drawn\n"
+
+
+def figures_not_drawn(monkeypatch):
+    """Build every figure but draw none: each PNG a command writes (a file, or an image of its
+    report page) holds :data:`STAND_IN`. For tests about which files a command writes and the
+    numbers in them, not about pixels: drawing is most of a report's time (issue 31), and the
+    figures are drawn by the tests that look at them (tests/test_png.py, tests/report, the
+    demo's and each command's own report test)."""
+    from contextlib import nullcontext
+    from pathlib import Path
+
+    from contactres import _png
+
+    def stand_in(fig, target, dpi, *, tight=False):
+        with open(target, "wb") if isinstance(target, (str, Path)) else nullcontext(target) as f:
+            f.write(STAND_IN)
+
+    monkeypatch.setattr(_png, "print_png", stand_in)
+
+
 def one_line_error(r, *words):
     """Assert a user error: exit 2, one line of output in all, naming every one of ``words``,
     with no traceback and no numpy repr; return that line."""
