@@ -663,8 +663,12 @@ def code_lines(text: str, tree: ast.Module | None = None) -> int:
     lines: set[int] = set()
     for tok in tokenize.generate_tokens(io.StringIO(text).readline):
         if tok.type not in skip:
-            lines.update(range(tok.start[0], tok.end[0] + 1))
-    for node in ast.walk(ast.parse(text) if tree is None else tree):
+            first, last = tok.start[0], tok.end[0]
+            if first == last:  # most tokens: no range to build
+                lines.add(first)
+            else:
+                lines.update(range(first, last + 1))
+    for node in _statements(ast.parse(text) if tree is None else tree):
         if (
             isinstance(node, ast.Expr)
             and isinstance(node.value, ast.Constant)
@@ -672,6 +676,24 @@ def code_lines(text: str, tree: ast.Module | None = None) -> int:
         ):
             lines.difference_update(range(node.lineno, (node.end_lineno or node.lineno) + 1))
     return len(lines)
+
+
+#: The fields that hold statements (of a statement, an except clause or a match case).
+_BODIES = ("body", "orelse", "finalbody", "handlers", "cases")
+
+
+def _statements(tree: ast.Module) -> Iterable[ast.AST]:
+    """Every statement of ``tree``, nested ones included, with the except clauses and match
+    cases that hold some. A docstring is a statement and an expression holds none, so this is
+    all :func:`code_lines` needs to look at, a tenth of the nodes of ``ast.walk``."""
+    todo: list[ast.AST] = [tree]
+    while todo:
+        node = todo.pop()
+        yield node
+        for name in _BODIES:
+            value = getattr(node, name, None)
+            if isinstance(value, list):  # a lambda's or an if-expression's body is no list
+                todo.extend(value)
 
 
 def long_modules(modules: Mapping[str, Module], limit: int, root: Path) -> list[str]:
@@ -827,9 +849,28 @@ class Change:
     rebound: bool  # through `global name` (otherwise: the container is mutated in place)
 
 
+def _may_change(tree: ast.Module, containers: set[str]) -> bool:
+    """False when :func:`_changes` can find nothing: no ``global`` statement, and no container
+    read (``X[k] = v``, ``del X[k]`` and ``X.append(v)`` read ``X``) or augmented (``X += v``)
+    anywhere. Most modules' only container is ``__all__``, which none of them touches; one
+    walk then spares the scope-by-scope scan."""
+    for node in ast.walk(tree):
+        if isinstance(node, ast.Global):
+            return True
+        if isinstance(node, ast.Name) and isinstance(node.ctx, ast.Load):
+            if node.id in containers:
+                return True
+        elif isinstance(node, ast.AugAssign) and isinstance(node.target, ast.Name):
+            if node.target.id in containers:
+                return True
+    return False
+
+
 def _changes(module: Module, containers: set[str]) -> list[Change]:
     """Mutations of the module-level ``containers``, and every rebinding through ``global``."""
     out: list[Change] = []
+    if not _may_change(module.tree, containers):
+        return out
 
     def scan_scope(scope: ast.AST, where: str, shadowed: frozenset[str]) -> None:
         nodes = _own_nodes(scope)

@@ -1,5 +1,9 @@
 """Helpers shared by the command-line tests: run a command, check a one-line error."""
 
+from collections.abc import Iterator
+from contextlib import contextmanager
+
+import pytest
 from click.testing import CliRunner
 
 from contactres.cli import main
@@ -8,6 +12,44 @@ from contactres.cli import main
 def run(*args):
     """Invoke ``contactres ARGS`` in-process (arguments converted to text)."""
     return CliRunner().invoke(main, [str(a) for a in args])
+
+
+#: What a figure's PNG holds in a test that does not draw it (:func:`figures_not_drawn`).
+STAND_IN = b"not drawn\n"
+
+
+def figures_not_drawn(monkeypatch):
+    """Build every figure but draw none: each PNG a command writes (a file, or an image of its
+    report page) holds :data:`STAND_IN`. For tests about which files a command writes and the
+    numbers in them, not about pixels: drawing is most of a report's time (issue 31), and the
+    figures are drawn by the tests that look at them (tests/test_png.py, tests/report, the
+    demo's and each command's own report test)."""
+    from contextlib import nullcontext
+    from pathlib import Path
+
+    from contactres import _png
+
+    def stand_in(fig, target, dpi, *, tight=False):
+        with open(target, "wb") if isinstance(target, (str, Path)) else nullcontext(target) as f:
+            f.write(STAND_IN)
+
+    monkeypatch.setattr(_png, "print_png", stand_in)
+
+
+@contextmanager
+def one_unit_registry() -> Iterator[None]:
+    """Within the block, every value typed with a unit is converted with one pint registry,
+    built by :mod:`contactres.typed_units` itself on entry. The library builds a fresh registry
+    for each value (no module state), ~0.2 s of CPU each: most of a test of units, ~60 times in
+    the tests of units. Converting a value reads the registry and changes nothing in it, so
+    one registry converts as a fresh one does; the conversions are checked against SI values
+    written in the tests."""
+    from contactres import typed_units
+
+    registry = typed_units._registry()
+    with pytest.MonkeyPatch.context() as mp:
+        mp.setattr(typed_units, "_registry", lambda: registry)
+        yield
 
 
 def one_line_error(r, *words):

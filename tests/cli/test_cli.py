@@ -4,15 +4,13 @@ import json
 import re
 import subprocess
 import sys
-from contextlib import nullcontext
-from pathlib import Path
 
 import numpy as np
 import pandas as pd
 import pytest
-from cli_checks import one_line_error, run
+from cli_checks import STAND_IN, figures_not_drawn, one_line_error, run
 
-from contactres import __version__, _png
+from contactres import __version__
 from contactres.cli._common import parse_range
 
 
@@ -121,7 +119,7 @@ def test_demo_writes_folder(tmp_path, monkeypatch, demo_results):
     # manifest, and no other), not their pixels: the first run drew every figure, so the rerun
     # writes a stand-in into each figure's file (drawing them again was a fifth of the test).
     # That each figure's file now holds the stand-in shows the rerun replaced it.
-    monkeypatch.setattr(_png, "print_figure", _figure_stand_in)
+    figures_not_drawn(monkeypatch)  # the figure files and the report pages' images
     assert run("demo", "--out", str(out)).exit_code == 0
     assert sorted(p.relative_to(out) for p in out.rglob("*") if p.is_file()) == files
     figures = [f for f in files if f.suffix == ".png"]
@@ -145,15 +143,6 @@ def test_demo_writes_folder(tmp_path, monkeypatch, demo_results):
     a = coated["contact_radius_m"]
     assert (a > hertz(silica, 1.1e-3, coated["force_N"]).contact_radius).all()
     assert (a < hertz(film, 1.1e-3, coated["force_N"]).contact_radius).all()
-
-
-STAND_IN = b"not drawn\n"
-
-
-def _figure_stand_in(fig, target, dpi, fmt):
-    """In place of :func:`contactres._png.print_figure`: writes :data:`STAND_IN`, draws nothing."""
-    with open(target, "wb") if isinstance(target, (str, Path)) else nullcontext(target) as f:
-        f.write(STAND_IN)
 
 
 def _check_demo_ends_with_the_numbers(output, out):
@@ -307,7 +296,7 @@ def test_demo_without_the_maps_extra_leaves_the_map_out_in_one_line(
     monkeypatch.setitem(sys.modules, "xarray", None)  # the writers too run without it
     _demo_returns(monkeypatch, bare)
     # which files and lines, not pixels: every figure is drawn by test_demo_writes_folder
-    monkeypatch.setattr(_png, "print_figure", _figure_stand_in)
+    figures_not_drawn(monkeypatch)
     out = tmp_path / "demo"
     r = run("demo", "--out", str(out))
     assert r.exit_code == 0, r.output

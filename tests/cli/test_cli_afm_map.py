@@ -11,7 +11,7 @@ from pathlib import Path
 
 import numpy as np
 import pytest
-from cli_checks import one_line_error, run
+from cli_checks import figures_not_drawn, one_line_error, run
 
 import contactres as cr
 
@@ -90,6 +90,7 @@ def test_bglib_sho_fit_inverts_as_the_direct_inversion(tmp_path, monkeypatch):
     truth = be.write_bglib(path, rows=4, cols=6)
     out = tmp_path / "be"
     lever = ["--spring-constant", 3.0, "--free-frequency", F_FREE, "--tip-position", R_TIP]
+    figures_not_drawn(monkeypatch)  # the maps' numbers and files, not their pixels
     _ok(run("afm", "map", path, "--out", out, *lever, "--map-name", "be.zarr"))
     ds = xr.open_zarr(out / "be.zarr", consolidated=False).load()
     f = truth["Frequency [Hz]"][..., 0].astype(np.float32).astype(float)
@@ -101,7 +102,7 @@ def test_bglib_sho_fit_inverts_as_the_direct_inversion(tmp_path, monkeypatch):
     np.testing.assert_allclose(ds["sigma_N_s_per_m"], direct.sigma, rtol=1e-12)
 
 
-def test_a_netcdf_grid_of_frequency_and_q(tmp_path, kelvin_voigt):
+def test_a_netcdf_grid_of_frequency_and_q(tmp_path, kelvin_voigt, monkeypatch):
     lever = cr.Cantilever((F_FREE,), 2.0)
     k_true = np.linspace(40.0, 120.0, 6).reshape(2, 3)  # N/m
     f, q = kelvin_voigt(lever, k_true, 0.05, R_TIP)
@@ -109,6 +110,7 @@ def test_a_netcdf_grid_of_frequency_and_q(tmp_path, kelvin_voigt):
     grid.to_netcdf(tmp_path / "grid.nc")
     out = tmp_path / "g"
     lever = ["--spring-constant", 2.0, "--free-frequency", F_FREE, "--tip-position", R_TIP]
+    figures_not_drawn(monkeypatch)  # the maps' numbers and files, not their pixels
     _ok(run("afm", "map", tmp_path / "grid.nc", "--out", out, *lever, "--punch-radius", 5e-9))
     ds = xr.load_dataset(out / "afm_map.nc")
     np.testing.assert_allclose(ds["k_star_N_per_m"], k_true, rtol=1e-9)
@@ -164,7 +166,7 @@ def test_bad_files_and_options_are_one_line(fixtures, tmp_path):
     one_line_error(r, "zeros.nc", "no frequency")
 
 
-def test_a_series_calibrates_each_map_against_its_reference(tmp_path, kelvin_voigt):
+def test_a_series_calibrates_each_map_against_its_reference(tmp_path, kelvin_voigt, monkeypatch):
     """Two maps of one sample (a 3 GPa reference in columns 0-1, 9 GPa beside it), the second
     with a worn, blunter tip: each map's own reference region gives the same moduli, and the
     reference stiffness of each map shows the wear (Killgore et al. 2011)."""
@@ -181,6 +183,7 @@ def test_a_series_calibrates_each_map_against_its_reference(tmp_path, kelvin_voi
     lever_options = ["--spring-constant", 2.0, "--free-frequency", F_FREE, "--tip-position", R_TIP]
     ref = ["--reference", "0:3,0:2", "--reference-modulus", 3e9]
     out = tmp_path / "series"
+    figures_not_drawn(monkeypatch)  # the maps' numbers and files, not their pixels
     r = _ok(run("afm", "map", *files, "--out", out, *lever_options, *ref))
     assert r.output.count("wrote") == 2
     k_ref = []
@@ -201,13 +204,14 @@ def test_scale_bar_is_a_round_length_near_a_fifth_of_the_width():
     assert scale_bar_length(1e-7) == pytest.approx(2e-8)
 
 
-def test_a_series_on_a_dask_cluster_equals_the_serial_run(fixtures, tmp_path):
+def test_a_series_on_a_dask_cluster_equals_the_serial_run(fixtures, tmp_path, monkeypatch):
     distributed = pytest.importorskip("distributed", reason="dask.distributed not installed")
     files = []
     for name in ("a", "b"):
         files.append(tmp_path / f"{name}.ibw")
         fixtures.write_dart_ibw(files[-1], points=12, lines=8)
     options = ["--free-frequency", F_FREE, "--tip-position", R_TIP]
+    figures_not_drawn(monkeypatch)  # the maps' numbers and files, not their pixels
     _ok(run("afm", "map", *files, "--out", tmp_path / "serial", *options))
     with distributed.LocalCluster(
         n_workers=1, processes=False, threads_per_worker=1, dashboard_address=None
@@ -221,11 +225,14 @@ def test_a_series_on_a_dask_cluster_equals_the_serial_run(fixtures, tmp_path):
         assert serial.equals(clustered)
 
 
-def test_flagged_damping_and_a_failing_modulus_are_counted_and_warned(fixtures, tmp_path):
+def test_flagged_damping_and_a_failing_modulus_are_counted_and_warned(
+    fixtures, tmp_path, monkeypatch
+):
     path = tmp_path / "dart.ibw"
     fixtures.write_dart_ibw(path, points=8, lines=6)
     base = ["--free-frequency", F_FREE, "--tip-position", R_TIP, "--out", tmp_path / "o"]
     # 50 N on a 20 nm tip: no Hertz contact anywhere, M NaN on all 48 pixels.
+    figures_not_drawn(monkeypatch)  # the maps' numbers and files, not their pixels
     r = _ok(run("afm", "map", path, *base, "--force", 50, "--tip-radius", 2e-8))
     assert "48 modulus-flagged" in r.output
     warned = [line for line in r.output.splitlines() if line.startswith("warning: M is NaN")]

@@ -7,7 +7,7 @@ import re
 import numpy as np
 import pandas as pd
 import pytest
-from cli_checks import invoke, one_line_error, option_names, run
+from cli_checks import figures_not_drawn, invoke, one_line_error, option_names, run
 from click.testing import CliRunner
 
 from contactres.cli import main
@@ -216,6 +216,7 @@ def test_figures_paper2_reruns_into_its_folder_and_keeps_a_file_of_the_users(tmp
     from contactres.jobs import paper2
 
     out = tmp_path / "fig"
+    figures_not_drawn(monkeypatch)  # which files; test_figures_paper2 draws the PNGs
     assert run("figures", "paper2", "--out", str(out)).exit_code == 0
     assert "paper2_fig2_loops.png" in json.loads((out / "manifest.json").read_text())["files"]
     r = run("figures", "paper2", "--out", str(out), "--figure-format", "svg")

@@ -10,7 +10,7 @@ import click
 import numpy as np
 import pandas as pd
 import pytest
-from cli_checks import one_line_error, run
+from cli_checks import figures_not_drawn, one_line_error, run
 
 from contactres import QCM, shifts_from_stiffness
 from contactres.cli.qcm_stiffness import READER_NAMES, stiffness_command
@@ -69,7 +69,8 @@ AWS_ARGS = ["--dissipation-scale", "1e-6", "--fundamental", F_F, "--area", AREA,
             "--n-contacts", N_P]  # fmt: skip
 
 
-def test_kappa_and_omega_xi_of_a_synthetic_export(tmp_path):
+def test_kappa_and_omega_xi_of_a_synthetic_export(tmp_path, monkeypatch):
+    figures_not_drawn(monkeypatch)  # the table; test_outputs_sidecar_figure_and_summary draws
     out = tmp_path / "out"
     r = run("qcm", "stiffness", awsensors_file(tmp_path), *AWS_ARGS, "--out", out)
     assert r.exit_code == 0, r.output
@@ -124,7 +125,8 @@ def test_outputs_sidecar_figure_and_summary(tmp_path):
     assert "n = 3: 8 points" in r.stdout and "wrote 3 files" in r.stdout
 
 
-def test_absolute_log_with_a_baseline(tmp_path):
+def test_absolute_log_with_a_baseline(tmp_path, monkeypatch):
+    figures_not_drawn(monkeypatch)  # the table; test_outputs_sidecar_figure_and_summary draws
     out = tmp_path / "out"
     r = run("qcm", "stiffness", openqcm_file(tmp_path), "--dissipation-scale", "1",
             "--baseline", "window:0:12", "--overtone", "3", "--area", AREA, "--n-contacts", 1,
@@ -241,8 +243,9 @@ def test_a_film_export_with_negative_stiffness_is_said_not_printed_silently(tmp_
     assert all("8 of 8 points have κ < 0: a negative Δf is mass loading" in ln for ln in warned)
 
 
-def test_an_overtone_left_out_is_said_on_the_console(tmp_path):
+def test_an_overtone_left_out_is_said_on_the_console(tmp_path, monkeypatch):
     """Issue 27, point 3: an overtone without its dissipation column is named, not dropped."""
+    figures_not_drawn(monkeypatch)  # the console, not the figure's pixels
     path = awsensors_file(tmp_path)
     text = path.read_text().splitlines()
     text[0] = text[0].replace("Delta_D_n=5_()", "Delta_Q_n=5")

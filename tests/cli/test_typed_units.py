@@ -5,13 +5,20 @@ from __future__ import annotations
 
 import pandas as pd
 import pytest
-from cli_checks import run
+from cli_checks import one_unit_registry, run
 
 from contactres import AnalysisSettings, analyze, read_sweeps
 from contactres.errors import ContactresInputError
 from contactres.examples import example_path
 from contactres.typed_units import column_unit_factor, has_unit, to_si
 from contactres.units import check_magnitude
+
+
+@pytest.fixture(scope="module", autouse=True)
+def _one_unit_registry():
+    """One pint registry for the file's conversions (cli_checks.one_unit_registry)."""
+    with one_unit_registry():
+        yield
 
 
 @pytest.mark.parametrize(
