@@ -17,6 +17,7 @@ from contactres.measurements._sweep_checks import (
     check_dissipation_sign,
     check_per_sweep,
     drop_duplicates,
+    point_keys,
     warn_sweeps,
 )
 from contactres.measurements._sweeps import PER_SWEEP_COLUMNS, _labels
@@ -117,3 +118,51 @@ def test_ids_that_differ_by_white_space_are_one_sweep_in_every_check():
     other = table.assign(experiment=["e1", "e1 ", "e1", "e2", "e1", "e1"])
     with pytest.raises(ContactresInputError, match=r"sweep 's1': conflicting values in column"):
         validate_sweeps(other, constants=CONST)
+
+
+def test_rows_that_pandas_finds_repeated_have_one_key_and_are_dropped_alike():
+    """point_keys gives rows that pandas' ``duplicated`` pairs (0.0 and -0.0 one value, NaN
+    with NaN) one key, so that no repeated point is missed; and drop_duplicates drops the rows
+    and says the lines it does without the codes, on random tables of few values."""
+    rng = np.random.default_rng(21)
+    for trial in range(300):
+        n = int(rng.integers(1, 30))
+        values = [0.0, -0.0, 1.5, 2.5] + ([np.nan] if trial % 4 == 0 else [])
+        ids = pd.Series(rng.choice(["a", "b", "c"], n), dtype=object)
+        out = pd.DataFrame(
+            {
+                "line": np.arange(2, n + 2),
+                "sweep": ids,
+                "amplitude_m": rng.choice(values, n),
+                "df_Hz": rng.choice(values[:3], n),
+                "dgamma_Hz": rng.choice([1.0, 2.0], n),
+                "ramp": rng.choice([1, 2], n),
+            }
+        )
+        codes = pd.factorize(ids)[0]
+        numbers = [out[c].to_numpy() for c in ("amplitude_m", "df_Hz", "dgamma_Hz")]
+        keys = point_keys(codes, numbers)
+        point = ["sweep", "amplitude_m", "df_Hz", "dgamma_Hz"]
+        for _, rows in out.groupby(point, dropna=False, sort=False).groups.items():
+            assert len(set(keys[np.asarray(rows)].tolist())) == 1, (trial, out)
+        kept, said = _kept_and_said(out, codes), _kept_and_said(out, None)
+        assert said[1] == kept[1], trial
+        pd.testing.assert_frame_equal(said[0], kept[0])
+
+
+def _kept_and_said(out: pd.DataFrame, codes) -> tuple[pd.DataFrame, list[str]]:
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        kept = drop_duplicates(out, "<t>", codes)
+    return kept, [str(w.message) for w in caught]
+
+
+def test_distinct_points_have_distinct_keys():
+    """The keys of 10^5 distinct points of a sweep table's kind (a few amplitudes and loads,
+    noisy shifts) do not collide, so that the rows are not compared again."""
+    rng = np.random.default_rng(2)
+    n = 100_000
+    codes = np.repeat(np.arange(n // 10), 10)
+    amplitude = np.tile(np.linspace(1e-9, 1e-8, 10), n // 10)
+    numbers = [amplitude, rng.normal(50.0, 1.0, n), rng.normal(5.0, 0.1, n)]
+    assert not pd.Series(point_keys(codes, numbers)).duplicated().any()
