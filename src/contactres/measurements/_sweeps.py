@@ -415,35 +415,45 @@ def _numeric(raw: pd.DataFrame, col: str, source: str, decimal: str) -> np.ndarr
 
 def _labels(
     out: pd.DataFrame, raw: pd.DataFrame, source: str, col: str, missing: np.ndarray | None = None
-) -> None:
+) -> np.ndarray:
     """``out[col]``: the cells of ``raw[col]`` stripped (as :func:`stripped` gives them), the
     rules of the column checked; where ``missing`` (a mask) has a cell, as an empty one.
+    Returns a code for each row, equal where the texts of ``out[col]`` are (what
+    ``pandas.factorize(out[col])`` gives).
 
     Each distinct text is stripped and checked once (the rules are element-wise): 10^6 rows
     hold 10^5 sweep ids and a few labels, and the check stripped every cell again (issue 31).
-    A broken rule is named by the check of every cell, as before."""
+    A broken rule is named by the check of every cell, as before. The codes serve the checks
+    of the rows (duplicates, one value per sweep), which hashed the 10^6 texts again."""
     codes, distinct = stripped_distinct(raw[col])
     out[col] = distinct[codes]
     rules = SWEEP_TABLE.column(col).rules
     if missing is not None and missing.any():
         SWEEP_TABLE.check_cells(out, source, col, np.where(missing, "", out[col].to_numpy()))
-    elif broken_rule(rules, distinct) is not None:
+        return pd.factorize(out[col])[0]
+    if broken_rule(rules, distinct) is not None:
         SWEEP_TABLE.check_cells(out, source, col)
+    # Texts that differed by the white space around them are one text once stripped.
+    return pd.factorize(distinct)[0][codes]
 
 
-def _labels_and_numbers(raw: pd.DataFrame, source: str, decimal: str) -> pd.DataFrame:
-    """Sweep ids, label columns (or their defaults), the measured numbers and the ramp."""
+def _labels_and_numbers(
+    raw: pd.DataFrame, source: str, decimal: str
+) -> tuple[pd.DataFrame, dict[str, np.ndarray]]:
+    """Sweep ids, label columns (or their defaults), the measured numbers and the ramp; and
+    the codes of the sweep ids and labels (:func:`_labels`)."""
     out = pd.DataFrame({"line": raw["line"].to_numpy()})
     out.attrs["line_word"] = line_word(raw)  # a workbook's rows are named rows, not lines
     out.attrs["written_as"] = raw.attrs.get("written_as", {})  # amplitude_nm: amplitude_m
     # A missing cell of a table built in memory is empty too (its text would be "nan").
     missing = raw["sweep"].isna().to_numpy()
-    _labels(out, raw, source, "sweep", missing)
+    codes = {"sweep": _labels(out, raw, source, "sweep", missing)}
     for col, default in LABEL_DEFAULTS.items():
         if col in raw.columns:
-            _labels(out, raw, source, col)
+            codes[col] = _labels(out, raw, source, col)
         else:
             out[col] = default
+            codes[col] = np.zeros(len(out), dtype=np.intp)
     for col in ("amplitude_m", "df_Hz", "dgamma_Hz", "normal_force_N"):
         out[col] = _numeric(raw, col, source, decimal)
     # Optional time of each point (NaN where the table has none).
@@ -472,7 +482,7 @@ def _labels_and_numbers(raw: pd.DataFrame, source: str, decimal: str) -> pd.Data
             SweepWarning,
             stacklevel=3,
         )
-    return out
+    return out, codes
 
 
 def _fill_constants(
@@ -645,12 +655,15 @@ def validate_sweeps(
             f"columns found: {column_names(data_cols)}; "
             f"required: {list(REQUIRED_COLUMNS)}, optional: {list(OPTIONAL_COLUMNS)}"
         )
-    out = _labels_and_numbers(raw, source, decimal)
+    out, codes = _labels_and_numbers(raw, source, decimal)
     given, in_file = dict(constants or {}), dict(file_constants or {})
     _fill_constants(out, raw, source, decimal, given, in_file, file_constants_source)
     _check_physics(out, source)
-    out = drop_duplicates(out, source)
-    check_per_sweep(out, source, PER_SWEEP_COLUMNS)
-    check_dissipation_sign(out, source)
-    warn_sweeps(out, source)
+    rows = len(out)
+    out = drop_duplicates(out, source, codes["sweep"])
+    if len(out) < rows:  # the codes are the full table's: the labels are hashed again
+        codes = {}
+    check_per_sweep(out, source, PER_SWEEP_COLUMNS, codes)
+    check_dissipation_sign(out, source, codes.get("sweep"))
+    warn_sweeps(out, source, codes.get("sweep"))
     return SweepTable(out[list(VALIDATED_COLUMNS)].reset_index(drop=True), source)
