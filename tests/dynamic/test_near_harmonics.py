@@ -11,6 +11,7 @@ one.
 """
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -22,7 +23,9 @@ from contactres.dynamic._exact import exact_n, galerkin_plan, galerkin_size, nea
 from contactres.dynamic._farfield import far_basis, far_grid, low_rank
 from contactres.dynamic._fartail import far_tail, head_grid
 from contactres.dynamic._quadrature import (
+    _COARSE_MARGINS,
     _n_theta_near,
+    _near_margins,
     far_operator,
     far_operator_and_moments,
     functionals,
@@ -325,3 +328,81 @@ def test_near_bessel_against_scipy_spherical_jn(table):
     for p in (0, 1, 7, 24):
         ref = special.spherical_jn(p, s)
         assert np.all(np.abs(got[p] - ref) <= 1e-12 * np.abs(ref) + 1e-13 * np.max(np.abs(ref)))
+
+
+@pytest.mark.parametrize("margin", [20, 30])
+@pytest.mark.parametrize("zmax", [1.0, 8.0, 21.0, 60.0])
+def test_bessel_even_sum_leaves_out_only_terms_below_round_off(zmax, margin):
+    """More coefficients c_m than the continued fraction's start reaches (2m up to ~40 orders
+    beyond 1.3 |z| + margin, every c_m of order one, none decaying): the terms of the orders
+    left out are below round-off. Against scipy's jv (AMOS) term by term, on complex arguments
+    with Im <= 3 (the contour) and real ones (the hand-over segment); measured <= 2.2e-15 of
+    Σ|c| (margin 20, |z| <= 21)."""
+    rng = np.random.default_rng(3)
+    z = np.concatenate(
+        [
+            rng.uniform(1e-3, zmax, (2, 40)) + 1j * rng.uniform(0, 3, (2, 40)),
+            rng.uniform(1e-3, zmax, (2, 40)) + 0j,
+        ]
+    )
+    n_c = int(0.65 * zmax + margin / 2) + 20
+    assert 2 * (n_c - 1) > 1.3 * zmax + margin + 30  # orders beyond the start, to be left out
+    c = rng.normal(size=(n_c, 40)) + 1j * rng.normal(size=(n_c, 40))
+    ref = sum(special.jv(2 * m, z) * c[m] for m in range(n_c))
+    got = bessel_even_sum(z, c, margin=margin)
+    assert np.all(np.abs(got - ref) <= 1e-14 * np.sum(np.abs(c), axis=0))
+    real = z[2:].real
+    ref = sum(special.jv(2 * m, real) * c[m].real for m in range(n_c))
+    got = bessel_even_sum(real, c.real, margin=margin)
+    assert np.all(np.abs(got - ref) <= 1e-14 * np.sum(np.abs(c.real), axis=0))
+
+
+@pytest.mark.parametrize("zmax", [21.0, 60.0])
+def test_near_sums_with_the_coarse_margins_of_rtol_1e_4(zmax):
+    """The near field's continued fractions on a table prepared for rtol >= 1e-4 start 10 and
+    5 orders above the arguments (_quadrature._COARSE_MARGINS): against scipy's jv (AMOS) and
+    the Fourier coefficients of the line weight, within 1e-8 of Σ|c| (1e-4 of that rtol;
+    measured 5e-10 and 9e-10; 6 and 3 orders fail it)."""
+    even, wa = _COARSE_MARGINS
+    rng = np.random.default_rng(11)
+    z = np.concatenate(
+        [
+            rng.uniform(1e-3, zmax / 2, (2, 30)) + 1j * rng.uniform(0, 3, (2, 30)),
+            rng.uniform(1e-3, zmax, (2, 30)) + 0j,
+        ]
+    )
+    c = rng.normal(size=(8, 30)) + 1j * rng.normal(size=(8, 30))
+    ref = sum(special.jv(2 * m, z) * c[m] for m in range(8))
+    assert np.all(np.abs(bessel_even_sum(z, c, margin=even) - ref) <= 1e-8 * np.sum(abs(c), 0))
+    n_c = int(0.6 * zmax) + 10
+    w = np.concatenate([z[0, :6], z[3, :6]])
+    n_t = 1024
+    theta = np.pi * np.arange(n_t) / n_t
+    coef = np.fft.fft(wa_line_weight(np.multiply.outer(w, np.cos(theta))), axis=-1) / n_t
+    k = np.arange(n_c)
+    weights = (coef[:, k] * np.where(k % 2 == 0, 1.0, -1.0)).T
+    cw = np.random.default_rng(5).normal(size=(n_c, w.size)) * (0.9 ** k[:, None])
+    got = wa_harmonic_sum(w, cw, margin=wa)
+    assert np.all(np.abs(got - np.sum(weights * cw, axis=0)) <= 1e-8 * np.sum(np.abs(cw), 0))
+
+
+def test_near_field_of_a_rtol_1e_4_table_against_the_round_off_margins():
+    """The near-field θ integrals of a table prepared for rtol 1e-4 (coarse margins) against
+    those of the same table taken as one of an explicit resolution (round-off margins), and
+    both against the θ-direct rule: within 1e-8 of ∫|g − g∞| dθ."""
+    t = prepare(Material.cubic_from_ratios(0.5, 0.25), 0.02, 1e-4)
+    assert _near_margins(t) == _COARSE_MARGINS
+    fine = replace(t, rtol=None)
+    assert _near_margins(fine) != _COARSE_MARGINS
+    ka = np.array([0.05, 0.7, 2.0, 4.9])
+    s = ka[:, None] * t.near_kappa[None, :]
+    smax = float(ka.max() * np.max(np.abs(t.near_kappa)))
+    c1, cw, mean0 = near_theta_integrals(t, s, smax)
+    f1, fw, _ = near_theta_integrals(fine, s, smax)
+    r1, rw, _ = _theta_direct(t, s, smax)
+    scale = np.max(np.abs(mean0))
+    for got in (c1, f1):
+        np.testing.assert_allclose(got, r1, rtol=0, atol=1e-8 * scale)
+    for got in (cw, fw):
+        np.testing.assert_allclose(got, rw, rtol=0, atol=1e-8 * scale)
+    assert np.max(np.abs(c1 - f1)) > 0  # the margins differ, so do the sums (in the last bits)

@@ -105,6 +105,21 @@ def _static_values(table: KernelTable) -> dict:
 # curve at rtol 1e-4, ~1.5 % of the seven-model one at 1e-6 (issue 31).
 _EVEN_SUM_MARGIN = 20
 _WA_SUM_MARGIN = 10
+# A table prepared for rtol >= 1e-4 (resolution_for's coarse grid): the sums to ~1e-9 of Σ|c|,
+# not to round-off: 10 and 5 orders (measured against the same references, arguments up to 21
+# and 60: <= 5e-10 and <= 9e-10 of Σ|c|, 1e-5 of that rtol; tests/dynamic/test_near_harmonics.py).
+# 30 % fewer steps of these passes, whose cost is their number of steps (issue 31, lead 1).
+_COARSE_MARGINS = (10, 5)
+_COARSE_RTOL = 1e-4
+
+
+def _near_margins(table: KernelTable) -> tuple[int, int]:
+    """The margins (even sum, WA sum) of the near field's continued fractions for ``table``:
+    :data:`_COARSE_MARGINS` if it was prepared for rtol >= 1e-4, the round-off ones otherwise
+    (also for a table of an explicit Resolution, ``rtol`` None)."""
+    if table.rtol is not None and table.rtol >= _COARSE_RTOL:
+        return _COARSE_MARGINS
+    return _EVEN_SUM_MARGIN, _WA_SUM_MARGIN
 
 
 def near_theta_integrals(table: KernelTable, s: np.ndarray, smax: float):
@@ -115,7 +130,9 @@ def near_theta_integrals(table: KernelTable, s: np.ndarray, smax: float):
     weight, W_n its harmonics), ĝ_m the harmonics e^{2imθ} of the tabulated g − g∞. The same
     harmonics ``|m|`` < min(n_θ, nt)/2 as the trapezoidal rule on the nt = :func:`_n_theta_near`
     nodes of θ (the weights of the others are negligible, J_{2m}(s) ~ (e s/4m)^{2m}), at a cost
-    of O(harmonics) per (s, κ) instead of O(nt) evaluations of cos and W.
+    of O(harmonics) per (s, κ) instead of O(nt) evaluations of cos and W. The sums are
+    accurate to round-off, or to ~1e-9 on a table prepared for rtol >= 1e-4
+    (:func:`_near_margins`).
 
     Parameters
     ----------
@@ -140,8 +157,9 @@ def near_theta_integrals(table: KernelTable, s: np.ndarray, smax: float):
     folded[1:] += h[:, n - m[1:]].T
     folded *= (2 * np.pi) * np.where(m % 2 == 0, 1.0, -1.0)[:, None]
     # Summed against the folded harmonics as the weights are made (no (keep, na, nk) arrays).
-    c1 = by_real_columns(partial(bessel_even_sum, margin=_EVEN_SUM_MARGIN), s, folded)
-    cw = by_real_columns(partial(wa_harmonic_sum, margin=_WA_SUM_MARGIN), s, folded)
+    even, wa = _near_margins(table)
+    c1 = by_real_columns(partial(bessel_even_sum, margin=even), s, folded)
+    cw = by_real_columns(partial(wa_harmonic_sum, margin=wa), s, folded)
     return c1, cw, 2 * np.pi * h[:, 0]
 
 

@@ -506,9 +506,10 @@ def bessel_even_sum(z: np.ndarray, coeffs: np.ndarray, *, margin: int = 30) -> n
         c_m, m = 0..K, shape (K + 1, n) (one set per last index of ``z``) or (K + 1,).
     margin : int
         Keyword only: the continued fraction starts ``margin`` orders above 1.3 max ``|z|``,
-        and never below 2K + 12 (default 30: truncation ~1e-20; 20, as the near field of
+        (default 30: truncation ~1e-20; 20, as the near field of
         :func:`~contactres.dynamic._quadrature.near_theta_integrals` takes, leaves the same
-        round-off, tests/dynamic/test_near_harmonics.py).
+        round-off, tests/dynamic/test_near_harmonics.py); the c_m of orders 2m at or above that
+        start are left out (their terms are below the round-off of the sum, ~1e-16 Σ ``|c|``).
 
     Returns
     -------
@@ -518,8 +519,13 @@ def bessel_even_sum(z: np.ndarray, coeffs: np.ndarray, *, margin: int = 30) -> n
     z = np.asarray(z)
     c = np.asarray(coeffs)
     zmax = float(np.max(np.abs(z), initial=0.0))
-    # The start of bessel_orders for n_max = 2K (its truncation error, even).
-    top = 2 * math.ceil(max(2 * (c.shape[0] - 1) + 12, 1.3 * zmax + margin) / 2)
+    # The start of bessel_orders (its truncation error, even), not raised to 2K + 12 (that
+    # bound is for J_2K itself to relative accuracy, which a sum does not need): the terms of
+    # the orders 2k >= top are dropped, below 1e-14 of Σ|c| (J_2k(z) <= ~e^|Im z| (e|z|/4k)^2k
+    # there; |z| <= 60, |Im z| <= 3 at margin 20, tests/dynamic/test_near_harmonics.py). The
+    # number of steps, not their size, is the cost of these passes (arrays of a few thousand
+    # values; issue 31): on the near-field contour at rtol 1e-6, 32 orders instead of 58.
+    top = 2 * math.ceil((1.3 * zmax + margin) / 2)
     # Rerun with the guard of bessel_orders only where J_{n−1}(z) rounds to 0 (_finite_pass).
     return _finite_pass(_even_sum_pass, z, c, top)
 
