@@ -235,7 +235,9 @@ def test_flagged_damping_and_a_failing_modulus_are_counted_and_warned(
     figures_not_drawn(monkeypatch)  # the maps' numbers and files, not their pixels
     r = _ok(run("afm", "map", path, *base, "--force", 50, "--tip-radius", 2e-8))
     assert "48 modulus-flagged" in r.output
-    warned = [line for line in r.output.splitlines() if line.startswith("warning: M is NaN")]
+    warned = [
+        line for line in r.output.splitlines() if line.startswith("contactres: warning: M is NaN")
+    ]
     assert len(warned) == 1 and "48 pixels" in warned[0] and "--force/--tip-radius" in warned[0]
     record = json.loads((tmp_path / "o" / "afm_map.json").read_text())
     assert "not_hertzian" in record["conventions"]["flags_present"]
@@ -243,7 +245,7 @@ def test_flagged_damping_and_a_failing_modulus_are_counted_and_warned(
     r = _ok(run("afm", "map", path, *base, "--free-q", 1.0))
     assert "48 flagged" in r.output and "tan δ median" not in r.output
     warned = [line for line in r.output.splitlines() if "negative_damping" in line]
-    assert len(warned) == 1 and warned[0].startswith("warning: 48 pixels")
+    assert len(warned) == 1 and warned[0].startswith("contactres: warning: 48 pixels")
 
 
 def test_files_contactres_did_not_write_are_refused_before_the_work(

@@ -411,7 +411,8 @@ def test_contact_coating_matches_the_job_and_notes_the_static_pmma():
         assert row["coating"] == "PMMA 250 nm"
         for key in ("contact_radius_m", "stiffness_N_per_m", "film_share"):
             assert row[key] == pytest.approx(want[key], rel=1e-12)
-    assert "note: the static columns use the storage modulus at 1 Hz of PMMA" in r.stderr
+    warning = "contactres: warning: the static columns use the storage modulus at 1 Hz of PMMA"
+    assert warning in r.stderr
 
 
 def test_contact_two_coatings_top_first():

@@ -61,7 +61,7 @@ def test_afm_invert_coated_recovers_the_film_modulus(coated_afm, tmp_path):
     # At 4 µN the contact on the compliant film is wider than half the tip (a/R > 0.5): no
     # film modulus for it, one warning line (Hertz's limit, checked at the inversion's solution).
     assert "film PMMA 20 nm on fused-silica: 1 beyond-hertz, 2 film" in r.output
-    assert "warning: film_modulus_from_contact_stiffness: a/R = " in r.output
+    assert "contactres: warning: film_modulus_from_contact_stiffness: a/R = " in r.output
     assert "(1 of 3 pixels): beyond Hertz, no film modulus" in r.output
     assert "Traceback" not in r.output and "ContactresWarning" not in r.output
     t = pd.read_csv(out, keep_default_na=False, na_values=[""])

@@ -376,7 +376,7 @@ def test_afm_tip_radius_above_a_millimetre_is_flagged_and_warned(afm_table, tmp_
     assert r.exit_code == 0, r.output
     assert out["flags"][1] == "large-tip" and out["flags"][[0, 2]].isna().all()
     np.testing.assert_allclose(out["M_sample_Pa"][[0, 2]], plain["M_sample_Pa"][[0, 2]])
-    warned = [line for line in r.output.splitlines() if line.startswith("warning:")]
+    warned = [line for line in r.output.splitlines() if line.startswith("contactres: warning:")]
     assert len(warned) == 1
     assert "t.csv, line 3, column 'tip_radius_m': value 0.05" in warned[0]
     assert "check the unit" in warned[0]

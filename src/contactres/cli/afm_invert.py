@@ -163,7 +163,7 @@ def afm_invert(
     else:
         write_csv(out, computed_rounded(result, done.input_columns))
     for message in done.warnings:  # e.g. a tip radius above 1 mm: one line, not a refusal
-        click.echo(f"warning: {message}", err=True)
+        click.echo(f"contactres: warning: {message}", err=True)
     if fmt != "plain":
         emit(result, fmt)
         return
@@ -196,4 +196,4 @@ def afm_invert(
     if done.coating is not None:
         click.echo(film_summary(result, done.coating))
         for message in done.coating.get("notes", ()):  # Hertz's a/R limit: one line each
-            click.echo(f"warning: {message}", err=True)
+            click.echo(f"contactres: warning: {message}", err=True)

@@ -267,4 +267,4 @@ def afm_map(
             line += f", {int(np.count_nonzero(ds['dart_flags'].values))} DART-flagged"
         click.echo(f"{line}; wrote {folder}")
         for warning in result.warnings:
-            click.echo(f"warning: {warning}", err=True)
+            click.echo(f"contactres: warning: {warning}", err=True)

@@ -114,8 +114,8 @@ def contact(radius, force, frequency, tangential, direction, coating, fmt, **fac
     settings = job.Settings(radius, force, frequency, tangential, direction, tuple(coating))
     result = job.run(m, settings)
     emit(result.table, fmt)
-    for message in result.warnings:
-        click.echo(_note(message), err=True)
+    for message in result.warnings:  # the job's reservations: warnings, as every command says
+        click.echo(_note(message, "warning"), err=True)
     if not result.circular and "ellipticity" in result.table:
         row = result.table.iloc[0]
         click.echo(
@@ -148,10 +148,19 @@ def _face_name(face: dict) -> str:
     return str(face["surface"])
 
 
-def _note(message: str) -> str:
-    """A note for stderr: one line if it fits 100 columns, else broken after its "; " clauses
-    (the what, then the advice), the continuation indented."""
-    line = f"note: {message}"
+def _note(message: str, kind: str = "note") -> str:
+    """A note (or, ``kind`` "warning", a warning) for stderr, with the prefix every command
+    uses (``contactres: note: ``): one line if it fits 100 columns, else broken after its "; "
+    clauses (the what, then the advice) and, where a clause is still wider, between its words;
+    the continuations indented."""
+    import textwrap
+
+    line = f"contactres: {kind}: {message}"
     if len(line) <= 100:
         return line
-    return line.replace("; ", ";\n  ")
+    clauses = line.replace("; ", ";\n").splitlines()
+    wrapped = [
+        textwrap.fill(c, 100, initial_indent="" if i == 0 else "  ", subsequent_indent="  ")
+        for i, c in enumerate(clauses)
+    ]
+    return "\n".join(wrapped)

@@ -98,4 +98,4 @@ def rum_invert(
     if done.coating is not None:
         click.echo(film_summary(result, done.coating))
         for message in done.coating.get("notes", ()):  # Hertz's a/R limit: one line each
-            click.echo(f"warning: {message}", err=True)
+            click.echo(f"contactres: warning: {message}", err=True)
