@@ -25,8 +25,11 @@ def results(example_analysis):
 
 
 @pytest.fixture(scope="module")
-def page(results):
-    return html_report(results)
+def page(example_set):
+    """The page of ``results``: the one ``qcm analyze --report html --bootstrap 0`` wrote for
+    the example (tests/report/conftest.py), which is html_report of this same analysis, byte for
+    byte; rendering it again here would cost ~2.5 s of CPU (its four PNG figures)."""
+    return (example_set / "report.html").read_text(encoding="utf-8")
 
 
 class _Strict(HTMLParser):

@@ -7,12 +7,13 @@
   one the command prints.
 * Every other ```python block of the README, in document order in one namespace (the blocks
   build on each other: ``cr``, ``np``, ``cu``), except :data:`SKIPPED`.
-* ``scripts/make_readme_figures.py`` runs into a temporary path and prints the recovered moduli
-  the README quotes.
+* ``scripts/make_readme_figures.py`` runs (in this process, as ``python`` runs a script) into a
+  temporary path and prints the recovered moduli the README quotes.
 """
 
 import os
 import re
+import runpy
 import subprocess
 import sys
 from pathlib import Path
@@ -113,23 +114,25 @@ def test_other_python_blocks_run(agg):
         _exec(code, namespace, f"README.md python block {i + 1} (outside the walkthrough)")
 
 
-def test_figure_script_runs_and_matches_the_readme(tmp_path):
+def test_figure_script_runs_and_matches_the_readme(tmp_path, monkeypatch, capsys):
+    # Run as `python scripts/make_readme_figures.py OUT` runs it (argv, __main__), in this
+    # process: a second interpreter's start-up and imports cost more than the script. Its
+    # rcParams (font size) are restored after it, so no later figure here inherits them.
+    import matplotlib
+
     out = tmp_path / "fig.png"
     script = ROOT / "scripts" / "make_readme_figures.py"
-    r = subprocess.run(
-        [sys.executable, str(script), str(out)],
-        cwd=tmp_path,
-        capture_output=True,
-        text=True,
-        timeout=60,
-    )
-    assert r.returncode == 0, r.stderr
+    monkeypatch.chdir(tmp_path)
+    monkeypatch.setattr(sys, "argv", [str(script), str(out)])
+    with matplotlib.rc_context():
+        runpy.run_path(str(script), run_name="__main__")
+    stdout = capsys.readouterr().out
     assert out.is_file() and out.stat().st_size > 20_000
     assert "](docs/figures/afm_walkthrough.png)" in _text()
     assert (ROOT / "docs" / "figures" / "afm_walkthrough.png").is_file()
     # "(001): M_sample 134.0 GPa (truth 134.0 GPa)" -> the README says "134.0 GPa (001)".
-    found = re.findall(r"^(\(\d{3}\)): M_sample ([\d.]+) GPa", r.stdout, re.M)
-    assert len(found) == 3, r.stdout
+    found = re.findall(r"^(\(\d{3}\)): M_sample ([\d.]+) GPa", stdout, re.M)
+    assert len(found) == 3, stdout
     text = _squash(_text())
     for label, value in found:
         assert f"{value} GPa {label}" in text, (label, value)
