@@ -8,7 +8,7 @@ import pandas as pd
 import pytest
 
 from contactres.analysis import FIGURE_POINTS, PAGE_POINTS, figure_examples
-from contactres.analysis._examples import drawn_in_figure
+from contactres.analysis._examples import FIGURE_COLUMNS, drawn_in_figure
 from contactres.errors import ContactresInputError
 from contactres.report.figures import figure_sweeps
 
@@ -73,6 +73,9 @@ def test_figure_examples_are_the_loads_picked_by_hand():
         pd.testing.assert_frame_equal(sel, want)
     drawn = {"a2", "a3", "a5", "a6", "n1", "n2", "w1"}
     np.testing.assert_array_equal(drawn_in_figure(sw), sw["sweep"].isin(drawn).to_numpy())
+    # The analysis passes FIGURE_COLUMNS alone: the same choice (a column the choice reads
+    # and the list lacks would raise KeyError here).
+    np.testing.assert_array_equal(drawn_in_figure(sw[FIGURE_COLUMNS]), drawn_in_figure(sw))
     assert not drawn_in_figure(sw.assign(used=False)).any()
     assert figure_examples(sw.assign(used=False)) == []
 

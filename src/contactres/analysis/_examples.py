@@ -21,12 +21,15 @@ from __future__ import annotations
 import numpy as np
 import pandas as pd
 
-__all__ = ["drawn_in_figure", "figure_examples"]
+__all__ = ["FIGURE_COLUMNS", "drawn_in_figure", "figure_examples"]
 
 # The columns that name a load of one experiment: a load's sweeps are its ramps.
 _LOAD = ["experiment", "configuration", "normal_force_N"]
 # The models of the unusual shapes (paper 2, Fig. 4's second load of a medium).
 _UNUSUAL = ["plateau", "savkoor"]
+#: What :func:`drawn_in_figure` reads of the sweeps: a caller may pass these columns alone
+#: (a test checks the choice on them equals the choice on the whole table).
+FIGURE_COLUMNS = ["sweep", "medium", "used", "model", *_LOAD]
 
 
 def _picks(sw: pd.DataFrame, medium: str) -> list[pd.DataFrame]:

@@ -28,7 +28,7 @@ from ._blocks import block_codes, choose_blocks
 from ._classify import apply_models, fit_sweeps
 from ._curves import CURVE_GRIDS, FIGURE_POINTS, fitted_curves, jkr_curves, sweep_points
 from ._drift import LOAD_OF_EXPERIMENT, drifting_sweeps, remove_linear_drift
-from ._examples import drawn_in_figure
+from ._examples import FIGURE_COLUMNS, drawn_in_figure
 from ._flags import Flag
 from ._friction import block_friction, loop_friction, mu_out_of_range, slope_friction
 from ._jkr import fit_group
@@ -50,10 +50,6 @@ INFO_COLUMNS = SWEEP_TABLE.where(level="sweep") + SWEEP_TABLE.where(level="const
 #: sweeps: only these go to the worker processes.
 JKR_POINT_COLUMNS = ["experiment", "normal_force_N", "kappa_N_per_m", "sphere_radius_m", "poisson"]
 JKR_SWEEP_COLUMNS = ["sweep", "normal_force_N", "kappa_N_per_m"]
-#: What :func:`~contactres.analysis._examples.drawn_in_figure` reads of the sweeps.
-FIGURE_COLUMNS = [
-    "sweep", "medium", "used", "model", "experiment", "configuration", "normal_force_N"
-]  # fmt: skip
 
 
 def _sensitivity(info: pd.DataFrame, zq: float) -> np.ndarray:
@@ -84,11 +80,13 @@ def _with_info(info: pd.DataFrame, sw: pd.DataFrame) -> pd.DataFrame:
     ``sw``: a right merge on ``sweep``, one to one.
 
     Both list the sweeps in their order of first appearance in the table, so they are side by
-    side, row for row: that is checked, and the frames are put together as they are; the merge
-    (hashing every name again, ~0.35 s at 10^5 sweeps) only where they are not."""
-    if sw["sweep"].equals(info["sweep"]):
-        return pd.concat([info, sw.drop(columns="sweep")], axis=1)
-    return info.merge(sw, on="sweep", how="right", validate="one_to_one")
+    side, row for row, and the frames are put together as they are (a merge hashed every name
+    again, ~0.35 s at 10^5 sweeps). That order is checked, and a mismatch is an internal
+    error, not realigned: the steps' positional arrays (``used``, the block codes, ...) are in
+    ``info``'s order, and a merge would move ``sw``'s rows without them."""
+    if not sw["sweep"].equals(info["sweep"]):
+        raise RuntimeError("the per-sweep fits are not in the order of the sweep table")
+    return pd.concat([info, sw.drop(columns="sweep")], axis=1)
 
 
 def _savkoor_traction(sw: pd.DataFrame, member: np.ndarray, group: dict) -> None:

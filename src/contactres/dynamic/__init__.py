@@ -52,7 +52,7 @@ _EXPORTS = MappingProxyType(
         "normalised_wavenumber": "._normal_stiffness",
         "shear_wavenumber_ratio": "._normal_stiffness",
         "wave_modulus": "._normal_stiffness",
-        "KSA_MAX": "._tangential_galerkin",
+        "KSA_MAX": "._tangential_table",
         "TangentialTable": "._tangential_table",
         "prepare_tangential": "._tangential_table",
         "tangential_contact_stiffness": "._tangential_stiffness",
@@ -101,9 +101,6 @@ if TYPE_CHECKING:
         MAX_STIFFNESS_CONTRAST as MAX_STIFFNESS_CONTRAST,
         prepare as prepare,
     )
-    from ._tangential_galerkin import (
-        KSA_MAX as KSA_MAX,
-    )
     from ._tangential_static import (
         tangential_stiffness_static as tangential_stiffness_static,
     )
@@ -113,6 +110,7 @@ if TYPE_CHECKING:
         two_body_contact_stiffness as two_body_contact_stiffness,
     )
     from ._tangential_table import (
+        KSA_MAX as KSA_MAX,
         TangentialTable as TangentialTable,
         prepare_tangential as prepare_tangential,
     )

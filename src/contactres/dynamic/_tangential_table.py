@@ -285,9 +285,7 @@ def segment_from_series(t1: float, kappa: np.ndarray, coeffs: np.ndarray) -> np.
     return (at * w[:, None]) @ coeffs.reshape(coeffs.shape[0], -1)
 
 
-# 3x3 solves of the in-plane kernel, its Chebyshev fit: one BLAS thread (contactres._threads).
-@one_blas_thread()
-def _checked_ksa_max(ksa_max) -> float:
+def _checked_ksa_max(ksa_max: float) -> float:
     """``ksa_max`` of :func:`prepare_tangential` as a float in [0, :data:`KSA_MAX`], or a
     one-line :class:`~contactres.errors.ContactresInputError`: a NaN or a value beyond the
     checked range used to pass silently (a NaN then compared false everywhere, and a table for
@@ -307,6 +305,8 @@ def _checked_ksa_max(ksa_max) -> float:
     return value
 
 
+# 3x3 solves of the in-plane kernel, its Chebyshev fit: one BLAS thread (contactres._threads).
+@one_blas_thread()
 def prepare_tangential(
     m: Material,
     loss: float = 0.0,
