@@ -156,8 +156,9 @@ def _hankel_reference(ksa, weight, lamb=_lamb):
     2π/ksa, by composite Gauss-Legendre on panels of 1/4 (a fixed rule: vectorised, where quad
     took ~2.6e5 calls of one point each), checked against panels of 1/2 to 1e-14 (measured: the
     two agree to 2e-17 and differ from quad at epsabs 1e-13 by <= 1.4e-12).
-    ``lamb`` is g − g∞ of κ (default :func:`_lamb`; the same function remembering its values
-    when called for several weights)."""
+    ``lamb`` is g − g∞ of κ up to κ = 4 (default :func:`_lamb`; the same function remembering
+    its values when called for several weights); beyond 4 the nodes of :func:`_far_nodes` hold
+    :func:`_lamb`'s values whatever ``lamb`` is, so ``lamb`` must be :func:`_lamb` itself."""
     kr = 1.0876638735805375  # Rayleigh slowness for ν = 1/4: root of (2 − x)² = 4√(1 − x/3)√(1 − x)
     pts = [1 / math.sqrt(C11), 1.0, kr]
     total = 0j
