@@ -260,7 +260,8 @@ def test_plausible_extremes_print_finite_numbers():
 
 def test_a_contact_wider_than_hertz_allows_is_flagged_not_printed():
     """R = 1 nm on the softest solid: a/R ≈ 2 (issue 30's a/R = 24 case in small): the row
-    keeps R and F, its values are empty, and one stderr line says which inputs to check."""
+    keeps R and F, its values are empty, and one stderr warning (wrapped at 100 columns) says
+    which inputs to check."""
     r = run("contact", *SOFTEST, "--radius", "1e-9", "--force", "1e-12", "--format", "csv")
     assert r.exit_code == 0, r.output
     t = pd.read_csv(io.StringIO(r.stdout))
@@ -268,7 +269,8 @@ def test_a_contact_wider_than_hertz_allows_is_flagged_not_printed():
         t["flags"].iat[0].endswith("beyond Hertz, no value") and t["contact_radius_m"].isna().all()
     )
     assert "check the sphere radius (m) and the force (N)" in r.stderr
-    assert max(len(line) for line in r.stderr.splitlines()) <= 120  # issue 30: was 205
+    assert r.stderr.startswith("contactres: warning: ")
+    assert max(len(line) for line in r.stderr.splitlines()) <= 100  # issue 30: was 205
 
 
 def test_help_states_units_and_shows_defaults_one_way():

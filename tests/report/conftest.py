@@ -41,7 +41,9 @@ def _locked(path: Path):
 def example_set(tmp_path_factory) -> Path:
     """The results folder ``qcm analyze --report html --save-as xlsx,netcdf`` writes for the
     bundled example (no bootstrap, no figures; the workbook and NetCDF file where openpyxl and
-    xarray are installed): analysed once for every test that reads it.
+    xarray are installed): analysed once for every test that reads it. Read-only: every
+    worker's tests share the one folder, so a test that writes copies it first (as
+    ``test_the_cli_writes_report_html_into_the_set`` does).
 
     Under pytest-xdist (``make test``) the test files that read it may run on different
     workers; the first worker writes it into the run's common temporary folder and the others

@@ -84,7 +84,12 @@ def _with_info(info: pd.DataFrame, sw: pd.DataFrame) -> pd.DataFrame:
     again, ~0.35 s at 10^5 sweeps). That order is checked, and a mismatch is an internal
     error, not realigned: the steps' positional arrays (``used``, the block codes, ...) are in
     ``info``'s order, and a merge would move ``sw``'s rows without them."""
-    if not sw["sweep"].equals(info["sweep"]):
+    # By value: a SweepTable built by hand may hold its ids as objects or categories, the fits
+    # as str (Series.equals would compare the dtypes too).
+    same = len(sw) == len(info) and np.array_equal(
+        sw["sweep"].to_numpy(object), info["sweep"].to_numpy(object)
+    )
+    if not same:
         raise RuntimeError("the per-sweep fits are not in the order of the sweep table")
     return pd.concat([info, sw.drop(columns="sweep")], axis=1)
 

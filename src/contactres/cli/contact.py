@@ -160,7 +160,14 @@ def _note(message: str, kind: str = "note") -> str:
         return line
     clauses = line.replace("; ", ";\n").splitlines()
     wrapped = [
-        textwrap.fill(c, 100, initial_indent="" if i == 0 else "  ", subsequent_indent="  ")
+        textwrap.fill(
+            c,
+            100,
+            initial_indent="" if i == 0 else "  ",
+            subsequent_indent="  ",
+            break_on_hyphens=False,  # fused-silica, soda-lime-glass, paths stay whole
+            break_long_words=False,
+        )
         for i, c in enumerate(clauses)
     ]
     return "\n".join(wrapped)
