@@ -406,3 +406,33 @@ def test_near_field_of_a_rtol_1e_4_table_against_the_round_off_margins():
     for got in (cw, fw):
         np.testing.assert_allclose(got, rw, rtol=0, atol=1e-8 * scale)
     assert np.max(np.abs(c1 - f1)) > 0  # the margins differ, so do the sums (in the last bits)
+
+
+@pytest.mark.parametrize(("margin", "bound"), [(10, 3e-7), (20, 5e-13)])
+@pytest.mark.parametrize("zmax", [14.0, 20.0, 40.0])
+def test_even_sum_drops_a_coefficient_at_the_start_within_the_largest_jn_beyond(
+    margin, bound, zmax
+):
+    """One coefficient c_K = 1 at the order 2K = top where the continued fraction starts (top
+    = 2 ceil((1.3 max|z| + margin)/2), the first order bessel_even_sum leaves out): the sum
+    against scipy's jv misses by at most max_{n >= top} |J_n(z)| (per |c_K| = Σ|c|), which is
+    below 3e-7 at the coarse margin 10 and 5e-13 at margin 20 (|z| up to 40, |Im z| <= 3).
+    The 8 smooth coefficients of the test above never reach that order."""
+    rng = np.random.default_rng(29)
+    z = np.concatenate(
+        [
+            rng.uniform(1e-3, zmax, 40) + 0j,
+            np.linspace(zmax / 2, zmax, 9) + 0j,
+            rng.uniform(1e-3, zmax - 3, 20) + 1j * rng.uniform(0, 3, 20),
+        ]
+    )
+    top = 2 * math.ceil((1.3 * np.max(np.abs(z)) + margin) / 2)
+    c = np.zeros(top // 2 + 1)
+    c[top // 2] = 1.0
+    ref = special.jv(top, z)
+    beyond = np.max(np.abs(special.jv(np.arange(top, top + 60)[:, None], z)), axis=0)
+    assert np.max(beyond) <= bound
+    # The dropping is exercised: the left-out term is far above round-off at the largest |z|.
+    assert np.max(np.abs(ref)) > 1e-6 * bound
+    err = np.abs(bessel_even_sum(z, c, margin=margin) - ref)
+    assert np.all(err <= 1.01 * beyond + 1e-15)

@@ -4,7 +4,9 @@ The physics and the numerics are those of :mod:`contactres.dynamic._normal_stiff
 Eqs. 5-29: the displacement models, the exact rigid punch, the kernel table). These functions
 add the promise of accuracy: inside the range where the resolutions were measured to meet
 ``rtol`` (:func:`~contactres.dynamic._convergence.in_validated_range`) they are that module's
-evaluation, unchanged; outside it each value is checked at run time against a refined
+evaluation, unchanged but near a pole of a model's DCSF (``|DCSF|`` >
+:data:`~contactres.dynamic._convergence.POLE_DCSF`); there and outside the range each value is
+checked at run time against a refined
 evaluation and refined where it misses rtol (:mod:`contactres.dynamic._convergence`), and a
 value that still misses it comes with an :class:`~contactres.errors.AccuracyWarning` (issue 27).
 A value with negative damping (Im DCSF < 0 beyond rtol: no passive contact has it; R0, SA, WA and
@@ -23,7 +25,13 @@ from ..errors import ContactresInputError, ContactresWarning
 from ..halfspace import shear_reference
 from ..materials import Material, require_material
 from ..validation import nonnegative
-from ._convergence import checked_values, in_validated_range, warn_unconverged
+from ._convergence import (
+    POLE_DCSF,
+    CheckedDCSF,
+    checked_values,
+    in_validated_range,
+    warn_unconverged,
+)
 from ._models import ALL_MODELS
 from ._normal_stiffness import (
     CHUNK,
@@ -74,10 +82,17 @@ def dcsf_models(
         raise ContactresInputError(f"interpolate must be None, True or False, got {interpolate!r}")
     ksa = shear_ka(m, ka, wavenumber)
     table = table_for(m, ksa, loss, rtol, prepared)
-    # Inside the validated range the resolution meets rtol (the convergence tests); outside it
-    # nothing promises that, so each value is checked against a refined one (issue 27).
+    # Inside the validated range the resolution meets rtol (measured: _convergence's
+    # VALIDATED_* constants) but near a pole of a model's DCSF, which is checked as below;
+    # outside it nothing promises that, so each value is checked against a refined one
+    # (issue 27).
     if in_validated_range(m, ksa):
         values = evaluate_models(table, ksa, names, rtol, chunk=chunk, interpolate=interpolate)
+        poles = _check_near_poles(m, table, ksa, values, loss, rtol, chunk, interpolate)
+        if poles is not None:
+            out, near = poles
+            where = np.broadcast_to(ka, ksa.shape)[near]
+            warn_unconverged(m, out, where, wavenumber, f"|DCSF| > {POLE_DCSF:g}: near a pole")
     else:
         out = checked_values(m, table, ksa, names, loss, rtol, chunk=chunk, interpolate=interpolate)
         warn_unconverged(m, out, np.broadcast_to(ka, ksa.shape), wavenumber)
@@ -85,6 +100,37 @@ def dcsf_models(
     if warn_negative:
         _warn_negative_damping(values, np.broadcast_to(ka, ksa.shape), wavenumber, rtol)
     return values
+
+
+def _check_near_poles(
+    m: Material,
+    table: KernelTable,
+    ksa: np.ndarray,
+    values: dict,
+    loss: float,
+    rtol: float,
+    chunk: int,
+    interpolate: bool | None,
+) -> tuple[CheckedDCSF, np.ndarray] | None:
+    """Replace in ``values`` (the level-0 DCSF of each model at the k_s a values ``ksa``) those
+    beyond :data:`~contactres.dynamic._convergence.POLE_DCSF` in modulus by their checked
+    values (:func:`checked_values`); return the check and the mask of its k a (None: no value
+    there).
+
+    Near a pole (N -> 0: SA, R1) the relative error of the DCSF is that of N, the absolute error
+    of N over ``|N|``: it grows like ``|DCSF|`` and no resolution meets rtol at every k a."""
+    big = {k: np.abs(v) > POLE_DCSF for k, v in values.items()}
+    near = np.logical_or.reduce(list(big.values()))
+    if not np.any(near):
+        return None
+    names = [k for k, b in big.items() if np.any(b)]
+    out = checked_values(
+        m, table, ksa[near], names, loss, rtol, chunk=chunk, interpolate=interpolate
+    )
+    for k in names:
+        values[k] = np.array(values[k])
+        values[k][near] = out.values[k]
+    return out, near
 
 
 def _warn_negative_damping(values: dict, ka: np.ndarray, wavenumber: str, rtol: float) -> None:
@@ -147,9 +193,12 @@ def dcsf(
         "longitudinal": k = ω√(ρ/C33) (the paper's k_l a, default) or "shear": k = ω√(ρ/C44).
     rtol : float
         Target relative accuracy (default 1e-6; met for k_l a <= 2, A in [0.2, 10] and
-        ν <= 0.45, see the convergence tests). rtol >= 1e-4 selects a coarser, faster
-        resolution. Outside that range (k_l a > 2, or a solid that is not cubic or isotropic in
-        its crystal frame or has A or ν beyond it) each value is checked at run time against a
+        ν <= 0.45 but not A < 0.25 with ν > 0.44, see the convergence tests and
+        :func:`~contactres.dynamic._table.resolution_for`). rtol >= 1e-4 selects a coarser,
+        faster resolution. Outside that range (k_l a > 2, or a solid that is not cubic or
+        isotropic in its crystal frame or has A or ν beyond it), and inside it where a model's
+        ``|DCSF|`` exceeds 500 (near a pole of SA or R1, where the relative error grows like
+        ``|DCSF|``), each value is checked at run time against a
         refined evaluation and refined where it misses rtol (up to two doublings of every
         resolution, :func:`checked_dcsf_models`; 5-20 times the cost); a value that still misses
         it is returned with an :class:`~contactres.errors.AccuracyWarning` naming the material,

@@ -38,7 +38,7 @@ from ._farfield import (
     tail_sine,
 )
 from ._fartail import FarTail, tail_coefficients
-from ._table import KernelTable
+from ._table import COARSE_RTOL, KernelTable
 from ._weights import (
     bessel_even,
     bessel_even_sum,
@@ -99,25 +99,30 @@ def _static_values(table: KernelTable) -> dict:
 # truncation near 1e-20, far below round-off. Measured against scipy's jv and the Fourier
 # coefficients of the line weight (tests/dynamic/test_near_harmonics.py, arguments complex up to
 # ~30 and real up to 60): the same error as with the defaults, ~5e-16 and ~5e-15 of Σ|c| (15 and
-# 8 orders reach 3e-12 and 2e-13 at real arguments ~20); the DCSF of every model kept every bit
-# on 16 solids at rtol 1e-6 and 1e-4 (k_l a <= 3, Q⁻¹ = 0 and 0.02; one 300-point interpolated
-# curve moved by 4e-16). 18 % fewer steps of these passes, ~2-3 % of the CPU of the five-model
-# curve at rtol 1e-4, ~1.5 % of the seven-model one at 1e-6 (issue 31).
+# 8 orders reach 3e-12 and 2e-13 at real arguments ~20); coefficients of orders at or above the
+# start are dropped, each costing at most 3.7e-13 |c_m| (bessel_even_sum). Against the defaults
+# the DCSF of every model kept every bit on 16 solids at rtol 1e-6 (k_l a <= 3, Q⁻¹ = 0 and
+# 0.02; one 300-point interpolated curve moved by 4e-16); so it did at rtol 1e-4 until the coarse
+# margins below took over there. 18 % fewer steps of these passes, ~2-3 % of the CPU of the
+# five-model curve at rtol 1e-4, ~1.5 % of the seven-model one at 1e-6 (issue 31).
 _EVEN_SUM_MARGIN = 20
 _WA_SUM_MARGIN = 10
-# A table prepared for rtol >= 1e-4 (resolution_for's coarse grid): the sums to ~1e-9 of Σ|c|,
-# not to round-off: 10 and 5 orders (measured against the same references, arguments up to 21
-# and 60: <= 5e-10 and <= 9e-10 of Σ|c|, 1e-5 of that rtol; tests/dynamic/test_near_harmonics.py).
-# 30 % fewer steps of these passes, whose cost is their number of steps (issue 31, lead 1).
+# A table prepared for rtol >= COARSE_RTOL (resolution_for's coarse grid): the sums not to
+# round-off but to ~1e-7 of the coefficients: 10 and 5 orders (measured against the same
+# references, arguments up to 21 and 60, smooth coefficients: <= 5e-10 and <= 9e-10 of Σ|c|; a
+# single coefficient at the first dropped order costs up to max_{n >= start} |J_n(z)| ~ 2.3e-7
+# of itself, bessel_even_sum; both well below that rtol; tests/dynamic/test_near_harmonics.py).
+# The DCSF at rtol 1e-4 moved by <= 1.2e-10. 30 % fewer steps of these passes, whose cost is
+# their number of steps (issue 31, lead 1).
 _COARSE_MARGINS = (10, 5)
-_COARSE_RTOL = 1e-4
 
 
 def _near_margins(table: KernelTable) -> tuple[int, int]:
     """The margins (even sum, WA sum) of the near field's continued fractions for ``table``:
-    :data:`_COARSE_MARGINS` if it was prepared for rtol >= 1e-4, the round-off ones otherwise
+    :data:`_COARSE_MARGINS` if it was prepared for rtol >= :data:`COARSE_RTOL` (the coarse
+    grid of :func:`~contactres.dynamic._table.resolution_for`), the round-off ones otherwise
     (also for a table of an explicit Resolution, ``rtol`` None)."""
-    if table.rtol is not None and table.rtol >= _COARSE_RTOL:
+    if table.rtol is not None and table.rtol >= COARSE_RTOL:
         return _COARSE_MARGINS
     return _EVEN_SUM_MARGIN, _WA_SUM_MARGIN
 

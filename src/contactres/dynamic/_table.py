@@ -43,6 +43,7 @@ from ..materials import Material, require_material, voigt_to_tensor
 from ..numerics import gauss_legendre
 
 __all__ = [
+    "COARSE_RTOL",
     "MAX_ISOTROPIC_POISSON",
     "MAX_STIFFNESS_CONTRAST",
     "KernelTable",
@@ -83,6 +84,9 @@ _N_THETA_MAX = 1024
 MAX_STIFFNESS_CONTRAST = 7500.0
 #: The isotropic Poisson ratio at that contrast: (1 + ν)/(1 − 2ν) = 7499.5 at ν = 0.4999.
 MAX_ISOTROPIC_POISSON = 0.4999
+#: The rtol from which :func:`resolution_for` takes its coarse grid (and the near field its
+#: coarse continued-fraction margins, :func:`~contactres.dynamic._quadrature.near_theta_integrals`).
+COARSE_RTOL = 1e-4
 
 
 # ----------------------------------------------------------------------------------- resolution
@@ -118,7 +122,8 @@ class Resolution:
     resolution doubled (tests and benchmarks/bench_dcsf.py, k_l a <= 2, A = 0.25-10, ν =
     0.25-0.42, Q⁻¹ = 0 and 0.02) the largest relative deviation of the seven models is 4e-8
     (SA near its zero at A = 0.25; the far-field end s_far), most are 1e-9-1e-11; at A = 0.2,
-    ν = 0.45 TP reaches 9e-7 (no margin left; found by review). Measured one
+    ν = 0.45 TP reaches 9e-7 (no margin left; found by review: that corner is left out of the
+    validated range, and :func:`resolution_for` states the whole range). Measured one
     at a time, n_contour = 36, n_segment = 24, s_panel = 4 or s_ratio = 1.5 move it to 1e-7-4e-7;
     n_fit = 8, 64 θ nodes, wide panels from s = 16 or with 2 nodes per unit of s do not move it
     beyond 1e-8.
@@ -159,12 +164,23 @@ class Resolution:
 def resolution_for(rtol: float) -> Resolution:
     """The :class:`Resolution` that reaches relative accuracy ``rtol`` of the DCSF.
 
-    Measured (tests and benchmarks/bench_dcsf.py, k_l a <= 2, A in [0.2, 10], ν up to 0.45,
-    Q⁻¹ = 0 and 0.02): the default (rtol in (1e-8, 1e-4)) moves by < 1e-7 when every resolution
-    is doubled (at most 7e-8, ~1e-9 typically), except at A = 0.2, ν = 0.45, where TP moves by
-    up to 9e-7 (the far-field end s_far; so before this grid too); rtol >= 1e-4 takes a coarser
-    grid (< 1e-5, at most 7e-6, but TP 2.3e-4 at A = 0.2, ν = 0.45); rtol <= 1e-8 doubles
-    everything.
+    rtol in (1e-8, COARSE_RTOL) takes the default grid, rtol >= :data:`COARSE_RTOL` a coarser
+    one, rtol <= 1e-8 doubles everything. Measured against every resolution doubled, models R0,
+    R1, SA, WA, TP, WA2D, 991 k_l a in [0.02, 2], Q⁻¹ = 0-0.05, 45 cubic solids over the
+    validated range's corners and edges (A = 0.2-10, ν = −0.3-0.45, less A < 0.25 with
+    ν > 0.44; :data:`~contactres.dynamic._convergence.VALIDATED_CORNER`):
+
+    * default grid: at most 4.7e-8 (7.9e-8 at Q⁻¹ = 0.05) where ``|DCSF|`` <= 100, 7.1e-8
+      (1.4e-7) up to ``|DCSF|`` = 500; the exact model ~5e-8 (README);
+    * coarse grid: at most 1.03e-5 (1.9e-5 at Q⁻¹ = 0.05) where ``|DCSF|`` <= 100, 2.4e-5
+      (2.6e-5) up to 500;
+    * near a pole of SA or R1 (N -> 0) the relative error grows like ``|DCSF|``: ~1.5e-10
+      ``|DCSF|`` on the default grid, ~5e-8 ``|DCSF|`` on the coarse one (7.6e-10 and 7e-8 at
+      Q⁻¹ = 0.05; 7.9e-7 and 1.8e-4 at ``|SA|`` = 6100, A = 0.3, ν = 0, Q⁻¹ = 0.01). The public
+      functions check values beyond ``|DCSF|`` =
+      :data:`~contactres.dynamic._convergence.POLE_DCSF` at run time;
+    * in the corner left out, TP has a narrow feature near k_l a = 1.95-2 that both grids miss
+      (up to 5.7e-6 and 1.5e-3 at A = 0.21, ν = 0.45, Q⁻¹ = 0.02); there every value is checked.
 
     Parameters
     ----------
@@ -174,7 +190,7 @@ def resolution_for(rtol: float) -> Resolution:
     r = float(rtol)
     if not (np.isfinite(r) and 1e-10 <= r < 1):
         raise ContactresInputError(f"rtol must lie in [1e-10, 1), got {rtol!r}")
-    if r >= 1e-4:
+    if r >= COARSE_RTOL:
         return Resolution(
             n_contour=32,
             n_segment=24,
