@@ -188,7 +188,8 @@ def _warnings(frame: pd.DataFrame, rtol: float) -> tuple[str, ...]:
             f"{len(bad)} row(s) miss rtol = {rtol:g} after every refinement (flag not-converged;"
             f" estimated relative error up to {bad['rel_error'].max():.2g}, k a "
             f"{_span(bad['ka'])}): outside the validated range of the kernels (k_l a <= 2, "
-            "A = 0.2-10, nu <= 0.45)"
+            "A = 0.2-10, nu <= 0.45, less A < 0.25 with nu > 0.44) or next to a pole of the "
+            "model (|DCSF| > 500)"
         )
     neg = frame[flags.str.contains("negative-damping")]
     if len(neg):
