@@ -163,6 +163,21 @@ def test_wa_harmonic_sum_against_the_fourier_coefficients_of_the_line_weight():
     np.testing.assert_allclose(wa_harmonic_sum(z, c), ref, rtol=0, atol=1e-13)
 
 
+def _wa_reference(z, zmax):
+    """Twelve arguments of ``z``, the line weight's Fourier coefficients at them (an FFT of
+    :func:`wa_line_weight` over θ, the reference of :func:`wa_harmonic_sum`) and seeded
+    decaying coefficients to sum them with."""
+    n_c = int(0.6 * zmax) + 10
+    w = np.concatenate([z[0, :6], z[3, :6]])
+    n_t = 1024
+    theta = np.pi * np.arange(n_t) / n_t
+    coef = np.fft.fft(wa_line_weight(np.multiply.outer(w, np.cos(theta))), axis=-1) / n_t
+    k = np.arange(n_c)
+    weights = (coef[:, k] * np.where(k % 2 == 0, 1.0, -1.0)).T
+    cw = np.random.default_rng(5).normal(size=(n_c, w.size)) * (0.9 ** k[:, None])
+    return w, weights, cw
+
+
 @pytest.mark.parametrize("zmax", [21.0, 60.0])
 def test_near_sums_with_the_margins_of_the_near_field(zmax):
     """The continued fractions started 20 and 10 orders above the arguments, as the near field
@@ -189,14 +204,7 @@ def test_near_sums_with_the_margins_of_the_near_field(zmax):
     ref = sum(special.jv(2 * m, real) * c[m].real for m in range(n_e))
     got = bessel_even_sum(real, c.real, margin=20)
     assert np.all(np.abs(got - ref) <= 1e-14 * np.sum(np.abs(c.real), axis=0))
-    n_c = int(0.6 * zmax) + 10
-    w = np.concatenate([z[0, :6], z[3, :6]])
-    n_t = 1024
-    theta = np.pi * np.arange(n_t) / n_t
-    coef = np.fft.fft(wa_line_weight(np.multiply.outer(w, np.cos(theta))), axis=-1) / n_t
-    k = np.arange(n_c)
-    weights = (coef[:, k] * np.where(k % 2 == 0, 1.0, -1.0)).T
-    cw = np.random.default_rng(5).normal(size=(n_c, w.size)) * (0.9 ** k[:, None])
+    w, weights, cw = _wa_reference(z, zmax)
     np.testing.assert_allclose(
         wa_harmonic_sum(w, cw, margin=10), np.sum(weights * cw, axis=0), rtol=0, atol=3e-14
     )
@@ -374,14 +382,7 @@ def test_near_sums_with_the_coarse_margins_of_rtol_1e_4(zmax):
     c = rng.normal(size=(8, 30)) + 1j * rng.normal(size=(8, 30))
     ref = sum(special.jv(2 * m, z) * c[m] for m in range(8))
     assert np.all(np.abs(bessel_even_sum(z, c, margin=even) - ref) <= 1e-8 * np.sum(abs(c), 0))
-    n_c = int(0.6 * zmax) + 10
-    w = np.concatenate([z[0, :6], z[3, :6]])
-    n_t = 1024
-    theta = np.pi * np.arange(n_t) / n_t
-    coef = np.fft.fft(wa_line_weight(np.multiply.outer(w, np.cos(theta))), axis=-1) / n_t
-    k = np.arange(n_c)
-    weights = (coef[:, k] * np.where(k % 2 == 0, 1.0, -1.0)).T
-    cw = np.random.default_rng(5).normal(size=(n_c, w.size)) * (0.9 ** k[:, None])
+    w, weights, cw = _wa_reference(z, zmax)
     got = wa_harmonic_sum(w, cw, margin=wa)
     assert np.all(np.abs(got - np.sum(weights * cw, axis=0)) <= 1e-8 * np.sum(np.abs(cw), 0))
 
