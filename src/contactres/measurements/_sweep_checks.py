@@ -135,12 +135,13 @@ def _varies(group: np.ndarray, cells: pd.Series, codes: np.ndarray | None = None
     group is kept (whichever a repeated index assigns last: any of them will do), and a group
     varies where some cell differs from it: O(n), no sort, no hashing of floats. ``codes``:
     the cells' codes as :func:`pandas.factorize` gives them, where known already."""
-    values = codes if codes is not None else cells.to_numpy()
-    if codes is None and values.dtype.kind == "f":
-        present = ~np.isnan(values)
-    else:  # text and the rest: equal cells share a code (-1: missing)
-        values = pd.factorize(cells)[0] if codes is None else codes
-        present = values >= 0
+    if codes is not None:  # equal cells share a code (-1: missing)
+        values = codes
+    else:
+        values = cells.to_numpy()
+        if values.dtype.kind != "f":  # text and the rest: factorised as the codes are
+            values = pd.factorize(cells)[0]
+    present = ~np.isnan(values) if values.dtype.kind == "f" else values >= 0
     present &= group >= 0
     g, v = group[present], values[present]
     if not g.size:
