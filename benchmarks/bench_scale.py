@@ -38,6 +38,12 @@ fit_sweeps stages' result is reduced to the summary printed beside them before t
 stage starts. Each stage's peak RSS is printed beside the RSS it starts from (``start``), so
 that what the stage itself adds shows.
 
+The large table's analyze is timed a second time in a process started with one BLAS thread
+(``OPENBLAS_NUM_THREADS=1``): its CPU time beside the first's shows that the analysis as
+shipped holds its BLAS work to one thread (issue 31, point 1: as shipped within 1.2x of one
+thread). The fit_sweeps stages run inside :func:`contactres._threads.one_blas_thread`, as
+analyze runs them.
+
 Targets (issue 31; 2-core reference machine, CPU time so that the load of other work on the
 machine does not count): the large table's analyze and its end-to-end run in <= 15 s CPU and
 <= 1 GB peak RSS; plateau sweeps no more than 2x the per-sweep cost of the Cattaneo-Mindlin
@@ -65,6 +71,7 @@ import numpy as np
 import pandas as pd
 from _verdict import exit_code, target
 
+from contactres._threads import one_blas_thread
 from contactres.analysis import AnalysisSettings, analyze
 from contactres.analysis._amplitude import pad_sweeps
 from contactres.analysis._classify import fit_sweeps
@@ -83,6 +90,8 @@ COPIES = 75  # x 1,344 sweeps = 100,800
 LONG_POINTS = 700
 TARGET_LARGE_CPU_S = 15.0
 TARGET_LARGE_GB = 1.0
+TARGET_THREAD_RATIO = 1.2  # as shipped / one BLAS thread, CPU (issue 31, point 1)
+ONE_THREAD = {"OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
 PLATEAU_RATIO = 2.0
 
 
@@ -192,7 +201,11 @@ def measure(path: str | Path) -> dict:
     for workers in (1, 2):
 
         def fit(workers=workers, loop_table=loop_table):
-            out["sw"], _ = fit_sweeps(pad_sweeps(sweeps.data), tables=loop_table, workers=workers)
+            # analyze runs its fits on one BLAS thread (its decorator): so do these stages.
+            with one_blas_thread():
+                out["sw"], _ = fit_sweeps(
+                    pad_sweeps(sweeps.data), tables=loop_table, workers=workers
+                )
 
         timed(out, f"fit_sweeps_{workers}", fit)
     # Only the summary printed of the fits is kept into the analyze stage (module docstring).
@@ -203,6 +216,18 @@ def measure(path: str | Path) -> dict:
         "models": sw["model"].value_counts().to_dict(),
     }
     del sw, fit, loop_table  # analyze builds its own loop tables
+    timed(
+        out, "analyze", lambda: analyze(sweeps, settings=AnalysisSettings(bootstrap=0, workers=2))
+    )
+    return out
+
+
+def measure_analyze(path: str | Path) -> dict:
+    """Time analyze alone on the validated table pickled at ``path`` (a fresh process; run
+    with one BLAS thread set in its environment, for the as-shipped / one-thread ratio)."""
+    with open(path, "rb") as f:
+        sweeps = pickle.load(f)
+    out: dict = {}
     timed(
         out, "analyze", lambda: analyze(sweeps, settings=AnalysisSettings(bootstrap=0, workers=2))
     )
@@ -242,6 +267,14 @@ def main() -> int:
                 text=True,
                 check=True,
             )
+            if name == "large":  # the same analyze with one BLAS thread set from the start
+                one = subprocess.run(
+                    [sys.executable, __file__, "measure-analyze", path],
+                    capture_output=True,
+                    text=True,
+                    check=True,
+                    env=os.environ | ONE_THREAD,
+                )
         runs[name] = json.loads(out.stdout.splitlines()[-1])
         r = runs[name]
         print(f"{name}: {r['sweeps']} sweeps, {r['points']} points (longest {r['longest']})")
@@ -271,6 +304,19 @@ def main() -> int:
         target(f"qcm analyze end to end, {n} sweeps (CPU)", e2e["cpu_s"], TARGET_LARGE_CPU_S),
         target(f"peak RSS of qcm analyze, {n} sweeps (GB as s)", e2e["gb"], TARGET_LARGE_GB),
     ]
+    one_thread = json.loads(one.stdout.splitlines()[-1])["analyze_cpu"]
+    print(
+        f"  analyze, {n} sweeps, CPU: as shipped {large['analyze_cpu']:.2f} s | one BLAS "
+        f"thread (OPENBLAS_NUM_THREADS=1) {one_thread:.2f} s"
+    )
+    results.append(
+        target(
+            f"analyze, {n} sweeps: as shipped / one BLAS thread",
+            large["analyze_cpu"] / one_thread,
+            TARGET_THREAD_RATIO,
+            unit="x",
+        )
+    )
     speedup = large["fit_sweeps_1_s"] / large["fit_sweeps_2_s"]
     cost = large["fit_sweeps_2_cpu"] / large["fit_sweeps_1_cpu"]
     print(
@@ -300,11 +346,14 @@ if __name__ == "__main__":
             build(args[0], Path(args[1]))
         elif stage == "measure" and len(args) == 1:
             print(json.dumps(measure(args[0])))
+        elif stage == "measure-analyze" and len(args) == 1:
+            print(json.dumps(measure_analyze(args[0])))
         elif stage == "end-to-end" and not args:
             print(json.dumps(end_to_end()))
         else:
             sys.exit(
-                "usage: bench_scale.py [build NAME PATH | measure PATH | end-to-end] "
+                "usage: bench_scale.py [build NAME PATH | measure PATH | measure-analyze PATH | "
+                "end-to-end] "
                 f"(got {' '.join(sys.argv[1:])!r})"
             )
         sys.exit(0)

@@ -28,7 +28,7 @@ from collections.abc import Iterator
 from contextlib import contextmanager
 from typing import Any
 
-__all__ = ["one_blas_thread"]
+__all__ = ["one_blas_thread", "one_blas_thread_for_process"]
 
 
 class _OpenContexts:
@@ -58,6 +58,9 @@ def _set_threads(lib: Any, n: int) -> None:
 
 def _blas_libraries() -> list[Any]:
     """threadpoolctl's controllers of the BLAS libraries loaded in the process."""
+    # numpy loads its BLAS when imported: a context opened before the first numpy import (a
+    # job whose module imports numpy inside its run) would otherwise find no library to limit.
+    import numpy  # noqa: F401
     import threadpoolctl
 
     cached = getattr(threadpoolctl, "get_cached_controller", None)  # threadpoolctl >= 3.8
@@ -105,3 +108,24 @@ def one_blas_thread() -> Iterator[None]:
                 for lib, n in _OPEN.restore:
                     _set_threads(lib, n)
                 _OPEN.restore = []
+
+
+def one_blas_thread_for_process() -> None:
+    """Set one BLAS thread for the rest of this process's life (a worker process's initializer).
+
+    The worker processes of an analysis (:class:`contactres.analysis._workers.WorkerPool`) run
+    nothing but the analysis's small-matrix work, and each one is a core's worth of parallel
+    work already: a second BLAS thread in each would only spin (module docstring). A process
+    started by forking inside a :func:`one_blas_thread` context inherits its one thread; one
+    started afresh (the ``spawn`` and ``forkserver`` methods) would not, hence this. Nothing is
+    restored: the process ends with its pool.
+
+    Examples
+    --------
+    >>> from concurrent.futures import ProcessPoolExecutor
+    >>> from contactres._threads import one_blas_thread_for_process
+    >>> pool = ProcessPoolExecutor(2, initializer=one_blas_thread_for_process)
+    >>> pool.shutdown()
+    """
+    for lib in _blas_libraries():
+        _set_threads(lib, 1)

@@ -60,6 +60,7 @@ from typing import Any
 
 import numpy as np
 
+from .._threads import one_blas_thread
 from ..errors import ContactresInputError, MissingExtraError
 from ..units import QUANTITIES
 from ..validation import positive
@@ -285,6 +286,7 @@ def _flag_bits(flag_names) -> dict:
     }
 
 
+@one_blas_thread()
 def invert_cr_map(
     frequency,
     q_factor,

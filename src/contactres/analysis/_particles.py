@@ -112,14 +112,10 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from .._threads import one_blas_thread
 from ..errors import ContactresInputError
 from ..fitting import LMOptions, levenberg_marquardt
-from ..resonators import (
-    Medium,
-    Particle,
-    coupled_resonance,
-    particle_compliance,
-)
+from ..resonators import Medium, Particle, coupled_resonance, particle_compliance
 from ..validation import positive
 from ._particle_flags import PARTICLE_FLAGS, dropped_named, noise_checked, outside_cut
 from ._particle_input import drop_inside_delta, noise_check, prepare
@@ -239,6 +235,7 @@ class ParticleFit(FitSummary):
     noise_series: float = np.nan
 
 
+@one_blas_thread()
 def fit_particles(
     fundamental,
     overtones,

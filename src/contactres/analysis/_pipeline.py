@@ -74,6 +74,7 @@ Its steps:
 
 from __future__ import annotations
 
+from .._threads import one_blas_thread
 from ._settings import AnalysisSettings
 
 # Read as True by mypy and pyright, False at run time: the names below only annotate, and
@@ -88,6 +89,7 @@ if TYPE_CHECKING:
 __all__ = ["AnalysisSettings", "analyze"]
 
 
+@one_blas_thread()
 def analyze(
     table: SweepTable,
     *,

@@ -20,6 +20,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from .._threads import one_blas_thread
 from ..errors import ContactresInputError, ContactresWarning
 from ..measurements import at_cell, where_rows
 from ..resonators import (
@@ -307,6 +308,7 @@ def _check_free_q(table, source: str) -> None:
             )
 
 
+@one_blas_thread()
 def invert_afm_table(
     table: pd.DataFrame | ArrayTable,
     source: str = "table",

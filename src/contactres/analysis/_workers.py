@@ -55,7 +55,13 @@ class WorkerPool:
             # workers > 1, and the first call of the analysis should not pay for it.
             from concurrent.futures import ProcessPoolExecutor
 
-            self._executor = ProcessPoolExecutor(self.processes)
+            from .._threads import one_blas_thread_for_process
+
+            # Each process sets its one BLAS thread (its initializer): it inherits the
+            # analysis's one thread only when forked inside its context.
+            self._executor = ProcessPoolExecutor(
+                self.processes, initializer=one_blas_thread_for_process
+            )
         return self._executor.map(fn, *iterables, chunksize=chunksize)
 
     def close(self, cancel: bool = False) -> None:

@@ -27,6 +27,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from .._threads import one_blas_thread
 from ..errors import ContactresInputError, ContactresWarning
 from ..measurements.schema import AFM_INVERT_RESULTS
 from .contract import JobResult, Progress, say
@@ -106,6 +107,7 @@ class Result(JobResult):
     warnings: tuple[str, ...] = ()
 
 
+@one_blas_thread()
 def run(inputs: str | os.PathLike, settings: Settings, progress: Progress | None = None) -> Result:
     """Invert every row of the CR-AFM table ``inputs`` (see the module docstring)."""
     from ..analysis import invert_afm_table

@@ -33,6 +33,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from .._threads import one_blas_thread
 from ..errors import ContactresInputError, MissingExtraError
 from .contract import JobResult, Progress, say
 
@@ -324,6 +325,7 @@ def _modulus_warnings(ds, method: str) -> list[str]:
     return [f"M is NaN on {n} pixels: {why}; check {_MODULUS_OPTIONS[method]} and --tip-modulus"]
 
 
+@one_blas_thread()
 def run(
     inputs: str | os.PathLike | MapInput, settings: Settings, progress: Progress | None = None
 ) -> Result:

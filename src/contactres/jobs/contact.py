@@ -42,6 +42,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from .._threads import one_blas_thread
 from ..errors import ContactresInputError
 from ..layered import LayeredMaterial, checked_thickness, thickness_text
 from ..materials import Material, require_material
@@ -125,6 +126,7 @@ class Result(JobResult):
     warnings: tuple[str, ...] = ()
 
 
+@one_blas_thread()
 def run(
     inputs: Material | LayeredMaterial, settings: Settings, progress: Progress | None = None
 ) -> Result:

@@ -33,6 +33,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from .._threads import one_blas_thread
 from ..errors import ContactresInputError
 from ..measurements.schema import DCSF_TABLE
 from ..validation import nonnegative
@@ -107,6 +108,7 @@ class Result(JobResult):
     warnings: tuple[str, ...] = ()
 
 
+@one_blas_thread()
 def run(inputs: Material, settings: Settings, progress: Progress | None = None) -> Result:
     """The DCSF of ``settings`` on the face ``inputs`` (see the module docstring)."""
     import pandas as pd

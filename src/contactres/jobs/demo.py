@@ -28,6 +28,7 @@ from importlib.resources import as_file, files
 from types import MappingProxyType
 from typing import TYPE_CHECKING
 
+from .._threads import one_blas_thread
 from ..errors import MissingExtraError
 from ..measurements.schema import CONTACT_TABLE, CRYSTAL_TABLE, SPECTRA_FITS, SPECTRA_SWEEPS
 from .contract import JobResult, Progress, say
@@ -182,6 +183,7 @@ def _polycrystal():
     return ds, omap, record, triangle
 
 
+@one_blas_thread()
 def run(inputs: None = None, settings: Settings | None = None, progress: Progress | None = None):
     """Every part of the demo (see the module docstring)."""
     from ..crystals import crystal_table

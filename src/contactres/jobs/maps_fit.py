@@ -14,6 +14,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
+from .._threads import one_blas_thread
 from ..errors import ContactresInputError
 from .contract import JobResult, Progress, say
 
@@ -78,6 +79,7 @@ class Result(JobResult):
     record: dict
 
 
+@one_blas_thread()
 def run(inputs: str | os.PathLike, settings: Settings, progress: Progress | None = None) -> Result:
     """Fit the constants to the measured map over the orientations ``inputs``."""
     import numpy as np

@@ -37,6 +37,7 @@ from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from .._threads import one_blas_thread
 from ..errors import ContactresInputError
 from .contract import JobResult, Progress, say
 
@@ -129,6 +130,7 @@ class Result(JobResult):
     warnings: tuple[str, ...] = ()
 
 
+@one_blas_thread()
 def run(
     inputs: str | os.PathLike,
     settings: Settings,

@@ -14,6 +14,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
+from .._threads import one_blas_thread
 from .contract import JobResult, Progress, say
 
 if TYPE_CHECKING:
@@ -67,6 +68,7 @@ class Result(JobResult):
     warnings: tuple[str, ...] = ()
 
 
+@one_blas_thread()
 def run(inputs: None, settings: Settings, progress: Progress | None = None) -> Result:
     """The synthetic map of ``settings`` (see the module docstring)."""
     from .maps import check_tip_load, synthetic_map

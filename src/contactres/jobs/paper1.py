@@ -17,6 +17,7 @@ from types import MappingProxyType
 import numpy as np
 import pandas as pd
 
+from .._threads import one_blas_thread
 from ..dynamic import contact_displacement, dcsf_models
 from ..materials import Material
 from ..measurements.schema import PAPER1_RANKING
@@ -168,6 +169,7 @@ STEMS = (
 )
 
 
+@one_blas_thread()
 def run(inputs: None = None, settings: Settings | None = None, progress: Progress | None = None):
     """The numbers of paper 1's figures; ``progress`` gets "[i/5] stem" before each."""
     s = settings or Settings()

@@ -16,6 +16,7 @@ from types import MappingProxyType
 import numpy as np
 import pandas as pd
 
+from .._threads import one_blas_thread
 from ..measurements.schema import PAPER2_LOOPS, PAPER2_SHIFTS, PAPER2_TURNING
 from ..normal import effective_modulus, jkr_contact_radius
 from ..resonators import QCM, shifts_from_loop
@@ -153,6 +154,7 @@ class Result(JobResult):
     example: Paper2Example
 
 
+@one_blas_thread()
 def run(inputs: None = None, settings: Settings | None = None, progress: Progress | None = None):
     """The numbers of paper 2's forward figures (see the module docstring)."""
     s = settings or Settings()

@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from .._threads import one_blas_thread
 from ..errors import ContactresInputError
 from ..measurements.schema import QCM_LOOP_TABLE
 from .contract import JobResult, Progress, say
@@ -117,6 +118,7 @@ def _build_loop(s: Settings, omega: float):
     return with_dashpot(loop, s.xi, omega) if s.xi > 0 else loop
 
 
+@one_blas_thread()
 def run(inputs: None, settings: Settings, progress: Progress | None = None) -> Result:
     """The shifts of ``settings`` (``inputs``: None; see the module docstring)."""
     import pandas as pd

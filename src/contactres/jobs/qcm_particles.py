@@ -25,6 +25,7 @@ from pathlib import Path
 from types import MappingProxyType
 from typing import TYPE_CHECKING
 
+from .._threads import one_blas_thread
 from ..errors import ContactresInputError
 from ..measurements.schema import PARTICLE_SHIFTS_CSV, PARTICLES_CSV
 from ..units import check_magnitude
@@ -245,6 +246,7 @@ class Result(JobResult):
         return pd.DataFrame(rows)
 
 
+@one_blas_thread()
 def run(inputs: str | os.PathLike, settings: Settings, progress: Progress | None = None) -> Result:
     """Fit the particles of the file ``inputs`` (see the module docstring)."""
     import numpy as np

@@ -14,6 +14,7 @@ from dataclasses import dataclass
 from types import MappingProxyType
 from typing import TYPE_CHECKING
 
+from .._threads import one_blas_thread
 from ..measurements.schema import SPECTRA_FITS, SPECTRA_SWEEPS
 from .contract import JobResult, Progress
 
@@ -75,6 +76,7 @@ class Result(JobResult):
     warnings: tuple[str, ...] = ()
 
 
+@one_blas_thread()
 def run(
     inputs: str | os.PathLike, settings: Settings | None = None, progress: Progress | None = None
 ) -> Result:

@@ -16,6 +16,7 @@ from pathlib import Path
 from types import MappingProxyType
 from typing import TYPE_CHECKING
 
+from .._threads import one_blas_thread
 from ..measurements.schema import STIFFNESS_CSV
 from .contract import JobResult, Progress, say
 
@@ -90,6 +91,7 @@ class Result(JobResult):
     warnings: tuple[str, ...] = ()
 
 
+@one_blas_thread()
 def run(inputs: str | os.PathLike, settings: Settings, progress: Progress | None = None) -> Result:
     """κ and ωξ of the export ``inputs`` (see the module docstring)."""
     from ..measurements.readers.exports import ExportWarning, read_export

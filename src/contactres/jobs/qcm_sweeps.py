@@ -29,6 +29,7 @@ from pathlib import Path
 from types import MappingProxyType
 from typing import TYPE_CHECKING
 
+from .._threads import one_blas_thread
 from ..measurements.schema import (
     COATING_CONVENTIONS,
     CONVENTIONS,
@@ -383,6 +384,7 @@ def coating_layers(settings: Settings):
     return layers
 
 
+@one_blas_thread()
 def run(
     inputs: str | os.PathLike | Reading, settings: Settings, progress: Progress | None = None
 ) -> Result:

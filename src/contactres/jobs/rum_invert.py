@@ -21,6 +21,7 @@ from pathlib import Path
 from types import MappingProxyType
 from typing import TYPE_CHECKING
 
+from .._threads import one_blas_thread
 from ..errors import ContactresInputError
 from ..measurements.schema import RUM_INVERT_RESULTS
 from ..validation import positive
@@ -75,6 +76,7 @@ class Result(JobResult):
     coating: dict | None = None
 
 
+@one_blas_thread()
 def run(
     inputs: str | os.PathLike, settings: Settings | None = None, progress: Progress | None = None
 ) -> Result:

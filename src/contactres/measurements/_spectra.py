@@ -55,6 +55,7 @@ import pandas as pd
 from scipy import sparse
 from scipy.optimize import least_squares
 
+from .._threads import one_blas_thread
 from ..errors import ContactresInputError
 
 __all__ = ["COLUMNS", "FLAGS", "MODELS", "fit_resonances", "resonance_curve"]
@@ -398,6 +399,7 @@ def _numeric(name: str, value, n: int) -> np.ndarray:
     return arr
 
 
+@one_blas_thread()
 def fit_resonances(
     spectrum,
     frequency_Hz,
