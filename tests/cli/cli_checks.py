@@ -1,9 +1,5 @@
 """Helpers shared by the command-line tests: run a command, check a one-line error."""
 
-from collections.abc import Iterator
-from contextlib import contextmanager
-
-import pytest
 from click.testing import CliRunner
 
 from contactres.cli import main
@@ -34,22 +30,6 @@ def figures_not_drawn(monkeypatch):
             f.write(STAND_IN)
 
     monkeypatch.setattr(_png, "print_png", stand_in)
-
-
-@contextmanager
-def one_unit_registry() -> Iterator[None]:
-    """Within the block, every value typed with a unit is converted with one pint registry,
-    built by :mod:`contactres.typed_units` itself on entry. The library builds a fresh registry
-    for each value (no module state), ~0.2 s of CPU each: most of a test of units, ~60 times in
-    the tests of units. Converting a value reads the registry and changes nothing in it, so
-    one registry converts as a fresh one does; the conversions are checked against SI values
-    written in the tests."""
-    from contactres import typed_units
-
-    registry = typed_units._registry()
-    with pytest.MonkeyPatch.context() as mp:
-        mp.setattr(typed_units, "_registry", lambda: registry)
-        yield
 
 
 def one_line_error(r, *words):

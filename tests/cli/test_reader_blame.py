@@ -16,7 +16,7 @@ from importlib import resources
 
 import numpy as np
 import pytest
-from cli_checks import one_line_error, one_unit_registry, run
+from cli_checks import one_line_error, run
 
 from contactres.errors import ContactresInputError
 from contactres.measurements import read_sweeps
@@ -25,13 +25,6 @@ from contactres.measurements._spectra_table import read_spectra
 from contactres.measurements._sweeps import SweepWarning
 from contactres.measurements.readers.exports import TIDY_READER
 from contactres.measurements.schema import AFM_TABLE, RUM_TABLE, Column, TableSchema
-
-
-@pytest.fixture(scope="module", autouse=True)
-def _one_unit_registry():
-    """One pint registry for the file's conversions (cli_checks.one_unit_registry)."""
-    with one_unit_registry():
-        yield
 
 
 @pytest.fixture

@@ -5,20 +5,13 @@ from __future__ import annotations
 
 import pandas as pd
 import pytest
-from cli_checks import one_unit_registry, run
+from cli_checks import run
 
 from contactres import AnalysisSettings, analyze, read_sweeps
 from contactres.errors import ContactresInputError
 from contactres.examples import example_path
 from contactres.typed_units import column_unit_factor, has_unit, to_si
 from contactres.units import check_magnitude
-
-
-@pytest.fixture(scope="module", autouse=True)
-def _one_unit_registry():
-    """One pint registry for the file's conversions (cli_checks.one_unit_registry)."""
-    with one_unit_registry():
-        yield
 
 
 @pytest.mark.parametrize(
@@ -170,3 +163,17 @@ def test_a_toml_value_with_its_unit_equals_the_si_value(tmp_path):
     (tmp_path / "typed.toml").write_text('sphere_radius = "1.1 mm"\nsphere_radius_m = 1e-3\n')
     with pytest.raises(ContactresInputError, match="the same constant"):
         read_sweeps(tmp_path / "typed.csv")
+
+
+def test_several_values_typed_with_units_build_no_registry_each(monkeypatch):
+    # A fresh registry cost ~0.2 s of CPU per value typed with a unit (issue 31): a command with
+    # three such values paid 0.6 s. pint's application registry is built once per process.
+    import pint
+
+    to_si("1 mm", "m", "warm-up")  # pint's application registry may be built here, once
+    built = []
+    monkeypatch.setattr(pint.UnitRegistry, "__init__", lambda self, *a, **k: built.append(1))
+    values = [to_si("1.1 mm", "m", "a"), to_si("2 mN", "N", "b"), to_si("5 MHz", "Hz", "c")]
+    assert values == pytest.approx([1.1e-3, 2e-3, 5e6], rel=1e-15)
+    assert column_unit_factor("mm", "m") == pytest.approx(1e-3, rel=1e-15)
+    assert built == []

@@ -9,20 +9,13 @@ from importlib.resources import files
 
 import pandas as pd
 import pytest
-from cli_checks import one_line_error, one_unit_registry, run
+from cli_checks import one_line_error, run
 
 from contactres import read_sweeps
 from contactres.errors import ContactresInputError
 from contactres.examples import example_path
 
 SPECTRA = str(files("contactres") / "data" / "example_spectra.csv")
-
-
-@pytest.fixture(scope="module", autouse=True)
-def _one_unit_registry():
-    """One pint registry for the file's conversions (cli_checks.one_unit_registry)."""
-    with one_unit_registry():
-        yield
 
 
 @pytest.fixture(scope="module")
