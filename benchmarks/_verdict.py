@@ -11,6 +11,11 @@ the child processes it has waited for (a benchmark that spawns workers pays for 
 :func:`best_time` and :func:`timed` use it. A target on parallel speed-up is a ratio of two
 figures measured in the same run (printed with unit ``x``), never a wall time against a fixed
 number.
+
+Issue 31, point 1: a BLAS-bound workload prints its CPU time as shipped beside its CPU time with
+one BLAS thread, and is judged on their ratio (at most :data:`THREAD_RATIO`): in process with
+:func:`one_thread` (threadpoolctl's limit), or in a child process started with
+:data:`ONE_BLAS_THREAD_ENV`.
 """
 
 from __future__ import annotations
@@ -19,6 +24,34 @@ import re
 import resource
 import time
 from typing import NamedTuple
+
+#: As shipped / one BLAS thread, CPU time: the most a workload may pay for BLAS threads.
+THREAD_RATIO = 1.2
+#: The environment of a child process that runs on one BLAS thread from its start.
+ONE_BLAS_THREAD_ENV = {"OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
+
+
+def one_thread(fn):
+    """``fn`` made to run with one BLAS thread (threadpoolctl's limit, as under
+    ``OPENBLAS_NUM_THREADS=1``)."""
+
+    def call():
+        from threadpoolctl import threadpool_limits
+
+        with threadpool_limits(limits=1, user_api="blas"):
+            return fn()
+
+    return call
+
+
+def shipped_and_one_thread(fn, repeat: int = 3) -> tuple[float, float]:
+    """Best CPU time (s) of ``fn()`` as shipped and with one BLAS thread (:func:`one_thread`),
+    ``repeat`` runs of each, alternating so that both see the same load."""
+    shipped, single = [], []
+    for _ in range(repeat):
+        shipped.append(timed(fn)[1])
+        single.append(timed(one_thread(fn))[1])
+    return min(shipped), min(single)
 
 
 def target(name: str, seconds: float, target_s: float, unit: str = "s") -> bool:

@@ -18,6 +18,10 @@ is printed for information. The children compile contactres to bytecode once, in
 cache (``PYTHONPYCACHEPREFIX``), as an installed package has it: an environment that sets
 ``PYTHONDONTWRITEBYTECODE`` would otherwise make every run compile the modules it imports again.
 
+The binary run is timed again in processes started with one BLAS thread
+(``OPENBLAS_NUM_THREADS=1``), and the ratio of the two CPU times is judged (issue 31, point 1:
+as shipped within 1.2x of one thread).
+
 Run: ``.venv/bin/python benchmarks/bench_afm_invert.py`` (exit status 1 if the target is
 missed).
 """
@@ -33,7 +37,7 @@ import time
 from pathlib import Path
 
 import numpy as np
-from _verdict import exit_code, target
+from _verdict import ONE_BLAS_THREAD_ENV, THREAD_RATIO, exit_code, target
 
 TARGET_S = 1.0
 SIDE = 512
@@ -73,10 +77,10 @@ def _cpu_of_children() -> float:
     return usage.ru_utime + usage.ru_stime
 
 
-def _best_of(argv: list[str], env: dict[str, str]) -> tuple[float, float]:
-    """(least CPU seconds, least wall seconds) of ``RUNS`` runs of ``argv``."""
+def _best_of(argv: list[str], env: dict[str, str], runs: int = RUNS) -> tuple[float, float]:
+    """(least CPU seconds, least wall seconds) of ``runs`` runs of ``argv``."""
     cpu, wall = [], []
-    for _ in range(RUNS):
+    for _ in range(runs):
         c0, t0 = _cpu_of_children(), time.perf_counter()
         subprocess.run(argv, check=True, stdout=subprocess.DEVNULL, env=env)
         wall.append(time.perf_counter() - t0)
@@ -103,14 +107,30 @@ def main() -> int:
             argv = [*argv, "--out", str(Path(tmp) / f"out.{kind.lower()}")]
             subprocess.run(argv, check=True, stdout=subprocess.DEVNULL, env=env)  # bytecode
             figures[kind] = _best_of(argv, env)
+        # The binary run in processes started with one BLAS thread (issue 31, point 1), and as
+        # shipped again, alternating so that both see the same load.
+        argv = [*runs["npz"], "--out", str(Path(tmp) / "one.npz")]  # an archive, as above
+        pairs = [(_best_of(argv, env, 1)[0], _best_of(argv, env | ONE_BLAS_THREAD_ENV, 1)[0])]
+        pairs += [(_best_of(argv, env, 1)[0], _best_of(argv, env | ONE_BLAS_THREAD_ENV, 1)[0])]
+        shipped, single = (min(column) for column in zip(*pairs, strict=True))
         print(
             f"afm invert of a {SIDE} x {SIDE} map ({rows} rows, two modes, Hertz), best of "
             f"{RUNS} subprocesses: .npz in and out {figures['npz'][0]:.2f} s CPU "
             f"({figures['npz'][1]:.2f} s wall); CSV in and out {figures['CSV'][0]:.2f} s CPU "
             f"({figures['CSV'][1]:.2f} s wall; information)"
         )
+        print(
+            f"  .npz, alternating: CPU as shipped {shipped:.2f} s | one BLAS thread "
+            f"(OPENBLAS_NUM_THREADS=1) {single:.2f} s"
+        )
         results = [
-            target(f"afm invert {SIDE}x{SIDE} .npz, CPU end to end", figures["npz"][0], TARGET_S)
+            target(f"afm invert {SIDE}x{SIDE} .npz, CPU end to end", figures["npz"][0], TARGET_S),
+            target(
+                f"afm invert {SIDE}x{SIDE} .npz: as shipped / one BLAS thread",
+                shipped / single,
+                THREAD_RATIO,
+                unit="x",
+            ),
         ]
     return exit_code(results)
 

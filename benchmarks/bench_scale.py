@@ -69,7 +69,7 @@ from pathlib import Path
 
 import numpy as np
 import pandas as pd
-from _verdict import exit_code, target
+from _verdict import ONE_BLAS_THREAD_ENV, THREAD_RATIO, exit_code, target
 
 from contactres._threads import one_blas_thread
 from contactres.analysis import AnalysisSettings, analyze
@@ -90,8 +90,6 @@ COPIES = 75  # x 1,344 sweeps = 100,800
 LONG_POINTS = 700
 TARGET_LARGE_CPU_S = 15.0
 TARGET_LARGE_GB = 1.0
-TARGET_THREAD_RATIO = 1.2  # as shipped / one BLAS thread, CPU (issue 31, point 1)
-ONE_THREAD = {"OPENBLAS_NUM_THREADS": "1", "OMP_NUM_THREADS": "1", "MKL_NUM_THREADS": "1"}
 PLATEAU_RATIO = 2.0
 
 
@@ -273,7 +271,7 @@ def main() -> int:
                     capture_output=True,
                     text=True,
                     check=True,
-                    env=os.environ | ONE_THREAD,
+                    env=os.environ | ONE_BLAS_THREAD_ENV,
                 )
         runs[name] = json.loads(out.stdout.splitlines()[-1])
         r = runs[name]
@@ -313,7 +311,7 @@ def main() -> int:
         target(
             f"analyze, {n} sweeps: as shipped / one BLAS thread",
             large["analyze_cpu"] / one_thread,
-            TARGET_THREAD_RATIO,
+            THREAD_RATIO,
             unit="x",
         )
     )

@@ -79,3 +79,34 @@ def test_overlapping_contexts_of_two_threads(two_threads):
     assert set(seen["b after a closed"]) == {1}
     assert seen["after both"] == two_threads
     assert _blas_threads() == two_threads
+
+
+class _Library:
+    """A stand-in for threadpoolctl's controller of one BLAS library."""
+
+    def __init__(self, filepath: str, threads: int):
+        self.filepath, self.threads = filepath, threads
+
+    def get_num_threads(self) -> int:
+        return self.threads
+
+    def set_num_threads(self, n: int) -> None:
+        self.threads = n
+
+
+def test_a_library_loaded_inside_is_held_from_the_next_opening_and_restored(monkeypatch):
+    # numpy's BLAS is loaded when the outer context opens; scipy's only inside it (a module
+    # imported there for the first time): the nested context must hold it to one thread too,
+    # and the last close give each library back its own count.
+    from contactres import _threads
+
+    numpy_blas, scipy_blas = _Library("numpy.so", 2), _Library("scipy.so", 3)
+    loaded = [numpy_blas]
+    monkeypatch.setattr(_threads, "_blas_libraries", lambda: list(loaded))
+    with one_blas_thread():
+        assert (numpy_blas.threads, scipy_blas.threads) == (1, 3)
+        loaded.append(scipy_blas)
+        with one_blas_thread():
+            assert (numpy_blas.threads, scipy_blas.threads) == (1, 1)
+        assert (numpy_blas.threads, scipy_blas.threads) == (1, 1)
+    assert (numpy_blas.threads, scipy_blas.threads) == (2, 3)

@@ -77,7 +77,9 @@ def one_blas_thread() -> Iterator[None]:
     a result has the same bits from a thread pool as from a serial run and on any number of
     cores (with several BLAS threads, a few operations, e.g. some Galerkin solves, differ in
     the last bit with the thread count). BLAS work of other code running meanwhile in another
-    Python thread runs on one thread too.
+    Python thread runs on one thread too. A BLAS library loaded inside the context (scipy's,
+    when a module that imports scipy.linalg is first imported there) is held to one thread
+    from the next context opened, nested or not, until the last one closes.
 
     Yields
     ------
@@ -93,10 +95,12 @@ def one_blas_thread() -> Iterator[None]:
     [1.0, 1.0, 1.0]
     """
     with _OPEN.lock:
-        if _OPEN.depth == 0:
-            libs = _blas_libraries()
-            _OPEN.restore = [(lib, lib.get_num_threads()) for lib in libs]
-            for lib in libs:
+        # Every opening looks for libraries loaded since the outermost one (threadpoolctl's
+        # cached lookup: ~10 µs unless modules were imported meanwhile).
+        held = {lib.filepath for lib, _ in _OPEN.restore}
+        for lib in _blas_libraries():
+            if lib.filepath not in held:
+                _OPEN.restore.append((lib, lib.get_num_threads()))
                 _set_threads(lib, 1)
         _OPEN.depth += 1
     try:
