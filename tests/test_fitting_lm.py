@@ -207,3 +207,57 @@ def test_gauss_newton_batch_is_its_members_alone_bit_for_bit(options):
             assert np.asarray(got).tobytes() == np.asarray(want).tobytes(), (i, name)
     good = [0, 2, 3, 4]  # unbounded and admissible: at the minimum (a, a²)
     np.testing.assert_allclose(batch.x[good], np.c_[a[good], a[good] ** 2], rtol=0, atol=1e-6)
+
+
+def straight_line_gauss_newton(target):
+    """evaluate() of r = p - target per parameter (Gauss-Newton form): the undamped step goes
+    to the target at once, so a capped step is exactly the cap."""
+
+    def evaluate(p, rows, want):
+        r = p - target
+        hess = np.broadcast_to(np.eye(p.shape[1]), (len(p), p.shape[1], p.shape[1]))
+        return {"chi2": np.sum(r * r, 1), "gradient": r, "hessian": hess}
+
+    return evaluate
+
+
+def test_a_relative_step_cap_reaches_a_far_minimum_in_logarithmically_many_steps():
+    # From 0 towards 1000 with max_step 2: the absolute cap moves 2 a step (500 steps to get
+    # there), the relative one 2 max(|p|, 1) a step, so p_k = 2·3^(k-1) (by hand: 2, 6, 18, ...)
+    # and 1000 is 7 steps away (the sixth reaches 486, the seventh, 514 < 2·486, is not capped)
+    far = straight_line_gauss_newton(np.array([1000.0]))
+    absolute = LMOptions(max_step=2.0, xtol=1e-12, ftol=1e-14, max_iter=2000)
+    relative = replace(absolute, relative_step=(0,))
+    slow = levenberg_marquardt(far, [0.0], options=absolute)
+    fast = levenberg_marquardt(far, [0.0], options=relative)
+    assert slow.converged[0] and fast.converged[0]
+    assert slow.x[0, 0] == pytest.approx(1000.0) and fast.x[0, 0] == pytest.approx(1000.0)
+    assert slow.n_iter[0] >= 500
+    assert fast.n_iter[0] <= 7 + 3  # (+ the steps that converge: the damping's remainder)
+    for k in (1, 2, 3, 4, 5):
+        part = levenberg_marquardt(far, [0.0], options=replace(relative, max_iter=k))
+        assert part.x[0, 0] == pytest.approx(2.0 * 3.0 ** (k - 1), rel=1e-12)
+    # downhill the cap reads |p|
+    down = levenberg_marquardt(
+        straight_line_gauss_newton(np.array([-1000.0])),
+        [0.0],
+        options=replace(relative, max_iter=3),
+    )
+    assert down.x[0, 0] == pytest.approx(-18.0, rel=1e-12)
+    # a parameter not flagged keeps the absolute cap, and the step is shortened as a whole:
+    # with equal undamped moves the second one binds, 2 a step for both (alone: -18 for p₀)
+    both = levenberg_marquardt(
+        straight_line_gauss_newton(np.array([-1000.0, 1000.0])),
+        [0.0, 0.0],
+        options=replace(absolute, relative_step=(0,), max_iter=3),
+    )
+    np.testing.assert_allclose(both.x[0], [-6.0, 6.0], rtol=1e-12)
+
+
+def test_a_relative_step_cap_of_a_parameter_not_given_is_refused():
+    with pytest.raises(ValueError, match="relative_step"):
+        levenberg_marquardt(
+            straight_line_gauss_newton(np.zeros(2)),
+            [1.0, 1.0],
+            options=LMOptions(max_step=2.0, relative_step=(2,)),
+        )

@@ -312,6 +312,11 @@ class LMOptions:
         failed (M. K. Transtrum and J. P. Sethna, arXiv:1201.5885 (2012)). Needs the residuals
         and the Jacobian (not the Gauss-Newton form) of the problem.
     max_step : largest change of any parameter in one step (the whole step is shortened)
+    relative_step : indices of the parameters whose change ``max_step`` bounds relative to
+        their size, by ``max_step max(|p|, 1)`` (absolute within 1 of 0, where a cap relative
+        to |p| would stall), instead of absolutely. For a parameter that is
+        not a logarithm and may lie many of its units from the start: reaching p takes
+        ~p/max_step steps with the absolute cap, ~ln(p)/ln(1 + max_step) with the relative one
     xtol, x_abs : a problem has converged when a step changes every parameter by at most
         ``xtol |p| + x_abs``, ...
     ftol, chi2_floor : ... or when an accepted step lowers χ² by at most
@@ -333,6 +338,7 @@ class LMOptions:
     max_reject: int | None = None
     geodesic: float | None = None
     max_step: float = np.inf
+    relative_step: tuple[int, ...] = ()
     xtol: float = 1e-7
     x_abs: float = 1e-17
     ftol: float = 1e-7
@@ -451,6 +457,15 @@ def levenberg_marquardt(evaluate, p0, lo=-np.inf, hi=np.inf, options: LMOptions 
     lo = np.broadcast_to(np.asarray(lo, dtype=float), x.shape)
     hi = np.broadcast_to(np.asarray(hi, dtype=float), x.shape)
     n_rows = x.shape[0]
+    relative = None
+    if o.relative_step:
+        relative = np.zeros(x.shape[1], bool)
+        try:
+            relative[list(o.relative_step)] = True
+        except IndexError:
+            raise ContactresInputError(
+                f"relative_step {o.relative_step} names a parameter beyond the {x.shape[1]} given"
+            ) from None
     cur = _local_model(evaluate(x, np.arange(n_rows), True))
     if o.geodesic is not None and "hessian" in cur:
         raise ContactresInputError("the geodesic acceleration needs the Jacobian form")
@@ -478,7 +493,10 @@ def levenberg_marquardt(evaluate, p0, lo=-np.inf, hi=np.inf, options: LMOptions 
         held = ((q <= lo_i) & (g > 0)) | ((q >= hi_i) & (g < 0))
         v, solve = _damped_steps(model, held, lam, o.damping)
         if np.isfinite(o.max_step):
-            big = np.maximum(np.max(np.abs(v), axis=1), 1e-300)
+            size = np.abs(v)
+            if relative is not None:  # in units of max(|p|, 1) where asked
+                size = size / np.where(relative, np.maximum(np.abs(q), 1.0), 1.0)
+            big = np.maximum(np.max(size, axis=1), 1e-300)
             v *= np.minimum(1.0, o.max_step / big)[:, None]
         ok = None  # (None: every trial stands, the usual case)
         if o.geodesic is None:

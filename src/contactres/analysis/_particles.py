@@ -25,7 +25,8 @@ particles standing still, where the other starts stopped 10 noise variances abov
 near the truth (a third of the draws 2.5x below the comb in water, N·κ printed 8σ off).
 Each is refined by the batched Levenberg-Marquardt of
 :func:`contactres.fitting.levenberg_marquardt` in its Gauss-Newton form (all time steps at once:
-no loop over steps) in ln κ, ξ, ln N (ln κ_r), within bounds 10⁸ beyond what the comb can see,
+no loop over steps) in ln κ, ξ, ln N (ln κ_r; a step changes a logarithm by at most 2 and ξ
+by at most twice itself), within bounds 10⁸ beyond what the comb can see,
 and the lowest χ² is kept. A start after the first is refined only where it begins below the
 best fit so far, where that did not converge, where it fits poorly (χ² beyond dof + 2√(2 dof)
 noise variances), or, for a limit start, where the best fit so far puts the coupled resonance
@@ -172,7 +173,10 @@ PROFILE_FACTOR = 1.3
 _ROCKING_SCAN = np.logspace(-2.0, 4.0, 13)
 
 
-_LM = LMOptions(max_iter=300, xtol=1e-8, ftol=1e-10, max_step=2.0)
+# ξ (column 1) is no logarithm: its steps are capped at 2 max(|ξ|, 1) in units of its scale,
+# the logarithms' at 2. Capped at 2 units, ξ crawled on pure noise (χ² still falling) and most
+# rows ran to max_iter; a drift of ξ to 10⁴ of its scale now takes ~9 steps.
+_LM = LMOptions(max_iter=300, xtol=1e-8, ftol=1e-10, max_step=2.0, relative_step=(1,))
 # the scan start begins in the flat valley below the comb, where the steps are short
 _LM_SCAN = replace(_LM, max_iter=2000)
 
