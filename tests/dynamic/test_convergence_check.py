@@ -21,7 +21,7 @@ from contactres.dynamic import (
     shear_wavenumber_ratio,
 )
 from contactres.dynamic._convergence import in_validated_range
-from contactres.dynamic._exact import GalerkinSize, exact_n, galerkin_size
+from contactres.dynamic._exact import GalerkinSize, exact_n, model_size
 from contactres.dynamic._table import kernel_table, resolution_for
 from contactres.errors import AccuracyWarning
 
@@ -172,7 +172,7 @@ def test_inside_the_validated_range_dcsf_is_unchanged():
         got = dcsf(face, ka)
     table = kernel_table(face, 0.0, resolution_for(1e-6))
     ksa = ka * shear_wavenumber_ratio(face)
-    plain = table.n_static / exact_n(table, ksa, galerkin_size(float(ksa.max()), 1e-6))
+    plain = table.n_static / exact_n(table, ksa, model_size(float(ksa.max()), 1e-6))
     assert np.allclose(got, plain, rtol=1e-12, atol=0)
 
 

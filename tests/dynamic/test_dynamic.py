@@ -78,6 +78,20 @@ def test_bessel_recurrence_matches_scipy_including_underflow():
         np.testing.assert_allclose(v, special.jv(n, s), rtol=0, atol=1e-12)
 
 
+@pytest.mark.parametrize("top", [2, 28, 48])
+def test_bessel_downward_recurrence_from_its_continued_fraction_matches_scipy(top):
+    # Below the highest order (s <= top + 1, through the turning point) bessel_even starts the
+    # downward recurrence from the continued fraction of J_{top+1}/J_top, normalised on J0 or
+    # J1: to round-off of the largest J against scipy's jv (AMOS), every even order.
+    rng = np.random.default_rng(7)
+    s = np.concatenate([np.geomspace(1e-3, 1, 30), rng.uniform(0.0, top + 1.0, 400)])
+    s = s[s > 0]
+    orders = list(range(0, top + 1, 2))
+    J = bessel_even(orders, s)
+    for n in orders:
+        np.testing.assert_allclose(J[n], special.jv(n, s), rtol=0, atol=2e-14)
+
+
 @pytest.mark.parametrize("n", [0, 2, 4])
 def test_weber_schafheitlin_static_integrals(n):
     """The closed-form statics: ∫ sinc(s) J_n(s r) ds = (π/2) δ_n0 (uniform flat-punch

@@ -14,8 +14,14 @@ import pytest
 from scipy import integrate, special
 
 from contactres import Material, contact_pressure, dcsf, dcsf_models
-from contactres.dynamic import ALL_MODELS
-from contactres.dynamic._exact import GalerkinSize, exact_n, galerkin_size, pressure_basis
+from contactres.dynamic import ALL_MODELS, prepare, shear_wavenumber_ratio
+from contactres.dynamic._exact import (
+    GalerkinSize,
+    exact_n,
+    galerkin_size,
+    model_size,
+    pressure_basis,
+)
 from contactres.dynamic._quadrature import functionals
 from contactres.dynamic._table import kernel_table, resolution_for
 
@@ -70,6 +76,26 @@ def test_exact_static_limit():
         assert v[0] == pytest.approx(1 + 1j * Q, abs=1e-14)
         d1, d2 = abs(v[1] - (1 + 1j * Q)), abs(v[2] - (1 + 1j * Q))
         assert d2 < 1e-2 and 7 < d2 / d1 < 13
+
+
+@pytest.mark.parametrize(
+    ("A", "nu", "loss"), [(4.0, 0.45, 0.0), (4.0, 0.45, Q), (10.0, 0.25, Q), (0.25, 0.0, Q)]
+)
+def test_basis_of_the_curves_against_twice_the_terms_and_harmonics(A, nu, loss):
+    # The DCSF's exact model takes one radial term fewer than galerkin_size at rtol 1e-6
+    # (model_size): against twice galerkin_size's terms and harmonics on the same table, k_l a up
+    # to 2, at the solids where one term fewer left the most (A = 4, nu = 0.45: 3.7e-9
+    # measured), still far inside rtol; and the curve is made with that basis.
+    m = _cubic(A, nu)
+    table = prepare(m, loss)
+    ksa = np.linspace(0.05, 2.0, 12) * shear_wavenumber_ratio(m)
+    size = model_size(float(ksa.max()))
+    assert size.n_radial == galerkin_size(float(ksa.max())).n_radial - 1
+    got = exact_n(table, ksa, size)
+    fine = exact_n(table, ksa, galerkin_size(float(ksa.max())).doubled())
+    assert np.max(np.abs(got / fine - 1)) < 1e-8
+    curve = dcsf(m, ksa / shear_wavenumber_ratio(m), loss=loss, prepared=table)
+    np.testing.assert_allclose(curve, table.n_static / got, rtol=1e-13)
 
 
 @pytest.mark.parametrize(("A", "nu"), [(0.25, 0.25), (1.0, 0.25), (4.0, 0.3)])
@@ -150,8 +176,6 @@ def test_default_basis_reaches_the_coupled_harmonics_of_low_symmetry_faces(face)
     # A (111) face is six-fold: with step 2 it couples the harmonics n = ±6, which a basis with
     # |n| <= 4 missed (3e-4 off on Cu(111), found by review). The default basis against twice
     # the terms and harmonics, k_l a up to 2.
-    from contactres.dynamic import prepare, shear_wavenumber_ratio
-
     m = Material.crystal("Cu").rotated(face)
     table = prepare(m, 0.0)
     ksa = np.linspace(0.1, 2.0, 8) * shear_wavenumber_ratio(m)

@@ -66,7 +66,7 @@ from ..errors import ContactresInputError
 from ..halfspace import shear_reference
 from ..materials import Material, require_material
 from ..validation import nonnegative
-from ._exact import exact_n, galerkin_plan, galerkin_size, pressure_basis
+from ._exact import exact_n, galerkin_plan, galerkin_size, model_size, pressure_basis
 from ._farfield import far_basis, far_grid
 from ._fartail import far_tail, head_grid
 from ._interpolation import MAX_INTERVALS as LARGEST
@@ -266,7 +266,7 @@ def _direct(table, flat, names, rtol, chunk, span=None, refine=0) -> dict[str, n
 
     ``span`` = (smallest positive, largest) k_s a that sizes the discretisation (default: those
     of ``flat``); calls with one span discretise alike, so their values fit one smooth curve.
-    ``refine``: the refinement level of the Galerkin basis (:func:`galerkin_size`).
+    ``refine``: the refinement level of the Galerkin basis (:func:`model_size`).
     """
     approx = [n for n in names if n != "exact"]
     n_out = {name: np.empty(flat.shape, dtype=complex) for name in names}
@@ -277,7 +277,7 @@ def _direct(table, flat, names, rtol, chunk, span=None, refine=0) -> dict[str, n
     # Galerkin bookkeeping and near θ grid from the largest): chunking does not change a result.
     smax = float(np.max(pos, initial=0.0))
     grid = far_grid(table, float(np.min(pos))) if pos.size else None
-    size = galerkin_size(smax, rtol, refine=refine)
+    size = model_size(smax, rtol, refine=refine)
     # Beyond 2 T₁ × the largest k a the far basis is summed by moments (._fartail): the chunks
     # build it on the head of the grid alone.
     tail = far_tail(table, grid, smax) if grid is not None else None
@@ -320,7 +320,7 @@ def evaluate_models(
     """The DCSF of the checked model names ``names`` at the k_s a values ``ksa`` on ``table``
     (the work of :func:`dcsf_models` after its checks): ``{model: complex array like ksa}``.
 
-    ``refine`` = L > 0 enlarges the Galerkin basis of the exact model (:func:`galerkin_size`);
+    ``refine`` = L > 0 enlarges the Galerkin basis of the exact model (:func:`model_size`);
     with a kernel table whose resolution is doubled L times it is the refined evaluation of the
     run-time convergence check (:mod:`contactres.dynamic._convergence`).
     """
