@@ -261,3 +261,26 @@ def test_a_relative_step_cap_of_a_parameter_not_given_is_refused():
             [1.0, 1.0],
             options=LMOptions(max_step=2.0, relative_step=(2,)),
         )
+
+
+def test_each_parameter_is_capped_relative_to_its_own_size():
+    # p₀ capped relative to its size, p₁ absolutely (max_step 2), one step of each row. With
+    # H = 1 the step points at the target, shortened as a whole by the largest of
+    # |v₀| / max(|p₀|, 1) and |v₁| (by hand):
+    # - from (100, -500) to (10⁵, -490): v = (99900, 10), sizes (999, 10): 2/999 of v
+    # - from (100, 0) to (10⁴, 1000): v = (9900, 1000), sizes (99, 1000): 2/1000 of v
+    # A cap that read p₁'s size for p₀, flagged p₁ instead, or took the row's largest |p|
+    # would divide by 500 or 1 and shorten a step by another factor.
+    start = np.array([[100.0, -500.0], [100.0, 0.0]])
+    target = np.array([[1e5, -490.0], [1e4, 1000.0]])
+
+    def evaluate(p, rows, want):
+        r = p - target[rows]
+        hess = np.broadcast_to(np.eye(2), (len(p), 2, 2))
+        return {"chi2": np.sum(r * r, 1), "gradient": r, "hessian": hess}
+
+    one = levenberg_marquardt(
+        evaluate, start, options=LMOptions(max_step=2.0, relative_step=(0,), max_iter=1)
+    )
+    want = start + (target - start) * np.array([[2 / 999], [2 / 1000]])
+    np.testing.assert_allclose(one.x, want, rtol=1e-12)

@@ -110,3 +110,44 @@ def test_a_library_loaded_inside_is_held_from_the_next_opening_and_restored(monk
             assert (numpy_blas.threads, scipy_blas.threads) == (1, 1)
         assert (numpy_blas.threads, scipy_blas.threads) == (1, 1)
     assert (numpy_blas.threads, scipy_blas.threads) == (2, 3)
+
+
+def _open_a_context() -> None:
+    """A forked child's first context (as an analysis's worker process opens)."""
+    with one_blas_thread():
+        pass
+
+
+@pytest.mark.skipif(
+    "fork" not in __import__("multiprocessing").get_all_start_methods(), reason="no fork"
+)
+def test_a_child_forked_while_another_thread_holds_the_lock_can_open_a_context():
+    # An analysis forks its worker processes inside its context; another Python thread (a
+    # second analysis) may be opening or closing one at that moment, holding the module's lock.
+    # The child inherits the lock held, by a thread it does not have: without a lock of its
+    # own its first context waits for ever.
+    import multiprocessing
+
+    from contactres import _threads
+
+    held, release = threading.Event(), threading.Event()
+
+    def hold_the_lock():
+        with _threads._OPEN.lock:
+            held.set()
+            release.wait()
+
+    holder = threading.Thread(target=hold_the_lock)
+    holder.start()
+    held.wait()
+    try:
+        child = multiprocessing.get_context("fork").Process(target=_open_a_context)
+        child.start()
+    finally:
+        release.set()
+        holder.join()
+    child.join(60)
+    if child.exitcode is None:
+        child.kill()
+        child.join()
+    assert child.exitcode == 0

@@ -23,6 +23,7 @@ holds no result: nothing computed is kept between calls.
 
 from __future__ import annotations
 
+import os
 import threading
 from collections.abc import Iterator
 from contextlib import contextmanager
@@ -40,9 +41,18 @@ class _OpenContexts:
         self.depth = 0
         self.restore: list[tuple[Any, int]] = []
 
+    def renew_lock(self) -> None:
+        """Give a forked child a lock of its own: the fork copies the lock as it was, held if
+        another thread of the parent was opening or closing a context, and no thread of the
+        child would ever release it (the child's first context, e.g. in an analysis's worker
+        process, would wait for ever)."""
+        self.lock = threading.Lock()
+
 
 #: The process-wide count of open contexts (the BLAS setting it guards is process-wide too).
 _OPEN = _OpenContexts()
+if hasattr(os, "register_at_fork"):  # POSIX: the analyses' worker processes are forked there
+    os.register_at_fork(after_in_child=_OPEN.renew_lock)
 
 
 def _set_threads(lib: Any, n: int) -> None:

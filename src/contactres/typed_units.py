@@ -18,10 +18,16 @@ registry of its own and hands out no pint object: every value leaves here as a f
 from __future__ import annotations
 
 import re
+import threading
 
 from .errors import ContactresInputError
 
 __all__ = ["column_unit_factor", "has_unit", "to_si"]
+
+#: Held while pint's application registry is fetched: pint builds it on the first attribute read
+#: without a lock (pint issue #2039), and a thread reading it half-built found no "mm" (to_si:
+#: "unknown unit"; column_unit_factor: None, the column silently not taken as millimetres).
+_FIRST_USE = threading.Lock()
 
 # A number, then optional spaces, then something that starts like a unit (a letter, µ, %).
 _WITH_UNIT = re.compile(r"^\s*[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?\s*[A-Za-zµμΩ°%]")
@@ -46,7 +52,10 @@ def _registry():
     a unit; module docstring)."""
     import pint
 
-    return pint.get_application_registry()
+    with _FIRST_USE:
+        registry = pint.get_application_registry()
+        registry.Quantity  # noqa: B018 - builds the registry here, under the lock, if not yet built
+    return registry
 
 
 def _units_in_words(unit: str) -> str:

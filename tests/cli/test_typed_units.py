@@ -177,3 +177,40 @@ def test_several_values_typed_with_units_build_no_registry_each(monkeypatch):
     assert values == pytest.approx([1.1e-3, 2e-3, 5e6], rel=1e-15)
     assert column_unit_factor("mm", "m") == pytest.approx(1e-3, rel=1e-15)
     assert built == []
+
+
+_FIRST_USE_FROM_THREADS = """
+import threading
+from contactres.typed_units import column_unit_factor, to_si
+
+start = threading.Barrier(6)
+got = []
+
+def convert(k):
+    start.wait()
+    try:
+        got.append(to_si("1.1 mm", "m", "a") if k % 2 else column_unit_factor("mm", "m"))
+    except Exception as exc:
+        got.append(repr(exc))
+
+threads = [threading.Thread(target=convert, args=(k,)) for k in range(6)]
+for t in threads:
+    t.start()
+for t in threads:
+    t.join()
+print(repr(sorted(map(str, got))))
+"""
+
+
+def test_the_first_values_typed_with_units_convert_alike_from_several_threads(tmp_path):
+    # pint builds its application registry on first use without a lock (pint issue #2039): a
+    # second thread could read it half-built and call "mm" an unknown unit. Run in a fresh
+    # process, where no registry is built yet; each thread converts 1.1 mm or 1 mm by hand.
+    import subprocess
+    import sys
+
+    done = subprocess.run(
+        [sys.executable, "-c", _FIRST_USE_FROM_THREADS], capture_output=True, text=True
+    )
+    assert done.returncode == 0, done.stderr
+    assert done.stdout.strip() == repr(sorted(["0.001"] * 3 + ["0.0011"] * 3))
