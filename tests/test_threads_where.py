@@ -34,6 +34,7 @@ DECORATED = {
     ("analysis/_pipeline.py", "analyze"),
     ("analysis/_particles.py", "fit_particles"),
     ("analysis/_resonance_tables.py", "invert_afm_table"),
+    ("analysis/_resonance_tables.py", "invert_rum_table"),
     ("analysis/_cr_map.py", "invert_cr_map"),
     ("measurements/_spectra.py", "fit_resonances"),
 } | {

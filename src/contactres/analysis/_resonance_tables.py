@@ -153,6 +153,7 @@ def _lumped_rows(table: pd.DataFrame, source: str) -> np.ndarray:
     return lumped
 
 
+@one_blas_thread()
 def invert_rum_table(table: pd.DataFrame, source: str = "table") -> pd.DataFrame:
     """k* of every row of a checked RUM table (:data:`~contactres.measurements.schema.RUM_TABLE`):
     ``k_star_N_per_m`` and ``rum_model`` appended.
