@@ -74,10 +74,17 @@ def galerkin_size(
     the radial series converges like a Neumann series in (k a/2p)², the angular one like the
     harmonics of g).
 
-    N_exact is variational (its error is quadratic in that of the pressure): measured against
-    twice the terms (k_l a <= 2, A = 0.2-10, ν = 0.25-0.45), ceil(0.6 k_s a) + 4 radial terms and
-    harmonics ``|n|`` <= 3 × step (the default) leave < 1e-9 on (001) faces and 5e-11-7e-8 on
-    Cu(111) and Cu(123); two radial terms fewer < 1e-8 (rtol >= 1e-4). The harmonics must reach
+    N_exact is variational (its error is quadratic in that of the pressure). Measured against
+    twice the terms and harmonics on the same table (k_l a <= 2, each basis also at the largest
+    k_s a of its size, where 0.6 k_s a is an integer; A = 0.2-10, ν = −0.3-0.45 less the corner
+    A < 0.25, ν > 0.44, and ν = −0.9 at A = 0.2, 1, 4, 10; Cu(001), (110), (111) and (123);
+    Q⁻¹ = 0 and 0.02, the lossless solid the worse), ceil(0.6 k_s a) + 4 radial terms and
+    harmonics ``|n|`` <= 3 × step (the default, 1e-8 < rtol < 1e-4) leave at most 1.1e-9 on
+    (001) faces (A = 0.2, ν = 0.44, k_l a = 2), 3.9e-11 on Cu(111), and 6.5e-8 on Cu(123) and
+    2.6e-7 on Cu(110), set by the harmonics. Two radial terms fewer (rtol >= 1e-4) leave at
+    most 6.8e-6 (A = 10, ν = 0.416, three terms at k_s a = 5/3, k_l a = 2; below 1e-6 for
+    A <= 5.5), 1.8e-6 on Cu(110) and 8.7e-8 on Cu(001) and Cu(111)
+    (tests/dynamic/test_dynamic_exact.py). The harmonics must reach
     the face's first coupled one: a (111) face is six-fold, so with step 2 it couples n = ±6,
     and ``|n|`` <= 2 × step missed it (3e-4 off on Cu(111), found by review). rtol <= 1e-8 takes two
     terms and one harmonic more.
