@@ -319,6 +319,8 @@ def test_text_cells_a_spreadsheet_would_run_are_neutralised(tmp_path):
         ["=a", "ok", None, float("nan"), 3, -2.5, "-b"],  # text among numbers and gaps
         [b"=bytes", "=text", "plain"],  # bytes: pandas' string methods refuse the column
         [1, 2, 3],  # an object column without any text
+        # runs of one object (a curve table's sweep id on each of its rows), each tested once
+        ["=a"] * 3 + ["ok"] * 2 + [None] * 2 + ["-b", "=a"] + [float("nan")] * 2 + ["@c"] * 4,
     ],
 )
 def test_neutralising_a_whole_column_follows_the_cell_rule(cells):
@@ -523,7 +525,8 @@ def test_doubles_formatted_a_chunk_at_a_time_are_pandas_text(tmp_path, monkeypat
     whole chunk (issue 31, point 3): flags, widths, signs, -0.0, a subnormal and extremes give
     the text of pandas' own writer, which formats cell by cell (a chunk with an infinity goes
     cell by cell too); beside a column with gaps and text that needs quotes. A format with more
-    than one conversion's text ("%.3f mm") is applied cell by cell, as before."""
+    than one conversion's text ("%.3f mm") is applied cell by cell, as before. A column with
+    gaps joins the chunk's ``%`` where its NaN formats as "nan" (then written as ``na_rep``)."""
 
     import numpy as np
 
@@ -533,8 +536,7 @@ def test_doubles_formatted_a_chunk_at_a_time_are_pandas_text(tmp_path, monkeypat
     rng = np.random.default_rng(17)
     bits = rng.integers(0, 2**63, 4000, dtype=np.uint64).view(np.float64)
     bits = bits[np.isfinite(bits)]
-    # The finite specials open the first chunk (no infinity there: it takes the chunk path),
-    # the infinities close the last one (which goes cell by cell).
+    # The finite specials open the first chunk, the infinities close the last one.
     special = [-0.0, 0.0, 5e-324, 1e16, 1e-5, -2.5, 1.7976931348623157e308]
     values = np.concatenate([special, bits, -bits[:100], rng.normal(size=500), [np.inf, -np.inf]])
     gaps = rng.normal(size=values.size)
@@ -554,5 +556,33 @@ def test_doubles_formatted_a_chunk_at_a_time_are_pandas_text(tmp_path, monkeypat
         write_csv(tmp_path / "joined.csv", frame, na_rep="NA", float_format=float_format)
     assert (tmp_path / "joined.csv").read_bytes() == (tmp_path / "pandas.csv").read_bytes()
     chunks = -(-values.size // 1000)
-    # Every chunk but the last (infinities) by one % each, the first with the specials in it.
-    assert len(calls) == (0 if float_format == "%.3f mm" else chunks - 1)
+    # Every chunk by one % each, the first with the specials in it, the last with infinities.
+    assert len(calls) == (0 if float_format == "%.3f mm" else chunks)
+
+
+@pytest.mark.parametrize("na_rep", ["", "NA", "nan"])
+def test_gaps_formatted_with_their_chunk_are_pandas_text(tmp_path, monkeypatch, na_rep):
+    """A column of doubles with gaps is formatted within its chunk's ``%`` and each "nan" then
+    written as ``na_rep``; a chunk where a text cell holds "nan" (a label "banana", "nan"
+    itself) writes its gaps cell by cell: the bytes are pandas' own either way."""
+    import numpy as np
+
+    from contactres import _csvcells
+    from contactres.fileio import write_csv
+
+    rng = np.random.default_rng(23)
+    n = 3000
+    x = rng.normal(size=n) * 10.0 ** rng.integers(-12, 12, n)
+    x[rng.random(n) < 0.2] = np.nan
+    x[5], x[7] = np.inf, -np.inf
+    odd_nan = np.array([0xFFF8000000000001], dtype=np.uint64).view(np.float64)[0]  # -NaN
+    x[11] = odd_nan
+    labels = [f"s{i}" for i in range(n)]
+    labels[2500], labels[2600] = "banana", "nan"  # in the third chunk only
+    frame = pd.DataFrame({"x": x, "y": x[::-1].copy(), "label": labels})
+    monkeypatch.setattr(_csvcells, "CHUNK_CELLS", 3 * 1000)
+    frame.to_csv(tmp_path / "pandas.csv", index=False, na_rep=na_rep, float_format="%.10g")
+    with monkeypatch.context() as m:
+        m.setattr(pd.DataFrame, "to_csv", lambda *a, **k: pytest.fail("pandas was called"))
+        write_csv(tmp_path / "joined.csv", frame, na_rep=na_rep, float_format="%.10g")
+    assert (tmp_path / "joined.csv").read_bytes() == (tmp_path / "pandas.csv").read_bytes()

@@ -45,14 +45,35 @@ def _risky(col) -> np.ndarray:
     (``dtype="U1"`` keeps the first character of each string, in C): pandas' string methods
     would still make a Python call per cell. A column holding anything else (numbers, bytes) is
     tested cell by cell, with the same rule: a cell that is not a string is never risky."""
+    import pandas as pd
     from pandas.api.types import infer_dtype
 
     if infer_dtype(col, skipna=True) == "string":
-        first = np.asarray(col.to_numpy(dtype=object), dtype="U1")
-        return np.isin(first, _FORMULA_START) & ~col.isna().to_numpy(dtype=bool)
+        # One test a run of the same object (a curve table's sweep id fills its 30 rows):
+        # turning 3·10^6 cells to text was most of the writing's neutralising (issue 31).
+        values = np.ascontiguousarray(col.to_numpy(dtype=object))
+        starts = _run_starts(values)
+        held = values[starts]
+        first = np.asarray(held, dtype="U1")
+        risky = np.isin(first, _FORMULA_START) & ~pd.isna(held)
+        return np.repeat(risky, np.diff(np.append(starts, values.size)))
     return col.map(lambda v: isinstance(v, str) and v.startswith(_FORMULA_START)).to_numpy(
         dtype=bool
     )
+
+
+def _run_starts(values: np.ndarray) -> np.ndarray:
+    """The first row of each run of one object (by identity) in the object array ``values``:
+    the rows where the object differs from the row above. Compared as the object pointers the
+    array holds (:func:`_few_objects`); every row is a run of its own where numpy keeps them to
+    itself."""
+    try:
+        pointers = np.frombuffer(values, dtype=np.intp) if values.flags.c_contiguous else None
+    except (TypeError, ValueError, BufferError):
+        pointers = None
+    if pointers is None or not values.size:
+        return np.arange(values.size)
+    return np.flatnonzero(np.concatenate(([True], pointers[1:] != pointers[:-1])))
 
 
 def neutralised(frame):
@@ -231,19 +252,36 @@ def csv_chunks(
     yield ",".join(header) + lineterminator
     step = max(1, CHUNK_CELLS // len(columns)) if rows is None else rows
     one = _ONE_FLOAT.fullmatch(float_format or "") is not None
+    # A NaN formats as "nan" (no sign, no width in the format): a column with gaps is
+    # formatted with the others and its "nan" made ``na_rep`` in the chunk's text, where no
+    # text cell holds "nan" (a float's text has none but NaN's).
+    gaps_in_text = one and str(float_format) % float("nan") == "nan"
     for start in range(0, len(frame), step):
         part = frame.iloc[start : start + step]
         fields: list = []
+        gaps = []  # positions of the doubles with a NaN
         for i in range(len(columns)):  # by position: column names need not be unique
             col = part.iloc[:, i]
             values = col.to_numpy()
             if one and values.dtype == np.float64 and not _few(values):
-                if np.isfinite(values).all():  # the doubles, formatted in _formatted_lines
+                # the doubles, formatted in _formatted_lines (infinities as the cells are)
+                if not np.isnan(values).any():
                     fields.append(values)
                     continue
+                if gaps_in_text:
+                    fields.append(values)
+                    gaps.append(i)
+                    continue
             fields.append(_field_texts(col, na_rep, float_format))
+        if na_rep == "nan":
+            gaps = []  # the text NaN formats as already
+        elif gaps and any("nan" in "\x00".join(f) for f in fields if isinstance(f, list)):
+            for i in gaps:  # a text cell holds "nan": the gaps written cell by cell
+                fields[i] = _field_texts(part.iloc[:, i], na_rep, float_format)
+            gaps = []
         if any(isinstance(f, np.ndarray) for f in fields):
-            yield _formatted_lines(fields, str(float_format), lineterminator)
+            text = _formatted_lines(fields, str(float_format), lineterminator)
+            yield text.replace("nan", na_rep) if gaps else text
         else:
             yield lineterminator.join([*map(",".join, zip(*fields, strict=True)), ""])
 

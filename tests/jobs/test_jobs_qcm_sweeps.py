@@ -178,3 +178,20 @@ def test_a_plateau_sweep_on_its_bound_is_flagged_and_prints_no_plateau_amplitude
         np.isfinite(rest["plateau_amplitude_err_m"])
     )
     assert not has(sw.loc[sw["model"] != "plateau", "flags"], Flag.PLATEAU_AT_BOUND).any()
+
+
+def test_the_stages_count_each_group_once_whatever_the_order_of_the_rows(job_run):
+    """The progress bar's length has one stage per (configuration, medium) group, counted on
+    the first rows of runs of equal cells (issue 31, point 3): the same count as a set of the
+    pairs of every row, for the rows as read and shuffled (runs of one row) alike."""
+    import dataclasses
+
+    _, reading, _ = job_run
+    settings = qcm_sweeps.Settings(bootstrap=0)
+    data = reading.table.data
+    pairs = set(zip(data["configuration"], data["medium"], strict=True))
+    assert len(pairs) > 1
+    shuffled = data.sample(frac=1.0, random_state=3).reset_index(drop=True)
+    again = qcm_sweeps.Reading(dataclasses.replace(reading.table, data=shuffled))
+    assert qcm_sweeps.stages(reading, settings) == 7 + len(pairs)
+    assert qcm_sweeps.stages(again, settings) == 7 + len(pairs)

@@ -166,3 +166,27 @@ def test_distinct_points_have_distinct_keys():
     amplitude = np.tile(np.linspace(1e-9, 1e-8, 10), n // 10)
     numbers = [amplitude, rng.normal(50.0, 1.0, n), rng.normal(5.0, 0.1, n)]
     assert not pd.Series(point_keys(codes, numbers)).duplicated().any()
+
+
+@pytest.mark.parametrize("order", ["runs", "shuffled"])
+def test_distinct_cells_are_numbered_by_first_appearance_as_each_cell_would_be(order):
+    """stripped_distinct hashes the first cell of each run of equal cells only (issue 31,
+    point 3): its codes and distinct texts are those a dictionary of first appearances gives
+    over every cell (white space stripped after, a missing cell one text of its own), for cells
+    in runs (a sweep's id on its rows) and shuffled (runs of one cell)."""
+    from contactres.measurements._cell_text import stripped_distinct
+
+    rng = np.random.default_rng(29)
+    labels = [*IDS, None, np.nan, "", "  "]
+    cells = np.repeat(np.array(labels, dtype=object)[rng.integers(0, len(labels), 400)], 3)
+    if order == "shuffled":
+        cells = cells[rng.permutation(cells.size)]
+    codes, distinct = stripped_distinct(pd.Series(cells, dtype=object))
+    first: dict = {}
+    for cell in cells:  # the text pandas gives a cell: "nan" neither for None nor for NaN
+        key = "<missing>" if cell is None or cell != cell else cell
+        first.setdefault(key, len(first))
+    expected = [first["<missing>" if c is None or c != c else c] for c in cells]
+    assert codes.tolist() == expected
+    texts = [k.strip() if k != "<missing>" else None for k in first]
+    assert [None if d != d else d for d in distinct.tolist()] == texts

@@ -604,3 +604,22 @@ def test_numbers_given_as_numbers_are_those_their_text_gives():
     broken = f.assign(df_Hz=f["df_Hz"].where(np.arange(len(f)) != 7))
     with pytest.raises(ValueError, match="df_Hz"):
         validate_sweeps(broken, constants=CONST)
+
+
+def test_validating_a_table_leaves_the_callers_table_as_it_was():
+    """validate_sweeps works on a frame over the caller's columns, not a deep copy of them
+    (issue 31, point 3): the caller's table keeps its names (white space and a unit to convert
+    included), its cells, its attrs and no ``line`` column, compared with a deep copy taken
+    before."""
+    import copy
+
+    frame = good_frame()
+    frame["amplitude_nm"] = frame.pop("amplitude_m") * 1e9  # converted to metres by validation
+    frame = frame.rename(columns={"sweep": " sweep "})
+    frame.attrs["note"] = {"kept": [1, 2]}
+    before, attrs = frame.copy(deep=True), copy.deepcopy(frame.attrs)
+    table = validate_sweeps(frame, constants=CONST)
+    assert len(table.data) == len(frame)
+    pd.testing.assert_frame_equal(frame, before)
+    assert list(frame.columns) == list(before.columns)
+    assert frame.attrs == attrs

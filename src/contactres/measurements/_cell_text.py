@@ -22,5 +22,13 @@ def stripped_distinct(cells) -> tuple[np.ndarray, np.ndarray]:
     import pandas as pd  # here: the numeric rules of a binary table need no pandas
 
     text = (cells if isinstance(cells, pd.Series) else pd.Series(cells, dtype=object)).astype(str)
-    codes, uniques = pd.factorize(text, use_na_sentinel=False)
+    # Hashed on the first cell of each run of equal cells only (a sweep's id fills its rows,
+    # a label its sweeps'): each distinct cell starts some run, and first appearances keep
+    # their order, so the codes are those of every cell hashed (2-3x less time at 10^6 rows).
+    values = text.to_numpy(dtype=object)
+    change = np.ones(len(values), dtype=bool)
+    change[1:] = values[1:] != values[:-1]  # (a missing cell is a run of its own: NaN != NaN)
+    starts = np.flatnonzero(change)
+    codes, uniques = pd.factorize(text.iloc[starts], use_na_sentinel=False)
+    codes = np.repeat(codes, np.diff(np.append(starts, len(values))))
     return codes, pd.Series(uniques).str.strip().to_numpy(dtype=object)
