@@ -123,7 +123,8 @@ def decaying_solvent(Q, R, W, s, beta, may_stall=None, mirror=False, dual=False)
         The surface is a mirror plane of the solid: take the block-structured step.
     dual : bool
         Also return the solvent of the direction θ + π (R -> −R), from the same iterates
-        (general step only; a point then stops when both have converged).
+        (general step only; its limit is Â1ᵀ, see :func:`_cyclic_reduction`, so the points
+        stop as without ``dual``).
 
     Returns
     -------
