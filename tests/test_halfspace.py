@@ -527,6 +527,42 @@ def test_inverse_last_column_is_that_of_inv3():
     assert np.max(np.abs(col - ref)) < 1e-12 * np.max(np.abs(ref))
 
 
+def test_general_step_symmetric_inverse_and_one_step_match_dense_algebra(monkeypatch):
+    # The general doubling step keeps A0, A1, A2 as packed upper triangles (A0, A2 paired) and
+    # K = A1⁻¹ from six cofactors; checked here against numpy's dense inverse and one step of
+    # cyclic reduction written out with full matrices.
+    from contactres.halfspace import _doubling as doubling
+
+    rng = np.random.default_rng(11)
+    n = 40
+
+    def sym():
+        a = rng.normal(size=(n, 3, 3)) + 1j * rng.normal(size=(n, 3, 3))
+        return a + np.swapaxes(a, -1, -2)
+
+    a0, a1, a2 = sym(), sym() + 6 * np.eye(3), sym()
+    packed = np.array([a1[:, i, j] for i, j in doubling._UPPER])
+    cof, t, r = np.empty((6, n), complex), np.empty(n, complex), np.empty(n, complex)
+    K = np.empty((6, 2, n), complex)
+    doubling._symmetric_inverse(packed, cof, t, r, K)
+    ref = np.linalg.inv(a1)
+    for e, (i, j) in enumerate(doubling._UPPER):
+        assert np.array_equal(K[e, 0], K[e, 1])
+        assert np.max(np.abs(K[e, 0] - ref[:, i, j])) < 1e-13 * np.max(np.abs(ref))
+    # One step (the loop stops after it with the tolerance raised so that every point is done):
+    # Â1 = A1 − A2 K A0.
+    stack = [np.moveaxis(x, 0, -1) for x in (a0, a1, a2)]
+    monkeypatch.setattr(doubling, "_CR_TOL", np.inf)
+    A1h, A1h_dual, done = doubling._cyclic_reduction(*stack, None, dual=True)
+    assert done.all()
+    want = a1 - a2 @ ref @ a0
+    got = np.moveaxis(A1h, -1, 0)
+    assert np.max(np.abs(got - want)) < 1e-12 * np.max(np.abs(want))
+    # The reversed pencil's Â1' = A1 − A0 K A2 is the transpose.
+    want_dual = a1 - a0 @ ref @ a2
+    assert np.max(np.abs(np.moveaxis(A1h_dual, -1, 0) - want_dual)) < 1e-12 * np.max(np.abs(want))
+
+
 def test_surface_compliance_pair_falls_back_where_the_reversed_solvent_is_not_accurate(
     monkeypatch,
 ):
