@@ -8,7 +8,8 @@ import numpy as np
 import pytest
 from scipy import integrate, special
 
-from contactres.analysis._plateau import plateau_loop_slopes
+from contactres.analysis import _plateau
+from contactres.analysis._plateau import FIT_SERIES_GROUPS, plateau_loop_slopes
 from contactres.analysis._plateau_series import (
     SERIES_BLOCK,
     SERIES_MAX_M,
@@ -252,3 +253,56 @@ def test_slopes_of_slipping_points_do_not_depend_on_sticking_ones(derivatives):
     for a, b, stuck in zip(alone, mixed, (1.0, 0.0, 0.0, 0.0, 0.0, 0.0), strict=False):
         np.testing.assert_array_equal(a, b[:, :12])
         assert np.all(b[:, 12] == stuck)
+
+
+def _slopes_plainly(x, c):
+    """The six arrays of plateau_loop_slopes with derivatives at slipping points (1-d), as
+    written before the fit took its points in one order: J by the series of the fit's groups
+    (each point in its own tier), the elliptic form where that is NaN, then the formulas of
+    G′, G″ and their derivatives with a choice (np.where) between y < 3/2 and beyond."""
+    y = x - c
+    half = 2.0 * np.arcsin(np.sqrt(c / x))
+    J, Jx, Jc = slip_integrals_series(x, c, half, FIT_SERIES_GROUPS)
+    far = np.isnan(J)
+    J[far], Jx[far], Jc[far] = _plateau._elliptic_integrals(x[far], c[far])
+    rcy = np.sqrt(c * y)
+    H = x**2 / 8.0 * half - 0.25 * rcy * (y - c) + np.sqrt(2.0 / 3.0) * J
+    inside = y < 1.5
+    r = np.sqrt(np.maximum(1.0 - y / 1.5, 0.0))
+    q = np.where(inside, (y / 1.5) / (1.0 + r), 1.0)
+    s_y = np.where(inside, q * q * (0.5 + r), y - 1.0)
+    W = np.where(inside, 0.3 * q**3 * (r * r + 3.0 * r + 1.0), y - 1.2)
+    k1, k2 = 8.0 / (np.pi * x**2), 4.0 / (np.pi * x**2)
+    g1, g2 = k1 * H, k2 * (c * s_y + W)
+    Hx = 0.5 * (0.5 * x * half - rcy) + Jx / np.sqrt(6.0)
+    dW = np.where(inside, 1.0 - r**3 - y * r, 1.0)
+    return (
+        g1,
+        g2,
+        k1 * Hx - 2.0 * g1 / x,
+        k1 * (Jc / np.sqrt(6.0)),
+        k2 * (c * q + dW) - 2.0 * g2 / x,
+        k2 * (s_y - c * q - dW),
+    )
+
+
+def test_fit_slopes_in_one_order_are_those_of_the_plain_formulas():
+    # With derivatives the slopes take the slipping points in one order (series groups, then
+    # the elliptic form's points) and form everything in place: each point's six numbers are,
+    # bit for bit, those of the plain formulas, at sticking points, every cell of m, x beyond
+    # e, y beyond 3/2 and c = 0, in 2-d rows sharing c.
+    rng = np.random.default_rng(21)
+    c = rng.uniform(0.0, 2.0, (300, 1)) * (rng.random((300, 1)) < 0.8)
+    x = c + rng.uniform(-0.5, 6.0, (300, 13))
+    x = np.maximum(x, 1e-3)
+    got = plateau_loop_slopes(x, c)
+    cc = np.broadcast_to(c, x.shape)
+    slip = x > cc
+    e = cc + 1.5
+    cell = np.floor(16.0 * np.minimum(x, e) / np.maximum(x, e))[slip]
+    assert min(np.sum(cell == k) for k in range(16)) >= 10  # every cell of m, series or not
+    assert np.sum(x > e) > 100 and np.sum(x - cc >= 1.5) > 100 and np.sum(~slip) > 100
+    want = _slopes_plainly(x[slip], cc[slip])
+    for j, (a, b) in enumerate(zip(got, want, strict=True)):
+        np.testing.assert_array_equal(a[slip], b)
+        assert np.all(a[~slip] == (1.0 if j == 0 else 0.0))

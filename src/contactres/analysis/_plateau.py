@@ -48,7 +48,12 @@ from ..fitting import LMOptions, levenberg_marquardt, solve_stacked
 from ._amplitude import PLATEAU_MIN_SLOPE
 from ._carlson import legendre_tails
 from ._loops import X_MAX, LoopTable, fit_cm_loops, loop_fit_fields, solve_projected
-from ._plateau_series import slip_integral_series, slip_integrals_series
+from ._plateau_series import (
+    SERIES_CELLS,
+    SERIES_TIERS,
+    slip_integral_series,
+    slip_integrals_ordered,
+)
 
 __all__ = [
     "FIT_SERIES_GROUPS",
@@ -142,7 +147,9 @@ def plateau_loop_slopes(x, c, derivatives: bool = True) -> tuple[np.ndarray, ...
       k = 0, 1, 2, i.e. to Legendre's incomplete elliptic integrals F and E of parameter
       m = b/max(x, e). Where m < 1/2 (:data:`FIT_SERIES_GROUPS`; small x, where the elliptic
       combination cancels, among them) the three integrals are instead summed as power series
-      (:func:`contactres.analysis._plateau_series.slip_integrals_series`).
+      (:func:`contactres.analysis._plateau_series.slip_integrals_series`'s sums, at the
+      points ordered once an evaluation: :func:`~contactres.analysis._plateau_series.
+      slip_integrals_ordered`).
 
     Agrees with the quadrature of :func:`~contactres.analysis._loops.plateau_loop_shape` to
     ~2e-11 (that quadrature's own accuracy; tests/analysis/test_scale.py), at ~0.3-0.5 µs per
@@ -155,47 +162,142 @@ def plateau_loop_slopes(x, c, derivatives: bool = True) -> tuple[np.ndarray, ...
     that much to cancellation; the series is the more accurate).
     """
     x, c = np.broadcast_arrays(np.asarray(x, dtype=float), np.asarray(c, dtype=float))
+    if derivatives:
+        return _slopes_ordered(x, c)
     slip = x > c  # below d_c the contact sticks: G′ = 1, G″ = 0, and so do their derivatives
     if slip.all():  # (no gather and scatter: the same numbers, each point's its own)
-        return tuple(v.reshape(x.shape) for v in _slipping(x.ravel(), c.ravel(), derivatives))
-    out = [np.ones(x.shape)] + [np.zeros(x.shape) for _ in range(5 if derivatives else 1)]
-    at = np.flatnonzero(slip)  # (found once for the 2 gathers and 2-6 scatters)
+        return tuple(v.reshape(x.shape) for v in _slipping_values(x.ravel(), c.ravel()))
+    out = [np.ones(x.shape), np.zeros(x.shape)]
+    at = np.flatnonzero(slip)  # (found once for the 2 gathers and 2 scatters)
     if at.size:
         flat = [o.reshape(-1) for o in out]
-        got = _slipping(x.reshape(-1)[at], c.reshape(-1)[at], derivatives)
+        got = _slipping_values(x.reshape(-1)[at], c.reshape(-1)[at])
         for o, v in zip(flat, got, strict=True):
             o[at] = v
     return tuple(out)
 
 
-def _slipping(x, c, derivatives=True) -> tuple[np.ndarray, ...]:
-    """:func:`plateau_loop_slopes` where x > c (1-d arrays)."""
-    if not derivatives:
-        return _slipping_values(x, c)
+def _slopes_ordered(x, c) -> tuple[np.ndarray, ...]:
+    """:func:`plateau_loop_slopes` with derivatives at x, c (broadcast, same shape).
+
+    The slipping points (x > c) are gathered once, ordered as J's forms take them: the series'
+    groups of :data:`FIT_SERIES_GROUPS`, the most terms first (a prefix of them still summing
+    at each term, :func:`contactres.analysis._plateau_series.slip_integrals_ordered`), then
+    the elliptic form's points; all of :func:`_slipping` runs in that order, its six arrays
+    scattered back once. Each point's numbers are its own (elementwise arithmetic), so that
+    they are those of the points taken one by one, bit for bit: one gather and one scatter
+    instead of a sort, five gathers and a dozen scatters (those of the slipping points, the
+    series' tiers and the elliptic points each on its own)."""
+    xf, cf = x.reshape(-1), c.reshape(-1)
+    slip = xf > cf  # below d_c the contact sticks: G′ = 1, G″ = 0, and so do their derivatives
+    # m = min(x, e)/max(x, e) in cells 1/16 wide, as _plateau_series takes it (a NaN m goes to
+    # the elliptic form, as the series' NaN sent it there).
+    e = cf + 1.5
+    cells = np.minimum(xf, e)
+    cells /= np.maximum(xf, e)
+    cells *= SERIES_CELLS
+    below = [cells < g for g in FIT_SERIES_GROUPS]
+    parts, reach = [], []
+    for j in range(len(below) - 1, -1, -1):  # the group summing the most terms first
+        group = below[j] & slip
+        if j:
+            group &= ~below[j - 1]
+        parts.append(np.flatnonzero(group))
+        ns = sum(p.size for p in parts)
+        reach.append((SERIES_TIERS[FIT_SERIES_GROUPS[j] - 1][1], ns))
+    slip &= ~below[-1]
+    parts.append(np.flatnonzero(slip))
+    order = np.concatenate(parts)
+    got = _slipping(xf[order], cf[order], reach)
+    if order.size == xf.size:  # every point slips: each is written below
+        out = [np.empty(x.shape) for _ in range(6)]
+    else:
+        out = [np.ones(x.shape)] + [np.zeros(x.shape) for _ in range(5)]
+    for o, v in zip(out, got, strict=True):
+        o.reshape(-1)[order] = v
+    return tuple(out)
+
+
+def _slipping(x, c, reach) -> tuple[np.ndarray, ...]:
+    """:func:`plateau_loop_slopes` with derivatives where x > c (1-d arrays ordered by
+    :func:`_slopes_ordered`: ``reach`` the series' (terms, end) pairs, the points beyond the
+    last end by the elliptic form)."""
     y = x - c
     half = 2.0 * np.arcsin(np.sqrt(c / x))  # d = c at φ = half
     # J and its derivatives' integrals by their series where it is the cheaper (m below
     # FIT_SERIES_GROUPS[-1]/16), by the elliptic integrals beyond.
-    J, Jx, Jc = slip_integrals_series(x, c, half, FIT_SERIES_GROUPS)
-    far = np.flatnonzero(np.isnan(J))  # (found once for the 2 gathers and 3 scatters)
-    if far.size:
-        J[far], Jx[far], Jc[far] = _elliptic_integrals(x[far], c[far])
-    rcy = np.sqrt(c * y)
-    H = x**2 / 8.0 * half - 0.25 * rcy * (y - c) + np.sqrt(2.0 / 3.0) * J
-    # Loss part: s(y) = ∫₀^y (1 - √(1 - 2t/3)) dt and W(y), with 1 - r = (2y/3)/(1 + r).
-    inside = y < 1.5
-    r = np.sqrt(np.maximum(1.0 - y / 1.5, 0.0))
-    q = np.where(inside, (y / 1.5) / (1.0 + r), 1.0)
-    s_y = np.where(inside, q * q * (0.5 + r), y - 1.0)
-    W = np.where(inside, 0.3 * q**3 * (r * r + 3.0 * r + 1.0), y - 1.2)
-    k1, k2 = 8.0 / (np.pi * x**2), 4.0 / (np.pi * x**2)
-    g1, g2 = k1 * H, k2 * (c * s_y + W)
-    Hx = 0.5 * (0.5 * x * half - rcy) + Jx / np.sqrt(6.0)
-    Hc = Jc / np.sqrt(6.0)
-    dW = np.where(inside, 1.0 - r**3 - y * r, 1.0)
-    dg1 = (k1 * Hx - 2.0 * g1 / x, k1 * Hc)
-    dg2 = (k2 * (c * q + dW) - 2.0 * g2 / x, k2 * (s_y - c * q - dW))
-    return g1, g2, *dg1, *dg2
+    ns = reach[-1][1]
+    J, Jx, Jc = np.empty(x.size), np.empty(x.size), np.empty(x.size)
+    if ns:
+        series = slice(0, ns)
+        # (φ_c: a copy, which the series overwrites where x > e)
+        J[series], Jx[series], Jc[series] = slip_integrals_ordered(
+            x[series], c[series], half[series].copy(), reach
+        )
+        bad = np.flatnonzero(np.isnan(J[series]))  # (none inside the domain: a guard)
+        if bad.size:
+            J[bad], Jx[bad], Jc[bad] = _elliptic_integrals(x[bad], c[bad])
+    if ns < x.size:
+        J[ns:], Jx[ns:], Jc[ns:] = _elliptic_integrals(x[ns:], c[ns:])
+    rcy = c * y
+    np.sqrt(rcy, out=rcy)
+    x2 = x**2
+    # H = x²/8 · half - (1/4)√(cy)(y - c) + √(2/3) J, in that order of operations.
+    H = x2 / 8.0
+    H *= half
+    t = 0.25 * rcy
+    t *= y - c
+    H -= t
+    H += np.sqrt(2.0 / 3.0) * J
+    # Loss part: s(y) = ∫₀^y (1 - √(1 - 2t/3)) dt and W(y), with 1 - r = (2y/3)/(1 + r): the
+    # inside formulas (y < 3/2) at every point (finite beyond, where r = 0), the points beyond
+    # then set to y - 1, y - 1.2 (and q = 1, W′ = 1): the numbers of a choice between the two.
+    q = y / 1.5
+    r = 1.0 - q
+    np.maximum(r, 0.0, out=r)
+    np.sqrt(r, out=r)
+    q /= 1.0 + r
+    s_y = q * q
+    s_y *= 0.5 + r
+    W = 0.3 * q**3
+    t = r * r
+    t += 3.0 * r
+    t += 1.0
+    W *= t
+    dW = 1.0 - r**3
+    dW -= y * r
+    beyond = np.flatnonzero(~(y < 1.5))  # (a NaN y beyond, as np.where took it)
+    if beyond.size:
+        yb = y[beyond]
+        q[beyond], s_y[beyond], W[beyond], dW[beyond] = 1.0, yb - 1.0, yb - 1.2, 1.0
+    k1 = np.pi * x2
+    k2 = 4.0 / k1
+    np.divide(8.0, k1, out=k1)
+    g1 = k1 * H
+    g2 = c * s_y
+    g2 += W
+    g2 *= k2
+    Hx = 0.5 * x
+    Hx *= half
+    Hx -= rcy
+    Hx *= 0.5
+    Hx += Jx / np.sqrt(6.0)
+    Jc /= np.sqrt(6.0)  # Hc
+    Jc *= k1  # ∂G′/∂c
+    cq = c * q
+    Hx *= k1  # ∂G′/∂x below
+    t = 2.0 * g1
+    t /= x
+    Hx -= t
+    dg2x = cq + dW
+    dg2x *= k2
+    t = 2.0 * g2
+    t /= x
+    dg2x -= t
+    s_y -= cq
+    s_y -= dW
+    s_y *= k2  # ∂G″/∂c
+    return g1, g2, Hx, Jc, dg2x, s_y
 
 
 def _slipping_values(x, c) -> tuple[np.ndarray, np.ndarray]:

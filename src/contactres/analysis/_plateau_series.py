@@ -55,6 +55,7 @@ __all__ = [
     "SERIES_TERMS",
     "SERIES_TIERS",
     "slip_integral_series",
+    "slip_integrals_ordered",
     "slip_integrals_series",
 ]
 
@@ -198,6 +199,43 @@ def _by_tiers(x, c, phi, groups: tuple[int, ...], derivatives: bool) -> tuple[np
     inside = int(ends[groups[-1] - 1])
     order = order[:inside][::-1]
     x, c = x[order], c[order]
+    if phi is not None:
+        phi = np.asarray(phi, dtype=float)[order]
+    # (terms, end of the prefix of the points that sum them), the group summing the most first.
+    reach = [
+        (SERIES_TIERS[last - 1][1], inside - int((0, *ends)[first]))
+        for first, last in zip((0, *groups[:-1]), groups, strict=True)
+    ][::-1]
+    got = slip_integrals_ordered(x, c, phi, reach, derivatives)
+    out = np.full((1 + 2 * derivatives, m.size), np.nan)
+    for o, v in zip(out, got, strict=True):
+        o[order] = v
+    return tuple(out)
+
+
+def slip_integrals_ordered(x, c, phi, reach, derivatives: bool = True) -> tuple[np.ndarray, ...]:
+    """J of :func:`slip_integral_series` (with the integrals of :func:`slip_integrals_series`
+    if ``derivatives``) at points already ordered by the terms they sum, the most first: the
+    same numbers, bit for bit, as those functions give at each point with the same terms.
+
+    Why. The plateau fit (:func:`contactres.analysis._plateau.plateau_loop_slopes`) orders its
+    points once an evaluation (series groups, then the elliptic form's points) and keeps that
+    order for all of its arithmetic: one gather and one scatter instead of this module's own
+    sort and those of its callers.
+
+    Parameters
+    ----------
+    x, c : 1-d arrays inside the series' domain (as :func:`slip_integral_series`), ordered
+    phi : 2 arcsin √(c/x) at each point, or None; overwritten where x > e (with φ_c there)
+    reach : (K, n) pairs, K descending, n ascending, the last n the points' count: the first
+        n points sum the terms k = 0..K (at least; a point's K that of the last pair it falls
+        under; K at most that of :data:`SERIES_TIERS`' last cell)
+    derivatives : with the two integrals of :func:`slip_integrals_series`
+
+    Returns
+    -------
+    J (and ∫ d(e - d)/√Q dd, ∫ d(x - d)/√Q dd), dimensionless, at each point
+    """
     e = c + 1.5
     r, a = np.minimum(x, e), np.maximum(x, e)
     a -= 0.5 * r
@@ -205,34 +243,24 @@ def _by_tiers(x, c, phi, groups: tuple[int, ...], derivatives: bool) -> tuple[np
     far = x > e
     if phi is None or far.all():
         phi = 2.0 * np.arcsin(np.sqrt(c / r))
-    else:
-        phi = np.asarray(phi, dtype=float)[order]
-        if far.any():
-            phi[far] = 2.0 * np.arcsin(np.sqrt(c[far] / r[far]))
-    # (terms, end of the prefix of the points that sum them), the group summing the most first.
-    reach = [
-        (SERIES_TIERS[last - 1][1], inside - int((0, *ends)[first]))
-        for first, last in zip((0, *groups[:-1]), groups, strict=True)
-    ][::-1]
-    got = np.empty((1 + derivatives, order.size))
+    elif far.any():
+        phi[far] = 2.0 * np.arcsin(np.sqrt(c[far] / r[far]))
+    got = np.empty((1 + derivatives, x.size))
     # In blocks of SERIES_BLOCK points (the last one shorter): each term's passes then stay in
     # the core's cache.
-    for start in range(0, order.size, SERIES_BLOCK):
-        block = slice(start, min(start + SERIES_BLOCK, order.size))
+    for start in range(0, x.size, SERIES_BLOCK):
+        block = slice(start, min(start + SERIES_BLOCK, x.size))
         size = block.stop - start
         here = [(t, min(max(end - start, 0), size)) for t, end in reach]
         got[:, block] = _series(r[block], a[block], c[block], phi[block], here, derivatives)
-    out = np.full((1 + 2 * derivatives, m.size), np.nan)
-    out[0, order] = got[0]
-    if derivatives:
-        # Euler's relation (slip_integrals_series): the summed one is that of the larger end.
-        J, summed = got
-        rest = 5.0 * J + 2.0 * c * np.sqrt(1.5 * c * (x - c))
-        rest -= np.where(far, x, e) * summed
-        rest /= np.where(far, e, x)
-        out[1, order] = np.where(far, summed, rest)
-        out[2, order] = np.where(far, rest, summed)
-    return tuple(out)
+    if not derivatives:
+        return (got[0],)
+    # Euler's relation (slip_integrals_series): the summed one is that of the larger end.
+    J, summed = got
+    rest = 5.0 * J + 2.0 * c * np.sqrt(1.5 * c * (x - c))
+    rest -= np.where(far, x, e) * summed
+    rest /= np.where(far, e, x)
+    return J, np.where(far, summed, rest), np.where(far, rest, summed)
 
 
 def _series(r, a, c, phi, reach, derivatives=False):
