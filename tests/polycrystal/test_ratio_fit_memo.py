@@ -3,7 +3,7 @@
 fit_ratios keeps the rows of its last evaluation on the grains, keyed by the bits of the
 ratios, and computes only the rows it lacks. Every row the fit stacks (kept or fresh) must be
 the row a single indentation_moduli call gives for its own crystal and face; the spies below
-see the fresh rows (stacked_indentation_moduli), the crystals (unit_material) and every stack
+see the fresh rows (moduli_and_points), the crystals (unit_material) and every stack
 the model uses (np.stack, the module's only one), without changing a bit of the fit.
 """
 
@@ -49,16 +49,18 @@ def test_every_row_the_fit_uses_is_its_own_crystals_fresh_row(monkeypatch):
         return mat
 
     fresh: list[tuple[list[Material], np.ndarray, np.ndarray]] = []
-    real = _ratio_fit.stacked_indentation_moduli
+    real = _ratio_fit.moduli_and_points
+    asked: list[int | None] = []  # the θ points each call evaluated up front
 
-    def spy(units, orient, rtol):
-        out = real(units, orient, rtol=rtol)
+    def spy(units, orient, rtol, first_points=None):
+        out, points = real(units, orient, rtol, first_points)
         assert rtol == _ratio_fit.MODULUS_RTOL
         fresh.append((list(units), np.array(orient), out.copy()))
-        return out
+        asked.append(first_points)
+        return out, points
 
     numpy_spy = _StackSpy()
-    monkeypatch.setattr(_ratio_fit, "stacked_indentation_moduli", spy)
+    monkeypatch.setattr(_ratio_fit, "moduli_and_points", spy)
     monkeypatch.setattr(_ratio_fit, "np", numpy_spy)
     param = dataclasses.replace(CUBIC, unit_material=unit)
     fit = _ratio_fit.fit_ratios(
@@ -98,3 +100,6 @@ def test_every_row_the_fit_uses_is_its_own_crystals_fresh_row(monkeypatch):
     used = sum(s.shape[0] for s in numpy_spy.stacks if s.shape[1] == len(R))
     computed = sum(rows.shape[0] for _, orient, rows in fresh if orient.shape[0] == len(R))
     assert used > computed
+    # After the first rows on the grains, the fit asks for the points its rows needed (Cu: 64),
+    # and every row above is still its own call's bits.
+    assert asked[0] is None and 64 in asked

@@ -31,7 +31,7 @@ from ..normal import (
     stiffness_contrast,
 )
 
-__all__ = ["indentation_moduli", "stacked_indentation_moduli"]
+__all__ = ["indentation_moduli", "moduli_and_points", "stacked_indentation_moduli"]
 
 # The θ rule of contact_integrals: 16 points on [0, π) to start, doubled up to 2^15.
 _N_START = 16
@@ -131,7 +131,7 @@ def indentation_moduli(
     out = np.empty(unique.shape[0], dtype=dtype)
     for i in range(0, unique.shape[0], _ORIENTATION_CHUNK):
         sl = slice(i, i + _ORIENTATION_CHUNK)
-        out[sl] = _moduli([m], unique[sl], rtol, index=first[sl])
+        out[sl] = _moduli([m], unique[sl], rtol, index=first[sl])[0]
     return out[inverse]
 
 
@@ -149,20 +149,61 @@ def stacked_indentation_moduli(
     every row complex, as its own M is. Parameters and errors as :func:`indentation_moduli`;
     no materials give an empty (0, N) array.
     """
+    return moduli_and_points(materials, surface_matrices, rtol)[0]
+
+
+def moduli_and_points(
+    materials: Sequence[Material],
+    surface_matrices,
+    rtol: float = THETA_RTOL,
+    first_points: int | None = None,
+) -> tuple[np.ndarray, int | None]:
+    """:func:`stacked_indentation_moduli` and the fewest θ points a row needed.
+
+    The rows are those of :func:`stacked_indentation_moduli` to the bit, whatever
+    ``first_points``: it sets only how the same points of the same nested rule are batched.
+
+    Parameters
+    ----------
+    materials, surface_matrices, rtol
+        As :func:`stacked_indentation_moduli`.
+    first_points : int, optional
+        θ points on [0, π) of every row evaluated in the first stacked call: 16 2^j, at most
+        2^15; None: 16. The rule then compares its levels 16, 32, ... as before; rows that
+        meet ``rtol`` before ``first_points`` leave the surplus unused, the others go on
+        doubling call by call. A fit passes the points its last rows needed (materials a
+        small step away need about as many): one call instead of one per doubling (Cu: 64
+        points, three calls), whose fixed cost dominates for tens of grains.
+
+    Returns
+    -------
+    M : ndarray, shape (len(materials), N)
+        Pa, as :func:`stacked_indentation_moduli`.
+    points : int or None
+        The fewest θ points on [0, π) with which a row met ``rtol`` (16 2^j); None when no
+        row took the rule (no orientations, or lossy or isotropic materials, evaluated one
+        by one).
+    """
     ms = [require_material(m) for m in materials]
+    first_points = _N_START if first_points is None else int(first_points)
+    if first_points < _N_START or first_points > _N_MAX or first_points & (first_points - 1):
+        raise ContactresInputError(f"first_points must be 16 2^j <= {_N_MAX}, got {first_points!r}")
     if not ms:
-        return np.empty((0, _checked(rtol, surface_matrices)[1].shape[0]))
-    if len(ms) < 2 or any(m.is_lossy or isotropic_constants(m) is not None for m in ms):
-        return np.stack([indentation_moduli(m, surface_matrices, rtol) for m in ms])
+        return np.empty((0, _checked(rtol, surface_matrices)[1].shape[0])), None
+    if any(m.is_lossy or isotropic_constants(m) is not None for m in ms):
+        return np.stack([indentation_moduli(m, surface_matrices, rtol) for m in ms]), None
     rtol, R = _checked(rtol, surface_matrices)
     first, inverse = _distinct(R)
     unique = R[first]
     out = np.empty((len(ms), unique.shape[0]))
     step = max(1, _ORIENTATION_CHUNK // len(ms))
+    fewest = None
     for i in range(0, unique.shape[0], step):
         sl = slice(i, i + step)
-        out[:, sl] = _moduli(ms, unique[sl], rtol, index=first[sl]).reshape(len(ms), -1)
-    return out[:, inverse]
+        m, n = _moduli(ms, unique[sl], rtol, index=first[sl], first_points=first_points)
+        out[:, sl] = m.reshape(len(ms), -1)
+        fewest = n if fewest is None else min(fewest, n)
+    return out[:, inverse], fewest
 
 
 def _checked(rtol, surface_matrices) -> tuple[float, np.ndarray]:
@@ -214,10 +255,25 @@ def _rotated(R: np.ndarray, c: np.ndarray) -> np.ndarray:
     return np.einsum("nia,njkla->nijkl", R, t)
 
 
-def _moduli(ms: list[Material], R: np.ndarray, rtol: float, index: np.ndarray) -> np.ndarray:
+def _theta_levels(points: int) -> list[np.ndarray]:
+    """The nested θ rule on [0, π) up to ``points`` points, level by level: the 16 starting
+    points, then the midpoints added at 16, 32, ..., ``points``/2 (rad; each array formed
+    by the expression the doubling loop of :func:`_moduli` uses, so the same bits)."""
+    levels = [np.pi * np.arange(_N_START) / _N_START]
+    n = _N_START
+    while 2 * n <= points:
+        levels.append(np.pi * (np.arange(n) + 0.5) / n)
+        n *= 2
+    return levels
+
+
+def _moduli(
+    ms: list[Material], R: np.ndarray, rtol: float, index: np.ndarray, first_points: int = _N_START
+) -> tuple[np.ndarray, int]:
     """M of one chunk of orientations ``R`` (n, 3, 3) for each material of ``ms`` (all lossy
-    or all lossless, none isotropic), material-major: shape (len(ms) n,); ``index``: the index
-    of each orientation in the caller's stack (named in an error)."""
+    or all lossless, none isotropic), material-major: shape (len(ms) n,), and the fewest θ
+    points a row needed; ``index``: the index of each orientation in the caller's stack
+    (named in an error); ``first_points``: see :func:`moduli_and_points`."""
     lossy = ms[0].is_lossy
     dtype = complex if lossy else float
     # Each material rotated as alone (the same einsum calls, the same bits), then stacked.
@@ -230,24 +286,45 @@ def _moduli(ms: list[Material], R: np.ndarray, rtol: float, index: np.ndarray) -
         raise ContactresInputError(f"surface-frame C44 must be positive, got {c44[bad]!r} Pa")
     cs = cs / c44[:, None, None, None, None]
 
-    def sums(idx, theta):
-        g = -stacked_normal_compliance(cs[idx], theta) / c44[idx, None]
+    def kernel(idx, theta):
+        return -stacked_normal_compliance(cs[idx], theta) / c44[idx, None]
+
+    def sums(g, theta):
         if not lossy:
             g = g.real
         return np.stack([g.sum(axis=1), (g * np.cos(theta) ** 2).sum(axis=1)], axis=1)
 
-    n = _N_START
     active = np.arange(cs.shape[0])
-    total = sums(active, np.pi * np.arange(n) / n)
+    # The first levels of every row in one call: Ĝ at a point is the same bits in any stack
+    # (the kernel works point by point), and each level's columns are copied out, so its
+    # sums add the values of a call of its own in its order.
+    levels = _theta_levels(first_points)
+    g = kernel(active, np.concatenate(levels))
+    edges = np.cumsum([0] + [th.size for th in levels])
+    ready = [
+        sums(np.ascontiguousarray(g[:, a:b]), th)
+        for a, b, th in zip(edges[:-1], edges[1:], levels, strict=True)
+    ]
+    n, level = _N_START, 1
+    total = ready[0]
     I0 = np.empty(cs.shape[0], dtype=total.dtype)
+    fewest = 0
     while active.size:
-        new = total + sums(active, np.pi * (np.arange(n) + 0.5) / n)
+        if level < len(ready):
+            added = ready[level][active]
+        else:
+            theta = np.pi * (np.arange(n) + 0.5) / n
+            added = sums(kernel(active, theta), theta)
+        new = total + added
+        level += 1
         I_old = 2 * np.pi / n * total
         I_new = np.pi / n * new
         err = np.max(np.abs(I_new - I_old), axis=1) / np.abs(I_new[:, 0])
         n *= 2
         conv = err <= rtol
         I0[active[conv]] = I_new[conv, 0]
+        if not fewest and conv.any():
+            fewest = n
         if n >= _N_MAX and not np.all(conv):
             j = int(np.flatnonzero(~conv)[0])
             contrast = stiffness_contrast(ms[active[j] // R.shape[0]])
@@ -265,4 +342,4 @@ def _moduli(ms: list[Material], R: np.ndarray, rtol: float, index: np.ndarray) -
                 f"{reason}"
             )
         active, total = active[~conv], new[~conv]
-    return 4 * np.pi / I0
+    return 4 * np.pi / I0, fewest
