@@ -143,17 +143,17 @@ and on the bundled example, the evidence's peak RSS on the jittered table 152 MB
 formed by :func:`_level_sums` since this round.)
 Since (issue 31, point 3, eighth round) a row's nodes in y are ordered, and their spacings and
 edge cells found, once for each pair of peaks (:func:`_y_patterns`; they follow from the peaks
-alone) instead of by a sort of every row, the values at all nodes go into one array without
-copies (:func:`_over_y`, :func:`_node_values`), the five sums the solve uses into arrays of their
-own (:func:`_level_sums`: numpy's loops run over views of a wider array row by row), the
-trapezoid's halving is applied to the spacings (:func:`_cells`) and a chunk's points are
-gathered without a loop over its blocks (:func:`_rows`); the store of slopes has its own
-module (:mod:`contactres.analysis._slope_store`). On an eighth of the undecided blocks of the
-10^4 sweeps of issue 31: 0.671 × 10^9 instructions against 0.713 × 10^9 (callgrind, which runs
-numpy's exp and log without AVX-512); CPU on a machine at a load of 15-20 on two cores within
-its noise of main's (10^5 sweeps: 4.9-5.3 s both); every output the same bit for bit on the
-10^4 sweeps with shared and with jittered amplitudes, on the 10^5 sweeps, on the bundled
-example and on the studies of ``benchmarks/bench_scale.py``.
+alone) instead of by a sort of every row, the node values are written in place, without the
+copies of a tuple into an array (:func:`_node_values`), the trapezoid's halving is applied to
+the spacings (:func:`_cells`) and a chunk's points are gathered without a loop over its blocks
+(:func:`_rows`); the store of slopes has its own module
+(:mod:`contactres.analysis._slope_store`). On the 10^4 sweeps of issue 31, one thread, best of
+six, twice alternated with main on a machine at a load of ~15 on two cores, the evidence's user
+CPU 0.54-0.57 s against 0.61-0.63 s (system CPU 0.007 s against 0.000: 3,100 page faults a
+call; arrays of their own for the five sums the solve uses, so that its loops ran over whole
+blocks, took 20,000 more and were left out); every output the same bit for bit on the 10^4
+sweeps with shared and with jittered amplitudes, on the 10^5 sweeps, on the bundled example
+and on the studies of ``benchmarks/bench_scale.py``.
 A block's result depends on its own row alone, so the caller deals the undecided blocks out to
 the analysis's worker processes where they are many (``contactres.analysis._blocks``,
 ``_evidence``: 1,975 blocks of the 10,752 sweeps in two halves of ~2.3 s of CPU each).
@@ -227,10 +227,10 @@ EVIDENCE_FRESH_CELLS = 2 * CHUNK_CELLS
 NODE_BLOCK_CELLS = 1 << 14
 
 
-def _integrand(pts, dl, y, store=None, out=None):
+def _integrand(pts, dl, y, store=None):
     """ln L + ln π (as :func:`plateau_log_evidence`, up to a common constant), ln L alone and
     ln μ at the nodes (R, Y) of d_c/u_max ``dl`` (R, 1) and ``y`` (R, Y), each row R one block's
-    (``pts``: :func:`_rows`): (3, R, Y), in ``out`` where given.
+    (``pts``: :func:`_rows`): (3, R, Y).
 
     The model depends on a point only through its amplitude, and a block's sweeps repeat the
     same amplitudes (three ramps: a third of its points distinct), so the slopes and the
@@ -247,7 +247,7 @@ def _integrand(pts, dl, y, store=None, out=None):
     sums = _level_sums(*slopes, pts)
     # The rest node by node, in blocks of rows of ~NODE_BLOCK_CELLS nodes (arrays that stay in
     # the cache; the same bits, each node's arithmetic its own).
-    out = np.empty((3, *theta.shape)) if out is None else out
+    out = np.empty((3, *theta.shape))
     step = max(1, NODE_BLOCK_CELLS // max(theta.shape[1], 1))
     for start in range(0, theta.shape[0], step):
         b = slice(start, start + step)
@@ -382,13 +382,12 @@ def _void_rows(a):
 
 
 def _level_sums(slopes, squares, inv, pts):
-    """The sums over the amplitudes of the projected solve at the nodes (R, Y) of each row, in
-    the order of :func:`_solve_levels`' arguments (Σ w Δf G′, Σ w G″, Σ w ΔΓc G″, Σ w G′²,
-    Σ w G″², each (R, Y), then the rows' (R, 1) numbers): that of
-    :func:`~contactres.analysis._loops.solve_projected` on a block's distinct amplitudes
-    weighted by their numbers of points (``pts``: :func:`_rows`), from the sums over the
-    amplitudes of G′, G″ (``slopes``, (D, 2Y, L), of the distinct rows, ``inv`` each row's) and
-    of their squares (``squares``) times the row's weights and weighted data.
+    """The sums over the amplitudes of the projected solve at the nodes (R, Y) of each row
+    (:func:`_solve_levels`): that of :func:`~contactres.analysis._loops.solve_projected` on a
+    block's distinct amplitudes weighted by their numbers of points (``pts``: :func:`_rows`),
+    from the sums over the amplitudes of G′, G″ (``slopes``, (D, 2Y, L), of the distinct rows,
+    ``inv`` each row's) and of their squares (``squares``) times the row's weights and
+    weighted data.
 
     Why. The sums are the only work at each node and amplitude: matrix products of the rows
     of G′, G″ and of their squares against the weight vectors, instead of the residuals formed
@@ -424,44 +423,37 @@ def _level_sums(slopes, squares, inv, pts):
     # of Y columns in another order than those of 2Y, other bits in 2 ln B at ~1e-12.)
     R = w.shape[0]
     W = np.stack([w, wdf, wdgc], axis=1)  # (R, 3, L)
-    # The products in the rows' order of their slopes (``order``: each distinct row's rows
-    # next to each other, written in one piece), then the five sums the solve uses put back in
-    # the rows' order, each in an array of its own: numpy's loops in :func:`_solve_levels` then
-    # run over whole blocks, not over a view row by row (the same numbers, copies).
     lin, sq = np.empty((R, 3, Y2)), np.empty((R, Y2))
     order = np.argsort(inv, kind="stable")
     if D == R:  # no row shares its slopes: the products of all rows in one call each
-        lin[...] = W[order] @ slopes.transpose(0, 2, 1)
-        sq[...] = (squares @ w[order][..., None])[..., 0]
+        lin[order] = W[order] @ slopes.transpose(0, 2, 1)
+        sq[order] = (squares @ w[order][..., None])[..., 0]
         D = 0
     cut = np.searchsorted(inv[order], np.arange(D + 1)).tolist()
     for d in range(D):
-        a, b = cut[d], cut[d + 1]
-        rows = order[a:b]
-        lin[a:b] = (W[rows].reshape(-1, L) @ slopes[d].T).reshape(-1, 3, Y2)
-        sq[a:b] = (squares[d] @ w[rows][..., None])[..., 0]
-    back = np.empty(R, dtype=np.intp)
-    back[order] = np.arange(R)
-    Y = Y2 // 2
-    sums = lin[back, 1, :Y], lin[back, 0, Y:], lin[back, 2, Y:], sq[back, :Y], sq[back, Y:]
+        rows = order[cut[d] : cut[d + 1]]
+        lin[rows] = (W[rows].reshape(-1, L) @ slopes[d].T).reshape(-1, 3, Y2)
+        sq[rows] = (squares[d] @ w[rows][..., None])[..., 0]
     # Below its rounding, (L + 3)·ε·C, the expanded square says nothing; a fit exact to that
     # level would come out negative (ln L -inf, the node lost): such an RSS is held at the
     # floor, its best estimate (review R22b; :func:`_solve_levels`).
     floor = (L + 3) * np.finfo(float).eps
-    return *sums, C_f, C_g, wdgc.sum(-1, keepdims=True), n, floor * C_f, floor * C_g
+    return lin, sq, C_f, C_g, wdgc.sum(-1, keepdims=True), n, floor * C_f, floor * C_g
 
 
-def _solve_levels(s_f, g2, g2_g, s_ff, g2_sq, C_f, C_g, g_sum, n, lo_f, lo_g, wf, wg):
+def _solve_levels(lin, sq, C_f, C_g, g_sum, n, lo_f, lo_g, wf, wg):
     """Pκ (A) and the residual sums of Δf and ΔΓ at the nodes (R, Y) of each row from the sums
-    of :func:`_level_sums` (``s_f`` = Σ w Δf G′, ``g2`` = Σ w G″, ``g2_g`` = Σ w ΔΓc G″,
-    ``s_ff`` = Σ w G′², ``g2_sq`` = Σ w G″² (R, Y); ``C_f``, ``C_g``, ``g_sum`` = Σ w ΔΓc,
-    ``n`` and the floors ``lo_f``, ``lo_g`` of the RSS (R, 1)) and the weights ``wf``, ``wg``
-    (R, 1) of Δf and ΔΓ (:func:`_level_sums`' docstring)."""
-    g2m = g2 / n
+    of :func:`_level_sums` (``lin``: Σ w G, Σ w Δf G, Σ w ΔΓc G, G = G′ and G″ side by side
+    (R, 3, 2Y); ``sq``: Σ w G′², Σ w G″² side by side (R, 2Y); ``C_f``, ``C_g``,
+    ``g_sum`` = Σ w ΔΓc, ``n`` and the floors ``lo_f``, ``lo_g`` of the RSS (R, 1)) and the
+    weights ``wf``, ``wg`` (R, 1) of Δf and ΔΓ (:func:`_level_sums`' docstring)."""
+    Y = lin.shape[2] // 2
+    s_f, s_ff = lin[:, 1, :Y], sq[:, :Y]
+    g2m = lin[:, 0, Y:] / n
     # Σ n ΔΓc (G″ - mean) and Σ n (G″ - mean)²: the mean's terms taken out (Σ n ΔΓc is 0 but
     # for rounding; kept, it costs one product).
-    s_g = g2_g - g2m * g_sum
-    s_gg = g2_sq - g2m * g2
+    s_g = lin[:, 2, Y:] - g2m * g_sum
+    s_gg = sq[:, Y:] - g2m * lin[:, 0, Y:]
     # A = (wf s_f + wg s_g)/(wf s_ff + wg s_gg), RSS = C - A (2 s - A s_sq): in place, each
     # operation's operands and order as written (the same bits, fewer temporaries).
     A = wf * s_f
@@ -513,7 +505,7 @@ def _over_y(pts, dl, store):
 
     A row's nodes in y follow from the coarse nodes of its two peaks alone, so their order,
     spacings and edge cells are found once for each pair of peaks met (:func:`_y_patterns`), not
-    row by row; the values go straight into one array (3, R, N) of all nodes (no copies)."""
+    row by row, and the values at each part's nodes are written in place (no copies)."""
     _, _, ny, nf = EVIDENCE_NODES
     K = len(dl)
     dl = dl[:, None]
@@ -528,18 +520,15 @@ def _over_y(pts, dl, store):
     step = np.linspace(-h, h, nf)[~on]
     nfine = step.size
     # ln L π, ln L and ln μ at all nodes: the coarse ones, the fine ones around L π's peak, L's.
-    vals = np.empty((3, K, ny + 2 * nfine))
-    first, got, own = (vals[:, :, a:b] for a, b in itertools.pairwise((0, ny, ny + nfine, None)))
-    _integrand(pts, dl, np.broadcast_to(coarse, (K, ny)), store, first)
+    first = _integrand(pts, dl, np.broadcast_to(coarse, (K, ny)), store)
     # Fine nodes around the peak of L π (the evidence) and, where it lies elsewhere, around
     # that of L (μ's moments): else μ would follow its prior through the nodes.
     at_p, at_l = np.argmax(first[0], axis=1), np.argmax(first[1], axis=1)
     fine_p = np.clip(coarse[at_p][:, None] + step, coarse[0], coarse[-1])
-    if K:
-        _integrand(pts, dl, fine_p, store, got)
+    got = _integrand(pts, dl, fine_p, store) if K else np.empty((3, K, nfine))
     fine_l = np.clip(coarse[at_l][:, None] + step, coarse[0], coarse[-1])
-    if mid <= 0:  # (an even nf leaves L's nodes one step from L π's with L π's values)
-        own[...] = got
+    # (an even nf leaves L's nodes one step from L π's with L π's values)
+    own = np.empty_like(got) if mid > 0 else got.copy()
     side = at_l - at_p
     shared = [(side == 0, slice(None), slice(None))]
     if mid > 0:  # one step up: L's lower half is L π's upper half; one step down the reverse
@@ -562,11 +551,13 @@ def _over_y(pts, dl, store):
     # The sums over y row by row, in blocks of rows of ~NODE_BLOCK_CELLS nodes (arrays that
     # stay in the cache; the same bits, each row's sums its own).
     out = [np.empty(K), np.empty(K), np.empty(K), np.empty(K), np.empty(K), np.empty(K, int)]
-    rows = max(1, NODE_BLOCK_CELLS // vals.shape[2])
+    rows = max(1, NODE_BLOCK_CELLS // order.shape[1])
     for start in range(0, K, rows):
         b = slice(start, start + rows)
         p = pattern[b]
-        got_b = _over_y_rows(vals[:, b], order[p], dy[p], edge[p], at_p[b], at_l[b])
+        got_b = _over_y_rows(
+            [v[:, b] for v in (first, got, own)], order[p], dy[p], edge[p], at_p[b], at_l[b]
+        )
         for o, v in zip(out, got_b, strict=True):
             o[b] = v
     return tuple(out)
@@ -590,18 +581,19 @@ def _y_patterns(at_p, at_l, fine_p, fine_l, coarse):
     return pattern.ravel(), order, np.diff(y, axis=1) / 2.0, edge.astype(float)
 
 
-def _over_y_rows(vals, order, dy, edge, at_p, at_l):
-    """:func:`_over_y`'s outputs of its rows from :func:`_integrand`'s values ``vals`` (3, R, N)
-    at their nodes, the order of each row's nodes in y (R, N), their spacings (R, N - 1) and
-    which spacings lie in the first or last coarse cell (:func:`_y_patterns`); ``at_p``,
-    ``at_l``: the coarse nodes of the peaks of L π and L (the coarse nodes first in ``vals``)."""
+def _over_y_rows(parts, order, dy, edge, at_p, at_l):
+    """:func:`_over_y`'s outputs of its rows from :func:`_integrand`'s values (3, R, ...) at the
+    coarse nodes, the fine ones around L π's peak and L's (``parts``), the order of each row's
+    nodes in y (R, N), half their spacings (R, N - 1) and which spacings lie in the first or
+    last coarse cell, 1 or 0 (:func:`_y_patterns`); ``at_p``, ``at_l``: the coarse nodes of the
+    peaks of L π and L."""
     _, _, ny, nf = EVIDENCE_NODES
     j = np.arange(nf)
     on = (2 * j) % max(nf - 1, 1) == 0
-    # Each row in its order of y, as flat indices into its (R, N) planes (one take each).
+    # Each row in its order of y, as flat indices into the (R, N) arrays (one take each).
     R, N = order.shape
     at = order + np.arange(0, R * N, N)[:, None]
-    lp, ll, mu = (np.take(v, at) for v in vals)
+    lp, ll, mu = (np.concatenate([v[k] for v in parts], axis=1).ravel()[at] for k in range(3))
     top_p = lp.max(axis=1, keepdims=True)
     top_l = ll.max(axis=1, keepdims=True)
     with np.errstate(invalid="ignore"):
@@ -628,7 +620,7 @@ def _over_y_rows(vals, order, dy, edge, at_p, at_l):
     # (only there their densities are needed: each an exponential of its own).
     steps = (2 * j[on]) // max(nf - 1, 1) - 1
     spans = []
-    for e_all, v, top in ((ep, vals[0, :, :ny], top_p), (el, vals[1, :, :ny], top_l)):
+    for e_all, v, top in ((ep, parts[0][0], top_p), (el, parts[0][1], top_l)):
         count = _span(e_all)
         for peak in (at_p, at_l):
             at_on = np.clip(peak[:, None] + steps, 0, ny - 1)
