@@ -141,6 +141,19 @@ the gain is in memory traffic, which callgrind does not count), with amplitudes 
 and on the bundled example, the evidence's peak RSS on the jittered table 152 MB (151 MB).
 (The sums over the amplitudes that the rounds above credit to :func:`_solve_levels` are
 formed by :func:`_level_sums` since this round.)
+Since (issue 31, point 3, eighth round) a row's nodes in y are ordered, and their spacings and
+edge cells found, once for each pair of peaks (:func:`_y_patterns`; they follow from the peaks
+alone) instead of by a sort of every row, the node values are written in place, without the
+copies of a tuple into an array (:func:`_node_values`), the trapezoid's halving is applied to
+the spacings (:func:`_cells`) and a chunk's points are gathered without a loop over its blocks
+(:func:`_rows`); the store of slopes has its own module
+(:mod:`contactres.analysis._slope_store`). On the 10^4 sweeps of issue 31, one thread, best of
+six, twice alternated with main on a machine at a load of ~15 on two cores, the evidence's user
+CPU 0.54-0.57 s against 0.61-0.63 s (system CPU 0.007 s against 0.000: 3,100 page faults a
+call; arrays of their own for the five sums the solve uses, so that its loops ran over whole
+blocks, took 20,000 more and were left out); every output the same bit for bit on the 10^4
+sweeps with shared and with jittered amplitudes, on the 10^5 sweeps, on the bundled example
+and on the studies of ``benchmarks/bench_scale.py``.
 A block's result depends on its own row alone, so the caller deals the undecided blocks out to
 the analysis's worker processes where they are many (``contactres.analysis._blocks``,
 ``_evidence``: 1,975 blocks of the 10,752 sweeps in two halves of ~2.3 s of CPU each).
@@ -155,6 +168,7 @@ import numpy as np
 from ._amplitude import PLATEAU_MIN_SLOPE
 from ._loops import CHUNK_CELLS, X_MAX
 from ._plateau import plateau_loop_slopes
+from ._slope_store import SlopeStore
 
 __all__ = ["EVIDENCE_NODES", "plateau_log_evidence"]
 
@@ -213,66 +227,10 @@ EVIDENCE_FRESH_CELLS = 2 * CHUNK_CELLS
 NODE_BLOCK_CELLS = 1 << 14
 
 
-class SlopeStore:
-    """The slopes of the rows of nodes that a call of :func:`plateau_log_evidence` reads again
-    (:func:`_slopes`), and only those.
-
-    Why. A row's slopes are read again only by a row of another job (block, d_c/u_max) of the
-    same d_c/u_max and amplitudes (its key holds both; a job's own rows are distinct): its
-    *group*. Before a pass :func:`_evaluate` counts each group's rows over the pass and notes
-    the last chunk of each group with two or more (:meth:`plan`); a row is kept only in such a
-    group, and dropped after that group's last chunk (:meth:`done`). Blocks with amplitudes of
-    their own (measured, not programmed) share no group, so nothing is kept: on 10^4 sweeps
-    with amplitudes jittered by 1e-6 the store held 2.3 GB when it kept every row of the call
-    (review R24a). Where blocks share a grid and a prior, only groups open across a chunk's
-    end, and the current chunk's shared rows, are held. Reuse across the two passes (a fine
-    node in z bit for bit on another prior's coarse one) is not planned for: such a row is
-    evaluated again, with the same bits (a row's arithmetic is its own)."""
-
-    def __init__(self) -> None:
-        self.rows: dict[tuple[int, bytes], tuple[np.ndarray, np.ndarray]] = {}
-        self.groups: dict[bytes, list[tuple[int, bytes]]] = {}  # row keys held, by group
-        self.last: dict[bytes, int] = {}  # a shared group's last chunk in the pass
-        self.drops: dict[int, list[bytes]] = {}  # the groups that end at each chunk
-
-    def __len__(self) -> int:
-        return len(self.rows)
-
-    def plan(self, groups: list[tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]]) -> None:
-        """Note the groups of a pass: per number L of amplitudes, the distinct groups (the bytes
-        of d_c/u_max and the amplitudes, :func:`_void_rows`), each row of nodes' group and the
-        numbers of rows of each (:func:`numpy.unique`'s inverse and counts), and the chunk that
-        evaluates each row."""
-        self.last, self.drops = {}, {}
-        for group, inv, count, at in groups:
-            last = np.zeros(count.size, dtype=int)
-            np.maximum.at(last, inv, at)
-            for i in np.flatnonzero(count >= 2).tolist():
-                k, end = group[i].tobytes(), int(last[i])
-                self.last[k] = end
-                self.drops.setdefault(end, []).append(k)
-
-    def keep(self, key: tuple[int, bytes], value: tuple[np.ndarray, np.ndarray]) -> None:
-        """Hold a row's slopes (``key``: :func:`_slopes`') if another row of its group is to
-        come in the pass (its group: the key's bytes after its ``key[0]`` values of θ)."""
-        group = key[1][8 * key[0] :]
-        if group in self.last:
-            # Copies: a view would keep its chunk's whole slope arrays alive (review R24b).
-            self.rows[key] = (value[0].copy(), value[1].copy())
-            self.groups.setdefault(group, []).append(key)
-
-    def done(self, chunk: int) -> None:
-        """Drop the rows of the groups whose last chunk in the pass was ``chunk``."""
-        for group in self.drops.pop(chunk, []):
-            del self.last[group]
-            for key in self.groups.pop(group, []):
-                del self.rows[key]
-
-
 def _integrand(pts, dl, y, store=None):
     """ln L + ln π (as :func:`plateau_log_evidence`, up to a common constant), ln L alone and
     ln μ at the nodes (R, Y) of d_c/u_max ``dl`` (R, 1) and ``y`` (R, Y), each row R one block's
-    (``pts``: :func:`_rows`).
+    (``pts``: :func:`_rows`): (3, R, Y).
 
     The model depends on a point only through its amplitude, and a block's sweeps repeat the
     same amplitudes (three ramps: a third of its points distinct), so the slopes and the
@@ -293,23 +251,27 @@ def _integrand(pts, dl, y, store=None):
     step = max(1, NODE_BLOCK_CELLS // max(theta.shape[1], 1))
     for start in range(0, theta.shape[0], step):
         b = slice(start, start + step)
-        out[:, b] = _node_values(
+        _node_values(
             tuple(a[b] for a in sums),
             tuple(a[b] for a in (n_lev, scatter_f, scatter_g, mean, var, to_mu, *pts[7:9])),
             theta[b],
+            out[:, b],
         )
-    return out[0], out[1], out[2]
+    return out
 
 
-def _node_values(sums, pts, theta):
-    """ln L + ln π, ln L and ln μ of :func:`_integrand` at its nodes ``theta`` (R, Y) from the
-    sums over the amplitudes (``sums``: :func:`_level_sums`) and the rows' points (numbers of
-    points at each amplitude, the scatters, the prior on ln μ, to_mu, the weights of Δf, ΔΓ)."""
+def _node_values(sums, pts, theta, out):
+    """ln L + ln π, ln L and ln μ of :func:`_integrand` at its nodes ``theta`` (R, Y), into
+    ``out`` (3, R, Y), from the sums over the amplitudes (``sums``: :func:`_level_sums`) and the
+    rows' points (numbers of points at each amplitude, the scatters, the prior on ln μ, to_mu,
+    the weights of Δf, ΔΓ)."""
     n_lev, scatter_f, scatter_g, mean, var, to_mu, wf, wg = pts
     A, rss_f, rss_g = _solve_levels(*sums, wf, wg)
     n = n_lev.sum(-1)
     # ln L = -n/2 (ln RSS_f + ln RSS_Γ), ln μ = ln(A to_mu / θ) and ln π: in place, each
-    # operation's operands and order as written out here (the same bits, fewer temporaries).
+    # operation's operands and order as written out here (the same bits, fewer temporaries),
+    # on arrays of their own (numpy's loops run over a contiguous block at once, over a view
+    # into ``out`` row by row), copied into ``out`` once.
     with np.errstate(divide="ignore", invalid="ignore"):
         rss_f += scatter_f
         rss_g += scatter_g
@@ -327,13 +289,16 @@ def _node_values(sums, pts, theta):
         lnpi /= var
         lnpi -= 0.5 * np.log(2 * np.pi * var)
         if not has.all():
-            lnpi = np.where(has, lnpi, 0.0)
-        ok = np.isfinite(lnL)
-        ok &= A > 0
-        ok &= np.isfinite(lnpi)
-        ln_mu[~ok] = 0.0
+            lnpi[~has[:, 0]] = 0.0
+        bad = np.isfinite(lnL)
+        bad &= A > 0
+        bad &= np.isfinite(lnpi)
+        np.logical_not(bad, out=bad)
+        np.copyto(ln_mu, 0.0, where=bad)
         lnpi += lnL
-    return np.where(ok, lnpi, -np.inf), np.where(ok, lnL, -np.inf), ln_mu
+        np.copyto(lnpi, -np.inf, where=bad)
+        np.copyto(lnL, -np.inf, where=bad)
+    out[0], out[1], out[2] = lnpi, lnL, ln_mu
 
 
 def _slopes(theta, dl, lev, store):
@@ -515,12 +480,13 @@ def _span(e):
 
 
 def _cells(f, dx):
-    """The terms of the trapezoidal rule along the rows of ``f`` (R, N) with the node spacings
-    ``dx`` (R, N - 1), (R, N - 1): :func:`numpy.trapezoid`'s arithmetic (its sum along the rows
-    the rule's), in place, the spacings formed once for all the integrands on one set of nodes."""
+    """The terms of the trapezoidal rule along the rows of ``f`` (R, N) with half the node
+    spacings ``dx`` (R, N - 1), (R, N - 1): :func:`numpy.trapezoid`'s arithmetic (its sum along
+    the rows the rule's; halving the spacings, exact, once for all the integrands on one set of
+    nodes, rather than each product: the same bits but where a product falls below 2^-1021,
+    then by its last subnormal bit, ~5e-324 absolute; none on issue 31's tables), in place."""
     t = f[:, 1:] + f[:, :-1]
     t *= dx
-    t /= 2.0
     return t
 
 
@@ -535,13 +501,16 @@ def _over_y(pts, dl, store):
     step apart (it falls on L π's other half). A pair differs by rounding in y at most (the
     trapezoid gives it a cell of zero or rounding width), and :func:`_span` still counts each
     node the rule places, so that the same nodes resolve a posterior: the same numbers to
-    rounding for 12 % fewer evaluations (on the 10,752 sweeps of issue 31's study)."""
+    rounding for 12 % fewer evaluations (on the 10,752 sweeps of issue 31's study).
+
+    A row's nodes in y follow from the coarse nodes of its two peaks alone, so their order,
+    spacings and edge cells are found once for each pair of peaks met (:func:`_y_patterns`), not
+    row by row, and the values at each part's nodes are written in place (no copies)."""
     _, _, ny, nf = EVIDENCE_NODES
     K = len(dl)
     dl = dl[:, None]
     coarse = np.linspace(np.log(10.0**-2.5), np.log(X_MAX), ny)
     h = coarse[1] - coarse[0]
-    first = _integrand(pts, dl, np.broadcast_to(coarse, (K, ny)), store)
     # The fine offsets -h to h: those at multiples of h (``on``: -1, 0, 1 coarse steps) fall on
     # coarse nodes; ``lower`` and ``upper``: the others below and above the middle (odd nf).
     j = np.arange(nf)
@@ -549,13 +518,17 @@ def _over_y(pts, dl, store):
     mid = (nf - 1) // 2 if nf % 2 else -1  # an even nf has no middle node (nor shared halves)
     lower, upper = np.flatnonzero(j[~on] < mid), np.flatnonzero(j[~on] > mid)
     step = np.linspace(-h, h, nf)[~on]
+    nfine = step.size
+    # ln L π, ln L and ln μ at all nodes: the coarse ones, the fine ones around L π's peak, L's.
+    first = _integrand(pts, dl, np.broadcast_to(coarse, (K, ny)), store)
     # Fine nodes around the peak of L π (the evidence) and, where it lies elsewhere, around
     # that of L (μ's moments): else μ would follow its prior through the nodes.
     at_p, at_l = np.argmax(first[0], axis=1), np.argmax(first[1], axis=1)
     fine_p = np.clip(coarse[at_p][:, None] + step, coarse[0], coarse[-1])
-    got = _integrand(pts, dl, fine_p, store) if K else (np.empty((0, step.size)),) * 3
+    got = _integrand(pts, dl, fine_p, store) if K else np.empty((3, K, nfine))
     fine_l = np.clip(coarse[at_l][:, None] + step, coarse[0], coarse[-1])
-    vals = [v.copy() for v in got]
+    # (an even nf leaves L's nodes one step from L π's with L π's values)
+    own = np.empty_like(got) if mid > 0 else got.copy()
     side = at_l - at_p
     shared = [(side == 0, slice(None), slice(None))]
     if mid > 0:  # one step up: L's lower half is L π's upper half; one step down the reverse
@@ -563,8 +536,7 @@ def _over_y(pts, dl, store):
     for rows, mine, theirs in shared:
         r = np.flatnonzero(rows)[:, None]
         fine_l[r, mine] = fine_p[r, theirs]
-        for v, g in zip(vals, got, strict=True):
-            v[r, mine] = g[r, theirs]
+        own[:, r, mine] = got[:, r, theirs]
     # The rest of L's nodes: all of them two steps apart or more, the other half one apart.
     far = np.flatnonzero(np.abs(side) >= 2)
     todo = [(far[:, None], np.arange(step.size)[None, :])]
@@ -574,38 +546,54 @@ def _over_y(pts, dl, store):
     for r, c in todo:
         if r.size:
             sub = tuple(a[r[:, 0]] for a in pts)
-            for v, g in zip(vals, _integrand(sub, dl[r[:, 0]], fine_l[r, c], store), strict=True):
-                v[r, c] = g
-    parts = [(np.broadcast_to(coarse, (K, ny)), first), (fine_p, got), (fine_l, tuple(vals))]
+            own[:, r, c] = _integrand(sub, dl[r[:, 0]], fine_l[r, c], store)
+    pattern, order, dy, edge = _y_patterns(at_p, at_l, fine_p, fine_l, coarse)
     # The sums over y row by row, in blocks of rows of ~NODE_BLOCK_CELLS nodes (arrays that
     # stay in the cache; the same bits, each row's sums its own).
     out = [np.empty(K), np.empty(K), np.empty(K), np.empty(K), np.empty(K), np.empty(K, int)]
-    step = max(1, NODE_BLOCK_CELLS // sum(yy.shape[1] for yy, _ in parts))
-    for start in range(0, K, step):
-        b = slice(start, start + step)
+    rows = max(1, NODE_BLOCK_CELLS // order.shape[1])
+    for start in range(0, K, rows):
+        b = slice(start, start + rows)
+        p = pattern[b]
         got_b = _over_y_rows(
-            [(yy[b], tuple(v[b] for v in vv)) for yy, vv in parts], at_p[b], at_l[b], coarse
+            [v[:, b] for v in (first, got, own)], order[p], dy[p], edge[p], at_p[b], at_l[b]
         )
         for o, v in zip(out, got_b, strict=True):
             o[b] = v
     return tuple(out)
 
 
-def _over_y_rows(parts, at_p, at_l, coarse):
-    """:func:`_over_y`'s outputs of its rows from their nodes in y and :func:`_integrand`'s
-    values there (``parts``: the coarse nodes, then the fine ones around L π's peak, then
-    L's; ``at_p``, ``at_l``: the coarse nodes of the peaks of L π and L; ``coarse``: the
-    coarse nodes)."""
+def _y_patterns(at_p, at_l, fine_p, fine_l, coarse):
+    """Each row's pattern of nodes in y (R,) and, per pattern, the order of its nodes (the
+    coarse ones, those around L π's peak, L's: ascending, stable), their spacings and which
+    spacings lie in the first or last coarse cell (:func:`_over_y`'s ``fine_p``, ``fine_l``:
+    the fine nodes around the peaks at the coarse nodes ``at_p``, ``at_l`` (R,)).
+
+    Why. The nodes of a row follow from its peaks alone (a few hundred pairs among 10^4-10^5
+    rows): sorted once a pair, the same order as row by row, bit for bit."""
+    _, first, pattern = np.unique(at_p * coarse.size + at_l, return_index=True, return_inverse=True)
+    y = np.concatenate(
+        [np.broadcast_to(coarse, (first.size, coarse.size)), fine_p[first], fine_l[first]], axis=1
+    )
+    order = np.argsort(y, axis=1, kind="stable")
+    y = np.take_along_axis(y, order, axis=1)
+    edge = (y[:, 1:] <= coarse[1]) | (y[:, :-1] >= coarse[-2])
+    return pattern.ravel(), order, np.diff(y, axis=1) / 2.0, edge.astype(float)
+
+
+def _over_y_rows(parts, order, dy, edge, at_p, at_l):
+    """:func:`_over_y`'s outputs of its rows from :func:`_integrand`'s values (3, R, ...) at the
+    coarse nodes, the fine ones around L π's peak and L's (``parts``), the order of each row's
+    nodes in y (R, N), half their spacings (R, N - 1) and which spacings lie in the first or
+    last coarse cell, 1 or 0 (:func:`_y_patterns`); ``at_p``, ``at_l``: the coarse nodes of the
+    peaks of L π and L."""
     _, _, ny, nf = EVIDENCE_NODES
-    first = parts[0][1]
     j = np.arange(nf)
     on = (2 * j) % max(nf - 1, 1) == 0
-    y = np.concatenate([yy for yy, _ in parts], axis=1)
-    # Each row in its order of y, as flat indices into the (K, N) arrays (one take each).
-    order = np.argsort(y, axis=1, kind="stable")
-    order += np.arange(0, y.size, y.shape[1])[:, None]
-    y = y.ravel()[order]
-    lp, ll, mu = (np.concatenate([v[k] for _, v in parts], axis=1).ravel()[order] for k in range(3))
+    # Each row in its order of y, as flat indices into the (R, N) arrays (one take each).
+    R, N = order.shape
+    at = order + np.arange(0, R * N, N)[:, None]
+    lp, ll, mu = (np.concatenate([v[k] for v in parts], axis=1).ravel()[at] for k in range(3))
     top_p = lp.max(axis=1, keepdims=True)
     top_l = ll.max(axis=1, keepdims=True)
     with np.errstate(invalid="ignore"):
@@ -616,12 +604,10 @@ def _over_y_rows(parts, at_p, at_l, coarse):
     # value is in [0, 1].
     ep[~np.isfinite(top_p[:, 0])] = 0.0
     el[~np.isfinite(top_l[:, 0])] = 0.0
-    dy = np.diff(y, axis=1)
     # L's cells: the terms of its trapezoidal sum, also its mass in the edge cells (the same
     # numbers as 0.5 (el_i + el_i+1) dy, halving being exact, but for the last bit in the
     # subnormal range, ~1e-308 of zl).
     cell = _cells(el, dy)
-    edge = (y[:, 1:] <= coarse[1]) | (y[:, :-1] >= coarse[-2])
     with np.errstate(invalid="ignore", divide="ignore"):
         log_p = np.log(_cells(ep, dy).sum(axis=1)) + top_p[:, 0]
         zl = cell.sum(axis=1)
@@ -634,10 +620,10 @@ def _over_y_rows(parts, at_p, at_l, coarse):
     # (only there their densities are needed: each an exponential of its own).
     steps = (2 * j[on]) // max(nf - 1, 1) - 1
     spans = []
-    for e_all, v, top in ((ep, first[0], top_p), (el, first[1], top_l)):
+    for e_all, v, top in ((ep, parts[0][0], top_p), (el, parts[0][1], top_l)):
         count = _span(e_all)
-        for at in (at_p, at_l):
-            at_on = np.clip(at[:, None] + steps, 0, ny - 1)
+        for peak in (at_p, at_l):
+            at_on = np.clip(peak[:, None] + steps, 0, ny - 1)
             with np.errstate(invalid="ignore"):
                 # NaN (a row without a finite node) counts as no node
                 e = np.exp(np.take_along_axis(v, at_on, axis=1) - top)
@@ -773,12 +759,18 @@ def _evaluate(args, jobs, zero, store):
         # Blocks of one grid of amplitudes and one set of nodes in z next to each other: in one
         # chunk their rows share their slopes (:func:`_slopes`).
         group.sort(key=lambda job: (per_block[job[1]][0].tobytes(), job[2].tobytes()))
-        dl = [np.append(np.exp(z), 0.0) if zero else np.exp(z) for _, _, z in group]
-        sizes = [d.size for d in dl]
+        # d_c/u_max of each job's rows, all jobs' in one array (0 after each job's if ``zero``).
+        sizes = [z.size + zero for _, _, z in group]
+        ends_g = np.cumsum(sizes)
+        dl = np.zeros(ends_g[-1])
+        at_z = np.ones(dl.size, dtype=bool)
+        if zero:
+            at_z[ends_g - 1] = False
+        dl[at_z] = np.exp(np.concatenate([z for _, _, z in group]))
         # Each row's group (d_c/u_max, amplitudes; :class:`SlopeStore`) and whether it is the
         # first of its group in the pass: its slopes are evaluated, the others' may be read.
         lev = np.repeat(np.stack([per_block[b][0] for _, b, _ in group]), sizes, axis=0)
-        key = _void_rows(np.c_[np.concatenate(dl), lev])
+        key = _void_rows(np.c_[dl, lev])
         _, first, inv, count = np.unique(
             key, return_index=True, return_inverse=True, return_counts=True
         )
@@ -798,16 +790,15 @@ def _evaluate(args, jobs, zero, store):
         plan.append((key[first], inv, count, np.repeat(at, sizes)))
         for a, b in itertools.pairwise(cuts):
             chunks.append(group[a:b])
-            ends.append(dl[a:b])
+            ends.append((dl[ends_g[a] - sizes[a] : ends_g[b - 1]], sizes[a:b]))
     # The store keeps what a later row of the pass reads again (:class:`SlopeStore`).
     store.plan(plan)
     del plan, key, lev, inv  # the keys of the whole pass: not held through it
     outs, done = [], []
-    for i, (chunk, dl) in enumerate(zip(chunks, ends, strict=True)):
-        sizes = [d.size for d in dl]
+    for i, (chunk, (dl, sizes)) in enumerate(zip(chunks, ends, strict=True)):
         own = np.repeat(np.arange(len(chunk)), sizes)
         pts = _rows(per_block, sig, mu_prior, to_mu, [b for _, b, _ in chunk])
-        outs.append(_over_y(tuple(a[own] for a in pts), np.concatenate(dl), store))
+        outs.append(_over_y(tuple(a[own] for a in pts), dl, store))
         store.done(i)
         done.extend(k for k, _, _ in chunk)
     # The rows in the order of the jobs, each job's in its order of z: a stable sort of the
@@ -871,18 +862,16 @@ def _rows(per_block, sig, mu_prior, to_mu, blocks):
     means of Δf and ΔΓ there, the scatter Σ (v - v̄)² of each channel's points about them
     (``per_block``: :func:`_levels` of each block), u_max, the weights 1/σ² of Δf and ΔΓ, the prior
     on ln μ and to_mu."""
-    nb = len(blocks)
-    L = max(per_block[b][0].size for b in blocks)
-    levs = np.empty((nb, 1, L))
-    per = np.zeros((3, nb, 1, L))  # points, mean Δf, mean ΔΓ at each amplitude
-    scatter = np.empty((2, nb, 1))
-    for k, b in enumerate(blocks):
-        levels, count, mean_f, mean_g, scatter_f, scatter_g = per_block[b]
-        levs[k, 0, : levels.size] = levels
-        levs[k, 0, levels.size :] = levels[-1]
-        for j, v in enumerate((count, mean_f, mean_g)):
-            per[j, k, 0, : levels.size] = v
-        scatter[:, k, 0] = scatter_f, scatter_g
+    # All blocks' numbers in one flat array each, gathered into rows (no loop over blocks).
+    got = [per_block[b] for b in blocks]
+    size = np.array([g[0].size for g in got])
+    L = int(size.max())
+    at = np.minimum(np.arange(L), size[:, None] - 1) + (np.cumsum(size) - size)[:, None]
+    levs = np.concatenate([g[0] for g in got])[at][:, None]  # padded with u_max
+    per = np.stack([np.concatenate([g[j] for g in got])[at] for j in (1, 2, 3)])
+    per[:, np.arange(L) >= size[:, None]] = 0.0  # points, mean Δf, mean ΔΓ at each amplitude
+    per = per[:, :, None]
+    scatter = np.array([[g[4] for g in got], [g[5] for g in got]])[..., None]
     col = [levs[:, 0, -1:], 1.0 / sig[0, blocks, None] ** 2, 1.0 / sig[1, blocks, None] ** 2]
     col += [np.asarray(a, dtype=float)[blocks, None] for a in (*mu_prior, to_mu)]
     return levs, *per, *scatter, *col
