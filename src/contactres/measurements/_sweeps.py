@@ -616,8 +616,10 @@ def validate_sweeps(
     break the small-load approximation. Values in messages are cut to 60 characters.
     """
     word = line_word(raw)
-    # A new frame over the same columns (pandas copies on write: the caller's table is never
-    # changed); a deep copy cost ~0.25 s at 10^6 rows (issue 31, point 3).
+    # A new frame over the same columns; a deep copy cost ~0.25 s at 10^6 rows (issue 31,
+    # point 3). pandas 3 copies on write; pandas 2 (pyproject allows >= 2.0) does not by
+    # default, so the caller's table stays as it was only because nothing below writes into a
+    # column in place (columns are renamed, added or replaced whole).
     raw = raw.copy(deep=False)
     raw.columns = [str(c).strip() for c in raw.columns]
     raw = _columns_in_si(raw, source)
