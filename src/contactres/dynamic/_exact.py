@@ -83,7 +83,7 @@ def galerkin_size(
     (001) faces (A = 0.2, ν = 0.44, k_l a = 2), 3.9e-11 on Cu(111), and 6.5e-8 on Cu(123) and
     2.6e-7 on Cu(110), set by the harmonics. Two radial terms fewer (rtol >= 1e-4) leave at
     most 6.8e-6 (A = 10, ν = 0.416, three terms at k_s a = 5/3, k_l a = 2; below 1e-6 for
-    A <= 5.5), 1.8e-6 on Cu(110) and 8.7e-8 on Cu(001) and Cu(111)
+    A <= 5.5), 1.9e-6 on Cu(110) and 8.7e-8 on Cu(001) and Cu(111)
     (tests/dynamic/test_dynamic_exact.py). The harmonics must reach
     the face's first coupled one: a (111) face is six-fold, so with step 2 it couples n = ±6,
     and ``|n|`` <= 2 × step missed it (3e-4 off on Cu(111), found by review). rtol <= 1e-8 takes two
