@@ -200,6 +200,62 @@ def test_bootstrap_draws_and_grid_are_those_of_the_direct_computation():
     )
 
 
+def test_bootstrap_grid_memory_does_not_grow_as_points_times_loads():
+    """Loads are told apart by their exact force, so measured forces make every (experiment,
+    load) row a load of its own: the grid estimator's working memory must stay that of h
+    evaluated at every point (the estimator before the weights were summed per load), not grow
+    as points x loads (review R27c: a 0/1 matrix of points by loads, 20 GB at 5 10^4 such
+    points). Allocation sizes, counted by tracemalloc, do not depend on timing."""
+    import tracemalloc
+
+    from contactres.analysis._jkr import _resampled_fits
+
+    rng = np.random.default_rng(8)
+    n_exp, B = 600, 20
+    loads = np.array([1e-3, 2e-3, 4e-3, 8e-3, 12e-3])
+    F = (loads * (1 + 0.01 * rng.standard_normal((n_exp, loads.size)))).ravel()
+    kappa = kappa_jkr_mindlin(F, 70e9, 0.1, R, NU) * (1 + 0.03 * rng.standard_normal(F.size))
+    main = fit_jkr_mindlin(F, kappa, R, NU)
+    pick = rng.integers(0, n_exp, size=(B, n_exp))
+    counts = np.stack([np.bincount(p, minlength=n_exp) for p in pick])
+    W = counts[:, np.repeat(np.arange(n_exp), loads.size)].astype(float)
+    assert np.unique(F).size == F.size  # every point a load of its own
+    grid = np.linspace(0.0, 1.0, 1201)
+    tracemalloc.start()
+    try:
+        kappa_jkr_mindlin(F[:, None], 1.0, grid[None, :], R, NU)
+        h_at_every_point = tracemalloc.get_traced_memory()[1]
+        tracemalloc.reset_peak()
+        E, gam = _resampled_fits(F, kappa, W, R, NU, main)
+        peak = tracemalloc.get_traced_memory()[1]
+    finally:
+        tracemalloc.stop()
+    # Beyond h: arrays of B x grid (the sums, rss) and of B x points (the weights), a few each;
+    # a points x loads array alone is 72 MB here, h at every point's evaluation ~115 MB.
+    assert peak <= h_at_every_point + 10 * B * (F.size + grid.size) * 8
+    # And the same estimator as with h at every point (written out here), to rounding: E to
+    # 1e-13; γ, the vertex of a parabola through three rss values (each of them skk minus a
+    # nearly equal part, so rounded to ~eps skk) whose second difference is denom, to
+    # 100 eps skk/denom of the grid step.
+    g_hat, g_err = main.values["gamma"], np.nan_to_num(main.errors["gamma"])
+    top = max(4.0 * g_hat + 8.0 * g_err, 1e-3)
+    grid = np.linspace(0.0, top, 1201)
+    h = kappa_jkr_mindlin(F[:, None], 1.0, grid[None, :], R, NU)
+    skh, shh, skk = W @ (kappa[:, None] * h), W @ (h * h), W @ (kappa * kappa)
+    rss = skk[:, None] - skh**2 / shh
+    j = np.clip(np.argmin(rss, axis=1), 1, grid.size - 2)
+    b = np.arange(B)
+    r0, r1, r2 = rss[b, j - 1], rss[b, j], rss[b, j + 1]
+    denom = r0 - 2 * r1 + r2
+    assert np.all(denom > 0)
+    shift = np.clip(0.5 * (r0 - r2) / denom, -1, 1)
+    step = grid[1] - grid[0]
+    assert E == pytest.approx((skh[b, j] / shh[b, j]) ** 1.5, rel=1e-13, abs=0)
+    bound = 100 * np.finfo(float).eps * skk / denom * step
+    assert np.all(np.abs(gam - np.clip(grid[j] + shift * step, 0.0, top)) <= bound)
+    assert np.unique(gam).size > B // 2  # the resamples differ: the check is not vacuous
+
+
 def test_fit_errors_match_closed_form_linear_regression():
     rng = np.random.default_rng(0)
     x = np.linspace(0, 1, 30)

@@ -587,3 +587,35 @@ def test_rows_of_the_same_bytes_are_found_as_by_a_sort_of_the_bytes(monkeypatch)
     assert first.size == ref_first.size
     # The same partition of the rows: each row's first is the reference's first.
     np.testing.assert_array_equal(first[inv], ref_first[ref_inv])
+
+
+def test_an_even_number_of_fine_nodes_evaluates_l_one_step_from_l_pi(monkeypatch):
+    # Review R27c: with an even nf no fine node of L's span falls on L π's, so where the peaks
+    # of L and L π lie one coarse step apart every node of L's span is evaluated (it took
+    # L π's values at L π's nodes: 2 ln B off by 0.8 here). A μ prior pulled off the truth
+    # puts the peaks one step apart; an even and an odd nf (24, 25) then give 2 ln B alike,
+    # as they do where the peaks coincide.
+    import contactres.analysis._plateau_evidence as pe
+
+    u, df, dg = _block(4, 0.3)
+    args = (u[None], df[None], dg[None], np.ones((1, u.size)), np.full((2, 1), 0.6))
+    ratio = (np.array([np.log(0.3)]), np.array([0.1**2]))
+    true_mu = 40.0 / (1.2 / 2e-9)
+    apart = []
+    patterns = pe._y_patterns
+
+    def spy(at_p, at_l, *rest):
+        apart.extend(np.abs(at_l - at_p).tolist())
+        return patterns(at_p, at_l, *rest)
+
+    monkeypatch.setattr(pe, "_y_patterns", spy)
+    for factor in (1.5, 2.0):
+        prior = (np.array([np.log(factor * true_mu)]), np.array([0.05**2]))
+        two_ln_b = []
+        for nf in (24, 25):
+            monkeypatch.setattr(pe, "EVIDENCE_NODES", (12, 5, 32, nf))
+            apart.clear()
+            two_ln_b.append(plateau_log_evidence(*args, prior, ratio, np.array([1.0]))[0, 0])
+            assert 1 in apart  # the case at stake is met
+        assert np.isfinite(two_ln_b).all()
+        assert abs(two_ln_b[0] - two_ln_b[1]) < 0.05

@@ -527,8 +527,7 @@ def _over_y(pts, dl, store):
     fine_p = np.clip(coarse[at_p][:, None] + step, coarse[0], coarse[-1])
     got = _integrand(pts, dl, fine_p, store) if K else np.empty((3, K, nfine))
     fine_l = np.clip(coarse[at_l][:, None] + step, coarse[0], coarse[-1])
-    # (an even nf leaves L's nodes one step from L π's with L π's values)
-    own = np.empty_like(got) if mid > 0 else got.copy()
+    own = np.empty_like(got)  # every row's values written below: shared or evaluated
     side = at_l - at_p
     shared = [(side == 0, slice(None), slice(None))]
     if mid > 0:  # one step up: L's lower half is L π's upper half; one step down the reverse
@@ -537,8 +536,9 @@ def _over_y(pts, dl, store):
         r = np.flatnonzero(rows)[:, None]
         fine_l[r, mine] = fine_p[r, theirs]
         own[:, r, mine] = got[:, r, theirs]
-    # The rest of L's nodes: all of them two steps apart or more, the other half one apart.
-    far = np.flatnonzero(np.abs(side) >= 2)
+    # The rest of L's nodes: all of them two steps apart or more, the other half one apart
+    # (an even nf shares no half: all of them one step apart or more).
+    far = np.flatnonzero(np.abs(side) >= (2 if mid > 0 else 1))
     todo = [(far[:, None], np.arange(step.size)[None, :])]
     if mid > 0:
         for sign, mine in ((1, upper), (-1, lower)):
