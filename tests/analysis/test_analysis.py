@@ -139,6 +139,29 @@ def test_vectorised_bootstrap_equals_refitting_each_resample():
     assert rho == pytest.approx(np.corrcoef(fits.T)[0, 1], abs=0.02)
 
 
+def _grid_estimator_at_every_point(F, kappa, W, main):
+    """The bootstrap's grid estimator written out with h(F, γ) evaluated at every point (the
+    estimator before the weights were summed per load): E, γ of every resample, and the bound
+    on |Δγ| that rounding allows. γ is the vertex of a parabola through three rss values, each
+    skk minus a nearly equal part (so rounded to ~eps skk), whose second difference is denom:
+    to 100 eps skk/denom of the grid step."""
+    g_hat, g_err = main.values["gamma"], np.nan_to_num(main.errors["gamma"])
+    top = max(4.0 * g_hat + 8.0 * g_err, 1e-3)
+    grid = np.linspace(0.0, top, 1201)
+    h = kappa_jkr_mindlin(F[:, None], 1.0, grid[None, :], R, NU)
+    skh, shh, skk = W @ (kappa[:, None] * h), W @ (h * h), W @ (kappa * kappa)
+    rss = skk[:, None] - skh**2 / shh
+    j = np.clip(np.argmin(rss, axis=1), 1, grid.size - 2)
+    b = np.arange(W.shape[0])
+    r0, r1, r2 = rss[b, j - 1], rss[b, j], rss[b, j + 1]
+    denom = r0 - 2 * r1 + r2
+    assert np.all(denom > 0)
+    step = grid[1] - grid[0]
+    gam = np.clip(grid[j] + np.clip(0.5 * (r0 - r2) / denom, -1, 1) * step, 0.0, top)
+    E = (skh[b, j] / shh[b, j]) ** 1.5
+    return E, gam, 100 * np.finfo(float).eps * skk / denom * step
+
+
 def test_bootstrap_draws_and_grid_are_those_of_the_direct_computation():
     """The resample counts (one bincount) are those of comparing every draw with every
     experiment, and the grid estimator with h(F, γ) evaluated at the distinct loads and the
@@ -172,26 +195,12 @@ def test_bootstrap_draws_and_grid_are_those_of_the_direct_computation():
     counts = (pick[:, :, None] == np.arange(len(names))[None, None, :]).sum(axis=1)
     W = counts[:, codes].astype(float)
     assert np.array_equal(seen[0], W)
-    # The grid estimator with h at every point (the columns of the fit's grid as it builds it).
-    g_hat, g_err = main.values["gamma"], np.nan_to_num(main.errors["gamma"])
-    top = max(4.0 * g_hat + 8.0 * g_err, 1e-3)
-    grid = np.linspace(0.0, top, 1201)
-    h = kappa_jkr_mindlin(F[:, None], 1.0, grid[None, :], R, NU)
-    skh, shh = W @ (kappa[:, None] * h), W @ (h * h)
-    rss = (W @ (kappa * kappa))[:, None] - skh**2 / shh
-    j = np.clip(np.argmin(rss, axis=1), 1, grid.size - 2)
-    b = np.arange(B)
-    r0, r1, r2 = rss[b, j - 1], rss[b, j], rss[b, j + 1]
-    denom = r0 - 2 * r1 + r2
-    shift = np.where(denom > 0, 0.5 * (r0 - r2) / np.where(denom > 0, denom, 1.0), 0.0)
-    gam = np.clip(grid[j] + np.clip(shift, -1, 1) * (grid[1] - grid[0]), 0.0, top)
-    E = (skh[b, j] / shh[b, j]) ** 1.5
-    # The library sums the weights per load before the product with h (the same sums in
-    # another order): E to rounding; γ, read off the parabola through three rss values that
-    # differ by less than their size (a second difference), to a small part of the grid step.
+    # The grid estimator with h at every point; the library sums the weights per load before
+    # the product with h (the same sums in another order): E to rounding, γ to the bound.
+    E, gam, bound = _grid_estimator_at_every_point(F, kappa, W, main)
     E_got, gam_got = _resampled_fits(F, kappa, W, R, NU, main)
     assert E_got == pytest.approx(E, rel=1e-13, abs=0)
-    assert gam_got == pytest.approx(gam, rel=0, abs=1e-6 * (grid[1] - grid[0]))
+    assert np.all(np.abs(gam_got - gam) <= bound)
     assert np.unique(gam).size > B // 2  # the resamples differ: the check is not vacuous
     assert got == (
         np.std(E_got, ddof=1),
@@ -233,26 +242,10 @@ def test_bootstrap_grid_memory_does_not_grow_as_points_times_loads():
     # Beyond h: arrays of B x grid (the sums, rss) and of B x points (the weights), a few each;
     # a points x loads array alone is 72 MB here, h at every point's evaluation ~115 MB.
     assert peak <= h_at_every_point + 10 * B * (F.size + grid.size) * 8
-    # And the same estimator as with h at every point (written out here), to rounding: E to
-    # 1e-13; γ, the vertex of a parabola through three rss values (each of them skk minus a
-    # nearly equal part, so rounded to ~eps skk) whose second difference is denom, to
-    # 100 eps skk/denom of the grid step.
-    g_hat, g_err = main.values["gamma"], np.nan_to_num(main.errors["gamma"])
-    top = max(4.0 * g_hat + 8.0 * g_err, 1e-3)
-    grid = np.linspace(0.0, top, 1201)
-    h = kappa_jkr_mindlin(F[:, None], 1.0, grid[None, :], R, NU)
-    skh, shh, skk = W @ (kappa[:, None] * h), W @ (h * h), W @ (kappa * kappa)
-    rss = skk[:, None] - skh**2 / shh
-    j = np.clip(np.argmin(rss, axis=1), 1, grid.size - 2)
-    b = np.arange(B)
-    r0, r1, r2 = rss[b, j - 1], rss[b, j], rss[b, j + 1]
-    denom = r0 - 2 * r1 + r2
-    assert np.all(denom > 0)
-    shift = np.clip(0.5 * (r0 - r2) / denom, -1, 1)
-    step = grid[1] - grid[0]
-    assert E == pytest.approx((skh[b, j] / shh[b, j]) ** 1.5, rel=1e-13, abs=0)
-    bound = 100 * np.finfo(float).eps * skk / denom * step
-    assert np.all(np.abs(gam - np.clip(grid[j] + shift * step, 0.0, top)) <= bound)
+    # And the same estimator as with h at every point, to rounding.
+    E_ref, gam_ref, bound = _grid_estimator_at_every_point(F, kappa, W, main)
+    assert E == pytest.approx(E_ref, rel=1e-13, abs=0)
+    assert np.all(np.abs(gam - gam_ref) <= bound)
     assert np.unique(gam).size > B // 2  # the resamples differ: the check is not vacuous
 
 
