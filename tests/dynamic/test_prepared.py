@@ -278,3 +278,53 @@ def test_far_weights_against_scipy_bessel_functions_and_quadrature(table):
             np.testing.assert_allclose(w[4, i], 2 * np.pi * hertz, rtol=1e-13)
         else:
             assert not np.any(w[[0, 3, 4], i])
+
+
+@pytest.mark.parametrize(
+    ("zener", "poisson", "rtol"),
+    [
+        (0.5, 0.25, 1e-6),
+        (0.2, 0.45, 1e-6),
+        (1.5, 0.25, 1e-6),
+        (0.5, 0.25, 1e-4),
+        (10.0, 0.25, 1e-4),
+    ],
+)
+def test_table_is_the_same_to_the_last_bit_whether_or_not_it_looks_ahead(
+    monkeypatch, zener, poisson, rtol
+):
+    """The first pass over the θ grid may evaluate twice the nodes (a solid expected to need
+    them, issue 31); the grid the table stops at and every value it holds are the same as when
+    each grid is evaluated in turn, for tables that stop at the first grid, at the second and
+    beyond it (A = 0.2: 128 nodes)."""
+    import contactres.dynamic._table as table_module
+
+    m = Material.cubic_from_ratios(zener, poisson)
+    tables = []
+    for ahead in (False, True):
+        monkeypatch.setattr(table_module, "_look_ahead", lambda slowness, res, a=ahead: a)
+        tables.append(prepare(m, 0.02, rtol))
+    for name in ("theta", "ginf", "near_values", "far_harmonics", "far_coeffs"):
+        np.testing.assert_array_equal(getattr(tables[1], name), getattr(tables[0], name))
+    assert tables[1].n_static == tables[0].n_static
+
+
+@pytest.mark.parametrize("rtol", [1e-6, 1e-4])
+def test_look_ahead_predicts_the_grid_of_the_benchmark_solids(rtol):
+    """The predictor of the look-ahead (a matter of speed only: the test above) is right on
+    the six solids of benchmarks/bench_dcsf.py: it looks ahead exactly where the table needs
+    more than its first θ grid."""
+    import contactres.dynamic._table as table_module
+
+    res = table_module.resolution_for(rtol)
+    for zener, poisson in [
+        (0.5, 0.25),
+        (0.25, 0.25),
+        (1.0, 0.25),
+        (2.0, 0.25),
+        (3.21, 0.419),
+        (10.0, 0.25),
+    ]:
+        m = Material.cubic_from_ratios(zener, poisson)
+        more = prepare(m, 0.02, rtol).theta.size > res.n_theta
+        assert table_module._look_ahead(table_module._slowness(m), res) == more
