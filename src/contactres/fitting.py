@@ -314,7 +314,7 @@ class LMOptions:
     max_step : largest change of any parameter in one step (the whole step is shortened)
     relative_step : indices of the parameters whose change ``max_step`` bounds relative to
         their size, by ``max_step max(|p|, 1)`` (absolute within 1 of 0, where a cap relative
-        to |p| would stall), instead of absolutely. For a parameter that is
+        to ``|p|`` would stall), instead of absolutely. For a parameter that is
         not a logarithm and may lie many of its units from the start: reaching p takes
         ~p/max_step steps with the absolute cap, ~ln(p)/ln(1 + max_step) with the relative one
     xtol, x_abs : a problem has converged when a step changes every parameter by at most
