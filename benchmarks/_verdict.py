@@ -44,6 +44,12 @@ def one_thread(fn):
     return call
 
 
+def thread_ratio(name: str, shipped: float, single: float) -> bool:
+    """The target line of ``name``'s CPU time as shipped over its time with one BLAS thread
+    (at most :data:`THREAD_RATIO`); True if met."""
+    return target(f"{name}: as shipped / one BLAS thread", shipped / single, THREAD_RATIO, "x")
+
+
 def shipped_and_one_thread(fn, repeat: int = 3) -> tuple[float, float]:
     """Best CPU time (s) of ``fn()`` as shipped and with one BLAS thread (:func:`one_thread`),
     ``repeat`` runs of each, alternating so that both see the same load."""

@@ -37,7 +37,7 @@ import time
 from pathlib import Path
 
 import numpy as np
-from _verdict import ONE_BLAS_THREAD_ENV, THREAD_RATIO, exit_code, target
+from _verdict import ONE_BLAS_THREAD_ENV, exit_code, target, thread_ratio
 
 TARGET_S = 1.0
 SIDE = 512
@@ -125,12 +125,7 @@ def main() -> int:
         )
         results = [
             target(f"afm invert {SIDE}x{SIDE} .npz, CPU end to end", figures["npz"][0], TARGET_S),
-            target(
-                f"afm invert {SIDE}x{SIDE} .npz: as shipped / one BLAS thread",
-                shipped / single,
-                THREAD_RATIO,
-                unit="x",
-            ),
+            thread_ratio(f"afm invert {SIDE}x{SIDE} .npz", shipped, single),
         ]
     return exit_code(results)
 

@@ -22,7 +22,7 @@ import sys
 import time
 
 import numpy as np
-from _verdict import THREAD_RATIO, exit_code, shipped_and_one_thread, target
+from _verdict import exit_code, shipped_and_one_thread, target, thread_ratio
 
 from contactres import Material
 from contactres.polycrystal import ExactModulus, evaluate_map, synthetic_polycrystal
@@ -62,12 +62,7 @@ def main() -> int:
     return exit_code(
         [
             target(f"exact M of a {SIDE} x {SIDE} grain map (CPU)", t_map, TARGET_S),
-            target(
-                f"exact M of a {SIDE} x {SIDE} grain map: as shipped / one BLAS thread",
-                t_map / t_one,
-                THREAD_RATIO,
-                unit="x",
-            ),
+            thread_ratio(f"exact M of a {SIDE} x {SIDE} grain map", t_map, t_one),
         ]
     )
 

@@ -18,7 +18,7 @@ import sys
 from collections import Counter
 
 import numpy as np
-from _verdict import THREAD_RATIO, exit_code, shipped_and_one_thread, target
+from _verdict import exit_code, shipped_and_one_thread, target, thread_ratio
 
 from contactres.analysis import fit_particles
 from contactres.resonators import WATER, Particle, coupled_resonance, particle_shifts
@@ -75,12 +75,7 @@ def main() -> int:
     return exit_code(
         [
             target(f"fit_particles {STEPS} x {N.size}", seconds, TARGET_S),
-            target(
-                f"fit_particles {STEPS} x {N.size}: as shipped / one BLAS thread",
-                seconds / single,
-                THREAD_RATIO,
-                unit="x",
-            ),
+            thread_ratio(f"fit_particles {STEPS} x {N.size}", seconds, single),
         ]
     )
 

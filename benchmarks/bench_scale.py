@@ -69,7 +69,7 @@ from pathlib import Path
 
 import numpy as np
 import pandas as pd
-from _verdict import ONE_BLAS_THREAD_ENV, THREAD_RATIO, exit_code, target
+from _verdict import ONE_BLAS_THREAD_ENV, exit_code, target, thread_ratio
 
 from contactres._threads import one_blas_thread
 from contactres.analysis import AnalysisSettings, analyze
@@ -307,14 +307,7 @@ def main() -> int:
         f"  analyze, {n} sweeps, CPU: as shipped {large['analyze_cpu']:.2f} s | one BLAS "
         f"thread (OPENBLAS_NUM_THREADS=1) {one_thread:.2f} s"
     )
-    results.append(
-        target(
-            f"analyze, {n} sweeps: as shipped / one BLAS thread",
-            large["analyze_cpu"] / one_thread,
-            THREAD_RATIO,
-            unit="x",
-        )
-    )
+    results.append(thread_ratio(f"analyze, {n} sweeps", large["analyze_cpu"], one_thread))
     speedup = large["fit_sweeps_1_s"] / large["fit_sweeps_2_s"]
     cost = large["fit_sweeps_2_cpu"] / large["fit_sweeps_1_cpu"]
     print(
