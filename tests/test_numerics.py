@@ -127,3 +127,15 @@ def test_lobatto_weights_are_the_product_weights_up_to_a_common_factor(n_points)
     direct = 1.0 / np.prod(diff, axis=1)
     w = lobatto_weights(n_points)
     np.testing.assert_allclose(w / w[0], direct / direct[0], rtol=1e-12, atol=0)
+
+
+def test_run_starts_against_a_loop_over_the_rows():
+    # Two columns with runs, a missing cell (NaN: a run of its own) and a value that comes back.
+    from contactres.numerics import run_starts
+
+    a = np.array(["x", "x", "y", "y", "x", np.nan, np.nan, "y"], dtype=object)
+    b = np.array([1, 1, 1, 2, 2, 2, 2, 2], dtype=object)
+    want = [i for i in range(a.size) if i == 0 or a[i] != a[i - 1] or b[i] != b[i - 1]]
+    assert run_starts(a, b).tolist() == want == [0, 2, 3, 4, 5, 6, 7]
+    assert run_starts(a).tolist() == [0, 2, 4, 5, 6, 7]
+    assert run_starts(np.array([], dtype=object)).tolist() == []

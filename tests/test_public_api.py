@@ -587,6 +587,7 @@ PUBLIC = {
         "gauss_legendre_unit",
         "illinois_step",
         "lobatto_weights",
+        "run_starts",
     ],
     "units": [
         "ABSOLUTE_FREQUENCY_FRACTION",

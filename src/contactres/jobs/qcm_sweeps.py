@@ -360,26 +360,15 @@ def stages(reading: Reading, settings: Settings) -> int:
     tables: at most 6 analysis stages (the fitted curves the last), one per (configuration,
     medium) group and one for the radiation loss, then one for the tables (a caller drawing
     figures adds one more)."""
+    from ..numerics import run_starts  # here: the job's module loads no numpy when imported
+
     data = reading.table.data
-    firsts = data.iloc[_run_starts(data, ("configuration", "medium"))]
+    firsts = data.iloc[
+        run_starts(*(data[c].to_numpy(dtype=object) for c in ("configuration", "medium")))
+    ]
     n_groups = firsts.groupby(["configuration", "medium"]).ngroups
     coated = n_groups + 1 if settings.coating else 0  # the table, then a fit per group
     return 7 + n_groups + (settings.sphere_material is not None) + coated
-
-
-def _run_starts(data: pd.DataFrame, columns: tuple[str, ...]):
-    """The first row of each run of rows that hold the same cells in ``columns``: the distinct
-    cells of the runs' first rows are those of the table (the points of a sweep, the sweeps of
-    a configuration, follow one another). Compared in numpy, ~30 ns a row, where grouping or
-    counting the 10^6 rows hashed each text again (~0.1 s a column, issue 31, point 3)."""
-    import numpy as np
-
-    change = np.zeros(len(data), dtype=bool)
-    change[:1] = True
-    for col in columns:
-        cells = data[col].to_numpy(dtype=object)
-        change[1:] |= cells[1:] != cells[:-1]
-    return np.flatnonzero(change)
 
 
 def coating_layers(settings: Settings):
@@ -419,7 +408,10 @@ def run(
     workers = s.workers
     if workers is None:
         data = reading.table.data
-        many = data["sweep"].iloc[_run_starts(data, ("sweep",))].nunique() >= _MANY_SWEEPS
+        from ..numerics import run_starts
+
+        firsts = run_starts(data["sweep"].to_numpy(dtype=object))
+        many = data["sweep"].iloc[firsts].nunique() >= _MANY_SWEEPS
         workers = max(1, os.cpu_count() or 1) if many else 1
     chosen = AnalysisSettings(
         workers=workers,
