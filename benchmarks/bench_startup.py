@@ -12,9 +12,13 @@ the bare interpreter's subtracted), two figures each held against 0.3 s:
   settings, which import neither numpy nor pandas nor scipy (tests/test_startup.py pins it);
 - the first call, ``contactres.analyze(None)``: the call imports the steps of the analysis and
   their libraries (numpy, pandas) before it looks at its argument, and None then stops it with
-  a TypeError, so the figure is the imports a first real call pays before any work. numpy +
-  pandas alone are printed beside it: the floor of these imports (above the target on the
-  reference machine, ~0.4 s), and the share of contactres's own modules is the difference.
+  a TypeError, so the figure is the imports a first real call pays before any work. The target
+  is held against the part of it beyond numpy + pandas, which are printed beside it with the
+  total: those two alone cost 0.36-0.69 s of CPU on the reference machine (idle or not), above
+  0.3 s, and no analysis can go without them (pandas is a base dependency and the analysis's
+  input is a pandas table), so a target on the total could never be met. What issue 31 aimed
+  at is what contactres adds on the first call (scipy.stats and friends: ~0.6 s once); that is
+  the judged figure, and the total is printed so that a reader sees both.
 
 Printed after them, without a target: the imports of a real first analysis, the README's
 ``cr.analyze(cr.read_sweeps(<the bundled example_sweeps.csv>))``, which also runs the steps
@@ -146,11 +150,15 @@ def _timed(env: dict[str, str]) -> int:
     floor = best_cpu([python, "-c", "import numpy, pandas"], env) - bare_cpu
     first = best_cpu(call, env) - bare_cpu
     print(
-        f"  numpy + pandas: {floor:.3f} s CPU (the floor of the next line; "
-        f"contactres's own modules: {first - floor:.3f} s)"
+        f"  imports of the first call of contactres.analyze: {first:.3f} s CPU in all, of which "
+        f"numpy + pandas {floor:.3f} s (their floor: module docstring)"
     )
     results.append(
-        target("imports of the first call of contactres.analyze (CPU)", first, FIRST_USE_CPU_S)
+        target(
+            "imports of the first call of contactres.analyze beyond numpy + pandas (CPU)",
+            first - floor,
+            FIRST_USE_CPU_S,
+        )
     )
     modules = real_analysis_modules(python, env)
     script = IMPORT_LISTED.format(names=json.dumps(modules))
