@@ -139,3 +139,28 @@ def test_run_starts_against_a_loop_over_the_rows():
     assert run_starts(a, b).tolist() == want == [0, 2, 3, 4, 5, 6, 7]
     assert run_starts(a).tolist() == [0, 2, 4, 5, 6, 7]
     assert run_starts(np.array([], dtype=object)).tolist() == []
+
+
+@pytest.mark.parametrize("use_na_sentinel", [True, False])
+def test_factorize_runs_as_pandas_hashing_every_cell(use_na_sentinel):
+    # Runs of random length of a few texts that come back later, missing cells among them (each
+    # a run of its own), as a Series of text and as an object array; and a column of numbers.
+    # The reference is pandas' factorize of every cell.
+    import pandas as pd
+
+    from contactres.numerics import factorize_runs
+
+    rng = np.random.default_rng(7)
+    words = np.array(["b", "a", "c c", " a", "", None], dtype=object)
+    cells = np.repeat(words[rng.integers(0, words.size, 400)], rng.integers(1, 5, 400))
+    for column in (pd.Series(cells, dtype=object).astype(str), cells):
+        codes, uniques = factorize_runs(column, use_na_sentinel=use_na_sentinel)
+        want_codes, want_uniques = pd.factorize(column, use_na_sentinel=use_na_sentinel)
+        assert codes.tolist() == want_codes.tolist()
+        assert list(map(str, uniques)) == list(map(str, want_uniques))
+    numbers = np.repeat(rng.integers(0, 9, 300).astype(float), rng.integers(1, 4, 300))
+    codes, uniques = factorize_runs(numbers, use_na_sentinel=use_na_sentinel)
+    want_codes, want_uniques = pd.factorize(numbers, use_na_sentinel=use_na_sentinel)
+    assert codes.tolist() == want_codes.tolist()
+    assert np.array_equal(uniques, want_uniques)
+    assert factorize_runs(np.array([], dtype=object))[0].tolist() == []

@@ -583,6 +583,7 @@ PUBLIC = {
     ],
     "numerics": [
         "IllinoisBracket",
+        "factorize_runs",
         "gauss_legendre",
         "gauss_legendre_unit",
         "illinois_step",

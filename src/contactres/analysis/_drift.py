@@ -30,9 +30,10 @@ def _within(values: np.ndarray, group: np.ndarray, size: int, count: np.ndarray)
     return values - (_grouped(values, group, size) / np.maximum(count, 1))[group]
 
 
-def _solve(M: np.ndarray, v: np.ndarray) -> np.ndarray:
-    """vᵀ M⁻¹ v for stacks of small symmetric matrices (pseudo-inverse: degenerate loads)."""
-    return np.einsum("li,lij,lj->l", v, np.linalg.pinv(M), v)
+def _solve(M_inv: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """vᵀ M⁻¹ v for stacks of small symmetric matrices, given M's pseudo-inverses ``M_inv``
+    (degenerate loads: ``np.linalg.pinv``, taken once for both channels)."""
+    return np.einsum("li,lij,lj->l", v, M_inv, v)
 
 
 def drifting_sweeps(sw: pd.DataFrame, padded: Padded, used: np.ndarray, p: float) -> np.ndarray:
@@ -67,7 +68,9 @@ def drifting_sweeps(sw: pd.DataFrame, padded: Padded, used: np.ndarray, p: float
     Xr = np.stack([_within(x, pt_ramp, idx.size, n_ramp) for x in X])
     M0 = np.stack([[_grouped(Xc[i] * Xc[j], pt_load, L) for j in range(2)] for i in range(2)])
     M1 = np.stack([[_grouped(Xr[i] * Xr[j], pt_load, L) for j in range(2)] for i in range(2)])
-    M0, M1 = M0.transpose(2, 0, 1), M1.transpose(2, 0, 1)
+    # The pseudo-inverses depend on u0 alone: one SVD per load for Δf and ΔΓ both.
+    M0_inv = np.linalg.pinv(M0.transpose(2, 0, 1))
+    M1_inv = np.linalg.pinv(M1.transpose(2, 0, 1))
     d1 = k - 1
     d2 = n - 3 - d1
     testable = (k >= 2) & (d2 >= 2)
@@ -77,8 +80,8 @@ def drifting_sweeps(sw: pd.DataFrame, padded: Padded, used: np.ndarray, p: float
         b0 = np.stack([_grouped(Xc[i] * yc, pt_load, L) for i in range(2)], axis=1)
         b1 = np.stack([_grouped(Xr[i] * yr, pt_load, L) for i in range(2)], axis=1)
         total = _grouped(yc * yc, pt_load, L)
-        rss0 = np.maximum(total - _solve(M0, b0), 0.0)
-        rss1 = np.maximum(_grouped(yr * yr, pt_load, L) - _solve(M1, b1), 0.0)
+        rss0 = np.maximum(total - _solve(M0_inv, b0), 0.0)
+        rss1 = np.maximum(_grouped(yr * yr, pt_load, L) - _solve(M1_inv, b1), 0.0)
         tiny = 1e-12 * total + 1e-300  # rounding of the sums: a perfect fit
         with np.errstate(divide="ignore", invalid="ignore"):
             fstat = ((rss0 - rss1) / np.maximum(d1, 1)) / (rss1 / np.maximum(d2, 1))

@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from ..numerics import run_starts
+from ..numerics import factorize_runs
 
 __all__ = ["stripped_distinct"]
 
@@ -25,10 +25,6 @@ def stripped_distinct(cells) -> tuple[np.ndarray, np.ndarray]:
 
     text = (cells if isinstance(cells, pd.Series) else pd.Series(cells, dtype=object)).astype(str)
     # Hashed on the first cell of each run of equal cells only (a sweep's id fills its rows,
-    # a label its sweeps'): each distinct cell starts some run, and first appearances keep
-    # their order, so the codes are those of every cell hashed (2-3x less time at 10^6 rows).
-    values = text.to_numpy(dtype=object)
-    starts = run_starts(values)
-    codes, uniques = pd.factorize(text.iloc[starts], use_na_sentinel=False)
-    codes = np.repeat(codes, np.diff(np.append(starts, len(values))))
+    # a label its sweeps'): the codes of every cell hashed, 2-3x faster at 10^6 rows.
+    codes, uniques = factorize_runs(text, use_na_sentinel=False)
     return codes, pd.Series(uniques).str.strip().to_numpy(dtype=object)

@@ -31,6 +31,7 @@ import pandas as pd
 
 from .._summary import Summarised, table_size
 from ..errors import ContactresInputError
+from ..numerics import factorize_runs
 from ..units import ABSOLUTE_FREQUENCY_FRACTION, SMALL_LOAD_LIMIT
 from ._cell_text import stripped_distinct
 from ._checksum import hashed_load
@@ -397,8 +398,9 @@ def _numeric(raw: pd.DataFrame, col: str, source: str, decimal: str) -> np.ndarr
     text = raw[col].astype(str)
     if text.iloc[:_SAMPLE].nunique() * 10 <= min(len(text), _SAMPLE):
         # Few distinct cells: each text read once (the same parser, so the same number), the
-        # rows given theirs by a hash table in C (issue 31: 10^6 rows of a constant).
-        codes, distinct = pd.factorize(text, use_na_sentinel=False)
+        # rows given theirs by a hash table in C (issue 31: 10^6 rows of a constant), on the
+        # first cell of each run of equal cells (a constant is one run, a ramp one a sweep).
+        codes, distinct = factorize_runs(text, use_na_sentinel=False)
         values, bad = (a[codes] for a in _numbers(pd.Series(distinct, dtype=object), decimal))
     else:
         values, bad = _numbers(text, decimal)
