@@ -5,8 +5,10 @@ Target (issue 26, point 4): with ``coating`` (250 nm of PMMA) the analysis of th
 work is the table of the film corrections (five Young's moduli x ~8 contact radii of the layered
 normal and tangential solutions, :func:`contactres.analysis._coating.build_law`), the coated
 fits and their bootstrap. Both runs are timed as CPU time of this process (the fair measure on
-a shared machine; the wall time is printed too), each after one untimed run of the same call
-(imports and first-call costs out). The target is the uncoated time times 2.
+a shared machine; the wall time is printed too), after one untimed run of each (imports and
+first-call costs out), in :data:`ROUNDS` alternated rounds (uncoated, coated, uncoated, ...),
+best of each: one run of each, back to back, let a shift of the machine's speed land on one
+side of the ratio only. The target is the uncoated time times 2.
 
 Measured (2-core machine shared with ~8 other jobs, ``OPENBLAS_NUM_THREADS=1``, three runs
 alternated with the code before the table shared its basis transforms over E): 1.82-1.95 s
@@ -17,6 +19,15 @@ the table 0.40-0.46 s (0.63-0.66 s before), the coated fits and their bootstrap 
 default BLAS threads cost about the same (no spinning): 1.89 s as shipped against 1.65 s with
 ``OPENBLAS_NUM_THREADS=1``, back to back on the loaded machine (before that context, the small
 matrix products spun: 7.2 s).
+
+Session 28 (issue 31, point 6: the idle machine's ``make bench`` gave 1.089 s against a target
+of 1.003 s, 2.17x): a real miss, not noise. Six alternated rounds in one process (as shipped,
+machine at load ~10 on 2 cores): uncoated 0.564-0.618 s, coated 1.232-1.270 s, every round's
+ratio 2.03-2.25x (best of each 2.18x). The uncoated analysis has got faster since the figures
+above (0.88-0.98 s then), the coated part has not: the coating's own work, 0.65 s of the coated
+run (mean of four rounds), is the table 0.28 s, the coated fits 0.11 s and their bootstrap
+0.21 s. The coating step runs on one BLAS thread (no spinning: its worker threads take no CPU).
+Meeting 2x needs ~10 % of that work cut.
 
 Run: ``OPENBLAS_NUM_THREADS=1 .venv/bin/python benchmarks/bench_analyze_coating.py`` (exit
 status 1 if missed).
@@ -34,10 +45,11 @@ import contactres as cr
 from contactres.analysis import AnalysisSettings, analyze
 
 RATIO = 2.0
+#: Alternated rounds, best of each (see the docstring): ~2 s of CPU a round.
+ROUNDS = 3
 
 
 def _timed(table, settings) -> tuple[float, float]:
-    analyze(table, settings=settings)  # untimed: imports, first calls
     c0, w0 = time.process_time(), time.perf_counter()
     analyze(table, settings=settings)
     return time.process_time() - c0, time.perf_counter() - w0
@@ -45,9 +57,14 @@ def _timed(table, settings) -> tuple[float, float]:
 
 def main() -> int:
     table = cr.read_sweeps(files("contactres") / "data" / "example_sweeps.csv")
-    cpu0, wall0 = _timed(table, AnalysisSettings())
-    cpu1, wall1 = _timed(table, AnalysisSettings(coating=(cr.pmma(), 250e-9)))
-    print("qcm analyze, bundled example (384 sweeps, 4 groups)")
+    settings = (AnalysisSettings(), AnalysisSettings(coating=(cr.pmma(), 250e-9)))
+    for s in settings:
+        analyze(table, settings=s)  # untimed: imports, first calls
+    rounds = [[_timed(table, s) for s in settings] for _ in range(ROUNDS)]
+    (cpu0, wall0), (cpu1, wall1) = (
+        (min(r[k][0] for r in rounds), min(r[k][1] for r in rounds)) for k in range(2)
+    )
+    print(f"qcm analyze, bundled example (384 sweeps, 4 groups), best of {ROUNDS} alternated")
     print(f"  uncoated:            {cpu0:.3f} s CPU ({wall0:.3f} s wall)")
     print(f"  coated (PMMA 250 nm): {cpu1:.3f} s CPU ({wall1:.3f} s wall)")
     print(f"  ratio:               {cpu1 / cpu0:.2f} (CPU), {wall1 / wall0:.2f} (wall)")

@@ -263,6 +263,18 @@ alternating three times, best of 30 each (machine at load ~22 on 2 cores): homog
 pass): as shipped and one-thread lines agree within the machine's scatter. The 250 nm target
 (~185 M, 2.75x, for a CPU ratio clearly below 3x) is still missed by ~10 M.
 
+Session 28 (issue 31, point 6: the idle machine's ``make bench`` missed the as-shipped 250 nm
+line, 24.4 ms against 21.0 ms, 3.49x): a real miss of both lines, not noise and not threads.
+Instructions per curve (callgrind, one thread, calls 3-4 less calls 1-2 of one process, over
+two): homogeneous 51.8 M, 250 nm 172.9 M, 3.34x, against 60.5 M and 189.6 M (3.13x) at the
+twelfth pass's commit measured the same way: session 27 cut the homogeneous curve by 14 % (the
+exact model's own Galerkin size, the kernel table's look-ahead, the doubling step), the layered
+one by 9 %. One run of this benchmark (load ~10 on 2 cores): one BLAS thread 3.43x,
+as shipped 3.25x. As shipped, OpenBLAS's worker threads took no CPU over 20 curves (per-thread
+times from /proc), the curve opens two one-thread contexts (~13 µs each): the two lines differ
+by the machine's scatter only. Meeting 3x needs ~17 M instructions (~10 %) off the layered
+curve.
+
 Run: ``.venv/bin/python benchmarks/bench_layered_dynamic.py`` (exit status 1 if a target is
 missed; a few minutes on a busy machine).
 """

@@ -19,6 +19,14 @@ an OpenBLAS limit, change it; since the last context to close may belong to anot
 the first, each change here releases that control again. The libraries come from threadpoolctl's
 own cached lookup (about 10 µs; a fresh lookup reads /proc/self/maps, about 1.3 ms). The count
 holds no result: nothing computed is kept between calls.
+
+A context cannot undo what OpenBLAS does when it is loaded: it starts its threads at once
+(one per core less one, for numpy's copy and again for scipy's), and each new thread spins,
+yielding, for about 2^28 processor cycles (~0.1 s at 2.6 GHz) waiting for work before it sleeps.
+On an idle machine that is ~0.1 s of CPU per copy, paid by a process that then runs all its
+BLAS work on one thread: ``contactres afm invert`` of a 512 x 512 map cost 0.55 s of CPU as
+shipped against 0.44 s with ``OPENBLAS_NUM_THREADS=1`` (issue 31). The command line therefore
+asks for one thread before numpy is first imported (``contactres.cli._app``).
 """
 
 from __future__ import annotations

@@ -18,6 +18,9 @@ from ..errors import ContactresInputError, MissingExtraError
 USER_ERRORS = (ContactresInputError, MissingExtraError, OSError)
 # Longest error line printed (the messages cut long values themselves; this is the backstop).
 MAX_MESSAGE_CHARS = 2000
+#: The variables OpenBLAS reads, in this order, for the thread count it starts with; one set by
+#: the user is the user's choice and is kept.
+THREAD_COUNT_VARIABLES = ("OPENBLAS_NUM_THREADS", "GOTO_NUM_THREADS", "OMP_NUM_THREADS")
 
 
 # click >= 8.2 raises this for a bare group; older click prints the help itself.
@@ -32,6 +35,37 @@ def _one_line(text) -> str:
     if len(line) > MAX_MESSAGE_CHARS:
         line = line[: MAX_MESSAGE_CHARS - 1] + "…"
     return line
+
+
+def one_blas_thread_from_start() -> bool:
+    """Have OpenBLAS start with one thread in this process, if it is not loaded yet (the first
+    step of :meth:`App.main`).
+
+    Sets ``OPENBLAS_NUM_THREADS=1`` in the environment unless numpy (which loads OpenBLAS) is
+    imported already, when the count is fixed and this changes nothing, or the user has set one
+    of :data:`THREAD_COUNT_VARIABLES`. Every command runs its BLAS work inside
+    :func:`contactres._threads.one_blas_thread` anyway; what this saves is the spinning of the
+    threads OpenBLAS starts when it is loaded, which no later limit stops (~0.1 s of CPU each
+    on an idle machine: :mod:`contactres._threads`). Child processes started afterwards (an
+    analysis's workers) inherit the variable, as they inherit one thread from a fork inside a
+    context.
+
+    Returns
+    -------
+    bool
+        True if the variable was set.
+
+    Examples
+    --------
+    >>> import numpy
+    >>> from contactres.cli._app import one_blas_thread_from_start
+    >>> one_blas_thread_from_start()  # numpy is loaded: too late, nothing is set
+    False
+    """
+    if "numpy" in sys.modules or any(name in os.environ for name in THREAD_COUNT_VARIABLES):
+        return False
+    os.environ["OPENBLAS_NUM_THREADS"] = "1"
+    return True
 
 
 class LazyCommands(MutableMapping[str, click.Command]):
@@ -90,6 +124,9 @@ class App(click.Group):
 
     def main(self, args=None, prog_name=None, complete_var=None, **extra):
         extra.pop("standalone_mode", None)
+        # Before a command's module imports numpy: OpenBLAS's threads would spin at its load
+        # (~0.1 s of CPU each on an idle machine) for work the jobs run on one thread.
+        one_blas_thread_from_start()
         prog = prog_name or "contactres"
         try:
             rv = super().main(
