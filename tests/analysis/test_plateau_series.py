@@ -94,6 +94,23 @@ def test_derivative_integrals_equal_adaptive_quadrature(seed):
     assert np.max(np.abs(jc - ref[:, 1]) / scale) < 1e-13
 
 
+@pytest.mark.parametrize("side", ["x <= e", "x > e"])
+def test_derivative_integrals_of_points_all_on_one_side_of_e(side):
+    # A call whose points all lie on one side of e takes Euler's relation without choosing
+    # between the sides point by point: the two integrals against QAWS as above, on a call of
+    # such points alone (the calls above mix both sides).
+    x, c = _points(2)
+    e = c + 1.5
+    on = (x > e) if side == "x > e" else ~(x > e)
+    x, c, e = x[on], c[on], e[on]
+    assert x.size > 50
+    _, jx, jc = slip_integrals_series(x, c)
+    scale = np.minimum(x, e) * np.sqrt(np.maximum(x, e))
+    ref = np.array([_quadpack_derivatives(a, b) for a, b in zip(x, c, strict=True)])
+    assert np.max(np.abs(jx - ref[:, 0]) / scale) < 1e-13
+    assert np.max(np.abs(jc - ref[:, 1]) / scale) < 1e-13
+
+
 def test_derivative_series_in_groups_of_cells():
     # Only the cells of the groups are summed: m = 0.2 (cell 3) with groups ending at 4, not at
     # 3; a group sums its last cell's terms, within rounding of each cell alone.

@@ -125,30 +125,32 @@ def legendre_tails(
 def _duplicate(x: np.ndarray, y: np.ndarray, z: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     """:func:`carlson_rf_rd` at one block of points of its domain (NaN where a point has not
     converged after :data:`MAX_STEPS` steps)."""
-    x, y, z = x.copy(), y.copy(), z.copy()
+    # The three arguments as the rows of one array: each of a step's square roots and updates
+    # is one numpy call on all three (the same numbers as one call each).
+    xyz = np.array([x, y, z])
     rf, rd = np.empty_like(x), np.empty_like(x)
     tail = np.zeros_like(x)  # Σ 4⁻ⁿ/(√zₙ(zₙ + λₙ)) of R_D
     scale = 1.0  # 4⁻ⁿ, the same for every point still stepping
     active = np.arange(x.size)
     steps = 0
     while active.size and steps < MAX_STEPS:
-        sx, sy, sz = np.sqrt(x), np.sqrt(y), np.sqrt(z)
+        sx, sy, sz = np.sqrt(xyz)
         lam = sx * sy
         sx += sy
         sx *= sz
         lam += sx  # λ = √x√y + √z(√x + √y)
-        t = np.add(z, lam, out=sy)
+        t = np.add(xyz[2], lam, out=sy)
         t *= sz
         np.divide(scale, t, out=t)
         tail += t
         scale *= 0.25
-        for a in (x, y, z):
-            a += lam
-            a *= 0.25
+        xyz += lam
+        xyz *= 0.25
         steps += 1
         if steps < MIN_STEPS or (steps - MIN_STEPS) % CHECK_EVERY:
             continue
         # Converged where the spread of the three about their mean is below DEVIATION of it.
+        x, y, z = xyz
         hi = np.maximum(x, y)
         np.maximum(hi, z, out=hi)
         lo = np.minimum(x, y)
@@ -166,7 +168,7 @@ def _duplicate(x: np.ndarray, y: np.ndarray, z: np.ndarray) -> tuple[np.ndarray,
         rd[here] = d * scale + 3.0 * tail[done]
         left = ~done
         active = active[left]
-        x, y, z, tail = x[left], y[left], z[left], tail[left]
+        xyz, tail = xyz[:, left], tail[left]
     rf[active] = rd[active] = np.nan
     return rf, rd
 

@@ -227,18 +227,19 @@ def _slipping(x, c, reach) -> tuple[np.ndarray, ...]:
     # J and its derivatives' integrals by their series where it is the cheaper (m below
     # FIT_SERIES_GROUPS[-1]/16), by the elliptic integrals beyond.
     ns = reach[-1][1]
-    J, Jx, Jc = np.empty(x.size), np.empty(x.size), np.empty(x.size)
-    if ns:
-        series = slice(0, ns)
-        # (φ_c: a copy, which the series overwrites where x > e)
-        J[series], Jx[series], Jc[series] = slip_integrals_ordered(
-            x[series], c[series], half[series].copy(), reach
-        )
-        bad = np.flatnonzero(np.isnan(J[series]))  # (none inside the domain: a guard)
-        if bad.size:
-            J[bad], Jx[bad], Jc[bad] = _elliptic_integrals(x[bad], c[bad])
-    if ns < x.size:
+    # (φ_c: a copy, which the series overwrites where x > e)
+    if ns == x.size:  # every point by the series: its arrays are J's, not copied into others
+        J, Jx, Jc = slip_integrals_ordered(x, c, half.copy(), reach)
+    else:
+        J, Jx, Jc = np.empty(x.size), np.empty(x.size), np.empty(x.size)
+        if ns:
+            J[:ns], Jx[:ns], Jc[:ns] = slip_integrals_ordered(
+                x[:ns], c[:ns], half[:ns].copy(), reach
+            )
         J[ns:], Jx[ns:], Jc[ns:] = _elliptic_integrals(x[ns:], c[ns:])
+    bad = np.flatnonzero(np.isnan(J[:ns]))  # (none inside the domain: a guard)
+    if bad.size:
+        J[bad], Jx[bad], Jc[bad] = _elliptic_integrals(x[bad], c[bad])
     rcy = c * y
     np.sqrt(rcy, out=rcy)
     x2 = x**2
@@ -465,7 +466,7 @@ def _plateau_model(p, u, umax, df, dg, w, rw, wf, wg, within=None, current=None)
         rss_f, rss_g = rss_f + within[0], rss_g + within[1]
         chi2 = wf * rss_f + wg * rss_g
     fit = {"A": A, "B": B, "chi2": chi2, "rss_f": rss_f, "rss_g": rss_g}
-    fit.update(theta=theta, x=x, c=c, slopes=slopes)
+    fit.update(theta=theta, slopes=slopes)
     accepted: slice | np.ndarray = slice(None)
     if current is not None:
         # (χ² <= current: the solver's test gain = current - χ² >= 0, NaN failing both)
@@ -492,22 +493,36 @@ def _plateau_model(p, u, umax, df, dg, w, rw, wf, wg, within=None, current=None)
 def _descent(ey, dl, x, c, A, B, slopes, sf, sg, df, dg) -> tuple[np.ndarray, np.ndarray]:
     """The gradient of χ²/2 in p and its Gauss-Newton Hessian of :func:`_plateau_model`, from
     its shapes, Pκ (A) and Pωξ (B) at the rows' points (sf, sg: √(channel weight) times the
-    rows' residual factors ``rw``: w, or √W of a pooled amplitude)."""
+    rows' residual factors ``rw``: w, or √W of a pooled amplitude).
+
+    The weighted columns are written into their places in the arrays the sums take (channels
+    side by side), not formed apart and then joined: the same numbers, without the joins'
+    copies."""
     g1, g2, g1x, g1c, g2x, g2c = slopes
+    R, M = sf.shape
     dx = x / (1.0 - dl)[:, None]  # ∂x/∂(d_c/u_max); ∂x/∂ln(...) = x
     dc = (ey / (1.0 - dl) ** 2)[:, None]
-    # Weighted columns of the linear part (Pκ, Pωξ) and of ∂(model)/∂p, channels side by side.
-    phi_a = np.concatenate([sf * g1, sg * g2], axis=1)
-    phi_b = np.concatenate([np.zeros_like(sf), sg], axis=1)
-    D = A[:, None, None] * np.stack(
-        [
-            np.concatenate([sf * (g1x * x + g1c * c), sg * (g2x * x + g2c * c)], axis=1),
-            np.concatenate([sf * (g1x * dx + g1c * dc), sg * (g2x * dx + g2c * dc)], axis=1),
-        ],
-        axis=1,
-    )  # (R, 2, 2M)
-    r = np.concatenate([sf * (df - A[:, None] * g1), sg * (dg - B[:, None] - A[:, None] * g2)], 1)
-    phi = np.stack([phi_a, phi_b], axis=1)  # (R, 2, 2M)
+    f, g = slice(0, M), slice(M, 2 * M)
+    # Weighted columns of the linear part (Pκ, Pωξ): Pωξ's is 0 in the Δf channel.
+    phi = np.zeros((R, 2, 2 * M))
+    np.multiply(sf, g1, out=phi[:, 0, f])
+    np.multiply(sg, g2, out=phi[:, 0, g])
+    phi[:, 1, g] = sg
+    # ∂(model)/∂p, weighted: A times the shapes' derivatives along ln(...) and d_c/u_max.
+    D = np.empty((R, 2, 2 * M))
+    for j, along, at in ((0, x, c), (1, dx, dc)):
+        for s, gx, gc, ch in ((sf, g1x, g1c, f), (sg, g2x, g2c, g)):
+            t = gx * along
+            t += gc * at
+            np.multiply(s, t, out=D[:, j, ch])
+    D *= A[:, None, None]
+    r = np.empty((R, 2 * M))  # the weighted residuals
+    t = A[:, None] * g1
+    np.subtract(df, t, out=t)
+    np.multiply(sf, t, out=r[:, f])
+    t = dg - B[:, None]
+    t -= A[:, None] * g2
+    np.multiply(sg, t, out=r[:, g])
     gram = np.einsum("rim,rjm->rij", phi, phi)
     pd_ = np.einsum("rim,rjm->rij", phi, D)
     hess = np.einsum("rim,rjm->rij", D, D) - np.einsum(
@@ -567,7 +582,7 @@ def fit_plateau_loops(
     pooled = pool_repeats(u, df, dg, w) if np.all((w == 0) | (w == 1)) else None
     points = (u, df, dg, w, w, None, None) if pooled is None else pooled
 
-    def run(starts, sig_f, sig_g, of, tol, top=hi):  # start i of the sweep of[i]
+    def run(starts, sig_f, sig_g, of, tol, top=hi, full=True):  # start i of the sweep of[i]
         wf = (1.0 / np.maximum(sig_f, floor_f) ** 2)[of]
         wg = (1.0 / np.maximum(sig_g, floor_g) ** 2)[of]
         data = [a[of] for a in points[:5]]
@@ -582,19 +597,22 @@ def fit_plateau_loops(
 
         # Each row's fit at its latest accepted point (the solver's current one: χ² not above
         # the kept one) and where that is: the fit at the solution, with no evaluation again (a
-        # row's numbers do not depend on the rows evaluated with it).
+        # row's numbers do not depend on the rows evaluated with it). Only what the caller
+        # reads of it is kept: χ² and the RSS (pass 1), or also Pκ, Pωξ, θ and the shapes
+        # (``full``; x and c follow from θ and p at the end).
+        names = ("chi2", "rss_f", "rss_g") + (("A", "B", "theta", "slopes") if full else ())
         at = np.full(np.shape(starts), np.nan)
         kept: dict[str, np.ndarray] = {}
 
         def keep(fit, i, k=slice(None)):  # the rows i[k] of the evaluation fit
-            for key, v in fit.items():
-                if key in ("accepted", "grad", "hess"):  # (the solver holds these)
-                    continue
+            rows_k = i[k]
+            for key in names:
+                v = fit[key]
                 for j, a in enumerate(v) if key == "slopes" else [(None, v)]:
                     name = key if j is None else f"{key}{j}"
                     if name not in kept:
                         kept[name] = np.empty((len(at), *np.shape(a)[1:]), dtype=np.result_type(a))
-                    kept[name][i[k]] = a[k]
+                    kept[name][rows_k] = a[k]
 
         def evaluate(p, i, jacobian):  # the Gauss-Newton form, complete where accepted
             fit = model(p, i, kept["chi2"][i] if kept else None)
@@ -608,7 +626,11 @@ def fit_plateau_loops(
         if again.size:
             keep(model(p.x[again], again), again)
         fit = {key: v for key, v in kept.items() if not key.startswith("slopes")}
-        fit["slopes"] = tuple(kept[f"slopes{j}"] for j in range(6))
+        if full:
+            fit["slopes"] = tuple(kept[f"slopes{j}"] for j in range(6))
+            # x and c as _plateau_model formed them from θ and p (the same numbers).
+            fit["x"] = fit["theta"][:, None] * data[0]
+            fit["c"] = (fit["theta"] * p.x[:, 1] * um)[:, None]
         return p.x, fit
 
     # Pass 1, weighted by the noise of the hinge fit; started at the hinge and at the amplitude
@@ -626,7 +648,9 @@ def fit_plateau_loops(
     # row's iteration depends on its own start and data alone, so it would end where the first
     # does, and the first wins the tie.
     two = np.flatnonzero(second != first)
-    p1, fit1 = run(p0[np.concatenate([rows, S + two])], sigma_df, sigma_dg, np.r_[rows, two], 1e-4)
+    p1, fit1 = run(
+        p0[np.concatenate([rows, S + two])], sigma_df, sigma_dg, np.r_[rows, two], 1e-4, full=False
+    )
     take = rows.copy()
     take[two] = np.where(fit1["chi2"][S:] < fit1["chi2"][two], S + np.arange(two.size), two)
     x1 = p1[take]

@@ -258,6 +258,16 @@ def slip_integrals_ordered(x, c, phi, reach, derivatives: bool = True) -> tuple[
     # Euler's relation (slip_integrals_series): the summed one is that of the larger end.
     J, summed = got
     rest = 5.0 * J + 2.0 * c * np.sqrt(1.5 * c * (x - c))
+    # (where no point, or every point, lies beyond e, the choices below are one side whole:
+    # the same numbers without a selection's pass over the points)
+    if not far.any():
+        rest -= e * summed
+        rest /= x
+        return J, rest, summed
+    if far.all():
+        rest -= x * summed
+        rest /= e
+        return J, summed, rest
     rest -= np.where(far, x, e) * summed
     rest /= np.where(far, e, x)
     return J, np.where(far, summed, rest), np.where(far, rest, summed)
