@@ -227,10 +227,11 @@ EVIDENCE_FRESH_CELLS = 2 * CHUNK_CELLS
 NODE_BLOCK_CELLS = 1 << 14
 
 
-def _integrand(pts, dl, y, store=None):
+def _integrand(pts, dl, y, store=None, out=None, own=None):
     """ln L + ln π (as :func:`plateau_log_evidence`, up to a common constant), ln L alone and
-    ln μ at the nodes (R, Y) of d_c/u_max ``dl`` (R, 1) and ``y`` (R, Y), each row R one block's
-    (``pts``: :func:`_rows`): (3, R, Y).
+    ln μ at the nodes (R, Y) of d_c/u_max ``dl`` (R, 1) and ``y`` (R, Y; (1, Y): the same for
+    every row), each row R one block's (``pts``: :func:`_rows`, one row a block; ``own`` (R,):
+    each row's block there, by default row r block r): (3, R, Y), into ``out`` if given.
 
     The model depends on a point only through its amplitude, and a block's sweeps repeat the
     same amplitudes (three ramps: a third of its points distinct), so the slopes and the
@@ -239,21 +240,26 @@ def _integrand(pts, dl, y, store=None):
     added to the residual sums (Σ (v - a)² over a level = Σ (v - v̄)² + n (v̄ - a)², the
     scatter free of cancellation; the sums over the levels by :func:`_solve_levels`). The same
     numbers to rounding at a third of the cost of the points."""
-    lev, n_lev, _, _, scatter_f, scatter_g, umax, _, _, mean, var, to_mu = pts
+    if own is None:
+        own = np.arange(dl.shape[0])
+    lev, umax = pts[0][own], pts[6][own]
     theta = np.exp(y) / (umax * (1.0 - dl))
     slopes = _slopes(
         theta, np.broadcast_to(dl, umax.shape), lev, SlopeStore() if store is None else store
     )
-    sums = _level_sums(*slopes, pts)
+    # The sums of each block's points once (not once for each of its rows), then each row's.
+    sums = _level_sums(*slopes, pts, own)
+    node = tuple(a[own] for a in (*pts[4:6], *pts[9:12], *pts[7:9]))
     # The rest node by node, in blocks of rows of ~NODE_BLOCK_CELLS nodes (arrays that stay in
     # the cache; the same bits, each node's arithmetic its own).
-    out = np.empty((3, *theta.shape))
+    if out is None:
+        out = np.empty((3, *theta.shape))
     step = max(1, NODE_BLOCK_CELLS // max(theta.shape[1], 1))
     for start in range(0, theta.shape[0], step):
         b = slice(start, start + step)
         _node_values(
             tuple(a[b] for a in sums),
-            tuple(a[b] for a in (n_lev, scatter_f, scatter_g, mean, var, to_mu, *pts[7:9])),
+            tuple(a[b] for a in node),
             theta[b],
             out[:, b],
         )
@@ -262,12 +268,12 @@ def _integrand(pts, dl, y, store=None):
 
 def _node_values(sums, pts, theta, out):
     """ln L + ln π, ln L and ln μ of :func:`_integrand` at its nodes ``theta`` (R, Y), into
-    ``out`` (3, R, Y), from the sums over the amplitudes (``sums``: :func:`_level_sums`) and the
-    rows' points (numbers of points at each amplitude, the scatters, the prior on ln μ, to_mu,
-    the weights of Δf, ΔΓ)."""
-    n_lev, scatter_f, scatter_g, mean, var, to_mu, wf, wg = pts
+    ``out`` (3, R, Y), from the sums over the amplitudes (``sums``: :func:`_level_sums`, n the
+    rows' numbers of points among them) and the rows' points (the scatters, the prior on ln μ,
+    to_mu, the weights of Δf, ΔΓ; (R, 1) each)."""
+    scatter_f, scatter_g, mean, var, to_mu, wf, wg = pts
     A, rss_f, rss_g = _solve_levels(*sums, wf, wg)
-    n = n_lev.sum(-1)
+    n = sums[5]
     # ln L = -n/2 (ln RSS_f + ln RSS_Γ), ln μ = ln(A to_mu / θ) and ln π: in place, each
     # operation's operands and order as written out here (the same bits, fewer temporaries),
     # on arrays of their own (numpy's loops run over a contiguous block at once, over a view
@@ -381,10 +387,12 @@ def _void_rows(a):
     return a.view(np.dtype((np.void, a.itemsize * a.shape[1])))[:, 0]
 
 
-def _level_sums(slopes, squares, inv, pts):
+def _level_sums(slopes, squares, inv, pts, own):
     """The sums over the amplitudes of the projected solve at the nodes (R, Y) of each row
     (:func:`_solve_levels`): that of :func:`~contactres.analysis._loops.solve_projected` on a
-    block's distinct amplitudes weighted by their numbers of points (``pts``: :func:`_rows`),
+    block's distinct amplitudes weighted by their numbers of points (``pts``: :func:`_rows`, one
+    row a block; ``own`` (R,): each row's block; the sums of a block's own points, C, formed
+    once a block and not once a row, the same numbers),
     from the sums over the amplitudes of G′, G″ (``slopes``, (D, 2Y, L), of the distinct rows,
     ``inv`` each row's) and of their squares (``squares``) times the row's weights and
     weighted data.
@@ -421,24 +429,27 @@ def _level_sums(slopes, squares, inv, pts):
     # of one distinct row of slopes in one product each. (Not the three products used alone,
     # w Δf against G′ and (w, w ΔΓc) against G″: BLAS sums the last columns of a product
     # of Y columns in another order than those of 2Y, other bits in 2 ln B at ~1e-12.)
-    R = w.shape[0]
-    W = np.stack([w, wdf, wdgc], axis=1)  # (R, 3, L)
+    R = own.size
+    W = np.stack([w, wdf, wdgc], axis=1)  # (B, 3, L)
     lin, sq = np.empty((R, 3, Y2)), np.empty((R, Y2))
     order = np.argsort(inv, kind="stable")
+    block = own[order]  # each row's block, the rows in their order of distinct rows of slopes
     if D == R:  # no row shares its slopes: the products of all rows in one call each
-        lin[order] = W[order] @ slopes.transpose(0, 2, 1)
-        sq[order] = (squares @ w[order][..., None])[..., 0]
+        lin[order] = W[block] @ slopes.transpose(0, 2, 1)
+        sq[order] = (squares @ w[block][..., None])[..., 0]
         D = 0
     cut = np.searchsorted(inv[order], np.arange(D + 1)).tolist()
     for d in range(D):
         rows = order[cut[d] : cut[d + 1]]
-        lin[rows] = (W[rows].reshape(-1, L) @ slopes[d].T).reshape(-1, 3, Y2)
-        sq[rows] = (squares[d] @ w[rows][..., None])[..., 0]
+        mine = block[cut[d] : cut[d + 1]]
+        lin[rows] = (W[mine].reshape(-1, L) @ slopes[d].T).reshape(-1, 3, Y2)
+        sq[rows] = (squares[d] @ w[mine][..., None])[..., 0]
     # Below its rounding, (L + 3)·ε·C, the expanded square says nothing; a fit exact to that
     # level would come out negative (ln L -inf, the node lost): such an RSS is held at the
     # floor, its best estimate (review R22b; :func:`_solve_levels`).
     floor = (L + 3) * np.finfo(float).eps
-    return lin, sq, C_f, C_g, wdgc.sum(-1, keepdims=True), n, floor * C_f, floor * C_g
+    per_row = (C_f, C_g, wdgc.sum(-1, keepdims=True), n, floor * C_f, floor * C_g)
+    return (lin, sq, *(a[own] for a in per_row))
 
 
 def _solve_levels(lin, sq, C_f, C_g, g_sum, n, lo_f, lo_g, wf, wg):
@@ -490,10 +501,10 @@ def _cells(f, dx):
     return t
 
 
-def _over_y(pts, dl, store):
+def _over_y(pts, own, dl, store):
     """ln ∫ L π dy, ln ∫ L dy, the first two moments of ln μ under L, the share of L's mass in
     the first and last coarse cells and the nodes both posteriors span (:func:`_span`), at each
-    d_c/u_max ``dl`` (R,) of its row's block (``pts``: :func:`_rows`).
+    d_c/u_max ``dl`` (R,) of its row's block ``own`` (R,) (``pts``: :func:`_rows`).
 
     A node of the rule (:data:`EVIDENCE_NODES`) that another node stands for is not evaluated
     again: the middle and the ends of a fine span (they fall on coarse nodes), all of L's fine
@@ -519,15 +530,21 @@ def _over_y(pts, dl, store):
     lower, upper = np.flatnonzero(j[~on] < mid), np.flatnonzero(j[~on] > mid)
     step = np.linspace(-h, h, nf)[~on]
     nfine = step.size
-    # ln L π, ln L and ln μ at all nodes: the coarse ones, the fine ones around L π's peak, L's.
-    first = _integrand(pts, dl, np.broadcast_to(coarse, (K, ny)), store)
+    # ln L π, ln L and ln μ at all nodes, side by side in one array (:func:`_over_y_rows` reads
+    # them in one take): the coarse ones, the fine ones around L π's peak, L's. θ of the coarse
+    # nodes from one row of y: the exponentials of the same 32 numbers, not of each row's.
+    vals = np.empty((3, K, ny + 2 * nfine))
+    first, got = vals[:, :, :ny], vals[:, :, ny : ny + nfine]
+    rest = vals[:, :, ny + nfine :]  # every row's values written below: shared or evaluated
+    if K:
+        _integrand(pts, dl, coarse[None], store, first, own)
     # Fine nodes around the peak of L π (the evidence) and, where it lies elsewhere, around
     # that of L (μ's moments): else μ would follow its prior through the nodes.
     at_p, at_l = np.argmax(first[0], axis=1), np.argmax(first[1], axis=1)
     fine_p = np.clip(coarse[at_p][:, None] + step, coarse[0], coarse[-1])
-    got = _integrand(pts, dl, fine_p, store) if K else np.empty((3, K, nfine))
+    if K:
+        _integrand(pts, dl, fine_p, store, got, own)
     fine_l = np.clip(coarse[at_l][:, None] + step, coarse[0], coarse[-1])
-    own = np.empty_like(got)  # every row's values written below: shared or evaluated
     side = at_l - at_p
     shared = [(side == 0, slice(None), slice(None))]
     if mid > 0:  # one step up: L's lower half is L π's upper half; one step down the reverse
@@ -535,7 +552,7 @@ def _over_y(pts, dl, store):
     for rows, mine, theirs in shared:
         r = np.flatnonzero(rows)[:, None]
         fine_l[r, mine] = fine_p[r, theirs]
-        own[:, r, mine] = got[:, r, theirs]
+        rest[:, r, mine] = got[:, r, theirs]
     # The rest of L's nodes: all of them two steps apart or more, the other half one apart
     # (an even nf shares no half: all of them one step apart or more).
     far = np.flatnonzero(np.abs(side) >= (2 if mid > 0 else 1))
@@ -545,8 +562,7 @@ def _over_y(pts, dl, store):
             todo.append((np.flatnonzero(side == sign)[:, None], mine[None, :]))
     for r, c in todo:
         if r.size:
-            sub = tuple(a[r[:, 0]] for a in pts)
-            own[:, r, c] = _integrand(sub, dl[r[:, 0]], fine_l[r, c], store)
+            rest[:, r, c] = _integrand(pts, dl[r[:, 0]], fine_l[r, c], store, None, own[r[:, 0]])
     pattern, order, dy, edge = _y_patterns(at_p, at_l, fine_p, fine_l, coarse)
     # The sums over y row by row, in blocks of rows of ~NODE_BLOCK_CELLS nodes (arrays that
     # stay in the cache; the same bits, each row's sums its own).
@@ -555,9 +571,7 @@ def _over_y(pts, dl, store):
     for start in range(0, K, rows):
         b = slice(start, start + rows)
         p = pattern[b]
-        got_b = _over_y_rows(
-            [v[:, b] for v in (first, got, own)], order[p], dy[p], edge[p], at_p[b], at_l[b]
-        )
+        got_b = _over_y_rows(vals[:, b], order[p], dy[p], edge[p], at_p[b], at_l[b])
         for o, v in zip(out, got_b, strict=True):
             o[b] = v
     return tuple(out)
@@ -581,9 +595,10 @@ def _y_patterns(at_p, at_l, fine_p, fine_l, coarse):
     return pattern.ravel(), order, np.diff(y, axis=1) / 2.0, edge.astype(float)
 
 
-def _over_y_rows(parts, order, dy, edge, at_p, at_l):
-    """:func:`_over_y`'s outputs of its rows from :func:`_integrand`'s values (3, R, ...) at the
-    coarse nodes, the fine ones around L π's peak and L's (``parts``), the order of each row's
+def _over_y_rows(vals, order, dy, edge, at_p, at_l):
+    """:func:`_over_y`'s outputs of its rows from :func:`_integrand`'s values (3, R, N) at the
+    coarse nodes, the fine ones around L π's peak and L's, side by side (``vals``), the order of
+    each row's
     nodes in y (R, N), half their spacings (R, N - 1) and which spacings lie in the first or
     last coarse cell, 1 or 0 (:func:`_y_patterns`); ``at_p``, ``at_l``: the coarse nodes of the
     peaks of L π and L."""
@@ -593,7 +608,7 @@ def _over_y_rows(parts, order, dy, edge, at_p, at_l):
     # Each row in its order of y, as flat indices into the (R, N) arrays (one take each).
     R, N = order.shape
     at = order + np.arange(0, R * N, N)[:, None]
-    lp, ll, mu = (np.concatenate([v[k] for v in parts], axis=1).ravel()[at] for k in range(3))
+    lp, ll, mu = (np.take(v.reshape(R * N), at) for v in vals)
     top_p = lp.max(axis=1, keepdims=True)
     top_l = ll.max(axis=1, keepdims=True)
     with np.errstate(invalid="ignore"):
@@ -617,19 +632,18 @@ def _over_y_rows(parts, order, dy, edge, at_p, at_l):
         cell *= edge
         share = cell.sum(axis=1) / zl
     # The nodes on coarse nodes count as the rule places them: -1, 0, 1 steps from each peak
-    # (only there their densities are needed: each an exponential of its own).
+    # (only there their densities are needed: each an exponential of its own), of both
+    # densities and both peaks in one take.
     steps = (2 * j[on]) // max(nf - 1, 1) - 1
-    spans = []
-    for e_all, v, top in ((ep, parts[0][0], top_p), (el, parts[0][1], top_l)):
-        count = _span(e_all)
-        for peak in (at_p, at_l):
-            at_on = np.clip(peak[:, None] + steps, 0, ny - 1)
-            with np.errstate(invalid="ignore"):
-                # NaN (a row without a finite node) counts as no node
-                e = np.exp(np.take_along_axis(v, at_on, axis=1) - top)
-            count = count + _span(e)
-        spans.append(count)
-    return log_p, log_l, m1, m2, share, np.minimum(*spans)
+    at_on = np.concatenate([at_p[:, None] + steps, at_l[:, None] + steps], axis=1)
+    at_on = np.clip(at_on, 0, ny - 1, out=at_on) + np.arange(0, R * N, N)[:, None]
+    span = []
+    for v, e_all, top in ((vals[0], ep, top_p), (vals[1], el, top_l)):
+        with np.errstate(invalid="ignore"):
+            # NaN (a row without a finite node) counts as no node
+            e = np.exp(np.take(v.reshape(R * N), at_on) - top)
+        span.append(_span(e_all) + _span(e))
+    return log_p, log_l, m1, m2, share, np.minimum(*span)
 
 
 def plateau_log_evidence(
@@ -798,7 +812,7 @@ def _evaluate(args, jobs, zero, store):
     for i, (chunk, (dl, sizes)) in enumerate(zip(chunks, ends, strict=True)):
         own = np.repeat(np.arange(len(chunk)), sizes)
         pts = _rows(per_block, sig, mu_prior, to_mu, [b for _, b, _ in chunk])
-        outs.append(_over_y(tuple(a[own] for a in pts), dl, store))
+        outs.append(_over_y(pts, own, dl, store))
         store.done(i)
         done.extend(k for k, _, _ in chunk)
     # The rows in the order of the jobs, each job's in its order of z: a stable sort of the
