@@ -247,33 +247,51 @@ def _integrand(pts, dl, y, store=None, out=None, own=None):
     slopes = _slopes(
         theta, np.broadcast_to(dl, umax.shape), lev, SlopeStore() if store is None else store
     )
-    # The sums of each block's points once (not once for each of its rows), then each row's.
-    sums = _level_sums(*slopes, pts, own)
-    node = tuple(a[own] for a in (*pts[4:6], *pts[9:12], *pts[7:9]))
-    # The rest node by node, in blocks of rows of ~NODE_BLOCK_CELLS nodes (arrays that stay in
-    # the cache; the same bits, each node's arithmetic its own).
+    slopes, squares, inv = slopes
+    # The sums of each block's points once (not once for each of its rows).
+    W, w, per = _level_weights(pts, slopes.shape[2])
     if out is None:
         out = np.empty((3, *theta.shape))
-    step = max(1, NODE_BLOCK_CELLS // max(theta.shape[1], 1))
-    for start in range(0, theta.shape[0], step):
-        b = slice(start, start + step)
-        _node_values(
-            tuple(a[b] for a in sums),
-            tuple(a[b] for a in node),
-            theta[b],
-            out[:, b],
-        )
+    # The rows in sets of one distinct row of slopes, the sets one after the other, and each
+    # row's block in that order.
+    order = np.argsort(inv, kind="stable")
+    cut = np.searchsorted(inv[order], np.arange(slopes.shape[0] + 1))
+    block = own[order]
+    # The sums over the amplitudes and the rest node by node in segments of whole sets of
+    # ~NODE_BLOCK_CELLS nodes (arrays of their own that stay in the cache; the same bits, each
+    # node's arithmetic its own, each set's products of one shape).
+    for d0, d1 in _segments(cut, max(1, NODE_BLOCK_CELLS // max(theta.shape[1], 1))):
+        a, b = cut[d0], cut[d1]
+        rows = order[a:b]
+        lin, sq = _level_sums(slopes, squares, W, w, block, cut, d0, d1)
+        vals = np.empty((3, b - a, theta.shape[1]))
+        _node_values(lin, sq, per[block[a:b]], theta[rows], vals)
+        for k in range(3):  # one row index on a 2-d array: rows copied whole
+            out[k][rows] = vals[k]
     return out
 
 
-def _node_values(sums, pts, theta, out):
+def _segments(cut, rows):
+    """Runs (d0, d1) of the sets of rows that share their slopes (set d: the rows
+    ``cut[d]:cut[d + 1]`` in :func:`_integrand`'s order), each of ``rows`` rows or more (the
+    last: what is left), no set split: each set's products stay of one shape."""
+    out, d0, D = [], 0, cut.size - 1
+    while d0 < D:
+        d1 = min(max(d0 + 1, int(np.searchsorted(cut, cut[d0] + rows))), D)
+        out.append((d0, d1))
+        d0 = d1
+    return out
+
+
+def _node_values(lin, sq, per, theta, out):
     """ln L + ln π, ln L and ln μ of :func:`_integrand` at its nodes ``theta`` (R, Y), into
-    ``out`` (3, R, Y), from the sums over the amplitudes (``sums``: :func:`_level_sums`, n the
-    rows' numbers of points among them) and the rows' points (the scatters, the prior on ln μ,
-    to_mu, the weights of Δf, ΔΓ; (R, 1) each)."""
-    scatter_f, scatter_g, mean, var, to_mu, wf, wg = pts
-    A, rss_f, rss_g = _solve_levels(*sums, wf, wg)
-    n = sums[5]
+    ``out`` (3, R, Y), from the sums over the amplitudes (``lin``, ``sq``: :func:`_level_sums`)
+    and the rows' numbers ``per`` (R, 13; :func:`_level_weights`): C_f, C_Γ, Σ w ΔΓc, n, the
+    floors of the RSS, the scatters, the prior on ln μ, to_mu and the weights of Δf, ΔΓ."""
+    C_f, C_g, g_sum, n, lo_f, lo_g, scatter_f, scatter_g, mean, var, to_mu, wf, wg = (
+        per[:, k : k + 1] for k in range(13)
+    )
+    A, rss_f, rss_g = _solve_levels(lin, sq, C_f, C_g, g_sum, n, lo_f, lo_g, wf, wg)
     # ln L = -n/2 (ln RSS_f + ln RSS_Γ), ln μ = ln(A to_mu / θ) and ln π: in place, each
     # operation's operands and order as written out here (the same bits, fewer temporaries),
     # on arrays of their own (numpy's loops run over a contiguous block at once, over a view
@@ -387,15 +405,37 @@ def _void_rows(a):
     return a.view(np.dtype((np.void, a.itemsize * a.shape[1])))[:, 0]
 
 
-def _level_sums(slopes, squares, inv, pts, own):
+def _level_weights(pts, L):
+    """The weights of the sums of :func:`_level_sums` of each block (``pts``: :func:`_rows`;
+    L amplitudes): (w, w Δf, w ΔΓc) (B, 3, L), w = the numbers of points (B, L), and (B, 13)
+    the numbers :func:`_node_values` takes: C_f, C_Γ, Σ w ΔΓc, n and the floors of the RSS of
+    :func:`_solve_levels`, the scatters, the prior on ln μ, to_mu and the weights of Δf, ΔΓ."""
+    _, n_lev, df, dg = pts[:4]
+    w = n_lev[:, 0]  # (B, L)
+    n = w.sum(-1, keepdims=True)  # (B, 1)
+    dgm = (w * dg[:, 0]).sum(-1, keepdims=True) / n
+    dgc = dg[:, 0] - dgm
+    wdf, wdgc = w * df[:, 0], w * dgc
+    C_f = (wdf * df[:, 0]).sum(-1, keepdims=True)
+    C_g = (wdgc * dgc).sum(-1, keepdims=True)
+    # Below its rounding, (L + 3)·ε·C, the expanded square says nothing; a fit exact to that
+    # level would come out negative (ln L -inf, the node lost): such an RSS is held at the
+    # floor, its best estimate (review R22b; :func:`_solve_levels`).
+    floor = (L + 3) * np.finfo(float).eps
+    per = (C_f, C_g, wdgc.sum(-1, keepdims=True), n, floor * C_f, floor * C_g)
+    per += (*pts[4:6], *pts[9:12], *pts[7:9])
+    return np.stack([w, wdf, wdgc], axis=1), w, np.concatenate(per, axis=1)
+
+
+def _level_sums(slopes, squares, W, w, block, cut, d0, d1):
     """The sums over the amplitudes of the projected solve at the nodes (R, Y) of each row
     (:func:`_solve_levels`): that of :func:`~contactres.analysis._loops.solve_projected` on a
-    block's distinct amplitudes weighted by their numbers of points (``pts``: :func:`_rows`, one
-    row a block; ``own`` (R,): each row's block; the sums of a block's own points, C, formed
-    once a block and not once a row, the same numbers),
-    from the sums over the amplitudes of G′, G″ (``slopes``, (D, 2Y, L), of the distinct rows,
-    ``inv`` each row's) and of their squares (``squares``) times the row's weights and
-    weighted data.
+    block's distinct amplitudes weighted by their numbers of points, from the sums over the
+    amplitudes of G′, G″ (``slopes``, (D, 2Y, L), of the distinct rows) and of their squares
+    (``squares``) times the weights and weighted data of the row's block (``W``, ``w``:
+    :func:`_level_weights`), for the rows of the sets ``d0`` to ``d1`` of rows on one distinct
+    row of slopes (set d: the rows ``cut[d]:cut[d + 1]`` of :func:`_integrand`'s order, whose
+    blocks are ``block``), in that order: (n, 3, 2Y) and (n, 2Y).
 
     Why. The sums are the only work at each node and amplitude: matrix products of the rows
     of G′, G″ and of their squares against the weight vectors, instead of the residuals formed
@@ -416,40 +456,26 @@ def _level_sums(slopes, squares, inv, pts, own):
     shape, so its numbers do not depend on the rows evaluated with it; where no row shares its
     slopes (each sweep's amplitudes its own) the same products are taken for all rows in one
     stacked call (not a Python loop over ~10^5 rows; on 10^4 such sweeps the same bits)."""
-    _, n_lev, df, dg = pts[:4]
-    w = n_lev[:, 0]  # (R, L)
-    n = w.sum(-1, keepdims=True)  # (R, 1)
-    dgm = (w * dg[:, 0]).sum(-1, keepdims=True) / n
-    dgc = dg[:, 0] - dgm
-    wdf, wdgc = w * df[:, 0], w * dgc
-    C_f = (wdf * df[:, 0]).sum(-1, keepdims=True)
-    C_g = (wdgc * dgc).sum(-1, keepdims=True)
-    D, Y2, L = slopes.shape
+    _, Y2, L = slopes.shape
+    a, b = int(cut[d0]), int(cut[d1])
+    lin, sq = np.empty((b - a, 3, Y2)), np.empty((b - a, Y2))
     # Per row: (w, w Δf, w ΔΓc) against [G′; G″] (2Y, L), w against [G′²; G″²]: for all rows
-    # of one distinct row of slopes in one product each. (Not the three products used alone,
-    # w Δf against G′ and (w, w ΔΓc) against G″: BLAS sums the last columns of a product
-    # of Y columns in another order than those of 2Y, other bits in 2 ln B at ~1e-12.)
-    R = own.size
-    W = np.stack([w, wdf, wdgc], axis=1)  # (B, 3, L)
-    lin, sq = np.empty((R, 3, Y2)), np.empty((R, Y2))
-    order = np.argsort(inv, kind="stable")
-    block = own[order]  # each row's block, the rows in their order of distinct rows of slopes
-    if D == R:  # no row shares its slopes: the products of all rows in one call each
-        lin[order] = W[block] @ slopes.transpose(0, 2, 1)
-        sq[order] = (squares @ w[block][..., None])[..., 0]
-        D = 0
-    cut = np.searchsorted(inv[order], np.arange(D + 1)).tolist()
-    for d in range(D):
-        rows = order[cut[d] : cut[d + 1]]
-        mine = block[cut[d] : cut[d + 1]]
-        lin[rows] = (W[mine].reshape(-1, L) @ slopes[d].T).reshape(-1, 3, Y2)
-        sq[rows] = (squares[d] @ w[mine][..., None])[..., 0]
-    # Below its rounding, (L + 3)·ε·C, the expanded square says nothing; a fit exact to that
-    # level would come out negative (ln L -inf, the node lost): such an RSS is held at the
-    # floor, its best estimate (review R22b; :func:`_solve_levels`).
-    floor = (L + 3) * np.finfo(float).eps
-    per_row = (C_f, C_g, wdgc.sum(-1, keepdims=True), n, floor * C_f, floor * C_g)
-    return (lin, sq, *(a[own] for a in per_row))
+    # of one distinct row of slopes in one product each, written in place. (Not the three
+    # products used alone, w Δf against G′ and (w, w ΔΓc) against G″: BLAS sums the last
+    # columns of a product of Y columns in another order than those of 2Y, other bits in
+    # 2 ln B at ~1e-12.)
+    if slopes.shape[0] == block.size:
+        # No row shares its slopes: the products of all the segment's rows in one call each.
+        mine = block[a:b]
+        np.matmul(W[mine], slopes[d0:d1].transpose(0, 2, 1), out=lin)
+        sq[...] = (squares[d0:d1] @ w[mine][..., None])[..., 0]
+        return lin, sq
+    for d in range(d0, d1):
+        i, j = int(cut[d]) - a, int(cut[d + 1]) - a
+        mine = block[a + i : a + j]
+        np.matmul(W[mine].reshape(-1, L), slopes[d].T, out=lin[i:j].reshape(-1, Y2))
+        sq[i:j] = (squares[d] @ w[mine][..., None])[..., 0]
+    return lin, sq
 
 
 def _solve_levels(lin, sq, C_f, C_g, g_sum, n, lo_f, lo_g, wf, wg):
@@ -552,7 +578,8 @@ def _over_y(pts, own, dl, store):
     for rows, mine, theirs in shared:
         r = np.flatnonzero(rows)[:, None]
         fine_l[r, mine] = fine_p[r, theirs]
-        rest[:, r, mine] = got[:, r, theirs]
+        for k in range(3):  # a 2-d index of a 2-d array, not of a 3-d one: ~4x faster
+            rest[k][r, mine] = got[k][r, theirs]
     # The rest of L's nodes: all of them two steps apart or more, the other half one apart
     # (an even nf shares no half: all of them one step apart or more).
     far = np.flatnonzero(np.abs(side) >= (2 if mid > 0 else 1))
@@ -783,12 +810,14 @@ def _evaluate(args, jobs, zero, store):
         dl[at_z] = np.exp(np.concatenate([z for _, _, z in group]))
         # Each row's group (d_c/u_max, amplitudes; :class:`SlopeStore`) and whether it is the
         # first of its group in the pass: its slopes are evaluated, the others' may be read.
+        # (The groups found as the slopes' rows are, by an integer of their bits: a sort of
+        # their bytes cost ~4 % of the evidence of the 10^5 sweeps of issue 31.)
         lev = np.repeat(np.stack([per_block[b][0] for _, b, _ in group]), sizes, axis=0)
-        key = _void_rows(np.c_[dl, lev])
-        _, first, inv, count = np.unique(
-            key, return_index=True, return_inverse=True, return_counts=True
-        )
-        fresh = np.zeros(key.shape[0], dtype=int)
+        lev = np.c_[dl, lev]
+        first, inv = _distinct_rows(lev)
+        count = np.bincount(inv, minlength=first.size)
+        key = _void_rows(lev[first])
+        fresh = np.zeros(lev.shape[0], dtype=int)
         fresh[first] = 1
         fresh = np.add.reduceat(fresh, np.cumsum([0, *sizes[:-1]])).tolist()
         # At most ``step`` blocks a chunk, and at most ``cap`` rows of groups met first
@@ -801,7 +830,7 @@ def _evaluate(args, jobs, zero, store):
             blocks, new = blocks + 1, new + n
         cuts.append(len(group))
         at = len(chunks) + np.repeat(np.arange(len(cuts) - 1), np.diff(cuts))
-        plan.append((key[first], inv, count, np.repeat(at, sizes)))
+        plan.append((key, inv, count, np.repeat(at, sizes)))
         for a, b in itertools.pairwise(cuts):
             chunks.append(group[a:b])
             ends.append((dl[ends_g[a] - sizes[a] : ends_g[b - 1]], sizes[a:b]))
