@@ -94,10 +94,11 @@ a fine node in y on a coarse one, L's fine span where it repeats L π's; a fine 
 clipped onto an end of the coarse ones, whose row is that node's), 12 % of the evaluations in y
 and 11 % of the rows in z of the 10,752 sweeps of issue 31 (eight copies of the study above),
 and the projected solve sums over a block's amplitudes as products with the vector of the
-weights (:func:`_solve_levels`): there, side by side on the loaded reference machine, one
-thread, best of three, 3.2 s of CPU against 4.2 s (3.6 × 10⁹ instructions against 4.5 × 10⁹ on
-an eighth of its undecided blocks); ``delta_bic`` within 6e-13 relative, μ and its error
-within 1.2e-14, every class the same, and the bundled example's files the same byte for byte.
+weights (:func:`~contactres.analysis._evidence_solve._solve_levels`): there, side by side on the
+loaded reference machine, one thread, best of three, 3.2 s of CPU against 4.2 s (3.6 × 10⁹
+instructions against 4.5 × 10⁹ on an eighth of its undecided blocks); ``delta_bic`` within 6e-13
+relative, μ and its error within 1.2e-14, every class the same, and the bundled example's files the
+same byte for byte.
 Since (issue 31, point 3, fourth round) rows of nodes of the same bits are evaluated once
 (:func:`_slopes`: blocks on one grid of amplitudes under one prior share their nodes), the
 blocks of one grid and nodes in z in one chunk (:data:`EVIDENCE_CHUNK_CELLS`): on those 10,752
@@ -105,21 +106,21 @@ sweeps, one thread, the evidence 2.7 s of CPU against 7.8 s (best of three, side
 loaded machine), every result the same bit for bit.
 Since (issue 31, point 3, fifth round) the projected solve sums over the amplitudes only G′,
 G″ and their squares against each row's weights and weighted data, the residual sums by the
-expanded square (:func:`_solve_levels`), the squares formed on the distinct rows of
-:func:`_slopes`: on those 10,752 sweeps, one thread, the evidence 1.4-1.9 s of CPU against
-2.1-2.7 s (best of two, side by side, heavily loaded machine); 2 ln B within 4e-9, μ and its
-error within 1.2e-10 relative, every class the same.
+expanded square (:func:`~contactres.analysis._evidence_solve._solve_levels`), the squares formed on
+the distinct rows of :func:`_slopes`: on those 10,752 sweeps, one thread, the evidence 1.4-1.9 s of
+CPU against 2.1-2.7 s (best of two, side by side, heavily loaded machine); 2 ln B within 4e-9, μ and
+its error within 1.2e-10 relative, every class the same.
 Since (issue 31, point 3, sixth round) the call keeps one store of slopes for all its chunks
 and passes (:func:`_slopes`: 861 distinct rows of nodes evaluated instead of 2,987), the
 projected solve multiplies all rows on one distinct row of slopes in one product (no copy of
-the slopes per row; :func:`_solve_levels`), a fine node in z on a coarse one takes that row,
-the per-block steps (distinct amplitudes, nodes in z, the combination over z) run on all blocks
-at once, and chunks are four times larger (:data:`EVIDENCE_CHUNK_CELLS`): on the 10,752 sweeps,
-one thread, the evidence 0.89-1.04 s of CPU against 1.55-1.61 s (best of two, four times
-alternated, machine at a load of ~15 on two cores; in instructions, callgrind, on a sixteenth
-of its undecided blocks, where fewer rows are shared, 0.64 × 10^9 against 0.77 × 10^9), every
-output of ``analyze`` the same bit for bit (354 columns of 21 tables) and the bundled example's
-files the same byte for byte.
+the slopes per row; :func:`~contactres.analysis._evidence_solve._solve_levels`), a fine node in z on
+a coarse one takes that row, the per-block steps (distinct amplitudes, nodes in z, the combination
+over z) run on all blocks at once, and chunks are four times larger (:data:`EVIDENCE_CHUNK_CELLS`):
+on the 10,752 sweeps, one thread, the evidence 0.89-1.04 s of CPU against 1.55-1.61 s (best of two,
+four times alternated, machine at a load of ~15 on two cores; in instructions, callgrind, on a
+sixteenth of its undecided blocks, where fewer rows are shared, 0.64 × 10^9 against 0.77 × 10^9),
+every output of ``analyze`` the same bit for bit (354 columns of 21 tables) and the bundled
+example's files the same byte for byte.
 Since review R24a the store keeps a row only while a later row of its pass may read it
 (:class:`SlopeStore`: it kept every row of the call, 2.3 GB on 10^4 sweeps whose amplitudes
 differ by 1e-6 from sweep to sweep, where no row is shared) and a chunk's new rows are bounded
@@ -139,14 +140,15 @@ the gain is in memory traffic, which callgrind does not count), with amplitudes 
 :mod:`contactres.analysis._plateau` take most of it; 3.31 × 10^9 instructions against
 3.37 × 10^9 on a sixteenth of the blocks); every output the same bit for bit on both tables
 and on the bundled example, the evidence's peak RSS on the jittered table 152 MB (151 MB).
-(The sums over the amplitudes that the rounds above credit to :func:`_solve_levels` are
-formed by :func:`_level_sums` since this round.)
+(The sums over the amplitudes that the rounds above credit to
+:func:`~contactres.analysis._evidence_solve._solve_levels` are formed by
+:func:`~contactres.analysis._evidence_solve.level_sums` since this round.)
 Since (issue 31, point 3, eighth round) a row's nodes in y are ordered, and their spacings and
 edge cells found, once for each pair of peaks (:func:`_y_patterns`; they follow from the peaks
 alone) instead of by a sort of every row, the node values are written in place, without the
-copies of a tuple into an array (:func:`_node_values`), the trapezoid's halving is applied to
-the spacings (:func:`_cells`) and a chunk's points are gathered without a loop over its blocks
-(:func:`_rows`); the store of slopes has its own module
+copies of a tuple into an array (:func:`~contactres.analysis._evidence_solve.node_values`), the
+trapezoid's halving is applied to the spacings (:func:`_cells`) and a chunk's points are gathered
+without a loop over its blocks (:func:`_rows`); the store of slopes has its own module
 (:mod:`contactres.analysis._slope_store`). On the 10^4 sweeps of issue 31, one thread, best of
 six, twice alternated with main on a machine at a load of ~15 on two cores, the evidence's user
 CPU 0.54-0.57 s against 0.61-0.63 s (system CPU 0.007 s against 0.000: 3,100 page faults a
@@ -154,6 +156,22 @@ call; arrays of their own for the five sums the solve uses, so that its loops ra
 blocks, took 20,000 more and were left out); every output the same bit for bit on the 10^4
 sweeps with shared and with jittered amplitudes, on the 10^5 sweeps, on the bundled example
 and on the studies of ``benchmarks/bench_scale.py``.
+Since (issue 31, point 3, ninth round) the sums of a block's own points (its weights, C_f, C_Γ,
+n) are formed once a block, each row of nodes reading its block's by index (:func:`_integrand`'s
+``own``) instead of copies of the points for each of its 13 to 25 rows; the products, the
+projected solve and the logarithms run segment by segment over whole sets of rows on one
+distinct row of slopes (:func:`~contactres.analysis._evidence_solve.segments`), a segment's sums
+in arrays of its own rather than scattered into arrays of all rows and read back strided; the
+three parts of the values in y are written into one array and read by one flat take each (a
+take over two dimensions at once was 7 times slower), θ at the coarse nodes comes from one row
+of exponentials, the spans' nodes on coarse nodes from one take a density, and a pass's groups
+are found by the integer of their bits (:func:`_distinct_rows`) rather than by a sort of their
+bytes. On the 10^5 sweeps of issue 31 (18,351 undecided blocks), one thread, CPU of the
+evidence alone (second call of a process) alternated with main on a machine at a load of 7-13
+on two cores, three pairs: 2.77-3.00 s against 3.31-3.43 s (12-16 % less; 11,500-12,400 page
+faults against 9,000-11,700); every output of ``analyze`` the same bit for bit on those sweeps
+(workers 1 and 2), on the 10^4 sweeps (workers 1; workers 2 with 200 bootstrap draws) and, for
+the evidence, on the 10^4 sweeps' blocks with amplitudes jittered by 1e-6 (no row shared).
 A block's result depends on its own row alone, so the caller deals the undecided blocks out to
 the analysis's worker processes where they are many (``contactres.analysis._blocks``,
 ``_evidence``: 1,975 blocks of the 10,752 sweeps in two halves of ~2.3 s of CPU each).
@@ -166,6 +184,7 @@ import itertools
 import numpy as np
 
 from ._amplitude import PLATEAU_MIN_SLOPE
+from ._evidence_solve import level_sums, level_weights, node_values, segments
 from ._loops import CHUNK_CELLS, X_MAX
 from ._plateau import plateau_loop_slopes
 from ._slope_store import SlopeStore
@@ -238,8 +257,9 @@ def _integrand(pts, dl, y, store=None, out=None, own=None):
     projected solve work on the block's distinct amplitudes: each weighted by its number of
     points, with the means of Δf and ΔΓ there, and the scatter of the points about those means
     added to the residual sums (Σ (v - a)² over a level = Σ (v - v̄)² + n (v̄ - a)², the
-    scatter free of cancellation; the sums over the levels by :func:`_solve_levels`). The same
-    numbers to rounding at a third of the cost of the points."""
+    scatter free of cancellation; the sums over the levels by
+    :func:`~contactres.analysis._evidence_solve._solve_levels`). The same numbers to rounding at a
+    third of the cost of the points."""
     if own is None:
         own = np.arange(dl.shape[0])
     lev, umax = pts[0][own], pts[6][own]
@@ -249,7 +269,7 @@ def _integrand(pts, dl, y, store=None, out=None, own=None):
     )
     slopes, squares, inv = slopes
     # The sums of each block's points once (not once for each of its rows).
-    W, w, per = _level_weights(pts, slopes.shape[2])
+    W, w, per = level_weights(pts, slopes.shape[2])
     if out is None:
         out = np.empty((3, *theta.shape))
     # The rows in sets of one distinct row of slopes, the sets one after the other, and each
@@ -260,69 +280,15 @@ def _integrand(pts, dl, y, store=None, out=None, own=None):
     # The sums over the amplitudes and the rest node by node in segments of whole sets of
     # ~NODE_BLOCK_CELLS nodes (arrays of their own that stay in the cache; the same bits, each
     # node's arithmetic its own, each set's products of one shape).
-    for d0, d1 in _segments(cut, max(1, NODE_BLOCK_CELLS // max(theta.shape[1], 1))):
+    for d0, d1 in segments(cut, max(1, NODE_BLOCK_CELLS // max(theta.shape[1], 1))):
         a, b = cut[d0], cut[d1]
         rows = order[a:b]
-        lin, sq = _level_sums(slopes, squares, W, w, block, cut, d0, d1)
+        lin, sq = level_sums(slopes, squares, W, w, block, cut, d0, d1)
         vals = np.empty((3, b - a, theta.shape[1]))
-        _node_values(lin, sq, per[block[a:b]], theta[rows], vals)
+        node_values(lin, sq, per[block[a:b]], theta[rows], vals)
         for k in range(3):  # one row index on a 2-d array: rows copied whole
             out[k][rows] = vals[k]
     return out
-
-
-def _segments(cut, rows):
-    """Runs (d0, d1) of the sets of rows that share their slopes (set d: the rows
-    ``cut[d]:cut[d + 1]`` in :func:`_integrand`'s order), each of ``rows`` rows or more (the
-    last: what is left), no set split: each set's products stay of one shape."""
-    out, d0, D = [], 0, cut.size - 1
-    while d0 < D:
-        d1 = min(max(d0 + 1, int(np.searchsorted(cut, cut[d0] + rows))), D)
-        out.append((d0, d1))
-        d0 = d1
-    return out
-
-
-def _node_values(lin, sq, per, theta, out):
-    """ln L + ln π, ln L and ln μ of :func:`_integrand` at its nodes ``theta`` (R, Y), into
-    ``out`` (3, R, Y), from the sums over the amplitudes (``lin``, ``sq``: :func:`_level_sums`)
-    and the rows' numbers ``per`` (R, 13; :func:`_level_weights`): C_f, C_Γ, Σ w ΔΓc, n, the
-    floors of the RSS, the scatters, the prior on ln μ, to_mu and the weights of Δf, ΔΓ."""
-    C_f, C_g, g_sum, n, lo_f, lo_g, scatter_f, scatter_g, mean, var, to_mu, wf, wg = (
-        per[:, k : k + 1] for k in range(13)
-    )
-    A, rss_f, rss_g = _solve_levels(lin, sq, C_f, C_g, g_sum, n, lo_f, lo_g, wf, wg)
-    # ln L = -n/2 (ln RSS_f + ln RSS_Γ), ln μ = ln(A to_mu / θ) and ln π: in place, each
-    # operation's operands and order as written out here (the same bits, fewer temporaries),
-    # on arrays of their own (numpy's loops run over a contiguous block at once, over a view
-    # into ``out`` row by row), copied into ``out`` once.
-    with np.errstate(divide="ignore", invalid="ignore"):
-        rss_f += scatter_f
-        rss_g += scatter_g
-        lnL = np.log(rss_f, out=rss_f)
-        lnL += np.log(rss_g, out=rss_g)
-        lnL *= -0.5 * n
-        ln_mu = A * to_mu
-        ln_mu /= theta
-        np.log(ln_mu, out=ln_mu)
-        # A block without a prior on μ: flat in y, the same in both models.
-        has = np.isfinite(mean) & np.isfinite(var) & (var > 0)
-        lnpi = ln_mu - mean  # -(ln μ - mean)²/(2 var) - ln(2π var)/2
-        np.square(lnpi, out=lnpi)
-        lnpi *= -0.5
-        lnpi /= var
-        lnpi -= 0.5 * np.log(2 * np.pi * var)
-        if not has.all():
-            lnpi[~has[:, 0]] = 0.0
-        bad = np.isfinite(lnL)
-        bad &= A > 0
-        bad &= np.isfinite(lnpi)
-        np.logical_not(bad, out=bad)
-        np.copyto(ln_mu, 0.0, where=bad)
-        lnpi += lnL
-        np.copyto(lnpi, -np.inf, where=bad)
-        np.copyto(lnL, -np.inf, where=bad)
-    out[0], out[1], out[2] = lnpi, lnL, ln_mu
 
 
 def _slopes(theta, dl, lev, store):
@@ -403,111 +369,6 @@ def _void_rows(a):
     """The rows of a 2-d array as single items of its bytes (to sort, count and key them)."""
     a = np.ascontiguousarray(a)
     return a.view(np.dtype((np.void, a.itemsize * a.shape[1])))[:, 0]
-
-
-def _level_weights(pts, L):
-    """The weights of the sums of :func:`_level_sums` of each block (``pts``: :func:`_rows`;
-    L amplitudes): (w, w Δf, w ΔΓc) (B, 3, L), w = the numbers of points (B, L), and (B, 13)
-    the numbers :func:`_node_values` takes: C_f, C_Γ, Σ w ΔΓc, n and the floors of the RSS of
-    :func:`_solve_levels`, the scatters, the prior on ln μ, to_mu and the weights of Δf, ΔΓ."""
-    _, n_lev, df, dg = pts[:4]
-    w = n_lev[:, 0]  # (B, L)
-    n = w.sum(-1, keepdims=True)  # (B, 1)
-    dgm = (w * dg[:, 0]).sum(-1, keepdims=True) / n
-    dgc = dg[:, 0] - dgm
-    wdf, wdgc = w * df[:, 0], w * dgc
-    C_f = (wdf * df[:, 0]).sum(-1, keepdims=True)
-    C_g = (wdgc * dgc).sum(-1, keepdims=True)
-    # Below its rounding, (L + 3)·ε·C, the expanded square says nothing; a fit exact to that
-    # level would come out negative (ln L -inf, the node lost): such an RSS is held at the
-    # floor, its best estimate (review R22b; :func:`_solve_levels`).
-    floor = (L + 3) * np.finfo(float).eps
-    per = (C_f, C_g, wdgc.sum(-1, keepdims=True), n, floor * C_f, floor * C_g)
-    per += (*pts[4:6], *pts[9:12], *pts[7:9])
-    return np.stack([w, wdf, wdgc], axis=1), w, np.concatenate(per, axis=1)
-
-
-def _level_sums(slopes, squares, W, w, block, cut, d0, d1):
-    """The sums over the amplitudes of the projected solve at the nodes (R, Y) of each row
-    (:func:`_solve_levels`): that of :func:`~contactres.analysis._loops.solve_projected` on a
-    block's distinct amplitudes weighted by their numbers of points, from the sums over the
-    amplitudes of G′, G″ (``slopes``, (D, 2Y, L), of the distinct rows) and of their squares
-    (``squares``) times the weights and weighted data of the row's block (``W``, ``w``:
-    :func:`_level_weights`), for the rows of the sets ``d0`` to ``d1`` of rows on one distinct
-    row of slopes (set d: the rows ``cut[d]:cut[d + 1]`` of :func:`_integrand`'s order, whose
-    blocks are ``block``), in that order: (n, 3, 2Y) and (n, 2Y).
-
-    Why. The sums are the only work at each node and amplitude: matrix products of the rows
-    of G′, G″ and of their squares against the weight vectors, instead of the residuals formed
-    at every amplitude (~20 passes over (R, Y, L) arrays against ~8); the weight vectors of all
-    rows on one distinct row of slopes against it in one product (no copy of the slopes for
-    each row; on the 10^4 sweeps of issue 31 the same numbers bit for bit), the squares against
-    each row's w one by one (matrix times vector: taken together, as a matrix product, they
-    differed by rounding, 2 ln B by up to 9e-10). With
-    S_ff = Σ n G′², S_f = Σ n Δf G′ and the like, A = (w_f S_f + w_g S_g)/(w_f S_ff + w_g S_gg)
-    and RSS_f = C_f - 2A S_f + A² S_ff, RSS_Γ = C_Γ - 2A S_g + A² S_gg (C: the weighted sums of
-    squares of the data, ΔΓ about its mean): the same minimum in exact arithmetic, by the
-    expanded square. Its rounding is a few (L + 3)·ε·C_f at most (Higham's bound for sums of
-    L terms), relative to the RSS C_f/RSS times that, and ln L's error n/2 of that relative
-    error: ~1e-6 for RSS/C at 1e-8 (noise 1e-4 of the shifts), far below the rule's own error
-    (:data:`EVIDENCE_NODES`: 0.33 in 2 ln B). On the 10^4 sweeps of issue 31 (1,975 undecided
-    blocks, 1,402 with a finite 2 ln B) 2 ln B moved by <= 4e-9 against the residuals squared
-    at every amplitude, μ and its error by <= 1.2e-10 relative. Each row's products have one
-    shape, so its numbers do not depend on the rows evaluated with it; where no row shares its
-    slopes (each sweep's amplitudes its own) the same products are taken for all rows in one
-    stacked call (not a Python loop over ~10^5 rows; on 10^4 such sweeps the same bits)."""
-    _, Y2, L = slopes.shape
-    a, b = int(cut[d0]), int(cut[d1])
-    lin, sq = np.empty((b - a, 3, Y2)), np.empty((b - a, Y2))
-    # Per row: (w, w Δf, w ΔΓc) against [G′; G″] (2Y, L), w against [G′²; G″²]: for all rows
-    # of one distinct row of slopes in one product each, written in place. (Not the three
-    # products used alone, w Δf against G′ and (w, w ΔΓc) against G″: BLAS sums the last
-    # columns of a product of Y columns in another order than those of 2Y, other bits in
-    # 2 ln B at ~1e-12.)
-    if slopes.shape[0] == block.size:
-        # No row shares its slopes: the products of all the segment's rows in one call each.
-        mine = block[a:b]
-        np.matmul(W[mine], slopes[d0:d1].transpose(0, 2, 1), out=lin)
-        sq[...] = (squares[d0:d1] @ w[mine][..., None])[..., 0]
-        return lin, sq
-    for d in range(d0, d1):
-        i, j = int(cut[d]) - a, int(cut[d + 1]) - a
-        mine = block[a + i : a + j]
-        np.matmul(W[mine].reshape(-1, L), slopes[d].T, out=lin[i:j].reshape(-1, Y2))
-        sq[i:j] = (squares[d] @ w[mine][..., None])[..., 0]
-    return lin, sq
-
-
-def _solve_levels(lin, sq, C_f, C_g, g_sum, n, lo_f, lo_g, wf, wg):
-    """Pκ (A) and the residual sums of Δf and ΔΓ at the nodes (R, Y) of each row from the sums
-    of :func:`_level_sums` (``lin``: Σ w G, Σ w Δf G, Σ w ΔΓc G, G = G′ and G″ side by side
-    (R, 3, 2Y); ``sq``: Σ w G′², Σ w G″² side by side (R, 2Y); ``C_f``, ``C_g``,
-    ``g_sum`` = Σ w ΔΓc, ``n`` and the floors ``lo_f``, ``lo_g`` of the RSS (R, 1)) and the
-    weights ``wf``, ``wg`` (R, 1) of Δf and ΔΓ (:func:`_level_sums`' docstring)."""
-    Y = lin.shape[2] // 2
-    s_f, s_ff = lin[:, 1, :Y], sq[:, :Y]
-    g2m = lin[:, 0, Y:] / n
-    # Σ n ΔΓc (G″ - mean) and Σ n (G″ - mean)²: the mean's terms taken out (Σ n ΔΓc is 0 but
-    # for rounding; kept, it costs one product).
-    s_g = lin[:, 2, Y:] - g2m * g_sum
-    s_gg = sq[:, Y:] - g2m * lin[:, 0, Y:]
-    # A = (wf s_f + wg s_g)/(wf s_ff + wg s_gg), RSS = C - A (2 s - A s_sq): in place, each
-    # operation's operands and order as written (the same bits, fewer temporaries).
-    A = wf * s_f
-    A += wg * s_g
-    den = wf * s_ff
-    den += wg * s_gg
-    A /= den
-    # An RSS below its rounding held at its floor (:func:`_level_sums`); rows with noise above
-    # rounding are untouched.
-    rss = []
-    for C, s, ss, lo in ((C_f, s_f, s_ff, lo_f), (C_g, s_g, s_gg, lo_g)):
-        r = A * ss
-        np.subtract(2.0 * s, r, out=r)
-        r *= A
-        np.subtract(C, r, out=r)
-        rss.append(np.maximum(r, lo, out=r))
-    return A, rss[0], rss[1]
 
 
 def _span(e):
