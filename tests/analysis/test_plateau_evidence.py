@@ -619,3 +619,48 @@ def test_an_even_number_of_fine_nodes_evaluates_l_one_step_from_l_pi(monkeypatch
             assert 1 in apart  # the case at stake is met
         assert np.isfinite(two_ln_b).all()
         assert abs(two_ln_b[0] - two_ln_b[1]) < 0.05
+
+
+def test_rows_that_read_their_blocks_points_equal_rows_given_their_own_copies():
+    # The integrand takes each block's points once and each row's block by index (``own``):
+    # the same numbers, bit for bit, as with the points copied to every row, for rows sharing
+    # their slopes (one grid of amplitudes, equal d_c/u_max), rows of their own, a prior on μ
+    # for one block, and nodes in y given once for all rows.
+    from contactres.analysis import _plateau_evidence as ev
+
+    blocks = [_block(1, 0.0), _block(2, 0.3), _block(3, 0.3)]
+    u, df, dg = (np.stack([b[k] for b in blocks]) for k in range(3))
+    w = np.ones_like(u)
+    sigma = np.array([[0.6, 0.5, 0.7], [0.6, 0.8, 0.5]])
+    mu = (np.array([np.nan, np.log(40.0 / 0.6e9), np.nan]), np.array([np.nan, 0.04, np.nan]))
+    per_block = ev._levels(u, df, dg, w, np.arange(3))
+    pts = ev._rows(per_block, sigma, mu, np.ones(3), [0, 1, 2])
+    own = np.array([2, 0, 1, 0, 2, 1, 1, 0])
+    dl = np.array([0.3, 0.3, 0.3, 0.1, 0.1, 0.2, 0.05, 0.0])[:, None]
+    y = np.linspace(-4.0, 1.0, 9)[None]
+    copies = tuple(a[own] for a in pts)
+    by_index = ev._integrand(pts, dl, y, own=own)
+    assert np.isfinite(by_index).all()
+    np.testing.assert_array_equal(by_index, ev._integrand(copies, dl, y))
+    np.testing.assert_array_equal(
+        by_index, ev._integrand(copies, dl, np.repeat(y, own.size, axis=0))
+    )
+
+
+@pytest.mark.parametrize("sizes", [[1, 1, 1], [5, 1, 7, 2, 2, 9, 1], [40], [3] * 20])
+def test_segments_are_runs_of_whole_sets_of_at_least_the_rows_asked(sizes):
+    # The node steps run over segments of whole sets of rows that share their slopes: every
+    # set in one segment, in their order, each segment the fewest sets that reach the rows
+    # asked (the last: what is left).
+    from contactres.analysis._evidence_solve import segments
+
+    cut = np.concatenate([[0], np.cumsum(sizes)])
+    for rows in (1, 4, 10, 1000):
+        got = segments(cut, rows)
+        expect, start, total = [], 0, 0
+        for d, n in enumerate(sizes):
+            total += n
+            if total >= rows or d == len(sizes) - 1:
+                expect.append((start, d + 1))
+                start, total = d + 1, 0
+        assert got == expect

@@ -94,10 +94,11 @@ a fine node in y on a coarse one, L's fine span where it repeats L π's; a fine 
 clipped onto an end of the coarse ones, whose row is that node's), 12 % of the evaluations in y
 and 11 % of the rows in z of the 10,752 sweeps of issue 31 (eight copies of the study above),
 and the projected solve sums over a block's amplitudes as products with the vector of the
-weights (:func:`_solve_levels`): there, side by side on the loaded reference machine, one
-thread, best of three, 3.2 s of CPU against 4.2 s (3.6 × 10⁹ instructions against 4.5 × 10⁹ on
-an eighth of its undecided blocks); ``delta_bic`` within 6e-13 relative, μ and its error
-within 1.2e-14, every class the same, and the bundled example's files the same byte for byte.
+weights (:func:`~contactres.analysis._evidence_solve._solve_levels`): there, side by side on the
+loaded reference machine, one thread, best of three, 3.2 s of CPU against 4.2 s (3.6 × 10⁹
+instructions against 4.5 × 10⁹ on an eighth of its undecided blocks); ``delta_bic`` within 6e-13
+relative, μ and its error within 1.2e-14, every class the same, and the bundled example's files the
+same byte for byte.
 Since (issue 31, point 3, fourth round) rows of nodes of the same bits are evaluated once
 (:func:`_slopes`: blocks on one grid of amplitudes under one prior share their nodes), the
 blocks of one grid and nodes in z in one chunk (:data:`EVIDENCE_CHUNK_CELLS`): on those 10,752
@@ -105,21 +106,21 @@ sweeps, one thread, the evidence 2.7 s of CPU against 7.8 s (best of three, side
 loaded machine), every result the same bit for bit.
 Since (issue 31, point 3, fifth round) the projected solve sums over the amplitudes only G′,
 G″ and their squares against each row's weights and weighted data, the residual sums by the
-expanded square (:func:`_solve_levels`), the squares formed on the distinct rows of
-:func:`_slopes`: on those 10,752 sweeps, one thread, the evidence 1.4-1.9 s of CPU against
-2.1-2.7 s (best of two, side by side, heavily loaded machine); 2 ln B within 4e-9, μ and its
-error within 1.2e-10 relative, every class the same.
+expanded square (:func:`~contactres.analysis._evidence_solve._solve_levels`), the squares formed on
+the distinct rows of :func:`_slopes`: on those 10,752 sweeps, one thread, the evidence 1.4-1.9 s of
+CPU against 2.1-2.7 s (best of two, side by side, heavily loaded machine); 2 ln B within 4e-9, μ and
+its error within 1.2e-10 relative, every class the same.
 Since (issue 31, point 3, sixth round) the call keeps one store of slopes for all its chunks
 and passes (:func:`_slopes`: 861 distinct rows of nodes evaluated instead of 2,987), the
 projected solve multiplies all rows on one distinct row of slopes in one product (no copy of
-the slopes per row; :func:`_solve_levels`), a fine node in z on a coarse one takes that row,
-the per-block steps (distinct amplitudes, nodes in z, the combination over z) run on all blocks
-at once, and chunks are four times larger (:data:`EVIDENCE_CHUNK_CELLS`): on the 10,752 sweeps,
-one thread, the evidence 0.89-1.04 s of CPU against 1.55-1.61 s (best of two, four times
-alternated, machine at a load of ~15 on two cores; in instructions, callgrind, on a sixteenth
-of its undecided blocks, where fewer rows are shared, 0.64 × 10^9 against 0.77 × 10^9), every
-output of ``analyze`` the same bit for bit (354 columns of 21 tables) and the bundled example's
-files the same byte for byte.
+the slopes per row; :func:`~contactres.analysis._evidence_solve._solve_levels`), a fine node in z on
+a coarse one takes that row, the per-block steps (distinct amplitudes, nodes in z, the combination
+over z) run on all blocks at once, and chunks are four times larger (:data:`EVIDENCE_CHUNK_CELLS`):
+on the 10,752 sweeps, one thread, the evidence 0.89-1.04 s of CPU against 1.55-1.61 s (best of two,
+four times alternated, machine at a load of ~15 on two cores; in instructions, callgrind, on a
+sixteenth of its undecided blocks, where fewer rows are shared, 0.64 × 10^9 against 0.77 × 10^9),
+every output of ``analyze`` the same bit for bit (354 columns of 21 tables) and the bundled
+example's files the same byte for byte.
 Since review R24a the store keeps a row only while a later row of its pass may read it
 (:class:`SlopeStore`: it kept every row of the call, 2.3 GB on 10^4 sweeps whose amplitudes
 differ by 1e-6 from sweep to sweep, where no row is shared) and a chunk's new rows are bounded
@@ -139,14 +140,15 @@ the gain is in memory traffic, which callgrind does not count), with amplitudes 
 :mod:`contactres.analysis._plateau` take most of it; 3.31 × 10^9 instructions against
 3.37 × 10^9 on a sixteenth of the blocks); every output the same bit for bit on both tables
 and on the bundled example, the evidence's peak RSS on the jittered table 152 MB (151 MB).
-(The sums over the amplitudes that the rounds above credit to :func:`_solve_levels` are
-formed by :func:`_level_sums` since this round.)
+(The sums over the amplitudes that the rounds above credit to
+:func:`~contactres.analysis._evidence_solve._solve_levels` are formed by
+:func:`~contactres.analysis._evidence_solve.level_sums` since this round.)
 Since (issue 31, point 3, eighth round) a row's nodes in y are ordered, and their spacings and
 edge cells found, once for each pair of peaks (:func:`_y_patterns`; they follow from the peaks
 alone) instead of by a sort of every row, the node values are written in place, without the
-copies of a tuple into an array (:func:`_node_values`), the trapezoid's halving is applied to
-the spacings (:func:`_cells`) and a chunk's points are gathered without a loop over its blocks
-(:func:`_rows`); the store of slopes has its own module
+copies of a tuple into an array (:func:`~contactres.analysis._evidence_solve.node_values`), the
+trapezoid's halving is applied to the spacings (:func:`_cells`) and a chunk's points are gathered
+without a loop over its blocks (:func:`_rows`); the store of slopes has its own module
 (:mod:`contactres.analysis._slope_store`). On the 10^4 sweeps of issue 31, one thread, best of
 six, twice alternated with main on a machine at a load of ~15 on two cores, the evidence's user
 CPU 0.54-0.57 s against 0.61-0.63 s (system CPU 0.007 s against 0.000: 3,100 page faults a
@@ -154,6 +156,22 @@ call; arrays of their own for the five sums the solve uses, so that its loops ra
 blocks, took 20,000 more and were left out); every output the same bit for bit on the 10^4
 sweeps with shared and with jittered amplitudes, on the 10^5 sweeps, on the bundled example
 and on the studies of ``benchmarks/bench_scale.py``.
+Since (issue 31, point 3, ninth round) the sums of a block's own points (its weights, C_f, C_Γ,
+n) are formed once a block, each row of nodes reading its block's by index (:func:`_integrand`'s
+``own``) instead of copies of the points for each of its 13 to 25 rows; the products, the
+projected solve and the logarithms run segment by segment over whole sets of rows on one
+distinct row of slopes (:func:`~contactres.analysis._evidence_solve.segments`), a segment's sums
+in arrays of its own rather than scattered into arrays of all rows and read back strided; the
+three parts of the values in y are written into one array and read by one flat take each (a
+take over two dimensions at once was 7 times slower), θ at the coarse nodes comes from one row
+of exponentials, the spans' nodes on coarse nodes from one take a density, and a pass's groups
+are found by the integer of their bits (:func:`_distinct_rows`) rather than by a sort of their
+bytes. On the 10^5 sweeps of issue 31 (18,351 undecided blocks), one thread, CPU of the
+evidence alone (second call of a process) alternated with main on a machine at a load of 7-13
+on two cores, three pairs: 2.77-3.00 s against 3.31-3.43 s (12-16 % less; 11,500-12,400 page
+faults against 9,000-11,700); every output of ``analyze`` the same bit for bit on those sweeps
+(workers 1 and 2), on the 10^4 sweeps (workers 1; workers 2 with 200 bootstrap draws) and, for
+the evidence, on the 10^4 sweeps' blocks with amplitudes jittered by 1e-6 (no row shared).
 A block's result depends on its own row alone, so the caller deals the undecided blocks out to
 the analysis's worker processes where they are many (``contactres.analysis._blocks``,
 ``_evidence``: 1,975 blocks of the 10,752 sweeps in two halves of ~2.3 s of CPU each).
@@ -166,6 +184,7 @@ import itertools
 import numpy as np
 
 from ._amplitude import PLATEAU_MIN_SLOPE
+from ._evidence_solve import level_sums, level_weights, node_values, segments
 from ._loops import CHUNK_CELLS, X_MAX
 from ._plateau import plateau_loop_slopes
 from ._slope_store import SlopeStore
@@ -227,78 +246,49 @@ EVIDENCE_FRESH_CELLS = 2 * CHUNK_CELLS
 NODE_BLOCK_CELLS = 1 << 14
 
 
-def _integrand(pts, dl, y, store=None):
+def _integrand(pts, dl, y, store=None, out=None, own=None):
     """ln L + ln π (as :func:`plateau_log_evidence`, up to a common constant), ln L alone and
-    ln μ at the nodes (R, Y) of d_c/u_max ``dl`` (R, 1) and ``y`` (R, Y), each row R one block's
-    (``pts``: :func:`_rows`): (3, R, Y).
+    ln μ at the nodes (R, Y) of d_c/u_max ``dl`` (R, 1) and ``y`` (R, Y; (1, Y): the same for
+    every row), each row R one block's (``pts``: :func:`_rows`, one row a block; ``own`` (R,):
+    each row's block there, by default row r block r): (3, R, Y), into ``out`` if given.
 
     The model depends on a point only through its amplitude, and a block's sweeps repeat the
     same amplitudes (three ramps: a third of its points distinct), so the slopes and the
     projected solve work on the block's distinct amplitudes: each weighted by its number of
     points, with the means of Δf and ΔΓ there, and the scatter of the points about those means
     added to the residual sums (Σ (v - a)² over a level = Σ (v - v̄)² + n (v̄ - a)², the
-    scatter free of cancellation; the sums over the levels by :func:`_solve_levels`). The same
-    numbers to rounding at a third of the cost of the points."""
-    lev, n_lev, _, _, scatter_f, scatter_g, umax, _, _, mean, var, to_mu = pts
+    scatter free of cancellation; the sums over the levels by
+    :func:`~contactres.analysis._evidence_solve._solve_levels`). The same numbers to rounding at a
+    third of the cost of the points."""
+    if own is None:
+        own = np.arange(dl.shape[0])
+    lev, umax = pts[0][own], pts[6][own]
     theta = np.exp(y) / (umax * (1.0 - dl))
     slopes = _slopes(
         theta, np.broadcast_to(dl, umax.shape), lev, SlopeStore() if store is None else store
     )
-    sums = _level_sums(*slopes, pts)
-    # The rest node by node, in blocks of rows of ~NODE_BLOCK_CELLS nodes (arrays that stay in
-    # the cache; the same bits, each node's arithmetic its own).
-    out = np.empty((3, *theta.shape))
-    step = max(1, NODE_BLOCK_CELLS // max(theta.shape[1], 1))
-    for start in range(0, theta.shape[0], step):
-        b = slice(start, start + step)
-        _node_values(
-            tuple(a[b] for a in sums),
-            tuple(a[b] for a in (n_lev, scatter_f, scatter_g, mean, var, to_mu, *pts[7:9])),
-            theta[b],
-            out[:, b],
-        )
+    slopes, squares, inv = slopes
+    # The sums of each block's points once (not once for each of its rows).
+    W, w, per = level_weights(pts, slopes.shape[2])
+    if out is None:
+        out = np.empty((3, *theta.shape))
+    # The rows in sets of one distinct row of slopes, the sets one after the other, and each
+    # row's block in that order.
+    order = np.argsort(inv, kind="stable")
+    cut = np.searchsorted(inv[order], np.arange(slopes.shape[0] + 1))
+    block = own[order]
+    # The sums over the amplitudes and the rest node by node in segments of whole sets of
+    # ~NODE_BLOCK_CELLS nodes (arrays of their own that stay in the cache; the same bits, each
+    # node's arithmetic its own, each set's products of one shape).
+    for d0, d1 in segments(cut, max(1, NODE_BLOCK_CELLS // max(theta.shape[1], 1))):
+        a, b = cut[d0], cut[d1]
+        rows = order[a:b]
+        lin, sq = level_sums(slopes, squares, W, w, block, cut, d0, d1)
+        vals = np.empty((3, b - a, theta.shape[1]))
+        node_values(lin, sq, per[block[a:b]], theta[rows], vals)
+        for k in range(3):  # one row index on a 2-d array: rows copied whole
+            out[k][rows] = vals[k]
     return out
-
-
-def _node_values(sums, pts, theta, out):
-    """ln L + ln π, ln L and ln μ of :func:`_integrand` at its nodes ``theta`` (R, Y), into
-    ``out`` (3, R, Y), from the sums over the amplitudes (``sums``: :func:`_level_sums`) and the
-    rows' points (numbers of points at each amplitude, the scatters, the prior on ln μ, to_mu,
-    the weights of Δf, ΔΓ)."""
-    n_lev, scatter_f, scatter_g, mean, var, to_mu, wf, wg = pts
-    A, rss_f, rss_g = _solve_levels(*sums, wf, wg)
-    n = n_lev.sum(-1)
-    # ln L = -n/2 (ln RSS_f + ln RSS_Γ), ln μ = ln(A to_mu / θ) and ln π: in place, each
-    # operation's operands and order as written out here (the same bits, fewer temporaries),
-    # on arrays of their own (numpy's loops run over a contiguous block at once, over a view
-    # into ``out`` row by row), copied into ``out`` once.
-    with np.errstate(divide="ignore", invalid="ignore"):
-        rss_f += scatter_f
-        rss_g += scatter_g
-        lnL = np.log(rss_f, out=rss_f)
-        lnL += np.log(rss_g, out=rss_g)
-        lnL *= -0.5 * n
-        ln_mu = A * to_mu
-        ln_mu /= theta
-        np.log(ln_mu, out=ln_mu)
-        # A block without a prior on μ: flat in y, the same in both models.
-        has = np.isfinite(mean) & np.isfinite(var) & (var > 0)
-        lnpi = ln_mu - mean  # -(ln μ - mean)²/(2 var) - ln(2π var)/2
-        np.square(lnpi, out=lnpi)
-        lnpi *= -0.5
-        lnpi /= var
-        lnpi -= 0.5 * np.log(2 * np.pi * var)
-        if not has.all():
-            lnpi[~has[:, 0]] = 0.0
-        bad = np.isfinite(lnL)
-        bad &= A > 0
-        bad &= np.isfinite(lnpi)
-        np.logical_not(bad, out=bad)
-        np.copyto(ln_mu, 0.0, where=bad)
-        lnpi += lnL
-        np.copyto(lnpi, -np.inf, where=bad)
-        np.copyto(lnL, -np.inf, where=bad)
-    out[0], out[1], out[2] = lnpi, lnL, ln_mu
 
 
 def _slopes(theta, dl, lev, store):
@@ -381,98 +371,6 @@ def _void_rows(a):
     return a.view(np.dtype((np.void, a.itemsize * a.shape[1])))[:, 0]
 
 
-def _level_sums(slopes, squares, inv, pts):
-    """The sums over the amplitudes of the projected solve at the nodes (R, Y) of each row
-    (:func:`_solve_levels`): that of :func:`~contactres.analysis._loops.solve_projected` on a
-    block's distinct amplitudes weighted by their numbers of points (``pts``: :func:`_rows`),
-    from the sums over the amplitudes of G′, G″ (``slopes``, (D, 2Y, L), of the distinct rows,
-    ``inv`` each row's) and of their squares (``squares``) times the row's weights and
-    weighted data.
-
-    Why. The sums are the only work at each node and amplitude: matrix products of the rows
-    of G′, G″ and of their squares against the weight vectors, instead of the residuals formed
-    at every amplitude (~20 passes over (R, Y, L) arrays against ~8); the weight vectors of all
-    rows on one distinct row of slopes against it in one product (no copy of the slopes for
-    each row; on the 10^4 sweeps of issue 31 the same numbers bit for bit), the squares against
-    each row's w one by one (matrix times vector: taken together, as a matrix product, they
-    differed by rounding, 2 ln B by up to 9e-10). With
-    S_ff = Σ n G′², S_f = Σ n Δf G′ and the like, A = (w_f S_f + w_g S_g)/(w_f S_ff + w_g S_gg)
-    and RSS_f = C_f - 2A S_f + A² S_ff, RSS_Γ = C_Γ - 2A S_g + A² S_gg (C: the weighted sums of
-    squares of the data, ΔΓ about its mean): the same minimum in exact arithmetic, by the
-    expanded square. Its rounding is a few (L + 3)·ε·C_f at most (Higham's bound for sums of
-    L terms), relative to the RSS C_f/RSS times that, and ln L's error n/2 of that relative
-    error: ~1e-6 for RSS/C at 1e-8 (noise 1e-4 of the shifts), far below the rule's own error
-    (:data:`EVIDENCE_NODES`: 0.33 in 2 ln B). On the 10^4 sweeps of issue 31 (1,975 undecided
-    blocks, 1,402 with a finite 2 ln B) 2 ln B moved by <= 4e-9 against the residuals squared
-    at every amplitude, μ and its error by <= 1.2e-10 relative. Each row's products have one
-    shape, so its numbers do not depend on the rows evaluated with it; where no row shares its
-    slopes (each sweep's amplitudes its own) the same products are taken for all rows in one
-    stacked call (not a Python loop over ~10^5 rows; on 10^4 such sweeps the same bits)."""
-    _, n_lev, df, dg = pts[:4]
-    w = n_lev[:, 0]  # (R, L)
-    n = w.sum(-1, keepdims=True)  # (R, 1)
-    dgm = (w * dg[:, 0]).sum(-1, keepdims=True) / n
-    dgc = dg[:, 0] - dgm
-    wdf, wdgc = w * df[:, 0], w * dgc
-    C_f = (wdf * df[:, 0]).sum(-1, keepdims=True)
-    C_g = (wdgc * dgc).sum(-1, keepdims=True)
-    D, Y2, L = slopes.shape
-    # Per row: (w, w Δf, w ΔΓc) against [G′; G″] (2Y, L), w against [G′²; G″²]: for all rows
-    # of one distinct row of slopes in one product each. (Not the three products used alone,
-    # w Δf against G′ and (w, w ΔΓc) against G″: BLAS sums the last columns of a product
-    # of Y columns in another order than those of 2Y, other bits in 2 ln B at ~1e-12.)
-    R = w.shape[0]
-    W = np.stack([w, wdf, wdgc], axis=1)  # (R, 3, L)
-    lin, sq = np.empty((R, 3, Y2)), np.empty((R, Y2))
-    order = np.argsort(inv, kind="stable")
-    if D == R:  # no row shares its slopes: the products of all rows in one call each
-        lin[order] = W[order] @ slopes.transpose(0, 2, 1)
-        sq[order] = (squares @ w[order][..., None])[..., 0]
-        D = 0
-    cut = np.searchsorted(inv[order], np.arange(D + 1)).tolist()
-    for d in range(D):
-        rows = order[cut[d] : cut[d + 1]]
-        lin[rows] = (W[rows].reshape(-1, L) @ slopes[d].T).reshape(-1, 3, Y2)
-        sq[rows] = (squares[d] @ w[rows][..., None])[..., 0]
-    # Below its rounding, (L + 3)·ε·C, the expanded square says nothing; a fit exact to that
-    # level would come out negative (ln L -inf, the node lost): such an RSS is held at the
-    # floor, its best estimate (review R22b; :func:`_solve_levels`).
-    floor = (L + 3) * np.finfo(float).eps
-    return lin, sq, C_f, C_g, wdgc.sum(-1, keepdims=True), n, floor * C_f, floor * C_g
-
-
-def _solve_levels(lin, sq, C_f, C_g, g_sum, n, lo_f, lo_g, wf, wg):
-    """Pκ (A) and the residual sums of Δf and ΔΓ at the nodes (R, Y) of each row from the sums
-    of :func:`_level_sums` (``lin``: Σ w G, Σ w Δf G, Σ w ΔΓc G, G = G′ and G″ side by side
-    (R, 3, 2Y); ``sq``: Σ w G′², Σ w G″² side by side (R, 2Y); ``C_f``, ``C_g``,
-    ``g_sum`` = Σ w ΔΓc, ``n`` and the floors ``lo_f``, ``lo_g`` of the RSS (R, 1)) and the
-    weights ``wf``, ``wg`` (R, 1) of Δf and ΔΓ (:func:`_level_sums`' docstring)."""
-    Y = lin.shape[2] // 2
-    s_f, s_ff = lin[:, 1, :Y], sq[:, :Y]
-    g2m = lin[:, 0, Y:] / n
-    # Σ n ΔΓc (G″ - mean) and Σ n (G″ - mean)²: the mean's terms taken out (Σ n ΔΓc is 0 but
-    # for rounding; kept, it costs one product).
-    s_g = lin[:, 2, Y:] - g2m * g_sum
-    s_gg = sq[:, Y:] - g2m * lin[:, 0, Y:]
-    # A = (wf s_f + wg s_g)/(wf s_ff + wg s_gg), RSS = C - A (2 s - A s_sq): in place, each
-    # operation's operands and order as written (the same bits, fewer temporaries).
-    A = wf * s_f
-    A += wg * s_g
-    den = wf * s_ff
-    den += wg * s_gg
-    A /= den
-    # An RSS below its rounding held at its floor (:func:`_level_sums`); rows with noise above
-    # rounding are untouched.
-    rss = []
-    for C, s, ss, lo in ((C_f, s_f, s_ff, lo_f), (C_g, s_g, s_gg, lo_g)):
-        r = A * ss
-        np.subtract(2.0 * s, r, out=r)
-        r *= A
-        np.subtract(C, r, out=r)
-        rss.append(np.maximum(r, lo, out=r))
-    return A, rss[0], rss[1]
-
-
 def _span(e):
     """How many nodes of each row of ``e`` (a density over its nodes, its largest 1) carry a
     tenth of the largest or more (:data:`MIN_SPAN_NODES`)."""
@@ -490,10 +388,10 @@ def _cells(f, dx):
     return t
 
 
-def _over_y(pts, dl, store):
+def _over_y(pts, own, dl, store):
     """ln ∫ L π dy, ln ∫ L dy, the first two moments of ln μ under L, the share of L's mass in
     the first and last coarse cells and the nodes both posteriors span (:func:`_span`), at each
-    d_c/u_max ``dl`` (R,) of its row's block (``pts``: :func:`_rows`).
+    d_c/u_max ``dl`` (R,) of its row's block ``own`` (R,) (``pts``: :func:`_rows`).
 
     A node of the rule (:data:`EVIDENCE_NODES`) that another node stands for is not evaluated
     again: the middle and the ends of a fine span (they fall on coarse nodes), all of L's fine
@@ -519,15 +417,21 @@ def _over_y(pts, dl, store):
     lower, upper = np.flatnonzero(j[~on] < mid), np.flatnonzero(j[~on] > mid)
     step = np.linspace(-h, h, nf)[~on]
     nfine = step.size
-    # ln L π, ln L and ln μ at all nodes: the coarse ones, the fine ones around L π's peak, L's.
-    first = _integrand(pts, dl, np.broadcast_to(coarse, (K, ny)), store)
+    # ln L π, ln L and ln μ at all nodes, side by side in one array (:func:`_over_y_rows` reads
+    # them in one take): the coarse ones, the fine ones around L π's peak, L's. θ of the coarse
+    # nodes from one row of y: the exponentials of the same 32 numbers, not of each row's.
+    vals = np.empty((3, K, ny + 2 * nfine))
+    first, got = vals[:, :, :ny], vals[:, :, ny : ny + nfine]
+    rest = vals[:, :, ny + nfine :]  # every row's values written below: shared or evaluated
+    if K:
+        _integrand(pts, dl, coarse[None], store, first, own)
     # Fine nodes around the peak of L π (the evidence) and, where it lies elsewhere, around
     # that of L (μ's moments): else μ would follow its prior through the nodes.
     at_p, at_l = np.argmax(first[0], axis=1), np.argmax(first[1], axis=1)
     fine_p = np.clip(coarse[at_p][:, None] + step, coarse[0], coarse[-1])
-    got = _integrand(pts, dl, fine_p, store) if K else np.empty((3, K, nfine))
+    if K:
+        _integrand(pts, dl, fine_p, store, got, own)
     fine_l = np.clip(coarse[at_l][:, None] + step, coarse[0], coarse[-1])
-    own = np.empty_like(got)  # every row's values written below: shared or evaluated
     side = at_l - at_p
     shared = [(side == 0, slice(None), slice(None))]
     if mid > 0:  # one step up: L's lower half is L π's upper half; one step down the reverse
@@ -535,7 +439,8 @@ def _over_y(pts, dl, store):
     for rows, mine, theirs in shared:
         r = np.flatnonzero(rows)[:, None]
         fine_l[r, mine] = fine_p[r, theirs]
-        own[:, r, mine] = got[:, r, theirs]
+        for k in range(3):  # a 2-d index of a 2-d array, not of a 3-d one: ~4x faster
+            rest[k][r, mine] = got[k][r, theirs]
     # The rest of L's nodes: all of them two steps apart or more, the other half one apart
     # (an even nf shares no half: all of them one step apart or more).
     far = np.flatnonzero(np.abs(side) >= (2 if mid > 0 else 1))
@@ -545,8 +450,7 @@ def _over_y(pts, dl, store):
             todo.append((np.flatnonzero(side == sign)[:, None], mine[None, :]))
     for r, c in todo:
         if r.size:
-            sub = tuple(a[r[:, 0]] for a in pts)
-            own[:, r, c] = _integrand(sub, dl[r[:, 0]], fine_l[r, c], store)
+            rest[:, r, c] = _integrand(pts, dl[r[:, 0]], fine_l[r, c], store, None, own[r[:, 0]])
     pattern, order, dy, edge = _y_patterns(at_p, at_l, fine_p, fine_l, coarse)
     # The sums over y row by row, in blocks of rows of ~NODE_BLOCK_CELLS nodes (arrays that
     # stay in the cache; the same bits, each row's sums its own).
@@ -555,9 +459,7 @@ def _over_y(pts, dl, store):
     for start in range(0, K, rows):
         b = slice(start, start + rows)
         p = pattern[b]
-        got_b = _over_y_rows(
-            [v[:, b] for v in (first, got, own)], order[p], dy[p], edge[p], at_p[b], at_l[b]
-        )
+        got_b = _over_y_rows(vals[:, b], order[p], dy[p], edge[p], at_p[b], at_l[b])
         for o, v in zip(out, got_b, strict=True):
             o[b] = v
     return tuple(out)
@@ -581,9 +483,10 @@ def _y_patterns(at_p, at_l, fine_p, fine_l, coarse):
     return pattern.ravel(), order, np.diff(y, axis=1) / 2.0, edge.astype(float)
 
 
-def _over_y_rows(parts, order, dy, edge, at_p, at_l):
-    """:func:`_over_y`'s outputs of its rows from :func:`_integrand`'s values (3, R, ...) at the
-    coarse nodes, the fine ones around L π's peak and L's (``parts``), the order of each row's
+def _over_y_rows(vals, order, dy, edge, at_p, at_l):
+    """:func:`_over_y`'s outputs of its rows from :func:`_integrand`'s values (3, R, N) at the
+    coarse nodes, the fine ones around L π's peak and L's, side by side (``vals``), the order of
+    each row's
     nodes in y (R, N), half their spacings (R, N - 1) and which spacings lie in the first or
     last coarse cell, 1 or 0 (:func:`_y_patterns`); ``at_p``, ``at_l``: the coarse nodes of the
     peaks of L π and L."""
@@ -593,7 +496,7 @@ def _over_y_rows(parts, order, dy, edge, at_p, at_l):
     # Each row in its order of y, as flat indices into the (R, N) arrays (one take each).
     R, N = order.shape
     at = order + np.arange(0, R * N, N)[:, None]
-    lp, ll, mu = (np.concatenate([v[k] for v in parts], axis=1).ravel()[at] for k in range(3))
+    lp, ll, mu = (np.take(v.reshape(R * N), at) for v in vals)
     top_p = lp.max(axis=1, keepdims=True)
     top_l = ll.max(axis=1, keepdims=True)
     with np.errstate(invalid="ignore"):
@@ -617,19 +520,18 @@ def _over_y_rows(parts, order, dy, edge, at_p, at_l):
         cell *= edge
         share = cell.sum(axis=1) / zl
     # The nodes on coarse nodes count as the rule places them: -1, 0, 1 steps from each peak
-    # (only there their densities are needed: each an exponential of its own).
+    # (only there their densities are needed: each an exponential of its own), of both
+    # densities and both peaks in one take.
     steps = (2 * j[on]) // max(nf - 1, 1) - 1
-    spans = []
-    for e_all, v, top in ((ep, parts[0][0], top_p), (el, parts[0][1], top_l)):
-        count = _span(e_all)
-        for peak in (at_p, at_l):
-            at_on = np.clip(peak[:, None] + steps, 0, ny - 1)
-            with np.errstate(invalid="ignore"):
-                # NaN (a row without a finite node) counts as no node
-                e = np.exp(np.take_along_axis(v, at_on, axis=1) - top)
-            count = count + _span(e)
-        spans.append(count)
-    return log_p, log_l, m1, m2, share, np.minimum(*spans)
+    at_on = np.concatenate([at_p[:, None] + steps, at_l[:, None] + steps], axis=1)
+    at_on = np.clip(at_on, 0, ny - 1, out=at_on) + np.arange(0, R * N, N)[:, None]
+    span = []
+    for v, e_all, top in ((vals[0], ep, top_p), (vals[1], el, top_l)):
+        with np.errstate(invalid="ignore"):
+            # NaN (a row without a finite node) counts as no node
+            e = np.exp(np.take(v.reshape(R * N), at_on) - top)
+        span.append(_span(e_all) + _span(e))
+    return log_p, log_l, m1, m2, share, np.minimum(*span)
 
 
 def plateau_log_evidence(
@@ -769,12 +671,14 @@ def _evaluate(args, jobs, zero, store):
         dl[at_z] = np.exp(np.concatenate([z for _, _, z in group]))
         # Each row's group (d_c/u_max, amplitudes; :class:`SlopeStore`) and whether it is the
         # first of its group in the pass: its slopes are evaluated, the others' may be read.
+        # (The groups found as the slopes' rows are, by an integer of their bits: a sort of
+        # their bytes cost ~4 % of the evidence of the 10^5 sweeps of issue 31.)
         lev = np.repeat(np.stack([per_block[b][0] for _, b, _ in group]), sizes, axis=0)
-        key = _void_rows(np.c_[dl, lev])
-        _, first, inv, count = np.unique(
-            key, return_index=True, return_inverse=True, return_counts=True
-        )
-        fresh = np.zeros(key.shape[0], dtype=int)
+        lev = np.c_[dl, lev]
+        first, inv = _distinct_rows(lev)
+        count = np.bincount(inv, minlength=first.size)
+        key = _void_rows(lev[first])
+        fresh = np.zeros(lev.shape[0], dtype=int)
         fresh[first] = 1
         fresh = np.add.reduceat(fresh, np.cumsum([0, *sizes[:-1]])).tolist()
         # At most ``step`` blocks a chunk, and at most ``cap`` rows of groups met first
@@ -787,7 +691,7 @@ def _evaluate(args, jobs, zero, store):
             blocks, new = blocks + 1, new + n
         cuts.append(len(group))
         at = len(chunks) + np.repeat(np.arange(len(cuts) - 1), np.diff(cuts))
-        plan.append((key[first], inv, count, np.repeat(at, sizes)))
+        plan.append((key, inv, count, np.repeat(at, sizes)))
         for a, b in itertools.pairwise(cuts):
             chunks.append(group[a:b])
             ends.append((dl[ends_g[a] - sizes[a] : ends_g[b - 1]], sizes[a:b]))
@@ -798,7 +702,7 @@ def _evaluate(args, jobs, zero, store):
     for i, (chunk, (dl, sizes)) in enumerate(zip(chunks, ends, strict=True)):
         own = np.repeat(np.arange(len(chunk)), sizes)
         pts = _rows(per_block, sig, mu_prior, to_mu, [b for _, b, _ in chunk])
-        outs.append(_over_y(tuple(a[own] for a in pts), dl, store))
+        outs.append(_over_y(pts, own, dl, store))
         store.done(i)
         done.extend(k for k, _, _ in chunk)
     # The rows in the order of the jobs, each job's in its order of z: a stable sort of the
