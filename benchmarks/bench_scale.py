@@ -33,10 +33,15 @@ distinct id) is built and validated in a process of its own, which writes the va
 alone to a file (pickle) that the measuring process reads: freed in the measuring process, the
 raw strings' memory would stay resident (Python keeps the partly used arenas of its small
 objects), and the stages would start from ~0.6 GB instead of ~0.3 GB; a child of the measuring
-process would count in its children's peak RSS, which includes the worker processes'. The
-fit_sweeps stages' result is reduced to the summary printed beside them before the analyze
-stage starts. Each stage's peak RSS is printed beside the RSS it starts from (``start``), so
-that what the stage itself adds shows.
+process would count in its children's peak RSS, which includes the worker processes'. For the
+same reason analyze is timed in a process of its own (``measure-analyze``), which has read the
+validated table and done nothing else, as a user's process calling it. Run after the two
+fit_sweeps stages in their process (``measure``, until session 28), it started from the heap
+those stages left, 0.43 GB instead of a user's 0.23 GB at 10^5 sweeps; its CPU time read the
+same within the noise of a loaded machine (20.0, 20.1, 20.5 s there against 19.7, 20.3,
+20.3 s fresh, alternated), so the figures before and after the change compare, but the RSS
+it starts from is now a user's. Each stage's peak RSS is printed beside the RSS it starts
+from (``start``), so that what the stage itself adds shows.
 
 The large table's analyze is timed a second time in a process started with one BLAS thread
 (``OPENBLAS_NUM_THREADS=1``): its CPU time beside the first's shows that the analysis as
@@ -51,7 +56,8 @@ sweeps (fit_sweeps, one process). Wall time is printed beside CPU time (on an id
 machine the aim is wall <= 0.65 x CPU).
 
 Run: ``.venv/bin/python benchmarks/bench_scale.py`` (exit status 1 if a target is missed; its
-stages run as ``bench_scale.py build NAME PATH`` and ``bench_scale.py measure PATH``).
+stages run as ``bench_scale.py build NAME PATH``, ``bench_scale.py measure PATH`` (the
+fit_sweeps stages) and ``bench_scale.py measure-analyze PATH``).
 """
 
 from __future__ import annotations
@@ -189,8 +195,9 @@ def build(name: str, path: Path) -> None:
 
 
 def measure(path: str | Path) -> dict:
-    """Time fit_sweeps and analyze on the validated table pickled at ``path`` by :func:`build`
-    (run in a fresh process)."""
+    """Time fit_sweeps on the validated table pickled at ``path`` by :func:`build`, in this
+    process and in 2 worker processes (run in a fresh process; analyze is timed in another,
+    :func:`measure_analyze`)."""
     # A user's process holds the validated table, not the raw one it was made from.
     with open(path, "rb") as f:
         sweeps = pickle.load(f)
@@ -206,23 +213,18 @@ def measure(path: str | Path) -> dict:
                 )
 
         timed(out, f"fit_sweeps_{workers}", fit)
-    # Only the summary printed of the fits is kept into the analyze stage (module docstring).
     sw = out.pop("sw")
-    out |= {
+    return out | {
         "sweeps": len(sw),
         "longest": int(sw["n_points"].max()),
         "models": sw["model"].value_counts().to_dict(),
     }
-    del sw, fit, loop_table  # analyze builds its own loop tables
-    timed(
-        out, "analyze", lambda: analyze(sweeps, settings=AnalysisSettings(bootstrap=0, workers=2))
-    )
-    return out
 
 
 def measure_analyze(path: str | Path) -> dict:
-    """Time analyze alone on the validated table pickled at ``path`` (a fresh process; run
-    with one BLAS thread set in its environment, for the as-shipped / one-thread ratio)."""
+    """Time analyze alone on the validated table pickled at ``path`` (run in a fresh process,
+    as a user's process calls it; run again with one BLAS thread set in its environment, for
+    the as-shipped / one-thread ratio)."""
     with open(path, "rb") as f:
         sweeps = pickle.load(f)
     out: dict = {}
@@ -265,6 +267,12 @@ def main() -> int:
                 text=True,
                 check=True,
             )
+            alone = subprocess.run(
+                [sys.executable, __file__, "measure-analyze", path],
+                capture_output=True,
+                text=True,
+                check=True,
+            )
             if name == "large":  # the same analyze with one BLAS thread set from the start
                 one = subprocess.run(
                     [sys.executable, __file__, "measure-analyze", path],
@@ -274,6 +282,7 @@ def main() -> int:
                     env=os.environ | ONE_BLAS_THREAD_ENV,
                 )
         runs[name] = json.loads(out.stdout.splitlines()[-1])
+        runs[name] |= json.loads(alone.stdout.splitlines()[-1])
         r = runs[name]
         print(f"{name}: {r['sweeps']} sweeps, {r['points']} points (longest {r['longest']})")
         print(f"  models: {r['models']}")

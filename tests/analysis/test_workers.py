@@ -2,7 +2,10 @@
 stage, shut down at the end or on an error; the results are the serial path's."""
 
 import concurrent.futures
+import gc
+import multiprocessing
 from concurrent.futures import ProcessPoolExecutor
+from functools import partial
 from typing import ClassVar
 
 import numpy as np
@@ -10,28 +13,39 @@ import pandas as pd
 import pytest
 
 from contactres.analysis import AnalysisSettings, analyze
-from contactres.analysis._workers import WorkerPool, lent_pool, run_in_workers
+from contactres.analysis._workers import (
+    AHEAD_PER_PROCESS,
+    WorkerPool,
+    lent_pool,
+    run_in_workers,
+)
 from contactres.measurements._sweeps import validate_sweeps
 from contactres.measurements._synthetic import SweepGroup, SweepStudy, synthetic_sweeps
 from contactres.resonators._qcm import QCM
 
 Q = QCM(fundamental=5e6, overtone=3, area=2.5e-5)
+FORK = (
+    multiprocessing.get_context("fork")
+    if "fork" in multiprocessing.get_all_start_methods()
+    else None
+)
 
 
 class CountingPool(ProcessPoolExecutor):
-    """A ProcessPoolExecutor that records itself, its calls of map and its shutdowns."""
+    """A ProcessPoolExecutor that records itself, the functions of the chunks of calls sent to
+    it and its shutdowns."""
 
     made: ClassVar[list["CountingPool"]] = []
 
     def __init__(self, *args, **kwargs):
         super().__init__(*args, **kwargs)
-        self.maps = 0
+        self.functions: list = []
         self.shutdowns: list[bool] = []
         CountingPool.made.append(self)
 
-    def map(self, *args, **kwargs):
-        self.maps += 1
-        return super().map(*args, **kwargs)
+    def submit(self, call, fn, *args, **kwargs):
+        self.functions.append(fn)
+        return super().submit(call, fn, *args, **kwargs)
 
     def shutdown(self, wait=True, *, cancel_futures=False):
         self.shutdowns.append(cancel_futures)
@@ -70,7 +84,7 @@ def test_one_pool_serves_every_stage_and_gives_the_serial_results(study, countin
     # One executor for the whole analysis, used by several stages (per-sweep fits, curves,
     # JKR fits, ...), shut down once at the end, normally.
     (pool,) = counting
-    assert pool.maps >= 3 and pool.shutdowns == [False]
+    assert len(set(pool.functions)) >= 3 and pool.shutdowns == [False]
     pd.testing.assert_frame_equal(serial.sweeps, two.sweeps)
     pd.testing.assert_frame_equal(serial.curves, two.curves)
     pd.testing.assert_frame_equal(serial.blocks, two.blocks)
@@ -92,7 +106,7 @@ def test_the_pool_is_shut_down_on_an_error_or_an_interrupt(study, counting, erro
     with pytest.raises(error):
         analyze(study, settings=AnalysisSettings(bootstrap=30, workers=2), progress=say)
     (pool,) = counting
-    assert pool.maps >= 1 and pool.shutdowns == [True]
+    assert pool.functions and pool.shutdowns == [True]
 
 
 def test_a_pool_starts_only_for_two_or_more_tasks(counting):
@@ -105,5 +119,68 @@ def test_a_pool_starts_only_for_two_or_more_tasks(counting):
         assert run_in_workers(pow, pool, [2, 3], [3, 2]) == [8, 9]
     # Both calls went to the one executor, shut down when the pool's block ended.
     (executor,) = counting
-    assert executor.maps == 2 and executor.shutdowns == [False]
+    assert executor.functions == [divmod, divmod, pow, pow] and executor.shutdowns == [False]
     assert run_in_workers(abs, 1, [-1, -2]) == [1, 2] and len(counting) == 1
+
+
+def test_the_calls_are_sent_a_few_ahead_of_the_results():
+    # A stage's arguments come from a generator (each block padded when its call is sent):
+    # the parent should hold a few calls' arguments at a time, not every one of the stage.
+    made: list[int] = []
+
+    def arguments():
+        for k in range(40):
+            made.append(k)
+            yield -k
+
+    ahead = AHEAD_PER_PROCESS * 2
+    with WorkerPool(2) as pool:
+        results = pool.imap(abs, 40, arguments())
+        assert len(made) == ahead  # the first calls are sent at once
+        for k, value in enumerate(results):
+            assert value == k
+            # the result k taken: calls up to k + ahead sent (one more for each one taken)
+            assert len(made) == min(40, k + 1 + ahead)
+        assert len(made) == 40
+        # chunks of calls: the same results, in order
+        assert list(pool.imap(divmod, 9, range(9), [2] * 9, chunksize=4)) == [
+            divmod(k, 2) for k in range(9)
+        ]
+
+
+def _frozen(_) -> int:
+    """The number of objects outside the garbage collector's reach in this process."""
+    return gc.get_freeze_count()
+
+
+@pytest.mark.skipif("fork" not in multiprocessing.get_all_start_methods(), reason="no fork")
+def test_forked_workers_leave_the_parents_objects_to_the_parent(monkeypatch):
+    # A worker's garbage collection would write to (and so copy) every page of the parent's
+    # objects; forked while they are frozen, the workers never scan them, and the parent,
+    # unfrozen after the fork, collects them as before.
+    monkeypatch.setattr(
+        concurrent.futures, "ProcessPoolExecutor", partial(ProcessPoolExecutor, mp_context=FORK)
+    )
+    before = gc.get_freeze_count()
+    with WorkerPool(2) as pool:
+        frozen = run_in_workers(_frozen, pool, [0, 1, 2, 3])
+        assert gc.get_freeze_count() == before
+    assert min(frozen) > len(gc.get_objects()) // 2
+
+
+@pytest.mark.parametrize("method", ["spawn", "forkserver"])
+def test_the_pool_works_with_processes_started_afresh(study, method, monkeypatch):
+    # Python 3.14 starts processes by forkserver by default on Linux (spawn on macOS and
+    # Windows): the workers then import the package themselves and receive every argument.
+    if method not in multiprocessing.get_all_start_methods():
+        pytest.skip(f"no {method}")
+    monkeypatch.setattr(
+        concurrent.futures,
+        "ProcessPoolExecutor",
+        partial(ProcessPoolExecutor, mp_context=multiprocessing.get_context(method)),
+    )
+    serial = analyze(study, settings=AnalysisSettings(bootstrap=0))
+    two = analyze(study, settings=AnalysisSettings(bootstrap=0, workers=2))
+    pd.testing.assert_frame_equal(serial.sweeps, two.sweeps)
+    pd.testing.assert_frame_equal(serial.curves, two.curves)
+    pd.testing.assert_frame_equal(serial.blocks, two.blocks)

@@ -141,7 +141,7 @@ def fit_models(
     u_max: dict[str, np.ndarray] = {}
     fields: dict[str, dict[str, np.ndarray]] = {}
     groups = p.blocks()  # <= BLOCK_POINTS points each: the fits' temporaries stay at a few MB
-    # Each block padded when its fit comes (in this process; a pool takes them all at once),
+    # Each block padded when its fit comes (in this process; a pool a few calls ahead),
     # and its fields put in place as they come, then dropped: a list of every block's results
     # held a second copy of all the fields until the last had come (~0.1 GB at 10^5 sweeps,
     # issue 31, point 3).

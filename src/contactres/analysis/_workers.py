@@ -10,17 +10,34 @@ stage has a single task never starts them; once started, all ``workers`` process
 the analysis ends, however few tasks the later stages hold). Every task depends on its own
 arguments alone, so the results are those of the serial path, bit for bit, whichever process
 runs which task.
+
+The processes start by :mod:`multiprocessing`'s default method (``fork`` on Linux up to
+Python 3.13, ``forkserver`` from 3.14, ``spawn`` on macOS and Windows). Every call's
+arguments are sent to its process (pickled), never read from memory inherited by a fork, so
+every method gives the same results; a forked process's memory is the parent's until either
+writes to it, and the parent's objects are frozen out of the garbage collector while the
+processes fork (:meth:`WorkerPool.imap`).
 """
 
 from __future__ import annotations
 
+import gc
+from collections import deque
 from collections.abc import Callable, Iterable, Iterator
 from contextlib import contextmanager
+from itertools import islice
 from types import TracebackType
 from typing import TYPE_CHECKING
 
 if TYPE_CHECKING:
-    from concurrent.futures import Executor
+    from concurrent.futures import Executor, Future
+
+#: Calls sent ahead per process: each process has its call under way and the next ones queued
+#: (no idle wait between calls), while the arguments and results in flight stay a few calls'
+#: worth. :meth:`concurrent.futures.Executor.map` sent every call at once, so the parent
+#: padded and held every block of a stage before the first came back (~0.12 GB at 10^5
+#: sweeps, issue 31, point 3).
+AHEAD_PER_PROCESS = 3
 
 __all__ = ["WorkerPool", "lent_pool", "run_in_workers"]
 
@@ -47,22 +64,44 @@ class WorkerPool:
 
     def imap(self, fn: Callable, tasks: int, *iterables: Iterable, chunksize: int = 1) -> Iterator:
         """``map(fn, *iterables)``, in the worker processes where :meth:`parallel` (``tasks``:
-        the length of the shortest iterable): the results in order, each as it is ready."""
+        the length of the shortest iterable): the results in order, each as it is ready.
+
+        In the processes, the calls go ``chunksize`` at a time, at most
+        :data:`AHEAD_PER_PROCESS` per process sent ahead of the result being waited for: the
+        iterables are read as the calls are sent (the first ones now), so that a generator's
+        arguments are made a few calls ahead, not all at once."""
         if not self.parallel(tasks):
             return map(fn, *iterables)
-        if self._executor is None:
-            # Imported here: the process pool (multiprocessing, ~20 modules) serves only
-            # workers > 1, and the first call of the analysis should not pay for it.
-            from concurrent.futures import ProcessPoolExecutor
+        # Not strict: as for map, the shortest iterable ends it (others may be endless repeats).
+        calls = _chunks(zip(*iterables, strict=False), chunksize)
+        first = islice(calls, AHEAD_PER_PROCESS * self.processes)
+        if self._executor is not None:
+            sent = deque(self._executor.submit(_call_each, fn, c) for c in first)
+            return _in_order(self._executor, fn, calls, sent)
+        # Imported here: the process pool (multiprocessing, ~20 modules) serves only
+        # workers > 1, and the first call of the analysis should not pay for it.
+        from concurrent.futures import ProcessPoolExecutor
 
-            from .._threads import one_blas_thread_for_process
+        from .._threads import one_blas_thread_for_process
 
-            # Each process sets its one BLAS thread (its initializer): it inherits the
-            # analysis's one thread only when forked inside its context.
-            self._executor = ProcessPoolExecutor(
-                self.processes, initializer=one_blas_thread_for_process
-            )
-        return self._executor.map(fn, *iterables, chunksize=chunksize)
+        # Each process sets its one BLAS thread (its initializer): it inherits the
+        # analysis's one thread only when forked inside its context.
+        executor = ProcessPoolExecutor(self.processes, initializer=one_blas_thread_for_process)
+        self._executor = executor
+        # The first call starts the processes (all of them at once where they are forked).
+        # A forked process shares the parent's memory until either writes to a page; the
+        # cyclic garbage collector writes to the header of every object it scans, so a
+        # worker's full collection would copy every page that holds the parent's objects
+        # (and then the parent's own next one, for its side). Frozen, the parent's objects
+        # are outside every collection of the workers (they never free them: the worker
+        # ends with the pool); unfrozen here after the fork, the parent collects them as
+        # before. With spawn or forkserver nothing is shared and this changes nothing.
+        gc.freeze()
+        try:
+            sent = deque(executor.submit(_call_each, fn, c) for c in first)
+        finally:
+            gc.unfreeze()
+        return _in_order(executor, fn, calls, sent)
 
     def close(self, cancel: bool = False) -> None:
         """Shut the processes down (if started), waiting for the tasks under way; ``cancel``:
@@ -81,6 +120,36 @@ class WorkerPool:
         trace: TracebackType | None,
     ) -> None:
         self.close(cancel=kind is not None)
+
+
+def _chunks(calls: Iterator[tuple], size: int) -> Iterator[list[tuple]]:
+    """The argument tuples of ``calls``, ``size`` to a list (the last one shorter)."""
+    while chunk := list(islice(calls, size)):
+        yield chunk
+
+
+def _call_each(fn: Callable, chunk: list[tuple]) -> list:
+    """``[fn(*args) for args in chunk]``: one chunk of calls, run in a worker process."""
+    return [fn(*args) for args in chunk]
+
+
+def _in_order(
+    executor: Executor, fn: Callable, calls: Iterator[list[tuple]], sent: deque[Future]
+) -> Iterator:
+    """The results of the chunks ``sent`` and then of ``calls``, in order: for each chunk
+    taken from ``sent``, one more of ``calls`` is sent before its result is waited for, so
+    that as many stay ahead. On an error, or when the caller stops reading, the chunks not
+    yet started are cancelled."""
+    try:
+        while sent:
+            head = sent.popleft()
+            more = next(calls, None)
+            if more is not None:
+                sent.append(executor.submit(_call_each, fn, more))
+            yield from head.result()
+    finally:
+        for future in sent:
+            future.cancel()
 
 
 @contextmanager
