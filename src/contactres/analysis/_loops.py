@@ -6,8 +6,9 @@ forward model (:func:`contactres.shifts_from_loop` on a :class:`contactres.Catta
 and the fit Δf = Pκ g′(θu0), ΔΓ = P[ωξ + κ g″(θu0)] with θ = κ/(μF_N) is solved by variable
 projection: for fixed θ, Pκ and Pωξ follow in closed form; θ is found by a zooming grid search
 (relative resolution < 1e-3), independently for every sweep. The search's rounds take χ² in its
-residual-free form C - num²/den, exact χ² only where a trial can be the least (the same trials
-and numbers as χ² at every trial; :func:`_least_chi2`). Sweeps measured at the same amplitudes
+residual-free form C - num²/den, exact χ² only where a trial can be the least, of the round
+and against the best trial so far (the same trials and numbers as χ² at every trial;
+:func:`_least_chi2`). Sweeps measured at the same amplitudes
 (one amplitude programme: bit for bit the same u) look the table up once for the trials that
 they share, the grid and a round's trials where they share its centre, and sum over their
 points by matrix products (:func:`_shared_chi2`: the same numbers). Errors come from the Jacobian in
@@ -356,7 +357,7 @@ def solve_projected(g1, g2, df, dg, w, wf, wg):
     return A, B, wf * rss_f + wg * rss_g, rss_f, rss_g
 
 
-def _least_chi2(g1, g2, df, dg, w, wf, wg, sums=None) -> np.ndarray:
+def _least_chi2(g1, g2, df, dg, w, wf, wg, sums=None, bound=None) -> np.ndarray:
     """:func:`solve_projected`'s χ², bit for bit, at the trials that can hold the least χ² of
     their sweep; +inf at the others.
 
@@ -382,10 +383,14 @@ def _least_chi2(g1, g2, df, dg, w, wf, wg, sums=None) -> np.ndarray:
     w : (S, M) weights (0 for padding)
     wf, wg : (S,) weights of the two channels, Hz⁻²
     sums : :func:`_data_sums` of these sweeps (None: formed here; the same numbers)
+    bound : (S,) a χ² known for each row, which these trials compete with (the θ search's best
+        trial so far), or None: the trials that cannot beat it are not evaluated
+        (:func:`_exact_near`)
 
     Returns
     -------
-    (S, K) χ² (dimensionless): solve_projected's where it can be its row's least, +inf elsewhere
+    (S, K) χ² (dimensionless): solve_projected's where it can be its row's least (and that of
+    ``bound``), +inf elsewhere
     """
     ones = bool(np.all(w == 1.0))
     n, c, wdf, wdg = _data_sums(df, dg, w, wf, wg) if sums is None else sums
@@ -402,12 +407,23 @@ def _least_chi2(g1, g2, df, dg, w, wf, wg, sums=None) -> np.ndarray:
     else:
         ss1, ss2 = _dot(w, g1 * g1), _dot(w, g2c * g2c)
     den = wf2 * ss1 + wg2 * ss2
-    return _exact_near(c[:, None] - num * num / den, c, g1, g2, None, df, dg, w, wf, wg)
+    short = c[:, None] - num * num / den
+    return _exact_near(short, c, g1, g2, None, df, dg, w, wf, wg, bound)
 
 
 def _dot(v, g) -> np.ndarray:
     """Σ_m v[s, m] g[m, s, k]: (S, K), a matrix-vector product per sweep (BLAS)."""
     return np.matmul(v[:, None, :], g.transpose(1, 0, 2))[:, 0]
+
+
+def _dot_gathered(v, g, group) -> np.ndarray:
+    """:func:`_dot` of ``v`` (S, M) with the shapes ``g[:, group]`` (g: (M, sets, K)), the same
+    numbers: the sets' shapes laid out set by set first (a copy of the sets' points, fewer than
+    the sweeps'), so that each sweep's (M, K) block is one contiguous run that ``take`` copies
+    whole, where indexing the middle axis copies K numbers at a time (half the cost)."""
+    by_set = np.ascontiguousarray(g.transpose(1, 0, 2))
+    # 0 <= group < sets: "wrap" gathers what the default "raise" does, without its checks.
+    return np.matmul(v[:, None, :], by_set.take(group, axis=0, mode="wrap"))[:, 0]
 
 
 def _data_sums(df, dg, w, wf, wg) -> tuple[np.ndarray, ...]:
@@ -421,14 +437,23 @@ def _data_sums(df, dg, w, wf, wg) -> tuple[np.ndarray, ...]:
     return n, c, w * df, w * dgc
 
 
-def _exact_near(short, c, g1, g2, column, df, dg, w, wf, wg) -> np.ndarray:
+def _exact_near(short, c, g1, g2, column, df, dg, w, wf, wg, bound=None) -> np.ndarray:
     """(S, K): :func:`solve_projected`'s χ² at the trials whose short-cut χ² ``short`` lies
     within (M + 4)·2^-40·C of their row's least (every trial of a row with a non-finite one),
     +inf elsewhere (:func:`_least_chi2`). The shapes of sweep s are ``g1[:, column[s]]``
-    (``column`` None: ``g1[:, s]``)."""
+    (``column`` None: ``g1[:, s]``).
+
+    ``bound`` (S,): a χ² already known for each row (the θ search's best trial so far, which
+    competes with these trials), or None. A trial whose short cut lies more than the tolerance
+    above it has an exact χ² above it too, so it cannot be the least of the row with that
+    trial: it is left at +inf, unevaluated (a NaN bound: no such cut, as without one).
+    """
     tol = (w.shape[-1] + 4) * 2.0**-40 * c
     sure = np.isfinite(short).all(axis=1) & np.isfinite(c)  # else every trial of the row
-    near = (short <= (np.min(short, axis=1) + tol)[:, None]) | ~sure[:, None]
+    least = np.min(short, axis=1)
+    if bound is not None:
+        least = np.fmin(least, bound)
+    near = (short <= (least + tol)[:, None]) | ~sure[:, None]
     r, k = np.nonzero(near)
     col = r if column is None else column[r]
     # Rows of points again, contiguous: solve_projected's sums then run as they run in a block.
@@ -444,7 +469,7 @@ def _exact_near(short, c, g1, g2, column, df, dg, w, wf, wg) -> np.ndarray:
 GROUP_LOOP = 8
 
 
-def _shared_chi2(ip, u, df, dg, w, wf, wg, umax, lx, key, sums=None) -> np.ndarray:
+def _shared_chi2(ip, u, df, dg, w, wf, wg, umax, lx, key, sums=None, bound=None) -> np.ndarray:
     """:func:`_least_chi2` at the trials x_max = 10^lx (``lx`` (S, K)): the same numbers, the
     table looked up once per set of sweeps with the same amplitudes and trials, the sweeps
     whose rows of ``key`` (S, C) (integers) agree (:func:`_fit_cm_chunk`: the amplitudes'
@@ -456,7 +481,8 @@ def _shared_chi2(ip, u, df, dg, w, wf, wg, umax, lx, key, sums=None) -> np.ndarr
     few such sets the short cut's sums over the points are matrix products of a set's shapes
     (M, K) with the data of its sweeps (BLAS; any order of the sums is within the short cut's
     tolerance), otherwise those of :func:`_least_chi2` on the shapes gathered per sweep.
-    ``sums``: :func:`_data_sums` of the sweeps (None: formed here; the same numbers).
+    ``sums``: :func:`_data_sums` of the sweeps (None: formed here; the same numbers);
+    ``bound``: as in :func:`_least_chi2`.
     """
     sums = _data_sums(df, dg, w, wf, wg) if sums is None else sums
     first, group, order, ends = row_sets(key)
@@ -469,7 +495,8 @@ def _shared_chi2(ip, u, df, dg, w, wf, wg, umax, lx, key, sums=None) -> np.ndarr
         for s in (slice(i, i + step) for i in range(0, S, step)):
             g1, g2 = _search_pair(ip, u[s], 10.0 ** lx[s] / umax[s, None])
             part = tuple(a[s] for a in sums)
-            parts.append(_least_chi2(g1, g2, df[s], dg[s], w[s], wf[s], wg[s], part))
+            cut = None if bound is None else bound[s]
+            parts.append(_least_chi2(g1, g2, df[s], dg[s], w[s], wf[s], wg[s], part, cut))
         return np.concatenate(parts) if parts else np.empty(lx.shape)
     # θ of the set's first sweep: that of every sweep of the set, bit for bit.
     g1, g2 = _search_pair(ip, u[first], 10.0 ** lx[first] / umax[first][:, None])
@@ -478,7 +505,7 @@ def _shared_chi2(ip, u, df, dg, w, wf, wg, umax, lx, key, sums=None) -> np.ndarr
     g2c = g2 - (_dot(w[first], g2) / n[first][:, None])[None]
     ss = _dot(w[first], g1 * g1), _dot(w[first], g2c * g2c)
     if first.size > GROUP_LOOP:  # the sums with the data: per sweep, on gathered shapes
-        n1, n2 = _dot(wdf, g1[:, group]), _dot(wdg, g2c[:, group])
+        n1, n2 = _dot_gathered(wdf, g1, group), _dot_gathered(wdg, g2c, group)
     else:  # per set: two matrix products
         n1, n2 = np.empty((2, *lx.shape))
         for i in range(first.size):
@@ -487,7 +514,8 @@ def _shared_chi2(ip, u, df, dg, w, wf, wg, umax, lx, key, sums=None) -> np.ndarr
     wf2, wg2 = wf[:, None], wg[:, None]
     num = wf2 * n1 + wg2 * n2
     den = wf2 * ss[0][group] + wg2 * ss[1][group]
-    return _exact_near(c[:, None] - num * num / den, c, g1, g2, group, df, dg, w, wf, wg)
+    short = c[:, None] - num * num / den
+    return _exact_near(short, c, g1, g2, group, df, dg, w, wf, wg, bound)
 
 
 def fit_cm_loops(
@@ -545,10 +573,10 @@ def _fit_cm_chunk(
 
     # Sweeps of one amplitude set share their lookups where they share their trials: on the
     # grid, and in a round where they share its centre.
-    def chi2_at(lx, least=False, centre=None):  # lx: (S, K) log10 of x_max
+    def chi2_at(lx, least=False, centre=None, bound=None):  # lx: (S, K) log10 of x_max
         if least:  # only the least χ² of each row matters (its position, its value)
             key = amplitudes[:, None] if centre is None else np.stack([amplitudes, centre], 1)
-            return _shared_chi2(ip, u, df, dg, w, wf, wg, umax, lx, key, sums)
+            return _shared_chi2(ip, u, df, dg, w, wf, wg, umax, lx, key, sums, bound)
         xu = (10.0**lx / umax[:, None])[..., None] * u[:, None, :]
         # Both shapes from one lookup, as one complex numpy.interp of the table made them.
         g1, g2 = _interpolate_pair(ip, xu)
@@ -568,7 +596,9 @@ def _fit_cm_chunk(
     for _ in range(rounds):
         around = np.delete(np.linspace(-step, step, 9), 4)  # the middle one is 0 exactly
         local = np.clip(centre[:, None] + around[None, :], lo, hi)
-        chi = _with_middle(chi2_at(local, True, centre.view(np.int64)), best)
+        # The best so far competes with the round's trials: those that cannot beat it are
+        # not evaluated (a quarter of the rows: the best stays in the middle).
+        chi = _with_middle(chi2_at(local, True, centre.view(np.int64), best), best)
         j = np.argmin(chi, axis=1)
         centre = _with_middle(local, centre)[rows, j]
         best = chi[rows, j]
