@@ -393,27 +393,39 @@ def _least_chi2(g1, g2, df, dg, w, wf, wg, sums=None, bound=None) -> np.ndarray:
     ``bound``), +inf elsewhere
     """
     ones = bool(np.all(w == 1.0))
-    n, c, wdf, wdg = _data_sums(df, dg, w, wf, wg) if sums is None else sums
+    sums = _data_sums(df, dg, w, wf, wg) if sums is None else sums
+    n, c, wdf, wdg = sums[:4]
     # The sums over the points weighted by a vector of each sweep: matrix-vector products,
     # one per sweep (BLAS); the sums of squares row of points after row (no per-row overhead).
 
     g2c = g2 - (_dot(w, g2) / n[:, None])[None]
-    wf2, wg2 = wf[:, None], wg[:, None]
-    num = wf2 * _dot(wdf, g1) + wg2 * _dot(wdg, g2c)
     if ones:
         # Squares, then their sum over the points (the first axis: added row after row, the
         # order einsum("msk,msk->sk") adds them in): the same numbers at ~1/2 of its instructions.
         ss1, ss2 = (g1 * g1).sum(axis=0), (g2c * g2c).sum(axis=0)
     else:
         ss1, ss2 = _dot(w, g1 * g1), _dot(w, g2c * g2c)
-    den = wf2 * ss1 + wg2 * ss2
-    short = c[:, None] - num * num / den
-    return _exact_near(short, c, g1, g2, None, df, dg, w, wf, wg, bound)
+    short = _short_chi2(c, _dot(wdf, g1), _dot(wdg, g2c), ss1, ss2, wf, wg)
+    return _exact_near(short, sums, g1, g2, None, df, dg, w, wf, wg, bound)
 
 
 def _dot(v, g) -> np.ndarray:
     """Σ_m v[s, m] g[m, s, k]: (S, K), a matrix-vector product per sweep (BLAS)."""
     return np.matmul(v[:, None, :], g.transpose(1, 0, 2))[:, 0]
+
+
+def _short_chi2(c, n1, n2, s1, s2, wf, wg) -> np.ndarray:
+    """The short cut's χ² = C - num²/den (:func:`_least_chi2`) from its sums (S, K): num =
+    wf·n1 + wg·n2, den = wf·s1 + wg·s2; in place (``n1``, ``n2``, ``s1``, ``s2`` are
+    overwritten), the numbers of the plain expression with three temporaries fewer."""
+    wf2, wg2 = wf[:, None], wg[:, None]
+    num = np.multiply(n1, wf2, out=n1)
+    num += np.multiply(n2, wg2, out=n2)
+    den = np.multiply(s1, wf2, out=s1)
+    den += np.multiply(s2, wg2, out=s2)
+    num *= num
+    num /= den
+    return np.subtract(c[:, None], num, out=num)
 
 
 def _dot_gathered(v, g, group) -> np.ndarray:
@@ -427,27 +439,30 @@ def _dot_gathered(v, g, group) -> np.ndarray:
 
 
 def _data_sums(df, dg, w, wf, wg) -> tuple[np.ndarray, ...]:
-    """Σw, C = wf Σw Δf² + wg Σw (ΔΓ - mean)² (mean: the weighted mean of ΔΓ), wΔf and
-    w(ΔΓ - mean) of every sweep: the parts of :func:`_least_chi2`'s short cut that do not depend on
-    θ, formed once per chunk of sweeps for all the rounds of its search (row by row: a slice
-    of rows has the numbers of the same rows of the whole)."""
+    """Σw, C = wf Σw Δf² + wg Σw (ΔΓ - mean)² (mean: the weighted mean of ΔΓ), wΔf,
+    w(ΔΓ - mean), the mean and ΔΓ - mean of every sweep: the parts of :func:`_least_chi2`'s short
+    cut and of :func:`solve_projected` that do not depend on θ, formed once per chunk of sweeps
+    for all the rounds of its search (row by row: a slice of rows has the numbers of the same
+    rows of the whole; the mean and ΔΓ - mean those that solve_projected forms)."""
     n = w.sum(-1)
-    dgc = dg - ((w * dg).sum(-1) / n)[:, None]
+    dgm = (w * dg).sum(-1) / n
+    dgc = dg - dgm[:, None]
     c = wf * (w * df * df).sum(-1) + wg * (w * dgc * dgc).sum(-1)
-    return n, c, w * df, w * dgc
+    return n, c, w * df, w * dgc, dgm, dgc
 
 
-def _exact_near(short, c, g1, g2, column, df, dg, w, wf, wg, bound=None) -> np.ndarray:
+def _exact_near(short, sums, g1, g2, column, df, dg, w, wf, wg, bound=None) -> np.ndarray:
     """(S, K): :func:`solve_projected`'s χ² at the trials whose short-cut χ² ``short`` lies
     within (M + 4)·2^-40·C of their row's least (every trial of a row with a non-finite one),
     +inf elsewhere (:func:`_least_chi2`). The shapes of sweep s are ``g1[:, column[s]]``
-    (``column`` None: ``g1[:, s]``).
+    (``column`` None: ``g1[:, s]``); ``sums``: :func:`_data_sums` of the sweeps.
 
     ``bound`` (S,): a χ² already known for each row (the θ search's best trial so far, which
     competes with these trials), or None. A trial whose short cut lies more than the tolerance
     above it has an exact χ² above it too, so it cannot be the least of the row with that
     trial: it is left at +inf, unevaluated (a NaN bound: no such cut, as without one).
     """
+    c = sums[1]
     tol = (w.shape[-1] + 4) * 2.0**-40 * c
     sure = np.isfinite(short).all(axis=1) & np.isfinite(c)  # else every trial of the row
     least = np.min(short, axis=1)
@@ -459,8 +474,38 @@ def _exact_near(short, c, g1, g2, column, df, dg, w, wf, wg, bound=None) -> np.n
     # Rows of points again, contiguous: solve_projected's sums then run as they run in a block.
     a1, a2 = (np.ascontiguousarray(g[:, col, k].T) for g in (g1, g2))
     chi = np.full(short.shape, np.inf)
-    chi[r, k] = solve_projected(a1, a2, df[r], dg[r], w[r], wf[r], wg[r])[2]
+    chi[r, k] = _projected_chi2(a1, a2, r, sums, df, dg, w, wf, wg)
     return chi
+
+
+def _projected_chi2(g1, g2, r, sums, df, dg, w, wf, wg) -> np.ndarray:
+    """:func:`solve_projected`'s χ² of the sweeps ``r`` at the shapes ``g1``, ``g2`` (R, M),
+    bit for bit: its arithmetic, in its order, with the parts of the data alone (Σw, the mean of
+    ΔΓ and ΔΓ - mean) taken from :func:`_data_sums` (``sums``) of the sweeps, and in place
+    where solve_projected makes temporaries."""
+    n, dgm, dgc = sums[0][r], sums[4][r], sums[5][r]
+    wr = w[r]
+    ones = bool(np.all(wr == 1.0))
+    wfr, wgr = wf[r], wg[r]
+
+    def weighted(a):  # w * a, the same numbers (as in solve_projected)
+        return a if ones else wr * a
+
+    g2m = weighted(g2).sum(-1) / n
+    g2c = g2 - g2m[:, None]
+    wg1, wg2c = weighted(g1), weighted(g2c)
+    dfr = df[r]
+    num = wfr * (wg1 * dfr).sum(-1) + wgr * (wg2c * dgc).sum(-1)
+    den = wfr * (wg1 * g1).sum(-1) + wgr * (wg2c * g2c).sum(-1)
+    A = num / den
+    B = dgm - A * g2m
+    rf = np.multiply(A[:, None], g1)
+    rf = np.subtract(dfr, rf, out=rf)  # df - A g1
+    rg = np.subtract(dg[r], B[:, None])
+    rg -= np.multiply(A[:, None], g2, out=g2c)  # dg - B - A g2 (g2c is not needed again)
+    rf *= rf
+    rg *= rg
+    return wfr * weighted(rf).sum(-1) + wgr * weighted(rg).sum(-1)
 
 
 #: The short cut's sums run trial set by trial set (two matrix products each) for at most this
@@ -500,7 +545,7 @@ def _shared_chi2(ip, u, df, dg, w, wf, wg, umax, lx, key, sums=None, bound=None)
         return np.concatenate(parts) if parts else np.empty(lx.shape)
     # θ of the set's first sweep: that of every sweep of the set, bit for bit.
     g1, g2 = _search_pair(ip, u[first], 10.0 ** lx[first] / umax[first][:, None])
-    n, c, wdf, wdg = sums
+    n, c, wdf, wdg = sums[:4]
     # The sums over the points of each set's shapes alone: once per set.
     g2c = g2 - (_dot(w[first], g2) / n[first][:, None])[None]
     ss = _dot(w[first], g1 * g1), _dot(w[first], g2c * g2c)
@@ -508,14 +553,14 @@ def _shared_chi2(ip, u, df, dg, w, wf, wg, umax, lx, key, sums=None, bound=None)
         n1, n2 = _dot_gathered(wdf, g1, group), _dot_gathered(wdg, g2c, group)
     else:  # per set: two matrix products
         n1, n2 = np.empty((2, *lx.shape))
+        # fit_cm_loops sorts the sweeps by amplitude set: on its grid each set is a run of
+        # rows, taken as a slice (no gather of the data, no scatter of the products).
+        runs = np.array_equal(order, np.arange(S))
         for i in range(first.size):
-            rows = order[ends[i] : ends[i + 1]]
+            rows = slice(ends[i], ends[i + 1]) if runs else order[ends[i] : ends[i + 1]]
             n1[rows], n2[rows] = wdf[rows] @ g1[:, i], wdg[rows] @ g2c[:, i]
-    wf2, wg2 = wf[:, None], wg[:, None]
-    num = wf2 * n1 + wg2 * n2
-    den = wf2 * ss[0][group] + wg2 * ss[1][group]
-    short = c[:, None] - num * num / den
-    return _exact_near(short, c, g1, g2, group, df, dg, w, wf, wg, bound)
+    short = _short_chi2(c, n1, n2, ss[0][group], ss[1][group], wf, wg)
+    return _exact_near(short, sums, g1, g2, group, df, dg, w, wf, wg, bound)
 
 
 def fit_cm_loops(
