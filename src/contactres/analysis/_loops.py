@@ -253,9 +253,14 @@ def interpolate_table(ip: TableInterpolant, x, columns) -> list[np.ndarray]:
     list of arrays shaped as ``x``, one per column
     """
     x, j = _table_index(ip, x)
-    d = x - ip.table.x[j]
+    # 0 <= j < table size: take's "wrap" gathers what indexing does, without its checks.
+    d = x - ip.table.x.take(j, mode="wrap")
     values = {"c1": "g1", "c2": "g2"}
-    return [ip.slopes[c][j] * d + getattr(ip.table, values.get(c, c))[j] for c in columns]
+    return [
+        ip.slopes[c].take(j, mode="wrap") * d
+        + getattr(ip.table, values.get(c, c)).take(j, mode="wrap")
+        for c in columns
+    ]
 
 
 def _table_index(ip: TableInterpolant, x) -> tuple[np.ndarray, np.ndarray]:
@@ -474,19 +479,24 @@ def _exact_near(short, sums, g1, g2, column, df, dg, w, wf, wg, bound=None) -> n
     # Rows of points again, contiguous: solve_projected's sums then run as they run in a block.
     a1, a2 = (np.ascontiguousarray(g[:, col, k].T) for g in (g1, g2))
     chi = np.full(short.shape, np.inf)
-    chi[r, k] = _projected_chi2(a1, a2, r, sums, df, dg, w, wf, wg)
+    chi[r, k] = _projected(a1, a2, r, sums, df, dg, w, wf, wg)[2]
     return chi
 
 
-def _projected_chi2(g1, g2, r, sums, df, dg, w, wf, wg) -> np.ndarray:
-    """:func:`solve_projected`'s χ² of the sweeps ``r`` at the shapes ``g1``, ``g2`` (R, M),
-    bit for bit: its arithmetic, in its order, with the parts of the data alone (Σw, the mean of
-    ΔΓ and ΔΓ - mean) taken from :func:`_data_sums` (``sums``) of the sweeps, and in place
-    where solve_projected makes temporaries."""
-    n, dgm, dgc = sums[0][r], sums[4][r], sums[5][r]
-    wr = w[r]
+def _projected(g1, g2, r, sums, df, dg, w, wf, wg) -> tuple[np.ndarray, ...]:
+    """:func:`solve_projected` (A, B, χ², rss_f, rss_g) of the sweeps ``r`` (None: all, in
+    order) at the shapes ``g1``, ``g2`` (R, M), bit for bit: its arithmetic, in its order, with
+    the parts of the data alone (Σw, the mean of ΔΓ and ΔΓ - mean) taken from
+    :func:`_data_sums` (``sums``) of the sweeps, and in place where solve_projected makes
+    temporaries (``g1`` and ``g2`` are left as they are)."""
+
+    def rows(a):
+        return a if r is None else a[r]
+
+    n, dgm, dgc = rows(sums[0]), rows(sums[4]), rows(sums[5])
+    wr = rows(w)
     ones = bool(np.all(wr == 1.0))
-    wfr, wgr = wf[r], wg[r]
+    wfr, wgr = rows(wf), rows(wg)
 
     def weighted(a):  # w * a, the same numbers (as in solve_projected)
         return a if ones else wr * a
@@ -494,18 +504,19 @@ def _projected_chi2(g1, g2, r, sums, df, dg, w, wf, wg) -> np.ndarray:
     g2m = weighted(g2).sum(-1) / n
     g2c = g2 - g2m[:, None]
     wg1, wg2c = weighted(g1), weighted(g2c)
-    dfr = df[r]
+    dfr = rows(df)
     num = wfr * (wg1 * dfr).sum(-1) + wgr * (wg2c * dgc).sum(-1)
     den = wfr * (wg1 * g1).sum(-1) + wgr * (wg2c * g2c).sum(-1)
     A = num / den
     B = dgm - A * g2m
     rf = np.multiply(A[:, None], g1)
     rf = np.subtract(dfr, rf, out=rf)  # df - A g1
-    rg = np.subtract(dg[r], B[:, None])
+    rg = np.subtract(rows(dg), B[:, None])
     rg -= np.multiply(A[:, None], g2, out=g2c)  # dg - B - A g2 (g2c is not needed again)
     rf *= rf
     rg *= rg
-    return wfr * weighted(rf).sum(-1) + wgr * weighted(rg).sum(-1)
+    rss_f, rss_g = weighted(rf).sum(-1), weighted(rg).sum(-1)
+    return A, B, wfr * rss_f + wgr * rss_g, rss_f, rss_g
 
 
 #: The short cut's sums run trial set by trial set (two matrix products each) for at most this
@@ -625,8 +636,10 @@ def _fit_cm_chunk(
         xu = (10.0**lx / umax[:, None])[..., None] * u[:, None, :]
         # Both shapes from one lookup, as one complex numpy.interp of the table made them.
         g1, g2 = _interpolate_pair(ip, xu)
-        args = (df[:, None, :], dg[:, None, :], w[:, None, :], wf[:, None], wg[:, None])
-        return solve_projected(g1, g2, *args)[2]
+        # solve_projected's χ² of every trial: a row of points per sweep and trial.
+        r = np.repeat(np.arange(lx.shape[0]), lx.shape[1])
+        a1, a2 = (g.reshape(r.size, -1) for g in (g1, g2))
+        return _projected(a1, a2, r, sums, df, dg, w, wf, wg)[2].reshape(lx.shape)
 
     lo, hi = -2.5, np.log10(X_MAX)
     grid = np.broadcast_to(np.linspace(lo, hi, 49), (S, 49))
@@ -660,7 +673,7 @@ def _fit_cm_chunk(
     theta = 10.0**centre / umax
     xu = theta[:, None] * u
     g1, g2, d1, d2 = interpolate_table(ip, xu, ("g1", "g2", "d1", "d2"))
-    A, B, chi2, rss_f, rss_g = solve_projected(g1, g2, df, dg, w, wf, wg)
+    A, B, chi2, rss_f, rss_g = _projected(g1, g2, None, sums, df, dg, w, wf, wg)
     jtj = _normal_matrix(g1, g2, d1 * xu, d2 * xu, A, w, wf, wg)
     n_res = 2 * w.sum(axis=1)
     cov = _inverse_3x3(jtj) * (chi2 / np.maximum(n_res - 3, 1))[:, None, None]
