@@ -323,3 +323,23 @@ def test_trials_against_a_known_best_are_solve_projected_where_it_matters(name, 
     spared = (scale < 0.9) & (rows % 7 != 0)
     assert spared.sum() > 20 and not given[spared].any()  # a bound far below: none evaluated
     assert given.sum() < np.isfinite(plain).sum()
+
+
+def test_table_buckets_start_at_the_last_point_at_or_below_their_edge():
+    """The bucket index of the table lookup (counted from the points' ceilings) against a binary
+    search of every bucket's edge: for the loop tables and for a table with points exactly on
+    bucket edges, just beside them (one rounding apart), and below the first edge's bucket."""
+    edge = 2.0**-loops.LOOKUP_BITS
+    on = np.arange(0, 40) * edge
+    x = np.unique(np.concatenate([[0.0, 1e-12], on, np.nextafter(on[1:], 1.0), 3.3 * on + 0.1]))
+    odd = loops.LoopTable(x, *(np.sin(k * x) for k in range(1, 5)))
+    for table in (*TABLES.values(), odd):
+        ip = table_interpolant(table)
+        edges = np.arange(ip.first.size) * edge
+        want = np.searchsorted(table.x, edges, side="right") - 1
+        plain = ip.first >= 0
+        assert plain.sum() > 0.8 * plain.size
+        assert np.array_equal(ip.first[plain], want[plain])
+        # a crowded bucket holds more table points than the lookup steps through
+        crowded = np.diff(np.append(want, np.searchsorted(table.x, edges[-1] + edge, "right") - 1))
+        assert np.array_equal(~plain, crowded > loops.LOOKUP_STEPS)
