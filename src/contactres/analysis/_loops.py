@@ -489,44 +489,49 @@ def _exact_near(short, sums, g1, g2, column, df, dg, w, wf, wg, bound=None) -> n
     at = (col * K + k)[:, None] + np.arange(M) * (C * K)
     a1, a2 = (np.take(g, at, mode="wrap") for g in (g1, g2))  # 0 <= at < g.size
     chi = np.full(short.shape, np.inf)
-    chi[r, k] = _projected(a1, a2, r, sums, df, dg, w, wf, wg)[2]
+    chi[r, k] = _projected(a1, a2, _sweep_data(sums, df, dg, w, wf, wg, r))[2]
     return chi
 
 
-def _projected(g1, g2, r, sums, df, dg, w, wf, wg) -> tuple[np.ndarray, ...]:
-    """:func:`solve_projected` (A, B, χ², rss_f, rss_g) of the sweeps ``r`` (None: all, in
-    order) at the shapes ``g1``, ``g2`` (R, M), bit for bit: its arithmetic, in its order, with
-    the parts of the data alone (Σw, the mean of ΔΓ and ΔΓ - mean) taken from
-    :func:`_data_sums` (``sums``) of the sweeps, and in place where solve_projected makes
-    temporaries (``g1`` and ``g2`` are left as they are)."""
+def _sweep_data(sums, df, dg, w, wf, wg, r=None, trials=False) -> tuple[np.ndarray, ...]:
+    """What :func:`_projected` takes of the sweeps: Σw, the mean of ΔΓ, ΔΓ - mean (from
+    :func:`_data_sums`, ``sums``), Δf, ΔΓ, w, wf, wg; of the rows ``r`` (gathered), or of every
+    row (None), with an axis of trials (length 1, broadcast) if ``trials``."""
+    data = (sums[0], sums[4], sums[5], df, dg, w, wf, wg)
+    if r is not None:
+        data = tuple(a.take(r, axis=0) for a in data)
+    if trials:  # (S,) -> (S, 1), (S, M) -> (S, 1, M)
+        data = tuple(a[:, None] for a in data)
+    return data
 
-    def rows(a):
-        return a if r is None else a[r]
 
-    n, dgm, dgc = rows(sums[0]), rows(sums[4]), rows(sums[5])
-    wr = rows(w)
-    ones = bool(np.all(wr == 1.0))
-    wfr, wgr = rows(wf), rows(wg)
+def _projected(g1, g2, data) -> tuple[np.ndarray, ...]:
+    """:func:`solve_projected` (A, B, χ², rss_f, rss_g) at the shapes ``g1``, ``g2`` (..., M),
+    bit for bit: its arithmetic, in its order, with the parts of the data alone (Σw, the mean
+    of ΔΓ and ΔΓ - mean) formed once (``data``: :func:`_sweep_data`, aligned with the shapes),
+    and in place where solve_projected makes temporaries (``g1``, ``g2`` are left as they
+    are)."""
+    n, dgm, dgc, df, dg, w, wf, wg = data
+    ones = bool(np.all(w == 1.0))
 
     def weighted(a):  # w * a, the same numbers (as in solve_projected)
-        return a if ones else wr * a
+        return a if ones else w * a
 
     g2m = weighted(g2).sum(-1) / n
-    g2c = g2 - g2m[:, None]
+    g2c = g2 - g2m[..., None]
     wg1, wg2c = weighted(g1), weighted(g2c)
-    dfr = rows(df)
-    num = wfr * (wg1 * dfr).sum(-1) + wgr * (wg2c * dgc).sum(-1)
-    den = wfr * (wg1 * g1).sum(-1) + wgr * (wg2c * g2c).sum(-1)
+    num = wf * (wg1 * df).sum(-1) + wg * (wg2c * dgc).sum(-1)
+    den = wf * (wg1 * g1).sum(-1) + wg * (wg2c * g2c).sum(-1)
     A = num / den
     B = dgm - A * g2m
-    rf = np.multiply(A[:, None], g1)
-    rf = np.subtract(dfr, rf, out=rf)  # df - A g1
-    rg = np.subtract(rows(dg), B[:, None])
-    rg -= np.multiply(A[:, None], g2, out=g2c)  # dg - B - A g2 (g2c is not needed again)
+    rf = np.multiply(A[..., None], g1)
+    rf = np.subtract(df, rf, out=rf)  # df - A g1
+    rg = np.subtract(dg, B[..., None])
+    rg -= np.multiply(A[..., None], g2, out=g2c)  # dg - B - A g2 (g2c is not needed again)
     rf *= rf
     rg *= rg
     rss_f, rss_g = weighted(rf).sum(-1), weighted(rg).sum(-1)
-    return A, B, wfr * rss_f + wgr * rss_g, rss_f, rss_g
+    return A, B, wf * rss_f + wg * rss_g, rss_f, rss_g
 
 
 #: The short cut's sums run trial set by trial set (two matrix products each) for at most this
@@ -646,10 +651,7 @@ def _fit_cm_chunk(
         xu = (10.0**lx / umax[:, None])[..., None] * u[:, None, :]
         # Both shapes from one lookup, as one complex numpy.interp of the table made them.
         g1, g2 = _interpolate_pair(ip, xu)
-        # solve_projected's χ² of every trial: a row of points per sweep and trial.
-        r = np.repeat(np.arange(lx.shape[0]), lx.shape[1])
-        a1, a2 = (g.reshape(r.size, -1) for g in (g1, g2))
-        return _projected(a1, a2, r, sums, df, dg, w, wf, wg)[2].reshape(lx.shape)
+        return _projected(g1, g2, _sweep_data(sums, df, dg, w, wf, wg, trials=True))[2]
 
     lo, hi = -2.5, np.log10(X_MAX)
     grid = np.broadcast_to(np.linspace(lo, hi, 49), (S, 49))
@@ -683,7 +685,7 @@ def _fit_cm_chunk(
     theta = 10.0**centre / umax
     xu = theta[:, None] * u
     g1, g2, d1, d2 = interpolate_table(ip, xu, ("g1", "g2", "d1", "d2"))
-    A, B, chi2, rss_f, rss_g = _projected(g1, g2, None, sums, df, dg, w, wf, wg)
+    A, B, chi2, rss_f, rss_g = _projected(g1, g2, _sweep_data(sums, df, dg, w, wf, wg))
     jtj = _normal_matrix(g1, g2, d1 * xu, d2 * xu, A, w, wf, wg)
     n_res = 2 * w.sum(axis=1)
     cov = _inverse_3x3(jtj) * (chi2 / np.maximum(n_res - 3, 1))[:, None, None]
