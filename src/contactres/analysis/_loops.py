@@ -476,8 +476,9 @@ def _exact_near(short, sums, g1, g2, column, df, dg, w, wf, wg, bound=None) -> n
     """
     c = sums[1]
     tol = (w.shape[-1] + 4) * 2.0**-40 * c
-    sure = np.isfinite(short).all(axis=1) & np.isfinite(c)  # else every trial of the row
     least = np.min(short, axis=1)
+    # Every trial of a row finite: its least and its largest finite (NaN propagates to both).
+    sure = np.isfinite(least) & np.isfinite(np.max(short, axis=1)) & np.isfinite(c)
     if bound is not None:
         least = np.fmin(least, bound)
     near = (short <= (least + tol)[:, None]) | ~sure[:, None]
