@@ -377,3 +377,46 @@ def test_plateau_fit_at_its_bound_is_the_constrained_fit_and_reproducible():
     # (Pκ, Pωξ, ln θ) alone, resolved (below 1) wherever the loop bends within the sweep.
     bends = bound & (fit["x_max"] > 0.3).to_numpy()
     assert bends.any() and np.all(fit["lntheta_err"][bends] < 1.0)
+
+
+def _plain_line(X, Y, W):
+    """fit_line's sums and solution as the plain formulas write them (every weight multiplied,
+    every array broadcast to its full shape first)."""
+    X, W = np.broadcast_arrays(X, W)
+    Y = np.broadcast_to(Y, (2, *X.shape))
+    S0, Sx, Sxx = W.sum(-1), (W * X).sum(-1), (W * X * X).sum(-1)
+    Sy, Sxy = (W * Y).sum(-1), (W * X * Y).sum(-1)
+    D = S0 * Sxx - Sx**2
+    b = (S0 * Sxy - Sx * Sy) / D
+    a = (Sy - b * Sx) / S0
+    rss = (W * (Y - a[..., None] - b[..., None] * X) ** 2).sum(-1)
+    return a, b, rss
+
+
+@pytest.mark.parametrize("padded", [False, True])
+def test_line_fit_is_least_squares_and_the_plain_sums_however_weights_are_given(padded):
+    """fit_line against numpy.linalg.lstsq per row (1e-9 relative), and bit for bit the plain
+    formulas, with weights of 1 (the products with them skipped) or 0/1 (padding), given in
+    full or once for rows that share them (a length-1 axis, as the hinge's candidates do)."""
+    rng = np.random.default_rng(8)
+    S, K, M = 30, 4, 12
+    X = np.sort(rng.uniform(0.0, 3e-9, (S, K, M)), axis=-1)
+    Y = np.stack([100.0 - 2e9 * X, 4.0 + 1e9 * X]) + rng.normal(0.0, 0.05, (2, S, K, M))
+    Y = Y[:, :, :1]  # the shifts of a sweep are those of each of its candidates
+    w = np.ones((S, 1, M))
+    if padded:
+        w[::2, :, M - 4 :] = 0.0
+    for W in (w, np.broadcast_to(w, X.shape), np.ascontiguousarray(np.broadcast_to(w, X.shape))):
+        fit = fit_line(X, Y, W)
+        a, b, rss = _plain_line(X, Y, W)
+        for got, want in ((fit.a, a), (fit.b, b), (fit.rss, rss)):
+            assert got.shape == (2, S, K)
+            np.testing.assert_array_equal(got, want)
+    for c in range(2):
+        for s in range(S):
+            for k in range(K):
+                m = w[s, 0] > 0
+                A = np.stack([np.ones(m.sum()), X[s, k, m]], axis=1)
+                sol, res = np.linalg.lstsq(A, Y[c, s, 0, m], rcond=None)[:2]
+                np.testing.assert_allclose([fit.a[c, s, k], fit.b[c, s, k]], sol, rtol=1e-9)
+                np.testing.assert_allclose(fit.rss[c, s, k], res[0], rtol=1e-6)

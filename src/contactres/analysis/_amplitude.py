@@ -234,19 +234,30 @@ class LineFit:
 def fit_line(X, Y, W) -> LineFit:
     """Weighted straight line y = a + b x per row (closed form), both channels at once.
 
-    X, W: (..., M); Y: (2, ..., M) (Δf and ΔΓ).
+    X, W: (..., M); Y: (2, ..., M) (Δf and ΔΓ), broadcast together (W and Y may be given with
+    a length-1 axis where X has rows that share them: their sums are then formed once).
+
+    The sums are those of the plain formulas (Σ w x, Σ w x x, Σ w x y ... multiplied left to
+    right), bit for bit: w x is formed once and reused, and the products with w are skipped
+    where every weight is 1 (1.0 * a is a), as in sweeps of one length (the usual blocks).
     """
+    ones = bool(np.all(W == 1.0))
+
+    def weighted(a):  # W * a, the same numbers
+        return a if ones else W * a
+
     S0 = W.sum(-1)
-    Sx = (W * X).sum(-1)
-    Sxx = (W * X * X).sum(-1)
-    Sy = (W * Y).sum(-1)
-    Sxy = (W * X * Y).sum(-1)
+    WX = weighted(X)
+    Sx = WX.sum(-1)
+    Sxx = (WX * X).sum(-1)
+    Sy = weighted(Y).sum(-1)
+    Sxy = (WX * Y).sum(-1)
     D = S0 * Sxx - Sx**2
     ok = D > 1e-300 * np.maximum(Sxx * S0, 1e-300)
     Dsafe = np.where(ok, D, 1.0)
     b = np.where(ok, (S0 * Sxy - Sx * Sy) / Dsafe, 0.0)
     a = (Sy - b * Sx) / S0
-    rss = (W * (Y - a[..., None] - b[..., None] * X) ** 2).sum(-1)
+    rss = weighted((Y - a[..., None] - b[..., None] * X) ** 2).sum(-1)
     s2 = rss / np.maximum(S0 - 2, 1)
     var_a = np.where(ok, s2 * Sxx / Dsafe, np.inf)
     var_b = np.where(ok, s2 * S0 / Dsafe, np.inf)
@@ -295,6 +306,16 @@ def _suffix(a: np.ndarray) -> np.ndarray:
     return np.concatenate([s, np.zeros((*a.shape[:-1], 1))], axis=-1)
 
 
+def _suffix_at(a: np.ndarray, k: np.ndarray) -> np.ndarray:
+    """Σ_{i >= k} a_i along the last axis of ``a`` (..., S, M) at the positions ``k`` (S, C)
+    (0 <= k <= M) of each row: ``take_along_axis(_suffix(a), k)`` for every leading index, the
+    same numbers, gathered by flat indices formed once for all of them."""
+    S, M = a.shape[-2:]
+    suffix = _suffix(a).reshape(*a.shape[:-2], S * (M + 1))
+    flat = k + (M + 1) * np.arange(S)[:, None]
+    return suffix.take(flat, axis=-1)
+
+
 def _hinge_crit(rss) -> np.ndarray:
     return np.log(np.maximum(rss[0], 1e-30)) + np.log(np.maximum(rss[1], 1e-30))
 
@@ -324,7 +345,7 @@ def _hinge_candidates(u, w, n) -> tuple[np.ndarray, ...]:
     top = u[np.arange(S), n - 1][:, None]
     v = (u - top) * w
     kk = k.reshape(S, -1)
-    A0, A1, A2 = (np.take_along_axis(_suffix(q), kk, axis=-1) for q in (w, v, v * (u - top)))
+    A0, A1, A2 = _suffix_at(np.stack([w, v, v * (u - top)]), kk)
     ucv = uc.reshape(S, -1) - top
     Sx = A1 - ucv * A0
     Sxx = A2 - 2.0 * ucv * A1 + ucv * ucv * A0
@@ -364,13 +385,19 @@ def fit_hinge(b: Block) -> HingeFit:
         uc, kk, valid, ucv, D, ok = (a[group] for a in sets)
     top = u[np.arange(S), n - 1][:, None]
     yc = (Y - ((w * Y).sum(-1) / n)[..., None]) * w
-    kk2 = np.broadcast_to(kk, (2, *kk.shape))
-    B0, B1 = (np.take_along_axis(_suffix(q), kk2, axis=-1) for q in (yc, yc * (u - top)))
+    B0, B1 = _suffix_at(np.stack([yc, yc * (u - top)]), kk)
     S0 = n[:, None].astype(float)
-    Sxy = B1 - ucv * B0
     Syy = (yc * yc).sum(-1)[..., None]
-    rss = np.where(ok, Syy - Sxy**2 * S0 / np.where(ok, D, 1.0), Syy)
-    crit = np.where(valid.reshape(S, -1), _hinge_crit(rss), np.inf)
+    # rss = Syy - Sxy² S0/D (Sxy = B1 - ucv B0) where D is safely positive, else Syy: the
+    # numbers of that expression, formed in place in B1.
+    rss = np.subtract(B1, np.multiply(B0, ucv, out=B0), out=B1)
+    rss *= rss
+    rss *= S0
+    rss /= np.where(ok, D, 1.0)
+    rss = np.subtract(Syy, rss, out=rss)
+    np.copyto(rss, Syy, where=~ok)
+    crit = _hinge_crit(rss)
+    np.copyto(crit, np.inf, where=~valid.reshape(S, -1))
 
     # Re-rank the best few candidates with the direct sums; ties go to the first candidate.
     K = min(HINGE_RECHECK, crit.shape[1])
@@ -379,7 +406,8 @@ def fit_hinge(b: Block) -> HingeFit:
     pick[none, 0] = 0  # no valid candidate: report the first, as a full search would
     uc_k = np.take_along_axis(uc.reshape(S, -1), pick, axis=1)  # (S, K)
     Xh = np.maximum(u[:, None, :] - uc_k[..., None], 0.0)  # (S, K, M)
-    lines = fit_line(Xh, Y[:, :, None, :], np.broadcast_to(w[:, None, :], Xh.shape))
+    # The weights and shifts of a sweep are those of each of its candidates: given once.
+    lines = fit_line(Xh, Y[:, :, None, :], w[:, None, :])
     valid_k = np.take_along_axis(valid.reshape(S, -1), pick, axis=1)
     crit_k = np.where(valid_k, _hinge_crit(lines.rss), np.inf)
     best = np.argmin(crit_k, axis=1)
