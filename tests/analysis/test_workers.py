@@ -2,8 +2,8 @@
 stage, shut down at the end or on an error; the results are the serial path's."""
 
 import concurrent.futures
-import gc
 import multiprocessing
+import time
 from concurrent.futures import ProcessPoolExecutor
 from functools import partial
 from typing import ClassVar
@@ -24,11 +24,6 @@ from contactres.measurements._synthetic import SweepGroup, SweepStudy, synthetic
 from contactres.resonators._qcm import QCM
 
 Q = QCM(fundamental=5e6, overtone=3, area=2.5e-5)
-FORK = (
-    multiprocessing.get_context("fork")
-    if "fork" in multiprocessing.get_all_start_methods()
-    else None
-)
 
 
 class CountingPool(ProcessPoolExecutor):
@@ -40,12 +35,15 @@ class CountingPool(ProcessPoolExecutor):
     def __init__(self, *args, **kwargs):
         super().__init__(*args, **kwargs)
         self.functions: list = []
+        self.futures: list = []
         self.shutdowns: list[bool] = []
         CountingPool.made.append(self)
 
     def submit(self, call, fn, *args, **kwargs):
         self.functions.append(fn)
-        return super().submit(call, fn, *args, **kwargs)
+        future = super().submit(call, fn, *args, **kwargs)
+        self.futures.append(future)
+        return future
 
     def shutdown(self, wait=True, *, cancel_futures=False):
         self.shutdowns.append(cancel_futures)
@@ -88,6 +86,8 @@ def test_one_pool_serves_every_stage_and_gives_the_serial_results(study, countin
     pd.testing.assert_frame_equal(serial.sweeps, two.sweeps)
     pd.testing.assert_frame_equal(serial.curves, two.curves)
     pd.testing.assert_frame_equal(serial.blocks, two.blocks)
+    # (the groups' JKR fits run in the pool too)
+    pd.testing.assert_frame_equal(pd.DataFrame(serial.groups), pd.DataFrame(two.groups))
     assert len(serial.groups) == 2 and serial.groups[0]["error_method"].startswith("bootstrap")
     for one, other in zip(serial.groups, two.groups, strict=True):
         assert one.keys() == other.keys()
@@ -148,24 +148,30 @@ def test_the_calls_are_sent_a_few_ahead_of_the_results():
         ]
 
 
-def _frozen(_) -> int:
-    """The number of objects outside the garbage collector's reach in this process."""
-    return gc.get_freeze_count()
+def test_chunks_of_calls_are_sent_whole_and_ahead():
+    # chunksize calls go together: the first AHEAD_PER_PROCESS chunks per process are sent at
+    # once, so that many chunks' arguments are read, not that many calls'.
+    made: list[int] = []
 
+    def arguments():
+        for k in range(40):
+            made.append(k)
+            yield -k
 
-@pytest.mark.skipif("fork" not in multiprocessing.get_all_start_methods(), reason="no fork")
-def test_forked_workers_leave_the_parents_objects_to_the_parent(monkeypatch):
-    # A worker's garbage collection would write to (and so copy) every page of the parent's
-    # objects; forked while they are frozen, the workers never scan them, and the parent,
-    # unfrozen after the fork, collects them as before.
-    monkeypatch.setattr(
-        concurrent.futures, "ProcessPoolExecutor", partial(ProcessPoolExecutor, mp_context=FORK)
-    )
-    before = gc.get_freeze_count()
     with WorkerPool(2) as pool:
-        frozen = run_in_workers(_frozen, pool, [0, 1, 2, 3])
-        assert gc.get_freeze_count() == before
-    assert min(frozen) > len(gc.get_objects()) // 2
+        results = pool.imap(abs, 40, arguments(), chunksize=4)
+        assert len(made) == 4 * AHEAD_PER_PROCESS * 2
+        assert list(results) == list(range(40))
+
+
+def test_the_chunks_not_started_are_cancelled_when_the_reader_closes(counting):
+    # A caller that stops reading and closes the results: what is queued is not run for nobody.
+    with WorkerPool(2) as pool:
+        results = pool.imap(time.sleep, 20, [0.2] * 20)
+        next(results)
+        results.close()
+        (executor,) = counting
+        assert any(f.cancelled() for f in executor.futures)
 
 
 @pytest.mark.parametrize("method", ["spawn", "forkserver"])
@@ -184,3 +190,5 @@ def test_the_pool_works_with_processes_started_afresh(study, method, monkeypatch
     pd.testing.assert_frame_equal(serial.sweeps, two.sweeps)
     pd.testing.assert_frame_equal(serial.curves, two.curves)
     pd.testing.assert_frame_equal(serial.blocks, two.blocks)
+    # (the groups' JKR fits run in the pool too)
+    pd.testing.assert_frame_equal(pd.DataFrame(serial.groups), pd.DataFrame(two.groups))

@@ -14,14 +14,11 @@ runs which task.
 The processes start by :mod:`multiprocessing`'s default method (``fork`` on Linux up to
 Python 3.13, ``forkserver`` from 3.14, ``spawn`` on macOS and Windows). Every call's
 arguments are sent to its process (pickled), never read from memory inherited by a fork, so
-every method gives the same results; a forked process's memory is the parent's until either
-writes to it, and the parent's objects are frozen out of the garbage collector while the
-processes fork (:meth:`WorkerPool.imap`).
+every method gives the same results.
 """
 
 from __future__ import annotations
 
-import gc
 from collections import deque
 from collections.abc import Callable, Iterable, Iterator
 from contextlib import contextmanager
@@ -32,11 +29,14 @@ from typing import TYPE_CHECKING
 if TYPE_CHECKING:
     from concurrent.futures import Executor, Future
 
-#: Calls sent ahead per process: each process has its call under way and the next ones queued
-#: (no idle wait between calls), while the arguments and results in flight stay a few calls'
-#: worth. :meth:`concurrent.futures.Executor.map` sent every call at once, so the parent
-#: padded and held every block of a stage before the first came back (~0.12 GB at 10^5
-#: sweeps, issue 31, point 3).
+#: Chunks of calls (``chunksize`` calls each) sent ahead per process: each process has its chunk
+#: under way and the next ones queued (no idle wait between chunks), while the arguments and
+#: results in flight stay a few chunks' worth. :meth:`concurrent.futures.Executor.map` sent
+#: every call at once, so the parent padded and held every block of a stage before the first
+#: came back (~0.12 GB at 10^5 sweeps, issue 31, point 3; at t4's 10^4 sweeps in blocks of
+#: 4,000 points, at most 7 blocks alive against 29). The price is in wall time only: results
+#: are taken in order, so a slow chunk holds back the sending of new ones, and once the chunks
+#: queued behind it are done the other processes wait for it.
 AHEAD_PER_PROCESS = 3
 
 __all__ = ["WorkerPool", "lent_pool", "run_in_workers"]
@@ -66,10 +66,10 @@ class WorkerPool:
         """``map(fn, *iterables)``, in the worker processes where :meth:`parallel` (``tasks``:
         the length of the shortest iterable): the results in order, each as it is ready.
 
-        In the processes, the calls go ``chunksize`` at a time, at most
-        :data:`AHEAD_PER_PROCESS` per process sent ahead of the result being waited for: the
-        iterables are read as the calls are sent (the first ones now), so that a generator's
-        arguments are made a few calls ahead, not all at once."""
+        In the processes, the calls go in chunks of ``chunksize``, at most
+        :data:`AHEAD_PER_PROCESS` chunks per process sent ahead of the one whose results are
+        being waited for: the iterables are read as the chunks are sent (the first ones now),
+        so that a generator's arguments are made a few chunks ahead, not all at once."""
         if not self.parallel(tasks):
             return map(fn, *iterables)
         # Not strict: as for map, the shortest iterable ends it (others may be endless repeats).
@@ -88,19 +88,7 @@ class WorkerPool:
         # analysis's one thread only when forked inside its context.
         executor = ProcessPoolExecutor(self.processes, initializer=one_blas_thread_for_process)
         self._executor = executor
-        # The first call starts the processes (all of them at once where they are forked).
-        # A forked process shares the parent's memory until either writes to a page; the
-        # cyclic garbage collector writes to the header of every object it scans, so a
-        # worker's full collection would copy every page that holds the parent's objects
-        # (and then the parent's own next one, for its side). Frozen, the parent's objects
-        # are outside every collection of the workers (they never free them: the worker
-        # ends with the pool); unfrozen here after the fork, the parent collects them as
-        # before. With spawn or forkserver nothing is shared and this changes nothing.
-        gc.freeze()
-        try:
-            sent = deque(executor.submit(_call_each, fn, c) for c in first)
-        finally:
-            gc.unfreeze()
+        sent = deque(executor.submit(_call_each, fn, c) for c in first)
         return _in_order(executor, fn, calls, sent)
 
     def close(self, cancel: bool = False) -> None:
@@ -138,8 +126,10 @@ def _in_order(
 ) -> Iterator:
     """The results of the chunks ``sent`` and then of ``calls``, in order: for each chunk
     taken from ``sent``, one more of ``calls`` is sent before its result is waited for, so
-    that as many stay ahead. On an error, or when the caller stops reading, the chunks not
-    yet started are cancelled."""
+    that as many stay ahead. On an error, or when a caller that has started reading closes
+    the iterator, the chunks sent and not yet started are cancelled; chunks sent for an
+    iterator that is never read are cancelled by the pool's owner when it leaves the pool on
+    an error (:meth:`WorkerPool.close`), or else run and their results are dropped."""
     try:
         while sent:
             head = sent.popleft()
