@@ -281,50 +281,6 @@ def test_errors_are_the_pseudo_inverse_of_the_jacobian(name):
         assert np.all(np.abs(fit[col].to_numpy() - want) <= 1e-11 * scale), col
 
 
-@pytest.mark.parametrize("name", ["cm", "savkoor"])
-@pytest.mark.parametrize("programmes", [None, 3, 120])
-def test_trials_against_a_known_best_are_solve_projected_where_it_matters(name, programmes):
-    """A round of the θ search: its trials compete with the best trial so far, whose χ² is
-    known (``bound``). Against solve_projected at every trial with that best put beside them
-    (ties: the trials first): the least sits where solve_projected's least sits, with its value,
-    every value given is solve_projected's, and the trials that cannot beat the best are spared
-    (bounds from well below to well above each row's least, and equal to a trial's own χ²)."""
-    table = TABLES[name]
-    u, df, dg, w, sigma = _sweeps(table, S=240, programmes=programmes, seed=4)
-    S = u.shape[0]
-    wf, wg = 1.0 / sigma**2, 1.0 / sigma**2
-    umax = np.max(np.where(w > 0, u, 0.0), axis=1)
-    amplitudes = row_sets(np.concatenate([u, w], axis=1).view(np.int64))[1]
-    rng = np.random.default_rng(7)
-    centre = np.round(rng.uniform(-2.0, 1.0, S), 1)
-    lx = centre[:, None] + np.linspace(-0.3, 0.3, 8)
-    key = np.stack([amplitudes, centre.view(np.int64)], 1)
-    xu = (10.0**lx / umax[:, None])[..., None] * u[:, None, :]
-    g1, g2 = interpolate_table(table_interpolant(table), xu, ("c1", "c2"))
-    a = (df[:, None], dg[:, None], w[:, None], wf[:, None], wg[:, None])
-    full = solve_projected(g1, g2, *a)[2]
-    rows = np.arange(S)
-    least = full.min(axis=1)
-    scale = rng.choice([0.5, 0.999999, 1.0, 1.000001, 2.0], S)
-    bound = least * scale
-    bound[::7] = full[rows[::7], rng.integers(0, 8, rows[::7].size)]  # a trial's own χ²
-    bound[5] = np.nan  # no cut
-    ip = table_interpolant(table)
-    got = _shared_chi2(ip, u, df, dg, w, wf, wg, umax, lx, key, None, bound)
-    plain = _shared_chi2(ip, u, df, dg, w, wf, wg, umax, lx, key)
-    want = np.concatenate([full, bound[:, None]], axis=1)
-    have = np.concatenate([got, bound[:, None]], axis=1)
-    at = np.argmin(want, axis=1)
-    assert np.array_equal(np.argmin(have, axis=1), at)
-    assert np.array_equal(have[rows, at], want[rows, at], equal_nan=True)
-    given = np.isfinite(got)
-    assert np.array_equal(got[given], full[given])
-    assert np.array_equal(np.isfinite(got[5]), np.isfinite(plain[5]))
-    spared = (scale < 0.9) & (rows % 7 != 0)
-    assert spared.sum() > 20 and not given[spared].any()  # a bound far below: none evaluated
-    assert given.sum() < np.isfinite(plain).sum()
-
-
 def test_table_buckets_start_at_the_last_point_at_or_below_their_edge():
     """The bucket index of the table lookup (counted from the points' ceilings) against a binary
     search of every bucket's edge: for the loop tables and for a table with points exactly on

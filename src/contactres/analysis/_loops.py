@@ -6,9 +6,9 @@ forward model (:func:`contactres.shifts_from_loop` on a :class:`contactres.Catta
 and the fit Δf = Pκ g′(θu0), ΔΓ = P[ωξ + κ g″(θu0)] with θ = κ/(μF_N) is solved by variable
 projection: for fixed θ, Pκ and Pωξ follow in closed form; θ is found by a zooming grid search
 (relative resolution < 1e-3), independently for every sweep. The search's rounds take χ² in its
-residual-free form C - num²/den, exact χ² only where a trial can be the least, of the round
-and against the best trial so far (the same trials and numbers as χ² at every trial;
-:func:`_least_chi2`). Sweeps measured at the same amplitudes
+residual-free form C - num²/den, exact χ² only where a trial can be the least of the round
+(:func:`_least_chi2`: the trial and value of χ² at every trial, but where solve_projected's own
+rounding exceeds the short cut's tolerance). Sweeps measured at the same amplitudes
 (one amplitude programme: bit for bit the same u) look the table up once for the trials that
 they share, the grid and a round's trials where they share its centre, and sum over their
 points by matrix products (:func:`_shared_chi2`: the same numbers). Errors come from the Jacobian in
@@ -369,7 +369,7 @@ def solve_projected(g1, g2, df, dg, w, wf, wg):
     return A, B, wf * rss_f + wg * rss_g, rss_f, rss_g
 
 
-def _least_chi2(g1, g2, df, dg, w, wf, wg, sums=None, bound=None) -> np.ndarray:
+def _least_chi2(g1, g2, df, dg, w, wf, wg, sums=None) -> np.ndarray:
     """:func:`solve_projected`'s χ², bit for bit, at the trials that can hold the least χ² of
     their sweep; +inf at the others.
 
@@ -379,13 +379,17 @@ def _least_chi2(g1, g2, df, dg, w, wf, wg, sums=None, bound=None) -> np.ndarray:
     over points weighted by data are a matrix-vector product per sweep (BLAS), those of
     squares a sum along the first axis (where a sum along the last axis pays numpy's per-row
     overhead on rows of ~10 points): about a fifth of solve_projected's cost. The two forms
-    differ by rounding only, a few (M + 3)·ε·C at most (Higham's bound for sums of M terms in
-    any order; every term is at most ~C, since num² <= den·C); a trial more than
-    (M + 4)·2^-40·C (~10³ times that bound) above the least short-cut value cannot be the
-    least, so only the trials within it, one or two a sweep, are evaluated as
-    :func:`solve_projected` evaluates them (:func:`_exact_near`). numpy.argmin over the result
-    then finds the trial that it finds over solve_projected's χ² at every trial (ties: the
-    first).
+    differ by rounding only. The short cut's own is a few (M + 3)·ε·C at most (Higham's bound
+    for sums of M terms in any order; every term is at most ~C, since num² <= den·C); a trial
+    more than (M + 4)·2^-40·C (~10³ times that bound) above the least short-cut value is not
+    taken as a candidate, so only the trials within it, one or two a sweep, are evaluated as
+    :func:`solve_projected` evaluates them (:func:`_exact_near`), and numpy.argmin over the
+    result finds the trial that it finds over solve_projected's χ² at every trial (ties: the
+    first) wherever solve_projected's rounding is within that tolerance too. It need not be:
+    where A and B are large and cancel (nearly equal amplitudes, a Δf channel of almost no
+    weight), solve_projected's χ² carries up to ~10⁵ ε·C (review R28d, with exact rational
+    arithmetic), and the trial found can differ from its argmin at every trial; the two χ²
+    then differ by rounding alone.
 
     Parameters
     ----------
@@ -395,14 +399,11 @@ def _least_chi2(g1, g2, df, dg, w, wf, wg, sums=None, bound=None) -> np.ndarray:
     w : (S, M) weights (0 for padding)
     wf, wg : (S,) weights of the two channels, Hz⁻²
     sums : :func:`_data_sums` of these sweeps (None: formed here; the same numbers)
-    bound : (S,) a χ² known for each row, which these trials compete with (the θ search's best
-        trial so far), or None: the trials that cannot beat it are not evaluated
-        (:func:`_exact_near`)
 
     Returns
     -------
-    (S, K) χ² (dimensionless): solve_projected's where it can be its row's least (and that of
-    ``bound``), +inf elsewhere
+    (S, K) χ² (dimensionless): solve_projected's where it can be its row's least, +inf
+    elsewhere
     """
     ones = bool(np.all(w == 1.0))
     sums = _data_sums(df, dg, w, wf, wg) if sums is None else sums
@@ -418,7 +419,7 @@ def _least_chi2(g1, g2, df, dg, w, wf, wg, sums=None, bound=None) -> np.ndarray:
     else:
         ss1, ss2 = _dot(w, g1 * g1), _dot(w, g2c * g2c)
     short = _short_chi2(c, _dot(wdf, g1), _dot(wdg, g2c), ss1, ss2, wf, wg)
-    return _exact_near(short, sums, g1, g2, None, df, dg, w, wf, wg, bound)
+    return _exact_near(short, sums, g1, g2, None, df, dg, w, wf, wg)
 
 
 def _dot(v, g) -> np.ndarray:
@@ -463,24 +464,17 @@ def _data_sums(df, dg, w, wf, wg) -> tuple[np.ndarray, ...]:
     return n, c, w * df, w * dgc, dgm, dgc
 
 
-def _exact_near(short, sums, g1, g2, column, df, dg, w, wf, wg, bound=None) -> np.ndarray:
+def _exact_near(short, sums, g1, g2, column, df, dg, w, wf, wg) -> np.ndarray:
     """(S, K): :func:`solve_projected`'s χ² at the trials whose short-cut χ² ``short`` lies
     within (M + 4)·2^-40·C of their row's least (every trial of a row with a non-finite one),
     +inf elsewhere (:func:`_least_chi2`). The shapes of sweep s are ``g1[:, column[s]]``
     (``column`` None: ``g1[:, s]``); ``sums``: :func:`_data_sums` of the sweeps.
-
-    ``bound`` (S,): a χ² already known for each row (the θ search's best trial so far, which
-    competes with these trials), or None. A trial whose short cut lies more than the tolerance
-    above it has an exact χ² above it too, so it cannot be the least of the row with that
-    trial: it is left at +inf, unevaluated (a NaN bound: no such cut, as without one).
     """
     c = sums[1]
     tol = (w.shape[-1] + 4) * 2.0**-40 * c
     least = np.min(short, axis=1)
     # Every trial of a row finite: its least and its largest finite (NaN propagates to both).
     sure = np.isfinite(least) & np.isfinite(np.max(short, axis=1)) & np.isfinite(c)
-    if bound is not None:
-        least = np.fmin(least, bound)
     near = (short <= (least + tol)[:, None]) | ~sure[:, None]
     r, k = np.nonzero(near)
     col = r if column is None else column[r]
@@ -541,7 +535,7 @@ def _projected(g1, g2, data) -> tuple[np.ndarray, ...]:
 GROUP_LOOP = 8
 
 
-def _shared_chi2(ip, u, df, dg, w, wf, wg, umax, lx, key, sums=None, bound=None) -> np.ndarray:
+def _shared_chi2(ip, u, df, dg, w, wf, wg, umax, lx, key, sums=None) -> np.ndarray:
     """:func:`_least_chi2` at the trials x_max = 10^lx (``lx`` (S, K)): the same numbers, the
     table looked up once per set of sweeps with the same amplitudes and trials, the sweeps
     whose rows of ``key`` (S, C) (integers) agree (:func:`_fit_cm_chunk`: the amplitudes'
@@ -553,8 +547,7 @@ def _shared_chi2(ip, u, df, dg, w, wf, wg, umax, lx, key, sums=None, bound=None)
     few such sets the short cut's sums over the points are matrix products of a set's shapes
     (M, K) with the data of its sweeps (BLAS; any order of the sums is within the short cut's
     tolerance), otherwise those of :func:`_least_chi2` on the shapes gathered per sweep.
-    ``sums``: :func:`_data_sums` of the sweeps (None: formed here; the same numbers);
-    ``bound``: as in :func:`_least_chi2`.
+    ``sums``: :func:`_data_sums` of the sweeps (None: formed here; the same numbers).
     """
     sums = _data_sums(df, dg, w, wf, wg) if sums is None else sums
     first, group, order, ends = row_sets(key)
@@ -567,8 +560,7 @@ def _shared_chi2(ip, u, df, dg, w, wf, wg, umax, lx, key, sums=None, bound=None)
         for s in (slice(i, i + step) for i in range(0, S, step)):
             g1, g2 = _search_pair(ip, u[s], 10.0 ** lx[s] / umax[s, None])
             part = tuple(a[s] for a in sums)
-            cut = None if bound is None else bound[s]
-            parts.append(_least_chi2(g1, g2, df[s], dg[s], w[s], wf[s], wg[s], part, cut))
+            parts.append(_least_chi2(g1, g2, df[s], dg[s], w[s], wf[s], wg[s], part))
         return np.concatenate(parts) if parts else np.empty(lx.shape)
     # θ of the set's first sweep: that of every sweep of the set, bit for bit.
     g1, g2 = _search_pair(ip, u[first], 10.0 ** lx[first] / umax[first][:, None])
@@ -587,7 +579,7 @@ def _shared_chi2(ip, u, df, dg, w, wf, wg, umax, lx, key, sums=None, bound=None)
             rows = slice(ends[i], ends[i + 1]) if runs else order[ends[i] : ends[i + 1]]
             n1[rows], n2[rows] = wdf[rows] @ g1[:, i], wdg[rows] @ g2c[:, i]
     short = _short_chi2(c, n1, n2, ss[0][group], ss[1][group], wf, wg)
-    return _exact_near(short, sums, g1, g2, group, df, dg, w, wf, wg, bound)
+    return _exact_near(short, sums, g1, g2, group, df, dg, w, wf, wg)
 
 
 def fit_cm_loops(
@@ -645,10 +637,10 @@ def _fit_cm_chunk(
 
     # Sweeps of one amplitude set share their lookups where they share their trials: on the
     # grid, and in a round where they share its centre.
-    def chi2_at(lx, least=False, centre=None, bound=None):  # lx: (S, K) log10 of x_max
+    def chi2_at(lx, least=False, centre=None):  # lx: (S, K) log10 of x_max
         if least:  # only the least χ² of each row matters (its position, its value)
             key = amplitudes[:, None] if centre is None else np.stack([amplitudes, centre], 1)
-            return _shared_chi2(ip, u, df, dg, w, wf, wg, umax, lx, key, sums, bound)
+            return _shared_chi2(ip, u, df, dg, w, wf, wg, umax, lx, key, sums)
         xu = (10.0**lx / umax[:, None])[..., None] * u[:, None, :]
         # Both shapes from one lookup, as one complex numpy.interp of the table made them.
         g1, g2 = _interpolate_pair(ip, xu)
@@ -667,9 +659,9 @@ def _fit_cm_chunk(
     for _ in range(rounds):
         around = np.delete(np.linspace(-step, step, 9), 4)  # the middle one is 0 exactly
         local = np.clip(centre[:, None] + around[None, :], lo, hi)
-        # The best so far competes with the round's trials: those that cannot beat it are
-        # not evaluated (a quarter of the rows: the best stays in the middle).
-        chi = _with_middle(chi2_at(local, True, centre.view(np.int64), best), best)
+        # (Trials were once spared against the best so far: its tolerance did not cover
+        # solve_projected's rounding where A and B cancel, and results moved; review R28d.)
+        chi = _with_middle(chi2_at(local, True, centre.view(np.int64)), best)
         j = np.argmin(chi, axis=1)
         centre = _with_middle(local, centre)[rows, j]
         best = chi[rows, j]
