@@ -621,11 +621,16 @@ def test_an_even_number_of_fine_nodes_evaluates_l_one_step_from_l_pi(monkeypatch
         assert abs(two_ln_b[0] - two_ln_b[1]) < 0.05
 
 
-def test_rows_that_read_their_blocks_points_equal_rows_given_their_own_copies():
-    # The integrand takes each block's points once and each row's block by index (``own``):
-    # the same numbers, bit for bit, as with the points copied to every row, for rows sharing
-    # their slopes (one grid of amplitudes, equal d_c/u_max), rows of their own, a prior on μ
-    # for one block, and nodes in y given once for all rows.
+def test_rows_evaluated_together_equal_each_row_evaluated_alone():
+    # The integrand takes each block's points once and each row's block by index (``own``),
+    # orders the rows into sets that share their slopes and scatters each segment's values
+    # back: every row's numbers must be those of the row evaluated alone, bit for bit (a
+    # block's result depends on its own row alone: the evidence deals blocks out to worker
+    # processes), for rows sharing their slopes (one grid of amplitudes, equal d_c/u_max), rows
+    # of their own, a prior on μ for one block, and nodes in y given once for all rows. A row
+    # alone takes another path (its own slopes, the stacked products), so a row written to
+    # another row's place or solved with another block's numbers is caught, which the same
+    # rows given copies of their points (the same ordering and scatter) would not catch.
     from contactres.analysis import _plateau_evidence as ev
 
     blocks = [_block(1, 0.0), _block(2, 0.3), _block(3, 0.3)]
@@ -638,12 +643,14 @@ def test_rows_that_read_their_blocks_points_equal_rows_given_their_own_copies():
     own = np.array([2, 0, 1, 0, 2, 1, 1, 0])
     dl = np.array([0.3, 0.3, 0.3, 0.1, 0.1, 0.2, 0.05, 0.0])[:, None]
     y = np.linspace(-4.0, 1.0, 9)[None]
-    copies = tuple(a[own] for a in pts)
     by_index = ev._integrand(pts, dl, y, own=own)
     assert np.isfinite(by_index).all()
-    np.testing.assert_array_equal(by_index, ev._integrand(copies, dl, y))
+    for r, b in enumerate(own):
+        alone = ev._integrand(tuple(a[[b]] for a in pts), dl[[r]], y)
+        np.testing.assert_array_equal(by_index[:, r], alone[:, 0])
+    # Nodes in y given row by row: the same numbers.
     np.testing.assert_array_equal(
-        by_index, ev._integrand(copies, dl, np.repeat(y, own.size, axis=0))
+        by_index, ev._integrand(pts, dl, np.repeat(y, own.size, axis=0), own=own)
     )
 
 
@@ -664,3 +671,77 @@ def test_segments_are_runs_of_whole_sets_of_at_least_the_rows_asked(sizes):
                 expect.append((start, d + 1))
                 start, total = d + 1, 0
         assert got == expect
+
+
+def test_the_solve_at_the_nodes_is_the_weighted_least_squares_fit_of_the_points():
+    # ln L + ln π, ln L and ln μ at a node from the sums over a block's distinct amplitudes
+    # (level_weights, level_sums, node_values) against the weighted least-squares fit of its
+    # points one by one, written out here: min over Pκ, Pωξ of
+    # w_f Σ (Δf - Pκ G′)² + w_Γ Σ (ΔΓ - Pωξ - Pκ G″)², w = 1/σ², then
+    # ln L = -n/2 (ln RSS_f + ln RSS_Γ), μ = Pκ to_mu / θ. The noise levels differ and the
+    # channels disagree on Pκ (40 Hz in Δf, 25 Hz in ΔΓ), so that Pκ, and every value, depends
+    # on which channel carries which weight. Both paths of the sums are taken: rows on slopes
+    # of their own (stacked products; block 2 on fewer amplitudes, padded) and two blocks on one
+    # grid of amplitudes sharing one row of slopes.
+    from contactres.analysis import _plateau_evidence as ev
+    from contactres.analysis._evidence_solve import level_sums, level_weights, node_values
+
+    rng = np.random.default_rng(7)
+    umax = 2e-9
+    grid, short = np.linspace(0.1, 1.0, 11) * umax, np.linspace(0.2, 1.0, 9) * umax
+    u = [np.tile(grid, 3), np.tile(grid, 3), np.tile(short, 4)]
+    data = []
+    for uu in u:
+        g1, g2 = plateau_loop_shape(1.2 / umax * uu, 1.2 * 0.3)  # x_max 1.2, d_c 0.3 u_max
+        df = 40.0 * g1 + 0.6 * rng.standard_normal(uu.size)
+        data.append((df, 5.0 + 25.0 * g2 + 0.6 * rng.standard_normal(uu.size)))
+    arrays = np.zeros((4, 3, 36))  # u, Δf, ΔΓ, w of each block, padded
+    for b, (uu, (df, dg)) in enumerate(zip(u, data, strict=True)):
+        arrays[:3, b, : uu.size] = uu, df, dg
+        arrays[3, b, : uu.size] = 1.0
+    sigma = np.array([[0.4, 1.5, 1.5], [1.5, 0.4, 0.3]])  # σ_f, σ_Γ (rows) of each block
+    to_mu = np.array([1.0, 2.0, 0.5])
+    mu = (np.array([np.log(40.0 / 0.6e9), np.nan, np.nan]), np.array([0.04, np.nan, np.nan]))
+    per_block = ev._levels(*arrays, np.arange(3))
+    pts = ev._rows(per_block, sigma, mu, to_mu, [0, 1, 2])
+    levels = pts[0][:, 0]  # (3, 11): block 2's padded with u_max
+    W, n, per = level_weights(pts, levels.shape[1])
+    theta = np.array([0.4, 0.9, 1.2, 1.7, 2.5]) / umax
+
+    def slopes_at(uu, dl):  # [G′; G″] (2Y, len(uu)) at the nodes θ
+        g1, g2 = plateau_loop_shape(theta[:, None] * uu, theta[:, None] * dl * umax)
+        return np.concatenate([g1, g2])
+
+    def reference(b, dl):  # the fit of block b's points at each node: (3, Y)
+        (df, dg), root = data[b], np.sqrt(sigma[:, b] ** -2.0)
+        out = np.empty((3, theta.size))
+        for j, t in enumerate(theta):
+            g1, g2 = plateau_loop_shape(t * u[b], t * dl * umax)
+            zero, one = np.zeros_like(g1), np.ones_like(g1)
+            design = np.concatenate([root[0] * np.c_[g1, zero], root[1] * np.c_[g2, one]])
+            rhs = np.concatenate([root[0] * df, root[1] * dg])
+            (A, B), *_ = np.linalg.lstsq(design, rhs, rcond=None)
+            rss_f, rss_g = np.sum((df - A * g1) ** 2), np.sum((dg - B - A * g2) ** 2)
+            ln_l = -0.5 * g1.size * (np.log(rss_f) + np.log(rss_g))
+            ln_mu = np.log(A * to_mu[b] / t)
+            m, v = mu[0][b], mu[1][b]
+            ln_pi = 0.0  # no prior on μ: flat
+            if np.isfinite(m):
+                ln_pi = -0.5 * (ln_mu - m) ** 2 / v - 0.5 * np.log(2 * np.pi * v)
+            out[:, j] = ln_l + ln_pi, ln_l, ln_mu
+        return out
+
+    dl = np.array([0.3, 0.1, 0.2])
+    cases = [  # (slopes, the rows' blocks, their sets, d_c/u_max of each row)
+        (np.stack([slopes_at(levels[b], dl[b]) for b in range(3)]), [0, 1, 2], [0, 1, 2, 3], dl),
+        (slopes_at(grid, 0.3)[None], [0, 1], [0, 2], [0.3, 0.3]),
+    ]
+    for slopes, block, cut, row_dl in cases:
+        block, cut = np.array(block), np.array(cut)
+        got = np.empty((3, block.size, theta.size))
+        lin, sq = level_sums(slopes, slopes * slopes, W, n, block, cut, 0, cut.size - 1)
+        node_values(lin, sq, per[block], np.tile(theta, (block.size, 1)), got)
+        for r, b in enumerate(block):
+            # The sums by the expanded square round to ~3e-13 of ln L here (level_sums); the
+            # weights of Δf and ΔΓ swapped move every value by up to 7 %.
+            np.testing.assert_allclose(got[:, r], reference(b, row_dl[r]), rtol=2e-12, atol=0)

@@ -486,10 +486,9 @@ def _y_patterns(at_p, at_l, fine_p, fine_l, coarse):
 def _over_y_rows(vals, order, dy, edge, at_p, at_l):
     """:func:`_over_y`'s outputs of its rows from :func:`_integrand`'s values (3, R, N) at the
     coarse nodes, the fine ones around L π's peak and L's, side by side (``vals``), the order of
-    each row's
-    nodes in y (R, N), half their spacings (R, N - 1) and which spacings lie in the first or
-    last coarse cell, 1 or 0 (:func:`_y_patterns`); ``at_p``, ``at_l``: the coarse nodes of the
-    peaks of L π and L."""
+    each row's nodes in y (R, N), half their spacings (R, N - 1) and which spacings lie in the
+    first or last coarse cell, 1 or 0 (:func:`_y_patterns`); ``at_p``, ``at_l``: the coarse
+    nodes of the peaks of L π and L."""
     _, _, ny, nf = EVIDENCE_NODES
     j = np.arange(nf)
     on = (2 * j) % max(nf - 1, 1) == 0
