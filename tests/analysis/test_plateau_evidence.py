@@ -630,7 +630,11 @@ def test_rows_evaluated_together_equal_each_row_evaluated_alone():
     # of their own, a prior on μ for one block, and nodes in y given once for all rows. A row
     # alone takes another path (its own slopes, the stacked products), so a row written to
     # another row's place or solved with another block's numbers is caught, which the same
-    # rows given copies of their points (the same ordering and scatter) would not catch.
+    # rows given copies of their points (the same ordering and scatter) would not catch. Those
+    # are products of other shapes, which another BLAS build may round otherwise: within
+    # 1e-13 of the values' scale here (equal bits on this machine; what the workers need, the
+    # same shapes whatever the split, is tests/analysis/test_workers.py's), while either
+    # mistake moves them by far more.
     from contactres.analysis import _plateau_evidence as ev
 
     blocks = [_block(1, 0.0), _block(2, 0.3), _block(3, 0.3)]
@@ -645,9 +649,10 @@ def test_rows_evaluated_together_equal_each_row_evaluated_alone():
     y = np.linspace(-4.0, 1.0, 9)[None]
     by_index = ev._integrand(pts, dl, y, own=own)
     assert np.isfinite(by_index).all()
+    scale = np.abs(by_index).max()
     for r, b in enumerate(own):
         alone = ev._integrand(tuple(a[[b]] for a in pts), dl[[r]], y)
-        np.testing.assert_array_equal(by_index[:, r], alone[:, 0])
+        np.testing.assert_allclose(by_index[:, r], alone[:, 0], rtol=1e-13, atol=1e-13 * scale)
     # Nodes in y given row by row: the same numbers.
     np.testing.assert_array_equal(
         by_index, ev._integrand(pts, dl, np.repeat(y, own.size, axis=0), own=own)
