@@ -116,18 +116,23 @@ def chebyshev_values(
     i = np.arange(n)
     dct = (2.0 / n) * np.cos(np.pi * np.outer(i, i + 0.5) / n)
     dct[0] *= 0.5
-    coef = np.einsum("ij,pj...->pi...", dct, samples)
-    if rows is not None:
-        coef = coef[rows]
-    T = np.empty((n, x.size))
-    T[0] = 1.0
-    if n > 1:
-        T[1] = x
+    coef = np.moveaxis(np.einsum("ij,pj...->pi...", dct, samples), 1, 0)
+    coef = coef[:, rows] if rows is not None else np.ascontiguousarray(coef)
+    # The sum over i term by term on vectors of all the nodes (i outermost, a_i gathered as
+    # (n, m, ...)): the same products added in the same order as a contraction over i node by
+    # node (an einsum, whose inner loop ran over n ~ 12 terms per node: ~0.8 M instructions
+    # per call more on the 250 nm curve's groups of ~4000 nodes).
+    tail = (slice(None),) + (None,) * (coef.ndim - 2)
+    out = np.zeros(coef.shape[1:], dtype=np.result_type(coef, x))
+    term = np.empty_like(out)
+    t_prev, t_cur = np.ones_like(x), x
     two_x = 2 * x
-    for k in range(2, n):
-        np.multiply(two_x, T[k - 1], out=T[k])
-        T[k] -= T[k - 2]
-    return np.einsum("nm,mn...->m...", T, coef)
+    for k in range(n):
+        if k >= 2:
+            t_prev, t_cur = t_cur, two_x * t_cur - t_prev
+        np.multiply((t_prev if k == 0 else t_cur)[tail], coef[k], out=term)
+        out += term
+    return out
 
 
 # The rows of a layer's waves in the sagittal form (StackWaves.sagittal_form): the {x, z}
