@@ -141,26 +141,84 @@ def test_run_starts_against_a_loop_over_the_rows():
     assert run_starts(np.array([], dtype=object)).tolist() == []
 
 
-@pytest.mark.parametrize("use_na_sentinel", [True, False])
-def test_factorize_runs_as_pandas_hashing_every_cell(use_na_sentinel):
-    # Runs of random length of a few texts that come back later, missing cells among them (each
-    # a run of its own), as a Series of text and as an object array; and a column of numbers.
-    # The reference is pandas' factorize of every cell.
-    import pandas as pd
+def _columns():
+    """Columns with runs of random length of a few cells that come back later, missing cells
+    among them (NaN, None, pandas.NA, NaT: each a run of its own), of every kind of dtype the
+    tables hold or a user may pass."""
+    import importlib.util
 
-    from contactres.numerics import factorize_runs
+    import pandas as pd
 
     rng = np.random.default_rng(7)
     words = np.array(["b", "a", "c c", " a", "", None], dtype=object)
     cells = np.repeat(words[rng.integers(0, words.size, 400)], rng.integers(1, 5, 400))
-    for column in (pd.Series(cells, dtype=object).astype(str), cells):
-        codes, uniques = factorize_runs(column, use_na_sentinel=use_na_sentinel)
-        want_codes, want_uniques = pd.factorize(column, use_na_sentinel=use_na_sentinel)
-        assert codes.tolist() == want_codes.tolist()
-        assert list(map(str, uniques)) == list(map(str, want_uniques))
-    numbers = np.repeat(rng.integers(0, 9, 300).astype(float), rng.integers(1, 4, 300))
-    codes, uniques = factorize_runs(numbers, use_na_sentinel=use_na_sentinel)
-    want_codes, want_uniques = pd.factorize(numbers, use_na_sentinel=use_na_sentinel)
-    assert codes.tolist() == want_codes.tolist()
-    assert np.array_equal(uniques, want_uniques)
-    assert factorize_runs(np.array([], dtype=object))[0].tolist() == []
+    ints = np.repeat(rng.integers(0, 5, 300), rng.integers(1, 4, 300))
+    columns = {
+        "object": pd.Series(cells, dtype=object),
+        "object with pandas.NA": pd.Series(np.where(cells == "", pd.NA, cells), dtype=object),
+        "astype(str)": pd.Series(cells, dtype=object).astype(str),
+        "str": pd.Series(cells, dtype="str"),
+        "string (python)": pd.Series(cells, dtype=pd.StringDtype("python")),
+        "category": pd.Series(cells, dtype="category"),
+        "category, unused": pd.Series(
+            pd.Categorical(cells[:9], categories=["z", "", "c c", " a", "a", "b"])
+        ),
+        "int64": pd.Series(ints),
+        "Int64 with NA": pd.Series(ints).astype("Int64").mask(lambda c: c == 3),
+        "float with NaN": pd.Series(ints.astype(float)).mask(lambda c: c == 3),
+        "boolean with NA": pd.Series(ints > 1, dtype="boolean").mask(lambda c: c.index % 7 == 0),
+        "datetime with NaT": pd.Series(pd.to_datetime(ints, unit="D")).mask(
+            lambda c: c.dt.day == 2
+        ),
+        "empty object": pd.Series([], dtype=object),
+        "ndarray object": cells,
+        "ndarray object with pandas.NA": np.where(cells == "", pd.NA, cells),
+        "ndarray float with NaN": np.where(ints == 3, np.nan, ints.astype(float)),
+        "ndarray int": ints,
+        "ndarray empty": np.array([]),
+    }
+    if importlib.util.find_spec("pyarrow") is not None:  # not in the project's environment
+        columns["string (pyarrow)"] = pd.Series(cells, dtype=pd.StringDtype("pyarrow"))
+    return columns
+
+
+@pytest.mark.parametrize("use_na_sentinel", [True, False])
+@pytest.mark.parametrize("name", list(_columns()))
+def test_factorize_runs_as_pandas_hashing_every_cell(name, use_na_sentinel):
+    # The reference is pandas' factorize of every cell: the same codes, and the same distinct
+    # cells of the same type (an Index of the Series' dtype; an ndarray for an ndarray).
+    import pandas as pd
+
+    from contactres.numerics import factorize_runs
+
+    column = _columns()[name]
+    codes, uniques = factorize_runs(column, use_na_sentinel=use_na_sentinel)
+    want_codes, want_uniques = pd.factorize(column, use_na_sentinel=use_na_sentinel)
+    assert codes.dtype == want_codes.dtype and codes.tolist() == want_codes.tolist()
+    assert type(uniques) is type(want_uniques) and uniques.dtype == want_uniques.dtype
+    if isinstance(want_uniques, pd.Index):
+        assert uniques.equals(want_uniques)
+    else:
+        assert pd.Series(uniques).equals(pd.Series(want_uniques))  # NaN equal to NaN
+
+
+@pytest.mark.parametrize("name", list(_columns()))
+def test_column_run_starts_against_a_loop_over_the_rows(name):
+    # A run starts where a cell is not the one before it by Python's ``!=`` (a NaN or NaT is a
+    # run of its own; None equals None); in a column holding pandas.NA, which has no truth
+    # value, every missing cell is taken as NaN. An Arrow-backed column is left to pandas'
+    # hashing (None).
+    import pandas as pd
+
+    from contactres.numerics import column_run_starts
+
+    column = _columns()[name]
+    starts = column_run_starts(column)
+    if getattr(column.dtype, "storage", None) == "pyarrow":  # "str" too, where pyarrow is
+        assert starts is None
+        return
+    cells = list(column)
+    if any(c is pd.NA for c in cells):
+        cells = [np.nan if pd.isna(c) else c for c in cells]
+    want = [i for i in range(len(cells)) if i == 0 or bool(cells[i] != cells[i - 1])]
+    assert starts.tolist() == want

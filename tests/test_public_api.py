@@ -583,6 +583,7 @@ PUBLIC = {
     ],
     "numerics": [
         "IllinoisBracket",
+        "column_run_starts",
         "factorize_runs",
         "gauss_legendre",
         "gauss_legendre_unit",

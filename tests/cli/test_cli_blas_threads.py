@@ -13,6 +13,8 @@ import os
 import subprocess
 import sys
 
+import pytest
+
 from contactres.cli import _app
 
 _PROBE = """
@@ -31,10 +33,22 @@ runpy.run_module("contactres", run_name="__main__", alter_sys=True)
 COMMAND = ["crystals"]
 
 
-def _run(environ: dict[str, str]) -> dict:
+#: A program that runs the command in its own process, passing its arguments (numpy not yet
+#: loaded when it does).
+_IN_PROCESS = {
+    "main": "from contactres.cli import main\nmain(sys.argv[1:])",
+    "CliRunner": (
+        "from click.testing import CliRunner\nfrom contactres.cli import main\n"
+        "assert CliRunner().invoke(main, sys.argv[1:]).exit_code == 0"
+    ),
+}
+
+
+def _run(environ: dict[str, str], program: str | None = None) -> dict:
     env = {k: v for k, v in os.environ.items() if k not in _app.THREAD_COUNT_VARIABLES}
+    probe = _PROBE if program is None else _PROBE.split("sys.argv =")[0] + program
     p = subprocess.run(
-        [sys.executable, "-c", _PROBE, *COMMAND],
+        [sys.executable, "-c", probe, *COMMAND],
         env=env | environ,
         capture_output=True,
         text=True,
@@ -66,3 +80,13 @@ def test_nothing_is_set_once_numpy_is_loaded(monkeypatch):
     assert "numpy" in sys.modules
     assert _app.one_blas_thread_from_start() is False
     assert not any(name in os.environ for name in _app.THREAD_COUNT_VARIABLES)
+
+
+@pytest.mark.parametrize("program", list(_IN_PROCESS))
+def test_a_program_calling_the_command_line_keeps_its_environment(program):
+    # The variable would outlive the call: the caller's later numpy work and its children
+    # would run with one BLAS thread. Here numpy loads only inside the call (else nothing
+    # could be set, and the test could not fail).
+    out = _run({}, _IN_PROCESS[program])
+    assert out["numpy"]
+    assert out["variable"] is None

@@ -378,6 +378,26 @@ def test_a_file_that_is_not_utf8_is_named_with_the_byte(tmp_path):
     )
 
 
+def test_utf16_without_a_byte_order_mark_is_not_read_as_utf8(tmp_path):
+    # ASCII in UTF-16-LE is valid UTF-8 with a NUL after each character: read as such, the
+    # header's names held NULs and the user was told of a missing column.
+    path = tmp_path / "sweeps.csv"
+    path.write_bytes(good_frame().to_csv(index=False).encode("utf-16-le"))
+    with pytest.raises(ValueError) as err:
+        read_sweeps(path, **CONST)
+    assert str(err.value) == (
+        f"{path}: not UTF-8 text (NUL byte at offset 1, line 1: UTF-16 text, or not text); "
+        "save the table as UTF-8"
+    )
+    path.write_bytes(good_frame().to_csv(index=False).encode().replace(b"SiO2", b"SiO\x002", 1))
+    at = path.read_bytes().index(b"\x00")
+    line = path.read_bytes()[:at].count(b"\n") + 1
+    with pytest.raises(
+        ValueError, match=rf"\(NUL byte at offset {at}, line {line}: UTF-16 text, or not text\)"
+    ):
+        read_sweeps(path, **CONST)
+
+
 def test_duplicate_column_names_are_an_error_naming_them(tmp_path):
     f = good_frame()
     path = tmp_path / "sweeps.csv"

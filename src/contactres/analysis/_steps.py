@@ -20,7 +20,7 @@ from .._version import __version__
 from ..errors import ContactresInputError
 from ..measurements import SweepTable
 from ..measurements.schema import SWEEP_TABLE
-from ..numerics import run_starts
+from ..numerics import column_run_starts
 from ..resonators import QCM
 from ..tangential import effective_shear_modulus, shear_modulus
 from ..units import JUNCTION_SIGMAS, LINEAR_ONSET_X, MIN_SWEEP_POINTS, SMALL_LOAD_LIMIT
@@ -169,8 +169,11 @@ def _run(
     data = table.data
 
     padded = pad_sweeps(data)
-    # A sweep's first row starts one of the runs of its rows: only those rows are hashed.
-    runs = data.iloc[run_starts(data["sweep"].to_numpy(dtype=object))]
+    # A sweep's first row starts one of the runs of its rows: only those rows are hashed
+    # (all of them where the ids are Arrow strings, which pandas hashes faster than they are
+    # compared as Python strings).
+    starts = column_run_starts(data["sweep"])
+    runs = data if starts is None else data.iloc[starts]
     info = runs.drop_duplicates("sweep", keep="first")[list(INFO_COLUMNS)].reset_index(drop=True)
     # The labels first: which sweeps are used, and which load blocks they form, decide where
     # the (costly) exact plateau loop is fitted to single sweeps.

@@ -39,7 +39,8 @@ def _one_line(text) -> str:
 
 def one_blas_thread_from_start() -> bool:
     """Have OpenBLAS start with one thread in this process, if it is not loaded yet (the first
-    step of :meth:`App.main`).
+    step of :meth:`App.main` run as the program: the console script and ``python -m
+    contactres``, which pass it no arguments).
 
     Sets ``OPENBLAS_NUM_THREADS=1`` in the environment unless numpy (which loads OpenBLAS) is
     imported already, when the count is fixed and this changes nothing, or the user has set one
@@ -48,7 +49,9 @@ def one_blas_thread_from_start() -> bool:
     threads OpenBLAS starts when it is loaded, which no later limit stops (~0.1 s of CPU each
     on an idle machine: :mod:`contactres._threads`). Child processes started afterwards (an
     analysis's workers) inherit the variable, as they inherit one thread from a fork inside a
-    context.
+    context. A program that runs a command in its own process (``main([...])``, click's
+    ``CliRunner``) is not the command line's: its environment, which it and its children keep
+    for the rest of their lives, is left alone.
 
     Returns
     -------
@@ -125,8 +128,11 @@ class App(click.Group):
     def main(self, args=None, prog_name=None, complete_var=None, **extra):
         extra.pop("standalone_mode", None)
         # Before a command's module imports numpy: OpenBLAS's threads would spin at its load
-        # (~0.1 s of CPU each on an idle machine) for work the jobs run on one thread.
-        one_blas_thread_from_start()
+        # (~0.1 s of CPU each on an idle machine) for work the jobs run on one thread. Only as
+        # the program (no arguments given, the command line's own): a caller that passes its
+        # arguments runs in its own process, whose environment it and its children keep.
+        if args is None:
+            one_blas_thread_from_start()
         prog = prog_name or "contactres"
         try:
             rv = super().main(

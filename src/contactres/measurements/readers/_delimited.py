@@ -62,21 +62,32 @@ def _shown(name: str, limit: int = 60) -> str:
 
 
 def _decode(path: Path) -> tuple[str, str, bytes]:
-    """The file as text: UTF-8, a byte order mark skipped (one-line error naming the byte),
-    the SHA-256 (hex) of its bytes, those very bytes (the file is read once), and the bytes of
-    the text (those after the byte order mark: the text's UTF-8, a decoding undone)."""
+    """Three things from one reading of the file: its text (UTF-8, a byte order mark skipped;
+    a one-line error names the first byte that is not UTF-8, or a NUL byte), the SHA-256 (hex)
+    of all its bytes, and the bytes of the text (those after the byte order mark: the text's
+    UTF-8, a decoding undone).
+
+    A NUL byte is valid UTF-8 but is no character of a text table: it is what a UTF-16 file
+    without a byte order mark holds between its ASCII characters, which would otherwise read
+    as one column of odd names and be blamed as a missing column."""
     data = path.read_bytes()
     bom = len(b"\xef\xbb\xbf") if data.startswith(b"\xef\xbb\xbf") else 0
     try:
         body = data[bom:] if bom else data
-        return body.decode("utf-8"), hashlib.sha256(data).hexdigest(), body
+        text = body.decode("utf-8")
     except UnicodeDecodeError as exc:
         at = bom + exc.start
-        line = data.count(b"\n", 0, at) + 1
-        raise ContactresInputError(
-            f"{path}: not UTF-8 text (byte 0x{data[at]:02x} at offset {at}, line {line}); save "
-            "the table as UTF-8"
-        ) from None
+        found, why = f"byte 0x{data[at]:02x}", ""
+    else:
+        at = data.find(b"\x00")  # one scan in C of the bytes
+        if at < 0:
+            return text, hashlib.sha256(data).hexdigest(), body
+        found, why = "NUL byte", ": UTF-16 text, or not text"
+    line = data.count(b"\n", 0, at) + 1
+    raise ContactresInputError(
+        f"{path}: not UTF-8 text ({found} at offset {at}, line {line}{why}); save the table as "
+        "UTF-8"
+    )
 
 
 def _check_header(path: Path, number: int, header: str, sep: str) -> list[str]:
@@ -132,14 +143,19 @@ def load(path: Path, number_columns: Collection[str] = ()) -> pd.DataFrame:
 
     text, digest, encoded = _decode(path)
     body, numbers, comments = _data_lines(text)
-    # A table taken as it is (no line dropped) is its file's bytes, less those of the last
-    # line break: those bytes are parsed, not the text encoded again (UTF-8 decoding is
-    # undone exactly; ~0.1 s and a copy of the 148 MB table of 10^5 sweeps, issue 31).
+    # A table taken as it is (no line dropped) is its file's bytes: those are parsed, not the
+    # text encoded again (UTF-8 decoding is undone exactly; ~0.1 s and a copy of the 148 MB
+    # table of 10^5 sweeps, issue 31). The usual file ends in a line break, which ``body``
+    # lacks: the bytes keep it (pandas makes no row of it) and only ``kept`` drops it, since
+    # slicing it off would copy the whole file while the text is still held (+138 MB at the
+    # peak of reading those 10^5 sweeps, review R28a). A file ending in a bare CR is rare:
+    # its ``body`` is encoded again below.
     data = None
+    tail = b""
     if body is text:
         data = encoded
-    elif len(body) == len(text) - 1 and text.startswith(body):
-        data = encoded[: len(encoded) - len(text[-1].encode("utf-8"))]
+    elif len(body) == len(text) - 1 and text.startswith(body) and text.endswith("\n"):
+        data, tail = encoded, b"\n"
     del text, encoded
     if not len(numbers):
         raise ContactresInputError(
@@ -157,7 +173,8 @@ def load(path: Path, number_columns: Collection[str] = ()) -> pd.DataFrame:
     del body
 
     def kept() -> list[tuple[int, str]]:  # every line parsed, with its number (for errors)
-        return list(zip(numbers.tolist(), data.decode("utf-8").split("\n"), strict=True))
+        lines = data[: len(data) - len(tail)].decode("utf-8").split("\n")
+        return list(zip(numbers.tolist(), lines, strict=True))
 
     def unreadable(exc: Exception | None) -> ContactresInputError:
         return ContactresInputError(
