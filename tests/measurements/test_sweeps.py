@@ -386,16 +386,27 @@ def test_utf16_without_a_byte_order_mark_is_not_read_as_utf8(tmp_path):
     with pytest.raises(ValueError) as err:
         read_sweeps(path, **CONST)
     assert str(err.value) == (
-        f"{path}: not UTF-8 text (NUL byte at offset 1, line 1: UTF-16 text, or not text); "
-        "save the table as UTF-8"
+        f"{path}: line 1: a NUL character (0x00) is no text of a table (UTF-16 text saved "
+        "without a byte order mark, or a binary file); save the table as UTF-8 text"
     )
-    path.write_bytes(good_frame().to_csv(index=False).encode().replace(b"SiO2", b"SiO\x002", 1))
-    at = path.read_bytes().index(b"\x00")
-    line = path.read_bytes()[:at].count(b"\n") + 1
-    with pytest.raises(
-        ValueError, match=rf"\(NUL byte at offset {at}, line {line}: UTF-16 text, or not text\)"
-    ):
+    # A NUL in a cell: the line named is the file's (a comment line above it counts).
+    text = "# a comment\n" + good_frame().to_csv(index=False)
+    path.write_bytes(text.encode().replace(b"SiO2", b"SiO\x002", 1))
+    line = text[: text.index("SiO2")].count("\n") + 1
+    with pytest.raises(ValueError, match=rf": line {line}: a NUL character"):
         read_sweeps(path, **CONST)
+
+
+def test_a_nul_in_a_comment_or_preamble_line_is_left_alone(tmp_path):
+    # Lines that are not parsed may hold anything (an instrument's preamble): read as before.
+    path = tmp_path / "sweeps.csv"
+    plain = tmp_path / "plain.csv"
+    plain.write_text(good_frame().to_csv(index=False), encoding="utf-8")
+    path.write_bytes(b"# instrument \x00\x00 v1\n" + plain.read_bytes())
+    got, want = read_sweeps(path, **CONST).data, read_sweeps(plain, **CONST).data
+    # (every row one line further down the file)
+    pd.testing.assert_series_equal(got.pop("line"), want.pop("line") + 1)
+    pd.testing.assert_frame_equal(got, want)
 
 
 def test_duplicate_column_names_are_an_error_naming_them(tmp_path):

@@ -49,9 +49,9 @@ def one_blas_thread_from_start() -> bool:
     threads OpenBLAS starts when it is loaded, which no later limit stops (~0.1 s of CPU each
     on an idle machine: :mod:`contactres._threads`). Child processes started afterwards (an
     analysis's workers) inherit the variable, as they inherit one thread from a fork inside a
-    context. A program that runs a command in its own process (``main([...])``, click's
-    ``CliRunner``) is not the command line's: its environment, which it and its children keep
-    for the rest of their lives, is left alone.
+    context. A program that runs a command in-process (``main([...])``, click's ``CliRunner``)
+    is not the command line's: its environment, which it and its children keep for the rest of
+    their lives, is left alone.
 
     Returns
     -------
@@ -130,7 +130,7 @@ class App(click.Group):
         # Before a command's module imports numpy: OpenBLAS's threads would spin at its load
         # (~0.1 s of CPU each on an idle machine) for work the jobs run on one thread. Only as
         # the program (no arguments given, the command line's own): a caller that passes its
-        # arguments runs in its own process, whose environment it and its children keep.
+        # arguments runs the command in-process, and its environment is its own to keep.
         if args is None:
             one_blas_thread_from_start()
         prog = prog_name or "contactres"

@@ -63,31 +63,39 @@ def _shown(name: str, limit: int = 60) -> str:
 
 def _decode(path: Path) -> tuple[str, str, bytes]:
     """Three things from one reading of the file: its text (UTF-8, a byte order mark skipped;
-    a one-line error names the first byte that is not UTF-8, or a NUL byte), the SHA-256 (hex)
-    of all its bytes, and the bytes of the text (those after the byte order mark: the text's
-    UTF-8, a decoding undone).
-
-    A NUL byte is valid UTF-8 but is no character of a text table: it is what a UTF-16 file
-    without a byte order mark holds between its ASCII characters, which would otherwise read
-    as one column of odd names and be blamed as a missing column."""
+    a one-line error names the first byte that is not UTF-8), the SHA-256 (hex) of all its
+    bytes, and the bytes of the text (those after the byte order mark: the text's UTF-8, a
+    decoding undone)."""
     data = path.read_bytes()
     bom = len(b"\xef\xbb\xbf") if data.startswith(b"\xef\xbb\xbf") else 0
     try:
         body = data[bom:] if bom else data
-        text = body.decode("utf-8")
+        return body.decode("utf-8"), hashlib.sha256(data).hexdigest(), body
     except UnicodeDecodeError as exc:
         at = bom + exc.start
-        found, why = f"byte 0x{data[at]:02x}", ""
-    else:
-        at = data.find(b"\x00")  # one scan in C of the bytes
-        if at < 0:
-            return text, hashlib.sha256(data).hexdigest(), body
-        found, why = "NUL byte", ": UTF-16 text, or not text"
-    line = data.count(b"\n", 0, at) + 1
-    raise ContactresInputError(
-        f"{path}: not UTF-8 text ({found} at offset {at}, line {line}{why}); save the table as "
-        "UTF-8"
-    )
+        line = data.count(b"\n", 0, at) + 1
+        raise ContactresInputError(
+            f"{path}: not UTF-8 text (byte 0x{data[at]:02x} at offset {at}, line {line}); save "
+            "the table as UTF-8"
+        ) from None
+
+
+def _no_nul(path: Path, body: str, numbers) -> None:
+    """A one-line error if a line of the table (``body``, the lines parsed; ``numbers`` their
+    line numbers in the file) holds a NUL character.
+
+    NUL is valid UTF-8 but no character of a text table: it is what a UTF-16 file without a
+    byte order mark holds between its ASCII characters, which would otherwise read as columns
+    of odd names, blamed as missing. Comment lines and a preamble are not parsed and may hold
+    anything (review R28e: an instrument's preamble with NULs was read before, and still is).
+    """
+    at = body.find("\x00")  # one scan in C
+    if at >= 0:
+        line = int(numbers[body.count("\n", 0, at)])
+        raise ContactresInputError(
+            f"{path}: line {line}: a NUL character (0x00) is no text of a table (UTF-16 text "
+            "saved without a byte order mark, or a binary file); save the table as UTF-8 text"
+        )
 
 
 def _check_header(path: Path, number: int, header: str, sep: str) -> list[str]:
@@ -161,6 +169,7 @@ def load(path: Path, number_columns: Collection[str] = ()) -> pd.DataFrame:
         raise ContactresInputError(
             f"{path}: the file is empty (expected a header line and data rows)"
         )
+    _no_nul(path, body, numbers)
     head = body.split("\n", 51)[:51]
     sep, decimal = _dialect("\n".join(head))
     names = _check_header(path, int(numbers[0]), head[0], sep)
