@@ -52,11 +52,26 @@ def thread_ratio(name: str, shipped: float, single: float) -> bool:
 
 def shipped_and_one_thread(fn, repeat: int = 3) -> tuple[float, float]:
     """Best CPU time (s) of ``fn()`` as shipped and with one BLAS thread (:func:`one_thread`),
-    ``repeat`` runs of each, alternating so that both see the same load."""
+    ``repeat`` runs of each after one untimed call, in the order ABBA ABBA ... so that both
+    see the same load.
+
+    The untimed call takes the first call's costs off the shipped side: the lazy imports (the
+    first ``fit_particles`` imports scipy.stats, ~650 modules, 0.7 s of CPU), the first page
+    faults of its arrays, and the start of the threads of a BLAS library an import loads, which
+    spin before they sleep (contactres._threads); the first fit of the 10⁴-step benchmark cost
+    1.0-1.5 s more CPU than the next. Timed first, they left the shipped side one warm run
+    against two of the other. The order
+    ABBA puts neither side always after the other: the CPU time of a call drifts down over
+    the first few calls of a process (allocator, page cache), which favoured the side timed
+    second. With both sides running the same call, the plain alternation (A first, cold)
+    gave "ratios" of 1.22, 1.29 and 1.22 on the shared 2-core machine (session 28).
+    """
+    fn()
     shipped, single = [], []
-    for _ in range(repeat):
-        shipped.append(timed(fn)[1])
-        single.append(timed(one_thread(fn))[1])
+    for i in range(repeat):
+        runs = [(shipped, fn), (single, one_thread(fn))]
+        for times, call in runs if i % 2 == 0 else runs[::-1]:
+            times.append(timed(call)[1])
     return min(shipped), min(single)
 
 
