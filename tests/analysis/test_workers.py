@@ -119,19 +119,21 @@ def test_a_pool_starts_only_for_two_or_more_tasks(counting):
     assert run_in_workers(abs, 1, [-1, -2]) == [1, 2] and len(counting) == 1
 
 
+def _counted(made: list[int], n: int):
+    """-0, -1, ... -(n - 1), each noted in ``made`` as it is read (what the pool has sent)."""
+    for k in range(n):
+        made.append(k)
+        yield -k
+
+
 def test_the_calls_are_sent_a_few_ahead_of_the_results():
     # A stage's arguments come from a generator (each block padded when its call is sent):
     # the parent should hold a few calls' arguments at a time, not every one of the stage.
     made: list[int] = []
 
-    def arguments():
-        for k in range(40):
-            made.append(k)
-            yield -k
-
     ahead = AHEAD_PER_PROCESS * 2
     with WorkerPool(2) as pool:
-        results = pool.imap(abs, 40, arguments())
+        results = pool.imap(abs, 40, _counted(made, 40))
         assert len(made) == ahead  # the first calls are sent at once
         for k, value in enumerate(results):
             assert value == k
@@ -149,13 +151,8 @@ def test_chunks_of_calls_are_sent_whole_and_ahead():
     # once, so that many chunks' arguments are read, not that many calls'.
     made: list[int] = []
 
-    def arguments():
-        for k in range(40):
-            made.append(k)
-            yield -k
-
     with WorkerPool(2) as pool:
-        results = pool.imap(abs, 40, arguments(), chunksize=4)
+        results = pool.imap(abs, 40, _counted(made, 40), chunksize=4)
         assert len(made) == 4 * AHEAD_PER_PROCESS * 2
         assert list(results) == list(range(40))
 
