@@ -505,7 +505,9 @@ def _projected(g1, g2, data) -> tuple[np.ndarray, ...]:
     bit for bit: its arithmetic, in its order, with the parts of the data alone (Σw, the mean
     of ΔΓ and ΔΓ - mean) formed once (``data``: :func:`_sweep_data`, aligned with the shapes),
     and in place where solve_projected makes temporaries (``g1``, ``g2`` are left as they
-    are)."""
+    are). Not solve_projected itself: that one takes shapes that broadcast against the data
+    (a shared (M,) or (K, M) set of shapes), where this one writes into temporaries of the
+    shapes' own size, which must then be the result's."""
     n, dgm, dgc, df, dg, w, wf, wg = data
     ones = bool(np.all(w == 1.0))
 
