@@ -33,7 +33,7 @@ runpy.run_module("contactres", run_name="__main__", alter_sys=True)
 COMMAND = ["crystals"]
 
 
-#: A program that runs the command in its own process, passing its arguments (numpy not yet
+#: A program that runs the command in-process, passing its arguments (numpy not yet
 #: loaded when it does).
 _IN_PROCESS = {
     "main": "from contactres.cli import main\nmain(sys.argv[1:])",
