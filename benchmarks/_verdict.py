@@ -53,7 +53,7 @@ def thread_ratio(name: str, shipped: float, single: float) -> bool:
 def shipped_and_one_thread(fn, repeat: int = 3) -> tuple[float, float]:
     """Best CPU time (s) of ``fn()`` as shipped and with one BLAS thread (:func:`one_thread`),
     ``repeat`` runs of each after one untimed call, in the order ABBA ABBA ... so that both
-    see the same load.
+    see the same load (:func:`shipped_and_one_thread_of` with the same call every time).
 
     The untimed call takes the first call's costs off the shipped side: the lazy imports (the
     first ``fit_particles`` imports scipy.stats, ~650 modules, 0.7 s of CPU), the first page
@@ -66,10 +66,19 @@ def shipped_and_one_thread(fn, repeat: int = 3) -> tuple[float, float]:
     second. With both sides running the same call, the plain alternation (A first, cold)
     gave "ratios" of 1.22, 1.29 and 1.22 on the shared 2-core machine (session 28).
     """
-    fn()
+    return shipped_and_one_thread_of(lambda i: fn, repeat)
+
+
+def shipped_and_one_thread_of(make, repeat: int = 3) -> tuple[float, float]:
+    """:func:`shipped_and_one_thread` of a call built anew for each run: ``make(i)`` returns
+    the call of run i (0 the untimed first one; 1, 2, ... the timed ones, in the order ABBA
+    ABBA ...). For a workload whose cost the first run would change for the next, e.g. a
+    curve of a material never seen before (``bench_dcsf``: its kernel table is built for each
+    new material, and a repeated material would time the table's reuse instead)."""
+    make(0)()
     shipped, single = [], []
     for i in range(repeat):
-        runs = [(shipped, fn), (single, one_thread(fn))]
+        runs = [(shipped, make(2 * i + 1)), (single, one_thread(make(2 * i + 2)))]
         for times, call in runs if i % 2 == 0 else runs[::-1]:
             times.append(timed(call)[1])
     return min(shipped), min(single)

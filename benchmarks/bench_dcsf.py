@@ -32,8 +32,7 @@ import subprocess
 import sys
 
 import numpy as np
-from _verdict import exit_code, target, timed
-from threadpoolctl import threadpool_limits
+from _verdict import exit_code, shipped_and_one_thread_of, target, timed
 
 from contactres import Material
 from contactres.dynamic import ALL_MODELS, MODELS, dcsf_models, prepare, shear_wavenumber_ratio
@@ -82,31 +81,11 @@ def converged(m, ksa):
     return {name: fine.n_static / model_n(f, name) for name in MODELS}
 
 
-def one_thread(fn):
-    """``fn`` called with one BLAS thread (threadpoolctl), as under OPENBLAS_NUM_THREADS=1."""
-
-    def call():
-        with threadpool_limits(limits=1, user_api="blas"):
-            return fn()
-
-    return call
-
-
-def shipped_and_one_thread(make, repeat: int = 5) -> tuple[float, float]:
-    """Best CPU time (s) of ``make(i)()`` as shipped and with one BLAS thread, ``repeat`` runs
-    of each, alternating; ``make(i)`` builds the call of run i (a material never seen)."""
-    shipped, single = [], []
-    for i in range(repeat):
-        shipped.append(timed(make(2 * i))[1])
-        single.append(timed(one_thread(make(2 * i + 1)))[1])
-    return min(shipped), min(single)
-
-
 def threads_section(results: list[bool]) -> None:
     """Issue 31: the BLAS-bound curves as shipped and with one BLAS thread, side by side."""
     print(
         "CPU time as shipped | one BLAS thread, 41 points k_l a in [0, 2], new material "
-        "(best of 5 each, alternating)"
+        "(best of 5 each after one untimed, ABBA)"
     )
     cases = [
         ("seven models, rtol 1e-6", ALL_MODELS, 1e-6, TARGET_7_CPU_S),
@@ -118,7 +97,7 @@ def threads_section(results: list[bool]) -> None:
             m = Material.cubic_from_ratios(0.5 * (1 + 1e-9 * (i + 101)), 0.25)
             return lambda: dcsf_models(m, KLA, models, loss=LOSS, rtol=rtol)
 
-        shipped, single = shipped_and_one_thread(make)
+        shipped, single = shipped_and_one_thread_of(make, repeat=5)
         print(f"  {label}: {shipped * 1e3:.1f} ms | {single * 1e3:.1f} ms CPU")
         results.append(target(f"dcsf 41 points, {label}, new material (CPU)", shipped, limit))
         results.append(

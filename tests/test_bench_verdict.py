@@ -110,3 +110,30 @@ def test_shipped_and_one_thread_warms_up_then_times_abba(bench, monkeypatch):
     shipped, single = verdict.shipped_and_one_thread(fn, repeat=3)
     assert calls == ["shipped", "shipped", "one", "one", "shipped", "shipped", "one"]
     assert (shipped, single) == (2.0, 3.0)
+
+
+def test_shipped_and_one_thread_of_builds_each_run_anew(bench, monkeypatch):
+    # a call built for each run (a material never seen: bench_dcsf), run 0 untimed, the timed
+    # runs in the order ABBA, every run its own call
+    verdict, _ = bench
+    calls = []
+    one = ["shipped"]
+
+    def one_thread(f):
+        def call():
+            one[0] = "one"
+            try:
+                return f()
+            finally:
+                one[0] = "shipped"
+
+        return call
+
+    def make(i):
+        return lambda: calls.append((i, one[0]))
+
+    monkeypatch.setattr(verdict, "one_thread", one_thread)
+    monkeypatch.setattr(verdict, "timed", lambda f: (f(), float(len(calls)), 0.0))
+    shipped, single = verdict.shipped_and_one_thread_of(make, repeat=2)
+    assert calls == [(0, "shipped"), (1, "shipped"), (2, "one"), (4, "one"), (3, "shipped")]
+    assert (shipped, single) == (2.0, 3.0)
