@@ -522,9 +522,10 @@ def test_a_table_is_joined_chunk_by_chunk_and_left_to_pandas_where_a_later_chunk
 @pytest.mark.parametrize("float_format", ["%.10g", "%.3e", "%+.4f", "%10.2g", "%#.5g", "%.3f mm"])
 def test_doubles_formatted_a_chunk_at_a_time_are_pandas_text(tmp_path, monkeypatch, float_format):
     """A column of doubles without gaps is formatted by one ``%`` of a format made for the
-    whole chunk (issue 31, point 3): flags, widths, signs, -0.0, a subnormal and extremes give
-    the text of pandas' own writer, which formats cell by cell (a chunk with an infinity goes
-    cell by cell too); beside a column with gaps and text that needs quotes. A format with more
+    whole chunk (issue 31, point 3), or with "%.Ng" in numpy (``_lines_bytes``), a chunk at a
+    time: flags, widths, signs, -0.0, a subnormal and extremes give the text of pandas' own
+    writer, which formats cell by cell (a chunk with an infinity goes cell by cell too); beside
+    a column with gaps and text that needs quotes. A format with more
     than one conversion's text ("%.3f mm") is applied cell by cell, as before. A column with
     gaps joins the chunk's ``%`` where its NaN formats as "nan" (then written as ``na_rep``)."""
 
@@ -544,11 +545,10 @@ def test_doubles_formatted_a_chunk_at_a_time_are_pandas_text(tmp_path, monkeypat
     text = [f'a,"{i}"' if i % 3 == 0 else f"s{i}" for i in range(values.size)]
     frame = pd.DataFrame({"x": values, "gaps": gaps, "label": text})
     calls = []
-    monkeypatch.setattr(
-        _csvcells,
-        "_formatted_lines",
-        lambda *a, f=_csvcells._formatted_lines: calls.append(1) or f(*a),
-    )
+    # "%.10g" is assembled in numpy (_lines_bytes), the other formats by Python's %.
+    joiner = "_lines_bytes" if float_format == "%.10g" else "_formatted_lines"
+    joined = getattr(_csvcells, joiner)
+    monkeypatch.setattr(_csvcells, joiner, lambda *a: calls.append(1) or joined(*a))
     monkeypatch.setattr(_csvcells, "CHUNK_CELLS", 3 * 1000)  # several chunks
     frame.to_csv(tmp_path / "pandas.csv", index=False, na_rep="NA", float_format=float_format)
     with monkeypatch.context() as m:
