@@ -221,8 +221,8 @@ _ONE_FLOAT = re.compile(r"%[-+ #0]*\d*(?:\.\d+)?[eEfFgG]")
 def _few(values: np.ndarray) -> bool:
     """Whether a float column's first 1000 cells hold at most a tenth as many distinct values
     (a curve table's amplitude grid): then each is formatted once (:func:`_float_texts`)."""
-    head = values[:1000].view(np.int64)
-    return len(np.unique(head)) * 10 <= head.size
+    head = np.sort(values[:1000].view(np.int64))  # (a sort: a tenth of np.unique's time here)
+    return (1 + np.count_nonzero(head[1:] != head[:-1])) * 10 <= head.size
 
 
 def csv_chunks(

@@ -82,6 +82,9 @@ _LEADING = np.concatenate([_FOUR, _four_digit_words("leading")])
 _LEADING_LAST = np.concatenate([_FOUR, _four_digit_words("leading1")])  # 0 written "0"
 _TRAILING = np.concatenate([_FOUR, _four_digit_words("trailing")])
 
+#: Trailing zero digits of 0..9999 written with four digits (0: four).
+_TRAILING_ZEROS = np.array([4] + [4 - len(f"{i:04d}".rstrip("0")) for i in range(1, 10_000)])
+
 #: The double nearest each 10^k, k = 0..170 (``float`` of an int is correctly rounded).
 _POWERS = np.array([float(10**k) for k in range(171)])
 
@@ -177,16 +180,20 @@ def _whole_digits(whole: np.ndarray, count: int) -> np.ndarray:
     return words.view(np.uint8)
 
 
-def _fraction_digits(fraction: np.ndarray, count: int) -> np.ndarray:
-    """The ``4 count`` digits of ``fraction`` (below 10^(4 count)) zero-padded on the left,
-    its trailing zeros NUL (0: all NUL)."""
+def _fraction_digits(fraction: np.ndarray, count: int) -> tuple[np.ndarray, int]:
+    """(digits, used): the ``4 count`` digits of ``fraction`` (below 10^(4 count)) zero-padded
+    on the left, its trailing zeros NUL (0: all NUL), and how many columns from the left hold
+    a digit in some row (the rest are NUL in every row)."""
     words = np.empty((fraction.size, count), dtype="<u4")
     below = np.full(fraction.size, 10_000)  # every less significant group is 0: NUL for zeros
+    used = 0
     for i, g in enumerate(_groups(fraction, count)):
         words[:, count - 1 - i] = _TRAILING[g + below]
+        if not used and (zeros := int(_TRAILING_ZEROS[g].min(initial=4))) < 4:
+            used = 4 * (count - i) - zeros  # the least significant group with a digit
         if i < count - 1:
             below = np.where(g == 0, below, 0)
-    return words.view(np.uint8)
+    return words.view(np.uint8), used
 
 
 def _exponent(e: np.ndarray, shown: np.ndarray) -> np.ndarray:
@@ -249,21 +256,35 @@ def g_records(values: np.ndarray, precision: int, nan_text: bytes = b"nan") -> n
     whole[small] = 0
     fraction = m - whole * _POWERS_INT[np.minimum(point, precision - 1)]
     fraction[small] = m[small]
-    whole_groups = -(-len(str(int(whole.max(initial=0)))) // 4)  # 4 digits a group
+    # The fields side by side, each as wide as its widest text in ``values`` (the fewer NULs,
+    # the less for the caller to drop): sign, digits before the point, point, digits after
+    # it, exponent.
+    fields = []
+    neg = np.signbit(v)
+    if neg.any():
+        fields.append((neg.view(np.uint8) * np.uint8(ord("-")))[:, None])
+    whole_width = len(str(int(whole.max(initial=0))))
+    fields.append(_whole_digits(whole, -(-whole_width // 4))[:, -whole_width:])
     frac_groups = -(-int(point.max(initial=0)) // 4)
-    width_body = 1 + 4 * whole_groups + 1 + 4 * frac_groups
-    exp_shown = ~fixed
-    exp_width = 5 if exp_shown.any() else 0
-    width = max(width_body + exp_width, max((len(t) for _, t in special), default=0))
-    body = np.zeros((v.size, width), dtype=np.uint8)
-    body[:, 0] = np.signbit(v).view(np.uint8) * np.uint8(ord("-"))
-    body[:, 1 : 1 + 4 * whole_groups] = _whole_digits(whole, whole_groups)
-    body[:, 1 + 4 * whole_groups] = (fraction != 0).view(np.uint8) * np.uint8(ord("."))
     if frac_groups:
         shifted = fraction * _POWERS_INT[4 * frac_groups - point]  # left-aligned in the field
-        body[:, width_body - 4 * frac_groups : width_body] = _fraction_digits(shifted, frac_groups)
-    if exp_width:
-        body[:, width_body : width_body + 5] = _exponent(e, exp_shown)
+        digits, used = _fraction_digits(shifted, frac_groups)
+        if used:
+            fields.append(((fraction != 0).view(np.uint8) * np.uint8(ord(".")))[:, None])
+            fields.append(digits[:, :used])
+    exp_shown = ~fixed
+    if exp_shown.any():
+        exponent = _exponent(e, exp_shown)
+        three = (np.abs(e[exp_shown]) >= 100).any()
+        fields.append(exponent if three else exponent[:, [0, 1, 3, 4]])
+    width_body = sum(f.shape[1] for f in fields)
+    width = max(width_body, max((len(t) for _, t in special), default=0))
+    body = np.empty((v.size, width), dtype=np.uint8)
+    body[:, width_body:] = 0
+    at_field = 0
+    for f in fields:
+        body[:, at_field : at_field + f.shape[1]] = f
+        at_field += f.shape[1]
     if at is None:
         records = body
     else:
