@@ -251,7 +251,7 @@ def csv_chunks(
 
 def _pieces(
     frame, na_rep: str, lineterminator: str, float_format: str | None, rows: int | None
-) -> Iterator[str | bytes]:
+) -> Iterator[str | bytearray]:
     """:func:`csv_chunks`' pieces, those assembled in numpy (:func:`_lines_bytes`) as the
     UTF-8 bytes they are made as: :func:`csv_to` writes them without a decoding and encoding
     of each (~250 MB of text at 10^5 sweeps)."""
@@ -305,7 +305,7 @@ def _pieces(
             yield lineterminator.join([*map(",".join, zip(*fields, strict=True)), ""])
 
 
-def _lines_bytes(part, na_rep: str, lineterminator: str, precision: int) -> bytes | None:
+def _lines_bytes(part, na_rep: str, lineterminator: str, precision: int) -> bytearray | None:
     """The CSV lines of the rows ``part`` (a DataFrame) with doubles as ``"%.{precision}g"``,
     as UTF-8 bytes: the text :func:`csv_chunks` joins, assembled in numpy. None where a text
     cell holds a NUL byte (then joined as text); raises _NotJoined as :func:`_field_texts`.
@@ -329,14 +329,18 @@ def _lines_bytes(part, na_rep: str, lineterminator: str, precision: int) -> byte
         records.append(rec)
     seps = [b","] * (len(records) - 1) + [lineterminator.encode()]
     width = sum(r.shape[1] + len(s) for r, s in zip(records, seps, strict=True))
-    lines = np.empty((len(part), width), dtype=np.uint8)
+    # In a bytearray, whose NULs are dropped by one pass in C (half the time of numpy's boolean
+    # mask) without a copy to bytes first
+    memory = bytearray(len(part) * width)
+    lines = np.frombuffer(memory, dtype=np.uint8).reshape(len(part), width)
     at = 0
     for rec, sep in zip(records, seps, strict=True):
         lines[:, at : at + rec.shape[1]] = rec
         at += rec.shape[1]
         lines[:, at : at + len(sep)] = np.frombuffer(sep, dtype=np.uint8)
         at += len(sep)
-    return lines.tobytes().translate(None, b"\0")  # (one pass in C: half numpy's masking)
+    del lines  # (the view)
+    return memory.translate(None, b"\0")
 
 
 def _double_records(values: np.ndarray, precision: int, na_rep: bytes) -> np.ndarray:
