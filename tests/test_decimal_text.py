@@ -179,3 +179,17 @@ def test_the_formats_formatted_here():
 def test_an_empty_array_and_one_of_only_special_values():
     assert g_records(np.array([]), 10).shape[0] == 0
     assert _texts([np.nan, 0.0, -np.inf], 10, b"") == ["", "0", "-inf"]
+
+
+def test_an_exponent_guess_that_stays_wrong_leaves_the_cell_to_python(monkeypatch):
+    """The decimal exponent from log10 is corrected by one a step, three steps at most: a
+    guess still wrong after them (never seen from log10) gives Python's own text, not a wrong
+    one."""
+    from contactres import _decimal_text
+
+    guess = _decimal_text._exponent_guess
+    values = np.array([1.5, -2.5e-7, 3.25e12, 123456.789, 1e300])
+    monkeypatch.setattr(_decimal_text, "_exponent_guess", lambda a: guess(a) + 2)
+    assert _mismatches(values, 10) == []  # two steps away: corrected
+    monkeypatch.setattr(_decimal_text, "_exponent_guess", lambda a: guess(a) - 5)
+    assert _mismatches(values, 10) == []  # five away: still off after three steps

@@ -244,7 +244,8 @@ def csv_chunks(
     formatted float at ~2 µs; joining the cells here costs a tenth of that (issue 31, point 5:
     ``afm invert`` of a 512² map writes 5.5 million cells; point 3: ``qcm analyze`` of 10^5
     sweeps writes ~15 million). In pieces, so that the text of a large table is never held
-    whole."""
+    whole. With a ``"%.Ng"`` format (the reports' :data:`CSV_FLOAT_FORMAT`) the lines are
+    assembled as bytes in numpy (:func:`_lines_bytes`), the doubles' text made there too."""
     for piece in _pieces(frame, na_rep, lineterminator, float_format, rows):
         yield piece if isinstance(piece, str) else piece.decode("utf-8")
 
