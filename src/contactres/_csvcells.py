@@ -15,7 +15,7 @@ from collections.abc import Iterator
 
 import numpy as np
 
-from ._decimal_text import g_precision, g_records
+from ._decimal_text import copy_rows, g_precision, g_records
 
 __all__ = [
     "CHUNK_CELLS",
@@ -336,7 +336,7 @@ def _lines_bytes(part, na_rep: str, lineterminator: str, precision: int) -> byte
     lines = np.frombuffer(memory, dtype=np.uint8).reshape(len(part), width)
     at = 0
     for rec, sep in zip(records, seps, strict=True):
-        lines[:, at : at + rec.shape[1]] = rec
+        copy_rows(lines[:, at : at + rec.shape[1]], rec)
         at += rec.shape[1]
         lines[:, at : at + len(sep)] = np.frombuffer(sep, dtype=np.uint8)
         at += len(sep)
@@ -358,7 +358,8 @@ def _double_records(values: np.ndarray, precision: int, na_rep: bytes) -> np.nda
 def _text_records(col, na_rep: str) -> np.ndarray | None:
     """The texts of a column that is not of doubles (:func:`_field_texts`: raises _NotJoined
     as it does) as NUL-padded UTF-8 records; None if a text holds a NUL byte. A run of one
-    object (a curve table's sweep id over its 30 rows) has its text made once."""
+    object (a curve table's sweep id over its 30 rows) has its text made once, and so has
+    each distinct text of a column that holds few."""
     from pandas.api.types import infer_dtype
 
     values = col.to_numpy()
@@ -377,6 +378,12 @@ def _text_records(col, na_rep: str) -> np.ndarray | None:
             ends = np.append(starts[1:], values.size)
             codes = np.repeat(np.arange(starts.size), ends - starts)
             col = col.iloc[starts]
+        else:  # a few texts, each object a row of its own (a sweep table's model names)
+            import pandas as pd
+
+            found, distinct = pd.factorize(col, use_na_sentinel=False)  # (gaps: one text)
+            if 2 * len(distinct) < values.size:
+                codes, col = found, pd.Series(distinct, dtype=col.dtype)
     texts = _field_texts(col, na_rep)
     joined = "".join(texts)
     if "\0" in joined:

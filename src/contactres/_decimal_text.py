@@ -50,7 +50,7 @@ import re
 
 import numpy as np
 
-__all__ = ["MAX_PRECISION", "g_precision", "g_records"]
+__all__ = ["MAX_PRECISION", "copy_rows", "g_precision", "g_records"]
 
 #: The largest precision formatted here: ``y < 10^N`` must stay below 2^53 (every integer a
 #: double) and the digits after the point within 16; past 12 the margin sends ever more cells
@@ -297,7 +297,7 @@ def g_records(values: np.ndarray, precision: int, nan_text: bytes = b"nan") -> n
     body[:, width_body:] = 0
     at_field = 0
     for f in fields:
-        body[:, at_field : at_field + f.shape[1]] = f
+        copy_rows(body[:, at_field : at_field + f.shape[1]], f)
         at_field += f.shape[1]
     if at is None:
         records = body
@@ -308,6 +308,18 @@ def g_records(values: np.ndarray, precision: int, nan_text: bytes = b"nan") -> n
         records[rows] = 0
         records[rows, : len(text)] = np.frombuffer(text, dtype=np.uint8)
     return records
+
+
+def copy_rows(out: np.ndarray, block: np.ndarray) -> None:
+    """``out[...] = block`` for uint8 arrays of shape (n, w) whose rows are contiguous (views
+    of wider rows are fine): each row copied as one element of w bytes (a void view), ~2.3x
+    faster than numpy's copy of narrow rows byte by byte."""
+    width = block.shape[1]
+    if width < 2 or block.strides[1] != 1 or out.strides[1] != 1:
+        out[...] = block
+        return
+    row = np.dtype((np.void, width))
+    out.view(row)[...] = block.view(row)
 
 
 #: 10^k as int64, k = 0..18.
