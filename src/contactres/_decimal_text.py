@@ -3,7 +3,8 @@ with a ``g`` conversion of precision N) for a whole array at once.
 
 Why: Python's ``%`` formats a double at ~0.2 µs; ``qcm analyze`` of 10^5 sweeps writes ~12
 million of them with :data:`contactres.fileio.CSV_FLOAT_FORMAT` ("%.10g"), two thirds of its
-writing (issue 31, point 3). Here a double costs a few numpy passes over the array.
+writing (issue 31, point 3). Here a double costs a few numpy passes over the array: ~45 ns
+(65,536 at a time, measured on a loaded two-core machine where ``%`` took 0.17-0.26 µs).
 
 How (the text is Python's to the byte, proved below and tested against Python's ``%``):
 
@@ -57,7 +58,7 @@ __all__ = ["MAX_PRECISION", "copy_rows", "g_precision", "g_records"]
 #: to Python (1.8 % at 13 digits).
 MAX_PRECISION = 13
 
-#: ``%g`` and ``%.Ng`` alone: no flags, no width (those keep Python's ``%``, cell by cell).
+#: ``%g`` and ``%.Ng`` alone: no flags, no width (other formats keep Python's ``%``).
 _G_FORMAT = re.compile(r"%(?:\.(\d+))?g")
 
 
