@@ -522,9 +522,10 @@ def test_a_table_is_joined_chunk_by_chunk_and_left_to_pandas_where_a_later_chunk
 @pytest.mark.parametrize("float_format", ["%.10g", "%.3e", "%+.4f", "%10.2g", "%#.5g", "%.3f mm"])
 def test_doubles_formatted_a_chunk_at_a_time_are_pandas_text(tmp_path, monkeypatch, float_format):
     """A column of doubles without gaps is formatted by one ``%`` of a format made for the
-    whole chunk (issue 31, point 3): flags, widths, signs, -0.0, a subnormal and extremes give
-    the text of pandas' own writer, which formats cell by cell (a chunk with an infinity goes
-    cell by cell too); beside a column with gaps and text that needs quotes. A format with more
+    whole chunk (issue 31, point 3), or with "%.Ng" in numpy (``_lines_bytes``), a chunk at a
+    time: flags, widths, signs, -0.0, a subnormal and extremes give the text of pandas' own
+    writer, which formats cell by cell (a chunk with an infinity goes cell by cell too); beside
+    a column with gaps and text that needs quotes. A format with more
     than one conversion's text ("%.3f mm") is applied cell by cell, as before. A column with
     gaps joins the chunk's ``%`` where its NaN formats as "nan" (then written as ``na_rep``)."""
 
@@ -544,11 +545,10 @@ def test_doubles_formatted_a_chunk_at_a_time_are_pandas_text(tmp_path, monkeypat
     text = [f'a,"{i}"' if i % 3 == 0 else f"s{i}" for i in range(values.size)]
     frame = pd.DataFrame({"x": values, "gaps": gaps, "label": text})
     calls = []
-    monkeypatch.setattr(
-        _csvcells,
-        "_formatted_lines",
-        lambda *a, f=_csvcells._formatted_lines: calls.append(1) or f(*a),
-    )
+    # "%.10g" is assembled in numpy (_lines_bytes), the other formats by Python's %.
+    joiner = "_lines_bytes" if float_format == "%.10g" else "_formatted_lines"
+    joined = getattr(_csvcells, joiner)
+    monkeypatch.setattr(_csvcells, joiner, lambda *a: calls.append(1) or joined(*a))
     monkeypatch.setattr(_csvcells, "CHUNK_CELLS", 3 * 1000)  # several chunks
     frame.to_csv(tmp_path / "pandas.csv", index=False, na_rep="NA", float_format=float_format)
     with monkeypatch.context() as m:
@@ -586,3 +586,70 @@ def test_gaps_formatted_with_their_chunk_are_pandas_text(tmp_path, monkeypatch, 
         m.setattr(pd.DataFrame, "to_csv", lambda *a, **k: pytest.fail("pandas was called"))
         write_csv(tmp_path / "joined.csv", frame, na_rep=na_rep, float_format="%.10g")
     assert (tmp_path / "joined.csv").read_bytes() == (tmp_path / "pandas.csv").read_bytes()
+
+
+@pytest.mark.parametrize("float_format", ["%.10g", "%g", "%.3g"])
+@pytest.mark.parametrize("na_rep", ["", "NA"])
+def test_lines_assembled_in_numpy_are_the_text_pandas_writes(
+    tmp_path, monkeypatch, float_format, na_rep
+):
+    """With a "%.Ng" format the lines are assembled as bytes in numpy (issue 31, point 3):
+    each chunk's text is that of pandas' own writer for tables of every kind it covers
+    (doubles of random bits and gaps, integers, booleans, text with quotes and commas, gaps,
+    non-ASCII text, a sweep id repeated over its rows as one object, an all-gap column, a
+    column of a few values), with "\\n" and "\\r\\n" line ends; a chunk with a NUL in a text
+    cell is joined as text, with the same bytes."""
+    import numpy as np
+
+    from contactres import _csvcells
+    from contactres.fileio import write_csv
+
+    rng = np.random.default_rng(41)
+    n = 2400
+    bits = rng.integers(0, 2**64, n, dtype=np.uint64).view(np.float64)
+    sweep_ids = [f"µ-sweep/{i // 30}" if i % 90 else f'id, "{i // 30}"' for i in range(0, n, 30)]
+    ids = pd.Series(np.repeat(np.array(sweep_ids, dtype=object), 30), dtype=object)
+    labels = [["plain", "a,b", 'say "x"', "é", "", None][i % 6] for i in range(n)]
+    labels[2000] = "nul\0inside"  # in the last chunk only
+    frame = pd.DataFrame(
+        {
+            "sweep": ids,
+            "x": bits,
+            "amp": np.tile(np.linspace(0.0, 1e-8, 30), n // 30),
+            "n": rng.integers(-(2**62), 2**62, n),
+            "ok": rng.random(n) < 0.5,
+            "label": pd.Series(labels, dtype=object),
+            "s": pd.Series(labels, dtype="str"),
+            "gap": np.full(n, np.nan),
+            "y": rng.normal(size=n) * 10.0 ** rng.integers(-8, 12, n),
+        }
+    )
+    frame.loc[::7, "y"] = np.nan
+    calls = []
+    joined = _csvcells._lines_bytes
+    monkeypatch.setattr(_csvcells, "_lines_bytes", lambda *a: calls.append(1) or joined(*a))
+    monkeypatch.setattr(_csvcells, "CHUNK_CELLS", 9 * 500)  # 5 chunks of 500 rows
+    for end in ("\n", "\r\n"):
+        want = frame.to_csv(
+            index=False, na_rep=na_rep, float_format=float_format, lineterminator=end
+        )
+        got = "".join(_csvcells.csv_chunks(frame, na_rep, end, float_format))
+        assert got == want
+    assert len(calls) == 2 * 5
+    frame.to_csv(tmp_path / "pandas.csv", index=False, na_rep=na_rep, float_format=float_format)
+    with monkeypatch.context() as m:
+        m.setattr(pd.DataFrame, "to_csv", lambda *a, **k: pytest.fail("pandas was called"))
+        write_csv(tmp_path / "joined.csv", frame, na_rep=na_rep, float_format=float_format)
+    assert (tmp_path / "joined.csv").read_bytes() == (tmp_path / "pandas.csv").read_bytes()
+
+
+def test_the_mixed_table_with_a_g_format_is_the_text_pandas_writes(tmp_path):
+    """The table of every column kind (_mixed_frame: a header that needs quotes, -0.0, a
+    subnormal, -inf, gaps in object and string text) with the reports' format."""
+    from contactres.fileio import CSV_FLOAT_FORMAT
+
+    frame = _mixed_frame()
+    for na_rep in ("", "NA", "nan"):
+        frame.to_csv(tmp_path / "pandas.csv", index=False, na_rep=na_rep, float_format="%.10g")
+        write_csv(tmp_path / "joined.csv", frame, na_rep=na_rep, float_format=CSV_FLOAT_FORMAT)
+        assert (tmp_path / "joined.csv").read_bytes() == (tmp_path / "pandas.csv").read_bytes()

@@ -81,6 +81,7 @@ LAYERS: tuple[frozenset[str], ...] = (
             "_lazy",
             "_threads",
             "_csvcells",
+            "_decimal_text",
             "_ownership",
             "_summary",
             "_png",

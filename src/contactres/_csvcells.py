@@ -15,6 +15,8 @@ from collections.abc import Iterator
 
 import numpy as np
 
+from ._decimal_text import copy_rows, g_precision, g_records
+
 __all__ = [
     "CHUNK_CELLS",
     "CSV_FLOAT_FORMAT",
@@ -219,8 +221,8 @@ _ONE_FLOAT = re.compile(r"%[-+ #0]*\d*(?:\.\d+)?[eEfFgG]")
 def _few(values: np.ndarray) -> bool:
     """Whether a float column's first 1000 cells hold at most a tenth as many distinct values
     (a curve table's amplitude grid): then each is formatted once (:func:`_float_texts`)."""
-    head = values[:1000].view(np.int64)
-    return len(np.unique(head)) * 10 <= head.size
+    head = np.sort(values[:1000].view(np.int64))  # (a sort: a tenth of np.unique's time here)
+    return (1 + np.count_nonzero(head[1:] != head[:-1])) * 10 <= head.size
 
 
 def csv_chunks(
@@ -242,7 +244,18 @@ def csv_chunks(
     formatted float at ~2 µs; joining the cells here costs a tenth of that (issue 31, point 5:
     ``afm invert`` of a 512² map writes 5.5 million cells; point 3: ``qcm analyze`` of 10^5
     sweeps writes ~15 million). In pieces, so that the text of a large table is never held
-    whole."""
+    whole. With a ``"%.Ng"`` format (the reports' :data:`CSV_FLOAT_FORMAT`) the lines are
+    assembled as bytes in numpy (:func:`_lines_bytes`), the doubles' text made there too."""
+    for piece in _pieces(frame, na_rep, lineterminator, float_format, rows):
+        yield piece if isinstance(piece, str) else piece.decode("utf-8")
+
+
+def _pieces(
+    frame, na_rep: str, lineterminator: str, float_format: str | None, rows: int | None
+) -> Iterator[str | bytearray]:
+    """:func:`csv_chunks`' pieces, those assembled in numpy (:func:`_lines_bytes`) as the
+    UTF-8 bytes they are made as: :func:`csv_to` writes them without a decoding and encoding
+    of each (~250 MB of text at 10^5 sweeps)."""
     columns = list(getattr(frame, "columns", ()))
     if len(columns) < 2 or len(frame) == 0 or not all(isinstance(c, str) for c in columns):
         raise _NotJoined  # (not a table; one column: the csv module quotes an empty field there)
@@ -256,8 +269,15 @@ def csv_chunks(
     # formatted with the others and its "nan" made ``na_rep`` in the chunk's text, where no
     # text cell holds "nan" (a float's text has none but NaN's).
     gaps_in_text = one and str(float_format) % float("nan") == "nan"
+    # "%.Ng": the lines assembled as bytes in numpy (NUL is their filler: not in the fixed texts)
+    precision = g_precision(float_format) if "\0" not in na_rep + lineterminator else None
     for start in range(0, len(frame), step):
         part = frame.iloc[start : start + step]
+        if precision is not None:
+            lines = _lines_bytes(part, na_rep, lineterminator, precision)
+            if lines is not None:
+                yield lines
+                continue
         fields: list = []
         gaps = []  # positions of the doubles with a NaN
         for i in range(len(columns)):  # by position: column names need not be unique
@@ -284,6 +304,94 @@ def csv_chunks(
             yield text.replace("nan", na_rep) if gaps else text
         else:
             yield lineterminator.join([*map(",".join, zip(*fields, strict=True)), ""])
+
+
+def _lines_bytes(part, na_rep: str, lineterminator: str, precision: int) -> bytearray | None:
+    """The CSV lines of the rows ``part`` (a DataFrame) with doubles as ``"%.{precision}g"``,
+    as UTF-8 bytes: the text :func:`csv_chunks` joins, assembled in numpy. None where a text
+    cell holds a NUL byte (then joined as text); raises _NotJoined as :func:`_field_texts`.
+
+    Why: Python's ``%`` formats a double at ~0.2 µs and its text joined into lines costs
+    another ~40 % (issue 31, point 3: ~12 million doubles in ``qcm analyze``'s tables at 10^5
+    sweeps). Here each column is an array of records, fixed-width rows of bytes whose text is
+    the row without its NUL bytes (:func:`contactres._decimal_text.g_records` for doubles, each
+    distinct run of text encoded once); a chunk's lines are the records side by side with the
+    separators, every NUL dropped at once."""
+    records = []
+    for i in range(part.shape[1]):  # by position: column names need not be unique
+        col = part.iloc[:, i]
+        values = col.to_numpy()
+        if values.dtype == np.float64:
+            records.append(_double_records(values, precision, na_rep.encode()))
+            continue
+        rec = _text_records(col, na_rep)
+        if rec is None:
+            return None
+        records.append(rec)
+    seps = [b","] * (len(records) - 1) + [lineterminator.encode()]
+    width = sum(r.shape[1] + len(s) for r, s in zip(records, seps, strict=True))
+    # In a bytearray, whose NULs are dropped by one pass in C (half the time of numpy's boolean
+    # mask) without a copy to bytes first
+    memory = bytearray(len(part) * width)
+    lines = np.frombuffer(memory, dtype=np.uint8).reshape(len(part), width)
+    at = 0
+    for rec, sep in zip(records, seps, strict=True):
+        copy_rows(lines[:, at : at + rec.shape[1]], rec)
+        at += rec.shape[1]
+        lines[:, at : at + len(sep)] = np.frombuffer(sep, dtype=np.uint8)
+        at += len(sep)
+    del lines  # (the view)
+    return memory.translate(None, b"\0")
+
+
+def _double_records(values: np.ndarray, precision: int, na_rep: bytes) -> np.ndarray:
+    """:func:`contactres._decimal_text.g_records` of a column of doubles; a column of few
+    distinct values (:func:`_few`) has each value's record made once."""
+    if not _few(values):
+        return g_records(values, precision, na_rep)
+    import pandas as pd
+
+    codes, distinct = pd.factorize(values.view(np.int64))  # by bits: -0.0 is not 0.0
+    return g_records(distinct.view(np.float64), precision, na_rep)[codes]
+
+
+def _text_records(col, na_rep: str) -> np.ndarray | None:
+    """The texts of a column that is not of doubles (:func:`_field_texts`: raises _NotJoined
+    as it does) as NUL-padded UTF-8 records; None if a text holds a NUL byte. A run of one
+    object (a curve table's sweep id over its 30 rows) has its text made once, and so has
+    each distinct text of a column that holds few."""
+    from pandas.api.types import infer_dtype
+
+    values = col.to_numpy()
+    codes = None
+    if values.dtype.kind == "b":
+        return (
+            np.array([b"False", b"True"])[values.astype(np.intp)]
+            .view(np.uint8)
+            .reshape(values.size, -1)
+        )
+    if values.dtype.kind == "O" or str(col.dtype) == "str":
+        if infer_dtype(col, skipna=True) not in ("string", "empty"):
+            raise _NotJoined
+        starts = _run_starts(np.ascontiguousarray(col.to_numpy(dtype=object)))
+        if 2 * starts.size < values.size:
+            ends = np.append(starts[1:], values.size)
+            codes = np.repeat(np.arange(starts.size), ends - starts)
+            col = col.iloc[starts]
+        else:  # a few texts, each object a row of its own (a sweep table's model names)
+            import pandas as pd
+
+            found, distinct = pd.factorize(col, use_na_sentinel=False)  # (gaps: one text)
+            if 2 * len(distinct) < values.size:
+                codes, col = found, pd.Series(distinct, dtype=col.dtype)
+    texts = _field_texts(col, na_rep)
+    joined = "".join(texts)
+    if "\0" in joined:
+        return None
+    # (numpy encodes ASCII text itself, at a fraction of a Python call a cell)
+    records = np.array(texts if joined.isascii() else [t.encode() for t in texts], dtype="S")
+    records = records.view(np.uint8).reshape(records.size, -1)
+    return records if codes is None else records[codes]
 
 
 def _formatted_lines(fields: list, float_format: str, lineterminator: str) -> str:
@@ -335,9 +443,9 @@ def csv_to(path, frame, options: dict) -> None:
     )
     if joined and (float_format is None or isinstance(float_format, str)):
         try:
-            with open(path, "w", encoding="utf-8", newline="") as fh:
-                for piece in csv_chunks(table, na_rep, os.linesep, float_format):
-                    fh.write(piece)
+            with open(path, "wb") as fh:  # (the text as the csv module writes it: UTF-8)
+                for piece in _pieces(table, na_rep, os.linesep, float_format, None):
+                    fh.write(piece.encode("utf-8") if isinstance(piece, str) else piece)
             return
         except _NotJoined:
             pass

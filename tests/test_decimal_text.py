@@ -1,0 +1,195 @@
+"""The decimal text of doubles made in numpy (contactres._decimal_text, issue 31 point 3) is
+Python's own ``"%.Ng" % value`` to the byte. The reference is CPython's ``%`` (David Gay's
+correctly rounded dtoa, round half to even on the exact binary value): an algorithm of its own,
+not this module's output pasted back."""
+
+import numpy as np
+import pytest
+
+from contactres._decimal_text import MAX_PRECISION, g_precision, g_records
+
+
+def _texts(values, precision: int, nan_text: bytes = b"nan") -> list[str]:
+    """The text of each cell: its record without the NUL bytes (a cell per line)."""
+    records = g_records(np.asarray(values, dtype=np.float64), precision, nan_text)
+    assert records.dtype == np.uint8 and records.shape[0] == len(values)
+    lines = np.concatenate([records, np.full((len(values), 1), ord("\n"), np.uint8)], axis=1)
+    return lines.tobytes().translate(None, b"\0").decode("ascii").split("\n")[:-1]
+
+
+def _python(values, precision: int) -> list[str]:
+    return [f"%.{precision}g" % v for v in np.asarray(values, dtype=np.float64).tolist()]
+
+
+def _mismatches(values, precision: int) -> list[tuple[float, str, str]]:
+    values = np.asarray(values, dtype=np.float64)
+    got, want = _texts(values, precision), _python(values, precision)
+    return [(v, g, w) for v, g, w in zip(values.tolist(), got, want, strict=True) if g != w]
+
+
+def _random_bits(rng, n: int) -> np.ndarray:
+    """Doubles of uniformly random bit patterns: every binary exponent, both signs,
+    subnormals, NaNs and infinities."""
+    return rng.integers(0, 2**64, n, dtype=np.uint64, endpoint=False).view(np.float64)
+
+
+def test_random_bit_patterns_over_every_exponent_are_pythons_text():
+    """Two million doubles of random bits (all 2046 binary exponents, both signs, subnormals,
+    NaN and infinities among them) at the reports' ten digits."""
+    rng = np.random.default_rng(20261130)
+    for _ in range(4):
+        values = _random_bits(rng, 500_000)
+        assert _mismatches(values, 10) == []
+
+
+def test_random_decimal_magnitudes_at_every_precision():
+    """Doubles over 10^-30..10^30 (where the fixed notation and the one-step scaling live) and
+    random bits, at every precision covered, from %.1g to %.13g."""
+    rng = np.random.default_rng(7)
+    values = np.concatenate(
+        [
+            rng.normal(size=40_000) * 10.0 ** rng.integers(-30, 30, 40_000),
+            rng.integers(1, 10**6, 10_000) / 2.0 ** rng.integers(0, 30, 10_000),  # short ones
+            _random_bits(rng, 20_000),
+        ]
+    )
+    for precision in range(1, MAX_PRECISION + 1):
+        assert _mismatches(values, precision) == [], precision
+
+
+def test_special_values_and_extremes():
+    specials = [
+        0.0,
+        -0.0,
+        np.inf,
+        -np.inf,
+        5e-324,  # the smallest subnormal
+        -5e-324,
+        2.2250738585072009e-308,  # the largest subnormal
+        2.2250738585072014e-308,  # the smallest normal
+        1.7976931348623157e308,  # the largest double
+        -1.7976931348623157e308,
+        1e-320,
+        1e300,
+        1e-300,
+        1.0,
+        -1.0,
+        0.1,
+        0.3,
+    ]
+    assert _texts(specials, 10) == _python(specials, 10)
+    assert _texts([0.0, -0.0], 10) == ["0", "-0"]
+
+
+def test_a_nan_of_any_sign_or_payload_is_the_callers_text():
+    nans = np.array(
+        [0x7FF8000000000000, 0xFFF8000000000000, 0x7FF0000000000001, 0xFFFFFFFFFFFFFFFF],
+        dtype=np.uint64,
+    ).view(np.float64)
+    assert np.isnan(nans).all()
+    assert _texts(nans, 10) == ["nan"] * 4  # Python's %: "nan" whatever the sign
+    assert _texts(nans, 10, b"") == [""] * 4
+    assert _texts(np.concatenate([nans, [1.5]]), 10, b"NA") == ["NA"] * 4 + ["1.5"]
+
+
+def _exact_ties(rng, n: int) -> tuple[np.ndarray, np.ndarray]:
+    """Doubles whose exact decimal value ends in a 5 just past the precision (exact halves),
+    and that precision: c * 2^-m for odd c has exactly m decimal places, the last one a 5."""
+    values, precisions = [], []
+    while len(values) < n:
+        c = int(rng.integers(1, 2**40)) | 1
+        m = int(rng.integers(1, 25))
+        digits = len(str(c * 5**m))  # the significant digits of c * 2^-m = c * 5^m / 10^m
+        precision = digits - 1
+        if 1 <= precision <= MAX_PRECISION:
+            values.append(c * 2.0**-m)
+            precisions.append(precision)
+    return np.array(values), np.array(precisions)
+
+
+def test_exact_ties_round_half_to_even():
+    """An exact half at the last digit rounds to the even digit, as Python's % does: the
+    ties a formatter that rounds half up (or rounds the scaled double) gets wrong."""
+    assert _texts([1234567890.5, 1234567891.5, -1234567890.5], 10) == [
+        "1234567890",
+        "1234567892",
+        "-1234567890",
+    ]
+    assert _texts([0.125, 0.375, 2.5, 3.5], 2) == ["0.12", "0.38", "2.5", "3.5"]
+    assert _texts([0.125, 0.375, 2.5, 3.5], 1) == ["0.1", "0.4", "2", "4"]
+    assert _texts([9999999999.5, 9999999998.5], 10) == ["1e+10", "9999999998"]
+    rng = np.random.default_rng(31)
+    values, precisions = _exact_ties(rng, 3000)
+    for precision in np.unique(precisions).tolist():
+        tied = values[precisions == precision]
+        # the tie itself, and its neighbours one ulp away (no longer ties: they round away)
+        near = np.concatenate([tied, np.nextafter(tied, 0), np.nextafter(tied, np.inf)])
+        assert _mismatches(np.concatenate([near, -near]), precision) == [], precision
+
+
+def test_values_that_round_up_to_the_next_power_of_ten():
+    """9.99...95 rounds to 10^k: one digit more before the point, or the next exponent."""
+    values = np.array(
+        [
+            9.9999999995e-5,
+            9.9999999995e-6,
+            999999999.95,
+            9999999999.5,
+            99999.999995,
+            0.99999999995,
+            9.9999999995,
+            9.9999999995e22,
+            9.9999999995e-300,
+        ]
+    )
+    near = np.concatenate([values, np.nextafter(values, 0), np.nextafter(values, np.inf)])
+    assert _mismatches(np.concatenate([near, -near]), 10) == []
+    assert _texts([999999999.95, 9.99999999996e-5], 10) == ["1000000000", "0.0001"]
+
+
+@pytest.mark.parametrize("precision", [1, 6, 10, 13])
+def test_the_switch_between_fixed_and_exponential_notation(precision):
+    """%g writes d.ddde-05 below 10^-4 and from 10^N on: the switch points and their
+    neighbours by one ulp, both signs."""
+    points = np.array([1e-5, 1e-4, 1e-3, 1.0, 10.0 ** (precision - 1), 10.0**precision, 1e9, 1e10])
+    near = np.concatenate([points, np.nextafter(points, 0), np.nextafter(points, np.inf)])
+    assert _mismatches(np.concatenate([near, -near]), precision) == []
+    assert _texts([1e-4, 1e-5], precision) == ["0.0001", "1e-05"]
+
+
+def test_powers_of_ten_and_their_neighbours_over_the_whole_range():
+    """Where log10 misjudges the decimal exponent (next to 10^k), and the two-step scaling
+    (|k| > 22): every power of ten a double holds, and one ulp either side."""
+    powers = np.array([float(f"1e{k}") for k in range(-323, 309)])
+    near = np.concatenate([powers, np.nextafter(powers, 0), np.nextafter(powers, np.inf)])
+    for precision in (1, 10, 13):
+        assert _mismatches(near, precision) == [], precision
+
+
+def test_the_formats_formatted_here():
+    assert g_precision("%.10g") == 10
+    assert g_precision("%g") == 6  # Python's default precision
+    assert g_precision("%.0g") == 1  # as Python's %: "%.0g" % 123.0 is "1e+02"
+    assert g_precision("%.13g") == 13
+    for other in ("%.14g", "%.17g", "%10.3g", "%+.3g", "%#.5g", "%.3e", "%.3f", "%.3g mm", None):
+        assert g_precision(other) is None, other
+    assert _texts([123.0, 0.5], g_precision("%.0g")) == ["1e+02", "0.5"]  # Python's %.0g
+
+
+def test_an_empty_array_and_one_of_only_special_values():
+    assert g_records(np.array([]), 10).shape[0] == 0
+    assert _texts([np.nan, 0.0, -np.inf], 10, b"") == ["", "0", "-inf"]
+
+
+def test_an_exponent_guess_that_stays_wrong_leaves_the_cell_to_python(monkeypatch):
+    """The decimal exponent from log10 is corrected by one a step, three steps at most: a
+    guess still wrong after them (never seen from log10) gives Python's own text, not a wrong
+    one."""
+    from contactres import _decimal_text
+
+    guess = _decimal_text._exponent_guess
+    values = np.array([1.5, -2.5e-7, 3.25e12, 123456.789, 1e300])
+    monkeypatch.setattr(_decimal_text, "_exponent_guess", lambda a: guess(a) + 2)
+    assert _mismatches(values, 10) == []  # two steps away: corrected
+    monkeypatch.setattr(_decimal_text, "_exponent_guess", lambda a: guess(a) - 5)
+    assert _mismatches(values, 10) == []  # five away: still off after three steps
