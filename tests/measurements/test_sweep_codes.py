@@ -236,3 +236,36 @@ def test_a_column_varies_within_a_group_where_pandas_counts_two_values():
                 assert _varies(group, cells, given, None) == want, trial
             outcomes.add((want, inner is not None))
     assert len(outcomes) == 4  # each outcome, with and without runs
+
+
+@pytest.mark.parametrize("spread", [1, 3, 100])  # mostly distinct cells, or runs of them
+def test_stripped_cells_and_codes_are_pandas_own(spread):
+    """stripped (its cells stripped one by one where most are distinct, else each distinct
+    text once) against pandas stripping every cell; stripped_codes' codes, where it says they
+    need no second hashing, against pandas' factorisation of the stripped texts; and its
+    flag false where a strip made two texts one or a cell is missing."""
+    from contactres.measurements._cell_text import stripped_codes
+    from contactres.measurements.schema import stripped
+
+    rng = np.random.default_rng(spread)
+    flags = set()
+    for trial in range(60):
+        words = [f"w{i}" for i in range(int(rng.integers(1, 40)))]
+        if trial % 3 == 1:
+            words += [" w0", "w1 "]  # one text once stripped
+        if trial % 5 == 2:
+            words += [None, np.nan]
+        cells = pd.Series(
+            np.repeat(np.array(words, dtype=object)[rng.integers(0, len(words), 50)], spread),
+            dtype=object,
+        )
+        want = cells.astype(str).str.strip().to_numpy(dtype=object)
+        got = stripped(cells)
+        assert [x if x == x else None for x in got] == [x if x == x else None for x in want]
+        codes, distinct, exact = stripped_codes(cells)
+        if exact:
+            np.testing.assert_array_equal(codes, pd.factorize(distinct[codes])[0])
+        else:
+            assert trial % 3 == 1 or trial % 5 == 2, trial
+        flags.add(exact)
+    assert flags == {True, False}

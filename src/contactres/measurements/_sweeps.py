@@ -33,7 +33,7 @@ from .._summary import Summarised, table_size
 from ..errors import ContactresInputError
 from ..numerics import factorize_runs, run_starts
 from ..units import ABSOLUTE_FREQUENCY_FRACTION, SMALL_LOAD_LIMIT
-from ._cell_text import stripped_distinct
+from ._cell_text import stripped_codes
 from ._checksum import hashed_load
 from ._messages import at_cell, column_named, column_names, line_word, shown_value, where_rows
 from ._sweep_checks import (
@@ -430,7 +430,7 @@ def _labels(
     hold 10^5 sweep ids and a few labels, and the check stripped every cell again (issue 31).
     A broken rule is named by the check of every cell, as before. The codes serve the checks
     of the rows (duplicates, one value per sweep), which hashed the 10^6 texts again."""
-    codes, distinct = stripped_distinct(raw[col])
+    codes, distinct, exact = stripped_codes(raw[col])
     # The column pandas makes of ``distinct[codes]``, its type inferred from the distinct
     # texts and the rows then taken from them: inferring it from 10^6 objects, then checking
     # and copying each into pandas' text array, cost ~0.04 s a column (issue 31, point 3).
@@ -442,7 +442,7 @@ def _labels(
     if broken_rule(rules, distinct) is not None:
         SWEEP_TABLE.check_cells(out, source, col)
     # Texts that differed by the white space around them are one text once stripped.
-    return pd.factorize(distinct)[0][codes]
+    return codes if exact else pd.factorize(distinct)[0][codes]
 
 
 def _labels_and_numbers(

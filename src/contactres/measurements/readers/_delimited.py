@@ -21,6 +21,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ...errors import ContactresInputError
+from ...numerics import column_run_starts
 
 if TYPE_CHECKING:  # annotations: pandas is imported where a table is read (a numpy archive's
     import pandas as pd  # reader shares this package and needs none, issue 31)
@@ -360,8 +361,16 @@ def _other_separator(
     others = [c for c in (",", ";", "\t") if c != sep and not (c == "," and decimal == ",")]
     if width < 2 or not others or raw.empty:
         return
-    # The last cell first (one column: cheap on 10^6 rows), then the few rows left.
-    rows = raw.loc[(raw.iloc[:, width - 1] == "").to_numpy()]
+    # The last cell first (one column: cheap on 10^6 rows, and compared on the first cell of
+    # each run of equal cells only: a constant's column is a few runs), then the few rows left.
+    last = raw.iloc[:, width - 1]
+    starts = column_run_starts(last)
+    if starts is None:  # Arrow text, compared whole
+        empty = (last == "").to_numpy(dtype=bool)
+    else:
+        runs = np.diff(np.append(starts, len(last)))
+        empty = np.repeat((last.iloc[starts] == "").to_numpy(dtype=bool), runs)
+    rows = raw.loc[empty]
     first = rows.iloc[:, 0].astype(str)
     held = np.zeros(len(rows), dtype=bool)
     for c in others:
