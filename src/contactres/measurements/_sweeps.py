@@ -391,8 +391,9 @@ def _numeric(raw: pd.DataFrame, col: str, source: str, decimal: str) -> np.ndarr
     if col in raw.attrs.get("number_columns", ()) or _given_as_numbers(raw[col]):
         # Read as numbers by the reader (finite, each the number its text gives: the same
         # converter as below; readers/_delimited._parsed) or given as numbers: no text to read
-        # again (writing 10^6 numbers as text to read them back cost ~7 s, issue 31).
-        values = raw[col].to_numpy(dtype=float, copy=True)
+        # again (writing 10^6 numbers as text to read them back cost ~7 s, issue 31). Not
+        # copied here: the values are only read, and the frame they are set into copies them.
+        values = raw[col].to_numpy(dtype=float)
         check_cells(raw, source, col, (FINITE,), values)
         return values
     text = raw[col].astype(str)
