@@ -223,8 +223,11 @@ def load(path: Path, number_columns: Collection[str] = ()) -> pd.DataFrame:
     raw.columns = [str(c).strip() for c in raw.columns]
     # A short row may leave NaN in its missing cells (pandas 3 gives empty ones): make them
     # empty cells, as written. Its last cell is one of them, so that column alone is looked
-    # at first (one column, not every cell of 10^6 rows: issue 31).
-    if raw.iloc[:, -1].isna().any():
+    # at first (one column, not every cell of 10^6 rows: issue 31), on the first cell of each
+    # run of equal cells (a constant's column is a few runs).
+    last = raw.iloc[:, -1]
+    starts = column_run_starts(last)
+    if (last if starts is None else last.iloc[starts]).isna().any():
         raw = raw.fillna("")
     if len(numbers) - 1 != len(raw):
         # pandas joined lines: a quoted cell ran over a line break (a CR or LF inside quotes).
