@@ -172,6 +172,18 @@ def _columns():
         ),
         "empty object": pd.Series([], dtype=object),
         "ndarray object": cells,
+        # Equal texts in objects of their own (as pandas' parser gives a column from one block
+        # of rows to the next), every other run, or every cell: compared as texts.
+        "ndarray object, equal texts in other objects": np.array(
+            [c if c is None or i % 7 < 3 else "".join([c, ""]) + " " for i, c in enumerate(cells)],
+            dtype=object,
+        ),
+        "object, every cell its own object": pd.Series(
+            [None if c is None else "".join([c, "x"]) for c in cells], dtype=object
+        ),
+        "object, one NaN object repeated": pd.Series(
+            np.where(cells == "a", np.nan, cells), dtype=object
+        ),
         "ndarray object with pandas.NA": np.where(cells == "", pd.NA, cells),
         "ndarray float with NaN": np.where(ints == 3, np.nan, ints.astype(float)),
         "ndarray int": ints,
@@ -205,7 +217,8 @@ def test_factorize_runs_as_pandas_hashing_every_cell(name, use_na_sentinel):
 @pytest.mark.parametrize("name", list(_columns()))
 def test_column_run_starts_against_a_loop_over_the_rows(name):
     # A run starts where a cell is not the one before it by Python's ``!=`` (a NaN or NaT is a
-    # run of its own; None equals None); in a column holding pandas.NA, which has no truth
+    # run of its own; None equals None), cells held as objects first by identity (the same
+    # object as above: the same run); in a column holding pandas.NA, which has no truth
     # value, every missing cell is taken as NaN. An Arrow-backed column is left to pandas'
     # hashing (None).
     import pandas as pd
@@ -218,7 +231,21 @@ def test_column_run_starts_against_a_loop_over_the_rows(name):
         assert starts is None
         return
     cells = list(column)
-    if any(c is pd.NA for c in cells):
-        cells = [np.nan if pd.isna(c) else c for c in cells]
-    want = [i for i in range(len(cells)) if i == 0 or bool(cells[i] != cells[i - 1])]
+    # Cells held as objects: a row holding the object above it is in its run (a NaN object
+    # repeated too; a masked or "string" column's missing cells are the one object NaN),
+    # unless pandas.NA met another cell (every missing cell NaN, compared).
+    dtype = column.dtype
+    as_objects = not (isinstance(dtype, np.dtype) and dtype.kind in "biufcmM")
+    if getattr(dtype, "na_value", None) is pd.NA:
+        cells = list(column.to_numpy(dtype=object, na_value=np.nan))
+    elif any(c is pd.NA for c in cells):
+        cells, as_objects = [np.nan if pd.isna(c) else c for c in cells], False
+    elif as_objects:
+        cells = list(column.to_numpy(dtype=object) if isinstance(column, pd.Series) else column)
+    want = [
+        i
+        for i in range(len(cells))
+        if i == 0
+        or (not (as_objects and cells[i] is cells[i - 1]) and bool(cells[i] != cells[i - 1]))
+    ]
     assert starts.tolist() == want

@@ -228,10 +228,12 @@ def column_run_starts(cells) -> np.ndarray | None:
     made into Python strings to be compared: 0.11-0.15 s for 1.2 M cells, where
     ``pandas.factorize`` hashes them in Arrow for 0.025-0.056 s (review R28a). A column of a
     numpy numeric, boolean or time dtype is compared as it is (int64 codes of 1.2 M rows:
-    0.008 s, 0.036 s as objects). Any other is compared as objects, by ``!=`` (a NaN or NaT
-    is a run of its own, a run of None one run). ``pandas.NA`` has no truth value (``!=`` on
-    it raises): in a column holding it, every missing cell is compared as NaN, a run of its
-    own. Splitting runs further is always safe: every distinct cell still starts some run.
+    0.008 s, 0.036 s as objects). Any other is compared as objects, first by identity, then
+    by ``!=`` where the object changes (:func:`_object_run_starts`: a NaN or NaT is a run of
+    its own unless the same object fills the rows above, a run of None one run).
+    ``pandas.NA`` has no truth value (``!=`` on it raises): in a column where it is compared,
+    every missing cell is compared as NaN, a run of its own. Splitting runs further is
+    always safe: every distinct cell still starts some run.
 
     Parameters
     ----------
@@ -264,11 +266,40 @@ def column_run_starts(cells) -> np.ndarray | None:
     else:
         values = np.asarray(cells)
     try:
-        return run_starts(values)
+        return _object_run_starts(values) if values.dtype == object else run_starts(values)
     except TypeError:
         # pandas.NA among objects: NaN for every missing cell (a pass over every cell in C,
         # which a column without pandas.NA is spared).
         return run_starts(np.where(pd.isna(values), np.nan, values))
+
+
+def _object_run_starts(values: np.ndarray) -> np.ndarray:
+    """:func:`run_starts` of one object array, the cells compared by ``!=`` only where the
+    object changes from the row above; rows holding the same object as the row above (one
+    pointer: an integer compare in C) are in its run.
+
+    pandas' parser gives equal cells of a column one string object (within each block of rows
+    it parses): a sweep id's rows, a constant's column. ``!=`` on 1.2 M such cells called the
+    strings' comparison a row, ~9 ms a column where the pointers take ~1 ms (issue 31, point
+    3: some 25 columns compared while reading and setting up 10^5 sweeps). A NaN object
+    repeated is one run here, where ``!=`` made each NaN a run of its own: splitting runs
+    further was always allowed, and every missing cell is still in a run of missing cells.
+    Where numpy does not give an array's pointers (not contiguous), every cell is compared."""
+    pointers = None
+    if values.ndim == 1 and values.flags.c_contiguous:
+        try:
+            pointers = np.frombuffer(values, dtype=np.intp)
+        except (TypeError, ValueError, BufferError):  # a numpy that keeps them to itself
+            pointers = None
+    if pointers is None:
+        return run_starts(values)
+    pointers.flags.writeable = False  # a write through this view would corrupt the references
+    change = np.zeros(len(values), dtype=bool)
+    change[:1] = True
+    np.not_equal(pointers[1:], pointers[:-1], out=change[1:])
+    other = np.flatnonzero(change[1:]) + 1  # another object: compared as cells
+    change[other] = values[other] != values[other - 1]
+    return np.flatnonzero(change)
 
 
 def factorize_runs(cells, use_na_sentinel: bool = True) -> tuple[np.ndarray, pd.Index | np.ndarray]:

@@ -141,3 +141,32 @@ def test_up_and_down_in_names_are_whole_words_as_the_plain_search_finds_them():
     said = sorted(m.split("'")[1] for m in got.messages if "is labelled" in m)
     assert said == sorted(s for s, w in zip(names, wrong, strict=True) if w)
     assert any(wrong) and not all(wrong)
+
+
+@pytest.mark.parametrize("times", [None, [3.0, 3.0, 5.0, 9.0], [np.nan] * 4])
+def test_tied_ramps_are_ordered_by_sweep_name_then_line(times):
+    # Repeated ramp labels (or equal or missing first times) of one load: the running-in
+    # sweep is the first of the tie by name, whatever the order of the rows. The reference
+    # sorts the sweeps in Python by (position, name, line), missing times last.
+    names = ["z", "a", "m", "b"]
+    info = pd.DataFrame(
+        {
+            "sweep": names,
+            "ramp": [1, 1, 2, 3],
+            "experiment": "e1",
+            "configuration": "c",
+            "medium": "air",
+            "normal_force_N": 1e-3,
+        }
+    )
+    lines = np.array([2, 14, 26, 38])
+    times = None if times is None else np.array(times)
+    got = check_ramps(info, lines, np.array(["up"] * 4), times)
+    position = info["ramp"].to_numpy(float) if times is None else times
+    key = [
+        (np.isnan(p), 0.0 if np.isnan(p) else p, n, ln)
+        for p, n, ln in zip(position, names, lines, strict=True)
+    ]
+    first = min(range(4), key=lambda i: key[i])
+    assert names[first] == "a"
+    assert got.first.tolist() == [i == first for i in range(4)]

@@ -44,3 +44,37 @@ def test_a_bad_row_is_named_by_its_line_whatever_the_last_line_break(tmp_path, e
         f"{path}: not a readable ','-separated table (line 4 has 5 fields, the header 4: 1 "
         "field more than the header; every row has one field per column)"
     )
+
+
+@pytest.mark.parametrize("code", range(128))
+def test_ascii_bytes_are_taken_as_they_are_where_their_text_would_be(monkeypatch, code):
+    # An ASCII file is not decoded: its bytes are tested for blank lines, comments and CRs
+    # (_ascii_lines). Against the text's own tests (_data_lines): every ASCII character at the
+    # start of the file, of a line, of the last line and at the end, with and without the
+    # last LF. Where the text is taken as it is, so are the bytes, with the same line numbers.
+    split = _delimited._LINE_BREAK.split
+    sorted_lines = []
+
+    class Spy:  # _data_lines splits the text into lines only where it sorts them one by one
+        def split(self, text):
+            sorted_lines.append(text)
+            return split(text)
+
+    monkeypatch.setattr(_delimited, "_LINE_BREAK", Spy())
+    c = chr(code)
+    for text in (f"{c}h,a\n1,2\n", f"h,a\n{c}1,2\n3,4\n", f"h,a\n1,2\n{c}", f"h,a\n1,2{c}"):
+        for whole in (text, text + "\n"):
+            sorted_lines.clear()
+            body, numbers, comments = _delimited._data_lines(whole)
+            got = _delimited._ascii_lines(whole.encode("ascii"))
+            assert (got is None) == bool(sorted_lines), repr(whole)
+            if got is not None:
+                assert (body, comments) == (whole.removesuffix("\n"), [])
+                assert got.tolist() == numbers.tolist()
+
+
+def test_a_nul_byte_of_an_ascii_table_is_named_by_its_line(tmp_path):
+    path = tmp_path / "nul.csv"
+    path.write_bytes(b"sweep,amplitude_m\ns1,1e-9\ns1,2\x00e-9\n")
+    with pytest.raises(ValueError, match=r"nul\.csv: line 3: a NUL character"):
+        _delimited.load(path, ("amplitude_m",))

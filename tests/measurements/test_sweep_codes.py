@@ -197,3 +197,75 @@ def test_distinct_cells_are_numbered_by_first_appearance_as_each_cell_would_be(o
     assert codes.tolist() == [first[k] for k in keys]
     texts = [k.strip() if k != "<missing>" else None for k in first]
     assert [None if d != d else d for d in distinct.tolist()] == texts
+
+
+def test_a_column_varies_within_a_group_where_pandas_counts_two_values():
+    """_varies (the grouping's runs given or not) against pandas' nunique per group: groups
+    that are runs of rows (a sweep's points) or scattered, rows in no group (-1), floats with
+    NaN and -0.0, integers (negative ones too), text with missing cells, codes given."""
+    from contactres.measurements._sweep_checks import _varies, _within_runs
+
+    rng = np.random.default_rng(12)
+    outcomes = set()
+    for trial in range(400):
+        n_groups = int(rng.integers(1, 6))
+        sizes = rng.integers(1, 5, n_groups)
+        group = np.repeat(np.arange(n_groups), sizes)
+        if trial % 3 == 1:
+            group = rng.permutation(group)
+        if trial % 5 == 2:
+            group[rng.random(group.size) < 0.2] = -1
+        n = group.size
+        pick = rng.random(n) < (0.85 if trial % 2 else 0.999)  # mostly the group's own value
+        base = rng.integers(-2, 2, n_groups)[np.maximum(group, 0)]
+        ints = np.where(pick, base, rng.integers(-2, 2, n))
+        floats = ints.astype(float) * 0.5
+        floats[floats == 0] = np.where(rng.random(np.count_nonzero(floats == 0)) < 0.5, 0.0, -0.0)
+        if trial % 4 == 3:
+            floats[rng.random(n) < 0.2] = np.nan
+        text = pd.Series(np.where(np.isnan(floats), None, floats.astype(str)), dtype=object)
+        inner = _within_runs(group)
+        if trial % 3 != 1 and trial % 5 != 2:
+            assert inner is not None  # runs of rows, every row in a group
+        for cells in (pd.Series(ints), pd.Series(floats), text):
+            frame = pd.DataFrame({"g": np.where(group >= 0, group, np.nan), "v": cells})
+            want = bool((frame.groupby("g")["v"].nunique() > 1).any())
+            codes = pd.factorize(cells)[0] if cells.dtype == object else None
+            for given in (None, codes):
+                assert _varies(group, cells, given, inner) == want, trial
+                assert _varies(group, cells, given, None) == want, trial
+            outcomes.add((want, inner is not None))
+    assert len(outcomes) == 4  # each outcome, with and without runs
+
+
+@pytest.mark.parametrize("spread", [1, 3, 100])  # mostly distinct cells, or runs of them
+def test_stripped_cells_and_codes_are_pandas_own(spread):
+    """stripped (its cells stripped one by one where most are distinct, else each distinct
+    text once) against pandas stripping every cell; stripped_codes' codes, where it says they
+    need no second hashing, against pandas' factorisation of the stripped texts; and its
+    flag false where a strip made two texts one or a cell is missing."""
+    from contactres.measurements._cell_text import stripped_codes
+    from contactres.measurements.schema import stripped
+
+    rng = np.random.default_rng(spread)
+    flags = set()
+    for trial in range(60):
+        words = [f"w{i}" for i in range(int(rng.integers(1, 40)))]
+        if trial % 3 == 1:
+            words += [" w0", "w1 "]  # one text once stripped
+        if trial % 5 == 2:
+            words += [None, np.nan]
+        cells = pd.Series(
+            np.repeat(np.array(words, dtype=object)[rng.integers(0, len(words), 50)], spread),
+            dtype=object,
+        )
+        want = cells.astype(str).str.strip().to_numpy(dtype=object)
+        got = stripped(cells)
+        assert [x if x == x else None for x in got] == [x if x == x else None for x in want]
+        codes, distinct, exact = stripped_codes(cells)
+        if exact:
+            np.testing.assert_array_equal(codes, pd.factorize(distinct[codes])[0])
+        else:
+            assert trial % 3 == 1 or trial % 5 == 2, trial
+        flags.add(exact)
+    assert flags == {True, False}

@@ -49,8 +49,12 @@ def drifting_sweeps(sw: pd.DataFrame, padded: Padded, used: np.ndarray, p: float
     idx = np.flatnonzero(used)
     if idx.size == 0:
         return flag
-    row_of = pd.Series(np.arange(len(padded.sweeps)), index=padded.sweeps)
-    rows = row_of.reindex(sw["sweep"].to_numpy()[idx]).to_numpy()
+    names = sw["sweep"].to_numpy(dtype=object)
+    if len(names) == len(padded.sweeps) and (names == padded.sweeps).all():
+        rows = idx  # the usual case: both in the order of the table (no hashing of 10^5 ids)
+    else:
+        row_of = pd.Series(np.arange(len(padded.sweeps)), index=padded.sweeps)
+        rows = row_of.reindex(names[idx]).to_numpy()
     load = sw.iloc[idx].groupby(LOAD_OF_EXPERIMENT, sort=False).ngroup().to_numpy()
     L = load.max() + 1
     k = np.bincount(load, minlength=L)  # ramps per load

@@ -20,7 +20,7 @@ from .._version import __version__
 from ..errors import ContactresInputError
 from ..measurements import SweepTable
 from ..measurements.schema import SWEEP_TABLE
-from ..numerics import column_run_starts
+from ..numerics import factorize_runs
 from ..resonators import QCM
 from ..tangential import effective_shear_modulus, shear_modulus
 from ..units import JUNCTION_SIGMAS, LINEAR_ONSET_X, MIN_SWEEP_POINTS, SMALL_LOAD_LIMIT
@@ -169,12 +169,15 @@ def _run(
     data = table.data
 
     padded = pad_sweeps(data)
-    # A sweep's first row starts one of the runs of its rows: only those rows are hashed
-    # (all of them where the ids are Arrow strings, which pandas hashes faster than they are
-    # compared as Python strings).
-    starts = column_run_starts(data["sweep"])
-    runs = data if starts is None else data.iloc[starts]
-    info = runs.drop_duplicates("sweep", keep="first")[list(INFO_COLUMNS)].reset_index(drop=True)
+    # Each sweep's code, numbering the sweeps by first appearance: a sweep's first row starts
+    # one of the runs of its rows, and only those rows are hashed (all of them where the ids
+    # are Arrow strings, which pandas hashes faster than they are compared as Python strings).
+    sweep, _ = factorize_runs(data["sweep"], use_na_sentinel=False)
+    # A sweep's first row is where the codes seen so far reach a new one (a new code is the
+    # largest so far plus one): its info is that row's, as drop_duplicates("sweep") keeps it.
+    seen = np.maximum.accumulate(sweep)
+    first_rows = np.flatnonzero(np.diff(seen, prepend=-1))
+    info = data.iloc[first_rows][list(INFO_COLUMNS)].reset_index(drop=True)
     # The labels first: which sweeps are used, and which load blocks they form, decide where
     # the (costly) exact plateau loop is fitted to single sweeps.
     few = padded.n < MIN_SWEEP_POINTS
@@ -182,11 +185,9 @@ def _run(
     flat = padded.u_max == padded.u_min
     # The order of the ramps comes from the times where the table has them (not the file).
     timed = bool(data["time_s"].notna().all())
-    # Both minima by one grouping of the sweeps (hashing their names once, ~0.15 s at 10^5
-    # sweeps, not twice).
-    firsts = data.groupby("sweep", sort=False)[["line", "time_s"] if timed else ["line"]].min()
-    if not firsts.index.equals(pd.Index(info["sweep"])):  # (they are: both by first appearance)
-        firsts = firsts.reindex(info["sweep"])
+    # Both minima by one grouping of the sweeps' codes, in the order of ``info`` (both by first
+    # appearance): grouping by the names hashed 10^6 texts again (~0.1 s at 10^5 sweeps).
+    firsts = data[["line", "time_s"] if timed else ["line"]].groupby(sweep, sort=False).min()
     first_line = firsts["line"].to_numpy()
     first_time = firsts["time_s"].to_numpy() if timed else None
     ramps = check_ramps(info, first_line, padded.direction, first_time)

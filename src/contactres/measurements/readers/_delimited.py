@@ -21,6 +21,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ...errors import ContactresInputError
+from ...numerics import column_run_starts
 
 if TYPE_CHECKING:  # annotations: pandas is imported where a table is read (a numpy archive's
     import pandas as pd  # reader shares this package and needs none, issue 31)
@@ -36,6 +37,9 @@ _FIELD_COUNT = re.compile(r"Expected (\d+) fields in line (\d+), saw (\d+)")
 # A line break before a line that may be blank or a comment (it starts with white space, as
 # str.strip has it, or with #): such a table's lines are sorted one by one.
 _DROPPED_LINE = re.compile(r"\n[\s#]")
+# The same in ASCII bytes: the white space of str.isspace there is \t-\r and \x1c-\x20.
+_DROPPED_LINE_ASCII = re.compile(rb"\n[\t-\r\x1c-\x20#]")
+_SPACE_OR_HASH = frozenset(b"\t\n\x0b\x0c\r\x1c\x1d\x1e\x1f #")
 
 
 def _dialect(text: str) -> tuple[str, str]:
@@ -61,16 +65,22 @@ def _shown(name: str, limit: int = 60) -> str:
     return repr(text)
 
 
-def _decode(path: Path) -> tuple[str, str, bytes]:
+def _decode(path: Path) -> tuple[str | None, str, bytes]:
     """Three things from one reading of the file: its text (UTF-8, a byte order mark skipped;
     a one-line error names the first byte that is not UTF-8), the SHA-256 (hex) of all its
     bytes, and the bytes of the text (those after the byte order mark: the text's UTF-8, a
-    decoding undone)."""
+    decoding undone). The text is None where those bytes are ASCII: each byte is then its
+    character, and a caller that needs the text decodes them (``encoded.decode("ascii")``);
+    the usual table is parsed as its bytes and never needs it (issue 31, point 3: decoding
+    148 MB cost ~0.1 s and a copy of the file)."""
     data = path.read_bytes()
     bom = len(b"\xef\xbb\xbf") if data.startswith(b"\xef\xbb\xbf") else 0
+    body = data[bom:] if bom else data
+    digest = hashlib.sha256(data).hexdigest()
+    if body.isascii():  # ASCII is UTF-8 as it is (one scan in C, no copy)
+        return None, digest, body
     try:
-        body = data[bom:] if bom else data
-        return body.decode("utf-8"), hashlib.sha256(data).hexdigest(), body
+        return body.decode("utf-8"), digest, body
     except UnicodeDecodeError as exc:
         at = bom + exc.start
         line = data.count(b"\n", 0, at) + 1
@@ -80,18 +90,20 @@ def _decode(path: Path) -> tuple[str, str, bytes]:
         ) from None
 
 
-def _no_nul(path: Path, body: str, numbers) -> None:
-    """A one-line error if a line of the table (``body``, the lines parsed; ``numbers`` their
-    line numbers in the file) holds a NUL character.
+def _no_nul(path: Path, body: str | bytes, numbers) -> None:
+    """A one-line error if a line of the table (``body``, the lines parsed, as text or as their
+    ASCII bytes; ``numbers`` their line numbers in the file) holds a NUL character.
 
     NUL is valid UTF-8 but no character of a text table: it is what a UTF-16 file without a
     byte order mark holds between its ASCII characters, which would otherwise read as columns
     of odd names, blamed as missing. Comment lines and a preamble are not parsed and may hold
     anything (review R28e: an instrument's preamble with NULs was read before, and still is).
     """
-    at = body.find("\x00")  # one scan in C
+    # one scan in C; the line breaks before it counted
+    at = body.find("\x00") if isinstance(body, str) else body.find(b"\x00")
     if at >= 0:
-        line = int(numbers[body.count("\n", 0, at)])
+        breaks = body.count("\n", 0, at) if isinstance(body, str) else body.count(b"\n", 0, at)
+        line = int(numbers[breaks])
         raise ContactresInputError(
             f"{path}: line {line}: a NUL character (0x00) is no text of a table (UTF-16 text "
             "saved without a byte order mark, or a binary file); save the table as UTF-8 text"
@@ -150,27 +162,36 @@ def load(path: Path, number_columns: Collection[str] = ()) -> pd.DataFrame:
     import pandas as pd
 
     text, digest, encoded = _decode(path)
-    body, numbers, comments = _data_lines(text)
     # A table taken as it is (no line dropped) is its file's bytes: those are parsed, not the
     # text encoded again (UTF-8 decoding is undone exactly; ~0.1 s and a copy of the 148 MB
     # table of 10^5 sweeps, issue 31). The usual file ends in a line break, which ``body``
     # lacks: the bytes keep it (pandas makes no row of it) and only ``kept`` drops it, since
     # slicing it off would copy the whole file while the text is still held (+138 MB at the
     # peak of reading those 10^5 sweeps, review R28a). A file ending in a bare CR is rare:
-    # its ``body`` is encoded again below.
+    # its ``body`` is encoded again below. An ASCII table taken as it is is never decoded
+    # (:func:`_ascii_lines`): its bytes stand for its text until a bad line is named.
     data = None
     tail = b""
-    if body is text:
-        data = encoded
-    elif len(body) == len(text) - 1 and text.startswith(body) and text.endswith("\n"):
-        data, tail = encoded, b"\n"
+    numbers = None if text is not None else _ascii_lines(encoded)
+    body: str | bytes
+    comments: list[int]
+    if numbers is not None:
+        body, comments, data = encoded, [], encoded
+        tail = b"\n" if encoded.endswith(b"\n") else b""
+    else:
+        text = encoded.decode("ascii") if text is None else text
+        body, numbers, comments = _data_lines(text)
+        if body is text:
+            data = encoded
+        elif len(body) == len(text) - 1 and text.startswith(body) and text.endswith("\n"):
+            data, tail = encoded, b"\n"
     del text, encoded
     if not len(numbers):
         raise ContactresInputError(
             f"{path}: the file is empty (expected a header line and data rows)"
         )
     _no_nul(path, body, numbers)
-    head = body.split("\n", 51)[:51]
+    head = _first_lines(body, 51)
     sep, decimal = _dialect("\n".join(head))
     names = _check_header(path, int(numbers[0]), head[0], sep)
     width = len(names)
@@ -178,7 +199,7 @@ def load(path: Path, number_columns: Collection[str] = ()) -> pd.DataFrame:
     # point 3: 0.6 GB for the 148 MB table of 10^5 sweeps, most of the reading's peak); the
     # text itself is let go, and made again from the bytes only to name a bad line.
     if data is None:
-        data = body.encode("utf-8")
+        data = body.encode("utf-8") if isinstance(body, str) else body
     del body
 
     def kept() -> list[tuple[int, str]]:  # every line parsed, with its number (for errors)
@@ -202,8 +223,11 @@ def load(path: Path, number_columns: Collection[str] = ()) -> pd.DataFrame:
     raw.columns = [str(c).strip() for c in raw.columns]
     # A short row may leave NaN in its missing cells (pandas 3 gives empty ones): make them
     # empty cells, as written. Its last cell is one of them, so that column alone is looked
-    # at first (one column, not every cell of 10^6 rows: issue 31).
-    if raw.iloc[:, -1].isna().any():
+    # at first (one column, not every cell of 10^6 rows: issue 31), on the first cell of each
+    # run of equal cells (a constant's column is a few runs).
+    last = raw.iloc[:, -1]
+    starts = column_run_starts(last)
+    if (last if starts is None else last.iloc[starts]).isna().any():
         raw = raw.fillna("")
     if len(numbers) - 1 != len(raw):
         # pandas joined lines: a quoted cell ran over a line break (a CR or LF inside quotes).
@@ -264,9 +288,12 @@ def _parsed(data: bytes, sep: str, names: list[str], numbers: Collection[str]) -
 def _as_written(values: np.ndarray) -> bool:
     """Whether a column that pandas' parser read as float64 holds what the validator reads
     from its text (:func:`_parsed`): finite, no -0.0, no whole number from 2**53 on."""
-    if values.dtype != np.float64 or not np.isfinite(values).all():
+    if values.dtype != np.float64:
         return False
-    return not ((np.signbit(values) & (values == 0)).any() or (np.abs(values) >= 2.0**53).any())
+    if values.size and not np.abs(values).max() < 2.0**53:  # NaN, infinite or too large
+        return False
+    zero = values == 0
+    return not (zero.any() and np.signbit(values[zero]).any())
 
 
 def _data_lines(text: str) -> tuple[str, np.ndarray, list[int]]:
@@ -285,6 +312,34 @@ def _data_lines(text: str) -> tuple[str, np.ndarray, list[int]]:
     comments = [i + 1 for i, ln in enumerate(lines) if _is_comment(ln)]
     numbers = np.array([n for n, _ in kept], dtype=np.int64)
     return "\n".join(ln for _, ln in kept), numbers, comments
+
+
+def _ascii_lines(encoded: bytes) -> np.ndarray | None:
+    """The line numbers (1, 2, ...: the header's first) of the ASCII bytes ``encoded`` where
+    :func:`_data_lines` would take their text as it is (no blank line, comment or CR), else
+    None: the same tests, made on the bytes (a decoded copy of the 148 MB table of 10^5
+    sweeps cost ~0.1 s, and its slice less the last LF as much, issue 31, point 3)."""
+    end = len(encoded) - 1 if encoded.endswith(b"\n") else len(encoded)
+    if not end or encoded[0] in _SPACE_OR_HASH or encoded[end - 1 : end] == b"\n":
+        return None
+    if b"\r" in encoded or _DROPPED_LINE_ASCII.search(encoded) is not None:
+        return None
+    return np.arange(1, encoded.count(b"\n", 0, end) + 2)
+
+
+def _first_lines(body: str | bytes, count: int) -> list[str]:
+    """The first ``count`` lines of ``body`` (text, or ASCII bytes), as ``body.split("\\n",
+    count)[:count]`` gives them, as text; the rest of the table is not copied (a split of
+    the whole 148 MB table would copy it)."""
+    lf = "\n" if isinstance(body, str) else b"\n"
+    at = -1
+    for _ in range(count):
+        at = body.find(lf, at + 1)  # type: ignore[arg-type]
+        if at < 0:
+            break
+    part = body if at < 0 else body[:at]
+    text = part if isinstance(part, str) else part.decode("ascii")
+    return text.split("\n")
 
 
 def _width(line: str, sep: str) -> int:
@@ -312,8 +367,16 @@ def _other_separator(
     others = [c for c in (",", ";", "\t") if c != sep and not (c == "," and decimal == ",")]
     if width < 2 or not others or raw.empty:
         return
-    # The last cell first (one column: cheap on 10^6 rows), then the few rows left.
-    rows = raw.loc[(raw.iloc[:, width - 1] == "").to_numpy()]
+    # The last cell first (one column: cheap on 10^6 rows, and compared on the first cell of
+    # each run of equal cells only: a constant's column is a few runs), then the few rows left.
+    last = raw.iloc[:, width - 1]
+    starts = column_run_starts(last)
+    if starts is None:  # Arrow text, compared whole
+        empty = (last == "").to_numpy(dtype=bool)
+    else:
+        runs = np.diff(np.append(starts, len(last)))
+        empty = np.repeat((last.iloc[starts] == "").to_numpy(dtype=bool), runs)
+    rows = raw.loc[empty]
     first = rows.iloc[:, 0].astype(str)
     held = np.zeros(len(rows), dtype=bool)
     for c in others:

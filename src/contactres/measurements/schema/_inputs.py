@@ -17,6 +17,7 @@ from dataclasses import replace
 
 import numpy as np
 
+from ...numerics import column_run_starts
 from ...units import MAX_AMPLITUDE_M, MIN_AMPLITUDE_M, POISSON_OPEN_RANGE, QUANTITIES, unit_slip
 from .._cell_text import stripped_distinct
 from ._columns import Column, Rule, TableSchema, rule
@@ -48,8 +49,16 @@ def stripped(cells) -> np.ndarray:
     ``Series(cells).astype(str).str.strip().to_numpy()`` gives (an object array, NaN where a
     cell is missing), with each distinct cell stripped once. A sweep table of 10^6 rows holds
     10^5 sweep ids and a few labels: Python's strip per cell was 16 % of ``qcm analyze``
-    (issue 31); factorising the cells is a hash table in C."""
-    codes, distinct = stripped_distinct(cells)
+    (issue 31); factorising the cells is a hash table in C. Cells that are mostly distinct
+    (more runs of equal cells than half the cells: a rule checked on the distinct sweep ids)
+    are stripped one by one instead, as hashing them first would not spare a strip."""
+    import pandas as pd  # here: the numeric rules of a binary table need no pandas
+
+    text = (cells if isinstance(cells, pd.Series) else pd.Series(cells, dtype=object)).astype(str)
+    starts = column_run_starts(text)
+    if starts is not None and 2 * len(starts) > len(text):
+        return text.str.strip().to_numpy(dtype=object)
+    codes, distinct = stripped_distinct(text)
     return distinct[codes]
 
 
