@@ -829,3 +829,38 @@ def test_rows_of_one_set_with_other_numbers_of_points_keep_their_own_sums():
     for r, b in enumerate(own):
         alone = ev._integrand(tuple(a[[b]] for a in pts), dl[[r]], y)
         np.testing.assert_allclose(by_index[:, r], alone[:, 0], rtol=1e-13, atol=1e-13 * scale)
+
+
+def test_nodes_without_a_likelihood_are_none_beside_nodes_with_one():
+    # Where the projected solve's Pκ is not positive (Δf against the loop's shape) a node has
+    # no likelihood: ln L π and ln L -inf, ln μ 0 there; the rows evaluated with it (the same
+    # grid and d_c: one set of slopes) keep their values, those of each alone. Pκ's sign by
+    # the weighted least-squares fit of the points written out here (the 2 x 2 normal
+    # equations of _reference), node by node.
+    from contactres.analysis import _plateau_evidence as ev
+
+    blocks = [_block(5, 0.3), _block(6, 0.3), _block(7, 0.3)]
+    u, df, dg = (np.stack([b[k] for b in blocks]) for k in range(3))
+    df[1] = -df[1]  # block 1: Δf against the shape, Pκ < 0
+    sigma = np.array([[0.6, 0.6, 0.6], [0.6, 0.6, 0.6]])
+    per_block = ev._levels(u, df, dg, np.ones_like(u), np.arange(3))
+    pts = ev._rows(per_block, sigma, (np.full(3, np.nan),) * 2, np.ones(3), [0, 1, 2])
+    y = np.linspace(-7.0, 1.0, 41)
+    dl = np.full((3, 1), 0.3)
+    got = ev._integrand(pts, dl, y[None])
+    umax = u.max()
+    theta = np.exp(y)[:, None] / (umax * (1 - 0.3))
+    w0, w1 = sigma[0, 0] ** -2.0, sigma[1, 0] ** -2.0
+    for b in range(3):
+        g1, g2 = plateau_loop_shape(theta * u[b], theta * 0.3 * umax)
+        a11 = w0 * np.sum(g1 * g1, 1) + w1 * np.sum(g2 * g2, 1)
+        a12, a22 = w1 * np.sum(g2, 1), w1 * u.shape[1]
+        b1, b2 = w0 * (g1 @ df[b]) + w1 * (g2 @ dg[b]), w1 * np.sum(dg[b])
+        pk = (a22 * b1 - a12 * b2) / (a11 * a22 - a12 * a12)
+        assert (pk < 0).all() if b == 1 else (pk > 0).all()
+        none = pk < 0
+        assert (got[0, b, none] == -np.inf).all() and (got[1, b, none] == -np.inf).all()
+        assert (got[2, b, none] == 0.0).all()
+        assert np.isfinite(got[:, b, ~none]).all()
+        alone = ev._integrand(tuple(a[[b]] for a in pts), dl[[b]], y[None])[:, 0]
+        np.testing.assert_array_equal(got[:, b], alone)
