@@ -184,7 +184,7 @@ import itertools
 import numpy as np
 
 from ._amplitude import PLATEAU_MIN_SLOPE
-from ._evidence_solve import level_sums, level_weights, node_values, segments
+from ._evidence_solve import level_sums, level_weights, node_values, same_weights, segments
 from ._loops import CHUNK_CELLS, X_MAX
 from ._plateau import plateau_loop_slopes
 from ._slope_store import SlopeStore
@@ -294,12 +294,15 @@ def _integrand_in_sets(pts, dl, y, store, out, own=None):
     order = np.argsort(inv, kind="stable")
     cut = np.searchsorted(inv[order], np.arange(slopes.shape[0] + 1))
     block = own[order]
+    # Sets of rows whose blocks have the same numbers of points at each amplitude (the blocks'
+    # distinct rows of w by their bits): their sums of the squares are formed once (level_sums).
+    same = same_weights(_distinct_rows(w)[1][block], cut)
     # The sums over the amplitudes and the rest node by node in segments of whole sets of
     # ~NODE_BLOCK_CELLS nodes (arrays of their own that stay in the cache; the same bits, each
     # node's arithmetic its own, each set's products of one shape).
     for d0, d1 in segments(cut, max(1, NODE_BLOCK_CELLS // max(theta.shape[1], 1))):
         a, b = cut[d0], cut[d1]
-        lin, sq = level_sums(slopes, squares, W, w, block, cut, d0, d1)
+        lin, sq = level_sums(slopes, squares, W, w, block, cut, d0, d1, same)
         node_values(lin, sq, per[block[a:b]], theta[order[a:b]], out[:, a:b])
     return order
 
