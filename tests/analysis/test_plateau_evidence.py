@@ -864,3 +864,22 @@ def test_nodes_without_a_likelihood_are_none_beside_nodes_with_one():
         assert np.isfinite(got[:, b, ~none]).all()
         alone = ev._integrand(tuple(a[[b]] for a in pts), dl[[b]], y[None])[:, 0]
         np.testing.assert_array_equal(got[:, b], alone)
+
+
+def test_the_cells_of_rows_laid_end_to_end_are_the_trapezoidal_rules():
+    # _cells forms the trapezoid's terms on the rows laid end to end (the pairs across the end
+    # of a row fall in a last column, times the spacing 0 there): the sums of the first N - 1
+    # columns are numpy.trapezoid's on each row alone, bit for bit, with large values at the
+    # ends of the rows (where a pair across rows would show) and one row of infinities.
+    from contactres.analysis._plateau_evidence import _cells
+
+    rng = np.random.default_rng(3)
+    x = np.cumsum(rng.uniform(0.01, 0.3, (5, 9)), axis=1)
+    f = rng.uniform(0.0, 1.0, x.shape)
+    f[:, [0, -1]] = 1e3
+    f[2] = np.inf
+    half = np.zeros(x.shape)
+    half[:, :-1] = np.diff(x, axis=1) / 2.0
+    with np.errstate(invalid="ignore"):
+        got = _cells(f, half)[:, :-1].sum(axis=1)
+    np.testing.assert_array_equal(got, np.trapezoid(f, x, axis=1))

@@ -395,12 +395,23 @@ def _span(e):
 
 def _cells(f, dx):
     """The terms of the trapezoidal rule along the rows of ``f`` (R, N) with half the node
-    spacings ``dx`` (R, N - 1), (R, N - 1): :func:`numpy.trapezoid`'s arithmetic (its sum along
-    the rows the rule's; halving the spacings, exact, once for all the integrands on one set of
-    nodes, rather than each product: the same bits but where a product falls below 2^-1021,
-    then by its last subnormal bit, ~5e-324 absolute; none on issue 31's tables), in place."""
-    t = f[:, 1:] + f[:, :-1]
-    t *= dx
+    spacings ``dx`` (R, N; its last column 0): (R, N), the terms in the first N - 1 columns
+    (the last column is none: the rule's sums are over ``[:, :-1]``). :func:`numpy.trapezoid`'s
+    arithmetic (halving the spacings, exact, once for all the integrands on one set of nodes,
+    rather than each product: the same bits but where a product falls below 2^-1021, then by
+    its last subnormal bit, ~5e-324 absolute; none on issue 31's tables).
+
+    Why the last column. Each term is formed on the rows laid end to end, one contiguous pass
+    for the sums of neighbours and one for the products, instead of passes over the views
+    ``f[:, 1:]`` and ``f[:, :-1]`` (rows of N - 1 at a stride of N, which numpy copies into its
+    buffers first: ~4 times the time of the contiguous pass); the pairs across the end of a row
+    fall in the last column, times 0."""
+    t = np.empty_like(f)
+    line = t.reshape(-1)
+    np.add(f.reshape(-1)[1:], f.reshape(-1)[:-1], out=line[:-1])
+    line[-1:] = 0.0
+    with np.errstate(invalid="ignore"):  # an infinite pair across rows, times 0
+        t *= dx
     return t
 
 
@@ -540,8 +551,9 @@ def _sources(pattern, order, side, lower, upper, mid):
 def _y_patterns(at_p, at_l, fine_p, fine_l, coarse):
     """Each row's pattern of nodes in y (R,) and, per pattern, the order of its nodes (the
     coarse ones, those around L π's peak, L's: ascending, stable), their spacings and which
-    spacings lie in the first or last coarse cell (:func:`_over_y`'s ``fine_p``, ``fine_l``:
-    the fine nodes around the peaks at the coarse nodes ``at_p``, ``at_l`` (R,)).
+    spacings lie in the first or last coarse cell, 1 or 0, each with a last column 0
+    (:func:`_cells`) (:func:`_over_y`'s ``fine_p``, ``fine_l``: the fine nodes around the peaks at
+    the coarse nodes ``at_p``, ``at_l`` (R,)).
 
     Why. The nodes of a row follow from its peaks alone (a few hundred pairs among 10^4-10^5
     rows): sorted once a pair, the same order as row by row, bit for bit."""
@@ -551,15 +563,18 @@ def _y_patterns(at_p, at_l, fine_p, fine_l, coarse):
     )
     order = np.argsort(y, axis=1, kind="stable")
     y = np.take_along_axis(y, order, axis=1)
-    edge = (y[:, 1:] <= coarse[1]) | (y[:, :-1] >= coarse[-2])
-    return pattern.ravel(), order, np.diff(y, axis=1) / 2.0, edge.astype(float)
+    # Spacings and edge cells (R, N), the last column 0: :func:`_cells`' layout.
+    dy, edge = np.zeros(y.shape), np.zeros(y.shape)
+    dy[:, :-1] = np.diff(y, axis=1) / 2.0
+    edge[:, :-1] = (y[:, 1:] <= coarse[1]) | (y[:, :-1] >= coarse[-2])
+    return pattern.ravel(), order, dy, edge
 
 
 def _over_y_rows(flat, at, dy, edge, at_p, at_l, at_c):
     """:func:`_over_y`'s outputs of its rows from :func:`_integrand`'s values at all nodes
     evaluated (``flat`` (3, T): :func:`_over_y`'s), where each row's nodes are there in their
-    order of y (``at`` (R, N): :func:`_sources`), half their spacings (R, N - 1) and which
-    spacings lie in the first or last coarse cell, 1 or 0 (:func:`_y_patterns`); ``at_p``,
+    order of y (``at`` (R, N): :func:`_sources`), half their spacings and which spacings lie in
+    the first or last coarse cell, 1 or 0 (R, N, the last column 0: :func:`_y_patterns`); ``at_p``,
     ``at_l``: the coarse nodes of the peaks of L π and L; ``at_c``: where each row's values at
     the coarse nodes start in ``flat``."""
     _, _, ny, nf = EVIDENCE_NODES
@@ -582,13 +597,13 @@ def _over_y_rows(flat, at, dy, edge, at_p, at_l, at_c):
     # subnormal range, ~1e-308 of zl).
     cell = _cells(el, dy)
     with np.errstate(invalid="ignore", divide="ignore"):
-        log_p = np.log(_cells(ep, dy).sum(axis=1)) + top_p[:, 0]
-        zl = cell.sum(axis=1)
+        log_p = np.log(_cells(ep, dy)[:, :-1].sum(axis=1)) + top_p[:, 0]
+        zl = cell[:, :-1].sum(axis=1)
         log_l = np.log(zl) + top_l[:, 0]
-        m1 = _cells(el * mu, dy).sum(axis=1) / zl
-        m2 = _cells(el * mu**2, dy).sum(axis=1) / zl
+        m1 = _cells(el * mu, dy)[:, :-1].sum(axis=1) / zl
+        m2 = _cells(el * mu**2, dy)[:, :-1].sum(axis=1) / zl
         cell *= edge
-        share = cell.sum(axis=1) / zl
+        share = cell[:, :-1].sum(axis=1) / zl
     # The nodes on coarse nodes count as the rule places them: -1, 0, 1 steps from each peak
     # (only there their densities are needed: each an exponential of its own), of both
     # densities and both peaks in one take.
