@@ -389,8 +389,14 @@ def _void_rows(a):
 
 def _span(e):
     """How many nodes of each row of ``e`` (a density over its nodes, its largest 1) carry a
-    tenth of the largest or more (:data:`MIN_SPAN_NODES`)."""
-    return (e >= 0.1).sum(axis=-1)
+    tenth of the largest or more (:data:`MIN_SPAN_NODES`).
+
+    Rows of fewer than 256 nodes (all of the rule's) are counted as bytes: the sum of a boolean
+    array casts every node to a 64-bit integer first, ~twice the time."""
+    hit = e >= 0.1
+    if hit.shape[-1] < 256:
+        return np.add.reduce(hit.view(np.uint8), axis=-1, dtype=np.uint8).astype(np.intp)
+    return hit.sum(axis=-1)
 
 
 def _cells(f, dx):
