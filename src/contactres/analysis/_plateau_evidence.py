@@ -505,11 +505,15 @@ def _over_y(pts, own, dl, store):
     pattern, order, dy, edge = _y_patterns(at_p, at_l, fine_p, fine_l, coarse)
     src, col = _sources(pattern, order, side, lower, upper, mid)
     # The sums over y row by row, in blocks of rows of ~NODE_BLOCK_CELLS nodes (arrays that
-    # stay in the cache; the same bits, each row's sums its own).
+    # stay in the cache; the same bits, each row's sums its own), the rows in the order in
+    # which their values at the coarse nodes lie in ``flat``: those are read in order, not
+    # from all over the chunk's values (on the 10^5 sweeps of issue 31, six pairs alternated
+    # on a loaded machine, the evidence ~4 % less CPU in all, 9 of 12 calls less).
     out = [np.empty(K), np.empty(K), np.empty(K), np.empty(K), np.empty(K), np.empty(K, int)]
     rows = max(1, NODE_BLOCK_CELLS // order.shape[1])
+    seq = np.argsort(base[:, 0], kind="stable")
     for start in range(0, K, rows):
-        b = slice(start, start + rows)
+        b = seq[start : start + rows]
         # Each row's pattern's arrays by whole rows (numpy.take along the first axis: copies
         # of rows, where an index array copies item by item), then where each node's values
         # are: its part's start in the row's ``base`` plus its column.
