@@ -182,12 +182,13 @@ same_weights`; on the 10^5 sweeps of issue 31 every set: 6,838 products instead 
 node values are written straight into their place and the masked writes of nodes without a
 likelihood made only where there is one (none of the 19.2 million nodes there); the trapezoid's
 terms are formed on the rows laid end to end (:func:`_cells`) and the spans counted as bytes
-(:func:`_span`). On those 10^5 sweeps (18,351 undecided blocks, one call), one thread, CPU of
-the evidence alone alternated with main on a machine at a load of 7-8 on two cores, three pairs
-of two calls each: 2.62-3.00 s against 3.15-3.59 s (~18 % less); instructions (callgrind) of the
-10^4 sweeps' call 2.52 × 10^9 against 2.88 × 10^9; every output of ``analyze`` the same bit for
-bit on the 10^5 sweeps (workers 2) and on the 10^4 sweeps (workers 1; workers 2 with 200
-bootstrap draws).
+(:func:`_span`); the sums over y run in the order in which the rows' coarse values lie in
+memory. On those 10^5 sweeps (18,351 undecided blocks, one call, 19.2 million nodes), one thread,
+CPU of the evidence alone alternated with main on a machine at a load of 5-6 on two cores,
+three pairs of two calls each: 2.29-2.55 s against 2.91-3.34 s (~22 % less); instructions
+(callgrind) of the 10^4 sweeps' call 2.53 × 10^9 against 2.88 × 10^9; every output of
+``analyze`` the same bit for bit on the 10^5 sweeps (workers 2) and on the 10^4 sweeps (workers
+1; workers 2 with 200 bootstrap draws).
 A block's result depends on its own row alone, so the caller deals the undecided blocks out to
 the analysis's worker processes where they are many (``contactres.analysis._blocks``,
 ``_evidence``: 1,975 blocks of the 10,752 sweeps in two halves of ~2.3 s of CPU each).
