@@ -750,3 +750,136 @@ def test_the_solve_at_the_nodes_is_the_weighted_least_squares_fit_of_the_points(
             # The sums by the expanded square round to ~3e-13 of ln L here (level_sums); the
             # weights of Δf and ΔΓ swapped move every value by up to 7 %.
             np.testing.assert_allclose(got[:, r], reference(b, row_dl[r]), rtol=2e-12, atol=0)
+
+
+def test_the_sums_over_y_read_each_node_where_it_was_evaluated():
+    # _over_y evaluates each node of the rule once, leaves the values where the integrand
+    # formed them (rows in sets that share their slopes; L's nodes that L π's stand for not
+    # evaluated again) and reads each row's nodes from there in their order of y. Against
+    # every node of the rule evaluated row by row, in order, and summed by the trapezoidal
+    # rule written out here, for rows whose peaks of L and L π coincide, lie one coarse step
+    # apart either way and further apart (a μ prior off the truth moves L π's): the same
+    # numbers to rounding (a node that another stands for differs from it by rounding in y,
+    # where a value read from a wrong node differs by far more).
+    from contactres.analysis import _plateau_evidence as ev
+    from contactres.analysis._loops import X_MAX
+    from contactres.analysis._slope_store import SlopeStore
+
+    factors = [0.5, 0.7, 0.9, 1.0, 1.2, 1.5, 2.0, 3.0]
+    blocks = [_block(seed, 0.3) for seed in range(len(factors))]
+    u, df, dg = (np.stack([b[k] for b in blocks]) for k in range(3))
+    B = len(factors)
+    mu = (np.log(np.array(factors) * 40.0 / (1.2 / 2e-9)), np.full(B, 0.05**2))
+    per_block = ev._levels(u, df, dg, np.ones_like(u), np.arange(B))
+    pts = ev._rows(per_block, np.full((2, B), 0.6), mu, np.ones(B), list(range(B)))
+    own = np.repeat(np.arange(B), 3)
+    dl = np.tile([0.05, 0.3, 0.5], B)
+    got = np.array(ev._over_y(pts, own, dl, SlopeStore()))
+    _, _, ny, nf = ev.EVIDENCE_NODES
+    coarse = np.linspace(np.log(10.0**-2.5), np.log(X_MAX), ny)
+    offsets = np.linspace(-1.0, 1.0, nf) * (coarse[1] - coarse[0])
+    sides = set()
+    for r, b in enumerate(own):
+        one, at = tuple(a[[b]] for a in pts), dl[[r]][:, None]
+        lp, ll, _ = ev._integrand(one, at, coarse[None])[:, 0]
+        peaks = [int(np.argmax(lp)), int(np.argmax(ll))]
+        sides.add(int(np.clip(peaks[1] - peaks[0], -2, 2)))
+        fine = [np.clip(coarse[k] + offsets, coarse[0], coarse[-1]) for k in peaks]
+        y = np.sort(np.concatenate([coarse, *fine]))
+        lp, ll, mu_y = ev._integrand(one, at, y[None])[:, 0]
+        ep, el = np.exp(lp - lp.max()), np.exp(ll - ll.max())
+        z = np.trapezoid(el, y)
+        cells = 0.5 * (el[1:] + el[:-1]) * np.diff(y)
+        edge = (y[1:] <= coarse[1]) | (y[:-1] >= coarse[-2])
+        expect = [
+            np.log(np.trapezoid(ep, y)) + lp.max(),
+            np.log(z) + ll.max(),
+            np.trapezoid(el * mu_y, y) / z,
+            np.trapezoid(el * mu_y**2, y) / z,
+            cells[edge].sum() / z,
+        ]
+        np.testing.assert_allclose(got[:5, r], expect, rtol=1e-9)
+        assert got[5, r] == min((ep >= 0.1).sum(), (el >= 0.1).sum())
+    assert sides == {-2, -1, 0, 1, 2}  # every way of sharing L π's nodes is met
+
+
+def test_rows_of_one_set_with_other_numbers_of_points_keep_their_own_sums():
+    # The sums of the squares of the slopes are formed once for a set of rows on one distinct
+    # row of slopes where all its blocks have the same numbers of points at each amplitude;
+    # a block with another number at one amplitude (a point dropped: weight 0) on the same
+    # grid and d_c shares the set but not the sums: each row equals the row evaluated alone.
+    from contactres.analysis import _plateau_evidence as ev
+
+    blocks = [_block(1, 0.3), _block(2, 0.3), _block(3, 0.3), _block(4, 0.3)]
+    u, df, dg = (np.stack([b[k] for b in blocks]) for k in range(3))
+    w = np.ones_like(u)
+    w[1, 4] = 0.0  # block 1: two points at its second amplitude, the others three
+    w[3, [4, 9]] = 0.0  # block 3: two at its second and at its fourth
+    B = len(blocks)
+    per_block = ev._levels(u, df, dg, w, np.arange(B))
+    assert len({per_block[b][0].tobytes() for b in range(B)}) == 1  # one grid
+    assert len({per_block[b][1].tobytes() for b in range(B)}) == 3  # three sets of numbers
+    pts = ev._rows(per_block, np.full((2, B), 0.6), (np.full(B, np.nan),) * 2, np.ones(B), range(B))
+    own = np.array([0, 1, 2, 3, 1, 0, 3])
+    dl = np.array([0.3, 0.3, 0.3, 0.3, 0.1, 0.1, 0.1])[:, None]
+    y = np.linspace(-4.0, 1.0, 9)[None]
+    by_index = ev._integrand(pts, dl, y, own=own)
+    assert np.isfinite(by_index).all()
+    scale = np.abs(by_index).max()
+    for r, b in enumerate(own):
+        alone = ev._integrand(tuple(a[[b]] for a in pts), dl[[r]], y)
+        np.testing.assert_allclose(by_index[:, r], alone[:, 0], rtol=1e-13, atol=1e-13 * scale)
+
+
+def test_nodes_without_a_likelihood_are_none_beside_nodes_with_one():
+    # Where the projected solve's Pκ is not positive (Δf against the loop's shape) a node has
+    # no likelihood: ln L π and ln L -inf, ln μ 0 there; the rows evaluated with it (the same
+    # grid and d_c: one set of slopes) keep their values, those of each alone. Pκ's sign by
+    # the weighted least-squares fit of the points written out here (the 2 x 2 normal
+    # equations of _reference), node by node.
+    from contactres.analysis import _plateau_evidence as ev
+
+    blocks = [_block(5, 0.3), _block(6, 0.3), _block(7, 0.3)]
+    u, df, dg = (np.stack([b[k] for b in blocks]) for k in range(3))
+    df[1] = -df[1]  # block 1: Δf against the shape, Pκ < 0
+    sigma = np.array([[0.6, 0.6, 0.6], [0.6, 0.6, 0.6]])
+    per_block = ev._levels(u, df, dg, np.ones_like(u), np.arange(3))
+    pts = ev._rows(per_block, sigma, (np.full(3, np.nan),) * 2, np.ones(3), [0, 1, 2])
+    y = np.linspace(-7.0, 1.0, 41)
+    dl = np.full((3, 1), 0.3)
+    got = ev._integrand(pts, dl, y[None])
+    umax = u.max()
+    theta = np.exp(y)[:, None] / (umax * (1 - 0.3))
+    w0, w1 = sigma[0, 0] ** -2.0, sigma[1, 0] ** -2.0
+    for b in range(3):
+        g1, g2 = plateau_loop_shape(theta * u[b], theta * 0.3 * umax)
+        a11 = w0 * np.sum(g1 * g1, 1) + w1 * np.sum(g2 * g2, 1)
+        a12, a22 = w1 * np.sum(g2, 1), w1 * u.shape[1]
+        b1, b2 = w0 * (g1 @ df[b]) + w1 * (g2 @ dg[b]), w1 * np.sum(dg[b])
+        pk = (a22 * b1 - a12 * b2) / (a11 * a22 - a12 * a12)
+        assert (pk < 0).all() if b == 1 else (pk > 0).all()
+        none = pk < 0
+        assert (got[0, b, none] == -np.inf).all() and (got[1, b, none] == -np.inf).all()
+        assert (got[2, b, none] == 0.0).all()
+        assert np.isfinite(got[:, b, ~none]).all()
+        alone = ev._integrand(tuple(a[[b]] for a in pts), dl[[b]], y[None])[:, 0]
+        np.testing.assert_array_equal(got[:, b], alone)
+
+
+def test_the_cells_of_rows_laid_end_to_end_are_the_trapezoidal_rules():
+    # _cells forms the trapezoid's terms on the rows laid end to end (the pairs across the end
+    # of a row fall in a last column, times the spacing 0 there): the sums of the first N - 1
+    # columns are numpy.trapezoid's on each row alone, bit for bit, with large values at the
+    # ends of the rows (where a pair across rows would show) and one row of infinities.
+    from contactres.analysis._plateau_evidence import _cells
+
+    rng = np.random.default_rng(3)
+    x = np.cumsum(rng.uniform(0.01, 0.3, (5, 9)), axis=1)
+    f = rng.uniform(0.0, 1.0, x.shape)
+    f[:, [0, -1]] = 1e3
+    f[2] = np.inf
+    half = np.zeros(x.shape)
+    half[:, :-1] = np.diff(x, axis=1) / 2.0
+    with np.errstate(invalid="ignore"):
+        got = _cells(f, half)[:, :-1].sum(axis=1)
+    np.testing.assert_array_equal(got, np.trapezoid(f, x, axis=1))

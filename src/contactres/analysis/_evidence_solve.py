@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["level_sums", "level_weights", "node_values", "segments"]
+__all__ = ["level_sums", "level_weights", "node_values", "same_weights", "segments"]
 
 
 def segments(cut, rows):
@@ -41,35 +41,39 @@ def node_values(lin, sq, per, theta, out):
     A, rss_f, rss_g = _solve_levels(lin, sq, C_f, C_g, g_sum, n, lo_f, lo_g, wf, wg)
     # ln L = -n/2 (ln RSS_f + ln RSS_Γ), ln μ = ln(A to_mu / θ) and ln π: in place, each
     # operation's operands and order as written out here (the same bits, fewer temporaries),
-    # on arrays of their own (numpy's loops run over a contiguous block at once, over a view
-    # into ``out`` row by row), copied into ``out`` once.
+    # straight into ``out`` (its callers give a contiguous block of rows: numpy's loops run
+    # over it at once, not row by row as over a strided view).
     with np.errstate(divide="ignore", invalid="ignore"):
         rss_f += scatter_f
         rss_g += scatter_g
-        lnL = np.log(rss_f, out=rss_f)
+        lnL = np.log(rss_f, out=out[1])
         lnL += np.log(rss_g, out=rss_g)
         lnL *= -0.5 * n
-        ln_mu = A * to_mu
+        ln_mu = np.multiply(A, to_mu, out=out[2])
         ln_mu /= theta
         np.log(ln_mu, out=ln_mu)
         # A block without a prior on μ: flat in y, the same in both models.
         has = np.isfinite(mean) & np.isfinite(var) & (var > 0)
-        lnpi = ln_mu - mean  # -(ln μ - mean)²/(2 var) - ln(2π var)/2
+        lnpi = np.subtract(ln_mu, mean, out=out[0])  # -(ln μ - mean)²/(2 var) - ln(2π var)/2
         np.square(lnpi, out=lnpi)
         lnpi *= -0.5
         lnpi /= var
         lnpi -= 0.5 * np.log(2 * np.pi * var)
         if not has.all():
             lnpi[~has[:, 0]] = 0.0
-        bad = np.isfinite(lnL)
-        bad &= A > 0
-        bad &= np.isfinite(lnpi)
-        np.logical_not(bad, out=bad)
-        np.copyto(ln_mu, 0.0, where=bad)
+        ok = np.isfinite(lnL)
+        ok &= A > 0
+        ok &= np.isfinite(lnpi)
+        # A node without a likelihood (A <= 0, an RSS not positive) or a prior is none: its
+        # values set where there is one (on the 10^5 sweeps of issue 31 none of 19 million
+        # nodes: the three masked passes skipped).
+        bad = None if ok.all() else ~ok
+        if bad is not None:
+            np.copyto(ln_mu, 0.0, where=bad)
         lnpi += lnL
-        np.copyto(lnpi, -np.inf, where=bad)
-        np.copyto(lnL, -np.inf, where=bad)
-    out[0], out[1], out[2] = lnpi, lnL, ln_mu
+        if bad is not None:
+            np.copyto(lnpi, -np.inf, where=bad)
+            np.copyto(lnL, -np.inf, where=bad)
 
 
 def level_weights(pts, L):
@@ -95,7 +99,7 @@ def level_weights(pts, L):
     return np.stack([w, wdf, wdgc], axis=1), w, np.concatenate(per, axis=1)
 
 
-def level_sums(slopes, squares, W, w, block, cut, d0, d1):
+def level_sums(slopes, squares, W, w, block, cut, d0, d1, same=None):
     """The sums over the amplitudes of the projected solve at the nodes (R, Y) of each row
     (:func:`_solve_levels`): that of :func:`~contactres.analysis._loops.solve_projected` on a
     block's distinct amplitudes weighted by their numbers of points, from the sums over the
@@ -104,7 +108,8 @@ def level_sums(slopes, squares, W, w, block, cut, d0, d1):
     :func:`level_weights`), for the rows of the sets ``d0`` to ``d1`` of rows on one distinct
     row of slopes (set d: the rows ``cut[d]:cut[d + 1]`` of
     :func:`~contactres.analysis._plateau_evidence._integrand`'s order, whose blocks are ``block``),
-    in that order: (n, 3, 2Y) and (n, 2Y).
+    in that order: (n, 3, 2Y) and (n, 2Y). ``same`` (D,): whether all rows of set d have the same
+    ``w`` (its bits; :func:`same_weights`; by default none is taken to).
 
     Why. The sums are the only work at each node and amplitude: matrix products of the rows
     of G′, G″ and of their squares against the weight vectors, instead of the residuals formed
@@ -112,7 +117,9 @@ def level_sums(slopes, squares, W, w, block, cut, d0, d1):
     rows on one distinct row of slopes against it in one product (no copy of the slopes for
     each row; on the 10^4 sweeps of issue 31 the same numbers bit for bit), the squares against
     each row's w one by one (matrix times vector: taken together, as a matrix product, they
-    differed by rounding, 2 ln B by up to 9e-10). With
+    differed by rounding, 2 ln B by up to 9e-10), once for a set whose rows have one w (the
+    same call with the same vector: the same bits; on the 10^5 sweeps of issue 31 every set's
+    rows have one w, 6,838 products instead of 791,909). With
     S_ff = Σ n G′², S_f = Σ n Δf G′ and the like, A = (w_f S_f + w_g S_g)/(w_f S_ff + w_g S_gg)
     and RSS_f = C_f - 2A S_f + A² S_ff, RSS_Γ = C_Γ - 2A S_g + A² S_gg (C: the weighted sums of
     squares of the data, ΔΓ about its mean): the same minimum in exact arithmetic, by the
@@ -144,8 +151,20 @@ def level_sums(slopes, squares, W, w, block, cut, d0, d1):
         i, j = int(cut[d]) - a, int(cut[d + 1]) - a
         mine = block[a + i : a + j]
         np.matmul(W[mine].reshape(-1, L), slopes[d].T, out=lin[i:j].reshape(-1, Y2))
-        sq[i:j] = (squares[d] @ w[mine][..., None])[..., 0]
+        # A set whose rows have one w: the product of its first row (the same call as for each
+        # row, a matrix times one vector) given to all.
+        k = 1 if same is not None and same[d] else j - i
+        sq[i:j] = (squares[d] @ w[mine[:k], :, None])[..., 0]
     return lin, sq
+
+
+def same_weights(ids, cut):
+    """Whether all rows of each set of :func:`level_sums` (set d: the rows ``cut[d]:cut[d + 1]``)
+    have the same weights, from the number of each row's weights among the distinct ones
+    (``ids``, (R,) in that order): (D,), a set's least and largest number equal."""
+    if not ids.size:
+        return np.zeros(cut.size - 1, dtype=bool)
+    return np.minimum.reduceat(ids, cut[:-1]) == np.maximum.reduceat(ids, cut[:-1])
 
 
 def _solve_levels(lin, sq, C_f, C_g, g_sum, n, lo_f, lo_g, wf, wg):

@@ -172,6 +172,23 @@ on two cores, three pairs: 2.77-3.00 s against 3.31-3.43 s (12-16 % less; 11,500
 faults against 9,000-11,700); every output of ``analyze`` the same bit for bit on those sweeps
 (workers 1 and 2), on the 10^4 sweeps (workers 1; workers 2 with 200 bootstrap draws) and, for
 the evidence, on the 10^4 sweeps' blocks with amplitudes jittered by 1e-6 (no row shared).
+Since (issue 31, point 3, tenth round) the values at the nodes stay where the integrand forms
+them, in the order of its sets of rows on one distinct row of slopes (:func:`_integrand_in_sets`),
+and each row's nodes are read from there in their order of y by one take (:func:`_sources`),
+instead of each segment being scattered back to its rows and L π's values copied to the nodes
+of L they stand for; the sums of the squared slopes are formed once for a set whose blocks have
+the same numbers of points at each amplitude (:func:`~contactres.analysis._evidence_solve.
+same_weights`; on the 10^5 sweeps of issue 31 every set: 6,838 products instead of 791,909); the
+node values are written straight into their place and the masked writes of nodes without a
+likelihood made only where there is one (none of the 19.2 million nodes there); the trapezoid's
+terms are formed on the rows laid end to end (:func:`_cells`) and the spans counted as bytes
+(:func:`_span`); the sums over y run in the order in which the rows' coarse values lie in
+memory. On those 10^5 sweeps (18,351 undecided blocks, one call, 19.2 million nodes), one thread,
+CPU of the evidence alone alternated with main on a machine at a load of 5-6 on two cores,
+three pairs of two calls each: 2.29-2.55 s against 2.91-3.34 s (~22 % less); instructions
+(callgrind) of the 10^4 sweeps' call 2.53 × 10^9 against 2.88 × 10^9; every output of
+``analyze`` the same bit for bit on the 10^5 sweeps (workers 2) and on the 10^4 sweeps (workers
+1; workers 2 with 200 bootstrap draws).
 A block's result depends on its own row alone, so the caller deals the undecided blocks out to
 the analysis's worker processes where they are many (``contactres.analysis._blocks``,
 ``_evidence``: 1,975 blocks of the 10,752 sweeps in two halves of ~2.3 s of CPU each).
@@ -184,7 +201,7 @@ import itertools
 import numpy as np
 
 from ._amplitude import PLATEAU_MIN_SLOPE
-from ._evidence_solve import level_sums, level_weights, node_values, segments
+from ._evidence_solve import level_sums, level_weights, node_values, same_weights, segments
 from ._loops import CHUNK_CELLS, X_MAX
 from ._plateau import plateau_loop_slopes
 from ._slope_store import SlopeStore
@@ -251,6 +268,20 @@ def _integrand(pts, dl, y, store=None, out=None, own=None):
     ln μ at the nodes (R, Y) of d_c/u_max ``dl`` (R, 1) and ``y`` (R, Y; (1, Y): the same for
     every row), each row R one block's (``pts``: :func:`_rows`, one row a block; ``own`` (R,):
     each row's block there, by default row r block r): (3, R, Y), into ``out`` if given.
+    :func:`_integrand_in_sets`' values put back in the order of the rows."""
+    vals = np.empty((3, dl.shape[0], y.shape[1]))
+    order = _integrand_in_sets(pts, dl, y, store, vals, own)
+    if out is None:
+        out = np.empty_like(vals)
+    for k in range(3):
+        out[k][order] = vals[k]
+    return out
+
+
+def _integrand_in_sets(pts, dl, y, store, out, own=None):
+    """:func:`_integrand`'s values of its rows (ln L + ln π, ln L, ln μ) written into ``out``
+    (3, R, Y) in the order in which they are formed, the rows of one distinct row of slopes
+    together (:func:`_slopes`): returns that order (R,), ``out[:, i]`` being row ``order[i]``'s.
 
     The model depends on a point only through its amplitude, and a block's sweeps repeat the
     same amplitudes (three ramps: a third of its points distinct), so the slopes and the
@@ -259,7 +290,12 @@ def _integrand(pts, dl, y, store=None, out=None, own=None):
     added to the residual sums (Σ (v - a)² over a level = Σ (v - v̄)² + n (v̄ - a)², the
     scatter free of cancellation; the sums over the levels by
     :func:`~contactres.analysis._evidence_solve._solve_levels`). The same numbers to rounding at a
-    third of the cost of the points."""
+    third of the cost of the points.
+
+    Why in that order. Written where they are formed, a segment's values go to one contiguous
+    slice of ``out``; the callers read them through the order (:func:`_over_y`) instead of
+    having them scattered back to the rows' places first (on the 10^5 sweeps of issue 31 those
+    scatters, three arrays of ~19 million nodes, were ~7 % of the evidence's CPU)."""
     if own is None:
         own = np.arange(dl.shape[0])
     lev, umax = pts[0][own], pts[6][own]
@@ -270,25 +306,22 @@ def _integrand(pts, dl, y, store=None, out=None, own=None):
     slopes, squares, inv = slopes
     # The sums of each block's points once (not once for each of its rows).
     W, w, per = level_weights(pts, slopes.shape[2])
-    if out is None:
-        out = np.empty((3, *theta.shape))
     # The rows in sets of one distinct row of slopes, the sets one after the other, and each
     # row's block in that order.
     order = np.argsort(inv, kind="stable")
     cut = np.searchsorted(inv[order], np.arange(slopes.shape[0] + 1))
     block = own[order]
+    # Sets of rows whose blocks have the same numbers of points at each amplitude (the blocks'
+    # distinct rows of w by their bits): their sums of the squares are formed once (level_sums).
+    same = same_weights(_distinct_rows(w)[1][block], cut)
     # The sums over the amplitudes and the rest node by node in segments of whole sets of
     # ~NODE_BLOCK_CELLS nodes (arrays of their own that stay in the cache; the same bits, each
     # node's arithmetic its own, each set's products of one shape).
     for d0, d1 in segments(cut, max(1, NODE_BLOCK_CELLS // max(theta.shape[1], 1))):
         a, b = cut[d0], cut[d1]
-        rows = order[a:b]
-        lin, sq = level_sums(slopes, squares, W, w, block, cut, d0, d1)
-        vals = np.empty((3, b - a, theta.shape[1]))
-        node_values(lin, sq, per[block[a:b]], theta[rows], vals)
-        for k in range(3):  # one row index on a 2-d array: rows copied whole
-            out[k][rows] = vals[k]
-    return out
+        lin, sq = level_sums(slopes, squares, W, w, block, cut, d0, d1, same)
+        node_values(lin, sq, per[block[a:b]], theta[order[a:b]], out[:, a:b])
+    return order
 
 
 def _slopes(theta, dl, lev, store):
@@ -373,18 +406,35 @@ def _void_rows(a):
 
 def _span(e):
     """How many nodes of each row of ``e`` (a density over its nodes, its largest 1) carry a
-    tenth of the largest or more (:data:`MIN_SPAN_NODES`)."""
-    return (e >= 0.1).sum(axis=-1)
+    tenth of the largest or more (:data:`MIN_SPAN_NODES`).
+
+    Rows of fewer than 256 nodes (all of the rule's) are counted as bytes: the sum of a boolean
+    array casts every node to a 64-bit integer first, ~twice the time."""
+    hit = e >= 0.1
+    if hit.shape[-1] < 256:
+        return np.add.reduce(hit.view(np.uint8), axis=-1, dtype=np.uint8).astype(np.intp)
+    return hit.sum(axis=-1)
 
 
 def _cells(f, dx):
     """The terms of the trapezoidal rule along the rows of ``f`` (R, N) with half the node
-    spacings ``dx`` (R, N - 1), (R, N - 1): :func:`numpy.trapezoid`'s arithmetic (its sum along
-    the rows the rule's; halving the spacings, exact, once for all the integrands on one set of
-    nodes, rather than each product: the same bits but where a product falls below 2^-1021,
-    then by its last subnormal bit, ~5e-324 absolute; none on issue 31's tables), in place."""
-    t = f[:, 1:] + f[:, :-1]
-    t *= dx
+    spacings ``dx`` (R, N; its last column 0): (R, N), the terms in the first N - 1 columns
+    (the last column is none: the rule's sums are over ``[:, :-1]``). :func:`numpy.trapezoid`'s
+    arithmetic (halving the spacings, exact, once for all the integrands on one set of nodes,
+    rather than each product: the same bits but where a product falls below 2^-1021, then by
+    its last subnormal bit, ~5e-324 absolute; none on issue 31's tables).
+
+    Why the last column. Each term is formed on the rows laid end to end, one contiguous pass
+    for the sums of neighbours and one for the products, instead of passes over the views
+    ``f[:, 1:]`` and ``f[:, :-1]`` (rows of N - 1 at a stride of N, which numpy copies into its
+    buffers first: ~4 times the time of the contiguous pass); the pairs across the end of a row
+    fall in the last column, times 0."""
+    t = np.empty_like(f)
+    line = t.reshape(-1)
+    np.add(f.reshape(-1)[1:], f.reshape(-1)[:-1], out=line[:-1])
+    line[-1:] = 0.0
+    with np.errstate(invalid="ignore"):  # an infinite pair across rows, times 0
+        t *= dx
     return t
 
 
@@ -403,7 +453,10 @@ def _over_y(pts, own, dl, store):
 
     A row's nodes in y follow from the coarse nodes of its two peaks alone, so their order,
     spacings and edge cells are found once for each pair of peaks met (:func:`_y_patterns`), not
-    row by row, and the values at each part's nodes are written in place (no copies)."""
+    row by row. Each evaluation's values stay where :func:`_integrand_in_sets` writes them, in
+    one flat array for all of them, and each row's nodes are read from there in their order of
+    y by one take (:func:`_sources`): no values are scattered back to their rows, nor copied
+    from L π's nodes to the nodes of L that they stand for."""
     _, _, ny, nf = EVIDENCE_NODES
     K = len(dl)
     dl = dl[:, None]
@@ -417,59 +470,117 @@ def _over_y(pts, own, dl, store):
     lower, upper = np.flatnonzero(j[~on] < mid), np.flatnonzero(j[~on] > mid)
     step = np.linspace(-h, h, nf)[~on]
     nfine = step.size
-    # ln L π, ln L and ln μ at all nodes, side by side in one array (:func:`_over_y_rows` reads
-    # them in one take): the coarse ones, the fine ones around L π's peak, L's. θ of the coarse
-    # nodes from one row of y: the exponentials of the same 32 numbers, not of each row's.
-    vals = np.empty((3, K, ny + 2 * nfine))
-    first, got = vals[:, :, :ny], vals[:, :, ny : ny + nfine]
-    rest = vals[:, :, ny + nfine :]  # every row's values written below: shared or evaluated
-    if K:
-        _integrand(pts, dl, coarse[None], store, first, own)
+    # ln L π, ln L and ln μ at all nodes evaluated, one flat array each (read by one take each
+    # in :func:`_over_y_rows`): the coarse nodes', then the fine ones' around L π's peak, then
+    # those of L's evaluated, each part as its :func:`_integrand_in_sets` wrote it; ``base``:
+    # where each row's values of each part start. θ of the coarse nodes from one row of y: the
+    # exponentials of the same 32 numbers, not of each row's.
+    flat = np.empty((3, K * (ny + 2 * nfine)))
+    base = np.zeros((K, 3), dtype=np.intp)
+    end = 0
+    into = (pts, own, dl, store, flat, base)
+    everyone = np.arange(K)
+    end, first, at_c = _into(into, end, everyone, coarse[None], 0)
     # Fine nodes around the peak of L π (the evidence) and, where it lies elsewhere, around
     # that of L (μ's moments): else μ would follow its prior through the nodes.
-    at_p, at_l = np.argmax(first[0], axis=1), np.argmax(first[1], axis=1)
+    at_p, at_l = np.argmax(first[0], axis=1)[at_c], np.argmax(first[1], axis=1)[at_c]
     fine_p = np.clip(coarse[at_p][:, None] + step, coarse[0], coarse[-1])
-    if K:
-        _integrand(pts, dl, fine_p, store, got, own)
+    end = _into(into, end, everyone, fine_p, 1)[0]
     fine_l = np.clip(coarse[at_l][:, None] + step, coarse[0], coarse[-1])
     side = at_l - at_p
+    # L's nodes that L π's stand for (their values are read from L π's: :func:`_sources`).
     shared = [(side == 0, slice(None), slice(None))]
     if mid > 0:  # one step up: L's lower half is L π's upper half; one step down the reverse
         shared += [(side == 1, lower, upper), (side == -1, upper, lower)]
     for rows, mine, theirs in shared:
         r = np.flatnonzero(rows)[:, None]
         fine_l[r, mine] = fine_p[r, theirs]
-        for k in range(3):  # a 2-d index of a 2-d array, not of a 3-d one: ~4x faster
-            rest[k][r, mine] = got[k][r, theirs]
     # The rest of L's nodes: all of them two steps apart or more, the other half one apart
     # (an even nf shares no half: all of them one step apart or more).
     far = np.flatnonzero(np.abs(side) >= (2 if mid > 0 else 1))
-    todo = [(far[:, None], np.arange(step.size)[None, :])]
+    end = _into(into, end, far, fine_l[far], 2)[0]
     if mid > 0:
         for sign, mine in ((1, upper), (-1, lower)):
-            todo.append((np.flatnonzero(side == sign)[:, None], mine[None, :]))
-    for r, c in todo:
-        if r.size:
-            rest[:, r, c] = _integrand(pts, dl[r[:, 0]], fine_l[r, c], store, None, own[r[:, 0]])
+            r = np.flatnonzero(side == sign)
+            end = _into(into, end, r, fine_l[r[:, None], mine[None, :]], 2)[0]
     pattern, order, dy, edge = _y_patterns(at_p, at_l, fine_p, fine_l, coarse)
+    src, col = _sources(pattern, order, side, lower, upper, mid)
     # The sums over y row by row, in blocks of rows of ~NODE_BLOCK_CELLS nodes (arrays that
-    # stay in the cache; the same bits, each row's sums its own).
+    # stay in the cache; the same bits, each row's sums its own), the rows in the order in
+    # which their values at the coarse nodes lie in ``flat``: those are read in order, not
+    # from all over the chunk's values (on the 10^5 sweeps of issue 31, six pairs alternated
+    # on a loaded machine, the evidence ~4 % less CPU in all, 9 of 12 calls less).
     out = [np.empty(K), np.empty(K), np.empty(K), np.empty(K), np.empty(K), np.empty(K, int)]
     rows = max(1, NODE_BLOCK_CELLS // order.shape[1])
+    seq = np.argsort(base[:, 0], kind="stable")
     for start in range(0, K, rows):
-        b = slice(start, start + rows)
+        b = seq[start : start + rows]
+        # Each row's pattern's arrays by whole rows (numpy.take along the first axis: copies
+        # of rows, where an index array copies item by item), then where each node's values
+        # are: its part's start in the row's ``base`` plus its column.
         p = pattern[b]
-        got_b = _over_y_rows(vals[:, b], order[p], dy[p], edge[p], at_p[b], at_l[b])
+        part = np.take(src, p, axis=0)
+        part += np.arange(0, 3 * p.size, 3)[:, None]
+        at = np.take(base[b].reshape(-1), part)
+        at += np.take(col, p, axis=0)
+        dy_b, edge_b = np.take(dy, p, axis=0), np.take(edge, p, axis=0)
+        got_b = _over_y_rows(flat, at, dy_b, edge_b, at_p[b], at_l[b], base[b, 0])
         for o, v in zip(out, got_b, strict=True):
             o[b] = v
     return tuple(out)
 
 
+def _into(into, end, rows, y, k):
+    """Evaluate :func:`_over_y`'s rows ``rows`` (R,) at their nodes ``y`` (R or 1, Y) into its
+    flat arrays from ``end`` on, in :func:`_integrand_in_sets`' order, and note where each row's
+    values start in column ``k`` of its ``base`` (``into``: its points, the rows' blocks and
+    d_c/u_max, the store of slopes, the flat arrays and ``base``): the end of what is written,
+    the values (3, R, Y) and each row's place among them."""
+    pts, own, dl, store, flat, base = into
+    R, Y = rows.size, y.shape[1]
+    vals = flat[:, end : end + R * Y].reshape(3, R, Y)
+    at = np.arange(R)
+    if R and Y:
+        at[_integrand_in_sets(pts, dl[rows], y, store, vals, own[rows])] = np.arange(R)
+    base[rows, k] = end + at * Y
+    return end + R * Y, vals, at
+
+
+def _sources(pattern, order, side, lower, upper, mid):
+    """For each pattern of nodes in y (:func:`_y_patterns`: ``pattern`` (R,) each row's, ``order``
+    (P, N) its nodes' order), where :func:`_over_y` holds each node's values, in the nodes'
+    order of y: which part's values (0 the coarse nodes', 1 the fine ones' around L π's peak,
+    2 those evaluated for L) and which column of that part (P, N) each. ``side`` (R,): the
+    coarse steps from L π's peak to L's; ``lower``, ``upper``, ``mid``: :func:`_over_y`'s.
+
+    Where L's peak is L π's all of L's fine nodes are L π's; one step up (down), L's lower
+    (upper) half is L π's upper (lower) half and its other half was evaluated alone, its
+    columns in the order of that half; elsewhere L's nodes were evaluated, all in order."""
+    P, N = order.shape
+    nfine = lower.size + upper.size  # the fine nodes off the coarse ones: both halves
+    ny = N - 2 * nfine
+    sides = np.zeros(P, dtype=side.dtype)
+    sides[pattern] = side  # one side a pattern: it follows from the two peaks
+    src = np.repeat(np.array([0, 1, 2]), [ny, nfine, nfine])[None].repeat(P, axis=0)
+    col = np.concatenate([np.arange(ny), np.arange(nfine), np.arange(nfine)])[None]
+    col = col.repeat(P, axis=0)
+    src[sides == 0, ny + nfine :] = 1
+    if mid > 0:
+        for sign, mine, theirs in ((1, lower, upper), (-1, upper, lower)):
+            r = np.flatnonzero(sides == sign)[:, None]
+            src[r, ny + nfine + mine] = 1
+            col[r, ny + nfine + mine] = theirs
+            other = upper if sign == 1 else lower
+            col[r, ny + nfine + other] = np.arange(other.size)
+    return np.take_along_axis(src, order, axis=1), np.take_along_axis(col, order, axis=1)
+
+
 def _y_patterns(at_p, at_l, fine_p, fine_l, coarse):
     """Each row's pattern of nodes in y (R,) and, per pattern, the order of its nodes (the
     coarse ones, those around L π's peak, L's: ascending, stable), their spacings and which
-    spacings lie in the first or last coarse cell (:func:`_over_y`'s ``fine_p``, ``fine_l``:
-    the fine nodes around the peaks at the coarse nodes ``at_p``, ``at_l`` (R,)).
+    spacings lie in the first or last coarse cell, 1 or 0, each with a last column 0
+    (:func:`_cells`) (:func:`_over_y`'s ``fine_p``, ``fine_l``: the fine nodes around the peaks at
+    the coarse nodes ``at_p``, ``at_l`` (R,)).
 
     Why. The nodes of a row follow from its peaks alone (a few hundred pairs among 10^4-10^5
     rows): sorted once a pair, the same order as row by row, bit for bit."""
@@ -479,23 +590,25 @@ def _y_patterns(at_p, at_l, fine_p, fine_l, coarse):
     )
     order = np.argsort(y, axis=1, kind="stable")
     y = np.take_along_axis(y, order, axis=1)
-    edge = (y[:, 1:] <= coarse[1]) | (y[:, :-1] >= coarse[-2])
-    return pattern.ravel(), order, np.diff(y, axis=1) / 2.0, edge.astype(float)
+    # Spacings and edge cells (R, N), the last column 0: :func:`_cells`' layout.
+    dy, edge = np.zeros(y.shape), np.zeros(y.shape)
+    dy[:, :-1] = np.diff(y, axis=1) / 2.0
+    edge[:, :-1] = (y[:, 1:] <= coarse[1]) | (y[:, :-1] >= coarse[-2])
+    return pattern.ravel(), order, dy, edge
 
 
-def _over_y_rows(vals, order, dy, edge, at_p, at_l):
-    """:func:`_over_y`'s outputs of its rows from :func:`_integrand`'s values (3, R, N) at the
-    coarse nodes, the fine ones around L π's peak and L's, side by side (``vals``), the order of
-    each row's nodes in y (R, N), half their spacings (R, N - 1) and which spacings lie in the
-    first or last coarse cell, 1 or 0 (:func:`_y_patterns`); ``at_p``, ``at_l``: the coarse
-    nodes of the peaks of L π and L."""
+def _over_y_rows(flat, at, dy, edge, at_p, at_l, at_c):
+    """:func:`_over_y`'s outputs of its rows from :func:`_integrand`'s values at all nodes
+    evaluated (``flat`` (3, T): :func:`_over_y`'s), where each row's nodes are there in their
+    order of y (``at`` (R, N): :func:`_sources`), half their spacings and which spacings lie in
+    the first or last coarse cell, 1 or 0 (R, N, the last column 0: :func:`_y_patterns`); ``at_p``,
+    ``at_l``: the coarse nodes of the peaks of L π and L; ``at_c``: where each row's values at
+    the coarse nodes start in ``flat``."""
     _, _, ny, nf = EVIDENCE_NODES
     j = np.arange(nf)
     on = (2 * j) % max(nf - 1, 1) == 0
-    # Each row in its order of y, as flat indices into the (R, N) arrays (one take each).
-    R, N = order.shape
-    at = order + np.arange(0, R * N, N)[:, None]
-    lp, ll, mu = (np.take(v.reshape(R * N), at) for v in vals)
+    # Each row in its order of y (one take each).
+    lp, ll, mu = (np.take(v, at) for v in flat)
     top_p = lp.max(axis=1, keepdims=True)
     top_l = ll.max(axis=1, keepdims=True)
     with np.errstate(invalid="ignore"):
@@ -511,24 +624,24 @@ def _over_y_rows(vals, order, dy, edge, at_p, at_l):
     # subnormal range, ~1e-308 of zl).
     cell = _cells(el, dy)
     with np.errstate(invalid="ignore", divide="ignore"):
-        log_p = np.log(_cells(ep, dy).sum(axis=1)) + top_p[:, 0]
-        zl = cell.sum(axis=1)
+        log_p = np.log(_cells(ep, dy)[:, :-1].sum(axis=1)) + top_p[:, 0]
+        zl = cell[:, :-1].sum(axis=1)
         log_l = np.log(zl) + top_l[:, 0]
-        m1 = _cells(el * mu, dy).sum(axis=1) / zl
-        m2 = _cells(el * mu**2, dy).sum(axis=1) / zl
+        m1 = _cells(el * mu, dy)[:, :-1].sum(axis=1) / zl
+        m2 = _cells(el * mu**2, dy)[:, :-1].sum(axis=1) / zl
         cell *= edge
-        share = cell.sum(axis=1) / zl
+        share = cell[:, :-1].sum(axis=1) / zl
     # The nodes on coarse nodes count as the rule places them: -1, 0, 1 steps from each peak
     # (only there their densities are needed: each an exponential of its own), of both
     # densities and both peaks in one take.
     steps = (2 * j[on]) // max(nf - 1, 1) - 1
     at_on = np.concatenate([at_p[:, None] + steps, at_l[:, None] + steps], axis=1)
-    at_on = np.clip(at_on, 0, ny - 1, out=at_on) + np.arange(0, R * N, N)[:, None]
+    at_on = np.clip(at_on, 0, ny - 1, out=at_on) + at_c[:, None]
     span = []
-    for v, e_all, top in ((vals[0], ep, top_p), (vals[1], el, top_l)):
+    for v, e_all, top in ((flat[0], ep, top_p), (flat[1], el, top_l)):
         with np.errstate(invalid="ignore"):
             # NaN (a row without a finite node) counts as no node
-            e = np.exp(np.take(v.reshape(R * N), at_on) - top)
+            e = np.exp(np.take(v, at_on) - top)
         span.append(_span(e_all) + _span(e))
     return log_p, log_l, m1, m2, share, np.minimum(*span)
 
