@@ -540,13 +540,14 @@ def _descent(ey, dl, x, c, A, B, slopes, sf, sg, df, dg) -> tuple[np.ndarray, np
     t = dg - B[:, None]
     t -= A[:, None] * g2
     np.multiply(sg, t, out=r[:, g])
-    # Every row's sums of products with each of the first four: one einsum a column, each sum
-    # that of einsum("rim,rjm->rij") over the same two rows (the same kernel, a product's
-    # factors in either order: the same numbers) at a third of its cost, whose (r, i, j)
-    # iteration spent more than the sums (~0.4 ms of 2,400 rows against ~0.13 ms).
+    # The sums of products of the rows: one einsum a column j, each sum that of
+    # einsum("rim,rjm->rij") over the same two rows (the same kernel, a product's factors in
+    # either order: the same numbers) at a third of its cost, whose (r, i, j) iteration spent
+    # more than the sums (~0.4 ms of 2,400 rows against ~0.13 ms). Those read: of the linear
+    # part's columns (j = 0, 1) with each other, of the derivatives' (j = 2, 3) with every row.
     G = np.empty((R, 5, 4))
     for j in range(4):
-        np.einsum("rim,rm->ri", Z, Z[:, j], out=G[:, :, j])
+        np.einsum("rim,rm->ri", Z if j > 1 else phi, Z[:, j], out=G[:, : 5 if j > 1 else 2, j])
     gram, pd_ = G[:, :2, :2], G[:, :2, 2:]
     # pd_ᵀ gram⁻¹ pd_ as einsum("rki,rkj->rij") sums it from 0, 0 + a₀b₀ + a₁b₁ (two rounded
     # products, no fused multiply-add; the + 0.0 last gives a sum of -0 its sign +0 as the
