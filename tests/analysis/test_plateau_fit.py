@@ -118,3 +118,82 @@ def test_gradient_at_refused_steps_is_never_read(monkeypatch):
             m.setattr(_plateau, "_plateau_model", always)
             full = fit_plateau_loops(*args)
         pd.testing.assert_frame_equal(fit, full, check_exact=True)
+
+
+def _evaluation(pooled, rows=None):
+    """A plateau-model evaluation's inputs on synthetic sweeps (their points one by one, or a
+    block's pooled amplitudes), at parameters inside the bounds: p, u, u_max, Δf, ΔΓ, w, rw,
+    wf, wg and the within-amplitude sums."""
+    b, u_c, sig = _sweeps("plateau")
+    if pooled:
+        u, df, dg, w, _, sf, sg = _blocks(b, u_c, sig)
+        u, df, dg, w, rw, *within = pool_repeats(u, df, dg, w)
+    else:
+        u, df, dg, w, rw, within, sf, sg = b.u, b.df, b.dg, b.w, b.w, None, sig[0], sig[1]
+    rows = np.arange(len(u)) if rows is None else rows
+    rng = np.random.default_rng(8)
+    p = np.column_stack([rng.uniform(-1.0, 1.5, len(u)), rng.uniform(0.05, 0.5, len(u))])
+    umax = np.max(np.where(w > 0, u, 0.0), axis=1)
+    wf, wg = 1.0 / sf**2, 1.0 / sg**2
+    part = None if within is None else [a[rows] for a in within]
+    return (p[rows], u[rows], umax[rows], df[rows], dg[rows], w[rows], rw[rows], wf[rows],
+            wg[rows], part)  # fmt: skip
+
+
+def _descent_plainly(ey, dl, x, c, A, B, slopes, sf, sg, df, dg):
+    """The gradient and Gauss-Newton Hessian of the projected χ²/2 as written before they shared
+    one array: the columns joined, then einsum's sums over (r, i, j)."""
+    g1, g2, g1x, g1c, g2x, g2c = slopes
+    dx = x / (1.0 - dl)[:, None]
+    dc = (ey / (1.0 - dl) ** 2)[:, None]
+    phi = np.stack(
+        [np.concatenate([sf * g1, sg * g2], 1), np.concatenate([np.zeros_like(sf), sg], 1)], 1
+    )
+    D = A[:, None, None] * np.stack(
+        [
+            np.concatenate([sf * (g1x * x + g1c * c), sg * (g2x * x + g2c * c)], 1),
+            np.concatenate([sf * (g1x * dx + g1c * dc), sg * (g2x * dx + g2c * dc)], 1),
+        ],
+        1,
+    )
+    r = np.concatenate([sf * (df - A[:, None] * g1), sg * (dg - B[:, None] - A[:, None] * g2)], 1)
+    gram = np.einsum("rim,rjm->rij", phi, phi)
+    pd_ = np.einsum("rim,rjm->rij", phi, D)
+    sol = _plateau.solve_stacked(gram, pd_)
+    hess = np.einsum("rim,rjm->rij", D, D) - np.einsum("rki,rkj->rij", pd_, sol)
+    return -np.einsum("rim,rm->ri", D, r), hess
+
+
+@pytest.mark.parametrize("pooled", [False, True])
+@pytest.mark.parametrize("rows", [None, [3], [0, 5, 7]])
+def test_descent_is_the_plain_sums_bit_for_bit(pooled, rows, monkeypatch):
+    # _descent's sums share one array and one einsum a column (and its pdᵀ gram⁻¹ pd is summed
+    # without einsum): the same numbers, bit for bit, as the plain einsums over (r, i, j), for
+    # many rows and for one, points one by one and pooled.
+    seen = []
+
+    def plain(*a):
+        seen.append(_descent_plainly(*a))
+        return seen[-1]
+
+    args = _evaluation(pooled, None if rows is None else np.array(rows))
+    fit = _plateau._plateau_model(*args)
+    monkeypatch.setattr(_plateau, "_descent", plain)
+    ref = _plateau._plateau_model(*args)
+    assert seen and np.isfinite(fit["hess"]).all()
+    np.testing.assert_array_equal(fit["grad"], ref["grad"])
+    np.testing.assert_array_equal(fit["hess"], ref["hess"])
+
+
+@pytest.mark.parametrize("pooled", [False, True])
+def test_gradient_is_that_of_the_projected_chi2(pooled):
+    # Kaufman's gradient (the Jacobian at the projected Pκ, Pωξ) against central differences of
+    # χ²/2 itself in each parameter: a different route to the same derivative.
+    p, *rest = _evaluation(pooled)
+    grad = _plateau._plateau_model(p, *rest)["grad"]
+    for k, h in ((0, 1e-6), (1, 1e-7)):
+        step = np.zeros_like(p)
+        step[:, k] = h
+        up, down = (_plateau._plateau_model(p + s, *rest)["chi2"] for s in (step, -step))
+        fd = (up - down) / (4.0 * h)
+        assert np.all(np.abs(grad[:, k] - fd) <= 1e-5 * np.abs(fd) + 1e-9 * np.abs(grad).max())
