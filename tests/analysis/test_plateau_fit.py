@@ -197,3 +197,26 @@ def test_gradient_is_that_of_the_projected_chi2(pooled):
         up, down = (_plateau._plateau_model(p + s, *rest)["chi2"] for s in (step, -step))
         fd = (up - down) / (4.0 * h)
         assert np.all(np.abs(grad[:, k] - fd) <= 1e-5 * np.abs(fd) + 1e-9 * np.abs(grad).max())
+
+
+@pytest.mark.parametrize("M", [13, 4100])
+def test_descent_of_a_row_does_not_depend_on_its_batch(M):
+    # A row's gradient and Hessian are the same bit for bit evaluated alone or with others, also
+    # past 4,096 points a row, where einsum("rim,rjm->rij") summed blocks of its 8,192-element
+    # buffer for two rows or more and whole for one (workers 1 and 2 batch rows differently).
+    rng = np.random.default_rng(29)
+    R = 3
+    ey, A, B = (rng.uniform(0.5, 2.0, R) for _ in range(3))
+    dl = rng.uniform(0.05, 0.5, R)
+    x = rng.uniform(0.0, 3.0, (R, M))
+    c = rng.uniform(0.0, 1.0, (R, 1))
+    slopes = tuple(rng.normal(size=(R, M)) for _ in range(6))
+    sf, sg, df, dg = (rng.normal(size=(R, M)) for _ in range(4))
+    batch = _plateau._descent(ey, dl, x, c, A, B, slopes, sf, sg, df, dg)
+    for k in range(R):
+        one = [a[k : k + 1] for a in (ey, dl, x, c, A, B)]
+        alone = _plateau._descent(
+            *one, tuple(s[k : k + 1] for s in slopes), *(a[k : k + 1] for a in (sf, sg, df, dg))
+        )
+        for got, ref in zip(alone, batch, strict=True):
+            np.testing.assert_array_equal(got[0], ref[k])

@@ -540,23 +540,25 @@ def _descent(ey, dl, x, c, A, B, slopes, sf, sg, df, dg) -> tuple[np.ndarray, np
     t = dg - B[:, None]
     t -= A[:, None] * g2
     np.multiply(sg, t, out=r[:, g])
-    # The sums of products of the rows: one einsum a column j, each sum that of
-    # einsum("rim,rjm->rij") over the same two rows (the same kernel, a product's factors in
-    # either order: the same numbers) at a third of its cost, whose (r, i, j) iteration spent
-    # more than the sums (~0.4 ms of 2,400 rows against ~0.13 ms). Those read: of the linear
-    # part's columns (j = 0, 1) with each other, of the derivatives' (j = 2, 3) with every row.
+    # The sums of products of the rows: one einsum a column j, at a third of the cost of
+    # einsum("rim,rjm->rij"), whose (r, i, j) iteration spent more than the sums (~0.4 ms of
+    # 2,400 rows against ~0.13 ms). Those read: of the linear part's columns (j = 0, 1) with
+    # each other, of the derivatives' (j = 2, 3) with every row. Each sum over a row's points
+    # is taken whole, for one row or many: the same numbers as the old einsum up to 4,096
+    # points a row, beyond which that one summed blocks of numpy's 8,192-element buffer when
+    # it had two rows or more (a long sweep's fit then depended on its batch, by ~1e-14).
     G = np.empty((R, 5, 4))
     for j in range(4):
         np.einsum("rim,rm->ri", Z if j > 1 else phi, Z[:, j], out=G[:, : 5 if j > 1 else 2, j])
     gram, pd_ = G[:, :2, :2], G[:, :2, 2:]
-    # pd_ᵀ gram⁻¹ pd_ as einsum("rki,rkj->rij") sums it from 0, 0 + a₀b₀ + a₁b₁ (two rounded
-    # products, no fused multiply-add; the + 0.0 last gives a sum of -0 its sign +0 as the
-    # start from 0 does): the same numbers without its iteration over (r, i, j), which cost
-    # ~0.25 ms on 2,400 rows against ~0.1 ms.
+    # pd_ᵀ gram⁻¹ pd_ as a₀b₀ + a₁b₁, two rounded products: einsum("rki,rkj->rij")'s numbers
+    # (up to a NaN's sign) where its kernel does not fuse the multiply-add, as on numpy's
+    # x86-64 wheels (on aarch64 it does, and the last bit may differ), without its iteration
+    # over (r, i, j), which cost ~0.25 ms on 2,400 rows against ~0.1 ms. (A -0 sum, where the
+    # einsum gave +0, leaves the Hessian G - proj unchanged: G's sums are never -0.)
     sol = solve_stacked(gram, pd_)
     proj = pd_[:, 0, :, None] * sol[:, 0, None, :]
     proj += pd_[:, 1, :, None] * sol[:, 1, None, :]
-    proj += 0.0
     return -G[:, 4, 2:], G[:, 2:4, 2:] - proj
 
 
