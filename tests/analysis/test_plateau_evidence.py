@@ -883,3 +883,31 @@ def test_the_cells_of_rows_laid_end_to_end_are_the_trapezoidal_rules():
     with np.errstate(invalid="ignore"):
         got = _cells(f, half)[:, :-1].sum(axis=1)
     np.testing.assert_array_equal(got, np.trapezoid(f, x, axis=1))
+
+
+@pytest.mark.parametrize("to_mu", [0.0, np.inf])
+def test_a_row_of_infinite_ln_mu_leaves_the_rows_beside_it_alone(to_mu):
+    # _over_y_rows forms the trapezoid's terms on its rows laid end to end: the pair across
+    # the end of a row falls in a last column, times a spacing 0, and is left out of the sums.
+    # Where the next row's first value is not finite (ln μ = ±inf: to_mu 0 or inf and no prior
+    # on μ; L's density 0 there, 0·inf = NaN) that pair is NaN: a row's moments of ln μ must
+    # not take it. Every row of a call against the row evaluated alone.
+    from contactres.analysis import _plateau_evidence as ev
+    from contactres.analysis._slope_store import SlopeStore
+
+    blocks = [_block(s, 0.3) for s in range(6)]
+    u, df, dg = (np.stack([b[k] for b in blocks]) for k in range(3))
+    B = len(blocks)
+    to = np.ones(B)
+    to[[1, 4]] = to_mu
+    per_block = ev._levels(u, df, dg, np.ones_like(u), np.arange(B))
+    nan = np.full(B, np.nan)
+    pts = ev._rows(per_block, np.full((2, B), 0.6), (nan, nan), to, list(range(B)))
+    own = np.repeat(np.arange(B), 4)
+    dl = np.tile([0.0, 0.1, 0.3, 0.5], B)
+    got = np.array(ev._over_y(pts, own, dl, SlopeStore()), dtype=float)
+    assert np.isfinite(got[2, own != 1]).any()
+    for r, b in enumerate(own):
+        one = tuple(a[[b]] for a in pts)
+        alone = np.array(ev._over_y(one, np.array([0]), dl[[r]], SlopeStore()), dtype=float)
+        np.testing.assert_allclose(got[:, r], alone[:, 0], rtol=1e-13)

@@ -1,7 +1,7 @@
 """The projected solve of the plateau's evidence at its nodes: the sums over a block's amplitudes
 and, from them, ln L, ln π and ln μ node by node.
 
-Why. :func:`contactres.analysis._plateau_evidence._integrand` evaluates the plateau loop's
+Why. :func:`contactres.analysis._plateau_evidence._integrand_in_sets` evaluates the plateau loop's
 likelihood at ~10^7 nodes (the 10^5 sweeps of issue 31); at each, the amplitudes Pκ and Pωξ
 are solved in closed form on the block's distinct amplitudes (:func:`level_sums`,
 :func:`_solve_levels`) and the node's logarithms formed (:func:`node_values`). Its own module
@@ -18,9 +18,9 @@ __all__ = ["level_sums", "level_weights", "node_values", "same_weights", "segmen
 
 def segments(cut, rows):
     """Runs (d0, d1) of the sets of rows that share their slopes (set d: the rows
-    ``cut[d]:cut[d + 1]`` in :func:`~contactres.analysis._plateau_evidence._integrand`'s order),
-    each of ``rows`` rows or more (the last: what is left), no set split: each set's products stay
-    of one shape."""
+    ``cut[d]:cut[d + 1]`` in the order of
+    :func:`~contactres.analysis._plateau_evidence._integrand_in_sets`), each of ``rows`` rows
+    or more (the last: what is left), no set split: each set's products stay of one shape."""
     out, d0, D = [], 0, cut.size - 1
     while d0 < D:
         d1 = min(max(d0 + 1, int(np.searchsorted(cut, cut[d0] + rows))), D)
@@ -30,10 +30,11 @@ def segments(cut, rows):
 
 
 def node_values(lin, sq, per, theta, out):
-    """ln L + ln π, ln L and ln μ of :func:`~contactres.analysis._plateau_evidence._integrand` at
-    its nodes ``theta`` (R, Y), into ``out`` (3, R, Y), from the sums over the amplitudes (``lin``,
-    ``sq``: :func:`level_sums`) and the rows' numbers ``per`` (R, 13; :func:`level_weights`): C_f,
-    C_Γ, Σ w ΔΓc, n, the floors of the RSS, the scatters, the prior on ln μ, to_mu and the weights
+    """ln L + ln π, ln L and ln μ of
+    :func:`~contactres.analysis._plateau_evidence._integrand_in_sets` at its nodes ``theta``
+    (R, Y), into ``out`` (3, R, Y), from the sums over the amplitudes (``lin``, ``sq``:
+    :func:`level_sums`) and the rows' numbers ``per`` (R, 13; :func:`level_weights`): C_f, C_Γ,
+    Σ w ΔΓc, n, the floors of the RSS, the scatters, the prior on ln μ, to_mu and the weights
     of Δf, ΔΓ."""
     C_f, C_g, g_sum, n, lo_f, lo_g, scatter_f, scatter_g, mean, var, to_mu, wf, wg = (
         per[:, k : k + 1] for k in range(13)
@@ -106,10 +107,10 @@ def level_sums(slopes, squares, W, w, block, cut, d0, d1, same=None):
     amplitudes of G′, G″ (``slopes``, (D, 2Y, L), of the distinct rows) and of their squares
     (``squares``) times the weights and weighted data of the row's block (``W``, ``w``:
     :func:`level_weights`), for the rows of the sets ``d0`` to ``d1`` of rows on one distinct
-    row of slopes (set d: the rows ``cut[d]:cut[d + 1]`` of
-    :func:`~contactres.analysis._plateau_evidence._integrand`'s order, whose blocks are ``block``),
-    in that order: (n, 3, 2Y) and (n, 2Y). ``same`` (D,): whether all rows of set d have the same
-    ``w`` (its bits; :func:`same_weights`; by default none is taken to).
+    row of slopes (set d: the rows ``cut[d]:cut[d + 1]`` in the order of
+    :func:`~contactres.analysis._plateau_evidence._integrand_in_sets`, whose blocks are
+    ``block``), in that order: (n, 3, 2Y) and (n, 2Y). ``same`` (D,): whether all rows of set d
+    have the same ``w`` (its bits; :func:`same_weights`; by default none is taken to).
 
     Why. The sums are the only work at each node and amplitude: matrix products of the rows
     of G′, G″ and of their squares against the weight vectors, instead of the residuals formed

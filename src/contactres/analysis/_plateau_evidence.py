@@ -72,8 +72,8 @@ blocks inside ±1.96 errors 93.3 % of 90.
 Cost. The nodes of all undecided blocks are evaluated together, in chunks of blocks with one
 number of distinct amplitudes (numpy on large arrays), the slopes and the projected solve at
 each block's distinct amplitudes only, weighted by their numbers of points (its three ramps
-repeat them; :func:`_integrand`), the slopes without their derivatives and with G′'s integral
-by its power series (:mod:`contactres.analysis._plateau_series`) instead of a Gauss rule or
+repeat them; :func:`_integrand_in_sets`), the slopes without their derivatives and with G′'s
+integral by its power series (:mod:`contactres.analysis._plateau_series`) instead of a Gauss rule or
 elliptic integrals: on the analysis of the 1,344-sweep study of
 :func:`contactres.measurements.example_study` (14 experiments, 244 undecided blocks) 5.1 × 10⁹
 instructions against 14.3 × 10⁹ with the slopes at every point by the fit's own forms (CPU,
@@ -157,14 +157,14 @@ blocks, took 20,000 more and were left out); every output the same bit for bit o
 sweeps with shared and with jittered amplitudes, on the 10^5 sweeps, on the bundled example
 and on the studies of ``benchmarks/bench_scale.py``.
 Since (issue 31, point 3, ninth round) the sums of a block's own points (its weights, C_f, C_Γ,
-n) are formed once a block, each row of nodes reading its block's by index (:func:`_integrand`'s
-``own``) instead of copies of the points for each of its 13 to 25 rows; the products, the
-projected solve and the logarithms run segment by segment over whole sets of rows on one
-distinct row of slopes (:func:`~contactres.analysis._evidence_solve.segments`), a segment's sums
-in arrays of its own rather than scattered into arrays of all rows and read back strided; the
-three parts of the values in y are written into one array and read by one flat take each (a
-take over two dimensions at once was 7 times slower), θ at the coarse nodes comes from one row
-of exponentials, the spans' nodes on coarse nodes from one take a density, and a pass's groups
+n) are formed once a block, each row of nodes reading its block's by index
+(:func:`_integrand_in_sets`'s ``own``) instead of copies of the points for each of its 13 to 25
+rows; the products, the projected solve and the logarithms run segment by segment over whole sets of
+rows on one distinct row of slopes (:func:`~contactres.analysis._evidence_solve.segments`), a
+segment's sums in arrays of its own rather than scattered into arrays of all rows and read back
+strided; the three parts of the values in y are written into one array and read by one flat take
+each (a take over two dimensions at once was 7 times slower), θ at the coarse nodes comes from one
+row of exponentials, the spans' nodes on coarse nodes from one take a density, and a pass's groups
 are found by the integer of their bits (:func:`_distinct_rows`) rather than by a sort of their
 bytes. On the 10^5 sweeps of issue 31 (18,351 undecided blocks), one thread, CPU of the
 evidence alone (second call of a process) alternated with main on a machine at a load of 7-13
@@ -177,21 +177,21 @@ them, in the order of its sets of rows on one distinct row of slopes (:func:`_in
 and each row's nodes are read from there in their order of y by one take (:func:`_sources`),
 instead of each segment being scattered back to its rows and L π's values copied to the nodes
 of L they stand for; the sums of the squared slopes are formed once for a set whose blocks have
-the same numbers of points at each amplitude (:func:`~contactres.analysis._evidence_solve.
-same_weights`; on the 10^5 sweeps of issue 31 every set: 6,838 products instead of 791,909); the
-node values are written straight into their place and the masked writes of nodes without a
-likelihood made only where there is one (none of the 19.2 million nodes there); the trapezoid's
-terms are formed on the rows laid end to end (:func:`_cells`) and the spans counted as bytes
-(:func:`_span`); the sums over y run in the order in which the rows' coarse values lie in
-memory. On those 10^5 sweeps (18,351 undecided blocks, one call, 19.2 million nodes), one thread,
-CPU of the evidence alone alternated with main on a machine at a load of 5-6 on two cores,
-three pairs of two calls each: 2.29-2.55 s against 2.91-3.34 s (~22 % less); instructions
-(callgrind) of the 10^4 sweeps' call 2.53 × 10^9 against 2.88 × 10^9; every output of
-``analyze`` the same bit for bit on the 10^5 sweeps (workers 2) and on the 10^4 sweeps (workers
-1; workers 2 with 200 bootstrap draws).
-A block's result depends on its own row alone, so the caller deals the undecided blocks out to
-the analysis's worker processes where they are many (``contactres.analysis._blocks``,
-``_evidence``: 1,975 blocks of the 10,752 sweeps in two halves of ~2.3 s of CPU each).
+the same numbers of points at each amplitude
+(:func:`~contactres.analysis._evidence_solve.same_weights`; on the 10^5 sweeps of issue 31 every
+set: 6,838 products instead of 791,909); the node values are written straight into their place and
+the masked writes of nodes without a likelihood made only where there is one (none of the 19.2
+million nodes there); the trapezoid's terms are formed on the rows laid end to end (:func:`_cells`)
+and the spans counted as bytes (:func:`_span`); the sums over y run in the order in which the rows'
+coarse values lie in memory. On those 10^5 sweeps (18,351 undecided blocks, one call, 19.2 million
+nodes), one thread, CPU of the evidence alone alternated with main on a machine at a load of 5-6 on
+two cores, three pairs of two calls each: 2.29-2.55 s against 2.91-3.34 s (~22 % less); instructions
+(callgrind) of the 10^4 sweeps' call 2.53 × 10^9 against 2.88 × 10^9; every output of ``analyze``
+the same bit for bit on the 10^5 sweeps (workers 2) and on the 10^4 sweeps (workers 1; workers 2
+with 200 bootstrap draws). A block's result depends on its own row alone, so the caller deals the
+undecided blocks out to the analysis's worker processes where they are many
+(``contactres.analysis._blocks``, ``_evidence``: 1,975 blocks of the 10,752 sweeps in two halves of
+~2.3 s of CPU each).
 """
 
 from __future__ import annotations
@@ -256,31 +256,33 @@ EVIDENCE_CHUNK_CELLS = 16 * CHUNK_CELLS
 #: keeping every row.
 EVIDENCE_FRESH_CELLS = 2 * CHUNK_CELLS
 
-#: Nodes (rows x nodes in y) of one block of the node-by-node steps of :func:`_integrand` (the
-#: projected solve's ratios, the logarithms): 128 kB arrays, a dozen of which stay in the cache
+#: Nodes (rows x nodes in y) of one block of the node-by-node steps of :func:`_integrand_in_sets`
+#: (the projected solve's ratios, the logarithms): 128 kB arrays, a dozen of which stay in the cache
 #: where the chunk's (a few MB each) did not: on the 10^4 sweeps of issue 31 those steps
 #: ~40 % less CPU, the same numbers bit for bit (each node's arithmetic its own).
 NODE_BLOCK_CELLS = 1 << 14
 
 
-def _integrand(pts, dl, y, store=None, out=None, own=None):
+def _integrand(pts, dl, y, own=None):
     """ln L + ln π (as :func:`plateau_log_evidence`, up to a common constant), ln L alone and
     ln μ at the nodes (R, Y) of d_c/u_max ``dl`` (R, 1) and ``y`` (R, Y; (1, Y): the same for
     every row), each row R one block's (``pts``: :func:`_rows`, one row a block; ``own`` (R,):
-    each row's block there, by default row r block r): (3, R, Y), into ``out`` if given.
-    :func:`_integrand_in_sets`' values put back in the order of the rows."""
+    each row's block there, by default row r block r): (3, R, Y).
+
+    :func:`_integrand_in_sets`' values (what the evidence evaluates) put back in the order of
+    the rows: for the tests, which read a row's values by its place; the evidence itself reads
+    them where they are formed."""
     vals = np.empty((3, dl.shape[0], y.shape[1]))
-    order = _integrand_in_sets(pts, dl, y, store, vals, own)
-    if out is None:
-        out = np.empty_like(vals)
+    order = _integrand_in_sets(pts, dl, y, None, vals, own)
+    out = np.empty_like(vals)
     for k in range(3):
         out[k][order] = vals[k]
     return out
 
 
 def _integrand_in_sets(pts, dl, y, store, out, own=None):
-    """:func:`_integrand`'s values of its rows (ln L + ln π, ln L, ln μ) written into ``out``
-    (3, R, Y) in the order in which they are formed, the rows of one distinct row of slopes
+    """:func:`_integrand_in_sets`'s values of its rows (ln L + ln π, ln L, ln μ) written into
+    ``out`` (3, R, Y) in the order in which they are formed, the rows of one distinct row of slopes
     together (:func:`_slopes`): returns that order (R,), ``out[:, i]`` being row ``order[i]``'s.
 
     The model depends on a point only through its amplitude, and a block's sweeps repeat the
@@ -429,7 +431,7 @@ def _cells(f, dx):
     ``f[:, 1:]`` and ``f[:, :-1]`` (rows of N - 1 at a stride of N, which numpy copies into its
     buffers first: ~4 times the time of the contiguous pass); the pairs across the end of a row
     fall in the last column, times 0."""
-    t = np.empty_like(f)
+    t = np.empty(f.shape)  # C order whatever f's: line is a view of t, not a copy
     line = t.reshape(-1)
     np.add(f.reshape(-1)[1:], f.reshape(-1)[:-1], out=line[:-1])
     line[-1:] = 0.0
@@ -598,7 +600,7 @@ def _y_patterns(at_p, at_l, fine_p, fine_l, coarse):
 
 
 def _over_y_rows(flat, at, dy, edge, at_p, at_l, at_c):
-    """:func:`_over_y`'s outputs of its rows from :func:`_integrand`'s values at all nodes
+    """:func:`_over_y`'s outputs of its rows from :func:`_integrand_in_sets`'s values at all nodes
     evaluated (``flat`` (3, T): :func:`_over_y`'s), where each row's nodes are there in their
     order of y (``at`` (R, N): :func:`_sources`), half their spacings and which spacings lie in
     the first or last coarse cell, 1 or 0 (R, N, the last column 0: :func:`_y_patterns`); ``at_p``,
@@ -873,7 +875,7 @@ def _levels(u, df, dg, w, blocks):
 
 
 def _rows(per_block, sig, mu_prior, to_mu, blocks):
-    """The points of ``blocks`` as :func:`_integrand` takes them, one row (1, ...) a block:
+    """The points of ``blocks`` as :func:`_integrand_in_sets` takes them, one row (1, ...) a block:
     its distinct amplitudes (padded with u_max), the number of points at each (padding 0), the
     means of Δf and ΔΓ there, the scatter Σ (v - v̄)² of each channel's points about them
     (``per_block``: :func:`_levels` of each block), u_max, the weights 1/σ² of Δf and ΔΓ, the prior
