@@ -298,6 +298,12 @@ def _object_run_starts(values: np.ndarray) -> np.ndarray:
     change[:1] = True
     np.not_equal(pointers[1:], pointers[:-1], out=change[1:])
     other = np.flatnonzero(change[1:]) + 1  # another object: compared as cells
+    if 4 * other.size > len(values):
+        # Equal cells mostly in objects of their own (ids built a row at a time, numbers made
+        # text by astype(str)): every cell compared in one pass, as gathers of the changed rows
+        # cost 2-5 times that (review R29b), and a row holding the object above still in its run.
+        change[1:] &= values[1:] != values[:-1]
+        return np.flatnonzero(change)
     change[other] = values[other] != values[other - 1]
     return np.flatnonzero(change)
 

@@ -654,3 +654,16 @@ def test_validating_a_table_leaves_the_callers_table_as_it_was():
     pd.testing.assert_frame_equal(frame, before)
     assert list(frame.columns) == list(before.columns)
     assert frame.attrs == attrs
+
+
+@pytest.mark.parametrize("column", ["poisson", "overtone"])
+def test_a_word_in_a_constants_column_is_not_a_number(tmp_path, column):
+    # A constant's column holds few distinct texts, checked once each and the verdict spread
+    # to the rows (review R29b: no test reached that path with a bad cell): the word is named
+    # as no number at its line, not as a value that is not finite. (30 rows of two texts: few
+    # enough distinct cells for that path.)
+    f = good_frame(n_sweeps=5)
+    f[column] = np.where(np.arange(len(f)) == 9, "abc", "3" if column == "overtone" else "0.17")
+    const = {k: v for k, v in CONST.items() if k != column}
+    with pytest.raises(ValueError, match=rf"line 11, column '{column}'.*'abc' is not a number"):
+        read_sweeps(write(tmp_path, f), **const)

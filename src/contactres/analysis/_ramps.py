@@ -104,8 +104,8 @@ def check_ramps(
     lo, at = load[order], position[order]
     tied = (lo[1:] == lo[:-1]) & ((at[1:] == at[:-1]) | (np.isnan(at[1:]) & np.isnan(at[:-1])))
     # The rank of each sweep's name, sorted only where it decides (sorting 10^5 names cost
-    # ~0.04 s, issue 31, point 3): with no tie the order is the same without it (a stable
-    # sort), and the names' messages below are the few sweeps they name.
+    # ~0.04 s, issue 31, point 3): with no tie the keys (load, position) are distinct, so the
+    # order is the same without it, and the names' messages below are the few sweeps they name.
     by_name = None
     if tied.any():
         by_name = _name_ranks(info)
