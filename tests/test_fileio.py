@@ -653,3 +653,33 @@ def test_the_mixed_table_with_a_g_format_is_the_text_pandas_writes(tmp_path):
         frame.to_csv(tmp_path / "pandas.csv", index=False, na_rep=na_rep, float_format="%.10g")
         write_csv(tmp_path / "joined.csv", frame, na_rep=na_rep, float_format=CSV_FLOAT_FORMAT)
         assert (tmp_path / "joined.csv").read_bytes() == (tmp_path / "pandas.csv").read_bytes()
+
+
+def test_a_chunk_with_a_long_text_cell_is_joined_as_text(tmp_path, monkeypatch):
+    """A text column's records are as wide as its longest text, and every line of the chunk
+    as wide as its records: one 4 kB note would make each of the chunk's rows 4 kB in numpy.
+    A chunk with a cell past 256 bytes is joined as text (its bytes still pandas' own); the
+    chunks without it are assembled in numpy."""
+    import numpy as np
+
+    from contactres import _csvcells
+
+    n = 1500
+    notes = [f"n{i}" for i in range(n)]
+    notes[700] = "long, " + "é" * 2000  # in the second chunk only; quoted, non-ASCII
+    rng = np.random.default_rng(5)
+    frame = pd.DataFrame({"x": rng.normal(size=n), "note": pd.Series(notes, dtype=object)})
+    kinds = []
+    joined = _csvcells._lines_bytes
+    monkeypatch.setattr(
+        _csvcells,
+        "_lines_bytes",
+        lambda *a: kinds.append(type(lines := joined(*a)).__name__) or lines,
+    )
+    monkeypatch.setattr(_csvcells, "CHUNK_CELLS", 2 * 500)  # 3 chunks of 500 rows
+    want = frame.to_csv(index=False, na_rep="NA", float_format="%.10g")
+    assert "".join(_csvcells.csv_chunks(frame, "NA", "\n", "%.10g")) == want
+    assert kinds == ["bytearray", "NoneType", "bytearray"]
+    frame.to_csv(tmp_path / "pandas.csv", index=False, float_format="%.10g")
+    write_csv(tmp_path / "joined.csv", frame, float_format="%.10g")
+    assert (tmp_path / "joined.csv").read_bytes() == (tmp_path / "pandas.csv").read_bytes()

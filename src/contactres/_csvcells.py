@@ -309,7 +309,8 @@ def _pieces(
 def _lines_bytes(part, na_rep: str, lineterminator: str, precision: int) -> bytearray | None:
     """The CSV lines of the rows ``part`` (a DataFrame) with doubles as ``"%.{precision}g"``,
     as UTF-8 bytes: the text :func:`csv_chunks` joins, assembled in numpy. None where a text
-    cell holds a NUL byte (then joined as text); raises _NotJoined as :func:`_field_texts`.
+    cell holds a NUL byte or is longer than :data:`_WIDEST_TEXT` bytes (then joined as text);
+    raises _NotJoined as :func:`_field_texts`.
 
     Why: Python's ``%`` formats a double at ~0.2 µs and its text joined into lines costs
     another ~40 % (issue 31, point 3: ~12 million doubles in ``qcm analyze``'s tables at 10^5
@@ -355,11 +356,18 @@ def _double_records(values: np.ndarray, precision: int, na_rep: bytes) -> np.nda
     return g_records(distinct.view(np.float64), precision, na_rep)[codes]
 
 
+#: The widest text record (UTF-8 bytes) that :func:`_lines_bytes` assembles: every record of a
+#: column is as wide as its longest text, and every line of the chunk as wide as its records,
+#: so one long cell (a 4 kB note in a chunk of 87,381 rows) would make the chunk's buffer
+#: 87,381 x 4 kB (680 MB, against 16 MB joined as text). Past it the chunk is joined as text.
+_WIDEST_TEXT = 256
+
+
 def _text_records(col, na_rep: str) -> np.ndarray | None:
     """The texts of a column that is not of doubles (:func:`_field_texts`: raises _NotJoined
-    as it does) as NUL-padded UTF-8 records; None if a text holds a NUL byte. A run of one
-    object (a curve table's sweep id over its 30 rows) has its text made once, and so has
-    each distinct text of a column that holds few."""
+    as it does) as NUL-padded UTF-8 records; None if a text holds a NUL byte or is wider than
+    :data:`_WIDEST_TEXT` bytes. A run of one object (a curve table's sweep id over its 30
+    rows) has its text made once, and so has each distinct text of a column that holds few."""
     from pandas.api.types import infer_dtype
 
     values = col.to_numpy()
@@ -391,6 +399,8 @@ def _text_records(col, na_rep: str) -> np.ndarray | None:
     # (numpy encodes ASCII text itself, at a fraction of a Python call a cell)
     records = np.array(texts if joined.isascii() else [t.encode() for t in texts], dtype="S")
     records = records.view(np.uint8).reshape(records.size, -1)
+    if records.shape[1] > _WIDEST_TEXT:
+        return None
     return records if codes is None else records[codes]
 
 
