@@ -127,6 +127,29 @@ def test_exact_ties_round_half_to_even():
         assert _mismatches(np.concatenate([near, -near]), precision) == [], precision
 
 
+def test_near_halves_over_the_whole_range_at_every_precision():
+    """Doubles nearest the decimal halves "k5e(p-N)" (k of N digits) and their neighbours up
+    to 40 ulps either side, p over 10^-320..10^300 (the two-step scaling), every precision N,
+    both signs: Python's text. These are the cells whose rounding the margin leaves to Python:
+    the scaled double ``y`` is within ~4 u 10^N of the exact value, so a rint of ``y`` within
+    that of a half may round the wrong way. Most k are drawn from the top tenth of the N-digit
+    numbers, where ``y`` is nearest 10^N and its error largest: a margin of 2 u 10^N instead
+    of 8 gives wrong cells here at several precisions."""
+    rng = np.random.default_rng(29)
+    offsets = np.arange(-40, 41)
+    for precision in range(1, MAX_PRECISION + 1):
+        low, high = 10 ** (precision - 1), 10**precision
+        k = np.concatenate(
+            [rng.integers(low, high, 100), rng.integers(high - max(1, low), high, 300)]
+        )
+        p = rng.integers(-320, 300, k.size)
+        decimals = [f"{a}5e{b - precision}" for a, b in zip(k.tolist(), p.tolist(), strict=True)]
+        halves = np.array([float(d) for d in decimals])
+        halves = halves[np.isfinite(halves) & (halves > 0)]
+        near = (halves.view(np.int64)[:, None] + offsets).reshape(-1).view(np.float64)
+        assert _mismatches(np.concatenate([near, -near]), precision) == [], precision
+
+
 def test_values_that_round_up_to_the_next_power_of_ten():
     """9.99...95 rounds to 10^k: one digit more before the point, or the next exponent."""
     values = np.array(

@@ -258,10 +258,13 @@ def g_records(values: np.ndarray, precision: int, nan_text: bytes = b"nan") -> n
     at = np.flatnonzero(regular) if special else None
     v = x if at is None else x[at]
     m, e, exact = _rounded(np.abs(v), precision)
-    if not exact.all():  # a rounding within the margin of a half: Python's own text
+    loose_rows = None  # a rounding within the margin of a half: Python's own text
+    if not exact.all():  # (the texts as one array, put in place by one assignment)
         loose = np.flatnonzero(~exact)
-        for r in (loose if at is None else at[loose]).tolist():
-            special.append((np.array([r]), (f"%.{precision}g" % x[r]).encode()))
+        loose_rows = loose if at is None else at[loose]
+        fmt = f"%.{precision}g"
+        loose_text = np.array([fmt % r for r in x[loose_rows].tolist()], dtype="S")
+        loose_text = loose_text.view(np.uint8).reshape(loose_rows.size, -1)
     fixed = (e >= -4) & (e < precision)
     small = fixed & (e < 0)  # 0.000ddd
     point = np.where(fixed, precision - 1 - e, precision - 1)  # digits of M after the point
@@ -294,6 +297,8 @@ def g_records(values: np.ndarray, precision: int, nan_text: bytes = b"nan") -> n
         fields.append(exponent if three else exponent[:, [0, 1, 3, 4]])
     width_body = sum(f.shape[1] for f in fields)
     width = max(width_body, max((len(t) for _, t in special), default=0))
+    if loose_rows is not None:
+        width = max(width, loose_text.shape[1])
     body = np.empty((v.size, width), dtype=np.uint8)
     body[:, width_body:] = 0
     at_field = 0
@@ -308,6 +313,9 @@ def g_records(values: np.ndarray, precision: int, nan_text: bytes = b"nan") -> n
     for rows, text in special:
         records[rows] = 0
         records[rows, : len(text)] = np.frombuffer(text, dtype=np.uint8)
+    if loose_rows is not None:
+        records[loose_rows] = 0
+        records[loose_rows, : loose_text.shape[1]] = loose_text
     return records
 
 
