@@ -560,11 +560,16 @@ def test_doubles_formatted_a_chunk_at_a_time_are_pandas_text(tmp_path, monkeypat
     assert len(calls) == (0 if float_format == "%.3f mm" else chunks)
 
 
+@pytest.mark.parametrize("float_format", ["%.10g", "%.14g"])
 @pytest.mark.parametrize("na_rep", ["", "NA", "nan"])
-def test_gaps_formatted_with_their_chunk_are_pandas_text(tmp_path, monkeypatch, na_rep):
+def test_gaps_formatted_with_their_chunk_are_pandas_text(
+    tmp_path, monkeypatch, na_rep, float_format
+):
     """A column of doubles with gaps is formatted within its chunk's ``%`` and each "nan" then
     written as ``na_rep``; a chunk where a text cell holds "nan" (a label "banana", "nan"
-    itself) writes its gaps cell by cell: the bytes are pandas' own either way."""
+    itself) writes its gaps cell by cell: the bytes are pandas' own either way. "%.10g" is
+    assembled in numpy (``_lines_bytes``, its gaps as ``na_rep`` there), "%.14g" (past
+    ``MAX_PRECISION``) by the chunk's ``%``, where the gaps and "nan" text meet."""
     import numpy as np
 
     from contactres import _csvcells
@@ -581,10 +586,10 @@ def test_gaps_formatted_with_their_chunk_are_pandas_text(tmp_path, monkeypatch, 
     labels[2500], labels[2600] = "banana", "nan"  # in the third chunk only
     frame = pd.DataFrame({"x": x, "y": x[::-1].copy(), "label": labels})
     monkeypatch.setattr(_csvcells, "CHUNK_CELLS", 3 * 1000)
-    frame.to_csv(tmp_path / "pandas.csv", index=False, na_rep=na_rep, float_format="%.10g")
+    frame.to_csv(tmp_path / "pandas.csv", index=False, na_rep=na_rep, float_format=float_format)
     with monkeypatch.context() as m:
         m.setattr(pd.DataFrame, "to_csv", lambda *a, **k: pytest.fail("pandas was called"))
-        write_csv(tmp_path / "joined.csv", frame, na_rep=na_rep, float_format="%.10g")
+        write_csv(tmp_path / "joined.csv", frame, na_rep=na_rep, float_format=float_format)
     assert (tmp_path / "joined.csv").read_bytes() == (tmp_path / "pandas.csv").read_bytes()
 
 
