@@ -688,3 +688,39 @@ def test_a_chunk_with_a_long_text_cell_is_joined_as_text(tmp_path, monkeypatch):
     frame.to_csv(tmp_path / "pandas.csv", index=False, float_format="%.10g")
     write_csv(tmp_path / "joined.csv", frame, float_format="%.10g")
     assert (tmp_path / "joined.csv").read_bytes() == (tmp_path / "pandas.csv").read_bytes()
+
+
+def test_a_lone_surrogate_in_text_is_kept_in_text_and_refused_in_a_file(tmp_path, monkeypatch):
+    """A text cell holding a lone surrogate ("\\udcff": bytes of a file name decoded with
+    surrogateescape) is in csv_chunks' text as pandas' to_csv() to a string keeps it, also
+    where the chunk is assembled as bytes in numpy; written to a file it raises the
+    UnicodeEncodeError pandas' writer raises (UTF-8 has no surrogates), at the same cell."""
+    import numpy as np
+
+    from contactres import _csvcells
+
+    n = 900
+    labels = [f"s{i}" for i in range(n)]
+    labels[400], labels[401], labels[850] = "a\udcffb", "\ud83d\ude00", "µ\udc80"
+    rng = np.random.default_rng(3)
+    frame = pd.DataFrame({"x": rng.normal(size=n), "label": pd.Series(labels, dtype=object)})
+    kinds = []
+    joined = _csvcells._lines_bytes
+    monkeypatch.setattr(
+        _csvcells,
+        "_lines_bytes",
+        lambda *a: kinds.append(type(lines := joined(*a)).__name__) or lines,
+    )
+    monkeypatch.setattr(_csvcells, "CHUNK_CELLS", 2 * 300)  # 3 chunks of 300 rows
+    for float_format in ("%.10g", "%.14g", None):
+        want = frame.to_csv(index=False, na_rep="NA", float_format=float_format)
+        assert _csvcells.csv_text(frame, "NA", "\n", float_format) == want
+    assert kinds == ["bytearray"] * 3  # "%.10g": in numpy
+    with pytest.raises(UnicodeEncodeError) as pandas_error:
+        frame.to_csv(tmp_path / "pandas.csv", index=False, float_format="%.10g")
+    with pytest.raises(UnicodeEncodeError) as error:
+        write_csv(tmp_path / "joined.csv", frame, float_format="%.10g")
+    cause = ("surrogates not allowed", "\udcff")
+    for e in (error.value, pandas_error.value):  # (the position: within each writer's chunk)
+        assert (e.encoding, e.reason, e.object[e.start : e.end]) == ("utf-8", *cause)
+    assert not (tmp_path / "joined.csv").exists()

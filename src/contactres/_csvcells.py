@@ -247,7 +247,9 @@ def csv_chunks(
     whole. With a ``"%.Ng"`` format (the reports' :data:`CSV_FLOAT_FORMAT`) the lines are
     assembled as bytes in numpy (:func:`_lines_bytes`), the doubles' text made there too."""
     for piece in _pieces(frame, na_rep, lineterminator, float_format, rows):
-        yield piece if isinstance(piece, str) else piece.decode("utf-8")
+        # (a lone surrogate in a text cell, "\udcff", is kept as pandas' to_csv() to a string
+        # keeps it: _text_records encodes it as the three bytes surrogatepass decodes)
+        yield piece if isinstance(piece, str) else piece.decode("utf-8", "surrogatepass")
 
 
 def _pieces(
@@ -396,8 +398,13 @@ def _text_records(col, na_rep: str) -> np.ndarray | None:
     joined = "".join(texts)
     if "\0" in joined:
         return None
-    # (numpy encodes ASCII text itself, at a fraction of a Python call a cell)
-    records = np.array(texts if joined.isascii() else [t.encode() for t in texts], dtype="S")
+    # (numpy encodes ASCII text itself, at a fraction of a Python call a cell). A lone
+    # surrogate ("\udcff": a file name decoded with surrogateescape) is encoded as it is
+    # (surrogatepass): csv_chunks' text keeps it, csv_to refuses it as the UTF-8 codec does.
+    records = np.array(
+        texts if joined.isascii() else [t.encode("utf-8", "surrogatepass") for t in texts],
+        dtype="S",
+    )
     records = records.view(np.uint8).reshape(records.size, -1)
     if records.shape[1] > _WIDEST_TEXT:
         return None
@@ -455,7 +462,14 @@ def csv_to(path, frame, options: dict) -> None:
         try:
             with open(path, "wb") as fh:  # (the text as the csv module writes it: UTF-8)
                 for piece in _pieces(table, na_rep, os.linesep, float_format, None):
-                    fh.write(piece.encode("utf-8") if isinstance(piece, str) else piece)
+                    if isinstance(piece, str):
+                        fh.write(piece.encode("utf-8"))
+                    elif b"\xed" in piece:  # (the first byte of a surrogate's, and of U+D000..)
+                        # a lone surrogate: the chunk's text encoded strictly raises the
+                        # UnicodeEncodeError of pandas' writer
+                        fh.write(piece.decode("utf-8", "surrogatepass").encode("utf-8"))
+                    else:
+                        fh.write(piece)
             return
         except _NotJoined:
             pass
