@@ -199,6 +199,39 @@ def test_the_formats_formatted_here():
     assert _texts([123.0, 0.5], g_precision("%.0g")) == ["1e+02", "0.5"]  # Python's %.0g
 
 
+def test_a_precision_in_other_digits_than_ascii_is_not_formatted_here():
+    """``%`` reads a precision in ASCII digits only: "%.\u0661\u0660g" (Arabic-Indic 10) is
+    not "%.10g" (Python's ``%`` refuses it)."""
+    arabic_ten = "%.\u0661\u0660g"
+    assert g_precision(arabic_ten) is None
+    assert g_precision("%.\uff11g") is None  # a fullwidth 1
+    with pytest.raises(ValueError):
+        _ = arabic_ten % 1.5
+
+
+def test_the_digit_tables_are_the_digits_as_text():
+    """The tables of four digits made by arithmetic are the text of each number written
+    small here with Python strings: every digit, leading zeros NUL (0 as nothing, or "0"),
+    trailing zeros NUL, the count of trailing zeros; and read-only."""
+    from contactres import _decimal_text as dt
+
+    def words(texts):
+        return np.frombuffer("".join(texts).encode(), dtype="<u4")
+
+    four = [f"{i:04d}" for i in range(10_000)]
+    stripped = [t.lstrip("0") for t in four]
+    assert np.array_equal(dt._FOUR, words(four))
+    assert np.array_equal(dt._LEADING, words(four + [t.rjust(4, "\0") for t in stripped]))
+    last = [(t or "0").rjust(4, "\0") for t in stripped]
+    assert np.array_equal(dt._LEADING_LAST, words(four + last))
+    trailing = [t.rstrip("0").ljust(4, "\0") for t in four]
+    assert np.array_equal(dt._TRAILING, words(four + trailing))
+    assert dt._TRAILING_ZEROS.tolist() == [len(t) - len(t.rstrip("0")) for t in four]
+    assert dt._POWERS_INT.tolist() == [10**k for k in range(19)]
+    for table in (dt._FOUR, dt._LEADING, dt._TRAILING, dt._TRAILING_ZEROS, dt._POWERS):
+        assert not table.flags.writeable
+
+
 def test_an_empty_array_and_one_of_only_special_values():
     assert g_records(np.array([]), 10).shape[0] == 0
     assert _texts([np.nan, 0.0, -np.inf], 10, b"") == ["", "0", "-inf"]

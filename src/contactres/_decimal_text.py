@@ -59,37 +59,72 @@ __all__ = ["MAX_PRECISION", "copy_rows", "g_precision", "g_records"]
 MAX_PRECISION = 13
 
 #: ``%g`` and ``%.Ng`` alone: no flags, no width (other formats keep Python's ``%``).
-_G_FORMAT = re.compile(r"%(?:\.(\d+))?g")
+_G_FORMAT = re.compile(r"%(?:\.([0-9]+))?g")  # ([0-9]: \d takes other scripts' digits too)
+
+
+def _digits() -> np.ndarray:
+    """The four decimal digits of 0..9999, most significant first: every combination of four
+    digits in order, shape (10^4, 4), uint8."""
+    grid = np.meshgrid(*[np.arange(10, dtype=np.uint8)] * 4, indexing="ij")
+    return np.stack(grid, axis=-1).reshape(-1, 4)
 
 
 def _four_digit_words(blank: str) -> np.ndarray:
     """The four ASCII digits of 0..9999 (most significant first) as the bytes of little-endian
     uint32 words, a row of digits being a view of the words: all of them (``blank=""``), or
     with the leading zeros NUL (``"leading"``: 0 as four NULs; ``"leading1"``: 0 as "0"), or
-    the trailing zeros (``"trailing"``: 0 as four NULs)."""
-    text = [f"{i:04d}" for i in range(10_000)]
+    the trailing zeros (``"trailing"``: 0 as four NULs). Made on arrays (the tables of Python
+    strings cost ~12-15 ms of CPU at every import)."""
+    digits = _digits()
+    text = digits + np.uint8(ord("0"))
     if blank.startswith("leading"):
-        keep = 1 if blank == "leading1" else 0
-        text = [t.lstrip("0").rjust(keep, "0").rjust(4, "\0") for t in text]
+        leading = _zeros_from_the_left(digits)
+        if blank == "leading1":
+            leading[:, -1] = False  # 0 is "0"
+        text *= ~leading
     elif blank == "trailing":
-        text = [t.rstrip("0").ljust(4, "\0") for t in text]
-    return np.frombuffer("".join(text).encode(), dtype="<u4").copy()
+        text *= ~_trailing(digits)
+    return text.view("<u4").reshape(-1)
+
+
+def _zeros_from_the_left(digits: np.ndarray) -> np.ndarray:
+    """Where the rows of ``digits`` (n, 4) hold their leading zeros: a zero with only zeros
+    before it. (A column at a time: ``np.logical_and.accumulate`` along the rows' four
+    digits is a loop per row, ~5x slower.)"""
+    zeros = digits == 0
+    for j in range(1, zeros.shape[1]):
+        zeros[:, j] &= zeros[:, j - 1]
+    return zeros
+
+
+def _trailing(digits: np.ndarray) -> np.ndarray:
+    """Where the rows of ``digits`` (n, 4) hold their trailing zeros."""
+    return _zeros_from_the_left(digits[:, ::-1])[:, ::-1]
+
+
+def _read_only(table: np.ndarray) -> np.ndarray:
+    """``table``, made read-only (a module's table is shared by every call)."""
+    table.flags.writeable = False
+    return table
 
 
 #: The words of four digits, read at ``group`` where a group's zeros are digits and at
 #: ``group + 10^4`` where they are not text: in :data:`_LEADING` (digits before the point)
 #: where every more significant group is 0, in :data:`_TRAILING` (digits after the point)
 #: where every less significant group is 0. One gather a group, no choice between tables.
-_FOUR = _four_digit_words("")
-_LEADING = np.concatenate([_FOUR, _four_digit_words("leading")])
-_LEADING_LAST = np.concatenate([_FOUR, _four_digit_words("leading1")])  # 0 written "0"
-_TRAILING = np.concatenate([_FOUR, _four_digit_words("trailing")])
+_FOUR = _read_only(_four_digit_words(""))
+_LEADING = _read_only(np.concatenate([_FOUR, _four_digit_words("leading")]))
+_LEADING_LAST = _read_only(np.concatenate([_FOUR, _four_digit_words("leading1")]))  # 0: "0"
+_TRAILING = _read_only(np.concatenate([_FOUR, _four_digit_words("trailing")]))
 
 #: Trailing zero digits of 0..9999 written with four digits (0: four).
-_TRAILING_ZEROS = np.array([4] + [4 - len(f"{i:04d}".rstrip("0")) for i in range(1, 10_000)])
+_TRAILING_ZEROS = _read_only(_trailing(_digits()).sum(axis=1))
 
 #: The double nearest each 10^k, k = 0..170 (``float`` of an int is correctly rounded).
-_POWERS = np.array([float(10**k) for k in range(171)])
+_POWERS = _read_only(np.array([float(10**k) for k in range(171)]))
+
+#: 10^k as int64, k = 0..18.
+_POWERS_INT = _read_only(np.array([10**k for k in range(19)], dtype=np.int64))
 
 _U = 2.0**-53  #: the unit roundoff of a double
 
@@ -329,7 +364,3 @@ def copy_rows(out: np.ndarray, block: np.ndarray) -> None:
         return
     row = np.dtype((np.void, width))
     out.view(row)[...] = block.view(row)
-
-
-#: 10^k as int64, k = 0..18.
-_POWERS_INT = np.array([10**k for k in range(19)], dtype=np.int64)
