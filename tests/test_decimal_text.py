@@ -108,8 +108,13 @@ def _exact_ties(rng, n: int) -> tuple[np.ndarray, np.ndarray]:
 
 
 def test_exact_ties_round_half_to_even():
-    """An exact half at the last digit rounds to the even digit, as Python's % does: the
-    ties a formatter that rounds half up (or rounds the scaled double) gets wrong."""
+    """An exact half at the last digit rounds to the even digit, as Python's % does. Every
+    exact tie lies within the margin of a half and is formatted by Python's % itself, so what
+    this catches is a tie that is not (no margin: the scaled double rounded half up gives
+    "1234567891"; rint's own half to even gets these ties right, their scaled doubles being
+    exact) and a text put in place for the cells left to Python that is not Python's
+    rounding of the exact value (one ulp off). A half-up rounding of the scaled double alone,
+    with the margin in place, changes no cell: there is no tie outside the margin."""
     assert _texts([1234567890.5, 1234567891.5, -1234567890.5], 10) == [
         "1234567890",
         "1234567892",
