@@ -108,8 +108,13 @@ def _exact_ties(rng, n: int) -> tuple[np.ndarray, np.ndarray]:
 
 
 def test_exact_ties_round_half_to_even():
-    """An exact half at the last digit rounds to the even digit, as Python's % does: the
-    ties a formatter that rounds half up (or rounds the scaled double) gets wrong."""
+    """An exact half at the last digit rounds to the even digit, as Python's % does. Every
+    exact tie lies within the margin of a half and is formatted by Python's % itself, so what
+    this catches is a tie that is not (no margin: the scaled double rounded half up gives
+    "1234567891"; rint's own half to even gets these ties right, their scaled doubles being
+    exact) and a text put in place for the cells left to Python that is not Python's
+    rounding of the exact value (one ulp off). A half-up rounding of the scaled double alone,
+    with the margin in place, changes no cell: there is no tie outside the margin."""
     assert _texts([1234567890.5, 1234567891.5, -1234567890.5], 10) == [
         "1234567890",
         "1234567892",
@@ -124,6 +129,29 @@ def test_exact_ties_round_half_to_even():
         tied = values[precisions == precision]
         # the tie itself, and its neighbours one ulp away (no longer ties: they round away)
         near = np.concatenate([tied, np.nextafter(tied, 0), np.nextafter(tied, np.inf)])
+        assert _mismatches(np.concatenate([near, -near]), precision) == [], precision
+
+
+def test_near_halves_over_the_whole_range_at_every_precision():
+    """Doubles nearest the decimal halves "k5e(p-N)" (k of N digits) and their neighbours up
+    to 40 ulps either side, p over 10^-320..10^300 (the two-step scaling), every precision N,
+    both signs: Python's text. These are the cells whose rounding the margin leaves to Python:
+    the scaled double ``y`` is within ~4 u 10^N of the exact value, so a rint of ``y`` within
+    that of a half may round the wrong way. Most k are drawn from the top tenth of the N-digit
+    numbers, where ``y`` is nearest 10^N and its error largest: a margin of 2 u 10^N instead
+    of 8 gives wrong cells here at several precisions."""
+    rng = np.random.default_rng(29)
+    offsets = np.arange(-40, 41)
+    for precision in range(1, MAX_PRECISION + 1):
+        low, high = 10 ** (precision - 1), 10**precision
+        k = np.concatenate(
+            [rng.integers(low, high, 100), rng.integers(high - max(1, low), high, 300)]
+        )
+        p = rng.integers(-320, 300, k.size)
+        decimals = [f"{a}5e{b - precision}" for a, b in zip(k.tolist(), p.tolist(), strict=True)]
+        halves = np.array([float(d) for d in decimals])
+        halves = halves[np.isfinite(halves) & (halves > 0)]
+        near = (halves.view(np.int64)[:, None] + offsets).reshape(-1).view(np.float64)
         assert _mismatches(np.concatenate([near, -near]), precision) == [], precision
 
 
@@ -174,6 +202,39 @@ def test_the_formats_formatted_here():
     for other in ("%.14g", "%.17g", "%10.3g", "%+.3g", "%#.5g", "%.3e", "%.3f", "%.3g mm", None):
         assert g_precision(other) is None, other
     assert _texts([123.0, 0.5], g_precision("%.0g")) == ["1e+02", "0.5"]  # Python's %.0g
+
+
+def test_a_precision_in_other_digits_than_ascii_is_not_formatted_here():
+    """``%`` reads a precision in ASCII digits only: "%.\u0661\u0660g" (Arabic-Indic 10) is
+    not "%.10g" (Python's ``%`` refuses it)."""
+    arabic_ten = "%.\u0661\u0660g"
+    assert g_precision(arabic_ten) is None
+    assert g_precision("%.\uff11g") is None  # a fullwidth 1
+    with pytest.raises(ValueError):
+        _ = arabic_ten % 1.5
+
+
+def test_the_digit_tables_are_the_digits_as_text():
+    """The tables of four digits made by arithmetic are the text of each number written
+    small here with Python strings: every digit, leading zeros NUL (0 as nothing, or "0"),
+    trailing zeros NUL, the count of trailing zeros; and read-only."""
+    from contactres import _decimal_text as dt
+
+    def words(texts):
+        return np.frombuffer("".join(texts).encode(), dtype="<u4")
+
+    four = [f"{i:04d}" for i in range(10_000)]
+    stripped = [t.lstrip("0") for t in four]
+    assert np.array_equal(dt._FOUR, words(four))
+    assert np.array_equal(dt._LEADING, words(four + [t.rjust(4, "\0") for t in stripped]))
+    last = [(t or "0").rjust(4, "\0") for t in stripped]
+    assert np.array_equal(dt._LEADING_LAST, words(four + last))
+    trailing = [t.rstrip("0").ljust(4, "\0") for t in four]
+    assert np.array_equal(dt._TRAILING, words(four + trailing))
+    assert dt._TRAILING_ZEROS.tolist() == [len(t) - len(t.rstrip("0")) for t in four]
+    assert dt._POWERS_INT.tolist() == [10**k for k in range(19)]
+    for table in (dt._FOUR, dt._LEADING, dt._TRAILING, dt._TRAILING_ZEROS, dt._POWERS):
+        assert not table.flags.writeable
 
 
 def test_an_empty_array_and_one_of_only_special_values():

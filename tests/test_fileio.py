@@ -560,11 +560,16 @@ def test_doubles_formatted_a_chunk_at_a_time_are_pandas_text(tmp_path, monkeypat
     assert len(calls) == (0 if float_format == "%.3f mm" else chunks)
 
 
+@pytest.mark.parametrize("float_format", ["%.10g", "%.14g"])
 @pytest.mark.parametrize("na_rep", ["", "NA", "nan"])
-def test_gaps_formatted_with_their_chunk_are_pandas_text(tmp_path, monkeypatch, na_rep):
+def test_gaps_formatted_with_their_chunk_are_pandas_text(
+    tmp_path, monkeypatch, na_rep, float_format
+):
     """A column of doubles with gaps is formatted within its chunk's ``%`` and each "nan" then
     written as ``na_rep``; a chunk where a text cell holds "nan" (a label "banana", "nan"
-    itself) writes its gaps cell by cell: the bytes are pandas' own either way."""
+    itself) writes its gaps cell by cell: the bytes are pandas' own either way. "%.10g" is
+    assembled in numpy (``_lines_bytes``, its gaps as ``na_rep`` there), "%.14g" (past
+    ``MAX_PRECISION``) by the chunk's ``%``, where the gaps and "nan" text meet."""
     import numpy as np
 
     from contactres import _csvcells
@@ -581,10 +586,10 @@ def test_gaps_formatted_with_their_chunk_are_pandas_text(tmp_path, monkeypatch, 
     labels[2500], labels[2600] = "banana", "nan"  # in the third chunk only
     frame = pd.DataFrame({"x": x, "y": x[::-1].copy(), "label": labels})
     monkeypatch.setattr(_csvcells, "CHUNK_CELLS", 3 * 1000)
-    frame.to_csv(tmp_path / "pandas.csv", index=False, na_rep=na_rep, float_format="%.10g")
+    frame.to_csv(tmp_path / "pandas.csv", index=False, na_rep=na_rep, float_format=float_format)
     with monkeypatch.context() as m:
         m.setattr(pd.DataFrame, "to_csv", lambda *a, **k: pytest.fail("pandas was called"))
-        write_csv(tmp_path / "joined.csv", frame, na_rep=na_rep, float_format="%.10g")
+        write_csv(tmp_path / "joined.csv", frame, na_rep=na_rep, float_format=float_format)
     assert (tmp_path / "joined.csv").read_bytes() == (tmp_path / "pandas.csv").read_bytes()
 
 
@@ -653,3 +658,69 @@ def test_the_mixed_table_with_a_g_format_is_the_text_pandas_writes(tmp_path):
         frame.to_csv(tmp_path / "pandas.csv", index=False, na_rep=na_rep, float_format="%.10g")
         write_csv(tmp_path / "joined.csv", frame, na_rep=na_rep, float_format=CSV_FLOAT_FORMAT)
         assert (tmp_path / "joined.csv").read_bytes() == (tmp_path / "pandas.csv").read_bytes()
+
+
+def test_a_chunk_with_a_long_text_cell_is_joined_as_text(tmp_path, monkeypatch):
+    """A text column's records are as wide as its longest text, and every line of the chunk
+    as wide as its records: one 4 kB note would make each of the chunk's rows 4 kB in numpy.
+    A chunk with a cell past 256 bytes is joined as text (its bytes still pandas' own); the
+    chunks without it are assembled in numpy."""
+    import numpy as np
+
+    from contactres import _csvcells
+
+    n = 1500
+    notes = [f"n{i}" for i in range(n)]
+    notes[700] = "long, " + "é" * 2000  # in the second chunk only; quoted, non-ASCII
+    rng = np.random.default_rng(5)
+    frame = pd.DataFrame({"x": rng.normal(size=n), "note": pd.Series(notes, dtype=object)})
+    kinds = []
+    joined = _csvcells._lines_bytes
+    monkeypatch.setattr(
+        _csvcells,
+        "_lines_bytes",
+        lambda *a: kinds.append(type(lines := joined(*a)).__name__) or lines,
+    )
+    monkeypatch.setattr(_csvcells, "CHUNK_CELLS", 2 * 500)  # 3 chunks of 500 rows
+    want = frame.to_csv(index=False, na_rep="NA", float_format="%.10g")
+    assert "".join(_csvcells.csv_chunks(frame, "NA", "\n", "%.10g")) == want
+    assert kinds == ["bytearray", "NoneType", "bytearray"]
+    frame.to_csv(tmp_path / "pandas.csv", index=False, float_format="%.10g")
+    write_csv(tmp_path / "joined.csv", frame, float_format="%.10g")
+    assert (tmp_path / "joined.csv").read_bytes() == (tmp_path / "pandas.csv").read_bytes()
+
+
+def test_a_lone_surrogate_in_text_is_kept_in_text_and_refused_in_a_file(tmp_path, monkeypatch):
+    """A text cell holding a lone surrogate ("\\udcff": bytes of a file name decoded with
+    surrogateescape) is in csv_chunks' text as pandas' to_csv() to a string keeps it, also
+    where the chunk is assembled as bytes in numpy; written to a file it raises the
+    UnicodeEncodeError pandas' writer raises (UTF-8 has no surrogates), at the same cell."""
+    import numpy as np
+
+    from contactres import _csvcells
+
+    n = 900
+    labels = [f"s{i}" for i in range(n)]
+    labels[400], labels[401], labels[850] = "a\udcffb", "\ud83d\ude00", "µ\udc80"
+    rng = np.random.default_rng(3)
+    frame = pd.DataFrame({"x": rng.normal(size=n), "label": pd.Series(labels, dtype=object)})
+    kinds = []
+    joined = _csvcells._lines_bytes
+    monkeypatch.setattr(
+        _csvcells,
+        "_lines_bytes",
+        lambda *a: kinds.append(type(lines := joined(*a)).__name__) or lines,
+    )
+    monkeypatch.setattr(_csvcells, "CHUNK_CELLS", 2 * 300)  # 3 chunks of 300 rows
+    for float_format in ("%.10g", "%.14g", None):
+        want = frame.to_csv(index=False, na_rep="NA", float_format=float_format)
+        assert _csvcells.csv_text(frame, "NA", "\n", float_format) == want
+    assert kinds == ["bytearray"] * 3  # "%.10g": in numpy
+    with pytest.raises(UnicodeEncodeError) as pandas_error:
+        frame.to_csv(tmp_path / "pandas.csv", index=False, float_format="%.10g")
+    with pytest.raises(UnicodeEncodeError) as error:
+        write_csv(tmp_path / "joined.csv", frame, float_format="%.10g")
+    cause = ("surrogates not allowed", "\udcff")
+    for e in (error.value, pandas_error.value):  # (the position: within each writer's chunk)
+        assert (e.encoding, e.reason, e.object[e.start : e.end]) == ("utf-8", *cause)
+    assert not (tmp_path / "joined.csv").exists()

@@ -247,7 +247,9 @@ def csv_chunks(
     whole. With a ``"%.Ng"`` format (the reports' :data:`CSV_FLOAT_FORMAT`) the lines are
     assembled as bytes in numpy (:func:`_lines_bytes`), the doubles' text made there too."""
     for piece in _pieces(frame, na_rep, lineterminator, float_format, rows):
-        yield piece if isinstance(piece, str) else piece.decode("utf-8")
+        # (a lone surrogate in a text cell, "\udcff", is kept as pandas' to_csv() to a string
+        # keeps it: _text_records encodes it as the three bytes surrogatepass decodes)
+        yield piece if isinstance(piece, str) else piece.decode("utf-8", "surrogatepass")
 
 
 def _pieces(
@@ -309,7 +311,8 @@ def _pieces(
 def _lines_bytes(part, na_rep: str, lineterminator: str, precision: int) -> bytearray | None:
     """The CSV lines of the rows ``part`` (a DataFrame) with doubles as ``"%.{precision}g"``,
     as UTF-8 bytes: the text :func:`csv_chunks` joins, assembled in numpy. None where a text
-    cell holds a NUL byte (then joined as text); raises _NotJoined as :func:`_field_texts`.
+    cell holds a NUL byte or is longer than :data:`_WIDEST_TEXT` bytes (then joined as text);
+    raises _NotJoined as :func:`_field_texts`.
 
     Why: Python's ``%`` formats a double at ~0.2 µs and its text joined into lines costs
     another ~40 % (issue 31, point 3: ~12 million doubles in ``qcm analyze``'s tables at 10^5
@@ -355,11 +358,18 @@ def _double_records(values: np.ndarray, precision: int, na_rep: bytes) -> np.nda
     return g_records(distinct.view(np.float64), precision, na_rep)[codes]
 
 
+#: The widest text record (UTF-8 bytes) that :func:`_lines_bytes` assembles: every record of a
+#: column is as wide as its longest text, and every line of the chunk as wide as its records,
+#: so one long cell (a 4 kB note in a chunk of 87,381 rows) would make the chunk's buffer
+#: 87,381 x 4 kB (680 MB, against 16 MB joined as text). Past it the chunk is joined as text.
+_WIDEST_TEXT = 256
+
+
 def _text_records(col, na_rep: str) -> np.ndarray | None:
     """The texts of a column that is not of doubles (:func:`_field_texts`: raises _NotJoined
-    as it does) as NUL-padded UTF-8 records; None if a text holds a NUL byte. A run of one
-    object (a curve table's sweep id over its 30 rows) has its text made once, and so has
-    each distinct text of a column that holds few."""
+    as it does) as NUL-padded UTF-8 records; None if a text holds a NUL byte or is wider than
+    :data:`_WIDEST_TEXT` bytes. A run of one object (a curve table's sweep id over its 30
+    rows) has its text made once, and so has each distinct text of a column that holds few."""
     from pandas.api.types import infer_dtype
 
     values = col.to_numpy()
@@ -388,9 +398,16 @@ def _text_records(col, na_rep: str) -> np.ndarray | None:
     joined = "".join(texts)
     if "\0" in joined:
         return None
-    # (numpy encodes ASCII text itself, at a fraction of a Python call a cell)
-    records = np.array(texts if joined.isascii() else [t.encode() for t in texts], dtype="S")
+    # (numpy encodes ASCII text itself, at a fraction of a Python call a cell). A lone
+    # surrogate ("\udcff": a file name decoded with surrogateescape) is encoded as it is
+    # (surrogatepass): csv_chunks' text keeps it, csv_to refuses it as the UTF-8 codec does.
+    records = np.array(
+        texts if joined.isascii() else [t.encode("utf-8", "surrogatepass") for t in texts],
+        dtype="S",
+    )
     records = records.view(np.uint8).reshape(records.size, -1)
+    if records.shape[1] > _WIDEST_TEXT:
+        return None
     return records if codes is None else records[codes]
 
 
@@ -445,7 +462,14 @@ def csv_to(path, frame, options: dict) -> None:
         try:
             with open(path, "wb") as fh:  # (the text as the csv module writes it: UTF-8)
                 for piece in _pieces(table, na_rep, os.linesep, float_format, None):
-                    fh.write(piece.encode("utf-8") if isinstance(piece, str) else piece)
+                    if isinstance(piece, str):
+                        fh.write(piece.encode("utf-8"))
+                    elif b"\xed" in piece:  # (the first byte of a surrogate's, and of U+D000..)
+                        # a lone surrogate: the chunk's text encoded strictly raises the
+                        # UnicodeEncodeError of pandas' writer
+                        fh.write(piece.decode("utf-8", "surrogatepass").encode("utf-8"))
+                    else:
+                        fh.write(piece)
             return
         except _NotJoined:
             pass
