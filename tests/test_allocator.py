@@ -149,9 +149,17 @@ class _Mallopt:
         return 1
 
 
+class _Refusing(_Mallopt):
+    """A glibc whose mallopt refuses an mmap threshold this high."""
+
+    def __call__(self, parameter: int, value: int) -> int:
+        super().__call__(parameter, value)
+        return int(parameter != -3)
+
+
 class _Glibc:
-    def __init__(self) -> None:
-        self.mallopt = _Mallopt()
+    def __init__(self, mallopt: type[_Mallopt] = _Mallopt) -> None:
+        self.mallopt = mallopt()
 
     def gnu_get_libc_version(self) -> bytes:
         return b"2.36"
@@ -176,6 +184,15 @@ def test_both_thresholds_are_set_with_glibc_numbers(monkeypatch, no_user_thresho
     assert set(keep_freed_memory()) == {"MALLOC_MMAP_THRESHOLD_", "MALLOC_TRIM_THRESHOLD_"}
     # glibc's malloc.h: M_TRIM_THRESHOLD -1, M_MMAP_THRESHOLD -3.
     assert sorted(libc.mallopt.calls) == [(-3, THRESHOLD), (-1, THRESHOLD)]
+
+
+def test_a_refused_mmap_threshold_leaves_the_trim_threshold_alone(monkeypatch, no_user_thresholds):
+    # The trim threshold set alone would fix the mmap threshold at 128 KiB (no more dynamic
+    # threshold): every block above it would be mapped anew, the opposite of the aim.
+    libc = _Glibc(_Refusing)
+    monkeypatch.setattr(_allocator.ctypes, "CDLL", lambda name: libc)
+    assert keep_freed_memory() == ()
+    assert libc.mallopt.calls == [(-3, THRESHOLD)]
 
 
 @pytest.mark.parametrize(

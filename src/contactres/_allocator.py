@@ -46,8 +46,8 @@ THRESHOLD = 256 * 1024 * 1024
 #: glibc's ``mallopt`` parameter numbers (``malloc.h``), each with the environment variable and
 #: the ``GLIBC_TUNABLES`` name by which a user sets the same threshold.
 _PARAMETERS = (
-    (-1, "MALLOC_TRIM_THRESHOLD_", "glibc.malloc.trim_threshold"),
     (-3, "MALLOC_MMAP_THRESHOLD_", "glibc.malloc.mmap_threshold"),
+    (-1, "MALLOC_TRIM_THRESHOLD_", "glibc.malloc.trim_threshold"),
 )
 
 
@@ -100,6 +100,12 @@ def keep_freed_memory() -> tuple[str, ...]:
     libc.mallopt.restype = ctypes.c_int
     done = []
     for parameter, variable, tunable in _PARAMETERS:
-        if not _set_by_user(variable, tunable) and libc.mallopt(parameter, THRESHOLD) == 1:
-            done.append(variable)
+        if _set_by_user(variable, tunable):
+            continue
+        if libc.mallopt(parameter, THRESHOLD) != 1:
+            # Refused (a glibc that caps the mmap threshold lower): setting the trim threshold
+            # alone would also fix the mmap threshold where it is, at 128 KiB, where glibc's
+            # default raises it with the blocks freed; better leave both as they are.
+            break
+        done.append(variable)
     return tuple(done)
