@@ -1,25 +1,45 @@
 """glibc's malloc thresholds in the processes the package owns (ground layer).
 
-Why: glibc's ``malloc`` serves every block of at least ``M_MMAP_THRESHOLD`` bytes (128 KiB to
-start with) by a fresh ``mmap`` of its own, and gives it back to the kernel at ``free``; and it
-gives the top of its heap back (``M_TRIM_THRESHOLD``) once more than a few hundred KiB of it are
-free. numpy's arrays and temporaries of the analyses at 10^5 sweeps are of a few MB each (a
-column of 1.2 M points is 9.6 MB), made and freed thousands of times: each one comes as new
-pages from the kernel, which zeroes them and maps them in, page fault by page fault, on their
-first touch. ``contactres qcm analyze`` of 10^5 sweeps spent ~2.5 s of its ~23 s of CPU in the
-kernel that way (issue 31, point 3). With both thresholds raised to :data:`THRESHOLD`, such
-blocks come from the heap and go back to it, and its freed pages are kept for the next one.
+Why: glibc's ``malloc`` serves a block of at least its mmap threshold (128 KiB at a process's
+start, raised by itself to the largest such block freed, up to 32 MiB) by an ``mmap`` of its
+own, unmapped at ``free``; and it gives the top of its heap back to the kernel once more than
+its trim threshold (twice the mmap threshold) of it is free. The analyses' numpy columns and
+temporaries at 10^5 sweeps are of a few MB each (1.2 M points of 8 bytes: 9.6 MB), made and
+freed thousands of times in patterns of many sizes, so that many come as new pages from the
+kernel, which zeroes them and maps them in on their first touch. With transparent huge pages
+(numpy asks for them for its large arrays) that is a few faults each zeroing 2 MB, so the
+fault count understates the cost: the system CPU time is the measure.
 
-What: :func:`keep_freed_memory` sets both thresholds with ``mallopt`` (``M_TRIM_THRESHOLD`` =
--1, ``M_MMAP_THRESHOLD`` = -3 in glibc's ``malloc.h``), as the variables
-``MALLOC_TRIM_THRESHOLD_`` and ``MALLOC_MMAP_THRESHOLD_`` would at a process's start. A
-threshold the user has set (by its variable, or by ``GLIBC_TUNABLES``) is the user's and is left
-alone. The cost is memory: the heap keeps up to :data:`THRESHOLD` bytes of freed pages, and a
-block below the threshold freed inside the heap may stay resident until the blocks above it are
-freed too.
+What: :func:`keep_freed_memory` sets both thresholds to :data:`THRESHOLD` with ``mallopt``
+(``M_MMAP_THRESHOLD`` = -3 first, then ``M_TRIM_THRESHOLD`` = -1, glibc's ``malloc.h``), as the
+variables ``MALLOC_MMAP_THRESHOLD_`` and ``MALLOC_TRIM_THRESHOLD_`` would at a process's start:
+blocks below it come from the heap and go back to it, and up to that much of freed heap is kept
+for the next one. A threshold the user has set (by its variable, or by ``GLIBC_TUNABLES``) is
+the user's and is left alone. The cost is memory: a process keeps up to :data:`THRESHOLD` of
+freed heap, and a block freed inside the heap stays resident until reused.
 
-Measured (``/usr/bin/time -v``, 2-core machine loaded by other work, alternated runs): see
-:data:`THRESHOLD`.
+Measured (issue 31, point 3; 2-core machine loaded by other work, settings alternated, 3 rounds;
+session 29, MA29). ``contactres qcm analyze`` of the 10^5-sweep CSV, ``--no-figures``, the
+whole job by ``/usr/bin/time -v`` (workers' time included; peak RSS is the largest process's):
+
+================  ==================  ===========================  =========================
+thresholds        system CPU s        minor faults (thousands)     peak RSS GB
+================  ==================  ===========================  =========================
+glibc's default   2.25, 2.14, 2.99    299, 294, 293                0.78, 0.76, 0.75
+32 MiB            1.25, 1.59, 1.74    288, 287, 289                0.74, 0.79, 0.76
+64 MiB            1.35, 1.60, 1.73    277, 280, 278                0.78, 0.79, 0.81
+256 MiB           1.57, 1.57, 1.42    283, 283, 283                0.78, 0.78, 0.78
+================  ==================  ===========================  =========================
+
+(user CPU, 20.7-24.3 s, varied with the load more than with the setting). ``analyze`` of the
+same table, 2 workers, default settings: the workers' system CPU 0.28, 0.27, 0.80 s against
+0.25, 0.26, 0.28 s at 32 MiB, their faults 43 k, 44 k, 258 k against 47 k, 48 k, 48 k (without
+the setting the count depends on whether the kernel found huge pages for the fresh memory;
+with it the heap's pages are reused whatever the kernel has), a worker's peak RSS 0.39-0.40
+GB against 0.38-0.39 GB. 32 MiB saves as much as the larger thresholds within the scatter, at
+the least memory kept, and is the largest mmap threshold the ``mallopt(3)`` manual page allows
+on a 64-bit system (``4 * 1024 * 1024 * sizeof(long)``; a glibc that refuses it, e.g. on a
+32-bit system, is left as it is: :func:`keep_freed_memory`).
 
 Where: in an analysis's worker processes (their initializer,
 :mod:`contactres.analysis._workers`, with every start method: a forked process inherits the
@@ -39,9 +59,9 @@ from typing import Any
 
 __all__ = ["THRESHOLD", "keep_freed_memory"]
 
-#: The value (bytes) both thresholds are set to. See the module docstring; measured effect at
-#: 10^5 sweeps in the note below.
-THRESHOLD = 256 * 1024 * 1024
+#: The value (bytes) both thresholds are set to: 32 MiB (module docstring: measured effect, and
+#: why not more).
+THRESHOLD = 32 * 1024 * 1024
 
 #: glibc's ``mallopt`` parameter numbers (``malloc.h``), each with the environment variable and
 #: the ``GLIBC_TUNABLES`` name by which a user sets the same threshold.
