@@ -31,15 +31,23 @@ glibc's default   2.25, 2.14, 2.99    299, 294, 293                0.78, 0.76, 0
 256 MiB           1.57, 1.57, 1.42    283, 283, 283                0.78, 0.78, 0.78
 ================  ==================  ===========================  =========================
 
-(user CPU, 20.7-24.3 s, varied with the load more than with the setting). ``analyze`` of the
-same table, 2 workers, default settings: the workers' system CPU 0.28, 0.27, 0.80 s against
-0.25, 0.26, 0.28 s at 32 MiB, their faults 43 k, 44 k, 258 k against 47 k, 48 k, 48 k (without
-the setting the count depends on whether the kernel found huge pages for the fresh memory;
-with it the heap's pages are reused whatever the kernel has), a worker's peak RSS 0.39-0.40
-GB against 0.38-0.39 GB. 32 MiB saves as much as the larger thresholds within the scatter, at
-the least memory kept, and is the largest mmap threshold the ``mallopt(3)`` manual page allows
-on a 64-bit system (``4 * 1024 * 1024 * sizeof(long)``; a glibc that refuses it, e.g. on a
-32-bit system, is left as it is: :func:`keep_freed_memory`).
+(the thresholds set by the variables, in every process from its start; user CPU, 20.7-24.3 s,
+varied with the load more than with the setting). The package's own setting at 32 MiB, against
+the package without it, 3 more alternated pairs: system CPU 1.38, 1.40, 1.47 s against 2.52,
+2.40, 2.04 s; faults 286 k, 286 k, 290 k against 304 k, 292 k, 297 k; peak RSS 0.76 GB against
+0.73-0.78 GB; the output files identical byte for byte. ``analyze`` of the same table in a
+Python session (the workers alone set, 2 workers, default settings), 3 pairs: the workers'
+system CPU 0.25, 0.25, 0.17 s against 0.27, 0.23, 0.21 s, faults ~40 k either way, a worker's
+peak RSS 0.39-0.40 GB either way: no gain while the kernel finds huge pages for fresh memory.
+Once, without the setting, it did not (the variables' rounds above): the workers then took
+258 k faults and 0.80 s of system CPU, against 48 k and 0.28 s at most with it, whose heap
+pages are reused whatever the kernel has. Most of the job's saving is thus the main process's
+(reading the CSV, formatting and writing the files).
+
+32 MiB saves as much as the larger thresholds within the scatter, at the least memory kept, and
+is the largest mmap threshold the ``mallopt(3)`` manual page allows on a 64-bit system
+(``4 * 1024 * 1024 * sizeof(long)``; a glibc that refuses it, e.g. on a 32-bit system, is left
+as it is: :func:`keep_freed_memory`).
 
 Where: in an analysis's worker processes (their initializer,
 :mod:`contactres.analysis._workers`, with every start method: a forked process inherits the
