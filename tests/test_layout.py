@@ -80,6 +80,7 @@ LAYERS: tuple[frozenset[str], ...] = (
         {
             "_lazy",
             "_threads",
+            "_allocator",
             "_csvcells",
             "_decimal_text",
             "_ownership",
