@@ -28,7 +28,7 @@ from contactres.cli import main
 CLI_DIR = Path(cli_package.__file__).parent
 #: The library packages a command-line module may import.
 ALLOWED = frozenset({"cli", "jobs", "report", "apps", "units", "typed_units", "fileio", "errors"})
-#: (CLI module, library package) -> why: option parsing, not physics.
+#: (CLI module, library package) -> why: option parsing or the process's set-up, not physics.
 OPTION_PARSING: dict[tuple[str, str], str] = {
     ("dcsf.py", "dynamic"): "the --model and --wavenumber choices are the library's names",
     ("_common.py", "analysis"): (
@@ -48,6 +48,10 @@ OPTION_PARSING: dict[tuple[str, str], str] = {
         "--tip-radius/--force, --punch-radius or --reference make the job's ModulusModel"
     ),
     ("qcm_analyze.py", "analysis"): "the printed summary counts the sweeps flagged for drift",
+    ("_app.py", "_allocator"): (
+        "the program's own process keeps freed memory (glibc's thresholds), as the analysis's "
+        "worker processes do: the process's set-up, not physics"
+    ),
     ("maps.py", "polycrystal"): (
         "check_map_output and write_map: the Zarr map store's output check and atomic writer"
     ),
