@@ -82,16 +82,9 @@ def test_run_reads_every_target_line_of_a_benchmark(bench, tmp_path, capsys):
     ]
 
 
-def test_shipped_and_one_thread_warms_up_then_times_abba(bench, monkeypatch):
-    # the first call (lazy imports, new BLAS threads spinning) is not timed, and neither side
-    # is always timed after the other (a drift over the first calls would favour it)
-    verdict, _ = bench
-    calls = []
-
-    def fn():
-        calls.append(one[0])
-
-    one = ["shipped"]
+def _marking(one: list):
+    """A stand-in for ``one_thread``: the calls it wraps set ``one[0]`` to "one" while they run
+    (``one[0]`` is "shipped" otherwise), so a call can tell which side ran it."""
 
     def one_thread(f):
         def call():
@@ -103,9 +96,22 @@ def test_shipped_and_one_thread_warms_up_then_times_abba(bench, monkeypatch):
 
         return call
 
+    return one_thread
+
+
+def test_shipped_and_one_thread_warms_up_then_times_abba(bench, monkeypatch):
+    # the first call (lazy imports, new BLAS threads spinning) is not timed, and neither side
+    # is always timed after the other (a drift over the first calls would favour it)
+    verdict, _ = bench
+    calls = []
+
+    def fn():
+        calls.append(one[0])
+
+    one = ["shipped"]
     # CPU time of a run = its position in the sequence: the best of each side shows where
     # each side's runs fell
-    monkeypatch.setattr(verdict, "one_thread", one_thread)
+    monkeypatch.setattr(verdict, "one_thread", _marking(one))
     monkeypatch.setattr(verdict, "timed", lambda f: (f(), float(len(calls)), 0.0))
     shipped, single = verdict.shipped_and_one_thread(fn, repeat=3)
     assert calls == ["shipped", "shipped", "one", "one", "shipped", "shipped", "one"]
@@ -119,20 +125,10 @@ def test_shipped_and_one_thread_of_builds_each_run_anew(bench, monkeypatch):
     calls = []
     one = ["shipped"]
 
-    def one_thread(f):
-        def call():
-            one[0] = "one"
-            try:
-                return f()
-            finally:
-                one[0] = "shipped"
-
-        return call
-
     def make(i):
         return lambda: calls.append((i, one[0]))
 
-    monkeypatch.setattr(verdict, "one_thread", one_thread)
+    monkeypatch.setattr(verdict, "one_thread", _marking(one))
     monkeypatch.setattr(verdict, "timed", lambda f: (f(), float(len(calls)), 0.0))
     shipped, single = verdict.shipped_and_one_thread_of(make, repeat=2)
     assert calls == [(0, "shipped"), (1, "shipped"), (2, "one"), (4, "one"), (3, "shipped")]

@@ -660,6 +660,21 @@ def test_the_mixed_table_with_a_g_format_is_the_text_pandas_writes(tmp_path):
         assert (tmp_path / "joined.csv").read_bytes() == (tmp_path / "pandas.csv").read_bytes()
 
 
+def _spy_on_lines_bytes(monkeypatch) -> list:
+    """The kinds of what ``_csvcells._lines_bytes`` returns, call by call, in a list filled as
+    it is called ("bytearray": a chunk assembled in numpy; "NoneType": joined as text)."""
+    from contactres import _csvcells
+
+    kinds: list = []
+    joined = _csvcells._lines_bytes
+    monkeypatch.setattr(
+        _csvcells,
+        "_lines_bytes",
+        lambda *a: kinds.append(type(lines := joined(*a)).__name__) or lines,
+    )
+    return kinds
+
+
 def test_a_chunk_with_a_long_text_cell_is_joined_as_text(tmp_path, monkeypatch):
     """A text column's records are as wide as its longest text, and every line of the chunk
     as wide as its records: one 4 kB note would make each of the chunk's rows 4 kB in numpy.
@@ -674,13 +689,7 @@ def test_a_chunk_with_a_long_text_cell_is_joined_as_text(tmp_path, monkeypatch):
     notes[700] = "long, " + "é" * 2000  # in the second chunk only; quoted, non-ASCII
     rng = np.random.default_rng(5)
     frame = pd.DataFrame({"x": rng.normal(size=n), "note": pd.Series(notes, dtype=object)})
-    kinds = []
-    joined = _csvcells._lines_bytes
-    monkeypatch.setattr(
-        _csvcells,
-        "_lines_bytes",
-        lambda *a: kinds.append(type(lines := joined(*a)).__name__) or lines,
-    )
+    kinds = _spy_on_lines_bytes(monkeypatch)
     monkeypatch.setattr(_csvcells, "CHUNK_CELLS", 2 * 500)  # 3 chunks of 500 rows
     want = frame.to_csv(index=False, na_rep="NA", float_format="%.10g")
     assert "".join(_csvcells.csv_chunks(frame, "NA", "\n", "%.10g")) == want
@@ -704,13 +713,7 @@ def test_a_lone_surrogate_in_text_is_kept_in_text_and_refused_in_a_file(tmp_path
     labels[400], labels[401], labels[850] = "a\udcffb", "\ud83d\ude00", "µ\udc80"
     rng = np.random.default_rng(3)
     frame = pd.DataFrame({"x": rng.normal(size=n), "label": pd.Series(labels, dtype=object)})
-    kinds = []
-    joined = _csvcells._lines_bytes
-    monkeypatch.setattr(
-        _csvcells,
-        "_lines_bytes",
-        lambda *a: kinds.append(type(lines := joined(*a)).__name__) or lines,
-    )
+    kinds = _spy_on_lines_bytes(monkeypatch)
     monkeypatch.setattr(_csvcells, "CHUNK_CELLS", 2 * 300)  # 3 chunks of 300 rows
     for float_format in ("%.10g", "%.14g", None):
         want = frame.to_csv(index=False, na_rep="NA", float_format=float_format)

@@ -621,6 +621,21 @@ def test_an_even_number_of_fine_nodes_evaluates_l_one_step_from_l_pi(monkeypatch
         assert abs(two_ln_b[0] - two_ln_b[1]) < 0.05
 
 
+def _rows_as_alone(pts, dl, y, own):
+    """_integrand's values of the rows ``own`` (their blocks in ``pts``), checked finite and
+    each as the row evaluated alone (within 1e-13: another BLAS may round other product shapes
+    otherwise); returns them."""
+    from contactres.analysis import _plateau_evidence as ev
+
+    by_index = ev._integrand(pts, dl, y, own=own)
+    assert np.isfinite(by_index).all()
+    scale = np.abs(by_index).max()
+    for r, b in enumerate(own):
+        alone = ev._integrand(tuple(a[[b]] for a in pts), dl[[r]], y)
+        np.testing.assert_allclose(by_index[:, r], alone[:, 0], rtol=1e-13, atol=1e-13 * scale)
+    return by_index
+
+
 def test_rows_evaluated_together_equal_each_row_evaluated_alone():
     # The integrand takes each block's points once and each row's block by index (``own``),
     # orders the rows into sets that share their slopes and scatters each segment's values
@@ -647,12 +662,7 @@ def test_rows_evaluated_together_equal_each_row_evaluated_alone():
     own = np.array([2, 0, 1, 0, 2, 1, 1, 0])
     dl = np.array([0.3, 0.3, 0.3, 0.1, 0.1, 0.2, 0.05, 0.0])[:, None]
     y = np.linspace(-4.0, 1.0, 9)[None]
-    by_index = ev._integrand(pts, dl, y, own=own)
-    assert np.isfinite(by_index).all()
-    scale = np.abs(by_index).max()
-    for r, b in enumerate(own):
-        alone = ev._integrand(tuple(a[[b]] for a in pts), dl[[r]], y)
-        np.testing.assert_allclose(by_index[:, r], alone[:, 0], rtol=1e-13, atol=1e-13 * scale)
+    by_index = _rows_as_alone(pts, dl, y, own)
     # Nodes in y given row by row: the same numbers.
     np.testing.assert_array_equal(
         by_index, ev._integrand(pts, dl, np.repeat(y, own.size, axis=0), own=own)
@@ -823,12 +833,7 @@ def test_rows_of_one_set_with_other_numbers_of_points_keep_their_own_sums():
     own = np.array([0, 1, 2, 3, 1, 0, 3])
     dl = np.array([0.3, 0.3, 0.3, 0.3, 0.1, 0.1, 0.1])[:, None]
     y = np.linspace(-4.0, 1.0, 9)[None]
-    by_index = ev._integrand(pts, dl, y, own=own)
-    assert np.isfinite(by_index).all()
-    scale = np.abs(by_index).max()
-    for r, b in enumerate(own):
-        alone = ev._integrand(tuple(a[[b]] for a in pts), dl[[r]], y)
-        np.testing.assert_allclose(by_index[:, r], alone[:, 0], rtol=1e-13, atol=1e-13 * scale)
+    _rows_as_alone(pts, dl, y, own)
 
 
 def test_nodes_without_a_likelihood_are_none_beside_nodes_with_one():
