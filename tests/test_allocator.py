@@ -15,7 +15,6 @@ from __future__ import annotations
 import concurrent.futures
 import multiprocessing
 import os
-import resource
 import subprocess
 import sys
 from functools import partial
@@ -34,15 +33,18 @@ USER_VARIABLES = ("MALLOC_MMAP_THRESHOLD_", "MALLOC_TRIM_THRESHOLD_", "GLIBC_TUN
 #: Rounds counted, arrays per round, doubles per array (8 MB: 24 MB a round, below THRESHOLD;
 #: above the trim threshold glibc sets itself, twice the largest block freed: 16 MB).
 ROUNDS, ARRAYS, SIZE = 10, 3, 1 << 20
-#: At most this many faults over the rounds with the setting; at least this many without (the
-#: 24 MB of a round are at least 12 pages of 2 MB even where the kernel maps huge pages).
-KEPT, RETURNED = ROUNDS, 5 * ROUNDS
+#: At most this many faults over the rounds with the setting (a forked worker's copy on write
+#: of its parent's pages: 1-5 seen); at least this many without (the 24 MB of a round are at
+#: least 12 pages of 2 MB even where the kernel maps huge pages).
+KEPT, RETURNED = 2 * ROUNDS, 5 * ROUNDS
 
 
 def faults_of_reuse(_task: object = None) -> int:
     """The minor page faults of this process over :data:`ROUNDS` rounds of allocating,
     touching and freeing :data:`ARRAYS` arrays of :data:`SIZE` doubles (after one round
     uncounted, which finds the heap as the process left it)."""
+
+    import resource  # (not at the top: no such module on Windows, where the rest still runs)
 
     def one_round() -> None:
         arrays = [np.ones(SIZE) for _ in range(ARRAYS)]
@@ -112,6 +114,10 @@ def test_the_analysis_worker_processes_keep_freed_memory(method, monkeypatch):
     # thresholds the user set (which the workers inherit, and keep) are not the package's.
     if any(_allocator._set_by_user(name, tunable) for _, name, tunable in _allocator._PARAMETERS):
         pytest.skip("glibc's thresholds are set in the environment of the tests")
+    # glibc raises its own thresholds after freeing a large mmapped block: a test process that
+    # did so (an earlier test in it) keeps freed memory, and so would its forked workers.
+    if method == "fork" and faults_of_reuse() < RETURNED:
+        pytest.skip("this test process keeps freed memory itself (glibc raised its thresholds)")
     monkeypatch.setattr(
         concurrent.futures,
         "ProcessPoolExecutor",
@@ -224,10 +230,19 @@ def test_a_threshold_the_user_set_is_left_alone(monkeypatch, no_user_thresholds,
     assert [parameter for parameter, _ in libc.mallopt.calls] == [p for p in (-1, -3) if p != kept]
 
 
-def test_another_tunable_does_not_count_as_a_threshold(monkeypatch, no_user_thresholds):
+@pytest.mark.parametrize(
+    "tunables",
+    [
+        "glibc.malloc.arena_max=2",
+        # a name without a value: glibc skips it (review R29e), so it is no user's setting
+        "glibc.malloc.mmap_threshold",
+        "glibc.malloc.mmap_threshold:glibc.malloc.arena_max=2",
+    ],
+)
+def test_another_tunable_does_not_count_as_a_threshold(monkeypatch, no_user_thresholds, tunables):
     libc = _Glibc()
     monkeypatch.setattr(_allocator.ctypes, "CDLL", lambda name: libc)
-    monkeypatch.setenv("GLIBC_TUNABLES", "glibc.malloc.arena_max=2")
+    monkeypatch.setenv("GLIBC_TUNABLES", tunables)
     assert len(keep_freed_memory()) == 2
 
 

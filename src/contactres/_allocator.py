@@ -3,7 +3,8 @@
 Why: glibc's ``malloc`` serves a block of at least its mmap threshold (128 KiB at a process's
 start, raised by itself to the largest such block freed, up to 32 MiB) by an ``mmap`` of its
 own, unmapped at ``free``; and it gives the top of its heap back to the kernel once more than
-its trim threshold (twice the mmap threshold) of it is free. The analyses' numpy columns and
+its trim threshold (128 KiB at the start too, then twice the mmap threshold once glibc has
+raised that) of it is free. The analyses' numpy columns and
 temporaries at 10^5 sweeps are of a few MB each (1.2 M points of 8 bytes: 9.6 MB), made and
 freed thousands of times in patterns of many sizes, so that many come as new pages from the
 kernel, which zeroes them and maps them in on their first touch. With transparent huge pages
@@ -46,8 +47,9 @@ pages are reused whatever the kernel has. Most of the job's saving is thus the m
 
 32 MiB saves as much as the larger thresholds within the scatter, at the least memory kept, and
 is the largest mmap threshold the ``mallopt(3)`` manual page allows on a 64-bit system
-(``4 * 1024 * 1024 * sizeof(long)``; a glibc that refuses it, e.g. on a 32-bit system, is left
-as it is: :func:`keep_freed_memory`).
+(``4 * 1024 * 1024 * sizeof(long)``; older glibc refuses values above half its heap size, newer
+glibc, as 2.36 here, accepts any: a glibc that refuses it is left as it is,
+:func:`keep_freed_memory`).
 
 Where: in an analysis's worker processes (their initializer,
 :mod:`contactres.analysis._workers`, with every start method: a forked process inherits the
@@ -55,8 +57,13 @@ parent's allocator as it is, a spawned one starts afresh), and in the command li
 when it runs as the program (``contactres ...`` and ``python -m contactres``:
 :mod:`contactres.cli._app`). Not when a user's Python calls ``analyze`` or ``main([...])``: the
 allocator of that process is the user's, and a setting made there would last for the rest of
-its life. glibc only: elsewhere (musl, macOS, Windows) nothing is done, silently; those
-allocators behave differently and the measurement says nothing about them.
+its life. (A user's process that runs the program itself, e.g. ``%run -m contactres`` in
+IPython or ``runpy``, is the program's: as for the one-thread BLAS setting.) Thresholds are read
+from the environment when the call is made, not as glibc read it at the process's start: a
+variable set later counts as the user's. glibc only: elsewhere (musl, macOS, Windows) nothing is
+done, silently; those allocators behave differently and the measurement says nothing about
+them. (The test is for the glibc C library: an allocator preloaded in its place, e.g. tcmalloc,
+takes the call without effect.)
 """
 
 from __future__ import annotations
@@ -94,8 +101,11 @@ def _glibc() -> Any | None:
 def _set_by_user(variable: str, tunable: str) -> bool:
     """Whether the user has set the threshold of ``variable`` in the environment."""
     tunables = os.environ.get("GLIBC_TUNABLES", "")
+    # An item without "=" is no setting: glibc skips it (review R29e), and reading it as the
+    # user's would leave the trim threshold set alone, the state keep_freed_memory avoids.
     return variable in os.environ or any(
-        item.split("=", 1)[0] == tunable for item in tunables.split(":")
+        sep and name == tunable
+        for name, sep, _ in (item.partition("=") for item in tunables.split(":"))
     )
 
 
