@@ -36,9 +36,11 @@ test: $(STAMP)
 		$(BIN)/python -m pytest -q -n auto --dist loadfile
 
 # Every benchmarks/bench_*.py, even after a failure; ends with a one-line verdict and fails if
-# any target was missed.
+# any target was missed. Bytecode cached as for the tests: an installed package has its modules
+# compiled (pip compiles a wheel's on install), so a run that compiled them again in each
+# process timed what no user pays (~0.1 s a process for the modules qcm analyze imports).
 bench: $(STAMP)
-	@$(BIN)/python benchmarks/run_all.py
+	@PYTHONDONTWRITEBYTECODE= $(BIN)/python benchmarks/run_all.py
 
 # The documentation site: docs/_build/html/index.html. Any Sphinx warning fails the build.
 docs: $(STAMP)

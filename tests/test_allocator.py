@@ -12,19 +12,16 @@ keeps them and the rounds after the first fault (almost) never.
 
 from __future__ import annotations
 
-import concurrent.futures
 import multiprocessing
 import os
 import subprocess
 import sys
-from functools import partial
 
 import numpy as np
 import pytest
 
 from contactres import _allocator
 from contactres._allocator import THRESHOLD, keep_freed_memory
-from contactres.analysis._workers import WorkerPool
 
 needs_glibc = pytest.mark.skipif(_allocator._glibc() is None, reason="glibc's allocator only")
 
@@ -59,9 +56,9 @@ def faults_of_reuse(_task: object = None) -> int:
 
 def _faults_of_reuse_settled(_task: object = None) -> int:
     """:func:`faults_of_reuse` measured a second time in the process. A forked worker shares
-    its parent's heap (here a test process's, after many tests) copy on write: the first rounds
-    may write into free chunks it inherited and copy their pages (1,518 faults in the first
-    measurement of each worker, none in the second, in a full run of the suite)."""
+    its parent's heap copy on write: the first rounds may write into free chunks it inherited
+    and copy their pages (1,518 faults in the first measurement of each worker, none in the
+    second, when the parent was a test process after many tests)."""
     faults_of_reuse()
     return faults_of_reuse()
 
@@ -104,29 +101,42 @@ def _faults_in_a_fresh_process(how: str, environ: dict[str, str] | None = None) 
     return int(p.stdout.split("faults")[-1])
 
 
+# Runs in a fresh interpreter; argv[1]: the start method. Prints the faults of each worker's
+# rounds. A fresh parent, not this test process: a forked worker inherits its parent's
+# allocator, and a test process that freed a large mmapped block earlier (another test) has
+# raised glibc's own thresholds, so that its forked workers would keep freed memory without
+# their initializer, and the test could not fail (review R29e).
+_POOL_PROBE = """
+import concurrent.futures, multiprocessing, sys
+from functools import partial
+sys.path.insert(0, {tests!r})
+from test_allocator import _faults_of_reuse_settled
+from contactres.analysis._workers import WorkerPool
+method = sys.argv[1]
+concurrent.futures.ProcessPoolExecutor = partial(
+    concurrent.futures.ProcessPoolExecutor, mp_context=multiprocessing.get_context(method)
+)
+if __name__ == "__main__":
+    with WorkerPool(2) as pool:
+        print("faults", *pool.imap(_faults_of_reuse_settled, 4, range(4)))
+"""
+
+
 @needs_glibc
 @pytest.mark.parametrize("method", ["fork", "spawn", "forkserver"])
-def test_the_analysis_worker_processes_keep_freed_memory(method, monkeypatch):
+def test_the_analysis_worker_processes_keep_freed_memory(method, tmp_path):
     if method not in multiprocessing.get_all_start_methods():
         pytest.skip(f"no {method}")
-    # A forked worker inherits the parent's allocator: the parent (this test process) must not
-    # keep freed memory itself, or the workers would pass without their initializer; and
-    # thresholds the user set (which the workers inherit, and keep) are not the package's.
-    if any(_allocator._set_by_user(name, tunable) for _, name, tunable in _allocator._PARAMETERS):
-        pytest.skip("glibc's thresholds are set in the environment of the tests")
-    # glibc raises its own thresholds after freeing a large mmapped block: a test process that
-    # did so (an earlier test in it) keeps freed memory, and so would its forked workers.
-    if method == "fork" and faults_of_reuse() < RETURNED:
-        pytest.skip("this test process keeps freed memory itself (glibc raised its thresholds)")
-    monkeypatch.setattr(
-        concurrent.futures,
-        "ProcessPoolExecutor",
-        partial(
-            concurrent.futures.ProcessPoolExecutor, mp_context=multiprocessing.get_context(method)
-        ),
+    # Thresholds the user set (which the workers inherit, and keep) are not the package's.
+    env = {k: v for k, v in os.environ.items() if k not in USER_VARIABLES}
+    # A file, not -c: spawn and forkserver re-import the parent's main module in each worker.
+    probe = tmp_path / "pool_probe.py"
+    probe.write_text(_POOL_PROBE.format(tests=os.path.dirname(__file__)), encoding="utf-8")
+    p = subprocess.run(
+        [sys.executable, str(probe), method], env=env, capture_output=True, text=True, check=False
     )
-    with WorkerPool(2) as pool:
-        faults = list(pool.imap(_faults_of_reuse_settled, 4, range(4)))
+    assert p.returncode == 0, p.stderr
+    faults = [int(f) for f in p.stdout.split("faults")[-1].split()]
     assert len(faults) == 4 and max(faults) <= KEPT, faults
 
 

@@ -233,6 +233,18 @@ def test_a_semicolon_row_in_a_comma_file_is_named_as_such(tmp_path, example):
     one_line_error(r, "semi.csv, line 6", "';' as separator")
 
 
+def test_a_semicolon_row_after_an_empty_last_cell_is_named_as_such(tmp_path, example):
+    # The last cells are compared per run of equal cells (one column of 10^6 rows, issue 31):
+    # here the row before the ';' row ends in an empty cell too, so the ';' row's empty last
+    # cell is inside a run, not at its start (a test the single ';' row above leaves open).
+    lines = list(example)
+    lines[4] = lines[4][: lines[4].rindex(",") + 1]
+    lines[5] = lines[5].replace(",", ";")
+    with pytest.raises(ContactresInputError) as info:
+        read_sweeps(_write(tmp_path / "semi.csv", lines))
+    _one_line(info, "semi.csv, line 6", "1 field", "has 15", "';' as separator")
+
+
 def test_a_comma_row_in_a_semicolon_file_is_named_as_such(tmp_path, example):
     lines = [ln.replace(",", ";") for ln in example]
     lines[3] = example[3]
