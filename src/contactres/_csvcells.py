@@ -353,10 +353,9 @@ def _lines_bytes(
 ) -> bytearray | None:
     """The CSV lines of the rows of ``columns`` (the columns of a chunk of a table, in order,
     of one length: numpy arrays of doubles or booleans, or pandas Series) with doubles as
-    ``"%.{precision}g"``,
-    as UTF-8 bytes: the text :func:`csv_chunks` joins, assembled in numpy. None where a text
-    cell holds a NUL byte or is longer than :data:`_WIDEST_TEXT` bytes (then joined as text);
-    raises _NotJoined as :func:`_field_texts`.
+    ``"%.{precision}g"``, as UTF-8 bytes: the text :func:`csv_chunks` joins, assembled in
+    numpy. None where a text cell holds a NUL byte or is longer than :data:`_WIDEST_TEXT` bytes
+    (then joined as text); raises _NotJoined as :func:`_field_texts`.
 
     Why: Python's ``%`` formats a double at ~0.2 µs and its text joined into lines costs
     another ~40 % (issue 31, point 3: ~12 million doubles in ``qcm analyze``'s tables at 10^5
