@@ -6,7 +6,7 @@ not this module's output pasted back."""
 import numpy as np
 import pytest
 
-from contactres._decimal_text import MAX_PRECISION, g_precision, g_records
+from contactres._decimal_text import MAX_PRECISION, g_precision, g_records, take_rows
 
 
 def _texts(values, precision: int, nan_text: bytes = b"nan") -> list[str]:
@@ -254,3 +254,17 @@ def test_an_exponent_guess_that_stays_wrong_leaves_the_cell_to_python(monkeypatc
     assert _mismatches(values, 10) == []  # two steps away: corrected
     monkeypatch.setattr(_decimal_text, "_exponent_guess", lambda a: guess(a) - 5)
     assert _mismatches(values, 10) == []  # five away: still off after three steps
+
+
+@pytest.mark.parametrize("width", [0, 1, 3, 8, 17, 40])
+def test_rows_taken_as_whole_elements_are_numpys_rows(width):
+    """take_rows gives numpy's own row indexing, for any width, repeated and unordered rows,
+    no rows, and a view whose rows are not contiguous (then numpy's indexing itself)."""
+    rng = np.random.default_rng(width)
+    records = rng.integers(0, 256, (50, width), dtype=np.uint8)
+    rows = rng.integers(0, 50, 300)
+    for r in (rows, rows[:0], np.arange(50)[::-1]):
+        got = take_rows(records, r)
+        assert got.shape == records[r].shape and np.array_equal(got, records[r])
+    wide = rng.integers(0, 256, (50, width + 5), dtype=np.uint8)
+    assert np.array_equal(take_rows(wide[:, 2 : 2 + width], rows), wide[:, 2 : 2 + width][rows])

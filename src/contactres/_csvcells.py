@@ -15,7 +15,7 @@ from collections.abc import Iterator
 
 import numpy as np
 
-from ._decimal_text import copy_rows, g_precision, g_records
+from ._decimal_text import copy_rows, g_precision, g_records, take_rows
 
 __all__ = [
     "CHUNK_CELLS",
@@ -266,20 +266,38 @@ def _pieces(
     ]
     yield ",".join(header) + lineterminator
     step = max(1, CHUNK_CELLS // len(columns)) if rows is None else rows
+    starts = range(0, len(frame), step)
+    # "%.Ng": the lines assembled as bytes in numpy (NUL is their filler: not in the fixed texts)
+    precision = g_precision(float_format) if "\0" not in na_rep + lineterminator else None
+    if precision is None:
+        assembled: Iterator[bytearray | None] = iter([None] * len(starts))
+    else:
+        assembled = _assembled(frame, starts, step, na_rep, lineterminator, precision)
+    yield from _chunks(frame, starts, step, assembled, na_rep, lineterminator, float_format)
+
+
+def _chunks(
+    frame,
+    starts: range,
+    step: int,
+    assembled: Iterator[bytearray | None],
+    na_rep: str,
+    lineterminator: str,
+    float_format: str | None,
+) -> Iterator[str | bytearray]:
+    """The pieces of the chunks of :func:`_pieces`: each one ``assembled`` gives, or, where
+    it gives None, the chunk's text joined here."""
+    columns = list(frame.columns)
     one = _ONE_FLOAT.fullmatch(float_format or "") is not None
     # A NaN formats as "nan" (no sign, no width in the format): a column with gaps is
     # formatted with the others and its "nan" made ``na_rep`` in the chunk's text, where no
     # text cell holds "nan" (a float's text has none but NaN's).
     gaps_in_text = one and str(float_format) % float("nan") == "nan"
-    # "%.Ng": the lines assembled as bytes in numpy (NUL is their filler: not in the fixed texts)
-    precision = g_precision(float_format) if "\0" not in na_rep + lineterminator else None
-    for start in range(0, len(frame), step):
+    for start, lines in zip(starts, assembled, strict=True):
+        if lines is not None:
+            yield lines
+            continue
         part = frame.iloc[start : start + step]
-        if precision is not None:
-            lines = _lines_bytes(part, na_rep, lineterminator, precision)
-            if lines is not None:
-                yield lines
-                continue
         fields: list = []
         gaps = []  # positions of the doubles with a NaN
         for i in range(len(columns)):  # by position: column names need not be unique
@@ -308,11 +326,36 @@ def _pieces(
             yield lineterminator.join([*map(",".join, zip(*fields, strict=True)), ""])
 
 
-def _lines_bytes(part, na_rep: str, lineterminator: str, precision: int) -> bytearray | None:
-    """The CSV lines of the rows ``part`` (a DataFrame) with doubles as ``"%.{precision}g"``,
-    as UTF-8 bytes: the text :func:`csv_chunks` joins, assembled in numpy. None where a text
-    cell holds a NUL byte or is longer than :data:`_WIDEST_TEXT` bytes (then joined as text);
-    raises _NotJoined as :func:`_field_texts`.
+def _assembled(
+    frame, starts: range, step: int, na_rep: str, lineterminator: str, precision: int
+) -> Iterator[bytearray | None]:
+    """:func:`_lines_bytes` of each chunk of ``step`` rows from each of ``starts``, on the
+    chunk's slices of the table's columns, taken once: numpy arrays for the doubles and
+    booleans, pandas Series made of the slices of the others (``part.iloc[:, i]`` of each
+    chunk's rows, and a Series of every column, cost ~10 % of the writing at 10^5 sweeps)."""
+    import pandas as pd
+
+    arrays = []
+    for i in range(frame.shape[1]):  # by position: column names need not be unique
+        col = frame.iloc[:, i]
+        plain = col.dtype == np.float64 or col.dtype == np.bool_
+        arrays.append(col.to_numpy() if plain else col.array)
+    for start in starts:
+        columns = [
+            a if isinstance(a, np.ndarray) else pd.Series(a, copy=False)
+            for a in (a[start : start + step] for a in arrays)
+        ]
+        yield _lines_bytes(columns, na_rep, lineterminator, precision)
+
+
+def _lines_bytes(
+    columns: list, na_rep: str, lineterminator: str, precision: int
+) -> bytearray | None:
+    """The CSV lines of the rows of ``columns`` (the columns of a chunk of a table, in order,
+    of one length: numpy arrays of doubles or booleans, or pandas Series) with doubles as
+    ``"%.{precision}g"``, as UTF-8 bytes: the text :func:`csv_chunks` joins, assembled in
+    numpy. None where a text cell holds a NUL byte or is longer than :data:`_WIDEST_TEXT` bytes
+    (then joined as text); raises _NotJoined as :func:`_field_texts`.
 
     Why: Python's ``%`` formats a double at ~0.2 µs and its text joined into lines costs
     another ~40 % (issue 31, point 3: ~12 million doubles in ``qcm analyze``'s tables at 10^5
@@ -321,9 +364,8 @@ def _lines_bytes(part, na_rep: str, lineterminator: str, precision: int) -> byte
     distinct run of text encoded once); a chunk's lines are the records side by side with the
     separators, every NUL dropped at once."""
     records = []
-    for i in range(part.shape[1]):  # by position: column names need not be unique
-        col = part.iloc[:, i]
-        values = col.to_numpy()
+    for col in columns:
+        values = col if isinstance(col, np.ndarray) else col.to_numpy()
         if values.dtype == np.float64:
             records.append(_double_records(values, precision, na_rep.encode()))
             continue
@@ -335,8 +377,9 @@ def _lines_bytes(part, na_rep: str, lineterminator: str, precision: int) -> byte
     width = sum(r.shape[1] + len(s) for r, s in zip(records, seps, strict=True))
     # In a bytearray, whose NULs are dropped by one pass in C (half the time of numpy's boolean
     # mask) without a copy to bytes first
-    memory = bytearray(len(part) * width)
-    lines = np.frombuffer(memory, dtype=np.uint8).reshape(len(part), width)
+    rows = len(columns[0])
+    memory = bytearray(rows * width)
+    lines = np.frombuffer(memory, dtype=np.uint8).reshape(rows, width)
     at = 0
     for rec, sep in zip(records, seps, strict=True):
         copy_rows(lines[:, at : at + rec.shape[1]], rec)
@@ -355,7 +398,7 @@ def _double_records(values: np.ndarray, precision: int, na_rep: bytes) -> np.nda
     import pandas as pd
 
     codes, distinct = pd.factorize(values.view(np.int64))  # by bits: -0.0 is not 0.0
-    return g_records(distinct.view(np.float64), precision, na_rep)[codes]
+    return take_rows(g_records(distinct.view(np.float64), precision, na_rep), codes)
 
 
 #: The widest text record (UTF-8 bytes) that :func:`_lines_bytes` assembles: every record of a
@@ -372,7 +415,7 @@ def _text_records(col, na_rep: str) -> np.ndarray | None:
     rows) has its text made once, and so has each distinct text of a column that holds few."""
     from pandas.api.types import infer_dtype
 
-    values = col.to_numpy()
+    values = col if isinstance(col, np.ndarray) else col.to_numpy()
     codes = None
     if values.dtype.kind == "b":
         return (
@@ -408,7 +451,7 @@ def _text_records(col, na_rep: str) -> np.ndarray | None:
     records = records.view(np.uint8).reshape(records.size, -1)
     if records.shape[1] > _WIDEST_TEXT:
         return None
-    return records if codes is None else records[codes]
+    return records if codes is None else take_rows(records, codes)
 
 
 def _formatted_lines(fields: list, float_format: str, lineterminator: str) -> str:

