@@ -526,20 +526,24 @@ def levenberg_marquardt(evaluate, p0, lo=-np.inf, hi=np.inf, options: LMOptions 
         if every:
             state["p"] = moved
             model["chi2"] = chi2_t
-        else:
-            q[better] = moved[better]
-            c2[better] = chi2_t[better]
+        else:  # (copyto where: the values of q[better] = moved[better], in one pass)
+            np.copyto(q, moved, where=better[:, None])
+            np.copyto(c2, chi2_t, where=better)
         state["last"] = np.where(better, np.max(size, axis=1, initial=0.0), state["last"])
         if new is not None and "jacobian" not in model:  # the Gauss-Newton form comes complete
             for key in ("gradient", "hessian"):
                 if every:
                     model[key] = new[key]
+                elif ok is None:
+                    mask = better.reshape(-1, *(1,) * (new[key].ndim - 1))
+                    np.copyto(model[key], new[key], where=mask)
                 else:
-                    model[key][better] = new[key][better if ok is None else better[ok]]
+                    model[key][better] = new[key][better[ok]]
         # Damping: down after a success, up after a failure.
         nu = state["nu"]
         if o.update == "nielsen":
-            rho = np.where(pred > 0, gain / np.where(pred > 0, pred, 1.0), 0.5)
+            rising = pred > 0
+            rho = np.where(rising, gain / np.where(rising, pred, 1.0), 0.5)
             shrink = np.maximum(1.0 / 3.0, 1.0 - (2.0 * rho - 1.0) ** 3)
             lam = np.where(better, np.maximum(lam * shrink, o.lam_min), lam * nu)
             state["nu"] = np.where(better, 2.0, 2.0 * nu)
@@ -580,9 +584,12 @@ def levenberg_marquardt(evaluate, p0, lo=-np.inf, hi=np.inf, options: LMOptions 
             x[done], chi2[done], status[done] = state["p"][ended], model["chi2"][ended], code[ended]
             n_iter[done], n_acc[done] = state["n_iter"][ended], state["n_acc"][ended]
             last[done] = state["last"][ended]
-            rows = rows[going]
-            model = {k: a[going] for k, a in model.items()}
-            state = {k: a[going] for k, a in state.items()}
+            # (the rows that go on found once, then np.take of whole rows: the same numbers
+            # as a[going], without a scan of the mask per array)
+            kept = np.flatnonzero(going)
+            rows = rows[kept]
+            model = {k: np.take(a, kept, axis=0) for k, a in model.items()}
+            state = {k: np.take(a, kept, axis=0) for k, a in state.items()}
     return LeastSquaresResult(
         x=x,
         chi2=chi2,
@@ -688,15 +695,22 @@ def solve_stacked(a, b):
     P = 2 (thousands of 2 x 2 systems at a fraction of LAPACK's cost per call), else LU."""
     if a.shape[-1] != 2:
         return np.linalg.solve(a, b)
-    det = a[:, 0, 0] * a[:, 1, 1] - a[:, 0, 1] * a[:, 1, 0]
-    det = np.where(det != 0, det, np.finfo(float).tiny)[:, None]
-    return (
-        np.stack(
-            [
-                a[:, 1, 1, None] * b[:, 0] - a[:, 0, 1, None] * b[:, 1],
-                a[:, 0, 0, None] * b[:, 1] - a[:, 1, 0, None] * b[:, 0],
-            ],
-            axis=1,
-        )
-        / det[:, None]
-    )
+    det = a[:, 0, 0] * a[:, 1, 1]
+    det -= a[:, 0, 1] * a[:, 1, 0]
+    det = np.where(det != 0, det, _TINY)
+    # Both rows of the numerators written into one array and divided in place: the numbers of
+    # np.stack([...]) / det, without the stack's copies and its Python-level cost (a third of
+    # the call on the few hundred rows of a Levenberg-Marquardt step, which calls it twice).
+    R = max(a.shape[0], b.shape[0])
+    out = np.empty((R, 2, *b.shape[2:]), dtype=np.result_type(a, b, det))
+    top, bottom = out[:, 0], out[:, 1]
+    np.multiply(a[:, 1, 1, None], b[:, 0], out=top)
+    top -= a[:, 0, 1, None] * b[:, 1]
+    np.multiply(a[:, 0, 0, None], b[:, 1], out=bottom)
+    bottom -= a[:, 1, 0, None] * b[:, 0]
+    out /= det[:, None, None]
+    return out
+
+
+#: The smallest normal double: the determinant put where it is 0 (a NaN-free step of 0/tiny).
+_TINY = np.finfo(float).tiny
