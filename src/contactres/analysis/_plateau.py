@@ -480,9 +480,11 @@ def _plateau_model(p, u, umax, df, dg, w, rw, wf, wg, within=None, current=None,
     ly, dl = p[:, 0], p[:, 1]
     ey = np.exp(ly)
     theta = ey / (umax * (1.0 - dl))  # θ(u_max - d_c) = e^ly
-    c = (theta * dl * umax)[:, None]
     x = theta[:, None] * u
-    slopes = plateau_loop_slopes(x, c)
+    # c at every point (each row's repeated: the values plateau_loop_slopes' broadcast takes,
+    # without its Python-level broadcast and copy; and _descent's products with it contiguous)
+    c = np.repeat(theta * dl * umax, u.shape[1]).reshape(u.shape)
+    slopes = _slopes_ordered(x, c)
     if sums is None:
         A, B, chi2, rss_f, rss_g = solve_projected(slopes[0], slopes[1], df, dg, w, wf, wg)
     else:  # (_projected: solve_projected's numbers, bit for bit, with these parts given)
@@ -513,7 +515,7 @@ def _plateau_model(p, u, umax, df, dg, w, rw, wf, wg, within=None, current=None,
 
         sf, sg = np.sqrt(wf[k])[:, None] * at(rw), np.sqrt(wg[k])[:, None] * at(rw)
         grad, hess = _descent(
-            ey[k], dl[k], at(x), c[k], A[k], B[k], [at(s) for s in slopes], sf, sg, at(df), at(dg)
+            ey[k], dl[k], at(x), at(c), A[k], B[k], [at(s) for s in slopes], sf, sg, at(df), at(dg)
         )
         fit["grad"][k], fit["hess"][k] = grad, hess
     return fit
