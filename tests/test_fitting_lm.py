@@ -305,3 +305,18 @@ def test_solve_stacked_is_cramers_rule_bit_for_bit(K):
         got = solve_stacked(a, b)
     np.testing.assert_array_equal(got, ref)
     np.testing.assert_allclose(got[1:], np.linalg.solve(a[1:], b[1:]), rtol=1e-9, atol=1e-12)
+
+
+def test_row_reductions_are_numpys():
+    # The solver's per-row max and all, column by column: numpy's reductions along the rows,
+    # NaN and zero columns included.
+    from contactres.fitting import _rows_all, _rows_max
+
+    rng = np.random.default_rng(5)
+    for P in (1, 2, 3):
+        a = np.abs(rng.normal(size=(40, P)))
+        a[::7] = 0.0
+        a[3, 0] = np.nan
+        np.testing.assert_array_equal(_rows_max(a), np.max(a, axis=1, initial=0.0))
+        b = a < 0.8
+        np.testing.assert_array_equal(_rows_all(b), np.all(b, axis=1))

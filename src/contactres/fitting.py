@@ -521,7 +521,7 @@ def levenberg_marquardt(evaluate, p0, lo=-np.inf, hi=np.inf, options: LMOptions 
         better = gain >= 0
         # (of the step from the old point, before the accepted rows move)
         size = np.abs(step)
-        small_step = np.all(size <= o.xtol * np.abs(q) + o.x_abs, axis=1)
+        small_step = _rows_all(size <= o.xtol * np.abs(q) + o.x_abs)
         every = better.all()
         if every:
             state["p"] = moved
@@ -529,7 +529,7 @@ def levenberg_marquardt(evaluate, p0, lo=-np.inf, hi=np.inf, options: LMOptions 
         else:  # (copyto where: the values of q[better] = moved[better], in one pass)
             np.copyto(q, moved, where=better[:, None])
             np.copyto(c2, chi2_t, where=better)
-        state["last"] = np.where(better, np.max(size, axis=1, initial=0.0), state["last"])
+        state["last"] = np.where(better, _rows_max(size), state["last"])
         if new is not None and "jacobian" not in model:  # the Gauss-Newton form comes complete
             for key in ("gradient", "hessian"):
                 if every:
@@ -599,6 +599,25 @@ def levenberg_marquardt(evaluate, p0, lo=-np.inf, hi=np.inf, options: LMOptions 
         n_accepted=n_acc,
         last_step=last,
     )
+
+
+def _rows_all(b: np.ndarray) -> np.ndarray:
+    """np.all(b, axis=1) of (R, P) booleans, column by column: a reduction along rows of a few
+    parameters pays numpy's per-row cost (~8 µs for 450 rows of 2, against ~1 µs)."""
+    out = np.ones(b.shape[0], dtype=bool)
+    for p in range(b.shape[1]):
+        out &= b[:, p]
+    return out
+
+
+def _rows_max(a: np.ndarray) -> np.ndarray:
+    """np.max(a, axis=1, initial=0.0) of (R, P) floats, column by column (as :func:`_rows_all`:
+    ~2 µs against ~17 µs for 450 rows of 2). The same numbers: max is exact in any order, and a
+    NaN propagates as it does in the reduction."""
+    out = np.zeros(a.shape[0], dtype=a.dtype)
+    for p in range(a.shape[1]):
+        np.maximum(out, a[:, p], out=out)
+    return out
 
 
 def _local_model(out) -> dict[str, np.ndarray]:
@@ -695,20 +714,26 @@ def solve_stacked(a, b):
     P = 2 (thousands of 2 x 2 systems at a fraction of LAPACK's cost per call), else LU."""
     if a.shape[-1] != 2:
         return np.linalg.solve(a, b)
-    det = a[:, 0, 0] * a[:, 1, 1]
-    det -= a[:, 0, 1] * a[:, 1, 0]
+    a00, a01, a10, a11 = a[:, 0, 0], a[:, 0, 1], a[:, 1, 0], a[:, 1, 1]
+    det = a00 * a11
+    det -= a01 * a10
     det = np.where(det != 0, det, _TINY)
-    # Both rows of the numerators written into one array and divided in place: the numbers of
-    # np.stack([...]) / det, without the stack's copies and its Python-level cost (a third of
-    # the call on the few hundred rows of a Levenberg-Marquardt step, which calls it twice).
+    # Column by column of b (K is 1 or 2 here), each numerator written into its place and
+    # divided there: the numbers of (a₁₁b₀ - a₀₁b₁)/det and (a₀₀b₁ - a₁₀b₀)/det, on 1-d arrays
+    # of the R rows. Operations that broadcast a row's one number over its two or four (a[:, 1,
+    # 1, None] * b[:, 0], out /= det[:, None, None]) copy the rows one by one into numpy's
+    # buffers: ~48 µs against ~19 µs for 450 rows and K = 2 (~18 against ~12 for K = 1).
     R = max(a.shape[0], b.shape[0])
     out = np.empty((R, 2, *b.shape[2:]), dtype=np.result_type(a, b, det))
-    top, bottom = out[:, 0], out[:, 1]
-    np.multiply(a[:, 1, 1, None], b[:, 0], out=top)
-    top -= a[:, 0, 1, None] * b[:, 1]
-    np.multiply(a[:, 0, 0, None], b[:, 1], out=bottom)
-    bottom -= a[:, 1, 0, None] * b[:, 0]
-    out /= det[:, None, None]
+    t = np.empty(R, dtype=out.dtype)
+    for k in range(out.shape[2]):
+        b0, b1, top, bottom = b[:, 0, k], b[:, 1, k], out[:, 0, k], out[:, 1, k]
+        np.multiply(a11, b0, out=top)
+        top -= np.multiply(a01, b1, out=t)
+        top /= det
+        np.multiply(a00, b1, out=bottom)
+        bottom -= np.multiply(a10, b0, out=t)
+        bottom /= det
     return out
 
 

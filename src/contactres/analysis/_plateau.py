@@ -576,10 +576,18 @@ def _descent(ey, dl, x, c, A, B, slopes, sf, sg, df, dg) -> tuple[np.ndarray, np
     # x86-64 wheels (on aarch64 it does, and the last bit may differ), without its iteration
     # over (r, i, j), which cost ~0.25 ms on 2,400 rows against ~0.1 ms. (A -0 sum, where the
     # einsum gave +0, leaves the Hessian G - proj unchanged: G's sums are never -0.)
+    # Element by element of the 2 x 2 Hessian, on 1-d arrays of the rows: the broadcast
+    # outer products (R, 2, 1) x (R, 1, 2) copied the rows one by one into numpy's buffers
+    # (~33 µs against ~21 µs on 450 rows).
     sol = solve_stacked(gram, pd_)
-    proj = pd_[:, 0, :, None] * sol[:, 0, None, :]
-    proj += pd_[:, 1, :, None] * sol[:, 1, None, :]
-    return -G[:, 4, 2:], G[:, 2:4, 2:] - proj
+    hess, t = np.empty((R, 2, 2)), np.empty(R)
+    for i in range(2):
+        for j in range(2):
+            h = hess[:, i, j]
+            np.multiply(pd_[:, 0, i], sol[:, 0, j], out=h)
+            h += np.multiply(pd_[:, 1, i], sol[:, 1, j], out=t)
+            np.subtract(G[:, 2 + i, 2 + j], h, out=h)
+    return -G[:, 4, 2:], hess
 
 
 def fit_plateau_loops(
