@@ -8,7 +8,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from contactres.fitting import LMOptions, levenberg_marquardt
+from contactres.fitting import LMOptions, levenberg_marquardt, solve_stacked
 
 # The settings of the two fits of the package, in spirit: the plateau fit (Marquardt, Nielsen)
 # and the ratio fit (Levenberg, tenfold, geodesic acceleration, short steps).
@@ -284,3 +284,39 @@ def test_each_parameter_is_capped_relative_to_its_own_size():
     )
     want = start + (target - start) * np.array([[2 / 999], [2 / 1000]])
     np.testing.assert_allclose(one.x, want, rtol=1e-12)
+
+
+@pytest.mark.parametrize("K", [1, 3])
+def test_solve_stacked_is_cramers_rule_bit_for_bit(K):
+    # 2 x 2 systems by Cramer's rule written out here (numerators of the adjugate's rows over
+    # the determinant, a singular matrix's determinant replaced by the smallest normal double),
+    # bit for bit, and the solutions of LAPACK's LU to rounding.
+    rng = np.random.default_rng(11)
+    a, b = rng.normal(size=(50, 2, 2)), rng.normal(size=(50, 2, K))
+    a[0] = [[1.0, 2.0], [2.0, 4.0]]  # singular: det 0
+    det = a[:, 0, 0] * a[:, 1, 1] - a[:, 0, 1] * a[:, 1, 0]
+    det = np.where(det != 0, det, np.finfo(float).tiny)
+    ref = np.empty_like(b)
+    with np.errstate(over="ignore"):  # (the singular system's numerators over tiny: ±inf)
+        for r in range(50):
+            for k in range(K):
+                ref[r, 0, k] = (a[r, 1, 1] * b[r, 0, k] - a[r, 0, 1] * b[r, 1, k]) / det[r]
+                ref[r, 1, k] = (a[r, 0, 0] * b[r, 1, k] - a[r, 1, 0] * b[r, 0, k]) / det[r]
+        got = solve_stacked(a, b)
+    np.testing.assert_array_equal(got, ref)
+    np.testing.assert_allclose(got[1:], np.linalg.solve(a[1:], b[1:]), rtol=1e-9, atol=1e-12)
+
+
+def test_row_reductions_are_numpys():
+    # The solver's per-row max and all, column by column: numpy's reductions along the rows,
+    # NaN and zero columns included.
+    from contactres.fitting import _rows_all, _rows_max
+
+    rng = np.random.default_rng(5)
+    for P in (1, 2, 3):
+        a = np.abs(rng.normal(size=(40, P)))
+        a[::7] = 0.0
+        a[3, 0] = np.nan
+        np.testing.assert_array_equal(_rows_max(a), np.max(a, axis=1, initial=0.0))
+        b = a < 0.8
+        np.testing.assert_array_equal(_rows_all(b), np.all(b, axis=1))

@@ -521,25 +521,29 @@ def levenberg_marquardt(evaluate, p0, lo=-np.inf, hi=np.inf, options: LMOptions 
         better = gain >= 0
         # (of the step from the old point, before the accepted rows move)
         size = np.abs(step)
-        small_step = np.all(size <= o.xtol * np.abs(q) + o.x_abs, axis=1)
+        small_step = _rows_all(size <= o.xtol * np.abs(q) + o.x_abs)
         every = better.all()
         if every:
             state["p"] = moved
             model["chi2"] = chi2_t
-        else:
-            q[better] = moved[better]
-            c2[better] = chi2_t[better]
-        state["last"] = np.where(better, np.max(size, axis=1, initial=0.0), state["last"])
+        else:  # (copyto where: the values of q[better] = moved[better], in one pass)
+            np.copyto(q, moved, where=better[:, None])
+            np.copyto(c2, chi2_t, where=better)
+        state["last"] = np.where(better, _rows_max(size), state["last"])
         if new is not None and "jacobian" not in model:  # the Gauss-Newton form comes complete
             for key in ("gradient", "hessian"):
                 if every:
                     model[key] = new[key]
+                elif ok is None:
+                    mask = better.reshape(-1, *(1,) * (new[key].ndim - 1))
+                    np.copyto(model[key], new[key], where=mask)
                 else:
-                    model[key][better] = new[key][better if ok is None else better[ok]]
+                    model[key][better] = new[key][better[ok]]
         # Damping: down after a success, up after a failure.
         nu = state["nu"]
         if o.update == "nielsen":
-            rho = np.where(pred > 0, gain / np.where(pred > 0, pred, 1.0), 0.5)
+            rising = pred > 0
+            rho = np.where(rising, gain / np.where(rising, pred, 1.0), 0.5)
             shrink = np.maximum(1.0 / 3.0, 1.0 - (2.0 * rho - 1.0) ** 3)
             lam = np.where(better, np.maximum(lam * shrink, o.lam_min), lam * nu)
             state["nu"] = np.where(better, 2.0, 2.0 * nu)
@@ -580,9 +584,12 @@ def levenberg_marquardt(evaluate, p0, lo=-np.inf, hi=np.inf, options: LMOptions 
             x[done], chi2[done], status[done] = state["p"][ended], model["chi2"][ended], code[ended]
             n_iter[done], n_acc[done] = state["n_iter"][ended], state["n_acc"][ended]
             last[done] = state["last"][ended]
-            rows = rows[going]
-            model = {k: a[going] for k, a in model.items()}
-            state = {k: a[going] for k, a in state.items()}
+            # (the rows that go on found once, then np.take of whole rows: the same numbers
+            # as a[going], without a scan of the mask per array)
+            kept = np.flatnonzero(going)
+            rows = rows[kept]
+            model = {k: np.take(a, kept, axis=0) for k, a in model.items()}
+            state = {k: np.take(a, kept, axis=0) for k, a in state.items()}
     return LeastSquaresResult(
         x=x,
         chi2=chi2,
@@ -592,6 +599,25 @@ def levenberg_marquardt(evaluate, p0, lo=-np.inf, hi=np.inf, options: LMOptions 
         n_accepted=n_acc,
         last_step=last,
     )
+
+
+def _rows_all(b: np.ndarray) -> np.ndarray:
+    """np.all(b, axis=1) of (R, P) booleans, column by column: a reduction along rows of a few
+    parameters pays numpy's per-row cost (~8 µs for 450 rows of 2, against ~1 µs)."""
+    out = np.ones(b.shape[0], dtype=bool)
+    for p in range(b.shape[1]):
+        out &= b[:, p]
+    return out
+
+
+def _rows_max(a: np.ndarray) -> np.ndarray:
+    """np.max(a, axis=1, initial=0.0) of (R, P) floats, column by column (as :func:`_rows_all`:
+    ~2 µs against ~17 µs for 450 rows of 2). The same numbers: max is exact in any order, and a
+    NaN propagates as it does in the reduction."""
+    out = np.zeros(a.shape[0], dtype=a.dtype)
+    for p in range(a.shape[1]):
+        np.maximum(out, a[:, p], out=out)
+    return out
 
 
 def _local_model(out) -> dict[str, np.ndarray]:
@@ -688,15 +714,28 @@ def solve_stacked(a, b):
     P = 2 (thousands of 2 x 2 systems at a fraction of LAPACK's cost per call), else LU."""
     if a.shape[-1] != 2:
         return np.linalg.solve(a, b)
-    det = a[:, 0, 0] * a[:, 1, 1] - a[:, 0, 1] * a[:, 1, 0]
-    det = np.where(det != 0, det, np.finfo(float).tiny)[:, None]
-    return (
-        np.stack(
-            [
-                a[:, 1, 1, None] * b[:, 0] - a[:, 0, 1, None] * b[:, 1],
-                a[:, 0, 0, None] * b[:, 1] - a[:, 1, 0, None] * b[:, 0],
-            ],
-            axis=1,
-        )
-        / det[:, None]
-    )
+    a00, a01, a10, a11 = a[:, 0, 0], a[:, 0, 1], a[:, 1, 0], a[:, 1, 1]
+    det = a00 * a11
+    det -= a01 * a10
+    det = np.where(det != 0, det, _TINY)
+    # Column by column of b (K is 1 or 2 here), each numerator written into its place and
+    # divided there: the numbers of (a₁₁b₀ - a₀₁b₁)/det and (a₀₀b₁ - a₁₀b₀)/det, on 1-d arrays
+    # of the R rows. Operations that broadcast a row's one number over its two or four (a[:, 1,
+    # 1, None] * b[:, 0], out /= det[:, None, None]) copy the rows one by one into numpy's
+    # buffers: ~48 µs against ~19 µs for 450 rows and K = 2 (~18 against ~12 for K = 1).
+    R = max(a.shape[0], b.shape[0])
+    out = np.empty((R, 2, *b.shape[2:]), dtype=np.result_type(a, b, det))
+    t = np.empty(R, dtype=out.dtype)
+    for k in range(out.shape[2]):
+        b0, b1, top, bottom = b[:, 0, k], b[:, 1, k], out[:, 0, k], out[:, 1, k]
+        np.multiply(a11, b0, out=top)
+        top -= np.multiply(a01, b1, out=t)
+        top /= det
+        np.multiply(a00, b1, out=bottom)
+        bottom -= np.multiply(a10, b0, out=t)
+        bottom /= det
+    return out
+
+
+#: The smallest normal double: the determinant put where it is 0 (a NaN-free step of 0/tiny).
+_TINY = np.finfo(float).tiny

@@ -7,7 +7,7 @@ import pytest
 
 from contactres.analysis import _plateau
 from contactres.analysis._amplitude import fit_hinge, pad_sweeps
-from contactres.analysis._loops import cm_loop_table
+from contactres.analysis._loops import _data_sums, cm_loop_table
 from contactres.analysis._plateau import fit_plateau_loops, pool_repeats
 from contactres.measurements._sweeps import validate_sweeps
 from contactres.measurements._synthetic import SweepGroup, SweepStudy, synthetic_sweeps
@@ -108,8 +108,9 @@ def test_gradient_at_refused_steps_is_never_read(monkeypatch):
     # test would hand it the zeros of a refused row).
     model = _plateau._plateau_model
 
-    def always(*a):  # the gradient and Hessian at every step, as before
-        return model(*a[:-1], None)
+    def always(*a, **k):  # the gradient and Hessian at every step, as before
+        assert len(a) == 11  # (the last positional argument: the current χ², dropped)
+        return model(*a[:-1], None, **k)
 
     for b, u_c, sig in (_sweeps("plateau"), _sweeps("cattaneo-mindlin", seed=4)):
         args = (b.u, b.df, b.dg, b.w, sig[0], sig[1], u_c, cm_loop_table())
@@ -220,3 +221,22 @@ def test_descent_of_a_row_does_not_depend_on_its_batch(M):
         )
         for got, ref in zip(alone, batch, strict=True):
             np.testing.assert_array_equal(got[0], ref[k])
+
+
+@pytest.mark.parametrize("pooled", [False, True])
+@pytest.mark.parametrize("rows", [None, [3], [0, 5, 7]])
+def test_model_on_the_data_sums_of_all_rows_is_bit_for_bit(pooled, rows):
+    # The fit forms the parts of the projected χ² that depend on the data alone (Σw, the mean of
+    # ΔΓ, ΔΓ - mean) once for all the rows of a pass and gathers the running rows' (_data_sums):
+    # the evaluation on them equals, bit for bit, solve_projected's on the running rows alone.
+    p, u, umax, df, dg, w, rw, wf, wg, part = _evaluation(pooled)
+    at = np.arange(len(u)) if rows is None else np.array(rows)
+    n, _, _, _, mean, centred = _data_sums(df, dg, w, wf, wg)
+    sums = [n[at], mean[at], centred[at]]
+    args = [a[at] for a in (p, u, umax, df, dg, w, rw, wf, wg)]
+    part = None if part is None else [a[at] for a in part]
+    got = _plateau._plateau_model(*args, part, sums=sums)
+    ref = _plateau._plateau_model(*args, part)
+    assert np.isfinite(ref["chi2"]).all()
+    for key in ("A", "B", "chi2", "rss_f", "rss_g", "grad", "hess"):
+        np.testing.assert_array_equal(got[key], ref[key], err_msg=key)

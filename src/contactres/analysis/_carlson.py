@@ -127,12 +127,16 @@ def _duplicate(x: np.ndarray, y: np.ndarray, z: np.ndarray) -> tuple[np.ndarray,
     converged after :data:`MAX_STEPS` steps)."""
     # The three arguments as the rows of one array: each of a step's square roots and updates
     # is one numpy call on all three (the same numbers as one call each).
+    n = x.size
     xyz = np.array([x, y, z])
-    rf, rd = np.empty_like(x), np.empty_like(x)
     tail = np.zeros_like(x)  # Σ 4⁻ⁿ/(√zₙ(zₙ + λₙ)) of R_D
     scale = 1.0  # 4⁻ⁿ, the same for every point still stepping
     active = np.arange(x.size)
     steps = 0
+    # The points that stop, check by check: where, their arguments, means, sums and 4⁻ⁿ; the
+    # series then runs once on all of them (each point's numbers its own: those of a series
+    # at each check, without its ~50 numpy calls a check on a few points each).
+    stopped: list[tuple[np.ndarray, ...]] = []
     while active.size and steps < MAX_STEPS:
         sx, sy, sz = np.sqrt(xyz)
         lam = sx * sy
@@ -162,14 +166,25 @@ def _duplicate(x: np.ndarray, y: np.ndarray, z: np.ndarray) -> tuple[np.ndarray,
         done = hi < DEVIATION * mean_f
         if not done.any():
             continue
-        here = active[done]
-        f, d = _series(x[done], y[done], z[done], mean_f[done])
-        rf[here] = f
-        rd[here] = d * scale + 3.0 * tail[done]
-        left = ~done
+        if done.all():  # (every point left stops here: no gathers)
+            stopped.append((active, xyz, mean_f, np.full(active.size, scale), tail))
+            active = active[:0]
+            break
+        at = np.flatnonzero(done)
+        stopped.append((active[at], xyz[:, at], mean_f[at], np.full(at.size, scale), tail[at]))
+        left = np.flatnonzero(~done)
         active = active[left]
         xyz, tail = xyz[:, left], tail[left]
-    rf[active] = rd[active] = np.nan
+    rf, rd = np.full(n, np.nan), np.full(n, np.nan)  # (NaN: not converged)
+    if stopped:
+        here, xyz, mean_f, scales, tails = (
+            parts[0] if len(stopped) == 1 else np.concatenate(parts, axis=-1)
+            for parts in zip(*stopped, strict=True)
+        )
+        f, d = _series(xyz[0], xyz[1], xyz[2], mean_f)
+        d *= scales
+        d += 3.0 * tails
+        rf[here], rd[here] = f, d
     return rf, rd
 
 

@@ -47,7 +47,15 @@ import pandas as pd
 from ..fitting import LMOptions, levenberg_marquardt, solve_stacked
 from ._amplitude import PLATEAU_MIN_SLOPE
 from ._carlson import legendre_tails
-from ._loops import X_MAX, LoopTable, fit_cm_loops, loop_fit_fields, solve_projected
+from ._loops import (
+    X_MAX,
+    LoopTable,
+    _data_sums,
+    _projected,
+    fit_cm_loops,
+    loop_fit_fields,
+    solve_projected,
+)
 from ._plateau_series import (
     SERIES_CELLS,
     SERIES_TIERS,
@@ -456,7 +464,7 @@ def pool_repeats(u, df, dg, w) -> tuple[np.ndarray, ...] | None:
     return amp, mean_f, mean_g, weight, np.sqrt(weight), *within
 
 
-def _plateau_model(p, u, umax, df, dg, w, rw, wf, wg, within=None, current=None) -> dict:
+def _plateau_model(p, u, umax, df, dg, w, rw, wf, wg, within=None, current=None, sums=None) -> dict:
     """Projected fit of the plateau loop at p = (ln θ(u_max - d_c), d_c/u_max), rows (R, 2):
     Pκ, Pωξ, χ², the RSS of the channels, the gradient of χ²/2 in p and its Gauss-Newton
     Hessian (Kaufman's variable projection: exact gradient, Jacobian projected off Pκ, Pωξ).
@@ -466,14 +474,21 @@ def _plateau_model(p, u, umax, df, dg, w, rw, wf, wg, within=None, current=None)
     the gradient and Hessian are formed only at the rows whose χ² does not exceed it
     (``"accepted"``, the rows :func:`~contactres.fitting.levenberg_marquardt` accepts: it
     reads those of the others nowhere; zero there), a quarter of the steps of the fit being
-    refused."""
+    refused. ``sums``: (Σw, the weighted mean of ΔΓ, ΔΓ - mean) of the rows
+    (:func:`~contactres.analysis._loops._data_sums`), which depend on the data alone, or None:
+    the same numbers formed here (:func:`~contactres.analysis._loops.solve_projected`)."""
     ly, dl = p[:, 0], p[:, 1]
     ey = np.exp(ly)
     theta = ey / (umax * (1.0 - dl))  # θ(u_max - d_c) = e^ly
-    c = (theta * dl * umax)[:, None]
     x = theta[:, None] * u
-    slopes = plateau_loop_slopes(x, c)
-    A, B, chi2, rss_f, rss_g = solve_projected(slopes[0], slopes[1], df, dg, w, wf, wg)
+    # c at every point (each row's repeated: the values plateau_loop_slopes' broadcast takes,
+    # without its Python-level broadcast and copy; and _descent's products with it contiguous)
+    c = np.repeat(theta * dl * umax, u.shape[1]).reshape(u.shape)
+    slopes = _slopes_ordered(x, c)
+    if sums is None:
+        A, B, chi2, rss_f, rss_g = solve_projected(slopes[0], slopes[1], df, dg, w, wf, wg)
+    else:  # (_projected: solve_projected's numbers, bit for bit, with these parts given)
+        A, B, chi2, rss_f, rss_g = _projected(slopes[0], slopes[1], (*sums, df, dg, w, wf, wg))
     if within is not None:
         rss_f, rss_g = rss_f + within[0], rss_g + within[1]
         chi2 = wf * rss_f + wg * rss_g
@@ -500,7 +515,7 @@ def _plateau_model(p, u, umax, df, dg, w, rw, wf, wg, within=None, current=None)
 
         sf, sg = np.sqrt(wf[k])[:, None] * at(rw), np.sqrt(wg[k])[:, None] * at(rw)
         grad, hess = _descent(
-            ey[k], dl[k], at(x), c[k], A[k], B[k], [at(s) for s in slopes], sf, sg, at(df), at(dg)
+            ey[k], dl[k], at(x), at(c), A[k], B[k], [at(s) for s in slopes], sf, sg, at(df), at(dg)
         )
         fit["grad"][k], fit["hess"][k] = grad, hess
     return fit
@@ -527,18 +542,23 @@ def _descent(ey, dl, x, c, A, B, slopes, sf, sg, df, dg) -> tuple[np.ndarray, np
     np.multiply(sg, g2, out=phi[:, 0, g])
     phi[:, 1, f] = 0.0  # Pωξ's column is 0 in the Δf channel
     phi[:, 1, g] = sg
-    # ∂(model)/∂p, weighted: A times the shapes' derivatives along ln(...) and d_c/u_max.
+    # ∂(model)/∂p, weighted: A times the shapes' derivatives along ln(...) and d_c/u_max, i.e.
+    # (s t) A with t = gx along + gc at, each column's product with A written into its place
+    # (t and its addend in two buffers reused by the four columns: no new arrays; no pass of
+    # D *= A over the strided (R, 2, 2M) view, ~4x the cost of a contiguous one).
+    t, tc = np.empty((2, R, M))
+    A_ = A[:, None]
     for j, along, at in ((0, x, c), (1, dx, dc)):
         for s, gx, gc, ch in ((sf, g1x, g1c, f), (sg, g2x, g2c, g)):
-            t = gx * along
-            t += gc * at
-            np.multiply(s, t, out=D[:, j, ch])
-    D *= A[:, None, None]
-    t = A[:, None] * g1
+            np.multiply(gx, along, out=t)
+            t += np.multiply(gc, at, out=tc)
+            t *= s
+            np.multiply(t, A_, out=D[:, j, ch])
+    np.multiply(A_, g1, out=t)
     np.subtract(df, t, out=t)
     np.multiply(sf, t, out=r[:, f])
-    t = dg - B[:, None]
-    t -= A[:, None] * g2
+    np.subtract(dg, B[:, None], out=t)
+    t -= np.multiply(A_, g2, out=tc)
     np.multiply(sg, t, out=r[:, g])
     # The sums of products of the rows: one einsum a column j, at a third of the cost of
     # einsum("rim,rjm->rij"), whose (r, i, j) iteration spent more than the sums (~0.4 ms of
@@ -556,10 +576,18 @@ def _descent(ey, dl, x, c, A, B, slopes, sf, sg, df, dg) -> tuple[np.ndarray, np
     # x86-64 wheels (on aarch64 it does, and the last bit may differ), without its iteration
     # over (r, i, j), which cost ~0.25 ms on 2,400 rows against ~0.1 ms. (A -0 sum, where the
     # einsum gave +0, leaves the Hessian G - proj unchanged: G's sums are never -0.)
+    # Element by element of the 2 x 2 Hessian, on 1-d arrays of the rows: the broadcast
+    # outer products (R, 2, 1) x (R, 1, 2) copied the rows one by one into numpy's buffers
+    # (~33 µs against ~21 µs on 450 rows).
     sol = solve_stacked(gram, pd_)
-    proj = pd_[:, 0, :, None] * sol[:, 0, None, :]
-    proj += pd_[:, 1, :, None] * sol[:, 1, None, :]
-    return -G[:, 4, 2:], G[:, 2:4, 2:] - proj
+    hess, t = np.empty((R, 2, 2)), np.empty(R)
+    for i in range(2):
+        for j in range(2):
+            h = hess[:, i, j]
+            np.multiply(pd_[:, 0, i], sol[:, 0, j], out=h)
+            h += np.multiply(pd_[:, 1, i], sol[:, 1, j], out=t)
+            np.subtract(G[:, 2 + i, 2 + j], h, out=h)
+    return -G[:, 4, 2:], hess
 
 
 def fit_plateau_loops(
@@ -619,6 +647,10 @@ def fit_plateau_loops(
         data = [a[of] for a in points[:5]]
         within = None if points[5] is None else [a[of] for a in points[5:]]
         um = umax[of]
+        # The parts of the projected χ² that depend on the data alone (Σw, the mean of ΔΓ and
+        # ΔΓ - mean), formed once a pass rather than at every evaluation: row by row, so that
+        # a row's are those solve_projected forms among any rows (_loops._data_sums).
+        fixed = [_data_sums(data[1], data[2], data[3], wf, wg)[k] for k in (0, 4, 5)]
 
         # The rows evaluated last and their data: the solver evaluates the same running rows
         # step after step until one of them stops, so they are gathered once for those steps
@@ -629,9 +661,12 @@ def fit_plateau_loops(
             if last[0] is None or not np.array_equal(last[0], i):
                 part = None if within is None else [a[i] for a in within]
                 rows = [np.take(a, i, axis=0) for a in data]
-                last[:] = [i.copy(), (rows, um[i], wf[i], wg[i], part)]
-            (u_i, df_i, dg_i, w_i, rw_i), um_i, wf_i, wg_i, part = last[1]
-            return _plateau_model(p, u_i, um_i, df_i, dg_i, w_i, rw_i, wf_i, wg_i, part, current)
+                sums = [np.take(a, i, axis=0) for a in fixed]
+                last[:] = [i.copy(), (rows, um[i], wf[i], wg[i], part, sums)]
+            (u_i, df_i, dg_i, w_i, rw_i), um_i, wf_i, wg_i, part, sums = last[1]
+            return _plateau_model(
+                p, u_i, um_i, df_i, dg_i, w_i, rw_i, wf_i, wg_i, part, current, sums=sums
+            )
 
         # Each row's fit at its latest accepted point (the solver's current one: χ² not above
         # the kept one) and where that is: the fit at the solution, with no evaluation again

@@ -296,21 +296,28 @@ def _series(r, a, c, phi, reach, derivatives=False):
     n = np.zeros(most + 1, dtype=np.intp)
     for terms, end in reach:
         n[: terms + 1] = np.maximum(n[: terms + 1], end)
-    # In place (V_k in the buffer of V_{k-2}, which it no longer needs): the same arithmetic
-    # without a new array per operation, on the prefix of the points still summing.
+    # In place (V_k in the buffer of V_{k-2}, which it no longer needs: V_k of even k in
+    # ``older``'s, of odd k in ``old``'s): the same arithmetic without a new array per
+    # operation, on the prefix of the points still summing. The prefixes' views are taken once
+    # a prefix (it changes at a group's end only) and updated in place, not written back
+    # through a slice (total[s] += v copies the sum onto itself: a pass more a term).
+    views: tuple[np.ndarray, ...] = ()
     for k, (to_older, to_p) in enumerate(_FACTORS[: most - 1], start=2):
-        s = slice(0, n[k])
         if not n[k]:
             break
-        pk, ok, tk = p[s], older[s], tmp[s]
-        pk *= qc[s]
-        ok *= qq[s]
+        if not views or views[0].size != n[k]:
+            s = slice(0, n[k])
+            views = (p[s], qc[s], qq[s], tmp[s], total[s], older[s], old[s])
+            oth = other[s] if other is not None else None
+        pk, qck, qqk, tk, tot, even, odd = views
+        ok = odd if k & 1 else even
+        pk *= qck
+        ok *= qqk
         ok *= to_older
         ok -= np.multiply(pk, to_p, out=tk)
-        total[s] += ok
+        tot += ok
         if other is not None:
-            other[s] -= np.multiply(ok, 2 * k - 1, out=tk)
-        older, old = old, older
+            oth -= np.multiply(ok, 2 * k - 1, out=tk)
     scale = 0.25 * r * r
     if other is None:
         return scale * np.sqrt(a) * total
