@@ -273,3 +273,26 @@ def test_without_a_coating_the_settings_record_has_no_coating(tmp_path):
     shares = [row["film_share"] for row in g["coating"]["loads"]]
     assert len(shares) == 3 and all(0 < s < 1 for s in shares)
     assert np.isfinite(coated.jkr["kappa_N_per_m"]).any()
+
+
+@pytest.mark.parametrize("shape", [(24,), (3, 200, 6), (7, 3)])
+def test_the_sum_over_the_E_nodes_is_lagrange_interpolation_and_numpys_sum(shape):
+    # _node_sum is the interpolation in ln E of CoatedLaw (weights (..., n_E, 1), the nodes'
+    # values (..., n_E, k)): a quartic in ln E is reproduced by the five nodes (an independent
+    # check), and the sums are numpy's (w * q).sum(axis=-2), bit for bit (the law's values
+    # before the sum was written out).
+    from contactres.analysis._coating import CoatedLaw, _node_sum
+
+    rng = np.random.default_rng(11)
+    E_nodes = np.geomspace(3e10, 2e11, 5)
+    law = CoatedLaw.__new__(CoatedLaw)  # only its E nodes are used (_weights)
+    object.__setattr__(law, "E_nodes", E_nodes)
+    E = rng.uniform(3e10, 2e11, shape)
+    w = law._weights(E)[..., None]
+    coef = rng.standard_normal((5, 2))  # two columns, each a quartic in ln E
+    at_nodes = np.stack([np.polyval(c, np.log(E_nodes)) for c in coef.T], axis=-1)
+    got = _node_sum(w, np.broadcast_to(at_nodes, (*shape, 5, 2)))
+    exact = np.stack([np.polyval(c, np.log(E)) for c in coef.T], axis=-1)
+    np.testing.assert_allclose(got, exact, rtol=0, atol=1e-9 * np.abs(coef).sum())
+    q = rng.standard_normal((*shape, 5, 2)) * 10.0 ** rng.integers(-6, 6, (*shape, 5, 2))
+    np.testing.assert_array_equal(_node_sum(w, q), (w * q).sum(axis=-2))

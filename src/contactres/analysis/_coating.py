@@ -248,6 +248,25 @@ def _corrections(
     return np.stack([q_n, q_f, q_t.real, q_t.imag], axis=-1)
 
 
+def _node_sum(w: np.ndarray, q: np.ndarray) -> np.ndarray:
+    """Σ_j w_j q_j over the table's E nodes (axis −2 of both; ``w`` (..., n_E, 1) broadcast
+    against ``q`` (..., n_E, k)): the Lagrange interpolation in ln E of the nodes' values.
+
+    Added node by node, in their order, as numpy's ``(w * q).sum(axis=-2)`` adds along so short
+    a strided axis (one term after the other: the same sums), and one column of q at a time:
+    numpy's reduction, or a product of the (..., k) slices, runs its inner loop over the k = 2
+    columns, ~3x the cost of these products over the entries (~0.4 ms against ~0.06 ms at
+    3600 entries; the bootstrap's contact-radius solve evaluates it ~15 times per solve)."""
+    out = np.empty(q.shape[:-2] + q.shape[-1:], dtype=np.result_type(w, q))
+    term = np.empty(q.shape[:-2], dtype=out.dtype)
+    for c in range(q.shape[-1]):
+        col = out[..., c]
+        np.multiply(w[..., 0, 0], q[..., 0, c], out=col)
+        for j in range(1, q.shape[-2]):
+            col += np.multiply(w[..., j, 0], q[..., j, c], out=term)
+    return out
+
+
 @dataclass(frozen=True)
 class CoatedLaw:
     """κ(F_N; E, γ) on a coated plate from the tabulated film corrections (module docstring).
@@ -321,10 +340,7 @@ class CoatedLaw:
             # ``at``: a at the entries ``at`` of E only (the others' weights left out).
             wa = w if at is None else w[at]
             x = np.log(a)
-            return (
-                (wa * part(x)).sum(axis=-2),
-                (wa * part(x, 1)).sum(axis=-2) if slope else None,
-            )
+            return _node_sum(wa, part(x)), _node_sum(wa, part(x, 1)) if slope else None
 
         return values
 
