@@ -618,8 +618,9 @@ def apply_coating(groups, exp, sweeps, coating: Coating, bootstrap: int, seed: i
         uncoated = {k: g[k] for k in ("E_Pa", "E_err_Pa", "gamma_J_m2", "gamma_err_J_m2")}
         start = {"E": g["E_Pa"], "gamma": g["gamma_J_m2"]}
         new = fit_group(part, key, bootstrap, seed, mine, law=load_law(law, start))
-        if np.isfinite(new["E_Pa"]):
-            _outside_the_table(law, new, part)
+        # The contact radii at the measured loads: the test of the table's range and the
+        # per-load record below (one solve for both).
+        radii = _outside_the_table(law, new, part) if np.isfinite(new["E_Pa"]) else None
         g.update(new)
         g["coating"] = {
             **coating.record(),
@@ -627,19 +628,21 @@ def apply_coating(groups, exp, sweeps, coating: Coating, bootstrap: int, seed: i
             "uncoated": uncoated,
             "table_E_range_Pa": list(law.bounds),
             "table_contact_radius_range_m": list(law.radius_range),
-            "loads": _film_share(law, g, part) if np.isfinite(g["E_Pa"]) else [],
+            "loads": _film_share(law, g, radii) if radii and np.isfinite(g["E_Pa"]) else [],
         }
         out[key] = law
     return out
 
 
-def _outside_the_table(law: CoatedLaw, out: dict, part) -> None:
+def _outside_the_table(law: CoatedLaw, out: dict, part) -> tuple:
     """Withhold a coated fit (in place, check ``fit-at-bound``) whose contact radius at a
-    measured load lies outside the table's radii: the model was clamped there, not solved."""
+    measured load lies outside the table's radii: the model was clamped there, not solved.
+    Returns (the distinct measured loads F, N; a(F), m; the mask of the clamped radii) of the
+    fit's E, γ and R (:func:`_film_share` records them)."""
     F = np.unique(part["normal_force_N"].to_numpy(float))
-    _, clamped = law.contact_radius(F, out["E_Pa"], out["gamma_J_m2"], out["sphere_radius_m"])
+    a, clamped = law.contact_radius(F, out["E_Pa"], out["gamma_J_m2"], out["sphere_radius_m"])
     if not clamped.any():
-        return
+        return F, a, clamped
     lo, hi = law.radius_range
     out["rejected_fit"] = {"E_Pa": out["E_Pa"], "gamma_J_m2": out["gamma_J_m2"]}
     out["checks"] = [*out["checks"], "fit-at-bound"]
@@ -650,13 +653,14 @@ def _outside_the_table(law: CoatedLaw, out: dict, part) -> None:
     out["note"] = "; ".join(t for t in (out["note"], text) if t)
     for key in ("E_Pa", "E_err_Pa", "gamma_J_m2", "gamma_err_J_m2"):
         out[key] = math.nan
+    return F, a, clamped
 
 
-def _film_share(law: CoatedLaw, g: dict, part) -> list[dict]:
-    """Per load: a, κ on the coated and the bare plate and the film's share (apply_coating)."""
-    F = np.unique(part["normal_force_N"].to_numpy(float))
+def _film_share(law: CoatedLaw, g: dict, radii: tuple) -> list[dict]:
+    """Per load: a, κ on the coated and the bare plate and the film's share (apply_coating);
+    ``radii``: (F, a(F), clamped) at the group's E, γ and R (:func:`_outside_the_table`)."""
+    F, a, clamped = radii
     E, gamma, R, nu = g["E_Pa"], g["gamma_J_m2"], g["sphere_radius_m"], g["poisson"]
-    a, clamped = law.contact_radius(F, E, gamma, R)
     kappa = law.tangential(E, a)
     bare = np.asarray(kappa_jkr_mindlin(F, E, gamma, R, nu), dtype=float)
     return [
