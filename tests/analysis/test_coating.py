@@ -296,3 +296,25 @@ def test_the_sum_over_the_E_nodes_is_lagrange_interpolation_and_numpys_sum(shape
     np.testing.assert_allclose(got, exact, rtol=0, atol=1e-9 * np.abs(coef).sum())
     q = rng.standard_normal((*shape, 5, 2)) * 10.0 ** rng.integers(-6, 6, (*shape, 5, 2))
     np.testing.assert_array_equal(_node_sum(w, q), (w * q).sum(axis=-2))
+
+
+def test_a_spline_with_its_derivative_in_one_call_gives_both_as_apart():
+    # _with_derivative: the contact-radius steps evaluate the spline and its slope in one
+    # call; the values are those of the spline and of scipy's derivative evaluated apart (bit
+    # for bit, inside and beyond the breakpoints), and the slope of a cubic is its derivative.
+    from scipy.interpolate import CubicSpline
+
+    from contactres.analysis._coating import _with_derivative
+
+    rng = np.random.default_rng(5)
+    knots = np.sort(rng.uniform(-3.0, 2.0, 9))
+    cubic = np.array([[0.7, -1.1, 0.4, 2.0], [-0.2, 0.5, 1.3, -0.6]])  # two columns
+    values = np.stack([np.polyval(c, knots) for c in cubic], axis=-1)
+    spline = CubicSpline(knots, values, axis=0)
+    both = _with_derivative(spline)
+    x = np.concatenate([rng.uniform(-4.0, 3.0, 500), knots])
+    got = both(x)
+    np.testing.assert_array_equal(got[:, :2], spline(x))
+    np.testing.assert_array_equal(got[:, 2:], spline.derivative()(x))
+    slope = np.stack([np.polyval(np.polyder(c), x) for c in cubic], axis=-1)
+    np.testing.assert_allclose(got[:, 2:], slope, rtol=1e-9, atol=1e-9)

@@ -267,6 +267,19 @@ def _node_sum(w: np.ndarray, q: np.ndarray) -> np.ndarray:
     return out
 
 
+def _with_derivative(poly: PPoly) -> PPoly:
+    """One piecewise polynomial of ``poly``'s columns followed by those of its derivative, so
+    that a contact-radius step evaluates both in one call (~1500 steps of a coated analysis).
+
+    The derivative's coefficients (``poly.derivative()``: one degree less) get a zero leading
+    coefficient: scipy sums a piece's terms from the lowest power up, so the zero's term comes
+    last and adds +0 (−0 left of the first breakpoint), which leaves every sum as it was but
+    a −0 (none here: a nonzero sum): the same values as the derivative evaluated apart."""
+    d = poly.derivative().c
+    padded = np.concatenate([np.zeros((1, *d.shape[1:])), d])
+    return PPoly(np.concatenate([poly.c, padded], axis=-1), poly.x)
+
+
 @dataclass(frozen=True)
 class CoatedLaw:
     """κ(F_N; E, γ) on a coated plate from the tabulated film corrections (module docstring).
@@ -326,11 +339,14 @@ class CoatedLaw:
         if E.size and np.all(E == E.flat[0]):
             c = np.einsum("j,abjk->abk", self._weights(E.flat[0]), coef)
             one = PPoly(c, self.spline.x)
-            deriv = one.derivative() if slope else None
+            if not slope:
+                return lambda a, at=None: (one(np.log(a)), None)
+            both = _with_derivative(one)
+            k = c.shape[-1]
 
             def single(a, at=None):
-                x = np.log(a)
-                return one(x), None if deriv is None else deriv(x)
+                q = both(np.log(a))
+                return q[..., :k], q[..., k:]
 
             return single
         w = self._weights(E)[..., None]
@@ -355,20 +371,22 @@ class CoatedLaw:
             [np.einsum("j,abjk->abk", self._weights(v), coef) for v in levels], axis=-1
         )
         one = PPoly(c, self.spline.x)
-        deriv = one.derivative() if slope else None
+        # With the slope: the splines' columns, then their derivatives', in one call.
+        poly, parts = (_with_derivative(one), 2) if slope else (one, 1)
 
-        def pick(poly, x, rows):
+        def pick(x, rows):
             flat = np.ravel(x)
-            out = poly(flat).reshape(flat.size, levels.size, cols)
-            return out[np.arange(flat.size), np.ravel(rows)].reshape(*np.shape(x), cols)
+            out = poly(flat).reshape(flat.size, parts, levels.size, cols)
+            out = out[np.arange(flat.size), :, np.ravel(rows)]  # (entries, parts, cols)
+            return [out[:, i].reshape(*np.shape(x), cols) for i in range(parts)]
 
         rows_all = index.reshape(E.shape)
 
         def values(a, at=None):
             # ``at``: a at the entries ``at`` of E only (as :meth:`_interpolant`'s).
             rows = rows_all if at is None else rows_all[at]
-            x = np.log(a)
-            return pick(one, x, rows), None if deriv is None else pick(deriv, x, rows)
+            q = pick(np.log(a), rows)
+            return q[0], q[1] if slope else None
 
         return values
 
