@@ -318,3 +318,18 @@ def test_a_spline_with_its_derivative_in_one_call_gives_both_as_apart():
     np.testing.assert_array_equal(got[:, 2:], spline.derivative()(x))
     slope = np.stack([np.polyval(np.polyder(c), x) for c in cubic], axis=-1)
     np.testing.assert_allclose(got[:, 2:], slope, rtol=1e-9, atol=1e-9)
+
+
+def test_the_weights_of_one_E_are_those_of_an_array_of_E():
+    # CoatedLaw._weights of one E (Python floats) and of many (numpy): the same bits; Lagrange
+    # weights: one at their node, zero at the others, summing to one anywhere.
+    from contactres.analysis._coating import CoatedLaw
+
+    law = CoatedLaw.__new__(CoatedLaw)  # only its E nodes are used
+    object.__setattr__(law, "E_nodes", np.geomspace(3e10, 2e11, 5))
+    E = np.random.default_rng(2).uniform(2e10, 3e11, 300)
+    one_by_one = np.stack([law._weights(float(e)) for e in E])
+    np.testing.assert_array_equal(one_by_one, law._weights(E))
+    np.testing.assert_allclose(one_by_one.sum(axis=-1), 1.0, rtol=0, atol=1e-12)
+    at_nodes = np.stack([law._weights(float(e)) for e in law.E_nodes])
+    np.testing.assert_allclose(at_nodes, np.eye(5), rtol=0, atol=1e-12)

@@ -325,6 +325,16 @@ class CoatedLaw:
         """Lagrange weights in ln E of the table's nodes at E (shape E.shape + (n_E,))."""
         x = np.log(self.E_nodes)
         t = np.log(np.asarray(E, dtype=float))
+        if t.ndim == 0:
+            # One E (each contact-radius solve of a fit): the same products in Python floats
+            # (IEEE doubles, the same roundings), not ~60 numpy calls on 0-d arrays.
+            xs, tv = x.tolist(), float(t)
+            one = [1.0] * len(xs)
+            for j in range(len(xs)):
+                for m in range(len(xs)):
+                    if m != j:
+                        one[j] *= (tv - xs[m]) / (xs[j] - xs[m])
+            return np.array(one)
         w = np.ones((*t.shape, x.size))
         for j in range(x.size):
             for m in range(x.size):
