@@ -140,6 +140,23 @@ def test_the_grid_of_the_bootstrap_is_the_model_at_each_grid_point(synthetic):
     assert np.array_equal(many, ones)
 
 
+@pytest.mark.parametrize("per_value", [0, 10**9])
+def test_a_grid_evaluated_value_by_value_or_all_at_once_is_the_model_at_each_E(
+    synthetic, per_value, monkeypatch
+):
+    # CoatedLaw._by_value: each E's spline at its own entries (many entries per E) or all the
+    # splines at every entry (few): the numbers of the model called at each E alone.
+    import contactres.analysis._coating as coating
+
+    monkeypatch.setattr(coating, "_PER_VALUE", per_value)
+    law = synthetic["law"]
+    E = np.linspace(50e9, 250e9, 15)
+    gamma = np.linspace(0.0, 0.1, 15)
+    grid = law.kappa_grid(FORCES[:, None, None], E[None, :, None], gamma[None, None, :], R)
+    each = np.stack([law.kappa(FORCES[:, None], e, gamma[None, :], R) for e in E], axis=1)
+    assert np.array_equal(grid, each)
+
+
 def test_the_bootstrap_estimator_is_the_least_squares_fit(synthetic):
     # Noisy data (1 % on κ), resamples as whole-number weights: the grid estimator of the
     # bootstrap against least squares on the points repeated as often as they are drawn.
