@@ -43,9 +43,11 @@ tree alternated twice, machine at load ~13 on 2 cores): the coating step 0.664-0
 0.222-0.233 / 0.116-0.118 s) and the table 0.271-0.286 / 0.274-0.279 s (the table alone, best
 of 5, three pairs: 0.295-0.311 / 0.282-0.296 s). This benchmark, base / this tree alternated
 three times (load 9-13): uncoated 0.505-0.567 / 0.532-0.598 s, coated 1.133-1.258 /
-0.987-1.067 s, ratio 2.14-2.25x / 1.78-1.85x. The table (five E x six radii of layered normal
-and tangential solutions, ~0.25 s idle) is now most of what is left: its kernel evaluations
-and Gram products are set by the film, not by the code's overhead.
+0.987-1.067 s, ratio 2.14-2.25x / 1.78-1.85x. Instructions of one coated analysis (callgrind,
+one thread, a process's two analyses less its one): 8829 M / 7050 M (-20.2 %). The table
+(five E x six radii of layered normal and tangential solutions, ~0.25 s idle) is now most of
+what is left: its kernel evaluations and Gram products are set by the film, not by the code's
+overhead.
 
 Run: ``OPENBLAS_NUM_THREADS=1 .venv/bin/python benchmarks/bench_analyze_coating.py`` (exit
 status 1 if missed).
