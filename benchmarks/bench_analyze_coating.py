@@ -29,6 +29,26 @@ run (mean of four rounds), is the table 0.28 s, the coated fits 0.11 s and their
 0.21 s. The coating step runs on one BLAS thread (no spinning: its worker threads take no CPU).
 Meeting 2x needs ~10 % of that work cut.
 
+Session 30 (LD30), the coating's own work cut with every result bit-identical: the bootstrap's
+Lagrange sums over the five E nodes written node by node and column by column (numpy's
+reduction over that short strided axis cost ~3x the products), the spline and its slope in one
+evaluation per contact-radius step, a grid of E evaluated value by value where it has many
+entries, the weights of one E in Python floats, no broadcast per step; a fit's repeated
+evaluations (the solver's accepted point with its Jacobian, the start, the result: 27 of the
+coated fits' ~120 contact-radius solves) kept by ``contactres.fitting.fit``; the radii at the
+measured loads solved once; the table's Bessel transforms written in place and the layers'
+waves not stacked. The coating's parts in a coated run (CPU, one BLAS thread, base / this
+tree alternated twice, machine at load ~13 on 2 cores): the coating step 0.664-0.723 /
+0.507-0.509 s, of which the contact-radius solves 0.324-0.361 / 0.182-0.188 s (the bootstrap
+0.222-0.233 / 0.116-0.118 s) and the table 0.271-0.286 / 0.274-0.279 s (the table alone, best
+of 5, three pairs: 0.295-0.311 / 0.282-0.296 s). This benchmark, base / this tree alternated
+three times (load 9-13): uncoated 0.505-0.567 / 0.532-0.598 s, coated 1.133-1.258 /
+0.987-1.067 s, ratio 2.14-2.25x / 1.78-1.85x. Instructions of one coated analysis (callgrind,
+one thread, a process's two analyses less its one): 8829 M / 7050 M (-20.2 %). The table
+(five E x six radii of layered normal and tangential solutions, ~0.25 s idle) is now most of
+what is left: its kernel evaluations and Gram products are set by the film, not by the code's
+overhead.
+
 Run: ``OPENBLAS_NUM_THREADS=1 .venv/bin/python benchmarks/bench_analyze_coating.py`` (exit
 status 1 if missed).
 """

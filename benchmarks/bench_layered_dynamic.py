@@ -275,6 +275,20 @@ times from /proc), the curve opens two one-thread contexts (~13 µs each): the t
 by the machine's scatter only. Meeting 3x needs ~17 M instructions (~10 %) off the layered
 curve.
 
+Session 30 (LD30, measured, the curves unchanged: bit-identical to the base): in one process,
+one BLAS thread, best of 15 alternated (load ~5 on 2 cores), homogeneous 8.2-9.0 ms with
+230-940 page faults per curve, 250 nm 25.7-26.9 ms with ~1500 faults (2.9x-3.3x); with glibc's
+heap never trimmed (``MALLOC_TRIM_THRESHOLD_``, ``MALLOC_MMAP_THRESHOLD_``: no faults) 7.4 and
+22.7-23.1 ms (3.1x): the faults do not decide the ratio, the instructions do. The faults of a
+250 nm curve (steady state, ~2200 at load ~12): the film's Galerkin part (``_film_matrices``,
+~6.8 MB above its start: the near-field Bessel functions 600, their integrals 450, the far
+grid's Bessel functions 220) ~1600, the correction's nodes ~360, its integrals ~120-170; the
+first two are the exact model's own code, which the homogeneous curve runs too. Split (cProfile,
+one thread): ``spherical_bessel`` ~16 % of the curve (six calls: 1816 and 320 real far/grid
+arguments, 1920 and 2560 complex near/arc ones, 4432 real own nodes), the correction's node
+assembly and waves ~45 %, the film's Galerkin ~29 %. The 250 nm target is still missed by
+~10 % of the curve's instructions, none of its steps above ~16 %.
+
 Run: ``.venv/bin/python benchmarks/bench_layered_dynamic.py`` (exit status 1 if a target is
 missed; a few minutes on a busy machine).
 """

@@ -11,6 +11,8 @@ a linear model whose least-squares answer numpy's lstsq gives.
 
 from __future__ import annotations
 
+import dataclasses
+
 import numpy as np
 import pytest
 from scipy.optimize import least_squares
@@ -129,3 +131,31 @@ def test_a_point_that_is_not_finite_is_refused_in_one_line(bad):
     with pytest.raises(ContactresInputError, match="not finite") as err:
         fit(_line(), x, y, start={"slope": 1.0, "offset": 0.0})
     assert "\n" not in str(err.value)
+
+
+def test_a_fit_evaluates_each_parameter_set_once_with_the_same_result(monkeypatch):
+    # The solver re-evaluates the point it accepts with its Jacobian, and fit the start and the
+    # result: fit keeps its last evaluations (_FIT_REPEATS), so that a costly model (the coated
+    # law's contact-radius solve) runs once per parameter set; kept or not, the same numbers.
+    import contactres.fitting as fitting
+
+    model = REGISTRY["jkr-mindlin"]
+    rng = np.random.default_rng(3)
+    y = kappa_jkr_mindlin(LOADS, 70e9, 0.05, R, NU) * (1 + 0.01 * rng.standard_normal(LOADS.size))
+    calls: list[tuple] = []
+
+    def counted(x, **p):
+        calls.append(tuple(sorted(p.items())))
+        return model.function(x, **p)
+
+    spy = dataclasses.replace(model, function=counted)
+    start, fixed = {"E": 50e9, "gamma": 0.1}, {"radius": R, "poisson": NU}
+    kept = fit(spy, LOADS, y, start=start, fixed=fixed)
+    assert len(calls) == len(set(calls))
+    monkeypatch.setattr(fitting, "_FIT_REPEATS", 0)  # none kept: every repeat evaluated
+    n_kept = len(calls)
+    again = fit(spy, LOADS, y, start=start, fixed=fixed)
+    assert len(calls) - n_kept > n_kept
+    assert again.values == kept.values and again.errors == kept.errors
+    np.testing.assert_array_equal(again.covariance, kept.covariance)
+    np.testing.assert_array_equal(again.residuals, kept.residuals)

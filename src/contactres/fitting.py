@@ -204,9 +204,26 @@ def fit(
         d.update({p.key: v * s for p, v, s in zip(free, z, scale, strict=True)})
         return d
 
+    # The residuals of this fit's last evaluations by their parameters (bytes of z): the
+    # solver evaluates the point it accepts again with its Jacobian, the start is checked here
+    # before the solver evaluates it, and the result and its Jacobian below were mostly
+    # evaluated by the solver already. A model can be costly (the coated law solves a contact
+    # radius per force: 27 of its ~120 evaluations in the bundled example's four fits were
+    # repeats); a repeat is the same function of the same numbers, hence the same residuals.
+    # Read-only, so that no caller changes a kept array.
+    seen: dict[bytes, np.ndarray] = {}
+
     def residuals(z):
-        # ravel: a model of several observables (e.g. Δf and ΔΓ) returns one row per observable
-        return np.ravel((np.asarray(model.function(x, **params(z))) - y) * w)
+        key = np.asarray(z, dtype=float).tobytes()
+        r = seen.get(key)
+        if r is None:
+            # ravel: a model of several observables (e.g. Δf and ΔΓ) returns one row each
+            r = np.ravel((np.asarray(model.function(x, **params(z))) - y) * w)
+            r.setflags(write=False)
+            seen[key] = r
+            if len(seen) > _FIT_REPEATS:
+                del seen[next(iter(seen))]  # the oldest
+        return r
 
     if not np.all(np.isfinite(residuals(x0))):
         # As least_squares refused it: a NaN or inf would otherwise surface as a failed SVD.
@@ -361,6 +378,8 @@ class LMOptions:
 #: The settings of :func:`fit`: the tolerances of its former scipy least_squares call
 #: (ftol = xtol = 1e-12) and room for the steps they take.
 _FIT_OPTIONS = LMOptions(xtol=1e-12, ftol=1e-12, max_iter=500)
+#: Evaluations :func:`fit` keeps for repeats (its solver's last trials, the Jacobian's points).
+_FIT_REPEATS = 16
 
 
 # repr=False: the summary (Summarised, _facts) replaces the numpy reprs of every problem.

@@ -140,6 +140,23 @@ def test_the_grid_of_the_bootstrap_is_the_model_at_each_grid_point(synthetic):
     assert np.array_equal(many, ones)
 
 
+@pytest.mark.parametrize("per_value", [0, 10**9])
+def test_a_grid_evaluated_value_by_value_or_all_at_once_is_the_model_at_each_E(
+    synthetic, per_value, monkeypatch
+):
+    # CoatedLaw._by_value: each E's spline at its own entries (many entries per E) or all the
+    # splines at every entry (few): the numbers of the model called at each E alone.
+    import contactres.analysis._coating as coating
+
+    monkeypatch.setattr(coating, "_PER_VALUE", per_value)
+    law = synthetic["law"]
+    E = np.linspace(50e9, 250e9, 15)
+    gamma = np.linspace(0.0, 0.1, 15)
+    grid = law.kappa_grid(FORCES[:, None, None], E[None, :, None], gamma[None, None, :], R)
+    each = np.stack([law.kappa(FORCES[:, None], e, gamma[None, :], R) for e in E], axis=1)
+    assert np.array_equal(grid, each)
+
+
 def test_the_bootstrap_estimator_is_the_least_squares_fit(synthetic):
     # Noisy data (1 % on κ), resamples as whole-number weights: the grid estimator of the
     # bootstrap against least squares on the points repeated as often as they are drawn.
@@ -273,3 +290,63 @@ def test_without_a_coating_the_settings_record_has_no_coating(tmp_path):
     shares = [row["film_share"] for row in g["coating"]["loads"]]
     assert len(shares) == 3 and all(0 < s < 1 for s in shares)
     assert np.isfinite(coated.jkr["kappa_N_per_m"]).any()
+
+
+@pytest.mark.parametrize("shape", [(24,), (3, 200, 6), (7, 3)])
+def test_the_sum_over_the_E_nodes_is_lagrange_interpolation_and_numpys_sum(shape):
+    # _node_sum is the interpolation in ln E of CoatedLaw (weights (..., n_E, 1), the nodes'
+    # values (..., n_E, k)): a quartic in ln E is reproduced by the five nodes (an independent
+    # check), and the sums are numpy's (w * q).sum(axis=-2), bit for bit (the law's values
+    # before the sum was written out).
+    from contactres.analysis._coating import CoatedLaw, _node_sum
+
+    rng = np.random.default_rng(11)
+    E_nodes = np.geomspace(3e10, 2e11, 5)
+    law = CoatedLaw.__new__(CoatedLaw)  # only its E nodes are used (_weights)
+    object.__setattr__(law, "E_nodes", E_nodes)
+    E = rng.uniform(3e10, 2e11, shape)
+    w = law._weights(E)[..., None]
+    coef = rng.standard_normal((5, 2))  # two columns, each a quartic in ln E
+    at_nodes = np.stack([np.polyval(c, np.log(E_nodes)) for c in coef.T], axis=-1)
+    got = _node_sum(w, np.broadcast_to(at_nodes, (*shape, 5, 2)))
+    exact = np.stack([np.polyval(c, np.log(E)) for c in coef.T], axis=-1)
+    np.testing.assert_allclose(got, exact, rtol=0, atol=1e-9 * np.abs(coef).sum())
+    q = rng.standard_normal((*shape, 5, 2)) * 10.0 ** rng.integers(-6, 6, (*shape, 5, 2))
+    np.testing.assert_array_equal(_node_sum(w, q), (w * q).sum(axis=-2))
+
+
+def test_a_spline_with_its_derivative_in_one_call_gives_both_as_apart():
+    # _with_derivative: the contact-radius steps evaluate the spline and its slope in one
+    # call; the values are those of the spline and of scipy's derivative evaluated apart (bit
+    # for bit, inside and beyond the breakpoints), and the slope of a cubic is its derivative.
+    from scipy.interpolate import CubicSpline
+
+    from contactres.analysis._coating import _with_derivative
+
+    rng = np.random.default_rng(5)
+    knots = np.sort(rng.uniform(-3.0, 2.0, 9))
+    cubic = np.array([[0.7, -1.1, 0.4, 2.0], [-0.2, 0.5, 1.3, -0.6]])  # two columns
+    values = np.stack([np.polyval(c, knots) for c in cubic], axis=-1)
+    spline = CubicSpline(knots, values, axis=0)
+    both = _with_derivative(spline)
+    x = np.concatenate([rng.uniform(-4.0, 3.0, 500), knots])
+    got = both(x)
+    np.testing.assert_array_equal(got[:, :2], spline(x))
+    np.testing.assert_array_equal(got[:, 2:], spline.derivative()(x))
+    slope = np.stack([np.polyval(np.polyder(c), x) for c in cubic], axis=-1)
+    np.testing.assert_allclose(got[:, 2:], slope, rtol=1e-9, atol=1e-9)
+
+
+def test_the_weights_of_one_E_are_those_of_an_array_of_E():
+    # CoatedLaw._weights of one E (Python floats) and of many (numpy): the same bits; Lagrange
+    # weights: one at their node, zero at the others, summing to one anywhere.
+    from contactres.analysis._coating import CoatedLaw
+
+    law = CoatedLaw.__new__(CoatedLaw)  # only its E nodes are used
+    object.__setattr__(law, "E_nodes", np.geomspace(3e10, 2e11, 5))
+    E = np.random.default_rng(2).uniform(2e10, 3e11, 300)
+    one_by_one = np.stack([law._weights(float(e)) for e in E])
+    np.testing.assert_array_equal(one_by_one, law._weights(E))
+    np.testing.assert_allclose(one_by_one.sum(axis=-1), 1.0, rtol=0, atol=1e-12)
+    at_nodes = np.stack([law._weights(float(e)) for e in law.E_nodes])
+    np.testing.assert_allclose(at_nodes, np.eye(5), rtol=0, atol=1e-12)

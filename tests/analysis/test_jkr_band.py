@@ -85,6 +85,27 @@ def test_the_band_of_a_straight_line_is_its_exact_variance():
     np.testing.assert_allclose(half, 2.0 * np.sqrt(sa**2 + 2 * x * rho * sa * sb + x**2 * sb**2))
 
 
+def test_the_band_evaluates_the_curve_only_where_its_differences_need_it():
+    """Central differences need the curve at values ± a step only: two calls per parameter
+    (a coated plate's curve costs a contact-radius solve per call); the curve at the values
+    themselves once, for a one-sided difference at a bound, with the same band as a straight
+    line's exact variance there."""
+    x = np.linspace(-2.0, 3.0, 11)
+    cov = np.diag([0.3, 0.05]) ** 2
+    calls = []
+
+    def line(a, b):
+        calls.append((a, b))
+        return a + b * x
+
+    band_half_width(line, (1.0, 2.0), cov, 2.0)
+    assert len(calls) == 4 and (1.0, 2.0) not in calls
+    calls.clear()
+    half = band_half_width(line, (1.0, 0.0), cov, 2.0, lower=(-np.inf, 0.0))
+    assert len(calls) == 4 and calls.count((1.0, 0.0)) == 1
+    np.testing.assert_allclose(half, 2.0 * np.sqrt(0.3**2 + x**2 * 0.05**2), rtol=1e-9)
+
+
 def test_a_parameter_at_its_lower_bound_is_differenced_one_sided():
     """γ = 0 (JKR is not defined below): the band is finite and has the width of the
     derivative from above (κ is smooth in γ there, so a small step from above is it)."""

@@ -35,6 +35,18 @@ def test_even_spherical_bessel_matches_scipy():
         np.testing.assert_allclose(even_spherical_bessel(n, s), ref, rtol=0, atol=3e-15)
 
 
+@pytest.mark.parametrize("n", [2, 30, 88])
+def test_even_spherical_bessel_of_ascending_nodes_is_scipys_and_the_shuffled_ones(n):
+    # Ascending arguments (the quadrature's nodes) are worked on in place as slices; any other
+    # order by masks: both scipy's values, and the same bits for the same argument.
+    s = np.geomspace(1e-3, 600.0, 2900)
+    got = even_spherical_bessel(n, s)
+    ref = spherical_jn(2 * np.arange(n)[:, None], s[None, :])
+    np.testing.assert_allclose(got, ref, rtol=0, atol=3e-15)
+    shuffle = np.random.default_rng(n).permutation(s.size)
+    np.testing.assert_array_equal(even_spherical_bessel(n, s[shuffle]), got[:, shuffle])
+
+
 @pytest.mark.parametrize("n_basis", [None, 2, 9])
 def test_constant_kernel_is_sneddon_and_hertz(n_basis):
     E_star = 73.5e9

@@ -114,6 +114,9 @@ _GAMMA_MAX = 1e3
 # Iterations of the contact-radius solve (Illinois on ln a) and its tolerance (relative in F).
 _MAX_ITER = 80
 _FORCE_RTOL = 1e-9
+# Entries per distinct E above which a grid's splines are evaluated each at its own entries
+# (CoatedLaw._by_value): below, one call for all costs less than a call per value.
+_PER_VALUE = 20
 
 
 @dataclass(frozen=True)
@@ -248,6 +251,47 @@ def _corrections(
     return np.stack([q_n, q_f, q_t.real, q_t.imag], axis=-1)
 
 
+def _node_sum(w: np.ndarray, q: np.ndarray) -> np.ndarray:
+    """Σ_j w_j q_j over the table's E nodes (axis −2 of both; ``w`` (..., n_E, 1) broadcast
+    against ``q`` (..., n_E, k)): the Lagrange interpolation in ln E of the nodes' values.
+
+    Added node by node, in their order, as numpy's ``(w * q).sum(axis=-2)`` adds along so short
+    a strided axis (one term after the other: the same sums), and one column of q at a time:
+    numpy's reduction, or a product of the (..., k) slices, runs its inner loop over the k = 2
+    columns, ~3x the cost of these products over the entries (~0.4 ms against ~0.06 ms at
+    3600 entries; the bootstrap's contact-radius solve evaluates it ~15 times per solve)."""
+    out = np.empty(q.shape[:-2] + q.shape[-1:], dtype=np.result_type(w, q))
+    term = np.empty(q.shape[:-2], dtype=out.dtype)
+    for c in range(q.shape[-1]):
+        col = out[..., c]
+        np.multiply(w[..., 0, 0], q[..., 0, c], out=col)
+        for j in range(1, q.shape[-2]):
+            col += np.multiply(w[..., j, 0], q[..., j, c], out=term)
+    return out
+
+
+def _broadcast(E, a) -> tuple[np.ndarray, np.ndarray]:
+    """E and a as float arrays of one shape: as they come where they have it already (each
+    step of the contact-radius solve: numpy's broadcast_arrays costs ~5 us per call)."""
+    E, a = np.asarray(E, dtype=float), np.asarray(a, dtype=float)
+    if E.shape != a.shape:
+        E, a = np.broadcast_arrays(E, a)
+    return E, a
+
+
+def _with_derivative(poly: PPoly) -> PPoly:
+    """One piecewise polynomial of ``poly``'s columns followed by those of its derivative, so
+    that a contact-radius step evaluates both in one call (~1500 steps of a coated analysis).
+
+    The derivative's coefficients (``poly.derivative()``: one degree less) get a zero leading
+    coefficient: scipy sums a piece's terms from the lowest power up, so the zero's term comes
+    last and adds +0 (−0 left of the first breakpoint), which leaves every sum as it was but
+    a −0 (none here: a nonzero sum): the same values as the derivative evaluated apart."""
+    d = poly.derivative().c
+    padded = np.concatenate([np.zeros((1, *d.shape[1:])), d])
+    return PPoly(np.concatenate([poly.c, padded], axis=-1), poly.x)
+
+
 @dataclass(frozen=True)
 class CoatedLaw:
     """κ(F_N; E, γ) on a coated plate from the tabulated film corrections (module docstring).
@@ -284,6 +328,16 @@ class CoatedLaw:
         """Lagrange weights in ln E of the table's nodes at E (shape E.shape + (n_E,))."""
         x = np.log(self.E_nodes)
         t = np.log(np.asarray(E, dtype=float))
+        if t.ndim == 0:
+            # One E (each contact-radius solve of a fit): the same products in Python floats
+            # (IEEE doubles, the same roundings), not ~60 numpy calls on 0-d arrays.
+            xs, tv = x.tolist(), float(t)
+            one = [1.0] * len(xs)
+            for j in range(len(xs)):
+                for m in range(len(xs)):
+                    if m != j:
+                        one[j] *= (tv - xs[m]) / (xs[j] - xs[m])
+            return np.array(one)
         w = np.ones((*t.shape, x.size))
         for j in range(x.size):
             for m in range(x.size):
@@ -307,11 +361,14 @@ class CoatedLaw:
         if E.size and np.all(E == E.flat[0]):
             c = np.einsum("j,abjk->abk", self._weights(E.flat[0]), coef)
             one = PPoly(c, self.spline.x)
-            deriv = one.derivative() if slope else None
+            if not slope:
+                return lambda a, at=None: (one(np.log(a)), None)
+            both = _with_derivative(one)
+            k = c.shape[-1]
 
             def single(a, at=None):
-                x = np.log(a)
-                return one(x), None if deriv is None else deriv(x)
+                q = both(np.log(a))
+                return q[..., :k], q[..., k:]
 
             return single
         w = self._weights(E)[..., None]
@@ -321,38 +378,50 @@ class CoatedLaw:
             # ``at``: a at the entries ``at`` of E only (the others' weights left out).
             wa = w if at is None else w[at]
             x = np.log(a)
-            return (
-                (wa * part(x)).sum(axis=-2),
-                (wa * part(x, 1)).sum(axis=-2) if slope else None,
-            )
+            return _node_sum(wa, part(x)), _node_sum(wa, part(x, 1)) if slope else None
 
         return values
 
     def _by_value(self, E: np.ndarray, coef: np.ndarray, slope: bool):
-        """:meth:`_interpolant` with ``by_value``: the splines of the distinct values of E side
-        by side in one piecewise polynomial (each made as for that value alone: the same
-        coefficients), evaluated at every a and each entry's own taken. The splines of the
-        other values cost little against a call each (a grid of 15 E: 15 x 2 columns)."""
+        """:meth:`_interpolant` with ``by_value``: the spline of each distinct value of E (made
+        as for that value alone: the same coefficients). Few entries: all the splines side by
+        side in one piecewise polynomial, evaluated at every a and each entry's own taken (the
+        others cost little against a call each); many (> :data:`_PER_VALUE` per value, the
+        first steps of the bootstrap's grid of 15 E): each value's spline at its own entries
+        only (a fifteenth of the evaluations: ~1.0 -> ~0.2 ms at 1350 entries). A column of a
+        piecewise polynomial is evaluated alone either way: the same values."""
         levels, index = np.unique(E, return_inverse=True)
         cols = coef.shape[-1]
-        c = np.concatenate(
-            [np.einsum("j,abjk->abk", self._weights(v), coef) for v in levels], axis=-1
-        )
-        one = PPoly(c, self.spline.x)
-        deriv = one.derivative() if slope else None
+        each = [
+            PPoly(np.einsum("j,abjk->abk", self._weights(v), coef), self.spline.x) for v in levels
+        ]
+        one = PPoly(np.concatenate([p.c for p in each], axis=-1), self.spline.x)
+        # With the slope: the splines' columns, then their derivatives', in one call.
+        parts = 2 if slope else 1
+        poly = _with_derivative(one) if slope else one
+        own = [_with_derivative(p) for p in each] if slope else each
 
-        def pick(poly, x, rows):
-            flat = np.ravel(x)
-            out = poly(flat).reshape(flat.size, levels.size, cols)
-            return out[np.arange(flat.size), np.ravel(rows)].reshape(*np.shape(x), cols)
+        def pick(x, rows):
+            flat, rows = np.ravel(x), np.ravel(rows)
+            if flat.size > _PER_VALUE * levels.size:
+                out = np.empty((flat.size, parts, cols))
+                order = np.argsort(rows, kind="stable")
+                ends = np.searchsorted(rows[order], np.arange(levels.size + 1))
+                for v in np.flatnonzero(np.diff(ends)):
+                    at = order[ends[v] : ends[v + 1]]
+                    out[at] = own[v](flat[at]).reshape(at.size, parts, cols)
+            else:
+                out = poly(flat).reshape(flat.size, parts, levels.size, cols)
+                out = out[np.arange(flat.size), :, rows]  # (entries, parts, cols)
+            return [out[:, i].reshape(*np.shape(x), cols) for i in range(parts)]
 
         rows_all = index.reshape(E.shape)
 
         def values(a, at=None):
             # ``at``: a at the entries ``at`` of E only (as :meth:`_interpolant`'s).
             rows = rows_all if at is None else rows_all[at]
-            x = np.log(a)
-            return pick(one, x, rows), None if deriv is None else pick(deriv, x, rows)
+            q = pick(np.log(a), rows)
+            return q[0], q[1] if slope else None
 
         return values
 
@@ -383,7 +452,7 @@ class CoatedLaw:
 
     def force(self, E, gamma, a, R, interp=None):
         """P(a) of the adhesive contact, N (module docstring)."""
-        E, a = np.broadcast_arrays(np.asarray(E, float), np.asarray(a, float))
+        E, a = _broadcast(E, a)
         _, minus_dC, factor = self._normal_terms(E, a, interp)
         return factor * a**3 / R - np.sqrt(8 * np.pi * gamma * a / minus_dC)
 
@@ -408,7 +477,7 @@ class CoatedLaw:
         x = np.where(below, lo, hi)
         todo = ~(below | above)
         side = np.zeros(F.shape, dtype=int)
-        scale = np.maximum(np.abs(F), np.abs(f_hi - f_lo))
+        tol = _FORCE_RTOL * np.maximum(np.abs(F), np.abs(f_hi - f_lo))
         for _ in range(_MAX_ITER):
             if not todo.any():
                 break
@@ -418,7 +487,7 @@ class CoatedLaw:
             at = np.flatnonzero(todo)
             fx = np.zeros(F.shape)
             fx[at] = f(x, at)
-            todo &= np.abs(fx) > _FORCE_RTOL * scale
+            todo &= np.abs(fx) > tol
             lo, hi, f_lo, f_hi, side = illinois_step(x, fx, (lo, hi, f_lo, f_hi, side))
         return np.exp(x).reshape(shape), (below | above).reshape(shape)
 
@@ -602,8 +671,9 @@ def apply_coating(groups, exp, sweeps, coating: Coating, bootstrap: int, seed: i
         uncoated = {k: g[k] for k in ("E_Pa", "E_err_Pa", "gamma_J_m2", "gamma_err_J_m2")}
         start = {"E": g["E_Pa"], "gamma": g["gamma_J_m2"]}
         new = fit_group(part, key, bootstrap, seed, mine, law=load_law(law, start))
-        if np.isfinite(new["E_Pa"]):
-            _outside_the_table(law, new, part)
+        # The contact radii at the measured loads: the test of the table's range and the
+        # per-load record below (one solve for both).
+        radii = _outside_the_table(law, new, part) if np.isfinite(new["E_Pa"]) else None
         g.update(new)
         g["coating"] = {
             **coating.record(),
@@ -611,19 +681,21 @@ def apply_coating(groups, exp, sweeps, coating: Coating, bootstrap: int, seed: i
             "uncoated": uncoated,
             "table_E_range_Pa": list(law.bounds),
             "table_contact_radius_range_m": list(law.radius_range),
-            "loads": _film_share(law, g, part) if np.isfinite(g["E_Pa"]) else [],
+            "loads": _film_share(law, g, radii) if radii and np.isfinite(g["E_Pa"]) else [],
         }
         out[key] = law
     return out
 
 
-def _outside_the_table(law: CoatedLaw, out: dict, part) -> None:
+def _outside_the_table(law: CoatedLaw, out: dict, part) -> tuple:
     """Withhold a coated fit (in place, check ``fit-at-bound``) whose contact radius at a
-    measured load lies outside the table's radii: the model was clamped there, not solved."""
+    measured load lies outside the table's radii: the model was clamped there, not solved.
+    Returns (the distinct measured loads F, N; a(F), m; the mask of the clamped radii) of the
+    fit's E, γ and R (:func:`_film_share` records them)."""
     F = np.unique(part["normal_force_N"].to_numpy(float))
-    _, clamped = law.contact_radius(F, out["E_Pa"], out["gamma_J_m2"], out["sphere_radius_m"])
+    a, clamped = law.contact_radius(F, out["E_Pa"], out["gamma_J_m2"], out["sphere_radius_m"])
     if not clamped.any():
-        return
+        return F, a, clamped
     lo, hi = law.radius_range
     out["rejected_fit"] = {"E_Pa": out["E_Pa"], "gamma_J_m2": out["gamma_J_m2"]}
     out["checks"] = [*out["checks"], "fit-at-bound"]
@@ -634,13 +706,14 @@ def _outside_the_table(law: CoatedLaw, out: dict, part) -> None:
     out["note"] = "; ".join(t for t in (out["note"], text) if t)
     for key in ("E_Pa", "E_err_Pa", "gamma_J_m2", "gamma_err_J_m2"):
         out[key] = math.nan
+    return F, a, clamped
 
 
-def _film_share(law: CoatedLaw, g: dict, part) -> list[dict]:
-    """Per load: a, κ on the coated and the bare plate and the film's share (apply_coating)."""
-    F = np.unique(part["normal_force_N"].to_numpy(float))
+def _film_share(law: CoatedLaw, g: dict, radii: tuple) -> list[dict]:
+    """Per load: a, κ on the coated and the bare plate and the film's share (apply_coating);
+    ``radii``: (F, a(F), clamped) at the group's E, γ and R (:func:`_outside_the_table`)."""
+    F, a, clamped = radii
     E, gamma, R, nu = g["E_Pa"], g["gamma_J_m2"], g["sphere_radius_m"], g["poisson"]
-    a, clamped = law.contact_radius(F, E, gamma, R)
     kappa = law.tangential(E, a)
     bare = np.asarray(kappa_jkr_mindlin(F, E, gamma, R, nu), dtype=float)
     return [

@@ -309,7 +309,7 @@ def band_half_width(kappa_of, values, covariance, factor: float, lower=None) -> 
     cov = np.asarray(covariance, dtype=float)
     low = np.full(theta.size, -np.inf) if lower is None else np.asarray(lower, dtype=float)
     h = 1e-3 * np.sqrt(np.diag(cov))
-    centre = np.asarray(kappa_of(*theta), dtype=float)
+    centre = None  # the curve at the values: only a one-sided difference needs it
     columns = []
     for i in range(theta.size):
         up, down = theta.copy(), theta.copy()
@@ -318,6 +318,9 @@ def band_half_width(kappa_of, values, covariance, factor: float, lower=None) -> 
             down[i] -= h[i]
             columns.append((np.asarray(kappa_of(*up)) - np.asarray(kappa_of(*down))) / (2 * h[i]))
         else:  # within a step of the bound: the curve is not defined below it
+            if centre is None:
+                # (a coated plate's curve costs a contact-radius solve per call)
+                centre = np.asarray(kappa_of(*theta), dtype=float)
             columns.append((np.asarray(kappa_of(*up)) - centre) / h[i])
     J = np.stack(columns, axis=-1)  # (points, p)
     variance = np.einsum("ni,ij,nj->n", J, cov, J)

@@ -230,12 +230,20 @@ def layer_waves(c, th, s) -> tuple[np.ndarray, bool]:
         every frequency (``contactres.dynamic._layered_path``). An isotropic layer's come in
         closed form (:func:`_isotropic_impedance`), any other's from the Stroh solution.
     """
+    parts, mirror = _wave_parts(c, th, s)
+    return np.stack(parts), mirror
+
+
+def _wave_parts(c, th, s) -> tuple[tuple[np.ndarray, ...], bool]:
+    """:func:`layer_waves` as its four (3, 3, N) parts (D_d, D_u, A_d, A_u), not stacked: the
+    recursion takes them apart again (:func:`stack_compliance`: the stack was a copy of ~3 MB
+    per call at the coated table's ~5500 nodes)."""
     moduli = isotropic_moduli(c)
     if moduli is not None:
         # An isotropic solid (mirror-plane): D_d and A_d in closed form, no eigen-solution.
         th = np.asarray(th, dtype=float)
         D_d, A_d = _isotropic_impedance(moduli[0], moduli[1], th, s, exponent=True)
-        return np.stack([D_d, -_flip(D_d), A_d, _flip(A_d)]), True
+        return (D_d, -_flip(D_d), A_d, _flip(A_d)), True
     R, W = _rw_blocks(c, th)
     Wi = inv3(np.broadcast_to(W, R.shape).copy())
     Rt = transpose(R)
@@ -256,7 +264,7 @@ def layer_waves(c, th, s) -> tuple[np.ndarray, bool]:
         # Z = W⁻¹(−i D − Rᵀ) at θ, and at θ + π (where R -> −R): the decaying solvents.
         A_d = 1j * mm(Wi, -1j * D_d - Rt)
         A_u = 1j * mm(Wi, -1j * H_pi_inv + Rt)
-    return np.stack([D_d, -H_pi_inv, A_d, A_u]), mirror
+    return (D_d, -H_pi_inv, A_d, A_u), mirror
 
 
 def substrate_impedance(c, th, s) -> np.ndarray:
@@ -291,7 +299,8 @@ def impedance_recursion(layers, eta_h, Y, isotropic=None) -> np.ndarray:
     Parameters
     ----------
     layers : sequence of (ndarray, bool)
-        :func:`layer_waves` of every layer, top first, each (4, 3, 3, N) with its mirror flag.
+        :func:`layer_waves` of every layer, top first, each (4, 3, 3, N) (or its four parts)
+        with its mirror flag.
     eta_h : sequence of ndarray, shape (N,)
         η h_j of every layer (complex on a lifted path).
     Y : ndarray, shape (3, 3, N)
@@ -380,7 +389,7 @@ def stack_compliance(tensors, s, eta_h, theta) -> np.ndarray:
     hv = [a.ravel() for a in arrays[1 + len(tensors) :]]
     if len(tensors) > 1:
         with np.errstate(all="ignore"):
-            layers = [layer_waves(c, th, v) for c, v in zip(tensors[:-1], sv[:-1], strict=True)]
+            layers = [_wave_parts(c, th, v) for c, v in zip(tensors[:-1], sv[:-1], strict=True)]
             # An isotropic substrate's impedance and an isotropic layer's exponential in closed
             # form (the same as the general Stroh solution and Taylor exponential to ~1e-15,
             # without their cost: most of a static layered contact's kernel).

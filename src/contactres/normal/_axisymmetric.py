@@ -231,30 +231,45 @@ def even_spherical_bessel(n: int, s: np.ndarray) -> np.ndarray:
     j[0] = np.sin(s) / s
     j[1] = (j[0] - np.cos(s)) / s
     up = s > p_max + 1
-    if up.any():
-        su = s[up]
-        blk = np.empty((p_max + 1, su.size))
-        blk[0], blk[1] = j[0, up], j[1, up]
+    n_up = int(np.count_nonzero(up))
+    # Ascending s (the quadrature's nodes): the arguments above every order are the last ones,
+    # worked on in place as slices of j; otherwise gathered and put back by the masks. Every
+    # step below writes into its row (no temporaries: ~1/3 of the cost at the coated table's
+    # ~90 orders x ~3000 nodes); the same operations, hence the same values, either way.
+    first = s.size - n_up
+    tail = bool(np.all(up[first:]))
+    if n_up:
+        su = s[first:] if tail else s[up]
+        blk = j[:, first:] if tail else np.empty((p_max + 1, su.size))
+        if not tail:
+            blk[0], blk[1] = j[0, up], j[1, up]
         for p in range(1, p_max):
-            blk[p + 1] = (2 * p + 1) / su * blk[p] - blk[p - 1]
-        j[:, up] = blk
-    low = ~up
-    if low.any():
-        sl = s[low]
+            np.multiply((2 * p + 1) / su, blk[p], out=blk[p + 1])
+            blk[p + 1] -= blk[p - 1]
+        if not tail:
+            j[:, up] = blk
+    if n_up < s.size:
+        low = ~up
+        sl = s[:first] if tail else s[low]
         top = int(max(p_max, 1.3 * float(sl.max()))) + 30
         ratio = np.zeros(sl.size)
         ratios = np.empty((p_max + 1, sl.size))
+        den = np.empty(sl.size)
         for p in range(top, 0, -1):
-            ratio = sl / (2 * p + 1 - sl * ratio)
+            np.multiply(sl, ratio, out=den)
+            np.subtract(2 * p + 1, den, out=den)
             if p <= p_max:
-                ratios[p] = ratio
-        blk = np.empty((p_max + 1, sl.size))
-        j0, j1 = j[0, low], j[1, low]
-        blk[0] = j0
+                ratio = ratios[p]  # kept: the row p of the ratios
+            np.divide(sl, den, out=ratio)
+        blk = j[:, :first] if tail else np.empty((p_max + 1, sl.size))
+        j0, j1 = (j[0, :first], j[1, :first]) if tail else (j[0, low], j[1, low])
+        if not tail:
+            blk[0] = j0
         blk[1] = np.where(np.abs(j0) >= np.abs(j1), j0 * ratios[1], j1)
         for p in range(2, p_max + 1):
-            blk[p] = blk[p - 1] * ratios[p]
-        j[:, low] = blk
+            np.multiply(blk[p - 1], ratios[p], out=blk[p])
+        if not tail:
+            j[:, low] = blk
     return j[0 : 2 * n : 2]
 
 
