@@ -11,7 +11,12 @@ from ~1.2-1.5 s to ~0.68 s of wall at the same CPU (prototype, idle cores). The 
 reads the table from the memory it shares with this one (copy on write; nothing is pickled),
 writes its file into the report's staging folder (atomically, as every file) and ends.
 
-Where ``os.fork`` is missing (Windows), or with one core, the table is written here as before.
+Only on Linux, where :mod:`multiprocessing` itself forks its workers (up to Python 3.13): macOS
+has ``os.fork``, but a forked child of a process that used Apple's frameworks (Accelerate, under
+numpy's BLAS there) may crash in them, which is why macOS's default there is ``spawn``; Windows
+has no fork. Elsewhere, or with one core, the table is written here as before. The forked
+process runs the CSV writer alone (numpy's arithmetic and the file's writes: no BLAS, nothing
+logged or printed) and ends by ``os._exit`` (no exit handlers of this process run twice).
 An exception of the forked process is raised here, as its own type and message, when it is
 waited for; if this process fails first, the forked one is ended before the error goes on, so
 that nothing writes into the staging folder that the result set then removes.
@@ -22,6 +27,7 @@ from __future__ import annotations
 import os
 import pickle
 import signal
+import sys
 from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 
@@ -30,6 +36,10 @@ __all__ = ["FORK_CELLS", "beside"]
 #: The fewest cells of a table written by a forked process: below it (~0.1 s of formatting)
 #: the fork and the wait cost more than they save.
 FORK_CELLS = 2**21
+
+
+#: Whether this system forks the writer (Linux: see the module's docstring).
+_FORKS = sys.platform.startswith("linux") and hasattr(os, "fork")
 
 
 def _cores() -> int:
@@ -42,10 +52,10 @@ def _cores() -> int:
 @contextmanager
 def beside(write: Callable[[], object], cells: int) -> Iterator[None]:
     """Run ``write()`` in a forked process while the block runs (here, after the block, where
-    forking is not worth it or not possible: fewer than :data:`FORK_CELLS` cells, one core, no
-    ``os.fork``). Leaving the block waits for it and raises its exception, if any; an
+    forking is not worth it or not done: fewer than :data:`FORK_CELLS` cells, one core, a
+    system other than Linux). Leaving the block waits for it and raises its exception, if any; an
     exception of the block ends it first."""
-    if cells < FORK_CELLS or _cores() < 2 or not hasattr(os, "fork"):
+    if cells < FORK_CELLS or _cores() < 2 or not _FORKS:
         yield
         write()
         return
