@@ -324,3 +324,22 @@ def test_point_sum_is_numpy_sum_bit_for_bit():
             plain += a[..., i]
         plain_differs += not np.array_equal(plain[3:], want[3:])
     assert plain_differs > 250  # the data tell the orders apart
+
+
+@pytest.mark.parametrize(
+    "a_shape, v_shape",
+    [((11, 2000), (2000,)), ((7, 3, 700), (3, 700)), ((5, 1, 1500), (2, 1500))],
+)
+@pytest.mark.parametrize("op", [np.subtract, np.multiply])
+def test_by_point_is_the_broadcast_operation(a_shape, v_shape, op, monkeypatch):
+    """_by_point, point by point (parts of >= BY_POINT_MIN numbers) and in one call (below),
+    against the ufunc applied with numpy's broadcasting: the same numbers and shape."""
+    rng = np.random.default_rng(5)
+    a = rng.standard_normal(a_shape) * 10.0 ** rng.uniform(-20, 20, a_shape)
+    v = rng.standard_normal(v_shape)
+    want = op(a, v)
+    for least in (1, 10**9):  # every part point by point; none
+        monkeypatch.setattr(loops, "BY_POINT_MIN", least)
+        got = loops._by_point(op, a, v)
+        assert got.shape == want.shape
+        assert np.array_equal(got, want)

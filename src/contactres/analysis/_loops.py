@@ -430,8 +430,11 @@ def _dot(v, g) -> np.ndarray:
 def _short_chi2(c, n1, n2, s1, s2, wf, wg) -> np.ndarray:
     """The short cut's χ² = C - num²/den (:func:`_least_chi2`) from its sums (S, K): num =
     wf·n1 + wg·n2, den = wf·s1 + wg·s2; in place (``n1``, ``n2``, ``s1``, ``s2`` are
-    overwritten), the numbers of the plain expression with three temporaries fewer."""
-    wf2, wg2 = wf[:, None], wg[:, None]
+    overwritten), the numbers of the plain expression with three temporaries fewer. The
+    weights are spread over the trials once each, for their two products: numpy (2.x) runs an
+    operand broadcast along the last axis through buffers at ~5x the cost of one that is not."""
+    S, K = n1.shape
+    wf2, wg2 = (np.repeat(v, K).reshape(S, K) for v in (wf, wg))
     num = np.multiply(n1, wf2, out=n1)
     num += np.multiply(n2, wg2, out=n2)
     den = np.multiply(s1, wf2, out=s1)
@@ -486,7 +489,9 @@ def _exact_near(short, sums, g1, g2, column, wf, wg) -> np.ndarray:
     least = short.ravel().take(rows * K + first)
     # Every trial of a row finite: its least and its largest finite (NaN propagates to both).
     sure = np.isfinite(least) & np.isfinite(np.max(short, axis=1)) & np.isfinite(c)
-    near = (short <= (least + tol)[:, None]) | ~sure[:, None]
+    near = short <= (least + tol)[:, None]
+    if not sure.all():
+        near[~sure] = True
     near.ravel()[rows * K + first] = False  # the others
     chi = np.full(short.shape, np.inf)
     r, k = np.nonzero(near)
@@ -533,20 +538,39 @@ def _projected(g1, g2, data) -> tuple[np.ndarray, ...]:
         return a if ones else w * a
 
     g2m = _point_sum(weighted(g2)) / n
-    g2c = g2 - g2m
+    g2c = _by_point(np.subtract, g2, g2m)
     wg1, wg2c = weighted(g1), weighted(g2c)
     num = wf * _point_sum(wg1 * df) + wg * _point_sum(wg2c * dgc)
     den = wf * _point_sum(wg1 * g1) + wg * _point_sum(wg2c * g2c)
     A = num / den
     B = dgm - A * g2m
-    rf = np.multiply(A, g1)
+    rf = _by_point(np.multiply, g1, A)  # A g1 (a product: either order, the same number)
     rf = np.subtract(df, rf, out=rf)  # df - A g1
-    rg = np.subtract(dg, B)
-    rg -= np.multiply(A, g2, out=g2c)  # dg - B - A g2 (g2c is not needed again)
+    rg = _by_point(np.subtract, dg, B)
+    rg -= _by_point(np.multiply, g2, A, out=g2c)  # dg - B - A g2 (g2c is not needed again)
     rf *= rf
     rg *= rg
     rss_f, rss_g = _point_sum(weighted(rf)), _point_sum(weighted(rg))
     return A, B, wf * rss_f + wg * rss_g, rss_f, rss_g
+
+
+#: :func:`_by_point` runs its operation point by point where a point's part holds at least this
+#: many numbers (there a call per point costs less than numpy's buffers; below, one call).
+BY_POINT_MIN = 1024
+
+
+def _by_point(op, a, v, out=None) -> np.ndarray:
+    """``op(a, v)`` (a ufunc) of ``a`` (M, ...) laid out points first and ``v`` shaped as its
+    trailing axes (one number per sweep and trial), the same numbers, into ``out`` (None: a new
+    array): a call per point of ``a``, where ``v`` is then not broadcast along the first axis,
+    which numpy (2.x) runs through buffers at several times the cost of a plain pass."""
+    shape = (a.shape[0], *np.broadcast_shapes(a.shape[1:], np.shape(v)))
+    out = np.empty(shape) if out is None else out
+    if a[:1].size < BY_POINT_MIN:
+        return op(a, v, out=out)
+    for m in range(a.shape[0]):
+        op(a[m], v, out=out[m])
+    return out
 
 
 #: numpy sums at most this many terms as one block of eight running sums (longer rows are split
