@@ -210,19 +210,20 @@ class TableInterpolant:
 def table_interpolant(table: LoopTable) -> TableInterpolant:
     """Prepare ``table`` for :func:`interpolate_table` (~1 ms: once per block of sweeps)."""
     x = table.x
-    edges = np.arange(int(np.ceil(x[-1] * 2.0**LOOKUP_BITS)) + 2) * 2.0**-LOOKUP_BITS
+    n_edges = int(np.ceil(x[-1] * 2.0**LOOKUP_BITS)) + 2  # edges e·2^-LOOKUP_BITS, e < n_edges
     # The last table point <= each edge e·2^-LOOKUP_BITS, as searchsorted(x, edges, "right") - 1
     # finds it, counted instead of searched: x_i <= e·2^-LOOKUP_BITS exactly where
     # ceil(x_i·2^LOOKUP_BITS) <= e (a power of two: the product is exact), so the number of
     # points <= each edge is a running count of those ceilings (a tenth of the cost).
     up = np.ceil(np.maximum(x, 0.0) * 2.0**LOOKUP_BITS).astype(np.intp)
-    first = np.cumsum(np.bincount(up, minlength=edges.size)[: edges.size]) - 1
+    first = np.cumsum(np.bincount(up, minlength=n_edges)[:n_edges]) - 1
     count = np.diff(first)
     beyond = np.append(x, np.inf)
-    ahead = tuple(
-        np.where(k <= count, beyond[np.minimum(first[:-1] + k, x.size)], np.inf)
-        for k in range(1, LOOKUP_STEPS + 1)
-    )
+    ahead = []
+    for k in range(1, LOOKUP_STEPS + 1):
+        nxt = beyond.take(np.minimum(first[:-1] + k, x.size))
+        np.putmask(nxt, count < k, np.inf)  # no k-th point in the bucket
+        ahead.append(nxt)
     dx = x[1:] - x[:-1]
     inv = 1.0 / dx  # numpy.interp of complex values: differences times 1/dx; of real ones: / dx
     slopes = {k: np.diff(getattr(table, k)) / dx for k in ("g1", "g2", "d1", "d2")}
@@ -232,8 +233,9 @@ def table_interpolant(table: LoopTable) -> TableInterpolant:
     pair = np.stack([x, slopes["c1"], table.g1, slopes["c2"], table.g2])
     # Buckets of more table points than LOOKUP_STEPS are marked by a negative first point, far
     # enough below 0 that the steps cannot lift it: one gather tells both.
-    first = np.where(count > LOOKUP_STEPS, _CROWDED, first[:-1]).astype(np.intp)
-    return TableInterpolant(table, first, ahead, slopes, pair)
+    first = first[:-1].astype(np.intp)  # a copy
+    np.putmask(first, count > LOOKUP_STEPS, _CROWDED)
+    return TableInterpolant(table, first, tuple(ahead), slopes, pair)
 
 
 def interpolate_table(ip: TableInterpolant, x, columns) -> list[np.ndarray]:
