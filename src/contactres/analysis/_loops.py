@@ -57,6 +57,7 @@ from ..resonators import (
 )
 from ..tangential import CattaneoMindlinLoop, MasingLoop, SavkoorLoop
 from ._amplitude import row_sets
+from ._points import by_point, point_sum
 
 __all__ = [
     "N_TABLE",
@@ -526,88 +527,35 @@ def _sweep_data(sums, wf, wg, r=None, trials=False) -> tuple[np.ndarray, ...]:
 def _projected(g1, g2, data) -> tuple[np.ndarray, ...]:
     """:func:`solve_projected` (A, B, χ², rss_f, rss_g) at the shapes ``g1``, ``g2`` laid out
     points first, (M, ...), bit for bit: its arithmetic, in its order (its sums over the points
-    by :func:`_point_sum`), with the parts of the data alone (Σw, the mean of ΔΓ and
-    ΔΓ - mean) formed once (``data``: :func:`_sweep_data`, aligned with the shapes), and in
-    place where solve_projected makes temporaries (``g1``, ``g2`` are left as they are). Not
-    solve_projected itself: that one takes shapes that broadcast against the data (a shared
-    (M,) or (K, M) set of shapes), where this one writes into temporaries of the shapes' own
-    size, which must then be the result's; and its points come last, where a sum over them
-    pays numpy's overhead per row of ~10 points (here: a few passes over whole rows)."""
+    by :func:`~contactres.analysis._points.point_sum`), with the parts of the data alone (Σw,
+    the mean of ΔΓ and ΔΓ - mean) formed once (``data``: :func:`_sweep_data`, aligned with the
+    shapes), and in place where solve_projected makes temporaries (``g1``, ``g2`` are left as
+    they are). Not solve_projected itself: that one takes shapes that broadcast against the
+    data (a shared (M,) or (K, M) set of shapes), where this one writes into temporaries of the
+    shapes' own size, which must then be the result's; and its points come last, where a sum
+    over them pays numpy's overhead per row of ~10 points (here: a few passes over whole
+    rows)."""
     n, dgm, dgc, df, dg, w, wf, wg = data
     ones = bool(np.all(w == 1.0))
 
     def weighted(a):  # w * a, the same numbers (as in solve_projected)
         return a if ones else w * a
 
-    g2m = _point_sum(weighted(g2)) / n
-    g2c = _by_point(np.subtract, g2, g2m)
+    g2m = point_sum(weighted(g2)) / n
+    g2c = by_point(np.subtract, g2, g2m)
     wg1, wg2c = weighted(g1), weighted(g2c)
-    num = wf * _point_sum(wg1 * df) + wg * _point_sum(wg2c * dgc)
-    den = wf * _point_sum(wg1 * g1) + wg * _point_sum(wg2c * g2c)
+    num = wf * point_sum(wg1 * df) + wg * point_sum(wg2c * dgc)
+    den = wf * point_sum(wg1 * g1) + wg * point_sum(wg2c * g2c)
     A = num / den
     B = dgm - A * g2m
-    rf = _by_point(np.multiply, g1, A)  # A g1 (a product: either order, the same number)
+    rf = by_point(np.multiply, g1, A)  # A g1 (a product: either order, the same number)
     rf = np.subtract(df, rf, out=rf)  # df - A g1
-    rg = _by_point(np.subtract, dg, B)
-    rg -= _by_point(np.multiply, g2, A, out=g2c)  # dg - B - A g2 (g2c is not needed again)
+    rg = by_point(np.subtract, dg, B)
+    rg -= by_point(np.multiply, g2, A, out=g2c)  # dg - B - A g2 (g2c is not needed again)
     rf *= rf
     rg *= rg
-    rss_f, rss_g = _point_sum(weighted(rf)), _point_sum(weighted(rg))
+    rss_f, rss_g = point_sum(weighted(rf)), point_sum(weighted(rg))
     return A, B, wf * rss_f + wg * rss_g, rss_f, rss_g
-
-
-#: :func:`_by_point` runs its operation point by point where a point's part holds at least this
-#: many numbers (there a call per point costs less than numpy's buffers; below, one call).
-BY_POINT_MIN = 1024
-
-
-def _by_point(op, a, v, out=None) -> np.ndarray:
-    """``op(a, v)`` (a ufunc) of ``a`` (M, ...) laid out points first and ``v`` shaped as its
-    trailing axes (one number per sweep and trial), the same numbers, into ``out`` (None: a new
-    array): a call per point of ``a``, where ``v`` is then not broadcast along the first axis,
-    which numpy (2.x) runs through buffers at several times the cost of a plain pass."""
-    shape = (a.shape[0], *np.broadcast_shapes(a.shape[1:], np.shape(v)))
-    out = np.empty(shape) if out is None else out
-    if a[:1].size < BY_POINT_MIN:
-        return op(a, v, out=out)
-    for m in range(a.shape[0]):
-        op(a[m], v, out=out[m])
-    return out
-
-
-#: numpy sums at most this many terms as one block of eight running sums (longer rows are split
-#: in halves first: numpy's PW_BLOCKSIZE); :func:`_point_sum` copies its order up to here.
-PAIRWISE_BLOCK = 128
-
-
-def _point_sum(a: np.ndarray) -> np.ndarray:
-    """Σ over the first axis of ``a`` (M, ...), bit for bit the number that numpy's
-    ``a.sum(-1)`` gives with the points on the last axis (its pairwise summation), without its
-    cost per row: numpy adds the M terms of each row into 0 as eight running sums (terms j,
-    j + 8, j + 16, ... for j < 8), joined as ((r0 + r1) + (r2 + r3)) + ((r4 + r5) + (r6 + r7)),
-    then the last M mod 8 terms one by one (fewer than 8 terms: one by one); here each of those
-    additions is one pass over whole rows of points. Beyond :data:`PAIRWISE_BLOCK` terms numpy
-    splits a row first: such rows are summed by numpy itself, on a copy with the points last
-    (tests/analysis/test_loop_search.py checks both against numpy for every M up to 300)."""
-    m = a.shape[0]
-    if m == 0 or m > PAIRWISE_BLOCK:
-        return np.ascontiguousarray(np.moveaxis(a, 0, -1)).sum(-1)
-    if m < 8:
-        total = a[0] + 0.0  # 0 + a0: numpy's start (-0.0 becomes 0.0)
-        for i in range(1, m):
-            total += a[i]
-        return total
-    tail = m - m % 8
-    runs = a[:8] if tail == 8 else a[:8] + a[8:16]
-    for i in range(16, tail, 8):
-        runs += a[i : i + 8]
-    pairs = runs[0::2] + runs[1::2]
-    quads = pairs[0::2] + pairs[1::2]
-    total = quads[0] + quads[1]
-    for i in range(tail, m):
-        total += a[i]
-    total += 0.0  # numpy adds the row's sum to 0: -0.0 (every term -0.0) becomes 0.0
-    return total
 
 
 #: The short cut's sums run trial set by trial set (two matrix products each) for at most this
