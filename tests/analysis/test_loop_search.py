@@ -8,6 +8,7 @@ import numpy as np
 import pytest
 
 from contactres.analysis import _loops as loops
+from contactres.analysis import _points as points
 from contactres.analysis._amplitude import row_sets
 from contactres.analysis._loops import (
     GROUP_LOOP,
@@ -299,3 +300,47 @@ def test_table_buckets_start_at_the_last_point_at_or_below_their_edge():
         # a crowded bucket holds more table points than the lookup steps through
         crowded = np.diff(np.append(want, np.searchsorted(table.x, edges[-1] + edge, "right") - 1))
         assert np.array_equal(~plain, crowded > loops.LOOKUP_STEPS)
+
+
+def test_point_sum_is_numpy_sum_bit_for_bit():
+    """point_sum over the first axis against numpy's own sum over the last (pairwise: the order
+    _projected must keep to give solve_projected's numbers) for every row length up to 300 (the
+    eight running sums, their rest, and numpy's split beyond PAIRWISE_BLOCK), on terms of
+    magnitudes 1e-30 to 1e30 of both signs, where the order of the additions shows; with rows
+    of -0.0 (numpy's sum is 0.0), inf and NaN."""
+    rng = np.random.default_rng(11)
+    plain_differs = 0
+    for m in range(301):
+        a = rng.standard_normal((40, 3, m)) * 10.0 ** rng.uniform(-30, 30, (40, 3, m))
+        a[0, 0] = -0.0
+        if m > 1:
+            a[1, 0, m // 2] = np.inf
+            a[2, 1, 0] = np.nan
+        got = points.point_sum(np.ascontiguousarray(np.moveaxis(a, -1, 0)))
+        want = a.sum(-1)
+        assert got.shape == want.shape
+        assert np.array_equal(got.view(np.int64), want.view(np.int64)), m
+        plain = np.zeros(a.shape[:-1])
+        for i in range(m):  # one term after the other: not numpy's order
+            plain += a[..., i]
+        plain_differs += not np.array_equal(plain[3:], want[3:])
+    assert plain_differs > 250  # the data tell the orders apart
+
+
+@pytest.mark.parametrize(
+    "a_shape, v_shape",
+    [((11, 2000), (2000,)), ((7, 3, 700), (3, 700)), ((5, 1, 1500), (2, 1500))],
+)
+@pytest.mark.parametrize("op", [np.subtract, np.multiply])
+def test_by_point_is_the_broadcast_operation(a_shape, v_shape, op, monkeypatch):
+    """by_point, point by point (parts of >= BY_POINT_MIN numbers) and in one call (below),
+    against the ufunc applied with numpy's broadcasting: the same numbers and shape."""
+    rng = np.random.default_rng(5)
+    a = rng.standard_normal(a_shape) * 10.0 ** rng.uniform(-20, 20, a_shape)
+    v = rng.standard_normal(v_shape)
+    want = op(a, v)
+    for least in (1, 10**9):  # every part point by point; none
+        monkeypatch.setattr(points, "BY_POINT_MIN", least)
+        got = points.by_point(op, a, v)
+        assert got.shape == want.shape
+        assert np.array_equal(got, want)

@@ -57,6 +57,7 @@ from ..resonators import (
 )
 from ..tangential import CattaneoMindlinLoop, MasingLoop, SavkoorLoop
 from ._amplitude import row_sets
+from ._points import by_point, point_sum
 
 __all__ = [
     "N_TABLE",
@@ -210,19 +211,20 @@ class TableInterpolant:
 def table_interpolant(table: LoopTable) -> TableInterpolant:
     """Prepare ``table`` for :func:`interpolate_table` (~1 ms: once per block of sweeps)."""
     x = table.x
-    edges = np.arange(int(np.ceil(x[-1] * 2.0**LOOKUP_BITS)) + 2) * 2.0**-LOOKUP_BITS
+    n_edges = int(np.ceil(x[-1] * 2.0**LOOKUP_BITS)) + 2  # edges e·2^-LOOKUP_BITS, e < n_edges
     # The last table point <= each edge e·2^-LOOKUP_BITS, as searchsorted(x, edges, "right") - 1
     # finds it, counted instead of searched: x_i <= e·2^-LOOKUP_BITS exactly where
     # ceil(x_i·2^LOOKUP_BITS) <= e (a power of two: the product is exact), so the number of
     # points <= each edge is a running count of those ceilings (a tenth of the cost).
     up = np.ceil(np.maximum(x, 0.0) * 2.0**LOOKUP_BITS).astype(np.intp)
-    first = np.cumsum(np.bincount(up, minlength=edges.size)[: edges.size]) - 1
+    first = np.cumsum(np.bincount(up, minlength=n_edges)[:n_edges]) - 1
     count = np.diff(first)
     beyond = np.append(x, np.inf)
-    ahead = tuple(
-        np.where(k <= count, beyond[np.minimum(first[:-1] + k, x.size)], np.inf)
-        for k in range(1, LOOKUP_STEPS + 1)
-    )
+    ahead = []
+    for k in range(1, LOOKUP_STEPS + 1):
+        nxt = beyond.take(np.minimum(first[:-1] + k, x.size))
+        np.putmask(nxt, count < k, np.inf)  # no k-th point in the bucket
+        ahead.append(nxt)
     dx = x[1:] - x[:-1]
     inv = 1.0 / dx  # numpy.interp of complex values: differences times 1/dx; of real ones: / dx
     slopes = {k: np.diff(getattr(table, k)) / dx for k in ("g1", "g2", "d1", "d2")}
@@ -232,8 +234,9 @@ def table_interpolant(table: LoopTable) -> TableInterpolant:
     pair = np.stack([x, slopes["c1"], table.g1, slopes["c2"], table.g2])
     # Buckets of more table points than LOOKUP_STEPS are marked by a negative first point, far
     # enough below 0 that the steps cannot lift it: one gather tells both.
-    first = np.where(count > LOOKUP_STEPS, _CROWDED, first[:-1]).astype(np.intp)
-    return TableInterpolant(table, first, ahead, slopes, pair)
+    first = first[:-1].astype(np.intp)  # a copy
+    np.putmask(first, count > LOOKUP_STEPS, _CROWDED)
+    return TableInterpolant(table, first, tuple(ahead), slopes, pair)
 
 
 def interpolate_table(ip: TableInterpolant, x, columns) -> list[np.ndarray]:
@@ -419,7 +422,7 @@ def _least_chi2(g1, g2, df, dg, w, wf, wg, sums=None) -> np.ndarray:
     else:
         ss1, ss2 = _dot(w, g1 * g1), _dot(w, g2c * g2c)
     short = _short_chi2(c, _dot(wdf, g1), _dot(wdg, g2c), ss1, ss2, wf, wg)
-    return _exact_near(short, sums, g1, g2, None, df, dg, w, wf, wg)
+    return _exact_near(short, sums, g1, g2, None, wf, wg)
 
 
 def _dot(v, g) -> np.ndarray:
@@ -430,8 +433,11 @@ def _dot(v, g) -> np.ndarray:
 def _short_chi2(c, n1, n2, s1, s2, wf, wg) -> np.ndarray:
     """The short cut's χ² = C - num²/den (:func:`_least_chi2`) from its sums (S, K): num =
     wf·n1 + wg·n2, den = wf·s1 + wg·s2; in place (``n1``, ``n2``, ``s1``, ``s2`` are
-    overwritten), the numbers of the plain expression with three temporaries fewer."""
-    wf2, wg2 = wf[:, None], wg[:, None]
+    overwritten), the numbers of the plain expression with three temporaries fewer. The
+    weights are spread over the trials once each, for their two products: numpy (2.x) runs an
+    operand broadcast along the last axis through buffers at ~5x the cost of one that is not."""
+    S, K = n1.shape
+    wf2, wg2 = (np.repeat(v, K).reshape(S, K) for v in (wf, wg))
     num = np.multiply(n1, wf2, out=n1)
     num += np.multiply(n2, wg2, out=n2)
     den = np.multiply(s1, wf2, out=s1)
@@ -453,7 +459,8 @@ def _dot_gathered(v, g, group) -> np.ndarray:
 
 def _data_sums(df, dg, w, wf, wg) -> tuple[np.ndarray, ...]:
     """Σw, C = wf Σw Δf² + wg Σw (ΔΓ - mean)² (mean: the weighted mean of ΔΓ), wΔf,
-    w(ΔΓ - mean), the mean and ΔΓ - mean of every sweep: the parts of :func:`_least_chi2`'s short
+    w(ΔΓ - mean), the mean, and ΔΓ - mean, Δf, ΔΓ and w laid out points first ((M, S), as
+    :func:`_projected` takes them) of every sweep: the parts of :func:`_least_chi2`'s short
     cut and of :func:`solve_projected` that do not depend on θ, formed once per chunk of sweeps
     for all the rounds of its search (row by row: a slice of rows has the numbers of the same
     rows of the whole; the mean and ΔΓ - mean those that solve_projected forms)."""
@@ -461,73 +468,93 @@ def _data_sums(df, dg, w, wf, wg) -> tuple[np.ndarray, ...]:
     dgm = (w * dg).sum(-1) / n
     dgc = dg - dgm[:, None]
     c = wf * (w * df * df).sum(-1) + wg * (w * dgc * dgc).sum(-1)
-    return n, c, w * df, w * dgc, dgm, dgc
+    points = tuple(np.ascontiguousarray(a.T) for a in (dgc, df, dg, w))
+    return n, c, w * df, w * dgc, dgm, *points
 
 
-def _exact_near(short, sums, g1, g2, column, df, dg, w, wf, wg) -> np.ndarray:
+def _exact_near(short, sums, g1, g2, column, wf, wg) -> np.ndarray:
     """(S, K): :func:`solve_projected`'s χ² at the trials whose short-cut χ² ``short`` lies
     within (M + 4)·2^-40·C of their row's least (every trial of a row with a non-finite one),
     +inf elsewhere (:func:`_least_chi2`). The shapes of sweep s are ``g1[:, column[s]]``
     (``column`` None: ``g1[:, s]``); ``sums``: :func:`_data_sums` of the sweeps.
+
+    Each row's least trial is among them: those are evaluated for every row at once, on the
+    data as it lies (no gather), and the few others apart (a second trial in up to ~6 % of the
+    rows, in the last rounds on the 10^5-sweep benchmark), on their rows' data gathered; each
+    χ² is its own row's alone, so that the split does not change it.
     """
     c = sums[1]
-    tol = (w.shape[-1] + 4) * 2.0**-40 * c
-    least = np.min(short, axis=1)
+    S, K = short.shape
+    M, C, _ = g1.shape
+    tol = (M + 4) * 2.0**-40 * c
+    rows = np.arange(S)
+    first = np.argmin(short, axis=1)  # the least: np.min's value (NaN: the first NaN)
+    least = short.ravel().take(rows * K + first)
     # Every trial of a row finite: its least and its largest finite (NaN propagates to both).
     sure = np.isfinite(least) & np.isfinite(np.max(short, axis=1)) & np.isfinite(c)
-    near = (short <= (least + tol)[:, None]) | ~sure[:, None]
-    r, k = np.nonzero(near)
-    col = r if column is None else column[r]
-    # Rows of points again, contiguous: solve_projected's sums then run as they run in a block.
-    # g[:, col, k].T gathered by flat indices into the (M, C, K) shapes, formed once for both.
-    M, C, K = g1.shape
-    at = (col * K + k)[:, None] + np.arange(M) * (C * K)
-    a1, a2 = (np.take(g, at, mode="wrap") for g in (g1, g2))  # 0 <= at < g.size
+    near = short <= (least + tol)[:, None]
+    if not sure.all():
+        near[~sure] = True
+    near.ravel()[rows * K + first] = False  # the others
     chi = np.full(short.shape, np.inf)
-    chi[r, k] = _projected(a1, a2, _sweep_data(sums, df, dg, w, wf, wg, r))[2]
+    r, k = np.nonzero(near)
+    col = rows if column is None else column
+    span = np.arange(M)[:, None] * (C * K)  # the points of the (M, C, K) shapes, first
+    batches = [(rows, first, _sweep_data(sums, wf, wg))]
+    if r.size:
+        batches.append((r, k, _sweep_data(sums, wf, wg, r)))
+    for at_rows, at_k, data in batches:
+        # g[:, col, k] gathered by flat indices, points first: rows of points, contiguous.
+        at = (col.take(at_rows) * K + at_k) + span
+        a1, a2 = (np.take(g, at, mode="wrap") for g in (g1, g2))  # 0 <= at < g.size
+        chi.ravel()[at_rows * K + at_k] = _projected(a1, a2, data)[2]
     return chi
 
 
-def _sweep_data(sums, df, dg, w, wf, wg, r=None, trials=False) -> tuple[np.ndarray, ...]:
-    """What :func:`_projected` takes of the sweeps: Σw, the mean of ΔΓ, ΔΓ - mean (from
-    :func:`_data_sums`, ``sums``), Δf, ΔΓ, w, wf, wg; of the rows ``r`` (gathered), or of every
-    row (None), with an axis of trials (length 1, broadcast) if ``trials``."""
-    data = (sums[0], sums[4], sums[5], df, dg, w, wf, wg)
+def _sweep_data(sums, wf, wg, r=None, trials=False) -> tuple[np.ndarray, ...]:
+    """What :func:`_projected` takes of the sweeps: Σw, the mean of ΔΓ (S,), ΔΓ - mean, Δf, ΔΓ,
+    w (points first, (M, S), from :func:`_data_sums`, ``sums``), wf, wg (S,); of the sweeps
+    ``r`` (gathered), or of every one (None), with an axis of trials (length 1, broadcast)
+    before the sweeps' if ``trials`` (shapes (M, K, S))."""
+    data = (sums[0], sums[4], *sums[5:9], wf, wg)  # Σw, mean, ΔΓ - mean, Δf, ΔΓ, w, wf, wg
     if r is not None:
-        data = tuple(a.take(r, axis=0) for a in data)
-    if trials:  # (S,) -> (S, 1), (S, M) -> (S, 1, M)
-        data = tuple(a[:, None] for a in data)
+        data = tuple(a.take(r, axis=a.ndim - 1) for a in data)
+    if trials:  # (M, S) -> (M, 1, S); (S,) broadcasts against (K, S) as it is
+        data = tuple(a[:, None] if a.ndim == 2 else a for a in data)
     return data
 
 
 def _projected(g1, g2, data) -> tuple[np.ndarray, ...]:
-    """:func:`solve_projected` (A, B, χ², rss_f, rss_g) at the shapes ``g1``, ``g2`` (..., M),
-    bit for bit: its arithmetic, in its order, with the parts of the data alone (Σw, the mean
-    of ΔΓ and ΔΓ - mean) formed once (``data``: :func:`_sweep_data`, aligned with the shapes),
-    and in place where solve_projected makes temporaries (``g1``, ``g2`` are left as they
-    are). Not solve_projected itself: that one takes shapes that broadcast against the data
-    (a shared (M,) or (K, M) set of shapes), where this one writes into temporaries of the
-    shapes' own size, which must then be the result's."""
+    """:func:`solve_projected` (A, B, χ², rss_f, rss_g) at the shapes ``g1``, ``g2`` laid out
+    points first, (M, ...), bit for bit: its arithmetic, in its order (its sums over the points
+    by :func:`~contactres.analysis._points.point_sum`), with the parts of the data alone (Σw,
+    the mean of ΔΓ and ΔΓ - mean) formed once (``data``: :func:`_sweep_data`, aligned with the
+    shapes), and in place where solve_projected makes temporaries (``g1``, ``g2`` are left as
+    they are). Not solve_projected itself: that one takes shapes that broadcast against the
+    data (a shared (M,) or (K, M) set of shapes), where this one writes into temporaries of the
+    shapes' own size, which must then be the result's; and its points come last, where a sum
+    over them pays numpy's overhead per row of ~10 points (here: a few passes over whole
+    rows)."""
     n, dgm, dgc, df, dg, w, wf, wg = data
     ones = bool(np.all(w == 1.0))
 
     def weighted(a):  # w * a, the same numbers (as in solve_projected)
         return a if ones else w * a
 
-    g2m = weighted(g2).sum(-1) / n
-    g2c = g2 - g2m[..., None]
+    g2m = point_sum(weighted(g2)) / n
+    g2c = by_point(np.subtract, g2, g2m)
     wg1, wg2c = weighted(g1), weighted(g2c)
-    num = wf * (wg1 * df).sum(-1) + wg * (wg2c * dgc).sum(-1)
-    den = wf * (wg1 * g1).sum(-1) + wg * (wg2c * g2c).sum(-1)
+    num = wf * point_sum(wg1 * df) + wg * point_sum(wg2c * dgc)
+    den = wf * point_sum(wg1 * g1) + wg * point_sum(wg2c * g2c)
     A = num / den
     B = dgm - A * g2m
-    rf = np.multiply(A[..., None], g1)
+    rf = by_point(np.multiply, g1, A)  # A g1 (a product: either order, the same number)
     rf = np.subtract(df, rf, out=rf)  # df - A g1
-    rg = np.subtract(dg, B[..., None])
-    rg -= np.multiply(A[..., None], g2, out=g2c)  # dg - B - A g2 (g2c is not needed again)
+    rg = by_point(np.subtract, dg, B)
+    rg -= by_point(np.multiply, g2, A, out=g2c)  # dg - B - A g2 (g2c is not needed again)
     rf *= rf
     rg *= rg
-    rss_f, rss_g = weighted(rf).sum(-1), weighted(rg).sum(-1)
+    rss_f, rss_g = point_sum(weighted(rf)), point_sum(weighted(rg))
     return A, B, wf * rss_f + wg * rss_g, rss_f, rss_g
 
 
@@ -561,7 +588,7 @@ def _shared_chi2(ip, u, df, dg, w, wf, wg, umax, lx, key, sums=None) -> np.ndarr
         parts = []
         for s in (slice(i, i + step) for i in range(0, S, step)):
             g1, g2 = _search_pair(ip, u[s], 10.0 ** lx[s] / umax[s, None])
-            part = tuple(a[s] for a in sums)
+            part = (*(a[s] for a in sums[:5]), *(a[:, s] for a in sums[5:]))  # (M, S): [:, s]
             parts.append(_least_chi2(g1, g2, df[s], dg[s], w[s], wf[s], wg[s], part))
         return np.concatenate(parts) if parts else np.empty(lx.shape)
     # θ of the set's first sweep: that of every sweep of the set, bit for bit.
@@ -581,7 +608,7 @@ def _shared_chi2(ip, u, df, dg, w, wf, wg, umax, lx, key, sums=None) -> np.ndarr
             rows = slice(ends[i], ends[i + 1]) if runs else order[ends[i] : ends[i + 1]]
             n1[rows], n2[rows] = wdf[rows] @ g1[:, i], wdg[rows] @ g2c[:, i]
     short = _short_chi2(c, n1, n2, ss[0][group], ss[1][group], wf, wg)
-    return _exact_near(short, sums, g1, g2, group, df, dg, w, wf, wg)
+    return _exact_near(short, sums, g1, g2, group, wf, wg)
 
 
 def fit_cm_loops(
@@ -643,10 +670,12 @@ def _fit_cm_chunk(
         if least:  # only the least χ² of each row matters (its position, its value)
             key = amplitudes[:, None] if centre is None else np.stack([amplitudes, centre], 1)
             return _shared_chi2(ip, u, df, dg, w, wf, wg, umax, lx, key, sums)
-        xu = (10.0**lx / umax[:, None])[..., None] * u[:, None, :]
+        # x = θu points first and sweeps last, (M, K, S): the numbers of θ[s, k]·u[s, m].
+        theta = (10.0**lx / umax[:, None]).T
+        xu = np.multiply(theta, u.T[:, None, :], out=np.empty((u.shape[1], *theta.shape)))
         # Both shapes from one lookup, as one complex numpy.interp of the table made them.
         g1, g2 = _interpolate_pair(ip, xu)
-        return _projected(g1, g2, _sweep_data(sums, df, dg, w, wf, wg, trials=True))[2]
+        return _projected(g1, g2, _sweep_data(sums, wf, wg, trials=True))[2].T
 
     lo, hi = -2.5, np.log10(X_MAX)
     grid = np.broadcast_to(np.linspace(lo, hi, 49), (S, 49))
@@ -678,10 +707,11 @@ def _fit_cm_chunk(
     centre = np.clip(centre + np.clip(shift, -1.0, 1.0) * h, lo, hi)
 
     theta = 10.0**centre / umax
-    xu = theta[:, None] * u
+    xu = np.multiply(u.T, theta, out=np.empty(u.shape[::-1]))  # points first: θ[s]·u[s, m]
     g1, g2, d1, d2 = interpolate_table(ip, xu, ("g1", "g2", "d1", "d2"))
-    A, B, chi2, rss_f, rss_g = _projected(g1, g2, _sweep_data(sums, df, dg, w, wf, wg))
-    jtj = _normal_matrix(g1, g2, d1 * xu, d2 * xu, A, w, wf, wg)
+    A, B, chi2, rss_f, rss_g = _projected(g1, g2, _sweep_data(sums, wf, wg))
+    e1, e2 = d1 * xu, d2 * xu
+    jtj = _normal_matrix(g1.T, g2.T, e1.T, e2.T, A, w, wf, wg)
     n_res = 2 * w.sum(axis=1)
     cov = _inverse_3x3(jtj) * (chi2 / np.maximum(n_res - 3, 1))[:, None, None]
     return {
