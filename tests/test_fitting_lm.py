@@ -310,7 +310,7 @@ def test_solve_stacked_is_cramers_rule_bit_for_bit(K):
 def test_row_reductions_are_numpys():
     # The solver's per-row max and all, column by column: numpy's reductions along the rows,
     # NaN and zero columns included.
-    from contactres.fitting import _rows_all, _rows_max
+    from contactres._levenberg_marquardt import _rows_all, _rows_max
 
     rng = np.random.default_rng(5)
     for P in (1, 2, 3):

@@ -91,6 +91,7 @@ LAYERS: tuple[frozenset[str], ...] = (
             "fileio",
             "examples",
             "fitting",
+            "_levenberg_marquardt",
             "crystals",
             "units",
             "typed_units",

@@ -105,7 +105,7 @@ def test_outside_the_domain_is_nan_and_the_rest_unchanged():
     np.testing.assert_allclose(rf[~bad], special.elliprf(x[~bad], y[~bad], z[~bad]), rtol=2e-15)
     # Through the plateau loop's closed form: an infinite x gives NaN, as before the tails
     # came from this module (scipy's integrals), not a call that never ends.
-    from contactres.analysis._plateau import plateau_loop_slopes
+    from contactres.analysis._plateau_slopes import plateau_loop_slopes
 
     with np.errstate(invalid="ignore"):  # inf/inf on the way, as before
         slopes = plateau_loop_slopes(np.array([np.inf]), np.array([1.0]))

@@ -520,7 +520,7 @@ def test_a_fit_exact_to_rounding_keeps_its_node():
     node's ln L was -inf, the best node lost. Held at its rounding floor it stays the largest
     ln L of the row, and finite."""
     from contactres.analysis import _plateau_evidence as ev
-    from contactres.analysis._plateau import plateau_loop_slopes
+    from contactres.analysis._plateau_slopes import plateau_loop_slopes
 
     n_amp, n_y = 11, 5
     umax = 2e-9

@@ -7,7 +7,7 @@ import pytest
 
 from contactres.analysis import _plateau
 from contactres.analysis._amplitude import fit_hinge, pad_sweeps
-from contactres.analysis._loops import _data_sums, cm_loop_table
+from contactres.analysis._loops import cm_loop_table, projection_data
 from contactres.analysis._plateau import fit_plateau_loops, pool_repeats
 from contactres.measurements._sweeps import validate_sweeps
 from contactres.measurements._synthetic import SweepGroup, SweepStudy, synthetic_sweeps
@@ -227,12 +227,12 @@ def test_descent_of_a_row_does_not_depend_on_its_batch(M):
 @pytest.mark.parametrize("rows", [None, [3], [0, 5, 7]])
 def test_model_on_the_data_sums_of_all_rows_is_bit_for_bit(pooled, rows):
     # The fit forms the parts of the projected χ² that depend on the data alone (Σw, the mean of
-    # ΔΓ, ΔΓ - mean) once for all the rows of a pass and gathers the running rows' (_data_sums):
-    # the evaluation on them equals, bit for bit, solve_projected's on the running rows alone.
+    # ΔΓ, ΔΓ - mean) once for all the rows of a pass and gathers the running rows'
+    # (projection_data): the evaluation on them equals, bit for bit, the one that forms them
+    # on the running rows alone.
     p, u, umax, df, dg, w, rw, wf, wg, part = _evaluation(pooled)
     at = np.arange(len(u)) if rows is None else np.array(rows)
-    n, _, _, _, mean, centred = _data_sums(df, dg, w, wf, wg)
-    sums = [n[at], mean[at], centred[at]]
+    sums = [a[at] for a in projection_data(dg, w)]
     args = [a[at] for a in (p, u, umax, df, dg, w, rw, wf, wg)]
     part = None if part is None else [a[at] for a in part]
     got = _plateau._plateau_model(*args, part, sums=sums)

@@ -8,8 +8,7 @@ import numpy as np
 import pytest
 from scipy import integrate, special
 
-from contactres.analysis import _plateau
-from contactres.analysis._plateau import FIT_SERIES_GROUPS, plateau_loop_slopes
+from contactres.analysis import _plateau_slopes
 from contactres.analysis._plateau_series import (
     SERIES_BLOCK,
     SERIES_MAX_M,
@@ -17,6 +16,7 @@ from contactres.analysis._plateau_series import (
     slip_integral_series,
     slip_integrals_series,
 )
+from contactres.analysis._plateau_slopes import FIT_SERIES_GROUPS, plateau_loop_slopes
 
 
 def _quadpack(x, c):
@@ -281,7 +281,7 @@ def _slopes_plainly(x, c):
     half = 2.0 * np.arcsin(np.sqrt(c / x))
     J, Jx, Jc = slip_integrals_series(x, c, half, FIT_SERIES_GROUPS)
     far = np.isnan(J)
-    J[far], Jx[far], Jc[far] = _plateau._elliptic_integrals(x[far], c[far])
+    J[far], Jx[far], Jc[far] = _plateau_slopes._elliptic_integrals(x[far], c[far])
     rcy = np.sqrt(c * y)
     H = x**2 / 8.0 * half - 0.25 * rcy * (y - c) + np.sqrt(2.0 / 3.0) * J
     inside = y < 1.5

@@ -34,13 +34,9 @@ from contactres.analysis._loops import (
     table_interpolant,
 )
 from contactres.analysis._models import fit_tables
-from contactres.analysis._plateau import (
-    FIT_SERIES_GROUPS,
-    PLATEAU_D_C_BOUND,
-    fit_plateau_loops,
-    plateau_loop_slopes,
-)
+from contactres.analysis._plateau import PLATEAU_D_C_BOUND, fit_plateau_loops
 from contactres.analysis._plateau_series import SERIES_CELLS
+from contactres.analysis._plateau_slopes import FIT_SERIES_GROUPS, plateau_loop_slopes
 from contactres.measurements._sweeps import validate_sweeps
 from contactres.measurements._synthetic import SweepGroup, SweepStudy, synthetic_sweeps
 from contactres.resonators._qcm import QCM

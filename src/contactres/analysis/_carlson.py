@@ -1,7 +1,7 @@
 """Carlson's symmetric elliptic integrals R_F and R_D on arrays (the plateau loop's tails).
 
 Why. The closed form of the plateau loop's slopes
-(:func:`contactres.analysis._plateau.plateau_loop_slopes`) needs, at each of some 10⁶ points
+(:func:`contactres.analysis._plateau_slopes.plateau_loop_slopes`) needs, at each of some 10⁶ points
 of a large table's fits, the tails K(m) - F(φ|m) and E(m) - E(φ|m) of Legendre's incomplete
 elliptic integrals. Through scipy's ``ellipk``, ``ellipkinc``, ``ellipe`` and ``ellipeinc``
 (cephes, a scalar loop per element) they cost ~2400 instructions a point with the rest of the

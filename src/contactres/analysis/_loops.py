@@ -30,7 +30,8 @@ The loss part is the table at the shifted argument y plus a closed-form term (ve
 √((e + c)(y - e)) is not the weight of any single Cattaneo-Mindlin amplitude.
 :func:`plateau_loop_shape` integrates both with the package's Masing-loop quadrature (relative
 accuracy 1e-9, vectorised over amplitudes): the reference that the closed form of
-:func:`contactres.analysis._plateau.plateau_loop_slopes`, which the fit uses, is checked against.
+:func:`contactres.analysis._plateau_slopes.plateau_loop_slopes`, which the fit uses, is checked
+against.
 
 Near d_c the shifts leave the plateau as K″ - ωξ ≈ (2/(3π)) κ²v²/(μF_N d_c) and
 K′ - κ ≈ -(32/(45π)) κ²v^{5/2}/(μF_N d_c^{3/2}) in the excess v = u0 - d_c ≪ d_c, μF_N/κ
@@ -72,6 +73,7 @@ __all__ = [
     "loop_fit_fields",
     "loop_tables",
     "plateau_loop_shape",
+    "projection_data",
     "savkoor_loop_shape",
     "savkoor_loop_table",
     "solve_projected",
@@ -342,8 +344,20 @@ def _search_pair(ip: TableInterpolant, u: np.ndarray, theta: np.ndarray):
     return _pair_at(ip, x, j)
 
 
-def solve_projected(g1, g2, df, dg, w, wf, wg):
-    """Closed-form Pκ (A) and Pωξ (B) for fixed θ, and χ². Arrays (..., M); wf, wg (...).
+def projection_data(dg, w) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Σw, the weighted mean of ΔΓ and ΔΓ - mean of each row of ``dg``, ``w`` (..., M): the
+    parts of :func:`solve_projected` that depend on the data alone, the numbers it forms
+    (row by row: those of a row do not depend on the rows formed with it), for a caller that
+    solves the same rows at many θ (the plateau loop's iteration: once a pass, not at every
+    evaluation)."""
+    n = w.sum(-1)
+    dgm = (w * dg).sum(-1) / n  # (w * dg where every weight is 1: dg, the same numbers)
+    return n, dgm, dg - dgm[..., None]
+
+
+def solve_projected(g1, g2, df, dg, w, wf, wg, data=None):
+    """Closed-form Pκ (A) and Pωξ (B) for fixed θ, and χ². Arrays (..., M); wf, wg (...);
+    ``data``: :func:`projection_data` of ``dg``, ``w`` (None: formed here; the same numbers).
 
     The weighted sums are those of the plain formulas, bit for bit: each product with ``w`` is
     formed once and reused, and skipped where every weight is 1 (a block of sweeps of one
@@ -355,11 +369,9 @@ def solve_projected(g1, g2, df, dg, w, wf, wg):
     def weighted(a):  # w * a, the same numbers
         return a if ones else w * a
 
-    n = w.sum(-1)
+    n, dgm, dgc = projection_data(dg, w) if data is None else data
     g2m = weighted(g2).sum(-1) / n
-    dgm = weighted(dg).sum(-1) / n
     g2c = g2 - g2m[..., None]
-    dgc = dg - dgm[..., None]
     wg1, wg2c = weighted(g1), weighted(g2c)
     num = wf * (wg1 * df).sum(-1) + wg * (wg2c * dgc).sum(-1)
     den = wf * (wg1 * g1).sum(-1) + wg * (wg2c * g2c).sum(-1)

@@ -203,7 +203,7 @@ import numpy as np
 from ._amplitude import PLATEAU_MIN_SLOPE
 from ._evidence_solve import level_sums, level_weights, node_values, same_weights, segments
 from ._loops import CHUNK_CELLS, X_MAX
-from ._plateau import plateau_loop_slopes
+from ._plateau_slopes import plateau_loop_slopes
 from ._slope_store import SlopeStore
 
 __all__ = ["EVIDENCE_NODES", "plateau_log_evidence"]
@@ -241,8 +241,8 @@ MU_MARGINAL_MAX_EDGE = 0.1
 #: on the 10^4 sweeps of issue 31 ~20 % less CPU than with four times (noisy machine, best of
 #: two, 0.8-1.2 s against 1.1-1.4 s), the same numbers bit for bit (a row's arithmetic is its
 #: own). The largest arrays are the slopes (nodes x amplitudes, a dozen in
-#: :func:`~contactres.analysis._plateau.plateau_loop_slopes`), formed only for the rows not read
-#: from the store (:func:`_slopes`, :class:`SlopeStore`) and bounded by
+#: :func:`~contactres.analysis._plateau_slopes.plateau_loop_slopes`), formed only for the rows
+#: not read from the store (:func:`_slopes`, :class:`SlopeStore`) and bounded by
 #: :data:`EVIDENCE_FRESH_CELLS`: peak RSS of a process running the evidence of those sweeps,
 #: ~120 MB above what it holds before (~195 MB in all), the same as with the store unbounded.
 EVIDENCE_CHUNK_CELLS = 16 * CHUNK_CELLS

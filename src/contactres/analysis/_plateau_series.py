@@ -1,7 +1,7 @@
 """The slip integral of the plateau loop's in-phase slope by its power series (no quadrature).
 
 Why. The evidence of the plateau (:mod:`contactres.analysis._plateau_evidence`) evaluates the
-loop's slopes G′, G″ (:func:`contactres.analysis._plateau.plateau_loop_slopes`) at some 10⁴
+loop's slopes G′, G″ (:func:`contactres.analysis._plateau_slopes.plateau_loop_slopes`) at some 10⁴
 nodes per block, and the plateau fit (:func:`contactres.analysis._plateau.fit_plateau_loops`)
 evaluates them with their derivatives at every Levenberg-Marquardt step, whose integrals of
 J's derivatives :func:`slip_integrals_series` sums from the same series.
@@ -20,7 +20,7 @@ cut-off between the two below was chosen against the older, dearer form and may 
 the cheapest.
 
 How. J = ∫_c^b √(d(x - d)(e - d)) dd, b = min(x, e), e = c + 3/2 (paper 2, Eqs. 4-6: the
-integral of :func:`~contactres.analysis._plateau.plateau_loop_slopes`), is symmetric in x and
+integral of :func:`~contactres.analysis._plateau_slopes.plateau_loop_slopes`), is symmetric in x and
 e: let r = min(x, e) (= b) and A = max(x, e) - r/2. With d = r(1 - cos φ)/2 (φ from
 φ_c = 2 arcsin √ρ, ρ = c/r, to π; √(d(r - d)) dd = r² sin²φ dφ/4)
 
@@ -117,8 +117,8 @@ def slip_integral_series(x, c, phi=None) -> np.ndarray:
 
     Returns
     -------
-    J, dimensionless (the integral of :func:`contactres.analysis._plateau.plateau_loop_slopes`;
-    NaN outside the domain)
+    J, dimensionless (the integral of
+    :func:`contactres.analysis._plateau_slopes.plateau_loop_slopes`; NaN outside the domain)
     """
     return _by_tiers(x, c, phi, ALL_CELLS, False)[0]
 
@@ -129,7 +129,7 @@ def slip_integrals_series(x, c, phi=None, groups=ALL_CELLS) -> tuple[np.ndarray,
     b), by the same series.
 
     Why. The plateau fit needs G′'s derivatives in x and c at every point of every
-    Levenberg-Marquardt step (:func:`contactres.analysis._plateau.plateau_loop_slopes`): by a
+    Levenberg-Marquardt step (:func:`contactres.analysis._plateau_slopes.plateau_loop_slopes`): by a
     16-point Gauss-Legendre rule (m < 0.1) and Carlson's R_F, R_D, ~400-900 ns a point; this
     costs two more passes a term than J alone.
 
@@ -218,10 +218,10 @@ def slip_integrals_ordered(x, c, phi, reach, derivatives: bool = True) -> tuple[
     if ``derivatives``) at points already ordered by the terms they sum, the most first: the
     same numbers, bit for bit, as those functions give at each point with the same terms.
 
-    Why. The plateau fit (:func:`contactres.analysis._plateau.plateau_loop_slopes`) orders its
-    points once an evaluation (series groups, then the elliptic form's points) and keeps that
-    order for all of its arithmetic: one gather and one scatter instead of this module's own
-    sort and those of its callers.
+    Why. The plateau fit (:func:`contactres.analysis._plateau_slopes.plateau_loop_slopes`)
+    orders its points once an evaluation (series groups, then the elliptic form's points) and
+    keeps that order for all of its arithmetic: one gather and one scatter instead of this
+    module's own sort and those of its callers.
 
     Parameters
     ----------

@@ -15,8 +15,8 @@ import numpy as np
 from ...errors import ContactresInputError
 from ...fitting import Model
 from .._loops import fit_cm_loops
-from .._plateau import plateau_loop_slopes
 from .._plateau_series import SERIES_CELLS, SERIES_TIERS
+from .._plateau_slopes import plateau_loop_slopes
 from .base import LOOP_TABLE, SweepFit, loop_parameters
 
 __all__ = ["FIT", "MODEL", "TINY_X", "cm_shape", "line_noise", "loop_shape"]
@@ -46,7 +46,7 @@ def loop_shape(x, c=0.0) -> tuple[np.ndarray, np.ndarray]:
 
     Paper 2, Eqs. 4-6 with Masing's rule, at x = κu0/(μF_N) and c = κd_c/(μF_N) (broadcast
     together; c = 0: the plain Cattaneo-Mindlin loop): the closed form of the plateau loop fit,
-    :func:`contactres.analysis._plateau.plateau_loop_slopes` without derivatives (elliptic
+    :func:`contactres.analysis._plateau_slopes.plateau_loop_slopes` without derivatives (elliptic
     integrals, or their power series; K″ elementary). It gives the values of the quadratures
     :func:`contactres.analysis._loops.cm_loop_shape` and
     :func:`~contactres.analysis._loops.plateau_loop_shape` within ~1e-13 (tests/analysis/
@@ -81,7 +81,7 @@ def cm_shape(x) -> tuple[np.ndarray, np.ndarray]:
     coefficients are numbers: J = (r²/4) √A Σ_j b_{2j} T_{2j} q^{2j}, summed by Horner's rule
     (2 operations per term, not ~14); K′/κ = 8/(πx²) √(2/3) J. Points with m >= 7/8 (around full
     sliding) take :func:`loop_shape`. The loss part is that of
-    :func:`~contactres.analysis._plateau.plateau_loop_slopes` at c = 0: 4W(x)/(πx²), W(y) =
+    :func:`~contactres.analysis._plateau_slopes.plateau_loop_slopes` at c = 0: 4W(x)/(πx²), W(y) =
     ∫₀^min(y, 3/2) √(1 - 2t/3)(y - 2t) dt, a polynomial in √(1 - 2y/3) below full sliding.
     Same accuracy as :func:`loop_shape` (tests/analysis/test_curves.py).
 
