@@ -320,3 +320,11 @@ def test_row_reductions_are_numpys():
         np.testing.assert_array_equal(_rows_max(a), np.max(a, axis=1, initial=0.0))
         b = a < 0.8
         np.testing.assert_array_equal(_rows_all(b), np.all(b, axis=1))
+
+
+def test_solve_stacked_broadcasts_an_empty_stack_against_one_row():
+    # (as np.linalg.solve's stacks broadcast: review R30a, the row count was the larger one's)
+    a = np.eye(2)[None].repeat(0, axis=0)
+    assert solve_stacked(a, np.ones((1, 2, 1))).shape == (0, 2, 1)
+    one = solve_stacked(np.array([[[2.0, 0.0], [0.0, 4.0]]]), np.ones((3, 2, 1)))
+    np.testing.assert_array_equal(one[:, :, 0], [[0.5, 0.25]] * 3)

@@ -210,7 +210,7 @@ def test_descent_of_a_row_does_not_depend_on_its_batch(M):
     ey, A, B = (rng.uniform(0.5, 2.0, R) for _ in range(3))
     dl = rng.uniform(0.05, 0.5, R)
     x = rng.uniform(0.0, 3.0, (R, M))
-    c = rng.uniform(0.0, 1.0, (R, 1))
+    c = np.repeat(rng.uniform(0.0, 1.0, R), M).reshape(R, M)  # as the fit passes it: (R, M)
     slopes = tuple(rng.normal(size=(R, M)) for _ in range(6))
     sf, sg, df, dg = (rng.normal(size=(R, M)) for _ in range(4))
     batch = _plateau._descent(ey, dl, x, c, A, B, slopes, sf, sg, df, dg)
