@@ -110,3 +110,45 @@ def test_outside_the_domain_is_nan_and_the_rest_unchanged():
     with np.errstate(invalid="ignore"):  # inf/inf on the way, as before
         slopes = plateau_loop_slopes(np.array([np.inf]), np.array([1.0]))
     assert all(np.isnan(v).all() for v in slopes)
+
+
+def _one_point(x, y, z):
+    """Carlson's duplication for one point, step by step in Python floats (the module's
+    schedule: the first check after MIN_STEPS steps, then every CHECK_EVERY), its series by the
+    module's own; R_F and R_D."""
+    from math import sqrt
+
+    from contactres.analysis import _carlson
+
+    tail, scale = 0.0, 1.0
+    for steps in range(1, _carlson.MAX_STEPS + 1):
+        sx, sy, sz = sqrt(x), sqrt(y), sqrt(z)
+        lam = sx * sy + (sx + sy) * sz
+        tail += scale / ((z + lam) * sz)
+        scale *= 0.25
+        x, y, z = (x + lam) * 0.25, (y + lam) * 0.25, (z + lam) * 0.25
+        if steps < _carlson.MIN_STEPS or (steps - _carlson.MIN_STEPS) % _carlson.CHECK_EVERY:
+            continue
+        mean = (x + y + z) / 3.0
+        if max(x, y, z) - min(x, y, z) < _carlson.DEVIATION * mean:
+            f, d = _carlson._series(*(np.array([v]) for v in (x, y, z, mean)))
+            return f[0], d[0] * scale + 3.0 * tail
+    return np.nan, np.nan
+
+
+def test_points_stopping_at_different_checks_are_their_own_duplication():
+    # Points whose arguments spread from 1 to 1e12 stop at different checks (6 to ~26 steps);
+    # those stopping at one check are gathered, and the series runs once on all of them: each
+    # point's numbers must be those of its own duplication, bit for bit (review R30a: a wrong
+    # 4⁻ⁿ of the points stopping early was caught by no test).
+    rng = np.random.default_rng(30)
+    n = 400
+    x = 10.0 ** rng.uniform(-12, 0, n)
+    y = 10.0 ** rng.uniform(-12, 0, n)
+    z = 10.0 ** rng.uniform(-1, 0, n)
+    x[:20], y[:20], z[:20] = 0.7, 0.7 * (1 + 1e-4), 0.7 * (1 - 1e-4)  # (stop at the first check)
+    for part in (slice(None), slice(0, 20)):  # (the first 20 alone: all stop at one check)
+        rf, rd = carlson_rf_rd(x[part], y[part], z[part])
+        ref = np.array([_one_point(*p) for p in zip(x[part], y[part], z[part], strict=True)])
+        np.testing.assert_array_equal(rf, ref[:, 0])
+        np.testing.assert_array_equal(rd, ref[:, 1])
