@@ -37,7 +37,6 @@ from __future__ import annotations
 
 import json
 from collections.abc import Callable, Mapping
-from contextlib import nullcontext
 from pathlib import Path
 from types import MappingProxyType
 from typing import TYPE_CHECKING, Any
@@ -52,7 +51,6 @@ from ..fileio import (
     write_text,
 )
 from ..jobs.contract import JobResult
-from ._forked import beside
 from ._workbook import EXPORT_FILES, netcdf_bytes, require, workbook_bytes
 
 if TYPE_CHECKING:
@@ -266,31 +264,9 @@ def write_report(
 
 
 def _write_into(result: JobResult, rs: ResultSet, formats, progress) -> list[Path]:
-    tables = result.tables() if "csv" in formats else {}
-    # The largest table written by a forked process while this one writes the rest (_forked)
-    largest = max(tables, key=lambda n: tables[n][0].size, default=None)
-
-    def write_largest() -> None:
-        assert largest is not None, "only called with a table to write"
-        write_csv(rs.path(f"{largest}.csv"), tables[largest][0], float_format=CSV_FLOAT_FORMAT)
-
-    cells = 0 if largest is None else int(tables[largest][0].size)
-    with beside(write_largest, cells) if largest is not None else nullcontext():
-        names = _write_rest(result, rs, formats, progress, tables, largest)
-    return [rs.final(name) for name in sorted(names, key=_order(tables))]
-
-
-def _order(tables) -> Callable[[str], int]:
-    """Sort key of the files written: the tables' CSV files first, in the order of the tables
-    (as written one after the other), then the rest as written."""
-    first = [f"{name}.csv" for name in tables]
-    return lambda name: first.index(name) if name in first else len(first)
-
-
-def _write_rest(result, rs: ResultSet, formats, progress, tables, largest) -> list[str]:
-    names: list[str] = [f"{largest}.csv"] if largest is not None else []
-    for name, (frame, _schema) in tables.items():
-        if name != largest:
+    names: list[str] = []
+    if "csv" in formats:
+        for name, (frame, _schema) in result.tables().items():
             write_csv(rs.path(f"{name}.csv"), frame, float_format=CSV_FLOAT_FORMAT)
             names.append(f"{name}.csv")
     if "json" in formats:
@@ -316,4 +292,4 @@ def _write_rest(result, rs: ResultSet, formats, progress, tables, largest) -> li
         if fmt in formats:
             write_bytes(rs.path(EXPORT_FILES[fmt]), make_bytes(result))
             names.append(EXPORT_FILES[fmt])
-    return names
+    return [rs.final(name) for name in names]
