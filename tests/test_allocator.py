@@ -96,6 +96,7 @@ def _faults_in_a_fresh_process(how: str, environ: dict[str, str] | None = None) 
         capture_output=True,
         text=True,
         check=False,
+        timeout=300,  # (a pool that hangs fails the test, not the suite)
     )
     assert p.returncode == 0, p.stderr
     return int(p.stdout.split("faults")[-1])
@@ -133,7 +134,12 @@ def test_the_analysis_worker_processes_keep_freed_memory(method, tmp_path):
     probe = tmp_path / "pool_probe.py"
     probe.write_text(_POOL_PROBE.format(tests=os.path.dirname(__file__)), encoding="utf-8")
     p = subprocess.run(
-        [sys.executable, str(probe), method], env=env, capture_output=True, text=True, check=False
+        [sys.executable, str(probe), method],
+        env=env,
+        capture_output=True,
+        text=True,
+        check=False,
+        timeout=300,
     )
     assert p.returncode == 0, p.stderr
     faults = [int(f) for f in p.stdout.split("faults")[-1].split()]

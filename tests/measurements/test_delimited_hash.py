@@ -26,3 +26,18 @@ def test_a_failure_of_the_hashing_thread_is_raised_where_the_hash_is_asked(monke
     digest = _delimited._hashing("not bytes")  # type: ignore[arg-type]
     with pytest.raises(TypeError):
         digest()
+
+
+def test_where_no_thread_starts_the_hash_is_taken_here(tmp_path, monkeypatch):
+    # (a limit on threads: review R30c) the reading goes on, with the same digest
+    def refuse(self):
+        raise RuntimeError("can't start new thread")
+
+    monkeypatch.setattr(_delimited, "_HASHED_BESIDE", 0)
+    monkeypatch.setattr(_delimited.threading.Thread, "start", refuse)
+    path = tmp_path / "table.csv"
+    path.write_text(TABLE, encoding="utf-8")
+    want = hashlib.sha256(path.read_bytes()).hexdigest()
+    assert _delimited.load(path, ("amplitude_m", "df_Hz")).attrs["sha256"] == want
+    with pytest.raises(TypeError):
+        _delimited._hashing("not bytes")()  # type: ignore[arg-type]
