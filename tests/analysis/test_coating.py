@@ -313,6 +313,9 @@ def test_the_sum_over_the_E_nodes_is_lagrange_interpolation_and_numpys_sum(shape
     np.testing.assert_allclose(got, exact, rtol=0, atol=1e-9 * np.abs(coef).sum())
     q = rng.standard_normal((*shape, 5, 2)) * 10.0 ** rng.integers(-6, 6, (*shape, 5, 2))
     np.testing.assert_array_equal(_node_sum(w, q), (w * q).sum(axis=-2))
+    # weights of more E than q has rows broadcast as numpy's product does (review R30b)
+    wide = np.stack([w, w[::-1]])
+    np.testing.assert_array_equal(_node_sum(wide, q), (wide * q).sum(axis=-2))
 
 
 def test_a_spline_with_its_derivative_in_one_call_gives_both_as_apart():

@@ -260,8 +260,9 @@ def _node_sum(w: np.ndarray, q: np.ndarray) -> np.ndarray:
     numpy's reduction, or a product of the (..., k) slices, runs its inner loop over the k = 2
     columns, ~3x the cost of these products over the entries (~0.4 ms against ~0.06 ms at
     3600 entries; the bootstrap's contact-radius solve evaluates it ~15 times per solve)."""
-    out = np.empty(q.shape[:-2] + q.shape[-1:], dtype=np.result_type(w, q))
-    term = np.empty(q.shape[:-2], dtype=out.dtype)
+    lead = np.broadcast_shapes(w.shape[:-2], q.shape[:-2])  # (w's leading axes may be q's or more)
+    out = np.empty(lead + q.shape[-1:], dtype=np.result_type(w, q))
+    term = np.empty(lead, dtype=out.dtype)
     for c in range(q.shape[-1]):
         col = out[..., c]
         np.multiply(w[..., 0, 0], q[..., 0, c], out=col)
@@ -286,7 +287,9 @@ def _with_derivative(poly: PPoly) -> PPoly:
     The derivative's coefficients (``poly.derivative()``: one degree less) get a zero leading
     coefficient: scipy sums a piece's terms from the lowest power up, so the zero's term comes
     last and adds +0 (−0 left of the first breakpoint), which leaves every sum as it was but
-    a −0 (none here: a nonzero sum): the same values as the derivative evaluated apart."""
+    a −0 (none here: a nonzero sum): the same values as the derivative evaluated apart, at
+    finite x (where a power of x overflows, 0 times it is NaN; the law's x = ln a is finite
+    and within the table)."""
     d = poly.derivative().c
     padded = np.concatenate([np.zeros((1, *d.shape[1:])), d])
     return PPoly(np.concatenate([poly.c, padded], axis=-1), poly.x)
