@@ -249,3 +249,17 @@ def test_column_run_starts_against_a_loop_over_the_rows(name):
         or (not (as_objects and cells[i] is cells[i - 1]) and bool(cells[i] != cells[i - 1]))
     ]
     assert starts.tolist() == want
+
+
+def test_object_pointers_are_the_objects_identities():
+    # The same pointer is the same object: id() of each cell (CPython's id is the address),
+    # read-only; None where numpy gives no flat view of the pointers.
+    from contactres.numerics import object_pointers
+
+    a, b = "alpha", ["beta"]
+    cells = np.array([a, b, a, None, b], dtype=object)
+    pointers = object_pointers(cells)
+    assert pointers is not None and not pointers.flags.writeable
+    np.testing.assert_array_equal(pointers, [id(c) for c in cells])
+    assert object_pointers(cells[::2]) is None  # not contiguous
+    assert object_pointers(cells.reshape(1, 5)) is None  # not one-dimensional

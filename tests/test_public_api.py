@@ -589,6 +589,7 @@ PUBLIC = {
         "gauss_legendre_unit",
         "illinois_step",
         "lobatto_weights",
+        "object_pointers",
         "run_starts",
     ],
     "units": [

@@ -16,6 +16,7 @@ from collections.abc import Iterator
 import numpy as np
 
 from ._decimal_text import copy_rows, g_precision, g_records, take_rows
+from .numerics import object_pointers
 
 __all__ = [
     "CHUNK_CELLS",
@@ -67,12 +68,9 @@ def _risky(col) -> np.ndarray:
 def _run_starts(values: np.ndarray) -> np.ndarray:
     """The first row of each run of one object (by identity) in the object array ``values``:
     the rows where the object differs from the row above. Compared as the object pointers the
-    array holds (:func:`_few_objects`); every row is a run of its own where numpy keeps them to
-    itself."""
-    try:
-        pointers = np.frombuffer(values, dtype=np.intp) if values.flags.c_contiguous else None
-    except (TypeError, ValueError, BufferError):
-        pointers = None
+    array holds (:func:`contactres.numerics.object_pointers`); every row is a run of its own where
+    numpy keeps them to itself."""
+    pointers = object_pointers(values)
     if pointers is None or not values.size:
         return np.arange(values.size)
     return np.flatnonzero(np.concatenate(([True], pointers[1:] != pointers[:-1])))
@@ -525,16 +523,13 @@ def _few_objects(values: np.ndarray, most: int) -> tuple[list[int], np.ndarray] 
     """(first row of each distinct object, the index of each row's object) of a contiguous
     object array holding at most ``most`` distinct objects (by identity), else None.
 
-    The cells are compared as the object pointers the array holds (``np.frombuffer`` of its
-    memory: the same pointer is the same object), a comparison of integers in C, where ``==``
-    of the cells calls the objects' own comparison a row (~100 instructions each)."""
-    if not values.size or not values.flags.c_contiguous:
+    The cells are compared as the object pointers the array holds
+    (:func:`contactres.numerics.object_pointers`: the same pointer is the same object), a comparison
+    of integers in C, where ``==`` of the cells calls the objects' own comparison a row (~100
+    instructions each)."""
+    pointers = object_pointers(values)
+    if not values.size or pointers is None:
         return None
-    try:
-        pointers = np.frombuffer(values, dtype=np.intp)
-    except (TypeError, ValueError, BufferError):  # a numpy that keeps them to itself
-        return None
-    pointers.flags.writeable = False  # a write through this view would corrupt the objects' refs
     firsts: list[int] = []
     codes = np.zeros(values.size, dtype=np.intp)
     left = np.ones(values.size, dtype=bool)

@@ -23,6 +23,7 @@ __all__ = [
     "gauss_legendre_unit",
     "illinois_step",
     "lobatto_weights",
+    "object_pointers",
     "run_starts",
 ]
 
@@ -273,6 +274,24 @@ def column_run_starts(cells) -> np.ndarray | None:
         return run_starts(np.where(pd.isna(values), np.nan, values))
 
 
+def object_pointers(values: np.ndarray) -> np.ndarray | None:
+    """The object pointers a one-dimensional, contiguous object array holds, as a read-only
+    ``intp`` view of its memory (the same pointer: the same object), or None where numpy does
+    not give them (not contiguous, not one-dimensional, a numpy that keeps them to itself).
+
+    Why: cells compared by identity are integers compared in C, where ``==`` or ``!=`` of the
+    cells calls the objects' own comparison a row (~100 instructions each). Read-only: a write
+    through the view would corrupt the objects' reference counts."""
+    if values.ndim != 1 or not values.flags.c_contiguous:
+        return None
+    try:
+        pointers = np.frombuffer(values, dtype=np.intp)
+    except (TypeError, ValueError, BufferError):
+        return None
+    pointers.flags.writeable = False
+    return pointers
+
+
 def _object_run_starts(values: np.ndarray) -> np.ndarray:
     """:func:`run_starts` of one object array, the cells compared by ``!=`` only where the
     object changes from the row above; rows holding the same object as the row above (one
@@ -285,15 +304,9 @@ def _object_run_starts(values: np.ndarray) -> np.ndarray:
     repeated is one run here, where ``!=`` made each NaN a run of its own: splitting runs
     further was always allowed, and every missing cell is still in a run of missing cells.
     Where numpy does not give an array's pointers (not contiguous), every cell is compared."""
-    pointers = None
-    if values.ndim == 1 and values.flags.c_contiguous:
-        try:
-            pointers = np.frombuffer(values, dtype=np.intp)
-        except (TypeError, ValueError, BufferError):  # a numpy that keeps them to itself
-            pointers = None
+    pointers = object_pointers(values)
     if pointers is None:
         return run_starts(values)
-    pointers.flags.writeable = False  # a write through this view would corrupt the references
     change = np.zeros(len(values), dtype=bool)
     change[:1] = True
     np.not_equal(pointers[1:], pointers[:-1], out=change[1:])
