@@ -16,7 +16,7 @@ from collections.abc import Iterator
 import numpy as np
 
 from ._decimal_text import copy_rows, g_precision, g_records, take_rows
-from .numerics import object_pointers
+from .numerics import object_pointers, run_starts
 
 __all__ = [
     "CHUNK_CELLS",
@@ -71,9 +71,7 @@ def _run_starts(values: np.ndarray) -> np.ndarray:
     array holds (:func:`contactres.numerics.object_pointers`); every row is a run of its own where
     numpy keeps them to itself."""
     pointers = object_pointers(values)
-    if pointers is None or not values.size:
-        return np.arange(values.size)
-    return np.flatnonzero(np.concatenate(([True], pointers[1:] != pointers[:-1])))
+    return np.arange(values.size) if pointers is None else run_starts(pointers)
 
 
 def neutralised(frame):
@@ -213,6 +211,9 @@ def _float_texts(values: np.ndarray, float_format: str | None) -> list[str]:
 
 #: A float format of one conversion and nothing else ("%.10g", "%.3e"): the text of a double
 #: is then the same formatted alone or within the format of a whole chunk.
+#: A lone surrogate's bytes as ``surrogatepass`` writes them (U+D800..U+DFFF: ED A0..BF ..):
+#: found exactly, so that text of U+D000..U+D7FF (Hangul) is not re-encoded for nothing.
+_SURROGATE = re.compile(rb"\xed[\xa0-\xbf]")
 _ONE_FLOAT = re.compile(r"%[-+ #0]*\d*(?:\.\d+)?[eEfFgG]")
 
 
@@ -505,7 +506,7 @@ def csv_to(path, frame, options: dict) -> None:
                 for piece in _pieces(table, na_rep, os.linesep, float_format, None):
                     if isinstance(piece, str):
                         fh.write(piece.encode("utf-8"))
-                    elif b"\xed" in piece:  # (the first byte of a surrogate's, and of U+D000..)
+                    elif _SURROGATE.search(piece):  # (UTF-8 of U+D800..U+DFFF: ED A0..BF)
                         # a lone surrogate: the chunk's text encoded strictly raises the
                         # UnicodeEncodeError of pandas' writer
                         fh.write(piece.decode("utf-8", "surrogatepass").encode("utf-8"))

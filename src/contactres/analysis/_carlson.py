@@ -168,7 +168,6 @@ def _duplicate(x: np.ndarray, y: np.ndarray, z: np.ndarray) -> tuple[np.ndarray,
             continue
         if done.all():  # (every point left stops here: no gathers)
             stopped.append((active, xyz, mean_f, np.full(active.size, scale), tail))
-            active = active[:0]
             break
         at = np.flatnonzero(done)
         stopped.append((active[at], xyz[:, at], mean_f[at], np.full(at.size, scale), tail[at]))

@@ -476,9 +476,7 @@ def _data_sums(df, dg, w, wf, wg) -> tuple[np.ndarray, ...]:
     cut and of :func:`solve_projected` that do not depend on θ, formed once per chunk of sweeps
     for all the rounds of its search (row by row: a slice of rows has the numbers of the same
     rows of the whole; the mean and ΔΓ - mean those that solve_projected forms)."""
-    n = w.sum(-1)
-    dgm = (w * dg).sum(-1) / n
-    dgc = dg - dgm[:, None]
+    n, dgm, dgc = projection_data(dg, w)
     c = wf * (w * df * df).sum(-1) + wg * (w * dgc * dgc).sum(-1)
     points = tuple(np.ascontiguousarray(a.T) for a in (dgc, df, dg, w))
     return n, c, w * df, w * dgc, dgm, *points
