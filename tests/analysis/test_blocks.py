@@ -214,6 +214,24 @@ def test_the_friction_law_is_decided_per_experiment(pool):
     assert right == 1.0 if pool else right >= 0.5
 
 
+def test_a_block_without_any_fit_leaves_its_experiments_friction_law_to_the_others():
+    # The rule: a block counts towards its experiment's law only where both families fitted
+    # (their criteria finite). Block 1 has no fit at all (every criterion inf: Δf of the wrong
+    # sign); block 0 of the same experiment decides (Coulomb by 8 > 6), block 2 alone leaves
+    # its experiment open. No RuntimeWarning (inf − inf; an error in the tests).
+    from contactres.analysis._blocks import _friction_law
+    from contactres.analysis._models import AMPLITUDE_MODELS
+
+    classes = np.repeat(np.asarray(AMPLITUDE_MODELS), 2)
+    crit = np.full((classes.size, 3), np.inf)
+    crit[classes == "cattaneo-mindlin", 0] = 10.0
+    crit[classes == "savkoor", 0] = 18.0
+    crit[classes == "savkoor", 2] = 5.0
+    blocks = pd.DataFrame({"configuration": "c", "medium": "air", "experiment": ["e1", "e1", "e2"]})
+    law = _friction_law(crit, classes, blocks, 6.0)
+    assert law.tolist() == ["coulomb", "coulomb", ""]
+
+
 def test_linear_onset_limit_is_where_the_slope_mu_reads_10_percent_low():
     # Paper 2, Eq. 11: dK′/du0 = -κ²/(6μF_N) and dK″/du0 = 2κ²/(9πμF_N) at u0 -> 0; a straight
     # line fitted to the exact loop on 13 amplitudes up to x = LINEAR_ONSET_X (κ = μF_N = 1).

@@ -15,6 +15,7 @@ import pytest
 import contactres as cr
 from contactres.analysis import AnalysisSettings
 from contactres.analysis._coating import (
+    STATIC_FREQUENCY_HZ,
     _corrections,
     as_coating,
     build_law,
@@ -23,7 +24,7 @@ from contactres.analysis._coating import (
 from contactres.analysis._coating_bootstrap import resampled_coated
 from contactres.analysis._jkr import fit_jkr_mindlin
 from contactres.errors import ContactresInputError
-from contactres.normal import sphere_contact, static_punch_stiffness
+from contactres.normal import sphere_contact, sphere_contact_at, static_punch_stiffness
 from contactres.tangential import kappa_jkr_mindlin
 
 NU = 0.17
@@ -290,6 +291,91 @@ def test_without_a_coating_the_settings_record_has_no_coating(tmp_path):
     shares = [row["film_share"] for row in g["coating"]["loads"]]
     assert len(shares) == 3 and all(0 < s < 1 for s in shares)
     assert np.isfinite(coated.jkr["kappa_N_per_m"]).any()
+
+
+class SoftAtTheOvertone:
+    """A film as stiff as the substrate in the static (normal) contact and 15 times softer at
+    the overtone (the tangential stiffness). Not a physical material (a passive film stiffens
+    with frequency): made so that the coated fit needs contact radii twice the uncoated ones to
+    give the measured κ, within the table's E range (a film soft at both frequencies drives E
+    to the table's bound first)."""
+
+    name = "film"
+
+    def at(self, frequency):
+        E = 70e9 if frequency <= STATIC_FREQUENCY_HZ else 4.5e9
+        return cr.Material.isotropic(E, 0.3, name="film")
+
+
+def jkr_radius(P, E, gamma, radius):
+    """Paper 2's Eq. 9 in closed form, a³ = (3R/4E*)[P + w + √(2wP + w²)], w = 6πγR, E* of the
+    homogeneous pair."""
+    e_star = E / (2 * (1 - NU**2))
+    w = 6 * np.pi * gamma * radius
+    return (3 * radius / (4 * e_star) * (P + w + np.sqrt(2 * w * P + w**2))) ** (1 / 3)
+
+
+def adhesive_force_at(E, gamma, film, h, a):
+    """P(a) of the adhesive sphere on the coated plate at contact radius a, by the compliance
+    method written out with the public sphere solution: P'(a) and K(a) = 1/C(a) at a, and
+    −dC/da by central differences."""
+    sphere = cr.Material.isotropic(E, NU, name="sphere")
+    plate = cr.LayeredMaterial(sphere, [(film, h)])
+    eps = 1e-4
+    c = sphere_contact_at(plate, R, a * np.array([1.0, 1 - eps, 1 + eps]), indenter=sphere)
+    C = 1 / np.asarray(c.stiffness)
+    minus_dC = -(C[2] - C[1]) / (2 * eps * a)
+    return float(np.asarray(c.force)[0] - np.sqrt(8 * np.pi * gamma * a / minus_dC))
+
+
+def test_a_load_whose_contact_radius_is_outside_the_table_withholds_the_coated_fit():
+    # One experiment at 2, 4 and 6 mN, and at 30 mN with Δf of the wrong sign (κ < 0): that
+    # load is left out of both fits, so it cannot hold the coated fit at the table's edge, but
+    # it sets the table's largest radius and is among the measured loads the fit is checked
+    # at. The coated fit's radii at 2-6 mN stay ~3 % inside the table; at 30 mN the radius is
+    # beyond it (the force there is measured 13 mN at the table's largest radius).
+    from contactres.measurements._synthetic import SweepGroup, SweepStudy, synthetic_sweeps
+    from contactres.resonators._qcm import QCM
+
+    loads = (2e-3, 4e-3, 6e-3, 30e-3)
+    group = SweepGroup("glass", "air", R, 70e9, 0.1, (1e-9, 2e-9, 3e-9, 4e-9), 2e4, 0.1)
+    study = SweepStudy(
+        groups=(group,),
+        normal_forces=loads,
+        n_experiments=1,
+        alternate=False,
+        qcm=QCM(5e6, 3, 2.5e-5),
+    )
+    frame = synthetic_sweeps(study, 7)
+    frame.loc[frame["normal_force_N"] == loads[-1], "df_Hz"] *= -1
+    table = cr.validate_sweeps(frame, constants={"area_m2": 2.5e-5, "overtone": 3, "n_contacts": 3})
+    film, h = SoftAtTheOvertone(), 2e-6
+    (g,) = cr.analyze(table, settings=AnalysisSettings(bootstrap=0, coating=(film, h))).groups
+    assert g["poisson"] == NU
+    # The table's radii: 0.7 times the uncoated fit's radius at the smallest load, 1.5 times
+    # that at the largest.
+    uncoated = g["coating"]["uncoated"]
+    E0, gamma0 = uncoated["E_Pa"], uncoated["gamma_J_m2"]
+    lo, hi = g["coating"]["table_contact_radius_range_m"]
+    assert lo == pytest.approx(0.7 * jkr_radius(loads[0], E0, gamma0, R), rel=1e-12)
+    assert hi == pytest.approx(1.5 * jkr_radius(loads[-1], E0, gamma0, R), rel=1e-12)
+    # Withheld, and why.
+    assert "fit-at-bound" in g["checks"]
+    assert (
+        f"the coated fit needs contact radii outside its table ({lo:.3g}-{hi:.3g} m) at 1 "
+        "load(s): E and γ withheld" in g["note"]
+    )
+    for key in ("E_Pa", "E_err_Pa", "gamma_J_m2", "gamma_err_J_m2"):
+        assert np.isnan(g[key])
+    assert g["coating"]["loads"] == []
+    # The fit itself ended inside its bounds: the table's radii are the only reason.
+    E, gamma = g["rejected_fit"]["E_Pa"], g["rejected_fit"]["gamma_J_m2"]
+    E_lo, E_hi = g["coating"]["table_E_range_Pa"]
+    assert E_lo < E < E_hi and 0 < gamma < 1e3
+    # Where the radii are, independently of the table: on the stable branch P(a) rises, so a
+    # load above P at the table's largest radius has its radius beyond it, one below inside.
+    at_hi = adhesive_force_at(E, gamma, film.at(STATIC_FREQUENCY_HZ), h, hi)
+    assert loads[2] < at_hi < loads[-1]
 
 
 @pytest.mark.parametrize("shape", [(24,), (3, 200, 6), (7, 3)])

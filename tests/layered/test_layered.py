@@ -176,38 +176,39 @@ def cubic_pmma(a_ratio: float) -> cr.Material:
     return cr.Material.cubic(c11, c12, a_ratio * (c11 - c12) / 2, density=1190.0)
 
 
-@pytest.mark.parametrize("case", range(len(CASES)))
-def test_stack_compliance_is_the_recursion_on_the_public_layer_waves(case):
-    """stack_compliance takes each layer's waves as their four parts, not stacked: the same
-    bits as the recursion on layer_waves' stacked arrays (one, two layers; isotropic and
-    Si (111); lossy), and the parts are layer_waves' rows."""
-    from contactres.halfspace._stacked import inv3
-    from contactres.layered import (
-        impedance_recursion,
-        isotropic_moduli,
-        layer_waves,
-        substrate_impedance,
-    )
-    from contactres.layered._recursion import _wave_parts
-
-    mats, hs = CASES[case]
+@pytest.mark.parametrize(
+    "mats",
+    [
+        [PMMA, QUARTZ],
+        [QUARTZ, SI111],
+        [SI111.with_loss(0.01), QUARTZ],
+        [PMMA.with_loss(0.05), SI111.with_loss(0.01), QUARTZ.with_loss(0.02)],
+    ],
+    ids=["PMMA/quartz", "quartz/Si", "lossy Si/quartz", "lossy PMMA/Si/quartz"],
+)
+@pytest.mark.parametrize("inertia", [0.0, 0.5])
+def test_stack_compliance_has_the_half_spaces_as_its_limits(mats, inertia):
+    """The layer recursion's limits, each a homogeneous half-space (contactres.halfspace, the
+    Stroh solution with no layer): layers of zero thickness leave the substrate's compliance,
+    layers of the substrate's own material too (at any thickness), and a top layer far thicker
+    than 1/η (ηh = 60) is a half-space of its own material. ``inertia``: ρω²/η² as a fraction
+    of the slowest C44/ρ of the stack (every partial wave evanescent; statics at 0); isotropic
+    and Si (111), lossy or not."""
     c44 = float(np.real(mats[-1].C[3, 3]))
-    theta = np.array([0.0, 0.7, 2.2])
-    for eta in (4e6, 1e7):
-        s = [(m.density or 0.0) * (2 * np.pi * 15e6) ** 2 / (c44 * eta**2) for m in mats]
-        sv = [np.full(theta.size, v, dtype=complex) for v in s]
-        tensors = [voigt_to_tensor(np.asarray(m.C, dtype=complex)) / c44 for m in mats]
-        eta_h = [np.full(theta.size, eta * h, dtype=complex) for h in hs]
-        got = stack_compliance(tensors, sv, eta_h, theta)
-        layers = [layer_waves(c, theta, v) for c, v in zip(tensors[:-1], sv, strict=False)]
-        iso = [theta if isotropic_moduli(c) is not None else None for c in tensors[:-1]]
-        Y = substrate_impedance(tensors[-1], theta, sv[-1])
-        want = inv3(impedance_recursion(layers, eta_h, Y, iso))
-        np.testing.assert_array_equal(got, np.moveaxis(want, (0, 1), (-2, -1)))
-        for c, v, (waves, mirror) in zip(tensors[:-1], sv, layers, strict=False):
-            parts, flag = _wave_parts(c, theta, v)
-            assert flag == mirror
-            np.testing.assert_array_equal(np.stack(parts), waves)
+    tensors = [voigt_to_tensor(np.asarray(m.C, dtype=complex)) / c44 for m in mats]
+    slowest = min(float(np.real(m.C[3, 3])) / m.density for m in mats)
+    s = [inertia * m.density * slowest / c44 for m in mats]
+    layers = len(mats) - 1
+    substrate = surface_compliance(tensors[-1], THETA, s[-1])
+    top = surface_compliance(tensors[0], THETA, s[0])
+    thin = stack_compliance(tensors, s, [0.0] * layers, THETA)
+    assert rel(thin, substrate) < 1e-13
+    same = stack_compliance(
+        [tensors[-1]] * len(mats), [s[-1]] * len(mats), [0.7, 2.0][:layers], THETA
+    )
+    assert rel(same, substrate) < 1e-13
+    thick = stack_compliance(tensors, s, [60.0] + [0.5] * (layers - 1), THETA)
+    assert rel(thick, top) < 1e-13
 
 
 @pytest.mark.parametrize("frequency", [0.0, 40e6])

@@ -10,6 +10,10 @@ References used here, none of them the Galerkin itself:
   c(x) = (B/A) 2h/(4h² + x²).
 """
 
+import math
+import warnings
+from fractions import Fraction
+
 import numpy as np
 import pytest
 from fredholm_reference import fredholm
@@ -45,6 +49,85 @@ def test_even_spherical_bessel_of_ascending_nodes_is_scipys_and_the_shuffled_one
     np.testing.assert_allclose(got, ref, rtol=0, atol=3e-15)
     shuffle = np.random.default_rng(n).permutation(s.size)
     np.testing.assert_array_equal(even_spherical_bessel(n, s[shuffle]), got[:, shuffle])
+
+
+def series_even_spherical_bessel(n, s):
+    """j_{2k}(s), k < n, by the power series s^{2k}/(4k + 1)!! (1 − s²/(2(4k + 3))) in exact
+    rational arithmetic, rounded once: exact to double precision for s <= 1e-5 (the next term
+    is below 1e-21 relative)."""
+    out = np.empty((n, len(s)))
+    for k in range(n):
+        double_factorial = math.prod(range(1, 4 * k + 2, 2))
+        for i, x in enumerate(s):
+            x = Fraction(float(x))
+            out[k, i] = float(x ** (2 * k) / double_factorial * (1 - x * x / (2 * (4 * k + 3))))
+    return out
+
+
+def test_even_spherical_bessel_at_tiny_arguments_is_the_power_series():
+    # Down to the smallest subnormal (scipy's spherical_jn gives NaN there): j₀ = 1 and the
+    # higher orders underflow to 0 as the series does.
+    s = np.array([5e-324, 1e-300, 1e-150, 1e-20, 1e-8, 1e-5])
+    with warnings.catch_warnings():
+        warnings.simplefilter("error")
+        got = even_spherical_bessel(60, s)
+    np.testing.assert_allclose(got, series_even_spherical_bessel(60, s), rtol=2e-15, atol=1e-300)
+
+
+def test_even_spherical_bessel_at_zero_is_its_limit_and_leaves_the_others():
+    # j₀(0) = 1, j_{2k}(0) = 0: no 0/0 (a RuntimeWarning would be an error here).
+    s = np.array([3.0, 0.0, 250.0, 0.0])
+    got = even_spherical_bessel(30, s)
+    np.testing.assert_array_equal(got[:, [1, 3]], np.eye(30)[:, [0, 0]])
+    np.testing.assert_array_equal(got[:, [0, 2]], even_spherical_bessel(30, s[[0, 2]]))
+
+
+def test_even_spherical_bessel_at_huge_arguments_is_scipys():
+    # Far above every order (upward recurrence only); compared relative to the 1/s envelope.
+    s = np.array([1e6, 3.3e9, 1e15, 1e300])
+    for n in (1, 5, 400):
+        ref = spherical_jn(2 * np.arange(n)[:, None], s[None, :])
+        np.testing.assert_allclose(even_spherical_bessel(n, s) * s, ref * s, rtol=0, atol=3e-15)
+
+
+@pytest.mark.parametrize("n", [0, 1, 2, 30, 400])
+def test_even_spherical_bessel_of_any_order_of_arguments_is_scipys(n):
+    # Unsorted, repeated, on both sides of s = 2n − 1 (the switch from the ratios run down to
+    # the upward recurrence), for no order up to 400 of them (j_0 ... j_798).
+    top = max(2 * n - 1, 2)
+    s = np.array([top * 3, 0.5, top - 1e-9, top, top + 1e-9, 0.5, top * 3, 1e-3, top / 2])
+    got = even_spherical_bessel(n, s)
+    assert got.shape == (n, s.size)
+    ref = spherical_jn(2 * np.arange(n)[:, None], s[None, :])
+    np.testing.assert_allclose(got, ref, rtol=0, atol=3e-15)
+    np.testing.assert_array_equal(got[:, 0], got[:, 6])  # repeats: the same bits
+    np.testing.assert_array_equal(got[:, 1], got[:, 5])
+
+
+@pytest.mark.parametrize("n", [0, 3])
+def test_even_spherical_bessel_of_no_arguments_is_empty(n):
+    assert even_spherical_bessel(n, np.zeros(0)).shape == (n, 0)
+
+
+def test_even_spherical_bessel_is_even_in_its_argument():
+    # j_{2k}(−s) = j_{2k}(s): negative arguments far beyond the highest order too (a start of
+    # the ratios set by the signed largest argument would be far too low for them).
+    s = np.array([-1000.0, -40.0, 5.0, -0.5, 1000.0])
+    got = even_spherical_bessel(30, s)
+    np.testing.assert_array_equal(got, even_spherical_bessel(30, np.abs(s)))
+    ref = spherical_jn(2 * np.arange(30)[:, None], np.abs(s)[None, :])
+    np.testing.assert_allclose(got, ref, rtol=0, atol=3e-15)
+
+
+def test_even_spherical_bessel_of_a_nan_is_nan_in_its_column_alone():
+    # 790 is below the highest order 798: its ratios start from the largest such argument,
+    # which a NaN must not hide (a start at 828 instead of 1057 leaves ~2e-10 there).
+    s = np.array([np.nan, 790.0, 2000.0, np.nan, 3.0])
+    got = even_spherical_bessel(400, s)
+    assert np.isnan(got[:, [0, 3]]).all()
+    np.testing.assert_array_equal(got[:, [1, 2, 4]], even_spherical_bessel(400, s[[1, 2, 4]]))
+    ref = spherical_jn(2 * np.arange(400)[:, None], s[None, [1, 2, 4]])
+    np.testing.assert_allclose(got[:, [1, 2, 4]], ref, rtol=0, atol=3e-15)
 
 
 @pytest.mark.parametrize("n_basis", [None, 2, 9])

@@ -223,7 +223,9 @@ def _friction_law(crit, classes, blocks: pd.DataFrame, delta_bic: float) -> np.n
     """
     sv = crit[classes == "savkoor"].min(axis=0)
     cm = crit[np.isin(classes, ["cattaneo-mindlin", "plateau"])].min(axis=0)
-    diff = np.where(np.isfinite(sv) & np.isfinite(cm), cm - sv, 0.0)
+    # Only where both fitted (a block with no fit, e.g. Δf of the wrong sign, has inf for
+    # every class: inf − inf would warn).
+    diff = np.subtract(cm, sv, out=np.zeros_like(cm), where=np.isfinite(sv) & np.isfinite(cm))
     exp = blocks.groupby(["configuration", "medium", "experiment"], sort=False).ngroup()
     total = np.bincount(exp.to_numpy(), weights=diff)[exp.to_numpy()]
     return np.where(total > delta_bic, "savkoor", np.where(total < -delta_bic, "coulomb", ""))

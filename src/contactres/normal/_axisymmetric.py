@@ -216,61 +216,87 @@ def basis_size(kernel: RadialKernel, a: float) -> int:
 
 
 def even_spherical_bessel(n: int, s: np.ndarray) -> np.ndarray:
-    """j_{2k}(s) for k = 0..n−1 at real s > 0, shape (n, s.size) (the basis transforms).
+    """j_{2k}(s) for k = 0..n−1 at finite real s, shape (n, s.size) (the basis transforms).
 
-    Above the highest order (s > 2n − 1) the upward recurrence j_{p+1} = (2p + 1)/s j_p − j_{p−1}
-    is stable (no order is small there); below it the ratios j_p/j_{p−1} = s/(2p + 1 − s
-    j_{p+1}/j_p) are run down from zero at an order 30 above max(2n, 1.3 s) (the minimal
+    The even orders are even functions of s: computed at ``|s|``. At s = 0 the limits j₀ = 1 and
+    j_{2k} = 0 (k >= 1); a NaN gives NaN in its own column and leaves the others as they are
+    without it. Above the highest order (s > 2n − 1) the upward recurrence j_{p+1} = (2p + 1)/s
+    j_p − j_{p−1} is stable (no order is small there); below it the ratios j_p/j_{p−1} = s/(2p + 1
+    − s j_{p+1}/j_p) are run down from zero at an order 30 above max(2n, 1.3 s) (the minimal
     solution: its truncation error falls like (s/2N)^{2(N − p)}), and anchored on j₀ = sin s/s or
-    j₁ = (sin s/s − cos s)/s, whichever is larger (no zero costs digits). ~1e-15 relative,
-    checked against scipy's spherical_jn in the tests; one pass over the orders.
+    j₁ = (sin s/s − cos s)/s, whichever is larger (no zero costs digits). ~1e-15 absolute (and
+    2e-15 relative at s <= 1e-5, where the higher orders fall to the underflow), checked in the
+    tests against scipy's spherical_jn and the power series; one pass over the orders.
     """
-    s = np.asarray(s, dtype=float).ravel()
+    s = np.abs(np.asarray(s, dtype=float).ravel())
     p_max = max(2 * n - 2, 1)
     j = np.empty((p_max + 1, s.size))
-    j[0] = np.sin(s) / s
-    j[1] = (j[0] - np.cos(s)) / s
+    # j₀ and j₁; at s = 0 their limits 1 and 0 (the recurrence below then gives 0 above).
+    j[0], j[1] = 1.0, 0.0
+    nonzero = s != 0
+    np.divide(np.sin(s), s, out=j[0], where=nonzero)
+    np.divide(j[0] - np.cos(s), s, out=j[1], where=nonzero)
     up = s > p_max + 1
     n_up = int(np.count_nonzero(up))
     # Ascending s (the quadrature's nodes): the arguments above every order are the last ones,
-    # worked on in place as slices of j; otherwise gathered and put back by the masks. Every
-    # step below writes into its row (no temporaries: ~1/3 of the cost at the coated table's
-    # ~90 orders x ~3000 nodes); the same operations, hence the same values, either way.
+    # worked on in place as slices of j; otherwise gathered and put back by the masks
+    # (:func:`_on_columns`): the same operations, hence the same values, either way.
     first = s.size - n_up
     tail = bool(np.all(up[first:]))
     if n_up:
-        su = s[first:] if tail else s[up]
-        blk = j[:, first:] if tail else np.empty((p_max + 1, su.size))
-        if not tail:
-            blk[0], blk[1] = j[0, up], j[1, up]
-        for p in range(1, p_max):
-            np.multiply((2 * p + 1) / su, blk[p], out=blk[p + 1])
-            blk[p + 1] -= blk[p - 1]
-        if not tail:
-            j[:, up] = blk
+        _on_columns(j, slice(first, None) if tail else up, s, _upward)
     if n_up < s.size:
-        low = ~up
-        sl = s[:first] if tail else s[low]
-        top = int(max(p_max, 1.3 * float(sl.max()))) + 30
-        ratio = np.zeros(sl.size)
-        ratios = np.empty((p_max + 1, sl.size))
-        den = np.empty(sl.size)
-        for p in range(top, 0, -1):
-            np.multiply(sl, ratio, out=den)
-            np.subtract(2 * p + 1, den, out=den)
-            if p <= p_max:
-                ratio = ratios[p]  # kept: the row p of the ratios
-            np.divide(sl, den, out=ratio)
-        blk = j[:, :first] if tail else np.empty((p_max + 1, sl.size))
-        j0, j1 = (j[0, :first], j[1, :first]) if tail else (j[0, low], j[1, low])
-        if not tail:
-            blk[0] = j0
-        blk[1] = np.where(np.abs(j0) >= np.abs(j1), j0 * ratios[1], j1)
-        for p in range(2, p_max + 1):
-            np.multiply(blk[p - 1], ratios[p], out=blk[p])
-        if not tail:
-            j[:, low] = blk
+        _on_columns(j, slice(0, first) if tail else ~up, s, _downward)
     return j[0 : 2 * n : 2]
+
+
+def _on_columns(
+    j: np.ndarray,
+    cols: slice | np.ndarray,
+    s: np.ndarray,
+    fill: Callable[[np.ndarray, np.ndarray], None],
+) -> None:
+    """``fill(block, s[cols])`` on the columns ``cols`` of ``j`` (rows 0 and 1 set): a slice is
+    worked on in j's own memory, a mask on a gathered copy of its rows 0 and 1, put back."""
+    if isinstance(cols, slice):
+        fill(j[:, cols], s[cols])
+        return
+    blk = np.empty((j.shape[0], int(np.count_nonzero(cols))))
+    blk[:2] = j[:2, cols]
+    fill(blk, s[cols])
+    j[:, cols] = blk
+
+
+def _upward(blk: np.ndarray, s: np.ndarray) -> None:
+    """Rows 2.. of ``blk`` from j₀ and j₁ in its rows 0 and 1 by the upward recurrence, at
+    arguments ``s`` above every order. Every step writes into its row (no temporaries: ~1/3 of
+    the cost at the coated table's ~90 orders x ~3000 nodes)."""
+    for p in range(1, blk.shape[0] - 1):
+        np.multiply((2 * p + 1) / s, blk[p], out=blk[p + 1])
+        blk[p + 1] -= blk[p - 1]
+
+
+def _downward(blk: np.ndarray, s: np.ndarray) -> None:
+    """Rows 1.. of ``blk`` from j₀ and j₁ in its rows 0 and 1 by the ratios run down (in place,
+    as :func:`_upward`), at arguments ``s`` at most one above the highest order."""
+    p_max = blk.shape[0] - 1
+    # The largest argument sets the start; fmax passes a NaN over (its column is NaN anyway, and
+    # max would make it start too low for all the others).
+    s_max = float(np.fmax.reduce(s))
+    top = p_max + 30 if math.isnan(s_max) else int(max(p_max, 1.3 * s_max)) + 30
+    ratio = np.zeros(s.size)
+    ratios = np.empty_like(blk)
+    den = np.empty(s.size)
+    for p in range(top, 0, -1):
+        np.multiply(s, ratio, out=den)
+        np.subtract(2 * p + 1, den, out=den)
+        if p <= p_max:
+            ratio = ratios[p]  # kept: the row p of the ratios
+        np.divide(s, den, out=ratio)
+    j0, j1 = blk[0], blk[1]
+    blk[1] = np.where(np.abs(j0) >= np.abs(j1), j0 * ratios[1], j1)
+    for p in range(2, p_max + 1):
+        np.multiply(blk[p - 1], ratios[p], out=blk[p])
 
 
 def _centre_values(n: int) -> np.ndarray:
