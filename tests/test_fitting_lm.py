@@ -309,17 +309,20 @@ def test_solve_stacked_is_cramers_rule_bit_for_bit(K):
 
 def test_row_reductions_are_numpys():
     # The solver's per-row max and all, column by column: numpy's reductions along the rows,
-    # NaN and zero columns included.
-    from contactres._levenberg_marquardt import _rows_all, _rows_max
+    # NaN, zeros and negative numbers included; with no column, the value given for none.
+    from contactres._levenberg_marquardt import _rows_reduce
 
     rng = np.random.default_rng(5)
     for P in (1, 2, 3):
-        a = np.abs(rng.normal(size=(40, P)))
+        a = rng.normal(size=(40, P))
         a[::7] = 0.0
         a[3, 0] = np.nan
-        np.testing.assert_array_equal(_rows_max(a), np.max(a, axis=1, initial=0.0))
+        np.testing.assert_array_equal(_rows_reduce(np.maximum, a, 0.0), np.max(a, axis=1))
         b = a < 0.8
-        np.testing.assert_array_equal(_rows_all(b), np.all(b, axis=1))
+        np.testing.assert_array_equal(_rows_reduce(np.logical_and, b, True), np.all(b, axis=1))
+    none = np.zeros((4, 0))
+    np.testing.assert_array_equal(_rows_reduce(np.maximum, none, 0.0), np.zeros(4))
+    np.testing.assert_array_equal(_rows_reduce(np.logical_and, none < 1, True), np.ones(4, bool))
 
 
 def test_solve_stacked_broadcasts_an_empty_stack_against_one_row():

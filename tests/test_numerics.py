@@ -251,6 +251,49 @@ def test_column_run_starts_against_a_loop_over_the_rows(name):
     assert starts.tolist() == want
 
 
+@pytest.mark.parametrize("name", list(_columns()))
+def test_factorize_at_finer_runs_is_pandas_hashing_every_cell(name):
+    # Starts given by the caller: any split of the runs finer than column_run_starts' (here:
+    # some runs cut again at random rows) gives pandas' factorisation of every cell; None
+    # hashes every cell.
+    import pandas as pd
+
+    from contactres.numerics import column_run_starts, factorize_at_runs
+
+    column = _columns()[name]
+    want_codes, want_uniques = pd.factorize(column, use_na_sentinel=False)
+    starts = column_run_starts(column)
+    choices = [None]
+    if starts is not None:
+        rng = np.random.default_rng(len(column))
+        cut = np.flatnonzero(rng.random(len(column)) < 0.1)
+        choices += [starts, np.union1d(starts, cut).astype(np.intp)]
+    for given in choices:
+        codes, uniques = factorize_at_runs(column, given, use_na_sentinel=False)
+        assert codes.tolist() == want_codes.tolist()
+        assert pd.Series(uniques).equals(pd.Series(want_uniques))
+
+
+def test_repeat_runs_against_a_loop_over_the_rows():
+    # Each run's value on each of its rows, as a loop over the rows sets it: runs of one row,
+    # of many, the last run ending at the last row; no rows.
+    from contactres.numerics import repeat_runs
+
+    rng = np.random.default_rng(11)
+    for trial in range(50):
+        n_rows = int(rng.integers(1, 60))
+        starts = np.flatnonzero(np.r_[True, rng.random(n_rows - 1) < 0.3])
+        values = rng.normal(size=starts.size) if trial % 2 else np.arange(starts.size) * 3
+        want = []
+        for row in range(n_rows):
+            run = max(i for i, s in enumerate(starts) if s <= row)
+            want.append(values[run])
+        got = repeat_runs(values, starts, n_rows)
+        assert got.dtype == values.dtype and got.tolist() == want
+    empty = repeat_runs(np.array([], dtype=bool), np.array([], dtype=np.intp), 0)
+    assert empty.dtype == bool and empty.size == 0
+
+
 def test_object_pointers_are_the_objects_identities():
     # The same pointer is the same object: id() of each cell (CPython's id is the address),
     # read-only; None where numpy gives no flat view of the pointers.

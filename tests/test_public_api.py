@@ -584,12 +584,14 @@ PUBLIC = {
     "numerics": [
         "IllinoisBracket",
         "column_run_starts",
+        "factorize_at_runs",
         "factorize_runs",
         "gauss_legendre",
         "gauss_legendre_unit",
         "illinois_step",
         "lobatto_weights",
         "object_pointers",
+        "repeat_runs",
         "run_starts",
     ],
     "units": [

@@ -16,7 +16,7 @@ from collections.abc import Iterator
 import numpy as np
 
 from ._decimal_text import copy_rows, g_precision, g_records, take_rows
-from .numerics import object_pointers, run_starts
+from .numerics import object_pointers, repeat_runs, run_starts
 
 __all__ = [
     "CHUNK_CELLS",
@@ -59,7 +59,7 @@ def _risky(col) -> np.ndarray:
         held = values[starts]
         first = np.asarray(held, dtype="U1")
         risky = np.isin(first, _FORMULA_START) & ~pd.isna(held)
-        return np.repeat(risky, np.diff(np.append(starts, values.size)))
+        return repeat_runs(risky, starts, values.size)
     return col.map(lambda v: isinstance(v, str) and v.startswith(_FORMULA_START)).to_numpy(
         dtype=bool
     )
@@ -427,8 +427,7 @@ def _text_records(col, na_rep: str) -> np.ndarray | None:
             raise _NotJoined
         starts = _run_starts(np.ascontiguousarray(col.to_numpy(dtype=object)))
         if 2 * starts.size < values.size:
-            ends = np.append(starts[1:], values.size)
-            codes = np.repeat(np.arange(starts.size), ends - starts)
+            codes = repeat_runs(np.arange(starts.size), starts, values.size)
             col = col.iloc[starts]
         else:  # a few texts, each object a row of its own (a sweep table's model names)
             import pandas as pd

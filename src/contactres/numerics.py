@@ -18,12 +18,14 @@ if TYPE_CHECKING:  # annotations only: the numerics import no pandas
 __all__ = [
     "IllinoisBracket",
     "column_run_starts",
+    "factorize_at_runs",
     "factorize_runs",
     "gauss_legendre",
     "gauss_legendre_unit",
     "illinois_step",
     "lobatto_weights",
     "object_pointers",
+    "repeat_runs",
     "run_starts",
 ]
 
@@ -358,9 +360,76 @@ def factorize_runs(cells, use_na_sentinel: bool = True) -> tuple[np.ndarray, pd.
     import pandas as pd  # here: the package's numerics need no pandas until a table is met
 
     cells = cells if isinstance(cells, pd.Series) else np.asarray(cells)
-    starts = column_run_starts(cells)
+    return factorize_at_runs(cells, column_run_starts(cells), use_na_sentinel)
+
+
+def factorize_at_runs(
+    cells, starts: np.ndarray | None, use_na_sentinel: bool = True
+) -> tuple[np.ndarray, pd.Index | np.ndarray]:
+    """:func:`factorize_runs` of a column whose runs the caller has found already: ``starts``
+    is :func:`column_run_starts` of ``cells`` (None: every cell is hashed).
+
+    Why: a caller that needs the run starts itself (to choose how to treat a column) would
+    otherwise have them found twice, a pass over every cell each time.
+
+    Parameters
+    ----------
+    cells : pandas.Series or numpy.ndarray
+        One column (an object array for text).
+    starts : numpy.ndarray or None
+        The first row of each run of equal cells, increasing, 0 first; any finer split of the
+        runs is as good (every distinct cell still starts some run). None where
+        :func:`column_run_starts` gives None.
+    use_na_sentinel : bool
+        As for :func:`factorize_runs`.
+
+    Returns
+    -------
+    codes : numpy.ndarray
+        The code of each cell (intp), numbering the distinct cells in order of appearance.
+    uniques : pandas.Index or numpy.ndarray
+        The distinct cells, as :func:`factorize_runs` gives them.
+
+    Examples
+    --------
+    >>> cells = np.array(["b", "b", "a", "b"], dtype=object)
+    >>> codes, uniques = factorize_at_runs(cells, np.array([0, 2, 3]))
+    >>> codes.tolist(), list(uniques)
+    ([0, 0, 1, 0], ['b', 'a'])
+    """
+    import pandas as pd  # here: the package's numerics need no pandas until a table is met
+
     if starts is None:
         return pd.factorize(cells, sort=False, use_na_sentinel=use_na_sentinel)
     firsts = cells.iloc[starts] if isinstance(cells, pd.Series) else cells[starts]
     codes, uniques = pd.factorize(firsts, sort=False, use_na_sentinel=use_na_sentinel)
-    return np.repeat(codes, np.diff(np.append(starts, len(cells)))), uniques
+    return repeat_runs(codes, starts, len(cells)), uniques
+
+
+def repeat_runs(values, starts: np.ndarray, n_rows: int) -> np.ndarray:
+    """Each of ``values`` (one per run) repeated over the rows of its run: the column of
+    ``n_rows`` rows whose runs start at the rows ``starts``.
+
+    What a column's runs give back to its rows: a value found on the first cell of each run of
+    equal cells (:func:`run_starts`, :func:`column_run_starts`) is every cell's of that run.
+
+    Parameters
+    ----------
+    values : array_like
+        One value per run, in the order of the runs (its length is that of ``starts``).
+    starts : numpy.ndarray
+        The first row of each run: increasing integers, 0 first (empty for no rows).
+    n_rows : int
+        The number of rows; the last run ends there.
+
+    Returns
+    -------
+    numpy.ndarray
+        ``n_rows`` values, of the dtype of ``values``.
+
+    Examples
+    --------
+    >>> repeat_runs(np.array([7, 8, 9]), np.array([0, 2, 3]), 5).tolist()
+    [7, 7, 8, 9, 9]
+    """
+    return np.repeat(values, np.diff(np.append(starts, n_rows)))

@@ -20,7 +20,7 @@ import numpy as np
 import pandas as pd
 from numpy.lib.mixins import NDArrayOperatorsMixin
 
-from ..numerics import factorize_runs
+from ..numerics import factorize_runs, repeat_runs, run_starts
 
 __all__ = [
     "BLOCK_POINTS",
@@ -188,10 +188,18 @@ class PaddedRows(NDArrayOperatorsMixin):
         return getattr(ufunc, method)(*args, **kwargs)
 
 
-def pad_sweeps(table: pd.DataFrame) -> Padded:
-    """Arrange the points of a sweep table (a DataFrame of its columns) sweep by sweep."""
+def pad_sweeps(
+    table: pd.DataFrame, sweeps: tuple[np.ndarray, pd.Index | np.ndarray] | None = None
+) -> Padded:
+    """Arrange the points of a sweep table (a DataFrame of its columns) sweep by sweep.
+
+    ``sweeps``: the code of every row's sweep and the sweep ids, numbered by first appearance
+    (:func:`contactres.numerics.factorize_runs` of ``table["sweep"]``), where the caller has
+    them already (the analysis factorises its table's ids once for every step); None: they are
+    found here.
+    """
     # (hashing the first row of each run of a sweep's rows: 10^6 ids cost ~0.1 s, issue 31)
-    codes, names = factorize_runs(table["sweep"])
+    codes, names = factorize_runs(table["sweep"]) if sweeps is None else sweeps
     u = table["amplitude_m"].to_numpy(float)
     order = np.lexsort((u, codes))
     counts = np.bincount(codes, minlength=len(names))
@@ -292,17 +300,13 @@ def row_sets(key) -> tuple[np.ndarray, np.ndarray, np.ndarray, np.ndarray]:
     """The sets of rows of ``key`` (S, C) (integers) that agree in every column: the first row
     of each set, the set of each row, the rows sorted by set and where each set ends in them."""
     order = np.lexsort(key.T[::-1])
-    k = key.take(order, axis=0)
-    differ = k[1:] != k[:-1]
-    new = np.zeros(order.size, dtype=bool)
-    new[:1] = True  # the first row starts the first set
-    # A row starts a set where any column differs from the row before: column after column
-    # (a pass over the rows each), not any() along rows of a few columns (its cost per row).
-    for c in range(differ.shape[1]):
-        new[1:] |= differ[:, c]
+    # A row starts a set where any column differs from the row before: the runs of the sorted
+    # rows, found column after column (a pass over the rows each), not by any() along rows of a
+    # few columns (its cost per row).
+    starts = run_starts(*key.take(order, axis=0).T)
     group = np.empty(order.size, dtype=np.intp)
-    group[order] = np.cumsum(new) - 1
-    return order[new], group, order, np.append(np.flatnonzero(new), order.size)
+    group[order] = repeat_runs(np.arange(starts.size), starts, order.size)
+    return order[starts], group, order, np.append(starts, order.size)
 
 
 def _suffix(a: np.ndarray) -> np.ndarray:

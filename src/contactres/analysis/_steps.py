@@ -168,11 +168,13 @@ def _run(
     ``figure_only``: Fig. 4's grid holds only the sweeps that figure draws."""
     data = table.data
 
-    padded = pad_sweeps(data)
     # Each sweep's code, numbering the sweeps by first appearance: a sweep's first row starts
     # one of the runs of its rows, and only those rows are hashed (all of them where the ids
     # are Arrow strings, which pandas hashes faster than they are compared as Python strings).
-    sweep, _ = factorize_runs(data["sweep"], use_na_sentinel=False)
+    # Once for every step: the padding (again after a drift's removal, which keeps the rows
+    # and their ids) and the sweeps' first rows.
+    sweep, ids = factorize_runs(data["sweep"], use_na_sentinel=False)
+    padded = pad_sweeps(data, (sweep, ids))
     # A sweep's first row is where the codes seen so far reach a new one (a new code is the
     # largest so far plus one): its info is that row's, as drop_duplicates("sweep") keeps it.
     seen = np.maximum.accumulate(sweep)
@@ -214,7 +216,7 @@ def _run(
             est = info[drift & tested].groupby(LOAD_OF_EXPERIMENT, sort=True)["sweep"]
             loads = est.agg(list).rename("sweeps").reset_index()
             data, drift_removed = remove_linear_drift(data, loads)
-            padded = pad_sweeps(data)
+            padded = pad_sweeps(data, (sweep, ids))
             again = _whole_loads(info, drifting_sweeps(info, padded, tested, settings.drift_p))
             again = again & ~few
             removed, drift = drift & ~again, again

@@ -22,7 +22,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from ...errors import ContactresInputError
-from ...numerics import column_run_starts
+from ...numerics import column_run_starts, repeat_runs
 
 if TYPE_CHECKING:  # annotations: pandas is imported where a table is read (a numpy archive's
     import pandas as pd  # reader shares this package and needs none, issue 31)
@@ -266,7 +266,7 @@ def load(path: Path, number_columns: Collection[str] = ()) -> pd.DataFrame:
     # A short row may leave NaN in its missing cells (pandas 3 gives empty ones): make them
     # empty cells, as written. Its last cell is one of them, so that column alone is looked
     # at first (one column, not every cell of 10^6 rows: issue 31), on the first cell of each
-    # run of equal cells (a constant's column is a few runs).
+    # run of equal cells (a constant's column is a few runs; _other_separator reads the runs).
     last = raw.iloc[:, -1]
     starts = column_run_starts(last)
     if (last if starts is None else last.iloc[starts]).isna().any():
@@ -276,7 +276,7 @@ def load(path: Path, number_columns: Collection[str] = ()) -> pd.DataFrame:
         # Every row would be named by a wrong line, and the label would not be the one written.
         _quoted_break(path, kept())
     raw["line"] = numbers[1:]
-    _other_separator(path, raw, kept, sep, decimal, width)
+    _other_separator(path, raw, starts, kept, sep, decimal, width)
     raw.attrs["decimal"] = decimal
     # Dropped lines among the data are said, never silent: the validator reports them
     # (line_ranges). Comments above the header are a preamble (an instrument's, or the
@@ -396,6 +396,7 @@ def _width(line: str, sep: str) -> int:
 def _other_separator(
     path: Path,
     raw: pd.DataFrame,
+    starts: np.ndarray | None,
     kept: Callable[[], list[tuple[int, str]]],
     sep: str,
     decimal: str,
@@ -405,19 +406,20 @@ def _other_separator(
     a comma file): its cells would read as empty ones and be blamed as such (issue 27).
 
     Only rows whose cells past the first are all empty are looked at (a vectorised test), and
-    only those are split again, by the csv module, to count their fields."""
+    only those are split again, by the csv module, to count their fields. ``starts``: the runs
+    of equal cells of the last column (:func:`contactres.numerics.column_run_starts`), as the
+    caller found them (before a short row's missing cells were made empty: equal cells stay
+    equal, so they are still runs)."""
     others = [c for c in (",", ";", "\t") if c != sep and not (c == "," and decimal == ",")]
     if width < 2 or not others or raw.empty:
         return
     # The last cell first (one column: cheap on 10^6 rows, and compared on the first cell of
     # each run of equal cells only: a constant's column is a few runs), then the few rows left.
     last = raw.iloc[:, width - 1]
-    starts = column_run_starts(last)
     if starts is None:  # Arrow text, compared whole
         empty = (last == "").to_numpy(dtype=bool)
     else:
-        runs = np.diff(np.append(starts, len(last)))
-        empty = np.repeat((last.iloc[starts] == "").to_numpy(dtype=bool), runs)
+        empty = repeat_runs((last.iloc[starts] == "").to_numpy(dtype=bool), starts, len(last))
     rows = raw.loc[empty]
     first = rows.iloc[:, 0].astype(str)
     held = np.zeros(len(rows), dtype=bool)

@@ -19,7 +19,7 @@ import numpy as np
 
 from ...numerics import column_run_starts
 from ...units import MAX_AMPLITUDE_M, MIN_AMPLITUDE_M, POISSON_OPEN_RANGE, QUANTITIES, unit_slip
-from .._cell_text import stripped_distinct
+from .._cell_text import stripped_text_codes, text_cells
 from ._columns import Column, Rule, TableSchema, rule
 
 __all__ = [
@@ -52,13 +52,11 @@ def stripped(cells) -> np.ndarray:
     (issue 31); factorising the cells is a hash table in C. Cells that are mostly distinct
     (more runs of equal cells than half the cells: a rule checked on the distinct sweep ids)
     are stripped one by one instead, as hashing them first would not spare a strip."""
-    import pandas as pd  # here: the numeric rules of a binary table need no pandas
-
-    text = (cells if isinstance(cells, pd.Series) else pd.Series(cells, dtype=object)).astype(str)
+    text = text_cells(cells)
     starts = column_run_starts(text)
     if starts is not None and 2 * len(starts) > len(text):
         return text.str.strip().to_numpy(dtype=object)
-    codes, distinct = stripped_distinct(text)
+    codes, distinct, _ = stripped_text_codes(text, starts)  # (the runs found once)
     return distinct[codes]
 
 
