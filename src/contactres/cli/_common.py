@@ -445,8 +445,11 @@ def computed_rounded(result, copied) -> object:
     values, written back exactly)."""
     out = result.copy()
     kept = set(copied)
-    for col in out.columns:
-        if col not in kept and out[col].dtype.kind == "f":
+    # By position: a column name twice (a fault of the job) is then the writer's to name, not
+    # an AttributeError here (out[name] would be a frame of both).
+    for i, col in enumerate(out.columns):
+        values = out.iloc[:, i]
+        if col not in kept and values.dtype.kind == "f":
             # Python floats (tolist), not numpy scalars: the same text, formatted ~1.5x faster.
-            out[col] = [("" if v != v else f"{v:.10g}") for v in out[col].to_numpy().tolist()]
+            out.isetitem(i, [("" if v != v else f"{v:.10g}") for v in values.to_numpy().tolist()])
     return out
