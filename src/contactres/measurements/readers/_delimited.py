@@ -67,11 +67,6 @@ def _dialect(text: str) -> tuple[str, str]:
     return sep, decimal
 
 
-def _shown(name: str, limit: int = 60) -> str:
-    text = name if len(name) <= limit else name[: limit - 1] + "…"
-    return repr(text)
-
-
 def _hashing(data: bytes) -> Callable[[], str]:
     """A function giving the SHA-256 (hex) of ``data``, which a thread of its own computes
     meanwhile where ``data`` is large.

@@ -305,8 +305,8 @@ def read_rows(path: Path) -> pd.DataFrame:
     below the header are recorded in ``attrs["comment_lines"]``, which the conversion names).
     Column names get runs of blanks made one blank; a repeated name (QCM-I repeats its flow and
     temperature columns per overtone) gets `` #2``, `` #3``, ... (a number the file's own names
-    do not hold: every column keeps a name of its own) Text is UTF-8 (a byte order
-    mark is skipped), else read as Windows-1252, as instrument software on Windows writes it.
+    do not hold: every column keeps a name of its own). Text is UTF-8 (a byte order mark is
+    skipped), else read as Windows-1252, as instrument software on Windows writes it.
     Short rows are padded with empty cells; empty cells past the header's width are dropped.
     """
     path = Path(path)
