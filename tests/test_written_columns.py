@@ -80,6 +80,19 @@ def test_the_other_writers_of_cells_refuse_it_too():
         assert PLACES in _internal(caught)
 
 
+@pytest.mark.parametrize("fmt", ["csv", "json", "table"])
+def test_the_console_table_refuses_it_in_every_format(fmt):
+    import io
+
+    from contactres.cli._common import emit
+
+    stream = io.StringIO()
+    with pytest.raises(ValueError) as caught:
+        emit(_twice(), fmt, stream)
+    assert _internal(caught) == f"the table written: duplicate column name(s) {PLACES}; {RULE}"
+    assert stream.getvalue() == ""
+
+
 def test_many_repeats_are_named_in_a_short_line():
     frame = pd.DataFrame(np.zeros((1, 3000)), columns=["a", "b", "c"] * 1000)
     with pytest.raises(ValueError) as caught:
