@@ -355,3 +355,41 @@ def test_a_header_pandas_reads_otherwise_is_never_taken_as_read_right(tmp_path, 
     monkeypatch.setattr(_delimited, "repeats_text", lambda names: None)
     with pytest.raises(RuntimeError, match=r"pandas read the header as \[.*'fc1_Hz\.1'\]"):
         _delimited.load(path)
+
+
+# ---- an input column named as one the inversion computes (one name, two columns) -----------
+
+
+@pytest.mark.parametrize(
+    ("command", "source", "column", "place"),
+    [
+        ("afm invert", "example_afm.csv", "kappa", 11),
+        ("afm invert", "example_afm.csv", "flags", 11),
+        ("rum invert", "example_rum.csv", "k_star_N_per_m", 5),
+        ("rum invert", "example_rum.csv", "rum_model", 5),
+    ],
+)
+def test_an_input_column_named_as_a_computed_one_is_refused(
+    tmp_path, command, source, column, place
+):
+    rows = _rows(DATA / source)
+    path = _write(tmp_path / "t.csv", _with_column(rows, "pixel", column))
+    r = run(*command.split(), path, "--out", tmp_path / "o.csv")
+    assert _message(r) == (
+        f"{path}: column {column!r} (column {place}) is a column the inversion computes: the "
+        "result would replace its values; rename it (a table an inversion wrote: drop its "
+        "computed columns first)"
+    )
+    assert not (tmp_path / "o.csv").exists()
+
+
+def test_a_table_an_earlier_inversion_wrote_is_refused_in_one_line(tmp_path):
+    first = tmp_path / "first.csv"
+    assert run("afm", "invert", DATA / "example_afm.csv", "--out", first).exit_code == 0
+    r = run("afm", "invert", first, "--out", tmp_path / "again.csv")
+    line = _message(r)
+    assert line.startswith(
+        f"{first}: columns 'kappa' (column 11), 'k_star_N_per_m' (column 12), "
+        "'tip_position_used' (column 13), 'sigma_N_s_per_m' (column 14), 'mode_spread' "
+        "(column 15), ... 13 in all are columns the inversion computes"
+    )
