@@ -82,6 +82,7 @@ LAYERS: tuple[frozenset[str], ...] = (
             "_threads",
             "_allocator",
             "_csvcells",
+            "_column_names",
             "_decimal_text",
             "_ownership",
             "_summary",

@@ -15,6 +15,7 @@ from collections.abc import Iterator
 
 import numpy as np
 
+from ._column_names import repeats_text
 from ._decimal_text import copy_rows, g_precision, g_records, take_rows
 from .numerics import object_pointers, repeat_runs, run_starts
 
@@ -27,6 +28,7 @@ __all__ = [
     "floats_as_text",
     "neutralised",
     "npz_to",
+    "unique_written",
 ]
 
 CSV_FLOAT_FORMAT = "%.10g"  #: CSV floats: 10 digits, no noise (0.30000000000000004 -> 0.3)
@@ -38,6 +40,27 @@ _FORMULA_START = ("=", "+", "-", "@", "\t", "\r")
 #: A signed decimal number and nothing else ("-0.5", "+1e-3", "-inf"): text that a spreadsheet
 #: reads as a number, never as a formula, though it starts with a sign.
 _PLAIN_NUMBER = r"[+-]?(?:\d+(?:\.\d*)?|\.\d+)(?:[eE][+-]?\d+)?|[+-]?inf"
+
+
+def unique_written(frame, what: str = "the table written") -> None:
+    """Raise ValueError if ``frame`` (a table to write) holds a column name twice, as its
+    file's header would (``1`` and ``"1"`` are one name there); ``what`` names the table or its
+    file in the message. Anything without columns passes.
+
+    Why a ValueError and not :class:`~contactres.errors.ContactresInputError`: a user's table
+    with a name twice is refused by its reader, so a table of ours with one is a fault of the
+    code that built it, which the command line reports as an internal error, never as the
+    user's. Unchecked, pandas gives a frame for ``frame[name]`` where a column is meant (an
+    AttributeError deep inside the writing), or writes a header no reader takes back; NetCDF
+    and numpy archives would keep one of the two columns."""
+    columns = getattr(frame, "columns", None)
+    # (a pass over the names, not the cells: microseconds for the tables written)
+    repeats = None if columns is None else repeats_text(str(c) for c in columns)
+    if repeats is not None:
+        raise ValueError(
+            f"{what}: duplicate column name(s) {repeats}; every column of a table written "
+            "needs its own name"
+        )
 
 
 def _risky(col) -> np.ndarray:
@@ -84,6 +107,7 @@ def neutralised(frame):
     columns = getattr(frame, "columns", None)
     if columns is None:  # not a table: written as the caller's to_csv writes it
         return frame
+    unique_written(frame)
     text = [c for c in columns if frame[c].dtype.kind == "O" or str(frame[c].dtype) == "str"]
     if not text:
         return frame
@@ -116,6 +140,7 @@ def floats_as_text(frame, na_rep: str = ""):
     columns = getattr(frame, "columns", None)
     if columns is None:
         return frame
+    unique_written(frame)
     floats = [i for i, dtype in enumerate(frame.dtypes) if dtype == np.float64]
     if not floats:
         return frame
@@ -257,6 +282,7 @@ def _pieces(
     """:func:`csv_chunks`' pieces, those assembled in numpy (:func:`_lines_bytes`) as the
     UTF-8 bytes they are made as: :func:`csv_to` writes them without a decoding and encoding
     of each (~250 MB of text at 10^5 sweeps)."""
+    unique_written(frame)
     columns = list(getattr(frame, "columns", ()))
     if len(columns) < 2 or len(frame) == 0 or not all(isinstance(c, str) for c in columns):
         raise _NotJoined  # (not a table; one column: the csv module quotes an empty field there)
@@ -483,16 +509,19 @@ def csv_text(
         return None
 
 
-def csv_to(path, frame, options: dict) -> None:
+def csv_to(path, frame, options: dict, what: str = "the table written") -> None:
     """Write ``frame`` to ``path`` as ``frame.to_csv(path, **options)`` would, with its
     formula-like text neutralised (:func:`neutralised`). With ``index=False`` and at most the
     options ``na_rep`` and ``float_format`` (a %-format string) the text is
     :func:`csv_chunks`', the same bytes as pandas' (lines ended by ``os.linesep``, its
     default), written chunk by chunk; a table it does not cover goes to ``to_csv`` (which then
     writes the file anew), its floats turned to text first when no option formats them
-    (:func:`floats_as_text`: pandas 3 writes text faster than floats)."""
+    (:func:`floats_as_text`: pandas 3 writes text faster than floats). A column name twice is
+    a ValueError (:func:`unique_written`, ``what`` naming the table or its file) before the
+    file is opened."""
     import os
 
+    unique_written(frame, what)  # before the file is opened (neutralised checks it too, later)
     table = neutralised(frame)
     na_rep = options.get("na_rep", "")
     float_format = options.get("float_format")
@@ -596,25 +625,23 @@ def _text_array(values: np.ndarray) -> np.ndarray:
     return np.asarray(np.where(missing, "", distinct), dtype=str)[inverse.reshape(-1)]
 
 
-def npz_to(path, frame) -> None:
+def npz_to(path, frame, what: str = "a numpy archive") -> None:
     """Write the numpy archive (``.npz``, the layout of ``numpy.savez``, uncompressed) of a
     pandas DataFrame, or of a :class:`~contactres.measurements.ArrayTable`, to the file
     ``path``: one array per column under its name; numbers as they are (float64: exact),
     anything else as unicode text (a gap an empty string). No pickles:
-    ``numpy.load(..., allow_pickle=False)`` reads it. Column names must be distinct.
+    ``numpy.load(..., allow_pickle=False)`` reads it.
 
     Written here rather than by ``numpy.savez``: its own keywords (``file``, ``allow_pickle``)
     would clash with columns of those names. Each array goes straight into the file, its
     ``.npy`` header (format 1.0, as ``numpy.lib.format.write_array`` writes it) then its
     memory as it is: a map's archive (70 MB for 512² pixels) is neither assembled in memory
-    nor copied column by column to bytes."""
+    nor copied column by column to bytes. A column name twice is a ValueError
+    (:func:`unique_written`, ``what`` naming the table or its file) before the file is opened."""
     import zipfile
 
-    from .errors import ContactresInputError
-
+    unique_written(frame, what)  # (two arrays of one name: numpy reads one)
     names = [str(c) for c in frame.columns]
-    if len(set(names)) != len(names):
-        raise ContactresInputError(f"a numpy archive needs distinct column names, got {names}")
     with open(path, "wb") as fh, zipfile.ZipFile(fh, "w", zipfile.ZIP_STORED) as zf:
         for i, name in enumerate(names):
             col = frame.iloc[:, i] if hasattr(frame, "iloc") else frame[name]

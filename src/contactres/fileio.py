@@ -143,9 +143,10 @@ def write_csv(path: str | os.PathLike, frame, **kwargs) -> Path:
     """Write a pandas DataFrame as CSV atomically (no index unless asked); text cells that a
     spreadsheet would run as formulas are neutralised (:func:`neutralised`). With pandas'
     default options the text is joined without pandas' writer: the same bytes, ~10x faster
-    (``contactres._csvcells.csv_to``)."""
+    (``contactres._csvcells.csv_to``). A column name twice is a ValueError naming ``path``
+    (``contactres._csvcells.unique_written``: a fault of the caller), and nothing is written."""
     with _atomic_path(path) as tmp:
-        csv_to(tmp, frame, {"index": False, **kwargs})
+        csv_to(tmp, frame, {"index": False, **kwargs}, str(path))
     return Path(path)
 
 
@@ -153,9 +154,10 @@ def write_npz(path: str | os.PathLike, frame) -> Path:
     """Write a pandas DataFrame atomically as a numpy archive (``.npz``, uncompressed): one
     array per column under its name, numbers as they are (float64 doubles: exact), text as
     unicode arrays (a gap is an empty string). Read back by the ``npz`` reader of
-    :mod:`contactres.measurements.readers`, or by ``numpy.load(path, allow_pickle=False)``."""
+    :mod:`contactres.measurements.readers`, or by ``numpy.load(path, allow_pickle=False)``.
+    A column name twice is a ValueError naming ``path``, and nothing is written."""
     with _atomic_path(path) as tmp:
-        npz_to(tmp, frame)
+        npz_to(tmp, frame, str(path))
     return Path(path)
 
 

@@ -138,7 +138,10 @@ def test_a_column_in_two_units_is_refused(tmp_path):
     frame["sphere_radius_mm"] = frame["sphere_radius_m"] * 1e3
     path = tmp_path / "both.csv"
     frame.to_csv(path, index=False)
-    with pytest.raises(ContactresInputError, match="sphere_radius_mm and sphere_radius_m"):
+    with pytest.raises(
+        ContactresInputError,
+        match=r"columns 'sphere_radius_m' \(column 10\) and 'sphere_radius_mm' \(column 16\)",
+    ):
         read_sweeps(path)
 
 

@@ -426,7 +426,7 @@ def test_duplicate_column_names_are_an_error_naming_them(tmp_path):
     assert len(str(err.value)) < 300
     # in memory, names that differ only by spaces
     g = f.rename(columns={"medium": "experiment "})
-    with pytest.raises(ValueError, match=r"duplicate column name\(s\) \['experiment'\]"):
+    with pytest.raises(ValueError, match=r"duplicate column name\(s\) 'experiment' \(columns"):
         validate_sweeps(g, constants=CONST)
 
 

@@ -23,6 +23,7 @@ import numpy as np
 from .._threads import one_blas_thread
 from ..errors import ContactresInputError, ContactresWarning
 from ..measurements import at_cell, where_rows
+from ..measurements.schema import AFM_INVERT_RESULTS, RUM_INVERT_RESULTS
 from ..resonators import (
     FREE_TOLERANCE,
     MODE_TOLERANCE,
@@ -74,6 +75,35 @@ def _given_columns(table):
 
     given = table[table.attrs.get("given", [c for c in table.columns if c != "line"])]
     return given.copy(deep=not isinstance(given, ArrayTable))
+
+
+def _refuse_computed_names(table, results, source: str) -> None:
+    """One-line error for a column of ``table`` named as one the inversion computes
+    (``results``: the schema of its computed columns, film columns included).
+
+    Why: the result is the given columns then the computed ones, each set by its name, so a
+    computed column would take the place of the given one of its name: the user's values
+    replaced without a word (a column ``kappa`` of the user's, or every computed column of a
+    table an earlier run wrote). Places as the file shows them: a sheet's letters."""
+    from .._column_names import excel_letters
+
+    given = list(table.attrs.get("given", [c for c in table.columns if c != "line"]))
+    clash = [c for c in given if c in results.names]
+    if not clash:
+        return
+    letters = table.attrs.get("column_letters", False)
+    shown = ", ".join(
+        f"{c!r} (column {excel_letters(i) if letters else i})"
+        for c, i in ((c, given.index(c) + 1) for c in clash[:5])
+    )
+    more = f", ... {len(clash)} in all" if len(clash) > 5 else ""
+    one = len(clash) == 1
+    raise ContactresInputError(
+        f"{source}: column{'' if one else 's'} {shown}{more} "
+        f"{'is a column' if one else 'are columns'} the inversion computes: the result would "
+        f"replace {'its' if one else 'their'} values; rename {'it' if one else 'them'} (a table "
+        "an inversion wrote: drop its computed columns first)"
+    )
 
 
 def _floats(table, name: str) -> np.ndarray:
@@ -169,6 +199,7 @@ def invert_rum_table(table: pd.DataFrame, source: str = "table") -> pd.DataFrame
     """
     import pandas as pd
 
+    _refuse_computed_names(table, RUM_INVERT_RESULTS, source)
     lumped = _lumped_rows(table, source)
     f0 = table["f0_Hz"].to_numpy(float)
     fc = table["fc_Hz"].to_numpy(float)
@@ -348,6 +379,7 @@ def invert_afm_table(
     :class:`~contactres.errors.ContactresWarning` naming the first such cell: a CR-AFM tip is
     1 nm-1 µm, a larger value is most often a unit slip, while a mm sphere is a valid contact.
     """
+    _refuse_computed_names(table, AFM_INVERT_RESULTS, source)
     fc = _matrix(table, [f"fc{n}_Hz" for n in _MODES])
     none = np.isnan(fc[:, 0]) & np.isnan(fc[:, 1]) & np.isnan(fc[:, 2])
     if none.any():

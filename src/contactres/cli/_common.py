@@ -356,9 +356,13 @@ def _json_scalar(value):
 
 
 def emit(table: pd.DataFrame, fmt: str, stream=None) -> None:
-    """Print a table in the chosen format to ``stream`` (stdout)."""
+    """Print a table in the chosen format to ``stream`` (stdout). A column name twice is a
+    ValueError (a fault of the command: JSON records would keep one of the two columns)."""
     from ..fileio import neutralised
 
+    # The writers' check of the names (neutralised makes it before any cell; no rows here:
+    # nothing else to do), for the JSON records and the plain table too.
+    neutralised(table.iloc[:0])
     out = stream or sys.stdout
     if fmt == "csv":
         # 15 significant digits: read back by scripts to 5e-15, yet without the float noise of
@@ -445,8 +449,11 @@ def computed_rounded(result, copied) -> object:
     values, written back exactly)."""
     out = result.copy()
     kept = set(copied)
-    for col in out.columns:
-        if col not in kept and out[col].dtype.kind == "f":
+    # By position: a column name twice (a fault of the job) is then the writer's to name, not
+    # an AttributeError here (out[name] would be a frame of both).
+    for i, col in enumerate(out.columns):
+        values = out.iloc[:, i]
+        if col not in kept and values.dtype.kind == "f":
             # Python floats (tolist), not numpy scalars: the same text, formatted ~1.5x faster.
-            out[col] = [("" if v != v else f"{v:.10g}") for v in out[col].to_numpy().tolist()]
+            out.isetitem(i, [("" if v != v else f"{v:.10g}") for v in values.to_numpy().tolist()])
     return out

@@ -17,6 +17,7 @@ __all__ = [
     "at_cell",
     "column_named",
     "column_names",
+    "column_place",
     "line_word",
     "shown_value",
     "where_rows",
@@ -62,6 +63,16 @@ def column_named(table, col: str) -> str:
     of the message are the SI ones (a number the user wrote is shown converted)."""
     written = getattr(table, "attrs", {}).get("written_as", {}).get(col)
     return repr(col) if written is None else f"{written!r} (read in SI as {col})"
+
+
+def column_place(table, position: int) -> str:
+    """The place of a table's column as its file shows it: ``column 7`` (1 is the first), or
+    the spreadsheet's letters (``column G``) for a sheet of a workbook, whose reader says so in
+    ``attrs["column_letters"]``."""
+    from .._column_names import excel_letters
+
+    letters = getattr(table, "attrs", {}).get("column_letters", False)
+    return f"column {excel_letters(position) if letters else position}"
 
 
 def line_word(table) -> str:

@@ -29,6 +29,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from .._column_names import repeats_text
 from .._summary import Summarised, table_size
 from ..errors import ContactresInputError
 from ..numerics import factorize_runs, run_starts
@@ -43,6 +44,7 @@ from ._sweep_checks import (
     drop_duplicates,
     warn_sweeps,
 )
+from ._unit_columns import bare_name, columns_in_si, si_unit
 from .schema import FINITE, SWEEP_TABLE, broken_rule, check_cells, check_value, stripped
 
 __all__ = [
@@ -164,18 +166,6 @@ def _toml_constants(path: Path) -> tuple[dict, Path | None]:
     return {}, None
 
 
-def _si_unit(unit: str) -> str:
-    """A schema column's unit as pint reads it ("-" and "text" are none)."""
-    return "" if unit in ("-", "text") else unit
-
-
-def _bare_name(name: str) -> str:
-    """A column's name without its SI unit suffix: ``sphere_radius_m`` -> ``sphere_radius``."""
-    unit = SWEEP_TABLE.column(name).unit
-    suffix = "_" + unit.replace("^", "")
-    return name[: -len(suffix)] if _si_unit(unit) and name.endswith(suffix) else name
-
-
 def _toml_key_with_unit(key: str, value, bare: dict, path: Path) -> tuple[str, object]:
     """A TOML key named with another unit than the constant's (``sphere_radius_mm = 1.1``, as
     the column ``sphere_radius_mm``) as the constant's own key and its value in SI; any other
@@ -187,7 +177,7 @@ def _toml_key_with_unit(key: str, value, bare: dict, path: Path) -> tuple[str, o
             continue
         from ..typed_units import column_unit_factor
 
-        factor = column_unit_factor(key[len(short) + 1 :], _si_unit(SWEEP_TABLE.column(name).unit))
+        factor = column_unit_factor(key[len(short) + 1 :], si_unit(SWEEP_TABLE.column(name).unit))
         if factor is None:
             continue
         if isinstance(value, bool) or not isinstance(value, (int, float)):
@@ -202,16 +192,20 @@ def _toml_key_with_unit(key: str, value, bare: dict, path: Path) -> tuple[str, o
 def _toml_keys_in_si(data: dict, path: Path) -> dict:
     """A TOML file's keys with a constant's bare name (``sphere_radius = "1.1 mm"``: the value
     carries its unit) renamed to the constant (``sphere_radius_m``); both given is an error."""
-    bare = {_bare_name(name): name for name in CONSTANTS if _bare_name(name) != name}
-    out = {}
-    for key, value in data.items():
-        key, value = _toml_key_with_unit(key, value, bare, path)
+    bare = {bare_name(name): name for name in CONSTANTS if bare_name(name) != name}
+    out: dict = {}
+    written_as: dict[str, str] = {}
+    for written, value in data.items():
+        key, value = _toml_key_with_unit(written, value, bare, path)
         name = bare.get(key, key)
-        if name in out or (name != key and name in data):
+        # The key as the file writes it, and the earlier one of the same constant (a key in
+        # another unit was named by the constant's own name, which the file may not hold).
+        other = written_as.get(name, name if name != key and name in data else None)
+        if other is not None:
             raise ContactresInputError(
-                f"{path}: {key} and {name} are the same constant; give one of them"
+                f"{path}: {written} and {other} are the same constant; give one of them"
             )
-        out[name] = value
+        out[name], written_as[name] = value, written
     return out
 
 
@@ -238,51 +232,11 @@ def _check_constant(name: str, value, where: str, shown=None) -> float:
             raise ContactresInputError(f"{where}: {name} = {shown} is not a number") from None
         # A value with its unit ("1.1 mm"): converted to the column's SI unit, then checked
         # by the same rules as a plain number (issue 30).
-        v = to_si(value, _si_unit(SWEEP_TABLE.column(name).unit), f"{where}: {name} =")
+        v = to_si(value, si_unit(SWEEP_TABLE.column(name).unit), f"{where}: {name} =")
     if not math.isfinite(v):
         raise ContactresInputError(f"{where}: {name} = {shown} is not finite")
     check_value(name, v, where, shown, SWEEP_TABLE.column(name).rules)
     return v
-
-
-def _columns_in_si(raw: pd.DataFrame, source: str) -> pd.DataFrame:
-    """``raw`` with every column named with another unit than the schema's (``sphere_radius_mm``
-    for ``sphere_radius_m``, ``normal_force_mN``, ``area_cm2``, ``amplitude_nm``) converted to
-    SI and renamed to the schema's name (issue 30: a radius in mm gave E ≈ 2 GPa without a
-    word). The cells stay text: the numbers are multiplied by the unit's factor, anything else
-    (an empty cell, a word) is left for the validation to name."""
-    known = set(raw.columns)
-    renames: dict[str, tuple[str, float]] = {}
-    for col in raw.columns:
-        if col in SWEEP_TABLE.names or col == "line":
-            continue
-        for target in SWEEP_TABLE.names:
-            bare, unit = _bare_name(target), _si_unit(SWEEP_TABLE.column(target).unit)
-            if bare == target or not col.startswith(bare + "_"):
-                continue
-            from ..typed_units import column_unit_factor
-
-            factor = column_unit_factor(col[len(bare) + 1 :], unit)
-            if factor is None:
-                continue
-            if target in known or target in renames.values():
-                raise ContactresInputError(
-                    f"{source}: columns {col} and {target} hold the same quantity; keep one"
-                )
-            renames[col] = (target, factor)
-    if not renames:
-        return raw
-    out = raw.copy()
-    decimal = raw.attrs.get("decimal", ".")
-    for col, (_, factor) in renames.items():
-        text = out[col].astype(str).str.strip()
-        numbers = pd.to_numeric(text.str.replace(decimal, ".", regex=False), errors="coerce")
-        scaled = (numbers * factor).map(lambda x: repr(float(x)))
-        out[col] = text.where(numbers.isna(), scaled.str.replace(".", decimal, regex=False))
-    out = out.rename(columns={c: t for c, (t, _) in renames.items()})
-    out.attrs = dict(raw.attrs)
-    out.attrs["written_as"] = {t: c for c, (t, _) in renames.items()}  # for the messages
-    return out
 
 
 # --------------------------------------------------------------------------------------------
@@ -633,14 +587,15 @@ def validate_sweeps(
     # column in place (columns are renamed, added or replaced whole).
     raw = raw.copy(deep=False)
     raw.columns = [str(c).strip() for c in raw.columns]
-    raw = _columns_in_si(raw, source)
-    raw.attrs["line_word"] = word
-    names = pd.Series(raw.columns)
-    if names.duplicated().any():
-        dups = names[names.duplicated()].unique()
+    # (a reader refuses a name twice in its header; a table built in memory may hold one, or
+    # two names that differ by blanks only; two units of one quantity: columns_in_si)
+    repeats = repeats_text(raw.columns)
+    if repeats is not None:
         raise ContactresInputError(
-            f"{source}: duplicate column name(s) {column_names(dups)}; one name each"
+            f"{source}: duplicate column name(s) {repeats} once stripped of blanks; one name each"
         )
+    raw = columns_in_si(raw, source)
+    raw.attrs["line_word"] = word
     # A misspelt column ("poison") would leave its value unused, the default in its place.
     SWEEP_TABLE.check_names(raw.columns, source)
     if "line" not in raw.columns:

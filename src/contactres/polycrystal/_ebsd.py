@@ -51,6 +51,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
+from .._column_names import repeats_text
 from ..errors import ContactresInputError
 from ..fileio import write_text
 from ..measurements.readers import Reader
@@ -274,6 +275,15 @@ def read_ctf(path: str | os.PathLike) -> OrientationMap:
         raise ContactresInputError(
             f"{path.name}: no column line (tab-separated {' '.join(_CTF_LINE)}) found: not a "
             ".ctf file"
+        )
+    # A name twice on the column line: pandas would read the first and rename the other
+    # (Euler1.1) without a word. (Empty fields, a trailing tab's, are no names.)
+    names = [s.strip() for s in fields]
+    repeats = repeats_text(names, named_only=True)
+    if repeats is not None:
+        raise ContactresInputError(
+            f"{path.name}, line {n_head + 1}: duplicate column name(s) {repeats}; every column "
+            "needs its own name"
         )
     mode = header.get("JobMode", "Grid")
     if mode != "Grid":

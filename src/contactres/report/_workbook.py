@@ -28,6 +28,7 @@ import io
 import json
 from typing import TYPE_CHECKING, Any
 
+from .._csvcells import unique_written
 from ..errors import MissingExtraError
 from ..fileio import neutralised
 
@@ -181,6 +182,8 @@ def results_dataset(result: JobResult):
     variables = {}
     summary = _summary_tables(result)
     for name, (frame, schema) in {**result.tables(), **summary}.items():
+        # (a column twice would be one variable: the other column lost without a word)
+        unique_written(frame, f"table {name!r} of the {result.NAME} result")
         known = {} if schema is None else {c.name: c for c in schema.columns}
         # A summary table's rows are the fitted groups (Table 1): the dimension ``group``.
         dim = "group" if name == "table1" else f"{name}_row"

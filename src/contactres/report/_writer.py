@@ -41,6 +41,7 @@ from pathlib import Path
 from types import MappingProxyType
 from typing import TYPE_CHECKING, Any
 
+from .._csvcells import unique_written
 from ..errors import ContactresInputError
 from ..fileio import (
     CSV_FLOAT_FORMAT,
@@ -264,6 +265,12 @@ def write_report(
 
 
 def _write_into(result: JobResult, rs: ResultSet, formats, progress) -> list[Path]:
+    # A table of the Result with a column name twice is a fault of the job that built it
+    # (a user's table with one is refused where it is read): said for every format before
+    # anything is written, naming the table.
+    # (the summary tables of the workbook and the NetCDF file are checked where they are made)
+    for name, (frame, _schema) in result.tables().items():
+        unique_written(frame, f"table {name!r} of the {result.NAME} result")
     names: list[str] = []
     if "csv" in formats:
         for name, (frame, _schema) in result.tables().items():

@@ -4,7 +4,8 @@ The separator and the decimal mark are recognised from the header and the first 
 comma, semicolon or tab; a decimal comma with semicolon or tab separators. The file must be
 UTF-8 text (a byte order mark is skipped). Comments: a line whose first non-blank character is
 ``#`` is a comment, as a whole; a ``#`` anywhere else is data (``SiO2 #A`` is a label, not
-``SiO2`` plus a comment). Blank lines are skipped. Column names must be unique.
+``SiO2`` plus a comment). Blank lines are skipped. Column names must be unique (names that
+differ by blanks only are one), and none may be ``line``: the reader's column of line numbers.
 """
 
 from __future__ import annotations
@@ -21,6 +22,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from ..._column_names import repeats_text
 from ...errors import ContactresInputError
 from ...numerics import column_run_starts, repeat_runs
 
@@ -41,6 +43,8 @@ _DROPPED_LINE = re.compile(r"\n[\s#]")
 # The same in ASCII bytes: the white space of str.isspace there is \t-\r and \x1c-\x20.
 _DROPPED_LINE_ASCII = re.compile(rb"\n[\t-\r\x1c-\x20#]")
 _SPACE_OR_HASH = frozenset(b"\t\n\x0b\x0c\r\x1c\x1d\x1e\x1f #")
+#: The column of line numbers a reader adds to a table (a file's column of this name is refused).
+LINE = "line"
 #: Files of at least this many bytes are hashed in a thread beside their parsing (:func:`_hashing`).
 _HASHED_BESIDE = 1 << 20
 
@@ -61,11 +65,6 @@ def _dialect(text: str) -> tuple[str, str]:
         if any(_DECIMAL_COMMA.match(c) for c in cells):
             decimal = ","
     return sep, decimal
-
-
-def _shown(name: str, limit: int = 60) -> str:
-    text = name if len(name) <= limit else name[: limit - 1] + "…"
-    return repr(text)
 
 
 def _hashing(data: bytes) -> Callable[[], str]:
@@ -154,8 +153,11 @@ def _no_nul(path: Path, body: str | bytes, numbers) -> None:
 
 def _check_header(path: Path, number: int, header: str, sep: str) -> list[str]:
     """The column names of the header (stripped). Duplicate column names are an error (pandas
-    would rename them, in quadratic time); so is a header the csv module cannot split (a field
-    over its limit of 128 kB: no column name)."""
+    would rename them, ``df_Hz.1``, in quadratic time, and a reader would take the first
+    column without a word), names that differ by blanks only included; so is the name
+    :data:`LINE`, the column of line numbers the reader adds (the file's own column would be
+    replaced, its values lost), and a header the csv module cannot split (a field over its
+    limit of 128 kB: no column name)."""
     try:
         names = [n.strip() for n in next(csv.reader([header], delimiter=sep))]
     except csv.Error as exc:
@@ -163,23 +165,16 @@ def _check_header(path: Path, number: int, header: str, sep: str) -> list[str]:
             f"{path}, line {number}: the header is not a readable {sep!r}-separated line "
             f"({exc}); a header holds the column names"
         ) from None
-    seen: dict[str, int] = {}
-    dups: dict[str, list[int]] = {}
-    for i, name in enumerate(names, start=1):
-        if name in seen:
-            dups.setdefault(name, [seen[name]]).append(i)
-        else:
-            seen[name] = i
-    if dups:
-        shown = "; ".join(
-            f"{_shown(n)} (columns {', '.join(map(str, cols[:5]))}"
-            + (f", ... {len(cols)} in all)" if len(cols) > 5 else ")")
-            for n, cols in list(dups.items())[:3]
-        )
-        more = f"; and {len(dups) - 3} more name(s)" if len(dups) > 3 else ""
+    repeats = repeats_text(names)
+    if repeats is not None:
         raise ContactresInputError(
-            f"{path}, line {number}: duplicate column name(s) {shown}{more}; every column "
-            "needs its own name"
+            f"{path}, line {number}: duplicate column name(s) {repeats}; every column needs "
+            "its own name"
+        )
+    if LINE in names:
+        raise ContactresInputError(
+            f"{path}, line {number}: column {LINE!r} (column {names.index(LINE) + 1}) is the "
+            "name contactres gives the line numbers of the file; rename it (e.g. scan_line)"
         )
     return names
 
@@ -263,6 +258,18 @@ def load(path: Path, number_columns: Collection[str] = ()) -> pd.DataFrame:
     except pd.errors.ParserError as exc:
         raise unreadable(exc) from None
     raw.columns = [str(c).strip() for c in raw.columns]
+    # pandas names an empty header cell "Unnamed: i" (kept so: the tables and messages of
+    # such a file are as before); any other difference from the csv module's names (a
+    # column renamed, df_Hz.1, or two joined) is a fault of the reader, never to pass as a
+    # table read right.
+    read = list(raw.columns)
+    if len(read) != width or any(
+        c != n and (n or c != f"Unnamed: {i}")
+        for i, (c, n) in enumerate(zip(read, names, strict=True))
+    ):
+        raise RuntimeError(
+            f"{path}: pandas read the header as {read[:20]}, the csv module as {names[:20]}"
+        )
     # A short row may leave NaN in its missing cells (pandas 3 gives empty ones): make them
     # empty cells, as written. Its last cell is one of them, so that column alone is looked
     # at first (one column, not every cell of 10^6 rows: issue 31), on the first cell of each

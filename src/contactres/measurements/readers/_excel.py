@@ -23,6 +23,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING
 
+from ..._column_names import excel_letters, repeats_text
 from ...errors import ContactresInputError, MissingExtraError
 
 if TYPE_CHECKING:  # annotations: pandas is imported where a table is read (a numpy archive's
@@ -73,20 +74,27 @@ def _workbook(path: Path):
 
 
 def _check_header(where: str, number: int, names: list[str]) -> None:
-    """A header with an empty name before a named column, or a name twice, is an error."""
-    seen: dict[str, int] = {}
+    """A header with an empty name before a named column, a name twice (every repeat named, by
+    the columns' letters as Excel shows them), or the name ``line`` (the reader's column of
+    row numbers, which would replace the sheet's own) is an error."""
     for i, name in enumerate(names, start=1):
         if not name:
             raise ContactresInputError(
                 f"{where}, row {number}: column {i} of the header is empty; every column "
                 "needs a name"
             )
-        if name in seen:
-            raise ContactresInputError(
-                f"{where}, row {number}: duplicate column name {name!r} (columns {seen[name]} "
-                f"and {i}); every column needs its own name"
-            )
-        seen[name] = i
+    repeats = repeats_text(names, excel_letters)
+    if repeats is not None:
+        raise ContactresInputError(
+            f"{where}, row {number}: duplicate column name(s) {repeats}; every column needs "
+            "its own name"
+        )
+    if "line" in names:
+        raise ContactresInputError(
+            f"{where}, row {number}: column 'line' (column "
+            f"{excel_letters(names.index('line') + 1)}) is the name contactres gives the row "
+            "numbers of the sheet; rename it (e.g. scan_line)"
+        )
 
 
 def load_sheet(path: Path, kind: str) -> pd.DataFrame:
@@ -125,7 +133,9 @@ def load_sheet(path: Path, kind: str) -> pd.DataFrame:
     raw = raw.reindex(columns=range(width), fill_value="")
     raw.columns = names
     raw["line"] = [number for number, _ in rows[1:]]
-    raw.attrs.update(decimal=".", comment_lines=(), source=where, line_word="row")
+    raw.attrs.update(
+        decimal=".", comment_lines=(), source=where, line_word="row", column_letters=True
+    )
     return raw
 
 

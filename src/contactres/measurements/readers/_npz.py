@@ -16,6 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
+from ..._column_names import repeats_text
 from ...errors import ContactresInputError
 from .._array_table import ArrayTable
 
@@ -46,7 +47,16 @@ def load(path: Path) -> ArrayTable:
     one-dimensional of one length."""
     try:
         with np.load(path, allow_pickle=False) as archive:
+            # Two arrays of one name (a member written twice, or "x" beside "x.npy") are one
+            # key to numpy, which reads one of them: refused, as a name twice in a CSV header.
+            repeats = repeats_text(archive.files, word="arrays", tail=" of the archive")
+            if repeats is not None:
+                raise ContactresInputError(
+                    f"{path}: duplicate array name(s) {repeats}; every column needs its own name"
+                )
             columns = {name: archive[name] for name in archive.files}
+    except ContactresInputError:
+        raise
     except (OSError, ValueError, EOFError, zipfile.BadZipFile) as exc:
         raise ContactresInputError(f"{path}: not a readable numpy archive (.npz): {exc}") from None
     if not columns:

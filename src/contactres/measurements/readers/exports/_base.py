@@ -304,8 +304,9 @@ def read_rows(path: Path) -> pd.DataFrame:
     semicolon or tab separators. Blank lines and lines starting with ``#`` are skipped (those
     below the header are recorded in ``attrs["comment_lines"]``, which the conversion names).
     Column names get runs of blanks made one blank; a repeated name (QCM-I repeats its flow and
-    temperature columns per overtone) gets `` #2``, `` #3``, ... Text is UTF-8 (a byte order
-    mark is skipped), else read as Windows-1252, as instrument software on Windows writes it.
+    temperature columns per overtone) gets `` #2``, `` #3``, ... (a number the file's own names
+    do not hold: every column keeps a name of its own). Text is UTF-8 (a byte order mark is
+    skipped), else read as Windows-1252, as instrument software on Windows writes it.
     Short rows are padded with empty cells; empty cells past the header's width are dropped.
     """
     path = Path(path)
@@ -338,10 +339,18 @@ def read_rows(path: Path) -> pd.DataFrame:
             "quotes); write every cell on one line"
         )
     names: list[str] = []
+    header = [" ".join(c.split()) for c in rows[0]]
+    taken = set(header)  # a repeat's number skips a name the file itself holds ("Flow #2")
     seen: dict[str, int] = {}
-    for name in (" ".join(c.split()) for c in rows[0]):
+    for name in header:
         seen[name] = seen.get(name, 0) + 1
-        names.append(name if seen[name] == 1 else f"{name} #{seen[name]}")
+        if seen[name] == 1:
+            names.append(name)
+            continue
+        while f"{name} #{seen[name]}" in taken:
+            seen[name] += 1
+        names.append(f"{name} #{seen[name]}")
+        taken.add(names[-1])
     width, cells, long = len(names), [], []
     for (number, _), row in zip(kept[1:], rows[1:], strict=True):
         if len(row) > width and any(c.strip() for c in row[width:]):
