@@ -464,6 +464,40 @@ def test_the_evidence_over_worker_processes_equals_the_serial_one(study_evidence
     assert np.array_equal(two, serial, equal_nan=True)
 
 
+def test_the_sums_of_a_chunks_points_formed_once_are_each_evaluations_own(
+    study_evidence_call, monkeypatch
+):
+    # A chunk's sums of its blocks' points (weights, C_f, C_Γ, n, ...; the numbers of their rows
+    # of weights) are formed once and handed to each of its evaluations (coarse nodes, fine ones
+    # around each peak): every output the same, bit for bit, as with each evaluation forming its
+    # own from the chunk's points, and the sums are met at every evaluation. On the undecided
+    # blocks of a seeded study (several grids, numbers of points and priors) and on blocks of
+    # one grid under one prior (their rows share their slopes) whose numbers of points at an
+    # amplitude differ (points dropped: the rows on one row of slopes have other weights).
+    from contactres.analysis import _plateau_evidence as ev
+
+    blocks = [_block(5, 0.0), _block(6, 0.3), _block(7, 0.3, 1.5), _block(8, 0.2)]
+    u, df, dg = (np.stack([b[k] for b in blocks]) for k in range(3))
+    w = np.ones_like(u)
+    w[1, 4], w[2, [0, 9]] = 0.0, 0.0  # each amplitude still measured: the same grid
+    grid = (u, df, dg, w, np.full((2, 4), 0.6), (np.full(4, np.nan),) * 2,
+            (np.full(4, np.log(0.3)), np.full(4, 0.1)), np.ones(4))  # fmt: skip
+    inner, given = ev._integrand_in_sets, []
+
+    def own(pts, dl, y, store, out, own=None, sums=None):
+        given.append(sums is not None)
+        return inner(pts, dl, y, store, out, own)
+
+    for args in (study_evidence_call, grid):
+        shared = plateau_log_evidence(*args)
+        with monkeypatch.context() as m:
+            m.setattr(ev, "_integrand_in_sets", own)
+            alone = plateau_log_evidence(*args)
+        assert len(given) >= 3 and all(given)
+        assert np.isfinite(shared[0]).sum() >= 3
+        assert np.array_equal(alone, shared, equal_nan=True)
+
+
 def test_few_undecided_blocks_stay_in_this_process(monkeypatch):
     # Below EVIDENCE_ROWS_PER_WORKER blocks a worker no pool starts (a small study with
     # workers > 1 pays nothing for it), and the result is the serial call's.

@@ -121,6 +121,30 @@ def test_gradient_at_refused_steps_is_never_read(monkeypatch):
         pd.testing.assert_frame_equal(fit, full, check_exact=True)
 
 
+def test_weighted_residual_factors_formed_once_a_pass_are_the_same(monkeypatch):
+    # The fit forms √wf·rw and √wg·rw once a pass and hands each evaluation its rows
+    # (_plateau_model's ``weighted``): the same fit, bit for bit, as with them formed from the
+    # evaluation's own wf, wg and rw, pooled amplitudes (weights 0 or 1) and points one by one
+    # (other weights), each channel's factor its own.
+    model = _plateau._plateau_model
+    given = []
+
+    def own(*a, weighted=None, **k):  # the factors formed by the evaluation itself
+        given.append(weighted is not None)
+        return model(*a, **k)
+
+    b, u_c, sig = _sweeps("plateau")
+    halved = np.where(np.arange(b.w.shape[1]) % 4 == 1, 0.5, 1.0) * b.w
+    for w in (b.w, halved):
+        args = (b.u, b.df, b.dg, w, sig[0], sig[1], u_c, cm_loop_table())
+        fit = fit_plateau_loops(*args)
+        with monkeypatch.context() as m:
+            m.setattr(_plateau, "_plateau_model", own)
+            ref = fit_plateau_loops(*args)
+        assert given and all(given)
+        pd.testing.assert_frame_equal(fit, ref, check_exact=True)
+
+
 def _evaluation(pooled, rows=None):
     """A plateau-model evaluation's inputs on synthetic sweeps (their points one by one, or a
     block's pooled amplitudes), at parameters inside the bounds: p, u, u_max, Δf, ΔΓ, w, rw,
