@@ -292,6 +292,23 @@ def test_repeat_runs_against_a_loop_over_the_rows():
         assert got.dtype == values.dtype and got.tolist() == want
     empty = repeat_runs(np.array([], dtype=bool), np.array([], dtype=np.intp), 0)
     assert empty.dtype == bool and empty.size == 0
+    # No rows given as a plain empty list (numpy makes it float) or a list of values; a Series
+    # of values gives an ndarray, not a Series with repeated labels (review R31b).
+    assert repeat_runs(np.array([]), [], 0).size == 0
+    import pandas as pd
+
+    got = repeat_runs(pd.Series([4, 5], index=[10, 20]), [0, 2], 3)
+    assert type(got) is np.ndarray and got.tolist() == [4, 4, 5]
+
+
+def test_factorize_at_runs_takes_a_list_as_factorize_runs_does():
+    from contactres.numerics import factorize_at_runs, factorize_runs
+
+    cells = ["b", "b", "a", "b"]
+    codes, uniques = factorize_at_runs(cells, np.array([0, 2, 3]))
+    want_codes, want_uniques = factorize_runs(cells)
+    assert codes.tolist() == want_codes.tolist() == [0, 0, 1, 0]
+    assert type(uniques) is type(want_uniques) is np.ndarray and list(uniques) == ["b", "a"]
 
 
 def test_object_pointers_are_the_objects_identities():

@@ -268,6 +268,8 @@ def levenberg_marquardt(evaluate, p0, lo=-np.inf, hi=np.inf, options: LMOptions 
         else:  # (copyto where: the values of q[better] = moved[better], in one pass)
             np.copyto(q, moved, where=better[:, None])
             np.copyto(c2, chi2_t, where=better)
+        # (0.0: the value of a problem without parameters, not a start of the maximum; the same
+        # as the old max(initial=0) only because the sizes are |step| >= 0)
         state["last"] = np.where(better, _rows_reduce(np.maximum, size, 0.0), state["last"])
         if new is not None and "jacobian" not in model:  # the Gauss-Newton form comes complete
             for key in ("gradient", "hessian"):

@@ -375,7 +375,8 @@ def factorize_at_runs(
     Parameters
     ----------
     cells : pandas.Series or numpy.ndarray
-        One column (an object array for text).
+        One column (an object array for text); anything else is taken as
+        ``numpy.asarray(cells)``, as :func:`factorize_runs` takes it.
     starts : numpy.ndarray or None
         The first row of each run of equal cells, increasing, 0 first; any finer split of the
         runs is as good (every distinct cell still starts some run). None where
@@ -399,6 +400,7 @@ def factorize_at_runs(
     """
     import pandas as pd  # here: the package's numerics need no pandas until a table is met
 
+    cells = cells if isinstance(cells, pd.Series) else np.asarray(cells)
     if starts is None:
         return pd.factorize(cells, sort=False, use_na_sentinel=use_na_sentinel)
     firsts = cells.iloc[starts] if isinstance(cells, pd.Series) else cells[starts]
@@ -416,8 +418,9 @@ def repeat_runs(values, starts: np.ndarray, n_rows: int) -> np.ndarray:
     Parameters
     ----------
     values : array_like
-        One value per run, in the order of the runs (its length is that of ``starts``).
-    starts : numpy.ndarray
+        One value per run, in the order of the runs (its length is that of ``starts``); taken
+        as ``numpy.asarray(values)``.
+    starts : array_like of int
         The first row of each run: increasing integers, 0 first (empty for no rows).
     n_rows : int
         The number of rows; the last run ends there.
@@ -432,4 +435,6 @@ def repeat_runs(values, starts: np.ndarray, n_rows: int) -> np.ndarray:
     >>> repeat_runs(np.array([7, 8, 9]), np.array([0, 2, 3]), 5).tolist()
     [7, 7, 8, 9, 9]
     """
-    return np.repeat(values, np.diff(np.append(starts, n_rows)))
+    # (an empty list or float array of starts is no rows: cast, or np.repeat refuses floats)
+    counts = np.diff(np.append(np.asarray(starts, dtype=np.intp), n_rows))
+    return np.repeat(np.asarray(values), counts)

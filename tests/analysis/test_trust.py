@@ -7,6 +7,8 @@ import pytest
 
 from contactres.analysis import AnalysisSettings, analyze
 from contactres.analysis._flags import Flag, has
+from contactres.errors import ContactresInputError
+from contactres.measurements import SweepTable
 from contactres.measurements._sweeps import SweepWarning, validate_sweeps
 from contactres.measurements._synthetic import Drift, SweepGroup, SweepStudy, synthetic_sweeps
 from contactres.resonators._qcm import QCM
@@ -248,6 +250,21 @@ def test_linear_drift_in_time_is_removed_where_times_are_given():
     others = (sw["normal_force_N"] == 6e-3).to_numpy() & ~load & sw["used"].to_numpy()
     k = sw.loc[load & sw["used"].to_numpy(), "kappa_N_per_m"].mean()
     assert k == pytest.approx(sw.loc[others, "kappa_N_per_m"].mean(), rel=0.02)
+    # The sweeps padded again after the correction are the same sweeps in the same rows: those
+    # of the other loads, untouched by it, are fitted to the same numbers (a stale or wrong
+    # numbering of the sweeps there moves every one of them, review R31b).
+    cols = ["direction", "n_points", "sigma_df_Hz", "sigma_dgamma_Hz", "df_slope_Hz_per_m"]
+    for col in cols:
+        assert plain.sweeps.loc[~load, col].equals(sw.loc[~load, col]), col
+    assert not plain.sweeps.loc[load, "sigma_df_Hz"].equals(sw.loc[load, "sigma_df_Hz"])
+
+
+def test_sweep_table_built_by_hand_without_ids_is_refused_before_the_fits():
+    table = _table(study(n_experiments=1), 5, lambda raw: raw)
+    data = table.data.copy()
+    data.loc[data.index[:3], "sweep"] = np.nan
+    with pytest.raises(ContactresInputError, match="rows without a sweep id"):
+        analyze(SweepTable(data), settings=AnalysisSettings(bootstrap=0))
 
 
 def test_remove_drift_without_times_says_so():

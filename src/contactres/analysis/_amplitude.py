@@ -194,7 +194,8 @@ def pad_sweeps(
     """Arrange the points of a sweep table (a DataFrame of its columns) sweep by sweep.
 
     ``sweeps``: the code of every row's sweep and the sweep ids, numbered by first appearance
-    (:func:`contactres.numerics.factorize_runs` of ``table["sweep"]``), where the caller has
+    (:func:`contactres.numerics.factorize_runs` of ``table["sweep"]`` with
+    ``use_na_sentinel=False``: no code -1), where the caller has
     them already (the analysis factorises its table's ids once for every step); None: they are
     found here.
     """

@@ -174,6 +174,13 @@ def _run(
     # Once for every step: the padding (again after a drift's removal, which keeps the rows
     # and their ids) and the sweeps' first rows.
     sweep, ids = factorize_runs(data["sweep"], use_na_sentinel=False)
+    if pd.isna(ids).any():
+        # (validate_sweeps refuses a missing id; a SweepTable built around a frame by hand
+        # would otherwise reach the fits and fail there as if the package were at fault)
+        raise ContactresInputError(
+            "the sweep table has rows without a sweep id: a SweepTable holds a validated "
+            "table: build it with read_sweeps() or validate_sweeps(frame, constants={...})"
+        )
     padded = pad_sweeps(data, (sweep, ids))
     # A sweep's first row is where the codes seen so far reach a new one (a new code is the
     # largest so far plus one): its info is that row's, as drop_duplicates("sweep") keeps it.
