@@ -170,13 +170,13 @@ def test_distinct_points_have_distinct_keys():
 
 @pytest.mark.parametrize("order", ["runs", "shuffled"])
 def test_distinct_cells_are_numbered_by_first_appearance_as_each_cell_would_be(order):
-    """stripped_distinct hashes the first cell of each run of equal cells only (issue 31,
+    """stripped_codes hashes the first cell of each run of equal cells only (issue 31,
     point 3): its codes and distinct texts are those a dictionary of first appearances gives
     over every cell's text (white space stripped after), for cells in runs (a sweep's id on its
     rows) and shuffled (runs of one cell). A cell's text is pandas' ``astype(str)`` of it, one
     cell at a time: pandas 3 keeps None and NaN missing (one text of their own), pandas 2
     writes "None" and "nan" (pyproject allows pandas >= 2.0)."""
-    from contactres.measurements._cell_text import stripped_distinct
+    from contactres.measurements._cell_text import stripped_codes
 
     rng = np.random.default_rng(29)
     labels = [*IDS, None, np.nan, "", "  "]
@@ -184,7 +184,7 @@ def test_distinct_cells_are_numbered_by_first_appearance_as_each_cell_would_be(o
     if order == "shuffled":
         pick = pick[rng.permutation(pick.size)]
     cells = np.array(labels, dtype=object)[pick]
-    codes, distinct = stripped_distinct(pd.Series(cells, dtype=object))
+    codes, distinct, _ = stripped_codes(pd.Series(cells, dtype=object))
     text_of = []  # each label's text, converted alone (no runs)
     for label in labels:
         t = pd.Series([label], dtype=object).astype(str).iloc[0]
