@@ -29,7 +29,7 @@ __all__ = ["LMOptions", "LeastSquaresResult", "levenberg_marquardt", "solve_stac
 _SINGULAR_CUTOFF = 1e-13
 
 # Codes of :attr:`LeastSquaresResult.status`.
-_RUNNING, _STEP, _CHI2, _EXHAUSTED, _MAX_ITER, _MAX_ACCEPTED, _OUTSIDE = range(7)
+_RUNNING, _STEP, _CHI2, _EXHAUSTED, _MAX_ITER, _MAX_ACCEPTED, _OUTSIDE, _NOT_FINITE = range(8)
 
 
 @dataclass(frozen=True)
@@ -145,6 +145,7 @@ class LeastSquaresResult(Summarised):
             _MAX_ITER: f"no convergence in {int(self.n_iter[i])} steps",
             _MAX_ACCEPTED: f"no convergence in {int(self.n_accepted[i])} iterations",
             _OUTSIDE: "the starting point is outside the admissible region",
+            _NOT_FINITE: "the derivatives are not finite at the last accepted point",
         }[int(self.status[i])]
 
 
@@ -172,7 +173,12 @@ def levenberg_marquardt(evaluate, p0, lo=-np.inf, hi=np.inf, options: LMOptions 
         A non-finite χ² (or a row of residuals that is not finite) marks p outside the
         admissible region (e.g. a stiffness that is not positive definite): such a step fails
         like one that raises χ², so the damping grows until the step stays inside. No penalty
-        term is added, so the minimum is that of the data alone.
+        term is added, so the minimum is that of the data alone. A problem whose χ² is not
+        finite at the start stops there ("outside the admissible region"), and one whose
+        derivatives (Jacobian, or gradient and Hessian) are not finite where its χ² is
+        (a NaN or an inf in its data or its model) stops at that point ("derivatives not
+        finite"): its step would be NaN, and the other problems go on as if it were not in
+        the batch.
     p0 : (R, P) or (P,) starting parameters (any units; see ``options.damping``)
     lo, hi : bounds broadcasting against p0 (may be infinite); every trial is clipped into
         them, and a parameter on a bound that the gradient pushes outwards is held there for
@@ -210,6 +216,9 @@ def levenberg_marquardt(evaluate, p0, lo=-np.inf, hi=np.inf, options: LMOptions 
         raise ContactresInputError("the geodesic acceleration needs the Jacobian form")
     # The results of every problem, written when it stops ...
     chi2, status = cur["chi2"], np.where(np.isfinite(cur["chi2"]), _RUNNING, _OUTSIDE)
+    broken = _broken_rows(cur, status == _RUNNING)
+    if broken is not None:
+        status[broken] = _NOT_FINITE
     n_iter, n_acc, last = np.zeros(n_rows, int), np.zeros(n_rows, int), np.zeros(n_rows)
     # ... and the state of the running ones, compacted when some stop (a gather then, not one
     # of every array at every step); each row's arithmetic is the same whatever rows run with it.
@@ -269,15 +278,16 @@ def levenberg_marquardt(evaluate, p0, lo=-np.inf, hi=np.inf, options: LMOptions 
             np.copyto(q, moved, where=better[:, None])
             np.copyto(c2, chi2_t, where=better)
         state["last"] = np.where(better, _rows_max(size), state["last"])
+        broken = None
         if new is not None and "jacobian" not in model:  # the Gauss-Newton form comes complete
+            # (ok is None here: the geodesic acceleration needs the Jacobian form)
             for key in ("gradient", "hessian"):
                 if every:
                     model[key] = new[key]
-                elif ok is None:
+                else:
                     mask = better.reshape(-1, *(1,) * (new[key].ndim - 1))
                     np.copyto(model[key], new[key], where=mask)
-                else:
-                    model[key][better] = new[key][better[ok]]
+            broken = _broken_rows(model, better)
         # Damping: down after a success, up after a failure.
         nu = state["nu"]
         if o.update == "nielsen":
@@ -318,6 +328,10 @@ def levenberg_marquardt(evaluate, p0, lo=-np.inf, hi=np.inf, options: LMOptions 
             fresh = _local_model(evaluate(state["p"][go_on], rows[go_on], True))
             for key in ("residuals", "jacobian", "gradient"):  # χ² is that of the trial
                 model[key][go_on] = fresh[key]
+            broken = _broken_rows(model, go_on)
+        if broken is not None:  # (a row that converged there has its result: it stays so)
+            code[broken & going] = _NOT_FINITE
+            going &= ~broken
         if not going.all():
             done, ended = rows[~going], ~going
             x[done], chi2[done], status[done] = state["p"][ended], model["chi2"][ended], code[ended]
@@ -338,6 +352,24 @@ def levenberg_marquardt(evaluate, p0, lo=-np.inf, hi=np.inf, options: LMOptions 
         n_accepted=n_acc,
         last_step=last,
     )
+
+
+def _broken_rows(loc, rows: np.ndarray) -> np.ndarray | None:
+    """The ``rows`` (a mask) whose derivatives in ``loc`` (Jacobian, or gradient and Hessian)
+    are not finite, or None if there are none (one test of the whole arrays in the usual case).
+
+    Why: a NaN or inf in the derivatives makes the step of its problem NaN (and the SVD of the
+    Jacobian form raise for the whole batch), so such a problem stops where it is."""
+    keys = [k for k in ("jacobian", "gradient", "hessian") if k in loc]
+    if "jacobian" in loc:  # (the gradient Jᵀr is the Jacobian's and the residuals' product)
+        keys = ["jacobian"]
+    if all(np.isfinite(loc[k]).all() for k in keys):
+        return None
+    finite = np.ones(rows.size, dtype=bool)
+    for k in keys:
+        finite &= np.isfinite(loc[k]).reshape(rows.size, -1).all(axis=1)
+    broken = rows & ~finite
+    return broken if broken.any() else None
 
 
 def _rows_all(b: np.ndarray) -> np.ndarray:
@@ -390,7 +422,9 @@ def _damped_steps(loc, held, lam, damping: str):
         if damping == "marquardt":
             Hs = H + lam[:, None, None] * diag[:, :, None] * eye
         else:
-            Hs = H + (lam * np.linalg.eigvalsh(H)[:, -1])[:, None, None] * eye
+            # (floored as diag is: a zero Hessian, no data, would leave Hs singular)
+            top = np.maximum(np.linalg.eigvalsh(H)[:, -1], 1e-300)
+            Hs = H + (lam * top)[:, None, None] * eye
         # A held parameter: its row and column decoupled, its gradient zero, so its step is 0.
         if held.any():
             Hs = np.where(held[:, :, None] | held[:, None, :], eye * diag[:, :, None], Hs)
@@ -450,12 +484,36 @@ def _accelerated(evaluate, idx, q, v, loc, solve, bounds, o):
 
 def solve_stacked(a, b):
     """a⁻¹ b for stacks of P x P matrices a (R, P, P) and b (R, P, K): Cramer's rule for
-    P = 2 (thousands of 2 x 2 systems at a fraction of LAPACK's cost per call), else LU."""
+    P = 2 (thousands of 2 x 2 systems at a fraction of LAPACK's cost per call), else LU.
+
+    Each row is solved alone, and one bad row never raises for the stack nor changes the
+    others' solutions (those of a stack without it, bit for bit): a row whose a or b holds a
+    NaN or an inf gets NaN throughout (not LAPACK's or Cramer's partial values); for P != 2 a
+    row that LAPACK's LU finds singular (an exact zero pivot, as of a matrix of zeros) gets
+    NaN. For P = 2 a determinant 0 is replaced by the smallest normal double instead, so
+    that the damped Levenberg-Marquardt step of a problem without data (a zero system whose
+    damping underflows) is 0/tiny = 0, not NaN; a singular row with b off its range gives
+    ±inf there.
+    """
     if a.shape[-1] != 2:
-        return np.linalg.solve(a, b)
+        try:
+            out = np.linalg.solve(a, b)
+        except np.linalg.LinAlgError:
+            out = _solve_around_singular(a, b)
+    else:
+        out = _cramer(a, b)
+    if not np.isfinite(out).all():  # (one test of the whole stack in the usual case)
+        finite = np.isfinite(a).all(axis=(1, 2)) & np.isfinite(b).all(axis=(1, 2))
+        out[~np.broadcast_to(finite, out.shape[:1])] = np.nan
+    return out
+
+
+def _cramer(a, b):
+    """:func:`solve_stacked` of 2 x 2 systems by Cramer's rule (before its NaN rows)."""
     a00, a01, a10, a11 = a[:, 0, 0], a[:, 0, 1], a[:, 1, 0], a[:, 1, 1]
-    det = a00 * a11
-    det -= a01 * a10
+    with np.errstate(invalid="ignore"):
+        det = a00 * a11
+        det -= a01 * a10
     det = np.where(det != 0, det, _TINY)
     # Column by column of b (K is 1 or 2 here), each numerator written into its place and
     # divided there: the numbers of (a₁₁b₀ - a₀₁b₁)/det and (a₀₀b₁ - a₁₀b₀)/det, on 1-d arrays
@@ -465,14 +523,30 @@ def solve_stacked(a, b):
     R = np.broadcast_shapes(a.shape[:1], b.shape[:1])[0]  # (an empty stack against one row: 0)
     out = np.empty((R, 2, *b.shape[2:]), dtype=np.result_type(a, b, det))
     t = np.empty(R, dtype=out.dtype)
-    for k in range(out.shape[2]):
-        b0, b1, top, bottom = b[:, 0, k], b[:, 1, k], out[:, 0, k], out[:, 1, k]
-        np.multiply(a11, b0, out=top)
-        top -= np.multiply(a01, b1, out=t)
-        top /= det
-        np.multiply(a00, b1, out=bottom)
-        bottom -= np.multiply(a10, b0, out=t)
-        bottom /= det
+    # (invalid: inf - inf and inf/inf of a row with an inf, which solve_stacked makes NaN)
+    with np.errstate(invalid="ignore"):
+        for k in range(out.shape[2]):
+            b0, b1, top, bottom = b[:, 0, k], b[:, 1, k], out[:, 0, k], out[:, 1, k]
+            np.multiply(a11, b0, out=top)
+            top -= np.multiply(a01, b1, out=t)
+            top /= det
+            np.multiply(a00, b1, out=bottom)
+            bottom -= np.multiply(a10, b0, out=t)
+            bottom /= det
+    return out
+
+
+def _solve_around_singular(a, b):
+    """np.linalg.solve(a, b) of stacks with a row that LAPACK finds singular: those rows NaN,
+    the others LAPACK's solutions (each matrix is factorised alone: the same numbers)."""
+    R = np.broadcast_shapes(a.shape[:1], b.shape[:1])[0]
+    a = np.broadcast_to(a, (R, *a.shape[1:]))
+    # slogdet factorises as solve does (getrf): its sign is 0 exactly where a pivot is 0.
+    with np.errstate(invalid="ignore"):  # (a NaN row's sign: NaN, solved below)
+        singular = np.linalg.slogdet(a)[0] == 0
+    eye = np.eye(a.shape[-1], dtype=a.dtype)
+    out = np.linalg.solve(np.where(singular[:, None, None], eye, a), b)
+    out[singular] = np.nan
     return out
 
 
