@@ -170,3 +170,17 @@ def test_solve_stacked_bad_rows_are_nan_and_alone(P):
     assert (got[zero] == 0.0).all() if P == 2 else np.isnan(got[zero]).all()
     one = solve_stacked(a[[zero]], b[[zero]])  # a singular stack of one: no exception either
     assert one.shape == (1, P, 2)
+
+
+@pytest.mark.parametrize("P", [2, 3])
+def test_solve_stacked_of_a_large_finite_stack_is_the_plain_solution(P):
+    # The whole-stack test sums squares: 500 systems of entries ~1e153 overflow that sum,
+    # though each entry, and Cramer's products (~1e306), are finite. Such rows are solved as
+    # ever, none made NaN: the solutions of the scaled-down systems (the same up to rounding:
+    # x = a⁻¹b is invariant to scaling a and b alike).
+    rng = np.random.default_rng(4)
+    a = rng.normal(size=(500, P, P)) + 3.0 * np.eye(P)
+    b = rng.normal(size=(500, P, 1))
+    got = solve_stacked(1e153 * a, 1e153 * b)
+    assert np.isfinite(got).all()
+    np.testing.assert_allclose(got, np.linalg.solve(a, b), rtol=1e-10, atol=1e-14)

@@ -14,6 +14,7 @@ in the Gauss-Newton form of variable projection) and the ratio fit of polycrysta
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -360,10 +361,9 @@ def _broken_rows(loc, rows: np.ndarray) -> np.ndarray | None:
 
     Why: a NaN or inf in the derivatives makes the step of its problem NaN (and the SVD of the
     Jacobian form raise for the whole batch), so such a problem stops where it is."""
-    keys = [k for k in ("jacobian", "gradient", "hessian") if k in loc]
-    if "jacobian" in loc:  # (the gradient Jᵀr is the Jacobian's and the residuals' product)
-        keys = ["jacobian"]
-    if all(np.isfinite(loc[k]).all() for k in keys):
+    # (the Jacobian form's gradient Jᵀr: of the Jacobian and the finite residuals)
+    keys = ["jacobian"] if "jacobian" in loc else [k for k in ("gradient", "hessian") if k in loc]
+    if _all_finite(*(loc[k] for k in keys)):
         return None
     finite = np.ones(rows.size, dtype=bool)
     for k in keys:
@@ -429,7 +429,8 @@ def _damped_steps(loc, held, lam, damping: str):
         if held.any():
             Hs = np.where(held[:, :, None] | held[:, None, :], eye * diag[:, :, None], Hs)
             g = np.where(held, 0.0, g)
-        return -solve_stacked(Hs, g[:, :, None])[:, :, 0], None
+        # (H and g are finite here, _broken_rows: the solve without solve_stacked's test)
+        return -_solve_finite(Hs, g[:, :, None])[:, :, 0], None
     # The Jacobian form, problem by problem (an SVD each; ~20 µs, far below an evaluation).
     factors = []
     for J, keep_out, lam_i in zip(loc["jacobian"], held, lam, strict=True):
@@ -488,32 +489,46 @@ def solve_stacked(a, b):
 
     Each row is solved alone, and one bad row never raises for the stack nor changes the
     others' solutions (those of a stack without it, bit for bit): a row whose a or b holds a
-    NaN or an inf gets NaN throughout (not LAPACK's or Cramer's partial values); for P != 2 a
-    row that LAPACK's LU finds singular (an exact zero pivot, as of a matrix of zeros) gets
-    NaN. For P = 2 a determinant 0 is replaced by the smallest normal double instead, so
-    that the damped Levenberg-Marquardt step of a problem without data (a zero system whose
-    damping underflows) is 0/tiny = 0, not NaN; a singular row with b off its range gives
-    ±inf there.
+    NaN or an inf gets NaN throughout (not LAPACK's or Cramer's partial values), without a
+    warning; for P != 2 a row that LAPACK's LU finds singular (an exact zero pivot, as of a
+    matrix of zeros) gets NaN. For P = 2 a determinant 0 is replaced by the smallest normal
+    double instead, so that the damped Levenberg-Marquardt step of a problem without data (a
+    zero system whose damping underflows) is 0/tiny = 0, not NaN; a singular row with b off
+    its range gives ±inf there.
     """
-    if a.shape[-1] != 2:
-        try:
-            out = np.linalg.solve(a, b)
-        except np.linalg.LinAlgError:
-            out = _solve_around_singular(a, b)
-    else:
-        out = _cramer(a, b)
-    if not np.isfinite(out).all():  # (one test of the whole stack in the usual case)
+    # (invalid: inf - inf, inf/inf and 0·inf of a row with an inf, made NaN below)
+    with np.errstate(invalid="ignore"):
+        out = _solve_finite(a, b)
+    # The solutions tested, not a and b: they are new and contiguous, while a and b may be
+    # views (the plateau fit's are), which np.vdot would copy. A NaN or inf in a or b leaves
+    # one in its row's solution; the rows are told apart only then (the usual case: one test).
+    if not _all_finite(out):
         finite = np.isfinite(a).all(axis=(1, 2)) & np.isfinite(b).all(axis=(1, 2))
         out[~np.broadcast_to(finite, out.shape[:1])] = np.nan
     return out
 
 
-def _cramer(a, b):
-    """:func:`solve_stacked` of 2 x 2 systems by Cramer's rule (before its NaN rows)."""
+def _all_finite(*arrays) -> bool:
+    """Whether every entry of float ``arrays`` is finite, by the sum of their sums of squares:
+    a NaN or an inf makes it NaN or inf. An overflow of finite entries answers False too,
+    which costs its caller only its row-by-row test. (~8k instructions a contiguous array of
+    ~10³ entries: half of isfinite(a).all(), a reduction's setup; np.vdot copies any other.)"""
+    total = 0.0
+    for a in arrays:
+        total += np.vdot(a, a)
+    return math.isfinite(total)
+
+
+def _solve_finite(a, b):
+    """:func:`solve_stacked` of stacks without NaN or inf (Cramer's rule for P = 2, else LU)."""
+    if a.shape[-1] != 2:
+        try:
+            return np.linalg.solve(a, b)
+        except np.linalg.LinAlgError:
+            return _solve_around_singular(a, b)
     a00, a01, a10, a11 = a[:, 0, 0], a[:, 0, 1], a[:, 1, 0], a[:, 1, 1]
-    with np.errstate(invalid="ignore"):
-        det = a00 * a11
-        det -= a01 * a10
+    det = a00 * a11
+    det -= a01 * a10
     det = np.where(det != 0, det, _TINY)
     # Column by column of b (K is 1 or 2 here), each numerator written into its place and
     # divided there: the numbers of (a₁₁b₀ - a₀₁b₁)/det and (a₀₀b₁ - a₁₀b₀)/det, on 1-d arrays
@@ -523,16 +538,14 @@ def _cramer(a, b):
     R = np.broadcast_shapes(a.shape[:1], b.shape[:1])[0]  # (an empty stack against one row: 0)
     out = np.empty((R, 2, *b.shape[2:]), dtype=np.result_type(a, b, det))
     t = np.empty(R, dtype=out.dtype)
-    # (invalid: inf - inf and inf/inf of a row with an inf, which solve_stacked makes NaN)
-    with np.errstate(invalid="ignore"):
-        for k in range(out.shape[2]):
-            b0, b1, top, bottom = b[:, 0, k], b[:, 1, k], out[:, 0, k], out[:, 1, k]
-            np.multiply(a11, b0, out=top)
-            top -= np.multiply(a01, b1, out=t)
-            top /= det
-            np.multiply(a00, b1, out=bottom)
-            bottom -= np.multiply(a10, b0, out=t)
-            bottom /= det
+    for k in range(out.shape[2]):
+        b0, b1, top, bottom = b[:, 0, k], b[:, 1, k], out[:, 0, k], out[:, 1, k]
+        np.multiply(a11, b0, out=top)
+        top -= np.multiply(a01, b1, out=t)
+        top /= det
+        np.multiply(a00, b1, out=bottom)
+        bottom -= np.multiply(a10, b0, out=t)
+        bottom /= det
     return out
 
 

@@ -13,6 +13,8 @@ never passes one; the fits are also called directly.
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 import pandas as pd
 
@@ -31,14 +33,16 @@ def usable_rows(points, per_row, min_points: int) -> np.ndarray | None:
 
     Returns
     -------
-    None if every row is usable (the usual case, found by one test of each whole array),
+    None if every row is usable (the usual case, found by one sum of each whole array),
     else (S,) bool: False for a row with a NaN or an inf in any of its values (padding
     included: the fits form products such as w·Δf over the whole row) or with fewer than
     ``min_points`` points of w > 0 (a NaN weight is no point).
     """
-    arrays = [np.asarray(a) for a in (*points, *per_row)]
+    arrays = [np.asarray(a, dtype=float) for a in (*points, *per_row)]
     good = np.count_nonzero(points[3] > 0, axis=1) >= min_points
-    if good.all() and all(np.isfinite(a).all() for a in arrays):
+    # (a NaN or an inf makes a sum of squares NaN or inf: a third of isfinite(a).all()'s cost;
+    # an overflow of finite values only sends the rows to the test one by one below)
+    if good.all() and math.isfinite(sum(np.vdot(a, a) for a in arrays)):
         return None
     for a in arrays:
         good &= np.isfinite(a).reshape(len(good), -1).all(axis=1)
