@@ -430,7 +430,7 @@ def _damped_steps(loc, held, lam, damping: str):
             Hs = np.where(held[:, :, None] | held[:, None, :], eye * diag[:, :, None], Hs)
             g = np.where(held, 0.0, g)
         # (H and g are finite here, _broken_rows: the solve without solve_stacked's test)
-        return -_solve_finite(Hs, g[:, :, None])[:, :, 0], None
+        return -solve_finite_stacked(Hs, g[:, :, None])[:, :, 0], None
     # The Jacobian form, problem by problem (an SVD each; ~20 µs, far below an evaluation).
     factors = []
     for J, keep_out, lam_i in zip(loc["jacobian"], held, lam, strict=True):
@@ -498,7 +498,7 @@ def solve_stacked(a, b):
     """
     # (invalid: inf - inf, inf/inf and 0·inf of a row with an inf, made NaN below)
     with np.errstate(invalid="ignore"):
-        out = _solve_finite(a, b)
+        out = solve_finite_stacked(a, b)
     # The solutions tested, not a and b: they are new and contiguous, while a and b may be
     # views (the plateau fit's are), which np.vdot would copy. A NaN or inf in a or b leaves
     # one in its row's solution; the rows are told apart only then (the usual case: one test).
@@ -519,8 +519,10 @@ def _all_finite(*arrays) -> bool:
     return math.isfinite(total)
 
 
-def _solve_finite(a, b):
-    """:func:`solve_stacked` of stacks without NaN or inf (Cramer's rule for P = 2, else LU)."""
+def solve_finite_stacked(a, b):
+    """:func:`solve_stacked` of stacks without NaN or inf (Cramer's rule for P = 2, else LU),
+    without its test of them: for the package's own hot paths, whose systems are finite
+    (the solver's damped steps; the plateau fit's projections, of finite sweeps)."""
     if a.shape[-1] != 2:
         try:
             return np.linalg.solve(a, b)

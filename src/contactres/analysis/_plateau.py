@@ -45,7 +45,8 @@ from dataclasses import replace
 import numpy as np
 import pandas as pd
 
-from ..fitting import LMOptions, levenberg_marquardt, solve_stacked
+from .._levenberg_marquardt import solve_finite_stacked
+from ..fitting import LMOptions, levenberg_marquardt
 from ._amplitude import PLATEAU_MIN_SLOPE
 from ._bad_rows import spread_rows, usable_rows
 from ._loops import (
@@ -284,7 +285,7 @@ def _descent(ey, dl, x, c, A, B, slopes, sf, sg, df, dg) -> tuple[np.ndarray, np
     # Element by element of the 2 x 2 Hessian, on 1-d arrays of the rows: the broadcast
     # outer products (R, 2, 1) x (R, 1, 2) copied the rows one by one into numpy's buffers
     # (~33 µs against ~21 µs on 450 rows).
-    sol = solve_stacked(gram, pd_)
+    sol = solve_finite_stacked(gram, pd_)  # (finite: the rows of finite sweeps)
     hess, t = np.empty((R, 2, 2)), np.empty(R)
     for i in range(2):
         for j in range(2):
