@@ -14,6 +14,7 @@ in the Gauss-Newton form of variable projection) and the ratio fit of polycrysta
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass
 
 import numpy as np
@@ -29,7 +30,7 @@ __all__ = ["LMOptions", "LeastSquaresResult", "levenberg_marquardt", "solve_stac
 _SINGULAR_CUTOFF = 1e-13
 
 # Codes of :attr:`LeastSquaresResult.status`.
-_RUNNING, _STEP, _CHI2, _EXHAUSTED, _MAX_ITER, _MAX_ACCEPTED, _OUTSIDE = range(7)
+_RUNNING, _STEP, _CHI2, _EXHAUSTED, _MAX_ITER, _MAX_ACCEPTED, _OUTSIDE, _NOT_FINITE = range(8)
 
 
 @dataclass(frozen=True)
@@ -145,6 +146,7 @@ class LeastSquaresResult(Summarised):
             _MAX_ITER: f"no convergence in {int(self.n_iter[i])} steps",
             _MAX_ACCEPTED: f"no convergence in {int(self.n_accepted[i])} iterations",
             _OUTSIDE: "the starting point is outside the admissible region",
+            _NOT_FINITE: "the derivatives are not finite at the last accepted point",
         }[int(self.status[i])]
 
 
@@ -172,7 +174,12 @@ def levenberg_marquardt(evaluate, p0, lo=-np.inf, hi=np.inf, options: LMOptions 
         A non-finite χ² (or a row of residuals that is not finite) marks p outside the
         admissible region (e.g. a stiffness that is not positive definite): such a step fails
         like one that raises χ², so the damping grows until the step stays inside. No penalty
-        term is added, so the minimum is that of the data alone.
+        term is added, so the minimum is that of the data alone. A problem whose χ² is not
+        finite at the start stops there ("outside the admissible region"), and one whose
+        derivatives (Jacobian, or gradient and Hessian) are not finite where its χ² is
+        (a NaN or an inf in its data or its model) stops at that point ("derivatives not
+        finite"): its step would be NaN, and the other problems go on as if it were not in
+        the batch.
     p0 : (R, P) or (P,) starting parameters (any units; see ``options.damping``)
     lo, hi : bounds broadcasting against p0 (may be infinite); every trial is clipped into
         them, and a parameter on a bound that the gradient pushes outwards is held there for
@@ -210,6 +217,9 @@ def levenberg_marquardt(evaluate, p0, lo=-np.inf, hi=np.inf, options: LMOptions 
         raise ContactresInputError("the geodesic acceleration needs the Jacobian form")
     # The results of every problem, written when it stops ...
     chi2, status = cur["chi2"], np.where(np.isfinite(cur["chi2"]), _RUNNING, _OUTSIDE)
+    broken = _broken_rows(cur, status == _RUNNING)
+    if broken is not None:
+        status[broken] = _NOT_FINITE
     n_iter, n_acc, last = np.zeros(n_rows, int), np.zeros(n_rows, int), np.zeros(n_rows)
     # ... and the state of the running ones, compacted when some stop (a gather then, not one
     # of every array at every step); each row's arithmetic is the same whatever rows run with it.
@@ -271,15 +281,16 @@ def levenberg_marquardt(evaluate, p0, lo=-np.inf, hi=np.inf, options: LMOptions 
         # (0.0: the value of a problem without parameters, not a start of the maximum; the same
         # as the old max(initial=0) only because the sizes are |step| >= 0)
         state["last"] = np.where(better, _rows_reduce(np.maximum, size, 0.0), state["last"])
+        broken = None
         if new is not None and "jacobian" not in model:  # the Gauss-Newton form comes complete
+            # (ok is None here: the geodesic acceleration needs the Jacobian form)
             for key in ("gradient", "hessian"):
                 if every:
                     model[key] = new[key]
-                elif ok is None:
+                else:
                     mask = better.reshape(-1, *(1,) * (new[key].ndim - 1))
                     np.copyto(model[key], new[key], where=mask)
-                else:
-                    model[key][better] = new[key][better[ok]]
+            broken = _broken_rows(model, better)
         # Damping: down after a success, up after a failure.
         nu = state["nu"]
         if o.update == "nielsen":
@@ -320,6 +331,10 @@ def levenberg_marquardt(evaluate, p0, lo=-np.inf, hi=np.inf, options: LMOptions 
             fresh = _local_model(evaluate(state["p"][go_on], rows[go_on], True))
             for key in ("residuals", "jacobian", "gradient"):  # χ² is that of the trial
                 model[key][go_on] = fresh[key]
+            broken = _broken_rows(model, go_on)
+        if broken is not None:  # (a row that converged there has its result: it stays so)
+            code[broken & going] = _NOT_FINITE
+            going &= ~broken
         if not going.all():
             done, ended = rows[~going], ~going
             x[done], chi2[done], status[done] = state["p"][ended], model["chi2"][ended], code[ended]
@@ -340,6 +355,23 @@ def levenberg_marquardt(evaluate, p0, lo=-np.inf, hi=np.inf, options: LMOptions 
         n_accepted=n_acc,
         last_step=last,
     )
+
+
+def _broken_rows(loc, rows: np.ndarray) -> np.ndarray | None:
+    """The ``rows`` (a mask) whose derivatives in ``loc`` (Jacobian, or gradient and Hessian)
+    are not finite, or None if there are none (one test of the whole arrays in the usual case).
+
+    Why: a NaN or inf in the derivatives makes the step of its problem NaN (and the SVD of the
+    Jacobian form raise for the whole batch), so such a problem stops where it is."""
+    # (the Jacobian form's gradient Jᵀr: of the Jacobian and the finite residuals)
+    keys = ["jacobian"] if "jacobian" in loc else [k for k in ("gradient", "hessian") if k in loc]
+    if _all_finite(*(loc[k] for k in keys)):
+        return None
+    finite = np.ones(rows.size, dtype=bool)
+    for k in keys:
+        finite &= np.isfinite(loc[k]).reshape(rows.size, -1).all(axis=1)
+    broken = rows & ~finite
+    return broken if broken.any() else None
 
 
 def _rows_reduce(ufunc: np.ufunc, a: np.ndarray, empty) -> np.ndarray:
@@ -387,12 +419,15 @@ def _damped_steps(loc, held, lam, damping: str):
         if damping == "marquardt":
             Hs = H + lam[:, None, None] * diag[:, :, None] * eye
         else:
-            Hs = H + (lam * np.linalg.eigvalsh(H)[:, -1])[:, None, None] * eye
+            # (floored as diag is: a zero Hessian, no data, would leave Hs singular)
+            top = np.maximum(np.linalg.eigvalsh(H)[:, -1], 1e-300)
+            Hs = H + (lam * top)[:, None, None] * eye
         # A held parameter: its row and column decoupled, its gradient zero, so its step is 0.
         if held.any():
             Hs = np.where(held[:, :, None] | held[:, None, :], eye * diag[:, :, None], Hs)
             g = np.where(held, 0.0, g)
-        return -solve_stacked(Hs, g[:, :, None])[:, :, 0], None
+        # (H and g are finite here, _broken_rows: the solve without solve_stacked's test)
+        return -solve_finite_stacked(Hs, g[:, :, None])[:, :, 0], None
     # The Jacobian form, problem by problem (an SVD each; ~20 µs, far below an evaluation).
     factors = []
     for J, keep_out, lam_i in zip(loc["jacobian"], held, lam, strict=True):
@@ -447,9 +482,49 @@ def _accelerated(evaluate, idx, q, v, loc, solve, bounds, o):
 
 def solve_stacked(a, b):
     """a⁻¹ b for stacks of P x P matrices a (R, P, P) and b (R, P, K): Cramer's rule for
-    P = 2 (thousands of 2 x 2 systems at a fraction of LAPACK's cost per call), else LU."""
+    P = 2 (thousands of 2 x 2 systems at a fraction of LAPACK's cost per call), else LU.
+
+    Each row is solved alone, and one bad row never raises for the stack nor changes the
+    others' solutions (those of a stack without it, bit for bit): a row whose a or b holds a
+    NaN or an inf gets NaN throughout (not LAPACK's or Cramer's partial values), without a
+    warning; for P != 2 a row that LAPACK's LU finds singular (an exact zero pivot, as of a
+    matrix of zeros) gets NaN. For P = 2 a determinant 0 is replaced by the smallest normal
+    double instead, so that the damped Levenberg-Marquardt step of a problem without data (a
+    zero system whose damping underflows) is 0/tiny = 0, not NaN; a singular row with b off
+    its range gives ±inf there.
+    """
+    # (invalid: inf - inf, inf/inf and 0·inf of a row with an inf, made NaN below)
+    with np.errstate(invalid="ignore"):
+        out = solve_finite_stacked(a, b)
+    # The solutions tested, not a and b: they are new and contiguous, while a and b may be
+    # views (the plateau fit's are), which np.vdot would copy. A NaN or inf in a or b leaves
+    # one in its row's solution; the rows are told apart only then (the usual case: one test).
+    if not _all_finite(out):
+        finite = np.isfinite(a).all(axis=(1, 2)) & np.isfinite(b).all(axis=(1, 2))
+        out[~np.broadcast_to(finite, out.shape[:1])] = np.nan
+    return out
+
+
+def _all_finite(*arrays) -> bool:
+    """Whether every entry of float ``arrays`` is finite, by the sum of their sums of squares:
+    a NaN or an inf makes it NaN or inf. An overflow of finite entries answers False too,
+    which costs its caller only its row-by-row test. (~8k instructions a contiguous array of
+    ~10³ entries: half of isfinite(a).all(), a reduction's setup; np.vdot copies any other.)"""
+    total = 0.0
+    for a in arrays:
+        total += np.vdot(a, a)
+    return math.isfinite(total)
+
+
+def solve_finite_stacked(a, b):
+    """:func:`solve_stacked` of stacks without NaN or inf (Cramer's rule for P = 2, else LU),
+    without its test of them: for the package's own hot paths, whose systems are finite
+    (the solver's damped steps; the plateau fit's projections, of finite sweeps)."""
     if a.shape[-1] != 2:
-        return np.linalg.solve(a, b)
+        try:
+            return np.linalg.solve(a, b)
+        except np.linalg.LinAlgError:
+            return _solve_around_singular(a, b)
     a00, a01, a10, a11 = a[:, 0, 0], a[:, 0, 1], a[:, 1, 0], a[:, 1, 1]
     det = a00 * a11
     det -= a01 * a10
@@ -470,6 +545,20 @@ def solve_stacked(a, b):
         np.multiply(a00, b1, out=bottom)
         bottom -= np.multiply(a10, b0, out=t)
         bottom /= det
+    return out
+
+
+def _solve_around_singular(a, b):
+    """np.linalg.solve(a, b) of stacks with a row that LAPACK finds singular: those rows NaN,
+    the others LAPACK's solutions (each matrix is factorised alone: the same numbers)."""
+    R = np.broadcast_shapes(a.shape[:1], b.shape[:1])[0]
+    a = np.broadcast_to(a, (R, *a.shape[1:]))
+    # slogdet factorises as solve does (getrf): its sign is 0 exactly where a pivot is 0.
+    with np.errstate(invalid="ignore"):  # (a NaN row's sign: NaN, solved below)
+        singular = np.linalg.slogdet(a)[0] == 0
+    eye = np.eye(a.shape[-1], dtype=a.dtype)
+    out = np.linalg.solve(np.where(singular[:, None, None], eye, a), b)
+    out[singular] = np.nan
     return out
 
 

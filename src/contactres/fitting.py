@@ -184,7 +184,7 @@ def fit(
     -------
     FitResult
         ``errors`` are standard errors from ``inv(JᵀJ)·RSS/(N - p)``; NaN when N <= p or the
-        Jacobian is singular.
+        Jacobian is singular or not finite.
     """
     fixed = dict(fixed or {})
     bounds = dict(bounds or {})
@@ -253,7 +253,9 @@ def fit(
     if n > p:
         jac = _forward_jacobian(residuals, z_hat, r, (lo, hi))
         jtj = jac.T @ jac
-        if np.linalg.matrix_rank(jtj) == p:
+        # (not finite: a Jacobian step into a region where the model is NaN; the SVD of
+        # matrix_rank would raise)
+        if np.isfinite(jtj).all() and np.linalg.matrix_rank(jtj) == p:
             cov = np.linalg.inv(jtj) * (rss / (n - p)) * np.outer(scale, scale)
     values = params(z_hat)
     errors = {k: np.nan for k in fixed}

@@ -184,7 +184,7 @@ def _descent_plainly(ey, dl, x, c, A, B, slopes, sf, sg, df, dg):
     r = np.concatenate([sf * (df - A[:, None] * g1), sg * (dg - B[:, None] - A[:, None] * g2)], 1)
     gram = np.einsum("rim,rjm->rij", phi, phi)
     pd_ = np.einsum("rim,rjm->rij", phi, D)
-    sol = _plateau.solve_stacked(gram, pd_)
+    sol = _plateau.solve_finite_stacked(gram, pd_)
     hess = np.einsum("rim,rjm->rij", D, D) - np.einsum("rki,rkj->rij", pd_, sol)
     return -np.einsum("rim,rm->ri", D, r), hess
 

@@ -58,6 +58,7 @@ from ..resonators import (
 )
 from ..tangential import CattaneoMindlinLoop, MasingLoop, SavkoorLoop
 from ._amplitude import row_sets
+from ._bad_rows import spread_rows, usable_rows
 from ._points import by_point, point_sum
 
 __all__ = [
@@ -637,8 +638,17 @@ def fit_cm_loops(
     -------
     DataFrame with ``df0_Hz`` = Pκ, ``dgamma0_Hz`` = Pωξ, ``theta_per_m`` = κ/(μF_N), their standard
     errors (``*_err``), ``cov_df0_lntheta``, ``x_max`` = θ·max(u0) and ``edge`` ("low" if no slip
-    is resolved, "high" if the best fit is gross sliding beyond the table, "" otherwise).
+    is resolved, "high" if the best fit is gross sliding beyond the table, "" otherwise). A row
+    with a NaN or an inf among its values or noise levels, or fewer than 2 points of weight
+    > 0 (3 parameters), has no fit: NaN, edge "" (:mod:`contactres.analysis._bad_rows`); the
+    other rows' results are those of a batch without it.
     """
+    good = usable_rows((u, df, dg, w), (sigma_df, sigma_dg), 2)
+    if good is not None:
+        u, df, dg, w, sigma_df, sigma_dg = (
+            np.asarray(a)[good] for a in (u, df, dg, w, sigma_df, sigma_dg)
+        )
+        return spread_rows(fit_cm_loops(u, df, dg, w, sigma_df, sigma_dg, table, rounds), good)
     table = table if table is not None else cm_loop_table()
     S = u.shape[0]
     # Sweeps measured at the same amplitudes (bit for bit) share the lookups of the trials that
@@ -688,11 +698,12 @@ def _fit_cm_chunk(
         return _projected(g1, g2, _sweep_data(sums, wf, wg, trials=True))[2].T
 
     lo, hi = -2.5, np.log10(X_MAX)
-    grid = np.broadcast_to(np.linspace(lo, hi, 49), (S, 49))
+    line = np.linspace(lo, hi, 49)
+    grid = np.broadcast_to(line, (S, 49))
     chi = chi2_at(grid, least=True)
     k = np.argmin(chi, axis=1)
     edge = np.where(k == 0, "low", np.where(k == grid.shape[1] - 1, "high", ""))
-    step = grid[0, 1] - grid[0, 0]
+    step = line[1] - line[0]  # (of the line: a batch may be empty)
     rows = np.arange(S)
     centre, best = grid[rows, k], chi[rows, k]
     # Each round's middle trial is the best point so far (centre + 0): its χ², known, is put
@@ -780,9 +791,9 @@ def _inverse_3x3(m: np.ndarray) -> np.ndarray:
     checks it against exact rational arithmetic). The loop fits' JᵀJ have det >= 0.24 on the
     10^4-sweep benchmark: there the errors agree with pinv's to 8e-14 relative, pinv of the
     unscaled matrix (condition number up to ~1e6) being the less accurate of the two. The
-    other matrices (near-singular, a zero or non-finite diagonal) take pinv itself, as
-    before: its cut of tiny singular values is kept where it matters (a NaN raises as
-    pinv's SVD does).
+    other matrices (near-singular, a zero diagonal) take pinv itself, as before: its cut of
+    tiny singular values is kept where it matters. A matrix that is not finite (of a sweep
+    whose fit failed) gets NaN: pinv's SVD would raise for every matrix passed with it.
     """
     d = np.sqrt(np.diagonal(m, axis1=1, axis2=2))
     with np.errstate(divide="ignore", invalid="ignore"):
@@ -803,7 +814,8 @@ def _inverse_3x3(m: np.ndarray) -> np.ndarray:
     with np.errstate(divide="ignore", invalid="ignore"):
         out = adj / (det[:, None, None] * d[:, :, None] * d[:, None, :])
     if not good.all():
-        bad = np.flatnonzero(~good)
+        bad = np.flatnonzero(~good & np.isfinite(m).all(axis=(1, 2)))
+        out[~good] = np.nan
         out[bad] = np.linalg.pinv(m[bad])
     return out
 

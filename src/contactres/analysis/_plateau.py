@@ -45,8 +45,10 @@ from dataclasses import replace
 import numpy as np
 import pandas as pd
 
-from ..fitting import LMOptions, levenberg_marquardt, solve_stacked
+from .._levenberg_marquardt import solve_finite_stacked
+from ..fitting import LMOptions, levenberg_marquardt
 from ._amplitude import PLATEAU_MIN_SLOPE
+from ._bad_rows import spread_rows, usable_rows
 from ._loops import (
     X_MAX,
     LoopTable,
@@ -290,7 +292,7 @@ def _descent(ey, dl, x, c, A, B, slopes, sf, sg, df, dg) -> tuple[np.ndarray, np
     # Element by element of the 2 x 2 Hessian, on 1-d arrays of the rows: the broadcast
     # outer products (R, 2, 1) x (R, 1, 2) copied the rows one by one into numpy's buffers
     # (~33 µs against ~21 µs on 450 rows).
-    sol = solve_stacked(gram, pd_)
+    sol = solve_finite_stacked(gram, pd_)  # (finite: the rows of finite sweeps)
     hess, t = np.empty((R, 2, 2)), np.empty(R)
     for i in range(2):
         for j in range(2):
@@ -322,8 +324,20 @@ def fit_plateau_loops(
     x = X_MAX, "low" if no slip is resolved) plus ``d_c_m``, ``d_c_err_m`` and the covariances
     of d_c with Δf0 and ln θ, ``cov_df0_d_c`` (Hz m) and ``cov_lntheta_d_c`` (m). A fit on the
     bound (d_c/u_max < :data:`PLATEAU_D_C_BOUND`): ``d_c_m`` 0, its error and covariances NaN,
-    the other errors those of the fit with d_c held at 0.
+    the other errors those of the fit with d_c held at 0. A row with a NaN or an inf among its
+    values, noise levels, u_c or θ start, or fewer than 3 points of weight > 0 (4 parameters),
+    has no fit: NaN, edge "" (:mod:`contactres.analysis._bad_rows`); the other rows' results
+    are those of a batch without it.
     """
+    starts = () if theta_start is None else (theta_start,)
+    good = usable_rows((u, df, dg, w), (sigma_df, sigma_dg, u_c, *starts), 3)
+    if good is not None:
+        u, df, dg, w, sigma_df, sigma_dg, u_c = (
+            np.asarray(a)[good] for a in (u, df, dg, w, sigma_df, sigma_dg, u_c)
+        )
+        start = None if theta_start is None else np.asarray(theta_start)[good]
+        fit = fit_plateau_loops(u, df, dg, w, sigma_df, sigma_dg, u_c, table, start)
+        return spread_rows(fit, good)
     u_c = np.asarray(u_c, dtype=float)
     S = u.shape[0]
     rows = np.arange(S)
@@ -438,7 +452,7 @@ def fit_plateau_loops(
     dl0 = np.concatenate([first, second])
     uc2 = np.tile(u_c / umax, 2)
     ly0 = np.log(np.tile(np.maximum(y0, 1e-300), 2) * (1.0 - dl0) / np.maximum(1.0 - uc2, 1e-12))
-    p0 = np.column_stack([np.clip(ly0, lo[0, 0], hi[0, 0]), dl0])
+    p0 = np.column_stack([np.clip(ly0, np.log(10.0**-2.5), np.log(X_MAX)), dl0])
     # Pass 1 only chooses between the starts and brings pass 2 near the optimum: 1e-4 will do.
     # A second start that is the first (no amplitude below the hinge) is not run twice: a
     # row's iteration depends on its own start and data alone, so it would end where the first
@@ -490,7 +504,7 @@ def fit_plateau_loops(
     norm = np.linalg.norm(J, axis=1)
     norm = np.where(norm > 0, norm, 1.0)
     Js = J / norm[:, None, :]
-    cov = np.linalg.pinv(np.einsum("smi,smj->sij", Js, Js)) / (norm[:, :, None] * norm[:, None, :])
+    cov = _pinv_finite(np.einsum("smi,smj->sij", Js, Js)) / (norm[:, :, None] * norm[:, None, :])
     cov *= (fit["chi2"] / np.maximum(2 * n - 4, 1))[:, None, None]
     edge = np.where(ly > hi[:, 0] - 1e-6, "high", np.where(ly < lo[:, 0] + 1e-6, "low", ""))
     return pd.DataFrame(
@@ -508,3 +522,15 @@ def fit_plateau_loops(
             "rss_dgamma": fit["rss_g"],
         }
     )
+
+
+def _pinv_finite(m: np.ndarray) -> np.ndarray:
+    """numpy.linalg.pinv of a stack, NaN for a matrix that is not finite (a fit that failed,
+    e.g. on a hinge beyond its sweep's amplitudes), whose SVD would raise for the whole stack.
+    Each matrix's SVD is its own: the others' pseudo-inverses are pinv's of the stack."""
+    if np.isfinite(m).all():  # (the usual case: one test)
+        return np.linalg.pinv(m)
+    finite = np.isfinite(m).all(axis=(1, 2))
+    out = np.full(m.shape, np.nan)
+    out[finite] = np.linalg.pinv(m[finite])
+    return out

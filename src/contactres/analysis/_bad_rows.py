@@ -1,0 +1,63 @@
+"""The rows of padded sweeps that a batched fit can take, and its results spread back over all.
+
+Why: the loop fits (:func:`contactres.analysis._loops.fit_cm_loops`, Cattaneo-Mindlin and
+Savkoor, and :func:`contactres.analysis._plateau.fit_plateau_loops`) solve thousands of sweeps
+at once, and a NaN or an inf in one sweep, or a sweep with no point of weight > 0, made the
+linear algebra of the whole batch raise (numpy.linalg.LinAlgError: the SVD of pinv). A sweep
+of too few points (no more residuals, two a point, than the fit has parameters) fits exactly,
+with errors of 0 that mean nothing. Such a sweep has no fit: the other rows are fitted alone,
+exactly as a batch without it (the same call on the same arrays, so their numbers bit for
+bit), and it gets NaN. The analysis (:func:`contactres.analyze`) validates its sweeps and
+never passes one; the fits are also called directly.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+import pandas as pd
+
+__all__ = ["spread_rows", "usable_rows"]
+
+
+def usable_rows(points, per_row, min_points: int) -> np.ndarray | None:
+    """Which rows of padded sweeps a fit can take, or None if it can take all of them.
+
+    Parameters
+    ----------
+    points : (u, Δf, ΔΓ, w), each (S, M): amplitudes (m), shifts (Hz), weights (0 for padding)
+    per_row : arrays (S,) of the rows' other inputs (noise levels in Hz, hinges in m, ...)
+    min_points : the fewest points of w > 0 a row needs (two residuals each, Δf and ΔΓ: more
+        residuals than the fit's parameters)
+
+    Returns
+    -------
+    None if every row is usable (the usual case, found by one sum of each whole array),
+    else (S,) bool: False for a row with a NaN or an inf in any of its values (padding
+    included: the fits form products such as w·Δf over the whole row) or with fewer than
+    ``min_points`` points of w > 0 (a NaN weight is no point).
+    """
+    arrays = [np.asarray(a, dtype=float) for a in (*points, *per_row)]
+    good = np.count_nonzero(points[3] > 0, axis=1) >= min_points
+    # (a NaN or an inf makes a sum of squares NaN or inf: a third of isfinite(a).all()'s cost;
+    # an overflow of finite values only sends the rows to the test one by one below)
+    if good.all() and math.isfinite(sum(np.vdot(a, a) for a in arrays)):
+        return None
+    for a in arrays:
+        good &= np.isfinite(a).reshape(len(good), -1).all(axis=1)
+    return good
+
+
+def spread_rows(fit: pd.DataFrame, good: np.ndarray) -> pd.DataFrame:
+    """The table ``fit`` of the rows ``good`` (a mask of S rows) spread over all S rows: NaN in
+    the numeric columns of the others, "" in the text columns (``edge``)."""
+    at = np.flatnonzero(good)
+    columns = {}
+    for name in fit.columns:
+        v = fit[name].to_numpy()
+        text = v.dtype.kind not in "fc"
+        full = np.full(good.size, "" if text else np.nan, dtype=object if text else v.dtype)
+        full[at] = v
+        columns[name] = full
+    return pd.DataFrame(columns)
