@@ -547,6 +547,8 @@ def _near_pair_sums(
     whole array with ``h`` (to round-off: the BLAS call is split by first order).
     """
     n_p, na, nk = left.shape
+    if h.shape[-1] == 1:
+        return _one_harmonic_pair_sums(left, right, ti, tj, h[:, 0])
     out = np.empty((ti.size, na, h.shape[-1]), dtype=np.result_type(left, right, h))
     order = np.argsort(ti, kind="stable")
     ti_s, tj_s = ti[order], tj[order]
@@ -569,3 +571,17 @@ def _near_pair_sums(
         else:
             out[order[lo:hi]] = (rows @ h).reshape(hi - lo, na, -1)
     return out
+
+
+def _one_harmonic_pair_sums(
+    left: np.ndarray, right: np.ndarray, ti: np.ndarray, tj: np.ndarray, h: np.ndarray
+) -> np.ndarray:
+    """:func:`_near_pair_sums` for one harmonic (``h`` (nk,): an axisymmetric kernel, as the
+    layered punch's film): ``h`` joins ``left``, and each k a's sums of every pair of orders
+    are one Gram product (n_p, nk) x (nk, n_p), batched over the k a values: one BLAS call
+    instead of a product per pair and a matrix-vector call per first order, for about twice
+    the pairs (the other triangle is read off and dropped). The same sums to round-off
+    (another order of the additions: <= 8e-15 on the layered curves)."""
+    weighted = left * h
+    gram = np.matmul(weighted.transpose(1, 0, 2), right.transpose(1, 2, 0))  # (na, n_p, n_p)
+    return gram[:, ti, tj].T[..., None]
