@@ -289,6 +289,44 @@ arguments, 1920 and 2560 complex near/arc ones, 4432 real own nodes), the correc
 assembly and waves ~45 %, the film's Galerkin ~29 %. The 250 nm target is still missed by
 ~10 % of the curve's instructions, none of its steps above ~16 %.
 
+Session 31 (LY31): the film's near-field pair sums of its one harmonic (an axisymmetric stack) as
+one batched Gram product per k a, the harmonic folded into the near-field weights
+(``contactres.dynamic._exact._gram_pair_sums``: one BLAS call instead of a product per pair and a
+matrix-vector call per first order, and no second (orders x k a x nodes) weighted copy); the
+points' pieces cut by slicing instead of np.split (two axis swaps per piece, ~400 calls per curve);
+a stack's grouping key and its need of a correction formed once per material set instead of per
+point. The homogeneous curve (7 harmonics: the old path) is bit-identical; the layered normal
+curves moved <= 7.5e-15 (250 nm), 5.0e-15 (1 µm), 8.8e-15 (100 nm): the order of the near-field
+sums; the tangential curves are bit-identical. Instructions per curve (callgrind, one thread,
+PYTHONHASHSEED=0, calls 1-8 less calls 1-2 of one process, over six: the two-call difference
+scattered by ~4 M), base / this tree: homogeneous 51.7 / 51.6 M; 250 nm 170.8 M (3.30x) -> 161.3 M
+(3.13x, -5.6 %); 1 µm 134.4 M (2.60x) -> 128.0 M (2.48x). CPU, one BLAS thread, best of 9
+interleaved in one process, base / this tree alternating three times (load ~6 on 2 cores):
+homogeneous 9.7, 7.6, 7.6 / 7.8, 8.1, 7.5 ms; 250 nm 28.7, 26.6, 27.2 / 25.3, 25.6, 25.6 ms
+(3.0x-3.6x / 3.2x-3.4x); 1 µm 23.3, 20.9, 22.1 / 20.3, 19.4, 20.8 ms. This benchmark, three
+alternated runs each (same load), 250 nm one BLAS thread 3.42x, 2.79x, 3.12x / 3.41x, 2.80x, 3.38x;
+as shipped 3.47x, 3.56x, 2.84x / 3.33x, 2.69x, 2.71x: the ratio's scatter is the homogeneous
+curve's (7-10 ms). The 250 nm target is still missed. Page faults, measured again: a 250 nm curve
+faults in ~1000-1500 pages (the homogeneous one 0 in most states), ~2.5 µs each on this VM (4-5 ms
+of the curve); with glibc's heap never trimmed (no fault) the curve costs 21.8-23.5 ms here against
+22.7-23.1 ms on base. strace shows why: the heap grows by ~8.8 MB during a call (its largest
+arrays: the film's pair products on the far grid 2.5 MB, its near-field Bessel functions 1.8 MB,
+the correction's own-node Bessel functions 2.7 MB, the nodes ~1.4 MB) and is trimmed at its end
+(glibc's trim threshold, twice the largest block it has unmapped, is ~5 MB here), so every call
+faults its growth in afresh. A lower peak alone does not help: the film's Bessel functions freed
+after its matrices instead of held to the end of the curve (a grown basis computes them afresh
+anyway) lowered the peak from 10.0 to 9.2 MB (tracemalloc) but raised the faults to ~2200 per
+curve, and with the correction's nodes formed after the film's matrices as well (peak 8.0 MB)
+strace showed two trims per call (6.0 MB in mid-call, when the film's temporaries are freed, and
+5.7 MB at the end): not kept. Tried, not kept either: the far products formed by runs of pairs (one
+broadcast product per first order instead of one per pair: numpy copied the operands, +5 M
+instructions of memcpy); the Chebyshev sums of Δg on real and imaginary planes (the same bits, no
+gain: the per-term calls, not the arithmetic, cost); the probes' counts for all points at once (no
+measurable gain). Floor: ~161 M instructions against ~155 M for 3x; what would reach it is a heap
+growth per call below the trim threshold (~5 MB: the far products in blocks of pairs summed as they
+are formed, the near-field and own-node Bessel functions for the even orders only, which an
+axisymmetric stack reads), worth ~4 ms of CPU on this VM.
+
 Run: ``.venv/bin/python benchmarks/bench_layered_dynamic.py`` (exit status 1 if a target is
 missed; a few minutes on a busy machine).
 """

@@ -185,6 +185,20 @@ def test_chebyshev_matrix_interpolates_polynomials_exactly():
     np.testing.assert_allclose(got, np.polynomial.polynomial.polyval(x, coef), rtol=1e-13)
 
 
+@pytest.mark.parametrize("axis", [0, 1])
+def test_split_at_gives_the_views_np_split_gives(axis):
+    """The points' pieces cut by slicing are np.split's pieces (empty ones included), views
+    of the same memory."""
+    a = np.arange(60.0).reshape(6, 10) if axis == 1 else np.arange(60.0).reshape(10, 6)
+    cuts = np.array([0, 3, 3, 7, 10])
+    got = _layered_nodes.split_at(a, cuts, axis=axis)
+    want = np.split(a, cuts, axis=axis)
+    assert len(got) == len(want)
+    for g, w in zip(got, want, strict=True):
+        assert g.shape == w.shape and np.array_equal(g, w)
+        assert g.size == 0 or np.shares_memory(g, a)
+
+
 def test_chebyshev_values_interpolate_each_nodes_own_polynomial():
     """Each node's value is that of the polynomial through its own row of samples (degree
     n − 1, complex, with a trailing axis), a node on a sample point and the ends included, and

@@ -437,3 +437,28 @@ def test_even_sum_drops_a_coefficient_at_the_start_within_the_largest_jn_beyond(
     assert np.max(np.abs(ref)) > 1e-6 * bound
     err = np.abs(bessel_even_sum(z, c, margin=margin) - ref)
     assert np.all(err <= 1.01 * beyond + 1e-15)
+
+
+@pytest.mark.parametrize("n_m", [1, 3])
+def test_near_pair_sums_against_the_sum_written_out(n_m):
+    """The near-field pair sums Σ_k left[p, a, k] right[q, a, k] h[k, m] of a plan's pairs
+    (p <= q, sorted by p, with a gap in the run of one first order): for several harmonics
+    (one product per pair) and for one, folded into ``left`` (the layered punch's film: a
+    batched Gram product of all the orders), both against the triple product summed by
+    einsum."""
+    from contactres.dynamic._exact import _gram_pair_sums, _near_pair_sums
+
+    rng = np.random.default_rng(7)
+    n_p, na, nk = 6, 3, 40
+    left = rng.normal(size=(n_p, na, nk)) + 1j * rng.normal(size=(n_p, na, nk))
+    right = rng.normal(size=(n_p, na, nk)) + 1j * rng.normal(size=(n_p, na, nk))
+    h = rng.normal(size=(nk, n_m)) + 1j * rng.normal(size=(nk, n_m))
+    pairs = [(p, q) for p in range(n_p) for q in range(p, n_p) if (p, q) != (1, 3)]
+    ti, tj = (np.array(x) for x in zip(*pairs, strict=True))
+    want = np.einsum("tak,tak,km->tam", left[ti], right[tj], h)
+    if n_m == 1:
+        got = _gram_pair_sums(left * h[:, 0], right, ti, tj)[..., None]
+    else:
+        got = _near_pair_sums(left, right, ti, tj, h)
+    assert got.shape == (ti.size, na, n_m)
+    np.testing.assert_allclose(got, want, rtol=1e-13, atol=1e-13 * np.max(np.abs(want)))

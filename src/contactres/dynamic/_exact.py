@@ -465,12 +465,20 @@ def galerkin_integrals(
         near_j = near_bessel(table, ka, int(orders[-1]))
     jp = _rows(near_j, orders)  # (n_p, na, nk)
     wk = table.near_weight[None, :] * ka[:, None]
+    one = plan.ms.size == 1
+    if one:
+        # One harmonic (an axisymmetric kernel, as the layered punch's film): it joins the
+        # weights, and the pairs' sums are Gram products (_gram_pair_sums).
+        wk = wk * near_h[0]
     # Order by order, not jp * wk[None]: numpy copies the operands of a broadcast product
     # into buffers, which cost 3x the product itself (issue 31).
     weighted = np.empty_like(jp, dtype=np.result_type(jp, wk))
     for i in range(orders.size):
         np.multiply(jp[i], wk, out=weighted[i])
-    near = _near_pair_sums(weighted, jp, ti, tj, near_h.T)  # (n_t, na, n_m)
+    if one:
+        near = _gram_pair_sums(weighted, jp, ti, tj)[..., None]  # (n_t, na, 1)
+    else:
+        near = _near_pair_sums(weighted, jp, ti, tj, near_h.T)  # (n_t, na, n_m)
     # The static part plus the near field, made in one pass (the same sums as a copy of the
     # static part and the near field added to it).
     integral = np.add(static[None], near.transpose(1, 2, 0))  # (na, n_m, n_t)
@@ -569,3 +577,18 @@ def _near_pair_sums(
         else:
             out[order[lo:hi]] = (rows @ h).reshape(hi - lo, na, -1)
     return out
+
+
+def _gram_pair_sums(
+    left: np.ndarray, right: np.ndarray, ti: np.ndarray, tj: np.ndarray
+) -> np.ndarray:
+    """Σ_k ``left[ti, :, k] * right[tj, :, k]``, (n_t, na): the near-field sums of one
+    harmonic (an axisymmetric kernel, as the layered punch's film, whose harmonic the caller
+    has folded into ``left``) of the pair products, as :func:`_near_pair_sums` forms them for
+    several: each k a's sums of every pair of orders are one Gram product (n_p, nk) x
+    (nk, n_p), batched over the k a values: one BLAS call instead of a product per pair and
+    a matrix-vector call per first order, for about twice the pairs (the other triangle is
+    read off and dropped). The same sums to round-off (another order of the products and the
+    additions: <= 1e-14 on the layered curves)."""
+    gram = np.matmul(left.transpose(1, 0, 2), right.transpose(1, 2, 0))  # (na, n_p, n_p)
+    return gram[:, ti, tj].T

@@ -124,6 +124,7 @@ from ._layered_nodes import (
     own_bessel,
     own_rows,
     punch_resolution,
+    split_at,
     unit_rule,
 )
 from ._layered_path import correction_nodes, film_reference, stack_at, stack_of
@@ -271,7 +272,7 @@ def _point_harmonics(nodes: dict, plan, axisymmetric: bool) -> list:
         np.concatenate([*rows, np.stack([v.shift for v in points])]), plan, axisymmetric
     )
     total, n = int(np.sum(sizes)), len(points)
-    harm = np.split(h[:, :total], np.cumsum(sizes)[:-1], axis=1)
+    harm = split_at(h[:, :total], np.cumsum(sizes)[:-1], axis=1)
     return [(h[:, total + n + k], harm[k], h[:, total + k]) for k in range(n)]
 
 
