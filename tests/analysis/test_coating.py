@@ -491,6 +491,42 @@ def test_a_film_soft_statically_and_stiff_at_the_overtone_is_fitted_not_withheld
     np.testing.assert_allclose(radii, a_true, rtol=2e-3)
 
 
+def test_the_wider_table_holds_the_radii_the_film_gives_over_the_fits_bounds():
+    # _wider_law's bound, checked against the layered solution (adhesive_force_at, no table):
+    # at either end of the table's E range, the radius at the largest used load (30 mN) with
+    # the fit's γ is below the new table's top (P there above the load, P rising on the
+    # stable branch), and the Hertz radius at the smallest (2 mN) above its bottom; a left-out
+    # load (100 mN, κ < 0) does not widen it (used, it would). A table that spans the bound
+    # already: None (no rebuild; the fit is then withheld as it is).
+    import pandas as pd
+
+    from contactres.analysis._coating import _radii, _wider_law
+
+    film, h = StiffeningFilm(), 2e-6
+    coating = as_coating((film, h))
+    law = build_law(coating, NU, 15e6, (40e9, 160e9), (3e-6, 1.2e-5))
+    part = pd.DataFrame(
+        {"normal_force_N": [2e-3, 30e-3, 100e-3], "kappa_N_per_m": [3e5, 6e5, -6e5]}
+    )
+    out = {"E_Pa": TRUE_E, "gamma_J_m2": TRUE_GAMMA, "sphere_radius_m": R}
+    radii = _radii(law, out, part)
+    assert radii[2].tolist() == [False, True, True] and radii[3].tolist() == [True, True, False]
+    wide = _wider_law(law, out, {"gamma_J_m2": 0.05}, radii)
+    lo, hi = wide.radius_range
+    assert lo <= 3e-6 and hi > 1.2e-5
+    static = film.storage(STATIC_FREQUENCY_HZ)
+    for E in law.bounds:
+        assert adhesive_force_at(E, TRUE_GAMMA, static, h, hi) > 30e-3
+        assert adhesive_force_at(E, 0.0, static, h, lo) < 2e-3
+    _, clamped = wide.contact_radius(np.array([2e-3, 30e-3]), TRUE_E, TRUE_GAMMA, R)
+    assert not clamped.any()
+    assert _wider_law(wide, out, {"gamma_J_m2": 0.05}, _radii(wide, out, part)) is None
+    # The left-out load, were it used, would widen the table further.
+    part["kappa_N_per_m"] = 6e5
+    more = _wider_law(law, out, {"gamma_J_m2": 0.05}, _radii(law, out, part))
+    assert more.radius_range[0] == lo and more.radius_range[1] > hi
+
+
 @pytest.mark.parametrize("shape", [(24,), (3, 200, 6), (7, 3)])
 def test_the_sum_over_the_E_nodes_is_lagrange_interpolation_and_numpys_sum(shape):
     # _node_sum is the interpolation in ln E of CoatedLaw (weights (..., n_E, 1), the nodes'

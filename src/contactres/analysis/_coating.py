@@ -302,11 +302,20 @@ def _wider_law(law: CoatedLaw, out: dict, uncoated: dict, radii: tuple) -> Coate
     soft = 1 / (1 / E_lo + 1 / min(E_lo, *films))
     stiff = 1 / (1 / E_hi + 1 / max(E_hi, *films))
     gamma = max(uncoated["gamma_J_m2"], out["gamma_J_m2"])
-    lo = min(law.radius_range[0], float(jkr_contact_radius(stiff, R, F.min(), 0.0)))
-    hi = max(law.radius_range[1], float(jkr_contact_radius(soft, R, F.max(), gamma)))
-    if (lo, hi) == law.radius_range:
+    lo = float(jkr_contact_radius(stiff, R, F.min(), 0.0))
+    hi = float(jkr_contact_radius(soft, R, F.max(), gamma))
+    a_lo, a_hi = law.radius_range
+    # (1e-9: the table's ends are exp(ln a), a rounding away from the radii they were made of)
+    if lo >= a_lo * (1 - 1e-9) and hi <= a_hi * (1 + 1e-9):
         return None
-    return build_law(law.coating, nu, law.frequency, law.bounds, (lo, hi), n_E=law.E_nodes.size)
+    return build_law(
+        law.coating,
+        nu,
+        law.frequency,
+        law.bounds,
+        (min(lo, a_lo), max(hi, a_hi)),
+        n_E=law.E_nodes.size,
+    )
 
 
 def _outside_the_table(law: CoatedLaw, out: dict, radii: tuple) -> None:
