@@ -3,7 +3,7 @@
 Target (issue 26, point 4): with ``coating`` (250 nm of PMMA) the analysis of the bundled example
 (384 sweeps, 4 configuration/medium groups) takes under twice the uncoated analysis. The extra
 work is the table of the film corrections (five Young's moduli x ~8 contact radii of the layered
-normal and tangential solutions, :func:`contactres.analysis._coating.build_law`), the coated
+normal and tangential solutions, :func:`contactres.analysis._coating_law.build_law`), the coated
 fits and their bootstrap. Both runs are timed as CPU time of this process (the fair measure on
 a shared machine; the wall time is printed too), after one untimed run of each (imports and
 first-call costs out), in :data:`ROUNDS` alternated rounds (uncoated, coated, uncoated, ...),

@@ -16,12 +16,12 @@ import contactres as cr
 from contactres.analysis import AnalysisSettings
 from contactres.analysis._coating import (
     STATIC_FREQUENCY_HZ,
-    _corrections,
     as_coating,
     build_law,
     fit_coated,
 )
 from contactres.analysis._coating_bootstrap import resampled_coated
+from contactres.analysis._coating_law import _corrections
 from contactres.analysis._jkr import fit_jkr_mindlin
 from contactres.errors import ContactresInputError
 from contactres.normal import sphere_contact, sphere_contact_at, static_punch_stiffness
@@ -31,6 +31,8 @@ NU = 0.17
 R = 1.1e-3
 FORCES = np.array([1.6, 3.3, 4.9, 6.5, 8.2, 9.8]) * 1e-3  # N per contact, paper 2's loads
 FILM = cr.Material.isotropic(5e9, 0.35, name="soft film")  # PMMA-like, elastic
+# The synthetic study's E and γ (SweepGroup of one_group_table).
+TRUE_E, TRUE_GAMMA = 70e9, 0.1
 
 
 def independent_kappa(E, gamma, film, h, nonadhesive_force, frequency_film=None):
@@ -147,7 +149,7 @@ def test_a_grid_evaluated_value_by_value_or_all_at_once_is_the_model_at_each_E(
 ):
     # CoatedLaw._by_value: each E's spline at its own entries (many entries per E) or all the
     # splines at every entry (few): the numbers of the model called at each E alone.
-    import contactres.analysis._coating as coating
+    import contactres.analysis._coating_law as coating
 
     monkeypatch.setattr(coating, "_PER_VALUE", per_value)
     law = synthetic["law"]
@@ -296,9 +298,10 @@ def test_without_a_coating_the_settings_record_has_no_coating(tmp_path):
 class SoftAtTheOvertone:
     """A film as stiff as the substrate in the static (normal) contact and 15 times softer at
     the overtone (the tangential stiffness). Not a physical material (a passive film stiffens
-    with frequency): made so that the coated fit needs contact radii twice the uncoated ones to
-    give the measured κ, within the table's E range (a film soft at both frequencies drives E
-    to the table's bound first)."""
+    with frequency): made so that the coated fit needs contact radii 2.1-2.5 times the uncoated
+    ones (measured at 2-6 mN) to give the measured κ, within the table's E range (a film soft
+    at both frequencies drives E to the table's bound first). The physical film that needs
+    larger radii, soft statically and stiff at the overtone: :class:`StiffeningFilm`."""
 
     name = "film"
 
@@ -328,17 +331,21 @@ def adhesive_force_at(E, gamma, film, h, a):
     return float(np.asarray(c.force)[0] - np.sqrt(8 * np.pi * gamma * a / minus_dC))
 
 
-def test_a_load_whose_contact_radius_is_outside_the_table_withholds_the_coated_fit():
-    # One experiment at 2, 4 and 6 mN, and at 30 mN with Δf of the wrong sign (κ < 0): that
-    # load is left out of both fits, so it cannot hold the coated fit at the table's edge, but
-    # it sets the table's largest radius and is among the measured loads the fit is checked
-    # at. The coated fit's radii at 2-6 mN stay ~3 % inside the table; at 30 mN the radius is
-    # beyond it (the force there is measured 13 mN at the table's largest radius).
+def one_group_table(loads, negate_last=False, kappa_law=None, monkeypatch=None):
+    """The validated sweeps of one experiment at ``loads`` (glass in air, the synthetic
+    study's E 70 GPa and γ 0.1 J/m²), the last load's Δf negated if asked (κ < 0: left out
+    of the fits). ``kappa_law``: {load: κ} of the sweeps in place of the bare plate's."""
+    from contactres.measurements import _synthetic
     from contactres.measurements._synthetic import SweepGroup, SweepStudy, synthetic_sweeps
     from contactres.resonators._qcm import QCM
 
-    loads = (2e-3, 4e-3, 6e-3, 30e-3)
-    group = SweepGroup("glass", "air", R, 70e9, 0.1, (1e-9, 2e-9, 3e-9, 4e-9), 2e4, 0.1)
+    if kappa_law is not None:
+        monkeypatch.setattr(
+            _synthetic,
+            "kappa_jkr_mindlin",
+            lambda force, *args: np.vectorize(lambda f: kappa_law[float(f)])(force),
+        )
+    group = SweepGroup("glass", "air", R, TRUE_E, TRUE_GAMMA, (1e-9, 2e-9, 3e-9, 4e-9), 2e4, 0.1)
     study = SweepStudy(
         groups=(group,),
         normal_forces=loads,
@@ -347,35 +354,177 @@ def test_a_load_whose_contact_radius_is_outside_the_table_withholds_the_coated_f
         qcm=QCM(5e6, 3, 2.5e-5),
     )
     frame = synthetic_sweeps(study, 7)
-    frame.loc[frame["normal_force_N"] == loads[-1], "df_Hz"] *= -1
-    table = cr.validate_sweeps(frame, constants={"area_m2": 2.5e-5, "overtone": 3, "n_contacts": 3})
+    if negate_last:
+        frame.loc[frame["normal_force_N"] == loads[-1], "df_Hz"] *= -1
+    return cr.validate_sweeps(frame, constants={"area_m2": 2.5e-5, "overtone": 3, "n_contacts": 3})
+
+
+def test_a_load_left_out_of_the_fit_does_not_withhold_it():
+    # One experiment at 2, 4 and 6 mN, and at 30 mN with Δf of the wrong sign (κ < 0): that
+    # load is left out of both fits. It sets the table's largest radius (1.5 times the
+    # uncoated fit's radius there) and the coated fit's radius at it lies beyond the table
+    # (P at the table's largest radius, measured 13.3 mN, is below 30 mN), but the fit did
+    # not use it: E and γ are given, and that load's row has no radius, κ or share.
+    loads = (2e-3, 4e-3, 6e-3, 30e-3)
+    table = one_group_table(loads, negate_last=True)
     film, h = SoftAtTheOvertone(), 2e-6
     (g,) = cr.analyze(table, settings=AnalysisSettings(bootstrap=0, coating=(film, h))).groups
     assert g["poisson"] == NU
-    # The table's radii: 0.7 times the uncoated fit's radius at the smallest load, 1.5 times
-    # that at the largest.
     uncoated = g["coating"]["uncoated"]
     E0, gamma0 = uncoated["E_Pa"], uncoated["gamma_J_m2"]
     lo, hi = g["coating"]["table_contact_radius_range_m"]
     assert lo == pytest.approx(0.7 * jkr_radius(loads[0], E0, gamma0, R), rel=1e-12)
     assert hi == pytest.approx(1.5 * jkr_radius(loads[-1], E0, gamma0, R), rel=1e-12)
-    # Withheld, and why.
-    assert "fit-at-bound" in g["checks"]
-    assert (
-        f"the coated fit needs contact radii outside its table ({lo:.3g}-{hi:.3g} m) at 1 "
-        "load(s): E and γ withheld" in g["note"]
-    )
-    for key in ("E_Pa", "E_err_Pa", "gamma_J_m2", "gamma_err_J_m2"):
-        assert np.isnan(g[key])
-    assert g["coating"]["loads"] == []
-    # The fit itself ended inside its bounds: the table's radii are the only reason.
-    E, gamma = g["rejected_fit"]["E_Pa"], g["rejected_fit"]["gamma_J_m2"]
-    E_lo, E_hi = g["coating"]["table_E_range_Pa"]
-    assert E_lo < E < E_hi and 0 < gamma < 1e3
+    assert "fit-at-bound" not in g["checks"] and "rejected_fit" not in g
+    E, gamma = g["E_Pa"], g["gamma_J_m2"]
+    assert np.isfinite([E, gamma, g["E_err_Pa"], g["gamma_err_J_m2"]]).all()
+    assert g["n_points_fitted"] == 3
     # Where the radii are, independently of the table: on the stable branch P(a) rises, so a
     # load above P at the table's largest radius has its radius beyond it, one below inside.
     at_hi = adhesive_force_at(E, gamma, film.at(STATIC_FREQUENCY_HZ), h, hi)
     assert loads[2] < at_hi < loads[-1]
+    rows = g["coating"]["loads"]
+    assert [r["normal_force_N"] for r in rows] == list(loads)
+    for r in rows[:3]:  # measured 3.2-5.1 % below the table's top
+        assert lo < r["contact_radius_m"] < hi and 0 < r["film_share"] < 1
+    last = rows[-1]
+    assert np.isnan([last["contact_radius_m"], last["kappa_N_per_m"], last["film_share"]]).all()
+    assert last["kappa_bare_N_per_m"] == pytest.approx(
+        kappa_jkr_mindlin(loads[-1], E, gamma, R, NU), rel=1e-12
+    )
+
+
+def test_a_used_load_outside_the_table_withholds_the_coated_fit():
+    # The withholding itself (apply_coating's last step, after any re-tabulation): a 250 nm
+    # PMMA film, a table of radii 3-9 µm and a fit (E 70 GPa, γ 0.1 J/m²) whose radius at
+    # 30 mN is beyond it (P at 9 µm, measured 13.0 mN, is below 30 mN: independent of the
+    # table). Used (κ > 0): E and γ are withheld and the note says why; left out (κ <= 0):
+    # kept. The radii at 2 and 4 mN are inside either way.
+    import pandas as pd
+
+    from contactres.analysis._coating import _outside_the_table, _radii
+
+    film, h = cr.pmma(), 250e-9
+    law = build_law(as_coating((film, h)), NU, 15e6, (40e9, 160e9), (3e-6, 9e-6))
+    at_hi = adhesive_force_at(TRUE_E, TRUE_GAMMA, film.storage(STATIC_FREQUENCY_HZ), h, 9e-6)
+    assert 4e-3 < at_hi < 30e-3
+    for kappa_last, withheld in ((5e5, True), (-5e5, False)):
+        part = pd.DataFrame(
+            {"normal_force_N": [2e-3, 4e-3, 30e-3], "kappa_N_per_m": [3e5, 4e5, kappa_last]}
+        )
+        out = {
+            "E_Pa": TRUE_E,
+            "E_err_Pa": 1e8,
+            "gamma_J_m2": TRUE_GAMMA,
+            "gamma_err_J_m2": 1e-3,
+            "sphere_radius_m": R,
+            "checks": [],
+            "note": "",
+        }
+        radii = _radii(law, out, part)
+        assert radii[2].tolist() == [False, False, True]
+        _outside_the_table(law, out, radii)
+        assert ("fit-at-bound" in out["checks"]) == withheld
+        assert np.isnan(out["E_Pa"]) == withheld and np.isnan(out["gamma_J_m2"]) == withheld
+        if withheld:
+            assert out["rejected_fit"] == {"E_Pa": TRUE_E, "gamma_J_m2": TRUE_GAMMA}
+            assert out["note"] == (
+                "the coated fit needs contact radii outside its table (3e-06-9e-06 m) at 1 "
+                "load(s): E and γ withheld"
+            )
+
+
+class StiffeningFilm:
+    """A polymer-like film that stiffens with frequency (a Prony arm: passive, causal):
+    storage E 2 GPa at STATIC_FREQUENCY_HZ, 8 GPa at the overtone (15 MHz, ωτ = 3 there),
+    ν 0.3."""
+
+    def __new__(cls):
+        nu, f, wt = 0.3, 15e6, 3.0
+        g_inf = 2e9 / (2 * (1 + nu))
+        g1 = 6e9 / (2 * (1 + nu)) * (1 + wt**2) / wt**2
+        law = cr.Prony(g_inf, [(g1, wt / (2 * np.pi * f))])
+        return cr.ViscoelasticMaterial.isotropic(law, poisson=nu, name="stiffening film")
+
+
+def coated_kappa(F, E, gamma, film, h, frequency):
+    """(κ, a) on the coated plate at the loads F, independently of the table: a from
+    :func:`adhesive_force_at` = F (Brent), κ the tangential punch of sphere and coated plate
+    at the film's constants at ``frequency`` (static_punch_stiffness with indenter)."""
+    from scipy.optimize import brentq
+
+    static = film.storage(STATIC_FREQUENCY_HZ)
+    a = np.array(
+        [
+            brentq(
+                lambda r, f=f: adhesive_force_at(E, gamma, static, h, r) - f, 1e-6, 1e-4, rtol=1e-10
+            )
+            for f in F
+        ]
+    )
+    sphere = cr.Material.isotropic(E, NU, name="sphere")
+    plate = cr.LayeredMaterial(sphere, [(film.at(frequency), h)])
+    return np.real(static_punch_stiffness(plate, a, "tangential", indenter=sphere)), a
+
+
+def test_a_film_soft_statically_and_stiff_at_the_overtone_is_fitted_not_withheld(monkeypatch):
+    # Review R31a: 2 µm of a film of 2 GPa (static) and 8 GPa (15 MHz), κ(F_N) made on the
+    # coated plate (E 70 GPa, γ 0.1 J/m²) by the independent route: the coated radii are
+    # 1.5-1.8 times the uncoated fit's, beyond the first table (1.5x at the largest load).
+    # The table is rebuilt over the radii the film can give, and the fit gives back E and γ
+    # within its stated errors (measured 0.24 and 0.14 of them), at the true radii.
+    loads = (2e-3, 4e-3, 6e-3, 30e-3)
+    film, h = StiffeningFilm(), 2e-6
+    kappa, a_true = coated_kappa(loads, TRUE_E, TRUE_GAMMA, film, h, 15e6)
+    table = one_group_table(
+        loads, kappa_law=dict(zip(loads, kappa, strict=True)), monkeypatch=monkeypatch
+    )
+    (g,) = cr.analyze(table, settings=AnalysisSettings(bootstrap=0, coating=(film, h))).groups
+    assert "fit-at-bound" not in g["checks"] and "rejected_fit" not in g
+    uncoated = g["coating"]["uncoated"]
+    a0 = jkr_radius(loads[-1], uncoated["E_Pa"], uncoated["gamma_J_m2"], R)
+    assert a_true[-1] > 1.5 * a0  # beyond the first table
+    assert g["coating"]["table_contact_radius_range_m"][1] > a_true[-1]
+    assert abs(g["E_Pa"] - TRUE_E) < 2 * g["E_err_Pa"]
+    assert abs(g["gamma_J_m2"] - TRUE_GAMMA) < 2 * g["gamma_err_J_m2"]
+    radii = [r["contact_radius_m"] for r in g["coating"]["loads"]]
+    np.testing.assert_allclose(radii, a_true, rtol=2e-3)
+
+
+def test_the_wider_table_holds_the_radii_the_film_gives_over_the_fits_bounds():
+    # _wider_law's bound, checked against the layered solution (adhesive_force_at, no table):
+    # at either end of the table's E range, the radius at the largest used load (30 mN) with
+    # the fit's γ is below the new table's top (P there above the load, P rising on the
+    # stable branch), and the Hertz radius at the smallest (2 mN) above its bottom; a left-out
+    # load (100 mN, κ < 0) does not widen it (used, it would). A table that spans the bound
+    # already: None (no rebuild; the fit is then withheld as it is).
+    import pandas as pd
+
+    from contactres.analysis._coating import _radii, _wider_law
+
+    film, h = StiffeningFilm(), 2e-6
+    coating = as_coating((film, h))
+    law = build_law(coating, NU, 15e6, (40e9, 160e9), (3e-6, 1.2e-5))
+    part = pd.DataFrame(
+        {"normal_force_N": [2e-3, 30e-3, 100e-3], "kappa_N_per_m": [3e5, 6e5, -6e5]}
+    )
+    out = {"E_Pa": TRUE_E, "gamma_J_m2": TRUE_GAMMA, "sphere_radius_m": R}
+    radii = _radii(law, out, part)
+    assert radii[2].tolist() == [False, True, True] and radii[3].tolist() == [True, True, False]
+    wide = _wider_law(law, out, {"gamma_J_m2": 0.05}, radii)
+    lo, hi = wide.radius_range
+    assert lo <= 3e-6 and hi > 1.2e-5
+    static = film.storage(STATIC_FREQUENCY_HZ)
+    for E in law.bounds:
+        assert adhesive_force_at(E, TRUE_GAMMA, static, h, hi) > 30e-3
+        assert adhesive_force_at(E, 0.0, static, h, lo) < 2e-3
+    _, clamped = wide.contact_radius(np.array([2e-3, 30e-3]), TRUE_E, TRUE_GAMMA, R)
+    assert not clamped.any()
+    assert _wider_law(wide, out, {"gamma_J_m2": 0.05}, _radii(wide, out, part)) is None
+    # The left-out load, were it used, would widen the table further.
+    part["kappa_N_per_m"] = 6e5
+    more = _wider_law(law, out, {"gamma_J_m2": 0.05}, _radii(law, out, part))
+    assert more.radius_range[0] == lo and more.radius_range[1] > hi
 
 
 @pytest.mark.parametrize("shape", [(24,), (3, 200, 6), (7, 3)])
@@ -384,7 +533,7 @@ def test_the_sum_over_the_E_nodes_is_lagrange_interpolation_and_numpys_sum(shape
     # values (..., n_E, k)): a quartic in ln E is reproduced by the five nodes (an independent
     # check), and the sums are numpy's (w * q).sum(axis=-2), bit for bit (the law's values
     # before the sum was written out).
-    from contactres.analysis._coating import CoatedLaw, _node_sum
+    from contactres.analysis._coating_law import CoatedLaw, _node_sum
 
     rng = np.random.default_rng(11)
     E_nodes = np.geomspace(3e10, 2e11, 5)
@@ -410,7 +559,7 @@ def test_a_spline_with_its_derivative_in_one_call_gives_both_as_apart():
     # for bit, inside and beyond the breakpoints), and the slope of a cubic is its derivative.
     from scipy.interpolate import CubicSpline
 
-    from contactres.analysis._coating import _with_derivative
+    from contactres.analysis._coating_law import _with_derivative
 
     rng = np.random.default_rng(5)
     knots = np.sort(rng.uniform(-3.0, 2.0, 9))

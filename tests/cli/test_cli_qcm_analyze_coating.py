@@ -90,3 +90,29 @@ def test_a_bad_plate_material_with_a_coating_is_one_line(sweeps, tmp_path):
         "quartz-XY",
     )
     one_line_error(r, "--plate-material", "quartz-XY")
+
+
+def test_the_film_share_line_leaves_out_a_load_without_a_share():
+    # A load left out of the coated fit (κ <= 0) whose radius is outside the table has a NaN
+    # share (analysis._coating._film_share); the line gives the others' range, whichever
+    # row comes first (Python's min of a NaN first and numbers is the NaN).
+    from types import SimpleNamespace
+
+    from contactres.cli.qcm_analyze import coating_lines
+
+    def group(shares):
+        return {
+            "configuration": "glass",
+            "medium": "air",
+            "coating": {
+                "label": "film 2 µm",
+                "uncoated": {"E_Pa": 70e9, "gamma_J_m2": 0.1},
+                "loads": [{"film_share": s} for s in shares],
+            },
+        }
+
+    for shares in ([float("nan"), 0.25, 0.5], [0.25, float("nan"), 0.5]):
+        (_, line) = coating_lines(SimpleNamespace(groups=[group(shares)]))
+        assert line.endswith("film share 25.0%-50.0%")
+    (_, line) = coating_lines(SimpleNamespace(groups=[group([float("nan")])]))
+    assert line.endswith("no film share")

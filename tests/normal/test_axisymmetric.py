@@ -39,6 +39,16 @@ def test_even_spherical_bessel_matches_scipy():
         np.testing.assert_allclose(even_spherical_bessel(n, s), ref, rtol=0, atol=3e-15)
 
 
+def test_even_spherical_bessel_of_nan_arguments_is_nan():
+    # A NaN gives NaN in its own column only; all NaN (the downward recurrence's start then
+    # set by the highest order alone, not by a NaN argument): all NaN, no error.
+    both = even_spherical_bessel(3, np.array([np.nan, 1.0]))
+    assert np.isnan(both[:, 0]).all()
+    np.testing.assert_allclose(both[:, 1], spherical_jn([0, 2, 4], 1.0), rtol=0, atol=3e-15)
+    nans = even_spherical_bessel(3, np.array([np.nan, np.nan]))
+    assert nans.shape == (3, 2) and np.isnan(nans).all()
+
+
 @pytest.mark.parametrize("n", [2, 30, 88])
 def test_even_spherical_bessel_of_ascending_nodes_is_scipys_and_the_shuffled_ones(n):
     # Ascending arguments (the quadrature's nodes) are worked on in place as slices; any other

@@ -45,44 +45,33 @@ k a ~ 0.1 is left out, as in paper 2). Approximations, stated: isotropic sphere 
 frictionless normal contact (the normal-tangential coupling of dissimilar bodies is left out, as
 in Hertz and JKR), the axisymmetric solution, the radiation of the plate not included.
 
-**Speed: a table in (E, a).** The layered problem has no scaling in E (the film is fixed, the
-substrate scales), so the three film corrections
-
-    q_n = (C(a) − 1/(2aE*)) a²/h,   q_f = (a³/(R P'(a)) − 3/(4E*)) a/h,
-    q_t = (C_t(a) − 2(2 − ν)/(8Ga)) a²/h   (complex; C_t the pair's tangential compliance)
-
-(E* = E/(2(1 − ν²)) of the homogeneous pair, h the total film thickness) are solved on a grid
-of contact radii and a few Young's moduli (:func:`build_law`) and interpolated: a cubic spline
-in ln a (the derivative dC/da from it) and a Lagrange polynomial in ln E. They are nearly
-independent of E for a thin film (a film's compression h/(πa²M_f) does not involve the
-substrate), so five Chebyshev nodes in E suffice; the measured interpolation error is stated
-in :func:`build_law` (tested). The layered solutions at the five E share their quadrature
-nodes (set by the film, not by E), so the Galerkin's basis transforms there are computed once
-per radius and direction (``transforms=``). The E range of the table is the fit's bound (a
+The table of the film corrections, its interpolation and the contact-radius solve:
+:mod:`contactres.analysis._coating_law`. The E range of the table is the fit's bound (a
 fit there is flagged ``fit-at-bound``); a contact radius outside the table is clamped to it
-while the fit searches, and a fit that needs one at a measured load is withheld
-(``fit-at-bound``, with a note).
+while the fit searches. The table's radii are first those of the uncoated fit widened (an
+elastic film keeps the coated radii near them); a fit that needs a radius outside at a load
+it used is refitted once on a table of every radius the film can give there (a film soft in
+the static contact and stiff at the overtone: :func:`_wider_law`), and withheld
+(``fit-at-bound``, with a note) only if it still needs one. A load the fit left out (κ <= 0)
+withholds nothing.
 """
 
 from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass, field
 
 import numpy as np
-from scipy.interpolate import CubicSpline, PPoly
 
 from .._threads import one_blas_thread
 from ..errors import ContactresInputError
-from ..fitting import Model, Parameter, fit
-from ..layered import LayeredMaterial, checked_thickness, thickness_text
+from ..fitting import fit
+from ..layered import checked_thickness
 from ..materials import Material
-from ..normal import jkr_contact_radius, sphere_contact_at, static_punch_stiffness
-from ..numerics import illinois_step
+from ..normal import indentation_modulus, jkr_contact_radius
 from ..tangential import kappa_jkr_mindlin
-from ..units import POISSON_OPEN_RANGE
 from ._coating_bootstrap import resampled_coated
+from ._coating_law import STATIC_FREQUENCY_HZ, CoatedLaw, Coating, build_law, static_film
 from ._jkr import LoadLaw, fit_group
 
 __all__ = [
@@ -96,61 +85,17 @@ __all__ = [
     "load_law",
 ]
 
-#: The frequency at which a frequency-dependent film's storage constants stand for its static
-#: ones, Hz (the normal load is static).
-STATIC_FREQUENCY_HZ = 1.0
-# Kernel truncation of the table's layered solutions (relative; the default 1e-12 costs twice
-# as much and moves the corrections by < 1e-8, far below the interpolation error).
-_TABLE_TOL = 1e-6
 # The E range of the table around the uncoated fits' E (a soft film lowers the apparent E, a
 # stiff one raises it) and the contact radii around theirs (both models fit the same κ, so the
-# coated radii stay near the uncoated ones: 0.9-1.1 times them on the bundled example with
-# 250 nm of PMMA); five nodes in E (build_law). A fit outside is flagged, not extrapolated.
+# coated radii stay near the uncoated ones for an elastic film: 0.9-1.1 times them on the
+# bundled example with 250 nm of PMMA; a film soft statically and stiff at the overtone needs
+# more, and gets a wider table, _wider_law); five nodes in E (build_law). A fit outside is
+# flagged, not extrapolated.
 _E_WINDOW = (0.6, 2.5)
 _A_WINDOW = (0.7, 1.5)
 _N_E = 5
 # γ bound of the coated fit, J/m² (as paper 2's model: the checks flag γ above 10 J/m²).
 _GAMMA_MAX = 1e3
-# Iterations of the contact-radius solve (Illinois on ln a) and its tolerance (relative in F).
-_MAX_ITER = 80
-_FORCE_RTOL = 1e-9
-# Entries per distinct E above which a grid's splines are evaluated each at its own entries
-# (CoatedLaw._by_value): below, one call for all costs less than a call per value.
-_PER_VALUE = 20
-
-
-@dataclass(frozen=True)
-class Coating:
-    """The film(s) on the plate, top first: (material, thickness_m) pairs.
-
-    A material is a :class:`~contactres.Material` or a frequency-dependent one with ``at(f)``
-    (e.g. :func:`contactres.pmma`), in the plate's surface frame.
-    """
-
-    layers: tuple[tuple[object, float], ...]
-
-    @property
-    def label(self) -> str:
-        """E.g. ``"PMMA 250 nm"`` (layers top first, joined by "on"; each thickness in the
-        unit that reads best, :func:`contactres.layered.thickness_text`)."""
-        return " on ".join(
-            f"{getattr(m, 'name', None) or 'film'} {thickness_text(h)}" for m, h in self.layers
-        )
-
-    @property
-    def thickness(self) -> float:
-        """The total thickness, m."""
-        return float(sum(h for _, h in self.layers))
-
-    def record(self) -> dict:
-        """The JSON-safe description (summary.json)."""
-        return {
-            "label": self.label,
-            "layers": [
-                {"material": getattr(m, "name", None) or "film", "thickness_m": h}
-                for m, h in self.layers
-            ],
-        }
 
 
 def as_coating(value, option: str = "coating") -> Coating | None:
@@ -202,398 +147,6 @@ def _is_pair(p) -> bool:
     )
 
 
-def _static(m):
-    """The film's static constants: a Material as is (its real part), a frequency-dependent one
-    its storage constants at :data:`STATIC_FREQUENCY_HZ`."""
-    at = m if isinstance(m, Material) else m.at(STATIC_FREQUENCY_HZ)
-    return Material(C=np.real(at.C), density=at.density, name=at.name, frame=at.frame)
-
-
-def _dynamic(m, frequency: float):
-    """The film's constants at ``frequency`` (complex for a lossy one)."""
-    return m if isinstance(m, Material) else m.at(frequency)
-
-
-def _solids(E: float, nu: float, coating: Coating, frequency: float):
-    """(sphere, static plate, plate at the frequency): isotropic (E, ν) under the film."""
-    body = Material.isotropic(E, nu, name="substrate")
-    static = LayeredMaterial(body, [(_static(m), h) for m, h in coating.layers])
-    dynamic = LayeredMaterial(body, [(_dynamic(m, frequency), h) for m, h in coating.layers])
-    return body, static, dynamic
-
-
-def _corrections(
-    E: float,
-    nu: float,
-    coating: Coating,
-    frequency: float,
-    a: np.ndarray,
-    transforms: dict | None = None,
-):
-    """(q_n, q_f, Re q_t, Im q_t) at one E and the radii ``a`` (module docstring), shape
-    (a.size, 4), 1/Pa. ``transforms``: the store of the layered solutions' basis transforms
-    at the radii ``a`` (:func:`~contactres.normal.static_punch_stiffness`), shared by the
-    table's E (the quadrature nodes depend on the film, not on E: the transforms are
-    computed once per radius and direction, not once per E)."""
-    sphere, static, dynamic = _solids(E, nu, coating, frequency)
-    h = coating.thickness
-    e_star = E / (2 * (1 - nu**2))
-    g = E / (2 * (1 + nu))
-    normal = sphere_contact_at(
-        static, 1.0, a, tol=_TABLE_TOL, indenter=sphere, transforms=transforms
-    )
-    q_n = (1 / np.asarray(normal.stiffness) - 1 / (2 * a * e_star)) * a**2 / h
-    q_f = (a**3 / np.asarray(normal.force) - 3 / (4 * e_star)) * a / h
-    pair = static_punch_stiffness(
-        dynamic, a, "tangential", tol=_TABLE_TOL, indenter=sphere, transforms=transforms
-    )
-    q_t = (1 / np.asarray(pair) - 2 * (2 - nu) / (8 * g * a)) * a**2 / h
-    return np.stack([q_n, q_f, q_t.real, q_t.imag], axis=-1)
-
-
-def _node_sum(w: np.ndarray, q: np.ndarray) -> np.ndarray:
-    """Σ_j w_j q_j over the table's E nodes (axis −2 of both; ``w`` (..., n_E, 1) broadcast
-    against ``q`` (..., n_E, k)): the Lagrange interpolation in ln E of the nodes' values.
-
-    Added node by node, in their order, as numpy's ``(w * q).sum(axis=-2)`` adds along so short
-    a strided axis (one term after the other: the same sums), and one column of q at a time:
-    numpy's reduction, or a product of the (..., k) slices, runs its inner loop over the k = 2
-    columns, ~3x the cost of these products over the entries (~0.4 ms against ~0.06 ms at
-    3600 entries; the bootstrap's contact-radius solve evaluates it ~15 times per solve)."""
-    lead = np.broadcast_shapes(w.shape[:-2], q.shape[:-2])  # (w's leading axes may be q's or more)
-    out = np.empty(lead + q.shape[-1:], dtype=np.result_type(w, q))
-    term = np.empty(lead, dtype=out.dtype)
-    for c in range(q.shape[-1]):
-        col = out[..., c]
-        np.multiply(w[..., 0, 0], q[..., 0, c], out=col)
-        for j in range(1, q.shape[-2]):
-            col += np.multiply(w[..., j, 0], q[..., j, c], out=term)
-    return out
-
-
-def _broadcast(E, a) -> tuple[np.ndarray, np.ndarray]:
-    """E and a as float arrays of one shape: as they come where they have it already (each
-    step of the contact-radius solve: numpy's broadcast_arrays costs ~5 us per call)."""
-    E, a = np.asarray(E, dtype=float), np.asarray(a, dtype=float)
-    if E.shape != a.shape:
-        E, a = np.broadcast_arrays(E, a)
-    return E, a
-
-
-def _with_derivative(poly: PPoly) -> PPoly:
-    """One piecewise polynomial of ``poly``'s columns followed by those of its derivative, so
-    that a contact-radius step evaluates both in one call (~1500 steps of a coated analysis).
-
-    The derivative's coefficients (``poly.derivative()``: one degree less) get a zero leading
-    coefficient: scipy sums a piece's terms from the lowest power up, so the zero's term comes
-    last and adds +0 (−0 left of the first breakpoint), which leaves every sum as it was but
-    a −0 (none here: a nonzero sum): the same values as the derivative evaluated apart, at
-    finite x (where a power of x overflows, 0 times it is NaN; the law's x = ln a is finite
-    and within the table)."""
-    d = poly.derivative().c
-    padded = np.concatenate([np.zeros((1, *d.shape[1:])), d])
-    return PPoly(np.concatenate([poly.c, padded], axis=-1), poly.x)
-
-
-@dataclass(frozen=True)
-class CoatedLaw:
-    """κ(F_N; E, γ) on a coated plate from the tabulated film corrections (module docstring).
-
-    Attributes
-    ----------
-    coating : the film(s)
-    poisson : ν of sphere and substrate
-    frequency : Hz, at which the film's tangential constants are taken
-    E_nodes : Young's moduli of the table, Pa (Chebyshev nodes in ln E over ``E_range``)
-    log_a : ln of the table's contact radii (m)
-    values : (len(log_a), len(E_nodes), 4): q_n, q_f, Re q_t, Im q_t, 1/Pa
-    E_range : (lowest, highest) E of the table, Pa: the fit's bounds
-    """
-
-    coating: Coating
-    poisson: float
-    frequency: float
-    E_nodes: np.ndarray
-    log_a: np.ndarray
-    values: np.ndarray
-    E_range: tuple[float, float]
-    spline: CubicSpline = field(init=False, repr=False, compare=False)
-
-    def __post_init__(self):
-        object.__setattr__(self, "spline", CubicSpline(self.log_a, self.values, axis=0))
-
-    @property
-    def radius_range(self) -> tuple[float, float]:
-        """The smallest and largest tabulated contact radius, m."""
-        return float(np.exp(self.log_a[0])), float(np.exp(self.log_a[-1]))
-
-    def _weights(self, E) -> np.ndarray:
-        """Lagrange weights in ln E of the table's nodes at E (shape E.shape + (n_E,))."""
-        x = np.log(self.E_nodes)
-        t = np.log(np.asarray(E, dtype=float))
-        if t.ndim == 0:
-            # One E (each contact-radius solve of a fit): the same products in Python floats
-            # (IEEE doubles, the same roundings), not ~60 numpy calls on 0-d arrays.
-            xs, tv = x.tolist(), float(t)
-            one = [1.0] * len(xs)
-            for j in range(len(xs)):
-                for m in range(len(xs)):
-                    if m != j:
-                        one[j] *= (tv - xs[m]) / (xs[j] - xs[m])
-            return np.array(one)
-        w = np.ones((*t.shape, x.size))
-        for j in range(x.size):
-            for m in range(x.size):
-                if m != j:
-                    w[..., j] *= (t - x[m]) / (x[j] - x[m])
-        return w
-
-    def _interpolant(
-        self, E, columns: slice = slice(None), slope: bool = True, by_value: bool = False
-    ):
-        """a -> (q, dq/d ln a), each a.shape + (4,), at Young's modulus E (an array broadcast
-        against a, or one value: then the spline of that E alone, a fifth of the work);
-        ``columns``: only these of the four (the others are not evaluated; q[..., columns] of
-        the whole has the same values); ``slope``: False leaves dq None; ``by_value``: E takes
-        a few values (a grid): each value's spline as one value's alone, all evaluated at once
-        (the same numbers as one call per value, without a call per value)."""
-        E = np.asarray(E, dtype=float)
-        coef = self.spline.c[..., columns]
-        if by_value:
-            return self._by_value(E, coef, slope)
-        if E.size and np.all(E == E.flat[0]):
-            c = np.einsum("j,abjk->abk", self._weights(E.flat[0]), coef)
-            one = PPoly(c, self.spline.x)
-            if not slope:
-                return lambda a, at=None: (one(np.log(a)), None)
-            both = _with_derivative(one)
-            k = c.shape[-1]
-
-            def single(a, at=None):
-                q = both(np.log(a))
-                return q[..., :k], q[..., k:]
-
-            return single
-        w = self._weights(E)[..., None]
-        part = PPoly(coef, self.spline.x)
-
-        def values(a, at=None):
-            # ``at``: a at the entries ``at`` of E only (the others' weights left out).
-            wa = w if at is None else w[at]
-            x = np.log(a)
-            return _node_sum(wa, part(x)), _node_sum(wa, part(x, 1)) if slope else None
-
-        return values
-
-    def _by_value(self, E: np.ndarray, coef: np.ndarray, slope: bool):
-        """:meth:`_interpolant` with ``by_value``: the spline of each distinct value of E (made
-        as for that value alone: the same coefficients). Few entries: all the splines side by
-        side in one piecewise polynomial, evaluated at every a and each entry's own taken (the
-        others cost little against a call each); many (> :data:`_PER_VALUE` per value, the
-        first steps of the bootstrap's grid of 15 E): each value's spline at its own entries
-        only (a fifteenth of the evaluations: ~1.0 -> ~0.2 ms at 1350 entries). A column of a
-        piecewise polynomial is evaluated alone either way: the same values."""
-        levels, index = np.unique(E, return_inverse=True)
-        cols = coef.shape[-1]
-        each = [
-            PPoly(np.einsum("j,abjk->abk", self._weights(v), coef), self.spline.x) for v in levels
-        ]
-        one = PPoly(np.concatenate([p.c for p in each], axis=-1), self.spline.x)
-        # With the slope: the splines' columns, then their derivatives', in one call.
-        parts = 2 if slope else 1
-        poly = _with_derivative(one) if slope else one
-        own = [_with_derivative(p) for p in each] if slope else each
-
-        def pick(x, rows):
-            flat, rows = np.ravel(x), np.ravel(rows)
-            if flat.size > _PER_VALUE * levels.size:
-                out = np.empty((flat.size, parts, cols))
-                order = np.argsort(rows, kind="stable")
-                ends = np.searchsorted(rows[order], np.arange(levels.size + 1))
-                for v in np.flatnonzero(np.diff(ends)):
-                    at = order[ends[v] : ends[v + 1]]
-                    out[at] = own[v](flat[at]).reshape(at.size, parts, cols)
-            else:
-                out = poly(flat).reshape(flat.size, parts, levels.size, cols)
-                out = out[np.arange(flat.size), :, rows]  # (entries, parts, cols)
-            return [out[:, i].reshape(*np.shape(x), cols) for i in range(parts)]
-
-        rows_all = index.reshape(E.shape)
-
-        def values(a, at=None):
-            # ``at``: a at the entries ``at`` of E only (as :meth:`_interpolant`'s).
-            rows = rows_all if at is None else rows_all[at]
-            q = pick(np.log(a), rows)
-            return q[0], q[1] if slope else None
-
-        return values
-
-    def normal(self, E, a, interp=None):
-        """(C, −dC/da, P'R/a³): the pair's punch compliance (m/N), its derivative (1/N) and
-        the non-adhesive force factor (Pa) at contact radius a, Young's modulus E
-        (``interp``: :meth:`normal_interpolant` of E, if already made)."""
-        E, a = np.broadcast_arrays(np.asarray(E, float), np.asarray(a, float))
-        q, minus_dC, force = self._normal_terms(E, a, interp)
-        C = 1 / (2 * a * self._e_star(E)) + q[..., 0] * self.coating.thickness / a**2
-        return C, minus_dC, force
-
-    def _e_star(self, E):
-        return E / (2 * (1 - self.poisson**2))
-
-    def _normal_terms(self, E, a, interp=None):
-        """(q, −dC/da, P'R/a³) at E and a (broadcast already): :meth:`normal` without C."""
-        h = self.coating.thickness
-        e_star = self._e_star(E)
-        q, dq = (interp or self.normal_interpolant(E))(a)
-        minus_dC = 1 / (2 * a**2 * e_star) + (2 * q[..., 0] - dq[..., 0]) * h / a**3
-        force = 1 / (3 / (4 * e_star) + q[..., 1] * h / a)
-        return q, minus_dC, force
-
-    def normal_interpolant(self, E, by_value: bool = False):
-        """:meth:`_interpolant` of q_n and q_f (the normal contact's two columns) at E."""
-        return self._interpolant(E, slice(0, 2), by_value=by_value)
-
-    def force(self, E, gamma, a, R, interp=None):
-        """P(a) of the adhesive contact, N (module docstring)."""
-        E, a = _broadcast(E, a)
-        _, minus_dC, factor = self._normal_terms(E, a, interp)
-        return factor * a**3 / R - np.sqrt(8 * np.pi * gamma * a / minus_dC)
-
-    def contact_radius(self, F, E, gamma, R, by_value: bool = False):
-        """a(F) on the stable branch, m, and a mask of the radii clamped to the table
-        (``by_value``: E takes a few values, :meth:`_interpolant`)."""
-        arrays = np.broadcast_arrays(*(np.asarray(v, float) for v in (F, E, gamma, R)))
-        shape = arrays[0].shape
-        F, E, gamma, R = (np.ravel(v) for v in arrays)
-        lo = np.full(F.shape, self.log_a[0])
-        hi = np.full(F.shape, self.log_a[-1])
-        interp = self.normal_interpolant(E, by_value)  # E is fixed while a is sought
-
-        def f(x, at=slice(None)):
-            # At the entries ``at`` only: each entry's arithmetic is that of the whole.
-            return (
-                self.force(E[at], gamma[at], np.exp(x[at]), R[at], lambda a: interp(a, at)) - F[at]
-            )
-
-        f_lo, f_hi = f(lo), f(hi)
-        below, above = f_lo > 0, f_hi < 0
-        x = np.where(below, lo, hi)
-        todo = ~(below | above)
-        side = np.zeros(F.shape, dtype=int)
-        tol = _FORCE_RTOL * np.maximum(np.abs(F), np.abs(f_hi - f_lo))
-        for _ in range(_MAX_ITER):
-            if not todo.any():
-                break
-            x_new = (lo * f_hi - hi * f_lo) / (f_hi - f_lo)
-            x = np.where(todo, x_new, x)
-            # The force only where the root is still sought (most converge in a few steps).
-            at = np.flatnonzero(todo)
-            fx = np.zeros(F.shape)
-            fx[at] = f(x, at)
-            todo &= np.abs(fx) > tol
-            lo, hi, f_lo, f_hi, side = illinois_step(x, fx, (lo, hi, f_lo, f_hi, side))
-        return np.exp(x).reshape(shape), (below | above).reshape(shape)
-
-    def tangential(self, E, a, by_value: bool = False):
-        """κ at contact radius a, N/m: sphere and coated plate sharing the traction, storage
-        part (``by_value``: E takes a few values, :meth:`_interpolant`)."""
-        E, a = np.broadcast_arrays(np.asarray(E, float), np.asarray(a, float))
-        h, nu = self.coating.thickness, self.poisson
-        g = E / (2 * (1 + nu))
-        q, _ = self._interpolant(E, slice(2, 4), slope=False, by_value=by_value)(a)
-        C_t = 2 * (2 - nu) / (8 * g * a) + (q[..., 0] + 1j * q[..., 1]) * h / a**2
-        return np.real(1 / C_t)
-
-    def kappa(self, force, E, gamma, radius, poisson=None):
-        """κ(F_N), N/m (``poisson`` is the table's; accepted for the model's signature)."""
-        a, _ = self.contact_radius(force, E, gamma, radius)
-        return self.tangential(E, a)
-
-    def kappa_grid(self, force, E, gamma, radius):
-        """:meth:`kappa` where E takes a few values (a grid; broadcast against the others):
-        the numbers of one call per value, in one call."""
-        arrays = np.broadcast_arrays(*(np.asarray(v, float) for v in (force, E, gamma, radius)))
-        a, _ = self.contact_radius(*arrays, by_value=True)
-        return self.tangential(arrays[1], a, by_value=True)
-
-    def model(self, gamma_max: float) -> Model:
-        """The fitted model: E bounded by the table, γ by ``gamma_max``."""
-        return Model(
-            "jkr-mindlin-coated",
-            "JKR + Mindlin on a coated plate",
-            (
-                Parameter("E", "Young's modulus E", "Pa", "E_Pa", self.bounds, scale=1e10),
-                Parameter(
-                    "gamma",
-                    "energy of adhesion γ",
-                    "J/m^2",
-                    "gamma_J_m2",
-                    (0, gamma_max),
-                    scale=0.1,
-                ),
-                Parameter("radius", "sphere radius R", "m", "sphere_radius_m", (1e-9, 1.0), True),
-                Parameter("poisson", "Poisson ratio ν", "-", "poisson", POISSON_OPEN_RANGE, True),
-            ),
-            "normal_force",
-            "N",
-            "kappa",
-            "N/m",
-            "compliance method (Shull 2002) on the layered plate + Mindlin in series",
-            self.kappa,
-        )
-
-    @property
-    def bounds(self) -> tuple[float, float]:
-        """The E range of the table, Pa."""
-        return float(self.E_range[0]), float(self.E_range[1])
-
-
-def build_law(
-    coating: Coating,
-    poisson: float,
-    frequency: float,
-    E_range: tuple[float, float],
-    radius_range: tuple[float, float],
-    n_E: int = 5,
-    per_decade: int = 5,
-) -> CoatedLaw:
-    """Tabulate the film corrections for :class:`CoatedLaw`.
-
-    Parameters
-    ----------
-    coating : the film(s)
-    poisson : ν of sphere and substrate
-    frequency : Hz, for the film's tangential constants
-    E_range : (lowest, highest) Young's modulus, Pa: ``n_E`` Chebyshev nodes in ln E (they
-        halve the largest error of equally spaced ones, measured)
-    radius_range : (smallest, largest) contact radius, m: ``per_decade`` nodes per decade of a
-        (log-spaced), at least 6
-
-    Accuracy (measured against the layered solution between the nodes, 250 nm of PMMA on
-    E = 30-240 GPa, a = 1-10 µm, ν = 0.17): the corrections q to 2.5e-4 relative; the punch
-    compliance (< 1e-4), κ (1.0e-4) and the force P' (2.2e-4), of which they are a part, to
-    the tested 1e-4, 2e-4 and 3e-4 (the largest errors at the smallest a/h, 5;
-    tests/analysis/test_coating.py). The E interpolation is nearly all of it (the
-    spline in a leaves ~3e-6; six nodes in E would leave 6e-5 in q). A film as thick as the
-    contact makes the corrections vary most with E: for a 2 µm film at a = 4-8 µm the fitted
-    E moved by 4.4e-4 (tested to 1e-3), still far below the errors of a measured κ(F_N).
-    """
-    lo, hi = (float(v) for v in radius_range)
-    n_a = max(6, math.ceil(per_decade * math.log10(hi / lo)) + 1)
-    a = np.geomspace(lo, hi, n_a)
-    x0, x1 = (math.log(float(v)) for v in E_range)
-    cheb = np.cos((2 * np.arange(n_E) + 1) * np.pi / (2 * n_E))[::-1]
-    E_nodes = np.exp(0.5 * (x0 + x1) + 0.5 * (x1 - x0) * cheb)
-    store: dict = {}  # the basis transforms, shared by every E (_corrections)
-    values = np.stack(
-        [_corrections(float(E), poisson, coating, frequency, a, store) for E in E_nodes], axis=1
-    )
-    E_bounds = (float(E_range[0]), float(E_range[1]))
-    return CoatedLaw(
-        coating, float(poisson), float(frequency), E_nodes, np.log(a), values, E_bounds
-    )
-
-
 def fit_coated(law: CoatedLaw, force, kappa, radius: float, start: dict, gamma_max: float):
     """Fit κ(F_N) with the coated law (E and γ free); a :class:`~contactres.fitting.FitResult`."""
     return fit(
@@ -641,8 +194,11 @@ def apply_coating(groups, exp, sweeps, coating: Coating, bootstrap: int, seed: i
     fit's, and ``coating`` records the film, the uncoated E and γ, the table and, at each load,
     the contact radius, κ on the coated plate and on the bare one (same E, γ and load) and
     ``film_share`` = 1 − κ/κ_bare (the share of the tangential contact stiffness the film
-    takes, as ``contactres contact`` reports it for the normal stiffness). A group whose
-    uncoated fit is withheld is not refitted (its E stays withheld).
+    takes, as ``contactres contact`` reports it for the normal stiffness; every measured load,
+    :func:`_film_share`). A group whose uncoated fit is withheld is not refitted (its E stays
+    withheld). A fit that needs contact radii outside the table at loads it used is refitted
+    once on a wider table (:func:`_wider_law`; the group's law and ``table_*`` are then that
+    table's) and withheld if it still needs them (:func:`_outside_the_table`).
     """
     say = say or (lambda step: None)
     fitted = [g for g in groups if np.isfinite(g["E_Pa"])]
@@ -676,7 +232,20 @@ def apply_coating(groups, exp, sweeps, coating: Coating, bootstrap: int, seed: i
         new = fit_group(part, key, bootstrap, seed, mine, law=load_law(law, start))
         # The contact radii at the measured loads: the test of the table's range and the
         # per-load record below (one solve for both).
-        radii = _outside_the_table(law, new, part) if np.isfinite(new["E_Pa"]) else None
+        radii = _radii(law, new, part)
+        wide = (
+            _wider_law(law, new, uncoated, radii) if radii and (radii[2] & radii[3]).any() else None
+        )
+        if wide is not None:
+            # The window assumed coated radii near the uncoated ones (an elastic film); a film
+            # soft in the static contact and stiff at the overtone needs larger ones: once,
+            # on the table that holds every radius the film can give (_wider_law).
+            say(f"coated plate: re-tabulating {coating.label} for larger contact radii")
+            law = wide
+            new = fit_group(part, key, bootstrap, seed, mine, law=load_law(law, start))
+            radii = _radii(law, new, part)
+        if radii:
+            _outside_the_table(law, new, radii)
         g.update(new)
         g["coating"] = {
             **coating.record(),
@@ -690,15 +259,72 @@ def apply_coating(groups, exp, sweeps, coating: Coating, bootstrap: int, seed: i
     return out
 
 
-def _outside_the_table(law: CoatedLaw, out: dict, part) -> tuple:
-    """Withhold a coated fit (in place, check ``fit-at-bound``) whose contact radius at a
-    measured load lies outside the table's radii: the model was clamped there, not solved.
-    Returns (the distinct measured loads F, N; a(F), m; the mask of the clamped radii) of the
-    fit's E, γ and R (:func:`_film_share` records them)."""
+def _radii(law: CoatedLaw, out: dict, part) -> tuple | None:
+    """(the distinct measured loads F, N; a(F), m, at the fit's E, γ and R; the mask of the
+    radii clamped to the table; the mask of the loads the fit used), or None
+    for a withheld fit. A load whose every point has κ <= 0 (or not finite) was left out of
+    the fit (:func:`~contactres.analysis._jkr.fit_group`): where its radius lies says nothing
+    of the fit."""
+    if not np.isfinite(out["E_Pa"]):
+        return None
     F = np.unique(part["normal_force_N"].to_numpy(float))
     a, clamped = law.contact_radius(F, out["E_Pa"], out["gamma_J_m2"], out["sphere_radius_m"])
+    kappa = part["kappa_N_per_m"].to_numpy(float)
+    used = part["normal_force_N"].to_numpy(float)[np.isfinite(kappa) & (kappa > 0)]
+    return F, a, clamped, np.isin(F, used)
+
+
+def _wider_law(law: CoatedLaw, out: dict, uncoated: dict, radii: tuple) -> CoatedLaw | None:
+    """The table rebuilt over every contact radius the film can give at the loads the fit
+    used, or None if that is no wider than ``law``'s (the fit is then withheld as it is).
+
+    The bound: the layered plate is no softer than a half-space of its softest static layer
+    (substrate or film) and no stiffer than one of its stiffest, and the softer of two
+    homogeneous pairs has the larger radius at a load (paper 2's Eq. 9: a³ ∝ 1/E* at fixed γ,
+    and a grows with γ). So the radii lie between the Hertz radius (γ = 0) of the stiffest
+    pair at the smallest used load and the JKR radius of the softest pair at the largest, E
+    over the table's range (the fit's bound: the sphere and the substrate share E) and γ the
+    larger of the uncoated and the clamped fit's. The layered plate between the two
+    half-spaces is the argument, not a proof, and the refit's γ is not known before it: a
+    radius still outside after the refit withholds the fit. Bounded by the softest layer,
+    the table stays small: the study of tests/analysis/test_coating.py (loads 2-30 mN, E
+    70 GPa) with 2 µm of a film of 2 GPa (static) and 8 GPa (overtone) needs 1.54x the
+    uncoated radius at 30 mN, beyond the first table (1.5x); the bound gives 2.6x, a table of
+    six radii as the first (measured: ~0.1 s more CPU for the group, the table and the refit).
+    A table costs about its number of radii, 5 a decade of the span (build_law): a film 1000
+    times softer than the substrate makes the span ~10x the uncoated radius, ~5 radii more."""
+    F = radii[0][radii[3] & (radii[0] > 0)]
+    if not F.size:
+        return None
+    nu, R = law.poisson, out["sphere_radius_m"]
+    films = [float(np.real(indentation_modulus(static_film(m)))) for m, _ in law.coating.layers]
+    E_lo, E_hi = (E / (1 - nu**2) for E in law.bounds)  # plane-strain moduli of the substrate
+    soft = 1 / (1 / E_lo + 1 / min(E_lo, *films))
+    stiff = 1 / (1 / E_hi + 1 / max(E_hi, *films))
+    gamma = max(uncoated["gamma_J_m2"], out["gamma_J_m2"])
+    lo = float(jkr_contact_radius(stiff, R, F.min(), 0.0))
+    hi = float(jkr_contact_radius(soft, R, F.max(), gamma))
+    a_lo, a_hi = law.radius_range
+    # (1e-9: the table's ends are exp(ln a), a rounding away from the radii they were made of)
+    if lo >= a_lo * (1 - 1e-9) and hi <= a_hi * (1 + 1e-9):
+        return None
+    return build_law(
+        law.coating,
+        nu,
+        law.frequency,
+        law.bounds,
+        (min(lo, a_lo), max(hi, a_hi)),
+        n_E=law.E_nodes.size,
+    )
+
+
+def _outside_the_table(law: CoatedLaw, out: dict, radii: tuple) -> None:
+    """Withhold a coated fit (in place, check ``fit-at-bound``) whose contact radius at a
+    load it used lies outside the table's radii: the model was clamped there, not solved
+    (``radii``: :func:`_radii`)."""
+    clamped = radii[2] & radii[3]
     if not clamped.any():
-        return F, a, clamped
+        return
     lo, hi = law.radius_range
     out["rejected_fit"] = {"E_Pa": out["E_Pa"], "gamma_J_m2": out["gamma_J_m2"]}
     out["checks"] = [*out["checks"], "fit-at-bound"]
@@ -709,13 +335,15 @@ def _outside_the_table(law: CoatedLaw, out: dict, part) -> tuple:
     out["note"] = "; ".join(t for t in (out["note"], text) if t)
     for key in ("E_Pa", "E_err_Pa", "gamma_J_m2", "gamma_err_J_m2"):
         out[key] = math.nan
-    return F, a, clamped
 
 
 def _film_share(law: CoatedLaw, g: dict, radii: tuple) -> list[dict]:
     """Per load: a, κ on the coated and the bare plate and the film's share (apply_coating);
-    ``radii``: (F, a(F), clamped) at the group's E, γ and R (:func:`_outside_the_table`)."""
-    F, a, clamped = radii
+    ``radii``: :func:`_radii` at the group's E, γ and R. Every measured load is listed, also
+    one the fit left out (κ <= 0: its κ on the bare plate, and a, κ and the share where its
+    radius is inside the table); a radius outside the table (at such a load only: one at a
+    load the fit used withholds the fit) has NaN a, κ and share, not the clamped values."""
+    F, a, clamped, _ = radii
     E, gamma, R, nu = g["E_Pa"], g["gamma_J_m2"], g["sphere_radius_m"], g["poisson"]
     kappa = law.tangential(E, a)
     bare = np.asarray(kappa_jkr_mindlin(F, E, gamma, R, nu), dtype=float)

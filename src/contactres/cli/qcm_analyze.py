@@ -8,6 +8,7 @@ leaves the folder as it was. Warnings (the data's and numerical ones) become one
 
 from __future__ import annotations
 
+import math
 import warnings
 from pathlib import Path
 
@@ -303,7 +304,9 @@ def coating_lines(results) -> list[str]:
     ]
     for g in coated:
         c = g["coating"]
-        shares = [s["film_share"] for s in c["loads"]]
+        # A load left out of the fit whose radius is outside the table has no share (NaN):
+        # min and max of the others (a NaN first would be min's answer).
+        shares = [s["film_share"] for s in c["loads"] if math.isfinite(s["film_share"])]
         share = f"film share {min(shares):.1%}-{max(shares):.1%}" if shares else "no film share"
         lines.append(
             f"  {g['configuration']}, {g['medium']}: uncoated E = "

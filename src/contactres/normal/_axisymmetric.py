@@ -281,9 +281,10 @@ def _downward(blk: np.ndarray, s: np.ndarray) -> None:
     as :func:`_upward`), at arguments ``s`` at most one above the highest order."""
     p_max = blk.shape[0] - 1
     # The largest argument sets the start; fmax passes a NaN over (its column is NaN anyway, and
-    # max would make it start too low for all the others).
+    # max would make it start too low for all the others). All NaN: s_max is NaN, and max,
+    # which keeps its first argument unless a later one is larger, keeps p_max (tested).
     s_max = float(np.fmax.reduce(s))
-    top = p_max + 30 if math.isnan(s_max) else int(max(p_max, 1.3 * s_max)) + 30
+    top = int(max(p_max, 1.3 * s_max)) + 30
     ratio = np.zeros(s.size)
     ratios = np.empty_like(blk)
     den = np.empty(s.size)
