@@ -176,8 +176,9 @@ def _check_header(path: Path, number: int, header: str, sep: str) -> list[str]:
         )
     # One empty cell reads as a column pandas names ("Unnamed: 4", kept as before); two or
     # more are no repeat of a name but columns without one. Trailing ones are not dropped as
-    # the workbook reader drops them: one such cell is a column read today (its values kept
-    # in an inversion's output), and two are one rule with one.
+    # the workbook reader drops them: a single one is a column read today (its values kept in
+    # an inversion's output, bytes that stay), and dropping only two or more would give one
+    # empty cell and two different rules.
     empty = [i for i, n in enumerate(names, start=1) if not n]
     if len(empty) > 1:
         shown = ", ".join(str(i) for i in empty[:SHOWN_PLACES])
