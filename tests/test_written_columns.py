@@ -133,15 +133,25 @@ class Points(JobResult):
 
 
 @pytest.mark.parametrize("fmt", ["csv", "xlsx", "netcdf"])
-def test_the_report_writer_refuses_a_table_with_a_name_twice(tmp_path, fmt):
+def test_the_report_writer_refuses_a_table_with_a_name_twice(tmp_path, monkeypatch, fmt):
     if fmt == "xlsx":
         pytest.importorskip("openpyxl")
     if fmt == "netcdf":
         pytest.importorskip("xarray")
+    from contactres.report import _writer
+
+    # The JSON file is written before the workbook and the NetCDF file: the check is up
+    # front only if it is not written either.
+    written = []
+    monkeypatch.setattr(_writer, "write_text", lambda path, *a, **k: written.append(path))
     with pytest.raises(ValueError) as caught:
-        write_report(Points(_twice(), {}), tmp_path / "r", (fmt,))
-    text = _internal(caught)
-    assert PLACES in text and RULE in text
+        write_report(Points(_twice(), {}), tmp_path / "r", (fmt, "json"))
+    # Said up front for every format, naming the table: the writers' own checks further in
+    # name a file (CSV), nothing (the workbook) or come after other files were written.
+    assert _internal(caught) == (
+        f"table 'points' of the points result: duplicate column name(s) {PLACES}; {RULE}"
+    )
+    assert written == []
     assert not (tmp_path / "r").exists()  # the set appears whole or not at all
 
 

@@ -1,6 +1,7 @@
 """Column names that a table holds more than once, said in one line: the readers' messages for a
 user's header (a one-line error naming the file, the name, its places and the rule) and the
-writers' check of a table of ours (an internal error: :func:`contactres._csvcells.unique_written`).
+writers' check of a table of ours (an internal error: :func:`contactres._csvcells.unique_written`),
+and a given column named as one a run computes (:func:`refuse_computed_names`: the inversions).
 
 Kept in the ground layer: the writers (:mod:`contactres._csvcells`) and the readers of
 :mod:`contactres.measurements` and :mod:`contactres.polycrystal` say it the same way.
@@ -8,9 +9,17 @@ Kept in the ground layer: the writers (:mod:`contactres._csvcells`) and the read
 
 from __future__ import annotations
 
-from collections.abc import Callable, Iterable
+from collections.abc import Callable, Collection, Iterable
 
-__all__ = ["excel_letters", "repeated_names", "repeats_text"]
+from .errors import ContactresInputError
+
+__all__ = [
+    "excel_letters",
+    "refuse_computed_names",
+    "repeated_names",
+    "repeats_text",
+    "shown_names",
+]
 
 #: Names, and places of each, shown in one message (the rest counted): a header of 20,000
 #: repeats is refused in a short line.
@@ -50,6 +59,16 @@ def _shown(name: str) -> str:
     return repr(text)
 
 
+def shown_names(names: Iterable[str], count: int = 20) -> str:
+    """``['a', 'b', ... 40 in all]``: the first ``count`` of ``names``, each shortened as in
+    :func:`repeats_text`, the rest counted (an internal error's text stays one short line
+    whatever the header holds)."""
+    names = list(names)
+    shown = ", ".join(_shown(n) for n in names[:count])
+    more = f", ... {len(names)} in all" if len(names) > count else ""
+    return f"[{shown}{more}]"
+
+
 def repeats_text(
     names: Iterable[str],
     place: Callable[[int], str] = str,
@@ -72,3 +91,32 @@ def repeats_text(
         parts.append(f"{_shown(name)} ({word} {shown}{more}{tail})")
     left = len(repeats) - SHOWN_NAMES
     return "; ".join(parts) + (f"; and {left} more name(s)" if left > 0 else "")
+
+
+def refuse_computed_names(table, computed: Collection[str], source: str) -> None:
+    """One-line error for a column of ``table`` (a DataFrame or an ArrayTable; its given columns,
+    ``attrs["given"]``, where the reader recorded them) named as one of ``computed``, the
+    columns a run appends to it; ``source`` names the file.
+
+    Why: a run's result is the given columns then the computed ones, each set by its name, so
+    a computed column would take the place of the given one of its name: the user's values
+    replaced without a word (a column ``kappa`` of the user's, or every computed column of a
+    table an earlier run wrote). Only the names the run writes are refused: a column it does
+    not compute is the user's to keep. Places as the file shows them: a sheet's letters."""
+    given = list(table.attrs.get("given", [c for c in table.columns if c != "line"]))
+    clash = [c for c in given if c in computed]
+    if not clash:
+        return
+    letters = table.attrs.get("column_letters", False)
+    shown = ", ".join(
+        f"{c!r} (column {excel_letters(i) if letters else i})"
+        for c, i in ((c, given.index(c) + 1) for c in clash[:5])
+    )
+    more = f", ... {len(clash)} in all" if len(clash) > 5 else ""
+    one = len(clash) == 1
+    raise ContactresInputError(
+        f"{source}: column{'' if one else 's'} {shown}{more} "
+        f"{'is a column' if one else 'are columns'} the inversion computes: the result would "
+        f"replace {'its' if one else 'their'} values; rename {'it' if one else 'them'} (a table "
+        "an inversion wrote: drop its computed columns first)"
+    )

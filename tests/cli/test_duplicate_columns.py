@@ -292,6 +292,17 @@ def test_an_array_with_and_without_the_npy_suffix_is_one_name_twice(tmp_path):
     )
 
 
+def test_an_archive_with_an_array_called_line_names_its_place(tmp_path):
+    table = pd.read_csv(DATA / "example_afm.csv")
+    path = tmp_path / "scan.npz"
+    np.savez(path, **{c: table[c].to_numpy() for c in table.columns[:3]}, line=np.arange(3))
+    r = run("afm", "invert", path, "--out", tmp_path / "o.csv")
+    assert _message(r) == (
+        f"{path}: array 'line' (array 4 of the archive) is the name contactres gives the row "
+        "numbers of the table; rename it (e.g. scan_line)"
+    )
+
+
 # ---- an EBSD .ctf: pandas would have read 'Euler1' and renamed the other 'Euler1.1' -----------
 
 
@@ -352,9 +363,94 @@ def test_a_header_pandas_reads_otherwise_is_never_taken_as_read_right(tmp_path, 
 
     rows = _rows(DATA / "example_afm.csv")
     path = _write(tmp_path / "twice.csv", _with_column(rows, "fc1_Hz"))
-    monkeypatch.setattr(_delimited, "repeats_text", lambda names: None)
+    monkeypatch.setattr(_delimited, "repeats_text", lambda names, **_: None)
     with pytest.raises(RuntimeError, match=r"pandas read the header as \[.*'fc1_Hz\.1'\]"):
         _delimited.load(path)
+
+
+def test_the_internal_message_shows_long_headers_short(tmp_path, monkeypatch):
+    # A header of 30 names of 100 characters each, one repeated: 20 names shown, each cut to
+    # 60 characters, the rest counted (not 20 names of 100 characters in one line).
+    from contactres.measurements.readers import _delimited
+
+    names = [f"{i:02d}" + "x" * 98 for i in range(30)]
+    path = _write(tmp_path / "wide.csv", [[*names, names[0]], ["1"] * 31])
+    monkeypatch.setattr(_delimited, "repeats_text", lambda names, **_: None)
+    with pytest.raises(RuntimeError) as caught:
+        _delimited.load(path)
+    shown = ", ".join(repr(n[:59] + "…") for n in names[:20])
+    assert str(caught.value) == (
+        f"{path}: pandas read the header as [{shown}, ... 31 in all], the csv module as "
+        f"[{shown}, ... 31 in all]"
+    )
+
+
+# ---- a table pandas saved twice: an empty header cell beside a written-out 'Unnamed: 0' ------
+
+
+def test_a_table_pandas_saved_twice_reads_as_the_table_it_holds(tmp_path):
+    # pd.read_csv(f).to_csv(g), twice, writes ",Unnamed: 0,pixel,...": pandas names the empty
+    # cell "Unnamed: 0.1" (the other name is taken). A valid table, read as before: its two
+    # index columns kept, the inversion's columns the same as the table's own.
+    source = DATA / "example_rum.csv"
+    once, twice = tmp_path / "once.csv", tmp_path / "twice.csv"
+    pd.read_csv(source).to_csv(once)
+    pd.read_csv(once).to_csv(twice)
+    assert twice.read_text().startswith(",Unnamed: 0,pixel,")
+    for path in (source, twice):
+        r = run("rum", "invert", path, "--out", tmp_path / f"{path.stem}.out.csv")
+        assert r.exit_code == 0, r.output
+    plain = pd.read_csv(tmp_path / "example_rum.out.csv", dtype=str)
+    saved = pd.read_csv(tmp_path / "twice.out.csv", dtype=str)
+    assert list(saved.columns[1:]) == ["Unnamed: 0", *plain.columns]
+    rows = [str(i) for i in range(len(plain))]  # the index pandas wrote, twice
+    assert saved.iloc[:, 0].tolist() == rows and saved.iloc[:, 1].tolist() == rows
+    pd.testing.assert_frame_equal(saved.iloc[:, 2:], plain)
+
+
+# ---- empty header cells --------------------------------------------------------------------
+
+
+@pytest.mark.parametrize(
+    ("empty", "places"),
+    [
+        ([1, 3], "columns 2, 4"),  # among the names
+        ([4, 5], "columns 5, 6"),  # right of them: "a,b,c,," (no columns dropped, as one is not)
+        (list(range(4, 11)), "columns 5, 6, 7, 8, 9, ... 7 in all"),
+    ],
+)
+def test_two_or_more_empty_header_cells_are_named_as_empty(tmp_path, empty, places):
+    rows = _rows(DATA / "example_rum.csv")
+    width = len(rows[0]) + sum(i >= len(rows[0]) for i in empty)
+    table = []
+    for row in rows:
+        cells = iter(row)
+        table.append(["" if i in empty else next(cells) for i in range(width)])
+    path = _write(tmp_path / "t.csv", [[*table[0]], *([c or "1" for c in r] for r in table[1:])])
+    r = run("rum", "invert", path, "--out", tmp_path / "o.csv")
+    assert _message(r) == (
+        f"{path}, line 1: {places} of the header are empty; every column needs a name"
+    )
+
+
+def test_one_empty_header_cell_is_a_column_pandas_names(tmp_path):
+    # (as before: its values are kept in the output, under pandas' name)
+    rows = _rows(DATA / "example_rum.csv")
+    path = _write(tmp_path / "t.csv", [[*rows[0], ""], *([*r, "7"] for r in rows[1:])])
+    r = run("rum", "invert", path, "--out", tmp_path / "o.csv")
+    assert r.exit_code == 0, r.output
+    out = pd.read_csv(tmp_path / "o.csv", dtype=str)
+    assert out[f"Unnamed: {len(rows[0])}"].tolist() == ["7"] * (len(rows) - 1)
+
+
+def test_in_memory_names_the_same_as_given_are_not_said_stripped(sweeps):
+    frame = pd.concat([sweeps, sweeps[["experiment"]]], axis=1)
+    with pytest.raises(ContactresInputError) as caught:
+        contactres.validate_sweeps(frame)
+    assert str(caught.value) == (
+        f"<table>: duplicate column name(s) 'experiment' (columns 2, {len(frame.columns)}); "
+        "one name each"
+    )
 
 
 # ---- an input column named as one the inversion computes (one name, two columns) -----------
@@ -381,6 +477,65 @@ def test_an_input_column_named_as_a_computed_one_is_refused(
         "computed columns first)"
     )
     assert not (tmp_path / "o.csv").exists()
+
+
+COMPUTED_WITH = {
+    # command, the example, the columns an option adds, that option (with what it needs)
+    "afm dynamic": (
+        "afm invert",
+        "example_afm.csv",
+        ["k_static_N_per_m", "k_a", "dcsf_real", "dcsf_imag"],
+        ["--crystal", "Si"],
+    ),
+    "afm film": (
+        "afm invert",
+        "example_afm.csv",
+        ["coating", "M_film_Pa", "film_contact_radius_m", "film_weight", "film_verdict"],
+        ["--coating", "pmma:250e-9", "--substrate", "fused-silica"],
+    ),
+    "rum film": (
+        "rum invert",
+        "example_rum.csv",
+        ["coating", "M_film_Pa", "film_contact_radius_m", "film_weight", "film_verdict"],
+        [
+            *("--coating", "pmma:200e-9", "--substrate", "fused-silica"),
+            *("--tip-radius", "2e-6", "--force", "1e-3"),
+        ],
+    ),
+}
+
+
+@pytest.mark.parametrize("case", list(COMPUTED_WITH))
+def test_the_columns_an_option_adds_are_the_users_without_it(tmp_path, case):
+    command, source, columns, options = COMPUTED_WITH[case]
+    # The option's run writes these columns after the input's (read from its output, not
+    # from a list of the code's)
+    written = tmp_path / "written.csv"
+    r = run(*command.split(), DATA / source, "--out", written, *options)
+    assert r.exit_code == 0, r.output
+    header = _rows(written)[0]
+    assert [c for c in header if c in columns] == columns
+    # The example with those columns of the user's (text, as a coating's label): read and kept
+    # as given by a run without the option, refused by one with it.
+    rows = _rows(DATA / source)
+    values = [f"v{j}" for j in range(len(columns))]
+    table = [[*rows[0], *columns], *([*r, *values] for r in rows[1:])]
+    path = _write(tmp_path / "t.csv", table)
+    out = tmp_path / "o.csv"
+    r = run(*command.split(), path, "--out", out)
+    assert r.exit_code == 0, r.output
+    kept = pd.read_csv(out, dtype=str)
+    for j, c in enumerate(columns):
+        assert kept[c].tolist() == [f"v{j}"] * (len(rows) - 1)
+    out.unlink()
+    r = run(*command.split(), path, "--out", out, *options)
+    first = len(rows[0]) + 1
+    shown = ", ".join(f"{c!r} (column {first + j})" for j, c in enumerate(columns[:5]))
+    assert _message(r) == (
+        f"{path}: columns {shown} are columns the inversion computes: the result would replace "
+        "their values; rename them (a table an inversion wrote: drop its computed columns first)"
+    )
+    assert not out.exists()
 
 
 def test_a_table_an_earlier_inversion_wrote_is_refused_in_one_line(tmp_path):

@@ -20,10 +20,10 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from .._column_names import refuse_computed_names
 from .._threads import one_blas_thread
 from ..errors import ContactresInputError, ContactresWarning
 from ..measurements import at_cell, where_rows
-from ..measurements.schema import AFM_INVERT_RESULTS, RUM_INVERT_RESULTS
 from ..resonators import (
     FREE_TOLERANCE,
     MODE_TOLERANCE,
@@ -54,6 +54,27 @@ AFM_GROUP_COLUMNS = (
     "tilt_deg",
 )
 _MODES = (1, 2, 3)
+#: The columns :func:`invert_rum_table` appends (the film columns of ``--coating`` are added,
+#: and checked, by the job: :func:`contactres.jobs.afm_invert.add_film_columns`).
+_RUM_COMPUTED = ("rum_model", "k_star_N_per_m")
+#: The columns :func:`invert_afm_table` appends to every table, and with a ``sample`` (the
+#: dynamic correction) also :data:`_AFM_DYNAMIC`, before ``flags`` and ``normalisation``.
+_AFM_COMPUTED = (
+    "kappa",
+    "k_star_N_per_m",
+    "tip_position_used",
+    "sigma_N_s_per_m",
+    "mode_spread",
+    "tip_position_other",
+    "kappa_other",
+    "E_star_Pa",
+    "M_sample_Pa",
+    "contact_radius_m",
+    "modulus_method",
+    "flags",
+    "normalisation",
+)
+_AFM_DYNAMIC = ("k_static_N_per_m", "k_a", "dcsf_real", "dcsf_imag")
 #: The Hertz and reference inputs of the modulus step (floats; NaN where blank).
 _MODULUS_INPUTS = ("tip_radius_m", "load_N", "M_tip_Pa", "hardness_Pa", "M_ref_Pa", "M_ref2_Pa")
 #: The largest fc/f0 a RUM row may have. A contact spring at the tip raises the first mode of a
@@ -75,35 +96,6 @@ def _given_columns(table):
 
     given = table[table.attrs.get("given", [c for c in table.columns if c != "line"])]
     return given.copy(deep=not isinstance(given, ArrayTable))
-
-
-def _refuse_computed_names(table, results, source: str) -> None:
-    """One-line error for a column of ``table`` named as one the inversion computes
-    (``results``: the schema of its computed columns, film columns included).
-
-    Why: the result is the given columns then the computed ones, each set by its name, so a
-    computed column would take the place of the given one of its name: the user's values
-    replaced without a word (a column ``kappa`` of the user's, or every computed column of a
-    table an earlier run wrote). Places as the file shows them: a sheet's letters."""
-    from .._column_names import excel_letters
-
-    given = list(table.attrs.get("given", [c for c in table.columns if c != "line"]))
-    clash = [c for c in given if c in results.names]
-    if not clash:
-        return
-    letters = table.attrs.get("column_letters", False)
-    shown = ", ".join(
-        f"{c!r} (column {excel_letters(i) if letters else i})"
-        for c, i in ((c, given.index(c) + 1) for c in clash[:5])
-    )
-    more = f", ... {len(clash)} in all" if len(clash) > 5 else ""
-    one = len(clash) == 1
-    raise ContactresInputError(
-        f"{source}: column{'' if one else 's'} {shown}{more} "
-        f"{'is a column' if one else 'are columns'} the inversion computes: the result would "
-        f"replace {'its' if one else 'their'} values; rename {'it' if one else 'them'} (a table "
-        "an inversion wrote: drop its computed columns first)"
-    )
 
 
 def _floats(table, name: str) -> np.ndarray:
@@ -199,7 +191,7 @@ def invert_rum_table(table: pd.DataFrame, source: str = "table") -> pd.DataFrame
     """
     import pandas as pd
 
-    _refuse_computed_names(table, RUM_INVERT_RESULTS, source)
+    refuse_computed_names(table, _RUM_COMPUTED, source)
     lumped = _lumped_rows(table, source)
     f0 = table["f0_Hz"].to_numpy(float)
     fc = table["fc_Hz"].to_numpy(float)
@@ -379,7 +371,11 @@ def invert_afm_table(
     :class:`~contactres.errors.ContactresWarning` naming the first such cell: a CR-AFM tip is
     1 nm-1 µm, a larger value is most often a unit slip, while a mm sphere is a valid contact.
     """
-    _refuse_computed_names(table, AFM_INVERT_RESULTS, source)
+    # Only the names this run writes: a column the run does not compute (k_a without a
+    # sample) is the user's and stays as given.
+    refuse_computed_names(
+        table, _AFM_COMPUTED + (_AFM_DYNAMIC if sample is not None else ()), source
+    )
     fc = _matrix(table, [f"fc{n}_Hz" for n in _MODES])
     none = np.isnan(fc[:, 0]) & np.isnan(fc[:, 1]) & np.isnan(fc[:, 2])
     if none.any():
@@ -509,9 +505,9 @@ def invert_afm_table(
     for name in names:
         out[name] = mod[name]
     if sample is not None:
-        out["k_static_N_per_m"] = dyn["k_static"]
-        for name in ("k_a", "dcsf_real", "dcsf_imag"):
-            out[name] = dyn[name]
+        parts = ("k_static", "k_a", "dcsf_real", "dcsf_imag")
+        for name, key in zip(_AFM_DYNAMIC, parts, strict=True):
+            out[name] = dyn[key]
     flags_text = _joined_flags(flags, mod["modulus_flags"])
     large = np.nan_to_num(col["tip_radius_m"]) > LARGE_TIP_M  # issue 27: no silent unit slip
     if large.any():

@@ -151,6 +151,7 @@ def run(inputs: str | os.PathLike, settings: Settings, progress: Progress | None
             checked["M_tip_Pa"],
             film,
             s,
+            str(Path(inputs)),
         )
     return Result(
         table=table,
@@ -192,12 +193,17 @@ def coated_film(coating, substrate) -> tuple | None:
     return material, h, label, substrate
 
 
-def add_film_columns(table, k_star, tip_radius, load, tip_modulus, film, s) -> dict:
+def add_film_columns(
+    table, k_star, tip_radius, load, tip_modulus, film, s, source: str = "table"
+) -> dict:
     """Append the film columns to ``table`` (in place; k* (N/m), tip radius (m), load (N), tip
     modulus (Pa, NaN: rigid) per row or one value) and return the ``coating`` record; ``film``
     from :func:`coated_film`, ``s`` the settings (film_range, min_film_weight). The film
     inversion's ContactresWarnings (Hertz's a/R limit) are the record's ``notes``, one line
-    each, for the command to print."""
+    each, for the command to print. A given column of ``table`` named as a film column is
+    refused in one line naming ``source`` (its values would be replaced): the inversions
+    refuse their own names, these only where a coating is given."""
+    from .._column_names import refuse_computed_names
     from ..analysis import film_columns
 
     material, h, label, substrate = film
@@ -222,6 +228,7 @@ def add_film_columns(table, k_star, tip_radius, load, tip_modulus, film, s) -> d
             warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
         elif (text := " ".join(str(w.message).split())) not in notes:
             notes.append(text)
+    refuse_computed_names(table, ("coating", *cols), source)
     table["coating"] = label
     for name, values in cols.items():
         table[name] = values

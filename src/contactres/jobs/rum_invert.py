@@ -112,6 +112,6 @@ def run(
         say(progress, "film modulus on the coated substrate")
         tip = math.nan if s.tip_modulus is None else s.tip_modulus
         coating = add_film_columns(
-            table, table["k_star_N_per_m"], s.tip_radius, s.force, tip, film, s
+            table, table["k_star_N_per_m"], s.tip_radius, s.force, tip, film, s, str(Path(inputs))
         )
     return Result(table=table, input_columns=tuple(checked.columns), coating=coating)

@@ -29,7 +29,7 @@ from pathlib import Path
 import numpy as np
 import pandas as pd
 
-from .._column_names import repeats_text
+from .._column_names import repeated_names, repeats_text
 from .._summary import Summarised, table_size
 from ..errors import ContactresInputError
 from ..numerics import factorize_runs, run_starts
@@ -586,13 +586,17 @@ def validate_sweeps(
     # default, so the caller's table stays as it was only because nothing below writes into a
     # column in place (columns are renamed, added or replaced whole).
     raw = raw.copy(deep=False)
-    raw.columns = [str(c).strip() for c in raw.columns]
+    as_given = [str(c) for c in raw.columns]
+    raw.columns = [c.strip() for c in as_given]
     # (a reader refuses a name twice in its header; a table built in memory may hold one, or
-    # two names that differ by blanks only; two units of one quantity: columns_in_si)
+    # two names that differ by outer blanks only; two units of one quantity: columns_in_si)
     repeats = repeats_text(raw.columns)
     if repeats is not None:
+        # "once stripped" only where stripping made the repeat (the names as given differ)
+        stripped = repeated_names(raw.columns) != repeated_names(as_given)
         raise ContactresInputError(
-            f"{source}: duplicate column name(s) {repeats} once stripped of blanks; one name each"
+            f"{source}: duplicate column name(s) {repeats}"
+            f"{' once stripped of blanks' if stripped else ''}; one name each"
         )
     raw = columns_in_si(raw, source)
     raw.attrs["line_word"] = word

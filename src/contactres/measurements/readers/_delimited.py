@@ -5,7 +5,9 @@ comma, semicolon or tab; a decimal comma with semicolon or tab separators. The f
 UTF-8 text (a byte order mark is skipped). Comments: a line whose first non-blank character is
 ``#`` is a comment, as a whole; a ``#`` anywhere else is data (``SiO2 #A`` is a label, not
 ``SiO2`` plus a comment). Blank lines are skipped. Column names must be unique (names that
-differ by blanks only are one), and none may be ``line``: the reader's column of line numbers.
+differ by outer blanks only are one: ``' df_Hz'`` is ``df_Hz``, while ``a b`` and ``a  b`` are
+two), at most one header cell may be empty, and no name may be ``line``: the reader's column of
+line numbers.
 """
 
 from __future__ import annotations
@@ -22,7 +24,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..._column_names import repeats_text
+from ..._column_names import SHOWN_PLACES, repeats_text, shown_names
 from ...errors import ContactresInputError
 from ...numerics import column_run_starts, repeat_runs
 
@@ -152,12 +154,13 @@ def _no_nul(path: Path, body: str | bytes, numbers) -> None:
 
 
 def _check_header(path: Path, number: int, header: str, sep: str) -> list[str]:
-    """The column names of the header (stripped). Duplicate column names are an error (pandas
-    would rename them, ``df_Hz.1``, in quadratic time, and a reader would take the first
-    column without a word), names that differ by blanks only included; so is the name
-    :data:`LINE`, the column of line numbers the reader adds (the file's own column would be
-    replaced, its values lost), and a header the csv module cannot split (a field over its
-    limit of 128 kB: no column name)."""
+    """The column names of the header (stripped of outer blanks). Duplicate column names are
+    an error (pandas would rename them, ``df_Hz.1``, in quadratic time, and a reader would take
+    the first column without a word), names that differ by outer blanks only included (``a b``
+    and ``a  b`` are two names); so are two or more empty cells (one is a column pandas names
+    ``Unnamed: i``), the name :data:`LINE`, the column of line numbers the reader adds (the
+    file's own column would be replaced, its values lost), and a header the csv module cannot
+    split (a field over its limit of 128 kB: no column name)."""
     try:
         names = [n.strip() for n in next(csv.reader([header], delimiter=sep))]
     except csv.Error as exc:
@@ -165,11 +168,24 @@ def _check_header(path: Path, number: int, header: str, sep: str) -> list[str]:
             f"{path}, line {number}: the header is not a readable {sep!r}-separated line "
             f"({exc}); a header holds the column names"
         ) from None
-    repeats = repeats_text(names)
+    repeats = repeats_text(names, named_only=True)
     if repeats is not None:
         raise ContactresInputError(
             f"{path}, line {number}: duplicate column name(s) {repeats}; every column needs "
             "its own name"
+        )
+    # One empty cell reads as a column pandas names ("Unnamed: 4", kept as before); two or
+    # more are no repeat of a name but columns without one. Trailing ones are not dropped as
+    # the workbook reader drops them: a single one is a column read today (its values kept in
+    # an inversion's output, bytes that stay), and dropping only two or more would give one
+    # empty cell and two different rules.
+    empty = [i for i, n in enumerate(names, start=1) if not n]
+    if len(empty) > 1:
+        shown = ", ".join(str(i) for i in empty[:SHOWN_PLACES])
+        more = f", ... {len(empty)} in all" if len(empty) > SHOWN_PLACES else ""
+        raise ContactresInputError(
+            f"{path}, line {number}: columns {shown}{more} of the header are empty; every "
+            "column needs a name"
         )
     if LINE in names:
         raise ContactresInputError(
@@ -258,17 +274,17 @@ def load(path: Path, number_columns: Collection[str] = ()) -> pd.DataFrame:
     except pd.errors.ParserError as exc:
         raise unreadable(exc) from None
     raw.columns = [str(c).strip() for c in raw.columns]
-    # pandas names an empty header cell "Unnamed: i" (kept so: the tables and messages of
-    # such a file are as before); any other difference from the csv module's names (a
-    # column renamed, df_Hz.1, or two joined) is a fault of the reader, never to pass as a
-    # table read right.
+    # pandas names an empty header cell (kept so: the tables and messages of such a file are
+    # as before), "Unnamed: i" or, where the header also holds that name written out (a table
+    # saved twice by pandas: ",Unnamed: 0,pixel"), "Unnamed: 0.1": any name, so only the
+    # named cells are compared. Any other difference from the csv module's names (a column
+    # renamed, df_Hz.1, or two joined) is a fault of the reader, never to pass as a table
+    # read right.
     read = list(raw.columns)
-    if len(read) != width or any(
-        c != n and (n or c != f"Unnamed: {i}")
-        for i, (c, n) in enumerate(zip(read, names, strict=True))
-    ):
+    if len(read) != width or any(n and c != n for c, n in zip(read, names, strict=True)):
         raise RuntimeError(
-            f"{path}: pandas read the header as {read[:20]}, the csv module as {names[:20]}"
+            f"{path}: pandas read the header as {shown_names(read)}, the csv module as "
+            f"{shown_names(names)}"
         )
     # A short row may leave NaN in its missing cells (pandas 3 gives empty ones): make them
     # empty cells, as written. Its last cell is one of them, so that column alone is looked

@@ -70,7 +70,10 @@ def load(path: Path) -> ArrayTable:
             f"length; got {shown}"
         )
     if "line" in columns:
-        raise ContactresInputError(f"{path}: 'line' is a reserved column name (row numbers)")
+        raise ContactresInputError(
+            f"{path}: array 'line' (array {list(columns).index('line') + 1} of the archive) is "
+            "the name contactres gives the row numbers of the table; rename it (e.g. scan_line)"
+        )
     for name, a in columns.items():
         if a.dtype.kind not in "fiuU":
             raise ContactresInputError(
