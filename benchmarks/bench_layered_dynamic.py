@@ -291,9 +291,10 @@ assembly and waves ~45 %, the film's Galerkin ~29 %. The 250 nm target is still 
 
 Session 31 (LY31): the film's near-field pair sums of its one harmonic (an axisymmetric stack) as
 one batched Gram product per k a, the harmonic folded into the near-field weights
-(``contactres.dynamic._exact._gram_pair_sums``: one BLAS call instead of a product per pair and a
-matrix-vector call per first order, and no second (orders x k a x nodes) weighted copy); the
-points' pieces cut by slicing instead of np.split (two axis swaps per piece, ~400 calls per curve);
+(``contactres.dynamic._exact._gram_pair_sums``: one numpy call, one zgemm per k a, instead of a
+product per pair and a matrix-vector call per first order, and no second (orders x k a x nodes)
+weighted copy); the points' pieces cut by slicing instead of np.split (an axis swap per piece,
+~400 pieces per curve);
 a stack's grouping key and its need of a correction formed once per material set instead of per
 point. The homogeneous curve (7 harmonics: the old path) is bit-identical; the layered normal
 curves moved <= 7.5e-15 (250 nm), 5.0e-15 (1 µm), 8.8e-15 (100 nm): the order of the near-field

@@ -39,6 +39,7 @@ __all__ = [
     "panel_search",
     "punch_resolution",
     "rule_on",
+    "split_at",
     "unit_rule",
     "weighted_gram",
 ]
@@ -200,12 +201,11 @@ def _real_panels(res: PunchResolution, points) -> list:
 
 def split_at(a: np.ndarray, cuts, axis: int = 0) -> list[np.ndarray]:
     """``np.split(a, cuts, axis)``: the views of ``a`` between the indices ``cuts`` along
-    ``axis`` (0 or 1), by slicing: np.split swaps the axes twice per piece (~400 calls per
-    layered curve for its 41 points' pieces), the same views."""
+    ``axis``, by slicing: np.split swaps the axes once per piece and once per call (~400
+    pieces per layered curve for its 41 points), the same views."""
     bounds = [0, *np.asarray(cuts, dtype=int).tolist(), a.shape[axis]]
-    if axis == 0:
-        return [a[lo:hi] for lo, hi in itertools.pairwise(bounds)]
-    return [a[:, lo:hi] for lo, hi in itertools.pairwise(bounds)]
+    before = (slice(None),) * (axis % a.ndim)
+    return [a[(*before, slice(lo, hi))] for lo, hi in itertools.pairwise(bounds)]
 
 
 def concatenated_ranges(counts: np.ndarray) -> np.ndarray:

@@ -13,8 +13,9 @@ and ``contactres.dynamic._layered_tangential`` (tangential).
 
 from __future__ import annotations
 
+import copy
 import math
-from dataclasses import dataclass, replace
+from dataclasses import dataclass, field
 
 import numpy as np
 
@@ -111,11 +112,27 @@ class Stack:
     inplane: bool = False  # the kernel: H_33 (normal punch) or the block H_αβ (tangential)
     # Equal for the stacks of one material set at any frequency (the waves of one slowness
     # are then the same: ``contactres.dynamic._layered_waves``): :func:`_set_key`.
-    key: bytes = b""
+    key: bytes = field(init=False, repr=False)
     # True under layers, or for a film that is not its reference: :func:`_needs_correction`.
     # Both are the same at every frequency, so formed once per material set (a few numpy
-    # calls per point otherwise: ~0.5 ms of the 41-point curves).
-    needs_correction: bool = True
+    # calls per point otherwise: ~0.5 ms of the 41-point curves) and carried to the stack of
+    # each frequency by :meth:`at_frequency`. Not arguments: a stack made or replaced with
+    # other materials forms its own (a key given or kept from another material set grouped
+    # it with that set's waves, 3 % off in Δg: review R31e).
+    needs_correction: bool = field(init=False, repr=False)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "key", _set_key(self))
+        object.__setattr__(self, "needs_correction", _needs_correction(self))
+
+    def at_frequency(self, omega: float, k_max: float) -> Stack:
+        """This stack at the angular frequency ``omega`` (rad/s) with its largest shear wave
+        number ``k_max`` (1/m): a copy with those two fields set, its key and
+        ``needs_correction`` kept (neither depends on ω: :func:`_set_key`)."""
+        out = copy.copy(self)
+        object.__setattr__(out, "omega", omega)
+        object.__setattr__(out, "k_max", k_max)
+        return out
 
     @property
     def pole(self) -> float:
@@ -167,7 +184,7 @@ def stack_at(
     if key not in known:
         known[key] = _frequency_free(mats, thicknesses, film, q, inplane, known)
     fixed, slow_max = known[key]
-    return replace(fixed, omega=omega, k_max=omega * slow_max)
+    return fixed.at_frequency(omega, omega * slow_max)
 
 
 def _frequency_free(mats, thicknesses, film: Material, q: float, inplane: bool, known: dict):
@@ -208,7 +225,6 @@ def _frequency_free(mats, thicknesses, film: Material, q: float, inplane: bool, 
         axisymmetric=all(p[2] for p in props),
         inplane=inplane,
     )
-    stack = replace(stack, key=_set_key(stack), needs_correction=_needs_correction(stack))
     return stack, max(p[0] for p in props)
 
 
