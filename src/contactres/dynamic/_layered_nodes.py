@@ -205,7 +205,8 @@ def split_at(a: np.ndarray, cuts, axis: int = 0) -> list[np.ndarray]:
     pieces per layered curve for its 41 points), the same views."""
     bounds = [0, *np.asarray(cuts, dtype=int).tolist(), a.shape[axis]]
     before = (slice(None),) * (axis % a.ndim)
-    return [a[(*before, slice(lo, hi))] for lo, hi in itertools.pairwise(bounds)]
+    index = [(*before, slice(lo, hi)) for lo, hi in itertools.pairwise(bounds)]
+    return [a[i] for i in index]
 
 
 def concatenated_ranges(counts: np.ndarray) -> np.ndarray:
