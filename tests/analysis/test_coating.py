@@ -527,6 +527,37 @@ def test_the_wider_table_holds_the_radii_the_film_gives_over_the_fits_bounds():
     assert more.radius_range[0] == lo and more.radius_range[1] > hi
 
 
+def test_the_wider_table_of_a_thin_soft_film_stops_at_its_reach():
+    # A film of 20 MPa (static) and 150 nm: the bound by its softest layer reaches ~850
+    # thicknesses, beyond what the layered solver takes (~525: it raised, and the whole
+    # analysis was lost as if the user's input were wrong, review R31f). The widened table
+    # stops at _WIDE_REACH thicknesses (then the fit is withheld, as before the widening); the
+    # bound is checked against the film's own half-space with Eq. 9, independently of it.
+    import pandas as pd
+
+    from contactres.analysis import _coating
+    from contactres.analysis._coating import _radii, _wider_law
+
+    nu, f, wt = 0.3, 15e6, 3.0
+    g1 = (8e9 - 20e6) / (2 * (1 + nu)) * (1 + wt**2) / wt**2
+    law_ = cr.Prony(20e6 / (2 * (1 + nu)), [(g1, wt / (2 * np.pi * f))])
+    film, h = cr.ViscoelasticMaterial.isotropic(law_, poisson=nu), 150e-9
+    law = build_law(as_coating((film, h)), NU, f, (42e9, 175e9), (3.2e-6, 1.0e-5))
+    part = pd.DataFrame({"normal_force_N": [2e-3, 30e-3], "kappa_N_per_m": [3e5, 8e5]})
+    out = {"E_Pa": 70e9, "gamma_J_m2": 0.1, "sphere_radius_m": R}
+    radii = _radii(law, out, part)
+    assert radii[2].any()
+    # The unbounded top: JKR on the film's own half-space at 30 mN (E* of the film in
+    # series with the sphere's at the table's lowest E), far beyond the reach.
+    film_E = 20e6 / (1 - nu**2)
+    E_star = 1 / (1 / film_E + (1 - NU**2) / 42e9)
+    assert jkr_radius(30e-3, 2 * E_star * (1 - NU**2), 0.1, R) > 525 * h
+    wide = _wider_law(law, out, {"gamma_J_m2": 0.1}, radii)
+    assert wide is not None
+    hi = wide.radius_range[1]
+    assert hi == pytest.approx(_coating._WIDE_REACH * h, rel=1e-9)
+
+
 @pytest.mark.parametrize("shape", [(24,), (3, 200, 6), (7, 3)])
 def test_the_sum_over_the_E_nodes_is_lagrange_interpolation_and_numpys_sum(shape):
     # _node_sum is the interpolation in ln E of CoatedLaw (weights (..., n_E, 1), the nodes'
