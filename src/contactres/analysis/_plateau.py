@@ -327,7 +327,9 @@ def fit_plateau_loops(
     the other errors those of the fit with d_c held at 0. A row with a NaN or an inf among its
     values, noise levels, u_c or θ start, or fewer than 3 points of weight > 0 (4 parameters),
     has no fit: NaN, edge "" (:mod:`contactres.analysis._bad_rows`); the other rows' results
-    are those of a batch without it.
+    are those of a batch without it, bit for bit. Where amplitudes repeat, the batch without it
+    may be pooled narrower (:func:`pool_repeats`: the widest row sets the width), so they may
+    differ by rounding from those of the same batch with that row clean.
     """
     starts = () if theta_start is None else (theta_start,)
     good = usable_rows((u, df, dg, w), (sigma_df, sigma_dg, u_c, *starts), 3)
