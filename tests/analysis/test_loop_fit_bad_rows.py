@@ -159,3 +159,22 @@ def test_inverses_of_matrices_that_are_not_finite_are_nan():
         assert np.isnan(got[[1, 3]]).all() and (got[5] == 0.0).all()
         eye = np.broadcast_to(np.eye(size), (4, size, size))
         np.testing.assert_allclose(got[[0, 2, 4, 6]] @ m[[0, 2, 4, 6]], eye, atol=1e-9)
+
+
+@pytest.mark.parametrize("name", ["cattaneo-mindlin", "savkoor", "plateau"])
+def test_copies_of_one_amplitude_count_once(name):
+    # The loops are functions of the amplitude: three points at one amplitude give two
+    # residuals' worth (Δf and ΔΓ there), fewer than the loops' 3 or 4 parameters, so the row
+    # has no fit; three points at three amplitudes are enough for both (6 residuals).
+    fitter = _fitters()[name]
+    good, _ = _batch()
+    u, df, dg, w = (a.copy() for a in good[:4])
+    w[[3, 6], 3:] = 0.0
+    u[3, 1:3] = u[3, 0]
+    got = fitter(u, df, dg, w, *good[4:])
+    assert got.iloc[3].drop("edge").isna().all() and got["edge"][3] == ""
+    assert np.isfinite(got["df0_Hz"][6])  # (fitted; the plateau's errors may be NaN at 3)
+    kept = np.r_[0:3, 4:24]
+    alone = fitter(*(a[kept] for a in (u, df, dg, w, *good[4:])))
+    for col in got.columns:
+        assert got[col].to_numpy()[kept].tobytes() == alone[col].to_numpy().tobytes(), col
