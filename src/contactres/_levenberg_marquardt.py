@@ -1,6 +1,8 @@
 """The batched Levenberg-Marquardt solver of the package's own fits (:mod:`contactres.fitting`
 holds its public names: :func:`levenberg_marquardt`, :class:`LMOptions`,
-:class:`LeastSquaresResult`, :func:`solve_stacked`).
+:class:`LeastSquaresResult`, :func:`solve_stacked`; :func:`solve_finite_stacked`, the same
+solve without the test for NaN and inf, is the package's own, for hot paths whose systems are
+finite: the plateau fit of :mod:`contactres.analysis`).
 
 :func:`levenberg_marquardt` minimises χ² of many independent problems at once (a leading batch
 axis; one problem is a batch of one), each with its own damping and stopping, with box bounds
@@ -23,7 +25,13 @@ from ._summary import Summarised
 from ._summary import values as value_range
 from .errors import ContactresInputError
 
-__all__ = ["LMOptions", "LeastSquaresResult", "levenberg_marquardt", "solve_stacked"]
+__all__ = [
+    "LMOptions",
+    "LeastSquaresResult",
+    "levenberg_marquardt",
+    "solve_finite_stacked",
+    "solve_stacked",
+]
 
 #: Relative singular value below which a direction of the (scaled) Jacobian is never moved: the
 #: data say nothing about it (the rounding of J is ~1e-16 of its largest singular value).

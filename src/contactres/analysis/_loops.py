@@ -629,7 +629,9 @@ def fit_cm_loops(
 
     Parameters
     ----------
-    u, df, dg, w : (S, M) amplitudes (m), shifts (Hz), weights (0 for padding)
+    u, df, dg, w : (S, M) amplitudes (m), shifts (Hz), weights (0 for padding); the padding
+        must be finite too (e.g. the row's last amplitude and shifts of 0): a NaN there, as
+        in NaN padding, makes its row one with no fit
     sigma_df, sigma_dg : (S,) noise levels of the two channels, Hz
     table : the loop table (:func:`cm_loop_table`; built here if None)
     rounds : zoom rounds of the grid search in θ (each refines the step 4x; then a parabola)
@@ -639,9 +641,10 @@ def fit_cm_loops(
     DataFrame with ``df0_Hz`` = Pκ, ``dgamma0_Hz`` = Pωξ, ``theta_per_m`` = κ/(μF_N), their standard
     errors (``*_err``), ``cov_df0_lntheta``, ``x_max`` = θ·max(u0) and ``edge`` ("low" if no slip
     is resolved, "high" if the best fit is gross sliding beyond the table, "" otherwise). A row
-    with a NaN or an inf among its values or noise levels, or fewer than 2 points of weight
-    > 0 (3 parameters), has no fit: NaN, edge "" (:mod:`contactres.analysis._bad_rows`); the
-    other rows' results are those of a batch without it.
+    with a NaN or an inf among its values or noise levels, or fewer than 2 distinct amplitudes
+    of weight > 0 (3 parameters), has no fit: NaN, edge ""
+    (:mod:`contactres.analysis._bad_rows`); the other rows' results are those of a batch
+    without it.
     """
     good = usable_rows((u, df, dg, w), (sigma_df, sigma_dg), 2)
     if good is not None:

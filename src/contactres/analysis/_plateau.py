@@ -310,7 +310,9 @@ def fit_plateau_loops(
 
     Parameters
     ----------
-    u, df, dg, w : (S, M) amplitudes (m), shifts (Hz), weights (0 for padding)
+    u, df, dg, w : (S, M) amplitudes (m, ascending in each row), shifts (Hz), weights (0 for
+        padding); the padding must be finite too (e.g. the row's last amplitude and shifts of
+        0): a NaN there, as in NaN padding, makes its row one with no fit
     sigma_df, sigma_dg : (S,) noise levels of the two channels, Hz
     u_c : (S,) start of the critical displacement (the hinge of the plateau model), m
     table : the Cattaneo-Mindlin loop table for the start of θ (built here if None)
@@ -325,9 +327,11 @@ def fit_plateau_loops(
     of d_c with Δf0 and ln θ, ``cov_df0_d_c`` (Hz m) and ``cov_lntheta_d_c`` (m). A fit on the
     bound (d_c/u_max < :data:`PLATEAU_D_C_BOUND`): ``d_c_m`` 0, its error and covariances NaN,
     the other errors those of the fit with d_c held at 0. A row with a NaN or an inf among its
-    values, noise levels, u_c or θ start, or fewer than 3 points of weight > 0 (4 parameters),
-    has no fit: NaN, edge "" (:mod:`contactres.analysis._bad_rows`); the other rows' results
-    are those of a batch without it.
+    values, noise levels, u_c or θ start, or fewer than 3 distinct amplitudes of weight > 0 (4
+    parameters), has no fit: NaN, edge "" (:mod:`contactres.analysis._bad_rows`); the other
+    rows' results are those of a batch without it, bit for bit. Where amplitudes repeat, the
+    batch without it may be pooled narrower (:func:`pool_repeats`: the widest row sets the
+    width), so they may differ by rounding from those of the same batch with that row clean.
     """
     starts = () if theta_start is None else (theta_start,)
     good = usable_rows((u, df, dg, w), (sigma_df, sigma_dg, u_c, *starts), 3)

@@ -420,13 +420,21 @@ def assemble(theta, r, J, model, setup, sol, nfev: int) -> RatioFit:
     dof = G - P
     chi2_dof = chi2 / dof if dof > 0 else np.nan
     inflate = max(1.0, chi2_dof) if dof > 0 else 1.0
-    _, s, Vt = np.linalg.svd(J, full_matrices=False)
-    tiny = s.max() * 1e-14
-    inv_s2 = np.where(s > tiny, 1.0 / np.where(s > tiny, s, 1.0) ** 2, np.inf)
-    with np.errstate(invalid="ignore"):
-        cov = (Vt.T * inv_s2) @ Vt * inflate
-    cov = np.where(np.isnan(cov), np.inf, cov)
-    sr, dirs = profiled_ratio_svd(J, n_scale)
+    finite_j = bool(np.isfinite(J).all())
+    if finite_j:
+        _, s, Vt = np.linalg.svd(J, full_matrices=False)
+        tiny = s.max() * 1e-14
+        inv_s2 = np.where(s > tiny, 1.0 / np.where(s > tiny, s, 1.0) ** 2, np.inf)
+        with np.errstate(invalid="ignore"):
+            cov = (Vt.T * inv_s2) @ Vt * inflate
+        cov = np.where(np.isnan(cov), np.inf, cov)
+        sr, dirs = profiled_ratio_svd(J, n_scale)
+    else:
+        # The solver stopped where the model's derivatives are not finite (its message, in
+        # the warnings, says so): no curvature there, so no error is finite and no combination
+        # of the ratios is determined (LAPACK's SVD of such a J raised an internal error).
+        s, cov = np.full(P, np.nan), np.full((P, P), np.inf)
+        sr, dirs = np.full(P - n_scale, np.nan), np.eye(P - n_scale)
     lr = theta[n_scale:]
     with np.errstate(divide="ignore"):
         rel = np.where(sr > 0, np.sqrt(inflate) / np.where(sr > 0, sr, 1.0), np.inf)
@@ -443,7 +451,12 @@ def assemble(theta, r, J, model, setup, sol, nfev: int) -> RatioFit:
             "(frame convention), the quantity ('stiffness' vs 'modulus') and the errors"
         )
     n_ok, k = int(identified.sum()), len(lr)
-    if n_ok < k:
+    if not finite_j:
+        warnings.append(
+            "no error and no combination of the ratios determined: the model's derivatives "
+            "are not finite at the last point of the fit"
+        )
+    elif n_ok < k:
         missing = "; ".join(
             f"{param.combination(d)} (relative error {e:.2g})"
             for d, e in zip(dirs[n_ok:], rel[n_ok:], strict=True)
@@ -453,7 +466,7 @@ def assemble(theta, r, J, model, setup, sol, nfev: int) -> RatioFit:
             f"error > {IDENTIFIABILITY_RTOL:g}): {missing}. The individual ratios are not "
             f"reported; {param.advice}"
         )
-    if n_ok == 0:
+    if n_ok == 0 and finite_j:
         warnings.append(
             f"even the strongest combination is not determined (relative error {rel[0]:.2g}): "
             "check that the map varies with orientation"
