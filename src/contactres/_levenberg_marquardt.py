@@ -28,6 +28,7 @@ from .errors import ContactresInputError
 __all__ = [
     "LMOptions",
     "LeastSquaresResult",
+    "all_finite",
     "levenberg_marquardt",
     "solve_finite_stacked",
     "solve_stacked",
@@ -49,8 +50,9 @@ class LMOptions:
     ----------
     damping : "marquardt": the damping term is λ diag(JᵀJ) (D. W. Marquardt, J. SIAM 11, 431
         (1963): invariant to the units of the parameters); "levenberg": λ s₀² I, s₀² the
-        largest eigenvalue of JᵀJ (K. Levenberg, Q. Appl. Math. 2, 164 (1944); for parameters
-        of one kind, e.g. all logarithms)
+        largest eigenvalue of JᵀJ, floored at 1e-300 (a zero JᵀJ still gets a solvable damped
+        system) (K. Levenberg, Q. Appl. Math. 2, 164 (1944); for parameters of one kind, e.g.
+        all logarithms)
     update : "nielsen": after a success λ is multiplied by max(1/3, 1 - (2ρ - 1)³) (ρ: actual
         over predicted decrease of χ²), after a failure by ν, which doubles with each failure
         in a row (H. B. Nielsen, report IMM-REP-1999-05, Technical University of Denmark);
@@ -373,7 +375,7 @@ def _broken_rows(loc, rows: np.ndarray) -> np.ndarray | None:
     Jacobian form raise for the whole batch), so such a problem stops where it is."""
     # (the Jacobian form's gradient Jᵀr: of the Jacobian and the finite residuals)
     keys = ["jacobian"] if "jacobian" in loc else [k for k in ("gradient", "hessian") if k in loc]
-    if _all_finite(*(loc[k] for k in keys)):
+    if all_finite(*(loc[k] for k in keys)):
         return None
     finite = np.ones(rows.size, dtype=bool)
     for k in keys:
@@ -497,9 +499,9 @@ def solve_stacked(a, b):
     NaN or an inf gets NaN throughout (not LAPACK's or Cramer's partial values), without a
     warning; for P != 2 a row that LAPACK's LU finds singular (an exact zero pivot, as of a
     matrix of zeros) gets NaN. For P = 2 a determinant 0 is replaced by the smallest normal
-    double instead, so that the damped Levenberg-Marquardt step of a problem without data (a
-    zero system whose damping underflows) is 0/tiny = 0, not NaN; a singular row with b off
-    its range gives ±inf there.
+    double instead (the rule of :func:`solve_finite_stacked`, which the solver's damped steps
+    take: the step of a problem without data, a zero system whose damping underflows, is then
+    0/tiny = 0, not NaN); a singular row with b off its range gives ±inf there.
     """
     # (invalid: inf - inf, inf/inf and 0·inf of a row with an inf, made NaN below)
     with np.errstate(invalid="ignore"):
@@ -507,17 +509,18 @@ def solve_stacked(a, b):
     # The solutions tested, not a and b: they are new and contiguous, while a and b may be
     # views (the plateau fit's are), which np.vdot would copy. A NaN or inf in a or b leaves
     # one in its row's solution; the rows are told apart only then (the usual case: one test).
-    if not _all_finite(out):
+    if not all_finite(out):
         finite = np.isfinite(a).all(axis=(1, 2)) & np.isfinite(b).all(axis=(1, 2))
         out[~np.broadcast_to(finite, out.shape[:1])] = np.nan
     return out
 
 
-def _all_finite(*arrays) -> bool:
+def all_finite(*arrays) -> bool:
     """Whether every entry of float ``arrays`` is finite, by the sum of their sums of squares:
     a NaN or an inf makes it NaN or inf. An overflow of finite entries answers False too,
     which costs its caller only its row-by-row test. (~8k instructions a contiguous array of
-    ~10³ entries: half of isfinite(a).all(), a reduction's setup; np.vdot copies any other.)"""
+    ~10³ entries: half of isfinite(a).all(), a reduction's setup; np.vdot copies any other.)
+    For the package's guards of batched fits (one test in the usual case, all finite)."""
     total = 0.0
     for a in arrays:
         total += np.vdot(a, a)

@@ -11,9 +11,10 @@ from contactres.analysis._loops import (
     _inverse_3x3,
     cm_loop_table,
     fit_cm_loops,
+    pinv_finite,
     savkoor_loop_table,
 )
-from contactres.analysis._plateau import _pinv_finite, fit_plateau_loops, pool_repeats
+from contactres.analysis._plateau import fit_plateau_loops, pool_repeats
 
 # What is wrong with each bad row (its index in the batch of 24 sweeps).
 BAD = {
@@ -143,11 +144,11 @@ def test_a_batch_of_bad_rows_only_is_all_nan():
 
 
 def test_inverses_of_matrices_that_are_not_finite_are_nan():
-    # _inverse_3x3 (the loop fits' errors) and _pinv_finite (the plateau fit's): a NaN or inf
+    # _inverse_3x3 (the loop fits' errors) and pinv_finite (the plateau fit's): a NaN or inf
     # matrix gives NaN, the others are what they are in a stack without it (and the inverse
     # to rounding, checked against the identity); a zero matrix keeps pinv's zeros.
     rng = np.random.default_rng(2)
-    for inverse, size in ((_inverse_3x3, 3), (_pinv_finite, 4)):
+    for inverse, size in ((_inverse_3x3, 3), (pinv_finite, 4)):
         j = rng.normal(size=(7, 12, size))
         m = j.transpose(0, 2, 1) @ j
         m[1, 0, 2] = m[1, 2, 0] = np.nan

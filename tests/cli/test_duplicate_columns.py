@@ -548,3 +548,27 @@ def test_a_table_an_earlier_inversion_wrote_is_refused_in_one_line(tmp_path):
         "'tip_position_used' (column 13), 'sigma_N_s_per_m' (column 14), 'mode_spread' "
         "(column 15), ... 13 in all are columns the inversion computes"
     )
+
+
+@pytest.mark.parametrize(
+    ("command", "source", "options"),
+    [
+        ("afm invert", "example_afm.csv", []),
+        ("afm invert", "example_afm.csv", ["--crystal", "Si"]),
+        ("rum invert", "example_rum.csv", []),
+    ],
+)
+def test_the_names_refused_are_every_column_the_run_adds(tmp_path, command, source, options):
+    # The lists the refusal reads against what the run writes after the input's columns (a
+    # column added to the output but not to the list would be overwritten without a word:
+    # review R31g).
+    from contactres.analysis._resonance_tables import _AFM_COMPUTED, _AFM_DYNAMIC, _RUM_COMPUTED
+
+    out = tmp_path / "o.csv"
+    r = run(*command.split(), DATA / source, "--out", out, *options)
+    assert r.exit_code == 0, r.output
+    added = set(_rows(out)[0]) - set(_rows(DATA / source)[0])
+    if command == "rum invert":
+        assert added == set(_RUM_COMPUTED)
+    else:
+        assert added == set(_AFM_COMPUTED) | (set(_AFM_DYNAMIC) if options else set())

@@ -15,10 +15,10 @@ BIC); the fits are also called directly.
 
 from __future__ import annotations
 
-import math
-
 import numpy as np
 import pandas as pd
+
+from .._levenberg_marquardt import all_finite
 
 __all__ = ["spread_rows", "usable_rows"]
 
@@ -54,9 +54,8 @@ def usable_rows(points, per_row, min_points: int) -> np.ndarray | None:
     u, data = arrays[0], arrays[3] > 0
     repeats = (u[:, 1:] == u[:, :-1]) & data[:, 1:] & data[:, :-1]
     good = np.count_nonzero(data, axis=1) - np.count_nonzero(repeats, axis=1) >= min_points
-    # (a NaN or an inf makes a sum of squares NaN or inf: a third of isfinite(a).all()'s cost;
-    # an overflow of finite values only sends the rows to the test one by one below)
-    if good.all() and math.isfinite(sum(np.vdot(a, a) for a in arrays)):
+    # (an overflow of finite values only sends the rows to the test one by one below)
+    if good.all() and all_finite(*arrays):
         return None
     for a in arrays:
         good &= np.isfinite(a).reshape(len(good), -1).all(axis=1)

@@ -1,6 +1,6 @@
 """The bootstrap of the coated fit: E and γ of every resample at once (issue 26, point 4).
 
-The coated law (:class:`contactres.analysis._coating.CoatedLaw`) has no closed form in E (the
+The coated law (:class:`contactres.analysis._coating_law.CoatedLaw`) has no closed form in E (the
 uncoated law's κ ∝ E^(2/3) gives paper 2's bootstrap its linear least squares in E^(2/3),
 :func:`contactres.analysis._jkr.bootstrap_jkr`), so every resample's least-squares fit is
 found on a grid of (E, γ) evaluated once for all resamples (the weighted residual sums of
@@ -24,7 +24,7 @@ _GN_STEPS = 2
 
 def resampled_coated(law, F, kappa, W, R: float, res: FitResult, gamma_max: float):
     """E and γ of the coated fit for every row of weights ``W`` (B, points), all at once
-    (``law``: the group's :class:`~contactres.analysis._coating.CoatedLaw`; this module does
+    (``law``: the group's :class:`~contactres.analysis._coating_law.CoatedLaw`; this module does
     not import it: the coated fit imports this one).
 
     The same estimator as :func:`~contactres.analysis._coating.fit_coated` (least squares of

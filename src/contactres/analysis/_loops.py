@@ -73,6 +73,7 @@ __all__ = [
     "interpolate_table",
     "loop_fit_fields",
     "loop_tables",
+    "pinv_finite",
     "plateau_loop_shape",
     "projection_data",
     "savkoor_loop_shape",
@@ -817,9 +818,19 @@ def _inverse_3x3(m: np.ndarray) -> np.ndarray:
     with np.errstate(divide="ignore", invalid="ignore"):
         out = adj / (det[:, None, None] * d[:, :, None] * d[:, None, :])
     if not good.all():
-        bad = np.flatnonzero(~good & np.isfinite(m).all(axis=(1, 2)))
-        out[~good] = np.nan
-        out[bad] = np.linalg.pinv(m[bad])
+        out[~good] = pinv_finite(m[~good])
+    return out
+
+
+def pinv_finite(m: np.ndarray) -> np.ndarray:
+    """numpy.linalg.pinv of a stack, NaN for a matrix that is not finite (a fit that failed,
+    e.g. on a hinge beyond its sweep's amplitudes), whose SVD would raise for the whole stack.
+    Each matrix's SVD is its own: the others' pseudo-inverses are pinv's of the stack."""
+    if np.isfinite(m).all():  # (the usual case: one test)
+        return np.linalg.pinv(m)
+    finite = np.isfinite(m).all(axis=(1, 2))
+    out = np.full(m.shape, np.nan)
+    out[finite] = np.linalg.pinv(m[finite])
     return out
 
 

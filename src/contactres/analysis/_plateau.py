@@ -54,6 +54,7 @@ from ._loops import (
     LoopTable,
     fit_cm_loops,
     loop_fit_fields,
+    pinv_finite,
     projection_data,
     solve_projected,
 )
@@ -92,6 +93,10 @@ PLATEAU_LM = LMOptions(damping="marquardt", update="nielsen", lam0=1e-3, lam_max
 #: 34 fits it moves off d_c > 0 end at d_c/u_max <= 1.4e-4, d_c <= 1.2e-5 of its own error,
 #: and the refit raises their RSS by <= 6e-6 relative.
 PLATEAU_D_C_BOUND = 1e-3
+
+# Bounds of ln θ(u_max - d_c), the fit's first parameter: from no slip resolved (x_max =
+# 10^-2.5) to gross sliding (X_MAX).
+_LY_BOUNDS = (np.log(10.0**-2.5), np.log(X_MAX))
 
 #: Numeric columns of :func:`fit_plateau_loops` (besides ``edge``).
 PLATEAU_LOOP_COLUMNS = (
@@ -349,7 +354,7 @@ def fit_plateau_loops(
     umax = np.max(np.where(w > 0, u, 0.0), axis=1)
     floor_f = 1e-6 * np.maximum(np.abs(df).max(axis=1), 1e-12)
     floor_g = 1e-6 * np.maximum(np.abs(dg).max(axis=1), 1e-12)
-    lo = np.tile([np.log(10.0**-2.5), 0.0], (S, 1))
+    lo = np.tile([_LY_BOUNDS[0], 0.0], (S, 1))
     # d_c/umax: from 0 (no plateau) to the amplitude that leaves PLATEAU_MIN_SLOPE - 1 distinct
     # amplitudes above it (a row may repeat amplitudes: the ramps of a block fitted jointly).
     data = w > 0
@@ -357,7 +362,7 @@ def fit_plateau_loops(
     count = np.cumsum(distinct, axis=1)  # u ascending: distinct amplitudes <= u
     above = count[:, -1:] - count
     room = data & (above >= PLATEAU_MIN_SLOPE - 1)
-    hi = np.column_stack([np.full(S, np.log(X_MAX)), np.max(np.where(room, u, 0.0), axis=1) / umax])
+    hi = np.column_stack([np.full(S, _LY_BOUNDS[1]), np.max(np.where(room, u, 0.0), axis=1) / umax])
     # Start of θ: the Cattaneo-Mindlin loop fitted to the amplitudes in excess of the hinge.
     if theta_start is None:
         excess = np.maximum(u - u_c[:, None], 0.0)
@@ -456,7 +461,7 @@ def fit_plateau_loops(
     dl0 = np.concatenate([first, second])
     uc2 = np.tile(u_c / umax, 2)
     ly0 = np.log(np.tile(np.maximum(y0, 1e-300), 2) * (1.0 - dl0) / np.maximum(1.0 - uc2, 1e-12))
-    p0 = np.column_stack([np.clip(ly0, np.log(10.0**-2.5), np.log(X_MAX)), dl0])
+    p0 = np.column_stack([np.clip(ly0, *_LY_BOUNDS), dl0])
     # Pass 1 only chooses between the starts and brings pass 2 near the optimum: 1e-4 will do.
     # A second start that is the first (no amplitude below the hinge) is not run twice: a
     # row's iteration depends on its own start and data alone, so it would end where the first
@@ -508,7 +513,7 @@ def fit_plateau_loops(
     norm = np.linalg.norm(J, axis=1)
     norm = np.where(norm > 0, norm, 1.0)
     Js = J / norm[:, None, :]
-    cov = _pinv_finite(np.einsum("smi,smj->sij", Js, Js)) / (norm[:, :, None] * norm[:, None, :])
+    cov = pinv_finite(np.einsum("smi,smj->sij", Js, Js)) / (norm[:, :, None] * norm[:, None, :])
     cov *= (fit["chi2"] / np.maximum(2 * n - 4, 1))[:, None, None]
     edge = np.where(ly > hi[:, 0] - 1e-6, "high", np.where(ly < lo[:, 0] + 1e-6, "low", ""))
     return pd.DataFrame(
@@ -526,15 +531,3 @@ def fit_plateau_loops(
             "rss_dgamma": fit["rss_g"],
         }
     )
-
-
-def _pinv_finite(m: np.ndarray) -> np.ndarray:
-    """numpy.linalg.pinv of a stack, NaN for a matrix that is not finite (a fit that failed,
-    e.g. on a hinge beyond its sweep's amplitudes), whose SVD would raise for the whole stack.
-    Each matrix's SVD is its own: the others' pseudo-inverses are pinv's of the stack."""
-    if np.isfinite(m).all():  # (the usual case: one test)
-        return np.linalg.pinv(m)
-    finite = np.isfinite(m).all(axis=(1, 2))
-    out = np.full(m.shape, np.nan)
-    out[finite] = np.linalg.pinv(m[finite])
-    return out

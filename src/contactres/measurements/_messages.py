@@ -7,6 +7,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from .._column_names import SHOWN_CHARS
+
 if TYPE_CHECKING:  # annotations only: the messages need no pandas (the export readers, which
     import pandas as pd  # use them, are imported by the command line's help: no pandas there)
 
@@ -23,8 +25,8 @@ __all__ = [
     "where_rows",
 ]
 
-#: Longest value shown in a message (a 50 MB label is shown by its first characters).
-SHOWN_CHARS = 60
+# SHOWN_CHARS: the longest value shown in a message (a 50 MB label is shown by its first
+# characters), one figure for the column names' messages and these.
 
 
 def shown_value(value) -> str:
