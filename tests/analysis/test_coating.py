@@ -527,6 +527,29 @@ def test_the_wider_table_holds_the_radii_the_film_gives_over_the_fits_bounds():
     assert more.radius_range[0] == lo and more.radius_range[1] > hi
 
 
+def test_the_wider_table_of_a_thick_soft_film_is_a_tight_bound():
+    # Where the bound is tight (50 µm of a 2 GPa film, loads 0.1-1 mN: the contact sits in
+    # the film, whose half-space the bound takes), the force at the table's top radius on the
+    # layered solution is within ~1 % above the largest load (review R31f: P/F 1.009-1.012).
+    # A bound with the smaller γ of the two fits, γ = 0, or the softest pair's sphere at the
+    # range's stiff end falls below the load there; each is a wrong bound, and this fails.
+    import pandas as pd
+
+    from contactres.analysis._coating import _radii, _wider_law
+
+    film, h = cr.Material.isotropic(2e9, 0.3, name="soft film"), 50e-6
+    law = build_law(as_coating((film, h)), NU, 15e6, (40e9, 160e9), (5e-6, 6e-6))
+    part = pd.DataFrame({"normal_force_N": [1e-4, 1e-3], "kappa_N_per_m": [1e5, 2e5]})
+    out = {"E_Pa": 70e9, "gamma_J_m2": 0.1, "sphere_radius_m": R}
+    wide = _wider_law(law, out, {"gamma_J_m2": 0.05}, _radii(law, out, part))
+    lo, hi = wide.radius_range
+    force = adhesive_force_at(law.bounds[0], 0.1, film, h, hi)
+    assert 1e-3 <= force <= 1.05e-3
+    for E in law.bounds:
+        assert adhesive_force_at(E, 0.1, film, h, hi) >= 1e-3
+        assert adhesive_force_at(E, 0.0, film, h, lo) <= 1e-4
+
+
 def test_the_wider_table_of_a_thin_soft_film_stops_at_its_reach():
     # A film of 20 MPa (static) and 150 nm: the bound by its softest layer reaches ~850
     # thicknesses, beyond what the layered solver takes (~525: it raised, and the whole
