@@ -14,8 +14,10 @@ from collections.abc import Callable, Collection, Iterable
 from .errors import ContactresInputError
 
 __all__ = [
+    "column_place",
     "excel_letters",
     "refuse_computed_names",
+    "refuse_line_name",
     "repeated_names",
     "repeats_text",
     "shown_names",
@@ -107,11 +109,7 @@ def refuse_computed_names(table, computed: Collection[str], source: str) -> None
     clash = [c for c in given if c in computed]
     if not clash:
         return
-    letters = table.attrs.get("column_letters", False)
-    shown = ", ".join(
-        f"{c!r} (column {excel_letters(i) if letters else i})"
-        for c, i in ((c, given.index(c) + 1) for c in clash[:5])
-    )
+    shown = ", ".join(f"{c!r} ({column_place(table, given.index(c) + 1)})" for c in clash[:5])
     more = f", ... {len(clash)} in all" if len(clash) > 5 else ""
     one = len(clash) == 1
     raise ContactresInputError(
@@ -120,3 +118,27 @@ def refuse_computed_names(table, computed: Collection[str], source: str) -> None
         f"replace {'its' if one else 'their'} values; rename {'it' if one else 'them'} (a table "
         "an inversion wrote: drop its computed columns first)"
     )
+
+
+def column_place(table, position: int) -> str:
+    """The place of a table's column as its file shows it: ``column 7`` (1 is the first), or
+    the spreadsheet's letters (``column G``) for a sheet of a workbook, whose reader says so in
+    ``attrs["column_letters"]``."""
+    letters = getattr(table, "attrs", {}).get("column_letters", False)
+    return f"column {excel_letters(position) if letters else position}"
+
+
+def refuse_line_name(
+    names: Iterable[str], where: str, place: Callable[[int], str], numbers: str
+) -> None:
+    """One-line error for a column (or array) named ``line`` among ``names``: the name the
+    readers give the row numbers they add, which would replace the file's own values.
+    ``where``: the file (and its header's line or row); ``place``: the text of the name at a
+    position (1 is the first), e.g. ``column 'line' (column G)``; ``numbers``: what the added
+    numbers are, e.g. ``line numbers of the file``."""
+    names = list(names)
+    if "line" in names:
+        raise ContactresInputError(
+            f"{where}: {place(names.index('line') + 1)} is the name contactres gives the "
+            f"{numbers}; rename it (e.g. scan_line)"
+        )

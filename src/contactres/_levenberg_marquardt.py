@@ -4,14 +4,9 @@ holds its public names: :func:`levenberg_marquardt`, :class:`LMOptions`,
 solve without the test for NaN and inf, is the package's own, for hot paths whose systems are
 finite: the plateau fit of :mod:`contactres.analysis`).
 
-:func:`levenberg_marquardt` minimises χ² of many independent problems at once (a leading batch
-axis; one problem is a batch of one), each with its own damping and stopping, with box bounds
-(projection), an admissible region (a step outside it fails like one that raises χ²) and
-optional geodesic acceleration; :class:`LMOptions` chooses among the classic variants (damping
-matrix, update of the damping, tolerances). It serves :func:`contactres.fitting.fit`, the
-plateau-loop fit of the sweeps (:mod:`contactres.analysis`, thousands of two-parameter problems
-in the Gauss-Newton form of variable projection) and the ratio fit of polycrystal maps
-(:mod:`contactres.polycrystal._ratio_fit`, one ill-conditioned problem in the Jacobian form).
+What the solver does and which fits it serves: :mod:`contactres.fitting`'s module docstring
+(the public face of these names); :func:`all_finite`, the one-test guard of the package's
+batched fits, is here too.
 """
 
 from __future__ import annotations

@@ -7,7 +7,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .._column_names import SHOWN_CHARS
+from .._column_names import SHOWN_CHARS, column_place
 
 if TYPE_CHECKING:  # annotations only: the messages need no pandas (the export readers, which
     import pandas as pd  # use them, are imported by the command line's help: no pandas there)
@@ -65,16 +65,6 @@ def column_named(table, col: str) -> str:
     of the message are the SI ones (a number the user wrote is shown converted)."""
     written = getattr(table, "attrs", {}).get("written_as", {}).get(col)
     return repr(col) if written is None else f"{written!r} (read in SI as {col})"
-
-
-def column_place(table, position: int) -> str:
-    """The place of a table's column as its file shows it: ``column 7`` (1 is the first), or
-    the spreadsheet's letters (``column G``) for a sheet of a workbook, whose reader says so in
-    ``attrs["column_letters"]``."""
-    from .._column_names import excel_letters
-
-    letters = getattr(table, "attrs", {}).get("column_letters", False)
-    return f"column {excel_letters(position) if letters else position}"
 
 
 def line_word(table) -> str:

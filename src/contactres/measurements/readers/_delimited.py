@@ -24,7 +24,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..._column_names import SHOWN_PLACES, repeats_text, shown_names
+from ..._column_names import SHOWN_PLACES, refuse_line_name, repeats_text, shown_names
 from ...errors import ContactresInputError
 from ...numerics import column_run_starts, repeat_runs
 
@@ -45,8 +45,6 @@ _DROPPED_LINE = re.compile(r"\n[\s#]")
 # The same in ASCII bytes: the white space of str.isspace there is \t-\r and \x1c-\x20.
 _DROPPED_LINE_ASCII = re.compile(rb"\n[\t-\r\x1c-\x20#]")
 _SPACE_OR_HASH = frozenset(b"\t\n\x0b\x0c\r\x1c\x1d\x1e\x1f #")
-#: The column of line numbers a reader adds to a table (a file's column of this name is refused).
-LINE = "line"
 #: Files of at least this many bytes are hashed in a thread beside their parsing (:func:`_hashing`).
 _HASHED_BESIDE = 1 << 20
 
@@ -158,7 +156,7 @@ def _check_header(path: Path, number: int, header: str, sep: str) -> list[str]:
     an error (pandas would rename them, ``df_Hz.1``, in quadratic time, and a reader would take
     the first column without a word), names that differ by outer blanks only included (``a b``
     and ``a  b`` are two names); so are two or more empty cells (one is a column pandas names
-    ``Unnamed: i``), the name :data:`LINE`, the column of line numbers the reader adds (the
+    ``Unnamed: i``), the name ``line``, the column of line numbers the reader adds (the
     file's own column would be replaced, its values lost), and a header the csv module cannot
     split (a field over its limit of 128 kB: no column name)."""
     try:
@@ -187,11 +185,12 @@ def _check_header(path: Path, number: int, header: str, sep: str) -> list[str]:
             f"{path}, line {number}: columns {shown}{more} of the header are empty; every "
             "column needs a name"
         )
-    if LINE in names:
-        raise ContactresInputError(
-            f"{path}, line {number}: column {LINE!r} (column {names.index(LINE) + 1}) is the "
-            "name contactres gives the line numbers of the file; rename it (e.g. scan_line)"
-        )
+    refuse_line_name(
+        names,
+        f"{path}, line {number}",
+        lambda i: f"column 'line' (column {i})",
+        "line numbers of the file",
+    )
     return names
 
 

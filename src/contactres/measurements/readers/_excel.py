@@ -23,7 +23,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from ..._column_names import excel_letters, repeats_text
+from ..._column_names import excel_letters, refuse_line_name, repeats_text
 from ...errors import ContactresInputError, MissingExtraError
 
 if TYPE_CHECKING:  # annotations: pandas is imported where a table is read (a numpy archive's
@@ -89,12 +89,12 @@ def _check_header(where: str, number: int, names: list[str]) -> None:
             f"{where}, row {number}: duplicate column name(s) {repeats}; every column needs "
             "its own name"
         )
-    if "line" in names:
-        raise ContactresInputError(
-            f"{where}, row {number}: column 'line' (column "
-            f"{excel_letters(names.index('line') + 1)}) is the name contactres gives the row "
-            "numbers of the sheet; rename it (e.g. scan_line)"
-        )
+    refuse_line_name(
+        names,
+        f"{where}, row {number}",
+        lambda i: f"column 'line' (column {excel_letters(i)})",
+        "row numbers of the sheet",
+    )
 
 
 def load_sheet(path: Path, kind: str) -> pd.DataFrame:

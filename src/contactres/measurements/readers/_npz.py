@@ -16,7 +16,7 @@ from pathlib import Path
 
 import numpy as np
 
-from ..._column_names import repeats_text
+from ..._column_names import refuse_line_name, repeats_text
 from ...errors import ContactresInputError
 from .._array_table import ArrayTable
 
@@ -69,11 +69,12 @@ def load(path: Path) -> ArrayTable:
             f"{path}: every array of the archive is one column, one-dimensional and of one "
             f"length; got {shown}"
         )
-    if "line" in columns:
-        raise ContactresInputError(
-            f"{path}: array 'line' (array {list(columns).index('line') + 1} of the archive) is "
-            "the name contactres gives the row numbers of the table; rename it (e.g. scan_line)"
-        )
+    refuse_line_name(
+        columns,
+        str(path),
+        lambda i: f"array 'line' (array {i} of the archive)",
+        "row numbers of the table",
+    )
     for name, a in columns.items():
         if a.dtype.kind not in "fiuU":
             raise ContactresInputError(
