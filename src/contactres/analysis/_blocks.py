@@ -17,20 +17,22 @@ lowest of these 2 x 4 criteria wins, except that a candidate nested in it (a nes
 :data:`~contactres.analysis._classify.NESTED`, and ``shared`` within ``per ramp``) is kept within
 ``delta_bic`` of the lowest, the simplest first, as for one sweep
 (:mod:`contactres.analysis._classify`). The runner-up is the best candidate of another class and
-``delta_bic`` its criterion minus the winner's. Every sweep of the block takes the block's
-class; its own parameters come from its own fit of that class. The friction law (Coulomb:
-Cattaneo-Mindlin or plateau; or Savkoor's constant traction) is first decided per experiment
-over all its loads (:func:`_friction_law`; ``pool_experiment``). With it, the shared criteria of the
-Cattaneo-Mindlin and the plateau loop weigh their μ against the friction of the experiment's
-other loads (:mod:`contactres.analysis._mu_prior`), and the plateau's critical displacement
-against the analysis's clear plateaus, both at once (:mod:`contactres.analysis._plateau_prior`).
-Where that leaves the plateau within :data:`PLATEAU_UNDECIDED` of the best other candidate, its
-shared criterion is instead the Cattaneo-Mindlin loop's minus 2 ln B, B the Bayes factor of the
-plateau integrated over d_c and the slip scale with both priors
-(:mod:`contactres.analysis._plateau_evidence`): in noisy data the plateau fit often ends on a
-bound of d_c, where the priors at its optimum say nothing. Where the block is ``shared``, the
-joint fit's parameters (μ, the Savkoor sliding force, d_c) are the block's values that the
-per-load statistics use.
+``delta_bic`` its criterion minus the winner's; where no other class has a criterion (e.g. a
+load whose Δf has the wrong sign for every loop) there is no runner-up, ``""``, and ``delta_bic``
+is inf, as for one sweep (:func:`~contactres.analysis._classify.runner_up`). Every sweep of the
+block takes the block's class; its own parameters come from its own fit of that class. The friction
+law (Coulomb: Cattaneo-Mindlin or plateau; or Savkoor's constant traction) is first decided per
+experiment over all its loads (:func:`_friction_law`; ``pool_experiment``). With it, the shared
+criteria of the Cattaneo-Mindlin and the plateau loop weigh their μ against the friction of the
+experiment's other loads (:mod:`contactres.analysis._mu_prior`), and the plateau's critical
+displacement against the analysis's clear plateaus, both at once
+(:mod:`contactres.analysis._plateau_prior`). Where that leaves the plateau within
+:data:`PLATEAU_UNDECIDED` of the best other candidate, its shared criterion is instead the
+Cattaneo-Mindlin loop's minus 2 ln B, B the Bayes factor of the plateau integrated over d_c and the
+slip scale with both priors (:mod:`contactres.analysis._plateau_evidence`): in noisy data the
+plateau fit often ends on a bound of d_c, where the priors at its optimum say nothing. Where the
+block is ``shared``, the joint fit's parameters (μ, the Savkoor sliding force, d_c) are the block's
+values that the per-load statistics use.
 """
 
 from __future__ import annotations
@@ -48,6 +50,7 @@ from ._classify import (
     fit_models,
     n_parameters,
     prefer,
+    runner_up,
     source_rss,
     source_valid,
 )
@@ -472,16 +475,14 @@ def choose_blocks(
     cols = np.arange(B)
     winner = classes[pick]
     others = np.where(classes[:, None] == winner[None, :], np.inf, crit)
-    runner = np.argmin(others, axis=0)
-    with np.errstate(invalid="ignore"):
-        evidence = others[runner, cols] - crit[pick, cols]
+    runner, evidence = runner_up(others, classes, crit[pick, cols])
 
     blocks["friction_law"] = family if family is not None else ""
     blocks["n_sweeps"] = R.astype(int)
     blocks["n_points"] = n.astype(int)
     blocks["model"] = winner
     blocks["shared"] = pick % 2 == 0
-    blocks["runner_up"] = classes[runner]
+    blocks["runner_up"] = runner
     blocks["delta_bic"] = evidence
     # The joint fit of the winning class (NaN where the ramps keep their own parameters).
     for field in (*_JOINT, *_JOINT_LOOP, *_JOINT_PLATEAU):
@@ -508,7 +509,7 @@ def choose_blocks(
 
     per_sweep.loc[member, "block"] = code[member]
     per_sweep.loc[member, "model"] = winner[code[member]]
-    per_sweep.loc[member, "runner_up"] = classes[runner][code[member]]
+    per_sweep.loc[member, "runner_up"] = runner[code[member]]
     per_sweep.loc[member, "delta_bic"] = evidence[code[member]]
     per_sweep.loc[member, "decided_by"] = "block"
     return blocks, per_sweep, sw, fields, fits

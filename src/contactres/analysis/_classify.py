@@ -25,8 +25,11 @@ Between models that are not nested (Cattaneo-Mindlin, Savkoor; Savkoor, plateau)
 alone decides. The
 runner-up is the class with the lowest BIC among the others, and ``delta_bic`` (column) is its
 BIC minus the winner's: the evidence for the choice (negative, down to -``delta_bic``, where a
-simpler nested class was kept against a slightly better one). :mod:`contactres.analysis._blocks`
-then makes the same choice for the ramps of one load block together.
+simpler nested class was kept against a slightly better one). Where no other class has a BIC
+(a sweep of one point: two residuals, fewer than a loop's three parameters) there is no
+runner-up (``""``) and the evidence is inf; where no class has one, NaN.
+:mod:`contactres.analysis._blocks` then makes the same choice for the ramps of one load block
+together.
 """
 
 from __future__ import annotations
@@ -57,6 +60,7 @@ __all__ = [
     "fit_sweeps",
     "n_parameters",
     "prefer",
+    "runner_up",
     "source_rss",
     "source_valid",
 ]
@@ -217,19 +221,49 @@ def prefer(criteria: np.ndarray, nested: np.ndarray, delta_bic: float) -> np.nda
     return np.argmax(close & nested[:, best], axis=0)
 
 
+def runner_up(
+    others: np.ndarray, names: np.ndarray, best: np.ndarray
+) -> tuple[np.ndarray, np.ndarray]:
+    """The runner-up of a choice and the evidence for it, for each column of ``others``.
+
+    Parameters
+    ----------
+    others : (K, S) the criteria of the candidates, inf for those of the winner's class (a
+        class is no rival of itself) and for those without a criterion
+    names : (K,) the class of each candidate
+    best : (S,) the winner's criterion
+
+    Returns
+    -------
+    runner_up : (S,) the class of the candidate with the lowest of ``others``; ``""`` (a text
+        cell's "none") where none has a criterion: a sweep of one point, whose loops have more
+        parameters than residuals, or a block whose loops all failed. An argmin over nothing
+        but inf would name the first class, the winner itself where that is ``elastic``.
+    evidence : (S,) the runner-up's criterion minus ``best``: inf where there is no runner-up,
+        NaN where the winner has no criterion either
+    """
+    S = others.shape[1]
+    runner = np.argmin(others, axis=0)
+    lowest = others[runner, np.arange(S)]
+    with np.errstate(invalid="ignore"):
+        evidence = lowest - best
+    return np.where(np.isfinite(lowest), names[runner], ""), evidence
+
+
 def choose(criteria: np.ndarray, delta_bic: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
     """The class chosen from BICs (4, S) by :func:`prefer` with :data:`NESTED`.
 
-    Returns the index of the winner, of the runner-up (lowest BIC among the others) and the
-    evidence: the runner-up's BIC minus the winner's.
+    Returns the index of the winner, the runner-up's class (:func:`runner_up`: the lowest BIC
+    among the other classes, ``""`` where none has one) and the evidence: the runner-up's BIC
+    minus the winner's.
     """
     choice = prefer(criteria, NESTED, delta_bic)
     S = criteria.shape[1]
     others = criteria.copy()
     others[choice, np.arange(S)] = np.inf
-    runner = np.argmin(others, axis=0)
-    with np.errstate(invalid="ignore"):
-        evidence = others[runner, np.arange(S)] - criteria[choice, np.arange(S)]
+    runner, evidence = runner_up(
+        others, np.asarray(AMPLITUDE_MODELS), criteria[choice, np.arange(S)]
+    )
     return choice, runner, evidence
 
 
@@ -352,7 +386,7 @@ def _choose_each(
     names = np.asarray(AMPLITUDE_MODELS)
     sw = apply_models(sw, fields, names[choice], exact_loop)
     sw["model_sweep"] = sw["model"]
-    sw["runner_up"] = names[runner]
+    sw["runner_up"] = runner
     sw["delta_bic"] = evidence
     sw["decided_by"] = "sweep"
     return sw

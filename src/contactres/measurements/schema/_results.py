@@ -125,13 +125,15 @@ _SWEEP_RESULT_COLUMNS = (
     Column(
         "runner_up",
         "text",
-        "the class with the next-best BIC (of the block where decided_by is block)",
+        "the class with the next-best BIC (of the block where decided_by is block); empty where "
+        "no other class has a BIC (e.g. a sweep of one point)",
         level="sweep",
     ),
     Column(
         "delta_bic",
         "-",
-        "BIC of the runner-up minus that of the chosen class: the evidence for the choice",
+        "BIC of the runner-up minus that of the chosen class: the evidence for the choice; empty "
+        "where there is no runner-up (inf in analyze()'s table: no rival at all)",
         level="sweep",
     ),
     Column(

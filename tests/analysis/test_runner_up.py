@@ -1,0 +1,103 @@
+"""The runner-up of a model choice is another class with a criterion, or none ("").
+
+A class is no rival of itself. Where no other class has a criterion — a sweep of one point
+(two residuals, Δf and ΔΓ: the elastic class's two parameters are determined, a loop's three
+are not), or a load whose Δf has the wrong sign for every exact loop (they need Δf0 > 0) — the
+base named the first class of an argmin over nothing but inf: ``elastic``, the winner itself
+("elastic beat elastic"). The expected runner-ups here are found again from the rows' own
+``bic_<class>`` columns by a plain minimum over the other classes, and from the counts of
+residuals and parameters.
+"""
+
+import warnings
+
+import numpy as np
+import pytest
+from test_trust import CONST, study
+
+from contactres.analysis import AnalysisSettings, analyze
+from contactres.analysis._classify import choose
+from contactres.analysis._models import AMPLITUDE_MODELS
+from contactres.measurements._sweeps import SweepWarning, validate_sweeps
+from contactres.measurements._synthetic import synthetic_sweeps
+
+RESIDUALS_PER_POINT = 2  # Δf and ΔΓ
+LOOP_PARAMETERS = 3  # the Cattaneo-Mindlin and Savkoor loops: Δf0, ΔΓ0, θ
+# Sweeps cut to their first few points (ramp 1 and 4: not used, so chosen alone) and a load
+# whose every ramp has Δf negated (its used ramps 2-4 are a block).
+CUT = {"glass/air/e1/F1/r4": 1, "glass/air/e1/F2/r1": 2, "glass/air/e1/F4/r1": 1}
+WRONG_SIGN = "glass/air/e2/F3/"
+
+
+@pytest.fixture(scope="module")
+def results():
+    raw = synthetic_sweeps(study(n_experiments=2), 5, constants=False)
+    names = raw["sweep"].astype(str).to_numpy()
+    drop = np.concatenate([np.flatnonzero(names == s)[k:] for s, k in CUT.items()])
+    raw.loc[np.char.startswith(names.astype(str), WRONG_SIGN), "df_Hz"] *= -1
+    raw = raw.drop(raw.index[drop]).reset_index(drop=True)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", SweepWarning)  # few points, one amplitude: as meant
+        table = validate_sweeps(raw, constants=CONST)
+    return analyze(table, settings=AnalysisSettings(bootstrap=0, workers=1))
+
+
+def _lowest_other(row) -> str:
+    """The class other than the row's model with the lowest finite BIC, "" if none."""
+    bics = {m: row[f"bic_{m}"] for m in AMPLITUDE_MODELS if m != row["model"]}
+    finite = {m: b for m, b in bics.items() if np.isfinite(b)}
+    return min(finite, key=finite.__getitem__) if finite else ""
+
+
+def test_sweeps_chosen_alone_name_the_lowest_other_class_or_none(results):
+    sw = results.sweeps
+    alone = sw[sw["decided_by"] == "sweep"]
+    assert set(CUT) <= set(alone["sweep"].astype(str))
+    for _, row in alone.iterrows():
+        expected = _lowest_other(row)
+        assert row["runner_up"] == expected, row["sweep"]
+        if expected:
+            assert row["delta_bic"] == row[f"bic_{expected}"] - row[f"bic_{row['model']}"]
+        else:
+            assert row["delta_bic"] == np.inf
+    # By the counts alone: one point has no rival of the elastic class, two points have one.
+    for name, points in CUT.items():
+        row = sw[sw["sweep"].astype(str) == name].iloc[0]
+        assert row["n_points"] == points
+        rivals = RESIDUALS_PER_POINT * points >= LOOP_PARAMETERS
+        assert (row["runner_up"] != "") == rivals, name
+        assert np.isfinite(row["delta_bic"]) == rivals, name
+
+
+def test_a_block_with_no_other_class_has_no_runner_up(results):
+    sw, blocks = results.sweeps, results.blocks
+    wrong = sw["sweep"].astype(str).str.startswith(WRONG_SIGN).to_numpy()
+    block = sw[wrong & (sw["decided_by"] == "block").to_numpy()]
+    assert len(block) == 3  # ramps 2-4
+    # No loop has a criterion with Δf of the wrong sign: elastic alone, no rival.
+    assert np.isinf(block[[f"bic_{m}" for m in AMPLITUDE_MODELS[1:]]].to_numpy()).all()
+    assert (block["model"] == "elastic").all()
+    assert (block["runner_up"] == "").all()
+    assert (block["delta_bic"] == np.inf).all()
+    row = blocks[blocks["block"] == block["block"].iloc[0]].iloc[0]
+    assert (row["model"], row["runner_up"], row["delta_bic"]) == ("elastic", "", np.inf)
+    # The other blocks have rivals: named, another class, finite evidence.
+    rest = blocks[blocks["block"] != row["block"]]
+    assert len(rest) > 0
+    assert (rest["runner_up"] != "").all() and np.isfinite(rest["delta_bic"]).all()
+
+
+def test_no_class_is_its_own_runner_up(results):
+    for table in (results.sweeps, results.blocks):
+        assert (table["runner_up"] != table["model"]).all()
+        assert table["runner_up"].isin(["", *AMPLITUDE_MODELS]).all()
+
+
+def test_no_criterion_at_all_keeps_the_simplest_class_without_evidence():
+    # Not reachable from validated data (the elastic mean always has one); the choice still
+    # says so: elastic kept, no runner-up, no evidence (NaN, not inf).
+    crit = np.array([[np.inf, 1.0], [np.inf, 0.0], [np.inf, 5.0], [np.inf, np.inf]])
+    choice, runner, evidence = choose(crit, 2.0)
+    assert [AMPLITUDE_MODELS[i] for i in choice] == ["elastic", "elastic"]  # nested, within 2
+    assert list(runner) == ["", "cattaneo-mindlin"]
+    assert np.isnan(evidence[0]) and evidence[1] == -1.0
