@@ -527,12 +527,50 @@ def test_the_wider_table_holds_the_radii_the_film_gives_over_the_fits_bounds():
     assert more.radius_range[0] == lo and more.radius_range[1] > hi
 
 
+def test_the_wider_table_interpolates_the_layered_solution_where_the_refit_works():
+    # The widened table of the test above (2 µm of the stiffening film: radii 2.7-25.8 µm, a/h
+    # 1.4-13, six radii as its first table: 5 a decade, at least 6) against the layered
+    # solution (_corrections at the radius, no table) at the refit's radii of 2-30 mN (10 and
+    # 15.7 µm, test_a_film_soft_statically_...) and midway between the nodes around them, E
+    # midway between the E nodes. Measured <= 4.7e-5 (P'; C 1.6e-5, κ 3.4e-5); the bottom
+    # interval (3.4 µm, a/h 1.7, below any radius of the fit) reaches 3.1e-4 in κ. Built with
+    # the first table's film, ν, frequency and E nodes (a wrong ν, frequency or number of E
+    # nodes: this fails).
+    import pandas as pd
+
+    from contactres.analysis._coating import _radii, _wider_law
+
+    film, h, f = StiffeningFilm(), 2e-6, 15e6
+    coating = as_coating((film, h))
+    law = build_law(coating, NU, f, (40e9, 160e9), (3e-6, 1.2e-5))
+    part = pd.DataFrame({"normal_force_N": [2e-3, 30e-3], "kappa_N_per_m": [3e5, 6e5]})
+    out = {"E_Pa": TRUE_E, "gamma_J_m2": TRUE_GAMMA, "sphere_radius_m": R}
+    wide = _wider_law(law, out, {"gamma_J_m2": 0.05}, _radii(law, out, part))
+    mid = np.exp((wide.log_a[1:] + wide.log_a[:-1]) / 2)
+    a = np.concatenate([[1.0e-5, 1.57e-5], mid[(mid > 8e-6) & (mid < 2.2e-5)]])
+    assert a.size == 5  # three midpoints: 8.4, 13.1 and 20.6 µm
+    x = np.log(wide.E_nodes)
+    for E in np.exp((x[1:] + x[:-1]) / 2):
+        q = _corrections(E, NU, coating, f, a)
+        e_star, G = E / (2 * (1 - NU**2)), E / (2 * (1 + NU))
+        C = 1 / (2 * a * e_star) + q[:, 0] * h / a**2
+        force = 1 / (3 / (4 * e_star) + q[:, 1] * h / a)
+        kappa = np.real(1 / (2 * (2 - NU) / (8 * G * a) + (q[:, 2] + 1j * q[:, 3]) * h / a**2))
+        C_i, _, force_i = wide.normal(E, a)
+        np.testing.assert_allclose(C_i, C, rtol=5e-5)
+        np.testing.assert_allclose(force_i, force, rtol=1e-4)
+        np.testing.assert_allclose(wide.tangential(E, a), kappa, rtol=1e-4)
+
+
 def test_the_wider_table_of_a_thick_soft_film_is_a_tight_bound():
     # Where the bound is tight (50 µm of a 2 GPa film, loads 0.1-1 mN: the contact sits in
     # the film, whose half-space the bound takes), the force at the table's top radius on the
     # layered solution is within ~1 % above the largest load (review R31f: P/F 1.009-1.012).
     # A bound with the smaller γ of the two fits, γ = 0, or the softest pair's sphere at the
     # range's stiff end falls below the load there; each is a wrong bound, and this fails.
+    # So does a table widened at the top only (where the radii clamped): P' at its bottom
+    # (5 µm) is 3.2e-4 N, above the smallest load, so a refit with γ below ~0.004 J/m² would
+    # need a radius below the table (the table of both ends costs one radius more here).
     import pandas as pd
 
     from contactres.analysis._coating import _radii, _wider_law
