@@ -260,6 +260,62 @@ def test_two_units_of_one_quantity_on_a_sheet_are_named_by_letters(tmp_path, swe
     )
 
 
+def _with_empty_cells(rows, empty) -> list[list[str]]:
+    """``rows`` with an empty header cell at each 0-based place of ``empty`` (its data cells
+    ``1``), the rows' own cells in the other places."""
+    width = len(rows[0]) + len(empty)
+    table = []
+    for row in rows:
+        cells = iter(row)
+        table.append(["" if i in empty else next(cells) for i in range(width)])
+    return [table[0], *([c or "1" for c in r] for r in table[1:])]
+
+
+@pytest.mark.parametrize(
+    ("empty", "letters", "numbers"),
+    [
+        ([2], "column C of the header is empty", None),  # one: a column pandas names in a CSV
+        ([1, 3], "columns B, D of the header are empty", "columns 2, 4 of the header are empty"),
+        (
+            list(range(1, 8)),
+            "columns B, C, D, E, F, ... 7 in all of the header are empty",
+            "columns 2, 3, 4, 5, 6, ... 7 in all of the header are empty",
+        ),
+    ],
+)
+def test_every_empty_header_cell_of_a_sheet_is_named_by_its_letters(
+    tmp_path, empty, letters, numbers
+):
+    table = _with_empty_cells(_rows(DATA / "example_rum.csv"), empty)
+    path = _book(tmp_path / "t.xlsx", table, "resonances", top=1)  # the header on row 2
+    r = run("rum", "invert", path, "--out", tmp_path / "o.csv")
+    assert _message(r) == f"{path}, sheet 'resonances', row 2: {letters}; every column needs a name"
+    assert not (tmp_path / "o.csv").exists()
+    if numbers is not None:  # the CSV reader says the same of the same header, by numbers
+        csv_path = _write(tmp_path / "t.csv", table)
+        r = run("rum", "invert", csv_path, "--out", tmp_path / "o.csv")
+        assert _message(r) == f"{csv_path}, line 1: {numbers}; every column needs a name"
+
+
+def test_a_sheet_naming_a_column_twice_beside_empty_cells_reads_as_a_csv_file(tmp_path):
+    # Both faults in one header: both readers name the repeat first (its places by letters
+    # and by numbers), the empty cells being no repeat of a name.
+    rows = _with_column(_rows(DATA / "example_rum.csv"), "pixel")
+    table = _with_empty_cells(rows, [1, 3])
+    r = run("rum", "invert", _book(tmp_path / "t.xlsx", table, "resonances"), "--out",
+            tmp_path / "o.csv")  # fmt: skip
+    last = len(table[0])
+    assert _message(r) == (
+        f"{tmp_path / 't.xlsx'}, sheet 'resonances', row 1: duplicate column name(s) 'pixel' "
+        f"(columns {_letter(1)}, {_letter(last)}); {RULE}"
+    )
+    r = run("rum", "invert", _write(tmp_path / "t.csv", table), "--out", tmp_path / "o.csv")
+    assert _message(r) == (
+        f"{tmp_path / 't.csv'}, line 1: duplicate column name(s) 'pixel' (columns 1, {last}); "
+        f"{RULE}"
+    )
+
+
 # ---- a numpy archive: one array per column ---------------------------------------------------
 
 
