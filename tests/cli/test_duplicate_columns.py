@@ -594,6 +594,26 @@ def test_the_columns_an_option_adds_are_the_users_without_it(tmp_path, case):
     assert not out.exists()
 
 
+@pytest.mark.parametrize(("case", "always"), [("afm film", "kappa"), ("rum film", "rum_model")])
+def test_a_computed_and_a_film_column_are_refused_in_one_line(tmp_path, case, always):
+    # One column every run writes and two a coated run adds: the one message names all three
+    # (named one at a time, the user would fix the first, run again and be refused again).
+    command, source, film, options = COMPUTED_WITH[case]
+    rows = _rows(DATA / source)
+    added = [film[1], always, film[0]]
+    table = [[*rows[0], *added], *([*r, "1", "2", "3"] for r in rows[1:])]
+    path = _write(tmp_path / "t.csv", table)
+    out = tmp_path / "o.csv"
+    r = run(*command.split(), path, "--out", out, *options)
+    first = len(rows[0]) + 1
+    shown = ", ".join(f"{c!r} (column {first + j})" for j, c in enumerate(added))
+    assert _message(r) == (
+        f"{path}: columns {shown} are columns the inversion computes: the result would replace "
+        "their values; rename them (a table an inversion wrote: drop its computed columns first)"
+    )
+    assert not out.exists()
+
+
 def test_a_table_an_earlier_inversion_wrote_is_refused_in_one_line(tmp_path):
     first = tmp_path / "first.csv"
     assert run("afm", "invert", DATA / "example_afm.csv", "--out", first).exit_code == 0
