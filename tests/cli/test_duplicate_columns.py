@@ -412,6 +412,43 @@ def test_two_keys_of_one_constant_are_named_as_the_file_writes_them(tmp_path, sw
     )
 
 
+AGAIN = (
+    "is already defined above, as a value or a table; a TOML file defines each key and table once"
+)
+
+
+@pytest.mark.parametrize(
+    ("toml", "said"),
+    [
+        ("area_m2 = 2.5e-5\nsphere_radius_m = 1e-3\narea_m2 = 3e-5\n", "line 3: key area_m2"),
+        ("'sphere_radius_m' = 1e-3\n\"sphere_radius_m\" = 2e-3\n", 'line 2: key "sphere_radius_m"'),
+        ("[lab]\nroom = 1\n\n[lab]\n", "line 4: table [lab]"),
+        ("[lab]\nroom = 1\nroom.door = 2\n", "line 3: key room.door of table [lab]"),
+        ("[[run]]\nby = 1\n[[run]]\nby = 2\n  by = 3\n", "line 5: key by of table [[run]]"),
+        # the value tomllib places the fault after takes three lines; the key-like line inside
+        # the string is no statement
+        ('note = 1\nnote = """\nsphere_radius_m = 1\n"""\n', "line 2: key note"),
+        ("area_m2 = 2.5e-5\r\narea_m2 = 3e-5\r\n", "line 2: key area_m2"),  # CRLF line breaks
+        ("area_m2 = 2.5e-5\narea_m2 = 3e-5", "line 2: key area_m2"),  # tomllib: "end of document"
+    ],
+)
+def test_a_toml_key_given_twice_is_named_with_its_line(tmp_path, sweeps, toml, said):
+    path = _sweeps(tmp_path, sweeps.drop(columns="sphere_radius_m"))
+    (tmp_path / "sweeps.toml").write_bytes(toml.encode())
+    r = run("qcm", "analyze", path, "--out", tmp_path / "o", "--no-figures", "--bootstrap", "0")
+    assert _message(r) == f"{tmp_path / 'sweeps.toml'}, {said} {AGAIN}"
+
+
+def test_a_toml_fault_without_a_statement_to_name_keeps_tomllibs_text(tmp_path, sweeps):
+    # A key twice in one inline table: tomllib names it, and no statement parses without it
+    path = _sweeps(tmp_path, sweeps.drop(columns="sphere_radius_m"))
+    (tmp_path / "sweeps.toml").write_text("lab = {room = 1, room = 2}\n")
+    r = run("qcm", "analyze", path, "--out", tmp_path / "o", "--no-figures", "--bootstrap", "0")
+    assert _message(r).startswith(
+        f"{tmp_path / 'sweeps.toml'}: not valid TOML (Duplicate inline table key 'room'"
+    )
+
+
 def test_a_header_pandas_reads_otherwise_is_never_taken_as_read_right(tmp_path, monkeypatch):
     # The header check (the csv module's names) stood aside: pandas renames the repeat
     # (fc1_Hz.1), and the reader says so as its own fault instead of reading on.
