@@ -28,7 +28,7 @@ _KEY = rf"{_SIMPLE}(?:[ \t]*\.[ \t]*{_SIMPLE})*"
 _STATEMENT = re.compile(
     rf"[ \t]*(?:(?P<header>\[\[?[ \t]*{_KEY}[ \t]*\]\]?)|(?P<key>{_KEY})[ \t]*=)"
 )
-#: tomllib's texts for a key or table given again (3.11 to 3.14, tomli 2).
+#: tomllib's (and tomli's, the same code) texts for a key or a table given again.
 _AGAIN = ("Cannot overwrite a value", "Cannot declare", "Cannot mutate immutable namespace")
 _WHERE = re.compile(r"\(at line (\d+), column \d+\)$")
 #: Statements tried above the line tomllib names (each a parse of the text above it): a file of
@@ -90,12 +90,11 @@ def _given_again(text: str, message: str, lineno: int | None) -> str | None:
             above = tomllib.loads("\n".join([*lines[:start], f"{_PROBE} = 0"]))
         except tomllib.TOMLDecodeError:
             continue  # a line inside a multi-line value, not a statement
-        table = _table_of(above)
         if statement.group("header"):
             shown = f"table {statement.group('header').strip()}"
         else:
             shown = f"key {statement.group('key').strip()}"
-            if table:
+            if table := _table_of(above):
                 shown += f" of table {table}"
         return (
             f"line {start + 1}: {shown} is already defined above, as a value or a table; a TOML "
@@ -114,7 +113,7 @@ def _table_of(document: dict) -> str:
         if probe in table:
             if not names:
                 return ""
-            dotted = ".".join(n if re.fullmatch(_BARE, n) else f'"{n}"' for n in names)
+            dotted = ".".join(n if re.fullmatch(_BARE, n) else _quoted(n) for n in names)
             return f"[[{dotted}]]" if listed else f"[{dotted}]"
         for name, value in table.items():
             if isinstance(value, list):
@@ -122,3 +121,8 @@ def _table_of(document: dict) -> str:
             elif isinstance(value, dict):
                 tables.append(([*names, name], value, False))
     return ""  # not reached: the probe is in the document
+
+
+def _quoted(name: str) -> str:
+    """``name`` as a TOML basic string (its backslashes and quotes escaped)."""
+    return '"' + name.replace("\\", "\\\\").replace('"', '\\"') + '"'
