@@ -218,6 +218,7 @@ PUBLIC = {
         "DESCRIPTIONS",
         "DartReconstruction",
         "FIGURE_POINTS",
+        "FILM_COLUMNS",
         "FILM_VERDICTS",
         "FLAG_DESCRIPTIONS",
         "FilmModulusResult",
@@ -622,6 +623,7 @@ PUBLIC = {
         *JOB_API,
         "add_film_columns",
         "coated_film",
+        "film_names",
     ],
     "jobs.afm_map": [
         *JOB_API,

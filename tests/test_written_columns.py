@@ -161,8 +161,8 @@ def test_on_the_command_line_it_is_an_internal_error(tmp_path, monkeypatch):
 
     real = contactres.analysis.invert_rum_table
 
-    def twice(table, source="table"):
-        out = real(table, source)
+    def twice(table, source="table", **options):
+        out = real(table, source, **options)
         return pd.concat([out, out[["k_star_N_per_m"]]], axis=1)
 
     monkeypatch.setattr(contactres.analysis, "invert_rum_table", twice)

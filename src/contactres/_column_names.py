@@ -15,6 +15,7 @@ from .errors import ContactresInputError
 
 __all__ = [
     "column_place",
+    "empty_places",
     "excel_letters",
     "refuse_computed_names",
     "refuse_line_name",
@@ -93,6 +94,20 @@ def repeats_text(
         parts.append(f"{_shown(name)} ({word} {shown}{more}{tail})")
     left = len(repeats) - SHOWN_NAMES
     return "; ".join(parts) + (f"; and {left} more name(s)" if left > 0 else "")
+
+
+def empty_places(names: Iterable[str], place: Callable[[int], str] = str) -> str | None:
+    """``columns 2, 4`` (or ``column C``): the places of the empty names of ``names`` (``place``
+    gives the text of a place: a number, or a spreadsheet's letters), at most
+    :data:`SHOWN_PLACES` of them, the rest counted; None when every name is given. The readers
+    of a CSV file and of a workbook say an empty header cell alike (by its number or its
+    letters)."""
+    empty = [i for i, name in enumerate(names, start=1) if not name]
+    if not empty:
+        return None
+    shown = ", ".join(place(i) for i in empty[:SHOWN_PLACES])
+    more = f", ... {len(empty)} in all" if len(empty) > SHOWN_PLACES else ""
+    return f"column{'' if len(empty) == 1 else 's'} {shown}{more}"
 
 
 def refuse_computed_names(table, computed: Collection[str], source: str) -> None:

@@ -260,6 +260,62 @@ def test_two_units_of_one_quantity_on_a_sheet_are_named_by_letters(tmp_path, swe
     )
 
 
+def _with_empty_cells(rows, empty) -> list[list[str]]:
+    """``rows`` with an empty header cell at each 0-based place of ``empty`` (its data cells
+    ``1``), the rows' own cells in the other places."""
+    width = len(rows[0]) + len(empty)
+    table = []
+    for row in rows:
+        cells = iter(row)
+        table.append(["" if i in empty else next(cells) for i in range(width)])
+    return [table[0], *([c or "1" for c in r] for r in table[1:])]
+
+
+@pytest.mark.parametrize(
+    ("empty", "letters", "numbers"),
+    [
+        ([2], "column C of the header is empty", None),  # one: a column pandas names in a CSV
+        ([1, 3], "columns B, D of the header are empty", "columns 2, 4 of the header are empty"),
+        (
+            list(range(1, 8)),
+            "columns B, C, D, E, F, ... 7 in all of the header are empty",
+            "columns 2, 3, 4, 5, 6, ... 7 in all of the header are empty",
+        ),
+    ],
+)
+def test_every_empty_header_cell_of_a_sheet_is_named_by_its_letters(
+    tmp_path, empty, letters, numbers
+):
+    table = _with_empty_cells(_rows(DATA / "example_rum.csv"), empty)
+    path = _book(tmp_path / "t.xlsx", table, "resonances", top=1)  # the header on row 2
+    r = run("rum", "invert", path, "--out", tmp_path / "o.csv")
+    assert _message(r) == f"{path}, sheet 'resonances', row 2: {letters}; every column needs a name"
+    assert not (tmp_path / "o.csv").exists()
+    if numbers is not None:  # the CSV reader says the same of the same header, by numbers
+        csv_path = _write(tmp_path / "t.csv", table)
+        r = run("rum", "invert", csv_path, "--out", tmp_path / "o.csv")
+        assert _message(r) == f"{csv_path}, line 1: {numbers}; every column needs a name"
+
+
+def test_a_sheet_naming_a_column_twice_beside_empty_cells_reads_as_a_csv_file(tmp_path):
+    # Both faults in one header: both readers name the repeat first (its places by letters
+    # and by numbers), the empty cells being no repeat of a name.
+    rows = _with_column(_rows(DATA / "example_rum.csv"), "pixel")
+    table = _with_empty_cells(rows, [1, 3])
+    r = run("rum", "invert", _book(tmp_path / "t.xlsx", table, "resonances"), "--out",
+            tmp_path / "o.csv")  # fmt: skip
+    last = len(table[0])
+    assert _message(r) == (
+        f"{tmp_path / 't.xlsx'}, sheet 'resonances', row 1: duplicate column name(s) 'pixel' "
+        f"(columns {_letter(1)}, {_letter(last)}); {RULE}"
+    )
+    r = run("rum", "invert", _write(tmp_path / "t.csv", table), "--out", tmp_path / "o.csv")
+    assert _message(r) == (
+        f"{tmp_path / 't.csv'}, line 1: duplicate column name(s) 'pixel' (columns 1, {last}); "
+        f"{RULE}"
+    )
+
+
 # ---- a numpy archive: one array per column ---------------------------------------------------
 
 
@@ -353,6 +409,43 @@ def test_two_keys_of_one_constant_are_named_as_the_file_writes_them(tmp_path, sw
     r = run("qcm", "analyze", path, "--out", tmp_path / "o", "--no-figures", "--bootstrap", "0")
     assert _message(r) == (
         f"{tmp_path / 'sweeps.toml'}: {keys} are the same constant; give one of them"
+    )
+
+
+AGAIN = (
+    "is already defined above, as a value or a table; a TOML file defines each key and table once"
+)
+
+
+@pytest.mark.parametrize(
+    ("toml", "said"),
+    [
+        ("area_m2 = 2.5e-5\nsphere_radius_m = 1e-3\narea_m2 = 3e-5\n", "line 3: key area_m2"),
+        ("'sphere_radius_m' = 1e-3\n\"sphere_radius_m\" = 2e-3\n", 'line 2: key "sphere_radius_m"'),
+        ("[lab]\nroom = 1\n\n[lab]\n", "line 4: table [lab]"),
+        ("[lab]\nroom = 1\nroom.door = 2\n", "line 3: key room.door of table [lab]"),
+        ("[[run]]\nby = 1\n[[run]]\nby = 2\n  by = 3\n", "line 5: key by of table [[run]]"),
+        # the value tomllib places the fault after takes three lines; the key-like line inside
+        # the string is no statement
+        ('note = 1\nnote = """\nsphere_radius_m = 1\n"""\n', "line 2: key note"),
+        ("area_m2 = 2.5e-5\r\narea_m2 = 3e-5\r\n", "line 2: key area_m2"),  # CRLF line breaks
+        ("area_m2 = 2.5e-5\narea_m2 = 3e-5", "line 2: key area_m2"),  # tomllib: "end of document"
+    ],
+)
+def test_a_toml_key_given_twice_is_named_with_its_line(tmp_path, sweeps, toml, said):
+    path = _sweeps(tmp_path, sweeps.drop(columns="sphere_radius_m"))
+    (tmp_path / "sweeps.toml").write_bytes(toml.encode())
+    r = run("qcm", "analyze", path, "--out", tmp_path / "o", "--no-figures", "--bootstrap", "0")
+    assert _message(r) == f"{tmp_path / 'sweeps.toml'}, {said} {AGAIN}"
+
+
+def test_a_toml_fault_without_a_statement_to_name_keeps_tomllibs_text(tmp_path, sweeps):
+    # A key twice in one inline table: tomllib names it, and no statement parses without it
+    path = _sweeps(tmp_path, sweeps.drop(columns="sphere_radius_m"))
+    (tmp_path / "sweeps.toml").write_text("lab = {room = 1, room = 2}\n")
+    r = run("qcm", "analyze", path, "--out", tmp_path / "o", "--no-figures", "--bootstrap", "0")
+    assert _message(r).startswith(
+        f"{tmp_path / 'sweeps.toml'}: not valid TOML (Duplicate inline table key 'room'"
     )
 
 
@@ -531,6 +624,26 @@ def test_the_columns_an_option_adds_are_the_users_without_it(tmp_path, case):
     r = run(*command.split(), path, "--out", out, *options)
     first = len(rows[0]) + 1
     shown = ", ".join(f"{c!r} (column {first + j})" for j, c in enumerate(columns[:5]))
+    assert _message(r) == (
+        f"{path}: columns {shown} are columns the inversion computes: the result would replace "
+        "their values; rename them (a table an inversion wrote: drop its computed columns first)"
+    )
+    assert not out.exists()
+
+
+@pytest.mark.parametrize(("case", "always"), [("afm film", "kappa"), ("rum film", "rum_model")])
+def test_a_computed_and_a_film_column_are_refused_in_one_line(tmp_path, case, always):
+    # One column every run writes and two a coated run adds: the one message names all three
+    # (named one at a time, the user would fix the first, run again and be refused again).
+    command, source, film, options = COMPUTED_WITH[case]
+    rows = _rows(DATA / source)
+    added = [film[1], always, film[0]]
+    table = [[*rows[0], *added], *([*r, "1", "2", "3"] for r in rows[1:])]
+    path = _write(tmp_path / "t.csv", table)
+    out = tmp_path / "o.csv"
+    r = run(*command.split(), path, "--out", out, *options)
+    first = len(rows[0]) + 1
+    shown = ", ".join(f"{c!r} (column {first + j})" for j, c in enumerate(added))
     assert _message(r) == (
         f"{path}: columns {shown} are columns the inversion computes: the result would replace "
         "their values; rename them (a table an inversion wrote: drop its computed columns first)"

@@ -54,6 +54,7 @@ _EXPORTS = MappingProxyType(
         "FLAG_DESCRIPTIONS": "._inversion",
         "modulus_from_contact_stiffness": "._inversion",
         "ModulusResult": "._inversion",
+        "FILM_COLUMNS": "._film_inversion",
         "FILM_VERDICTS": "._film_inversion",
         "FilmModulusResult": "._film_inversion",
         "film_columns": "._film_inversion",
@@ -112,6 +113,7 @@ if TYPE_CHECKING:
         render as render,
     )
     from ._film_inversion import (
+        FILM_COLUMNS as FILM_COLUMNS,
         FILM_VERDICTS as FILM_VERDICTS,
         FilmModulusResult as FilmModulusResult,
         film_columns as film_columns,

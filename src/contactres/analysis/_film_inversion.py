@@ -72,6 +72,7 @@ from ..units import HERTZ_APPROXIMATE_RATIO, HERTZ_MAX_RATIO
 from ..validation import positive
 
 __all__ = [
+    "FILM_COLUMNS",
     "FILM_VERDICTS",
     "RANGE_FACTOR",
     "FilmModulusResult",
@@ -79,6 +80,8 @@ __all__ = [
     "film_modulus_from_contact_stiffness",
 ]
 
+#: The columns :func:`film_columns` gives, in its order.
+FILM_COLUMNS = ("M_film_Pa", "film_contact_radius_m", "film_weight", "film_verdict")
 #: The verdicts of :func:`film_modulus_from_contact_stiffness`, one per pixel.
 FILM_VERDICTS = ("film", "too-thick", "too-thin", "below-range", "above-range", "beyond-hertz")
 #: Default search range of the film's modulus, as factors of the named film's own modulus.
@@ -402,17 +405,17 @@ def film_columns(
     Returns
     -------
     (dict, FilmModulusResult or None)
-        Columns M_film_Pa, film_contact_radius_m, film_weight (floats) and film_verdict (text),
-        and the result on the rows used (None without any).
+        Columns M_film_Pa, film_contact_radius_m, film_weight (floats) and film_verdict (text)
+        (:data:`FILM_COLUMNS`), and the result on the rows used (None without any).
     """
     k, R, P, tip = (np.asarray(x, dtype=float).ravel() for x in (k_star, tip_radius, load,
                                                                   tip_modulus))  # fmt: skip
     used = np.ones(k.size, dtype=bool)
     for x in (k, R, P):
         used &= np.isfinite(x) & (x > 0)
-    cols = {c: np.full(k.size, np.nan) for c in ("M_film_Pa", "film_contact_radius_m")}
-    cols["film_weight"] = np.full(k.size, np.nan)
-    cols["film_verdict"] = np.full(k.size, "", dtype=object)
+    *numbers, verdict = FILM_COLUMNS
+    cols = {c: np.full(k.size, np.nan) for c in numbers}
+    cols[verdict] = np.full(k.size, "", dtype=object)
     if not used.any():
         return cols, None
     res = film_modulus_from_contact_stiffness(

@@ -16,6 +16,7 @@ crossing of two modes, a mode without sensitivity) keep empty results and say wh
 from __future__ import annotations
 
 import warnings
+from collections.abc import Collection
 from typing import TYPE_CHECKING
 
 import numpy as np
@@ -54,8 +55,9 @@ AFM_GROUP_COLUMNS = (
     "tilt_deg",
 )
 _MODES = (1, 2, 3)
-#: The columns :func:`invert_rum_table` appends (the film columns of ``--coating`` are added,
-#: and checked, by the job: :func:`contactres.jobs.afm_invert.add_film_columns`).
+#: The columns :func:`invert_rum_table` appends (the film columns of ``--coating`` are added by
+#: the job, :func:`contactres.jobs.afm_invert.add_film_columns`, and checked here with these:
+#: the ``appended`` of the inversions).
 _RUM_COMPUTED = ("rum_model", "k_star_N_per_m")
 #: The columns :func:`invert_afm_table` appends to every table, and with a ``sample`` (the
 #: dynamic correction) also :data:`_AFM_DYNAMIC`, before ``flags`` and ``normalisation``.
@@ -176,7 +178,9 @@ def _lumped_rows(table: pd.DataFrame, source: str) -> np.ndarray:
 
 
 @one_blas_thread()
-def invert_rum_table(table: pd.DataFrame, source: str = "table") -> pd.DataFrame:
+def invert_rum_table(
+    table: pd.DataFrame, source: str = "table", *, appended: Collection[str] = ()
+) -> pd.DataFrame:
     """k* of every row of a checked RUM table (:data:`~contactres.measurements.schema.RUM_TABLE`):
     ``k_star_N_per_m`` and ``rum_model`` appended.
 
@@ -188,10 +192,14 @@ def invert_rum_table(table: pd.DataFrame, source: str = "table") -> pd.DataFrame
     rod's clamped limit.
     The rows are grouped by their calibration (one oscillator per group; a file rarely holds
     more than a few), each group converted at once.
+
+    ``appended``: the names of the columns the caller adds to the result after these (a
+    coating's film columns, ``rum invert --coating``), refused with the run's own in one line
+    where the table gives one (as :func:`invert_afm_table`).
     """
     import pandas as pd
 
-    refuse_computed_names(table, _RUM_COMPUTED, source)
+    refuse_computed_names(table, (*_RUM_COMPUTED, *appended), source)
     lumped = _lumped_rows(table, source)
     f0 = table["f0_Hz"].to_numpy(float)
     fc = table["fc_Hz"].to_numpy(float)
@@ -341,6 +349,7 @@ def invert_afm_table(
     sample=None,
     loss: float = 0.0,
     mode_tolerance: float = MODE_TOLERANCE,
+    appended: Collection[str] = (),
 ) -> pd.DataFrame | ArrayTable:
     """κ, k*, r, σ and (where the inputs allow) E* and M_sample of every row of a checked CR-AFM
     table (:data:`~contactres.measurements.schema.AFM_TABLE`).
@@ -370,11 +379,18 @@ def invert_afm_table(
     A tip radius above :data:`LARGE_TIP_M` (1 mm) is kept but flagged ``large-tip`` with a
     :class:`~contactres.errors.ContactresWarning` naming the first such cell: a CR-AFM tip is
     1 nm-1 µm, a larger value is most often a unit slip, while a mm sphere is a valid contact.
+
+    ``appended``: the names of the columns the caller adds to the result after these (a
+    coating's film columns, ``afm invert --coating``). A given column named as one the run
+    writes, computed here or appended, is refused, all of them in one line.
     """
     # Only the names this run writes: a column the run does not compute (k_a without a
-    # sample) is the user's and stays as given.
+    # sample) is the user's and stays as given. The caller's names are checked with them:
+    # checked apart, a table holding both would be refused twice, one fix at a time.
     refuse_computed_names(
-        table, _AFM_COMPUTED + (_AFM_DYNAMIC if sample is not None else ()), source
+        table,
+        (*_AFM_COMPUTED, *(_AFM_DYNAMIC if sample is not None else ()), *appended),
+        source,
     )
     fc = _matrix(table, [f"fc{n}_Hz" for n in _MODES])
     none = np.isnan(fc[:, 0]) & np.isnan(fc[:, 1]) & np.isnan(fc[:, 2])

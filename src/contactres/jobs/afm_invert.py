@@ -40,7 +40,7 @@ if TYPE_CHECKING:
     from ..materials import Material
     from ..measurements import ArrayTable
 
-__all__ = ["Result", "Settings", "add_film_columns", "coated_film", "run"]
+__all__ = ["Result", "Settings", "add_film_columns", "coated_film", "film_names", "run"]
 
 
 @dataclass(frozen=True)
@@ -133,6 +133,7 @@ def run(inputs: str | os.PathLike, settings: Settings, progress: Progress | None
             sample=s.sample,
             loss=s.loss,
             mode_tolerance=s.mode_tolerance,
+            appended=() if film is None else film_names(),
         )
     notes = []
     for w in caught:
@@ -193,6 +194,15 @@ def coated_film(coating, substrate) -> tuple | None:
     return material, h, label, substrate
 
 
+def film_names() -> tuple[str, ...]:
+    """The columns :func:`add_film_columns` appends, in its order: ``coating``, then the film
+    columns (:data:`contactres.analysis.FILM_COLUMNS`). The inversions refuse a given column of
+    these names with their own (``appended``), so that one line names every clash."""
+    from ..analysis import FILM_COLUMNS  # imported here: a run without a coating needs none
+
+    return ("coating", *FILM_COLUMNS)
+
+
 def add_film_columns(
     table, k_star, tip_radius, load, tip_modulus, film, s, source: str = "table"
 ) -> dict:
@@ -228,7 +238,7 @@ def add_film_columns(
             warnings.warn_explicit(w.message, w.category, w.filename, w.lineno)
         elif (text := " ".join(str(w.message).split())) not in notes:
             notes.append(text)
-    refuse_computed_names(table, ("coating", *cols), source)
+    refuse_computed_names(table, film_names(), source)
     table["coating"] = label
     for name, values in cols.items():
         table[name] = values

@@ -84,7 +84,7 @@ def run(
     from ..analysis import invert_rum_table
     from ..measurements import read_resonance_table
     from ..measurements.schema import RUM_TABLE
-    from .afm_invert import add_film_columns, coated_film
+    from .afm_invert import add_film_columns, coated_film, film_names
 
     s = Settings() if settings is None else settings
     film = coated_film(s.coating, s.substrate)  # checked before the table is read
@@ -106,7 +106,9 @@ def run(
     say(progress, f"reading {Path(inputs).name}")
     checked = read_resonance_table(inputs, RUM_TABLE)
     say(progress, f"inverting {len(checked)} rows")
-    table = invert_rum_table(checked, str(Path(inputs)))
+    table = invert_rum_table(
+        checked, str(Path(inputs)), appended=() if film is None else film_names()
+    )
     coating = None
     if film is not None:
         say(progress, "film modulus on the coated substrate")

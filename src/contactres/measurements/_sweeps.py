@@ -21,7 +21,6 @@ from __future__ import annotations
 
 import datetime
 import math
-import sys
 import warnings
 from dataclasses import dataclass, replace
 from pathlib import Path
@@ -44,6 +43,7 @@ from ._sweep_checks import (
     drop_duplicates,
     warn_sweeps,
 )
+from ._toml import toml_table
 from ._unit_columns import bare_name, columns_in_si, si_unit
 from .schema import FINITE, SWEEP_TABLE, broken_rule, check_cells, check_value, stripped
 
@@ -138,21 +138,13 @@ class SweepTable(Summarised):
 def _toml_constants(path: Path) -> tuple[dict, Path | None]:
     for candidate in (path.with_suffix(".toml"), path.parent / "contactres.toml"):
         if candidate.is_file():
-            # imported here: a table without a TOML beside it (the first call of the analysis,
-            # issue 31, point 3) needs no TOML parser
-            if sys.version_info >= (3, 11):
-                import tomllib
-            else:  # pragma: no cover - Python 3.10
-                import tomli as tomllib
-
             try:
-                data = tomllib.loads(candidate.read_bytes().decode("utf-8"))
+                text = candidate.read_bytes().decode("utf-8")
             except UnicodeDecodeError as exc:
                 raise ContactresInputError(
                     f"{candidate}: not UTF-8 text (offset {exc.start})"
                 ) from None
-            except tomllib.TOMLDecodeError as exc:
-                raise ContactresInputError(f"{candidate}: not valid TOML ({exc})") from None
+            data = toml_table(text, candidate)
             data = _toml_keys_in_si(data, candidate)
             unknown = sorted(set(data) - set(CONSTANTS))
             if unknown:

@@ -24,7 +24,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from ..._column_names import SHOWN_PLACES, refuse_line_name, repeats_text, shown_names
+from ..._column_names import empty_places, refuse_line_name, repeats_text, shown_names
 from ...errors import ContactresInputError
 from ...numerics import column_run_starts, repeat_runs
 
@@ -177,12 +177,9 @@ def _check_header(path: Path, number: int, header: str, sep: str) -> list[str]:
     # the workbook reader drops them: a single one is a column read today (its values kept in
     # an inversion's output, bytes that stay), and dropping only two or more would give one
     # empty cell and two different rules.
-    empty = [i for i, n in enumerate(names, start=1) if not n]
-    if len(empty) > 1:
-        shown = ", ".join(str(i) for i in empty[:SHOWN_PLACES])
-        more = f", ... {len(empty)} in all" if len(empty) > SHOWN_PLACES else ""
+    if sum(not n for n in names) > 1:
         raise ContactresInputError(
-            f"{path}, line {number}: columns {shown}{more} of the header are empty; every "
+            f"{path}, line {number}: {empty_places(names)} of the header are empty; every "
             "column needs a name"
         )
     refuse_line_name(

@@ -23,7 +23,7 @@ from collections.abc import Callable
 from pathlib import Path
 from typing import TYPE_CHECKING
 
-from ..._column_names import excel_letters, refuse_line_name, repeats_text
+from ..._column_names import empty_places, excel_letters, refuse_line_name, repeats_text
 from ...errors import ContactresInputError, MissingExtraError
 
 if TYPE_CHECKING:  # annotations: pandas is imported where a table is read (a numpy archive's
@@ -74,20 +74,24 @@ def _workbook(path: Path):
 
 
 def _check_header(where: str, number: int, names: list[str]) -> None:
-    """A header with an empty name before a named column, a name twice (every repeat named, by
-    the columns' letters as Excel shows them), or the name ``line`` (the reader's column of
-    row numbers, which would replace the sheet's own) is an error."""
-    for i, name in enumerate(names, start=1):
-        if not name:
-            raise ContactresInputError(
-                f"{where}, row {number}: column {i} of the header is empty; every column "
-                "needs a name"
-            )
-    repeats = repeats_text(names, excel_letters)
+    """A header with a name twice, an empty cell before a named column (every repeat and every
+    empty cell named, by the columns' letters as Excel shows them, in the words of the CSV
+    reader, which names them by number) or the name ``line`` (the reader's column of row
+    numbers, which would replace the sheet's own) is an error. Unlike a CSV header, one empty
+    cell is an error too: the cells right of the last name are no columns here, so an empty one
+    stands among the names."""
+    repeats = repeats_text(names, excel_letters, named_only=True)
     if repeats is not None:
         raise ContactresInputError(
             f"{where}, row {number}: duplicate column name(s) {repeats}; every column needs "
             "its own name"
+        )
+    empty = empty_places(names, excel_letters)
+    if empty is not None:
+        one = sum(not n for n in names) == 1
+        raise ContactresInputError(
+            f"{where}, row {number}: {empty} of the header {'is' if one else 'are'} empty; "
+            "every column needs a name"
         )
     refuse_line_name(
         names,
