@@ -31,7 +31,7 @@ import numpy as np
 from scipy.interpolate import CubicSpline, PPoly
 
 from ..fitting import Model, Parameter
-from ..layered import LayeredMaterial, thickness_text
+from ..layered import FrequencyDependentMaterial, LayeredMaterial, material_at, thickness_text
 from ..materials import Material
 from ..normal import sphere_contact_at, static_punch_stiffness
 from ..numerics import illinois_step
@@ -59,7 +59,7 @@ class Coating:
     (e.g. :func:`contactres.pmma`), in the plate's surface frame.
     """
 
-    layers: tuple[tuple[object, float], ...]
+    layers: tuple[tuple[Material | FrequencyDependentMaterial, float], ...]
 
     @property
     def label(self) -> str:
@@ -85,17 +85,13 @@ class Coating:
         }
 
 
-def _dynamic(m, frequency: float):
-    """The film's constants at ``frequency`` (complex for a lossy one)."""
-    return m if isinstance(m, Material) else m.at(frequency)
-
-
 def _solids(E: float, nu: float, coating: Coating, frequency: float):
     """(sphere, static plate, plate at the frequency): isotropic (E, ν) under the film."""
     body = Material.isotropic(E, nu, name="substrate")
-    # The normal load is static: each film's storage constants at STATIC_FREQUENCY_HZ.
+    # The normal load is static: each film's storage constants at STATIC_FREQUENCY_HZ; the
+    # tangential stiffness is the overtone's: the film's constants there (complex if lossy).
     static = LayeredMaterial(body, [(static_solid(m), h) for m, h in coating.layers])
-    dynamic = LayeredMaterial(body, [(_dynamic(m, frequency), h) for m, h in coating.layers])
+    dynamic = LayeredMaterial(body, [(material_at(m, frequency), h) for m, h in coating.layers])
     return body, static, dynamic
 
 
