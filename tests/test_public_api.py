@@ -528,8 +528,10 @@ PUBLIC = {
         "PMMA_ULTRASONIC_FREQUENCY",
         "PowerLaw",
         "Prony",
+        "STATIC_FREQUENCY_HZ",
         "ViscoelasticMaterial",
         "pmma",
+        "static_solid",
     ],
     "tangential": [
         "CattaneoMindlinLoop",

@@ -30,11 +30,16 @@ from contactres.materials import (
     voigt_to_tensor,
 )
 from contactres.viscoelastic import (
+    PMMA_STATIC_E,
+    PMMA_STATIC_FREQUENCY,
+    PMMA_STATIC_POISSON,
+    STATIC_FREQUENCY_HZ,
     ConstantLoss,
     ModulusTable,
     PowerLaw,
     Prony,
     ViscoelasticMaterial,
+    static_solid,
 )
 
 # ------------------------------------------------------------------------------------ Prony
@@ -383,3 +388,57 @@ def test_a_tables_static_refusal_keeps_the_tables_reason_and_pandas_gets_no_hint
     assert str(info.value) == "m must be a contactres.Material, got DataFrame"
     with pytest.raises(ContactresInputError, match="layered_dcsf"):
         require_material(solid)
+
+
+# ------------------------------------------------------------ the solid of a static contact
+def test_a_constant_loss_gives_the_same_static_solid_as_a_material_or_as_a_law():
+    """One solid, two spellings: C (1 + i tan δ) as Material.with_loss and as a
+    ViscoelasticMaterial with a ConstantLoss law. Its static solid is the elastic C either way
+    (the storage constants, real), at any loading frequency; an elastic Material is itself."""
+    cu = cr.Material.crystal("Cu").rotated((1, 1, 0))
+    assert static_solid(cu) is cu
+    lossy = cu.with_loss(0.05)
+    law = ViscoelasticMaterial.proportional(cu, ConstantLoss(1.0, 0.05))
+    for f in (0.0, STATIC_FREQUENCY_HZ, 15e6):
+        for m in (lossy, law):
+            solid = static_solid(m, f)
+            assert solid.C.dtype == float and not solid.is_lossy
+            assert solid.C == pytest.approx(cu.C, rel=1e-15, abs=1e-15 * cu.C.max())
+            assert solid.density == cu.density and solid.name == cu.name
+            assert np.array_equal(solid.frame, cu.frame)
+    # A lossless law still evaluates to complex constants: the static solid is real anyway.
+    assert static_solid(ViscoelasticMaterial.proportional(cu, 1.0)).C.dtype == float
+
+
+def test_static_solid_is_the_storage_modulus_at_the_loading_frequency():
+    """A Maxwell arm on a spring, storage M_∞ + M_1 ω²τ²/(1 + ω²τ²) written out here: M_∞ at
+    0 Hz (the relaxed solid), M_∞ + M_1/2 at ωτ = 1; and the built-in PMMA at the default
+    frequency: its shear storage modulus |G*| cos φ with |G*| from the published 1 Hz anchors
+    (E, ν), which only 1 Hz gives (its power law has no static limit: 0 Hz is refused)."""
+    tau, m_inf, m_1 = 1e-6, 1e9, 2e9
+    solid = ViscoelasticMaterial.isotropic(Prony(m_inf, [(m_1, tau)]), poisson=0.3)
+    for f in (0.0, 1 / (2 * np.pi * tau), 3e5):
+        wt2 = (2 * np.pi * f * tau) ** 2
+        want = m_inf + m_1 * wt2 / (1 + wt2)
+        assert static_solid(solid, f).C[3, 3] == pytest.approx(want, rel=1e-14)
+    assert STATIC_FREQUENCY_HZ == PMMA_STATIC_FREQUENCY  # the default's reason: the anchors
+    g_anchor = PMMA_STATIC_E / (2 * (1 + PMMA_STATIC_POISSON))
+    phase = np.angle(cr.pmma().at(PMMA_STATIC_FREQUENCY).C[3, 3])
+    assert static_solid(cr.pmma()).C[3, 3] == pytest.approx(g_anchor * np.cos(phase), rel=1e-12)
+    with pytest.raises(ContactresInputError, match="no static limit"):
+        static_solid(cr.pmma(), 0.0)
+
+
+def test_static_solid_refuses_an_at_that_gives_no_material():
+    class Odd:
+        def at(self, frequency):
+            return "steel"
+
+    with pytest.raises(ContactresInputError, match=r"Odd.at\(1.0\) must return a contactres"):
+        static_solid(Odd())
+
+
+def test_the_contact_job_finds_the_one_static_frequency():
+    from contactres.jobs import contact
+
+    assert contact.STATIC_FREQUENCY_HZ is STATIC_FREQUENCY_HZ

@@ -70,7 +70,7 @@ def test_write_csv_and_write_npz_name_the_file_and_leave_nothing(tmp_path):
 
 def test_the_other_writers_of_cells_refuse_it_too():
     for call in (
-        lambda f: neutralised(f),  # the console's tables (emit) and the workbook's cells
+        lambda f: neutralised(f),  # the console's CSV (emit) and the workbook's cells
         lambda f: _csvcells.csv_text(f),
         lambda f: "".join(_csvcells.csv_chunks(f)),
         lambda f: _csvcells.floats_as_text(f),

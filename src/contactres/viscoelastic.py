@@ -50,6 +50,7 @@ __all__ = [
     "PMMA_STATIC_FREQUENCY",
     "PMMA_STATIC_POISSON",
     "PMMA_ULTRASONIC_FREQUENCY",
+    "STATIC_FREQUENCY_HZ",
     "ConstantLoss",
     "Law",
     "ModulusTable",
@@ -57,6 +58,7 @@ __all__ = [
     "Prony",
     "ViscoelasticMaterial",
     "pmma",
+    "static_solid",
 ]
 
 
@@ -560,8 +562,7 @@ class ViscoelasticMaterial(Summarised):
         >>> m.is_lossy
         False
         """
-        m = self.at(frequency)
-        return Material(C=np.real(m.C), density=m.density, name=m.name, frame=m.frame)
+        return static_solid(self, frequency)
 
     def static(self) -> Material:
         """``at(0)``: the relaxed solid (where the laws have one)."""
@@ -581,6 +582,72 @@ class ViscoelasticMaterial(Summarised):
     def is_lossy(self) -> bool:
         """True: a viscoelastic solid is treated as lossy (complex constants) by callers."""
         return True
+
+
+# ------------------------------------------------------------------ the solid of a static contact
+#: The loading frequency, Hz, at which a frequency-dependent material's storage constants stand
+#: for its static ones (:func:`static_solid`), wherever contactres needs a static contact on it:
+#: the quasi-static moduli of polymers are quoted at about 1 Hz (datasheets; the built-in
+#: PMMA's anchors, :data:`PMMA_STATIC_FREQUENCY`), and a power law (the built-in PMMA's) has
+#: no relaxed limit to take instead (its moduli relax to zero at 0 Hz).
+STATIC_FREQUENCY_HZ = 1.0
+
+
+def static_solid(material, frequency: float = STATIC_FREQUENCY_HZ) -> Material:
+    """The undamped elastic solid that a static contact on ``material`` takes: its storage
+    constants Re C*(f) (Pa) at the loading frequency f.
+
+    A contact loaded on a time scale of about 1/f sees, to first order, the storage part of a
+    linear viscoelastic solid's constants at f (the quasi-elastic approximation of
+    :meth:`ViscoelasticMaterial.storage`: the loss and the load history are dropped). A static
+    solution (Hertz, JKR, a static punch) needs real constants; a law with no relaxed limit
+    (:class:`PowerLaw`, the built-in :func:`pmma`) has none at 0 Hz, hence the default
+    :data:`STATIC_FREQUENCY_HZ`.
+
+    Parameters
+    ----------
+    material : Material or frequency-dependent material
+        A :class:`~contactres.Material`, whose constants do not depend on frequency: a lossy
+        one, C (1 + i tan δ) (:meth:`~contactres.Material.with_loss`), gives its elastic part
+        C, as the same solid written as ``ViscoelasticMaterial.proportional(m,
+        ConstantLoss(M, tan δ))`` does. Or any object with ``at(frequency_Hz)`` returning a
+        Material (e.g. a :class:`ViscoelasticMaterial`).
+    frequency : float
+        The loading frequency f, Hz (>= 0; default :data:`STATIC_FREQUENCY_HZ`). f = 0 takes
+        the relaxed constants, refused by a law that has none.
+
+    Returns
+    -------
+    Material
+        Real constants Re C*(f), Pa (a float array, also where the imaginary part is zero),
+        with the density, name and frame of ``material.at(f)``; a Material whose constants are
+        real already is returned as it is.
+
+    Raises
+    ------
+    ContactresInputError
+        ``material.at(f)`` refuses f (e.g. 0 Hz for a power law), or returns no Material.
+
+    Examples
+    --------
+    >>> import contactres as cr
+    >>> from contactres.viscoelastic import static_solid
+    >>> glass = cr.Material.isotropic(70e9, 0.17)
+    >>> bool(static_solid(glass.with_loss(0.02)).C[0, 0] == glass.C[0, 0])
+    True
+    >>> film = static_solid(cr.pmma())  # its storage constants at 1 Hz
+    >>> print(f"{film.C[3, 3] / 1e9:.3f} GPa")
+    1.092 GPa
+    """
+    at = material if isinstance(material, Material) else material.at(frequency)
+    if not isinstance(at, Material):
+        raise ContactresInputError(
+            f"{type(material).__name__}.at({frequency!r}) must return a contactres.Material, "
+            f"got {type(at).__name__}"
+        )
+    if not np.iscomplexobj(at.C):
+        return at
+    return Material(C=np.real(at.C), density=at.density, name=at.name, frame=at.frame)
 
 
 # ------------------------------------------------------------------------------------ PMMA

@@ -14,18 +14,14 @@ import pytest
 
 import contactres as cr
 from contactres.analysis import AnalysisSettings
-from contactres.analysis._coating import (
-    STATIC_FREQUENCY_HZ,
-    as_coating,
-    build_law,
-    fit_coated,
-)
+from contactres.analysis._coating import as_coating, build_law, fit_coated
 from contactres.analysis._coating_bootstrap import resampled_coated
 from contactres.analysis._coating_law import _corrections
 from contactres.analysis._jkr import fit_jkr_mindlin
 from contactres.errors import ContactresInputError
 from contactres.normal import sphere_contact, sphere_contact_at, static_punch_stiffness
 from contactres.tangential import kappa_jkr_mindlin
+from contactres.viscoelastic import STATIC_FREQUENCY_HZ
 
 NU = 0.17
 R = 1.1e-3

@@ -184,6 +184,27 @@ def test_a_layered_material_as_inputs_equals_the_coating_setting():
         _table(stack, ("pmma:1e-7",))
 
 
+def test_a_lossy_film_has_the_static_columns_of_its_elastic_part():
+    """A film C (1 + i tan δ) (Material.with_loss): the static contact takes its storage
+    constants, C, as it takes a viscoelastic film's (contactres.viscoelastic.static_solid), so
+    every static column is the undamped film's, exactly; the loss shows in the dynamic
+    columns only, where the stiffness gains an imaginary part."""
+    from contactres import LayeredMaterial
+
+    glass, film = Material.crystal("fused-silica"), Material.crystal("Si3N4")
+    f = np.array([15e6])
+    elastic = _table(LayeredMaterial(glass, [(film, 250e-9)]), frequency=f, tangential=True)
+    lossy = _table(
+        LayeredMaterial(glass, [(film.with_loss(0.05), 250e-9)]), frequency=f, tangential=True
+    )
+    static = ["contact_radius_m", "peak_pressure_Pa", "depth_m", "stiffness_N_per_m"]
+    static += ["indentation_modulus_Pa", "film_share", "ks_a"]
+    for col in static:
+        np.testing.assert_array_equal(lossy[col], elastic[col], err_msg=col)
+    for col in ("dynamic_stiffness_imag_N_per_m", "tangential_stiffness_imag_N_per_m"):
+        assert (lossy[col][1:] > elastic[col][1:] + 1e-3 * elastic["stiffness_N_per_m"][1:]).all()
+
+
 @pytest.mark.parametrize(
     "coating, words",
     [

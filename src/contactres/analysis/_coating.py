@@ -38,7 +38,8 @@ traction) is an upper bound: measured 0.3 % (a/h = 5) to 1 % (a/h = 20-40) above
 uses the series).
 
 **The film's constants.** A frequency-dependent film (:func:`contactres.pmma`) enters the
-normal (static) contact with its storage constants at 1 Hz and the tangential stiffness with its
+normal (static) contact with its storage constants at 1 Hz
+(:func:`contactres.viscoelastic.static_solid`) and the tangential stiffness with its
 complex constants at the overtone frequency (correspondence principle; the plate's inertia at
 k a ~ 0.1 is left out, as in paper 2). Approximations, stated: isotropic sphere and substrate
 (the film any material the layered solver takes, θ-averaged: :mod:`contactres.normal._layered`),
@@ -71,12 +72,12 @@ from ..layered import checked_thickness
 from ..materials import Material
 from ..normal import indentation_modulus, jkr_contact_radius
 from ..tangential import kappa_jkr_mindlin
+from ..viscoelastic import static_solid
 from ._coating_bootstrap import resampled_coated
-from ._coating_law import STATIC_FREQUENCY_HZ, CoatedLaw, Coating, build_law, static_film
+from ._coating_law import CoatedLaw, Coating, build_law
 from ._jkr import LoadLaw, fit_group
 
 __all__ = [
-    "STATIC_FREQUENCY_HZ",
     "CoatedLaw",
     "Coating",
     "apply_coating",
@@ -309,7 +310,7 @@ def _wider_law(law: CoatedLaw, out: dict, uncoated: dict, radii: tuple) -> Coate
     if not F.size:
         return None
     nu, R = law.poisson, out["sphere_radius_m"]
-    films = [float(np.real(indentation_modulus(static_film(m)))) for m, _ in law.coating.layers]
+    films = [float(np.real(indentation_modulus(static_solid(m)))) for m, _ in law.coating.layers]
     E_lo, E_hi = (E / (1 - nu**2) for E in law.bounds)  # plane-strain moduli of the substrate
     soft = 1 / (1 / E_lo + 1 / min(E_lo, *films))
     stiff = 1 / (1 / E_hi + 1 / max(E_hi, *films))

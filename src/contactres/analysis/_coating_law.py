@@ -31,18 +31,15 @@ import numpy as np
 from scipy.interpolate import CubicSpline, PPoly
 
 from ..fitting import Model, Parameter
-from ..layered import LayeredMaterial, thickness_text
+from ..layered import FrequencyDependentMaterial, LayeredMaterial, material_at, thickness_text
 from ..materials import Material
 from ..normal import sphere_contact_at, static_punch_stiffness
 from ..numerics import illinois_step
 from ..units import POISSON_OPEN_RANGE
+from ..viscoelastic import static_solid
 
-__all__ = ["STATIC_FREQUENCY_HZ", "CoatedLaw", "Coating", "build_law", "static_film"]
+__all__ = ["CoatedLaw", "Coating", "build_law"]
 
-
-#: The frequency at which a frequency-dependent film's storage constants stand for its static
-#: ones, Hz (the normal load is static).
-STATIC_FREQUENCY_HZ = 1.0
 # Kernel truncation of the table's layered solutions (relative; the default 1e-12 costs twice
 # as much and moves the corrections by < 1e-8, far below the interpolation error).
 _TABLE_TOL = 1e-6
@@ -62,7 +59,7 @@ class Coating:
     (e.g. :func:`contactres.pmma`), in the plate's surface frame.
     """
 
-    layers: tuple[tuple[object, float], ...]
+    layers: tuple[tuple[Material | FrequencyDependentMaterial, float], ...]
 
     @property
     def label(self) -> str:
@@ -88,23 +85,13 @@ class Coating:
         }
 
 
-def static_film(m):
-    """The film's static constants: a Material as is (its real part), a frequency-dependent one
-    its storage constants at :data:`STATIC_FREQUENCY_HZ`."""
-    at = m if isinstance(m, Material) else m.at(STATIC_FREQUENCY_HZ)
-    return Material(C=np.real(at.C), density=at.density, name=at.name, frame=at.frame)
-
-
-def _dynamic(m, frequency: float):
-    """The film's constants at ``frequency`` (complex for a lossy one)."""
-    return m if isinstance(m, Material) else m.at(frequency)
-
-
 def _solids(E: float, nu: float, coating: Coating, frequency: float):
     """(sphere, static plate, plate at the frequency): isotropic (E, ν) under the film."""
     body = Material.isotropic(E, nu, name="substrate")
-    static = LayeredMaterial(body, [(static_film(m), h) for m, h in coating.layers])
-    dynamic = LayeredMaterial(body, [(_dynamic(m, frequency), h) for m, h in coating.layers])
+    # The normal load is static: each film's storage constants at STATIC_FREQUENCY_HZ; the
+    # tangential stiffness is the overtone's: the film's constants there (complex if lossy).
+    static = LayeredMaterial(body, [(static_solid(m), h) for m, h in coating.layers])
+    dynamic = LayeredMaterial(body, [(material_at(m, frequency), h) for m, h in coating.layers])
     return body, static, dynamic
 
 

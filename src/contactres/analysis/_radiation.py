@@ -208,27 +208,23 @@ def _coated_stiffness(
 ) -> np.ndarray:
     """K of the sphere (half-space) and the coated plate in series, N/m, complex (module
     docstring), at the radii ``a`` (m) and overtone frequencies ``f`` (Hz); ``static``: K₀, the
-    same at f = 0 with each film's storage constants at ``f``."""
+    same at f = 0 with each film's storage constants at ``f``
+    (:func:`contactres.viscoelastic.static_solid`)."""
     from ..dynamic import (
         flat_punch_stiffness,
         layered_punch_stiffness,
         tangential_contact_stiffness,
     )
     from ..layered import LayeredMaterial, material_at
+    from ..viscoelastic import static_solid
 
     a, f = np.asarray(a, dtype=float), np.asarray(f, dtype=float)
     out = np.empty(a.shape, dtype=complex)
     # One stack per frequency: a frequency-dependent film is evaluated there.
+    film_at = static_solid if static else material_at
     for value in np.unique(f):
         rows = f == value
-        films = []
-        for m, h in coating.layers:
-            film = material_at(m, float(value))
-            if static:
-                C = np.real(film.C)
-                film = Material(C=C, density=film.density, name=film.name, frame=film.frame)
-            films.append((film, h))
-        stack = LayeredMaterial(plate, films)
+        stack = LayeredMaterial(plate, [(film_at(m, float(value)), h) for m, h in coating.layers])
         if static:
             # The layered Galerkin at f = 0, not flat_punch_stiffness: that takes the static
             # axisymmetric solver there, whose θ-averaged kernel is 3 % off the exact static

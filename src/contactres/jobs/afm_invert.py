@@ -172,11 +172,12 @@ def coated_film(coating, substrate) -> tuple | None:
                 "the substrate (--substrate) is the solid under a coating: give --coating too"
             )
         return None
-    from ..layered import material_at, thickness_text  # a homogeneous sample needs none
-    from ..materials import Material, require_material
-    from .contact import STATIC_FREQUENCY_HZ, parse_coating
+    from ..layered import thickness_text  # a homogeneous sample needs none
+    from ..materials import require_material
+    from .contact import parse_coating
 
-    layers = parse_coating(coating)
+    # Static constants, as contact's: a viscoelastic film's storage constants at 1 Hz.
+    layers = parse_coating(coating, static=True)
     if len(layers) != 1:
         raise ContactresInputError(
             f"the film's modulus is found for one film (--coating), got {len(layers)} layers"
@@ -188,9 +189,6 @@ def coated_film(coating, substrate) -> tuple | None:
     substrate = require_material(substrate)
     ((material, h),) = layers
     label = f"{getattr(material, 'name', None) or 'film'} {thickness_text(h)}"  # as contact's
-    if not isinstance(material, Material):  # viscoelastic: its storage constants, as contact's
-        at = material_at(material, STATIC_FREQUENCY_HZ)
-        material = Material(C=np.real(at.C), density=at.density, name=at.name, frame=at.frame)
     return material, h, label, substrate
 
 

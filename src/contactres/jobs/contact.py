@@ -30,7 +30,10 @@ face's ellipse); the ellipse columns are then left out.
 Frequency-dependent (viscoelastic) materials of a stack, e.g. the built-in PMMA, whose power laws
 have no relaxed (0 Hz) limit: the static columns use their storage constants at
 :data:`STATIC_FREQUENCY_HZ` (1 Hz, the quasi-static modulus their anchors are quoted at), the
-dynamic columns their complex constants at the frequency (the correspondence principle).
+dynamic columns their complex constants at the frequency (the correspondence principle). A lossy
+Material of a stack (:meth:`~contactres.Material.with_loss`) likewise: its elastic part in the
+static columns, its complex constants in the dynamic ones
+(:func:`contactres.viscoelastic.static_solid`).
 """
 
 from __future__ import annotations
@@ -49,6 +52,7 @@ from ..materials import Material, require_material
 from ..measurements.schema import CONTACT_TABLE
 from ..units import HERTZ_APPROXIMATE_RATIO, HERTZ_MAX_RATIO
 from ..validation import nonnegative
+from ..viscoelastic import STATIC_FREQUENCY_HZ, static_solid
 from .contract import JobResult, Progress, say
 
 if TYPE_CHECKING:
@@ -69,10 +73,9 @@ __all__ = [
     "run",
 ]
 
-# The frequency (Hz) at which a viscoelastic layer's storage constants stand for its static
-# ones: the built-in PMMA's quasi-static anchors are quoted at 1 Hz, and its power laws relax to
-# zero at 0 Hz (no static limit).
-STATIC_FREQUENCY_HZ = 1.0
+# STATIC_FREQUENCY_HZ (the frequency whose storage constants a viscoelastic layer's static
+# columns take) is contactres.viscoelastic's, with static_solid: re-exported here, where the
+# job's users have found it.
 # More layers than this is a typing slip, not a coating anyone measures.
 MAX_COATING_LAYERS = 10
 # The a/R rule of Hertz's validity (HERTZ_APPROXIMATE_RATIO, HERTZ_MAX_RATIO) is
@@ -360,9 +363,10 @@ def parse_coating(
         :data:`MAX_COATING_LAYERS` items. Material names: :func:`coating_materials`
         (case-insensitive).
     static : bool
-        Keyword only: every material with its static constants instead (a frequency-dependent
-        one its storage constants at :data:`STATIC_FREQUENCY_HZ`, real: the undamped solid of
-        a static contact).
+        Keyword only: every material with its static constants instead
+        (:func:`contactres.viscoelastic.static_solid`: a frequency-dependent one its storage
+        constants at :data:`STATIC_FREQUENCY_HZ`, real: the undamped solid of a static
+        contact).
 
     Returns
     -------
@@ -408,7 +412,7 @@ def parse_coating(
                 f"(material_name, thickness_m) pair, got {item!r}"
             )
         m = _coating_material(name)
-        layers.append((_static(m) if static else m, _thickness(thickness, spec)))
+        layers.append((static_solid(m) if static else m, _thickness(thickness, spec)))
     return tuple(layers)
 
 
@@ -433,15 +437,6 @@ def _has_densities(m) -> bool:
     return all(getattr(x, "density", None) is not None for x in materials)
 
 
-def _static(m) -> Material:
-    """A material's static constants: a Material as is, a frequency-dependent one its storage
-    constants at STATIC_FREQUENCY_HZ (real part: the undamped solid of the static contact)."""
-    if isinstance(m, Material):
-        return m
-    at = m.at(STATIC_FREQUENCY_HZ)
-    return Material(C=np.real(at.C), density=at.density, name=at.name, frame=at.frame)
-
-
 def _coating_label(stack: LayeredMaterial) -> str:
     """E.g. ``"PMMA 250 nm"``, ``"PMMA 1.5 µm on fused-silica 2 mm"``; layers top first,
     joined by "on" (each thickness in the unit that reads best: nm, µm, mm or m)."""
@@ -459,7 +454,7 @@ def _run_coated(stack: LayeredMaterial, R, F, f, s: Settings, progress) -> Resul
 
     dynamic = s.frequency is not None
     static = LayeredMaterial(
-        _static(stack.substrate), tuple((_static(m), h) for m, h in stack.layers)
+        static_solid(stack.substrate), tuple((static_solid(m), h) for m, h in stack.layers)
     )
     say(progress, "static contact, bare and coated")
     bare = sphere_contact(static.substrate, R, F, check_validity=False)  # a/R: flagged by run

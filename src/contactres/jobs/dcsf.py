@@ -20,8 +20,8 @@ radius a, K_sa) is the ``contact`` job's on the coated face. DCSF = K(f)/K_sa wi
 layered rigid flat punch at a (:func:`contactres.flat_punch_stiffness`): for elastic films
 :func:`contactres.dynamic.layered_dcsf` (K_sa the static punch of the undamped stack); a film
 without a static limit (the built-in PMMA's power laws) is referred to its storage constants at
-the ``contact`` job's ``STATIC_FREQUENCY_HZ`` (1 Hz), as that job's static columns are. The
-``ka`` column is then the substrate's k a, for orientation only.
+:data:`contactres.viscoelastic.STATIC_FREQUENCY_HZ` (1 Hz), as the ``contact`` job's static
+columns are. The ``ka`` column is then the substrate's k a, for orientation only.
 """
 
 from __future__ import annotations
