@@ -16,7 +16,7 @@ import pytest
 from test_trust import CONST, study
 
 from contactres.analysis import AnalysisSettings, analyze
-from contactres.analysis._classify import choose
+from contactres.analysis._classify import choose, runner_up
 from contactres.analysis._models import AMPLITUDE_MODELS
 from contactres.measurements._sweeps import SweepWarning, validate_sweeps
 from contactres.measurements._synthetic import synthetic_sweeps
@@ -101,3 +101,18 @@ def test_no_criterion_at_all_keeps_the_simplest_class_without_evidence():
     assert [AMPLITUDE_MODELS[i] for i in choice] == ["elastic", "elastic"]  # nested, within 2
     assert list(runner) == ["", "cattaneo-mindlin"]
     assert np.isnan(evidence[0]) and evidence[1] == -1.0
+
+
+def test_ties_go_to_the_first_class_and_only_plus_inf_means_no_rival():
+    """Equal rival criteria name the first class in the order given; a NaN or -inf rival is
+    not "no criterion" (only +inf is), so the other column names argmin's class as before."""
+    names = np.array(["elastic", "cattaneo-mindlin", "savkoor", "plateau"])
+    inf, nan = np.inf, np.nan
+    # Columns: a tie between savkoor and plateau; a NaN beside a finite rival; -inf; all +inf.
+    others = np.array(
+        [[inf, inf, inf, inf], [9.0, nan, 2.0, inf], [4.0, 5.0, 1.0, inf], [4.0, 5.0, -inf, inf]]
+    )
+    runner, evidence = runner_up(others, names, np.array([1.0, 1.0, 1.0, 1.0]))
+    assert list(runner) == ["savkoor", "cattaneo-mindlin", "plateau", ""]
+    assert evidence[0] == 3.0 and np.isnan(evidence[1]) and evidence[2] == -inf
+    assert evidence[3] == inf

@@ -22,12 +22,12 @@ that a simpler model nested in it (:data:`NESTED`: elastic in every slip model, 
 in the plateau loop) is kept if its BIC is within ``delta_bic`` (default 2, "positive evidence"
 on the Kass-Raftery scale) of the lowest: a parameter is added only on positive evidence.
 Between models that are not nested (Cattaneo-Mindlin, Savkoor; Savkoor, plateau) the lower BIC
-alone decides. The
-runner-up is the class with the lowest BIC among the others, and ``delta_bic`` (column) is its
-BIC minus the winner's: the evidence for the choice (negative, down to -``delta_bic``, where a
-simpler nested class was kept against a slightly better one). Where no other class has a BIC
-(a sweep of one point: two residuals, fewer than a loop's three parameters) there is no
-runner-up (``""``) and the evidence is inf; where no class has one, NaN.
+alone decides. The runner-up is the class with the lowest BIC among the others, and
+``delta_bic`` (column) is its BIC minus the winner's: the evidence for the choice (negative, down
+to -``delta_bic``, where a simpler nested class was kept against a slightly better one). Where no
+other class has a BIC (with the exact loops, the default: a sweep of one point, two residuals for
+a loop's three parameters) there is no runner-up (``""``) and the evidence is inf; where no class
+has one, NaN.
 :mod:`contactres.analysis._blocks` then makes the same choice for the ramps of one load block
 together.
 """
@@ -236,9 +236,10 @@ def runner_up(
     Returns
     -------
     runner_up : (S,) the class of the candidate with the lowest of ``others``; ``""`` (a text
-        cell's "none") where none has a criterion: a sweep of one point, whose loops have more
-        parameters than residuals, or a block whose loops all failed. An argmin over nothing
-        but inf would name the first class, the winner itself where that is ``elastic``.
+        cell's "none") where every one of them is +inf (no criterion): a sweep of one point,
+        whose loops have more parameters than residuals, or a block whose loops all failed. An
+        argmin over nothing but inf would name the first class, the winner itself where that
+        is ``elastic``. Ties go to the first class in ``names``' order.
     evidence : (S,) the runner-up's criterion minus ``best``: inf where there is no runner-up,
         NaN where the winner has no criterion either
     """
@@ -247,7 +248,9 @@ def runner_up(
     lowest = others[runner, np.arange(S)]
     with np.errstate(invalid="ignore"):
         evidence = lowest - best
-    return np.where(np.isfinite(lowest), names[runner], ""), evidence
+    # Only +inf is "no criterion": a NaN or -inf rival (none is reached by the fits, whose BICs
+    # are finite or +inf) keeps argmin's class, as before runner_up existed (review R32a).
+    return np.where(lowest == np.inf, "", names[runner]), evidence
 
 
 def choose(criteria: np.ndarray, delta_bic: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
