@@ -328,6 +328,51 @@ growth per call below the trim threshold (~5 MB: the far products in blocks of p
 are formed, the near-field and own-node Bessel functions for the even orders only, which an
 axisymmetric stack reads), worth ~4 ms of CPU on this VM.
 
+Session 32 (LH32, page faults; the curves bit-identical to the base, every normal and tangential
+curve of this benchmark and the 50 nm, 100 nm and 5 µm films). Where the heap growth of a 250 nm
+curve comes from (tracemalloc at its peak, 10.1 MB traced above the call's start, strace: brk
++9.8 MB, trimmed at the end): the film's products on the whole far grid 2.5 MB (171 pairs x
+~1800 nodes, of which only the head's ~250 are kept; the rest gives the tail's moments), its
+near-field Bessel functions 1.8 MB and far-grid ones 0.5 MB (held to the end of the call for a
+grown basis), the correction's own-node Bessel functions 2.7 MB, the far basis 0.8 MB and the
+correction's nodes 1.3 MB. glibc trims the heap's top once more than its trim threshold is free,
+and that threshold is twice its mmap threshold, which follows the largest block freed so far
+(here the 2.5 MB products): a probe after the curves (blocks of 100 kB freed and taken again)
+refaults from ~6 MB of growth on the base, from ~5 MB once the products were formed in blocks of
+64 pairs. So cutting the largest array lowers the threshold with it (tried, not kept: the
+products in blocks and the film's Bessel functions let go at the end of its matrices, traced
+peak 10.1 -> 7.8 MB but ~1850 faults per curve instead of ~1500: the heap trimmed in mid-call
+and grown again). Kept: the whole-grid products let go as soon as the head is copied and the
+moments formed (still one 2.5 MB block: the threshold stays), the near-field Bessel functions
+computed after them (into their place), and the film's Bessel functions let go once the
+correction's own are made (a hole below them, reused; let go before, ~2160 faults), computed
+again at the same highest order if the basis grows past the sizes one matrix checks (rare; the
+same bits, a test checks it). Traced peak 8.3 MB (at the own-node Bessel functions); strace: brk
++6.95 MB, one trim at the end. Instructions per curve unchanged (callgrind, one thread,
+PYTHONHASHSEED=0, six calls less two, over four): 161.6 M on the base, 161.7 M here (the head's
+copy). Page faults per 250 nm curve (one BLAS thread, steady state, base / this tree alternated
+three times): with the homogeneous curve between calls ~1450-1540 / ~900-1040; the layered curve
+alone 30 times, 2036-2298 / 1543-1668 per call, system CPU 7.1, 5.5, 6.0 / 5.7, 4.4, 4.3 ms per
+call (user 23.4, 26.7, 25.4 / 23.9, 25.6, 24.6 ms; machine at load ~8 on 2 cores). This
+benchmark's measure, base / this tree alternated four times (load 6.5-7.5 on 2 cores), one BLAS
+thread: homogeneous 11.2, 9.3, 8.3, 8.1 / 7.0, 10.1, 8.5, 7.6 ms, 250 nm 28.5, 27.9, 27.0, 26.0
+/ 22.3, 26.0, 26.4, 23.6 ms (2.54x, 2.99x, 3.27x, 3.21x / 3.20x, 2.57x, 3.10x, 3.10x), 1 µm
+23.6, 22.6, 20.5, 21.2 / 18.2, 20.1, 22.1, 19.6 ms; as shipped homogeneous 8.9, 8.0, 8.0, 11.2 /
+8.7, 10.0, 10.3, 8.3 ms, 250 nm 24.9, 28.0, 25.7, 31.4 / 23.1, 25.3, 27.9, 26.3 ms (2.80x,
+3.48x, 3.21x, 2.80x / 2.67x, 2.53x, 2.70x, 3.17x). The full benchmark three times each,
+alternated: 250 nm one BLAS thread 3.42x, 3.20x, 2.73x / 2.74x, 2.99x, 2.75x, as shipped 2.93x,
+3.34x, 2.89x / 3.41x, 2.69x, 2.78x (the same code then: head = base), and after the change
+2.67x, 2.86x, 3.33x / 3.12x, 3.31x, 2.61x (as shipped 3.30x, 3.13x, 2.76x / 2.59x, 2.60x,
+2.69x): on this loaded machine the ratio's scatter is the homogeneous curve's (7-11 ms best of
+9), larger than the ~1.4 ms of system CPU per curve (~5 %) the change saves. The zero-fault goal
+is out of reach this way: the film's part alone (the 2.5 MB products on top of the far basis,
+the nodes and the film's Bessel functions, ~7 MB traced) already passes the ~5 MB threshold its
+own largest block sets, and a smaller largest block lowers the threshold alike. What would reach
+it: the correction's nodes and the far basis formed after the film's products (they are held
+across them), or the own-node Bessel functions of the even orders only (an axisymmetric stack
+reads no others; kept whole-then-sliced they faulted more, ~1270 per curve: their freed full
+rows at the heap's top) computed in column blocks.
+
 Run: ``.venv/bin/python benchmarks/bench_layered_dynamic.py`` (exit status 1 if a target is
 missed; a few minutes on a busy machine).
 """

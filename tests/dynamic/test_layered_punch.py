@@ -269,3 +269,30 @@ def test_own_bessel_rows_are_scipys_on_each_points_nodes(rows):
         assert got.shape == expected.shape
         # |j_p(z)| <= e^{|Im z|} <= e: round-off relative to that bound.
         np.testing.assert_allclose(got, expected, rtol=0, atol=1e-13 * np.e)
+
+
+def test_film_matrices_of_a_grown_basis_are_the_same_whether_its_bessel_functions_were_held():
+    """The layered punch lets the film's Bessel functions go once the correction's own are
+    made (a smaller peak of memory, fewer page faults), and a basis grown past the sizes one
+    matrix checks computes them again, at the highest order of the held ones: the grown
+    matrix is then the same, bit for bit, as with them held; and it agrees with the matrix of
+    that size formed from scratch (no pair reused, its own highest order) to round-off."""
+    from contactres.dynamic._exact import GalerkinSize
+    from contactres.dynamic._layered_punch import (
+        _far_field,
+        _film_matrices,
+        _let_go_film_bessel,
+    )
+    from contactres.dynamic._table import prepare
+
+    table = prepare(PMMA)
+    ksa = np.linspace(0.0, 2.0, 9)
+    far = _far_field(table, ksa[ksa > 0])
+    _, _, known = _film_matrices(table, ksa, GalerkinSize(10, 0), far, None, 8)
+    held, _, _ = _film_matrices(table, ksa, GalerkinSize(14, 0), far, known)
+    let_go = _let_go_film_bessel(known)
+    assert isinstance(let_go[3], int) and let_go[3] == known[3][0].shape[0] - 1
+    again, _, _ = _film_matrices(table, ksa, GalerkinSize(14, 0), far, let_go)
+    assert np.array_equal(again, held)
+    fresh, _, _ = _film_matrices(table, ksa, GalerkinSize(14, 0), far)
+    np.testing.assert_allclose(again, fresh, rtol=1e-13, atol=1e-13 * np.max(np.abs(fresh)))

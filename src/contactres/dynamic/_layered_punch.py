@@ -290,7 +290,9 @@ def _film_matrices(
     :func:`_punch` computes it once). ``known``: what the previous call of
     the growing basis returned last (its pairs' integrals are reused, not recomputed: a pair's
     integral does not depend on the basis it belongs to, and the harmonics stay the same; so
-    are its Bessel functions at the near and far nodes where they reach the orders needed).
+    are its Bessel functions at the near and far nodes where they reach the orders needed, or,
+    where the caller let them go (:func:`_let_go_film_bessel`), their highest order, at which
+    they are computed again).
     ``extra``: where they must be computed, for ``extra`` radial terms more than ``size``
     (two orders each: the orders a grown basis may need, computed once, not once per size)."""
     pos = ksa > 0
@@ -316,28 +318,72 @@ def _film_matrices(
         new = old_keys[at] != keys
         integral[..., ~new] = known[1][..., at[~new]]
         bessel = known[3]
-    if bessel is None or bessel[0].shape[0] <= orders[-1]:
-        # j_p at the far grid and the near nodes, up to the orders a grown basis may need.
+    # j_p at the far grid and the near nodes: those the previous call held, or of its highest
+    # order where it let them go (_let_go_film_bessel) and that reaches this basis (the same
+    # functions again: the continued fraction's start depends on the highest order), else up
+    # to the orders a grown basis may need.
+    if isinstance(bessel, tuple) and bessel[0].shape[0] > orders[-1]:
+        far_j, near_j = bessel
+    else:
         p_max = int(orders[-1]) + 2 * extra
+        if isinstance(bessel, int) and bessel >= orders[-1]:
+            p_max = bessel
         far_j = spherical_bessel(p_max, np.asarray(far[1], dtype=float))
-        bessel = (far_j, near_bessel(table, ksa[pos], p_max))
+        near_j = None
     if np.any(new):
         # Pair by pair into one array: indexing the rows by the pairs copied both factors
         # of every pair first (two (pairs x nodes) gathers, as the exact model's products).
-        far_j = bessel[0]
         products = np.empty((int(np.sum(new)), far_j.shape[1]))
         for i, (p, q) in enumerate(np.stack([orders[ti[new]], orders[tj[new]]], 1).tolist()):
             np.multiply(far_j[p], far_j[q], out=products[i])
         basis, _, tail = far
         part = replace(plan, pairs=plan.pairs[:, new], far_products=products)
         if tail is not None:
-            # The products on the head, their moments on the tail (as galerkin_plan's).
+            # The products on the head, their moments on the tail (as galerkin_plan's). The
+            # head copied and the whole grid's products let go before the near field: held
+            # through it (as a view's base), they (~2.5 MB for 250 nm PMMA on quartz, ~7x the
+            # head) were on top of its Bessel functions and weighted copies, at the film's
+            # peak of memory (fresh pages on every call: glibc gives the heap back at its
+            # end); let go, their place is reused by those (which are therefore computed
+            # after them).
             moments = tail.moments(products)
-            head = products[:, : tail.split]
+            head = products[:, : tail.split].copy()
             part = replace(part, far_products=head, far_tail=tail, far_moments=moments)
-        integral[..., new] = galerkin_integrals(table, ksa[pos], part, basis, bessel[1])
+            del products
+        if near_j is None:
+            near_j = near_bessel(table, ksa[pos], far_j.shape[0] - 1)
+        integral[..., new] = galerkin_integrals(table, ksa[pos], part, basis, near_j)
+    if near_j is None:
+        near_j = near_bessel(table, ksa[pos], far_j.shape[0] - 1)
     out[pos] = plan.sign * integral[:, plan.m_index, plan.t_index]
-    return out, plan, (np.stack([orders[ti], orders[tj]]), integral, plan.ms, bessel)
+    return out, plan, (np.stack([orders[ti], orders[tj]]), integral, plan.ms, (far_j, near_j))
+
+
+def _far_field(table: KernelTable, ka: np.ndarray) -> tuple:
+    """``far`` of :func:`_film_matrices` for the positive k_s a ``ka``: (the far-field basis on
+    the head of its grid, the whole grid's nodes, its tail or None)."""
+    # As the homogeneous curve: beyond 2 T₁ × the largest k_s a the far basis is summed by
+    # its moments (contactres.dynamic._fartail), built on the head of the grid alone.
+    grid = far_grid(table, float(np.min(ka)))
+    tail = far_tail(table, grid, float(np.max(ka)))
+    return far_basis(table, ka, head_grid(grid, tail)), grid.s, tail
+
+
+def _let_go_film_bessel(known):
+    """``known`` of :func:`_film_matrices` with its Bessel functions replaced by their highest
+    order (they are computed again, the same, if the basis grows past the sizes one matrix
+    checks, which is rare).
+
+    Why: held to the end of the call, the film's ~2.3 MB (250 nm PMMA on quartz, 41 points)
+    were part of the curve's peak of memory, whose heap glibc gives back to the system after
+    each call, to be faulted in page by page on the next (~1500 faults per curve). Let go
+    once the correction's own Bessel functions have been allocated (above them in the heap),
+    they leave a hole that the correction's later arrays reuse, where let go at the end of
+    the film's part they joined its freed temporaries at the top of the heap, past glibc's
+    trim threshold: the heap was trimmed in mid-call and grown again (more faults)."""
+    if known is None or not isinstance(known[3], tuple):
+        return known
+    return (*known[:3], known[3][0].shape[0] - 1)
 
 
 def _solve_c0(M: np.ndarray, n_radial: int, plan) -> np.ndarray:
@@ -618,13 +664,7 @@ def _punch(table, film, items, radii, rtol, res) -> np.ndarray:
     rule = unit_rule(res.n_panel)
     nodes = correction_nodes(stacks, radii, theta, res, gref, rule)
     pos = ksa > 0
-    far = None
-    if np.any(pos):
-        # As the homogeneous curve: beyond 2 T₁ × the largest k_s a the far basis is summed by
-        # its moments (contactres.dynamic._fartail), built on the head of the grid alone.
-        grid = far_grid(table, float(np.min(ksa[pos])))
-        tail = far_tail(table, grid, float(np.max(ksa[pos])))
-        far = (far_basis(table, ksa[pos], head_grid(grid, tail)), grid.s, tail)
+    far = _far_field(table, ksa[pos]) if np.any(pos) else None
     known = None
     index = np.array(list(nodes), dtype=int)
     # The correction integrals of every point by order pair, reused by the grown basis; the
@@ -667,6 +707,7 @@ def _punch(table, film, items, radii, rtol, res) -> np.ndarray:
             if p_have < orders[-1]:
                 p_have = int(orders[-1]) + 2 * (ahead - checks[-1])
                 bessel = _nodes_bessel(p_have, nodes, res, rule)
+            known = _let_go_film_bessel(known)
             assert bessel is not None  # computed at the first size
             reused = previous is not None and np.array_equal(previous.ms, plan.ms)
             if not reused:
