@@ -413,7 +413,8 @@ def test_two_keys_of_one_constant_are_named_as_the_file_writes_them(tmp_path, sw
 
 
 AGAIN = (
-    "is already defined above, as a value or a table; a TOML file defines each key and table once"
+    "clashes with a key or table defined above (itself or one on its dotted path); a TOML file "
+    "defines each key and table once"
 )
 
 
@@ -430,6 +431,11 @@ AGAIN = (
         ('note = 1\nnote = """\nsphere_radius_m = 1\n"""\n', "line 2: key note"),
         ("area_m2 = 2.5e-5\r\narea_m2 = 3e-5\r\n", "line 2: key area_m2"),  # CRLF line breaks
         ("area_m2 = 2.5e-5\narea_m2 = 3e-5", "line 2: key area_m2"),  # tomllib: "end of document"
+        # a key-like line below the statement that only parses with the string's end after it:
+        # the text above line 4 is no TOML of its own (an open string), so line 4 is no statement
+        ('a = 1\na = """\nb = 1\nc = 2 # """\n', "line 2: key a"),
+        # a table name that needs quotes is shown quoted, its backslash escaped
+        ('["a\\\\b".c]\nx = 1\nx = 2\n', 'line 3: key x of table ["a\\\\b".c]'),
     ],
 )
 def test_a_toml_key_given_twice_is_named_with_its_line(tmp_path, sweeps, toml, said):
@@ -440,12 +446,13 @@ def test_a_toml_key_given_twice_is_named_with_its_line(tmp_path, sweeps, toml, s
 
 
 def test_a_toml_fault_without_a_statement_to_name_keeps_tomllibs_text(tmp_path, sweeps):
-    # A key twice in one inline table: tomllib names it, and no statement parses without it
+    # A clash inside one inline table: tomllib's "Cannot overwrite a value" sends it to the
+    # finder, and the statement's own text (one line) is no TOML of its own: nothing to name
     path = _sweeps(tmp_path, sweeps.drop(columns="sphere_radius_m"))
-    (tmp_path / "sweeps.toml").write_text("lab = {room = 1, room = 2}\n")
+    (tmp_path / "sweeps.toml").write_text("x = 0\nlab = {room = 1, room.door = 2}\n")
     r = run("qcm", "analyze", path, "--out", tmp_path / "o", "--no-figures", "--bootstrap", "0")
     assert _message(r).startswith(
-        f"{tmp_path / 'sweeps.toml'}: not valid TOML (Duplicate inline table key 'room'"
+        f"{tmp_path / 'sweeps.toml'}: not valid TOML (Cannot overwrite a value"
     )
 
 

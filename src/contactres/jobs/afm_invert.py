@@ -209,8 +209,9 @@ def add_film_columns(
     from :func:`coated_film`, ``s`` the settings (film_range, min_film_weight). The film
     inversion's ContactresWarnings (Hertz's a/R limit) are the record's ``notes``, one line
     each, for the command to print. A given column of ``table`` named as a film column is
-    refused in one line naming ``source`` (its values would be replaced): the inversions
-    refuse their own names, these only where a coating is given."""
+    refused in one line naming ``source`` (its values would be replaced). The jobs have the
+    inversion refuse these with its own names (``appended=`` :func:`film_names`), in one line,
+    before any inversion runs; this check is for a caller of this function alone."""
     from .._column_names import refuse_computed_names
     from ..analysis import film_columns
 

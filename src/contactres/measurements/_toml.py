@@ -35,8 +35,12 @@ _WHERE = re.compile(r"\(at line (\d+), column \d+\)$")
 #: constants has a few lines, a huge one is not parsed again and again.
 _TRIED = 20
 #: A key put where the statement stands, to find the table it is under (a file holding this
-#: key makes it clash: the statement is not found, tomllib's text stands).
+#: key makes it clash: the statement is not found, tomllib's text stands; a file holding it
+#: elsewhere gets no table named, which could be the wrong one).
 _PROBE = '"contactres: where"'
+#: Longest text searched (characters): a file of constants holds a few lines, and each
+#: statement tried is a parse of the text above it (~0.4 s a parse at 1.7 MB; review R32b).
+_LONGEST = 100_000
 
 
 def _tomllib():
@@ -69,8 +73,10 @@ def toml_table(text: str, path: Path) -> dict:
 
 
 def _given_again(text: str, message: str, lineno: int | None) -> str | None:
-    """``line 3: key sphere_radius_m is already defined above ...``: the statement of a key given
+    """``line 3: key sphere_radius_m clashes with ...``: the statement of a key given
     again, whose value ends on the line tomllib names, or None where it is not found."""
+    if len(text) > _LONGEST:
+        return None
     lines = [line.removesuffix("\r") for line in text.split("\n")]  # a CRLF file's too
     if lineno is None:  # tomllib before 3.14 gives the place in its text only
         where = _WHERE.search(message)
@@ -94,11 +100,13 @@ def _given_again(text: str, message: str, lineno: int | None) -> str | None:
             shown = f"table {statement.group('header').strip()}"
         else:
             shown = f"key {statement.group('key').strip()}"
-            if table := _table_of(above):
+            if _PROBE.strip('"') not in text and (table := _table_of(above)):
                 shown += f" of table {table}"
+        # "clashes", not "is defined": in `room = 1` then `room.door = 2` it is a key on the
+        # statement's dotted path that is defined above, not the statement's own key.
         return (
-            f"line {start + 1}: {shown} is already defined above, as a value or a table; a TOML "
-            "file defines each key and table once"
+            f"line {start + 1}: {shown} clashes with a key or table defined above (itself or one "
+            "on its dotted path); a TOML file defines each key and table once"
         )
     return None
 
