@@ -16,7 +16,7 @@ import contactres as cr
 from contactres.analysis import AnalysisSettings
 from contactres.analysis._coating import as_coating, build_law, fit_coated
 from contactres.analysis._coating_bootstrap import resampled_coated
-from contactres.analysis._coating_law import _corrections
+from contactres.analysis._coating_law import _corrections, _table_radii
 from contactres.analysis._jkr import fit_jkr_mindlin
 from contactres.errors import ContactresInputError
 from contactres.normal import sphere_contact, sphere_contact_at, static_punch_stiffness
@@ -556,6 +556,56 @@ def test_the_wider_table_interpolates_the_layered_solution_where_the_refit_works
         np.testing.assert_allclose(C_i, C, rtol=5e-5)
         np.testing.assert_allclose(force_i, force, rtol=1e-4)
         np.testing.assert_allclose(wide.tangential(E, a), kappa, rtol=1e-4)
+
+
+@pytest.mark.parametrize(
+    ("layers", "radii"),
+    [
+        # The contact inside a thick soft film (a/h 0.02-0.26; 5 radii a decade left 6.4e-4
+        # in C, 2.9e-4 in P'), and a lossy film across the knee of the spacing (a/h 0.5-5).
+        ([(cr.Material.isotropic(2e9, 0.3, name="soft film"), 50e-6)], (1e-6, 1.3e-5)),
+        ([(cr.pmma(), 1e-6)], (0.5e-6, 5e-6)),
+    ],
+)
+def test_the_table_interpolates_the_layered_solution_where_the_contact_is_in_the_film(
+    layers, radii
+):
+    # Midway between the radius nodes (in ln a), at E nodes (the spline in a alone) and midway
+    # between them (both interpolations), against the layered solution at the radius
+    # (_corrections, no table). Measured <= 2.5e-5 (spline) and <= 6.7e-5 (with the E part,
+    # PMMA); the tolerances are build_law's stated ones. With 5 radii a decade throughout
+    # (_DENSER = 1, the old spacing) this fails: C 6.4e-4 in the thick film.
+    coating, f = as_coating(layers), 15e6
+    law = build_law(coating, NU, f, (40e9, 160e9), radii)
+    h = coating.thickness
+    a = np.exp((law.log_a[1:] + law.log_a[:-1]) / 2)
+    x = np.log(law.E_nodes)
+    for E in (*law.E_nodes[[0, 2, 4]], *np.exp((x[1:] + x[:-1]) / 2)):
+        q = _corrections(E, NU, coating, f, a)
+        e_star, G = E / (2 * (1 - NU**2)), E / (2 * (1 + NU))
+        C = 1 / (2 * a * e_star) + q[:, 0] * h / a**2
+        force = 1 / (3 / (4 * e_star) + q[:, 1] * h / a)
+        kappa = np.real(1 / (2 * (2 - NU) / (8 * G * a) + (q[:, 2] + 1j * q[:, 3]) * h / a**2))
+        C_i, _, force_i = law.normal(E, a)
+        np.testing.assert_allclose(C_i, C, rtol=1e-4)
+        np.testing.assert_allclose(force_i, force, rtol=3e-4)
+        np.testing.assert_allclose(law.tangential(E, a), kappa, rtol=2e-4)
+
+
+def test_the_table_radii_are_log_spaced_and_denser_inside_the_film():
+    # Wholly above the knee (4 thicknesses): the plain log spacing, 5 a decade (the table of
+    # the bundled example's 250 nm PMMA, unchanged); across it: steps of 1/15 decade below,
+    # 1/5 above (within one step's rounding to a whole number of steps), ends as given.
+    h = 250e-9
+    np.testing.assert_array_equal(_table_radii(1e-6, 1e-5, h, 5), np.geomspace(1e-6, 1e-5, 6))
+    a = _table_radii(1e-7, 1e-5, h, 5)
+    assert (a[0], a[-1]) == (1e-7, 1e-5)
+    step = np.diff(np.log10(a))
+    below, above = a[1:] <= 4 * h * (1 + 1e-9), a[:-1] >= 4 * h * (1 - 1e-9)
+    assert below.sum() >= 15 and above.sum() >= 2
+    np.testing.assert_allclose(step[below], step[below][0], rtol=1e-9)
+    assert 1 / 15 * 0.9 < step[below][0] <= 1 / 15 * (1 + 1e-9)
+    assert 1 / 5 * 0.9 < step[above][-1] <= 1 / 5 * (1 + 1e-9)
 
 
 def test_the_wider_table_of_a_thick_soft_film_is_a_tight_bound():

@@ -43,6 +43,11 @@ __all__ = ["CoatedLaw", "Coating", "build_law"]
 # Kernel truncation of the table's layered solutions (relative; the default 1e-12 costs twice
 # as much and moves the corrections by < 1e-8, far below the interpolation error).
 _TABLE_TOL = 1e-6
+# The contact radius, in thicknesses of the coating, below which the table has _DENSER times
+# as many radii a decade (_table_radii; measured in build_law: 5 a decade leave up to 2e-3 in
+# P' at a/h < 2, 10 still 1.2e-4 in C, 15 meet the stated accuracy).
+_THICK_FILM = 4.0
+_DENSER = 3
 # Iterations of the contact-radius solve (Illinois on ln a) and its tolerance (relative in F).
 _MAX_ITER = 80
 _FORCE_RTOL = 1e-9
@@ -421,6 +426,32 @@ class CoatedLaw:
         return float(self.E_range[0]), float(self.E_range[1])
 
 
+def _table_radii(lo: float, hi: float, thickness: float, per_decade: int) -> np.ndarray:
+    """The table's contact radii from ``lo`` to ``hi``, m (``thickness``: the coating's, m):
+    log-spaced, ``per_decade`` a decade where a >= :data:`_THICK_FILM` thicknesses and
+    :data:`_DENSER` times as many below, at least 6 in all.
+
+    Why denser in a thick film: there the corrections grow nearly like a/h (the film's own
+    half-space, q ≈ (1/E*_film − 1/E*) a/h), an exponential in ln a, whose cubic spline's
+    error goes with the fourth power of the step (measured: :func:`build_law`). Small
+    radii also cost the least (the layered solution's work grows like (a/h)²-³). A table
+    wholly above the knee is the plain log-spaced one."""
+    knee = _THICK_FILM * thickness
+    # (1e-9: a table that starts at the knee itself, rounded below it, stays log-spaced)
+    if lo >= knee * (1 - 1e-9):
+        return np.geomspace(lo, hi, max(6, math.ceil(per_decade * math.log10(hi / lo)) + 1))
+
+    def steps(a: float) -> float:
+        # The number of steps from the knee to a (negative below it).
+        d = math.log10(a / knee)
+        return per_decade * d * (_DENSER if d < 0 else 1)
+
+    u = np.linspace(steps(lo), steps(hi), max(6, math.ceil(steps(hi) - steps(lo)) + 1))
+    a = knee * 10 ** np.where(u < 0, u / (_DENSER * per_decade), u / per_decade)
+    a[0], a[-1] = lo, hi  # the ends as given, not a rounding of them
+    return a
+
+
 def build_law(
     coating: Coating,
     poisson: float,
@@ -440,20 +471,29 @@ def build_law(
     E_range : (lowest, highest) Young's modulus, Pa: ``n_E`` Chebyshev nodes in ln E (they
         halve the largest error of equally spaced ones, measured)
     radius_range : (smallest, largest) contact radius, m: ``per_decade`` nodes per decade of a
-        (log-spaced), at least 6
+        (log-spaced) where a is at least 4 coating thicknesses, 3x as many below (where the
+        contact sits in the film, :func:`_table_radii`), at least 6
 
-    Accuracy (measured against the layered solution between the nodes, 250 nm of PMMA on
-    E = 30-240 GPa, a = 1-10 µm, ν = 0.17): the corrections q to 2.5e-4 relative; the punch
-    compliance (< 1e-4), κ (1.0e-4) and the force P' (2.2e-4), of which they are a part, to
-    the tested 1e-4, 2e-4 and 3e-4 (the largest errors at the smallest a/h, 5;
-    tests/analysis/test_coating.py). The E interpolation is nearly all of it (the
-    spline in a leaves ~3e-6; six nodes in E would leave 6e-5 in q). A film as thick as the
-    contact makes the corrections vary most with E: for a 2 µm film at a = 4-8 µm the fitted
-    E moved by 4.4e-4 (tested to 1e-3), still far below the errors of a measured κ(F_N).
+    Accuracy (measured against the layered solution between the nodes, ν = 0.17): 250 nm of
+    PMMA on E = 30-240 GPa, a = 1-10 µm (a/h 4-40): the corrections q to 2.5e-4 relative; the
+    punch compliance (< 1e-4), κ (1.0e-4) and the force P' (2.2e-4), of which they are a part,
+    to the tested 1e-4, 2e-4 and 3e-4 (the largest errors at the smallest a/h, 5;
+    tests/analysis/test_coating.py). The E interpolation is nearly all of it (the spline in a
+    leaves ~3e-6; six nodes in E would leave 6e-5 in q). Where the contact sits inside the
+    film (a/h < 4, :func:`_table_radii`: 15 radii a decade there), films of 2 GPa, PMMA
+    (1 µm, 15 MHz) and 2 GPa / 20 GPa (two layers of 0.5 µm) on E = 40-160 GPa, tables of a
+    decade at a/h 0.02-20: the spline in a leaves <= 2.5e-5 in C, P' and κ (4e-5 in q) at any
+    a/h (at 5 a decade it left up to 1.1e-3 in C, 2.2e-3 in P' and 1.2e-3 in κ at a/h
+    0.02-2, largest in the end intervals), with the E part (PMMA: up to 7.5e-5 in κ) C
+    <= 7.4e-5, P' <= 8.1e-5, κ <= 1.04e-4 (tested: the same tolerances, a/h 0.02-0.26 and
+    0.5-5). A film stiffer than the substrate (300 GPa on E = 10-40 GPa) needs more E nodes,
+    not radii: the E part alone leaves 1.1e-4 in C, P' and κ at every a/h. A film as thick as
+    the contact makes the corrections vary most with E: for a 2 µm film at a = 4-8 µm the
+    fitted E moved by 4.4e-4 (tested to 1e-3), still far below the errors of a measured
+    κ(F_N).
     """
     lo, hi = (float(v) for v in radius_range)
-    n_a = max(6, math.ceil(per_decade * math.log10(hi / lo)) + 1)
-    a = np.geomspace(lo, hi, n_a)
+    a = _table_radii(lo, hi, coating.thickness, per_decade)
     x0, x1 = (math.log(float(v)) for v in E_range)
     cheb = np.cos((2 * np.arange(n_E) + 1) * np.pi / (2 * n_E))[::-1]
     E_nodes = np.exp(0.5 * (x0 + x1) + 0.5 * (x1 - x0) * cheb)
