@@ -1,4 +1,5 @@
-"""A class whose parameters the sweep does not identify has no criterion and no parameters.
+"""A class whose parameters the sweep does not identify has no criterion and no parameters;
+a load whose Δf has the wrong sign is flagged ``negative-stiffness``.
 
 Identification is counted here, independently of the analysis: Δf and ΔΓ give two residuals
 at each *distinct* amplitude (copies of one amplitude add residuals but no information: a
@@ -15,6 +16,7 @@ import pytest
 from test_trust import CONST, study
 
 from contactres.analysis import AnalysisSettings, analyze
+from contactres.analysis._flags import Flag, has, negative_stiffness
 from contactres.analysis._models import AMPLITUDE_MODELS
 from contactres.measurements._sweeps import SweepWarning, validate_sweeps
 from contactres.measurements._synthetic import synthetic_sweeps
@@ -27,6 +29,8 @@ RESIDUALS_PER_AMPLITUDE = 2  # Δf and ΔΓ
 CUT = {"glass/air/e1/F1/r4": 1, "glass/air/e1/F2/r1": 2, "glass/air/e1/F4/r1": 1}
 # ... and one cut to 3 points all at one amplitude: three points, one distinct amplitude.
 FLAT = "glass/air/e1/F3/r1"
+# A load whose every ramp has Δf negated.
+WRONG_SIGN = "glass/air/e2/F3/"
 
 
 def _table():
@@ -36,6 +40,7 @@ def _table():
     drop = np.concatenate([np.flatnonzero(names == s)[k:] for s, k in cut.items()])
     flat = np.flatnonzero(names == FLAT)[:3]
     raw.loc[flat, "amplitude_m"] = raw.loc[flat[0], "amplitude_m"]
+    raw.loc[np.char.startswith(names, WRONG_SIGN), "df_Hz"] *= -1
     raw = raw.drop(raw.index[drop]).reset_index(drop=True)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore", SweepWarning)  # few points, one amplitude: as meant
@@ -105,3 +110,23 @@ def test_every_classs_criterion_with_the_exact_loops_follows_the_same_count():
         for m in AMPLITUDE_MODELS:
             if RESIDUALS_PER_AMPLITUDE * d < k[m]:
                 assert row[f"bic_{m}"] == np.inf, (row["sweep"], m)
+
+
+def test_a_load_whose_shift_has_the_wrong_sign_is_flagged(closed_form):
+    table, _ = _table()
+    for results in (closed_form[0], analyze(table, settings=AnalysisSettings(bootstrap=0))):
+        sw = results.sweeps
+        wrong = sw["sweep"].astype(str).str.startswith(WRONG_SIGN).to_numpy()
+        assert wrong.sum() == 4  # ramps 1-4
+        flagged = has(sw["flags"].to_numpy(), Flag.NEGATIVE_STIFFNESS)
+        # Exactly the negated load: every other shift of the synthetic study is positive.
+        assert (flagged == wrong).all()
+        assert (sw["kappa_N_per_m"].to_numpy(float)[wrong] < 0).all()
+
+
+def test_negative_stiffness_is_below_zero_by_more_than_two_errors():
+    df0 = np.array([-1.0, -1.0, -1.0, -1.0, 0.0, 1.0, -1e-3])
+    err = np.array([0.4, 0.5, 0.6, np.nan, 0.0, 0.0, 0.0])
+    # -1 + 2·0.4 < 0; -1 + 2·0.5 = 0 is not below; -1 + 1.2 > 0; a missing error counts as 0.
+    expected = [True, False, False, True, False, False, True]
+    assert negative_stiffness(df0, err).tolist() == expected
