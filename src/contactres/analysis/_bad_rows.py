@@ -11,6 +11,12 @@ so their numbers bit for bit), and it gets NaN. The analysis (:func:`contactres.
 validates its sweeps and passes no NaN or inf, but a sweep of one or two points reaches the
 fits (the validation warns that it is too short and keeps its row: its loops then have no
 BIC); the fits are also called directly.
+
+The same count of distinct amplitudes decides, for every fit the analysis makes (each class's
+fit, exact or closed form, per sweep and per load block), whether the sweep identifies the fit's
+k parameters at all (:func:`identified`, :func:`blank_unidentified`): two residuals an amplitude
+(Δf and ΔΓ), so a fit of more parameters than twice the distinct amplitudes — a straight line's
+four through points at one amplitude, which has no slope — has no parameters and no criterion.
 """
 
 from __future__ import annotations
@@ -20,7 +26,7 @@ import pandas as pd
 
 from .._levenberg_marquardt import all_finite
 
-__all__ = ["spread_rows", "usable_rows"]
+__all__ = ["blank_unidentified", "distinct_amplitudes", "identified", "spread_rows", "usable_rows"]
 
 
 def usable_rows(points, per_row, min_points: int) -> np.ndarray | None:
@@ -51,15 +57,47 @@ def usable_rows(points, per_row, min_points: int) -> np.ndarray | None:
     are then counted more than once (a row passed that a sort would refuse; never the reverse).
     """
     arrays = [np.asarray(a, dtype=float) for a in (*points, *per_row)]
-    u, data = arrays[0], arrays[3] > 0
-    repeats = (u[:, 1:] == u[:, :-1]) & data[:, 1:] & data[:, :-1]
-    good = np.count_nonzero(data, axis=1) - np.count_nonzero(repeats, axis=1) >= min_points
+    good = distinct_amplitudes(arrays[0], arrays[3]) >= min_points
     # (an overflow of finite values only sends the rows to the test one by one below)
     if good.all() and all_finite(*arrays):
         return None
     for a in arrays:
         good &= np.isfinite(a).reshape(len(good), -1).all(axis=1)
     return good
+
+
+def distinct_amplitudes(u, w) -> np.ndarray:
+    """(S,) the number of distinct amplitudes of weight > 0 in each row of padded sweeps ``u``,
+    ``w`` (S, M) (m, and weights: 0 for padding, a NaN weight is no point); copies of one
+    amplitude are counted once where they stand side by side (see :func:`usable_rows`)."""
+    u = np.asarray(u, dtype=float)
+    data = np.asarray(w, dtype=float) > 0
+    repeats = (u[:, 1:] == u[:, :-1]) & data[:, 1:] & data[:, :-1]
+    return np.count_nonzero(data, axis=1) - np.count_nonzero(repeats, axis=1)
+
+
+def identified(distinct: np.ndarray, k: int) -> np.ndarray:
+    """(S,) bool: whether a sweep of ``distinct`` amplitudes (:func:`distinct_amplitudes`)
+    identifies a fit of ``k`` parameters to both channels: no more parameters than its
+    2·distinct residuals that carry information (Δf and ΔΓ at each amplitude)."""
+    return 2 * distinct >= k
+
+
+def blank_unidentified(fields: dict[str, np.ndarray], ok: np.ndarray) -> dict[str, np.ndarray]:
+    """The fields of a batched fit (arrays with the sweep as last axis) with the sweeps not
+    ``ok`` (:func:`identified`) emptied: NaN in numeric fields (the parameters, their errors
+    and the residual sums, so that the class has no criterion), False in flags (a hinge not
+    ``found``), "" in text; ``fields`` itself where every sweep is ``ok`` (the usual case: the
+    same arrays)."""
+    if ok.all():
+        return fields
+    out = {}
+    for key, v in fields.items():
+        v = np.array(v, copy=True)
+        kind = v.dtype.kind
+        v[..., ~ok] = False if kind == "b" else (np.nan if kind in "fc" else "")
+        out[key] = v
+    return out
 
 
 def spread_rows(fit: pd.DataFrame, good: np.ndarray) -> pd.DataFrame:

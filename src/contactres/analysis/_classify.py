@@ -27,7 +27,10 @@ alone decides. The runner-up is the class with the lowest BIC among the others, 
 to -``delta_bic``, where a simpler nested class was kept against a slightly better one). Where no
 other class has a BIC (with the exact loops, the default: a sweep of one point, two residuals for
 a loop's three parameters) there is no runner-up (``""``) and the evidence is inf; where no class
-has one, NaN.
+has one, NaN. One rule, with the exact loops or without, for a sweep or a load block: a class
+whose k parameters outnumber the residuals that carry information, two at each distinct
+amplitude (a straight line through points at one amplitude has no slope), has no criterion
+(inf) and no parameters (NaN) (:func:`~contactres.analysis._bad_rows.identified`).
 :mod:`contactres.analysis._blocks` then makes the same choice for the ramps of one load block
 together.
 """
@@ -40,6 +43,7 @@ import numpy as np
 import pandas as pd
 
 from ._amplitude import Block, Padded, bic
+from ._bad_rows import blank_unidentified, distinct_amplitudes, identified
 from ._loops import LoopTable, LoopTables, loop_tables
 from ._models import AMPLITUDE_MODELS, N_PARAMETERS, SWEEP_FITS
 from ._models.base import LoopInputs
@@ -105,6 +109,16 @@ def _fit_block(
         if fit.exact and not exact_loop:
             continue
         done[fit.source] = fit.fit(b, done, inputs)
+    # A fit of more parameters than the sweep identifies (a straight line through points at
+    # one amplitude) has neither parameters nor a criterion: one rule for every class, here
+    # where every fit of a sweep or of a load block's points is made. Emptied after all the
+    # fits, so that those started from an earlier one get the same inputs as before (the
+    # exact loops refuse such sweeps themselves, by the same count: _bad_rows.usable_rows).
+    distinct = distinct_amplitudes(b.u, b.w)
+    for fit in SWEEP_FITS:
+        if fit.source in done:
+            ok = identified(distinct, N_PARAMETERS[fit.model])
+            done[fit.source] = blank_unidentified(done[fit.source], ok)
     return u_max, done
 
 

@@ -15,7 +15,7 @@ from ..units import JUNCTION_SIGMAS, LINEAR_ONSET_X, MAX_MU, MIN_SWEEP_POINTS, S
 from ._loops import X_MAX
 from ._plateau import PLATEAU_D_C_BOUND
 
-__all__ = ["DESCRIPTIONS", "Flag", "has", "render"]
+__all__ = ["DESCRIPTIONS", "Flag", "has", "negative_stiffness", "render"]
 
 
 class Flag(enum.IntFlag):
@@ -34,6 +34,7 @@ class Flag(enum.IntFlag):
     DRIFT_REMOVED = enum.auto()
     MU_OUT_OF_RANGE = enum.auto()
     PLATEAU_AT_BOUND = enum.auto()
+    NEGATIVE_STIFFNESS = enum.auto()
 
     @property
     def text(self) -> str:
@@ -95,12 +96,26 @@ DESCRIPTIONS: dict[Flag, str] = {
         "and mu_fit are those of that fit with the critical displacement held at 0 "
         "(Cattaneo-Mindlin)"
     ),
+    Flag.NEGATIVE_STIFFNESS: (
+        "Δf0 below 0 by more than twice its error: a negative contact stiffness κ = Δf0/P, not "
+        "a result but a shift of the wrong sign (a contact raises the frequency, Δf0 = Pκ > 0; "
+        "check the sign of df_Hz); the exact loops, which need Δf0 > 0, have no fit"
+    ),
 }
 
 
 def has(mask, flag: Flag) -> np.ndarray:
     """Boolean array: which entries of the bit-mask array ``mask`` carry ``flag``."""
     return (np.asarray(mask, dtype=np.int64) & int(flag)) != 0
+
+
+def negative_stiffness(df0, err) -> np.ndarray:
+    """Where Δf0 (Hz) lies below 0 by more than twice its error ``err`` (Hz; a missing error
+    counts as 0), so that κ = Δf0/P < 0 (P > 0; paper 2, Eq. 1) beyond the noise. A Δf0 within
+    two errors of 0 is a small stiffness, not a sign error. Arrays; returns a boolean array."""
+    df0 = np.asarray(df0, dtype=float)
+    err = np.nan_to_num(np.asarray(err, dtype=float), nan=0.0)
+    return df0 + 2.0 * err < 0.0
 
 
 def render(mask) -> np.ndarray:

@@ -30,7 +30,7 @@ from ._classify import apply_models, fit_sweeps
 from ._curves import CURVE_GRIDS, FIGURE_POINTS, fitted_curves, jkr_curves, sweep_points
 from ._drift import LOAD_OF_EXPERIMENT, drifting_sweeps, remove_linear_drift
 from ._examples import FIGURE_COLUMNS, drawn_in_figure
-from ._flags import Flag
+from ._flags import Flag, negative_stiffness
 from ._friction import block_friction, loop_friction, mu_out_of_range, slope_friction
 from ._jkr import fit_group
 from ._loads import GROUP_KEYS, per_experiment, per_load, withhold_mu
@@ -284,6 +284,9 @@ def _run(
 
     say("contact stiffness and friction")
     sw["kappa_N_per_m"] = sw["df0_Hz"] / P
+    # A negative κ is no contact stiffness but a Δf of the wrong sign: said where it is, with
+    # the input to check (the JKR fit leaves such points out, and only said so per group).
+    flags |= _flag(negative_stiffness(sw["df0_Hz"], sw["df0_err_Hz"]), Flag.NEGATIVE_STIFFNESS)
     sw["omega_xi_N_per_m"] = sw["dgamma0_Hz"] / P
     with np.errstate(divide="ignore", invalid="ignore"):
         sw["loss_tangent"] = sw["dgamma0_Hz"] / sw["df0_Hz"]
