@@ -442,3 +442,28 @@ def test_the_contact_job_finds_the_one_static_frequency():
     from contactres.jobs import contact
 
     assert contact.STATIC_FREQUENCY_HZ is STATIC_FREQUENCY_HZ
+
+
+@pytest.mark.parametrize("bad", [-5.0, np.nan, np.inf, -np.inf, None, "one Hz", 1j])
+def test_static_solid_checks_the_frequency_of_every_material(bad):
+    """A Material does not depend on the frequency, but a bad one is still the caller's error,
+    refused in the words a ViscoelasticMaterial's is (the module's one frequency rule)."""
+    cu = cr.Material.crystal("Cu")
+    messages = set()
+    for m in (cu, cu.with_loss(0.05), cr.pmma()):
+        with pytest.raises(ContactresInputError, match="frequency must be") as info:
+            static_solid(m, bad)
+        messages.add(str(info.value))
+    assert len(messages) == 1
+    for m in (cu, cr.pmma()):
+        with pytest.raises(ContactresInputError, match="one frequency"):
+            static_solid(m, [1.0, 2.0])
+
+
+def test_static_solid_takes_one_material_not_a_stack():
+    """A LayeredMaterial has no one static solid (its layers and substrate each have one): the
+    refusal says so, whatever the stack holds (before: '.at(1.0) must return a Material')."""
+    cu = cr.Material.crystal("Cu")
+    for layer in (cr.pmma(), cu.with_loss(0.05), cu):
+        with pytest.raises(ContactresInputError, match="one material, not a stack"):
+            static_solid(cr.LayeredMaterial(cu, [(layer, 1e-7)]))

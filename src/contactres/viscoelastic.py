@@ -586,10 +586,15 @@ class ViscoelasticMaterial(Summarised):
 
 # ------------------------------------------------------------------ the solid of a static contact
 #: The loading frequency, Hz, at which a frequency-dependent material's storage constants stand
-#: for its static ones (:func:`static_solid`), wherever contactres needs a static contact on it:
-#: the quasi-static moduli of polymers are quoted at about 1 Hz (datasheets; the built-in
-#: PMMA's anchors, :data:`PMMA_STATIC_FREQUENCY`), and a power law (the built-in PMMA's) has
-#: no relaxed limit to take instead (its moduli relax to zero at 0 Hz).
+#: for its static ones (:func:`static_solid`'s default) where contactres loads a coating
+#: statically: the static columns of the ``contact`` job on a coated face (and the ``dcsf``
+#: job's K_sa there), the coated QCM fit's normal contact, and the coatings of ``afm invert``
+#: and ``maps predict``. Not everywhere: the coated QCM radiation's K₀ takes the storage
+#: constants at the overtone frequency, and a bare face (``sphere_contact``, the bare jobs)
+#: takes an undamped Material only, refusing a lossy one. Why 1 Hz: the quasi-static moduli of
+#: polymers are quoted at about 1 Hz (datasheets; the built-in PMMA's anchors,
+#: :data:`PMMA_STATIC_FREQUENCY`), and a power law (the built-in PMMA's) has no relaxed limit
+#: to take instead (its moduli relax to zero at 0 Hz).
 STATIC_FREQUENCY_HZ = 1.0
 
 
@@ -626,7 +631,10 @@ def static_solid(material, frequency: float = STATIC_FREQUENCY_HZ) -> Material:
     Raises
     ------
     ContactresInputError
-        ``material.at(f)`` refuses f (e.g. 0 Hz for a power law), or returns no Material.
+        f is not one finite number >= 0 (checked for every material, a Material too);
+        ``material`` is a stack (a :class:`~contactres.LayeredMaterial`: its layers and
+        substrate each have their own static solid); ``material.at(f)`` refuses f (e.g. 0 Hz
+        for a power law), or returns no Material.
 
     Examples
     --------
@@ -639,6 +647,16 @@ def static_solid(material, frequency: float = STATIC_FREQUENCY_HZ) -> Material:
     >>> print(f"{film.C[3, 3] / 1e9:.3f} GPa")
     1.092 GPa
     """
+    # The frequency is checked for every material, also one that does not depend on it: the
+    # same rule and message as ViscoelasticMaterial.at's.
+    if _frequency(frequency).ndim:
+        raise ContactresInputError("the static solid is taken at one frequency (Hz), not an array")
+    if hasattr(material, "layers") and hasattr(material, "substrate"):
+        # A LayeredMaterial (a higher layer of the package: recognised by its fields).
+        raise ContactresInputError(
+            f"static_solid takes one material, not a stack ({type(material).__name__}): take "
+            "the static solid of each of its layers and of its substrate"
+        )
     at = material if isinstance(material, Material) else material.at(frequency)
     if not isinstance(at, Material):
         raise ContactresInputError(

@@ -205,6 +205,87 @@ def test_a_lossy_film_has_the_static_columns_of_its_elastic_part():
         assert (lossy[col][1:] > elastic[col][1:] + 1e-3 * elastic["stiffness_N_per_m"][1:]).all()
 
 
+def test_the_notes_name_every_material_whose_loss_the_static_columns_leave_out():
+    """A lossy Material's static columns are its elastic part's (test above): a note says so,
+    as it says a viscoelastic film's are its storage constants at 1 Hz; an unnamed one is
+    named by its place (film or substrate); an undamped stack has no such note."""
+    from contactres import LayeredMaterial, pmma
+
+    glass, film = Material.crystal("fused-silica"), Material.crystal("Si3N4")
+    unnamed = Material.isotropic(70e9, 0.2, density=2500.0)
+
+    def notes(stack, frequency=None):
+        s = contact.Settings(np.array([1e-3]), np.array([1e-3]), frequency)
+        return [w for w in contact.run(stack, s).warnings if w.startswith("the static columns")]
+
+    assert notes(LayeredMaterial(glass, [(film, 250e-9)])) == []
+    lossy_film = LayeredMaterial(glass, [(film.with_loss(0.05), 250e-9)])
+    (static,) = notes(lossy_film)
+    assert "elastic part" in static and "Si3N4 (lossy)" in static and "dynamic" not in static
+    (dynamic,) = notes(lossy_film, np.array([15e6]))
+    assert dynamic.startswith(static) and "the dynamic ones its complex constants" in dynamic
+    assert "substrate (lossy)" in notes(LayeredMaterial(unnamed.with_loss(0.05), [(film, 1e-7)]))[0]
+    both = notes(LayeredMaterial(glass.with_loss(0.05), [(pmma(), 250e-9)]))
+    assert "PMMA (viscoelastic)" in both[0] and "fused-silica (lossy)" in both[1]
+
+
+def test_a_lossy_face_is_refused_bare_and_taken_under_a_coating():
+    """The rule the module docstrings state: the bare static contact needs real constants and
+    the bare kernels take the loss as the factor loss=, so a bare lossy face is refused (the
+    contact job, the dcsf job for contacts and for k a); the same face under a coating runs."""
+    lossy = Material.crystal("fused-silica").with_loss(0.02)
+    R, F, f = np.array([1e-3]), np.array([1e-2]), np.array([1e6])
+    with pytest.raises(ContactresInputError, match=r"real \(undamped\) constants"):
+        contact.run(lossy, contact.Settings(R, F))
+    with pytest.raises(ContactresInputError, match=r"real \(undamped\) constants"):
+        contact.run(lossy, contact.Settings(R, F, f))
+    with pytest.raises(ContactresInputError, match=r"real \(undamped\) constants"):
+        dcsf_job.run(lossy, dcsf_job.Settings(radius=R, force=F, frequency=f))
+    with pytest.raises(ContactresInputError, match="set the damping with loss="):
+        dcsf_job.run(lossy, dcsf_job.Settings(ka=np.array([0.5])))
+    coating = ("fused-silica:250e-9",)
+    assert len(contact.run(lossy, contact.Settings(R, F, f, coating=coating)).table) == 1
+    s = dcsf_job.Settings(radius=R, force=F, frequency=f, coating=coating)
+    assert len(dcsf_job.run(lossy, s).table) == 1
+
+
+def test_dcsf_on_a_coated_lossy_face_adds_the_loss_to_the_dynamic_columns_only():
+    """Fused silica C (1 + i q) under 250 nm of (elastic) fused silica, a ~ 4.6 µm.
+
+    Static columns (contact radius, K_sa, k a) and the face's constants: the elastic face's,
+    bit for bit (the elastic part, static_solid). Dynamic: at 1 kHz (no radiation to speak of)
+    the added Im K is q times the substrate's part of the static punch stiffness,
+    C_s dK/dC_s (first order of K(C_s (1 + i q)) in q: the stiffness is analytic in the
+    constants), that derivative taken here by central differences of the static layered punch
+    with the substrate's constants scaled; at 15 MHz the added Im K is positive and below what
+    the whole half-space lossy adds (the bare solver with loss=q, another algorithm): the film
+    on top stays undamped."""
+    from contactres import LayeredMaterial, dynamic_contact_stiffness, flat_punch_stiffness
+
+    glass, q = Material.crystal("fused-silica"), 0.02
+    R, F, f = np.array([1e-3]), np.array([1e-2]), np.array([1e3, 15e6])
+    s = dcsf_job.Settings(radius=R, force=F, frequency=f, coating=("fused-silica:250e-9",))
+    elastic, lossy = dcsf_job.run(glass, s), dcsf_job.run(glass.with_loss(q), s)
+    for col in ("ka", "radius_m", "force_N", "frequency_Hz", "contact_radius_m",
+                "stiffness_N_per_m", "coating"):  # fmt: skip
+        np.testing.assert_array_equal(lossy.table[col], elastic.table[col], err_msg=col)
+    assert lossy.face == elastic.face
+    added = (lossy.table["K_im_N_per_m"] - elastic.table["K_im_N_per_m"]).to_numpy()
+    a = float(elastic.table["contact_radius_m"].iloc[0])
+
+    def static_punch(scale):
+        substrate = Material(C=glass.C * scale, density=glass.density)
+        return flat_punch_stiffness(LayeredMaterial(substrate, [(glass, 250e-9)]), a, 0.0).real
+
+    eps = 1e-4
+    share = (static_punch(1 + eps) - static_punch(1 - eps)) / (2 * eps)
+    assert 0.5 * float(elastic.table["stiffness_N_per_m"].iloc[0]) < share  # a ≫ 250 nm
+    assert added[0] == pytest.approx(q * share, rel=1e-4)
+    whole = dynamic_contact_stiffness(glass, R, F, f[1:], loss=q).imag
+    whole -= dynamic_contact_stiffness(glass, R, F, f[1:]).imag
+    assert 0 < added[1] < whole[0]
+
+
 @pytest.mark.parametrize(
     "coating, words",
     [

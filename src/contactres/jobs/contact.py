@@ -33,7 +33,18 @@ have no relaxed (0 Hz) limit: the static columns use their storage constants at
 dynamic columns their complex constants at the frequency (the correspondence principle). A lossy
 Material of a stack (:meth:`~contactres.Material.with_loss`) likewise: its elastic part in the
 static columns, its complex constants in the dynamic ones
-(:func:`contactres.viscoelastic.static_solid`).
+(:func:`contactres.viscoelastic.static_solid`). The ``warnings`` say which materials' static
+columns were taken so.
+
+A bare face takes an undamped Material only: a lossy one is refused (by
+:func:`contactres.sphere_contact`, which needs real constants). The bare dynamic solvers take
+the same undamped constants with the loss as one separate factor Q⁻¹ (``loss=`` of
+:func:`contactres.dynamic_contact_stiffness` and :func:`contactres.tangential_contact_stiffness`,
+which refuse a lossy Material too; this job sets no loss: its bare dynamic columns are the
+lossless solid's, radiation only). A Material's loss need not be one factor (any Im C >= 0), so
+the bare face does not split a lossy Material into the two; the layered punch of a coated face
+takes each material's complex constants as they are. For the bare face of a lossy solid give
+its elastic part (``static_solid(m)``); its damping then appears in no column.
 """
 
 from __future__ import annotations
@@ -101,7 +112,9 @@ class Settings:
         Films put on the face, top first: each ``"MATERIAL:THICKNESS"`` (thickness in m, e.g.
         ``"pmma:250e-9"``) or a ``(material_name, thickness_m)`` pair, the materials named as in
         :func:`coating_materials` (see :func:`parse_coating`). Empty: the bare face (or the
-        stack given as ``inputs``).
+        stack given as ``inputs``). A lossy Material (:meth:`~contactres.Material.with_loss`)
+        is taken in a stack, as its substrate or a layer, and refused as a bare face (module
+        docstring).
     """
 
     radius: np.ndarray
@@ -118,8 +131,10 @@ class Result(JobResult):
     named with them: :data:`contactres.measurements.schema.CONTACT_TABLE`), and whether the
     contact is circular (the face has 3- or 4-fold symmetry) with the relative 2nd harmonic of
     its compliance, ``noncircularity`` (on a coated face: those of the substrate's face).
-    ``warnings``: notes for the user (with a viscoelastic film: its static columns use its
-    storage constants at :data:`STATIC_FREQUENCY_HZ`)."""
+    ``warnings``: notes for the user (with a viscoelastic material in the stack: its static
+    columns use its storage constants at :data:`STATIC_FREQUENCY_HZ`; with a lossy Material:
+    they use its elastic part, its loss is in the dynamic columns only). A lossy Material as a
+    bare face is refused (module docstring)."""
 
     SCHEMAS = MappingProxyType({"table": CONTACT_TABLE})
 
@@ -514,19 +529,35 @@ def _run_coated(stack: LayeredMaterial, R, F, f, s: Settings, progress) -> Resul
             table["tangential_loss_tangent"] = loss
     elif s.tangential:
         table["tangential_stiffness_N_per_m"] = kt.real
-    viscous = [
-        getattr(m, "name", None) or "film" for m in stack.materials if not isinstance(m, Material)
-    ]
-    notes: tuple[str, ...] = ()
-    if viscous:
-        notes = (
-            f"the static columns use the storage modulus at {STATIC_FREQUENCY_HZ:g} Hz of "
-            f"{', '.join(viscous)} (viscoelastic)"
-            + ("; the dynamic ones its modulus at the frequency" if dynamic else ""),
-        )
     return Result(
         table=_flag_wide(table, wide),
         circular=bool(getattr(bare, "circular", True)),
         noncircularity=float(getattr(bare, "noncircularity", 0.0)),
-        warnings=notes + _wide_warnings(table),
+        warnings=_static_notes(stack, dynamic) + _wide_warnings(table),
     )
+
+
+def _static_notes(stack: LayeredMaterial, dynamic: bool) -> tuple[str, ...]:
+    """A line naming the viscoelastic materials of ``stack`` (static columns: their storage
+    constants at :data:`STATIC_FREQUENCY_HZ`) and one naming its lossy Materials (static
+    columns: their elastic part); none for an undamped stack."""
+    # Unnamed: a layer is "film" (as in the coating column), the substrate "substrate".
+    named = [(m, getattr(m, "name", None) or "film") for m, _ in stack.layers]
+    named.append((stack.substrate, getattr(stack.substrate, "name", None) or "substrate"))
+    viscous = [name for m, name in named if not isinstance(m, Material)]
+    lossy = [name for m, name in named if isinstance(m, Material) and m.is_lossy]
+    notes = []
+    if viscous:
+        notes.append(
+            f"the static columns use the storage modulus at {STATIC_FREQUENCY_HZ:g} Hz of "
+            f"{', '.join(viscous)} (viscoelastic)"
+            + ("; the dynamic ones its modulus at the frequency" if dynamic else "")
+        )
+    if lossy:
+        # The loss a static column leaves out, said as the viscoelastic one's is.
+        notes.append(
+            f"the static columns use the elastic part (real constants) of {', '.join(lossy)} "
+            "(lossy), without its loss"
+            + ("; the dynamic ones its complex constants" if dynamic else "")
+        )
+    return tuple(notes)

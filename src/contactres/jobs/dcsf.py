@@ -21,7 +21,17 @@ layered rigid flat punch at a (:func:`contactres.flat_punch_stiffness`): for ela
 :func:`contactres.dynamic.layered_dcsf` (K_sa the static punch of the undamped stack); a film
 without a static limit (the built-in PMMA's power laws) is referred to its storage constants at
 :data:`contactres.viscoelastic.STATIC_FREQUENCY_HZ` (1 Hz), as the ``contact`` job's static
-columns are. The ``ka`` column is then the substrate's k a, for orientation only.
+columns are. The ``ka`` column is then the substrate's k a, for orientation only. A lossy face
+(a Material with complex constants, e.g. C (1 + i Q⁻¹) from
+:meth:`~contactres.Material.with_loss`: from Python, the command line makes none) is taken
+under a coating as the ``contact`` job takes it: the static contact (contact radius, K_sa, k a)
+of its elastic part, K(f) of its complex constants, so its loss adds to ``im``.
+
+A bare face takes an undamped Material only: a lossy one is refused, by the static contact
+(:func:`contactres.sphere_contact` needs real constants) for physical contacts and by the
+kernel table (:func:`contactres.dynamic.prepare`) for values of k a. The bare kernels take the
+loss as one factor, ``loss`` (Q⁻¹ of C (1 + i Q⁻¹)): give the undamped Material and its loss
+there. (A lossy Material's loss need not be one factor, so it is not split into the two.)
 """
 
 from __future__ import annotations
@@ -97,9 +107,10 @@ class Result(JobResult):
     ``face``: C33/C44, C33 and C44 (Pa) of the face and its wave speeds v_l = √(C33/ρ),
     v_s = √(C44/ρ) (m/s); NaN where unknown (on a coated face: the substrate's).
     ``warnings``: one line per kind of flag in the table (rows that miss rtol, negative
-    damping), and with a coating how the films' static constants were taken. With a coating the
-    table adds ``coating``; its rel_error is not estimated (NaN: the layered punch meets its
-    rtol by construction, :func:`contactres.dynamic.layered_dcsf`)."""
+    damping), and with a coating how the static constants of its viscoelastic films or of a
+    lossy face were taken. With a coating the table adds ``coating``; its rel_error is not
+    estimated (NaN: the layered punch meets its rtol by construction,
+    :func:`contactres.dynamic.layered_dcsf`)."""
 
     SCHEMAS = MappingProxyType({"table": DCSF_TABLE})
 
