@@ -185,14 +185,17 @@ def homogeneous_data(E=70e9, gamma=0.05, radius=R, forces=FORCES):
     return forces, kappa_jkr_mindlin(forces, E, gamma, radius, NU)
 
 
-@pytest.mark.parametrize(("h", "rtol"), [(50e-9, 1e-4), (2e-6, 1e-3)])
+@pytest.mark.parametrize(("h", "rtol"), [(50e-9, 1e-5), (2e-6, 1e-5)])
 def test_a_film_of_the_substrate_material_gives_the_uncoated_fit(h, rtol):
     # The table's interpolation in E is all the difference: a film as thick as the contact
-    # (2 µm against a = 4-8 µm) makes the corrections vary most with E (measured 4.4e-4 in E).
+    # (2 µm against a = 4-8 µm) makes the corrections vary most with E. The film is stiffer
+    # than the substrate at the table's lowest E (35 GPa): seven E nodes, E measured to 9.6e-7
+    # and 5.9e-7, γ to 2.3e-6 and 6.9e-8 (with five, the former default: 7.1e-5 and 4.4e-4 in
+    # E, 2.2e-4 and 2.4e-4 in γ; this fails).
     # The table spans the radii the fit visits (a = 4-8 µm at the true E, up to 1.3 times that
     # at the lowest E of the table, as the analysis' own window of 0.7-1.5 times the uncoated
     # radii). The largest a/h sets the cost of the layered solutions: the table's former 1-20 µm
-    # made the 50 nm case 28 s of CPU, 2-12 µm takes 10 s (measured in E: 7e-5 of the 1e-4).
+    # made the 50 nm case 28 s of CPU, 2-12 µm took 10 s with five E nodes.
     E, gamma = 70e9, 0.05
     F, kappa = homogeneous_data(E, gamma)
     same = cr.Material.isotropic(E, NU, name="substrate")
@@ -586,6 +589,42 @@ def test_the_table_interpolates_the_layered_solution_where_the_contact_is_in_the
         C = 1 / (2 * a * e_star) + q[:, 0] * h / a**2
         force = 1 / (3 / (4 * e_star) + q[:, 1] * h / a)
         kappa = np.real(1 / (2 * (2 - NU) / (8 * G * a) + (q[:, 2] + 1j * q[:, 3]) * h / a**2))
+        C_i, _, force_i = law.normal(E, a)
+        np.testing.assert_allclose(C_i, C, rtol=1e-4)
+        np.testing.assert_allclose(force_i, force, rtol=3e-4)
+        np.testing.assert_allclose(law.tangential(E, a), kappa, rtol=2e-4)
+
+
+@pytest.mark.parametrize(
+    ("E_film", "E_range"),
+    [
+        # The analysis' own width of range (0.6-2.5 times the uncoated E: 4.2) and a wider one
+        # (several groups), each under a film far stiffer than the substrate.
+        (300e9, (10e9, 40e9)),
+        (200e9, (30e9, 240e9)),
+    ],
+)
+def test_the_table_of_a_stiff_film_interpolates_the_layered_solution_in_E(E_film, E_range):
+    # Midway between the E nodes (in ln E), at radii of the table (the E interpolation alone),
+    # against the layered solution there (_corrections, no table); the tolerances are
+    # build_law's stated ones. A film stiffer than the substrate gets seven E nodes (measured
+    # <= 3.4e-7 and <= 6e-6 in C, P', κ); with five (n_E=5, the former default) this fails:
+    # C 1.1e-4 and 6.1e-4 (P' 6.7e-4, κ 7.3e-4 on the wider range).
+    coating, f, nu = (
+        as_coating((cr.Material.isotropic(E_film, 0.25, name="stiff"), 1e-6)),
+        15e6,
+        0.3,
+    )
+    law = build_law(coating, nu, f, E_range, (0.02e-6, 0.2e-6))
+    h = coating.thickness
+    a = np.exp(law.log_a[::5])
+    x = np.log(law.E_nodes)
+    for E in np.exp((x[1:] + x[:-1]) / 2):
+        q = _corrections(E, nu, coating, f, a)
+        e_star, G = E / (2 * (1 - nu**2)), E / (2 * (1 + nu))
+        C = 1 / (2 * a * e_star) + q[:, 0] * h / a**2
+        force = 1 / (3 / (4 * e_star) + q[:, 1] * h / a)
+        kappa = np.real(1 / (2 * (2 - nu) / (8 * G * a) + (q[:, 2] + 1j * q[:, 3]) * h / a**2))
         C_i, _, force_i = law.normal(E, a)
         np.testing.assert_allclose(C_i, C, rtol=1e-4)
         np.testing.assert_allclose(force_i, force, rtol=3e-4)

@@ -91,11 +91,10 @@ __all__ = [
 # stiff one raises it) and the contact radii around theirs (both models fit the same κ, so the
 # coated radii stay near the uncoated ones for an elastic film: 0.9-1.1 times them on the
 # bundled example with 250 nm of PMMA; a film soft statically and stiff at the overtone needs
-# more, and gets a wider table, _wider_law); five nodes in E (build_law). A fit outside is
-# flagged, not extrapolated.
+# more, and gets a wider table, _wider_law); five nodes in E, seven under a film stiffer than
+# the substrate (build_law). A fit outside is flagged, not extrapolated.
 _E_WINDOW = (0.6, 2.5)
 _A_WINDOW = (0.7, 1.5)
-_N_E = 5
 # The largest contact radius of a widened table (_wider_law), in thicknesses of the thinnest
 # layer. Why: the bound by the softest layer is loose for a thin soft film (up to ~850 h for
 # 20 MPa / 150 nm, beyond the layered solver's ~525 h, where it raised and lost the whole
@@ -231,7 +230,7 @@ def apply_coating(groups, exp, sweeps, coating: Coating, bootstrap: int, seed: i
             max(v[4][1] for v in members) * _A_WINDOW[1],
         )
         say(f"coated plate: tabulating {coating.label} (ν = {spec[0]:g}, {spec[1]:.4g} Hz)")
-        laws[spec] = build_law(coating, spec[0], spec[1], E_range, a_range, n_E=_N_E)
+        laws[spec] = build_law(coating, spec[0], spec[1], E_range, a_range)
     out = {}
     for key, (g, part, mine, spec, _) in todo.items():
         say(f"JKR fit on the coated plate: {key[0]}, {key[1]}")

@@ -13,8 +13,10 @@ substrate scales), so the three film corrections
 of contact radii and a few Young's moduli (:func:`build_law`) and interpolated: a cubic spline
 in ln a (the derivative dC/da from it) and a Lagrange polynomial in ln E. They are nearly
 independent of E for a thin film (a film's compression h/(πa²M_f) does not involve the
-substrate), so five Chebyshev nodes in E suffice; the measured interpolation error is stated
-in :func:`build_law` (tested). The layered solutions at the five E share their quadrature
+substrate), so five Chebyshev nodes in E suffice for films softer than the substrate; a film
+stiffer than it spreads the load over the substrate, whose compliance its corrections then
+carry, and gets seven (:func:`_node_count`). The measured interpolation error is stated in
+:func:`build_law` (tested). The layered solutions at the table's E share their quadrature
 nodes (set by the film, not by E), so the Galerkin's basis transforms there are computed once
 per radius and direction (``transforms=``). The E range of the table is the fit's bound; a
 contact radius outside the table is clamped to it while the fit searches
@@ -33,7 +35,7 @@ from scipy.interpolate import CubicSpline, PPoly
 from ..fitting import Model, Parameter
 from ..layered import FrequencyDependentMaterial, LayeredMaterial, material_at, thickness_text
 from ..materials import Material
-from ..normal import sphere_contact_at, static_punch_stiffness
+from ..normal import indentation_modulus, sphere_contact_at, static_punch_stiffness
 from ..numerics import illinois_step
 from ..units import POISSON_OPEN_RANGE
 from ..viscoelastic import static_solid
@@ -48,6 +50,13 @@ _TABLE_TOL = 1e-6
 # P' at a/h < 2, 10 still 1.2e-4 in C, 15 meet the stated accuracy).
 _THICK_FILM = 4.0
 _DENSER = 3
+# The table's E nodes (build_law, _node_count): five where every layer of the coating is softer
+# than the substrate at the table's lowest E (the corrections then hardly depend on E: a film's
+# own compression), seven where one is stiffer (the film spreads the load over the substrate,
+# whose compliance the corrections then carry: five left 1.1e-4 in C for 300 GPa on 10-40 GPa,
+# up to 8e-4 on 30-240 GPa; seven leave <= 6.1e-6, measured in build_law).
+_N_E_SOFT = 5
+_N_E_STIFF = 7
 # Iterations of the contact-radius solve (Illinois on ln a) and its tolerance (relative in F).
 _MAX_ITER = 80
 _FORCE_RTOL = 1e-9
@@ -452,13 +461,31 @@ def _table_radii(lo: float, hi: float, thickness: float, per_decade: int) -> np.
     return a
 
 
+def _node_count(coating: Coating, poisson: float, frequency: float, E_low: float) -> int:
+    """The number of E nodes of the table (:func:`build_law`): :data:`_N_E_STIFF` where a
+    layer's indentation modulus (storage part; statically, for the normal contact, or at
+    ``frequency``, for the tangential one, whichever is larger) exceeds the substrate's at
+    ``E_low`` (Pa; isotropic, Poisson ratio ``poisson``), else :data:`_N_E_SOFT`.
+
+    Why the lowest E: the contrast of a stiff film is largest there (a film between the
+    range's ends is stiffer than part of it, and five nodes left 2.4e-4 in C for 40 GPa on
+    30-240 GPa, measured)."""
+    substrate = float(np.real(indentation_modulus(Material.isotropic(E_low, poisson))))
+    films = (
+        float(np.real(indentation_modulus(s)))
+        for m, _ in coating.layers
+        for s in (static_solid(m), material_at(m, frequency))
+    )
+    return _N_E_STIFF if max(films) > substrate else _N_E_SOFT
+
+
 def build_law(
     coating: Coating,
     poisson: float,
     frequency: float,
     E_range: tuple[float, float],
     radius_range: tuple[float, float],
-    n_E: int = 5,
+    n_E: int | None = None,
     per_decade: int = 5,
 ) -> CoatedLaw:
     """Tabulate the film corrections for :class:`CoatedLaw`.
@@ -470,6 +497,9 @@ def build_law(
     frequency : Hz, for the film's tangential constants
     E_range : (lowest, highest) Young's modulus, Pa: ``n_E`` Chebyshev nodes in ln E (they
         halve the largest error of equally spaced ones, measured)
+    n_E : the number of E nodes; None (the default): 5 where every layer of the coating is
+        softer than the substrate at the range's lowest E, 7 where one is stiffer
+        (:func:`_node_count`)
     radius_range : (smallest, largest) contact radius, m: ``per_decade`` nodes per decade of a
         (log-spaced) where a is at least 4 coating thicknesses, 3x as many below (where the
         contact sits in the film, :func:`_table_radii`), at least 6
@@ -486,15 +516,28 @@ def build_law(
     a/h (at 5 a decade it left up to 1.1e-3 in C, 2.2e-3 in P' and 1.2e-3 in κ at a/h
     0.02-2, largest in the end intervals), with the E part (PMMA: up to 7.5e-5 in κ) C
     <= 7.4e-5, P' <= 8.1e-5, κ <= 1.04e-4 (tested: the same tolerances, a/h 0.02-0.26 and
-    0.5-5). A film stiffer than the substrate (300 GPa on E = 10-40 GPa) needs more E nodes,
-    not radii: the E part alone leaves 1.1e-4 in C, P' and κ at every a/h. A film as thick as
-    the contact makes the corrections vary most with E: for a 2 µm film at a = 4-8 µm the
-    fitted E moved by 4.4e-4 (tested to 1e-3), still far below the errors of a measured
-    κ(F_N).
+    0.5-5). A film stiffer than the substrate needs more E nodes, not radii (the E part at
+    a/h 0.02-20, midway between the E nodes, 1 µm films, ν 0.3, 15 MHz): with five, 300 GPa on
+    E = 10-40 GPa (the analysis' own width of range, 0.6-2.5 times the uncoated E) left
+    1.1e-4 in C, P' and κ at every a/h, and 150, 40 and 12 GPa left 1.0e-4, 6.7e-5 and
+    3.5e-5 in C (κ 1.0e-4, 7.5e-5, 5.9e-5); on the wider 30-240 GPa (several groups), 40, 200
+    and 400 GPa left 2.4e-4, 6.1e-4 and 8.1e-4 in C (κ to 8.3e-4). The seven nodes of such a
+    film (one stiffer than the substrate at the range's lowest E, :func:`_node_count`) leave
+    <= 3.5e-7 on 10-40 GPa and <= 6.1e-6 in C, P', κ on 30-240 GPa (tested: 300 GPa on
+    10-40 GPa and 200 GPa on 30-240 GPa against the stated tolerances, which five nodes
+    fail). Softer films keep five: 10 and 30 GPa on 40-160 GPa leave 1.0e-5 and 2.5e-5 in C
+    (κ 1.8e-5, 4.6e-5). The rule's limit, a film just softer than the substrate on a range
+    wider than the analysis' own: 25 GPa on 35-280 GPa leaves 1.4e-4 in C and 2.9e-4 in κ with
+    five nodes (1.3e-6 and 4.1e-6 with seven, ``n_E=7``). The substrate's own material as a
+    film as thick as the contact (2 µm at a = 4-8 µm, E = 35-280 GPa: the corrections vary
+    most with E) moved the fitted E by 4.4e-4 with five nodes, 6e-7 with seven (tested to
+    1e-5).
     """
     lo, hi = (float(v) for v in radius_range)
     a = _table_radii(lo, hi, coating.thickness, per_decade)
     x0, x1 = (math.log(float(v)) for v in E_range)
+    if n_E is None:
+        n_E = _node_count(coating, poisson, frequency, float(E_range[0]))
     cheb = np.cos((2 * np.arange(n_E) + 1) * np.pi / (2 * n_E))[::-1]
     E_nodes = np.exp(0.5 * (x0 + x1) + 0.5 * (x1 - x0) * cheb)
     store: dict = {}  # the basis transforms, shared by every E (_corrections)
