@@ -528,11 +528,11 @@ def test_the_wider_table_holds_the_radii_the_film_gives_over_the_fits_bounds():
 
 def test_the_wider_table_interpolates_the_layered_solution_where_the_refit_works():
     # The widened table of the test above (2 µm of the stiffening film: radii 2.7-25.8 µm, a/h
-    # 1.4-13, six radii as its first table: 5 a decade, at least 6) against the layered
-    # solution (_corrections at the radius, no table) at the refit's radii of 2-30 mN (10 and
-    # 15.7 µm, test_a_film_soft_statically_...) and midway between the nodes around them, E
-    # midway between the E nodes. Measured <= 4.7e-5 (P'; C 1.6e-5, κ 3.4e-5); the bottom
-    # interval (3.4 µm, a/h 1.7, below any radius of the fit) reaches 3.1e-4 in κ. Built with
+    # 1.4-13, 11 radii: 15 a decade below 4 thicknesses, 5 above, build_law) against the
+    # layered solution (_corrections at the radius, no table) at the refit's radii of 2-30 mN
+    # (10 and 15.7 µm, test_a_film_soft_statically_...) and midway between the nodes around
+    # them, E midway between the E nodes. Measured <= 4.9e-5 (P'; C 1.5e-5, κ 3.0e-5); the
+    # bottom interval (2.92 µm, a/h 1.5, below any radius of the fit) 1.2e-5 in κ. Built with
     # the first table's film, ν, frequency and E nodes (a wrong ν, frequency or number of E
     # nodes: this fails).
     import pandas as pd
@@ -547,7 +547,7 @@ def test_the_wider_table_interpolates_the_layered_solution_where_the_refit_works
     wide = _wider_law(law, out, {"gamma_J_m2": 0.05}, _radii(law, out, part))
     mid = np.exp((wide.log_a[1:] + wide.log_a[:-1]) / 2)
     a = np.concatenate([[1.0e-5, 1.57e-5], mid[(mid > 8e-6) & (mid < 2.2e-5)]])
-    assert a.size == 5  # three midpoints: 8.4, 13.1 and 20.6 µm
+    assert a.size == 5  # three midpoints: 9.01, 13.31 and 20.69 µm
     x = np.log(wide.E_nodes)
     for E in np.exp((x[1:] + x[:-1]) / 2):
         q = _corrections(E, NU, coating, f, a)
@@ -562,24 +562,36 @@ def test_the_wider_table_interpolates_the_layered_solution_where_the_refit_works
 
 
 @pytest.mark.parametrize(
-    ("layers", "radii"),
+    ("layers", "radii", "E_range"),
     [
-        # The contact inside a thick soft film (a/h 0.02-0.26; 5 radii a decade left 6.4e-4
-        # in C, 2.9e-4 in P'), and a lossy film across the knee of the spacing (a/h 0.5-5).
-        ([(cr.Material.isotropic(2e9, 0.3, name="soft film"), 50e-6)], (1e-6, 1.3e-5)),
-        ([(cr.pmma(), 1e-6)], (0.5e-6, 5e-6)),
+        # The contact inside a thick soft film (a/h 0.02-0.26), a lossy film across the knee
+        # of the spacing (a/h 0.5-5), and the same film inside it on a wide range of E (a/h
+        # 0.2-2, 30-240 GPa: the case of build_law's map that 10 radii a decade fail).
+        (
+            [(cr.Material.isotropic(2e9, 0.3, name="soft film"), 50e-6)],
+            (1e-6, 1.3e-5),
+            (40e9, 160e9),
+        ),
+        ([(cr.pmma(), 1e-6)], (0.5e-6, 5e-6), (40e9, 160e9)),
+        ([(cr.pmma(), 1e-6)], (0.2e-6, 2e-6), (30e9, 240e9)),
     ],
 )
 def test_the_table_interpolates_the_layered_solution_where_the_contact_is_in_the_film(
-    layers, radii
+    layers, radii, E_range
 ):
     # Midway between the radius nodes (in ln a), at E nodes (the spline in a alone) and midway
     # between them (both interpolations), against the layered solution at the radius
-    # (_corrections, no table). Measured <= 2.5e-5 (spline) and <= 6.7e-5 (with the E part,
-    # PMMA); the tolerances are build_law's stated ones. With 5 radii a decade throughout
-    # (_DENSER = 1, the old spacing) this fails: C 6.4e-4 in the thick film.
+    # (_corrections, no table); the tolerances are build_law's stated ones. Measured: the
+    # spline <= 2.4e-5 (C, P', κ; P' 2.3e-5 at a/h 0.54), with the E part <= 2.6e-5 on
+    # 40-160 GPa and 6.7e-5 in κ (C 4.3e-5) on 30-240 GPa. With 5 radii a decade throughout
+    # (_DENSER = 1, the old spacing) every case fails: C up to 6.5e-4 and P' 1.04e-3 in the
+    # thick film (C 6.0e-4 at the first E, where the assertion stops), 9.8e-4 and 1.1e-3 in C
+    # in the others. With 10 (_DENSER = 2) only the last fails, C up to 1.16e-4 midway in E
+    # (1.06e-4 where the assertion stops; the spline alone 9.4e-5; the others <= 1.0e-4 in P',
+    # 7.2e-5 in C): the tests show 5 a decade too few and 10 short for PMMA on a wide range;
+    # 15 was chosen from build_law's map.
     coating, f = as_coating(layers), 15e6
-    law = build_law(coating, NU, f, (40e9, 160e9), radii)
+    law = build_law(coating, NU, f, E_range, radii)
     h = coating.thickness
     a = np.exp((law.log_a[1:] + law.log_a[:-1]) / 2)
     x = np.log(law.E_nodes)

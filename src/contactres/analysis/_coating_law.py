@@ -47,7 +47,10 @@ __all__ = ["CoatedLaw", "Coating", "build_law"]
 _TABLE_TOL = 1e-6
 # The contact radius, in thicknesses of the coating, below which the table has _DENSER times
 # as many radii a decade (_table_radii; measured in build_law: 5 a decade leave up to 2e-3 in
-# P' at a/h < 2, 10 still 1.2e-4 in C, 15 meet the stated accuracy).
+# P' at a/h < 2, 10 still 1.2e-4 in C (PMMA at a/h 0.2-2 on 30-240 GPa, tested) and 1.7e-4
+# in P' (two layers), 15 meet the stated accuracy). The coarse spacing's first interval above
+# the knee leaves the most of a table (build_law: up to 2.7e-4 in P'); the knee stays: moved up
+# it would change the tables wholly above it (the bundled example's 250 nm of PMMA).
 _THICK_FILM = 4.0
 _DENSER = 3
 # The table's E nodes (build_law, _node_count): five where every layer of the coating is softer
@@ -437,8 +440,10 @@ class CoatedLaw:
 
 def _table_radii(lo: float, hi: float, thickness: float, per_decade: int) -> np.ndarray:
     """The table's contact radii from ``lo`` to ``hi``, m (``thickness``: the coating's, m):
-    log-spaced, ``per_decade`` a decade where a >= :data:`_THICK_FILM` thicknesses and
-    :data:`_DENSER` times as many below, at least 6 in all.
+    log-spaced, at least ``per_decade`` a decade where a >= :data:`_THICK_FILM` thicknesses
+    and at least :data:`_DENSER` times as many below, at least 6 in all (the number of steps
+    is rounded up, so the steps are at most 1/``per_decade`` and 1/(:data:`_DENSER` ·
+    ``per_decade``) decade; the step that straddles the knee lies between the two).
 
     Why denser in a thick film: there the corrections grow nearly like a/h (the film's own
     half-space, q ≈ (1/E*_film − 1/E*) a/h), an exponential in ln a, whose cubic spline's
@@ -500,24 +505,40 @@ def build_law(
     n_E : the number of E nodes; None (the default): 5 where every layer of the coating is
         softer than the substrate at the range's lowest E, 7 where one is stiffer
         (:func:`_node_count`)
-    radius_range : (smallest, largest) contact radius, m: ``per_decade`` nodes per decade of a
-        (log-spaced) where a is at least 4 coating thicknesses, 3x as many below (where the
-        contact sits in the film, :func:`_table_radii`), at least 6
+    radius_range : (smallest, largest) contact radius, m: at least ``per_decade`` nodes per
+        decade of a (log-spaced) where a is at least 4 coating thicknesses, at least 3x as many
+        below (where the contact sits in the film, :func:`_table_radii`), at least 6
 
     Accuracy (measured against the layered solution between the nodes, ν = 0.17): 250 nm of
-    PMMA on E = 30-240 GPa, a = 1-10 µm (a/h 4-40): the corrections q to 2.5e-4 relative; the
-    punch compliance (< 1e-4), κ (1.0e-4) and the force P' (2.2e-4), of which they are a part,
-    to the tested 1e-4, 2e-4 and 3e-4 (the largest errors at the smallest a/h, 5;
-    tests/analysis/test_coating.py). The E interpolation is nearly all of it (the spline in a
-    leaves ~3e-6; six nodes in E would leave 6e-5 in q). Where the contact sits inside the
-    film (a/h < 4, :func:`_table_radii`: 15 radii a decade there), films of 2 GPa, PMMA
-    (1 µm, 15 MHz) and 2 GPa / 20 GPa (two layers of 0.5 µm) on E = 40-160 GPa, tables of a
-    decade at a/h 0.02-20: the spline in a leaves <= 2.5e-5 in C, P' and κ (4e-5 in q) at any
-    a/h (at 5 a decade it left up to 1.1e-3 in C, 2.2e-3 in P' and 1.2e-3 in κ at a/h
-    0.02-2, largest in the end intervals), with the E part (PMMA: up to 7.5e-5 in κ) C
-    <= 7.4e-5, P' <= 8.1e-5, κ <= 1.04e-4 (tested: the same tolerances, a/h 0.02-0.26 and
-    0.5-5). A film stiffer than the substrate needs more E nodes, not radii (the E part at
-    a/h 0.02-20, midway between the E nodes, 1 µm films, ν 0.3, 15 MHz): with five, 300 GPa on
+    PMMA on E = 30-240 GPa, a = 1-10 µm (a/h 4-40, wholly above the knee: 5 radii a decade):
+    the corrections q to 2.5e-4 relative; the punch compliance (< 1e-4), κ (1.0e-4) and the
+    force P' (2.2e-4), of which they are a part, to the tested 1e-4, 2e-4 and 3e-4 (the largest
+    errors at the smallest a/h, 5; tests/analysis/test_coating.py). P' is nearly all the
+    spline's in a: at the E nodes it leaves up to 2.3e-4 in P' (C 5.2e-5, κ 7.6e-5) in the
+    first interval (a/h 4-6.3), 8.4e-5 in the second (6.3-10) and <= 1.6e-5 above; the E
+    interpolation, at the radius nodes, <= 4.8e-5 in C, 5.4e-5 in P' and 7.5e-5 in κ (six
+    nodes in E would leave 6e-5 in q). Where the contact sits inside the film (a/h < 4,
+    :func:`_table_radii`: 15 radii a decade there), films of 2 GPa and 2 GPa / 20 GPa (two
+    layers of 0.5 µm) on E = 40-160 GPa and PMMA (1 µm, 15 MHz) on 30-240 GPa, tables of a
+    decade at a/h 0.02-20: the spline in a leaves <= 2.5e-5 in C, P' and κ (4e-5 in q) below
+    the knee (at 5 a decade it left up to 1.1e-3 in C, 2.2e-3 in P' and 1.2e-3 in κ at a/h
+    0.02-2, largest in the end intervals; at 10, 9.4e-5 in C for PMMA and 1.7e-4 in P' for
+    the two layers, at a/h 0.2-2). Above the knee the radii are 5 a decade, and the spline
+    leaves the most in the first interval there (a/h ~4-6), the more where the table starts
+    at the knee (that interval a/h 4-6.3, a coarse one on either side) than where it straddles
+    it (a finer step below): at the E nodes, the 2 GPa film left 8.0e-5 in P', 7.5e-5 in κ
+    and 2.4e-5 in C (a table of a/h 4-40; straddling, a/h 0.6-6: 1.5e-5 in P', 3.6e-5 in κ),
+    PMMA 2.3e-4 in P' (the 250 nm case above: the same a/h; straddling 3.9e-5), the two layers
+    3.8e-5 (1.3e-5), and a film stiffer than the substrate the most, 300 GPa (1 µm on E =
+    10-40 GPa, ν 0.3) 2.7e-4 in P' and 1.2e-4 in κ (straddling 1.0e-4 in P'): within the
+    tested tolerances, not within the 2.5e-5 of the denser radii. In the second interval
+    (a/h 6.3-10) they left <= 8.4e-5 (PMMA, P'), beyond a/h 10 <= 1.8e-5 (the 300 GPa film's
+    κ 4.3e-5). With the E part, the tables of a/h 0.02-20: C <= 7.4e-5, P' <= 8.1e-5, κ <=
+    1.04e-4 (PMMA on 30-240 GPa, in the interval straddling the knee; the E part alone up to
+    7.5e-5 in κ) (tested: the same tolerances, a/h 0.02-0.26, 0.2-2 and 0.5-5; 10 radii a
+    decade fail them, C 1.16e-4 for PMMA on 30-240 GPa at a/h 0.2-2). A film stiffer than the
+    substrate needs more E nodes, not radii (the E part at a/h 0.02-20, midway between the E
+    nodes, 1 µm films, ν 0.3, 15 MHz): with five, 300 GPa on
     E = 10-40 GPa (the analysis' own width of range, 0.6-2.5 times the uncoated E) left
     1.1e-4 in C, P' and κ at every a/h, and 150, 40 and 12 GPa left 1.0e-4, 6.7e-5 and
     3.5e-5 in C (κ 1.0e-4, 7.5e-5, 5.9e-5); on the wider 30-240 GPa (several groups), 40, 200
