@@ -1,12 +1,13 @@
 """The runner-up of a model choice is another class with a criterion, or none ("").
 
-A class is no rival of itself. Where no other class has a criterion — a sweep of one point
-(two residuals, Δf and ΔΓ: the elastic class's two parameters are determined, a loop's three
-are not), or a load whose Δf has the wrong sign for every exact loop (they need Δf0 > 0) — the
-base named the first class of an argmin over nothing but inf: ``elastic``, the winner itself
-("elastic beat elastic"). The expected runner-ups here are found again from the rows' own
-``bic_<class>`` columns by a plain minimum over the other classes, and from the counts of
-residuals and parameters.
+A class is no rival of itself. Where no other class has a criterion — a load whose Δf has the
+wrong sign for every exact loop (they need Δf0 > 0), or a sweep of one point (two residuals, Δf
+and ΔΓ: a loop's three parameters are not determined, and the elastic class's two are
+determined exactly, with no residual left over for a criterion either) — the base named the
+first class of an argmin over nothing but inf: ``elastic``, the winner itself ("elastic beat
+elastic"). The expected runner-ups here are found again from the rows' own ``bic_<class>``
+columns by a plain minimum over the other classes, and from the counts of residuals and
+parameters.
 """
 
 import warnings
@@ -23,6 +24,7 @@ from contactres.measurements._synthetic import synthetic_sweeps
 
 RESIDUALS_PER_POINT = 2  # Δf and ΔΓ
 LOOP_PARAMETERS = 3  # the Cattaneo-Mindlin and Savkoor loops: Δf0, ΔΓ0, θ
+ELASTIC_PARAMETERS = 2  # Δf0, ΔΓ0
 # Sweeps cut to their first few points (ramp 1 and 4: not used, so chosen alone) and a load
 # whose every ramp has Δf negated (its used ramps 2-4 are a block).
 CUT = {"glass/air/e1/F1/r4": 1, "glass/air/e1/F2/r1": 2, "glass/air/e1/F4/r1": 1}
@@ -58,15 +60,20 @@ def test_sweeps_chosen_alone_name_the_lowest_other_class_or_none(results):
         assert row["runner_up"] == expected, row["sweep"]
         if expected:
             assert row["delta_bic"] == row[f"bic_{expected}"] - row[f"bic_{row['model']}"]
+        elif np.isfinite(row[f"bic_{row['model']}"]):
+            assert row["delta_bic"] == np.inf  # no rival
         else:
-            assert row["delta_bic"] == np.inf
-    # By the counts alone: one point has no rival of the elastic class, two points have one.
+            assert np.isnan(row["delta_bic"])  # no criterion at all: no evidence
+    # By the counts alone (a criterion needs a residual left over, 2 n > k): one point has no
+    # class with a criterion, the elastic one neither; two points have the loops as rivals.
     for name, points in CUT.items():
         row = sw[sw["sweep"].astype(str) == name].iloc[0]
         assert row["n_points"] == points
-        rivals = RESIDUALS_PER_POINT * points >= LOOP_PARAMETERS
+        rivals = RESIDUALS_PER_POINT * points > LOOP_PARAMETERS
+        winner = RESIDUALS_PER_POINT * points > ELASTIC_PARAMETERS
         assert (row["runner_up"] != "") == rivals, name
         assert np.isfinite(row["delta_bic"]) == rivals, name
+        assert np.isnan(row["delta_bic"]) == (not winner), name
 
 
 def test_a_block_with_no_other_class_has_no_runner_up(results):
@@ -94,8 +101,8 @@ def test_no_class_is_its_own_runner_up(results):
 
 
 def test_no_criterion_at_all_keeps_the_simplest_class_without_evidence():
-    # Not reachable from validated data (the elastic mean always has one); the choice still
-    # says so: elastic kept, no runner-up, no evidence (NaN, not inf).
+    # As for a sweep of one point, whose mean has no residual left for a criterion either:
+    # elastic kept, no runner-up, no evidence (NaN, not inf).
     crit = np.array([[np.inf, 1.0], [np.inf, 0.0], [np.inf, 5.0], [np.inf, np.inf]])
     choice, runner, evidence = choose(crit, 2.0)
     assert [AMPLITUDE_MODELS[i] for i in choice] == ["elastic", "elastic"]  # nested, within 2

@@ -25,12 +25,17 @@ Between models that are not nested (Cattaneo-Mindlin, Savkoor; Savkoor, plateau)
 alone decides. The runner-up is the class with the lowest BIC among the others, and
 ``delta_bic`` (column) is its BIC minus the winner's: the evidence for the choice (negative, down
 to -``delta_bic``, where a simpler nested class was kept against a slightly better one). Where no
-other class has a BIC (with the exact loops, the default: a sweep of one point, two residuals for
-a loop's three parameters) there is no runner-up (``""``) and the evidence is inf; where no class
-has one, NaN. One rule, with the exact loops or without, for a sweep or a load block: a class
-whose k parameters outnumber the residuals that carry information, two at each distinct
-amplitude (a straight line through points at one amplitude has no slope), has no criterion
-(inf) and no parameters (NaN) (:func:`~contactres.analysis._bad_rows.identified`).
+other class has a BIC there is no runner-up (``""``) and the evidence is inf (a load whose Δf has
+the wrong sign for every exact loop; a sweep of two points without the exact loops, whose lines
+pass through both); where no class has one, NaN (a sweep of one point: the elastic class's two
+parameters are determined by its two residuals, with none left over). One rule, with the exact
+loops or without, for a sweep or a load block: a class whose k parameters outnumber the
+residuals that carry information, two at each distinct amplitude (a straight line through
+points at one amplitude has no slope), has no criterion (inf) and no parameters (NaN)
+(:func:`~contactres.analysis._bad_rows.identified`); a class with no more residuals than
+parameters, 2n <= k for n points (repeats counted: they add residuals), passes through every
+point and has no criterion (inf) and no errors (NaN), but keeps its parameter values
+(:func:`~contactres.analysis._bad_rows.has_residuals`).
 :mod:`contactres.analysis._blocks` then makes the same choice for the ramps of one load block
 together.
 """
@@ -43,7 +48,14 @@ import numpy as np
 import pandas as pd
 
 from ._amplitude import Block, Padded, bic
-from ._bad_rows import blank_unidentified, distinct_amplitudes, identified
+from ._bad_rows import (
+    blank_errors,
+    blank_unidentified,
+    distinct_amplitudes,
+    has_residuals,
+    identified,
+    points_of,
+)
 from ._loops import LoopTable, LoopTables, loop_tables
 from ._models import AMPLITUDE_MODELS, N_PARAMETERS, SWEEP_FITS
 from ._models.base import LoopInputs
@@ -110,15 +122,21 @@ def _fit_block(
             continue
         done[fit.source] = fit.fit(b, done, inputs)
     # A fit of more parameters than the sweep identifies (a straight line through points at
-    # one amplitude) has neither parameters nor a criterion: one rule for every class, here
-    # where every fit of a sweep or of a load block's points is made. Emptied after all the
-    # fits, so that those started from an earlier one get the same inputs as before (the
-    # exact loops refuse such sweeps themselves, by the same count: _bad_rows.usable_rows).
+    # one amplitude) has neither parameters nor a criterion; one that passes through every point
+    # (no more residuals than parameters: a one-point sweep's mean) keeps its parameters but has
+    # no errors and no criterion. One rule for every class, here where every fit of a sweep or of
+    # a load block's points is made. Applied after all the fits, so that those started from an
+    # earlier one get the same inputs as before. (The exact loops also refuse such sweeps
+    # themselves, by a count of distinct amplitudes of their own, _bad_rows.usable_rows: the
+    # Cattaneo-Mindlin and Savkoor loops 2 for their 3 parameters, as here; the plateau loop 3
+    # for its 4, stricter than the 2 here, also where add_plateau_fits fits it later.)
     distinct = distinct_amplitudes(b.u, b.w)
+    points = points_of(b.w)
     for fit in SWEEP_FITS:
         if fit.source in done:
-            ok = identified(distinct, N_PARAMETERS[fit.model])
-            done[fit.source] = blank_unidentified(done[fit.source], ok)
+            k = N_PARAMETERS[fit.model]
+            fields = blank_unidentified(done[fit.source], identified(distinct, k))
+            done[fit.source] = blank_errors(fields, has_residuals(points, k))
     return u_max, done
 
 
@@ -251,7 +269,7 @@ def runner_up(
     -------
     runner_up : (S,) the class of the candidate with the lowest of ``others``; ``""`` (a text
         cell's "none") where every one of them is +inf (no criterion): a sweep of one point,
-        whose loops have more parameters than residuals, or a block whose loops all failed. An
+        where no class has a residual left for a criterion, or a block whose loops all failed. An
         argmin over nothing but inf would name the first class, the winner itself where that
         is ``elastic``. Ties go to the first class in ``names``' order.
     evidence : (S,) the runner-up's criterion minus ``best``: inf where there is no runner-up,

@@ -97,9 +97,11 @@ DESCRIPTIONS: dict[Flag, str] = {
         "(Cattaneo-Mindlin)"
     ),
     Flag.NEGATIVE_STIFFNESS: (
-        "Δf0 below 0 by more than twice its error: a negative contact stiffness κ = Δf0/P, not "
-        "a result but a shift of the wrong sign (a contact raises the frequency, Δf0 = Pκ > 0; "
-        "check the sign of df_Hz); the exact loops, which need Δf0 > 0, have no fit"
+        "Δf0 below 0 by more than twice its error, or below 0 at all where it has no error (a "
+        "sweep of one point: its sign alone): a negative contact stiffness κ = Δf0/P, not a "
+        "result but a shift of the wrong sign (a contact raises the frequency, Δf0 = Pκ > 0; "
+        "check the sign of df_Hz); the exact loops, which need Δf0 > 0, are fitted (with a "
+        "negative Δf0) but have no criterion (BIC inf), so that they are never chosen"
     ),
 }
 

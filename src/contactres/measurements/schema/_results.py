@@ -126,14 +126,16 @@ _SWEEP_RESULT_COLUMNS = (
         "runner_up",
         "text",
         "the class with the next-best BIC (of the block where decided_by is block); empty where "
-        "no other class has a BIC (e.g. a sweep of one point)",
+        "no other class has a BIC (e.g. a sweep of one point, or of two without the exact loops)",
         level="sweep",
     ),
     Column(
         "delta_bic",
         "-",
         "BIC of the runner-up minus that of the chosen class: the evidence for the choice; empty "
-        "where there is no runner-up (inf in analyze()'s table: no rival at all)",
+        "where there is no runner-up (in analyze()'s table inf where the chosen class has a BIC "
+        "and no other has one, NaN where no class has one: a sweep of one point, whose mean "
+        "leaves no residual for a BIC)",
         level="sweep",
     ),
     Column(
