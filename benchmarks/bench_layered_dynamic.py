@@ -345,9 +345,10 @@ peak 10.1 -> 7.8 MB but ~1850 faults per curve instead of ~1500: the heap trimme
 and grown again). Kept: the whole-grid products let go as soon as the head is copied and the
 moments formed (still one 2.5 MB block: the threshold stays), the near-field Bessel functions
 computed after them (into their place), and the film's Bessel functions let go once the
-correction's own are made (a hole below them, reused; let go before, ~2160 faults), computed
-again at the same highest order if the basis grows past the sizes one matrix checks (rare; the
-same bits, a test checks it). Traced peak 8.3 MB (at the own-node Bessel functions); strace: brk
+correction's own are made (a hole below them, reused; let go before, ~2160 faults) where they
+cannot serve a larger basis (as merged, let go on every call and computed again for a basis
+grown past the sizes one matrix checks, which is not rare: review R32d, below).
+Traced peak 8.3 MB (at the own-node Bessel functions); strace: brk
 +6.95 MB, one trim at the end. Instructions per curve unchanged (callgrind, one thread,
 PYTHONHASHSEED=0, six calls less two, over four): 161.6 M on the base, 161.7 M here (the head's
 copy). Page faults per 250 nm curve (one BLAS thread, steady state, base / this tree alternated
@@ -372,6 +373,32 @@ it: the correction's nodes and the far basis formed after the film's products (t
 across them), or the own-node Bessel functions of the even orders only (an axisymmetric stack
 reads no others; kept whole-then-sliced they faulted more, ~1270 per curve: their freed full
 rows at the heap's top) computed in column blocks.
+
+Session 32, review R32d (LHF32). As merged above, the film's Bessel functions were let go on every
+call and, where the basis grew past the sizes one matrix checks, computed again at their highest
+order. That was not rare: it ran on every curve whose basis grows three or more times (the 50 nm
+film at 41 points, 10-50 nm films at rtol 1e-8 and 1e-10, gold on PMMA on quartz, 100 nm at radii
+up to 50 µm, a single point), and cost 5.4 % more instructions on the 50 nm curve (421.9 ->
+444.6 M, the reviewer's callgrind). Now they are let go only where their highest order is that of
+the basis they were made for: every first call (which computes no order ahead), and so the whole
+250 nm curve (which converges within the sizes its first matrix checks); a grown basis's orders
+pass theirs, so it computes its own in any case. Held otherwise, they serve the grown basis as they
+are: nothing is computed twice, and every curve is bit-identical to the base (the reviewer's 23
+cases). Instructions per 50 nm curve (callgrind, one BLAS thread, PYTHONHASHSEED=0, three calls
+less one, over two): 421.7 M on the base, 444.8 M as merged (LH32), 421.9 M here. Page faults per
+curve (one BLAS thread, steady state: the median of 20 calls after 3; base / LH32 / this tree
+alternated three times, on the shared machine): 250 nm with the homogeneous curve between calls
+1488, 1450, 1486 / 1016, 1006, 1017 / 1010, 904, 931, the layered curve alone 2238, 2199, 2235 /
+1611, 1880, 1726 / 1291, 1785, 1689; 50 nm with the homogeneous curve 6672, 6678, 6653 / 5078,
+5476, 5504 / 5534, 5554, 5522, alone 6694, 6666, 6714 / 4856, 5534, 5428 / 5432, 5464, 5542; 100 nm
+with the homogeneous curve 4236, 4230, 4223 / 3332, 3242, 3201 / 3761, 2990, 3648, alone 4834,
+4795, 4705 / 3382, 3286, 3216 / 3616, 3384, 3293. So the 250 nm curve faults as merged (the same
+path: its functions are let go as before); the 50 nm and 100 nm curves, whose held functions now
+stay in the heap to serve the next basis, fault ~4 % (50 nm) and ~4-6 % (100 nm) more than as
+merged on average, within the scatter of single runs (100 nm: 2990-3761 here), and 17-28 % less
+than the base. LH32's ranges for the 250 nm curve with the homogeneous curve between calls,
+~1430-1500 -> ~880-960 in its commit message and ~1450-1540 / ~900-1040 above, were runs of the
+same measure on different occasions; its medians here (1006-1017) fall in the latter only.
 
 Run: ``.venv/bin/python benchmarks/bench_layered_dynamic.py`` (exit status 1 if a target is
 missed; a few minutes on a busy machine).

@@ -271,12 +271,16 @@ def test_own_bessel_rows_are_scipys_on_each_points_nodes(rows):
         np.testing.assert_allclose(got, expected, rtol=0, atol=1e-13 * np.e)
 
 
-def test_film_matrices_of_a_grown_basis_are_the_same_whether_its_bessel_functions_were_held():
+def test_film_bessel_functions_held_for_a_grown_basis_and_let_go_where_none_can_use_them():
     """The layered punch lets the film's Bessel functions go once the correction's own are
-    made (a smaller peak of memory, fewer page faults), and a basis grown past the sizes one
-    matrix checks computes them again, at the highest order of the held ones: the grown
-    matrix is then the same, bit for bit, as with them held; and it agrees with the matrix of
-    that size formed from scratch (no pair reused, its own highest order) to round-off."""
+    made (a smaller peak of memory, fewer page faults) where they cannot serve a larger basis
+    (their highest order that of the basis they were made for: a first call, extra 0), and
+    holds them where they were computed for a grown basis (extra > 0, as _punch's later
+    calls). Held: the grown basis uses them as they are (the same arrays, not computed
+    again), and its matrix agrees with that size formed from scratch (no pair reused, its
+    own highest order) to round-off. Let go: the grown basis's orders pass theirs, so it
+    computes its own in either case, and its matrix is the same, bit for bit, whether they
+    were let go or held."""
     from contactres.dynamic._exact import GalerkinSize
     from contactres.dynamic._layered_punch import (
         _far_field,
@@ -288,11 +292,23 @@ def test_film_matrices_of_a_grown_basis_are_the_same_whether_its_bessel_function
     table = prepare(PMMA)
     ksa = np.linspace(0.0, 2.0, 9)
     far = _far_field(table, ksa[ksa > 0])
-    _, _, known = _film_matrices(table, ksa, GalerkinSize(10, 0), far, None, 8)
-    held, _, _ = _film_matrices(table, ksa, GalerkinSize(14, 0), far, known)
-    let_go = _let_go_film_bessel(known)
-    assert isinstance(let_go[3], int) and let_go[3] == known[3][0].shape[0] - 1
-    again, _, _ = _film_matrices(table, ksa, GalerkinSize(14, 0), far, let_go)
-    assert np.array_equal(again, held)
     fresh, _, _ = _film_matrices(table, ksa, GalerkinSize(14, 0), far)
-    np.testing.assert_allclose(again, fresh, rtol=1e-13, atol=1e-13 * np.max(np.abs(fresh)))
+    scale = np.max(np.abs(fresh))
+    # Computed for a basis grown by 8 radial terms (16 orders): held, and used as they are.
+    _, plan, known = _film_matrices(table, ksa, GalerkinSize(10, 0), far, None, 8)
+    assert known[3][0].shape[0] - 1 == plan.orders[-1] + 16
+    assert _let_go_film_bessel(known, int(plan.orders[-1])) is known
+    held, grown_plan, grown = _film_matrices(table, ksa, GalerkinSize(14, 0), far, known, 3)
+    assert grown_plan.orders[-1] > plan.orders[-1]
+    assert grown[3][0] is known[3][0] and grown[3][1] is known[3][1]
+    np.testing.assert_allclose(held, fresh, rtol=1e-13, atol=1e-13 * scale)
+    # Computed for this basis alone (extra 0): let go, and not needed by the grown basis.
+    _, plan, known = _film_matrices(table, ksa, GalerkinSize(10, 0), far)
+    assert known[3][0].shape[0] - 1 == plan.orders[-1]
+    let_go = _let_go_film_bessel(known, int(plan.orders[-1]))
+    assert let_go[3] is None and all(x is y for x, y in zip(let_go[:3], known[:3], strict=True))
+    kept, _, _ = _film_matrices(table, ksa, GalerkinSize(14, 0), far, known, 3)
+    again, _, grown = _film_matrices(table, ksa, GalerkinSize(14, 0), far, let_go, 3)
+    assert grown[3][0].shape[0] - 1 == grown_plan.orders[-1] + 6
+    assert np.array_equal(again, kept)
+    np.testing.assert_allclose(again, fresh, rtol=1e-13, atol=1e-13 * scale)

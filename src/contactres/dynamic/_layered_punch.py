@@ -290,11 +290,12 @@ def _film_matrices(
     :func:`_punch` computes it once). ``known``: what the previous call of
     the growing basis returned last (its pairs' integrals are reused, not recomputed: a pair's
     integral does not depend on the basis it belongs to, and the harmonics stay the same; so
-    are its Bessel functions at the near and far nodes where they reach the orders needed, or,
-    where the caller let them go (:func:`_let_go_film_bessel`), their highest order, at which
-    they are computed again).
+    are its Bessel functions at the near and far nodes where they reach the orders needed;
+    None in their place where the caller let them go, :func:`_let_go_film_bessel`).
     ``extra``: where they must be computed, for ``extra`` radial terms more than ``size``
-    (two orders each: the orders a grown basis may need, computed once, not once per size)."""
+    (two orders each: the orders a grown basis may need, computed once, not once per size).
+    The Bessel functions returned are None where no pair is new and none were held (nothing
+    needed them)."""
     pos = ksa > 0
     # The plan without the far grid's products: those of the new pairs only are formed below.
     plan = galerkin_plan(table, size)
@@ -318,19 +319,18 @@ def _film_matrices(
         new = old_keys[at] != keys
         integral[..., ~new] = known[1][..., at[~new]]
         bessel = known[3]
-    # j_p at the far grid and the near nodes: those the previous call held, or of its highest
-    # order where it let them go (_let_go_film_bessel) and that reaches this basis (the same
-    # functions again: the continued fraction's start depends on the highest order), else up
-    # to the orders a grown basis may need.
-    if isinstance(bessel, tuple) and bessel[0].shape[0] > orders[-1]:
-        far_j, near_j = bessel
-    else:
-        p_max = int(orders[-1]) + 2 * extra
-        if isinstance(bessel, int) and bessel >= orders[-1]:
-            p_max = bessel
-        far_j = spherical_bessel(p_max, np.asarray(far[1], dtype=float))
-        near_j = None
     if np.any(new):
+        # j_p at the far grid and the near nodes: those the previous call held where they
+        # reach this basis's orders, else up to the orders a grown basis may need. (Computed
+        # again they would differ in the last bits where their highest order differs: row p of
+        # spherical_bessel(p_max, z) depends on p_max through the switch to the upward
+        # recurrence for real z > p_max + 1 and the continued fraction's start.)
+        if bessel is not None and bessel[0].shape[0] > orders[-1]:
+            far_j, near_j = bessel
+        else:
+            p_max = int(orders[-1]) + 2 * extra
+            far_j = spherical_bessel(p_max, np.asarray(far[1], dtype=float))
+            near_j = None
         # Pair by pair into one array: indexing the rows by the pairs copied both factors
         # of every pair first (two (pairs x nodes) gathers, as the exact model's products).
         products = np.empty((int(np.sum(new)), far_j.shape[1]))
@@ -353,10 +353,9 @@ def _film_matrices(
         if near_j is None:
             near_j = near_bessel(table, ksa[pos], far_j.shape[0] - 1)
         integral[..., new] = galerkin_integrals(table, ksa[pos], part, basis, near_j)
-    if near_j is None:
-        near_j = near_bessel(table, ksa[pos], far_j.shape[0] - 1)
+        bessel = (far_j, near_j)
     out[pos] = plan.sign * integral[:, plan.m_index, plan.t_index]
-    return out, plan, (np.stack([orders[ti], orders[tj]]), integral, plan.ms, (far_j, near_j))
+    return out, plan, (np.stack([orders[ti], orders[tj]]), integral, plan.ms, bessel)
 
 
 def _far_field(table: KernelTable, ka: np.ndarray) -> tuple:
@@ -369,10 +368,13 @@ def _far_field(table: KernelTable, ka: np.ndarray) -> tuple:
     return far_basis(table, ka, head_grid(grid, tail)), grid.s, tail
 
 
-def _let_go_film_bessel(known):
-    """``known`` of :func:`_film_matrices` with its Bessel functions replaced by their highest
-    order (they are computed again, the same, if the basis grows past the sizes one matrix
-    checks, which is rare).
+def _let_go_film_bessel(known, p_basis: int):
+    """``known`` of :func:`_film_matrices` with its Bessel functions let go (None) where they
+    cannot serve a larger basis: where their highest order is at most ``p_basis``, the highest
+    order of the basis they were made for (every first call, whose ``extra`` is 0, and so the
+    whole 250 nm PMMA curve, which converges within the sizes its first matrix checks); held
+    otherwise, for the grown basis they were computed for. A grown basis's highest order
+    exceeds its predecessor's, so those let go would have been computed again in any case.
 
     Why: held to the end of the call, the film's ~2.3 MB (250 nm PMMA on quartz, 41 points)
     were part of the curve's peak of memory, whose heap glibc gives back to the system after
@@ -381,9 +383,9 @@ def _let_go_film_bessel(known):
     they leave a hole that the correction's later arrays reuse, where let go at the end of
     the film's part they joined its freed temporaries at the top of the heap, past glibc's
     trim threshold: the heap was trimmed in mid-call and grown again (more faults)."""
-    if known is None or not isinstance(known[3], tuple):
+    if known is None or known[3] is None or known[3][0].shape[0] - 1 > p_basis:
         return known
-    return (*known[:3], known[3][0].shape[0] - 1)
+    return (*known[:3], None)
 
 
 def _solve_c0(M: np.ndarray, n_radial: int, plan) -> np.ndarray:
@@ -707,7 +709,7 @@ def _punch(table, film, items, radii, rtol, res) -> np.ndarray:
             if p_have < orders[-1]:
                 p_have = int(orders[-1]) + 2 * (ahead - checks[-1])
                 bessel = _nodes_bessel(p_have, nodes, res, rule)
-            known = _let_go_film_bessel(known)
+            known = _let_go_film_bessel(known, int(orders[-1]))
             assert bessel is not None  # computed at the first size
             reused = previous is not None and np.array_equal(previous.ms, plan.ms)
             if not reused:
