@@ -530,6 +530,7 @@ PUBLIC = {
         "Prony",
         "STATIC_FREQUENCY_HZ",
         "ViscoelasticMaterial",
+        "material_at",
         "pmma",
         "static_solid",
     ],

@@ -57,6 +57,7 @@ __all__ = [
     "PowerLaw",
     "Prony",
     "ViscoelasticMaterial",
+    "material_at",
     "pmma",
     "static_solid",
 ]
@@ -588,14 +589,50 @@ class ViscoelasticMaterial(Summarised):
 #: The loading frequency, Hz, at which a frequency-dependent material's storage constants stand
 #: for its static ones (:func:`static_solid`'s default) where contactres loads a coating
 #: statically: the static columns of the ``contact`` job on a coated face (and the ``dcsf``
-#: job's K_sa there), the coated QCM fit's normal contact, and the coatings of ``afm invert``
-#: and ``maps predict``. Not everywhere: the coated QCM radiation's K₀ takes the storage
-#: constants at the overtone frequency, and a bare face (``sphere_contact``, the bare jobs)
-#: takes an undamped Material only, refusing a lossy one. Why 1 Hz: the quasi-static moduli of
+#: job's K_sa there), the coated QCM fit's normal contact, and the coatings of ``afm invert``,
+#: ``rum invert`` (through :func:`contactres.jobs.afm_invert.coated_film`) and ``maps
+#: predict``. Not everywhere: the coated QCM radiation's K₀ takes the storage constants at the
+#: overtone frequency, and a bare face (``sphere_contact``, the bare jobs) takes an undamped
+#: Material only, refusing a lossy one. Why 1 Hz: the quasi-static moduli of
 #: polymers are quoted at about 1 Hz (datasheets; the built-in PMMA's anchors,
 #: :data:`PMMA_STATIC_FREQUENCY`), and a power law (the built-in PMMA's) has no relaxed limit
 #: to take instead (its moduli relax to zero at 0 Hz).
 STATIC_FREQUENCY_HZ = 1.0
+
+
+def material_at(m, frequency: float) -> Material:
+    """The :class:`~contactres.Material` of ``m`` at ``frequency`` (Hz).
+
+    Defined here, beside the frequency-dependent materials, so that :func:`static_solid` and
+    :func:`contactres.layered.material_at` (the same function) share one rule and message.
+
+    Parameters
+    ----------
+    m : Material or frequency-dependent material
+        A plain Material is returned as is (its constants do not depend on frequency); any other
+        object must have ``at(frequency_Hz) -> Material`` (``frequency = 0``: static limit).
+    frequency : float
+        Frequency, Hz (>= 0).
+
+    Returns
+    -------
+    Material
+        The elastic constants at that frequency.
+
+    Raises
+    ------
+    ContactresInputError
+        ``m.at(frequency)`` returns no Material (or refuses the frequency itself).
+    """
+    if isinstance(m, Material):
+        return m
+    out = m.at(frequency)
+    if not isinstance(out, Material):
+        raise ContactresInputError(
+            f"{type(m).__name__}.at({frequency!r}) must return a contactres.Material, "
+            f"got {type(out).__name__}"
+        )
+    return out
 
 
 def static_solid(material, frequency: float = STATIC_FREQUENCY_HZ) -> Material:
@@ -657,12 +694,7 @@ def static_solid(material, frequency: float = STATIC_FREQUENCY_HZ) -> Material:
             f"static_solid takes one material, not a stack ({type(material).__name__}): take "
             "the static solid of each of its layers and of its substrate"
         )
-    at = material if isinstance(material, Material) else material.at(frequency)
-    if not isinstance(at, Material):
-        raise ContactresInputError(
-            f"{type(material).__name__}.at({frequency!r}) must return a contactres.Material, "
-            f"got {type(at).__name__}"
-        )
+    at = material_at(material, frequency)
     if not np.iscomplexobj(at.C):
         return at
     return Material(C=np.real(at.C), density=at.density, name=at.name, frame=at.frame)

@@ -12,32 +12,26 @@ written out in ``analysis/_classify``'s table (Δf0 and ΔΓ0, plus a slope or a
 channel, plus the hinge's u_c), not read from the package.
 """
 
-import warnings
-
 import numpy as np
 import pytest
-from test_trust import CONST, study
+from short_sweeps import CUT, WRONG_SIGN, short_sweeps
 
 from contactres.analysis import AnalysisSettings, analyze
 from contactres.analysis._bad_rows import blank_errors, blank_unidentified
 from contactres.analysis._flags import Flag, has, negative_stiffness
 from contactres.analysis._models import AMPLITUDE_MODELS
-from contactres.measurements._sweeps import SweepWarning, validate_sweeps
-from contactres.measurements._synthetic import synthetic_sweeps
 
 #: The closed-form classes (``exact_loop=False``) and their parameters: Δf0, ΔΓ0 (elastic); a
 #: slope of each channel (line in u0); a curvature of each (line in u0²); slopes and u_c (hinge).
 CLOSED_FORM_K = {"elastic": 2, "cattaneo-mindlin": 4, "savkoor": 4, "plateau": 5}
 RESIDUALS_PER_AMPLITUDE = 2  # Δf and ΔΓ
 RESIDUALS_PER_POINT = 2  # the same two, at every point
-# Sweeps cut to their first points (ramps 1 and 4 are chosen alone, not in a block)...
-CUT = {"glass/air/e1/F1/r4": 1, "glass/air/e1/F2/r1": 2, "glass/air/e1/F4/r1": 1}
+# short_sweeps' table (its load WRONG_SIGN has Δf negated); of its sweeps cut to their first
+# points (CUT: ramps chosen alone, not in a block) ...
 ONE_POINT = ("glass/air/e1/F1/r4", "glass/air/e1/F4/r1")
 TWO_POINTS = "glass/air/e1/F2/r1"
 # ... and one cut to 3 points all at one amplitude: three points, one distinct amplitude.
 FLAT = "glass/air/e1/F3/r1"
-# A load whose every ramp has Δf negated.
-WRONG_SIGN = "glass/air/e2/F3/"
 # A load whose every point sits at one amplitude (its used ramps 2-4 are a block: one distinct
 # amplitude among their 30 points together) ...
 FLAT_LOAD = "glass/air/e2/F5/"
@@ -55,23 +49,18 @@ def _flatten(raw, rows, at, rng):
 
 
 def _table():
-    raw = synthetic_sweeps(study(n_experiments=2), 5, constants=False)
-    names = raw["sweep"].astype(str).to_numpy().astype(str)
     rng = np.random.default_rng(1)
-    cut = {**CUT, FLAT: 3}
-    drop = np.concatenate([np.flatnonzero(names == s)[k:] for s, k in cut.items()])
-    flat = np.flatnonzero(names == FLAT)[:3]
-    raw.loc[flat, "amplitude_m"] = raw.loc[flat[0], "amplitude_m"]
-    raw.loc[np.char.startswith(names, WRONG_SIGN), "df_Hz"] *= -1
-    load = np.flatnonzero(np.char.startswith(names, FLAT_LOAD))
-    _flatten(raw, load, np.flatnonzero(names == FLAT_LOAD + "r2")[0], rng)
-    for sweep, j in FLAT_RAMPS.items():
-        rows = np.flatnonzero(names == sweep)
-        _flatten(raw, rows, rows[j], rng)
-    raw = raw.drop(raw.index[drop]).reset_index(drop=True)
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", SweepWarning)  # few points, one amplitude: as meant
-        table = validate_sweeps(raw, constants=CONST)
+
+    def edit(raw, names):
+        flat = np.flatnonzero(names == FLAT)[:3]
+        raw.loc[flat, "amplitude_m"] = raw.loc[flat[0], "amplitude_m"]
+        load = np.flatnonzero(np.char.startswith(names, FLAT_LOAD))
+        _flatten(raw, load, np.flatnonzero(names == FLAT_LOAD + "r2")[0], rng)
+        for sweep, j in FLAT_RAMPS.items():
+            rows = np.flatnonzero(names == sweep)
+            _flatten(raw, rows, rows[j], rng)
+
+    table, raw = short_sweeps(edit, {**CUT, FLAT: 3})
     distinct = raw.groupby("sweep")["amplitude_m"].nunique()
     return table, {str(k): int(v) for k, v in distinct.items()}, raw
 

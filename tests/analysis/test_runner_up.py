@@ -10,37 +10,22 @@ columns by a plain minimum over the other classes, and from the counts of residu
 parameters.
 """
 
-import warnings
-
 import numpy as np
 import pytest
-from test_trust import CONST, study
+from short_sweeps import CUT, WRONG_SIGN, short_sweeps
 
 from contactres.analysis import AnalysisSettings, analyze
 from contactres.analysis._classify import choose, runner_up
 from contactres.analysis._models import AMPLITUDE_MODELS
-from contactres.measurements._sweeps import SweepWarning, validate_sweeps
-from contactres.measurements._synthetic import synthetic_sweeps
 
 RESIDUALS_PER_POINT = 2  # Δf and ΔΓ
 LOOP_PARAMETERS = 3  # the Cattaneo-Mindlin and Savkoor loops: Δf0, ΔΓ0, θ
 ELASTIC_PARAMETERS = 2  # Δf0, ΔΓ0
-# Sweeps cut to their first few points (ramp 1 and 4: not used, so chosen alone) and a load
-# whose every ramp has Δf negated (its used ramps 2-4 are a block).
-CUT = {"glass/air/e1/F1/r4": 1, "glass/air/e1/F2/r1": 2, "glass/air/e1/F4/r1": 1}
-WRONG_SIGN = "glass/air/e2/F3/"
 
 
 @pytest.fixture(scope="module")
 def results():
-    raw = synthetic_sweeps(study(n_experiments=2), 5, constants=False)
-    names = raw["sweep"].astype(str).to_numpy()
-    drop = np.concatenate([np.flatnonzero(names == s)[k:] for s, k in CUT.items()])
-    raw.loc[np.char.startswith(names.astype(str), WRONG_SIGN), "df_Hz"] *= -1
-    raw = raw.drop(raw.index[drop]).reset_index(drop=True)
-    with warnings.catch_warnings():
-        warnings.simplefilter("ignore", SweepWarning)  # few points, one amplitude: as meant
-        table = validate_sweeps(raw, constants=CONST)
+    table, _ = short_sweeps()
     return analyze(table, settings=AnalysisSettings(bootstrap=0, workers=1))
 
 

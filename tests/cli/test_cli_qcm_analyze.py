@@ -117,7 +117,8 @@ def test_keep_drift_and_law_per_load_reach_the_settings(sweeps_csv, tmp_path):
     # No time column: the run says the drifting loads could not be corrected (if any drift).
     sweeps = pd.read_csv(out / "sweeps.csv")
     # Every used sweep says how its class was chosen, against which runner-up, with what evidence
-    # (this study has no load without a rival: no sweep of one point, no Δf of the wrong sign).
+    # (this study has no load without a rival: no sweep of one amplitude, no Δf of the wrong
+    # sign).
     used = sweeps[sweeps["used"]]
     assert set(used["decided_by"]) == {"block"}
     assert used["runner_up"].notna().all() and np.isfinite(used["delta_bic"]).all()

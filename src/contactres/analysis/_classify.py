@@ -25,9 +25,12 @@ Between models that are not nested (Cattaneo-Mindlin, Savkoor; Savkoor, plateau)
 alone decides. The runner-up is the class with the lowest BIC among the others, and
 ``delta_bic`` (column) is its BIC minus the winner's: the evidence for the choice (negative, down
 to -``delta_bic``, where a simpler nested class was kept against a slightly better one). Where no
-other class has a BIC there is no runner-up (``""``) and the evidence is inf (a load whose Δf has
-the wrong sign for every exact loop; a sweep of two points without the exact loops, whose lines
-pass through both); where no class has one, NaN (a sweep of one point: the elastic class's two
+other class has a BIC there is no runner-up (``""``) and the evidence is inf: a sweep of copies
+of one amplitude, with the exact loops or their closed forms (only the elastic class's two
+parameters are identified); a sweep of two points without the exact loops (the closed forms'
+lines pass through both); with the exact loops, a load whose Δf has the wrong sign for every
+loop (they need Δf0 > 0; flagged ``negative-stiffness`` only where Δf0 is below 0 by more than
+twice its error). Where no class has one, NaN: a sweep of one point (the elastic class's two
 parameters are determined by its two residuals, with none left over). One rule, with the exact
 loops or without, for a sweep or a load block: a class whose k parameters outnumber the
 residuals that carry information, two at each distinct amplitude (a straight line through

@@ -22,6 +22,7 @@ import numpy as np
 from .._summary import Summarised
 from ..errors import ContactresInputError
 from ..materials import Material
+from ..viscoelastic import material_at  # the one definition; public here too
 
 __all__ = [
     "MAX_THICKNESS_M",
@@ -50,33 +51,6 @@ class FrequencyDependentMaterial(Protocol):
 
 
 AnyMaterial = Material | FrequencyDependentMaterial
-
-
-def material_at(m: AnyMaterial, frequency: float) -> Material:
-    """The :class:`~contactres.Material` of ``m`` at ``frequency`` (Hz).
-
-    Parameters
-    ----------
-    m : Material or frequency-dependent material
-        A plain Material is returned as is (its constants do not depend on frequency); any other
-        object must have ``at(frequency_Hz) -> Material`` (``frequency = 0``: static limit).
-    frequency : float
-        Frequency, Hz (>= 0).
-
-    Returns
-    -------
-    Material
-        The elastic constants at that frequency.
-    """
-    if isinstance(m, Material):
-        return m
-    out = m.at(frequency)
-    if not isinstance(out, Material):
-        raise ContactresInputError(
-            f"{type(m).__name__}.at({frequency!r}) must return a contactres.Material, "
-            f"got {type(out).__name__}"
-        )
-    return out
 
 
 def _check_material(m, what: str):

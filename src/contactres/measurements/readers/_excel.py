@@ -86,12 +86,11 @@ def _check_header(where: str, number: int, names: list[str]) -> None:
             f"{where}, row {number}: duplicate column name(s) {repeats}; every column needs "
             "its own name"
         )
-    empty = empty_places(names, excel_letters)
-    if empty is not None:
-        one = sum(not n for n in names) == 1
+    empty = sum(not n for n in names)  # one count: whether to refuse, and "is" or "are"
+    if empty:
         raise ContactresInputError(
-            f"{where}, row {number}: {empty} of the header {'is' if one else 'are'} empty; "
-            "every column needs a name"
+            f"{where}, row {number}: {empty_places(names, excel_letters)} of the header "
+            f"{'is' if empty == 1 else 'are'} empty; every column needs a name"
         )
     refuse_line_name(
         names,

@@ -126,7 +126,9 @@ _SWEEP_RESULT_COLUMNS = (
         "runner_up",
         "text",
         "the class with the next-best BIC (of the block where decided_by is block); empty where "
-        "no other class has a BIC (e.g. a sweep of one point, or of two without the exact loops)",
+        "no other class has a BIC (e.g. a sweep of one amplitude: one point or copies of one; "
+        "one of two points without the exact loops; with them, a load whose Δf has the wrong "
+        "sign for every loop)",
         level="sweep",
     ),
     Column(
