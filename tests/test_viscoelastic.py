@@ -438,6 +438,19 @@ def test_static_solid_refuses_an_at_that_gives_no_material():
         static_solid(Odd())
 
 
+@pytest.mark.parametrize("bad", ["steel", 70e9, None, np.eye(6)])
+def test_static_solid_refuses_what_is_no_material_in_one_line(bad):
+    """A name or a number reached ``.at`` and raised AttributeError; now the caller's error, in
+    one line that names what static_solid takes and what it got (also with a bad frequency)."""
+    for f in (STATIC_FREQUENCY_HZ, -1.0):
+        with pytest.raises(ContactresInputError) as info:
+            static_solid(bad, f)
+        text = str(info.value)
+        assert "\n" not in text
+        assert text.startswith("static_solid takes a contactres.Material or a frequency-dependent")
+        assert (repr(bad) if isinstance(bad, str) else type(bad).__name__) in text
+
+
 def test_the_contact_job_finds_the_one_static_frequency():
     from contactres.jobs import contact
 

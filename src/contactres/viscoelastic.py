@@ -671,7 +671,8 @@ def static_solid(material, frequency: float = STATIC_FREQUENCY_HZ) -> Material:
         f is not one finite number >= 0 (checked for every material, a Material too);
         ``material`` is a stack (a :class:`~contactres.LayeredMaterial`: its layers and
         substrate each have their own static solid); ``material.at(f)`` refuses f (e.g. 0 Hz
-        for a power law), or returns no Material.
+        for a power law), or returns no Material; ``material`` has no ``at`` (a name such as
+        ``"steel"``, a number: checked first).
 
     Examples
     --------
@@ -684,6 +685,15 @@ def static_solid(material, frequency: float = STATIC_FREQUENCY_HZ) -> Material:
     >>> print(f"{film.C[3, 3] / 1e9:.3f} GPa")
     1.092 GPa
     """
+    if not callable(getattr(material, "at", None)):
+        # A name ("steel") or a number is the caller's input, not a programming error inside:
+        # refused in one line, as a layer's material is (layered), not as an AttributeError.
+        given = repr(material) if isinstance(material, str) else type(material).__name__
+        raise ContactresInputError(
+            "static_solid takes a contactres.Material or a frequency-dependent material with "
+            f"at(frequency_Hz) (e.g. a ViscoelasticMaterial), got {given}: build the material "
+            "first (Material.isotropic(E, ν), Material.crystal(name), contactres.pmma(), ...)"
+        )
     # The frequency is checked for every material, also one that does not depend on it: the
     # same rule and message as ViscoelasticMaterial.at's.
     if _frequency(frequency).ndim:

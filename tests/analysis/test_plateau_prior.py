@@ -100,8 +100,12 @@ def test_joint_penalty_falls_back_to_the_one_prior_there_is():
     assert joint_prior_penalty(1.1, 0.2, mu_prior, 0.25, 0.05, none, 0.01, n) == one_mu
     assert joint_prior_penalty(1.1, 0.2, none, 0.25, 0.05, ratio_prior, 0.01, n) == one_r
     assert joint_prior_penalty(1.1, 0.2, none, 0.25, 0.05, none, 0.01, n) == 0.0
-    # d_c not resolved (relative error above 1): μ's prior alone.
+    # d_c not resolved (relative error above 1), or on its bound 0 with no error (its
+    # covariance then NaN too): μ's prior alone, not nothing (the module docstring: such a
+    # block's criterion is not its BIC where μ has a prior).
     assert joint_prior_penalty(1.1, 0.2, mu_prior, 0.25, 0.3, ratio_prior, 0.01, n) == one_mu
+    assert joint_prior_penalty(1.1, 0.2, mu_prior, 0.0, np.nan, ratio_prior, np.nan, n) == one_mu
+    assert one_mu != 0.0
     # Uncorrelated: the sum of the two one-parameter terms.
     both = joint_prior_penalty(1.1, 0.2, mu_prior, 0.25, 0.05, ratio_prior, 0.0, n)
     assert both == pytest.approx(one_mu + one_r, rel=1e-12)

@@ -1,6 +1,8 @@
 """Numbers a user can trust: errors that match the scatter of repeated studies, implausible fits
 withheld with the input to check, drifting loads left out, running-in measured (issue 11)."""
 
+import warnings
+
 import numpy as np
 import pandas as pd
 import pytest
@@ -303,12 +305,62 @@ def test_points_with_a_negative_stiffness_are_left_out_of_the_jkr_fit_and_said()
     g = fit_group(exp, ("glass", "air"), bootstrap=0, seed=0)
     assert g["n_points_fitted"] == 7 and g["E_Pa"] == pytest.approx(70e9, rel=1e-6)
     assert g["note"] == (
-        "1 point(s) with κ <= 0 or not finite (Δf0 <= 0) left out of the JKR fit, at normal "
-        "force(s) 0.004 N: check the sign of df_Hz"
+        "1 point(s) with κ <= 0 (Δf0 <= 0) left out of the JKR fit, at normal force(s) 0.004 N: "
+        "check the sign of df_Hz, as a contact raises the frequency (the sweeps whose Δf0 is "
+        "below 0 by more than twice its error are flagged negative-stiffness)"
     )
 
     shown = SimpleNamespace(groups=[{**g, "n_experiments": 2}])
     assert withheld_lines(shown) == [f"glass, air: {g['note']}"]
+
+
+def test_a_load_without_a_stiffness_is_told_apart_from_one_of_the_wrong_sign():
+    """A load whose used ramps each sit at one amplitude (another for each ramp) has no Δf0 in a
+    slip class (a line through one amplitude has no slope: the class is not identified), so no
+    κ; its note names the amplitudes, not the sign of df_Hz, which names the load whose Δf was
+    negated. Each load once, in its own clause."""
+    s = study(n_experiments=2)
+    negated, flat = s.normal_forces[3], s.normal_forces[4]
+
+    def edit(raw):
+        rng = np.random.default_rng(1)
+        e2 = (raw["experiment"] == "e2").to_numpy()
+        raw.loc[e2 & (raw["normal_force_N"] == negated).to_numpy(), "df_Hz"] *= -1
+        for ramp, j in ((2, 0), (3, 4), (4, 9)):  # each ramp at its own one amplitude
+            rows = raw.index[
+                e2 & (raw["normal_force_N"] == flat).to_numpy() & (raw["ramp"] == ramp)
+            ]
+            raw.loc[rows, "amplitude_m"] = raw.loc[rows[j], "amplitude_m"]
+            for c in ("df_Hz", "dgamma_Hz"):
+                raw.loc[rows, c] = raw.loc[rows[j], c] + 0.1 * rng.standard_normal(len(rows))
+        return raw
+
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore", SweepWarning)  # one amplitude: as meant
+        table = _table(s, 5, edit)
+    for exact_loop in (False, True):
+        res = analyze(table, settings=AnalysisSettings(bootstrap=0, exact_loop=exact_loop))
+        (g,) = res.groups
+        clauses = g["note"].split("; ")
+        assert len(clauses) == 2, g["note"]
+        assert clauses[0].startswith(
+            "1 point(s) with κ <= 0 (Δf0 <= 0) left out of the JKR fit, at normal force(s) "
+            f"{negated:.4g} N: check the sign of df_Hz"
+        )
+        assert "negative-stiffness" in clauses[0]
+        # The flag the clause names is on the negated load's sweeps, not on the flat load's.
+        sw = res.sweeps
+        e2 = (sw["experiment"] == "e2").to_numpy()
+        flagged = has(sw["flags"].to_numpy(), Flag.NEGATIVE_STIFFNESS)
+        assert flagged[e2 & (sw["normal_force_N"] == negated).to_numpy()].all()
+        assert not flagged[e2 & (sw["normal_force_N"] == flat).to_numpy()].any()
+        assert clauses[1] == (
+            f"1 point(s) with no κ (Δf0 not given) left out of the JKR fit, at normal force(s) "
+            f"{flat:.4g} N: each used sweep of the load has fewer distinct amplitudes "
+            "(amplitude_m) than its class (column model) has parameters to identify: check the "
+            "sweeps' amplitudes"
+        )
+        assert "df_Hz" not in clauses[1]
 
 
 def test_a_friction_coefficient_beyond_any_real_one_is_withheld_and_flagged():

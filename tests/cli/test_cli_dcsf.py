@@ -350,7 +350,7 @@ def test_dcsf_on_a_pmma_coating_notes_its_static_reference():
         (("--radius", "1e-3", "--force", "1e-2", "--frequency", "1e6", "--model", "TP"),
          ("--coating", "--model")),
         (("--radius", "1e-3", "--force", "1e-2", "--frequency", "1e6", "--loss", "0.02"),
-         ("--coating", "--loss")),
+         ("--coating", "--loss", "a viscoelastic film", "a lossy face")),
     ],
 )  # fmt: skip
 def test_dcsf_on_a_coating_refuses_k_a_models_and_loss_in_one_line(args, words):

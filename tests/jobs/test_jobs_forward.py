@@ -235,14 +235,39 @@ def test_a_lossy_face_is_refused_bare_and_taken_under_a_coating():
     contact job, the dcsf job for contacts and for k a); the same face under a coating runs."""
     lossy = Material.crystal("fused-silica").with_loss(0.02)
     R, F, f = np.array([1e-3]), np.array([1e-2]), np.array([1e6])
-    with pytest.raises(ContactresInputError, match=r"real \(undamped\) constants"):
-        contact.run(lossy, contact.Settings(R, F))
-    with pytest.raises(ContactresInputError, match=r"real \(undamped\) constants"):
-        contact.run(lossy, contact.Settings(R, F, f))
-    with pytest.raises(ContactresInputError, match=r"real \(undamped\) constants"):
-        dcsf_job.run(lossy, dcsf_job.Settings(radius=R, force=F, frequency=f))
-    with pytest.raises(ContactresInputError, match="set the damping with loss="):
-        dcsf_job.run(lossy, dcsf_job.Settings(ka=np.array([0.5])))
+    for settings in (contact.Settings(R, F), contact.Settings(R, F, f)):
+        with pytest.raises(ContactresInputError, match="the contact job's bare face") as info:
+            contact.run(lossy, settings)
+        assert "\n" not in str(info.value)
+        for remedy in ("static_solid(m)", "loss=Q⁻¹", "coating="):
+            assert remedy in str(info.value)
+    for settings in (
+        dcsf_job.Settings(radius=R, force=F, frequency=f),
+        dcsf_job.Settings(ka=np.array([0.5])),
+        dcsf_job.Settings(ka=np.array([0.5]), loss=0.02),
+    ):
+        with pytest.raises(ContactresInputError, match="the dcsf job's bare face") as info:
+            dcsf_job.run(lossy, settings)
+        assert "\n" not in str(info.value)
+        # The factor named, and the way to take it: the elastic part and loss=.
+        for remedy in ("static_solid(m)", "loss=0.02)", "coating="):
+            assert remedy in str(info.value)
+    # A loss that is not one factor (C44 alone lossy) is not named as one.
+    C = np.array(Material.crystal("fused-silica").C, dtype=complex)
+    C[3, 3] *= 1 + 0.05j
+    with pytest.raises(ContactresInputError, match="the dcsf job's bare face") as info:
+        dcsf_job.run(Material(C=C, density=lossy.density), dcsf_job.Settings(ka=np.array([0.5])))
+    assert "loss=Q⁻¹, or put" in str(info.value) and "here C" not in str(info.value)
+    # The remedy the message names runs, and its damping is loss='s: the same as the kernels'.
+    from contactres.dynamic import dcsf as dcsf_of
+    from contactres.viscoelastic import static_solid
+
+    taken = dcsf_job.run(static_solid(lossy), dcsf_job.Settings(ka=np.array([0.5]), loss=0.02))
+    want = dcsf_of(Material.crystal("fused-silica"), 0.5, loss=0.02)
+    assert taken.table["im"].iloc[0] > 0
+    assert complex(taken.table["re"].iloc[0], taken.table["im"].iloc[0]) == pytest.approx(
+        complex(want), rel=1e-5
+    )
     coating = ("fused-silica:250e-9",)
     assert len(contact.run(lossy, contact.Settings(R, F, f, coating=coating)).table) == 1
     s = dcsf_job.Settings(radius=R, force=F, frequency=f, coating=coating)

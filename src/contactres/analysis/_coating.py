@@ -54,8 +54,8 @@ elastic film keeps the coated radii near them); a fit that needs a radius outsid
 it used is refitted once on a table of the radii the film can give there, within a reach of
 the thinnest layer (a film soft in the static contact and stiff at the overtone:
 :func:`_wider_law`), and withheld
-(``fit-at-bound``, with a note) only if it still needs one. A load the fit left out (κ <= 0)
-withholds nothing.
+(``fit-at-bound``, with a note) only if it still needs one. A load the fit left out (κ <= 0, or
+no κ) withholds nothing.
 """
 
 from __future__ import annotations

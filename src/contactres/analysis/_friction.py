@@ -204,7 +204,8 @@ def loop_friction(
 #: resolve μ (a plateau loop whose d_c sits on its bound 0 has a degenerate Jacobian and errors
 #: of hundreds of per cent). Such a μ leaves the model average (:func:`model_averaged_mu`), and
 #: the μ prior is not weighed against it (the prior would waive the parameter's ln N for nothing
-#: the data show, so such a fit keeps its BIC; :mod:`contactres.analysis._mu_prior`).
+#: the data show, so it leaves such a fit's criterion as it is: a Coulomb loop keeps its BIC,
+#: a plateau loop keeps only its d_c prior's term; :mod:`contactres.analysis._mu_prior`).
 MU_PRIOR_MAX_REL = 1.0
 
 #: The two Coulomb loops whose joint fits of a block are averaged (keys of the block fits).

@@ -33,6 +33,7 @@ __all__ = [
     "fit_correlation",
     "fit_group",
     "fit_jkr_mindlin",
+    "left_out_note",
     "t95_factor",
 ]
 
@@ -281,6 +282,46 @@ def _joined(*texts: str) -> str:
     return "; ".join(t for t in texts if t)
 
 
+def _at_loads(n: int, what: str, force: np.ndarray, why: str) -> str:
+    loads = ", ".join(f"{v:.4g}" for v in np.unique(force)[:5])
+    return f"{n} point(s) with {what} left out of the JKR fit, at normal force(s) {loads} N: {why}"
+
+
+def left_out_note(force: np.ndarray, kappa: np.ndarray) -> str:
+    """What a group's note says of the points (one per experiment and load) that the JKR fit
+    leaves out, one clause per cause, each naming the input to check ("" if none is left out).
+
+    ``force`` (N) and ``kappa`` (N/m) are the points' arrays. A κ <= 0 (Δf0 <= 0) is no contact
+    stiffness but a shift of the wrong sign (the sweeps below 0 beyond the noise carry the
+    ``negative-stiffness`` flag). A κ that is not a number comes from a Δf0 that the used sweeps'
+    class does not give: each of them has fewer distinct amplitudes than the class has
+    parameters to identify (:func:`contactres.analysis._bad_rows.identified`; the exact loops
+    refuse such a sweep by their own count), which the sign of df_Hz has nothing to do with.
+    """
+    negative = kappa <= 0
+    missing = ~(np.isfinite(kappa) & (kappa > 0)) & ~negative
+    return _joined(
+        _at_loads(
+            int(negative.sum()),
+            "κ <= 0 (Δf0 <= 0)",
+            force[negative],
+            "check the sign of df_Hz, as a contact raises the frequency (the sweeps whose Δf0 is "
+            "below 0 by more than twice its error are flagged negative-stiffness)",
+        )
+        if negative.any()
+        else "",
+        _at_loads(
+            int(missing.sum()),
+            "no κ (Δf0 not given)",
+            force[missing],
+            "each used sweep of the load has fewer distinct amplitudes (amplitude_m) than its "
+            "class (column model) has parameters to identify: check the sweeps' amplitudes",
+        )
+        if missing.any()
+        else "",
+    )
+
+
 def fit_group(
     exp: pd.DataFrame,
     key,
@@ -316,17 +357,10 @@ def fit_group(
                 f"({sorted(vals.tolist())} {unit}); one configuration has one geometry"
             )
     R, nu = float(radii[0]), float(nus[0])
-    ok = np.isfinite(exp["kappa_N_per_m"].to_numpy()) & (exp["kappa_N_per_m"].to_numpy() > 0)
+    kappa = exp["kappa_N_per_m"].to_numpy(float)
+    ok = np.isfinite(kappa) & (kappa > 0)
     pts = exp[ok]
-    # A κ <= 0 (Δf0 <= 0) cannot be a contact stiffness: left out of the fit, and said.
-    left = exp[~ok]
-    left_out = ""
-    if len(left):
-        loads = ", ".join(f"{v:.4g}" for v in sorted(left["normal_force_N"].unique())[:5])
-        left_out = (
-            f"{len(left)} point(s) with κ <= 0 or not finite (Δf0 <= 0) left out of the JKR "
-            f"fit, at normal force(s) {loads} N: check the sign of df_Hz"
-        )
+    left_out = left_out_note(exp["normal_force_N"].to_numpy(float), kappa)
     out = {
         "configuration": config,
         "medium": medium,

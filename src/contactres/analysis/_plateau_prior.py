@@ -28,11 +28,14 @@ where μ has its prior too (from the experiment's other loads), both at once wit
 joint covariance of μ and d_c (:func:`joint_prior_penalty`): the fit trades one against the
 other, and two separate terms would waive the same freedom twice.
 
-What it does not do. A Cattaneo-Mindlin block's plateau fit puts d_c near 0 (a few per cent of
-u_max, or on its bound: 0, with no error), several prior widths below the clear
-plateaus' (a misfit larger than the ln N it replaces), or leaves d_c unresolved (relative error
-above 1: the block keeps its BIC); so the prior rarely turns such a block into a plateau (on
-the validation study 12 of 557 Cattaneo-Mindlin blocks in water, 6 before). Where fewer than
+What it does not do. A Cattaneo-Mindlin block's plateau fit puts d_c near 0: a few per cent of
+u_max, several prior widths below the clear plateaus' (a misfit larger than the ln N it
+replaces), or on its bound 0 (with no error); or it leaves d_c unresolved (relative error above
+1). On the bound or unresolved, the prior of d_c does not apply and its ln N stays in the
+criterion; only μ's prior, where μ has one (and is resolved), replaces μ's ln N
+(:func:`joint_prior_penalty` falls back to the μ-only term), as it does in the block's Coulomb
+loops' criteria. So the prior rarely turns such a block into a plateau (on the validation study
+12 of 557 Cattaneo-Mindlin blocks in water, 6 before). Where fewer than
 :data:`PLATEAU_PRIOR_MIN_BLOCKS` other plateaus are clear (a sample without plateaus, or with
 one or two), nothing changes. Only the class choice and the weights of the model-averaged μ
 use the prior; d_c and μ of every block are still those its own points give.
@@ -152,7 +155,9 @@ def joint_prior_penalty(mu, mu_err, mu_prior, ratio, ratio_err, ratio_prior, cov
         ln det(C + V) - ln det C + (y - m)ᵀ (C + V)⁻¹ (y - m)
 
     (the two-parameter form of the one in :mod:`contactres.analysis._mu_prior`). Where only one
-    prior applies, its one-parameter term; neither: 0.
+    prior applies, its one-parameter term (a d_c on its bound 0 or whose relative error is above
+    :data:`~contactres.analysis._mu_prior.MU_PRIOR_MAX_REL` has no prior term: μ's alone);
+    neither: 0.
 
     Parameters
     ----------

@@ -36,15 +36,16 @@ static columns, its complex constants in the dynamic ones
 (:func:`contactres.viscoelastic.static_solid`). The ``warnings`` say which materials' static
 columns were taken so.
 
-A bare face takes an undamped Material only: a lossy one is refused (by
-:func:`contactres.sphere_contact`, which needs real constants). The bare dynamic solvers take
-the same undamped constants with the loss as one separate factor Q⁻¹ (``loss=`` of
-:func:`contactres.dynamic_contact_stiffness` and :func:`contactres.tangential_contact_stiffness`,
-which refuse a lossy Material too; this job sets no loss: its bare dynamic columns are the
-lossless solid's, radiation only). A Material's loss need not be one factor (any Im C >= 0), so
-the bare face does not split a lossy Material into the two; the layered punch of a coated face
-takes each material's complex constants as they are. For the bare face of a lossy solid give
-its elastic part (``static_solid(m)``); its damping then appears in no column.
+A bare face takes an undamped Material only: a lossy one is refused, in one line that names
+the remedies (the static contact, :func:`contactres.sphere_contact`, needs real constants).
+The bare dynamic solvers take the same undamped constants with the loss as one separate
+factor Q⁻¹ (``loss=`` of :func:`contactres.dynamic_contact_stiffness` and
+:func:`contactres.tangential_contact_stiffness`, which refuse a lossy Material too; this job
+sets no loss: its bare dynamic columns are the lossless solid's, radiation only). A Material's
+loss need not be one factor (any Im C >= 0), so the bare face does not split a lossy Material
+into the two; the layered punch of a coated face takes each material's complex constants as
+they are. For the bare face of a lossy solid give its elastic part (``static_solid(m)``); its
+damping then appears in no column (the ``dcsf`` job and those solvers take it as ``loss=``).
 """
 
 from __future__ import annotations
@@ -182,6 +183,17 @@ def run(
         )
     if stack is not None:
         return _run_coated(stack, R, F, f, s, progress)
+    if getattr(m, "is_lossy", False):
+        # Said here, not by sphere_contact deep inside ("drop with_loss"): dropping the loss
+        # also drops the damping, which this job's bare columns cannot take (module docstring).
+        raise ContactresInputError(
+            "the contact job's bare face takes an undamped Material (real constants); the "
+            "Material given is lossy (complex constants): give its elastic part "
+            "(contactres.viscoelastic.static_solid(m)), whose bare dynamic columns are the "
+            "lossless solid's (its damping as loss=Q⁻¹ in contactres.dynamic_contact_stiffness "
+            "or the dcsf job), or put the face under a coating (coating=), whose dynamic "
+            "columns take its complex constants"
+        )
     say(progress, "static contact")
     # The job flags a/R itself (flags column, empty rows): no warning from the library.
     c = sphere_contact(require_material(m), R, F, check_validity=False)  # homogeneous only

@@ -27,11 +27,13 @@ columns are. The ``ka`` column is then the substrate's k a, for orientation only
 under a coating as the ``contact`` job takes it: the static contact (contact radius, K_sa, k a)
 of its elastic part, K(f) of its complex constants, so its loss adds to ``im``.
 
-A bare face takes an undamped Material only: a lossy one is refused, by the static contact
-(:func:`contactres.sphere_contact` needs real constants) for physical contacts and by the
-kernel table (:func:`contactres.dynamic.prepare`) for values of k a. The bare kernels take the
-loss as one factor, ``loss`` (Q⁻¹ of C (1 + i Q⁻¹)): give the undamped Material and its loss
-there. (A lossy Material's loss need not be one factor, so it is not split into the two.)
+A bare face takes an undamped Material only: a lossy one is refused, before any contact or
+kernel table (the static contact, :func:`contactres.sphere_contact`, needs real constants, and
+so does the kernel table, :func:`contactres.dynamic.prepare`), in one line that names the
+remedies. The bare kernels take the loss as one factor, ``loss`` (Q⁻¹ of C (1 + i Q⁻¹)): give
+the undamped Material and its loss there (the elastic part alone would lose the damping), or
+put the face under a coating. (A lossy Material's loss need not be one factor, so it is not
+split into the two; the message names the factor where it is one.)
 """
 
 from __future__ import annotations
@@ -141,6 +143,10 @@ def run(inputs: Material, settings: Settings, progress: Progress | None = None) 
         return _run_coated(m, s, progress)
     if physical == (s.ka is not None):
         raise ContactresInputError("give either ka or radius/force/frequency (which give k a)")
+    if getattr(m, "is_lossy", False):
+        # Said here, not by sphere_contact or the kernel table deep inside: their "drop the
+        # loss" alone would lose the damping this job can take as loss=.
+        raise ContactresInputError(_lossy_bare_face(m))
     c33, c44 = float(np.real(m.C[2, 2])), float(np.real(m.C[3, 3]))
     # At least one row: a single k a from Python (a float) makes a table of one row per model.
     ka = None if s.ka is None else np.atleast_1d(np.asarray(s.ka, dtype=float))
@@ -175,6 +181,24 @@ def run(inputs: Material, settings: Settings, progress: Progress | None = None) 
         table=frame,
         face=_face_constants(c33, c44, density, not s.constants_in_pa),
         warnings=_warnings(frame, s.rtol),
+    )
+
+
+def _lossy_bare_face(m: Material) -> str:
+    """The one line that refuses a lossy Material as a bare face, with the two ways to take its
+    damping (module docstring); the loss factor named where every constant carries the same
+    one, C (1 + i Q⁻¹) (:meth:`~contactres.Material.with_loss`)."""
+    C = np.asarray(m.C)
+    given = C.real != 0
+    ratio = C.imag[given] / C.real[given]
+    same = ratio.size and np.all(C.imag[~given] == 0) and np.ptp(ratio) <= 1e-12 * abs(ratio[0])
+    factor = f" (here C (1 + i {ratio[0]:.6g}): loss={ratio[0]:.6g})" if same else ""
+    return (
+        "the dcsf job's bare face takes the undamped Material and its loss as the setting "
+        "loss=Q⁻¹ (constants C (1 + i Q⁻¹)); the Material given is lossy (complex constants), "
+        "and its elastic part alone would lose the damping: give its elastic part "
+        f"(contactres.viscoelastic.static_solid(m)) and loss=Q⁻¹{factor}, or put the face "
+        "under a coating (coating=), which takes its complex constants as they are"
     )
 
 
@@ -276,8 +300,8 @@ def _run_coated(m, s: Settings, progress) -> Result:
         )
     if s.loss != 0:
         raise ContactresInputError(
-            "on a coating (--coating) the materials carry their own loss (a viscoelastic film): "
-            "leave out --loss"
+            "on a coating (--coating) the materials carry their own loss (a viscoelastic film; "
+            "from Python also a lossy face, a Material with complex constants): leave out --loss"
         )
     if not s.constants_in_pa or m.density is None:
         raise ContactresInputError(

@@ -56,7 +56,7 @@ def table1_text(results: Results) -> pd.DataFrame:
 
 def withheld_lines(results: Results) -> list[str]:
     """One line per group whose E and γ are withheld, with the reason and the input to check,
-    and per group whose fit left points out (κ <= 0), saying so."""
+    and per group whose fit left points out (κ <= 0, or no κ), saying so."""
     return [
         f"{g['configuration']}, {g['medium']}: E and γ withheld ({', '.join(g['checks'])}): "
         f"{g['note']}"

@@ -283,8 +283,8 @@ GROUP_RESULTS = TableSchema(
         Column(
             "note",
             "text",
-            "why E and γ are withheld, or which points the fit left out (κ <= 0), in words, "
-            "with the input to check",
+            "why E and γ are withheld, or which points the fit left out (κ <= 0, or no κ), in "
+            "words, with the input to check",
         ),
         Column("E_fit_err_Pa", "Pa", "standard error of E from the fit's Jacobian alone"),
         Column("gamma_fit_err_J_m2", "J/m^2", "standard error of γ from the fit's Jacobian alone"),
