@@ -17,7 +17,7 @@ import pytest
 from short_sweeps import CUT, WRONG_SIGN, short_sweeps
 
 from contactres.analysis import AnalysisSettings, analyze
-from contactres.analysis._bad_rows import blank_errors, blank_unidentified
+from contactres.analysis._bad_rows import blank_errors, blank_unidentified, points_of
 from contactres.analysis._flags import Flag, has, negative_stiffness
 from contactres.analysis._models import AMPLITUDE_MODELS
 
@@ -271,3 +271,9 @@ def test_emptying_a_fit_keeps_its_values_where_only_the_errors_go_and_refuses_in
         blank_unidentified(counted, ok)
     assert blank_unidentified(counted, np.ones(3, bool)) is counted
     assert blank_errors(counted, ok)["n_iterations"].tolist() == [3, 4, 5]  # not an error
+
+
+def test_points_are_the_weights_above_zero():
+    """Padding (weight 0) and a NaN weight are no points; copies of one amplitude each count."""
+    w = np.array([[1.0, np.nan, 0.0, 1.0], [1.0, 1.0, 1.0, 1.0], [0.0, 0.0, np.nan, 0.0]])
+    assert list(points_of(w)) == [2, 4, 0]

@@ -274,6 +274,24 @@ def test_a_lossy_face_is_refused_bare_and_taken_under_a_coating():
     assert len(dcsf_job.run(lossy, s).table) == 1
 
 
+def test_a_frequency_dependent_bare_face_is_named_as_such_not_as_lossy():
+    """A viscoelastic solid (is_lossy, but no constants C) as a bare face: the jobs say it is no
+    Material (take its storage constants), neither crash on its missing C nor call it a lossy
+    Material (review R32h)."""
+    from contactres import pmma
+
+    R, F, f = np.array([1e-3]), np.array([1e-2]), np.array([1e6])
+    runs = [
+        (contact.run, contact.Settings(R, F)),
+        (dcsf_job.run, dcsf_job.Settings(ka=np.array([0.5]))),
+        (dcsf_job.run, dcsf_job.Settings(radius=R, force=F, frequency=f)),
+    ]
+    for run, settings in runs:
+        with pytest.raises(ContactresInputError, match=r"must be a contactres\.Material") as info:
+            run(pmma(), settings)
+        assert "lossy" not in str(info.value) and "\n" not in str(info.value)
+
+
 def test_dcsf_on_a_coated_lossy_face_adds_the_loss_to_the_dynamic_columns_only():
     """Fused silica C (1 + i q) under 250 nm of (elastic) fused silica, a ~ 4.6 µm.
 

@@ -183,7 +183,7 @@ def run(
         )
     if stack is not None:
         return _run_coated(stack, R, F, f, s, progress)
-    if getattr(m, "is_lossy", False):
+    if require_material(m).is_lossy:
         # Said here, not by sphere_contact deep inside ("drop with_loss"): dropping the loss
         # also drops the damping, which this job's bare columns cannot take (module docstring).
         raise ContactresInputError(

@@ -127,6 +127,7 @@ def run(inputs: Material, settings: Settings, progress: Progress | None = None) 
     import pandas as pd
 
     from ..dynamic import checked_dcsf_models, prepare
+    from ..materials import require_material
 
     m, s = inputs, settings
     contacts = [v is not None for v in (s.radius, s.force, s.frequency)]
@@ -143,7 +144,8 @@ def run(inputs: Material, settings: Settings, progress: Progress | None = None) 
         return _run_coated(m, s, progress)
     if physical == (s.ka is not None):
         raise ContactresInputError("give either ka or radius/force/frequency (which give k a)")
-    if getattr(m, "is_lossy", False):
+    m = require_material(m)
+    if m.is_lossy:
         # Said here, not by sphere_contact or the kernel table deep inside: their "drop the
         # loss" alone would lose the damping this job can take as loss=.
         raise ContactresInputError(_lossy_bare_face(m))
