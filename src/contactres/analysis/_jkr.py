@@ -300,25 +300,22 @@ def left_out_note(force: np.ndarray, kappa: np.ndarray) -> str:
     """
     negative = kappa <= 0
     missing = ~(np.isfinite(kappa) & (kappa > 0)) & ~negative
-    return _joined(
-        _at_loads(
-            int(negative.sum()),
+    causes = (
+        (
+            negative,
             "κ <= 0 (Δf0 <= 0)",
-            force[negative],
             "check the sign of df_Hz, as a contact raises the frequency (the sweeps whose Δf0 is "
             "below 0 by more than twice its error are flagged negative-stiffness)",
-        )
-        if negative.any()
-        else "",
-        _at_loads(
-            int(missing.sum()),
+        ),
+        (
+            missing,
             "no κ (Δf0 not given)",
-            force[missing],
             "each used sweep of the load has fewer distinct amplitudes (amplitude_m) than its "
             "class (column model) has parameters to identify: check the sweeps' amplitudes",
-        )
-        if missing.any()
-        else "",
+        ),
+    )
+    return _joined(
+        *(_at_loads(int(m.sum()), what, force[m], why) for m, what, why in causes if m.any())
     )
 
 
