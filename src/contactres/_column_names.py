@@ -57,6 +57,13 @@ def excel_letters(position: int) -> str:
     return letters
 
 
+def _listed(items: list, count: int, text: Callable = str) -> str:
+    """``text`` of the first ``count`` of ``items``, joined by commas, the rest counted
+    (``, ... 40 in all``): the one shape of every list these messages show."""
+    more = f", ... {len(items)} in all" if len(items) > count else ""
+    return ", ".join(text(i) for i in items[:count]) + more
+
+
 def _shown(name: str) -> str:
     text = name if len(name) <= SHOWN_CHARS else name[: SHOWN_CHARS - 1] + "…"
     return repr(text)
@@ -66,10 +73,7 @@ def shown_names(names: Iterable[str], count: int = 20) -> str:
     """``['a', 'b', ... 40 in all]``: the first ``count`` of ``names``, each shortened as in
     :func:`repeats_text`, the rest counted (an internal error's text stays one short line
     whatever the header holds)."""
-    names = list(names)
-    shown = ", ".join(_shown(n) for n in names[:count])
-    more = f", ... {len(names)} in all" if len(names) > count else ""
-    return f"[{shown}{more}]"
+    return f"[{_listed(list(names), count, _shown)}]"
 
 
 def repeats_text(
@@ -89,9 +93,7 @@ def repeats_text(
         return None
     parts = []
     for name, places in list(repeats.items())[:SHOWN_NAMES]:
-        shown = ", ".join(place(p) for p in places[:SHOWN_PLACES])
-        more = f", ... {len(places)} in all" if len(places) > SHOWN_PLACES else ""
-        parts.append(f"{_shown(name)} ({word} {shown}{more}{tail})")
+        parts.append(f"{_shown(name)} ({word} {_listed(places, SHOWN_PLACES, place)}{tail})")
     left = len(repeats) - SHOWN_NAMES
     return "; ".join(parts) + (f"; and {left} more name(s)" if left > 0 else "")
 
@@ -105,9 +107,7 @@ def empty_places(names: Iterable[str], place: Callable[[int], str] = str) -> str
     empty = [i for i, name in enumerate(names, start=1) if not name]
     if not empty:
         return None
-    shown = ", ".join(place(i) for i in empty[:SHOWN_PLACES])
-    more = f", ... {len(empty)} in all" if len(empty) > SHOWN_PLACES else ""
-    return f"column{'' if len(empty) == 1 else 's'} {shown}{more}"
+    return f"column{'' if len(empty) == 1 else 's'} {_listed(empty, SHOWN_PLACES, place)}"
 
 
 def refuse_computed_names(table, computed: Collection[str], source: str) -> None:
@@ -124,11 +124,10 @@ def refuse_computed_names(table, computed: Collection[str], source: str) -> None
     clash = [c for c in given if c in computed]
     if not clash:
         return
-    shown = ", ".join(f"{c!r} ({column_place(table, given.index(c) + 1)})" for c in clash[:5])
-    more = f", ... {len(clash)} in all" if len(clash) > 5 else ""
+    shown = _listed(clash, 5, lambda c: f"{c!r} ({column_place(table, given.index(c) + 1)})")
     one = len(clash) == 1
     raise ContactresInputError(
-        f"{source}: column{'' if one else 's'} {shown}{more} "
+        f"{source}: column{'' if one else 's'} {shown} "
         f"{'is a column' if one else 'are columns'} the inversion computes: the result would "
         f"replace {'its' if one else 'their'} values; rename {'it' if one else 'them'} (a table "
         "an inversion wrote: drop its computed columns first)"

@@ -97,7 +97,7 @@ def _run_starts(values: np.ndarray) -> np.ndarray:
     return np.arange(values.size) if pointers is None else run_starts(pointers)
 
 
-def neutralised(frame):
+def neutralised(frame, what: str = "the table written"):
     """``frame`` with every text cell that a spreadsheet would run as a formula (it starts with
     one of ``= + - @``, a tab or a carriage return) prefixed by an apostrophe, which spreadsheets
     show as text.
@@ -107,7 +107,7 @@ def neutralised(frame):
     columns = getattr(frame, "columns", None)
     if columns is None:  # not a table: written as the caller's to_csv writes it
         return frame
-    unique_written(frame)
+    unique_written(frame, what)
     text = [c for c in columns if frame[c].dtype.kind == "O" or str(frame[c].dtype) == "str"]
     if not text:
         return frame
@@ -270,6 +270,7 @@ def csv_chunks(
     sweeps writes ~15 million). In pieces, so that the text of a large table is never held
     whole. With a ``"%.Ng"`` format (the reports' :data:`CSV_FLOAT_FORMAT`) the lines are
     assembled as bytes in numpy (:func:`_lines_bytes`), the doubles' text made there too."""
+    unique_written(frame)  # (csv_to's frame has passed neutralised's check)
     for piece in _pieces(frame, na_rep, lineterminator, float_format, rows):
         # (a lone surrogate in a text cell, "\udcff", is kept as pandas' to_csv() to a string
         # keeps it: _text_records encodes it as the three bytes surrogatepass decodes)
@@ -282,7 +283,6 @@ def _pieces(
     """:func:`csv_chunks`' pieces, those assembled in numpy (:func:`_lines_bytes`) as the
     UTF-8 bytes they are made as: :func:`csv_to` writes them without a decoding and encoding
     of each (~250 MB of text at 10^5 sweeps)."""
-    unique_written(frame)
     columns = list(getattr(frame, "columns", ()))
     if len(columns) < 2 or len(frame) == 0 or not all(isinstance(c, str) for c in columns):
         raise _NotJoined  # (not a table; one column: the csv module quotes an empty field there)
@@ -521,8 +521,7 @@ def csv_to(path, frame, options: dict, what: str = "the table written") -> None:
     file is opened."""
     import os
 
-    unique_written(frame, what)  # before the file is opened (neutralised checks it too, later)
-    table = neutralised(frame)
+    table = neutralised(frame, what)  # (its check of the names: before the file is opened)
     na_rep = options.get("na_rep", "")
     float_format = options.get("float_format")
     joined = options.keys() <= {"index", "na_rep", "float_format"} and not options.get(

@@ -47,6 +47,7 @@ from contextlib import contextmanager
 from pathlib import Path
 
 from ._csvcells import CSV_FLOAT_FORMAT, csv_to, neutralised, npz_to
+from ._csvcells import unique_written as unique_written  # (for the command line: its check)
 from ._ownership import refusal, unvouched, writer_version
 from .errors import ContactresInputError
 

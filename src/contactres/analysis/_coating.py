@@ -75,7 +75,7 @@ from ..tangential import kappa_jkr_mindlin
 from ..viscoelastic import static_solid
 from ._coating_bootstrap import resampled_coated
 from ._coating_law import CoatedLaw, Coating, build_law
-from ._jkr import LoadLaw, fit_group
+from ._jkr import LoadLaw, fit_group, fitted_points
 
 __all__ = [
     "CoatedLaw",
@@ -277,8 +277,9 @@ def _radii(law: CoatedLaw, out: dict, part) -> tuple | None:
         return None
     F = np.unique(part["normal_force_N"].to_numpy(float))
     a, clamped = law.contact_radius(F, out["E_Pa"], out["gamma_J_m2"], out["sphere_radius_m"])
-    kappa = part["kappa_N_per_m"].to_numpy(float)
-    used = part["normal_force_N"].to_numpy(float)[np.isfinite(kappa) & (kappa > 0)]
+    used = part["normal_force_N"].to_numpy(float)[
+        fitted_points(part["kappa_N_per_m"].to_numpy(float))
+    ]
     return F, a, clamped, np.isin(F, used)
 
 

@@ -33,6 +33,7 @@ __all__ = [
     "fit_correlation",
     "fit_group",
     "fit_jkr_mindlin",
+    "fitted_points",
     "left_out_note",
     "t95_factor",
 ]
@@ -287,6 +288,12 @@ def _at_loads(n: int, what: str, force: np.ndarray, why: str) -> str:
     return f"{n} point(s) with {what} left out of the JKR fit, at normal force(s) {loads} N: {why}"
 
 
+def fitted_points(kappa: np.ndarray) -> np.ndarray:
+    """Which points the JKR fit takes, by their κ (N/m): finite and > 0 (a κ <= 0 is a shift of
+    the wrong sign, a NaN no κ: :func:`left_out_note` says which were left out and why)."""
+    return np.isfinite(kappa) & (kappa > 0)
+
+
 def left_out_note(force: np.ndarray, kappa: np.ndarray) -> str:
     """What a group's note says of the points (one per experiment and load) that the JKR fit
     leaves out, one clause per cause, each naming the input to check ("" if none is left out).
@@ -299,7 +306,7 @@ def left_out_note(force: np.ndarray, kappa: np.ndarray) -> str:
     refuse such a sweep by their own count), which the sign of df_Hz has nothing to do with.
     """
     negative = kappa <= 0
-    missing = ~(np.isfinite(kappa) & (kappa > 0)) & ~negative
+    missing = ~fitted_points(kappa) & ~negative
     causes = (
         (
             negative,
@@ -355,7 +362,7 @@ def fit_group(
             )
     R, nu = float(radii[0]), float(nus[0])
     kappa = exp["kappa_N_per_m"].to_numpy(float)
-    ok = np.isfinite(kappa) & (kappa > 0)
+    ok = fitted_points(kappa)
     pts = exp[ok]
     left_out = left_out_note(exp["normal_force_N"].to_numpy(float), kappa)
     out = {

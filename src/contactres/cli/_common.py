@@ -358,12 +358,11 @@ def _json_scalar(value):
 def emit(table: pd.DataFrame, fmt: str, stream=None) -> None:
     """Print a table in the chosen format to ``stream`` (stdout). A column name twice is a
     ValueError (a fault of the command: JSON records would keep one of the two columns)."""
-    from ..fileio import neutralised
+    from ..fileio import neutralised, unique_written
 
-    # The writers' check of the names, for the JSON records and the plain table too: neutralised
-    # makes it before any cell (no rows here, nothing else done); the CSV's call makes it again.
-    # (Through fileio: the command line imports no module below it, tests/cli/test_cli_thin.py.)
-    neutralised(table.iloc[:0])
+    # The writers' check of the names, for the JSON records and the plain table too (through
+    # fileio: the command line imports no module below it, tests/cli/test_cli_thin.py).
+    unique_written(table)
     out = stream or sys.stdout
     if fmt == "csv":
         # 15 significant digits: read back by scripts to 5e-15, yet without the float noise of
